@@ -1,0 +1,238 @@
+"""Command-line interface: ``shtaerman impact | tables | contact | verify``.
+
+Thin: each subcommand parses, calls the library, prints. Bad input gives one line on stderr
+naming the parameter and its valid range, and exit code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import sys
+import tempfile
+import warnings
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+from .analytic_contact import PowerLawContact
+from .impact import ImpactResult, solve_impact
+from .impact_ode import integrate_impact
+from .indenter import PowerLawIndenter
+from .materials import RIGID, Material, effective_modulus
+from .tables import paper_tables, tables_text
+from .validation import InputError, validate_poisson, validate_positive
+
+EXIT_INPUT = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports a usage error as one line (no usage dump) with exit code 2.
+
+    It also reads ``-2e11`` as a (negative) number, so the range check can name it, rather than
+    as an unknown option.
+    """
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise InputError(message)
+
+
+def _add_impact(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("impact", help="exact quasi-static impact (the paper's example by default)")
+    p.add_argument("--mass", default="0.7", help="striker mass M in kg (default 0.7)")
+    p.add_argument("--velocity", default="3", help="approach velocity v0 in m/s (default 3)")
+    _add_indenter_options(p)
+    p.add_argument("--E1", default="2e11", help="striker Young's modulus in Pa, or 'inf' (rigid)")
+    p.add_argument("--nu1", default="0.25", help="striker Poisson's ratio (default 0.25)")
+    _add_half_space_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.add_argument("--history", metavar="FILE.csv", help="write t,x,P,a,p0 over [0, t_y]")
+    p.add_argument("--points", default="201", help="rows of --history (>= 2, default 201)")
+    p.add_argument(
+        "--check", action="store_true", help="also integrate the ODE numerically and compare"
+    )
+    p.set_defaults(run=_run_impact)
+
+
+def _add_indenter_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--shape-coefficient", default="5", help="A in z = A r^n, m^(1-n) (default 5)")
+    p.add_argument("--exponent", default="1.5", help="n in z = A r^n (default 1.5)")
+
+
+def _add_half_space_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--E2", default="7.5e6", help="half-space Young's modulus in Pa (default 7.5e6)")
+    p.add_argument("--nu2", default="0.5", help="half-space Poisson's ratio (default 0.5)")
+
+
+def _add_tables(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("tables", help="the paper's Tables 1-6: printed, exact, difference")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_tables)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``shtaerman`` argument parser with its subcommands."""
+    parser = _Parser(prog="shtaerman", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"shtaerman {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    _add_impact(sub)
+    _add_tables(sub)
+    return parser
+
+
+def _striker(args: argparse.Namespace) -> Material:
+    if str(args.E1).strip().lower() in {"inf", "rigid"}:
+        return RIGID
+    return Material(validate_positive("E1", args.E1, "Pa"), validate_poisson("nu1", args.nu1))
+
+
+def _half_space(args: argparse.Namespace) -> Material:
+    return Material(validate_positive("E2", args.E2, "Pa"), validate_poisson("nu2", args.nu2))
+
+
+def _indenter(args: argparse.Namespace) -> PowerLawIndenter:
+    return PowerLawIndenter(
+        validate_positive("shape-coefficient", args.shape_coefficient, "m^(1-n)"),
+        validate_positive("exponent", args.exponent),
+    )
+
+
+def _points(value: str) -> int:
+    try:
+        points = int(value)
+    except ValueError:
+        points = 0
+    if points < 2:
+        raise InputError(f"points must be an integer >= 2, got {value!r}")
+    return points
+
+
+def _run_impact(args: argparse.Namespace) -> int:
+    mass = validate_positive("mass", args.mass, "kg")
+    velocity = validate_positive("velocity", args.velocity, "m/s")
+    striker, half_space, indenter = _striker(args), _half_space(args), _indenter(args)
+    points = _points(args.points)
+    law = PowerLawContact(indenter, effective_modulus(striker, half_space))
+    result = solve_impact(mass, velocity, law)
+    report = {**result.maxima(), "force_exponent": result.force_exponent, "modulus": law.modulus}
+    if args.check:
+        report["ode_check"] = _ode_check(result)
+    if args.history:
+        _write_csv(Path(args.history), result.history(points).columns())
+    print(json.dumps(_json_safe(report), indent=2) if args.json else _impact_text(result, report))
+    return 0
+
+
+def _ode_check(result: ImpactResult) -> dict[str, float]:
+    numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
+    exact = result.history(2001)
+    x, _ = numerical.sample(exact.t[:-1])
+    return {
+        "x_c": numerical.x_c,
+        "t_c": numerical.t_c,
+        "t_y": numerical.t_y,
+        "rebound_velocity": numerical.rebound_velocity,
+        "max_history_difference": float(np.max(np.abs(x - exact.x[:-1])) / result.x_c),
+    }
+
+
+def _json_safe(value):
+    if isinstance(value, dict):
+        return {key: _json_safe(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_json_safe(item) for item in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _impact_text(result: ImpactResult, report: dict) -> str:
+    law = result.law
+    n, A = law.indenter.exponent, law.indenter.shape_coefficient
+    rows = [
+        f"Quasi-static impact of z = {A:g} r^{n:g} on an elastic half-space (SI units)",
+        f"  mass M                    {result.mass:>14.6g} kg",
+        f"  approach velocity v0      {result.velocity:>14.6g} m/s",
+        f"  combined modulus E*       {law.modulus:>14.6e} Pa",
+        f"  force law P = beta x^q    q = {result.force_exponent:.6g}",
+        f"  beta                      {result.beta:>14.6e} N/m^{result.force_exponent:.4g}",
+        f"  max approach x_c          {result.x_c:>14.6e} m",
+        f"  max force P_c             {result.P_c:>14.6e} N",
+        f"  max contact radius a_c    {result.a_c:>14.6e} m",
+        f"  max central pressure p_c  {result.p_c:>14.6e} Pa",
+        f"  compression time t_c      {result.t_c:>14.6e} s",
+        f"  impact duration t_y       {result.t_y:>14.6e} s",
+        f"  impulse 2 M v0            {result.impulse:>14.6e} N s",
+        f"  impulse, paper eq. (16)   {result.impulse_simpson:>14.6e} N s",
+    ]
+    if not math.isfinite(result.p_c):
+        rows.append("  (n <= 1: the pressure at the centre of the contact is unbounded)")
+    if "ode_check" in report:
+        check = report["ode_check"]
+        rows.append(
+            f"  ODE cross-check: x_c {check['x_c'] / result.x_c - 1:+.1e}, "
+            f"t_y {check['t_y'] / result.t_y - 1:+.1e}, "
+            f"history max |dx|/x_c {check['max_history_difference']:.1e}"
+        )
+    return "\n".join(rows)
+
+
+def _run_tables(args: argparse.Namespace) -> int:
+    tables = paper_tables()
+    if args.json:
+        print(json.dumps(_json_safe({"tables": [table.to_dict() for table in tables]}), indent=2))
+    else:
+        print(tables_text(tables))
+    return 0
+
+
+def _write_csv(path: Path, columns: dict[str, np.ndarray]) -> None:
+    """Write columns to ``path`` atomically: a failed run leaves any old file intact."""
+    path = path.expanduser()
+    if not path.parent.is_dir():
+        raise InputError(f"history: folder {str(path.parent)!r} does not exist")
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", newline="") as stream:
+            writer = csv.writer(stream)
+            writer.writerow(columns)
+            writer.writerows(zip(*(np.asarray(c) for c in columns.values()), strict=True))
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def _report_warnings(caught: list[warnings.WarningMessage]) -> None:
+    for warning in caught:
+        print(f"shtaerman: warning: {warning.message}", file=sys.stderr)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI; returns the exit code (0 success, 1 failed check, 2 bad input)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            args = build_parser().parse_args(argv)
+            run: Callable[[argparse.Namespace], int] = args.run
+            code = run(args)
+        except InputError as error:
+            _report_warnings(caught)
+            print(f"shtaerman: error: {error}", file=sys.stderr)
+            return EXIT_INPUT
+    _report_warnings([w for w in caught if not issubclass(w.category, DeprecationWarning)])
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Finite-element contact on an axisymmetric elastic half-space."""

@@ -1,0 +1,231 @@
+"""Quasi-static impact M x'' = -beta x^q, x(0) = 0, x'(0) = v0, solved exactly with Ateb functions.
+
+Hertz's assumptions (the paper, section 4): all kinetic energy goes into the local elastic
+deformation, the static contact law holds at every instant. With eta = v0 t / x_c:
+
+- x_c = ((q+1) M v0^2 / (2 beta))^(1/(q+1)),  P_c = beta x_c^q,
+- t_c = I x_c / v0 with I = Int_0^1 d xi / sqrt(1 - xi^(q+1)) = B(1/(q+1), 1/2) / (q+1),
+  t_y = 2 t_c (restitution mirrors compression),
+- x(t) / x_c = Sa(q, 1, (q+1)/2 eta) and x'(t) / v0 = Ca(1, q, (q+1)/2 eta) over the whole impact
+  0 <= eta <= 2 I, i.e. the first half-period of the Ateb pair (for q = 5/3 the paper's
+  Sa(5/3, 1, 4/3 eta) in compression and Ca(5/3, 1, 4/3 zeta), zeta = eta - I, in restitution),
+- impulse Int P dt = 2 M v0 exactly; the paper's Simpson estimate (its eq. 16) is
+  (1/3) P_c t_c (1 + 4 Sa(q, 1, (q+1)/4 I)^q).
+
+The contact radius a(t) and central pressure p(0, t) follow from x(t) through the contact law.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.special import beta as beta_function
+
+from .ateb import ateb_pair, ateb_sine
+from .validation import InputError, validate_positive
+
+__all__ = [
+    "QUASI_STATIC_VELOCITY_LIMIT",
+    "ContactLaw",
+    "ImpactHistory",
+    "ImpactResult",
+    "QuasiStaticValidityWarning",
+    "duration_integral",
+    "solve_impact",
+]
+
+QUASI_STATIC_VELOCITY_LIMIT = 5.0
+"""m/s; the paper (after Kil'chevskii and Nadutyi) bounds the quasi-static theory by 4-5 m/s."""
+
+
+class QuasiStaticValidityWarning(UserWarning):
+    """The impact velocity lies outside the quasi-static theory's stated validity."""
+
+
+class ContactLaw(Protocol):
+    """What the impact needs of a static contact law P = beta x^q (SI units)."""
+
+    @property
+    def beta(self) -> float: ...  # N m^-q
+
+    @property
+    def force_exponent(self) -> float: ...  # q
+
+    def contact_radius(self, depth: ArrayLike) -> np.ndarray: ...  # m
+
+    def central_pressure(self, depth: ArrayLike) -> np.ndarray: ...  # Pa
+
+
+def duration_integral(force_exponent: float) -> float:
+    """I = Int_0^1 d xi / sqrt(1 - xi^(q+1)) = B(1/(q+1), 1/2)/(q+1); t_c = I x_c / v0.
+
+    I = 1.445927 for q = 5/3 (the paper's eq. 14) and 1.471638 for Hertz's q = 3/2.
+    """
+    q = validate_positive("force_exponent", force_exponent)
+    return beta_function(1.0 / (q + 1.0), 0.5) / (q + 1.0)
+
+
+@dataclass(frozen=True)
+class ImpactHistory:
+    """Time histories of one impact, each an array over the same instants (SI units)."""
+
+    t: np.ndarray
+    """Time in s, from first touch."""
+    x: np.ndarray
+    """Approach of the bodies' centres of mass (indentation depth) in m."""
+    v: np.ndarray
+    """Approach velocity dx/dt in m/s."""
+    P: np.ndarray
+    """Contact force in N."""
+    a: np.ndarray
+    """Contact radius in m."""
+    p0: np.ndarray
+    """Pressure at the centre of the contact in Pa."""
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The CSV columns t, x, P, a, p0 in that order."""
+        return {"t": self.t, "x": self.x, "P": self.P, "a": self.a, "p0": self.p0}
+
+
+@dataclass(frozen=True)
+class ImpactResult:
+    """Maxima and durations of a quasi-static impact, and its exact history on demand.
+
+    All quantities in SI units; see the module docstring for the formulas.
+    """
+
+    mass: float
+    """Striker mass M in kg."""
+    velocity: float
+    """Approach velocity at first touch v0 in m/s."""
+    beta: float
+    """Force-law coefficient in N m^-q."""
+    force_exponent: float
+    """Force-law exponent q."""
+    x_c: float
+    """Maximum approach in m."""
+    P_c: float
+    """Maximum force in N."""
+    a_c: float
+    """Maximum contact radius in m."""
+    p_c: float
+    """Maximum central pressure in Pa (``inf`` for exponents n <= 1)."""
+    t_c: float
+    """Duration of compression in s."""
+    t_y: float
+    """Duration of the whole impact in s."""
+    impulse: float
+    """Impulse of the contact force over the impact, 2 M v0, in N s."""
+    impulse_simpson: float
+    """The paper's Simpson estimate of the impulse, its eq. (16), in N s."""
+    law: ContactLaw = field(repr=False, compare=False)
+
+    def phase(self, time: ArrayLike) -> np.ndarray:
+        """Ateb argument (q+1)/2 v0 t / x_c at times t in s."""
+        eta = self.velocity * np.asarray(time, dtype=float) / self.x_c
+        return (self.force_exponent + 1.0) / 2.0 * eta
+
+    def history(self, points: int = 201, times: ArrayLike | None = None) -> ImpactHistory:
+        """The exact histories over [0, t_y] (``points`` instants, both ends included).
+
+        Parameters
+        ----------
+        points : int
+            Number of equally spaced instants, >= 2; ignored when ``times`` is given.
+        times : array_like, optional
+            Instants in s, each within [0, t_y].
+        """
+        t = self._times(points, times)
+        if times is None:  # equally spaced over [0, t_y]: restitution mirrors compression
+            half = (t.size + 1) // 2
+            x_half, v_half = self._state(t[:half])
+            rest = slice(t.size - half - 1, None, -1) if t.size > half else slice(0, 0)
+            x = np.concatenate([x_half, x_half[rest]])
+            v = np.concatenate([v_half, -v_half[rest]])
+        else:
+            x, v = self._state(t)
+        return ImpactHistory(t, x, v, self.beta * x**self.force_exponent, *self._geometry(x))
+
+    def _state(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Exact approach x in m and velocity x' in m/s at times t in [0, t_y] s."""
+        sine, cosine = ateb_pair(self.force_exponent, 1.0, self.phase(t))
+        x = self.x_c * np.clip(sine, 0.0, 1.0)
+        x[t >= self.t_y] = 0.0
+        return x, self.velocity * cosine
+
+    def _times(self, points: int, times: ArrayLike | None) -> np.ndarray:
+        if times is not None:
+            t = np.atleast_1d(np.asarray(times, dtype=float))
+            if np.any((t < 0) | (t > self.t_y)):
+                raise InputError(f"times must lie within [0, t_y] = [0, {self.t_y:.6g}] s")
+            return t
+        if int(points) < 2:
+            raise InputError(f"points must be >= 2, got {points!r}")
+        return np.linspace(0.0, self.t_y, int(points))
+
+    def _geometry(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            a = np.asarray(self.law.contact_radius(x), dtype=float)
+            p0 = np.where(x > 0, self.law.central_pressure(x), 0.0)
+        return a, p0
+
+    def maxima(self) -> dict[str, float]:
+        """The SI keys of ``shtaerman impact --json``."""
+        names = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
+        return {name: float(getattr(self, name)) for name in names}
+
+
+def _check_velocity(velocity: float) -> None:
+    if velocity > QUASI_STATIC_VELOCITY_LIMIT:
+        warnings.warn(
+            f"velocity {velocity:g} m/s exceeds {QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
+            "validity of the quasi-static impact theory; results are outside it",
+            QuasiStaticValidityWarning,
+            stacklevel=3,
+        )
+
+
+def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
+    """Maxima and durations of the impact M x'' = -beta x^q, exact (closed form).
+
+    Parameters
+    ----------
+    mass : float
+        Striker mass M in kg (> 0).
+    velocity : float
+        Approach velocity v0 in m/s (> 0; above 5 m/s a :class:`QuasiStaticValidityWarning`).
+    law : ContactLaw
+        The static contact law, e.g. :class:`shtaerman.analytic_contact.PowerLawContact`.
+
+    Returns
+    -------
+    ImpactResult
+        Call :meth:`ImpactResult.history` for x(t), v(t), P(t), a(t), p(0, t).
+    """
+    mass = validate_positive("mass", mass, "kg")
+    velocity = validate_positive("velocity", velocity, "m/s")
+    _check_velocity(velocity)
+    beta, q = validate_positive("beta", law.beta), law.force_exponent
+    x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * beta)) ** (1.0 / (q + 1.0))
+    P_c = beta * x_c**q
+    t_c = duration_integral(q) * x_c / velocity
+    half_time = ateb_sine(q, 1.0, (q + 1.0) / 4.0 * duration_integral(q))
+    return ImpactResult(
+        mass=mass,
+        velocity=velocity,
+        beta=beta,
+        force_exponent=q,
+        x_c=x_c,
+        P_c=P_c,
+        a_c=float(law.contact_radius(x_c)),
+        p_c=float(law.central_pressure(x_c)),
+        t_c=t_c,
+        t_y=2.0 * t_c,
+        impulse=2.0 * mass * velocity,
+        impulse_simpson=P_c * t_c * (1.0 + 4.0 * float(half_time) ** q) / 3.0,
+        law=law,
+    )

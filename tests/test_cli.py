@@ -1,0 +1,115 @@
+"""The command line: the interface contract of DESIGN.md, in-process via main(argv)."""
+
+import csv
+import json
+import re
+import subprocess
+import sys
+
+import pytest
+
+from shtaerman.cli import main
+
+CONTRACT_KEYS = {"beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y"}
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_impact_json_has_the_contract_keys(capsys):
+    code, out, err = run(capsys, "impact", "--json")
+    assert code == 0 and err == ""
+    result = json.loads(out)
+    assert CONTRACT_KEYS <= set(result)
+    # the paper's example, exact (mpmath literals in test_impact.py)
+    assert result["x_c"] == pytest.approx(0.0085174899120372515388, rel=1e-14)
+    assert result["t_y"] == pytest.approx(2 * 0.004105224219406260521, rel=1e-14)
+
+
+def test_impact_table_has_units(capsys):
+    code, out, _ = run(capsys, "impact")
+    assert code == 0
+    assert "max approach x_c" in out and " m\n" in out and " Pa\n" in out and " N s" in out
+
+
+def test_impact_check_reports_ode_agreement(capsys):
+    code, out, _ = run(capsys, "impact", "--json", "--check")
+    check = json.loads(out)["ode_check"]
+    assert code == 0 and check["max_history_difference"] < 1e-8
+
+
+def test_history_csv(tmp_path, capsys):
+    path = tmp_path / "history.csv"
+    code, out, _ = run(capsys, "impact", "--json", "--history", str(path), "--points", "250")
+    t_y = json.loads(out)["t_y"]
+    with path.open() as stream:
+        rows = list(csv.reader(stream))
+    assert code == 0 and rows[0] == ["t", "x", "P", "a", "p0"]
+    values = [[float(v) for v in row] for row in rows[1:]]
+    assert len(values) == 250
+    assert values[0][0] == 0.0 and values[-1][0] == pytest.approx(t_y, rel=1e-15)
+    assert values[0][1] == 0.0 and values[-1][1] == 0.0
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--mass", "-1"], "mass must be > 0 kg"),
+        (["--velocity", "0"], "velocity must be > 0 m/s"),
+        (["--shape-coefficient", "abc"], "shape-coefficient must be a finite number > 0"),
+        (["--exponent", "0"], "exponent must be > 0"),
+        (["--E1", "-2e11"], "E1 must be > 0 Pa"),
+        (["--E2", "nan"], "E2 must be a finite number > 0 Pa"),
+        (["--nu1", "-1"], r"nu1 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
+        (["--nu2", "0.51"], r"nu2 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
+        (["--points", "1"], "points must be an integer >= 2"),
+        (["--unknown"], "unrecognized arguments: --unknown"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):
+    code, out, err = run(capsys, "impact", *argv)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("shtaerman: error: ")
+    assert re.search(message, err)
+
+
+def test_failed_run_keeps_an_existing_history(tmp_path, capsys):
+    path = tmp_path / "history.csv"
+    path.write_text("precious\n")
+    code, _, _ = run(capsys, "impact", "--mass", "0", "--history", str(path))
+    assert code == 2 and path.read_text() == "precious\n"
+    assert list(tmp_path.iterdir()) == [path]
+
+
+def test_fast_impact_warns_on_one_line(capsys):
+    code, out, err = run(capsys, "impact", "--velocity", "6", "--json")
+    assert code == 0 and json.loads(out)["x_c"] > 0
+    assert err.startswith("shtaerman: warning: velocity 6 m/s exceeds 5 m/s")
+    assert err.count("\n") == 1
+
+
+def test_rigid_striker(capsys):
+    _, out, _ = run(capsys, "impact", "--json", "--E1", "inf")
+    # rigid steel: E* = 4/3 E2 = 1e7 Pa exactly
+    assert json.loads(out)["modulus"] == pytest.approx(1e7, rel=1e-15)
+
+
+def test_tables_json(capsys):
+    code, out, _ = run(capsys, "tables", "--json")
+    names = [table["name"] for table in json.loads(out)["tables"]]
+    assert code == 0
+    assert names == ["example", "table1", "table2", "table3", "table4", "table5", "table6"]
+
+
+def test_console_script_has_no_traceback():
+    completed = subprocess.run(
+        [sys.executable, "-m", "shtaerman.cli", "impact", "--mass", "x"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert completed.returncode == 2
+    assert completed.stderr == "shtaerman: error: mass must be a finite number > 0 kg, got 'x'\n"

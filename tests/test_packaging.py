@@ -1,0 +1,45 @@
+"""The wheel carries the package data a non-editable install needs."""
+
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SHIPPED = ["shtaerman/data/paper_tables.json", "shtaerman/cli.py"]
+
+
+@pytest.fixture(scope="module")
+def wheel_names(tmp_path_factory):
+    out = tmp_path_factory.mktemp("wheel")
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            str(ROOT),
+            "--no-deps",
+            "--no-build-isolation",
+            "--quiet",
+            "--wheel-dir",
+            str(out),
+        ],
+        check=True,
+        capture_output=True,
+    )
+    [wheel] = out.glob("shtaerman-*.whl")
+    with zipfile.ZipFile(wheel) as archive:
+        return set(archive.namelist())
+
+
+@pytest.mark.parametrize("name", SHIPPED)
+def test_wheel_ships(wheel_names, name):
+    assert name in wheel_names
+
+
+def test_console_script_is_declared(wheel_names):
+    [entry_points] = [n for n in wheel_names if n.endswith("entry_points.txt")]
+    assert entry_points.startswith("shtaerman-")
