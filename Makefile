@@ -16,6 +16,7 @@ $(BIN)/shtaerman: pyproject.toml
 verify: $(BIN)/shtaerman
 	$(BIN)/shtaerman impact
 	$(BIN)/shtaerman tables
+	$(BIN)/shtaerman contact
 
 test: $(BIN)/shtaerman
 	$(BIN)/ruff check src tests benchmarks

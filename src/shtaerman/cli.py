@@ -80,6 +80,27 @@ def _add_tables(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(run=_run_tables)
 
 
+def _add_contact(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("contact", help="FEM frictionless contact against Shtaerman's solution")
+    _add_indenter_options(p)
+    _add_half_space_options(p)
+    p.add_argument(
+        "--depths",
+        help="depths in m, comma-separated, increasing (default: 8 up to "
+        "the paper's impact x_c, contact radii a_c/3 .. a_c)",
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.add_argument("--out", metavar="DIR", help="write VTU fields and CSV curves to DIR")
+    p.add_argument("--force", action="store_true", help="replace a non-empty --out folder")
+    mesh = p.add_argument_group("mesh controls (relative to the largest contact)")
+    mesh.add_argument("--mesh-size", default=None, help="smallest element / refined radius")
+    mesh.add_argument("--mesh-margin", default=None, help="refined radius / geometric radius, > 1")
+    mesh.add_argument("--domain-factor", default=None, help="domain radius / refined radius")
+    mesh.add_argument("--growth", default=None, help="element size growth per unit distance")
+    mesh.add_argument("--solver", default="auto", help="auto, superlu or pardiso")
+    p.set_defaults(run=_run_contact)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``shtaerman`` argument parser with its subcommands."""
     parser = _Parser(prog="shtaerman", description=__doc__.splitlines()[0])
@@ -87,6 +108,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_impact(sub)
     _add_tables(sub)
+    _add_contact(sub)
     return parser
 
 
@@ -184,6 +206,83 @@ def _impact_text(result: ImpactResult, report: dict) -> str:
             f"t_y {check['t_y'] / result.t_y - 1:+.1e}, "
             f"history max |dx|/x_c {check['max_history_difference']:.1e}"
         )
+    return "\n".join(rows)
+
+
+def _depths(text: str | None) -> np.ndarray | None:
+    if text is None:
+        return None
+    from .validation import validate_increasing
+
+    return validate_increasing("depths", [item for item in text.split(",") if item.strip()], "m")
+
+
+def _mesh_settings(args: argparse.Namespace):
+    from .fem.indentation import MeshSettings
+
+    options = {
+        "size": args.mesh_size,
+        "margin": args.mesh_margin,
+        "domain": args.domain_factor,
+        "growth": args.growth,
+    }
+    names = {"size": "mesh-size", "margin": "mesh-margin", "domain": "domain-factor"}
+    chosen = {
+        key: validate_positive(names.get(key, key), value)
+        for key, value in options.items()
+        if value is not None
+    }
+    return MeshSettings(**chosen)
+
+
+def _run_contact(args: argparse.Namespace) -> int:
+    from .fem.export import write_indentation
+    from .fem.indentation import run_indentation
+    from .output import check_output_folder, staged_folder
+
+    indenter, half_space = _indenter(args), _half_space(args)
+    depths, mesh = _depths(args.depths), _mesh_settings(args)
+    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
+    result = run_indentation(indenter, half_space, depths, mesh, backend=args.solver)
+    report = result.to_dict()
+    if out is not None:
+        with staged_folder(out) as stage:
+            write_indentation(result, stage)
+            (stage / "contact.json").write_text(json.dumps(_json_safe(report), indent=2))
+    print(json.dumps(_json_safe(report), indent=2) if args.json else _contact_text(report))
+    return 0
+
+
+def _contact_text(report: dict) -> str:
+    head = (
+        f"FEM contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} on "
+        f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
+    )
+    rows = [
+        head,
+        "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg",
+    ]
+    for step in report["steps"]:
+        errors = [
+            step[k] / step[f"{k}_analytic"] - 1
+            for k in ("force", "contact_radius", "central_pressure")
+        ]
+        rows.append(
+            f"  {step['depth']:.4e}  {step['force']:.5e} {errors[0]:+.1e}  "
+            f"{step['contact_radius']:.4e}  {errors[1]:+.1e}  {step['central_pressure']:.4e} "
+            f"{errors[2]:+.1e}  {step['central_to_mean']:.4f}"
+        )
+    mesh, timings, errors = report["mesh"], report["timings"], report["errors"]
+    rows += [
+        f"  beta (q fixed) {report['beta_fem']:.6e} vs exact {report['beta_analytic']:.6e} "
+        f"({errors['beta']:.1e});  exponent {report['exponent_fem']:.6f} vs "
+        f"{report['exponent_analytic']:.6f} ({errors['exponent']:.1e})",
+        f"  p0/pavg exact {report['central_to_mean_analytic']:.4f};  pressure profile L2 error "
+        f"<= {errors['pressure_profile']:.1e}",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
+        f"{mesh['contact_candidates']} contact candidates; solver {report['solver']}",
+        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
+    ]
     return "\n".join(rows)
 
 

@@ -1,0 +1,425 @@
+"""Axisymmetric linear elasticity of the half-space: mixed u-p (Taylor-Hood P2-P1) in scikit-fem.
+
+Conventions (SI: m, Pa, N)
+--------------------------
+- Mesh coordinates x = r >= 0 and y = z <= 0: z points *up*, out of the body, so a surface
+  point pressed into the body has u_z < 0.
+- A surface pressure p(r) is positive in compression (it pushes the surface down, traction
+  t_z = -p on z = 0). Stresses are positive in tension, so sigma_zz = -p on the loaded surface.
+- Every integral carries the full ring weight 2 pi r: the system matrix, load vectors and
+  reactions are 3-D quantities, forces in newtons (not "per radian").
+- Unknowns x = [u, p]: ``u`` the P2 displacement (scikit-fem ``ElementVector`` numbering,
+  components u_r = ``u^1``, u_z = ``u^2``), then ``p`` the P1 mean pressure
+  p = -tr(sigma)/3 = -K div u (positive in compression).
+
+Weak form, with dev e(u) : e(v) = e(u) : e(v) - div u div v / 3 and K = E / (3 (1 - 2 nu)):
+
+    int 2 mu dev e(u) : e(v) - p div v  2 pi r dA = int t . v 2 pi r ds
+    int -q div u - p q / K              2 pi r dA = 0
+
+The pressure mass term vanishes at nu = 0.5, so one symmetric indefinite formulation covers
+nu in (-1, 0.5] without locking.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import (
+    Basis,
+    BilinearForm,
+    ElementTriP1,
+    ElementTriP2,
+    ElementVector,
+    FacetBasis,
+    LinearForm,
+    MeshTri,
+    asm,
+)
+
+from ..validation import validate_poisson, validate_positive
+from .solver import Factorization, factorize
+
+__all__ = [
+    "ElasticSolution",
+    "ElasticSystem",
+    "assemble",
+    "compressibility",
+    "deviatoric_stiffness",
+    "divergence_coupling",
+    "normal_surface_mass",
+    "pressure_load",
+    "solve",
+]
+
+TWO_PI = 2.0 * math.pi
+_LOAD_ORDER = 8
+
+
+def _strain(u, r):
+    """Components (e_rr, e_tt, e_zz, e_rz) of the axisymmetric strain of u = (u_r, u_z)."""
+    return u.grad[0, 0], u[0] / r, u.grad[1, 1], 0.5 * (u.grad[0, 1] + u.grad[1, 0])
+
+
+def _divergence(u, r):
+    """div u = du_r/dr + u_r/r + du_z/dz."""
+    return u.grad[0, 0] + u[0] / r + u.grad[1, 1]
+
+
+def deviatoric_stiffness(shear_modulus: float) -> BilinearForm:
+    """Form int 2 mu dev e(u) : e(v) 2 pi r dA, with mu in Pa."""
+
+    @BilinearForm
+    def form(u, v, w):
+        r = w.x[0]
+        eu, ev = _strain(u, r), _strain(v, r)
+        inner = eu[0] * ev[0] + eu[1] * ev[1] + eu[2] * ev[2] + 2.0 * eu[3] * ev[3]
+        deviatoric = inner - _divergence(u, r) * _divergence(v, r) / 3.0
+        return TWO_PI * r * 2.0 * shear_modulus * deviatoric
+
+    return form
+
+
+@BilinearForm
+def divergence_coupling(u, q, w):
+    """Form -int q div u 2 pi r dA (trial u, test q)."""
+    r = w.x[0]
+    return -TWO_PI * r * q * _divergence(u, r)
+
+
+def compressibility(inverse_bulk: float) -> BilinearForm:
+    """Form -int p q / K 2 pi r dA, with 1/K in 1/Pa (zero when incompressible)."""
+
+    @BilinearForm
+    def form(p, q, w):
+        return -TWO_PI * w.x[0] * inverse_bulk * p * q
+
+    return form
+
+
+@BilinearForm
+def normal_surface_mass(u, v, w):
+    """Form int u_z v_z 2 pi r ds on the surface (m^2 per unit of u_z v_z)."""
+    return TWO_PI * w.x[0] * u[1] * v[1]
+
+
+@dataclass(frozen=True)
+class ElasticSystem:
+    """Assembled axisymmetric mixed system of an elastic half-space mesh.
+
+    Attributes
+    ----------
+    mesh : skfem.MeshTri
+        The mesh (x = r, y = z, m) with boundaries "axis", "surface", "far".
+    displacement_basis, pressure_basis : skfem.Basis
+        P2 vector and P1 scalar bases sharing one quadrature.
+    youngs_modulus : float
+        E in Pa.
+    poisson_ratio : float
+        nu in (-1, 0.5].
+    matrix : scipy.sparse.csr_matrix
+        Full symmetric indefinite matrix [[A, B^T], [B, -C]] (no boundary conditions), so that
+        ``matrix @ x`` is the nodal force vector in N (displacement rows) for x in m and Pa.
+    fixed_dofs : numpy.ndarray
+        Clamped dofs: u_r on the axis, u_r and u_z on the far boundary (value 0).
+    surface_dofs : numpy.ndarray
+        Global indices of the free u_z dofs on z = 0 (P2 vertices and edge midpoints), sorted
+        by r; the clamped one at r = R is left out.
+    surface_r : numpy.ndarray
+        Their radii in m (``surface_r[0] == 0``, the axis).
+    surface_mass : scipy.sparse.csr_matrix
+        Consistent surface matrix M_ij = int phi_i phi_j 2 pi r dr (m^2) on ``surface_dofs``:
+        a pressure with nodal values p (Pa) gives downward nodal forces F = M p (N), i.e.
+        ``pressure_load(...)[surface_dofs] == -M p`` for any p that P2 interpolates exactly,
+        and nodal forces F give back p = M^-1 F. Use it instead of "force / area": the axis
+        node carries almost no area.
+    """
+
+    mesh: MeshTri
+    displacement_basis: Basis
+    pressure_basis: Basis
+    youngs_modulus: float
+    poisson_ratio: float
+    matrix: sp.csr_matrix
+    fixed_dofs: np.ndarray
+    surface_dofs: np.ndarray
+    surface_r: np.ndarray
+    surface_mass: sp.csr_matrix
+
+    @property
+    def shear_modulus(self) -> float:
+        """mu = E / (2 (1 + nu)) in Pa."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+    @property
+    def n_displacement(self) -> int:
+        """Number of displacement dofs (the first block of x)."""
+        return self.displacement_basis.N
+
+    @property
+    def n_dofs(self) -> int:
+        """Total number of dofs (displacement and pressure)."""
+        return self.matrix.shape[0]
+
+    def free_dofs(self, prescribed: np.ndarray | None = None) -> np.ndarray:
+        """Dofs left free by the clamps and by extra ``prescribed`` dofs, sorted."""
+        fixed = self.fixed_dofs if prescribed is None else np.union1d(self.fixed_dofs, prescribed)
+        return np.setdiff1d(np.arange(self.n_dofs), fixed)
+
+    def dof_nodes(self) -> np.ndarray:
+        """Mesh node of every dof: vertex v -> v, edge midpoint e -> n_vertices + e."""
+        ubasis, pbasis = self.displacement_basis, self.pressure_basis
+        vertices = self.mesh.p.shape[1]
+        nodes = np.empty(self.n_dofs, dtype=np.int64)
+        nodes[ubasis.nodal_dofs] = np.arange(vertices)
+        nodes[ubasis.facet_dofs] = vertices + np.arange(ubasis.facet_dofs.shape[1])
+        nodes[ubasis.N + pbasis.nodal_dofs[0]] = np.arange(vertices)
+        return nodes
+
+    def reduced_matrix(self, free: np.ndarray) -> sp.csc_matrix:
+        """The matrix restricted to ``free`` rows and columns (CSC, ready to factorize)."""
+        return self.matrix[free][:, free].tocsc()
+
+
+def assemble(mesh: MeshTri, youngs_modulus: float, poisson_ratio: float) -> ElasticSystem:
+    """Assemble the mixed axisymmetric system on a half-space mesh.
+
+    Parameters
+    ----------
+    mesh : skfem.MeshTri
+        From :func:`shtaerman.fem.mesh.halfspace_mesh` (boundaries "axis", "surface", "far").
+    youngs_modulus : float
+        E in Pa.
+    poisson_ratio : float
+        nu in (-1, 0.5]; 0.5 (incompressible) is exact, not approximated.
+
+    Returns
+    -------
+    ElasticSystem
+    """
+    e_mod = validate_positive("youngs_modulus", youngs_modulus, "Pa")
+    nu = validate_poisson("poisson_ratio", poisson_ratio)
+    ubasis = Basis(mesh, ElementVector(ElementTriP2()))
+    pbasis = ubasis.with_element(ElementTriP1())
+    stiffness = asm(deviatoric_stiffness(e_mod / (2.0 * (1.0 + nu))), ubasis)
+    coupling = asm(divergence_coupling, ubasis, pbasis)
+    inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
+    pressure_block = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
+    matrix = sp.bmat([[stiffness, coupling.T], [coupling, pressure_block]], format="csr")
+    fixed = _clamped_dofs(ubasis)
+    surface_dofs, surface_r, surface_mass = _surface(mesh, ubasis, fixed)
+    return ElasticSystem(
+        mesh=mesh,
+        displacement_basis=ubasis,
+        pressure_basis=pbasis,
+        youngs_modulus=e_mod,
+        poisson_ratio=nu,
+        matrix=matrix,
+        fixed_dofs=fixed,
+        surface_dofs=surface_dofs,
+        surface_r=surface_r,
+        surface_mass=surface_mass,
+    )
+
+
+def _clamped_dofs(ubasis: Basis) -> np.ndarray:
+    axis = ubasis.get_dofs("axis").all("u^1")
+    far = ubasis.get_dofs("far").all()
+    return np.union1d(axis, far).astype(np.int64)
+
+
+def _surface(
+    mesh: MeshTri, ubasis: Basis, fixed: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, sp.csr_matrix]:
+    """Free surface u_z dofs sorted by r, their radii, and the surface matrix on them."""
+    dofs = np.setdiff1d(ubasis.get_dofs("surface").all("u^2"), fixed).astype(np.int64)
+    radii = ubasis.doflocs[0, dofs]
+    order = np.argsort(radii)
+    dofs, radii = dofs[order], radii[order]
+    fbasis = FacetBasis(mesh, ubasis.elem, facets=mesh.boundaries["surface"], intorder=4)
+    mass = asm(normal_surface_mass, fbasis).tocsr()[dofs][:, dofs]
+    return dofs, radii, mass.tocsr()
+
+
+def pressure_load(
+    system: ElasticSystem, pressure: Callable[[np.ndarray], np.ndarray]
+) -> np.ndarray:
+    """Nodal force vector (N) of a normal surface pressure p(r), positive in compression.
+
+    Parameters
+    ----------
+    system : ElasticSystem
+    pressure : callable
+        Vectorised p(r) in Pa of the radius r in m. Place its jumps at mesh vertices (the
+        refined radius is one): it is integrated with a Gauss rule of order 8 per edge.
+
+    Returns
+    -------
+    numpy.ndarray
+        Right-hand side of length ``system.n_dofs`` (zero outside the surface u_z dofs).
+    """
+    fbasis = FacetBasis(
+        system.mesh,
+        system.displacement_basis.elem,
+        facets=system.mesh.boundaries["surface"],
+        intorder=_LOAD_ORDER,
+    )
+
+    @LinearForm
+    def traction(v, w):
+        r = w.x[0]
+        return -TWO_PI * r * np.asarray(pressure(r), dtype=float) * v[1]
+
+    load = np.zeros(system.n_dofs)
+    load[: system.n_displacement] = asm(traction, fbasis)
+    return load
+
+
+@dataclass(frozen=True)
+class ElasticSolution:
+    """Solution of the half-space problem: fields at the mesh vertices.
+
+    Attributes
+    ----------
+    system : ElasticSystem
+    coefficients : numpy.ndarray
+        Full solution vector x = [u (m), p (Pa)].
+    reactions : numpy.ndarray
+        ``matrix @ x - load`` in N: the forces the constraints exert on the body (zero on free
+        dofs up to round-off). A punch pressing down has negative u_z reactions.
+    r, z : numpy.ndarray
+        Vertex coordinates in m.
+    u_r, u_z : numpy.ndarray
+        Displacement at the vertices in m (u_z < 0: the surface moves down, into the body).
+    mean_pressure : numpy.ndarray
+        p = -tr(sigma)/3 in Pa at the vertices (positive in compression), the mixed unknown.
+    sigma_rr, sigma_zz, sigma_tt, sigma_rz : numpy.ndarray
+        Stress components in Pa (positive in tension) at the vertices: the L2 projection
+        (unweighted, dr dz) of the element-wise stress onto continuous P1.
+    von_mises : numpy.ndarray
+        Von Mises stress in Pa from the projected components.
+    """
+
+    system: ElasticSystem
+    coefficients: np.ndarray
+    reactions: np.ndarray
+    r: np.ndarray
+    z: np.ndarray
+    u_r: np.ndarray
+    u_z: np.ndarray
+    mean_pressure: np.ndarray
+    sigma_rr: np.ndarray
+    sigma_zz: np.ndarray
+    sigma_tt: np.ndarray
+    sigma_rz: np.ndarray
+    von_mises: np.ndarray
+
+    @property
+    def surface_r(self) -> np.ndarray:
+        """Radii in m of the surface u_z dofs (vertices and edge midpoints), ascending."""
+        return self.system.surface_r
+
+    @property
+    def surface_u_z(self) -> np.ndarray:
+        """u_z in m at ``surface_r`` (negative: into the body)."""
+        return self.coefficients[self.system.surface_dofs]
+
+    @property
+    def surface_reactions(self) -> np.ndarray:
+        """z reactions in N at ``surface_r`` (nonzero where u_z was prescribed)."""
+        return self.reactions[self.system.surface_dofs]
+
+
+def solve(
+    system: ElasticSystem,
+    load: np.ndarray | None = None,
+    *,
+    prescribed_dofs: np.ndarray | None = None,
+    prescribed_values: np.ndarray | float = 0.0,
+    factorization: Factorization | None = None,
+) -> ElasticSolution:
+    """Solve the clamped half-space problem for a load and prescribed dof values.
+
+    Parameters
+    ----------
+    system : ElasticSystem
+    load : numpy.ndarray, optional
+        Nodal forces in N (e.g. from :func:`pressure_load`); default zero.
+    prescribed_dofs : numpy.ndarray, optional
+        Extra constrained dofs (e.g. a subset of ``system.surface_dofs`` under a punch).
+    prescribed_values : numpy.ndarray or float
+        Their values in m (u_z < 0 pushes into the body).
+    factorization : Factorization, optional
+        Of ``system.reduced_matrix(system.free_dofs(prescribed_dofs))``, to reuse across calls.
+
+    Returns
+    -------
+    ElasticSolution
+    """
+    free = system.free_dofs(prescribed_dofs)
+    if factorization is None:
+        factorization = factorize(system.reduced_matrix(free))
+    if factorization.shape[0] != free.size:
+        raise ValueError(f"factorization has size {factorization.shape[0]}, expected {free.size}")
+    load = np.zeros(system.n_dofs) if load is None else np.asarray(load, dtype=float)
+    x = np.zeros(system.n_dofs)
+    if prescribed_dofs is not None:
+        x[prescribed_dofs] = prescribed_values
+    x[free] = factorization.solve(load[free] - system.matrix[free] @ x)
+    return _postprocess(system, x, system.matrix @ x - load)
+
+
+def _postprocess(system: ElasticSystem, x: np.ndarray, reactions: np.ndarray) -> ElasticSolution:
+    ubasis, pbasis = system.displacement_basis, system.pressure_basis
+    u, p = x[: system.n_displacement], x[system.n_displacement :]
+    nodal = ubasis.nodal_dofs
+    stresses = _projected_stresses(system, u, p)
+    return ElasticSolution(
+        system=system,
+        coefficients=x,
+        reactions=reactions,
+        r=system.mesh.p[0],
+        z=system.mesh.p[1],
+        u_r=u[nodal[0]],
+        u_z=u[nodal[1]],
+        mean_pressure=p[pbasis.nodal_dofs[0]],
+        **stresses,
+        von_mises=_von_mises(**stresses),
+    )
+
+
+def _projected_stresses(system: ElasticSystem, u: np.ndarray, p: np.ndarray) -> dict:
+    """L2 projection (dr dz) of sigma_rr, sigma_zz, sigma_tt, sigma_rz onto continuous P1."""
+    ubasis, pbasis = system.displacement_basis, system.pressure_basis
+    ufield, pfield = ubasis.interpolate(u), pbasis.interpolate(p)
+    two_mu = 2.0 * system.shear_modulus
+    names = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz")
+
+    def component(k: int) -> LinearForm:
+        @LinearForm
+        def form(v, w):
+            r = w.x[0]
+            strain = _strain(w.u, r)
+            spherical = two_mu * _divergence(w.u, r) / 3.0 + w.p
+            return (two_mu * strain[k] - (spherical if k < 3 else 0.0)) * v
+
+        return form
+
+    rhs = np.column_stack([asm(component(k), pbasis, u=ufield, p=pfield) for k in range(4)])
+    values = factorize(asm(_mass, pbasis), backend="superlu").solve(rhs)
+    nodal = pbasis.nodal_dofs[0]
+    return {name: values[nodal, k] for k, name in enumerate(names)}
+
+
+@BilinearForm
+def _mass(u, v, _):
+    return u * v
+
+
+def _von_mises(sigma_rr, sigma_zz, sigma_tt, sigma_rz) -> np.ndarray:
+    normal = (sigma_rr - sigma_zz) ** 2 + (sigma_zz - sigma_tt) ** 2 + (sigma_tt - sigma_rr) ** 2
+    return np.sqrt(0.5 * normal + 3.0 * sigma_rz**2)

@@ -1,0 +1,252 @@
+"""The FEM indentation test: mesh, assemble, press a power-law indenter, compare with theory.
+
+A rigid indenter z = A r^n is pressed into the half-space (E2, nu2) to a list of depths; each
+depth's force, contact radius and central pressure are compared with Shtaerman's exact solution
+(:mod:`shtaerman.analytic_contact`, with E* = E2/(1 - nu2^2) for the rigid indenter), and the
+curve P(x) is fitted by a power law.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..analytic_contact import PowerLawContact
+from ..impact import solve_impact
+from ..indenter import PowerLawIndenter
+from ..materials import RIGID, Material, effective_modulus
+from ..validation import InputError, validate_increasing, validate_positive
+from .contact import ContactCurve, ContactStep, solve_contact
+from .elasticity import assemble
+from .fit import PowerLawFit, fit_power_law
+from .mesh import halfspace_mesh
+
+__all__ = ["IndentationResult", "MeshSettings", "default_depths", "run_indentation"]
+
+PAPER_MASS = 0.7  # kg, the paper's example
+PAPER_VELOCITY = 3.0  # m/s
+DEFAULT_STEPS = 8
+DEFAULT_RADIUS_SPAN = 3.0
+MIN_DOMAIN = 100.0  # the default depths span contact radii a_c/3 .. a_c
+
+
+@dataclass(frozen=True)
+class MeshSettings:
+    """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
+
+    Attributes
+    ----------
+    margin : float
+        Refined (candidate) zone radius / a_g (> 1 keeps the contact edge inside it).
+    size : float
+        Smallest element size on the refined zone / its radius.
+    domain : float
+        Domain radius / refined radius (truncation error ~ 1/domain).
+    growth : float
+        Element size growth per unit distance from the refined zone.
+    axis_size : float
+        Element size at the first contact point / refined radius (grading toward the axis
+        resolves the pressure cusp p(0) - p(r) ~ sqrt(r) of n < 2).
+    axis_growth : float
+        Element size growth per unit distance from the first contact point: every contact
+        edge at radius a sees elements of about ``axis_growth * a``.
+    """
+
+    margin: float = 1.25
+    size: float = 1.0 / 150.0
+    domain: float = 1.0e5
+    growth: float = 0.25
+    axis_size: float = 1.0e-6
+    axis_growth: float = 0.1
+
+    def __post_init__(self) -> None:
+        for name in ("margin", "size", "domain", "growth", "axis_size", "axis_growth"):
+            validate_positive(f"mesh {name}", getattr(self, name))
+        if self.margin <= 1.0:
+            raise InputError(f"mesh margin must be > 1, got {self.margin!r}")
+        if self.domain < MIN_DOMAIN:
+            raise InputError(
+                f"mesh domain must be >= {MIN_DOMAIN:g} refined radii (the clamped far boundary "
+                f"stiffens the contact by about 1.5/domain), got {self.domain!r}"
+            )
+
+
+def default_depths(indenter: PowerLawIndenter, half_space: Material) -> np.ndarray:
+    """Eight depths (m) up to the paper's impact x_c (0.7 kg at 3 m/s), radii a_c/3 .. a_c."""
+    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    x_c = solve_impact(PAPER_MASS, PAPER_VELOCITY, law).x_c
+    span = DEFAULT_RADIUS_SPAN**indenter.exponent
+    return x_c * np.geomspace(1.0 / span, 1.0, DEFAULT_STEPS)
+
+
+@dataclass(frozen=True)
+class IndentationResult:
+    """FEM contact curve of a power-law indenter against the exact solution (SI units)."""
+
+    indenter: PowerLawIndenter
+    half_space: Material
+    exact: PowerLawContact
+    curve: ContactCurve
+    fit: PowerLawFit
+    mesh_stats: dict[str, float]
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def steps(self) -> list[ContactStep]:
+        """The contact at each depth."""
+        return self.curve.steps
+
+    def step_table(self) -> list[dict[str, float]]:
+        """Per depth: FEM and exact force, contact radius, central pressure, and ratios."""
+        rows = []
+        for step in self.steps:
+            exact = self._exact(step.depth)
+            rows.append(
+                {
+                    "depth": step.depth,
+                    "force": step.force,
+                    "contact_radius": step.contact_radius,
+                    "central_pressure": step.central_pressure,
+                    "force_analytic": exact["force"],
+                    "contact_radius_analytic": exact["contact_radius"],
+                    "central_pressure_analytic": exact["central_pressure"],
+                    "central_to_mean": step.central_pressure / step.mean_pressure,
+                    "pressure_profile_error": self.pressure_profile_error(step),
+                    "active_set_iterations": step.iterations,
+                }
+            )
+        return rows
+
+    def _exact(self, depth: float) -> dict[str, float]:
+        return {
+            "force": float(self.exact.force(depth)),
+            "contact_radius": float(self.exact.contact_radius(depth)),
+            "central_pressure": float(self.exact.central_pressure(depth)),
+        }
+
+    def pressure_profile_error(self, step: ContactStep) -> float:
+        """Relative r-weighted L2 error of the nodal pressure, ||p_h - p|| / ||p||."""
+        r = self.curve.compliance.r
+        exact = self.exact.pressure(r, step.depth)
+        weight = np.gradient(r) * r
+        return float(
+            np.sqrt(np.sum(weight * (step.pressure - exact) ** 2) / np.sum(weight * exact**2))
+        )
+
+    def errors(self) -> dict[str, float]:
+        """Largest relative errors against the exact solution over all depths."""
+        rows = self.step_table()
+
+        def worst(key: str) -> float:
+            return max(abs(row[key] / row[f"{key}_analytic"] - 1.0) for row in rows)
+
+        return {
+            "force": worst("force"),
+            "contact_radius": worst("contact_radius"),
+            "central_pressure": worst("central_pressure"),
+            "beta": abs(self.fit.beta_fixed_exponent / self.exact.beta - 1.0),
+            "exponent": abs(self.fit.exponent / self.exact.force_exponent - 1.0),
+            "pressure_profile": max(row["pressure_profile_error"] for row in rows),
+        }
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON of ``shtaerman contact --json`` (DESIGN.md interface contract)."""
+        return {
+            "shape_coefficient": self.indenter.shape_coefficient,
+            "exponent": self.indenter.exponent,
+            "E2": self.half_space.youngs_modulus,
+            "nu2": self.half_space.poisson_ratio,
+            "modulus": self.exact.modulus,
+            "beta_fem": self.fit.beta_fixed_exponent,
+            "beta_analytic": self.exact.beta,
+            "exponent_fem": self.fit.exponent,
+            "exponent_analytic": self.exact.force_exponent,
+            "beta_fem_free_exponent": self.fit.beta,
+            "central_to_mean_analytic": self.exact.central_to_mean_ratio,
+            "steps": self.step_table(),
+            "errors": self.errors(),
+            "mesh": self.mesh_stats,
+            "solver": self.curve.backend,
+            "timings": self.timings,
+        }
+
+
+def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
+    return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
+
+
+def run_indentation(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    depths: ArrayLike | None = None,
+    mesh: MeshSettings | None = None,
+    *,
+    backend: str = "auto",
+) -> IndentationResult:
+    """Press a rigid power-law indenter into the FEM half-space and compare with the theory.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        Profile z = A r^n, n > 1 (bounded pressure at the centre).
+    half_space : Material
+        E2 in Pa, nu2 in [0, 0.5].
+    depths : array_like, optional
+        Depths in m, positive and increasing; default :func:`default_depths`.
+    mesh : MeshSettings, optional
+    backend : str
+        Sparse solver ("auto", "superlu", "pardiso").
+
+    Returns
+    -------
+    IndentationResult
+    """
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
+            f"{indenter.exponent!r}"
+        )
+    if half_space.poisson_ratio < 0:
+        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    depths = default_depths(indenter, half_space) if depths is None else depths
+    depths = validate_increasing("depths", np.atleast_1d(depths), "m")
+    mesh = MeshSettings() if mesh is None else mesh
+    refined = mesh.margin * _geometric_radius(indenter, depths[-1])
+    start = time.perf_counter()
+    skfem_mesh = halfspace_mesh(
+        refined,
+        domain_radius=mesh.domain * refined,
+        smallest_size=mesh.size * refined,
+        growth=mesh.growth,
+        axis_size=min(mesh.axis_size, mesh.size) * refined,
+        axis_growth=mesh.axis_growth,
+    )
+    meshed = time.perf_counter()
+    system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
+    assembled = time.perf_counter()
+    curve = solve_contact(system, indenter.profile, depths, refined, backend=backend)
+    exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    forces = [step.force for step in curve.steps]
+    fit = fit_power_law(depths, forces, exact.force_exponent) if depths.size > 1 else None
+    if fit is None:
+        beta = forces[0] / depths[0] ** exact.force_exponent
+        fit = PowerLawFit(beta, exact.force_exponent, beta, exact.force_exponent, 0.0)
+    timings = {
+        "mesh": meshed - start,
+        "assembly": assembled - meshed,
+        **curve.timings,
+        "total": time.perf_counter() - start,
+    }
+    stats = {
+        "nodes": int(skfem_mesh.p.shape[1]),
+        "elements": int(skfem_mesh.t.shape[1]),
+        "dofs": int(system.n_dofs),
+        "contact_candidates": int(curve.compliance.r.size),
+        "refined_radius": refined,
+        "domain_radius": mesh.domain * refined,
+        "smallest_size": mesh.size * refined,
+    }
+    return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)

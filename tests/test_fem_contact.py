@@ -1,0 +1,175 @@
+"""FEM frictionless contact against Shtaerman's exact solution, on coarse meshes (seconds).
+
+Tolerances are the errors observed on these coarse meshes with a margin of about 2-3x; the
+default (finer) mesh and the convergence study are measured in benchmarks/bench_contact.py.
+"""
+
+import json
+import re
+
+import meshio
+import numpy as np
+import pytest
+
+from shtaerman.cli import main
+from shtaerman.fem.contact import central_pressure, complementarity, solve_contact
+from shtaerman.fem.indentation import MeshSettings, run_indentation
+from shtaerman.fem.schur import TailFactorization
+from shtaerman.fem.solver import factorize
+from shtaerman.indenter import PowerLawIndenter
+from shtaerman.materials import Material
+from shtaerman.validation import InputError
+
+COARSE = MeshSettings(size=1 / 60, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
+RUBBER = Material(7.5e6, 0.5)
+
+
+@pytest.fixture(scope="module")
+def paper_run():
+    return run_indentation(PowerLawIndenter(5.0, 1.5), RUBBER, mesh=COARSE)
+
+
+def test_contact_conditions_hold_exactly(paper_run):
+    for step in paper_run.steps:
+        scale = step.nodal_forces.max()
+        assert step.nodal_forces.min() >= 0 and step.gap.min() >= 0
+        # complementarity: no node both loaded and open, to round-off
+        assert np.max(step.nodal_forces * step.gap) <= 1e-12 * scale * step.depth
+        # in contact the surface follows the indenter exactly: u_z = f - d where loaded
+        loaded = step.nodal_forces > 0
+        u_z = -paper_run.curve.compliance.matrix @ step.nodal_forces
+        profile = paper_run.indenter.profile(paper_run.curve.compliance.r) - step.depth
+        np.testing.assert_allclose(u_z[loaded], profile[loaded], rtol=0, atol=1e-12 * step.depth)
+
+
+def test_paper_indenter_matches_shtaerman(paper_run):
+    errors = paper_run.errors()
+    # coarse mesh (about 5k dofs); observed: force 3e-4, beta 2e-4, exponent 3e-5, radius 6e-3,
+    # p(0) 3e-4; the default mesh halves these (benchmarks)
+    assert errors["force"] < 1e-3
+    assert errors["beta"] < 5e-4
+    assert errors["exponent"] < 2e-4
+    assert errors["contact_radius"] < 1.5e-2
+    assert errors["central_pressure"] < 3e-3
+
+
+def test_central_pressure_is_two_and_a_half_mean(paper_run):
+    # the paper's claim p(0) = 2.5 p_avg, from FEM force, radius and central pressure alone
+    ratios = [step.central_pressure / step.mean_pressure for step in paper_run.steps]
+    np.testing.assert_allclose(ratios, 2.5, rtol=2e-2)
+
+
+@pytest.mark.parametrize(("exponent", "nu"), [(2.0, 0.3), (1.25, 0.0)])
+def test_other_indenters_and_poisson_ratios(exponent, nu):
+    # Hertz (n = 2) and a sharp n = 1.25 on compressible half-spaces, contact radii over 3x
+    result = run_indentation(PowerLawIndenter(2.0, exponent), Material(1e9, nu), mesh=COARSE)
+    radii = [step.contact_radius for step in result.steps]
+    assert radii[-1] / radii[0] > 2.9
+    errors = result.errors()
+    assert errors["force"] < 1e-3 and errors["beta"] < 5e-4
+    assert errors["contact_radius"] < 1.5e-2 and errors["central_pressure"] < 1e-2
+
+
+def test_schur_block_is_the_compliance(paper_run):
+    system, curve = paper_run.curve.system, paper_run.curve
+    free = system.free_dofs()
+    matrix = system.reduced_matrix(free)
+    tail = np.searchsorted(free, curve.compliance.dofs)
+    reference = factorize(matrix, backend="superlu")
+    unit = np.zeros((free.size, tail.size))
+    unit[tail, np.arange(tail.size)] = 1.0
+    expected = reference.solve(unit)[tail]
+    inverse = TailFactorization(matrix, tail, system.dof_nodes()[free]).tail_inverse()
+    # two factorizations with different orderings: agreement to round-off (observed 7e-16)
+    assert np.max(np.abs(inverse - expected)) <= 1e-12 * np.max(np.abs(expected))
+
+
+def test_complementarity_on_a_known_problem():
+    # C = identity: F = max(-c, 0), g = max(c, 0)
+    clearance = np.array([-2.0, -1.0, 0.5, 3.0])
+    forces, gap, _ = complementarity(np.eye(4), clearance)
+    np.testing.assert_array_equal(forces, [2.0, 1.0, 0.0, 0.0])
+    np.testing.assert_array_equal(gap, [0.0, 0.0, 0.5, 3.0])
+
+
+@pytest.mark.parametrize("order", [0.2, 0.5, 1.0])
+def test_central_pressure_extrapolation_is_exact_for_a_cusp(order):
+    # p = p0 + B r^s on a graded grid: Aitken's delta-squared recovers p0 for any s
+    r = np.concatenate([[0.0], np.geomspace(1e-7, 1.0, 400)])
+    pressure = 7.0 - 3.0 * r**order
+    # linear interpolation between the grid's radii is the only error: 1e-6 relative
+    assert central_pressure(r, pressure, 1.0) == pytest.approx(7.0, rel=1e-6)
+
+
+def test_depths_must_increase():
+    with pytest.raises(InputError, match="depths must be strictly increasing"):
+        run_indentation(PowerLawIndenter(5.0, 1.5), RUBBER, depths=[2e-3, 1e-3], mesh=COARSE)
+
+
+def test_contact_outgrowing_the_candidate_zone_is_refused(paper_run):
+    step = paper_run.steps[-1]
+    with pytest.raises(InputError, match="edge of the refined region"):
+        solve_contact(
+            paper_run.curve.system,
+            paper_run.indenter.profile,
+            [step.depth],
+            candidate_radius=0.8 * step.contact_radius,
+        )
+
+
+def test_far_boundary_too_close_is_refused():
+    with pytest.raises(InputError, match="mesh domain must be >= 100"):
+        MeshSettings(domain=50.0)
+
+
+def test_cone_is_refused():
+    with pytest.raises(InputError, match="exponent must be > 1"):
+        run_indentation(PowerLawIndenter(5.0, 1.0), RUBBER, mesh=COARSE)
+
+
+def test_contact_cli_json_and_files(tmp_path, capsys):
+    out = tmp_path / "run"
+    argv = ["contact", "--json", "--out", str(out), "--mesh-size", "0.02", "--domain-factor", "1e4"]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert {"beta_fem", "beta_analytic", "exponent_fem", "steps", "mesh", "timings"} <= set(report)
+    assert set(report["timings"]) == {"mesh", "assembly", "factorization", "contact", "total"}
+    assert set(report["mesh"]) >= {"nodes", "elements", "dofs"}
+    step_keys = {
+        "depth",
+        "force",
+        "contact_radius",
+        "central_pressure",
+        "force_analytic",
+        "contact_radius_analytic",
+        "central_pressure_analytic",
+    }
+    assert all(step_keys <= set(step) for step in report["steps"]) and len(report["steps"]) == 8
+    # the default depths reach the paper's impact: contact radius about 9.6 mm
+    assert report["steps"][-1]["contact_radius_analytic"] == pytest.approx(9.65e-3, rel=1e-3)
+    field = meshio.read(out / "field_max_depth.vtu")
+    assert field.point_data["sigma_zz"].min() < 0  # compression under the indenter
+    assert (out / "contact_curve.csv").read_text().startswith("depth,force,contact_radius")
+
+
+def test_contact_cli_refuses_a_used_folder(tmp_path, capsys):
+    (tmp_path / "keep.txt").write_text("precious")
+    assert main(["contact", "--out", str(tmp_path)]) == 2
+    assert "not empty" in capsys.readouterr().err
+    assert (tmp_path / "keep.txt").read_text() == "precious"
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--depths", "1e-3,-1e-3"], "depths must be > 0 m"),
+        (["--depths", "2e-3,1e-3"], "strictly increasing"),
+        (["--mesh-margin", "0.9"], "mesh margin must be > 1"),
+        (["--solver", "umfpack"], "Unknown backend"),
+        (["--nu2", "0.7"], r"nu2 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
+    ],
+)
+def test_contact_cli_bad_input(capsys, argv, message):
+    assert main(["contact", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and re.search(message, err)
