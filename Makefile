@@ -14,9 +14,7 @@ $(BIN)/shtaerman: pyproject.toml
 	touch $@
 
 verify: $(BIN)/shtaerman
-	$(BIN)/shtaerman impact
-	$(BIN)/shtaerman tables
-	$(BIN)/shtaerman contact
+	$(BIN)/shtaerman verify
 
 test: $(BIN)/shtaerman
 	$(BIN)/ruff check src tests benchmarks

@@ -8,7 +8,15 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-SHIPPED = ["shtaerman/data/paper_tables.json", "shtaerman/cli.py"]
+SHIPPED = [
+    "shtaerman/data/paper_tables.json",
+    "shtaerman/cli.py",
+    "shtaerman/meshes/halfspace.geo",
+    "shtaerman/studies/paper.toml",
+    "shtaerman/studies/hertz.toml",
+    "shtaerman/studies/compressible.toml",
+    "shtaerman/studies/table4.toml",
+]
 
 
 @pytest.fixture(scope="module")

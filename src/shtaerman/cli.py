@@ -14,6 +14,7 @@ import os
 import re
 import sys
 import tempfile
+import time
 import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -101,6 +102,24 @@ def _add_contact(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(run=_run_contact)
 
 
+def _add_verify(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("verify", help="run cross-check studies: FEM -> impact -> report")
+    p.add_argument(
+        "studies",
+        nargs="*",
+        metavar="STUDY.toml",
+        help="study files (default: every shipped study)",
+    )
+    p.add_argument(
+        "--out",
+        metavar="DIR",
+        help="result folder (default: a new shtaerman-results-<time> folder)",
+    )
+    p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
+    p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    p.set_defaults(run=_run_verify)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``shtaerman`` argument parser with its subcommands."""
     parser = _Parser(prog="shtaerman", description=__doc__.splitlines()[0])
@@ -109,6 +128,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_impact(sub)
     _add_tables(sub)
     _add_contact(sub)
+    _add_verify(sub)
     return parser
 
 
@@ -284,6 +304,43 @@ def _contact_text(report: dict) -> str:
         "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
     ]
     return "\n".join(rows)
+
+
+def _default_out() -> Path:
+    stamp = time.strftime("%Y%m%d-%H%M%S")
+    path, counter = Path(f"shtaerman-results-{stamp}"), 1
+    while path.exists():
+        counter += 1
+        path = Path(f"shtaerman-results-{stamp}-{counter}")
+    return path
+
+
+def _run_verify(args: argparse.Namespace) -> int:
+    from .output import check_output_folder
+    from .pipeline import run_verification
+    from .studies import load_study, shipped_studies
+
+    paths = [Path(p) for p in args.studies] or shipped_studies()
+    studies = [study for path in paths for study in load_study(path)]
+    names = [study.name for study in studies]
+    duplicates = sorted({name for name in names if names.count(name) > 1})
+    if duplicates:
+        raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
+    out = check_output_folder(Path(args.out) if args.out else _default_out(), force=args.force)
+    results = run_verification(studies, out, quick=args.quick)
+    print(_verify_text(results, out))
+    return 0 if results["passed"] else 1
+
+
+def _verify_text(results: dict, out: Path) -> str:
+    lines = [f"{'study':<24} verdict  worst contact error  worst impact difference"]
+    for name, study in results["studies"].items():
+        contact = max(c["value"] for c in study["checks"] if c["name"].startswith("contact"))
+        impact = max(abs(c["value"]) for c in study["checks"] if c["name"].startswith("impact"))
+        verdict = "PASS" if study["passed"] else "FAIL"
+        lines.append(f"{name:<24} {verdict:<8} {contact:>19.1e}  {impact:>23.1e}")
+    lines.append(f"results: {out / 'results.json'}  report: {out / 'report.html'}")
+    return "\n".join(lines)
 
 
 def _run_tables(args: argparse.Namespace) -> int:

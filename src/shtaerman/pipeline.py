@@ -1,0 +1,104 @@
+"""``shtaerman verify``: run studies and write a complete result folder, or nothing.
+
+The folder is assembled aside and moved into place only when every file is written, so a
+failed or interrupted run never leaves something that looks complete.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import TextIO
+
+from . import fields, figures
+from .fem.export import write_indentation
+from .impact import ImpactHistory
+from .output import staged_folder
+from .report import results_document, write_html, write_markdown
+from .studies import Study
+from .verification import StudyOutcome, run_study
+
+__all__ = ["ProgressBar", "run_verification"]
+
+
+class ProgressBar:
+    """One line per stage on stderr: ``[###---] 2/6 paper: FEM contact curve (3.1 s)``."""
+
+    def __init__(self, total: int, stream: TextIO | None = None, width: int = 20) -> None:
+        self.total, self.done, self.width = total, 0, width
+        self.stream = sys.stderr if stream is None else stream
+        self.start = time.perf_counter()
+
+    def __call__(self, line: str) -> None:
+        filled = round(self.width * self.done / max(self.total, 1))
+        bar = "#" * filled + "-" * (self.width - filled)
+        elapsed = time.perf_counter() - self.start
+        print(
+            f"[{bar}] {self.done}/{self.total} {line} ({elapsed:.1f} s)",
+            file=self.stream,
+            flush=True,
+        )
+
+    def advance(self) -> None:
+        """Mark one study done."""
+        self.done += 1
+
+
+def _write_history(path: Path, history: ImpactHistory) -> None:
+    with path.open("w", newline="") as stream:
+        writer = csv.writer(stream)
+        columns = history.columns()
+        writer.writerow(columns)
+        writer.writerows(zip(*columns.values(), strict=True))
+
+
+def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
+    folder.mkdir()
+    written = write_indentation(outcome.contact, folder)
+    for variant, history in outcome.histories.items():
+        path = folder / f"history_{variant}.csv"
+        _write_history(path, history)
+        written.append(path)
+    return {path.stem: str(path.relative_to(root)) for path in written}
+
+
+def _study_figures(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
+    made = {**fields.study_field_figures(outcome, folder), **figures.study_figures(outcome, folder)}
+    return {title: str(path.relative_to(root)) for title, path in made.items()}
+
+
+def run_verification(
+    studies: list[Study],
+    out: Path,
+    *,
+    quick: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> dict[str, object]:
+    """Run the studies and write ``out`` (results.json, report.md, report.html, per-study
+    VTU fields, CSV curves and histories, PNG figures). Returns the results document."""
+    bar = progress or ProgressBar(len(studies))
+    advance = getattr(bar, "advance", lambda: None)
+    with staged_folder(out) as stage:
+        outcomes, files, pictures = [], {}, {}
+        for study in studies:
+            outcome = run_study(study, quick=quick, progress=bar)
+            bar(f"{study.name}: files and figures")
+            folder = stage / study.name
+            files[study.name] = _study_files(outcome, folder, stage)
+            pictures[study.name] = _study_figures(outcome, folder, stage)
+            outcomes.append(outcome)
+            advance()
+            bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
+        pictures[""] = {
+            title: str(path.relative_to(stage))
+            for title, path in figures.paper_figures(stage).items()
+        }
+        results = results_document(outcomes, files, quick=quick)
+        (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
+        write_markdown(results, pictures, stage / "report.md")
+        write_html(results, pictures, stage)
+    return results

@@ -1,0 +1,248 @@
+"""Figures checked as images: size, not blank, and the features a reader needs.
+
+One coarse paper study (about 1 s) feeds every figure. Thresholds were measured on the
+pictures as accepted by eye and set with a wide margin: a blank image has pixel standard
+deviation 0 and one colour; the figures have std 24-97 (0-255 scale; the field sections are
+mostly the near-white middle of a diverging map) and 500-3500 colours.
+"""
+
+from pathlib import Path
+
+import matplotlib as mpl
+import numpy as np
+import pytest
+from PIL import Image
+from vtkmodules.vtkCommonCore import vtkObject
+
+from shtaerman import fields, figures
+from shtaerman.studies import load_study, shipped_studies
+from shtaerman.validation import InputError
+from shtaerman.verification import run_study
+
+MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}
+"""Pixel standard deviation floors; measured minima 37.9 and 24.7 (sigma_rr)."""
+MIN_COLOURS = 300
+"""Distinct RGB colours; measured minimum 497 (a pale sigma_tt section)."""
+TOLERANCE = 16
+"""Largest channel difference (0-255) for a pixel to count as a given colour (antialiasing)."""
+
+
+@pytest.fixture(scope="module")
+def outcome():
+    paper = next(path for path in shipped_studies() if path.stem == "paper")
+    return run_study(load_study(paper)[0], quick=True)
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    return tmp_path_factory.mktemp("figures")
+
+
+@pytest.fixture(scope="module")
+def made(outcome, folder):
+    """The ten figures of a verification run, by file stem (each drawn once for all tests)."""
+    captions = {
+        **figures.study_figures(outcome, folder / "study"),
+        **fields.study_field_figures(outcome, folder / "study"),
+        **figures.paper_figures(folder / "study"),
+    }
+    assert all(captions) and len(captions) == 10
+    return {path.stem: path for path in captions.values()}
+
+
+def pixels(path: Path) -> np.ndarray:
+    """(height, width, 3) integer RGB."""
+    return np.asarray(Image.open(path).convert("RGB"), dtype=int)
+
+
+def packed(image: np.ndarray) -> np.ndarray:
+    """One integer per pixel (0xRRGGBB): counting colours on it is 60x faster."""
+    return (image[..., 0] << 16) | (image[..., 1] << 8) | image[..., 2]
+
+
+def assert_picture(path: Path, size: tuple[int, int], kind: str) -> np.ndarray:
+    image = pixels(path)
+    assert image.shape == (size[1], size[0], 3)
+    assert image.std() > MIN_STD[kind]
+    assert np.unique(packed(image)).size > MIN_COLOURS
+    return image
+
+
+def colour_mask(image: np.ndarray, colour: str) -> np.ndarray:
+    rgb = np.array([int(colour[i : i + 2], 16) for i in (1, 3, 5)])
+    return np.abs(image - rgb).max(axis=2) <= TOLERANCE
+
+
+def assert_colour(image: np.ndarray, colour: str, count: int = 200) -> None:
+    assert colour_mask(image, colour).sum() >= count, colour
+
+
+# --- matplotlib --------------------------------------------------------------------------
+
+
+def test_force_depth_shows_fem_points_and_exact_line(made):
+    image = assert_picture(made["force_depth"], (1280, 960), "matplotlib")
+    assert_colour(image, figures.FEM_COLOUR, 2000)  # 8 filled markers and the error line
+    assert_colour(image, figures.EXACT_COLOUR, 2000)
+
+
+def test_pressure_shows_three_depths_and_exact_curve(made):
+    image = assert_picture(made["pressure"], (1280, 840), "matplotlib")
+    for colour, _ in figures.DEPTH_STYLES:
+        assert_colour(image, colour, 300)  # open markers
+    assert_colour(image, figures.EXACT_COLOUR, 1000)
+
+
+def test_pressure_selected_step(outcome, folder):
+    path = figures.plot_pressure(outcome.contact, folder / "one.png", steps=[-1])
+    image = pixels(path)
+    assert_colour(image, figures.DEPTH_STYLES[0][0], 300)
+    assert colour_mask(image, figures.DEPTH_STYLES[1][0]).sum() == 0
+
+
+@pytest.mark.parametrize("stem", ["impact_motion", "impact_contact"])
+def test_impact_figures_show_both_quantities(made, stem):
+    image = assert_picture(made[stem], (1280, 1000), "matplotlib")
+    assert_colour(image, figures.FEM_COLOUR, 2000)
+    assert_colour(image, figures.SECOND_COLOUR, 2000)
+
+
+def test_impact_needs_a_history(outcome, folder):
+    with pytest.raises(ValueError, match="1 to 4"):
+        figures.plot_impact_motion({}, outcome.exact, folder / "none.png")
+
+
+def test_ateb_shows_exact_table_and_approximation(made):
+    image = assert_picture(made["ateb"], (1480, 1000), "matplotlib")
+    assert_colour(image, figures.EXACT_COLOUR, 1000)
+    assert_colour(image, figures.PAPER_COLOUR, 500)  # open markers of Tables 1-2
+    assert_colour(image, figures.APPROXIMATION_COLOUR, 2000)
+
+
+def test_convergence_draws_every_error(folder):
+    # the format produced by the convergence study: errors ~ h^2, h^2, h, h^1.5
+    rows = [
+        {
+            "size": h,
+            "dofs": int(2000 / h**1.2),
+            "errors": {
+                "force": 3e-2 * h**2,
+                "beta": 2e-2 * h**2,
+                "contact_radius": 0.5 * h,
+                "central_pressure": 0.1 * h**1.5,
+            },
+        }
+        for h in (0.1, 0.05, 0.025)
+    ]
+    path = figures.plot_convergence(rows, folder / "convergence.png")
+    image = assert_picture(path, (1280, 840), "matplotlib")
+    for index in range(4):
+        assert_colour(image, mpl.colors.to_hex(f"C{index}"), 300)
+    one = figures.plot_convergence(rows[:1], folder / "one.png", keys=["force", "missing"])
+    assert_colour(pixels(one), mpl.colors.to_hex("C0"), 50)  # a single marker, no order
+    with pytest.raises(ValueError, match="at least one"):
+        figures.plot_convergence([], folder / "empty.png")
+
+
+def test_figures_leave_matplotlib_state_alone(outcome, folder):
+    before = dict(mpl.rcParams)
+    figures.plot_pressure(outcome.contact, folder / "state.png")
+    assert dict(mpl.rcParams) == before
+
+
+def test_si_prefix():
+    assert figures.si_prefix(8.5e-3, "m") == (1e3, "mm")
+    assert figures.si_prefix(8.4e6, "Pa") == (1e-6, "MPa")
+    assert figures.si_prefix(986.0, "N") == (1.0, "N")
+
+
+# --- pyvista -----------------------------------------------------------------------------
+
+
+def assert_section_filled(image: np.ndarray) -> None:
+    """The middle of the r-z section is painted: no pure white (near 0 the map is #f7f7f7)."""
+    height, width = image.shape[:2]
+    middle = image[int(0.3 * height) : int(0.7 * height), int(0.2 * width) : int(0.55 * width)]
+    assert (middle.min(axis=2) < 250).mean() > 0.99
+
+
+def assert_colour_bar(image: np.ndarray) -> None:
+    """A vertical colour gradient right of the section: one column with many colours."""
+    right = np.sort(packed(image[:, int(0.7 * image.shape[1]) :]), axis=0)
+    colours_per_column = 1 + (np.diff(right, axis=0) != 0).sum(axis=0)
+    assert colours_per_column.max() > 150  # measured 350 (full picture), 190 (2 x 2 panel)
+
+
+def assert_contact_top_left(image: np.ndarray, depth: float = 0.3) -> None:
+    """The green contact zone starts at the axis/surface corner: upper left of the picture."""
+    rows, columns = np.nonzero(colour_mask(image, fields.CONTACT_COLOUR))
+    height, width = image.shape[:2]
+    assert rows.size > 500
+    assert rows.mean() < depth * height and columns.mean() < 0.4 * width
+
+
+@pytest.mark.parametrize("field", list(fields.FIELD_FIGURES))
+def test_field_section(made, field):
+    image = assert_picture(made[f"field_{field}"], fields.WINDOW_SIZE, "pyvista")
+    assert_section_filled(image)
+    assert_colour_bar(image)
+    assert_contact_top_left(image)
+
+
+def test_field_deformed_shows_indenter(outcome, folder, monkeypatch):
+    monkeypatch.delenv("DISPLAY", raising=False)  # off-screen needs no display
+    path = fields.plot_field(outcome.contact, folder / "deformed.png", "u_z", deformed=True)
+    image = assert_picture(path, fields.WINDOW_SIZE, "pyvista")
+    rows, columns = np.nonzero(colour_mask(image, "#d9d9d9"))
+    assert rows.size > 20_000 and columns.mean() < 0.4 * image.shape[1]
+    assert_contact_top_left(image, depth=0.5)  # on the deformed surface, pushed down by d
+
+
+def test_field_panel_has_four_pictures(outcome, folder):
+    image = assert_picture(
+        fields.plot_fields(outcome.contact, folder / "panel.png"), fields.WINDOW_SIZE, "pyvista"
+    )
+    height, width = image.shape[:2]
+    for top in (0, height // 2):
+        for left in (0, width // 2):
+            quarter = image[top : top + height // 2, left : left + width // 2]
+            assert colour_mask(quarter, fields.CONTACT_COLOUR).sum() > 100
+            assert_colour_bar(quarter)
+
+
+def test_revolved_view(made):
+    image = assert_picture(made["field_revolved"], fields.WINDOW_SIZE, "pyvista")
+    height, width = image.shape[:2]
+    body = image[:, : int(0.8 * width)]
+    coloured = body.max(axis=2) - body.min(axis=2) > 40  # not white, not grey
+    rows, columns = np.nonzero(coloured)
+    # a disc seen from above with a quarter cut out: centred, wider than tall, and filling
+    # about 3/4 of its bounding box (measured 0.78; an ellipse alone fills pi/4)
+    assert abs(rows.mean() / height - 0.5) < 0.1 and abs(columns.mean() / width - 0.43) < 0.1
+    extent = (columns.max() - columns.min(), rows.max() - rows.min())
+    assert extent[0] > extent[1] > 0.4 * height
+    assert 0.6 < coloured.sum() / (extent[0] * extent[1]) < 0.9
+    circle_rows, _ = np.nonzero(colour_mask(image, fields.CONTACT_COLOUR))
+    assert circle_rows.size > 200 and circle_rows.mean() < rows.mean()  # the circle on top
+    assert_colour_bar(image)
+
+
+def test_vtk_warnings_restored(outcome, folder):
+    before = vtkObject.GetGlobalWarningDisplay()
+    with pytest.raises(InputError):
+        fields.plot_field(outcome.contact, folder / "quiet.png", "von_mises", extent=-1.0)
+    assert vtkObject.GetGlobalWarningDisplay() == before
+    fields.plot_field(outcome.contact, folder / "quiet.png", "sigma_tt", step=0, extent=2.0)
+    assert vtkObject.GetGlobalWarningDisplay() == before
+
+
+def test_field_input_errors(outcome, folder):
+    with pytest.raises(InputError, match="Unknown field 'stress'"):
+        fields.plot_field(outcome.contact, folder / "bad.png", "stress")
+    with pytest.raises(InputError, match="angle"):
+        fields.plot_revolved(outcome.contact, folder / "bad.png", angle=360.0)
+    with pytest.raises(InputError, match="four"):
+        fields.plot_fields(outcome.contact, folder / "bad.png", ("u_z",))
+    with pytest.raises(InputError, match="step"):
+        fields.plot_field(outcome.contact, folder / "bad.png", step=99)
+    assert not (folder / "bad.png").exists()

@@ -1,0 +1,72 @@
+"""Studies as data: the shipped TOML files load, and bad files get errors naming file and key."""
+
+import pytest
+
+from shtaerman.studies import StudyError, load_study, shipped_studies
+
+PAPER = """
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+youngs_modulus = 7.5e6
+poisson_ratio = 0.5
+[impact]
+mass = 0.7
+velocity = 3.0
+"""
+
+
+def test_shipped_studies_cover_the_issue():
+    names = [study.name for path in shipped_studies() for study in load_study(path)]
+    assert names == ["compressible", "hertz", "paper", "table4-A2", "table4-A4", "table4-A6"]
+
+
+def test_paper_study_is_the_paper_example():
+    [paper] = [s for path in shipped_studies() if path.stem == "paper" for s in load_study(path)]
+    assert (paper.indenter.shape_coefficient, paper.indenter.exponent) == (5.0, 1.5)
+    assert (paper.half_space.youngs_modulus, paper.half_space.poisson_ratio) == (7.5e6, 0.5)
+    assert (paper.striker.youngs_modulus, paper.striker.poisson_ratio) == (2e11, 0.25)
+    assert (paper.mass, paper.velocity, paper.tolerances.impact) == (0.7, 3.0, 2e-3)
+
+
+def test_minimal_user_study(tmp_path):
+    path = tmp_path / "mine.toml"
+    path.write_text(PAPER)
+    [study] = load_study(path)
+    # name from the file, rigid striker and default mesh/tolerances when not given
+    assert study.name == "mine" and study.striker.compliance == 0.0 and study.depths is None
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (("exponent = 1.5", "exponent = -1.5"), r"key 'indenter.exponent': expected a number > 0"),
+        (("mass = 0.7", "mass = 'heavy'"), r"key 'impact.mass': expected a number > 0 \(kg\)"),
+        (("poisson_ratio = 0.5", "poisson_ratio = 0.6"), r"half_space.poisson_ratio': expected a"),
+        (("[impact]", "[impakt]"), r"key 'impakt': expected one of"),
+        (("velocity = 3.0", "velocity = 3.0\ncolour = 1"), r"key 'impact.colour': expected one of"),
+        (("[indenter]", "indenter = ["), r"not valid TOML"),
+    ],
+)
+def test_bad_study_names_file_and_key(tmp_path, edit, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(PAPER.replace(*edit))
+    with pytest.raises(StudyError, match=message) as error:
+        load_study(path)
+    assert str(path) in str(error.value)
+
+
+def test_bad_depths_and_sweep(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(PAPER + "[contact]\ndepths = [2e-3, 1e-3]\n")
+    with pytest.raises(StudyError, match=r"contact.depths': expected a list of increasing"):
+        load_study(path)
+    path.write_text(PAPER + "[sweep]\ncolour = [1, 2]\n")
+    with pytest.raises(StudyError, match=r"sweep.colour': expected one of"):
+        load_study(path)
+
+
+def test_missing_file():
+    with pytest.raises(StudyError, match="study file not found"):
+        load_study("no/such/study.toml")
