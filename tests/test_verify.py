@@ -51,7 +51,7 @@ def test_fem_fed_impact_agrees_with_exact(run):
 
 
 def test_images_are_pictures(run):
-    _, out, results = run
+    _, out, _ = run
     pngs = sorted(out.rglob("*.png"))
     assert len(pngs) >= 2 * 9 + 1
     for path in pngs:
