@@ -86,7 +86,7 @@ def factorize(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     matrix : scipy.sparse matrix
         Square, nonsingular (symmetric indefinite for the mixed system).
     backend : str
-        ``"auto"`` (PARDISO if pypardiso is importable, else SuperLU), ``"superlu"`` or
+        ``"auto"`` (SuperLU, the faster one below ~100k dofs here), ``"superlu"`` or
         ``"pardiso"``. Measured on the nu = 0.5 system (bench_fem.py): at 20k dofs SuperLU
         factorizes 3x faster and PARDISO solves 200 right-hand sides 2x faster (a tie
         overall); at 200k dofs PARDISO is 1.7x faster to factorize and 2.7x to solve.
