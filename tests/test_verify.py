@@ -50,10 +50,23 @@ def test_fem_fed_impact_agrees_with_exact(run):
             assert abs(paper["differences"][variant][key]) < 2e-3
 
 
+def test_convergence_study_in_results(run):
+    # quick mode: the paper study's three coarsest meshes (5k-15k dofs); the force error falls
+    # 1.5e-3 -> 7.4e-4 -> 3.7e-4, an observed order of about 2 (2.6 over five default levels)
+    convergence = run[2]["studies"]["paper"]["convergence"]
+    forces = [level["errors"]["force"] for level in convergence["levels"]]
+    assert len(forces) == 3 and forces[0] > forces[1] > forces[2]
+    assert convergence["fitted_orders"]["force"] > 1.5
+    assert (
+        "convergence.png" in " ".join(run[2]["studies"]["paper"]["files"])
+        or (run[1] / "paper" / "convergence.png").is_file()
+    )
+
+
 def test_images_are_pictures(run):
     _, out, _ = run
     pngs = sorted(out.rglob("*.png"))
-    assert len(pngs) >= 2 * 9 + 1
+    assert len(pngs) >= 2 * 9 + 1 + 1  # 9 per study, the paper's convergence, the Ateb figure
     for path in pngs:
         image = mpimg.imread(path)[..., :3]
         # not blank: real contrast and many distinct colours (RGB packed into one integer)

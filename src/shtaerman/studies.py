@@ -12,6 +12,9 @@ A study file (see ``fem/paper.toml``)::
     [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
     [mesh]       MeshSettings fields (optional); [quick_mesh] for ``verify --quick``
     [tolerances] relative: force, beta, exponent, contact_radius, central_pressure, impact
+    [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
+                 mesh-convergence study refining the whole mesh (``verify --quick``: the
+                 coarsest three)
     [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
                  "velocity") and a list of values; the study runs once per value.
 
@@ -80,6 +83,8 @@ class Study:
     mesh: MeshSettings
     quick_mesh: MeshSettings
     tolerances: Tolerances = field(default_factory=Tolerances)
+    convergence_sizes: tuple[float, ...] = ()
+    """Smallest-element sizes / refined radius of a mesh-convergence study (empty: none)."""
 
 
 class _Reader:
@@ -166,6 +171,20 @@ def _depths(reader: _Reader) -> tuple[float, ...] | None:
     return tuple(values)
 
 
+def _convergence(reader: _Reader) -> tuple[float, ...]:
+    reader.check_keys({"sizes"})
+    sizes = reader.data.get("sizes", [])
+    expected = "a list of at least 2 decreasing sizes in (0, 1) (element / refined radius)"
+    if not isinstance(sizes, list) or len(sizes) == 1:
+        raise reader.error("sizes", expected, sizes)
+    for size in sizes:
+        if isinstance(size, bool) or not isinstance(size, int | float) or not 0 < size < 1:
+            raise reader.error("sizes", expected, sizes)
+    if any(b >= a for a, b in itertools.pairwise(sizes)):
+        raise reader.error("sizes", expected, sizes)
+    return tuple(float(size) for size in sizes)
+
+
 def _tolerances(reader: _Reader) -> Tolerances:
     names = {f.name for f in fields(Tolerances)}
     reader.check_keys(names)
@@ -187,6 +206,7 @@ def _parse(path: Path, data: dict[str, Any]) -> Study:
             "quick_mesh",
             "tolerances",
             "sweep",
+            "convergence",
         }
     )
     indenter = root.table("indenter")
@@ -212,6 +232,7 @@ def _parse(path: Path, data: dict[str, Any]) -> Study:
         mesh=_mesh(root.table("mesh", required=False), MeshSettings()),
         quick_mesh=_mesh(root.table("quick_mesh", required=False), QUICK_MESH),
         tolerances=_tolerances(root.table("tolerances", required=False)),
+        convergence_sizes=_convergence(root.table("convergence", required=False)),
     )
 
 
