@@ -43,7 +43,6 @@ from shtaerman.fem.convergence import (
 )
 from shtaerman.fem.elasticity import ElasticSystem, assemble
 from shtaerman.fem.indentation import MeshSettings, default_depths, run_indentation
-from shtaerman.fem.mesh import halfspace_mesh
 from shtaerman.fem.solver import available_backends, factorize
 from shtaerman.indenter import PowerLawIndenter
 from shtaerman.materials import Material
@@ -101,14 +100,7 @@ def _problem(indenter: PowerLawIndenter, half_space: Material, mesh: MeshSetting
     depths = default_depths(indenter, half_space)
     a_g = (depths[-1] / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
     refined = mesh.margin * a_g
-    skfem_mesh = halfspace_mesh(
-        refined,
-        domain_radius=mesh.domain * refined,
-        smallest_size=mesh.size * refined,
-        growth=mesh.growth,
-        axis_size=min(mesh.axis_size, mesh.size) * refined,
-        axis_growth=mesh.axis_growth,
-    )
+    skfem_mesh = mesh.build(refined)
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     return _Problem(indenter, system, system.free_dofs(), refined, depths)
 
@@ -207,8 +199,8 @@ def speed_table(quick: bool) -> None:
         f"{SAMPLE_LOADS} unit loads solved, scaled to all candidates."
     )
     print(
-        "    The dense phase (compliance, LCPs) uses multithreaded BLAS and slows down many-fold"
-        " when the cores are busy: " + _load()
+        "    The LCPs run with one BLAS thread (threadpoolctl); the compliance inversion uses"
+        " all threads and is sensitive to a busy machine: " + _load()
     )
     header = [
         f"{'mesh':>11}",

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
+from skfem import MeshTri
 
 from ..analytic_contact import PowerLawContact
 from ..impact import solve_impact
@@ -75,6 +76,17 @@ class MeshSettings:
                 f"clamped far boundary stiffens the contact by about 1/domain; gmsh slows down "
                 f"sharply beyond 1e7), got {self.domain!r}"
             )
+
+    def build(self, refined_radius: float) -> MeshTri:
+        """The gmsh half-space mesh for a refined (candidate) zone of ``refined_radius`` m."""
+        return halfspace_mesh(
+            refined_radius,
+            domain_radius=self.domain * refined_radius,
+            smallest_size=self.size * refined_radius,
+            growth=self.growth,
+            axis_size=min(self.axis_size, self.size) * refined_radius,
+            axis_growth=self.axis_growth,
+        )
 
 
 def default_depths(indenter: PowerLawIndenter, half_space: Material) -> np.ndarray:
@@ -219,14 +231,7 @@ def run_indentation(
     mesh = MeshSettings() if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])
     start = time.perf_counter()
-    skfem_mesh = halfspace_mesh(
-        refined,
-        domain_radius=mesh.domain * refined,
-        smallest_size=mesh.size * refined,
-        growth=mesh.growth,
-        axis_size=min(mesh.axis_size, mesh.size) * refined,
-        axis_growth=mesh.axis_growth,
-    )
+    skfem_mesh = mesh.build(refined)
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
