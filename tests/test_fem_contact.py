@@ -173,3 +173,20 @@ def test_contact_cli_bad_input(capsys, argv, message):
     assert main(["contact", *argv]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and re.search(message, err)
+
+
+def test_without_pymetis_the_pure_scipy_path_gives_the_same_contact(monkeypatch, paper_run):
+    # the fallback factorizes with SuperLU's own ordering and solves unit loads for the
+    # compliance: the same discrete problem, so the same answer to round-off
+    import shtaerman.fem.contact as contact
+
+    monkeypatch.setattr(contact, "TailFactorization", None)
+    step = paper_run.steps[-1]
+    curve = contact.solve_contact(
+        paper_run.curve.system,
+        paper_run.indenter.profile,
+        [step.depth],
+        paper_run.curve.compliance.r[-1],
+    )
+    assert curve.backend == "superlu"
+    assert curve.steps[0].force == pytest.approx(step.force, rel=1e-10)

@@ -33,7 +33,11 @@ from threadpoolctl import threadpool_limits
 
 from ..validation import InputError, validate_increasing
 from .elasticity import ElasticSolution, ElasticSystem, solve
-from .schur import TailFactorization
+
+try:  # METIS ordering: the compliance falls out of the factorization
+    from .schur import TailFactorization
+except ImportError:  # pymetis unavailable: unit-load solves instead (same results, slower)
+    TailFactorization = None
 from .solver import Factorization, factorize
 
 __all__ = [
@@ -104,7 +108,7 @@ def factorize_stiffness(
     """
     _, _, position = _candidates(system, free, radius)
     matrix = system.reduced_matrix(free)
-    if backend in ("auto", "superlu"):
+    if backend in ("auto", "superlu") and TailFactorization is not None:
         return TailFactorization(matrix, position, system.dof_nodes()[free])
     return factorize(matrix, backend=backend)
 
@@ -118,7 +122,7 @@ def surface_compliance(
     multi-RHS solve of unit loads.
     """
     candidates, dofs, position = _candidates(system, free, radius)
-    if isinstance(factorization, TailFactorization):
+    if TailFactorization is not None and isinstance(factorization, TailFactorization):
         inverse = factorization.tail_inverse()
     else:
         inverse = _compliance_by_solves(factorization, free.size, position)
