@@ -30,33 +30,38 @@ def paper_run():
 
 
 def test_contact_conditions_hold_exactly(paper_run):
+    compliance = paper_run.curve.compliance
+    profile = paper_run.indenter.profile(compliance.r)
     for step in paper_run.steps:
-        scale = step.nodal_forces.max()
-        assert step.nodal_forces.min() >= 0 and step.gap.min() >= 0
-        # complementarity: no node both loaded and open, to round-off
-        assert np.max(step.nodal_forces * step.gap) <= 1e-12 * scale * step.depth
-        # in contact the surface follows the indenter exactly: u_z = f - d where loaded
-        loaded = step.nodal_forces > 0
-        u_z = -paper_run.curve.compliance.matrix @ step.nodal_forces
-        profile = paper_run.indenter.profile(paper_run.curve.compliance.r) - step.depth
-        np.testing.assert_allclose(u_z[loaded], profile[loaded], rtol=0, atol=1e-12 * step.depth)
+        forces = step.nodal_forces
+        # the gap recomputed from the forces, not the solver's own (zeroed) copy
+        gap = profile - step.depth + compliance.matrix @ forces
+        scale = forces.max() * step.depth
+        assert forces.min() >= 0
+        # no penetration and complementarity to round-off (observed 4e-16 and 2e-16)
+        assert gap.min() >= -1e-12 * step.depth
+        assert np.max(forces * np.abs(gap)) <= 1e-12 * scale
+        # the contact is not trivial: a loaded zone, then free nodes with an open gap
+        loaded = forces > 0
+        assert loaded[0] and not loaded[-1] and gap[-1] > 0
 
 
 def test_paper_indenter_matches_shtaerman(paper_run):
     errors = paper_run.errors()
-    # coarse mesh (about 5k dofs); observed: force 3e-4, beta 2e-4, exponent 3e-5, radius 6e-3,
-    # p(0) 3e-4; the default mesh halves these (benchmarks)
-    assert errors["force"] < 1e-3
-    assert errors["beta"] < 5e-4
-    assert errors["exponent"] < 2e-4
-    assert errors["contact_radius"] < 1.5e-2
-    assert errors["central_pressure"] < 3e-3
+    # coarse mesh (8.7k dofs), observed: force 2.6e-4, beta 8.5e-5, exponent 1.7e-4, radius
+    # 2.8e-3, p(0) 1.9e-4; bounds about 2x that (the default mesh: benchmarks/bench_contact.py)
+    assert errors["force"] < 6e-4
+    assert errors["beta"] < 2e-4
+    assert errors["exponent"] < 3.5e-4
+    assert errors["contact_radius"] < 6e-3
+    assert errors["central_pressure"] < 5e-4
 
 
 def test_central_pressure_is_two_and_a_half_mean(paper_run):
     # the paper's claim p(0) = 2.5 p_avg, from FEM force, radius and central pressure alone
     ratios = [step.central_pressure / step.mean_pressure for step in paper_run.steps]
-    np.testing.assert_allclose(ratios, 2.5, rtol=2e-2)
+    # observed within 5.2e-3 (mostly the contact radius, squared in p_avg)
+    np.testing.assert_allclose(ratios, 2.5, rtol=1e-2)
 
 
 @pytest.mark.parametrize(("exponent", "nu"), [(2.0, 0.3), (1.25, 0.0)])
@@ -66,8 +71,10 @@ def test_other_indenters_and_poisson_ratios(exponent, nu):
     radii = [step.contact_radius for step in result.steps]
     assert radii[-1] / radii[0] > 2.9
     errors = result.errors()
-    assert errors["force"] < 1e-3 and errors["beta"] < 5e-4
-    assert errors["contact_radius"] < 1.5e-2 and errors["central_pressure"] < 1e-2
+    # observed (n = 2, nu = 0.3 / n = 1.25, nu = 0): force 4.1e-4 / 3.1e-4, beta 2.8e-4 /
+    # 1.4e-4, radius 2.2e-3 / 4.2e-3, p(0) 1.0e-4 / 2.3e-3; bounds about 2x the worst
+    assert errors["force"] < 1e-3 and errors["beta"] < 6e-4
+    assert errors["contact_radius"] < 1e-2 and errors["central_pressure"] < 5e-3
 
 
 def test_schur_block_is_the_compliance(paper_run):
