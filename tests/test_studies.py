@@ -60,7 +60,11 @@ def test_bad_study_names_file_and_key(tmp_path, edit, message):
 def test_bad_depths_and_sweep(tmp_path):
     path = tmp_path / "bad.toml"
     path.write_text(PAPER + "[contact]\ndepths = [2e-3, 1e-3]\n")
-    with pytest.raises(StudyError, match=r"contact.depths': expected a list of increasing"):
+    with pytest.raises(StudyError, match=r"contact.depths': expected a list of at least 2"):
+        load_study(path)
+    # one depth cannot give the FEM-fitted exponent the study's impact needs
+    path.write_text(PAPER + "[contact]\ndepths = [1e-3]\n")
+    with pytest.raises(StudyError, match=r"contact.depths': expected a list of at least 2"):
         load_study(path)
     path.write_text(PAPER + "[sweep]\ncolour = [1, 2]\n")
     with pytest.raises(StudyError, match=r"sweep.colour': expected one of"):

@@ -7,13 +7,10 @@ naming the parameter and its valid range, and exit code 2.
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import math
-import os
 import re
 import sys
-import tempfile
 import time
 import warnings
 from collections.abc import Callable, Sequence
@@ -27,8 +24,9 @@ from .impact import ImpactResult, solve_impact
 from .impact_ode import integrate_impact
 from .indenter import PowerLawIndenter
 from .materials import RIGID, Material, effective_modulus
+from .output import json_safe, write_csv
 from .tables import paper_tables, tables_text
-from .validation import InputError, validate_poisson, validate_positive
+from .validation import InputError, validate_increasing, validate_poisson, validate_positive
 
 EXIT_INPUT = 2
 
@@ -159,19 +157,29 @@ def _points(value: str) -> int:
     return points
 
 
+def _history_path(value: str | None) -> Path | None:
+    """The --history file, checked before any work: its folder must exist."""
+    if value is None:
+        return None
+    path = Path(value).expanduser()
+    if not path.parent.is_dir():
+        raise InputError(f"history: folder {str(path.parent)!r} does not exist")
+    return path
+
+
 def _run_impact(args: argparse.Namespace) -> int:
     mass = validate_positive("mass", args.mass, "kg")
     velocity = validate_positive("velocity", args.velocity, "m/s")
     striker, half_space, indenter = _striker(args), _half_space(args), _indenter(args)
-    points = _points(args.points)
+    points, history = _points(args.points), _history_path(args.history)
     law = PowerLawContact(indenter, effective_modulus(striker, half_space))
     result = solve_impact(mass, velocity, law)
     report = {**result.maxima(), "force_exponent": result.force_exponent, "modulus": law.modulus}
     if args.check:
         report["ode_check"] = _ode_check(result)
-    if args.history:
-        _write_csv(Path(args.history), result.history(points).columns())
-    print(json.dumps(_json_safe(report), indent=2) if args.json else _impact_text(result, report))
+    if history is not None:
+        write_csv(history, result.history(points).columns())
+    print(json.dumps(json_safe(report), indent=2) if args.json else _impact_text(result, report))
     return 0
 
 
@@ -186,16 +194,6 @@ def _ode_check(result: ImpactResult) -> dict[str, float]:
         "rebound_velocity": numerical.rebound_velocity,
         "max_history_difference": float(np.max(np.abs(x - exact.x[:-1])) / result.x_c),
     }
-
-
-def _json_safe(value):
-    if isinstance(value, dict):
-        return {key: _json_safe(item) for key, item in value.items()}
-    if isinstance(value, list | tuple):
-        return [_json_safe(item) for item in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def _impact_text(result: ImpactResult, report: dict) -> str:
@@ -232,8 +230,6 @@ def _impact_text(result: ImpactResult, report: dict) -> str:
 def _depths(text: str | None) -> np.ndarray | None:
     if text is None:
         return None
-    from .validation import validate_increasing
-
     return validate_increasing("depths", [item for item in text.split(",") if item.strip()], "m")
 
 
@@ -268,8 +264,8 @@ def _run_contact(args: argparse.Namespace) -> int:
     if out is not None:
         with staged_folder(out) as stage:
             write_indentation(result, stage)
-            (stage / "contact.json").write_text(json.dumps(_json_safe(report), indent=2))
-    print(json.dumps(_json_safe(report), indent=2) if args.json else _contact_text(report))
+            (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
+    print(json.dumps(json_safe(report), indent=2) if args.json else _contact_text(report))
     return 0
 
 
@@ -346,27 +342,10 @@ def _verify_text(results: dict, out: Path) -> str:
 def _run_tables(args: argparse.Namespace) -> int:
     tables = paper_tables()
     if args.json:
-        print(json.dumps(_json_safe({"tables": [table.to_dict() for table in tables]}), indent=2))
+        print(json.dumps(json_safe({"tables": [table.to_dict() for table in tables]}), indent=2))
     else:
         print(tables_text(tables))
     return 0
-
-
-def _write_csv(path: Path, columns: dict[str, np.ndarray]) -> None:
-    """Write columns to ``path`` atomically: a failed run leaves any old file intact."""
-    path = path.expanduser()
-    if not path.parent.is_dir():
-        raise InputError(f"history: folder {str(path.parent)!r} does not exist")
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", newline="") as stream:
-            writer = csv.writer(stream)
-            writer.writerow(columns)
-            writer.writerows(zip(*(np.asarray(c) for c in columns.values()), strict=True))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
 
 
 def _report_warnings(caught: list[warnings.WarningMessage]) -> None:

@@ -6,7 +6,6 @@ failed or interrupted run never leaves something that looks complete.
 
 from __future__ import annotations
 
-import csv
 import json
 import sys
 import time
@@ -17,8 +16,7 @@ from typing import TextIO
 from . import fields, figures
 from .fem.convergence import convergence_study
 from .fem.export import write_indentation
-from .impact import ImpactHistory
-from .output import staged_folder
+from .output import staged_folder, write_csv
 from .report import results_document, write_html, write_markdown
 from .studies import Study
 from .verification import StudyOutcome, run_study
@@ -49,20 +47,12 @@ class ProgressBar:
         self.done += 1
 
 
-def _write_history(path: Path, history: ImpactHistory) -> None:
-    with path.open("w", newline="") as stream:
-        writer = csv.writer(stream)
-        columns = history.columns()
-        writer.writerow(columns)
-        writer.writerows(zip(*columns.values(), strict=True))
-
-
 def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
     folder.mkdir()
     written = write_indentation(outcome.contact, folder)
     for variant, history in outcome.histories.items():
         path = folder / f"history_{variant}.csv"
-        _write_history(path, history)
+        write_csv(path, history.columns())
         written.append(path)
     return {path.stem: str(path.relative_to(root)) for path in written}
 

@@ -9,16 +9,16 @@ import base64
 import datetime as dt
 import html
 import importlib.metadata
-import math
 import os
 import platform
 from pathlib import Path
 
 from . import __version__
 from .fem.convergence import fitted_order
+from .output import json_safe
 from .verification import IMPACT_KEYS, StudyOutcome
 
-__all__ = ["environment", "json_safe", "results_document", "write_html", "write_markdown"]
+__all__ = ["environment", "results_document", "write_html", "write_markdown"]
 
 PACKAGES = (
     "numpy",
@@ -37,19 +37,6 @@ VARIANTS = {
     "fem_fitted": "FEM-fitted beta, Ateb",
     "fem_tabulated": "FEM P(x) tabulated, ODE",
 }
-
-
-def json_safe(value: object) -> object:
-    """``value`` with non-finite floats as None (strict JSON) and numpy scalars as floats."""
-    if isinstance(value, dict):
-        return {str(key): json_safe(item) for key, item in value.items()}
-    if isinstance(value, list | tuple):
-        return [json_safe(item) for item in value]
-    if hasattr(value, "item") and not isinstance(value, str):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def environment() -> dict[str, object]:

@@ -158,8 +158,8 @@ def _depths(reader: _Reader) -> tuple[float, ...] | None:
     depths = reader.data.get("depths", "impact")
     if depths == "impact":
         return None
-    expected = 'a list of increasing depths > 0 in m, or "impact"'
-    if not isinstance(depths, list) or not depths:
+    expected = 'a list of at least 2 increasing depths > 0 in m, or "impact"'
+    if not isinstance(depths, list) or len(depths) < 2:
         raise reader.error("depths", expected, depths)
     values = []
     for value in depths:

@@ -16,7 +16,7 @@ import numpy as np
 
 from .analytic_contact import PowerLawContact
 from .fem.contact_law import FemContactLaw, fem_contact_law
-from .fem.indentation import DEFAULT_RADIUS_SPAN, DEFAULT_STEPS, IndentationResult, run_indentation
+from .fem.indentation import IndentationResult, depths_up_to, run_indentation
 from .impact import ImpactHistory, ImpactResult, solve_impact
 from .impact_ode import integrate_impact
 from .materials import effective_modulus
@@ -89,12 +89,7 @@ class StudyOutcome:
 def _study_depths(study: Study, exact: ImpactResult) -> np.ndarray:
     if study.depths is not None:
         return np.asarray(study.depths)
-    span = DEFAULT_RADIUS_SPAN**study.indenter.exponent
-    return DEPTH_OVERSHOOT * exact.x_c * np.geomspace(1.0 / span, 1.0, DEFAULT_STEPS)
-
-
-def _fitted_impact(study: Study, law: FemContactLaw) -> ImpactResult:
-    return solve_impact(study.mass, study.velocity, law)
+    return depths_up_to(DEPTH_OVERSHOOT * exact.x_c, study.indenter.exponent)
 
 
 def _tabulated_impact(
@@ -168,7 +163,7 @@ def run_study(
     )
     report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
     law = fem_contact_law(contact, modulus)
-    fitted = _fitted_impact(study, law)
+    fitted = solve_impact(study.mass, study.velocity, law)
     tabulated, tabulated_history = _tabulated_impact(study, law, exact.x_c)
     impacts = {
         "analytic": _maxima(exact),

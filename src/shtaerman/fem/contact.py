@@ -2,9 +2,10 @@
 
 The indenter z = f(r) - d (f(0) = 0 at its tip, depth d > 0) presses the surface z = 0 down.
 With nodal contact forces F_i >= 0 (N, pushing down) on the candidate surface u_z dofs, the
-surface moves by u_z = -C F, where C = S^T K^-1 S is the surface compliance (m/N): the Schur
-complement of the factorized system on the candidate dofs, formed once from one factorization by
-solving for unit loads. The contact conditions hold exactly at the nodes:
+surface moves by u_z = -C F, where C = S^T K^-1 S is the surface compliance (m/N). It comes
+once from the one factorization: with SuperLU the candidates are eliminated last and C is the
+inverse of the trailing Schur block (:mod:`.schur`); otherwise (PARDISO, or no pymetis) one
+multi-RHS solve of unit loads. The contact conditions hold exactly at the nodes:
 
     gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0,
 
@@ -347,15 +348,20 @@ class ContactCurve:
     compliance: SurfaceCompliance
     system: ElasticSystem
     factorization: Factorization = field(repr=False)
-    free: np.ndarray = field(repr=False)
     timings: dict[str, float]
     backend: str
+    _fields: dict[float, ElasticSolution] = field(default_factory=dict, repr=False, compare=False)
 
     def field_solution(self, step: ContactStep) -> ElasticSolution:
-        """Displacements and stresses in the body under the contact forces of ``step``."""
-        load = np.zeros(self.system.n_dofs)
-        load[self.compliance.dofs] = -step.nodal_forces
-        return solve(self.system, load, factorization=self.factorization)
+        """Displacements and stresses in the body under the contact forces of ``step``.
+
+        Solved once per depth and kept: the VTU export and every field figure share it.
+        """
+        if step.depth not in self._fields:
+            load = np.zeros(self.system.n_dofs)
+            load[self.compliance.dofs] = -step.nodal_forces
+            self._fields[step.depth] = solve(self.system, load, factorization=self.factorization)
+        return self._fields[step.depth]
 
 
 def solve_contact(
@@ -399,7 +405,6 @@ def solve_contact(
         compliance=compliance,
         system=system,
         factorization=factorization,
-        free=free,
         timings={"factorization": factorized - start, "contact": done - factorized},
         backend=getattr(factorization, "backend", backend),
     )

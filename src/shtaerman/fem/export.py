@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import meshio
 import numpy as np
 
+from ..output import write_csv
 from .elasticity import ElasticSolution
 from .indentation import IndentationResult
 
@@ -37,13 +37,6 @@ def field_mesh(solution: ElasticSolution) -> meshio.Mesh:
     return meshio.Mesh(points, [("triangle", mesh.t.T)], point_data=data)
 
 
-def _write_rows(path: Path, rows: list[dict[str, float]]) -> None:
-    with path.open("w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-
-
 def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
     """Write ``contact_curve.csv``, ``pressure_profiles.csv`` and ``field_max_depth.vtu``.
 
@@ -51,17 +44,23 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
     """
     folder = Path(folder)
     curve_path = folder / "contact_curve.csv"
-    _write_rows(curve_path, result.step_table())
+    rows = result.step_table()
+    write_csv(curve_path, {key: [row[key] for row in rows] for key in rows[0]})
     profiles_path = folder / "pressure_profiles.csv"
     r = result.curve.compliance.r
-    profiles = []
-    for step in result.steps:
-        exact = result.exact.pressure(r, step.depth)
-        profiles += [
-            {"depth": step.depth, "r": ri, "pressure": pi, "pressure_analytic": ei, "gap": gi}
-            for ri, pi, ei, gi in zip(r, step.pressure, exact, step.gap, strict=True)
-        ]
-    _write_rows(profiles_path, profiles)
+    steps = result.steps
+    write_csv(
+        profiles_path,
+        {
+            "depth": np.repeat([step.depth for step in steps], r.size),
+            "r": np.tile(r, len(steps)),
+            "pressure": np.concatenate([step.pressure for step in steps]),
+            "pressure_analytic": np.concatenate(
+                [result.exact.pressure(r, step.depth) for step in steps]
+            ),
+            "gap": np.concatenate([step.gap for step in steps]),
+        },
+    )
     field_path = folder / "field_max_depth.vtu"
     meshio.write(field_path, field_mesh(result.curve.field_solution(result.steps[-1])))
     return [curve_path, profiles_path, field_path]

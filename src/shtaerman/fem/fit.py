@@ -43,17 +43,20 @@ def fit_power_law(depths: ArrayLike, forces: ArrayLike, fixed_exponent: float) -
     Parameters
     ----------
     depths, forces : array_like
-        At least two points (one for the fixed-exponent fit alone), all positive.
+        Positive points. One point determines only the fixed-exponent fit: the free fit's
+        ``beta``, ``exponent`` and ``log_residual`` are then NaN (nothing was measured).
     fixed_exponent : float
         The exponent of the theory, (n + 1)/n, for the second fit.
     """
-    x, P = np.asarray(depths, dtype=float), np.asarray(forces, dtype=float)
-    if x.size < 2 or np.any(x <= 0) or np.any(P <= 0):
-        raise InputError("the fit needs at least two positive depths with positive forces")
+    x, P = np.atleast_1d(depths).astype(float), np.atleast_1d(forces).astype(float)
+    if x.size < 1 or np.any(x <= 0) or np.any(P <= 0):
+        raise InputError("the fit needs positive depths with positive forces")
     log_x, log_P = np.log(x), np.log(P)
+    fixed = np.exp(np.mean(log_P - fixed_exponent * log_x))
+    if x.size == 1:
+        return PowerLawFit(np.nan, np.nan, float(fixed), float(fixed_exponent), np.nan)
     exponent, log_beta = np.polyfit(log_x, log_P, 1)
     residual = log_P - (log_beta + exponent * log_x)
-    fixed = np.exp(np.mean(log_P - fixed_exponent * log_x))
     return PowerLawFit(
         beta=float(np.exp(log_beta)),
         exponent=float(exponent),

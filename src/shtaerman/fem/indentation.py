@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,14 +26,21 @@ from .elasticity import assemble
 from .fit import PowerLawFit, fit_power_law
 from .mesh import halfspace_mesh
 
-__all__ = ["IndentationResult", "MeshSettings", "default_depths", "run_indentation"]
+__all__ = [
+    "IndentationResult",
+    "MeshSettings",
+    "default_depths",
+    "depths_up_to",
+    "run_indentation",
+]
 
 PAPER_MASS = 0.7  # kg, the paper's example
 PAPER_VELOCITY = 3.0  # m/s
 DEFAULT_STEPS = 8
 DEFAULT_RADIUS_SPAN = 3.0
+"""The default depths span contact radii a_c/3 .. a_c."""
 MIN_DOMAIN = 100.0
-MAX_DOMAIN = 1e7  # the default depths span contact radii a_c/3 .. a_c
+MAX_DOMAIN = 1e7
 
 
 @dataclass(frozen=True)
@@ -89,12 +97,20 @@ class MeshSettings:
         )
 
 
+def depths_up_to(deepest: float, exponent: float) -> np.ndarray:
+    """Eight depths (m) up to ``deepest``, geometric, contact radii spanning a factor of 3.
+
+    Radii go as depth^(1/n), so the depths span 3^n for an indenter exponent n.
+    """
+    span = DEFAULT_RADIUS_SPAN**exponent
+    return deepest * np.geomspace(1.0 / span, 1.0, DEFAULT_STEPS)
+
+
 def default_depths(indenter: PowerLawIndenter, half_space: Material) -> np.ndarray:
     """Eight depths (m) up to the paper's impact x_c (0.7 kg at 3 m/s), radii a_c/3 .. a_c."""
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     x_c = solve_impact(PAPER_MASS, PAPER_VELOCITY, law).x_c
-    span = DEFAULT_RADIUS_SPAN**indenter.exponent
-    return x_c * np.geomspace(1.0 / span, 1.0, DEFAULT_STEPS)
+    return depths_up_to(x_c, indenter.exponent)
 
 
 @dataclass(frozen=True)
@@ -116,6 +132,10 @@ class IndentationResult:
 
     def step_table(self) -> list[dict[str, float]]:
         """Per depth: FEM and exact force, contact radius, central pressure, and ratios."""
+        return self._rows
+
+    @cached_property
+    def _rows(self) -> list[dict[str, float]]:
         rows = []
         for step in self.steps:
             exact = self._exact(step.depth)
@@ -238,10 +258,7 @@ def run_indentation(
     curve = solve_contact(system, indenter.profile, depths, refined, backend=backend)
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [step.force for step in curve.steps]
-    fit = fit_power_law(depths, forces, exact.force_exponent) if depths.size > 1 else None
-    if fit is None:
-        beta = forces[0] / depths[0] ** exact.force_exponent
-        fit = PowerLawFit(beta, exact.force_exponent, beta, exact.force_exponent, 0.0)
+    fit = fit_power_law(depths, forces, exact.force_exponent)
     timings = {
         "mesh": meshed - start,
         "assembly": assembled - meshed,
