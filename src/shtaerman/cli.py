@@ -1,4 +1,4 @@
-"""Command-line interface: ``shtaerman impact | tables | contact | verify``.
+"""Command-line interface: ``shtaerman impact | tables | contact | verify | sweep``.
 
 Thin: each subcommand parses, calls the library, prints. Bad input gives one line on stderr
 naming the parameter and its valid range, and exit code 2.
@@ -25,6 +25,7 @@ from .impact_ode import integrate_impact
 from .indenter import PowerLawIndenter
 from .materials import RIGID, Material, effective_modulus
 from .output import json_safe, write_csv
+from .sweep import cli as sweep_cli
 from .tables import paper_tables, tables_text
 from .validation import InputError, validate_increasing, validate_poisson, validate_positive
 
@@ -127,6 +128,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_tables(sub)
     _add_contact(sub)
     _add_verify(sub)
+    sweep_cli.add_parser(sub)
     return parser
 
 
@@ -359,7 +361,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         warnings.simplefilter("always")
         try:
             args = build_parser().parse_args(argv)
-            run: Callable[[argparse.Namespace], int] = args.run
+            run: Callable[[argparse.Namespace], int] = getattr(args, "handler", None) or args.run
             code = run(args)
         except InputError as error:
             _report_warnings(caught)
