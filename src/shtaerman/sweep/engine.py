@@ -55,6 +55,8 @@ SPEC_FILE = "sweep.toml"
 CASES_DIR = "cases"
 BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 """Worker environment of the local cluster: one BLAS thread per single-threaded worker."""
+CONNECT_TIMEOUT = "10s"
+"""How long to try reaching an existing scheduler (``scheduler=``)."""
 
 
 class SweepInterrupted(Exception):  # noqa: N818 (a signal, like KeyboardInterrupt)
@@ -284,7 +286,7 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
 
     if scheduler is not None:
         try:
-            client = Client(scheduler, timeout="10s")
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
         except (OSError, TimeoutError) as error:
             raise InputError(
                 f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})"

@@ -253,6 +253,11 @@ def _expected(parameter: Parameter) -> str:
 
 def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
     key = f"axes.{name}"
+    if name not in kind.parameters:
+        raise SweepError(
+            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}. "
+            f"Pick one of {sorted(kind.parameters)}"
+        )
     if not isinstance(values, list):
         raise SweepError(f"{where}: {key} must be a list of values, got {values!r}")
     if not values:
