@@ -275,7 +275,9 @@ def _quiet_dask() -> Iterator[None]:
     level = logger.level
     logger.setLevel(logging.ERROR)
     try:
-        yield
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", module=r"distributed(\.|$)")
+            yield
     finally:
         logger.setLevel(level)
 
@@ -302,6 +304,8 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
         threads_per_worker=1,
         processes=True,
         dashboard_address=None,
+        # no dashboard; the scheduler's HTTP endpoint on a free port, not 8787 (shared machines)
+        scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
         silence_logs=logging.ERROR,
         env=BLAS_ENV,
     )
