@@ -230,34 +230,45 @@ def test_resume_computes_only_the_missing_cases(tmp_path):
     assert sum(sweep_probe.computations(markers).values()) == 7
 
 
-def test_sigterm_keeps_finished_cases_and_says_how_to_resume(tmp_path):
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_keeps_finished_cases_and_says_how_to_resume(tmp_path, signum):
+    """SIGTERM to the sweep's process; SIGINT to its whole process group, as Ctrl-C in a
+    terminal does (the workers too: they must stay quiet and leave the shutdown to it)."""
     xs = [1, 2, 3, 4, 5, 6]
     path, markers = probe_sweep(tmp_path, xs, sleep=0.3)
     out = tmp_path / "out"
     program = "import sys, sweep_probe; from shtaerman.cli import main; sys.exit(main())"
     process = subprocess.Popen(
-        [sys.executable, "-c", program, "sweep", str(path), "--out", str(out), "--workers", "1"],
+        [sys.executable, "-c", program, "sweep", str(path), "--out", str(out), "--workers", "2"],
         env=ENV,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        start_new_session=True,  # its own process group: the SIGINT reaches only it
     )
     deadline = time.monotonic() + 60
     while len(case_files(out) if (out / "cases").is_dir() else []) < 2:
         assert process.poll() is None and time.monotonic() < deadline, process.communicate()
-        time.sleep(0.05)
-    process.send_signal(signal.SIGTERM)
+        time.sleep(0.02)
+    if signum == signal.SIGINT:
+        os.killpg(process.pid, signum)
+    else:
+        process.send_signal(signum)
     stdout, stderr = process.communicate(timeout=60)
-    assert process.returncode == 128 + signal.SIGTERM and stdout == ""
+    assert process.returncode == 128 + signum and stdout == ""
     assert "Traceback" not in stderr
     [line] = stderr.strip().splitlines()
-    assert line.startswith("shtaerman: sweep 'probe' interrupted (SIGTERM): ")
+    name = signal.Signals(signum).name
+    assert line.startswith(f"shtaerman: sweep 'probe' interrupted ({name}): ")
     assert f"resume with: shtaerman sweep {path} --out {out} --resume" in line
     saved = case_files(out)
     assert 2 <= len(saved) < len(xs)
+    assert f"{len(saved)} of {len(xs)} cases saved" in line
     assert not (out / "cases.csv").exists()
+    if signum == signal.SIGINT:
+        return  # the resume after an interruption is the same whatever the signal
     # resume: the saved cases are not computed again, the others are, each saved once
-    outcome = run_sweep(load_sweep(path), out, workers=2, resume=True, figures=False)
+    outcome = run_sweep(load_sweep(path), out, workers=1, resume=True, figures=False)
     assert outcome.exit_code == 0 and outcome.reused == len(saved)
     assert case_files(out) == list(range(len(xs)))
     done = sweep_probe.computations(markers)

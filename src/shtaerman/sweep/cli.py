@@ -8,6 +8,7 @@ interrupted: 128 + the signal number), 2 bad input (one line on stderr, nothing 
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from pathlib import Path
 
@@ -81,6 +82,9 @@ def run(args: argparse.Namespace) -> int:
             resume=args.resume,
             force=args.force,
         )
+    except KeyboardInterrupt:  # before the sweep's own handler is in place
+        print(f"shtaerman: sweep {spec.name!r} interrupted (SIGINT)", file=sys.stderr)
+        return 128 + signal.SIGINT
     except SweepInterrupted as stop:
         print(
             f"shtaerman: sweep {spec.name!r} interrupted ({stop}): {stop.saved} of {stop.total} "

@@ -308,6 +308,7 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
         scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
         silence_logs=logging.ERROR,
         env=BLAS_ENV,
+        preload=["shtaerman.sweep._worker"],  # workers leave Ctrl-C to this process
     )
     try:
         client = Client(cluster)
@@ -431,29 +432,30 @@ def run_sweep(
     pending = [case for case in cases if case.index not in records]
     lost: dict[int, str] = {}
     used_workers = 0
-    if pending:
-        bar = _progress(len(cases), reused, spec.name, progress)
-        try:
-            used_workers = _compute(
-                spec, out, pending, records, lost, workers, scheduler, retries, bar
-            )
-        except SweepInterrupted as interrupted:
-            interrupted.saved, interrupted.total = len(records), len(cases)
-            raise
-    outcome = SweepOutcome(
-        out=out,
-        total=len(cases),
-        succeeded=sum(r["status"] == "ok" for r in records.values()),
-        failed=sum(r["status"] == "failed" for r in records.values()),
-        lost=len(cases) - len(records),
-        computed=len(records) - reused,
-        reused=reused,
-        seconds=time.perf_counter() - start,
-        workers=used_workers,
-        lost_reason=next(iter(lost.values()), None),
-    )
-    if outcome.lost == 0:
-        _write_results(spec, out, cases, records, outcome, figures)
+    with _StopFlag() as stop:
+        if pending:
+            bar = _progress(len(cases), reused, spec.name, progress)
+            try:
+                used_workers = _compute(
+                    spec, out, pending, records, lost, workers, scheduler, retries, bar, stop
+                )
+            except SweepInterrupted as interrupted:
+                interrupted.saved, interrupted.total = len(records), len(cases)
+                raise
+        outcome = SweepOutcome(
+            out=out,
+            total=len(cases),
+            succeeded=sum(r["status"] == "ok" for r in records.values()),
+            failed=sum(r["status"] == "failed" for r in records.values()),
+            lost=len(cases) - len(records),
+            computed=len(records) - reused,
+            reused=reused,
+            seconds=time.perf_counter() - start,
+            workers=used_workers,
+            lost_reason=next(iter(lost.values()), None),
+        )
+        if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
+            _write_results(spec, out, cases, records, outcome, figures)
     return outcome
 
 
@@ -467,6 +469,7 @@ def _compute(
     scheduler: str | None,
     retries: int,
     bar: Any,
+    stop: _StopFlag,
 ) -> int:
     """Run ``pending`` cases; each record is written as it arrives. Returns the worker count."""
     from distributed import as_completed
@@ -475,7 +478,7 @@ def _compute(
     token = uuid.uuid4().hex[:8]
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
     by_key = dict(zip(keys, pending, strict=True))
-    with bar, _quiet_dask(), _StopFlag() as stop:
+    with bar, _quiet_dask():
         with _client(workers, scheduler) as client:
             stop.check()
             nthreads = sum(client.nthreads().values())
