@@ -22,6 +22,7 @@ import threading
 import time
 from pathlib import Path
 
+import dask
 import pytest
 import sweep_probe
 from distributed import Client
@@ -157,9 +158,10 @@ def test_same_rows_on_one_two_and_an_existing_cluster(tmp_path, external_cluster
     assert os.getpid() not in workers
 
 
-def test_a_failing_case_is_recorded_and_the_others_complete(tmp_path, capsys):
+def test_a_failing_case_is_recorded_and_the_others_complete(tmp_path, capsys, external_cluster):
     path, _ = probe_sweep(tmp_path, [1, 2, 3, 4], fail_at=3.0)
-    code = main(["sweep", str(path), "--out", str(tmp_path / "out"), "--workers", "2"])
+    out = str(tmp_path / "out")
+    code = main(["sweep", str(path), "--out", out, "--scheduler", external_cluster])
     out, err = capsys.readouterr()
     assert code == 1, err
     assert "4 cases, 3 ok, 1 failed" in out
@@ -173,28 +175,37 @@ def test_a_failing_case_is_recorded_and_the_others_complete(tmp_path, capsys):
     assert results["summary"]["failed_cases"] == [2]
 
 
-def test_a_worker_killed_mid_case_has_its_case_rerun(tmp_path):
-    xs = [1, 2, 3, 4]
-    path, markers = probe_sweep(tmp_path, xs, sleep=1.0)
-    killed = {}
+class FirstCaseKiller(threading.Thread):
+    """SIGKILLs the worker process running the first case to start, 0.3 s into it."""
 
-    def kill_first_worker():
+    def __init__(self, markers):
+        super().__init__()
+        self.markers, self.x, self.pid = markers, None, None
+
+    def run(self):
         deadline = time.monotonic() + 60
-        while not killed and time.monotonic() < deadline:
-            started = sorted(markers.glob("*.start"))
+        while self.pid is None and time.monotonic() < deadline:
+            started = sorted(self.markers.glob("*.start"))
             if started:
                 name = started[0].name
-                killed["x"] = float(name.split("-pid=")[0].removeprefix("x="))
-                killed["pid"] = int(name.split("-pid=")[1].split("-")[0])
+                self.x = float(name.split("-pid=")[0].removeprefix("x="))
+                self.pid = int(name.split("-pid=")[1].split("-")[0])
                 time.sleep(0.3)  # well inside the 1 s case
-                os.kill(killed["pid"], signal.SIGKILL)
-            time.sleep(0.05)
+                os.kill(self.pid, signal.SIGKILL)
+            time.sleep(0.02)
 
-    killer = threading.Thread(target=kill_first_worker)
+
+def test_a_worker_killed_mid_case_has_its_case_rerun(tmp_path, external_cluster):
+    """On the external cluster (``dask worker`` with its nanny): the nanny starts a new worker
+    process, the scheduler reruns the lost case."""
+    xs = [1, 2, 3, 4]
+    path, markers = probe_sweep(tmp_path, xs, sleep=1.0)
+    killer = FirstCaseKiller(markers)
     killer.start()
-    outcome = run_sweep(load_sweep(path), tmp_path / "out", workers=2, figures=False)
+    spec = load_sweep(path)
+    outcome = run_sweep(spec, tmp_path / "out", scheduler=external_cluster, figures=False)
     killer.join()
-    assert killed, "no case started"
+    assert killer.pid is not None, "no case started"
     assert outcome.exit_code == 0 and outcome.succeeded == 4 and outcome.lost == 0
     assert case_files(tmp_path / "out") == list(range(4))
     rows = csv_rows(tmp_path / "out")
@@ -203,24 +214,47 @@ def test_a_worker_killed_mid_case_has_its_case_rerun(tmp_path):
     # the killed computation never finished; its case ran again, on another process
     done = sweep_probe.computations(markers)
     assert done == {float(x): 1 for x in xs}
-    assert sweep_probe.computations(markers, "start")[killed["x"]] == 2
-    record = json.loads((tmp_path / "out/cases" / f"{xs.index(killed['x'])}.json").read_text())
-    assert record["pid"] != killed["pid"]
+    assert sweep_probe.computations(markers, "start")[killer.x] == 2
+    record = json.loads((tmp_path / "out/cases" / f"{xs.index(killer.x)}.json").read_text())
+    assert record["pid"] != killer.pid
 
 
-def test_resume_computes_only_the_missing_cases(tmp_path):
+def test_a_case_dask_gives_up_on_is_left_for_resume(tmp_path):
+    """With no failures allowed, dask gives up on the killed worker's case (KilledWorker): no
+    record is written for it, the exit code is 1, no summary; --resume computes just the
+    cases without a record."""
+    xs = [1, 2, 3]
+    path, markers = probe_sweep(tmp_path, xs, sleep=1.0)
+    spec, out = load_sweep(path), tmp_path / "out"
+    killer = FirstCaseKiller(markers)
+    killer.start()
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        outcome = run_sweep(spec, out, workers=2, figures=False)
+    killer.join()
+    # the killed case is lost; so may be a case dask had already queued on that worker
+    lost = set(range(3)) - set(case_files(out))
+    assert xs.index(killer.x) in lost
+    assert (outcome.exit_code, outcome.lost, outcome.succeeded) == (1, len(lost), 3 - len(lost))
+    assert "KilledWorker" in outcome.lost_reason
+    assert not (out / "cases.csv").exists() and not (out / "results.json").exists()
+    again = run_sweep(spec, out, workers=1, resume=True, figures=False)
+    assert (again.exit_code, again.computed, again.reused) == (0, len(lost), 3 - len(lost))
+    assert sweep_probe.computations(markers) == {float(x): 1 for x in xs}
+
+
+def test_resume_computes_only_the_missing_cases(tmp_path, external_cluster):
     xs = [1, 2, 3, 4, 5]
     path, markers = probe_sweep(tmp_path, xs)
     out = tmp_path / "out"
     spec = load_sweep(path)
-    assert run_sweep(spec, out, workers=2, figures=False).computed == 5
+    assert run_sweep(spec, out, scheduler=external_cluster, figures=False).computed == 5
     first = (out / "cases.csv").read_text()
     # an interrupted sweep: two records never written, no aggregate files yet
     for index in (1, 3):
         (out / "cases" / f"{index}.json").unlink()
     (out / "cases.csv").unlink()
     (out / "results.json").unlink()
-    outcome = run_sweep(spec, out, workers=2, resume=True, figures=False)
+    outcome = run_sweep(spec, out, scheduler=external_cluster, resume=True, figures=False)
     assert (outcome.computed, outcome.reused, outcome.succeeded) == (2, 3, 5)
     assert sweep_probe.computations(markers) == {1.0: 1, 2.0: 2, 3.0: 1, 4.0: 2, 5.0: 1}
     assert (out / "cases.csv").read_text() == first
