@@ -244,6 +244,7 @@ def test_cli_unreachable_scheduler_is_exit_2(tmp_path, capsys, monkeypatch):
     )
     assert code == 2
     assert_one_line_error(err, "scheduler: cannot connect to 'tcp://127.0.0.1:1'")
+    assert not out.exists()  # nothing written: the same command works once the cluster is up
 
 
 # --- figures: drawn from results.json alone -----------------------------------------------------

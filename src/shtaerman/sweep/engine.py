@@ -224,8 +224,9 @@ def _first_difference(old: Any, new: Any, prefix: str = "") -> str | None:
     return None if old == new else (prefix or "(top level)")
 
 
-def _prepare_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> None:
-    """Create, replace or check the result folder; refuse before touching anything."""
+def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> Callable[[], None]:
+    """Check the result folder, touching nothing; returns what makes it ready (called once the
+    cluster is up, so that an unreachable scheduler leaves no folder behind)."""
     if resume and force:
         raise InputError("resume and force exclude each other: resume keeps the folder")
     if out.exists() and not out.is_dir():
@@ -246,8 +247,8 @@ def _prepare_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) ->
                 f"resume: {str(out)!r} holds a different sweep ({key} differs from "
                 f"{spec.path}); use another --out, or --force to start again"
             )
-        (out / CASES_DIR).mkdir(exist_ok=True)
-        return
+        return lambda: (out / CASES_DIR).mkdir(exist_ok=True)
+    replace = False
     if out.is_dir() and any(out.iterdir()):
         if not force:
             raise InputError(
@@ -259,10 +260,16 @@ def _prepare_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) ->
                 f"out: --force replaces only a sweep folder, and {str(out)!r} has no "
                 f"{SPEC_FILE}; remove it yourself or pick another --out"
             )
-        shutil.rmtree(out)
-    out.mkdir(exist_ok=True)
-    (out / CASES_DIR).mkdir()
-    _atomic_write(stored, spec.text)
+        replace = True
+
+    def create() -> None:
+        if replace:
+            shutil.rmtree(out)
+        out.mkdir(exist_ok=True)
+        (out / CASES_DIR).mkdir()
+        _atomic_write(stored, spec.text)
+
+    return create
 
 
 # --- the cluster ------------------------------------------------------------------------------
@@ -393,7 +400,8 @@ def run_sweep(
     out : path
         Result folder. An existing one is refused unless ``resume`` (complete it: only cases
         without a record are computed; the sweep file must be the same) or ``force`` (replace
-        it; only a sweep folder is ever removed).
+        it; only a sweep folder is ever removed). ``resume`` on a folder that does not exist
+        starts the sweep there. The folder is created once the cluster is up.
     workers : int, optional
         Single-threaded worker processes of the local cluster (default: the usable cores).
     scheduler : str, optional
@@ -414,7 +422,8 @@ def run_sweep(
     Raises
     ------
     InputError
-        Bad folder, different sweep on resume, unreachable scheduler (nothing computed).
+        Bad folder, different sweep on resume, unreachable scheduler (nothing computed,
+        nothing written).
     SweepInterrupted
         On SIGINT/SIGTERM in the main thread, after the cluster is shut down; finished cases
         are on disk.
@@ -426,18 +435,20 @@ def run_sweep(
     start = time.perf_counter()
     out = Path(out).expanduser()
     cases = spec.cases()
-    _prepare_folder(spec, out, resume=resume, force=force)
-    records = read_records(out, len(cases)) if resume else {}
+    ready = _check_folder(spec, out, resume=resume, force=force)
+    records = read_records(out, len(cases)) if resume and out.is_dir() else {}
     reused = len(records)
     pending = [case for case in cases if case.index not in records]
     lost: dict[int, str] = {}
     used_workers = 0
     with _StopFlag() as stop:
-        if pending:
+        if not pending:
+            ready()
+        else:
             bar = _progress(len(cases), reused, spec.name, progress)
             try:
                 used_workers = _compute(
-                    spec, out, pending, records, lost, workers, scheduler, retries, bar, stop
+                    spec, out, ready, pending, records, lost, workers, scheduler, retries, bar, stop
                 )
             except SweepInterrupted as interrupted:
                 interrupted.saved, interrupted.total = len(records), len(cases)
@@ -462,6 +473,7 @@ def run_sweep(
 def _compute(
     spec: SweepSpec,
     out: Path,
+    ready: Callable[[], None],
     pending: list[Case],
     records: dict[int, dict],
     lost: dict[int, str],
@@ -481,6 +493,7 @@ def _compute(
     with bar, _quiet_dask():
         with _client(workers, scheduler) as client:
             stop.check()
+            ready()
             nthreads = sum(client.nthreads().values())
             futures = client.map(
                 execute_case,
