@@ -301,14 +301,20 @@ def test_cli_runs_a_shipped_sweep_in_a_fresh_folder(tmp_path, capsys, monkeypatc
     """The whole path once: shipped name -> local cluster -> files (``impact``, 6 cases)."""
     monkeypatch.chdir(tmp_path)
     code, out, err = run_cli(capsys, "impact-velocity", "--workers", "1")
-    assert code == 0, err
+    assert code == 0 and err == "", err
     folder = tmp_path / "sweep-impact-velocity"
     assert "6 cases, 6 ok, 0 failed" in out and str(Path("sweep-impact-velocity")) in out
     assert (folder / "sweep.toml").read_text() == (ROOT / "sweeps/impact-velocity.toml").read_text()
     assert sorted(p.name for p in (folder / "cases").iterdir()) == [f"{i}.json" for i in range(6)]
     assert {p.name for p in (folder / "figures").iterdir()} >= {"x_c.png", "P_c.png", "t_c.png"}
     results = json.loads((folder / "results.json").read_text())
-    assert results["summary"] == {"cases": 6, "succeeded": 6, "failed": 0, "failed_cases": []}
+    assert results["summary"] == {
+        "cases": 6,
+        "succeeded": 6,
+        "failed": 0,
+        "failed_cases": [],
+        "warnings": {},
+    }
     # the paper's example is case 3 (v0 = 3 m/s): x_c exact (test_impact.py's mpmath literal)
     assert results["cases"][3]["outputs"]["x_c"] == pytest.approx(
         0.0085174899120372515388, rel=1e-14

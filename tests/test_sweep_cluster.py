@@ -327,3 +327,22 @@ def test_one_tiny_contact_case(tmp_path):
         float(row["beta_analytic_N_per_m^q"]), rel=1e-2
     )
     assert int(row["dofs"]) > 1000 and float(row["seconds_s"]) > 0
+
+
+def test_warnings_of_a_case_are_recorded_and_reported(tmp_path, capsys, external_cluster):
+    path = tmp_path / "fast.toml"
+    path.write_text('name = "fast"\nkind = "impact"\n[axes]\nvelocity = [3.0, 6.0]\n')
+    code = main(
+        ["sweep", str(path), "--out", str(tmp_path / "out"), "--scheduler", external_cluster]
+    )
+    out, err = capsys.readouterr()
+    assert "2 cases, 2 ok, 0 failed" in out
+    assert code == 0  # a warning is not a failure
+    assert err.strip() == (
+        f"shtaerman: warning: 1 case(s) issued warnings (summary.warnings in "
+        f"{tmp_path / 'out' / 'results.json'})"
+    )
+    results = json.loads((tmp_path / "out/results.json").read_text())
+    [message] = results["summary"]["warnings"]["1"]
+    assert "velocity 6 m/s exceeds 5 m/s" in message
+    assert results["cases"][0]["warnings"] == []

@@ -104,6 +104,12 @@ def run(args: argparse.Namespace) -> int:
         f"sweep {spec.name} ({spec.kind}): {outcome.total} cases, {outcome.succeeded} ok, "
         f"{outcome.failed} failed ({done}) in {outcome.seconds:.1f} s"
     )
+    if outcome.warned:
+        print(
+            f"shtaerman: warning: {outcome.warned} case(s) issued warnings (summary.warnings in "
+            f"{out / 'results.json'})",
+            file=sys.stderr,
+        )
     if outcome.lost:
         print(
             f"shtaerman: {outcome.lost} cases could not run ({outcome.lost_reason}); complete "

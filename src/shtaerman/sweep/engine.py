@@ -88,6 +88,8 @@ class SweepOutcome:
         Worker threads of the cluster used.
     lost_reason : str, optional
         Why the first lost case could not run.
+    warned : int
+        Cases whose computation issued warnings (listed in ``results.json``).
     """
 
     out: Path
@@ -100,6 +102,7 @@ class SweepOutcome:
     seconds: float
     workers: int
     lost_reason: str | None = None
+    warned: int = 0
 
     @property
     def exit_code(self) -> int:
@@ -464,6 +467,7 @@ def run_sweep(
             seconds=time.perf_counter() - start,
             workers=used_workers,
             lost_reason=next(iter(lost.values()), None),
+            warned=sum(bool(r.get("warnings")) for r in records.values()),
         )
         if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
             _write_results(spec, out, cases, records, outcome, figures)
@@ -607,6 +611,7 @@ def _write_results(
             "succeeded": outcome.succeeded,
             "failed": outcome.failed,
             "failed_cases": [r["index"] for r in ordered if r["status"] == "failed"],
+            "warnings": {str(r["index"]): r["warnings"] for r in ordered if r.get("warnings")},
         },
         "timings": {
             "wall": outcome.seconds,
