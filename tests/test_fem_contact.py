@@ -13,11 +13,12 @@ import pytest
 
 from shtaerman.cli import main
 from shtaerman.fem.contact import central_pressure, complementarity, solve_contact
-from shtaerman.fem.indentation import MeshSettings, run_indentation
+from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.schur import TailFactorization
 from shtaerman.fem.solver import factorize
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
+from shtaerman.study.indentation import run_indentation
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
 
 COARSE = MeshSettings(size=1 / 60, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)

@@ -9,15 +9,15 @@ import math
 
 import pytest
 
-from shtaerman.fem.convergence import (
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.study.convergence import (
     convergence_study,
     fitted_order,
     observed_orders,
     refined_settings,
 )
-from shtaerman.fem.indentation import MeshSettings
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
 
 # domain 1e6: the truncation floor (about 1e-6 in force) stays far below the coarse errors

@@ -14,10 +14,11 @@ import pytest
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
-from shtaerman import fields, figures
-from shtaerman.studies import load_study, shipped_studies
+from shtaerman.plots import figures
+from shtaerman.plots import sections as fields
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import load_study, shipped_studies
 from shtaerman.validation import InputError
-from shtaerman.verification import run_study
 
 MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}
 """Pixel standard deviation floors; measured minima 37.9 and 24.7 (sigma_rr)."""

@@ -15,14 +15,14 @@ import numpy as np
 import pytest
 from scipy.special import gamma
 
-from shtaerman.ateb import ateb_cosine, ateb_sine
-from shtaerman.paper import (
+from shtaerman.paper.printed import (
     INTEGRAL_I,
     load_paper_tables,
     paper_cosine_approximation,
     paper_sine_approximation,
     paper_table,
 )
+from shtaerman.theory.ateb import ateb_cosine, ateb_sine
 from shtaerman.validation import InputError
 
 HALF_UNIT_SLACK = 1e-12
@@ -54,7 +54,7 @@ def example(tables):
 
 
 def test_data_file_ships_inside_the_package():
-    resource = files("shtaerman") / "data" / "paper_tables.json"
+    resource = files("shtaerman.paper") / "paper_tables.json"
     assert resource.is_file()
 
 

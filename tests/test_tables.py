@@ -2,7 +2,7 @@
 
 import pytest
 
-from shtaerman.tables import paper_tables
+from shtaerman.paper.comparison import paper_tables
 
 
 @pytest.fixture(scope="module")

@@ -13,13 +13,14 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TextIO
 
-from . import fields, figures
-from .fem.convergence import convergence_study
-from .fem.export import write_indentation
-from .output import staged_folder, write_csv
+from ..plots import figures
+from ..plots import sections as fields
+from ..study.convergence import convergence_study
+from ..study.run import StudyOutcome, run_study
+from ..study.schema import Study
+from .export import write_indentation
+from .files import staged_folder, write_csv
 from .report import results_document, write_html, write_markdown
-from .studies import Study
-from .verification import StudyOutcome, run_study
 
 __all__ = ["ProgressBar", "run_verification"]
 

@@ -7,9 +7,9 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from ..output import write_csv
-from .elasticity import ElasticSolution
-from .indentation import IndentationResult
+from ..fem.elasticity import ElasticSolution
+from ..study.indentation import IndentationResult
+from .files import write_csv
 
 __all__ = ["FIELD_NAMES", "field_mesh", "write_indentation"]
 

@@ -18,15 +18,15 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__
-from .analytic_contact import PowerLawContact
-from .impact import ImpactResult, solve_impact
-from .impact_ode import integrate_impact
-from .indenter import PowerLawIndenter
-from .materials import RIGID, Material, effective_modulus
-from .output import json_safe, write_csv
-from .tables import paper_tables, tables_text
-from .validation import InputError, validate_increasing, validate_poisson, validate_positive
+from .. import __version__
+from ..output.files import json_safe, write_csv
+from ..paper.comparison import paper_tables, tables_text
+from ..theory.contact import PowerLawContact
+from ..theory.impact import ImpactResult, solve_impact
+from ..theory.impact_ode import integrate_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material, effective_modulus
+from ..validation import InputError, validate_increasing, validate_poisson, validate_positive
 
 EXIT_INPUT = 2
 
@@ -234,7 +234,7 @@ def _depths(text: str | None) -> np.ndarray | None:
 
 
 def _mesh_settings(args: argparse.Namespace):
-    from .fem.indentation import MeshSettings
+    from ..fem.mesh import MeshSettings
 
     options = {
         "size": args.mesh_size,
@@ -252,9 +252,9 @@ def _mesh_settings(args: argparse.Namespace):
 
 
 def _run_contact(args: argparse.Namespace) -> int:
-    from .fem.export import write_indentation
-    from .fem.indentation import run_indentation
-    from .output import check_output_folder, staged_folder
+    from ..output.export import write_indentation
+    from ..output.files import check_output_folder, staged_folder
+    from ..study.indentation import run_indentation
 
     indenter, half_space = _indenter(args), _half_space(args)
     depths, mesh = _depths(args.depths), _mesh_settings(args)
@@ -312,9 +312,9 @@ def _default_out() -> Path:
 
 
 def _run_verify(args: argparse.Namespace) -> int:
-    from .output import check_output_folder
-    from .pipeline import run_verification
-    from .studies import load_study, shipped_studies
+    from ..output.files import check_output_folder
+    from ..output.folder import run_verification
+    from ..study.schema import load_study, shipped_studies
 
     paths = [Path(p) for p in args.studies] or shipped_studies()
     studies = [study for path in paths for study in load_study(path)]

@@ -13,10 +13,10 @@ import os
 import platform
 from pathlib import Path
 
-from . import __version__
-from .fem.convergence import fitted_order
-from .output import json_safe
-from .verification import IMPACT_KEYS, StudyOutcome
+from .. import __version__
+from ..study.convergence import fitted_order
+from ..study.run import IMPACT_KEYS, StudyOutcome
+from .files import json_safe
 
 __all__ = ["environment", "results_document", "write_html", "write_markdown"]
 

@@ -26,15 +26,15 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from .analytic_contact import paper_pressure_eq5
-from .ateb import ateb_cosine, ateb_sine
-from .fem.convergence import fitted_order
-from .fem.indentation import IndentationResult
-from .impact import ImpactHistory, ImpactResult, duration_integral
-from .paper import paper_cosine_approximation, paper_sine_approximation, paper_table
+from ..paper.printed import paper_cosine_approximation, paper_sine_approximation, paper_table
+from ..study.convergence import fitted_order
+from ..study.indentation import IndentationResult
+from ..theory.ateb import ateb_cosine, ateb_sine
+from ..theory.contact import paper_pressure_eq5
+from ..theory.impact import ImpactHistory, ImpactResult, duration_integral
 
 if TYPE_CHECKING:
-    from .verification import StudyOutcome
+    from ..study.run import StudyOutcome
 
 __all__ = [
     "EXACT_COLOUR",

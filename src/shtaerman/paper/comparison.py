@@ -13,13 +13,13 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import gamma
 
-from .analytic_contact import PowerLawContact, paper_beta_constant, paper_J1, paper_J2
-from .analytic_contact import paper_radius_constant as _radius_constant
-from .ateb import ateb_cosine, ateb_sine
-from .impact import ImpactResult, duration_integral, solve_impact
-from .indenter import PowerLawIndenter
-from .materials import Material, effective_modulus
-from .paper import load_paper_tables, paper_cosine_approximation, paper_sine_approximation
+from ..theory.ateb import ateb_cosine, ateb_sine
+from ..theory.contact import PowerLawContact, paper_beta_constant, paper_J1, paper_J2
+from ..theory.contact import paper_radius_constant as _radius_constant
+from ..theory.impact import ImpactResult, duration_integral, solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material, effective_modulus
+from .printed import load_paper_tables, paper_cosine_approximation, paper_sine_approximation
 
 __all__ = ["ComparedTable", "Comparison", "paper_tables", "tables_text"]
 

@@ -31,10 +31,10 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from .fem.indentation import MeshSettings
-from .indenter import PowerLawIndenter
-from .materials import RIGID, Material
-from .validation import InputError
+from ..fem.mesh import MeshSettings
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material
+from ..validation import InputError
 
 __all__ = ["QUICK_MESH", "Study", "StudyError", "Tolerances", "load_study", "shipped_studies"]
 
@@ -284,7 +284,7 @@ def studies_folder() -> Path:
     packaged = importlib.resources.files("shtaerman") / "studies"
     if packaged.is_dir():
         return Path(str(packaged))
-    return Path(__file__).resolve().parents[2] / "fem"
+    return Path(__file__).resolve().parents[3] / "fem"
 
 
 def shipped_studies() -> list[Path]:

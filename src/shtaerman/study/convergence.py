@@ -25,10 +25,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..indenter import PowerLawIndenter
-from ..materials import Material
+from ..fem.mesh import MeshSettings
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
 from ..validation import InputError, validate_positive
-from .indentation import MeshSettings, run_indentation
+from .indentation import run_indentation
 
 __all__ = ["MEASURES", "convergence_study", "fitted_order", "observed_orders", "refined_settings"]
 

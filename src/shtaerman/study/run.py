@@ -14,13 +14,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .analytic_contact import PowerLawContact
-from .fem.contact_law import FemContactLaw, fem_contact_law
-from .fem.indentation import IndentationResult, depths_up_to, run_indentation
-from .impact import ImpactHistory, ImpactResult, solve_impact
-from .impact_ode import integrate_impact
-from .materials import effective_modulus
-from .studies import Study
+from ..theory.contact import PowerLawContact
+from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ..theory.impact_ode import integrate_impact
+from ..theory.materials import effective_modulus
+from .contact_law import FemContactLaw, fem_contact_law
+from .indentation import IndentationResult, depths_up_to, run_indentation
+from .schema import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
 

@@ -4,7 +4,7 @@ Ol'shanskii, Spol'nik, Slipchenko, Znaidiuk (2019), doi:10.15587/1729-4061.2019.
 Tables 1-2 (the Ateb-sine and Ateb-cosine of the impact, with approximations in brackets),
 Table 3 (x(t)/x_c by two procedures), Tables 4-6 (impact characteristics against A, v0, M) and
 the scalars of a worked example.  They are stored once, exactly as printed, in
-``shtaerman/data/paper_tables.json`` (format described in its ``"format"`` field); they are
+``shtaerman/paper/paper_tables.json`` (format described in its ``"format"`` field); they are
 data to compare against: the exact functions are in :mod:`shtaerman.ateb`.
 
 The approximations, with ``I = B(3/8, 1/2) / (8/3) = 1.4459274722...``:
@@ -33,7 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import beta
 
-from .validation import InputError
+from ..validation import InputError
 
 __all__ = [
     "INTEGRAL_I",
@@ -55,12 +55,12 @@ def load_paper_tables() -> dict[str, Any]:
     Returns
     -------
     dict
-        The parsed ``shtaerman/data/paper_tables.json``: ``"tables"`` (``"table1"`` ...
+        The parsed ``shtaerman/paper/paper_tables.json``: ``"tables"`` (``"table1"`` ...
         ``"table6"``, each with columns, rows as printed, decimals, corrections, accuracy,
         notes), ``"example"`` (inputs, results, constants with units) and ``"source"``.
         A new dict on every call, so callers may modify it.
     """
-    resource = files("shtaerman") / "data" / "paper_tables.json"
+    resource = files("shtaerman.paper") / "paper_tables.json"
     return json.loads(resource.read_text(encoding="utf-8"))
 
 
