@@ -263,15 +263,18 @@ class MeshSettings:
 
     def __post_init__(self) -> None:
         for name in ("margin", "size", "domain", "growth", "axis_size", "axis_growth"):
-            validate_positive(f"mesh {name}", getattr(self, name))
+            object.__setattr__(self, name, validate_positive(name, getattr(self, name)))
         if self.margin <= 1.0:
-            raise InputError(f"mesh margin must be > 1, got {self.margin!r}")
+            raise InputError(f"margin must be > 1, got {self.margin!r}")
         if not MIN_DOMAIN <= self.domain <= MAX_DOMAIN:
             raise InputError(
-                f"mesh domain must lie in [{MIN_DOMAIN:g}, {MAX_DOMAIN:g}] refined radii (the "
+                f"domain must lie in [{MIN_DOMAIN:g}, {MAX_DOMAIN:g}] refined radii (the "
                 f"clamped far boundary stiffens the contact by about 1/domain; gmsh slows down "
                 f"sharply beyond 1e7), got {self.domain!r}"
             )
+        for name in ("size", "growth", "axis_size", "axis_growth"):
+            if getattr(self, name) > 1.0:
+                raise InputError(f"{name} must lie in (0, 1], got {getattr(self, name)!r}")
 
     def build(self, refined_radius: float) -> MeshTri:
         """The gmsh half-space mesh for a refined (candidate) zone of ``refined_radius`` m."""

@@ -37,10 +37,10 @@ from ..validation import InputError
 
 __all__ = [
     "INTEGRAL_I",
-    "load_paper_tables",
+    "load_printed",
     "paper_cosine_approximation",
     "paper_sine_approximation",
-    "paper_table",
+    "printed_table",
 ]
 
 INTEGRAL_I: float = float(beta(3.0 / 8.0, 0.5) * 3.0 / 8.0)
@@ -49,7 +49,7 @@ INTEGRAL_I: float = float(beta(3.0 / 8.0, 0.5) * 3.0 / 8.0)
 _OMEGA = math.sqrt(5.0) / 3.0
 
 
-def load_paper_tables() -> dict[str, Any]:
+def load_printed() -> dict[str, Any]:
     """Read the paper's printed tables and scalars from the package data.
 
     Returns
@@ -64,7 +64,7 @@ def load_paper_tables() -> dict[str, Any]:
     return json.loads(resource.read_text(encoding="utf-8"))
 
 
-def paper_table(name: str, *, corrected: bool = True) -> dict[str, NDArray[np.float64]]:
+def printed_table(name: str, *, corrected: bool = True) -> dict[str, NDArray[np.float64]]:
     """One printed table as arrays in SI units (printed number / column scale).
 
     Parameters
@@ -80,7 +80,7 @@ def paper_table(name: str, *, corrected: bool = True) -> dict[str, NDArray[np.fl
     dict of str to numpy.ndarray
         Column key (e.g. ``"eta"``, ``"sine"``, ``"P_c"``) to its values in the column's unit.
     """
-    tables = load_paper_tables()["tables"]
+    tables = load_printed()["tables"]
     if name not in tables:
         raise InputError(f"Unknown table '{name}'. Pick one of {sorted(tables)}")
     table = tables[name]

@@ -26,7 +26,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from ..paper.printed import paper_cosine_approximation, paper_sine_approximation, paper_table
+from ..paper.printed import paper_cosine_approximation, paper_sine_approximation, printed_table
 from ..study.convergence import fitted_order
 from ..study.indentation import IndentationResult
 from ..theory.ateb import ateb_cosine, ateb_sine
@@ -477,11 +477,11 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
     s = np.linspace(0.0, integral, 2001)
     if kind == "sine":
         exact = ateb_sine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_sine_approximation(s), paper_table("table1"), "eta"
+        approximation, table, name = paper_sine_approximation(s), printed_table("table1"), "eta"
         symbol, label, number = r"\eta", r"$Sa(5/3, 1, 4\eta/3)$", "Table 1"
     else:
         exact = ateb_cosine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_cosine_approximation(s), paper_table("table2"), "zeta"
+        approximation, table, name = paper_cosine_approximation(s), printed_table("table2"), "zeta"
         symbol, label, number = r"\zeta", r"$Ca(5/3, 1, 4\zeta/3)$", "Table 2"
     top.plot(s, exact, color=EXACT_COLOUR, label="exact")
     top.plot(s, approximation, "--", color=APPROXIMATION_COLOUR, label="paper's approximation")
