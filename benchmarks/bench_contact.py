@@ -260,7 +260,7 @@ def convergence_table(
         "    whole size field scaled with size (growth, axis size and axis growth prop. to size),"
         " domain 1e7 refined radii (truncation floor ~1.2e-7)"
     )
-    study = convergence_study(indenter, half_space, sizes, base=base)
+    study = convergence_study(indenter, half_space, sizes, base=base).levels
     header = (
         f"{'size':>7} {'growth':>6} {'dofs':>7} | "
         + " ".join(f"{SHORT[key]:>8}" for key in ERROR_KEYS)

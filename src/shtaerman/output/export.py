@@ -62,5 +62,5 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
         },
     )
     field_path = folder / "field_max_depth.vtu"
-    meshio.write(field_path, field_mesh(result.curve.field_solution(result.steps[-1])))
+    meshio.write(field_path, field_mesh(result.deepest_field))
     return [curve_path, profiles_path, field_path]

@@ -445,7 +445,7 @@ def _solution(
     for name in names:
         _check_field(name)
     validate_positive("extent", extent)
-    return result.curve.field_solution(_step(result, step))
+    return result.field(step)
 
 
 def plot_field(

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..fem.contact import ContactCurve, ContactStep, solve_contact
-from ..fem.elasticity import assemble
+from ..fem.elasticity import ElasticSolution, assemble
 from ..fem.fit import PowerLawFit, fit_power_law
 from ..fem.mesh import MeshSettings
 from ..theory.contact import PowerLawContact
@@ -71,6 +71,24 @@ class IndentationResult:
     def steps(self) -> list[ContactStep]:
         """The contact at each depth."""
         return self.curve.steps
+
+    def field(self, index: int = -1) -> ElasticSolution:
+        """Displacements and stresses at step ``index`` (the deepest, computed once, by default).
+
+        Raises
+        ------
+        shtaerman.validation.InputError
+            If there is no such step.
+        """
+        count = len(self.steps)
+        if not -count <= index < count:
+            raise InputError(f"step must lie in [{-count}, {count - 1}], got {index!r}")
+        return self.deepest_field if index in (-1, count - 1) else self.curve.field_solution(index)
+
+    @cached_property
+    def deepest_field(self) -> ElasticSolution:
+        """The fields at the largest depth (VTU export and every field picture share them)."""
+        return self.curve.field_solution(-1)
 
     def step_table(self) -> list[dict[str, float]]:
         """Per depth: FEM and exact force, contact radius, central pressure, and ratios."""
