@@ -10,7 +10,8 @@ A study file (``shtaerman init-study`` writes a commented one; see also ``fem/pa
     [half_space] youngs_modulus = 7.5e6 (Pa), poisson_ratio = 0.5
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
     [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
-    [mesh]       MeshSettings fields (optional); [quick_mesh] for ``verify --quick``
+    [mesh]       refine = K (divides the whole size field; default 1) and the MeshSettings
+                 fields (optional, for experts); [quick_mesh] for ``verify --quick``
     [tolerances] relative, in (0, 1]: force, beta, exponent, contact_radius, central_pressure,
                  impact
     [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
@@ -117,6 +118,7 @@ class _Contact(_Table):
 
 
 class _Mesh(_Table):
+    refine: Positive | None = None
     margin: Positive | None = None
     size: Positive | None = None
     domain: Positive | None = None
@@ -126,6 +128,7 @@ class _Mesh(_Table):
 
     def settings(self, default: MeshSettings, table: str) -> MeshSettings:
         given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
+        given.pop("refine", None)
         try:
             return replace(default, **given)
         except InputError as error:
@@ -211,6 +214,8 @@ class Study:
     tolerances: Tolerances = field(default_factory=Tolerances)
     convergence_sizes: tuple[float, ...] = ()
     """Smallest-element sizes / refined radius of a mesh-convergence study (empty: none)."""
+    refine: float = 1.0
+    """Refinement factor of the whole size field ([mesh] refine; the ladder adds K/2, K/sqrt2)."""
 
 
 def validate_name(name: object, what: str = "name") -> str:
@@ -307,6 +312,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         quick_mesh=raw.quick_mesh.settings(QUICK_MESH, "quick_mesh"),
         tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
         convergence_sizes=tuple(raw.convergence.sizes),
+        refine=1.0 if raw.mesh.refine is None else raw.mesh.refine,
     )
 
 
