@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..validation import InputError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["add_parser", "register", "run"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -49,6 +49,11 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--force", action="store_true", help="replace an existing result folder")
     p.set_defaults(handler=run)
     return p
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``sweep`` subcommand (the ``shtaerman.cli`` package's convention)."""
+    add_parser(commands)
 
 
 def _workers(value: str | None) -> int | None:

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..output import json_safe
+from ..output.files import json_safe
 from ..validation import InputError
 from .kinds import unit_suffix
 from .spec import Case, SweepSpec

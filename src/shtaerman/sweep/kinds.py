@@ -139,7 +139,7 @@ _INDENTER = {
 
 
 def _indenter(p: dict[str, Any]):
-    from ..indenter import PowerLawIndenter
+    from ..theory.indenter import PowerLawIndenter
 
     return PowerLawIndenter(
         validate_positive("shape_coefficient", p["shape_coefficient"], "m^(1-n)"),
@@ -148,7 +148,7 @@ def _indenter(p: dict[str, Any]):
 
 
 def _material(p: dict[str, Any], young: str, poisson: str):
-    from ..materials import RIGID, Material
+    from ..theory.materials import RIGID, Material
     from ..validation import validate_poisson
 
     if young == "E1" and math.isinf(p[young]) and p[young] > 0:
@@ -157,8 +157,8 @@ def _material(p: dict[str, Any], young: str, poisson: str):
 
 
 def _impact_inputs(p: dict[str, Any]):
-    from ..analytic_contact import PowerLawContact
-    from ..materials import effective_modulus
+    from ..theory.contact import PowerLawContact
+    from ..theory.materials import effective_modulus
 
     mass = validate_positive("mass", p["mass"], "kg")
     velocity = validate_positive("velocity", p["velocity"], "m/s")
@@ -180,7 +180,7 @@ IMPACT_OUTPUTS = {
 
 def impact_case(p: dict[str, Any]) -> dict[str, float]:
     """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``)."""
-    from ..impact import solve_impact
+    from ..theory.impact import solve_impact
 
     result = solve_impact(*_impact_inputs(p))
     return {name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}
@@ -217,8 +217,8 @@ _MESH = {  # sweep parameter -> MeshSettings field
 
 
 def _contact_inputs(p: dict[str, Any]):
-    from ..fem.indentation import MeshSettings
-    from ..materials import Material
+    from ..fem.mesh import MeshSettings
+    from ..theory.materials import Material
     from ..validation import validate_poisson
 
     indenter = _indenter(p)
@@ -235,6 +235,9 @@ def _contact_inputs(p: dict[str, Any]):
     mesh = MeshSettings(
         **{field_name: validate_positive(name, p[name]) for name, field_name in _MESH.items()}
     )
+    refine = validate_positive("refine", p["refine"])
+    if refine != 1.0:
+        mesh = mesh.refined(refine)
     return indenter, half_space, depths, mesh, p["solver"]
 
 
@@ -254,7 +257,7 @@ CONTACT_OUTPUTS = {
 
 def contact_case(p: dict[str, Any]) -> dict[str, float]:
     """FEM contact curve: fitted beta and exponent, worst relative errors, size and time."""
-    from ..fem.indentation import run_indentation
+    from ..study.indentation import run_indentation
 
     indenter, half_space, depths, mesh, solver = _contact_inputs(p)
     start = time.perf_counter()
@@ -289,6 +292,7 @@ register_kind(
             "growth": Parameter(0.25),
             "axis_size": Parameter(1e-6),
             "axis_growth": Parameter(0.1),
+            "refine": Parameter(1.0),
             "solver": Parameter("auto", type="str", choices=_SOLVERS),
         },
         outputs=CONTACT_OUTPUTS,

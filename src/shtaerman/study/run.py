@@ -14,13 +14,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .analytic_contact import PowerLawContact
-from .fem.contact_law import FemContactLaw, fem_contact_law
-from .fem.indentation import IndentationResult, depths_up_to, run_indentation
-from .impact import ImpactHistory, ImpactResult, solve_impact
-from .impact_ode import integrate_impact
-from .materials import effective_modulus
-from .studies import Study
+from ..theory.contact import PowerLawContact
+from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ..theory.impact_ode import integrate_impact
+from ..theory.materials import effective_modulus
+from .accuracy import AccuracyResult, run_ladder
+from .contact_law import FemContactLaw, fem_contact_law
+from .convergence import ConvergenceStudy, convergence_study
+from .indentation import IndentationResult, depths_up_to
+from .schema import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
 
@@ -70,6 +72,10 @@ class StudyOutcome:
     exact: ImpactResult
     checks: list[Check]
     seconds: float
+    convergence: ConvergenceStudy | None = None
+    """The study's mesh-convergence study, if it asks for one."""
+    accuracy: AccuracyResult | None = None
+    """The mesh ladder whose finest level is ``contact``, with its error estimates."""
 
     @property
     def passed(self) -> bool:
@@ -154,13 +160,15 @@ def run_study(
     start = time.perf_counter()
     modulus = effective_modulus(study.striker, study.half_space)
     exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
-    report(f"{study.name}: FEM contact curve")
-    contact = run_indentation(
+    report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
+    accuracy = run_ladder(
         study.indenter,
         study.half_space,
         _study_depths(study, exact),
         study.quick_mesh if quick else study.mesh,
+        refine=study.refine,
     )
+    contact = accuracy.finest
     report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
     law = fem_contact_law(contact, modulus)
     fitted = solve_impact(study.mass, study.velocity, law)
@@ -175,6 +183,7 @@ def run_study(
         "fem_fitted": fitted.history(HISTORY_POINTS),
         "fem_tabulated": tabulated_history,
     }
+    convergence = _convergence(study, contact, quick, report)
     return StudyOutcome(
         study=study,
         contact=contact,
@@ -184,4 +193,20 @@ def run_study(
         exact=exact,
         checks=_checks(study, contact, impacts),
         seconds=time.perf_counter() - start,
+        convergence=convergence,
+        accuracy=accuracy,
+    )
+
+
+def _convergence(
+    study: Study, contact: IndentationResult, quick: bool, report: Progress
+) -> ConvergenceStudy | None:
+    """The study's mesh-convergence levels (the coarsest three in quick mode), or None."""
+    sizes = study.convergence_sizes[:3] if quick else study.convergence_sizes
+    if not sizes:
+        return None
+    report(f"{study.name}: mesh convergence, {len(sizes)} meshes")
+    depths = [step.depth for step in contact.steps]
+    return convergence_study(
+        study.indenter, study.half_space, sizes, depths=depths, base=study.mesh
     )
