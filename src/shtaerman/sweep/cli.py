@@ -99,7 +99,8 @@ def run(args: argparse.Namespace) -> int:
         )
         return 128 + stop.signum
     done = (
-        f"{outcome.computed} computed on {outcome.workers} workers"
+        f"{outcome.computed} computed on {outcome.workers} "
+        f"worker{'s' if outcome.workers != 1 else ''}"
         if outcome.computed
         else "nothing to compute"
     )
