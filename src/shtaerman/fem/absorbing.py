@@ -49,12 +49,18 @@ class AbsorbingLayer:
     start: float
     ramp: float
     rate: float
+    width: float | None = None
 
     def damping_rate(self, r: np.ndarray, z: np.ndarray) -> np.ndarray:
         """zeta(R) in 1/s at points (r, z) in m."""
         distance = np.hypot(r, z)
-        ramp = np.clip((distance - self.start) / self.ramp, 0.0, 1.0)
-        return self.rate * ramp**2
+        phase = np.clip((distance - self.start) / self.ramp, 0.0, 1.0)
+        if self.width is None:
+            return self.rate * phase**2
+        inside = (distance > self.start) & (distance < self.start + self.width)
+        return np.where(
+            inside, self.rate * np.sin(np.pi * (distance - self.start) / self.width) ** 2, 0.0
+        )
 
     def weight(self, density: float) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
         """rho zeta(R) in kg/(m^3 s), the weight of the damping matrix."""
