@@ -110,7 +110,7 @@ def test_radiation_rejects_bad_density(bad):
 
 def test_light_half_space_reproduces_quasi_static_impact(light_run):
     exact = quasi_static()
-    # coarse static FEM error in beta ~3e-4 -> x ~1e-4, P ~1e-4 (observed 8e-5, 1.1e-4);
+    # coarse static FEM error in beta ~3e-4 -> x, P ~1e-4 (observed 8e-5, 1.1e-4, Newmark);
     # the acceptance tolerance 3e-3 is used as is
     assert light_run.x_max == pytest.approx(exact.x_c, rel=3e-3)
     assert light_run.P_max == pytest.approx(exact.P_c, rel=3e-3)
@@ -136,12 +136,12 @@ def test_light_history_follows_the_quasi_static_history(light_run):
 
 def test_energy_balance_closes(rubber_run):
     e0 = rubber_run.energies["striker_kinetic"][0]
-    # acceptance: 1e-2 of the initial kinetic energy; observed 5e-4
+    # acceptance: 1e-2 of the initial kinetic energy; observed 8e-5
     assert rubber_run.energy_balance_error < 1e-2
-    # the energy the scheme loses is exactly its trapezoidal contact work (Newmark identity):
-    # round-off of sums of ~1000 steps, 1e-9 E0
+    # generalized-alpha: the scheme's loss is its contact term plus a tiny algorithmic
+    # dissipation at the resolved frequencies (observed 2e-6 E0): 2e-5 E0
     np.testing.assert_allclose(
-        rubber_run.energies["numerical"], rubber_run.energies["contact_term"], atol=1e-9 * e0
+        rubber_run.energies["numerical"], rubber_run.energies["contact_term"], atol=2e-5 * e0
     )
     # the radiated share equals what the striker lost: E0 (1 - e^2) - (E0 - final striker KE)
     lost = 1.0 - rubber_run.energies["striker_kinetic"][-1] / e0
@@ -149,25 +149,45 @@ def test_energy_balance_closes(rubber_run):
 
 
 def test_contact_force_is_smooth(rubber_run):
-    """No chatter: P rises then falls, once each, and its second difference stays small.
-
-    The raw nodal sum carries a period-2 ripple of the undamped stiff modes (Newmark average
-    acceleration); the striker only sees step averages. Its size is asserted too.
-    """
-    raw = rubber_run.force_nodal
-    # observed 4 % (rise) to 16 % (end of restitution) of P_max in second differences on this
-    # coarse mesh: bounded, no chatter (no loss of contact, no sign change of P)
-    assert np.max(np.abs(np.diff(raw[raw > 0], 2))) < 0.3 * raw.max()
+    """No chatter: P rises then falls, once each, and its second difference stays small."""
     force = rubber_run.force
     loaded = np.flatnonzero(force > 0)
     contact = force[loaded[0] : loaded[-1] + 1]
-    assert np.all(force[loaded[0] : loaded[-1] + 1] > 0)  # one contact interval, no gaps
-    slope = np.sign(np.diff(contact))
-    assert np.count_nonzero(np.diff(slope) != 0) == 1  # one extremum: no oscillation
+    assert np.all(contact > 0)  # one contact interval, no loss of contact
+    peak = int(np.argmax(contact))
+    # monotone rise and fall up to a residue of the damped ripple on the flat top (observed
+    # 2.4e-3 P_max); chatter would reverse P by O(P_max): bound 5e-3 P_max
+    tolerance = 5e-3 * contact.max()
+    assert np.all(np.diff(contact[: peak + 1]) > -tolerance)
+    assert np.all(np.diff(contact[peak:]) < tolerance)
     # a smooth P(t) over 200 steps: second differences ~ P_max (pi/200)^2 ~ 2.5e-4 P_max;
-    # chatter would make them O(P_max). Observed 6e-3 P_max (the last steps of restitution,
-    # where the residual ripple grows as the edge recedes): bound 1e-2 P_max
-    assert np.max(np.abs(np.diff(contact, 2))) < 1e-2 * contact.max()
+    # chatter (or Newmark's undamped period-2 ripple: 16 % here) would make them O(P_max).
+    # Observed 1.3e-2 at the first steps (P ~ t^(5/3), nodes entering): bound 3e-2 P_max
+    assert np.max(np.abs(np.diff(contact, 2))) < 3e-2 * contact.max()
+    # the falling half is smoother still: observed 4e-3
+    half = contact[np.argmax(contact) :]
+    assert np.max(np.abs(np.diff(half, 2))) < 1e-2 * contact.max()
+
+
+def test_newmark_ripple_is_what_generalized_alpha_removes():
+    """Newmark average acceleration: the exact energy identity, and the ripple it leaves."""
+    run = run_dynamic_impact(
+        PAPER,
+        RUBBER,
+        1100.0,
+        0.7,
+        3.0,
+        DynamicSettings(steps=200, size=1 / 40, spectral_radius=None),
+    )
+    e0 = run.energies["striker_kinetic"][0]
+    # the energy the scheme loses is exactly its trapezoidal contact work: round-off, 1e-9 E0
+    np.testing.assert_allclose(
+        run.energies["numerical"], run.energies["contact_term"], atol=1e-9 * e0
+    )
+    half = run.force[np.argmax(run.force) :]
+    half = half[half > 0]
+    # observed 16 % of P_max (undamped stiff modes): the reason for generalized-alpha
+    assert np.max(np.abs(np.diff(half, 2))) > 5e-2 * run.force.max()
 
 
 def test_radiated_energy_agrees_with_estimate_at_lambda_0_16(rubber_run):
