@@ -2,7 +2,7 @@
 
 import pytest
 
-from shtaerman.studies import StudyError, load_study, shipped_studies
+from shtaerman.study.schema import StudyError, load_study, shipped_studies
 
 PAPER = """
 [indenter]

@@ -7,10 +7,10 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 
-import shtaerman.pipeline
+import shtaerman.output.folder
 from shtaerman.cli import main
-from shtaerman.studies import shipped_studies
-from shtaerman.verification import IMPACT_KEYS
+from shtaerman.study.run import IMPACT_KEYS
+from shtaerman.study.schema import shipped_studies
 
 STUDIES = [str(p) for p in shipped_studies() if p.stem in ("paper", "hertz")]
 
@@ -93,10 +93,9 @@ def test_failed_run_leaves_nothing(tmp_path, monkeypatch):
     def broken(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(shtaerman.pipeline, "run_study", broken)
+    monkeypatch.setattr(shtaerman.output.folder, "run_study", broken)
     out = tmp_path / "run"
-    with pytest.raises(KeyboardInterrupt):
-        main(["verify", "--quick", "--out", str(out), *STUDIES])
+    assert main(["verify", "--quick", "--out", str(out), *STUDIES]) == 130
     assert list(tmp_path.iterdir()) == []
 
 

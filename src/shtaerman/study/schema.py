@@ -31,12 +31,20 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from .fem.indentation import MeshSettings
-from .indenter import PowerLawIndenter
-from .materials import RIGID, Material
-from .validation import InputError
+from ..fem.mesh import MeshSettings
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material
+from ..validation import InputError
 
-__all__ = ["QUICK_MESH", "Study", "StudyError", "Tolerances", "load_study", "shipped_studies"]
+__all__ = [
+    "QUICK_MESH",
+    "Study",
+    "StudyError",
+    "Tolerances",
+    "find_study",
+    "load_study",
+    "shipped_studies",
+]
 
 QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
 """Coarse mesh of ``verify --quick`` (about 5k dofs; errors about 2x the default's)."""
@@ -284,9 +292,29 @@ def studies_folder() -> Path:
     packaged = importlib.resources.files("shtaerman") / "studies"
     if packaged.is_dir():
         return Path(str(packaged))
-    return Path(__file__).resolve().parents[2] / "fem"
+    return Path(__file__).resolve().parents[3] / "fem"
 
 
 def shipped_studies() -> list[Path]:
     """The study files shipped with shtaerman, sorted by name."""
     return sorted(studies_folder().glob("*.toml"))
+
+
+def find_study(name_or_path: str) -> Path:
+    """A study file path, or the shipped study of that name (``paper`` -> ``paper.toml``).
+
+    Raises
+    ------
+    StudyError
+        If it is neither an existing file nor a shipped study's name.
+    """
+    path = Path(name_or_path).expanduser()
+    if path.suffix == ".toml" or path.exists() or "/" in name_or_path:
+        return path
+    shipped = {p.stem: p for p in shipped_studies()}
+    if name_or_path not in shipped:
+        raise StudyError(
+            f"study {name_or_path!r} is neither a file nor a shipped study; "
+            f"pick one of {sorted(shipped)} or give a .toml path"
+        )
+    return shipped[name_or_path]
