@@ -20,12 +20,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from shtaerman.analytic_contact import PowerLawContact
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
-from shtaerman.impact import solve_impact
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
-from shtaerman.radiation import radiation_estimate
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.theory.radiation import radiation_estimate
 
 MASS, VELOCITY, DENSITY = 0.7, 3.0, 1100.0
 PAPER = PowerLawIndenter(5.0, 1.5)

@@ -12,17 +12,17 @@ import math
 import numpy as np
 import pytest
 
-from shtaerman.analytic_contact import PowerLawContact
 from shtaerman.fem.dynamic_contact import (
     MAX_DOFS,
     DynamicSettings,
     estimate_dofs,
     run_dynamic_impact,
 )
-from shtaerman.impact import solve_impact
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material, effective_modulus
-from shtaerman.radiation import (
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material, effective_modulus
+from shtaerman.theory.radiation import (
     radiation_estimate,
     radiation_integral,
     rayleigh_fraction,

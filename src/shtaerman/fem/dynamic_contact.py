@@ -60,9 +60,9 @@ import scipy.sparse as sp
 from scipy.special import beta as beta_function
 from threadpoolctl import threadpool_limits
 
-from ..analytic_contact import PowerLawContact
-from ..indenter import PowerLawIndenter
-from ..materials import Material
+from ..theory.contact import PowerLawContact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import (
@@ -76,11 +76,11 @@ from .contact import (
 from .elasticity import (
     ElasticSolution,
     ElasticSystem,
-    _postprocess,
     assemble,
     compressibility,
     deviatoric_stiffness,
     divergence_coupling,
+    postprocess,
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
@@ -343,7 +343,7 @@ class DynamicImpactResult:
         if time_requested not in self.snapshots:
             raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_dynamic_impact")
         actual, coefficients, velocity = self.snapshots[time_requested]
-        solution = _postprocess(self.system, coefficients, np.zeros_like(coefficients))
+        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients))
         return actual, solution, velocity
 
 

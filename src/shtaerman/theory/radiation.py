@@ -47,7 +47,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import beta as beta_function
 
-from .validation import InputError, validate_poisson, validate_positive
+from ..validation import InputError, validate_poisson, validate_positive
 
 __all__ = [
     "RadiationEstimate",
