@@ -259,7 +259,8 @@ def test_absorbing_layer_books_its_energy_and_perturbs_little():
 
     At nu = 0.5 the pressure field is instantaneous (c_p infinite), so a viscous layer at any
     distance damps the quasi-static near field too: measured e shifts by 1.4e-3 (rate 10 t_y^-1,
-    3 wavelengths wide) and the energy left inside R_a is 1.0 % (0.2 % without the layer). That is why the default has no layer and a far (125 m) clamped arc.
+    3 wavelengths wide) and the energy left inside R_a is 1.0 %
+    (0.2 % without it). Hence the default: no layer, a far (125 m) clamped arc.
     """
     settings = DynamicSettings(steps=200, size=1 / 40, layer_rate=10.0)
     run = run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
