@@ -651,6 +651,8 @@ def _step(**kw) -> dict[str, object]:
     alpha_m, alpha_f, beta, gamma = kw["scheme"]
     n = system.n_dofs
     massive = body_mass.diagonal() > 0
+    damped = damping.nnz > 0
+    stiffness_x = np.zeros(n)
     x, v, a = np.zeros(n), np.zeros(n), np.zeros(n)
     big_x, big_v, big_a = 0.0, v0, 0.0
     energy0 = 0.5 * striker * v0**2
@@ -672,15 +674,13 @@ def _step(**kw) -> dict[str, object]:
             # generalized-alpha (Newmark when alpha_m = alpha_f = 0): predictor without the
             # new contact forces, then x = x_pred - (1 - alpha_f) W F (module notes)
             x_hat = x + dt * v + dt**2 * (0.5 - beta) * a
-            rhs = (
-                (1.0 - alpha_m) / (beta * dt**2) * (body_mass @ x_hat)
-                - alpha_m * (body_mass @ a)
-                + (1.0 - alpha_f)
-                * (damping @ (gamma / (beta * dt) * x_hat - v - dt * (1 - gamma) * a))
-                - alpha_f * (damping @ v)
-            )
+            rhs = body_mass @ ((1.0 - alpha_m) / (beta * dt**2) * x_hat - alpha_m * a)
+            if damped:
+                rhs += (1.0 - alpha_f) * (
+                    damping @ (gamma / (beta * dt) * x_hat - v - dt * (1 - gamma) * a)
+                ) - alpha_f * (damping @ v)
             if alpha_f:
-                load = system.matrix @ x
+                load = stiffness_x.copy()  # K x_n, kept from the previous step
                 load[kw["cdofs"]] += forces
                 rhs -= alpha_f * load
             x_pred = np.zeros(n)
@@ -710,8 +710,9 @@ def _step(**kw) -> dict[str, object]:
             v_new = v + dt * ((1.0 - gamma) * a + gamma * a_new)
             a_new[~massive], v_new[~massive] = 0.0, 0.0
             # layer work by the midpoint velocity: exact for Newmark (dt/4 |v_n + v_n+1|_D^2)
-            vsum = v + v_new
-            absorbed += 0.25 * dt * float(vsum @ (damping @ vsum))
+            if damped:
+                vsum = v + v_new
+                absorbed += 0.25 * dt * float(vsum @ (damping @ vsum))
             new_gap = profile_c - big_new - x_new[free][position]
             contact_term += -0.5 * float((forces + new_forces) @ (new_gap - gap))
             x, v, a = x_new, v_new, a_new
@@ -725,7 +726,8 @@ def _step(**kw) -> dict[str, object]:
                 pressure0 = central_pressure(r_c, pressure, radius)
             rows.append((t, big_x, big_v, total, radius, pressure0))
             kinetic = 0.5 * float(v @ (body_mass @ v))
-            strain = 0.5 * float(x @ (system.matrix @ x))
+            stiffness_x = system.matrix @ x
+            strain = 0.5 * float(x @ stiffness_x)
             inner = 0.5 * float(v @ (inner_mass @ v)) + 0.5 * float(x @ (inner_stiffness @ x))
             striker_kinetic = 0.5 * striker * big_v**2
             numerical = energy0 - striker_kinetic - kinetic - strain - absorbed
