@@ -8,7 +8,8 @@ time goes; asserts nothing about time. Sections:
 (b) the nearly massless limit (rho2 = 1e-3) against the exact quasi-static impact;
 (c) small radiated fractions (lambda ~ 0.04 by the first-order estimate) for n = 1.5 and
     n = 2 (sphere R = 5 cm), nu = 0.3, 0.4, 0.5: measured 1 - e^2 against lambda;
-(d) convergence in the time step, (e) in the mesh, (f) in the domain radius.
+(d) convergence in the time step, (e) in the mesh, (f) in the domain radius;
+(g) measured over estimated loss as lambda -> 0: the first-order estimate's own error.
 """
 
 import argparse
@@ -109,6 +110,20 @@ def section_estimate(settings):
             )
 
 
+def section_first_order(settings):
+    print(f"\n(g) measured / estimated loss as lambda -> 0 (first-order check), {load()}")
+    print("  n    nu    lambda  v0 m/s    1-e^2      ratio    (1 - ratio) / lambda")
+    for indenter, nu in ((PAPER, 0.5), (SPHERE, 0.3)):
+        for target in (0.08, 0.04, 0.02, 0.01):
+            v0 = velocity_for(indenter, nu, target)
+            run = run_dynamic_impact(indenter, Material(E2, nu), DENSITY, MASS, v0, settings)
+            ratio = run.energy_radiated_fraction / target
+            print(
+                f"  {indenter.exponent:<4} {nu:<5} {target:<7} {v0:<8.4f}  "
+                f"{run.energy_radiated_fraction:.6f}  {ratio:.5f}  {(1 - ratio) / target:.3f}"
+            )
+
+
 def orders(values):
     differences = np.abs(np.diff(values))
     return [math.log2(a / b) if b > 0 else math.nan for a, b in itertools.pairwise(differences)]
@@ -133,7 +148,12 @@ def convergence(title, settings_list, labels):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="coarser ladders")
-    quick = parser.parse_args().quick
+    parser.add_argument("--only", help="run one section: a, b, c, d, e, f or g")
+    options = parser.parse_args()
+    quick = options.quick
+    if options.only == "g":
+        section_first_order(DynamicSettings())
+        return
     base = DynamicSettings()
     print(f"machine: {os.cpu_count()} cores, {load()} (shared: timings are on a loaded machine)")
     section_paper(base)
