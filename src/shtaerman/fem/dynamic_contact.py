@@ -513,7 +513,8 @@ def run_dynamic_impact(
     factorization = ScaledFactorization(reduced, system.dof_nodes()[free])
     unit = np.zeros((free.size, position.size))
     unit[position, np.arange(position.size)] = 1.0
-    correction = factorization.solve(unit)  # W = K_eff^-1 S, free dofs x candidates
+    # W = K_eff^-1 S, free dofs x candidates; column-major so that W[:, :k] is a plain view
+    correction = np.asfortranarray(factorization.solve(unit))
     compliance = 0.5 * (correction[position] + correction[position].T)
     lcp_matrix = (1.0 - alpha_f) * (compliance + beta * dt**2 / ((1.0 - alpha_m) * striker))
     surface_factor = mass_factor(system.surface_mass[candidates][:, candidates].toarray())
@@ -736,7 +737,8 @@ def _step(**kw) -> dict[str, object]:
             active = np.flatnonzero(new_forces > 0)
             x_new = x_pred
             if active.size:
-                x_new[free] -= (1.0 - alpha_f) * (correction[:, active] @ new_forces[active])
+                reach = active[-1] + 1  # contact is a disc: the candidates up to its edge
+                x_new[free] -= (1.0 - alpha_f) * (correction[:, :reach] @ new_forces[:reach])
                 if active[-1] + EDGE_MARGIN >= r_c.size:
                     raise InputError(
                         f"the contact reached r = {r_c[active[-1]]:.4g} m at t = {t:.4g} s, the "
