@@ -148,36 +148,38 @@ def convergence(title, settings_list, labels):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="coarser ladders")
-    parser.add_argument("--only", help="run one section: a, b, c, d, e, f or g")
+    parser.add_argument("--only", default="abcdefg", help="sections to run, e.g. 'ab' or 'g'")
     options = parser.parse_args()
-    quick = options.quick
-    if options.only == "g":
-        section_first_order(DynamicSettings())
-        return
     base = DynamicSettings()
+    coarse = replace(base, size=1 / 40) if options.quick else base
     print(f"machine: {os.cpu_count()} cores, {load()} (shared: timings are on a loaded machine)")
-    section_paper(base)
-    section_light(base)
-    section_estimate(base)
-    coarse = replace(base, size=1 / 40) if quick else base
-    steps = (100, 200, 400) if quick else (100, 200, 400, 800)
-    convergence(
-        "(d) time step (steps per t_y)",
-        [replace(coarse, steps=s) for s in steps],
-        [f"steps {s}" for s in steps],
-    )
-    sizes = (1 / 20, 1 / 40, 1 / 80) if quick else (1 / 20, 1 / 40, 1 / 80, 1 / 160)
-    convergence(
-        "(e) mesh (smallest size / refined radius)",
-        [replace(base, size=h, axis_size=h / 10) for h in sizes],
-        [f"size 1/{round(1 / h)}" for h in sizes],
-    )
-    domains = (1e3, 1e4, 1e5)
-    convergence(
-        "(f) domain radius / refined radius",
-        [replace(coarse, domain=d) for d in domains],
-        [f"domain {d:.0e}" for d in domains],
-    )
+    sections = {
+        "a": lambda: section_paper(base),
+        "b": lambda: section_light(base),
+        "c": lambda: section_estimate(base),
+        "d": lambda: convergence(
+            "(d) time step (steps per t_y)",
+            [replace(coarse, steps=s) for s in STEPS[options.quick]],
+            [f"steps {s}" for s in STEPS[options.quick]],
+        ),
+        "e": lambda: convergence(
+            "(e) mesh (smallest size / refined radius)",
+            [replace(base, size=h, axis_size=h / 10) for h in SIZES[options.quick]],
+            [f"size 1/{round(1 / h)}" for h in SIZES[options.quick]],
+        ),
+        "f": lambda: convergence(
+            "(f) domain radius / refined radius",
+            [replace(coarse, domain=d) for d in (1e3, 1e4, 1e5)],
+            [f"domain {d:.0e}" for d in (1e3, 1e4, 1e5)],
+        ),
+        "g": lambda: section_first_order(base),
+    }
+    for letter in options.only:
+        sections[letter]()
+
+
+STEPS = {True: (100, 200, 400), False: (100, 200, 400, 800)}
+SIZES = {True: (1 / 20, 1 / 40, 1 / 80), False: (1 / 20, 1 / 40, 1 / 80, 1 / 160)}
 
 
 if __name__ == "__main__":

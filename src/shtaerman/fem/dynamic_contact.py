@@ -525,11 +525,13 @@ def run_dynamic_impact(
             f"{position.size} contact candidates on {free.size} dofs need more than "
             f"{MAX_DENSE_CORRECTION / 1e6:.0f} MB; reduce margin or size"
         )
-    factorization = ScaledFactorization(reduced, system.dof_nodes()[free])
-    unit = np.zeros((free.size, position.size))
-    unit[position, np.arange(position.size)] = 1.0
-    # W = K_eff^-1 S, free dofs x candidates; column-major so that W[:, :k] is a plain view
-    correction = np.asfortranarray(factorization.solve(unit))
+    # one BLAS thread: SuperLU's supernodes are small, threads only contend (2 shared cores)
+    with threadpool_limits(limits=1, user_api="blas"):
+        factorization = ScaledFactorization(reduced, system.dof_nodes()[free])
+        unit = np.zeros((free.size, position.size))
+        unit[position, np.arange(position.size)] = 1.0
+        # W = K_eff^-1 S, free dofs x candidates; column-major so that W[:, :k] is a view
+        correction = np.asfortranarray(factorization.solve(unit))
     compliance = 0.5 * (correction[position] + correction[position].T)
     lcp_matrix = (1.0 - alpha_f) * (compliance + beta * dt**2 / ((1.0 - alpha_m) * striker))
     surface_factor = mass_factor(system.surface_mass[candidates][:, candidates].toarray())
