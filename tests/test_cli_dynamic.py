@@ -9,6 +9,7 @@ import csv
 import io
 import json
 
+import meshio
 import pytest
 
 from shtaerman.cli import main
@@ -74,7 +75,12 @@ def test_out_folder_has_json_csv_and_fields(coarse_json):
     _, _, _, out = coarse_json
     names = sorted(path.name for path in out.iterdir())
     assert "dynamic.json" in names and "history.csv" in names and "energies.csv" in names
-    assert len([name for name in names if name.endswith(".vtu")]) == 3
+    fields = sorted(out.glob("*.vtu"))
+    assert len(fields) == 3
+    # the snapshot at t_c (second file) is under load: stresses present, surface pressed down
+    mesh = meshio.read(fields[1])
+    assert mesh.point_data["von_mises"].max() > 0
+    assert mesh.point_data["u_z"].min() < 0
 
 
 def test_text_summary(capsys):
