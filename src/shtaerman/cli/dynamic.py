@@ -1,0 +1,204 @@
+"""``shtaerman dynamic``: the elastodynamic FE impact against the quasi-static theory."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+import meshio
+
+from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ..output.export import field_mesh
+from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
+from ..theory.contact import PowerLawContact
+from ..theory.impact import solve_impact
+from ..theory.materials import RIGID, effective_modulus
+from ..theory.radiation import radiation_estimate
+from ..validation import InputError, validate_positive
+from .common import PAPER, add_half_space_options, add_indenter_options, print_json
+from .common import half_space as read_half_space
+from .common import indenter as read_indenter
+from .impact import history_path
+
+DEFAULT_DENSITY = "1100"
+"""kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
+
+HISTORY_HEADER = {
+    "t": "t (s)",
+    "x": "x (m)",
+    "v": "v (m/s)",
+    "P": "P (N)",
+    "a": "a (m)",
+    "p0": "p0 (Pa)",
+}
+"""CSV header of --history: the column and its SI unit."""
+
+CONTROLS = {
+    "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
+    "mesh_size": ("size", float, "smallest element size / refined radius"),
+    "mesh_margin": ("margin", float, "refined radius / quasi-static contact radius, > 1"),
+    "domain_factor": ("domain", float, "domain radius / refined radius, in [1e2, 1e7]"),
+    "growth": ("growth", float, "element size growth per unit distance, in (0, 1]"),
+    "layer_rate": ("layer_rate", float, "absorbing-layer damping rate x t_y (0: no layer)"),
+}
+"""Numerical options: the DynamicSettings field each sets, its type and meaning."""
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``dynamic`` subcommand."""
+    p = commands.add_parser(
+        "dynamic",
+        help="elastodynamic FE impact (waves included) against the quasi-static theory",
+        description=(
+            "Rigid striker z = A r^n (mass M, velocity v0) on an elastic half-space with "
+            "inertia: axisymmetric Taylor-Hood P2-P1 FEM, generalized-alpha time stepping, "
+            "exact unilateral contact every step. Reports the rebound, the energy carried "
+            "away by elastic waves and the first-order estimate of it. SI units."
+        ),
+    )
+    p.add_argument("--mass", default=PAPER["mass"], metavar="KG", help="striker mass M in kg")
+    p.add_argument(
+        "--velocity", default=PAPER["velocity"], metavar="M/S", help="approach velocity v0 in m/s"
+    )
+    add_indenter_options(p)
+    add_half_space_options(p)
+    p.add_argument(
+        "--density2",
+        default=DEFAULT_DENSITY,
+        metavar="KG/M3",
+        help="half-space density in kg/m^3 (the paper gives none; 1100 is natural rubber)",
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.add_argument("--history", metavar="FILE.csv", help="write t,x,v,P,a,p0 every time step")
+    p.add_argument("--out", metavar="DIR", help="write JSON, CSV histories and VTU fields to DIR")
+    p.add_argument("--force", action="store_true", help="replace an existing --history / --out")
+    numerics = p.add_argument_group("numerical controls (relative to the quasi-static impact)")
+    defaults = DynamicSettings()
+    for option, (field, _, meaning) in CONTROLS.items():
+        numerics.add_argument(
+            "--" + option.replace("_", "-"),
+            default=f"{getattr(defaults, field):.6g}",
+            metavar="X",
+            help=meaning,
+        )
+    p.set_defaults(handler=run)
+
+
+def settings_from(args: argparse.Namespace) -> DynamicSettings:
+    """DynamicSettings from the numerical options; errors name the option."""
+    values = {}
+    for option, (field, kind, _) in CONTROLS.items():
+        text = getattr(args, option)
+        name = option.replace("_", "-")
+        try:
+            number = float(text)
+        except ValueError:
+            raise InputError(f"{name} must be a number, got {text!r}") from None
+        if kind is int:
+            if number != int(number):
+                raise InputError(f"{name} must be an integer, got {text!r}")
+            number = int(number)
+        values[field] = number
+    try:
+        return DynamicSettings(**values)
+    except InputError as error:
+        raise InputError(f"{error}") from None
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the dynamic impact; print text or JSON; write the history and folder if asked."""
+    mass = validate_positive("mass", args.mass, "kg")
+    velocity = validate_positive("velocity", args.velocity, "m/s")
+    density = validate_positive("density2", args.density2, "kg/m^3")
+    indenter, half_space = read_indenter(args), read_half_space(args)
+    if half_space.poisson_ratio < 0:
+        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {args.nu2!r}")
+    settings = settings_from(args)
+    history = history_path(args.history, force=args.force)
+    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
+    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    quasi = solve_impact(mass, velocity, law)
+    estimate = radiation_estimate(
+        mass,
+        velocity,
+        law.beta,
+        law.force_exponent,
+        density,
+        half_space.shear_modulus,
+        half_space.poisson_ratio,
+    )
+    snapshots = (0.5 * quasi.t_c, quasi.t_c, 1.5 * quasi.t_c) if out else ()
+    result = run_dynamic_impact(
+        indenter, half_space, density, mass, velocity, settings, snapshot_times=snapshots
+    )
+    report = document(result, quasi, estimate)
+    if history is not None:
+        write_csv(history, history_columns(result))
+    if out is not None:
+        with staged_folder(out) as stage:
+            write_folder(result, report, snapshots, stage)
+    if args.json:
+        print_json(report)
+    else:
+        print(dynamic_text(report))
+    return 0
+
+
+def history_columns(result: DynamicImpactResult) -> dict[str, object]:
+    """The history with its units in the header."""
+    return {HISTORY_HEADER[key]: column for key, column in result.history_columns().items()}
+
+
+def document(result: DynamicImpactResult, quasi, estimate) -> dict[str, object]:
+    """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract)."""
+    maxima = quasi.maxima()
+    keys = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
+    return {
+        "quasi_static": {key: maxima[key] for key in keys},
+        "dynamic": result.summary(),
+        "radiation_estimate": estimate.to_dict(),
+        "mesh": result.mesh,
+        "timings": result.timings,
+        "parameters": result.parameters,
+    }
+
+
+def write_folder(
+    result: DynamicImpactResult, report: dict, snapshots: tuple[float, ...], folder: Path
+) -> None:
+    """dynamic.json, history.csv, energies.csv and one VTU per snapshot time."""
+    (folder / "dynamic.json").write_text(json.dumps(json_safe(report), indent=2))
+    write_csv(folder / "history.csv", history_columns(result))
+    write_csv(
+        folder / "energies.csv",
+        {"t (s)": result.t, **{f"{k} (J)": v for k, v in result.energies.items()}},
+    )
+    for index, requested in enumerate(snapshots):
+        actual, solution, _ = result.field_solution(requested)
+        mesh = field_mesh(solution)
+        meshio.write(folder / f"field_{index}_t{actual:.6e}s.vtu", mesh)
+
+
+def dynamic_text(report: dict) -> str:
+    """A readable summary (SI units)."""
+    qs, dyn, est = report["quasi_static"], report["dynamic"], report["radiation_estimate"]
+    mesh, timings = report["mesh"], report["timings"]
+    rows = [
+        "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
+        "                          dynamic FEM     quasi-static",
+        f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
+        f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
+        f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
+        f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
+        f"  restitution e           {dyn['restitution']:<14.6f}  1 (first-order estimate "
+        f"{est['restitution']:.6f})",
+        f"  energy to waves 1-e^2   {dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
+        f"estimate {est['energy_fraction']:.6f})",
+        f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
+        f"{dyn['reflected_energy_fraction']:.1e} of the radiated",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
+        f"{mesh['contact_candidates']} contact candidates",
+        "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),
+    ]
+    return "\n".join(rows)

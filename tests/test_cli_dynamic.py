@@ -1,0 +1,106 @@
+"""``shtaerman dynamic``: the interface contract of DESIGN.md, in-process via main(argv).
+
+Coarse numerical controls (60 steps, size 1/20) keep each run to a few seconds; the physics
+is tested in test_fem_dynamic.py.
+"""
+
+import contextlib
+import csv
+import io
+import json
+
+import meshio
+import pytest
+
+from shtaerman.cli import main
+
+COARSE = ("--steps", "60", "--mesh-size", "0.05")
+QUASI_STATIC_KEYS = {"beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y"}
+DYNAMIC_KEYS = {
+    "x_max",
+    "P_max",
+    "t_x_max",
+    "t_contact",
+    "v_out",
+    "restitution",
+    "energy_radiated_fraction",
+    "energy_balance_error",
+    "reflected_energy_fraction",
+}
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.fixture(scope="module")
+def coarse_json(tmp_path_factory):
+    """One coarse run with --json, --history and --out (shared; capsys is per test)."""
+    folder = tmp_path_factory.mktemp("dynamic")
+    history = folder / "history.csv"
+    out = folder / "out"
+    stream = io.StringIO()
+    with contextlib.redirect_stdout(stream):
+        code = main(["dynamic", "--json", "--history", str(history), "--out", str(out), *COARSE])
+    return code, json.loads(stream.getvalue()), history, out
+
+
+def test_json_has_the_contract_keys(coarse_json):
+    code, report, _, _ = coarse_json
+    assert code == 0
+    assert set(report) >= {"quasi_static", "dynamic", "radiation_estimate", "mesh", "timings"}
+    assert set(report["quasi_static"]) == QUASI_STATIC_KEYS
+    assert set(report["dynamic"]) == DYNAMIC_KEYS
+    # the paper's example with a rigid striker: x_c of E* = 1e7 Pa (mpmath, 1e-12)
+    assert report["quasi_static"]["x_c"] == pytest.approx(0.008517340195359727, rel=1e-12)
+    # the paper's case radiates ~14 % (coarse: within a few per cent of the default run)
+    assert 0.10 < report["dynamic"]["energy_radiated_fraction"] < 0.18
+    assert report["radiation_estimate"]["energy_fraction"] == pytest.approx(0.157, abs=5e-4)
+    assert set(report["timings"]) >= {"mesh", "assembly", "factorization", "stepping", "total"}
+
+
+def test_history_has_units_and_every_step(coarse_json):
+    _, report, history, _ = coarse_json
+    with history.open() as stream:
+        rows = list(csv.reader(stream))
+    assert rows[0] == ["t (s)", "x (m)", "v (m/s)", "P (N)", "a (m)", "p0 (Pa)"]
+    values = [[float(v) for v in row] for row in rows[1:]]
+    assert values[0][:3] == [0.0, 0.0, 3.0]  # first touch at v0
+    assert max(row[3] for row in values) == pytest.approx(report["dynamic"]["P_max"], rel=1e-2)
+
+
+def test_out_folder_has_json_csv_and_fields(coarse_json):
+    _, _, _, out = coarse_json
+    names = sorted(path.name for path in out.iterdir())
+    assert "dynamic.json" in names and "history.csv" in names and "energies.csv" in names
+    fields = sorted(out.glob("*.vtu"))
+    assert len(fields) == 3
+    # the snapshot at t_c (second file) is under load: stresses present, surface pressed down
+    mesh = meshio.read(fields[1])
+    assert mesh.point_data["von_mises"].max() > 0
+    assert mesh.point_data["u_z"].min() < 0
+
+
+def test_text_summary(capsys):
+    code, out, err = run(capsys, "dynamic", *COARSE)
+    assert code == 0 and err == ""
+    assert "restitution e" in out and "energy to waves" in out and "dofs" in out
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--density2", "0"], "density2 must be > 0 kg/m^3"),
+        (["--density2", "nan"], "density2 must be a finite number"),
+        (["--steps", "10"], "steps (time steps per impact duration) must be an integer in [50"),
+        (["--steps", "1.5"], "steps must be an integer"),
+        (["--nu2", "-0.2"], "nu2 must lie in [0, 0.5]"),
+        (["--mesh-margin", "0.5"], "margin must be > 1"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):
+    code, out, err = run(capsys, "dynamic", *argv)
+    assert code == 2 and out == ""
+    assert message in err and err.count("\n") == 1
