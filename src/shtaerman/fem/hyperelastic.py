@@ -231,14 +231,14 @@ def internal_force(v, w):
     """dPi/du . v = int S : dF(v) 2 pi R dA (N per m of v)."""
     r = w.x[0]
     dv = variation(v, r)
-    S = w.S.value
+    S = np.asarray(w.S)
     return TWO_PI * r * sum(S[k] * dv[k] for k in range(N_COMPONENTS))
 
 
 @LinearForm
 def pressure_residual(q, w):
     """dPi/dp . q = -int q (J - 1 + p/K) 2 pi R dA (m^3 per Pa of q)."""
-    return -TWO_PI * w.x[0] * w.C.value * q
+    return -TWO_PI * w.x[0] * np.asarray(w.C) * q
 
 
 @BilinearForm
@@ -246,7 +246,7 @@ def material_tangent(u, v, w):
     """d2Pi/du2 = int dF(v) : D : dF(u) 2 pi R dA (N/m), material and geometric parts."""
     r = w.x[0]
     du, dv = variation(u, r), variation(v, r)
-    D = w.D.value
+    D = np.asarray(w.D)
     total = 0.0
     for k in range(N_COMPONENTS):
         row = sum(D[k, m] * du[m] for m in range(N_COMPONENTS))
@@ -259,7 +259,7 @@ def volume_coupling(u, q, w):
     """d2Pi/dp du = -int q Jg : dF(u) 2 pi R dA (trial u, test q)."""
     r = w.x[0]
     du = variation(u, r)
-    Jg = w.Jg.value
+    Jg = np.asarray(w.Jg)
     return -TWO_PI * r * q * sum(Jg[k] * du[k] for k in range(N_COMPONENTS))
 
 
@@ -276,7 +276,7 @@ def pressure_compliance(inverse_bulk: float) -> BilinearForm:
 @Functional
 def stored_energy(w):
     """Pi = int Psi 2 pi R dA in J."""
-    return TWO_PI * w.x[0] * w.psi.value
+    return TWO_PI * w.x[0] * np.asarray(w.psi)
 
 
 @dataclass(frozen=True, eq=False)
@@ -319,8 +319,10 @@ class HyperelasticSystem:
         u, p = self.split(x)
         ufield = self.displacement_basis.interpolate(u)
         pfield = self.pressure_basis.interpolate(p)
-        radius = self.displacement_basis.global_coordinates().value[0]
-        return kinematics(self.material, ufield.grad, ufield.value[0], radius, pfield.value)
+        radius = self.displacement_basis.global_coordinates()[0]
+        return kinematics(
+            self.material, ufield.grad, np.asarray(ufield)[0], radius, np.asarray(pfield)
+        )
 
     def residual(self, x: np.ndarray, state: Kinematics | None = None) -> np.ndarray:
         """Gradient dPi/dx: internal nodal forces (N) and the pressure equation (m^3)."""
@@ -385,7 +387,7 @@ class HyperelasticSystem:
 
 @LinearForm
 def _projection(v, w):
-    return w.s.value * v
+    return np.asarray(w.s) * v
 
 
 @BilinearForm
