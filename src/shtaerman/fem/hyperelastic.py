@@ -245,13 +245,8 @@ def pressure_residual(q, w):
 def material_tangent(u, v, w):
     """d2Pi/du2 = int dF(v) : D : dF(u) 2 pi R dA (N/m), material and geometric parts."""
     r = w.x[0]
-    du, dv = variation(u, r), variation(v, r)
-    D = np.asarray(w.D)
-    total = 0.0
-    for k in range(N_COMPONENTS):
-        row = sum(D[k, m] * du[m] for m in range(N_COMPONENTS))
-        total = total + dv[k] * row
-    return TWO_PI * r * total
+    du, dv = np.array(variation(u, r)), np.array(variation(v, r))
+    return TWO_PI * r * np.einsum("k...,km...,m...->...", dv, np.asarray(w.D), du, optimize=False)
 
 
 @BilinearForm
