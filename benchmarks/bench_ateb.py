@@ -12,7 +12,7 @@ from functools import partial
 
 import numpy as np
 
-from shtaerman.ateb import ateb_cosine, ateb_sine, quarter_period
+from shtaerman.theory.ateb import ateb_cosine, ateb_sine, quarter_period
 
 POINTS = 1_000_000
 REPEATS = 5

@@ -29,23 +29,24 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from shtaerman.analytic_contact import PowerLawContact
 from shtaerman.fem.contact import (
     contact_step,
     factorize_stiffness,
     surface_compliance,
 )
-from shtaerman.fem.convergence import (
+from shtaerman.fem.elasticity import ElasticSystem, assemble
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.solver import available_backends, factorize
+from shtaerman.study.convergence import (
     convergence_study,
     fitted_order,
     observed_orders,
     refined_settings,
 )
-from shtaerman.fem.elasticity import ElasticSystem, assemble
-from shtaerman.fem.indentation import MeshSettings, default_depths, run_indentation
-from shtaerman.fem.solver import available_backends, factorize
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
+from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 
 PAPER = (PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5))
 HERTZ = (PowerLawIndenter.sphere(0.1), Material(7.5e6, 0.5))  # A = 5 m^-1, n = 2
@@ -259,7 +260,7 @@ def convergence_table(
         "    whole size field scaled with size (growth, axis size and axis growth prop. to size),"
         " domain 1e7 refined radii (truncation floor ~1.2e-7)"
     )
-    study = convergence_study(indenter, half_space, sizes, base=base)
+    study = convergence_study(indenter, half_space, sizes, base=base).levels
     header = (
         f"{'size':>7} {'growth':>6} {'dofs':>7} | "
         + " ".join(f"{SHORT[key]:>8}" for key in ERROR_KEYS)

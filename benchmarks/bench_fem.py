@@ -25,7 +25,7 @@ from collections.abc import Callable
 import numpy as np
 
 from shtaerman.fem.elasticity import ElasticSystem, assemble, pressure_load, solve
-from shtaerman.fem.mesh import DEFAULT_GROWTH, DEFAULT_SIZE_FACTOR, halfspace_mesh
+from shtaerman.fem.mesh import DEFAULTS, halfspace_mesh
 from shtaerman.fem.solver import (
     PardisoFactorization,
     SuperLUFactorization,
@@ -172,13 +172,13 @@ def convergence_table(quick: bool) -> None:
     )
     sizes = (25, 50, 100, 200) if quick else (25, 50, 100, 200, 400, 800)
     for nu in (0.3, 0.5):
-        print(f"\n(c) Relative errors vs smallest size (growth {DEFAULT_GROWTH}), nu = {nu}")
+        print(f"\n(c) Relative errors vs smallest size (growth {DEFAULTS.growth}), nu = {nu}")
         print(header)
         for n in sizes:
-            print(convergence_row(nu, 1 / n, DEFAULT_GROWTH))
-        print(f"    ... vs growth (h0 = a/{round(1 / DEFAULT_SIZE_FACTOR)})")
+            print(convergence_row(nu, 1 / n, DEFAULTS.growth))
+        print(f"    ... vs growth (h0 = a/{round(1 / DEFAULTS.size)})")
         for growth in (0.3, 0.25, 0.2, 0.15, 0.1):
-            print(convergence_row(nu, DEFAULT_SIZE_FACTOR, growth))
+            print(convergence_row(nu, DEFAULTS.size, growth))
 
 
 def default_mesh_timings() -> None:
@@ -191,7 +191,7 @@ def default_mesh_timings() -> None:
     rhs[np.searchsorted(free, system.surface_dofs[:N_RHS]), np.arange(N_RHS)] = -1.0
     _, t_solve = _timed(factorization.solve, rhs)
     print(
-        f"\nDefault mesh (h0 = a/{round(1 / DEFAULT_SIZE_FACTOR)}, growth {DEFAULT_GROWTH},"
+        f"\nDefault mesh (h0 = a/{round(1 / DEFAULTS.size)}, growth {DEFAULTS.growth},"
         f" R = 1e5 a), nu = 0.5: {mesh.p.shape[1]} vertices, {mesh.t.shape[1]} triangles,"
         f" {system.n_dofs} dofs; mesh {t_mesh:.2f} s, assembly {t_assemble:.2f} s,"
         f" factorization ({factorization.backend}) {t_factor:.2f} s,"

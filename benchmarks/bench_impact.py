@@ -9,11 +9,11 @@ import time
 import numpy as np
 from scipy.special import betaincinv
 
-from shtaerman.analytic_contact import PowerLawContact
-from shtaerman.impact import solve_impact
-from shtaerman.impact_ode import integrate_impact
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material, effective_modulus
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.impact_ode import integrate_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material, effective_modulus
 
 
 def best_of(function, repeats=3):

@@ -12,8 +12,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from shtaerman.pipeline import run_verification
-from shtaerman.studies import load_study, shipped_studies
+from shtaerman.output.folder import run_verification
+from shtaerman.study.schema import load_study, shipped_studies
 
 
 def main() -> None:

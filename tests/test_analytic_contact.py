@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from shtaerman.analytic_contact import (
+from shtaerman.theory.contact import (
     PowerLawContact,
     paper_beta_constant,
     paper_J1,
@@ -27,8 +27,8 @@ from shtaerman.analytic_contact import (
     paper_pressure_eq5,
     paper_radius_constant,
 )
-from shtaerman.indenter import PowerLawIndenter, shape_factor
-from shtaerman.materials import RIGID, Material, effective_modulus
+from shtaerman.theory.indenter import PowerLawIndenter, shape_factor
+from shtaerman.theory.materials import RIGID, Material, effective_modulus
 from shtaerman.validation import InputError
 
 STEEL = Material(2e11, 0.25)

@@ -30,7 +30,13 @@ from numpy.testing import assert_allclose, assert_array_equal
 from scipy.integrate import quad
 from scipy.special import beta, gamma
 
-from shtaerman.ateb import ateb_cosine, ateb_half_period, ateb_pair, ateb_sine, quarter_period
+from shtaerman.theory.ateb import (
+    ateb_cosine,
+    ateb_half_period,
+    ateb_pair,
+    ateb_sine,
+    quarter_period,
+)
 from shtaerman.validation import InputError
 
 mp = pytest.importorskip("mpmath")

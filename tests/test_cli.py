@@ -65,7 +65,8 @@ def test_history_csv(tmp_path, capsys):
         (["--E2", "nan"], "E2 must be a finite number > 0 Pa"),
         (["--nu1", "-1"], r"nu1 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
         (["--nu2", "0.51"], r"nu2 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
-        (["--points", "1"], "points must be an integer >= 2"),
+        (["--points", "1"], r"points must be an integer in \[2, 10000000\]"),
+        (["--points", "1000000000"], r"points must be an integer in \[2, 10000000\]"),
         (["--unknown"], "unrecognized arguments: --unknown"),
     ],
 )

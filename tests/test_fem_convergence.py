@@ -9,15 +9,15 @@ import math
 
 import pytest
 
-from shtaerman.fem.convergence import (
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.study.convergence import (
     convergence_study,
     fitted_order,
     observed_orders,
     refined_settings,
 )
-from shtaerman.fem.indentation import MeshSettings
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
 
 # domain 1e6: the truncation floor (about 1e-6 in force) stays far below the coarse errors
@@ -36,9 +36,11 @@ SIZES = (1 / 20, 1 / 40, 1 / 80)  # 2.7k, 5.5k and 17.6k dofs
 def study(request):
     indenter, half_space = request.param
     lines = []
-    levels = convergence_study(indenter, half_space, SIZES, base=COARSE, progress=lines.append)
+    result = convergence_study(indenter, half_space, SIZES, base=COARSE, progress=lines.append)
     assert len(lines) == len(SIZES)
-    return levels
+    # the study's own orders are the least-squares fits of its levels (an identity)
+    assert result.orders["force"] == fitted_order(result.levels, "force")
+    return result.levels
 
 
 def test_study_refines_the_whole_mesh(study):

@@ -14,10 +14,12 @@ import pytest
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
-from shtaerman import fields, figures
-from shtaerman.studies import load_study, shipped_studies
+from shtaerman.plots import figures
+from shtaerman.plots import sections as fields
+from shtaerman.study.convergence import ConvergenceStudy
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import load_study, shipped_studies
 from shtaerman.validation import InputError
-from shtaerman.verification import run_study
 
 MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}
 """Pixel standard deviation floors; measured minima 37.9 and 24.7 (sigma_rr)."""
@@ -134,14 +136,15 @@ def test_convergence_draws_every_error(folder):
         }
         for h in (0.1, 0.05, 0.025)
     ]
-    path = figures.plot_convergence(rows, folder / "convergence.png")
+    path = figures.plot_convergence(ConvergenceStudy.from_levels(rows), folder / "convergence.png")
     image = assert_picture(path, (1280, 840), "matplotlib")
     for index in range(4):
         assert_colour(image, mpl.colors.to_hex(f"C{index}"), 300)
-    one = figures.plot_convergence(rows[:1], folder / "one.png", keys=["force", "missing"])
+    single = ConvergenceStudy.from_levels(rows[:1])
+    one = figures.plot_convergence(single, folder / "one.png", keys=["force", "missing"])
     assert_colour(pixels(one), mpl.colors.to_hex("C0"), 50)  # a single marker, no order
-    with pytest.raises(ValueError, match="at least one"):
-        figures.plot_convergence([], folder / "empty.png")
+    with pytest.raises(InputError, match="at least one level"):
+        ConvergenceStudy.from_levels([])
 
 
 def test_figures_leave_matplotlib_state_alone(outcome, folder):

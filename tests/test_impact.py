@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from shtaerman.analytic_contact import PowerLawContact
-from shtaerman.impact import QuasiStaticValidityWarning, duration_integral, solve_impact
-from shtaerman.impact_ode import integrate_impact
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material, effective_modulus
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import QuasiStaticValidityWarning, duration_integral, solve_impact
+from shtaerman.theory.impact_ode import integrate_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material, effective_modulus
 from shtaerman.validation import InputError
 
 E_STAR = effective_modulus(Material(2e11, 0.25), Material(7.5e6, 0.5))

@@ -9,8 +9,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = [
-    "shtaerman/data/paper_tables.json",
-    "shtaerman/cli.py",
+    "shtaerman/paper/paper_tables.json",
+    "shtaerman/cli/__init__.py",
     "shtaerman/meshes/halfspace.geo",
     "shtaerman/studies/paper.toml",
     "shtaerman/studies/hertz.toml",
@@ -40,7 +40,7 @@ def wheel_names(tmp_path_factory):
     )
     [wheel] = out.glob("shtaerman-*.whl")
     with zipfile.ZipFile(wheel) as archive:
-        return set(archive.namelist())
+        return {name: archive.read(name) for name in archive.namelist()}
 
 
 @pytest.mark.parametrize("name", SHIPPED)
@@ -50,4 +50,5 @@ def test_wheel_ships(wheel_names, name):
 
 def test_console_script_is_declared(wheel_names):
     [entry_points] = [n for n in wheel_names if n.endswith("entry_points.txt")]
-    assert entry_points.startswith("shtaerman-")
+    declared = wheel_names[entry_points].decode().split()
+    assert "shtaerman = shtaerman.cli:main".split() == declared[declared.index("shtaerman") :][:3]

@@ -15,14 +15,14 @@ import numpy as np
 import pytest
 from scipy.special import gamma
 
-from shtaerman.ateb import ateb_cosine, ateb_sine
-from shtaerman.paper import (
+from shtaerman.paper.printed import (
     INTEGRAL_I,
-    load_paper_tables,
+    load_printed,
     paper_cosine_approximation,
     paper_sine_approximation,
-    paper_table,
+    printed_table,
 )
+from shtaerman.theory.ateb import ateb_cosine, ateb_sine
 from shtaerman.validation import InputError
 
 HALF_UNIT_SLACK = 1e-12
@@ -42,7 +42,7 @@ def exact_cosine(zeta):
 
 @pytest.fixture(scope="module")
 def tables():
-    return load_paper_tables()
+    return load_printed()
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +54,7 @@ def example(tables):
 
 
 def test_data_file_ships_inside_the_package():
-    resource = files("shtaerman") / "data" / "paper_tables.json"
+    resource = files("shtaerman.paper") / "paper_tables.json"
     assert resource.is_file()
 
 
@@ -72,38 +72,38 @@ def test_every_table_is_well_formed(tables):
 
 
 def test_loader_returns_a_fresh_copy():
-    first = load_paper_tables()
+    first = load_printed()
     first["tables"].clear()
-    assert len(load_paper_tables()["tables"]) == 6
+    assert len(load_printed()["tables"]) == 6
 
 
 def test_paper_table_scales_and_corrections():
-    table = paper_table("table4")
+    table = printed_table("table4")
     assert table["x_c"][0] == pytest.approx(67.74e-4, rel=1e-15)  # printed 10^4 x_c, m
     assert table["p_c"][0] == pytest.approx(4.23825e6, rel=1e-15)  # printed 10^-6 p_c, Pa
-    assert paper_table("table1")["eta"][-1] == pytest.approx(1.445927, rel=1e-15)
-    assert paper_table("table1", corrected=False)["eta"][-1] == pytest.approx(10.1)
+    assert printed_table("table1")["eta"][-1] == pytest.approx(1.445927, rel=1e-15)
+    assert printed_table("table1", corrected=False)["eta"][-1] == pytest.approx(10.1)
     with pytest.raises(InputError, match="Pick one of"):
-        paper_table("table7")
+        printed_table("table7")
 
 
 # --- Tables 1 and 2: the exact Ateb functions -----------------------------------------------
 
 
 def test_table1_is_the_exact_ateb_sine():
-    table = paper_table("table1")
+    table = printed_table("table1")
     # every printed 10 Sa is the exact value rounded to 2 decimals (worst: 0.0048 of 0.005)
     assert np.all(np.abs(10 * exact_sine(table["eta"]) - 10 * table["sine"]) <= half_unit(2))
 
 
 def test_table2_is_the_exact_ateb_cosine():
-    table = paper_table("table2")
+    table = printed_table("table2")
     assert np.all(np.abs(10 * exact_cosine(table["zeta"]) - 10 * table["cosine"]) <= half_unit(2))
 
 
 def test_last_rows_are_eta_equal_I_not_101():
     # misprint: the last rows print 10 eta = "101"; they are 10 I = 14.459 (Sa = 1, Ca = 0).
-    printed = load_paper_tables()["tables"]["table1"]["rows"][-1]
+    printed = load_printed()["tables"]["table1"]["rows"][-1]
     assert printed[0] == 101
     assert round(10 * INTEGRAL_I, 5) == 14.45927
     assert round(10 * float(exact_sine(INTEGRAL_I)), 2) == printed[1] == 10.00
@@ -112,7 +112,7 @@ def test_last_rows_are_eta_equal_I_not_101():
 
 def test_table2_is_table1_mirrored():
     # Ca(5/3, 1, (4/3) zeta) = Sa(5/3, 1, (4/3) (I - zeta)), to rounding (4 eps).
-    zeta = paper_table("table2")["zeta"]
+    zeta = printed_table("table2")["zeta"]
     mirrored = exact_sine(INTEGRAL_I - zeta)
     assert np.all(np.abs(exact_cosine(zeta) - mirrored) <= 4 * np.finfo(float).eps)
 
@@ -121,7 +121,7 @@ def test_table2_is_table1_mirrored():
 
 
 def test_sine_approximation_reproduces_the_brackets_but_one():
-    table = paper_table("table1")
+    table = printed_table("table1")
     approx = 10 * paper_sine_approximation(table["eta"])
     mismatch = np.abs(approx - 10 * table["sine_approximation"]) > half_unit(2)
     assert np.flatnonzero(mismatch).tolist() == [16]  # 10 eta = 8.0
@@ -134,14 +134,14 @@ def test_sine_approximation_reproduces_the_brackets_but_one():
 
 
 def test_cosine_approximation_reproduces_the_brackets():
-    table = paper_table("table2")
+    table = printed_table("table2")
     approx = 10 * paper_cosine_approximation(table["zeta"])
     assert np.all(np.abs(approx - 10 * table["cosine_approximation"]) <= half_unit(2))
 
 
 def test_cosine_last_branch_misprint():
     # Printed "zeta at 1.25 <= zeta <= I": the brackets there are 10 (I - zeta), not 10 zeta.
-    table = paper_table("table2")
+    table = printed_table("table2")
     last = table["zeta"] >= 1.25
     brackets = 10 * table["cosine_approximation"][last]
     assert np.all(np.abs(10 * (INTEGRAL_I - table["zeta"][last]) - brackets) <= half_unit(2))
@@ -204,7 +204,11 @@ def test_approximations_are_vectorised():
 
 
 def test_table3_formulae_column_is_interpolation_of_tables_1_and_2():
-    table3, table1, table2 = paper_table("table3"), paper_table("table1"), paper_table("table2")
+    table3, table1, table2 = (
+        printed_table("table3"),
+        printed_table("table1"),
+        printed_table("table2"),
+    )
     eta = table3["eta"]
     compressing = table3["t_over_tc"] <= 1
     interpolated = np.where(
@@ -216,7 +220,7 @@ def test_table3_formulae_column_is_interpolation_of_tables_1_and_2():
 
 
 def test_table3_eta_column_is_I_t_over_tc_with_two_slips():
-    table = paper_table("table3")
+    table = printed_table("table3")
     exact = INTEGRAL_I * table["t_over_tc"]
     wrong = np.abs(exact - table["eta"]) > half_unit(4)
     # 0.75 I = 1.084446 printed 1.0845; 1.75 I = 2.530373 printed 2.5303
@@ -225,7 +229,7 @@ def test_table3_eta_column_is_I_t_over_tc_with_two_slips():
 
 
 def test_table3_numerical_column_against_exact():
-    table = paper_table("table3")
+    table = printed_table("table3")
     eta = INTEGRAL_I * table["t_over_tc"]
     compressing = table["t_over_tc"] <= 1
     exact = np.where(compressing, exact_sine(np.minimum(eta, INTEGRAL_I)), 0.0)
@@ -244,7 +248,7 @@ def test_table3_numerical_column_against_exact():
     ("name", "velocity_key"), [("table4", None), ("table5", "v0"), ("table6", None)]
 )
 def test_tables_4_to_6_are_internally_consistent(tables, name, velocity_key):
-    table = paper_table(name)
+    table = printed_table(name)
     fixed = tables["tables"][name]["fixed"]
     v0 = table[velocity_key] if velocity_key else fixed["v0"]
     # t_c = 1.445927 x_c / v0 to the printed 2 decimals of 10^4 t_c
@@ -255,7 +259,7 @@ def test_tables_4_to_6_are_internally_consistent(tables, name, velocity_key):
 
 
 def test_tables_5_and_6_share_a_row_and_table5_holds_the_example(example):
-    table5, table6 = paper_table("table5"), paper_table("table6")
+    table5, table6 = printed_table("table5"), printed_table("table6")
     for key in ("x_c", "P_c", "a_c", "p_c", "t_c"):
         assert table5[key][1] == table6[key][0]  # v0 = 4 m/s, M = 0.7 kg
     results = example["results"]
@@ -269,7 +273,7 @@ def test_table4_recomputed_from_the_paper_formulas(example):
     # beta = 0.81180 / (A^(2/3) (Q1 + Q2)), x_c = (4 M v0^2 / (3 beta))^(3/8), P_c = beta
     # x_c^(5/3), a_c = 0.67650 (x_c/A)^(2/3), p_c = 2.5 P_c / (pi a_c^2): agreement to 4e-4
     # relative only (P_c at A = 2: 1240.09 vs printed 1240.24; p_c at A = 4: 3.5e-4).
-    table = paper_table("table4")
+    table = printed_table("table4")
     inputs = {k: v["value"] for k, v in example["inputs"].items()}
     compliance = (1 - inputs["nu1"] ** 2) / inputs["E1"] + (1 - inputs["nu2"] ** 2) / inputs["E2"]
     beta = 0.81180 / (table["A"] ** (2 / 3) * compliance)
@@ -348,6 +352,6 @@ def test_example_results_from_the_paper_formulas(example):
 def test_example_impulses(tables, example):
     # S = 1.03788 P_c t_c with Table 4's printed P_c, t_c reproduces the printed 4.2028,
     # 4.2013, 4.2027 N s (the exact impulse is 2 M v0 = 4.2 N s).
-    table = paper_table("table4")
+    table = printed_table("table4")
     impulses = 1.03788 * table["P_c"] * table["t_c"]
     assert np.all(np.abs(impulses - example["impulses"]["S"]) <= half_unit(4))

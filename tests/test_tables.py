@@ -2,12 +2,12 @@
 
 import pytest
 
-from shtaerman.tables import paper_tables
+from shtaerman.paper.comparison import compare_tables
 
 
 @pytest.fixture(scope="module")
 def tables():
-    return {table.name: table for table in paper_tables()}
+    return {table.name: table for table in compare_tables()}
 
 
 def test_every_printed_ateb_value_is_the_exact_one_rounded(tables):

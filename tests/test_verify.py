@@ -7,10 +7,10 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 
-import shtaerman.pipeline
+import shtaerman.output.folder
 from shtaerman.cli import main
-from shtaerman.studies import shipped_studies
-from shtaerman.verification import IMPACT_KEYS
+from shtaerman.study.run import IMPACT_KEYS
+from shtaerman.study.schema import shipped_studies
 
 STUDIES = [str(p) for p in shipped_studies() if p.stem in ("paper", "hertz")]
 
@@ -93,10 +93,9 @@ def test_failed_run_leaves_nothing(tmp_path, monkeypatch):
     def broken(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(shtaerman.pipeline, "run_study", broken)
+    monkeypatch.setattr(shtaerman.output.folder, "run_study", broken)
     out = tmp_path / "run"
-    with pytest.raises(KeyboardInterrupt):
-        main(["verify", "--quick", "--out", str(out), *STUDIES])
+    assert main(["verify", "--quick", "--out", str(out), *STUDIES]) == 130
     assert list(tmp_path.iterdir()) == []
 
 
@@ -115,4 +114,6 @@ def test_malformed_study_is_exit_2(tmp_path, capsys):
     study = tmp_path / "bad.toml"
     study.write_text("[indenter]\nexponent = 'x'\n")
     assert main(["verify", "--out", str(tmp_path / "run"), str(study)]) == 2
-    assert "bad.toml: key 'impact': expected a table [impact]" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "bad.toml: key 'indenter.exponent': expected a number > 0, got 'x'" in err
+    assert not (tmp_path / "run").exists()

@@ -52,6 +52,7 @@ __all__ = [
     "deviatoric_stiffness",
     "divergence_coupling",
     "normal_surface_mass",
+    "postprocess",
     "pressure_load",
     "solve",
 ]
@@ -370,10 +371,21 @@ def solve(
     if prescribed_dofs is not None:
         x[prescribed_dofs] = prescribed_values
     x[free] = factorization.solve(load[free] - system.matrix[free] @ x)
-    return _postprocess(system, x, system.matrix @ x - load)
+    return postprocess(system, x, load)
 
 
-def _postprocess(system: ElasticSystem, x: np.ndarray, reactions: np.ndarray) -> ElasticSolution:
+def postprocess(system: ElasticSystem, x: np.ndarray, load: np.ndarray) -> ElasticSolution:
+    """The fields (vertex values, projected stresses) of a solution vector ``x`` under ``load``.
+
+    Parameters
+    ----------
+    system : ElasticSystem
+    x : numpy.ndarray
+        Full solution vector [u (m), p (Pa)].
+    load : numpy.ndarray
+        The nodal forces (N) it was solved for; the reactions are ``matrix @ x - load``.
+    """
+    reactions = system.matrix @ x - load
     ubasis, pbasis = system.displacement_basis, system.pressure_basis
     u, p = x[: system.n_displacement], x[system.n_displacement :]
     nodal = ubasis.nodal_dofs

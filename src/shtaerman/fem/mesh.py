@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import importlib.resources
 from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 import gmsh
@@ -24,32 +25,13 @@ from ..validation import InputError, validate_positive
 
 __all__ = [
     "BOUNDARIES",
-    "DEFAULT_DOMAIN_FACTOR",
-    "DEFAULT_GROWTH",
-    "DEFAULT_SIZE_FACTOR",
+    "MeshSettings",
     "geometry_path",
     "halfspace_mesh",
 ]
 
 BOUNDARIES = ("axis", "surface", "far")
 """Named boundaries of the mesh: r = 0, z = 0 and the far arc."""
-
-DEFAULT_DOMAIN_FACTOR = 1.0e5
-"""Default domain radius over refined radius. The clamped far boundary stiffens the body by
-about 1.5 a/R (Boussinesq centre deflection, load radius a): 1.4e-5 here (bench_fem.py (a))."""
-
-DEFAULT_SIZE_FACTOR = 1.0 / 100.0
-"""Default smallest element size over refined radius."""
-
-DEFAULT_GROWTH = 0.15
-"""Default growth of the element size per unit distance from the refined zone.
-
-With the three defaults, ~20k dofs (nu = 0.5: mesh 0.1 s, assembly 0.15 s, SuperLU 0.1 s)
-and relative errors ~3e-5 (Boussinesq centre, Hertz deflection) and 4e-4 to 8e-4 (flat punch
-force, limited by its edge singularity; 1e-4 needs smallest_size ~ refined_radius / 800)."""
-
-DEFAULT_AXIS_GROWTH = 0.05
-"""Default growth of the element size per unit distance from the origin (when graded)."""
 
 _PARAMETERS = {
     "refined_radius": "Parameters/1Refined radius (m)",
@@ -89,9 +71,9 @@ def halfspace_mesh(
     *,
     domain_radius: float | None = None,
     smallest_size: float | None = None,
-    growth: float = DEFAULT_GROWTH,
+    growth: float | None = None,
     axis_size: float | None = None,
-    axis_growth: float = DEFAULT_AXIS_GROWTH,
+    axis_growth: float | None = None,
 ) -> MeshTri:
     """Mesh the axisymmetric half-space with gmsh and return it as a scikit-fem mesh.
 
@@ -101,10 +83,10 @@ def halfspace_mesh(
         Radius of the finely meshed surface zone in m (take it a little larger than the
         largest contact radius). The mesh has a vertex at r = refined_radius on the surface.
     domain_radius : float, optional
-        Radius R of the truncated domain in m; default ``DEFAULT_DOMAIN_FACTOR *
+        Radius R of the truncated domain in m; default ``MeshSettings.domain *
         refined_radius``. Must exceed ``refined_radius``.
     smallest_size : float, optional
-        Element size on the refined zone in m; default ``DEFAULT_SIZE_FACTOR *
+        Element size on the refined zone in m; default ``MeshSettings.size *
         refined_radius``. Must not exceed ``refined_radius``.
     growth : float
         Growth of the element size per unit distance from the refined zone, in (0, 1].
@@ -144,14 +126,14 @@ def _mesh_parameters(
     refined_radius: float,
     domain_radius: float | None,
     smallest_size: float | None,
-    growth: float,
+    growth: float | None,
 ) -> dict[str, float]:
     a = validate_positive("refined_radius", refined_radius, "m")
-    big = DEFAULT_DOMAIN_FACTOR * a if domain_radius is None else domain_radius
+    big = DEFAULTS.domain * a if domain_radius is None else domain_radius
     big = validate_positive("domain_radius", big, "m")
-    h0 = DEFAULT_SIZE_FACTOR * a if smallest_size is None else smallest_size
+    h0 = DEFAULTS.size * a if smallest_size is None else smallest_size
     h0 = validate_positive("smallest_size", h0, "m")
-    g = validate_positive("growth", growth)
+    g = validate_positive("growth", DEFAULTS.growth if growth is None else growth)
     if big <= 2.0 * a:
         raise InputError(f"domain_radius must be > 2 * refined_radius = {2 * a!r} m, got {big!r}")
     if h0 > a:
@@ -162,10 +144,11 @@ def _mesh_parameters(
 
 
 def _axis_parameters(
-    smallest_size: float, axis_size: float | None, axis_growth: float
+    smallest_size: float, axis_size: float | None, axis_growth: float | None
 ) -> dict[str, float]:
     size = smallest_size if axis_size is None else validate_positive("axis_size", axis_size, "m")
-    growth = validate_positive("axis_growth", axis_growth)
+    growth = DEFAULTS.axis_growth if axis_growth is None else axis_growth
+    growth = validate_positive("axis_growth", growth)
     if size > smallest_size:
         raise InputError(
             f"axis_size must lie in (0, smallest_size = {smallest_size!r}] m, got {size!r}"
@@ -242,3 +225,68 @@ def _to_skfem(points: np.ndarray, triangles: np.ndarray, lines: dict) -> MeshTri
     if missing:
         raise RuntimeError(f"{geometry_path()} lacks physical groups {sorted(missing)}")
     return mesh
+
+
+MIN_DOMAIN = 100.0
+MAX_DOMAIN = 1e7
+
+
+@dataclass(frozen=True)
+class MeshSettings:
+    """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
+
+    Attributes
+    ----------
+    margin : float
+        Refined (candidate) zone radius / a_g (> 1 keeps the contact edge inside it).
+    size : float
+        Smallest element size on the refined zone / its radius.
+    domain : float
+        Domain radius / refined radius, in [1e2, 1e7]: the clamped far boundary stiffens the
+        force by about 1.87 a/R ~ 1/domain (bench_contact.py (c); 1e-5 at the default 1e5).
+    growth : float
+        Element size growth per unit distance from the refined zone.
+    axis_size : float
+        Element size at the first contact point / refined radius (grading toward the axis
+        resolves the pressure cusp p(0) - p(r) ~ sqrt(r) of n < 2).
+    axis_growth : float
+        Element size growth per unit distance from the first contact point: every contact
+        edge at radius a sees elements of about ``axis_growth * a``.
+    """
+
+    margin: float = 1.25
+    size: float = 1.0 / 150.0
+    domain: float = 1.0e5
+    growth: float = 0.25
+    axis_size: float = 1.0e-6
+    axis_growth: float = 0.1
+
+    def __post_init__(self) -> None:
+        for name in ("margin", "size", "domain", "growth", "axis_size", "axis_growth"):
+            object.__setattr__(self, name, validate_positive(name, getattr(self, name)))
+        if self.margin <= 1.0:
+            raise InputError(f"margin must be > 1, got {self.margin!r}")
+        if not MIN_DOMAIN <= self.domain <= MAX_DOMAIN:
+            raise InputError(
+                f"domain must lie in [{MIN_DOMAIN:g}, {MAX_DOMAIN:g}] refined radii (the "
+                f"clamped far boundary stiffens the contact by about 1/domain; gmsh slows down "
+                f"sharply beyond 1e7), got {self.domain!r}"
+            )
+        for name in ("size", "growth", "axis_size", "axis_growth"):
+            if getattr(self, name) > 1.0:
+                raise InputError(f"{name} must lie in (0, 1], got {getattr(self, name)!r}")
+
+    def build(self, refined_radius: float) -> MeshTri:
+        """The gmsh half-space mesh for a refined (candidate) zone of ``refined_radius`` m."""
+        return halfspace_mesh(
+            refined_radius,
+            domain_radius=self.domain * refined_radius,
+            smallest_size=self.size * refined_radius,
+            growth=self.growth,
+            axis_size=min(self.axis_size, self.size) * refined_radius,
+            axis_growth=self.axis_growth,
+        )
+
+
+DEFAULTS = MeshSettings()
+"""The default mesh: the one place the mesh defaults live."""

@@ -25,8 +25,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import beta as beta_function
 
+from ..validation import InputError, validate_positive
 from .ateb import ateb_pair, ateb_sine
-from .validation import InputError, validate_positive
 
 __all__ = [
     "QUASI_STATIC_VELOCITY_LIMIT",

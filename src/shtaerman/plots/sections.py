@@ -30,14 +30,14 @@ from matplotlib.colors import Colormap, ListedColormap
 from vtkmodules.vtkCommonCore import vtkObject
 from vtkmodules.vtkRenderingCore import vtkBillboardTextActor3D, vtkTextProperty
 
-from .fem.contact import ContactStep
-from .fem.elasticity import ElasticSolution
-from .fem.indentation import IndentationResult
+from ..fem.contact import ContactStep
+from ..fem.elasticity import ElasticSolution
+from ..study.indentation import IndentationResult
+from ..validation import InputError, validate_positive
 from .figures import si_prefix
-from .validation import InputError, validate_positive
 
 if TYPE_CHECKING:
-    from .verification import StudyOutcome
+    from ..study.run import StudyOutcome
 
 __all__ = [
     "FIELDS",
@@ -445,7 +445,7 @@ def _solution(
     for name in names:
         _check_field(name)
     validate_positive("extent", extent)
-    return result.curve.field_solution(_step(result, step))
+    return result.field(step)
 
 
 def plot_field(

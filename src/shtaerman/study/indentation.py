@@ -14,24 +14,23 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike
-from skfem import MeshTri
 
-from ..analytic_contact import PowerLawContact
-from ..impact import solve_impact
-from ..indenter import PowerLawIndenter
-from ..materials import RIGID, Material, effective_modulus
-from ..validation import InputError, validate_increasing, validate_positive
-from .contact import ContactCurve, ContactStep, solve_contact
-from .elasticity import assemble
-from .fit import PowerLawFit, fit_power_law
-from .mesh import halfspace_mesh
+from ..fem.contact import ContactCurve, ContactStep, solve_contact
+from ..fem.elasticity import ElasticSolution, assemble
+from ..fem.fit import PowerLawFit, fit_power_law
+from ..fem.mesh import MeshSettings
+from ..theory.contact import PowerLawContact
+from ..theory.impact import solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material, effective_modulus
+from ..validation import InputError, validate_increasing
 
 __all__ = [
     "IndentationResult",
-    "MeshSettings",
     "default_depths",
     "depths_up_to",
     "run_indentation",
+    "validate_fem_inputs",
 ]
 
 PAPER_MASS = 0.7  # kg, the paper's example
@@ -39,62 +38,6 @@ PAPER_VELOCITY = 3.0  # m/s
 DEFAULT_STEPS = 8
 DEFAULT_RADIUS_SPAN = 3.0
 """The default depths span contact radii a_c/3 .. a_c."""
-MIN_DOMAIN = 100.0
-MAX_DOMAIN = 1e7
-
-
-@dataclass(frozen=True)
-class MeshSettings:
-    """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
-
-    Attributes
-    ----------
-    margin : float
-        Refined (candidate) zone radius / a_g (> 1 keeps the contact edge inside it).
-    size : float
-        Smallest element size on the refined zone / its radius.
-    domain : float
-        Domain radius / refined radius, in [1e2, 1e7]: the clamped far boundary stiffens the
-        force by about 1.87 a/R ~ 1/domain (bench_contact.py (c); 1e-5 at the default 1e5).
-    growth : float
-        Element size growth per unit distance from the refined zone.
-    axis_size : float
-        Element size at the first contact point / refined radius (grading toward the axis
-        resolves the pressure cusp p(0) - p(r) ~ sqrt(r) of n < 2).
-    axis_growth : float
-        Element size growth per unit distance from the first contact point: every contact
-        edge at radius a sees elements of about ``axis_growth * a``.
-    """
-
-    margin: float = 1.25
-    size: float = 1.0 / 150.0
-    domain: float = 1.0e5
-    growth: float = 0.25
-    axis_size: float = 1.0e-6
-    axis_growth: float = 0.1
-
-    def __post_init__(self) -> None:
-        for name in ("margin", "size", "domain", "growth", "axis_size", "axis_growth"):
-            validate_positive(f"mesh {name}", getattr(self, name))
-        if self.margin <= 1.0:
-            raise InputError(f"mesh margin must be > 1, got {self.margin!r}")
-        if not MIN_DOMAIN <= self.domain <= MAX_DOMAIN:
-            raise InputError(
-                f"mesh domain must lie in [{MIN_DOMAIN:g}, {MAX_DOMAIN:g}] refined radii (the "
-                f"clamped far boundary stiffens the contact by about 1/domain; gmsh slows down "
-                f"sharply beyond 1e7), got {self.domain!r}"
-            )
-
-    def build(self, refined_radius: float) -> MeshTri:
-        """The gmsh half-space mesh for a refined (candidate) zone of ``refined_radius`` m."""
-        return halfspace_mesh(
-            refined_radius,
-            domain_radius=self.domain * refined_radius,
-            smallest_size=self.size * refined_radius,
-            growth=self.growth,
-            axis_size=min(self.axis_size, self.size) * refined_radius,
-            axis_growth=self.axis_growth,
-        )
 
 
 def depths_up_to(deepest: float, exponent: float) -> np.ndarray:
@@ -129,6 +72,24 @@ class IndentationResult:
     def steps(self) -> list[ContactStep]:
         """The contact at each depth."""
         return self.curve.steps
+
+    def field(self, index: int = -1) -> ElasticSolution:
+        """Displacements and stresses at step ``index`` (the deepest, computed once, by default).
+
+        Raises
+        ------
+        shtaerman.validation.InputError
+            If there is no such step.
+        """
+        count = len(self.steps)
+        if not -count <= index < count:
+            raise InputError(f"step must lie in [{-count}, {count - 1}], got {index!r}")
+        return self.deepest_field if index in (-1, count - 1) else self.curve.field_solution(index)
+
+    @cached_property
+    def deepest_field(self) -> ElasticSolution:
+        """The fields at the largest depth (VTU export and every field picture share them)."""
+        return self.curve.field_solution(-1)
 
     def step_table(self) -> list[dict[str, float]]:
         """Per depth: FEM and exact force, contact radius, central pressure, and ratios."""
@@ -209,6 +170,17 @@ class IndentationResult:
         }
 
 
+def validate_fem_inputs(indenter: PowerLawIndenter, half_space: Material) -> None:
+    """Raise InputError unless the FEM contact applies: n > 1 and nu2 in [0, 0.5]."""
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
+            f"{indenter.exponent!r}"
+        )
+    if half_space.poisson_ratio < 0:
+        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+
+
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
     return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
 
@@ -239,13 +211,7 @@ def run_indentation(
     -------
     IndentationResult
     """
-    if indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
-            f"{indenter.exponent!r}"
-        )
-    if half_space.poisson_ratio < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    validate_fem_inputs(indenter, half_space)
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = validate_increasing("depths", np.atleast_1d(depths), "m")
     mesh = MeshSettings() if mesh is None else mesh

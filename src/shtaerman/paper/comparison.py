@@ -13,15 +13,15 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import gamma
 
-from .analytic_contact import PowerLawContact, paper_beta_constant, paper_J1, paper_J2
-from .analytic_contact import paper_radius_constant as _radius_constant
-from .ateb import ateb_cosine, ateb_sine
-from .impact import ImpactResult, duration_integral, solve_impact
-from .indenter import PowerLawIndenter
-from .materials import Material, effective_modulus
-from .paper import load_paper_tables, paper_cosine_approximation, paper_sine_approximation
+from ..theory.ateb import ateb_cosine, ateb_sine
+from ..theory.contact import PowerLawContact, paper_beta_constant, paper_J1, paper_J2
+from ..theory.contact import paper_radius_constant as _radius_constant
+from ..theory.impact import ImpactResult, duration_integral, solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material, effective_modulus
+from .printed import load_printed, paper_cosine_approximation, paper_sine_approximation
 
-__all__ = ["ComparedTable", "Comparison", "paper_tables", "tables_text"]
+__all__ = ["ComparedTable", "Comparison", "compare_tables", "tables_text"]
 
 Q = 5.0 / 3.0  # the paper's force exponent
 APPROXIMATION_BOUND = 0.01  # the paper: "error less than one percent"
@@ -249,9 +249,9 @@ def _example_table(example: dict) -> ComparedTable:
     )
 
 
-def paper_tables() -> list[ComparedTable]:
+def compare_tables() -> list[ComparedTable]:
     """Tables 1-6 and the worked example: printed against exact, entry by entry."""
-    data = load_paper_tables()
+    data = load_printed()
     tables, example = data["tables"], data["example"]
     defaults = {k: v["value"] for k, v in example["inputs"].items()}
     return [

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 from scipy.integrate import OdeSolution, quad, solve_ivp
 from scipy.optimize import brentq
 
-from .validation import validate_positive
+from ..validation import validate_positive
 
 __all__ = ["NumericalImpact", "energy_depth", "integrate_impact"]
 

@@ -21,19 +21,65 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..indenter import PowerLawIndenter
-from ..materials import Material
+from ..fem.mesh import MeshSettings
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
 from ..validation import InputError, validate_positive
-from .indentation import MeshSettings, run_indentation
+from .indentation import run_indentation
 
-__all__ = ["MEASURES", "convergence_study", "fitted_order", "observed_orders", "refined_settings"]
+__all__ = [
+    "MEASURES",
+    "ConvergenceStudy",
+    "convergence_study",
+    "fitted_order",
+    "observed_orders",
+    "refined_settings",
+]
 
 MEASURES = ("size", "dofs")
 """Mesh measures h for the orders: ``"size"`` (h ~ size) or ``"dofs"`` (h ~ dofs^-1/2)."""
+
+
+ORDER_KEYS = ("force", "beta", "exponent", "contact_radius", "central_pressure")
+"""Errors whose fitted order a :class:`ConvergenceStudy` reports."""
+
+
+@dataclass(frozen=True)
+class ConvergenceStudy:
+    """A mesh-convergence study: its levels and the fitted order of each error.
+
+    Attributes
+    ----------
+    levels : tuple of dict
+        One per mesh, coarse to fine (see :func:`convergence_study` for the keys).
+    orders : dict of str to float
+        Least-squares order p (error ~ h^p, h ~ size) of each error of :data:`ORDER_KEYS`
+        present in every level; nan where undefined, empty for a single level.
+    """
+
+    levels: tuple[dict, ...]
+    orders: dict[str, float]
+
+    @classmethod
+    def from_levels(cls, levels: Sequence[dict]) -> ConvergenceStudy:
+        """The study of ``levels`` (dicts with "size", "dofs", "errors"), orders fitted."""
+        if not levels:
+            raise InputError("a convergence study needs at least one level")
+        keys = [k for k in ORDER_KEYS if all(k in level["errors"] for level in levels)]
+        orders = {k: fitted_order(levels, k) for k in keys} if len(levels) > 1 else {}
+        return cls(tuple(levels), orders)
+
+    def to_dict(self) -> dict[str, object]:
+        """Plain data for results.json: levels (size, dofs, errors) and fitted orders."""
+        return {
+            "levels": [{k: level[k] for k in ("size", "dofs", "errors")} for level in self.levels],
+            "fitted_orders": self.orders,
+        }
 
 
 def refined_settings(base: MeshSettings, size: float) -> MeshSettings:
@@ -86,7 +132,7 @@ def convergence_study(
     depths: ArrayLike | None = None,
     base: MeshSettings | None = None,
     progress: Callable[[str], None] | None = None,
-) -> list[dict]:
+) -> ConvergenceStudy:
     """Run the indentation test on meshes refined uniformly, one per element size.
 
     Parameters
@@ -111,13 +157,14 @@ def convergence_study(
 
     Returns
     -------
-    list of dict
-        One per size, in the given order, with keys ``"size"`` (float, dimensionless),
-        ``"dofs"`` (int), ``"errors"`` (dict: the largest relative errors over the depths of
-        :meth:`.indentation.IndentationResult.errors`, dimensionless: force, contact_radius,
-        central_pressure, beta, exponent, pressure_profile), ``"timings"`` (dict, seconds:
-        mesh, assembly, factorization, contact, total) and ``"settings"`` (dict: the
-        :class:`.indentation.MeshSettings` fields of the level).
+    ConvergenceStudy
+        Its ``levels``: one dict per size, in the given order, with keys ``"size"``
+        (float, dimensionless), ``"dofs"`` (int), ``"errors"`` (dict: the largest relative
+        errors over the depths of :meth:`.indentation.IndentationResult.errors`,
+        dimensionless: force, contact_radius, central_pressure, beta, exponent,
+        pressure_profile), ``"timings"`` (dict, seconds: mesh, assembly, factorization,
+        contact, total) and ``"settings"`` (dict: the :class:`MeshSettings` fields of the
+        level); and the fitted order of each error.
 
     Raises
     ------
@@ -147,7 +194,7 @@ def convergence_study(
                 f"{row['timings']['total']:.2f} s, force error {errors['force']:.2e}, "
                 f"beta error {errors['beta']:.2e}"
             )
-    return study
+    return ConvergenceStudy.from_levels(study)
 
 
 def _measures(study: Sequence[dict], key: str, measure: str) -> tuple[np.ndarray, np.ndarray]:

@@ -13,10 +13,9 @@ import os
 import platform
 from pathlib import Path
 
-from . import __version__
-from .fem.convergence import fitted_order
-from .output import json_safe
-from .verification import IMPACT_KEYS, StudyOutcome
+from .. import __version__
+from ..study.run import IMPACT_KEYS, StudyOutcome
+from .files import json_safe
 
 __all__ = ["environment", "results_document", "write_html", "write_markdown"]
 
@@ -56,18 +55,7 @@ def environment() -> dict[str, object]:
     }
 
 
-def _convergence_document(rows: list[dict]) -> dict[str, object]:
-    keys = ("force", "beta", "contact_radius", "central_pressure")
-    orders = {key: fitted_order(rows, key) for key in keys} if len(rows) > 1 else {}
-    return {
-        "levels": [{k: row[k] for k in ("size", "dofs", "errors")} for row in rows],
-        "fitted_orders": orders,
-    }
-
-
-def study_document(
-    outcome: StudyOutcome, files: dict[str, str], convergence: list[dict]
-) -> dict[str, object]:
+def study_document(outcome: StudyOutcome, files: dict[str, str]) -> dict[str, object]:
     """One study's entry of results.json."""
     study = outcome.study
     return {
@@ -90,24 +78,20 @@ def study_document(
         "passed": outcome.passed,
         "seconds": outcome.seconds,
         "files": files,
-        **({"convergence": _convergence_document(convergence)} if convergence else {}),
+        **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
     }
 
 
 def results_document(
     outcomes: list[StudyOutcome],
     files: dict[str, dict[str, str]],
-    convergence: dict[str, list[dict]],
     *,
     quick: bool,
 ) -> dict[str, object]:
     """The whole results.json (strict JSON: non-finite numbers are null)."""
     return json_safe(
         {
-            "studies": {
-                o.study.name: study_document(o, files[o.study.name], convergence[o.study.name])
-                for o in outcomes
-            },
+            "studies": {o.study.name: study_document(o, files[o.study.name]) for o in outcomes},
             "passed": all(o.passed for o in outcomes),
             "quick": quick,
             "generated": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),

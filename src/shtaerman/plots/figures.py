@@ -26,15 +26,15 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from .analytic_contact import paper_pressure_eq5
-from .ateb import ateb_cosine, ateb_sine
-from .fem.convergence import fitted_order
-from .fem.indentation import IndentationResult
-from .impact import ImpactHistory, ImpactResult, duration_integral
-from .paper import paper_cosine_approximation, paper_sine_approximation, paper_table
+from ..paper.printed import paper_cosine_approximation, paper_sine_approximation, printed_table
+from ..study.convergence import ConvergenceStudy
+from ..study.indentation import IndentationResult
+from ..theory.ateb import ateb_cosine, ateb_sine
+from ..theory.contact import paper_pressure_eq5
+from ..theory.impact import ImpactHistory, ImpactResult, duration_integral
 
 if TYPE_CHECKING:
-    from .verification import StudyOutcome
+    from ..study.run import StudyOutcome
 
 __all__ = [
     "EXACT_COLOUR",
@@ -477,11 +477,11 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
     s = np.linspace(0.0, integral, 2001)
     if kind == "sine":
         exact = ateb_sine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_sine_approximation(s), paper_table("table1"), "eta"
+        approximation, table, name = paper_sine_approximation(s), printed_table("table1"), "eta"
         symbol, label, number = r"\eta", r"$Sa(5/3, 1, 4\eta/3)$", "Table 1"
     else:
         exact = ateb_cosine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_cosine_approximation(s), paper_table("table2"), "zeta"
+        approximation, table, name = paper_cosine_approximation(s), printed_table("table2"), "zeta"
         symbol, label, number = r"\zeta", r"$Ca(5/3, 1, 4\zeta/3)$", "Table 2"
     top.plot(s, exact, color=EXACT_COLOUR, label="exact")
     top.plot(s, approximation, "--", color=APPROXIMATION_COLOUR, label="paper's approximation")
@@ -559,40 +559,35 @@ def plot_ateb(path: Path | str) -> Path:
 # --- 6. mesh convergence ---------------------------------------------------------------------
 
 
-def _order_note(rows: Sequence[Mapping[str, Any]], key: str) -> str:
-    """ " (order p)" with p the least-squares slope of log(error) against log(h), or ""."""
-    if len(rows) < 2:
-        return ""
-    order = fitted_order(rows, key)
+def _order_note(study: ConvergenceStudy, key: str) -> str:
+    """ " (order p)" with p the study's fitted order of ``key``, or ""."""
+    order = study.orders.get(key, math.nan)
     return f" (order {order:.2f})" if math.isfinite(order) else ""
 
 
 @_styled
 def plot_convergence(
-    rows: Sequence[Mapping[str, Any]], path: Path | str, keys: Sequence[str] = CONVERGENCE_KEYS
+    study: ConvergenceStudy, path: Path | str, keys: Sequence[str] = CONVERGENCE_KEYS
 ) -> Path:
     """Write the relative errors against the number of unknowns (log-log), one line per error.
 
     Parameters
     ----------
-    rows : sequence of mapping
-        One per mesh, as :func:`shtaerman.fem.convergence.convergence_study` returns them:
-        ``{"size": h/R, "dofs": int, "errors": {"force": .., "beta": .., ...}}`` (relative
-        errors, dimensionless; non-positive ones are not drawn).
+    study : shtaerman.study.convergence.ConvergenceStudy
+        Its levels ``{"size": h/R, "dofs": int, "errors": {"force": .., ...}}`` (relative
+        errors, dimensionless; non-positive ones are not drawn) and fitted orders.
     path : path-like
         PNG to write (1280 x 840 pixels).
     keys : sequence of str
-        The errors to draw (those missing from ``rows`` are skipped). The legend gives each
-        one's observed order p, error ~ h^p, fitted over all meshes against the element size
-        (:func:`shtaerman.fem.convergence.fitted_order`).
+        The errors to draw (those missing from the levels are skipped). The legend gives each
+        one's observed order p, error ~ h^p, fitted over all meshes against the element size.
 
     Returns
     -------
     pathlib.Path
         ``path``.
     """
-    if not rows:
-        raise ValueError("rows must hold at least one mesh")
+    rows = study.levels
     figure = Figure(figsize=(WIDTH, 4.2), layout="constrained")
     axes = figure.subplots()
     dofs = np.array([row["dofs"] for row in rows], dtype=float)
@@ -605,7 +600,7 @@ def plot_convergence(
             error[shown],
             marker="osD^vP"[index % 6],
             color=f"C{index}",
-            label=ERROR_LABELS.get(key, key) + _order_note(rows, key),
+            label=ERROR_LABELS.get(key, key) + _order_note(study, key),
         )
     axes.set_xlabel("Unknowns (degrees of freedom)")
     axes.set_ylabel("Relative error")

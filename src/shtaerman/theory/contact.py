@@ -26,8 +26,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import ellipeinc, ellipkinc, gamma, hyp2f1
 
+from ..validation import InputError, validate_positive
 from .indenter import PowerLawIndenter
-from .validation import InputError, validate_positive
 
 __all__ = [
     "PowerLawContact",

@@ -14,13 +14,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .analytic_contact import PowerLawContact
-from .fem.contact_law import FemContactLaw, fem_contact_law
-from .fem.indentation import IndentationResult, depths_up_to, run_indentation
-from .impact import ImpactHistory, ImpactResult, solve_impact
-from .impact_ode import integrate_impact
-from .materials import effective_modulus
-from .studies import Study
+from ..theory.contact import PowerLawContact
+from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ..theory.impact_ode import integrate_impact
+from ..theory.materials import effective_modulus
+from .contact_law import FemContactLaw, fem_contact_law
+from .convergence import ConvergenceStudy, convergence_study
+from .indentation import IndentationResult, depths_up_to, run_indentation
+from .schema import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
 
@@ -70,6 +71,8 @@ class StudyOutcome:
     exact: ImpactResult
     checks: list[Check]
     seconds: float
+    convergence: ConvergenceStudy | None = None
+    """The study's mesh-convergence study, if it asks for one."""
 
     @property
     def passed(self) -> bool:
@@ -175,6 +178,7 @@ def run_study(
         "fem_fitted": fitted.history(HISTORY_POINTS),
         "fem_tabulated": tabulated_history,
     }
+    convergence = _convergence(study, contact, quick, report)
     return StudyOutcome(
         study=study,
         contact=contact,
@@ -184,4 +188,19 @@ def run_study(
         exact=exact,
         checks=_checks(study, contact, impacts),
         seconds=time.perf_counter() - start,
+        convergence=convergence,
+    )
+
+
+def _convergence(
+    study: Study, contact: IndentationResult, quick: bool, report: Progress
+) -> ConvergenceStudy | None:
+    """The study's mesh-convergence levels (the coarsest three in quick mode), or None."""
+    sizes = study.convergence_sizes[:3] if quick else study.convergence_sizes
+    if not sizes:
+        return None
+    report(f"{study.name}: mesh convergence, {len(sizes)} meshes")
+    depths = [step.depth for step in contact.steps]
+    return convergence_study(
+        study.indenter, study.half_space, sizes, depths=depths, base=study.mesh
     )

@@ -13,13 +13,13 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TextIO
 
-from . import fields, figures
-from .fem.convergence import convergence_study
-from .fem.export import write_indentation
-from .output import staged_folder, write_csv
+from ..plots import figures
+from ..plots import sections as fields
+from ..study.run import StudyOutcome, run_study
+from ..study.schema import Study
+from .export import write_indentation
+from .files import staged_folder, write_csv
 from .report import results_document, write_html, write_markdown
-from .studies import Study
-from .verification import StudyOutcome, run_study
 
 __all__ = ["ProgressBar", "run_verification"]
 
@@ -57,29 +57,13 @@ def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, s
     return {path.stem: str(path.relative_to(root)) for path in written}
 
 
-def _study_figures(
-    outcome: StudyOutcome, folder: Path, root: Path, convergence: list[dict]
-) -> dict[str, str]:
+def _study_figures(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
     made = {**fields.study_field_figures(outcome, folder), **figures.study_figures(outcome, folder)}
-    if convergence:
+    if outcome.convergence is not None:
         made["Mesh convergence: errors against the exact solution"] = figures.plot_convergence(
-            convergence, folder / "convergence.png"
+            outcome.convergence, folder / "convergence.png"
         )
     return {title: str(path.relative_to(root)) for title, path in made.items()}
-
-
-def _convergence(
-    study: Study, outcome: StudyOutcome, quick: bool, bar: Callable[[str], None]
-) -> list[dict]:
-    """The study's mesh-convergence levels (the coarsest three in quick mode), or []."""
-    sizes = study.convergence_sizes[:3] if quick else study.convergence_sizes
-    if not sizes:
-        return []
-    bar(f"{study.name}: mesh convergence, {len(sizes)} meshes")
-    depths = [step.depth for step in outcome.contact.steps]
-    return convergence_study(
-        study.indenter, study.half_space, sizes, depths=depths, base=study.mesh
-    )
 
 
 def run_verification(
@@ -94,16 +78,13 @@ def run_verification(
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
     with staged_folder(out) as stage:
-        outcomes, files, pictures, studies_convergence = [], {}, {}, {}
+        outcomes, files, pictures = [], {}, {}
         for study in studies:
             outcome = run_study(study, quick=quick, progress=bar)
             bar(f"{study.name}: files and figures")
             folder = stage / study.name
             files[study.name] = _study_files(outcome, folder, stage)
-            studies_convergence[study.name] = _convergence(study, outcome, quick, bar)
-            pictures[study.name] = _study_figures(
-                outcome, folder, stage, studies_convergence[study.name]
-            )
+            pictures[study.name] = _study_figures(outcome, folder, stage)
             outcomes.append(outcome)
             advance()
             bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
@@ -111,7 +92,7 @@ def run_verification(
             title: str(path.relative_to(stage))
             for title, path in figures.paper_figures(stage).items()
         }
-        results = results_document(outcomes, files, studies_convergence, quick=quick)
+        results = results_document(outcomes, files, quick=quick)
         (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
         write_markdown(results, pictures, stage / "report.md")
         write_html(results, pictures, stage)

@@ -67,7 +67,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import beta, betainc, betaincinv
 
-from .validation import InputError, validate_positive
+from ..validation import InputError, validate_positive
 
 __all__ = ["ateb_cosine", "ateb_half_period", "ateb_pair", "ateb_sine", "quarter_period"]
 

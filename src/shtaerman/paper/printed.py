@@ -4,7 +4,7 @@ Ol'shanskii, Spol'nik, Slipchenko, Znaidiuk (2019), doi:10.15587/1729-4061.2019.
 Tables 1-2 (the Ateb-sine and Ateb-cosine of the impact, with approximations in brackets),
 Table 3 (x(t)/x_c by two procedures), Tables 4-6 (impact characteristics against A, v0, M) and
 the scalars of a worked example.  They are stored once, exactly as printed, in
-``shtaerman/data/paper_tables.json`` (format described in its ``"format"`` field); they are
+``shtaerman/paper/paper_tables.json`` (format described in its ``"format"`` field); they are
 data to compare against: the exact functions are in :mod:`shtaerman.ateb`.
 
 The approximations, with ``I = B(3/8, 1/2) / (8/3) = 1.4459274722...``:
@@ -33,14 +33,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import beta
 
-from .validation import InputError
+from ..validation import InputError
 
 __all__ = [
     "INTEGRAL_I",
-    "load_paper_tables",
+    "load_printed",
     "paper_cosine_approximation",
     "paper_sine_approximation",
-    "paper_table",
+    "printed_table",
 ]
 
 INTEGRAL_I: float = float(beta(3.0 / 8.0, 0.5) * 3.0 / 8.0)
@@ -49,22 +49,22 @@ INTEGRAL_I: float = float(beta(3.0 / 8.0, 0.5) * 3.0 / 8.0)
 _OMEGA = math.sqrt(5.0) / 3.0
 
 
-def load_paper_tables() -> dict[str, Any]:
+def load_printed() -> dict[str, Any]:
     """Read the paper's printed tables and scalars from the package data.
 
     Returns
     -------
     dict
-        The parsed ``shtaerman/data/paper_tables.json``: ``"tables"`` (``"table1"`` ...
+        The parsed ``shtaerman/paper/paper_tables.json``: ``"tables"`` (``"table1"`` ...
         ``"table6"``, each with columns, rows as printed, decimals, corrections, accuracy,
         notes), ``"example"`` (inputs, results, constants with units) and ``"source"``.
         A new dict on every call, so callers may modify it.
     """
-    resource = files("shtaerman") / "data" / "paper_tables.json"
+    resource = files("shtaerman.paper") / "paper_tables.json"
     return json.loads(resource.read_text(encoding="utf-8"))
 
 
-def paper_table(name: str, *, corrected: bool = True) -> dict[str, NDArray[np.float64]]:
+def printed_table(name: str, *, corrected: bool = True) -> dict[str, NDArray[np.float64]]:
     """One printed table as arrays in SI units (printed number / column scale).
 
     Parameters
@@ -80,7 +80,7 @@ def paper_table(name: str, *, corrected: bool = True) -> dict[str, NDArray[np.fl
     dict of str to numpy.ndarray
         Column key (e.g. ``"eta"``, ``"sine"``, ``"P_c"``) to its values in the column's unit.
     """
-    tables = load_paper_tables()["tables"]
+    tables = load_printed()["tables"]
     if name not in tables:
         raise InputError(f"Unknown table '{name}'. Pick one of {sorted(tables)}")
     table = tables[name]

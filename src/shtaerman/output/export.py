@@ -7,9 +7,9 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from ..output import write_csv
-from .elasticity import ElasticSolution
-from .indentation import IndentationResult
+from ..fem.elasticity import ElasticSolution
+from ..study.indentation import IndentationResult
+from .files import write_csv
 
 __all__ = ["FIELD_NAMES", "field_mesh", "write_indentation"]
 
@@ -62,5 +62,5 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
         },
     )
     field_path = folder / "field_max_depth.vtu"
-    meshio.write(field_path, field_mesh(result.curve.field_solution(result.steps[-1])))
+    meshio.write(field_path, field_mesh(result.deepest_field))
     return [curve_path, profiles_path, field_path]

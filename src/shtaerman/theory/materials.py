@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .validation import validate_poisson, validate_positive
+from ..validation import validate_poisson, validate_positive
 
 __all__ = ["RIGID", "Material", "effective_modulus"]
 

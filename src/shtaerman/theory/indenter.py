@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import gammaln
 
-from .validation import validate_positive
+from ..validation import validate_positive
 
 __all__ = ["PowerLawIndenter", "shape_factor"]
 

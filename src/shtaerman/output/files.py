@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .validation import InputError
+from ..validation import InputError
 
 __all__ = ["check_output_folder", "json_safe", "staged_folder", "write_csv"]
 

@@ -1,0 +1,100 @@
+"""The ``shtaerman`` command line: one module per subcommand, ``main(argv=None)``.
+
+Thin: each subcommand parses, calls the library and prints. Bad input gives one line on stderr
+naming the parameter and its valid range, and exit code 2; Ctrl-C and SIGTERM stop with one
+line and exit codes 130 and 143, after every partly written output has been removed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+import warnings
+from collections.abc import Sequence
+
+from .. import __version__
+from ..validation import InputError
+from . import contact, impact, tables, verify
+from .common import Parser, warn
+
+__all__ = ["EXIT_INPUT", "build_parser", "main"]
+
+EXIT_INPUT = 2
+EXIT_INTERRUPTED = 130
+EXIT_TERMINATED = 143
+SUBCOMMANDS = (impact, tables, contact, verify)
+DESCRIPTION = """\
+Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
+striker z = A r^n on an elastic half-space (Ol'shanskii et al. 2019). SI units everywhere.
+
+Run 'shtaerman COMMAND --help' for the options of a command."""
+
+
+class Terminated(BaseException):
+    """SIGTERM, raised like Ctrl-C so that staged outputs are cleaned up on the way out."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``shtaerman`` argument parser with its subcommands."""
+    parser = Parser(prog="shtaerman", description=DESCRIPTION)
+    parser.add_argument("--version", action="version", version=f"shtaerman {__version__}")
+    commands = parser.add_subparsers(
+        dest="command", title="commands", metavar="COMMAND", parser_class=Parser
+    )
+    for module in SUBCOMMANDS:
+        module.register(commands)
+    return parser
+
+
+def _terminate(signum: int, frame: object) -> None:
+    raise Terminated
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help(sys.stderr)
+        return EXIT_INPUT
+    return args.handler(args)
+
+
+def _report(caught: list[warnings.WarningMessage]) -> None:
+    for warning in caught:
+        if not issubclass(warning.category, DeprecationWarning):
+            warn(str(warning.message))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI; returns the exit code (0 success, 1 failed check, 2 bad input)."""
+    previous = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                code = _run(argv)
+            except InputError as error:
+                code = EXIT_INPUT
+                _report(caught)
+                caught.clear()
+                print(f"shtaerman: error: {error}", file=sys.stderr)
+            _report(caught)
+    except KeyboardInterrupt:
+        print("shtaerman: interrupted; nothing partial was kept", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Terminated:
+        print("shtaerman: terminated; nothing partial was kept", file=sys.stderr)
+        return EXIT_TERMINATED
+    except BrokenPipeError:
+        # the reader closed stdout (e.g. '| head'): stop quietly, as Unix tools do
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

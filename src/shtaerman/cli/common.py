@@ -1,0 +1,112 @@
+"""What the subcommands share: the parser class, option groups, input conversion, output."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import sys
+
+from ..output.files import json_safe
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material
+from ..validation import InputError, validate_poisson, validate_positive
+
+__all__ = [
+    "Parser",
+    "add_half_space_options",
+    "add_indenter_options",
+    "half_space",
+    "indenter",
+    "print_json",
+    "striker",
+]
+
+PAPER = {
+    "mass": "0.7",
+    "velocity": "3",
+    "shape_coefficient": "5",
+    "exponent": "1.5",
+    "E1": "2e11",
+    "nu1": "0.25",
+    "E2": "7.5e6",
+    "nu2": "0.5",
+}
+"""The paper's worked example (section 5), the default of every subcommand."""
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Help that shows every default value and keeps the description's line breaks."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        if action.default in (None, False, argparse.SUPPRESS) or "%(default)" in text:
+            return text
+        return f"{text} (default: %(default)s)"
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse that reports a usage error as one line (no usage dump) with exit code 2.
+
+    It also reads ``-2e11`` as a (negative) number, so the range check can name it, rather than
+    as an unknown option.
+    """
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise InputError(message)
+
+
+def add_indenter_options(parser: argparse.ArgumentParser) -> None:
+    """--shape-coefficient and --exponent of the striker profile z = A r^n."""
+    parser.add_argument(
+        "--shape-coefficient",
+        default=PAPER["shape_coefficient"],
+        metavar="A",
+        help="A in z = A r^n, m^(1-n)",
+    )
+    parser.add_argument("--exponent", default=PAPER["exponent"], metavar="N", help="n in z = A r^n")
+
+
+def add_half_space_options(parser: argparse.ArgumentParser) -> None:
+    """--E2 and --nu2 of the half-space (the paper's rubber by default)."""
+    parser.add_argument(
+        "--E2", default=PAPER["E2"], metavar="PA", help="half-space Young's modulus in Pa"
+    )
+    parser.add_argument(
+        "--nu2", default=PAPER["nu2"], metavar="X", help="half-space Poisson's ratio, (-1, 0.5]"
+    )
+
+
+def striker(args: argparse.Namespace) -> Material:
+    """The striker's material from --E1 (a number in Pa, or 'inf' for rigid) and --nu1."""
+    if str(args.E1).strip().lower() in {"inf", "rigid"}:
+        return RIGID
+    return Material(validate_positive("E1", args.E1, "Pa"), validate_poisson("nu1", args.nu1))
+
+
+def half_space(args: argparse.Namespace) -> Material:
+    """The half-space's material from --E2 and --nu2."""
+    return Material(validate_positive("E2", args.E2, "Pa"), validate_poisson("nu2", args.nu2))
+
+
+def indenter(args: argparse.Namespace) -> PowerLawIndenter:
+    """The profile z = A r^n from --shape-coefficient and --exponent."""
+    return PowerLawIndenter(
+        validate_positive("shape-coefficient", args.shape_coefficient, "m^(1-n)"),
+        validate_positive("exponent", args.exponent),
+    )
+
+
+def print_json(document: object) -> None:
+    """Print strict JSON (non-finite numbers as null) on stdout."""
+    print(json.dumps(json_safe(document), indent=2))
+
+
+def warn(message: str) -> None:
+    """One warning line on stderr."""
+    print(f"shtaerman: warning: {message}", file=sys.stderr)

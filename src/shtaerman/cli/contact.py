@@ -1,0 +1,140 @@
+"""``shtaerman contact``: the FEM frictionless contact against Shtaerman's exact solution."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..fem.mesh import DEFAULTS, MeshSettings
+from ..fem.solver import BACKENDS
+from ..output.files import check_output_folder, json_safe, staged_folder
+from ..validation import InputError, validate_increasing
+from .common import add_half_space_options, add_indenter_options, print_json
+from .common import half_space as read_half_space
+from .common import indenter as read_indenter
+
+MESH_OPTIONS = {
+    "mesh_size": ("size", "smallest element size / refined radius"),
+    "mesh_margin": ("margin", "refined radius / largest geometric contact radius, > 1"),
+    "domain_factor": ("domain", "domain radius / refined radius, in [1e2, 1e7]"),
+    "growth": ("growth", "element size growth per unit distance from the refined zone"),
+}
+"""Command-line mesh options: the MeshSettings field each sets, and its meaning."""
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``contact`` subcommand."""
+    p = commands.add_parser(
+        "contact",
+        help="FEM frictionless contact against Shtaerman's solution",
+        description=(
+            "Press a rigid indenter z = A r^n into the FEM half-space (gmsh + scikit-fem, "
+            "Taylor-Hood P2-P1) and compare force, contact radius and central pressure with "
+            "the exact solution. SI units."
+        ),
+    )
+    add_indenter_options(p)
+    add_half_space_options(p)
+    p.add_argument(
+        "--depths",
+        metavar="D1,D2,...",
+        help="depths in m, comma-separated, increasing (default: 8 up to the impact x_c of "
+        "0.7 kg at 3 m/s, contact radii a_c/3 .. a_c)",
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.add_argument("--out", metavar="DIR", help="write VTU fields and CSV curves to DIR")
+    p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    mesh = p.add_argument_group("mesh controls (relative to the largest contact)")
+    for option, (field, meaning) in MESH_OPTIONS.items():
+        mesh.add_argument(
+            "--" + option.replace("_", "-"),
+            default=f"{getattr(DEFAULTS, field):.6g}",
+            metavar="X",
+            help=meaning,
+        )
+    mesh.add_argument("--solver", default="auto", choices=("auto", *BACKENDS), help="sparse solver")
+    p.set_defaults(handler=run)
+
+
+def _depths(text: str | None) -> np.ndarray | None:
+    if text is None:
+        return None
+    return validate_increasing("depths", [item for item in text.split(",") if item.strip()], "m")
+
+
+def mesh_settings(args: argparse.Namespace) -> MeshSettings:
+    """MeshSettings from the mesh options; errors name the option, not the field."""
+    chosen = {field: getattr(args, option) for option, (field, _) in MESH_OPTIONS.items()}
+    for option, (field, _) in MESH_OPTIONS.items():
+        try:
+            MeshSettings(**{field: chosen[field]})
+        except InputError as error:
+            raise InputError(f"{option.replace('_', '-')}: {error}") from None
+    return MeshSettings(**{field: float(value) for field, value in chosen.items()})
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the contact curve and print it (text or JSON); write fields if asked."""
+    from ..output.export import write_indentation
+    from ..study.indentation import run_indentation
+
+    indenter, half_space = read_indenter(args), read_half_space(args)
+    depths, mesh = _depths(args.depths), mesh_settings(args)
+    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
+    result = run_indentation(indenter, half_space, depths, mesh, backend=args.solver)
+    report = result.to_dict()
+    if out is not None:
+        with staged_folder(out) as stage:
+            write_indentation(result, stage)
+            (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
+    if args.json:
+        print_json(report)
+    else:
+        print(contact_text(report))
+    return 0
+
+
+def _exponent_text(report: dict) -> str:
+    if not math.isfinite(report["exponent_fem"]):
+        return "exponent: fitted only from >= 2 depths"
+    return (
+        f"exponent {report['exponent_fem']:.6f} vs {report['exponent_analytic']:.6f} "
+        f"({report['errors']['exponent']:.1e})"
+    )
+
+
+def contact_text(report: dict) -> str:
+    """The contact curve as a readable table (SI units)."""
+    head = (
+        f"FEM contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} on "
+        f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
+    )
+    rows = [
+        head,
+        "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg",
+    ]
+    for step in report["steps"]:
+        errors = [
+            step[k] / step[f"{k}_analytic"] - 1
+            for k in ("force", "contact_radius", "central_pressure")
+        ]
+        rows.append(
+            f"  {step['depth']:.4e}  {step['force']:.5e} {errors[0]:+.1e}  "
+            f"{step['contact_radius']:.4e}  {errors[1]:+.1e}  {step['central_pressure']:.4e} "
+            f"{errors[2]:+.1e}  {step['central_to_mean']:.4f}"
+        )
+    mesh, timings, errors = report["mesh"], report["timings"], report["errors"]
+    rows += [
+        f"  beta (q fixed) {report['beta_fem']:.6e} vs exact {report['beta_analytic']:.6e} "
+        f"({errors['beta']:.1e});  {_exponent_text(report)}",
+        f"  p0/pavg exact {report['central_to_mean_analytic']:.4f};  pressure profile L2 error "
+        f"<= {errors['pressure_profile']:.1e}",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
+        f"{mesh['contact_candidates']} contact candidates; solver {report['solver']}",
+        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
+    ]
+    return "\n".join(rows)

@@ -1,0 +1,142 @@
+"""``shtaerman impact``: the exact quasi-static impact (the paper's example by default)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..output.files import write_csv
+from ..theory.contact import PowerLawContact
+from ..theory.impact import ImpactResult, solve_impact
+from ..theory.impact_ode import integrate_impact
+from ..theory.materials import effective_modulus
+from ..validation import InputError, validate_positive
+from .common import PAPER, add_half_space_options, add_indenter_options, print_json
+from .common import half_space as read_half_space
+from .common import indenter as read_indenter
+from .common import striker as read_striker
+
+MAX_POINTS = 10_000_000
+"""Largest --points (a 10^7-row history is 0.5 GB of CSV)."""
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``impact`` subcommand."""
+    p = commands.add_parser(
+        "impact",
+        help="exact quasi-static impact (the paper's example by default)",
+        description="Exact quasi-static impact M x'' = -beta x^q (Ateb functions), SI units.",
+    )
+    p.add_argument("--mass", default=PAPER["mass"], metavar="KG", help="striker mass M in kg")
+    p.add_argument(
+        "--velocity", default=PAPER["velocity"], metavar="M/S", help="approach velocity v0 in m/s"
+    )
+    add_indenter_options(p)
+    p.add_argument(
+        "--E1", default=PAPER["E1"], metavar="PA", help="striker Young's modulus in Pa, or 'inf'"
+    )
+    p.add_argument("--nu1", default=PAPER["nu1"], metavar="X", help="striker Poisson's ratio")
+    add_half_space_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.add_argument(
+        "--history", metavar="FILE.csv", help="write t,x,P,a,p0 over [0, t_y] (SI units)"
+    )
+    p.add_argument("--points", default="201", help=f"rows of --history, 2 .. {MAX_POINTS}")
+    p.add_argument("--force", action="store_true", help="replace an existing --history file")
+    p.add_argument(
+        "--check", action="store_true", help="also integrate the ODE numerically and compare"
+    )
+    p.set_defaults(handler=run)
+
+
+def _points(value: str) -> int:
+    try:
+        points = int(value)
+    except ValueError:
+        points = 0
+    if not 2 <= points <= MAX_POINTS:
+        raise InputError(f"points must be an integer in [2, {MAX_POINTS}], got {value!r}")
+    return points
+
+
+def history_path(value: str | None, *, force: bool) -> Path | None:
+    """The --history file, checked before any work: a regular file we may create or replace."""
+    if value is None:
+        return None
+    path = Path(value).expanduser()
+    if not path.parent.is_dir():
+        raise InputError(f"history: folder {str(path.parent)!r} does not exist")
+    if path.exists() or path.is_symlink():
+        if not path.is_file() or path.is_symlink():
+            raise InputError(f"history: {str(path)!r} exists and is not a regular file")
+        if not force:
+            raise InputError(f"history: {str(path)!r} exists (use --force to replace it)")
+    return path
+
+
+def run(args: argparse.Namespace) -> int:
+    """Solve the impact and print it (text or JSON); write the history if asked."""
+    mass = validate_positive("mass", args.mass, "kg")
+    velocity = validate_positive("velocity", args.velocity, "m/s")
+    striker, half_space = read_striker(args), read_half_space(args)
+    indenter = read_indenter(args)
+    points, history = _points(args.points), history_path(args.history, force=args.force)
+    law = PowerLawContact(indenter, effective_modulus(striker, half_space))
+    result = solve_impact(mass, velocity, law)
+    report = {**result.maxima(), "force_exponent": result.force_exponent, "modulus": law.modulus}
+    if args.check:
+        report["ode_check"] = _ode_check(result)
+    if history is not None:
+        write_csv(history, result.history(points).columns())
+    if args.json:
+        print_json(report)
+    else:
+        print(_impact_text(result, report))
+    return 0
+
+
+def _ode_check(result: ImpactResult) -> dict[str, float]:
+    numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
+    exact = result.history(2001)
+    x, _ = numerical.sample(exact.t[:-1])
+    return {
+        "x_c": numerical.x_c,
+        "t_c": numerical.t_c,
+        "t_y": numerical.t_y,
+        "rebound_velocity": numerical.rebound_velocity,
+        "max_history_difference": float(np.max(np.abs(x - exact.x[:-1])) / result.x_c),
+    }
+
+
+def _impact_text(result: ImpactResult, report: dict) -> str:
+    law = result.law
+    n, A = law.indenter.exponent, law.indenter.shape_coefficient
+    rows = [
+        f"Quasi-static impact of z = {A:g} r^{n:g} on an elastic half-space (SI units)",
+        f"  mass M                    {result.mass:>14.6g} kg",
+        f"  approach velocity v0      {result.velocity:>14.6g} m/s",
+        f"  combined modulus E*       {law.modulus:>14.6e} Pa",
+        f"  force law P = beta x^q    q = {result.force_exponent:.6g}",
+        f"  beta                      {result.beta:>14.6e} N/m^{result.force_exponent:.4g}",
+        f"  max approach x_c          {result.x_c:>14.6e} m",
+        f"  max force P_c             {result.P_c:>14.6e} N",
+        f"  max contact radius a_c    {result.a_c:>14.6e} m",
+        f"  max central pressure p_c  {result.p_c:>14.6e} Pa",
+        f"  compression time t_c      {result.t_c:>14.6e} s",
+        f"  impact duration t_y       {result.t_y:>14.6e} s",
+        f"  impulse 2 M v0            {result.impulse:>14.6e} N s",
+        f"  impulse, paper eq. (16)   {result.impulse_simpson:>14.6e} N s",
+    ]
+    if not math.isfinite(result.p_c) and n <= 1:
+        rows.append("  (n <= 1: the pressure at the centre of the contact is unbounded)")
+    if "ode_check" in report:
+        check = report["ode_check"]
+        rows.append(
+            f"  ODE cross-check: x_c {check['x_c'] / result.x_c - 1:+.1e}, "
+            f"t_y {check['t_y'] / result.t_y - 1:+.1e}, "
+            f"history max |dx|/x_c {check['max_history_difference']:.1e}"
+        )
+    return "\n".join(rows)

@@ -1,0 +1,69 @@
+"""The package's layers import only downward (data flows one way; DESIGN.md "Layout").
+
+theory -> paper -> fem -> study -> plots -> output -> cli: each layer may import the ones listed
+for it and nothing else. A new upward import fails here, naming the file and the import.
+"""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "src" / "shtaerman"
+BASE = {"validation", "__version__"}
+ALLOWED = {
+    "theory": {"theory"},
+    "paper": {"paper", "theory"},
+    # fem: the FEM alone; the exact contact solution is allowed for comparisons, the impact not
+    "fem": {"fem", "theory.materials", "theory.indenter", "theory.contact"},
+    "study": {"study", "fem", "theory", "paper"},
+    "plots": {"plots", "study", "fem", "theory", "paper"},
+    "output": {"output", "plots", "study", "fem", "theory", "paper"},
+}
+
+
+def _imports(path: Path, root: Path = PACKAGE) -> list[str]:
+    """Absolute shtaerman sub-module names imported by a source file (relative ones resolved)."""
+    package = path.relative_to(root.parent).with_suffix("").parts[:-1]
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = list(package[: len(package) - node.level + 1])
+                module = ".".join(base + ([node.module] if node.module else []))
+            else:
+                module = node.module or ""
+            names = [module] if node.module else [f"{module}.{a.name}" for a in node.names]
+            found += names
+        elif isinstance(node, ast.Import):
+            found += [alias.name for alias in node.names]
+    return [name.removeprefix("shtaerman.") for name in found if name.startswith("shtaerman.")]
+
+
+def _allowed(layer: str, target: str) -> bool:
+    permitted = ALLOWED[layer] | BASE
+    return any(target == p or target.startswith(p + ".") for p in permitted)
+
+
+@pytest.mark.parametrize("layer", sorted(ALLOWED))
+def test_layer_imports_only_downward(layer):
+    files = sorted((PACKAGE / layer).rglob("*.py"))
+    assert files, f"layer {layer} has no modules"
+    upward = [
+        f"{path.relative_to(PACKAGE)} imports shtaerman.{target}"
+        for path in files
+        for target in _imports(path)
+        if not _allowed(layer, target)
+    ]
+    assert upward == []
+
+
+def test_checker_sees_an_upward_import(tmp_path):
+    """The checker itself can fail: an fem module importing the impact model is caught."""
+    probe = tmp_path / "shtaerman" / "fem" / "probe.py"
+    probe.parent.mkdir(parents=True)
+    probe.write_text("from ..theory.impact import solve_impact\nfrom . import mesh\n")
+    targets = _imports(probe, tmp_path / "shtaerman")
+    assert targets == ["theory.impact", "fem.mesh"]
+    assert not _allowed("fem", "theory.impact")
+    assert _allowed("fem", "fem.mesh")
