@@ -29,12 +29,12 @@ import numpy as np
 from scipy.integrate import simpson
 from scipy.interpolate import PchipInterpolator
 
-from shtaerman.analytic_contact import PowerLawContact
 from shtaerman.fem.finite_contact import FINITE_MESH, run_finite_indentation
-from shtaerman.fem.indentation import run_indentation
-from shtaerman.impact_ode import integrate_impact
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
+from shtaerman.study.indentation import run_indentation
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact_ode import integrate_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 
 E2 = 7.5e6
 PAPER = PowerLawIndenter(5.0, 1.5)

@@ -24,9 +24,10 @@ from shtaerman.fem.hyperelastic import (
     kinematics,
     solve_dirichlet,
 )
-from shtaerman.fem.indentation import MeshSettings, run_indentation
-from shtaerman.indenter import PowerLawIndenter
-from shtaerman.materials import Material
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.study.indentation import run_indentation
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
 
 E2 = 7.5e6

@@ -46,9 +46,9 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
-from ..analytic_contact import PowerLawContact
-from ..indenter import PowerLawIndenter
-from ..materials import Material
+from ..theory.contact import PowerLawContact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
 from ..validation import InputError, validate_increasing
 from .contact import EDGE_MARGIN, _contact_radius, central_pressure
 from .hyperelastic import (
@@ -57,7 +57,7 @@ from .hyperelastic import (
     NewtonError,
     assemble_hyperelastic,
 )
-from .indentation import MeshSettings
+from .mesh import MeshSettings
 from .solver import factorize
 
 __all__ = [
