@@ -314,4 +314,5 @@ def test_newton_failure_is_a_clear_error():
     system = assemble_hyperelastic(mesh, NeoHookean(E2, 0.5))
     with pytest.raises(NewtonError, match="did not converge") as error:
         solve_finite_contact(system, indenter, [1e-4], 5e-3, max_iterations=1, max_cuts=1)
+    assert "halved 1 times" in str(error.value) and "depth" in str(error.value)
     assert "\n" not in str(error.value)

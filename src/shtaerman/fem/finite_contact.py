@@ -302,10 +302,7 @@ class _Stepper:
         for iteration in range(1, self.max_iterations + 1):
             state = system.state(x)
             if not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0:
-                raise NewtonError(
-                    f"depth {depth:g} m: an element inverted (J <= 0); the step was cut "
-                    f"{MAX_CUTS} times"
-                )
+                raise NewtonError("an element inverted (J <= 0)")
             _, gap, slope, curvature = self.geometry(x, depth)
             active = lam - self.weight * gap > 0
             lam[~active] = 0.0
@@ -323,16 +320,13 @@ class _Stepper:
             try:
                 du, dlam = _eliminate(self, tangent, residual[self.free], rows, slope, gap)
             except RuntimeError as error:
-                raise NewtonError(f"depth {depth:g} m: singular Newton matrix ({error})") from None
+                raise NewtonError(f"singular Newton matrix ({error})") from None
             x[self.free] += du
             lam[rows] += dlam
             corrections.append(float(np.max(np.abs(du[: self.n_free_u]))) / depth)
             if not np.isfinite(corrections[-1]):
                 break
-        raise NewtonError(
-            f"depth {depth:g} m: Newton did not converge in {self.max_iterations} iterations "
-            f"after {MAX_CUTS} step cuts"
-        )
+        raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
 
 
 def _converged(corrections: list[float], tolerance: float) -> bool:
@@ -466,15 +460,19 @@ def solve_finite_contact(
             guess_x, guess_lam = _predict(history, trial)
             try:
                 x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
-            except NewtonError:
+            except NewtonError as error:
                 cuts += 1
                 if cuts > max_cuts:
-                    raise
+                    raise NewtonError(
+                        f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
+                        f"halved {max_cuts} times: refine the mesh or give more depths"
+                    ) from None
                 increment *= 0.5
                 continue
             total += iterations
             history = [*history[-1:], (trial, x, lam)]
             done = trial
+            cuts = 0  # count consecutive failures only
             increment *= 2.0
             _check_edge(stepper, lam, trial)
         steps.append(_step(stepper, exact, target, x, lam, iterations, total, corrections))
