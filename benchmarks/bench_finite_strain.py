@@ -169,6 +169,11 @@ def mesh_convergence(factors: list[float]) -> None:
         orders = np.log(np.abs(diffs[:-1] / diffs[1:])) / np.log(ratio_t)
         order = orders[-1]
         limit = column[-1] + diffs[-1] / (ratio_t**order - 1)
+        overall = np.polyfit(np.log(factors[1:]), np.log(np.abs(diffs)), 1)[0]
+        print(
+            f"  x/a = {ratio}: least-squares order over all levels {overall:.2f}; default "
+            f"against the finest mesh {column[default] / column[-1] - 1:+.2e}"
+        )
         print(
             f"  x/a = {ratio}: successive differences "
             f"{', '.join(f'{d:+.2e}' for d in diffs)} N; observed orders "
