@@ -316,3 +316,16 @@ def test_newton_failure_is_a_clear_error():
         solve_finite_contact(system, indenter, [1e-4], 5e-3, max_iterations=1, max_cuts=1)
     assert "halved 1 times" in str(error.value) and "depth" in str(error.value)
     assert "\n" not in str(error.value)
+
+
+def test_inverted_element_stops_a_contact_step():
+    from shtaerman.fem.finite_contact import _Stepper
+
+    indenter = PowerLawIndenter(5.0, 1.5)
+    system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
+    stepper = _Stepper(system, indenter, 5e-3, 1e-8, 5)
+    x = np.zeros(system.n_dofs)
+    # push one surface node 10 m down: its elements turn inside out
+    x[stepper.nodes.uz[5]] = -10.0
+    with pytest.raises(NewtonError, match="inverted"):
+        stepper.solve(1e-4, x, np.zeros(stepper.nodes.radius.size))
