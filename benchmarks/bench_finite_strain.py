@@ -81,7 +81,8 @@ def paper_curve() -> None:
     elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu
     print(f"\n(b) the paper's curve, 12 depths to 1.01 x_c, default mesh {curve.mesh_stats}")
     print(
-        f"  time {elapsed:.1f} s ({ {k: round(v, 2) for k, v in curve.timings.items()} }), {load()}"
+        f"  wall time {elapsed:.1f} s ({ {k: round(v, 2) for k, v in curve.timings.items()} }), "
+        f"{load()}; cpu time {cpu:.1f} s (one process: about what an idle machine takes)"
     )
     print("  depth (m)   x/a_lin  P/(beta x^5/3)  a/a_lin  p0/p_avg  p0/p0_lin  energy (J)  Newton")
     for s in curve.steps:
