@@ -66,10 +66,14 @@ def test_linear_json_gains_model_and_strain_energy(capsys):
         assert step["strain_energy"] == pytest.approx(exact_energy(step["depth"]), rel=5e-4)
 
 
-def test_neo_hookean_text(capsys):
-    code, out, _ = run(capsys, "contact", "--model", "neo-hookean", "--depths", "1e-3", *COARSE)
+def test_neo_hookean_text_and_out(capsys, tmp_path):
+    folder = tmp_path / "run"
+    argv = ["contact", "--model", "neo-hookean", "--depths", "1e-3", "--out", str(folder)]
+    code, out, _ = run(capsys, *argv, *COARSE)
     assert code == 0
     assert "Neo-Hookean contact" in out and "energy (J)" in out and "Newton" in out
+    saved = json.loads((folder / "contact.json").read_text())
+    assert saved["model"] == "neo-hookean" and saved["steps"][0]["strain_energy"] > 0
 
 
 @pytest.mark.parametrize(
