@@ -218,9 +218,9 @@ def test_inverted_element_is_a_clear_error():
     assert "\n" not in str(error.value)
 
 
-def test_kinematics_of_a_rigid_rotation_is_stress_free():
-    # rotation in the r-z plane has no meaning axisymmetrically; a pure translation u_z = c
-    # and the identity are the rigid motions: zero stress, zero energy density
+def test_reference_state_is_stress_free():
+    # the axisymmetric rigid motions (identity, translation u_z = c) have zero gradient and
+    # u_r = 0: F = I, so 2 F - 2/3 I1 Jg = 0 exactly in floating point, and Psi = 0
     grad = np.zeros((2, 2, 1, 3))
     state = kinematics(NeoHookean(E2, 0.4), grad, np.zeros((1, 3)), np.ones((1, 3)), 0 * grad[0, 0])
     assert np.max(np.abs(state.stress)) <= 1e-9 and np.max(np.abs(state.energy_density)) == 0.0
