@@ -49,6 +49,7 @@ import scipy.sparse as sp
 from skfem import (
     Basis,
     BilinearForm,
+    DiscreteField,
     ElementTriP1,
     ElementTriP2,
     ElementVector,
@@ -108,8 +109,8 @@ class NeoHookean:
         return 3.0 * (1.0 - 2.0 * self.poisson_ratio) / self.youngs_modulus
 
 
-def variation(v, radius):
-    """dF(v) = (dv_r/dR, dv_r/dZ, dv_z/dR, dv_z/dZ, v_r/R) of a vector field v."""
+def variation(v: DiscreteField, radius: np.ndarray) -> tuple[np.ndarray, ...]:
+    """dF(v) = (dv_r/dR, dv_r/dZ, dv_z/dR, dv_z/dZ, v_r/R) of a vector field v (R in m)."""
     return (v.grad[0, 0], v.grad[0, 1], v.grad[1, 0], v.grad[1, 1], v[0] / radius)
 
 
