@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 from pathlib import Path
 
 import numpy as np
 
+from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS, MeshSettings
 from ..fem.solver import BACKENDS
 from ..output.files import check_output_folder, json_safe, staged_folder
@@ -16,6 +18,9 @@ from ..validation import InputError, validate_increasing, validate_positive
 from .common import add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
+
+MODELS = ("linear", "neo-hookean")
+"""Material models of ``--model``: the first is the default."""
 
 MESH_OPTIONS = {
     "mesh_size": ("size", "smallest element size / refined radius"),
@@ -39,6 +44,14 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     add_indenter_options(p)
     add_half_space_options(p)
+    p.add_argument(
+        "--model",
+        default="linear",
+        choices=MODELS,
+        help="linear elasticity (Shtaerman's setting) or a neo-Hookean solid at finite strain "
+        "with the same E2, nu2 at small strain (total Lagrangian, contact in the current "
+        "configuration; any depth ladder, load stepping is internal)",
+    )
     p.add_argument(
         "--depths",
         metavar="D1,D2,...",
@@ -73,9 +86,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     for option, (field, meaning) in MESH_OPTIONS.items():
         mesh.add_argument(
             "--" + option.replace("_", "-"),
-            default=f"{getattr(DEFAULTS, field):.6g}",
             metavar="X",
-            help=meaning,
+            help=f"{meaning} (default: {getattr(DEFAULTS, field):.6g} linear, "
+            f"{getattr(FINITE_MESH, field):.6g} neo-hookean)",
         )
     mesh.add_argument("--solver", default="auto", choices=("auto", *BACKENDS), help="sparse solver")
     p.set_defaults(handler=run)
@@ -87,15 +100,21 @@ def _depths(text: str | None) -> np.ndarray | None:
     return validate_increasing("depths", [item for item in text.split(",") if item.strip()], "m")
 
 
-def mesh_settings(args: argparse.Namespace) -> MeshSettings:
-    """MeshSettings from the mesh options; errors name the option, not the field."""
-    chosen = {field: getattr(args, option) for option, (field, _) in MESH_OPTIONS.items()}
+def mesh_settings(args: argparse.Namespace, base: MeshSettings = DEFAULTS) -> MeshSettings:
+    """MeshSettings from the mesh options over ``base``; errors name the option, not the field."""
+    chosen = {
+        field: getattr(args, option)
+        for option, (field, _) in MESH_OPTIONS.items()
+        if getattr(args, option) is not None
+    }
     for option, (field, _) in MESH_OPTIONS.items():
+        if field not in chosen:
+            continue
         try:
             MeshSettings(**{field: chosen[field]})
         except InputError as error:
             raise InputError(f"{option.replace('_', '-')}: {error}") from None
-    return MeshSettings(**{field: float(value) for field, value in chosen.items()})
+    return dataclasses.replace(base, **{field: float(value) for field, value in chosen.items()})
 
 
 def run(args: argparse.Namespace) -> int:
@@ -104,6 +123,8 @@ def run(args: argparse.Namespace) -> int:
     from ..study.accuracy import run_ladder, run_to_accuracy
 
     indenter, half_space = read_indenter(args), read_half_space(args)
+    if args.model == "neo-hookean":
+        return _run_finite(args, indenter, half_space)
     depths, mesh = _depths(args.depths), mesh_settings(args)
     refine = validate_positive("refine", args.refine)
     tolerance = None if args.accuracy is None else validate_positive("accuracy", args.accuracy)
@@ -132,6 +153,55 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(contact_text(report))
     return 0
+
+
+def _run_finite(args: argparse.Namespace, indenter, half_space) -> int:
+    """``--model neo-hookean``: the finite-strain curve (contact.json only with --out)."""
+    from ..study.finite_indentation import run_finite_study
+
+    depths, mesh = _depths(args.depths), mesh_settings(args, FINITE_MESH)
+    if args.solver == "pardiso":
+        raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'")
+    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
+    report = run_finite_study(indenter, half_space, depths, mesh).to_dict()
+    if out is not None:
+        with staged_folder(out) as stage:
+            (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
+    if args.json:
+        print_json(report)
+    else:
+        print(finite_contact_text(report))
+    return 0
+
+
+def finite_contact_text(report: dict) -> str:
+    """The finite-strain contact curve beside the linear exact values (SI units)."""
+    rows = [
+        f"Neo-Hookean contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} "
+        f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
+        "Shtaerman's linear solution)",
+        "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
+        "  energy (J)  Newton",
+    ]
+    for step in report["steps"]:
+        ratios = [
+            step[k] / step[f"{k}_analytic"] for k in ("force", "contact_radius", "central_pressure")
+        ]
+        rows.append(
+            f"  {step['depth']:.4e}  {step['force']:.5e} {ratios[0]:.4f}  "
+            f"{step['contact_radius']:.4e}  {ratios[1]:.4f}  {step['central_pressure']:.4e} "
+            f"{ratios[2]:.4f}  {step['central_to_mean']:.4f}   {step['strain_energy']:.4e}  "
+            f"{step['newton_iterations']}"
+        )
+    mesh, timings = report["mesh"], report["timings"]
+    rows += [
+        f"  beta (q fixed) {report['beta_fem']:.6e} vs linear {report['beta_analytic']:.6e};  "
+        f"exponent {report['exponent_fem']:.6f} vs linear {report['exponent_analytic']:.6f}",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
+        f"{mesh['contact_candidates']} contact candidates",
+        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
+    ]
+    return "\n".join(rows)
 
 
 def _exponent_text(report: dict) -> str:

@@ -106,6 +106,7 @@ class IndentationResult:
                     "force": step.force,
                     "contact_radius": step.contact_radius,
                     "central_pressure": step.central_pressure,
+                    "strain_energy": self.strain_energy(step),
                     "force_analytic": exact["force"],
                     "contact_radius_analytic": exact["contact_radius"],
                     "central_pressure_analytic": exact["central_pressure"],
@@ -115,6 +116,16 @@ class IndentationResult:
                 }
             )
         return rows
+
+    def strain_energy(self, step: ContactStep) -> float:
+        """Stored energy in J: W = 1/2 u . f = 1/2 sum F_i (d - f(r_i)).
+
+        At a loaded node the surface sits on the indenter, u_z = f(r_i) - d, under the
+        downward force F_i; elsewhere F_i = 0.
+        """
+        r = self.curve.compliance.r
+        lift = step.depth - np.asarray(self.indenter.profile(r), dtype=float)
+        return float(0.5 * np.sum(step.nodal_forces * lift))
 
     def _exact(self, depth: float) -> dict[str, float]:
         return {
@@ -151,6 +162,7 @@ class IndentationResult:
     def to_dict(self) -> dict[str, object]:
         """The JSON of ``shtaerman contact --json`` (DESIGN.md interface contract)."""
         return {
+            "model": "linear",
             "shape_coefficient": self.indenter.shape_coefficient,
             "exponent": self.indenter.exponent,
             "E2": self.half_space.youngs_modulus,

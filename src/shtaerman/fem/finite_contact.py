@@ -1,0 +1,604 @@
+"""Frictionless contact of a rigid power-law indenter with a neo-Hookean half-space, finite strain.
+
+The indenter surface z = f(r) - d, f(r) = A r^n, is placed in the *current* configuration: a
+candidate surface node (reference radius R_i on Z = 0, displacement (u_r, u_z)) sits at
+(R_i + u_r, u_z), and must stay below the surface. The gap is the *vertical* distance
+
+    g_i(u) = f(R_i + u_{r,i}) - d - u_{z,i} >= 0,
+
+(the nodes slide: f is evaluated at the current radius). Why vertical and not normal: the
+indenter is a graph over r, so g_i >= 0 defines exactly the same admissible set as the normal
+distance; g is explicit (no closest-point projection), smooth wherever f is, and dg/dd = -1, so
+the multipliers lambda_i >= 0 sum to the indenter force P = sum lambda_i and the discrete
+energy identity dPi/dd = P holds exactly (the tests and the benchmark check Int P dd = Pi).
+The reaction on node i is lambda_i grad g_i = lambda_i (f'(r_i), -1): normal to the indenter
+surface, so the contact is frictionless and the problem conservative (Pi - lambda . g is a
+Lagrangian); lambda_i is the vertical component of the nodal contact force.
+
+Newton: a semi-smooth (primal-dual active-set) Newton on the KKT system
+
+    dPi/dx - G^T lambda = 0,   lambda_i - max(0, lambda_i - c g_i) = 0,
+
+with the consistent tangent d2Pi/dx2 - sum lambda_i d2g_i/du_r^2 (f'' at the current radius)
+and, on the active set A, the linearized constraints -G_A dx = g_A, solved together as one
+sparse symmetric saddle-point system [[K, -G_A^T], [-G_A, 0]]. Converged when the active set
+repeats and the displacement correction is below ``tolerance * depth``: complementarity then
+holds exactly (lambda = 0 off A, g = 0 on A up to the Newton tolerance, lambda > 0 on A,
+g >= 0 off A). Depth stepping: from the last converged state to each requested depth, with a
+linear predictor; a step that fails (no convergence, an inverted element J <= 0) is halved, up
+to ``max_cuts`` times, then a :class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
+
+Post-processing per depth: the force P = sum lambda; the pressure recovered from the vertical
+nodal forces with the P2 surface matrix of the *current* surface, projected on the r-axis
+(for frictionless contact on a graph, vertical force per projected area is exactly the Cauchy
+normal pressure); p(0) extrapolated to the axis as in the linear code
+(:func:`.contact.central_pressure`); the contact radius r = R + u_r located between nodes from
+the gap (:func:`.contact._contact_radius`); the stored energy Pi.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike
+
+from ..theory.contact import PowerLawContact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from ..validation import InputError, validate_increasing
+from .contact import EDGE_MARGIN, _contact_radius, central_pressure
+from .hyperelastic import (
+    HyperelasticSystem,
+    NeoHookean,
+    NewtonError,
+    assemble_hyperelastic,
+)
+from .mesh import MeshSettings
+from .solver import factorize
+
+__all__ = [
+    "FINITE_MESH",
+    "ContactOutgrowsMeshError",
+    "FiniteContactCurve",
+    "FiniteContactStep",
+    "run_finite_indentation",
+    "solve_finite_contact",
+]
+
+FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
+"""Default mesh for the finite-strain contact (coarser than the linear default: every Newton
+iteration assembles and factorizes). The paper's case, 14k dofs: force within ~3e-4 of the
+finest mesh (t = 1/2, 53k dofs) at x/a = 0.5 and 0.9, the whole size field refined by sqrt(2)
+per level, observed order ~2 until the differences reach a ~2e-4 noise floor (non-nested gmsh
+meshes, contact zone growing node by node); the paper's 12-depth curve costs ~20 s of CPU time
+(benchmarks/bench_finite_strain.py (b), (d))."""
+
+NEWTON_TOLERANCE = 1e-8
+"""Converged when the active set repeats and the last correction max |du| <= this * depth:
+at Newton's quadratic rate the error left is then ~1e-16 depth. Below ``ROUND_OFF_FLOOR`` a
+correction that no longer shrinks (ratio > 1/2) is round-off and counts as converged too (the
+stiffness spans ~1e17 from the axis elements to the far arc: the floor is ~2e-10 depth)."""
+ROUND_OFF_FLOOR = 1e-6
+MAX_ITERATIONS = 30
+MAX_CUTS = 8
+_GAUSS = np.polynomial.legendre.leggauss(4)
+
+
+class ContactOutgrowsMeshError(InputError):
+    """The contact zone reached the edge of the candidate (refined) region."""
+
+
+@dataclass(frozen=True)
+class FiniteContactStep:
+    """Converged finite-strain contact at one depth (SI units).
+
+    Attributes
+    ----------
+    depth : float
+        Indenter depth d in m.
+    force : float
+        Total indenter force P = sum lambda in N.
+    contact_radius : float
+        Contact radius in the current configuration in m.
+    central_pressure : float
+        Cauchy contact pressure at the axis in Pa (compression positive).
+    strain_energy : float
+        Stored strain energy Pi of the whole body in J.
+    newton_iterations : int
+        Newton iterations of the last sub-step that reached this depth (all sub-steps: see
+        ``total_iterations``).
+    total_iterations : int
+        Newton iterations over all sub-steps since the previous depth.
+    force_linear, contact_radius_linear, central_pressure_linear : float
+        Shtaerman's exact linear values at the same depth (N, m, Pa).
+    solution : numpy.ndarray
+        Converged x = [u (m), p (Pa)] (see :class:`.hyperelastic.HyperelasticSystem`).
+    multipliers : numpy.ndarray
+        lambda >= 0 (N) on the candidate nodes.
+    gap : numpy.ndarray
+        Vertical gap g >= 0 (m) on the candidate nodes.
+    current_radius : numpy.ndarray
+        R + u_r (m) of the candidate nodes.
+    surface_u_z : numpy.ndarray
+        u_z (m) of the candidate nodes: the gap is f(current_radius) - depth - surface_u_z.
+    pressure : numpy.ndarray
+        Recovered contact pressure (Pa) at the candidate nodes.
+    corrections : list of float
+        max |du| / depth of each Newton iteration of the last sub-step.
+    """
+
+    depth: float
+    force: float
+    contact_radius: float
+    central_pressure: float
+    strain_energy: float
+    newton_iterations: int
+    total_iterations: int
+    force_linear: float
+    contact_radius_linear: float
+    central_pressure_linear: float
+    solution: np.ndarray = field(repr=False)
+    multipliers: np.ndarray = field(repr=False)
+    gap: np.ndarray = field(repr=False)
+    current_radius: np.ndarray = field(repr=False)
+    surface_u_z: np.ndarray = field(repr=False)
+    pressure: np.ndarray = field(repr=False)
+    corrections: list[float] = field(repr=False)
+
+    @property
+    def mean_pressure(self) -> float:
+        """P / (pi a^2) in Pa (a in the current configuration)."""
+        return self.force / (np.pi * self.contact_radius**2)
+
+
+@dataclass(frozen=True, eq=False)
+class _Candidates:
+    """Surface nodes that may touch: u_z and u_r dofs, reference radii, sorted by R."""
+
+    uz: np.ndarray
+    ur: np.ndarray
+    radius: np.ndarray
+    ur_free: np.ndarray  # False on the axis (u_r clamped)
+
+
+def _candidates(system: HyperelasticSystem, radius: float, fixed: np.ndarray) -> _Candidates:
+    ubasis = system.displacement_basis
+    partner = np.full(ubasis.N, -1, dtype=np.int64)
+    partner[ubasis.nodal_dofs[1]] = ubasis.nodal_dofs[0]
+    partner[ubasis.facet_dofs[1]] = ubasis.facet_dofs[0]
+    uz = ubasis.get_dofs("surface").all("u^2")
+    uz = np.setdiff1d(uz, ubasis.get_dofs("far").all())
+    r = ubasis.doflocs[0, uz]
+    keep = r <= radius * (1 + 1e-12)
+    uz, r = uz[keep], r[keep]
+    order = np.argsort(r)
+    uz, r = uz[order], r[order]
+    if r.size % 2 == 0 or r[0] != 0.0:
+        raise InputError(
+            "candidate_radius must fall on a surface vertex of the mesh (the refined radius)"
+        )
+    ur = partner[uz]
+    return _Candidates(uz, ur, r, ~np.isin(ur, fixed))
+
+
+def _clamped(system: HyperelasticSystem) -> np.ndarray:
+    ubasis = system.displacement_basis
+    axis = ubasis.get_dofs("axis").all("u^1")
+    far = ubasis.get_dofs("far").all()
+    return np.union1d(axis, far).astype(np.int64)
+
+
+def _surface_mass(x: np.ndarray) -> np.ndarray:
+    """P2 matrix int N_i N_j 2 pi r dr on the current radii x (edges = consecutive triples)."""
+    points, weights = _GAUSS
+    xi = 0.5 * (points + 1.0)
+    weights = 0.5 * weights
+    shapes = np.array([(1 - xi) * (1 - 2 * xi), 4 * xi * (1 - xi), xi * (2 * xi - 1)])
+    slopes = np.array([4 * xi - 3, 4 - 8 * xi, 4 * xi - 1])
+    mass = np.zeros((x.size, x.size))
+    for k in range(0, x.size - 2, 2):
+        nodes = x[k : k + 3]
+        position, jacobian = nodes @ shapes, nodes @ slopes
+        weight = weights * 2 * np.pi * position * jacobian
+        mass[k : k + 3, k : k + 3] += (shapes * weight) @ shapes.T
+    return mass
+
+
+def _recover_pressure(x: np.ndarray, forces: np.ndarray) -> np.ndarray:
+    """Nodal pressure p (Pa) with M p = F (M banded: a sparse solve)."""
+    return spla.spsolve(sp.csc_matrix(_surface_mass(x)), forces)
+
+
+@dataclass(frozen=True, eq=False)
+class FiniteContactCurve:
+    """Finite-strain contact over a depth ladder, and what it cost.
+
+    Attributes
+    ----------
+    steps : list of FiniteContactStep
+        One per requested depth, ascending.
+    system : HyperelasticSystem
+    indenter : PowerLawIndenter
+    timings : dict of str to float
+        Seconds: ``contact`` (all Newton steps), and after :func:`run_finite_indentation`
+        also ``mesh``, ``assembly`` and ``total``.
+    mesh_stats : dict
+        ``nodes``, ``elements``, ``dofs``, ``contact_candidates`` ...
+    """
+
+    steps: list[FiniteContactStep]
+    system: HyperelasticSystem
+    indenter: PowerLawIndenter
+    timings: dict[str, float]
+    mesh_stats: dict[str, float] = field(default_factory=dict)
+
+    def fields(self, step: FiniteContactStep) -> dict[str, np.ndarray]:
+        """Vertex fields of the deformed state of ``step`` for export (SI).
+
+        Keys ``r``, ``z`` (reference vertex coordinates, m), ``u_r``, ``u_z`` (m),
+        ``mean_pressure`` (the P1 pressure unknown, Pa), ``sigma_rr``, ``sigma_tt``,
+        ``sigma_zz``, ``sigma_rz``, ``von_mises`` (Cauchy, Pa, tension positive).
+        """
+        system = self.system
+        u_r, u_z = system.vertex_displacement(step.solution)
+        _, p = system.split(step.solution)
+        return {
+            "r": system.mesh.p[0],
+            "z": system.mesh.p[1],
+            "u_r": u_r,
+            "u_z": u_z,
+            "mean_pressure": p[system.pressure_basis.nodal_dofs[0]],
+            **system.cauchy_stress(step.solution),
+        }
+
+
+class _Stepper:
+    """Newton with active set for one depth increment; state kept between increments."""
+
+    def __init__(
+        self,
+        system: HyperelasticSystem,
+        indenter: PowerLawIndenter,
+        candidate_radius: float,
+        tolerance: float,
+        max_iterations: int,
+    ) -> None:
+        self.system = system
+        self.indenter = indenter
+        self.fixed = _clamped(system)
+        self.free = np.setdiff1d(np.arange(system.n_dofs), self.fixed)
+        self.position = np.full(system.n_dofs, -1, dtype=np.int64)
+        self.position[self.free] = np.arange(self.free.size)
+        self.nodes = _candidates(system, candidate_radius, self.fixed)
+        self.n_free_u = int(np.searchsorted(self.free, system.n_displacement))
+        self.tolerance = tolerance
+        self.max_iterations = max_iterations
+        material = system.material
+        # complementarity weight c (N/m): lambda_i and c g_i of comparable size
+        self.weight = material.shear_modulus * candidate_radius / self.nodes.radius.size
+
+    def geometry(self, x: np.ndarray, depth: float) -> tuple[np.ndarray, ...]:
+        """Current radii, gap g, f'(r) and f''(r) at the candidates."""
+        A, n = self.indenter.shape_coefficient, self.indenter.exponent
+        r = self.nodes.radius + x[self.nodes.ur]
+        if np.any(r[1:] <= 0) or np.any(np.diff(r) <= 0):
+            raise NewtonError("the contact surface folded (candidate nodes crossed)")
+        r = np.maximum(r, 0.0)
+        gap = A * r**n - depth - x[self.nodes.uz]
+        slope = n * A * r ** (n - 1.0)
+        curvature = np.zeros_like(r)
+        inside = r > 0  # the axis node's u_r is clamped: its curvature never enters
+        curvature[inside] = n * (n - 1.0) * A * r[inside] ** (n - 2.0)
+        return r, gap, slope, curvature
+
+    def solve(
+        self, depth: float, x: np.ndarray, lam: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+        """Newton from (x, lambda) at ``depth``; raises NewtonError on failure."""
+        system, nodes = self.system, self.nodes
+        x, lam = x.copy(), lam.copy()
+        previous = None
+        corrections: list[float] = []
+        for iteration in range(1, self.max_iterations + 1):
+            state = system.state(x)
+            if not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0:
+                raise NewtonError("an element inverted (J <= 0)")
+            _, gap, slope, curvature = self.geometry(x, depth)
+            active = lam - self.weight * gap > 0
+            lam[~active] = 0.0
+            if previous is not None and np.array_equal(active, previous):
+                if _converged(corrections, self.tolerance):
+                    return x, lam, iteration - 1, corrections
+            previous = active
+            residual = system.residual(x, state)
+            np.subtract.at(residual, nodes.ur, lam * slope)
+            np.add.at(residual, nodes.uz, lam)
+            tangent = system.tangent(x, state)
+            hessian = sp.coo_matrix((-lam * curvature, (nodes.ur, nodes.ur)), shape=tangent.shape)
+            tangent = (tangent + hessian).tocsr()[self.free][:, self.free]
+            rows = np.flatnonzero(active)
+            try:
+                du, dlam = _eliminate(self, tangent, residual[self.free], rows, slope, gap)
+            except RuntimeError as error:
+                raise NewtonError(f"singular Newton matrix ({error})") from None
+            x[self.free] += du
+            lam[rows] += dlam
+            corrections.append(float(np.max(np.abs(du[: self.n_free_u]))) / depth)
+            if not np.isfinite(corrections[-1]):
+                break
+        raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
+
+
+def _converged(corrections: list[float], tolerance: float) -> bool:
+    last = corrections[-1]
+    if last <= tolerance:
+        return True
+    stalled = len(corrections) > 1 and last > 0.5 * corrections[-2]
+    return last <= ROUND_OFF_FLOOR and stalled
+
+
+def _eliminate(
+    stepper: _Stepper,
+    tangent: sp.csr_matrix,
+    residual: np.ndarray,
+    rows: np.ndarray,
+    slope: np.ndarray,
+    gap: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Newton step of the saddle system [[K, -G_A^T], [-G_A, 0]] by eliminating the constraints.
+
+    The linearized constraint of active node i, -G_i du = g_i, fixes its u_z increment:
+    du_z = f'(r_i) du_r + g_i. With du = T y + c the step solves T^T K T y = -T^T (R + K c), a
+    matrix with the stiffness' pattern and scale (the saddle form fills 5x more in SuperLU);
+    the multiplier increment follows from the u_z row: dlam_i = -(R + K du)_{u_z,i}.
+    """
+    nodes, position = stepper.nodes, stepper.position
+    n = stepper.free.size
+    slaves = position[nodes.uz[rows]]
+    masters_ok = nodes.ur_free[rows]
+    keep = np.ones(n, dtype=bool)
+    keep[slaves] = False
+    kept = np.flatnonzero(keep)
+    column = np.full(n, -1, dtype=np.int64)
+    column[kept] = np.arange(kept.size)
+    transform = sp.coo_matrix(
+        (
+            np.concatenate([np.ones(kept.size), slope[rows][masters_ok]]),
+            (
+                np.concatenate([kept, slaves[masters_ok]]),
+                np.concatenate(
+                    [np.arange(kept.size), column[position[nodes.ur[rows][masters_ok]]]]
+                ),
+            ),
+        ),
+        shape=(n, kept.size),
+    ).tocsr()
+    shift = np.zeros(n)
+    shift[slaves] = gap[rows]
+    reduced = (transform.T @ tangent @ transform).tocsc()
+    rhs = -(transform.T @ (residual + tangent @ shift))
+    du = transform @ _scaled_solve(reduced, rhs) + shift
+    dlam = -(residual + tangent @ du)[slaves]
+    return du, dlam
+
+
+def _scaled_solve(matrix: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
+    """Solve with symmetric row-max scaling S A S (S = diag(max_j |A_ij|)^(-1/2)).
+
+    The stiffness spans ~1e17 between the graded axis elements and the far arc (2 pi R dA),
+    while the constraint rows are O(1): unscaled, SuperLU's diagonal pivots fail.
+    """
+    scale = 1.0 / np.sqrt(abs(matrix).max(axis=1).toarray().ravel())
+    diagonal = sp.diags(scale)
+    scaled = (diagonal @ matrix @ diagonal).tocsc()
+    return scale * factorize(scaled).solve(scale * rhs)
+
+
+def solve_finite_contact(
+    system: HyperelasticSystem,
+    indenter: PowerLawIndenter,
+    depths: ArrayLike,
+    candidate_radius: float,
+    *,
+    tolerance: float = NEWTON_TOLERANCE,
+    max_iterations: int = MAX_ITERATIONS,
+    max_cuts: int = MAX_CUTS,
+) -> FiniteContactCurve:
+    """Press a rigid power-law indenter into the neo-Hookean half-space to each depth.
+
+    Parameters
+    ----------
+    system : HyperelasticSystem
+        On a half-space mesh (boundaries "axis", "surface", "far"; u_r clamped on the axis,
+        everything on the far arc).
+    indenter : PowerLawIndenter
+        z = A r^n with n > 1.
+    depths : array_like
+        Depths in m, positive and strictly increasing; any ladder (sub-steps are internal).
+    candidate_radius : float
+        Surface nodes with reference R <= this (m, a mesh vertex: the refined radius) may touch.
+    tolerance : float
+        Newton tolerance on max |du| / depth.
+    max_iterations : int
+        Newton iterations per sub-step before the step is cut.
+    max_cuts : int
+        Halvings of a failing sub-step before giving up.
+
+    Returns
+    -------
+    FiniteContactCurve
+
+    Raises
+    ------
+    NewtonError
+        A sub-step failed ``max_cuts`` times (no convergence, or an inverted element).
+    ContactOutgrowsMeshError
+        The contact zone reached the edge of the candidate region.
+    """
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
+        )
+    depths = validate_increasing("depths", np.atleast_1d(depths), "m")
+    start = time.perf_counter()
+    stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
+    material = system.material
+    exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
+    x = np.zeros(system.n_dofs)
+    lam = np.zeros(stepper.nodes.radius.size)
+    history = [(0.0, x, lam)]
+    steps = []
+    for target in depths:
+        done = history[-1][0]
+        increment = target - done
+        total = 0
+        cuts = 0
+        while done < target:
+            trial = min(done + increment, target)
+            if target - trial < 1e-9 * target:
+                trial = target
+            guess_x, guess_lam = _predict(history, trial)
+            try:
+                x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
+            except NewtonError as error:
+                cuts += 1
+                if cuts > max_cuts:
+                    raise NewtonError(
+                        f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
+                        f"halved {max_cuts} times: refine the mesh or give more depths"
+                    ) from None
+                increment *= 0.5
+                continue
+            total += iterations
+            history = [*history[-1:], (trial, x, lam)]
+            done = trial
+            cuts = 0  # count consecutive failures only
+            increment *= 2.0
+            _check_edge(stepper, lam, trial)
+        steps.append(_step(stepper, exact, target, x, lam, iterations, total, corrections))
+    timings = {"contact": time.perf_counter() - start}
+    return FiniteContactCurve(steps, system, indenter, timings)
+
+
+def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
+    """Linear extrapolation in depth from the last two converged states."""
+    d1, x1, lam1 = history[-1]
+    if len(history) < 2:
+        return x1, lam1
+    d0, x0, lam0 = history[-2]
+    t = (depth - d1) / (d1 - d0)
+    return x1 + t * (x1 - x0), np.maximum(lam1 + t * (lam1 - lam0), 0.0)
+
+
+def _check_edge(stepper: _Stepper, lam: np.ndarray, depth: float) -> None:
+    loaded = np.flatnonzero(lam > 0)
+    if loaded.size == 0:
+        raise InputError(f"depth {depth:g} m: the indenter does not touch the surface")
+    if loaded[-1] + EDGE_MARGIN >= lam.size:
+        r = stepper.nodes.radius
+        raise ContactOutgrowsMeshError(
+            f"depth {depth:g} m: the contact zone reaches R = {r[loaded[-1]]:.4g} m, the edge "
+            f"of the refined region ({r[-1]:.4g} m); mesh a larger region"
+        )
+
+
+def _step(
+    stepper: _Stepper,
+    exact: PowerLawContact,
+    depth: float,
+    x: np.ndarray,
+    lam: np.ndarray,
+    iterations: int,
+    total: int,
+    corrections: list[float],
+) -> FiniteContactStep:
+    r, gap, _, _ = stepper.geometry(x, depth)
+    gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
+    pressure = _recover_pressure(r, lam)
+    radius = _contact_radius(r, lam, gap)
+    return FiniteContactStep(
+        depth=float(depth),
+        force=float(lam.sum()),
+        contact_radius=radius,
+        central_pressure=central_pressure(r, pressure, radius),
+        strain_energy=stepper.system.energy(x),
+        newton_iterations=iterations,
+        total_iterations=total,
+        force_linear=float(exact.force(depth)),
+        contact_radius_linear=float(exact.contact_radius(depth)),
+        central_pressure_linear=float(exact.central_pressure(depth)),
+        solution=x,
+        multipliers=lam,
+        gap=gap,
+        current_radius=r,
+        surface_u_z=x[stepper.nodes.uz],
+        pressure=pressure,
+        corrections=corrections,
+    )
+
+
+def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
+    return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
+
+
+def run_finite_indentation(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    depths: ArrayLike,
+    mesh: MeshSettings | None = None,
+    **options: float,
+) -> FiniteContactCurve:
+    """Mesh, assemble and press a rigid power-law indenter into a neo-Hookean half-space.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        z = A r^n, n > 1.
+    half_space : Material
+        E2 (Pa) and nu2 in [0, 0.5] of the small-strain limit.
+    depths : array_like
+        Depths in m, positive, increasing.
+    mesh : MeshSettings, optional
+        Default :data:`FINITE_MESH`; the refined zone is ``margin`` times the geometric
+        contact radius (d_max / A)^(1/n).
+    **options
+        Passed to :func:`solve_finite_contact` (``tolerance``, ``max_iterations``,
+        ``max_cuts``).
+
+    Returns
+    -------
+    FiniteContactCurve
+    """
+    if half_space.poisson_ratio < 0:
+        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    depths = validate_increasing("depths", np.atleast_1d(depths), "m")
+    mesh = FINITE_MESH if mesh is None else mesh
+    refined = mesh.margin * _geometric_radius(indenter, depths[-1])
+    start = time.perf_counter()
+    skfem_mesh = mesh.build(refined)
+    meshed = time.perf_counter()
+    system = assemble_hyperelastic(
+        skfem_mesh, NeoHookean(half_space.youngs_modulus, half_space.poisson_ratio)
+    )
+    assembled = time.perf_counter()
+    curve = solve_finite_contact(system, indenter, depths, refined, **options)
+    stats = {
+        "nodes": int(skfem_mesh.p.shape[1]),
+        "elements": int(skfem_mesh.t.shape[1]),
+        "dofs": int(system.n_dofs),
+        "contact_candidates": int(curve.steps[0].multipliers.size),
+        "refined_radius": refined,
+        "domain_radius": mesh.domain * refined,
+        "smallest_size": mesh.size * refined,
+    }
+    timings = {
+        "mesh": meshed - start,
+        "assembly": assembled - meshed,
+        **curve.timings,
+        "total": time.perf_counter() - start,
+    }
+    return FiniteContactCurve(curve.steps, system, indenter, timings, stats)
