@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 from pathlib import Path
@@ -84,11 +85,16 @@ def run(args: argparse.Namespace) -> int:
 
     indenter, half_space = read_indenter(args), read_half_space(args)
     depths, mesh = _depths(args.depths), mesh_settings(args)
-    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    result = run_indentation(indenter, half_space, depths, mesh, backend=args.solver)
-    report = result.to_dict()
-    if out is not None:
-        with staged_folder(out) as stage:
+    out = None
+    if args.out is not None:
+        out = check_output_folder(Path(args.out), force=args.force)
+    with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
+        stage = (
+            stack.enter_context(staged_folder(out, force=args.force)) if out is not None else None
+        )
+        result = run_indentation(indenter, half_space, depths, mesh, backend=args.solver)
+        report = result.to_dict()
+        if stage is not None:
             write_indentation(result, stage)
             (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
     if args.json:

@@ -23,7 +23,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
-from ..validation import InputError, validate_increasing
+from ..validation import InputError, validate_increasing, validate_poisson
 
 __all__ = [
     "IndentationResult",
@@ -186,8 +186,7 @@ def run_indentation(
             f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
             f"{indenter.exponent!r}"
         )
-    if half_space.poisson_ratio < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = validate_increasing("depths", np.atleast_1d(depths), "m")
     mesh = MeshSettings() if mesh is None else mesh
