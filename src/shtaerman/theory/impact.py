@@ -191,6 +191,11 @@ def _check_velocity(velocity: float) -> None:
         )
 
 
+def _exp(exponent: float) -> float:
+    """exp that overflows to inf instead of raising."""
+    return math.exp(exponent) if exponent < 709.8 else math.inf
+
+
 def _representable(name: str, value: float, mass: float, velocity: float) -> float:
     """``value`` if it is a normal float (neither 0, subnormal, nor inf), else InputError."""
     if not (math.isfinite(value) and abs(value) >= sys.float_info.min):
@@ -227,10 +232,10 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     log_x_c = (
         math.log(q + 1.0) + math.log(mass) + 2.0 * math.log(velocity) - math.log(2.0 * beta)
     ) / (q + 1.0)
-    x_c = _representable("x_c", math.exp(log_x_c), mass, velocity)
-    P_c = _representable("P_c", math.exp(math.log(beta) + q * log_x_c), mass, velocity)
+    x_c = _representable("x_c", _exp(log_x_c), mass, velocity)
+    P_c = _representable("P_c", _exp(math.log(beta) + q * log_x_c), mass, velocity)
     t_c = _representable(
-        "t_c", duration_integral(q) * math.exp(log_x_c - math.log(velocity)), mass, velocity
+        "t_c", duration_integral(q) * _exp(log_x_c - math.log(velocity)), mass, velocity
     )
     a_c = _representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
     p_c = float(law.central_pressure(x_c))
