@@ -7,6 +7,7 @@ the parameter, the value given and the valid range; the CLI prints that line and
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Sequence
 
 import numpy as np
@@ -24,9 +25,11 @@ class InputError(ValueError):
 
 
 def _as_float(name: str, value: object, valid: str) -> float:
+    if isinstance(value, bool | np.bool_):  # True == 1, but a flag is no quantity
+        raise InputError(f"{name} must be a finite number {valid}, got {value!r}")
     try:
         number = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         number = math.nan
     if not math.isfinite(number):
         raise InputError(f"{name} must be a finite number {valid}, got {value!r}")
@@ -39,14 +42,26 @@ def validate_positive(name: str, value: object, unit: str = "") -> float:
     number = _as_float(name, value, valid)
     if number <= 0:
         raise InputError(f"{name} must be {valid}, got {value!r}")
+    if number < sys.float_info.min:  # subnormal: the number itself has lost its digits
+        raise InputError(
+            f"{name} must be {valid} and at least {sys.float_info.min:.4g} (the smallest "
+            f"normal float), got {value!r}"
+        )
     return number
 
 
-def validate_poisson(name: str, value: object) -> float:
-    """Return a Poisson's ratio, or raise if it lies outside the range (-1, 0.5]."""
-    number = _as_float(name, value, "in (-1, 0.5]")
-    if not -1.0 < number <= 0.5:
-        raise InputError(f"{name} (Poisson's ratio) must lie in (-1, 0.5], got {value!r}")
+def validate_poisson(name: str, value: object, low: float = -1.0) -> float:
+    """Return a Poisson's ratio, or raise if it lies outside its range.
+
+    The one check of Poisson's ratio. The thermodynamic range is (-1, 0.5] (``low = -1``,
+    open at -1); a narrower range [low, 0.5] applies where a method was validated only there
+    (the FEM contact: ``low = 0``).
+    """
+    valid = "(-1, 0.5]" if low == -1.0 else f"[{low:g}, 0.5]"
+    number = _as_float(name, value, f"in {valid}")
+    inside = -1.0 < number <= 0.5 if low == -1.0 else low <= number <= 0.5
+    if not inside:
+        raise InputError(f"{name} (Poisson's ratio) must lie in {valid}, got {value!r}")
     return number
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import json
 import math
@@ -129,23 +130,30 @@ def run(args: argparse.Namespace) -> int:
     refine = validate_positive("refine", args.refine)
     tolerance = None if args.accuracy is None else validate_positive("accuracy", args.accuracy)
     max_time = validate_positive("max-time", args.max_time, "s")
-    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    if tolerance is None:
-        ladder = run_ladder(indenter, half_space, depths, mesh, refine=refine, backend=args.solver)
-    else:
-        ladder = run_to_accuracy(
-            indenter,
-            half_space,
-            tolerance,
-            depths,
-            mesh,
-            max_time=max_time,
-            backend=args.solver,
+    out = None
+    if args.out is not None:
+        out = check_output_folder(Path(args.out), force=args.force)
+    with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
+        stage = (
+            stack.enter_context(staged_folder(out, force=args.force)) if out is not None else None
         )
-    result = ladder.finest
-    report = {**result.to_dict(), **ladder.to_dict()}
-    if out is not None:
-        with staged_folder(out) as stage:
+        if tolerance is None:
+            ladder = run_ladder(
+                indenter, half_space, depths, mesh, refine=refine, backend=args.solver
+            )
+        else:
+            ladder = run_to_accuracy(
+                indenter,
+                half_space,
+                tolerance,
+                depths,
+                mesh,
+                max_time=max_time,
+                backend=args.solver,
+            )
+        result = ladder.finest
+        report = {**result.to_dict(), **ladder.to_dict()}
+        if stage is not None:
             write_indentation(result, stage)
             (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
     if args.json:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..output.files import write_csv
+from ..output.files import check_output_file, staged_file, write_csv
 from ..theory.contact import PowerLawContact
 from ..theory.impact import ImpactResult, solve_impact
 from ..theory.impact_ode import integrate_impact
@@ -63,18 +63,10 @@ def _points(value: str) -> int:
 
 
 def history_path(value: str | None, *, force: bool) -> Path | None:
-    """The --history file, checked before any work: a regular file we may create or replace."""
+    """The --history file, checked before any work (see :func:`check_output_file`)."""
     if value is None:
         return None
-    path = Path(value).expanduser()
-    if not path.parent.is_dir():
-        raise InputError(f"history: folder {str(path.parent)!r} does not exist")
-    if path.exists() or path.is_symlink():
-        if not path.is_file() or path.is_symlink():
-            raise InputError(f"history: {str(path)!r} exists and is not a regular file")
-        if not force:
-            raise InputError(f"history: {str(path)!r} exists (use --force to replace it)")
-    return path
+    return check_output_file(Path(value), force=force, option="history")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -90,7 +82,8 @@ def run(args: argparse.Namespace) -> int:
     if args.check:
         report["ode_check"] = _ode_check(result)
     if history is not None:
-        write_csv(history, result.history(points).columns())
+        with staged_file(history, force=args.force) as stage:
+            write_csv(stage, result.history(points).columns())
     if args.json:
         print_json(report)
     else:

@@ -53,8 +53,10 @@ def run(args: argparse.Namespace) -> int:
     duplicates = sorted({name for name in names if names.count(name) > 1})
     if duplicates:
         raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
-    out = check_output_folder(Path(args.out) if args.out else default_out(), force=args.force)
-    results = run_verification(studies, out, quick=args.quick)
+    out = check_output_folder(
+        Path(args.out) if args.out is not None else default_out(), force=args.force
+    )
+    results = run_verification(studies, out, quick=args.quick, force=args.force)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
 

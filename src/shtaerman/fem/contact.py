@@ -36,9 +36,10 @@ from ..validation import InputError, validate_increasing
 from .elasticity import ElasticSolution, ElasticSystem, postprocess
 
 try:  # METIS ordering: the compliance falls out of the factorization
-    from .schur import TailFactorization
+    from .schur import TailFactorization, TailPivotError
 except ImportError:  # pymetis unavailable: unit-load solves instead (same results, slower)
     TailFactorization = None
+    TailPivotError = RuntimeError
 from .solver import Factorization, factorize
 
 __all__ = [
@@ -105,12 +106,21 @@ def factorize_stiffness(
     """The one sparse factorization of the stiffness (free dofs).
 
     With SuperLU ("auto", "superlu") the candidate dofs r <= ``radius`` are eliminated last
-    (:class:`.schur.TailFactorization`), so their compliance falls out of the factors.
+    (:class:`.schur.TailFactorization`), so their compliance falls out of the factors. Should
+    that factorization pivot a candidate row away or be inaccurate, the plain SuperLU
+    factorization is used instead (the compliance then by unit-load solves: same results,
+    slower), so the trailing-Schur shortcut is never the only path.
     """
     _, _, position = _candidates(system, free, radius)
     matrix = system.reduced_matrix(free)
     if backend in ("auto", "superlu") and TailFactorization is not None:
-        return TailFactorization(matrix, position, system.dof_nodes()[free])
+        try:
+            return TailFactorization(matrix, position, system.dof_nodes()[free])
+        except TailPivotError:
+            # a zero pivot made SuperLU pull a candidate row forward (seen on coarse meshes
+            # of small contacts): the trailing block is no Schur complement. Fall back to the
+            # plain factorization; the compliance then comes from unit-load solves.
+            backend = "superlu"
     return factorize(matrix, backend=backend)
 
 

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import contextlib
 import importlib.resources
+import signal
+import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -163,7 +165,7 @@ def _gmsh_session() -> Iterator[None]:
     """Run gmsh silently; finalize it only if this call initialized it."""
     owned = not gmsh.isInitialized()
     if owned:
-        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        _initialize_keeping_signal_handlers()
     terminal = gmsh.option.getNumber("General.Terminal")
     gmsh.option.setNumber("General.Terminal", 0)
     try:
@@ -173,6 +175,25 @@ def _gmsh_session() -> Iterator[None]:
             gmsh.finalize()
         else:
             gmsh.option.setNumber("General.Terminal", terminal)
+
+
+def _initialize_keeping_signal_handlers() -> None:
+    """``gmsh.initialize`` replaces the SIGINT/SIGTERM handlers at the C level (a SIGTERM then
+    killed the process outright, leaving its staged outputs): hold both signals while it runs,
+    re-install Python's handlers, then let a pending signal through to them."""
+    if threading.current_thread() is not threading.main_thread():
+        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        return
+    numbers = {signal.SIGINT, signal.SIGTERM}
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, numbers)
+    try:
+        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        for number in numbers:
+            handler = signal.getsignal(number)
+            if handler is not None:
+                signal.signal(number, handler)
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
 
 
 def _generate(parameters: dict[str, float]) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -243,7 +264,10 @@ class MeshSettings:
         Smallest element size on the refined zone / its radius.
     domain : float
         Domain radius / refined radius, in [1e2, 1e7]: the clamped far boundary stiffens the
-        force by about 1.87 a/R ~ 1/domain (bench_contact.py (c); 1e-5 at the default 1e5).
+        force at contact radius a by about 1.9 a/R and the fitted beta by 1.2 a/R (R the domain
+        radius; measured against R = 1e7 refined radii on the default mesh: force 1.886, 1.879
+        a/R at domain 1e2, 1e3; beta 1.159, 1.163; bench_contact.py (c)), i.e. about 1.5e-5 /
+        1e-5 at the default domain 1e5.
     growth : float
         Element size growth per unit distance from the refined zone.
     axis_size : float

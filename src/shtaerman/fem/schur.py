@@ -24,7 +24,11 @@ import scipy.sparse.linalg as spla
 
 from .solver import ACCURACY_CHECK, backward_error
 
-__all__ = ["TailFactorization", "nested_dissection"]
+__all__ = ["TailFactorization", "TailPivotError", "nested_dissection"]
+
+
+class TailPivotError(RuntimeError):
+    """The tail-ordered factorization gives no usable Schur complement (fall back)."""
 
 
 def nested_dissection(pattern: sp.spmatrix, groups: np.ndarray) -> np.ndarray:
@@ -69,7 +73,7 @@ class TailFactorization:
 
     Raises
     ------
-    RuntimeError
+    TailPivotError
         If the factorization is inaccurate or pivoted the tail (use :mod:`.solver` instead).
     """
 
@@ -92,9 +96,9 @@ class TailFactorization:
         )
         start = n - self.tail.size
         if not np.array_equal(self._lu.perm_r[start:], np.arange(start, n)):
-            raise RuntimeError("the factorization pivoted the tail rows; no Schur complement")
+            raise TailPivotError("the factorization pivoted the tail rows; no Schur complement")
         if backward_error(matrix, self) > ACCURACY_CHECK:
-            raise RuntimeError("tail-ordered factorization is inaccurate")
+            raise TailPivotError("tail-ordered factorization is inaccurate")
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """Solve for a vector (n,) or many right-hand sides (n, k)."""

@@ -1,5 +1,23 @@
-"""Writing results safely: strict JSON, atomic CSV files, folders staged aside and moved into
-place only when complete."""
+"""Writing results safely: strict JSON, CSV files, folders staged aside and moved into place
+only when complete.
+
+The rules, for a result folder ``DIR`` (and likewise a single result file):
+
+- The work happens in ``.DIR.partial-PID`` beside it (PID: the writing process). Every
+  temporary lives in there, and it is removed on any failure, Ctrl-C or SIGTERM. After a SIGKILL
+  it stays; the next run writing ``DIR`` removes it once its process is gone, and refuses to
+  start while that process still runs (two runs writing one folder: one wins, one is refused).
+- ``DIR`` itself is reserved at the start with ``os.mkdir`` (atomic: exactly one run gets it)
+  and the finished folder is renamed onto that empty reservation at the end, so the complete
+  folder appears in one step and never replaces anything it was not told to. An old ``DIR``
+  (``force``) is moved into the staging folder first and restored if the run fails.
+- Folders and files get the permissions of the umask (0777/0666 masked), like ``mkdir`` and
+  ``open`` would give, not the 0700/0600 of ``mkdtemp``/``mkstemp``.
+- The current folder, its parents and symbolic links are refused as result folders: replacing
+  them would pull the ground from under the shell (``--out .``) or act on a folder the user did
+  not name. A single result file may be a special file (``/dev/null``, a FIFO, ``/dev/stdout``):
+  it is written directly, never replaced.
+"""
 
 from __future__ import annotations
 
@@ -7,8 +25,9 @@ import contextlib
 import csv
 import math
 import os
+import re
 import shutil
-import tempfile
+import stat
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
@@ -17,46 +36,291 @@ from numpy.typing import ArrayLike
 
 from ..validation import InputError
 
-__all__ = ["check_output_folder", "json_safe", "staged_folder", "write_csv"]
+__all__ = [
+    "check_output_file",
+    "check_output_folder",
+    "json_safe",
+    "staged_file",
+    "staged_folder",
+    "write_csv",
+]
+
+STAGE_SUFFIX = ".partial-"
+"""Staging names are ``.NAME.partial-PID``."""
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _stage_path(target: Path, pid: int | None = None) -> Path:
+    return target.with_name(f".{target.name}{STAGE_SUFFIX}{os.getpid() if pid is None else pid}")
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # someone else's process
+        return True
+    return True
+
+
+def _stages(target: Path) -> list[tuple[int, Path]]:
+    """Staging folders/files of ``target`` by any process: (pid, path)."""
+    pattern = re.compile(re.escape(f".{target.name}{STAGE_SUFFIX}") + r"(\d+)$")
+    found = []
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(target.parent):
+            match = pattern.match(entry.name)
+            if match:
+                found.append((int(match.group(1)), Path(entry.path)))
+    return found
+
+
+def _remove(path: Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        with contextlib.suppress(FileNotFoundError):
+            path.unlink()
+
+
+def _clean_stale(target: Path, stage: Path) -> None:
+    """Undo what a killed run left: restore the folder it was replacing, drop its reservation."""
+    retired, content = stage / "replaced", stage / "content"
+    with contextlib.suppress(OSError):
+        if content.is_dir() or retired.is_dir():
+            if target.is_dir() and not target.is_symlink() and not any(target.iterdir()):
+                os.rmdir(target)  # its empty reservation
+            if retired.is_dir() and not os.path.lexists(target):
+                os.rename(retired, target)
+    _remove(stage)
+
+
+def _other_writers(target: Path) -> list[int]:
+    """Clean the staging leftovers of dead processes; return the pids of live writers
+    (this process included: one process writes one target at a time)."""
+    live = []
+    for pid, path in _stages(target):
+        if pid == os.getpid() or _alive(pid):
+            live.append(pid)
+        else:  # left by a SIGKILL: its process is gone
+            _clean_stale(target, path)
+    return sorted(live)
+
+
+def _busy(option: str, target: Path, pids: list[int]) -> InputError:
+    return InputError(
+        f"{option}: another shtaerman run (pid {pids[0]}) is writing {str(target)!r}; wait for "
+        f"it, or remove {str(_stage_path(target, pids[0]))!r} if no such run exists"
+    )
+
+
+def _absolute(path: Path) -> Path:
+    """``path`` made absolute without resolving symbolic links (``..`` folded lexically)."""
+    return Path(os.path.abspath(os.fspath(path)))
+
+
+def _is_cwd_or_parent(path: Path) -> bool:
+    try:
+        here = Path.cwd().resolve()
+        real = path.resolve()
+    except OSError:
+        return False
+    return real == here or real in here.parents
+
+
+def _probe(option: str, folder: Path, name: str) -> None:
+    """Raise InputError unless a staging entry ``name`` can be created in ``folder``."""
+    probe = folder / name
+    try:
+        os.mkdir(probe)
+    except FileExistsError:
+        return
+    except OSError as error:
+        raise InputError(
+            f"{option}: cannot write in {str(folder)!r} ({error.strerror or error})"
+        ) from None
+    os.rmdir(probe)
 
 
 def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path:
-    """Return ``path`` if a run may write there, or raise before any work is done.
+    """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
 
     A folder that exists and is not empty is refused unless ``force`` is set; its parent must
-    exist.
+    exist and be writable; the current folder, its parents, symbolic links and a folder that
+    another run is writing are refused.
     """
-    path = Path(path).expanduser()
-    if path.exists() and not path.is_dir():
-        raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
-    if path.is_dir() and any(path.iterdir()) and not force:
-        raise InputError(f"{option}: folder {str(path)!r} is not empty (use --force to replace it)")
-    if not path.parent.is_dir():
-        raise InputError(f"{option}: parent folder {str(path.parent)!r} does not exist")
+    try:
+        raw = Path(path).expanduser()
+        target = _absolute(raw)
+        if not target.name or target == target.parent:
+            raise InputError(f"{option}: {str(path)!r} names no folder to create")
+        if raw.is_symlink():
+            raise InputError(
+                f"{option}: {str(path)!r} is a symbolic link; name the folder itself "
+                f"({os.path.realpath(raw)!r})"
+            )
+        if _is_cwd_or_parent(target):
+            raise InputError(
+                f"{option}: {str(path)!r} is the current folder or one of its parents; name a "
+                f"new folder (e.g. {option} results)"
+            )
+        if target.exists() and not target.is_dir():
+            raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
+        if not target.parent.is_dir():
+            raise InputError(f"{option}: parent folder {str(target.parent)!r} does not exist")
+        live = _other_writers(target)  # first: cleaning may restore a folder
+        if live:
+            raise _busy(option, target, live)
+        if target.is_dir() and any(target.iterdir()) and not force:
+            raise InputError(
+                f"{option}: folder {str(path)!r} is not empty (use --force to replace it)"
+            )
+        _probe(option, target.parent, _stage_path(target).name)
+    except ValueError as error:  # a NUL byte in the name
+        if isinstance(error, InputError):
+            raise
+        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
+    except OSError as error:
+        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
+    return target
+
+
+@contextlib.contextmanager
+def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> Iterator[Path]:
+    """Yield an empty folder to fill; on success it becomes ``target`` in one rename.
+
+    ``target`` may exist only as an empty folder, or (``force``) as any folder, which is then
+    replaced. On any failure (an exception, Ctrl-C, SIGTERM raised as an exception) everything
+    written is removed and ``target`` is left exactly as it was.
+
+    Raises
+    ------
+    InputError
+        If another run is writing ``target``, or ``target`` is not ours to replace.
+    """
+    target = check_output_folder(target, force=force, option=option)
+    stage = _stage_path(target)
+    try:
+        os.mkdir(stage)
+    except FileExistsError:
+        raise _busy(option, target, [os.getpid()]) from None
+    # two runs that started together both see each other's staging folder: the lower pid wins
+    rivals = [pid for pid, _ in _stages(target) if pid != os.getpid() and _alive(pid)]
+    if rivals and min(rivals) < os.getpid():
+        os.rmdir(stage)
+        raise _busy(option, target, rivals)
+    content, retired = stage / "content", stage / "replaced"
+    reserved = False
+    try:
+        if os.path.lexists(target):
+            if not force and any(target.iterdir()):
+                raise InputError(
+                    f"{option}: folder {str(target)!r} is not empty (use --force to replace it)"
+                )
+            os.rename(target, retired)  # atomic: only one run can take it
+        try:
+            os.mkdir(target)  # the reservation, atomic: only one run gets it
+        except FileExistsError:
+            raise InputError(
+                f"{option}: {str(target)!r} was created by another program meanwhile"
+            ) from None
+        reserved = True
+        os.mkdir(content)
+        yield content
+        try:
+            os.rename(content, target)  # onto our empty reservation: atomic, complete at once
+        except OSError as error:  # someone wrote into the reservation meanwhile
+            raise InputError(
+                f"{option}: {str(target)!r} was changed by another program during the run "
+                f"({error.strerror}); it was left alone and this run's results discarded"
+            ) from None
+        reserved = False
+    except BaseException:
+        if reserved:
+            with contextlib.suppress(OSError):
+                os.rmdir(target)  # only if still our empty reservation
+        if os.path.lexists(retired) and not os.path.lexists(target):
+            os.rename(retired, target)  # put the old folder back
+        raise
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def check_output_file(path: Path, *, force: bool, option: str = "history") -> Path:
+    """Return ``path`` if a run may write that file, or raise before any work is done.
+
+    A regular file (or a symbolic link to one) is replaced only with ``force``; a special file
+    (``/dev/null``, a FIFO, a terminal) is written into, never replaced; a folder is refused.
+    """
+    try:
+        path = Path(path).expanduser()
+        real = Path(os.path.realpath(path))
+        if not real.parent.is_dir():
+            raise InputError(f"{option}: folder {str(path.parent)!r} does not exist")
+        if real.exists():
+            mode = real.stat().st_mode
+            if stat.S_ISDIR(mode):
+                raise InputError(f"{option}: {str(path)!r} is a folder")
+            if stat.S_ISREG(mode):
+                if not force:
+                    raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
+            elif not os.access(real, os.W_OK):
+                raise InputError(f"{option}: cannot write {str(path)!r}")
+            else:
+                return path
+        elif os.path.lexists(path):
+            raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
+        live = _other_writers(real)
+        if live:
+            raise _busy(option, real, live)
+        _probe(option, real.parent, _stage_path(real).name)
+    except ValueError as error:
+        if isinstance(error, InputError):
+            raise
+        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
+    except OSError as error:
+        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
     return path
 
 
 @contextlib.contextmanager
-def staged_folder(target: Path) -> Iterator[Path]:
-    """Yield a fresh folder beside ``target``; on success it replaces ``target``.
+def staged_file(path: Path, *, force: bool = False, option: str = "history") -> Iterator[Path]:
+    """Yield a path to write; on success it becomes ``path`` in one step.
 
-    On any failure (an exception, Ctrl-C) the staging folder is removed and ``target`` is left
-    exactly as it was, so nothing half-written ever looks complete.
+    A regular ``path`` is written as ``.NAME.partial-PID`` beside it and then linked into place
+    (no ``force``: ``os.link`` fails if ``path`` appeared meanwhile, nothing is replaced) or
+    renamed over it (``force``). A special file is yielded as is and written directly. The
+    permissions follow the umask.
     """
-    target = Path(target)
-    stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".partial", dir=target.parent))
+    path = check_output_file(path, force=force, option=option)
+    real = Path(os.path.realpath(path))
+    if real.exists() and not real.is_file():
+        yield real
+        return
+    stage = _stage_path(real)
+    if os.path.lexists(stage):
+        raise _busy(option, real, [os.getpid()])
     try:
         yield stage
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
-        raise
-    if target.exists():
-        retired = target.with_name(f".{target.name}.replaced-{os.getpid()}")
-        target.rename(retired)
-        stage.rename(target)
-        shutil.rmtree(retired, ignore_errors=True)
-    else:
-        stage.rename(target)
+        os.chmod(stage, 0o666 & ~_umask())
+        if force:
+            os.replace(stage, real)
+        else:
+            try:
+                os.link(stage, real)
+            except FileExistsError:
+                raise InputError(
+                    f"{option}: {str(path)!r} was created by another program meanwhile; "
+                    f"use --force to replace it"
+                ) from None
+    finally:
+        _remove(stage)
 
 
 def json_safe(value: object) -> object:
@@ -73,18 +337,12 @@ def json_safe(value: object) -> object:
 
 
 def write_csv(path: Path, columns: Mapping[str, ArrayLike]) -> None:
-    """Write equal-length columns under a header of their names, atomically.
+    """Write equal-length columns under a header of their names.
 
-    The file appears complete or not at all: a failure leaves any old file intact.
+    Write into a :func:`staged_folder` or a :func:`staged_file`: they make the result appear
+    complete or not at all.
     """
-    path = Path(path)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", newline="") as stream:
-            writer = csv.writer(stream)
-            writer.writerow(columns)
-            writer.writerows(zip(*(np.asarray(c) for c in columns.values()), strict=True))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    with open(path, "w", newline="", encoding="utf-8") as stream:
+        writer = csv.writer(stream)
+        writer.writerow(columns)
+        writer.writerows(zip(*(np.asarray(c) for c in columns.values()), strict=True))

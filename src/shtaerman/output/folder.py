@@ -72,12 +72,15 @@ def run_verification(
     *,
     quick: bool = False,
     progress: Callable[[str], None] | None = None,
+    force: bool = False,
 ) -> dict[str, object]:
     """Run the studies and write ``out`` (results.json, report.md, report.html, per-study
-    VTU fields, CSV curves and histories, PNG figures). Returns the results document."""
+    VTU fields, CSV curves and histories, PNG figures). Returns the results document.
+
+    ``out`` may exist only as an empty folder, or with ``force`` as any folder (replaced)."""
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
-    with staged_folder(out) as stage:
+    with staged_folder(out, force=force) as stage:
         outcomes, files, pictures = [], {}, {}
         for study in studies:
             outcome = run_study(study, quick=quick, progress=bar)

@@ -8,7 +8,7 @@ units of the refined radius (see ``meshes/halfspace.geo``), so scaling h0 = ``si
 every point x: the mesh is a uniform refinement of the base mesh in the sense of its size field,
 the number of dofs grows as t^-2, and the element size h is proportional to ``size`` everywhere
 (the surface, the contact edges, the axis cusp and the far field alike). The domain radius and
-the margin are kept, so the truncation error (about 1.5 a / R, see ``MeshSettings.domain``) is a
+the margin are kept, so the truncation error (force about 1.9 a/R, see ``MeshSettings.domain``) is a
 floor that the study does not refine; raise ``base.domain`` to push it below the error of the
 finest mesh.
 

@@ -23,7 +23,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
-from ..validation import InputError, validate_increasing
+from ..validation import InputError, validate_increasing, validate_poisson
 
 __all__ = [
     "IndentationResult",
@@ -189,8 +189,7 @@ def validate_fem_inputs(indenter: PowerLawIndenter, half_space: Material) -> Non
             f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
             f"{indenter.exponent!r}"
         )
-    if half_space.poisson_ratio < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
 
 
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:

@@ -56,6 +56,13 @@ class PowerLawContact:
 
     def __post_init__(self) -> None:
         validate_positive("modulus", self.modulus, "Pa")
+        beta = self.beta
+        if not (math.isfinite(beta) and beta > 0 and math.isfinite(1.0 / beta)):
+            raise InputError(
+                f"beta = (2n/(n+1)) E* (kappa A)^(-1/n) = {beta:g} N/m^q is not representable "
+                f"for shape_coefficient {self.indenter.shape_coefficient!r} m^(1-n), exponent "
+                f"{self.indenter.exponent!r} and modulus {self.modulus!r} Pa; scale the units"
+            )
 
     @property
     def force_exponent(self) -> float:
@@ -106,8 +113,14 @@ class PowerLawContact:
         Zero outside the contact; ``inf`` at r = 0 for n <= 1.
         """
         n = self.indenter.exponent
+        depth = float(depth)
+        if not depth >= 0.0 or not math.isfinite(depth):
+            raise InputError(f"depth must be a finite number >= 0 m, got {depth!r}")
+        radius = np.asarray(radius, dtype=float)
+        if depth == 0.0:
+            return np.where(np.isnan(radius), np.nan, 0.0)
         a = float(self.contact_radius(depth))
-        rho = np.abs(np.asarray(radius, dtype=float)) / a
+        rho = np.abs(radius) / a
         inside = rho < 1.0
         z = 1.0 - rho[inside] ** 2
         scale = n * self.indenter.kappa * self.modulus * self.indenter.shape_coefficient / math.pi
@@ -118,6 +131,7 @@ class PowerLawContact:
             p[rho == 0.0] = float(self.central_pressure(depth))
         else:
             p[rho == 0.0] = math.inf
+        p[np.isnan(rho)] = np.nan
         return p
 
 

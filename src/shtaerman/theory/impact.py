@@ -17,6 +17,8 @@ The contact radius a(t) and central pressure p(0, t) follow from x(t) through th
 
 from __future__ import annotations
 
+import math
+import sys
 import warnings
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -189,6 +191,22 @@ def _check_velocity(velocity: float) -> None:
         )
 
 
+def _exp(exponent: float) -> float:
+    """exp that overflows to inf instead of raising."""
+    return math.exp(exponent) if exponent < 709.8 else math.inf
+
+
+def _representable(name: str, value: float, mass: float, velocity: float) -> float:
+    """``value`` if it is a normal float (neither 0, subnormal, nor inf), else InputError."""
+    if not (math.isfinite(value) and abs(value) >= sys.float_info.min):
+        raise InputError(
+            f"mass {mass!r} kg and velocity {velocity!r} m/s give {name} = {value:g}, outside "
+            f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]; "
+            f"choose values of a physical size (or rescale the units)"
+        )
+    return value
+
+
 def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     """Maxima and durations of the impact M x'' = -beta x^q, exact (closed form).
 
@@ -210,9 +228,20 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     velocity = validate_positive("velocity", velocity, "m/s")
     _check_velocity(velocity)
     beta, q = validate_positive("beta", law.beta), law.force_exponent
-    x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * beta)) ** (1.0 / (q + 1.0))
-    P_c = beta * x_c**q
-    t_c = duration_integral(q) * x_c / velocity
+    # in logarithms: M v0^2 alone under- or overflows for extreme but representable inputs
+    log_x_c = (
+        math.log(q + 1.0) + math.log(mass) + 2.0 * math.log(velocity) - math.log(2.0 * beta)
+    ) / (q + 1.0)
+    x_c = _representable("x_c", _exp(log_x_c), mass, velocity)
+    P_c = _representable("P_c", _exp(math.log(beta) + q * log_x_c), mass, velocity)
+    t_c = _representable(
+        "t_c", duration_integral(q) * _exp(log_x_c - math.log(velocity)), mass, velocity
+    )
+    a_c = _representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
+    p_c = float(law.central_pressure(x_c))
+    if not math.isinf(p_c):  # inf is the exact answer for n <= 1
+        p_c = _representable("p_c", p_c, mass, velocity)
+    impulse = _representable("impulse", 2.0 * mass * velocity, mass, velocity)
     half_time = ateb_sine(q, 1.0, (q + 1.0) / 4.0 * duration_integral(q))
     return ImpactResult(
         mass=mass,
@@ -221,11 +250,11 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
         force_exponent=q,
         x_c=x_c,
         P_c=P_c,
-        a_c=float(law.contact_radius(x_c)),
-        p_c=float(law.central_pressure(x_c)),
+        a_c=a_c,
+        p_c=p_c,
         t_c=t_c,
         t_y=2.0 * t_c,
-        impulse=2.0 * mass * velocity,
+        impulse=impulse,
         impulse_simpson=P_c * t_c * (1.0 + 4.0 * float(half_time) ** q) / 3.0,
         law=law,
     )

@@ -22,6 +22,8 @@ from ..validation import validate_positive
 __all__ = ["NumericalImpact", "energy_depth", "integrate_impact"]
 
 ForceLaw = Callable[[np.ndarray], np.ndarray]
+MAX_BRACKET_DOUBLINGS = 200
+"""The bracket of :func:`energy_depth` grows from the guess by at most 2^200 (1.6e60)."""
 
 
 def energy_depth(mass: float, velocity: float, force: ForceLaw, depth_guess: float) -> float:
@@ -45,8 +47,15 @@ def energy_depth(mass: float, velocity: float, force: ForceLaw, depth_guess: flo
         return energy - kinetic
 
     upper = depth_guess
-    while surplus(upper) < 0:
+    for _ in range(MAX_BRACKET_DOUBLINGS):
+        if surplus(upper) >= 0:
+            break
         upper *= 2.0
+    else:
+        raise RuntimeError(
+            f"no depth up to {upper:g} m stores the kinetic energy {kinetic:g} J (is P(x) "
+            f"increasing from P(0) = 0, and depth_guess of the right order?)"
+        )
     return brentq(surplus, 0.0, upper, xtol=1e-12 * upper, rtol=1e-10)
 
 

@@ -9,9 +9,31 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import gammaln
 
-from ..validation import validate_positive
+from ..validation import InputError, validate_positive
 
-__all__ = ["PowerLawIndenter", "shape_factor"]
+__all__ = ["PowerLawIndenter", "shape_factor", "validate_exponent"]
+
+
+MIN_EXPONENT = 0.25
+MAX_EXPONENT = 20.0
+
+
+def validate_exponent(exponent: object, name: str = "exponent") -> float:
+    """Return the profile exponent n, or raise unless MIN_EXPONENT <= n <= MAX_EXPONENT.
+
+    Why [0.25, 20]: the force law P = beta x^q has q = (n+1)/n, so n -> 0 (a needle) makes
+    q blow up (q = 1001 at n = 1e-3, where beta = (kappa A)^(-1/n) underflows to 0 for any
+    A > 1) and n -> inf is a flat punch (q -> 1, a jump in force the power law cannot carry).
+    [0.25, 20] keeps q in [1.05, 5] and beta representable for every A in [1e-15, 1e15]
+    (|log10(kappa A)| / n <= 60), covering cones (n = 1), the paper's n = 3/2 and Hertz (2).
+    """
+    n = validate_positive(name, exponent)
+    if not MIN_EXPONENT <= n <= MAX_EXPONENT:
+        raise InputError(
+            f"{name} must lie in [{MIN_EXPONENT:g}, {MAX_EXPONENT:g}] (force law x^((n+1)/n) "
+            f"with (n+1)/n in [1.05, 5]), got {exponent!r}"
+        )
+    return n
 
 
 def shape_factor(exponent: float) -> float:
@@ -41,7 +63,7 @@ class PowerLawIndenter:
 
     def __post_init__(self) -> None:
         validate_positive("shape_coefficient", self.shape_coefficient, "m^(1-n)")
-        validate_positive("exponent", self.exponent)
+        validate_exponent(self.exponent)
 
     @classmethod
     def sphere(cls, radius: float) -> PowerLawIndenter:

@@ -26,8 +26,9 @@ class Material:
     poisson_ratio: float
 
     def __post_init__(self) -> None:
-        if not math.isinf(self.youngs_modulus):
-            validate_positive("youngs_modulus", self.youngs_modulus, "Pa")
+        rigid = not isinstance(self.youngs_modulus, bool) and self.youngs_modulus == math.inf
+        if not rigid:
+            validate_positive("youngs_modulus", self.youngs_modulus, "Pa (or math.inf: rigid)")
         validate_poisson("poisson_ratio", self.poisson_ratio)
 
     @property

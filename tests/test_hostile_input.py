@@ -1,0 +1,100 @@
+"""Hostile numbers: one-line InputErrors naming the parameter, or correct results (issue 7)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from shtaerman.cli import main
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.impact_ode import energy_depth
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.validation import InputError, validate_poisson
+
+PAPER = PowerLawContact(PowerLawIndenter(5.0, 1.5), 9.999531e6)
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize(
+    ("make", "name"),
+    [
+        (lambda: Material(-math.inf, 0.3), "youngs_modulus"),
+        (lambda: Material(True, 0.3), "youngs_modulus"),
+        (lambda: Material(2e11, True), "poisson_ratio"),
+        (lambda: Material(2e11, np.bool_(False)), "poisson_ratio"),
+        (lambda: Material(1e-320, 0.3), "youngs_modulus"),
+        (lambda: PowerLawIndenter(5, 1e-3), "exponent"),
+        (lambda: PowerLawIndenter(5, 100), "exponent"),
+        (lambda: PowerLawIndenter(10**400, 1.5), "shape_coefficient"),
+        (lambda: PowerLawContact(PowerLawIndenter(1e300, 0.25), 1e7), "shape_coefficient"),
+        (lambda: PAPER.pressure([0.0, 1e-3], math.nan), "depth"),
+        (lambda: PAPER.pressure([0.0, 1e-3], -1e-3), "depth"),
+        (lambda: solve_impact(1e-300, 1e-300, PAPER), "mass"),
+    ],
+)
+def test_api_refuses_with_the_parameter_named(make, name):
+    with pytest.raises(InputError, match=name) as caught:
+        make()
+    assert "\n" not in str(caught.value)
+
+
+def test_pressure_keeps_nan_radii_and_depth_zero():
+    p = PAPER.pressure([0.0, math.nan, 1e-3], 5e-3)
+    assert p[0] > 0 and math.isnan(p[1]) and p[2] > 0
+    assert np.array_equal(PAPER.pressure([0.0, 1e-3], 0.0), [0.0, 0.0])
+
+
+def test_poisson_is_checked_by_one_function_with_a_lower_bound():
+    assert validate_poisson("nu", "-0.99") == -0.99
+    with pytest.raises(InputError, match=r"nu2 \(Poisson's ratio\) must lie in \[0, 0.5\]"):
+        validate_poisson("nu2", -0.1, low=0.0)
+    with pytest.raises(InputError, match=r"\(-1, 0.5\]"):
+        validate_poisson("nu", -1.0)
+
+
+def test_impact_of_extreme_but_representable_masses_is_exact():
+    # M v0^2 underflows (1e-300 * 1e-2) but x_c does not: computed in logarithms
+    for mass in (1e-300, 1e300):
+        result = solve_impact(mass, 0.1, PAPER)
+        q = PAPER.force_exponent
+        expected = math.exp(
+            (math.log((q + 1) / 2) + math.log(mass) + 2 * math.log(0.1) - math.log(PAPER.beta))
+            / (q + 1)
+        )
+        assert result.x_c == pytest.approx(expected, rel=1e-12)
+        assert math.isfinite(result.p_c) and result.p_c > 0
+        assert result.P_c == pytest.approx(PAPER.beta * result.x_c**q, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("argv", "name"),
+    [
+        (["impact", "--mass", "1e-320"], "mass"),
+        (["impact", "--check", "--mass", "1e-320"], "mass"),
+        (["impact", "--mass", "1e-300", "--velocity", "1e-300"], "mass"),
+        (["impact", "--mass", "1e308", "--velocity", "1e300"], "mass"),
+        (["impact", "--exponent", "1e-3"], "exponent"),
+        (["impact", "--exponent", "1e300"], "exponent"),
+        (["impact", "--shape-coefficient", "1e300", "--exponent", "0.25"], "shape_coefficient"),
+        (["impact", "--E1", "-inf"], "E1"),
+        (["impact", "--nu2", "nan"], "nu2"),
+    ],
+)
+def test_cli_extremes_are_one_line_errors(capsys, argv, name):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    # one error line (a validity warning about the velocity may come first)
+    last = err.splitlines()[-1]
+    assert last.startswith("shtaerman: error: ") and err.count("error") == 1 and name in last
+
+
+def test_energy_depth_bracketing_is_bounded():
+    with pytest.raises(RuntimeError, match="no depth"):
+        energy_depth(1.0, 1.0, lambda x: 0.0 * x, 1e-3)  # a force that stores nothing

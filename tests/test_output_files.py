@@ -1,0 +1,261 @@
+"""Outputs that never lose or fake anything: staged folders and files (issue 7, item 3)."""
+
+import os
+import signal
+import stat
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from shtaerman.cli import main
+from shtaerman.output.files import (
+    check_output_folder,
+    staged_file,
+    staged_folder,
+    write_csv,
+)
+from shtaerman.validation import InputError
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def dead_pid() -> int:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+@pytest.fixture
+def umask_022():
+    previous = os.umask(0o022)
+    yield
+    os.umask(previous)
+
+
+def test_permissions_follow_the_umask(tmp_path, umask_022):
+    # mkdtemp/mkstemp would give 0700 and 0600
+    with staged_folder(tmp_path / "run") as stage:
+        write_csv(stage / "a.csv", {"x": [1.0]})
+    assert stat.S_IMODE((tmp_path / "run").stat().st_mode) == 0o755
+    with staged_file(tmp_path / "h.csv") as stage:
+        write_csv(stage, {"x": [1.0]})
+    assert stat.S_IMODE((tmp_path / "h.csv").stat().st_mode) == 0o644
+
+
+def test_the_target_is_reserved_during_the_run(tmp_path):
+    target = tmp_path / "run"
+    with staged_folder(target) as stage:
+        assert target.is_dir()  # reserved with os.mkdir: another run cannot take the name
+        with pytest.raises(FileExistsError):
+            os.mkdir(target)
+        # a second writer of the same folder is refused before it starts
+        with pytest.raises(InputError, match="another shtaerman run"):
+            check_output_folder(target, force=True)
+        (stage / "f.txt").write_text("1")
+    assert (target / "f.txt").read_text() == "1"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]  # no debris
+
+
+def test_a_reservation_filled_by_someone_else_is_not_replaced(tmp_path):
+    target = tmp_path / "run"
+    with pytest.raises(InputError, match="changed by another program"):
+        with staged_folder(target) as stage:
+            (stage / "mine.txt").write_text("mine")
+            (target / "theirs.txt").write_text("theirs")
+    assert [p.name for p in target.iterdir()] == ["theirs.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_a_failed_forced_run_restores_the_old_folder(tmp_path):
+    target = tmp_path / "run"
+    target.mkdir()
+    (target / "old.txt").write_text("old")
+    with pytest.raises(RuntimeError):
+        with staged_folder(target, force=True) as stage:
+            assert not (target / "old.txt").exists()
+            (stage / "new.txt").write_text("new")
+            raise RuntimeError("boom")
+    assert [p.name for p in target.iterdir()] == ["old.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    with staged_folder(target, force=True) as stage:
+        (stage / "new.txt").write_text("new")
+    assert [p.name for p in target.iterdir()] == ["new.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_a_full_folder_is_not_replaced_without_force(tmp_path):
+    target = tmp_path / "run"
+    target.mkdir()
+    (target / "old.txt").write_text("old")
+    with pytest.raises(InputError, match="not empty"):
+        with staged_folder(target):
+            pass
+    assert [p.name for p in target.iterdir()] == ["old.txt"]
+
+
+def test_a_stale_staging_folder_of_a_dead_process_is_cleaned(tmp_path):
+    target = tmp_path / "run"
+    pid = dead_pid()
+    stale = tmp_path / f".run.partial-{pid}"
+    (stale / "content").mkdir(parents=True)
+    target.mkdir()  # its reservation
+    (stale / "content" / "half.csv").write_text("1,")
+    with staged_folder(target) as stage:
+        (stage / "f.txt").write_text("1")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_a_stale_forced_run_gives_the_old_folder_back(tmp_path):
+    target = tmp_path / "run"
+    stale = tmp_path / f".run.partial-{dead_pid()}"
+    (stale / "replaced").mkdir(parents=True)
+    (stale / "replaced" / "old.txt").write_text("old")
+    (stale / "content").mkdir()
+    target.mkdir()
+    with pytest.raises(InputError, match="not empty"):
+        check_output_folder(target, force=False)
+    assert [p.name for p in target.iterdir()] == ["old.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_a_live_writer_is_reported(tmp_path):
+    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        (tmp_path / f".run.partial-{sleeper.pid}").mkdir()
+        with pytest.raises(InputError, match=f"pid {sleeper.pid}"):
+            check_output_folder(tmp_path / "run", force=True)
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+
+
+@pytest.mark.parametrize("name", [".", "..", "", "/"])
+def test_current_folder_and_parents_are_refused(tmp_path, monkeypatch, capsys, name):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "keep.txt").write_text("keep")
+    code, out, err = run(capsys, "contact", "--out", name, "--force", "--depths", "1e-3")
+    assert code == 2 and out == ""
+    assert err.startswith("shtaerman: error: out:") and err.count("\n") == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.txt"]
+
+
+def test_a_symlinked_out_folder_is_refused(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "real").mkdir()
+    (tmp_path / "link").symlink_to(tmp_path / "real")
+    code, _, err = run(capsys, "contact", "--out", "link", "--force", "--depths", "1e-3")
+    assert code == 2 and "symbolic link" in err and err.count("\n") == 1
+    assert (tmp_path / "link").is_symlink() and list((tmp_path / "real").iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link", "real"]
+
+
+@pytest.mark.parametrize("name", ["a\0b", "x" * 300, "file.txt/sub", "missing/sub"])
+def test_bad_out_names_are_one_line_errors(tmp_path, monkeypatch, capsys, name):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "file.txt").write_text("")
+    code, _, err = run(capsys, "contact", "--out", name, "--depths", "1e-3")
+    assert code == 2 and err.startswith("shtaerman: error: out:") and err.count("\n") == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file.txt"]
+
+
+@pytest.mark.skipif(not Path("/sys").is_dir(), reason="needs Linux /sys (read-only to mkdir)")
+def test_an_unwritable_parent_is_refused_before_computing(capsys):
+    if os.access("/sys", os.W_OK) and not _mkdir_fails("/sys"):
+        pytest.skip("/sys is writable here")
+    start = time.process_time()
+    code, _, err = run(capsys, "verify", "paper", "--out", "/sys/shtaerman-test")
+    assert code == 2 and "cannot write in '/sys'" in err and err.count("\n") == 1
+    assert time.process_time() - start < 5  # refused before any FEM (a run takes ~10 s CPU)
+
+
+def _mkdir_fails(folder: str) -> bool:
+    try:
+        os.mkdir(os.path.join(folder, ".shtaerman-probe"))
+    except OSError:
+        return True
+    os.rmdir(os.path.join(folder, ".shtaerman-probe"))
+    return False
+
+
+def test_history_to_a_device_writes_into_it(capsys):
+    before = os.stat(os.devnull)
+    code, _, err = run(capsys, "impact", "--history", os.devnull, "--points", "5")
+    assert code == 0 and err == ""
+    after = os.stat(os.devnull)
+    assert stat.S_ISCHR(after.st_mode) and after.st_rdev == before.st_rdev
+
+
+def test_history_to_a_fifo(tmp_path, capsys):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    reader = subprocess.Popen(["cat", str(fifo)], stdout=subprocess.PIPE)
+    code, _, _ = run(capsys, "impact", "--history", str(fifo), "--points", "3")
+    text = reader.communicate(timeout=60)[0].decode()
+    assert code == 0 and stat.S_ISFIFO(fifo.stat().st_mode)
+    assert len(text.splitlines()) == 4  # header + 3 rows
+
+
+def test_history_leaves_no_temporary_and_refuses_a_folder(tmp_path, capsys):
+    path = tmp_path / "h.csv"
+    assert run(capsys, "impact", "--history", str(path), "--points", "3")[0] == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["h.csv"]
+    code, _, err = run(capsys, "impact", "--history", str(tmp_path), "--force")
+    assert code == 2 and "is a folder" in err
+
+
+def test_history_through_a_symlink_replaces_the_file_it_names(tmp_path, capsys):
+    real, link = tmp_path / "real.csv", tmp_path / "link.csv"
+    real.write_text("old")
+    link.symlink_to(real)
+    code, _, err = run(capsys, "impact", "--history", str(link), "--points", "3")
+    assert code == 2 and "--force" in err and real.read_text() == "old"
+    assert run(capsys, "impact", "--history", str(link), "--points", "3", "--force")[0] == 0
+    assert link.is_symlink() and real.read_text().count("\n") == 4
+
+
+def test_sigterm_during_contact_out_leaves_nothing(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[1] / "src")}
+    child = subprocess.Popen(
+        [sys.executable, "-m", "shtaerman", "contact", "--out", "run", "--mesh-size", "0.004"],
+        cwd=tmp_path,
+        env=env,
+        stderr=subprocess.PIPE,
+    )
+    for _ in range(600):  # wait until the run has reserved its folder (no wall-clock assertion)
+        if (tmp_path / "run").exists() or child.poll() is not None:
+            break
+        time.sleep(0.05)
+    child.send_signal(signal.SIGTERM)
+    _, err = child.communicate(timeout=300)
+    if child.returncode == 0:
+        pytest.skip("the run finished before the signal")
+    assert child.returncode == 143 and b"terminated" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_sigkill_leftovers_are_cleaned_by_the_next_run(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[1] / "src")}
+    child = subprocess.Popen(
+        [sys.executable, "-m", "shtaerman", "contact", "--out", "run", "--mesh-size", "0.004"],
+        cwd=tmp_path,
+        env=env,
+        stderr=subprocess.DEVNULL,
+    )
+    for _ in range(600):
+        if (tmp_path / "run").exists() or child.poll() is not None:
+            break
+        time.sleep(0.05)
+    child.kill()
+    child.wait()
+    if not (tmp_path / f".run.partial-{child.pid}").exists():
+        pytest.skip("the run finished before the signal")
+    with staged_folder(tmp_path / "run") as stage:
+        (stage / "f.txt").write_text("1")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
