@@ -13,8 +13,12 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TextIO
 
-from ..plots import figures
-from ..plots import sections as fields
+from ..plots.gallery import (
+    paper_figures,
+    study_convergence_figures,
+    study_field_figures,
+    study_figures,
+)
 from ..study.run import StudyOutcome, run_study
 from ..study.schema import Study
 from .export import write_indentation
@@ -58,11 +62,11 @@ def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, s
 
 
 def _study_figures(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
-    made = {**fields.study_field_figures(outcome, folder), **figures.study_figures(outcome, folder)}
-    if outcome.convergence is not None:
-        made["Mesh convergence: errors against the exact solution"] = figures.plot_convergence(
-            outcome.convergence, folder / "convergence.png"
-        )
+    made = {
+        **study_field_figures(outcome, folder),
+        **study_figures(outcome, folder),
+        **study_convergence_figures(outcome, folder),
+    }
     return {title: str(path.relative_to(root)) for title, path in made.items()}
 
 
@@ -89,8 +93,7 @@ def run_verification(
             advance()
             bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
         pictures[""] = {
-            title: str(path.relative_to(stage))
-            for title, path in figures.paper_figures(stage).items()
+            title: str(path.relative_to(stage)) for title, path in paper_figures(stage).items()
         }
         results = results_document(outcomes, files, quick=quick)
         (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
