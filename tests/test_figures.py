@@ -19,8 +19,6 @@ from vtkmodules.vtkCommonCore import vtkObject
 
 from shtaerman.plots import curves, gallery, impact, revolved, sections, style
 from shtaerman.study.convergence import ConvergenceStudy
-from shtaerman.study.run import run_study
-from shtaerman.study.schema import load_study, shipped_studies
 from shtaerman.validation import InputError
 
 MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}
@@ -32,9 +30,9 @@ TOLERANCE = 16
 
 
 @pytest.fixture(scope="module")
-def outcome():
-    paper = next(path for path in shipped_studies() if path.stem == "paper")
-    return run_study(load_study(paper)[0], quick=True)
+def outcome(quick_outcome):
+    """The session's quick paper study (tests/conftest.py)."""
+    return quick_outcome
 
 
 @pytest.fixture(scope="module")
