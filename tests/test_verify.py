@@ -111,6 +111,10 @@ def test_failing_study_exits_1(tmp_path):
     assert main(["verify", "--quick", "--out", str(tmp_path / "run"), str(study)]) == 1
     results = json.loads((tmp_path / "run" / "results.json").read_text())
     assert results["passed"] is False
+    # the report names the failing check first, with its value and tolerance
+    report = (tmp_path / "run" / "report.md").read_text()
+    assert report.index("## FAILED checks") < report.index("## Summary")
+    assert "- **paper**: contact force = " in report and "tolerance ±1.0e-09" in report
 
 
 def test_malformed_study_is_exit_2(tmp_path, capsys):
