@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..validation import InputError
-from . import contact, impact, tables, verify
+from . import contact, impact, init_study, tables, verify
 from .common import Parser, warn
 
 __all__ = ["EXIT_INPUT", "build_parser", "main"]
@@ -24,7 +24,7 @@ __all__ = ["EXIT_INPUT", "build_parser", "main"]
 EXIT_INPUT = 2
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
-SUBCOMMANDS = (impact, tables, contact, verify)
+SUBCOMMANDS = (impact, tables, contact, verify, init_study)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
 striker z = A r^n on an elastic half-space (Ol'shanskii et al. 2019). SI units everywhere.
