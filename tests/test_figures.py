@@ -1,7 +1,8 @@
 """Figures checked as images: size, not blank, and the features a reader needs.
 
-One coarse paper study (about 1 s) feeds every figure. Thresholds were measured on the
-pictures as accepted by eye and set with a wide margin: a blank image has pixel standard
+One coarse paper study (the session's, tests/conftest.py) feeds every figure; the figures of a
+run are those its verify run drew. Thresholds were measured on the pictures as accepted by eye
+and set with a wide margin: a blank image has pixel standard
 deviation 0 and one colour; the figures have std 24-97 (0-255 scale; the field sections are
 mostly the near-white middle of a diverging map) and 500-3500 colours.
 """
@@ -41,15 +42,18 @@ def folder(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def made(outcome, folder):
-    """The ten figures of a verification run, by file stem (each drawn once for all tests)."""
-    captions = {
-        **gallery.study_figures(outcome, folder / "study"),
-        **gallery.study_field_figures(outcome, folder / "study"),
-        **gallery.paper_figures(folder / "study"),
-    }
+def made(quick_verify):
+    """The ten figures of the paper study in the session's verify run, by file stem.
+
+    The run draws them with gallery.study_figures, study_field_figures and paper_figures
+    (and the convergence figure); results.json records each one's caption.
+    """
+    _, out, results = quick_verify
+    figures = dict(results["studies"]["paper"]["figures"])
+    assert figures.pop(gallery.CONVERGENCE_CAPTION) == "paper/convergence.png"
+    captions = {**figures, **results["figures"]}
     assert all(captions) and len(captions) == 10
-    return {path.stem: path for path in captions.values()}
+    return {Path(path).stem: out / path for path in captions.values()}
 
 
 def pixels(path: Path) -> np.ndarray:

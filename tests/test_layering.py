@@ -1,4 +1,4 @@
-"""The package's layers import only downward (data flows one way; DESIGN.md "Layout").
+"""The package's layers import only downward (data flows one way; README "Layout").
 
 theory -> paper -> fem -> study -> plots -> output -> cli: each layer may import the ones listed
 for it and nothing else. A new upward import fails here, naming the file and the import.
