@@ -69,7 +69,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "init-study",
         help="write a commented template study (TOML) to edit and verify",
         description=(
-            "Write a commented template study: the paper's worked example with every key "
+            "Write a commented template study: the paper's worked example with every key\n"
             "explained. Edit it, then run 'shtaerman verify FILE.toml --quick'."
         ),
     )
