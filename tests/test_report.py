@@ -142,3 +142,11 @@ def test_reports_render_from_the_results_document_alone(quick_verify, tmp_path):
     markdown, page = write_reports(reloaded, tmp_path)
     assert markdown.read_text() == (out / "report.md").read_text()
     assert page.read_text() == (out / "report.html").read_text()
+
+
+@pytest.mark.parametrize("file", ["../outside.png", "../../etc/passwd", "results.json"])
+def test_only_pngs_inside_the_folder_are_embedded(results, quick_verify, file):
+    other = copy.deepcopy(results)
+    other["figures"] = {"a figure": file}
+    with pytest.raises(ValueError, match="not a PNG inside the result folder"):
+        render_html(report_context(other), quick_verify[1])

@@ -348,10 +348,18 @@ def _environment() -> jinja2.Environment:
 
 
 def _data_uri(folder: Path) -> Callable[[str], str]:
-    """A function from a PNG path relative to ``folder`` to its base64 data URI."""
+    """A function from a PNG path relative to ``folder`` to its base64 data URI.
+
+    Only PNG files inside ``folder`` are embedded: a results document naming any other file
+    (``../secret``) raises ValueError instead of copying it into the page.
+    """
+    root = folder.resolve()
 
     def encode(file: str) -> str:
-        data = base64.b64encode((folder / file).read_bytes()).decode("ascii")
+        path = (root / file).resolve()
+        if path.suffix.lower() != ".png" or not path.is_relative_to(root):
+            raise ValueError(f"figure {file!r} is not a PNG inside the result folder")
+        data = base64.b64encode(path.read_bytes()).decode("ascii")
         return f"data:image/png;base64,{data}"
 
     return encode
