@@ -1,4 +1,4 @@
-"""The command line: the interface contract of DESIGN.md, in-process via main(argv)."""
+"""The command line: its interface contract (names other tools use), in-process via main(argv)."""
 
 import csv
 import json

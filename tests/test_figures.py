@@ -1,11 +1,15 @@
 """Figures checked as images: size, not blank, and the features a reader needs.
 
-One coarse paper study (about 1 s) feeds every figure. Thresholds were measured on the
-pictures as accepted by eye and set with a wide margin: a blank image has pixel standard
+One coarse paper study (the session's, tests/conftest.py) feeds every figure; the figures of a
+run are those its verify run drew. Thresholds were measured on the pictures as accepted by eye
+and set with a wide margin: a blank image has pixel standard
 deviation 0 and one colour; the figures have std 24-97 (0-255 scale; the field sections are
 mostly the near-white middle of a diverging map) and 500-3500 colours.
 """
 
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import matplotlib as mpl
@@ -14,11 +18,8 @@ import pytest
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
-from shtaerman.plots import figures
-from shtaerman.plots import sections as fields
+from shtaerman.plots import curves, gallery, impact, revolved, sections, style
 from shtaerman.study.convergence import ConvergenceStudy
-from shtaerman.study.run import run_study
-from shtaerman.study.schema import load_study, shipped_studies
 from shtaerman.validation import InputError
 
 MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}
@@ -30,9 +31,9 @@ TOLERANCE = 16
 
 
 @pytest.fixture(scope="module")
-def outcome():
-    paper = next(path for path in shipped_studies() if path.stem == "paper")
-    return run_study(load_study(paper)[0], quick=True)
+def outcome(quick_outcome):
+    """The session's quick paper study (tests/conftest.py)."""
+    return quick_outcome
 
 
 @pytest.fixture(scope="module")
@@ -41,15 +42,18 @@ def folder(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def made(outcome, folder):
-    """The ten figures of a verification run, by file stem (each drawn once for all tests)."""
-    captions = {
-        **figures.study_figures(outcome, folder / "study"),
-        **fields.study_field_figures(outcome, folder / "study"),
-        **figures.paper_figures(folder / "study"),
-    }
+def made(quick_verify):
+    """The ten figures of the paper study in the session's verify run, by file stem.
+
+    The run draws them with gallery.study_figures, study_field_figures and paper_figures
+    (and the convergence figure); results.json records each one's caption.
+    """
+    _, out, results = quick_verify
+    figures = dict(results["studies"]["paper"]["figures"])
+    assert figures.pop(gallery.CONVERGENCE_CAPTION) == "paper/convergence.png"
+    captions = {**figures, **results["figures"]}
     assert all(captions) and len(captions) == 10
-    return {path.stem: path for path in captions.values()}
+    return {Path(path).stem: out / path for path in captions.values()}
 
 
 def pixels(path: Path) -> np.ndarray:
@@ -84,41 +88,76 @@ def assert_colour(image: np.ndarray, colour: str, count: int = 200) -> None:
 
 def test_force_depth_shows_fem_points_and_exact_line(made):
     image = assert_picture(made["force_depth"], (1280, 960), "matplotlib")
-    assert_colour(image, figures.FEM_COLOUR, 2000)  # 8 filled markers and the error line
-    assert_colour(image, figures.EXACT_COLOUR, 2000)
+    assert_colour(image, style.FEM_COLOUR, 2000)  # 8 filled markers and the error line
+    assert_colour(image, style.EXACT_COLOUR, 2000)
 
 
 def test_pressure_shows_three_depths_and_exact_curve(made):
     image = assert_picture(made["pressure"], (1280, 840), "matplotlib")
-    for colour, _ in figures.DEPTH_STYLES:
+    for colour, _ in style.DEPTH_STYLES:
         assert_colour(image, colour, 300)  # open markers
-    assert_colour(image, figures.EXACT_COLOUR, 1000)
+    assert_colour(image, style.EXACT_COLOUR, 1000)
 
 
 def test_pressure_selected_step(outcome, folder):
-    path = figures.plot_pressure(outcome.contact, folder / "one.png", steps=[-1])
+    path = curves.plot_pressure(outcome.contact, folder / "one.png", steps=[-1])
     image = pixels(path)
-    assert_colour(image, figures.DEPTH_STYLES[0][0], 300)
-    assert colour_mask(image, figures.DEPTH_STYLES[1][0]).sum() == 0
+    assert_colour(image, style.DEPTH_STYLES[0][0], 300)
+    assert colour_mask(image, style.DEPTH_STYLES[1][0]).sum() == 0
 
 
 @pytest.mark.parametrize("stem", ["impact_motion", "impact_contact"])
 def test_impact_figures_show_both_quantities(made, stem):
     image = assert_picture(made[stem], (1280, 1000), "matplotlib")
-    assert_colour(image, figures.FEM_COLOUR, 2000)
-    assert_colour(image, figures.SECOND_COLOUR, 2000)
+    assert_colour(image, style.FEM_COLOUR, 2000)
+    assert_colour(image, style.SECOND_COLOUR, 2000)
 
 
 def test_impact_needs_a_history(outcome, folder):
     with pytest.raises(ValueError, match="1 to 4"):
-        figures.plot_impact_motion({}, outcome.exact, folder / "none.png")
+        impact.plot_impact_motion({}, outcome.exact, folder / "none.png")
+
+
+def _drawn_figure(monkeypatch, draw):
+    """The matplotlib Figure ``draw`` would save (saving replaced by capturing)."""
+    captured = []
+    monkeypatch.setattr(impact, "save", lambda figure, path: captured.append(figure) or path)
+    draw()
+    [figure] = captured
+    return figure
+
+
+def test_impact_contact_says_what_it_clips(outcome, folder, monkeypatch):
+    # the FEM-fed impacts end ~1e-4 t_c before the exact t_y, where p(0) ~ x^(1/3) is
+    # infinitely steep: their p(0, t) difference leaves the lower panel (measured -6.6 %)
+    figure = _drawn_figure(
+        monkeypatch,
+        lambda: impact.plot_impact_contact(outcome.histories, outcome.exact, folder / "c.png"),
+    )
+    bottom = figure.axes[1]
+    low, high = bottom.get_ylim()
+    notes = [text.get_text() for text in bottom.texts]
+    assert len(notes) == 1 and notes[0].startswith("off scale (triangles): ")
+    assert "$p(0,t)/p_c$ \u2212" in notes[0]
+    # a triangle on the panel's edge for each clipped curve
+    edges = [line for line in bottom.get_lines() if line.get_marker() in ("^", "v")]
+    assert edges and all(line.get_ydata()[0] in (low, high) for line in edges)
+
+
+def test_impact_figure_without_clipping_has_no_note(outcome, folder, monkeypatch):
+    exact = {"analytic": outcome.histories["analytic"]}
+    figure = _drawn_figure(
+        monkeypatch,
+        lambda: impact.plot_impact_motion(exact, outcome.exact, folder / "m.png"),
+    )
+    assert len(figure.axes[1].texts) == 0
 
 
 def test_ateb_shows_exact_table_and_approximation(made):
     image = assert_picture(made["ateb"], (1480, 1000), "matplotlib")
-    assert_colour(image, figures.EXACT_COLOUR, 1000)
-    assert_colour(image, figures.PAPER_COLOUR, 500)  # open markers of Tables 1-2
-    assert_colour(image, figures.APPROXIMATION_COLOUR, 2000)
+    assert_colour(image, style.EXACT_COLOUR, 1000)
+    assert_colour(image, style.PAPER_COLOUR, 500)  # open markers of Tables 1-2
+    assert_colour(image, style.APPROXIMATION_COLOUR, 2000)
 
 
 def test_convergence_draws_every_error(folder):
@@ -136,12 +175,12 @@ def test_convergence_draws_every_error(folder):
         }
         for h in (0.1, 0.05, 0.025)
     ]
-    path = figures.plot_convergence(ConvergenceStudy.from_levels(rows), folder / "convergence.png")
+    path = curves.plot_convergence(ConvergenceStudy.from_levels(rows), folder / "convergence.png")
     image = assert_picture(path, (1280, 840), "matplotlib")
     for index in range(4):
         assert_colour(image, mpl.colors.to_hex(f"C{index}"), 300)
     single = ConvergenceStudy.from_levels(rows[:1])
-    one = figures.plot_convergence(single, folder / "one.png", keys=["force", "missing"])
+    one = curves.plot_convergence(single, folder / "one.png", keys=["force", "missing"])
     assert_colour(pixels(one), mpl.colors.to_hex("C0"), 50)  # a single marker, no order
     with pytest.raises(InputError, match="at least one level"):
         ConvergenceStudy.from_levels([])
@@ -149,14 +188,14 @@ def test_convergence_draws_every_error(folder):
 
 def test_figures_leave_matplotlib_state_alone(outcome, folder):
     before = dict(mpl.rcParams)
-    figures.plot_pressure(outcome.contact, folder / "state.png")
+    curves.plot_pressure(outcome.contact, folder / "state.png")
     assert dict(mpl.rcParams) == before
 
 
 def test_si_prefix():
-    assert figures.si_prefix(8.5e-3, "m") == (1e3, "mm")
-    assert figures.si_prefix(8.4e6, "Pa") == (1e-6, "MPa")
-    assert figures.si_prefix(986.0, "N") == (1.0, "N")
+    assert style.si_prefix(8.5e-3, "m") == (1e3, "mm")
+    assert style.si_prefix(8.4e6, "Pa") == (1e-6, "MPa")
+    assert style.si_prefix(986.0, "N") == (1.0, "N")
 
 
 # --- pyvista -----------------------------------------------------------------------------
@@ -178,15 +217,15 @@ def assert_colour_bar(image: np.ndarray) -> None:
 
 def assert_contact_top_left(image: np.ndarray, depth: float = 0.3) -> None:
     """The green contact zone starts at the axis/surface corner: upper left of the picture."""
-    rows, columns = np.nonzero(colour_mask(image, fields.CONTACT_COLOUR))
+    rows, columns = np.nonzero(colour_mask(image, sections.CONTACT_COLOUR))
     height, width = image.shape[:2]
     assert rows.size > 500
     assert rows.mean() < depth * height and columns.mean() < 0.4 * width
 
 
-@pytest.mark.parametrize("field", list(fields.FIELD_FIGURES))
+@pytest.mark.parametrize("field", list(gallery.FIELD_FIGURES))
 def test_field_section(made, field):
-    image = assert_picture(made[f"field_{field}"], fields.WINDOW_SIZE, "pyvista")
+    image = assert_picture(made[f"field_{field}"], sections.WINDOW_SIZE, "pyvista")
     assert_section_filled(image)
     assert_colour_bar(image)
     assert_contact_top_left(image)
@@ -194,8 +233,8 @@ def test_field_section(made, field):
 
 def test_field_deformed_shows_indenter(outcome, folder, monkeypatch):
     monkeypatch.delenv("DISPLAY", raising=False)  # off-screen needs no display
-    path = fields.plot_field(outcome.contact, folder / "deformed.png", "u_z", deformed=True)
-    image = assert_picture(path, fields.WINDOW_SIZE, "pyvista")
+    path = sections.plot_field(outcome.contact, folder / "deformed.png", "u_z", deformed=True)
+    image = assert_picture(path, sections.WINDOW_SIZE, "pyvista")
     rows, columns = np.nonzero(colour_mask(image, "#d9d9d9"))
     assert rows.size > 20_000 and columns.mean() < 0.4 * image.shape[1]
     assert_contact_top_left(image, depth=0.5)  # on the deformed surface, pushed down by d
@@ -203,18 +242,18 @@ def test_field_deformed_shows_indenter(outcome, folder, monkeypatch):
 
 def test_field_panel_has_four_pictures(outcome, folder):
     image = assert_picture(
-        fields.plot_fields(outcome.contact, folder / "panel.png"), fields.WINDOW_SIZE, "pyvista"
+        sections.plot_fields(outcome.contact, folder / "panel.png"), sections.WINDOW_SIZE, "pyvista"
     )
     height, width = image.shape[:2]
     for top in (0, height // 2):
         for left in (0, width // 2):
             quarter = image[top : top + height // 2, left : left + width // 2]
-            assert colour_mask(quarter, fields.CONTACT_COLOUR).sum() > 100
+            assert colour_mask(quarter, sections.CONTACT_COLOUR).sum() > 100
             assert_colour_bar(quarter)
 
 
 def test_revolved_view(made):
-    image = assert_picture(made["field_revolved"], fields.WINDOW_SIZE, "pyvista")
+    image = assert_picture(made["field_revolved"], sections.WINDOW_SIZE, "pyvista")
     height, width = image.shape[:2]
     body = image[:, : int(0.8 * width)]
     coloured = body.max(axis=2) - body.min(axis=2) > 40  # not white, not grey
@@ -225,7 +264,7 @@ def test_revolved_view(made):
     extent = (columns.max() - columns.min(), rows.max() - rows.min())
     assert extent[0] > extent[1] > 0.4 * height
     assert 0.6 < coloured.sum() / (extent[0] * extent[1]) < 0.9
-    circle_rows, _ = np.nonzero(colour_mask(image, fields.CONTACT_COLOUR))
+    circle_rows, _ = np.nonzero(colour_mask(image, sections.CONTACT_COLOUR))
     assert circle_rows.size > 200 and circle_rows.mean() < rows.mean()  # the circle on top
     assert_colour_bar(image)
 
@@ -233,19 +272,47 @@ def test_revolved_view(made):
 def test_vtk_warnings_restored(outcome, folder):
     before = vtkObject.GetGlobalWarningDisplay()
     with pytest.raises(InputError):
-        fields.plot_field(outcome.contact, folder / "quiet.png", "von_mises", extent=-1.0)
+        sections.plot_field(outcome.contact, folder / "quiet.png", "von_mises", extent=-1.0)
     assert vtkObject.GetGlobalWarningDisplay() == before
-    fields.plot_field(outcome.contact, folder / "quiet.png", "sigma_tt", step=0, extent=2.0)
+    sections.plot_field(outcome.contact, folder / "quiet.png", "sigma_tt", step=0, extent=2.0)
     assert vtkObject.GetGlobalWarningDisplay() == before
+
+
+RENDER = """
+import sys
+import pyvista as pv
+from shtaerman.plots.render import picture, save
+with picture() as plotter:
+    plotter.add_mesh(pv.Sphere())
+    save(plotter, sys.argv[1])
+"""
+
+
+def test_off_screen_rendering_prints_nothing(tmp_path):
+    # without a display VTK warns "bad X server connection" (measured with a bare
+    # pv.Plotter(off_screen=True)); the package's plotter renders silently
+    environment = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
+    path = tmp_path / "sphere.png"
+    completed = subprocess.run(
+        [sys.executable, "-c", RENDER, str(path)],
+        env=environment,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=120,
+    )
+    assert completed.returncode == 0, completed.stderr
+    assert completed.stderr == ""
+    assert pixels(path).std() > 10
 
 
 def test_field_input_errors(outcome, folder):
     with pytest.raises(InputError, match="Unknown field 'stress'"):
-        fields.plot_field(outcome.contact, folder / "bad.png", "stress")
+        sections.plot_field(outcome.contact, folder / "bad.png", "stress")
     with pytest.raises(InputError, match="angle"):
-        fields.plot_revolved(outcome.contact, folder / "bad.png", angle=360.0)
+        revolved.plot_revolved(outcome.contact, folder / "bad.png", angle=360.0)
     with pytest.raises(InputError, match="four"):
-        fields.plot_fields(outcome.contact, folder / "bad.png", ("u_z",))
+        sections.plot_fields(outcome.contact, folder / "bad.png", ("u_z",))
     with pytest.raises(InputError, match="step"):
-        fields.plot_field(outcome.contact, folder / "bad.png", step=99)
+        sections.plot_field(outcome.contact, folder / "bad.png", step=99)
     assert not (folder / "bad.png").exists()

@@ -1,4 +1,4 @@
-"""The package's layers import only downward (data flows one way; DESIGN.md "Layout").
+"""The package's layers import only downward (data flows one way; README "Layout").
 
 theory -> paper -> fem -> study -> plots -> output -> cli: each layer may import the ones listed
 for it and nothing else. A new upward import fails here, naming the file and the import.
@@ -69,3 +69,28 @@ def test_checker_sees_an_upward_import(tmp_path):
     assert targets == ["theory.impact", "fem.mesh"]
     assert not _allowed("fem", "theory.impact")
     assert _allowed("fem", "fem.mesh")
+
+
+def _imported_names(path: Path) -> list[tuple[str, str]]:
+    """(module, name) of every ``from shtaerman.X import name`` in a file (relative resolved)."""
+    package = path.relative_to(PACKAGE.parent).with_suffix("").parts[:-1]
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = list(package[: len(package) - node.level + 1])
+            module = ".".join(base + ([node.module] if node.module else []))
+            found += [(module.removeprefix("shtaerman."), a.name) for a in node.names]
+    return found
+
+
+def test_plots_only_read_results():
+    """plots takes result types and constants from study and fem, never a function that
+    computes (a FEM run, a fit, a study): CamelCase classes and UPPER_CASE names only."""
+    computing = [
+        f"{path.relative_to(PACKAGE)} imports {module}.{name}"
+        for path in sorted((PACKAGE / "plots").rglob("*.py"))
+        for module, name in _imported_names(path)
+        if module.split(".")[0] in ("study", "fem")
+        and not (name[:1].isupper() and (name.isupper() or "_" not in name))
+    ]
+    assert computing == []

@@ -13,13 +13,13 @@ from shtaerman.study.run import IMPACT_KEYS
 from shtaerman.study.schema import shipped_studies
 
 STUDIES = [str(p) for p in shipped_studies() if p.stem in ("paper", "hertz")]
+"""The studies of the session's quick verify run (tests/conftest.py)."""
 
 
 @pytest.fixture(scope="module")
-def run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("verify") / "run"
-    code = main(["verify", "--quick", "--out", str(out), *STUDIES])
-    return code, out, json.loads((out / "results.json").read_text())
+def run(quick_verify):
+    """The session's ``verify --quick`` of the paper and Hertz studies (tests/conftest.py)."""
+    return quick_verify
 
 
 def test_verify_passes(run):
@@ -104,10 +104,17 @@ def test_failing_study_exits_1(tmp_path):
     [paper] = [path for path in STUDIES if path.endswith("paper.toml")]
     text = open(paper).read()
     assert "force = 1e-3" in text
+    # the strict force tolerance fails; the convergence study plays no part in that (dropped)
+    text = re.sub(r"(?ms)^\[convergence\].*?(?=^\[|\Z)", "", text)
+    assert "sizes" not in text
     study.write_text(text.replace("force = 1e-3", "force = 1e-9"))
     assert main(["verify", "--quick", "--out", str(tmp_path / "run"), str(study)]) == 1
     results = json.loads((tmp_path / "run" / "results.json").read_text())
     assert results["passed"] is False
+    # the report names the failing check first, with its value and tolerance
+    report = (tmp_path / "run" / "report.md").read_text()
+    assert report.index("## FAILED checks") < report.index("## Summary")
+    assert "- **paper**: contact force = " in report and "tolerance ±1.0e-09" in report
 
 
 def test_malformed_study_is_exit_2(tmp_path, capsys):

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from .. import __version__
 from ..sweep import cli as sweep
 from ..validation import InputError
-from . import contact, dynamic, impact, tables, verify
+from . import contact, dynamic, impact, init_study, tables, verify
 from .common import Parser, warn
 
 __all__ = ["EXIT_INPUT", "build_parser", "main"]
@@ -25,7 +25,7 @@ __all__ = ["EXIT_INPUT", "build_parser", "main"]
 EXIT_INPUT = 2
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
-SUBCOMMANDS = (impact, tables, contact, dynamic, verify, sweep)
+SUBCOMMANDS = (impact, tables, contact, dynamic, verify, init_study, sweep)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
 striker z = A r^n on an elastic half-space (Ol'shanskii et al. 2019). SI units everywhere.

@@ -13,13 +13,17 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TextIO
 
-from ..plots import figures
-from ..plots import sections as fields
+from ..plots.gallery import (
+    paper_figures,
+    study_convergence_figures,
+    study_field_figures,
+    study_figures,
+)
 from ..study.run import StudyOutcome, run_study
 from ..study.schema import Study
 from .export import write_indentation
 from .files import staged_folder, write_csv
-from .report import results_document, write_html, write_markdown
+from .report import results_document, write_reports
 
 __all__ = ["ProgressBar", "run_verification"]
 
@@ -58,11 +62,11 @@ def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, s
 
 
 def _study_figures(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
-    made = {**fields.study_field_figures(outcome, folder), **figures.study_figures(outcome, folder)}
-    if outcome.convergence is not None:
-        made["Mesh convergence: errors against the exact solution"] = figures.plot_convergence(
-            outcome.convergence, folder / "convergence.png"
-        )
+    made = {
+        **study_field_figures(outcome, folder),
+        **study_figures(outcome, folder),
+        **study_convergence_figures(outcome, folder),
+    }
     return {title: str(path.relative_to(root)) for title, path in made.items()}
 
 
@@ -81,22 +85,24 @@ def run_verification(
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
     with staged_folder(out, force=force) as stage:
-        outcomes, files, pictures = [], {}, {}
+        outcomes, files, pictures, writing = [], {}, {}, {}
         for study in studies:
             outcome = run_study(study, quick=quick, progress=bar)
             bar(f"{study.name}: files and figures")
+            start = time.perf_counter()
             folder = stage / study.name
             files[study.name] = _study_files(outcome, folder, stage)
             pictures[study.name] = _study_figures(outcome, folder, stage)
+            writing[study.name] = time.perf_counter() - start
             outcomes.append(outcome)
             advance()
             bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
         pictures[""] = {
-            title: str(path.relative_to(stage))
-            for title, path in figures.paper_figures(stage).items()
+            title: str(path.relative_to(stage)) for title, path in paper_figures(stage).items()
         }
-        results = results_document(outcomes, files, quick=quick)
+        results = results_document(
+            outcomes, files, quick=quick, output_seconds=writing, figures=pictures
+        )
         (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
-        write_markdown(results, pictures, stage / "report.md")
-        write_html(results, pictures, stage)
+        write_reports(results, stage)
     return results

@@ -1,23 +1,41 @@
-"""The verification report: results.json, report.md and a self-contained report.html.
+"""The verification report: results.json, and report.md and a self-contained report.html.
 
-Reads study outcomes and figure files; computes nothing of its own.
+Reads study outcomes and figure files; computes nothing of its own. Both reports are jinja2
+templates shipped in the package (``templates/report.md.j2``, ``templates/report.html.j2``),
+rendered from one context built once from the results document by :func:`report_context`.
+HTML autoescaping is on: study names and descriptions cannot inject markup; the Markdown
+template escapes the characters Markdown would read as markup.
 """
 
 from __future__ import annotations
 
 import base64
 import datetime as dt
-import html
 import importlib.metadata
 import os
 import platform
+import re
+import urllib.parse
+from collections.abc import Callable, Mapping
+from functools import cache
 from pathlib import Path
+
+import jinja2
 
 from .. import __version__
 from ..study.run import IMPACT_KEYS, StudyOutcome
 from .files import json_safe
 
-__all__ = ["environment", "results_document", "write_html", "write_markdown"]
+__all__ = [
+    "environment",
+    "render_html",
+    "render_markdown",
+    "report_context",
+    "results_document",
+    "write_html",
+    "write_markdown",
+    "write_reports",
+]
 
 PACKAGES = (
     "numpy",
@@ -29,6 +47,7 @@ PACKAGES = (
     "vtk",
     "matplotlib",
     "pymetis",
+    "jinja2",
 )
 UNITS = {"beta": "N/m^q", "x_c": "m", "P_c": "N", "a_c": "m", "p_c": "Pa", "t_c": "s", "t_y": "s"}
 VARIANTS = {
@@ -36,6 +55,25 @@ VARIANTS = {
     "fem_fitted": "FEM-fitted beta, Ateb",
     "fem_tabulated": "FEM P(x) tabulated, ODE",
 }
+CONTACT_COLUMNS = {
+    "force": "force",
+    "beta": "beta",
+    "exponent": "exponent",
+    "contact_radius": "radius",
+    "central_pressure": "p(0)",
+}
+IMPACT_COLUMNS = ("x_c", "P_c", "t_c")
+SUMMARY_LEGEND = (
+    "Contact columns: the largest relative error over the depths against Shtaerman's exact "
+    "solution. Impact columns: the largest relative difference of the two FEM-fed impacts "
+    "(FEM-fitted beta through the Ateb solution; tabulated FEM P(x) integrated numerically) "
+    "against the exact impact. Each study's checks below give every value with its tolerance."
+)
+TIMING_LEGEND = (
+    "FEM curve (s): meshing, assembly, factorization and contact solves of the study's depth "
+    "ladder. Study total (s): wall time of the whole study: the FEM curve, fits, the three "
+    "impacts, the mesh-convergence study if any, and writing its files and figures."
+)
 
 
 def environment() -> dict[str, object]:
@@ -55,8 +93,34 @@ def environment() -> dict[str, object]:
     }
 
 
-def study_document(outcome: StudyOutcome, files: dict[str, str]) -> dict[str, object]:
-    """One study's entry of results.json."""
+def _timings(outcome: StudyOutcome, output: float | None) -> dict[str, float | None]:
+    """Wall times of one study in s (``output``: writing its files and figures, if known)."""
+    fem = float(outcome.contact.timings.get("total", float("nan")))
+    levels = outcome.convergence.levels if outcome.convergence is not None else []
+    convergence = sum(float(level.get("timings", {}).get("total", 0.0)) for level in levels)
+    return {
+        "fem_curve": fem,
+        "convergence": convergence,
+        "computation": outcome.seconds,
+        "output": output,
+        "total": outcome.seconds + (output or 0.0),
+    }
+
+
+def study_document(
+    outcome: StudyOutcome,
+    files: dict[str, str],
+    output_seconds: float | None = None,
+    figures: Mapping[str, str] | None = None,
+) -> dict[str, object]:
+    """One study's entry of results.json.
+
+    ``figures``: caption to PNG path (relative to the result folder) of the study's figures.
+
+    ``seconds`` is the computation (:func:`shtaerman.study.run.run_study`); ``timings`` splits
+    the study's wall time: ``fem_curve`` (the FEM contact curve), ``convergence`` (its
+    meshes), ``computation`` (= ``seconds``), ``output`` (files and figures) and ``total``.
+    """
     study = outcome.study
     return {
         "description": study.description,
@@ -77,7 +141,9 @@ def study_document(outcome: StudyOutcome, files: dict[str, str]) -> dict[str, ob
         "checks": [check.to_dict() for check in outcome.checks],
         "passed": outcome.passed,
         "seconds": outcome.seconds,
+        "timings": _timings(outcome, output_seconds),
         "files": files,
+        "figures": dict(figures or {}),
         **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
         **({"accuracy": outcome.accuracy.to_dict()} if outcome.accuracy else {}),
     }
@@ -88,11 +154,25 @@ def results_document(
     files: dict[str, dict[str, str]],
     *,
     quick: bool,
+    output_seconds: Mapping[str, float] | None = None,
+    figures: Mapping[str, Mapping[str, str]] | None = None,
 ) -> dict[str, object]:
-    """The whole results.json (strict JSON: non-finite numbers are null)."""
+    """The whole results.json (strict JSON: non-finite numbers are null).
+
+    ``output_seconds``: per study name, the time spent writing its files and figures.
+    ``figures``: per study name, caption to PNG path relative to the result folder; key
+    ``""`` holds the figures of no study (top-level ``figures``). The reports are rendered
+    from this document alone.
+    """
+    output, pictures = output_seconds or {}, figures or {}
+    studies = {}
+    for outcome in outcomes:
+        name = outcome.study.name
+        studies[name] = study_document(outcome, files[name], output.get(name), pictures.get(name))
     return json_safe(
         {
-            "studies": {o.study.name: study_document(o, files[o.study.name]) for o in outcomes},
+            "studies": studies,
+            "figures": dict(pictures.get("", {})),
             "passed": all(o.passed for o in outcomes),
             "quick": quick,
             "generated": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
@@ -101,136 +181,223 @@ def results_document(
     )
 
 
-def _verdict_rows(results: dict) -> list[list[str]]:
-    rows = []
-    for name, study in results["studies"].items():
-        errors = study["contact"]["errors"]
-        worst = {
-            key: max(abs(study["differences"][v][key]) for v in ("fem_fitted", "fem_tabulated"))
-            for key in ("x_c", "P_c", "t_c")
-        }
-        rows.append(
-            [name, "PASS" if study["passed"] else "FAIL"]
-            + [
-                f"{errors[k]:.1e}"
-                for k in ("force", "beta", "exponent", "contact_radius", "central_pressure")
-            ]
-            + [f"{worst[k]:.1e}" for k in ("x_c", "P_c", "t_c")]
-            + [f"{study['seconds']:.1f}"]
-        )
-    return rows
+# --- the context both reports are rendered from ----------------------------------------------
 
 
-VERDICT_HEADER = [
-    "study",
-    "verdict",
-    "force",
-    "beta",
-    "exponent",
-    "radius",
-    "p(0)",
-    "x_c",
-    "P_c",
-    "t_c",
-    "time (s)",
-]
+def _number(value: float | None, spec: str) -> str:
+    return "-" if value is None else format(value, spec)
 
 
-def _impact_rows(study: dict) -> list[list[str]]:
-    rows = []
-    for variant, label in VARIANTS.items():
-        values = study["impact"][variant]
-        rows.append(
-            [label] + ["-" if values[key] is None else f"{values[key]:.6g}" for key in IMPACT_KEYS]
-        )
-    return rows
+def _seconds(value: float | None) -> str:
+    return "-" if value is None else f"{value:.1f}"
 
 
-def _markdown_table(header: list[str], rows: list[list[str]]) -> list[str]:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    return lines + ["| " + " | ".join(row) + " |" for row in rows]
-
-
-def _intro(results: dict) -> list[str]:
-    verdict = "all studies PASS" if results["passed"] else "at least one study FAILS"
-    mode = " (quick: coarse meshes)" if results["quick"] else ""
+def _summary_row(name: str, study: dict) -> list[str]:
+    errors = study["contact"]["errors"]
+    differences = [study["differences"][v] for v in ("fem_fitted", "fem_tabulated")]
+    worst = {
+        key: max((abs(d[key]) for d in differences if d.get(key) is not None), default=float("nan"))
+        for key in IMPACT_COLUMNS
+    }
+    timings = study.get("timings") or {}
+    total = timings.get("total", study.get("seconds"))
     return [
-        "Finite-element cross-check of Shtaerman's contact law P = beta x^((n+1)/n) and of the "
-        "quasi-static impact it implies (Ol'shanskii et al. 2019, doi:10.15587/1729-4061.2019."
-        f"155854). Verdict: **{verdict}**{mode}. Contact columns: largest relative error over "
-        "the depths against the exact solution; impact columns: largest relative difference of "
-        "the two FEM-fed impacts against the exact one.",
+        name,
+        "PASS" if study["passed"] else "FAIL",
+        *(_number(errors.get(key), ".1e") for key in CONTACT_COLUMNS),
+        *(_number(worst[key], ".1e") for key in IMPACT_COLUMNS),
+        _seconds(timings.get("fem_curve", study["contact"]["timings"].get("total"))),
+        _seconds(total),
     ]
+
+
+def _checks(study: dict) -> list[dict[str, str]]:
+    return [
+        {
+            "name": check["name"],
+            "value": _number(check["value"], ".2e"),
+            "tolerance": _number(check["tolerance"], ".1e"),
+            "result": "PASS" if check["passed"] else "FAIL",
+        }
+        for check in study["checks"]
+    ]
+
+
+def _impact_table(study: dict) -> dict[str, list]:
+    rows = [
+        [label] + [_number(study["impact"][variant][key], ".6g") for key in IMPACT_KEYS]
+        for variant, label in VARIANTS.items()
+        if variant in study["impact"]
+    ]
+    return {"header": ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)], "rows": rows}
+
+
+def _timing_text(study: dict) -> str:
+    timings = study.get("timings") or {}
+    contact = study["contact"]["timings"]
+    parts = [
+        f"FEM curve {_seconds(timings.get('fem_curve', contact.get('total')))} s (mesh "
+        f"{_seconds(contact.get('mesh'))}, assembly {_seconds(contact.get('assembly'))}, "
+        f"factorization {_seconds(contact.get('factorization'))}, contact "
+        f"{_seconds(contact.get('contact'))})"
+    ]
+    if timings.get("convergence"):
+        parts.append(f"mesh-convergence study {_seconds(timings['convergence'])} s")
+    parts.append(f"computation in all {_seconds(timings.get('computation', study['seconds']))} s")
+    if timings.get("output") is not None:
+        parts.append(f"files and figures {_seconds(timings['output'])} s")
+    parts.append(f"study total {_seconds(timings.get('total', study['seconds']))} s")
+    return "; ".join(parts)
+
+
+def _figures(captioned: Mapping[str, str]) -> list[dict[str, str]]:
+    return [{"caption": caption, "file": file} for caption, file in captioned.items()]
+
+
+def report_context(
+    results: dict, figures: Mapping[str, Mapping[str, str]] | None = None
+) -> dict[str, object]:
+    """Everything either report shows, as display strings, from the results document.
+
+    Parameters
+    ----------
+    results : dict
+        The results document (:func:`results_document`).
+    figures : mapping, optional
+        Per study name, caption to PNG path relative to the result folder; key ``""`` holds
+        the figures that belong to no study. Default: the document's own ``figures``.
+    """
+    studies = results["studies"]
+    if figures is None:
+        figures = {name: study.get("figures", {}) for name, study in studies.items()}
+        figures[""] = results.get("figures", {})
+    failures = [
+        {
+            "study": name,
+            "check": check["name"],
+            "value": _number(check["value"], ".2e"),
+            "tolerance": _number(check["tolerance"], ".1e"),
+        }
+        for name, study in studies.items()
+        for check in study["checks"]
+        if not check["passed"]
+    ]
+    return {
+        "passed": results["passed"],
+        "verdict": "all studies PASS" if results["passed"] else "at least one study FAILS",
+        "quick": results["quick"],
+        "failures": failures,
+        "summary": {
+            "legend": SUMMARY_LEGEND,
+            "timing_legend": TIMING_LEGEND,
+            "header": [
+                "study",
+                "verdict",
+                *CONTACT_COLUMNS.values(),
+                *IMPACT_COLUMNS,
+                "FEM curve (s)",
+                "study total (s)",
+            ],
+            "rows": [_summary_row(name, study) for name, study in studies.items()],
+        },
+        "studies": [
+            {
+                "name": name,
+                "description": study["description"],
+                "verdict": "PASS" if study["passed"] else "FAIL",
+                "checks": _checks(study),
+                "impact": _impact_table(study),
+                "timing_text": _timing_text(study),
+                "figures": _figures(figures.get(name, {})),
+            }
+            for name, study in studies.items()
+        ],
+        "shared_figures": _figures(figures.get("", {})),
+        "generated": results["generated"],
+        "environment": results["environment"],
+    }
+
+
+# --- rendering ---------------------------------------------------------------------------------
+
+_MARKDOWN_SPECIAL = re.compile(r"([\\`*\[\]<>|])")
+
+
+def _markdown_text(value: object) -> str:
+    """Plain text for Markdown: markup characters backslash-escaped, one line."""
+    return _MARKDOWN_SPECIAL.sub(r"\\\1", " ".join(str(value).split()))
+
+
+def _url_path(value: str) -> str:
+    """A relative file path as a URL path (spaces and the like percent-encoded)."""
+    return urllib.parse.quote(Path(value).as_posix())
+
+
+@cache
+def _environment() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("shtaerman.output", "templates"),
+        autoescape=jinja2.select_autoescape(enabled_extensions=("html.j2",), default=False),
+        undefined=jinja2.StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+    )
+    env.filters["md"] = _markdown_text
+    env.filters["urlpath"] = _url_path
+    return env
+
+
+def _data_uri(folder: Path) -> Callable[[str], str]:
+    """A function from a PNG path relative to ``folder`` to its base64 data URI.
+
+    Only PNG files inside ``folder`` are embedded: a results document naming any other file
+    (``../secret``) raises ValueError instead of copying it into the page.
+    """
+    root = folder.resolve()
+
+    def encode(file: str) -> str:
+        path = (root / file).resolve()
+        if path.suffix.lower() != ".png" or not path.is_relative_to(root):
+            raise ValueError(f"figure {file!r} is not a PNG inside the result folder")
+        data = base64.b64encode(path.read_bytes()).decode("ascii")
+        return f"data:image/png;base64,{data}"
+
+    return encode
+
+
+def render_markdown(context: Mapping[str, object]) -> str:
+    """report.md from :func:`report_context` (relative image links)."""
+    return _environment().get_template("report.md.j2").render(context)
+
+
+def render_html(context: Mapping[str, object], folder: Path) -> str:
+    """report.html from :func:`report_context`, every image read from ``folder`` and embedded."""
+    template = _environment().get_template("report.html.j2")
+    return template.render({**context, "data_uri": _data_uri(folder)})
+
+
+def write_reports(
+    results: dict, folder: Path, figures: Mapping[str, Mapping[str, str]] | None = None
+) -> tuple[Path, Path]:
+    """report.md and report.html in ``folder`` from one context; returns their paths.
+
+    ``figures`` as for :func:`report_context` (default: those of the results document).
+    """
+    context = report_context(results, figures)
+    markdown, page = folder / "report.md", folder / "report.html"
+    markdown.write_text(render_markdown(context), encoding="utf-8")
+    page.write_text(render_html(context, folder), encoding="utf-8")
+    return markdown, page
 
 
 def write_markdown(results: dict, figures: dict[str, dict[str, str]], path: Path) -> None:
     """report.md beside the figures (relative image links)."""
-    lines = ["# shtaerman verification report", "", *_intro(results), ""]
-    lines += _markdown_table(VERDICT_HEADER, _verdict_rows(results))
-    for name, study in results["studies"].items():
-        lines += ["", f"## {name}", "", study["description"], ""]
-        lines += _markdown_table(
-            ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)], _impact_rows(study)
-        )
-        lines += [""] + [f"![{title}]({file})" for title, file in figures.get(name, {}).items()]
-    shared = figures.get("", {})
-    if shared:
-        lines += ["", "## The paper's Ateb functions", ""]
-        lines += [f"![{title}]({file})" for title, file in shared.items()]
-    env = results["environment"]
-    lines += [
-        "",
-        f"Generated {results['generated']} by shtaerman {env['shtaerman']} on "
-        f"{env['platform']} ({env['cpu_count']} cores).",
-    ]
-    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
-
-
-def _html_table(header: list[str], rows: list[list[str]]) -> str:
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
-    body = "".join(
-        "<tr>" + "".join(f'<td class="{c.lower()}">{html.escape(c)}</td>' for c in row) + "</tr>"
-        for row in rows
-    )
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
-
-
-def _embedded(folder: Path, file: str, title: str) -> str:
-    data = base64.b64encode((folder / file).read_bytes()).decode("ascii")
-    caption = html.escape(title)
-    return (
-        f'<figure><img alt="{caption}" src="data:image/png;base64,{data}">'
-        f"<figcaption>{caption}</figcaption></figure>"
-    )
-
-
-STYLE = """body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}
-table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;
-text-align:right}th{background:#eee}td.pass{color:#070;font-weight:bold}
-td.fail{color:#b00;font-weight:bold}img{max-width:100%}figure{margin:1em 0}"""
+    path.write_text(render_markdown(report_context(results, figures)), encoding="utf-8")
 
 
 def write_html(results: dict, figures: dict[str, dict[str, str]], folder: Path) -> Path:
     """report.html with every image embedded: it opens from disk anywhere."""
-    parts = [
-        f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>shtaerman report</title>"
-        f"<style>{STYLE}</style></head><body><h1>shtaerman verification report</h1>"
-    ]
-    parts += [f"<p>{html.escape(p).replace('**', '')}</p>" for p in _intro(results)]
-    parts.append(_html_table(VERDICT_HEADER, _verdict_rows(results)))
-    for name, study in results["studies"].items():
-        parts.append(f"<h2>{html.escape(name)}</h2><p>{html.escape(study['description'])}</p>")
-        header = ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)]
-        parts.append(_html_table(header, _impact_rows(study)))
-        parts += [_embedded(folder, file, title) for title, file in figures.get(name, {}).items()]
-    if figures.get(""):
-        parts.append("<h2>The paper's Ateb functions</h2>")
-        parts += [_embedded(folder, file, title) for title, file in figures[""].items()]
-    env = results["environment"]
-    parts.append(
-        f"<p><small>Generated {results['generated']} by shtaerman {env['shtaerman']} "
-        f"on {html.escape(str(env['platform']))}.</small></p></body></html>"
-    )
     path = folder / "report.html"
-    path.write_text("".join(parts), encoding="utf-8")
+    path.write_text(render_html(report_context(results, figures), folder), encoding="utf-8")
     return path

@@ -160,7 +160,7 @@ class IndentationResult:
         }
 
     def to_dict(self) -> dict[str, object]:
-        """The JSON of ``shtaerman contact --json`` (DESIGN.md interface contract)."""
+        """The JSON of ``shtaerman contact --json`` (its keys are an interface other tools use)."""
         return {
             "model": "linear",
             "shape_coefficient": self.indenter.shape_coefficient,

@@ -1,0 +1,101 @@
+"""The Ateb functions of the impact against the paper's Tables 1-2 and approximations (PNG)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from ..paper.printed import paper_cosine_approximation, paper_sine_approximation, printed_table
+from ..theory.ateb import ateb_cosine, ateb_sine
+from ..theory.impact import duration_integral
+from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, PAPER_COLOUR, save, styled
+
+__all__ = ["plot_ateb"]
+
+
+def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
+    """One function: exact curve, printed table, approximation; its relative error below."""
+    integral = duration_integral(5.0 / 3.0)
+    s = np.linspace(0.0, integral, 2001)
+    if kind == "sine":
+        exact = ateb_sine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
+        approximation, table, name = paper_sine_approximation(s), printed_table("table1"), "eta"
+        symbol, label, number = r"\eta", r"$Sa(5/3, 1, 4\eta/3)$", "Table 1"
+    else:
+        exact = ateb_cosine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
+        approximation, table, name = paper_cosine_approximation(s), printed_table("table2"), "zeta"
+        symbol, label, number = r"\zeta", r"$Ca(5/3, 1, 4\zeta/3)$", "Table 2"
+    top.plot(s, exact, color=EXACT_COLOUR, label="exact")
+    top.plot(s, approximation, "--", color=APPROXIMATION_COLOUR, label="paper's approximation")
+    top.plot(
+        table[name],
+        table[kind],
+        "o",
+        color=PAPER_COLOUR,
+        markersize=4,
+        markerfacecolor="none",
+        label=f"paper's {number}",
+    )
+    top.set_ylabel(label)
+    top.set_ylim(0.0, 1.05)
+    top.legend(loc="lower right" if kind == "sine" else "lower left")
+    inside = exact > 1e-9  # the relative error is 0/0 where both vanish
+    error = np.full_like(s, np.nan)
+    error[inside] = 100 * (approximation[inside] / exact[inside] - 1)
+    worst = int(np.nanargmax(np.abs(error)))
+    bottom.plot(s, error, color=APPROXIMATION_COLOUR)
+    for bound in (-1.0, 1.0):
+        bottom.axhline(bound, color="0.4", linestyle=":", linewidth=1.0)
+    bottom.plot(s[worst], error[worst], "o", color=APPROXIMATION_COLOUR)
+    right = s[worst] > 0.5 * integral
+    bottom.annotate(
+        f"max {abs(error[worst]):.3f} %",
+        (s[worst], error[worst]),
+        xytext=(-8 if right else 8, 0),
+        textcoords="offset points",
+        ha="right" if right else "left",
+        va="center",
+        fontsize=8.5,
+    )
+    bottom.text(
+        0.99 * integral,
+        1.05,
+        "paper's claim: 1 %",
+        ha="right",
+        va="bottom",
+        fontsize=8.5,
+        color="0.3",
+    )
+    bottom.set_ylim(-1.5, 1.5)
+    bottom.set_xlabel(f"${symbol}$")
+    bottom.set_xlim(0.0, integral)
+
+
+@styled
+def plot_ateb(path: Path | str) -> Path:
+    """Write Sa(5/3, 1, 4 eta/3) and Ca(5/3, 1, 4 zeta/3) against the paper's Tables 1-2.
+
+    Top: the exact functions (:mod:`shtaerman.ateb`), the printed table values (markers) and
+    the paper's piecewise approximations (dashed), over one compression (eta) and one
+    restitution (zeta) interval [0, I], I = 1.445927. Bottom: the approximations' relative
+    error in %, its maximum marked, against the paper's claimed 1 % (dotted).
+
+    Parameters
+    ----------
+    path : path-like
+        PNG to write (1480 x 1000 pixels).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    figure = Figure(figsize=(7.4, 5.0), layout="constrained")
+    axes = figure.subplots(2, 2, sharex=True, height_ratios=(2.2, 1))
+    _ateb_column(axes[0, 0], axes[1, 0], "sine")
+    _ateb_column(axes[0, 1], axes[1, 1], "cosine")
+    axes[1, 0].set_ylabel("Approximation\nerror (%)")
+    return save(figure, path)

@@ -1,0 +1,149 @@
+"""The figures of a verification run: which files each study gets, and their captions.
+
+Every function writes PNGs into a folder and returns ``{caption: path}``; the report shows the
+captions under the pictures, so a caption says everything a reader needs to read its figure.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .ateb import plot_ateb
+from .curves import plot_convergence, plot_force_depth, plot_pressure
+from .fields import SIGMA
+from .impact import plot_impact_contact, plot_impact_motion
+from .revolved import plot_revolved
+from .sections import plot_field
+
+if TYPE_CHECKING:
+    from ..study.run import StudyOutcome
+
+__all__ = [
+    "FIELD_FIGURES",
+    "paper_figures",
+    "study_convergence_figures",
+    "study_field_figures",
+    "study_figures",
+]
+
+FIELD_FIGURES = {
+    "sigma_zz": f"Axial stress {SIGMA}zz under the indenter (r-z section, largest depth)",
+    "sigma_rr": f"Radial stress {SIGMA}rr under the indenter (r-z section, largest depth)",
+    "von_mises": "Von Mises stress under the indenter (r-z section, largest depth)",
+    "u_z": "Axial displacement uz (r-z section, largest depth)",
+}
+"""Fields of :func:`study_field_figures` and their captions."""
+REVOLVED_CAPTION = (
+    "Von Mises stress, the r-z section revolved through 270° (contact circle in green)"
+)
+IMPACT_CONTACT_CAPTION = (
+    "Impact: contact radius a/a_c and central pressure p(0,t)/p_c (the paper's Fig. 4). The "
+    "lower panel's scale is set away from t = 0 and t_y, where a ~ x^(1/n) and p(0) ~ "
+    "x^(1-1/n) are infinitely steep and a tiny shift of t_y swamps the comparison; differences "
+    "beyond it are marked by triangles on its edge and their extremes written in the panel"
+)
+CONVERGENCE_CAPTION = "Mesh convergence: errors against the exact solution"
+
+
+def study_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
+    """The curve figures of one study, written into ``folder``.
+
+    ``force_depth.png`` and ``pressure.png`` (:func:`plot_force_depth`, :func:`plot_pressure`),
+    ``impact_motion.png`` and ``impact_contact.png`` (the paper's Figs. 3 and 4, every impact
+    variant of the study against its exact impact).
+
+    Parameters
+    ----------
+    outcome : shtaerman.study.run.StudyOutcome
+        The study: its ``contact``, ``histories`` and ``exact`` are drawn.
+    folder : path-like
+        Where the PNGs go (created if missing).
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Caption to PNG path.
+    """
+    folder = Path(folder)
+    contact, histories, exact = outcome.contact, outcome.histories, outcome.exact
+    return {
+        "Force against depth: FEM and Shtaerman's P = βx^q": plot_force_depth(
+            contact, folder / "force_depth.png"
+        ),
+        "Contact pressure p(r)/p_avg: FEM nodal values and the exact profile": plot_pressure(
+            contact, folder / "pressure.png"
+        ),
+        "Impact: approach x/x_c and force P/P_c against t/t_c (the paper's Fig. 3)": (
+            plot_impact_motion(histories, exact, folder / "impact_motion.png")
+        ),
+        IMPACT_CONTACT_CAPTION: plot_impact_contact(
+            histories, exact, folder / "impact_contact.png"
+        ),
+    }
+
+
+def study_convergence_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
+    """``convergence.png`` (:func:`plot_convergence`) if the study has a convergence study.
+
+    Parameters
+    ----------
+    outcome : shtaerman.study.run.StudyOutcome
+        The study; its ``convergence`` is drawn.
+    folder : path-like
+        Where the PNG goes (created if missing).
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Caption to PNG path; empty when the study has no convergence study.
+    """
+    if outcome.convergence is None:
+        return {}
+    return {
+        CONVERGENCE_CAPTION: plot_convergence(outcome.convergence, Path(folder) / "convergence.png")
+    }
+
+
+def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
+    """The field pictures of one study, written into ``folder``.
+
+    One PNG per field of :data:`FIELD_FIGURES` (``field_<name>.png``) and the revolved
+    von Mises cut-away (``field_revolved.png``), all at the largest depth.
+
+    Parameters
+    ----------
+    outcome : shtaerman.study.run.StudyOutcome
+        The study; its ``contact`` (IndentationResult) is drawn.
+    folder : path-like
+        Where the PNGs go (created if missing).
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Caption to PNG path.
+    """
+    folder, result = Path(folder), outcome.contact
+    made = {
+        caption: plot_field(result, folder / f"field_{name}.png", name)
+        for name, caption in FIELD_FIGURES.items()
+    }
+    made[REVOLVED_CAPTION] = plot_revolved(result, folder / "field_revolved.png")
+    return made
+
+
+def paper_figures(folder: Path | str) -> dict[str, Path]:
+    """The figures that depend on no study, written into ``folder``: ``ateb.png``.
+
+    Parameters
+    ----------
+    folder : path-like
+        Where the PNG goes (created if missing).
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Caption to PNG path.
+    """
+    caption = "Ateb functions of the impact against the paper's Tables 1-2 and approximations"
+    return {caption: plot_ateb(Path(folder) / "ateb.png")}

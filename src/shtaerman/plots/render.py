@@ -1,0 +1,75 @@
+"""Off-screen VTK rendering through pyvista: the one place a plotter is made.
+
+Every pyvista picture of the package comes from :func:`picture`, which makes the plotter
+off-screen (no display or X server needed), white, :data:`WINDOW_SIZE` pixels, and closes it
+whatever happens. pyvista's global ``OFF_SCREEN`` is left alone, so a user's own interactive
+plots in the same session keep working.
+
+VTK reports "bad X server connection" when it renders off-screen without a display (harmless:
+it falls back to an off-screen context). :func:`quiet_vtk` silences VTK's warnings for the
+duration of one picture; it is the only place VTK's global state is touched, and it restores it.
+Text uses matplotlib's DejaVu Sans: Greek letters, and the same face as the curve figures.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from functools import cache
+from pathlib import Path
+
+import pyvista as pv
+from matplotlib import font_manager
+from vtkmodules.vtkCommonCore import vtkObject
+from vtkmodules.vtkRenderingCore import vtkTextProperty
+
+__all__ = ["FONT_SIZE", "WINDOW_SIZE", "picture", "quiet_vtk", "save", "use_font"]
+
+WINDOW_SIZE = (1600, 1000)
+"""Pixels of every picture."""
+FONT_SIZE = 22
+
+
+@cache
+def _font_file() -> str:
+    return font_manager.findfont("DejaVu Sans")
+
+
+def use_font(prop: vtkTextProperty) -> None:
+    """Black DejaVu Sans, no bold, no shadow, on a VTK text property."""
+    prop.SetFontFamily(4)  # VTK_FONT_FILE
+    prop.SetFontFile(_font_file())
+    prop.SetColor(0.0, 0.0, 0.0)
+    prop.BoldOff()
+    prop.ShadowOff()
+
+
+@contextmanager
+def quiet_vtk() -> Iterator[None]:
+    """Silence VTK warnings (the off-screen "bad X server connection") for one picture."""
+    previous = vtkObject.GetGlobalWarningDisplay()
+    vtkObject.GlobalWarningDisplayOff()
+    try:
+        yield
+    finally:
+        vtkObject.SetGlobalWarningDisplay(previous)
+
+
+@contextmanager
+def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
+    """An off-screen plotter on white, VTK warnings silenced, closed whatever happens."""
+    with quiet_vtk():
+        plotter = pv.Plotter(off_screen=True, window_size=WINDOW_SIZE, shape=shape, border=False)
+        try:
+            plotter.set_background("white")
+            yield plotter
+        finally:
+            plotter.close()
+
+
+def save(plotter: pv.Plotter, path: Path | str) -> Path:
+    """Render ``plotter`` into the PNG ``path`` (parent folders created); returns the path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    plotter.screenshot(str(path))
+    return path

@@ -1,0 +1,62 @@
+"""Fixtures shared across test modules: one quick run of the shipped paper and Hertz studies.
+
+The quick studies (coarse meshes, the paper's with its three coarsest convergence meshes) are
+the suite's most expensive computation. They run once per session: ``quick_outcomes`` holds
+their outcomes, and ``quick_verify`` runs ``shtaerman verify --quick`` end to end on the same
+two study files, its ``run_study`` calls served from ``quick_outcomes`` (the identical study
+and mode, checked, so the result folder is what a plain run writes).
+"""
+
+import json
+from pathlib import Path
+
+import pytest
+
+import shtaerman.output.folder
+from shtaerman.cli import main
+from shtaerman.study.run import StudyOutcome, run_study
+from shtaerman.study.schema import load_study, shipped_studies
+
+QUICK_STUDIES = ("paper", "hertz")
+
+
+def quick_study_files() -> list[str]:
+    """Paths of the shipped paper and Hertz study files."""
+    return [str(p) for p in shipped_studies() if p.stem in QUICK_STUDIES]
+
+
+@pytest.fixture(scope="session")
+def quick_outcomes() -> dict[str, StudyOutcome]:
+    """The paper and Hertz studies run with ``quick=True``, by study name (once per session)."""
+    studies = [study for path in quick_study_files() for study in load_study(path)]
+    return {study.name: run_study(study, quick=True) for study in studies}
+
+
+@pytest.fixture(scope="session")
+def quick_outcome(quick_outcomes) -> StudyOutcome:
+    """The paper study's quick outcome (about 5k dofs)."""
+    return quick_outcomes["paper"]
+
+
+@pytest.fixture(scope="session")
+def quick_verify(quick_outcomes, tmp_path_factory) -> tuple[int, Path, dict]:
+    """``shtaerman verify --quick --out DIR paper.toml hertz.toml``: (exit code, DIR, results).
+
+    Files, figures and reports are written as in any run; the two studies' computations are
+    taken from :func:`quick_outcomes` (each served once, for exactly the study it was run for).
+    """
+    served = []
+
+    def cached_run_study(study, *, quick=False, progress=None):
+        outcome = quick_outcomes.get(study.name)
+        if quick and outcome is not None and outcome.study == study:
+            served.append(study.name)
+            return outcome
+        return run_study(study, quick=quick, progress=progress)
+
+    out = tmp_path_factory.mktemp("verify") / "run"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(shtaerman.output.folder, "run_study", cached_run_study)
+        code = main(["verify", "--quick", "--out", str(out), *quick_study_files()])
+    assert sorted(served) == sorted(QUICK_STUDIES)
+    return code, out, json.loads((out / "results.json").read_text())

@@ -1,0 +1,152 @@
+"""The reports: a checks table per study, failures first, labelled times, escaped names.
+
+Rendered from the session's quick verify run (tests/conftest.py); variations (a failing check,
+hostile study names) are re-rendered from its results document, which holds everything the
+reports show.
+"""
+
+import copy
+import json
+from html.parser import HTMLParser
+
+import pytest
+
+from shtaerman.output.report import render_html, render_markdown, report_context, write_reports
+
+HOSTILE = 'x" onmouseover="alert(1)<script>alert(2)</script>'
+
+
+class Elements(HTMLParser):
+    """Every start tag with its attributes, and the text, of an HTML page."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.tags: list[tuple[str, dict[str, str | None]]] = []
+        self.text: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append((tag, dict(attrs)))
+
+    def handle_data(self, data):
+        self.text.append(data)
+
+
+def parse(page: str) -> Elements:
+    parser = Elements()
+    parser.feed(page)
+    return parser
+
+
+@pytest.fixture(scope="module")
+def results(quick_verify):
+    return quick_verify[2]
+
+
+def failing(results: dict, name: str = "paper") -> dict:
+    """A copy of ``results`` whose study ``name`` fails its contact force check."""
+    failed = copy.deepcopy(results)
+    study = failed["studies"][name]
+    check = next(c for c in study["checks"] if c["name"] == "contact force")
+    check["tolerance"], check["passed"] = 1e-9, False
+    study["passed"] = failed["passed"] = False
+    return failed
+
+
+def test_results_record_figures_and_labelled_times(results):
+    for study in results["studies"].values():
+        times = study["timings"]
+        assert set(times) == {"fem_curve", "convergence", "computation", "output", "total"}
+        # the FEM curve is part of the computation, the computation part of the total
+        assert 0 < times["fem_curve"] < times["computation"] < times["total"]
+        assert times["computation"] == study["seconds"]
+        assert len(study["figures"]) >= 9
+    assert results["studies"]["paper"]["timings"]["convergence"] > 0
+    assert list(results["figures"].values()) == ["ateb.png"]
+
+
+def test_markdown_has_a_checks_table_per_study(quick_verify):
+    _, out, results = quick_verify
+    text = (out / "report.md").read_text()
+    assert text.count("| check | value (relative) | tolerance | result |") == len(
+        results["studies"]
+    )
+    for study in results["studies"].values():
+        for check in study["checks"]:
+            assert (
+                f"| {check['name']} | {check['value']:.2e} | {check['tolerance']:.1e} | PASS |"
+                in (text.replace("\\", ""))
+            )
+    assert "FEM curve (s)" in text and "study total (s)" in text and "time (s)" not in text
+    assert "FAILED" not in text
+
+
+def test_html_has_a_checks_table_per_study(quick_verify):
+    _, out, results = quick_verify
+    page = parse((out / "report.html").read_text())
+    tables = [attrs.get("class") for tag, attrs in page.tags if tag == "table"]
+    assert tables.count("checks") == len(results["studies"])
+    assert "FEM curve (s)" in page.text and "study total (s)" in page.text
+    assert not any(attrs.get("class") == "failures" for _, attrs in page.tags)
+
+
+def test_failures_come_first_with_value_and_tolerance(results, quick_verify):
+    context = report_context(failing(results))
+    markdown = render_markdown(context)
+    value = results["studies"]["paper"]["checks"][0]["value"]
+    line = f"- **paper**: contact force = {value:.2e} is outside the tolerance ±1.0e-09"
+    assert line in markdown
+    assert markdown.index("## FAILED checks") < markdown.index("## Summary")
+    assert "| contact force | " in markdown and "| 1.0e-09 | FAIL |" in markdown
+    page = render_html(context, quick_verify[1])
+    first = page.index('<section class="failures"')
+    assert first < page.index("<h2>Summary</h2>")
+    assert f"contact force = {value:.2e} is outside the tolerance ±1.0e-09" in page
+    assert '<tr class="failed"><td>contact force</td>' in page
+
+
+@pytest.mark.parametrize("name", [HOSTILE, "a<b", 'quote"d', "pipe|name"])
+def test_study_names_cannot_inject(results, quick_verify, name):
+    hostile = failing(results, "hertz")
+    hostile["studies"] = {name: hostile["studies"].pop("hertz"), **hostile["studies"]}
+    hostile["studies"][name]["description"] = name
+    page = parse(render_html(report_context(hostile), quick_verify[1]))
+    # nothing but the report's own markup: no script, no event handler, no stray attribute
+    assert [tag for tag, _ in page.tags if tag == "script"] == []
+    assert {key for _, attrs in page.tags for key in attrs} <= {
+        "lang",
+        "charset",
+        "name",
+        "content",
+        "class",
+        "id",
+        "alt",
+        "src",
+    }
+    # the name is shown as text, whole: heading, summary row, failures, description
+    assert "".join(page.text).count(name) >= 4
+    markdown = render_markdown(report_context(hostile))
+    summary = next(
+        line for line in markdown.splitlines() if line.startswith("| ") and "FAIL" in line
+    )
+    assert summary.count(" | ") == 11  # twelve cells: a "|" in the name does not add one
+    assert "<script>" not in markdown
+
+
+def test_reports_render_from_the_results_document_alone(quick_verify, tmp_path):
+    _, out, results = quick_verify
+    for png in out.rglob("*.png"):
+        target = tmp_path / png.relative_to(out)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(png.read_bytes())
+    reloaded = json.loads(json.dumps(results))
+    markdown, page = write_reports(reloaded, tmp_path)
+    assert markdown.read_text() == (out / "report.md").read_text()
+    assert page.read_text() == (out / "report.html").read_text()
+
+
+@pytest.mark.parametrize("file", ["../outside.png", "../../etc/passwd", "results.json"])
+def test_only_pngs_inside_the_folder_are_embedded(results, quick_verify, file):
+    other = copy.deepcopy(results)
+    other["figures"] = {"a figure": file}
+    with pytest.raises(ValueError, match="not a PNG inside the result folder"):
+        render_html(report_context(other), quick_verify[1])
