@@ -19,6 +19,8 @@ ALLOWED = {
     "study": {"study", "fem", "theory", "paper"},
     "plots": {"plots", "study", "fem", "theory", "paper"},
     "output": {"output", "plots", "study", "fem", "theory", "paper"},
+    # sweeps orchestrate studies and write their own folder; only the CLI sits above them
+    "sweep": {"sweep", "output", "plots", "study", "fem", "theory", "paper"},
 }
 
 

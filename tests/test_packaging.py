@@ -16,6 +16,8 @@ SHIPPED = [
     "shtaerman/studies/hertz.toml",
     "shtaerman/studies/compressible.toml",
     "shtaerman/studies/table4.toml",
+    "shtaerman/sweeps/nu-grid.toml",
+    "shtaerman/sweeps/impact-velocity.toml",
 ]
 
 

@@ -1,5 +1,7 @@
 """Studies as data: the shipped TOML files load, and bad files get errors naming file and key."""
 
+import json
+
 import pytest
 
 from shtaerman.study.schema import StudyError, load_study, shipped_studies
@@ -74,3 +76,58 @@ def test_bad_depths_and_sweep(tmp_path):
 def test_missing_file():
     with pytest.raises(StudyError, match="study file not found"):
         load_study("no/such/study.toml")
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        (
+            "[tolerances]\nforce = inf\n",
+            r"key 'tolerances.force': expected a relative tolerance in",
+        ),
+        ("[tolerances]\nimpact = 0\n", r"key 'tolerances.impact': expected a relative tolerance"),
+        ("[mesh]\nmargin = 0.5\n", r"bad.toml: \[mesh\] margin must be > 1"),
+        ("[mesh]\ncolour = 1\n", r"key 'mesh.colour': expected one of \['axis_growth', "),
+        ("[sweep]\n", r"key 'sweep': expected exactly one of"),
+        ("[convergence]\nsizes = [0.1]\n", r"key 'convergence.sizes': expected a list of at"),
+    ],
+)
+def test_every_table_is_checked_at_load(tmp_path, extra, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(PAPER + extra)
+    with pytest.raises(StudyError, match=message):
+        load_study(path)
+
+
+def test_missing_table_is_named(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(PAPER.replace("[impact]\nmass = 0.7\nvelocity = 3.0\n", ""))
+    with pytest.raises(StudyError, match=r"key 'impact': expected .*\(required\)"):
+        load_study(path)
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (("exponent = 1.5", "exponent = 1.0"), r"exponent must be > 1 for the FEM contact"),
+        (
+            ("poisson_ratio = 0.5", "poisson_ratio = -0.2"),
+            r"nu2 must lie in \[0, 0.5\] for the FEM",
+        ),
+    ],
+)
+def test_what_the_fem_cannot_run_is_refused_before_it_starts(tmp_path, edit, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(PAPER.replace(*edit))
+    with pytest.raises(StudyError, match=message):
+        load_study(path)
+
+
+@pytest.mark.parametrize(
+    "name", ["../../x", "/tmp/abs", "", ".", "..", "a/b", "a\u0000b", "x" * 300, 'q"uote', "<b>"]
+)
+def test_study_names_are_plain(tmp_path, name):
+    path = tmp_path / "named.toml"
+    path.write_text(f"name = {json.dumps(name)}\n{PAPER}")  # a JSON string is a TOML string
+    with pytest.raises(StudyError, match=r"key 'name': .*name must be a plain name"):
+        load_study(path)

@@ -114,4 +114,6 @@ def test_malformed_study_is_exit_2(tmp_path, capsys):
     study = tmp_path / "bad.toml"
     study.write_text("[indenter]\nexponent = 'x'\n")
     assert main(["verify", "--out", str(tmp_path / "run"), str(study)]) == 2
-    assert "bad.toml: key 'impact': expected a table [impact]" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "bad.toml: key 'indenter.exponent': expected a number > 0, got 'x'" in err
+    assert not (tmp_path / "run").exists()

@@ -15,6 +15,7 @@ import warnings
 from collections.abc import Sequence
 
 from .. import __version__
+from ..sweep import cli as sweep
 from ..validation import InputError
 from . import contact, dynamic, impact, tables, verify
 from .common import Parser, warn
@@ -24,7 +25,7 @@ __all__ = ["EXIT_INPUT", "build_parser", "main"]
 EXIT_INPUT = 2
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
-SUBCOMMANDS = (impact, tables, contact, verify, dynamic)
+SUBCOMMANDS = (impact, tables, contact, verify, sweep, dynamic)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
 striker z = A r^n on an elastic half-space (Ol'shanskii et al. 2019). SI units everywhere.

@@ -12,7 +12,7 @@ import numpy as np
 from ..fem.mesh import DEFAULTS, MeshSettings
 from ..fem.solver import BACKENDS
 from ..output.files import check_output_folder, json_safe, staged_folder
-from ..validation import InputError, validate_increasing
+from ..validation import InputError, validate_increasing, validate_positive
 from .common import add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
@@ -48,7 +48,28 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", help="write VTU fields and CSV curves to DIR")
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
-    mesh = p.add_argument_group("mesh controls (relative to the largest contact)")
+    accuracy = p.add_argument_group(
+        "accuracy (every FEM number with an error estimate from a 3-mesh ladder)"
+    )
+    accuracy.add_argument(
+        "--refine",
+        default="1",
+        metavar="K",
+        help="divide the whole mesh size field by K (dofs ~ K^2); the ladder adds K/2 and "
+        "K/sqrt(2) for the Richardson estimate",
+    )
+    accuracy.add_argument(
+        "--accuracy",
+        metavar="TOL",
+        help="refine until the estimated relative error of force and beta is <= TOL",
+    )
+    accuracy.add_argument(
+        "--max-time", default="60", metavar="S", help="time budget of --accuracy in s"
+    )
+    mesh = p.add_argument_group(
+        "expert mesh controls (relative to the largest contact; --mesh-size alone does not "
+        "refine the far field, the axis grading or the growth: use --refine)"
+    )
     for option, (field, meaning) in MESH_OPTIONS.items():
         mesh.add_argument(
             "--" + option.replace("_", "-"),
@@ -80,13 +101,28 @@ def mesh_settings(args: argparse.Namespace) -> MeshSettings:
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve and print it (text or JSON); write fields if asked."""
     from ..output.export import write_indentation
-    from ..study.indentation import run_indentation
+    from ..study.accuracy import run_ladder, run_to_accuracy
 
     indenter, half_space = read_indenter(args), read_half_space(args)
     depths, mesh = _depths(args.depths), mesh_settings(args)
+    refine = validate_positive("refine", args.refine)
+    tolerance = None if args.accuracy is None else validate_positive("accuracy", args.accuracy)
+    max_time = validate_positive("max-time", args.max_time, "s")
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    result = run_indentation(indenter, half_space, depths, mesh, backend=args.solver)
-    report = result.to_dict()
+    if tolerance is None:
+        ladder = run_ladder(indenter, half_space, depths, mesh, refine=refine, backend=args.solver)
+    else:
+        ladder = run_to_accuracy(
+            indenter,
+            half_space,
+            tolerance,
+            depths,
+            mesh,
+            max_time=max_time,
+            backend=args.solver,
+        )
+    result = ladder.finest
+    report = {**result.to_dict(), **ladder.to_dict()}
     if out is not None:
         with staged_folder(out) as stage:
             write_indentation(result, stage)
@@ -137,4 +173,21 @@ def contact_text(report: dict) -> str:
         f"{mesh['contact_candidates']} contact candidates; solver {report['solver']}",
         "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
     ]
+    if "error_estimate" in report:
+        rows += _estimate_text(report)
     return "\n".join(rows)
+
+
+def _estimate_text(report: dict) -> list[str]:
+    ladder = report["mesh_ladder"]
+    estimate, true = report["error_estimate"], report["true_error"]
+    head = (
+        f"  estimated errors (ladder {', '.join(str(level['dofs']) for level in ladder)} dofs, "
+        f"{sum(level['seconds'] for level in ladder):.1f} s):"
+    )
+    cells = [
+        f"{key} {estimate[key]:.1e} (true {true[key]:.1e})"
+        for key in ("force", "beta", "contact_radius", "central_pressure")
+        if key in estimate
+    ]
+    return [head, "    " + ", ".join(cells)]

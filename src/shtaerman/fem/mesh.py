@@ -12,7 +12,7 @@ from __future__ import annotations
 import contextlib
 import importlib.resources
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import gmsh
@@ -275,6 +275,33 @@ class MeshSettings:
         for name in ("size", "growth", "axis_size", "axis_growth"):
             if getattr(self, name) > 1.0:
                 raise InputError(f"{name} must lie in (0, 1], got {getattr(self, name)!r}")
+
+    def refined(self, factor: float) -> MeshSettings:
+        """These settings with the whole size field divided by ``factor`` (> 1 refines).
+
+        The smallest size, the axis size and both growth rates are scaled together, so the
+        element size h(x) / refined radius is divided by ``factor`` at every point and the
+        number of dofs grows as factor^2 (a uniform refinement in the sense of the size
+        field). ``margin`` and ``domain`` are kept: the far-field truncation (about
+        1.87 / domain of the force) is not a discretisation error and is not refined.
+
+        Raises
+        ------
+        shtaerman.validation.InputError
+            If ``factor`` is not > 0, or it coarsens a growth rate beyond 1.
+        """
+        factor = validate_positive("refine", factor)
+        scaled = {
+            name: getattr(self, name) / factor
+            for name in ("size", "axis_size", "growth", "axis_growth")
+        }
+        for name, value in scaled.items():
+            if value > 1.0:
+                raise InputError(
+                    f"refine {factor!r} scales the mesh {name} to {value:.3g} > 1; use "
+                    f"refine >= {factor * value:.3g} with these settings"
+                )
+        return replace(self, **scaled)
 
     def build(self, refined_radius: float) -> MeshTri:
         """The gmsh half-space mesh for a refined (candidate) zone of ``refined_radius`` m."""

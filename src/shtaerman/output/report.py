@@ -79,6 +79,7 @@ def study_document(outcome: StudyOutcome, files: dict[str, str]) -> dict[str, ob
         "seconds": outcome.seconds,
         "files": files,
         **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
+        **({"accuracy": outcome.accuracy.to_dict()} if outcome.accuracy else {}),
     }
 
 

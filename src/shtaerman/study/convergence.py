@@ -107,21 +107,10 @@ def refined_settings(base: MeshSettings, size: float) -> MeshSettings:
     size = validate_positive("size", size)
     if size > 1.0:
         raise InputError(f"size must lie in (0, 1] refined radii, got {size!r}")
-    t = size / base.size
-    scaled = {
-        "size": size,
-        "axis_size": base.axis_size * t,
-        "growth": base.growth * t,
-        "axis_growth": base.axis_growth * t,
-    }
-    for name in ("growth", "axis_growth"):
-        if scaled[name] > 1.0:
-            largest = base.size / getattr(base, name)
-            raise InputError(
-                f"size {size!r} scales the mesh {name} to {scaled[name]:.3g} > 1; "
-                f"with this base use sizes <= {largest:.4g}"
-            )
-    return dataclasses.replace(base, **scaled)
+    try:
+        return base.refined(base.size / size)
+    except InputError as error:
+        raise InputError(f"size {size!r}: {error}") from None
 
 
 def convergence_study(

@@ -30,6 +30,7 @@ __all__ = [
     "default_depths",
     "depths_up_to",
     "run_indentation",
+    "validate_fem_inputs",
 ]
 
 PAPER_MASS = 0.7  # kg, the paper's example
@@ -169,6 +170,17 @@ class IndentationResult:
         }
 
 
+def validate_fem_inputs(indenter: PowerLawIndenter, half_space: Material) -> None:
+    """Raise InputError unless the FEM contact applies: n > 1 and nu2 in [0, 0.5]."""
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
+            f"{indenter.exponent!r}"
+        )
+    if half_space.poisson_ratio < 0:
+        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+
+
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
     return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
 
@@ -199,13 +211,7 @@ def run_indentation(
     -------
     IndentationResult
     """
-    if indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
-            f"{indenter.exponent!r}"
-        )
-    if half_space.poisson_ratio < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    validate_fem_inputs(indenter, half_space)
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = validate_increasing("depths", np.atleast_1d(depths), "m")
     mesh = MeshSettings() if mesh is None else mesh

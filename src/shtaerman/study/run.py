@@ -18,9 +18,10 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ..theory.impact_ode import integrate_impact
 from ..theory.materials import effective_modulus
+from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
-from .indentation import IndentationResult, depths_up_to, run_indentation
+from .indentation import IndentationResult, depths_up_to
 from .schema import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
@@ -73,6 +74,8 @@ class StudyOutcome:
     seconds: float
     convergence: ConvergenceStudy | None = None
     """The study's mesh-convergence study, if it asks for one."""
+    accuracy: AccuracyResult | None = None
+    """The mesh ladder whose finest level is ``contact``, with its error estimates."""
 
     @property
     def passed(self) -> bool:
@@ -157,13 +160,15 @@ def run_study(
     start = time.perf_counter()
     modulus = effective_modulus(study.striker, study.half_space)
     exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
-    report(f"{study.name}: FEM contact curve")
-    contact = run_indentation(
+    report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
+    accuracy = run_ladder(
         study.indenter,
         study.half_space,
         _study_depths(study, exact),
         study.quick_mesh if quick else study.mesh,
+        refine=study.refine,
     )
+    contact = accuracy.finest
     report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
     law = fem_contact_law(contact, modulus)
     fitted = solve_impact(study.mass, study.velocity, law)
@@ -189,6 +194,7 @@ def run_study(
         checks=_checks(study, contact, impacts),
         seconds=time.perf_counter() - start,
         convergence=convergence,
+        accuracy=accuracy,
     )
 
 

@@ -1,0 +1,296 @@
+"""Every FEM contact number with its error bar: a mesh ladder, Richardson estimates, a target.
+
+The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.refined`) by
+:data:`LADDER_RATIO` = sqrt(2) per level, so each level has about twice the dofs of the one
+before and the two coarser levels of a three-level ladder cost about 0.75 of the finest. Every
+quantity of the finest level gets a Richardson estimate (:mod:`.richardson`): the force, the
+contact radius and the central pressure at every depth (the worst depth is reported), beta
+and the fitted exponent. Where the exact solution is known (the linear power-law contact) the
+true error stands beside the estimate: their ratio, the effectivity index, verifies the
+estimator itself in every run.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..fem.mesh import MAX_DOMAIN, MeshSettings
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from ..validation import InputError, validate_positive
+from .indentation import IndentationResult, default_depths, run_indentation
+from .richardson import Estimate, richardson
+
+__all__ = [
+    "DEFAULT_MAX_DOFS",
+    "LADDER_RATIO",
+    "AccuracyResult",
+    "LadderLevel",
+    "run_ladder",
+    "run_to_accuracy",
+]
+
+LADDER_RATIO = math.sqrt(2.0)
+"""Element-size ratio of consecutive ladder levels (dofs ratio about 2)."""
+STEP_QUANTITIES = ("force", "contact_radius", "central_pressure")
+"""Estimated at every depth; the worst depth is reported."""
+CURVE_QUANTITIES = ("beta", "exponent")
+FORCE_LIKE = ("force", "beta")
+"""What ``--accuracy`` drives below its tolerance."""
+DEFAULT_MAX_DOFS = 600_000
+"""Size guard of :func:`run_to_accuracy` (about 60 s for the finest level on 2 cores)."""
+TIME_GROWTH = 2.4
+"""Observed time ratio of consecutive ladder levels (dofs x2; factorization superlinear)."""
+TRUNCATION = 1.87
+"""Force stiffening by the clamped far boundary, times domain (bench_contact.py (c))."""
+
+Progress = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class LadderLevel:
+    """One mesh of the ladder: its refinement factor and result."""
+
+    refine: float
+    result: IndentationResult
+
+    @property
+    def dofs(self) -> int:
+        """Degrees of freedom of the level."""
+        return int(self.result.mesh_stats["dofs"])
+
+    @property
+    def seconds(self) -> float:
+        """Wall time of the level (mesh to contact), s."""
+        return float(self.result.timings["total"])
+
+
+@dataclass(frozen=True)
+class AccuracyResult:
+    """A mesh ladder and the error estimates of its finest level.
+
+    Attributes
+    ----------
+    levels : tuple of LadderLevel
+        Coarse to fine; the finest is the answer.
+    estimates : dict of str to Estimate
+        Per quantity; for the per-depth quantities the depth with the largest estimate.
+    tolerance : float or None
+        The target of :func:`run_to_accuracy` (None for a plain ladder).
+    """
+
+    levels: tuple[LadderLevel, ...]
+    estimates: dict[str, Estimate]
+    tolerance: float | None = None
+
+    @property
+    def finest(self) -> IndentationResult:
+        """The finest level's result: the reported numbers."""
+        return self.levels[-1].result
+
+    def error_estimate(self) -> dict[str, float]:
+        """Estimated relative error of every quantity (dimensionless)."""
+        return {key: estimate.error for key, estimate in self.estimates.items()}
+
+    def effectivity(self) -> dict[str, float]:
+        """Estimated over true relative error, where the exact solution gives the truth."""
+        true = self.finest.errors()
+        return {
+            key: estimate.error / true[key] if true[key] > 0 else math.nan
+            for key, estimate in self.estimates.items()
+        }
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details."""
+        return {
+            "error_estimate": self.error_estimate(),
+            "extrapolated": {k: e.extrapolated for k, e in self.estimates.items()},
+            "estimate_details": {k: e.to_dict() for k, e in self.estimates.items()},
+            "true_error": {k: self.finest.errors()[k] for k in self.estimates},
+            "effectivity": self.effectivity(),
+            "mesh_ladder": [
+                {"refine": level.refine, "dofs": level.dofs, "seconds": level.seconds}
+                for level in self.levels
+            ],
+            "accuracy_target": self.tolerance,
+        }
+
+
+def _worst_depth(levels: tuple[LadderLevel, ...], key: str) -> Estimate:
+    columns = np.array([[getattr(s, key) for s in level.result.steps] for level in levels])
+    estimates = [richardson(columns[:, depth], LADDER_RATIO) for depth in range(columns.shape[1])]
+    return max(estimates, key=lambda estimate: estimate.error)
+
+
+def _curve_value(result: IndentationResult, key: str) -> float:
+    return result.fit.beta_fixed_exponent if key == "beta" else result.fit.exponent
+
+
+def _with_truncation(estimate: Estimate, truncation: float) -> Estimate:
+    """Add the far-field truncation, common to every level and so unseen by the ladder."""
+    return replace(estimate, error=estimate.error + truncation)
+
+
+def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
+    """Estimates of the finest level from the last three levels (two at least).
+
+    Richardson (or the two-level fallback) for the discretisation error, plus the known
+    far-field truncation of the force, 1.87 / domain, for force and beta.
+    """
+    domain = (
+        levels[-1].result.mesh_stats["domain_radius"]
+        / levels[-1].result.mesh_stats["refined_radius"]
+    )
+    truncation = TRUNCATION / domain
+    estimates = {key: _worst_depth(levels, key) for key in STEP_QUANTITIES}
+    for key in CURVE_QUANTITIES:
+        values = [_curve_value(level.result, key) for level in levels]
+        if all(math.isfinite(v) for v in values):
+            estimates[key] = richardson(values, LADDER_RATIO)
+    for key in FORCE_LIKE:
+        estimates[key] = _with_truncation(estimates[key], truncation)
+    return estimates
+
+
+def _level(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    depths: np.ndarray,
+    base: MeshSettings,
+    refine: float,
+    backend: str,
+    progress: Progress,
+) -> LadderLevel:
+    result = run_indentation(indenter, half_space, depths, base.refined(refine), backend=backend)
+    level = LadderLevel(refine, result)
+    progress(f"mesh x{refine:.3g}: {level.dofs} dofs, {level.seconds:.1f} s")
+    return level
+
+
+def run_ladder(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    depths: ArrayLike | None = None,
+    mesh: MeshSettings | None = None,
+    *,
+    refine: float = 1.0,
+    backend: str = "auto",
+    progress: Progress | None = None,
+) -> AccuracyResult:
+    """The contact on three meshes, refine / 2, refine / sqrt(2), refine: the finest answers.
+
+    Parameters
+    ----------
+    indenter, half_space, depths, backend
+        As for :func:`.indentation.run_indentation`.
+    mesh : MeshSettings, optional
+        The base mesh (refine = 1); default ``MeshSettings()``.
+    refine : float
+        Refinement factor of the finest level: element sizes divided by it everywhere.
+    progress : callable, optional
+        Receives one line per level.
+
+    Returns
+    -------
+    AccuracyResult
+    """
+    refine = validate_positive("refine", refine)
+    mesh = MeshSettings() if mesh is None else mesh
+    depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
+    factors = [refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine]
+    for factor in factors:
+        mesh.refined(factor)  # check every level before the first is computed
+    report = progress or (lambda _line: None)
+    levels = tuple(_level(indenter, half_space, depths, mesh, f, backend, report) for f in factors)
+    return AccuracyResult(levels, estimate_errors(levels))
+
+
+def _force_error(result: AccuracyResult) -> float:
+    return max(result.estimates[key].error for key in FORCE_LIKE if key in result.estimates)
+
+
+def _check_reachable(
+    result: AccuracyResult, tolerance: float, max_dofs: int, time_left: float
+) -> None:
+    """Refuse early when the target needs more dofs or time than allowed."""
+    error = _force_error(result)
+    if error <= tolerance:
+        return
+    orders = [result.estimates[k].order for k in FORCE_LIKE if k in result.estimates]
+    order = min((p for p in orders if math.isfinite(p)), default=2.0)
+    steps = math.ceil(math.log(error / tolerance) / (order * math.log(LADDER_RATIO)))
+    dofs = result.levels[-1].dofs * 2**steps
+    seconds = sum(result.levels[-1].seconds * TIME_GROWTH**k for k in range(1, steps + 1))
+    if dofs > max_dofs:
+        raise InputError(
+            f"accuracy {tolerance:g} needs about {dofs:.3g} dofs (estimated error {error:.2g} "
+            f"at {result.levels[-1].dofs} dofs, order {order:.2f}), above max-dofs "
+            f"{max_dofs}; raise --max-dofs or loosen --accuracy"
+        )
+    if seconds > time_left:
+        raise InputError(
+            f"accuracy {tolerance:g} needs about {seconds:.0f} s more (estimated error "
+            f"{error:.2g} at {result.levels[-1].dofs} dofs), above --max-time; raise it or "
+            f"loosen --accuracy"
+        )
+
+
+def run_to_accuracy(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    tolerance: float,
+    depths: ArrayLike | None = None,
+    mesh: MeshSettings | None = None,
+    *,
+    max_time: float = 60.0,
+    max_dofs: int = DEFAULT_MAX_DOFS,
+    backend: str = "auto",
+    progress: Progress | None = None,
+) -> AccuracyResult:
+    """Refine until the estimated force and beta errors are at most ``tolerance``.
+
+    The domain is enlarged (up to the mesh's limit) so that the far-field truncation, which
+    the ladder does not see, stays below a tenth of the tolerance. After the first three
+    levels the needed refinement is predicted from the observed order; a target that needs
+    more than ``max_dofs`` or ``max_time`` is refused at once with an InputError.
+
+    Parameters
+    ----------
+    tolerance : float
+        Target relative error of force (every depth) and beta, in (0, 0.1].
+    max_time : float
+        Time budget in s for the whole ladder.
+    max_dofs : int
+        Largest finest level allowed.
+    indenter, half_space, depths, mesh, backend, progress
+        As for :func:`run_ladder`.
+
+    Returns
+    -------
+    AccuracyResult
+        With ``tolerance`` set; its finest level meets it.
+    """
+    tolerance = validate_positive("accuracy", tolerance)
+    if tolerance > 0.1:
+        raise InputError(f"accuracy must lie in (0, 0.1], got {tolerance!r}")
+    max_time = validate_positive("max-time", max_time, "s")
+    start = time.perf_counter()
+    mesh = MeshSettings() if mesh is None else mesh
+    domain = min(max(mesh.domain, 10.0 * TRUNCATION / tolerance), MAX_DOMAIN)
+    mesh = replace(mesh, domain=domain)
+    depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
+    result = run_ladder(indenter, half_space, depths, mesh, backend=backend, progress=progress)
+    report = progress or (lambda _line: None)
+    while _force_error(result) > tolerance:
+        _check_reachable(result, tolerance, max_dofs, max_time - (time.perf_counter() - start))
+        refine = result.levels[-1].refine * LADDER_RATIO
+        level = _level(indenter, half_space, depths, mesh, refine, backend, report)
+        levels = (*result.levels, level)
+        result = AccuracyResult(levels, estimate_errors(levels[-3:]))
+    return replace(result, tolerance=tolerance)

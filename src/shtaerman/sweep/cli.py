@@ -1,0 +1,127 @@
+"""``shtaerman sweep FILE.toml|NAME [--workers N] [--scheduler ADDRESS] [--out DIR] [--resume]
+[--force]``: the subcommand, kept apart so that it plugs into any argparse tree.
+
+Exit codes: 0 every case succeeded, 1 a case failed or could not run (or the sweep was
+interrupted: 128 + the signal number), 2 bad input (one line on stderr, nothing computed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+from pathlib import Path
+
+from ..validation import InputError
+
+__all__ = ["add_parser", "register", "run"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add the ``sweep`` subcommand (``set_defaults(handler=run)``) and return its parser."""
+    p = subparsers.add_parser(
+        "sweep",
+        help="run a grid of cases (a TOML sweep file) on dask.distributed",
+        description="Run every case of a sweep file in parallel; each finished case is saved "
+        "at once, so an interrupted sweep can be completed with --resume.",
+    )
+    p.add_argument(
+        "sweep",
+        metavar="FILE.toml|NAME",
+        help="a sweep file, or the name of a shipped sweep (e.g. nu-grid, impact-velocity)",
+    )
+    p.add_argument(
+        "--workers",
+        metavar="N",
+        help="worker processes of the local cluster, one thread each (default: the cores)",
+    )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="use an existing dask cluster, e.g. tcp://host:8786 (its workers need shtaerman)",
+    )
+    p.add_argument("--out", metavar="DIR", help="result folder (default: sweep-<name>)")
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="complete the sweep in DIR: compute only the cases without a saved result",
+    )
+    p.add_argument("--force", action="store_true", help="replace an existing result folder")
+    p.set_defaults(handler=run)
+    return p
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``sweep`` subcommand (the ``shtaerman.cli`` package's convention)."""
+    add_parser(commands)
+
+
+def _workers(value: str | None) -> int | None:
+    if value is None:
+        return None
+    try:
+        workers = int(value)
+    except ValueError:
+        workers = 0
+    if workers < 1:
+        raise InputError(f"workers must be an integer >= 1, got {value!r}")
+    return workers
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the sweep named by ``args``; returns the exit code (raises InputError on bad input)."""
+    from .engine import SweepInterrupted, run_sweep
+    from .spec import find_sweep, load_sweep
+
+    workers = _workers(args.workers)
+    if workers is not None and args.scheduler:
+        raise InputError("workers: --workers sizes the local cluster; drop it with --scheduler")
+    spec = load_sweep(find_sweep(args.sweep))
+    out = Path(args.out) if args.out else Path(f"sweep-{spec.name}")
+    try:
+        outcome = run_sweep(
+            spec,
+            out,
+            workers=workers,
+            scheduler=args.scheduler,
+            resume=args.resume,
+            force=args.force,
+        )
+    except KeyboardInterrupt:  # before the sweep's own handler is in place
+        print(f"shtaerman: sweep {spec.name!r} interrupted (SIGINT)", file=sys.stderr)
+        return 128 + signal.SIGINT
+    except SweepInterrupted as stop:
+        print(
+            f"shtaerman: sweep {spec.name!r} interrupted ({stop}): {stop.saved} of {stop.total} "
+            f"cases saved in {out}; resume with: shtaerman sweep {args.sweep} --out {out} "
+            "--resume",
+            file=sys.stderr,
+        )
+        return 128 + stop.signum
+    done = (
+        f"{outcome.computed} computed on {outcome.workers} "
+        f"worker{'s' if outcome.workers != 1 else ''}"
+        if outcome.computed
+        else "nothing to compute"
+    )
+    if outcome.reused:
+        done += f", {outcome.reused} from an earlier run"
+    print(
+        f"sweep {spec.name} ({spec.kind}): {outcome.total} cases, {outcome.succeeded} ok, "
+        f"{outcome.failed} failed ({done}) in {outcome.seconds:.1f} s"
+    )
+    if outcome.warned:
+        print(
+            f"shtaerman: warning: {outcome.warned} case(s) issued warnings (summary.warnings in "
+            f"{out / 'results.json'})",
+            file=sys.stderr,
+        )
+    if outcome.lost:
+        print(
+            f"shtaerman: {outcome.lost} cases could not run ({outcome.lost_reason}); complete "
+            f"them with: shtaerman sweep {args.sweep} --out {out} --resume",
+            file=sys.stderr,
+        )
+    else:
+        print(f"results: {out / 'cases.csv'}  {out / 'results.json'}  {out / 'figures'}")
+    return outcome.exit_code

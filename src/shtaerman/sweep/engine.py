@@ -1,0 +1,632 @@
+"""Running a sweep on dask.distributed: one task per case, each result on disk as it arrives.
+
+The result folder::
+
+    DIR/sweep.toml          the sweep file, copied (``--resume`` checks it is the same sweep)
+    DIR/cases/<index>.json  one record per finished case, written atomically as it completes
+    DIR/cases.csv           one row per case, sorted by index (written at the end)
+    DIR/results.json        spec, cases, summary, timings (written at the end)
+    DIR/figures/*.png       per output: curves over a 1-axis sweep, heat maps over 2 axes
+
+Nothing is lost: a case that raises is recorded with its error (one line) and the others go on;
+a worker that dies mid-case has its case rerun by dask on another worker (the scheduler
+reschedules tasks of lost workers); an interrupted sweep (SIGINT, SIGTERM) keeps every finished
+case, and ``resume=True`` computes only the cases without a record.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import json
+import logging
+import os
+import shutil
+import signal
+import socket
+import sys
+import tempfile
+import threading
+import time
+import tomllib
+import uuid
+import warnings
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..output.files import json_safe
+from ..validation import InputError
+from .kinds import unit_suffix
+from .spec import Case, SweepSpec
+
+__all__ = [
+    "SweepInterrupted",
+    "SweepOutcome",
+    "default_workers",
+    "execute_case",
+    "read_records",
+    "run_sweep",
+]
+
+SPEC_FILE = "sweep.toml"
+CASES_DIR = "cases"
+BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+"""Worker environment of the local cluster: one BLAS thread per single-threaded worker."""
+CONNECT_TIMEOUT = "10s"
+"""How long to try reaching an existing scheduler (``scheduler=``)."""
+
+
+class SweepInterrupted(Exception):  # noqa: N818 (a signal, like KeyboardInterrupt)
+    """SIGINT or SIGTERM during a sweep; finished cases are on disk."""
+
+    def __init__(self, signum: int, saved: int = 0, total: int = 0) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum, self.saved, self.total = signum, saved, total
+
+
+@dataclass(frozen=True)
+class SweepOutcome:
+    """What a call of :func:`run_sweep` did.
+
+    Attributes
+    ----------
+    out : Path
+        The result folder.
+    total, succeeded, failed : int
+        Cases in the grid, recorded with outputs, recorded with an error.
+    lost : int
+        Cases without a record because the cluster could not run them (a worker died more
+        often than dask allows, the scheduler went away); rerun them with ``resume=True``.
+    computed, reused : int
+        Cases computed by this call, and records kept from an earlier call (``resume``).
+    seconds : float
+        Wall time of this call, s.
+    workers : int
+        Worker threads of the cluster used.
+    lost_reason : str, optional
+        Why the first lost case could not run.
+    warned : int
+        Cases whose computation issued warnings (listed in ``results.json``).
+    """
+
+    out: Path
+    total: int
+    succeeded: int
+    failed: int
+    lost: int
+    computed: int
+    reused: int
+    seconds: float
+    workers: int
+    lost_reason: str | None = None
+    warned: int = 0
+
+    @property
+    def exit_code(self) -> int:
+        """0 when every case succeeded, 1 when any failed or is missing."""
+        return 0 if self.succeeded == self.total else 1
+
+
+def default_workers() -> int:
+    """Cores this process may use (the default number of local workers)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+# --- on the worker ----------------------------------------------------------------------------
+
+
+def _one_line(error: BaseException) -> str:
+    text = " ".join(str(error).split())
+    return f"{type(error).__name__}: {text}" if text else type(error).__name__
+
+
+def _scalar(name: str, value: Any) -> float | int:
+    if hasattr(value, "item") and not isinstance(value, str):
+        value = value.item()
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise TypeError(f"output {name!r} is not a number: {value!r}")
+    return value
+
+
+def _worker_address() -> str:
+    try:
+        from distributed import get_worker
+
+        return get_worker().address
+    except (ImportError, ValueError):
+        return "in-process"
+
+
+def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: dict) -> dict:
+    """Run one case; never raises for the case's own errors (they are recorded).
+
+    BLAS is capped to one thread (threadpoolctl) whatever the worker's environment, so an
+    existing cluster with several threads per worker does not oversubscribe its cores.
+
+    Returns
+    -------
+    dict
+        ``index``, ``status`` ("ok" or "failed"), ``outputs``, ``error`` (one line or None),
+        ``warnings``, ``seconds``, ``worker``, ``host``, ``pid``.
+    """
+    from threadpoolctl import threadpool_limits
+
+    start = time.perf_counter()
+    outputs: dict[str, float | int] = {}
+    error = None
+    with threadpool_limits(limits=1), warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            raw = case(dict(params))
+            outputs = {str(name): _scalar(name, value) for name, value in raw.items()}
+        except Exception as exc:
+            outputs, error = {}, _one_line(exc)
+    return {
+        "index": index,
+        "status": "ok" if error is None else "failed",
+        "outputs": outputs,
+        "error": error,
+        "warnings": sorted({str(w.message) for w in caught}),
+        "seconds": time.perf_counter() - start,
+        "worker": _worker_address(),
+        "host": socket.gethostname(),
+        "pid": os.getpid(),
+    }
+
+
+# --- the result folder --------------------------------------------------------------------------
+
+
+def _atomic_write(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same folder + os.replace."""
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", newline="") as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def _write_record(out: Path, record: dict) -> None:
+    _atomic_write(out / CASES_DIR / f"{record['index']}.json", json.dumps(json_safe(record)))
+
+
+def read_records(out: str | Path, total: int) -> dict[int, dict]:
+    """Every readable case record in ``out/cases`` with an index below ``total``."""
+    records = {}
+    for path in (Path(out) / CASES_DIR).glob("*.json"):
+        if not path.stem.isdigit() or int(path.stem) >= total:
+            continue
+        try:
+            record = json.loads(path.read_text())
+        except (OSError, ValueError):
+            continue  # unreadable: the case is simply computed again
+        if record.get("index") == int(path.stem) and record.get("status") in {"ok", "failed"}:
+            records[int(path.stem)] = record
+    return records
+
+
+def _first_difference(old: Any, new: Any, prefix: str = "") -> str | None:
+    if isinstance(old, dict) and isinstance(new, dict):
+        for key in sorted(set(old) | set(new)):
+            where = f"{prefix}.{key}" if prefix else str(key)
+            if key not in old or key not in new:
+                return where
+            found = _first_difference(old[key], new[key], where)
+            if found:
+                return found
+        return None
+    return None if old == new else (prefix or "(top level)")
+
+
+def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> Callable[[], None]:
+    """Check the result folder, touching nothing; returns what makes it ready (called once the
+    cluster is up, so that an unreachable scheduler leaves no folder behind)."""
+    if resume and force:
+        raise InputError("resume and force exclude each other: resume keeps the folder")
+    if out.exists() and not out.is_dir():
+        raise InputError(f"out: {str(out)!r} exists and is not a folder")
+    if not out.parent.is_dir():
+        raise InputError(f"out: parent folder {str(out.parent)!r} does not exist")
+    stored = out / SPEC_FILE
+    if out.is_dir() and resume:
+        if not stored.is_file():
+            raise InputError(f"resume: {str(out)!r} is not a sweep folder (no {SPEC_FILE})")
+        try:
+            old = tomllib.loads(stored.read_text())
+        except (OSError, tomllib.TOMLDecodeError):
+            old = None
+        if old != spec.data:
+            key = "the file" if old is None else _first_difference(old, spec.data)
+            raise InputError(
+                f"resume: {str(out)!r} holds a different sweep ({key} differs from "
+                f"{spec.path}); use another --out, or --force to start again"
+            )
+        return lambda: (out / CASES_DIR).mkdir(exist_ok=True)
+    replace = False
+    if out.is_dir() and any(out.iterdir()):
+        if not force:
+            raise InputError(
+                f"out: folder {str(out)!r} exists; use --resume to complete it or --force to "
+                "replace it"
+            )
+        if not stored.is_file():
+            raise InputError(
+                f"out: --force replaces only a sweep folder, and {str(out)!r} has no "
+                f"{SPEC_FILE}; remove it yourself or pick another --out"
+            )
+        replace = True
+
+    def create() -> None:
+        if replace:
+            shutil.rmtree(out)
+        out.mkdir(exist_ok=True)
+        (out / CASES_DIR).mkdir()
+        _atomic_write(stored, spec.text)
+
+    return create
+
+
+# --- the cluster ------------------------------------------------------------------------------
+
+
+@contextlib.contextmanager
+def _quiet_dask() -> Iterator[None]:
+    """Dask's INFO/WARNING chatter (worker restarts, unresponsive loops) hidden for the run."""
+    logger = logging.getLogger("distributed")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", module=r"distributed(\.|$)")
+            yield
+    finally:
+        logger.setLevel(level)
+
+
+@contextlib.contextmanager
+def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError) as error:
+            raise InputError(
+                f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})"
+            ) from None
+        try:
+            yield client
+        finally:
+            with _signals_ignored():
+                client.close()
+        return
+    cluster = LocalCluster(
+        n_workers=workers or default_workers(),
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        # no dashboard; the scheduler's HTTP endpoint on a free port, not 8787 (shared machines)
+        scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
+        silence_logs=logging.ERROR,
+        env=BLAS_ENV,
+        preload=["shtaerman.sweep._worker"],  # workers leave Ctrl-C to this process
+    )
+    try:
+        client = Client(cluster)
+        try:
+            yield client
+        finally:
+            with _signals_ignored():
+                client.close()
+    finally:
+        with _signals_ignored():
+            cluster.close()
+
+
+class _StopFlag:
+    """SIGINT/SIGTERM set a flag (main thread only); the loop checks it between results."""
+
+    def __init__(self) -> None:
+        self.signum: int | None = None
+        self._previous: dict[int, Any] = {}
+
+    def __enter__(self) -> _StopFlag:
+        if threading.current_thread() is threading.main_thread():
+            for s in (signal.SIGINT, signal.SIGTERM):
+                self._previous[s] = signal.signal(s, self._handler)
+        return self
+
+    def _handler(self, signum: int, frame: object) -> None:
+        self.signum = signum
+
+    def check(self) -> None:
+        if self.signum is not None:
+            raise SweepInterrupted(self.signum)
+
+    def __exit__(self, *exc: object) -> None:
+        for s, old in self._previous.items():
+            signal.signal(s, old)
+
+
+@contextlib.contextmanager
+def _signals_ignored() -> Iterator[None]:
+    """A second Ctrl-C must not break the cluster's shutdown."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, old in previous.items():
+            signal.signal(s, old)
+
+
+def _progress(total: int, initial: int, name: str, show: bool | None):
+    from tqdm import tqdm
+
+    if show is None:
+        ci = os.environ.get("CI", "").strip().lower() in {"1", "true", "yes"}
+        show = sys.stderr.isatty() and not ci
+    return tqdm(
+        total=total, initial=initial, desc=name, unit="case", file=sys.stderr, disable=not show
+    )
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    resume: bool = False,
+    force: bool = False,
+    retries: int = 2,
+    progress: bool | None = None,
+    figures: bool = True,
+) -> SweepOutcome:
+    """Run every case of ``spec`` on a dask cluster and write the result folder ``out``.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        From :func:`shtaerman.sweep.load_sweep` (every case's inputs already checked).
+    out : path
+        Result folder. An existing one is refused unless ``resume`` (complete it: only cases
+        without a record are computed; the sweep file must be the same) or ``force`` (replace
+        it; only a sweep folder is ever removed). ``resume`` on a folder that does not exist
+        starts the sweep there. The folder is created once the cluster is up.
+    workers : int, optional
+        Single-threaded worker processes of the local cluster (default: the usable cores).
+    scheduler : str, optional
+        Address of an existing cluster's scheduler, e.g. ``"tcp://host:8786"``; its workers
+        need shtaerman importable.
+    retries : int
+        Reruns dask grants a task that raised outside the case (a case's own exception is
+        recorded, never retried).
+    progress : bool, optional
+        Progress bar on stderr; default: when stderr is a terminal and ``CI`` is not set.
+    figures : bool
+        Draw ``out/figures``.
+
+    Returns
+    -------
+    SweepOutcome
+
+    Raises
+    ------
+    InputError
+        Bad folder, different sweep on resume, unreachable scheduler (nothing computed,
+        nothing written).
+    SweepInterrupted
+        On SIGINT/SIGTERM in the main thread, after the cluster is shut down; finished cases
+        are on disk.
+    """
+    if workers is not None and scheduler is not None:
+        raise InputError("workers: applies to the local cluster only, not to --scheduler")
+    if workers is not None and workers < 1:
+        raise InputError(f"workers must be an integer >= 1, got {workers!r}")
+    start = time.perf_counter()
+    out = Path(out).expanduser()
+    cases = spec.cases()
+    ready = _check_folder(spec, out, resume=resume, force=force)
+    records = read_records(out, len(cases)) if resume and out.is_dir() else {}
+    reused = len(records)
+    pending = [case for case in cases if case.index not in records]
+    lost: dict[int, str] = {}
+    used_workers = 0
+    with _StopFlag() as stop:
+        if not pending:
+            ready()
+        else:
+            bar = _progress(len(cases), reused, spec.name, progress)
+            try:
+                used_workers = _compute(
+                    spec, out, ready, pending, records, lost, workers, scheduler, retries, bar, stop
+                )
+            except SweepInterrupted as interrupted:
+                interrupted.saved, interrupted.total = len(records), len(cases)
+                raise
+        outcome = SweepOutcome(
+            out=out,
+            total=len(cases),
+            succeeded=sum(r["status"] == "ok" for r in records.values()),
+            failed=sum(r["status"] == "failed" for r in records.values()),
+            lost=len(cases) - len(records),
+            computed=len(records) - reused,
+            reused=reused,
+            seconds=time.perf_counter() - start,
+            workers=used_workers,
+            lost_reason=next(iter(lost.values()), None),
+            warned=sum(bool(r.get("warnings")) for r in records.values()),
+        )
+        if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
+            _write_results(spec, out, cases, records, outcome, figures)
+    return outcome
+
+
+def _compute(
+    spec: SweepSpec,
+    out: Path,
+    ready: Callable[[], None],
+    pending: list[Case],
+    records: dict[int, dict],
+    lost: dict[int, str],
+    workers: int | None,
+    scheduler: str | None,
+    retries: int,
+    bar: Any,
+    stop: _StopFlag,
+) -> int:
+    """Run ``pending`` cases; each record is written as it arrives. Returns the worker count."""
+    from distributed import as_completed
+
+    case_function = spec.kind_spec.case
+    token = uuid.uuid4().hex[:8]
+    keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
+    by_key = dict(zip(keys, pending, strict=True))
+    with bar, _quiet_dask():
+        with _client(workers, scheduler) as client:
+            stop.check()
+            ready()
+            nthreads = sum(client.nthreads().values())
+            futures = client.map(
+                execute_case,
+                [case_function] * len(pending),
+                [c.index for c in pending],
+                [c.params for c in pending],
+                key=keys,
+                retries=retries,
+                pure=False,
+            )
+            finished = as_completed(futures)
+            while not finished.is_empty():
+                stop.check()
+                batch = finished.next_batch(block=False)
+                if not batch:
+                    time.sleep(0.05)
+                for future in batch:
+                    _collect(out, future, by_key[future.key], records, lost)
+                    bar.update(1)
+            return nthreads
+
+
+def _collect(out: Path, future: Any, case: Case, records: dict, lost: dict) -> None:
+    """Write the record of a finished future (or note a case the cluster could not run)."""
+    try:
+        result = future.result()
+    except Exception as error:  # lost worker beyond dask's allowance, scheduler gone
+        lost[case.index] = _one_line(error)
+        return
+    finally:
+        future.release()
+    record = {**result, "inputs": case.params, "axis_values": case.axis_values}
+    _write_record(out, record)
+    records[case.index] = record
+
+
+# --- aggregate outputs --------------------------------------------------------------------------
+
+
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, list):
+        return json.dumps(value)
+    return str(value)
+
+
+def csv_columns(spec: SweepSpec) -> list[tuple[str, str, str]]:
+    """(header, source, key) of every column of ``cases.csv``: case, axes, outputs, status."""
+    kind = spec.kind_spec
+    columns = [("case", "index", "index")]
+    for name in spec.axes:
+        columns.append((unit_suffix(name, kind.parameters[name].unit), "axis", name))
+    for name, unit in kind.outputs.items():
+        columns.append((unit_suffix(name, unit), "output", name))
+    columns += [("status", "status", "status"), ("error", "error", "error")]
+    return columns
+
+
+def cases_csv(spec: SweepSpec, cases: list[Case], records: Mapping[int, dict]) -> str:
+    """The text of ``cases.csv``: one row per case, sorted by index; full float precision."""
+    columns = csv_columns(spec)
+    stream = io.StringIO()
+    writer = csv.writer(stream, lineterminator="\n")
+    writer.writerow([header for header, _, _ in columns])
+    for case in cases:
+        record = records[case.index]
+        row = []
+        for _, source, key in columns:
+            if source == "index":
+                row.append(case.index)
+            elif source == "axis":
+                row.append(_cell(case.axis_values[key]))
+            elif source == "output":
+                row.append(_cell(record["outputs"].get(key)))
+            else:
+                row.append(_cell(record.get(key)))
+        writer.writerow(row)
+    return stream.getvalue()
+
+
+def _write_results(
+    spec: SweepSpec,
+    out: Path,
+    cases: list[Case],
+    records: Mapping[int, dict],
+    outcome: SweepOutcome,
+    figures: bool,
+) -> None:
+    from .. import __version__
+
+    kind = spec.kind_spec
+    _atomic_write(out / "cases.csv", cases_csv(spec, cases, records))
+    ordered = [records[case.index] for case in cases]
+    results = {
+        "shtaerman": __version__,
+        "spec": spec.to_dict(),
+        "kind": {
+            "name": kind.name,
+            "description": kind.description,
+            "outputs": dict(kind.outputs),
+            "nondeterministic_outputs": list(kind.nondeterministic),
+            "parameter_units": {name: p.unit for name, p in kind.parameters.items()},
+        },
+        "columns": [header for header, _, _ in csv_columns(spec)],
+        "cases": ordered,
+        "summary": {
+            "cases": outcome.total,
+            "succeeded": outcome.succeeded,
+            "failed": outcome.failed,
+            "failed_cases": [r["index"] for r in ordered if r["status"] == "failed"],
+            "warnings": {str(r["index"]): r["warnings"] for r in ordered if r.get("warnings")},
+        },
+        "timings": {
+            "wall": outcome.seconds,
+            "computed_in_last_run": outcome.computed,
+            "reused_from_earlier_runs": outcome.reused,
+            "workers_in_last_run": outcome.workers,
+            "case_seconds_sum": sum(r["seconds"] for r in ordered),
+            "case_seconds_max": max(r["seconds"] for r in ordered),
+        },
+    }
+    _atomic_write(out / "results.json", json.dumps(json_safe(results), indent=2))
+    if figures:
+        from .figures import sweep_figures
+
+        try:
+            sweep_figures(out / "results.json", out / "figures")
+        except Exception as error:  # the results are safe; say what went wrong with the figures
+            warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)

@@ -1,0 +1,128 @@
+"""Figures of a finished sweep, drawn from its ``results.json`` only.
+
+One PNG per output: a curve over the axis for a 1-axis sweep, a heat map (values written in
+the cells) for a 2-axis sweep. Failed cases are gaps (curves) or grey cells (heat maps). Sweeps
+over 3 or more axes get no figures (``results.json`` and ``cases.csv`` hold everything). The
+figures use :class:`matplotlib.figure.Figure` with the Agg canvas: no pyplot state, no display.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import matplotlib as mpl
+import numpy as np
+from matplotlib.figure import Figure
+
+__all__ = ["sweep_figures"]
+
+
+def _label(name: str, unit: str) -> str:
+    return f"{name} ({unit})" if unit else name
+
+
+def _numeric(values: list[Any]) -> bool:
+    return all(isinstance(v, int | float) and not isinstance(v, bool) for v in values)
+
+
+def _positions(values: list[Any]) -> tuple[np.ndarray, list[str] | None, bool]:
+    """Plot positions of axis values, tick labels for non-numbers, and whether to use log."""
+    if _numeric(values):
+        x = np.asarray(values, dtype=float)
+        log = bool(np.all(x > 0) and x.max() / x.min() >= 20.0)
+        return x, None, log
+    return np.arange(len(values), dtype=float), [str(v) for v in values], False
+
+
+def _output_values(cases: list[dict], name: str) -> np.ndarray:
+    values = []
+    for case in cases:
+        value = case.get("outputs", {}).get(name) if case.get("status") == "ok" else None
+        values.append(float(value) if isinstance(value, int | float) else math.nan)
+    return np.asarray(values, dtype=float)
+
+
+def _save(figure: Figure, path: Path) -> Path:
+    figure.savefig(path, dpi=120)
+    return path
+
+
+def _curve(results: dict, name: str, unit: str, folder: Path) -> Path:
+    spec = results["spec"]
+    [(axis, values)] = spec["axes"].items()
+    axis_unit = results["kind"]["parameter_units"].get(axis, "")
+    x, ticks, log = _positions(values)
+    y = _output_values(results["cases"], name)
+    figure = Figure(figsize=(6.0, 4.0), layout="constrained")
+    ax = figure.add_subplot()
+    ax.plot(x, y, "o-", color="C0")
+    failed = ~np.isfinite(y)
+    if failed.any():
+        for position in x[failed]:
+            ax.axvline(position, color="0.6", linestyle=":", linewidth=1.0)
+    if log:
+        ax.set_xscale("log")
+    if ticks is not None:
+        ax.set_xticks(x, ticks)
+    if np.all(y[np.isfinite(y)] > 0) and np.isfinite(y).sum() > 1:
+        finite = y[np.isfinite(y)]
+        if finite.max() / finite.min() >= 100.0:
+            ax.set_yscale("log")
+    ax.set_xlabel(_label(axis, axis_unit))
+    ax.set_ylabel(_label(name, unit))
+    ax.set_title(f"{spec['name']} ({spec['kind']}): {name}")
+    ax.grid(True, alpha=0.3)
+    return _save(figure, folder / f"{name}.png")
+
+
+def _heat_map(results: dict, name: str, unit: str, folder: Path) -> Path:
+    spec = results["spec"]
+    (row_axis, rows), (col_axis, cols) = spec["axes"].items()
+    units = results["kind"]["parameter_units"]
+    grid = _output_values(results["cases"], name).reshape(len(rows), len(cols))
+    figure = Figure(figsize=(1.2 * len(cols) + 3.0, 0.6 * len(rows) + 2.5), layout="constrained")
+    ax = figure.add_subplot()
+    masked = np.ma.masked_invalid(grid)
+    cmap = mpl.colormaps["viridis"].with_extremes(bad="0.8")
+    image = ax.imshow(masked, cmap=cmap, aspect="auto", origin="lower")
+    figure.colorbar(image, ax=ax, label=_label(name, unit))
+    ax.set_xticks(range(len(cols)), [f"{v:g}" if _numeric([v]) else str(v) for v in cols])
+    ax.set_yticks(range(len(rows)), [f"{v:g}" if _numeric([v]) else str(v) for v in rows])
+    ax.set_xlabel(_label(col_axis, units.get(col_axis, "")))
+    ax.set_ylabel(_label(row_axis, units.get(row_axis, "")))
+    finite = masked.compressed()
+    middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
+    for (i, j), value in np.ndenumerate(grid):
+        text = "failed" if not math.isfinite(value) else f"{value:.3g}"
+        colour = "black" if not math.isfinite(value) or value > middle else "white"
+        ax.text(j, i, text, ha="center", va="center", fontsize=8, color=colour)
+    ax.set_title(f"{spec['name']} ({spec['kind']}): {name}")
+    return _save(figure, folder / f"{name}.png")
+
+
+def sweep_figures(results_file: str | Path, folder: str | Path) -> list[Path]:
+    """Draw one figure per output of the sweep in ``results_file`` into ``folder``.
+
+    Parameters
+    ----------
+    results_file : path
+        A sweep's ``results.json``.
+    folder : path
+        Created if needed.
+
+    Returns
+    -------
+    list of Path
+        The PNG files written (none for a sweep over 3 or more axes).
+    """
+    results = json.loads(Path(results_file).read_text())
+    axes = results["spec"]["axes"]
+    if len(axes) not in (1, 2):
+        return []
+    draw = _curve if len(axes) == 1 else _heat_map
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    return [draw(results, name, unit, folder) for name, unit in results["kind"]["outputs"].items()]

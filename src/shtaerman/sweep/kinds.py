@@ -1,0 +1,328 @@
+"""What a sweep can compute: a registry of kinds, name -> parameters, outputs and a case function.
+
+A kind is one computation of the suite run on one set of inputs. Adding one is a registration::
+
+    register_kind(
+        Kind(
+            name="my-kind",
+            description="one line for messages",
+            parameters={"mass": Parameter(0.7, "kg"), "E2": Parameter(7.5e6, "Pa")},
+            outputs={"x_c": "m", "P_c": "N"},
+            case=my_case,        # my_case(params: dict) -> {"x_c": float, "P_c": float}
+            check=my_inputs,     # optional: builds and validates the inputs, raises InputError
+        )
+    )
+
+``case`` receives every parameter (defaults, the sweep file's ``[parameters]``, the case's axis
+values) as a plain dict of Python values and returns a flat dict of scalar outputs named as in
+``outputs``. It must be a module-level function (it is shipped to dask workers by reference) and
+deterministic. ``check`` runs in the client on every case before any computation: it should build
+the inputs the case would build (cheap) so that a value out of its physical range is a one-line
+:class:`~shtaerman.validation.InputError` at load time, not a failed case later.
+
+This is the only module of :mod:`shtaerman.sweep` that imports the computations of the suite.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..validation import InputError, validate_increasing, validate_positive
+
+__all__ = [
+    "KINDS",
+    "Kind",
+    "KindNotAvailableError",
+    "Parameter",
+    "get_kind",
+    "register_kind",
+    "unit_suffix",
+]
+
+CaseFunction = Callable[[dict[str, Any]], Mapping[str, float]]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One input of a kind.
+
+    Attributes
+    ----------
+    default : object
+        The value when the sweep file does not set it (the paper's example); ``None`` means
+        "computed from the other inputs" (e.g. the contact depths).
+    unit : str
+        SI unit for messages and headers ("" for a pure number).
+    type : {"float", "int", "str", "floats"}
+        What the TOML value must be: a number, an integer, a string, a list of numbers.
+    choices : tuple of str, optional
+        Allowed strings for ``type="str"``.
+    """
+
+    default: Any
+    unit: str = ""
+    type: str = "float"
+    choices: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A computation a sweep can run: its parameters, its outputs, and the case function."""
+
+    name: str
+    description: str
+    parameters: Mapping[str, Parameter]
+    outputs: Mapping[str, str]
+    """Output name -> SI unit ("" for a pure number)."""
+    case: CaseFunction | None
+    check: Callable[[dict[str, Any]], object] | None = None
+    unavailable: str | None = None
+    """Why the kind cannot run yet (``None`` when it can)."""
+    nondeterministic: tuple[str, ...] = field(default=())
+    """Outputs that vary from run to run (timings); everything else is reproducible."""
+
+    def defaults(self) -> dict[str, Any]:
+        """The default value of every parameter."""
+        return {name: p.default for name, p in self.parameters.items()}
+
+
+class KindNotAvailableError(InputError):
+    """A registered kind whose computation is not in this version yet."""
+
+
+KINDS: dict[str, Kind] = {}
+"""Every registered kind by name (``contact``, ``finite-strain``, ``dynamic``, ``impact``)."""
+
+
+def register_kind(kind: Kind) -> Kind:
+    """Add (or replace) a kind in :data:`KINDS`; returns it."""
+    KINDS[kind.name] = kind
+    return kind
+
+
+def get_kind(name: str) -> Kind:
+    """The kind called ``name``; raises :class:`InputError` for an unknown or unavailable one."""
+    if name not in KINDS:
+        raise InputError(f"Unknown kind {name!r}. Pick one of {sorted(KINDS)}")
+    kind = KINDS[name]
+    if kind.unavailable:
+        raise KindNotAvailableError(f"kind {name!r} is not available yet: {kind.unavailable}")
+    return kind
+
+
+def unit_suffix(name: str, unit: str) -> str:
+    """Column name with its unit, for CSV headers: ``x_c`` + ``m`` -> ``x_c_m``.
+
+    ``/`` reads ``_per_`` (``velocity_m_per_s``); a pure number keeps its bare name.
+    """
+    if not unit:
+        return name
+    return f"{name}_{unit.replace(' ', '_').replace('/', '_per_')}"
+
+
+# --- impact: the exact quasi-static model --------------------------------------------------------
+
+_MATERIALS = {
+    "E1": Parameter(2e11, "Pa"),
+    "nu1": Parameter(0.25),
+    "E2": Parameter(7.5e6, "Pa"),
+    "nu2": Parameter(0.5),
+}
+_INDENTER = {
+    "shape_coefficient": Parameter(5.0, "m^(1-n)"),
+    "exponent": Parameter(1.5),
+}
+
+
+def _indenter(p: dict[str, Any]):
+    from ..theory.indenter import PowerLawIndenter
+
+    return PowerLawIndenter(
+        validate_positive("shape_coefficient", p["shape_coefficient"], "m^(1-n)"),
+        validate_positive("exponent", p["exponent"]),
+    )
+
+
+def _material(p: dict[str, Any], young: str, poisson: str):
+    from ..theory.materials import RIGID, Material
+    from ..validation import validate_poisson
+
+    if young == "E1" and math.isinf(p[young]) and p[young] > 0:
+        return RIGID
+    return Material(validate_positive(young, p[young], "Pa"), validate_poisson(poisson, p[poisson]))
+
+
+def _impact_inputs(p: dict[str, Any]):
+    from ..theory.contact import PowerLawContact
+    from ..theory.materials import effective_modulus
+
+    mass = validate_positive("mass", p["mass"], "kg")
+    velocity = validate_positive("velocity", p["velocity"], "m/s")
+    striker, half_space = _material(p, "E1", "nu1"), _material(p, "E2", "nu2")
+    law = PowerLawContact(_indenter(p), effective_modulus(striker, half_space))
+    return mass, velocity, law
+
+
+IMPACT_OUTPUTS = {
+    "beta": "N/m^q",
+    "x_c": "m",
+    "P_c": "N",
+    "a_c": "m",
+    "p_c": "Pa",
+    "t_c": "s",
+    "t_y": "s",
+}
+
+
+def impact_case(p: dict[str, Any]) -> dict[str, float]:
+    """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``)."""
+    from ..theory.impact import solve_impact
+
+    result = solve_impact(*_impact_inputs(p))
+    return {name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}
+
+
+register_kind(
+    Kind(
+        name="impact",
+        description="exact quasi-static impact M x'' = -beta x^q (Ateb functions)",
+        parameters={
+            "mass": Parameter(0.7, "kg"),
+            "velocity": Parameter(3.0, "m/s"),
+            **_INDENTER,
+            **_MATERIALS,
+        },
+        outputs=IMPACT_OUTPUTS,
+        case=impact_case,
+        check=_impact_inputs,
+    )
+)
+
+
+# --- contact: the linear FEM indentation against Shtaerman's solution ----------------------------
+
+_SOLVERS = ("auto", "superlu", "pardiso")
+_MESH = {  # sweep parameter -> MeshSettings field
+    "mesh_size": "size",
+    "mesh_margin": "margin",
+    "domain_factor": "domain",
+    "growth": "growth",
+    "axis_size": "axis_size",
+    "axis_growth": "axis_growth",
+}
+
+
+def _contact_inputs(p: dict[str, Any]):
+    from ..fem.mesh import MeshSettings
+    from ..theory.materials import Material
+    from ..validation import validate_poisson
+
+    indenter = _indenter(p)
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the FEM contact (bounded central pressure), "
+            f"got {indenter.exponent!r}"
+        )
+    nu2 = validate_poisson("nu2", p["nu2"])
+    if nu2 < 0:
+        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {nu2!r}")
+    half_space = Material(validate_positive("E2", p["E2"], "Pa"), nu2)
+    depths = None if p["depths"] is None else validate_increasing("depths", p["depths"], "m")
+    mesh = MeshSettings(
+        **{field_name: validate_positive(name, p[name]) for name, field_name in _MESH.items()}
+    )
+    refine = validate_positive("refine", p["refine"])
+    if refine != 1.0:
+        mesh = mesh.refined(refine)
+    return indenter, half_space, depths, mesh, p["solver"]
+
+
+CONTACT_OUTPUTS = {
+    "beta_fem": "N/m^q",
+    "exponent_fem": "",
+    "beta_analytic": "N/m^q",
+    "error_force": "",
+    "error_beta": "",
+    "error_exponent": "",
+    "error_contact_radius": "",
+    "error_central_pressure": "",
+    "dofs": "",
+    "seconds": "s",
+}
+
+
+def contact_case(p: dict[str, Any]) -> dict[str, float]:
+    """FEM contact curve: fitted beta and exponent, worst relative errors, size and time."""
+    from ..study.indentation import run_indentation
+
+    indenter, half_space, depths, mesh, solver = _contact_inputs(p)
+    start = time.perf_counter()
+    result = run_indentation(indenter, half_space, depths, mesh, backend=solver)
+    seconds = time.perf_counter() - start
+    errors = result.errors()
+    return {
+        "beta_fem": float(result.fit.beta_fixed_exponent),
+        "exponent_fem": float(result.fit.exponent),
+        "beta_analytic": float(result.exact.beta),
+        **{
+            f"error_{key}": float(errors[key])
+            for key in ("force", "beta", "exponent", "contact_radius", "central_pressure")
+        },
+        "dofs": int(result.mesh_stats["dofs"]),
+        "seconds": seconds,
+    }
+
+
+register_kind(
+    Kind(
+        name="contact",
+        description="linear FEM frictionless contact against Shtaerman's exact solution",
+        parameters={
+            **_INDENTER,
+            "E2": _MATERIALS["E2"],
+            "nu2": _MATERIALS["nu2"],
+            "depths": Parameter(None, "m", type="floats"),
+            "mesh_size": Parameter(1.0 / 150.0),
+            "mesh_margin": Parameter(1.25),
+            "domain_factor": Parameter(1e5),
+            "growth": Parameter(0.25),
+            "axis_size": Parameter(1e-6),
+            "axis_growth": Parameter(0.1),
+            "refine": Parameter(1.0),
+            "solver": Parameter("auto", type="str", choices=_SOLVERS),
+        },
+        outputs=CONTACT_OUTPUTS,
+        case=contact_case,
+        check=_contact_inputs,
+        nondeterministic=("seconds",),
+    )
+)
+
+
+# --- kinds whose computations are being written ---------------------------------------------
+
+register_kind(
+    Kind(
+        name="dynamic",
+        description="dynamic FE impact with elastic waves",
+        parameters={},
+        outputs={},
+        case=None,
+        unavailable="the dynamic FE impact (shtaerman dynamic) is not in this version",
+    )
+)
+register_kind(
+    Kind(
+        name="finite-strain",
+        description="neo-Hookean finite-strain contact",
+        parameters={},
+        outputs={},
+        case=None,
+        unavailable="the finite-strain contact (shtaerman contact --model neo-hookean) "
+        "is not in this version",
+    )
+)

@@ -1,0 +1,312 @@
+"""The sweep file: a TOML grid of cases of one kind, read and checked before any computation.
+
+::
+
+    name = "nu-grid"
+    kind = "contact"          # contact | finite-strain | dynamic | impact
+    [parameters]              # fixed inputs, named like the CLI options in snake_case
+    shape_coefficient = 3.3
+    [axes]                    # the grid: every combination is one case
+    exponent = [1.3, 1.8]
+    nu2 = [0.0, 0.25, 0.4, 0.5]
+
+Cases are numbered 0, 1, ... in the order of :func:`itertools.product` over the axes as written
+(the last axis varies fastest). Every mistake raises :class:`SweepError`, one line naming the
+file, the key and what was expected.
+"""
+
+from __future__ import annotations
+
+import importlib.resources
+import itertools
+import math
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..validation import InputError
+from .kinds import KINDS, Kind, Parameter, get_kind
+
+__all__ = [
+    "MAX_CASES",
+    "Case",
+    "SweepError",
+    "SweepSpec",
+    "find_sweep",
+    "load_sweep",
+    "parse_sweep",
+    "shipped_sweeps",
+    "sweeps_folder",
+]
+
+MAX_CASES = 100_000
+TOP_LEVEL = ("name", "kind", "description", "parameters", "axes")
+_PLAIN_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*")
+
+
+class SweepError(InputError):
+    """A sweep file that cannot be used; the message names the file and the key."""
+
+
+@dataclass(frozen=True)
+class Case:
+    """One point of the grid: its index and every input of the kind (defaults filled in)."""
+
+    index: int
+    axis_values: dict[str, Any]
+    params: dict[str, Any]
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A checked sweep file.
+
+    Attributes
+    ----------
+    path : Path
+        The file it was read from.
+    name, kind : str
+        The sweep's name (a plain folder name) and the registered kind it runs.
+    parameters : dict
+        Fixed inputs from ``[parameters]``.
+    axes : dict of str to list
+        The grid, in file order.
+    data : dict
+        The whole parsed file (compared on ``--resume``).
+    text : str
+        The file as written (copied into the result folder).
+    """
+
+    path: Path
+    name: str
+    kind: str
+    description: str
+    parameters: dict[str, Any]
+    axes: dict[str, list[Any]]
+    data: dict[str, Any]
+    text: str = ""
+
+    @property
+    def kind_spec(self) -> Kind:
+        """The registered :class:`~shtaerman.sweep.kinds.Kind`."""
+        return get_kind(self.kind)
+
+    def cases(self) -> list[Case]:
+        """Every case of the grid, numbered from 0 (last axis fastest)."""
+        base = {**self.kind_spec.defaults(), **self.parameters}
+        names = list(self.axes)
+        cases = []
+        for index, values in enumerate(itertools.product(*self.axes.values())):
+            at = dict(zip(names, values, strict=True))
+            cases.append(Case(index, at, {**base, **at}))
+        return cases
+
+    def to_dict(self) -> dict[str, Any]:
+        """The spec as JSON-able data (for ``results.json``)."""
+        return {
+            "file": str(self.path),
+            "name": self.name,
+            "kind": self.kind,
+            "description": self.description,
+            "parameters": self.parameters,
+            "axes": self.axes,
+        }
+
+
+def load_sweep(path: str | Path) -> SweepSpec:
+    """Read, check and return a sweep file; every case's inputs are built and checked too.
+
+    Raises
+    ------
+    SweepError
+        One line: the file, the key, what was expected.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as error:
+        raise SweepError(f"{path}: cannot read the sweep file ({error.strerror})") from None
+    return parse_sweep(text, path)
+
+
+def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
+    """Check the TOML ``text`` of a sweep file (``path`` only names it in messages)."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SweepError(f"{path}: not valid TOML ({error})") from None
+    where = str(path)
+    unknown = sorted(set(data) - set(TOP_LEVEL))
+    if unknown:
+        raise SweepError(f"{where}: unknown key {unknown[0]!r}. Pick from {list(TOP_LEVEL)}")
+    name = _name(where, data)
+    kind = _kind(where, data)
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise SweepError(f"{where}: description must be a string, got {description!r}")
+    parameters = _table(where, data, "parameters", required=False)
+    axes = _table(where, data, "axes", required=True)
+    for key, value in parameters.items():
+        parameters[key] = _value(where, f"parameters.{key}", kind, key, value)
+    if not axes:
+        raise SweepError(f"{where}: [axes] is empty; give at least one axis, e.g. nu2 = [0.3, 0.5]")
+    for key, values in axes.items():
+        if key in parameters:
+            raise SweepError(
+                f"{where}: {key!r} is both in [parameters] and in [axes]; keep it in one"
+            )
+        axes[key] = _axis(where, kind, key, values)
+    count = math.prod(len(values) for values in axes.values())
+    if count > MAX_CASES:
+        raise SweepError(f"{where}: [axes] makes {count} cases; at most {MAX_CASES} are allowed")
+    spec = SweepSpec(path, name, kind.name, description, parameters, axes, data, text)
+    _check_cases(where, spec)
+    return spec
+
+
+def _name(where: str, data: Mapping[str, Any]) -> str:
+    if "name" not in data:
+        raise SweepError(f"{where}: missing key 'name' (a plain folder name, e.g. \"nu-grid\")")
+    name = data["name"]
+    if (
+        not isinstance(name, str)
+        or len(name) > 100
+        or ".." in name
+        or not _PLAIN_NAME.fullmatch(name)
+    ):
+        raise SweepError(
+            f"{where}: name must be a plain folder name (letters, digits, '_', '-', '.'; no "
+            f"'/', '..' or leading dot; at most 100 characters), got {name!r}"
+        )
+    return name
+
+
+def _kind(where: str, data: Mapping[str, Any]) -> Kind:
+    if "kind" not in data:
+        raise SweepError(f"{where}: missing key 'kind'. Pick one of {sorted(KINDS)}")
+    name = data["kind"]
+    if not isinstance(name, str) or name not in KINDS:
+        raise SweepError(f"{where}: kind: unknown kind {name!r}. Pick one of {sorted(KINDS)}")
+    try:
+        return get_kind(name)
+    except InputError as error:
+        raise SweepError(f"{where}: kind: {error}") from None
+
+
+def _table(where: str, data: Mapping[str, Any], key: str, *, required: bool) -> dict[str, Any]:
+    if key not in data:
+        if required:
+            raise SweepError(f"{where}: missing table [{key}]")
+        return {}
+    table = data[key]
+    if not isinstance(table, dict):
+        raise SweepError(f"{where}: {key} must be a table [{key}], got {table!r}")
+    return dict(table)
+
+
+def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
+    """``value`` of parameter ``name`` converted to its declared type, or raise."""
+    if name not in kind.parameters:
+        raise SweepError(
+            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}. "
+            f"Pick one of {sorted(kind.parameters)}"
+        )
+    parameter = kind.parameters[name]
+    converted = _convert(parameter, value)
+    if converted is None:
+        raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {value!r}")
+    return converted
+
+
+def _convert(parameter: Parameter, value: Any) -> Any:
+    """The value in its declared type, or ``None`` when it does not fit."""
+    is_number = isinstance(value, int | float) and not isinstance(value, bool)
+    if parameter.type == "float":
+        return float(value) if is_number else None
+    if parameter.type == "int":
+        return value if isinstance(value, int) and not isinstance(value, bool) else None
+    if parameter.type == "str":
+        ok = isinstance(value, str) and (not parameter.choices or value in parameter.choices)
+        return value if ok else None
+    if parameter.type == "floats":
+        if not isinstance(value, list) or not value:
+            return None
+        if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in value):
+            return None
+        return [float(v) for v in value]
+    raise AssertionError(f"unknown parameter type {parameter.type!r}")
+
+
+def _expected(parameter: Parameter) -> str:
+    unit = f" in {parameter.unit}" if parameter.unit else ""
+    return {
+        "float": f"a number{unit}",
+        "int": "an integer",
+        "str": f"one of {list(parameter.choices)}" if parameter.choices else "a string",
+        "floats": f"a non-empty list of numbers{unit}",
+    }[parameter.type]
+
+
+def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
+    key = f"axes.{name}"
+    if name not in kind.parameters:
+        raise SweepError(
+            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}. "
+            f"Pick one of {sorted(kind.parameters)}"
+        )
+    if not isinstance(values, list):
+        raise SweepError(f"{where}: {key} must be a list of values, got {values!r}")
+    if not values:
+        raise SweepError(f"{where}: {key} is empty; give at least one value")
+    converted = [_value(where, f"{key}[{i}]", kind, name, v) for i, v in enumerate(values)]
+    for i, value in enumerate(converted):
+        if value in converted[:i]:
+            raise SweepError(f"{where}: {key} lists {values[i]!r} twice")
+    return converted
+
+
+def _check_cases(where: str, spec: SweepSpec) -> None:
+    """Build every case's inputs (cheap) so a value out of its physical range fails now."""
+    check = spec.kind_spec.check
+    if check is None:
+        return
+    for case in spec.cases():
+        try:
+            check(case.params)
+        except (InputError, ValueError) as error:
+            at = ", ".join(f"{k} = {v!r}" for k, v in case.axis_values.items())
+            raise SweepError(f"{where}: case {case.index} ({at}): {error}") from None
+
+
+def sweeps_folder() -> Path:
+    """The shipped sweeps: ``shtaerman/sweeps`` in a wheel, the repository's ``sweeps/`` else."""
+    packaged = importlib.resources.files("shtaerman") / "sweeps"
+    if packaged.is_dir():
+        return Path(str(packaged))
+    return Path(__file__).resolve().parents[3] / "sweeps"
+
+
+def shipped_sweeps() -> list[str]:
+    """Names of the sweeps shipped with shtaerman (``shtaerman sweep NAME``)."""
+    return sorted(path.stem for path in sweeps_folder().glob("*.toml"))
+
+
+def find_sweep(argument: str | Path) -> Path:
+    """The sweep file named by ``argument``: a path to a file, or the name of a shipped sweep."""
+    path = Path(argument).expanduser()
+    if path.is_file():
+        return path
+    text = str(argument)
+    if "/" not in text and not text.endswith(".toml"):
+        shipped = sweeps_folder() / f"{text}.toml"
+        if shipped.is_file():
+            return shipped
+        raise SweepError(
+            f"sweep: no file {text!r} and no shipped sweep of that name. "
+            f"Pick a file or one of {shipped_sweeps()}"
+        )
+    raise SweepError(f"sweep: no file {text!r}")

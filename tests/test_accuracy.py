@@ -1,0 +1,99 @@
+"""The mesh ladder behind every contact number's error estimate, and ``--accuracy``.
+
+Coarse meshes here (a ladder of about 3k/5k/9k dofs, 2-3 s); the effectivity of the estimates
+on unseen cases and the ``--accuracy`` timings are measured in benchmarks/bench_accuracy.py.
+"""
+
+import itertools
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+
+from shtaerman.cli import main
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.study.accuracy import LADDER_RATIO, run_ladder, run_to_accuracy
+from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.validation import InputError
+
+COARSE = MeshSettings(size=1 / 60, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
+PAPER = (PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5))
+
+
+@pytest.fixture(scope="module")
+def ladder():
+    return run_ladder(*PAPER, mesh=COARSE)
+
+
+def test_ladder_refines_the_whole_field_by_sqrt2(ladder):
+    refines = [level.refine for level in ladder.levels]
+    assert refines == pytest.approx([1 / LADDER_RATIO**2, 1 / LADDER_RATIO, 1.0], rel=1e-12)
+    dofs = [level.dofs for level in ladder.levels]
+    # h / sqrt(2) everywhere doubles the dofs (observed 1.6x, 1.8x: the coarsest far field is
+    # capped by the domain's arc)
+    assert all(1.4 < fine / coarse < 2.3 for coarse, fine in itertools.pairwise(dofs))
+
+
+def test_finest_level_is_the_plain_run(ladder):
+    # an identity: the ladder's answer is run_indentation on the refined settings
+    depths = default_depths(*PAPER)
+    plain = run_indentation(*PAPER, depths, COARSE.refined(1.0))
+    assert [s.force for s in ladder.finest.steps] == [s.force for s in plain.steps]
+
+
+def test_estimates_are_positive_and_finite(ladder):
+    estimate = ladder.error_estimate()
+    assert set(estimate) == {"force", "beta", "exponent", "contact_radius", "central_pressure"}
+    assert all(math.isfinite(v) and v > 0 for v in estimate.values())
+    # force and beta carry the far-field truncation 1.87 / domain at least
+    assert estimate["force"] >= 1.87e-4 and estimate["beta"] >= 1.87e-4
+    extrapolated = ladder.to_dict()["extrapolated"]
+    finest = ladder.finest.steps
+    # the extrapolated worst-depth force lies within its own estimate of some FEM force
+    forces = np.array([s.force for s in finest])
+    assert np.min(np.abs(forces / extrapolated["force"] - 1)) <= estimate["force"]
+
+
+def test_accuracy_target_is_met_or_refused():
+    loose = run_to_accuracy(*PAPER, 5e-3, mesh=COARSE)
+    assert loose.tolerance == 5e-3 and len(loose.levels) == 3
+    assert max(loose.error_estimate()[k] for k in ("force", "beta")) <= 5e-3
+    # the domain grew so that the truncation 1.87 / domain stays below a tenth of the target
+    stats = loose.finest.mesh_stats
+    assert stats["domain_radius"] / stats["refined_radius"] >= 10 * 1.87 / 5e-3 * (1 - 1e-12)
+    with pytest.raises(InputError, match=r"accuracy 1e-09 needs about .* dofs"):
+        run_to_accuracy(*PAPER, 1e-9, mesh=COARSE)
+    with pytest.raises(InputError, match=r"accuracy must lie in \(0, 0.1\]"):
+        run_to_accuracy(*PAPER, 0.5, mesh=COARSE)
+
+
+def test_contact_json_carries_the_estimates(capsys):
+    argv = ["contact", "--json", "--mesh-size", "0.0166667", "--domain-factor", "1e4"]
+    argv += ["--growth", "0.3", "--depths", "2e-3,4e-3,8e-3"]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert {"error_estimate", "extrapolated", "mesh_ladder", "effectivity"} <= set(report)
+    assert [level["refine"] for level in report["mesh_ladder"]] == pytest.approx(
+        [0.5, 1 / math.sqrt(2), 1.0]
+    )
+    assert report["mesh"]["dofs"] == report["mesh_ladder"][-1]["dofs"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--refine", "0"], "refine must be > 0"),
+        (["--refine", "0.3"], r"refine .* scales the mesh growth to .* > 1"),
+        (["--accuracy", "nan"], "accuracy must be a finite number > 0"),
+        (["--accuracy", "1e-5", "--max-time", "-1"], "max-time must be > 0 s"),
+    ],
+)
+def test_bad_accuracy_options(capsys, argv, message):
+    assert main(["contact", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1
+    assert re.search(message, err)

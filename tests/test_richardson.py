@@ -1,0 +1,61 @@
+"""Richardson extrapolation on synthetic ladders whose exact limit is known."""
+
+import math
+
+import pytest
+
+from shtaerman.study.richardson import Estimate, richardson
+from shtaerman.validation import InputError
+
+
+@pytest.mark.parametrize("order", [1.6, 2.0, 2.5, 4.0])
+def test_exact_for_a_pure_power(order):
+    # Q(h) = 3 + 0.7 h^p on h = 1, 1/sqrt(2), 1/2: Richardson is exact for this form
+    s = math.sqrt(2.0)
+    values = [3.0 + 0.7 * (1.0 / s**k) ** order for k in range(3)]
+    estimate = richardson(values, s)
+    assert estimate.method == "richardson"
+    assert estimate.order == pytest.approx(order, rel=1e-10)
+    assert estimate.extrapolated == pytest.approx(3.0, rel=1e-13)
+    true_error = abs(values[-1] / 3.0 - 1.0)
+    assert estimate.error == pytest.approx(true_error, rel=1e-9)
+
+
+def test_higher_order_term_costs_little():
+    # Q = 1 + h^2 + 0.3 h^3: the estimate stays within 15 % of the true error at h = 1/8
+    s = 2.0
+    values = [1.0 + h**2 + 0.3 * h**3 for h in (0.5, 0.25, 0.125)]
+    estimate = richardson(values, s)
+    true_error = abs(values[-1] - 1.0)
+    assert 0.85 < estimate.error / true_error < 1.15
+
+
+@pytest.mark.parametrize(
+    ("values", "reason"),
+    [
+        ([1.0, 1.1, 1.05], "do not shrink monotonically"),
+        ([1.0, 1.001, 1.0010001], "outside"),
+        ([1.0, 1.5, 1.8], "outside"),  # order 0.94: not yet asymptotic
+        ([1.2, 1.1], "two levels only"),
+    ],
+)
+def test_falls_back_and_says_why(values, reason):
+    estimate = richardson(values, 2.0)
+    assert estimate.method == "two-level" and reason in estimate.reason
+    assert estimate.error == pytest.approx(abs(values[-2] - values[-1]) / abs(values[-1]))
+    assert math.isnan(estimate.order) and estimate.extrapolated == values[-1]
+
+
+def test_agreeing_levels_have_zero_error():
+    assert richardson([2.0, 1.0, 1.0], 2.0) == Estimate(
+        1.0, 1.0, 0.0, math.nan, "two-level", "the last two levels agree"
+    )
+
+
+def test_bad_input():
+    with pytest.raises(InputError, match="at least two finite"):
+        richardson([1.0], 2.0)
+    with pytest.raises(InputError, match="at least two finite"):
+        richardson([1.0, math.nan, 2.0], 2.0)
+    with pytest.raises(InputError, match="ratio must be > 1"):
+        richardson([1.0, 2.0, 3.0], 1.0)

@@ -1,0 +1,322 @@
+"""Sweep files and the sweep CLI's refusals: everything checked before any computation.
+
+No cluster is started here except by ``test_cli_runs_a_shipped_sweep`` (the sweeps that run
+on dask, killed workers, resume and SIGTERM are in test_sweep_cluster.py).
+"""
+
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sweep_probe  # noqa: F401  (registers the kind "probe")
+from matplotlib.image import imread
+
+from shtaerman.cli import main
+from shtaerman.sweep import KINDS, SweepError, load_sweep, parse_sweep
+from shtaerman.sweep.figures import sweep_figures
+from shtaerman.sweep.spec import find_sweep, shipped_sweeps
+
+ROOT = Path(__file__).resolve().parents[1]
+
+IMPACT = """\
+name = "grid"
+kind = "impact"
+[parameters]
+mass = 0.7
+[axes]
+velocity = [1.0, 2.0]
+nu2 = [0.3, 0.5]
+"""
+
+
+def write(tmp_path, text, name="sweep.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def error_of(tmp_path, text):
+    path = write(tmp_path, text)
+    with pytest.raises(SweepError) as caught:
+        load_sweep(path)
+    message = str(caught.value)
+    assert "\n" not in message
+    assert message.startswith(str(path))  # every message names the file
+    return message
+
+
+def test_a_valid_file_gives_the_grid_last_axis_fastest(tmp_path):
+    spec = load_sweep(write(tmp_path, IMPACT))
+    cases = spec.cases()
+    assert [c.axis_values for c in cases] == [
+        {"velocity": 1.0, "nu2": 0.3},
+        {"velocity": 1.0, "nu2": 0.5},
+        {"velocity": 2.0, "nu2": 0.3},
+        {"velocity": 2.0, "nu2": 0.5},
+    ]
+    assert [c.index for c in cases] == [0, 1, 2, 3]
+    # defaults (the paper's example) filled in, fixed parameters applied, ints become floats
+    assert cases[3].params["E2"] == 7.5e6 and cases[3].params["shape_coefficient"] == 5.0
+    assert cases[3].params["mass"] == 0.7 and isinstance(cases[3].params["mass"], float)
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("colour = 1\n" + IMPACT, "unknown key 'colour'. Pick from"),
+        (IMPACT + "colour = [1]\n", "axes.colour: unknown parameter 'colour' for kind 'impact'"),
+        (IMPACT.replace("mass = 0.7", "masss = 0.7"), "parameters.masss: unknown parameter"),
+        (IMPACT.replace("nu2 = [0.3, 0.5]", "poisson = [0.3]"), "axes.poisson: unknown"),
+        (IMPACT.replace("mass = 0.7", 'mass = "heavy"'), "parameters.mass must be a number in kg"),
+        (IMPACT.replace("mass = 0.7", "mass = true"), "parameters.mass must be a number"),
+        (IMPACT.replace("[1.0, 2.0]", '[1.0, "fast"]'), "axes.velocity[1] must be a number"),
+        (IMPACT.replace("[1.0, 2.0]", "3.0"), "axes.velocity must be a list"),
+        (IMPACT.replace("[1.0, 2.0]", "[]"), "axes.velocity is empty"),
+        (IMPACT.replace("[1.0, 2.0]", "[1.0, 1]"), "axes.velocity lists 1 twice"),
+        (IMPACT.split("[axes]")[0], "missing table [axes]"),
+        (IMPACT.split("velocity =")[0], "[axes] is empty"),
+        (IMPACT.replace("mass = 0.7", "nu2 = 0.3"), "'nu2' is both in [parameters] and in [axes]"),
+        (IMPACT.replace('"impact"', '"impakt"'), "kind: unknown kind 'impakt'. Pick one of"),
+        (IMPACT.replace('kind = "impact"\n', ""), "missing key 'kind'"),
+        (IMPACT.replace('name = "grid"\n', ""), "missing key 'name'"),
+        (IMPACT.replace("[0.3, 0.5]", "[0.3, 0.7]"), "case 1 (velocity = 1.0, nu2 = 0.7): nu2"),
+        (IMPACT.replace("mass = 0.7", "mass = -1"), "case 0 (velocity = 1.0, nu2 = 0.3): mass"),
+        ("name = [", "not valid TOML"),
+    ],
+)
+def test_spec_errors_name_file_key_and_expectation(tmp_path, text, expected):
+    assert expected in error_of(tmp_path, text)
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["a/b", "..", "x..y", ".hidden", "a\\u0000b", "a b", "", "n" * 101, "/abs", "a\\\\b"],
+)
+def test_names_must_be_plain_folder_names(tmp_path, name):
+    message = error_of(tmp_path, IMPACT.replace('"grid"', f'"{name}"'))
+    assert "name must be a plain folder name" in message
+
+
+def test_name_of_100_characters_is_accepted(tmp_path):
+    assert load_sweep(write(tmp_path, IMPACT.replace('"grid"', f'"{"n" * 100}"'))).name
+
+
+def test_name_must_be_a_string(tmp_path):
+    assert "name must be a plain folder name" in error_of(tmp_path, IMPACT.replace('"grid"', "7"))
+
+
+@pytest.mark.parametrize("kind", ["dynamic", "finite-strain"])
+def test_kinds_being_written_are_registered_but_refused(tmp_path, kind):
+    assert kind in KINDS
+    message = error_of(tmp_path, f'name = "x"\nkind = "{kind}"\n[axes]\nvelocity = [1.0]\n')
+    assert f"kind: kind {kind!r} is not available yet" in message
+
+
+def test_contact_inputs_are_checked_up_front(tmp_path):
+    text = 'name = "c"\nkind = "contact"\n[axes]\nexponent = [1.5, 1.0]\n'
+    assert "case 1 (exponent = 1.0): exponent must be > 1 for the FEM" in error_of(tmp_path, text)
+    text = 'name = "c"\nkind = "contact"\n[parameters]\nsolver = "umfpack"\n[axes]\nnu2 = [0.5]\n'
+    assert "parameters.solver must be one of ['auto', 'superlu', 'pardiso']" in error_of(
+        tmp_path, text
+    )
+    text = 'name = "c"\nkind = "contact"\n[axes]\ndepths = [[2e-3, 1e-3]]\n'
+    assert "depths must be strictly increasing" in error_of(tmp_path, text)
+
+
+def test_a_rigid_striker_is_e1_inf(tmp_path):
+    spec = parse_sweep(IMPACT.replace("mass = 0.7", "E1 = inf"), tmp_path / "s.toml")
+    assert math.isinf(spec.cases()[0].params["E1"])
+
+
+def test_shipped_sweeps_load_by_name():
+    assert {"nu-grid", "impact-velocity"} <= set(shipped_sweeps())
+    for name in ("nu-grid", "impact-velocity"):
+        path = find_sweep(name)
+        assert path == ROOT / "sweeps" / f"{name}.toml"
+        spec = load_sweep(path)
+        assert spec.name == name and len(spec.cases()) >= 6
+    assert load_sweep(find_sweep("nu-grid")).kind == "contact"
+
+
+# --- the CLI's refusals: exit 2, one line, no traceback, nothing touched ------------------------
+
+
+def run_cli(capsys, *argv):
+    code = main(["sweep", *map(str, argv)])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def assert_one_line_error(err, *needles):
+    assert err.startswith("shtaerman: error: ") and err.count("\n") == 1, err
+    assert "Traceback" not in err
+    for needle in needles:
+        assert needle in err, err
+
+
+def test_cli_bad_file_is_exit_2(tmp_path, capsys):
+    path = write(tmp_path, IMPACT.replace("[1.0, 2.0]", "[]"))
+    code, out, err = run_cli(capsys, path, "--out", tmp_path / "out")
+    assert code == 2 and out == ""
+    assert_one_line_error(err, str(path), "axes.velocity is empty")
+    assert not (tmp_path / "out").exists()
+
+
+def test_cli_unknown_sweep_name_lists_the_shipped_ones(capsys):
+    code, _, err = run_cli(capsys, "no-such-sweep")
+    assert code == 2
+    assert_one_line_error(err, "'no-such-sweep'", "nu-grid", "impact-velocity")
+
+
+@pytest.mark.parametrize("workers", ["0", "two", "-1"])
+def test_cli_bad_worker_count(tmp_path, capsys, workers):
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--workers", workers)
+    assert code == 2
+    assert_one_line_error(err, "workers must be an integer >= 1")
+
+
+def test_cli_workers_and_scheduler_exclude_each_other(tmp_path, capsys):
+    path = write(tmp_path, IMPACT)
+    code, _, err = run_cli(capsys, path, "--workers", "2", "--scheduler", "tcp://127.0.0.1:1")
+    assert code == 2
+    assert_one_line_error(err, "--workers")
+
+
+def snapshot(folder):
+    return {
+        p.relative_to(folder): (p.stat().st_mtime_ns, p.read_bytes())
+        for p in folder.rglob("*")
+        if p.is_file()
+    }
+
+
+def test_cli_refuses_an_existing_folder_without_resume_or_force(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "sweep.toml").write_text(IMPACT)
+    (out / "keep.txt").write_text("mine")
+    before = snapshot(out)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out)
+    assert code == 2
+    assert_one_line_error(err, "exists; use --resume to complete it or --force to replace it")
+    assert snapshot(out) == before
+
+
+def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):
+    out = tmp_path / "not-a-sweep"
+    out.mkdir()
+    (out / "thesis.tex").write_text("precious")
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--force")
+    assert code == 2
+    assert_one_line_error(err, "--force replaces only a sweep folder")
+    assert (out / "thesis.tex").read_text() == "precious"
+
+
+def test_cli_resume_refuses_a_different_sweep(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "sweep.toml").write_text(IMPACT)
+    changed = write(tmp_path, IMPACT.replace("[0.3, 0.5]", "[0.3, 0.4]"))
+    before = snapshot(out)
+    code, _, err = run_cli(capsys, changed, "--out", out, "--resume")
+    assert code == 2
+    assert_one_line_error(err, "holds a different sweep (axes.nu2 differs")
+    assert snapshot(out) == before
+
+
+def test_cli_resume_and_force_exclude_each_other(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "sweep.toml").write_text(IMPACT)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--resume", "--force")
+    assert code == 2
+    assert_one_line_error(err, "resume and force exclude each other")
+
+
+def test_cli_unreachable_scheduler_is_exit_2(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "1s")
+    out = tmp_path / "out"
+    code, _, err = run_cli(
+        capsys, write(tmp_path, IMPACT), "--out", out, "--scheduler", "tcp://127.0.0.1:1"
+    )
+    assert code == 2
+    assert_one_line_error(err, "scheduler: cannot connect to 'tcp://127.0.0.1:1'")
+    assert not out.exists()  # nothing written: the same command works once the cluster is up
+
+
+# --- figures: drawn from results.json alone -----------------------------------------------------
+
+
+def fake_results(tmp_path, axes, values, status=None):
+    cases = []
+    for index, value in enumerate(values):
+        ok = status is None or status[index] == "ok"
+        cases.append(
+            {
+                "index": index,
+                "status": "ok" if ok else "failed",
+                "outputs": {"y": value} if ok else {},
+            }
+        )
+    results = {
+        "spec": {"name": "fake", "kind": "probe", "axes": axes},
+        "kind": {"outputs": {"y": "m^2"}, "parameter_units": {"x": "m", "z": ""}},
+        "cases": cases,
+    }
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(results))
+    return path
+
+
+def test_one_axis_gives_a_curve_per_output(tmp_path):
+    path = fake_results(tmp_path, {"x": [1.0, 2.0, 3.0]}, [2.0, 5.0, 10.0])
+    [png] = sweep_figures(path, tmp_path / "figures")
+    assert png.name == "y.png"
+    image = imread(png)
+    assert image.shape[0] > 200 and image[..., :3].std() > 0.05  # not blank
+    blue = (image[..., 2] > 0.6) & (image[..., 0] < 0.3)  # the C0 curve is drawn
+    assert blue.sum() > 200
+
+
+def test_two_axes_give_a_heat_map_with_failed_cells_grey(tmp_path):
+    values = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+    status = ["ok", "ok", "failed", "ok", "ok", "ok"]
+    path = fake_results(tmp_path, {"x": [1.0, 2.0], "z": ["a", "b", "c"]}, values, status)
+    [png] = sweep_figures(path, tmp_path / "figures")
+    image = imread(png)[..., :3]
+    grey = np.all(np.abs(image - 0.8) < 0.02, axis=-1)  # the failed cell's colour
+    assert grey.sum() > 500
+    assert len(np.unique(image.reshape(-1, 3).round(2), axis=0)) > 20  # a colour map was drawn
+
+
+def test_three_axes_give_no_figures(tmp_path):
+    path = fake_results(tmp_path, {"x": [1.0], "z": ["a"], "w": [1]}, [1.0])
+    assert sweep_figures(path, tmp_path / "figures") == []
+
+
+def test_cli_runs_a_shipped_sweep_in_a_fresh_folder(tmp_path, capsys, monkeypatch):
+    """The whole path once: shipped name -> local cluster -> files (``impact``, 6 cases)."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run_cli(capsys, "impact-velocity", "--workers", "1")
+    assert code == 0 and err == "", err
+    folder = tmp_path / "sweep-impact-velocity"
+    assert "6 cases, 6 ok, 0 failed" in out and str(Path("sweep-impact-velocity")) in out
+    assert (folder / "sweep.toml").read_text() == (ROOT / "sweeps/impact-velocity.toml").read_text()
+    assert sorted(p.name for p in (folder / "cases").iterdir()) == [f"{i}.json" for i in range(6)]
+    assert {p.name for p in (folder / "figures").iterdir()} >= {"x_c.png", "P_c.png", "t_c.png"}
+    results = json.loads((folder / "results.json").read_text())
+    assert results["summary"] == {
+        "cases": 6,
+        "succeeded": 6,
+        "failed": 0,
+        "failed_cases": [],
+        "warnings": {},
+    }
+    # the paper's example is case 3 (v0 = 3 m/s): x_c exact (test_impact.py's mpmath literal)
+    assert results["cases"][3]["outputs"]["x_c"] == pytest.approx(
+        0.0085174899120372515388, rel=1e-14
+    )
+    shutil.rmtree(folder)
