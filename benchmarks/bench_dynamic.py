@@ -10,6 +10,20 @@ time goes; asserts nothing about time. Sections:
     n = 2 (sphere R = 5 cm), nu = 0.3, 0.4, 0.5: measured 1 - e^2 against lambda;
 (d) convergence in the time step, (e) in the mesh, (f) in the domain radius;
 (g) measured over estimated loss as lambda -> 0: the first-order estimate's own error.
+
+Measured on 2 shared cores (load average 6-10 from other jobs), 2026-11-22:
+(a) 13269 dofs, 798 steps: e = 0.926598, 1 - e^2 = 0.1414 (estimate 0.1568), x_max / x_c =
+    0.9711, P_max / P_c = 0.9538, balance 2.1e-5, reflected 1.9e-3; 12-20 s wall (factorization
+    once 1.0-1.3 s, stepping 10-17 s at 13-21 ms per step), 11 s CPU.
+(b) rho2 = 1e-3: x_max -6.4e-5, P_max +3.4e-5, t_contact -5.2e-5, e - 1 = -4.3e-7.
+(c) lambda = 0.04: measured / estimate 0.9730-0.9753 for n = 1.5, 2 and nu = 0.3, 0.4, 0.5.
+(d) steps 100-800: x_max order 2.1, 1.8; e constant to 1.4e-6, P_max to 4e-5.
+(e) size 1/20-1/160: x_max within 1.1e-5, e within 3.6e-5, P_max within 9e-4 (1.2e-4 between
+    1/80 and 1/160): below the asymptotic range, no clean order.
+(f) domain 1e3-1e5 refined radii: e within 1.0e-6, x_max within 2e-6.
+(g) (1 - measured/estimate) / lambda = 0.66-0.69 (n = 1.5, nu = 0.5) and 0.61-0.68 (n = 2,
+    nu = 0.3) for lambda = 0.08 .. 0.01: the gap vanishes linearly with lambda, so it is the
+    estimate's second-order term, not a FEM error.
 """
 
 import argparse

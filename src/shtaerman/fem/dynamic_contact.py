@@ -59,7 +59,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.optimize import brentq
 from scipy.special import beta as beta_function
+from skfem import BilinearForm, asm
 from threadpoolctl import threadpool_limits
 
 from ..theory.contact import PowerLawContact
@@ -76,6 +78,7 @@ from .contact import (
     recover_pressure,
 )
 from .elasticity import (
+    TWO_PI,
     ElasticSolution,
     ElasticSystem,
     assemble,
@@ -392,18 +395,12 @@ def _inner_energy_matrices(system: ElasticSystem, radius: float) -> tuple[sp.csr
     inner = np.flatnonzero(np.hypot(centroids[0], centroids[1]) < radius)
     ubasis = system.displacement_basis.with_elements(inner)
     pbasis = system.pressure_basis.with_elements(inner)
-    from skfem import asm
-
     nu, e_mod = system.poisson_ratio, system.youngs_modulus
     a = asm(deviatoric_stiffness(system.shear_modulus), ubasis)
     b = asm(divergence_coupling, ubasis, pbasis)
     inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
     c = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
     stiffness = sp.bmat([[a, b.T], [b, c]], format="csr")
-
-    from skfem import BilinearForm
-
-    from .elasticity import TWO_PI
 
     @BilinearForm
     def unit_mass(u, v, w):
@@ -675,9 +672,8 @@ class ScaledFactorization:
 
 
 def _rayleigh_root(nu: float) -> float:
-    """c_s / c_R from Rayleigh's equation (duplicated from radiation.py: fem stays standalone)."""
-    from scipy.optimize import brentq
-
+    """c_s / c_R from Rayleigh's equation (as theory.radiation.rayleigh_root; fem may not
+    import it by the layering rule)."""
     g2 = (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu))
 
     def rayleigh(s: float) -> float:
