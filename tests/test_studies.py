@@ -112,7 +112,7 @@ def test_missing_table_is_named(tmp_path):
         (("exponent = 1.5", "exponent = 1.0"), r"exponent must be > 1 for the FEM contact"),
         (
             ("poisson_ratio = 0.5", "poisson_ratio = -0.2"),
-            r"nu2 must lie in \[0, 0.5\] for the FEM",
+            r"nu2 \(Poisson's ratio\) must lie in \[0, 0.5\]",
         ),
     ],
 )
