@@ -19,13 +19,14 @@ from ..plots.gallery import (
     study_field_figures,
     study_figures,
 )
+from ..study.kinds import kind_function
 from ..study.run import StudyOutcome, run_study
 from ..study.schema import Study
 from .export import write_indentation
 from .files import staged_folder, write_csv
 from .report import results_document, write_reports
 
-__all__ = ["ProgressBar", "run_verification"]
+__all__ = ["ProgressBar", "run_verification", "write_contact_study"]
 
 
 class ProgressBar:
@@ -49,6 +50,13 @@ class ProgressBar:
     def advance(self) -> None:
         """Mark one study done."""
         self.done += 1
+
+
+def write_contact_study(
+    outcome: StudyOutcome, folder: Path, root: Path
+) -> tuple[dict[str, str], dict[str, str]]:
+    """A contact study's files (VTU, CSV curves and histories) and figures, paths from root."""
+    return _study_files(outcome, folder, root), _study_figures(outcome, folder, root)
 
 
 def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
@@ -90,9 +98,8 @@ def run_verification(
             outcome = run_study(study, quick=quick, progress=bar)
             bar(f"{study.name}: files and figures")
             start = time.perf_counter()
-            folder = stage / study.name
-            files[study.name] = _study_files(outcome, folder, stage)
-            pictures[study.name] = _study_figures(outcome, folder, stage)
+            write = kind_function(getattr(study, "kind", "contact"), "write")
+            files[study.name], pictures[study.name] = write(outcome, stage / study.name, stage)
             writing[study.name] = time.perf_counter() - start
             outcomes.append(outcome)
             advance()

@@ -19,6 +19,7 @@ import urllib.parse
 from collections.abc import Callable, Mapping
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 import jinja2
 
@@ -122,7 +123,10 @@ def study_document(
     meshes), ``computation`` (= ``seconds``), ``output`` (files and figures) and ``total``.
     """
     study = outcome.study
+    if getattr(study, "kind", "contact") != "contact":
+        return _kind_document(outcome, files, output_seconds, figures)
     return {
+        "kind": "contact",
         "description": study.description,
         "source": str(study.source),
         "inputs": {
@@ -146,6 +150,33 @@ def study_document(
         "figures": dict(figures or {}),
         **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
         **({"accuracy": outcome.accuracy.to_dict()} if outcome.accuracy else {}),
+    }
+
+
+def _kind_document(
+    outcome: Any,
+    files: dict[str, str],
+    output_seconds: float | None,
+    figures: Mapping[str, str] | None,
+) -> dict[str, object]:
+    """The results.json entry of a study of another kind: its own document plus the common
+    keys (checks, verdict, times, files, figures)."""
+    study = outcome.study
+    return {
+        "kind": study.kind,
+        "description": study.description,
+        "source": str(study.source),
+        **outcome.document(),
+        "checks": [check.to_dict() for check in outcome.checks],
+        "passed": outcome.passed,
+        "seconds": outcome.seconds,
+        "timings": {
+            "computation": outcome.seconds,
+            "output": output_seconds,
+            "total": outcome.seconds + (output_seconds or 0.0),
+        },
+        "files": files,
+        "figures": dict(figures or {}),
     }
 
 
@@ -192,7 +223,11 @@ def _seconds(value: float | None) -> str:
     return "-" if value is None else f"{value:.1f}"
 
 
-def _summary_row(name: str, study: dict) -> list[str]:
+def _is_contact(study: dict) -> bool:
+    return study.get("kind", "contact") == "contact"
+
+
+def _contact_row(name: str, study: dict) -> list[str]:
     errors = study["contact"]["errors"]
     differences = [study["differences"][v] for v in ("fem_fitted", "fem_tabulated")]
     worst = {
@@ -200,14 +235,28 @@ def _summary_row(name: str, study: dict) -> list[str]:
         for key in IMPACT_COLUMNS
     }
     timings = study.get("timings") or {}
-    total = timings.get("total", study.get("seconds"))
     return [
         name,
         "PASS" if study["passed"] else "FAIL",
         *(_number(errors.get(key), ".1e") for key in CONTACT_COLUMNS),
         *(_number(worst[key], ".1e") for key in IMPACT_COLUMNS),
         _seconds(timings.get("fem_curve", study["contact"]["timings"].get("total"))),
-        _seconds(total),
+    ]
+
+
+def _summary_row(name: str, study: dict) -> list[str]:
+    checks = study["checks"]
+    worst = max(checks, key=lambda c: abs(c["value"] or 0.0) / c["tolerance"], default=None)
+    timings = study.get("timings") or {}
+    return [
+        name,
+        study.get("kind", "contact"),
+        "PASS" if study["passed"] else "FAIL",
+        "-"
+        if worst is None
+        else f"{worst['name']}: {_number(abs(worst['value'] or 0.0), '.1e')}"
+        f" / {_number(worst['tolerance'], '.0e')}",
+        _seconds(timings.get("total", study.get("seconds"))),
     ]
 
 
@@ -223,17 +272,94 @@ def _checks(study: dict) -> list[dict[str, str]]:
     ]
 
 
-def _impact_table(study: dict) -> dict[str, list]:
+def _impact_table(study: dict) -> dict[str, object]:
     rows = [
         [label] + [_number(study["impact"][variant][key], ".6g") for key in IMPACT_KEYS]
         for variant, label in VARIANTS.items()
         if variant in study["impact"]
     ]
-    return {"header": ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)], "rows": rows}
+    header = ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)]
+    return {"title": "The impact three ways", "header": header, "rows": rows}
+
+
+ESTIMATED = {
+    "force": "force (worst depth)",
+    "beta": "beta",
+    "exponent": "exponent",
+    "contact_radius": "contact radius (worst depth)",
+    "central_pressure": "p(0) (worst depth)",
+}
+
+
+def _estimate_table(study: dict) -> dict[str, object] | None:
+    """FEM value +- its Richardson estimate, the true error and their ratio (effectivity)."""
+    accuracy = study.get("accuracy")
+    if not accuracy:
+        return None
+    ladder = ", ".join(str(level["dofs"]) for level in accuracy["mesh_ladder"])
+    rows = []
+    for key, label in ESTIMATED.items():
+        if key not in accuracy["error_estimate"]:
+            continue
+        details = accuracy["estimate_details"][key]
+        rows.append(
+            [
+                label,
+                f"{_number(details['value'], '.6g')} ± "
+                f"{_number(accuracy['error_estimate'][key], '.1e')}",
+                _number(accuracy["true_error"].get(key), ".1e"),
+                _number(accuracy["effectivity"].get(key), ".2f"),
+                details["method"] + (f" ({details['reason']})" if details["reason"] else ""),
+            ]
+        )
+    return {
+        "title": f"Error estimates (3-mesh ladder, {ladder} dofs): value ± estimated relative "
+        "error, the true error against the exact solution, and their ratio",
+        "header": ["quantity", "FEM value ± estimate", "true error", "effectivity", "method"],
+        "rows": rows,
+    }
+
+
+def _tables(study: dict) -> list[dict[str, object]]:
+    if not _is_contact(study):
+        return list(study.get("tables", []))
+    return [table for table in (_impact_table(study), _estimate_table(study)) if table]
+
+
+def _contact_finding(name: str, study: dict) -> str:
+    errors = study["contact"]["errors"]
+    text = (
+        f"{name}: the FEM reproduces Shtaerman's contact law to {_number(errors['force'], '.1e')}"
+        f" (force), {_number(errors['beta'], '.1e')} (beta) and p(0) to "
+        f"{_number(errors['central_pressure'], '.1e')}"
+    )
+    accuracy = study.get("accuracy")
+    if accuracy:
+        text += (
+            f"; its own error estimate says {_number(accuracy['error_estimate']['force'], '.1e')}"
+            f" (force), {_number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
+        )
+    return text + "."
+
+
+def _findings(studies: dict) -> list[str]:
+    found = []
+    for name, study in studies.items():
+        if _is_contact(study):
+            found.append(_contact_finding(name, study))
+        else:
+            found += [f"{name}: {sentence}" for sentence in study.get("findings", [])]
+    return found
 
 
 def _timing_text(study: dict) -> str:
     timings = study.get("timings") or {}
+    if not _is_contact(study):
+        parts = [f"computation {_seconds(timings.get('computation', study['seconds']))} s"]
+        if timings.get("output") is not None:
+            parts.append(f"files and figures {_seconds(timings['output'])} s")
+        parts.append(f"study total {_seconds(timings.get('total', study['seconds']))} s")
+        return "; ".join(parts)
     contact = study["contact"]["timings"]
     parts = [
         f"FEM curve {_seconds(timings.get('fem_curve', contact.get('total')))} s (mesh "
@@ -282,23 +408,34 @@ def report_context(
         for check in study["checks"]
         if not check["passed"]
     ]
+    contact = {name: study for name, study in studies.items() if _is_contact(study)}
     return {
         "passed": results["passed"],
         "verdict": "all studies PASS" if results["passed"] else "at least one study FAILS",
         "quick": results["quick"],
         "failures": failures,
+        "findings": _findings(studies),
         "summary": {
             "legend": SUMMARY_LEGEND,
             "timing_legend": TIMING_LEGEND,
+            "header": [
+                "study",
+                "kind",
+                "verdict",
+                "worst check (value / tolerance)",
+                "study total (s)",
+            ],
+            "rows": [_summary_row(name, study) for name, study in studies.items()],
+        },
+        "contact_summary": {
             "header": [
                 "study",
                 "verdict",
                 *CONTACT_COLUMNS.values(),
                 *IMPACT_COLUMNS,
                 "FEM curve (s)",
-                "study total (s)",
             ],
-            "rows": [_summary_row(name, study) for name, study in studies.items()],
+            "rows": [_contact_row(name, study) for name, study in contact.items()],
         },
         "studies": [
             {
@@ -306,7 +443,7 @@ def report_context(
                 "description": study["description"],
                 "verdict": "PASS" if study["passed"] else "FAIL",
                 "checks": _checks(study),
-                "impact": _impact_table(study),
+                "tables": _tables(study),
                 "timing_text": _timing_text(study),
                 "figures": _figures(figures.get(name, {})),
             }

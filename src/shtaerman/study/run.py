@@ -11,6 +11,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -19,9 +20,11 @@ from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ..theory.impact_ode import integrate_impact
 from ..theory.materials import effective_modulus
 from .accuracy import AccuracyResult, run_ladder
+from .checks import Check
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, depths_up_to
+from .kinds import kind_function
 from .schema import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
@@ -34,29 +37,6 @@ DEPTH_OVERSHOOT = 1.01
 HISTORY_POINTS = 201
 
 Progress = Callable[[str], None]
-
-
-@dataclass(frozen=True)
-class Check:
-    """One pass/fail comparison: a relative difference against its tolerance."""
-
-    name: str
-    value: float
-    tolerance: float
-
-    @property
-    def passed(self) -> bool:
-        """Whether |value| <= tolerance."""
-        return abs(self.value) <= self.tolerance
-
-    def to_dict(self) -> dict[str, object]:
-        """Plain data for JSON."""
-        return {
-            "name": self.name,
-            "value": self.value,
-            "tolerance": self.tolerance,
-            "passed": self.passed,
-        }
 
 
 @dataclass(frozen=True)
@@ -143,8 +123,13 @@ def _checks(study: Study, contact: IndentationResult, impacts: dict) -> list[Che
     return checks
 
 
-def run_study(
-    study: Study, *, quick: bool = False, progress: Progress | None = None
+def run_study(study: Any, *, quick: bool = False, progress: Progress | None = None) -> Any:
+    """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`)."""
+    return kind_function(getattr(study, "kind", "contact"), "run")(study, quick, progress)
+
+
+def run_contact_study(
+    study: Study, quick: bool = False, progress: Progress | None = None
 ) -> StudyOutcome:
     """Run one study: the FEM contact curve, the fits and the three impacts.
 

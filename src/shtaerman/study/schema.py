@@ -45,6 +45,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
 from .indentation import validate_fem_inputs
+from .kinds import KINDS, kind_function
 
 __all__ = [
     "QUICK_MESH",
@@ -216,6 +217,7 @@ class Study:
     """Smallest-element sizes / refined radius of a mesh-convergence study (empty: none)."""
     refine: float = 1.0
     """Refinement factor of the whole size field ([mesh] refine; the ladder adds K/2, K/sqrt2)."""
+    kind: str = "contact"
 
 
 def validate_name(name: object, what: str = "name") -> str:
@@ -330,8 +332,10 @@ def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
     return studies
 
 
-def load_study(path: str | Path) -> list[Study]:
-    """Read and check a study file; a ``[sweep]`` expands it into one study per value.
+def load_study(path: str | Path) -> list[Any]:
+    """Read and check a study file of any kind; a ``[sweep]`` may expand it into several.
+
+    The top-level ``kind`` (default "contact") selects the schema (:mod:`.kinds`).
 
     Raises
     ------
@@ -348,6 +352,14 @@ def load_study(path: str | Path) -> list[Study]:
         raise StudyError(f"{path}: cannot read the study file ({error})") from None
     except tomllib.TOMLDecodeError as error:
         raise StudyError(f"{path}: not valid TOML ({error})") from None
+    kind = data.pop("kind", "contact")
+    if kind not in KINDS:
+        raise StudyError(f"{path}: key 'kind': expected one of {sorted(KINDS)}, got {kind!r}")
+    return kind_function(kind, "load")(path, data)
+
+
+def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
+    """The studies of a parsed contact study file (the default kind)."""
     raw = _decode(path, data)
     try:
         studies = _expanded(_build(path, raw), raw.sweep)
