@@ -156,8 +156,22 @@ def test_contact_cli_json_and_files(tmp_path, capsys):
     # the default depths reach the paper's impact: contact radius about 9.6 mm
     assert report["steps"][-1]["contact_radius_analytic"] == pytest.approx(9.65e-3, rel=1e-3)
     field = meshio.read(out / "field_max_depth.vtu")
-    assert field.point_data["sigma_zz"].min() < 0  # compression under the indenter
-    assert (out / "contact_curve.csv").read_text().startswith("depth,force,contact_radius")
+    assert field.point_data["sigma_zz [Pa]"].min() < 0  # compression under the indenter
+    # units in the names, the depth and the model as field data
+    assert {"u_r [m]", "von_mises [Pa]", "displacement [m]"} <= set(field.point_data)
+    depth = report["steps"][-1]["depth"]
+    assert float(field.field_data["depth [m]"][0]) == pytest.approx(depth, rel=1e-15)
+    assert float(field.field_data["model_linear [1]"][0]) == 1.0
+    # the near field: only the contact zone, a few contact radii, with the same fields
+    near = meshio.read(out / "field_max_depth_near.vtu")
+    radius = report["steps"][-1]["contact_radius"]
+    extent = np.hypot(near.points[:, 0], near.points[:, 1]).max()
+    assert 2 * radius < extent <= 4 * radius * (1 + 1e-12)
+    assert np.hypot(field.points[:, 0], field.points[:, 1]).max() > 1e4 * radius
+    assert near.point_data["sigma_zz [Pa]"].min() == field.point_data["sigma_zz [Pa]"].min()
+    assert (
+        (out / "contact_curve.csv").read_text().startswith("depth [m],force [N],contact_radius [m]")
+    )
 
 
 def test_contact_cli_refuses_a_used_folder(tmp_path, capsys):

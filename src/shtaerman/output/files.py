@@ -28,7 +28,7 @@ import os
 import re
 import shutil
 import stat
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -37,8 +37,10 @@ from numpy.typing import ArrayLike
 from ..validation import InputError
 
 __all__ = [
+    "CSV_UNITS",
     "check_output_file",
     "check_output_folder",
+    "csv_header",
     "json_safe",
     "staged_file",
     "staged_folder",
@@ -336,13 +338,61 @@ def json_safe(value: object) -> object:
     return value
 
 
+CSV_UNITS = {
+    # impact histories
+    "t": "s",
+    "x": "m",
+    "v": "m/s",
+    "P": "N",
+    "a": "m",
+    "p0": "Pa",
+    # contact curves and pressure profiles
+    "depth": "m",
+    "force": "N",
+    "contact_radius": "m",
+    "central_pressure": "Pa",
+    "force_analytic": "N",
+    "contact_radius_analytic": "m",
+    "central_pressure_analytic": "Pa",
+    "central_to_mean": "1",
+    "pressure_profile_error": "1",
+    "active_set_iterations": "1",
+    "r": "m",
+    "pressure": "Pa",
+    "pressure_analytic": "Pa",
+    "gap": "m",
+}
+"""The unit of every CSV column name, shown in the header as ``name [unit]`` (``[1]``:
+dimensionless): ``t [s],x [m],P [N],a [m],p0 [Pa]`` for an impact history."""
+
+
+def csv_header(names: Iterable[str]) -> list[str]:
+    """``name [unit]`` for each column name; a name that already carries ``[unit]`` is kept.
+
+    Raises
+    ------
+    ValueError
+        For a name of unknown unit: add it to :data:`CSV_UNITS` (no column without a unit).
+    """
+    header = []
+    for name in names:
+        if name.endswith("]") and " [" in name:
+            header.append(name)
+        elif name in CSV_UNITS:
+            header.append(f"{name} [{CSV_UNITS[name]}]")
+        else:
+            raise ValueError(f"CSV column {name!r} has no unit; add it to CSV_UNITS")
+    return header
+
+
 def write_csv(path: Path, columns: Mapping[str, ArrayLike]) -> None:
-    """Write equal-length columns under a header of their names.
+    """Write equal-length columns under a header ``name [unit]`` (:func:`csv_header`).
 
     Write into a :func:`staged_folder` or a :func:`staged_file`: they make the result appear
     complete or not at all.
     """
+    header = csv_header(columns)
     with open(path, "w", newline="", encoding="utf-8") as stream:
         writer = csv.writer(stream)
-        writer.writerow(columns)
+        writer.writerow(header)
         writer.writerows(zip(*(np.asarray(c) for c in columns.values()), strict=True))
