@@ -68,7 +68,7 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
     """The --history file, checked before any work (see :func:`check_output_file`)."""
     if value is None:
         return None
-    return check_output_file(Path(value), force=force, option="history")
+    return check_output_file(value, force=force, option="history")
 
 
 def run(args: argparse.Namespace) -> int:

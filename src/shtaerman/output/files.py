@@ -254,30 +254,31 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
         shutil.rmtree(stage, ignore_errors=True)
 
 
-def check_output_file(path: Path, *, force: bool, option: str = "history") -> Path:
+def check_output_file(path: str | Path, *, force: bool, option: str = "history") -> Path:
     """Return ``path`` if a run may write that file, or raise before any work is done.
 
     A regular file (or a symbolic link to one) is replaced only with ``force``; a special file
     (``/dev/null``, a FIFO, a terminal) is written into, never replaced; a folder is refused.
     """
     try:
+        if not os.fspath(path):
+            raise InputError(f"{option}: an empty name names no file")
         path = Path(path).expanduser()
+        if path.exists():  # follows symbolic links, also /dev/stdout -> /proc/self/fd/1
+            mode = path.stat().st_mode
+            if stat.S_ISDIR(mode):
+                raise InputError(f"{option}: {str(path)!r} is a folder")
+            if not stat.S_ISREG(mode):  # a device, a FIFO, a terminal: written into
+                if not os.access(path, os.W_OK):
+                    raise InputError(f"{option}: cannot write {str(path)!r}")
+                return path
+            if not force:
+                raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
+        if not path.exists() and os.path.lexists(path):
+            raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
         real = Path(os.path.realpath(path))
         if not real.parent.is_dir():
             raise InputError(f"{option}: folder {str(path.parent)!r} does not exist")
-        if real.exists():
-            mode = real.stat().st_mode
-            if stat.S_ISDIR(mode):
-                raise InputError(f"{option}: {str(path)!r} is a folder")
-            if stat.S_ISREG(mode):
-                if not force:
-                    raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
-            elif not os.access(real, os.W_OK):
-                raise InputError(f"{option}: cannot write {str(path)!r}")
-            else:
-                return path
-        elif os.path.lexists(path):
-            raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
         live = _other_writers(real)
         if live:
             raise _busy(option, real, live)
@@ -301,10 +302,10 @@ def staged_file(path: Path, *, force: bool = False, option: str = "history") -> 
     permissions follow the umask.
     """
     path = check_output_file(path, force=force, option=option)
-    real = Path(os.path.realpath(path))
-    if real.exists() and not real.is_file():
-        yield real
+    if path.exists() and not path.is_file():  # a special file: written directly
+        yield path
         return
+    real = Path(os.path.realpath(path))
     stage = _stage_path(real)
     if os.path.lexists(stage):
         raise _busy(option, real, [os.getpid()])
