@@ -86,7 +86,7 @@ def test_missing_file():
             r"key 'tolerances.force': expected a relative tolerance in",
         ),
         ("[tolerances]\nimpact = 0\n", r"key 'tolerances.impact': expected a relative tolerance"),
-        ("[mesh]\nmargin = 0.5\n", r"bad.toml: \[mesh\] margin must be > 1"),
+        ("[mesh]\nmargin = 0.5\n", r"bad.toml: \[mesh\] margin must lie in \(1, 10\]"),
         ("[mesh]\ncolour = 1\n", r"key 'mesh.colour': expected one of \['axis_growth', "),
         ("[sweep]\n", r"key 'sweep': expected exactly one of"),
         ("[convergence]\nsizes = [0.1]\n", r"key 'convergence.sizes': expected a list of at"),

@@ -24,15 +24,6 @@ from .impact import history_path
 DEFAULT_DENSITY = "1100"
 """kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
 
-HISTORY_HEADER = {
-    "t": "t (s)",
-    "x": "x (m)",
-    "v": "v (m/s)",
-    "P": "P (N)",
-    "a": "a (m)",
-    "p0": "p0 (Pa)",
-}
-"""CSV header of --history: the column and its SI unit."""
 
 CONTROLS = {
     "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
@@ -147,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
 
 def history_columns(result: DynamicImpactResult) -> dict[str, object]:
     """The history with its units in the header."""
-    return {HISTORY_HEADER[key]: column for key, column in result.history_columns().items()}
+    return result.history_columns()  # write_csv adds the units: "t [s]", "x [m]", ...
 
 
 def document(result: DynamicImpactResult, quasi, estimate) -> dict[str, object]:
@@ -172,7 +163,7 @@ def write_folder(
     write_csv(folder / "history.csv", history_columns(result))
     write_csv(
         folder / "energies.csv",
-        {"t (s)": result.t, **{f"{k} (J)": v for k, v in result.energies.items()}},
+        {"t [s]": result.t, **{f"{k} [J]": v for k, v in result.energies.items()}},
     )
     for index, requested in enumerate(snapshots):
         actual, solution, _ = result.field_solution(requested)

@@ -362,6 +362,7 @@ CSV_UNITS = {
     "pressure": "Pa",
     "pressure_analytic": "Pa",
     "gap": "m",
+    "strain_energy": "J",
 }
 """The unit of every CSV column name, shown in the header as ``name [unit]`` (``[1]``:
 dimensionless): ``t [s],x [m],P [N],a [m],p0 [Pa]`` for an impact history."""
