@@ -8,13 +8,10 @@ from pathlib import Path
 
 import meshio
 
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
-from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
-from ..theory.materials import RIGID, effective_modulus
-from ..theory.radiation import radiation_estimate
+from ..study.dynamic import run_case
 from ..validation import InputError, validate_positive
 from .common import PAPER, add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
@@ -117,27 +114,21 @@ def run(args: argparse.Namespace) -> int:
     settings = settings_from(args)
     history = history_path(args.history, force=args.force)
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
-    quasi = solve_impact(mass, velocity, law)
-    estimate = radiation_estimate(
+    case = run_case(
+        indenter,
+        half_space,
+        density,
         mass,
         velocity,
-        law.beta,
-        law.force_exponent,
-        density,
-        half_space.shear_modulus,
-        half_space.poisson_ratio,
+        settings,
+        snapshots=(lambda q: (0.5 * q.t_c, q.t_c, 1.5 * q.t_c)) if out else None,
     )
-    snapshots = (0.5 * quasi.t_c, quasi.t_c, 1.5 * quasi.t_c) if out else ()
-    result = run_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, snapshot_times=snapshots
-    )
-    report = document(result, quasi, estimate)
+    result, report = case.result, case.document()
     if history is not None:
         write_csv(history, history_columns(result))
     if out is not None:
         with staged_folder(out) as stage:
-            write_folder(result, report, snapshots, stage)
+            write_folder(result, report, tuple(result.snapshots), stage)
     if args.json:
         print_json(report)
     else:
@@ -148,20 +139,6 @@ def run(args: argparse.Namespace) -> int:
 def history_columns(result: DynamicImpactResult) -> dict[str, object]:
     """The history with its units in the header."""
     return {HISTORY_HEADER[key]: column for key, column in result.history_columns().items()}
-
-
-def document(result: DynamicImpactResult, quasi, estimate) -> dict[str, object]:
-    """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract)."""
-    maxima = quasi.maxima()
-    keys = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
-    return {
-        "quasi_static": {key: maxima[key] for key in keys},
-        "dynamic": result.summary(),
-        "radiation_estimate": estimate.to_dict(),
-        "mesh": result.mesh,
-        "timings": result.timings,
-        "parameters": result.parameters,
-    }
 
 
 def write_folder(
