@@ -9,6 +9,7 @@ from pathlib import Path
 import meshio
 
 from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
+from ..output.dynamic import history_columns
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
 from ..study.dynamic import run_case
@@ -20,16 +21,6 @@ from .impact import history_path
 
 DEFAULT_DENSITY = "1100"
 """kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
-
-HISTORY_HEADER = {
-    "t": "t (s)",
-    "x": "x (m)",
-    "v": "v (m/s)",
-    "P": "P (N)",
-    "a": "a (m)",
-    "p0": "p0 (Pa)",
-}
-"""CSV header of --history: the column and its SI unit."""
 
 CONTROLS = {
     "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
@@ -134,11 +125,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(dynamic_text(report))
     return 0
-
-
-def history_columns(result: DynamicImpactResult) -> dict[str, object]:
-    """The history with its units in the header."""
-    return {HISTORY_HEADER[key]: column for key, column in result.history_columns().items()}
 
 
 def write_folder(
