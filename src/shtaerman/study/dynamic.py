@@ -15,7 +15,8 @@ far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_co
     [impact]     mass = 0.7 (kg), velocities = [...] (m/s, increasing, >= 2),
                  example = 3.0 (m/s, one of the velocities: the figures and the findings)
     [numerics]   the DynamicSettings fields (steps, size, margin, ...), optional
-    [quick]      velocities = [...] (must hold the example) and numerics for ``verify --quick``
+    [quick]      velocities = [...] (must hold the example; default: the smallest velocity and
+                 the example) and the numerics of ``verify --quick`` (default: [numerics])
     [tolerances] energy_balance = 1e-2 (of M v0^2/2), reflected = 1e-2 (of the radiated),
                  estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
                  estimate is below estimate_below = 0.08)
@@ -303,7 +304,9 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         raise StudyError(f"{path}: key '{key}': {error}") from None
     example = raw.impact.example
     velocities = _velocities(path, "impact.velocities", raw.impact.velocities, example)
-    quick = raw.quick.velocities if raw.quick.velocities is not None else [example, velocities[-1]]
+    quick = raw.quick.velocities
+    if quick is None:  # the smallest velocity and the example (or the example and the largest)
+        quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
     settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
     return [
         DynamicStudy(
