@@ -23,6 +23,8 @@ from shtaerman.plots.sections import CONTACT_COLOUR
 from shtaerman.study.dynamic import DynamicStudy, thresholds
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, find_study, load_study
+from shtaerman.sweep import KINDS, SweepError, load_sweep
+from shtaerman.sweep.spec import find_sweep
 
 MINIMAL = """\
 kind = "dynamic"
@@ -218,3 +220,57 @@ def test_report_lists_the_kind_generically(outcome, written):
     context = report_context(results)
     assert any("3 m/s" in sentence for sentence in context["findings"])
     assert all(math.isfinite(c["value"]) for c in study["checks"])
+
+
+# --- the sweep kind "dynamic" (the validity map's computation) ----------------------------------
+
+TINY_SWEEP = """\
+name = "tiny"
+kind = "dynamic"
+[parameters]
+steps = 60
+mesh_size = 0.05
+[axes]
+velocity = [3.0]
+density2 = [1100.0]
+"""
+
+
+def sweep_error(tmp_path: Path, text: str) -> str:
+    path = tmp_path / "sweep.toml"
+    path.write_text(text)
+    with pytest.raises(SweepError) as caught:
+        load_sweep(path)
+    return str(caught.value)
+
+
+def test_sweep_kind_checks_inputs_up_front(tmp_path):
+    assert "density2 must be" in sweep_error(tmp_path, TINY_SWEEP.replace("[1100.0]", "[-1.0]"))
+    assert "steps" in sweep_error(tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 10"))
+    assert "exponent must be > 1" in sweep_error(
+        tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 60\nexponent = 0.9")
+    )
+
+
+def test_sweep_kind_case_matches_the_study(tmp_path, outcome):
+    [case] = load_sweep(_tiny(tmp_path)).cases()
+    kind = KINDS["dynamic"]
+    outputs = kind.case(case.params)
+    assert set(outputs) == set(kind.outputs)
+    # the same inputs and settings as the quick study's 3 m/s case: identical numbers
+    example = outcome.example
+    assert outputs["difference_x"] == example.differences()["x"]
+    assert outputs["restitution"] == example.result.restitution
+    assert outputs["t_y"] == example.quasi.t_y
+    assert outputs["difference_worst"] == max(abs(example.differences()[k]) for k in "xPt")
+
+
+def _tiny(tmp_path: Path) -> Path:
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY_SWEEP)
+    return path
+
+
+def test_validity_sweep_is_shipped():
+    spec = load_sweep(find_sweep("validity"))
+    assert spec.kind == "dynamic" and len(spec.cases()) == 18
