@@ -97,6 +97,7 @@ def test_minimal_file_takes_defaults(tmp_path):
         ("example = 3.0", "example = 3.0\n[numerics]\nsteps = 10", "numerics.steps"),
         ("example = 3.0", "example = 3.0\n[numerics]\nsize = 0.5", "numerics.size"),
         ("example = 3.0", "example = 3.0\n[numerics]\nstep = 100", "numerics.step"),
+        ("example = 3.0", "example = 3.0\n[numerics]\nsize = 1e-4", "numerics.size"),  # dofs
         ("example = 3.0", "example = 3.0\n[quick]\nvelocities = [1.0]", "quick.velocities"),
         ("example = 3.0", "example = 3.0\n[tolerances]\nestimate = 2.0", "tolerances.estimate"),
     ],

@@ -39,7 +39,13 @@ from typing import Annotated, Any
 
 import msgspec
 
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ..fem.dynamic_contact import (
+    MAX_DOFS,
+    DynamicImpactResult,
+    DynamicSettings,
+    estimate_dofs,
+    run_dynamic_impact,
+)
 from ..theory.contact import PowerLawContact
 from ..theory.impact import ImpactResult, solve_impact
 from ..theory.indenter import PowerLawIndenter
@@ -269,9 +275,15 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
         except InputError as error:
             raise StudyError(f"{path}: key '{table}.{key}': {error}") from None
     try:
-        return dataclasses.replace(base, **given)
+        settings = dataclasses.replace(base, **given)
     except InputError as error:
         raise StudyError(f"{path}: key '{table}': {error}") from None
+    if estimate_dofs(settings) > MAX_DOFS:
+        raise StudyError(
+            f"{path}: key '{table}.size': the mesh would have about {estimate_dofs(settings)} "
+            f"dofs, above the limit {MAX_DOFS}; coarsen size or growth"
+        )
+    return settings
 
 
 def _velocities(path: Path, key: str, values: list[float], example: float) -> tuple[float, ...]:

@@ -318,7 +318,7 @@ _DYNAMIC_NUMERICS = {  # sweep parameter (the CLI option) -> DynamicSettings fie
 def _dynamic_inputs(p: dict[str, Any]):
     from dataclasses import replace
 
-    from ..fem.dynamic_contact import DynamicSettings
+    from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs
     from ..study.indentation import validate_fem_inputs
     from ..theory.materials import Material
     from ..validation import validate_poisson
@@ -332,6 +332,11 @@ def _dynamic_inputs(p: dict[str, Any]):
     settings = DynamicSettings()
     for name, field_name in _DYNAMIC_NUMERICS.items():
         settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+    if estimate_dofs(settings) > MAX_DOFS:
+        raise InputError(
+            f"mesh_size {settings.size!r} would give about {estimate_dofs(settings)} dofs, "
+            f"above the limit {MAX_DOFS}"
+        )
     return indenter, half_space, density, mass, velocity, settings
 
 
