@@ -8,13 +8,11 @@ from pathlib import Path
 
 import meshio
 
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
+from ..output.dynamic import history_columns
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
-from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
-from ..theory.materials import RIGID, effective_modulus
-from ..theory.radiation import radiation_estimate
+from ..study.dynamic import run_case
 from ..validation import InputError, validate_positive
 from .common import PAPER, add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
@@ -23,7 +21,6 @@ from .impact import history_path
 
 DEFAULT_DENSITY = "1100"
 """kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
-
 
 CONTROLS = {
     "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
@@ -108,51 +105,26 @@ def run(args: argparse.Namespace) -> int:
     settings = settings_from(args)
     history = history_path(args.history, force=args.force)
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
-    quasi = solve_impact(mass, velocity, law)
-    estimate = radiation_estimate(
+    case = run_case(
+        indenter,
+        half_space,
+        density,
         mass,
         velocity,
-        law.beta,
-        law.force_exponent,
-        density,
-        half_space.shear_modulus,
-        half_space.poisson_ratio,
+        settings,
+        snapshots=(lambda q: (0.5 * q.t_c, q.t_c, 1.5 * q.t_c)) if out else None,
     )
-    snapshots = (0.5 * quasi.t_c, quasi.t_c, 1.5 * quasi.t_c) if out else ()
-    result = run_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, snapshot_times=snapshots
-    )
-    report = document(result, quasi, estimate)
+    result, report = case.result, case.document()
     if history is not None:
         write_csv(history, history_columns(result))
     if out is not None:
         with staged_folder(out) as stage:
-            write_folder(result, report, snapshots, stage)
+            write_folder(result, report, tuple(result.snapshots), stage)
     if args.json:
         print_json(report)
     else:
         print(dynamic_text(report))
     return 0
-
-
-def history_columns(result: DynamicImpactResult) -> dict[str, object]:
-    """The history with its units in the header."""
-    return result.history_columns()  # write_csv adds the units: "t [s]", "x [m]", ...
-
-
-def document(result: DynamicImpactResult, quasi, estimate) -> dict[str, object]:
-    """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract)."""
-    maxima = quasi.maxima()
-    keys = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
-    return {
-        "quasi_static": {key: maxima[key] for key in keys},
-        "dynamic": result.summary(),
-        "radiation_estimate": estimate.to_dict(),
-        "mesh": result.mesh,
-        "timings": result.timings,
-        "parameters": result.parameters,
-    }
 
 
 def write_folder(
