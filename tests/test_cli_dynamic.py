@@ -14,7 +14,7 @@ import pytest
 
 from shtaerman.cli import main
 
-COARSE = ("--steps", "60", "--mesh-size", "0.05")
+COARSE = ("--steps", "100", "--mesh-size", "0.05")  # the ladder adds 50 and 71 steps
 QUASI_STATIC_KEYS = {"beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y"}
 DYNAMIC_KEYS = {
     "x_max",

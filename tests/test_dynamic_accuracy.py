@@ -1,5 +1,6 @@
 """Error bars of the dynamic impact: the mesh-and-time-step ladder (coarse settings, ~5 s)."""
 
+import json
 import math
 
 import pytest
@@ -47,3 +48,18 @@ def test_ladder_levels_and_estimates(ladder):
     assert ladder.estimates["restitution"].error < 1e-2
     document = ladder.to_dict()
     assert [level["steps"] for level in document["mesh_ladder"]] == steps
+
+
+def test_cli_json_carries_the_estimates(capsys):
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--json", "--steps", "100", "--mesh-size", "0.05"]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert set(report["error_estimate"]) == set(DYNAMIC_ESTIMATED)
+    assert [level["steps"] for level in report["mesh_ladder"]] == [50, 71, 100]
+    assert report["extrapolated"]["x_max"] == pytest.approx(report["dynamic"]["x_max"], rel=1e-2)
+    assert main([*argv, "--no-estimate"]) == 0
+    assert "error_estimate" not in json.loads(capsys.readouterr().out)
+    assert main(["dynamic", "--steps", "60"]) == 2  # its coarsest level would have 30 steps
+    assert "--no-estimate" in capsys.readouterr().err

@@ -19,7 +19,7 @@ from ..validation import validate_positive
 from .accuracy import LADDER_RATIO
 from .richardson import Estimate, richardson
 
-__all__ = ["DYNAMIC_ESTIMATED", "DynamicLadder", "run_dynamic_ladder"]
+__all__ = ["DYNAMIC_ESTIMATED", "DynamicLadder", "complete_ladder", "run_dynamic_ladder"]
 
 DYNAMIC_ESTIMATED = ("x_max", "P_max", "t_contact", "restitution")
 """The dynamic results that get an error estimate."""
@@ -71,6 +71,36 @@ class DynamicLadder:
         }
 
 
+def complete_ladder(
+    finest: DynamicImpactResult,
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings,
+    *,
+    refine: float = 1.0,
+    progress: Callable[[str], None] | None = None,
+) -> DynamicLadder:
+    """The ladder of a run already made with ``settings``: the two coarser levels
+    (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the estimates."""
+    report = progress or (lambda _line: None)
+    coarse = [settings.refined(1.0 / LADDER_RATIO**2), settings.refined(1.0 / LADDER_RATIO)]
+    results = []
+    for level in coarse:
+        result = run_dynamic_impact(indenter, half_space, density, mass, velocity, level)
+        report(f"dynamic ladder: {result.mesh['dofs']} dofs, {level.steps} steps")
+        results.append(result)
+    results.append(finest)
+    estimates = {
+        key: richardson([getattr(r, key) for r in results], LADDER_RATIO)
+        for key in DYNAMIC_ESTIMATED
+    }
+    refines = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine)
+    return DynamicLadder(refines, (*coarse, settings), tuple(results), estimates)
+
+
 def run_dynamic_ladder(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -94,25 +124,25 @@ def run_dynamic_ladder(
     progress : callable, optional
         Receives one line per level.
     **options
-        Passed to every run (e.g. ``snapshot_times``; used for the finest run only).
+        Passed to the finest run (e.g. ``snapshot_times``).
 
     Returns
     -------
     DynamicLadder
     """
     refine = validate_positive("refine", refine)
-    settings = DynamicSettings() if settings is None else settings
-    refines = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine)
-    levels = [settings.refined(factor) for factor in refines]  # all checked before any run
-    report = progress or (lambda _line: None)
-    results = []
-    for index, level in enumerate(levels):
-        extra = options if index == len(levels) - 1 else {}
-        result = run_dynamic_impact(indenter, half_space, density, mass, velocity, level, **extra)
-        report(f"dynamic x{refines[index]:.3g}: {result.mesh['dofs']} dofs, {level.steps} steps")
-        results.append(result)
-    estimates = {
-        key: richardson([getattr(r, key) for r in results], LADDER_RATIO)
-        for key in DYNAMIC_ESTIMATED
-    }
-    return DynamicLadder(refines, tuple(levels), tuple(results), estimates)
+    finest = (DynamicSettings() if settings is None else settings).refined(refine)
+    for factor in (1.0 / LADDER_RATIO**2, 1.0 / LADDER_RATIO):
+        finest.refined(factor)  # every level checked before any run
+    result = run_dynamic_impact(indenter, half_space, density, mass, velocity, finest, **options)
+    return complete_ladder(
+        result,
+        indenter,
+        half_space,
+        density,
+        mass,
+        velocity,
+        finest,
+        refine=refine,
+        progress=progress,
+    )
