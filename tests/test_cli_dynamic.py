@@ -96,7 +96,7 @@ def test_text_summary(capsys):
         (["--density2", "nan"], "density2 must be a finite number"),
         (["--steps", "10"], "steps (time steps per impact duration) must be an integer in [50"),
         (["--steps", "1.5"], "steps must be an integer"),
-        (["--nu2", "-0.2"], "nu2 must lie in [0, 0.5]"),
+        (["--nu2", "-0.2"], "nu2 (Poisson's ratio) must lie in [0, 0.5]"),
         (["--mesh-margin", "0.5"], "margin must be > 1"),
     ],
 )

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import meshio
 
+from ..fem.contact import validate_fem_inputs
 from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
 from ..output.dynamic import history_columns
 from ..output.export import field_mesh
@@ -118,8 +119,7 @@ def run(args: argparse.Namespace) -> int:
     velocity = validate_positive("velocity", args.velocity, "m/s")
     density = validate_positive("density2", args.density2, "kg/m^3")
     indenter, half_space = read_indenter(args), read_half_space(args)
-    if half_space.poisson_ratio < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {args.nu2!r}")
+    validate_fem_inputs(indenter, half_space)
     refine = validate_positive("refine", args.refine)
     base = settings_from(args)
     settings = base.refined(refine)

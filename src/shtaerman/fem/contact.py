@@ -32,7 +32,7 @@ import scipy.linalg as la
 from scipy.optimize import nnls
 from threadpoolctl import threadpool_limits
 
-from ..validation import InputError, validate_increasing
+from ..validation import InputError, validate_increasing, validate_poisson
 from .elasticity import ElasticSolution, ElasticSystem, postprocess
 
 try:  # METIS ordering: the compliance falls out of the factorization
@@ -49,6 +49,7 @@ __all__ = [
     "complementarity",
     "factorize_stiffness",
     "solve_contact",
+    "validate_fem_inputs",
 ]
 
 Profile = Callable[[np.ndarray], np.ndarray]
@@ -60,6 +61,20 @@ MIN_MODULUS_PER_LENGTH = 0.1
 its inverse (2e-12 at 0.1, 4e-10 at 1e-2, 1e-8 at 1e-4, 6e-6 at 1e-7; nu = 0.5)."""
 EDGE_MARGIN = 3
 """Candidate nodes that must stay free beyond the contact edge, or the zone is too small."""
+
+
+def validate_fem_inputs(indenter: object, half_space: object) -> None:
+    """Raise InputError unless the FEM contact applies: n > 1 and nu2 in [0, 0.5].
+
+    The one place of these limits (static, dynamic and finite-strain FEM alike): n > 1 keeps
+    the central pressure bounded; nu2 < 0 was never validated.
+    """
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
+            f"{indenter.exponent!r}"
+        )
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
 
 
 @dataclass(frozen=True, eq=False)

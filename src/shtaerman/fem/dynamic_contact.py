@@ -76,6 +76,7 @@ from .contact import (
     complementarity,
     mass_factor,
     recover_pressure,
+    validate_fem_inputs,
 )
 from .elasticity import (
     TWO_PI,
@@ -474,11 +475,8 @@ def run_dynamic_impact(
     rho = validate_positive("density2", density, "kg/m^3")
     striker = validate_positive("mass", mass, "kg")
     v0 = validate_positive("velocity", velocity, "m/s")
-    if indenter.exponent <= 1.0:
-        raise InputError(f"exponent must be > 1 for the FEM contact, got {indenter.exponent!r}")
+    validate_fem_inputs(indenter, half_space)
     nu = half_space.poisson_ratio
-    if not 0.0 <= nu <= 0.5:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {nu!r}")
     estimate = estimate_dofs(settings)
     if estimate > MAX_DOFS:
         raise InputError(

@@ -49,7 +49,7 @@ from numpy.typing import ArrayLike
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
-from ..validation import InputError, validate_increasing
+from ..validation import InputError, validate_increasing, validate_poisson
 from .contact import EDGE_MARGIN, _contact_radius, central_pressure
 from .hyperelastic import (
     HyperelasticSystem,
@@ -573,8 +573,7 @@ def run_finite_indentation(
     -------
     FiniteContactCurve
     """
-    if half_space.poisson_ratio < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {half_space.poisson_ratio!r}")
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
     depths = validate_increasing("depths", np.atleast_1d(depths), "m")
     mesh = FINITE_MESH if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])

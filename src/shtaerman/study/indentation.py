@@ -15,7 +15,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..fem.contact import ContactCurve, ContactStep, solve_contact
+from ..fem.contact import ContactCurve, ContactStep, solve_contact, validate_fem_inputs
 from ..fem.elasticity import ElasticSolution, assemble
 from ..fem.fit import PowerLawFit, fit_power_law
 from ..fem.mesh import MeshSettings
@@ -23,7 +23,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
-from ..validation import InputError, validate_increasing, validate_poisson
+from ..validation import InputError, validate_increasing
 
 __all__ = [
     "IndentationResult",
@@ -180,16 +180,6 @@ class IndentationResult:
             "solver": self.curve.backend,
             "timings": self.timings,
         }
-
-
-def validate_fem_inputs(indenter: PowerLawIndenter, half_space: Material) -> None:
-    """Raise InputError unless the FEM contact applies: n > 1 and nu2 in [0, 0.5]."""
-    if indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
-            f"{indenter.exponent!r}"
-        )
-    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
 
 
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:

@@ -217,20 +217,11 @@ _MESH = {  # sweep parameter -> MeshSettings field
 
 
 def _contact_inputs(p: dict[str, Any]):
+    from ..fem.contact import validate_fem_inputs
     from ..fem.mesh import MeshSettings
-    from ..theory.materials import Material
-    from ..validation import validate_poisson
 
-    indenter = _indenter(p)
-    if indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the FEM contact (bounded central pressure), "
-            f"got {indenter.exponent!r}"
-        )
-    nu2 = validate_poisson("nu2", p["nu2"])
-    if nu2 < 0:
-        raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {nu2!r}")
-    half_space = Material(validate_positive("E2", p["E2"], "Pa"), nu2)
+    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
+    validate_fem_inputs(indenter, half_space)
     depths = None if p["depths"] is None else validate_increasing("depths", p["depths"], "m")
     mesh = MeshSettings(
         **{field_name: validate_positive(name, p[name]) for name, field_name in _MESH.items()}
