@@ -230,9 +230,9 @@ def validate_name(name: object, what: str = "name") -> str:
     return name
 
 
-def _allowed_keys(path: list[str]) -> list[str]:
-    """The keys of the table at ``path`` in the study file's schema."""
-    struct: Any = _StudyFile
+def _allowed_keys(path: list[str], root: type = _StudyFile) -> list[str]:
+    """The keys of the table at ``path`` in the schema ``root`` (default: a contact study)."""
+    struct: Any = root
     for key in path:
         hint = get_type_hints(struct)[key]
         candidates = [hint, *get_args(hint)]
@@ -261,14 +261,16 @@ def _expectation(keys: list[str], text: str) -> str:
     return text.replace("`", "").removeprefix("Expected ").removeprefix("expected ")
 
 
-def _located(message: str, data: dict[str, Any]) -> tuple[list[str], str]:
+def _located(
+    message: str, data: dict[str, Any], root: type = _StudyFile
+) -> tuple[list[str], str]:
     """Split a msgspec message into the key path and the expectation, with the value given."""
     text, _, where = message.partition(" - at `$")
     keys = [k for k in re.split(r"\.|\[\d+\]", where.rstrip("`")) if k]
     unknown = re.fullmatch(r"Object contains unknown field `(\w+)`", text)
     missing = re.fullmatch(r"Object missing required field `(\w+)`", text)
     if unknown:
-        return [*keys, unknown[1]], f"one of {_allowed_keys(keys)} (unknown key)"
+        return [*keys, unknown[1]], f"one of {_allowed_keys(keys, root)} (unknown key)"
     if missing:
         return [*keys, missing[1]], f"{_expectation([*keys, missing[1]], text)} (required)"
     field_error = re.fullmatch(r"(\w+): (.*)", text)
@@ -279,11 +281,13 @@ def _located(message: str, data: dict[str, Any]) -> tuple[list[str], str]:
     return keys, f"{_expectation(keys, text)}{shown}"
 
 
-def _decode(path: Path, data: dict[str, Any]) -> _StudyFile:
+def _decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
+    """``data`` as the schema ``root`` (a :class:`_Table`; default: a contact study file), or
+    :class:`StudyError` naming the file, the key and what was expected."""
     try:
-        return msgspec.convert(data, _StudyFile)
+        return msgspec.convert(data, root)
     except msgspec.ValidationError as error:
-        keys, expected = _located(str(error), data)
+        keys, expected = _located(str(error), data, root)
         raise StudyError(f"{path}: key '{'.'.join(keys)}': expected {expected}") from None
 
 
