@@ -185,3 +185,39 @@ def test_figures_are_pictures_with_their_colours(written):
     assert section.shape == (1000, 1600, 3)
     assert count(section, "#d9d9d9") > 20_000  # the grey indenter
     assert count(section, "#2ca02c") > 500  # the green contact zone on the deformed surface
+
+
+TINY = {
+    "mesh_size": 1 / 20,
+    "growth": 0.5,
+    "axis_size": 1e-3,
+    "axis_growth": 0.4,
+    "steps": 4,
+    "small_steps": 1,
+    "small_ratio": 0.05,
+}
+
+
+def test_sweep_kind_runs_a_tiny_case():
+    from shtaerman.sweep.kinds import FINITE_OUTPUTS, get_kind
+
+    kind = get_kind("finite-strain")
+    params = {**kind.defaults(), **TINY}
+    kind.check(params)
+    out = kind.case(params)
+    assert set(out) == set(FINITE_OUTPUTS)
+    # coarse, yet the physics shows: rubber softens (nu2 = 0.5), x_c grows about 2 %
+    assert 0.9 < out["force_ratio_xa75"] < 0.99 and 1.0 < out["x_c_ratio"] < 1.04
+    assert math.isnan(out["force_ratio_xa10"]) or 0.98 < out["force_ratio_xa10"] <= 1.01
+    assert out["checks_passed"] in (0.0, 1.0)  # the tiny mesh misses the 5e-3 limit at x/a 0.05
+
+
+def test_sweep_file_of_the_kind_is_checked_up_front(tmp_path):
+    from shtaerman.sweep import SweepError, load_sweep
+
+    path = tmp_path / "s.toml"
+    path.write_text('name = "f"\nkind = "finite-strain"\n[axes]\nnu2 = [0.5, -0.3]\n')
+    with pytest.raises(SweepError, match="nu2"):
+        load_sweep(path)
+    path.write_text('name = "f"\nkind = "finite-strain"\n[axes]\nnu2 = [0.5, 0.3]\n')
+    assert load_sweep(path).name == "f"

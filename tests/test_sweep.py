@@ -108,7 +108,7 @@ def test_name_must_be_a_string(tmp_path):
     assert "name must be a plain folder name" in error_of(tmp_path, IMPACT.replace('"grid"', "7"))
 
 
-@pytest.mark.parametrize("kind", ["dynamic", "finite-strain"])
+@pytest.mark.parametrize("kind", ["dynamic"])
 def test_kinds_being_written_are_registered_but_refused(tmp_path, kind):
     assert kind in KINDS
     message = error_of(tmp_path, f'name = "x"\nkind = "{kind}"\n[axes]\nvelocity = [1.0]\n')

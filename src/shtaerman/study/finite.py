@@ -192,6 +192,8 @@ class FiniteStudy:
     tolerances: FiniteTolerances = field(default_factory=FiniteTolerances)
     quick_small_strain: float = 2e-2
     """The small-strain tolerance against Shtaerman on the quick mesh (its error ~1e-2)."""
+    depths: tuple[float, ...] | None = None
+    """Explicit depths in m instead of the ladder (a sweep's ``depths``), increasing."""
     kind: str = "finite-strain"
 
 
@@ -624,7 +626,10 @@ def run_finite_strain_study(
     exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
     spec = study.quick_ladder if quick else study.ladder
     mesh = study.quick_mesh if quick else study.mesh
-    depths = ladder(study.indenter, modulus, exact.x_c, spec)
+    if study.depths is not None:
+        depths = np.asarray(study.depths, dtype=float)
+    else:
+        depths = ladder(study.indenter, modulus, exact.x_c, spec)
     report(f"{study.name}: finite-strain contact curve, {depths.size} depths")
     finite = run_finite_study(study.indenter, study.half_space, depths, mesh)
     report(f"{study.name}: linear FEM on the same mesh; impacts")

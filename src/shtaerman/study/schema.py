@@ -261,9 +261,7 @@ def _expectation(keys: list[str], text: str) -> str:
     return text.replace("`", "").removeprefix("Expected ").removeprefix("expected ")
 
 
-def _located(
-    message: str, data: dict[str, Any], root: type = _StudyFile
-) -> tuple[list[str], str]:
+def _located(message: str, data: dict[str, Any], root: type = _StudyFile) -> tuple[list[str], str]:
     """Split a msgspec message into the key path and the expectation, with the value given."""
     text, _, where = message.partition(" - at `$")
     keys = [k for k in re.split(r"\.|\[\d+\]", where.rstrip("`")) if k]
