@@ -136,7 +136,7 @@ def test_document_is_json_with_tables_and_findings(outcome):
         assert set(table) == {"title", "header", "rows"}
         assert all(len(row) == len(table["header"]) for row in table["rows"])
         assert all(isinstance(cell, str) for row in table["rows"] for cell in row)
-    assert len(document["findings"]) == 3 and "x_c" in document["findings"][0]
+    assert len(document["findings"]) == 4 and "x_c" in document["findings"][0]
     levels = {entry["level"]: entry for entry in document["validity"]}
     assert levels[0.01]["depth_to_radius"] < levels[0.05]["depth_to_radius"]
     assert all(math.isfinite(entry["velocity"]) for entry in levels.values())
