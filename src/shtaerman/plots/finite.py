@@ -72,7 +72,7 @@ def plot_finite_ratios(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
     for level in (0.01, 0.05):
         top.axhspan(1 - level, 1 + level, color="0.5", alpha=0.08, linewidth=0)
     top.set_ylabel(r"$P\,/\,\beta x^{q}$")
-    top.legend(loc="lower left")
+    top.legend(loc="best")
     exact = outcome.finite.exact.central_to_mean_ratio
     bottom.axhline(exact, color=EXACT_COLOUR, linewidth=1.0, label=f"linear, exact {exact:.2f}")
     bottom.plot(
@@ -91,7 +91,7 @@ def plot_finite_ratios(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
     )
     bottom.set_ylabel(r"$p(0)\,/\,p_{avg}$")
     bottom.set_xlabel("Depth / linear contact radius  $x/a$")
-    bottom.legend(loc="lower right")
+    bottom.legend(loc="best")
     at = outcome.at_maximum()["depth_to_radius"]
     for axes in (top, bottom):
         axes.axvline(at, color="0.4", linewidth=0.8, linestyle="-.")
