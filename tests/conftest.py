@@ -57,6 +57,8 @@ def quick_verify(quick_outcomes, tmp_path_factory) -> tuple[int, Path, dict]:
     out = tmp_path_factory.mktemp("verify") / "run"
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(shtaerman.output.folder, "run_study", cached_run_study)
-        code = main(["verify", "--quick", "--out", str(out), *quick_study_files()])
+        code = main(
+            ["verify", "--quick", "--workers", "1", "--out", str(out), *quick_study_files()]
+        )
     assert sorted(served) == sorted(QUICK_STUDIES)
     return code, out, json.loads((out / "results.json").read_text())

@@ -47,7 +47,7 @@ def test_history_csv(tmp_path, capsys):
     t_y = json.loads(out)["t_y"]
     with path.open() as stream:
         rows = list(csv.reader(stream))
-    assert code == 0 and rows[0] == ["t", "x", "P", "a", "p0"]
+    assert code == 0 and rows[0] == ["t [s]", "x [m]", "P [N]", "a [m]", "p0 [Pa]"]
     values = [[float(v) for v in row] for row in rows[1:]]
     assert len(values) == 250
     assert values[0][0] == 0.0 and values[-1][0] == pytest.approx(t_y, rel=1e-15)

@@ -14,7 +14,7 @@ import pytest
 
 from shtaerman.cli import main
 
-COARSE = ("--steps", "60", "--mesh-size", "0.05")
+COARSE = ("--steps", "100", "--mesh-size", "0.05")  # the ladder adds 50 and 71 steps
 QUASI_STATIC_KEYS = {"beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y"}
 DYNAMIC_KEYS = {
     "x_max",
@@ -65,7 +65,7 @@ def test_history_has_units_and_every_step(coarse_json):
     _, report, history, _ = coarse_json
     with history.open() as stream:
         rows = list(csv.reader(stream))
-    assert rows[0] == ["t (s)", "x (m)", "v (m/s)", "P (N)", "a (m)", "p0 (Pa)"]
+    assert rows[0] == ["t [s]", "x [m]", "v [m/s]", "P [N]", "a [m]", "p0 [Pa]"]
     values = [[float(v) for v in row] for row in rows[1:]]
     assert values[0][:3] == [0.0, 0.0, 3.0]  # first touch at v0
     assert max(row[3] for row in values) == pytest.approx(report["dynamic"]["P_max"], rel=1e-2)
@@ -79,8 +79,8 @@ def test_out_folder_has_json_csv_and_fields(coarse_json):
     assert len(fields) == 3
     # the snapshot at t_c (second file) is under load: stresses present, surface pressed down
     mesh = meshio.read(fields[1])
-    assert mesh.point_data["von_mises"].max() > 0
-    assert mesh.point_data["u_z"].min() < 0
+    assert mesh.point_data["von_mises [Pa]"].max() > 0
+    assert mesh.point_data["u_z [m]"].min() < 0
 
 
 def test_text_summary(capsys):

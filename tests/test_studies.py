@@ -23,6 +23,7 @@ def test_shipped_studies_cover_the_issue():
     names = [study.name for path in shipped_studies() for study in load_study(path)]
     assert names == [
         "compressible",
+        "dynamic",
         "finite-strain-nu0.5",
         "finite-strain-nu0.3",
         "hertz",
@@ -95,7 +96,7 @@ def test_missing_file():
             r"key 'tolerances.force': expected a relative tolerance in",
         ),
         ("[tolerances]\nimpact = 0\n", r"key 'tolerances.impact': expected a relative tolerance"),
-        ("[mesh]\nmargin = 0.5\n", r"bad.toml: \[mesh\] margin must be > 1"),
+        ("[mesh]\nmargin = 0.5\n", r"bad.toml: \[mesh\] margin must lie in \(1, 10\]"),
         ("[mesh]\ncolour = 1\n", r"key 'mesh.colour': expected one of \['axis_growth', "),
         ("[sweep]\n", r"key 'sweep': expected exactly one of"),
         ("[convergence]\nsizes = [0.1]\n", r"key 'convergence.sizes': expected a list of at"),

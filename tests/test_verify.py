@@ -84,7 +84,7 @@ def test_report_is_self_contained(run):
 def test_existing_folder_is_kept_without_force(run, capsys):
     _, out, _ = run
     before = sorted(p.name for p in out.iterdir())
-    assert main(["verify", "--quick", "--out", str(out), *STUDIES]) == 2
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 2
     assert "use --force" in capsys.readouterr().err
     assert sorted(p.name for p in out.iterdir()) == before
 
@@ -95,7 +95,7 @@ def test_failed_run_leaves_nothing(tmp_path, monkeypatch):
 
     monkeypatch.setattr(shtaerman.output.folder, "run_study", broken)
     out = tmp_path / "run"
-    assert main(["verify", "--quick", "--out", str(out), *STUDIES]) == 130
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
     assert list(tmp_path.iterdir()) == []
 
 
@@ -124,3 +124,17 @@ def test_malformed_study_is_exit_2(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "bad.toml: key 'indenter.exponent': expected a number > 0, got 'x'" in err
     assert not (tmp_path / "run").exists()
+
+
+def test_studies_run_as_dask_tasks_give_the_same_results(quick_verify, tmp_path, capsys):
+    # the same two quick studies as quick_verify (in-process), now one dask task each on a
+    # local cluster of two worker processes: every check value is identical
+    out = tmp_path / "dask"
+    assert main(["verify", "--quick", "--workers", "2", "--out", str(out), *STUDIES]) == 0
+    assert "2 studies on 2 workers" in capsys.readouterr().err
+    on_dask = json.loads((out / "results.json").read_text())
+    in_process = quick_verify[2]
+    assert list(on_dask["studies"]) == list(in_process["studies"])  # the files' order
+    for name, study in in_process["studies"].items():
+        assert on_dask["studies"][name]["checks"] == study["checks"]
+    assert (out / "report.html").is_file() and not list(tmp_path.glob(".*partial*"))

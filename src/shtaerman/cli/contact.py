@@ -25,9 +25,10 @@ MODELS = ("linear", "neo-hookean")
 
 MESH_OPTIONS = {
     "mesh_size": ("size", "smallest element size / refined radius"),
-    "mesh_margin": ("margin", "refined radius / largest geometric contact radius, > 1"),
+    "mesh_margin": ("margin", "refined radius / largest geometric contact radius, in (1, 10]"),
     "domain_factor": ("domain", "domain radius / refined radius, in [1e2, 1e7]"),
     "growth": ("growth", "element size growth per unit distance from the refined zone"),
+    "max_dofs": ("max_dofs", "refuse a mesh estimated (before meshing) above this many unknowns"),
 }
 """Command-line mesh options: the MeshSettings field each sets, and its meaning."""
 

@@ -8,13 +8,13 @@ from pathlib import Path
 
 import meshio
 
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
+from ..output.dynamic import history_columns
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
-from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
-from ..theory.materials import RIGID, effective_modulus
-from ..theory.radiation import radiation_estimate
+from ..study.accuracy import LADDER_RATIO
+from ..study.dynamic import run_case
+from ..study.dynamic_accuracy import complete_ladder
 from ..validation import InputError, validate_positive
 from .common import PAPER, add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
@@ -23,16 +23,6 @@ from .impact import history_path
 
 DEFAULT_DENSITY = "1100"
 """kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
-
-HISTORY_HEADER = {
-    "t": "t (s)",
-    "x": "x (m)",
-    "v": "v (m/s)",
-    "P": "P (N)",
-    "a": "a (m)",
-    "p0": "p0 (Pa)",
-}
-"""CSV header of --history: the column and its SI unit."""
 
 CONTROLS = {
     "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
@@ -73,7 +63,23 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("--history", metavar="FILE.csv", help="write t,x,v,P,a,p0 every time step")
     p.add_argument("--out", metavar="DIR", help="write JSON, CSV histories and VTU fields to DIR")
     p.add_argument("--force", action="store_true", help="replace an existing --history / --out")
-    numerics = p.add_argument_group("numerical controls (relative to the quasi-static impact)")
+    accuracy = p.add_argument_group("accuracy (error estimates from a 3-level ladder)")
+    accuracy.add_argument(
+        "--refine",
+        default="1",
+        metavar="K",
+        help="divide the mesh size field and the time step by K together; the ladder adds "
+        "K/2 and K/sqrt(2) for the Richardson estimates of x_max, P_max, t_contact, e",
+    )
+    accuracy.add_argument(
+        "--no-estimate",
+        action="store_true",
+        help="skip the two coarser runs (no error_estimate in the JSON; about 40 %% faster)",
+    )
+    numerics = p.add_argument_group(
+        "expert numerical controls (relative to the quasi-static impact; --refine scales the "
+        "mesh sizes and steps together)"
+    )
     defaults = DynamicSettings()
     for option, (field, _, meaning) in CONTROLS.items():
         numerics.add_argument(
@@ -114,54 +120,44 @@ def run(args: argparse.Namespace) -> int:
     indenter, half_space = read_indenter(args), read_half_space(args)
     if half_space.poisson_ratio < 0:
         raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {args.nu2!r}")
-    settings = settings_from(args)
+    refine = validate_positive("refine", args.refine)
+    base = settings_from(args)
+    settings = base.refined(refine)
+    if not args.no_estimate:
+        try:
+            settings.refined(1.0 / LADDER_RATIO**2)  # the coarsest level must be valid too
+        except InputError as error:
+            raise InputError(
+                f"the error-estimate ladder's coarsest level (mesh x2, steps / 2) is invalid: "
+                f"{error}; refine the settings or pass --no-estimate"
+            ) from None
     history = history_path(args.history, force=args.force)
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
-    quasi = solve_impact(mass, velocity, law)
-    estimate = radiation_estimate(
+    case = run_case(
+        indenter,
+        half_space,
+        density,
         mass,
         velocity,
-        law.beta,
-        law.force_exponent,
-        density,
-        half_space.shear_modulus,
-        half_space.poisson_ratio,
+        settings,
+        snapshots=(lambda q: (0.5 * q.t_c, q.t_c, 1.5 * q.t_c)) if out else None,
     )
-    snapshots = (0.5 * quasi.t_c, quasi.t_c, 1.5 * quasi.t_c) if out else ()
-    result = run_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, snapshot_times=snapshots
-    )
-    report = document(result, quasi, estimate)
+    result, report = case.result, case.document()
+    if not args.no_estimate:
+        ladder = complete_ladder(
+            result, indenter, half_space, density, mass, velocity, settings, refine=refine
+        )
+        report.update(ladder.to_dict())
     if history is not None:
         write_csv(history, history_columns(result))
     if out is not None:
         with staged_folder(out) as stage:
-            write_folder(result, report, snapshots, stage)
+            write_folder(result, report, tuple(result.snapshots), stage)
     if args.json:
         print_json(report)
     else:
         print(dynamic_text(report))
     return 0
-
-
-def history_columns(result: DynamicImpactResult) -> dict[str, object]:
-    """The history with its units in the header."""
-    return {HISTORY_HEADER[key]: column for key, column in result.history_columns().items()}
-
-
-def document(result: DynamicImpactResult, quasi, estimate) -> dict[str, object]:
-    """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract)."""
-    maxima = quasi.maxima()
-    keys = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
-    return {
-        "quasi_static": {key: maxima[key] for key in keys},
-        "dynamic": result.summary(),
-        "radiation_estimate": estimate.to_dict(),
-        "mesh": result.mesh,
-        "timings": result.timings,
-        "parameters": result.parameters,
-    }
 
 
 def write_folder(
@@ -172,7 +168,7 @@ def write_folder(
     write_csv(folder / "history.csv", history_columns(result))
     write_csv(
         folder / "energies.csv",
-        {"t (s)": result.t, **{f"{k} (J)": v for k, v in result.energies.items()}},
+        {"t [s]": result.t, **{f"{k} [J]": v for k, v in result.energies.items()}},
     )
     for index, requested in enumerate(snapshots):
         actual, solution, _ = result.field_solution(requested)
@@ -201,4 +197,11 @@ def dynamic_text(report: dict) -> str:
         f"{mesh['contact_candidates']} contact candidates",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),
     ]
+    if "error_estimate" in report:
+        ladder = ", ".join(f"{lv['dofs']} dofs/{lv['steps']} steps" for lv in report["mesh_ladder"])
+        estimate = report["error_estimate"]
+        rows += [
+            f"  estimated relative errors (ladder {ladder}): "
+            + ", ".join(f"{key} {value:.1e}" for key, value in estimate.items())
+        ]
     return "\n".join(rows)

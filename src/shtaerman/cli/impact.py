@@ -42,7 +42,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_half_space_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument(
-        "--history", metavar="FILE.csv", help="write t,x,P,a,p0 over [0, t_y] (SI units)"
+        "--history",
+        metavar="FILE.csv",
+        help="write CSV columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
     )
     p.add_argument("--points", default="201", help=f"rows of --history, 2 .. {MAX_POINTS}")
     p.add_argument("--force", action="store_true", help="replace an existing --history file")
@@ -66,7 +68,7 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
     """The --history file, checked before any work (see :func:`check_output_file`)."""
     if value is None:
         return None
-    return check_output_file(Path(value), force=force, option="history")
+    return check_output_file(value, force=force, option="history")
 
 
 def run(args: argparse.Namespace) -> int:

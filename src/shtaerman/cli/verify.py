@@ -32,6 +32,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    p.add_argument(
+        "--workers",
+        metavar="N",
+        help="studies run as tasks on a local dask cluster of N single-threaded processes "
+        "(default: the number of cores; 1 runs them one after another in this process)",
+    )
     p.set_defaults(handler=run)
 
 
@@ -44,7 +50,7 @@ def default_out() -> Path:
 def run(args: argparse.Namespace) -> int:
     """Run the studies; print a verdict per study and every failing check."""
     from ..output.files import check_output_folder
-    from ..output.folder import run_verification
+    from ..output.folder import ProgressBar, run_verification
     from ..study.schema import find_study, load_study, shipped_studies
 
     paths = [find_study(name) for name in args.studies] or shipped_studies()
@@ -56,9 +62,36 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_folder(
         Path(args.out) if args.out is not None else default_out(), force=args.force
     )
-    results = run_verification(studies, out, quick=args.quick, force=args.force)
+    workers = _workers(args.workers)
+    if workers > 1 and len(studies) > 1:
+        from ..sweep.verify import run_verification_on_dask
+
+        bar = ProgressBar(len(studies))
+        results = run_verification_on_dask(
+            studies,
+            out,
+            quick=args.quick,
+            workers=min(workers, len(studies)),
+            force=args.force,
+            progress=bar,
+        )
+    else:
+        results = run_verification(studies, out, quick=args.quick, force=args.force)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
+
+
+def _workers(value: str | None) -> int:
+    """--workers: an integer >= 1 (default: the cores)."""
+    if value is None:
+        return os.cpu_count() or 1
+    try:
+        workers = int(value)
+    except ValueError:
+        workers = 0
+    if not 1 <= workers <= 256:
+        raise InputError(f"workers must be an integer in [1, 256], got {value!r}")
+    return workers
 
 
 def verify_text(results: dict, out: Path) -> str:

@@ -54,7 +54,7 @@ from __future__ import annotations
 import contextlib
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -209,6 +209,25 @@ class DynamicSettings:
             )
         if not (math.isfinite(self.tail) and self.tail >= 0):
             raise InputError(f"tail must be >= 0, got {self.tail!r}")
+
+    def refined(self, factor: float) -> DynamicSettings:
+        """These settings with the mesh size field divided and the time steps multiplied by
+        ``factor`` (> 1 refines): h and dt shrink together, so a ladder of refined settings
+        converges in space and time at once (mesh dofs ~ factor^2, steps ~ factor).
+
+        Raises
+        ------
+        shtaerman.validation.InputError
+            If ``factor`` is not > 0 or the result leaves the settings' valid ranges.
+        """
+        factor = validate_positive("refine", factor)
+        return replace(
+            self,
+            size=self.size / factor,
+            axis_size=self.axis_size / factor,
+            growth=min(self.growth / factor, 1.0),
+            steps=round(self.steps * factor),
+        )
 
 
 def time_integration(spectral_radius: float | None) -> tuple[float, float, float, float]:

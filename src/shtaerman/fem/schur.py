@@ -22,7 +22,7 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .solver import ACCURACY_CHECK, backward_error
+from .solver import ACCURACY_CHECK, backward_error, symmetric_scaling
 
 __all__ = ["TailFactorization", "TailPivotError", "nested_dissection"]
 
@@ -87,7 +87,9 @@ class TailFactorization:
         is_tail[self.tail] = True
         order = nested_dissection(matrix, groups)
         self._perm = np.concatenate([order[~is_tail[order]], self.tail])
+        self._scale = symmetric_scaling(matrix)[self._perm]  # units out of the pivots
         permuted = sp.csc_matrix(matrix)[self._perm][:, self._perm]
+        permuted = sp.diags(self._scale) @ permuted @ sp.diags(self._scale)
         self._lu = spla.splu(
             permuted.tocsc(),
             permc_spec="NATURAL",
@@ -104,7 +106,8 @@ class TailFactorization:
         """Solve for a vector (n,) or many right-hand sides (n, k)."""
         rhs = np.asarray(rhs, dtype=float)
         solution = np.empty_like(rhs)
-        solution[self._perm] = self._lu.solve(rhs[self._perm])
+        d = self._scale if rhs.ndim == 1 else self._scale[:, None]
+        solution[self._perm] = d * self._lu.solve(d * rhs[self._perm])
         return solution
 
     def tail_inverse(self) -> np.ndarray:
@@ -116,4 +119,5 @@ class TailFactorization:
         lower = self._lu.L[:, -k:][-k:].toarray()
         upper = self._lu.U[:, -k:][-k:].toarray()
         inverse_lower = la.solve_triangular(lower, np.eye(k), lower=True, unit_diagonal=True)
-        return la.solve_triangular(upper, inverse_lower, lower=False)
+        d = self._scale[-k:]
+        return d[:, None] * la.solve_triangular(upper, inverse_lower, lower=False) * d[None, :]

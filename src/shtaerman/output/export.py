@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
 import meshio
 import numpy as np
@@ -11,34 +12,91 @@ from ..fem.elasticity import ElasticSolution
 from ..study.indentation import IndentationResult
 from .files import write_csv
 
-__all__ = ["FIELD_NAMES", "field_mesh", "write_indentation"]
+__all__ = [
+    "FIELD_NAMES",
+    "FIELD_UNITS",
+    "field_mesh",
+    "near_field",
+    "write_indentation",
+    "write_vtu",
+]
 
-FIELD_NAMES = (
-    "u_r",
-    "u_z",
-    "sigma_rr",
-    "sigma_zz",
-    "sigma_tt",
-    "sigma_rz",
-    "von_mises",
-    "mean_pressure",
-)
-"""Point data of the VTU files: displacements in m, stresses in Pa (tension positive)."""
+FIELD_UNITS = {
+    "u_r": "m",
+    "u_z": "m",
+    "sigma_rr": "Pa",
+    "sigma_zz": "Pa",
+    "sigma_tt": "Pa",
+    "sigma_rz": "Pa",
+    "von_mises": "Pa",
+    "mean_pressure": "Pa",
+}
+"""Point data of the VTU files and their units: displacements in m, stresses in Pa (tension
+positive). In the files each name carries its unit, ``sigma_zz [Pa]``."""
+FIELD_NAMES = tuple(FIELD_UNITS)
+NEAR_FIELD_RADII = 4.0
+"""The near-field VTU keeps the triangles within this many contact radii of the first contact
+point (ParaView opens on the contact zone, not on the 1e5-times larger domain)."""
 
 
-def field_mesh(solution: ElasticSolution) -> meshio.Mesh:
-    """The r-z section (x = r, y = z, m) with the displacement and stress fields at vertices."""
+def field_mesh(
+    solution: ElasticSolution, field_data: dict[str, float] | None = None
+) -> meshio.Mesh:
+    """The r-z section (x = r, y = z, m) with the displacement and stress fields at vertices.
+
+    Point data are named ``name [unit]``; ``field_data`` (scalars, e.g. the depth) is stored as
+    VTK field data under the same convention.
+    """
     mesh = solution.system.mesh
     points = np.column_stack([mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])])
-    data = {name: np.asarray(getattr(solution, name), dtype=float) for name in FIELD_NAMES}
-    data["displacement"] = np.column_stack(
+    data = {
+        f"{name} [{unit}]": np.asarray(getattr(solution, name), dtype=float)
+        for name, unit in FIELD_UNITS.items()
+    }
+    data["displacement [m]"] = np.column_stack(
         [solution.u_r, solution.u_z, np.zeros_like(solution.u_r)]
     )
-    return meshio.Mesh(points, [("triangle", mesh.t.T)], point_data=data)
+    fields = {key: np.atleast_1d(np.asarray(value)) for key, value in (field_data or {}).items()}
+    return meshio.Mesh(points, [("triangle", mesh.t.T)], point_data=data, field_data=fields)
+
+
+def write_vtu(path: Path, mesh: meshio.Mesh) -> None:
+    """``meshio.write`` plus the mesh's field data as VTK ``FieldData`` (which meshio 5 reads
+    but does not write): ParaView shows them in its Information panel."""
+    meshio.write(path, meshio.Mesh(mesh.points, mesh.cells, point_data=mesh.point_data))
+    if not mesh.field_data:
+        return
+    arrays = "".join(
+        f'<DataArray type="Float64" Name={quoteattr(name)} NumberOfTuples="{np.size(value)}" '
+        f'format="ascii">{" ".join(repr(float(v)) for v in np.ravel(value))}</DataArray>'
+        for name, value in mesh.field_data.items()
+    )
+    text = Path(path).read_text(encoding="utf-8")
+    anchor = "<UnstructuredGrid>"
+    at = text.index(anchor) + len(anchor)
+    Path(path).write_text(f"{text[:at]}<FieldData>{arrays}</FieldData>{text[at:]}", "utf-8")
+
+
+def near_field(full: meshio.Mesh, radius: float) -> meshio.Mesh:
+    """The triangles of ``full`` with every vertex within ``radius`` m of the origin, with their
+    point data (vertices renumbered) and the same field data."""
+    triangles = full.cells_dict["triangle"]
+    inside = np.hypot(full.points[:, 0], full.points[:, 1]) <= radius
+    kept = triangles[np.all(inside[triangles], axis=1)]
+    used = np.unique(kept)
+    renumber = np.full(full.points.shape[0], -1, dtype=np.int64)
+    renumber[used] = np.arange(used.size)
+    return meshio.Mesh(
+        full.points[used],
+        [("triangle", renumber[kept])],
+        point_data={key: value[used] for key, value in full.point_data.items()},
+        field_data=full.field_data,
+    )
 
 
 def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
-    """Write ``contact_curve.csv``, ``pressure_profiles.csv`` and ``field_max_depth.vtu``.
+    """Write ``contact_curve.csv``, ``pressure_profiles.csv``, ``field_max_depth.vtu`` and its
+    near field ``field_max_depth_near.vtu`` (``NEAR_FIELD_RADII`` contact radii).
 
     Returns the paths written.
     """
@@ -62,5 +120,21 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
         },
     )
     field_path = folder / "field_max_depth.vtu"
-    meshio.write(field_path, field_mesh(result.deepest_field))
-    return [curve_path, profiles_path, field_path]
+    near_path = folder / "field_max_depth_near.vtu"
+    step = result.steps[-1]
+    exponent, coefficient = result.indenter.exponent, result.indenter.shape_coefficient
+    field_data = {
+        "depth [m]": step.depth,
+        "contact_radius [m]": step.contact_radius,
+        "force [N]": step.force,
+        "indenter_shape_coefficient [m^(1-n)]": coefficient,
+        "indenter_exponent [1]": exponent,
+        "youngs_modulus [Pa]": result.half_space.youngs_modulus,
+        "poisson_ratio [1]": result.half_space.poisson_ratio,
+        # the material model, as a flag (VTK field data are numbers)
+        f"model_{getattr(result, 'model', 'linear')} [1]": 1.0,
+    }
+    full = field_mesh(result.deepest_field, field_data)
+    write_vtu(field_path, full)
+    write_vtu(near_path, near_field(full, NEAR_FIELD_RADII * step.contact_radius))
+    return [curve_path, profiles_path, field_path, near_path]

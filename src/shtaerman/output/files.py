@@ -28,7 +28,7 @@ import os
 import re
 import shutil
 import stat
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -37,8 +37,10 @@ from numpy.typing import ArrayLike
 from ..validation import InputError
 
 __all__ = [
+    "CSV_UNITS",
     "check_output_file",
     "check_output_folder",
+    "csv_header",
     "json_safe",
     "staged_file",
     "staged_folder",
@@ -252,30 +254,31 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
         shutil.rmtree(stage, ignore_errors=True)
 
 
-def check_output_file(path: Path, *, force: bool, option: str = "history") -> Path:
+def check_output_file(path: str | Path, *, force: bool, option: str = "history") -> Path:
     """Return ``path`` if a run may write that file, or raise before any work is done.
 
     A regular file (or a symbolic link to one) is replaced only with ``force``; a special file
     (``/dev/null``, a FIFO, a terminal) is written into, never replaced; a folder is refused.
     """
     try:
+        if not os.fspath(path):
+            raise InputError(f"{option}: an empty name names no file")
         path = Path(path).expanduser()
+        if path.exists():  # follows symbolic links, also /dev/stdout -> /proc/self/fd/1
+            mode = path.stat().st_mode
+            if stat.S_ISDIR(mode):
+                raise InputError(f"{option}: {str(path)!r} is a folder")
+            if not stat.S_ISREG(mode):  # a device, a FIFO, a terminal: written into
+                if not os.access(path, os.W_OK):
+                    raise InputError(f"{option}: cannot write {str(path)!r}")
+                return path
+            if not force:
+                raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
+        if not path.exists() and os.path.lexists(path):
+            raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
         real = Path(os.path.realpath(path))
         if not real.parent.is_dir():
             raise InputError(f"{option}: folder {str(path.parent)!r} does not exist")
-        if real.exists():
-            mode = real.stat().st_mode
-            if stat.S_ISDIR(mode):
-                raise InputError(f"{option}: {str(path)!r} is a folder")
-            if stat.S_ISREG(mode):
-                if not force:
-                    raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
-            elif not os.access(real, os.W_OK):
-                raise InputError(f"{option}: cannot write {str(path)!r}")
-            else:
-                return path
-        elif os.path.lexists(path):
-            raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
         live = _other_writers(real)
         if live:
             raise _busy(option, real, live)
@@ -299,10 +302,10 @@ def staged_file(path: Path, *, force: bool = False, option: str = "history") -> 
     permissions follow the umask.
     """
     path = check_output_file(path, force=force, option=option)
-    real = Path(os.path.realpath(path))
-    if real.exists() and not real.is_file():
-        yield real
+    if path.exists() and not path.is_file():  # a special file: written directly
+        yield path
         return
+    real = Path(os.path.realpath(path))
     stage = _stage_path(real)
     if os.path.lexists(stage):
         raise _busy(option, real, [os.getpid()])
@@ -336,13 +339,62 @@ def json_safe(value: object) -> object:
     return value
 
 
+CSV_UNITS = {
+    # impact histories
+    "t": "s",
+    "x": "m",
+    "v": "m/s",
+    "P": "N",
+    "a": "m",
+    "p0": "Pa",
+    # contact curves and pressure profiles
+    "depth": "m",
+    "force": "N",
+    "contact_radius": "m",
+    "central_pressure": "Pa",
+    "force_analytic": "N",
+    "contact_radius_analytic": "m",
+    "central_pressure_analytic": "Pa",
+    "central_to_mean": "1",
+    "pressure_profile_error": "1",
+    "active_set_iterations": "1",
+    "r": "m",
+    "pressure": "Pa",
+    "pressure_analytic": "Pa",
+    "gap": "m",
+    "strain_energy": "J",
+}
+"""The unit of every CSV column name, shown in the header as ``name [unit]`` (``[1]``:
+dimensionless): ``t [s],x [m],P [N],a [m],p0 [Pa]`` for an impact history."""
+
+
+def csv_header(names: Iterable[str]) -> list[str]:
+    """``name [unit]`` for each column name; a name that already carries ``[unit]`` is kept.
+
+    Raises
+    ------
+    ValueError
+        For a name of unknown unit: add it to :data:`CSV_UNITS` (no column without a unit).
+    """
+    header = []
+    for name in names:
+        if name.endswith("]") and " [" in name:
+            header.append(name)
+        elif name in CSV_UNITS:
+            header.append(f"{name} [{CSV_UNITS[name]}]")
+        else:
+            raise ValueError(f"CSV column {name!r} has no unit; add it to CSV_UNITS")
+    return header
+
+
 def write_csv(path: Path, columns: Mapping[str, ArrayLike]) -> None:
-    """Write equal-length columns under a header of their names.
+    """Write equal-length columns under a header ``name [unit]`` (:func:`csv_header`).
 
     Write into a :func:`staged_folder` or a :func:`staged_file`: they make the result appear
     complete or not at all.
     """
+    header = csv_header(columns)
     with open(path, "w", newline="", encoding="utf-8") as stream:
         writer = csv.writer(stream)
-        writer.writerow(columns)
+        writer.writerow(header)
         writer.writerows(zip(*(np.asarray(c) for c in columns.values()), strict=True))

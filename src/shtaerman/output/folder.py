@@ -9,9 +9,9 @@ from __future__ import annotations
 import json
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
 from ..plots.gallery import (
     paper_figures,
@@ -21,12 +21,17 @@ from ..plots.gallery import (
 )
 from ..study.kinds import kind_function
 from ..study.run import StudyOutcome, run_study
-from ..study.schema import Study
 from .export import write_indentation
-from .files import staged_folder, write_csv
-from .report import results_document, write_reports
+from .files import json_safe, staged_folder, write_csv
+from .report import results_document, study_document, write_reports
 
-__all__ = ["ProgressBar", "run_verification", "write_contact_study"]
+__all__ = [
+    "ProgressBar",
+    "finish_verification",
+    "run_verification",
+    "study_entry",
+    "write_contact_study",
+]
 
 
 class ProgressBar:
@@ -78,38 +83,48 @@ def _study_figures(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str,
     return {title: str(path.relative_to(root)) for title, path in made.items()}
 
 
+def study_entry(outcome: Any, stage: Path) -> dict[str, object]:
+    """Write one study's files and figures into ``stage/<name>``; its results.json entry."""
+    study = outcome.study
+    start = time.perf_counter()
+    write = kind_function(getattr(study, "kind", "contact"), "write")
+    files, pictures = write(outcome, stage / study.name, stage)
+    return json_safe(study_document(outcome, files, time.perf_counter() - start, pictures))
+
+
+def finish_verification(
+    stage: Path, entries: Mapping[str, dict], *, quick: bool
+) -> dict[str, object]:
+    """The figures of no study, results.json and both reports, from the studies' entries."""
+    shared = {title: str(path.relative_to(stage)) for title, path in paper_figures(stage).items()}
+    results = results_document(entries, quick=quick, figures=shared)
+    (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
+    write_reports(results, stage)
+    return results
+
+
 def run_verification(
-    studies: list[Study],
+    studies: list[Any],
     out: Path,
     *,
     quick: bool = False,
     progress: Callable[[str], None] | None = None,
     force: bool = False,
 ) -> dict[str, object]:
-    """Run the studies and write ``out`` (results.json, report.md, report.html, per-study
-    VTU fields, CSV curves and histories, PNG figures). Returns the results document.
+    """Run the studies one after another in this process and write ``out`` (results.json,
+    report.md, report.html, per-study VTU fields, CSV curves and histories, PNG figures).
+    Returns the results document. (``shtaerman verify`` runs them as dask tasks instead:
+    :mod:`shtaerman.sweep.verify`.)
 
     ``out`` may exist only as an empty folder, or with ``force`` as any folder (replaced)."""
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
     with staged_folder(out, force=force) as stage:
-        outcomes, files, pictures, writing = [], {}, {}, {}
+        entries = {}
         for study in studies:
             outcome = run_study(study, quick=quick, progress=bar)
             bar(f"{study.name}: files and figures")
-            start = time.perf_counter()
-            write = kind_function(getattr(study, "kind", "contact"), "write")
-            files[study.name], pictures[study.name] = write(outcome, stage / study.name, stage)
-            writing[study.name] = time.perf_counter() - start
-            outcomes.append(outcome)
+            entries[study.name] = study_entry(outcome, stage)
             advance()
             bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
-        pictures[""] = {
-            title: str(path.relative_to(stage)) for title, path in paper_figures(stage).items()
-        }
-        results = results_document(
-            outcomes, files, quick=quick, output_seconds=writing, figures=pictures
-        )
-        (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
-        write_reports(results, stage)
-    return results
+        return finish_verification(stage, entries, quick=quick)

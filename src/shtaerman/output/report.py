@@ -181,30 +181,22 @@ def _kind_document(
 
 
 def results_document(
-    outcomes: list[StudyOutcome],
-    files: dict[str, dict[str, str]],
+    entries: Mapping[str, dict],
     *,
     quick: bool,
-    output_seconds: Mapping[str, float] | None = None,
-    figures: Mapping[str, Mapping[str, str]] | None = None,
+    figures: Mapping[str, str] | None = None,
 ) -> dict[str, object]:
     """The whole results.json (strict JSON: non-finite numbers are null).
 
-    ``output_seconds``: per study name, the time spent writing its files and figures.
-    ``figures``: per study name, caption to PNG path relative to the result folder; key
-    ``""`` holds the figures of no study (top-level ``figures``). The reports are rendered
-    from this document alone.
+    ``entries``: per study name, in order, its entry (:func:`study_document`).
+    ``figures``: caption to PNG path relative to the result folder of the figures that belong
+    to no study. The reports are rendered from this document alone.
     """
-    output, pictures = output_seconds or {}, figures or {}
-    studies = {}
-    for outcome in outcomes:
-        name = outcome.study.name
-        studies[name] = study_document(outcome, files[name], output.get(name), pictures.get(name))
     return json_safe(
         {
-            "studies": studies,
-            "figures": dict(pictures.get("", {})),
-            "passed": all(o.passed for o in outcomes),
+            "studies": dict(entries),
+            "figures": dict(figures or {}),
+            "passed": all(entry["passed"] for entry in entries.values()),
             "quick": quick,
             "generated": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
             "environment": environment(),

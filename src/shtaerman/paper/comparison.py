@@ -270,18 +270,54 @@ def _format_cell(cell: Comparison) -> str:
     return f"{cell.printed:>12.7g} {cell.exact:>14.8g} {cell.relative_difference:>+10.2e}{mark}"
 
 
+def _unit_label(unit: str, scale: float) -> str:
+    """``[unit]`` of a printed number: ``[1e-04 m]`` for a column printed as 10^4 x_c."""
+    if scale == 1:
+        return f"[{unit}]"
+    factor = f"{1 / scale:.0e}".replace("e-0", "e-").replace("e+0", "e")
+    return f"[{factor}]" if unit == "1" else f"[{factor} {unit}]"
+
+
+def _units() -> dict[tuple[str, str], str]:
+    """(table, column or quantity) -> unit label of its printed numbers, from the JSON."""
+    data = load_printed()
+    units = {
+        (name, column["key"]): _unit_label(column["unit"], column["scale"])
+        for name, table in data["tables"].items()
+        for column in table["columns"]
+    }
+    for group in ("results", "constants"):
+        for key, entry in data["example"][group].items():
+            units[("example", key)] = f"[{entry.get('unit', '1')}]"
+    return units
+
+
 def tables_text(tables: list[ComparedTable]) -> str:
-    """A readable report: printed, exact, relative difference; '!' marks a flagged entry."""
+    """A readable report: printed, exact, relative difference; '!' marks a flagged entry.
+
+    Every number carries its unit in brackets (SI; ``[1]`` dimensionless, ``[1e-04 m]`` a
+    column printed in units of 1e-4 m, as the paper prints it).
+    """
+    units = _units()
     lines = []
     for table in tables:
         flagged = len(table.flagged)
         lines += ["", f"{table.name}: {table.caption}  [{flagged} flagged]"]
         for key, cells in table.rows:
-            label = f"{key:>10.5g}" if isinstance(key, float) else f"{key:>20}"
+            if isinstance(key, float):
+                label = f"{key:>10.5g} {units.get((table.name, table.key), ''):<9}"
+            else:
+                label = f"{key:>20}"
             for number, cell in enumerate(cells):
                 head = label if number == 0 else " " * len(label)
-                lines.append(f"  {head}  {cell.column:<22}{_format_cell(cell)}")
+                column = key if table.name == "example" else cell.column
+                unit = units.get((table.name, column), "")
+                name = unit if table.name == "example" else f"{cell.column} {unit}"
+                lines.append(f"  {head}  {name:<30}{_format_cell(cell)}")
         lines += [f"  * {line}" for line in table.summary]
-    header = "columns: printed | exact | (printed - exact)/exact; '!' = beyond the printed accuracy"
+    header = (
+        "columns: printed | exact | (printed - exact)/exact; '!' = beyond the printed accuracy; "
+        "[unit] of the printed numbers (SI; [1] dimensionless, [1e-4 m]: printed as 10^4 x)"
+    )
     total = sum(len(table.flagged) for table in tables)
     return "\n".join([header, *lines, "", f"{total} entries beyond the paper's printed accuracy"])

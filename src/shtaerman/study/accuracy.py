@@ -28,7 +28,6 @@ from .indentation import IndentationResult, default_depths, run_indentation
 from .richardson import Estimate, richardson
 
 __all__ = [
-    "DEFAULT_MAX_DOFS",
     "LADDER_RATIO",
     "AccuracyResult",
     "LadderLevel",
@@ -43,8 +42,6 @@ STEP_QUANTITIES = ("force", "contact_radius", "central_pressure")
 CURVE_QUANTITIES = ("beta", "exponent")
 FORCE_LIKE = ("force", "beta")
 """What ``--accuracy`` drives below its tolerance."""
-DEFAULT_MAX_DOFS = 600_000
-"""Size guard of :func:`run_to_accuracy` (about 60 s for the finest level on 2 cores)."""
 TIME_GROWTH = 2.4
 """Observed time ratio of consecutive ladder levels (dofs x2; factorization superlinear)."""
 TRUNCATION = 1.87
@@ -249,7 +246,7 @@ def run_to_accuracy(
     mesh: MeshSettings | None = None,
     *,
     max_time: float = 60.0,
-    max_dofs: int = DEFAULT_MAX_DOFS,
+    max_dofs: float | None = None,
     backend: str = "auto",
     progress: Progress | None = None,
 ) -> AccuracyResult:
@@ -266,8 +263,8 @@ def run_to_accuracy(
         Target relative error of force (every depth) and beta, in (0, 0.1].
     max_time : float
         Time budget in s for the whole ladder.
-    max_dofs : int
-        Largest finest level allowed.
+    max_dofs : float, optional
+        Largest finest level allowed (default: the mesh's ``max_dofs``).
     indenter, half_space, depths, mesh, backend, progress
         As for :func:`run_ladder`.
 
@@ -284,6 +281,7 @@ def run_to_accuracy(
     mesh = MeshSettings() if mesh is None else mesh
     domain = min(max(mesh.domain, 10.0 * TRUNCATION / tolerance), MAX_DOMAIN)
     mesh = replace(mesh, domain=domain)
+    max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     result = run_ladder(indenter, half_space, depths, mesh, backend=backend, progress=progress)
     report = progress or (lambda _line: None)

@@ -126,12 +126,15 @@ class _Mesh(_Table):
     growth: Positive | None = None
     axis_size: Positive | None = None
     axis_growth: Positive | None = None
+    max_dofs: Positive | None = None
 
     def settings(self, default: MeshSettings, table: str) -> MeshSettings:
         given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
         given.pop("refine", None)
         try:
-            return replace(default, **given)
+            settings = replace(default, **given)
+            settings.refined(1.0 if self.refine is None else self.refine).check_size()
+            return settings
         except InputError as error:
             raise InputError(f"[{table}] {error}") from None
 

@@ -45,6 +45,7 @@ from .spec import Case, SweepSpec
 __all__ = [
     "SweepInterrupted",
     "SweepOutcome",
+    "dask_client",
     "default_workers",
     "execute_case",
     "read_records",
@@ -330,6 +331,14 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
     finally:
         with _signals_ignored():
             cluster.close()
+
+
+@contextlib.contextmanager
+def dask_client(workers: int | None = None, scheduler: str | None = None) -> Iterator[Any]:
+    """A quiet dask client: a local cluster of ``workers`` single-threaded processes (default:
+    the cores; BLAS capped to one thread each), or the existing ``scheduler``."""
+    with _quiet_dask(), _client(workers, scheduler) as client:
+        yield client
 
 
 class _StopFlag:

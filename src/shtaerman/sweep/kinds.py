@@ -304,16 +304,117 @@ register_kind(
 )
 
 
-# --- kinds whose computations are being written ---------------------------------------------
+# --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
+
+_DYNAMIC_NUMERICS = {  # sweep parameter (the CLI option) -> DynamicSettings field
+    "steps": "steps",
+    "mesh_size": "size",
+    "mesh_margin": "margin",
+    "domain_factor": "domain",
+    "growth": "growth",
+    "layer_rate": "layer_rate",
+}
+
+
+def _dynamic_inputs(p: dict[str, Any]):
+    from dataclasses import replace
+
+    from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs
+    from ..study.indentation import validate_fem_inputs
+    from ..theory.materials import Material
+    from ..validation import validate_poisson
+
+    indenter = _indenter(p)
+    half_space = Material(validate_positive("E2", p["E2"], "Pa"), validate_poisson("nu2", p["nu2"]))
+    validate_fem_inputs(indenter, half_space)
+    density = validate_positive("density2", p["density2"], "kg/m^3")
+    mass = validate_positive("mass", p["mass"], "kg")
+    velocity = validate_positive("velocity", p["velocity"], "m/s")
+    settings = DynamicSettings()
+    for name, field_name in _DYNAMIC_NUMERICS.items():
+        settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+    if estimate_dofs(settings) > MAX_DOFS:
+        raise InputError(
+            f"mesh_size {settings.size!r} would give about {estimate_dofs(settings)} dofs, "
+            f"above the limit {MAX_DOFS}"
+        )
+    return indenter, half_space, density, mass, velocity, settings
+
+
+DYNAMIC_OUTPUTS = {
+    "restitution": "",
+    "energy_radiated_fraction": "",
+    "estimate_energy_fraction": "",
+    "x_max": "m",
+    "P_max": "N",
+    "t_x_max": "s",
+    "t_contact": "s",
+    "x_c": "m",
+    "P_c": "N",
+    "t_c": "s",
+    "t_y": "s",
+    "difference_x": "",
+    "difference_P": "",
+    "difference_t": "",
+    "difference_worst": "",
+    "energy_balance_error": "",
+    "reflected_energy_fraction": "",
+    "dofs": "",
+    "seconds": "s",
+}
+"""difference_*: quasi-static / dynamic - 1 for x_c / x_max, P_c / P_max and t_c against
+t_contact / 2 (= t_y / t_contact); difference_worst: the largest of their magnitudes."""
+
+
+def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
+    """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate."""
+    from ..study.dynamic import run_case
+
+    start = time.perf_counter()
+    case = run_case(*_dynamic_inputs(p))
+    seconds = time.perf_counter() - start
+    result, quasi, differences = case.result, case.quasi, case.differences()
+    compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
+    return {
+        "restitution": float(result.restitution),
+        "energy_radiated_fraction": float(result.energy_radiated_fraction),
+        "estimate_energy_fraction": float(case.estimate.energy_fraction),
+        "x_max": float(result.x_max),
+        "P_max": float(result.P_max),
+        "t_x_max": float(result.t_x_max),
+        "t_contact": float(result.t_contact),
+        **{key: float(getattr(quasi, key)) for key in ("x_c", "P_c", "t_c", "t_y")},
+        **{key: float(value) for key, value in compared.items()},
+        "difference_worst": float(max(abs(value) for value in compared.values())),
+        "energy_balance_error": float(result.energy_balance_error),
+        "reflected_energy_fraction": float(result.reflected_energy_fraction),
+        "dofs": int(result.mesh["dofs"]),
+        "seconds": seconds,
+    }
+
 
 register_kind(
     Kind(
         name="dynamic",
-        description="dynamic FE impact with elastic waves",
-        parameters={},
-        outputs={},
-        case=None,
-        unavailable="the dynamic FE impact (shtaerman dynamic) is not in this version",
+        description="dynamic FE impact (elastic waves) against the quasi-static impact",
+        parameters={
+            "mass": Parameter(0.7, "kg"),
+            "velocity": Parameter(3.0, "m/s"),
+            **_INDENTER,
+            "E2": _MATERIALS["E2"],
+            "nu2": _MATERIALS["nu2"],
+            "density2": Parameter(1100.0, "kg/m^3"),  # the paper gives none: natural rubber
+            "steps": Parameter(400, type="int"),
+            "mesh_size": Parameter(1.0 / 80.0),
+            "mesh_margin": Parameter(1.3),
+            "domain_factor": Parameter(1e4),
+            "growth": Parameter(0.2),
+            "layer_rate": Parameter(0.0),
+        },
+        outputs=DYNAMIC_OUTPUTS,
+        case=dynamic_case,
+        check=_dynamic_inputs,
+        nondeterministic=("seconds",),
     )
 )
 

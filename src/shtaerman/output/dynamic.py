@@ -1,0 +1,126 @@
+"""Files and figures of a dynamic study (``verify``): CSV histories, a summary over v0, PNGs.
+
+Into ``root/<study name>/``:
+
+- ``history_v<v0>.csv`` per velocity: t, x, v, P, a, p0 of the dynamic FE impact every time
+  step, units in the header (as ``shtaerman dynamic --history``);
+- ``summary.csv``: one row per velocity, the dynamic and quasi-static maxima and times, their
+  relative differences, restitution, the radiated fraction and its first-order estimate;
+- figures: x(t), P(t) at the example velocity; e, 1 - e^2 and the ratios over v0; the wave
+  field (von Mises) at the quasi-static t_c and at 1.05 t_y (after separation).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..fem.dynamic_contact import DynamicImpactResult
+from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
+from ..study.dynamic import SEPARATION_SNAPSHOT, DynamicStudyOutcome
+from .files import write_csv
+
+__all__ = ["SUMMARY_HEADER", "history_columns", "write_dynamic_study"]
+
+SUMMARY_HEADER = (
+    "v0 [m/s]",
+    "x_max [m]",
+    "x_c [m]",
+    "x_c/x_max-1 [1]",
+    "P_max [N]",
+    "P_c [N]",
+    "P_c/P_max-1 [1]",
+    "t_x_max [s]",
+    "t_c [s]",
+    "t_contact [s]",
+    "t_y [s]",
+    "t_y/t_contact-1 [1]",
+    "v_out [m/s]",
+    "restitution [1]",
+    "energy_radiated_fraction [1]",
+    "estimate_energy_fraction [1]",
+    "energy_balance_error [1]",
+    "reflected_energy_fraction [1]",
+)
+"""Columns of summary.csv, one row per velocity, in the ``name [unit]`` convention."""
+
+
+def history_columns(result: DynamicImpactResult) -> dict[str, object]:
+    """The dynamic history t, x, v, P, a, p0 (write_csv adds the units: ``t [s]``, ...)."""
+    return result.history_columns()
+
+
+def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
+    rows = []
+    for case in outcome.cases:
+        r, q, d = case.result, case.quasi, case.differences()
+        rows.append(
+            (
+                case.velocity,
+                r.x_max,
+                q.x_c,
+                d["x"],
+                r.P_max,
+                q.P_c,
+                d["P"],
+                r.t_x_max,
+                q.t_c,
+                r.t_contact,
+                q.t_y,
+                d["t"],
+                r.v_out,
+                r.restitution,
+                r.energy_radiated_fraction,
+                case.estimate.energy_fraction,
+                r.energy_balance_error,
+                r.reflected_energy_fraction,
+            )
+        )
+    table = np.array(rows, dtype=float)
+    return {name: table[:, i] for i, name in enumerate(SUMMARY_HEADER)}
+
+
+def write_dynamic_study(
+    outcome: DynamicStudyOutcome, folder: Path, root: Path
+) -> tuple[dict[str, str], dict[str, str]]:
+    """The study's CSV files and figures; ``{stem: path}``, ``{caption: path}`` from ``root``."""
+    folder.mkdir()
+    written = []
+    for case in outcome.cases:
+        path = folder / f"history_v{case.velocity:g}.csv"
+        write_csv(path, history_columns(case.result))
+        written.append(path)
+    summary = folder / "summary.csv"
+    write_csv(summary, _summary(outcome))
+    written.append(summary)
+    example = outcome.example
+    quasi, result = example.quasi, example.result
+    v0 = f"{example.velocity:g} m/s"
+    figures = {
+        f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
+            plot_dynamic_histories(example, folder / "dynamic_history.png")
+        ),
+        "Restitution and energy left in the half-space over v0 (first-order estimate "
+        "dashed); quasi-static / dynamic x, P and contact time": (
+            plot_dynamic_over_velocity(outcome, folder / "dynamic_over_velocity.png")
+        ),
+    }
+    late = SEPARATION_SNAPSHOT * quasi.t_y
+    separation = "after" if late > result.t_contact else "before"
+    for key, words, stem in (
+        (quasi.t_c, "at the quasi-static t_c (maximum compression)", "wave_field_tc"),
+        (
+            late,
+            f"at {SEPARATION_SNAPSHOT:g} t_y ({separation} separation)",
+            "wave_field_separation",
+        ),
+    ):
+        if key in result.snapshots:
+            figures[f"Wave field (von Mises) at {v0}, {words}"] = plot_wave_field(
+                example, key, folder / f"{stem}.png"
+            )
+    return (
+        {path.stem: str(path.relative_to(root)) for path in written},
+        {caption: str(path.relative_to(root)) for caption, path in figures.items()},
+    )

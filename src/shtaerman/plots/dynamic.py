@@ -1,0 +1,216 @@
+"""Figures of a dynamic study (PNG): histories, quantities over v0 and the wave field.
+
+- :func:`plot_dynamic_histories`: x(t) and P(t) of the dynamic FE impact against the
+  quasi-static (Ateb) impact at one velocity, and the quasi-static minus dynamic difference;
+- :func:`plot_dynamic_over_velocity`: restitution e and the energy left in the half-space
+  1 - e^2 (the first-order estimate as a line), and the quasi-static over dynamic ratios of
+  x, P and the contact time, over the approach velocity;
+- :func:`plot_wave_field`: the von Mises stress on the r-z section at one kept time, over a
+  window reaching past the shear wave front (off-screen pyvista, :mod:`.render`).
+
+Colours as everywhere (:mod:`.style`): the quasi-static theory black, the FEM blue, the
+estimate orange dashed.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..study.dynamic import DynamicCase, DynamicStudyOutcome
+from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
+from .render import picture
+from .render import save as save_picture
+from .sections import (
+    BAR_GAP,
+    CONTACT_COLOUR,
+    _camera_2d,
+    _curve,
+    _draw_axes,
+    _label,
+    frame,
+    section,
+)
+from .style import (
+    APPROXIMATION_COLOUR,
+    EXACT_COLOUR,
+    FEM_COLOUR,
+    SECOND_COLOUR,
+    WIDTH,
+    save,
+    si_prefix,
+    styled,
+)
+
+__all__ = ["plot_dynamic_histories", "plot_dynamic_over_velocity", "plot_wave_field"]
+
+DECADES = 4
+"""The wave field is coloured by log10 of the von Mises stress over this many decades below
+its largest value in the window: the waves (kPa) are 2-4 decades below the contact's stress
+concentration (MPa) and would be invisible on a linear scale."""
+
+
+@styled
+def plot_dynamic_histories(case: DynamicCase, path: Path | str) -> Path:
+    """x(t) and P(t), dynamic FE against quasi-static, at the case's velocity (PNG)."""
+    result, quasi = case.result, case.quasi
+    history = quasi.history(401, times=np.linspace(0.0, quasi.t_y, 401))
+    end = max(quasi.t_y, result.t_contact if math.isfinite(result.t_contact) else 0.0)
+    shown = result.t <= 1.05 * end
+    t_scale, t_unit = si_prefix(quasi.t_y, "s")
+    x_scale, x_unit = si_prefix(quasi.x_c, "m")
+    figure = Figure(figsize=(WIDTH, 5.6), layout="constrained")
+    axes = figure.subplots(2, 1, sharex=True)
+    rows = (
+        (axes[0], history.x * x_scale, result.x * x_scale, f"Approach x ({x_unit})"),
+        (axes[1], history.P, result.force, "Contact force P (N)"),
+    )
+    for ax, quasi_values, dynamic_values, label in rows:
+        ax.plot(history.t * t_scale, quasi_values, color=EXACT_COLOUR, label="quasi-static (Ateb)")
+        ax.plot(
+            result.t[shown] * t_scale,
+            dynamic_values[shown],
+            color=FEM_COLOUR,
+            linestyle="--",
+            label="dynamic FEM (waves)",
+        )
+        ax.set_ylabel(label)
+        ax.set_ylim(bottom=min(0.0, float(np.min(dynamic_values[shown]))))
+    axes[0].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
+    axes[1].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
+    axes[0].legend(loc="upper right")
+    axes[1].set_xlabel(f"Time t ({t_unit}); dotted: quasi-static t_c")
+    axes[1].set_xlim(0.0, 1.05 * end * t_scale)
+    axes[0].set_title(
+        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, "
+        f"x_c/x_max = {quasi.x_c / result.x_max:.4f}, P_c/P_max = {quasi.P_c / result.P_max:.4f}",
+        fontsize=9,
+    )
+    return save(figure, path)
+
+
+@styled
+def plot_dynamic_over_velocity(outcome: DynamicStudyOutcome, path: Path | str) -> Path:
+    """e and 1 - e^2 with the first-order estimate, and the quasi-static / dynamic ratios."""
+    v = np.array(outcome.velocities)
+    results = [case.result for case in outcome.cases]
+    quasi = [case.quasi for case in outcome.cases]
+    curve = outcome.estimate_curve()
+    figure = Figure(figsize=(WIDTH, 6.4), layout="constrained")
+    (ax_e, ax_loss), (ax_ratio, ax_time) = figure.subplots(2, 2, sharex=True)
+    ax_e.plot(v, [r.restitution for r in results], "o", color=FEM_COLOUR, label="dynamic FEM")
+    ax_e.plot(
+        curve["velocity"],
+        curve["restitution"],
+        "--",
+        color=APPROXIMATION_COLOUR,
+        label=r"estimate $\sqrt{1-\lambda}$",
+    )
+    ax_e.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0, label="quasi-static")
+    ax_e.set_ylabel("Restitution e")
+    ax_e.legend(loc="lower left")
+    loss = [r.energy_radiated_fraction for r in results]
+    ax_loss.plot(v, loss, "o", color=FEM_COLOUR, label="dynamic FEM $1-e^2$")
+    ax_loss.plot(
+        curve["velocity"],
+        curve["energy_fraction"],
+        "--",
+        color=APPROXIMATION_COLOUR,
+        label=r"first-order $\lambda$",
+    )
+    ax_loss.set_ylabel("Energy left in the half-space")
+    ax_loss.set_ylim(bottom=0.0)
+    ax_loss.legend(loc="upper left")
+    ax_ratio.plot(
+        v, [q.P_c / r.P_max for q, r in zip(quasi, results, strict=True)], "o-",
+        color=SECOND_COLOUR, label=r"$P_c/P_{max}$",
+    )  # fmt: skip
+    ax_ratio.plot(
+        v, [q.x_c / r.x_max for q, r in zip(quasi, results, strict=True)], "s-",
+        color=FEM_COLOUR, label=r"$x_c/x_{max}$",
+    )  # fmt: skip
+    ax_time.plot(
+        v, [q.t_y / r.t_contact for q, r in zip(quasi, results, strict=True)], "o-",
+        color=FEM_COLOUR, label=r"$t_y/t_{contact}$",
+    )  # fmt: skip
+    for ax in (ax_ratio, ax_time):
+        ax.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0)
+        for level in (0.01, 0.05):
+            for sign in (1, -1):
+                ax.axhline(1 + sign * level, color="0.6", linewidth=0.7, linestyle=":")
+        ax.legend(loc="upper left" if ax is ax_ratio else "lower left")
+        ax.set_xlabel("Approach velocity v0 (m/s)")
+    ax_ratio.set_ylabel("Quasi-static / dynamic")
+    ax_time.set_ylabel("Quasi-static / dynamic\n(dotted: 1 %, 5 %)")
+    return save(figure, path)
+
+
+def _wave_colours(values: np.ndarray) -> FieldColours:
+    """log10 of the von Mises stress in Pa, :data:`DECADES` decades up to the rounded maximum."""
+    top = math.ceil(2.0 * math.log10(max(float(np.max(values)), 1e-12))) / 2.0
+    title = f"Von Mises\nlog10 {SIGMA}v (Pa)"
+    return FieldColours(1.0, title, top - DECADES, top, 0.5, MAGNITUDE)
+
+
+def plot_wave_field(
+    case: DynamicCase, time_requested: float, path: Path | str, *, reach: float = 1.2
+) -> Path:
+    """The von Mises stress on the r-z section at a kept time (PNG, 1600 x 1000 pixels).
+
+    Parameters
+    ----------
+    case : DynamicCase
+        A case run with ``snapshots`` holding ``time_requested``.
+    time_requested : float
+        The requested (key) time in s; the picture is at the nearest step.
+    path : path-like
+        PNG to write.
+    reach : float
+        Window width / the distance c_s t a shear wave travels by then.
+    """
+    actual, solution, _ = case.result.field_solution(time_requested)
+    c_s = case.estimate.shear_wave_speed
+    a_c = case.quasi.a_c
+    window = frame(a_c, reach * c_s * max(actual, case.quasi.t_c) / a_c)
+    cut = section(solution, window, deformed=False)
+    colours = _wave_colours(np.asarray(cut.point_data["von_mises"]))
+    floor = 10.0**colours.low
+    cut.point_data["shown"] = np.log10(np.maximum(cut.point_data["von_mises"], floor))
+    step = int(np.argmin(np.abs(case.result.t - actual)))
+    radius = float(case.result.contact_radius[step])
+    with picture() as plotter:
+        right = _camera_2d(plotter, window)
+        add_coloured(plotter, cut, colours, right + BAR_GAP, lighting=False)
+        lines = isolines(cut, colours)
+        if lines is not None:
+            plotter.add_mesh(lines, color="black", line_width=1.0, opacity=0.35)
+        if radius > 0:
+            plotter.add_mesh(
+                _curve(np.array([0.0, radius * window.scale]), np.zeros(2)),
+                color=CONTACT_COLOUR,
+                line_width=12,
+            )
+        _draw_axes(plotter, window)
+        front = c_s * actual * window.scale
+        angle = np.linspace(0.0, -0.5 * np.pi, 90)
+        arc_r, arc_z = front * np.cos(angle), front * np.sin(angle)
+        inside = (arc_r <= window.width) & (arc_z >= -window.depth)
+        if inside.sum() > 1:
+            plotter.add_mesh(_curve(arc_r[inside], arc_z[inside]), color="white", line_width=2)
+        state = (
+            f"contact radius {radius * 1e3:.2f} mm"
+            if radius > 0
+            else f"separated at {case.result.t_contact * 1e3:.2f} ms"
+        )
+        _label(
+            plotter,
+            f"t = {actual * 1e3:.2f} ms, {state} (white arc: shear front c_s t)",
+            (0.0, window.top),
+            (0, 20),
+            (0, 0),
+        )
+        plotter.renderer.ResetCameraClippingRange()  # the camera sits far in display units
+        return save_picture(plotter, path)

@@ -1,0 +1,604 @@
+"""The dynamic study: the elastodynamic FE impact against the quasi-static (Ateb) model over v0.
+
+One case (:func:`run_case`, also what ``shtaerman dynamic`` runs) is the exact quasi-static
+impact, the first-order radiation estimate (:mod:`shtaerman.theory.radiation`) and the dynamic
+FE impact (:mod:`shtaerman.fem.dynamic_contact`) for the same striker and half-space. A study
+(kind ``dynamic``, e.g. ``fem/dynamic.toml``) runs a case per approach velocity and states how
+far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_contact / 2::
+
+    kind = "dynamic"
+    name = "dynamic"                      # optional; default: the file's stem
+    description = "..."
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
+    [half_space] youngs_modulus = 7.5e6 (Pa), poisson_ratio = 0.5 (in [0, 0.5]),
+                 density = 1100 (kg/m^3)
+    [impact]     mass = 0.7 (kg), velocities = [...] (m/s, increasing, >= 2),
+                 example = 3.0 (m/s, one of the velocities: the figures and the findings)
+    [numerics]   the DynamicSettings fields (steps, size, margin, ...), optional
+    [quick]      velocities = [...] (must hold the example; default: the smallest velocity and
+                 the example) and the numerics of ``verify --quick`` (default: [numerics])
+    [tolerances] energy_balance = 1e-2 (of M v0^2/2), reflected = 1e-2 (of the radiated),
+                 estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
+                 estimate is below estimate_below = 0.08)
+
+The relative differences are quasi-static / dynamic - 1. The velocity up to which the
+quasi-static value holds to 1 % (5 %) is interpolated linearly between the computed velocities
+where |difference| crosses the level (the differences grow monotonically with v0).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Any
+
+import msgspec
+
+from ..fem.dynamic_contact import (
+    MAX_DOFS,
+    DynamicImpactResult,
+    DynamicSettings,
+    estimate_dofs,
+    run_dynamic_impact,
+)
+from ..theory.contact import PowerLawContact
+from ..theory.impact import ImpactResult, solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material, effective_modulus
+from ..theory.radiation import RadiationEstimate, radiation_estimate
+from ..validation import InputError
+from .checks import Check
+from .indentation import validate_fem_inputs
+from .schema import Poisson, Positive, Relative, StudyError, _decode, _Table, validate_name
+
+__all__ = [
+    "COMPARED",
+    "DynamicCase",
+    "DynamicStudy",
+    "DynamicStudyOutcome",
+    "DynamicTolerances",
+    "load_dynamic",
+    "run_case",
+    "run_dynamic_study",
+    "thresholds",
+]
+
+QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
+COMPARED = {
+    "x": ("x_c", "x_max", "maximum approach"),
+    "P": ("P_c", "P_max", "maximum force"),
+    "t": ("t_c", "t_half", "compression time (against t_contact / 2)"),
+}
+"""Compared quantity -> (quasi-static key, dynamic key, words)."""
+LEVELS = (0.01, 0.05)
+SEPARATION_SNAPSHOT = 1.05
+"""The wave field after separation is kept at this multiple of the quasi-static t_y."""
+"""Relative differences for which the study states the velocity limit."""
+
+Progress = Callable[[str], None]
+
+
+# --- one case: quasi-static, estimate, dynamic -------------------------------------------------
+
+
+@dataclass(frozen=True)
+class DynamicCase:
+    """One approach velocity: the quasi-static impact, the estimate and the dynamic FE impact."""
+
+    velocity: float
+    quasi: ImpactResult
+    estimate: RadiationEstimate
+    result: DynamicImpactResult
+
+    def differences(self) -> dict[str, float]:
+        """Quasi-static / dynamic - 1 for x, P and t (t_c against t_contact / 2; the same as
+        t_y against t_contact) and the measured loss against the estimate."""
+        dynamic = {
+            "x_max": self.result.x_max,
+            "P_max": self.result.P_max,
+            "t_half": 0.5 * self.result.t_contact,
+        }
+        out = {
+            key: getattr(self.quasi, qs) / dynamic[dyn] - 1.0
+            for key, (qs, dyn, _) in COMPARED.items()
+        }
+        out["loss_vs_estimate"] = (
+            self.result.energy_radiated_fraction / self.estimate.energy_fraction - 1.0
+        )
+        return out
+
+    def document(self) -> dict[str, object]:
+        """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract)."""
+        maxima = self.quasi.maxima()
+        return {
+            "quasi_static": {key: maxima[key] for key in QUASI_STATIC_KEYS},
+            "dynamic": self.result.summary(),
+            "radiation_estimate": self.estimate.to_dict(),
+            "mesh": self.result.mesh,
+            "timings": self.result.timings,
+            "parameters": self.result.parameters,
+        }
+
+
+def run_case(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings | None = None,
+    *,
+    snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
+) -> DynamicCase:
+    """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        The rigid striker's profile z = A r^n.
+    half_space : Material
+        E2 in Pa, nu2 in [0, 0.5].
+    density : float
+        Half-space density in kg/m^3.
+    mass, velocity : float
+        Striker mass in kg and approach velocity in m/s.
+    settings : DynamicSettings, optional
+        Numerical controls of the dynamic impact.
+    snapshots : callable, optional
+        Given the quasi-static impact, the times in s at which to keep the fields.
+    """
+    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    quasi = solve_impact(mass, velocity, law)
+    estimate = radiation_estimate(
+        mass,
+        velocity,
+        law.beta,
+        law.force_exponent,
+        density,
+        half_space.shear_modulus,
+        half_space.poisson_ratio,
+    )
+    times = tuple(snapshots(quasi)) if snapshots is not None else ()
+    result = run_dynamic_impact(
+        indenter, half_space, density, mass, velocity, settings, snapshot_times=times
+    )
+    return DynamicCase(velocity, quasi, estimate, result)
+
+
+# --- the study file ----------------------------------------------------------------------------
+
+
+class _DynIndenter(_Table):
+    shape_coefficient: Positive
+    exponent: Positive
+
+
+class _DynHalfSpace(_Table):
+    youngs_modulus: Positive
+    poisson_ratio: Poisson
+    density: Positive
+
+
+class _Numerics(_Table):
+    steps: Annotated[int, msgspec.Meta(gt=0)] | None = None
+    margin: Positive | None = None
+    size: Positive | None = None
+    axis_size: Positive | None = None
+    growth: Positive | None = None
+    domain: Positive | None = None
+    layer_start: Positive | None = None
+    layer_ramp: Positive | None = None
+    layer_rate: Annotated[float, msgspec.Meta(ge=0)] | None = None
+    tail: Annotated[float, msgspec.Meta(ge=0)] | None = None
+    layer_width: Positive | None = None
+    spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
+
+
+class _DynImpact(_Table):
+    mass: Positive
+    velocities: list[Positive]
+    example: Positive
+
+
+class _Quick(_Numerics):
+    velocities: list[Positive] | None = None
+
+
+class _DynTolerances(_Table):
+    energy_balance: Relative = 1e-2
+    reflected: Relative = 1e-2
+    estimate: Relative = 0.2
+    estimate_below: Relative = 0.08
+
+
+class _DynamicFile(_Table):
+    indenter: _DynIndenter
+    half_space: _DynHalfSpace
+    impact: _DynImpact
+    name: str | None = None
+    description: str = ""
+    numerics: _Numerics = _Numerics()
+    quick: _Quick = _Quick()
+    tolerances: _DynTolerances = _DynTolerances()
+
+
+@dataclass(frozen=True)
+class DynamicTolerances:
+    """Pass/fail limits of a dynamic study."""
+
+    energy_balance: float = 1e-2
+    """Largest energy balance error, of the initial kinetic energy."""
+    reflected: float = 1e-2
+    """Largest reflected energy, of the radiated energy."""
+    estimate: float = 0.2
+    """Largest |measured loss / first-order estimate - 1| ..."""
+    estimate_below: float = 0.08
+    """... checked where the estimated fraction is below this (first order in it)."""
+
+
+@dataclass(frozen=True)
+class DynamicStudy:
+    """A dynamic study: one striker and half-space, several approach velocities (SI units)."""
+
+    name: str
+    description: str
+    source: Path
+    indenter: PowerLawIndenter
+    half_space: Material
+    density: float
+    mass: float
+    velocities: tuple[float, ...]
+    example: float
+    """The velocity of the figures and the findings (one of ``velocities``)."""
+    settings: DynamicSettings
+    quick_velocities: tuple[float, ...]
+    quick_settings: DynamicSettings
+    tolerances: DynamicTolerances = field(default_factory=DynamicTolerances)
+    kind: str = "dynamic"
+
+
+def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
+    """``base`` with the table's numerics; an invalid value names its key."""
+    given = {
+        k: v
+        for k, v in msgspec.structs.asdict(raw).items()
+        if v is not None and k in DynamicSettings.__dataclass_fields__
+    }
+    for key, value in given.items():
+        try:
+            dataclasses.replace(base, **{key: value})
+        except InputError as error:
+            raise StudyError(f"{path}: key '{table}.{key}': {error}") from None
+    try:
+        settings = dataclasses.replace(base, **given)
+    except InputError as error:
+        raise StudyError(f"{path}: key '{table}': {error}") from None
+    if estimate_dofs(settings) > MAX_DOFS:
+        raise StudyError(
+            f"{path}: key '{table}.size': the mesh would have about {estimate_dofs(settings)} "
+            f"dofs, above the limit {MAX_DOFS}; coarsen size or growth"
+        )
+    return settings
+
+
+def _velocities(path: Path, key: str, values: list[float], example: float) -> tuple[float, ...]:
+    if len(values) < 2 or any(b <= a for a, b in itertools.pairwise(values)):
+        raise StudyError(
+            f"{path}: key '{key}': expected a list of at least 2 increasing velocities > 0 "
+            f"(m/s), got {values!r}"
+        )
+    if example not in values:
+        raise StudyError(
+            f"{path}: key '{key}': expected to hold impact.example = {example!r} m/s, "
+            f"got {values!r}"
+        )
+    return tuple(values)
+
+
+def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
+    """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
+    raw: _DynamicFile = _decode(path, data, _DynamicFile)
+    try:
+        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
+    except InputError as error:
+        raise StudyError(f"{path}: key 'name': {error}") from None
+    indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
+    half_space = Material(raw.half_space.youngs_modulus, raw.half_space.poisson_ratio)
+    try:
+        validate_fem_inputs(indenter, half_space)
+    except InputError as error:
+        key = "indenter.exponent" if "exponent" in str(error) else "half_space.poisson_ratio"
+        raise StudyError(f"{path}: key '{key}': {error}") from None
+    example = raw.impact.example
+    velocities = _velocities(path, "impact.velocities", raw.impact.velocities, example)
+    quick = raw.quick.velocities
+    if quick is None:  # the smallest velocity and the example (or the example and the largest)
+        quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
+    settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
+    return [
+        DynamicStudy(
+            name=name,
+            description=raw.description,
+            source=path,
+            indenter=indenter,
+            half_space=half_space,
+            density=raw.half_space.density,
+            mass=raw.impact.mass,
+            velocities=velocities,
+            example=example,
+            settings=settings,
+            quick_velocities=_velocities(path, "quick.velocities", quick, example),
+            quick_settings=_settings(path, "quick", raw.quick, settings),
+            tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        )
+    ]
+
+
+# --- running a study ---------------------------------------------------------------------------
+
+
+def thresholds(velocities: Sequence[float], differences: Sequence[float], level: float) -> dict:
+    """Up to which velocity |difference| <= level, interpolated linearly between the points.
+
+    Returns ``{"velocity": v or None, "bound": "interpolated" | "all" | "none"}``: "all" when
+    every computed velocity holds (``velocity`` is then the largest computed, a lower bound),
+    "none" when already the smallest does not (``velocity`` None).
+    """
+    size = [abs(d) for d in differences]
+    if size[0] > level:
+        return {"velocity": None, "bound": "none"}
+    for (v0, d0), (v1, d1) in itertools.pairwise(zip(velocities, size, strict=True)):
+        if d1 > level:
+            return {"velocity": v0 + (level - d0) * (v1 - v0) / (d1 - d0), "bound": "interpolated"}
+    return {"velocity": velocities[-1], "bound": "all"}
+
+
+@dataclass(frozen=True)
+class DynamicStudyOutcome:
+    """A dynamic study's cases, checks and summary (SI units)."""
+
+    study: DynamicStudy
+    cases: tuple[DynamicCase, ...]
+    checks: list[Check]
+    seconds: float
+    quick: bool = False
+    cpu_seconds: float = math.nan
+
+    @property
+    def passed(self) -> bool:
+        """Whether every check passed."""
+        return all(check.passed for check in self.checks)
+
+    @property
+    def example(self) -> DynamicCase:
+        """The case at the study's example velocity."""
+        return next(case for case in self.cases if case.velocity == self.study.example)
+
+    @property
+    def velocities(self) -> list[float]:
+        return [case.velocity for case in self.cases]
+
+    def estimate_curve(self, points: int = 60) -> dict[str, list[float]]:
+        """The first-order estimate over the study's velocity range: ``velocity`` (m/s),
+        ``energy_fraction`` lambda and ``restitution`` sqrt(1 - lambda)."""
+        study, low, high = self.study, self.velocities[0], self.velocities[-1]
+        law = PowerLawContact(study.indenter, effective_modulus(RIGID, study.half_space))
+        curve: dict[str, list[float]] = {"velocity": [], "energy_fraction": [], "restitution": []}
+        for i in range(points):
+            v = low + (high - low) * i / (points - 1)
+            estimate = radiation_estimate(
+                study.mass,
+                v,
+                law.beta,
+                law.force_exponent,
+                study.density,
+                study.half_space.shear_modulus,
+                study.half_space.poisson_ratio,
+            )
+            curve["velocity"].append(v)
+            curve["energy_fraction"].append(estimate.energy_fraction)
+            curve["restitution"].append(estimate.restitution)
+        return curve
+
+    def limits(self) -> dict[str, dict[str, dict]]:
+        """Per compared quantity (x, P, t, and "all": the worst of them) and level ("1%",
+        "5%"): the velocity limit of :func:`thresholds`."""
+        rows = {key: [case.differences()[key] for case in self.cases] for key in COMPARED}
+        rows["all"] = [max(abs(rows[k][i]) for k in COMPARED) for i in range(len(self.cases))]
+        return {
+            key: {
+                f"{100 * level:g}%": thresholds(self.velocities, values, level) for level in LEVELS
+            }
+            for key, values in rows.items()
+        }
+
+    def findings(self) -> list[str]:
+        """Sentences for the report's opening section."""
+        case, study = self.example, self.study
+        d, dyn, quasi = case.differences(), case.result, case.quasi
+        found = [
+            f"At the paper's example (M = {study.mass:g} kg, v0 = {case.velocity:g} m/s, "
+            f"rubber density {study.density:g} kg/m^3 assumed) the quasi-static model is off by "
+            f"{100 * d['x']:+.2f} % in x_c ({quasi.x_c * 1e3:.3f} mm against the dynamic x_max "
+            f"{dyn.x_max * 1e3:.3f} mm), {100 * d['P']:+.2f} % in P_c ({quasi.P_c:.1f} N against "
+            f"P_max {dyn.P_max:.1f} N) and {100 * d['t']:+.2f} % in t_c ({quasi.t_c * 1e3:.3f} ms "
+            f"against half the dynamic contact time, {0.5e3 * dyn.t_contact:.3f} ms; the same "
+            f"as t_y against t_contact); the dynamic maximum approach comes at "
+            f"{dyn.t_x_max * 1e3:.3f} ms.",
+            f"The striker rebounds with e = {dyn.restitution:.4f} (quasi-static: 1): "
+            f"{100 * dyn.energy_radiated_fraction:.1f} % of its kinetic energy stays in the "
+            f"half-space as elastic waves (first-order estimate "
+            f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f}).",
+        ]
+        limits = self.limits()
+        words = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
+        for level in ("1%", "5%"):
+            parts = [
+                f"{words[key]} {_limit_text(limits[key][level], self.velocities[0])}"
+                for key in words
+            ]
+            found.append(
+                f"The quasi-static values hold to {level[:-1]} % of the dynamic ones: "
+                + "; ".join(parts)
+                + f" (computed at v0 = {', '.join(f'{v:g}' for v in self.velocities)} m/s; "
+                "the limits are interpolated linearly between them)."
+            )
+        return found
+
+    def tables(self) -> list[dict[str, object]]:
+        """The report's tables (strings)."""
+        header = [
+            "v0 (m/s)",
+            "x_max (mm)",
+            "x_c/x_max-1",
+            "P_max (N)",
+            "P_c/P_max-1",
+            "t_contact (ms)",
+            "t_y/t_contact-1",
+            "e",
+            "1-e^2",
+            "estimate",
+            "balance",
+            "reflected",
+        ]
+        rows = []
+        for case in self.cases:
+            r, d = case.result, case.differences()
+            rows.append(
+                [
+                    f"{case.velocity:g}",
+                    f"{r.x_max * 1e3:.4f}",
+                    f"{100 * d['x']:+.2f} %",
+                    f"{r.P_max:.1f}",
+                    f"{100 * d['P']:+.2f} %",
+                    f"{r.t_contact * 1e3:.4f}",
+                    f"{100 * d['t']:+.2f} %",
+                    f"{r.restitution:.4f}",
+                    f"{r.energy_radiated_fraction:.4f}",
+                    f"{case.estimate.energy_fraction:.4f}",
+                    f"{r.energy_balance_error:.1e}",
+                    f"{r.reflected_energy_fraction:.1e}",
+                ]
+            )
+        limits = self.limits()
+        names = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
+        limit_rows = [
+            [
+                names[key],
+                *(_limit_text(limits[key][level], self.velocities[0]) for level in ("1%", "5%")),
+            ]
+            for key in names
+        ]
+        return [
+            {
+                "title": "Dynamic FE impact against the quasi-static model (differences: "
+                "quasi-static / dynamic - 1; estimate: first-order radiated fraction)",
+                "header": header,
+                "rows": rows,
+            },
+            {
+                "title": "Velocity up to which the quasi-static value holds (linear "
+                "interpolation between the computed velocities)",
+                "header": ["quantity", "to 1 %", "to 5 %"],
+                "rows": limit_rows,
+            },
+        ]
+
+    def document(self) -> dict[str, object]:
+        """The study's entry of results.json (without the common keys)."""
+        study, settings = self.study, self.settings
+        return {
+            "inputs": {
+                "shape_coefficient": study.indenter.shape_coefficient,
+                "exponent": study.indenter.exponent,
+                "E2": study.half_space.youngs_modulus,
+                "nu2": study.half_space.poisson_ratio,
+                "density2": study.density,
+                "mass": study.mass,
+                "velocities": self.velocities,
+                "example": study.example,
+            },
+            "settings": {k: v for k, v in dataclasses.asdict(settings).items()},
+            "cases": [
+                {"velocity": case.velocity, **case.document(), "differences": case.differences()}
+                for case in self.cases
+            ],
+            "limits": self.limits(),
+            "cpu_seconds": self.cpu_seconds,
+            "tables": self.tables(),
+            "findings": self.findings(),
+        }
+
+    @property
+    def settings(self) -> DynamicSettings:
+        return self.study.quick_settings if self.quick else self.study.settings
+
+
+def _limit_text(limit: dict, smallest: float) -> str:
+    if limit["bound"] == "none":
+        return f"not even at {smallest:g} m/s (the smallest v0 computed)"
+    if limit["bound"] == "all":
+        return f"up to at least {limit['velocity']:g} m/s (every v0 computed)"
+    return f"up to {limit['velocity']:.2f} m/s"
+
+
+def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
+    tol, checks = study.tolerances, []
+    for case in cases:
+        v, r = f"v0 = {case.velocity:g} m/s", case.result
+        checks.append(Check(f"energy balance {v}", r.energy_balance_error, tol.energy_balance))
+        checks.append(Check(f"reflected energy {v}", r.reflected_energy_fraction, tol.reflected))
+        if case.estimate.energy_fraction < tol.estimate_below:
+            checks.append(
+                Check(
+                    f"loss / first-order estimate - 1 {v}",
+                    case.differences()["loss_vs_estimate"],
+                    tol.estimate,
+                )
+            )
+    return checks
+
+
+def run_dynamic_study(
+    study: DynamicStudy, quick: bool = False, progress: Progress | None = None
+) -> DynamicStudyOutcome:
+    """Run the dynamic impact at every velocity of the study (``quick``: its quick variant).
+
+    The example velocity keeps the fields at the quasi-static t_c and at 1.05 t_y (the
+    dynamic contact lasts 0.3-1.5 % longer than t_y: the striker has separated by then) for
+    the wave-field pictures.
+    """
+    report = progress or (lambda _line: None)
+    start, cpu = time.perf_counter(), time.process_time()
+    velocities = study.quick_velocities if quick else study.velocities
+    settings = study.quick_settings if quick else study.settings
+    cases = []
+    for velocity in velocities:
+        report(f"{study.name}: dynamic impact at v0 = {velocity:g} m/s")
+        snapshots = (
+            (lambda q: (q.t_c, SEPARATION_SNAPSHOT * q.t_y)) if velocity == study.example else None
+        )
+        cases.append(
+            run_case(
+                study.indenter,
+                study.half_space,
+                study.density,
+                study.mass,
+                velocity,
+                settings,
+                snapshots=snapshots,
+            )
+        )
+    return DynamicStudyOutcome(
+        study=study,
+        cases=tuple(cases),
+        checks=_checks(study, cases),
+        seconds=time.perf_counter() - start,
+        quick=quick,
+        cpu_seconds=time.process_time() - cpu,
+    )

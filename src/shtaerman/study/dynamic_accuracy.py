@@ -1,0 +1,148 @@
+"""Error bars for the dynamic impact: a ladder refining mesh and time step together.
+
+Three runs with :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined` factors K/2,
+K/sqrt(2) and K (element sizes / sqrt(2) and time steps x sqrt(2) per level) and Richardson
+estimates (:mod:`.richardson`) of the finest run's x_max, P_max, t_contact and restitution.
+There is no exact solution to compare with here: the estimate is what the number carries.
+The coarse levels cost about 0.5 of the finest (dofs / 2 and steps / sqrt 2 per level).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from ..validation import validate_positive
+from .accuracy import LADDER_RATIO
+from .richardson import Estimate, richardson
+
+__all__ = ["DYNAMIC_ESTIMATED", "DynamicLadder", "complete_ladder", "run_dynamic_ladder"]
+
+DYNAMIC_ESTIMATED = ("x_max", "P_max", "t_contact", "restitution")
+"""The dynamic results that get an error estimate."""
+
+
+@dataclass(frozen=True)
+class DynamicLadder:
+    """Three dynamic runs, coarse to fine, and the estimates of the finest.
+
+    Attributes
+    ----------
+    refines : tuple of float
+        Refinement factors of the levels.
+    settings : tuple of DynamicSettings
+        The numerical settings of the levels.
+    results : tuple of DynamicImpactResult
+        The runs; ``results[-1]`` is the answer.
+    estimates : dict of str to Estimate
+        Per quantity of :data:`DYNAMIC_ESTIMATED`.
+    """
+
+    refines: tuple[float, ...]
+    settings: tuple[DynamicSettings, ...]
+    results: tuple[DynamicImpactResult, ...]
+    estimates: dict[str, Estimate]
+
+    @property
+    def finest(self) -> DynamicImpactResult:
+        """The finest run: the reported numbers."""
+        return self.results[-1]
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details."""
+        return {
+            "error_estimate": {k: e.error for k, e in self.estimates.items()},
+            "extrapolated": {k: e.extrapolated for k, e in self.estimates.items()},
+            "estimate_details": {k: e.to_dict() for k, e in self.estimates.items()},
+            "mesh_ladder": [
+                {
+                    "refine": refine,
+                    "dofs": int(result.mesh["dofs"]),
+                    "steps": level.steps,
+                    "seconds": float(result.timings.get("total", float("nan"))),
+                }
+                for refine, level, result in zip(
+                    self.refines, self.settings, self.results, strict=True
+                )
+            ],
+        }
+
+
+def complete_ladder(
+    finest: DynamicImpactResult,
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings,
+    *,
+    refine: float = 1.0,
+    progress: Callable[[str], None] | None = None,
+) -> DynamicLadder:
+    """The ladder of a run already made with ``settings``: the two coarser levels
+    (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the estimates."""
+    report = progress or (lambda _line: None)
+    coarse = [settings.refined(1.0 / LADDER_RATIO**2), settings.refined(1.0 / LADDER_RATIO)]
+    results = []
+    for level in coarse:
+        result = run_dynamic_impact(indenter, half_space, density, mass, velocity, level)
+        report(f"dynamic ladder: {result.mesh['dofs']} dofs, {level.steps} steps")
+        results.append(result)
+    results.append(finest)
+    estimates = {
+        key: richardson([getattr(r, key) for r in results], LADDER_RATIO)
+        for key in DYNAMIC_ESTIMATED
+    }
+    refines = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine)
+    return DynamicLadder(refines, (*coarse, settings), tuple(results), estimates)
+
+
+def run_dynamic_ladder(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings | None = None,
+    *,
+    refine: float = 1.0,
+    progress: Callable[[str], None] | None = None,
+    **options: object,
+) -> DynamicLadder:
+    """The dynamic impact at refine / 2, refine / sqrt(2) and refine, with error estimates.
+
+    Parameters
+    ----------
+    indenter, half_space, density, mass, velocity, settings
+        As for :func:`shtaerman.fem.dynamic_contact.run_dynamic_impact` (SI units).
+    refine : float
+        Refinement of the finest level (1: ``settings`` as given).
+    progress : callable, optional
+        Receives one line per level.
+    **options
+        Passed to the finest run (e.g. ``snapshot_times``).
+
+    Returns
+    -------
+    DynamicLadder
+    """
+    refine = validate_positive("refine", refine)
+    finest = (DynamicSettings() if settings is None else settings).refined(refine)
+    for factor in (1.0 / LADDER_RATIO**2, 1.0 / LADDER_RATIO):
+        finest.refined(factor)  # every level checked before any run
+    result = run_dynamic_impact(indenter, half_space, density, mass, velocity, finest, **options)
+    return complete_ladder(
+        result,
+        indenter,
+        half_space,
+        density,
+        mass,
+        velocity,
+        finest,
+        refine=refine,
+        progress=progress,
+    )

@@ -1,0 +1,78 @@
+"""``shtaerman verify`` on the sweep engine: every study one dask task, the cores all busy.
+
+Each task runs its study and writes the study's files and figures into the staging folder
+(the workers of the local cluster share this machine's disk) and returns its results.json
+entry; this process collects the entries as they finish, then writes results.json and the
+reports. The folder is staged and moved into place only when complete, as in the sequential
+:func:`shtaerman.output.folder.run_verification`, which runs the same steps in this process.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from ..output.files import staged_folder
+from ..output.folder import finish_verification, study_entry
+from ..study.run import run_study
+from .engine import dask_client
+
+__all__ = ["run_verification_on_dask", "verify_task"]
+
+
+def verify_task(study: Any, stage: str, quick: bool) -> dict[str, object]:
+    """One study, run and written (a dask task): its results.json entry."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        return study_entry(run_study(study, quick=quick), Path(stage))
+
+
+def run_verification_on_dask(
+    studies: list[Any],
+    out: Path,
+    *,
+    quick: bool = False,
+    workers: int | None = None,
+    force: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> dict[str, object]:
+    """Run the studies as dask tasks on a local cluster and write ``out``; the results document.
+
+    Parameters
+    ----------
+    studies : list
+        Loaded studies of any kind.
+    out : Path
+        The result folder (new, or replaced with ``force``).
+    quick : bool
+        Coarse settings (CI).
+    workers : int, optional
+        Worker processes (default: the cores).
+    progress : callable, optional
+        Receives one line per finished study.
+    """
+    from distributed import as_completed
+
+    report = progress or (lambda _line: None)
+    advance = getattr(report, "advance", lambda: None)
+    with staged_folder(out, force=force) as stage:
+        with dask_client(workers) as client:
+            report(f"{len(studies)} studies on {len(client.scheduler_info()['workers'])} workers")
+            futures = {
+                client.submit(verify_task, study, str(stage), quick, pure=False): study.name
+                for study in studies
+            }
+            entries = {}
+            for future in as_completed(futures):
+                entry = future.result()
+                name = futures[future]
+                entries[name] = entry
+                advance()
+                verdict = "PASS" if entry["passed"] else "FAIL"
+                report(
+                    f"{name}: {verdict} ({entry['seconds']:.1f} s) [{len(entries)}/{len(futures)}]"
+                )
+        ordered = {study.name: entries[study.name] for study in studies}
+        return finish_verification(stage, ordered, quick=quick)

@@ -1,0 +1,65 @@
+"""Error bars of the dynamic impact: the mesh-and-time-step ladder (coarse settings, ~5 s)."""
+
+import json
+import math
+
+import pytest
+
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.study.accuracy import LADDER_RATIO
+from shtaerman.study.dynamic_accuracy import DYNAMIC_ESTIMATED, run_dynamic_ladder
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.validation import InputError
+
+COARSE = DynamicSettings(steps=160, size=1 / 30, axis_size=1 / 300, growth=0.3, domain=1e3)
+
+
+def test_refined_settings_shrink_h_and_dt_together():
+    finer = COARSE.refined(2.0)
+    assert (finer.size, finer.axis_size) == pytest.approx((COARSE.size / 2, COARSE.axis_size / 2))
+    assert finer.growth == pytest.approx(COARSE.growth / 2) and finer.steps == 2 * COARSE.steps
+    assert (finer.margin, finer.domain) == (COARSE.margin, COARSE.domain)
+    with pytest.raises(InputError, match="refine must be > 0"):
+        COARSE.refined(0.0)
+    with pytest.raises(InputError, match="steps"):
+        COARSE.refined(0.25)  # 40 steps per impact cannot resolve it
+
+
+@pytest.fixture(scope="module")
+def ladder():
+    return run_dynamic_ladder(
+        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE
+    )
+
+
+def test_ladder_levels_and_estimates(ladder):
+    assert ladder.refines == pytest.approx((1 / LADDER_RATIO**2, 1 / LADDER_RATIO, 1.0))
+    steps = [level.steps for level in ladder.settings]
+    assert steps == [80, 113, 160]
+    dofs = [result.mesh["dofs"] for result in ladder.results]
+    assert dofs[0] < dofs[1] < dofs[2]
+    assert set(ladder.estimates) == set(DYNAMIC_ESTIMATED)
+    for key, estimate in ladder.estimates.items():
+        assert estimate.value == getattr(ladder.finest, key)  # the finest run is the answer
+        assert math.isfinite(estimate.error) and estimate.error >= 0
+    # the coarse ladder's x_max and restitution are converged well below a per cent
+    assert ladder.estimates["x_max"].error < 1e-2
+    assert ladder.estimates["restitution"].error < 1e-2
+    document = ladder.to_dict()
+    assert [level["steps"] for level in document["mesh_ladder"]] == steps
+
+
+def test_cli_json_carries_the_estimates(capsys):
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--json", "--steps", "100", "--mesh-size", "0.05"]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert set(report["error_estimate"]) == set(DYNAMIC_ESTIMATED)
+    assert [level["steps"] for level in report["mesh_ladder"]] == [50, 71, 100]
+    assert report["extrapolated"]["x_max"] == pytest.approx(report["dynamic"]["x_max"], rel=1e-2)
+    assert main([*argv, "--no-estimate"]) == 0
+    assert "error_estimate" not in json.loads(capsys.readouterr().out)
+    assert main(["dynamic", "--steps", "60"]) == 2  # its coarsest level would have 30 steps
+    assert "--no-estimate" in capsys.readouterr().err

@@ -1,0 +1,276 @@
+"""The dynamic study kind: loading (errors name file and key), running, its document, its files.
+
+One quick run of the shipped ``fem/dynamic.toml`` (two velocities, 60 steps per t_y, mesh size
+1/20: about 2 s CPU) is shared by the module; the physics of the dynamic FE impact itself is
+tested in test_fem_dynamic.py.
+"""
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from matplotlib import colormaps
+from PIL import Image
+
+from shtaerman.output.dynamic import SUMMARY_HEADER, write_dynamic_study
+from shtaerman.output.report import report_context, results_document, study_document
+from shtaerman.plots import style
+from shtaerman.plots.fields import MAGNITUDE
+from shtaerman.plots.sections import CONTACT_COLOUR
+from shtaerman.study.dynamic import DynamicStudy, thresholds
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import StudyError, find_study, load_study
+from shtaerman.sweep import KINDS, SweepError, load_sweep
+from shtaerman.sweep.spec import find_sweep
+
+MINIMAL = """\
+kind = "dynamic"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+youngs_modulus = 7.5e6
+poisson_ratio = 0.5
+density = 1100.0
+[impact]
+mass = 0.7
+velocities = [1.0, 3.0]
+example = 3.0
+"""
+
+
+def error_of(tmp_path: Path, text: str) -> str:
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(StudyError) as error:
+        load_study(path)
+    message = str(error.value)
+    assert message.startswith(f"{path}: ")  # every message names the file first
+    return message
+
+
+@pytest.fixture(scope="module")
+def outcome():
+    [study] = load_study(find_study("dynamic"))
+    return run_study(study, quick=True)
+
+
+@pytest.fixture(scope="module")
+def written(outcome, tmp_path_factory):
+    root = tmp_path_factory.mktemp("dynamic-study")
+    files, figures = write_dynamic_study(outcome, root / outcome.study.name, root)
+    return root, files, figures
+
+
+def test_shipped_study_is_the_papers_striker_over_v0():
+    [study] = load_study(find_study("dynamic"))
+    assert isinstance(study, DynamicStudy) and study.kind == "dynamic"
+    assert (study.indenter.shape_coefficient, study.indenter.exponent) == (5.0, 1.5)
+    assert (study.half_space.youngs_modulus, study.half_space.poisson_ratio) == (7.5e6, 0.5)
+    assert (study.density, study.mass, study.example) == (1100.0, 0.7, 3.0)
+    assert study.velocities == (0.5, 1.0, 2.0, 3.0, 4.0, 5.0)
+    assert study.quick_velocities == (1.0, 3.0) and study.quick_settings.steps == 60
+
+
+def test_minimal_file_takes_defaults(tmp_path):
+    path = tmp_path / "mine.toml"
+    path.write_text(MINIMAL)
+    [study] = load_study(path)
+    assert study.name == "mine" and study.settings.steps == 400  # DynamicSettings defaults
+    assert study.quick_velocities == (1.0, 3.0)
+    assert study.tolerances.energy_balance == 1e-2 and study.tolerances.estimate == 0.2
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "key"),
+    [
+        ("density = 1100.0", "density = -1.0", "half_space.density"),
+        ("density = 1100.0", "", "half_space.density"),  # required
+        ("mass = 0.7", "mass = 0.7\nvelocity = 3.0", "impact.velocity"),  # unknown
+        ("velocities = [1.0, 3.0]", "velocities = [3.0, 1.0]", "impact.velocities"),
+        ("velocities = [1.0, 3.0]", "velocities = [1.0, 2.0]", "impact.velocities"),  # example
+        ("exponent = 1.5", "exponent = 1.0", "indenter.exponent"),  # the FEM needs n > 1
+        ("poisson_ratio = 0.5", "poisson_ratio = -0.2", "half_space.poisson_ratio"),
+        ("example = 3.0", "example = 3.0\n[numerics]\nsteps = 10", "numerics.steps"),
+        ("example = 3.0", "example = 3.0\n[numerics]\nsize = 0.5", "numerics.size"),
+        ("example = 3.0", "example = 3.0\n[numerics]\nstep = 100", "numerics.step"),
+        ("example = 3.0", "example = 3.0\n[numerics]\nsize = 1e-4", "numerics.size"),  # dofs
+        ("example = 3.0", "example = 3.0\n[quick]\nvelocities = [1.0]", "quick.velocities"),
+        ("example = 3.0", "example = 3.0\n[tolerances]\nestimate = 2.0", "tolerances.estimate"),
+    ],
+)
+def test_load_errors_name_file_and_key(tmp_path, old, new, key):
+    assert old in MINIMAL
+    message = error_of(tmp_path, MINIMAL.replace(old, new))
+    assert f"key '{key}'" in message and "\n" not in message
+
+
+def test_unknown_kind_is_named(tmp_path):
+    message = error_of(tmp_path, MINIMAL.replace('"dynamic"', '"dynamo"'))
+    assert "key 'kind'" in message and "dynamic" in message
+
+
+def test_thresholds_interpolate_between_velocities():
+    v = [1.0, 2.0, 3.0]
+    assert thresholds(v, [0.005, -0.015, 0.03], 0.01) == {"velocity": 1.5, "bound": "interpolated"}
+    assert thresholds(v, [0.02, 0.03, 0.04], 0.01) == {"velocity": None, "bound": "none"}
+    assert thresholds(v, [0.001, 0.002, 0.003], 0.01) == {"velocity": 3.0, "bound": "all"}
+
+
+def test_quick_study_passes_its_checks(outcome):
+    assert outcome.passed, [c for c in outcome.checks if not c.passed]
+    names = [check.name for check in outcome.checks]
+    # per velocity: balance and reflection; the estimate only below lambda = 0.08 (1 m/s: 0.069)
+    assert len(names) == 5 and "loss / first-order estimate - 1 v0 = 1 m/s" in names
+    # quick settings: the whole study in seconds (2 velocities, ~1 s CPU each; 5 s budget)
+    assert outcome.cpu_seconds < 10.0
+
+
+def test_paper_example_against_the_quasi_static_impact(outcome):
+    d = outcome.example.differences()
+    # the default study (200 steps, size 1/40) gives +2.98 %, +4.85 %, -1.02 %; the quick
+    # settings are within 0.2 % of those (measured +3.00, +4.68, -0.95)
+    assert d["x"] == pytest.approx(0.0298, abs=2e-3)
+    assert d["P"] == pytest.approx(0.0485, abs=4e-3)
+    assert d["t"] == pytest.approx(-0.0102, abs=2e-3)
+    assert outcome.example.result.restitution == pytest.approx(0.9266, abs=1e-3)
+
+
+def test_document_is_json_with_tables_and_findings(outcome):
+    document = json.loads(json.dumps(outcome.document(), allow_nan=True))
+    assert {"inputs", "settings", "cases", "limits", "tables", "findings"} <= set(document)
+    assert [case["velocity"] for case in document["cases"]] == [1.0, 3.0]
+    case = document["cases"][1]
+    assert {"quasi_static", "dynamic", "radiation_estimate", "mesh", "timings"} <= set(case)
+    assert set(document["limits"]) == {"x", "P", "t", "all"}
+    for table in document["tables"]:
+        assert all(len(row) == len(table["header"]) for row in table["rows"])
+        assert all(isinstance(cell, str) for row in table["rows"] for cell in row)
+    findings = " ".join(document["findings"])
+    assert "3 m/s" in findings and "x_c" in findings and "interpolated" in findings
+    assert "1100 kg/m^3 assumed" in findings
+
+
+def test_files_are_written_with_units(outcome, written):
+    root, files, _ = written
+    assert set(files) == {"history_v1", "history_v3", "summary"}
+    with (root / files["history_v3"]).open() as stream:
+        rows = list(csv.reader(stream))
+    assert rows[0] == ["t [s]", "x [m]", "v [m/s]", "P [N]", "a [m]", "p0 [Pa]"]
+    assert len(rows) - 1 == outcome.example.result.t.size
+    with (root / files["summary"]).open() as stream:
+        summary = list(csv.DictReader(stream))
+    assert list(summary[0]) == list(SUMMARY_HEADER)
+    assert [float(row["v0 [m/s]"]) for row in summary] == [1.0, 3.0]
+    assert float(summary[1]["restitution [1]"]) == outcome.example.result.restitution
+
+
+def pixels(path: Path) -> np.ndarray:
+    return np.asarray(Image.open(path).convert("RGB"), dtype=int)
+
+
+def count(image: np.ndarray, colour: str, tolerance: int = 16) -> int:
+    rgb = np.array([int(colour[i : i + 2], 16) for i in (1, 3, 5)])
+    return int((np.abs(image - rgb).max(axis=2) <= tolerance).sum())
+
+
+def assert_not_blank(image: np.ndarray) -> None:
+    assert image.std() > 12.0  # a blank image has 0
+    packed = (image[..., 0] << 16) | (image[..., 1] << 8) | image[..., 2]
+    assert np.unique(packed).size > 300
+
+
+def test_figures_are_not_blank_and_show_their_curves(written):
+    root, _, figures = written
+    assert len(figures) == 4
+    by_stem = {Path(path).stem: root / path for path in figures.values()}
+    history = pixels(by_stem["dynamic_history"])
+    assert_not_blank(history)
+    assert count(history, style.FEM_COLOUR) > 1000 and count(history, style.EXACT_COLOUR) > 1000
+    over_v = pixels(by_stem["dynamic_over_velocity"])
+    assert_not_blank(over_v)
+    assert count(over_v, style.APPROXIMATION_COLOUR) > 300  # the estimate's dashed line
+    assert count(over_v, style.FEM_COLOUR) > 300 and count(over_v, style.SECOND_COLOUR) > 300
+
+
+@pytest.mark.parametrize("stem", ["wave_field_tc", "wave_field_separation"])
+def test_wave_field_pictures_show_the_field(written, stem):
+    root, _, figures = written
+    [path] = [root / p for p in figures.values() if Path(p).stem == stem]
+    image = pixels(path)
+    assert image.shape == (1000, 1600, 3)
+    assert_not_blank(image)
+    # the section is coloured by the magnitude map over a large area (not only the colour bar)
+    ramp = colormaps[MAGNITUDE](np.linspace(0.0, 1.0, 32))[:, :3] * 255
+    coloured = sum(count(image, "#{:02x}{:02x}{:02x}".format(*map(round, c)), 10) for c in ramp)
+    assert coloured > 0.05 * image.shape[0] * image.shape[1]
+    contact = count(image, CONTACT_COLOUR)
+    assert (contact > 100) if stem == "wave_field_tc" else (contact == 0)
+
+
+def test_report_lists_the_kind_generically(outcome, written):
+    _, files, figures = written
+    entry = study_document(outcome, files, None, figures)
+    results = results_document({outcome.study.name: entry}, quick=True)
+    study = results["studies"]["dynamic"]
+    assert study["kind"] == "dynamic" and study["passed"] is True
+    context = report_context(results)
+    assert any("3 m/s" in sentence for sentence in context["findings"])
+    assert all(math.isfinite(c["value"]) for c in study["checks"])
+
+
+# --- the sweep kind "dynamic" (the validity map's computation) ----------------------------------
+
+TINY_SWEEP = """\
+name = "tiny"
+kind = "dynamic"
+[parameters]
+steps = 60
+mesh_size = 0.05
+[axes]
+velocity = [3.0]
+density2 = [1100.0]
+"""
+
+
+def sweep_error(tmp_path: Path, text: str) -> str:
+    path = tmp_path / "sweep.toml"
+    path.write_text(text)
+    with pytest.raises(SweepError) as caught:
+        load_sweep(path)
+    return str(caught.value)
+
+
+def test_sweep_kind_checks_inputs_up_front(tmp_path):
+    assert "density2 must be" in sweep_error(tmp_path, TINY_SWEEP.replace("[1100.0]", "[-1.0]"))
+    assert "steps" in sweep_error(tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 10"))
+    assert "exponent must be > 1" in sweep_error(
+        tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 60\nexponent = 0.9")
+    )
+
+
+def test_sweep_kind_case_matches_the_study(tmp_path, outcome):
+    [case] = load_sweep(_tiny(tmp_path)).cases()
+    kind = KINDS["dynamic"]
+    outputs = kind.case(case.params)
+    assert set(outputs) == set(kind.outputs)
+    # the same inputs and settings as the quick study's 3 m/s case: identical numbers
+    example = outcome.example
+    assert outputs["difference_x"] == example.differences()["x"]
+    assert outputs["restitution"] == example.result.restitution
+    assert outputs["t_y"] == example.quasi.t_y
+    assert outputs["difference_worst"] == max(abs(example.differences()[k]) for k in "xPt")
+
+
+def _tiny(tmp_path: Path) -> Path:
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY_SWEEP)
+    return path
+
+
+def test_validity_sweep_is_shipped():
+    spec = load_sweep(find_sweep("validity"))
+    assert spec.kind == "dynamic" and len(spec.cases()) == 18
