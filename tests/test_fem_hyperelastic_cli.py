@@ -74,6 +74,12 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
     assert "Neo-Hookean contact" in out and "energy (J)" in out and "Newton" in out
     saved = json.loads((folder / "contact.json").read_text())
     assert saved["model"] == "neo-hookean" and saved["steps"][0]["strain_energy"] > 0
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "contact.json",
+        "field_max_depth.vtu",
+        "finite_curve.csv",
+    ]
+    assert (folder / "finite_curve.csv").read_text().startswith("depth [m],force [N],")
 
 
 @pytest.mark.parametrize(

@@ -24,6 +24,8 @@ def test_shipped_studies_cover_the_issue():
     assert names == [
         "compressible",
         "dynamic",
+        "finite-strain-nu0.5",
+        "finite-strain-nu0.3",
         "hertz",
         "paper",
         "table4-A2",

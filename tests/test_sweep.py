@@ -15,7 +15,7 @@ import sweep_probe  # noqa: F401  (registers the kind "probe")
 from matplotlib.image import imread
 
 from shtaerman.cli import main
-from shtaerman.sweep import KINDS, SweepError, load_sweep, parse_sweep
+from shtaerman.sweep import SweepError, load_sweep, parse_sweep
 from shtaerman.sweep.figures import sweep_figures
 from shtaerman.sweep.spec import find_sweep, shipped_sweeps
 
@@ -106,13 +106,6 @@ def test_name_of_100_characters_is_accepted(tmp_path):
 
 def test_name_must_be_a_string(tmp_path):
     assert "name must be a plain folder name" in error_of(tmp_path, IMPACT.replace('"grid"', "7"))
-
-
-@pytest.mark.parametrize("kind", ["finite-strain"])
-def test_kinds_being_written_are_registered_but_refused(tmp_path, kind):
-    assert kind in KINDS
-    message = error_of(tmp_path, f'name = "x"\nkind = "{kind}"\n[axes]\nvelocity = [1.0]\n')
-    assert f"kind: kind {kind!r} is not available yet" in message
 
 
 def test_contact_inputs_are_checked_up_front(tmp_path):

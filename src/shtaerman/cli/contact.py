@@ -165,16 +165,23 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_finite(args: argparse.Namespace, indenter, half_space) -> int:
-    """``--model neo-hookean``: the finite-strain curve (contact.json only with --out)."""
+    """``--model neo-hookean``: the finite-strain curve; with --out also contact.json, the
+    curve CSV and the deformed fields at the largest depth (VTU)."""
+    from ..output.finite import write_finite_curve
     from ..study.finite_indentation import run_finite_study
 
     depths, mesh = _depths(args.depths), mesh_settings(args, FINITE_MESH)
+    refine = validate_positive("refine", args.refine)
+    if refine != 1.0:
+        mesh = mesh.refined(refine)  # the whole size field, as for the linear model
     if args.solver == "pardiso":
         raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'")
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    report = run_finite_study(indenter, half_space, depths, mesh).to_dict()
+    result = run_finite_study(indenter, half_space, depths, mesh)
+    report = result.to_dict()
     if out is not None:
         with staged_folder(out) as stage:
+            write_finite_curve(result, stage)
             (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
     if args.json:
         print_json(report)

@@ -12,7 +12,12 @@ from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
-from ..fem.finite_contact import FINITE_MESH, FiniteContactCurve, run_finite_indentation
+from ..fem.finite_contact import (
+    FINITE_MESH,
+    FiniteContactCurve,
+    FiniteContactStep,
+    run_finite_indentation,
+)
 from ..fem.fit import PowerLawFit, fit_power_law
 from ..fem.mesh import MeshSettings
 from ..theory.contact import PowerLawContact
@@ -32,6 +37,11 @@ class FiniteIndentationResult:
     exact: PowerLawContact
     curve: FiniteContactCurve
     fit: PowerLawFit
+
+    @property
+    def steps(self) -> list[FiniteContactStep]:
+        """The converged contact at each depth (as :attr:`.IndentationResult.steps`)."""
+        return self.curve.steps
 
     def step_table(self) -> list[dict[str, float]]:
         """Per depth: force, contact radius, central pressure, energy, and the linear values."""

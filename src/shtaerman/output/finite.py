@@ -1,0 +1,167 @@
+"""Files and figures of a finite-strain study (and of ``contact --model neo-hookean --out``).
+
+Files, every column and field named with its unit (``name [unit]``, ``[1]``: dimensionless):
+
+- ``finite_curve.csv``: per depth the finite-strain force, contact radius, central pressure,
+  stored energy and Newton iterations beside the linear exact and same-mesh linear FEM values;
+- ``history_<variant>.csv``: the impact histories t, x, P, a, p(0) (linear exact, linear FEM,
+  finite strain);
+- ``field_at_x_c.vtu``: the deformed-state fields (reference r-z section, displacements in m,
+  Cauchy stresses in Pa) at the computed depth nearest the finite-strain x_c, with the depth,
+  force, contact radius, material and model as VTK field data.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+from xml.sax.saxutils import quoteattr
+
+import meshio
+import numpy as np
+
+from ..plots.finite import (
+    nearest_step,
+    plot_finite_impact,
+    plot_finite_ratios,
+    plot_finite_section,
+)
+from .files import write_csv
+
+if TYPE_CHECKING:
+    from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
+    from ..study.finite import FiniteStudyOutcome
+    from ..study.finite_indentation import FiniteIndentationResult
+
+__all__ = ["FIELD_UNITS", "write_finite_curve", "write_finite_field", "write_finite_study"]
+
+FIELD_UNITS = {
+    "u_r": "m",
+    "u_z": "m",
+    "sigma_rr": "Pa",
+    "sigma_zz": "Pa",
+    "sigma_tt": "Pa",
+    "sigma_rz": "Pa",
+    "von_mises": "Pa",
+    "mean_pressure": "Pa",
+}
+"""Point data of the VTU file: Cauchy stresses (tension positive) and the pressure unknown."""
+CURVE_UNITS = {
+    "depth": "m",
+    "depth_to_radius": "1",
+    "force": "N",
+    "force_linear": "N",
+    "force_linear_fem": "N",
+    "force_ratio": "1",
+    "force_ratio_fem": "1",
+    "contact_radius": "m",
+    "radius_ratio": "1",
+    "central_pressure": "Pa",
+    "central_to_mean": "1",
+    "strain_energy": "J",
+    "newton_iterations": "1",
+}
+HISTORY_UNITS = {"t": "s", "x": "m", "P": "N", "a": "m", "p0": "Pa"}
+CAPTIONS = {
+    "finite_ratios": "Real rubber against Shtaerman: P/(beta x^q) (top) and p(0)/p_avg (bottom) "
+    "against depth / linear contact radius, the neo-Hookean FEM (red) beside the linear FEM "
+    "on the same mesh (blue) and the exact linear values (black); grey bands 1 % and 5 %",
+    "finite_section": "Von Mises stress on the deformed r-z section (true scale) under the "
+    "rigid indenter, at the computed depth nearest the finite-strain x_c",
+    "finite_impact": "Impact x(t) and P(t): the paper's linear model (black), the linear FEM "
+    "(blue, dotted) and neo-Hookean finite strain (red, dashed)",
+}
+
+
+def write_vtu(path: Path, mesh: meshio.Mesh, field_data: dict[str, float]) -> None:
+    """``meshio.write`` plus scalar VTK ``FieldData`` (which meshio 5 does not write)."""
+    meshio.write(path, mesh)
+    arrays = "".join(
+        f'<DataArray type="Float64" Name={quoteattr(name)} NumberOfTuples="1" '
+        f'format="ascii">{float(value)!r}</DataArray>'
+        for name, value in field_data.items()
+    )
+    text = path.read_text(encoding="utf-8")
+    at = text.index("<UnstructuredGrid>") + len("<UnstructuredGrid>")
+    path.write_text(f"{text[:at]}<FieldData>{arrays}</FieldData>{text[at:]}", "utf-8")
+
+
+def write_finite_field(
+    curve: FiniteContactCurve, step: FiniteContactStep, material: object, path: Path
+) -> Path:
+    """The deformed-state fields of ``step`` as a VTU of the reference r-z section (x = r,
+    y = z in m; warp by ``displacement [m]`` for the deformed shape)."""
+    fields = curve.fields(step)
+    points = np.column_stack([fields["r"], fields["z"], np.zeros_like(fields["r"])])
+    data = {
+        f"{name} [{unit}]": np.asarray(fields[name], float) for name, unit in FIELD_UNITS.items()
+    }
+    data["displacement [m]"] = np.column_stack(
+        [fields["u_r"], fields["u_z"], np.zeros_like(fields["u_r"])]
+    )
+    mesh = meshio.Mesh(points, [("triangle", curve.system.mesh.t.T)], point_data=data)
+    write_vtu(
+        path,
+        mesh,
+        {
+            "depth [m]": step.depth,
+            "force [N]": step.force,
+            "contact_radius [m]": step.contact_radius,
+            "strain_energy [J]": step.strain_energy,
+            "indenter_shape_coefficient [m^(1-n)]": curve.indenter.shape_coefficient,
+            "indenter_exponent [1]": curve.indenter.exponent,
+            "youngs_modulus [Pa]": material.youngs_modulus,
+            "poisson_ratio [1]": material.poisson_ratio,
+            "model_neo-hookean [1]": 1.0,  # the material model as a flag (field data are numbers)
+        },
+    )
+    return path
+
+
+def write_finite_curve(result: FiniteIndentationResult, folder: Path) -> list[Path]:
+    """``finite_curve.csv`` and ``field_max_depth.vtu`` of a finite-strain contact run (what
+    ``shtaerman contact --model neo-hookean --out`` writes beside contact.json)."""
+    folder = Path(folder)
+    rows = result.step_table()
+    curve_path = folder / "finite_curve.csv"
+    units = {
+        **CURVE_UNITS,
+        "force_analytic": "N",
+        "contact_radius_analytic": "m",
+        "central_pressure_analytic": "Pa",
+    }
+    write_csv(curve_path, {f"{k} [{units[k]}]": [row[k] for row in rows] for k in rows[0]})
+    field_path = folder / "field_max_depth.vtu"
+    write_finite_field(result.curve, result.steps[-1], result.half_space, field_path)
+    return [curve_path, field_path]
+
+
+def write_finite_study(
+    outcome: FiniteStudyOutcome, folder: Path, root: Path
+) -> tuple[dict[str, str], dict[str, str]]:
+    """A finite-strain study's files and figures in ``folder`` (created), paths from ``root``."""
+    folder = Path(folder)
+    folder.mkdir()
+    rows = outcome.rows()
+    written = [folder / "finite_curve.csv"]
+    write_csv(written[0], {f"{k} [{u}]": [row[k] for row in rows] for k, u in CURVE_UNITS.items()})
+    for variant, history in outcome.histories.items():
+        path = folder / f"history_{variant}.csv"
+        columns = history.columns()
+        write_csv(path, {f"{k} [{u}]": columns[k] for k, u in HISTORY_UNITS.items()})
+        written.append(path)
+    step = outcome.finite.steps[nearest_step(outcome)]
+    written.append(
+        write_finite_field(
+            outcome.finite.curve, step, outcome.study.half_space, folder / "field_at_x_c.vtu"
+        )
+    )
+    figures = {
+        CAPTIONS["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png"),
+        f"{CAPTIONS['finite_section']} ({step.depth * 1e3:.3g} mm)": plot_finite_section(
+            outcome, folder / "finite_section.png"
+        ),
+        CAPTIONS["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png"),
+    }
+    files = {path.stem: str(path.relative_to(root)) for path in written}
+    return files, {caption: str(path.relative_to(root)) for caption, path in figures.items()}

@@ -1,0 +1,155 @@
+"""Figures of a finite-strain study: the departure from Shtaerman, the deformed section, the impact.
+
+- :func:`plot_finite_ratios`: P/(beta x^q) and p(0)/p_avg against x/a (linear a), the
+  neo-Hookean FEM against the linear FEM on the same mesh and the exact linear values;
+- :func:`plot_finite_section`: von Mises stress on the deformed r-z section under the rigid
+  indenter (pyvista, off-screen, drawn by :mod:`.sections`) at the computed depth nearest the
+  finite-strain x_c;
+- :func:`plot_finite_impact`: x(t) and P(t), the paper's linear impact against real rubber.
+
+Only reads results (:class:`shtaerman.study.finite.FiniteStudyOutcome`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from types import SimpleNamespace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .sections import plot_field
+from .style import EXACT_COLOUR, FEM_COLOUR, SECOND_COLOUR, WIDTH, save, styled
+
+if TYPE_CHECKING:
+    from ..study.finite import FiniteStudyOutcome
+
+__all__ = [
+    "FINITE_COLOUR",
+    "nearest_step",
+    "plot_finite_impact",
+    "plot_finite_ratios",
+    "plot_finite_section",
+]
+
+FINITE_COLOUR = SECOND_COLOUR
+"""Finite strain (red); the linear FEM is blue, the exact linear solution black."""
+IMPACT_STYLES = {
+    "linear_exact": (EXACT_COLOUR, "-", "Shtaerman, linear (the paper)"),
+    "linear_fem": (FEM_COLOUR, ":", "linear FEM, same mesh"),
+    "finite_strain": (FINITE_COLOUR, "--", "neo-Hookean, finite strain"),
+}
+
+
+def nearest_step(outcome: FiniteStudyOutcome) -> int:
+    """Index of the computed depth nearest the finite-strain x_c (in log depth)."""
+    depths = np.array([step.depth for step in outcome.finite.steps])
+    x_c = outcome.impacts["finite_strain"]["x_c"]
+    return int(np.argmin(np.abs(np.log(depths / x_c))))
+
+
+@styled
+def plot_finite_ratios(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
+    """P/(beta x^q) (top) and p(0)/p_avg (bottom) against x/a; the finite-strain x_c marked."""
+    rows = outcome.rows()
+    ratio = np.array([row["depth_to_radius"] for row in rows])
+    linear = outcome.linear_fem.steps
+    figure = Figure(figsize=(WIDTH, 5.6), layout="constrained")
+    top, bottom = figure.subplots(2, 1, sharex=True)
+    top.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0, label="Shtaerman (linear, exact)")
+    top.plot(
+        ratio, [r["force_ratio"] for r in rows], "o--", color=FINITE_COLOUR, label="neo-Hookean FEM"
+    )
+    top.plot(
+        ratio,
+        [r["force_linear_fem"] / r["force_linear"] for r in rows],
+        "s:",
+        color=FEM_COLOUR,
+        label="linear FEM, same mesh",
+    )
+    for level in (0.01, 0.05):
+        top.axhspan(1 - level, 1 + level, color="0.5", alpha=0.08, linewidth=0)
+    top.set_ylabel(r"$P\,/\,\beta x^{q}$")
+    top.legend(loc="best")
+    exact = outcome.finite.exact.central_to_mean_ratio
+    bottom.axhline(exact, color=EXACT_COLOUR, linewidth=1.0, label=f"linear, exact {exact:.2f}")
+    bottom.plot(
+        ratio,
+        [r["central_to_mean"] for r in rows],
+        "o--",
+        color=FINITE_COLOUR,
+        label="neo-Hookean FEM",
+    )
+    bottom.plot(
+        ratio,
+        [s.central_pressure * np.pi * s.contact_radius**2 / s.force for s in linear],
+        "s:",
+        color=FEM_COLOUR,
+        label="linear FEM, same mesh",
+    )
+    bottom.set_ylabel(r"$p(0)\,/\,p_{avg}$")
+    bottom.set_xlabel("Depth / linear contact radius  $x/a$")
+    bottom.legend(loc="best")
+    at = outcome.at_maximum()["depth_to_radius"]
+    for axes in (top, bottom):
+        axes.axvline(at, color="0.4", linewidth=0.8, linestyle="-.")
+    top.annotate(
+        r"finite-strain $x_c$",
+        (at, 1.0),
+        xytext=(-4, 6),
+        textcoords="offset points",
+        ha="right",
+        fontsize=8.5,
+    )
+    bottom.set_xlim(0.0, 1.02 * ratio.max())
+    return save(figure, path)
+
+
+@styled
+def plot_finite_impact(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
+    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain."""
+    figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
+    top, bottom = figure.subplots(2, 1, sharex=True)
+    for variant, history in outcome.histories.items():
+        colour, line, label = IMPACT_STYLES[variant]
+        top.plot(history.t * 1e3, history.x * 1e3, line, color=colour, label=label)
+        bottom.plot(history.t * 1e3, history.P, line, color=colour, label=label)
+    top.set_ylabel("Approach x (mm)")
+    bottom.set_ylabel("Force P (N)")
+    bottom.set_xlabel("Time t (ms)")
+    top.legend(loc="lower center")
+    top.set_ylim(bottom=0.0)
+    bottom.set_ylim(bottom=0.0)
+    bottom.set_xlim(left=0.0)
+    return save(figure, path)
+
+
+@dataclass(frozen=True)
+class _Deformed:
+    """One finite-strain state shaped as :mod:`.sections` reads a result (read-only view)."""
+
+    outcome: Any
+
+    @property
+    def indenter(self) -> Any:
+        return self.outcome.finite.indenter
+
+    @property
+    def steps(self) -> list[Any]:
+        return self.outcome.finite.steps
+
+    def field(self, step: int) -> SimpleNamespace:
+        curve = self.outcome.finite.curve
+        return SimpleNamespace(system=curve.system, **curve.fields(curve.steps[step]))
+
+
+def plot_finite_section(
+    outcome: FiniteStudyOutcome, path: Path | str, field: str = "von_mises", extent: float = 2.5
+) -> Path:
+    """Von Mises (or ``field``) on the deformed r-z section under the indenter, true scale,
+    at the computed depth nearest the finite-strain x_c (PNG, 1600 x 1000)."""
+    return plot_field(
+        _Deformed(outcome), path, field, step=nearest_step(outcome), extent=extent, deformed=True
+    )
