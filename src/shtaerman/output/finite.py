@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from pathlib import Path
 from typing import TYPE_CHECKING
-from xml.sax.saxutils import quoteattr
 
 import meshio
 import numpy as np
@@ -26,6 +25,7 @@ from ..plots.finite import (
     plot_finite_ratios,
     plot_finite_section,
 )
+from .export import write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
@@ -73,19 +73,6 @@ CAPTIONS = {
 }
 
 
-def write_vtu(path: Path, mesh: meshio.Mesh, field_data: dict[str, float]) -> None:
-    """``meshio.write`` plus scalar VTK ``FieldData`` (which meshio 5 does not write)."""
-    meshio.write(path, mesh)
-    arrays = "".join(
-        f'<DataArray type="Float64" Name={quoteattr(name)} NumberOfTuples="1" '
-        f'format="ascii">{float(value)!r}</DataArray>'
-        for name, value in field_data.items()
-    )
-    text = path.read_text(encoding="utf-8")
-    at = text.index("<UnstructuredGrid>") + len("<UnstructuredGrid>")
-    path.write_text(f"{text[:at]}<FieldData>{arrays}</FieldData>{text[at:]}", "utf-8")
-
-
 def write_finite_field(
     curve: FiniteContactCurve, step: FiniteContactStep, material: object, path: Path
 ) -> Path:
@@ -99,22 +86,22 @@ def write_finite_field(
     data["displacement [m]"] = np.column_stack(
         [fields["u_r"], fields["u_z"], np.zeros_like(fields["u_r"])]
     )
-    mesh = meshio.Mesh(points, [("triangle", curve.system.mesh.t.T)], point_data=data)
-    write_vtu(
-        path,
-        mesh,
-        {
-            "depth [m]": step.depth,
-            "force [N]": step.force,
-            "contact_radius [m]": step.contact_radius,
-            "strain_energy [J]": step.strain_energy,
-            "indenter_shape_coefficient [m^(1-n)]": curve.indenter.shape_coefficient,
-            "indenter_exponent [1]": curve.indenter.exponent,
-            "youngs_modulus [Pa]": material.youngs_modulus,
-            "poisson_ratio [1]": material.poisson_ratio,
-            "model_neo-hookean [1]": 1.0,  # the material model as a flag (field data are numbers)
-        },
+    scalars = {
+        "depth [m]": step.depth,
+        "force [N]": step.force,
+        "contact_radius [m]": step.contact_radius,
+        "strain_energy [J]": step.strain_energy,
+        "indenter_shape_coefficient [m^(1-n)]": curve.indenter.shape_coefficient,
+        "indenter_exponent [1]": curve.indenter.exponent,
+        "youngs_modulus [Pa]": material.youngs_modulus,
+        "poisson_ratio [1]": material.poisson_ratio,
+        "model_neo-hookean [1]": 1.0,  # the material model as a flag (field data are numbers)
+    }
+    fields_data = {key: np.atleast_1d(float(value)) for key, value in scalars.items()}
+    mesh = meshio.Mesh(
+        points, [("triangle", curve.system.mesh.t.T)], point_data=data, field_data=fields_data
     )
+    write_vtu(path, mesh)
     return path
 
 
