@@ -11,6 +11,7 @@ from html.parser import HTMLParser
 
 import pytest
 
+from shtaerman.output.report import validity_table as report_validity
 from shtaerman.output.report import render_html, render_markdown, report_context, write_reports
 
 HOSTILE = 'x" onmouseover="alert(1)<script>alert(2)</script>'
@@ -150,3 +151,39 @@ def test_only_pngs_inside_the_folder_are_embedded(results, quick_verify, file):
     other["figures"] = {"a figure": file}
     with pytest.raises(ValueError, match="not a PNG inside the result folder"):
         render_html(report_context(other), quick_verify[1])
+
+
+def test_validity_table_from_the_dynamic_and_finite_strain_results():
+    # the report's opening table is built from the studies' structured limits, not from prose
+    studies = {
+        "dynamic": {
+            "kind": "dynamic",
+            "limits": {
+                "all": {
+                    "1%": {"velocity": None, "bound": "none"},
+                    "5%": {"velocity": 3.1238, "bound": "interpolated"},
+                },
+                "x": {
+                    "1%": {"velocity": 0.7149, "bound": "interpolated"},
+                    "5%": {"velocity": 5.0, "bound": "all"},
+                },
+            },
+        },
+        "rubber": {
+            "kind": "finite-strain",
+            "inputs": {"nu2": 0.5},
+            "validity": [
+                {"level": 0.01, "depth_to_radius": 0.1648, "velocity": 0.00363},
+                {"level": 0.05, "depth_to_radius": 0.8969, "velocity": 3.125},
+            ],
+        },
+        "paper": {"kind": "contact"},
+    }
+    rows = report_validity(studies)["rows"]
+    assert [row[1:] for row in rows] == [
+        ["no: already off at the slowest v0 computed", "v0 = 3.12 m/s"],
+        ["v0 = 0.715 m/s", "every v0 computed (to 5 m/s)"],
+        ["x/a = 0.16 (v0 = 0.0036 m/s)", "x/a = 0.90 (v0 = 3.1 m/s)"],
+    ]
+    assert "nu2 = 0.5" in rows[2][0]
+    assert report_validity({"paper": {"kind": "contact"}}) is None
