@@ -11,8 +11,8 @@ from html.parser import HTMLParser
 
 import pytest
 
-from shtaerman.output.report import validity_table as report_validity
 from shtaerman.output.report import render_html, render_markdown, report_context, write_reports
+from shtaerman.output.report import validity_table as report_validity
 
 HOSTILE = 'x" onmouseover="alert(1)<script>alert(2)</script>'
 
