@@ -115,6 +115,15 @@ def test_kinds_being_written_are_registered_but_refused(tmp_path, kind):
     assert f"kind: kind {kind!r} is not available yet" in message
 
 
+@pytest.mark.parametrize(
+    ("fixed", "axis"), [("refine = 1000.0", "nu2 = [0.3]"), ("mesh_size = 1e-6", "nu2 = [0.3]")]
+)
+def test_a_contact_mesh_above_max_dofs_is_refused_at_load(tmp_path, fixed, axis):
+    # as `contact --refine 1e3`: refused before any case runs, not a failed case at run time
+    text = f'name = "c"\nkind = "contact"\n[parameters]\n{fixed}\n[axes]\n{axis}\n'
+    assert "case 0 (nu2 = 0.3): max_dofs: this mesh would have about" in error_of(tmp_path, text)
+
+
 def test_contact_inputs_are_checked_up_front(tmp_path):
     text = 'name = "c"\nkind = "contact"\n[axes]\nexponent = [1.5, 1.0]\n'
     assert "case 1 (exponent = 1.0): exponent must be > 1 for the FEM" in error_of(tmp_path, text)
