@@ -125,7 +125,12 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"nu2 must lie in [0, 0.5] for the FEM, got {args.nu2!r}")
     refine = validate_positive("refine", args.refine)
     base = settings_from(args)
-    settings = base.refined(refine)
+    try:
+        settings = base.refined(refine)
+    except InputError as error:
+        raise InputError(
+            f"refine {refine:g} (steps and mesh sizes scaled by it): {error}"
+        ) from None
     if not args.no_estimate:
         try:
             settings.refined(1.0 / LADDER_RATIO**2)  # the coarsest level must be valid too
