@@ -89,6 +89,14 @@ def test_text_summary(capsys):
     assert "restitution e" in out and "energy to waves" in out and "dofs" in out
 
 
+def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
+    # a striker far lighter than the rubber it touches: the mesh and steps sized from the
+    # quasi-static impact cannot resolve it (e > 1, balance error ~5); not a silent success
+    code, out, err = run(capsys, "dynamic", "--mass", "1e-30", "--no-estimate", *COARSE)
+    assert code == 1 and "restitution e" in out
+    assert "warning: energy balance error" in err and err.count("\n") == 1
+
+
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
@@ -98,6 +106,7 @@ def test_text_summary(capsys):
         (["--steps", "1.5"], "steps must be an integer"),
         (["--nu2", "-0.2"], "nu2 (Poisson's ratio) must lie in [0, 0.5]"),
         (["--mesh-margin", "0.5"], "margin must be > 1"),
+        (["--refine", "1e3"], "refine 1000 (steps and mesh sizes scaled by it): steps (time"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):

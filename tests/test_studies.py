@@ -1,6 +1,7 @@
 """Studies as data: the shipped TOML files load, and bad files get errors naming file and key."""
 
 import json
+import re
 
 import pytest
 
@@ -107,6 +108,33 @@ def test_every_table_is_checked_at_load(tmp_path, extra, message):
     path.write_text(PAPER + extra)
     with pytest.raises(StudyError, match=message):
         load_study(path)
+
+
+@pytest.mark.parametrize(
+    ("edit", "key"),
+    [
+        (("youngs_modulus = 7.5e6", "youngs_modulus = inf"), "half_space.youngs_modulus"),
+        (("mass = 0.7", "mass = inf"), "impact.mass"),
+        (("velocity = 3.0", "velocity = +inf"), "impact.velocity"),
+        (("shape_coefficient = 5.0", "shape_coefficient = inf"), "indenter.shape_coefficient"),
+        (("velocity = 3.0", "velocity = 3.0\n[contact]\ndepths = [1e-3, inf]"), "contact.depths"),
+        (("velocity = 3.0", "velocity = 3.0\n[mesh]\ndomain = inf"), "mesh.domain"),
+    ],
+)
+def test_an_infinite_number_is_refused_at_load_with_its_key(tmp_path, edit, key):
+    # TOML spells inf; only the striker may be rigid (youngs_modulus = inf or "inf")
+    path = tmp_path / "bad.toml"
+    path.write_text(PAPER.replace(*edit))
+    with pytest.raises(StudyError, match=rf"bad.toml: key '{re.escape(key)}': expected a fin"):
+        load_study(path)
+
+
+def test_a_rigid_striker_may_be_spelled_inf(tmp_path):
+    path = tmp_path / "rigid.toml"
+    for spelling in ("inf", '"inf"'):
+        path.write_text(PAPER + f"[striker]\nyoungs_modulus = {spelling}\npoisson_ratio = 0.3\n")
+        [study] = load_study(path)
+        assert study.striker.compliance == 0.0
 
 
 def test_missing_table_is_named(tmp_path):

@@ -100,6 +100,10 @@ def test_minimal_file_takes_defaults(tmp_path):
         ("example = 3.0", "example = 3.0\n[numerics]\nsize = 1e-4", "numerics.size"),  # dofs
         ("example = 3.0", "example = 3.0\n[quick]\nvelocities = [1.0]", "quick.velocities"),
         ("example = 3.0", "example = 3.0\n[tolerances]\nestimate = 2.0", "tolerances.estimate"),
+        ("youngs_modulus = 7.5e6", "youngs_modulus = inf", "half_space.youngs_modulus"),
+        ("density = 1100.0", "density = inf", "half_space.density"),
+        ("mass = 0.7", "mass = inf", "impact.mass"),
+        ("velocities = [1.0, 3.0]", "velocities = [1.0, 3.0, inf]", "impact.velocities"),
     ],
 )
 def test_load_errors_name_file_and_key(tmp_path, old, new, key):

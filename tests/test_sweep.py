@@ -108,6 +108,15 @@ def test_name_must_be_a_string(tmp_path):
     assert "name must be a plain folder name" in error_of(tmp_path, IMPACT.replace('"grid"', "7"))
 
 
+@pytest.mark.parametrize(
+    ("fixed", "axis"), [("refine = 1000.0", "nu2 = [0.3]"), ("mesh_size = 1e-6", "nu2 = [0.3]")]
+)
+def test_a_contact_mesh_above_max_dofs_is_refused_at_load(tmp_path, fixed, axis):
+    # as `contact --refine 1e3`: refused before any case runs, not a failed case at run time
+    text = f'name = "c"\nkind = "contact"\n[parameters]\n{fixed}\n[axes]\n{axis}\n'
+    assert "case 0 (nu2 = 0.3): max_dofs: this mesh would have about" in error_of(tmp_path, text)
+
+
 def test_contact_inputs_are_checked_up_front(tmp_path):
     text = 'name = "c"\nkind = "contact"\n[axes]\nexponent = [1.5, 1.0]\n'
     assert "case 1 (exponent = 1.0): exponent must be > 1 for the FEM" in error_of(tmp_path, text)
@@ -168,7 +177,7 @@ def test_cli_unknown_sweep_name_lists_the_shipped_ones(capsys):
 def test_cli_bad_worker_count(tmp_path, capsys, workers):
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--workers", workers)
     assert code == 2
-    assert_one_line_error(err, "workers must be an integer >= 1")
+    assert_one_line_error(err, "workers must be an integer in [1, 256]")
 
 
 def test_cli_workers_and_scheduler_exclude_each_other(tmp_path, capsys):
@@ -196,6 +205,35 @@ def test_cli_refuses_an_existing_folder_without_resume_or_force(tmp_path, capsys
     assert code == 2
     assert_one_line_error(err, "exists; use --resume to complete it or --force to replace it")
     assert snapshot(out) == before
+
+
+@pytest.mark.skipif(not Path("/sys").is_dir(), reason="needs Linux /sys (read-only to mkdir)")
+def test_cli_refuses_an_unwritable_out_before_the_cluster_starts(tmp_path, capsys, monkeypatch):
+    try:  # root may write almost anywhere, but not in /sys
+        Path("/sys/.shtaerman-probe").mkdir()
+    except OSError:
+        pass
+    else:
+        Path("/sys/.shtaerman-probe").rmdir()
+        pytest.skip("/sys is writable here")
+    import shtaerman.sweep.engine as engine
+
+    def started(*args, **kwargs):
+        raise AssertionError("the cluster started")
+
+    monkeypatch.setattr(engine, "_client", started)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", "/sys/shtaerman-test")
+    assert code == 2
+    assert_one_line_error(err, "out: cannot write in '/sys'")
+
+
+@pytest.mark.parametrize("workers", ["0", "257", "1000", "abc"])
+def test_cli_workers_are_bounded_like_verify(tmp_path, capsys, workers):
+    # --workers 1000 would start a thousand worker processes on the local machine
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--workers", workers)
+    assert code == 2
+    assert_one_line_error(err, f"workers must be an integer in [1, 256], got '{workers}'")
+    assert not (tmp_path / "sweep-grid").exists()
 
 
 def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):

@@ -14,16 +14,18 @@ from ..output.dynamic import history_columns
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
 from ..study.accuracy import LADDER_RATIO
-from ..study.dynamic import run_case
+from ..study.dynamic import DynamicTolerances, run_case
 from ..study.dynamic_accuracy import complete_ladder
 from ..validation import InputError, validate_positive
-from .common import PAPER, add_half_space_options, add_indenter_options, print_json
+from .common import PAPER, add_half_space_options, add_indenter_options, print_json, warn
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
 from .impact import history_path
 
 DEFAULT_DENSITY = "1100"
 """kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
+ENERGY_BALANCE_LIMIT = DynamicTolerances().energy_balance
+"""A run whose energy account is off by more (of M v0^2/2) warns and exits with code 1."""
 
 CONTROLS = {
     "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
@@ -45,7 +47,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "Rigid striker z = A r^n (mass M, velocity v0) on an elastic half-space with "
             "inertia: axisymmetric Taylor-Hood P2-P1 FEM, generalized-alpha time stepping, "
             "exact unilateral contact every step. Reports the rebound, the energy carried "
-            "away by elastic waves and the first-order estimate of it. SI units."
+            "away by elastic waves and the first-order estimate of it. SI units. Exit code 1 "
+            "(with a warning) when the energy balance is off by more than 1e-2 of M v0^2/2."
         ),
     )
     p.add_argument("--mass", default=PAPER["mass"], metavar="KG", help="striker mass M in kg")
@@ -122,7 +125,12 @@ def run(args: argparse.Namespace) -> int:
     validate_fem_inputs(indenter, half_space)
     refine = validate_positive("refine", args.refine)
     base = settings_from(args)
-    settings = base.refined(refine)
+    try:
+        settings = base.refined(refine)
+    except InputError as error:
+        raise InputError(
+            f"refine {refine:g} (steps and mesh sizes scaled by it): {error}"
+        ) from None
     if not args.no_estimate:
         try:
             settings.refined(1.0 / LADDER_RATIO**2)  # the coarsest level must be valid too
@@ -157,6 +165,14 @@ def run(args: argparse.Namespace) -> int:
         print_json(report)
     else:
         print(dynamic_text(report))
+    balance = report["dynamic"]["energy_balance_error"]
+    if not balance <= ENERGY_BALANCE_LIMIT:  # NaN included
+        warn(
+            f"energy balance error {balance:.1e} of M v0^2/2 exceeds {ENERGY_BALANCE_LIMIT:g}: "
+            "the mesh and time steps (sized from the quasi-static impact) do not resolve this "
+            "impact, so its numbers are not to be trusted"
+        )
+        return 1
     return 0
 
 

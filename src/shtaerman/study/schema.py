@@ -32,8 +32,10 @@ from __future__ import annotations
 
 import importlib.resources
 import itertools
+import math
 import re
 import tomllib
+from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Annotated, Any, Literal, get_args, get_type_hints
@@ -286,10 +288,32 @@ def _decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
     """``data`` as the schema ``root`` (a :class:`_Table`; default: a contact study file), or
     :class:`StudyError` naming the file, the key and what was expected."""
     try:
-        return msgspec.convert(data, root)
+        decoded = msgspec.convert(data, root)
     except msgspec.ValidationError as error:
         keys, expected = _located(str(error), data, root)
         raise StudyError(f"{path}: key '{'.'.join(keys)}': expected {expected}") from None
+    for keys, value in _numbers(data):
+        if not math.isfinite(value) and keys not in INFINITE_ALLOWED:
+            raise StudyError(
+                f"{path}: key '{'.'.join(keys)}': expected a finite number, got {value!r}"
+            )
+    return decoded
+
+
+INFINITE_ALLOWED = (("striker", "youngs_modulus"),)
+"""The keys where TOML's ``inf`` means something (a rigid striker); elsewhere it is refused."""
+
+
+def _numbers(data: Any, keys: tuple[str, ...] = ()) -> Iterator[tuple[tuple[str, ...], float]]:
+    """Every float in the TOML data with its key path (list items under their list's key)."""
+    if isinstance(data, dict):
+        for key, value in data.items():
+            yield from _numbers(value, (*keys, str(key)))
+    elif isinstance(data, list):
+        for item in data:
+            yield from _numbers(item, keys)
+    elif isinstance(data, float):
+        yield keys, data
 
 
 def _material(table: _Material) -> Material:

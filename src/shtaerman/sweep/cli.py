@@ -16,6 +16,9 @@ from ..validation import InputError
 
 __all__ = ["add_parser", "register", "run"]
 
+MAX_WORKERS = 256
+"""Most local worker processes (--workers), the bound of ``verify --workers`` too."""
+
 
 def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Add the ``sweep`` subcommand (``set_defaults(handler=run)``) and return its parser."""
@@ -63,8 +66,8 @@ def _workers(value: str | None) -> int | None:
         workers = int(value)
     except ValueError:
         workers = 0
-    if workers < 1:
-        raise InputError(f"workers must be an integer >= 1, got {value!r}")
+    if not 1 <= workers <= MAX_WORKERS:  # as verify: a typo must not start 1000 processes
+        raise InputError(f"workers must be an integer in [1, {MAX_WORKERS}], got {value!r}")
     return workers
 
 

@@ -230,6 +230,7 @@ def _contact_inputs(p: dict[str, Any]):
     refine = validate_positive("refine", p["refine"])
     if refine != 1.0:
         mesh = mesh.refined(refine)
+    mesh.check_size()  # at load, as the contact CLI does: not a failed case at run time
     return indenter, half_space, depths, mesh, p["solver"]
 
 
