@@ -79,7 +79,10 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="refine until the estimated relative error of force and beta is <= TOL",
     )
     accuracy.add_argument(
-        "--max-time", default="60", metavar="S", help="time budget of --accuracy in s"
+        "--max-time",
+        default="60",
+        metavar="S",
+        help="time budget of --accuracy in s (only with --accuracy)",
     )
     mesh = p.add_argument_group(
         "expert mesh controls (relative to the largest contact; --mesh-size alone does not "
@@ -276,4 +279,9 @@ def _estimate_text(report: dict) -> list[str]:
         for key in ("force", "beta", "contact_radius", "central_pressure")
         if key in estimate
     ]
-    return [head, "    " + ", ".join(cells)]
+    lines = [head, "    " + ", ".join(cells)]
+    target = report.get("accuracy_target")
+    if target is not None:
+        reached = max(estimate[key] for key in ("force", "beta") if key in estimate)
+        lines.append(f"  accuracy target {target:g}: met (force and beta estimate {reached:.1e})")
+    return lines

@@ -245,6 +245,10 @@ def _allowed_keys(path: list[str], root: type = _StudyFile) -> list[str]:
     return sorted(struct.__struct_fields__)
 
 
+_TABLES = ("indenter", "half_space", "impact", "striker", "dynamic", "material")
+"""Required keys that are tables, for the "missing" message."""
+
+
 def _value(data: Any, keys: list[str]) -> Any:
     """The value at ``keys`` in the TOML data (or a marker when it is not there)."""
     for key in keys:
@@ -275,13 +279,16 @@ def _located(message: str, data: dict[str, Any], root: type = _StudyFile) -> tup
     if unknown:
         return [*keys, unknown[1]], f"one of {_allowed_keys(keys, root)} (unknown key)"
     if missing:
-        return [*keys, missing[1]], f"{_expectation([*keys, missing[1]], text)} (required)"
+        leaf = missing[1]
+        expected = EXPECTED.get(leaf, f"a [{leaf}] table" if leaf in _TABLES else "a value")
+        return [*keys, leaf], f"{expected} (required)"
     field_error = re.fullmatch(r"(\w+): (.*)", text)
     if field_error:
         keys = [*keys, field_error[1]]
     given = _value(data, keys)
+    expectation = _expectation(keys, text).split(", got ")[0]  # msgspec may say "got" itself
     shown = "" if given is msgspec.UNSET else f", got {given!r}"
-    return keys, f"{_expectation(keys, text)}{shown}"
+    return keys, f"{expectation}{shown}"
 
 
 def _decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
@@ -316,6 +323,17 @@ def _numbers(data: Any, keys: tuple[str, ...] = ()) -> Iterator[tuple[tuple[str,
         yield keys, data
 
 
+def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
+    """The convergence sizes, each level's mesh checked now (size guard, growth <= 1)."""
+    base = raw.mesh.settings(MeshSettings(), "mesh")
+    for size in raw.convergence.sizes:
+        try:
+            base.refined(base.size / size).check_size()
+        except InputError as error:
+            raise StudyError(f"{path}: key 'convergence.sizes': size {size!r}: {error}") from None
+    return tuple(raw.convergence.sizes)
+
+
 def _material(table: _Material) -> Material:
     if table.youngs_modulus == "inf":
         return RIGID
@@ -342,7 +360,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         mesh=raw.mesh.settings(MeshSettings(), "mesh"),
         quick_mesh=raw.quick_mesh.settings(QUICK_MESH, "quick_mesh"),
         tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
-        convergence_sizes=tuple(raw.convergence.sizes),
+        convergence_sizes=_convergence_sizes(path, raw),
         refine=1.0 if raw.mesh.refine is None else raw.mesh.refine,
     )
 
