@@ -18,11 +18,19 @@ from ..output.folder import finish_verification, study_entry
 from ..study.run import run_study
 from .engine import dask_client
 
-__all__ = ["run_verification_on_dask", "verify_task"]
+__all__ = ["run_verification_on_dask", "submission_order", "verify_task"]
 
-LONGEST_FIRST = {"finite-strain": 0, "dynamic": 1}
-"""Submission order by kind (contact studies last): the long tasks start first, so the
-workers finish together instead of one waiting on a late long study."""
+
+def submission_order(studies: list[Any]) -> list[Any]:
+    """The long studies first (finite strain, then dynamic, then contact), so the workers
+    finish together instead of one waiting on a late long study.
+
+    Measured on 2 cores, default verify: 75 s in this order. Keeping the two finite-strain
+    studies apart (the second beside the dynamic one) took 90 s: any concurrent study slows a
+    finite-strain one by 40-50 % (36.5 s against 25 s alone), so the gain is in the order only.
+    """
+    rank = {"finite-strain": 0, "dynamic": 1}
+    return sorted(studies, key=lambda study: rank.get(getattr(study, "kind", ""), 2))
 
 
 def verify_task(study: Any, stage: str, quick: bool) -> dict[str, object]:
@@ -64,10 +72,9 @@ def run_verification_on_dask(
     with staged_folder(out, force=force) as stage:
         with dask_client(workers) as client:
             report(f"{len(studies)} studies on {len(client.scheduler_info()['workers'])} workers")
-            ordered = sorted(studies, key=lambda s: LONGEST_FIRST.get(getattr(s, "kind", ""), 2))
             futures = {
                 client.submit(verify_task, study, str(stage), quick, pure=False): study.name
-                for study in ordered
+                for study in submission_order(studies)
             }
             entries = {}
             for future in as_completed(futures):
@@ -76,8 +83,6 @@ def run_verification_on_dask(
                 entries[name] = entry
                 advance()
                 verdict = "PASS" if entry["passed"] else "FAIL"
-                report(
-                    f"{name}: {verdict} ({entry['seconds']:.1f} s) [{len(entries)}/{len(futures)}]"
-                )
+                report(f"{name}: {verdict} (computed in {entry['seconds']:.1f} s)")
         in_file_order = {study.name: entries[study.name] for study in studies}
         return finish_verification(stage, in_file_order, quick=quick)
