@@ -25,7 +25,7 @@ from ..plots.finite import (
     plot_finite_ratios,
     plot_finite_section,
 )
-from .export import write_vtu
+from .export import FIELD_UNITS, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
@@ -33,19 +33,9 @@ if TYPE_CHECKING:
     from ..study.finite import FiniteStudyOutcome
     from ..study.finite_indentation import FiniteIndentationResult
 
-__all__ = ["FIELD_UNITS", "write_finite_curve", "write_finite_field", "write_finite_study"]
+__all__ = ["write_finite_curve", "write_finite_field", "write_finite_study"]
 
-FIELD_UNITS = {
-    "u_r": "m",
-    "u_z": "m",
-    "sigma_rr": "Pa",
-    "sigma_zz": "Pa",
-    "sigma_tt": "Pa",
-    "sigma_rz": "Pa",
-    "von_mises": "Pa",
-    "mean_pressure": "Pa",
-}
-"""Point data of the VTU file: Cauchy stresses (tension positive) and the pressure unknown."""
+
 CURVE_UNITS = {
     "depth": "m",
     "depth_to_radius": "1",
