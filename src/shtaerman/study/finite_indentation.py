@@ -23,7 +23,12 @@ from ..fem.mesh import MeshSettings
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
-from .indentation import default_depths, validate_fem_inputs
+from .indentation import (
+    curve_document,
+    default_depths,
+    validate_fem_inputs,
+    worst_against_analytic,
+)
 
 __all__ = ["FiniteIndentationResult", "run_finite_study"]
 
@@ -65,28 +70,13 @@ class FiniteIndentationResult:
 
     def departures(self) -> dict[str, float]:
         """Largest |finite / linear - 1| over the depths (not errors: the physics differs)."""
-        rows = self.step_table()
-
-        def worst(key: str) -> float:
-            return max(abs(row[key] / row[f"{key}_analytic"] - 1.0) for row in rows)
-
-        return {k: worst(k) for k in ("force", "contact_radius", "central_pressure")}
+        return worst_against_analytic(self.step_table())
 
     def to_dict(self) -> dict[str, object]:
         """The JSON of ``shtaerman contact --model neo-hookean --json`` (SI units)."""
         return {
             "model": "neo-hookean",
-            "shape_coefficient": self.indenter.shape_coefficient,
-            "exponent": self.indenter.exponent,
-            "E2": self.half_space.youngs_modulus,
-            "nu2": self.half_space.poisson_ratio,
-            "modulus": self.exact.modulus,
-            "beta_fem": self.fit.beta_fixed_exponent,
-            "beta_analytic": self.exact.beta,
-            "exponent_fem": self.fit.exponent,
-            "exponent_analytic": self.exact.force_exponent,
-            "beta_fem_free_exponent": self.fit.beta,
-            "central_to_mean_analytic": self.exact.central_to_mean_ratio,
+            **curve_document(self.indenter, self.half_space, self.exact, self.fit),
             "steps": self.step_table(),
             "departures_from_linear": self.departures(),
             "mesh": self.curve.mesh_stats,

@@ -146,14 +146,8 @@ class IndentationResult:
     def errors(self) -> dict[str, float]:
         """Largest relative errors against the exact solution over all depths."""
         rows = self.step_table()
-
-        def worst(key: str) -> float:
-            return max(abs(row[key] / row[f"{key}_analytic"] - 1.0) for row in rows)
-
         return {
-            "force": worst("force"),
-            "contact_radius": worst("contact_radius"),
-            "central_pressure": worst("central_pressure"),
+            **worst_against_analytic(rows),
             "beta": abs(self.fit.beta_fixed_exponent / self.exact.beta - 1.0),
             "exponent": abs(self.fit.exponent / self.exact.force_exponent - 1.0),
             "pressure_profile": max(row["pressure_profile_error"] for row in rows),
@@ -163,23 +157,45 @@ class IndentationResult:
         """The JSON of ``shtaerman contact --json`` (its keys are an interface other tools use)."""
         return {
             "model": "linear",
-            "shape_coefficient": self.indenter.shape_coefficient,
-            "exponent": self.indenter.exponent,
-            "E2": self.half_space.youngs_modulus,
-            "nu2": self.half_space.poisson_ratio,
-            "modulus": self.exact.modulus,
-            "beta_fem": self.fit.beta_fixed_exponent,
-            "beta_analytic": self.exact.beta,
-            "exponent_fem": self.fit.exponent,
-            "exponent_analytic": self.exact.force_exponent,
-            "beta_fem_free_exponent": self.fit.beta,
-            "central_to_mean_analytic": self.exact.central_to_mean_ratio,
+            **curve_document(self.indenter, self.half_space, self.exact, self.fit),
             "steps": self.step_table(),
             "errors": self.errors(),
             "mesh": self.mesh_stats,
             "solver": self.curve.backend,
             "timings": self.timings,
         }
+
+
+STEP_QUANTITIES = ("force", "contact_radius", "central_pressure")
+"""Per-depth quantities that step tables give beside their ``*_analytic`` values."""
+
+
+def worst_against_analytic(rows: list[dict[str, float]]) -> dict[str, float]:
+    """Largest |value / analytic - 1| over the rows of a step table, per quantity."""
+    return {
+        key: max(abs(row[key] / row[f"{key}_analytic"] - 1.0) for row in rows)
+        for key in STEP_QUANTITIES
+    }
+
+
+def curve_document(
+    indenter: PowerLawIndenter, half_space: Material, exact: PowerLawContact, fit: PowerLawFit
+) -> dict[str, float]:
+    """The inputs and the fitted force law beside the exact one: the head of the ``contact``
+    JSON, shared by the linear and the neo-Hookean model (SI units)."""
+    return {
+        "shape_coefficient": indenter.shape_coefficient,
+        "exponent": indenter.exponent,
+        "E2": half_space.youngs_modulus,
+        "nu2": half_space.poisson_ratio,
+        "modulus": exact.modulus,
+        "beta_fem": fit.beta_fixed_exponent,
+        "beta_analytic": exact.beta,
+        "exponent_fem": fit.exponent,
+        "exponent_analytic": exact.force_exponent,
+        "beta_fem_free_exponent": fit.beta,
+        "central_to_mean_analytic": exact.central_to_mean_ratio,
+    }
 
 
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
