@@ -49,8 +49,10 @@ def test_estimates_are_positive_and_finite(ladder):
     estimate = ladder.error_estimate()
     assert set(estimate) == {"force", "beta", "exponent", "contact_radius", "central_pressure"}
     assert all(math.isfinite(v) and v > 0 for v in estimate.values())
-    # force and beta carry the far-field truncation 1.87 / domain at least
-    assert estimate["force"] >= 1.87e-4 and estimate["beta"] >= 1.87e-4
+    # force and beta carry the far-field truncation, 1.886 and 1.16 a / R, at least
+    stats, largest = ladder.finest.mesh_stats, ladder.finest.steps[-1].contact_radius
+    assert estimate["force"] >= 1.886 * largest / stats["domain_radius"]
+    assert estimate["beta"] >= 1.16 * largest / stats["domain_radius"]
     extrapolated = ladder.to_dict()["extrapolated"]
     finest = ladder.finest.steps
     # the extrapolated worst-depth force lies within its own estimate of some FEM force
@@ -62,9 +64,9 @@ def test_accuracy_target_is_met_or_refused():
     loose = run_to_accuracy(*PAPER, 5e-3, mesh=COARSE)
     assert loose.tolerance == 5e-3 and len(loose.levels) == 3
     assert max(loose.error_estimate()[k] for k in ("force", "beta")) <= 5e-3
-    # the domain grew so that the truncation 1.87 / domain stays below a tenth of the target
+    # the domain grew so that the truncation (< 1.886 / domain) stays below a tenth of it
     stats = loose.finest.mesh_stats
-    assert stats["domain_radius"] / stats["refined_radius"] >= 10 * 1.87 / 5e-3 * (1 - 1e-12)
+    assert stats["domain_radius"] / stats["refined_radius"] >= 10 * 1.886 / 5e-3 * (1 - 1e-12)
     with pytest.raises(InputError, match=r"accuracy 1e-09 needs about .* dofs"):
         run_to_accuracy(*PAPER, 1e-9, mesh=COARSE)
     with pytest.raises(InputError, match=r"accuracy must lie in \(0, 0.1\]"):

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from shtaerman.study.richardson import Estimate, richardson
+from shtaerman.study.richardson import Estimate, curve_richardson, richardson
 from shtaerman.validation import InputError
 
 
@@ -59,3 +59,42 @@ def test_bad_input():
         richardson([1.0, math.nan, 2.0], 2.0)
     with pytest.raises(InputError, match="ratio must be > 1"):
         richardson([1.0, 2.0, 3.0], 1.0)
+
+
+def test_known_order_corrects_with_it_and_keeps_the_observed_one():
+    # Q = 1 + h^2 observed at order 2; with order=3 the correction is d2 / (s^3 - 1)
+    s = 2.0
+    values = [1.0 + h**2 for h in (0.5, 0.25, 0.125)]
+    estimate = richardson(values, s, order=3.0)
+    assert estimate.order == 3.0 and estimate.observed_order == pytest.approx(2.0, rel=1e-12)
+    d2 = values[1] - values[2]
+    assert estimate.extrapolated == pytest.approx(values[2] - d2 / 7.0, rel=1e-14)
+
+
+def test_curve_estimate_is_the_worst_point():
+    # two points converging as C_j h^3 with C = (1, -4): the second point is the worst; the
+    # order of the largest differences is 3 and Richardson is exact there
+    s = math.sqrt(2.0)
+    curves = [[2.0 + h**3, 5.0 - 4.0 * h**3] for h in (1.0, 1 / s, 0.5)]
+    estimate = curve_richardson(curves, s)
+    assert estimate.method == "richardson"
+    assert estimate.observed_order == pytest.approx(3.0, rel=1e-12)
+    assert estimate.value == curves[-1][1]
+    assert estimate.extrapolated == pytest.approx(5.0, rel=1e-14)
+    assert estimate.error == pytest.approx(abs(curves[-1][1] - 5.0) / curves[-1][1], rel=1e-12)
+
+
+def test_curve_with_sign_changing_points_still_converges():
+    # per point the differences change sign (a contact edge between nodes); their largest
+    # value still shrinks as h^3, so the curve estimate is Richardson, not the fallback
+    s = math.sqrt(2.0)
+    jitter = [(0.3, -0.2), (-0.25, 0.3), (0.3, 0.1)]
+    curves = [
+        [1.0 + h**3 * j[0], 2.0 + h**3 * j[1]]
+        for h, j in zip((1.0, 1 / s, 0.5), jitter, strict=True)
+    ]
+    for point in range(2):
+        column = [curve[point] for curve in curves]
+        assert richardson(column, s).method == "two-level"
+    estimate = curve_richardson(curves, s, order=3.0, sane=(1.0, 5.0))
+    assert estimate.method == "richardson" and estimate.order == 3.0

@@ -11,6 +11,16 @@ Q2, Q3 (finest), with d1 = Q1 - Q2 and d2 = Q2 - Q3:
 The estimate is trusted only when the differences shrink monotonically and p lies in a sane
 range (:data:`ORDER_RANGE`); otherwise (noise, a quantity at its floor, two levels only) the
 two-level difference |d2| / |Q3| is reported instead, and the estimate says so.
+
+Where the asymptotic order q is known better than one ladder can observe it (the contact
+curve: the force at a given depth oscillates with the contact edge's place between two surface
+nodes, so p of a single ladder scatters by +-1), the observed p only guards the asymptotic
+regime and the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
+
+:func:`curve_richardson` does the same for a curve (a quantity at several depths), with the
+largest relative difference over the depths in place of |d1| and |d2|: the estimate of the
+curve's worst point. Per point, the edge oscillation makes the differences change sign at
+random; their largest value converges regularly.
 """
 
 from __future__ import annotations
@@ -19,9 +29,12 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+from numpy.typing import ArrayLike
+
 from ..validation import InputError
 
-__all__ = ["ORDER_RANGE", "Estimate", "richardson"]
+__all__ = ["ORDER_RANGE", "Estimate", "curve_richardson", "richardson"]
 
 ORDER_RANGE = (1.5, 4.5)
 """Observed orders accepted for extrapolation. P2 contact converges at orders 2-3 here
@@ -48,6 +61,9 @@ class Estimate:
         ``"richardson"`` or ``"two-level"`` (the fallback; see ``reason``).
     reason : str
         Why the fallback was used ("" for Richardson).
+    observed_order : float
+        The ladder's own order p (nan if it could not be measured); ``order`` differs from it
+        when a known order was given.
     """
 
     value: float
@@ -56,6 +72,7 @@ class Estimate:
     order: float
     method: str
     reason: str = ""
+    observed_order: float = math.nan
 
     def to_dict(self) -> dict[str, object]:
         """Plain data for JSON."""
@@ -66,6 +83,7 @@ class Estimate:
             "order": self.order,
             "method": self.method,
             "reason": self.reason,
+            "observed_order": self.observed_order,
         }
 
 
@@ -74,7 +92,33 @@ def _two_level(coarse: float, fine: float, reason: str) -> Estimate:
     return Estimate(fine, fine, error, math.nan, "two-level", reason)
 
 
-def richardson(values: Sequence[float], ratio: float) -> Estimate:
+def _checked(values: Sequence, ratio: float) -> list:
+    values = list(values)[-3:]
+    finite = all(bool(np.all(np.isfinite(v))) for v in values)
+    if len(values) < 2 or not finite:
+        raise InputError(f"values must hold at least two finite numbers, got {values!r}")
+    if not ratio > 1.0:
+        raise InputError(f"ratio must be > 1, got {ratio!r}")
+    return values
+
+
+def _observed_order(d1: float, d2: float, ratio: float, sane: tuple[float, float]) -> str | float:
+    """The order of two shrinking differences, or why there is none."""
+    if d1 * d2 <= 0 or abs(d2) >= abs(d1):
+        return "the differences do not shrink monotonically"
+    observed = math.log(d1 / d2) / math.log(ratio)
+    if not sane[0] <= observed <= sane[1]:
+        return f"observed order {observed:.2f} outside {sane}"
+    return observed
+
+
+def richardson(
+    values: Sequence[float],
+    ratio: float,
+    *,
+    order: float | None = None,
+    sane: tuple[float, float] = ORDER_RANGE,
+) -> Estimate:
     """Estimate the error of the finest of two or three values on a geometric mesh ladder.
 
     Parameters
@@ -83,6 +127,10 @@ def richardson(values: Sequence[float], ratio: float) -> Estimate:
         The quantity on the last levels, coarsest first (only the last three are used).
     ratio : float
         Ratio s > 1 of the element sizes of consecutive levels (h_k / h_(k+1)).
+    order : float, optional
+        The known asymptotic order q used for the correction; default the observed one.
+    sane : (float, float)
+        Observed orders accepted as asymptotic (default :data:`ORDER_RANGE`).
 
     Returns
     -------
@@ -93,22 +141,71 @@ def richardson(values: Sequence[float], ratio: float) -> Estimate:
     shtaerman.validation.InputError
         For fewer than two values, a non-finite value, or ratio <= 1.
     """
-    values = [float(v) for v in values][-3:]
-    if len(values) < 2 or not all(math.isfinite(v) for v in values):
-        raise InputError(f"values must hold at least two finite numbers, got {values!r}")
-    if not ratio > 1.0:
-        raise InputError(f"ratio must be > 1, got {ratio!r}")
+    values = [float(v) for v in _checked(values, ratio)]
     if len(values) == 2:
         return _two_level(*values, "two levels only")
     coarse, middle, fine = values
     d1, d2 = coarse - middle, middle - fine
     if d2 == 0.0:
         return Estimate(fine, fine, 0.0, math.nan, "two-level", "the last two levels agree")
-    if d1 * d2 <= 0 or abs(d2) >= abs(d1):
-        return _two_level(middle, fine, "the differences do not shrink monotonically")
-    order = math.log(d1 / d2) / math.log(ratio)
-    if not ORDER_RANGE[0] <= order <= ORDER_RANGE[1]:
-        return _two_level(middle, fine, f"observed order {order:.2f} outside {ORDER_RANGE}")
-    correction = d2 / (ratio**order - 1.0)
+    observed = _observed_order(d1, d2, ratio, sane)
+    if isinstance(observed, str):
+        return _two_level(middle, fine, observed)
+    used = observed if order is None else order
+    correction = d2 / (ratio**used - 1.0)
     extrapolated = fine - correction
-    return Estimate(fine, extrapolated, abs(correction / extrapolated), order, "richardson")
+    error = abs(correction / extrapolated)
+    return Estimate(fine, extrapolated, error, used, "richardson", "", observed)
+
+
+def curve_richardson(
+    curves: Sequence[ArrayLike],
+    ratio: float,
+    *,
+    order: float | None = None,
+    sane: tuple[float, float] = ORDER_RANGE,
+) -> Estimate:
+    """Estimate the largest relative error over a curve's points on a geometric mesh ladder.
+
+    With D_k the largest |Q_k - Q_(k+1)| / |Q_finest| over the points, the observed order is
+    ln(D_1 / D_2) / ln(s) and the estimate D_2 / (s^q - 1); the value and extrapolated value
+    are those of the point where D_2 is reached.
+
+    Parameters
+    ----------
+    curves : sequence of array_like
+        The quantity at the same points on the last levels, coarsest first (last three used).
+    ratio, order, sane
+        As for :func:`richardson`.
+
+    Returns
+    -------
+    Estimate
+    """
+    curves = [np.asarray(c, dtype=float) for c in _checked(curves, ratio)]
+    fine = curves[-1]
+    scale = np.abs(fine)
+    last = np.abs(curves[-2] - fine) / scale
+    worst = int(np.argmax(last))
+    if len(curves) == 2:
+        return _two_level(float(curves[-2][worst]), float(fine[worst]), "two levels only")
+    d1 = float(np.max(np.abs(curves[0] - curves[1]) / scale))
+    d2 = float(last[worst])
+    if d2 == 0.0:
+        value = float(fine[worst])
+        return Estimate(value, value, 0.0, math.nan, "two-level", "the last two levels agree")
+    observed = _observed_order(d1, d2, ratio, sane)
+    if isinstance(observed, str):
+        return _two_level(float(curves[-2][worst]), float(fine[worst]), observed)
+    used = observed if order is None else order
+    error = d2 / (ratio**used - 1.0)
+    correction = (fine[worst] - curves[-2][worst]) / (ratio**used - 1.0)
+    return Estimate(
+        float(fine[worst]),
+        float(fine[worst] + correction),
+        error,
+        used,
+        "richardson",
+        "",
+        observed,
+    )
