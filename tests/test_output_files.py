@@ -163,6 +163,9 @@ def test_bad_out_names_are_one_line_errors(tmp_path, monkeypatch, capsys, name):
     code, _, err = run(capsys, "contact", "--out", name, "--depths", "1e-3")
     assert code == 2 and err.startswith("shtaerman: error: out:") and err.count("\n") == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file.txt"]
+    if name.endswith("/sub"):  # the reason is named: a file is not a missing folder
+        expected = "is not a folder" if name.startswith("file") else "does not exist"
+        assert expected in err
 
 
 @pytest.mark.skipif(not Path("/sys").is_dir(), reason="needs Linux /sys (read-only to mkdir)")

@@ -42,6 +42,7 @@ __all__ = [
     "check_output_folder",
     "csv_header",
     "json_safe",
+    "missing_folder",
     "staged_file",
     "staged_folder",
     "write_csv",
@@ -49,6 +50,13 @@ __all__ = [
 
 STAGE_SUFFIX = ".partial-"
 """Staging names are ``.NAME.partial-PID``."""
+
+
+def missing_folder(folder: Path) -> str:
+    """Why ``folder``, the parent of an output, cannot hold it (for a one-line error)."""
+    if folder.exists() or folder.is_symlink():
+        return f"parent {str(folder)!r} is not a folder"
+    return f"parent folder {str(folder)!r} does not exist"
 
 
 def _umask() -> int:
@@ -175,7 +183,7 @@ def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path
         if target.exists() and not target.is_dir():
             raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
         if not target.parent.is_dir():
-            raise InputError(f"{option}: parent folder {str(target.parent)!r} does not exist")
+            raise InputError(f"{option}: {missing_folder(target.parent)}")
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
@@ -278,7 +286,7 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
             raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
         real = Path(os.path.realpath(path))
         if not real.parent.is_dir():
-            raise InputError(f"{option}: folder {str(path.parent)!r} does not exist")
+            raise InputError(f"{option}: {missing_folder(path.parent)}")
         live = _other_writers(real)
         if live:
             raise _busy(option, real, live)

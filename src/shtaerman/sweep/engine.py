@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..output.files import _probe, json_safe
+from ..output.files import _probe, json_safe, missing_folder
 from ..validation import InputError
 from .kinds import unit_suffix
 from .spec import Case, SweepSpec
@@ -236,7 +236,7 @@ def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> C
     if out.exists() and not out.is_dir():
         raise InputError(f"out: {str(out)!r} exists and is not a folder")
     if not out.parent.is_dir():
-        raise InputError(f"out: parent folder {str(out.parent)!r} does not exist")
+        raise InputError(f"out: {missing_folder(out.parent)}")
     _probe("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
     stored = out / SPEC_FILE
     if out.is_dir() and resume:
