@@ -7,6 +7,7 @@ physics of the dynamic FE impact itself is tested in test_fem_dynamic.py.
 """
 
 import csv
+import io
 import json
 import math
 from pathlib import Path
@@ -26,6 +27,8 @@ from shtaerman.study.limits import thresholds
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, find_study, load_study
 from shtaerman.sweep import KINDS, SweepError, load_sweep
+from shtaerman.sweep.engine import cases_csv, csv_columns, execute_case
+from shtaerman.sweep.kinds import DYNAMIC_ERRORS
 from shtaerman.sweep.spec import find_sweep
 
 MINIMAL = """\
@@ -383,3 +386,34 @@ def _tiny(tmp_path: Path) -> Path:
 def test_validity_sweep_is_shipped():
     spec = load_sweep(find_sweep("validity"))
     assert spec.kind == "dynamic" and len(spec.cases()) == 18
+    assert spec.parameters["estimate"] is True and set(DYNAMIC_ERRORS) <= set(spec.outputs)
+
+
+ESTIMATE_SWEEP = TINY_SWEEP.replace("steps = 60\nmesh_size = 0.05", "steps = 100\nmesh_size = 0.05")
+
+
+def test_sweep_estimate_adds_the_error_columns(tmp_path, estimated):
+    plain = load_sweep(_tiny(tmp_path))
+    assert not any(header.startswith("error_") for header, _, _ in csv_columns(plain))
+    path = tmp_path / "estimate.toml"
+    path.write_text(ESTIMATE_SWEEP.replace("[axes]", "estimate = true\n[axes]"))
+    spec = load_sweep(path)
+    [case] = spec.cases()
+    record = execute_case(spec.kind_spec.case, case.index, case.params)  # in-process, one case
+    assert record["status"] == "ok", record["error"]
+    rows = list(csv.DictReader(io.StringIO(cases_csv(spec, [case], {0: record}))))
+    for name in DYNAMIC_ERRORS:
+        assert math.isfinite(float(rows[0][name])), name
+    # the same inputs and settings as the coarse study's 3 m/s case: the same estimates
+    estimates = estimated.example.estimates()
+    assert float(rows[0]["error_x_max"]) == estimates["x_max"].error
+    assert float(rows[0]["error_difference_P"]) == estimates["difference_P"].absolute_error
+    assert float(rows[0]["error_difference_worst"]) == max(
+        estimates[f"difference_{k}"].absolute_error for k in "xPt"
+    )
+
+
+def test_sweep_estimate_is_checked_up_front(tmp_path):
+    text = TINY_SWEEP.replace("[axes]", "estimate = true\n[axes]")  # 60 steps: ladder at 30
+    assert "ladder's coarsest level" in sweep_error(tmp_path, text)
+    assert "true or false" in sweep_error(tmp_path, text.replace("true", '"yes"'))
