@@ -2,12 +2,13 @@
 
 import json
 import math
+from types import SimpleNamespace
 
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.study.accuracy import LADDER_RATIO
-from shtaerman.study.dynamic_accuracy import DYNAMIC_ESTIMATED, run_dynamic_ladder
+from shtaerman.study.dynamic_accuracy import DYNAMIC_ESTIMATED, DynamicLadder, run_dynamic_ladder
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
@@ -63,3 +64,42 @@ def test_cli_json_carries_the_estimates(capsys):
     assert "error_estimate" not in json.loads(capsys.readouterr().out)
     assert main(["dynamic", "--steps", "60"]) == 2  # its coarsest level would have 30 steps
     assert "--no-estimate" in capsys.readouterr().err
+
+
+# --- derived quantities: Richardson on their own values over the levels ------------------------
+
+
+def fake_ladder(name: str, values: list[float]) -> DynamicLadder:
+    """A ladder whose runs hold only the result ``name`` (coarsest first); no FEM."""
+    results = tuple(SimpleNamespace(**{name: value}) for value in values)
+    return DynamicLadder((0.5, 0.71, 1.0), (), results, {})
+
+
+def test_derived_estimate_of_the_radiated_fraction_matches_its_propagation():
+    # e(h) = 0.93 - 0.004 h^2.4 on h = 1, 1/sqrt 2, 1/2. Richardson directly on 1 - e^2 agrees
+    # with the first-order propagation of e's estimate: absolute errors 2 e |de|, to O(de / e)
+    # (measured 2.6e-3; 5e-3 asserted); relative, 2 e^2 err_e / (1 - e^2), to O(err of 1 - e^2)
+    # (the propagation divides by the finest 1 - e^2, not the extrapolated one; measured 1.4 %)
+    e = [0.93 - 0.004 * (1 / LADDER_RATIO**k) ** 2.4 for k in range(3)]
+    ladder = fake_ladder("restitution", e)
+    restitution = ladder.estimate(lambda r: r.restitution)
+    radiated = ladder.estimate(lambda r: 1.0 - r.restitution**2)
+    assert restitution.method == radiated.method == "richardson"
+    assert radiated.order == pytest.approx(restitution.order, abs=0.01)
+    propagated = 2 * e[-1] * restitution.absolute_error
+    assert radiated.absolute_error == pytest.approx(propagated, rel=5e-3)
+    propagated = 2 * e[-1] ** 2 * restitution.error / (1 - e[-1] ** 2)
+    assert radiated.error == pytest.approx(propagated, rel=2 * radiated.error)
+
+
+def test_derived_estimate_is_exact_for_an_affine_quantity():
+    # Richardson commutes with Q -> a Q + b (same order; the correction scales by |a|):
+    # the difference t_c / (t_contact / 2) - 1 is affine in 1 / t_contact, an identity to 1e-12
+    inverse = [1 / 8.30 + 0.002 * (1 / LADDER_RATIO**k) ** 2.0 for k in range(3)]
+    ladder = fake_ladder("t_contact", [1 / v for v in inverse])
+    t_c = 4.105
+    plain = ladder.estimate(lambda r: 1 / r.t_contact)
+    difference = ladder.estimate(lambda r: t_c / (0.5 * r.t_contact) - 1.0)
+    assert difference.order == pytest.approx(plain.order, rel=1e-12)
+    assert difference.absolute_error == pytest.approx(2 * t_c * plain.absolute_error, rel=1e-9)
+    assert difference.extrapolated == pytest.approx(2 * t_c * plain.extrapolated - 1, rel=1e-12)

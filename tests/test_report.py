@@ -13,6 +13,7 @@ import pytest
 
 from shtaerman.output.report import render_html, render_markdown, report_context, write_reports
 from shtaerman.output.report import validity_table as report_validity
+from shtaerman.study.limits import LEVELS, thresholds
 
 HOSTILE = 'x" onmouseover="alert(1)<script>alert(2)</script>'
 
@@ -160,12 +161,22 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
             "kind": "dynamic",
             "limits": {
                 "all": {
-                    "1%": {"velocity": None, "bound": "none"},
-                    "5%": {"velocity": 3.1238, "bound": "interpolated"},
+                    "1%": {"velocity": None, "bound": "none", "error": 3e-4, "resolved": True},
+                    "5%": {
+                        "velocity": 3.1238,
+                        "bound": "interpolated",
+                        "error": 3e-4,
+                        "resolved": True,
+                    },
                 },
                 "x": {
-                    "1%": {"velocity": 0.7149, "bound": "interpolated"},
-                    "5%": {"velocity": 5.0, "bound": "all"},
+                    "1%": {
+                        "velocity": 0.7149,
+                        "bound": "interpolated",
+                        "error": 6e-5,
+                        "resolved": True,
+                    },
+                    "5%": {"velocity": 5.0, "bound": "all", "error": 1e-4, "resolved": True},
                 },
             },
         },
@@ -187,3 +198,27 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
     ]
     assert "nu2 = 0.5" in rows[2][0]
     assert report_validity({"paper": {"kind": "contact"}}) is None
+
+
+def test_validity_table_states_a_dynamic_limit_only_where_resolved():
+    # the study's thresholds decide "resolved" (error < level / 5); a fabricated estimate of
+    # 0.3 % against the 1 % level (> 0.2 %) and a study without estimates are not stated
+    limits = {
+        "1%": thresholds([0.5, 1.0], [0.005, 0.02], 0.01, errors=[3e-3, 1e-4]),
+        "5%": thresholds([0.5, 1.0], [0.005, 0.02], 0.05, errors=[3e-3, 1e-4]),
+    }
+    assert limits["1%"]["resolved"] is False and limits["5%"]["resolved"] is True
+    unestimated = {f"{level:.0%}": thresholds([0.5, 1.0], [0.005, 0.02], level) for level in LEVELS}
+    studies = {
+        "dynamic": {"kind": "dynamic", "limits": {"all": limits}},
+        "quick": {"kind": "dynamic", "limits": {"all": unestimated}},
+    }
+    table = report_validity(studies)
+    assert [row[1:] for row in table["rows"]] == [
+        ["not resolved (estimate 0.3 %)", "every v0 computed (to 1 m/s)"],
+        ["not resolved (no error estimate)", "not resolved (no error estimate)"],
+    ]
+    assert (
+        "shown only where the estimated FEM error is below a fifth of the effect"
+        in (table["title"])
+    )

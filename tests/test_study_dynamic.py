@@ -1,11 +1,13 @@
 """The dynamic study kind: loading (errors name file and key), running, its document, its files.
 
 One quick run of the shipped ``fem/dynamic.toml`` (two velocities, 60 steps per t_y, mesh size
-1/20: about 2 s CPU) is shared by the module; the physics of the dynamic FE impact itself is
-tested in test_fem_dynamic.py.
+1/20: about 2 s CPU; no error estimates) and one full run of a coarse study with its
+error-estimate ladder (100 steps, size 1/20: about 7 s CPU) are shared by the module; the
+physics of the dynamic FE impact itself is tested in test_fem_dynamic.py.
 """
 
 import csv
+import io
 import json
 import math
 from pathlib import Path
@@ -20,10 +22,13 @@ from shtaerman.output.report import report_context, results_document, study_docu
 from shtaerman.plots import style
 from shtaerman.plots.fields import MAGNITUDE
 from shtaerman.plots.sections import CONTACT_COLOUR
-from shtaerman.study.dynamic import DynamicStudy, thresholds
+from shtaerman.study.dynamic import DynamicStudy
+from shtaerman.study.limits import thresholds
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, find_study, load_study
 from shtaerman.sweep import KINDS, SweepError, load_sweep
+from shtaerman.sweep.engine import cases_csv, csv_columns, execute_case
+from shtaerman.sweep.kinds import DYNAMIC_ERRORS
 from shtaerman.sweep.spec import find_sweep
 
 MINIMAL = """\
@@ -56,6 +61,18 @@ def error_of(tmp_path: Path, text: str) -> str:
 def outcome():
     [study] = load_study(find_study("dynamic"))
     return run_study(study, quick=True)
+
+
+COARSE = MINIMAL + "[numerics]\nsteps = 100\nsize = 0.05\n"
+"""The coarsest settings whose ladder is valid (its coarsest level: 50 steps, size 1/10)."""
+
+
+@pytest.fixture(scope="module")
+def estimated(tmp_path_factory):
+    path = tmp_path_factory.mktemp("coarse") / "coarse.toml"
+    path.write_text(COARSE)
+    [study] = load_study(path)
+    return run_study(study)
 
 
 @pytest.fixture(scope="module")
@@ -119,9 +136,35 @@ def test_unknown_kind_is_named(tmp_path):
 
 def test_thresholds_interpolate_between_velocities():
     v = [1.0, 2.0, 3.0]
-    assert thresholds(v, [0.005, -0.015, 0.03], 0.01) == {"velocity": 1.5, "bound": "interpolated"}
-    assert thresholds(v, [0.02, 0.03, 0.04], 0.01) == {"velocity": None, "bound": "none"}
-    assert thresholds(v, [0.001, 0.002, 0.003], 0.01) == {"velocity": 3.0, "bound": "all"}
+    unresolved = {"error": None, "resolved": False}  # no estimates: no conclusion
+    assert thresholds(v, [0.005, -0.015, 0.03], 0.01) == {
+        "velocity": 1.5,
+        "bound": "interpolated",
+        **unresolved,
+    }
+    assert thresholds(v, [0.02, 0.03, 0.04], 0.01) == {"velocity": None, "bound": "none"} | (
+        unresolved
+    )
+    assert thresholds(v, [0.001, 0.002, 0.003], 0.01) == {"velocity": 3.0, "bound": "all"} | (
+        unresolved
+    )
+
+
+@pytest.mark.parametrize(
+    ("differences", "errors", "error", "resolved"),
+    [
+        # crossing between 1 and 2 m/s: the errors there decide (not the 3 m/s one)
+        ([0.005, 0.015, 0.03], [1e-4, 1.9e-3, 5e-2], 1.9e-3, True),
+        ([0.005, 0.015, 0.03], [2.1e-3, 1e-4, 0.0], 2.1e-3, False),  # above 0.01 / 5
+        ([0.02, 0.03, 0.04], [1e-3, 5e-2, 5e-2], 1e-3, True),  # "none": the first point
+        ([0.001, 0.009, 0.003], [5e-2, 1e-3, 5e-2], 1e-3, True),  # "all": the largest |d|
+    ],
+)
+def test_thresholds_state_a_limit_only_where_the_error_resolves_it(
+    differences, errors, error, resolved
+):
+    limit = thresholds([1.0, 2.0, 3.0], differences, 0.01, errors)
+    assert limit["error"] == error and limit["resolved"] is resolved
 
 
 def test_quick_study_passes_its_checks(outcome):
@@ -131,6 +174,71 @@ def test_quick_study_passes_its_checks(outcome):
     assert len(names) == 5 and "loss / first-order estimate - 1 v0 = 1 m/s" in names
     # quick settings: the whole study in seconds (2 velocities, ~1 s CPU each; 5 s budget)
     assert outcome.cpu_seconds < 10.0
+
+
+ESTIMATED = {
+    "x_max",
+    "P_max",
+    "t_contact",
+    "restitution",
+    "energy_radiated_fraction",
+    "difference_x",
+    "difference_P",
+    "difference_t",
+}
+
+
+def test_every_velocity_carries_its_error_estimates(estimated):
+    assert estimated.estimated and estimated.passed
+    for case in estimated.cases:
+        estimates = case.estimates()
+        assert set(estimates) == ESTIMATED
+        for key, estimate in estimates.items():
+            assert math.isfinite(estimate.error) and math.isfinite(estimate.absolute_error)
+            # Richardson, or the two finest levels' difference with the reason why
+            assert estimate.method == "richardson" or estimate.reason, key
+        # measured on these coarse settings (1 and 3 m/s): relative x_max <= 1.0e-4,
+        # P_max <= 2.6e-3, t_contact <= 7.4e-4, e <= 7.3e-5, 1 - e^2 <= 8.9e-4; differences
+        # <= 2.8e-3 absolute. Bounds: about 3x those, and each difference resolved at 5 %.
+        assert max(estimates[k].error for k in ("x_max", "restitution")) < 3e-4
+        assert max(estimates[k].error for k in ("t_contact", "energy_radiated_fraction")) < 3e-3
+        assert estimates["P_max"].error < 8e-3
+        assert max(estimates[f"difference_{k}"].absolute_error for k in "xPt") < 0.05 / 5
+    for limits in estimated.limits().values():
+        assert all(limit["error"] is not None for limit in limits.values())
+        assert limits["5%"]["resolved"]
+
+
+def test_estimates_reach_the_tables_findings_and_document(estimated):
+    document = json.loads(json.dumps(estimated.document(), allow_nan=True))
+    assert document["estimated"] is True
+    case = document["cases"][1]
+    assert set(case["error_estimate"]) == ESTIMATED
+    assert [level["steps"] for level in case["mesh_ladder"]] == [50, 71, 100]
+    main, limits = document["tables"]
+    assert all(" ± " in cell for row in main["rows"] for cell in row[1:9])  # x_max .. 1-e^2
+    assert all("±" in cell for row in limits["rows"] for cell in row[1:])
+    findings = " ".join(document["findings"])
+    assert "Error estimates (Richardson over a 3-level ladder" in findings
+    assert "hold to 1 % of the dynamic ones" in findings and "interpolated" in findings
+
+
+def test_quick_run_skips_the_ladder_and_says_so(outcome):
+    assert not outcome.estimated and all(case.estimates() == {} for case in outcome.cases)
+    findings = " ".join(outcome.findings())
+    assert "a quick run skips the 3-level ladder" in findings
+    assert "hold to 1 %" not in findings  # no unestimated limit is stated
+    assert all(
+        not limit["resolved"] and limit["error"] is None
+        for limits in outcome.limits().values()
+        for limit in limits.values()
+    )
+    assert "no error estimates" in outcome.tables()[0]["title"]
+
+
+def test_a_study_whose_ladder_cannot_run_is_refused_at_load(tmp_path):
+    message = error_of(tmp_path, MINIMAL + "[numerics]\nsteps = 60\n")
+    assert "key 'numerics'" in message and "ladder's coarsest level" in message
 
 
 def test_paper_example_against_the_quasi_static_impact(outcome):
@@ -154,7 +262,7 @@ def test_document_is_json_with_tables_and_findings(outcome):
         assert all(len(row) == len(table["header"]) for row in table["rows"])
         assert all(isinstance(cell, str) for row in table["rows"] for cell in row)
     findings = " ".join(document["findings"])
-    assert "3 m/s" in findings and "x_c" in findings and "interpolated" in findings
+    assert "3 m/s" in findings and "x_c" in findings
     assert "1100 kg/m^3 assumed" in findings
 
 
@@ -278,3 +386,34 @@ def _tiny(tmp_path: Path) -> Path:
 def test_validity_sweep_is_shipped():
     spec = load_sweep(find_sweep("validity"))
     assert spec.kind == "dynamic" and len(spec.cases()) == 18
+    assert spec.parameters["estimate"] is True and set(DYNAMIC_ERRORS) <= set(spec.outputs)
+
+
+ESTIMATE_SWEEP = TINY_SWEEP.replace("steps = 60\nmesh_size = 0.05", "steps = 100\nmesh_size = 0.05")
+
+
+def test_sweep_estimate_adds_the_error_columns(tmp_path, estimated):
+    plain = load_sweep(_tiny(tmp_path))
+    assert not any(header.startswith("error_") for header, _, _ in csv_columns(plain))
+    path = tmp_path / "estimate.toml"
+    path.write_text(ESTIMATE_SWEEP.replace("[axes]", "estimate = true\n[axes]"))
+    spec = load_sweep(path)
+    [case] = spec.cases()
+    record = execute_case(spec.kind_spec.case, case.index, case.params)  # in-process, one case
+    assert record["status"] == "ok", record["error"]
+    rows = list(csv.DictReader(io.StringIO(cases_csv(spec, [case], {0: record}))))
+    for name in DYNAMIC_ERRORS:
+        assert math.isfinite(float(rows[0][name])), name
+    # the same inputs and settings as the coarse study's 3 m/s case: the same estimates
+    estimates = estimated.example.estimates()
+    assert float(rows[0]["error_x_max"]) == estimates["x_max"].error
+    assert float(rows[0]["error_difference_P"]) == estimates["difference_P"].absolute_error
+    assert float(rows[0]["error_difference_worst"]) == max(
+        estimates[f"difference_{k}"].absolute_error for k in "xPt"
+    )
+
+
+def test_sweep_estimate_is_checked_up_front(tmp_path):
+    text = TINY_SWEEP.replace("[axes]", "estimate = true\n[axes]")  # 60 steps: ladder at 30
+    assert "ladder's coarsest level" in sweep_error(tmp_path, text)
+    assert "true or false" in sweep_error(tmp_path, text.replace("true", '"yes"'))

@@ -323,6 +323,35 @@ def test_two_axes_give_a_heat_map_with_failed_cells_grey(tmp_path):
     assert len(np.unique(image.reshape(-1, 3).round(2), axis=0)) > 20  # a colour map was drawn
 
 
+def difference_map(tmp_path, error, name="d"):
+    """A 2 x 3 heat map of a difference with 1 % / 5 % levels and a uniform estimated error."""
+    values = [0.005, 0.02, 0.06, 0.008, 0.03, 0.07]
+    results = {
+        "spec": {"name": "fake", "kind": "probe", "axes": {"x": [1.0, 2.0], "z": [1, 2, 3]}},
+        "kind": {
+            "outputs": {name: "", f"error_{name}": ""},
+            "levels": {name: [0.01, 0.05]},
+            "parameter_units": {"x": "m", "z": ""},
+        },
+        "cases": [
+            {"index": i, "status": "ok", "outputs": {name: v, f"error_{name}": error}}
+            for i, v in enumerate(values)
+        ],
+    }
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(results))
+    figures = {png.stem: imread(png)[..., :3] for png in sweep_figures(path, tmp_path / "fig")}
+    red = (figures[name][..., 0] > 0.8) & (figures[name][..., 1:].max(axis=-1) < 0.3)
+    return int(red.sum())
+
+
+def test_heat_map_contours_a_level_only_where_the_error_resolves_it(tmp_path):
+    # the contours |d| = 1 %, 5 % are red; an error of 1e-4 resolves both levels, 5e-3 only
+    # 5 % (1 % / 5 = 2e-3 < 5e-3 < 5 % / 5), 2e-2 neither: nothing red is drawn then
+    both, five, none = (difference_map(tmp_path, error) for error in (1e-4, 5e-3, 2e-2))
+    assert both > five > 100 and none == 0
+
+
 def test_three_axes_give_no_figures(tmp_path):
     path = fake_results(tmp_path, {"x": [1.0], "z": ["a"], "w": [1]}, [1.0])
     assert sweep_figures(path, tmp_path / "figures") == []

@@ -13,9 +13,8 @@ from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
 from ..output.dynamic import history_columns
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
-from ..study.accuracy import LADDER_RATIO
 from ..study.dynamic import DynamicTolerances, run_case
-from ..study.dynamic_accuracy import complete_ladder
+from ..study.dynamic_accuracy import check_ladder, complete_ladder
 from ..validation import InputError, validate_positive
 from .common import PAPER, add_half_space_options, add_indenter_options, print_json, warn
 from .common import half_space as read_half_space
@@ -133,12 +132,9 @@ def run(args: argparse.Namespace) -> int:
         ) from None
     if not args.no_estimate:
         try:
-            settings.refined(1.0 / LADDER_RATIO**2)  # the coarsest level must be valid too
+            check_ladder(settings)
         except InputError as error:
-            raise InputError(
-                f"the error-estimate ladder's coarsest level (mesh x2, steps / 2) is invalid: "
-                f"{error}; refine the settings or pass --no-estimate"
-            ) from None
+            raise InputError(f"{error}; refine the settings or pass --no-estimate") from None
     history = history_path(args.history, force=args.force)
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
     case = run_case(

@@ -335,7 +335,12 @@ def _contact_finding(name: str, study: dict) -> str:
 
 
 def _velocity(limit: dict | None) -> str:
-    """A velocity limit of the dynamic study: "3.12 m/s", "all computed (5 m/s)", "none"."""
+    """A velocity limit of the dynamic study: "3.12 m/s", "all computed (5 m/s)", "none", or
+    "not resolved (...)" where its estimated error is not below a fifth of the level."""
+    if limit and not limit.get("resolved"):
+        if limit.get("error") is None:
+            return "not resolved (no error estimate)"
+        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
     if not limit or limit.get("velocity") is None:
         return "no: already off at the slowest v0 computed"
     if limit.get("bound") == "all":
@@ -382,7 +387,7 @@ def validity_table(studies: dict) -> dict[str, object] | None:
         return None
     return {
         "title": "Where the paper's model holds (limits interpolated between computed points; "
-        "each study's estimated error is 10-100 times smaller than these effects)",
+        "shown only where the estimated FEM error is below a fifth of the effect)",
         "header": ["assumption tested", "holds to 1 % up to", "holds to 5 % up to"],
         "rows": rows,
     }

@@ -21,9 +21,13 @@ far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_co
                  estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
                  estimate is below estimate_below = 0.08)
 
-The relative differences are quasi-static / dynamic - 1. The velocity up to which the
-quasi-static value holds to 1 % (5 %) is interpolated linearly between the computed velocities
-where |difference| crosses the level (the differences grow monotonically with v0).
+The relative differences are quasi-static / dynamic - 1. Every velocity's run is the finest
+level of an error-estimate ladder (:mod:`.dynamic_accuracy`: the two coarser levels cost about
+0.75 of it again; ``verify --quick`` skips it): x_max, P_max, t_contact, e, 1 - e^2 and the
+differences themselves carry Richardson estimates. The velocity up to which the quasi-static
+value holds to 1 % (5 %) is interpolated linearly between the computed velocities where
+|difference| crosses the level (the differences grow monotonically with v0), and stated only
+where the estimated error of the difference is below a fifth of the level (:mod:`.limits`).
 """
 
 from __future__ import annotations
@@ -53,7 +57,10 @@ from ..theory.materials import RIGID, Material, effective_modulus
 from ..theory.radiation import RadiationEstimate, radiation_estimate
 from ..validation import InputError
 from .checks import Check
+from .dynamic_accuracy import DynamicLadder, check_ladder, complete_ladder
 from .indentation import validate_fem_inputs
+from .limits import LEVELS, thresholds
+from .richardson import Estimate
 from .schema import Poisson, Positive, Relative, StudyError, _decode, _Table, validate_name
 
 __all__ = [
@@ -62,10 +69,10 @@ __all__ = [
     "DynamicStudy",
     "DynamicStudyOutcome",
     "DynamicTolerances",
+    "compare",
     "load_dynamic",
     "run_case",
     "run_dynamic_study",
-    "thresholds",
 ]
 
 QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
@@ -75,10 +82,16 @@ COMPARED = {
     "t": ("t_c", "t_half", "compression time (against t_contact / 2)"),
 }
 """Compared quantity -> (quasi-static key, dynamic key, words)."""
-LEVELS = (0.01, 0.05)
+RELATIVE_ESTIMATES = {
+    "x_max": "x_max",
+    "P_max": "P_max",
+    "t_contact": "t_contact",
+    "restitution": "e",
+    "energy_radiated_fraction": "1 - e^2",
+}
+"""Results whose estimated relative error the study reports -> their names in the text."""
 SEPARATION_SNAPSHOT = 1.05
 """The wave field after separation is kept at this multiple of the quasi-static t_y."""
-"""Relative differences for which the study states the velocity limit."""
 
 Progress = Callable[[str], None]
 
@@ -86,34 +99,48 @@ Progress = Callable[[str], None]
 # --- one case: quasi-static, estimate, dynamic -------------------------------------------------
 
 
+def compare(quasi: ImpactResult, result: DynamicImpactResult) -> dict[str, float]:
+    """Quasi-static / dynamic - 1 for x, P and t (keys of :data:`COMPARED`; t_c against
+    t_contact / 2, the same as t_y against t_contact), dimensionless."""
+    dynamic = {"x_max": result.x_max, "P_max": result.P_max, "t_half": 0.5 * result.t_contact}
+    return {key: getattr(quasi, qs) / dynamic[dyn] - 1.0 for key, (qs, dyn, _) in COMPARED.items()}
+
+
 @dataclass(frozen=True)
 class DynamicCase:
-    """One approach velocity: the quasi-static impact, the estimate and the dynamic FE impact."""
+    """One approach velocity: the quasi-static impact, the estimate and the dynamic FE impact
+    (with its error-estimate ladder, or ``None`` when it was skipped)."""
 
     velocity: float
     quasi: ImpactResult
     estimate: RadiationEstimate
     result: DynamicImpactResult
+    ladder: DynamicLadder | None = None
 
     def differences(self) -> dict[str, float]:
-        """Quasi-static / dynamic - 1 for x, P and t (t_c against t_contact / 2; the same as
-        t_y against t_contact) and the measured loss against the estimate."""
-        dynamic = {
-            "x_max": self.result.x_max,
-            "P_max": self.result.P_max,
-            "t_half": 0.5 * self.result.t_contact,
-        }
-        out = {
-            key: getattr(self.quasi, qs) / dynamic[dyn] - 1.0
-            for key, (qs, dyn, _) in COMPARED.items()
-        }
+        """:func:`compare` and the measured loss against the first-order estimate."""
+        out = compare(self.quasi, self.result)
         out["loss_vs_estimate"] = (
             self.result.energy_radiated_fraction / self.estimate.energy_fraction - 1.0
         )
         return out
 
+    def estimates(self) -> dict[str, Estimate]:
+        """Richardson estimates from the ladder ({} without one): x_max, P_max, t_contact,
+        restitution, energy_radiated_fraction, and ``difference_x``, ``difference_P``,
+        ``difference_t`` (:func:`compare` on every level; use ``absolute_error``)."""
+        if self.ladder is None:
+            return {}
+        quasi = self.quasi
+        differences = {
+            f"difference_{key}": self.ladder.estimate(lambda r, key=key: compare(quasi, r)[key])
+            for key in COMPARED
+        }
+        return {**self.ladder.estimates, **differences}
+
     def document(self) -> dict[str, object]:
-        """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract)."""
+        """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract), with the
+        ladder's ``error_estimate``, ``extrapolated``, ``estimate_details``, ``mesh_ladder``."""
         maxima = self.quasi.maxima()
         return {
             "quasi_static": {key: maxima[key] for key in QUASI_STATIC_KEYS},
@@ -122,6 +149,7 @@ class DynamicCase:
             "mesh": self.result.mesh,
             "timings": self.result.timings,
             "parameters": self.result.parameters,
+            **(self.ladder.to_dict(self.estimates()) if self.ladder is not None else {}),
         }
 
 
@@ -134,6 +162,7 @@ def run_case(
     settings: DynamicSettings | None = None,
     *,
     snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
+    ladder: bool = False,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
 
@@ -151,6 +180,9 @@ def run_case(
         Numerical controls of the dynamic impact.
     snapshots : callable, optional
         Given the quasi-static impact, the times in s at which to keep the fields.
+    ladder : bool
+        Also run the two coarser levels of the error-estimate ladder (about 0.75 of the run's
+        cost; ``settings.refined(1/2)`` must be valid).
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     quasi = solve_impact(mass, velocity, law)
@@ -164,10 +196,11 @@ def run_case(
         half_space.poisson_ratio,
     )
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
-    result = run_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, snapshot_times=times
-    )
-    return DynamicCase(velocity, quasi, estimate, result)
+    settings = DynamicSettings() if settings is None else settings
+    inputs = (indenter, half_space, density, mass, velocity)
+    result = run_dynamic_impact(*inputs, settings, snapshot_times=times)
+    levels = complete_ladder(result, *inputs, settings) if ladder else None
+    return DynamicCase(velocity, quasi, estimate, result, levels)
 
 
 # --- the study file ----------------------------------------------------------------------------
@@ -320,6 +353,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
     settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
+    try:
+        check_ladder(settings)  # the full study runs the ladder; verify --quick does not
+    except InputError as error:
+        raise StudyError(f"{path}: key 'numerics': {error}") from None
     return [
         DynamicStudy(
             name=name,
@@ -340,22 +377,6 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
 
 
 # --- running a study ---------------------------------------------------------------------------
-
-
-def thresholds(velocities: Sequence[float], differences: Sequence[float], level: float) -> dict:
-    """Up to which velocity |difference| <= level, interpolated linearly between the points.
-
-    Returns ``{"velocity": v or None, "bound": "interpolated" | "all" | "none"}``: "all" when
-    every computed velocity holds (``velocity`` is then the largest computed, a lower bound),
-    "none" when already the smallest does not (``velocity`` None).
-    """
-    size = [abs(d) for d in differences]
-    if size[0] > level:
-        return {"velocity": None, "bound": "none"}
-    for (v0, d0), (v1, d1) in itertools.pairwise(zip(velocities, size, strict=True)):
-        if d1 > level:
-            return {"velocity": v0 + (level - d0) * (v1 - v0) / (d1 - d0), "bound": "interpolated"}
-    return {"velocity": velocities[-1], "bound": "all"}
 
 
 @dataclass(frozen=True)
@@ -405,39 +426,99 @@ class DynamicStudyOutcome:
             curve["restitution"].append(estimate.restitution)
         return curve
 
+    @property
+    def estimated(self) -> bool:
+        """Whether every case carries error estimates (a quick run skips the ladder)."""
+        return all(case.ladder is not None for case in self.cases)
+
+    def difference_errors(self) -> dict[str, list[float]] | None:
+        """Per compared quantity (and "all": the largest of the three) the estimated absolute
+        error of the difference at every velocity; ``None`` without estimates."""
+        if not self.estimated:
+            return None
+        estimates = [case.estimates() for case in self.cases]
+        errors = {
+            key: [e[f"difference_{key}"].absolute_error for e in estimates] for key in COMPARED
+        }
+        errors["all"] = [max(errors[k][i] for k in COMPARED) for i in range(len(self.cases))]
+        return errors
+
     def limits(self) -> dict[str, dict[str, dict]]:
         """Per compared quantity (x, P, t, and "all": the worst of them) and level ("1%",
-        "5%"): the velocity limit of :func:`thresholds`."""
+        "5%"): the velocity limit of :func:`shtaerman.study.limits.thresholds`, with the
+        estimated error deciding it and whether that resolves the level."""
         rows = {key: [case.differences()[key] for case in self.cases] for key in COMPARED}
         rows["all"] = [max(abs(rows[k][i]) for k in COMPARED) for i in range(len(self.cases))]
+        errors = self.difference_errors()
         return {
             key: {
-                f"{100 * level:g}%": thresholds(self.velocities, values, level) for level in LEVELS
+                f"{100 * level:g}%": thresholds(
+                    self.velocities, values, level, None if errors is None else errors[key]
+                )
+                for level in LEVELS
             }
             for key, values in rows.items()
         }
+
+    def _estimate_finding(self) -> str:
+        """One sentence: the largest estimated errors over the velocities, or why none."""
+        if not self.estimated:
+            return (
+                "No error estimates: a quick run skips the 3-level ladder (mesh x2 and x sqrt 2, "
+                "time steps / 2 and / sqrt 2), so the study states no 1 % / 5 % velocity limits."
+            )
+        estimates = [case.estimates() for case in self.cases]
+        worst = {key: max(e[key].error for e in estimates) for key in RELATIVE_ESTIMATES}
+        signal = [
+            (_ratio(d, e[f"difference_{k}"].absolute_error), k, case.velocity)
+            for case, e in zip(self.cases, estimates, strict=True)
+            for k, d in compare(case.quasi, case.result).items()
+        ]
+        ratio, key, velocity = min(signal)
+        largest = max(e[f"difference_{k}"].absolute_error for e in estimates for k in COMPARED)
+        fallbacks = sum(e.method != "richardson" for case in estimates for e in case.values())
+        ladder = self.example.ladder
+        levels = ", ".join(
+            f"{r.mesh['dofs']} dofs/{level.steps} steps"
+            for level, r in zip(ladder.settings, ladder.results, strict=True)
+        )
+        return (
+            "Error estimates (Richardson over a 3-level ladder refining mesh and time step "
+            f"together: {levels} at {self.example.velocity:g} m/s), the largest over the "
+            "velocities: relative "
+            + ", ".join(f"{RELATIVE_ESTIMATES[k]} {v:.1e}" for k, v in worst.items())
+            + f"; the differences quasi-static / dynamic - 1 to {100 * largest:.2g} % "
+            f"(absolute), at least {ratio:.0f} times smaller than the difference itself (the "
+            f"closest: {COMPARED[key][0]} at {velocity:g} m/s). {fallbacks} of the "
+            f"{sum(map(len, estimates))} estimates are the difference of the two finest levels "
+            "instead (no clean observed order)."
+        )
 
     def findings(self) -> list[str]:
         """Sentences for the report's opening section."""
         case, study = self.example, self.study
         d, dyn, quasi = case.differences(), case.result, case.quasi
+        pm = _plus_minus(case.estimates())
         found = [
             f"At the paper's example (M = {study.mass:g} kg, v0 = {case.velocity:g} m/s, "
             f"rubber density {study.density:g} kg/m^3 assumed) the quasi-static model is off by "
-            f"{100 * d['x']:+.2f} % in x_c ({quasi.x_c * 1e3:.3f} mm against the dynamic x_max "
-            f"{dyn.x_max * 1e3:.3f} mm), {100 * d['P']:+.2f} % in P_c ({quasi.P_c:.1f} N against "
-            f"P_max {dyn.P_max:.1f} N) and {100 * d['t']:+.2f} % in t_c ({quasi.t_c * 1e3:.3f} ms "
-            f"against half the dynamic contact time, {0.5e3 * dyn.t_contact:.3f} ms; the same "
-            f"as t_y against t_contact); the dynamic maximum approach comes at "
-            f"{dyn.t_x_max * 1e3:.3f} ms.",
-            f"The striker rebounds with e = {dyn.restitution:.4f} (quasi-static: 1): "
-            f"{100 * dyn.energy_radiated_fraction:.1f} % of its kinetic energy stays in the "
+            f"{100 * d['x']:+.2f}{pm('difference_x', 100)} % in x_c ({quasi.x_c * 1e3:.3f} mm "
+            f"against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), "
+            f"{100 * d['P']:+.2f}{pm('difference_P', 100)} % in P_c ({quasi.P_c:.1f} N against "
+            f"P_max {dyn.P_max:.1f} N) and {100 * d['t']:+.2f}{pm('difference_t', 100)} % in t_c "
+            f"({quasi.t_c * 1e3:.3f} ms against half the dynamic contact time, "
+            f"{0.5e3 * dyn.t_contact:.3f} ms; the same as t_y against t_contact); the dynamic "
+            f"maximum approach comes at {dyn.t_x_max * 1e3:.3f} ms.",
+            f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
+            f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
+            f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
             f"half-space as elastic waves (first-order estimate "
             f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f}).",
+            self._estimate_finding(),
         ]
         limits = self.limits()
         words = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
-        for level in ("1%", "5%"):
+        for level in ("1%", "5%") if self.estimated else ():
             parts = [
                 f"{words[key]} {_limit_text(limits[key][level], self.velocities[0])}"
                 for key in words
@@ -468,18 +549,18 @@ class DynamicStudyOutcome:
         ]
         rows = []
         for case in self.cases:
-            r, d = case.result, case.differences()
+            r, d, pm = case.result, case.differences(), _plus_minus(case.estimates())
             rows.append(
                 [
                     f"{case.velocity:g}",
-                    f"{r.x_max * 1e3:.4f}",
-                    f"{100 * d['x']:+.2f} %",
-                    f"{r.P_max:.1f}",
-                    f"{100 * d['P']:+.2f} %",
-                    f"{r.t_contact * 1e3:.4f}",
-                    f"{100 * d['t']:+.2f} %",
-                    f"{r.restitution:.4f}",
-                    f"{r.energy_radiated_fraction:.4f}",
+                    f"{r.x_max * 1e3:.4f}{pm('x_max', 1e3)}",
+                    f"{100 * d['x']:+.2f}{pm('difference_x', 100)} %",
+                    f"{r.P_max:.1f}{pm('P_max')}",
+                    f"{100 * d['P']:+.2f}{pm('difference_P', 100)} %",
+                    f"{r.t_contact * 1e3:.4f}{pm('t_contact', 1e3)}",
+                    f"{100 * d['t']:+.2f}{pm('difference_t', 100)} %",
+                    f"{r.restitution:.4f}{pm('restitution')}",
+                    f"{r.energy_radiated_fraction:.4f}{pm('energy_radiated_fraction')}",
                     f"{case.estimate.energy_fraction:.4f}",
                     f"{r.energy_balance_error:.1e}",
                     f"{r.reflected_energy_fraction:.1e}",
@@ -490,20 +571,31 @@ class DynamicStudyOutcome:
         limit_rows = [
             [
                 names[key],
-                *(_limit_text(limits[key][level], self.velocities[0]) for level in ("1%", "5%")),
+                *(
+                    _limit_text(limits[key][level], self.velocities[0], error=True)
+                    for level in ("1%", "5%")
+                ),
             ]
             for key in names
         ]
+        errors = (
+            "± the estimated error (Richardson, 3-level ladder) in the value's unit"
+            if self.estimated
+            else "no error estimates: a quick run skips the ladder"
+        )
         return [
             {
                 "title": "Dynamic FE impact against the quasi-static model (differences: "
-                "quasi-static / dynamic - 1; estimate: first-order radiated fraction)",
+                f"quasi-static / dynamic - 1; {errors}; estimate: first-order radiated "
+                "fraction)",
                 "header": header,
                 "rows": rows,
             },
             {
                 "title": "Velocity up to which the quasi-static value holds (linear "
-                "interpolation between the computed velocities)",
+                "interpolation between the computed velocities; stated where the estimated "
+                "error of the difference at the deciding velocities, given as ±, is below a "
+                "fifth of the level)",
                 "header": ["quantity", "to 1 %", "to 5 %"],
                 "rows": limit_rows,
             },
@@ -528,6 +620,7 @@ class DynamicStudyOutcome:
                 {"velocity": case.velocity, **case.document(), "differences": case.differences()}
                 for case in self.cases
             ],
+            "estimated": self.estimated,
             "limits": self.limits(),
             "cpu_seconds": self.cpu_seconds,
             "tables": self.tables(),
@@ -539,12 +632,32 @@ class DynamicStudyOutcome:
         return self.study.quick_settings if self.quick else self.study.settings
 
 
-def _limit_text(limit: dict, smallest: float) -> str:
+def _ratio(difference: float, error: float) -> float:
+    return math.inf if error == 0 else abs(difference) / error
+
+
+def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
+    """``pm(key, scale=1)``: " ± <scale x the absolute error of key>", "" without estimates."""
+
+    def pm(key: str, scale: float = 1.0) -> str:
+        return f" ± {scale * estimates[key].absolute_error:.1g}" if key in estimates else ""
+
+    return pm
+
+
+def _limit_text(limit: dict, smallest: float, *, error: bool = False) -> str:
+    """A velocity limit in words; "not resolved (...)" unless its estimate resolves it;
+    ``error``: the estimate as ± percentage points after a stated limit."""
+    if not limit["resolved"]:
+        if limit["error"] is None:
+            return "not resolved (no error estimate)"
+        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
+    suffix = f"± {100 * limit['error']:.1g} %" if error else ""
     if limit["bound"] == "none":
-        return f"not even at {smallest:g} m/s (the smallest v0 computed)"
+        return f"not even at {smallest:g} m/s (the smallest v0 computed{'; ' * error}{suffix})"
     if limit["bound"] == "all":
-        return f"up to at least {limit['velocity']:g} m/s (every v0 computed)"
-    return f"up to {limit['velocity']:.2f} m/s"
+        return f"up to at least {limit['velocity']:g} m/s (every v0 computed{'; ' * error}{suffix})"
+    return f"up to {limit['velocity']:.2f} m/s" + (f" ({suffix})" if error else "")
 
 
 def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
@@ -571,7 +684,8 @@ def run_dynamic_study(
 
     The example velocity keeps the fields at the quasi-static t_c and at 1.05 t_y (the
     dynamic contact lasts 0.3-1.5 % longer than t_y: the striker has separated by then) for
-    the wave-field pictures.
+    the wave-field pictures. Every velocity also runs the error-estimate ladder's two coarser
+    levels, except in a quick run.
     """
     report = progress or (lambda _line: None)
     start, cpu = time.perf_counter(), time.process_time()
@@ -579,7 +693,10 @@ def run_dynamic_study(
     settings = study.quick_settings if quick else study.settings
     cases = []
     for velocity in velocities:
-        report(f"{study.name}: dynamic impact at v0 = {velocity:g} m/s")
+        report(
+            f"{study.name}: dynamic impact at v0 = {velocity:g} m/s"
+            + ("" if quick else " (and 2 coarser levels for the error estimates)")
+        )
         snapshots = (
             (lambda q: (q.t_c, SEPARATION_SNAPSHOT * q.t_y)) if velocity == study.example else None
         )
@@ -592,6 +709,7 @@ def run_dynamic_study(
                 velocity,
                 settings,
                 snapshots=snapshots,
+                ladder=not quick,
             )
         )
     return DynamicStudyOutcome(

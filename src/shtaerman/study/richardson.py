@@ -74,12 +74,19 @@ class Estimate:
     reason: str = ""
     observed_order: float = math.nan
 
+    @property
+    def absolute_error(self) -> float:
+        """Estimated absolute error of ``value`` (its unit): the Richardson correction, or the
+        two-level difference; for quantities near zero (a small relative difference)."""
+        return self.error * abs(self.extrapolated)
+
     def to_dict(self) -> dict[str, object]:
         """Plain data for JSON."""
         return {
             "value": self.value,
             "extrapolated": self.extrapolated,
             "error": self.error,
+            "absolute_error": self.absolute_error,
             "order": self.order,
             "method": self.method,
             "reason": self.reason,

@@ -576,7 +576,7 @@ def csv_columns(spec: SweepSpec) -> list[tuple[str, str, str]]:
     columns = [("case", "index", "index")]
     for name in spec.axes:
         columns.append((unit_suffix(name, kind.parameters[name].unit), "axis", name))
-    for name, unit in kind.outputs.items():
+    for name, unit in spec.outputs.items():
         columns.append((unit_suffix(name, unit), "output", name))
     columns += [("status", "status", "status"), ("error", "error", "error")]
     return columns
@@ -623,7 +623,8 @@ def _write_results(
         "kind": {
             "name": kind.name,
             "description": kind.description,
-            "outputs": dict(kind.outputs),
+            "outputs": spec.outputs,
+            "levels": {k: list(v) for k, v in kind.levels.items() if k in spec.outputs},
             "nondeterministic_outputs": list(kind.nondeterministic),
             "parameter_units": {name: p.unit for name, p in kind.parameters.items()},
         },

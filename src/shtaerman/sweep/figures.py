@@ -4,6 +4,12 @@ One PNG per output: a curve over the axis for a 1-axis sweep, a heat map (values
 the cells) for a 2-axis sweep. Failed cases are gaps (curves) or grey cells (heat maps). Sweeps
 over 3 or more axes get no figures (``results.json`` and ``cases.csv`` hold everything). The
 figures use :class:`matplotlib.figure.Figure` with the Agg canvas: no pyplot state, no display.
+
+A relative difference with levels (the kind's ``levels``, e.g. 1 % and 5 %) and an estimated
+error (the output ``error_<name>``) shows value ± error (error bars, or in the cells), and its
+heat map draws |value| = level as a contour only between cells whose error resolves the level
+(:func:`shtaerman.study.limits.resolved`: below a fifth of it), as the dynamic study states its
+limits.
 """
 
 from __future__ import annotations
@@ -16,6 +22,8 @@ from typing import Any
 import matplotlib as mpl
 import numpy as np
 from matplotlib.figure import Figure
+
+from ..study.limits import RESOLUTION, resolved
 
 __all__ = ["sweep_figures"]
 
@@ -45,6 +53,28 @@ def _output_values(cases: list[dict], name: str) -> np.ndarray:
     return np.asarray(values, dtype=float)
 
 
+def _errors(results: dict, name: str) -> np.ndarray | None:
+    """The estimated absolute errors of a difference with levels, if the sweep has them."""
+    key = f"error_{name}"
+    if name not in results["kind"].get("levels", {}) or key not in results["kind"]["outputs"]:
+        return None
+    return _output_values(results["cases"], key)
+
+
+def _contours(ax: Any, grid: np.ndarray, errors: np.ndarray, levels: list[float]) -> None:
+    """|grid| = level for each level, through resolved cells only (needs a 2 x 2 grid)."""
+    if min(grid.shape) < 2:
+        return
+    size = np.abs(grid)
+    rows, cols = np.arange(grid.shape[0]), np.arange(grid.shape[1])
+    for level, style in zip(levels, (":", "--", "-"), strict=False):
+        ok = np.vectorize(lambda e, level=level: math.isfinite(e) and resolved(e, level))(errors)
+        masked = np.ma.masked_where(~ok | ~np.isfinite(size), size)
+        if masked.count() and masked.min() < level < masked.max():
+            drawn = ax.contour(cols, rows, masked, levels=[level], colors="red", linestyles=style)
+            ax.clabel(drawn, fmt={level: f"{100 * level:g} %"}, fontsize=8)
+
+
 def _save(figure: Figure, path: Path) -> Path:
     figure.savefig(path, dpi=120)
     return path
@@ -58,7 +88,7 @@ def _curve(results: dict, name: str, unit: str, folder: Path) -> Path:
     y = _output_values(results["cases"], name)
     figure = Figure(figsize=(6.0, 4.0), layout="constrained")
     ax = figure.add_subplot()
-    ax.plot(x, y, "o-", color="C0")
+    ax.errorbar(x, y, yerr=_errors(results, name), fmt="o-", color="C0", capsize=3)
     failed = ~np.isfinite(y)
     if failed.any():
         for position in x[failed]:
@@ -95,12 +125,33 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path) -> Path:
     ax.set_ylabel(_label(row_axis, units.get(row_axis, "")))
     finite = masked.compressed()
     middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
+    errors = _errors(results, name)
     for (i, j), value in np.ndenumerate(grid):
         text = "failed" if not math.isfinite(value) else f"{value:.3g}"
+        if errors is not None and math.isfinite(value):
+            text += f"\n± {errors[i * len(cols) + j]:.1g}"
         colour = "black" if not math.isfinite(value) or value > middle else "white"
         ax.text(j, i, text, ha="center", va="center", fontsize=8, color=colour)
-    ax.set_title(f"{spec['name']} ({spec['kind']}): {name}")
+    note = _levels_note(results, name, errors)
+    ax.set_title(f"{spec['name']} ({spec['kind']}): {name}{note}", fontsize=9 if note else None)
+    if errors is not None:
+        _contours(ax, grid, errors.reshape(grid.shape), results["kind"]["levels"][name])
     return _save(figure, folder / f"{name}.png")
+
+
+def _levels_note(results: dict, name: str, errors: np.ndarray | None) -> str:
+    """The title's second line for a difference with levels: what the contours mean."""
+    levels = results["kind"].get("levels", {}).get(name)
+    if not levels:
+        return ""
+    words = ", ".join(f"{100 * level:g} %" for level in levels)
+    if errors is None:
+        return f"\nno error estimates: no {words} contours"
+    worst = np.nanmax(errors) if np.isfinite(errors).any() else math.nan
+    return (
+        f"\n± estimated error (worst {worst:.1g});\ncontours |value| = {words} "
+        f"where the error < level / {RESOLUTION:g}"
+    )
 
 
 def sweep_figures(results_file: str | Path, folder: str | Path) -> list[Path]:

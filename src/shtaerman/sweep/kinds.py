@@ -10,6 +10,7 @@ A kind is one computation of the suite run on one set of inputs. Adding one is a
             outputs={"x_c": "m", "P_c": "N"},
             case=my_case,        # my_case(params: dict) -> {"x_c": float, "P_c": float}
             check=my_inputs,     # optional: builds and validates the inputs, raises InputError
+            optional_outputs={"estimate": {"error_x_c": ""}},  # optional: when a bool is true
         )
     )
 
@@ -32,6 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..study.limits import LEVELS
 from ..validation import InputError, validate_increasing, validate_positive
 
 __all__ = [
@@ -58,8 +60,9 @@ class Parameter:
         "computed from the other inputs" (e.g. the contact depths).
     unit : str
         SI unit for messages and headers ("" for a pure number).
-    type : {"float", "int", "str", "floats"}
-        What the TOML value must be: a number, an integer, a string, a list of numbers.
+    type : {"float", "int", "str", "floats", "bool"}
+        What the TOML value must be: a number, an integer, a string, a list of numbers,
+        true or false.
     choices : tuple of str, optional
         Allowed strings for ``type="str"``.
     """
@@ -85,10 +88,23 @@ class Kind:
     """Why the kind cannot run yet (``None`` when it can)."""
     nondeterministic: tuple[str, ...] = field(default=())
     """Outputs that vary from run to run (timings); everything else is reproducible."""
+    optional_outputs: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
+    """Outputs the case adds when a ``bool`` parameter is true: parameter -> {output: unit}."""
+    levels: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
+    """Relative differences (output -> levels of its magnitude, e.g. 1 % and 5 %) whose heat
+    maps draw the levels as contours where the output's estimated absolute error, the output
+    ``error_<name>``, resolves them (:func:`shtaerman.study.limits.resolved`)."""
 
     def defaults(self) -> dict[str, Any]:
         """The default value of every parameter."""
         return {name: p.default for name, p in self.parameters.items()}
+
+    def outputs_for(self, flags: Mapping[str, Any]) -> dict[str, str]:
+        """:attr:`outputs` and the optional outputs of the flags that are true."""
+        extra = [
+            outputs for flag, outputs in self.optional_outputs.items() if flags.get(flag, False)
+        ]
+        return {**self.outputs, **{k: v for outputs in extra for k, v in outputs.items()}}
 
 
 class KindNotAvailableError(InputError):
@@ -312,6 +328,7 @@ def _dynamic_inputs(p: dict[str, Any]):
     from dataclasses import replace
 
     from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs
+    from ..study.dynamic_accuracy import check_ladder
     from ..study.indentation import validate_fem_inputs
     from ..theory.materials import Material
     from ..validation import validate_poisson
@@ -330,6 +347,8 @@ def _dynamic_inputs(p: dict[str, Any]):
             f"mesh_size {settings.size!r} would give about {estimate_dofs(settings)} dofs, "
             f"above the limit {MAX_DOFS}"
         )
+    if p["estimate"]:
+        check_ladder(settings)
     return indenter, half_space, density, mass, velocity, settings
 
 
@@ -356,6 +375,22 @@ DYNAMIC_OUTPUTS = {
 }
 """difference_*: quasi-static / dynamic - 1 for x_c / x_max, P_c / P_max and t_c against
 t_contact / 2 (= t_y / t_contact); difference_worst: the largest of their magnitudes."""
+DYNAMIC_ERRORS = {
+    "error_x_max": "",
+    "error_P_max": "",
+    "error_t_contact": "",
+    "error_restitution": "",
+    "error_energy_radiated_fraction": "",
+    "error_difference_x": "",
+    "error_difference_P": "",
+    "error_difference_t": "",
+    "error_difference_worst": "",
+}
+"""With ``estimate = true`` (:mod:`shtaerman.study.dynamic_accuracy`: two coarser runs, about
+0.75 of the case's cost again): the Richardson estimates of the FEM's error. error_x_max ..
+error_energy_radiated_fraction are relative; error_difference_x, _P, _t are absolute, in the
+unit of the difference (estimated on the difference's own values over the ladder);
+error_difference_worst is the largest of those three."""
 
 
 def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
@@ -363,7 +398,7 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
     from ..study.dynamic import run_case
 
     start = time.perf_counter()
-    case = run_case(*_dynamic_inputs(p))
+    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"])
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
     compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
@@ -382,7 +417,21 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
         "reflected_energy_fraction": float(result.reflected_energy_fraction),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
+        **_dynamic_errors(case),
     }
+
+
+def _dynamic_errors(case: Any) -> dict[str, float]:
+    """:data:`DYNAMIC_ERRORS` of a case run with its ladder ({} without one)."""
+    estimates = case.estimates()
+    if not estimates:
+        return {}
+    relative = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
+    out = {f"error_{key}": float(estimates[key].error) for key in relative}
+    for key in ("x", "P", "t"):
+        out[f"error_difference_{key}"] = float(estimates[f"difference_{key}"].absolute_error)
+    out["error_difference_worst"] = max(out[f"error_difference_{key}"] for key in "xPt")
+    return out
 
 
 register_kind(
@@ -402,11 +451,14 @@ register_kind(
             "domain_factor": Parameter(1e4),
             "growth": Parameter(0.2),
             "layer_rate": Parameter(0.0),
+            "estimate": Parameter(False, type="bool"),
         },
         outputs=DYNAMIC_OUTPUTS,
         case=dynamic_case,
         check=_dynamic_inputs,
         nondeterministic=("seconds",),
+        optional_outputs={"estimate": DYNAMIC_ERRORS},
+        levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
     )
 )
 

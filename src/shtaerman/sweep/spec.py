@@ -94,6 +94,15 @@ class SweepSpec:
         """The registered :class:`~shtaerman.sweep.kinds.Kind`."""
         return get_kind(self.kind)
 
+    @property
+    def outputs(self) -> dict[str, str]:
+        """Output name -> unit: the kind's outputs and the optional ones switched on (in
+        ``[parameters]``, by default, or for some case of an axis)."""
+        kind = self.kind_spec
+        flags = {**kind.defaults(), **self.parameters}
+        flags |= {k: any(v) for k, v in self.axes.items() if k in kind.optional_outputs}
+        return kind.outputs_for(flags)
+
     def cases(self) -> list[Case]:
         """Every case of the grid, numbered from 0 (last axis fastest)."""
         base = {**self.kind_spec.defaults(), **self.parameters}
@@ -232,6 +241,8 @@ def _convert(parameter: Parameter, value: Any) -> Any:
     if parameter.type == "str":
         ok = isinstance(value, str) and (not parameter.choices or value in parameter.choices)
         return value if ok else None
+    if parameter.type == "bool":
+        return value if isinstance(value, bool) else None
     if parameter.type == "floats":
         if not isinstance(value, list) or not value:
             return None
@@ -248,6 +259,7 @@ def _expected(parameter: Parameter) -> str:
         "int": "an integer",
         "str": f"one of {list(parameter.choices)}" if parameter.choices else "a string",
         "floats": f"a non-empty list of numbers{unit}",
+        "bool": "true or false",
     }[parameter.type]
 
 
