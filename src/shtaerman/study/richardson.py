@@ -56,7 +56,8 @@ class Estimate:
     error : float
         Estimated relative error of ``value``, dimensionless (>= 0).
     order : float
-        Observed order p (nan for the fallback).
+        The order of the correction: the observed p, or the known order when one was given
+        (nan for the fallback).
     method : str
         ``"richardson"`` or ``"two-level"`` (the fallback; see ``reason``).
     reason : str
