@@ -87,6 +87,16 @@ def test_linear_json_gains_model_and_strain_energy(capsys):
         assert step["strain_energy"] == pytest.approx(exact_energy(step["depth"]), rel=5e-4)
 
 
+def test_linear_no_estimate_runs_one_mesh(capsys):
+    linear_mesh = ["--mesh-size", "0.05", "--domain-factor", "1e4", "--depths", "2e-3"]
+    code, out, _ = run(capsys, "contact", "--json", *linear_mesh)
+    full = json.loads(out)
+    code, out, _ = run(capsys, "contact", "--json", "--no-estimate", *linear_mesh)
+    alone = json.loads(out)
+    assert code == 0 and "error_estimate" in full and "error_estimate" not in alone
+    assert alone["mesh"]["dofs"] == full["mesh_ladder"][-1]["dofs"]  # the finest level alone
+
+
 def test_neo_hookean_text_and_out(capsys, tmp_path):
     folder = tmp_path / "run"
     argv = ["contact", "--model", "neo-hookean", "--depths", "1e-3", "--out", str(folder)]
