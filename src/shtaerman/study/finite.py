@@ -11,7 +11,8 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``)::
                  depth steps up to it), small_ratio = 0.01 (x/a of a first, tiny depth: the
                  small-strain limit), small_steps = 5 (geometric depths from it to the first
                  equal step)
-    [mesh]       refine = K and the MeshSettings fields (default: FINITE_MESH)
+    [mesh]       refine = K and the MeshSettings fields (default: FINITE_MESH): the finest
+                 mesh of the error-estimate ladder (K/2, K/sqrt(2), K)
     [quick]      steps, small_steps, small_ratio and [quick.mesh] for ``verify --quick``
     [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
     [sweep]      optional: one of poisson_ratio, mass, velocity with a list of values
