@@ -2,10 +2,10 @@
 
 The study (:mod:`.finite`) runs on its mesh refined by 1/2, 1/sqrt(2) and 1 (the finest
 answers), and every number it reports gets a Richardson estimate (:mod:`.richardson`) from
-the three values: per depth P/(beta x^q), P/P_linear-FEM, a/a_linear and p(0)/p_avg; the same
-four at the finite-strain x_c (log-log interpolated); the finite-strain impact's maxima (whose
-relative errors are also those of their ratios to Shtaerman's exact impact) and their ratios
-to the linear-FEM impact on the same mesh.
+the three values: per depth P/(beta x^q), P/P_linear-FEM, a/a_linear, p(0)/p_avg and the
+stored energy; the four ratios at the finite-strain x_c (log-log interpolated); the
+finite-strain impact's maxima (whose relative errors are also those of their ratios to
+Shtaerman's exact impact) and their ratios to the linear-FEM impact on the same mesh.
 
 The depths where the departure |P/P_linear-FEM - 1| reaches 1 % and 5 % get the larger of two
 estimates: Richardson's over the three levels' crossings, and how far the finest crossing moves
@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from .finite import FiniteStudyOutcome
 
 __all__ = [
+    "CROSSING_KEYS",
     "RESOLVED_FRACTION",
     "STEP_KEYS",
     "FiniteEstimates",
