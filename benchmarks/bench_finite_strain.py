@@ -15,6 +15,12 @@ asserted; wall-clock times depend on the machine and its load (printed beside th
     refined by 2 each level: differences, observed orders, Richardson estimate, and the error
     of the default mesh.
 (e) HERTZ (n = 2, A = 1/(2R)) at finite strain against published neo-Hookean sphere results.
+(f) THE STUDY'S ERROR ESTIMATES (fem/finite_strain.toml, nu2 = 0.5 and 0.3): CPU time of the
+    3-mesh ladder against one run on today's default mesh (FINITE_MESH, refine 1); every
+    estimate of the finest level against its "true" error, the difference from a reference run
+    on the finest mesh refined by 2 (the reference refined by sqrt 2 beside, to show how far
+    the reference itself is converged); effectivity = estimate / true (``--sections f``, about
+    5 minutes of CPU time per study).
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ import argparse
 import math
 import os
 import time
+from dataclasses import replace
 
 import numpy as np
 from scipy.integrate import simpson
@@ -30,7 +37,10 @@ from scipy.interpolate import PchipInterpolator
 
 from shtaerman.fem.finite_contact import FINITE_MESH, run_finite_indentation
 from shtaerman.study.convergence import refined_settings
+from shtaerman.study.finite import run_finite_strain_study
+from shtaerman.study.finite_accuracy import reported_values
 from shtaerman.study.indentation import run_indentation
+from shtaerman.study.schema import load_study, shipped_studies
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact_ode import integrate_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -241,10 +251,76 @@ def hertz() -> None:
         )
 
 
+def _timed(study, **options):
+    cpu = time.process_time()
+    outcome = run_finite_strain_study(study, **options)
+    return outcome, time.process_time() - cpu
+
+
+def _crossings(outcome) -> dict[str, float]:
+    return {f"x/a at {e['level']:.0%}": e["depth_to_radius"] for e in outcome.validity()}
+
+
+def _row(name: str, value: float, estimate: float, method: str, refs: list[float]) -> str:
+    true = abs(value / refs[-1] - 1.0)
+    reference = abs(refs[0] / refs[-1] - 1.0)
+    ratio = estimate / true if true > 0 else math.inf
+    return (
+        f"  {name:26s} {value:12.6g}  {estimate:8.1e}  {true:8.1e}  {ratio:7.2f}  "
+        f"{reference:8.1e}  {method}"
+    )
+
+
+def study_estimates(which: int) -> None:
+    study = load_study(next(p for p in shipped_studies() if p.stem == "finite_strain"))[which]
+    _, today = _timed(replace(study, mesh=FINITE_MESH), estimate=False)
+    ladder, cost = _timed(study)
+    estimates = ladder.estimates
+    references = [
+        _timed(replace(study, mesh=study.mesh.refined(f)), estimate=False)[0]
+        for f in (math.sqrt(2.0), 2.0)
+    ]
+    print(
+        f"\n(f) {study.name}: ladder {'/'.join(map(str, estimates.dofs))} dofs, CPU "
+        f"{' + '.join(f'{c:.1f}' for c in estimates.cpu_seconds)} = {cost:.1f} s against "
+        f"{today:.1f} s for one run on today's default mesh ({cost / today:.2f}x); references "
+        f"{'/'.join(str(r.finite.curve.mesh_stats['dofs']) for r in references)} dofs; {load()}"
+    )
+    print("  quantity                          value  estimate      true  effect.  ref-ref  method")
+    values = [reported_values(r) for r in (ladder, *references)]
+    for key, estimate in estimates.scalars.items():
+        if key == "force_ratio_worst":
+            continue
+        method = estimate.method + (f" ({estimate.reason})" if estimate.reason else "")
+        print(_row(key, values[0][key], estimate.error, method, [v[key] for v in values[1:]]))
+    worst = estimates.worst_step()
+    rows = [r.rows()[worst]["force_ratio"] for r in references]
+    estimate = estimates.steps[worst]["force_ratio"]
+    name = f"P/(b x^q) worst, x/a {ladder.rows()[worst]['depth_to_radius']:.2g}"
+    print(_row(name, ladder.rows()[worst]["force_ratio"], estimate.error, estimate.method, rows))
+    crossings = [_crossings(r) for r in (ladder, *references)]
+    for entry, (key, value) in zip(ladder.limits(), crossings[0].items(), strict=True):
+        refs = [c[key] for c in crossings[1:]]
+        error = entry["errors"]["depth_to_radius"]
+        print(_row(key, value, error, f"departure error {entry['departure_error']:.1e}", refs))
+    effectivities = []
+    for k, step in enumerate(estimates.steps):
+        for key in ("force_ratio", "force_ratio_fem"):
+            true = abs(ladder.rows()[k][key] / references[-1].rows()[k][key] - 1.0)
+            effectivities.append(step[key].error / true if true > 0 else math.inf)
+    inside = np.mean([1 / 3 <= e <= 3 for e in effectivities])
+    print(
+        f"  per depth, P/P_lin and P/P_linFEM ({len(effectivities)} estimates): effectivity "
+        f"median {np.median(effectivities):.2f}, quartiles "
+        f"{np.percentile(effectivities, 25):.2f}-{np.percentile(effectivities, 75):.2f}, "
+        f"{inside:.0%} within [1/3, 3], {np.mean(np.array(effectivities) < 1):.0%} below 1"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="sections (b) and (a) only")
-    parser.add_argument("--sections", default="bacde", help="which sections to run, e.g. 'd'")
+    parser.add_argument("--sections", default="bacdef", help="which sections to run, e.g. 'd'")
     args = parser.parse_args()
     sections = "ba" if args.quick else args.sections
     print(f"machine: {load()}")
@@ -254,6 +330,7 @@ def main() -> None:
         "c": conservation,
         "e": hertz,
         "d": lambda: mesh_convergence([2.0, 2**0.5, 1.0, 2**-0.5, 0.5]),
+        "f": lambda: [study_estimates(which) for which in (0, 1)],
     }
     for section in sections:
         run[section]()

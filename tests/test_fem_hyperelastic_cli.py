@@ -50,6 +50,27 @@ def test_neo_hookean_json(capsys):
         assert step["newton_iterations"] >= 1
     assert set(report["departures_from_linear"]) == {"force", "contact_radius", "central_pressure"}
     assert report["mesh"]["dofs"] > 0 and report["timings"]["total"] > 0
+    # the 3-mesh ladder, as for the linear model: K/2, K/sqrt(2), K, the finest answering
+    ladder = report["mesh_ladder"]
+    assert [level["refine"] for level in ladder] == pytest.approx([0.5, 2**-0.5, 1.0])
+    assert ladder[0]["dofs"] < ladder[1]["dofs"] < ladder[2]["dofs"] == report["mesh"]["dofs"]
+    keys = {"force", "beta", "exponent", "contact_radius", "central_pressure"}
+    assert set(report["error_estimate"]) == set(report["extrapolated"]) == keys
+    # coarse mesh: force and beta estimated at 3.5e-3 here; a missing ladder would give 0 or
+    # NaN, a broken one O(1)
+    assert all(1e-6 < report["error_estimate"][key] < 0.05 for key in ("force", "beta"))
+    extrapolated = report["extrapolated"]["beta"] / report["beta_fem"] - 1
+    assert abs(extrapolated) <= report["error_estimate"]["beta"] * 1.01
+    assert "true_error" not in report and "effectivity" not in report  # no exact solution
+
+
+def test_neo_hookean_no_estimate_runs_one_mesh(capsys):
+    argv = ["contact", "--model", "neo-hookean", "--json", "--no-estimate", "--depths", "2e-3"]
+    code, out, _ = run(capsys, *argv, *COARSE, "--refine", "0.8")
+    report = json.loads(out)
+    assert code == 0 and "error_estimate" not in report and "mesh_ladder" not in report
+    # --refine scales the one mesh: fewer dofs than the default 12457 of COARSE at 2e-3 m
+    assert report["mesh"]["dofs"] < 12457 * 0.8
 
 
 def test_linear_json_gains_model_and_strain_energy(capsys):
@@ -64,6 +85,16 @@ def test_linear_json_gains_model_and_strain_energy(capsys):
         # W = 1/2 sum F_i (d - f(r_i)) against Int_0^d beta x^q dx (observed 1.6e-4, 1.9e-4:
         # the mesh's own error; a wrong factor 1/2 or sign would be O(1))
         assert step["strain_energy"] == pytest.approx(exact_energy(step["depth"]), rel=5e-4)
+
+
+def test_linear_no_estimate_runs_one_mesh(capsys):
+    linear_mesh = ["--mesh-size", "0.05", "--domain-factor", "1e4", "--depths", "2e-3"]
+    code, out, _ = run(capsys, "contact", "--json", *linear_mesh)
+    full = json.loads(out)
+    code, out, _ = run(capsys, "contact", "--json", "--no-estimate", *linear_mesh)
+    alone = json.loads(out)
+    assert code == 0 and "error_estimate" in full and "error_estimate" not in alone
+    assert alone["mesh"]["dofs"] == full["mesh_ladder"][-1]["dofs"]  # the finest level alone
 
 
 def test_neo_hookean_text_and_out(capsys, tmp_path):
@@ -89,6 +120,9 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
         (["--model", "neo-hookean", "--mesh-size", "2"], "mesh-size"),
         (["--model", "neo-hookean", "--nu2", "-0.2"], "nu2"),
         (["--model", "neo-hookean", "--exponent", "1"], "exponent"),
+        (["--model", "neo-hookean", "--accuracy", "1e-3"], "accuracy"),
+        (["--no-estimate", "--accuracy", "1e-3"], "accuracy"),
+        (["--model", "neo-hookean", "--refine", "0.5"], "coarsest level (refine 0.25)"),
     ],
 )
 def test_bad_input_is_one_line(capsys, argv, names):

@@ -194,7 +194,7 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
     assert [row[1:] for row in rows] == [
         ["no: already off at the slowest v0 computed", "v0 = 3.12 m/s"],
         ["v0 = 0.715 m/s", "every v0 computed (to 5 m/s)"],
-        ["x/a = 0.16 (v0 = 0.0036 m/s)", "x/a = 0.90 (v0 = 3.1 m/s)"],
+        ["x/a = 0.16 (v0 = 0.0036 m/s; not estimated)", "x/a = 0.90 (v0 = 3.1 m/s; not estimated)"],
     ]
     assert "nu2 = 0.5" in rows[2][0]
     assert report_validity({"paper": {"kind": "contact"}}) is None
@@ -222,3 +222,33 @@ def test_validity_table_states_a_dynamic_limit_only_where_resolved():
         "shown only where the estimated FEM error is below a fifth of the effect"
         in (table["title"])
     )
+
+
+def crossing(level, departure_error):
+    """A finite-strain validity entry with estimates (the default run's 1 % one, nu2 = 0.5)."""
+    return {
+        "level": level,
+        "status": "interpolated",
+        "depth_to_radius": 0.1636,
+        "depth": 1.23e-3,
+        "velocity": 0.00363,
+        "errors": {"depth_to_radius": 0.038, "depth": 0.11, "velocity": 0.15},
+        "departure_error": departure_error,
+    }
+
+
+@pytest.mark.parametrize(
+    ("level", "departure_error", "resolved"),
+    [(0.01, 4.1e-4, True), (0.01, 1.99e-3, True), (0.01, 2.01e-3, False), (0.05, 0.012, False)],
+)
+def test_finite_depth_limits_stated_only_where_the_error_is_below_a_fifth(
+    level, departure_error, resolved
+):
+    study = {"kind": "finite-strain", "validity": [crossing(level, departure_error)]}
+    table = report_validity({"rubber": study})
+    cell = table["rows"][0][1 if level == 0.01 else 2]
+    if resolved:
+        assert cell == "x/a = 0.16 ± 3.8e-02 (v0 = 0.0036 m/s ± 1.5e-01)"
+    else:
+        assert cell == f"not resolved (estimated error of the departure {departure_error:.1e})"
+    assert "fifth of the effect" in table["title"] and "10-100" not in table["title"]

@@ -1,19 +1,30 @@
 """The finite-strain study kind: loading (errors name file and key), one quick run, its checks,
-its document, and the files and figures it writes (pictures checked as pictures).
+its document, and the files and figures it writes (pictures checked as pictures); its error
+estimates from a mesh ladder, in its tables and in the report.
 
-One quick run of the shipped paper case (nu2 = 0.5) serves the whole module (about 5 s of CPU
-time: 8 depths on the coarse [quick] mesh).
+One quick run of the shipped paper case (nu2 = 0.5) serves most of the module (about 5 s of
+CPU time: 8 depths on the coarse [quick] mesh); one full run on a ladder whose finest mesh is
+that quick mesh (2k/2.4k/3.7k dofs, about 11 s) serves the estimate tests.
 """
 
 import json
 import math
+from dataclasses import replace
 
 import meshio
 import numpy as np
 import pytest
 from PIL import Image
 
+from shtaerman.output.report import (
+    render_markdown,
+    report_context,
+    results_document,
+    study_document,
+)
 from shtaerman.study.finite import FiniteStudy, depth_at_ratio, ladder
+from shtaerman.study.finite_accuracy import CROSSING_KEYS, reported_values
+from shtaerman.study.richardson import ORDER_RANGE
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study, shipped_studies
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -36,6 +47,13 @@ velocity = 3.0
 def outcome():
     study = load_study(SHIPPED)[0]
     return run_study(study, quick=True)
+
+
+@pytest.fixture(scope="module")
+def laddered():
+    """The shipped paper case, not quick, on a ladder whose finest mesh is the quick one."""
+    study = load_study(SHIPPED)[0]
+    return run_study(replace(study, mesh=study.quick_mesh, ladder=study.quick_ladder))
 
 
 @pytest.fixture(scope="module")
@@ -120,7 +138,7 @@ def test_quick_study_checks_pass(outcome):
 
 
 def test_rubber_moves_the_impact_the_measured_way(outcome):
-    # quick mesh; the default gives x_c +1.70 %, P_c -2.22 %, t_c +1.85 % (README)
+    # quick mesh; the default gives x_c +1.69 %, P_c -2.21 %, t_c +1.84 % (README)
     ratios = outcome.ratios()
     assert 1.01 < ratios["x_c"] < 1.025 and 0.97 < ratios["P_c"] < 0.99
     assert 1.01 < ratios["t_c"] < 1.025
@@ -221,3 +239,80 @@ def test_sweep_file_of_the_kind_is_checked_up_front(tmp_path):
         load_sweep(path)
     path.write_text('name = "f"\nkind = "finite-strain"\n[axes]\nnu2 = [0.5, 0.3]\n')
     assert load_sweep(path).name == "f"
+
+
+def every_estimate(outcome):
+    estimates = outcome.estimates
+    return [*estimates.scalars.values(), *(e for step in estimates.steps for e in step.values())]
+
+
+def test_ladder_estimates_have_a_sane_order_or_say_why_not(laddered):
+    estimates = laddered.estimates
+    assert estimates.refines == pytest.approx([0.5, 2**-0.5, 1.0])
+    assert estimates.dofs[0] < estimates.dofs[1] < estimates.dofs[2]
+    assert estimates.dofs[-1] == laddered.finite.curve.mesh_stats["dofs"]
+    every = every_estimate(laddered)
+    richardson = [e for e in every if e.method == "richardson"]
+    # observed on this coarse ladder: 7 of 57 Richardson, the rest noise (two-level)
+    assert richardson and len(richardson) < len(every)
+    assert all(ORDER_RANGE[0] <= e.order <= ORDER_RANGE[1] for e in richardson)
+    assert all(e.method == "two-level" and e.reason for e in every if e not in richardson)
+    assert all(0 <= e.error < 0.1 for e in estimates.scalars.values())
+
+
+def test_estimates_are_of_the_finest_values(laddered):
+    estimates, values = laddered.estimates, reported_values(laddered)
+    for key, estimate in estimates.scalars.items():
+        if key != "force_ratio_worst":
+            assert estimate.value == values[key], key
+    for step, row in zip(estimates.steps, laddered.rows(), strict=True):
+        assert all(estimate.value == row[key] for key, estimate in step.items())
+    worst = estimates.worst_step()
+    assert estimates.scalars["force_ratio_worst"] is estimates.steps[worst]["force_ratio"]
+    # Richardson's estimate is the distance to the extrapolated value; the fallback's is the
+    # distance to the next coarser level (it extrapolates nothing)
+    for e in every_estimate(laddered):
+        if e.method == "richardson":
+            expected = abs(e.value - e.extrapolated) / abs(e.extrapolated)
+            assert e.error == pytest.approx(expected, rel=1e-12)
+        else:
+            assert e.extrapolated == e.value
+
+
+def test_crossing_estimates_cover_the_move_of_the_departures(laddered):
+    errors = np.array(
+        [
+            abs(r["force_ratio_fem"]) * s["force_ratio_fem"].error
+            for r, s in zip(laddered.rows(), laddered.estimates.steps, strict=True)
+        ]
+    )
+    moved = [laddered.validity(errors), laddered.validity(-errors)]
+    for i, entry in enumerate(laddered.limits()):
+        assert set(entry["errors"]) == set(CROSSING_KEYS)
+        for key in CROSSING_KEYS:
+            shift = max(abs(m[i][key] / entry[key] - 1.0) for m in moved)
+            assert shift <= entry["errors"][key] < 1.0
+        assert 0 < entry["departure_error"] <= errors.max()
+
+
+def test_tables_and_findings_carry_the_estimates(laddered, outcome):
+    curve, impact, validity = laddered.tables()
+    assert all(" ± " in cell for row in curve["rows"] for cell in row[3:8])
+    finite = next(row for row in impact["rows"] if row[0] == "neo-Hookean finite strain")
+    assert all(" ± " in cell for cell in finite[1:])
+    assert all(" ± " in cell for row in impact["rows"][-2:] for cell in row[1:])
+    assert all("resolved" in row[-1] for row in validity["rows"])
+    assert "Richardson" in laddered.findings()[-1] and " ± " in laddered.findings()[0]
+    # quick mode: one mesh, says so, and shows no error bars
+    assert outcome.estimates is None and "no error estimates" in outcome.findings()[-1]
+    assert not any("±" in cell for t in outcome.tables() for row in t["rows"] for cell in row)
+
+
+def test_report_shows_the_finite_rows_with_estimates(laddered):
+    entry = study_document(laddered, {}, None, None)
+    page = render_markdown(report_context(results_document({"rubber": entry}, quick=False)))
+    validity = next(line for line in page.splitlines() if "neo-Hookean rubber" in line)
+    assert validity.count("±") + validity.count("not resolved") >= 2
+    finite = next(line for line in page.splitlines() if "neo-Hookean finite strain" in line)
+    assert finite.count("±") == 6
+    assert json.loads(json.dumps(entry))["accuracy"]["mesh_ladder"][2]["refine"] == 1.0

@@ -24,6 +24,7 @@ from typing import Any
 import jinja2
 
 from .. import __version__
+from ..study.finite_accuracy import resolved
 from ..study.run import IMPACT_KEYS, StudyOutcome
 from .files import json_safe
 
@@ -349,10 +350,22 @@ def _velocity(limit: dict | None) -> str:
 
 
 def _depth(entry: dict | None) -> str:
-    """A depth limit of a finite-strain study: x/a and the impact velocity reaching it."""
+    """A depth limit of a finite-strain study: x/a and the impact velocity reaching it, ± their
+    estimated relative errors; "not resolved" where the departure's estimated error there is
+    not below a fifth of the level (:func:`shtaerman.study.finite_accuracy.resolved`)."""
     if not entry or entry.get("depth_to_radius") is None:
         return "-"
-    return f"x/a = {entry['depth_to_radius']:.2f} (v0 = {entry['velocity']:.2g} m/s)"
+    where, velocity = f"x/a = {entry['depth_to_radius']:.2f}", f"v0 = {entry['velocity']:.2g} m/s"
+    if "departure_error" not in entry:
+        return f"{where} ({velocity}; not estimated)"
+    error = entry["departure_error"]
+    if error is None or not resolved(entry["level"], error):
+        return f"not resolved (estimated error of the departure {_number(error, '.1e')})"
+    errors = entry.get("errors") or {}
+    return (
+        f"{where} ± {_number(errors.get('depth_to_radius'), '.1e')} ({velocity} ± "
+        f"{_number(errors.get('velocity'), '.1e')})"
+    )
 
 
 def validity_table(studies: dict) -> dict[str, object] | None:
@@ -387,7 +400,8 @@ def validity_table(studies: dict) -> dict[str, object] | None:
         return None
     return {
         "title": "Where the paper's model holds (limits interpolated between computed points; "
-        "shown only where the estimated FEM error is below a fifth of the effect)",
+        "shown only where the estimated FEM error is below a fifth of the effect; ± estimated "
+        "relative error)",
         "header": ["assumption tested", "holds to 1 % up to", "holds to 5 % up to"],
         "rows": rows,
     }

@@ -16,6 +16,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,11 +28,16 @@ from ..validation import InputError, validate_positive
 from .indentation import IndentationResult, default_depths, run_indentation
 from .richardson import Estimate, curve_richardson, richardson
 
+if TYPE_CHECKING:
+    from .finite_indentation import FiniteIndentationResult
+
 __all__ = [
     "LADDER_RATIO",
     "AccuracyResult",
     "LadderLevel",
+    "ladder_factors",
     "run_ladder",
+    "run_mesh_ladder",
     "run_to_accuracy",
 ]
 
@@ -58,14 +64,21 @@ contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, bench_contact.py (c));
 common to every level, unseen by the ladder, so added to the estimate."""
 
 Progress = Callable[[str], None]
+Solve = Callable[[MeshSettings], "IndentationResult | FiniteIndentationResult"]
+"""One contact curve on the given mesh (the depths and materials bound in)."""
+
+
+def ladder_factors(refine: float) -> list[float]:
+    """Refinement factors of the three levels whose finest is ``refine``: K/2, K/sqrt(2), K."""
+    return [refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine]
 
 
 @dataclass(frozen=True)
 class LadderLevel:
-    """One mesh of the ladder: its refinement factor and result."""
+    """One mesh of the ladder: its refinement factor and result (linear or finite strain)."""
 
     refine: float
-    result: IndentationResult
+    result: IndentationResult | FiniteIndentationResult
 
     @property
     def dofs(self) -> int:
@@ -90,14 +103,18 @@ class AccuracyResult:
         Per quantity; for the per-depth quantities the depth with the largest estimate.
     tolerance : float or None
         The target of :func:`run_to_accuracy` (None for a plain ladder).
+    exact : bool
+        Whether the levels' ``errors()`` are true errors against an exact solution (the
+        linear contact); False for the finite-strain contact, which has none.
     """
 
     levels: tuple[LadderLevel, ...]
     estimates: dict[str, Estimate]
     tolerance: float | None = None
+    exact: bool = True
 
     @property
-    def finest(self) -> IndentationResult:
+    def finest(self) -> IndentationResult | FiniteIndentationResult:
         """The finest level's result: the reported numbers."""
         return self.levels[-1].result
 
@@ -114,13 +131,19 @@ class AccuracyResult:
         }
 
     def to_dict(self) -> dict[str, object]:
-        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details."""
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details
+        (``true_error`` and ``effectivity`` only where the exact solution is known)."""
+        truth = {}
+        if self.exact:
+            truth = {
+                "true_error": {k: self.finest.errors()[k] for k in self.estimates},
+                "effectivity": self.effectivity(),
+            }
         return {
             "error_estimate": self.error_estimate(),
             "extrapolated": {k: e.extrapolated for k, e in self.estimates.items()},
             "estimate_details": {k: e.to_dict() for k, e in self.estimates.items()},
-            "true_error": {k: self.finest.errors()[k] for k in self.estimates},
-            "effectivity": self.effectivity(),
+            **truth,
             "mesh_ladder": [
                 {"refine": level.refine, "dofs": level.dofs, "seconds": level.seconds}
                 for level in self.levels
@@ -165,19 +188,49 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     return estimates
 
 
-def _level(
-    indenter: PowerLawIndenter,
-    half_space: Material,
-    depths: np.ndarray,
-    base: MeshSettings,
-    refine: float,
-    backend: str,
-    progress: Progress,
-) -> LadderLevel:
-    result = run_indentation(indenter, half_space, depths, base.refined(refine), backend=backend)
-    level = LadderLevel(refine, result)
+def _level(solve: Solve, base: MeshSettings, refine: float, progress: Progress) -> LadderLevel:
+    level = LadderLevel(refine, solve(base.refined(refine)))
     progress(f"mesh x{refine:.3g}: {level.dofs} dofs, {level.seconds:.1f} s")
     return level
+
+
+def run_mesh_ladder(
+    solve: Solve,
+    mesh: MeshSettings,
+    *,
+    refine: float = 1.0,
+    progress: Progress | None = None,
+    exact: bool = True,
+) -> AccuracyResult:
+    """Any contact curve on three meshes, ``mesh`` refined by refine / 2, refine / sqrt(2)
+    and refine, with the estimates of :func:`estimate_errors` for the finest.
+
+    Parameters
+    ----------
+    solve : callable
+        MeshSettings -> a result with ``steps``, ``fit``, ``mesh_stats`` and ``timings``.
+    mesh : MeshSettings
+        The base mesh (refine = 1).
+    refine : float
+        Refinement factor of the finest level.
+    progress : callable, optional
+        Receives one line per level.
+    exact : bool
+        Whether the results' ``errors()`` are true errors (see :class:`AccuracyResult`).
+    """
+    refine = validate_positive("refine", refine)
+    factors = ladder_factors(refine)
+    for factor in factors:
+        mesh.refined(factor)  # check every level before the first is computed
+    report = progress or (lambda _line: None)
+    levels = tuple(_level(solve, mesh, factor, report) for factor in factors)
+    return AccuracyResult(levels, estimate_errors(levels), exact=exact)
+
+
+def _linear(
+    indenter: PowerLawIndenter, half_space: Material, depths: np.ndarray, backend: str
+) -> Solve:
+    return lambda mesh: run_indentation(indenter, half_space, depths, mesh, backend=backend)
 
 
 def run_ladder(
@@ -207,15 +260,10 @@ def run_ladder(
     -------
     AccuracyResult
     """
-    refine = validate_positive("refine", refine)
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
-    factors = [refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine]
-    for factor in factors:
-        mesh.refined(factor)  # check every level before the first is computed
-    report = progress or (lambda _line: None)
-    levels = tuple(_level(indenter, half_space, depths, mesh, f, backend, report) for f in factors)
-    return AccuracyResult(levels, estimate_errors(levels))
+    solve = _linear(indenter, half_space, depths, backend)
+    return run_mesh_ladder(solve, mesh, refine=refine, progress=progress)
 
 
 def _force_error(result: AccuracyResult) -> float:
@@ -293,12 +341,13 @@ def run_to_accuracy(
     mesh = replace(mesh, domain=domain)
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
-    result = run_ladder(indenter, half_space, depths, mesh, backend=backend, progress=progress)
+    solve = _linear(indenter, half_space, depths, backend)
+    result = run_mesh_ladder(solve, mesh, progress=progress)
     report = progress or (lambda _line: None)
     while _force_error(result) > tolerance:
         _check_reachable(result, tolerance, max_dofs, max_time - (time.perf_counter() - start))
         refine = result.levels[-1].refine * LADDER_RATIO
-        level = _level(indenter, half_space, depths, mesh, refine, backend, report)
+        level = _level(solve, mesh, refine, report)
         levels = (*result.levels, level)
         result = AccuracyResult(levels, estimate_errors(levels[-3:]))
     return replace(result, tolerance=tolerance)

@@ -3,11 +3,13 @@
 :func:`shtaerman.fem.finite_contact.run_finite_indentation` does the computing; this module
 adds the power-law fit and the JSON of ``shtaerman contact --model neo-hookean``: the linear
 report's keys, with ``model``, per-step ``strain_energy`` (J) and ``newton_iterations``, and the
-departures from Shtaerman's linear solution in place of errors.
+departures from Shtaerman's linear solution in place of errors. :func:`run_finite_ladder` runs it
+on the three meshes of :func:`.accuracy.run_mesh_ladder` for Richardson error estimates.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
@@ -23,6 +25,7 @@ from ..fem.mesh import MeshSettings
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
+from .accuracy import AccuracyResult, run_mesh_ladder
 from .indentation import (
     curve_document,
     default_depths,
@@ -30,7 +33,7 @@ from .indentation import (
     worst_against_analytic,
 )
 
-__all__ = ["FiniteIndentationResult", "run_finite_study"]
+__all__ = ["FiniteIndentationResult", "run_finite_ladder", "run_finite_study"]
 
 
 @dataclass(frozen=True)
@@ -47,6 +50,16 @@ class FiniteIndentationResult:
     def steps(self) -> list[FiniteContactStep]:
         """The converged contact at each depth (as :attr:`.IndentationResult.steps`)."""
         return self.curve.steps
+
+    @property
+    def mesh_stats(self) -> dict[str, float]:
+        """``dofs``, ``nodes``, radii in m ... (as :attr:`.IndentationResult.mesh_stats`)."""
+        return self.curve.mesh_stats
+
+    @property
+    def timings(self) -> dict[str, float]:
+        """Seconds per stage, ``total`` included."""
+        return self.curve.timings
 
     def step_table(self) -> list[dict[str, float]]:
         """Per depth: force, contact radius, central pressure, energy, and the linear values."""
@@ -116,3 +129,40 @@ def run_finite_study(
     forces = [s.force for s in curve.steps]
     fit = fit_power_law([s.depth for s in curve.steps], forces, exact.force_exponent)
     return FiniteIndentationResult(indenter, half_space, exact, curve, fit)
+
+
+def run_finite_ladder(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    depths: ArrayLike | None = None,
+    mesh: MeshSettings | None = None,
+    *,
+    refine: float = 1.0,
+    progress: Callable[[str], None] | None = None,
+) -> AccuracyResult:
+    """:func:`run_finite_study` on the meshes refined by refine / 2, refine / sqrt(2) and
+    refine, with Richardson estimates of the finest level's force, contact radius, central
+    pressure (worst depth), beta and exponent (:func:`.accuracy.estimate_errors`).
+
+    Parameters
+    ----------
+    indenter, half_space, depths, mesh
+        As for :func:`run_finite_study`.
+    refine : float
+        Refinement factor of the finest level (element sizes divided by it everywhere).
+    progress : callable, optional
+        Receives one line per level.
+
+    Returns
+    -------
+    AccuracyResult
+        With ``exact = False``: there is no exact finite-strain solution to compare with.
+    """
+    validate_fem_inputs(indenter, half_space)
+    depths = default_depths(indenter, half_space) if depths is None else depths
+
+    def solve(level: MeshSettings) -> FiniteIndentationResult:
+        return run_finite_study(indenter, half_space, depths, level)
+
+    base = mesh or FINITE_MESH
+    return run_mesh_ladder(solve, base, refine=refine, progress=progress, exact=False)

@@ -1,0 +1,213 @@
+"""Error bars for the finite-strain study: its numbers on three meshes, Richardson estimates.
+
+The study (:mod:`.finite`) runs on its mesh refined by 1/2, 1/sqrt(2) and 1 (the finest
+answers), and every number it reports gets a Richardson estimate (:mod:`.richardson`) from
+the three values: per depth P/(beta x^q), P/P_linear-FEM, a/a_linear, p(0)/p_avg and the
+stored energy; the four ratios at the finite-strain x_c (log-log interpolated); the
+finite-strain impact's maxima (whose relative errors are also those of their ratios to
+Shtaerman's exact impact) and their ratios to the linear-FEM impact on the same mesh.
+
+The depths where the departure |P/P_linear-FEM - 1| reaches 1 % and 5 % get the larger of two
+estimates: Richardson's over the three levels' crossings, and how far the finest crossing moves
+when every departure moves by its own estimated error (two neighbouring depths decide a
+crossing, and the three levels' crossings may agree by chance). A crossing is *resolved* when
+the estimated error of the departure there is below :data:`RESOLVED_FRACTION` of its level.
+
+There is no exact solution here: what the estimator is worth is measured against finer meshes
+in ``benchmarks/bench_finite_strain.py`` (f).
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .accuracy import LADDER_RATIO
+from .richardson import Estimate, richardson
+
+if TYPE_CHECKING:
+    from .finite import FiniteStudyOutcome
+
+__all__ = [
+    "CROSSING_KEYS",
+    "RESOLVED_FRACTION",
+    "STEP_KEYS",
+    "FiniteEstimates",
+    "estimate_study",
+    "reported_values",
+    "resolved",
+]
+
+STEP_KEYS = ("force_ratio", "force_ratio_fem", "radius_ratio", "central_to_mean", "strain_energy")
+"""Per-depth values of :meth:`.finite.FiniteStudyOutcome.rows` that get an estimate."""
+AT_X_C = ("force_ratio", "force_ratio_fem", "radius_ratio", "central_to_mean")
+"""Values at the finite-strain x_c (:meth:`.finite.FiniteStudyOutcome.at_maximum`) that get
+an estimate."""
+IMPACT_KEYS = ("x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
+"""Finite-strain impact maxima that get an estimate, also as ratios to the same-mesh linear
+FEM impact's."""
+CROSSING_KEYS = ("depth_to_radius", "depth", "velocity")
+"""What a 1 % / 5 % crossing reports (x/a, depth in m, impact velocity in m/s)."""
+RESOLVED_FRACTION = 0.2
+"""A crossing is stated only where the departure's estimated error is below this fraction
+of its level (1 % -> 2e-3 of force)."""
+
+
+def resolved(level: float, departure_error: float) -> bool:
+    """Whether a departure level (e.g. 0.01) is resolved by a departure error (absolute, same
+    unit: a fraction of the force) below :data:`RESOLVED_FRACTION` of it."""
+    return bool(departure_error < RESOLVED_FRACTION * level)
+
+
+@dataclass(frozen=True)
+class FiniteEstimates:
+    """The ladder of a finite-strain study and the estimates of its finest level.
+
+    Attributes
+    ----------
+    refines : tuple of float
+        Levels' refinement factors relative to the study's mesh (which holds its own
+        ``[mesh] refine``), coarse to fine.
+    dofs, seconds, cpu_seconds : tuple
+        Per level: unknowns, wall and CPU time in s (curve, linear FEM and impacts).
+    scalars : dict of str to Estimate
+        ``x_c`` ... ``t_y`` (finite-strain impact), ``x_c_vs_fem`` ... (ratios to the
+        linear-FEM impact), ``<step key>_at_x_c``, and ``force_ratio_worst`` (the depth with
+        the largest estimate of P/(beta x^q)).
+    steps : tuple of dict of str to Estimate
+        Per depth, for :data:`STEP_KEYS`.
+    crossings : tuple of dict
+        Per departure level (:data:`.finite.LEVELS`): ``errors`` (relative, for
+        :data:`CROSSING_KEYS`) and ``departure_error`` (absolute, a fraction of the force).
+    """
+
+    refines: tuple[float, ...]
+    dofs: tuple[int, ...]
+    seconds: tuple[float, ...]
+    cpu_seconds: tuple[float, ...]
+    scalars: dict[str, Estimate]
+    steps: tuple[dict[str, Estimate], ...]
+    crossings: tuple[dict[str, object], ...]
+
+    def worst_step(self, key: str = "force_ratio") -> int:
+        """Index of the depth with the largest estimated error of ``key``."""
+        return _worst(self.steps, key)
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details."""
+        return {
+            "error_estimate": {k: e.error for k, e in self.scalars.items()},
+            "extrapolated": {k: e.extrapolated for k, e in self.scalars.items()},
+            "estimate_details": {k: e.to_dict() for k, e in self.scalars.items()},
+            "step_error_estimate": [{k: e.error for k, e in step.items()} for step in self.steps],
+            "worst_step": self.worst_step(),
+            "mesh_ladder": [
+                {"refine": r, "dofs": d, "seconds": s, "cpu_seconds": c}
+                for r, d, s, c in zip(
+                    self.refines, self.dofs, self.seconds, self.cpu_seconds, strict=True
+                )
+            ],
+        }
+
+
+def _worst(steps: Sequence[dict[str, Estimate]], key: str) -> int:
+    return int(np.argmax([step[key].error for step in steps]))
+
+
+def reported_values(outcome: FiniteStudyOutcome) -> dict[str, float]:
+    """The scalars an outcome reports that get an estimate, by the keys of
+    :attr:`FiniteEstimates.scalars` (``force_ratio_worst`` aside)."""
+    finite, fem = outcome.impacts["finite_strain"], outcome.impacts["linear_fem"]
+    at = outcome.at_maximum()
+    return {
+        **{key: finite[key] for key in IMPACT_KEYS},
+        **{f"{key}_vs_fem": finite[key] / fem[key] for key in IMPACT_KEYS},
+        **{f"{key}_at_x_c": at[key] for key in AT_X_C},
+    }
+
+
+def _departure_error(entry: dict, ratio: np.ndarray, error: np.ndarray) -> float:
+    """Largest estimated error of the departure at the depths deciding ``entry``."""
+    if entry["status"] == "below":
+        return float(error[0])
+    if entry["status"] == "beyond":
+        return float(error.max())
+    k = int(np.clip(np.searchsorted(ratio, entry["depth_to_radius"]), 1, ratio.size - 1))
+    return float(max(error[k - 1], error[k]))
+
+
+def _crossing(index: int, levels: list[list[dict]], moved: list[list[dict]]) -> dict:
+    """Relative errors of crossing ``index``: Richardson over the trailing levels with the
+    finest's status, or the move of the finest's crossing, whichever is larger."""
+    finest = levels[-1][index]
+    trailing = itertools.takewhile(lambda v: v[index]["status"] == finest["status"], levels[::-1])
+    same = [v[index] for v in trailing][::-1]
+    errors = {}
+    for key in CROSSING_KEYS:
+        shift = max(abs(m[index][key] / finest[key] - 1.0) for m in moved)
+        ladder = richardson([v[key] for v in same], LADDER_RATIO).error if len(same) > 1 else 0.0
+        errors[key] = max(shift, ladder)
+    return errors
+
+
+def _crossings(
+    outcomes: Sequence[FiniteStudyOutcome], steps: tuple[dict[str, Estimate], ...]
+) -> tuple[dict[str, object], ...]:
+    """``errors`` and ``departure_error`` of each 1 % / 5 % crossing of the finest outcome."""
+    finest = outcomes[-1]
+    rows = finest.rows()
+    error = np.array(  # absolute error of the departure |P/P_linFEM - 1| per depth
+        [
+            abs(row["force_ratio_fem"]) * step["force_ratio_fem"].error
+            for row, step in zip(rows, steps, strict=True)
+        ]
+    )
+    ratio = np.array([row["depth_to_radius"] for row in rows])
+    levels = [outcome.validity() for outcome in outcomes]
+    moved = [finest.validity(error), finest.validity(-error)]
+    return tuple(
+        {
+            "errors": _crossing(i, levels, moved),
+            "departure_error": _departure_error(entry, ratio, error),
+        }
+        for i, entry in enumerate(levels[-1])
+    )
+
+
+def estimate_study(
+    outcomes: Sequence[FiniteStudyOutcome], refines: Sequence[float]
+) -> FiniteEstimates:
+    """Estimates of the last (finest) of three study outcomes on one mesh ladder.
+
+    Parameters
+    ----------
+    outcomes : sequence of FiniteStudyOutcome
+        The study on the ladder's meshes, coarse to fine (same depths), without estimates.
+    refines : sequence of float
+        Their refinement factors (consecutive ratio :data:`.accuracy.LADDER_RATIO`).
+
+    Returns
+    -------
+    FiniteEstimates
+    """
+    values = [reported_values(outcome) for outcome in outcomes]
+    scalars = {key: richardson([v[key] for v in values], LADDER_RATIO) for key in values[-1]}
+    rows = [outcome.rows() for outcome in outcomes]
+    steps = tuple(
+        {key: richardson([r[k][key] for r in rows], LADDER_RATIO) for key in STEP_KEYS}
+        for k in range(len(rows[-1]))
+    )
+    scalars["force_ratio_worst"] = steps[_worst(steps, "force_ratio")]["force_ratio"]
+    return FiniteEstimates(
+        refines=tuple(refines),
+        dofs=tuple(int(o.finite.curve.mesh_stats["dofs"]) for o in outcomes),
+        seconds=tuple(o.seconds for o in outcomes),
+        cpu_seconds=tuple(o.cpu_seconds for o in outcomes),
+        scalars=scalars,
+        steps=steps,
+        crossings=_crossings(outcomes, steps),
+    )
