@@ -21,6 +21,8 @@ asserted; wall-clock times depend on the machine and its load (printed beside th
     on the finest mesh refined by 2 (the reference refined by sqrt 2 beside, to show how far
     the reference itself is converged); effectivity = estimate / true (``--sections f``, about
     5 minutes of CPU time per study).
+(g) COST OF A NEWTON ITERATION on the paper's curve of (b): CPU time per iteration of the
+    assembly (state, residual and tangent) and of SuperLU's factorization, and their ratio.
 """
 
 from __future__ import annotations
@@ -30,12 +32,16 @@ import math
 import os
 import time
 from dataclasses import replace
+from collections.abc import Callable
+from unittest import mock
 
 import numpy as np
+import scipy.sparse.linalg as spla
 from scipy.integrate import simpson
 from scipy.interpolate import PchipInterpolator
 
-from shtaerman.fem.finite_contact import FINITE_MESH, run_finite_indentation
+from shtaerman.fem.finite_contact import FINITE_MESH, _Stepper, run_finite_indentation
+from shtaerman.fem.hyperelastic import HyperelasticSystem
 from shtaerman.study.convergence import refined_settings
 from shtaerman.study.finite import run_finite_strain_study
 from shtaerman.study.finite_accuracy import reported_values
@@ -317,10 +323,60 @@ def study_estimates(which: int) -> None:
     )
 
 
+def _clocked(function: Callable, spent: dict[str, float], key: str) -> Callable:
+    """``function`` adding its CPU time to spent[key] and counting its calls in spent[key + 'n']."""
+
+    def clocked(*args, **kwargs):
+        start = time.process_time()
+        try:
+            return function(*args, **kwargs)
+        finally:
+            spent[key] += time.process_time() - start
+            spent[key + "n"] += 1
+
+    return clocked
+
+
+def iteration_cost() -> None:
+    keys = ("assembly", "factorization", "newton")
+    spent = {key + suffix: 0.0 for key in keys for suffix in ("", "n")}
+    patches = [
+        mock.patch.object(HyperelasticSystem, name, _clocked(method, spent, "assembly"))
+        for name, method in (
+            ("state", HyperelasticSystem.state),
+            ("residual", HyperelasticSystem.residual),
+            ("tangent_data", HyperelasticSystem.tangent_data),
+        )
+    ]
+    patches.append(mock.patch.object(spla, "splu", _clocked(spla.splu, spent, "factorization")))
+    patches.append(mock.patch.object(_Stepper, "solve", _clocked(_Stepper.solve, spent, "newton")))
+    depths = 1.01 * X_C * np.arange(1, 13) / 12
+    for patch in patches:
+        patch.start()
+    try:
+        curve = run_finite_indentation(PAPER, RUBBER, depths)
+    finally:
+        for patch in patches:
+            patch.stop()
+    iterations = int(spent["factorizationn"])
+    assembly, factorization, newton = (spent[key] / iterations for key in keys)
+    print(
+        f"\n(g) cost of a Newton iteration, the paper's curve of (b) "
+        f"({curve.mesh_stats['dofs']} dofs, {iterations} iterations, {spent['newton']:.1f} s CPU "
+        f"in Newton; {load()})"
+    )
+    print(
+        f"  per iteration (CPU): assembly (state, residual, tangent) {assembly * 1e3:.1f} ms, "
+        f"factorization {factorization * 1e3:.1f} ms, assembly / factorization = "
+        f"{assembly / factorization:.2f}; the rest (constraint elimination, scaling, solve, "
+        f"checks) {(newton - assembly - factorization) * 1e3:.1f} ms"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="sections (b) and (a) only")
-    parser.add_argument("--sections", default="bacdef", help="which sections to run, e.g. 'd'")
+    parser.add_argument("--sections", default="bacdefg", help="which sections to run, e.g. 'd'")
     args = parser.parse_args()
     sections = "ba" if args.quick else args.sections
     print(f"machine: {load()}")
@@ -331,6 +387,7 @@ def main() -> None:
         "e": hertz,
         "d": lambda: mesh_convergence([2.0, 2**0.5, 1.0, 2**-0.5, 0.5]),
         "f": lambda: [study_estimates(which) for which in (0, 1)],
+        "g": iteration_cost,
     }
     for section in sections:
         run[section]()

@@ -51,6 +51,7 @@ __all__ = [
     "compressibility",
     "deviatoric_stiffness",
     "divergence_coupling",
+    "dof_nodes",
     "normal_surface_mass",
     "postprocess",
     "pressure_load",
@@ -173,17 +174,22 @@ class ElasticSystem:
 
     def dof_nodes(self) -> np.ndarray:
         """Mesh node of every dof: vertex v -> v, edge midpoint e -> n_vertices + e."""
-        ubasis, pbasis = self.displacement_basis, self.pressure_basis
-        vertices = self.mesh.p.shape[1]
-        nodes = np.empty(self.n_dofs, dtype=np.int64)
-        nodes[ubasis.nodal_dofs] = np.arange(vertices)
-        nodes[ubasis.facet_dofs] = vertices + np.arange(ubasis.facet_dofs.shape[1])
-        nodes[ubasis.N + pbasis.nodal_dofs[0]] = np.arange(vertices)
-        return nodes
+        return dof_nodes(self.displacement_basis, self.pressure_basis)
 
     def reduced_matrix(self, free: np.ndarray) -> sp.csc_matrix:
         """The matrix restricted to ``free`` rows and columns (CSC, ready to factorize)."""
         return self.matrix[free][:, free].tocsc()
+
+
+def dof_nodes(ubasis: Basis, pbasis: Basis) -> np.ndarray:
+    """Mesh node of every dof of a P2-P1 pair [u, p]: vertex v -> v, edge midpoint e ->
+    n_vertices + e (the groups of a nested-dissection ordering, :mod:`.schur`)."""
+    vertices = ubasis.mesh.p.shape[1]
+    nodes = np.empty(ubasis.N + pbasis.N, dtype=np.int64)
+    nodes[ubasis.nodal_dofs] = np.arange(vertices)
+    nodes[ubasis.facet_dofs] = vertices + np.arange(ubasis.facet_dofs.shape[1])
+    nodes[ubasis.N + pbasis.nodal_dofs[0]] = np.arange(vertices)
+    return nodes
 
 
 FEM_MODULUS_RANGE = (1e-3, 1e100)

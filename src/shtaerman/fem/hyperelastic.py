@@ -42,7 +42,7 @@ The Cauchy stress is sigma = P F^T / J with P the 3x3 first Piola-Kirchhoff stre
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -53,13 +53,13 @@ from skfem import (
     ElementTriP1,
     ElementTriP2,
     ElementVector,
-    Functional,
     LinearForm,
     MeshTri,
     asm,
 )
 
 from ..validation import InputError, validate_poisson, validate_positive
+from .pattern import Pattern, pattern_of
 from .solver import factorize
 
 __all__ = [
@@ -127,7 +127,8 @@ class Kinematics:
     stress : numpy.ndarray
         (5, ...) first Piola-Kirchhoff entries S_k = dPsi/dF_k in Pa.
     tangent : numpy.ndarray
-        (5, 5, ...) D_kl = d2Psi/dF_k dF_l in Pa.
+        (..., 5, 5) D_kl = d2Psi/dF_k dF_l in Pa (components last: the element matrices are
+        batched matrix products over the points).
     volume_gradient : numpy.ndarray
         (5, ...) Jg_k = dJ/dF_k.
     constraint : numpy.ndarray
@@ -174,16 +175,6 @@ def kinematics(
     planar = a * d - b * c
     J = h * planar
     Jg = np.stack([h * d, -h * c, -h * b, h * a, planar])
-    zero = np.zeros_like(a)
-    H = np.array(
-        [
-            [zero, zero, zero, h, d],
-            [zero, zero, -h, zero, -c],
-            [zero, -h, zero, zero, -b],
-            [h, zero, zero, zero, a],
-            [d, -c, -b, a, zero],
-        ]
-    )
     I1 = np.sum(F**2, axis=0)
     # J - 1 and I1 - 3 from the displacement gradient, without cancellation: the energy of
     # the huge far-field elements would otherwise carry round-off of order eps mu R^3
@@ -196,18 +187,15 @@ def kinematics(
         j23_m1 = np.expm1(-(2.0 / 3.0) * np.log1p(J_m1))
     j53, j83 = j23 / J, j23 / J**2
     stress = 0.5 * mu * (2.0 * j23 * F - (2.0 / 3.0) * j53 * I1 * Jg) - p * Jg
-    outer_jj = Jg[:, None] * Jg[None, :]
-    mixed = Jg[:, None] * F[None, :] + F[:, None] * Jg[None, :]
-    identity = np.eye(N_COMPONENTS).reshape(N_COMPONENTS, N_COMPONENTS, *([1] * a.ndim))
-    tangent = (
-        0.5
-        * mu
-        * (
-            (10.0 / 9.0) * j83 * I1 * outer_jj
-            - (2.0 / 3.0) * j53 * (I1 * H + 2.0 * mixed)
-            + 2.0 * j23 * identity
-        )
-        - p * H
+    # D = mu/2 (10/9 J^(-8/3) I1 Jg Jg^T - 2/3 J^(-5/3) (I1 H + 2 (Jg F^T + F Jg^T))
+    #     + 2 J^(-2/3) 1) - p H, collected by term
+    tangent = _tangent(
+        F,
+        Jg,
+        outer=(5.0 / 9.0) * mu * j83 * I1,
+        mixed=-(2.0 / 3.0) * mu * j53,
+        identity=mu * j23,
+        hessian=-(1.0 / 3.0) * mu * j53 * I1 - p,
     )
     isochoric = j23_m1 * I1 + I1_m3  # J^(-2/3) I1 - 3
     energy = 0.5 * mu * isochoric - p * J_m1 - 0.5 * inverse_bulk * p**2
@@ -222,57 +210,129 @@ def kinematics(
     )
 
 
-# ---------------------------------------------------------------------------- weak forms
-# The state enters through precomputed quadrature arrays (w.S, w.D, w.Jg, w.C, w.psi), so
-# the material is evaluated once per Newton iteration, not once per pair of basis functions.
+_HESSIAN = (
+    (0, 3, 1.0, 4),  # H_ad = h
+    (1, 2, -1.0, 4),  # H_bc = -h
+    (0, 4, 1.0, 3),  # H_ah = d
+    (3, 4, 1.0, 0),  # H_dh = a
+    (1, 4, -1.0, 2),  # H_bh = -c
+    (2, 4, -1.0, 1),  # H_ch = -b
+)
+"""The nonzero entries of H = d2J/dF2 above the diagonal, (k, m, sign, f): H_km = H_mk =
+sign F_f, with F = (a, b, c, d, h)."""
 
 
-@LinearForm
-def internal_force(v, w):
-    """dPi/du . v = int S : dF(v) 2 pi R dA (N per m of v)."""
-    r = w.x[0]
-    dv = variation(v, r)
-    S = np.asarray(w.S)
-    return TWO_PI * r * sum(S[k] * dv[k] for k in range(N_COMPONENTS))
+def _tangent(
+    F: np.ndarray,
+    Jg: np.ndarray,
+    *,
+    outer: np.ndarray,
+    mixed: np.ndarray,
+    identity: np.ndarray,
+    hessian: np.ndarray,
+) -> np.ndarray:
+    """(..., 5, 5) outer Jg Jg^T + mixed (Jg F^T + F Jg^T) + identity 1 + hessian H (Pa).
+
+    Entry by entry over the points (whole arrays per entry: numpy's loops run over the long
+    axis), the upper triangle computed and mirrored.
+    """
+    tangent = np.empty((*F.shape[1:], N_COMPONENTS, N_COMPONENTS))
+    row = [outer * Jg[k] + mixed * F[k] for k in range(N_COMPONENTS)]
+    scaled = [mixed * F[k] for k in range(N_COMPONENTS)]
+    for k in range(N_COMPONENTS):
+        for m in range(k, N_COMPONENTS):
+            tangent[..., k, m] = Jg[k] * row[m] + scaled[k] * Jg[m]
+        tangent[..., k, k] += identity
+    for k, m, sign, f in _HESSIAN:
+        tangent[..., k, m] += sign * hessian * F[f]
+    for k in range(N_COMPONENTS):
+        for m in range(k + 1, N_COMPONENTS):
+            tangent[..., m, k] = tangent[..., k, m]
+    return tangent
 
 
-@LinearForm
-def pressure_residual(q, w):
-    """dPi/dp . q = -int q (J - 1 + p/K) 2 pi R dA (m^3 per Pa of q)."""
-    return -TWO_PI * w.x[0] * np.asarray(w.C) * q
+# ------------------------------------------------------------------------ element arrays
+# Newton assembles the same integrals at every iteration with a new state: everything of the
+# mesh (basis gradients, quadrature weights, the sparsity pattern) is computed once, and an
+# assembly is a few batched matrix products and one np.bincount (skfem's forms, evaluated
+# pair of basis functions by pair, and the COO -> CSR sort took 10x longer).
 
 
-@BilinearForm
-def material_tangent(u, v, w):
-    """d2Pi/du2 = int dF(v) : D : dF(u) 2 pi R dA (N/m), material and geometric parts."""
-    r = w.x[0]
-    du, dv = np.array(variation(u, r)), np.array(variation(v, r))
-    return TWO_PI * r * np.einsum("k...,km...,m...->...", dv, np.asarray(w.D), du, optimize=False)
+@dataclass(frozen=True, eq=False)
+class _Quadrature:
+    """The mesh's part of the integrals, arrays over elements e and quadrature points q.
+
+    Attributes
+    ----------
+    variation : numpy.ndarray
+        (E, Q, 5, 12) dF(v) of each local displacement basis function v (1/m).
+    radial : numpy.ndarray
+        (E, Q, 12) v_r of each local displacement basis function (dimensionless).
+    pressure : numpy.ndarray
+        (E, Q, 3) the P1 basis functions.
+    radius : numpy.ndarray
+        (E, Q) reference radius R in m.
+    weight : numpy.ndarray
+        (E, Q) 2 pi R times the quadrature weight times |det J|, in m^3.
+    dofs : numpy.ndarray
+        (E, 15) global dofs of each element: 12 displacement, then 3 pressure (offset by the
+        number of displacement dofs).
+    """
+
+    variation: np.ndarray
+    radial: np.ndarray
+    pressure: np.ndarray
+    radius: np.ndarray
+    weight: np.ndarray
+    dofs: np.ndarray
+
+    @property
+    def stacked(self) -> np.ndarray:
+        """(E, Q * 5, 12) view of :attr:`variation`: the points' rows stacked per element."""
+        n_elements, n_points, _, n_local = self.variation.shape
+        return self.variation.reshape(n_elements, n_points * N_COMPONENTS, n_local)
 
 
-@BilinearForm
-def volume_coupling(u, q, w):
-    """d2Pi/dp du = -int q Jg : dF(u) 2 pi R dA (trial u, test q)."""
-    r = w.x[0]
-    du = variation(u, r)
-    Jg = np.asarray(w.Jg)
-    return -TWO_PI * r * q * sum(Jg[k] * du[k] for k in range(N_COMPONENTS))
+def _quadrature(ubasis: Basis, pbasis: Basis) -> _Quadrature:
+    radius = np.asarray(ubasis.global_coordinates())[0]
+    fields = [ubasis.basis[i][0] for i in range(ubasis.Nbfun)]
+    dF = np.array([variation(v, radius) for v in fields])  # (12, 5, E, Q)
+    radial = np.array([np.asarray(v)[0] for v in fields])  # (12, E, Q)
+    pressure = np.array([np.asarray(pbasis.basis[a][0]) for a in range(pbasis.Nbfun)])
+    return _Quadrature(
+        variation=np.ascontiguousarray(dF.transpose(2, 3, 1, 0)),
+        radial=np.ascontiguousarray(radial.transpose(1, 2, 0)),
+        pressure=np.ascontiguousarray(pressure.transpose(1, 2, 0)),
+        radius=radius,
+        weight=TWO_PI * radius * ubasis.dx,
+        dofs=np.vstack([ubasis.element_dofs, pbasis.element_dofs + ubasis.N]).T,
+    )
 
 
-def pressure_compliance(inverse_bulk: float) -> BilinearForm:
-    """d2Pi/dp2 = -int p q / K 2 pi R dA."""
+def _element_matrices(q: _Quadrature, state: Kinematics) -> np.ndarray:
+    """(E, 15, 15) element blocks [[int dF(v) : D : dF(u), -int q Jg : dF(v)], [., 0]] (the
+    constant pressure block is added by the caller)."""
+    b = q.stacked
+    (n_elements, _, n_u), n_local = b.shape, q.dofs.shape[1]
+    stiffness_b = ((q.weight[..., None, None] * state.tangent) @ q.variation).reshape(b.shape)
+    volume = q.weight[..., None] * np.moveaxis(state.volume_gradient, 0, -1)
+    volume_b = np.einsum("eqk,eqki->eqi", volume, q.variation)
+    block = np.empty((n_elements, n_local, n_local))
+    np.matmul(b.transpose(0, 2, 1), stiffness_b, out=block[:, :n_u, :n_u])
+    np.matmul(-q.pressure.transpose(0, 2, 1), volume_b, out=block[:, n_u:, :n_u])
+    block[:, :n_u, n_u:] = block[:, n_u:, :n_u].transpose(0, 2, 1)
+    block[:, n_u:, n_u:] = 0.0
+    return block
 
-    @BilinearForm
-    def form(p, q, w):
-        return -TWO_PI * w.x[0] * inverse_bulk * p * q
 
-    return form
-
-
-@Functional
-def stored_energy(w):
-    """Pi = int Psi 2 pi R dA in J."""
-    return TWO_PI * w.x[0] * np.asarray(w.psi)
+def _pressure_compliance(q: _Quadrature, inverse_bulk: float) -> np.ndarray:
+    """(E, 15, 15) element blocks of d2Pi/dp2 = -int p q / K 2 pi R dA (pressure block only)."""
+    n_elements, n_local = q.dofs.shape
+    n_u = n_local - q.pressure.shape[-1]
+    block = np.zeros((n_elements, n_local, n_local))
+    weighted = -inverse_bulk * q.weight[..., None] * q.pressure
+    block[:, n_u:, n_u:] = weighted.transpose(0, 2, 1) @ q.pressure
+    return block
 
 
 @dataclass(frozen=True, eq=False)
@@ -286,15 +346,20 @@ class HyperelasticSystem:
     material : NeoHookean
     displacement_basis, pressure_basis : skfem.Basis
         P2 vector and P1 scalar bases sharing one quadrature.
-    pressure_mass : scipy.sparse.csr_matrix or None
-        The constant block -int p q / K 2 pi R dA (None when incompressible).
+    pattern : Pattern
+        Sparsity of the tangent over all dofs (element connectivity; fixed).
     """
 
     mesh: MeshTri
     material: NeoHookean
     displacement_basis: Basis
     pressure_basis: Basis
-    pressure_mass: sp.csr_matrix | None
+    pattern: Pattern
+    _quadrature: _Quadrature = field(repr=False)
+    _where: np.ndarray = field(repr=False)
+    """Index in the tangent's data of each entry of the (E, 15, 15) element blocks."""
+    _compliance: np.ndarray = field(repr=False)
+    """The constant pressure block -int p q / K 2 pi R dA as tangent data."""
 
     @property
     def n_displacement(self) -> int:
@@ -312,40 +377,50 @@ class HyperelasticSystem:
 
     def state(self, x: np.ndarray) -> Kinematics:
         """Kinematics of x = [u, p] at the quadrature points."""
-        u, p = self.split(x)
-        ufield = self.displacement_basis.interpolate(u)
-        pfield = self.pressure_basis.interpolate(p)
-        radius = self.displacement_basis.global_coordinates()[0]
-        return kinematics(
-            self.material, ufield.grad, np.asarray(ufield)[0], radius, np.asarray(pfield)
-        )
+        q = self._quadrature
+        n_elements, n_points = q.weight.shape
+        local = x[q.dofs][..., None]  # (E, 15, 1)
+        n_u = q.variation.shape[-1]
+        u, p = local[:, :n_u], local[:, n_u:]
+        dF = (q.stacked @ u).reshape(n_elements, n_points, N_COMPONENTS)
+        grad = np.moveaxis(dF[..., :4], -1, 0).reshape(2, 2, n_elements, n_points)
+        u_r, pressure = (q.radial @ u)[..., 0], (q.pressure @ p)[..., 0]
+        return kinematics(self.material, grad, u_r, q.radius, pressure)
 
     def residual(self, x: np.ndarray, state: Kinematics | None = None) -> np.ndarray:
-        """Gradient dPi/dx: internal nodal forces (N) and the pressure equation (m^3)."""
+        """Gradient dPi/dx: internal nodal forces (N) and the pressure equation (m^3).
+
+        dPi/du . v = int S : dF(v) 2 pi R dA, dPi/dp . q = -int q (J - 1 + p/K) 2 pi R dA.
+        """
         state = self.state(x) if state is None else state
-        return np.concatenate(
-            [
-                asm(internal_force, self.displacement_basis, S=state.stress),
-                asm(pressure_residual, self.pressure_basis, C=state.constraint),
-            ]
+        q = self._quadrature
+        stress = q.weight[..., None] * np.moveaxis(state.stress, 0, -1)
+        forces = (stress.reshape(q.weight.shape[0], 1, -1) @ q.stacked)[:, 0, :]
+        volume = -((q.weight * state.constraint)[:, None, :] @ q.pressure)[:, 0, :]
+        local = np.concatenate([forces, volume], axis=1)
+        return np.bincount(q.dofs.ravel(), weights=local.ravel(), minlength=self.n_dofs)
+
+    def tangent_data(self, x: np.ndarray, state: Kinematics | None = None) -> np.ndarray:
+        """The consistent tangent d2Pi/dx2 as the data of :attr:`pattern` (see :meth:`tangent`)."""
+        state = self.state(x) if state is None else state
+        blocks = _element_matrices(self._quadrature, state)
+        return np.bincount(self._where, weights=blocks.ravel(), minlength=self.pattern.nnz) + (
+            self._compliance
         )
 
-    def tangent(self, x: np.ndarray, state: Kinematics | None = None) -> sp.csr_matrix:
-        """Consistent tangent d2Pi/dx2 (symmetric indefinite)."""
-        state = self.state(x) if state is None else state
-        stiffness = asm(material_tangent, self.displacement_basis, D=state.tangent)
-        coupling = asm(
-            volume_coupling,
-            self.displacement_basis,
-            self.pressure_basis,
-            Jg=state.volume_gradient,
-        )
-        return sp.bmat([[stiffness, coupling.T], [coupling, self.pressure_mass]], format="csr")
+    def tangent(self, x: np.ndarray, state: Kinematics | None = None) -> sp.csc_matrix:
+        """Consistent tangent d2Pi/dx2 (symmetric indefinite), in N/m, m^2 and m^3/Pa blocks.
+
+        [[int dF(v) : D : dF(u), -int q Jg : dF(u)], [-int q Jg : dF(v), -int p q / K]], all
+        with the ring weight 2 pi R dA: material and geometric stiffness, volume coupling and
+        pressure compliance.
+        """
+        return self.pattern.matrix(self.tangent_data(x, state))
 
     def energy(self, x: np.ndarray, state: Kinematics | None = None) -> float:
-        """Pi(u, p) in J: the stored strain energy at a solution."""
+        """Pi(u, p) = int Psi 2 pi R dA in J: the stored strain energy at a solution."""
         state = self.state(x) if state is None else state
-        return float(asm(stored_energy, self.displacement_basis, psi=state.energy_density))
+        return float(np.sum(self._quadrature.weight * state.energy_density))
 
     def cauchy_stress(self, x: np.ndarray) -> dict[str, np.ndarray]:
         """Cauchy stress (Pa, tension positive) and von Mises at the vertices, deformed state.
@@ -406,12 +481,21 @@ def assemble_hyperelastic(mesh: MeshTri, material: NeoHookean) -> HyperelasticSy
     """
     ubasis = Basis(mesh, ElementVector(ElementTriP2()))
     pbasis = ubasis.with_element(ElementTriP1())
-    inverse_bulk = material.inverse_bulk
-    if inverse_bulk > 0:
-        pressure_mass = asm(pressure_compliance(inverse_bulk), pbasis).tocsr()
-    else:
-        pressure_mass = sp.csr_matrix((pbasis.N, pbasis.N))
-    return HyperelasticSystem(mesh, material, ubasis, pbasis, pressure_mass)
+    quadrature = _quadrature(ubasis, pbasis)
+    dofs = quadrature.dofs
+    pattern, where = pattern_of(
+        np.broadcast_to(dofs[:, :, None], (*dofs.shape, dofs.shape[1])),
+        np.broadcast_to(dofs[:, None, :], (*dofs.shape, dofs.shape[1])),
+        ubasis.N + pbasis.N,
+    )
+    compliance = np.bincount(
+        where,
+        weights=_pressure_compliance(quadrature, material.inverse_bulk).ravel(),
+        minlength=pattern.nnz,
+    )
+    return HyperelasticSystem(
+        mesh, material, ubasis, pbasis, pattern, quadrature, where, compliance
+    )
 
 
 @dataclass(frozen=True)
@@ -480,7 +564,7 @@ def solve_dirichlet(
         reference = reference or norm
         if norm <= tolerance * reference or norm == 0.0:
             return NewtonResult(x, history)
-        matrix = system.tangent(x, state)[free][:, free].tocsc()
+        matrix = system.tangent(x, state)[free][:, free]
         x[free] -= factorize(matrix).solve(rhs)
     raise NewtonError(
         f"Newton did not converge in {max_iterations} iterations (residual {history[-1]:.3g})"

@@ -1,0 +1,62 @@
+"""The fixed sparsity pattern: every gather against scipy's own sparse operations."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from shtaerman.fem.pattern import pattern_of
+
+
+@pytest.fixture(scope="module")
+def triplets():
+    """Random 'element' entries of a 30 x 30 matrix: 40 elements of 4 dofs, every pair."""
+    rng = np.random.default_rng(3)
+    dofs = np.array([rng.choice(30, 4, replace=False) for _ in range(40)])
+    rows = np.repeat(dofs[:, :, None], 4, axis=2)
+    cols = np.repeat(dofs[:, None, :], 4, axis=1)
+    dofs_seen = np.unique(dofs)
+    extra = np.setdiff1d(np.arange(30), dofs_seen)  # isolated dofs: a diagonal entry each
+    rows = np.concatenate([rows.ravel(), extra])
+    cols = np.concatenate([cols.ravel(), extra])
+    return rows, cols, rng.standard_normal(rows.size)
+
+
+def _reference(rows, cols, values):
+    return sp.coo_matrix((values, (rows, cols)), shape=(30, 30)).tocsc()
+
+
+def test_assembly_is_scipys_sum_of_duplicates(triplets):
+    rows, cols, values = triplets
+    pattern, where = pattern_of(rows, cols, 30)
+    data = np.bincount(where, weights=values, minlength=pattern.nnz)
+    reference = _reference(rows, cols, values)
+    # the same sums in another order: round-off only
+    assert abs(pattern.matrix(data) - reference).max() <= 1e-14 * abs(reference).max()
+    assert pattern.nnz == reference.nnz and pattern.indices.dtype == np.int32
+
+
+def test_gathers(triplets):
+    rows, cols, values = triplets
+    pattern, where = pattern_of(rows, cols, 30)
+    data = np.bincount(where, weights=values, minlength=pattern.nnz)
+    matrix = pattern.matrix(data).toarray()
+    assert np.array_equal(pattern.matrix(data[pattern.transpose]).toarray(), matrix.T)
+    assert np.array_equal(data[pattern.diagonal], np.diag(matrix))
+    assert np.array_equal(pattern.row_max(np.abs(data)), np.abs(matrix).max(axis=1))
+    keep = np.array([0, 3, 4, 8, 15, 16, 29])
+    sub, take = pattern.submatrix(keep)
+    assert np.array_equal(sub.matrix(data[take]).toarray(), matrix[np.ix_(keep, keep)])
+    order = np.random.default_rng(4).permutation(30)
+    permuted, take = pattern.permuted(order)
+    assert np.array_equal(permuted.matrix(data[take]).toarray(), matrix[np.ix_(order, order)])
+
+
+def test_entries_outside_the_pattern_are_refused(triplets):
+    rows, cols, _ = triplets
+    pattern, _ = pattern_of(rows, cols, 30)
+    dense = pattern.matrix(np.ones(pattern.nnz)).toarray()
+    i, j = np.argwhere(dense == 0)[0]
+    with pytest.raises(KeyError, match="outside the sparsity pattern"):
+        pattern.find(np.array([i]), np.array([j]))
