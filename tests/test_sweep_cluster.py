@@ -149,8 +149,8 @@ def test_same_rows_on_one_two_and_an_existing_cluster(tmp_path, external_cluster
     assert text == (tmp_path / "remote" / "cases.csv").read_text()
     rows = csv_rows(tmp_path / "one")
     assert [r["case"] for r in rows] == [str(i) for i in range(6)]
-    assert rows[0]["velocity_m_per_s"] == "0.5" and rows[0]["exponent"] == "1.5"
-    assert float(rows[0]["x_c_m"]) > 0 and rows[0]["status"] == "ok" and rows[0]["error"] == ""
+    assert rows[0]["velocity [m/s]"] == "0.5" and rows[0]["exponent"] == "1.5"
+    assert float(rows[0]["x_c [m]"]) > 0 and rows[0]["status"] == "ok" and rows[0]["error"] == ""
     # the remote cases really ran on the external workers, not in this process
     workers = {
         json.loads((tmp_path / "remote/cases" / f"{i}.json").read_text())["pid"] for i in range(6)
@@ -170,7 +170,7 @@ def test_a_failing_case_is_recorded_and_the_others_complete(tmp_path, capsys, ex
     assert rows[2]["error"] == (
         "RuntimeError: probe asked to fail at x = 3.0 second line of the message"
     )
-    assert rows[2]["y_m^2"] == "" and rows[3]["y_m^2"] == "17.0"
+    assert rows[2]["y [m^2]"] == "" and rows[3]["y [m^2]"] == "17.0"
     results = json.loads((tmp_path / "out/results.json").read_text())
     assert results["summary"]["failed_cases"] == [2]
 
@@ -209,7 +209,7 @@ def test_a_worker_killed_mid_case_has_its_case_rerun(tmp_path, external_cluster)
     assert outcome.exit_code == 0 and outcome.succeeded == 4 and outcome.lost == 0
     assert case_files(tmp_path / "out") == list(range(4))
     rows = csv_rows(tmp_path / "out")
-    assert [float(r["x_m"]) for r in rows] == [float(x) for x in xs]  # each case once
+    assert [float(r["x [m]"]) for r in rows] == [float(x) for x in xs]  # each case once
     assert all(r["status"] == "ok" for r in rows)
     # the killed computation never finished; its case ran again, on another process
     done = sweep_probe.computations(markers)
@@ -307,7 +307,7 @@ def test_a_signal_keeps_finished_cases_and_says_how_to_resume(tmp_path, signum):
     assert case_files(out) == list(range(len(xs)))
     done = sweep_probe.computations(markers)
     assert all(done[float(xs[i])] == 1 for i in saved)
-    assert [float(r["x_m"]) for r in csv_rows(out)] == [float(x) for x in xs]
+    assert [float(r["x [m]"]) for r in csv_rows(out)] == [float(x) for x in xs]
 
 
 def test_one_tiny_contact_case(tmp_path):
@@ -323,10 +323,10 @@ def test_one_tiny_contact_case(tmp_path):
     [row] = csv_rows(tmp_path / "out")
     # coarse mesh (about 2.7k dofs): the fixed-exponent beta within 1 % of Shtaerman's
     assert float(row["error_beta"]) < 1e-2
-    assert float(row["beta_fem_N_per_m^q"]) == pytest.approx(
-        float(row["beta_analytic_N_per_m^q"]), rel=1e-2
+    assert float(row["beta_fem [N/m^q]"]) == pytest.approx(
+        float(row["beta_analytic [N/m^q]"]), rel=1e-2
     )
-    assert int(row["dofs"]) > 1000 and float(row["seconds_s"]) > 0
+    assert int(row["dofs"]) > 1000 and float(row["seconds [s]"]) > 0
 
 
 def test_warnings_of_a_case_are_recorded_and_reported(tmp_path, capsys, external_cluster):

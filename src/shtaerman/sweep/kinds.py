@@ -132,13 +132,10 @@ def get_kind(name: str) -> Kind:
 
 
 def unit_suffix(name: str, unit: str) -> str:
-    """Column name with its unit, for CSV headers: ``x_c`` + ``m`` -> ``x_c_m``.
-
-    ``/`` reads ``_per_`` (``velocity_m_per_s``); a pure number keeps its bare name.
-    """
-    if not unit:
-        return name
-    return f"{name}_{unit.replace(' ', '_').replace('/', '_per_')}"
+    """Column name with its unit, for CSV headers as everywhere in the package (``name [unit]``,
+    :func:`shtaerman.output.files.csv_header`): ``x_c`` + ``m`` -> ``x_c [m]``; a pure number
+    keeps its bare name."""
+    return f"{name} [{unit}]" if unit else name
 
 
 # --- impact: the exact quasi-static model --------------------------------------------------------
