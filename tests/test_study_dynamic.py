@@ -195,7 +195,7 @@ def test_every_velocity_carries_its_error_estimates(estimated):
         assert set(estimates) == ESTIMATED
         for key, estimate in estimates.items():
             assert math.isfinite(estimate.error) and math.isfinite(estimate.absolute_error)
-            # Richardson, or the two finest levels' difference with the reason why
+            # Richardson, or the levels' largest difference with the reason why
             assert estimate.method == "richardson" or estimate.reason, key
         # measured on these coarse settings (1 and 3 m/s): relative x_max <= 1.0e-4,
         # P_max <= 2.6e-3, t_contact <= 7.4e-4, e <= 7.3e-5, 1 - e^2 <= 8.9e-4; differences
