@@ -52,9 +52,10 @@ level, 100 steps, is 3.7e-3 off, not yet asymptotic), e and 1 - e^2 at 2x.
 Refining only the time step (mesh at K = 1, to 800 steps) or only the mesh (200 steps, to
 120k dofs), relative to the finest of each: x_max converges regularly in both (orders 2.0-2.3
 in dt, 2.2-2.7 in h; at K = 1 -2.1e-5 from dt and -1.2e-5 from h); P_max scatters by 1-2e-4 in
-dt and 0.3-1e-4 in h (the residue of the stiff-mode ripple under the +-5 % t_y peak fit: the
-fit's residual is 1.1e-3 P_max rms at K = 1, 2e-4 at K = 2, about 10x the scatter of the
-fitted peak at either: the fit averages most of the ripple out, not all); e converges in dt
+dt and 0.3-1e-4 in h. The +-5 % t_y peak fit's residual (the damped stiff-mode ripple) is
+1.1e-3 P_max rms at K = 1, 2e-4 at K = 2, about 10x the scatter of the fitted peak, but the
+scatter is in the force history, not the fit alone: the same fit over +-10 % or +-15 % t_y
+(on the stored histories) scatters by 1-3e-4 too, around a shifted value. e converges in dt
 to 1e-6 but scatters by 2-3e-5 with the mesh (the graded meshes are not nested: each level
 places the contact-edge nodes anew), which thus limits e; t_contact scatters by 1e-4 in dt
 (the separation is extrapolated from the last two loaded steps) and 2-5e-4 with the mesh.
