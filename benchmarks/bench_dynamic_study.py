@@ -46,7 +46,7 @@ measured against that chance agreement), old estimator -> new:
     P_max      0.52, 0.046, 7.9 ->  1.8, 1.9, 7.9
     t_contact  3.6,  1.5,  0.23 ->  3.6, 1.9, 1.9
     e, 1 - e^2 0.29, 3.1,  0.80 ->  2.8, 3.1, 5.5
-At 5 m/s (--velocity 5, to K = 2.83): old 0.38-12, new 1.0-14; the study's own ladder (K = 1)
+At 5 m/s (--velocity 5, to K = 2.83): old 0.19-12, new 1.0-14; the study's own ladder (K = 1)
 now estimates P_max at 12x its difference to K = 2.83 (3.7e-3 against 3.0e-4: the coarsest
 level, 100 steps, is 3.7e-3 off, not yet asymptotic), e and 1 - e^2 at 2x.
 Refining only the time step (mesh at K = 1, to 800 steps) or only the mesh (200 steps, to
