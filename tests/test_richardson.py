@@ -46,6 +46,28 @@ def test_falls_back_and_says_why(values, reason):
     assert math.isnan(estimate.order) and estimate.extrapolated == values[-1]
 
 
+@pytest.mark.parametrize(
+    ("values", "reason"),
+    [
+        ([1.0, 1.1, 1.1], "the last two levels agree"),  # chance agreement: not zero error
+        ([1.0, 1.1, 1.05], "do not shrink monotonically"),
+        ([1.0, 1.001, 1.0010001], "outside"),
+    ],
+)
+def test_scatter_fallback_reports_the_largest_difference(values, reason):
+    estimate = richardson(values, 2.0, fallback="largest")
+    assert estimate.method == "scatter" and reason in estimate.reason
+    largest = max(abs(values[0] - values[1]), abs(values[1] - values[2])) / abs(values[2])
+    assert estimate.error == pytest.approx(largest, rel=1e-15)
+    assert estimate.error >= abs(values[1] - values[2]) / abs(values[2])  # never below "last"
+    assert math.isnan(estimate.order) and estimate.extrapolated == values[-1]
+    # a clean order is unaffected by the fallback
+    clean = [3.0 + 0.7 * 4.0**-k for k in range(3)]  # order 2
+    assert richardson(clean, 2.0, fallback="largest") == richardson(clean, 2.0)
+    with pytest.raises(InputError, match=r"Unknown fallback 'mean'\. Pick one of"):
+        richardson(values, 2.0, fallback="mean")
+
+
 def test_agreeing_levels_have_zero_error():
     assert richardson([2.0, 1.0, 1.0], 2.0) == Estimate(
         1.0, 1.0, 0.0, math.nan, "two-level", "the last two levels agree"

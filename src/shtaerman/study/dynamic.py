@@ -490,8 +490,8 @@ class DynamicStudyOutcome:
             + f"; the differences quasi-static / dynamic - 1 to {100 * largest:.2g} % "
             f"(absolute), at least {ratio:.0f} times smaller than the difference itself (the "
             f"closest: {COMPARED[key][0]} at {velocity:g} m/s). {fallbacks} of the "
-            f"{sum(map(len, estimates))} estimates are the difference of the two finest levels "
-            "instead (no clean observed order)."
+            f"{sum(map(len, estimates))} estimates are the largest difference between "
+            "consecutive levels instead (no clean observed order: the levels scatter)."
         )
 
     def findings(self) -> list[str]:

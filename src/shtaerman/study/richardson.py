@@ -10,7 +10,11 @@ Q2, Q3 (finest), with d1 = Q1 - Q2 and d2 = Q2 - Q3:
 
 The estimate is trusted only when the differences shrink monotonically and p lies in a sane
 range (:data:`ORDER_RANGE`); otherwise (noise, a quantity at its floor, two levels only) the
-two-level difference |d2| / |Q3| is reported instead, and the estimate says so.
+two-level difference |d2| / |Q3| is reported instead, and the estimate says so. Where the
+quantity is known to carry a non-smooth part that does not shrink with the levels (the
+dynamic impact's P_max, t_contact and e: a ripple or the mesh's topology, +-1e-4 at every
+level), ``fallback="largest"`` reports max(|d1|, |d2|) / |Q3| instead: the scatter's amplitude
+as the ladder shows it; the last difference alone vanishes whenever two levels agree by chance.
 
 Where the asymptotic order q is known better than one ladder can observe it (the contact
 curve: the force at a given depth oscillates with the contact edge's place between two surface
@@ -34,13 +38,17 @@ from numpy.typing import ArrayLike
 
 from ..validation import InputError
 
-__all__ = ["ORDER_RANGE", "Estimate", "curve_richardson", "richardson"]
+__all__ = ["FALLBACKS", "ORDER_RANGE", "Estimate", "curve_richardson", "richardson"]
 
 ORDER_RANGE = (1.5, 4.5)
 """Observed orders accepted for extrapolation. P2 contact converges at orders 2-3 here
 (bench_contact.py (b): force 2.55, beta 2.8-3.15, p(0) 2.9); an order outside this range
 means the coarse level is not yet asymptotic (observed 0.5-0.9 on the default ladder, whose
 coarsest level has growth 0.5), and extrapolating with it overestimates the error 4-10x."""
+
+FALLBACKS = ("last", "largest")
+"""What :func:`richardson` reports without a clean order: the last difference |d2|, or the
+largest of |d1| and |d2| (for a quantity whose levels scatter)."""
 
 
 @dataclass(frozen=True)
@@ -59,7 +67,8 @@ class Estimate:
         The order of the correction: the observed p, or the known order when one was given
         (nan for the fallback).
     method : str
-        ``"richardson"`` or ``"two-level"`` (the fallback; see ``reason``).
+        ``"richardson"``, or the fallback (see ``reason``): ``"two-level"`` (the last
+        difference) or ``"scatter"`` (the largest of the two differences).
     reason : str
         Why the fallback was used ("" for Richardson).
     observed_order : float
@@ -126,6 +135,7 @@ def richardson(
     *,
     order: float | None = None,
     sane: tuple[float, float] = ORDER_RANGE,
+    fallback: str = "last",
 ) -> Estimate:
     """Estimate the error of the finest of two or three values on a geometric mesh ladder.
 
@@ -139,6 +149,9 @@ def richardson(
         The known asymptotic order q used for the correction; default the observed one.
     sane : (float, float)
         Observed orders accepted as asymptotic (default :data:`ORDER_RANGE`).
+    fallback : str
+        Without a clean order (three values): ``"last"`` reports |d2| / |Q3| (method
+        ``"two-level"``), ``"largest"`` max(|d1|, |d2|) / |Q3| (method ``"scatter"``).
 
     Returns
     -------
@@ -147,16 +160,21 @@ def richardson(
     Raises
     ------
     shtaerman.validation.InputError
-        For fewer than two values, a non-finite value, or ratio <= 1.
+        For fewer than two values, a non-finite value, ratio <= 1, or an unknown fallback.
     """
+    if fallback not in FALLBACKS:
+        raise InputError(f"Unknown fallback {fallback!r}. Pick one of {FALLBACKS}")
     values = [float(v) for v in _checked(values, ratio)]
     if len(values) == 2:
         return _two_level(*values, "two levels only")
     coarse, middle, fine = values
     d1, d2 = coarse - middle, middle - fine
+    observed = _observed_order(d1, d2, ratio, sane) if d2 != 0.0 else "the last two levels agree"
+    if isinstance(observed, str) and fallback == "largest":
+        error = max(abs(d1), abs(d2)) / abs(fine) if fine != 0 else math.inf
+        return Estimate(fine, fine, error, math.nan, "scatter", observed)
     if d2 == 0.0:
         return Estimate(fine, fine, 0.0, math.nan, "two-level", "the last two levels agree")
-    observed = _observed_order(d1, d2, ratio, sane)
     if isinstance(observed, str):
         return _two_level(middle, fine, observed)
     used = observed if order is None else order
