@@ -31,8 +31,8 @@ import argparse
 import math
 import os
 import time
-from dataclasses import replace
 from collections.abc import Callable
+from dataclasses import replace
 from unittest import mock
 
 import numpy as np
