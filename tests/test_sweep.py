@@ -380,3 +380,26 @@ def test_cli_runs_a_shipped_sweep_in_a_fresh_folder(tmp_path, capsys, monkeypatc
         0.0085174899120372515388, rel=1e-14
     )
     shutil.rmtree(folder)
+
+
+def test_an_interrupted_forced_run_puts_the_old_sweep_back(tmp_path, capsys, monkeypatch):
+    import signal
+
+    from shtaerman.sweep import engine
+
+    sweep = write(tmp_path, IMPACT)
+    out = tmp_path / "out"
+    assert run_cli(capsys, sweep, "--out", out, "--workers", "1")[0] == 0
+    before = snapshot(out)
+
+    def interrupted(spec, out, ready, *args):
+        ready()  # the new folder is made (the old one set aside) ...
+        (out / "cases" / "0.json").write_text("{}")
+        raise engine.SweepInterrupted(signal.SIGTERM)  # ... and the run is stopped
+
+    monkeypatch.setattr(engine, "_compute", interrupted)
+    code, _, err = run_cli(capsys, sweep, "--out", out, "--force")
+    assert code == 128 + signal.SIGTERM
+    assert err.count("\n") == 1 and "--force kept the previous sweep" in err
+    assert snapshot(out) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "sweep.toml"]

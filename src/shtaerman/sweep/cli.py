@@ -94,6 +94,13 @@ def run(args: argparse.Namespace) -> int:
         print(f"shtaerman: sweep {spec.name!r} interrupted (SIGINT)", file=sys.stderr)
         return 128 + signal.SIGINT
     except SweepInterrupted as stop:
+        if stop.restored:
+            print(
+                f"shtaerman: sweep {spec.name!r} interrupted ({stop}); --force kept the previous "
+                f"sweep in {out}, unchanged",
+                file=sys.stderr,
+            )
+            return 128 + stop.signum
         print(
             f"shtaerman: sweep {spec.name!r} interrupted ({stop}): {stop.saved} of {stop.total} "
             f"cases saved in {out}; resume with: shtaerman sweep {args.sweep} --out {out} "

@@ -66,6 +66,8 @@ class SweepInterrupted(Exception):  # noqa: N818 (a signal, like KeyboardInterru
     def __init__(self, signum: int, saved: int = 0, total: int = 0) -> None:
         super().__init__(signal.Signals(signum).name)
         self.signum, self.saved, self.total = signum, saved, total
+        self.restored = False
+        """True when a --force run was stopped and the sweep it replaced was put back."""
 
 
 @dataclass(frozen=True)
@@ -268,13 +270,35 @@ def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> C
         replace = True
 
     def create() -> None:
-        if replace:
-            shutil.rmtree(out)
+        if replace:  # kept until the new sweep completes (see _replaced)
+            os.replace(out, _backup(out))
         out.mkdir(exist_ok=True)
         (out / CASES_DIR).mkdir()
         _atomic_write(stored, spec.text)
 
     return create
+
+
+def _backup(out: Path) -> Path:
+    """Where ``--force`` keeps the sweep it replaces while the new one runs."""
+    return out.parent / f".{out.name}.replaced-{os.getpid()}"
+
+
+@contextlib.contextmanager
+def _replaced(out: Path) -> Iterator[None]:
+    """Drop the replaced sweep when the block ends normally; put it back if it raises."""
+    backup = _backup(out)
+    try:
+        yield
+    except BaseException as error:
+        if backup.is_dir():
+            shutil.rmtree(out, ignore_errors=True)
+            os.replace(backup, out)
+            if isinstance(error, SweepInterrupted):
+                error.restored = True
+        raise
+    if backup.is_dir():
+        shutil.rmtree(backup)
 
 
 # --- the cluster ------------------------------------------------------------------------------
@@ -467,7 +491,7 @@ def run_sweep(
     pending = [case for case in cases if case.index not in records]
     lost: dict[int, str] = {}
     used_workers = 0
-    with _StopFlag() as stop:
+    with _replaced(out), _StopFlag() as stop:
         if not pending:
             ready()
         else:
