@@ -403,3 +403,17 @@ def test_an_interrupted_forced_run_puts_the_old_sweep_back(tmp_path, capsys, mon
     assert err.count("\n") == 1 and "--force kept the previous sweep" in err
     assert snapshot(out) == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "sweep.toml"]
+
+
+def test_sweep_files_follow_the_umask(tmp_path, capsys):
+    import os
+    import stat
+
+    previous = os.umask(0o022)
+    try:
+        out = tmp_path / "out"
+        assert run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--workers", "1")[0] == 0
+    finally:
+        os.umask(previous)
+    written = [out / "cases.csv", out / "results.json", out / "sweep.toml", out / "cases/0.json"]
+    assert {oct(stat.S_IMODE(p.stat().st_mode)) for p in written} == {oct(0o644)}

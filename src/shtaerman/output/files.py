@@ -41,6 +41,7 @@ __all__ = [
     "check_output_file",
     "check_output_folder",
     "csv_header",
+    "file_mode",
     "json_safe",
     "missing_folder",
     "staged_file",
@@ -63,6 +64,11 @@ def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+def file_mode() -> int:
+    """Permissions of a new file under the umask (0666 masked), as ``open`` would give it."""
+    return 0o666 & ~_umask()
 
 
 def _stage_path(target: Path, pid: int | None = None) -> Path:
@@ -319,7 +325,7 @@ def staged_file(path: Path, *, force: bool = False, option: str = "history") -> 
         raise _busy(option, real, [os.getpid()])
     try:
         yield stage
-        os.chmod(stage, 0o666 & ~_umask())
+        os.chmod(stage, file_mode())
         if force:
             os.replace(stage, real)
         else:

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..output.files import _probe, json_safe, missing_folder
+from ..output.files import _probe, file_mode, json_safe, missing_folder
 from ..validation import InputError
 from .kinds import unit_suffix
 from .spec import Case, SweepSpec
@@ -190,6 +190,7 @@ def _atomic_write(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a temporary file in the same folder + os.replace."""
     handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
+        os.fchmod(handle, file_mode())  # mkstemp makes 0600; results are shared like any file
         with os.fdopen(handle, "w", newline="") as stream:
             stream.write(text)
         os.replace(temporary, path)
