@@ -89,7 +89,7 @@ def test_contact_json_carries_the_estimates(capsys):
     ("argv", "message"),
     [
         (["--refine", "0"], "refine must be > 0"),
-        (["--refine", "0.3"], r"refine .* scales the mesh growth to .* > 1"),
+        (["--refine", "0.3"], r"refine must be >= 0.5 with these mesh settings .* got 0.3"),
         (["--accuracy", "nan"], "accuracy must be a finite number > 0"),
         (["--accuracy", "1e-5", "--max-time", "-1"], "max-time must be > 0 s"),
     ],

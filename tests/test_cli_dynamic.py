@@ -106,7 +106,10 @@ def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
         (["--steps", "1.5"], "steps must be an integer"),
         (["--nu2", "-0.2"], "nu2 (Poisson's ratio) must lie in [0, 0.5]"),
         (["--mesh-margin", "0.5"], "margin must be > 1"),
-        (["--refine", "1e3"], "refine 1000 (steps and mesh sizes scaled by it): steps (time"),
+        (
+            ["--refine", "1e3"],
+            "refine 1000 (steps and mesh sizes scaled by it): refine must lie in [0.125, 250]",
+        ),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):

@@ -135,17 +135,19 @@ def run(args: argparse.Namespace) -> int:
     from ..study.indentation import run_indentation
 
     indenter, half_space = read_indenter(args), read_half_space(args)
-    if args.accuracy is not None and (args.no_estimate or args.model == "neo-hookean"):
+    max_time = validate_positive("max-time", args.max_time, "s")
+    if args.accuracy is not None and args.model == "neo-hookean":
         raise InputError(
-            "accuracy: needs the linear model and the error estimates (drop --no-estimate; "
-            "for --model neo-hookean use --refine K, whose estimates come with every run)"
+            "accuracy: applies to the linear model only; for --model neo-hookean use --refine "
+            "K, whose estimates come with every run"
         )
+    if args.accuracy is not None and args.no_estimate:
+        raise InputError("accuracy: needs the error estimates; drop --no-estimate")
     if args.model == "neo-hookean":
         return _run_finite(args, indenter, half_space)
     depths, mesh = _depths(args.depths), mesh_settings(args)
     refine = validate_positive("refine", args.refine)
     tolerance = None if args.accuracy is None else validate_positive("accuracy", args.accuracy)
-    max_time = validate_positive("max-time", args.max_time, "s")
     if not args.no_estimate:
         _check_coarsest(mesh, refine)
     out = None
@@ -189,15 +191,12 @@ def run(args: argparse.Namespace) -> int:
 
 def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
     """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh."""
-    from ..study.accuracy import LADDER_RATIO
+    from ..study.accuracy import check_ladder
 
     try:
-        mesh.refined(refine / LADDER_RATIO**2)
+        check_ladder(mesh, refine)
     except InputError as error:
-        raise InputError(
-            f"the error-estimate ladder's coarsest level (refine {refine / 2:g}) is invalid: "
-            f"{error}; raise --refine or pass --no-estimate"
-        ) from None
+        raise InputError(f"{error}; or pass --no-estimate") from None
 
 
 def _run_finite(args: argparse.Namespace, indenter, half_space) -> int:

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 from pathlib import Path
 
 import meshio
 
 from ..fem.contact import validate_fem_inputs
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings
+from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, validate_density
 from ..output.dynamic import history_columns
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
@@ -105,7 +106,7 @@ def settings_from(args: argparse.Namespace) -> DynamicSettings:
         except ValueError:
             raise InputError(f"{name} must be a number, got {text!r}") from None
         if kind is int:
-            if number != int(number):
+            if not math.isfinite(number) or number != int(number):
                 raise InputError(f"{name} must be an integer, got {text!r}")
             number = int(number)
         values[field] = number
@@ -119,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact; print text or JSON; write the history and folder if asked."""
     mass = validate_positive("mass", args.mass, "kg")
     velocity = validate_positive("velocity", args.velocity, "m/s")
-    density = validate_positive("density2", args.density2, "kg/m^3")
+    density = validate_density(args.density2)
     indenter, half_space = read_indenter(args), read_half_space(args)
     validate_fem_inputs(indenter, half_space)
     refine = validate_positive("refine", args.refine)

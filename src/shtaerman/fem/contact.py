@@ -33,7 +33,7 @@ from scipy.optimize import nnls
 from threadpoolctl import threadpool_limits
 
 from ..validation import InputError, validate_increasing, validate_poisson
-from .elasticity import ElasticSolution, ElasticSystem, postprocess
+from .elasticity import FEM_MODULUS_RANGE, ElasticSolution, ElasticSystem, postprocess
 
 try:  # METIS ordering: the compliance falls out of the factorization
     from .schur import TailFactorization, TailPivotError
@@ -63,8 +63,14 @@ EDGE_MARGIN = 3
 """Candidate nodes that must stay free beyond the contact edge, or the zone is too small."""
 
 
+MAX_SHAPE_COEFFICIENT = 1e100
+"""Largest A (m^(1-n)) of the FEM contact: the default accuracy at 1e60 and 1e100; at 1e308
+the depths underflow and the factorization is singular."""
+
+
 def validate_fem_inputs(indenter: object, half_space: object) -> None:
-    """Raise InputError unless the FEM contact applies: n > 1 and nu2 in [0, 0.5].
+    """Raise InputError unless the FEM contact applies: n > 1, A <= 1e100, E2 in
+    :data:`shtaerman.fem.elasticity.FEM_MODULUS_RANGE` and nu2 in [0, 0.5].
 
     The one place of these limits (static, dynamic and finite-strain FEM alike): n > 1 keeps
     the central pressure bounded; nu2 < 0 was never validated.
@@ -73,6 +79,17 @@ def validate_fem_inputs(indenter: object, half_space: object) -> None:
         raise InputError(
             f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
             f"{indenter.exponent!r}"
+        )
+    if not indenter.shape_coefficient <= MAX_SHAPE_COEFFICIENT:
+        raise InputError(
+            f"shape_coefficient must lie in (0, {MAX_SHAPE_COEFFICIENT:g}] m^(1-n) for the FEM "
+            f"contact, got {indenter.shape_coefficient!r}"
+        )
+    low, high = FEM_MODULUS_RANGE
+    if not low <= half_space.youngs_modulus <= high:
+        raise InputError(
+            f"E2 must lie in [{low:g}, {high:g}] Pa for the FEM contact, got "
+            f"{half_space.youngs_modulus!r}"
         )
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
 

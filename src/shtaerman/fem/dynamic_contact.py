@@ -115,6 +115,18 @@ DYNAMIC_ACCURACY_CHECK = 1e-6
 MIN_STEPS = 50
 """Fewest time steps per quasi-static impact duration t_y accepted."""
 MAX_STEPS = 100_000
+DENSITY_RANGE = (1e-6, 1e6)
+"""Half-space densities (kg/m^3) the dynamic FEM accepts: it runs at both ends (1e-6 is the
+quasi-static limit; 1e-2 warns that its energy balance is unresolved); 1e-300 and 1e308 overflow."""
+
+
+def validate_density(density: object) -> float:
+    """Return the half-space density in kg/m^3, or raise InputError naming ``density2``."""
+    rho = validate_positive("density2", density, "kg/m^3")
+    low, high = DENSITY_RANGE
+    if not low <= rho <= high:
+        raise InputError(f"density2 must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}")
+    return rho
 
 
 @dataclass(frozen=True)
@@ -222,12 +234,19 @@ class DynamicSettings:
             If ``factor`` is not > 0 or the result leaves the settings' valid ranges.
         """
         factor = validate_positive("refine", factor)
+        steps = self.steps * factor
+        if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:  # round(steps) in range
+            raise InputError(
+                f"refine must lie in [{MIN_STEPS / self.steps:.3g}, {MAX_STEPS / self.steps:.3g}]"
+                f" with {self.steps} steps per t_y (time steps {MIN_STEPS}-{MAX_STEPS}), got "
+                f"{factor!r}"
+            )
         return replace(
             self,
             size=self.size / factor,
             axis_size=self.axis_size / factor,
             growth=min(self.growth / factor, 1.0),
-            steps=round(self.steps * factor),
+            steps=round(steps),
         )
 
 
@@ -472,7 +491,7 @@ def run_dynamic_impact(
         contact that outgrows the refined zone during the run.
     """
     settings = DynamicSettings() if settings is None else settings
-    rho = validate_positive("density2", density, "kg/m^3")
+    rho = validate_density(density)
     striker = validate_positive("mass", mass, "kg")
     v0 = validate_positive("velocity", velocity, "m/s")
     validate_fem_inputs(indenter, half_space)

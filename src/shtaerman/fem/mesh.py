@@ -369,12 +369,12 @@ class MeshSettings:
             for name in ("size", "axis_size", "growth", "axis_growth")
         }
         for name, value in scaled.items():
-            if value > 1.0:
+            if value > 1.0 + 1e-12:  # round-off of refine / sqrt(2)^2 is not a coarsening
                 raise InputError(
                     f"refine {factor!r} scales the mesh {name} to {value:.3g} > 1; use "
                     f"refine >= {factor * value:.3g} with these settings"
                 )
-        return replace(self, **scaled)
+        return replace(self, **{name: min(value, 1.0) for name, value in scaled.items()})
 
     @property
     def estimated_dofs(self) -> int:

@@ -35,6 +35,7 @@ __all__ = [
     "LADDER_RATIO",
     "AccuracyResult",
     "LadderLevel",
+    "check_ladder",
     "ladder_factors",
     "run_ladder",
     "run_mesh_ladder",
@@ -66,6 +67,18 @@ common to every level, unseen by the ladder, so added to the estimate."""
 Progress = Callable[[str], None]
 Solve = Callable[[MeshSettings], "IndentationResult | FiniteIndentationResult"]
 """One contact curve on the given mesh (the depths and materials bound in)."""
+
+
+def check_ladder(mesh: MeshSettings, refine: float = 1.0) -> None:
+    """Raise InputError unless every level of the ladder ending at ``refine`` is a valid
+    mesh: the coarsest, refine / 2, must keep every size and growth of ``mesh`` <= 1."""
+    smallest = LADDER_RATIO**2 * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
+    if not refine >= smallest * (1.0 - 1e-12):
+        raise InputError(
+            f"refine must be >= {smallest:.3g} with these mesh settings (the error-estimate "
+            f"ladder's coarsest mesh, refine / 2, keeps every size and growth <= 1), got "
+            f"{refine!r}"
+        )
 
 
 def ladder_factors(refine: float) -> list[float]:
@@ -219,9 +232,8 @@ def run_mesh_ladder(
         Whether the results' ``errors()`` are true errors (see :class:`AccuracyResult`).
     """
     refine = validate_positive("refine", refine)
+    check_ladder(mesh, refine)  # every level checked before the first is computed
     factors = ladder_factors(refine)
-    for factor in factors:
-        mesh.refined(factor)  # check every level before the first is computed
     report = progress or (lambda _line: None)
     levels = tuple(_level(solve, mesh, factor, report) for factor in factors)
     return AccuracyResult(levels, estimate_errors(levels), exact=exact)

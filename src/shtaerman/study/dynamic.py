@@ -49,6 +49,7 @@ from ..fem.dynamic_contact import (
     DynamicSettings,
     estimate_dofs,
     run_dynamic_impact,
+    validate_density,
 )
 from ..theory.contact import PowerLawContact
 from ..theory.impact import ImpactResult, solve_impact
@@ -333,6 +334,20 @@ def _velocities(path: Path, key: str, values: list[float], example: float) -> tu
     return tuple(values)
 
 
+_INPUT_KEYS = {
+    "exponent": "indenter.exponent",
+    "shape_coefficient": "indenter.shape_coefficient",
+    "E2": "half_space.youngs_modulus",
+    "density2": "half_space.density",
+}
+
+
+def _input_key(message: str) -> str:
+    """The study-file key an input error is about (its message starts with the name)."""
+    keys = (key for name, key in _INPUT_KEYS.items() if message.startswith(name))
+    return next(keys, "half_space.poisson_ratio")
+
+
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
     raw: _DynamicFile = _decode(path, data, _DynamicFile)
@@ -344,9 +359,9 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     half_space = Material(raw.half_space.youngs_modulus, raw.half_space.poisson_ratio)
     try:
         validate_fem_inputs(indenter, half_space)
+        validate_density(raw.half_space.density)
     except InputError as error:
-        key = "indenter.exponent" if "exponent" in str(error) else "half_space.poisson_ratio"
-        raise StudyError(f"{path}: key '{key}': {error}") from None
+        raise StudyError(f"{path}: key '{_input_key(str(error))}': {error}") from None
     example = raw.impact.example
     velocities = _velocities(path, "impact.velocities", raw.impact.velocities, example)
     quick = raw.quick.velocities

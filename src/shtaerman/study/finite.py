@@ -55,7 +55,7 @@ from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
 from ..validation import InputError
-from .accuracy import ladder_factors
+from .accuracy import check_ladder, ladder_factors
 from .checks import Check
 from .contact_law import fem_contact_law
 from .finite_accuracy import CROSSING_KEYS, FiniteEstimates, estimate_study, resolved
@@ -210,7 +210,13 @@ class FiniteStudy:
 
 def _mesh(table: _Mesh, default: MeshSettings, where: str) -> MeshSettings:
     settings = table.settings(default, where)
-    return settings if table.refine in (None, 1.0) else settings.refined(table.refine)
+    refine = 1.0 if table.refine is None else table.refine
+    try:
+        if where == "mesh":  # the study's mesh is the finest level of its ladder
+            check_ladder(settings, refine)
+        return settings.refined(refine)
+    except InputError as error:
+        raise InputError(f"[{where}] {error}") from None
 
 
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:

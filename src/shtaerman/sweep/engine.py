@@ -327,7 +327,7 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
     if scheduler is not None:
         try:
             client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except (OSError, TimeoutError) as error:
+        except (OSError, TimeoutError, ValueError) as error:  # ValueError: a malformed address
             raise InputError(
                 f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})"
             ) from None

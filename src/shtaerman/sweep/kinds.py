@@ -324,7 +324,7 @@ _DYNAMIC_NUMERICS = {  # sweep parameter (the CLI option) -> DynamicSettings fie
 def _dynamic_inputs(p: dict[str, Any]):
     from dataclasses import replace
 
-    from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs
+    from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs, validate_density
     from ..study.dynamic_accuracy import check_ladder
     from ..study.indentation import validate_fem_inputs
     from ..theory.materials import Material
@@ -333,7 +333,7 @@ def _dynamic_inputs(p: dict[str, Any]):
     indenter = _indenter(p)
     half_space = Material(validate_positive("E2", p["E2"], "Pa"), validate_poisson("nu2", p["nu2"]))
     validate_fem_inputs(indenter, half_space)
-    density = validate_positive("density2", p["density2"], "kg/m^3")
+    density = validate_density(p["density2"])
     mass = validate_positive("mass", p["mass"], "kg")
     velocity = validate_positive("velocity", p["velocity"], "m/s")
     settings = DynamicSettings()
