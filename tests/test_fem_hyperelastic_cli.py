@@ -122,7 +122,7 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
         (["--model", "neo-hookean", "--exponent", "1"], "exponent"),
         (["--model", "neo-hookean", "--accuracy", "1e-3"], "accuracy"),
         (["--no-estimate", "--accuracy", "1e-3"], "accuracy"),
-        (["--model", "neo-hookean", "--refine", "0.5"], "refine must be >= 0.6 with these mesh settings"),
+        (["--model", "neo-hookean", "--refine", "0.5"], "refine must be >= 0.6 with these"),
     ],
 )
 def test_bad_input_is_one_line(capsys, argv, names):
