@@ -178,6 +178,15 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
                     },
                     "5%": {"velocity": 5.0, "bound": "all", "error": 1e-4, "resolved": True},
                 },
+                "t": {
+                    "1%": {
+                        "velocity": 2.94,
+                        "bound": "interpolated",
+                        "error": 7e-4,
+                        "resolved": True,
+                    },
+                    "5%": {"velocity": 5.0, "bound": "all", "error": 7e-4, "resolved": True},
+                },
             },
         },
         "rubber": {
@@ -194,9 +203,10 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
     assert [row[1:] for row in rows] == [
         ["no: already off at the slowest v0 computed", "v0 = 3.12 m/s"],
         ["v0 = 0.715 m/s", "every v0 computed (to 5 m/s)"],
+        ["v0 = 2.94 m/s", "every v0 computed (to 5 m/s)"],  # the t_c row
         ["x/a = 0.16 (v0 = 0.0036 m/s; not estimated)", "x/a = 0.90 (v0 = 3.1 m/s; not estimated)"],
     ]
-    assert "nu2 = 0.5" in rows[2][0]
+    assert "t_c" in rows[2][0] and "nu2 = 0.5" in rows[3][0]
     assert report_validity({"paper": {"kind": "contact"}}) is None
 
 

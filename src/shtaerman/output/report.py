@@ -375,7 +375,12 @@ def validity_table(studies: dict) -> dict[str, object] | None:
     for name, study in studies.items():
         if study.get("kind") == "dynamic" and "limits" in study:
             limits = study["limits"]
-            for key, label in (("all", "x_c, P_c and t_c"), ("P", "P_c"), ("x", "x_c")):
+            for key, label in (
+                ("all", "x_c, P_c and t_c"),
+                ("P", "P_c"),
+                ("x", "x_c"),
+                ("t", "t_c"),
+            ):
                 if key in limits:
                     rows.append(
                         [
