@@ -230,7 +230,8 @@ _MESH = {  # sweep parameter -> MeshSettings field
 }
 
 
-def _contact_inputs(p: dict[str, Any]):
+def _curve_inputs(p: dict[str, Any]):
+    """Indenter, half-space, depths and mesh of a contact curve (linear or finite strain)."""
     from ..fem.contact import validate_fem_inputs
     from ..fem.mesh import MeshSettings
 
@@ -244,7 +245,11 @@ def _contact_inputs(p: dict[str, Any]):
     if refine != 1.0:
         mesh = mesh.refined(refine)
     mesh.check_size()  # at load, as the contact CLI does: not a failed case at run time
-    return indenter, half_space, depths, mesh, p["solver"]
+    return indenter, half_space, depths, mesh
+
+
+def _contact_inputs(p: dict[str, Any]):
+    return (*_curve_inputs(p), p["solver"])
 
 
 CONTACT_OUTPUTS = {
@@ -324,14 +329,11 @@ _DYNAMIC_NUMERICS = {  # sweep parameter (the CLI option) -> DynamicSettings fie
 def _dynamic_inputs(p: dict[str, Any]):
     from dataclasses import replace
 
+    from ..fem.contact import validate_fem_inputs
     from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs, validate_density
     from ..study.dynamic_accuracy import check_ladder
-    from ..study.indentation import validate_fem_inputs
-    from ..theory.materials import Material
-    from ..validation import validate_poisson
 
-    indenter = _indenter(p)
-    half_space = Material(validate_positive("E2", p["E2"], "Pa"), validate_poisson("nu2", p["nu2"]))
+    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
     validate_fem_inputs(indenter, half_space)
     density = validate_density(p["density2"])
     mass = validate_positive("mass", p["mass"], "kg")
@@ -467,22 +469,9 @@ FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)
 
 
 def _finite_inputs(p: dict[str, Any]):
-    from ..fem.mesh import MeshSettings
     from ..study.finite import FiniteStudy, Ladder
-    from ..study.indentation import validate_fem_inputs
-    from ..theory.materials import Material
-    from ..validation import validate_poisson
 
-    indenter = _indenter(p)
-    half_space = Material(validate_positive("E2", p["E2"], "Pa"), validate_poisson("nu2", p["nu2"]))
-    validate_fem_inputs(indenter, half_space)
-    depths = None if p["depths"] is None else validate_increasing("depths", p["depths"], "m")
-    mesh = MeshSettings(
-        **{field_name: validate_positive(name, p[name]) for name, field_name in _MESH.items()}
-    )
-    refine = validate_positive("refine", p["refine"])
-    if refine != 1.0:
-        mesh = mesh.refined(refine)
+    indenter, half_space, depths, mesh = _curve_inputs(p)
     reach = validate_positive("reach", p["reach"])
     if reach < 1.0:
         raise InputError(f"reach must be >= 1 (deepest depth / the linear x_c), got {reach!r}")
