@@ -16,6 +16,11 @@ asserted (wall-clock times depend on the machine and on its load, printed beside
 (c) TRUNCATION. Force and beta errors versus the domain radius at a fixed fine surface mesh.
 (d) SWEEP. Shape coefficients, exponents and Poisson ratios not used above, at the default mesh,
     against the issue's acceptance limits.
+(e) EDGE ALIGNMENT. The force error over many depths around the shallowest default one
+    (a = a_c/3), per mesh: the nodal sum at each depth (a polygon in d, oscillating with the
+    contact edge), the power-law interpolant between vertex-aligned contacts (the reported
+    force, :func:`shtaerman.fem.contact.aligned_force`) and, for contrast, between contacts
+    aligned on P2 edge midpoints.
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from shtaerman.fem.contact import (
+    aligned_force,
     contact_step,
     factorize_stiffness,
     surface_compliance,
@@ -430,6 +436,49 @@ def sweep_table(quick: bool) -> None:
     print(f"    {failures} failure(s)")
 
 
+# --- (e) edge alignment ----------------------------------------------------------------------
+
+
+def _alignment_errors(mesh: MeshSettings, samples: int) -> dict[str, np.ndarray]:
+    """Relative force errors of the three recoveries at ``samples`` depths (one span 1.3).
+
+    The deepest default depth is solved too, so the mesh is the default depths' mesh.
+    """
+    indenter, half_space = PAPER
+    default = default_depths(indenter, half_space)
+    depths = np.geomspace(default[0], 1.3 * default[0], samples)
+    result = run_indentation(indenter, half_space, np.append(depths, default[-1]), mesh)
+    steps = result.steps[:-1]
+    compliance = result.curve.compliance
+    midside = dataclasses.replace(compliance, vertex=~compliance.vertex)
+    heights = indenter.profile(compliance.r)
+    exact = result.exact.force(depths)
+    forces = {
+        "nodal sum": [step.discrete_force for step in steps],
+        "vertex-aligned": [step.force for step in steps],
+        "midside-aligned": [
+            aligned_force(midside, heights, step.nodal_forces, step.depth) for step in steps
+        ],
+    }
+    return {key: np.asarray(value) / exact - 1.0 for key, value in forces.items()}
+
+
+def alignment_table(quick: bool) -> None:
+    """(e) Force errors of the nodal sum and of the aligned interpolants around a_c/3."""
+    samples = 12 if quick else 40
+    refines = (1.0,) if quick else (1.0, math.sqrt(2.0), 2.0, 2.0 * math.sqrt(2.0))
+    print(
+        f"\n(e) EDGE ALIGNMENT: paper case, domain 1e6, {samples} depths from the shallowest "
+        "default one (a = a_c/3) to 1.3x it; relative force error, min .. max over the depths"
+    )
+    print(f"{'refine':>6} | {'nodal sum':>21} | {'vertex-aligned':>21} | {'midside-aligned':>21}")
+    for refine in refines:
+        mesh = dataclasses.replace(DEFAULT, domain=1e6).refined(refine)
+        errors = _alignment_errors(mesh, samples)
+        cells = " | ".join(f"{e.min():+.2e} .. {e.max():+.2e}" for e in errors.values())
+        print(f"{refine:6.3g} | {cells}", flush=True)
+
+
 def _sizes(quick: bool) -> tuple[float, ...]:
     """Levels of (b): smallest size / refined radius, refined by sqrt(2) per level."""
     if quick:
@@ -451,6 +500,7 @@ def main(argv: list[str] | None = None) -> None:
         lambda: convergence_table("Hertz", HERTZ, _sizes(args.quick)),
         lambda: truncation_table(args.quick),
         lambda: sweep_table(args.quick),
+        lambda: alignment_table(args.quick),
     ]
     if not args.quick:
         sections.insert(3, growth_table)

@@ -50,11 +50,12 @@ CURVE_QUANTITIES = ("beta", "exponent")
 FORCE_LIKE = ("force", "beta")
 """What ``--accuracy`` drives below its tolerance."""
 ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 2.5}
-"""Asymptotic orders used for the correction (the exponent uses its observed order). Measured
-on 36 ladders of 6 cases (n 1.2-2, nu 0-0.5, refine 0.5-2.8, benchmarks/bench_accuracy.py):
-with them the estimate is 0.7-2.5 times the true force error; with each ladder's own observed
-order, 0.5-5.8 times, because the force at one depth oscillates by about +-9e-5 (default mesh)
-as the contact edge moves between two surface nodes."""
+"""Asymptotic orders used for the correction (the exponent uses its observed order). With the
+vertex-aligned force (:func:`shtaerman.fem.contact.aligned_force`) ladders observe 1-1.6 up
+to refine 1 and 3.5-4.2 beyond; order 3 keeps every estimate within 0.55-2.5 of the true force
+error on 48 ladders of 8 cases (n 1.2-2, nu 0-0.5, refine 0.5-2.83, true errors 5.8e-4 to
+3.5e-6; benchmarks/bench_accuracy.py), and beta within 0.72-2.84 wherever its true error is
+at least 1e-6 (below, the fit's cancellation over the depths defeats any estimate)."""
 SANE_ORDERS = (1.0, 5.0)
 """Observed orders (of the largest difference over the depths) taken as asymptotic."""
 TIME_GROWTH = 2.4

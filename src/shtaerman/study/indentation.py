@@ -209,6 +209,7 @@ def run_indentation(
     mesh: MeshSettings | None = None,
     *,
     backend: str = "auto",
+    aligned: bool = True,
 ) -> IndentationResult:
     """Press a rigid power-law indenter into the FEM half-space and compare with the theory.
 
@@ -223,6 +224,9 @@ def run_indentation(
     mesh : MeshSettings, optional
     backend : str
         Sparse solver ("auto", "superlu", "pardiso").
+    aligned : bool
+        Forces of the vertex-aligned contacts (default) or nodal sums, see
+        :func:`shtaerman.fem.contact.solve_contact`.
 
     Returns
     -------
@@ -238,7 +242,9 @@ def run_indentation(
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
-    curve = solve_contact(system, indenter.profile, depths, refined, backend=backend)
+    curve = solve_contact(
+        system, indenter.profile, depths, refined, backend=backend, aligned=aligned
+    )
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [step.force for step in curve.steps]
     fit = fit_power_law(depths, forces, exact.force_exponent)

@@ -17,14 +17,14 @@ level), ``fallback="largest"`` reports max(|d1|, |d2|) / |Q3| instead: the scatt
 as the ladder shows it; the last difference alone vanishes whenever two levels agree by chance.
 
 Where the asymptotic order q is known better than one ladder can observe it (the contact
-curve: the force at a given depth oscillates with the contact edge's place between two surface
-nodes, so p of a single ladder scatters by +-1), the observed p only guards the asymptotic
-regime and the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
+force: coarse ladders observe 1-1.6 where error terms of opposite sign still compete, fine ones
+3.5-4.2; benchmarks/bench_accuracy.py), the observed p only guards the asymptotic regime and
+the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
 
 :func:`curve_richardson` does the same for a curve (a quantity at several depths), with the
 largest relative difference over the depths in place of |d1| and |d2|: the estimate of the
-curve's worst point. Per point, the edge oscillation makes the differences change sign at
-random; their largest value converges regularly.
+curve's worst point. Per point, the differences change sign where the error passes through
+zero; their largest value converges regularly.
 """
 
 from __future__ import annotations
