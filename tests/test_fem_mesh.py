@@ -2,6 +2,13 @@
 
 from __future__ import annotations
 
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
 import gmsh
 import numpy as np
 import pytest
@@ -96,6 +103,66 @@ def test_gmsh_is_finalized_and_no_file_is_left(tmp_path, monkeypatch):
     halfspace_mesh(A, domain_radius=1e3, smallest_size=0.2)
     assert not gmsh.isInitialized()
     assert list(tmp_path.iterdir()) == []
+
+
+_DISPOSITIONS = textwrap.dedent(
+    """
+    import faulthandler, os, signal
+    from shtaerman.fem.mesh import halfspace_mesh
+
+    def dispositions():
+        fields = dict(line.split(":", 1) for line in open("/proc/self/status"))
+        return int(fields["SigCgt"], 16), int(fields["SigIgn"], 16)
+
+    signal.signal(signal.SIGTERM, lambda *_: None)
+    faulthandler.enable()
+    before = dispositions()
+    halfspace_mesh(1.0, domain_radius=1e3, smallest_size=0.2)
+    assert dispositions() == before, [hex(mask) for mask in before + dispositions()]
+    assert "PETSC_OPTIONS" not in os.environ
+    """
+)
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/status"), reason="reads /proc/self/status")
+def test_meshing_leaves_the_signal_handlers_alone():
+    # a fresh process: only its first gmsh.initialize runs PETSc's, which had reset SIGTERM,
+    # SIGPIPE and faulthandler's signals to SIG_DFL at the C level (Python did not see it)
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[1] / "src")}
+    env.pop("PETSC_OPTIONS", None)
+    child = subprocess.run(
+        [sys.executable, "-c", _DISPOSITIONS], env=env, capture_output=True, text=True
+    )
+    assert child.returncode == 0, child.stderr
+
+
+class _Stop(BaseException):
+    pass
+
+
+def test_a_signal_while_meshing_is_handled_after_gmsh_finalizes(monkeypatch):
+    # a handler raising inside gmsh's ctypes argument conversion (numpy vectors run Python
+    # code there) had reached the caller as ctypes.ArgumentError
+    states = []
+
+    def stop(signum, frame):
+        states.append(gmsh.isInitialized())
+        raise _Stop
+
+    set_number = gmsh.onelab.setNumber
+
+    def signalled(*args):
+        signal.raise_signal(signal.SIGTERM)
+        set_number(*args)
+
+    monkeypatch.setattr(gmsh.onelab, "setNumber", signalled)
+    previous = signal.signal(signal.SIGTERM, stop)
+    try:
+        with pytest.raises(_Stop):
+            halfspace_mesh(A, domain_radius=1e3, smallest_size=0.2)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert states == [0]
 
 
 def test_meshing_is_reproducible_within_a_process():

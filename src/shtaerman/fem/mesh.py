@@ -12,9 +12,10 @@ from __future__ import annotations
 import contextlib
 import importlib.resources
 import math
+import os
 import signal
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -45,6 +46,7 @@ _PARAMETERS = {
     "axis_growth": "Parameters/6Growth rate from the axis (size per distance)",
 }
 _GEOMETRY = "halfspace.geo"
+_PETSC_OPTIONS = "PETSC_OPTIONS"
 
 
 def geometry_path() -> Path:
@@ -170,39 +172,70 @@ def _axis_parameters(
 @contextlib.contextmanager
 def _gmsh_session() -> Iterator[None]:
     """Run gmsh silently; finalize it only if this call initialized it."""
-    owned = not gmsh.isInitialized()
-    if owned:
-        _keeping_signal_handlers(gmsh.initialize, readConfigFiles=False, interruptible=False)
-    terminal = gmsh.option.getNumber("General.Terminal")
-    gmsh.option.setNumber("General.Terminal", 0)
+    with _signals_deferred():
+        owned = not gmsh.isInitialized()
+        if owned:
+            with _petsc_leaving_signals_alone():
+                gmsh.initialize(readConfigFiles=False, interruptible=False)
+        terminal = gmsh.option.getNumber("General.Terminal")
+        gmsh.option.setNumber("General.Terminal", 0)
+        try:
+            yield
+        finally:
+            if owned:
+                gmsh.finalize()
+            else:
+                gmsh.option.setNumber("General.Terminal", terminal)
+
+
+@contextlib.contextmanager
+def _signals_deferred() -> Iterator[None]:
+    """Hold SIGINT/SIGTERM's Python handlers until the block ends, then run the first one.
+
+    gmsh's Python API passes numpy vectors to ctypes, whose conversion runs Python code; a
+    handler raising there (``KeyboardInterrupt``, the CLI's ``Terminated``) reached the caller
+    as ``ctypes.ArgumentError``, a traceback instead of a clean stop. gmsh does not return to
+    Python while it meshes, so the delay is the read-back of the mesh. Main thread only (where
+    Python runs its handlers); handlers not installed from Python are left as they are.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    numbers = [n for n in (signal.SIGINT, signal.SIGTERM) if signal.getsignal(n) is not None]
+    previous = {n: signal.signal(n, lambda signum, _: caught.append(signum)) for n in numbers}
     try:
         yield
     finally:
-        if owned:
-            _keeping_signal_handlers(gmsh.finalize)
-        else:
-            gmsh.option.setNumber("General.Terminal", terminal)
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+        if caught:
+            signal.raise_signal(caught[0])
 
 
-def _keeping_signal_handlers(call: Callable[..., None], **options: object) -> None:
-    """Run a gmsh call that may replace the SIGINT/SIGTERM handlers at the C level
-    (``initialize`` does; a SIGTERM then killed the process outright, leaving its staged
-    outputs): hold both signals while it runs, re-install Python's handlers, then let a pending
-    signal through to them. ``finalize`` gets the same treatment: a SIGTERM test failed 2 times
-    in 20 under load with the process killed by the default action during a mesh ladder."""
-    if threading.current_thread() is not threading.main_thread():
-        call(**options)
-        return
-    numbers = {signal.SIGINT, signal.SIGTERM}
-    handlers = {number: signal.getsignal(number) for number in numbers}
-    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, numbers)
+@contextlib.contextmanager
+def _petsc_leaving_signals_alone() -> Iterator[None]:
+    """Keep the PETSc built into gmsh's library off the process's signal dispositions.
+
+    The first ``gmsh.initialize`` of a process calls ``PetscInitialize``, which traps SIGTERM,
+    SIGPIPE, SIGSEGV and a dozen more with a handler that aborts, then ``PetscPopSignalHandler``,
+    which sets all of them to SIG_DFL at the C level: Python's SIGTERM handler (the CLI's clean
+    exit), its ignored SIGPIPE and faulthandler's handlers were gone for good. Holding the
+    signals in the calling thread did not close that window: the kernel hands a process-wide
+    SIGTERM to a thread that does not hold it (OpenBLAS's workers), and the process died by
+    the default action (or by PETSc's abort). With ``-no_signal_handler`` in
+    ``PETSC_OPTIONS`` PETSc installs no handler, so it removes none. The variable is restored
+    on exit.
+    """
+    previous = os.environ.get(_PETSC_OPTIONS)
+    os.environ[_PETSC_OPTIONS] = f"{previous or ''} -no_signal_handler".lstrip()
     try:
-        call(**options)
-        for number, handler in handlers.items():
-            if handler is not None:
-                signal.signal(number, handler)
+        yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+        if previous is None:
+            os.environ.pop(_PETSC_OPTIONS, None)
+        else:
+            os.environ[_PETSC_OPTIONS] = previous
 
 
 def _generate(parameters: dict[str, float]) -> tuple[np.ndarray, np.ndarray, dict]:
