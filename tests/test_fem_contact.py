@@ -202,6 +202,7 @@ def test_contact_cli_json_and_files(tmp_path, capsys):
     step_keys = {
         "depth",
         "force",
+        "force_nodal_sum",
         "contact_radius",
         "central_pressure",
         "force_analytic",

@@ -364,6 +364,7 @@ CSV_UNITS = {
     # contact curves and pressure profiles
     "depth": "m",
     "force": "N",
+    "force_nodal_sum": "N",
     "contact_radius": "m",
     "central_pressure": "Pa",
     "force_analytic": "N",

@@ -113,6 +113,7 @@ class IndentationResult:
                     "central_to_mean": step.central_pressure / step.mean_pressure,
                     "pressure_profile_error": self.pressure_profile_error(step),
                     "active_set_iterations": step.iterations,
+                    "force_nodal_sum": step.discrete_force,
                 }
             )
         return rows
