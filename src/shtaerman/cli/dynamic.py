@@ -124,13 +124,7 @@ def run(args: argparse.Namespace) -> int:
     indenter, half_space = read_indenter(args), read_half_space(args)
     validate_fem_inputs(indenter, half_space)
     refine = validate_positive("refine", args.refine)
-    base = settings_from(args)
-    try:
-        settings = base.refined(refine)
-    except InputError as error:
-        raise InputError(
-            f"refine {refine:g} (steps and mesh sizes scaled by it): {error}"
-        ) from None
+    settings = settings_from(args).refined(refine)
     if not args.no_estimate:
         try:
             check_ladder(settings)

@@ -238,8 +238,8 @@ class DynamicSettings:
         if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:  # round(steps) in range
             raise InputError(
                 f"refine must lie in [{MIN_STEPS / self.steps:.3g}, {MAX_STEPS / self.steps:.3g}]"
-                f" with {self.steps} steps per t_y (time steps {MIN_STEPS}-{MAX_STEPS}), got "
-                f"{factor!r}"
+                f" with {self.steps} steps per t_y (it scales the time steps, "
+                f"{MIN_STEPS}-{MAX_STEPS} allowed, and divides the mesh sizes), got {factor!r}"
             )
         return replace(
             self,
