@@ -121,6 +121,10 @@ def test_minimal_file_takes_defaults(tmp_path):
         ("density = 1100.0", "density = inf", "half_space.density"),
         ("mass = 0.7", "mass = inf", "impact.mass"),
         ("velocities = [1.0, 3.0]", "velocities = [1.0, 3.0, inf]", "impact.velocities"),
+        # valid numbers outside the FEM's checked ranges (InputError.parameter names them)
+        ("youngs_modulus = 7.5e6", "youngs_modulus = 1e200", "half_space.youngs_modulus"),
+        ("density = 1100.0", "density = 1e7", "half_space.density"),
+        ("shape_coefficient = 5.0", "shape_coefficient = 1e200", "indenter.shape_coefficient"),
     ],
 )
 def test_load_errors_name_file_and_key(tmp_path, old, new, key):

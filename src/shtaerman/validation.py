@@ -21,18 +21,28 @@ __all__ = [
 
 
 class InputError(ValueError):
-    """A parameter outside its valid range, or a value that is not a number."""
+    """A parameter outside its valid range, or a value that is not a number.
+
+    Attributes
+    ----------
+    parameter : str or None
+        The name of the parameter at fault, where the check knows it (e.g. ``"E2"``).
+    """
+
+    def __init__(self, message: str, parameter: str | None = None) -> None:
+        super().__init__(message)
+        self.parameter = parameter
 
 
 def _as_float(name: str, value: object, valid: str) -> float:
     if isinstance(value, bool | np.bool_):  # True == 1, but a flag is no quantity
-        raise InputError(f"{name} must be a finite number {valid}, got {value!r}")
+        raise InputError(f"{name} must be a finite number {valid}, got {value!r}", name)
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
         number = math.nan
     if not math.isfinite(number):
-        raise InputError(f"{name} must be a finite number {valid}, got {value!r}")
+        raise InputError(f"{name} must be a finite number {valid}, got {value!r}", name)
     return number
 
 
@@ -41,11 +51,12 @@ def validate_positive(name: str, value: object, unit: str = "") -> float:
     valid = f"> 0 {unit}".rstrip()
     number = _as_float(name, value, valid)
     if number <= 0:
-        raise InputError(f"{name} must be {valid}, got {value!r}")
+        raise InputError(f"{name} must be {valid}, got {value!r}", name)
     if number < sys.float_info.min:  # subnormal: the number itself has lost its digits
         raise InputError(
             f"{name} must be {valid} and at least {sys.float_info.min:.4g} (the smallest "
-            f"normal float), got {value!r}"
+            f"normal float), got {value!r}",
+            name,
         )
     return number
 
@@ -61,7 +72,7 @@ def validate_poisson(name: str, value: object, low: float = -1.0) -> float:
     number = _as_float(name, value, f"in {valid}")
     inside = -1.0 < number <= 0.5 if low == -1.0 else low <= number <= 0.5
     if not inside:
-        raise InputError(f"{name} (Poisson's ratio) must lie in {valid}, got {value!r}")
+        raise InputError(f"{name} (Poisson's ratio) must lie in {valid}, got {value!r}", name)
     return number
 
 
@@ -69,7 +80,7 @@ def validate_increasing(name: str, values: Sequence[object], unit: str = "") -> 
     """Return positive, strictly increasing numbers as an array, or raise."""
     numbers = np.array([validate_positive(name, v, unit) for v in values], dtype=float)
     if numbers.size == 0:
-        raise InputError(f"{name} must list at least one value")
+        raise InputError(f"{name} must list at least one value", name)
     if np.any(np.diff(numbers) <= 0):
-        raise InputError(f"{name} must be strictly increasing, got {list(values)!r}")
+        raise InputError(f"{name} must be strictly increasing, got {list(values)!r}", name)
     return numbers

@@ -81,18 +81,21 @@ def validate_fem_inputs(indenter: object, half_space: object) -> None:
     if indenter.exponent <= 1.0:
         raise InputError(
             f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
-            f"{indenter.exponent!r}"
+            f"{indenter.exponent!r}",
+            "exponent",
         )
     if not indenter.shape_coefficient <= MAX_SHAPE_COEFFICIENT:
         raise InputError(
             f"shape_coefficient must lie in (0, {MAX_SHAPE_COEFFICIENT:g}] m^(1-n) for the FEM "
-            f"contact, got {indenter.shape_coefficient!r}"
+            f"contact, got {indenter.shape_coefficient!r}",
+            "shape_coefficient",
         )
     low, high = FEM_MODULUS_RANGE
     if not low <= half_space.youngs_modulus <= high:
         raise InputError(
             f"E2 must lie in [{low:g}, {high:g}] Pa for the FEM contact, got "
-            f"{half_space.youngs_modulus!r}"
+            f"{half_space.youngs_modulus!r}",
+            "E2",
         )
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
 

@@ -125,7 +125,9 @@ def validate_density(density: object) -> float:
     rho = validate_positive("density2", density, "kg/m^3")
     low, high = DENSITY_RANGE
     if not low <= rho <= high:
-        raise InputError(f"density2 must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}")
+        raise InputError(
+            f"density2 must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}", "density2"
+        )
     return rho
 
 

@@ -338,14 +338,11 @@ _INPUT_KEYS = {
     "exponent": "indenter.exponent",
     "shape_coefficient": "indenter.shape_coefficient",
     "E2": "half_space.youngs_modulus",
+    "nu2": "half_space.poisson_ratio",
     "density2": "half_space.density",
 }
-
-
-def _input_key(message: str) -> str:
-    """The study-file key an input error is about (its message starts with the name)."""
-    keys = (key for name, key in _INPUT_KEYS.items() if message.startswith(name))
-    return next(keys, "half_space.poisson_ratio")
+"""The study-file key of each parameter :func:`validate_fem_inputs` and
+:func:`validate_density` check (``InputError.parameter``)."""
 
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
@@ -361,7 +358,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         validate_fem_inputs(indenter, half_space)
         validate_density(raw.half_space.density)
     except InputError as error:
-        raise StudyError(f"{path}: key '{_input_key(str(error))}': {error}") from None
+        key = _INPUT_KEYS.get(error.parameter, "half_space")
+        raise StudyError(f"{path}: key '{key}': {error}") from None
     example = raw.impact.example
     velocities = _velocities(path, "impact.velocities", raw.impact.velocities, example)
     quick = raw.quick.velocities
