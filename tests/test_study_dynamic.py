@@ -140,7 +140,7 @@ def test_unknown_kind_is_named(tmp_path):
 
 def test_thresholds_interpolate_between_velocities():
     v = [1.0, 2.0, 3.0]
-    unresolved = {"error": None, "resolved": False}  # no estimates: no conclusion
+    unresolved = {"error": None, "resolved": False, "velocity_error": None}  # no conclusion
     assert thresholds(v, [0.005, -0.015, 0.03], 0.01) == {
         "velocity": 1.5,
         "bound": "interpolated",
@@ -169,6 +169,15 @@ def test_thresholds_state_a_limit_only_where_the_error_resolves_it(
 ):
     limit = thresholds([1.0, 2.0, 3.0], differences, 0.01, errors)
     assert limit["error"] == error and limit["resolved"] is resolved
+
+
+def test_an_interpolated_limit_carries_its_error_to_the_velocity():
+    # |d| crosses 0.01 between 1 and 2 m/s with slope 0.02 per m/s: an error of 1e-3 in the
+    # difference moves the crossing by 1e-3 / 0.02 = 0.05 m/s
+    limit = thresholds([1.0, 2.0, 3.0], [0.0, 0.02, 0.03], 0.01, [1e-3, 1e-3, 0.0])
+    assert limit["velocity"] == pytest.approx(1.5)
+    assert limit["velocity_error"] == pytest.approx(0.05)
+    assert thresholds([1.0, 2.0], [0.02, 0.03], 0.01, [1e-3, 1e-3])["velocity_error"] is None
 
 
 def test_quick_study_passes_its_checks(outcome):

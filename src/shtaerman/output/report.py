@@ -346,7 +346,9 @@ def _velocity(limit: dict | None) -> str:
         return "no: already off at the slowest v0 computed"
     if limit.get("bound") == "all":
         return f"every v0 computed (to {limit['velocity']:.3g} m/s)"
-    return f"v0 = {limit['velocity']:.3g} m/s"
+    spread = limit.get("velocity_error")
+    plus_minus = "" if spread is None else f" ± {spread:.1g}"
+    return f"v0 = {limit['velocity']:.3g}{plus_minus} m/s"
 
 
 def _depth(entry: dict | None) -> str:

@@ -670,7 +670,9 @@ def _limit_text(limit: dict, smallest: float, *, error: bool = False) -> str:
         return f"not even at {smallest:g} m/s (the smallest v0 computed{'; ' * error}{suffix})"
     if limit["bound"] == "all":
         return f"up to at least {limit['velocity']:g} m/s (every v0 computed{'; ' * error}{suffix})"
-    return f"up to {limit['velocity']:.2f} m/s" + (f" ({suffix})" if error else "")
+    spread = limit.get("velocity_error") if error else None
+    plus_minus = "" if spread is None else f" ± {spread:.1g}"
+    return f"up to {limit['velocity']:.2f}{plus_minus} m/s" + (f" ({suffix})" if error else "")
 
 
 def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:

@@ -62,14 +62,24 @@ def thresholds(
         ``velocity``: the limit (``None`` when already the first point is off; the largest
         input, a lower bound, when every point holds), ``bound``: "interpolated", "all" or
         "none", ``error``: the largest estimated error at the deciding points (``None``
-        without estimates) and ``resolved``: whether it is below level / :data:`RESOLUTION`.
+        without estimates), ``resolved``: whether it is below level / :data:`RESOLUTION`, and
+        ``velocity_error``: for an interpolated limit, that error carried to the input through
+        the slope between the two deciding points (input units; ``None`` otherwise).
     """
     size = [abs(d) for d in differences]
     bound, deciding = _crossing(size, level)
     error = None if errors is None else max(float(errors[i]) for i in deciding)
-    velocity = {"none": None, "all": inputs[-1]}.get(bound)
+    velocity, velocity_error = {"none": None, "all": inputs[-1]}.get(bound), None
     if bound == "interpolated":
         i, j = deciding
-        velocity = inputs[i] + (level - size[i]) * (inputs[j] - inputs[i]) / (size[j] - size[i])
+        slope = (size[j] - size[i]) / (inputs[j] - inputs[i])
+        velocity = inputs[i] + (level - size[i]) / slope
+        velocity_error = None if error is None else error / slope
     ok = resolved(error, level)
-    return {"velocity": velocity, "bound": bound, "error": error, "resolved": ok}
+    return {
+        "velocity": velocity,
+        "bound": bound,
+        "error": error,
+        "resolved": ok,
+        "velocity_error": velocity_error,
+    }
