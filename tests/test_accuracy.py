@@ -67,7 +67,9 @@ def test_accuracy_target_is_met_or_refused():
     # the domain grew so that the truncation (< 1.886 / domain) stays below a tenth of it
     stats = loose.finest.mesh_stats
     assert stats["domain_radius"] / stats["refined_radius"] >= 10 * 1.886 / 5e-3 * (1 - 1e-12)
-    with pytest.raises(InputError, match=r"accuracy 1e-09 needs about .* dofs"):
+    with pytest.raises(InputError, match=r"accuracy 1e-06 needs about .* dofs"):
+        run_to_accuracy(*PAPER, 1e-6, mesh=COARSE)
+    with pytest.raises(InputError, match=r"accuracy must be >= 3e-07"):  # before any work
         run_to_accuracy(*PAPER, 1e-9, mesh=COARSE)
     with pytest.raises(InputError, match=r"accuracy must lie in \(0, 0.1\]"):
         run_to_accuracy(*PAPER, 0.5, mesh=COARSE)
@@ -92,6 +94,9 @@ def test_contact_json_carries_the_estimates(capsys):
         (["--refine", "0.3"], r"refine must be >= 0.5 with these mesh settings .* got 0.3"),
         (["--accuracy", "nan"], "accuracy must be a finite number > 0"),
         (["--accuracy", "1e-5", "--max-time", "-1"], "max-time must be > 0 s"),
+        # the truncation at the largest domain, 1.886 / (1e7 x 1.25) = 1.5e-7, is left alone
+        (["--accuracy", "1e-7"], r"accuracy must be >= 3e-07: the clamped far boundary"),
+        (["--accuracy", "1e-5", "--refine", "2"], "refine: --accuracy chooses the refinement"),
     ],
 )
 def test_bad_accuracy_options(capsys, argv, message):
@@ -99,3 +104,17 @@ def test_bad_accuracy_options(capsys, argv, message):
     err = capsys.readouterr().err
     assert err.count("\n") == 1
     assert re.search(message, err)
+
+
+def test_the_size_guard_refuses_a_ladder_before_its_first_level(capsys, monkeypatch):
+    # --refine 4 puts the finest level at about 445k dofs; the two coarse levels (107k, 213k)
+    # used to run first, 16 s and 1.75 GB, before the finest one was refused (QA)
+    import shtaerman.study.accuracy as accuracy
+
+    def no_level(*args, **kwargs):
+        raise AssertionError("a ladder level ran")
+
+    monkeypatch.setattr(accuracy, "run_ladder", no_level)
+    assert main(["contact", "--refine", "4"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "above max_dofs" in err

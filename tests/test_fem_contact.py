@@ -28,6 +28,7 @@ from shtaerman.validation import InputError
 
 COARSE = MeshSettings(size=1 / 60, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
 RUBBER = Material(7.5e6, 0.5)
+COARSE_ARGS = ["--mesh-size", "0.02", "--domain-factor", "1e4"]
 
 
 @pytest.fixture(scope="module")
@@ -112,6 +113,36 @@ def test_nodal_sum_forces_on_request(paper_run):
     for step, nodal in zip(paper_run.steps, curve.steps, strict=True):
         assert nodal.force == nodal.discrete_force == pytest.approx(step.discrete_force, 1e-12)
         assert nodal.force == pytest.approx(step.nodal_forces.sum(), rel=1e-12)
+
+
+def test_a_contact_below_the_mesh_resolution_is_refused(capsys):
+    # at 1e-15 m the contact loads one surface node and the force came out 43x too large
+    argv = ["contact", "--no-estimate", "--depths", "1e-15,1e-3", *COARSE_ARGS]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "loads 1 surface node(s), fewer than 3" in err
+
+
+def test_too_many_depths_are_refused_before_the_factorization(paper_run):
+    depths = np.geomspace(1e-3, 2e-3, 1001)
+    system, radius = paper_run.curve.system, paper_run.mesh_stats["refined_radius"]
+    with pytest.raises(InputError, match="depths: at most 1000 per curve, got 1001"):
+        solve_contact(system, paper_run.indenter.profile, depths, radius)
+
+
+def test_a_failed_write_is_one_line_and_leaves_nothing(capsys, monkeypatch, tmp_path):
+    # a full disk (ENOSPC from meshio) gave a traceback (QA)
+    import shtaerman.output.export as export
+
+    def full_disk(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(export, "write_indentation", full_disk)
+    out = tmp_path / "run"
+    assert main(["contact", "--no-estimate", "--out", str(out), *COARSE_ARGS]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No space left on device" in err
+    assert not out.exists() and list(tmp_path.iterdir()) == []
 
 
 def test_central_pressure_is_two_and_a_half_mean(paper_run):

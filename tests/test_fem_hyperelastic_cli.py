@@ -113,6 +113,22 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
     assert (folder / "finite_curve.csv").read_text().startswith("depth [m],force [N],")
 
 
+def test_neo_hookean_force_replaces_a_used_folder(capsys, tmp_path):
+    # --force was not passed on to the staging of the neo-Hookean path: the run computed,
+    # then refused its own folder (QA)
+    folder = tmp_path / "run"
+    folder.mkdir()
+    (folder / "old").write_text("old")
+    argv = ["contact", "--model", "neo-hookean", "--no-estimate", "--depths", "1e-3"]
+    code, _, err = run(capsys, *argv, "--out", str(folder), "--force", *COARSE)
+    assert code == 0, err
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "contact.json",
+        "field_max_depth.vtu",
+        "finite_curve.csv",
+    ]
+
+
 @pytest.mark.parametrize(
     ("argv", "names"),
     [

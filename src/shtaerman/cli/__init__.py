@@ -22,9 +22,11 @@ from .common import Parser, warn
 
 __all__ = ["EXIT_INPUT", "build_parser", "main"]
 
+EXIT_FAILED = 1
 EXIT_INPUT = 2
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
+NOTHING_PARTIAL = "every output is complete or absent (nothing partial is kept)"
 SUBCOMMANDS = (impact, tables, contact, dynamic, verify, init_study, sweep)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
@@ -83,15 +85,18 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"shtaerman: error: {error}", file=sys.stderr)
             _report(caught)
     except KeyboardInterrupt:
-        print("shtaerman: interrupted; nothing partial was kept", file=sys.stderr)
+        print(f"shtaerman: interrupted; {NOTHING_PARTIAL}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Terminated:
-        print("shtaerman: terminated; nothing partial was kept", file=sys.stderr)
+        print(f"shtaerman: terminated; {NOTHING_PARTIAL}", file=sys.stderr)
         return EXIT_TERMINATED
     except BrokenPipeError:
         # the reader closed stdout (e.g. '| head'): stop quietly, as Unix tools do
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except OSError as error:  # the machine's fault, not the input's: a full disk, a lost mount
+        print(f"shtaerman: error: {error}; {NOTHING_PARTIAL}", file=sys.stderr)
+        return EXIT_FAILED
     finally:
         signal.signal(signal.SIGTERM, previous)
     return code

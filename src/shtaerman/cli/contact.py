@@ -148,6 +148,11 @@ def run(args: argparse.Namespace) -> int:
     depths, mesh = _depths(args.depths), mesh_settings(args)
     refine = validate_positive("refine", args.refine)
     tolerance = None if args.accuracy is None else validate_positive("accuracy", args.accuracy)
+    if tolerance is not None and refine != 1.0:
+        raise InputError(
+            f"refine: --accuracy chooses the refinement itself (its ladder starts at refine 1), "
+            f"got --refine {refine:g}; drop one of them"
+        )
     if not args.no_estimate:
         _check_coarsest(mesh, refine)
     out = None
@@ -214,15 +219,18 @@ def _run_finite(args: argparse.Namespace, indenter, half_space) -> int:
     if args.solver == "pardiso":
         raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'")
     out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    if args.no_estimate:
-        result = run_finite_study(indenter, half_space, depths, mesh.refined(refine))
-        report = result.to_dict()
-    else:
-        ladder = run_finite_ladder(indenter, half_space, depths, mesh, refine=refine)
-        result = ladder.finest
-        report = {**result.to_dict(), **ladder.to_dict()}
-    if out is not None:
-        with staged_folder(out) as stage:
+    with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
+        stage = (
+            stack.enter_context(staged_folder(out, force=args.force)) if out is not None else None
+        )
+        if args.no_estimate:
+            result = run_finite_study(indenter, half_space, depths, mesh.refined(refine))
+            report = result.to_dict()
+        else:
+            ladder = run_finite_ladder(indenter, half_space, depths, mesh, refine=refine)
+            result = ladder.finest
+            report = {**result.to_dict(), **ladder.to_dict()}
+        if stage is not None:
             write_finite_curve(result, stage)
             (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
     if args.json:

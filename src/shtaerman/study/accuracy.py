@@ -72,7 +72,8 @@ Solve = Callable[[MeshSettings], "IndentationResult | FiniteIndentationResult"]
 
 def check_ladder(mesh: MeshSettings, refine: float = 1.0) -> None:
     """Raise InputError unless every level of the ladder ending at ``refine`` is a valid
-    mesh: the coarsest, refine / 2, must keep every size and growth of ``mesh`` <= 1."""
+    mesh: the coarsest, refine / 2, must keep every size and growth of ``mesh`` <= 1, and the
+    finest must pass the size guard (``max_dofs``) before the coarse levels cost anything."""
     smallest = LADDER_RATIO**2 * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
     if not refine >= smallest * (1.0 - 1e-12):
         raise InputError(
@@ -80,6 +81,7 @@ def check_ladder(mesh: MeshSettings, refine: float = 1.0) -> None:
             f"ladder's coarsest mesh, refine / 2, keeps every size and growth <= 1), got "
             f"{refine!r}"
         )
+    mesh.refined(refine).check_size()
 
 
 def ladder_factors(refine: float) -> list[float]:
@@ -299,7 +301,7 @@ def _check_reachable(
         raise InputError(
             f"accuracy {tolerance:g} needs about {dofs:.3g} dofs (estimated error {error:.2g} "
             f"at {result.levels[-1].dofs} dofs, order {order:.2f}), above max-dofs "
-            f"{max_dofs}; raise --max-dofs or loosen --accuracy"
+            f"{max_dofs:.0f}; raise --max-dofs or loosen --accuracy"
         )
     if seconds > time_left:
         raise InputError(
@@ -323,8 +325,10 @@ def run_to_accuracy(
 ) -> AccuracyResult:
     """Refine until the estimated force and beta errors are at most ``tolerance``.
 
-    The domain is enlarged (up to the mesh's limit) so that the far-field truncation, which
-    the ladder does not see, stays below a tenth of the tolerance. After the first three
+    The domain is enlarged (up to the mesh's limit, :data:`shtaerman.fem.mesh.MAX_DOMAIN`) so
+    that the far-field truncation, which the ladder does not see, stays below a tenth of the
+    tolerance; at that limit it is about 1.5e-7, so below TOL = 1.5e-6 it takes a larger share,
+    and a TOL under twice it is refused. After the first three
     levels the needed refinement is predicted from the observed order; a target that needs
     more than ``max_dofs`` or ``max_time`` is refused at once with an InputError.
 
@@ -350,6 +354,13 @@ def run_to_accuracy(
     max_time = validate_positive("max-time", max_time, "s")
     start = time.perf_counter()
     mesh = MeshSettings() if mesh is None else mesh
+    floor = 2.0 * TRUNCATION["force"] / (MAX_DOMAIN * mesh.margin)
+    if tolerance < floor:
+        raise InputError(
+            f"accuracy must be >= {floor:.2g}: the clamped far boundary alone stiffens the "
+            f"force by about {floor / 2:.2g} at the largest domain ({MAX_DOMAIN:g} refined "
+            f"radii), which no refinement removes; got {tolerance!r}"
+        )
     domain = min(max(mesh.domain, 10.0 * TRUNCATION["force"] / tolerance), MAX_DOMAIN)
     mesh = replace(mesh, domain=domain)
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
