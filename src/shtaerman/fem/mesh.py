@@ -13,8 +13,6 @@ import contextlib
 import importlib.resources
 import math
 import os
-import signal
-import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -26,6 +24,7 @@ from skfem import MeshTri
 from skfem.io.meshio import from_meshio
 
 from ..validation import InputError, validate_positive
+from .signals import deferred
 
 __all__ = [
     "BOUNDARIES",
@@ -172,7 +171,7 @@ def _axis_parameters(
 @contextlib.contextmanager
 def _gmsh_session() -> Iterator[None]:
     """Run gmsh silently; finalize it only if this call initialized it."""
-    with _signals_deferred():
+    with deferred():
         owned = not gmsh.isInitialized()
         if owned:
             with _petsc_leaving_signals_alone():
@@ -186,31 +185,6 @@ def _gmsh_session() -> Iterator[None]:
                 gmsh.finalize()
             else:
                 gmsh.option.setNumber("General.Terminal", terminal)
-
-
-@contextlib.contextmanager
-def _signals_deferred() -> Iterator[None]:
-    """Hold SIGINT/SIGTERM's Python handlers until the block ends, then run the first one.
-
-    gmsh's Python API passes numpy vectors to ctypes, whose conversion runs Python code; a
-    handler raising there (``KeyboardInterrupt``, the CLI's ``Terminated``) reached the caller
-    as ``ctypes.ArgumentError``, a traceback instead of a clean stop. gmsh does not return to
-    Python while it meshes, so the delay is the read-back of the mesh. Main thread only (where
-    Python runs its handlers); handlers not installed from Python are left as they are.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    caught: list[int] = []
-    numbers = [n for n in (signal.SIGINT, signal.SIGTERM) if signal.getsignal(n) is not None]
-    previous = {n: signal.signal(n, lambda signum, _: caught.append(signum)) for n in numbers}
-    try:
-        yield
-    finally:
-        for number, handler in previous.items():
-            signal.signal(number, handler)
-        if caught:
-            signal.raise_signal(caught[0])
 
 
 @contextlib.contextmanager

@@ -8,6 +8,7 @@ candidate dof (12x the factorization on the default mesh; see benchmarks/bench_c
 
 Ordering: METIS nested dissection (pymetis) on the graph of mesh nodes (the dofs of one P2 node
 taken together, a graph about 4x smaller than the dof graph), the tail dofs moved to the end.
+METIS traps SIGTERM itself while it orders; :func:`.signals.call_trapping` passes the signal on.
 On the default nu = 0.5 mesh it fills about as much as SuperLU's own minimum-degree ordering and
 factorizes as fast. SuperLU then runs with the natural column order in symmetric mode with
 diagonal pivots, and the factorization is checked: the tail rows must not have been pivoted
@@ -22,6 +23,7 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .signals import call_trapping
 from .solver import ACCURACY_CHECK, backward_error, symmetric_scaling
 
 __all__ = ["TailFactorization", "TailPivotError", "nested_dissection"]
@@ -53,7 +55,7 @@ def nested_dissection(pattern: sp.spmatrix, groups: np.ndarray) -> np.ndarray:
     graph.setdiag(0)
     graph.eliminate_zeros()
     adjacency = pymetis.CSRAdjacency(graph.indptr, graph.indices)
-    group_order, _ = pymetis.nested_dissection(adjacency)
+    group_order, _ = call_trapping(lambda: pymetis.nested_dissection(adjacency))
     rank = np.empty(count, dtype=np.int64)
     rank[np.asarray(group_order)] = np.arange(count)
     return np.argsort(rank[groups], kind="stable")
