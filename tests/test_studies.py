@@ -60,6 +60,10 @@ def test_minimal_user_study(tmp_path):
         (("[impact]", "[impakt]"), r"key 'impakt': expected one of"),
         (("velocity = 3.0", "velocity = 3.0\ncolour = 1"), r"key 'impact.colour': expected one of"),
         (("[indenter]", "indenter = ["), r"not valid TOML"),
+        # valid numbers the FEM refuses: the key from InputError.parameter, as in the
+        # dynamic and finite-strain files (the contact file named no key before)
+        (("exponent = 1.5", "exponent = 1.0"), r"key 'indenter.exponent': exponent must be > 1"),
+        (("youngs_modulus = 7.5e6", "youngs_modulus = 1e200"), r"'half_space.youngs_modulus': E2"),
     ],
 )
 def test_bad_study_names_file_and_key(tmp_path, edit, message):

@@ -62,7 +62,16 @@ from .dynamic_accuracy import DynamicLadder, check_ladder, complete_ladder
 from .indentation import validate_fem_inputs
 from .limits import LEVELS, thresholds
 from .richardson import Estimate
-from .schema import Poisson, Positive, Relative, StudyError, _decode, _Table, validate_name
+from .schema import (
+    Poisson,
+    Positive,
+    Relative,
+    StudyError,
+    _decode,
+    _Table,
+    fem_input_error,
+    validate_name,
+)
 
 __all__ = [
     "COMPARED",
@@ -334,17 +343,6 @@ def _velocities(path: Path, key: str, values: list[float], example: float) -> tu
     return tuple(values)
 
 
-_INPUT_KEYS = {
-    "exponent": "indenter.exponent",
-    "shape_coefficient": "indenter.shape_coefficient",
-    "E2": "half_space.youngs_modulus",
-    "nu2": "half_space.poisson_ratio",
-    "density2": "half_space.density",
-}
-"""The study-file key of each parameter :func:`validate_fem_inputs` and
-:func:`validate_density` check (``InputError.parameter``)."""
-
-
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
     raw: _DynamicFile = _decode(path, data, _DynamicFile)
@@ -358,8 +356,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         validate_fem_inputs(indenter, half_space)
         validate_density(raw.half_space.density)
     except InputError as error:
-        key = _INPUT_KEYS.get(error.parameter, "half_space")
-        raise StudyError(f"{path}: key '{key}': {error}") from None
+        raise fem_input_error(path, error) from None
     example = raw.impact.example
     velocities = _velocities(path, "impact.velocities", raw.impact.velocities, example)
     quick = raw.quick.velocities

@@ -60,7 +60,7 @@ from .checks import Check
 from .contact_law import fem_contact_law
 from .finite_accuracy import CROSSING_KEYS, FiniteEstimates, estimate_study, resolved
 from .finite_indentation import FiniteIndentationResult, run_finite_study
-from .indentation import IndentationResult, run_indentation, validate_fem_inputs
+from .indentation import IndentationResult, run_indentation
 from .run import HISTORY_POINTS, Progress, _maxima, _tabulated_impact
 from .schema import (
     Poisson,
@@ -73,6 +73,7 @@ from .schema import (
     _Material,
     _Mesh,
     _Table,
+    _validated,
     validate_name,
 )
 
@@ -270,14 +271,11 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
     raw = _decode(path, data, _FiniteFile)
     try:
         studies = _expanded(_build(path, raw), raw.sweep)
-        for study in studies:
-            validate_name(study.name)
-            validate_fem_inputs(study.indenter, study.half_space)
     except StudyError:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
-    return studies
+    return _validated(path, studies)
 
 
 def depth_at_ratio(indenter: PowerLawIndenter, ratio: float) -> float:

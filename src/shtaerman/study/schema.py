@@ -54,6 +54,7 @@ __all__ = [
     "Study",
     "StudyError",
     "Tolerances",
+    "fem_input_error",
     "find_study",
     "load_study",
     "shipped_studies",
@@ -405,19 +406,47 @@ def load_study(path: str | Path) -> list[Any]:
     return kind_function(kind, "load")(path, data)
 
 
+FEM_INPUT_KEYS = {
+    "exponent": "indenter.exponent",
+    "shape_coefficient": "indenter.shape_coefficient",
+    "E2": "half_space.youngs_modulus",
+    "nu2": "half_space.poisson_ratio",
+    "density2": "half_space.density",
+}
+"""The study-file key of each parameter that :func:`validate_fem_inputs` and
+:func:`shtaerman.fem.dynamic_contact.validate_density` check (``InputError.parameter``)."""
+
+
+def fem_input_error(path: Path, error: InputError) -> StudyError:
+    """A study file's FEM input refused: the error with the file and the key it is about."""
+    key = FEM_INPUT_KEYS.get(error.parameter, "half_space")
+    return StudyError(f"{path}: key '{key}': {error}")
+
+
+def _validated(path: Path, studies: list) -> list:
+    """``studies`` after the name and FEM-input checks, or a StudyError naming file and key."""
+    for study in studies:
+        try:
+            validate_name(study.name)
+        except InputError as error:
+            raise StudyError(f"{path}: {error}") from None
+        try:
+            validate_fem_inputs(study.indenter, study.half_space)
+        except InputError as error:
+            raise fem_input_error(path, error) from None
+    return studies
+
+
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = _decode(path, data)
     try:
         studies = _expanded(_build(path, raw), raw.sweep)
-        for study in studies:
-            validate_name(study.name)
-            validate_fem_inputs(study.indenter, study.half_space)
     except StudyError:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
-    return studies
+    return _validated(path, studies)
 
 
 def studies_folder() -> Path:
