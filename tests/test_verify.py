@@ -138,3 +138,22 @@ def test_studies_run_as_dask_tasks_give_the_same_results(quick_verify, tmp_path,
     for name, study in in_process["studies"].items():
         assert on_dask["studies"][name]["checks"] == study["checks"]
     assert (out / "report.html").is_file() and not list(tmp_path.glob(".*partial*"))
+
+
+@pytest.mark.parametrize("workers", ["1", "2"])
+def test_a_study_the_fem_refuses_at_run_time_names_its_file(tmp_path, capfd, workers):
+    # a depth below the mesh's resolution is refused only once the FEM runs: the message
+    # named no file, and two studies on dask workers printed a "Compute Failed" traceback
+    # before it (QA)
+    paper = next(p for p in shipped_studies() if p.stem == "paper")
+    text = re.sub(r'(?m)^depths = "impact".*$', "depths = [1e-15, 1e-3]", paper.read_text())
+    studies = [tmp_path / "tiny.toml", tmp_path / "tiny2.toml"]
+    studies[0].write_text(text)
+    studies[1].write_text(re.sub(r"(?m)^name = .*$", 'name = "tiny2"', text))
+    out = tmp_path / "out"
+    argv = ["verify", *map(str, studies), "--quick", "--workers", workers, "--out", str(out)]
+    assert main(argv) == 2
+    err = capfd.readouterr().err
+    assert re.search(r"shtaerman: error: .*tiny2?\.toml: study '(paper|tiny2)': depth 1e-15 m", err)
+    assert "Traceback" not in err and "Compute Failed" not in err
+    assert not out.exists()

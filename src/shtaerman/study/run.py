@@ -19,6 +19,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ..theory.impact_ode import integrate_impact
 from ..theory.materials import effective_modulus
+from ..validation import InputError
 from .accuracy import AccuracyResult, run_ladder
 from .checks import Check
 from .contact_law import FemContactLaw, fem_contact_law
@@ -124,8 +125,20 @@ def _checks(study: Study, contact: IndentationResult, impacts: dict) -> list[Che
 
 
 def run_study(study: Any, *, quick: bool = False, progress: Progress | None = None) -> Any:
-    """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`)."""
-    return kind_function(getattr(study, "kind", "contact"), "run")(study, quick, progress)
+    """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`).
+
+    Raises
+    ------
+    InputError
+        An input the FEM refuses only once it runs (e.g. a contact smaller than the mesh
+        resolves), prefixed with the study file and the study's name.
+    """
+    run = kind_function(getattr(study, "kind", "contact"), "run")
+    try:
+        return run(study, quick, progress)
+    except InputError as error:
+        where = f"{study.source}: study {study.name!r}"
+        raise InputError(f"{where}: {error}", error.parameter) from None
 
 
 def run_contact_study(

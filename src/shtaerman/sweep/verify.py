@@ -16,6 +16,7 @@ from typing import Any
 from ..output.files import staged_folder
 from ..output.folder import finish_verification, study_entry
 from ..study.run import run_study
+from ..validation import InputError
 from .engine import dask_client
 
 __all__ = ["run_verification_on_dask", "submission_order", "verify_task"]
@@ -33,12 +34,22 @@ def submission_order(studies: list[Any]) -> list[Any]:
     return sorted(studies, key=lambda study: rank.get(getattr(study, "kind", ""), 2))
 
 
+INPUT_ERROR = "input_error"
+"""Key of a task's result that carries a refused input instead of an entry: returned, not
+raised, so that the worker does not log the refusal as a failed computation with its
+traceback."""
+
+
 def verify_task(study: Any, stage: str, quick: bool) -> dict[str, object]:
-    """One study, run and written (a dask task): its results.json entry."""
+    """One study, run and written (a dask task): its results.json entry, or
+    {:data:`INPUT_ERROR`: message} for an input the FEM refused."""
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1, user_api="blas"):
-        return study_entry(run_study(study, quick=quick), Path(stage))
+        try:
+            return study_entry(run_study(study, quick=quick), Path(stage))
+        except InputError as error:
+            return {INPUT_ERROR: str(error)}
 
 
 def run_verification_on_dask(
@@ -79,6 +90,9 @@ def run_verification_on_dask(
             entries = {}
             for future in as_completed(futures):
                 entry = future.result()
+                if INPUT_ERROR in entry:
+                    client.cancel(list(futures))  # the other studies' results are moot
+                    raise InputError(entry[INPUT_ERROR])
                 name = futures[future]
                 entries[name] = entry
                 advance()
