@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import select
 import signal
 import sys
 import warnings
@@ -27,6 +28,10 @@ EXIT_INPUT = 2
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
 NOTHING_PARTIAL = "every output is complete or absent (nothing partial is kept)"
+STDOUT_CLOSED = (
+    "standard output is closed; redirect it to a file or to /dev/null (e.g. '> run.log')"
+)
+PIPE_OUTPUT = "the reader of an output pipe quit before the output was complete"
 SUBCOMMANDS = (impact, tables, contact, dynamic, verify, init_study, sweep)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
@@ -64,6 +69,16 @@ def _run(argv: Sequence[str] | None) -> int:
     return args.handler(args)
 
 
+def _stdout_gone() -> bool:
+    """True when standard output is a pipe whose reader has quit (poll reports an error)."""
+    try:
+        poller = select.poll()
+        poller.register(sys.stdout.fileno(), select.POLLOUT)
+        return any(events & (select.POLLERR | select.POLLHUP) for _, events in poller.poll(0))
+    except (AttributeError, OSError, ValueError):
+        return False
+
+
 def _report(caught: list[warnings.WarningMessage]) -> None:
     for warning in caught:
         if not issubclass(warning.category, DeprecationWarning):
@@ -72,6 +87,9 @@ def _report(caught: list[warnings.WarningMessage]) -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; returns the exit code (0 success, 1 failed check, 2 bad input)."""
+    if sys.stdout is None:  # started with '>&-': every result would be lost without a word
+        print(f"shtaerman: error: {STDOUT_CLOSED}", file=sys.stderr)
+        return EXIT_INPUT
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         with warnings.catch_warnings(record=True) as caught:
@@ -90,7 +108,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Terminated:
         print(f"shtaerman: terminated; {NOTHING_PARTIAL}", file=sys.stderr)
         return EXIT_TERMINATED
-    except BrokenPipeError:
+    except BrokenPipeError as error:
+        if not _stdout_gone():  # an output file was a pipe (FIFO) whose reader quit early
+            print(f"shtaerman: error: {error}: {PIPE_OUTPUT}", file=sys.stderr)
+            return EXIT_FAILED
         # the reader closed stdout (e.g. '| head'): stop quietly, as Unix tools do
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
