@@ -36,12 +36,7 @@ from threadpoolctl import threadpool_limits
 
 from ..validation import InputError, validate_increasing, validate_poisson
 from .elasticity import FEM_MODULUS_RANGE, ElasticSolution, ElasticSystem, postprocess
-
-try:  # METIS ordering: the compliance falls out of the factorization
-    from .schur import TailFactorization, TailPivotError
-except ImportError:  # pymetis unavailable: unit-load solves instead (same results, slower)
-    TailFactorization = None
-    TailPivotError = RuntimeError
+from .schur import TailFactorization, TailPivotError
 from .solver import Factorization, factorize
 
 __all__ = [
@@ -165,7 +160,7 @@ def factorize_stiffness(
     """
     _, _, position = _candidates(system, free, radius)
     matrix = system.reduced_matrix(free)
-    if backend in ("auto", "superlu") and TailFactorization is not None:
+    if backend in ("auto", "superlu"):
         try:
             return TailFactorization(matrix, position, system.dof_nodes()[free])
         except TailPivotError:

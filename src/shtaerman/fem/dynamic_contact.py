@@ -51,14 +51,12 @@ and W is needed anyway.)
 
 from __future__ import annotations
 
-import contextlib
 import math
 import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from scipy.optimize import brentq
 from scipy.special import beta as beta_function
 from skfem import BilinearForm, asm
@@ -90,12 +88,7 @@ from .elasticity import (
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
-from .solver import SuperLUFactorization, backward_error, factorize
-
-try:  # METIS ordering of the effective matrix (more accurate); else minimum degree
-    from .schur import nested_dissection
-except ImportError:
-    nested_dissection = None
+from .solver import factorize_scaled
 
 __all__ = [
     "MAX_DOFS",
@@ -562,7 +555,7 @@ def run_dynamic_impact(
         )
     # one BLAS thread: SuperLU's supernodes are small, threads only contend (2 shared cores)
     with threadpool_limits(limits=1, user_api="blas"):
-        factorization = ScaledFactorization(reduced, system.dof_nodes()[free])
+        factorization = factorize_scaled(reduced, system.dof_nodes()[free], DYNAMIC_ACCURACY_CHECK)
         unit = np.zeros((free.size, position.size))
         unit[position, np.arange(position.size)] = 1.0
         # W = K_eff^-1 S, free dofs x candidates; column-major so that W[:, :k] is a view
@@ -641,72 +634,6 @@ def run_dynamic_impact(
         parameters=parameters,
         system=system,
     )
-
-
-class NestedDissectionLU:
-    """SuperLU in METIS nested-dissection order (mesh-node graph), natural column order.
-
-    On the scaled effective matrix it fills as much as minimum degree, factorizes faster and
-    is far more accurate: componentwise backward error 1e-15 against 2e-9 for
-    ``MMD_AT_PLUS_A`` (13k dofs, rho_inf = 0.9, 400 steps per t_y).
-    """
-
-    backend = "superlu-nd"
-
-    def __init__(self, matrix: sp.spmatrix, groups: np.ndarray) -> None:
-        self.shape = matrix.shape
-        self._perm = nested_dissection(matrix, groups)
-        permuted = sp.csc_matrix(matrix)[self._perm][:, self._perm].tocsc()
-        self._lu = spla.splu(
-            permuted,
-            permc_spec="NATURAL",
-            diag_pivot_thresh=0.0,
-            options={"SymmetricMode": True, "Equil": False},
-        )
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve for a vector (n,) or many right-hand sides (n, k)."""
-        rhs = np.asarray(rhs, dtype=float)
-        solution = np.empty_like(rhs)
-        solution[self._perm] = self._lu.solve(rhs[self._perm])
-        return solution
-
-
-class ScaledFactorization:
-    """Factorization of S A S with S = diag(1 / sqrt(max_j |A_ij|)), solving A x = b.
-
-    The effective matrix mixes (4/dt^2) M of 20 m elements far out with K of micrometre ones
-    at the axis: entries span ~12 decades, and unscaled SuperLU fails its backward-error check.
-    Symmetric scaling keeps the matrix symmetric (diagonal pivots) and brings rows to ~1. The
-    factorization is :class:`NestedDissectionLU` when pymetis is there (backward error 1e-15),
-    else SuperLU's minimum degree (1e-9 to 2e-8: the pressure unknowns of large,
-    mass-dominated elements have Schur pivots ~ (c dt / h)^2), accepted up to
-    ``DYNAMIC_ACCURACY_CHECK``; beyond it, the checked fallbacks of :func:`.solver.factorize`.
-    """
-
-    def __init__(self, matrix: sp.spmatrix, groups: np.ndarray | None = None) -> None:
-        row_max = np.asarray(abs(matrix).max(axis=1).todense()).ravel()
-        self.scale = 1.0 / np.sqrt(row_max)
-        scaling = sp.diags(self.scale)
-        scaled = (scaling @ matrix @ scaling).tocsc()
-        self._factorization = None
-        if groups is not None and nested_dissection is not None:
-            with contextlib.suppress(RuntimeError):  # an exactly zero pivot: fall back
-                self._factorization = NestedDissectionLU(scaled, groups)
-        if self._factorization is None:
-            self._factorization = SuperLUFactorization(scaled)
-        self.backward_error = backward_error(scaled, self._factorization)
-        if not self.backward_error <= DYNAMIC_ACCURACY_CHECK:
-            self._factorization = factorize(scaled)  # stricter pivoting, checked at 1e-8
-            self.backward_error = backward_error(scaled, self._factorization)
-        self.backend = self._factorization.backend
-        self.shape = matrix.shape
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve A x = rhs for a vector (n,) or many right-hand sides (n, k)."""
-        rhs = np.asarray(rhs, dtype=float)
-        scale = self.scale if rhs.ndim == 1 else self.scale[:, None]
-        return scale * self._factorization.solve(scale * rhs)
 
 
 def _rayleigh_root(nu: float) -> float:

@@ -60,12 +60,7 @@ from .hyperelastic import (
 )
 from .mesh import MeshSettings
 from .pattern import Pattern
-from .solver import ACCURACY_CHECK, factorize
-
-try:  # METIS ordering, computed once for every Newton matrix
-    from .schur import nested_dissection
-except ImportError:  # pymetis unavailable: SuperLU orders each matrix (same results, slower)
-    nested_dissection = None
+from .solver import PatternSolver
 
 __all__ = [
     "FINITE_MESH",
@@ -286,7 +281,7 @@ class _Stepper:
         self.pattern, self.take = system.pattern.submatrix(self.free)
         self.curvature_at = self.pattern.diagonal[self.position[self.nodes.ur[self.nodes.ur_free]]]
         nodes = dof_nodes(system.displacement_basis, system.pressure_basis)[self.free]
-        self.solver = _ScaledSolver(self.pattern, nodes)
+        self.solver = PatternSolver(self.pattern, nodes)
         self.tolerance = tolerance
         self.max_iterations = max_iterations
         material = system.material
@@ -407,59 +402,6 @@ def _entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
     offsets = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
     in_columns = np.repeat(starts, counts) + offsets
     return np.union1d(in_columns, pattern.transpose[in_columns])
-
-
-class _ScaledSolver:
-    """Solve with Newton matrices of one fixed pattern, scaled symmetrically, ordered once.
-
-    Symmetric row-max scaling S A S (S = diag(max_j |A_ij|)^(-1/2)): the stiffness spans
-    ~1e17 between the graded axis elements and the far arc (2 pi R dA), while the constraint
-    rows are O(1); unscaled, SuperLU's diagonal pivots fail. Ordering: METIS nested dissection
-    of the mesh-node graph (:func:`.schur.nested_dissection`), computed once for the pattern;
-    SuperLU then factorizes in natural order with diagonal pivots. On the 14k-dof default mesh
-    that takes 43 ms (1.42M nonzeros in L + U) against 62 ms with SuperLU's minimum degree
-    recomputed for every matrix (1.32M; 47 ms of it the factorization proper). The solve is
-    accepted if its componentwise backward error is below :data:`.solver.ACCURACY_CHECK`
-    (observed ~1e-15); otherwise, or without pymetis, :func:`.solver.factorize` (its own
-    ordering, and stricter pivoting if needed) solves.
-    """
-
-    def __init__(self, pattern: Pattern, nodes: np.ndarray) -> None:
-        self.pattern = pattern
-        self.order = None
-        if nested_dissection is not None:
-            self.order = nested_dissection(pattern.matrix(np.ones(pattern.nnz)), nodes)
-            self.ordered, self.take = pattern.permuted(self.order)
-
-    def solve(self, data: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        """Solve A x = rhs, A with ``data`` in the pattern."""
-        pattern = self.pattern
-        scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
-        scaled = data * scale[pattern.indices] * scale[pattern.columns]
-        if self.order is not None:
-            solution = self._ordered_solve(scaled, (scale * rhs)[self.order])
-            if solution is not None:
-                out = np.empty_like(solution)
-                out[self.order] = solution
-                return scale * out
-        return scale * factorize(pattern.matrix(scaled)).solve(scale * rhs)
-
-    def _ordered_solve(self, scaled: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
-        """The solution in the nested-dissection order, or None if SuperLU fails the check."""
-        matrix = self.ordered.matrix(scaled[self.take])
-        try:
-            lu = spla.splu(
-                matrix,
-                permc_spec="NATURAL",
-                diag_pivot_thresh=0.0,
-                options={"SymmetricMode": True, "Equil": False},
-            )
-        except RuntimeError:  # an exactly zero pivot
-            return None
-        solution = lu.solve(rhs)
-        scale = abs(matrix) @ abs(solution) + abs(rhs)
-        error = abs(matrix @ solution - rhs) / np.where(scale > 0, scale, 1.0)
-        return solution if np.max(error) <= ACCURACY_CHECK else None
 
 
 def solve_finite_contact(
