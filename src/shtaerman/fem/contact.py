@@ -45,6 +45,7 @@ __all__ = [
     "SurfaceCompliance",
     "aligned_force",
     "complementarity",
+    "edge_radius",
     "factorize_stiffness",
     "solve_contact",
     "validate_fem_inputs",
@@ -301,7 +302,7 @@ EDGE_FIT_NODES = slice(3, 15)
 skipped, the FEM gap there is distorted over about one element."""
 
 
-def _contact_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
+def edge_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
     """Edge a from the gap beyond it, g^(2/3) ~ c (r - a)(1 + O(r - a)) at a smooth edge.
 
     A least-squares quadratic in r through g^(2/3) at free nodes 3..14 past the last loaded
@@ -446,7 +447,7 @@ def contact_step(
             f"the edge of the refined region ({compliance.r[-1]:.4g} m); mesh a larger region"
         )
     pressure = recover_pressure(compliance.mass_factor, forces)
-    radius = _contact_radius(compliance.r, forces, gap)
+    radius = edge_radius(compliance.r, forces, gap)
     return ContactStep(
         depth=depth,
         force=aligned_force(compliance, heights, forces, depth) if aligned else discrete,

@@ -69,9 +69,9 @@ from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import (
     EDGE_MARGIN,
-    _contact_radius,
     central_pressure,
     complementarity,
+    edge_radius,
     mass_factor,
     recover_pressure,
     validate_fem_inputs,
@@ -743,7 +743,7 @@ def _step(**kw) -> dict[str, object]:
             radius = pressure0 = 0.0
             if active.size:
                 touched = True
-                radius = _contact_radius(r_c, new_forces, np.maximum(new_gap, 0.0))
+                radius = edge_radius(r_c, new_forces, np.maximum(new_gap, 0.0))
                 pressure = recover_pressure(kw["surface_factor"], new_forces)
                 pressure0 = central_pressure(r_c, pressure, radius)
             rows.append((t, big_x, big_v, total, radius, pressure0))

@@ -33,7 +33,7 @@ nodal forces with the P2 surface matrix of the *current* surface, projected on t
 (for frictionless contact on a graph, vertical force per projected area is exactly the Cauchy
 normal pressure); p(0) extrapolated to the axis as in the linear code
 (:func:`.contact.central_pressure`); the contact radius r = R + u_r located between nodes from
-the gap (:func:`.contact._contact_radius`); the stored energy Pi.
+the gap (:func:`.contact.edge_radius`); the stored energy Pi.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_increasing, validate_poisson
-from .contact import EDGE_MARGIN, _contact_radius, central_pressure
+from .contact import EDGE_MARGIN, central_pressure, edge_radius
 from .elasticity import dof_nodes
 from .hyperelastic import (
     HyperelasticSystem,
@@ -525,7 +525,7 @@ def _step(
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
     pressure = _recover_pressure(r, lam)
-    radius = _contact_radius(r, lam, gap)
+    radius = edge_radius(r, lam, gap)
     return FiniteContactStep(
         depth=float(depth),
         force=float(lam.sum()),
