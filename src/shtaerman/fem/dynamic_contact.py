@@ -26,14 +26,14 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.optimize import brentq
-from scipy.special import beta as beta_function
 from skfem import BilinearForm, asm
 from threadpoolctl import threadpool_limits
 
 from ..theory.contact import PowerLawContact
+from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
+from ..theory.radiation import rayleigh_root
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor, validate_fem_inputs
@@ -361,39 +361,43 @@ class DynamicImpactResult:
         return actual, solution, velocity
 
 
+@dataclass(frozen=True)
+class _QuasiStatic:
+    """The quasi-static impact of the rigid striker, the scales of the dynamic run (SI)."""
+
+    beta: float
+    force_exponent: float
+    x_c: float
+    t_y: float
+    a_c: float
+
+
 def _quasi_static(
-    indenter: PowerLawIndenter, half_space: Material, mass: float, velocity: float
-) -> dict[str, float]:
-    """x_c, t_y, a_c of the quasi-static impact of the rigid striker (no import of impact)."""
+    indenter: PowerLawIndenter, half_space: Material, striker: Striker
+) -> _QuasiStatic:
+    """x_c from the energy balance M v0^2 / 2 = beta x_c^(q+1) / (q+1), t_y = 2 I x_c / v0.
+
+    x_c is taken in this power form rather than from :func:`shtaerman.theory.impact.solve_impact`
+    (logarithms, another last bit): the refined radius follows from it, and gmsh's mesh
+    depends on the last bit of its inputs.
+    """
     law = PowerLawContact(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
-    q = law.force_exponent
+    q, mass, velocity = law.force_exponent, striker.mass, striker.velocity
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
-    duration = beta_function(1.0 / (q + 1.0), 0.5) / (q + 1.0)
-    return {
-        "beta": law.beta,
-        "force_exponent": q,
-        "x_c": x_c,
-        "t_y": 2.0 * duration * x_c / velocity,
-        "a_c": float(law.contact_radius(x_c)),
-    }
-
-
-def _rayleigh_root(nu: float) -> float:
-    """c_s / c_R from Rayleigh's equation (as theory.radiation.rayleigh_root; fem may not
-    import it by the layering rule)."""
-    g2 = (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu))
-
-    def rayleigh(s: float) -> float:
-        return (2 * s * s - 1) ** 2 - 4 * s * s * math.sqrt(s * s - g2) * math.sqrt(s * s - 1)
-
-    return brentq(rayleigh, 1.0 + 1e-14, 2.0, xtol=1e-15)
+    return _QuasiStatic(
+        beta=law.beta,
+        force_exponent=q,
+        x_c=x_c,
+        t_y=2.0 * duration_integral(q) * x_c / velocity,
+        a_c=float(law.contact_radius(x_c)),
+    )
 
 
 @dataclass(frozen=True)
 class _Scales:
     """Lengths, times and speeds of one impact, derived from the inputs and the settings."""
 
-    quasi_static: dict[str, float]
+    quasi_static: _QuasiStatic
     shear_wave_speed: float
     rayleigh_wave_speed: float
     dt: float
@@ -405,7 +409,7 @@ class _Scales:
     @property
     def t_y(self) -> float:
         """Quasi-static impact duration in s."""
-        return self.quasi_static["t_y"]
+        return self.quasi_static.t_y
 
     @property
     def inner_radius(self) -> float:
@@ -421,12 +425,12 @@ def _scales(
     settings: DynamicSettings,
 ) -> _Scales:
     """Quasi-static impact, wave speeds, time step, refined and domain radii, layer."""
-    qs = _quasi_static(indenter, half_space, striker.mass, striker.velocity)
+    qs = _quasi_static(indenter, half_space, striker)
     nu = half_space.poisson_ratio
     shear = half_space.youngs_modulus / (2.0 * (1.0 + nu))
     c_s = math.sqrt(shear / rho)
-    t_y = qs["t_y"]
-    refined = settings.margin * qs["a_c"]
+    t_y = qs.t_y
+    refined = settings.margin * qs.a_c
     domain_radius = settings.domain * refined
     layer = AbsorbingLayer(
         start=settings.layer_start * c_s * t_y,
@@ -437,7 +441,7 @@ def _scales(
     return _Scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
-        rayleigh_wave_speed=c_s / _rayleigh_root(nu),
+        rayleigh_wave_speed=c_s / rayleigh_root(nu),
         dt=t_y / settings.steps,
         refined=refined,
         domain_radius=domain_radius,
@@ -646,7 +650,7 @@ def prepare_dynamic_impact(
         problem=problem,
         duration=3.0 * scales.t_y,
         tail_time=settings.tail * scales.inner_radius / scales.rayleigh_wave_speed,
-        force_exponent=scales.quasi_static["force_exponent"],
+        force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
         mesh=_mesh_stats(problem, estimate, scales, settings.size * scales.refined),
         parameters=_parameters(indenter, half_space, rho, problem, scales),
@@ -750,10 +754,10 @@ def _parameters(
         "layer_start": layer.start if has_layer else math.nan,
         "layer_ramp": layer.ramp if has_layer else math.nan,
         "layer_rate": layer.rate if has_layer else 0.0,
-        "quasi_static_x_c": qs["x_c"],
+        "quasi_static_x_c": qs.x_c,
         "quasi_static_t_y": scales.t_y,
-        "quasi_static_a_c": qs["a_c"],
-        "beta": qs["beta"],
+        "quasi_static_a_c": qs.a_c,
+        "beta": qs.beta,
         "solver_backward_error": problem.factorization.backward_error,
     }
 
