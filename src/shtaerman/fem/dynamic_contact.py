@@ -70,18 +70,17 @@ __all__ = [
 ]
 
 MAX_DOFS = 400_000
-"""Largest mesh accepted (estimated before meshing): ~1 GB of factors and ~10 min per run."""
+"""Largest mesh accepted (estimated before meshing), in dofs."""
 MAX_DENSE_CORRECTION = 400e6
-"""Largest dense W = K_eff^-1 S in bytes; above it the correction is a second solve."""
+"""Largest dense W = K_eff^-1 S in bytes; a larger one is refused (InputError)."""
 DYNAMIC_ACCURACY_CHECK = 1e-6
-"""Largest accepted componentwise backward error of the scaled effective matrix (observed
-1e-9 to 2e-8; the static check of :mod:`.solver` is 1e-8)."""
+"""Largest accepted componentwise backward error of the scaled effective matrix before the
+stricter fallbacks of :func:`.solver.factorize_scaled`."""
 MIN_STEPS = 50
 """Fewest time steps per quasi-static impact duration t_y accepted."""
 MAX_STEPS = 100_000
 DENSITY_RANGE = (1e-6, 1e6)
-"""Half-space densities (kg/m^3) the dynamic FEM accepts: it runs at both ends (1e-6 is the
-quasi-static limit; 1e-2 warns that its energy balance is unresolved); 1e-300 and 1e308 overflow."""
+"""Half-space densities (kg/m^3) the dynamic FEM accepts (1e-6: the quasi-static limit)."""
 
 
 def validate_density(density: object) -> float:
@@ -121,13 +120,10 @@ class DynamicSettings:
     layer_ramp : float
         Ramp length of the layer damping / (c_s t_y) (used when ``layer_width`` is None).
     layer_rate : float
-        Peak damping rate zeta_max times t_y. Default 0: no layer. The clamped far arc lies
-        10^4 refined radii away (125 m for the paper's case: a shear wave needs 5 s, 600
-        impact durations, to return) and the reflected energy measured without a layer is
-        0.2 % of the radiated. At nu = 0.5 the pressure field is instantaneous (c_p infinite),
-        so any viscous layer also damps the quasi-static near field: with rate 10 it shifts
-        e by 1.4e-3 (tests); Lysmer-Kuhlemeyer dashpots have the same problem in another
-        form (their normal impedance rho c_p is infinite: a rigid normal constraint).
+        Peak damping rate zeta_max times t_y, >= 0. 0: no layer (the clamped far arc lies
+        ``domain`` refined radii away, beyond the reach of the waves during the run). At
+        nu = 0.5 any viscous layer also damps the quasi-static near field
+        (:mod:`.absorbing`).
     tail : float
         Stepping after separation, in units of R_a / c_R: the energy left inside R_a then is
         the reflected energy (0 disables the tail and the measurement).
@@ -217,7 +213,7 @@ class DynamicSettings:
 
 
 def estimate_dofs(settings: DynamicSettings) -> int:
-    """Dofs of the graded mesh predicted before meshing (within ~30 %, fitted to gmsh's output).
+    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %).
 
     Elements: the refined strip (its length over the size, times its width of about
     1/growth elements) plus the logarithmic fan out to the domain radius; P2-P1 has about
@@ -775,7 +771,7 @@ def _result(
     p_max = _fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
     v_out = restitution = radiated = reflected = math.nan
     if history.separated:
-        # the last velocity: after the force ends the striker's acceleration decays geometrically
+        # the last velocity: after separation the striker's acceleration decays geometrically
         v_out = -float(history.v[-1])
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
@@ -816,9 +812,8 @@ def _reflected_fraction(history: ImpactHistory, energy0: float, measured: bool) 
 def _fitted_peak(t: np.ndarray, y: np.ndarray, k: int, half_width: int) -> float:
     """Peak of the least-squares parabola through samples k - w .. k + w (w = 5 % of t_y).
 
-    The force's flat top carries the damped residue of the stiff-mode ripple (~2e-3 P_max):
-    a 3-point parabola follows it, a fit over +-5 % of t_y averages it out (the force itself
-    is within (0.05 pi)^4 / 24 ~ 2e-5 of a parabola there).
+    The fit averages out the damped residue of the stiff-mode ripple on the force's flat top,
+    which a 3-point parabola would follow.
     """
     window = slice(max(k - half_width, 0), min(k + half_width + 1, y.size))
     centre, scale = t[k], t[1] - t[0]

@@ -10,7 +10,7 @@ candidate surface node (reference radius R_i on Z = 0, displacement (u_r, u_z)) 
 indenter is a graph over r, so g_i >= 0 defines exactly the same admissible set as the normal
 distance; g is explicit (no closest-point projection), smooth wherever f is, and dg/dd = -1, so
 the multipliers lambda_i >= 0 sum to the indenter force P = sum lambda_i and the discrete
-energy identity dPi/dd = P holds exactly (the tests and the benchmark check Int P dd = Pi).
+energy identity dPi/dd = P holds exactly.
 The reaction on node i is lambda_i grad g_i = lambda_i (f'(r_i), -1): normal to the indenter
 surface, so the contact is frictionless and the problem conservative (Pi - lambda . g is a
 Lagrangian); lambda_i is the vertical component of the nodal contact force.
@@ -73,12 +73,7 @@ __all__ = [
 
 FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
-iteration assembles and factorizes). The paper's case, 14k dofs: force within ~3e-4 of the
-finest mesh (t = 1/2, 53k dofs) at x/a = 0.5 and 0.9, the whole size field refined by sqrt(2)
-per level, observed order ~2 until the differences reach a ~2e-4 noise floor (non-nested gmsh
-meshes, contact zone growing node by node); the paper's 12-depth curve costs ~6 s of CPU time,
-68 Newton iterations of 15 ms assembly and 45 ms factorization each
-(benchmarks/bench_finite_strain.py (b), (d), (g))."""
+iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:
@@ -359,7 +354,7 @@ def _eliminate(
 
     The linearized constraint of active node i, -G_i du = g_i, fixes its u_z increment:
     du_z = f'(r_i) du_r + g_i. With du = T y + c the step solves T^T K T y = -T^T (R + K c), a
-    matrix with the stiffness' pattern and scale (the saddle form fills 5x more in SuperLU);
+    matrix with the stiffness' pattern and scale (the saddle form fills far more in SuperLU);
     the multiplier increment follows from the u_z row: dlam_i = -(R + K du)_{u_z,i}.
 
     T has one entry per row (1 at the dof itself, f'(r_i) at the node's u_r for a u_z slave;
@@ -579,7 +574,7 @@ def run_finite_indentation(
     -------
     FiniteContactCurve
     """
-    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
     depths = validate_increasing("depths", np.atleast_1d(depths), "m")
     mesh = FINITE_MESH if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])
