@@ -449,40 +449,59 @@ def solve_finite_contact(
     stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
-    x = np.zeros(system.n_dofs)
-    lam = np.zeros(stepper.nodes.radius.size)
-    history = [(0.0, x, lam)]
+    history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
     steps = []
     for target in depths:
-        done = history[-1][0]
-        increment = target - done
-        total = 0
-        cuts = 0
-        while done < target:
-            trial = min(done + increment, target)
-            if target - trial < 1e-9 * target:
-                trial = target
-            guess_x, guess_lam = _predict(history, trial)
-            try:
-                x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
-            except NewtonError as error:
-                cuts += 1
-                if cuts > max_cuts:
-                    raise NewtonError(
-                        f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
-                        f"halved {max_cuts} times: refine the mesh or give more depths"
-                    ) from None
-                increment *= 0.5
-                continue
-            total += iterations
-            history = [*history[-1:], (trial, x, lam)]
-            done = trial
-            cuts = 0  # count consecutive failures only
-            increment *= 2.0
-            _check_edge(stepper, lam, trial)
+        history, iterations, total, corrections = _reach(stepper, history, target, max_cuts)
+        _, x, lam = history[-1]
         steps.append(_step(stepper, exact, target, x, lam, iterations, total, corrections))
     timings = {"contact": time.perf_counter() - start}
     return FiniteContactCurve(steps, system, indenter, timings)
+
+
+def _reach(
+    stepper: _Stepper, history: list, target: float, max_cuts: int
+) -> tuple[list, int, int, list[float]]:
+    """Sub-step from the last converged state of ``history`` to the depth ``target`` (m).
+
+    A failing sub-step is halved, a converged one doubles the next. Returns the last two
+    converged states (depth, x, lambda), the Newton iterations of the last sub-step and of
+    all, and the corrections of the last.
+
+    Raises
+    ------
+    NewtonError
+        After ``max_cuts`` consecutive halvings.
+    ContactOutgrowsMeshError
+        The contact zone reached the edge of the candidate region.
+    """
+    done = history[-1][0]
+    increment = target - done
+    total = 0
+    cuts = 0
+    while done < target:
+        trial = min(done + increment, target)
+        if target - trial < 1e-9 * target:
+            trial = target
+        guess_x, guess_lam = _predict(history, trial)
+        try:
+            x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
+        except NewtonError as error:
+            cuts += 1
+            if cuts > max_cuts:
+                raise NewtonError(
+                    f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
+                    f"halved {max_cuts} times: refine the mesh or give more depths"
+                ) from None
+            increment *= 0.5
+            continue
+        total += iterations
+        history = [*history[-1:], (trial, x, lam)]
+        done = trial
+        cuts = 0  # count consecutive failures only
+        increment *= 2.0
+        _check_edge(stepper, lam, trial)
+    return history, iterations, total, corrections
 
 
 def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
