@@ -11,13 +11,16 @@ import math
 
 import numpy as np
 import pytest
+from threadpoolctl import threadpool_limits
 
 from shtaerman.fem.dynamic_contact import (
     MAX_DOFS,
     DynamicSettings,
     estimate_dofs,
+    prepare_dynamic_impact,
     run_dynamic_impact,
 )
+from shtaerman.fem.stepper import ImpactState, advance
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -132,6 +135,24 @@ def test_light_history_follows_the_quasi_static_history(light_run):
 
 
 # --- rubber: energy, smoothness, radiation ----------------------------------------------------
+
+
+def test_stepping_by_hand_reproduces_the_run(rubber_run):
+    """The problem object and the stepper are the run: advance() from first touch gives the
+    run's first steps exactly, and leaves the state it is given unchanged."""
+    setup = prepare_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, COARSE)
+    start = ImpactState.first_touch(setup.problem)
+    with threadpool_limits(limits=1, user_api="blas"):  # as march() steps
+        state = advance(setup.problem, start)
+        assert advance(setup.problem, start).striker_v == state.striker_v  # a function
+        assert not start.x.any() and start.striker_v == 3.0
+        for _ in range(19):
+            state = advance(setup.problem, state)
+    assert state.step == 20
+    # the same arithmetic in the same order, one BLAS thread: equal to the last bit
+    assert state.striker_x == rubber_run.x[20]
+    assert state.striker_v == rubber_run.v[20]
+    assert float(state.forces.sum()) == rubber_run.force[20]
 
 
 def test_energy_balance_closes(rubber_run):

@@ -9,8 +9,7 @@ import pymetis
 import pytest
 import scipy.sparse as sp
 
-from shtaerman.fem.dynamic_contact import ScaledFactorization
-from shtaerman.fem.schur import nested_dissection
+from shtaerman.fem.solver import factorize_scaled, nested_dissection
 
 N = 30
 PATTERN = sp.diags([1.0] * 4, [-N, -1, 1, N], shape=(N * N, N * N), format="csr")
@@ -83,7 +82,7 @@ def test_the_dynamic_solvers_fallback_does_not_swallow_the_sigterm(monkeypatch, 
     _metis(monkeypatch, blocks=True)
     sigterm_handler(_stop)
     with pytest.raises(_Stop):
-        ScaledFactorization((PATTERN + 4.0 * sp.eye(N * N)).tocsc(), GROUPS)
+        factorize_scaled((PATTERN + 4.0 * sp.eye(N * N)).tocsc(), GROUPS, 1e-6)
 
 
 def test_other_metis_failures_are_not_taken_for_a_sigterm(monkeypatch, sigterm_handler):

@@ -1,28 +1,22 @@
 """Absorbing layer for the truncated half-space: mass-proportional damping growing with distance.
 
 Optional (off by default, see ``DynamicSettings.layer_rate``): the graded mesh extends 10^4
-refined radii for the static truncation, far enough that nothing returns during an impact.
-When used, the layer follows Semblat, Lenti and Gandomzadeh 2011 ("a simple multi-directional
-absorbing layer method"): from the radius R_a outward the body gets a viscous damping force
--rho zeta(R) v, either a sin^2 bump of finite width (the default shape) or
+refined radii, far enough that nothing returns during an impact. When used, the layer follows
+Semblat, Lenti and Gandomzadeh 2011 ("a simple multi-directional absorbing layer method"):
+from the radius R_a outward the body gets a viscous damping force -rho zeta(R) v, either a
+sin^2 bump of finite width (the default shape) or
 
     zeta(R) = zeta_max min(1, (R - R_a) / L)^2,   R = sqrt(r^2 + z^2),
 
 a quadratic ramp over one shear wavelength L = c_s t_y (smooth, so the ramp itself reflects
-little), then constant. Measured at nu = 0.5 (paper's case, coarse mesh): the ramp-plateau
-layer (rate 40/t_y) leaves 3.7 % of the radiated energy inside R_a after the tail, the
-bump (rate 10/t_y, 3 wavelengths) 1.0 %, no layer 0.2 %. A wave entering the plateau decays
-by exp(-zeta_max / (2 c)) per metre long before it reaches the coarse elements further out or
-the clamped far arc.
+little), then constant. A wave entering the plateau decays by exp(-zeta_max / (2 c)) per metre.
 
 Mass-proportional damping leaves the stiffness untouched: the static response of the
 truncated body is exactly that of the undamped one. But at nu = 0.5 the pressure is
 instantaneous (c_p infinite): the quasi-static near field has a velocity ~ dP/dt / (G R) at
-every distance, and a layer damps it too, whatever its distance (the restitution shifts by
-1.4e-3 with the bump above). That is why the default has no layer. Lysmer-Kuhlemeyer dashpots,
-the alternative, carry a normal impedance rho c_p that is infinite at nu = 0.5: the normal
-dashpot becomes a rigid constraint (incompressible material transmits pressure instantly, a
-normal dashpot cannot absorb what has no finite speed), only the tangential part absorbs.
+every distance, and a layer damps it too, whatever its distance; hence no layer by default.
+Lysmer-Kuhlemeyer dashpots carry a normal impedance rho c_p that is infinite at nu = 0.5 (a
+rigid normal constraint): only their tangential part absorbs.
 
 R_a is placed beyond c_s t_y / 2 (times a safety factor), so no wave reflected at the layer can
 return to the contact before the striker separates.

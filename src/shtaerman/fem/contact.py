@@ -4,8 +4,9 @@ The indenter z = f(r) - d (f(0) = 0 at its tip, depth d > 0) presses the surface
 With nodal contact forces F_i >= 0 (N, pushing down) on the candidate surface u_z dofs, the
 surface moves by u_z = -C F, where C = S^T K^-1 S is the surface compliance (m/N). It comes
 once from the one factorization: with SuperLU the candidates are eliminated last and C is the
-inverse of the trailing Schur block (:mod:`.schur`); otherwise (PARDISO, or no pymetis) one
-multi-RHS solve of unit loads. The contact conditions hold exactly at the nodes:
+inverse of the trailing Schur block (:mod:`.schur`); otherwise (PARDISO, or a tail the
+factorization pivoted) one multi-RHS solve of unit loads. The contact conditions hold exactly
+at the nodes:
 
     gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0,
 
@@ -36,12 +37,7 @@ from threadpoolctl import threadpool_limits
 
 from ..validation import InputError, validate_increasing, validate_poisson
 from .elasticity import FEM_MODULUS_RANGE, ElasticSolution, ElasticSystem, postprocess
-
-try:  # METIS ordering: the compliance falls out of the factorization
-    from .schur import TailFactorization, TailPivotError
-except ImportError:  # pymetis unavailable: unit-load solves instead (same results, slower)
-    TailFactorization = None
-    TailPivotError = RuntimeError
+from .schur import TailFactorization, TailPivotError
 from .solver import Factorization, factorize
 
 __all__ = [
@@ -50,6 +46,7 @@ __all__ = [
     "SurfaceCompliance",
     "aligned_force",
     "complementarity",
+    "edge_radius",
     "factorize_stiffness",
     "solve_contact",
     "validate_fem_inputs",
@@ -61,22 +58,19 @@ ROUND_OFF = 1e-10
 """Relative band within which a force or gap counts as zero in the active-set update."""
 MIN_MODULUS_PER_LENGTH = 0.1
 """Smallest E / (contact zone radius) in Pa/m: the factorization's backward error grows as
-its inverse (2e-12 at 0.1, 4e-10 at 1e-2, 1e-8 at 1e-4, 6e-6 at 1e-7; nu = 0.5)."""
+its inverse."""
 EDGE_MARGIN = 3
 """Candidate nodes that must stay free beyond the contact edge, or the zone is too small."""
 MAX_DEPTHS = 1000
 """Most depths of one contact curve: every depth keeps its full solution vector (depths x dofs
-x 8 bytes: 0.23 GB at 1000 depths on the default 29k-dof mesh; 1000 depths took 38 s)."""
+x 8 bytes)."""
 MIN_CONTACT_NODES = 3
-"""Fewest loaded surface nodes of a contact (the axis node carries none): with 1 the force is
-off by 2x to 43x, with 2 the radius by 37 %, with 5 force and radius by 0.9 % and 9 % (default
-mesh, depths 1e-15 .. 1e-11 with 1e-3 m: contacts as small as the axis grading's first
-elements). The finite-strain study's smallest depth loads 4 on its coarse quick mesh."""
+"""Fewest loaded surface nodes of a contact (the axis node carries none): fewer cannot resolve
+the force and the radius."""
 
 
 MAX_SHAPE_COEFFICIENT = 1e100
-"""Largest A (m^(1-n)) of the FEM contact: the default accuracy at 1e60 and 1e100; at 1e308
-the depths underflow and the factorization is singular."""
+"""Largest A (m^(1-n)) of the FEM contact (beyond, the depths underflow)."""
 
 
 def validate_fem_inputs(indenter: object, half_space: object) -> None:
@@ -84,7 +78,7 @@ def validate_fem_inputs(indenter: object, half_space: object) -> None:
     :data:`shtaerman.fem.elasticity.FEM_MODULUS_RANGE` and nu2 in [0, 0.5].
 
     The one place of these limits (static, dynamic and finite-strain FEM alike): n > 1 keeps
-    the central pressure bounded; nu2 < 0 was never validated.
+    the central pressure bounded; nu2 < 0 lies outside the range the FEM is tested on.
     """
     if indenter.exponent <= 1.0:
         raise InputError(
@@ -105,7 +99,7 @@ def validate_fem_inputs(indenter: object, half_space: object) -> None:
             f"{half_space.youngs_modulus!r}",
             "E2",
         )
-    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,17 +155,16 @@ def factorize_stiffness(
     (:class:`.schur.TailFactorization`), so their compliance falls out of the factors. Should
     that factorization pivot a candidate row away or be inaccurate, the plain SuperLU
     factorization is used instead (the compliance then by unit-load solves: same results,
-    slower), so the trailing-Schur shortcut is never the only path.
+    slower).
     """
     _, _, position = _candidates(system, free, radius)
     matrix = system.reduced_matrix(free)
-    if backend in ("auto", "superlu") and TailFactorization is not None:
+    if backend in ("auto", "superlu"):
         try:
             return TailFactorization(matrix, position, system.dof_nodes()[free])
         except TailPivotError:
-            # a zero pivot made SuperLU pull a candidate row forward (seen on coarse meshes
-            # of small contacts): the trailing block is no Schur complement. Fall back to the
-            # plain factorization; the compliance then comes from unit-load solves.
+            # a zero pivot made SuperLU pull a candidate row forward: the trailing block is
+            # no Schur complement
             backend = "superlu"
     return factorize(matrix, backend=backend)
 
@@ -306,13 +299,12 @@ EDGE_FIT_NODES = slice(3, 15)
 skipped, the FEM gap there is distorted over about one element."""
 
 
-def _contact_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
+def edge_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
     """Edge a from the gap beyond it, g^(2/3) ~ c (r - a)(1 + O(r - a)) at a smooth edge.
 
     A least-squares quadratic in r through g^(2/3) at free nodes 3..14 past the last loaded
-    one, its root nearest the edge (second order: 6.5e-4 against 4.3e-3 for the two-node
-    linear extrapolation on the default mesh, benchmarks/bench_contact.py). With too few free
-    nodes, or no real root nearby, the two-node extrapolation is used. The discrete contact may
+    one, its root nearest the edge (second order). With too few free nodes, or no real root
+    nearby, the two-node linear extrapolation is used. The discrete contact may
     carry a small force one node past the true edge, so the result is kept between the
     last-but-one loaded node and the first free one.
     """
@@ -354,9 +346,9 @@ def central_pressure(r: np.ndarray, pressure: np.ndarray, contact_radius: float)
     Near the axis p(r) = p0 + B r^s for a cusp of unknown order s > 0 (s = n - 1 for z = A r^n
     with n < 3), and on a geometric sequence of radii Aitken's delta-squared is exact for that
     form whatever s. The axis node's own value is not used: its basis function carries almost
-    no 2 pi r weight, so the recovery there smears the cusp (-4 % at n = 1.2 even with 1e-6 a
-    elements). Where the differences do not shrink geometrically toward the axis (a smooth
-    centre, as for Hertz, or noise) the innermost sample is returned.
+    no 2 pi r weight, so the recovery there smears the cusp. Where the differences do not
+    shrink geometrically toward the axis (a smooth centre, as for Hertz, or noise) the
+    innermost sample is returned.
     """
     p1, p2, p3 = np.interp(contact_radius * np.asarray(CENTRE_SAMPLES), r, pressure)
     inner, outer = p2 - p1, p3 - p2
@@ -387,15 +379,12 @@ def aligned_force(
 
     Between two changes of the active set the discrete force is affine in the depth, so the
     discrete curve P(d) is a polygon whose chords cut the convex P ~ d^q: the nodal sum
-    oscillates with the edge position, by 2.1e-4 peak to peak on the default mesh at the
-    shallowest default depth (a = a_c/3; 2.5e-5 at refine 2.83). The polygon's corners, where
-    the edge node carries no force, are discrete contacts whose edge lies on a node. On an
-    element vertex no element straddles the edge, and the force error there is 1.8-7x smaller
-    than with the edge on a P2 edge midpoint. The force is interpolated as a power law (exact
-    for any P = beta d^q) between the two vertex-aligned contacts around ``depth``; it then
-    varies by 1.7e-5 over those depths on the default mesh, smoothly, and converges at order
-    about 4 (benchmarks/bench_contact.py (e), bench_accuracy.py). Where the two do not bracket
-    the depth (an irregular active set), the nodal sum is returned.
+    oscillates with the edge position. The polygon's corners, where the edge node carries no
+    force, are discrete contacts whose edge lies on a node; on an element vertex no element
+    straddles the edge, and the force error there is smallest. The force is interpolated as a
+    power law (exact for any P = beta d^q) between the two vertex-aligned contacts around
+    ``depth``: smooth in the depth. Where the two do not bracket the depth (an irregular
+    active set), the nodal sum is returned.
 
     Parameters
     ----------
@@ -451,7 +440,7 @@ def contact_step(
             f"the edge of the refined region ({compliance.r[-1]:.4g} m); mesh a larger region"
         )
     pressure = recover_pressure(compliance.mass_factor, forces)
-    radius = _contact_radius(compliance.r, forces, gap)
+    radius = edge_radius(compliance.r, forces, gap)
     return ContactStep(
         depth=depth,
         force=aligned_force(compliance, heights, forces, depth) if aligned else discrete,

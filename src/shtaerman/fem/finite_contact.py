@@ -10,7 +10,7 @@ candidate surface node (reference radius R_i on Z = 0, displacement (u_r, u_z)) 
 indenter is a graph over r, so g_i >= 0 defines exactly the same admissible set as the normal
 distance; g is explicit (no closest-point projection), smooth wherever f is, and dg/dd = -1, so
 the multipliers lambda_i >= 0 sum to the indenter force P = sum lambda_i and the discrete
-energy identity dPi/dd = P holds exactly (the tests and the benchmark check Int P dd = Pi).
+energy identity dPi/dd = P holds exactly.
 The reaction on node i is lambda_i grad g_i = lambda_i (f'(r_i), -1): normal to the indenter
 surface, so the contact is frictionless and the problem conservative (Pi - lambda . g is a
 Lagrangian); lambda_i is the vertical component of the nodal contact force.
@@ -33,7 +33,7 @@ nodal forces with the P2 surface matrix of the *current* surface, projected on t
 (for frictionless contact on a graph, vertical force per projected area is exactly the Cauchy
 normal pressure); p(0) extrapolated to the axis as in the linear code
 (:func:`.contact.central_pressure`); the contact radius r = R + u_r located between nodes from
-the gap (:func:`.contact._contact_radius`); the stored energy Pi.
+the gap (:func:`.contact.edge_radius`); the stored energy Pi.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_increasing, validate_poisson
-from .contact import EDGE_MARGIN, _contact_radius, central_pressure
+from .contact import EDGE_MARGIN, central_pressure, edge_radius
 from .elasticity import dof_nodes
 from .hyperelastic import (
     HyperelasticSystem,
@@ -60,12 +60,7 @@ from .hyperelastic import (
 )
 from .mesh import MeshSettings
 from .pattern import Pattern
-from .solver import ACCURACY_CHECK, factorize
-
-try:  # METIS ordering, computed once for every Newton matrix
-    from .schur import nested_dissection
-except ImportError:  # pymetis unavailable: SuperLU orders each matrix (same results, slower)
-    nested_dissection = None
+from .solver import PatternSolver
 
 __all__ = [
     "FINITE_MESH",
@@ -78,12 +73,7 @@ __all__ = [
 
 FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
-iteration assembles and factorizes). The paper's case, 14k dofs: force within ~3e-4 of the
-finest mesh (t = 1/2, 53k dofs) at x/a = 0.5 and 0.9, the whole size field refined by sqrt(2)
-per level, observed order ~2 until the differences reach a ~2e-4 noise floor (non-nested gmsh
-meshes, contact zone growing node by node); the paper's 12-depth curve costs ~6 s of CPU time,
-68 Newton iterations of 15 ms assembly and 45 ms factorization each
-(benchmarks/bench_finite_strain.py (b), (d), (g))."""
+iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:
@@ -286,7 +276,7 @@ class _Stepper:
         self.pattern, self.take = system.pattern.submatrix(self.free)
         self.curvature_at = self.pattern.diagonal[self.position[self.nodes.ur[self.nodes.ur_free]]]
         nodes = dof_nodes(system.displacement_basis, system.pressure_basis)[self.free]
-        self.solver = _ScaledSolver(self.pattern, nodes)
+        self.solver = PatternSolver(self.pattern, nodes)
         self.tolerance = tolerance
         self.max_iterations = max_iterations
         material = system.material
@@ -364,7 +354,7 @@ def _eliminate(
 
     The linearized constraint of active node i, -G_i du = g_i, fixes its u_z increment:
     du_z = f'(r_i) du_r + g_i. With du = T y + c the step solves T^T K T y = -T^T (R + K c), a
-    matrix with the stiffness' pattern and scale (the saddle form fills 5x more in SuperLU);
+    matrix with the stiffness' pattern and scale (the saddle form fills far more in SuperLU);
     the multiplier increment follows from the u_z row: dlam_i = -(R + K du)_{u_z,i}.
 
     T has one entry per row (1 at the dof itself, f'(r_i) at the node's u_r for a u_z slave;
@@ -407,59 +397,6 @@ def _entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
     offsets = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
     in_columns = np.repeat(starts, counts) + offsets
     return np.union1d(in_columns, pattern.transpose[in_columns])
-
-
-class _ScaledSolver:
-    """Solve with Newton matrices of one fixed pattern, scaled symmetrically, ordered once.
-
-    Symmetric row-max scaling S A S (S = diag(max_j |A_ij|)^(-1/2)): the stiffness spans
-    ~1e17 between the graded axis elements and the far arc (2 pi R dA), while the constraint
-    rows are O(1); unscaled, SuperLU's diagonal pivots fail. Ordering: METIS nested dissection
-    of the mesh-node graph (:func:`.schur.nested_dissection`), computed once for the pattern;
-    SuperLU then factorizes in natural order with diagonal pivots. On the 14k-dof default mesh
-    that takes 43 ms (1.42M nonzeros in L + U) against 62 ms with SuperLU's minimum degree
-    recomputed for every matrix (1.32M; 47 ms of it the factorization proper). The solve is
-    accepted if its componentwise backward error is below :data:`.solver.ACCURACY_CHECK`
-    (observed ~1e-15); otherwise, or without pymetis, :func:`.solver.factorize` (its own
-    ordering, and stricter pivoting if needed) solves.
-    """
-
-    def __init__(self, pattern: Pattern, nodes: np.ndarray) -> None:
-        self.pattern = pattern
-        self.order = None
-        if nested_dissection is not None:
-            self.order = nested_dissection(pattern.matrix(np.ones(pattern.nnz)), nodes)
-            self.ordered, self.take = pattern.permuted(self.order)
-
-    def solve(self, data: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        """Solve A x = rhs, A with ``data`` in the pattern."""
-        pattern = self.pattern
-        scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
-        scaled = data * scale[pattern.indices] * scale[pattern.columns]
-        if self.order is not None:
-            solution = self._ordered_solve(scaled, (scale * rhs)[self.order])
-            if solution is not None:
-                out = np.empty_like(solution)
-                out[self.order] = solution
-                return scale * out
-        return scale * factorize(pattern.matrix(scaled)).solve(scale * rhs)
-
-    def _ordered_solve(self, scaled: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
-        """The solution in the nested-dissection order, or None if SuperLU fails the check."""
-        matrix = self.ordered.matrix(scaled[self.take])
-        try:
-            lu = spla.splu(
-                matrix,
-                permc_spec="NATURAL",
-                diag_pivot_thresh=0.0,
-                options={"SymmetricMode": True, "Equil": False},
-            )
-        except RuntimeError:  # an exactly zero pivot
-            return None
-        solution = lu.solve(rhs)
-        scale = abs(matrix) @ abs(solution) + abs(rhs)
-        error = abs(matrix @ solution - rhs) / np.where(scale > 0, scale, 1.0)
-        return solution if np.max(error) <= ACCURACY_CHECK else None
 
 
 def solve_finite_contact(
@@ -512,40 +449,59 @@ def solve_finite_contact(
     stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
-    x = np.zeros(system.n_dofs)
-    lam = np.zeros(stepper.nodes.radius.size)
-    history = [(0.0, x, lam)]
+    history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
     steps = []
     for target in depths:
-        done = history[-1][0]
-        increment = target - done
-        total = 0
-        cuts = 0
-        while done < target:
-            trial = min(done + increment, target)
-            if target - trial < 1e-9 * target:
-                trial = target
-            guess_x, guess_lam = _predict(history, trial)
-            try:
-                x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
-            except NewtonError as error:
-                cuts += 1
-                if cuts > max_cuts:
-                    raise NewtonError(
-                        f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
-                        f"halved {max_cuts} times: refine the mesh or give more depths"
-                    ) from None
-                increment *= 0.5
-                continue
-            total += iterations
-            history = [*history[-1:], (trial, x, lam)]
-            done = trial
-            cuts = 0  # count consecutive failures only
-            increment *= 2.0
-            _check_edge(stepper, lam, trial)
+        history, iterations, total, corrections = _reach(stepper, history, target, max_cuts)
+        _, x, lam = history[-1]
         steps.append(_step(stepper, exact, target, x, lam, iterations, total, corrections))
     timings = {"contact": time.perf_counter() - start}
     return FiniteContactCurve(steps, system, indenter, timings)
+
+
+def _reach(
+    stepper: _Stepper, history: list, target: float, max_cuts: int
+) -> tuple[list, int, int, list[float]]:
+    """Sub-step from the last converged state of ``history`` to the depth ``target`` (m).
+
+    A failing sub-step is halved, a converged one doubles the next. Returns the last two
+    converged states (depth, x, lambda), the Newton iterations of the last sub-step and of
+    all, and the corrections of the last.
+
+    Raises
+    ------
+    NewtonError
+        After ``max_cuts`` consecutive halvings.
+    ContactOutgrowsMeshError
+        The contact zone reached the edge of the candidate region.
+    """
+    done = history[-1][0]
+    increment = target - done
+    total = 0
+    cuts = 0
+    while done < target:
+        trial = min(done + increment, target)
+        if target - trial < 1e-9 * target:
+            trial = target
+        guess_x, guess_lam = _predict(history, trial)
+        try:
+            x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
+        except NewtonError as error:
+            cuts += 1
+            if cuts > max_cuts:
+                raise NewtonError(
+                    f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
+                    f"halved {max_cuts} times: refine the mesh or give more depths"
+                ) from None
+            increment *= 0.5
+            continue
+        total += iterations
+        history = [*history[-1:], (trial, x, lam)]
+        done = trial
+        cuts = 0  # count consecutive failures only
+        increment *= 2.0
+        _check_edge(stepper, lam, trial)
+    return history, iterations, total, corrections
 
 
 def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
@@ -583,7 +539,7 @@ def _step(
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
     pressure = _recover_pressure(r, lam)
-    radius = _contact_radius(r, lam, gap)
+    radius = edge_radius(r, lam, gap)
     return FiniteContactStep(
         depth=float(depth),
         force=float(lam.sum()),
@@ -637,7 +593,7 @@ def run_finite_indentation(
     -------
     FiniteContactCurve
     """
-    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's validated range
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
     depths = validate_increasing("depths", np.atleast_1d(depths), "m")
     mesh = FINITE_MESH if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])

@@ -122,8 +122,8 @@ def halfspace_mesh(
     parameters = _mesh_parameters(refined_radius, domain_radius, smallest_size, growth)
     parameters |= _axis_parameters(parameters["smallest_size"], axis_size, axis_growth)
     # mesh at unit refined radius, then scale: gmsh's absolute limits (Geometry.Tolerance 1e-8,
-    # Mesh.MeshSizeMax 1e22) broke tiny contacts (merged points) and huge ones (1e22-sized
-    # elements in a 1e30 m domain: billions of them)
+    # Mesh.MeshSizeMax 1e22) would merge the points of tiny contacts and cap the elements of
+    # huge domains
     scale = parameters["refined_radius"]
     lengths = ("refined_radius", "domain_radius", "smallest_size", "axis_size")
     unit = {key: value / scale if key in lengths else value for key, value in parameters.items()}
@@ -193,13 +193,11 @@ def _petsc_leaving_signals_alone() -> Iterator[None]:
 
     The first ``gmsh.initialize`` of a process calls ``PetscInitialize``, which traps SIGTERM,
     SIGPIPE, SIGSEGV and a dozen more with a handler that aborts, then ``PetscPopSignalHandler``,
-    which sets all of them to SIG_DFL at the C level: Python's SIGTERM handler (the CLI's clean
-    exit), its ignored SIGPIPE and faulthandler's handlers were gone for good. Holding the
-    signals in the calling thread did not close that window: the kernel hands a process-wide
-    SIGTERM to a thread that does not hold it (OpenBLAS's workers), and the process died by
-    the default action (or by PETSc's abort). With ``-no_signal_handler`` in
-    ``PETSC_OPTIONS`` PETSc installs no handler, so it removes none. The variable is restored
-    on exit.
+    which sets all of them to SIG_DFL at the C level, removing Python's SIGTERM handler (the
+    CLI's clean exit), its ignored SIGPIPE and faulthandler's handlers. Holding the signals in
+    the calling thread does not help (the kernel hands a process-wide SIGTERM to another
+    thread). With ``-no_signal_handler`` in ``PETSC_OPTIONS`` PETSc installs no handler, so it
+    removes none. The variable is restored on exit.
     """
     previous = os.environ.get(_PETSC_OPTIONS)
     os.environ[_PETSC_OPTIONS] = f"{previous or ''} -no_signal_handler".lstrip()
@@ -285,10 +283,8 @@ def estimate_elements(settings: MeshSettings) -> float:
 
         3.19 / (g s)  +  3.14 ln(1 + g D / s) / g^2  +  3.67 ln(s / s_a) / g_a^2  +  167
 
-    (the strip along the refined surface, the graded far field, the grading toward the axis).
-    Calibrated on 70 random settings (s 1/300 .. 1/20, g 0.1 .. 1, D 1e2 .. 1e7, s_a 1e-6 .. s,
-    g_a 0.1 .. 0.5; 260 .. 16k triangles): within -29 % .. +29 % of gmsh's count, -16 % ..
-    +15 % above 3000 triangles; +8 % at s = 1/600, g = 0.1 (24.9k triangles).
+    (the strip along the refined surface, the graded far field, the grading toward the axis),
+    within about 30 % of gmsh's count (calibration in benchmarks/FEM_NOTES.md).
     """
     s, g = settings.size, settings.growth
     axis, axis_growth = min(settings.axis_size, s), settings.axis_growth
@@ -313,9 +309,7 @@ class MeshSettings:
     domain : float
         Domain radius / refined radius, in [1e2, 1e7]: the clamped far boundary stiffens the
         force at contact radius a by about 1.9 a/R and the fitted beta by 1.2 a/R (R the domain
-        radius; measured against R = 1e7 refined radii on the default mesh: force 1.886, 1.879
-        a/R at domain 1e2, 1e3; beta 1.159, 1.163; bench_contact.py (c)), i.e. about 1.5e-5 /
-        1e-5 at the default domain 1e5.
+        radius), about 1.5e-5 and 1e-5 at the default domain 1e5.
     growth : float
         Element size growth per unit distance from the refined zone.
     axis_size : float

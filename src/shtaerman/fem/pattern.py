@@ -1,8 +1,7 @@
 """A fixed sparsity pattern: repeated assemblies fill the ``data`` of one CSC matrix.
 
 Newton's method assembles the same element connectivity at every iteration. scipy's COO to
-CSR/CSC conversion sorts the ~7e5 element entries every time (on the 14k-dof finite-strain
-mesh that cost as much as the element integrals). Here the sort is done once:
+CSR/CSC conversion sorts the element entries every time. Here the sort is done once:
 :func:`pattern_of` returns the pattern and, for every element entry, its index in ``data``;
 an assembly is then one ``np.bincount``. Submatrices (free dofs), symmetric permutations (a
 fill-reducing ordering) and transposes become fixed gathers of ``data`` too.

@@ -54,18 +54,17 @@ def call_trapping(function: Callable[[], T], number: int = signal.SIGTERM) -> T:
 
     METIS (GKlib, under pymetis) sets a C handler of its own for SIGTERM with ``signal()`` at
     the start of each call and puts the previous one back at the end. A SIGTERM in between
-    jumped out of the ordering (``RuntimeError: Caught an unknown exception!``, a traceback
-    and exit 1 in the CLI), Python's handler never ran, and the jump left the signal blocked
-    in the thread. Even a call that was not interrupted left Python's handler with
-    ``SA_RESTART`` (a blocking read no longer returned to Python on SIGTERM).
+    jumps out of the ordering (pymetis raises ``RuntimeError: Caught an unknown exception!``),
+    Python's handler never runs, and the signal is left blocked in the thread. Even a call
+    that is not interrupted leaves Python's handler with ``SA_RESTART`` (a blocking read would
+    not return to Python on SIGTERM).
 
     Here Python's handler is installed again after every call. A failure with ``number``
     newly blocked is the signal caught in there: it is unblocked and raised again, so that
     the process's own disposition acts (the CLI's handler raises, the default one ends the
     process); if the process lives on (a handler that only records it, or ``SIG_IGN``), the
     call is made again. Not recoverable: a signal that lands while METIS is inside
-    ``malloc``; the jump leaves the heap locked or damaged, and the process hangs or aborts
-    (6 of 160 signals timed into METIS calls, with or without this wrapper).
+    ``malloc``; the jump leaves the heap locked or damaged, and the process hangs or aborts.
 
     Parameters
     ----------

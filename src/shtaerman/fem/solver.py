@@ -1,62 +1,70 @@
-"""Sparse direct factorization of the (symmetric indefinite) mixed elasticity system.
+"""Sparse direct factorization: ordering, scaling, backward error and the backends.
 
-Backends
---------
-``"superlu"``
-    scipy's SuperLU, always available. Column ordering ``MMD_AT_PLUS_A`` (minimum degree on
-    A + A^T: the pattern is symmetric, so this is the natural fill-reducing ordering; scipy's
-    default COLAMD with partial pivoting fills 2-3x more here) in symmetric mode with
-    diagonal pivots, off-diagonal only where a pivot is exactly zero (the zero pressure block
-    at nu = 0.5). Every factorization is checked by its backward error on a test solve and
-    redone with stricter pivoting if that fails (see benchmarks/bench_fem.py for timings).
-``"pardiso"``
-    MKL PARDISO (symmetric indefinite, upper triangle) through the optional ``pypardiso``
-    package (``pip install shtaerman[pardiso]``). Slower than SuperLU below ~100k dofs here
-    (its start-up cost), faster above; ``"auto"`` means SuperLU.
+Every factorization of :mod:`shtaerman.fem` is made here:
 
-Factorize once per matrix and reuse the object for every right-hand side: :meth:`solve` takes
-a vector or a 2-D array of many right-hand sides (one per column).
+- :func:`factorize`: a checked factorization of one matrix, SuperLU (minimum-degree ordering,
+  diagonal pivots, stricter pivoting if needed) or MKL PARDISO through the optional
+  ``pypardiso`` package (``pip install shtaerman[pardiso]``).
+- :class:`OrderedLU`: SuperLU in a given symmetric order (natural columns, diagonal pivots),
+  for instance :func:`nested_dissection` of the mesh-node graph; :mod:`.schur` builds on it.
+- :func:`factorize_scaled`: row-max scaled, nested-dissection ordered, checked against a
+  tolerance, with :func:`factorize` as the fallback (the dynamic effective matrix).
+- :class:`PatternSolver`: many matrices of one sparsity pattern, ordered once (Newton).
+- Scalings (:func:`symmetric_scaling`, :func:`row_max_scaling`) that take the units out of
+  the pivots, and the componentwise backward error (:func:`backward_error`).
+
+Factorize once per matrix and reuse the object for every right-hand side: ``solve`` takes a
+vector or a 2-D array of many right-hand sides (one per column).
 """
 
 from __future__ import annotations
 
+import contextlib
 import importlib.util
 import warnings
 from typing import ClassVar, Protocol
 
 import numpy as np
+import pymetis
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..validation import InputError
+from .pattern import Pattern
+from .signals import call_trapping
 
 __all__ = [
+    "ACCURACY_CHECK",
     "BACKENDS",
     "Factorization",
+    "OrderedLU",
     "PardisoFactorization",
+    "PatternSolver",
+    "ScaledFactorization",
     "SuperLUFactorization",
     "available_backends",
     "backward_error",
     "factorize",
+    "factorize_scaled",
+    "nested_dissection",
+    "row_max_scaling",
+    "solution_backward_error",
+    "symmetric_scaling",
 ]
 
 BACKENDS = ("superlu", "pardiso")
 """Known backends, fastest last."""
 
 SUPERLU_ORDERING = "MMD_AT_PLUS_A"
+"""SuperLU column ordering: minimum degree on A + A^T (the pattern is symmetric)."""
 SUPERLU_PIVOT_THRESHOLD = 0.0
-"""SuperLU diag_pivot_thresh. 0 keeps every nonzero diagonal pivot, so the factorization
-follows the symmetric minimum-degree ordering (least fill); SuperLU still pivots off the
-diagonal where a pivot is exactly zero (the pressure block at nu = 0.5). On an 11k-dof
-nu = 0.5 system, thresholds 0.01, 0.1 and 1 multiplied the fill by 4, 11 and 26 and the
-factorization time by 13, 55 and 290."""
-
+"""SuperLU diag_pivot_thresh: 0 keeps every nonzero diagonal pivot, so the factorization
+follows the symmetric ordering (least fill); SuperLU still pivots off the diagonal where a
+pivot is exactly zero (the pressure block at nu = 0.5)."""
 FALLBACK_PIVOT_THRESHOLDS = (0.01, 1.0)
 """Retried in turn if the diagonal-pivot factorization fails the accuracy check."""
-
 ACCURACY_CHECK = 1e-8
-"""Largest accepted componentwise backward error of a test solve (observed on the mixed
-system: 1e-14 for nu < 0.5, 1e-12 to 3e-11 at nu = 0.5 up to 200k dofs, both backends)."""
+"""Largest accepted componentwise backward error of a test solve."""
 
 
 class Factorization(Protocol):
@@ -86,10 +94,7 @@ def factorize(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     matrix : scipy.sparse matrix
         Square, nonsingular (symmetric indefinite for the mixed system).
     backend : str
-        ``"auto"`` (SuperLU, the faster one below ~100k dofs here), ``"superlu"`` or
-        ``"pardiso"``. Measured on the nu = 0.5 system (bench_fem.py): at 20k dofs SuperLU
-        factorizes 3x faster and PARDISO solves 200 right-hand sides 2x faster (a tie
-        overall); at 200k dofs PARDISO is 1.7x faster to factorize and 2.7x to solve.
+        ``"auto"`` (SuperLU), ``"superlu"`` or ``"pardiso"``.
 
     Returns
     -------
@@ -109,7 +114,7 @@ def factorize(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     if backend not in choices:
         raise InputError(f"Unknown backend {backend!r}. Pick one of {list(choices)}")
     requested = backend
-    if backend == "auto":  # SuperLU is the faster one at the sizes used here (bench_fem.py)
+    if backend == "auto":
         backend = "superlu"
     if backend not in available_backends():
         raise InputError(f"backend {backend!r} needs the package pypardiso (pip install pypardiso)")
@@ -149,16 +154,49 @@ def _checked_superlu(matrix: sp.spmatrix) -> SuperLUFactorization:
     raise RuntimeError("matrix is singular to working precision (check the constraints)")
 
 
-def symmetric_scaling(matrix: sp.spmatrix) -> np.ndarray:
-    """d with D A D (D = diag d) free of units: d_i = A_ii^-1/2 on rows of positive diagonal
-    (the displacements), and on the others (the pressures: zero or negative diagonal)
-    d_i = 1 / max_j |A_ij| d_j over the former, so that every coupling is at most 1.
+# --- ordering and scaling ---------------------------------------------------------------------
 
-    The mixed u-p stiffness couples blocks that scale differently with the modulus E and the
-    length L (u-u ~ E L, u-p ~ L^2 per unit pressure, p-p ~ L^3 / E at nu < 0.5): in SI units
-    the pivots of the pressure rows were orders of magnitude off those of the displacement
-    rows, which made SuperLU pivot the contact candidates away (E = 7.5 MPa, depth 1 mm) and
-    lose the contact of a 1e-14 m or a 1e4 m contact radius.
+
+def nested_dissection(pattern: sp.spmatrix, groups: np.ndarray) -> np.ndarray:
+    """Order the unknowns by METIS nested dissection of the graph of their groups.
+
+    METIS traps SIGTERM itself while it orders; :func:`.signals.call_trapping` passes the
+    signal on to Python's handler.
+
+    Parameters
+    ----------
+    pattern : scipy.sparse matrix
+        Square; its nonzeros couple unknowns.
+    groups : numpy.ndarray
+        Group (mesh node) of each unknown, integers 0..g-1: the unknowns of one node are
+        ordered together, on a graph about 4x smaller than that of the unknowns.
+
+    Returns
+    -------
+    numpy.ndarray
+        A permutation of the unknowns: groups in nested-dissection order, each group's
+        unknowns together.
+    """
+    n, count = pattern.shape[0], int(groups.max()) + 1
+    incidence = sp.csr_matrix((np.ones(n), (np.arange(n), groups)), shape=(n, count))
+    graph = (incidence.T @ (abs(pattern) > 0).astype(float) @ incidence).tocsr()
+    graph.setdiag(0)
+    graph.eliminate_zeros()
+    adjacency = pymetis.CSRAdjacency(graph.indptr, graph.indices)
+    group_order, _ = call_trapping(lambda: pymetis.nested_dissection(adjacency))
+    rank = np.empty(count, dtype=np.int64)
+    rank[np.asarray(group_order)] = np.arange(count)
+    return np.argsort(rank[groups], kind="stable")
+
+
+def symmetric_scaling(matrix: sp.spmatrix) -> np.ndarray:
+    """d with D A D (D = diag d) free of units, for the mixed u-p system.
+
+    d_i = A_ii^-1/2 on rows of positive diagonal (the displacements), and on the others (the
+    pressures: zero or negative diagonal) d_i = 1 / max_j |A_ij| d_j over the former, so that
+    every coupling is at most 1. The blocks scale differently with the modulus E and the
+    length L (u-u ~ E L, u-p ~ L^2, p-p ~ L^3 / E): unscaled, SuperLU's pivoting depends on
+    the units chosen.
     """
     csr = sp.csr_matrix(matrix)
     diagonal = csr.diagonal()
@@ -172,29 +210,52 @@ def symmetric_scaling(matrix: sp.spmatrix) -> np.ndarray:
     return d
 
 
-def backward_error(matrix: sp.spmatrix, factorization: Factorization) -> float:
-    """Componentwise backward error max |A x - b| / (|A| |x| + |b|) of a test solve.
+def row_max_scaling(matrix: sp.spmatrix) -> np.ndarray:
+    """d = (max_j |A_ij|)^-1/2 per row: D A D (D = diag d) has rows of size ~1, stays symmetric.
 
-    Parameters
-    ----------
-    matrix : scipy.sparse matrix
-    factorization : Factorization
-        Of ``matrix``.
-
-    Returns
-    -------
-    float
-        Observed 1e-14 (nu < 0.5) and 1e-12 to 3e-11 (nu = 0.5) for both backends.
+    For matrices whose entries span many decades (a graded mesh's stiffness and mass);
+    every row must hold a nonzero.
     """
-    exact = np.random.default_rng(0).standard_normal(matrix.shape[0])
-    rhs = matrix @ exact
-    x = factorization.solve(rhs)
+    return 1.0 / np.sqrt(np.asarray(abs(matrix).max(axis=1).todense()).ravel())
+
+
+# --- backward error ---------------------------------------------------------------------------
+
+
+def solution_backward_error(matrix: sp.spmatrix, x: np.ndarray, rhs: np.ndarray) -> float:
+    """Componentwise backward error max |A x - b| / (|A| |x| + |b|) of a solution x of A x = b."""
     scale = abs(matrix) @ abs(x) + abs(rhs)
     return float(np.max(abs(matrix @ x - rhs) / np.where(scale > 0, scale, 1.0)))
 
 
+def backward_error(matrix: sp.spmatrix, factorization: Factorization) -> float:
+    """Componentwise backward error of a test solve with ``factorization`` of ``matrix``.
+
+    The right-hand side is A x for a fixed random x (seed 0), so the value is reproducible.
+    """
+    exact = np.random.default_rng(0).standard_normal(matrix.shape[0])
+    rhs = matrix @ exact
+    return solution_backward_error(matrix, factorization.solve(rhs), rhs)
+
+
+# --- the factorizations -----------------------------------------------------------------------
+
+
+def _superlu_in_order(matrix: sp.csc_matrix) -> spla.SuperLU:
+    """SuperLU of a matrix already in its elimination order: natural columns, diagonal pivots.
+
+    Raises RuntimeError on an exactly zero pivot.
+    """
+    return spla.splu(
+        matrix,
+        permc_spec="NATURAL",
+        diag_pivot_thresh=0.0,
+        options={"SymmetricMode": True, "Equil": False},
+    )
+
+
 class SuperLUFactorization:
-    """scipy SuperLU with a symmetric ordering and (by default) diagonal pivoting.
+    """scipy SuperLU of D A D (:func:`symmetric_scaling`) with a symmetric ordering.
 
     Parameters
     ----------
@@ -229,12 +290,8 @@ class SuperLUFactorization:
         return int(self._lu.L.nnz + self._lu.U.nnz)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve for a vector (n,) or many right-hand sides (n, k).
-
-        Many right-hand sides are solved one column at a time: SuperLU's own multi-column
-        solve (scipy 1.x) was 27x slower on the 243 unit loads of a 10k-dof mesh (8.2 s
-        against 0.30 s).
-        """
+        """Solve for a vector (n,) or many right-hand sides (n, k), one column at a time
+        (faster than SuperLU's own multi-column solve)."""
         rhs = np.asarray(rhs, dtype=float)
         d = self._scale
         if rhs.ndim == 2:
@@ -245,14 +302,178 @@ class SuperLUFactorization:
         return d * self._lu.solve(d * rhs)
 
 
+class OrderedLU:
+    """SuperLU of D P A P^T D in a given symmetric order P (natural columns, diagonal pivots).
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix
+        Square, nonsingular.
+    order : numpy.ndarray
+        Elimination order of the unknowns (a permutation), e.g. :func:`nested_dissection`.
+    scale : numpy.ndarray, optional
+        d of D = diag(d) in the original numbering; None: no scaling.
+
+    Raises
+    ------
+    RuntimeError
+        On an exactly zero pivot.
+    """
+
+    backend = "superlu-nd"
+
+    def __init__(
+        self, matrix: sp.spmatrix, order: np.ndarray, scale: np.ndarray | None = None
+    ) -> None:
+        self.shape = matrix.shape
+        self.order = np.asarray(order)
+        permuted = sp.csc_matrix(matrix)[self.order][:, self.order]
+        self.scale = None if scale is None else np.asarray(scale)[self.order]
+        """d in elimination order (None: unscaled)."""
+        if self.scale is not None:
+            permuted = sp.diags(self.scale) @ permuted @ sp.diags(self.scale)
+        self.lu = _superlu_in_order(permuted.tocsc())
+        """The SuperLU object of D P A P^T D."""
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """Solve for a vector (n,) or many right-hand sides (n, k)."""
+        rhs = np.asarray(rhs, dtype=float)
+        solution = np.empty_like(rhs)
+        if self.scale is None:
+            solution[self.order] = self.lu.solve(rhs[self.order])
+            return solution
+        d = self.scale if rhs.ndim == 1 else self.scale[:, None]
+        solution[self.order] = d * self.lu.solve(d * rhs[self.order])
+        return solution
+
+
+class ScaledFactorization:
+    """A factorization of D A D (D = diag ``scale``) that solves A x = b.
+
+    Attributes
+    ----------
+    scale : numpy.ndarray
+        d of D.
+    backward_error : float
+        Componentwise backward error of a test solve of the scaled system.
+    backend : str
+        The backend of the inner factorization.
+    """
+
+    def __init__(self, inner: Factorization, scale: np.ndarray, error: float) -> None:
+        self._inner = inner
+        self.scale = scale
+        self.backward_error = error
+        self.backend = inner.backend
+        self.shape = inner.shape
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """Solve A x = rhs for a vector (n,) or many right-hand sides (n, k)."""
+        rhs = np.asarray(rhs, dtype=float)
+        scale = self.scale if rhs.ndim == 1 else self.scale[:, None]
+        return scale * self._inner.solve(scale * rhs)
+
+
+def factorize_scaled(
+    matrix: sp.spmatrix, groups: np.ndarray | None, tolerance: float
+) -> ScaledFactorization:
+    """Factorize D A D with :func:`row_max_scaling`, checked by its backward error.
+
+    In turn: :class:`OrderedLU` in :func:`nested_dissection` order of ``groups`` (skipped
+    for None or an exactly zero pivot), :class:`SuperLUFactorization`, and if the backward
+    error of a test solve is above ``tolerance``, :func:`factorize` (checked at
+    ``ACCURACY_CHECK``).
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix
+        Square, nonsingular, symmetric; entries may span many decades.
+    groups : numpy.ndarray or None
+        Group (mesh node) of each unknown, for the ordering.
+    tolerance : float
+        Largest accepted backward error of the first two.
+
+    Raises
+    ------
+    RuntimeError
+        If the matrix is singular to working precision.
+    """
+    scale = row_max_scaling(matrix)
+    scaling = sp.diags(scale)
+    scaled = (scaling @ matrix @ scaling).tocsc()
+    factorization = None
+    if groups is not None:
+        with contextlib.suppress(RuntimeError):  # an exactly zero pivot: fall back
+            factorization = OrderedLU(scaled, nested_dissection(scaled, groups))
+    if factorization is None:
+        factorization = SuperLUFactorization(scaled)
+    error = backward_error(scaled, factorization)
+    if not error <= tolerance:
+        factorization = factorize(scaled)
+        error = backward_error(scaled, factorization)
+    return ScaledFactorization(factorization, scale, error)
+
+
+class PatternSolver:
+    """Solve with many matrices of one fixed sparsity pattern (Newton's), ordered once.
+
+    Each matrix is row-max scaled (:func:`row_max_scaling`) and factorized by SuperLU in the
+    :func:`nested_dissection` order of the pattern, computed once. A solve whose
+    componentwise backward error exceeds ``ACCURACY_CHECK`` is redone by :func:`factorize`
+    (its own ordering, stricter pivoting if needed).
+
+    Parameters
+    ----------
+    pattern : Pattern
+        The sparsity pattern of every matrix.
+    groups : numpy.ndarray
+        Group (mesh node) of each unknown, for the ordering.
+    """
+
+    def __init__(self, pattern: Pattern, groups: np.ndarray) -> None:
+        self.pattern = pattern
+        self.order = nested_dissection(pattern.matrix(np.ones(pattern.nnz)), groups)
+        self.ordered, self.take = pattern.permuted(self.order)
+
+    def solve(self, data: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """Solve A x = rhs, A with ``data`` in the pattern.
+
+        Raises
+        ------
+        RuntimeError
+            If the matrix is singular to working precision.
+        """
+        pattern = self.pattern
+        scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
+        scaled = data * scale[pattern.indices] * scale[pattern.columns]
+        solution = self._ordered_solve(scaled, (scale * rhs)[self.order])
+        if solution is not None:
+            out = np.empty_like(solution)
+            out[self.order] = solution
+            return scale * out
+        return scale * factorize(pattern.matrix(scaled)).solve(scale * rhs)
+
+    def _ordered_solve(self, scaled: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+        """The solution in the nested-dissection order, or None if SuperLU fails the check."""
+        matrix = self.ordered.matrix(scaled[self.take])
+        try:
+            lu = _superlu_in_order(matrix)
+        except RuntimeError:  # an exactly zero pivot
+            return None
+        solution = lu.solve(rhs)
+        return (
+            solution if solution_backward_error(matrix, solution, rhs) <= ACCURACY_CHECK else None
+        )
+
+
 class PardisoFactorization:
     """MKL PARDISO through pypardiso, in real symmetric indefinite mode (mtype -2).
 
-    Only the upper triangle is factorized (about half the fill of an LU), with METIS nested
-    dissection, symmetric weighted matching and scaling (PARDISO's recommended setting for
-    saddle-point systems; without them the nu = 0.5 system fails) and 1e-8 pivot perturbation.
-    Iterative refinement is off, so a solve with k right-hand sides costs k triangular solves;
-    :func:`factorize` checks the backward error once instead.
+    Only the upper triangle is factorized, with METIS nested dissection, symmetric weighted
+    matching and scaling (PARDISO's setting for saddle-point systems; without them the
+    nu = 0.5 system fails) and 1e-8 pivot perturbation. Iterative refinement is off, so a
+    solve with k right-hand sides costs k triangular solves; :func:`factorize` checks the
+    backward error once instead.
 
     Parameters
     ----------
