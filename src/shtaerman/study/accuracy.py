@@ -16,7 +16,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,9 +27,6 @@ from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from .indentation import IndentationResult, default_depths, run_indentation
 from .richardson import Estimate, curve_richardson, richardson
-
-if TYPE_CHECKING:
-    from .finite_indentation import FiniteIndentationResult
 
 __all__ = [
     "LADDER_RATIO",
@@ -66,7 +63,20 @@ contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, bench_contact.py (c));
 common to every level, unseen by the ladder, so added to the estimate."""
 
 Progress = Callable[[str], None]
-Solve = Callable[[MeshSettings], "IndentationResult | FiniteIndentationResult"]
+
+
+class LadderCurve(Protocol):
+    """A contact curve a ladder level holds (linear or finite strain)."""
+
+    steps: Any
+    fit: Any
+    mesh_stats: dict[str, Any]
+    timings: dict[str, float]
+
+    def errors(self) -> dict[str, float]: ...
+
+
+Solve = Callable[[MeshSettings], LadderCurve]
 """One contact curve on the given mesh (the depths and materials bound in)."""
 
 
@@ -94,7 +104,7 @@ class LadderLevel:
     """One mesh of the ladder: its refinement factor and result (linear or finite strain)."""
 
     refine: float
-    result: IndentationResult | FiniteIndentationResult
+    result: LadderCurve
 
     @property
     def dofs(self) -> int:
@@ -130,7 +140,7 @@ class AccuracyResult:
     exact: bool = True
 
     @property
-    def finest(self) -> IndentationResult | FiniteIndentationResult:
+    def finest(self) -> LadderCurve:
         """The finest level's result: the reported numbers."""
         return self.levels[-1].result
 

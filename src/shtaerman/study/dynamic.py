@@ -67,8 +67,8 @@ from .schema import (
     Positive,
     Relative,
     StudyError,
-    _decode,
-    _Table,
+    Table,
+    decode,
     fem_input_error,
     validate_name,
 )
@@ -216,18 +216,18 @@ def run_case(
 # --- the study file ----------------------------------------------------------------------------
 
 
-class _DynIndenter(_Table):
+class _DynIndenter(Table):
     shape_coefficient: Positive
     exponent: Positive
 
 
-class _DynHalfSpace(_Table):
+class _DynHalfSpace(Table):
     youngs_modulus: Positive
     poisson_ratio: Poisson
     density: Positive
 
 
-class _Numerics(_Table):
+class _Numerics(Table):
     steps: Annotated[int, msgspec.Meta(gt=0)] | None = None
     margin: Positive | None = None
     size: Positive | None = None
@@ -242,7 +242,7 @@ class _Numerics(_Table):
     spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
 
 
-class _DynImpact(_Table):
+class _DynImpact(Table):
     mass: Positive
     velocities: list[Positive]
     example: Positive
@@ -252,14 +252,14 @@ class _Quick(_Numerics):
     velocities: list[Positive] | None = None
 
 
-class _DynTolerances(_Table):
+class _DynTolerances(Table):
     energy_balance: Relative = 1e-2
     reflected: Relative = 1e-2
     estimate: Relative = 0.2
     estimate_below: Relative = 0.08
 
 
-class _DynamicFile(_Table):
+class _DynamicFile(Table):
     indenter: _DynIndenter
     half_space: _DynHalfSpace
     impact: _DynImpact
@@ -345,7 +345,7 @@ def _velocities(path: Path, key: str, values: list[float], example: float) -> tu
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
-    raw: _DynamicFile = _decode(path, data, _DynamicFile)
+    raw: _DynamicFile = decode(path, data, _DynamicFile)
     try:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
     except InputError as error:

@@ -24,7 +24,7 @@ changes E* by 5e-5 for the paper's rubber). A study runs:
 2. the linear FEM on the same mesh and depths (0.5 s): P_finite / P_linear-FEM isolates the
    finite-strain effect from the discretization error (which cancels to leading order);
 3. three impacts M x'' = -P(x): Shtaerman's exact (the paper's), and the tabulated linear-FEM
-   and finite-strain curves (:mod:`.contact_law`, :func:`.run._tabulated_impact`);
+   and finite-strain curves (:mod:`.contact_law`, :func:`.run.tabulated_impact`);
 4. all of it again on the study's mesh refined by 1/2 and 1/sqrt(2): Richardson estimates of
    every reported number (:mod:`.finite_accuracy`). ``verify --quick`` runs one coarse mesh
    and estimates nothing.
@@ -61,20 +61,20 @@ from .contact_law import fem_contact_law
 from .finite_accuracy import CROSSING_KEYS, FiniteEstimates, estimate_study, resolved
 from .finite_indentation import FiniteIndentationResult, run_finite_study
 from .indentation import IndentationResult, run_indentation
-from .run import HISTORY_POINTS, Progress, _maxima, _tabulated_impact
+from .run import HISTORY_POINTS, Progress, impact_maxima, tabulated_impact
 from .schema import (
+    ImpactTable,
+    IndenterTable,
+    MaterialTable,
+    MeshTable,
     Poisson,
     Positive,
     Relative,
     StudyError,
-    _decode,
-    _Impact,
-    _Indenter,
-    _Material,
-    _Mesh,
-    _Table,
-    _validated,
+    Table,
+    decode,
     validate_name,
+    validated,
 )
 
 __all__ = [
@@ -108,22 +108,22 @@ Count = Annotated[int, msgspec.Meta(ge=1, le=200)]
 Small = Annotated[float, msgspec.Meta(gt=0, le=0.2)]
 
 
-class _Contact(_Table):
+class _Contact(Table):
     reach: Annotated[float, msgspec.Meta(ge=1.0, le=3.0)] = 1.1
     steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 12
     small_ratio: Small = 0.01
     small_steps: Count = 5
 
 
-class _Quick(_Table):
+class _Quick(Table):
     steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 6
     small_steps: Count = 2
     small_ratio: Small = 0.02
     small_strain: Relative = 2e-2
-    mesh: _Mesh = _Mesh()
+    mesh: MeshTable = MeshTable()
 
 
-class _Tolerances(_Table):
+class _Tolerances(Table):
     small_strain: Relative = 5e-3
     small_strain_fem: Relative = 2e-3
     conservation: Relative = 2e-3
@@ -131,7 +131,7 @@ class _Tolerances(_Table):
     complementarity: Relative = 1e-6
 
 
-class _Sweep(_Table):
+class _Sweep(Table):
     poisson_ratio: list[Poisson] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
@@ -146,14 +146,14 @@ class _Sweep(_Table):
         self.chosen()
 
 
-class _FiniteFile(_Table):
-    indenter: _Indenter
-    half_space: _Material
-    impact: _Impact
+class _FiniteFile(Table):
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
     name: str | None = None
     description: str = ""
     contact: _Contact = _Contact()
-    mesh: _Mesh = _Mesh()
+    mesh: MeshTable = MeshTable()
     quick: _Quick = _Quick()
     tolerances: _Tolerances = _Tolerances()
     sweep: _Sweep | None = None
@@ -209,7 +209,7 @@ class FiniteStudy:
     kind: str = "finite-strain"
 
 
-def _mesh(table: _Mesh, default: MeshSettings, where: str) -> MeshSettings:
+def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
     settings = table.settings(default, where)
     refine = 1.0 if table.refine is None else table.refine
     try:
@@ -268,14 +268,14 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         Naming the file and the key, for any unknown key, wrong type or value out of range,
         or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
     """
-    raw = _decode(path, data, _FiniteFile)
+    raw = decode(path, data, _FiniteFile)
     try:
         studies = _expanded(_build(path, raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
-    return _validated(path, studies)
+    return validated(path, studies)
 
 
 def depth_at_ratio(indenter: PowerLawIndenter, ratio: float) -> float:
@@ -735,14 +735,14 @@ def _run_level(
     finite = run_finite_study(study.indenter, study.half_space, depths, mesh)
     # nodal-sum forces, the finite-strain solver's own discretization: the ratio cancels it
     linear = run_indentation(study.indenter, study.half_space, depths, mesh, aligned=False)
-    impacts = {"linear_exact": {k: v for k, v in _maxima(exact).items() if k != "beta"}}
+    impacts = {"linear_exact": {k: v for k, v in impact_maxima(exact).items() if k != "beta"}}
     histories = {"linear_exact": exact.history(HISTORY_POINTS)}
     for variant, result in (("linear_fem", linear), ("finite_strain", finite)):
         with warnings.catch_warnings():
             # quad's energy bracket (only the ODE's length scale) meets the log-log kinks
             warnings.simplefilter("ignore", IntegrationWarning)
             law = fem_contact_law(result, modulus)
-            maxima, history = _tabulated_impact(study, law, exact.x_c)
+            maxima, history = tabulated_impact(study, law, exact.x_c)
         maxima.pop("beta")
         impacts[variant], histories[variant] = maxima, history
     return FiniteStudyOutcome(

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..output.files import _probe, file_mode, json_safe, missing_folder
+from ..output.files import file_mode, json_safe, missing_folder, probe_writable
 from ..validation import InputError
 from .kinds import unit_suffix
 from .spec import Case, SweepSpec
@@ -240,7 +240,7 @@ def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> C
         raise InputError(f"out: {str(out)!r} exists and is not a folder")
     if not out.parent.is_dir():
         raise InputError(f"out: {missing_folder(out.parent)}")
-    _probe("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
+    probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
     stored = out / SPEC_FILE
     if out.is_dir() and resume:
         if not stored.is_file():
