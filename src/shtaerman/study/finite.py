@@ -58,7 +58,7 @@ from ..validation import InputError
 from .accuracy import check_ladder, ladder_factors
 from .checks import Check
 from .contact_law import fem_contact_law
-from .finite_accuracy import CROSSING_KEYS, FiniteEstimates, estimate_study, resolved
+from .finite_accuracy import FiniteEstimates, estimate_study
 from .finite_indentation import FiniteIndentationResult, run_finite_study
 from .indentation import IndentationResult, run_indentation
 from .run import HISTORY_POINTS, Progress, impact_maxima, tabulated_impact
@@ -92,16 +92,8 @@ QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_
 """Coarse mesh of ``verify --quick`` (a few seconds; force within about 1 % of the default)."""
 LEVELS = (0.01, 0.05)
 """Departures of P from the linear force whose depths the study reports."""
-VARIANTS = {
-    "linear_exact": "Shtaerman, linear (the paper's)",
-    "linear_fem": "linear FEM, same mesh",
-    "finite_strain": "neo-Hookean finite strain",
-}
-"""Impact variants: key -> label."""
-QUICK_ERROR = (
-    "Quick mode: one coarse mesh (about 3.7k dofs), no error estimates: the force is within "
-    "~1.5 % of Shtaerman's at small depths, the impact ratios within ~1e-3 of the default run's."
-)
+VARIANTS = ("linear_exact", "linear_fem", "finite_strain")
+"""Impact variants: Shtaerman's exact, the same-mesh linear FEM and the finite-strain FEM."""
 SWEEPABLE = {"poisson_ratio": "nu", "mass": "M", "velocity": "v0"}
 
 Count = Annotated[int, msgspec.Meta(ge=1, le=200)]
@@ -448,94 +440,10 @@ class FiniteStudyOutcome:
         crossings = self.estimates.crossings
         return [entry | crossing for entry, crossing in zip(entries, crossings, strict=True)]
 
-    def _pm(self, key: str, step: int | None = None) -> str:
-        """The text " ± e", e the estimated relative error of a scalar (or of ``key`` at
-        depth ``step``); "" without a ladder."""
-        if self.estimates is None:
-            return ""
-        estimate = self.estimates.scalars if step is None else self.estimates.steps[step]
-        return f" ± {estimate[key].error:.1e}"
-
-    def findings(self) -> list[str]:
-        """Sentences for the report's opening section, with the measured numbers and, after a
-        ladder, their estimated relative errors (± ...)."""
-        study, ratios, at = self.study, self.ratios(), self.at_maximum()
-        exact = self.impacts["linear_exact"]
-        nu = study.half_space.poisson_ratio
-        fem = {
-            k: self.impacts["finite_strain"][k] / self.impacts["linear_fem"][k] - 1
-            for k in ("x_c", "P_c", "t_c")
-        }
-        pm = self._pm
-        found = [
-            f"Real rubber (neo-Hookean, nu2 = {nu:g}) moves the paper's impact "
-            f"({study.mass:g} kg at {study.velocity:g} m/s): x_c {ratios['x_c'] - 1:+.2%}"
-            f"{pm('x_c')}, P_c {ratios['P_c'] - 1:+.2%}{pm('P_c')}, t_c "
-            f"{ratios['t_c'] - 1:+.2%}{pm('t_c')} against Shtaerman's "
-            f"linear x_c = {exact['x_c'] * 1e3:.3f} mm, P_c = {exact['P_c']:.1f} N, "
-            f"t_c = {exact['t_c'] * 1e3:.3f} ms (against the linear FEM on the same mesh, "
-            f"which cancels the discretization: {fem['x_c']:+.2%}{pm('x_c_vs_fem')}, "
-            f"{fem['P_c']:+.2%}{pm('P_c_vs_fem')}, {fem['t_c']:+.2%}{pm('t_c_vs_fem')}).",
-            f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): P/(beta x^q) = "
-            f"{at['force_ratio']:.4f}{pm('force_ratio_at_x_c')}, p(0)/p_avg = "
-            f"{at['central_to_mean']:.3f}{pm('central_to_mean_at_x_c')} (linear "
-            f"{self.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
-            f"{at['radius_ratio']:.4f}{pm('radius_ratio_at_x_c')}.",
-            self._validity_finding(),
-            QUICK_ERROR if self.estimates is None else self._estimate_finding(),
-        ]
-        return found
-
-    def _validity_finding(self) -> str:
-        parts = []
-        for entry in self.limits():
-            level = f"{entry['level']:.0%}"
-            if "departure_error" in entry and not resolved(
-                entry["level"], entry["departure_error"]
-            ):
-                parts.append(
-                    f"to {level}: not resolved (the departure's estimated error there, "
-                    f"{entry['departure_error']:.1e}, is not below a fifth of {level})"
-                )
-                continue
-            errors = entry.get("errors", {})
-            pm = {k: f" ± {errors[k]:.1e}" if k in errors else "" for k in CROSSING_KEYS}
-            where = (
-                f"x/a = {entry['depth_to_radius']:.3f}{pm['depth_to_radius']} (depth "
-                f"{entry['depth'] * 1e3:.3g} mm{pm['depth']}, reached by an impact at "
-                f"{entry['velocity']:.2g} m/s{pm['velocity']})"
-            )
-            if entry["status"] == "beyond":
-                parts.append(f"to {level} at every computed depth, up to {where}")
-            elif entry["status"] == "below":
-                parts.append(f"to {level} not even at the first depth, {where}")
-            else:
-                parts.append(f"to {level} up to {where}")
-        return (
-            "The linear force beta x^q holds " + "; ".join(parts) + " (P against the linear "
-            "FEM on the same mesh; crossings interpolated linearly in x/a between computed "
-            "depths; velocities from the stored energy, v = sqrt(2 W / M))."
-        )
-
-    def _estimate_finding(self) -> str:
-        estimates = self.estimates
-        worst = estimates.worst_step()
-        every = [*estimates.scalars.values(), *(e for s in estimates.steps for e in s.values())]
-        fallback = sum(e.method != "richardson" for e in every)
-        return (
-            "± is the estimated relative error of the value: Richardson extrapolation over "
-            f"the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
-            f"({'/'.join(str(d) for d in estimates.dofs)} dofs, "
-            f"{sum(estimates.cpu_seconds):.0f} s of CPU time in all). Largest over the depths: "
-            f"P/(beta x^q) ± {estimates.scalars['force_ratio_worst'].error:.1e} at x/a = "
-            f"{self.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {len(every)} estimates "
-            "fell back to the difference of the two finest meshes (differences not shrinking, "
-            "or an observed order outside 1.5-4.5: the ~1e-4 noise of non-nested meshes)."
-        )
-
     def document(self) -> dict[str, object]:
-        """The results.json entry (JSON-ready), with display ``tables`` and ``findings``, and
-        after a mesh ladder its estimates under ``accuracy``
+        """The study's numbers for results.json (JSON-ready; :mod:`shtaerman.output.text_finite`
+        adds the display ``tables`` and ``findings``), after a mesh ladder its estimates under
+        ``accuracy``
         (:meth:`.finite_accuracy.FiniteEstimates.to_dict`)."""
         mesh = self.mesh
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
@@ -560,111 +468,6 @@ class FiniteStudyOutcome:
             "validity": self.limits(),
             **accuracy,
             "cpu_seconds": self.cpu_seconds,
-            "tables": self.tables(),
-            "findings": self.findings(),
-        }
-
-    def tables(self) -> list[dict[str, object]]:
-        """The curve, the three impacts and the validity depths as display strings (after a
-        ladder: value ± estimated relative error)."""
-        return [self._curve_table(), self._impact_table(), self._validity_table()]
-
-    def _curve_table(self) -> dict[str, object]:
-        columns = (
-            ("force_ratio", "P/P_lin", ".4f"),
-            ("force_ratio_fem", "P/P_linFEM", ".4f"),
-            ("radius_ratio", "a/a_lin", ".4f"),
-            ("central_to_mean", "p(0)/p_avg", ".3f"),
-            ("strain_energy", "W (J)", ".4g"),
-        )
-        rows = [
-            [
-                f"{r['depth'] * 1e3:.4g}",
-                f"{r['depth_to_radius']:.3f}",
-                f"{r['force']:.4g}",
-                *[f"{r[key]:{fmt}}{self._pm(key, k)}" for key, _, fmt in columns],
-                str(r["newton_iterations"]),
-            ]
-            for k, r in enumerate(self.rows())
-        ]
-        return {
-            "title": "Finite-strain contact curve beside the linear solution"
-            + ("" if self.estimates is None else " (± estimated relative error; P's is P/P_lin's)"),
-            "header": ["x (mm)", "x/a", "P (N)", *[label for _, label, _ in columns], "Newton"],
-            "rows": rows,
-        }
-
-    def _impact_table(self) -> dict[str, object]:
-        keys = (
-            ("x_c", 1e3, "x_c (mm)"),
-            ("P_c", 1.0, "P_c (N)"),
-            ("a_c", 1e3, "a_c (mm)"),
-            ("p_c", 1e-6, "p_c (MPa)"),
-            ("t_c", 1e3, "t_c (ms)"),
-            ("t_y", 1e3, "t_y (ms)"),
-        )
-        rows = [
-            [
-                VARIANTS[variant],
-                *[
-                    f"{values[k] * s:.5g}{self._pm(k) if variant == 'finite_strain' else ''}"
-                    for k, s, _ in keys
-                ],
-            ]
-            for variant, values in self.impacts.items()
-        ]
-        finite, fem = self.impacts["finite_strain"], self.impacts["linear_fem"]
-        rows += [
-            [
-                "finite strain / linear exact - 1",
-                *[f"{self.ratios()[k] - 1:+.2%}{self._pm(k)}" for k, _, _ in keys],
-            ],
-            [
-                "finite strain / linear FEM - 1",
-                *[f"{finite[k] / fem[k] - 1:+.2%}{self._pm(f'{k}_vs_fem')}" for k, _, _ in keys],
-            ],
-        ]
-        return {
-            "title": "Impact M x'' = -P(x): the paper's linear model and real rubber"
-            + ("" if self.estimates is None else " (± estimated relative error)"),
-            "header": ["model", *[label for _, _, label in keys]],
-            "rows": rows,
-        }
-
-    def _validity_table(self) -> dict[str, object]:
-        def cell(entry: dict, key: str, scale: float, fmt: str) -> str:
-            errors = entry.get("errors", {})
-            text = f"{entry[key] * scale:{fmt}}"
-            return text + (f" ± {errors[key]:.1e}" if key in errors else "")
-
-        def decided(entry: dict) -> str:
-            if "departure_error" not in entry:
-                return "not estimated (quick)"
-            verdict = resolved(entry["level"], entry["departure_error"])
-            return f"{entry['departure_error']:.1e} ({'' if verdict else 'not '}resolved)"
-
-        return {
-            "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; resolved where "
-            "the departure's estimated error is below a fifth of the level)",
-            "header": [
-                "level",
-                "up to x/a",
-                "depth (mm)",
-                "impact velocity (m/s)",
-                "how",
-                "departure error there",
-            ],
-            "rows": [
-                [
-                    f"{e['level']:.0%}",
-                    cell(e, "depth_to_radius", 1.0, ".3f"),
-                    cell(e, "depth", 1e3, ".4g"),
-                    cell(e, "velocity", 1.0, ".3g"),
-                    str(e["status"]),
-                    decided(e),
-                ]
-                for e in self.limits()
-            ],
         }
 
 
