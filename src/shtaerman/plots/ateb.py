@@ -100,7 +100,7 @@ def plot_ateb(path: Path | str, exponent: float = PAPER_EXPONENT) -> Path:
     Tables 1-2 as below; for any other n, Sa(q, 1, (q+1)/2 eta) and Ca(q, 1, (q+1)/2 zeta),
     q = (n+1)/n, exact over [0, I] (the paper tabulates no other exponent).
 
-    Top: the exact functions (:mod:`shtaerman.ateb`), the printed table values (markers) and
+    Top: the exact functions (:mod:`shtaerman.theory.ateb`), the printed table values (markers) and
     the paper's piecewise approximations (dashed), over one compression (eta) and one
     restitution (zeta) interval [0, I], I = 1.445927. Bottom: the approximations' relative
     error in %, its maximum marked, against the paper's claimed 1 % (dotted).

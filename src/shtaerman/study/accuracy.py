@@ -2,7 +2,7 @@
 
 The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.refined`) by
 :data:`LADDER_RATIO` = sqrt(2) per level, so each level has about twice the dofs of the one
-before and the two coarser levels of a three-level ladder cost about 0.75 of the finest. Every
+before. Every
 quantity of the finest level gets a Richardson estimate (:mod:`.richardson`): the force, the
 contact radius and the central pressure at every depth (the worst depth is reported), beta
 and the fitted exponent. Where the exact solution is known (the linear power-law contact) the
@@ -47,20 +47,16 @@ CURVE_QUANTITIES = ("beta", "exponent")
 FORCE_LIKE = ("force", "beta")
 """What ``--accuracy`` drives below its tolerance."""
 ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 2.5}
-"""Asymptotic orders used for the correction (the exponent uses its observed order). With the
-vertex-aligned force (:func:`shtaerman.fem.contact.aligned_force`) ladders observe 1-1.6 up
-to refine 1 and 3.5-4.2 beyond; order 3 keeps every estimate within 0.55-2.5 of the true force
-error on 48 ladders of 8 cases (n 1.2-2, nu 0-0.5, refine 0.5-2.83, true errors 5.8e-4 to
-3.5e-6; benchmarks/bench_accuracy.py), and beta within 0.72-2.84 wherever its true error is
-at least 1e-6 (below, the fit's cancellation over the depths defeats any estimate)."""
+"""Asymptotic orders used for the correction (the exponent uses its observed order); their
+effectivity against the exact solution is measured in ``benchmarks/bench_accuracy.py``."""
 SANE_ORDERS = (1.0, 5.0)
 """Observed orders (of the largest difference over the depths) taken as asymptotic."""
 TIME_GROWTH = 2.4
 """Observed time ratio of consecutive ladder levels (dofs x2; factorization superlinear)."""
 TRUNCATION = {"force": 1.886, "beta": 1.16}
 """Stiffening by the clamped far boundary, times R / a (R the domain radius, a the largest
-contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, bench_contact.py (c)); a bias
-common to every level, unseen by the ladder, so added to the estimate."""
+contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, ``benchmarks/bench_contact.py``
+(c)); a bias common to every level, unseen by the ladder, so added to the estimate."""
 
 Progress = Callable[[str], None]
 

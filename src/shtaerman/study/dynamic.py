@@ -22,12 +22,12 @@ far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_co
                  estimate is below estimate_below = 0.08)
 
 The relative differences are quasi-static / dynamic - 1. Every velocity's run is the finest
-level of an error-estimate ladder (:mod:`.dynamic_accuracy`: the two coarser levels cost about
-0.75 of it again; ``verify --quick`` skips it): x_max, P_max, t_contact, e, 1 - e^2 and the
-differences themselves carry Richardson estimates. The velocity up to which the quasi-static
-value holds to 1 % (5 %) is interpolated linearly between the computed velocities where
-|difference| crosses the level (the differences grow monotonically with v0), and stated only
-where the estimated error of the difference is below a fifth of the level (:mod:`.limits`).
+level of an error-estimate ladder (:mod:`.dynamic_accuracy`; ``verify --quick`` skips it):
+x_max, P_max, t_contact, e, 1 - e^2 and the differences themselves carry Richardson estimates.
+The velocity up to which the quasi-static value holds to 1 % (5 %) is interpolated linearly
+between the computed velocities where |difference| crosses the level (the differences grow
+monotonically with v0), and stated only where the estimated error of the difference is below
+a fifth of the level (:mod:`.limits`).
 """
 
 from __future__ import annotations
@@ -183,8 +183,8 @@ def run_case(
     snapshots : callable, optional
         Given the quasi-static impact, the times in s at which to keep the fields.
     ladder : bool
-        Also run the two coarser levels of the error-estimate ladder (about 0.75 of the run's
-        cost; ``settings.refined(1/2)`` must be valid).
+        Also run the two coarser levels of the error-estimate ladder
+        (``settings.refined(1/2)`` must be valid).
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     quasi = solve_impact(mass, velocity, law)
@@ -514,10 +514,9 @@ def run_dynamic_study(
 ) -> DynamicStudyOutcome:
     """Run the dynamic impact at every velocity of the study (``quick``: its quick variant).
 
-    The example velocity keeps the fields at the quasi-static t_c and at 1.05 t_y (the
-    dynamic contact lasts 0.3-1.5 % longer than t_y: the striker has separated by then) for
-    the wave-field pictures. Every velocity also runs the error-estimate ladder's two coarser
-    levels, except in a quick run.
+    The example velocity keeps the fields at the quasi-static t_c and at
+    :data:`SEPARATION_SNAPSHOT` t_y for the wave-field pictures. Every velocity also runs the
+    error-estimate ladder's two coarser levels, except in a quick run.
     """
     report = progress or (lambda _line: None)
     start, cpu = time.perf_counter(), time.process_time()

@@ -21,7 +21,7 @@ The striker is rigid (the finite-strain FEM has a rigid indenter; a steel strike
 changes E* by 5e-5 for the paper's rubber). A study runs:
 
 1. the finite-strain curve (:func:`.finite_indentation.run_finite_study`) over the ladder;
-2. the linear FEM on the same mesh and depths (0.5 s): P_finite / P_linear-FEM isolates the
+2. the linear FEM on the same mesh and depths: P_finite / P_linear-FEM isolates the
    finite-strain effect from the discretization error (which cancels to leading order);
 3. three impacts M x'' = -P(x): Shtaerman's exact (the paper's), and the tabulated linear-FEM
    and finite-strain curves (:mod:`.contact_law`, :func:`.run.tabulated_impact`);
@@ -89,7 +89,7 @@ __all__ = [
 ]
 
 QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_growth=0.35)
-"""Coarse mesh of ``verify --quick`` (a few seconds; force within about 1 % of the default)."""
+"""Coarse mesh of ``verify --quick`` (one mesh, no error estimates)."""
 LEVELS = (0.01, 0.05)
 """Departures of P from the linear force whose depths the study reports."""
 VARIANTS = ("linear_exact", "linear_fem", "finite_strain")
@@ -160,7 +160,7 @@ class FiniteTolerances:
     small_strain_fem: float = 2e-3
     """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
     conservation: float = 2e-3
-    """|Simpson's Int P dx / stored energy - 1| (issue 9: with >= 16 depth steps)."""
+    """|Simpson's Int P dx / stored energy - 1|."""
     newton: float = 1e-6
     """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
     complementarity: float = 1e-6
@@ -579,7 +579,7 @@ def run_finite_strain_study(
     progress : callable, optional
         Receives a short line per stage.
     estimate : bool
-        False: the study's mesh only, no estimates (sweeps; about 1.4x faster).
+        False: the study's mesh only, no estimates (sweeps).
 
     Returns
     -------

@@ -62,7 +62,7 @@ __all__ = [
 ]
 
 QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
-"""Coarse mesh of ``verify --quick`` (about 5k dofs; errors about 2x the default's)."""
+"""Coarse mesh of ``verify --quick``."""
 
 SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "v0"}
 """Sweepable parameters and the symbol that names each expanded study."""
@@ -200,7 +200,7 @@ class _StudyFile(Table):
 
 @dataclass(frozen=True)
 class Tolerances:
-    """Relative tolerances that decide pass or fail (the FEM issue's acceptance limits)."""
+    """Relative tolerances that decide pass or fail."""
 
     force: float = 1e-3
     beta: float = 1e-3

@@ -337,14 +337,13 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
             with _signals_ignored():
                 client.close()
         return
-    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers: every large numpy
-    # temporary is then returned to the OS and faulted in again, which made the FEM studies
-    # 3.4x slower in CPU (sys time 40 %) than in one process; the workers keep glibc's default
+    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers, which returns every large
+    # numpy temporary to the OS to be faulted in again; the workers keep glibc's default
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
     environ.pop("MALLOC_TRIM_THRESHOLD_", None)
     # the workers log only what is critical: a task's exception reaches the client with the
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
-    # printed a "heartbeat" traceback at shutdown, about 1 run in 2 of two studies
+    # would print a "heartbeat" traceback at shutdown
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
     with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
         cluster = _local_cluster(workers)
