@@ -43,7 +43,8 @@ def folder(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def made(quick_verify):
-    """The ten figures of the paper study in the session's verify run, by file stem.
+    """The ten figures of the paper study in the session's verify run, and the Ateb figure of
+    the hertz study's exponent (n = 2), by file stem.
 
     The run draws them with gallery.study_figures, study_field_figures and paper_figures
     (and the convergence figure); results.json records each one's caption.
@@ -52,7 +53,7 @@ def made(quick_verify):
     figures = dict(results["studies"]["paper"]["figures"])
     assert figures.pop(gallery.CONVERGENCE_CAPTION) == "paper/convergence.png"
     captions = {**figures, **results["figures"]}
-    assert all(captions) and len(captions) == 10
+    assert all(captions) and len(captions) == 11
     return {Path(path).stem: out / path for path in captions.values()}
 
 
@@ -158,6 +159,15 @@ def test_ateb_shows_exact_table_and_approximation(made):
     assert_colour(image, style.EXACT_COLOUR, 1000)
     assert_colour(image, style.PAPER_COLOUR, 500)  # open markers of Tables 1-2
     assert_colour(image, style.APPROXIMATION_COLOUR, 2000)
+
+
+def test_ateb_of_another_exponent_shows_the_exact_pair_alone(made):
+    # hertz's n = 2: the paper tabulates only n = 3/2, so no table markers, no approximation
+    image = pixels(made["ateb_n2"])  # two black curves: greys only, not MIN_COLOURS colours
+    assert image.shape == (600, 1480, 3) and image.std() > 10
+    assert_colour(image, style.EXACT_COLOUR, 1000)
+    assert colour_mask(image, style.PAPER_COLOUR).sum() == 0
+    assert colour_mask(image, style.APPROXIMATION_COLOUR).sum() == 0
 
 
 def test_convergence_draws_every_error(folder):

@@ -7,6 +7,7 @@ physics of the dynamic FE impact itself is tested in test_fem_dynamic.py.
 """
 
 import csv
+import dataclasses
 import io
 import json
 import math
@@ -17,6 +18,7 @@ import pytest
 from matplotlib import colormaps
 from PIL import Image
 
+from shtaerman.output import text_dynamic
 from shtaerman.output.dynamic import SUMMARY_HEADER, write_dynamic_study
 from shtaerman.output.report import report_context, results_document, study_document
 from shtaerman.plots import style
@@ -224,7 +226,7 @@ def test_every_velocity_carries_its_error_estimates(estimated):
 
 
 def test_estimates_reach_the_tables_findings_and_document(estimated):
-    document = json.loads(json.dumps(estimated.document(), allow_nan=True))
+    document = json.loads(json.dumps(study_document(estimated, {}, None, None), allow_nan=True))
     assert document["estimated"] is True
     case = document["cases"][1]
     assert set(case["error_estimate"]) == ESTIMATED
@@ -237,9 +239,19 @@ def test_estimates_reach_the_tables_findings_and_document(estimated):
     assert "hold to 1 % of the dynamic ones" in findings and "interpolated" in findings
 
 
+def test_findings_name_the_paper_and_its_assumed_density_only_for_its_case(outcome):
+    paper = " ".join(text_dynamic.study_findings(outcome))
+    assert "At the paper's example (M = 0.7 kg, v0 = 3 m/s" in paper and "assumed" in paper
+    # a user's case (the study's own inputs, the same computed cases) with their own density
+    study = dataclasses.replace(outcome.study, mass=0.25, density=1150.0)
+    mine = " ".join(text_dynamic.study_findings(dataclasses.replace(outcome, study=study)))
+    assert "In this case (M = 0.25 kg, v0 = 3 m/s, rubber density 1150 kg/m^3)" in mine
+    assert "paper" not in mine and "assumed" not in mine
+
+
 def test_quick_run_skips_the_ladder_and_says_so(outcome):
     assert not outcome.estimated and all(case.estimates() == {} for case in outcome.cases)
-    findings = " ".join(outcome.findings())
+    findings = " ".join(text_dynamic.study_findings(outcome))
     assert "a quick run skips the 3-level ladder" in findings
     assert "hold to 1 %" not in findings  # no unestimated limit is stated
     assert all(
@@ -247,7 +259,7 @@ def test_quick_run_skips_the_ladder_and_says_so(outcome):
         for limits in outcome.limits().values()
         for limit in limits.values()
     )
-    assert "no error estimates" in outcome.tables()[0]["title"]
+    assert "no error estimates" in text_dynamic.study_tables(outcome)[0]["title"]
 
 
 def test_a_study_whose_ladder_cannot_run_is_refused_at_load(tmp_path):
@@ -266,7 +278,7 @@ def test_paper_example_against_the_quasi_static_impact(outcome):
 
 
 def test_document_is_json_with_tables_and_findings(outcome):
-    document = json.loads(json.dumps(outcome.document(), allow_nan=True))
+    document = json.loads(json.dumps(study_document(outcome, {}, None, None), allow_nan=True))
     assert {"inputs", "settings", "cases", "limits", "tables", "findings"} <= set(document)
     assert [case["velocity"] for case in document["cases"]] == [1.0, 3.0]
     case = document["cases"][1]

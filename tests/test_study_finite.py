@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from shtaerman.output import text_finite
 from shtaerman.output.report import (
     render_markdown,
     report_context,
@@ -137,6 +138,13 @@ def test_quick_study_checks_pass(outcome):
     assert any(n.startswith("conservation") for n in names)
 
 
+def test_findings_name_the_paper_only_for_its_case(outcome):
+    assert "moves the paper's impact (0.7 kg at 3 m/s)" in text_finite.study_findings(outcome)[0]
+    mine = replace(outcome, study=replace(outcome.study, mass=0.25, velocity=2.0))
+    found = " ".join(text_finite.study_findings(mine))
+    assert "moves this case's impact (0.25 kg at 2 m/s)" in found and "paper" not in found
+
+
 def test_rubber_moves_the_impact_the_measured_way(outcome):
     # quick mesh; the default gives x_c +1.69 %, P_c -2.21 %, t_c +1.84 % (README)
     ratios = outcome.ratios()
@@ -148,7 +156,7 @@ def test_rubber_moves_the_impact_the_measured_way(outcome):
 
 
 def test_document_is_json_with_tables_and_findings(outcome):
-    document = json.loads(json.dumps(outcome.document()))
+    document = json.loads(json.dumps(study_document(outcome, {}, None, None)))
     assert document["model"] == "neo-hookean" and document["quick"] is True
     for table in document["tables"]:
         assert set(table) == {"title", "header", "rows"}
@@ -296,16 +304,18 @@ def test_crossing_estimates_cover_the_move_of_the_departures(laddered):
 
 
 def test_tables_and_findings_carry_the_estimates(laddered, outcome):
-    curve, impact, validity = laddered.tables()
+    curve, impact, validity = text_finite.study_tables(laddered)
     assert all(" ± " in cell for row in curve["rows"] for cell in row[3:8])
     finite = next(row for row in impact["rows"] if row[0] == "neo-Hookean finite strain")
     assert all(" ± " in cell for cell in finite[1:])
     assert all(" ± " in cell for row in impact["rows"][-2:] for cell in row[1:])
     assert all("resolved" in row[-1] for row in validity["rows"])
-    assert "Richardson" in laddered.findings()[-1] and " ± " in laddered.findings()[0]
+    found = text_finite.study_findings(laddered)
+    assert "Richardson" in found[-1] and " ± " in found[0]
     # quick mode: one mesh, says so, and shows no error bars
-    assert outcome.estimates is None and "no error estimates" in outcome.findings()[-1]
-    assert not any("±" in cell for t in outcome.tables() for row in t["rows"] for cell in row)
+    found, tables = text_finite.study_findings(outcome), text_finite.study_tables(outcome)
+    assert outcome.estimates is None and "no error estimates" in found[-1]
+    assert not any("±" in cell for t in tables for row in t["rows"] for cell in row)
 
 
 def test_report_shows_the_finite_rows_with_estimates(laddered):

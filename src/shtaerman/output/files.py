@@ -150,7 +150,7 @@ def _is_cwd_or_parent(path: Path) -> bool:
     return real == here or real in here.parents
 
 
-def _probe(option: str, folder: Path, name: str) -> None:
+def probe_writable(option: str, folder: Path, name: str) -> None:
     """Raise InputError unless a staging entry ``name`` can be created in ``folder``."""
     probe = folder / name
     try:
@@ -197,7 +197,7 @@ def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path
             raise InputError(
                 f"{option}: folder {str(path)!r} is not empty (use --force to replace it)"
             )
-        _probe(option, target.parent, _stage_path(target).name)
+        probe_writable(option, target.parent, _stage_path(target).name)
     except ValueError as error:  # a NUL byte in the name
         if isinstance(error, InputError):
             raise
@@ -296,7 +296,7 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
         live = _other_writers(real)
         if live:
             raise _busy(option, real, live)
-        _probe(option, real.parent, _stage_path(real).name)
+        probe_writable(option, real.parent, _stage_path(real).name)
     except ValueError as error:
         if isinstance(error, InputError):
             raise

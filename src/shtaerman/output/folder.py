@@ -95,8 +95,11 @@ def study_entry(outcome: Any, stage: Path) -> dict[str, object]:
 def finish_verification(
     stage: Path, entries: Mapping[str, dict], *, quick: bool
 ) -> dict[str, object]:
-    """The figures of no study, results.json and both reports, from the studies' entries."""
-    shared = {title: str(path.relative_to(stage)) for title, path in paper_figures(stage).items()}
+    """The figures of no study (the Ateb functions for each indenter exponent of the
+    studies), results.json and both reports, from the studies' entries."""
+    exponents = [entry["inputs"]["exponent"] for entry in entries.values() if "inputs" in entry]
+    made = paper_figures(stage, exponents)
+    shared = {title: str(path.relative_to(stage)) for title, path in made.items()}
     results = results_document(entries, quick=quick, figures=shared)
     (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
     write_reports(results, stage)

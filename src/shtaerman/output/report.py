@@ -1,6 +1,7 @@
 """The verification report: results.json, and report.md and a self-contained report.html.
 
-Reads study outcomes and figure files; computes nothing of its own. Both reports are jinja2
+Reads study outcomes and figure files; computes nothing of its own. Each kind's text (tables,
+findings, times) comes from its text module (:data:`TEXTS`). Both reports are jinja2
 templates shipped in the package (``templates/report.md.j2``, ``templates/report.html.j2``),
 rendered from one context built once from the results document by :func:`report_context`.
 HTML autoescaping is on: study names and descriptions cannot inject markup; the Markdown
@@ -19,21 +20,25 @@ import urllib.parse
 from collections.abc import Callable, Mapping
 from functools import cache
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import jinja2
 
 from .. import __version__
-from ..study.finite_accuracy import resolved
-from ..study.run import IMPACT_KEYS, StudyOutcome
+from . import text_contact, text_dynamic, text_finite
 from .files import json_safe
+from .wording import number, seconds
 
 __all__ = [
+    "TEXTS",
     "environment",
     "render_html",
     "render_markdown",
     "report_context",
     "results_document",
+    "study_document",
+    "validity_table",
     "write_html",
     "write_markdown",
     "write_reports",
@@ -51,20 +56,13 @@ PACKAGES = (
     "pymetis",
     "jinja2",
 )
-UNITS = {"beta": "N/m^q", "x_c": "m", "P_c": "N", "a_c": "m", "p_c": "Pa", "t_c": "s", "t_y": "s"}
-VARIANTS = {
-    "analytic": "exact (analytic beta, Ateb)",
-    "fem_fitted": "FEM-fitted beta, Ateb",
-    "fem_tabulated": "FEM P(x) tabulated, ODE",
+TEXTS: dict[str, ModuleType] = {
+    "contact": text_contact,
+    "dynamic": text_dynamic,
+    "finite-strain": text_finite,
 }
-CONTACT_COLUMNS = {
-    "force": "force",
-    "beta": "beta",
-    "exponent": "exponent",
-    "contact_radius": "radius",
-    "central_pressure": "p(0)",
-}
-IMPACT_COLUMNS = ("x_c", "P_c", "t_c")
+"""Study kind -> its text module: ``entry``, ``tables``, ``findings``, ``timing_text``,
+``validity_rows`` and ``summary_row``."""
 SUMMARY_LEGEND = (
     "Contact columns: the largest relative error over the depths against Shtaerman's exact "
     "solution. Impact columns: the largest relative difference of the two FEM-fed impacts "
@@ -76,6 +74,10 @@ TIMING_LEGEND = (
     "ladder. Study total (s): wall time of the whole study: the FEM curve, fits, the three "
     "impacts, the mesh-convergence study if any, and writing its files and figures."
 )
+
+
+def _text(kind: str) -> ModuleType:
+    return TEXTS[kind]
 
 
 def environment() -> dict[str, object]:
@@ -95,90 +97,19 @@ def environment() -> dict[str, object]:
     }
 
 
-def _timings(outcome: StudyOutcome, output: float | None) -> dict[str, float | None]:
-    """Wall times of one study in s (``output``: writing its files and figures, if known)."""
-    fem = float(outcome.contact.timings.get("total", float("nan")))
-    levels = outcome.convergence.levels if outcome.convergence is not None else []
-    convergence = sum(float(level.get("timings", {}).get("total", 0.0)) for level in levels)
-    return {
-        "fem_curve": fem,
-        "convergence": convergence,
-        "computation": outcome.seconds,
-        "output": output,
-        "total": outcome.seconds + (output or 0.0),
-    }
-
-
 def study_document(
-    outcome: StudyOutcome,
+    outcome: Any,
     files: dict[str, str],
     output_seconds: float | None = None,
     figures: Mapping[str, str] | None = None,
 ) -> dict[str, object]:
-    """One study's entry of results.json.
+    """One study's entry of results.json, by its kind's text module (:data:`TEXTS`).
 
-    ``figures``: caption to PNG path (relative to the result folder) of the study's figures.
-
-    ``seconds`` is the computation (:func:`shtaerman.study.run.run_study`); ``timings`` splits
-    the study's wall time: ``fem_curve`` (the FEM contact curve), ``convergence`` (its
-    meshes), ``computation`` (= ``seconds``), ``output`` (files and figures) and ``total``.
+    ``files``: stem to path and ``figures``: caption to PNG path, both relative to the result
+    folder; ``output_seconds``: the time spent writing them (s), if known.
     """
-    study = outcome.study
-    if getattr(study, "kind", "contact") != "contact":
-        return _kind_document(outcome, files, output_seconds, figures)
-    return {
-        "kind": "contact",
-        "description": study.description,
-        "source": str(study.source),
-        "inputs": {
-            "shape_coefficient": study.indenter.shape_coefficient,
-            "exponent": study.indenter.exponent,
-            "E1": study.striker.youngs_modulus,
-            "nu1": study.striker.poisson_ratio,
-            "E2": study.half_space.youngs_modulus,
-            "nu2": study.half_space.poisson_ratio,
-            "mass": study.mass,
-            "velocity": study.velocity,
-        },
-        "contact": outcome.contact.to_dict(),
-        "impact": outcome.impacts,
-        "differences": outcome.differences(),
-        "checks": [check.to_dict() for check in outcome.checks],
-        "passed": outcome.passed,
-        "seconds": outcome.seconds,
-        "timings": _timings(outcome, output_seconds),
-        "files": files,
-        "figures": dict(figures or {}),
-        **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
-        **({"accuracy": outcome.accuracy.to_dict()} if outcome.accuracy else {}),
-    }
-
-
-def _kind_document(
-    outcome: Any,
-    files: dict[str, str],
-    output_seconds: float | None,
-    figures: Mapping[str, str] | None,
-) -> dict[str, object]:
-    """The results.json entry of a study of another kind: its own document plus the common
-    keys (checks, verdict, times, files, figures)."""
-    study = outcome.study
-    return {
-        "kind": study.kind,
-        "description": study.description,
-        "source": str(study.source),
-        **outcome.document(),
-        "checks": [check.to_dict() for check in outcome.checks],
-        "passed": outcome.passed,
-        "seconds": outcome.seconds,
-        "timings": {
-            "computation": outcome.seconds,
-            "output": output_seconds,
-            "total": outcome.seconds + (output_seconds or 0.0),
-        },
-        "files": files,
-        "figures": dict(figures or {}),
-    }
+    kind = getattr(outcome.study, "kind", "contact")
+    return _text(kind).entry(outcome, files, output_seconds, figures)
 
 
 def results_document(
@@ -208,33 +139,8 @@ def results_document(
 # --- the context both reports are rendered from ----------------------------------------------
 
 
-def _number(value: float | None, spec: str) -> str:
-    return "-" if value is None else format(value, spec)
-
-
-def _seconds(value: float | None) -> str:
-    return "-" if value is None else f"{value:.1f}"
-
-
-def _is_contact(study: dict) -> bool:
-    return study.get("kind", "contact") == "contact"
-
-
-def _contact_row(name: str, study: dict) -> list[str]:
-    errors = study["contact"]["errors"]
-    differences = [study["differences"][v] for v in ("fem_fitted", "fem_tabulated")]
-    worst = {
-        key: max((abs(d[key]) for d in differences if d.get(key) is not None), default=float("nan"))
-        for key in IMPACT_COLUMNS
-    }
-    timings = study.get("timings") or {}
-    return [
-        name,
-        "PASS" if study["passed"] else "FAIL",
-        *(_number(errors.get(key), ".1e") for key in CONTACT_COLUMNS),
-        *(_number(worst[key], ".1e") for key in IMPACT_COLUMNS),
-        _seconds(timings.get("fem_curve", study["contact"]["timings"].get("total"))),
-    ]
+def _study_text(study: Mapping[str, Any]) -> ModuleType:
+    return _text(study.get("kind", "contact"))
 
 
 def _summary_row(name: str, study: dict) -> list[str]:
@@ -247,9 +153,9 @@ def _summary_row(name: str, study: dict) -> list[str]:
         "PASS" if study["passed"] else "FAIL",
         "-"
         if worst is None
-        else f"{worst['name']}: {_number(abs(worst['value'] or 0.0), '.1e')}"
-        f" / {_number(worst['tolerance'], '.0e')}",
-        _seconds(timings.get("total", study.get("seconds"))),
+        else f"{worst['name']}: {number(abs(worst['value'] or 0.0), '.1e')}"
+        f" / {number(worst['tolerance'], '.0e')}",
+        seconds(timings.get("total", study.get("seconds"))),
     ]
 
 
@@ -257,199 +163,91 @@ def _checks(study: dict) -> list[dict[str, str]]:
     return [
         {
             "name": check["name"],
-            "value": _number(check["value"], ".2e"),
-            "tolerance": _number(check["tolerance"], ".1e"),
+            "value": number(check["value"], ".2e"),
+            "tolerance": number(check["tolerance"], ".1e"),
             "result": "PASS" if check["passed"] else "FAIL",
         }
         for check in study["checks"]
     ]
 
 
-def _impact_table(study: dict) -> dict[str, object]:
-    rows = [
-        [label] + [_number(study["impact"][variant][key], ".6g") for key in IMPACT_KEYS]
-        for variant, label in VARIANTS.items()
-        if variant in study["impact"]
-    ]
-    header = ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)]
-    return {"title": "The impact three ways", "header": header, "rows": rows}
-
-
-ESTIMATED = {
-    "force": "force (worst depth)",
-    "beta": "beta",
-    "exponent": "exponent",
-    "contact_radius": "contact radius (worst depth)",
-    "central_pressure": "p(0) (worst depth)",
-}
-
-
-def _estimate_table(study: dict) -> dict[str, object] | None:
-    """FEM value +- its Richardson estimate, the true error and their ratio (effectivity)."""
-    accuracy = study.get("accuracy")
-    if not accuracy:
-        return None
-    ladder = ", ".join(str(level["dofs"]) for level in accuracy["mesh_ladder"])
-    rows = []
-    for key, label in ESTIMATED.items():
-        if key not in accuracy["error_estimate"]:
-            continue
-        details = accuracy["estimate_details"][key]
-        rows.append(
-            [
-                label,
-                f"{_number(details['value'], '.6g')} ± "
-                f"{_number(accuracy['error_estimate'][key], '.1e')}",
-                _number(accuracy["true_error"].get(key), ".1e"),
-                _number(accuracy["effectivity"].get(key), ".2f"),
-                details["method"] + (f" ({details['reason']})" if details["reason"] else ""),
-            ]
-        )
-    return {
-        "title": f"Error estimates (3-mesh ladder, {ladder} dofs): value ± estimated relative "
-        "error, the true error against the exact solution, and their ratio",
-        "header": ["quantity", "FEM value ± estimate", "true error", "effectivity", "method"],
-        "rows": rows,
-    }
-
-
-def _tables(study: dict) -> list[dict[str, object]]:
-    if not _is_contact(study):
-        return list(study.get("tables", []))
-    return [table for table in (_impact_table(study), _estimate_table(study)) if table]
-
-
-def _contact_finding(name: str, study: dict) -> str:
-    errors = study["contact"]["errors"]
-    text = (
-        f"{name}: the FEM reproduces Shtaerman's contact law to {_number(errors['force'], '.1e')}"
-        f" (force), {_number(errors['beta'], '.1e')} (beta) and p(0) to "
-        f"{_number(errors['central_pressure'], '.1e')}"
-    )
-    accuracy = study.get("accuracy")
-    if accuracy:
-        text += (
-            f"; its own error estimate says {_number(accuracy['error_estimate']['force'], '.1e')}"
-            f" (force), {_number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
-        )
-    return text + "."
-
-
-def _velocity(limit: dict | None) -> str:
-    """A velocity limit of the dynamic study: "3.12 m/s", "all computed (5 m/s)", "none", or
-    "not resolved (...)" where its estimated error is not below a fifth of the level."""
-    if limit and not limit.get("resolved"):
-        if limit.get("error") is None:
-            return "not resolved (no error estimate)"
-        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
-    if not limit or limit.get("velocity") is None:
-        return "no: already off at the slowest v0 computed"
-    if limit.get("bound") == "all":
-        return f"every v0 computed (to {limit['velocity']:.3g} m/s)"
-    spread = limit.get("velocity_error")
-    plus_minus = "" if spread is None else f" ± {spread:.1g}"
-    return f"v0 = {limit['velocity']:.3g}{plus_minus} m/s"
-
-
-def _depth(entry: dict | None) -> str:
-    """A depth limit of a finite-strain study: x/a and the impact velocity reaching it, ± their
-    estimated relative errors; "not resolved" where the departure's estimated error there is
-    not below a fifth of the level (:func:`shtaerman.study.finite_accuracy.resolved`)."""
-    if not entry or entry.get("depth_to_radius") is None:
-        return "-"
-    where, velocity = f"x/a = {entry['depth_to_radius']:.2f}", f"v0 = {entry['velocity']:.2g} m/s"
-    if "departure_error" not in entry:
-        return f"{where} ({velocity}; not estimated)"
-    error = entry["departure_error"]
-    if error is None or not resolved(entry["level"], error):
-        return f"not resolved (estimated error of the departure {_number(error, '.1e')})"
-    errors = entry.get("errors") or {}
-    return (
-        f"{where} ± {_number(errors.get('depth_to_radius'), '.1e')} ({velocity} ± "
-        f"{_number(errors.get('velocity'), '.1e')})"
-    )
-
-
 def validity_table(studies: dict) -> dict[str, object] | None:
-    """Where the paper's model holds to 1 % and 5 %, from the dynamic and finite-strain
-    studies' structured results (``limits``, ``validity``), one row per assumption tested."""
-    rows = []
-    for name, study in studies.items():
-        if study.get("kind") == "dynamic" and "limits" in study:
-            limits = study["limits"]
-            for key, label in (
-                ("all", "x_c, P_c and t_c"),
-                ("P", "P_c"),
-                ("x", "x_c"),
-                ("t", "t_c"),
-            ):
-                if key in limits:
-                    rows.append(
-                        [
-                            f"no elastic waves ({name}): quasi-static {label} against the "
-                            "dynamic FE impact",
-                            _velocity(limits[key].get("1%")),
-                            _velocity(limits[key].get("5%")),
-                        ]
-                    )
-        if study.get("kind") == "finite-strain" and "validity" in study:
-            levels = {round(entry["level"], 4): entry for entry in study["validity"]}
-            nu = study.get("inputs", {}).get("nu2")
-            rows.append(
-                [
-                    f"linear elasticity ({name}): beta x^q against neo-Hookean rubber"
-                    + (f", nu2 = {nu:g}" if nu is not None else ""),
-                    _depth(levels.get(0.01)),
-                    _depth(levels.get(0.05)),
-                ]
-            )
+    """Where the model holds to 1 % and 5 %, one row per assumption a study tests (its kind's
+    ``validity_rows``); None when no study tests one."""
+    rows = [
+        row
+        for name, study in studies.items()
+        for row in _study_text(study).validity_rows(name, study)
+    ]
     if not rows:
         return None
     return {
-        "title": "Where the paper's model holds (limits interpolated between computed points; "
-        "shown only where the estimated FEM error is below a fifth of the effect; ± estimated "
-        "relative error)",
+        "title": "Where the model holds (limits interpolated between computed points; "
+        "shown only where the estimated FEM error is below a fifth of the effect; ± the "
+        "estimated error in the value's unit)",
         "header": ["assumption tested", "holds to 1 % up to", "holds to 5 % up to"],
         "rows": rows,
     }
 
 
-def _findings(studies: dict) -> list[str]:
-    found = []
-    for name, study in studies.items():
-        if _is_contact(study):
-            found.append(_contact_finding(name, study))
-        else:
-            found += [f"{name}: {sentence}" for sentence in study.get("findings", [])]
-    return found
-
-
-def _timing_text(study: dict) -> str:
-    timings = study.get("timings") or {}
-    if not _is_contact(study):
-        parts = [f"computation {_seconds(timings.get('computation', study['seconds']))} s"]
-        if timings.get("output") is not None:
-            parts.append(f"files and figures {_seconds(timings['output'])} s")
-        parts.append(f"study total {_seconds(timings.get('total', study['seconds']))} s")
-        return "; ".join(parts)
-    contact = study["contact"]["timings"]
-    parts = [
-        f"FEM curve {_seconds(timings.get('fem_curve', contact.get('total')))} s (mesh "
-        f"{_seconds(contact.get('mesh'))}, assembly {_seconds(contact.get('assembly'))}, "
-        f"factorization {_seconds(contact.get('factorization'))}, contact "
-        f"{_seconds(contact.get('contact'))})"
+def _failures(studies: dict) -> list[dict[str, str]]:
+    return [
+        {
+            "study": name,
+            "check": check["name"],
+            "value": number(check["value"], ".2e"),
+            "tolerance": number(check["tolerance"], ".1e"),
+        }
+        for name, study in studies.items()
+        for check in study["checks"]
+        if not check["passed"]
     ]
-    if timings.get("convergence"):
-        parts.append(f"mesh-convergence study {_seconds(timings['convergence'])} s")
-    parts.append(f"computation in all {_seconds(timings.get('computation', study['seconds']))} s")
-    if timings.get("output") is not None:
-        parts.append(f"files and figures {_seconds(timings['output'])} s")
-    parts.append(f"study total {_seconds(timings.get('total', study['seconds']))} s")
-    return "; ".join(parts)
+
+
+def _summaries(studies: dict) -> dict[str, dict[str, object]]:
+    """The summary table of every study, and the contact cross-check of those with a row."""
+    contact = [_study_text(study).summary_row(name, study) for name, study in studies.items()]
+    return {
+        "summary": {
+            "legend": SUMMARY_LEGEND,
+            "timing_legend": TIMING_LEGEND,
+            "header": [
+                "study",
+                "kind",
+                "verdict",
+                "worst check (value / tolerance)",
+                "study total (s)",
+            ],
+            "rows": [_summary_row(name, study) for name, study in studies.items()],
+        },
+        "contact_summary": {
+            "header": [
+                "study",
+                "verdict",
+                *text_contact.CONTACT_COLUMNS.values(),
+                *text_contact.IMPACT_COLUMNS,
+                "FEM curve (s)",
+            ],
+            "rows": [row for row in contact if row is not None],
+        },
+    }
 
 
 def _figures(captioned: Mapping[str, str]) -> list[dict[str, str]]:
     return [{"caption": caption, "file": file} for caption, file in captioned.items()]
+
+
+def _study_section(name: str, study: dict, figures: Mapping[str, str]) -> dict[str, object]:
+    text = _study_text(study)
+    return {
+        "name": name,
+        "description": study["description"],
+        "verdict": "PASS" if study["passed"] else "FAIL",
+        "checks": _checks(study),
+        "tables": text.tables(study),
+        "timing_text": text.timing_text(study),
+        "figures": _figures(figures),
+    }
 
 
 def report_context(
@@ -469,58 +267,20 @@ def report_context(
     if figures is None:
         figures = {name: study.get("figures", {}) for name, study in studies.items()}
         figures[""] = results.get("figures", {})
-    failures = [
-        {
-            "study": name,
-            "check": check["name"],
-            "value": _number(check["value"], ".2e"),
-            "tolerance": _number(check["tolerance"], ".1e"),
-        }
-        for name, study in studies.items()
-        for check in study["checks"]
-        if not check["passed"]
-    ]
-    contact = {name: study for name, study in studies.items() if _is_contact(study)}
     return {
         "passed": results["passed"],
         "verdict": "all studies PASS" if results["passed"] else "at least one study FAILS",
         "quick": results["quick"],
-        "failures": failures,
-        "findings": _findings(studies),
-        "validity": validity_table(studies),
-        "summary": {
-            "legend": SUMMARY_LEGEND,
-            "timing_legend": TIMING_LEGEND,
-            "header": [
-                "study",
-                "kind",
-                "verdict",
-                "worst check (value / tolerance)",
-                "study total (s)",
-            ],
-            "rows": [_summary_row(name, study) for name, study in studies.items()],
-        },
-        "contact_summary": {
-            "header": [
-                "study",
-                "verdict",
-                *CONTACT_COLUMNS.values(),
-                *IMPACT_COLUMNS,
-                "FEM curve (s)",
-            ],
-            "rows": [_contact_row(name, study) for name, study in contact.items()],
-        },
-        "studies": [
-            {
-                "name": name,
-                "description": study["description"],
-                "verdict": "PASS" if study["passed"] else "FAIL",
-                "checks": _checks(study),
-                "tables": _tables(study),
-                "timing_text": _timing_text(study),
-                "figures": _figures(figures.get(name, {})),
-            }
+        "failures": _failures(studies),
+        "findings": [
+            sentence
             for name, study in studies.items()
+            for sentence in _study_text(study).findings(name, study)
+        ],
+        "validity": validity_table(studies),
+        **_summaries(studies),
+        "studies": [
+            _study_section(name, study, figures.get(name, {})) for name, study in studies.items()
         ],
         "shared_figures": _figures(figures.get("", {})),
         "generated": results["generated"],

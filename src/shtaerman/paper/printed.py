@@ -5,7 +5,7 @@ Tables 1-2 (the Ateb-sine and Ateb-cosine of the impact, with approximations in 
 Table 3 (x(t)/x_c by two procedures), Tables 4-6 (impact characteristics against A, v0, M) and
 the scalars of a worked example.  They are stored once, exactly as printed, in
 ``shtaerman/paper/paper_tables.json`` (format described in its ``"format"`` field); they are
-data to compare against: the exact functions are in :mod:`shtaerman.ateb`.
+data to compare against: the exact functions are in :mod:`shtaerman.theory.ateb`.
 
 The approximations, with ``I = B(3/8, 1/2) / (8/3) = 1.4459274722...``:
 

@@ -1,4 +1,5 @@
-"""The Ateb functions of the impact against the paper's Tables 1-2 and approximations (PNG)."""
+"""The Ateb functions of the impact (PNG): for the paper's n = 3/2 against its Tables 1-2 and
+approximations, for any other exponent the exact pair alone."""
 
 from __future__ import annotations
 
@@ -14,6 +15,9 @@ from ..theory.impact import duration_integral
 from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, PAPER_COLOUR, save, styled
 
 __all__ = ["plot_ateb"]
+
+PAPER_EXPONENT = 1.5
+"""The exponent of the paper's indenter, the only one its tables and approximations are for."""
 
 
 def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
@@ -74,11 +78,29 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
     bottom.set_xlim(0.0, integral)
 
 
-@styled
-def plot_ateb(path: Path | str) -> Path:
-    """Write Sa(5/3, 1, 4 eta/3) and Ca(5/3, 1, 4 zeta/3) against the paper's Tables 1-2.
+def _exact_column(axes: Axes, kind: str, q: float) -> None:
+    """Sa(q, 1, (q+1)/2 eta) (compression) or Ca(q, 1, (q+1)/2 zeta) (restitution) on [0, I]."""
+    integral = duration_integral(q)
+    s = np.linspace(0.0, integral, 2001)
+    function, symbol, name = (
+        (ateb_sine, r"\eta", "Sa") if kind == "sine" else (ateb_cosine, r"\zeta", "Ca")
+    )
+    axes.plot(s, function(q, 1.0, (q + 1.0) / 2.0 * s), color=EXACT_COLOUR, label="exact")
+    axes.set_ylabel(f"${name}({q:.4g}, 1, {(q + 1.0) / 2.0:.4g}{symbol})$")
+    axes.set_xlabel(f"${symbol}$")
+    axes.set_ylim(0.0, 1.05)
+    axes.set_xlim(0.0, integral)
 
-    Top: the exact functions (:mod:`shtaerman.ateb`), the printed table values (markers) and
+
+@styled
+def plot_ateb(path: Path | str, exponent: float = PAPER_EXPONENT) -> Path:
+    """Write the Ateb functions of the impact on an indenter z = A r^n, n = ``exponent``.
+
+    For n = 3/2 (q = 5/3), Sa(5/3, 1, 4 eta/3) and Ca(5/3, 1, 4 zeta/3) against the paper's
+    Tables 1-2 as below; for any other n, Sa(q, 1, (q+1)/2 eta) and Ca(q, 1, (q+1)/2 zeta),
+    q = (n+1)/n, exact over [0, I] (the paper tabulates no other exponent).
+
+    Top: the exact functions (:mod:`shtaerman.theory.ateb`), the printed table values (markers) and
     the paper's piecewise approximations (dashed), over one compression (eta) and one
     restitution (zeta) interval [0, I], I = 1.445927. Bottom: the approximations' relative
     error in %, its maximum marked, against the paper's claimed 1 % (dotted).
@@ -86,13 +108,22 @@ def plot_ateb(path: Path | str) -> Path:
     Parameters
     ----------
     path : path-like
-        PNG to write (1480 x 1000 pixels).
+        PNG to write (1480 x 1000 pixels for n = 3/2, 1480 x 600 otherwise).
+    exponent : float
+        The indenter's exponent n (> 1).
 
     Returns
     -------
     pathlib.Path
         ``path``.
     """
+    if exponent != PAPER_EXPONENT:
+        q = (exponent + 1.0) / exponent
+        figure = Figure(figsize=(7.4, 3.0), layout="constrained")
+        for axes, kind in zip(figure.subplots(1, 2), ("sine", "cosine"), strict=True):
+            _exact_column(axes, kind, q)
+        figure.suptitle(f"n = {exponent:g}, q = (n+1)/n = {q:.4g}")
+        return save(figure, path)
     figure = Figure(figsize=(7.4, 5.0), layout="constrained")
     axes = figure.subplots(2, 2, sharex=True, height_ratios=(2.2, 1))
     _ateb_column(axes[0, 0], axes[1, 0], "sine")

@@ -27,11 +27,11 @@ from .render import save as save_picture
 from .sections import (
     BAR_GAP,
     CONTACT_COLOUR,
-    _camera_2d,
-    _curve,
-    _draw_axes,
-    _label,
+    add_label,
+    camera_2d,
+    draw_axes,
     frame,
+    polyline,
     section,
 )
 from .style import (
@@ -182,30 +182,30 @@ def plot_wave_field(
     step = int(np.argmin(np.abs(case.result.t - actual)))
     radius = float(case.result.contact_radius[step])
     with picture() as plotter:
-        right = _camera_2d(plotter, window)
+        right = camera_2d(plotter, window)
         add_coloured(plotter, cut, colours, right + BAR_GAP, lighting=False)
         lines = isolines(cut, colours)
         if lines is not None:
             plotter.add_mesh(lines, color="black", line_width=1.0, opacity=0.35)
         if radius > 0:
             plotter.add_mesh(
-                _curve(np.array([0.0, radius * window.scale]), np.zeros(2)),
+                polyline(np.array([0.0, radius * window.scale]), np.zeros(2)),
                 color=CONTACT_COLOUR,
                 line_width=12,
             )
-        _draw_axes(plotter, window)
+        draw_axes(plotter, window)
         front = c_s * actual * window.scale
         angle = np.linspace(0.0, -0.5 * np.pi, 90)
         arc_r, arc_z = front * np.cos(angle), front * np.sin(angle)
         inside = (arc_r <= window.width) & (arc_z >= -window.depth)
         if inside.sum() > 1:
-            plotter.add_mesh(_curve(arc_r[inside], arc_z[inside]), color="white", line_width=2)
+            plotter.add_mesh(polyline(arc_r[inside], arc_z[inside]), color="white", line_width=2)
         state = (
             f"contact radius {radius * 1e3:.2f} mm"
             if radius > 0
             else f"separated at {case.result.t_contact * 1e3:.2f} ms"
         )
-        _label(
+        add_label(
             plotter,
             f"t = {actual * 1e3:.2f} ms, {state} (white arc: shear front c_s t)",
             (0.0, window.top),

@@ -6,10 +6,11 @@ captions under the pictures, so a caption says everything a reader needs to read
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .ateb import plot_ateb
+from .ateb import PAPER_EXPONENT, plot_ateb
 from .curves import plot_convergence, plot_force_depth, plot_pressure
 from .fields import SIGMA
 from .impact import plot_impact_contact, plot_impact_motion
@@ -132,18 +133,35 @@ def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, 
     return made
 
 
-def paper_figures(folder: Path | str) -> dict[str, Path]:
-    """The figures that depend on no study, written into ``folder``: ``ateb.png``.
+def paper_figures(folder: Path | str, exponents: Iterable[float] = (1.5,)) -> dict[str, Path]:
+    """The figures that depend on no study, written into ``folder``: the Ateb functions of
+    the impact for each indenter exponent of the run (``ateb.png`` for the paper's n = 3/2,
+    against its Tables 1-2; ``ateb_n<n>.png`` for any other).
 
     Parameters
     ----------
     folder : path-like
-        Where the PNG goes (created if missing).
+        Where the PNGs go (created if missing).
+    exponents : iterable of float
+        The studies' indenter exponents n (repeats ignored).
 
     Returns
     -------
     dict of str to pathlib.Path
         Caption to PNG path.
     """
-    caption = "Ateb functions of the impact against the paper's Tables 1-2 and approximations"
-    return {caption: plot_ateb(Path(folder) / "ateb.png")}
+    made = {}
+    for exponent in sorted(set(exponents)):
+        if exponent == PAPER_EXPONENT:
+            caption = (
+                "Ateb functions of the impact against the paper's Tables 1-2 and approximations"
+            )
+            made[caption] = plot_ateb(Path(folder) / "ateb.png")
+            continue
+        q = (exponent + 1.0) / exponent
+        caption = (
+            f"Ateb functions of the impact for n = {exponent:g} (q = {q:.4g}): x/x_c in "
+            "compression, the velocity in restitution"
+        )
+        made[caption] = plot_ateb(Path(folder) / f"ateb_n{exponent:g}.png", exponent)
+    return made

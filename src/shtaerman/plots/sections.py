@@ -108,7 +108,8 @@ def field_solution(
     return result.field(step)
 
 
-def _curve(r: np.ndarray, z: np.ndarray) -> pv.PolyData:
+def polyline(r: np.ndarray, z: np.ndarray) -> pv.PolyData:
+    """A line through the r-z points (m), just in front of the section."""
     return pv.lines_from_points(np.column_stack([r, z, np.full_like(r, 0.01)]))
 
 
@@ -130,7 +131,7 @@ def _draw_contact(
     a = step.contact_radius * window.scale
     if not deformed:
         plotter.add_mesh(
-            _curve(np.array([0.0, a]), np.zeros(2)), color=CONTACT_COLOUR, line_width=10
+            polyline(np.array([0.0, a]), np.zeros(2)), color=CONTACT_COLOUR, line_width=10
         )
         return
     profile = _indenter(result, step, window)
@@ -138,9 +139,9 @@ def _draw_contact(
     outline = np.column_stack([body, np.zeros(len(body))])
     solid = pv.PolyData(outline, faces=np.r_[len(body), np.arange(len(body))]).triangulate()
     plotter.add_mesh(solid, color="#d9d9d9", lighting=False)
-    plotter.add_mesh(_curve(*profile.T), color=INDENTER_COLOUR, line_width=3)
+    plotter.add_mesh(polyline(*profile.T), color=INDENTER_COLOUR, line_width=3)
     inside = profile[profile[:, 0] <= a]
-    plotter.add_mesh(_curve(*inside.T), color=CONTACT_COLOUR, line_width=10)
+    plotter.add_mesh(polyline(*inside.T), color=CONTACT_COLOUR, line_width=10)
 
 
 def _draw_field(plotter: pv.Plotter, cut: pv.PolyData, name: str, bar: float) -> None:
@@ -156,7 +157,7 @@ def _draw_field(plotter: pv.Plotter, cut: pv.PolyData, name: str, bar: float) ->
     plotter.add_mesh(outline, color="#4d4d4d", line_width=1.5)  # white near 0 needs an edge
 
 
-def _label(
+def add_label(
     plotter: pv.Plotter,
     text: str,
     at: tuple[float, float],
@@ -181,7 +182,7 @@ def _label(
     plotter.add_actor(actor, reset_camera=False)
 
 
-def _draw_axes(plotter: pv.Plotter, window: Frame) -> None:
+def draw_axes(plotter: pv.Plotter, window: Frame) -> None:
     """r and z rulers on round ticks along the window's bottom and left edges."""
     tick, pad = 0.012 * (window.depth + window.top), FONT_SIZE // 2
     places = decimals(window.step)
@@ -194,20 +195,20 @@ def _draw_axes(plotter: pv.Plotter, window: Frame) -> None:
     lines += [([0.0, -tick], [z, z]) for z in z_ticks]
     for r, z in lines:
         plotter.add_mesh(
-            _curve(np.array(r), np.array(z)), color="black", line_width=2, reset_camera=False
+            polyline(np.array(r), np.array(z)), color="black", line_width=2, reset_camera=False
         )
     for r in r_ticks:
-        _label(plotter, f"{r:.{places}f}", (r, -window.depth - tick), (0, -pad), (1, 2))
+        add_label(plotter, f"{r:.{places}f}", (r, -window.depth - tick), (0, -pad), (1, 2))
     for z in z_ticks:
-        _label(plotter, f"{z + 0.0:.{places}f}", (-tick, z), (-pad, 0), (2, 1))
-    _label(
+        add_label(plotter, f"{z + 0.0:.{places}f}", (-tick, z), (-pad, 0), (2, 1))
+    add_label(
         plotter,
         f"r ({window.unit})",
         (0.5 * window.width, -window.depth),
         (0, -2 * FONT_SIZE - pad),
         (1, 2),
     )
-    _label(
+    add_label(
         plotter,
         f"z ({window.unit})",
         (0.0, 0.5 * (window.top - window.depth)),
@@ -217,7 +218,7 @@ def _draw_axes(plotter: pv.Plotter, window: Frame) -> None:
     )
 
 
-def _camera_2d(plotter: pv.Plotter, window: Frame) -> float:
+def camera_2d(plotter: pv.Plotter, window: Frame) -> float:
     """Parallel view of the r-z plane, the window at the left; returns its right edge (0..1)."""
     aspect = WINDOW_SIZE[0] / WINDOW_SIZE[1]
     height = window.depth + window.top
@@ -245,10 +246,10 @@ def _panel(
     step, extent, deformed = options
     contact = contact_step(result, step)
     window = frame(contact.contact_radius, extent, above=deformed)
-    right = _camera_2d(plotter, window)
+    right = camera_2d(plotter, window)
     _draw_field(plotter, section(solution, window, deformed), name, right + BAR_GAP)
     _draw_contact(plotter, result, contact, window, deformed)
-    _draw_axes(plotter, window)
+    draw_axes(plotter, window)
 
 
 def plot_field(

@@ -2,7 +2,7 @@
 
 The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.refined`) by
 :data:`LADDER_RATIO` = sqrt(2) per level, so each level has about twice the dofs of the one
-before and the two coarser levels of a three-level ladder cost about 0.75 of the finest. Every
+before. Every
 quantity of the finest level gets a Richardson estimate (:mod:`.richardson`): the force, the
 contact radius and the central pressure at every depth (the worst depth is reported), beta
 and the fitted exponent. Where the exact solution is known (the linear power-law contact) the
@@ -16,7 +16,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,9 +27,6 @@ from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from .indentation import IndentationResult, default_depths, run_indentation
 from .richardson import Estimate, curve_richardson, richardson
-
-if TYPE_CHECKING:
-    from .finite_indentation import FiniteIndentationResult
 
 __all__ = [
     "LADDER_RATIO",
@@ -50,23 +47,32 @@ CURVE_QUANTITIES = ("beta", "exponent")
 FORCE_LIKE = ("force", "beta")
 """What ``--accuracy`` drives below its tolerance."""
 ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 2.5}
-"""Asymptotic orders used for the correction (the exponent uses its observed order). With the
-vertex-aligned force (:func:`shtaerman.fem.contact.aligned_force`) ladders observe 1-1.6 up
-to refine 1 and 3.5-4.2 beyond; order 3 keeps every estimate within 0.55-2.5 of the true force
-error on 48 ladders of 8 cases (n 1.2-2, nu 0-0.5, refine 0.5-2.83, true errors 5.8e-4 to
-3.5e-6; benchmarks/bench_accuracy.py), and beta within 0.72-2.84 wherever its true error is
-at least 1e-6 (below, the fit's cancellation over the depths defeats any estimate)."""
+"""Asymptotic orders used for the correction (the exponent uses its observed order); their
+effectivity against the exact solution is measured in ``benchmarks/bench_accuracy.py``."""
 SANE_ORDERS = (1.0, 5.0)
 """Observed orders (of the largest difference over the depths) taken as asymptotic."""
 TIME_GROWTH = 2.4
 """Observed time ratio of consecutive ladder levels (dofs x2; factorization superlinear)."""
 TRUNCATION = {"force": 1.886, "beta": 1.16}
 """Stiffening by the clamped far boundary, times R / a (R the domain radius, a the largest
-contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, bench_contact.py (c)); a bias
-common to every level, unseen by the ladder, so added to the estimate."""
+contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, ``benchmarks/bench_contact.py``
+(c)); a bias common to every level, unseen by the ladder, so added to the estimate."""
 
 Progress = Callable[[str], None]
-Solve = Callable[[MeshSettings], "IndentationResult | FiniteIndentationResult"]
+
+
+class LadderCurve(Protocol):
+    """A contact curve a ladder level holds (linear or finite strain)."""
+
+    steps: Any
+    fit: Any
+    mesh_stats: dict[str, Any]
+    timings: dict[str, float]
+
+    def errors(self) -> dict[str, float]: ...
+
+
+Solve = Callable[[MeshSettings], LadderCurve]
 """One contact curve on the given mesh (the depths and materials bound in)."""
 
 
@@ -94,7 +100,7 @@ class LadderLevel:
     """One mesh of the ladder: its refinement factor and result (linear or finite strain)."""
 
     refine: float
-    result: IndentationResult | FiniteIndentationResult
+    result: LadderCurve
 
     @property
     def dofs(self) -> int:
@@ -130,7 +136,7 @@ class AccuracyResult:
     exact: bool = True
 
     @property
-    def finest(self) -> IndentationResult | FiniteIndentationResult:
+    def finest(self) -> LadderCurve:
         """The finest level's result: the reported numbers."""
         return self.levels[-1].result
 

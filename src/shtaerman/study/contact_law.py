@@ -64,7 +64,7 @@ class _LogLog:
 class FemContactLaw:
     """P(x), a(x), p(0, x) from the FEM steps, and the power-law fit P = beta x^q (SI units).
 
-    Satisfies :class:`shtaerman.impact.ContactLaw` (with the fitted beta and q), so the exact
+    Satisfies :class:`shtaerman.theory.impact.ContactLaw` (with the fitted beta and q), so the exact
     Ateb solution runs on it; :meth:`force` is the tabulated curve for the numerical impact.
     """
 

@@ -22,12 +22,12 @@ far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_co
                  estimate is below estimate_below = 0.08)
 
 The relative differences are quasi-static / dynamic - 1. Every velocity's run is the finest
-level of an error-estimate ladder (:mod:`.dynamic_accuracy`: the two coarser levels cost about
-0.75 of it again; ``verify --quick`` skips it): x_max, P_max, t_contact, e, 1 - e^2 and the
-differences themselves carry Richardson estimates. The velocity up to which the quasi-static
-value holds to 1 % (5 %) is interpolated linearly between the computed velocities where
-|difference| crosses the level (the differences grow monotonically with v0), and stated only
-where the estimated error of the difference is below a fifth of the level (:mod:`.limits`).
+level of an error-estimate ladder (:mod:`.dynamic_accuracy`; ``verify --quick`` skips it):
+x_max, P_max, t_contact, e, 1 - e^2 and the differences themselves carry Richardson estimates.
+The velocity up to which the quasi-static value holds to 1 % (5 %) is interpolated linearly
+between the computed velocities where |difference| crosses the level (the differences grow
+monotonically with v0), and stated only where the estimated error of the difference is below
+a fifth of the level (:mod:`.limits`).
 """
 
 from __future__ import annotations
@@ -67,8 +67,8 @@ from .schema import (
     Positive,
     Relative,
     StudyError,
-    _decode,
-    _Table,
+    Table,
+    decode,
     fem_input_error,
     validate_name,
 )
@@ -92,14 +92,6 @@ COMPARED = {
     "t": ("t_c", "t_half", "compression time (against t_contact / 2)"),
 }
 """Compared quantity -> (quasi-static key, dynamic key, words)."""
-RELATIVE_ESTIMATES = {
-    "x_max": "x_max",
-    "P_max": "P_max",
-    "t_contact": "t_contact",
-    "restitution": "e",
-    "energy_radiated_fraction": "1 - e^2",
-}
-"""Results whose estimated relative error the study reports -> their names in the text."""
 SEPARATION_SNAPSHOT = 1.05
 """The wave field after separation is kept at this multiple of the quasi-static t_y."""
 
@@ -191,8 +183,8 @@ def run_case(
     snapshots : callable, optional
         Given the quasi-static impact, the times in s at which to keep the fields.
     ladder : bool
-        Also run the two coarser levels of the error-estimate ladder (about 0.75 of the run's
-        cost; ``settings.refined(1/2)`` must be valid).
+        Also run the two coarser levels of the error-estimate ladder
+        (``settings.refined(1/2)`` must be valid).
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     quasi = solve_impact(mass, velocity, law)
@@ -216,18 +208,18 @@ def run_case(
 # --- the study file ----------------------------------------------------------------------------
 
 
-class _DynIndenter(_Table):
+class _DynIndenter(Table):
     shape_coefficient: Positive
     exponent: Positive
 
 
-class _DynHalfSpace(_Table):
+class _DynHalfSpace(Table):
     youngs_modulus: Positive
     poisson_ratio: Poisson
     density: Positive
 
 
-class _Numerics(_Table):
+class _Numerics(Table):
     steps: Annotated[int, msgspec.Meta(gt=0)] | None = None
     margin: Positive | None = None
     size: Positive | None = None
@@ -242,7 +234,7 @@ class _Numerics(_Table):
     spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
 
 
-class _DynImpact(_Table):
+class _DynImpact(Table):
     mass: Positive
     velocities: list[Positive]
     example: Positive
@@ -252,14 +244,14 @@ class _Quick(_Numerics):
     velocities: list[Positive] | None = None
 
 
-class _DynTolerances(_Table):
+class _DynTolerances(Table):
     energy_balance: Relative = 1e-2
     reflected: Relative = 1e-2
     estimate: Relative = 0.2
     estimate_below: Relative = 0.08
 
 
-class _DynamicFile(_Table):
+class _DynamicFile(Table):
     indenter: _DynIndenter
     half_space: _DynHalfSpace
     impact: _DynImpact
@@ -345,7 +337,7 @@ def _velocities(path: Path, key: str, values: list[float], example: float) -> tu
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
-    raw: _DynamicFile = _decode(path, data, _DynamicFile)
+    raw: _DynamicFile = decode(path, data, _DynamicFile)
     try:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
     except InputError as error:
@@ -470,149 +462,9 @@ class DynamicStudyOutcome:
             for key, values in rows.items()
         }
 
-    def _estimate_finding(self) -> str:
-        """One sentence: the largest estimated errors over the velocities, or why none."""
-        if not self.estimated:
-            return (
-                "No error estimates: a quick run skips the 3-level ladder (mesh x2 and x sqrt 2, "
-                "time steps / 2 and / sqrt 2), so the study states no 1 % / 5 % velocity limits."
-            )
-        estimates = [case.estimates() for case in self.cases]
-        worst = {key: max(e[key].error for e in estimates) for key in RELATIVE_ESTIMATES}
-        signal = [
-            (_ratio(d, e[f"difference_{k}"].absolute_error), k, case.velocity)
-            for case, e in zip(self.cases, estimates, strict=True)
-            for k, d in compare(case.quasi, case.result).items()
-        ]
-        ratio, key, velocity = min(signal)
-        largest = max(e[f"difference_{k}"].absolute_error for e in estimates for k in COMPARED)
-        fallbacks = sum(e.method != "richardson" for case in estimates for e in case.values())
-        ladder = self.example.ladder
-        levels = ", ".join(
-            f"{r.mesh['dofs']} dofs/{level.steps} steps"
-            for level, r in zip(ladder.settings, ladder.results, strict=True)
-        )
-        return (
-            "Error estimates (Richardson over a 3-level ladder refining mesh and time step "
-            f"together: {levels} at {self.example.velocity:g} m/s), the largest over the "
-            "velocities: relative "
-            + ", ".join(f"{RELATIVE_ESTIMATES[k]} {v:.1e}" for k, v in worst.items())
-            + f"; the differences quasi-static / dynamic - 1 to {100 * largest:.2g} % "
-            f"(absolute), at least {ratio:.0f} times smaller than the difference itself (the "
-            f"closest: {COMPARED[key][0]} at {velocity:g} m/s). {fallbacks} of the "
-            f"{sum(map(len, estimates))} estimates are the largest difference between "
-            "consecutive levels instead (no clean observed order: the levels scatter)."
-        )
-
-    def findings(self) -> list[str]:
-        """Sentences for the report's opening section."""
-        case, study = self.example, self.study
-        d, dyn, quasi = case.differences(), case.result, case.quasi
-        pm = _plus_minus(case.estimates())
-        found = [
-            f"At the paper's example (M = {study.mass:g} kg, v0 = {case.velocity:g} m/s, "
-            f"rubber density {study.density:g} kg/m^3 assumed) the quasi-static model is off by "
-            f"{100 * d['x']:+.2f}{pm('difference_x', 100)} % in x_c ({quasi.x_c * 1e3:.3f} mm "
-            f"against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), "
-            f"{100 * d['P']:+.2f}{pm('difference_P', 100)} % in P_c ({quasi.P_c:.1f} N against "
-            f"P_max {dyn.P_max:.1f} N) and {100 * d['t']:+.2f}{pm('difference_t', 100)} % in t_c "
-            f"({quasi.t_c * 1e3:.3f} ms against half the dynamic contact time, "
-            f"{0.5e3 * dyn.t_contact:.3f} ms; the same as t_y against t_contact); the dynamic "
-            f"maximum approach comes at {dyn.t_x_max * 1e3:.3f} ms.",
-            f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
-            f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
-            f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
-            f"half-space as elastic waves (first-order estimate "
-            f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f}).",
-            self._estimate_finding(),
-        ]
-        limits = self.limits()
-        words = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
-        for level in ("1%", "5%") if self.estimated else ():
-            parts = [
-                f"{words[key]} {_limit_text(limits[key][level], self.velocities[0])}"
-                for key in words
-            ]
-            found.append(
-                f"The quasi-static values hold to {level[:-1]} % of the dynamic ones: "
-                + "; ".join(parts)
-                + f" (computed at v0 = {', '.join(f'{v:g}' for v in self.velocities)} m/s; "
-                "the limits are interpolated linearly between them)."
-            )
-        return found
-
-    def tables(self) -> list[dict[str, object]]:
-        """The report's tables (strings)."""
-        header = [
-            "v0 (m/s)",
-            "x_max (mm)",
-            "x_c/x_max-1",
-            "P_max (N)",
-            "P_c/P_max-1",
-            "t_contact (ms)",
-            "t_y/t_contact-1",
-            "e",
-            "1-e^2",
-            "estimate",
-            "balance",
-            "reflected",
-        ]
-        rows = []
-        for case in self.cases:
-            r, d, pm = case.result, case.differences(), _plus_minus(case.estimates())
-            rows.append(
-                [
-                    f"{case.velocity:g}",
-                    f"{r.x_max * 1e3:.4f}{pm('x_max', 1e3)}",
-                    f"{100 * d['x']:+.2f}{pm('difference_x', 100)} %",
-                    f"{r.P_max:.1f}{pm('P_max')}",
-                    f"{100 * d['P']:+.2f}{pm('difference_P', 100)} %",
-                    f"{r.t_contact * 1e3:.4f}{pm('t_contact', 1e3)}",
-                    f"{100 * d['t']:+.2f}{pm('difference_t', 100)} %",
-                    f"{r.restitution:.4f}{pm('restitution')}",
-                    f"{r.energy_radiated_fraction:.4f}{pm('energy_radiated_fraction')}",
-                    f"{case.estimate.energy_fraction:.4f}",
-                    f"{r.energy_balance_error:.1e}",
-                    f"{r.reflected_energy_fraction:.1e}",
-                ]
-            )
-        limits = self.limits()
-        names = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
-        limit_rows = [
-            [
-                names[key],
-                *(
-                    _limit_text(limits[key][level], self.velocities[0], error=True)
-                    for level in ("1%", "5%")
-                ),
-            ]
-            for key in names
-        ]
-        errors = (
-            "± the estimated error (Richardson, 3-level ladder) in the value's unit"
-            if self.estimated
-            else "no error estimates: a quick run skips the ladder"
-        )
-        return [
-            {
-                "title": "Dynamic FE impact against the quasi-static model (differences: "
-                f"quasi-static / dynamic - 1; {errors}; estimate: first-order radiated "
-                "fraction)",
-                "header": header,
-                "rows": rows,
-            },
-            {
-                "title": "Velocity up to which the quasi-static value holds (linear "
-                "interpolation between the computed velocities; stated where the estimated "
-                "error of the difference at the deciding velocities, given as ±, is below a "
-                "fifth of the level)",
-                "header": ["quantity", "to 1 %", "to 5 %"],
-                "rows": limit_rows,
-            },
-        ]
-
     def document(self) -> dict[str, object]:
-        """The study's entry of results.json (without the common keys)."""
+        """The study's numbers for results.json (:mod:`shtaerman.output.text_dynamic` adds the
+        display ``tables`` and ``findings`` and the common keys)."""
         study, settings = self.study, self.settings
         return {
             "inputs": {
@@ -633,43 +485,11 @@ class DynamicStudyOutcome:
             "estimated": self.estimated,
             "limits": self.limits(),
             "cpu_seconds": self.cpu_seconds,
-            "tables": self.tables(),
-            "findings": self.findings(),
         }
 
     @property
     def settings(self) -> DynamicSettings:
         return self.study.quick_settings if self.quick else self.study.settings
-
-
-def _ratio(difference: float, error: float) -> float:
-    return math.inf if error == 0 else abs(difference) / error
-
-
-def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
-    """``pm(key, scale=1)``: " ± <scale x the absolute error of key>", "" without estimates."""
-
-    def pm(key: str, scale: float = 1.0) -> str:
-        return f" ± {scale * estimates[key].absolute_error:.1g}" if key in estimates else ""
-
-    return pm
-
-
-def _limit_text(limit: dict, smallest: float, *, error: bool = False) -> str:
-    """A velocity limit in words; "not resolved (...)" unless its estimate resolves it;
-    ``error``: the estimate as ± percentage points after a stated limit."""
-    if not limit["resolved"]:
-        if limit["error"] is None:
-            return "not resolved (no error estimate)"
-        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
-    suffix = f"± {100 * limit['error']:.1g} %" if error else ""
-    if limit["bound"] == "none":
-        return f"not even at {smallest:g} m/s (the smallest v0 computed{'; ' * error}{suffix})"
-    if limit["bound"] == "all":
-        return f"up to at least {limit['velocity']:g} m/s (every v0 computed{'; ' * error}{suffix})"
-    spread = limit.get("velocity_error") if error else None
-    plus_minus = "" if spread is None else f" ± {spread:.1g}"
-    return f"up to {limit['velocity']:.2f}{plus_minus} m/s" + (f" ({suffix})" if error else "")
 
 
 def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
@@ -694,10 +514,9 @@ def run_dynamic_study(
 ) -> DynamicStudyOutcome:
     """Run the dynamic impact at every velocity of the study (``quick``: its quick variant).
 
-    The example velocity keeps the fields at the quasi-static t_c and at 1.05 t_y (the
-    dynamic contact lasts 0.3-1.5 % longer than t_y: the striker has separated by then) for
-    the wave-field pictures. Every velocity also runs the error-estimate ladder's two coarser
-    levels, except in a quick run.
+    The example velocity keeps the fields at the quasi-static t_c and at
+    :data:`SEPARATION_SNAPSHOT` t_y for the wave-field pictures. Every velocity also runs the
+    error-estimate ladder's two coarser levels, except in a quick run.
     """
     report = progress or (lambda _line: None)
     start, cpu = time.perf_counter(), time.process_time()

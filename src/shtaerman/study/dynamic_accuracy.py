@@ -6,23 +6,13 @@ estimates (:mod:`.richardson`) of the finest run's x_max, P_max, t_contact, rest
 radiated fraction 1 - e^2. There is no exact solution to compare with here: the estimate is
 what the number carries. A quantity derived from a run (a ratio to the quasi-static value) is
 estimated by Richardson on its own values over the levels (:meth:`DynamicLadder.estimate`),
-not by propagating the estimates above. The coarse levels cost about 0.75 of the finest:
-steps fall by sqrt 2 per level but the graded meshes' dofs only by 1.2-1.5 (fem/dynamic.toml's
-settings: 6.3k, 7.8k, 11.7k dofs; 14.1 s CPU for its six velocities without the ladder, 24.8 s
-with it).
+not by propagating the estimates above.
 
-The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``) is measured
-on the paper's case at 3 m/s along the ladder's own direction, refine 0.5 to 4
-(benchmarks/bench_dynamic_study.py (c)): x_max converges regularly (order 2.0-2.3 refining the
-time step alone, 2.2-2.7 the mesh alone), while P_max, t_contact and e scatter by 1e-4, 3e-4
-and 2e-5 at every level (the flat top's ripple under the peak fit; the graded meshes are not
-nested, each level places the contact-edge nodes anew, and e scatters with the mesh only).
-For those, the last of the two differences is a random draw that vanishes when two levels
-agree by chance (with it and each ladder's observed order, 4 of the 15 estimates of the
-ladders ending at K = 1, 1.41 and 2 were 0.05-0.3 of the difference to the finest run; now
-all are 1.3-7.9); the larger of the two differences measures the scatter. A scatter that
-happens to look monotone over three levels cannot be told from convergence (refining the
-time step alone, t_contact's last ladder: 0.14).
+The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``): x_max
+converges regularly, while P_max, t_contact and e scatter from level to level (the graded
+meshes are not nested), so the larger of the two differences between consecutive levels is
+reported where no clean order is observed. Its effectivity is measured in
+``benchmarks/bench_dynamic_study.py`` (c).
 """
 
 from __future__ import annotations

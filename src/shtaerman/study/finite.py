@@ -21,10 +21,10 @@ The striker is rigid (the finite-strain FEM has a rigid indenter; a steel strike
 changes E* by 5e-5 for the paper's rubber). A study runs:
 
 1. the finite-strain curve (:func:`.finite_indentation.run_finite_study`) over the ladder;
-2. the linear FEM on the same mesh and depths (0.5 s): P_finite / P_linear-FEM isolates the
+2. the linear FEM on the same mesh and depths: P_finite / P_linear-FEM isolates the
    finite-strain effect from the discretization error (which cancels to leading order);
 3. three impacts M x'' = -P(x): Shtaerman's exact (the paper's), and the tabulated linear-FEM
-   and finite-strain curves (:mod:`.contact_law`, :func:`.run._tabulated_impact`);
+   and finite-strain curves (:mod:`.contact_law`, :func:`.run.tabulated_impact`);
 4. all of it again on the study's mesh refined by 1/2 and 1/sqrt(2): Richardson estimates of
    every reported number (:mod:`.finite_accuracy`). ``verify --quick`` runs one coarse mesh
    and estimates nothing.
@@ -58,23 +58,23 @@ from ..validation import InputError
 from .accuracy import check_ladder, ladder_factors
 from .checks import Check
 from .contact_law import fem_contact_law
-from .finite_accuracy import CROSSING_KEYS, FiniteEstimates, estimate_study, resolved
+from .finite_accuracy import FiniteEstimates, estimate_study
 from .finite_indentation import FiniteIndentationResult, run_finite_study
 from .indentation import IndentationResult, run_indentation
-from .run import HISTORY_POINTS, Progress, _maxima, _tabulated_impact
+from .run import HISTORY_POINTS, Progress, impact_maxima, tabulated_impact
 from .schema import (
+    ImpactTable,
+    IndenterTable,
+    MaterialTable,
+    MeshTable,
     Poisson,
     Positive,
     Relative,
     StudyError,
-    _decode,
-    _Impact,
-    _Indenter,
-    _Material,
-    _Mesh,
-    _Table,
-    _validated,
+    Table,
+    decode,
     validate_name,
+    validated,
 )
 
 __all__ = [
@@ -89,41 +89,33 @@ __all__ = [
 ]
 
 QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_growth=0.35)
-"""Coarse mesh of ``verify --quick`` (a few seconds; force within about 1 % of the default)."""
+"""Coarse mesh of ``verify --quick`` (one mesh, no error estimates)."""
 LEVELS = (0.01, 0.05)
 """Departures of P from the linear force whose depths the study reports."""
-VARIANTS = {
-    "linear_exact": "Shtaerman, linear (the paper's)",
-    "linear_fem": "linear FEM, same mesh",
-    "finite_strain": "neo-Hookean finite strain",
-}
-"""Impact variants: key -> label."""
-QUICK_ERROR = (
-    "Quick mode: one coarse mesh (about 3.7k dofs), no error estimates: the force is within "
-    "~1.5 % of Shtaerman's at small depths, the impact ratios within ~1e-3 of the default run's."
-)
+VARIANTS = ("linear_exact", "linear_fem", "finite_strain")
+"""Impact variants: Shtaerman's exact, the same-mesh linear FEM and the finite-strain FEM."""
 SWEEPABLE = {"poisson_ratio": "nu", "mass": "M", "velocity": "v0"}
 
 Count = Annotated[int, msgspec.Meta(ge=1, le=200)]
 Small = Annotated[float, msgspec.Meta(gt=0, le=0.2)]
 
 
-class _Contact(_Table):
+class _Contact(Table):
     reach: Annotated[float, msgspec.Meta(ge=1.0, le=3.0)] = 1.1
     steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 12
     small_ratio: Small = 0.01
     small_steps: Count = 5
 
 
-class _Quick(_Table):
+class _Quick(Table):
     steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 6
     small_steps: Count = 2
     small_ratio: Small = 0.02
     small_strain: Relative = 2e-2
-    mesh: _Mesh = _Mesh()
+    mesh: MeshTable = MeshTable()
 
 
-class _Tolerances(_Table):
+class _Tolerances(Table):
     small_strain: Relative = 5e-3
     small_strain_fem: Relative = 2e-3
     conservation: Relative = 2e-3
@@ -131,7 +123,7 @@ class _Tolerances(_Table):
     complementarity: Relative = 1e-6
 
 
-class _Sweep(_Table):
+class _Sweep(Table):
     poisson_ratio: list[Poisson] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
@@ -146,14 +138,14 @@ class _Sweep(_Table):
         self.chosen()
 
 
-class _FiniteFile(_Table):
-    indenter: _Indenter
-    half_space: _Material
-    impact: _Impact
+class _FiniteFile(Table):
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
     name: str | None = None
     description: str = ""
     contact: _Contact = _Contact()
-    mesh: _Mesh = _Mesh()
+    mesh: MeshTable = MeshTable()
     quick: _Quick = _Quick()
     tolerances: _Tolerances = _Tolerances()
     sweep: _Sweep | None = None
@@ -168,7 +160,7 @@ class FiniteTolerances:
     small_strain_fem: float = 2e-3
     """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
     conservation: float = 2e-3
-    """|Simpson's Int P dx / stored energy - 1| (issue 9: with >= 16 depth steps)."""
+    """|Simpson's Int P dx / stored energy - 1|."""
     newton: float = 1e-6
     """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
     complementarity: float = 1e-6
@@ -209,7 +201,7 @@ class FiniteStudy:
     kind: str = "finite-strain"
 
 
-def _mesh(table: _Mesh, default: MeshSettings, where: str) -> MeshSettings:
+def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
     settings = table.settings(default, where)
     refine = 1.0 if table.refine is None else table.refine
     try:
@@ -268,14 +260,14 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         Naming the file and the key, for any unknown key, wrong type or value out of range,
         or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
     """
-    raw = _decode(path, data, _FiniteFile)
+    raw = decode(path, data, _FiniteFile)
     try:
         studies = _expanded(_build(path, raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
-    return _validated(path, studies)
+    return validated(path, studies)
 
 
 def depth_at_ratio(indenter: PowerLawIndenter, ratio: float) -> float:
@@ -448,94 +440,10 @@ class FiniteStudyOutcome:
         crossings = self.estimates.crossings
         return [entry | crossing for entry, crossing in zip(entries, crossings, strict=True)]
 
-    def _pm(self, key: str, step: int | None = None) -> str:
-        """The text " ± e", e the estimated relative error of a scalar (or of ``key`` at
-        depth ``step``); "" without a ladder."""
-        if self.estimates is None:
-            return ""
-        estimate = self.estimates.scalars if step is None else self.estimates.steps[step]
-        return f" ± {estimate[key].error:.1e}"
-
-    def findings(self) -> list[str]:
-        """Sentences for the report's opening section, with the measured numbers and, after a
-        ladder, their estimated relative errors (± ...)."""
-        study, ratios, at = self.study, self.ratios(), self.at_maximum()
-        exact = self.impacts["linear_exact"]
-        nu = study.half_space.poisson_ratio
-        fem = {
-            k: self.impacts["finite_strain"][k] / self.impacts["linear_fem"][k] - 1
-            for k in ("x_c", "P_c", "t_c")
-        }
-        pm = self._pm
-        found = [
-            f"Real rubber (neo-Hookean, nu2 = {nu:g}) moves the paper's impact "
-            f"({study.mass:g} kg at {study.velocity:g} m/s): x_c {ratios['x_c'] - 1:+.2%}"
-            f"{pm('x_c')}, P_c {ratios['P_c'] - 1:+.2%}{pm('P_c')}, t_c "
-            f"{ratios['t_c'] - 1:+.2%}{pm('t_c')} against Shtaerman's "
-            f"linear x_c = {exact['x_c'] * 1e3:.3f} mm, P_c = {exact['P_c']:.1f} N, "
-            f"t_c = {exact['t_c'] * 1e3:.3f} ms (against the linear FEM on the same mesh, "
-            f"which cancels the discretization: {fem['x_c']:+.2%}{pm('x_c_vs_fem')}, "
-            f"{fem['P_c']:+.2%}{pm('P_c_vs_fem')}, {fem['t_c']:+.2%}{pm('t_c_vs_fem')}).",
-            f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): P/(beta x^q) = "
-            f"{at['force_ratio']:.4f}{pm('force_ratio_at_x_c')}, p(0)/p_avg = "
-            f"{at['central_to_mean']:.3f}{pm('central_to_mean_at_x_c')} (linear "
-            f"{self.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
-            f"{at['radius_ratio']:.4f}{pm('radius_ratio_at_x_c')}.",
-            self._validity_finding(),
-            QUICK_ERROR if self.estimates is None else self._estimate_finding(),
-        ]
-        return found
-
-    def _validity_finding(self) -> str:
-        parts = []
-        for entry in self.limits():
-            level = f"{entry['level']:.0%}"
-            if "departure_error" in entry and not resolved(
-                entry["level"], entry["departure_error"]
-            ):
-                parts.append(
-                    f"to {level}: not resolved (the departure's estimated error there, "
-                    f"{entry['departure_error']:.1e}, is not below a fifth of {level})"
-                )
-                continue
-            errors = entry.get("errors", {})
-            pm = {k: f" ± {errors[k]:.1e}" if k in errors else "" for k in CROSSING_KEYS}
-            where = (
-                f"x/a = {entry['depth_to_radius']:.3f}{pm['depth_to_radius']} (depth "
-                f"{entry['depth'] * 1e3:.3g} mm{pm['depth']}, reached by an impact at "
-                f"{entry['velocity']:.2g} m/s{pm['velocity']})"
-            )
-            if entry["status"] == "beyond":
-                parts.append(f"to {level} at every computed depth, up to {where}")
-            elif entry["status"] == "below":
-                parts.append(f"to {level} not even at the first depth, {where}")
-            else:
-                parts.append(f"to {level} up to {where}")
-        return (
-            "The linear force beta x^q holds " + "; ".join(parts) + " (P against the linear "
-            "FEM on the same mesh; crossings interpolated linearly in x/a between computed "
-            "depths; velocities from the stored energy, v = sqrt(2 W / M))."
-        )
-
-    def _estimate_finding(self) -> str:
-        estimates = self.estimates
-        worst = estimates.worst_step()
-        every = [*estimates.scalars.values(), *(e for s in estimates.steps for e in s.values())]
-        fallback = sum(e.method != "richardson" for e in every)
-        return (
-            "± is the estimated relative error of the value: Richardson extrapolation over "
-            f"the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
-            f"({'/'.join(str(d) for d in estimates.dofs)} dofs, "
-            f"{sum(estimates.cpu_seconds):.0f} s of CPU time in all). Largest over the depths: "
-            f"P/(beta x^q) ± {estimates.scalars['force_ratio_worst'].error:.1e} at x/a = "
-            f"{self.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {len(every)} estimates "
-            "fell back to the difference of the two finest meshes (differences not shrinking, "
-            "or an observed order outside 1.5-4.5: the ~1e-4 noise of non-nested meshes)."
-        )
-
     def document(self) -> dict[str, object]:
-        """The results.json entry (JSON-ready), with display ``tables`` and ``findings``, and
-        after a mesh ladder its estimates under ``accuracy``
+        """The study's numbers for results.json (JSON-ready; :mod:`shtaerman.output.text_finite`
+        adds the display ``tables`` and ``findings``), after a mesh ladder its estimates under
+        ``accuracy``
         (:meth:`.finite_accuracy.FiniteEstimates.to_dict`)."""
         mesh = self.mesh
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
@@ -560,111 +468,6 @@ class FiniteStudyOutcome:
             "validity": self.limits(),
             **accuracy,
             "cpu_seconds": self.cpu_seconds,
-            "tables": self.tables(),
-            "findings": self.findings(),
-        }
-
-    def tables(self) -> list[dict[str, object]]:
-        """The curve, the three impacts and the validity depths as display strings (after a
-        ladder: value ± estimated relative error)."""
-        return [self._curve_table(), self._impact_table(), self._validity_table()]
-
-    def _curve_table(self) -> dict[str, object]:
-        columns = (
-            ("force_ratio", "P/P_lin", ".4f"),
-            ("force_ratio_fem", "P/P_linFEM", ".4f"),
-            ("radius_ratio", "a/a_lin", ".4f"),
-            ("central_to_mean", "p(0)/p_avg", ".3f"),
-            ("strain_energy", "W (J)", ".4g"),
-        )
-        rows = [
-            [
-                f"{r['depth'] * 1e3:.4g}",
-                f"{r['depth_to_radius']:.3f}",
-                f"{r['force']:.4g}",
-                *[f"{r[key]:{fmt}}{self._pm(key, k)}" for key, _, fmt in columns],
-                str(r["newton_iterations"]),
-            ]
-            for k, r in enumerate(self.rows())
-        ]
-        return {
-            "title": "Finite-strain contact curve beside the linear solution"
-            + ("" if self.estimates is None else " (± estimated relative error; P's is P/P_lin's)"),
-            "header": ["x (mm)", "x/a", "P (N)", *[label for _, label, _ in columns], "Newton"],
-            "rows": rows,
-        }
-
-    def _impact_table(self) -> dict[str, object]:
-        keys = (
-            ("x_c", 1e3, "x_c (mm)"),
-            ("P_c", 1.0, "P_c (N)"),
-            ("a_c", 1e3, "a_c (mm)"),
-            ("p_c", 1e-6, "p_c (MPa)"),
-            ("t_c", 1e3, "t_c (ms)"),
-            ("t_y", 1e3, "t_y (ms)"),
-        )
-        rows = [
-            [
-                VARIANTS[variant],
-                *[
-                    f"{values[k] * s:.5g}{self._pm(k) if variant == 'finite_strain' else ''}"
-                    for k, s, _ in keys
-                ],
-            ]
-            for variant, values in self.impacts.items()
-        ]
-        finite, fem = self.impacts["finite_strain"], self.impacts["linear_fem"]
-        rows += [
-            [
-                "finite strain / linear exact - 1",
-                *[f"{self.ratios()[k] - 1:+.2%}{self._pm(k)}" for k, _, _ in keys],
-            ],
-            [
-                "finite strain / linear FEM - 1",
-                *[f"{finite[k] / fem[k] - 1:+.2%}{self._pm(f'{k}_vs_fem')}" for k, _, _ in keys],
-            ],
-        ]
-        return {
-            "title": "Impact M x'' = -P(x): the paper's linear model and real rubber"
-            + ("" if self.estimates is None else " (± estimated relative error)"),
-            "header": ["model", *[label for _, _, label in keys]],
-            "rows": rows,
-        }
-
-    def _validity_table(self) -> dict[str, object]:
-        def cell(entry: dict, key: str, scale: float, fmt: str) -> str:
-            errors = entry.get("errors", {})
-            text = f"{entry[key] * scale:{fmt}}"
-            return text + (f" ± {errors[key]:.1e}" if key in errors else "")
-
-        def decided(entry: dict) -> str:
-            if "departure_error" not in entry:
-                return "not estimated (quick)"
-            verdict = resolved(entry["level"], entry["departure_error"])
-            return f"{entry['departure_error']:.1e} ({'' if verdict else 'not '}resolved)"
-
-        return {
-            "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; resolved where "
-            "the departure's estimated error is below a fifth of the level)",
-            "header": [
-                "level",
-                "up to x/a",
-                "depth (mm)",
-                "impact velocity (m/s)",
-                "how",
-                "departure error there",
-            ],
-            "rows": [
-                [
-                    f"{e['level']:.0%}",
-                    cell(e, "depth_to_radius", 1.0, ".3f"),
-                    cell(e, "depth", 1e3, ".4g"),
-                    cell(e, "velocity", 1.0, ".3g"),
-                    str(e["status"]),
-                    decided(e),
-                ]
-                for e in self.limits()
-            ],
         }
 
 
@@ -735,14 +538,14 @@ def _run_level(
     finite = run_finite_study(study.indenter, study.half_space, depths, mesh)
     # nodal-sum forces, the finite-strain solver's own discretization: the ratio cancels it
     linear = run_indentation(study.indenter, study.half_space, depths, mesh, aligned=False)
-    impacts = {"linear_exact": {k: v for k, v in _maxima(exact).items() if k != "beta"}}
+    impacts = {"linear_exact": {k: v for k, v in impact_maxima(exact).items() if k != "beta"}}
     histories = {"linear_exact": exact.history(HISTORY_POINTS)}
     for variant, result in (("linear_fem", linear), ("finite_strain", finite)):
         with warnings.catch_warnings():
             # quad's energy bracket (only the ODE's length scale) meets the log-log kinks
             warnings.simplefilter("ignore", IntegrationWarning)
             law = fem_contact_law(result, modulus)
-            maxima, history = _tabulated_impact(study, law, exact.x_c)
+            maxima, history = tabulated_impact(study, law, exact.x_c)
         maxima.pop("beta")
         impacts[variant], histories[variant] = maxima, history
     return FiniteStudyOutcome(
@@ -776,7 +579,7 @@ def run_finite_strain_study(
     progress : callable, optional
         Receives a short line per stage.
     estimate : bool
-        False: the study's mesh only, no estimates (sweeps; about 1.4x faster).
+        False: the study's mesh only, no estimates (sweeps).
 
     Returns
     -------

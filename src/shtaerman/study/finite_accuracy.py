@@ -22,21 +22,20 @@ from __future__ import annotations
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .accuracy import LADDER_RATIO
 from .richardson import Estimate, richardson
-
-if TYPE_CHECKING:
-    from .finite import FiniteStudyOutcome
 
 __all__ = [
     "CROSSING_KEYS",
     "RESOLVED_FRACTION",
     "STEP_KEYS",
     "FiniteEstimates",
+    "LevelOutcome",
     "estimate_study",
     "reported_values",
     "resolved",
@@ -55,6 +54,22 @@ CROSSING_KEYS = ("depth_to_radius", "depth", "velocity")
 RESOLVED_FRACTION = 0.2
 """A crossing is stated only where the departure's estimated error is below this fraction
 of its level (1 % -> 2e-3 of force)."""
+
+
+class LevelOutcome(Protocol):
+    """What the estimator reads of one ladder level's study outcome
+    (:class:`.finite.FiniteStudyOutcome` without estimates)."""
+
+    impacts: dict[str, dict[str, float]]
+    finite: Any
+    seconds: float
+    cpu_seconds: float
+
+    def rows(self) -> list[dict[str, float]]: ...
+
+    def at_maximum(self) -> dict[str, float]: ...
+
+    def validity(self, departure_shift: ArrayLike = 0.0) -> list[dict[str, Any]]: ...
 
 
 def resolved(level: float, departure_error: float) -> bool:
@@ -118,7 +133,7 @@ def _worst(steps: Sequence[dict[str, Estimate]], key: str) -> int:
     return int(np.argmax([step[key].error for step in steps]))
 
 
-def reported_values(outcome: FiniteStudyOutcome) -> dict[str, float]:
+def reported_values(outcome: LevelOutcome) -> dict[str, float]:
     """The scalars an outcome reports that get an estimate, by the keys of
     :attr:`FiniteEstimates.scalars` (``force_ratio_worst`` aside)."""
     finite, fem = outcome.impacts["finite_strain"], outcome.impacts["linear_fem"]
@@ -155,7 +170,7 @@ def _crossing(index: int, levels: list[list[dict]], moved: list[list[dict]]) -> 
 
 
 def _crossings(
-    outcomes: Sequence[FiniteStudyOutcome], steps: tuple[dict[str, Estimate], ...]
+    outcomes: Sequence[LevelOutcome], steps: tuple[dict[str, Estimate], ...]
 ) -> tuple[dict[str, object], ...]:
     """``errors`` and ``departure_error`` of each 1 % / 5 % crossing of the finest outcome."""
     finest = outcomes[-1]
@@ -178,14 +193,12 @@ def _crossings(
     )
 
 
-def estimate_study(
-    outcomes: Sequence[FiniteStudyOutcome], refines: Sequence[float]
-) -> FiniteEstimates:
+def estimate_study(outcomes: Sequence[LevelOutcome], refines: Sequence[float]) -> FiniteEstimates:
     """Estimates of the last (finest) of three study outcomes on one mesh ladder.
 
     Parameters
     ----------
-    outcomes : sequence of FiniteStudyOutcome
+    outcomes : sequence of LevelOutcome
         The study on the ladder's meshes, coarse to fine (same depths), without estimates.
     refines : sequence of float
         Their refinement factors (consecutive ratio :data:`.accuracy.LADDER_RATIO`).

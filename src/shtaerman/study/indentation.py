@@ -2,7 +2,7 @@
 
 A rigid indenter z = A r^n is pressed into the half-space (E2, nu2) to a list of depths; each
 depth's force, contact radius and central pressure are compared with Shtaerman's exact solution
-(:mod:`shtaerman.analytic_contact`, with E* = E2/(1 - nu2^2) for the rigid indenter), and the
+(:mod:`shtaerman.theory.contact`, with E* = E2/(1 - nu2^2) for the rigid indenter), and the
 curve P(x) is fitted by a power law.
 """
 

@@ -17,9 +17,8 @@ level), ``fallback="largest"`` reports max(|d1|, |d2|) / |Q3| instead: the scatt
 as the ladder shows it; the last difference alone vanishes whenever two levels agree by chance.
 
 Where the asymptotic order q is known better than one ladder can observe it (the contact
-force: coarse ladders observe 1-1.6 where error terms of opposite sign still compete, fine ones
-3.5-4.2; benchmarks/bench_accuracy.py), the observed p only guards the asymptotic regime and
-the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
+force, whose coarse ladders still mix error terms of opposite sign), the observed p only guards
+the asymptotic regime and the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
 
 :func:`curve_richardson` does the same for a curve (a quantity at several depths), with the
 largest relative difference over the depths in place of |d1| and |d2|: the estimate of the
@@ -41,10 +40,8 @@ from ..validation import InputError
 __all__ = ["FALLBACKS", "ORDER_RANGE", "Estimate", "curve_richardson", "richardson"]
 
 ORDER_RANGE = (1.5, 4.5)
-"""Observed orders accepted for extrapolation. P2 contact converges at orders 2-3 here
-(bench_contact.py (b): force 2.55, beta 2.8-3.15, p(0) 2.9); an order outside this range
-means the coarse level is not yet asymptotic (observed 0.5-0.9 on the default ladder, whose
-coarsest level has growth 0.5), and extrapolating with it overestimates the error 4-10x."""
+"""Observed orders accepted for extrapolation; outside this range the coarse level is taken as
+not yet asymptotic (P2 contact's orders: ``benchmarks/bench_contact.py`` (b))."""
 
 FALLBACKS = ("last", "largest")
 """What :func:`richardson` reports without a clean order: the last difference |d2|, or the

@@ -79,9 +79,13 @@ def _study_depths(study: Study, exact: ImpactResult) -> np.ndarray:
     return depths_up_to(DEPTH_OVERSHOOT * exact.x_c, study.indenter.exponent)
 
 
-def _tabulated_impact(
+def tabulated_impact(
     study: Study, law: FemContactLaw, guess: float
 ) -> tuple[dict[str, float], ImpactHistory]:
+    """The impact M x'' = -P(x) on a tabulated FEM curve: its maxima (beta NaN) and history.
+
+    ``guess`` (m) sets the ODE's length scale (the exact impact's x_c).
+    """
     numerical = integrate_impact(study.mass, study.velocity, law.force, guess)
     t = np.linspace(0.0, numerical.t_y, HISTORY_POINTS)
     x, v = numerical.sample(t)
@@ -101,7 +105,8 @@ def _tabulated_impact(
     return maxima, history
 
 
-def _maxima(result: ImpactResult) -> dict[str, float]:
+def impact_maxima(result: ImpactResult) -> dict[str, float]:
+    """beta and the maxima x_c, P_c, a_c, p_c, t_c, t_y of an impact (SI units)."""
     return {key: float(getattr(result, key)) for key in IMPACT_KEYS}
 
 
@@ -170,10 +175,10 @@ def run_contact_study(
     report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
     law = fem_contact_law(contact, modulus)
     fitted = solve_impact(study.mass, study.velocity, law)
-    tabulated, tabulated_history = _tabulated_impact(study, law, exact.x_c)
+    tabulated, tabulated_history = tabulated_impact(study, law, exact.x_c)
     impacts = {
-        "analytic": _maxima(exact),
-        "fem_fitted": _maxima(fitted),
+        "analytic": impact_maxima(exact),
+        "fem_fitted": impact_maxima(fitted),
         "fem_tabulated": tabulated,
     }
     histories = {

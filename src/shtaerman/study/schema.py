@@ -62,7 +62,7 @@ __all__ = [
 ]
 
 QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
-"""Coarse mesh of ``verify --quick`` (about 5k dofs; errors about 2x the default's)."""
+"""Coarse mesh of ``verify --quick``."""
 
 SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "v0"}
 """Sweepable parameters and the symbol that names each expanded study."""
@@ -92,26 +92,32 @@ Relative = Annotated[float, msgspec.Meta(gt=0, le=1)]
 Poisson = Annotated[float, msgspec.Meta(gt=-1, le=0.5)]
 
 
-class _Table(msgspec.Struct, forbid_unknown_fields=True, frozen=True):
+class Table(msgspec.Struct, forbid_unknown_fields=True, frozen=True):
     """A TOML table: unknown keys are errors."""
 
 
-class _Indenter(_Table):
+class IndenterTable(Table):
+    """``[indenter]``: z = A r^n, A in m^(1-n)."""
+
     shape_coefficient: Positive
     exponent: Positive
 
 
-class _Material(_Table):
+class MaterialTable(Table):
+    """An elastic material: E in Pa (``"inf"``: rigid), nu."""
+
     youngs_modulus: Positive | Literal["inf"]
     poisson_ratio: Poisson
 
 
-class _Impact(_Table):
+class ImpactTable(Table):
+    """``[impact]``: striker mass in kg, approach velocity in m/s."""
+
     mass: Positive
     velocity: Positive
 
 
-class _Contact(_Table):
+class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
 
     def __post_init__(self) -> None:
@@ -121,7 +127,9 @@ class _Contact(_Table):
             raise ValueError(f"depths: {EXPECTED['depths']}")
 
 
-class _Mesh(_Table):
+class MeshTable(Table):
+    """``[mesh]``: ``refine`` and the :class:`shtaerman.fem.mesh.MeshSettings` fields."""
+
     refine: Positive | None = None
     margin: Positive | None = None
     size: Positive | None = None
@@ -142,7 +150,7 @@ class _Mesh(_Table):
             raise InputError(f"[{table}] {error}") from None
 
 
-class _Tolerances(_Table):
+class _Tolerances(Table):
     force: Relative = 1e-3
     beta: Relative = 1e-3
     exponent: Relative = 1e-3
@@ -151,7 +159,7 @@ class _Tolerances(_Table):
     impact: Relative = 2e-3
 
 
-class _Convergence(_Table):
+class _Convergence(Table):
     sizes: list[Annotated[float, msgspec.Meta(gt=0, lt=1)]] = []
 
     def __post_init__(self) -> None:
@@ -159,7 +167,7 @@ class _Convergence(_Table):
             raise ValueError(f"sizes: {EXPECTED['sizes']}")
 
 
-class _Sweep(_Table):
+class _Sweep(Table):
     shape_coefficient: list[Positive] | None = None
     exponent: list[Positive] | None = None
     mass: list[Positive] | None = None
@@ -175,16 +183,16 @@ class _Sweep(_Table):
         self.chosen()
 
 
-class _StudyFile(_Table):
-    indenter: _Indenter
-    half_space: _Material
-    impact: _Impact
+class _StudyFile(Table):
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
     name: str | None = None
     description: str = ""
-    striker: _Material | None = None
+    striker: MaterialTable | None = None
     contact: _Contact = _Contact()
-    mesh: _Mesh = _Mesh()
-    quick_mesh: _Mesh = _Mesh()
+    mesh: MeshTable = MeshTable()
+    quick_mesh: MeshTable = MeshTable()
     tolerances: _Tolerances = _Tolerances()
     convergence: _Convergence = _Convergence()
     sweep: _Sweep | None = None
@@ -192,7 +200,7 @@ class _StudyFile(_Table):
 
 @dataclass(frozen=True)
 class Tolerances:
-    """Relative tolerances that decide pass or fail (the FEM issue's acceptance limits)."""
+    """Relative tolerances that decide pass or fail."""
 
     force: float = 1e-3
     beta: float = 1e-3
@@ -242,7 +250,7 @@ def _allowed_keys(path: list[str], root: type = _StudyFile) -> list[str]:
     for key in path:
         hint = get_type_hints(struct)[key]
         candidates = [hint, *get_args(hint)]
-        struct = next(c for c in candidates if isinstance(c, type) and issubclass(c, _Table))
+        struct = next(c for c in candidates if isinstance(c, type) and issubclass(c, Table))
     return sorted(struct.__struct_fields__)
 
 
@@ -292,8 +300,8 @@ def _located(message: str, data: dict[str, Any], root: type = _StudyFile) -> tup
     return keys, f"{expectation}{shown}"
 
 
-def _decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
-    """``data`` as the schema ``root`` (a :class:`_Table`; default: a contact study file), or
+def decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
+    """``data`` as the schema ``root`` (a :class:`Table`; default: a contact study file), or
     :class:`StudyError` naming the file, the key and what was expected."""
     try:
         decoded = msgspec.convert(data, root)
@@ -335,7 +343,7 @@ def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
     return tuple(raw.convergence.sizes)
 
 
-def _material(table: _Material) -> Material:
+def _material(table: MaterialTable) -> Material:
     if table.youngs_modulus == "inf":
         return RIGID
     return Material(table.youngs_modulus, table.poisson_ratio)
@@ -423,7 +431,7 @@ def fem_input_error(path: Path, error: InputError) -> StudyError:
     return StudyError(f"{path}: key '{key}': {error}")
 
 
-def _validated(path: Path, studies: list) -> list:
+def validated(path: Path, studies: list) -> list:
     """``studies`` after the name and FEM-input checks, or a StudyError naming file and key."""
     for study in studies:
         try:
@@ -439,14 +447,14 @@ def _validated(path: Path, studies: list) -> list:
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
-    raw = _decode(path, data)
+    raw = decode(path, data)
     try:
         studies = _expanded(_build(path, raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
-    return _validated(path, studies)
+    return validated(path, studies)
 
 
 def studies_folder() -> Path:

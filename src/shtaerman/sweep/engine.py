@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..output.files import _probe, file_mode, json_safe, missing_folder
+from ..output.files import file_mode, json_safe, missing_folder, probe_writable
 from ..validation import InputError
 from .kinds import unit_suffix
 from .spec import Case, SweepSpec
@@ -240,7 +240,7 @@ def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> C
         raise InputError(f"out: {str(out)!r} exists and is not a folder")
     if not out.parent.is_dir():
         raise InputError(f"out: {missing_folder(out.parent)}")
-    _probe("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
+    probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
     stored = out / SPEC_FILE
     if out.is_dir() and resume:
         if not stored.is_file():
@@ -337,14 +337,13 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
             with _signals_ignored():
                 client.close()
         return
-    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers: every large numpy
-    # temporary is then returned to the OS and faulted in again, which made the FEM studies
-    # 3.4x slower in CPU (sys time 40 %) than in one process; the workers keep glibc's default
+    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers, which returns every large
+    # numpy temporary to the OS to be faulted in again; the workers keep glibc's default
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
     environ.pop("MALLOC_TRIM_THRESHOLD_", None)
     # the workers log only what is critical: a task's exception reaches the client with the
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
-    # printed a "heartbeat" traceback at shutdown, about 1 run in 2 of two studies
+    # would print a "heartbeat" traceback at shutdown
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
     with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
         cluster = _local_cluster(workers)

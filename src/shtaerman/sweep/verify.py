@@ -24,12 +24,7 @@ __all__ = ["run_verification_on_dask", "submission_order", "verify_task"]
 
 def submission_order(studies: list[Any]) -> list[Any]:
     """The long studies first (finite strain, then dynamic, then contact), so the workers
-    finish together instead of one waiting on a late long study.
-
-    Measured on 2 cores, default verify: 75 s in this order. Keeping the two finite-strain
-    studies apart (the second beside the dynamic one) took 90 s: any concurrent study slows a
-    finite-strain one by 40-50 % (36.5 s against 25 s alone), so the gain is in the order only.
-    """
+    finish together instead of one waiting on a late long study."""
     rank = {"finite-strain": 0, "dynamic": 1}
     return sorted(studies, key=lambda study: rank.get(getattr(study, "kind", ""), 2))
 

@@ -48,7 +48,7 @@ class PowerLawContact:
     indenter : PowerLawIndenter
         The striker's profile z = A r^n.
     modulus : float
-        Combined modulus E* in Pa (see :func:`shtaerman.materials.effective_modulus`).
+        Combined modulus E* in Pa (see :func:`shtaerman.theory.materials.effective_modulus`).
     """
 
     indenter: PowerLawIndenter

@@ -217,7 +217,7 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     velocity : float
         Approach velocity v0 in m/s (> 0; above 5 m/s a :class:`QuasiStaticValidityWarning`).
     law : ContactLaw
-        The static contact law, e.g. :class:`shtaerman.analytic_contact.PowerLawContact`.
+        The static contact law, e.g. :class:`shtaerman.theory.contact.PowerLawContact`.
 
     Returns
     -------

@@ -1,10 +1,10 @@
 """Independent numerical integration of M x'' = -P(x) for any force law P(x).
 
-The built-in cross-check of the exact Ateb solution (:mod:`shtaerman.impact`), and the way to run
-the impact on a tabulated force law with no power-law assumption (the FEM curve). The equation is
-scaled by the energy depth L (Int_0^L P dx = M v0^2 / 2) and L / v0, and integrated with
-scipy's DOP853 at tight tolerances; events mark maximum compression (x' = 0) and separation
-(x = 0).
+The built-in cross-check of the exact Ateb solution (:mod:`shtaerman.theory.impact`), and the
+way to run the impact on a tabulated force law with no power-law assumption (the FEM curve).
+The equation is scaled by the energy depth L (Int_0^L P dx = M v0^2 / 2) and L / v0, and
+integrated with scipy's DOP853 at tight tolerances; events mark maximum compression (x' = 0)
+and separation (x = 0).
 """
 
 from __future__ import annotations

@@ -1,0 +1,202 @@
+"""The contact kind's text and results.json entry: the impact three ways, the error estimates,
+the finding, the times and the cross-check summary row, from the entry's numbers."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from ..study.run import IMPACT_KEYS, StudyOutcome
+from .wording import number, plus_minus, seconds
+
+__all__ = [
+    "CONTACT_COLUMNS",
+    "IMPACT_COLUMNS",
+    "entry",
+    "findings",
+    "summary_row",
+    "tables",
+    "timing_text",
+    "validity_rows",
+]
+
+UNITS = {"beta": "N/m^q", "x_c": "m", "P_c": "N", "a_c": "m", "p_c": "Pa", "t_c": "s", "t_y": "s"}
+VARIANTS = {
+    "analytic": "exact (analytic beta, Ateb)",
+    "fem_fitted": "FEM-fitted beta, Ateb",
+    "fem_tabulated": "FEM P(x) tabulated, ODE",
+}
+CONTACT_COLUMNS = {
+    "force": "force",
+    "beta": "beta",
+    "exponent": "exponent",
+    "contact_radius": "radius",
+    "central_pressure": "p(0)",
+}
+"""Contact error -> its column in the cross-check summary."""
+IMPACT_COLUMNS = ("x_c", "P_c", "t_c")
+"""Impact maxima in the cross-check summary."""
+ESTIMATED = {
+    "force": "force (worst depth)",
+    "beta": "beta",
+    "exponent": "exponent",
+    "contact_radius": "contact radius (worst depth)",
+    "central_pressure": "p(0) (worst depth)",
+}
+
+
+def _timings(outcome: StudyOutcome, output: float | None) -> dict[str, float | None]:
+    """Wall times of one study in s (``output``: writing its files and figures, if known)."""
+    fem = float(outcome.contact.timings.get("total", float("nan")))
+    levels = outcome.convergence.levels if outcome.convergence is not None else []
+    convergence = sum(float(level.get("timings", {}).get("total", 0.0)) for level in levels)
+    return {
+        "fem_curve": fem,
+        "convergence": convergence,
+        "computation": outcome.seconds,
+        "output": output,
+        "total": outcome.seconds + (output or 0.0),
+    }
+
+
+def entry(
+    outcome: StudyOutcome,
+    files: dict[str, str],
+    output_seconds: float | None = None,
+    figures: Mapping[str, str] | None = None,
+) -> dict[str, object]:
+    """One contact study's entry of results.json.
+
+    ``timings`` splits the study's wall time in s: ``fem_curve`` (the FEM contact curve),
+    ``convergence`` (its meshes), ``computation`` (= ``seconds``), ``output`` (files and
+    figures) and ``total``; ``figures``: caption to PNG path relative to the result folder.
+    """
+    study = outcome.study
+    return {
+        "kind": "contact",
+        "description": study.description,
+        "source": str(study.source),
+        "inputs": {
+            "shape_coefficient": study.indenter.shape_coefficient,
+            "exponent": study.indenter.exponent,
+            "E1": study.striker.youngs_modulus,
+            "nu1": study.striker.poisson_ratio,
+            "E2": study.half_space.youngs_modulus,
+            "nu2": study.half_space.poisson_ratio,
+            "mass": study.mass,
+            "velocity": study.velocity,
+        },
+        "contact": outcome.contact.to_dict(),
+        "impact": outcome.impacts,
+        "differences": outcome.differences(),
+        "checks": [check.to_dict() for check in outcome.checks],
+        "passed": outcome.passed,
+        "seconds": outcome.seconds,
+        "timings": _timings(outcome, output_seconds),
+        "files": files,
+        "figures": dict(figures or {}),
+        **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
+        **({"accuracy": outcome.accuracy.to_dict()} if outcome.accuracy else {}),
+    }
+
+
+def _impact_table(study: Mapping[str, Any]) -> dict[str, object]:
+    rows = [
+        [label] + [number(study["impact"][variant][key], ".6g") for key in IMPACT_KEYS]
+        for variant, label in VARIANTS.items()
+        if variant in study["impact"]
+    ]
+    header = ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)]
+    return {"title": "The impact three ways", "header": header, "rows": rows}
+
+
+def _estimate_table(study: Mapping[str, Any]) -> dict[str, object] | None:
+    """FEM value ± its Richardson estimate, the true error and their ratio (effectivity)."""
+    accuracy = study.get("accuracy")
+    if not accuracy:
+        return None
+    ladder = ", ".join(str(level["dofs"]) for level in accuracy["mesh_ladder"])
+    rows = []
+    for key, label in ESTIMATED.items():
+        if key not in accuracy["error_estimate"]:
+            continue
+        details = accuracy["estimate_details"][key]
+        rows.append(
+            [
+                label,
+                number(details["value"], ".6g") + plus_minus(accuracy["error_estimate"][key]),
+                number(accuracy["true_error"].get(key), ".1e"),
+                number(accuracy["effectivity"].get(key), ".2f"),
+                details["method"] + (f" ({details['reason']})" if details["reason"] else ""),
+            ]
+        )
+    return {
+        "title": f"Error estimates (3-mesh ladder, {ladder} dofs): value ± estimated relative "
+        "error, the true error against the exact solution, and their ratio",
+        "header": ["quantity", "FEM value ± estimate", "true error", "effectivity", "method"],
+        "rows": rows,
+    }
+
+
+def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
+    """The impact three ways and, after a ladder, the error estimates."""
+    return [table for table in (_impact_table(study), _estimate_table(study)) if table]
+
+
+def findings(name: str, study: Mapping[str, Any]) -> list[str]:
+    """How closely the FEM reproduces the contact law, and its own estimate of that."""
+    errors = study["contact"]["errors"]
+    text = (
+        f"{name}: the FEM reproduces Shtaerman's contact law to {number(errors['force'], '.1e')}"
+        f" (force), {number(errors['beta'], '.1e')} (beta) and p(0) to "
+        f"{number(errors['central_pressure'], '.1e')}"
+    )
+    accuracy = study.get("accuracy")
+    if accuracy:
+        text += (
+            f"; its own error estimate says {number(accuracy['error_estimate']['force'], '.1e')}"
+            f" (force), {number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
+        )
+    return [text + "."]
+
+
+def timing_text(study: Mapping[str, Any]) -> str:
+    """The FEM curve's stages, the convergence study, the computation, files and total."""
+    timings = study.get("timings") or {}
+    contact = study["contact"]["timings"]
+    parts = [
+        f"FEM curve {seconds(timings.get('fem_curve', contact.get('total')))} s (mesh "
+        f"{seconds(contact.get('mesh'))}, assembly {seconds(contact.get('assembly'))}, "
+        f"factorization {seconds(contact.get('factorization'))}, contact "
+        f"{seconds(contact.get('contact'))})"
+    ]
+    if timings.get("convergence"):
+        parts.append(f"mesh-convergence study {seconds(timings['convergence'])} s")
+    parts.append(f"computation in all {seconds(timings.get('computation', study['seconds']))} s")
+    if timings.get("output") is not None:
+        parts.append(f"files and figures {seconds(timings['output'])} s")
+    parts.append(f"study total {seconds(timings.get('total', study['seconds']))} s")
+    return "; ".join(parts)
+
+
+def summary_row(name: str, study: Mapping[str, Any]) -> list[str]:
+    """The study's row of the contact cross-check: worst contact errors and impact differences."""
+    errors = study["contact"]["errors"]
+    differences = [study["differences"][v] for v in ("fem_fitted", "fem_tabulated")]
+    worst = {
+        key: max((abs(d[key]) for d in differences if d.get(key) is not None), default=float("nan"))
+        for key in IMPACT_COLUMNS
+    }
+    timings = study.get("timings") or {}
+    return [
+        name,
+        "PASS" if study["passed"] else "FAIL",
+        *(number(errors.get(key), ".1e") for key in CONTACT_COLUMNS),
+        *(number(worst[key], ".1e") for key in IMPACT_COLUMNS),
+        seconds(timings.get("fem_curve", study["contact"]["timings"].get("total"))),
+    ]
+
+
+def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
+    """None: a contact study tests no assumption of the impact model."""
+    return []

@@ -1,0 +1,305 @@
+"""The dynamic kind's text: findings, tables and ± strings from its outcome's numbers.
+
+± is the estimated error in the value's unit (percentage points for the differences).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from ..paper.case import is_paper_case
+from ..study.dynamic import COMPARED, DynamicStudyOutcome, compare
+from ..study.richardson import Estimate
+from .entry import kind_entry
+from .wording import plus_minus, times_text
+
+__all__ = [
+    "RELATIVE_ESTIMATES",
+    "entry",
+    "findings",
+    "study_findings",
+    "study_tables",
+    "summary_row",
+    "tables",
+    "timing_text",
+    "validity_rows",
+]
+
+RELATIVE_ESTIMATES = {
+    "x_max": "x_max",
+    "P_max": "P_max",
+    "t_contact": "t_contact",
+    "restitution": "e",
+    "energy_radiated_fraction": "1 - e^2",
+}
+"""Results whose estimated relative error the study reports -> their names in the text."""
+NAMES = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
+"""Compared quantity (and "all") -> its name in the text."""
+
+
+def _ratio(difference: float, error: float) -> float:
+    return math.inf if error == 0 else abs(difference) / error
+
+
+def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
+    """``pm(key, scale=1)``: " ± <scale x the absolute error of key>", "" without estimates."""
+
+    def pm(key: str, scale: float = 1.0) -> str:
+        estimate = estimates.get(key)
+        return "" if estimate is None else plus_minus(estimate.absolute_error, ".1g", scale)
+
+    return pm
+
+
+def _limit_text(limit: Mapping[str, Any], smallest: float, *, error: bool = False) -> str:
+    """A velocity limit in words; "not resolved (...)" unless its estimate resolves it;
+    ``error``: the estimate as ± percentage points after a stated limit."""
+    if not limit["resolved"]:
+        if limit["error"] is None:
+            return "not resolved (no error estimate)"
+        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
+    suffix = f"± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
+    joint = "; " if suffix else ""
+    if limit["bound"] == "none":
+        return f"not even at {smallest:g} m/s (the smallest v0 computed{joint}{suffix})"
+    if limit["bound"] == "all":
+        return f"up to at least {limit['velocity']:g} m/s (every v0 computed{joint}{suffix})"
+    spread = plus_minus(limit.get("velocity_error"), ".1g") if error else ""
+    return f"up to {limit['velocity']:.2f}{spread} m/s" + (f" ({suffix})" if suffix else "")
+
+
+def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
+    """One sentence: the largest estimated errors over the velocities, or why none."""
+    if not outcome.estimated:
+        return (
+            "No error estimates: a quick run skips the 3-level ladder (mesh x2 and x sqrt 2, "
+            "time steps / 2 and / sqrt 2), so the study states no 1 % / 5 % velocity limits."
+        )
+    estimates = [case.estimates() for case in outcome.cases]
+    worst = {key: max(e[key].error for e in estimates) for key in RELATIVE_ESTIMATES}
+    signal = [
+        (_ratio(d, e[f"difference_{k}"].absolute_error), k, case.velocity)
+        for case, e in zip(outcome.cases, estimates, strict=True)
+        for k, d in compare(case.quasi, case.result).items()
+    ]
+    ratio, key, velocity = min(signal)
+    largest = max(e[f"difference_{k}"].absolute_error for e in estimates for k in COMPARED)
+    fallbacks = sum(e.method != "richardson" for case in estimates for e in case.values())
+    example = outcome.example
+    levels = ", ".join(
+        f"{r.mesh['dofs']} dofs/{level.steps} steps"
+        for level, r in zip(example.ladder.settings, example.ladder.results, strict=True)
+    )
+    return (
+        "Error estimates (Richardson over a 3-level ladder refining mesh and time step "
+        f"together: {levels} at {example.velocity:g} m/s), the largest over the "
+        "velocities: relative "
+        + ", ".join(f"{RELATIVE_ESTIMATES[k]} {v:.1e}" for k, v in worst.items())
+        + f"; the differences quasi-static / dynamic - 1 to {100 * largest:.2g} % "
+        f"(absolute), at least {ratio:.0f} times smaller than the difference itself (the "
+        f"closest: {COMPARED[key][0]} at {velocity:g} m/s). {fallbacks} of the "
+        f"{sum(map(len, estimates))} estimates are the largest difference between "
+        "consecutive levels instead (no clean observed order: the levels scatter)."
+    )
+
+
+def _case_words(outcome: DynamicStudyOutcome) -> str:
+    """ "At the paper's example (...) assumed)" for the paper's inputs (the paper gives no
+    density), else "In this case (...)"."""
+    study, velocity = outcome.study, outcome.example.velocity
+    inputs = {
+        "shape_coefficient": study.indenter.shape_coefficient,
+        "exponent": study.indenter.exponent,
+        "E2": study.half_space.youngs_modulus,
+        "nu2": study.half_space.poisson_ratio,
+        "mass": study.mass,
+        "velocity": velocity,
+    }
+    details = f"M = {study.mass:g} kg, v0 = {velocity:g} m/s, rubber density {study.density:g}"
+    if is_paper_case(inputs):
+        return f"At the paper's example ({details} kg/m^3 assumed)"
+    return f"In this case ({details} kg/m^3)"
+
+
+def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
+    """Sentences for the report's opening section."""
+    case = outcome.example
+    d, dyn, quasi = case.differences(), case.result, case.quasi
+    pm = _plus_minus(case.estimates())
+    found = [
+        f"{_case_words(outcome)} the quasi-static model is off by "
+        f"{100 * d['x']:+.2f}{pm('difference_x', 100)} % in x_c ({quasi.x_c * 1e3:.3f} mm "
+        f"against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), "
+        f"{100 * d['P']:+.2f}{pm('difference_P', 100)} % in P_c ({quasi.P_c:.1f} N against "
+        f"P_max {dyn.P_max:.1f} N) and {100 * d['t']:+.2f}{pm('difference_t', 100)} % in t_c "
+        f"({quasi.t_c * 1e3:.3f} ms against half the dynamic contact time, "
+        f"{0.5e3 * dyn.t_contact:.3f} ms; the same as t_y against t_contact); the dynamic "
+        f"maximum approach comes at {dyn.t_x_max * 1e3:.3f} ms.",
+        f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
+        f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
+        f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
+        f"half-space as elastic waves (first-order estimate "
+        f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f}).",
+        _estimate_finding(outcome),
+    ]
+    limits = outcome.limits()
+    for level in ("1%", "5%") if outcome.estimated else ():
+        parts = [
+            f"{NAMES[key]} {_limit_text(limits[key][level], outcome.velocities[0])}"
+            for key in NAMES
+        ]
+        found.append(
+            f"The quasi-static values hold to {level[:-1]} % of the dynamic ones: "
+            + "; ".join(parts)
+            + f" (computed at v0 = {', '.join(f'{v:g}' for v in outcome.velocities)} m/s; "
+            "the limits are interpolated linearly between them)."
+        )
+    return found
+
+
+HEADER = [
+    "v0 (m/s)",
+    "x_max (mm)",
+    "x_c/x_max-1",
+    "P_max (N)",
+    "P_c/P_max-1",
+    "t_contact (ms)",
+    "t_y/t_contact-1",
+    "e",
+    "1-e^2",
+    "estimate",
+    "balance",
+    "reflected",
+]
+"""Columns of the per-velocity table."""
+
+
+def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
+    rows = []
+    for case in outcome.cases:
+        r, d, pm = case.result, case.differences(), _plus_minus(case.estimates())
+        rows.append(
+            [
+                f"{case.velocity:g}",
+                f"{r.x_max * 1e3:.4f}{pm('x_max', 1e3)}",
+                f"{100 * d['x']:+.2f}{pm('difference_x', 100)} %",
+                f"{r.P_max:.1f}{pm('P_max')}",
+                f"{100 * d['P']:+.2f}{pm('difference_P', 100)} %",
+                f"{r.t_contact * 1e3:.4f}{pm('t_contact', 1e3)}",
+                f"{100 * d['t']:+.2f}{pm('difference_t', 100)} %",
+                f"{r.restitution:.4f}{pm('restitution')}",
+                f"{r.energy_radiated_fraction:.4f}{pm('energy_radiated_fraction')}",
+                f"{case.estimate.energy_fraction:.4f}",
+                f"{r.energy_balance_error:.1e}",
+                f"{r.reflected_energy_fraction:.1e}",
+            ]
+        )
+    return rows
+
+
+def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
+    """The report's tables (strings): per velocity, and the velocity limits."""
+    limits = outcome.limits()
+    limit_rows = [
+        [
+            NAMES[key],
+            *(
+                _limit_text(limits[key][level], outcome.velocities[0], error=True)
+                for level in ("1%", "5%")
+            ),
+        ]
+        for key in NAMES
+    ]
+    errors = (
+        "± the estimated error (Richardson, 3-level ladder) in the value's unit"
+        if outcome.estimated
+        else "no error estimates: a quick run skips the ladder"
+    )
+    return [
+        {
+            "title": "Dynamic FE impact against the quasi-static model (differences: "
+            f"quasi-static / dynamic - 1; {errors}; estimate: first-order radiated "
+            "fraction)",
+            "header": HEADER,
+            "rows": _case_rows(outcome),
+        },
+        {
+            "title": "Velocity up to which the quasi-static value holds (linear "
+            "interpolation between the computed velocities; stated where the estimated "
+            "error of the difference at the deciding velocities, given as ±, is below a "
+            "fifth of the level)",
+            "header": ["quantity", "to 1 %", "to 5 %"],
+            "rows": limit_rows,
+        },
+    ]
+
+
+# --- the report's view of a results.json entry --------------------------------------------------
+
+
+def entry(
+    outcome: DynamicStudyOutcome,
+    files: dict[str, str],
+    output_seconds: float | None,
+    figures: Mapping[str, str] | None,
+) -> dict[str, object]:
+    """The study's results.json entry: its numbers, display ``tables`` and ``findings``, and
+    the common keys (:func:`.entry.kind_entry`)."""
+    document = {
+        **outcome.document(),
+        "tables": study_tables(outcome),
+        "findings": study_findings(outcome),
+    }
+    return kind_entry(outcome, document, files, output_seconds, figures)
+
+
+def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
+    """The entry's display tables."""
+    return list(study.get("tables", []))
+
+
+def findings(name: str, study: Mapping[str, Any]) -> list[str]:
+    """The entry's findings, each prefixed with the study's name."""
+    return [f"{name}: {sentence}" for sentence in study.get("findings", [])]
+
+
+def timing_text(study: Mapping[str, Any]) -> str:
+    """The study's times in words."""
+    return times_text(study)
+
+
+def summary_row(name: str, study: Mapping[str, Any]) -> None:
+    """No row in the contact cross-check summary."""
+    return None
+
+
+def _velocity(limit: Mapping[str, Any] | None) -> str:
+    """A velocity limit: "v0 = 3.12 ± 0.1 m/s" (± in m/s), "every v0 computed (to 5 m/s)",
+    "no: ...", or "not resolved (...)" where its estimated error is not below a fifth of the
+    level."""
+    if limit and not limit.get("resolved"):
+        if limit.get("error") is None:
+            return "not resolved (no error estimate)"
+        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
+    if not limit or limit.get("velocity") is None:
+        return "no: already off at the slowest v0 computed"
+    if limit.get("bound") == "all":
+        return f"every v0 computed (to {limit['velocity']:.3g} m/s)"
+    return f"v0 = {limit['velocity']:.3g}{plus_minus(limit.get('velocity_error'), '.1g')} m/s"
+
+
+def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
+    """The study's rows of the report's "where the model holds" table."""
+    limits = study.get("limits", {})
+    labels = {"all": "x_c, P_c and t_c", "P": "P_c", "x": "x_c", "t": "t_c"}
+    return [
+        [
+            f"no elastic waves ({name}): quasi-static {label} against the dynamic FE impact",
+            _velocity(limits[key].get("1%")),
+            _velocity(limits[key].get("5%")),
+        ]
+        for key, label in labels.items()
+        if key in limits
+    ]

@@ -1,0 +1,329 @@
+"""The finite-strain kind's text: findings, tables and ± strings from its outcome's numbers.
+
+Relative errors throughout (a finite-strain estimate is relative, see
+:class:`shtaerman.study.finite_accuracy.FiniteEstimates`), except in the report's validity
+table, whose ± is in the value's unit like every kind's there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from ..paper.case import is_paper_case
+from ..study.finite import FiniteStudyOutcome
+from ..study.finite_accuracy import CROSSING_KEYS, resolved
+from .entry import kind_entry
+from .wording import number, plus_minus, times_text
+
+__all__ = [
+    "QUICK_ERROR",
+    "VARIANTS",
+    "entry",
+    "findings",
+    "study_findings",
+    "study_tables",
+    "summary_row",
+    "tables",
+    "timing_text",
+    "validity_rows",
+]
+
+VARIANTS = {
+    "linear_exact": "Shtaerman, linear (the paper's)",
+    "linear_fem": "linear FEM, same mesh",
+    "finite_strain": "neo-Hookean finite strain",
+}
+"""Impact variants: key -> label."""
+QUICK_ERROR = (
+    "Quick mode: one coarse mesh (about 3.7k dofs), no error estimates: the force is within "
+    "~1.5 % of Shtaerman's at small depths, the impact ratios within ~1e-3 of the default run's."
+)
+
+
+def _pm(outcome: FiniteStudyOutcome, key: str, step: int | None = None) -> str:
+    """ " ± e", e the estimated relative error of a scalar (or of ``key`` at depth ``step``);
+    "" without a ladder."""
+    if outcome.estimates is None:
+        return ""
+    estimates = outcome.estimates
+    return plus_minus((estimates.scalars if step is None else estimates.steps[step])[key].error)
+
+
+def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
+    study = outcome.study
+    return {
+        "shape_coefficient": study.indenter.shape_coefficient,
+        "exponent": study.indenter.exponent,
+        "E2": study.half_space.youngs_modulus,
+        "nu2": study.half_space.poisson_ratio,
+        "mass": study.mass,
+        "velocity": study.velocity,
+    }
+
+
+def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
+    """Sentences for the report's opening section, with the measured numbers and, after a
+    ladder, their estimated relative errors (± ...)."""
+    study, ratios, at = outcome.study, outcome.ratios(), outcome.at_maximum()
+    exact = outcome.impacts["linear_exact"]
+    fem = {
+        k: outcome.impacts["finite_strain"][k] / outcome.impacts["linear_fem"][k] - 1
+        for k in ("x_c", "P_c", "t_c")
+    }
+    whose = "the paper's" if is_paper_case(_inputs(outcome)) else "this case's"
+
+    def pm(key: str) -> str:
+        return _pm(outcome, key)
+
+    return [
+        f"Real rubber (neo-Hookean, nu2 = {study.half_space.poisson_ratio:g}) moves {whose} "
+        f"impact ({study.mass:g} kg at {study.velocity:g} m/s): x_c {ratios['x_c'] - 1:+.2%}"
+        f"{pm('x_c')}, P_c {ratios['P_c'] - 1:+.2%}{pm('P_c')}, t_c "
+        f"{ratios['t_c'] - 1:+.2%}{pm('t_c')} against Shtaerman's "
+        f"linear x_c = {exact['x_c'] * 1e3:.3f} mm, P_c = {exact['P_c']:.1f} N, "
+        f"t_c = {exact['t_c'] * 1e3:.3f} ms (against the linear FEM on the same mesh, "
+        f"which cancels the discretization: {fem['x_c']:+.2%}{pm('x_c_vs_fem')}, "
+        f"{fem['P_c']:+.2%}{pm('P_c_vs_fem')}, {fem['t_c']:+.2%}{pm('t_c_vs_fem')}).",
+        f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): P/(beta x^q) = "
+        f"{at['force_ratio']:.4f}{pm('force_ratio_at_x_c')}, p(0)/p_avg = "
+        f"{at['central_to_mean']:.3f}{pm('central_to_mean_at_x_c')} (linear "
+        f"{outcome.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
+        f"{at['radius_ratio']:.4f}{pm('radius_ratio_at_x_c')}.",
+        _validity_finding(outcome),
+        QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
+    ]
+
+
+def _crossing_words(entry: Mapping[str, Any]) -> str:
+    level = f"{entry['level']:.0%}"
+    if "departure_error" in entry and not resolved(entry["level"], entry["departure_error"]):
+        return (
+            f"to {level}: not resolved (the departure's estimated error there, "
+            f"{entry['departure_error']:.1e}, is not below a fifth of {level})"
+        )
+    errors = entry.get("errors", {})
+    pm = {k: plus_minus(errors.get(k)) for k in CROSSING_KEYS}
+    where = (
+        f"x/a = {entry['depth_to_radius']:.3f}{pm['depth_to_radius']} (depth "
+        f"{entry['depth'] * 1e3:.3g} mm{pm['depth']}, reached by an impact at "
+        f"{entry['velocity']:.2g} m/s{pm['velocity']})"
+    )
+    if entry["status"] == "beyond":
+        return f"to {level} at every computed depth, up to {where}"
+    if entry["status"] == "below":
+        return f"to {level} not even at the first depth, {where}"
+    return f"to {level} up to {where}"
+
+
+def _validity_finding(outcome: FiniteStudyOutcome) -> str:
+    return (
+        "The linear force beta x^q holds "
+        + "; ".join(_crossing_words(entry) for entry in outcome.limits())
+        + " (P against the linear FEM on the same mesh; crossings interpolated linearly in x/a "
+        "between computed depths; velocities from the stored energy, v = sqrt(2 W / M))."
+    )
+
+
+def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
+    estimates = outcome.estimates
+    worst = estimates.worst_step()
+    every = [*estimates.scalars.values(), *(e for s in estimates.steps for e in s.values())]
+    fallback = sum(e.method != "richardson" for e in every)
+    return (
+        "± is the estimated relative error of the value: Richardson extrapolation over "
+        f"the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
+        f"({'/'.join(str(d) for d in estimates.dofs)} dofs, "
+        f"{sum(estimates.cpu_seconds):.0f} s of CPU time in all). Largest over the depths: "
+        f"P/(beta x^q){plus_minus(estimates.scalars['force_ratio_worst'].error)} at x/a = "
+        f"{outcome.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {len(every)} estimates "
+        "fell back to the difference of the two finest meshes (differences not shrinking, "
+        "or an observed order outside 1.5-4.5: the ~1e-4 noise of non-nested meshes)."
+    )
+
+
+def study_tables(outcome: FiniteStudyOutcome) -> list[dict[str, object]]:
+    """The curve, the three impacts and the validity depths as display strings (after a
+    ladder: value ± estimated relative error)."""
+    return [_curve_table(outcome), _impact_table(outcome), _validity_table(outcome)]
+
+
+def _curve_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
+    columns = (
+        ("force_ratio", "P/P_lin", ".4f"),
+        ("force_ratio_fem", "P/P_linFEM", ".4f"),
+        ("radius_ratio", "a/a_lin", ".4f"),
+        ("central_to_mean", "p(0)/p_avg", ".3f"),
+        ("strain_energy", "W (J)", ".4g"),
+    )
+    rows = [
+        [
+            f"{r['depth'] * 1e3:.4g}",
+            f"{r['depth_to_radius']:.3f}",
+            f"{r['force']:.4g}",
+            *[f"{r[key]:{fmt}}{_pm(outcome, key, k)}" for key, _, fmt in columns],
+            str(r["newton_iterations"]),
+        ]
+        for k, r in enumerate(outcome.rows())
+    ]
+    return {
+        "title": "Finite-strain contact curve beside the linear solution"
+        + ("" if outcome.estimates is None else " (± estimated relative error; P's is P/P_lin's)"),
+        "header": ["x (mm)", "x/a", "P (N)", *[label for _, label, _ in columns], "Newton"],
+        "rows": rows,
+    }
+
+
+def _impact_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
+    keys = (
+        ("x_c", 1e3, "x_c (mm)"),
+        ("P_c", 1.0, "P_c (N)"),
+        ("a_c", 1e3, "a_c (mm)"),
+        ("p_c", 1e-6, "p_c (MPa)"),
+        ("t_c", 1e3, "t_c (ms)"),
+        ("t_y", 1e3, "t_y (ms)"),
+    )
+    rows = [
+        [
+            VARIANTS[variant],
+            *[
+                f"{values[k] * s:.5g}{_pm(outcome, k) if variant == 'finite_strain' else ''}"
+                for k, s, _ in keys
+            ],
+        ]
+        for variant, values in outcome.impacts.items()
+    ]
+    finite, fem = outcome.impacts["finite_strain"], outcome.impacts["linear_fem"]
+    ratios = outcome.ratios()
+    rows += [
+        [
+            "finite strain / linear exact - 1",
+            *[f"{ratios[k] - 1:+.2%}{_pm(outcome, k)}" for k, _, _ in keys],
+        ],
+        [
+            "finite strain / linear FEM - 1",
+            *[f"{finite[k] / fem[k] - 1:+.2%}{_pm(outcome, f'{k}_vs_fem')}" for k, _, _ in keys],
+        ],
+    ]
+    return {
+        "title": "Impact M x'' = -P(x): the paper's linear model and real rubber"
+        + ("" if outcome.estimates is None else " (± estimated relative error)"),
+        "header": ["model", *[label for _, _, label in keys]],
+        "rows": rows,
+    }
+
+
+def _validity_cell(entry: Mapping[str, Any], key: str, scale: float, fmt: str) -> str:
+    return f"{entry[key] * scale:{fmt}}" + plus_minus(entry.get("errors", {}).get(key))
+
+
+def _decided(entry: Mapping[str, Any]) -> str:
+    if "departure_error" not in entry:
+        return "not estimated (quick)"
+    verdict = resolved(entry["level"], entry["departure_error"])
+    return f"{entry['departure_error']:.1e} ({'' if verdict else 'not '}resolved)"
+
+
+def _validity_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
+    return {
+        "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; resolved where "
+        "the departure's estimated error is below a fifth of the level)",
+        "header": [
+            "level",
+            "up to x/a",
+            "depth (mm)",
+            "impact velocity (m/s)",
+            "how",
+            "departure error there",
+        ],
+        "rows": [
+            [
+                f"{e['level']:.0%}",
+                _validity_cell(e, "depth_to_radius", 1.0, ".3f"),
+                _validity_cell(e, "depth", 1e3, ".4g"),
+                _validity_cell(e, "velocity", 1.0, ".3g"),
+                str(e["status"]),
+                _decided(e),
+            ]
+            for e in outcome.limits()
+        ],
+    }
+
+
+# --- the report's view of a results.json entry --------------------------------------------------
+
+
+def entry(
+    outcome: FiniteStudyOutcome,
+    files: dict[str, str],
+    output_seconds: float | None,
+    figures: Mapping[str, str] | None,
+) -> dict[str, object]:
+    """The study's results.json entry: its numbers, display ``tables`` and ``findings``, and
+    the common keys (:func:`.entry.kind_entry`)."""
+    document = {
+        **outcome.document(),
+        "tables": study_tables(outcome),
+        "findings": study_findings(outcome),
+    }
+    return kind_entry(outcome, document, files, output_seconds, figures)
+
+
+def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
+    """The entry's display tables."""
+    return list(study.get("tables", []))
+
+
+def findings(name: str, study: Mapping[str, Any]) -> list[str]:
+    """The entry's findings, each prefixed with the study's name."""
+    return [f"{name}: {sentence}" for sentence in study.get("findings", [])]
+
+
+def timing_text(study: Mapping[str, Any]) -> str:
+    """The study's times in words."""
+    return times_text(study)
+
+
+def summary_row(name: str, study: Mapping[str, Any]) -> None:
+    """No row in the contact cross-check summary."""
+    return None
+
+
+def _depth(entry: Mapping[str, Any] | None) -> str:
+    """A depth limit: x/a and the impact velocity reaching it, ± their estimated errors in
+    the value's unit; "not resolved" where the departure's estimated error there is not below
+    a fifth of the level (:func:`shtaerman.study.finite_accuracy.resolved`)."""
+    if not entry or entry.get("depth_to_radius") is None:
+        return "-"
+    ratio, velocity = entry["depth_to_radius"], entry["velocity"]
+    if "departure_error" not in entry:
+        return f"x/a = {ratio:.2f} (v0 = {velocity:.2g} m/s; not estimated)"
+    error = entry["departure_error"]
+    if error is None or not resolved(entry["level"], error):
+        return f"not resolved (estimated error of the departure {number(error, '.1e')})"
+    errors = entry.get("errors") or {}
+
+    def absolute(key: str) -> str:
+        relative = errors.get(key)
+        return plus_minus(None if relative is None else relative * entry[key], ".1g")
+
+    return (
+        f"x/a = {ratio:.3g}{absolute('depth_to_radius')} "
+        f"(v0 = {velocity:.2g}{absolute('velocity')} m/s)"
+    )
+
+
+def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
+    """The study's row of the report's "where the model holds" table."""
+    if "validity" not in study:
+        return []
+    levels = {round(entry["level"], 4): entry for entry in study["validity"]}
+    nu = study.get("inputs", {}).get("nu2")
+    return [
+        [
+            f"linear elasticity ({name}): beta x^q against neo-Hookean rubber"
+            + (f", nu2 = {nu:g}" if nu is not None else ""),
+            _depth(levels.get(0.01)),
+            _depth(levels.get(0.05)),
+        ]
+    ]

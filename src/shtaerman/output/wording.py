@@ -1,0 +1,36 @@
+"""Number formatting shared by the kinds' text modules (``text_*``): values, ± and times."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+__all__ = ["number", "plus_minus", "seconds", "times_text"]
+
+
+def number(value: float | None, spec: str) -> str:
+    """``value`` formatted by ``spec``; "-" for a missing value."""
+    return "-" if value is None else format(value, spec)
+
+
+def seconds(value: float | None) -> str:
+    """A time in s to 0.1 s; "-" when unknown."""
+    return "-" if value is None else f"{value:.1f}"
+
+
+def plus_minus(error: float | None, spec: str = ".1e", scale: float = 1.0) -> str:
+    """The text " ± e" (``scale`` x ``error`` by ``spec``); "" without an estimate, and ""
+    for an estimate of exactly 0 (identical on every level: it states no accuracy)."""
+    if error is None or not math.isfinite(error) or error == 0:
+        return ""
+    return f" ± {scale * error:{spec}}"
+
+
+def times_text(study: Mapping[str, object]) -> str:
+    """ "computation ... s; files and figures ... s; study total ... s" of a results entry."""
+    timings = study.get("timings") or {}
+    parts = [f"computation {seconds(timings.get('computation', study['seconds']))} s"]
+    if timings.get("output") is not None:
+        parts.append(f"files and figures {seconds(timings['output'])} s")
+    parts.append(f"study total {seconds(timings.get('total', study['seconds']))} s")
+    return "; ".join(parts)
