@@ -12,9 +12,9 @@ command's ``--json`` object, and whose ``to_dict()`` is that object.
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
-from .contact import ContactResult, contact
-from .dynamic import DynamicResult, dynamic
-from .impact import ImpactResult, impact
+from .fem_contact import ContactResult, contact
+from .fem_dynamic import DynamicResult, dynamic
+from .quasi_static import ImpactResult, impact
 from .studies import StudyResults, run_study, sweep
 
 __all__ = [

@@ -25,7 +25,7 @@ class StudyResults:
     passed : bool
         Every check of every study passed.
     studies : dict of str to dict
-        Per study name: its JSON document (with ``out``: its entry of ``results.json``).
+        Per study name: its entry of ``results.json`` (without ``out``: no files, figures).
     out : pathlib.Path or None
         The result folder written (results.json, report.md, report.html, files, figures).
     outcomes : tuple
@@ -71,6 +71,7 @@ def run_study(
     """
     from ..output.files import check_output_folder, json_safe, staged_folder
     from ..output.folder import finish_verification, study_entry
+    from ..output.report import study_document
     from ..study.run import run_study as run_one
     from ..study.schema import find_study, load_study
 
@@ -79,7 +80,7 @@ def run_study(
     folder = None if out is None else check_output_folder(Path(out), force=force)
     if folder is None:
         outcomes = tuple(run_one(study, quick=quick, progress=report) for study in studies)
-        documents = {o.study.name: json_safe(o.document()) for o in outcomes}
+        documents = {o.study.name: json_safe(study_document(o, {})) for o in outcomes}
         return StudyResults(all(o.passed for o in outcomes), documents, None, outcomes)
     with staged_folder(folder, force=force) as stage:
         outcomes, entries = [], {}

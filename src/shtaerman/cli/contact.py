@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..api.contact import MESH_OPTIONS, MODELS, contact
+from ..api.fem_contact import MESH_OPTIONS, MODELS, contact
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS, MeshSettings
 from ..fem.solver import BACKENDS
@@ -144,7 +144,7 @@ def _depths(text: str | None) -> np.ndarray | None:
 
 def mesh_settings(args: argparse.Namespace, base: MeshSettings = DEFAULTS) -> MeshSettings:
     """MeshSettings from the mesh options over ``base``; errors name the option, not the field."""
-    from ..api.contact import mesh_settings as settings
+    from ..api.fem_contact import mesh_settings as settings
 
     options = {option: getattr(args, option) for option in MESH_OPTIONS}
     return settings(base, options, lambda name: name.replace("_", "-"))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..api.dynamic import dynamic
+from ..api.fem_dynamic import dynamic
 from ..fem.dynamic_contact import DynamicSettings, validate_density
 from ..output.files import write_csv
 from ..study.dynamic import DynamicTolerances

@@ -6,7 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
-from ..api.impact import impact
+from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
 from ..theory.impact import ImpactResult
 from ..validation import InputError, validate_positive

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
-from .impact import check_bodies
+from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
@@ -234,31 +234,17 @@ def dynamic(
     shtaerman.validation.InputError
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
-    from ..fem.contact import validate_fem_inputs
     from ..output.files import check_output_folder, staged_folder
     from ..study.dynamic import run_case
-    from ..study.dynamic_accuracy import check_ladder, complete_ladder
+    from ..study.dynamic_accuracy import complete_ladder
 
-    check_bodies(indenter, body)
-    mass = validate_positive("mass", mass, "kg")
-    velocity = validate_positive("velocity", velocity, "m/s")
-    density = _density(body)
-    validate_fem_inputs(indenter, body)
-    refine = validate_positive("refine", refine)
     options = dict(steps=steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
-    chosen = dynamic_settings(settings, options).refined(refine)
-    if estimate:
-        try:
-            check_ladder(chosen)
-        except InputError as error:
-            raise InputError(
-                f"{error}; refine the settings or run without the estimate (estimate=False, "
-                "--no-estimate)",
-                error.parameter,
-            ) from None
+    mass, velocity, refine, chosen = _checked(
+        indenter, body, (mass, velocity, refine), estimate, dynamic_settings(settings, options)
+    )
     folder = check_output_folder(Path(out), force=force) if out is not None else None
-    inputs = (indenter, body, density, mass, velocity)
+    inputs = (indenter, body, _density(body), mass, velocity)
     case = run_case(*inputs, chosen, snapshots=_snapshots if folder is not None else None)
     if estimate:
         ladder = complete_ladder(case.result, *inputs, chosen, refine=refine)
@@ -268,3 +254,34 @@ def dynamic(
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
     return result
+
+
+def _checked(
+    indenter: PowerLawIndenter,
+    body: Material,
+    numbers: tuple[float, float, float],
+    estimate: bool,
+    settings: DynamicSettings,
+) -> tuple[float, float, float, DynamicSettings]:
+    """Mass (kg), velocity (m/s), refine and the refined settings, every input checked
+    (the ladder's coarsest level too, with ``estimate``) before anything runs."""
+    from ..fem.contact import validate_fem_inputs
+    from ..study.dynamic_accuracy import check_ladder
+
+    check_bodies(indenter, body)
+    mass = validate_positive("mass", numbers[0], "kg")
+    velocity = validate_positive("velocity", numbers[1], "m/s")
+    _density(body)
+    validate_fem_inputs(indenter, body)
+    refine = validate_positive("refine", numbers[2])
+    chosen = settings.refined(refine)
+    if estimate:
+        try:
+            check_ladder(chosen)
+        except InputError as error:
+            raise InputError(
+                f"{error}; refine the settings or run without the estimate (estimate=False, "
+                "--no-estimate)",
+                error.parameter,
+            ) from None
+    return mass, velocity, refine, chosen

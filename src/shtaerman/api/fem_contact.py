@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_increasing, validate_positive
-from .impact import check_bodies, impact
+from .quasi_static import check_bodies, impact
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
