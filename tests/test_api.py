@@ -166,6 +166,17 @@ def test_contact_default_depths_reach_this_cases_impact(tmp_path):
         assert image.shape[0] > 400 and image[..., :3].std() > 0.05  # drawn, not blank
 
 
+def test_one_depth_figure_states_that_the_exponent_needs_two(tmp_path):
+    from shtaerman.plots.curves import _fit_note
+
+    c = sh.contact(
+        INDENTER, RUBBER, depths=[2e-3], estimate=False, mesh_size=0.05, domain_factor=1e4
+    )
+    assert math.isnan(c.exponent_fem)
+    note = _fit_note(c.solution)  # the text of force_depth.png
+    assert "nan" not in note and "fitted only from" in note
+
+
 def test_contact_defaults_are_the_papers_impact():
     paper = sh.PowerLawIndenter(5.0, 1.5)
     depths = contact_depths(paper, sh.Material(7.5e6, 0.5))
