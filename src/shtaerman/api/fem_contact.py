@@ -84,7 +84,9 @@ class ContactResult:
     keys: tuple[str, ...] = field(default=(), repr=False, compare=False)
 
     @classmethod
-    def from_report(cls, report: Mapping[str, Any], solution: Any = None, ladder: Any = None):
+    def from_report(
+        cls, report: Mapping[str, Any], solution: Any = None, ladder: Any = None
+    ) -> ContactResult:
         """The result of a ``contact --json`` object (its key order kept for :meth:`to_dict`)."""
         names = {f.name for f in dataclasses.fields(cls)} - {"extra", "solution", "ladder", "keys"}
         values = {key: value for key, value in report.items() if key in names}
@@ -309,7 +311,9 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     _check_options(model, options["accuracy"], estimate, options["solver"])
     validate_fem_inputs(indenter, body)
     max_time = validate_positive("max_time", options["max_time"], "s")
-    base = options["mesh"] or (FINITE_MESH if model == "neo-hookean" else DEFAULTS)
+    base = options["mesh"]
+    if base is None:
+        base = FINITE_MESH if model == "neo-hookean" else DEFAULTS
     mesh = mesh_settings(base, {k: options[k] for k in MESH_OPTIONS})
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
@@ -332,10 +336,8 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
         mesh.refined(refine)  # the finest level first: its message names refine's value
     if estimate:
         _check_coarsest(mesh, refine)
-    return _Plan(
-        indenter, body, depths, model, mesh, refine, estimate, tolerance, max_time,
-        options["solver"], options["progress"],
-    )  # fmt: skip
+    rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])
+    return _Plan(indenter, body, depths, model, mesh, *rest)
 
 
 def contact(
