@@ -161,13 +161,13 @@ def _differences_text(report: dict) -> str:
     errors = report.get("differences_error") or {}
     cells = []
     for key, value in report["differences"].items():
-        cell = f"{key} {100 * value:+.2f} %"
-        if errors.get(key) is not None:
-            cell += f" ± {100 * errors[key]:.2f}"
-        cells.append(cell)
+        error = errors.get(key)
+        spread = f" ± {100 * error:.2f}" if error is not None else ""
+        cells.append(f"{key} {100 * value:+.2f}{spread} %")
     return (
-        "  quasi-static / dynamic - 1: " + ", ".join(cells) + " (x_c against x_max, P_c against "
-        "P_max, t_c against t_contact / 2)"
+        "  quasi-static / dynamic - 1  " + ", ".join(cells) + "\n"
+        "                              (x_c against x_max, P_c against P_max, t_c against "
+        "t_contact / 2)"
     )
 
 
