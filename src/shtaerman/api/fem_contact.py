@@ -37,7 +37,8 @@ DEFAULT_MASS = 0.7
 """kg: the paper's striker, the default of ``mass`` (and of the CLI's ``--mass``)."""
 DEFAULT_VELOCITY = 3.0
 """m/s: the paper's approach velocity, the default of ``velocity``."""
-STEP_KEYS = ("depth", "force", "contact_radius", "central_pressure")
+NOT_IN_JSON = ("extra", "solution", "ladder", "key_order")
+"""ContactResult fields that are not keys of the JSON."""
 
 
 @dataclass(frozen=True)
@@ -81,20 +82,20 @@ class ContactResult:
     extra: dict[str, Any] = field(default_factory=dict, repr=False)
     solution: Any = field(default=None, repr=False, compare=False)
     ladder: Any = field(default=None, repr=False, compare=False)
-    keys: tuple[str, ...] = field(default=(), repr=False, compare=False)
+    key_order: tuple[str, ...] = field(default=(), repr=False, compare=False)
 
     @classmethod
     def from_report(
         cls, report: Mapping[str, Any], solution: Any = None, ladder: Any = None
     ) -> ContactResult:
         """The result of a ``contact --json`` object (its key order kept for :meth:`to_dict`)."""
-        names = {f.name for f in dataclasses.fields(cls)} - {"extra", "solution", "ladder", "keys"}
+        names = {f.name for f in dataclasses.fields(cls)} - set(NOT_IN_JSON)
         values = {key: value for key, value in report.items() if key in names}
         values["steps"] = tuple(dict(step) for step in report["steps"])
         if "mesh_ladder" in report:
             values["mesh_ladder"] = tuple(dict(level) for level in report["mesh_ladder"])
         extra = {key: value for key, value in report.items() if key not in names}
-        return cls(**values, extra=extra, solution=solution, ladder=ladder, keys=tuple(report))
+        return cls(**values, extra=extra, solution=solution, ladder=ladder, key_order=tuple(report))
 
     def _column(self, key: str) -> np.ndarray:
         return np.array([step[key] for step in self.steps], dtype=float)
@@ -122,7 +123,7 @@ class ContactResult:
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of ``shtaerman contact --json`` (same keys, same order)."""
         document: dict[str, Any] = {}
-        for key in self.keys:
+        for key in self.key_order:
             value = self.extra[key] if key in self.extra else getattr(self, key)
             if key in ("steps", "mesh_ladder"):
                 value = [dict(row) for row in value]
