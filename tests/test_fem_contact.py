@@ -276,7 +276,7 @@ def test_contact_cli_refuses_a_used_folder(tmp_path, capsys):
         (["--depths", "2e-3,1e-3"], "strictly increasing"),
         (["--mesh-margin", "0.9"], r"mesh-margin: margin must lie in \(1, 10\]"),
         (["--solver", "umfpack"], r"--solver: invalid choice: 'umfpack' \(choose from"),
-        (["--nu2", "0.7"], r"nu2 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
+        (["--nu2", "0.7"], r"nu2 \(Poisson's ratio\) must lie in \[0, 0.5\]"),
     ],
 )
 def test_contact_cli_bad_input(capsys, argv, message):

@@ -29,6 +29,8 @@ ALLOWED = {
     "output": {"output", "plots", "study", "fem", "theory", "paper"},
     # sweeps orchestrate studies and write their own folder; only the CLI sits above them
     "sweep": {"sweep", "output", "plots", "study", "fem", "theory", "paper"},
+    # the public Python API stands beside the CLI: everything below it, not the CLI
+    "api": {"api", "sweep", "output", "plots", "study", "fem", "theory", "paper"},
 }
 
 

@@ -11,6 +11,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = [
     "shtaerman/paper/paper_tables.json",
     "shtaerman/cli/__init__.py",
+    "shtaerman/py.typed",
     "shtaerman/output/templates/report.md.j2",
     "shtaerman/output/templates/report.html.j2",
     "shtaerman/meshes/halfspace.geo",

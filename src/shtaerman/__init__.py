@@ -1,3 +1,107 @@
-"""shtaerman: FEM cross-check of Shtaerman's power-law contact and the impact it implies."""
+"""shtaerman: FEM cross-check of Shtaerman's power-law contact and the impact it implies.
+
+The public API (``import shtaerman as sh``; see :mod:`shtaerman.api`)::
+
+    indenter = sh.PowerLawIndenter(shape_coefficient=12.0, exponent=1.8)
+    rubber = sh.Material(youngs_modulus=4e6, poisson_ratio=0.49, density=1100.0)
+    q = sh.impact(indenter, rubber, mass=0.25, velocity=2.0)   # exact quasi-static impact
+    c = sh.contact(indenter, rubber, mass=0.25, velocity=2.0)  # FEM curve up to q.x_c
+    d = sh.dynamic(indenter, rubber, mass=0.25, velocity=2.0)  # dynamic FE impact
+    sh.run_study("paper", out="results"); sh.sweep("nu-grid", workers=2)
+
+Names are imported on first use, so ``import shtaerman`` loads neither numpy nor the FEM.
+``sh.sweep`` is the :mod:`shtaerman.sweep` package, callable as :func:`shtaerman.api.sweep`.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import sys
+import types
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .api import (
+        RIGID,
+        ContactResult,
+        DynamicResult,
+        ImpactResult,
+        InputError,
+        Material,
+        PowerLawIndenter,
+        StudyResults,
+        contact,
+        dynamic,
+        impact,
+        run_study,
+        sweep,
+    )
 
 __version__ = "0.1.0"
+
+__all__ = [
+    "RIGID",
+    "ContactResult",
+    "DynamicResult",
+    "ImpactResult",
+    "InputError",
+    "Material",
+    "PowerLawIndenter",
+    "StudyResults",
+    "__version__",
+    "contact",
+    "dynamic",
+    "impact",
+    "run_study",
+    "sweep",
+]
+
+
+def __getattr__(name: str) -> Any:
+    """The API's names, imported from :mod:`shtaerman.api` on first use."""
+    if name == "sweep":
+        return importlib.import_module(".sweep", __name__)
+    if name in __all__:
+        value = getattr(importlib.import_module(".api", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    """The public API and the subpackages already imported."""
+    loaded = {
+        key
+        for key, value in globals().items()
+        if isinstance(value, types.ModuleType) and value.__name__.startswith(__name__ + ".")
+    }
+    return sorted(set(__all__) | loaded)
+
+
+class _CallableSweep(types.ModuleType):
+    """The :mod:`shtaerman.sweep` package, also callable as :func:`shtaerman.api.sweep`."""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        from .api.studies import sweep
+
+        return sweep(*args, **kwargs)
+
+    @property
+    def __signature__(self) -> inspect.Signature:
+        from .api.studies import sweep
+
+        return inspect.signature(sweep)
+
+
+class _Package(types.ModuleType):
+    """This package: its ``sweep`` subpackage, once imported, becomes callable (``sh.sweep``
+    both runs a sweep and is the package)."""
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name == "sweep" and isinstance(value, types.ModuleType):
+            value.__class__ = _CallableSweep
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

@@ -72,26 +72,46 @@ def add_indenter_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--exponent", default=PAPER["exponent"], metavar="N", help="n in z = A r^n")
 
 
-def add_half_space_options(parser: argparse.ArgumentParser) -> None:
-    """--E2 and --nu2 of the half-space (the paper's rubber by default)."""
+FEM_POISSON_LOW = 0.0
+"""Smallest nu2 the FEM commands (contact, dynamic) accept: the FEM's validated range."""
+
+
+def poisson_range(low: float = -1.0) -> str:
+    """The range text of :func:`shtaerman.validation.validate_poisson` for ``low``."""
+    return "(-1, 0.5]" if low == -1.0 else f"[{low:g}, 0.5]"
+
+
+def add_half_space_options(parser: argparse.ArgumentParser, poisson_low: float = -1.0) -> None:
+    """--E2 and --nu2 of the half-space (the paper's rubber by default); ``poisson_low`` is
+    the smallest nu2 the command accepts (its help states the range)."""
     parser.add_argument(
         "--E2", default=PAPER["E2"], metavar="PA", help="half-space Young's modulus in Pa"
     )
     parser.add_argument(
-        "--nu2", default=PAPER["nu2"], metavar="X", help="half-space Poisson's ratio, (-1, 0.5]"
+        "--nu2",
+        default=PAPER["nu2"],
+        metavar="X",
+        help=f"half-space Poisson's ratio, {poisson_range(poisson_low)}",
     )
 
 
 def striker(args: argparse.Namespace) -> Material:
-    """The striker's material from --E1 (a number in Pa, or 'inf' for rigid) and --nu1."""
+    """The striker's material from --E1 (a number in Pa, or 'inf' for rigid) and --nu1.
+
+    --nu1 must lie in (-1, 0.5] even for a rigid striker, where it does not enter E*.
+    """
+    nu1 = validate_poisson("nu1", args.nu1)
     if str(args.E1).strip().lower() in {"inf", "rigid"}:
         return RIGID
-    return Material(validate_positive("E1", args.E1, "Pa"), validate_poisson("nu1", args.nu1))
+    return Material(validate_positive("E1", args.E1, "Pa"), nu1)
 
 
-def half_space(args: argparse.Namespace) -> Material:
-    """The half-space's material from --E2 and --nu2."""
-    return Material(validate_positive("E2", args.E2, "Pa"), validate_poisson("nu2", args.nu2))
+def half_space(args: argparse.Namespace, poisson_low: float = -1.0) -> Material:
+    """The half-space's material from --E2 and --nu2 (nu2 in [poisson_low, 0.5])."""
+    return Material(
+        validate_positive("E2", args.E2, "Pa"),
+        validate_poisson("nu2", args.nu2, low=poisson_low),
+    )
 
 
 def indenter(args: argparse.Namespace) -> PowerLawIndenter:

@@ -3,34 +3,33 @@
 from __future__ import annotations
 
 import argparse
-import contextlib
-import dataclasses
-import json
 import math
-from pathlib import Path
 
 import numpy as np
 
+from ..api.fem_contact import MESH_OPTIONS, MODELS, contact
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS, MeshSettings
 from ..fem.solver import BACKENDS
-from ..output.files import check_output_folder, json_safe, staged_folder
 from ..validation import InputError, validate_increasing, validate_positive
-from .common import add_half_space_options, add_indenter_options, print_json
+from .common import (
+    FEM_POISSON_LOW,
+    PAPER,
+    add_half_space_options,
+    add_indenter_options,
+    print_json,
+)
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
 
-MODELS = ("linear", "neo-hookean")
-"""Material models of ``--model``: the first is the default."""
-
-MESH_OPTIONS = {
-    "mesh_size": ("size", "smallest element size / refined radius"),
-    "mesh_margin": ("margin", "refined radius / largest geometric contact radius, in (1, 10]"),
-    "domain_factor": ("domain", "domain radius / refined radius, in [1e2, 1e7]"),
-    "growth": ("growth", "element size growth per unit distance from the refined zone"),
-    "max_dofs": ("max_dofs", "refuse a mesh estimated (before meshing) above this many unknowns"),
+MESH_HELP = {
+    "mesh_size": "smallest element size / refined radius",
+    "mesh_margin": "refined radius / largest geometric contact radius, in (1, 10]",
+    "domain_factor": "domain radius / refined radius, in [1e2, 1e7]",
+    "growth": "element size growth per unit distance from the refined zone",
+    "max_dofs": "refuse a mesh estimated (before meshing) above this many unknowns",
 }
-"""Command-line mesh options: the MeshSettings field each sets, and its meaning."""
+"""Meaning of each command-line mesh option (the MeshSettings field: MESH_OPTIONS)."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -45,7 +44,15 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     add_indenter_options(p)
-    add_half_space_options(p)
+    add_half_space_options(p, FEM_POISSON_LOW)
+    _add_case_options(p)
+    _add_accuracy_options(p)
+    _add_mesh_options(p)
+    p.set_defaults(handler=run)
+
+
+def _add_case_options(p: argparse.ArgumentParser) -> None:
+    """--model, the impact of the default depths, --depths and the outputs."""
     p.add_argument(
         "--model",
         default="linear",
@@ -55,14 +62,35 @@ def register(commands: argparse._SubParsersAction) -> None:
         "configuration; any depth ladder, load stepping is internal)",
     )
     p.add_argument(
+        "--mass",
+        metavar="KG",
+        help=f"striker mass M in kg of the impact whose x_c the default depths reach "
+        f"(default: {PAPER['mass']})",
+    )
+    p.add_argument(
+        "--velocity",
+        metavar="M/S",
+        help=f"approach velocity v0 in m/s of that impact (default: {PAPER['velocity']})",
+    )
+    p.add_argument(
         "--depths",
         metavar="D1,D2,...",
-        help="depths in m, comma-separated, increasing (default: 8 up to the impact x_c of "
-        "0.7 kg at 3 m/s, contact radii a_c/3 .. a_c)",
+        help="depths in m, comma-separated, increasing (default: 8 up to the x_c of the "
+        "impact of --mass at --velocity on this indenter and half-space, contact radii "
+        "a_c/3 .. a_c)",
     )
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument("--out", metavar="DIR", help="write VTU fields and CSV curves to DIR")
+    p.add_argument(
+        "--out",
+        metavar="DIR",
+        help="write contact.json, CSV curves, VTU fields and (linear model) the figures "
+        "force_depth.png and pressure.png to DIR",
+    )
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+
+
+def _add_accuracy_options(p: argparse.ArgumentParser) -> None:
+    """--refine, --no-estimate, --accuracy and --max-time."""
     accuracy = p.add_argument_group(
         "accuracy (every FEM number with an error estimate from a 3-mesh ladder)"
     )
@@ -90,19 +118,22 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar="S",
         help="time budget of --accuracy in s (only with --accuracy)",
     )
+
+
+def _add_mesh_options(p: argparse.ArgumentParser) -> None:
+    """The expert mesh controls and --solver."""
     mesh = p.add_argument_group(
         "expert mesh controls (relative to the largest contact; --mesh-size alone does not "
         "refine the far field, the axis grading or the growth: use --refine)"
     )
-    for option, (field, meaning) in MESH_OPTIONS.items():
+    for option, field in MESH_OPTIONS.items():
         mesh.add_argument(
             "--" + option.replace("_", "-"),
             metavar="X",
-            help=f"{meaning} (default: {getattr(DEFAULTS, field):.6g} linear, "
+            help=f"{MESH_HELP[option]} (default: {getattr(DEFAULTS, field):.6g} linear, "
             f"{getattr(FINITE_MESH, field):.6g} neo-hookean)",
         )
     mesh.add_argument("--solver", default="auto", choices=("auto", *BACKENDS), help="sparse solver")
-    p.set_defaults(handler=run)
 
 
 def _depths(text: str | None) -> np.ndarray | None:
@@ -113,29 +144,18 @@ def _depths(text: str | None) -> np.ndarray | None:
 
 def mesh_settings(args: argparse.Namespace, base: MeshSettings = DEFAULTS) -> MeshSettings:
     """MeshSettings from the mesh options over ``base``; errors name the option, not the field."""
-    chosen = {
-        field: getattr(args, option)
-        for option, (field, _) in MESH_OPTIONS.items()
-        if getattr(args, option) is not None
-    }
-    for option, (field, _) in MESH_OPTIONS.items():
-        if field not in chosen:
-            continue
-        try:
-            MeshSettings(**{field: chosen[field]})
-        except InputError as error:
-            raise InputError(f"{option.replace('_', '-')}: {error}") from None
-    return dataclasses.replace(base, **{field: float(value) for field, value in chosen.items()})
+    from ..api.fem_contact import mesh_settings as settings
+
+    options = {option: getattr(args, option) for option in MESH_OPTIONS}
+    return settings(base, options, lambda name: name.replace("_", "-"))
 
 
-def run(args: argparse.Namespace) -> int:
-    """Run the contact curve and print it (text or JSON); write fields if asked."""
-    from ..output.export import write_indentation
-    from ..study.accuracy import run_ladder, run_to_accuracy
-    from ..study.indentation import run_indentation
+def _optional(name: str, value: str | None, unit: str) -> float | None:
+    return None if value is None else validate_positive(name, value, unit)
 
-    indenter, half_space = read_indenter(args), read_half_space(args)
-    max_time = validate_positive("max-time", args.max_time, "s")
+
+def _check_combinations(args: argparse.Namespace) -> None:
+    """Refuse options that exclude each other, in the command line's words."""
     if args.accuracy is not None and args.model == "neo-hookean":
         raise InputError(
             "accuracy: applies to the linear model only; for --model neo-hookean use --refine "
@@ -143,100 +163,41 @@ def run(args: argparse.Namespace) -> int:
         )
     if args.accuracy is not None and args.no_estimate:
         raise InputError("accuracy: needs the error estimates; drop --no-estimate")
-    if args.model == "neo-hookean":
-        return _run_finite(args, indenter, half_space)
-    depths, mesh = _depths(args.depths), mesh_settings(args)
-    refine = validate_positive("refine", args.refine)
-    tolerance = None if args.accuracy is None else validate_positive("accuracy", args.accuracy)
-    if tolerance is not None and refine != 1.0:
+    if args.accuracy is not None and validate_positive("refine", args.refine) != 1.0:
         raise InputError(
             f"refine: --accuracy chooses the refinement itself (its ladder starts at refine 1), "
-            f"got --refine {refine:g}; drop one of them"
+            f"got --refine {float(args.refine):g}; drop one of them"
         )
-    if not args.no_estimate:
-        _check_coarsest(mesh, refine)
-    out = None
-    if args.out is not None:
-        out = check_output_folder(Path(args.out), force=args.force)
-    with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
-        stage = (
-            stack.enter_context(staged_folder(out, force=args.force)) if out is not None else None
-        )
-        if args.no_estimate:
-            result = run_indentation(
-                indenter, half_space, depths, mesh.refined(refine), backend=args.solver
-            )
-            ladder = None
-        elif tolerance is None:
-            ladder = run_ladder(
-                indenter, half_space, depths, mesh, refine=refine, backend=args.solver
-            )
-        else:
-            ladder = run_to_accuracy(
-                indenter,
-                half_space,
-                tolerance,
-                depths,
-                mesh,
-                max_time=max_time,
-                backend=args.solver,
-            )
-        if ladder is not None:
-            result = ladder.finest
-        report = {**result.to_dict(), **(ladder.to_dict() if ladder else {})}
-        if stage is not None:
-            write_indentation(result, stage)
-            (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
+    indenter, half_space = read_indenter(args), read_half_space(args, FEM_POISSON_LOW)
+    max_time = validate_positive("max-time", args.max_time, "s")
+    _check_combinations(args)
+    result = contact(
+        indenter,
+        half_space,
+        mass=_optional("mass", args.mass, "kg"),
+        velocity=_optional("velocity", args.velocity, "m/s"),
+        depths=_depths(args.depths),
+        model=args.model,
+        refine=validate_positive("refine", args.refine),
+        estimate=not args.no_estimate,
+        accuracy=_optional("accuracy", args.accuracy, ""),
+        max_time=max_time,
+        mesh=mesh_settings(args, FINITE_MESH if args.model == "neo-hookean" else DEFAULTS),
+        solver=args.solver,
+        out=args.out,
+        force=args.force,
+    )
+    report = result.to_dict()
     if args.json:
         print_json(report)
+    elif result.model == "neo-hookean":
+        print(finite_contact_text(report))
     else:
         print(contact_text(report))
-    return 0
-
-
-def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
-    """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh."""
-    from ..study.accuracy import check_ladder
-
-    try:
-        check_ladder(mesh, refine)
-    except InputError as error:
-        raise InputError(f"{error}; or pass --no-estimate") from None
-
-
-def _run_finite(args: argparse.Namespace, indenter, half_space) -> int:
-    """``--model neo-hookean``: the finite-strain curve on the 3-mesh ladder (or the K mesh
-    alone with --no-estimate); with --out also contact.json, the curve CSV and the deformed
-    fields at the largest depth (VTU)."""
-    from ..output.finite import write_finite_curve
-    from ..study.finite_indentation import run_finite_ladder, run_finite_study
-
-    depths, mesh = _depths(args.depths), mesh_settings(args, FINITE_MESH)
-    refine = validate_positive("refine", args.refine)
-    mesh.refined(refine)  # the finest level first: its message names --refine's value
-    if not args.no_estimate:
-        _check_coarsest(mesh, refine)
-    if args.solver == "pardiso":
-        raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'")
-    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
-        stage = (
-            stack.enter_context(staged_folder(out, force=args.force)) if out is not None else None
-        )
-        if args.no_estimate:
-            result = run_finite_study(indenter, half_space, depths, mesh.refined(refine))
-            report = result.to_dict()
-        else:
-            ladder = run_finite_ladder(indenter, half_space, depths, mesh, refine=refine)
-            result = ladder.finest
-            report = {**result.to_dict(), **ladder.to_dict()}
-        if stage is not None:
-            write_finite_curve(result, stage)
-            (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
-    if args.json:
-        print_json(report)
-    else:
-        print(finite_contact_text(report))
     return 0
 
 
@@ -262,7 +223,7 @@ def finite_contact_text(report: dict) -> str:
     mesh, timings = report["mesh"], report["timings"]
     rows += [
         f"  beta (q fixed) {report['beta_fem']:.6e} vs linear {report['beta_analytic']:.6e};  "
-        f"exponent {report['exponent_fem']:.6f} vs linear {report['exponent_analytic']:.6f}",
+        f"{_exponent_text(report, 'linear')}",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
         f"{mesh['contact_candidates']} contact candidates",
         "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
@@ -272,13 +233,16 @@ def finite_contact_text(report: dict) -> str:
     return "\n".join(rows)
 
 
-def _exponent_text(report: dict) -> str:
-    if not math.isfinite(report["exponent_fem"]):
+def _exponent_text(report: dict, against: str = "") -> str:
+    """The fitted exponent against Shtaerman's (and its error, where there is a true one)."""
+    fitted = report["exponent_fem"]
+    if fitted is None or not math.isfinite(fitted):
         return "exponent: fitted only from >= 2 depths"
-    return (
-        f"exponent {report['exponent_fem']:.6f} vs {report['exponent_analytic']:.6f} "
-        f"({report['errors']['exponent']:.1e})"
-    )
+    text = f"exponent {fitted:.6f} vs {(against + ' ') if against else ''}"
+    text += f"{report['exponent_analytic']:.6f}"
+    if "errors" in report:
+        text += f" ({report['errors']['exponent']:.1e})"
+    return text
 
 
 def contact_text(report: dict) -> str:

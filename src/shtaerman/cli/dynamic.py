@@ -3,21 +3,22 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
-from pathlib import Path
 
-import meshio
-
-from ..fem.contact import validate_fem_inputs
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, validate_density
-from ..output.dynamic import history_columns
-from ..output.export import field_mesh
-from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
-from ..study.dynamic import DynamicTolerances, run_case
-from ..study.dynamic_accuracy import check_ladder, complete_ladder
+from ..api.fem_dynamic import dynamic
+from ..fem.dynamic_contact import DynamicSettings, validate_density
+from ..output.files import write_csv
+from ..study.dynamic import DynamicTolerances
+from ..theory.materials import Material
 from ..validation import InputError, validate_positive
-from .common import PAPER, add_half_space_options, add_indenter_options, print_json, warn
+from .common import (
+    FEM_POISSON_LOW,
+    PAPER,
+    add_half_space_options,
+    add_indenter_options,
+    print_json,
+    warn,
+)
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
 from .impact import history_path
@@ -56,7 +57,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "--velocity", default=PAPER["velocity"], metavar="M/S", help="approach velocity v0 in m/s"
     )
     add_indenter_options(p)
-    add_half_space_options(p)
+    add_half_space_options(p, FEM_POISSON_LOW)
     p.add_argument(
         "--density2",
         default=DEFAULT_DENSITY,
@@ -117,41 +118,29 @@ def settings_from(args: argparse.Namespace) -> DynamicSettings:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run the dynamic impact; print text or JSON; write the history and folder if asked."""
+    """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
+    history and folder if asked."""
     mass = validate_positive("mass", args.mass, "kg")
     velocity = validate_positive("velocity", args.velocity, "m/s")
     density = validate_density(args.density2)
-    indenter, half_space = read_indenter(args), read_half_space(args)
-    validate_fem_inputs(indenter, half_space)
-    refine = validate_positive("refine", args.refine)
-    settings = settings_from(args).refined(refine)
-    if not args.no_estimate:
-        try:
-            check_ladder(settings)
-        except InputError as error:
-            raise InputError(f"{error}; refine the settings or pass --no-estimate") from None
+    indenter, half_space = read_indenter(args), read_half_space(args, FEM_POISSON_LOW)
+    body = Material(half_space.youngs_modulus, half_space.poisson_ratio, density)
+    settings = settings_from(args)
     history = history_path(args.history, force=args.force)
-    out = check_output_folder(Path(args.out), force=args.force) if args.out else None
-    case = run_case(
+    result = dynamic(
         indenter,
-        half_space,
-        density,
-        mass,
-        velocity,
-        settings,
-        snapshots=(lambda q: (0.5 * q.t_c, q.t_c, 1.5 * q.t_c)) if out else None,
+        body,
+        mass=mass,
+        velocity=velocity,
+        refine=validate_positive("refine", args.refine),
+        estimate=not args.no_estimate,
+        settings=settings,
+        out=args.out,
+        force=args.force,
     )
-    result, report = case.result, case.document()
-    if not args.no_estimate:
-        ladder = complete_ladder(
-            result, indenter, half_space, density, mass, velocity, settings, refine=refine
-        )
-        report.update(ladder.to_dict())
+    report = result.to_dict()
     if history is not None:
-        write_csv(history, history_columns(result))
-    if out is not None:
-        with staged_folder(out) as stage:
-            write_folder(result, report, tuple(result.snapshots), stage)
+        write_csv(history, result.history())
     if args.json:
         print_json(report)
     else:
@@ -167,20 +156,19 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def write_folder(
-    result: DynamicImpactResult, report: dict, snapshots: tuple[float, ...], folder: Path
-) -> None:
-    """dynamic.json, history.csv, energies.csv and one VTU per snapshot time."""
-    (folder / "dynamic.json").write_text(json.dumps(json_safe(report), indent=2))
-    write_csv(folder / "history.csv", history_columns(result))
-    write_csv(
-        folder / "energies.csv",
-        {"t [s]": result.t, **{f"{k} [J]": v for k, v in result.energies.items()}},
+def _differences_text(report: dict) -> str:
+    """Quasi-static / dynamic - 1 in per cent, with the estimated error where there is one."""
+    errors = report.get("differences_error") or {}
+    cells = []
+    for key, value in report["differences"].items():
+        error = errors.get(key)
+        spread = f" ± {100 * error:.2f}" if error is not None else ""
+        cells.append(f"{key} {100 * value:+.2f}{spread} %")
+    return (
+        "  quasi-static / dynamic - 1  " + ", ".join(cells) + "\n"
+        "                              (x_c against x_max, P_c against P_max, t_c against "
+        "t_contact / 2)"
     )
-    for index, requested in enumerate(snapshots):
-        actual, solution, _ = result.field_solution(requested)
-        mesh = field_mesh(solution)
-        meshio.write(folder / f"field_{index}_t{actual:.6e}s.vtu", mesh)
 
 
 def dynamic_text(report: dict) -> str:
@@ -198,6 +186,7 @@ def dynamic_text(report: dict) -> str:
         f"{est['restitution']:.6f})",
         f"  energy to waves 1-e^2   {dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
         f"estimate {est['energy_fraction']:.6f})",
+        _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
         f"{dyn['reflected_energy_fraction']:.1e} of the radiated",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "

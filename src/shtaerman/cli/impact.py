@@ -6,13 +6,9 @@ import argparse
 import math
 from pathlib import Path
 
-import numpy as np
-
+from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
-from ..theory.contact import PowerLawContact
-from ..theory.impact import ImpactResult, solve_impact
-from ..theory.impact_ode import integrate_impact
-from ..theory.materials import effective_modulus
+from ..theory.impact import ImpactResult
 from ..validation import InputError, validate_positive
 from .common import PAPER, add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
@@ -72,38 +68,24 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Solve the impact and print it (text or JSON); write the history if asked."""
+    """Solve the impact (:func:`shtaerman.impact`) and print it; write the history if asked."""
     mass = validate_positive("mass", args.mass, "kg")
     velocity = validate_positive("velocity", args.velocity, "m/s")
     striker, half_space = read_striker(args), read_half_space(args)
     indenter = read_indenter(args)
     points, history = _points(args.points), history_path(args.history, force=args.force)
-    law = PowerLawContact(indenter, effective_modulus(striker, half_space))
-    result = solve_impact(mass, velocity, law)
-    report = {**result.maxima(), "force_exponent": result.force_exponent, "modulus": law.modulus}
-    if args.check:
-        report["ode_check"] = _ode_check(result)
+    result = impact(
+        indenter, half_space, mass=mass, velocity=velocity, striker=striker, check=args.check
+    )
+    report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:
             write_csv(stage, result.history(points).columns())
     if args.json:
         print_json(report)
     else:
-        print(_impact_text(result, report))
+        print(_impact_text(result.solution, report))
     return 0
-
-
-def _ode_check(result: ImpactResult) -> dict[str, float]:
-    numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
-    exact = result.history(2001)
-    x, _ = numerical.sample(exact.t[:-1])
-    return {
-        "x_c": numerical.x_c,
-        "t_c": numerical.t_c,
-        "t_y": numerical.t_y,
-        "rebound_velocity": numerical.rebound_velocity,
-        "max_history_difference": float(np.max(np.abs(x - exact.x[:-1])) / result.x_c),
-    }
 
 
 def _impact_text(result: ImpactResult, report: dict) -> str:

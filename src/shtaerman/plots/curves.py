@@ -57,10 +57,15 @@ CONVERGENCE_KEYS = ("force", "beta", "contact_radius", "central_pressure")
 def _fit_note(result: IndentationResult) -> str:
     q_exact, fit = result.exact.force_exponent, result.fit
     beta_exact, q_text = result.exact.beta, fraction(q_exact)
+    free = (
+        rf"FEM, free fit: $q$ = {fit.exponent:.5f} (exact {q_text} = {q_exact:.5f}, "
+        f"{percent(fit.exponent / q_exact - 1)})"
+        if math.isfinite(fit.exponent)
+        else r"FEM, free fit: $q$ fitted only from $\geq$ 2 depths"
+    )
     return "\n".join(
         [
-            rf"FEM, free fit: $q$ = {fit.exponent:.5f} (exact {q_text} = {q_exact:.5f}, "
-            f"{percent(fit.exponent / q_exact - 1)})",
+            free,
             rf"FEM, $q$ = {q_text}: $\beta$ = ${sci(fit.beta_fixed_exponent)}$ "
             rf"N m$^{{-{q_text}}}$ (exact ${sci(beta_exact)}$, "
             f"{percent(fit.beta_fixed_exponent / beta_exact - 1)})",

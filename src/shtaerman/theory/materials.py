@@ -5,9 +5,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..validation import validate_poisson, validate_positive
+from ..validation import InputError, validate_poisson, validate_positive
 
-__all__ = ["RIGID", "Material", "effective_modulus"]
+__all__ = ["DENSITY_RANGE", "RIGID", "Material", "effective_modulus"]
+
+DENSITY_RANGE = (1e-6, 1e6)
+"""Densities in kg/m^3 a material may have (the range the dynamic FEM accepts for --density2)."""
 
 
 @dataclass(frozen=True)
@@ -20,16 +23,27 @@ class Material:
         Young's modulus E in Pa; ``math.inf`` for a rigid body.
     poisson_ratio : float
         Poisson's ratio nu in (-1, 0.5]; 0.5 is incompressible (the paper's rubber).
+    density : float, optional
+        Mass density rho in kg/m^3, within :data:`DENSITY_RANGE`; needed only where inertia
+        counts (the dynamic impact). None: not given.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If a value lies outside its range.
     """
 
     youngs_modulus: float
     poisson_ratio: float
+    density: float | None = None
 
     def __post_init__(self) -> None:
         rigid = not isinstance(self.youngs_modulus, bool) and self.youngs_modulus == math.inf
         if not rigid:
             validate_positive("youngs_modulus", self.youngs_modulus, "Pa (or math.inf: rigid)")
         validate_poisson("poisson_ratio", self.poisson_ratio)
+        if self.density is not None:
+            object.__setattr__(self, "density", _validate_density(self.density))
 
     @property
     def compliance(self) -> float:
@@ -40,6 +54,16 @@ class Material:
     def shear_modulus(self) -> float:
         """Shear modulus mu = E / (2 (1 + nu)) in Pa."""
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+def _validate_density(density: object) -> float:
+    rho = validate_positive("density", density, "kg/m^3")
+    low, high = DENSITY_RANGE
+    if not low <= rho <= high:
+        raise InputError(
+            f"density must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}", "density"
+        )
+    return rho
 
 
 RIGID = Material(math.inf, 0.0)

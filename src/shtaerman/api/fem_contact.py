@@ -1,0 +1,422 @@
+"""``shtaerman.contact``: the FEM contact curve of a rigid power-law indenter, with estimates."""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import json
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material
+from ..validation import InputError, validate_increasing, validate_positive
+from .quasi_static import check_bodies, impact
+
+if TYPE_CHECKING:
+    from ..fem.mesh import MeshSettings
+
+__all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
+
+MODELS = ("linear", "neo-hookean")
+"""Material models of ``model=`` (``--model``): the first is the default."""
+MESH_OPTIONS = {
+    "mesh_size": "size",
+    "mesh_margin": "margin",
+    "domain_factor": "domain",
+    "growth": "growth",
+    "max_dofs": "max_dofs",
+}
+"""Mesh keywords (``--mesh-size``, ...) and the MeshSettings field each sets."""
+DEFAULT_MASS = 0.7
+"""kg: the paper's striker, the default of ``mass`` (and of the CLI's ``--mass``)."""
+DEFAULT_VELOCITY = 3.0
+"""m/s: the paper's approach velocity, the default of ``velocity``."""
+NOT_IN_JSON = ("extra", "solution", "ladder", "key_order")
+"""ContactResult fields that are not keys of the JSON."""
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """The FEM contact curve: the keys of ``shtaerman contact --json`` (SI units).
+
+    The per-depth values are in ``steps`` (one dict per depth) and, as arrays, in
+    :attr:`depth`, :attr:`force`, :attr:`contact_radius`, :attr:`central_pressure`. The
+    keys of the error-estimate ladder (``error_estimate``, ``extrapolated``, ...) are None
+    when it did not run (``estimate=False``); ``errors`` is the linear model's true error
+    against Shtaerman's solution, ``departures_from_linear`` the neo-Hookean model's
+    departure from it. ``solution`` is the finest FEM run (fields on demand), ``ladder``
+    the mesh ladder; neither is part of :meth:`to_dict`.
+    """
+
+    model: str
+    shape_coefficient: float
+    exponent: float
+    E2: float
+    nu2: float
+    modulus: float
+    beta_fem: float
+    beta_analytic: float
+    exponent_fem: float
+    exponent_analytic: float
+    beta_fem_free_exponent: float
+    central_to_mean_analytic: float
+    steps: tuple[dict[str, Any], ...]
+    mesh: dict[str, Any]
+    solver: str
+    timings: dict[str, float]
+    errors: dict[str, float] | None = None
+    departures_from_linear: dict[str, float] | None = None
+    error_estimate: dict[str, float] | None = None
+    extrapolated: dict[str, float] | None = None
+    estimate_details: dict[str, dict[str, Any]] | None = None
+    true_error: dict[str, float] | None = None
+    effectivity: dict[str, float] | None = None
+    mesh_ladder: tuple[dict[str, Any], ...] | None = None
+    accuracy_target: float | None = None
+    extra: dict[str, Any] = field(default_factory=dict, repr=False)
+    solution: Any = field(default=None, repr=False, compare=False)
+    ladder: Any = field(default=None, repr=False, compare=False)
+    key_order: tuple[str, ...] = field(default=(), repr=False, compare=False)
+
+    @classmethod
+    def from_report(
+        cls, report: Mapping[str, Any], solution: Any = None, ladder: Any = None
+    ) -> ContactResult:
+        """The result of a ``contact --json`` object (its key order kept for :meth:`to_dict`)."""
+        names = {f.name for f in dataclasses.fields(cls)} - set(NOT_IN_JSON)
+        values = {key: value for key, value in report.items() if key in names}
+        values["steps"] = tuple(dict(step) for step in report["steps"])
+        if "mesh_ladder" in report:
+            values["mesh_ladder"] = tuple(dict(level) for level in report["mesh_ladder"])
+        extra = {key: value for key, value in report.items() if key not in names}
+        return cls(**values, extra=extra, solution=solution, ladder=ladder, key_order=tuple(report))
+
+    def _column(self, key: str) -> np.ndarray:
+        return np.array([step[key] for step in self.steps], dtype=float)
+
+    @property
+    def depth(self) -> np.ndarray:
+        """Depths in m."""
+        return self._column("depth")
+
+    @property
+    def force(self) -> np.ndarray:
+        """FEM force at each depth, N."""
+        return self._column("force")
+
+    @property
+    def contact_radius(self) -> np.ndarray:
+        """FEM contact radius at each depth, m."""
+        return self._column("contact_radius")
+
+    @property
+    def central_pressure(self) -> np.ndarray:
+        """FEM pressure at the centre of the contact at each depth, Pa."""
+        return self._column("central_pressure")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object of ``shtaerman contact --json`` (same keys, same order)."""
+        document: dict[str, Any] = {}
+        for key in self.key_order:
+            value = self.extra[key] if key in self.extra else getattr(self, key)
+            if key in ("steps", "mesh_ladder"):
+                value = [dict(row) for row in value]
+            document[key] = value
+        return document
+
+
+def mesh_settings(
+    base: MeshSettings,
+    options: Mapping[str, object],
+    spell: Callable[[str], str] = str,
+) -> MeshSettings:
+    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None.
+
+    Each value is checked alone first, so that an error names its option as ``spell(name)``
+    (e.g. ``mesh-size`` on the command line).
+    """
+    from ..fem.mesh import MeshSettings
+
+    chosen = {MESH_OPTIONS[k]: v for k, v in options.items() if v is not None}
+    for name, field_name in MESH_OPTIONS.items():
+        if field_name not in chosen:
+            continue
+        try:
+            MeshSettings(**{field_name: chosen[field_name]})
+        except InputError as error:
+            raise InputError(f"{spell(name)}: {error}", name) from None
+    return dataclasses.replace(base, **{k: float(v) for k, v in chosen.items()})  # type: ignore[arg-type]
+
+
+def contact_depths(
+    indenter: PowerLawIndenter,
+    body: Material,
+    depths: ArrayLike | None = None,
+    *,
+    mass: float | None = None,
+    velocity: float | None = None,
+    striker: Material | None = None,
+) -> np.ndarray:
+    """The depths of a contact curve, m: ``depths`` checked, or by default eight up to the
+    x_c of this impact (``mass`` in kg, default 0.7, at ``velocity`` in m/s, default 3),
+    geometric, contact radii a_c/3 .. a_c.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If depths are not positive and increasing, or are given with mass or velocity.
+    """
+    from ..study.indentation import depths_up_to
+
+    if depths is not None:
+        for name, value in (("mass", mass), ("velocity", velocity)):
+            if value is not None:
+                raise InputError(
+                    f"{name}: sets the default depths (up to that impact's x_c); give either "
+                    "depths or mass and velocity",
+                    name,
+                )
+        return validate_increasing("depths", list(np.atleast_1d(depths)), "m")
+    mass = DEFAULT_MASS if mass is None else mass
+    velocity = DEFAULT_VELOCITY if velocity is None else velocity
+    x_c = impact(indenter, body, mass=mass, velocity=velocity, striker=striker).x_c
+    return depths_up_to(x_c, indenter.exponent)
+
+
+def _check_options(model: str, accuracy: object, estimate: bool, solver: str) -> None:
+    from ..fem.solver import BACKENDS
+
+    if model not in MODELS:
+        raise InputError(f"model: unknown model {model!r}. Pick one of {list(MODELS)}", "model")
+    solvers = ("auto", *BACKENDS)
+    if solver not in solvers:
+        raise InputError(f"solver: unknown solver {solver!r}. Pick one of {solvers}", "solver")
+    if model == "neo-hookean" and solver == "pardiso":
+        raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'", "solver")
+    if accuracy is not None and model == "neo-hookean":
+        raise InputError(
+            "accuracy: applies to the linear model only; for the neo-hookean model use refine, "
+            "whose estimates come with every run",
+            "accuracy",
+        )
+    if accuracy is not None and not estimate:
+        raise InputError("accuracy: needs the error estimates (estimate=True)", "accuracy")
+
+
+def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
+    """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh."""
+    from ..study.accuracy import check_ladder
+
+    try:
+        check_ladder(mesh, refine)
+    except InputError as error:
+        raise InputError(
+            f"{error}; or run without the estimate (estimate=False, --no-estimate)",
+            error.parameter,
+        ) from None
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """Checked inputs of one contact run."""
+
+    indenter: PowerLawIndenter
+    body: Material
+    depths: np.ndarray
+    model: str
+    mesh: MeshSettings
+    refine: float
+    estimate: bool
+    tolerance: float | None
+    max_time: float
+    solver: str
+    progress: Callable[[str], None] | None
+
+
+def _solve(plan: _Plan) -> tuple[Any, Any]:
+    """The finest FEM run and the ladder (None without the estimate)."""
+    from ..study.accuracy import run_ladder, run_to_accuracy
+    from ..study.finite_indentation import run_finite_ladder, run_finite_study
+    from ..study.indentation import run_indentation
+
+    inputs = (plan.indenter, plan.body)
+    finest = plan.mesh.refined(plan.refine) if not plan.estimate else None
+    if plan.model == "neo-hookean":
+        if finest is not None:
+            return run_finite_study(*inputs, plan.depths, finest), None
+        ladder = run_finite_ladder(
+            *inputs, plan.depths, plan.mesh, refine=plan.refine, progress=plan.progress
+        )
+    elif finest is not None:
+        return run_indentation(*inputs, plan.depths, finest, backend=plan.solver), None
+    elif plan.tolerance is None:
+        ladder = run_ladder(
+            *inputs,
+            plan.depths,
+            plan.mesh,
+            refine=plan.refine,
+            backend=plan.solver,
+            progress=plan.progress,
+        )
+    else:
+        ladder = run_to_accuracy(
+            *inputs,
+            plan.tolerance,
+            plan.depths,
+            plan.mesh,
+            max_time=plan.max_time,
+            backend=plan.solver,
+            progress=plan.progress,
+        )
+    return ladder.finest, ladder
+
+
+def _write(result: ContactResult, folder: Path) -> None:
+    """contact.json, the curve CSVs and VTU fields, and (linear model) the curve figures."""
+    from ..output import export
+    from ..output.files import json_safe
+    from ..output.finite import write_finite_curve
+
+    if result.model == "neo-hookean":
+        write_finite_curve(result.solution, folder)
+    else:
+        export.write_indentation(result.solution, folder)
+        _figures(result.solution, folder)
+    (folder / "contact.json").write_text(json.dumps(json_safe(result.to_dict()), indent=2))
+
+
+def _figures(solution: Any, folder: Path) -> list[Path]:
+    """force_depth.png and pressure.png: the FEM curve against Shtaerman's solution."""
+    from ..plots.curves import plot_force_depth, plot_pressure
+
+    return [
+        plot_force_depth(solution, folder / "force_depth.png"),
+        plot_pressure(solution, folder / "pressure.png"),
+    ]
+
+
+def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
+    """Check every option of :func:`contact` before anything runs."""
+    from ..fem.contact import validate_fem_inputs
+    from ..fem.finite_contact import FINITE_MESH
+    from ..fem.mesh import DEFAULTS
+
+    model, estimate = options["model"], bool(options["estimate"])
+    check_bodies(indenter, body, RIGID if options["striker"] is None else options["striker"])
+    _check_options(model, options["accuracy"], estimate, options["solver"])
+    validate_fem_inputs(indenter, body)
+    max_time = validate_positive("max_time", options["max_time"], "s")
+    base = options["mesh"]
+    if base is None:
+        base = FINITE_MESH if model == "neo-hookean" else DEFAULTS
+    mesh = mesh_settings(base, {k: options[k] for k in MESH_OPTIONS})
+    refine = validate_positive("refine", options["refine"])
+    accuracy = options["accuracy"]
+    tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
+    if tolerance is not None and refine != 1.0:
+        raise InputError(
+            f"refine: accuracy chooses the refinement itself (its ladder starts at refine 1), "
+            f"got refine {refine:g}; give one of them",
+            "refine",
+        )
+    depths = contact_depths(
+        indenter,
+        body,
+        options["depths"],
+        mass=options["mass"],
+        velocity=options["velocity"],
+        striker=options["striker"],
+    )
+    if model == "neo-hookean":
+        mesh.refined(refine)  # the finest level first: its message names refine's value
+    if estimate:
+        _check_coarsest(mesh, refine)
+    rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])
+    return _Plan(indenter, body, depths, model, mesh, *rest)
+
+
+def contact(
+    indenter: PowerLawIndenter,
+    body: Material,
+    *,
+    mass: float | None = None,
+    velocity: float | None = None,
+    depths: Sequence[float] | np.ndarray | None = None,
+    striker: Material | None = None,
+    model: str = "linear",
+    refine: float = 1.0,
+    estimate: bool = True,
+    accuracy: float | None = None,
+    max_time: float = 60.0,
+    mesh: MeshSettings | None = None,
+    mesh_size: float | None = None,
+    mesh_margin: float | None = None,
+    domain_factor: float | None = None,
+    growth: float | None = None,
+    max_dofs: float | None = None,
+    solver: str = "auto",
+    out: str | Path | None = None,
+    force: bool = False,
+    progress: Callable[[str], None] | None = None,
+) -> ContactResult:
+    """Press a rigid indenter z = A r^n into the FEM half-space; compare with Shtaerman.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        z = A r^n with n > 1.
+    body : Material
+        The half-space: E2 in Pa, nu2 in [0, 0.5] (the FEM's validated range).
+    mass, velocity : float, optional
+        The impact (kg, m/s; default 0.7 kg at 3 m/s) whose x_c the default depths reach,
+        with ``striker`` (default rigid) as the striker's material; not with ``depths``.
+    depths : sequence of float, optional
+        Depths in m, increasing (default: eight up to that x_c, radii a_c/3 .. a_c).
+    model : {"linear", "neo-hookean"}
+        Linear elasticity, or a neo-Hookean solid at finite strain (same E2, nu2).
+    refine : float
+        Divide the mesh size field by it (dofs ~ refine^2).
+    estimate : bool
+        Run the 3-mesh ladder (refine/2, refine/sqrt 2, refine) for the error estimates.
+    accuracy : float, optional
+        Refine until the estimated force and beta errors are <= accuracy (linear model,
+        within ``max_time`` s).
+    mesh : MeshSettings, optional
+        The base mesh; ``mesh_size``, ``mesh_margin``, ``domain_factor``, ``growth`` and
+        ``max_dofs`` (the ``--mesh-size`` ... options) override its fields.
+    solver : {"auto", "superlu", "pardiso"}
+        Sparse solver of the linear model.
+    out : path, optional
+        A new folder for contact.json, CSV curves, VTU fields and (linear) figures; an
+        existing one is replaced only with ``force``.
+    progress : callable, optional
+        Receives one line per ladder level.
+
+    Returns
+    -------
+    ContactResult
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If an input lies outside its range (nothing is computed).
+    """
+    options = dict(locals())
+    plan = _plan(indenter, body, options)
+    from ..output.files import check_output_folder, staged_folder
+
+    folder = check_output_folder(Path(out), force=force) if out is not None else None
+    with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
+        stage = stack.enter_context(staged_folder(folder, force=force)) if folder else None
+        solution, ladder = _solve(plan)
+        report = {**solution.to_dict(), **(ladder.to_dict() if ladder is not None else {})}
+        result = ContactResult.from_report(report, solution, ladder)
+        if stage is not None:
+            _write(result, stage)
+    return result

@@ -1,0 +1,287 @@
+"""``shtaerman.dynamic``: the elastodynamic FE impact against the quasi-static theory."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from ..validation import InputError, validate_positive
+from .quasi_static import check_bodies
+
+if TYPE_CHECKING:
+    from ..fem.dynamic_contact import DynamicSettings
+    from ..study.dynamic import DynamicCase
+
+__all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
+
+SETTINGS_OPTIONS = {
+    "steps": "steps",
+    "mesh_size": "size",
+    "mesh_margin": "margin",
+    "domain_factor": "domain",
+    "growth": "growth",
+    "layer_rate": "layer_rate",
+}
+"""Numerical keywords (``--steps``, ``--mesh-size``, ...): the DynamicSettings field each sets."""
+DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
+"""The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
+P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
+
+
+def _dynamic_key(name: str, doc: str) -> Any:
+    return property(lambda self: self.dynamic[name], doc=doc)
+
+
+@dataclass(frozen=True)
+class DynamicResult:
+    """The dynamic impact: the keys of ``shtaerman dynamic --json`` (SI units).
+
+    ``dynamic`` holds the FE results; each is also an attribute (``x_max``, ``P_max``,
+    ``restitution``, ...). ``differences`` are quasi-static / dynamic - 1 for ``x_c``
+    (against x_max), ``P_c`` (P_max) and ``t_c`` (t_contact / 2); ``differences_error``
+    their estimated absolute errors. The ladder's keys are None without the estimate.
+    ``solution`` is the finest FE run (histories, fields), ``ladder`` the error-estimate
+    ladder; neither is part of :meth:`to_dict`.
+    """
+
+    quasi_static: dict[str, float]
+    dynamic: dict[str, float]
+    differences: dict[str, float]
+    radiation_estimate: dict[str, float]
+    mesh: dict[str, Any]
+    timings: dict[str, float]
+    parameters: dict[str, float]
+    differences_error: dict[str, float] | None = None
+    error_estimate: dict[str, float] | None = None
+    extrapolated: dict[str, float] | None = None
+    estimate_details: dict[str, dict[str, Any]] | None = None
+    mesh_ladder: tuple[dict[str, Any], ...] | None = None
+    solution: Any = field(default=None, repr=False, compare=False)
+    ladder: Any = field(default=None, repr=False, compare=False)
+
+    x_max = _dynamic_key("x_max", "Maximum approach, m.")
+    P_max = _dynamic_key("P_max", "Maximum contact force, N.")
+    t_x_max = _dynamic_key("t_x_max", "Time of the maximum approach, s.")
+    t_contact = _dynamic_key("t_contact", "Contact duration, s.")
+    v_out = _dynamic_key("v_out", "Rebound velocity, m/s.")
+    restitution = _dynamic_key("restitution", "Coefficient of restitution e = v_out / v0.")
+    energy_radiated_fraction = _dynamic_key(
+        "energy_radiated_fraction", "Energy carried away by waves, 1 - e^2 of M v0^2 / 2."
+    )
+    energy_balance_error = _dynamic_key(
+        "energy_balance_error", "Energy account error, of M v0^2 / 2."
+    )
+    reflected_energy_fraction = _dynamic_key(
+        "reflected_energy_fraction", "Energy reflected by the far boundary, of the radiated."
+    )
+
+    def history(self) -> dict[str, Any]:
+        """The histories t, x, v, P, a, p0 at every time step (arrays, SI units)."""
+        return self.solution.history_columns()
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object of ``shtaerman dynamic --json``."""
+        document: dict[str, Any] = {
+            "quasi_static": dict(self.quasi_static),
+            "dynamic": dict(self.dynamic),
+            "differences": dict(self.differences),
+        }
+        if self.differences_error is not None:
+            document["differences_error"] = dict(self.differences_error)
+        document.update(
+            radiation_estimate=self.radiation_estimate,
+            mesh=self.mesh,
+            timings=self.timings,
+            parameters=self.parameters,
+        )
+        if self.mesh_ladder is not None:
+            document.update(
+                error_estimate=self.error_estimate,
+                extrapolated=self.extrapolated,
+                estimate_details=self.estimate_details,
+                mesh_ladder=[dict(level) for level in self.mesh_ladder],
+            )
+        return document
+
+
+def dynamic_settings(
+    base: DynamicSettings | None, options: Mapping[str, object]
+) -> DynamicSettings:
+    """``base`` (default ``DynamicSettings()``) with the options of :data:`SETTINGS_OPTIONS`
+    that are not None."""
+    from ..fem.dynamic_contact import DynamicSettings
+
+    base = DynamicSettings() if base is None else base
+    chosen = {SETTINGS_OPTIONS[k]: v for k, v in options.items() if v is not None}
+    return dataclasses.replace(base, **chosen)  # type: ignore[arg-type]
+
+
+def _result(case: DynamicCase) -> DynamicResult:
+    """The result of a case (with or without its ladder)."""
+    from ..study.dynamic import compare
+
+    document = dataclasses.replace(case, ladder=None).document()
+    differences = compare(case.quasi, case.result)
+    ladder, errors = case.ladder, None
+    if ladder is not None:
+        estimates = case.estimates()
+        errors = {DIFFERENCES[k]: estimates[f"difference_{k}"].absolute_error for k in DIFFERENCES}
+        document.update(ladder.to_dict())
+    return DynamicResult(
+        quasi_static=document["quasi_static"],
+        dynamic=document["dynamic"],
+        differences={DIFFERENCES[k]: value for k, value in differences.items()},
+        radiation_estimate=document["radiation_estimate"],
+        mesh=document["mesh"],
+        timings=document["timings"],
+        parameters=document["parameters"],
+        differences_error=errors,
+        error_estimate=document.get("error_estimate"),
+        extrapolated=document.get("extrapolated"),
+        estimate_details=document.get("estimate_details"),
+        mesh_ladder=tuple(document["mesh_ladder"]) if ladder is not None else None,
+        solution=case.result,
+        ladder=ladder,
+    )
+
+
+def _write_folder(result: DynamicResult, folder: Path) -> None:
+    """dynamic.json, history.csv, energies.csv and one VTU per snapshot time."""
+    import meshio
+
+    from ..output.export import field_mesh
+    from ..output.files import json_safe, write_csv
+
+    solution = result.solution
+    (folder / "dynamic.json").write_text(json.dumps(json_safe(result.to_dict()), indent=2))
+    write_csv(folder / "history.csv", result.history())
+    write_csv(
+        folder / "energies.csv",
+        {"t [s]": solution.t, **{f"{k} [J]": v for k, v in solution.energies.items()}},
+    )
+    for index, requested in enumerate(solution.snapshots):
+        actual, fields, _ = solution.field_solution(requested)
+        meshio.write(folder / f"field_{index}_t{actual:.6e}s.vtu", field_mesh(fields))
+
+
+def _snapshots(quasi: Any) -> tuple[float, ...]:
+    """The field snapshots of an ``out`` folder: half, all and 1.5 x the compression time."""
+    return (0.5 * quasi.t_c, quasi.t_c, 1.5 * quasi.t_c)
+
+
+def _density(body: Material) -> float:
+    if body.density is None:
+        raise InputError(
+            "density: the dynamic impact needs the body's density in kg/m^3, e.g. "
+            "Material(youngs_modulus, poisson_ratio, density=1100.0)",
+            "density",
+        )
+    return body.density
+
+
+def dynamic(
+    indenter: PowerLawIndenter,
+    body: Material,
+    *,
+    mass: float,
+    velocity: float,
+    refine: float = 1.0,
+    estimate: bool = True,
+    settings: DynamicSettings | None = None,
+    steps: int | None = None,
+    mesh_size: float | None = None,
+    mesh_margin: float | None = None,
+    domain_factor: float | None = None,
+    growth: float | None = None,
+    layer_rate: float | None = None,
+    out: str | Path | None = None,
+    force: bool = False,
+) -> DynamicResult:
+    """The dynamic FE impact of a rigid striker z = A r^n on an elastic half-space.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        The rigid striker's profile, n > 1.
+    body : Material
+        The half-space: E2 in Pa, nu2 in [0, 0.5] and its density in kg/m^3 (required).
+    mass, velocity : float
+        Striker mass in kg and approach velocity in m/s.
+    refine : float
+        Divide the mesh size field and the time step by it together.
+    estimate : bool
+        Run the two coarser levels of the ladder (refine/2, refine/sqrt 2) for the error
+        estimates (about 0.75 of the run's cost again).
+    settings : DynamicSettings, optional
+        The numerical controls; ``steps``, ``mesh_size``, ``mesh_margin``, ``domain_factor``,
+        ``growth`` and ``layer_rate`` (the ``--steps`` ... options) override its fields.
+    out : path, optional
+        A new folder for dynamic.json, history.csv, energies.csv and three VTU snapshots; an
+        existing one is replaced only with ``force``.
+
+    Returns
+    -------
+    DynamicResult
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If an input lies outside its range, or the body has no density (nothing is computed).
+    """
+    from ..output.files import check_output_folder, staged_folder
+    from ..study.dynamic import run_case
+    from ..study.dynamic_accuracy import complete_ladder
+
+    options = dict(steps=steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
+    options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
+    mass, velocity, refine, chosen = _checked(
+        indenter, body, (mass, velocity, refine), estimate, dynamic_settings(settings, options)
+    )
+    folder = check_output_folder(Path(out), force=force) if out is not None else None
+    inputs = (indenter, body, _density(body), mass, velocity)
+    case = run_case(*inputs, chosen, snapshots=_snapshots if folder is not None else None)
+    if estimate:
+        ladder = complete_ladder(case.result, *inputs, chosen, refine=refine)
+        case = dataclasses.replace(case, ladder=ladder)
+    result = _result(case)
+    if folder is not None:
+        with staged_folder(folder, force=force) as stage:
+            _write_folder(result, stage)
+    return result
+
+
+def _checked(
+    indenter: PowerLawIndenter,
+    body: Material,
+    numbers: tuple[float, float, float],
+    estimate: bool,
+    settings: DynamicSettings,
+) -> tuple[float, float, float, DynamicSettings]:
+    """Mass (kg), velocity (m/s), refine and the refined settings, every input checked
+    (the ladder's coarsest level too, with ``estimate``) before anything runs."""
+    from ..fem.contact import validate_fem_inputs
+    from ..study.dynamic_accuracy import check_ladder
+
+    check_bodies(indenter, body)
+    mass = validate_positive("mass", numbers[0], "kg")
+    velocity = validate_positive("velocity", numbers[1], "m/s")
+    _density(body)
+    validate_fem_inputs(indenter, body)
+    refine = validate_positive("refine", numbers[2])
+    chosen = settings.refined(refine)
+    if estimate:
+        try:
+            check_ladder(chosen)
+        except InputError as error:
+            raise InputError(
+                f"{error}; refine the settings or run without the estimate (estimate=False, "
+                "--no-estimate)",
+                error.parameter,
+            ) from None
+    return mass, velocity, refine, chosen

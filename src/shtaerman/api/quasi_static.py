@@ -1,0 +1,172 @@
+"""``shtaerman.impact``: the exact quasi-static impact of a power-law striker."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..theory import impact as theory
+from ..theory.contact import PowerLawContact
+from ..theory.impact_ode import integrate_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import RIGID, Material, effective_modulus
+from ..validation import InputError
+
+__all__ = ["ImpactResult", "check_bodies", "impact"]
+
+MAXIMA = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
+"""The maxima and durations, in the order of ``shtaerman impact --json``."""
+
+
+@dataclass(frozen=True)
+class ImpactResult:
+    """The quasi-static impact: the keys of ``shtaerman impact --json`` (SI units).
+
+    Attributes
+    ----------
+    beta : float
+        Force-law coefficient of P = beta x^q, N m^-q.
+    x_c, P_c, a_c, p_c : float
+        Maximum approach (m), force (N), contact radius (m), central pressure (Pa; inf for
+        n <= 1).
+    t_c, t_y : float
+        Compression time and impact duration, s.
+    impulse, impulse_simpson : float
+        2 M v0 and the paper's Simpson estimate of it (its eq. 16), N s.
+    force_exponent : float
+        q = (n + 1) / n.
+    modulus : float
+        Combined modulus E* of striker and body, Pa.
+    ode_check : dict or None
+        The numerical ODE's x_c, t_c, t_y, rebound_velocity and max_history_difference (the
+        largest |x_ode - x| / x_c), when asked for with ``check=True``.
+    solution : shtaerman.theory.impact.ImpactResult
+        The closed-form solution behind these numbers (its contact law included).
+    """
+
+    beta: float
+    x_c: float
+    P_c: float
+    a_c: float
+    p_c: float
+    t_c: float
+    t_y: float
+    impulse: float
+    impulse_simpson: float
+    force_exponent: float
+    modulus: float
+    solution: theory.ImpactResult = field(repr=False, compare=False)
+    ode_check: dict[str, float] | None = None
+
+    @property
+    def mass(self) -> float:
+        """Striker mass M in kg."""
+        return self.solution.mass
+
+    @property
+    def velocity(self) -> float:
+        """Approach velocity v0 in m/s."""
+        return self.solution.velocity
+
+    def history(self, points: int = 201, times: ArrayLike | None = None) -> theory.ImpactHistory:
+        """The exact t, x, v, P, a, p0 over [0, t_y] (``points`` instants, or ``times`` in s).
+
+        Raises
+        ------
+        shtaerman.validation.InputError
+            If ``points`` < 2 or a time lies outside [0, t_y].
+        """
+        return self.solution.history(points, times)
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON object of ``shtaerman impact --json`` (SI units)."""
+        document: dict[str, object] = {name: getattr(self, name) for name in MAXIMA}
+        document["force_exponent"] = self.force_exponent
+        document["modulus"] = self.modulus
+        if self.ode_check is not None:
+            document["ode_check"] = dict(self.ode_check)
+        return document
+
+
+def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
+    """Raise InputError unless the arguments are a PowerLawIndenter and two Materials."""
+    if not isinstance(indenter, PowerLawIndenter):
+        raise InputError(
+            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), got "
+            f"{type(indenter).__name__}",
+            "indenter",
+        )
+    for name, value in (("body", body), ("striker", striker)):
+        if not isinstance(value, Material):
+            raise InputError(
+                f"{name} must be a Material(youngs_modulus, poisson_ratio, density=None), got "
+                f"{type(value).__name__}",
+                name,
+            )
+    if math.isinf(body.youngs_modulus) and math.isinf(striker.youngs_modulus):
+        raise InputError("body: a rigid body under a rigid striker has no contact law", "body")
+
+
+def impact(
+    indenter: PowerLawIndenter,
+    body: Material,
+    *,
+    mass: float,
+    velocity: float,
+    striker: Material | None = None,
+    check: bool = False,
+) -> ImpactResult:
+    """The exact quasi-static impact of a striker z = A r^n on an elastic half-space.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        The striker's profile z = A r^n (A in m^(1-n)).
+    body : Material
+        The half-space (its density is not used).
+    mass, velocity : float
+        Striker mass M in kg and approach velocity v0 in m/s (> 0; above 5 m/s a
+        :class:`~shtaerman.theory.impact.QuasiStaticValidityWarning`).
+    striker : Material, optional
+        The striker's material; default rigid.
+    check : bool
+        Also integrate the ODE numerically and report the agreement (``ode_check``).
+
+    Returns
+    -------
+    ImpactResult
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If an input lies outside its range.
+    """
+    striker = RIGID if striker is None else striker
+    check_bodies(indenter, body, striker)
+    modulus = effective_modulus(striker, body)
+    result = theory.solve_impact(mass, velocity, PowerLawContact(indenter, modulus))
+    maxima = result.maxima()
+    return ImpactResult(
+        **maxima,
+        force_exponent=result.force_exponent,
+        modulus=modulus,
+        solution=result,
+        ode_check=_ode_check(result) if check else None,
+    )
+
+
+def _ode_check(result: theory.ImpactResult) -> dict[str, float]:
+    """The numerical ODE's maxima and its largest history difference from the exact one."""
+    numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
+    exact = result.history(2001)
+    x, _ = numerical.sample(exact.t[:-1])
+    return {
+        "x_c": numerical.x_c,
+        "t_c": numerical.t_c,
+        "t_y": numerical.t_y,
+        "rebound_velocity": numerical.rebound_velocity,
+        "max_history_difference": float(np.max(np.abs(x - exact.x[:-1])) / result.x_c),
+    }
