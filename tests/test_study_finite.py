@@ -210,7 +210,7 @@ TINY = {
     "growth": 0.5,
     "axis_size": 1e-3,
     "axis_growth": 0.4,
-    "steps": 4,
+    "depth_steps": 4,
     "small_steps": 1,
     "small_ratio": 0.05,
 }
