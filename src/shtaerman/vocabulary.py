@@ -62,11 +62,11 @@ class Range:
     def text(self) -> str:
         """The range as written in messages and help: ``> 0``, ``(-1, 0.5]``, ``[50, 1e+05]``."""
         if self.high is None:
-            return f"{'>' if self.low_open else '>='} {self.low:g}"
+            return f"{'>' if self.low_open else '>='} {_shown(self.low)}"
         if self.low is None:
-            return f"{'<' if self.high_open else '<='} {self.high:g}"
+            return f"{'<' if self.high_open else '<='} {_shown(self.high)}"
         return (
-            f"{'(' if self.low_open else '['}{self.low:g}, {self.high:g}"
+            f"{'(' if self.low_open else '['}{_shown(self.low)}, {_shown(self.high)}"
             f"{')' if self.high_open else ']'}"
         )
 
@@ -75,6 +75,16 @@ class Range:
         if self.low is not None and (number <= self.low if self.low_open else number < self.low):
             return False
         return self.high is None or (number < self.high if self.high_open else number <= self.high)
+
+
+def _shown(number: float) -> str:
+    """A range end as people write it: 0.5, 200, 1e2, 1e-3."""
+    if number > 0 and 10.0 ** round(math.log10(number)) == number and not 1e-2 <= number <= 10:
+        return f"1e{round(math.log10(number))}"
+    if number == int(number) and abs(number) < 1e4:
+        return str(int(number))
+    mantissa, _, power = f"{number:g}".partition("e")
+    return f"{mantissa}e{int(power)}" if power else mantissa
 
 
 POSITIVE = Range()
@@ -156,7 +166,7 @@ class Entry:
         valid = self.range_for(kind)
         text = "" if valid is None else valid.text()
         if self.type == "int" and text:
-            text = f"an integer {text}"
+            text = f"an integer {'in ' if text[0] in '([' else ''}{text}"
         if self.type == "floats" and text:
             text = f"increasing, each {text}"
         return f"{text}, or inf (rigid)" if self.infinite else text
@@ -197,10 +207,13 @@ def _number(item: Entry, value: Any, kind: str | None) -> float | int:
     if not is_number or math.isnan(value):
         raise InputError(f"{item.name} must be a number {expected}{unit}, got {value!r}", item.name)
     if math.isinf(value) and not (item.infinite and value > 0):
-        raise InputError(f"{item.name} must be a finite number {expected}{unit}, got {value!r}")
+        raise InputError(
+            f"{item.name} must be a finite number {expected}{unit}, got {value!r}", item.name
+        )
     valid = item.range_for(kind)
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
-        raise InputError(f"{item.name} must be {expected}{unit}, got {value!r}", item.name)
+        verb = "lie in" if expected[0] in "([" else "be"
+        raise InputError(f"{item.name} must {verb} {expected}{unit}, got {value!r}", item.name)
     return int(value) if item.type == "int" else float(value)
 
 
@@ -322,6 +335,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "mesh size / refined radius",
         _MESH["contact"],
         by_kind=_MESH,
+        valid_by_kind={"dynamic": Range(0.0, 0.2)},
         old_names=("size",),
     ),
     _numeric(
@@ -330,6 +344,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "refined radius / contact radius",
         1.25,
         valid=Range(1.0, 10.0),
+        valid_by_kind={"dynamic": Range(1.0)},
         by_kind={"dynamic": 1.3},
         old_names=("margin",),
     ),
@@ -502,7 +517,7 @@ def inputs_of(kind: str) -> dict[str, Entry]:
 
 def suggestion(word: str, known: Any) -> str:
     """``" (did you mean 'x'?)"`` for the closest of ``known`` to ``word`` ("" if none is)."""
-    close = difflib.get_close_matches(word, [str(k) for k in known], n=1, cutoff=0.6)
+    close = difflib.get_close_matches(word, [str(k) for k in known], n=1, cutoff=0.5)
     if not close:
         lowered = {str(k).lower(): str(k) for k in known}
         close = [lowered[word.lower()]] if word.lower() in lowered else []
