@@ -437,3 +437,11 @@ def test_sweep_estimate_is_checked_up_front(tmp_path):
     text = TINY_SWEEP.replace("[axes]", "estimate = true\n[axes]")  # 60 steps: ladder at 30
     assert "ladder's coarsest level" in sweep_error(tmp_path, text)
     assert "true or false" in sweep_error(tmp_path, text.replace("true", '"yes"'))
+
+
+def test_refine_in_numerics_refines_mesh_and_time_step_together(tmp_path):
+    path = tmp_path / "fine.toml"
+    path.write_text(MINIMAL + "[numerics]\nrefine = 2\n")
+    [study] = load_study(path)
+    assert study.settings == DynamicSettings().refined(2)
+    assert (study.settings.steps, study.settings.size) == (400, 1 / 80)

@@ -15,7 +15,8 @@ far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_co
                  figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
                  the findings; default: the middle one, the upper of two)
     [numerics]   time_steps, mesh_size, mesh_margin, domain_factor, growth, axis_size,
-                 layer_rate and the other DynamicSettings fields, optional
+                 layer_rate and the other DynamicSettings fields, optional; refine = K
+                 divides the mesh sizes and the time step by K after them
     [quick]      velocity = [...] (must hold figure_velocity; default: the smallest velocity
                  and figure_velocity) and the numerics of ``verify --quick`` (default:
                  [numerics])
@@ -231,6 +232,7 @@ class _DynHalfSpace(_Table):
 
 
 class _Numerics(_Table):
+    refine: Positive | None = None
     time_steps: Annotated[int, msgspec.Meta(gt=0)] | None = None
     mesh_margin: Positive | None = None
     mesh_size: Positive | None = None
@@ -327,6 +329,8 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
             raise StudyError(f"{path}: key '{table}.{keys[setting]}': {error}") from None
     try:
         settings = dataclasses.replace(base, **given)
+        if raw.refine is not None:
+            settings = settings.refined(raw.refine)
     except InputError as error:
         raise StudyError(f"{path}: key '{table}': {error}") from None
     if estimate_dofs(settings) > MAX_DOFS:
