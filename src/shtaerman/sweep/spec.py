@@ -223,11 +223,12 @@ def _name(where: str, data: Mapping[str, Any]) -> str:
 
 
 def _kind(where: str, data: Mapping[str, Any]) -> Kind:
+    sweepable = sorted(n for n, kind in KINDS.items() if kind.case or kind.unavailable)
     if "kind" not in data:
-        raise SweepError(f"{where}: missing key 'kind'. Pick one of {sorted(KINDS)}")
+        raise SweepError(f"{where}: missing key 'kind'. Pick one of {sweepable}")
     name = data["kind"]
-    if not isinstance(name, str) or name not in KINDS:
-        raise SweepError(f"{where}: kind: unknown kind {name!r}. Pick one of {sorted(KINDS)}")
+    if not isinstance(name, str) or name not in sweepable:
+        raise SweepError(f"{where}: kind: unknown kind {name!r}. Pick one of {sweepable}")
     try:
         return get_kind(name)
     except InputError as error:
