@@ -12,7 +12,7 @@ from shtaerman.cli import build_parser
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.finite_contact import FINITE_MESH
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.schema import load_study
+from shtaerman.study.schema import find_study, load_study
 from shtaerman.sweep import load_sweep
 from shtaerman.sweep.kinds import get_kind
 from shtaerman.sweep.spec import find_sweep
@@ -159,18 +159,12 @@ def test_dynamic_defaults_agree_through_every_entry_point(tmp_path):
         "velocity = 3.0\n"
     )
     [study] = load_study(minimal)
-    [shipped] = load_study(find_study_path("dynamic"))
+    [shipped] = load_study(find_study("dynamic"))
     assert study.settings == shipped.settings == settings
     defaults = get_kind("dynamic").defaults()
     assert (defaults["time_steps"], defaults["mesh_size"]) == expected
     validity = load_sweep(find_sweep("validity"))
     assert (validity.parameters["time_steps"], validity.parameters["mesh_size"]) == expected
-
-
-def find_study_path(name):
-    from shtaerman.study.schema import find_study
-
-    return find_study(name)
 
 
 # --- the command line against the vocabulary -------------------------------------------------
