@@ -238,3 +238,26 @@ def test_sweep_and_study_keys_that_were_renamed_warn_once(tmp_path):
     assert spec.parameters["time_steps"] == 60 and "steps" not in spec.parameters
     [warning] = caught
     assert "'parameters.steps' is deprecated; write 'parameters.time_steps'" in str(warning.message)
+
+
+@pytest.mark.parametrize(
+    ("kind", "table", "line", "expected"),
+    [
+        ("finite-strain", "contact", "reach = 3.5", "expected a number [1, 3], got 3.5"),
+        ("finite-strain", "quick", "depth_steps = 2", "expected an integer in [4, 200], got 2"),
+        ("dynamic", "numerics", "time_steps = 10", "expected an integer in [50, 1e5], got 10"),
+        ("dynamic", "numerics", "layer_rate = -1.0", "expected a number >= 0, got -1.0"),
+    ],
+)
+def test_study_files_check_the_vocabulary_ranges(tmp_path, kind, table, line, expected):
+    path = tmp_path / "bad.toml"
+    density = "density2 = 1100.0\n" if kind == "dynamic" else ""
+    path.write_text(
+        f'kind = "{kind}"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        f"[half_space]\nE2 = 7.5e6\nnu2 = 0.5\n{density}[impact]\nmass = 0.7\nvelocity = 3.0\n"
+        f"[{table}]\n{line}\n"
+    )
+    with pytest.raises(InputError) as error:
+        load_study(path)
+    key = line.split(" = ")[0]
+    assert f"key '{table}.{key}': {expected}" in str(error.value)

@@ -74,6 +74,7 @@ from .schema import (
     _decode,
     _Table,
     fem_input_error,
+    ranged,
     validate_name,
 )
 
@@ -233,7 +234,7 @@ class _DynHalfSpace(_Table):
 
 class _Numerics(_Table):
     refine: Positive | None = None
-    time_steps: Annotated[int, msgspec.Meta(gt=0)] | None = None
+    time_steps: ranged("time_steps", "dynamic") | None = None
     mesh_margin: Positive | None = None
     mesh_size: Positive | None = None
     axis_size: Positive | None = None
@@ -241,7 +242,7 @@ class _Numerics(_Table):
     domain_factor: Positive | None = None
     layer_start: Positive | None = None
     layer_ramp: Positive | None = None
-    layer_rate: Annotated[float, msgspec.Meta(ge=0)] | None = None
+    layer_rate: ranged("layer_rate", "dynamic") | None = None
     tail: Annotated[float, msgspec.Meta(ge=0)] | None = None
     layer_width: Positive | None = None
     spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None

@@ -42,13 +42,14 @@ import time
 import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 import msgspec
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
 
+from .. import vocabulary
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import MeshSettings
 from ..theory.contact import PowerLawContact
@@ -75,6 +76,7 @@ from .schema import (
     _Mesh,
     _Table,
     _validated,
+    ranged,
     validate_name,
 )
 
@@ -105,21 +107,18 @@ QUICK_ERROR = (
 )
 SWEEPABLE = {"nu2": "nu", "mass": "M", "velocity": "v0"}
 
-Count = Annotated[int, msgspec.Meta(ge=1, le=200)]
-Small = Annotated[float, msgspec.Meta(gt=0, le=0.2)]
-
 
 class _Contact(_Table):
-    reach: Annotated[float, msgspec.Meta(ge=1.0, le=3.0)] = 1.1
-    depth_steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 12
-    small_ratio: Small = 0.01
-    small_steps: Count = 5
+    reach: ranged("reach") = vocabulary.entry("reach").default
+    depth_steps: ranged("depth_steps") = vocabulary.entry("depth_steps").default
+    small_ratio: ranged("small_ratio") = vocabulary.entry("small_ratio").default
+    small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
 
 
 class _Quick(_Mesh):
-    depth_steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 6
-    small_steps: Count = 2
-    small_ratio: Small = 0.02
+    depth_steps: ranged("depth_steps") = 6
+    small_steps: ranged("small_steps") = 2
+    small_ratio: ranged("small_ratio") = 0.02
     small_strain: Relative = 2e-2
 
 

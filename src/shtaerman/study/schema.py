@@ -56,6 +56,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
 from ..vocabulary import VOCABULARY, deprecated, suggestion
+from ..vocabulary import entry as vocabulary_entry
 from .indentation import validate_fem_inputs
 from .kinds import kind_function, study_kinds
 
@@ -104,6 +105,20 @@ class StudyError(InputError):
 Positive = Annotated[float, msgspec.Meta(gt=0)]
 Relative = Annotated[float, msgspec.Meta(gt=0, le=1)]
 Poisson = Annotated[float, msgspec.Meta(gt=-1, le=0.5)]
+
+
+def ranged(name: str, kind: str | None = None) -> Any:
+    """The study-file type of vocabulary input ``name``: its number type constrained to its
+    valid range in computation ``kind`` (:mod:`shtaerman.vocabulary`)."""
+    item = vocabulary_entry(name)
+    valid = item.range_for(kind)
+    number = int if item.type == "int" else float
+    bounds: dict[str, float] = {}
+    if valid is not None and valid.low is not None:
+        bounds["gt" if valid.low_open else "ge"] = number(valid.low)
+    if valid is not None and valid.high is not None:
+        bounds["lt" if valid.high_open else "le"] = number(valid.high)
+    return Annotated[number, msgspec.Meta(**bounds)]
 
 
 class _Table(msgspec.Struct, forbid_unknown_fields=True, frozen=True):
