@@ -164,7 +164,7 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="coarser ladders")
     parser.add_argument("--only", default="abcdefg", help="sections to run, e.g. 'ab' or 'g'")
     options = parser.parse_args()
-    base = DynamicSettings()
+    base = DynamicSettings(steps=400, size=1 / 80)  # the benchmark reference: 400 steps at 1/80
     coarse = replace(base, size=1 / 40) if options.quick else base
     print(f"machine: {os.cpu_count()} cores, {load()} (shared: timings are on a loaded machine)")
     sections = {

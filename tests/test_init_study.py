@@ -6,11 +6,13 @@ example, run by tests/test_readme.py.
 
 import dataclasses
 import re
+import warnings
 
 import pytest
 
 from shtaerman.cli import main
-from shtaerman.study.schema import load_study, shipped_studies
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import find_study, load_study, shipped_studies
 
 
 def test_template_is_the_paper_example_named_after_its_file(tmp_path, capsys):
@@ -29,7 +31,7 @@ def test_commented_keys_are_valid_when_uncommented(tmp_path):
     path = tmp_path / "all.toml"
     assert main(["init-study", str(path)]) == 0
     text = path.read_text()
-    text = re.sub(r"(?m)^# (?=\[|[a-z_]+ = )", "", text)  # every optional table and key
+    text = re.sub(r"(?m)^# (?=\[|[A-Za-z0-9_]+ = )", "", text)  # every optional table and key
     path.write_text(text)
     studies = load_study(path)
     assert [(s.name, s.velocity) for s in studies] == [
@@ -60,3 +62,53 @@ def test_bad_targets_are_one_line_errors(tmp_path, capsys, name):
     err = capsys.readouterr().err
     assert err.startswith("shtaerman: error: ") and err.count("\n") == 1
     assert not (tmp_path / "study.txt").exists()
+
+
+@pytest.mark.parametrize("kind", ["contact", "dynamic", "finite-strain"])
+def test_every_kind_has_a_template_in_todays_keys(tmp_path, capsys, kind):
+    path = tmp_path / f"my-{kind}.toml"
+    assert main(["init-study", "--kind", kind, str(path)]) == 0
+    assert f"shtaerman verify {path} --quick" in capsys.readouterr().out
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no deprecated key in a template
+        [study] = load_study(path)
+        uncommented = re.sub(r"(?m)^# (?=\[|[A-Za-z0-9_]+ = )", "", path.read_text())
+        path.write_text(uncommented)
+        assert load_study(path)  # every commented key is valid too
+    assert study.kind == kind and study.name == f"my-{kind}"
+
+
+def test_dynamic_template_is_the_shipped_study_over_fewer_velocities(tmp_path):
+    path = tmp_path / "dyn.toml"
+    assert main(["init-study", "--kind", "dynamic", str(path)]) == 0
+    [study] = load_study(path)
+    [shipped] = load_study(find_study("dynamic"))
+    assert (study.velocities, study.example, study.quick_velocities) == (
+        (1.0, 2.0, 3.0),
+        2.0,
+        (1.0, 2.0),
+    )
+    assert study.settings == shipped.settings and study.quick_settings == shipped.quick_settings
+    assert (study.indenter, study.half_space, study.density, study.mass) == (
+        shipped.indenter,
+        shipped.half_space,
+        shipped.density,
+        shipped.mass,
+    )
+
+
+@pytest.mark.parametrize("kind", ["contact", "dynamic"])
+def test_template_runs_as_written(tmp_path, kind):
+    """The quick run of the contact and dynamic templates passes its checks (a few seconds)."""
+    path = tmp_path / "run.toml"
+    assert main(["init-study", "--kind", kind, str(path)]) == 0
+    [study] = load_study(path)
+    outcome = run_study(study, quick=True)
+    assert outcome.passed, [c for c in outcome.checks if not c.passed]
+
+
+def test_an_unknown_kind_is_one_line_exit_2(tmp_path, capsys):
+    assert main(["init-study", "--kind", "impact", str(tmp_path / "x.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "--kind" in err and "dynamic" in err and err.count("\n") == 1
+    assert not (tmp_path / "x.toml").exists()

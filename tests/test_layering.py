@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "shtaerman"
-BASE = {"validation", "__version__"}
+BASE = {"validation", "vocabulary", "__version__"}
 ALLOWED = {
     "theory": {"theory"},
     "paper": {"paper", "theory"},
@@ -68,6 +68,13 @@ def test_layer_imports_only_downward(layer):
         if not _allowed(layer, target)
     ]
     assert upward == []
+
+
+@pytest.mark.parametrize("module", sorted(BASE - {"__version__"}))
+def test_base_modules_import_only_the_base(module):
+    """The base (input checks and the vocabulary) sits under every layer: it imports none."""
+    targets = _imports(PACKAGE / f"{module}.py")
+    assert [t for t in targets if not any(t == b or t.startswith(b + ".") for b in BASE)] == []
 
 
 def test_checker_sees_an_upward_import(tmp_path):

@@ -18,6 +18,7 @@ import pytest
 from matplotlib import colormaps
 from PIL import Image
 
+from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.output import text_dynamic
 from shtaerman.output.dynamic import SUMMARY_HEADER, write_dynamic_study
 from shtaerman.output.report import report_context, results_document, study_document
@@ -39,13 +40,13 @@ kind = "dynamic"
 shape_coefficient = 5.0
 exponent = 1.5
 [half_space]
-youngs_modulus = 7.5e6
-poisson_ratio = 0.5
-density = 1100.0
+E2 = 7.5e6
+nu2 = 0.5
+density2 = 1100.0
 [impact]
 mass = 0.7
-velocities = [1.0, 3.0]
-example = 3.0
+velocity = [1.0, 3.0]
+figure_velocity = 3.0
 """
 
 
@@ -65,7 +66,7 @@ def outcome():
     return run_study(study, quick=True)
 
 
-COARSE = MINIMAL + "[numerics]\nsteps = 100\nsize = 0.05\n"
+COARSE = MINIMAL + "[numerics]\ntime_steps = 100\nmesh_size = 0.05\n"
 """The coarsest settings whose ladder is valid (its coarsest level: 50 steps, size 1/10)."""
 
 
@@ -98,7 +99,8 @@ def test_minimal_file_takes_defaults(tmp_path):
     path = tmp_path / "mine.toml"
     path.write_text(MINIMAL)
     [study] = load_study(path)
-    assert study.name == "mine" and study.settings.steps == 400  # DynamicSettings defaults
+    assert study.name == "mine" and study.settings == DynamicSettings()  # the defaults
+    assert (study.settings.steps, study.settings.size) == (200, 1 / 40)
     assert study.quick_velocities == (1.0, 3.0)
     assert study.tolerances.energy_balance == 1e-2 and study.tolerances.estimate == 0.2
 
@@ -106,26 +108,30 @@ def test_minimal_file_takes_defaults(tmp_path):
 @pytest.mark.parametrize(
     ("old", "new", "key"),
     [
-        ("density = 1100.0", "density = -1.0", "half_space.density"),
-        ("density = 1100.0", "", "half_space.density"),  # required
-        ("mass = 0.7", "mass = 0.7\nvelocity = 3.0", "impact.velocity"),  # unknown
-        ("velocities = [1.0, 3.0]", "velocities = [3.0, 1.0]", "impact.velocities"),
-        ("velocities = [1.0, 3.0]", "velocities = [1.0, 2.0]", "impact.velocities"),  # example
+        ("density2 = 1100.0", "density2 = -1.0", "half_space.density2"),
+        ("density2 = 1100.0", "", "half_space.density2"),  # required
+        ("mass = 0.7", "mass = 0.7\ncolour = 3.0", "impact.colour"),  # unknown
+        ("velocity = [1.0, 3.0]", "velocity = [3.0, 1.0]", "impact.velocity"),
+        ("velocity = [1.0, 3.0]", "velocity = [1.0, 2.0]", "impact.velocity"),  # the figure's
         ("exponent = 1.5", "exponent = 1.0", "indenter.exponent"),  # the FEM needs n > 1
-        ("poisson_ratio = 0.5", "poisson_ratio = -0.2", "half_space.poisson_ratio"),
-        ("example = 3.0", "example = 3.0\n[numerics]\nsteps = 10", "numerics.steps"),
-        ("example = 3.0", "example = 3.0\n[numerics]\nsize = 0.5", "numerics.size"),
-        ("example = 3.0", "example = 3.0\n[numerics]\nstep = 100", "numerics.step"),
-        ("example = 3.0", "example = 3.0\n[numerics]\nsize = 1e-4", "numerics.size"),  # dofs
-        ("example = 3.0", "example = 3.0\n[quick]\nvelocities = [1.0]", "quick.velocities"),
-        ("example = 3.0", "example = 3.0\n[tolerances]\nestimate = 2.0", "tolerances.estimate"),
-        ("youngs_modulus = 7.5e6", "youngs_modulus = inf", "half_space.youngs_modulus"),
-        ("density = 1100.0", "density = inf", "half_space.density"),
+        ("nu2 = 0.5", "nu2 = -0.2", "half_space.nu2"),
+        ("figure_velocity = 3.0", "[numerics]\ntime_steps = 10", "numerics.time_steps"),
+        ("figure_velocity = 3.0", "[numerics]\nmesh_size = 0.5", "numerics.mesh_size"),
+        ("figure_velocity = 3.0", "[numerics]\nstep = 100", "numerics.step"),
+        ("figure_velocity = 3.0", "[numerics]\nmesh_size = 1e-4", "numerics.mesh_size"),  # dofs
+        (
+            "figure_velocity = 3.0",
+            "figure_velocity = 3.0\n[quick]\nvelocity = [1.0]",
+            "quick.velocity",
+        ),
+        ("figure_velocity = 3.0", "[tolerances]\nestimate = 2.0", "tolerances.estimate"),
+        ("E2 = 7.5e6", "E2 = inf", "half_space.E2"),
+        ("density2 = 1100.0", "density2 = inf", "half_space.density2"),
         ("mass = 0.7", "mass = inf", "impact.mass"),
-        ("velocities = [1.0, 3.0]", "velocities = [1.0, 3.0, inf]", "impact.velocities"),
+        ("velocity = [1.0, 3.0]", "velocity = [1.0, 3.0, inf]", "impact.velocity"),
         # valid numbers outside the FEM's checked ranges (InputError.parameter names them)
-        ("youngs_modulus = 7.5e6", "youngs_modulus = 1e200", "half_space.youngs_modulus"),
-        ("density = 1100.0", "density = 1e7", "half_space.density"),
+        ("E2 = 7.5e6", "E2 = 1e200", "half_space.E2"),
+        ("density2 = 1100.0", "density2 = 1e7", "half_space.density2"),
         ("shape_coefficient = 5.0", "shape_coefficient = 1e200", "indenter.shape_coefficient"),
     ],
 )
@@ -263,7 +269,7 @@ def test_quick_run_skips_the_ladder_and_says_so(outcome):
 
 
 def test_a_study_whose_ladder_cannot_run_is_refused_at_load(tmp_path):
-    message = error_of(tmp_path, MINIMAL + "[numerics]\nsteps = 60\n")
+    message = error_of(tmp_path, MINIMAL + "[numerics]\ntime_steps = 60\n")
     assert "key 'numerics'" in message and "ladder's coarsest level" in message
 
 
@@ -366,7 +372,7 @@ TINY_SWEEP = """\
 name = "tiny"
 kind = "dynamic"
 [parameters]
-steps = 60
+time_steps = 60
 mesh_size = 0.05
 [axes]
 velocity = [3.0]
@@ -386,7 +392,7 @@ def test_sweep_kind_checks_inputs_up_front(tmp_path):
     assert "density2 must be" in sweep_error(tmp_path, TINY_SWEEP.replace("[1100.0]", "[-1.0]"))
     assert "steps" in sweep_error(tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 10"))
     assert "exponent must be > 1" in sweep_error(
-        tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 60\nexponent = 0.9")
+        tmp_path, TINY_SWEEP.replace("time_steps = 60", "time_steps = 60\nexponent = 0.9")
     )
 
 
@@ -415,7 +421,7 @@ def test_validity_sweep_is_shipped():
     assert spec.parameters["estimate"] is True and set(DYNAMIC_ERRORS) <= set(spec.outputs)
 
 
-ESTIMATE_SWEEP = TINY_SWEEP.replace("steps = 60\nmesh_size = 0.05", "steps = 100\nmesh_size = 0.05")
+ESTIMATE_SWEEP = TINY_SWEEP.replace("time_steps = 60", "time_steps = 100")
 
 
 def test_sweep_estimate_adds_the_error_columns(tmp_path, estimated):
@@ -443,3 +449,11 @@ def test_sweep_estimate_is_checked_up_front(tmp_path):
     text = TINY_SWEEP.replace("[axes]", "estimate = true\n[axes]")  # 60 steps: ladder at 30
     assert "ladder's coarsest level" in sweep_error(tmp_path, text)
     assert "true or false" in sweep_error(tmp_path, text.replace("true", '"yes"'))
+
+
+def test_refine_in_numerics_refines_mesh_and_time_step_together(tmp_path):
+    path = tmp_path / "fine.toml"
+    path.write_text(MINIMAL + "[numerics]\nrefine = 2\n")
+    [study] = load_study(path)
+    assert study.settings == DynamicSettings().refined(2)
+    assert (study.settings.steps, study.settings.size) == (400, 1 / 80)

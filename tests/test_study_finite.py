@@ -36,8 +36,8 @@ MINIMAL = """kind = "finite-strain"
 shape_coefficient = 5.0
 exponent = 1.5
 [half_space]
-youngs_modulus = 7.5e6
-poisson_ratio = 0.5
+E2 = 7.5e6
+nu2 = 0.5
 [impact]
 mass = 0.7
 velocity = 3.0
@@ -86,9 +86,10 @@ def test_minimal_file_takes_the_defaults(tmp_path):
     ("change", "key"),
     [
         ("[contact]\nsteps_ = 3\n", "contact.steps_"),
+        ("[contact]\ndepth_steps = 3\n", "contact.depth_steps"),
         ('[contact]\nreach = "far"\n', "contact.reach"),
         ("[contact]\nreach = 0.5\n", "contact.reach"),
-        ("[quick.mesh]\nsize = -1\n", "quick.mesh.size"),
+        ("[quick]\nmesh_size = -1\n", "quick.mesh_size"),
         ("[tolerances]\nconservation = 2\n", "tolerances.conservation"),
         ("[sweep]\nmass = [1.0]\nvelocity = [2.0]\n", "sweep"),
         ("colour = 1\n", "colour"),
@@ -108,9 +109,9 @@ def test_load_errors_name_file_and_key(tmp_path, change, key):
 @pytest.mark.parametrize(
     ("old", "new", "words"),
     [
-        ("poisson_ratio = 0.5", "poisson_ratio = -0.2", "nu2"),
+        ("nu2 = 0.5", "nu2 = -0.2", "nu2"),
         ("exponent = 1.5", "exponent = 1.0", "exponent"),
-        ("youngs_modulus = 7.5e6", 'youngs_modulus = "inf"', "half_space.youngs_modulus"),
+        ("E2 = 7.5e6", 'E2 = "inf"', "half_space.E2"),
     ],
 )
 def test_inputs_the_fem_cannot_run_are_refused_at_load(tmp_path, old, new, words):
@@ -218,7 +219,7 @@ TINY = {
     "growth": 0.5,
     "axis_size": 1e-3,
     "axis_growth": 0.4,
-    "steps": 4,
+    "depth_steps": 4,
     "small_steps": 1,
     "small_ratio": 0.05,
 }

@@ -417,3 +417,38 @@ def test_sweep_files_follow_the_umask(tmp_path, capsys):
         os.umask(previous)
     written = [out / "cases.csv", out / "results.json", out / "sweep.toml", out / "cases/0.json"]
     assert {oct(stat.S_IMODE(p.stat().st_mode)) for p in written} == {oct(0o644)}
+
+
+# --- the vocabulary's keys, and one registry of kinds -------------------------------------------
+
+
+def test_one_registry_serves_verify_and_sweeps():
+    from shtaerman.study import kinds as study_kinds
+    from shtaerman.sweep import KINDS
+
+    assert KINDS is study_kinds.KINDS
+    for name in ("contact", "dynamic", "finite-strain"):
+        kind = KINDS[name]
+        assert kind.case is not None and kind.parameters  # its sweep roles
+        assert study_kinds.kind_function(name, "load").__name__.startswith("load_")
+    assert KINDS["impact"].load is None and KINDS["impact"].case is not None
+
+
+@pytest.mark.parametrize(
+    ("kind", "new"),
+    [("dynamic", "time_steps"), ("finite-strain", "depth_steps")],
+)
+def test_steps_was_two_inputs_and_is_now_named_for_each(tmp_path, kind, new):
+    text = f'name = "s"\nkind = "{kind}"\n[parameters]\nsteps = 60\n[axes]\nvelocity = [3.0]\n'
+    with pytest.warns(
+        FutureWarning, match=rf"'parameters.steps' is deprecated; write 'parameters.{new}'"
+    ):
+        spec = load_sweep(write(tmp_path, text))
+    assert spec.parameters == {new: 60}
+    spec = load_sweep(write(tmp_path, text.replace("steps", new)))
+    assert spec.parameters == {new: 60}
+
+
+def test_an_unknown_parameter_says_what_it_probably_meant(tmp_path):
+    message = error_of(tmp_path, IMPACT.replace("mass = 0.7", "mas = 0.7"))
+    assert "unknown parameter 'mas' for kind 'impact' (did you mean 'mass'?)" in message

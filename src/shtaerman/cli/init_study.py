@@ -8,15 +8,18 @@ from pathlib import Path
 
 from ..validation import InputError
 
-__all__ = ["STUDY_TEMPLATE", "register", "run", "write_template"]
+__all__ = ["STUDY_TEMPLATE", "TEMPLATES", "register", "run", "write_template"]
 
 STUDY_TEMPLATE = """\
-# A shtaerman cross-check study (TOML). Run it with
+# A shtaerman cross-check study (TOML): the FEM contact against Shtaerman's exact solution, and
+# the impact it implies. Run it with
 #     shtaerman verify {file} --quick    # coarse meshes, seconds
 #     shtaerman verify {file}            # the accurate meshes, a minute or so
 # SI units everywhere. As written it is the paper's worked example (Ol'shanskii et al. 2019,
-# section 5); edit the numbers to your case. Every key below except [indenter], [half_space]
-# and [impact] is optional; a misspelt or unknown key is an error naming file and key.
+# section 5); edit the numbers to your case. The keys are the command line's options in
+# snake_case (--E2 is E2, --mesh-size is mesh_size). Only the tables indenter, half_space
+# and impact are required; an unknown key is an error naming file and key.
+kind = "contact"
 
 # name = "{name}"           # the study's name in reports and folders; default: the file name
 description = "z = 5 r^(3/2) steel striker, 0.7 kg at 3 m/s, on rubber (edit me)"
@@ -26,12 +29,12 @@ shape_coefficient = 5.0     # A, m^(1-n)
 exponent = 1.5              # n > 1 (n = 2, A = 1/(2R): a sphere of radius R, Hertz)
 
 [striker]                   # scales the contact law through 1/E* = Q1 + Q2; omit it for a rigid
-youngs_modulus = 2e11       # striker (or write "inf"); Pa
-poisson_ratio = 0.25
+E1 = 2e11                   # striker (or write "inf"); Pa
+nu1 = 0.25
 
 [half_space]                # the body struck, meshed by the FEM
-youngs_modulus = 7.5e6      # Pa
-poisson_ratio = 0.5         # in [0, 0.5]; 0.5 (incompressible) is exact: mixed u-p elements
+E2 = 7.5e6                  # Pa
+nu2 = 0.5                   # in [0, 0.5]; 0.5 (incompressible) is exact: mixed u-p elements
 
 [impact]                    # quasi-static theory, stated valid below about 4-5 m/s
 mass = 0.7                  # kg
@@ -49,11 +52,12 @@ contact_radius = 1e-2
 central_pressure = 1e-2
 impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against the exact one
 
-# [mesh]                    # mesh controls relative to the contact zone (defaults shown)
-# size = 0.006667           # smallest element / refined radius (1/150)
-# domain = 1e5              # domain radius / refined radius, in [1e2, 1e7]
+# [numerics]                # mesh controls relative to the contact zone (defaults shown)
+# refine = 1.0              # divide the whole mesh size field by K (dofs ~ K^2)
+# mesh_size = 0.006667      # smallest element / refined radius (1/150)
+# domain_factor = 1e5       # domain radius / refined radius, in [1e2, 1e7]
 # growth = 0.25             # element growth away from the contact zone
-# [quick_mesh]              # the same keys, for 'verify --quick'
+# [quick]                   # the same keys, for 'verify --quick'
 
 # [convergence]             # a mesh-convergence study: sizes refine the whole mesh, decreasing
 # sizes = [0.01887, 0.01333, 0.00943]   # (--quick runs the coarsest three)
@@ -61,6 +65,104 @@ impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against t
 # [sweep]                   # run the study once per value of ONE parameter: shape_coefficient,
 # velocity = [1.0, 2.0, 3.0]  # exponent, mass or velocity (each run's name gets the value)
 """
+"""The contact study template (the default kind)."""
+
+DYNAMIC_TEMPLATE = """\
+# A shtaerman dynamic study (TOML): the dynamic FE impact (inertia and elastic waves) against
+# the quasi-static model, over the approach velocity. Run it with
+#     shtaerman verify {file} --quick    # coarse settings, no error estimates, seconds
+#     shtaerman verify {file}            # with the error estimates, a minute or so
+# SI units everywhere. As written it is the paper's striker on rubber; edit the numbers to
+# your case. The keys are the command line's options in snake_case (--density2 is density2,
+# --time-steps is time_steps). Only the tables indenter, half_space and impact are required;
+# an unknown key is an error naming file and key.
+kind = "dynamic"
+
+# name = "{name}"           # the study's name in reports and folders; default: the file name
+description = "z = 5 r^(3/2) rigid striker, 0.7 kg, on rubber, over v0 (edit me)"
+
+[indenter]                  # the (rigid) striker's surface: z = A r^n
+shape_coefficient = 5.0     # A, m^(1-n)
+exponent = 1.5              # n > 1
+
+[half_space]                # the body struck, with its inertia
+E2 = 7.5e6                  # Pa
+nu2 = 0.5                   # in [0, 0.5]
+density2 = 1100.0           # kg/m^3 (natural rubber; the quasi-static theory neglects it)
+
+[impact]
+mass = 0.7                  # kg
+velocity = [1.0, 2.0, 3.0]  # m/s: one value or an increasing list
+# figure_velocity = 2.0     # the velocity of the figures (default: the middle one)
+
+# [numerics]                # the dynamic FEM's controls (defaults shown)
+# time_steps = 200          # time steps per quasi-static impact duration t_y
+# mesh_size = 0.025         # smallest element / refined radius
+# mesh_margin = 1.3         # refined radius / quasi-static contact radius
+# domain_factor = 1e4       # domain radius / refined radius
+# growth = 0.2              # element growth away from the contact zone
+
+[quick]                     # 'verify --quick': the smallest and the figure's velocity on
+time_steps = 60             # coarse settings (the same keys as [numerics], and velocity)
+mesh_size = 0.05
+
+# [tolerances]              # pass or fail (these are the defaults)
+# energy_balance = 1e-2     # |energy balance error| / (M v0^2 / 2), every step
+# reflected = 1e-2          # energy reflected back to the contact / radiated energy
+# estimate = 0.2            # |measured loss / first-order estimate - 1| ...
+# estimate_below = 0.08     # ... where the first-order estimate is below this
+"""
+"""The dynamic study template."""
+
+FINITE_TEMPLATE = """\
+# A shtaerman finite-strain study (TOML): a neo-Hookean half-space at finite strain against
+# Shtaerman's linear solution, and what it does to the impact. Run it with
+#     shtaerman verify {file} --quick    # one coarse mesh, no error estimates, seconds
+#     shtaerman verify {file}            # three meshes with error estimates, a few minutes
+# SI units everywhere. As written it is the paper's striker on rubber; edit the numbers to
+# your case. The keys are the command line's options in snake_case. Only the tables
+# indenter, half_space and impact are required; an unknown key is an error naming file and key.
+kind = "finite-strain"
+
+# name = "{name}"           # the study's name in reports and folders; default: the file name
+description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on neo-Hookean rubber (edit me)"
+
+[indenter]                  # the (rigid) striker's surface: z = A r^n
+shape_coefficient = 5.0     # A, m^(1-n)
+exponent = 1.5              # n > 1
+
+[half_space]                # the small-strain constants of the neo-Hookean solid
+E2 = 7.5e6                  # Pa
+nu2 = 0.5                   # in [0, 0.5]
+
+[impact]
+mass = 0.7                  # kg
+velocity = 3.0              # m/s
+
+[contact]                   # the depths: equal steps up to reach x_c after a few tiny ones
+reach = 1.1                 # deepest depth / the linear impact's x_c, in [1, 3]
+depth_steps = 12            # equal depth steps up to it
+small_ratio = 0.01          # x/a of the first, tiny depth (the small-strain limit)
+small_steps = 5             # geometric depths from it to the first equal step
+
+# [numerics]                # the finest mesh of the error-estimate ladder (defaults shown)
+# refine = 1.0              # divide the whole mesh size field by K
+# mesh_size = 0.016667      # smallest element / refined radius (1/60)
+# [quick]                   # 'verify --quick': coarser depths and mesh
+# depth_steps = 6
+# small_steps = 2
+
+# [sweep]                   # run the study once per value of ONE parameter: nu2, mass or
+# nu2 = [0.5, 0.3]          # velocity (each run's name gets the value)
+"""
+"""The finite-strain study template."""
+
+TEMPLATES = {
+    "contact": STUDY_TEMPLATE,
+    "dynamic": DYNAMIC_TEMPLATE,
+    "finite-strain": FINITE_TEMPLATE,
+}
+"""Study kind -> its commented template."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -69,29 +171,39 @@ def register(commands: argparse._SubParsersAction) -> None:
         "init-study",
         help="write a commented template study (TOML) to edit and verify",
         description=(
-            "Write a commented template study: the paper's worked example with every key\n"
-            "explained. Edit it, then run 'shtaerman verify FILE.toml --quick'."
+            "Write a commented template study of a kind: the paper's worked example with every\n"
+            "key explained. Edit it, then run 'shtaerman verify FILE.toml --quick'."
         ),
     )
     p.add_argument("file", metavar="FILE.toml", help="the study file to write")
+    p.add_argument(
+        "--kind",
+        default="contact",
+        choices=tuple(TEMPLATES),
+        help="the study's kind: the static FEM contact, the dynamic FE impact, or the "
+        "neo-Hookean finite-strain contact",
+    )
     p.add_argument("--force", action="store_true", help="replace an existing FILE.toml")
     p.set_defaults(handler=run)
 
 
-def write_template(path: Path, *, force: bool = False) -> Path:
-    """Write :data:`STUDY_TEMPLATE` to ``path`` (a new file unless ``force``); returns it.
+def write_template(path: Path, *, force: bool = False, kind: str = "contact") -> Path:
+    """Write the template of study ``kind`` (:data:`TEMPLATES`) to ``path`` (a new file unless
+    ``force``); returns it.
 
     Raises
     ------
     shtaerman.validation.InputError
-        If ``path`` does not end in .toml, exists (without ``force``), is not a regular file,
-        or cannot be written.
+        If ``kind`` has no template, or ``path`` does not end in .toml, exists (without
+        ``force``), is not a regular file, or cannot be written.
     """
+    if kind not in TEMPLATES:
+        raise InputError(f"kind must be one of {sorted(TEMPLATES)}, got {kind!r}")
     if path.suffix != ".toml":
         raise InputError(f"FILE must end in .toml, got '{path}'")
     if path.is_symlink() or (path.exists() and not path.is_file()):
         raise InputError(f"'{path}' exists and is not a regular file; pick another FILE")
-    text = STUDY_TEMPLATE.format(file=path, name=path.stem)
+    text = TEMPLATES[kind].format(file=path, name=path.stem)
     mode = "w" if force else "x"
     try:
         with path.open(mode, encoding="utf-8") as stream:
@@ -105,6 +217,6 @@ def write_template(path: Path, *, force: bool = False) -> Path:
 
 def run(args: argparse.Namespace) -> int:
     """Write the template and say how to run it."""
-    path = write_template(Path(os.fspath(args.file)), force=args.force)
+    path = write_template(Path(os.fspath(args.file)), force=args.force, kind=args.kind)
     print(f"wrote {path}: edit it, then run 'shtaerman verify {path} --quick'")
     return 0

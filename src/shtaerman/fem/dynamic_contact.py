@@ -136,9 +136,9 @@ class DynamicSettings:
         None: Newmark average acceleration (exact energy identity, undamped ripple).
     """
 
-    steps: int = 400
+    steps: int = 200
     margin: float = 1.3
-    size: float = 1.0 / 80.0
+    size: float = 1.0 / 40.0
     axis_size: float = 1.0 / 800.0
     growth: float = 0.2
     domain: float = 1.0e4

@@ -10,13 +10,16 @@ far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_co
     name = "dynamic"                      # optional; default: the file's stem
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
-    [half_space] youngs_modulus = 7.5e6 (Pa), poisson_ratio = 0.5 (in [0, 0.5]),
-                 density = 1100 (kg/m^3)
-    [impact]     mass = 0.7 (kg), velocities = [...] (m/s, increasing, >= 2),
-                 example = 3.0 (m/s, one of the velocities: the figures and the findings)
-    [numerics]   the DynamicSettings fields (steps, size, margin, ...), optional
-    [quick]      velocities = [...] (must hold the example; default: the smallest velocity and
-                 the example) and the numerics of ``verify --quick`` (default: [numerics])
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3)
+    [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
+                 figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
+                 the findings; default: the middle one, the upper of two)
+    [numerics]   time_steps, mesh_size, mesh_margin, domain_factor, growth, axis_size,
+                 layer_rate and the other DynamicSettings fields, optional; refine = K
+                 divides the mesh sizes and the time step by K after them
+    [quick]      velocity = [...] (must hold figure_velocity; default: the smallest velocity
+                 and figure_velocity) and the numerics of ``verify --quick`` (default:
+                 [numerics])
     [tolerances] energy_balance = 1e-2 (of M v0^2/2), reflected = 1e-2 (of the radiated),
                  estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
                  estimate is below estimate_below = 0.08)
@@ -63,6 +66,7 @@ from .indentation import validate_fem_inputs
 from .limits import LEVELS, thresholds
 from .richardson import Estimate
 from .schema import (
+    MESH_FIELDS,
     Poisson,
     Positive,
     Relative,
@@ -70,6 +74,7 @@ from .schema import (
     Table,
     decode,
     fem_input_error,
+    ranged,
     validate_name,
 )
 
@@ -214,21 +219,22 @@ class _DynIndenter(Table):
 
 
 class _DynHalfSpace(Table):
-    youngs_modulus: Positive
-    poisson_ratio: Poisson
-    density: Positive
+    E2: Positive
+    nu2: Poisson
+    density2: Positive
 
 
 class _Numerics(Table):
-    steps: Annotated[int, msgspec.Meta(gt=0)] | None = None
-    margin: Positive | None = None
-    size: Positive | None = None
+    refine: Positive | None = None
+    time_steps: ranged("time_steps", "dynamic") | None = None
+    mesh_margin: Positive | None = None
+    mesh_size: Positive | None = None
     axis_size: Positive | None = None
     growth: Positive | None = None
-    domain: Positive | None = None
+    domain_factor: Positive | None = None
     layer_start: Positive | None = None
     layer_ramp: Positive | None = None
-    layer_rate: Annotated[float, msgspec.Meta(ge=0)] | None = None
+    layer_rate: ranged("layer_rate", "dynamic") | None = None
     tail: Annotated[float, msgspec.Meta(ge=0)] | None = None
     layer_width: Positive | None = None
     spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
@@ -236,12 +242,12 @@ class _Numerics(Table):
 
 class _DynImpact(Table):
     mass: Positive
-    velocities: list[Positive]
-    example: Positive
+    velocity: Positive | list[Positive]
+    figure_velocity: Positive | None = None
 
 
 class _Quick(_Numerics):
-    velocities: list[Positive] | None = None
+    velocity: Positive | list[Positive] | None = None
 
 
 class _DynTolerances(Table):
@@ -297,40 +303,51 @@ class DynamicStudy:
     kind: str = "dynamic"
 
 
+SETTINGS_FIELDS = {**MESH_FIELDS, "time_steps": "steps"}
+"""Study-file key -> DynamicSettings field, where the two differ."""
+
+
 def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
     """``base`` with the table's numerics; an invalid value names its key."""
+    keys = {SETTINGS_FIELDS.get(k, k): k for k in _Numerics.__struct_fields__}
     given = {
-        k: v
-        for k, v in msgspec.structs.asdict(raw).items()
-        if v is not None and k in DynamicSettings.__dataclass_fields__
+        setting: getattr(raw, key)
+        for setting, key in keys.items()
+        if getattr(raw, key) is not None and setting in DynamicSettings.__dataclass_fields__
     }
-    for key, value in given.items():
+    for setting, value in given.items():
         try:
-            dataclasses.replace(base, **{key: value})
+            dataclasses.replace(base, **{setting: value})
         except InputError as error:
-            raise StudyError(f"{path}: key '{table}.{key}': {error}") from None
+            raise StudyError(f"{path}: key '{table}.{keys[setting]}': {error}") from None
     try:
         settings = dataclasses.replace(base, **given)
+        if raw.refine is not None:
+            settings = settings.refined(raw.refine)
     except InputError as error:
         raise StudyError(f"{path}: key '{table}': {error}") from None
     if estimate_dofs(settings) > MAX_DOFS:
         raise StudyError(
-            f"{path}: key '{table}.size': the mesh would have about {estimate_dofs(settings)} "
+            f"{path}: key '{table}.mesh_size': the mesh would have about {estimate_dofs(settings)} "
             f"dofs, above the limit {MAX_DOFS}; coarsen size or growth"
         )
     return settings
 
 
-def _velocities(path: Path, key: str, values: list[float], example: float) -> tuple[float, ...]:
-    if len(values) < 2 or any(b <= a for a, b in itertools.pairwise(values)):
+def _velocities(
+    path: Path, key: str, given: float | list[float], example: float | None
+) -> tuple[float, ...]:
+    """The velocities of ``key`` (one value or an increasing list), holding ``example``."""
+    values = given if isinstance(given, list) else [given]
+    if not values or any(b <= a for a, b in itertools.pairwise(values)):
         raise StudyError(
-            f"{path}: key '{key}': expected a list of at least 2 increasing velocities > 0 "
-            f"(m/s), got {values!r}"
+            f"{path}: key '{key}': expected a velocity > 0 (m/s) or a list of increasing ones, "
+            f"got {given!r}"
         )
-    if example not in values:
+    if example is not None and example not in values:
         raise StudyError(
-            f"{path}: key '{key}': expected to hold impact.example = {example!r} m/s, "
-            f"got {values!r}"
+            f"{path}: key '{key}': expected to hold impact.figure_velocity = {example!r} m/s, "
+            f"got {given!r}"
         )
     return tuple(values)
 
@@ -343,15 +360,17 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
     indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
-    half_space = Material(raw.half_space.youngs_modulus, raw.half_space.poisson_ratio)
+    half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     try:
         validate_fem_inputs(indenter, half_space)
-        validate_density(raw.half_space.density)
+        validate_density(raw.half_space.density2)
     except InputError as error:
         raise fem_input_error(path, error) from None
-    example = raw.impact.example
-    velocities = _velocities(path, "impact.velocities", raw.impact.velocities, example)
-    quick = raw.quick.velocities
+    example = raw.impact.figure_velocity
+    velocities = _velocities(path, "impact.velocity", raw.impact.velocity, example)
+    if example is None:  # the middle velocity (of two, the upper)
+        example = velocities[len(velocities) // 2]
+    quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
     settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
@@ -366,12 +385,12 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
             source=path,
             indenter=indenter,
             half_space=half_space,
-            density=raw.half_space.density,
+            density=raw.half_space.density2,
             mass=raw.impact.mass,
             velocities=velocities,
             example=example,
             settings=settings,
-            quick_velocities=_velocities(path, "quick.velocities", quick, example),
+            quick_velocities=_velocities(path, "quick.velocity", quick, example),
             quick_settings=_settings(path, "quick", raw.quick, settings),
             tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
         )

@@ -5,17 +5,18 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``)::
     name = "finite-strain"               # optional; default: the file's stem
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1)
-    [half_space] youngs_modulus = 7.5e6 (Pa), poisson_ratio = 0.5 (in [0, 0.5])
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5])
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
-    [contact]    reach = 1.1 (deepest depth / the linear impact's x_c), steps = 12 (equal
-                 depth steps up to it), small_ratio = 0.01 (x/a of a first, tiny depth: the
-                 small-strain limit), small_steps = 5 (geometric depths from it to the first
-                 equal step)
-    [mesh]       refine = K and the MeshSettings fields (default: FINITE_MESH): the finest
-                 mesh of the error-estimate ladder (K/2, K/sqrt(2), K)
-    [quick]      steps, small_steps, small_ratio and [quick.mesh] for ``verify --quick``
+    [contact]    reach = 1.1 (deepest depth / the linear impact's x_c), depth_steps = 12
+                 (equal depth steps up to it), small_ratio = 0.01 (x/a of a first, tiny
+                 depth: the small-strain limit), small_steps = 5 (geometric depths from it to
+                 the first equal step)
+    [numerics]   refine = K and the mesh keys (mesh_size, growth, ...; default: FINITE_MESH):
+                 the finest mesh of the error-estimate ladder (K/2, K/sqrt(2), K)
+    [quick]      depth_steps, small_steps, small_ratio, small_strain and the mesh keys for
+                 ``verify --quick``
     [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
-    [sweep]      optional: one of poisson_ratio, mass, velocity with a list of values
+    [sweep]      optional: one of nu2, mass, velocity with a list of values
 
 The striker is rigid (the finite-strain FEM has a rigid indenter; a steel striker's compliance
 changes E* by 5e-5 for the paper's rubber). A study runs:
@@ -41,13 +42,14 @@ import time
 import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 import msgspec
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
 
+from .. import vocabulary
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import MeshSettings
 from ..theory.contact import PowerLawContact
@@ -73,6 +75,7 @@ from .schema import (
     StudyError,
     Table,
     decode,
+    ranged,
     validate_name,
     validated,
 )
@@ -94,25 +97,21 @@ LEVELS = (0.01, 0.05)
 """Departures of P from the linear force whose depths the study reports."""
 VARIANTS = ("linear_exact", "linear_fem", "finite_strain")
 """Impact variants: Shtaerman's exact, the same-mesh linear FEM and the finite-strain FEM."""
-SWEEPABLE = {"poisson_ratio": "nu", "mass": "M", "velocity": "v0"}
-
-Count = Annotated[int, msgspec.Meta(ge=1, le=200)]
-Small = Annotated[float, msgspec.Meta(gt=0, le=0.2)]
+SWEEPABLE = {"nu2": "nu", "mass": "M", "velocity": "v0"}
 
 
 class _Contact(Table):
-    reach: Annotated[float, msgspec.Meta(ge=1.0, le=3.0)] = 1.1
-    steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 12
-    small_ratio: Small = 0.01
-    small_steps: Count = 5
+    reach: ranged("reach") = vocabulary.entry("reach").default
+    depth_steps: ranged("depth_steps") = vocabulary.entry("depth_steps").default
+    small_ratio: ranged("small_ratio") = vocabulary.entry("small_ratio").default
+    small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
 
 
-class _Quick(Table):
-    steps: Annotated[int, msgspec.Meta(ge=4, le=200)] = 6
-    small_steps: Count = 2
-    small_ratio: Small = 0.02
+class _Quick(MeshTable):
+    depth_steps: ranged("depth_steps") = 6
+    small_steps: ranged("small_steps") = 2
+    small_ratio: ranged("small_ratio") = 0.02
     small_strain: Relative = 2e-2
-    mesh: MeshTable = MeshTable()
 
 
 class _Tolerances(Table):
@@ -124,7 +123,7 @@ class _Tolerances(Table):
 
 
 class _Sweep(Table):
-    poisson_ratio: list[Poisson] | None = None
+    nu2: list[Poisson] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
 
@@ -145,7 +144,7 @@ class _FiniteFile(Table):
     name: str | None = None
     description: str = ""
     contact: _Contact = _Contact()
-    mesh: MeshTable = MeshTable()
+    numerics: MeshTable = MeshTable()
     quick: _Quick = _Quick()
     tolerances: _Tolerances = _Tolerances()
     sweep: _Sweep | None = None
@@ -205,7 +204,7 @@ def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
     settings = table.settings(default, where)
     refine = 1.0 if table.refine is None else table.refine
     try:
-        if where == "mesh":  # the study's mesh is the finest level of its ladder
+        if where == "numerics":  # the study's mesh is the finest level of its ladder
             check_ladder(settings, refine)
         return settings.refined(refine)
     except InputError as error:
@@ -217,21 +216,19 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
-    if raw.half_space.youngs_modulus == "inf":
-        raise StudyError(f"{path}: key 'half_space.youngs_modulus': expected a number > 0 (Pa)")
     contact, quick = raw.contact, raw.quick
     return FiniteStudy(
         name=name,
         description=raw.description,
         source=path,
         indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
-        half_space=Material(raw.half_space.youngs_modulus, raw.half_space.poisson_ratio),
+        half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
-        ladder=Ladder(contact.reach, contact.steps, contact.small_ratio, contact.small_steps),
-        quick_ladder=Ladder(contact.reach, quick.steps, quick.small_ratio, quick.small_steps),
-        mesh=_mesh(raw.mesh, FINITE_MESH, "mesh"),
-        quick_mesh=_mesh(quick.mesh, QUICK_FINITE_MESH, "quick.mesh"),
+        ladder=Ladder(contact.reach, contact.depth_steps, contact.small_ratio, contact.small_steps),
+        quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
+        mesh=_mesh(raw.numerics, FINITE_MESH, "numerics"),
+        quick_mesh=_mesh(quick, QUICK_FINITE_MESH, "quick"),
         tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
         quick_small_strain=quick.small_strain,
     )
@@ -243,7 +240,7 @@ def _expanded(study: FiniteStudy, sweep: _Sweep | None) -> list[FiniteStudy]:
     key, values = sweep.chosen()
     studies = []
     for value in values:
-        if key == "poisson_ratio":
+        if key == "nu2":
             changed = replace(study, half_space=replace(study.half_space, poisson_ratio=value))
         else:
             changed = replace(study, **{key: value})

@@ -1,17 +1,20 @@
 """Cross-check studies as data: TOML files naming indenter, materials, depths, mesh, impact and
 the tolerances that decide pass or fail.
 
-A study file (``shtaerman init-study`` writes a commented one; see also ``fem/paper.toml``)::
+A study file (``shtaerman init-study`` writes a commented one; see also ``fem/paper.toml``)
+names every input as the vocabulary does (:mod:`shtaerman.vocabulary`: the CLI's words in
+snake_case)::
 
     name = "paper"                       # optional; default: the file's stem (a plain name)
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5
-    [striker]    youngs_modulus = 2e11 (Pa, or "inf" for rigid), poisson_ratio = 0.25
-    [half_space] youngs_modulus = 7.5e6 (Pa), poisson_ratio = 0.5
+    [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
     [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
-    [mesh]       refine = K (divides the whole size field; default 1) and the MeshSettings
-                 fields (optional, for experts); [quick_mesh] for ``verify --quick``
+    [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
+                 domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
+    [quick]      the [numerics] keys for ``verify --quick``
     [tolerances] relative, in (0, 1]: force, beta, exponent, contact_radius, central_pressure,
                  impact
     [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
@@ -19,6 +22,11 @@ A study file (``shtaerman init-study`` writes a commented one; see also ``fem/pa
                  coarsest three)
     [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
                  "velocity") and a list of values; the study runs once per value.
+
+A vocabulary key may also be written at the top level (``E2 = 4e6``): it goes to its table.
+The keys of earlier releases (``youngs_modulus``, ``[mesh] size``, ``[quick_mesh]``, ...) still
+work for one release with a one-line :class:`~shtaerman.vocabulary.DeprecatedKeyWarning`
+naming the new key; an unknown key names the likely one.
 
 The file is decoded into typed structures by msgspec (``forbid_unknown_fields``, numeric
 constraints), chosen over a hand-written reader (200 lines before) and over pydantic (a larger
@@ -30,6 +38,7 @@ the file is loaded, before any computing.
 
 from __future__ import annotations
 
+import copy
 import importlib.resources
 import itertools
 import math
@@ -46,8 +55,10 @@ from ..fem.mesh import MeshSettings
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
+from ..vocabulary import VOCABULARY, deprecated, suggestion
+from ..vocabulary import entry as vocabulary_entry
 from .indentation import validate_fem_inputs
-from .kinds import KINDS, kind_function
+from .kinds import kind_function, study_kinds
 
 __all__ = [
     "QUICK_MESH",
@@ -57,6 +68,7 @@ __all__ = [
     "fem_input_error",
     "find_study",
     "load_study",
+    "normalized",
     "shipped_studies",
     "validate_name",
 ]
@@ -67,12 +79,15 @@ QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, a
 SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "v0"}
 """Sweepable parameters and the symbol that names each expanded study."""
 EXPECTED = {
-    "shape_coefficient": "a number > 0 (m^(1-n))",
-    "exponent": "a number > 0",
-    "youngs_modulus": 'a number > 0 (Pa), or "inf" for a rigid striker',
-    "poisson_ratio": "a Poisson's ratio in (-1, 0.5]",
-    "mass": "a number > 0 (kg)",
-    "velocity": "a number > 0 (m/s)",
+    **{
+        item.name: ("" if item.type == "int" else "a number ")
+        + item.range_text()
+        + (f" ({item.unit})" if item.unit else "")
+        for item in VOCABULARY
+        if item.type in ("float", "int") and item.group != "output"
+    },
+    "E1": 'a number > 0 (Pa), or "inf" for a rigid striker',
+    "velocity": "a number > 0 (m/s), or (a dynamic study) a list of increasing ones",
     "depths": 'a list of at least 2 increasing depths > 0 (m), or "impact"',
     "sizes": "a list of at least 2 decreasing sizes in (0, 1) (element / refined radius)",
     "name": "a string",
@@ -92,6 +107,20 @@ Relative = Annotated[float, msgspec.Meta(gt=0, le=1)]
 Poisson = Annotated[float, msgspec.Meta(gt=-1, le=0.5)]
 
 
+def ranged(name: str, kind: str | None = None) -> Any:
+    """The study-file type of vocabulary input ``name``: its number type constrained to its
+    valid range in computation ``kind`` (:mod:`shtaerman.vocabulary`)."""
+    item = vocabulary_entry(name)
+    valid = item.range_for(kind)
+    number = int if item.type == "int" else float
+    bounds: dict[str, float] = {}
+    if valid is not None and valid.low is not None:
+        bounds["gt" if valid.low_open else "ge"] = number(valid.low)
+    if valid is not None and valid.high is not None:
+        bounds["lt" if valid.high_open else "le"] = number(valid.high)
+    return Annotated[number, msgspec.Meta(**bounds)]
+
+
 class Table(msgspec.Struct, forbid_unknown_fields=True, frozen=True):
     """A TOML table: unknown keys are errors."""
 
@@ -103,11 +132,16 @@ class IndenterTable(Table):
     exponent: Positive
 
 
-class MaterialTable(Table):
-    """An elastic material: E in Pa (``"inf"``: rigid), nu."""
+class StrikerTable(Table):
+    E1: Positive | Literal["inf"]
+    nu1: Poisson
 
-    youngs_modulus: Positive | Literal["inf"]
-    poisson_ratio: Poisson
+
+class MaterialTable(Table):
+    """The half-space."""
+
+    E2: Positive
+    nu2: Poisson
 
 
 class ImpactTable(Table):
@@ -127,20 +161,28 @@ class _Contact(Table):
             raise ValueError(f"depths: {EXPECTED['depths']}")
 
 
+MESH_FIELDS = {"mesh_size": "size", "mesh_margin": "margin", "domain_factor": "domain"}
+"""Study-file key -> MeshSettings / DynamicSettings field, where the two differ."""
+
+
 class MeshTable(Table):
-    """``[mesh]``: ``refine`` and the :class:`shtaerman.fem.mesh.MeshSettings` fields."""
+    """The [numerics] of a static FEM study (MeshSettings)."""
 
     refine: Positive | None = None
-    margin: Positive | None = None
-    size: Positive | None = None
-    domain: Positive | None = None
+    mesh_margin: Positive | None = None
+    mesh_size: Positive | None = None
+    domain_factor: Positive | None = None
     growth: Positive | None = None
     axis_size: Positive | None = None
     axis_growth: Positive | None = None
     max_dofs: Positive | None = None
 
     def settings(self, default: MeshSettings, table: str) -> MeshSettings:
-        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
+        given = {
+            MESH_FIELDS.get(k, k): v
+            for k, v in msgspec.structs.asdict(self).items()
+            if v is not None and k in MeshTable.__struct_fields__
+        }
         given.pop("refine", None)
         try:
             settings = replace(default, **given)
@@ -189,10 +231,10 @@ class _StudyFile(Table):
     impact: ImpactTable
     name: str | None = None
     description: str = ""
-    striker: MaterialTable | None = None
+    striker: StrikerTable | None = None
     contact: _Contact = _Contact()
-    mesh: MeshTable = MeshTable()
-    quick_mesh: MeshTable = MeshTable()
+    numerics: MeshTable = MeshTable()
+    quick: MeshTable = MeshTable()
     tolerances: _Tolerances = _Tolerances()
     convergence: _Convergence = _Convergence()
     sweep: _Sweep | None = None
@@ -274,7 +316,7 @@ def _expectation(keys: list[str], text: str) -> str:
         return EXPECTED[leaf]
     if keys and keys[0] in ("tolerances",):
         return "a relative tolerance in (0, 1]"
-    if len(keys) > 1 and keys[0] in ("mesh", "quick_mesh", "sweep"):
+    if len(keys) > 1 and keys[0] in ("numerics", "quick", "sweep"):
         return "a number > 0" if keys[0] != "sweep" else "a non-empty list of numbers > 0"
     return text.replace("`", "").removeprefix("Expected ").removeprefix("expected ")
 
@@ -286,7 +328,12 @@ def _located(message: str, data: dict[str, Any], root: type = _StudyFile) -> tup
     unknown = re.fullmatch(r"Object contains unknown field `(\w+)`", text)
     missing = re.fullmatch(r"Object missing required field `(\w+)`", text)
     if unknown:
-        return [*keys, unknown[1]], f"one of {_allowed_keys(keys, root)} (unknown key)"
+        allowed = _allowed_keys(keys, root)
+        hint = suggestion(unknown[1], allowed)
+        home = TABLE_OF.get(unknown[1])
+        if not hint and home and home not in keys and home in root.__struct_fields__:
+            hint = f" (it belongs in [{home}])"
+        return [*keys, unknown[1]], f"one of {allowed} (unknown key{hint})"
     if missing:
         leaf = missing[1]
         expected = EXPECTED.get(leaf, f"a [{leaf}] table" if leaf in _TABLES else "a value")
@@ -316,7 +363,7 @@ def decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
     return decoded
 
 
-INFINITE_ALLOWED = (("striker", "youngs_modulus"),)
+INFINITE_ALLOWED = (("striker", "E1"),)
 """The keys where TOML's ``inf`` means something (a rigid striker); elsewhere it is refused."""
 
 
@@ -334,7 +381,7 @@ def _numbers(data: Any, keys: tuple[str, ...] = ()) -> Iterator[tuple[tuple[str,
 
 def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
     """The convergence sizes, each level's mesh checked now (size guard, growth <= 1)."""
-    base = raw.mesh.settings(MeshSettings(), "mesh")
+    base = raw.numerics.settings(MeshSettings(), "numerics")
     for size in raw.convergence.sizes:
         try:
             base.refined(base.size / size).check_size()
@@ -343,10 +390,10 @@ def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
     return tuple(raw.convergence.sizes)
 
 
-def _material(table: MaterialTable) -> Material:
-    if table.youngs_modulus == "inf":
+def _material(table: StrikerTable) -> Material:
+    if table.E1 == "inf":
         return RIGID
-    return Material(table.youngs_modulus, table.poisson_ratio)
+    return Material(table.E1, table.nu1)
 
 
 def _build(path: Path, raw: _StudyFile) -> Study:
@@ -354,23 +401,21 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
-    if raw.half_space.youngs_modulus == "inf":
-        raise StudyError(f"{path}: key 'half_space.youngs_modulus': expected a number > 0 (Pa)")
     return Study(
         name=name,
         description=raw.description,
         source=path,
         indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
         striker=RIGID if raw.striker is None else _material(raw.striker),
-        half_space=_material(raw.half_space),
+        half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
         depths=None if raw.contact.depths == "impact" else tuple(raw.contact.depths),
-        mesh=raw.mesh.settings(MeshSettings(), "mesh"),
-        quick_mesh=raw.quick_mesh.settings(QUICK_MESH, "quick_mesh"),
+        mesh=raw.numerics.settings(MeshSettings(), "numerics"),
+        quick_mesh=raw.quick.settings(QUICK_MESH, "quick"),
         tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
         convergence_sizes=_convergence_sizes(path, raw),
-        refine=1.0 if raw.mesh.refine is None else raw.mesh.refine,
+        refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
     )
 
 
@@ -386,6 +431,82 @@ def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
             changed = replace(study, **{key: value})
         studies.append(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
     return studies
+
+
+TABLE_OF = {
+    **{name: "indenter" for name in ("shape_coefficient", "exponent")},
+    **{name: "striker" for name in ("E1", "nu1")},
+    **{name: "half_space" for name in ("E2", "nu2", "density2")},
+    **{name: "impact" for name in ("mass", "velocity", "figure_velocity")},
+    **{
+        name: "contact" for name in ("depths", "reach", "depth_steps", "small_ratio", "small_steps")
+    },
+    **{item.name: "numerics" for item in VOCABULARY if item.group == "numerics"},
+}
+"""A vocabulary key written at the top level of a study file -> the table it belongs to."""
+OLD_TABLES = {"mesh": "numerics", "quick_mesh": "quick"}
+"""Tables of earlier releases -> their name now."""
+_NUMERICS_RENAMED = {
+    "size": "mesh_size",
+    "margin": "mesh_margin",
+    "domain": "domain_factor",
+    "steps": "time_steps",
+}
+OLD_KEYS = {
+    "striker": {"youngs_modulus": "E1", "poisson_ratio": "nu1"},
+    "half_space": {"youngs_modulus": "E2", "poisson_ratio": "nu2", "density": "density2"},
+    "impact": {"velocities": "velocity", "example": "figure_velocity"},
+    "contact": {"steps": "depth_steps"},
+    "numerics": _NUMERICS_RENAMED,
+    "quick": {**_NUMERICS_RENAMED, "velocities": "velocity"},
+    "sweep": {"poisson_ratio": "nu2"},
+}
+"""Table -> key of earlier releases -> its name now (the finite-strain [quick] steps are depth
+steps: :data:`OLD_KEYS_BY_KIND`)."""
+OLD_KEYS_BY_KIND = {"finite-strain": {"quick": {**OLD_KEYS["quick"], "steps": "depth_steps"}}}
+
+
+def _rename(path: Path, table: dict[str, Any], renames: dict[str, str], where: str) -> None:
+    """Rename the old keys of ``table`` in place, each with a deprecation warning."""
+    for old, new in renames.items():
+        if old not in table:
+            continue
+        if new in table:
+            raise StudyError(
+                f"{path}: keys '{where}{old}' and '{where}{new}' name one input; "
+                f"keep '{where}{new}'"
+            )
+        deprecated(str(path), f"{where}{old}", f"{where}{new}")
+        table[new] = table.pop(old)
+
+
+def normalized(path: Path, kind: str, data: dict[str, Any]) -> dict[str, Any]:
+    """The parsed study file in today's keys: old tables and keys renamed (with a deprecation
+    warning each), ``[quick.mesh]`` merged into ``[quick]``, and vocabulary keys written at the
+    top level moved into their tables."""
+    data = copy.deepcopy(data)
+    _rename(path, data, OLD_TABLES, "")
+    quick = data.get("quick")
+    if isinstance(quick, dict) and isinstance(quick.get("mesh"), dict):
+        deprecated(str(path), "quick.mesh", "quick")
+        for key, value in quick.pop("mesh").items():
+            if key in quick:
+                raise StudyError(f"{path}: key 'quick.{key}' given twice ([quick.mesh] too)")
+            quick[key] = value
+    for key in [k for k in data if k in TABLE_OF]:
+        table = data.setdefault(TABLE_OF[key], {})
+        if not isinstance(table, dict):
+            break  # the decoder names the table that is not one
+        if key in table:
+            raise StudyError(
+                f"{path}: key '{key}' given twice (at the top and in [{TABLE_OF[key]}])"
+            )
+        table[key] = data.pop(key)
+    renames = {**OLD_KEYS, **OLD_KEYS_BY_KIND.get(kind, {})}
+    for name, table in data.items():
+        if isinstance(table, dict) and name in renames:
+            _rename(path, table, renames[name], f"{name}.")
+    return data
 
 
 def load_study(path: str | Path) -> list[Any]:
@@ -409,17 +530,20 @@ def load_study(path: str | Path) -> list[Any]:
     except tomllib.TOMLDecodeError as error:
         raise StudyError(f"{path}: not valid TOML ({error})") from None
     kind = data.pop("kind", "contact")
-    if kind not in KINDS:
-        raise StudyError(f"{path}: key 'kind': expected one of {sorted(KINDS)}, got {kind!r}")
-    return kind_function(kind, "load")(path, data)
+    if kind not in study_kinds():
+        raise StudyError(
+            f"{path}: key 'kind': expected one of {study_kinds()}"
+            f"{suggestion(str(kind), study_kinds())}, got {kind!r}"
+        )
+    return kind_function(kind, "load")(path, normalized(path, kind, data))
 
 
 FEM_INPUT_KEYS = {
     "exponent": "indenter.exponent",
     "shape_coefficient": "indenter.shape_coefficient",
-    "E2": "half_space.youngs_modulus",
-    "nu2": "half_space.poisson_ratio",
-    "density2": "half_space.density",
+    "E2": "half_space.E2",
+    "nu2": "half_space.nu2",
+    "density2": "half_space.density2",
 }
 """The study-file key of each parameter that :func:`validate_fem_inputs` and
 :func:`shtaerman.fem.dynamic_contact.validate_density` check (``InputError.parameter``)."""

@@ -1,6 +1,8 @@
-"""What a sweep can compute: a registry of kinds, name -> parameters, outputs and a case function.
+"""What a sweep can compute: the sweep roles of the kinds (parameters, outputs, case function).
 
-A kind is one computation of the suite run on one set of inputs. Adding one is a registration::
+A kind is one computation of the suite run on one set of inputs, registered in the one registry
+of kinds (:mod:`shtaerman.study.kinds`, which ``verify`` uses too); its parameters, names and
+defaults come from :mod:`shtaerman.vocabulary`. Adding one is a registration::
 
     register_kind(
         Kind(
@@ -28,11 +30,19 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .. import vocabulary
+from ..study.kinds import (
+    KINDS,
+    Kind,
+    KindNotAvailableError,
+    Parameter,
+    get_kind,
+    register_kind,
+    vocabulary_parameters,
+)
 from ..study.limits import LEVELS
 from ..validation import InputError, validate_increasing, validate_positive
 
@@ -46,90 +56,6 @@ __all__ = [
     "unit_suffix",
 ]
 
-CaseFunction = Callable[[dict[str, Any]], Mapping[str, float]]
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One input of a kind.
-
-    Attributes
-    ----------
-    default : object
-        The value when the sweep file does not set it (the paper's example); ``None`` means
-        "computed from the other inputs" (e.g. the contact depths).
-    unit : str
-        SI unit for messages and headers ("" for a pure number).
-    type : {"float", "int", "str", "floats", "bool"}
-        What the TOML value must be: a number, an integer, a string, a list of numbers,
-        true or false.
-    choices : tuple of str, optional
-        Allowed strings for ``type="str"``.
-    """
-
-    default: Any
-    unit: str = ""
-    type: str = "float"
-    choices: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class Kind:
-    """A computation a sweep can run: its parameters, its outputs, and the case function."""
-
-    name: str
-    description: str
-    parameters: Mapping[str, Parameter]
-    outputs: Mapping[str, str]
-    """Output name -> SI unit ("" for a pure number)."""
-    case: CaseFunction | None
-    check: Callable[[dict[str, Any]], object] | None = None
-    unavailable: str | None = None
-    """Why the kind cannot run yet (``None`` when it can)."""
-    nondeterministic: tuple[str, ...] = field(default=())
-    """Outputs that vary from run to run (timings); everything else is reproducible."""
-    optional_outputs: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
-    """Outputs the case adds when a ``bool`` parameter is true: parameter -> {output: unit}."""
-    levels: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
-    """Relative differences (output -> levels of its magnitude, e.g. 1 % and 5 %) whose heat
-    maps draw the levels as contours where the output's estimated absolute error, the output
-    ``error_<name>``, resolves them (:func:`shtaerman.study.limits.resolved`)."""
-
-    def defaults(self) -> dict[str, Any]:
-        """The default value of every parameter."""
-        return {name: p.default for name, p in self.parameters.items()}
-
-    def outputs_for(self, flags: Mapping[str, Any]) -> dict[str, str]:
-        """:attr:`outputs` and the optional outputs of the flags that are true."""
-        extra = [
-            outputs for flag, outputs in self.optional_outputs.items() if flags.get(flag, False)
-        ]
-        return {**self.outputs, **{k: v for outputs in extra for k, v in outputs.items()}}
-
-
-class KindNotAvailableError(InputError):
-    """A registered kind whose computation is not in this version yet."""
-
-
-KINDS: dict[str, Kind] = {}
-"""Every registered kind by name (``contact``, ``finite-strain``, ``dynamic``, ``impact``)."""
-
-
-def register_kind(kind: Kind) -> Kind:
-    """Add (or replace) a kind in :data:`KINDS`; returns it."""
-    KINDS[kind.name] = kind
-    return kind
-
-
-def get_kind(name: str) -> Kind:
-    """The kind called ``name``; raises :class:`InputError` for an unknown or unavailable one."""
-    if name not in KINDS:
-        raise InputError(f"Unknown kind {name!r}. Pick one of {sorted(KINDS)}")
-    kind = KINDS[name]
-    if kind.unavailable:
-        raise KindNotAvailableError(f"kind {name!r} is not available yet: {kind.unavailable}")
-    return kind
-
 
 def unit_suffix(name: str, unit: str) -> str:
     """Column name with its unit, for CSV headers as everywhere in the package (``name [unit]``,
@@ -139,17 +65,6 @@ def unit_suffix(name: str, unit: str) -> str:
 
 
 # --- impact: the exact quasi-static model --------------------------------------------------------
-
-_MATERIALS = {
-    "E1": Parameter(2e11, "Pa"),
-    "nu1": Parameter(0.25),
-    "E2": Parameter(7.5e6, "Pa"),
-    "nu2": Parameter(0.5),
-}
-_INDENTER = {
-    "shape_coefficient": Parameter(5.0, "m^(1-n)"),
-    "exponent": Parameter(1.5),
-}
 
 
 def _indenter(p: dict[str, Any]):
@@ -204,12 +119,7 @@ register_kind(
     Kind(
         name="impact",
         description="exact quasi-static impact M x'' = -beta x^q (Ateb functions)",
-        parameters={
-            "mass": Parameter(0.7, "kg"),
-            "velocity": Parameter(3.0, "m/s"),
-            **_INDENTER,
-            **_MATERIALS,
-        },
+        parameters=vocabulary_parameters("impact"),
         outputs=IMPACT_OUTPUTS,
         case=impact_case,
         check=_impact_inputs,
@@ -219,7 +129,6 @@ register_kind(
 
 # --- contact: the linear FEM indentation against Shtaerman's solution ----------------------------
 
-_SOLVERS = ("auto", "superlu", "pardiso")
 _MESH = {  # sweep parameter -> MeshSettings field
     "mesh_size": "size",
     "mesh_margin": "margin",
@@ -227,6 +136,7 @@ _MESH = {  # sweep parameter -> MeshSettings field
     "growth": "growth",
     "axis_size": "axis_size",
     "axis_growth": "axis_growth",
+    "max_dofs": "max_dofs",
 }
 
 
@@ -292,20 +202,7 @@ register_kind(
     Kind(
         name="contact",
         description="linear FEM frictionless contact against Shtaerman's exact solution",
-        parameters={
-            **_INDENTER,
-            "E2": _MATERIALS["E2"],
-            "nu2": _MATERIALS["nu2"],
-            "depths": Parameter(None, "m", type="floats"),
-            "mesh_size": Parameter(1.0 / 150.0),
-            "mesh_margin": Parameter(1.25),
-            "domain_factor": Parameter(1e5),
-            "growth": Parameter(0.25),
-            "axis_size": Parameter(1e-6),
-            "axis_growth": Parameter(0.1),
-            "refine": Parameter(1.0),
-            "solver": Parameter("auto", type="str", choices=_SOLVERS),
-        },
+        parameters=vocabulary_parameters("contact"),
         outputs=CONTACT_OUTPUTS,
         case=contact_case,
         check=_contact_inputs,
@@ -317,11 +214,12 @@ register_kind(
 # --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
 
 _DYNAMIC_NUMERICS = {  # sweep parameter (the CLI option) -> DynamicSettings field
-    "steps": "steps",
+    "time_steps": "steps",
     "mesh_size": "size",
     "mesh_margin": "margin",
     "domain_factor": "domain",
     "growth": "growth",
+    "axis_size": "axis_size",
     "layer_rate": "layer_rate",
 }
 
@@ -341,6 +239,9 @@ def _dynamic_inputs(p: dict[str, Any]):
     settings = DynamicSettings()
     for name, field_name in _DYNAMIC_NUMERICS.items():
         settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+    refine = validate_positive("refine", p["refine"])
+    if refine != 1.0:
+        settings = settings.refined(refine)
     if estimate_dofs(settings) > MAX_DOFS:
         raise InputError(
             f"mesh_size {settings.size!r} would give about {estimate_dofs(settings)} dofs, "
@@ -437,21 +338,7 @@ register_kind(
     Kind(
         name="dynamic",
         description="dynamic FE impact (elastic waves) against the quasi-static impact",
-        parameters={
-            "mass": Parameter(0.7, "kg"),
-            "velocity": Parameter(3.0, "m/s"),
-            **_INDENTER,
-            "E2": _MATERIALS["E2"],
-            "nu2": _MATERIALS["nu2"],
-            "density2": Parameter(1100.0, "kg/m^3"),  # the paper gives none: natural rubber
-            "steps": Parameter(400, type="int"),
-            "mesh_size": Parameter(1.0 / 80.0),
-            "mesh_margin": Parameter(1.3),
-            "domain_factor": Parameter(1e4),
-            "growth": Parameter(0.2),
-            "layer_rate": Parameter(0.0),
-            "estimate": Parameter(False, type="bool"),
-        },
+        parameters=vocabulary_parameters("dynamic"),
         outputs=DYNAMIC_OUTPUTS,
         case=dynamic_case,
         check=_dynamic_inputs,
@@ -472,13 +359,8 @@ def _finite_inputs(p: dict[str, Any]):
     from ..study.finite import FiniteStudy, Ladder
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
-    reach = validate_positive("reach", p["reach"])
-    if reach < 1.0:
-        raise InputError(f"reach must be >= 1 (deepest depth / the linear x_c), got {reach!r}")
-    steps, small_steps = int(p["steps"]), int(p["small_steps"])
-    if steps < 4 or small_steps < 1:
-        raise InputError(f"steps must be >= 4 and small_steps >= 1, got {steps}, {small_steps}")
-    ladder = Ladder(reach, steps, validate_positive("small_ratio", p["small_ratio"]), small_steps)
+    names = ("reach", "depth_steps", "small_ratio", "small_steps")
+    ladder = Ladder(*(vocabulary.entry(name).check(p[name]) for name in names))
     return FiniteStudy(
         name="case",
         description="",
@@ -555,25 +437,7 @@ register_kind(
     Kind(
         name="finite-strain",
         description="neo-Hookean finite-strain contact against Shtaerman, and the impact on it",
-        parameters={
-            **_INDENTER,
-            "E2": _MATERIALS["E2"],
-            "nu2": _MATERIALS["nu2"],
-            "mass": Parameter(0.7, "kg"),
-            "velocity": Parameter(3.0, "m/s"),
-            "depths": Parameter(None, "m", type="floats"),
-            "reach": Parameter(1.1),
-            "steps": Parameter(12, type="int"),
-            "small_ratio": Parameter(0.01),
-            "small_steps": Parameter(5, type="int"),
-            "mesh_size": Parameter(1.0 / 60.0),
-            "mesh_margin": Parameter(1.25),
-            "domain_factor": Parameter(1e5),
-            "growth": Parameter(0.3),
-            "axis_size": Parameter(1e-6),
-            "axis_growth": Parameter(0.15),
-            "refine": Parameter(1.0),
-        },
+        parameters=vocabulary_parameters("finite-strain"),
         outputs=FINITE_OUTPUTS,
         case=finite_strain_case,
         check=_finite_inputs,

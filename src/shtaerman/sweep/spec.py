@@ -28,11 +28,13 @@ from pathlib import Path
 from typing import Any
 
 from ..validation import InputError
+from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, deprecated, suggestion
 from .kinds import KINDS, Kind, Parameter, get_kind
 
 __all__ = [
     "MAX_CASES",
     "Case",
+    "DeprecatedKeyWarning",
     "SweepError",
     "SweepSpec",
     "find_sweep",
@@ -49,6 +51,30 @@ _PLAIN_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*")
 
 class SweepError(InputError):
     """A sweep file that cannot be used; the message names the file and the key."""
+
+
+def _renamed(where: str, table: str, kind: Kind, keys: dict[str, Any]) -> dict[str, Any]:
+    """``keys`` with each old parameter name replaced by the kind's new one, with a one-line
+    :class:`DeprecatedKeyWarning` naming the new key."""
+    out = {}
+    for key, value in keys.items():
+        new = next(
+            (
+                item.name
+                for item in VOCABULARY
+                if key in item.old_names and item.name in kind.parameters
+            ),
+            None,
+        )
+        if key not in kind.parameters and new is not None:
+            if new in keys:
+                raise SweepError(
+                    f"{where}: {table}: {key!r} and {new!r} name one input; keep {new!r}"
+                )
+            deprecated(where, f"{table}.{key}", f"{table}.{new}")
+            key = new
+        out[key] = value
+    return out
 
 
 @dataclass(frozen=True)
@@ -157,8 +183,10 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
     description = data.get("description", "")
     if not isinstance(description, str):
         raise SweepError(f"{where}: description must be a string, got {description!r}")
-    parameters = _table(where, data, "parameters", required=False)
-    axes = _table(where, data, "axes", required=True)
+    parameters = _renamed(
+        where, "parameters", kind, _table(where, data, "parameters", required=False)
+    )
+    axes = _renamed(where, "axes", kind, _table(where, data, "axes", required=True))
     for key, value in parameters.items():
         parameters[key] = _value(where, f"parameters.{key}", kind, key, value)
     if not axes:
@@ -195,11 +223,12 @@ def _name(where: str, data: Mapping[str, Any]) -> str:
 
 
 def _kind(where: str, data: Mapping[str, Any]) -> Kind:
+    sweepable = sorted(n for n, kind in KINDS.items() if kind.case or kind.unavailable)
     if "kind" not in data:
-        raise SweepError(f"{where}: missing key 'kind'. Pick one of {sorted(KINDS)}")
+        raise SweepError(f"{where}: missing key 'kind'. Pick one of {sweepable}")
     name = data["kind"]
-    if not isinstance(name, str) or name not in KINDS:
-        raise SweepError(f"{where}: kind: unknown kind {name!r}. Pick one of {sorted(KINDS)}")
+    if not isinstance(name, str) or name not in sweepable:
+        raise SweepError(f"{where}: kind: unknown kind {name!r}. Pick one of {sweepable}")
     try:
         return get_kind(name)
     except InputError as error:
@@ -221,8 +250,8 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
     """``value`` of parameter ``name`` converted to its declared type, or raise."""
     if name not in kind.parameters:
         raise SweepError(
-            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}. "
-            f"Pick one of {sorted(kind.parameters)}"
+            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}"
+            f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
         )
     parameter = kind.parameters[name]
     converted = _convert(parameter, value)
@@ -267,8 +296,8 @@ def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
     key = f"axes.{name}"
     if name not in kind.parameters:
         raise SweepError(
-            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}. "
-            f"Pick one of {sorted(kind.parameters)}"
+            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}"
+            f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
         )
     if not isinstance(values, list):
         raise SweepError(f"{where}: {key} must be a list of values, got {values!r}")

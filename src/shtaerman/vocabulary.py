@@ -1,0 +1,566 @@
+"""Every input of the suite, declared once: name, CLI option, unit, valid range, default, meaning.
+
+The name is the study-file and sweep key and the Python keyword (snake_case); the CLI option is
+the kebab-case of the same word (the interface contract keeps ``--E2``, ``--nu2``, ...). Study
+files, sweeps, their validation and the documentation's parameter table come from
+:data:`VOCABULARY`; defaults that depend on the computation are given per kind (``impact``,
+``contact``, ``finite-strain``, ``dynamic``).
+"""
+
+from __future__ import annotations
+
+import difflib
+import itertools
+import math
+import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from .validation import InputError
+
+__all__ = [
+    "KIND_NAMES",
+    "VOCABULARY",
+    "DeprecatedKeyWarning",
+    "Entry",
+    "Range",
+    "deprecated",
+    "entry",
+    "inputs_of",
+    "parameter_table",
+    "suggestion",
+]
+
+KIND_NAMES = ("impact", "contact", "finite-strain", "dynamic")
+"""The computations an input can belong to (study and sweep kinds)."""
+FEM_KINDS = ("contact", "finite-strain", "dynamic")
+
+
+class DeprecatedKeyWarning(FutureWarning):
+    """A key of a study or sweep file that works for one more release under its new name."""
+
+
+def deprecated(where: str, old: str, new: str) -> None:
+    """Warn (one line) that key ``old`` at ``where`` is now called ``new``."""
+    warnings.warn(
+        f"{where}: key '{old}' is deprecated; write '{new}' (the old key works for one release)",
+        DeprecatedKeyWarning,
+        stacklevel=3,
+    )
+
+
+@dataclass(frozen=True)
+class Range:
+    """An interval of valid numbers; ``None`` ends are unbounded."""
+
+    low: float | None = 0.0
+    high: float | None = None
+    low_open: bool = True
+    high_open: bool = False
+
+    def text(self) -> str:
+        """The range as written in messages and help: ``> 0``, ``(-1, 0.5]``, ``[50, 1e+05]``."""
+        if self.high is None:
+            return f"{'>' if self.low_open else '>='} {_shown(self.low)}"
+        if self.low is None:
+            return f"{'<' if self.high_open else '<='} {_shown(self.high)}"
+        return (
+            f"{'(' if self.low_open else '['}{_shown(self.low)}, {_shown(self.high)}"
+            f"{')' if self.high_open else ']'}"
+        )
+
+    def contains(self, number: float) -> bool:
+        """Whether ``number`` lies in the range."""
+        if self.low is not None and (number <= self.low if self.low_open else number < self.low):
+            return False
+        return self.high is None or (number < self.high if self.high_open else number <= self.high)
+
+
+def _shown(number: float) -> str:
+    """A range end as people write it: 0.5, 200, 1e2, 1e-3."""
+    if number > 0 and 10.0 ** round(math.log10(number)) == number and not 1e-2 <= number <= 10:
+        return f"1e{round(math.log10(number))}"
+    if number == int(number) and abs(number) < 1e4:
+        return str(int(number))
+    mantissa, _, power = f"{number:g}".partition("e")
+    return f"{mantissa}e{int(power)}" if power else mantissa
+
+
+POSITIVE = Range()
+POISSON = Range(-1.0, 0.5)
+FRACTION = Range(0.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One input.
+
+    Attributes
+    ----------
+    name : str
+        Study-file and sweep key, Python keyword.
+    unit : str
+        SI unit ("" for a pure number).
+    meaning : str
+        One line for help and docs.
+    label : str
+        Readable name for figures and tables.
+    default : object
+        The value when none is given (``None``: derived from the other inputs, or unset).
+    kinds : tuple of str
+        The computations that take it as a study or sweep input.
+    valid : Range or None
+        Valid numbers (``None``: not a number, or no constraint).
+    by_kind : mapping
+        Kind -> default where it differs from ``default``.
+    valid_by_kind : mapping
+        Kind -> a narrower :class:`Range` where a method requires it (the FEM: nu2 >= 0).
+    type : {"float", "int", "floats", "bool", "str", "path", "flag"}
+        What a value must be.
+    choices : tuple of str
+        Allowed strings for ``type="str"``.
+    option : str
+        The CLI option ("" : ``--`` + the name in kebab-case).
+    group : {"case", "numerics", "output"}
+        What the input sets: the physical case, the numerics, or what is written.
+    old_names : tuple of str
+        Keys that meant it before (accepted with a deprecation message).
+    infinite : bool
+        Whether ``inf`` is valid (a rigid striker's E1).
+    """
+
+    name: str
+    unit: str
+    meaning: str
+    label: str
+    default: Any = None
+    kinds: tuple[str, ...] = ()
+    valid: Range | None = POSITIVE
+    by_kind: Mapping[str, Any] = field(default_factory=dict)
+    valid_by_kind: Mapping[str, Range] = field(default_factory=dict)
+    type: str = "float"
+    choices: tuple[str, ...] = ()
+    option: str = ""
+    group: str = "case"
+    old_names: tuple[str, ...] = ()
+    infinite: bool = False
+
+    @property
+    def cli_option(self) -> str:
+        """The command-line option, e.g. ``--shape-coefficient``."""
+        return self.option or "--" + self.name.replace("_", "-")
+
+    def default_for(self, kind: str | None = None) -> Any:
+        """The default in computation ``kind`` (the common default if it has none of its own)."""
+        return self.by_kind.get(kind, self.default) if kind else self.default
+
+    def range_for(self, kind: str | None = None) -> Range | None:
+        """The valid range in computation ``kind``."""
+        return self.valid_by_kind.get(kind, self.valid) if kind else self.valid
+
+    def range_text(self, kind: str | None = None) -> str:
+        """The valid values in words, as in messages and help (``""``: anything of the type)."""
+        if self.choices:
+            return "one of " + ", ".join(self.choices)
+        valid = self.range_for(kind)
+        text = "" if valid is None else valid.text()
+        if self.type == "int" and text:
+            text = f"an integer {'in ' if text[0] in '([' else ''}{text}"
+        if self.type == "floats" and text:
+            text = f"increasing, each {text}"
+        return f"{text}, or inf (rigid)" if self.infinite else text
+
+    def check(self, value: Any, kind: str | None = None) -> Any:
+        """``value`` converted to the entry's type, or :class:`InputError` naming the entry and
+        its valid values."""
+        if self.type == "floats":
+            if isinstance(value, str | bytes) or not hasattr(value, "__iter__"):
+                value = [value]
+            numbers = [_number(self, v, kind) for v in value]
+            if not numbers or any(b <= a for a, b in itertools.pairwise(numbers)):
+                raise InputError(
+                    f"{self.name} must be {self.range_text(kind)}, got {value!r}", self.name
+                )
+            return numbers
+        if self.type in ("float", "int"):
+            return _number(self, value, kind)
+        if self.type in ("bool", "flag"):
+            if not isinstance(value, bool):
+                raise InputError(f"{self.name} must be true or false, got {value!r}", self.name)
+            return value
+        if not isinstance(value, str) or (self.choices and value not in self.choices):
+            expected = self.range_text(kind) or "a string"
+            raise InputError(f"{self.name} must be {expected}, got {value!r}", self.name)
+        return value
+
+
+def _number(item: Entry, value: Any, kind: str | None) -> float | int:
+    """One number of ``item``, checked against its type and range."""
+    expected = item.range_text(kind) or "a number"
+    if item.type == "floats":
+        expected = item.range_for(kind).text() if item.range_for(kind) else "a number"
+    unit = f" {item.unit}" if item.unit else ""
+    is_number = isinstance(value, int | float) and not isinstance(value, bool)
+    if item.type == "int" and not (is_number and float(value) == int(value)):
+        raise InputError(f"{item.name} must be {expected}, got {value!r}", item.name)
+    if not is_number or math.isnan(value):
+        raise InputError(f"{item.name} must be a number {expected}{unit}, got {value!r}", item.name)
+    if math.isinf(value) and not (item.infinite and value > 0):
+        raise InputError(
+            f"{item.name} must be a finite number {expected}{unit}, got {value!r}", item.name
+        )
+    valid = item.range_for(kind)
+    if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
+        verb = "lie in" if expected[0] in "([" else "be"
+        raise InputError(f"{item.name} must {verb} {expected}{unit}, got {value!r}", item.name)
+    return int(value) if item.type == "int" else float(value)
+
+
+def _numeric(
+    name: str,
+    meaning: str,
+    label: str,
+    default: Any,
+    kinds: tuple[str, ...] = FEM_KINDS,
+    **options: Any,
+) -> Entry:
+    """An entry of the numerics (a pure number unless ``unit`` is given)."""
+    return Entry(
+        name, options.pop("unit", ""), meaning, label, default, kinds, group="numerics", **options
+    )
+
+
+_MESH = {"contact": 1.0 / 150.0, "finite-strain": 1.0 / 60.0, "dynamic": 1.0 / 40.0}
+
+VOCABULARY: tuple[Entry, ...] = (
+    # --- the case ---------------------------------------------------------------------------
+    Entry("mass", "kg", "striker mass M", "mass M", 0.7, ("impact", "finite-strain", "dynamic")),
+    Entry(
+        "velocity",
+        "m/s",
+        "approach velocity v0 (a dynamic study takes a list)",
+        "approach velocity v0",
+        3.0,
+        ("impact", "finite-strain", "dynamic"),
+        old_names=("velocities",),
+    ),
+    Entry("shape_coefficient", "m^(1-n)", "A in z = A r^n", "shape coefficient A", 5.0, KIND_NAMES),
+    Entry(
+        "exponent",
+        "",
+        "n in z = A r^n",
+        "exponent n",
+        1.5,
+        KIND_NAMES,
+        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1.0)),
+    ),
+    Entry(
+        "E1",
+        "Pa",
+        "striker Young's modulus",
+        "striker modulus E1",
+        2e11,
+        ("impact",),
+        infinite=True,
+        old_names=("youngs_modulus",),
+    ),
+    Entry(
+        "nu1",
+        "",
+        "striker Poisson's ratio",
+        "striker Poisson's ratio nu1",
+        0.25,
+        ("impact",),
+        valid=POISSON,
+        old_names=("poisson_ratio",),
+    ),
+    Entry(
+        "E2",
+        "Pa",
+        "half-space Young's modulus",
+        "half-space modulus E2",
+        7.5e6,
+        KIND_NAMES,
+        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1e-3, 1e100, low_open=False)),
+        old_names=("youngs_modulus",),
+    ),
+    Entry(
+        "nu2",
+        "",
+        "half-space Poisson's ratio (the FEM: [0, 0.5])",
+        "half-space Poisson's ratio nu2",
+        0.5,
+        KIND_NAMES,
+        valid=POISSON,
+        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(0.0, 0.5, low_open=False)),
+        old_names=("poisson_ratio",),
+    ),
+    Entry(
+        "density2",
+        "kg/m^3",
+        "half-space density (the paper gives none; 1100 is natural rubber)",
+        "half-space density rho2",
+        1100.0,
+        ("dynamic",),
+        valid=Range(1e-6, 1e6, low_open=False),
+        old_names=("density",),
+    ),
+    Entry(
+        "depths",
+        "m",
+        "indentation depths (default: up to the impact's x_c)",
+        "depth x",
+        None,
+        ("contact", "finite-strain"),
+        type="floats",
+    ),
+    Entry(
+        "model",
+        "",
+        "material model of the half-space",
+        "model",
+        "linear",
+        valid=None,
+        type="str",
+        choices=("linear", "neo-hookean"),
+    ),
+    # --- the numerics -----------------------------------------------------------------------
+    _numeric(
+        "refine", "divide the whole mesh size field (and the time step) by K", "refinement K", 1.0
+    ),
+    _numeric(
+        "mesh_size",
+        "smallest element size / refined radius",
+        "mesh size / refined radius",
+        _MESH["contact"],
+        by_kind=_MESH,
+        valid_by_kind={"dynamic": Range(0.0, 0.2)},
+        old_names=("size",),
+    ),
+    _numeric(
+        "mesh_margin",
+        "refined radius / largest contact radius",
+        "refined radius / contact radius",
+        1.25,
+        valid=Range(1.0, 10.0),
+        valid_by_kind={"dynamic": Range(1.0)},
+        by_kind={"dynamic": 1.3},
+        old_names=("margin",),
+    ),
+    _numeric(
+        "domain_factor",
+        "domain radius / refined radius",
+        "domain radius / refined radius",
+        1e5,
+        valid=Range(1e2, 1e7, low_open=False),
+        by_kind={"dynamic": 1e4},
+        old_names=("domain",),
+    ),
+    _numeric(
+        "growth",
+        "element size growth per unit distance from the refined zone",
+        "element growth",
+        0.25,
+        valid=FRACTION,
+        by_kind={"finite-strain": 0.3, "dynamic": 0.2},
+    ),
+    _numeric(
+        "axis_size",
+        "element size at the axis / refined radius",
+        "axis element size",
+        1e-6,
+        by_kind={"dynamic": 1.0 / 800.0},
+    ),
+    _numeric(
+        "axis_growth",
+        "element size growth away from the axis",
+        "axis growth",
+        0.1,
+        ("contact", "finite-strain"),
+        valid=FRACTION,
+        by_kind={"finite-strain": 0.15},
+    ),
+    _numeric(
+        "max_dofs",
+        "refuse a mesh estimated (before meshing) above this many unknowns",
+        "largest mesh (dofs)",
+        400_000.0,
+        ("contact", "finite-strain"),
+    ),
+    _numeric(
+        "time_steps",
+        "time steps per quasi-static impact duration t_y",
+        "time steps per t_y",
+        200,
+        ("dynamic",),
+        valid=Range(50.0, 100_000.0, low_open=False),
+        old_names=("steps",),
+        type="int",
+    ),
+    _numeric(
+        "layer_rate",
+        "absorbing-layer damping rate x t_y (0: no layer)",
+        "absorbing-layer rate",
+        0.0,
+        ("dynamic",),
+        valid=Range(0.0, low_open=False),
+    ),
+    _numeric(
+        "reach",
+        "deepest depth / the linear impact's x_c",
+        "reach / x_c",
+        1.1,
+        ("finite-strain",),
+        valid=Range(1.0, 3.0, low_open=False),
+    ),
+    _numeric(
+        "depth_steps",
+        "equal depth steps up to the reach",
+        "depth steps",
+        12,
+        ("finite-strain",),
+        valid=Range(4.0, 200.0, low_open=False),
+        old_names=("steps",),
+        type="int",
+    ),
+    _numeric(
+        "small_ratio",
+        "x/a of the first, tiny depth (the small-strain limit)",
+        "first depth x/a",
+        0.01,
+        ("finite-strain",),
+        valid=Range(0.0, 0.2),
+    ),
+    _numeric(
+        "small_steps",
+        "geometric depths from the first one to the first equal step",
+        "small-depth steps",
+        5,
+        ("finite-strain",),
+        valid=Range(1.0, 200.0, low_open=False),
+        type="int",
+    ),
+    Entry(
+        "solver",
+        "",
+        "sparse direct solver",
+        "solver",
+        "auto",
+        ("contact",),
+        valid=None,
+        type="str",
+        choices=("auto", "superlu", "pardiso"),
+        group="numerics",
+    ),
+    Entry(
+        "estimate",
+        "",
+        "Richardson error estimates from two coarser runs (commands and studies: on; a sweep: "
+        "estimate = true)",
+        "error estimate",
+        True,
+        ("dynamic",),
+        valid=None,
+        by_kind={"dynamic": False},
+        type="bool",
+        group="numerics",
+        option="--no-estimate",
+    ),
+    Entry(
+        "accuracy",
+        "",
+        "refine until the estimated relative error of force and beta is <= TOL",
+        "target accuracy",
+        None,
+        valid=FRACTION,
+        group="numerics",
+    ),
+    Entry("max_time", "s", "time budget of --accuracy", "time budget", 60.0, group="numerics"),
+    # --- what is written (command line only) ---------------------------------------------------
+    *(
+        Entry(name, unit, meaning, label, default, valid=valid, type=kind, group="output")
+        for name, unit, meaning, label, default, valid, kind in (
+            ("json", "", "print one JSON object (SI units)", "JSON", False, None, "flag"),
+            ("out", "", "write the results to this folder", "folder", None, None, "path"),
+            ("force", "", "replace existing outputs", "replace", False, None, "flag"),
+            ("history", "", "write the time history as CSV", "history", None, None, "path"),
+            (
+                "points",
+                "",
+                "rows of --history",
+                "history rows",
+                201,
+                Range(2.0, 1e7, low_open=False),
+                "int",
+            ),
+            ("check", "", "also integrate the ODE numerically", "ODE check", False, None, "flag"),
+        )
+    ),
+)
+"""Every input, in the order of the documentation's table."""
+
+_BY_NAME = {item.name: item for item in VOCABULARY}
+
+
+def entry(name: str) -> Entry:
+    """The entry called ``name``; :class:`InputError` with the likely one for an unknown name."""
+    if name not in _BY_NAME:
+        raise InputError(f"unknown input {name!r}{suggestion(name, _BY_NAME)}", name)
+    return _BY_NAME[name]
+
+
+def inputs_of(kind: str) -> dict[str, Entry]:
+    """The study and sweep inputs of computation ``kind``, by name."""
+    return {item.name: item for item in VOCABULARY if kind in item.kinds}
+
+
+def suggestion(word: str, known: Any) -> str:
+    """``" (did you mean 'x'?)"`` for the closest of ``known`` to ``word`` ("" if none is)."""
+    close = difflib.get_close_matches(word, [str(k) for k in known], n=1, cutoff=0.5)
+    if not close:
+        lowered = {str(k).lower(): str(k) for k in known}
+        close = [lowered[word.lower()]] if word.lower() in lowered else []
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _default_text(item: Entry) -> str:
+    shown = {}
+    for kind in item.kinds or (None,):
+        value = item.default_for(kind)
+        text = (
+            _UNSET[item.group]
+            if value is None
+            else f"{value:.6g}"
+            if _is_real(value)
+            else str(value)
+        )
+        shown.setdefault(text, []).append(kind)
+    if len(shown) == 1:
+        return next(iter(shown))
+    return ", ".join(f"{text} ({', '.join(kinds)})" for text, kinds in shown.items())
+
+
+_UNSET = {"case": "derived", "numerics": "-", "output": "-"}
+
+
+def _is_real(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def parameter_table() -> str:
+    """The documentation's parameter table (markdown): one row per input."""
+    rows = [
+        "| Key | CLI option | Unit | Valid | Default | Kinds | Meaning |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for item in VOCABULARY:
+        valid = item.range_text()
+        if any(item.range_text(kind) != valid for kind in item.kinds):
+            valid = f"{valid}; FEM {item.range_text(FEM_KINDS[0])}"
+        old = f" (formerly {', '.join(f'`{n}`' for n in item.old_names)})" if item.old_names else ""
+        rows.append(
+            f"| `{item.name}` | `{item.cli_option}` | {item.unit or '-'} | {valid or '-'} | "
+            f"{_default_text(item)} | {', '.join(item.kinds) or 'CLI'} | {item.meaning}{old} |"
+        )
+    return "\n".join(rows) + "\n"

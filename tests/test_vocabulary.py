@@ -1,0 +1,263 @@
+"""One vocabulary: every input declared once, and every entry point (CLI, API defaults, study
+files, sweeps, docs) speaking it with the same names, defaults and ranges."""
+
+import argparse
+import dataclasses
+import math
+import warnings
+
+import pytest
+
+from shtaerman.cli import build_parser
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.finite_contact import FINITE_MESH
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.study.schema import find_study, load_study
+from shtaerman.sweep import load_sweep
+from shtaerman.sweep.kinds import get_kind
+from shtaerman.sweep.spec import find_sweep
+from shtaerman.validation import InputError
+from shtaerman.vocabulary import (
+    KIND_NAMES,
+    VOCABULARY,
+    entry,
+    inputs_of,
+    parameter_table,
+    suggestion,
+)
+
+CONTRACT = {"--E1", "--E2", "--nu1", "--nu2", "--density2"}
+"""Options of the interface contract spelt as their key (no case change, no hyphen to add)."""
+COMMANDS = {"impact": "impact", "contact": "contact", "dynamic": "dynamic"}
+"""CLI subcommand -> the kind whose defaults and ranges it uses."""
+MESH_FIELDS = {"mesh_size": "size", "mesh_margin": "margin", "domain_factor": "domain"}
+
+
+def test_names_are_unique_snake_case_and_options_their_kebab_case():
+    names = [item.name for item in VOCABULARY]
+    assert len(names) == len(set(names))
+    for item in VOCABULARY:
+        assert item.name == item.name.strip() and " " not in item.name and "-" not in item.name
+        if item.cli_option in CONTRACT:
+            assert item.cli_option == "--" + item.name
+        elif item.name != "estimate":  # the CLI switches it off: --no-estimate
+            assert item.cli_option == "--" + item.name.replace("_", "-")
+        assert item.meaning and item.label and item.group in ("case", "numerics", "output")
+        assert set(item.kinds) <= set(KIND_NAMES)
+
+
+@pytest.mark.parametrize(
+    ("name", "kind", "value", "message"),
+    [
+        ("nu2", "contact", -0.2, r"nu2 must lie in \[0, 0.5\], got -0.2"),
+        ("nu2", "impact", 0.6, r"nu2 must lie in \(-1, 0.5\], got 0.6"),
+        ("nu1", None, 3.0, r"nu1 must lie in \(-1, 0.5\], got 3.0"),
+        ("exponent", "dynamic", 1.0, r"exponent must be > 1, got 1.0"),
+        ("time_steps", "dynamic", 10, r"time_steps must be an integer in \[50, 1e5\], got 10"),
+        ("time_steps", "dynamic", 60.5, r"time_steps must be an integer"),
+        ("depths", "contact", [2e-3, 1e-3], r"depths must be increasing, each > 0"),
+        ("E2", "impact", math.inf, r"E2 must be a finite number > 0 Pa"),
+        ("mass", "impact", True, r"mass must be a number > 0 kg, got True"),
+        ("solver", "contact", "umfpack", r"solver must be one of auto, superlu, pardiso"),
+    ],
+)
+def test_check_names_the_input_and_its_range(name, kind, value, message):
+    with pytest.raises(InputError, match=message) as error:
+        entry(name).check(value, kind)
+    assert error.value.parameter == name and "\n" not in str(error.value)
+
+
+def test_check_accepts_what_the_range_allows():
+    assert entry("nu2").check(-0.2, "impact") == -0.2  # the theory takes auxetic solids
+    assert entry("E1").check(math.inf) == math.inf  # a rigid striker
+    assert entry("time_steps").check(200, "dynamic") == 200
+    assert entry("depths").check(1e-3) == [1e-3]
+
+
+def test_an_unknown_name_says_what_it_probably_meant():
+    with pytest.raises(InputError, match=r"unknown input 'shape_coeficient' \(did you mean "):
+        entry("shape_coeficient")
+    assert suggestion("densty2", ["E2", "density2"]) == " (did you mean 'density2'?)"
+    assert suggestion("colour", ["E2", "nu2"]) == ""
+
+
+def test_parameter_table_has_one_row_per_input():
+    table = parameter_table().splitlines()
+    assert table[0].startswith("| Key | CLI option | Unit | Valid | Default |")
+    assert len(table) == 2 + len(VOCABULARY)
+    row = next(line for line in table if line.startswith("| `nu2` "))
+    assert "`--nu2`" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
+    row = next(line for line in table if line.startswith("| `time_steps` "))
+    assert "`--time-steps`" in row and "| 200 |" in row and "formerly `steps`" in row
+    row = next(line for line in table if line.startswith("| `mesh_size` "))
+    assert "0.025 (dynamic)" in row and "0.00666667 (contact)" in row
+
+
+# --- the defaults: declared once, the same through every entry point ------------------------------
+
+
+def test_mesh_defaults_are_the_fem_defaults():
+    for kind, settings in (("contact", MeshSettings()), ("finite-strain", FINITE_MESH)):
+        for name, item in inputs_of(kind).items():
+            field = MESH_FIELDS.get(name, name)
+            if field in MeshSettings.__dataclass_fields__:
+                assert item.default_for(kind) == getattr(settings, field), (kind, name)
+
+
+def test_dynamic_defaults_are_the_settings_defaults():
+    settings = DynamicSettings()
+    fields = {**MESH_FIELDS, "time_steps": "steps"}
+    for name, item in inputs_of("dynamic").items():
+        field = fields.get(name, name)
+        if field in DynamicSettings.__dataclass_fields__:
+            assert item.default_for("dynamic") == getattr(settings, field), name
+
+
+@pytest.mark.parametrize("kind", ["impact", "contact", "finite-strain", "dynamic"])
+def test_sweep_parameters_are_the_vocabulary(kind):
+    parameters = get_kind(kind).parameters
+    assert list(parameters) == list(inputs_of(kind))
+    for name, parameter in parameters.items():
+        item = entry(name)
+        assert (parameter.default, parameter.unit, parameter.type) == (
+            item.default_for(kind),
+            item.unit,
+            item.type,
+        )
+
+
+def _subcommand(name: str) -> argparse.ArgumentParser:
+    action = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return action.choices[name]
+
+
+def _dynamic_cli_default(*options: str) -> str:
+    action = next(
+        a for a in _subcommand("dynamic")._actions if set(options) & set(a.option_strings)
+    )
+    return action.default
+
+
+def test_dynamic_defaults_agree_through_every_entry_point(tmp_path):
+    """200 time steps per t_y at mesh size 1/40: the CLI, DynamicSettings(), a study file that
+    sets none, the shipped study, a sweep that sets none and the shipped validity sweep."""
+    expected = (200, 1 / 40)
+    cli = (
+        int(float(_dynamic_cli_default("--time-steps", "--steps"))),
+        float(_dynamic_cli_default("--mesh-size")),
+    )
+    assert cli == pytest.approx(expected, rel=1e-5)  # the help prints 6 digits
+    settings = DynamicSettings()
+    assert (settings.steps, settings.size) == expected
+    assert settings.refined(2) == dataclasses.replace(
+        settings, steps=400, size=1 / 80, axis_size=settings.axis_size / 2, growth=0.1
+    )
+    minimal = tmp_path / "mine.toml"
+    minimal.write_text(
+        'kind = "dynamic"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n[impact]\nmass = 0.7\n"
+        "velocity = 3.0\n"
+    )
+    [study] = load_study(minimal)
+    [shipped] = load_study(find_study("dynamic"))
+    assert study.settings == shipped.settings == settings
+    defaults = get_kind("dynamic").defaults()
+    assert (defaults["time_steps"], defaults["mesh_size"]) == expected
+    validity = load_sweep(find_sweep("validity"))
+    assert (validity.parameters["time_steps"], validity.parameters["mesh_size"]) == expected
+
+
+# --- the command line against the vocabulary -------------------------------------------------
+
+
+def _options(command: str):
+    """(option, action, entry or None) of every ``--`` option of a subcommand but --help."""
+    by_option = {item.cli_option: item for item in VOCABULARY}
+    renamed = {
+        "--" + old.replace("_", "-"): item
+        for item in VOCABULARY
+        if command in item.kinds or not item.kinds
+        for old in item.old_names
+    }
+    for action in _subcommand(command)._actions:
+        option = next((o for o in action.option_strings if o.startswith("--")), None)
+        if option in (None, "--help"):
+            continue
+        yield option, action, by_option.get(option) or renamed.get(option)
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_every_cli_option_has_an_entry_with_its_default(command):
+    kind = COMMANDS[command]
+    wrong = []
+    for option, action, item in _options(command):
+        if item is None:
+            wrong.append(f"{option}: no vocabulary entry")
+            continue
+        if action.default in (None, False) or item.type in ("flag", "bool"):
+            continue  # a flag, or a default derived from other inputs (shown in the help)
+        expected = item.default_for(kind)
+        same = (
+            action.default == expected
+            if isinstance(expected, str)
+            else math.isclose(float(action.default), expected, rel_tol=1e-5)
+        )
+        if not same:
+            wrong.append(f"{option}: default {action.default!r}, vocabulary {expected!r}")
+    assert wrong == []
+
+
+@pytest.mark.xfail(
+    reason="the CLI's option names and help are rewritten from the vocabulary in cli/*.py "
+    "(another branch); remove this mark once merged",
+    strict=False,
+)
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_every_cli_option_is_named_and_ranged_as_the_vocabulary(command):
+    kind = COMMANDS[command]
+    wrong = []
+    for option, action, item in _options(command):
+        if item is None or option != item.cli_option:
+            wrong.append(f"{option}: the vocabulary calls it {item and item.cli_option}")
+            continue
+        text = item.range_text(kind)
+        if text and not item.choices and text not in (action.help or ""):
+            wrong.append(f"{option}: help {action.help!r} lacks {text!r}")
+    assert wrong == []
+
+
+def test_sweep_and_study_keys_that_were_renamed_warn_once(tmp_path):
+    path = tmp_path / "old.toml"
+    path.write_text(
+        'name = "old"\nkind = "dynamic"\n[parameters]\nsteps = 60\nmesh_size = 0.05\n'
+        "[axes]\nvelocity = [3.0]\n"
+    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spec = load_sweep(path)
+    assert spec.parameters["time_steps"] == 60 and "steps" not in spec.parameters
+    [warning] = caught
+    assert "'parameters.steps' is deprecated; write 'parameters.time_steps'" in str(warning.message)
+
+
+@pytest.mark.parametrize(
+    ("kind", "table", "line", "expected"),
+    [
+        ("finite-strain", "contact", "reach = 3.5", "expected a number [1, 3], got 3.5"),
+        ("finite-strain", "quick", "depth_steps = 2", "expected an integer in [4, 200], got 2"),
+        ("dynamic", "numerics", "time_steps = 10", "expected an integer in [50, 1e5], got 10"),
+        ("dynamic", "numerics", "layer_rate = -1.0", "expected a number >= 0, got -1.0"),
+    ],
+)
+def test_study_files_check_the_vocabulary_ranges(tmp_path, kind, table, line, expected):
+    path = tmp_path / "bad.toml"
+    density = "density2 = 1100.0\n" if kind == "dynamic" else ""
+    path.write_text(
+        f'kind = "{kind}"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        f"[half_space]\nE2 = 7.5e6\nnu2 = 0.5\n{density}[impact]\nmass = 0.7\nvelocity = 3.0\n"
+        f"[{table}]\n{line}\n"
+    )
+    with pytest.raises(InputError) as error:
+        load_study(path)
+    key = line.split(" = ")[0]
+    assert f"key '{table}.{key}': {expected}" in str(error.value)
