@@ -38,7 +38,7 @@ if TYPE_CHECKING:
         sweep,
     )
 
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "RIGID",

@@ -15,9 +15,9 @@ import sys
 import warnings
 from collections.abc import Sequence
 
-from .. import __version__
 from ..sweep import cli as sweep
 from ..validation import InputError
+from ..version import __version__
 from . import contact, dynamic, impact, init_study, tables, verify
 from .common import Parser, warn
 

@@ -25,7 +25,7 @@ from typing import Any
 
 import jinja2
 
-from .. import __version__
+from ..version import __version__
 from . import text_contact, text_dynamic, text_finite
 from .files import json_safe
 from .wording import number, seconds

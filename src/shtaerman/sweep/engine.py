@@ -640,7 +640,7 @@ def _write_results(
     outcome: SweepOutcome,
     figures: bool,
 ) -> None:
-    from .. import __version__
+    from ..version import __version__
 
     kind = spec.kind_spec
     _atomic_write(out / "cases.csv", cases_csv(spec, cases, records))
