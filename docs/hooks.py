@@ -1,0 +1,90 @@
+"""mkdocs hooks: the parameter table from the CLI parsers, and the tutorials as pages.
+
+``parameters.md`` is generated at build time from ``shtaerman.cli.build_parser()`` (every
+subcommand's options with their defaults and help), so it cannot drift from the CLI. Each
+``tutorials/*.py`` (a jupytext percent script, run by the tests) becomes ``tutorials/*.md``:
+markdown cells as text, code cells as Python blocks, the script itself offered for download.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import jupytext
+from mkdocs.structure.files import File, Files
+
+HEADER = """# Parameters
+
+Every option of every `shtaerman` command, with its default, generated from the command-line
+parsers when this site was built. Study files, sweep files and the Python API use the same names
+in snake_case (`--shape-coefficient` is `shape_coefficient`); SI units everywhere.
+"""
+
+
+def _cell(text: str) -> str:
+    return " ".join(text.split()).replace("|", "\\|")
+
+
+def _default(action: argparse.Action) -> str:
+    if isinstance(action, argparse._StoreTrueAction | argparse._StoreFalseAction):
+        return "off" if action.default is False else "on"
+    if action.default in (None, argparse.SUPPRESS):
+        return ""
+    return f"`{action.default}`"
+
+
+def _option_rows(parser: argparse.ArgumentParser) -> list[str]:
+    formatter = argparse.HelpFormatter(parser.prog)  # the help alone: defaults have a column
+    rows = ["| option | default | meaning |", "|---|---|---|"]
+    for action in parser._actions:
+        if isinstance(action, argparse._HelpAction) or action.help == argparse.SUPPRESS:
+            continue
+        names = ", ".join(action.option_strings) or action.dest.upper()
+        if action.metavar and action.option_strings:
+            names += f" {action.metavar}"
+        if action.choices and not action.option_strings:
+            names = "|".join(str(choice) for choice in action.choices)
+        meaning = formatter._expand_help(action) if action.help else ""
+        if action.choices and action.option_strings:
+            meaning += f" (one of {', '.join(str(c) for c in action.choices)})"
+        rows.append(f"| `{_cell(names)}` | {_cell(_default(action))} | {_cell(meaning)} |")
+    return rows
+
+
+def parameters_page() -> str:
+    """The markdown of the parameters page, one table per subcommand."""
+    from shtaerman.cli import build_parser
+
+    parser = build_parser()
+    [commands] = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    parts = [HEADER]
+    for name, sub in commands.choices.items():
+        summary = sub.description.splitlines()[0] if sub.description else ""
+        parts += [f"## `shtaerman {name}`", "", _cell(summary), "", *_option_rows(sub), ""]
+    return "\n".join(parts)
+
+
+def tutorial_page(script: Path) -> str:
+    """The markdown of one jupytext percent script: text cells, then code cells in fences."""
+    notebook = jupytext.read(script, fmt="py:percent")
+    parts = []
+    for cell in notebook.cells:
+        source = cell.source.strip()
+        if not source:
+            continue
+        parts.append(source if cell.cell_type == "markdown" else f"```python\n{source}\n```")
+    parts.append(
+        f"[Download this tutorial as a script]({script.name}) (a jupytext percent script: "
+        f"run it with `python {script.name}`, or open it as a notebook with jupytext)."
+    )
+    return "\n\n".join(parts) + "\n"
+
+
+def on_files(files: Files, config) -> Files:
+    """Add the generated pages: ``parameters.md`` and one page per tutorial script."""
+    files.append(File.generated(config, "parameters.md", content=parameters_page()))
+    for script in sorted((Path(config["docs_dir"]) / "tutorials").glob("*.py")):
+        page = f"tutorials/{script.stem}.md"
+        files.append(File.generated(config, page, content=tutorial_page(script)))
+    return files
