@@ -1,14 +1,19 @@
-"""mkdocs hooks: the parameter table from the CLI parsers, and the tutorials as pages.
+"""mkdocs hooks: the parameter table from the CLI parsers, the tutorials as pages, the API.
 
 ``parameters.md`` is generated at build time from ``shtaerman.cli.build_parser()`` (every
 subcommand's options with their defaults and help), so it cannot drift from the CLI. Each
 ``tutorials/*.py`` (a jupytext percent script, run by the tests) becomes ``tutorials/*.md``:
 markdown cells as text, code cells as Python blocks, the script itself offered for download.
+In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block per name of
+``shtaerman.__all__``, at the object's home module, grouped as inputs, computations, results.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
+import inspect
+import types
 from pathlib import Path
 
 import jupytext
@@ -79,6 +84,53 @@ def tutorial_page(script: Path) -> str:
         f"run it with `python {script.name}`, or open it as a notebook with jupytext)."
     )
     return "\n\n".join(parts) + "\n"
+
+
+API_MARKER = "<!-- public-api -->"
+API_GROUPS = {
+    "Inputs": lambda name, obj: inspect.isclass(obj) and name in ("PowerLawIndenter", "Material"),
+    "Computations": lambda name, obj: inspect.isfunction(obj),
+    "Results": lambda name, obj: inspect.isclass(obj) and name.endswith(("Result", "Results")),
+    "Errors": lambda name, obj: inspect.isclass(obj) and issubclass(obj, Exception),
+}
+
+
+API_ORDER = ["PowerLawIndenter", "Material", "impact", "contact", "dynamic", "run_study", "sweep"]
+
+
+def _rank(name: str) -> tuple[int, str]:
+    return (API_ORDER.index(name) if name in API_ORDER else len(API_ORDER), name)
+
+
+def _public_objects() -> dict[str, object]:
+    import shtaerman
+
+    found = {}
+    for name in sorted(shtaerman.__all__, key=_rank):
+        obj = getattr(shtaerman, name)
+        if isinstance(obj, types.ModuleType) and callable(obj):  # sh.sweep: package and function
+            obj = getattr(importlib.import_module("shtaerman.api"), name)
+        found[name] = obj
+    return found
+
+
+def api_blocks() -> str:
+    """mkdocstrings blocks for ``shtaerman.__all__``, each at ``module.qualname``."""
+    objects = _public_objects()
+    parts = []
+    for title, belongs in API_GROUPS.items():
+        members = [(n, o) for n, o in objects.items() if belongs(n, o)]
+        if members:
+            parts.append(f"## {title}")
+            parts += [f"::: {o.__module__}.{o.__qualname__}" for _, o in members]
+    return "\n\n".join(parts)
+
+
+def on_page_markdown(markdown: str, page, config, files) -> str:
+    """Fill ``api.md``'s marker with the public API's reference blocks."""
+    if page.file.src_uri == "api.md":
+        return markdown.replace(API_MARKER, api_blocks())
+    return markdown
 
 
 def on_files(files: Files, config) -> Files:

@@ -8,8 +8,10 @@ leaves behind are compared with the library and the command line.
 
 import argparse
 import json
+import re
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -71,14 +73,19 @@ def test_site_builds_with_every_page(site):
         assert (site / page / "index.html").is_file(), page
     for script in TUTORIALS.glob("*.py"):
         page = (site / "tutorials" / script.stem / "index.html").read_text(encoding="utf-8")
-        assert "import shtaerman as sh" in page, script.name  # its code cells are rendered
+        text = re.sub(r"<[^>]+>", "", page)  # the highlighted code without its markup
+        assert "import shtaerman as sh" in text, script.name  # its code cells are rendered
         assert (site / "tutorials" / script.name).is_file()  # and the script is downloadable
 
 
 def test_api_reference_documents_the_public_api(site):
     page = (site / "api" / "index.html").read_text(encoding="utf-8")
-    for name in ("impact", "contact", "dynamic", "run_study", "sweep", "PowerLawIndenter"):
-        assert f'id="shtaerman.{name}"' in page, name
+    for name in ("PowerLawIndenter", "Material", "impact", "contact", "dynamic", "run_study"):
+        obj = getattr(sh, name)
+        assert f'id="{obj.__module__}.{obj.__qualname__}"' in page, name
+        assert " ".join(obj.__doc__.split()[:4]) in " ".join(page.split()), name  # its docstring
+    sweep = sh.api.sweep  # sh.sweep is also the sweep package: the function is documented
+    assert f'id="{sweep.__module__}.{sweep.__qualname__}"' in page
 
 
 def test_parameter_table_lists_every_cli_option_with_its_default(site):
@@ -152,3 +159,15 @@ def test_tutorial_sweep(tmp_path):
         rubber = sh.Material(youngs_modulus=float(row["E2 [Pa]"]), poisson_ratio=0.49)
         exact = sh.impact(indenter, rubber, mass=0.25, velocity=float(row["velocity [m/s]"]))
         assert float(row["x_c [m]"]) == pytest.approx(exact.x_c, rel=1e-12)
+
+
+def test_citation_and_licence_match_the_package():
+    yaml = pytest.importorskip("yaml")  # PyYAML comes with mkdocs (the docs extra)
+    citation = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
+    assert citation["cff-version"] == "1.2.0"
+    assert citation["version"] == sh.__version__
+    [paper] = citation["references"]
+    assert paper["doi"] in (ROOT / "README.md").read_text(encoding="utf-8")
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    assert citation["license"] == project["license"]["text"] == "MIT"
+    assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("MIT License\n")

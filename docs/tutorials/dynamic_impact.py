@@ -40,12 +40,19 @@ print(f"P_max = {impact.P_max:.1f} N    (quasi-static P_c = {quasi_static.P_c:.1
 #
 # With `estimate=True` the run is the finest level of a three-level ladder (mesh and time step
 # refined together), and every dynamic number carries a Richardson estimate of its relative
-# error:
+# error. `differences` holds quasi-static / dynamic - 1 for x_c (against x_max), P_c (against
+# P_max) and t_c (against half the contact time), and `differences_error` their estimated
+# absolute errors:
 
 # %%
 result = impact.to_dict()
 for name, error in result["error_estimate"].items():
     print(f"{name:>28}: {error:.1e}")
+for name, difference in impact.differences.items():
+    print(
+        f"{name} quasi-static / dynamic - 1 = {difference:+.2%} "
+        f"± {impact.differences_error[name]:.2%}"
+    )
 
 # %% [markdown]
 # ## The first-order estimate of the wave loss

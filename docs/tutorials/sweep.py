@@ -43,17 +43,20 @@ E2 = [4e6, 8e6]
 # %% [markdown]
 # `workers=2` starts a local cluster of two single-threaded worker processes. The folder
 # `my-sweep-run` gets one JSON file per case, `cases.csv`, `results.json` and figures.
+#
+# In a script, start the sweep under `if __name__ == "__main__":`: dask's worker processes
+# import the main script, and must not start sweeps of their own (a notebook needs no guard).
 
 # %%
-sh.sweep("my-sweep.toml", workers=2, out="my-sweep-run")
-
-with open("my-sweep-run/cases.csv", newline="", encoding="utf-8") as table:
-    rows = list(csv.DictReader(table))
-for row in rows:
-    print(
-        f"v0 = {row['velocity [m/s]']:>4} m/s, E2 = {float(row['E2 [Pa]']):.0e} Pa: "
-        f"x_c = {float(row['x_c [m]']) * 1e3:.4f} mm, P_c = {float(row['P_c [N]']):.1f} N"
-    )
+if __name__ == "__main__":
+    sh.sweep("my-sweep.toml", workers=2, out="my-sweep-run")
+    with open("my-sweep-run/cases.csv", newline="", encoding="utf-8") as table:
+        rows = list(csv.DictReader(table))
+    for row in rows:
+        print(
+            f"v0 = {row['velocity [m/s]']:>4} m/s, E2 = {float(row['E2 [Pa]']):.0e} Pa: "
+            f"x_c = {float(row['x_c [m]']) * 1e3:.4f} mm, P_c = {float(row['P_c [N]']):.1f} N"
+        )
 
 # %% [markdown]
 # Each row is the same as a single `sh.impact` call with those inputs.
@@ -69,6 +72,7 @@ for row in rows:
 # shtaerman sweep my-sweep.toml --scheduler tcp://head:8786 --out my-sweep-run
 # ```
 #
+# or, from Python, `sh.sweep("my-sweep.toml", scheduler="tcp://head:8786", out="my-sweep-run")`.
 # dask-jobqueue (SLURM, PBS) and dask-kubernetes users start their cluster as usual and pass
 # its `scheduler_address`. An interrupted sweep keeps every finished case;
 # `shtaerman sweep my-sweep.toml --out my-sweep-run --resume` completes it.
