@@ -9,6 +9,7 @@ leaves behind are compared with the library and the command line.
 import argparse
 import json
 import re
+import shlex
 import subprocess
 import sys
 import tomllib
@@ -171,3 +172,26 @@ def test_citation_and_licence_match_the_package():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     assert citation["license"] == project["license"]["text"] == "MIT"
     assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("MIT License\n")
+
+
+def docs_commands() -> list[str]:
+    """Every ``shtaerman`` command in the docs pages' console blocks, comments removed."""
+    found = []
+    for page in sorted((ROOT / "docs").glob("*.md")):
+        for block in re.findall(r"```console\n(.*?)```", page.read_text(encoding="utf-8"), re.S):
+            lines = (re.sub(r"\s+#\s.*$", "", line).strip() for line in block.splitlines())
+            found += [line for line in lines if line.startswith("shtaerman ")]
+    return found
+
+
+@pytest.mark.parametrize("command", docs_commands())
+def test_docs_commands_parse(command, capsys):
+    # the pages' examples use only options the command line has (they are not all run: the
+    # README's are, by test_readme.py)
+    words = shlex.split(command)[1:]
+    if "--help" in words:
+        return
+    try:
+        build_parser().parse_args(words)
+    except SystemExit as exit:
+        pytest.fail(f"{command}: exit {exit.code}: {capsys.readouterr().err}")
