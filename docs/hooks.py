@@ -5,7 +5,7 @@ subcommand's options with their defaults and help), so it cannot drift from the 
 ``tutorials/*.py`` (a jupytext percent script, run by the tests) becomes ``tutorials/*.md``:
 markdown cells as text, code cells as Python blocks, the script itself offered for download.
 In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block per name of
-``shtaerman.__all__``, at the object's home module, grouped as inputs, computations, results.
+``shtaerman.__all__`` at its public path, grouped as inputs, computations, results.
 """
 
 from __future__ import annotations
@@ -102,27 +102,31 @@ def _rank(name: str) -> tuple[int, str]:
     return (API_ORDER.index(name) if name in API_ORDER else len(API_ORDER), name)
 
 
-def _public_objects() -> dict[str, object]:
+def _public_objects() -> dict[str, tuple[str, object]]:
+    """Each public name: the path it is documented at (its public one), and the object."""
     import shtaerman
 
     found = {}
     for name in sorted(shtaerman.__all__, key=_rank):
-        obj = getattr(shtaerman, name)
+        path, obj = f"shtaerman.{name}", getattr(shtaerman, name)
         if isinstance(obj, types.ModuleType) and callable(obj):  # sh.sweep: package and function
-            obj = getattr(importlib.import_module("shtaerman.api"), name)
-        found[name] = obj
+            path, obj = (
+                f"shtaerman.api.{name}",
+                getattr(importlib.import_module("shtaerman.api"), name),
+            )
+        found[name] = (path, obj)
     return found
 
 
 def api_blocks() -> str:
-    """mkdocstrings blocks for ``shtaerman.__all__``, each at ``module.qualname``."""
+    """mkdocstrings blocks for ``shtaerman.__all__``, grouped, at their public paths."""
     objects = _public_objects()
     parts = []
     for title, belongs in API_GROUPS.items():
-        members = [(n, o) for n, o in objects.items() if belongs(n, o)]
+        members = [path for name, (path, obj) in objects.items() if belongs(name, obj)]
         if members:
             parts.append(f"## {title}")
-            parts += [f"::: {o.__module__}.{o.__qualname__}" for _, o in members]
+            parts += [f"::: {path}" for path in members]
     return "\n\n".join(parts)
 
 
