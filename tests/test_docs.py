@@ -198,3 +198,30 @@ def test_docs_commands_parse(command, capsys):
         build_parser().parse_args(words)
     except SystemExit as exit:
         pytest.fail(f"{command}: exit {exit.code}: {capsys.readouterr().err}")
+
+
+PYTHON_BLOCKS = [
+    (page.stem, block)
+    for page in sorted((ROOT / "docs").glob("*.md"))
+    for block in re.findall(r"```python\n(.*?)```", page.read_text(encoding="utf-8"), re.S)
+]
+
+
+@pytest.mark.parametrize("page, block", PYTHON_BLOCKS, ids=[page for page, _ in PYTHON_BLOCKS])
+def test_docs_python_blocks_run(page, block):
+    namespace = {}
+    exec(compile(block, f"docs/{page}.md", "exec"), namespace)
+    # the numbers the pages' comments show (exact impacts)
+    if page == "getting-started":  # this case: A = 12, n = 1.8, 4 MPa, 0.25 kg at 2 m/s
+        q = namespace["q"]
+        assert (q.x_c, q.P_c, q.t_c) == pytest.approx((4.6252e-3, 276.266, 3.3827e-3), rel=1e-4)
+    if page == "guide":  # the paper's example with the theory layer
+        impact, contact = namespace["impact"], namespace["contact"]
+        assert impact.x_c == pytest.approx(8.5175e-3, rel=1e-4)
+        assert impact.P_c == pytest.approx(986.21, rel=1e-5)
+        assert impact.t_c == pytest.approx(4.1052e-3, rel=1e-4)
+        assert contact.pressure(0.0, impact.x_c) == pytest.approx(impact.p_c, rel=1e-9)
+
+
+def test_docs_python_blocks_are_checked():
+    assert {page for page, _ in PYTHON_BLOCKS} == {"getting-started", "guide"}
