@@ -36,8 +36,9 @@ lint: $(VENV)/.extras-test
 	$(BIN)/ruff check src tests benchmarks docs
 	$(BIN)/ruff format --check src tests benchmarks docs
 
+# The tutorials run while the site builds, so that their pages show each cell's output.
 docs: $(VENV)/.extras-test
-	$(BIN)/mkdocs build --strict
+	SHTAERMAN_DOCS_EXECUTE=1 $(BIN)/mkdocs build --strict
 
 clean:
 	rm -rf $(VENV) .pytest_cache .ruff_cache .benchmarks site

@@ -3,7 +3,9 @@
 ``parameters.md`` is generated at build time from ``shtaerman.cli.build_parser()`` (every
 subcommand's options with their defaults and help), so it cannot drift from the CLI. Each
 ``tutorials/*.py`` (a jupytext percent script, run by the tests) becomes ``tutorials/*.md``:
-markdown cells as text, code cells as Python blocks, the script itself offered for download.
+markdown cells as text, code cells as Python blocks, the script itself offered for download;
+with ``SHTAERMAN_DOCS_EXECUTE=1`` (``make docs``) the tutorials run and each cell's output follows
+it (the tests run the tutorials themselves, so they build without).
 In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block per name of
 ``shtaerman.__all__`` at its public path, grouped as inputs, computations, results.
 """
@@ -11,8 +13,12 @@ In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block pe
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import inspect
+import io
+import os
+import tempfile
 import types
 from pathlib import Path
 
@@ -70,15 +76,45 @@ def parameters_page() -> str:
     return "\n".join(parts)
 
 
-def tutorial_page(script: Path) -> str:
-    """The markdown of one jupytext percent script: text cells, then code cells in fences."""
-    notebook = jupytext.read(script, fmt="py:percent")
+EXECUTE = "SHTAERMAN_DOCS_EXECUTE"
+"""Environment variable: set to 1, the tutorials run at build time and their output is shown."""
+
+
+def _run_cells(cells: list[str], folder: Path) -> list[str]:
+    """Run code cells in one namespace inside ``folder``; what each printed."""
+    namespace: dict = {"__name__": "__main__"}
+    printed = []
+    previous = Path.cwd()
+    os.chdir(folder)
+    try:
+        for source in cells:
+            with contextlib.redirect_stdout(io.StringIO()) as out:
+                exec(compile(source, "tutorial", "exec"), namespace)
+            printed.append(out.getvalue())
+    finally:
+        os.chdir(previous)
+    return printed
+
+
+def tutorial_page(script: Path, execute: bool = False) -> str:
+    """The markdown of one jupytext percent script: text cells, code cells in fences, and, with
+    ``execute``, what each code cell printed (run in a temporary folder)."""
+    cells = [c for c in jupytext.read(script, fmt="py:percent").cells if c.source.strip()]
+    code = [c.source for c in cells if c.cell_type == "code"]
+    printed = iter([""] * len(code))
+    if execute:
+        with tempfile.TemporaryDirectory() as folder:
+            printed = iter(_run_cells(code, Path(folder)))
     parts = []
-    for cell in notebook.cells:
+    for cell in cells:
         source = cell.source.strip()
-        if not source:
+        if cell.cell_type == "markdown":
+            parts.append(source)
             continue
-        parts.append(source if cell.cell_type == "markdown" else f"```python\n{source}\n```")
+        parts.append(f"```python\n{source}\n```")
+        output = next(printed).rstrip()
+        if output:
+            parts.append(f"```text\n{output}\n```")
     parts.append(
         f"[Download this tutorial as a script]({script.name}) (a jupytext percent script: "
         f"run it with `python {script.name}`, or open it as a notebook with jupytext)."
@@ -140,7 +176,8 @@ def on_page_markdown(markdown: str, page, config, files) -> str:
 def on_files(files: Files, config) -> Files:
     """Add the generated pages: ``parameters.md`` and one page per tutorial script."""
     files.append(File.generated(config, "parameters.md", content=parameters_page()))
+    execute = os.environ.get(EXECUTE) == "1"
     for script in sorted((Path(config["docs_dir"]) / "tutorials").glob("*.py")):
         page = f"tutorials/{script.stem}.md"
-        files.append(File.generated(config, page, content=tutorial_page(script)))
+        files.append(File.generated(config, page, content=tutorial_page(script, execute)))
     return files

@@ -7,6 +7,7 @@ leaves behind are compared with the library and the command line.
 """
 
 import argparse
+import importlib.util
 import json
 import re
 import shlex
@@ -225,3 +226,20 @@ def test_docs_python_blocks_run(page, block):
 
 def test_docs_python_blocks_are_checked():
     assert {page for page, _ in PYTHON_BLOCKS} == {"getting-started", "guide"}
+
+
+def test_hook_shows_each_cells_output_when_executing(tmp_path, monkeypatch):
+    spec = importlib.util.spec_from_file_location("docs_hooks", ROOT / "docs" / "hooks.py")
+    hooks = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(hooks)
+    script = tmp_path / "tiny.py"
+    script.write_text(
+        '# %% [markdown]\n# # Tiny\n\n# %%\nx = 6 * 7\nprint("x is", x)\n\n'
+        '# %%\nimport os\nprint(os.listdir("."))\n',
+        encoding="utf-8",
+    )
+    monkeypatch.chdir(tmp_path)
+    page = hooks.tutorial_page(script, execute=True)
+    assert '```python\nx = 6 * 7\nprint("x is", x)\n```\n\n```text\nx is 42\n```' in page
+    assert "```text\n[]\n```" in page  # run in a fresh, empty folder, not in the docs
+    assert "```text" not in hooks.tutorial_page(script)  # the default build runs nothing
