@@ -27,10 +27,13 @@ from mkdocs.structure.files import File, Files
 
 HEADER = """# Parameters
 
-Every option of every `shtaerman` command, with its default, generated from the command-line
-parsers when this site was built. Study files, sweep files and the Python API use the same names
-in snake_case (`--shape-coefficient` is `shape_coefficient`); SI units everywhere.
+Every input, with its default, generated from the package itself when this site was built. Study
+files, sweep files and the Python API use the command-line names in snake_case
+(`--shape-coefficient` is `shape_coefficient`); SI units everywhere.
 """
+
+VOCABULARY_TEXT = """Every input of a study file, a sweep and the Python API, with its unit, valid
+range, default and the kinds of computation that take it (study and sweep kinds)."""
 
 
 def _cell(text: str) -> str:
@@ -70,9 +73,17 @@ def parameters_page() -> str:
     parser = build_parser()
     [commands] = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
     parts = [HEADER]
+    try:  # the inputs of study files, sweeps and the API, where the package declares them
+        vocabulary = importlib.import_module("shtaerman.vocabulary")
+    except ImportError:
+        vocabulary = None
+    if vocabulary is not None and hasattr(vocabulary, "parameter_table"):
+        parts += ["## Study files, sweeps and the Python API", "", VOCABULARY_TEXT, ""]
+        parts.append(vocabulary.parameter_table())
+    parts += ["## The command line", "", "Every option of every command, and its default.", ""]
     for name, sub in commands.choices.items():
         summary = sub.description.splitlines()[0] if sub.description else ""
-        parts += [f"## `shtaerman {name}`", "", _cell(summary), "", *_option_rows(sub), ""]
+        parts += [f"### `shtaerman {name}`", "", _cell(summary), "", *_option_rows(sub), ""]
     return "\n".join(parts)
 
 

@@ -243,3 +243,10 @@ def test_hook_shows_each_cells_output_when_executing(tmp_path, monkeypatch):
     assert '```python\nx = 6 * 7\nprint("x is", x)\n```\n\n```text\nx is 42\n```' in page
     assert "```text\n[]\n```" in page  # run in a fresh, empty folder, not in the docs
     assert "```text" not in hooks.tutorial_page(script)  # the default build runs nothing
+
+
+def test_parameter_page_lists_the_study_and_sweep_vocabulary(site):
+    vocabulary = pytest.importorskip("shtaerman.vocabulary")  # where the package declares it
+    page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
+    for item in vocabulary.VOCABULARY:
+        assert f"<code>{item.name}</code>" in page, item.name
