@@ -1,31 +1,44 @@
 # Two commands do all the set-up on a fresh machine (Python >= 3.11 with venv):
-#   make verify   creates .venv, installs shtaerman, runs the main job
-#   make test     creates .venv, installs shtaerman with its test tools, runs ruff and pytest
+#   make verify   creates .venv, installs shtaerman (the package alone), runs the main job
+#   make test     creates .venv, installs shtaerman with its test and docs tools, runs ruff and pytest
 VENV ?= .venv
 PYTHON ?= python3
 BIN := $(VENV)/bin
 
-.PHONY: verify test bench lint clean
+.PHONY: verify test bench lint docs clean
 
 $(BIN)/shtaerman: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[test,bench]"
+	$(BIN)/python -m pip install --quiet -e .
+	touch $@
+
+# One stamp per set of extras, redone when pyproject.toml changes.
+$(VENV)/.extras-test: $(BIN)/shtaerman
+	$(BIN)/python -m pip install --quiet -e ".[test,docs]"
+	touch $@
+
+$(VENV)/.extras-bench: $(BIN)/shtaerman
+	$(BIN)/python -m pip install --quiet -e ".[bench]"
 	touch $@
 
 verify: $(BIN)/shtaerman
 	$(BIN)/shtaerman verify
 
-test: $(BIN)/shtaerman
-	$(BIN)/ruff check src tests benchmarks
+test: $(VENV)/.extras-test
+	$(BIN)/ruff check src tests benchmarks docs
 	$(BIN)/python -m pytest
 
-bench: $(BIN)/shtaerman
+bench: $(VENV)/.extras-bench
 	for script in benchmarks/bench_*.py; do $(BIN)/python $$script || exit 1; done
 
-lint: $(BIN)/shtaerman
-	$(BIN)/ruff check src tests benchmarks
-	$(BIN)/ruff format --check src tests benchmarks
+lint: $(VENV)/.extras-test
+	$(BIN)/ruff check src tests benchmarks docs
+	$(BIN)/ruff format --check src tests benchmarks docs
+
+# The tutorials run while the site builds, so that their pages show each cell's output.
+docs: $(VENV)/.extras-test
+	SHTAERMAN_DOCS_EXECUTE=1 $(BIN)/mkdocs build --strict
 
 clean:
-	rm -rf $(VENV) .pytest_cache .ruff_cache .benchmarks
+	rm -rf $(VENV) .pytest_cache .ruff_cache .benchmarks site

@@ -1,0 +1,194 @@
+"""mkdocs hooks: the parameter table from the CLI parsers, the tutorials as pages, the API.
+
+``parameters.md`` is generated at build time from ``shtaerman.cli.build_parser()`` (every
+subcommand's options with their defaults and help), so it cannot drift from the CLI. Each
+``tutorials/*.py`` (a jupytext percent script, run by the tests) becomes ``tutorials/*.md``:
+markdown cells as text, code cells as Python blocks, the script itself offered for download;
+with ``SHTAERMAN_DOCS_EXECUTE=1`` (``make docs``) the tutorials run and each cell's output follows
+it (the tests run the tutorials themselves, so they build without).
+In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block per name of
+``shtaerman.__all__`` at its public path, grouped as inputs, computations, results.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import inspect
+import io
+import os
+import tempfile
+import types
+from pathlib import Path
+
+import jupytext
+from mkdocs.structure.files import File, Files
+
+HEADER = """# Parameters
+
+Every input, with its default, generated from the package itself when this site was built. Study
+files, sweep files and the Python API use the command-line names in snake_case
+(`--shape-coefficient` is `shape_coefficient`); SI units everywhere.
+"""
+
+VOCABULARY_TEXT = """Every input of a study file, a sweep and the Python API, with its unit, valid
+range, default and the kinds of computation that take it (study and sweep kinds)."""
+
+
+def _cell(text: str) -> str:
+    return " ".join(text.split()).replace("|", "\\|")
+
+
+def _default(action: argparse.Action) -> str:
+    if isinstance(action, argparse._StoreTrueAction | argparse._StoreFalseAction):
+        return "off" if action.default is False else "on"
+    if action.default in (None, argparse.SUPPRESS):
+        return ""
+    return f"`{action.default}`"
+
+
+def _option_rows(parser: argparse.ArgumentParser) -> list[str]:
+    formatter = argparse.HelpFormatter(parser.prog)  # the help alone: defaults have a column
+    rows = ["| option | default | meaning |", "|---|---|---|"]
+    for action in parser._actions:
+        if isinstance(action, argparse._HelpAction) or action.help == argparse.SUPPRESS:
+            continue
+        names = ", ".join(action.option_strings) or action.dest.upper()
+        if action.metavar and action.option_strings:
+            names += f" {action.metavar}"
+        if action.choices and not action.option_strings:
+            names = "|".join(str(choice) for choice in action.choices)
+        meaning = formatter._expand_help(action) if action.help else ""
+        if action.choices and action.option_strings:
+            meaning += f" (one of {', '.join(str(c) for c in action.choices)})"
+        rows.append(f"| `{_cell(names)}` | {_cell(_default(action))} | {_cell(meaning)} |")
+    return rows
+
+
+def parameters_page() -> str:
+    """The markdown of the parameters page, one table per subcommand."""
+    from shtaerman.cli import build_parser
+
+    parser = build_parser()
+    [commands] = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    parts = [HEADER]
+    try:  # the inputs of study files, sweeps and the API, where the package declares them
+        vocabulary = importlib.import_module("shtaerman.vocabulary")
+    except ImportError:
+        vocabulary = None
+    if vocabulary is not None and hasattr(vocabulary, "parameter_table"):
+        parts += ["## Study files, sweeps and the Python API", "", VOCABULARY_TEXT, ""]
+        parts.append(vocabulary.parameter_table())
+    parts += ["## The command line", "", "Every option of every command, and its default.", ""]
+    for name, sub in commands.choices.items():
+        summary = sub.description.splitlines()[0] if sub.description else ""
+        parts += [f"### `shtaerman {name}`", "", _cell(summary), "", *_option_rows(sub), ""]
+    return "\n".join(parts)
+
+
+EXECUTE = "SHTAERMAN_DOCS_EXECUTE"
+"""Environment variable: set to 1, the tutorials run at build time and their output is shown."""
+
+
+def _run_cells(cells: list[str], folder: Path) -> list[str]:
+    """Run code cells in one namespace inside ``folder``; what each printed."""
+    namespace: dict = {"__name__": "__main__"}
+    printed = []
+    previous = Path.cwd()
+    os.chdir(folder)
+    try:
+        for source in cells:
+            with contextlib.redirect_stdout(io.StringIO()) as out:
+                exec(compile(source, "tutorial", "exec"), namespace)
+            printed.append(out.getvalue())
+    finally:
+        os.chdir(previous)
+    return printed
+
+
+def tutorial_page(script: Path, execute: bool = False) -> str:
+    """The markdown of one jupytext percent script: text cells, code cells in fences, and, with
+    ``execute``, what each code cell printed (run in a temporary folder)."""
+    cells = [c for c in jupytext.read(script, fmt="py:percent").cells if c.source.strip()]
+    code = [c.source for c in cells if c.cell_type == "code"]
+    printed = iter([""] * len(code))
+    if execute:
+        with tempfile.TemporaryDirectory() as folder:
+            printed = iter(_run_cells(code, Path(folder)))
+    parts = []
+    for cell in cells:
+        source = cell.source.strip()
+        if cell.cell_type == "markdown":
+            parts.append(source)
+            continue
+        parts.append(f"```python\n{source}\n```")
+        output = next(printed).rstrip()
+        if output:
+            parts.append(f"```text\n{output}\n```")
+    parts.append(
+        f"[Download this tutorial as a script]({script.name}) (a jupytext percent script: "
+        f"run it with `python {script.name}`, or open it as a notebook with jupytext)."
+    )
+    return "\n\n".join(parts) + "\n"
+
+
+API_MARKER = "<!-- public-api -->"
+API_GROUPS = {
+    "Inputs": lambda name, obj: inspect.isclass(obj) and name in ("PowerLawIndenter", "Material"),
+    "Computations": lambda name, obj: inspect.isfunction(obj),
+    "Results": lambda name, obj: inspect.isclass(obj) and name.endswith(("Result", "Results")),
+    "Errors": lambda name, obj: inspect.isclass(obj) and issubclass(obj, Exception),
+}
+
+
+API_ORDER = ["PowerLawIndenter", "Material", "impact", "contact", "dynamic", "run_study", "sweep"]
+
+
+def _rank(name: str) -> tuple[int, str]:
+    return (API_ORDER.index(name) if name in API_ORDER else len(API_ORDER), name)
+
+
+def _public_objects() -> dict[str, tuple[str, object]]:
+    """Each public name: the path it is documented at (its public one), and the object."""
+    import shtaerman
+
+    found = {}
+    for name in sorted(shtaerman.__all__, key=_rank):
+        path, obj = f"shtaerman.{name}", getattr(shtaerman, name)
+        if isinstance(obj, types.ModuleType) and callable(obj):  # sh.sweep: package and function
+            path, obj = (
+                f"shtaerman.api.{name}",
+                getattr(importlib.import_module("shtaerman.api"), name),
+            )
+        found[name] = (path, obj)
+    return found
+
+
+def api_blocks() -> str:
+    """mkdocstrings blocks for ``shtaerman.__all__``, grouped, at their public paths."""
+    objects = _public_objects()
+    parts = []
+    for title, belongs in API_GROUPS.items():
+        members = [path for name, (path, obj) in objects.items() if belongs(name, obj)]
+        if members:
+            parts.append(f"## {title}")
+            parts += [f"::: {path}" for path in members]
+    return "\n\n".join(parts)
+
+
+def on_page_markdown(markdown: str, page, config, files) -> str:
+    """Fill ``api.md``'s marker with the public API's reference blocks."""
+    if page.file.src_uri == "api.md":
+        return markdown.replace(API_MARKER, api_blocks())
+    return markdown
+
+
+def on_files(files: Files, config) -> Files:
+    """Add the generated pages: ``parameters.md`` and one page per tutorial script."""
+    files.append(File.generated(config, "parameters.md", content=parameters_page()))
+    execute = os.environ.get(EXECUTE) == "1"
+    for script in sorted((Path(config["docs_dir"]) / "tutorials").glob("*.py")):
+        page = f"tutorials/{script.stem}.md"
+        files.append(File.generated(config, page, content=tutorial_page(script, execute)))
+    return files
