@@ -20,7 +20,7 @@ from shtaerman.fem.dynamic_contact import (
     prepare_dynamic_impact,
     run_dynamic_impact,
 )
-from shtaerman.fem.stepper import ImpactState, advance
+from shtaerman.fem.stepper import ContactEdgeReachedError, ImpactState, advance
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -31,7 +31,7 @@ from shtaerman.theory.radiation import (
     rayleigh_fraction,
     rayleigh_root,
 )
-from shtaerman.validation import InputError
+from shtaerman.validation import InputError, NumericalFailureError
 
 RUBBER = Material(7.5e6, 0.5)
 PAPER = PowerLawIndenter(5.0, 1.5)
@@ -293,3 +293,20 @@ def test_absorbing_layer_books_its_energy_and_perturbs_little():
     assert run.energy_balance_error < 1e-2
     # e against the layer-free coarse run (0.92657): observed shift 1.4e-3; bound 5e-3
     assert run.restitution == pytest.approx(0.92657, abs=5e-3)
+
+
+def test_a_time_stepping_gone_unstable_stops_as_a_numerical_failure():
+    """Newmark with 5000 steps per t_y on a coarse mesh (c_s dt / h = 0.063) gains energy
+    without bound; the old run finished 'ok' with e = 1.1e8 and its energy 8e19 times the
+    initial. It now stops once the balance is off by the whole initial energy."""
+    settings = DynamicSettings(steps=5000, size=0.1, spectral_radius=None)
+    with pytest.raises(NumericalFailureError, match=r"off by .* stepping became unstable"):
+        run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
+
+
+def test_a_refined_zone_too_small_still_asks_for_a_larger_margin():
+    """A balanced run whose contact outgrows the refined zone (margin 1.01 of a_c, 100 steps)
+    is the input's fault: an InputError that names the margin, not a numerical failure."""
+    settings = DynamicSettings(steps=100, size=0.1, margin=1.01)
+    with pytest.raises(ContactEdgeReachedError, match=r"refined zone .*increase margin"):
+        run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)

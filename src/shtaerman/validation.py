@@ -14,6 +14,7 @@ import numpy as np
 
 __all__ = [
     "InputError",
+    "NumericalFailureError",
     "validate_increasing",
     "validate_poisson",
     "validate_positive",
@@ -32,6 +33,11 @@ class InputError(ValueError):
     def __init__(self, message: str, parameter: str | None = None) -> None:
         super().__init__(message)
         self.parameter = parameter
+
+
+class NumericalFailureError(RuntimeError):
+    """A computation whose own checks failed on valid input (an unstable time stepping, a
+    solver that did not converge); the message says what to change. The CLI exits with 1."""
 
 
 def _as_float(name: str, value: object, valid: str) -> float:

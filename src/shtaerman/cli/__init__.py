@@ -16,7 +16,7 @@ import warnings
 from collections.abc import Sequence
 
 from ..sweep import cli as sweep
-from ..validation import InputError
+from ..validation import InputError, NumericalFailureError
 from ..version import __version__
 from . import contact, dynamic, impact, init_study, tables, verify
 from .common import Parser, warn
@@ -96,8 +96,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             warnings.simplefilter("always")
             try:
                 code = _run(argv)
-            except InputError as error:
-                code = EXIT_INPUT
+            except (InputError, NumericalFailureError) as error:  # bad input; a failed computation
+                code = EXIT_INPUT if isinstance(error, InputError) else EXIT_FAILED
                 _report(caught)
                 caught.clear()
                 print(f"shtaerman: error: {error}", file=sys.stderr)

@@ -41,13 +41,14 @@ import numpy as np
 import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
-from ..validation import InputError
+from ..validation import InputError, NumericalFailureError
 from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
 from .elasticity import ElasticSystem
 from .solver import Factorization
 
 __all__ = [
     "ContactCandidates",
+    "ContactEdgeReachedError",
     "ImpactHistory",
     "ImpactProblem",
     "ImpactState",
@@ -67,6 +68,15 @@ ENERGY_NAMES = (
     "inner",
 )
 """Keys of :attr:`ImpactHistory.energies`, in J."""
+UNSTABLE_BALANCE = 1e-3
+"""|numerical energy| / (M v0^2 / 2) beyond which a contact that spreads to the edge of the
+refined zone is blamed on the time stepping, not on the zone."""
+RUNAWAY_BALANCE = 1.0
+"""|numerical energy| / (M v0^2 / 2) at which a run stops: the stepping has gone unstable."""
+
+
+class ContactEdgeReachedError(InputError):
+    """The contact spread to the last candidates: the refined zone is too small."""
 
 
 @dataclass(frozen=True)
@@ -292,7 +302,7 @@ def _contact(
         x_new[free] -= weight * (problem.correction[:, :reach] @ new_forces[:reach])
         if active[-1] + EDGE_MARGIN >= r_c.size:
             t = (state.step + 1) * problem.scheme.dt
-            raise InputError(
+            raise ContactEdgeReachedError(
                 f"the contact reached r = {r_c[active[-1]]:.4g} m at t = {t:.4g} s, the "
                 f"edge of the refined zone ({r_c[-1]:.4g} m); increase margin"
             )
@@ -431,8 +441,10 @@ def march(
 
     Raises
     ------
-    shtaerman.validation.InputError
-        If the contact reaches the edge of the candidates.
+    ContactEdgeReachedError
+        If the contact reaches the edge of the candidates with the energy balanced.
+    shtaerman.validation.NumericalFailureError
+        If it gets there after the energy balance drifted (the stepping became unstable).
     """
     dt = problem.scheme.dt
     state = ImpactState.first_touch(problem)
@@ -445,9 +457,15 @@ def march(
     max_steps = math.ceil(duration / dt)
     with threadpool_limits(limits=1, user_api="blas"):
         while state.step < max_steps:
-            state = advance(problem, state)
+            try:
+                state = advance(problem, state)
+            except ContactEdgeReachedError as edge:
+                _blame_the_stepping(energy_rows[-1][4] / energy0, state, problem, edge)
+                raise
             t = state.time(problem.scheme)
             row, energies = _observe(problem, state)
+            if not abs(energies[4]) <= RUNAWAY_BALANCE * energy0:  # NaN included
+                raise NumericalFailureError(_runaway(energies[4] / energy0, state, problem))
             rows.append(row)
             energy_rows.append(energies)
             while wanted and wanted[0] <= t + 0.5 * dt:
@@ -467,6 +485,35 @@ def march(
         energies={name: energy[:, k] for k, name in enumerate(ENERGY_NAMES)},
         snapshots=snapshots,
         t_contact=t_contact,
+    )
+
+
+def _blame_the_stepping(
+    balance: float, state: ImpactState, problem: ImpactProblem, edge: ContactEdgeReachedError
+) -> None:
+    """Raise NumericalFailureError if the energy had drifted before the contact reached the edge."""
+    if abs(balance) <= UNSTABLE_BALANCE:
+        return
+    where = " before the contact spread to the edge of the refined zone"
+    raise NumericalFailureError(_unstable(balance, state, problem, where)) from edge
+
+
+def _runaway(balance: float, state: ImpactState, problem: ImpactProblem) -> str:
+    """The one-line message of a run whose energy balance is off by the initial energy."""
+    return (
+        f"the energy balance is off by {abs(balance):.1e} of M v0^2/2 at t = "
+        f"{state.time(problem.scheme):.4g} s: either the time stepping became unstable "
+        f"(dt = {problem.scheme.dt:.3g} s is too small for this mesh: use fewer time steps) or "
+        "the mesh and time steps sized from the quasi-static impact do not resolve this impact"
+    )
+
+
+def _unstable(balance: float, state: ImpactState, problem: ImpactProblem, where: str) -> str:
+    """The one-line message of an unstable run."""
+    return (
+        f"the time stepping became unstable at t = {state.time(problem.scheme):.4g} s (energy "
+        f"balance off by {abs(balance):.1e} of M v0^2/2{where}): dt = {problem.scheme.dt:.3g} s "
+        "with this scheme does not keep the contact stable; use fewer time steps"
     )
 
 
