@@ -121,7 +121,7 @@ def test_impact_needs_a_history(outcome, folder):
 def _drawn_figure(monkeypatch, draw):
     """The matplotlib Figure ``draw`` would save (saving replaced by capturing)."""
     captured = []
-    monkeypatch.setattr(impact, "save", lambda figure, path: captured.append(figure) or path)
+    monkeypatch.setattr(impact, "save", lambda figure, path, *_: captured.append(figure) or path)
     draw()
     [figure] = captured
     return figure

@@ -16,7 +16,7 @@ from ..fem.mesh import DEFAULTS, MeshSettings
 from ..fem.solver import BACKENDS
 from ..output.files import check_output_folder, json_safe, staged_folder
 from ..validation import InputError, validate_increasing, validate_positive
-from .common import add_half_space_options, add_indenter_options, print_json
+from .common import add_figure_format, add_half_space_options, add_indenter_options, print_json
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
 
@@ -63,6 +63,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", help="write VTU fields and CSV curves to DIR")
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (every FEM number with an error estimate from a 3-mesh ladder)"
     )
@@ -131,6 +132,7 @@ def mesh_settings(args: argparse.Namespace, base: MeshSettings = DEFAULTS) -> Me
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve and print it (text or JSON); write fields if asked."""
     from ..output.export import write_indentation
+    from ..plots.gallery import contact_figures
     from ..study.accuracy import run_ladder, run_to_accuracy
     from ..study.indentation import run_indentation
 
@@ -186,6 +188,7 @@ def run(args: argparse.Namespace) -> int:
         report = {**result.to_dict(), **(ladder.to_dict() if ladder else {})}
         if stage is not None:
             write_indentation(result, stage)
+            contact_figures(result, stage, args.figure_format)
             (stage / "contact.json").write_text(json.dumps(json_safe(report), indent=2))
     if args.json:
         print_json(report)

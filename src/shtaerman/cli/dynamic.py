@@ -11,13 +11,20 @@ import meshio
 
 from ..fem.contact import validate_fem_inputs
 from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, validate_density
-from ..output.dynamic import history_columns
+from ..output.dynamic import history_columns, write_case_figures
 from ..output.export import field_mesh
 from ..output.files import check_output_folder, json_safe, staged_folder, write_csv
 from ..study.dynamic import DynamicTolerances, run_case
 from ..study.dynamic_accuracy import check_ladder, complete_ladder
 from ..validation import InputError, validate_positive
-from .common import PAPER, add_half_space_options, add_indenter_options, print_json, warn
+from .common import (
+    PAPER,
+    add_figure_format,
+    add_half_space_options,
+    add_indenter_options,
+    print_json,
+    warn,
+)
 from .common import half_space as read_half_space
 from .common import indenter as read_indenter
 from .impact import history_path
@@ -67,6 +74,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("--history", metavar="FILE.csv", help="write t,x,v,P,a,p0 every time step")
     p.add_argument("--out", metavar="DIR", help="write JSON, CSV histories and VTU fields to DIR")
     p.add_argument("--force", action="store_true", help="replace an existing --history / --out")
+    add_figure_format(p)
     accuracy = p.add_argument_group("accuracy (error estimates from a 3-level ladder)")
     accuracy.add_argument(
         "--refine",
@@ -152,6 +160,7 @@ def run(args: argparse.Namespace) -> int:
     if out is not None:
         with staged_folder(out) as stage:
             write_folder(result, report, tuple(result.snapshots), stage)
+            write_case_figures(case, stage, args.figure_format)
     if args.json:
         print_json(report)
     else:

@@ -75,7 +75,7 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
 
 
 @styled
-def plot_ateb(path: Path | str) -> Path:
+def plot_ateb(path: Path | str, *, figure_format: str = "png") -> Path:
     """Write Sa(5/3, 1, 4 eta/3) and Ca(5/3, 1, 4 zeta/3) against the paper's Tables 1-2.
 
     Top: the exact functions (:mod:`shtaerman.ateb`), the printed table values (markers) and
@@ -87,6 +87,8 @@ def plot_ateb(path: Path | str) -> Path:
     ----------
     path : path-like
         PNG to write (1480 x 1000 pixels).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
 
     Returns
     -------
@@ -98,4 +100,4 @@ def plot_ateb(path: Path | str) -> Path:
     _ateb_column(axes[0, 0], axes[1, 0], "sine")
     _ateb_column(axes[0, 1], axes[1, 1], "cosine")
     axes[1, 0].set_ylabel("Approximation\nerror (%)")
-    return save(figure, path)
+    return save(figure, path, figure_format)

@@ -10,8 +10,9 @@ A kind is three functions, found by name so that no module imports another kind'
   ``document()``: its JSON for results.json, with optional display keys ``tables`` (a list of
   ``{"title", "header", "rows"}``, strings, shown by both reports) and ``findings`` (sentences
   for the report's opening section).
-- ``write(outcome, folder, root) -> (files, figures)`` (in :mod:`shtaerman.output`): its files
-  and pictures, as ``{stem: path}`` and ``{caption: path}`` relative to ``root``.
+- ``write(outcome, folder, root, figure_format) -> (files, figures)`` (in
+  :mod:`shtaerman.output`): its files and pictures, as ``{stem: path}`` and ``{caption: path}``
+  relative to ``root`` (PNGs; ``figure_format`` "svg" or "pdf" adds vector charts beside them).
 """
 
 from __future__ import annotations
