@@ -204,6 +204,26 @@ def test_sweep_curve_draws_unresolved_points_open(tmp_path, monkeypatch):
     assert axes.get_ylabel().endswith("(%)")
 
 
+def test_heat_map_shows_si_values_with_a_prefix(tmp_path):
+    # p_c in Pa and E2 in Pa over the axis: MPa, as a reader writes them (values 5.4e6 ...)
+    results = {
+        "spec": {"name": "grid", "kind": "impact", "axes": {"E2": [5e6, 7.5e6], "nu2": [0.3, 0.5]}},
+        "kind": {"outputs": {"p_c": "Pa"}, "parameter_units": {"E2": "Pa", "nu2": ""}},
+        "cases": [
+            {"index": i, "status": "ok", "outputs": {"p_c": v}}
+            for i, v in enumerate([5.41e6, 6.4e6, 7.12e6, 8.43e6])
+        ],
+    }
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(results))
+    sweep_figures(path, tmp_path / "fig", figure_format="svg")
+    text = svg_text(tmp_path / "fig" / "p_c.svg")
+    assert "Quasi-static maximum central pressure p_c (MPa)" in text
+    assert "modulus E2 (MPa)" in text
+    for shown in (">5.41<", ">8.43<", ">7.5<", ">5<"):
+        assert shown in text
+
+
 # --- unresolved points of the study figures -----------------------------------------------------
 
 
@@ -308,3 +328,67 @@ def test_dynamic_over_velocity_in_percent_with_unresolved_open(tmp_path, monkeyp
     assert np.isnan(time_lines["$t_y/t_{contact} - 1$"].get_ydata()).all()
     assert time_lines["$t_y/t_{contact} - 1$, unresolved"].get_markerfacecolor() == "white"
     assert ratio.get_xlabel() == "Approach velocity v0 (m/s)"
+
+
+# --- every command that writes figures ----------------------------------------------------------
+
+
+def test_sweep_cli_writes_vector_heat_maps(tmp_path):
+    sweep = tmp_path / "grid.toml"
+    sweep.write_text(
+        'name = "grid"\nkind = "impact"\n[axes]\nvelocity = [1.0, 2.0]\nnu2 = [0.3, 0.5]\n'
+    )
+    out = tmp_path / "out"
+    argv = ["sweep", str(sweep), "--out", str(out), "--workers", "1", "--figure-format", "pdf"]
+    assert main(argv) == 0
+    figures = out / "figures"
+    assert (figures / "x_c.png").is_file()
+    assert (figures / "x_c.pdf").read_bytes()[:5] == b"%PDF-"
+    assert {p.suffix for p in figures.iterdir()} == {".png", ".pdf"}
+
+
+def test_contact_out_writes_its_charts_in_the_format(tmp_path):
+    out = tmp_path / "out"
+    argv = ["contact", "--no-estimate", "--out", str(out), "--figure-format", "svg"]
+    assert main([*argv, "--mesh-size", "0.02", "--domain-factor", "1e4"]) == 0
+    for stem in ("force_depth", "pressure"):
+        assert Image.open(out / f"{stem}.png").format == "PNG"
+    assert "Depth" in svg_text(out / "force_depth.svg")
+    assert "Contact pressure" in svg_text(out / "pressure.svg")
+
+
+def test_dynamic_out_writes_history_chart_and_wave_fields(tmp_path):
+    out = tmp_path / "out"
+    argv = ["dynamic", "--no-estimate", "--out", str(out), "--figure-format", "pdf"]
+    assert main([*argv, "--steps", "100", "--mesh-size", "0.05"]) == 0
+    assert (out / "dynamic_history.pdf").read_bytes()[:5] == b"%PDF-"
+    assert Image.open(out / "dynamic_history.png").format == "PNG"
+    waves = sorted(out.glob("wave_field_*"))
+    assert [p.suffix for p in waves] == [".png"] * 3  # the kept times; field renders stay PNG
+    assert np.asarray(Image.open(waves[1]).convert("L")).std() > 10  # not blank
+
+
+def test_verify_writes_vector_charts_and_keeps_pngs_for_the_report(
+    quick_outcomes, tmp_path, monkeypatch
+):
+    from conftest import quick_study_files
+
+    import shtaerman.output.folder
+
+    def cached(study, *, quick=False, progress=None):
+        assert quick and quick_outcomes[study.name].study == study
+        return quick_outcomes[study.name]
+
+    monkeypatch.setattr(shtaerman.output.folder, "run_study", cached)
+    out = tmp_path / "run"
+    paper = [path for path in quick_study_files() if Path(path).stem == "paper"]
+    argv = ["verify", "--quick", "--workers", "1", "--figure-format", "pdf", "--out", str(out)]
+    main([*argv, *paper])
+    results = json.loads((out / "results.json").read_text())
+    named = list(results["studies"]["paper"]["figures"].values())
+    assert named and all(name.endswith(".png") for name in named)  # the reports show PNGs
+    for chart in ("paper/force_depth", "paper/impact_motion", "paper/convergence", "ateb"):
+        assert (out / f"{chart}.pdf").read_bytes()[:5] == b"%PDF-", chart
+    assert (out / "paper/field_von_mises.png").is_file()
+    assert not list(out.glob("paper/field_*.pdf"))
+    assert "data:image/png;base64," in (out / "report.html").read_text()

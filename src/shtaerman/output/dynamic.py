@@ -107,8 +107,9 @@ def write_dynamic_study(
                 example, folder / "dynamic_history.png", figure_format=figure_format
             )
         ),
-        "Restitution and energy left in the half-space over v0 (first-order estimate "
-        "dashed); quasi-static / dynamic x, P and contact time": (
+        "Restitution and energy left in the half-space (%) over v0 (first-order estimate "
+        "dashed); quasi-static / dynamic - 1 of x, P and contact time (%), open markers where "
+        "the estimated error is not below the difference": (
             plot_dynamic_over_velocity(
                 outcome, folder / "dynamic_over_velocity.png", figure_format=figure_format
             )

@@ -22,7 +22,7 @@ from matplotlib.figure import Figure
 
 from ..study.dynamic import DynamicCase, DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
-from .labels import axis_label
+from .labels import MINUS, axis_label
 from .render import picture
 from .render import save as save_picture
 from .sections import (
@@ -90,9 +90,13 @@ def plot_dynamic_histories(
     axes[0].legend(loc="upper right")
     axes[1].set_xlabel(f"Time t ({t_unit}); dotted: quasi-static t_c")
     axes[1].set_xlim(0.0, 1.05 * end * t_scale)
+    loss = 100 * result.energy_radiated_fraction
+    x_diff, p_diff = (f"{100 * d:+.2f}".replace("-", MINUS) for d in (
+        quasi.x_c / result.x_max - 1, quasi.P_c / result.P_max - 1))  # fmt: skip
     axes[0].set_title(
-        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, "
-        f"x_c/x_max = {quasi.x_c / result.x_max:.4f}, P_c/P_max = {quasi.P_c / result.P_max:.4f}",
+        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, energy left in the half-space "
+        f"1 {MINUS} e² = {loss:.2f} %\nx_c/x_max {MINUS} 1 = {x_diff} %, "
+        f"P_c/P_max {MINUS} 1 = {p_diff} %",
         fontsize=9,
     )
     return save(figure, path, figure_format)

@@ -28,9 +28,9 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
 from ..plots.formats import check_figure_format
-from ..plots.labels import axis_label, describe
+from ..plots.labels import LABELS, axis_label, describe
 from ..plots.labels import scale as shown_scale
-from ..plots.style import points, save
+from ..plots.style import points, save, si_prefix
 from ..study.limits import RESOLUTION, resolved
 
 __all__ = ["sweep_figures"]
@@ -87,8 +87,27 @@ def _unresolved(values: np.ndarray, errors: np.ndarray | None) -> np.ndarray:
         return np.isfinite(values) & ~(errors < np.abs(values))
 
 
-def _value_text(value: float, name: str) -> str:
-    return f"{shown_scale(name) * value:.3g}" + (" %" if describe(name).percent else "")
+PREFIXED = ("m", "s", "N", "Pa")
+"""SI units shown with a prefix that puts the values in [1, 1000) (mm, ms, kN, MPa)."""
+
+
+def _display(name: str, unit: str, values: Any) -> tuple[float, str]:
+    """Factor from stored to shown values of ``name`` and their axis label: per cent for a
+    fraction, a prefixed SI unit for a length, time, force or stress, else as stored."""
+    label = describe(name)
+    if label.percent:
+        return shown_scale(name), axis_label(name)
+    unit = label.unit if name in LABELS else unit
+    size = np.abs(np.asarray(values, dtype=float))
+    size = size[np.isfinite(size) & (size > 0)]
+    if unit not in PREFIXED or not size.size:
+        return 1.0, axis_label(name, unit)
+    factor, prefixed = si_prefix(float(np.median(size)), unit)
+    return factor, f"{label.text} ({prefixed})"
+
+
+def _value_text(value: float, name: str, factor: float) -> str:
+    return f"{factor * value:.3g}" + (" %" if describe(name).percent else "")
 
 
 def _title(results: dict, name: str) -> str:
@@ -101,8 +120,10 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
     [(axis, values)] = spec["axes"].items()
     axis_unit = results["kind"]["parameter_units"].get(axis, "")
     x, ticks, log = _positions(values)
-    factor = shown_scale(name)
+    x_factor, x_label = _display(axis, axis_unit, x if ticks is None else [])
+    x = x_factor * x
     raw, errors = _output_values(results["cases"], name), _errors(results, name)
+    factor, y_label = _display(name, unit, raw)
     y, open_ = factor * raw, _unresolved(raw, errors)
     figure = Figure(figsize=(6.0, 4.0), layout="constrained")
     ax = figure.add_subplot()
@@ -123,8 +144,8 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
         finite = y[np.isfinite(y)]
         if finite.max() / finite.min() >= 100.0:
             ax.set_yscale("log")
-    ax.set_xlabel(axis_label(axis, axis_unit))
-    ax.set_ylabel(axis_label(name, unit))
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
     ax.set_title(_title(results, name), fontsize=9)
     ax.grid(True, alpha=0.3)
     return save(figure, folder / f"{name}.png", figure_format)
@@ -140,15 +161,20 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     open_ = _unresolved(grid, errors)
     figure = Figure(figsize=(1.2 * len(cols) + 3.0, 0.6 * len(rows) + 2.8), layout="constrained")
     ax = figure.add_subplot()
-    masked = np.ma.masked_where(~np.isfinite(grid) | open_, shown_scale(name) * grid)
+    factor, label = _display(name, unit, grid)
+    masked = np.ma.masked_where(~np.isfinite(grid) | open_, factor * grid)
     cmap = mpl.colormaps["viridis"].with_extremes(bad="0.8")
     image = ax.imshow(masked, cmap=cmap, aspect="auto", origin="lower")
-    figure.colorbar(image, ax=ax, label=axis_label(name, unit))
-    ax.set_xticks(range(len(cols)), [f"{v:g}" if _numeric([v]) else str(v) for v in cols])
-    ax.set_yticks(range(len(rows)), [f"{v:g}" if _numeric([v]) else str(v) for v in rows])
-    ax.set_xlabel(axis_label(col_axis, units.get(col_axis, "")))
-    ax.set_ylabel(axis_label(row_axis, units.get(row_axis, "")))
-    _cell_texts(ax, masked, grid, errors, name)
+    figure.colorbar(image, ax=ax, label=label)
+    for axis, values, set_ticks, set_label in (
+        (col_axis, cols, ax.set_xticks, ax.set_xlabel),
+        (row_axis, rows, ax.set_yticks, ax.set_ylabel),
+    ):
+        scale, text = _display(axis, units.get(axis, ""), values if _numeric(values) else [])
+        ticks = [f"{scale * v:g}" if _numeric([v]) else str(v) for v in values]
+        set_ticks(range(len(values)), ticks)
+        set_label(text)
+    _cell_texts(ax, masked, (grid, errors, factor), name)
     for i, j in zip(*np.nonzero(open_), strict=True):
         ax.add_patch(
             Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.55", hatch="///")
@@ -160,15 +186,15 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     return save(figure, folder / f"{name}.png", figure_format)
 
 
-def _cell_texts(
-    ax: Any, masked: np.ma.MaskedArray, grid: np.ndarray, errors: np.ndarray | None, name: str
-) -> None:
-    """Each cell's value (± its estimated error), "failed", or "unresolved" and its error."""
+def _cell_texts(ax: Any, masked: np.ma.MaskedArray, stored: tuple, name: str) -> None:
+    """Each cell's value (± its estimated error), "failed", or "unresolved" and its error;
+    ``stored`` = (values, errors or None, factor to the shown unit)."""
+    grid, errors, factor = stored
     finite = masked.compressed()
     middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
-    factor, hidden = shown_scale(name), np.ma.getmaskarray(masked)
+    hidden = np.ma.getmaskarray(masked)
     for (i, j), value in np.ndenumerate(grid):
-        text = "failed" if not math.isfinite(value) else _value_text(value, name)
+        text = "failed" if not math.isfinite(value) else _value_text(value, name, factor)
         if errors is not None and math.isfinite(value):
             error = f"± {factor * errors[i, j]:.1g}" + (" %" if factor != 1.0 else "")
             text = f"unresolved\n{error}" if hidden[i, j] else f"{text}\n{error}"
