@@ -176,7 +176,7 @@ def test_convergence_draws_every_error(folder):
         for h in (0.1, 0.05, 0.025)
     ]
     path = curves.plot_convergence(ConvergenceStudy.from_levels(rows), folder / "convergence.png")
-    image = assert_picture(path, (1280, 840), "matplotlib")
+    image = assert_picture(path, (1280, 960), "matplotlib")
     for index in range(4):
         assert_colour(image, mpl.colors.to_hex(f"C{index}"), 300)
     single = ConvergenceStudy.from_levels(rows[:1])

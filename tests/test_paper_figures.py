@@ -126,7 +126,7 @@ def test_convergence_is_drawn_against_the_element_size(tmp_path, monkeypatch):
     assert list(force.get_xdata()) == [0.1, 0.05, 0.025]
     assert force.get_ydata() == pytest.approx([100 * 3e-2 * h**2 for h in (0.1, 0.05, 0.025)])
     assert "Element size" in axes.get_xlabel() and axes.get_ylabel() == "Relative error (%)"
-    assert r"h^p" in axes.get_legend().get_title().get_text()
+    assert r"h^p" in figure.legends[0].get_title().get_text()
     assert force.get_label().startswith("Force P (order 2.00")
     [top] = axes.child_axes  # the number of unknowns of each mesh, at its size
     ticks = top.xaxis.get_ticklabels()

@@ -270,7 +270,7 @@ def plot_convergence(
         smallest element size / the refined zone's radius; relative errors, dimensionless;
         non-positive ones are not drawn) and fitted orders.
     path : path-like
-        PNG to write (1280 x 840 pixels).
+        PNG to write (1280 x 960 pixels).
     keys : sequence of str
         The errors to draw (those missing from the levels are skipped). The legend gives each
         one's observed order p, error ~ h^p, fitted over all meshes against the element size
@@ -284,7 +284,7 @@ def plot_convergence(
         ``path``.
     """
     rows = study.levels
-    figure = Figure(figsize=(WIDTH, 4.2), layout="constrained")
+    figure = Figure(figsize=(WIDTH, 4.8), layout="constrained")
     axes = figure.subplots()
     size = np.array([row["size"] for row in rows], dtype=float)
     present = [key for key in keys if all(key in row["errors"] for row in rows)]
@@ -306,5 +306,8 @@ def plot_convergence(
     axes.xaxis.set_minor_locator(NullLocator())
     axes.set_xlabel("Element size on the refined zone $h$ / its radius")
     axes.set_ylabel("Relative error (%)")
-    axes.legend(loc="lower right", title=r"observed order $p$: error $\propto h^p$")
+    plain_log(axes.yaxis)
+    figure.legend(
+        loc="outside lower center", ncols=2, title=r"observed order $p$: error $\propto h^p$"
+    )
     return save(figure, path, figure_format)
