@@ -288,6 +288,9 @@ def test_finite_ratios_draw_unresolved_depths_open(tmp_path, monkeypatch, estima
         assert opened.get_markerfacecolor() == "white"
     bars = [c for c in bottom.containers if c.has_yerr]
     assert bool(bars) == estimated  # error bars from the mesh ladder's estimates
+    # the scale is the resolved values' (2.47 .. 3.0); the six unresolved ones are below it
+    assert 2.4 < bottom.get_ylim()[0] < 2.47
+    assert [t.get_text() for t in bottom.texts] == ["6 unresolved points off scale"]
 
 
 def fake_dynamic(errors):

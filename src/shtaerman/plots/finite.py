@@ -99,6 +99,25 @@ def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple,
                    label="open: unresolved (mesh error ≥ finite-strain effect)")
         )  # fmt: skip
     axes.legend(handles=handles, loc="best", fontsize=7.5)
+    _scale_to_resolved(axes, np.concatenate([finite, linear, exact]), np.tile(hidden, 3))
+
+
+def _scale_to_resolved(axes: Any, values: np.ndarray, hidden: np.ndarray) -> None:
+    """y-limits that fit the resolved values and the exact one; an unresolved point beyond
+    them is left out of the picture, and a note says how many."""
+    shown = values[~hidden & np.isfinite(values)]
+    if not shown.size:
+        return
+    low, high = float(shown.min()), float(shown.max())
+    pad = 0.08 * max(high - low, 0.02 * abs(high))
+    low, high = low - pad, high + pad
+    axes.set_ylim(low, high)
+    off = int(np.sum(hidden & ((values < low) | (values > high))))
+    if off:
+        axes.text(
+            0.99, 0.02, f"{off} unresolved points off scale", transform=axes.transAxes,
+            ha="right", va="bottom", fontsize=7.5, color="0.3",
+        )  # fmt: skip
 
 
 @styled
