@@ -395,3 +395,14 @@ def test_verify_writes_vector_charts_and_keeps_pngs_for_the_report(
     assert (out / "paper/field_von_mises.png").is_file()
     assert not list(out.glob("paper/field_*.pdf"))
     assert "data:image/png;base64," in (out / "report.html").read_text()
+
+
+def test_dynamic_over_velocity_says_when_it_has_no_estimates(tmp_path, monkeypatch):
+    figure = capture(
+        monkeypatch,
+        dynamic,
+        lambda: dynamic.plot_dynamic_over_velocity(fake_dynamic(None), tmp_path / "d.png"),
+    )
+    ratio = figure.axes[2]
+    assert [t.get_text() for t in ratio.texts] == ["no error estimates (quick run)"]
+    assert not [line for line in ratio.get_lines() if "unresolved" in line.get_label()]
