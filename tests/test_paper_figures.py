@@ -66,6 +66,18 @@ def test_labels_name_quantities_with_units_and_percent():
     assert labels.axis_label("my_output") == "my_output"
 
 
+def test_every_sweep_key_has_a_readable_label():
+    from shtaerman.sweep.kinds import KINDS
+
+    keys = set()
+    for kind in KINDS.values():
+        keys |= {*kind.parameters, *kind.outputs}
+        keys |= {key for outputs in kind.optional_outputs.values() for key in outputs}
+    assert sorted(key for key in keys if labels.describe(key).text == key) == []
+    # every difference and error a sweep reports is a fraction: shown in per cent
+    assert all(labels.is_percent(k) for k in keys if k.startswith(("difference_", "error_")))
+
+
 # --- formats ------------------------------------------------------------------------------------
 
 
