@@ -113,6 +113,14 @@ def test_bad_figure_format_is_one_line(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_field_pictures_refuse_a_vector_path(tmp_path):
+    from shtaerman.plots import render
+
+    with render.picture() as plotter, pytest.raises(InputError, match="PNG only"):
+        render.save(plotter, tmp_path / "field.svg")
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize("command", ["contact", "dynamic", "verify", "sweep"])
 def test_every_figure_command_takes_figure_format(command, capsys):
     with pytest.raises(SystemExit):
