@@ -122,7 +122,7 @@ def test_impact_needs_a_history(outcome, folder):
 def _drawn_figure(monkeypatch, draw):
     """The matplotlib Figure ``draw`` would save (saving replaced by capturing)."""
     captured = []
-    monkeypatch.setattr(impact, "save", lambda figure, path: captured.append(figure) or path)
+    monkeypatch.setattr(impact, "save", lambda figure, path, *_: captured.append(figure) or path)
     draw()
     [figure] = captured
     return figure
@@ -186,7 +186,7 @@ def test_convergence_draws_every_error(folder):
         for h in (0.1, 0.05, 0.025)
     ]
     path = curves.plot_convergence(ConvergenceStudy.from_levels(rows), folder / "convergence.png")
-    image = assert_picture(path, (1280, 840), "matplotlib")
+    image = assert_picture(path, (1280, 960), "matplotlib")
     for index in range(4):
         assert_colour(image, mpl.colors.to_hex(f"C{index}"), 300)
     single = ConvergenceStudy.from_levels(rows[:1])

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_increasing, validate_positive
@@ -277,28 +278,19 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     return ladder.finest, ladder
 
 
-def _write(result: ContactResult, folder: Path) -> None:
+def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     """contact.json, the curve CSVs and VTU fields, and (linear model) the curve figures."""
     from ..output import export
     from ..output.files import json_safe
     from ..output.finite import write_finite_curve
+    from ..plots.gallery import contact_figures
 
     if result.model == "neo-hookean":
         write_finite_curve(result.solution, folder)
     else:
         export.write_indentation(result.solution, folder)
-        _figures(result.solution, folder)
+        contact_figures(result.solution, folder, figure_format)
     (folder / "contact.json").write_text(json.dumps(json_safe(result.to_dict()), indent=2))
-
-
-def _figures(solution: Any, folder: Path) -> list[Path]:
-    """force_depth.png and pressure.png: the FEM curve against Shtaerman's solution."""
-    from ..plots.curves import plot_force_depth, plot_pressure
-
-    return [
-        plot_force_depth(solution, folder / "force_depth.png"),
-        plot_pressure(solution, folder / "pressure.png"),
-    ]
 
 
 def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
@@ -310,6 +302,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     model, estimate = options["model"], bool(options["estimate"])
     check_bodies(indenter, body, RIGID if options["striker"] is None else options["striker"])
     _check_options(model, options["accuracy"], estimate, options["solver"])
+    check_figure_format(options["figure_format"])
     validate_fem_inputs(indenter, body)
     max_time = validate_positive("max_time", options["max_time"], "s")
     base = options["mesh"]
@@ -363,6 +356,7 @@ def contact(
     solver: str = "auto",
     out: str | Path | None = None,
     force: bool = False,
+    figure_format: str = "png",
     progress: Callable[[str], None] | None = None,
 ) -> ContactResult:
     """Press a rigid indenter z = A r^n into the FEM half-space; compare with Shtaerman.
@@ -395,6 +389,8 @@ def contact(
     out : path, optional
         A new folder for contact.json, CSV curves, VTU fields and (linear) figures; an
         existing one is replaced only with ``force``.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each chart in that format beside its PNG.
     progress : callable, optional
         Receives one line per ladder level.
 
@@ -418,5 +414,5 @@ def contact(
         report = {**solution.to_dict(), **(ladder.to_dict() if ladder is not None else {})}
         result = ContactResult.from_report(report, solution, ladder)
         if stage is not None:
-            _write(result, stage)
+            _write(result, stage, options["figure_format"])
     return result

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
@@ -202,6 +203,7 @@ def dynamic(
     layer_rate: float | None = None,
     out: str | Path | None = None,
     force: bool = False,
+    figure_format: str = "png",
 ) -> DynamicResult:
     """The dynamic FE impact of a rigid striker z = A r^n on an elastic half-space.
 
@@ -222,8 +224,10 @@ def dynamic(
         The numerical controls; ``steps``, ``mesh_size``, ``mesh_margin``, ``domain_factor``,
         ``growth`` and ``layer_rate`` (the ``--steps`` ... options) override its fields.
     out : path, optional
-        A new folder for dynamic.json, history.csv, energies.csv and three VTU snapshots; an
-        existing one is replaced only with ``force``.
+        A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
+        the figures; an existing one is replaced only with ``force``.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each chart in that format beside its PNG.
 
     Returns
     -------
@@ -234,6 +238,7 @@ def dynamic(
     shtaerman.validation.InputError
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
+    from ..output.dynamic import write_case_figures
     from ..output.files import check_output_folder, staged_folder
     from ..study.dynamic import run_case
     from ..study.dynamic_accuracy import complete_ladder
@@ -243,6 +248,7 @@ def dynamic(
     mass, velocity, refine, chosen = _checked(
         indenter, body, (mass, velocity, refine), estimate, dynamic_settings(settings, options)
     )
+    check_figure_format(figure_format)
     folder = check_output_folder(Path(out), force=force) if out is not None else None
     inputs = (indenter, body, _density(body), mass, velocity)
     case = run_case(*inputs, chosen, snapshots=_snapshots if folder is not None else None)
@@ -253,6 +259,7 @@ def dynamic(
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
+            write_case_figures(case, stage, figure_format)
     return result
 
 

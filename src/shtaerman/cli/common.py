@@ -8,12 +8,14 @@ import re
 import sys
 
 from ..output.files import json_safe
+from ..plots.formats import add_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_poisson, validate_positive
 
 __all__ = [
     "Parser",
+    "add_figure_format",
     "add_half_space_options",
     "add_indenter_options",
     "half_space",

@@ -15,6 +15,7 @@ from ..validation import InputError, validate_increasing, validate_positive
 from .common import (
     FEM_POISSON_LOW,
     PAPER,
+    add_figure_format,
     add_half_space_options,
     add_indenter_options,
     print_json,
@@ -87,6 +88,7 @@ def _add_case_options(p: argparse.ArgumentParser) -> None:
         "force_depth.png and pressure.png to DIR",
     )
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    add_figure_format(p)
 
 
 def _add_accuracy_options(p: argparse.ArgumentParser) -> None:
@@ -190,6 +192,7 @@ def run(args: argparse.Namespace) -> int:
         solver=args.solver,
         out=args.out,
         force=args.force,
+        figure_format=args.figure_format,
     )
     report = result.to_dict()
     if args.json:

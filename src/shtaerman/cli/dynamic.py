@@ -14,6 +14,7 @@ from ..validation import InputError, validate_positive
 from .common import (
     FEM_POISSON_LOW,
     PAPER,
+    add_figure_format,
     add_half_space_options,
     add_indenter_options,
     print_json,
@@ -68,6 +69,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("--history", metavar="FILE.csv", help="write t,x,v,P,a,p0 every time step")
     p.add_argument("--out", metavar="DIR", help="write JSON, CSV histories and VTU fields to DIR")
     p.add_argument("--force", action="store_true", help="replace an existing --history / --out")
+    add_figure_format(p)
     accuracy = p.add_argument_group("accuracy (error estimates from a 3-level ladder)")
     accuracy.add_argument(
         "--refine",
@@ -137,6 +139,7 @@ def run(args: argparse.Namespace) -> int:
         settings=settings,
         out=args.out,
         force=args.force,
+        figure_format=args.figure_format,
     )
     report = result.to_dict()
     if history is not None:

@@ -8,6 +8,7 @@ import time
 from pathlib import Path
 
 from ..validation import InputError
+from .common import add_figure_format
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -32,6 +33,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    add_figure_format(p)
     p.add_argument(
         "--workers",
         metavar="N",
@@ -74,9 +76,12 @@ def run(args: argparse.Namespace) -> int:
             workers=min(workers, len(studies)),
             force=args.force,
             progress=bar,
+            figure_format=args.figure_format,
         )
     else:
-        results = run_verification(studies, out, quick=args.quick, force=args.force)
+        results = run_verification(
+            studies, out, quick=args.quick, force=args.force, figure_format=args.figure_format
+        )
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
 

@@ -6,8 +6,11 @@ Into ``root/<study name>/``:
   step, units in the header (as ``shtaerman dynamic --history``);
 - ``summary.csv``: one row per velocity, the dynamic and quasi-static maxima and times, their
   relative differences, restitution, the radiated fraction and its first-order estimate;
-- figures: x(t), P(t) at the example velocity; e, 1 - e^2 and the ratios over v0; the wave
-  field (von Mises) at the quasi-static t_c and at 1.05 t_y (after separation).
+- figures: x(t), P(t) at the example velocity; e, 1 - e^2 and the differences over v0; the
+  wave field (von Mises) at the quasi-static t_c and at 1.05 t_y (after separation).
+
+:func:`write_case_figures` draws one impact's (``dynamic --out``): x(t), P(t) and the wave field
+at each kept time.
 """
 
 from __future__ import annotations
@@ -18,10 +21,10 @@ import numpy as np
 
 from ..fem.dynamic_contact import DynamicImpactResult
 from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
-from ..study.dynamic import SEPARATION_SNAPSHOT, DynamicStudyOutcome
+from ..study.dynamic import SEPARATION_SNAPSHOT, DynamicCase, DynamicStudyOutcome
 from .files import write_csv
 
-__all__ = ["SUMMARY_HEADER", "history_columns", "write_dynamic_study"]
+__all__ = ["SUMMARY_HEADER", "history_columns", "write_case_figures", "write_dynamic_study"]
 
 SUMMARY_HEADER = (
     "v0 [m/s]",
@@ -82,9 +85,10 @@ def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
 
 
 def write_dynamic_study(
-    outcome: DynamicStudyOutcome, folder: Path, root: Path
+    outcome: DynamicStudyOutcome, folder: Path, root: Path, figure_format: str = "png"
 ) -> tuple[dict[str, str], dict[str, str]]:
-    """The study's CSV files and figures; ``{stem: path}``, ``{caption: path}`` from ``root``."""
+    """The study's CSV files and figures; ``{stem: path}``, ``{caption: path}`` from ``root``
+    (``figure_format`` "svg" or "pdf": each chart also in that format beside its PNG)."""
     folder.mkdir()
     written = []
     for case in outcome.cases:
@@ -99,11 +103,16 @@ def write_dynamic_study(
     v0 = f"{example.velocity:g} m/s"
     figures = {
         f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
-            plot_dynamic_histories(example, folder / "dynamic_history.png")
+            plot_dynamic_histories(
+                example, folder / "dynamic_history.png", figure_format=figure_format
+            )
         ),
-        "Restitution and energy left in the half-space over v0 (first-order estimate "
-        "dashed); quasi-static / dynamic x, P and contact time": (
-            plot_dynamic_over_velocity(outcome, folder / "dynamic_over_velocity.png")
+        "Restitution and energy left in the half-space (%) over v0 (first-order estimate "
+        "dashed); quasi-static / dynamic - 1 of x, P and contact time (%), open markers where "
+        "the estimated error is not below the difference": (
+            plot_dynamic_over_velocity(
+                outcome, folder / "dynamic_over_velocity.png", figure_format=figure_format
+            )
         ),
     }
     late = SEPARATION_SNAPSHOT * quasi.t_y
@@ -124,3 +133,24 @@ def write_dynamic_study(
         {path.stem: str(path.relative_to(root)) for path in written},
         {caption: str(path.relative_to(root)) for caption, path in figures.items()},
     )
+
+
+def write_case_figures(
+    case: DynamicCase, folder: Path, figure_format: str = "png"
+) -> dict[str, Path]:
+    """One impact's figures in ``folder``: ``dynamic_history.png`` (x(t), P(t) against the
+    quasi-static impact; with ``figure_format`` "svg" or "pdf" also in that format beside it)
+    and ``wave_field_<i>.png`` at each time the run kept (PNG only); ``{caption: path}``."""
+    v0 = f"{case.velocity:g} m/s"
+    figures = {
+        f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
+            plot_dynamic_histories(
+                case, folder / "dynamic_history.png", figure_format=figure_format
+            )
+        )
+    }
+    for index, key in enumerate(sorted(case.result.snapshots)):
+        figures[f"Wave field (von Mises) at {v0}, t = {key * 1e3:.3g} ms"] = plot_wave_field(
+            case, key, folder / f"wave_field_{index}.png"
+        )
+    return figures

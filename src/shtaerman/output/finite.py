@@ -114,9 +114,10 @@ def write_finite_curve(result: FiniteIndentationResult, folder: Path) -> list[Pa
 
 
 def write_finite_study(
-    outcome: FiniteStudyOutcome, folder: Path, root: Path
+    outcome: FiniteStudyOutcome, folder: Path, root: Path, figure_format: str = "png"
 ) -> tuple[dict[str, str], dict[str, str]]:
-    """A finite-strain study's files and figures in ``folder`` (created), paths from ``root``."""
+    """A finite-strain study's files and figures in ``folder`` (created), paths from ``root``
+    (``figure_format`` "svg" or "pdf": each chart also in that format beside its PNG)."""
     folder = Path(folder)
     folder.mkdir()
     rows = outcome.rows()
@@ -133,12 +134,13 @@ def write_finite_study(
             outcome.finite.curve, step, outcome.study.half_space, folder / "field_at_x_c.vtu"
         )
     )
+    fmt = {"figure_format": figure_format}
     figures = {
-        CAPTIONS["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png"),
+        CAPTIONS["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png", **fmt),
         f"{CAPTIONS['finite_section']} ({step.depth * 1e3:.3g} mm)": plot_finite_section(
             outcome, folder / "finite_section.png"
         ),
-        CAPTIONS["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png"),
+        CAPTIONS["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png", **fmt),
     }
     files = {path.stem: str(path.relative_to(root)) for path in written}
     return files, {caption: str(path.relative_to(root)) for caption, path in figures.items()}

@@ -13,6 +13,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..plots.formats import check_figure_format
 from ..plots.gallery import (
     paper_figures,
     study_convergence_figures,
@@ -58,10 +59,12 @@ class ProgressBar:
 
 
 def write_contact_study(
-    outcome: StudyOutcome, folder: Path, root: Path
+    outcome: StudyOutcome, folder: Path, root: Path, figure_format: str = "png"
 ) -> tuple[dict[str, str], dict[str, str]]:
-    """A contact study's files (VTU, CSV curves and histories) and figures, paths from root."""
-    return _study_files(outcome, folder, root), _study_figures(outcome, folder, root)
+    """A contact study's files (VTU, CSV curves and histories) and figures, paths from root
+    (``figure_format`` "svg" or "pdf": each chart also in that format beside its PNG)."""
+    files = _study_files(outcome, folder, root)
+    return files, _study_figures(outcome, folder, root, figure_format)
 
 
 def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
@@ -74,31 +77,33 @@ def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, s
     return {path.stem: str(path.relative_to(root)) for path in written}
 
 
-def _study_figures(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
+def _study_figures(
+    outcome: StudyOutcome, folder: Path, root: Path, figure_format: str
+) -> dict[str, str]:
     made = {
         **study_field_figures(outcome, folder),
-        **study_figures(outcome, folder),
-        **study_convergence_figures(outcome, folder),
+        **study_figures(outcome, folder, figure_format),
+        **study_convergence_figures(outcome, folder, figure_format),
     }
     return {title: str(path.relative_to(root)) for title, path in made.items()}
 
 
-def study_entry(outcome: Any, stage: Path) -> dict[str, object]:
+def study_entry(outcome: Any, stage: Path, figure_format: str = "png") -> dict[str, object]:
     """Write one study's files and figures into ``stage/<name>``; its results.json entry."""
     study = outcome.study
     start = time.perf_counter()
     write = kind_function(getattr(study, "kind", "contact"), "write")
-    files, pictures = write(outcome, stage / study.name, stage)
+    files, pictures = write(outcome, stage / study.name, stage, figure_format)
     return json_safe(study_document(outcome, files, time.perf_counter() - start, pictures))
 
 
 def finish_verification(
-    stage: Path, entries: Mapping[str, dict], *, quick: bool
+    stage: Path, entries: Mapping[str, dict], *, quick: bool, figure_format: str = "png"
 ) -> dict[str, object]:
     """The figures of no study (the Ateb functions for each indenter exponent of the
     studies), results.json and both reports, from the studies' entries."""
     exponents = [entry["inputs"]["exponent"] for entry in entries.values() if "inputs" in entry]
-    made = paper_figures(stage, exponents)
+    made = paper_figures(stage, exponents, figure_format)
     shared = {title: str(path.relative_to(stage)) for title, path in made.items()}
     results = results_document(entries, quick=quick, figures=shared)
     (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
@@ -113,13 +118,16 @@ def run_verification(
     quick: bool = False,
     progress: Callable[[str], None] | None = None,
     force: bool = False,
+    figure_format: str = "png",
 ) -> dict[str, object]:
     """Run the studies one after another in this process and write ``out`` (results.json,
-    report.md, report.html, per-study VTU fields, CSV curves and histories, PNG figures).
+    report.md, report.html, per-study VTU fields, CSV curves and histories, PNG figures, and
+    with ``figure_format`` "svg" or "pdf" each chart also in that format beside its PNG).
     Returns the results document. (``shtaerman verify`` runs them as dask tasks instead:
     :mod:`shtaerman.sweep.verify`.)
 
     ``out`` may exist only as an empty folder, or with ``force`` as any folder (replaced)."""
+    check_figure_format(figure_format)
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
     with staged_folder(out, force=force) as stage:
@@ -127,7 +135,7 @@ def run_verification(
         for study in studies:
             outcome = run_study(study, quick=quick, progress=bar)
             bar(f"{study.name}: files and figures")
-            entries[study.name] = study_entry(outcome, stage)
+            entries[study.name] = study_entry(outcome, stage, figure_format)
             advance()
             bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
-        return finish_verification(stage, entries, quick=quick)
+        return finish_verification(stage, entries, quick=quick, figure_format=figure_format)

@@ -93,15 +93,17 @@ def _exact_column(axes: Axes, kind: str, q: float) -> None:
 
 
 @styled
-def plot_ateb(path: Path | str, exponent: float = PAPER_EXPONENT) -> Path:
+def plot_ateb(
+    path: Path | str, exponent: float = PAPER_EXPONENT, *, figure_format: str = "png"
+) -> Path:
     """Write the Ateb functions of the impact on an indenter z = A r^n, n = ``exponent``.
 
     For n = 3/2 (q = 5/3), Sa(5/3, 1, 4 eta/3) and Ca(5/3, 1, 4 zeta/3) against the paper's
     Tables 1-2 as below; for any other n, Sa(q, 1, (q+1)/2 eta) and Ca(q, 1, (q+1)/2 zeta),
     q = (n+1)/n, exact over [0, I] (the paper tabulates no other exponent).
 
-    Top: the exact functions (:mod:`shtaerman.theory.ateb`), the printed table values (markers) and
-    the paper's piecewise approximations (dashed), over one compression (eta) and one
+    Top: the exact functions (:mod:`shtaerman.theory.ateb`), the printed table values
+    (markers) and the paper's piecewise approximations (dashed), over one compression (eta) and one
     restitution (zeta) interval [0, I], I = 1.445927. Bottom: the approximations' relative
     error in %, its maximum marked, against the paper's claimed 1 % (dotted).
 
@@ -111,6 +113,8 @@ def plot_ateb(path: Path | str, exponent: float = PAPER_EXPONENT) -> Path:
         PNG to write (1480 x 1000 pixels for n = 3/2, 1480 x 600 otherwise).
     exponent : float
         The indenter's exponent n (> 1).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
 
     Returns
     -------
@@ -123,10 +127,10 @@ def plot_ateb(path: Path | str, exponent: float = PAPER_EXPONENT) -> Path:
         for axes, kind in zip(figure.subplots(1, 2), ("sine", "cosine"), strict=True):
             _exact_column(axes, kind, q)
         figure.suptitle(f"n = {exponent:g}, q = (n+1)/n = {q:.4g}")
-        return save(figure, path)
+        return save(figure, path, figure_format)
     figure = Figure(figsize=(7.4, 5.0), layout="constrained")
     axes = figure.subplots(2, 2, sharex=True, height_ratios=(2.2, 1))
     _ateb_column(axes[0, 0], axes[1, 0], "sine")
     _ateb_column(axes[0, 1], axes[1, 1], "cosine")
     axes[1, 0].set_ylabel("Approximation\nerror (%)")
-    return save(figure, path)
+    return save(figure, path, figure_format)

@@ -1,4 +1,4 @@
-"""Contact curves: force against depth, the pressure profile, and mesh convergence (PNG).
+"""Contact curves: force against depth, the pressure profile, and mesh convergence.
 
 Each function draws FEM results against Shtaerman's exact solution (see :mod:`.style` for the
 colours and the conventions every figure follows).
@@ -13,10 +13,12 @@ from pathlib import Path
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.ticker import NullLocator
 
 from ..study.convergence import ConvergenceStudy
 from ..study.indentation import IndentationResult
 from ..theory.contact import paper_pressure_eq5
+from .labels import LABELS, describe
 from .style import (
     DEPTH_STYLES,
     EXACT_COLOUR,
@@ -40,13 +42,13 @@ __all__ = [
 ]
 
 ERROR_LABELS = {
-    "force": "force $P$",
-    "beta": r"coefficient $\beta$",
-    "contact_radius": "contact radius $a$",
-    "central_pressure": "central pressure $p(0)$",
-    "exponent": "exponent $q$",
-    "pressure_profile": "pressure profile $p(r)$",
+    **{
+        key: describe(key).text
+        for key in ("force", "beta", "contact_radius", "central_pressure", "pressure_profile")
+    },
+    "exponent": LABELS["exponent_fem"].text,
 }
+"""Legend text of each relative error of a convergence study (from :mod:`.labels`)."""
 CONVERGENCE_KEYS = ("force", "beta", "contact_radius", "central_pressure")
 """Errors drawn by default by :func:`plot_convergence`."""
 
@@ -74,7 +76,9 @@ def _fit_note(result: IndentationResult) -> str:
 
 
 @styled
-def plot_force_depth(result: IndentationResult, path: Path | str) -> Path:
+def plot_force_depth(
+    result: IndentationResult, path: Path | str, *, figure_format: str = "png"
+) -> Path:
     """Write the force-depth curve: FEM points against P = beta x^q (log-log).
 
     The lower panel is the relative difference of each FEM force from the exact one (%);
@@ -87,6 +91,8 @@ def plot_force_depth(result: IndentationResult, path: Path | str) -> Path:
         The FEM indentation run (depths in m, forces in N).
     path : path-like
         PNG to write (1280 x 960 pixels).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
 
     Returns
     -------
@@ -128,7 +134,7 @@ def plot_force_depth(result: IndentationResult, path: Path | str) -> Path:
     for axes in (top, bottom):
         plain_log(axes.xaxis)
     plain_log(top.yaxis)
-    return save(figure, path)
+    return save(figure, path, figure_format)
 
 
 # --- pressure profile ---------------------------------------------------------------------------
@@ -190,7 +196,11 @@ def _pressure_markers(axes: Axes, result: IndentationResult, index: int, style: 
 
 @styled
 def plot_pressure(
-    result: IndentationResult, path: Path | str, steps: Sequence[int] | None = None
+    result: IndentationResult,
+    path: Path | str,
+    steps: Sequence[int] | None = None,
+    *,
+    figure_format: str = "png",
 ) -> Path:
     """Write the contact pressure p(r)/p_avg against r/a: FEM nodal values and the exact curve.
 
@@ -207,6 +217,8 @@ def plot_pressure(
     steps : sequence of int, optional
         Indices of ``result.steps`` to show (up to three); default the largest, a middle and
         the smallest depth.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
 
     Returns
     -------
@@ -234,7 +246,7 @@ def plot_pressure(
     axes.set_xlabel("Radius $r/a$")
     axes.set_ylabel(r"Contact pressure $p/p_{avg}$")
     axes.legend(loc="lower left")
-    return save(figure, path)
+    return save(figure, path, figure_format)
 
 
 # --- mesh convergence -----------------------------------------------------------------------------
@@ -248,20 +260,28 @@ def _order_note(study: ConvergenceStudy, key: str) -> str:
 
 @styled
 def plot_convergence(
-    study: ConvergenceStudy, path: Path | str, keys: Sequence[str] = CONVERGENCE_KEYS
+    study: ConvergenceStudy,
+    path: Path | str,
+    keys: Sequence[str] = CONVERGENCE_KEYS,
+    *,
+    figure_format: str = "png",
 ) -> Path:
-    """Write the relative errors against the number of unknowns (log-log), one line per error.
+    """Write the relative errors (%) against the element size h (log-log), one line per error.
 
     Parameters
     ----------
     study : shtaerman.study.convergence.ConvergenceStudy
-        Its levels ``{"size": h/R, "dofs": int, "errors": {"force": .., ...}}`` (relative
-        errors, dimensionless; non-positive ones are not drawn) and fitted orders.
+        Its levels ``{"size": h, "dofs": int, "errors": {"force": .., ...}}`` (h the
+        smallest element size / the refined zone's radius; relative errors, dimensionless;
+        non-positive ones are not drawn) and fitted orders.
     path : path-like
-        PNG to write (1280 x 840 pixels).
+        PNG to write (1280 x 960 pixels).
     keys : sequence of str
         The errors to draw (those missing from the levels are skipped). The legend gives each
-        one's observed order p, error ~ h^p, fitted over all meshes against the element size.
+        one's observed order p, error ~ h^p, fitted over all meshes against the element size
+        of the horizontal axis; each mesh's number of unknowns is marked on the top axis.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
 
     Returns
     -------
@@ -269,21 +289,30 @@ def plot_convergence(
         ``path``.
     """
     rows = study.levels
-    figure = Figure(figsize=(WIDTH, 4.2), layout="constrained")
+    figure = Figure(figsize=(WIDTH, 4.8), layout="constrained")
     axes = figure.subplots()
-    dofs = np.array([row["dofs"] for row in rows], dtype=float)
+    size = np.array([row["size"] for row in rows], dtype=float)
     present = [key for key in keys if all(key in row["errors"] for row in rows)]
     for index, key in enumerate(present):
         error = np.array([row["errors"][key] for row in rows], dtype=float)
         shown = np.isfinite(error) & (error > 0)
         axes.loglog(
-            dofs[shown],
-            error[shown],
+            size[shown],
+            100 * error[shown],
             marker="osD^vP"[index % 6],
             color=f"C{index}",
             label=ERROR_LABELS.get(key, key) + _order_note(study, key),
         )
-    axes.set_xlabel("Unknowns (degrees of freedom)")
-    axes.set_ylabel("Relative error")
-    axes.legend(loc="best", title=r"observed order $p$: error $\propto h^p$")
-    return save(figure, path)
+    dofs = axes.secondary_xaxis("top")
+    dofs.set_xticks(size, [f"{row['dofs']:,}" for row in rows], fontsize=7.5)
+    dofs.xaxis.set_minor_locator(NullLocator())
+    dofs.set_xlabel("Unknowns (degrees of freedom) of each mesh", fontsize=9)
+    axes.set_xticks(size, [f"{h:.3g}" for h in size])
+    axes.xaxis.set_minor_locator(NullLocator())
+    axes.set_xlabel("Element size on the refined zone $h$ / its radius")
+    axes.set_ylabel("Relative error (%)")
+    plain_log(axes.yaxis)
+    figure.legend(
+        loc="outside lower center", ncols=2, title=r"observed order $p$: error $\propto h^p$"
+    )
+    return save(figure, path, figure_format)

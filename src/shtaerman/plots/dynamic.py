@@ -18,10 +18,12 @@ import math
 from pathlib import Path
 
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..study.dynamic import DynamicCase, DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
+from .labels import MINUS, axis_label
 from .render import picture
 from .render import save as save_picture
 from .sections import (
@@ -40,9 +42,11 @@ from .style import (
     FEM_COLOUR,
     SECOND_COLOUR,
     WIDTH,
+    points,
     save,
     si_prefix,
     styled,
+    unresolved,
 )
 
 __all__ = ["plot_dynamic_histories", "plot_dynamic_over_velocity", "plot_wave_field"]
@@ -54,8 +58,11 @@ concentration (MPa) and would be invisible on a linear scale."""
 
 
 @styled
-def plot_dynamic_histories(case: DynamicCase, path: Path | str) -> Path:
-    """x(t) and P(t), dynamic FE against quasi-static, at the case's velocity (PNG)."""
+def plot_dynamic_histories(
+    case: DynamicCase, path: Path | str, *, figure_format: str = "png"
+) -> Path:
+    """x(t) and P(t), dynamic FE against quasi-static, at the case's velocity (PNG, and
+    ``figure_format`` "svg" or "pdf" beside it)."""
     result, quasi = case.result, case.quasi
     history = quasi.history(401, times=np.linspace(0.0, quasi.t_y, 401))
     end = max(quasi.t_y, result.t_contact if math.isfinite(result.t_contact) else 0.0)
@@ -84,23 +91,23 @@ def plot_dynamic_histories(case: DynamicCase, path: Path | str) -> Path:
     axes[0].legend(loc="upper right")
     axes[1].set_xlabel(f"Time t ({t_unit}); dotted: quasi-static t_c")
     axes[1].set_xlim(0.0, 1.05 * end * t_scale)
+    loss = 100 * result.energy_radiated_fraction
+    x_diff, p_diff = (f"{100 * d:+.2f}".replace("-", MINUS) for d in (
+        quasi.x_c / result.x_max - 1, quasi.P_c / result.P_max - 1))  # fmt: skip
     axes[0].set_title(
-        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, "
-        f"x_c/x_max = {quasi.x_c / result.x_max:.4f}, P_c/P_max = {quasi.P_c / result.P_max:.4f}",
+        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, energy left in the half-space "
+        f"1 {MINUS} e² = {loss:.2f} %\nx_c/x_max {MINUS} 1 = {x_diff} %, "
+        f"P_c/P_max {MINUS} 1 = {p_diff} %",
         fontsize=9,
     )
-    return save(figure, path)
+    return save(figure, path, figure_format)
 
 
-@styled
-def plot_dynamic_over_velocity(outcome: DynamicStudyOutcome, path: Path | str) -> Path:
-    """e and 1 - e^2 with the first-order estimate, and the quasi-static / dynamic ratios."""
+def _restitution(ax_e: Axes, ax_loss: Axes, outcome: DynamicStudyOutcome) -> None:
+    """e and 1 - e^2 (%) of the dynamic FEM over v0, the first-order estimate dashed."""
     v = np.array(outcome.velocities)
     results = [case.result for case in outcome.cases]
-    quasi = [case.quasi for case in outcome.cases]
     curve = outcome.estimate_curve()
-    figure = Figure(figsize=(WIDTH, 6.4), layout="constrained")
-    (ax_e, ax_loss), (ax_ratio, ax_time) = figure.subplots(2, 2, sharex=True)
     ax_e.plot(v, [r.restitution for r in results], "o", color=FEM_COLOUR, label="dynamic FEM")
     ax_e.plot(
         curve["velocity"],
@@ -110,42 +117,60 @@ def plot_dynamic_over_velocity(outcome: DynamicStudyOutcome, path: Path | str) -
         label=r"estimate $\sqrt{1-\lambda}$",
     )
     ax_e.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0, label="quasi-static")
-    ax_e.set_ylabel("Restitution e")
+    ax_e.set_ylabel(axis_label("restitution"))
     ax_e.legend(loc="lower left")
-    loss = [r.energy_radiated_fraction for r in results]
+    loss = [100 * r.energy_radiated_fraction for r in results]
     ax_loss.plot(v, loss, "o", color=FEM_COLOUR, label="dynamic FEM $1-e^2$")
     ax_loss.plot(
         curve["velocity"],
-        curve["energy_fraction"],
+        100 * np.asarray(curve["energy_fraction"]),
         "--",
         color=APPROXIMATION_COLOUR,
         label=r"first-order $\lambda$",
     )
-    ax_loss.set_ylabel("Energy left in the half-space")
+    ax_loss.set_ylabel(axis_label("energy_radiated_fraction"))
     ax_loss.set_ylim(bottom=0.0)
     ax_loss.legend(loc="upper left")
-    ax_ratio.plot(
-        v, [q.P_c / r.P_max for q, r in zip(quasi, results, strict=True)], "o-",
-        color=SECOND_COLOUR, label=r"$P_c/P_{max}$",
-    )  # fmt: skip
-    ax_ratio.plot(
-        v, [q.x_c / r.x_max for q, r in zip(quasi, results, strict=True)], "s-",
-        color=FEM_COLOUR, label=r"$x_c/x_{max}$",
-    )  # fmt: skip
-    ax_time.plot(
-        v, [q.t_y / r.t_contact for q, r in zip(quasi, results, strict=True)], "o-",
-        color=FEM_COLOUR, label=r"$t_y/t_{contact}$",
-    )  # fmt: skip
+
+
+@styled
+def plot_dynamic_over_velocity(
+    outcome: DynamicStudyOutcome, path: Path | str, *, figure_format: str = "png"
+) -> Path:
+    """e and 1 - e^2 (%) with the first-order estimate, and the quasi-static / dynamic
+    differences (%) over v0 (PNG, and ``figure_format`` "svg" or "pdf" beside it).
+
+    With error estimates, a difference carries its error bar, and one whose estimated error
+    is not below its own size is unresolved: an open marker, not joined to the curve.
+    """
+    v = np.array(outcome.velocities)
+    figure = Figure(figsize=(WIDTH, 6.4), layout="constrained")
+    (ax_e, ax_loss), (ax_ratio, ax_time) = figure.subplots(2, 2, sharex=True)
+    _restitution(ax_e, ax_loss, outcome)
+    differences = [case.differences() for case in outcome.cases]
+    errors = outcome.difference_errors()
+    for ax, key, colour, marker, label in (
+        (ax_ratio, "P", SECOND_COLOUR, "o", r"$P_c/P_{max} - 1$"),
+        (ax_ratio, "x", FEM_COLOUR, "s", r"$x_c/x_{max} - 1$"),
+        (ax_time, "t", FEM_COLOUR, "o", r"$t_y/t_{contact} - 1$"),
+    ):
+        values = 100 * np.array([d[key] for d in differences])
+        error = None if errors is None else 100 * np.array(errors[key])
+        hidden = unresolved(values, error)
+        points(ax, v, values, (colour, marker, "-", label), error=error, hidden=hidden)
     for ax in (ax_ratio, ax_time):
-        ax.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0)
-        for level in (0.01, 0.05):
+        ax.axhline(0.0, color=EXACT_COLOUR, linewidth=1.0)
+        for level in (1.0, 5.0):
             for sign in (1, -1):
-                ax.axhline(1 + sign * level, color="0.6", linewidth=0.7, linestyle=":")
-        ax.legend(loc="upper left" if ax is ax_ratio else "lower left")
-        ax.set_xlabel("Approach velocity v0 (m/s)")
-    ax_ratio.set_ylabel("Quasi-static / dynamic")
-    ax_time.set_ylabel("Quasi-static / dynamic\n(dotted: 1 %, 5 %)")
-    return save(figure, path)
+                ax.axhline(sign * level, color="0.6", linewidth=0.7, linestyle=":")
+        ax.legend(loc="upper left" if ax is ax_ratio else "lower left", fontsize=7.5)
+        ax.set_xlabel(axis_label("velocity"))
+    if errors is None:
+        ax_ratio.text(0.98, 0.02, "no error estimates (quick run)", transform=ax_ratio.transAxes,
+                      ha="right", va="bottom", fontsize=7.5, color="0.3")  # fmt: skip
+    ax_ratio.set_ylabel("Quasi-static / dynamic $-$ 1 (%)")
+    ax_time.set_ylabel("Quasi-static / dynamic $-$ 1 (%)\n(dotted: ±1 %, ±5 %)")
+    return save(figure, path, figure_format)
 
 
 def _wave_colours(values: np.ndarray) -> FieldColours:

@@ -1,7 +1,8 @@
 """Figures of a finite-strain study: the departure from Shtaerman, the deformed section, the impact.
 
 - :func:`plot_finite_ratios`: P/(beta x^q) and p(0)/p_avg against x/a (linear a), the
-  neo-Hookean FEM against the linear FEM on the same mesh and the exact linear values;
+  neo-Hookean FEM against the linear FEM on the same mesh and the exact linear values; depths
+  where the mesh's error is not below the finite-strain effect are open markers (unresolved);
 - :func:`plot_finite_section`: von Mises stress on the deformed r-z section under the rigid
   indenter (pyvista, off-screen, drawn by :mod:`.sections`) at the computed depth nearest the
   finite-strain x_c;
@@ -19,9 +20,19 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 from .sections import plot_field
-from .style import EXACT_COLOUR, FEM_COLOUR, SECOND_COLOUR, WIDTH, save, styled
+from .style import (
+    EXACT_COLOUR,
+    FEM_COLOUR,
+    SECOND_COLOUR,
+    WIDTH,
+    points,
+    save,
+    styled,
+    unresolved,
+)
 
 if TYPE_CHECKING:
     from ..study.finite import FiniteStudyOutcome
@@ -50,48 +61,100 @@ def nearest_step(outcome: FiniteStudyOutcome) -> int:
     return int(np.argmin(np.abs(np.log(depths / x_c))))
 
 
+def _resolution(
+    outcome: FiniteStudyOutcome, finite: np.ndarray, linear: np.ndarray, exact: np.ndarray, key: str
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """Per depth: whether the finite-strain effect on ``key`` is unresolved, and the
+    finite-strain value's estimated absolute error (None without a mesh ladder).
+
+    The effect is |finite / linear FEM - 1| (same mesh: the discretisation error cancels to
+    leading order); the mesh's error is the larger of the linear FEM's relative error against
+    the exact value and the ladder's estimate of the finite-strain value. Unresolved: the error
+    is not below the effect.
+    """
+    error = np.abs(linear / exact - 1)
+    estimated = None
+    if outcome.estimates is not None:
+        relative = np.array([step[key].error for step in outcome.estimates.steps])
+        estimated = relative * np.abs(finite)
+        error = np.maximum(error, relative)
+    return unresolved(finite / linear - 1, error), estimated
+
+
+def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple, key: str) -> None:
+    """The neo-Hookean and linear FEM values of ``key`` over ``x``, unresolved ones open."""
+    finite, linear, exact = (np.asarray(v, dtype=float) for v in values)
+    hidden, error = _resolution(outcome, finite, linear, exact, key)
+    style = (FINITE_COLOUR, "o", "--", "neo-Hookean FEM")
+    points(axes, x, finite, style, error=error, hidden=hidden)
+    points(axes, x, linear, (FEM_COLOUR, "s", ":", "linear FEM, same mesh"), hidden=hidden)
+    handles = [
+        line
+        for line in axes.get_lines()
+        if not line.get_label().startswith("_") and not line.get_label().endswith("unresolved")
+    ]
+    if hidden.any():
+        handles.append(
+            Line2D([], [], color="0.3", marker="o", linestyle="none", markerfacecolor="white",
+                   label="open: unresolved (mesh error ≥ finite-strain effect)")
+        )  # fmt: skip
+    axes.legend(handles=handles, loc="best", fontsize=7.5)
+    _scale_to_resolved(axes, np.concatenate([finite, linear, exact]), np.tile(hidden, 3))
+
+
+def _scale_to_resolved(axes: Any, values: np.ndarray, hidden: np.ndarray) -> None:
+    """y-limits that fit the resolved values and the exact one; an unresolved point beyond
+    them is left out of the picture, and a note says how many."""
+    shown = values[~hidden & np.isfinite(values)]
+    if not shown.size:
+        return
+    low, high = float(shown.min()), float(shown.max())
+    pad = 0.08 * max(high - low, 0.02 * abs(high))
+    low, high = low - pad, high + pad
+    axes.set_ylim(low, high)
+    off = int(np.sum(hidden & ((values < low) | (values > high))))
+    if off:
+        axes.text(
+            0.99, 0.02, f"{off} unresolved points off scale", transform=axes.transAxes,
+            ha="right", va="bottom", fontsize=7.5, color="0.3",
+        )  # fmt: skip
+
+
 @styled
-def plot_finite_ratios(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
-    """P/(beta x^q) (top) and p(0)/p_avg (bottom) against x/a; the finite-strain x_c marked."""
+def plot_finite_ratios(
+    outcome: FiniteStudyOutcome, path: Path | str, *, figure_format: str = "png"
+) -> Path:
+    """P/(beta x^q) (top) and p(0)/p_avg (bottom) against x/a; the finite-strain x_c marked
+    (PNG, and ``figure_format`` "svg" or "pdf" beside it).
+
+    At a depth where the mesh's error is not below the finite-strain effect (see
+    :func:`_resolution`) both FEM points are open markers: unresolved, not data.
+    """
     rows = outcome.rows()
     ratio = np.array([row["depth_to_radius"] for row in rows])
-    linear = outcome.linear_fem.steps
     figure = Figure(figsize=(WIDTH, 5.6), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
     top.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0, label="Shtaerman (linear, exact)")
-    top.plot(
-        ratio, [r["force_ratio"] for r in rows], "o--", color=FINITE_COLOUR, label="neo-Hookean FEM"
-    )
-    top.plot(
-        ratio,
-        [r["force_linear_fem"] / r["force_linear"] for r in rows],
-        "s:",
-        color=FEM_COLOUR,
-        label="linear FEM, same mesh",
-    )
     for level in (0.01, 0.05):
         top.axhspan(1 - level, 1 + level, color="0.5", alpha=0.08, linewidth=0)
+    force = [r["force_ratio"] for r in rows]
+    linear = [r["force_linear_fem"] / r["force_linear"] for r in rows]
+    _panel(top, outcome, ratio, (force, linear, np.ones(len(rows))), "force_ratio")
     top.set_ylabel(r"$P\,/\,\beta x^{q}$")
-    top.legend(loc="best")
     exact = outcome.finite.exact.central_to_mean_ratio
     bottom.axhline(exact, color=EXACT_COLOUR, linewidth=1.0, label=f"linear, exact {exact:.2f}")
-    bottom.plot(
-        ratio,
-        [r["central_to_mean"] for r in rows],
-        "o--",
-        color=FINITE_COLOUR,
-        label="neo-Hookean FEM",
-    )
-    bottom.plot(
-        ratio,
-        [s.central_pressure * np.pi * s.contact_radius**2 / s.force for s in linear],
-        "s:",
-        color=FEM_COLOUR,
-        label="linear FEM, same mesh",
-    )
+    centre = [r["central_to_mean"] for r in rows]
+    linear = [s.central_pressure * np.pi * s.contact_radius**2 / s.force for s in
+              outcome.linear_fem.steps]  # fmt: skip
+    _panel(bottom, outcome, ratio, (centre, linear, np.full(len(rows), exact)), "central_to_mean")
     bottom.set_ylabel(r"$p(0)\,/\,p_{avg}$")
     bottom.set_xlabel("Depth / linear contact radius  $x/a$")
-    bottom.legend(loc="best")
+    _mark_x_c(outcome, top, bottom)
+    bottom.set_xlim(0.0, 1.02 * ratio.max())
+    return save(figure, path, figure_format)
+
+
+def _mark_x_c(outcome: FiniteStudyOutcome, top: Any, bottom: Any) -> None:
     at = outcome.at_maximum()["depth_to_radius"]
     for axes in (top, bottom):
         axes.axvline(at, color="0.4", linewidth=0.8, linestyle="-.")
@@ -103,13 +166,14 @@ def plot_finite_ratios(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
         ha="right",
         fontsize=8.5,
     )
-    bottom.set_xlim(0.0, 1.02 * ratio.max())
-    return save(figure, path)
 
 
 @styled
-def plot_finite_impact(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
-    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain."""
+def plot_finite_impact(
+    outcome: FiniteStudyOutcome, path: Path | str, *, figure_format: str = "png"
+) -> Path:
+    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain (PNG, and
+    ``figure_format`` "svg" or "pdf" beside it)."""
     figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
     for variant, history in outcome.histories.items():
@@ -123,7 +187,7 @@ def plot_finite_impact(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
     top.set_ylim(bottom=0.0)
     bottom.set_ylim(bottom=0.0)
     bottom.set_xlim(left=0.0)
-    return save(figure, path)
+    return save(figure, path, figure_format)
 
 
 @dataclass(frozen=True)

@@ -2,6 +2,9 @@
 
 Every function writes PNGs into a folder and returns ``{caption: path}``; the report shows the
 captions under the pictures, so a caption says everything a reader needs to read its figure.
+``figure_format="svg"`` or ``"pdf"`` also writes each chart in that format beside its PNG (same
+stem). The field pictures (pyvista renders) are PNG only: VTK's vector export embeds the
+rendered bitmap anyway and re-sets the text in another font.
 """
 
 from __future__ import annotations
@@ -18,10 +21,12 @@ from .revolved import plot_revolved
 from .sections import plot_field
 
 if TYPE_CHECKING:
+    from ..study.indentation import IndentationResult
     from ..study.run import StudyOutcome
 
 __all__ = [
     "FIELD_FIGURES",
+    "contact_figures",
     "paper_figures",
     "study_convergence_figures",
     "study_field_figures",
@@ -44,10 +49,17 @@ IMPACT_CONTACT_CAPTION = (
     "x^(1-1/n) are infinitely steep and a tiny shift of t_y swamps the comparison; differences "
     "beyond it are marked by triangles on its edge and their extremes written in the panel"
 )
-CONVERGENCE_CAPTION = "Mesh convergence: errors against the exact solution"
+FORCE_DEPTH_CAPTION = "Force against depth: FEM and Shtaerman's P = βx^q"
+PRESSURE_CAPTION = "Contact pressure p(r)/p_avg: FEM nodal values and the exact profile"
+CONVERGENCE_CAPTION = (
+    "Mesh convergence: relative errors against the exact solution over the element size, "
+    "each mesh's number of unknowns on the top axis"
+)
 
 
-def study_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
+def study_figures(
+    outcome: StudyOutcome, folder: Path | str, figure_format: str = "png"
+) -> dict[str, Path]:
     """The curve figures of one study, written into ``folder``.
 
     ``force_depth.png`` and ``pressure.png`` (:func:`plot_force_depth`, :func:`plot_pressure`),
@@ -60,31 +72,50 @@ def study_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
         The study: its ``contact``, ``histories`` and ``exact`` are drawn.
     folder : path-like
         Where the PNGs go (created if missing).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each figure in that format beside its PNG.
 
     Returns
     -------
     dict of str to pathlib.Path
         Caption to PNG path.
     """
-    folder = Path(folder)
+    folder, fmt = Path(folder), {"figure_format": figure_format}
     contact, histories, exact = outcome.contact, outcome.histories, outcome.exact
     return {
-        "Force against depth: FEM and Shtaerman's P = βx^q": plot_force_depth(
-            contact, folder / "force_depth.png"
-        ),
-        "Contact pressure p(r)/p_avg: FEM nodal values and the exact profile": plot_pressure(
-            contact, folder / "pressure.png"
-        ),
+        **contact_figures(contact, folder, figure_format),
         "Impact: approach x/x_c and force P/P_c against t/t_c (the paper's Fig. 3)": (
-            plot_impact_motion(histories, exact, folder / "impact_motion.png")
+            plot_impact_motion(histories, exact, folder / "impact_motion.png", **fmt)
         ),
         IMPACT_CONTACT_CAPTION: plot_impact_contact(
-            histories, exact, folder / "impact_contact.png"
+            histories, exact, folder / "impact_contact.png", **fmt
         ),
     }
 
 
-def study_convergence_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
+def contact_figures(
+    result: IndentationResult, folder: Path | str, figure_format: str = "png"
+) -> dict[str, Path]:
+    """The curve figures of one FEM contact curve (``contact --out``), written into ``folder``.
+
+    ``force_depth.png`` and ``pressure.png`` (:func:`plot_force_depth`, :func:`plot_pressure`),
+    and with ``figure_format`` "svg" or "pdf" each also in that format beside its PNG.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Caption to PNG path.
+    """
+    folder, fmt = Path(folder), {"figure_format": figure_format}
+    return {
+        FORCE_DEPTH_CAPTION: plot_force_depth(result, folder / "force_depth.png", **fmt),
+        PRESSURE_CAPTION: plot_pressure(result, folder / "pressure.png", **fmt),
+    }
+
+
+def study_convergence_figures(
+    outcome: StudyOutcome, folder: Path | str, figure_format: str = "png"
+) -> dict[str, Path]:
     """``convergence.png`` (:func:`plot_convergence`) if the study has a convergence study.
 
     Parameters
@@ -93,6 +124,8 @@ def study_convergence_figures(outcome: StudyOutcome, folder: Path | str) -> dict
         The study; its ``convergence`` is drawn.
     folder : path-like
         Where the PNG goes (created if missing).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside its PNG.
 
     Returns
     -------
@@ -101,8 +134,11 @@ def study_convergence_figures(outcome: StudyOutcome, folder: Path | str) -> dict
     """
     if outcome.convergence is None:
         return {}
+    path = Path(folder) / "convergence.png"
     return {
-        CONVERGENCE_CAPTION: plot_convergence(outcome.convergence, Path(folder) / "convergence.png")
+        CONVERGENCE_CAPTION: plot_convergence(
+            outcome.convergence, path, figure_format=figure_format
+        )
     }
 
 
@@ -133,7 +169,9 @@ def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, 
     return made
 
 
-def paper_figures(folder: Path | str, exponents: Iterable[float] = (1.5,)) -> dict[str, Path]:
+def paper_figures(
+    folder: Path | str, exponents: Iterable[float] = (1.5,), figure_format: str = "png"
+) -> dict[str, Path]:
     """The figures that depend on no study, written into ``folder``: the Ateb functions of
     the impact for each indenter exponent of the run (``ateb.png`` for the paper's n = 3/2,
     against its Tables 1-2; ``ateb_n<n>.png`` for any other).
@@ -144,24 +182,26 @@ def paper_figures(folder: Path | str, exponents: Iterable[float] = (1.5,)) -> di
         Where the PNGs go (created if missing).
     exponents : iterable of float
         The studies' indenter exponents n (repeats ignored).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each figure in that format beside its PNG.
 
     Returns
     -------
     dict of str to pathlib.Path
         Caption to PNG path.
     """
-    made = {}
+    made, fmt = {}, {"figure_format": figure_format}
     for exponent in sorted(set(exponents)):
         if exponent == PAPER_EXPONENT:
             caption = (
                 "Ateb functions of the impact against the paper's Tables 1-2 and approximations"
             )
-            made[caption] = plot_ateb(Path(folder) / "ateb.png")
+            made[caption] = plot_ateb(Path(folder) / "ateb.png", **fmt)
             continue
         q = (exponent + 1.0) / exponent
         caption = (
             f"Ateb functions of the impact for n = {exponent:g} (q = {q:.4g}): x/x_c in "
             "compression, the velocity in restitution"
         )
-        made[caption] = plot_ateb(Path(folder) / f"ateb_n{exponent:g}.png", exponent)
+        made[caption] = plot_ateb(Path(folder) / f"ateb_n{exponent:g}.png", exponent, **fmt)
     return made

@@ -65,6 +65,7 @@ def _impact_figure(
     reference: ImpactResult,
     path: Path | str,
     quantities: tuple[tuple[str, str, str], ...],
+    figure_format: str = "png",
 ) -> Path:
     """Two normalised histories per variant, and their difference from the exact solution."""
     if not 0 < len(histories) <= len(VARIANT_STYLES):
@@ -91,7 +92,7 @@ def _impact_figure(
     bottom.set_xlim(0.0, end)
     bottom.set_ylim(_difference_limits(bottom, end))
     _mark_off_scale(bottom, {c: q[2] for q, c in zip(quantities, colours, strict=True)})
-    return save(figure, path)
+    return save(figure, path, figure_format)
 
 
 def _off_scale(axes: Axes) -> list[tuple[str, float, float]]:
@@ -157,7 +158,11 @@ def _difference_limits(axes: Axes, end: float, margin: float = 0.03) -> tuple[fl
 
 @styled
 def plot_impact_motion(
-    histories: Mapping[str, ImpactHistory], reference: ImpactResult, path: Path | str
+    histories: Mapping[str, ImpactHistory],
+    reference: ImpactResult,
+    path: Path | str,
+    *,
+    figure_format: str = "png",
 ) -> Path:
     """Write the paper's Fig. 3: x(t)/x_c and P(t)/P_c against t/t_c, variants overlaid.
 
@@ -172,18 +177,24 @@ def plot_impact_motion(
         history minus this exact solution at the same instants (% of the maximum).
     path : path-like
         PNG to write (1280 x 1000 pixels).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
 
     Returns
     -------
     pathlib.Path
         ``path``.
     """
-    return _impact_figure(histories, reference, path, _MOTION)
+    return _impact_figure(histories, reference, path, _MOTION, figure_format)
 
 
 @styled
 def plot_impact_contact(
-    histories: Mapping[str, ImpactHistory], reference: ImpactResult, path: Path | str
+    histories: Mapping[str, ImpactHistory],
+    reference: ImpactResult,
+    path: Path | str,
+    *,
+    figure_format: str = "png",
 ) -> Path:
     """Write the paper's Fig. 4: a(t)/a_c and p(0,t)/p_c against t/t_c, variants overlaid.
 
@@ -200,4 +211,4 @@ def plot_impact_contact(
     pathlib.Path
         ``path``.
     """
-    return _impact_figure(histories, reference, path, _CONTACT)
+    return _impact_figure(histories, reference, path, _CONTACT, figure_format)

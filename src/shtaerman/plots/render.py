@@ -23,6 +23,8 @@ from matplotlib import font_manager
 from vtkmodules.vtkCommonCore import vtkObject
 from vtkmodules.vtkRenderingCore import vtkTextProperty
 
+from ..validation import InputError
+
 __all__ = ["FONT_SIZE", "WINDOW_SIZE", "picture", "quiet_vtk", "save", "use_font"]
 
 WINDOW_SIZE = (1600, 1000)
@@ -68,8 +70,14 @@ def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
 
 
 def save(plotter: pv.Plotter, path: Path | str) -> Path:
-    """Render ``plotter`` into the PNG ``path`` (parent folders created); returns the path."""
+    """Render ``plotter`` into the PNG ``path`` (parent folders created); returns the path.
+
+    PNG only (:class:`InputError` for another suffix): VTK's SVG/PDF export embeds the same
+    rendered bitmap and re-sets the text in another font, so it would add nothing.
+    """
     path = Path(path)
+    if path.suffix.lower() != ".png":
+        raise InputError(f"field pictures are PNG only: path must end in .png, got {str(path)!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
     plotter.screenshot(str(path))
     return path

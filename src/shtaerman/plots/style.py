@@ -1,7 +1,10 @@
 """The look shared by every matplotlib figure: colours, rc style, SI prefixes, saving.
 
 Every figure function takes result objects and a path, writes one PNG (200 dpi, no title: the
-caption is the reader's) and returns the path. Figures use :class:`matplotlib.figure.Figure`
+caption is the reader's) and returns the path. With ``figure_format="svg"`` or ``"pdf"`` it also
+writes the same figure as vector graphics beside the PNG (same stem; text kept as text, so a
+paper's editor can restyle it); the PNG stays, as the reports embed it. A path ending in .svg or
+.pdf writes that format alone. Figures use :class:`matplotlib.figure.Figure`
 directly with the Agg canvas and take their style from :func:`styled` (a
 :func:`matplotlib.rc_context`): nothing global (pyplot, the backend, rcParams) is touched.
 
@@ -19,9 +22,14 @@ from pathlib import Path
 from typing import Any
 
 import matplotlib as mpl
+import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.axis import Axis
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+from ..validation import InputError
+from .formats import FIGURE_FORMATS, check_figure_format
 
 __all__ = [
     "APPROXIMATION_COLOUR",
@@ -29,17 +37,21 @@ __all__ = [
     "DPI",
     "EXACT_COLOUR",
     "FEM_COLOUR",
+    "FIGURE_FORMATS",
     "PAPER_COLOUR",
     "SECOND_COLOUR",
     "STYLE",
     "WIDTH",
+    "check_figure_format",
     "fraction",
     "percent",
     "plain_log",
+    "points",
     "save",
     "sci",
     "si_prefix",
     "styled",
+    "unresolved",
 ]
 
 DPI = 200
@@ -71,6 +83,8 @@ STYLE = {
     "legend.frameon": False,
     "mathtext.fontset": "dejavusans",
     "savefig.dpi": DPI,
+    "svg.fonttype": "none",
+    "pdf.fonttype": 42,
 }
 _PREFIXES = {-9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
 
@@ -108,12 +122,29 @@ def styled(function: Callable[..., Path]) -> Callable[..., Path]:
     return wrapper
 
 
-def save(figure: Figure, path: Path | str) -> Path:
-    """Write ``figure`` as a PNG at :data:`DPI` (parent folders created); returns the path."""
+def save(figure: Figure, path: Path | str, figure_format: str = "png") -> Path:
+    """Write ``figure`` to ``path`` at :data:`DPI` (parent folders created); returns the path.
+
+    The format is the path's suffix (.png, .svg or .pdf); ``figure_format`` "svg" or "pdf"
+    adds that format beside it (same stem), e.g. ``f.png`` and ``f.pdf``.
+    """
     path = Path(path)
+    check_figure_format(figure_format)
+    suffix = path.suffix.lower().lstrip(".")
+    if suffix not in FIGURE_FORMATS:
+        raise InputError(f"figure path must end in .png, .svg or .pdf, got {str(path)!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=DPI)
+    with mpl.rc_context(STYLE):
+        figure.savefig(path, dpi=DPI, metadata=_metadata(suffix))
+        if figure_format not in ("png", suffix):
+            twin = path.with_suffix(f".{figure_format}")
+            figure.savefig(twin, dpi=DPI, metadata=_metadata(figure_format))
     return path
+
+
+def _metadata(figure_format: str) -> dict[str, object] | None:
+    """No creation date in vector files: the same figure gives the same bytes."""
+    return {"Date": None} if figure_format in ("svg", "pdf") else None
 
 
 def plain_log(axis: Axis) -> None:
@@ -140,3 +171,43 @@ def sci(value: float, digits: int = 5) -> str:
 def percent(value: float) -> str:
     """A relative difference in per cent with its sign, e.g. ``+0.012 %``."""
     return f"{100 * value:+.3f} %"
+
+
+def unresolved(effect: np.ndarray, error: np.ndarray | None) -> np.ndarray:
+    """Where an estimated ``error`` is not below the ``effect`` it should resolve (same units;
+    NaN errors count as unresolved); all False without errors."""
+    effect = np.abs(np.asarray(effect, dtype=float))
+    if error is None:
+        return np.zeros(effect.shape, dtype=bool)
+    with np.errstate(invalid="ignore"):
+        return ~(np.asarray(error, dtype=float) < effect)
+
+
+def points(
+    axes: Axes,
+    x: np.ndarray,
+    y: np.ndarray,
+    style: tuple[str, str, str, str],
+    *,
+    error: np.ndarray | None = None,
+    hidden: np.ndarray | None = None,
+) -> None:
+    """Data points joined by a line, with error bars if given; the ``hidden`` ones (unresolved:
+    their error is not below the effect shown) as open markers, not joined to the line.
+
+    ``style`` = (colour, marker, line style, label); the open markers get their own legend
+    entry, "<label>, unresolved".
+    """
+    colour, marker, line, label = style
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    hidden = np.zeros(y.shape, dtype=bool) if hidden is None else np.asarray(hidden, dtype=bool)
+    shown = np.where(hidden, np.nan, y)
+    axes.plot(x, shown, color=colour, marker=marker, linestyle=line, label=label)
+    if error is not None:
+        axes.errorbar(x, y, yerr=np.asarray(error, dtype=float), fmt="none", ecolor=colour,
+                      capsize=2)  # fmt: skip
+    if hidden.any():
+        axes.plot(
+            x[hidden], y[hidden], color=colour, marker=marker, linestyle="none",
+            markerfacecolor="white", label=f"{label}, unresolved",
+        )  # fmt: skip

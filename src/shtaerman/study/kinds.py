@@ -9,8 +9,9 @@ three functions, found by name so that no module imports another kind's code (or
 - ``run(study, quick, progress) -> outcome``: compute one study. The outcome has ``study``,
   ``checks`` (list of :class:`~shtaerman.study.checks.Check`), ``passed``, ``seconds`` and
   ``document()``: its JSON for results.json.
-- ``write(outcome, folder, root) -> (files, figures)`` (in :mod:`shtaerman.output`): its files
-  and pictures, as ``{stem: path}`` and ``{caption: path}`` relative to ``root``.
+- ``write(outcome, folder, root, figure_format) -> (files, figures)`` (in
+  :mod:`shtaerman.output`): its files and pictures, as ``{stem: path}`` and ``{caption: path}``
+  relative to ``root`` (PNGs; ``figure_format`` "svg" or "pdf" adds vector charts beside them).
 
 Its sweep roles (``parameters``, ``outputs``, ``case``, ...) are registered by
 :mod:`shtaerman.sweep.kinds` with :func:`register_kind`, into the same entry.

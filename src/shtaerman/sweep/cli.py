@@ -12,6 +12,7 @@ import signal
 import sys
 from pathlib import Path
 
+from ..plots.formats import add_figure_format
 from ..validation import InputError
 
 __all__ = ["add_parser", "register", "run"]
@@ -50,6 +51,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
         help="complete the sweep in DIR: compute only the cases without a saved result",
     )
     p.add_argument("--force", action="store_true", help="replace an existing result folder")
+    add_figure_format(p)
     p.set_defaults(handler=run)
     return p
 
@@ -89,6 +91,7 @@ def run(args: argparse.Namespace) -> int:
             scheduler=args.scheduler,
             resume=args.resume,
             force=args.force,
+            figure_format=args.figure_format,
         )
     except KeyboardInterrupt:  # before the sweep's own handler is in place
         print(f"shtaerman: sweep {spec.name!r} interrupted (SIGINT)", file=sys.stderr)

@@ -38,6 +38,7 @@ from pathlib import Path
 from typing import Any
 
 from ..output.files import file_mode, json_safe, missing_folder, probe_writable
+from ..plots.formats import check_figure_format
 from ..validation import InputError
 from .kinds import unit_suffix
 from .spec import Case, SweepSpec
@@ -444,6 +445,7 @@ def run_sweep(
     retries: int = 2,
     progress: bool | None = None,
     figures: bool = True,
+    figure_format: str = "png",
 ) -> SweepOutcome:
     """Run every case of ``spec`` on a dask cluster and write the result folder ``out``.
 
@@ -468,6 +470,8 @@ def run_sweep(
         Progress bar on stderr; default: when stderr is a terminal and ``CI`` is not set.
     figures : bool
         Draw ``out/figures``.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each figure in that format beside its PNG.
 
     Returns
     -------
@@ -486,6 +490,7 @@ def run_sweep(
         raise InputError("workers: applies to the local cluster only, not to --scheduler")
     if workers is not None and workers < 1:
         raise InputError(f"workers must be an integer >= 1, got {workers!r}")
+    check_figure_format(figure_format)
     start = time.perf_counter()
     out = Path(out).expanduser()
     cases = spec.cases()
@@ -521,7 +526,7 @@ def run_sweep(
             warned=sum(bool(r.get("warnings")) for r in records.values()),
         )
         if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
-            _write_results(spec, out, cases, records, outcome, figures)
+            _write_results(spec, out, cases, records, outcome, figures and figure_format)
     return outcome
 
 
@@ -638,8 +643,9 @@ def _write_results(
     cases: list[Case],
     records: Mapping[int, dict],
     outcome: SweepOutcome,
-    figures: bool,
+    figures: str | bool,
 ) -> None:
+    """cases.csv, results.json and (``figures``: False or the figure format) the figures."""
     from ..version import __version__
 
     kind = spec.kind_spec
@@ -679,6 +685,6 @@ def _write_results(
         from .figures import sweep_figures
 
         try:
-            sweep_figures(out / "results.json", out / "figures")
+            sweep_figures(out / "results.json", out / "figures", figures)
         except Exception as error:  # the results are safe; say what went wrong with the figures
             warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)

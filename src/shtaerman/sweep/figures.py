@@ -1,15 +1,18 @@
 """Figures of a finished sweep, drawn from its ``results.json`` only.
 
-One PNG per output: a curve over the axis for a 1-axis sweep, a heat map (values written in
-the cells) for a 2-axis sweep. Failed cases are gaps (curves) or grey cells (heat maps). Sweeps
-over 3 or more axes get no figures (``results.json`` and ``cases.csv`` hold everything). The
-figures use :class:`matplotlib.figure.Figure` with the Agg canvas: no pyplot state, no display.
+One PNG (200 dpi) per output, and an SVG or PDF beside it if asked: a curve over the axis for
+a 1-axis sweep, a heat map (values written in the cells) for a 2-axis sweep. Failed cases are
+gaps (curves) or grey cells (heat maps). Sweeps over 3 or more axes get no figures
+(``results.json`` and ``cases.csv`` hold everything). Titles and axes are the quantities'
+readable labels (:mod:`shtaerman.plots.labels`); fractions are shown in per cent. The figures
+use :class:`matplotlib.figure.Figure` with the Agg canvas: no pyplot state, no display.
 
 A relative difference with levels (the kind's ``levels``, e.g. 1 % and 5 %) and an estimated
 error (the output ``error_<name>``) shows value ± error (error bars, or in the cells), and its
 heat map draws |value| = level as a contour only between cells whose error resolves the level
 (:func:`shtaerman.study.limits.resolved`: below a fifth of it), as the dynamic study states its
-limits.
+limits. A value whose error is not below its own size is unresolved: an open marker on a curve,
+a hatched cell without a colour on a heat map.
 """
 
 from __future__ import annotations
@@ -22,14 +25,15 @@ from typing import Any
 import matplotlib as mpl
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.patches import Rectangle
 
+from ..plots.formats import check_figure_format
+from ..plots.labels import LABELS, axis_label, describe
+from ..plots.labels import scale as shown_scale
+from ..plots.style import points, save, si_prefix
 from ..study.limits import RESOLUTION, resolved
 
 __all__ = ["sweep_figures"]
-
-
-def _label(name: str, unit: str) -> str:
-    return f"{name} ({unit})" if unit else name
 
 
 def _numeric(values: list[Any]) -> bool:
@@ -75,20 +79,59 @@ def _contours(ax: Any, grid: np.ndarray, errors: np.ndarray, levels: list[float]
             ax.clabel(drawn, fmt={level: f"{100 * level:g} %"}, fontsize=8)
 
 
-def _save(figure: Figure, path: Path) -> Path:
-    figure.savefig(path, dpi=120)
-    return path
+def _unresolved(values: np.ndarray, errors: np.ndarray | None) -> np.ndarray:
+    """Cases whose estimated error is not below the value's own size (an effect not seen)."""
+    if errors is None:
+        return np.zeros(values.shape, dtype=bool)
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(values) & ~(errors < np.abs(values))
 
 
-def _curve(results: dict, name: str, unit: str, folder: Path) -> Path:
+PREFIXED = ("m", "s", "N", "Pa")
+"""SI units shown with a prefix that puts the values in [1, 1000) (mm, ms, kN, MPa)."""
+
+
+def _display(name: str, unit: str, values: Any) -> tuple[float, str]:
+    """Factor from stored to shown values of ``name`` and their axis label: per cent for a
+    fraction, a prefixed SI unit for a length, time, force or stress, else as stored."""
+    label = describe(name)
+    if label.percent:
+        return shown_scale(name), axis_label(name)
+    unit = label.unit if name in LABELS else unit
+    size = np.abs(np.asarray(values, dtype=float))
+    size = size[np.isfinite(size) & (size > 0)]
+    if unit not in PREFIXED or not size.size:
+        return 1.0, axis_label(name, unit)
+    factor, prefixed = si_prefix(float(np.median(size)), unit)
+    return factor, f"{label.text} ({prefixed})"
+
+
+def _value_text(value: float, name: str, factor: float) -> str:
+    return f"{factor * value:.3g}" + (" %" if describe(name).percent else "")
+
+
+def _title(results: dict, name: str) -> str:
+    spec = results["spec"]
+    return f"{describe(name).text}\n{spec['name']} sweep ({spec['kind']})"
+
+
+def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str) -> Path:
     spec = results["spec"]
     [(axis, values)] = spec["axes"].items()
     axis_unit = results["kind"]["parameter_units"].get(axis, "")
     x, ticks, log = _positions(values)
-    y = _output_values(results["cases"], name)
+    x_factor, x_label = _display(axis, axis_unit, x if ticks is None else [])
+    x = x_factor * x
+    raw, errors = _output_values(results["cases"], name), _errors(results, name)
+    factor, y_label = _display(name, unit, raw)
+    y, open_ = factor * raw, _unresolved(raw, errors)
     figure = Figure(figsize=(6.0, 4.0), layout="constrained")
     ax = figure.add_subplot()
-    ax.errorbar(x, y, yerr=_errors(results, name), fmt="o-", color="C0", capsize=3)
+    bars = None if errors is None else factor * errors
+    points(ax, x, y, ("C0", "o", "-", "_nolegend_"), error=bars, hidden=open_)
+    if open_.any():
+        ax.lines[-1].set_label("unresolved: estimated error ≥ |value|")
+        ax.legend(loc="best", fontsize=8)
     failed = ~np.isfinite(y)
     if failed.any():
         for position in x[failed]:
@@ -101,46 +144,70 @@ def _curve(results: dict, name: str, unit: str, folder: Path) -> Path:
         finite = y[np.isfinite(y)]
         if finite.max() / finite.min() >= 100.0:
             ax.set_yscale("log")
-    ax.set_xlabel(_label(axis, axis_unit))
-    ax.set_ylabel(_label(name, unit))
-    ax.set_title(f"{spec['name']} ({spec['kind']}): {name}")
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
+    ax.set_title(_title(results, name), fontsize=9)
     ax.grid(True, alpha=0.3)
-    return _save(figure, folder / f"{name}.png")
+    return save(figure, folder / f"{name}.png", figure_format)
 
 
-def _heat_map(results: dict, name: str, unit: str, folder: Path) -> Path:
+def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: str) -> Path:
     spec = results["spec"]
     (row_axis, rows), (col_axis, cols) = spec["axes"].items()
     units = results["kind"]["parameter_units"]
     grid = _output_values(results["cases"], name).reshape(len(rows), len(cols))
-    figure = Figure(figsize=(1.2 * len(cols) + 3.0, 0.6 * len(rows) + 2.5), layout="constrained")
+    errors = _errors(results, name)
+    errors = None if errors is None else errors.reshape(grid.shape)
+    open_ = _unresolved(grid, errors)
+    figure = Figure(figsize=(1.2 * len(cols) + 3.0, 0.6 * len(rows) + 2.8), layout="constrained")
     ax = figure.add_subplot()
-    masked = np.ma.masked_invalid(grid)
+    factor, label = _display(name, unit, grid)
+    masked = np.ma.masked_where(~np.isfinite(grid) | open_, factor * grid)
     cmap = mpl.colormaps["viridis"].with_extremes(bad="0.8")
     image = ax.imshow(masked, cmap=cmap, aspect="auto", origin="lower")
-    figure.colorbar(image, ax=ax, label=_label(name, unit))
-    ax.set_xticks(range(len(cols)), [f"{v:g}" if _numeric([v]) else str(v) for v in cols])
-    ax.set_yticks(range(len(rows)), [f"{v:g}" if _numeric([v]) else str(v) for v in rows])
-    ax.set_xlabel(_label(col_axis, units.get(col_axis, "")))
-    ax.set_ylabel(_label(row_axis, units.get(row_axis, "")))
+    figure.colorbar(image, ax=ax, label=label)
+    for axis, values, set_ticks, set_label in (
+        (col_axis, cols, ax.set_xticks, ax.set_xlabel),
+        (row_axis, rows, ax.set_yticks, ax.set_ylabel),
+    ):
+        scale, text = _display(axis, units.get(axis, ""), values if _numeric(values) else [])
+        ticks = [f"{scale * v:g}" if _numeric([v]) else str(v) for v in values]
+        set_ticks(range(len(values)), ticks)
+        set_label(text)
+    _cell_texts(ax, masked, (grid, errors, factor), name)
+    for i, j in zip(*np.nonzero(open_), strict=True):
+        ax.add_patch(
+            Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.55", hatch="///")
+        )
+    note = _levels_note(results, name, errors)
+    ax.set_title(_title(results, name) + note, fontsize=9)
+    if errors is not None:
+        _contours(ax, grid, errors, results["kind"]["levels"][name])
+    return save(figure, folder / f"{name}.png", figure_format)
+
+
+def _cell_texts(ax: Any, masked: np.ma.MaskedArray, stored: tuple, name: str) -> None:
+    """Each cell's value (± its estimated error), "failed", or "unresolved" and its error;
+    ``stored`` = (values, errors or None, factor to the shown unit)."""
+    grid, errors, factor = stored
     finite = masked.compressed()
     middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
-    errors = _errors(results, name)
+    hidden = np.ma.getmaskarray(masked)
     for (i, j), value in np.ndenumerate(grid):
-        text = "failed" if not math.isfinite(value) else f"{value:.3g}"
+        text = "failed" if not math.isfinite(value) else _value_text(value, name, factor)
         if errors is not None and math.isfinite(value):
-            text += f"\n± {errors[i * len(cols) + j]:.1g}"
-        colour = "black" if not math.isfinite(value) or value > middle else "white"
-        ax.text(j, i, text, ha="center", va="center", fontsize=8, color=colour)
-    note = _levels_note(results, name, errors)
-    ax.set_title(f"{spec['name']} ({spec['kind']}): {name}{note}", fontsize=9 if note else None)
-    if errors is not None:
-        _contours(ax, grid, errors.reshape(grid.shape), results["kind"]["levels"][name])
-    return _save(figure, folder / f"{name}.png")
+            error = f"± {factor * errors[i, j]:.1g}" + (" %" if factor != 1.0 else "")
+            text = f"unresolved\n{error}" if hidden[i, j] else f"{text}\n{error}"
+        dark = hidden[i, j] or factor * value > middle
+        box = {"facecolor": "white", "edgecolor": "none", "pad": 1} if hidden[i, j] else None
+        ax.text(
+            j, i, text, ha="center", va="center", fontsize=8,
+            color="black" if dark else "white", bbox=box, zorder=3,
+        )  # fmt: skip
 
 
 def _levels_note(results: dict, name: str, errors: np.ndarray | None) -> str:
-    """The title's second line for a difference with levels: what the contours mean."""
+    """The title's next lines for a difference with levels: what the contours mean."""
     levels = results["kind"].get("levels", {}).get(name)
     if not levels:
         return ""
@@ -149,12 +216,14 @@ def _levels_note(results: dict, name: str, errors: np.ndarray | None) -> str:
         return f"\nno error estimates: no {words} contours"
     worst = np.nanmax(errors) if np.isfinite(errors).any() else math.nan
     return (
-        f"\n± estimated error (worst {worst:.1g});\ncontours |value| = {words} "
-        f"where the error < level / {RESOLUTION:g}"
+        f"\n± estimated error (worst {shown_scale(name) * worst:.1g} %); contours |value| = "
+        f"{words}\nwhere the error < level / {RESOLUTION:g}; hatched: error ≥ |value|"
     )
 
 
-def sweep_figures(results_file: str | Path, folder: str | Path) -> list[Path]:
+def sweep_figures(
+    results_file: str | Path, folder: str | Path, figure_format: str = "png"
+) -> list[Path]:
     """Draw one figure per output of the sweep in ``results_file`` into ``folder``.
 
     Parameters
@@ -163,12 +232,15 @@ def sweep_figures(results_file: str | Path, folder: str | Path) -> list[Path]:
         A sweep's ``results.json``.
     folder : path
         Created if needed.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each figure in that format beside its PNG.
 
     Returns
     -------
     list of Path
         The PNG files written (none for a sweep over 3 or more axes).
     """
+    check_figure_format(figure_format)
     results = json.loads(Path(results_file).read_text())
     axes = results["spec"]["axes"]
     if len(axes) not in (1, 2):
@@ -176,4 +248,5 @@ def sweep_figures(results_file: str | Path, folder: str | Path) -> list[Path]:
     draw = _curve if len(axes) == 1 else _heat_map
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    return [draw(results, name, unit, folder) for name, unit in results["kind"]["outputs"].items()]
+    outputs = results["kind"]["outputs"].items()
+    return [draw(results, name, unit, folder, figure_format) for name, unit in outputs]

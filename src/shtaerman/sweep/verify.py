@@ -35,14 +35,16 @@ raised, so that the worker does not log the refusal as a failed computation with
 traceback."""
 
 
-def verify_task(study: Any, stage: str, quick: bool) -> dict[str, object]:
+def verify_task(
+    study: Any, stage: str, quick: bool, figure_format: str = "png"
+) -> dict[str, object]:
     """One study, run and written (a dask task): its results.json entry, or
     {:data:`INPUT_ERROR`: message} for an input the FEM refused."""
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1, user_api="blas"):
         try:
-            return study_entry(run_study(study, quick=quick), Path(stage))
+            return study_entry(run_study(study, quick=quick), Path(stage), figure_format)
         except InputError as error:
             return {INPUT_ERROR: str(error)}
 
@@ -55,6 +57,7 @@ def run_verification_on_dask(
     workers: int | None = None,
     force: bool = False,
     progress: Callable[[str], None] | None = None,
+    figure_format: str = "png",
 ) -> dict[str, object]:
     """Run the studies as dask tasks on a local cluster and write ``out``; the results document.
 
@@ -70,6 +73,8 @@ def run_verification_on_dask(
         Worker processes (default: the cores).
     progress : callable, optional
         Receives one line per finished study.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each chart in that format beside its PNG.
     """
     from distributed import as_completed
 
@@ -78,8 +83,9 @@ def run_verification_on_dask(
     with staged_folder(out, force=force) as stage:
         with dask_client(workers) as client:
             report(f"{len(studies)} studies on {len(client.scheduler_info()['workers'])} workers")
+            task = (str(stage), quick, figure_format)
             futures = {
-                client.submit(verify_task, study, str(stage), quick, pure=False): study.name
+                client.submit(verify_task, study, *task, pure=False): study.name
                 for study in submission_order(studies)
             }
             entries = {}
@@ -94,4 +100,4 @@ def run_verification_on_dask(
                 verdict = "PASS" if entry["passed"] else "FAIL"
                 report(f"{name}: {verdict} (computed in {entry['seconds']:.1f} s)")
         in_file_order = {study.name: entries[study.name] for study in studies}
-        return finish_verification(stage, in_file_order, quick=quick)
+        return finish_verification(stage, in_file_order, quick=quick, figure_format=figure_format)
