@@ -235,22 +235,29 @@ _MESH = {"contact": 1.0 / 150.0, "finite-strain": 1.0 / 60.0, "dynamic": 1.0 / 4
 
 VOCABULARY: tuple[Entry, ...] = (
     # --- the case ---------------------------------------------------------------------------
-    Entry("mass", "kg", "striker mass M", "mass M", 0.7, ("impact", "finite-strain", "dynamic")),
+    Entry(
+        "mass",
+        "kg",
+        "striker mass M",
+        "Striker mass M",
+        0.7,
+        ("impact", "finite-strain", "dynamic"),
+    ),
     Entry(
         "velocity",
         "m/s",
         "approach velocity v0 (a dynamic study takes a list)",
-        "approach velocity v0",
+        "Approach velocity v0",
         3.0,
         ("impact", "finite-strain", "dynamic"),
         old_names=("velocities",),
     ),
-    Entry("shape_coefficient", "m^(1-n)", "A in z = A r^n", "shape coefficient A", 5.0, KIND_NAMES),
+    Entry("shape_coefficient", "m^(1-n)", "A in z = A r^n", "Shape coefficient A", 5.0, KIND_NAMES),
     Entry(
         "exponent",
         "",
         "n in z = A r^n",
-        "exponent n",
+        "Profile exponent n",
         1.5,
         KIND_NAMES,
         valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1.0)),
@@ -259,7 +266,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "E1",
         "Pa",
         "striker Young's modulus",
-        "striker modulus E1",
+        "Striker Young's modulus E1",
         2e11,
         ("impact",),
         infinite=True,
@@ -269,7 +276,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "nu1",
         "",
         "striker Poisson's ratio",
-        "striker Poisson's ratio nu1",
+        "Striker Poisson's ratio \N{GREEK SMALL LETTER NU}1",
         0.25,
         ("impact",),
         valid=POISSON,
@@ -279,7 +286,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "E2",
         "Pa",
         "half-space Young's modulus",
-        "half-space modulus E2",
+        "Half-space Young's modulus E2",
         7.5e6,
         KIND_NAMES,
         valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1e-3, 1e100, low_open=False)),
@@ -289,7 +296,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "nu2",
         "",
         "half-space Poisson's ratio (the FEM: [0, 0.5])",
-        "half-space Poisson's ratio nu2",
+        "Half-space Poisson's ratio \N{GREEK SMALL LETTER NU}2",
         0.5,
         KIND_NAMES,
         valid=POISSON,
@@ -300,7 +307,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "density2",
         "kg/m^3",
         "half-space density (the paper gives none; 1100 is natural rubber)",
-        "half-space density rho2",
+        "Half-space density \N{GREEK SMALL LETTER RHO}2",
         1100.0,
         ("dynamic",),
         valid=Range(1e-6, 1e6, low_open=False),
@@ -310,7 +317,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "depths",
         "m",
         "indentation depths (default: up to the impact's x_c)",
-        "depth x",
+        "Depth x",
         None,
         ("contact", "finite-strain"),
         type="floats",
@@ -327,12 +334,15 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(
-        "refine", "divide the whole mesh size field (and the time step) by K", "refinement K", 1.0
+        "refine",
+        "divide the whole mesh size field (and the time step) by K",
+        "Mesh refinement factor K",
+        1.0,
     ),
     _numeric(
         "mesh_size",
         "smallest element size / refined radius",
-        "mesh size / refined radius",
+        "Smallest element size / refined-zone radius",
         _MESH["contact"],
         by_kind=_MESH,
         valid_by_kind={"dynamic": Range(0.0, 0.2)},
@@ -341,7 +351,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "mesh_margin",
         "refined radius / largest contact radius",
-        "refined radius / contact radius",
+        "Refined-zone radius / contact radius",
         1.25,
         valid=Range(1.0, 10.0),
         valid_by_kind={"dynamic": Range(1.0)},
@@ -351,7 +361,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "domain_factor",
         "domain radius / refined radius",
-        "domain radius / refined radius",
+        "Domain radius / refined-zone radius",
         1e5,
         valid=Range(1e2, 1e7, low_open=False),
         by_kind={"dynamic": 1e4},
@@ -360,7 +370,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "growth",
         "element size growth per unit distance from the refined zone",
-        "element growth",
+        "Element size growth from the refined zone",
         0.25,
         valid=FRACTION,
         by_kind={"finite-strain": 0.3, "dynamic": 0.2},
@@ -368,14 +378,14 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "axis_size",
         "element size at the axis / refined radius",
-        "axis element size",
+        "Element size at the first contact point / refined-zone radius",
         1e-6,
         by_kind={"dynamic": 1.0 / 800.0},
     ),
     _numeric(
         "axis_growth",
         "element size growth away from the axis",
-        "axis growth",
+        "Element size growth from the first contact point",
         0.1,
         ("contact", "finite-strain"),
         valid=FRACTION,
@@ -391,7 +401,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "time_steps",
         "time steps per quasi-static impact duration t_y",
-        "time steps per t_y",
+        "Time steps per impact duration t_y",
         200,
         ("dynamic",),
         valid=Range(50.0, 100_000.0, low_open=False),
@@ -401,7 +411,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "layer_rate",
         "absorbing-layer damping rate x t_y (0: no layer)",
-        "absorbing-layer rate",
+        "Absorbing layer rate",
         0.0,
         ("dynamic",),
         valid=Range(0.0, low_open=False),
@@ -409,7 +419,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "reach",
         "deepest depth / the linear impact's x_c",
-        "reach / x_c",
+        "Deepest depth / linear x_c",
         1.1,
         ("finite-strain",),
         valid=Range(1.0, 3.0, low_open=False),
@@ -417,7 +427,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "depth_steps",
         "equal depth steps up to the reach",
-        "depth steps",
+        "Depth steps",
         12,
         ("finite-strain",),
         valid=Range(4.0, 200.0, low_open=False),
@@ -427,7 +437,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "small_ratio",
         "x/a of the first, tiny depth (the small-strain limit)",
-        "first depth x/a",
+        "x/a of the smallest depth",
         0.01,
         ("finite-strain",),
         valid=Range(0.0, 0.2),
@@ -435,7 +445,7 @@ VOCABULARY: tuple[Entry, ...] = (
     _numeric(
         "small_steps",
         "geometric depths from the first one to the first equal step",
-        "small-depth steps",
+        "Depth steps up to the first regular depth",
         5,
         ("finite-strain",),
         valid=Range(1.0, 200.0, low_open=False),
@@ -445,7 +455,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "solver",
         "",
         "sparse direct solver",
-        "solver",
+        "Linear solver",
         "auto",
         ("contact",),
         valid=None,
@@ -458,7 +468,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "",
         "Richardson error estimates from two coarser runs (commands and studies: on; a sweep: "
         "estimate = true)",
-        "error estimate",
+        "Error estimates",
         True,
         ("dynamic",),
         valid=None,
@@ -496,6 +506,16 @@ VOCABULARY: tuple[Entry, ...] = (
             ),
             ("check", "", "also integrate the ODE numerically", "ODE check", False, None, "flag"),
         )
+    ),
+    Entry(
+        "figure_format",
+        "",
+        "figure files: png, or svg / pdf beside each chart's PNG",
+        "figure format",
+        "png",
+        type="str",
+        choices=("png", "svg", "pdf"),
+        group="output",
     ),
 )
 """Every input, in the order of the documentation's table."""

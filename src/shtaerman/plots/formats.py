@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import argparse
 
+from .. import vocabulary
 from ..validation import InputError
 
 __all__ = ["FIGURE_FORMATS", "FORMAT_HELP", "add_figure_format", "check_figure_format"]
 
-FIGURE_FORMATS = ("png", "svg", "pdf")
+FIGURE_FORMATS = vocabulary.entry("figure_format").choices
 """What ``figure_format`` may be: PNG only, or PNG and an SVG or PDF beside it."""
 FORMAT_HELP = (
     "figure files: png (200 dpi), or svg / pdf (vector, text kept as text) written beside each "

@@ -1,7 +1,8 @@
 """Readable names of the quantities a figure shows: key -> label, unit, shown in per cent or not.
 
 Every axis, colour bar and title of the figures (:mod:`shtaerman.plots` and the sweep's) takes
-its words from :data:`LABELS`, so a reader sees "Energy left in the half-space 1 − e² (%)" and
+its words from the inputs' labels of :mod:`shtaerman.vocabulary` and the outputs' of
+:data:`LABELS`, so a reader sees "Energy left in the half-space 1 − e² (%)" and
 not ``energy_radiated_fraction``. A quantity marked ``percent`` is stored as a fraction and
 shown multiplied by 100 (:func:`scale`). Errors ``error_<key>`` (against the exact solution, or
 estimated) are fractions, relative or absolute for a difference that is itself a fraction: they
@@ -11,6 +12,9 @@ are shown in per cent.
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+from .. import vocabulary
+from ..validation import InputError
 
 __all__ = ["LABELS", "Label", "axis_label", "describe", "is_percent", "scale"]
 
@@ -31,31 +35,6 @@ MINUS = "\N{MINUS SIGN}"
 NU, RHO = "\N{GREEK SMALL LETTER NU}", "\N{GREEK SMALL LETTER RHO}"
 _DIFFERENCE = f"quasi-static / dynamic {MINUS} 1"
 LABELS: dict[str, Label] = {
-    # inputs
-    "mass": Label("Striker mass M", "kg"),
-    "velocity": Label("Approach velocity v0", "m/s"),
-    "shape_coefficient": Label("Shape coefficient A", "m^(1-n)"),
-    "exponent": Label("Profile exponent n"),
-    "E1": Label("Striker Young's modulus E1", "Pa"),
-    "nu1": Label(f"Striker Poisson's ratio {NU}1"),
-    "E2": Label("Half-space Young's modulus E2", "Pa"),
-    "nu2": Label(f"Half-space Poisson's ratio {NU}2"),
-    "density2": Label(f"Half-space density {RHO}2", "kg/m³"),
-    "depths": Label("Depths", "m"),
-    "mesh_size": Label("Smallest element size / refined-zone radius"),
-    "mesh_margin": Label("Refined-zone radius / contact radius"),
-    "domain_factor": Label("Domain radius / refined-zone radius"),
-    "growth": Label("Element size growth from the refined zone"),
-    "axis_size": Label("Element size at the first contact point / refined-zone radius"),
-    "axis_growth": Label("Element size growth from the first contact point"),
-    "layer_rate": Label("Absorbing layer rate"),
-    "refine": Label("Mesh refinement factor"),
-    "solver": Label("Linear solver"),
-    "estimate": Label("Error estimates"),
-    "steps": Label("Steps"),
-    "reach": Label("Deepest depth / linear x_c"),
-    "small_ratio": Label("x/a of the smallest depth"),
-    "small_steps": Label("Depth steps up to the first regular depth"),
     # the quasi-static impact
     "beta": Label("Contact law coefficient β", "N/m^q"),
     "x_c": Label("Quasi-static maximum approach x_c", "m"),
@@ -105,10 +84,17 @@ LABELS: dict[str, Label] = {
 
 
 def describe(key: str) -> Label:
-    """The label of ``key``: from :data:`LABELS`, derived for ``error_<key>`` and
-    ``force_ratio_xaNN``, else the key itself (a quantity this table does not know)."""
+    """The label of ``key``: an input's from :mod:`shtaerman.vocabulary`, an output's from
+    :data:`LABELS`, derived for ``error_<key>`` and ``force_ratio_xaNN``, else the key itself
+    (a quantity neither table knows)."""
     if key in LABELS:
         return LABELS[key]
+    try:
+        item = vocabulary.entry(key)
+    except InputError:
+        item = None
+    if item is not None and item.name == key:
+        return Label(item.label, item.unit.replace("^3", "³"))
     if key.startswith("error_"):
         inner = describe(key.removeprefix("error_")).text
         return Label(f"Error of {inner[0].lower()}{inner[1:]}", percent=True)
@@ -133,5 +119,5 @@ def axis_label(key: str, unit: str = "") -> str:
     ``unit`` is used for a quantity the table does not know; a per-cent quantity is in %.
     """
     label = describe(key)
-    shown = "%" if label.percent else (label.unit if key in LABELS else unit)
+    shown = "%" if label.percent else (label.unit or unit)
     return f"{label.text} ({shown})" if shown else label.text
