@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
-__all__ = ["kind_entry"]
+__all__ = ["kind_entry", "no_summary_row", "stored_findings", "stored_tables", "text_entry"]
 
 
 def kind_entry(
@@ -35,3 +35,37 @@ def kind_entry(
         "files": files,
         "figures": dict(figures or {}),
     }
+
+
+def text_entry(
+    outcome: Any,
+    text: tuple[Callable[[Any], list], Callable[[Any], list]],
+    files: dict[str, str],
+    output_seconds: float | None,
+    figures: Mapping[str, str] | None,
+) -> dict[str, object]:
+    """The entry of a kind whose text is made with the outcome: its numbers, the display
+    ``tables`` and ``findings`` (``text``: the kind's two functions of the outcome) and the
+    common keys (:func:`kind_entry`)."""
+    study_tables, study_findings = text
+    document = {
+        **outcome.document(),
+        "tables": study_tables(outcome),
+        "findings": study_findings(outcome),
+    }
+    return kind_entry(outcome, document, files, output_seconds, figures)
+
+
+def stored_tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
+    """The display tables stored in a results.json entry."""
+    return list(study.get("tables", []))
+
+
+def stored_findings(name: str, study: Mapping[str, Any]) -> list[str]:
+    """The findings stored in a results.json entry, each prefixed with the study's name."""
+    return [f"{name}: {sentence}" for sentence in study.get("findings", [])]
+
+
+def no_summary_row(name: str, study: Mapping[str, Any]) -> None:
+    """No row in the contact cross-check summary."""
+    return None

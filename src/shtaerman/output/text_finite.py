@@ -13,8 +13,12 @@ from typing import Any
 from ..paper.case import is_paper_case
 from ..study.finite import FiniteStudyOutcome
 from ..study.finite_accuracy import CROSSING_KEYS, resolved
-from .entry import kind_entry
-from .wording import number, plus_minus, times_text
+from .entry import no_summary_row as summary_row
+from .entry import stored_findings as findings
+from .entry import stored_tables as tables
+from .entry import text_entry
+from .wording import number, plus_minus
+from .wording import times_text as timing_text
 
 __all__ = [
     "QUICK_ERROR",
@@ -259,34 +263,8 @@ def entry(
     output_seconds: float | None,
     figures: Mapping[str, str] | None,
 ) -> dict[str, object]:
-    """The study's results.json entry: its numbers, display ``tables`` and ``findings``, and
-    the common keys (:func:`.entry.kind_entry`)."""
-    document = {
-        **outcome.document(),
-        "tables": study_tables(outcome),
-        "findings": study_findings(outcome),
-    }
-    return kind_entry(outcome, document, files, output_seconds, figures)
-
-
-def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
-    """The entry's display tables."""
-    return list(study.get("tables", []))
-
-
-def findings(name: str, study: Mapping[str, Any]) -> list[str]:
-    """The entry's findings, each prefixed with the study's name."""
-    return [f"{name}: {sentence}" for sentence in study.get("findings", [])]
-
-
-def timing_text(study: Mapping[str, Any]) -> str:
-    """The study's times in words."""
-    return times_text(study)
-
-
-def summary_row(name: str, study: Mapping[str, Any]) -> None:
-    """No row in the contact cross-check summary."""
-    return None
+    """The study's results.json entry (:func:`.entry.text_entry`)."""
+    return text_entry(outcome, (study_tables, study_findings), files, output_seconds, figures)
 
 
 def _depth(entry: Mapping[str, Any] | None) -> str:
