@@ -59,14 +59,14 @@ def test_history_csv(tmp_path, capsys):
     [
         (["--mass", "-1"], "mass must be > 0 kg"),
         (["--velocity", "0"], "velocity must be > 0 m/s"),
-        (["--shape-coefficient", "abc"], "shape-coefficient must be a finite number > 0"),
+        (["--shape-coefficient", "abc"], "shape-coefficient must be a number > 0"),
         (["--exponent", "0"], "exponent must be > 0"),
         (["--E1", "-2e11"], "E1 must be > 0 Pa"),
-        (["--E2", "nan"], "E2 must be a finite number > 0 Pa"),
-        (["--nu1", "-1"], r"nu1 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
-        (["--nu2", "0.51"], r"nu2 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
-        (["--points", "1"], r"points must be an integer in \[2, 10000000\]"),
-        (["--points", "1000000000"], r"points must be an integer in \[2, 10000000\]"),
+        (["--E2", "nan"], "E2 must be a number > 0 Pa"),
+        (["--nu1", "-1"], r"nu1 must lie in \(-1, 0.5\]"),
+        (["--nu2", "0.51"], r"nu2 must lie in \(-1, 0.5\]"),
+        (["--points", "1"], r"points must be an integer in \[2, 1e7\]"),
+        (["--points", "1000000000"], r"points must be an integer in \[2, 1e7\]"),
         (["--unknown"], "unrecognized arguments: --unknown"),
     ],
 )
@@ -113,4 +113,4 @@ def test_console_script_has_no_traceback():
         check=False,
     )
     assert completed.returncode == 2
-    assert completed.stderr == "shtaerman: error: mass must be a finite number > 0 kg, got 'x'\n"
+    assert completed.stderr == "shtaerman: error: --mass must be a number > 0 kg, got 'x'\n"

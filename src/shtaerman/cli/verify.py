@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 from ..validation import InputError
-from .common import add_figure_format
+from .common import add_figure_format, add_inputs
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -28,11 +28,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar="STUDY",
         help="study files (.toml) or shipped study names (default: every shipped study)",
     )
-    p.add_argument(
-        "--out", metavar="DIR", help="result folder (default: a new shtaerman-results-* folder)"
-    )
+    add_inputs(p, ("out", "force"), None, derived={"out": "a new shtaerman-results-* folder"})
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
-    p.add_argument("--force", action="store_true", help="replace an existing --out folder")
     add_figure_format(p)
     p.add_argument(
         "--workers",
