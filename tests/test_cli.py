@@ -114,3 +114,32 @@ def test_console_script_has_no_traceback():
     )
     assert completed.returncode == 2
     assert completed.stderr == "shtaerman: error: --mass must be a number > 0 kg, got 'x'\n"
+
+
+def test_a_depth_list_is_checked_once_by_the_cli_and_once_by_the_api(capsys):
+    """Validate once where input enters: the CLI reads --depths through the vocabulary, the
+    public API checks what Python users give it, and the layers below (study, FEM) trust the
+    checked array."""
+    from shtaerman import validation, vocabulary
+
+    codes = {
+        vocabulary.Entry.check.__code__: "entry",
+        validation.validate_increasing.__code__: "increasing",
+        validation.validate_positive.__code__: "positive",
+    }
+    calls = []
+
+    def profile(frame, event, arg):
+        if event == "call" and frame.f_code in codes:
+            named = frame.f_locals.get("name") or getattr(frame.f_locals.get("self"), "name", "")
+            if named == "depths":
+                calls.append((codes[frame.f_code], frame.f_back.f_code.co_name))
+
+    argv = ["contact", "--depths", "1e-3,2e-3", "--no-estimate", "--mesh-size", "0.05"]
+    sys.setprofile(profile)
+    try:
+        code = main([*argv, "--domain-factor", "1e4", "--json"])
+    finally:
+        sys.setprofile(None)
+    assert code == 0 and len(json.loads(capsys.readouterr().out)["steps"]) == 2
+    assert calls == [("entry", "parse"), ("entry", "contact_depths")]
