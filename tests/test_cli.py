@@ -143,3 +143,10 @@ def test_a_depth_list_is_checked_once_by_the_cli_and_once_by_the_api(capsys):
         sys.setprofile(None)
     assert code == 0 and len(json.loads(capsys.readouterr().out)["steps"]) == 2
     assert calls == [("entry", "parse"), ("entry", "contact_depths")]
+
+
+@pytest.mark.parametrize("value", ["0", "1000", "2.5", "many"])
+def test_verify_workers_is_checked_by_the_vocabulary(capsys, value):
+    code, out, err = run(capsys, "verify", "paper", "--workers", value)
+    assert code == 2 and out == ""
+    assert err == f"shtaerman: error: --workers must be an integer in [1, 256], got '{value}'\n"

@@ -546,6 +546,15 @@ VOCABULARY: tuple[Entry, ...] = (
                 "int",
             ),
             ("check", "", "also integrate the ODE numerically", "ODE check", False, None, "flag"),
+            (
+                "workers",
+                "",
+                "processes of the local dask cluster, one thread each",
+                "workers",
+                None,
+                Range(1.0, 256.0, low_open=False),
+                "int",
+            ),
         )
     ),
     Entry(
