@@ -98,9 +98,10 @@ class Input(argparse.Action):
         setattr(namespace, self.dest, value)
 
 
-def _help(item: Entry, kind: str | None, default: str) -> str:
-    """Meaning, unit, valid range and default of ``item`` in computation ``kind``."""
-    text = item.meaning + (f", in {item.unit}" if item.unit else "")
+def _help(item: Entry, kind: str | None, default: str, note: str = "") -> str:
+    """Meaning (and the command's ``note``), unit, valid range and default of ``item`` in
+    computation ``kind``."""
+    text = item.meaning + (f": {note}" if note else "") + (f", in {item.unit}" if item.unit else "")
     valid = "" if item.choices else item.range_text(kind)
     text += f", {valid}" if valid else ""
     return (text + (f" (default: {default})" if default else "")).replace("%", "%%")
@@ -117,21 +118,23 @@ def add_inputs(
     *,
     derived: Mapping[str, str] | None = None,
     aliases: Mapping[str, tuple[str, ...]] | None = None,
+    notes: Mapping[str, str] | None = None,
 ) -> None:
     """Add the option of each vocabulary input of ``names``, with the default and valid range
     of computation ``kind``, and help from its meaning, unit, range and default.
 
     ``derived`` maps inputs whose default follows from other inputs (None when not given) to
-    the help's words for that default; ``aliases`` maps inputs to deprecated option names.
+    the help's words for that default; ``aliases`` maps inputs to deprecated option names;
+    ``notes`` adds what the command does with an input (e.g. the files --out writes).
     """
-    derived, aliases = derived or {}, aliases or {}
+    derived, aliases, notes = derived or {}, aliases or {}, notes or {}
     for name in names:
-        item = entry(name)
+        item, note = entry(name), notes.get(name, "")
         default = None if name in derived else item.default_for(kind)
         shown = derived.get(name, _shown(default))
         options = (item.cli_option, *aliases.get(name, ()))
         if item.type == "flag":
-            parser.add_argument(*options, action="store_true", help=_help(item, kind, ""))
+            parser.add_argument(*options, action="store_true", help=_help(item, kind, "", note))
         elif item.type == "bool":  # an option that switches it off: --no-estimate
             text = f"run without the {item.meaning[0].lower()}{item.meaning[1:]}"
             parser.add_argument(*options, action="store_false", dest=name, help=text)
@@ -141,7 +144,7 @@ def add_inputs(
                 action=Input if item.type != "path" else "store",
                 default=default,
                 metavar=METAVARS.get(name) or _metavar(item),
-                help=_help(item, kind, shown),
+                help=_help(item, kind, shown, note),
                 choices=item.choices or None,
                 **({"item": item, "kind": kind} if item.type != "path" else {}),
             )

@@ -28,7 +28,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     inputs = ("shape_coefficient", "exponent", "E2", "nu2", "model", "mass", "velocity")
-    add_inputs(p, (*inputs, "depths", "json", "out", "force"), "contact", derived=DERIVED)
+    outputs = ("depths", "json", "out", "force")
+    add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (every FEM number with an error estimate from a 3-mesh ladder: K/2, K/sqrt(2), K)"
@@ -54,6 +55,12 @@ DERIVED = {
     **{option: _mesh_default(field) for option, field in MESH_OPTIONS.items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
+NOTES = {
+    "out": "contact.json, CSV curves, VTU fields and (linear model) force_depth.png and "
+    "pressure.png",
+    "force": "an existing --out folder",
+}
+"""What ``contact`` does with its output options."""
 
 
 def _check_combinations(args: argparse.Namespace) -> None:

@@ -17,6 +17,14 @@ CONTROLS = {"time_steps": "steps", **{o: o for o in SETTINGS_OPTIONS if o != "st
 """The numerical options and the keyword of :func:`shtaerman.dynamic` each sets."""
 
 
+NOTES = {
+    "history": "t, x, v, P, a, p0 at every time step",
+    "out": "dynamic.json, history.csv, energies.csv and VTU fields",
+    "force": "an existing --history file or --out folder",
+}
+"""What ``dynamic`` does with its output options."""
+
+
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``dynamic`` subcommand."""
     p = commands.add_parser(
@@ -31,7 +39,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     inputs = (*CASE, "E2", "nu2", "density2", "json", "history", "out", "force")
-    add_inputs(p, inputs, "dynamic")
+    add_inputs(p, inputs, "dynamic", notes=NOTES)
     add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "

@@ -12,6 +12,12 @@ from ..theory.impact import ImpactResult
 from ..theory.materials import Material
 from .common import CASE, add_inputs, indenter, print_json, striker
 
+NOTES = {
+    "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
+    "force": "an existing --history file",
+}
+"""What ``impact`` does with its output options."""
+
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``impact`` subcommand."""
@@ -21,7 +27,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         description="Exact quasi-static impact M x'' = -beta x^q (Ateb functions), SI units.",
     )
     inputs = (*CASE, "E1", "nu1", "E2", "nu2", "json", "history", "points", "force", "check")
-    add_inputs(p, inputs, "impact")
+    add_inputs(p, inputs, "impact", notes=NOTES)
     p.set_defaults(handler=run)
 
 
