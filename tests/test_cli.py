@@ -59,14 +59,14 @@ def test_history_csv(tmp_path, capsys):
     [
         (["--mass", "-1"], "mass must be > 0 kg"),
         (["--velocity", "0"], "velocity must be > 0 m/s"),
-        (["--shape-coefficient", "abc"], "shape-coefficient must be a finite number > 0"),
+        (["--shape-coefficient", "abc"], "shape-coefficient must be a number > 0"),
         (["--exponent", "0"], "exponent must be > 0"),
         (["--E1", "-2e11"], "E1 must be > 0 Pa"),
-        (["--E2", "nan"], "E2 must be a finite number > 0 Pa"),
-        (["--nu1", "-1"], r"nu1 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
-        (["--nu2", "0.51"], r"nu2 \(Poisson's ratio\) must lie in \(-1, 0.5\]"),
-        (["--points", "1"], r"points must be an integer in \[2, 10000000\]"),
-        (["--points", "1000000000"], r"points must be an integer in \[2, 10000000\]"),
+        (["--E2", "nan"], "E2 must be a number > 0 Pa"),
+        (["--nu1", "-1"], r"nu1 must lie in \(-1, 0.5\]"),
+        (["--nu2", "0.51"], r"nu2 must lie in \(-1, 0.5\]"),
+        (["--points", "1"], r"points must be an integer in \[2, 1e7\]"),
+        (["--points", "1000000000"], r"points must be an integer in \[2, 1e7\]"),
         (["--unknown"], "unrecognized arguments: --unknown"),
     ],
 )
@@ -113,4 +113,40 @@ def test_console_script_has_no_traceback():
         check=False,
     )
     assert completed.returncode == 2
-    assert completed.stderr == "shtaerman: error: mass must be a finite number > 0 kg, got 'x'\n"
+    assert completed.stderr == "shtaerman: error: --mass must be a number > 0 kg, got 'x'\n"
+
+
+def test_a_depth_list_is_checked_once_by_the_cli_and_once_by_the_api(capsys):
+    """Validate once where input enters: the CLI reads --depths through the vocabulary, the
+    public API checks what Python users give it, and the layers below (study, FEM) trust the
+    checked array."""
+    from shtaerman import validation, vocabulary
+
+    codes = {
+        vocabulary.Entry.check.__code__: "entry",
+        validation.validate_increasing.__code__: "increasing",
+        validation.validate_positive.__code__: "positive",
+    }
+    calls = []
+
+    def profile(frame, event, arg):
+        if event == "call" and frame.f_code in codes:
+            named = frame.f_locals.get("name") or getattr(frame.f_locals.get("self"), "name", "")
+            if named == "depths":
+                calls.append((codes[frame.f_code], frame.f_back.f_code.co_name))
+
+    argv = ["contact", "--depths", "1e-3,2e-3", "--no-estimate", "--mesh-size", "0.05"]
+    sys.setprofile(profile)
+    try:
+        code = main([*argv, "--domain-factor", "1e4", "--json"])
+    finally:
+        sys.setprofile(None)
+    assert code == 0 and len(json.loads(capsys.readouterr().out)["steps"]) == 2
+    assert calls == [("entry", "parse"), ("entry", "contact_depths")]
+
+
+@pytest.mark.parametrize("value", ["0", "1000", "2.5", "many"])
+def test_verify_workers_is_checked_by_the_vocabulary(capsys, value):
+    code, out, err = run(capsys, "verify", "paper", "--workers", value)
+    assert code == 2 and out == ""
+    assert err == f"shtaerman: error: --workers must be an integer in [1, 256], got '{value}'\n"

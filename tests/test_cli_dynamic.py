@@ -14,7 +14,7 @@ import pytest
 
 from shtaerman.cli import main
 
-COARSE = ("--steps", "100", "--mesh-size", "0.05")  # the ladder adds 50 and 71 steps
+COARSE = ("--time-steps", "100", "--mesh-size", "0.05")  # the ladder adds 50 and 71 steps
 QUASI_STATIC_KEYS = {"beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y"}
 DYNAMIC_KEYS = {
     "x_max",
@@ -102,11 +102,11 @@ def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["--density2", "0"], "density2 must be > 0 kg/m^3"),
-        (["--density2", "nan"], "density2 must be a finite number"),
-        (["--steps", "10"], "steps (time steps per impact duration) must be an integer in [50"),
-        (["--steps", "1.5"], "steps must be an integer"),
-        (["--nu2", "-0.2"], "nu2 (Poisson's ratio) must lie in [0, 0.5]"),
+        (["--density2", "0"], "density2 must lie in [1e-6, 1e6] kg/m^3"),
+        (["--density2", "nan"], "density2 must be a number"),
+        (["--time-steps", "10"], "time-steps must be an integer in [50, 1e5], got '10'"),
+        (["--time-steps", "1.5"], "time-steps must be an integer"),
+        (["--nu2", "-0.2"], "nu2 must lie in [0, 0.5]"),
         (["--mesh-margin", "0.5"], "margin must be > 1"),
         (
             ["--refine", "1e3"],
@@ -121,11 +121,31 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):
 
 
 def test_unstable_time_stepping_is_a_failure_not_bad_input(capsys):
-    """--steps 5000 on a coarse mesh makes the contact stepping unstable (c_s dt / h = 0.063):
+    """--time-steps 5000 on a coarse mesh makes the contact stepping unstable (c_s dt / h = 0.063):
     one line saying so, exit 1; it used to say 'increase margin' with exit 2, or finish."""
-    code = main(["dynamic", "--no-estimate", "--steps", "5000", "--mesh-size", "0.1"])
+    code = main(["dynamic", "--no-estimate", "--time-steps", "5000", "--mesh-size", "0.1"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 1
     assert len(err) == 1
     assert "time stepping became unstable" in err[0] and "use fewer time steps" in err[0]
     assert "energy balance is off by" in err[0]
+
+
+def test_steps_is_a_deprecated_alias_of_time_steps(capsys):
+    import warnings
+
+    from shtaerman.cli import build_parser
+    from shtaerman.vocabulary import DeprecatedKeyWarning
+
+    with pytest.warns(DeprecatedKeyWarning, match="--steps is deprecated; write --time-steps"):
+        args = build_parser().parse_args(["dynamic", "--steps", "60"])
+    assert args.time_steps == 60
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert build_parser().parse_args(["dynamic", "--time-steps", "60"]).time_steps == 60
+    # through the command: one warning line, then the range under the option's new name
+    code, out, err = run(capsys, "dynamic", "--steps", "10")
+    assert code == 2 and out == "" and err.count("\n") == 2
+    warning, error = err.splitlines()
+    assert warning.startswith("shtaerman: warning: --steps is deprecated; write --time-steps")
+    assert error == "shtaerman: error: --time-steps must be an integer in [50, 1e5], got '10'"

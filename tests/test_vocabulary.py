@@ -207,11 +207,6 @@ def test_every_cli_option_has_an_entry_with_its_default(command):
     assert wrong == []
 
 
-@pytest.mark.xfail(
-    reason="the CLI's option names and help are rewritten from the vocabulary in cli/*.py "
-    "(another branch); remove this mark once merged",
-    strict=False,
-)
 @pytest.mark.parametrize("command", sorted(COMMANDS))
 def test_every_cli_option_is_named_and_ranged_as_the_vocabulary(command):
     kind = COMMANDS[command]
@@ -261,3 +256,30 @@ def test_study_files_check_the_vocabulary_ranges(tmp_path, kind, table, line, ex
         load_study(path)
     key = line.split(" = ")[0]
     assert f"key '{table}.{key}': {expected}" in str(error.value)
+
+
+def _bad_value(valid) -> float:
+    """A number just outside ``valid``."""
+    if valid.low is not None:
+        return valid.low if valid.low_open else valid.low - abs(valid.low) / 2 - 1
+    return valid.high * 2 + 1
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_every_cli_value_is_checked_by_its_entry(command):
+    """Each option outside its range is refused as it is read, in one line naming the option
+    and the entry's range for the command's kind."""
+    kind = COMMANDS[command]
+    checked = 0
+    for option, _action, item in _options(command):
+        valid = item.range_for(kind)
+        if item.type not in ("float", "int", "floats") or valid is None:
+            continue
+        bad = _bad_value(valid)
+        with pytest.raises(InputError) as error:
+            build_parser().parse_args([command, option, f"{bad!r}"])
+        message = str(error.value)
+        assert message.startswith(f"{option} must ") and valid.text() in message, message
+        assert error.value.parameter == item.name and "\n" not in message
+        checked += 1
+    assert checked >= {"impact": 9, "contact": 14, "dynamic": 14}[command]

@@ -12,10 +12,13 @@ from __future__ import annotations
 import difflib
 import itertools
 import math
+import numbers
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
 
 from .validation import InputError
 
@@ -171,49 +174,85 @@ class Entry:
             text = f"increasing, each {text}"
         return f"{text}, or inf (rigid)" if self.infinite else text
 
-    def check(self, value: Any, kind: str | None = None) -> Any:
+    def check(
+        self, value: Any, kind: str | None = None, *, called: str = "", given: str = ""
+    ) -> Any:
         """``value`` converted to the entry's type, or :class:`InputError` naming the entry and
-        its valid values."""
+        its valid values.
+
+        ``called`` names the input in the message (default: its key; the CLI: its option) and
+        ``given`` is the value as the user wrote it (default: ``repr(value)``).
+        """
+        says = _Says(called or self.name, given)
         if self.type == "floats":
             if isinstance(value, str | bytes) or not hasattr(value, "__iter__"):
                 value = [value]
-            numbers = [_number(self, v, kind) for v in value]
+            numbers = [_number(self, v, kind, says) for v in value]
             if not numbers or any(b <= a for a, b in itertools.pairwise(numbers)):
-                raise InputError(
-                    f"{self.name} must be {self.range_text(kind)}, got {value!r}", self.name
-                )
+                raise says.error(self, f"must be {self.range_text(kind)}", value)
             return numbers
         if self.type in ("float", "int"):
-            return _number(self, value, kind)
+            return _number(self, value, kind, says)
         if self.type in ("bool", "flag"):
             if not isinstance(value, bool):
-                raise InputError(f"{self.name} must be true or false, got {value!r}", self.name)
+                raise says.error(self, "must be true or false", value)
             return value
         if not isinstance(value, str) or (self.choices and value not in self.choices):
-            expected = self.range_text(kind) or "a string"
-            raise InputError(f"{self.name} must be {expected}, got {value!r}", self.name)
+            raise says.error(self, f"must be {self.range_text(kind) or 'a string'}", value)
         return value
 
+    def parse(self, text: str, kind: str | None = None, *, called: str = "") -> Any:
+        """Command-line ``text`` converted to the entry's type and checked (:meth:`check`):
+        a number, ``inf`` or ``rigid`` where infinity is valid, or comma-separated numbers."""
+        if self.type == "floats":
+            value: Any = [_float(item) for item in text.split(",") if item.strip()]
+        elif self.type in ("float", "int"):
+            value = _float(text)
+            if self.infinite and text.strip().lower() == "rigid":
+                value = math.inf
+        else:
+            value = text
+        return self.check(value, kind, called=called, given=repr(text))
 
-def _number(item: Entry, value: Any, kind: str | None) -> float | int:
+
+def _float(text: str) -> float | str:
+    """``text`` as a float, or ``text`` itself when it is no number (the check names it)."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+@dataclass(frozen=True)
+class _Says:
+    """How a message names the input and the value given."""
+
+    called: str
+    given: str = ""
+
+    def error(self, item: Entry, verdict: str, value: Any) -> InputError:
+        return InputError(f"{self.called} {verdict}, got {self.given or repr(value)}", item.name)
+
+
+def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | int:
     """One number of ``item``, checked against its type and range."""
     expected = item.range_text(kind) or "a number"
     if item.type == "floats":
         expected = item.range_for(kind).text() if item.range_for(kind) else "a number"
-    unit = f" {item.unit}" if item.unit else ""
-    is_number = isinstance(value, int | float) and not isinstance(value, bool)
+    rigid = ", or inf (rigid)" if item.infinite else ""
+    expected = expected.removesuffix(rigid)
+    unit = (f" {item.unit}" if item.unit else "") + rigid
+    is_number = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
     if item.type == "int" and not (is_number and float(value) == int(value)):
-        raise InputError(f"{item.name} must be {expected}, got {value!r}", item.name)
+        raise says.error(item, f"must be {expected}", value)
     if not is_number or math.isnan(value):
-        raise InputError(f"{item.name} must be a number {expected}{unit}, got {value!r}", item.name)
+        raise says.error(item, f"must be a number {expected}{unit}", value)
     if math.isinf(value) and not (item.infinite and value > 0):
-        raise InputError(
-            f"{item.name} must be a finite number {expected}{unit}, got {value!r}", item.name
-        )
+        raise says.error(item, f"must be a finite number {expected}{unit}", value)
     valid = item.range_for(kind)
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
         verb = "lie in" if expected[0] in "([" else "be"
-        raise InputError(f"{item.name} must {verb} {expected}{unit}, got {value!r}", item.name)
+        raise says.error(item, f"must {verb} {expected}{unit}", value)
     return int(value) if item.type == "int" else float(value)
 
 
@@ -295,7 +334,7 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "nu2",
         "",
-        "half-space Poisson's ratio (the FEM: [0, 0.5])",
+        "half-space Poisson's ratio",
         "Half-space Poisson's ratio \N{GREEK SMALL LETTER NU}2",
         0.5,
         KIND_NAMES,
@@ -345,6 +384,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Smallest element size / refined-zone radius",
         _MESH["contact"],
         by_kind=_MESH,
+        valid=FRACTION,
         valid_by_kind={"dynamic": Range(0.0, 0.2)},
         old_names=("size",),
     ),
@@ -380,6 +420,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "element size at the axis / refined radius",
         "Element size at the first contact point / refined-zone radius",
         1e-6,
+        valid=FRACTION,
         by_kind={"dynamic": 1.0 / 800.0},
     ),
     _numeric(
@@ -466,8 +507,8 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "estimate",
         "",
-        "Richardson error estimates from two coarser runs (commands and studies: on; a sweep: "
-        "estimate = true)",
+        "Richardson error estimates from two coarser runs (about 0.75 of the run's cost again; "
+        "a sweep: estimate = true)",
         "Error estimates",
         True,
         ("dynamic",),
@@ -483,7 +524,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "refine until the estimated relative error of force and beta is <= TOL",
         "target accuracy",
         None,
-        valid=FRACTION,
+        valid=Range(0.0, 0.1),
         group="numerics",
     ),
     Entry("max_time", "s", "time budget of --accuracy", "time budget", 60.0, group="numerics"),
@@ -505,6 +546,15 @@ VOCABULARY: tuple[Entry, ...] = (
                 "int",
             ),
             ("check", "", "also integrate the ODE numerically", "ODE check", False, None, "flag"),
+            (
+                "workers",
+                "",
+                "processes of the local dask cluster, one thread each",
+                "workers",
+                None,
+                Range(1.0, 256.0, low_open=False),
+                "int",
+            ),
         )
     ),
     Entry(

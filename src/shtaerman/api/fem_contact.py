@@ -16,7 +16,8 @@ from numpy.typing import ArrayLike
 from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
-from ..validation import InputError, validate_increasing, validate_positive
+from ..validation import InputError, validate_positive
+from ..vocabulary import entry
 from .quasi_static import check_bodies, impact
 
 if TYPE_CHECKING:
@@ -132,15 +133,10 @@ class ContactResult:
         return document
 
 
-def mesh_settings(
-    base: MeshSettings,
-    options: Mapping[str, object],
-    spell: Callable[[str], str] = str,
-) -> MeshSettings:
+def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSettings:
     """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None.
 
-    Each value is checked alone first, so that an error names its option as ``spell(name)``
-    (e.g. ``mesh-size`` on the command line).
+    Each value is checked alone first, so that an error names its keyword.
     """
     from ..fem.mesh import MeshSettings
 
@@ -151,7 +147,7 @@ def mesh_settings(
         try:
             MeshSettings(**{field_name: chosen[field_name]})
         except InputError as error:
-            raise InputError(f"{spell(name)}: {error}", name) from None
+            raise InputError(f"{name}: {error}", name) from None
     return dataclasses.replace(base, **{k: float(v) for k, v in chosen.items()})  # type: ignore[arg-type]
 
 
@@ -183,7 +179,8 @@ def contact_depths(
                     "depths or mass and velocity",
                     name,
                 )
-        return validate_increasing("depths", list(np.atleast_1d(depths)), "m")
+        given = depths.tolist() if isinstance(depths, np.ndarray) else depths
+        return np.array(entry("depths").check(given, "contact"))
     mass = DEFAULT_MASS if mass is None else mass
     velocity = DEFAULT_VELOCITY if velocity is None else velocity
     x_c = impact(indenter, body, mass=mass, velocity=velocity, striker=striker).x_c

@@ -29,7 +29,8 @@ SETTINGS_OPTIONS = {
     "growth": "growth",
     "layer_rate": "layer_rate",
 }
-"""Numerical keywords (``--steps``, ``--mesh-size``, ...): the DynamicSettings field each sets."""
+"""Numerical keywords (``steps`` is ``--time-steps``, ``mesh_size`` ``--mesh-size``, ...): the
+DynamicSettings field each sets."""
 DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
 """The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
 P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
@@ -222,7 +223,7 @@ def dynamic(
         estimates (about 0.75 of the run's cost again).
     settings : DynamicSettings, optional
         The numerical controls; ``steps``, ``mesh_size``, ``mesh_margin``, ``domain_factor``,
-        ``growth`` and ``layer_rate`` (the ``--steps`` ... options) override its fields.
+        ``growth`` and ``layer_rate`` (the ``--time-steps`` ... options) override its fields.
     out : path, optional
         A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
         the figures; an existing one is replaced only with ``force``.

@@ -4,37 +4,33 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import re
 import sys
+import warnings
+from collections.abc import Iterable, Mapping
+from typing import Any
 
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
-from ..validation import InputError, validate_poisson, validate_positive
+from ..validation import InputError
+from ..vocabulary import DeprecatedKeyWarning, Entry, entry
 
 __all__ = [
+    "Input",
     "Parser",
     "add_figure_format",
-    "add_half_space_options",
-    "add_indenter_options",
-    "half_space",
+    "add_inputs",
     "indenter",
     "print_json",
     "striker",
+    "warn",
 ]
 
-PAPER = {
-    "mass": "0.7",
-    "velocity": "3",
-    "shape_coefficient": "5",
-    "exponent": "1.5",
-    "E1": "2e11",
-    "nu1": "0.25",
-    "E2": "7.5e6",
-    "nu2": "0.5",
-}
-"""The paper's worked example (section 5), the default of every subcommand."""
+CASE = ("mass", "velocity", "shape_coefficient", "exponent")
+"""The striker and its impact: the first options of the computing subcommands."""
 
 
 class HelpFormatter(argparse.RawDescriptionHelpFormatter):
@@ -42,7 +38,10 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
 
     def _get_help_string(self, action: argparse.Action) -> str:
         text = action.help or ""
-        if action.default in (None, False, argparse.SUPPRESS) or "%(default)" in text:
+        shown = action.default not in (None, argparse.SUPPRESS) and not isinstance(
+            action.default, bool
+        )
+        if not shown or "(default" in text:
             return text
         return f"{text} (default: %(default)s)"
 
@@ -63,65 +62,110 @@ class Parser(argparse.ArgumentParser):
         raise InputError(message)
 
 
-def add_indenter_options(parser: argparse.ArgumentParser) -> None:
-    """--shape-coefficient and --exponent of the striker profile z = A r^n."""
-    parser.add_argument(
-        "--shape-coefficient",
-        default=PAPER["shape_coefficient"],
-        metavar="A",
-        help="A in z = A r^n, m^(1-n)",
-    )
-    parser.add_argument("--exponent", default=PAPER["exponent"], metavar="N", help="n in z = A r^n")
+METAVARS = {
+    "shape_coefficient": "A",
+    "exponent": "N",
+    "density2": "KG/M3",
+    "depths": "D1,D2,...",
+    "history": "FILE.csv",
+    "out": "DIR",
+    "refine": "K",
+    "accuracy": "TOL",
+    "max_time": "S",
+}
+"""The placeholder of an option's value in the help, where its unit does not make one."""
 
 
-FEM_POISSON_LOW = 0.0
-"""Smallest nu2 the FEM commands (contact, dynamic) accept: the FEM's validated range."""
+class Input(argparse.Action):
+    """Store a vocabulary input, converted and checked by its entry as it is read: a value
+    outside the range of computation ``kind`` is an InputError naming the option. Any other
+    option string of the action (a deprecated alias, e.g. ``--steps``) works with a one-line
+    warning."""
+
+    def __init__(self, *args: Any, item: Entry, kind: str | None, **kwargs: Any) -> None:
+        self.item, self.kind = item, kind
+        super().__init__(*args, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:  # type: ignore[override]
+        if option_string is not None and option_string != self.item.cli_option:
+            warnings.warn(
+                f"{option_string} is deprecated; write {self.item.cli_option} (the old option "
+                "works for one release)",
+                DeprecatedKeyWarning,
+                stacklevel=2,
+            )
+        value = self.item.parse(values, self.kind, called=self.item.cli_option)
+        setattr(namespace, self.dest, value)
 
 
-def poisson_range(low: float = -1.0) -> str:
-    """The range text of :func:`shtaerman.validation.validate_poisson` for ``low``."""
-    return "(-1, 0.5]" if low == -1.0 else f"[{low:g}, 0.5]"
+def _help(item: Entry, kind: str | None, default: str, note: str = "") -> str:
+    """Meaning (and the command's ``note``), unit, valid range and default of ``item`` in
+    computation ``kind``."""
+    text = item.meaning + (f": {note}" if note else "") + (f", in {item.unit}" if item.unit else "")
+    valid = "" if item.choices else item.range_text(kind)
+    text += f", {valid}" if valid else ""
+    return (text + (f" (default: {default})" if default else "")).replace("%", "%%")
 
 
-def add_half_space_options(parser: argparse.ArgumentParser, poisson_low: float = -1.0) -> None:
-    """--E2 and --nu2 of the half-space (the paper's rubber by default); ``poisson_low`` is
-    the smallest nu2 the command accepts (its help states the range)."""
-    parser.add_argument(
-        "--E2", default=PAPER["E2"], metavar="PA", help="half-space Young's modulus in Pa"
-    )
-    parser.add_argument(
-        "--nu2",
-        default=PAPER["nu2"],
-        metavar="X",
-        help=f"half-space Poisson's ratio, {poisson_range(poisson_low)}",
-    )
+def _shown(value: Any) -> str:
+    return f"{value:.6g}" if isinstance(value, float) else "" if value is None else str(value)
+
+
+def add_inputs(
+    parser: argparse.ArgumentParser | argparse._ArgumentGroup,
+    names: Iterable[str],
+    kind: str | None,
+    *,
+    derived: Mapping[str, str] | None = None,
+    aliases: Mapping[str, tuple[str, ...]] | None = None,
+    notes: Mapping[str, str] | None = None,
+) -> None:
+    """Add the option of each vocabulary input of ``names``, with the default and valid range
+    of computation ``kind``, and help from its meaning, unit, range and default.
+
+    ``derived`` maps inputs whose default follows from other inputs (None when not given) to
+    the help's words for that default; ``aliases`` maps inputs to deprecated option names;
+    ``notes`` adds what the command does with an input (e.g. the files --out writes).
+    """
+    derived, aliases, notes = derived or {}, aliases or {}, notes or {}
+    for name in names:
+        item, note = entry(name), notes.get(name, "")
+        default = None if name in derived else item.default_for(kind)
+        shown = derived.get(name, _shown(default))
+        options = (item.cli_option, *aliases.get(name, ()))
+        if item.type == "flag":
+            parser.add_argument(*options, action="store_true", help=_help(item, kind, "", note))
+        elif item.type == "bool":  # an option that switches it off: --no-estimate
+            text = f"run without the {item.meaning[0].lower()}{item.meaning[1:]}"
+            parser.add_argument(*options, action="store_false", dest=name, help=text)
+        else:
+            parser.add_argument(
+                *options,
+                action=Input if item.type != "path" else "store",
+                default=default,
+                metavar=METAVARS.get(name) or _metavar(item),
+                help=_help(item, kind, shown, note),
+                choices=item.choices or None,
+                **({"item": item, "kind": kind} if item.type != "path" else {}),
+            )
+
+
+def _metavar(item: Entry) -> str:
+    if item.type == "int":
+        return "N"
+    if item.type == "str":
+        return "{" + ",".join(item.choices) + "}" if item.choices else "TEXT"
+    return item.unit.upper() if item.unit and "^" not in item.unit else "X"
 
 
 def striker(args: argparse.Namespace) -> Material:
-    """The striker's material from --E1 (a number in Pa, or 'inf' for rigid) and --nu1.
-
-    --nu1 must lie in (-1, 0.5] even for a rigid striker, where it does not enter E*.
-    """
-    nu1 = validate_poisson("nu1", args.nu1)
-    if str(args.E1).strip().lower() in {"inf", "rigid"}:
-        return RIGID
-    return Material(validate_positive("E1", args.E1, "Pa"), nu1)
-
-
-def half_space(args: argparse.Namespace, poisson_low: float = -1.0) -> Material:
-    """The half-space's material from --E2 and --nu2 (nu2 in [poisson_low, 0.5])."""
-    return Material(
-        validate_positive("E2", args.E2, "Pa"),
-        validate_poisson("nu2", args.nu2, low=poisson_low),
-    )
+    """The striker's material from --E1 (in Pa; inf: rigid) and --nu1."""
+    return RIGID if math.isinf(args.E1) else Material(args.E1, args.nu1)
 
 
 def indenter(args: argparse.Namespace) -> PowerLawIndenter:
     """The profile z = A r^n from --shape-coefficient and --exponent."""
-    return PowerLawIndenter(
-        validate_positive("shape-coefficient", args.shape_coefficient, "m^(1-n)"),
-        validate_positive("exponent", args.exponent),
-    )
+    return PowerLawIndenter(args.shape_coefficient, args.exponent)
 
 
 def print_json(document: object) -> None:

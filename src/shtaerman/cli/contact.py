@@ -5,32 +5,12 @@ from __future__ import annotations
 import argparse
 import math
 
-import numpy as np
-
-from ..api.fem_contact import MESH_OPTIONS, MODELS, contact
+from ..api.fem_contact import MESH_OPTIONS, contact
 from ..fem.finite_contact import FINITE_MESH
-from ..fem.mesh import DEFAULTS, MeshSettings
-from ..fem.solver import BACKENDS
-from ..validation import InputError, validate_increasing, validate_positive
-from .common import (
-    FEM_POISSON_LOW,
-    PAPER,
-    add_figure_format,
-    add_half_space_options,
-    add_indenter_options,
-    print_json,
-)
-from .common import half_space as read_half_space
-from .common import indenter as read_indenter
-
-MESH_HELP = {
-    "mesh_size": "smallest element size / refined radius",
-    "mesh_margin": "refined radius / largest geometric contact radius, in (1, 10]",
-    "domain_factor": "domain radius / refined radius, in [1e2, 1e7]",
-    "growth": "element size growth per unit distance from the refined zone",
-    "max_dofs": "refuse a mesh estimated (before meshing) above this many unknowns",
-}
-"""Meaning of each command-line mesh option (the MeshSettings field: MESH_OPTIONS)."""
+from ..fem.mesh import DEFAULTS
+from ..theory.materials import Material
+from ..validation import InputError
+from .common import add_figure_format, add_inputs, indenter, print_json
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -41,119 +21,46 @@ def register(commands: argparse._SubParsersAction) -> None:
         description=(
             "Press a rigid indenter z = A r^n into the FEM half-space (gmsh + scikit-fem, "
             "Taylor-Hood P2-P1) and compare force, contact radius and central pressure with "
-            "the exact solution. SI units."
+            "the exact solution. The default depths reach the x_c of the impact of --mass at "
+            "--velocity. --model neo-hookean: a neo-Hookean solid at finite strain with the "
+            "same E2, nu2 at small strain. --out writes contact.json, CSV curves, VTU fields "
+            "and (linear model) the figures. SI units."
         ),
     )
-    add_indenter_options(p)
-    add_half_space_options(p, FEM_POISSON_LOW)
-    _add_case_options(p)
-    _add_accuracy_options(p)
-    _add_mesh_options(p)
-    p.set_defaults(handler=run)
-
-
-def _add_case_options(p: argparse.ArgumentParser) -> None:
-    """--model, the impact of the default depths, --depths and the outputs."""
-    p.add_argument(
-        "--model",
-        default="linear",
-        choices=MODELS,
-        help="linear elasticity (Shtaerman's setting) or a neo-Hookean solid at finite strain "
-        "with the same E2, nu2 at small strain (total Lagrangian, contact in the current "
-        "configuration; any depth ladder, load stepping is internal)",
-    )
-    p.add_argument(
-        "--mass",
-        metavar="KG",
-        help=f"striker mass M in kg of the impact whose x_c the default depths reach "
-        f"(default: {PAPER['mass']})",
-    )
-    p.add_argument(
-        "--velocity",
-        metavar="M/S",
-        help=f"approach velocity v0 in m/s of that impact (default: {PAPER['velocity']})",
-    )
-    p.add_argument(
-        "--depths",
-        metavar="D1,D2,...",
-        help="depths in m, comma-separated, increasing (default: 8 up to the x_c of the "
-        "impact of --mass at --velocity on this indenter and half-space, contact radii "
-        "a_c/3 .. a_c)",
-    )
-    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument(
-        "--out",
-        metavar="DIR",
-        help="write contact.json, CSV curves, VTU fields and (linear model) the figures "
-        "force_depth.png and pressure.png to DIR",
-    )
-    p.add_argument("--force", action="store_true", help="replace an existing --out folder")
+    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "model", "mass", "velocity")
+    outputs = ("depths", "json", "out", "force")
+    add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
-
-
-def _add_accuracy_options(p: argparse.ArgumentParser) -> None:
-    """--refine, --no-estimate, --accuracy and --max-time."""
     accuracy = p.add_argument_group(
-        "accuracy (every FEM number with an error estimate from a 3-mesh ladder)"
+        "accuracy (every FEM number with an error estimate from a 3-mesh ladder: K/2, K/sqrt(2), K)"
     )
-    accuracy.add_argument(
-        "--refine",
-        default="1",
-        metavar="K",
-        help="divide the whole mesh size field by K (dofs ~ K^2); the ladder adds K/2 and "
-        "K/sqrt(2) for the Richardson estimate",
-    )
-    accuracy.add_argument(
-        "--no-estimate",
-        action="store_true",
-        help="run the K mesh only (no error_estimate in the JSON; about 40 %% faster)",
-    )
-    accuracy.add_argument(
-        "--accuracy",
-        metavar="TOL",
-        help="refine until the estimated relative error of force and beta is <= TOL (linear "
-        "model only)",
-    )
-    accuracy.add_argument(
-        "--max-time",
-        default="60",
-        metavar="S",
-        help="time budget of --accuracy in s (only with --accuracy)",
-    )
-
-
-def _add_mesh_options(p: argparse.ArgumentParser) -> None:
-    """The expert mesh controls and --solver."""
+    add_inputs(accuracy, ("refine", "estimate", "accuracy", "max_time"), "contact")
     mesh = p.add_argument_group(
         "expert mesh controls (relative to the largest contact; --mesh-size alone does not "
         "refine the far field, the axis grading or the growth: use --refine)"
     )
-    for option, field in MESH_OPTIONS.items():
-        mesh.add_argument(
-            "--" + option.replace("_", "-"),
-            metavar="X",
-            help=f"{MESH_HELP[option]} (default: {getattr(DEFAULTS, field):.6g} linear, "
-            f"{getattr(FINITE_MESH, field):.6g} neo-hookean)",
-        )
-    mesh.add_argument("--solver", default="auto", choices=("auto", *BACKENDS), help="sparse solver")
+    add_inputs(mesh, (*MESH_OPTIONS, "solver"), "contact", derived=DERIVED)
+    p.set_defaults(handler=run)
 
 
-def _depths(text: str | None) -> np.ndarray | None:
-    if text is None:
-        return None
-    return validate_increasing("depths", [item for item in text.split(",") if item.strip()], "m")
+def _mesh_default(field: str) -> str:
+    linear, finite = getattr(DEFAULTS, field), getattr(FINITE_MESH, field)
+    return f"{linear:.6g}" if linear == finite else f"{linear:.6g} linear, {finite:.6g} neo-hookean"
 
 
-def mesh_settings(args: argparse.Namespace, base: MeshSettings = DEFAULTS) -> MeshSettings:
-    """MeshSettings from the mesh options over ``base``; errors name the option, not the field."""
-    from ..api.fem_contact import mesh_settings as settings
-
-    options = {option: getattr(args, option) for option in MESH_OPTIONS}
-    return settings(base, options, lambda name: name.replace("_", "-"))
-
-
-def _optional(name: str, value: str | None, unit: str) -> float | None:
-    return None if value is None else validate_positive(name, value, unit)
+DERIVED = {
+    "mass": "0.7, or none with --depths",
+    "velocity": "3, or none with --depths",
+    "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
+    **{option: _mesh_default(field) for option, field in MESH_OPTIONS.items()},
+}
+"""Inputs whose default follows from the others, and that default in words."""
+NOTES = {
+    "out": "contact.json, CSV curves, VTU fields and (linear model) force_depth.png and "
+    "pressure.png",
+    "force": "an existing --out folder",
+}
+"""What ``contact`` does with its output options."""
 
 
 def _check_combinations(args: argparse.Namespace) -> None:
@@ -163,32 +70,30 @@ def _check_combinations(args: argparse.Namespace) -> None:
             "accuracy: applies to the linear model only; for --model neo-hookean use --refine "
             "K, whose estimates come with every run"
         )
-    if args.accuracy is not None and args.no_estimate:
+    if args.accuracy is not None and not args.estimate:
         raise InputError("accuracy: needs the error estimates; drop --no-estimate")
-    if args.accuracy is not None and validate_positive("refine", args.refine) != 1.0:
+    if args.accuracy is not None and args.refine != 1.0:
         raise InputError(
             f"refine: --accuracy chooses the refinement itself (its ladder starts at refine 1), "
-            f"got --refine {float(args.refine):g}; drop one of them"
+            f"got --refine {args.refine:g}; drop one of them"
         )
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
-    indenter, half_space = read_indenter(args), read_half_space(args, FEM_POISSON_LOW)
-    max_time = validate_positive("max-time", args.max_time, "s")
     _check_combinations(args)
     result = contact(
-        indenter,
-        half_space,
-        mass=_optional("mass", args.mass, "kg"),
-        velocity=_optional("velocity", args.velocity, "m/s"),
-        depths=_depths(args.depths),
+        indenter(args),
+        Material(args.E2, args.nu2),
+        mass=args.mass,
+        velocity=args.velocity,
+        depths=args.depths,
         model=args.model,
-        refine=validate_positive("refine", args.refine),
-        estimate=not args.no_estimate,
-        accuracy=_optional("accuracy", args.accuracy, ""),
-        max_time=max_time,
-        mesh=mesh_settings(args, FINITE_MESH if args.model == "neo-hookean" else DEFAULTS),
+        refine=args.refine,
+        estimate=args.estimate,
+        accuracy=args.accuracy,
+        max_time=args.max_time,
+        **{option: getattr(args, option) for option in MESH_OPTIONS},
         solver=args.solver,
         out=args.out,
         force=args.force,

@@ -3,41 +3,26 @@
 from __future__ import annotations
 
 import argparse
-import math
 
-from ..api.fem_dynamic import dynamic
-from ..fem.dynamic_contact import DynamicSettings, validate_density
+from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..output.files import write_csv
 from ..study.dynamic import DynamicTolerances
 from ..theory.materials import Material
-from ..validation import InputError, validate_positive
-from .common import (
-    FEM_POISSON_LOW,
-    PAPER,
-    add_figure_format,
-    add_half_space_options,
-    add_indenter_options,
-    print_json,
-    warn,
-)
-from .common import half_space as read_half_space
-from .common import indenter as read_indenter
+from .common import CASE, add_figure_format, add_inputs, indenter, print_json, warn
 from .impact import history_path
 
-DEFAULT_DENSITY = "1100"
-"""kg/m^3, natural rubber; the paper gives no density (it neglects inertia)."""
 ENERGY_BALANCE_LIMIT = DynamicTolerances().energy_balance
 """A run whose energy account is off by more (of M v0^2/2) warns and exits with code 1."""
+CONTROLS = {"time_steps": "steps", **{o: o for o in SETTINGS_OPTIONS if o != "steps"}}
+"""The numerical options and the keyword of :func:`shtaerman.dynamic` each sets."""
 
-CONTROLS = {
-    "steps": ("steps", int, "time steps per quasi-static impact duration t_y, >= 50"),
-    "mesh_size": ("size", float, "smallest element size / refined radius"),
-    "mesh_margin": ("margin", float, "refined radius / quasi-static contact radius, > 1"),
-    "domain_factor": ("domain", float, "domain radius / refined radius, in [1e2, 1e7]"),
-    "growth": ("growth", float, "element size growth per unit distance, in (0, 1]"),
-    "layer_rate": ("layer_rate", float, "absorbing-layer damping rate x t_y (0: no layer)"),
+
+NOTES = {
+    "history": "t, x, v, P, a, p0 at every time step",
+    "out": "dynamic.json, history.csv, energies.csv and VTU fields",
+    "force": "an existing --history file or --out folder",
 }
-"""Numerical options: the DynamicSettings field each sets, its type and meaning."""
+"""What ``dynamic`` does with its output options."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -53,90 +38,34 @@ def register(commands: argparse._SubParsersAction) -> None:
             "(with a warning) when the energy balance is off by more than 1e-2 of M v0^2/2."
         ),
     )
-    p.add_argument("--mass", default=PAPER["mass"], metavar="KG", help="striker mass M in kg")
-    p.add_argument(
-        "--velocity", default=PAPER["velocity"], metavar="M/S", help="approach velocity v0 in m/s"
-    )
-    add_indenter_options(p)
-    add_half_space_options(p, FEM_POISSON_LOW)
-    p.add_argument(
-        "--density2",
-        default=DEFAULT_DENSITY,
-        metavar="KG/M3",
-        help="half-space density in kg/m^3 (the paper gives none; 1100 is natural rubber)",
-    )
-    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument("--history", metavar="FILE.csv", help="write t,x,v,P,a,p0 every time step")
-    p.add_argument("--out", metavar="DIR", help="write JSON, CSV histories and VTU fields to DIR")
-    p.add_argument("--force", action="store_true", help="replace an existing --history / --out")
+    inputs = (*CASE, "E2", "nu2", "density2", "json", "history", "out", "force")
+    add_inputs(p, inputs, "dynamic", notes=NOTES)
     add_figure_format(p)
-    accuracy = p.add_argument_group("accuracy (error estimates from a 3-level ladder)")
-    accuracy.add_argument(
-        "--refine",
-        default="1",
-        metavar="K",
-        help="divide the mesh size field and the time step by K together; the ladder adds "
-        "K/2 and K/sqrt(2) for the Richardson estimates of x_max, P_max, t_contact, e",
+    accuracy = p.add_argument_group(
+        "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "
+        "K/2, K/sqrt(2), K)"
     )
-    accuracy.add_argument(
-        "--no-estimate",
-        action="store_true",
-        help="skip the two coarser runs (no error_estimate in the JSON; about 40 %% faster)",
-    )
+    add_inputs(accuracy, ("refine", "estimate"), "dynamic")
     numerics = p.add_argument_group(
         "expert numerical controls (relative to the quasi-static impact; --refine scales the "
         "mesh sizes and steps together)"
     )
-    defaults = DynamicSettings()
-    for option, (field, _, meaning) in CONTROLS.items():
-        numerics.add_argument(
-            "--" + option.replace("_", "-"),
-            default=f"{getattr(defaults, field):.6g}",
-            metavar="X",
-            help=meaning,
-        )
+    add_inputs(numerics, CONTROLS, "dynamic", aliases={"time_steps": ("--steps",)})
     p.set_defaults(handler=run)
-
-
-def settings_from(args: argparse.Namespace) -> DynamicSettings:
-    """DynamicSettings from the numerical options; errors name the option."""
-    values = {}
-    for option, (field, kind, _) in CONTROLS.items():
-        text = getattr(args, option)
-        name = option.replace("_", "-")
-        try:
-            number = float(text)
-        except ValueError:
-            raise InputError(f"{name} must be a number, got {text!r}") from None
-        if kind is int:
-            if not math.isfinite(number) or number != int(number):
-                raise InputError(f"{name} must be an integer, got {text!r}")
-            number = int(number)
-        values[field] = number
-    try:
-        return DynamicSettings(**values)
-    except InputError as error:
-        raise InputError(f"{error}") from None
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
-    mass = validate_positive("mass", args.mass, "kg")
-    velocity = validate_positive("velocity", args.velocity, "m/s")
-    density = validate_density(args.density2)
-    indenter, half_space = read_indenter(args), read_half_space(args, FEM_POISSON_LOW)
-    body = Material(half_space.youngs_modulus, half_space.poisson_ratio, density)
-    settings = settings_from(args)
     history = history_path(args.history, force=args.force)
     result = dynamic(
-        indenter,
-        body,
-        mass=mass,
-        velocity=velocity,
-        refine=validate_positive("refine", args.refine),
-        estimate=not args.no_estimate,
-        settings=settings,
+        indenter(args),
+        Material(args.E2, args.nu2, args.density2),
+        mass=args.mass,
+        velocity=args.velocity,
+        refine=args.refine,
+        estimate=args.estimate,
+        **{keyword: getattr(args, option) for option, keyword in CONTROLS.items()},
         out=args.out,
         force=args.force,
         figure_format=args.figure_format,

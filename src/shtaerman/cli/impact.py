@@ -9,14 +9,14 @@ from pathlib import Path
 from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
 from ..theory.impact import ImpactResult
-from ..validation import InputError, validate_positive
-from .common import PAPER, add_half_space_options, add_indenter_options, print_json
-from .common import half_space as read_half_space
-from .common import indenter as read_indenter
-from .common import striker as read_striker
+from ..theory.materials import Material
+from .common import CASE, add_inputs, indenter, print_json, striker
 
-MAX_POINTS = 10_000_000
-"""Largest --points (a 10^7-row history is 0.5 GB of CSV)."""
+NOTES = {
+    "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
+    "force": "an existing --history file",
+}
+"""What ``impact`` does with its output options."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -26,38 +26,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="exact quasi-static impact (the paper's example by default)",
         description="Exact quasi-static impact M x'' = -beta x^q (Ateb functions), SI units.",
     )
-    p.add_argument("--mass", default=PAPER["mass"], metavar="KG", help="striker mass M in kg")
-    p.add_argument(
-        "--velocity", default=PAPER["velocity"], metavar="M/S", help="approach velocity v0 in m/s"
-    )
-    add_indenter_options(p)
-    p.add_argument(
-        "--E1", default=PAPER["E1"], metavar="PA", help="striker Young's modulus in Pa, or 'inf'"
-    )
-    p.add_argument("--nu1", default=PAPER["nu1"], metavar="X", help="striker Poisson's ratio")
-    add_half_space_options(p)
-    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument(
-        "--history",
-        metavar="FILE.csv",
-        help="write CSV columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
-    )
-    p.add_argument("--points", default="201", help=f"rows of --history, 2 .. {MAX_POINTS}")
-    p.add_argument("--force", action="store_true", help="replace an existing --history file")
-    p.add_argument(
-        "--check", action="store_true", help="also integrate the ODE numerically and compare"
-    )
+    inputs = (*CASE, "E1", "nu1", "E2", "nu2", "json", "history", "points", "force", "check")
+    add_inputs(p, inputs, "impact", notes=NOTES)
     p.set_defaults(handler=run)
-
-
-def _points(value: str) -> int:
-    try:
-        points = int(value)
-    except ValueError:
-        points = 0
-    if not 2 <= points <= MAX_POINTS:
-        raise InputError(f"points must be an integer in [2, {MAX_POINTS}], got {value!r}")
-    return points
 
 
 def history_path(value: str | None, *, force: bool) -> Path | None:
@@ -69,18 +40,19 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
 
 def run(args: argparse.Namespace) -> int:
     """Solve the impact (:func:`shtaerman.impact`) and print it; write the history if asked."""
-    mass = validate_positive("mass", args.mass, "kg")
-    velocity = validate_positive("velocity", args.velocity, "m/s")
-    striker, half_space = read_striker(args), read_half_space(args)
-    indenter = read_indenter(args)
-    points, history = _points(args.points), history_path(args.history, force=args.force)
+    history = history_path(args.history, force=args.force)
     result = impact(
-        indenter, half_space, mass=mass, velocity=velocity, striker=striker, check=args.check
+        indenter(args),
+        Material(args.E2, args.nu2),
+        mass=args.mass,
+        velocity=args.velocity,
+        striker=striker(args),
+        check=args.check,
     )
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:
-            write_csv(stage, result.history(points).columns())
+            write_csv(stage, result.history(args.points).columns())
     if args.json:
         print_json(report)
     else:

@@ -7,6 +7,7 @@ import os
 from pathlib import Path
 
 from ..validation import InputError
+from .common import add_inputs
 
 __all__ = ["STUDY_TEMPLATE", "TEMPLATES", "register", "run", "write_template"]
 
@@ -183,7 +184,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="the study's kind: the static FEM contact, the dynamic FE impact, or the "
         "neo-Hookean finite-strain contact",
     )
-    p.add_argument("--force", action="store_true", help="replace an existing FILE.toml")
+    add_inputs(p, ("force",), None)
     p.set_defaults(handler=run)
 
 

@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 from ..validation import InputError
-from .common import add_figure_format
+from .common import add_figure_format, add_inputs
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -28,18 +28,11 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar="STUDY",
         help="study files (.toml) or shipped study names (default: every shipped study)",
     )
-    p.add_argument(
-        "--out", metavar="DIR", help="result folder (default: a new shtaerman-results-* folder)"
-    )
+    add_inputs(p, ("out", "force"), None, derived={"out": "a new shtaerman-results-* folder"})
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
-    p.add_argument("--force", action="store_true", help="replace an existing --out folder")
     add_figure_format(p)
-    p.add_argument(
-        "--workers",
-        metavar="N",
-        help="studies run as tasks on a local dask cluster of N single-threaded processes "
-        "(default: the number of cores; 1 runs them one after another in this process)",
-    )
+    cores = "the number of cores; 1 runs the studies one after another in this process"
+    add_inputs(p, ("workers",), None, derived={"workers": cores})
     p.set_defaults(handler=run)
 
 
@@ -64,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_folder(
         Path(args.out) if args.out is not None else default_out(), force=args.force
     )
-    workers = _workers(args.workers)
+    workers = args.workers or os.cpu_count() or 1
     if workers > 1 and len(studies) > 1:
         from ..sweep.verify import run_verification_on_dask
 
@@ -84,19 +77,6 @@ def run(args: argparse.Namespace) -> int:
         )
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
-
-
-def _workers(value: str | None) -> int:
-    """--workers: an integer >= 1 (default: the cores)."""
-    if value is None:
-        return os.cpu_count() or 1
-    try:
-        workers = int(value)
-    except ValueError:
-        workers = 0
-    if not 1 <= workers <= 256:
-        raise InputError(f"workers must be an integer in [1, 256], got {value!r}")
-    return workers
 
 
 def verify_text(results: dict, out: Path) -> str:

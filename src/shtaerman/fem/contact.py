@@ -35,7 +35,7 @@ import scipy.linalg as la
 from scipy.optimize import nnls
 from threadpoolctl import threadpool_limits
 
-from ..validation import InputError, validate_increasing, validate_poisson
+from ..validation import InputError, validate_poisson
 from .elasticity import FEM_MODULUS_RANGE, ElasticSolution, ElasticSystem, postprocess
 from .schur import TailFactorization, TailPivotError
 from .solver import Factorization, factorize
@@ -532,7 +532,7 @@ def solve_contact(
     profile : callable
         f(r) in m of r in m, vectorised, f(0) = 0 (e.g. ``PowerLawIndenter.profile``).
     depths : array_like
-        Depths d in m, positive and strictly increasing.
+        Depths d in m, positive and strictly increasing (the entry points check them).
     candidate_radius : float
         Surface nodes with r <= this radius (m) may touch; keep it within the refined zone.
     backend : str
@@ -546,7 +546,7 @@ def solve_contact(
     -------
     ContactCurve
     """
-    depths = validate_increasing("depths", np.atleast_1d(depths), "m")
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     if depths.size > MAX_DEPTHS:
         raise InputError(f"depths: at most {MAX_DEPTHS} per curve, got {depths.size}", "depths")
     ratio = system.youngs_modulus / candidate_radius

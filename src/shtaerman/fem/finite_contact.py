@@ -49,7 +49,7 @@ from numpy.typing import ArrayLike
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
-from ..validation import InputError, validate_increasing, validate_poisson
+from ..validation import InputError, validate_poisson
 from .contact import EDGE_MARGIN, central_pressure, edge_radius
 from .elasticity import dof_nodes
 from .hyperelastic import (
@@ -419,7 +419,8 @@ def solve_finite_contact(
     indenter : PowerLawIndenter
         z = A r^n with n > 1.
     depths : array_like
-        Depths in m, positive and strictly increasing; any ladder (sub-steps are internal).
+        Depths in m, positive and strictly increasing (the entry points check them); any
+        ladder (sub-steps are internal).
     candidate_radius : float
         Surface nodes with reference R <= this (m, a mesh vertex: the refined radius) may touch.
     tolerance : float
@@ -444,7 +445,7 @@ def solve_finite_contact(
         raise InputError(
             f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
         )
-    depths = validate_increasing("depths", np.atleast_1d(depths), "m")
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
     stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
     material = system.material
@@ -581,7 +582,7 @@ def run_finite_indentation(
     half_space : Material
         E2 (Pa) and nu2 in [0, 0.5] of the small-strain limit.
     depths : array_like
-        Depths in m, positive, increasing.
+        Depths in m, positive, increasing (the entry points check them).
     mesh : MeshSettings, optional
         Default :data:`FINITE_MESH`; the refined zone is ``margin`` times the geometric
         contact radius (d_max / A)^(1/n).
@@ -594,7 +595,7 @@ def run_finite_indentation(
     FiniteContactCurve
     """
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
-    depths = validate_increasing("depths", np.atleast_1d(depths), "m")
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     mesh = FINITE_MESH if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])
     start = time.perf_counter()
