@@ -32,7 +32,7 @@ from threadpoolctl import threadpool_limits
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
+from ..theory.materials import DENSITY_RANGE, Material
 from ..theory.radiation import rayleigh_root
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
@@ -79,8 +79,6 @@ stricter fallbacks of :func:`.solver.factorize_scaled`."""
 MIN_STEPS = 50
 """Fewest time steps per quasi-static impact duration t_y accepted."""
 MAX_STEPS = 100_000
-DENSITY_RANGE = (1e-6, 1e6)
-"""Half-space densities (kg/m^3) the dynamic FEM accepts (1e-6: the quasi-static limit)."""
 
 
 def validate_density(density: object) -> float:

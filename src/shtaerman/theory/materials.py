@@ -5,12 +5,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .. import vocabulary
 from ..validation import InputError, validate_poisson, validate_positive
 
 __all__ = ["DENSITY_RANGE", "RIGID", "Material", "effective_modulus"]
 
-DENSITY_RANGE = (1e-6, 1e6)
-"""Densities in kg/m^3 a material may have (the range the dynamic FEM accepts for --density2)."""
+_DENSITY = vocabulary.entry("density2").valid
+DENSITY_RANGE = (_DENSITY.low, _DENSITY.high)
+"""Densities in kg/m^3 a material may have: the vocabulary's range of ``density2``."""
 
 
 @dataclass(frozen=True)
