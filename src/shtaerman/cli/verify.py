@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 import os
+import shlex
+import sys
 import time
 from pathlib import Path
 
@@ -33,6 +35,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
     p.add_argument("--force", action="store_true", help="replace an existing --out folder")
     p.add_argument(
+        "--resume",
+        action="store_true",
+        help="complete the folder an interrupted run left in --out: compute only the studies "
+        "it lacks",
+    )
+    p.add_argument(
         "--workers",
         metavar="N",
         help="studies run as tasks on a local dask cluster of N single-threaded processes "
@@ -50,35 +58,57 @@ def default_out() -> Path:
 def run(args: argparse.Namespace) -> int:
     """Run the studies; print a verdict per study and every failing check."""
     from ..output.files import check_output_folder
-    from ..output.folder import ProgressBar, run_verification
+    from ..output.folder import PROGRESS_FILE, ProgressBar, VerifyInterrupted, run_verification
     from ..study.schema import find_study, load_study, shipped_studies
 
+    if args.resume and args.force:
+        raise InputError("resume and force exclude each other: resume keeps the folder")
+    if args.resume and args.out is None:
+        raise InputError("resume: name the folder to complete with --out DIR")
     paths = [find_study(name) for name in args.studies] or shipped_studies()
     studies = [study for path in paths for study in load_study(path)]
     names = [study.name for study in studies]
     duplicates = sorted({name for name in names if names.count(name) > 1})
     if duplicates:
         raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
+    marker = PROGRESS_FILE if args.resume else None
     out = check_output_folder(
-        Path(args.out) if args.out is not None else default_out(), force=args.force
+        Path(args.out) if args.out is not None else default_out(),
+        force=args.force,
+        resume_marker=marker,
     )
     workers = _workers(args.workers)
-    if workers > 1 and len(studies) > 1:
-        from ..sweep.verify import run_verification_on_dask
+    options = {"quick": args.quick, "force": args.force, "resume": args.resume}
+    try:
+        if workers > 1 and len(studies) > 1:
+            from ..sweep.verify import run_verification_on_dask
 
-        bar = ProgressBar(len(studies))
-        results = run_verification_on_dask(
-            studies,
-            out,
-            quick=args.quick,
-            workers=min(workers, len(studies)),
-            force=args.force,
-            progress=bar,
-        )
-    else:
-        results = run_verification(studies, out, quick=args.quick, force=args.force)
+            bar = ProgressBar(len(studies))
+            results = run_verification_on_dask(
+                studies, out, workers=min(workers, len(studies)), progress=bar, **options
+            )
+        else:
+            results = run_verification(studies, out, **options)
+    except VerifyInterrupted as stop:
+        print(_interrupted_text(args, stop, out), file=sys.stderr)
+        return 130 if isinstance(stop.cause, KeyboardInterrupt) else 143
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
+
+
+def _interrupted_text(args: argparse.Namespace, stop: BaseException, out: Path) -> str:
+    """What an interrupted run kept, and the command that completes it."""
+    command = ["shtaerman", "verify", *args.studies, "--out", str(out)]
+    if args.quick:
+        command.append("--quick")
+    if args.workers is not None:
+        command += ["--workers", str(args.workers)]
+    command.append("--resume")
+    reason = "interrupted" if isinstance(stop.cause, KeyboardInterrupt) else "terminated"
+    return (
+        f"shtaerman: {reason}: {stop.kept} of {stop.total} studies finished and kept in "
+        f"{str(out)!r}; complete them with: {shlex.join(command)}"
+    )
 
 
 def _workers(value: str | None) -> int:

@@ -38,6 +38,7 @@ from ..validation import InputError
 
 __all__ = [
     "CSV_UNITS",
+    "KeepStaged",
     "check_output_file",
     "check_output_folder",
     "csv_header",
@@ -164,12 +165,46 @@ def _probe(option: str, folder: Path, name: str) -> None:
     os.rmdir(probe)
 
 
-def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path:
+class KeepStaged(BaseException):
+    """Raised inside :func:`staged_folder`: move what is staged into place, then raise ``reason``.
+
+    For a run stopped part way whose finished part is complete in itself and says what is
+    missing (a marker file the caller wrote), so that a later run can complete it.
+    """
+
+    def __init__(self, reason: BaseException) -> None:
+        super().__init__(str(reason))
+        self.reason = reason
+
+
+def resumable(folder: Path, marker: str | None) -> bool:
+    """True when ``folder`` holds ``marker`` as a regular file (not a symbolic link)."""
+    if marker is None:
+        return False
+    try:
+        return stat.S_ISREG(os.lstat(folder / marker).st_mode)
+    except OSError:
+        return False
+
+
+def _not_empty(option: str, path: object, marker: str | None) -> InputError:
+    if marker is not None:
+        return InputError(
+            f"{option}: folder {str(path)!r} holds no interrupted run to complete (no {marker}); "
+            "use --force to replace it"
+        )
+    return InputError(f"{option}: folder {str(path)!r} is not empty (use --force to replace it)")
+
+
+def check_output_folder(
+    path: Path, *, force: bool, option: str = "out", resume_marker: str | None = None
+) -> Path:
     """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
 
-    A folder that exists and is not empty is refused unless ``force`` is set; its parent must
-    exist and be writable; the current folder, its parents, symbolic links and a folder that
-    another run is writing are refused.
+    A folder that exists and is not empty is refused unless ``force`` is set, or unless it
+    holds the file ``resume_marker`` (a run left it incomplete, to be completed); its parent
+    must exist and be writable; the current folder, its parents, symbolic links and a folder
+    that another run is writing are refused.
     """
     try:
         raw = Path(path).expanduser()
@@ -194,9 +229,8 @@ def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path
         if live:
             raise _busy(option, target, live)
         if target.is_dir() and any(target.iterdir()) and not force:
-            raise InputError(
-                f"{option}: folder {str(path)!r} is not empty (use --force to replace it)"
-            )
+            if not resumable(target, resume_marker):
+                raise _not_empty(option, path, resume_marker)
         _probe(option, target.parent, _stage_path(target).name)
     except ValueError as error:  # a NUL byte in the name
         if isinstance(error, InputError):
@@ -207,20 +241,8 @@ def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path
     return target
 
 
-@contextlib.contextmanager
-def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> Iterator[Path]:
-    """Yield an empty folder to fill; on success it becomes ``target`` in one rename.
-
-    ``target`` may exist only as an empty folder, or (``force``) as any folder, which is then
-    replaced. On any failure (an exception, Ctrl-C, SIGTERM raised as an exception) everything
-    written is removed and ``target`` is left exactly as it was.
-
-    Raises
-    ------
-    InputError
-        If another run is writing ``target``, or ``target`` is not ours to replace.
-    """
-    target = check_output_folder(target, force=force, option=option)
+def _claim(target: Path, option: str) -> Path:
+    """Create this run's staging folder beside ``target``; refuse when a rival runs."""
     stage = _stage_path(target)
     try:
         os.mkdir(stage)
@@ -231,14 +253,49 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
     if rivals and min(rivals) < os.getpid():
         os.rmdir(stage)
         raise _busy(option, target, rivals)
+    return stage
+
+
+def _link_tree(source: Path, destination: Path) -> None:
+    """Hard-link (copy where links fail) the tree ``source`` into ``destination``; symbolic
+    links are recreated as links, never followed."""
+
+    def link(src: str, dst: str) -> None:
+        try:
+            os.link(src, dst, follow_symlinks=False)
+        except OSError:
+            shutil.copy2(src, dst, follow_symlinks=False)
+
+    shutil.copytree(source, destination, symlinks=True, copy_function=link, dirs_exist_ok=True)
+
+
+@contextlib.contextmanager
+def staged_folder(
+    target: Path, *, force: bool = False, option: str = "out", resume_marker: str | None = None
+) -> Iterator[Path]:
+    """Yield a folder to fill; on success it becomes ``target`` in one rename.
+
+    ``target`` may exist only as an empty folder, or (``force``) as any folder, which is then
+    replaced. A folder holding the file ``resume_marker`` is replaced too, and the yielded
+    folder starts with its content (hard links) for the run to complete. On any failure (an
+    exception, Ctrl-C, SIGTERM raised as an exception) everything written is removed and
+    ``target`` is left exactly as it was; :class:`KeepStaged` instead moves what is staged
+    into place (replacing the old folder) and raises its reason.
+
+    Raises
+    ------
+    InputError
+        If another run is writing ``target``, or ``target`` is not ours to replace.
+    """
+    target = check_output_folder(target, force=force, option=option, resume_marker=resume_marker)
+    stage = _claim(target, option)
     content, retired = stage / "content", stage / "replaced"
     reserved = False
     try:
+        resumed = resumable(target, resume_marker)
         if os.path.lexists(target):
-            if not force and any(target.iterdir()):
-                raise InputError(
-                    f"{option}: folder {str(target)!r} is not empty (use --force to replace it)"
-                )
+            if not force and not resumed and any(target.iterdir()):
+                raise _not_empty(option, target, resume_marker)
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it
@@ -248,14 +305,15 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
             ) from None
         reserved = True
         os.mkdir(content)
-        yield content
+        if resumed:
+            _link_tree(retired, content)
         try:
-            os.rename(content, target)  # onto our empty reservation: atomic, complete at once
-        except OSError as error:  # someone wrote into the reservation meanwhile
-            raise InputError(
-                f"{option}: {str(target)!r} was changed by another program during the run "
-                f"({error.strerror}); it was left alone and this run's results discarded"
-            ) from None
+            yield content
+        except KeepStaged as keep:
+            _publish(content, target, option)
+            reserved = False
+            raise keep.reason from None
+        _publish(content, target, option)
         reserved = False
     except BaseException:
         if reserved:
@@ -266,6 +324,17 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
         raise
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+def _publish(content: Path, target: Path, option: str) -> None:
+    """Rename the finished ``content`` onto the empty reservation ``target``."""
+    try:
+        os.rename(content, target)  # onto our empty reservation: atomic, complete at once
+    except OSError as error:  # someone wrote into the reservation meanwhile
+        raise InputError(
+            f"{option}: {str(target)!r} was changed by another program during the run "
+            f"({error.strerror}); it was left alone and this run's results discarded"
+        ) from None
 
 
 def check_output_file(path: str | Path, *, force: bool, option: str = "history") -> Path:
