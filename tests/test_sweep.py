@@ -246,22 +246,66 @@ def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):
     assert (out / "thesis.tex").read_text() == "precious"
 
 
-def test_cli_resume_refuses_a_different_sweep(tmp_path, capsys):
-    out = tmp_path / "out"
+def sweep_folder(out, text=IMPACT):
+    """A folder as a sweep leaves it before its first case: the file and the marker."""
+    from shtaerman.sweep.engine import MARKER_FILE, MARKER_FORMAT
+
     out.mkdir()
-    (out / "sweep.toml").write_text(IMPACT)
-    changed = write(tmp_path, IMPACT.replace("[0.3, 0.5]", "[0.3, 0.4]"))
+    (out / "sweep.toml").write_text(text)
+    (out / MARKER_FILE).write_text(json.dumps({"format": MARKER_FORMAT}))
+    return out
+
+
+@pytest.mark.parametrize(
+    ("edit", "key"),
+    [
+        (("mass = 0.7", "mass = 0.8"), "parameters.mass"),
+        (('kind = "impact"', 'kind = "dynamic"'), "kind"),
+        (("nu2 = [0.3, 0.5]", "E2 = [1e7]"), "axes (their names)"),
+    ],
+)
+def test_cli_resume_refuses_a_changed_fixed_parameter(tmp_path, capsys, edit, key):
+    out = sweep_folder(tmp_path / "out")
+    changed = write(tmp_path, IMPACT.replace(*edit))
     before = snapshot(out)
     code, _, err = run_cli(capsys, changed, "--out", out, "--resume")
     assert code == 2
-    assert_one_line_error(err, "holds a different sweep (axes.nu2 differs")
+    assert_one_line_error(err, f"holds a different sweep ({key} differs", "axis values only")
     assert snapshot(out) == before
 
 
-def test_cli_resume_and_force_exclude_each_other(tmp_path, capsys):
-    out = tmp_path / "out"
+@pytest.mark.parametrize("option", ["--force", "--resume"])
+def test_a_folder_is_a_sweep_folder_by_its_marker_not_a_file_name(tmp_path, capsys, option):
+    # a project folder that happens to hold a sweep.toml (and a results.json of its own)
+    out = tmp_path / "proj"
     out.mkdir()
     (out / "sweep.toml").write_text(IMPACT)
+    (out / "notes.txt").write_text("notes")
+    (out / "results.json").write_text("mine")
+    before = snapshot(out)
+    code, _, err = run_cli(capsys, out / "sweep.toml", "--out", out, option)
+    assert code == 2
+    assert_one_line_error(err, ".shtaerman-sweep.json")
+    assert snapshot(out) == before
+
+
+def test_a_symlinked_out_and_the_current_folder_are_refused(tmp_path, capsys, monkeypatch):
+    real = sweep_folder(tmp_path / "real")
+    (tmp_path / "link").symlink_to(real)
+    before = snapshot(real)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", tmp_path / "link", "--force")
+    assert code == 2
+    assert_one_line_error(err, "is a symbolic link")
+    (real / "cases").mkdir()
+    monkeypatch.chdir(real / "cases")
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", real, "--force")
+    assert code == 2
+    assert_one_line_error(err, "is the current folder or one of its parents")
+    assert (real / "cases").is_dir() and snapshot(real) == before
+
+
+def test_cli_resume_and_force_exclude_each_other(tmp_path, capsys):
+    out = sweep_folder(tmp_path / "out")
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--resume", "--force")
     assert code == 2
     assert_one_line_error(err, "resume and force exclude each other")

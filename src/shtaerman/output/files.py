@@ -28,6 +28,7 @@ import os
 import re
 import shutil
 import stat
+import warnings
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
@@ -39,12 +40,15 @@ from ..validation import InputError
 __all__ = [
     "CSV_UNITS",
     "KeepStaged",
+    "check_folder_path",
     "check_output_file",
     "check_output_folder",
     "csv_header",
     "file_mode",
+    "folder_lock",
     "json_safe",
     "missing_folder",
+    "resumable",
     "staged_file",
     "staged_folder",
     "write_csv",
@@ -107,7 +111,10 @@ def _remove(path: Path) -> None:
 
 
 def _clean_stale(target: Path, stage: Path) -> None:
-    """Undo what a killed run left: restore the folder it was replacing, drop its reservation."""
+    """Undo what a killed run left: restore the folder it was replacing, drop its reservation.
+
+    When the killed run had already filled ``target`` (a sweep writes in place), the folder it
+    was replacing is kept beside it as ``NAME.replaced-PID`` and a warning says where."""
     retired, content = stage / "replaced", stage / "content"
     with contextlib.suppress(OSError):
         if content.is_dir() or retired.is_dir():
@@ -115,6 +122,14 @@ def _clean_stale(target: Path, stage: Path) -> None:
                 os.rmdir(target)  # its empty reservation
             if retired.is_dir() and not os.path.lexists(target):
                 os.rename(retired, target)
+        if retired.is_dir():
+            kept = target.with_name(f"{target.name}.replaced-{stage.name.rsplit('-', 1)[-1]}")
+            os.rename(retired, kept)
+            warnings.warn(
+                f"a killed run was replacing {str(target)!r}; the folder it replaced is kept "
+                f"as {str(kept)!r}",
+                stacklevel=2,
+            )
     _remove(stage)
 
 
@@ -196,16 +211,9 @@ def _not_empty(option: str, path: object, marker: str | None) -> InputError:
     return InputError(f"{option}: folder {str(path)!r} is not empty (use --force to replace it)")
 
 
-def check_output_folder(
-    path: Path, *, force: bool, option: str = "out", resume_marker: str | None = None
-) -> Path:
-    """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
-
-    A folder that exists and is not empty is refused unless ``force`` is set, or unless it
-    holds the file ``resume_marker`` (a run left it incomplete, to be completed); its parent
-    must exist and be writable; the current folder, its parents, symbolic links and a folder
-    that another run is writing are refused.
-    """
+def check_folder_path(path: Path, option: str = "out") -> Path:
+    """``path`` made absolute (symbolic links not resolved), or raise InputError when it names
+    no folder, is a symbolic link, or is the current folder or one of its parents."""
     try:
         raw = Path(path).expanduser()
         target = _absolute(raw)
@@ -221,6 +229,57 @@ def check_output_folder(
                 f"{option}: {str(path)!r} is the current folder or one of its parents; name a "
                 f"new folder (e.g. {option} results)"
             )
+    except ValueError as error:  # a NUL byte in the name
+        if isinstance(error, InputError):
+            raise
+        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
+    except OSError as error:
+        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
+    return target
+
+
+@contextlib.contextmanager
+def folder_lock(target: Path, option: str = "out") -> Iterator[Path]:
+    """Hold ``target`` for this run: the staging folder ``.NAME.partial-PID`` beside it, which
+    every writer of ``target`` checks (a run killed meanwhile is cleaned up by the next). Yields
+    that folder; a ``replaced`` folder inside it is restored by the next run after a SIGKILL.
+
+    Raises
+    ------
+    InputError
+        If another live run writes ``target``.
+    """
+    live = [pid for pid in _other_writers(target) if pid != os.getpid()]
+    if live:
+        raise _busy(option, target, live)
+    try:
+        stage = _claim(target, option)
+    except FileNotFoundError:
+        raise InputError(f"{option}: {missing_folder(target.parent)}") from None
+    except OSError as error:
+        if isinstance(error, InputError):
+            raise
+        raise InputError(
+            f"{option}: cannot write in {str(target.parent)!r} ({error.strerror or error})"
+        ) from None
+    try:
+        yield stage
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def check_output_folder(
+    path: Path, *, force: bool, option: str = "out", resume_marker: str | None = None
+) -> Path:
+    """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
+
+    A folder that exists and is not empty is refused unless ``force`` is set, or unless it
+    holds the file ``resume_marker`` (a run left it incomplete, to be completed); its parent
+    must exist and be writable; the current folder, its parents, symbolic links and a folder
+    that another run is writing are refused.
+    """
+    target = check_folder_path(path, option)
+    try:
         if target.exists() and not target.is_dir():
             raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
         if not target.parent.is_dir():
