@@ -304,3 +304,26 @@ def test_a_planted_marker_link_is_not_a_resumable_folder(tmp_path):
         with staged_folder(target, resume_marker="marker"):
             pass
     assert sorted(p.name for p in target.iterdir()) == ["marker", "notes.txt"]
+
+
+def test_a_killed_run_that_had_filled_its_folder_keeps_the_one_it_replaced(tmp_path):
+    import warnings
+
+    from shtaerman.output.files import folder_lock
+
+    target = tmp_path / "run"
+    pid = dead_pid()
+    stale = tmp_path / f".run.partial-{pid}"
+    (stale / "replaced").mkdir(parents=True)
+    (stale / "replaced" / "old.txt").write_text("old")
+    target.mkdir()
+    (target / "new.txt").write_text("new")  # a sweep writes in place
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with folder_lock(target):
+            pass
+    assert (tmp_path / f"run.replaced-{pid}" / "old.txt").read_text() == "old"
+    assert (target / "new.txt").read_text() == "new"
+    [warning] = caught
+    assert f"run.replaced-{pid}" in str(warning.message)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run", f"run.replaced-{pid}"]

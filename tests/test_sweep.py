@@ -461,3 +461,32 @@ def test_sweep_files_follow_the_umask(tmp_path, capsys):
         os.umask(previous)
     written = [out / "cases.csv", out / "results.json", out / "sweep.toml", out / "cases/0.json"]
     assert {oct(stat.S_IMODE(p.stat().st_mode)) for p in written} == {oct(0o644)}
+
+
+def test_a_sweep_folder_another_run_writes_is_refused(tmp_path, capsys):
+    import subprocess
+    import sys
+
+    out = sweep_folder(tmp_path / "out")
+    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        (tmp_path / f".out.partial-{sleeper.pid}").mkdir()
+        before = snapshot(out)
+        code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--force")
+        assert code == 2
+        assert_one_line_error(err, f"another shtaerman run (pid {sleeper.pid}) is writing")
+        assert snapshot(out) == before
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+
+
+def test_resume_refuses_a_linked_cases_folder(tmp_path, capsys):
+    out = sweep_folder(tmp_path / "out")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (out / "cases").symlink_to(elsewhere)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--resume")
+    assert code == 2
+    assert_one_line_error(err, "cases' is not a folder (a symbolic link?)")
+    assert list(elsewhere.iterdir()) == []

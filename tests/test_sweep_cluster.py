@@ -464,3 +464,19 @@ def test_a_forced_run_that_fails_at_the_end_keeps_its_cases(tmp_path, capsys, mo
     monkeypatch.undo()
     assert main(["sweep", str(path), "--out", str(out), "--resume"]) == 0
     assert sweep_probe.computations(markers) == {1.0: 2, 2.0: 2}
+
+
+def test_resume_does_not_follow_a_link_planted_among_the_figures(tmp_path):
+    path = tmp_path / "ab.toml"
+    path.write_text(AB.replace("mass = [0.1, 10.0]\n", ""))
+    out = tmp_path / "out"
+    run_sweep(load_sweep(path), out, workers=1)
+    precious = tmp_path / "precious"
+    precious.write_text("mine")
+    (out / "figures" / "x_c.png").unlink()
+    (out / "figures" / "x_c.png").symlink_to(precious)
+    outcome = run_sweep(load_sweep(path), out, resume=True)  # nothing to compute: no cluster
+    assert (outcome.computed, outcome.reused) == (0, 2)
+    assert precious.read_text() == "mine"
+    assert not (out / "figures" / "x_c.png").is_symlink()
+    assert (out / "figures" / "x_c.png").stat().st_size > 1000
