@@ -490,3 +490,21 @@ def test_resume_refuses_a_linked_cases_folder(tmp_path, capsys):
     assert code == 2
     assert_one_line_error(err, "cases' is not a folder (a symbolic link?)")
     assert list(elsewhere.iterdir()) == []
+
+
+def test_unreadable_sweep_files_are_one_line_errors(tmp_path, capsys):
+    import os
+
+    bad = tmp_path / "latin.toml"
+    bad.write_bytes(IMPACT.encode().replace(b'"grid"', b'"gr\xefd"'))
+    deep = write(tmp_path, "a = " + "[" * 5000, "deep.toml")
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    for path, needle in [
+        (bad, "not UTF-8 text (byte 0xef at offset 10)"),
+        (deep, "not valid TOML (nested too deeply)"),
+        (fifo, "not a regular file"),
+    ]:
+        code, _, err = run_cli(capsys, path)
+        assert code == 2
+        assert_one_line_error(err, f"{path}: {needle}")
