@@ -480,3 +480,18 @@ def test_resume_does_not_follow_a_link_planted_among_the_figures(tmp_path):
     assert precious.read_text() == "mine"
     assert not (out / "figures" / "x_c.png").is_symlink()
     assert (out / "figures" / "x_c.png").stat().st_size > 1000
+
+
+def test_a_dynamic_case_whose_checks_fail_is_recorded_failed_with_its_reason():
+    # a rubber 1000x denser than rubber on a coarse mesh: the energy account is off by about
+    # the whole kinetic energy; `shtaerman dynamic` warns and exits 1 on the same inputs
+    from shtaerman.sweep.engine import execute_case
+    from shtaerman.sweep.kinds import get_kind
+
+    kind = get_kind("dynamic")
+    params = {**kind.defaults(), "density2": 1e6, "steps": 100, "mesh_size": 0.05}
+    record = execute_case(kind.case, 0, params)
+    assert record["status"] == "failed"
+    assert record["error"].startswith("check failed: energy balance error ")
+    assert "exceeds 0.01" in record["error"]
+    assert record["outputs"]["energy_balance_error"] > 0.01  # the numbers are kept to see

@@ -49,7 +49,7 @@ from ..output.files import (
     missing_folder,
 )
 from ..validation import InputError
-from .kinds import unit_suffix
+from .kinds import CaseCheckFailed, unit_suffix
 from .spec import Case, SweepSpec
 
 __all__ = [
@@ -171,6 +171,9 @@ def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: 
     BLAS is capped to one thread (threadpoolctl) whatever the worker's environment, so an
     existing cluster with several threads per worker does not oversubscribe its cores.
 
+    A case that raises :class:`~shtaerman.sweep.kinds.CaseCheckFailed` is "failed" with its
+    outputs kept.
+
     Returns
     -------
     dict
@@ -187,6 +190,9 @@ def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: 
         try:
             raw = case(dict(params))
             outputs = {str(name): _scalar(name, value) for name, value in raw.items()}
+        except CaseCheckFailed as failed:  # it ran, but its own checks fail: kept, as failed
+            outputs = {str(name): _scalar(name, value) for name, value in failed.outputs.items()}
+            error = "check failed: " + " ".join(str(failed).split())
         except Exception as exc:
             outputs, error = {}, _one_line(exc)
     return {
