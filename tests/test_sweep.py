@@ -508,3 +508,39 @@ def test_unreadable_sweep_files_are_one_line_errors(tmp_path, capsys):
         code, _, err = run_cli(capsys, path)
         assert code == 2
         assert_one_line_error(err, f"{path}: {needle}")
+
+
+def test_a_sweep_whose_cases_could_not_run_does_not_say_nothing_to_compute(
+    tmp_path, capsys, monkeypatch
+):
+    from shtaerman.sweep import engine
+
+    def lost(spec, out, **kwargs):
+        return engine.SweepOutcome(out, 4, 0, 0, 4, 0, 0, 1.0, 2, "KilledWorker: case 0")
+
+    monkeypatch.setattr(engine, "run_sweep", lost)
+    code, out, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", tmp_path / "o")
+    assert code == 1
+    assert "4 cases, 0 ok, 0 failed (none of 4 could run)" in out
+    assert "nothing to compute" not in out
+    assert "4 cases could not run (KilledWorker: case 0); complete them with: " in err
+
+
+def test_a_signal_while_the_cluster_starts_says_nothing_was_saved(tmp_path, capsys, monkeypatch):
+    import contextlib
+    import os
+    import signal
+
+    from shtaerman.sweep import engine
+
+    @contextlib.contextmanager
+    def starting(workers, scheduler):
+        os.kill(os.getpid(), signal.SIGTERM)  # arrives while the cluster starts
+        yield None
+
+    monkeypatch.setattr(engine, "_client", starting)
+    out = tmp_path / "st1"
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out)
+    assert code == 128 + signal.SIGTERM
+    assert err == "shtaerman: sweep 'grid' interrupted (SIGTERM) before any case was saved\n"
+    assert not out.exists() and list(tmp_path.iterdir()) == [tmp_path / "sweep.toml"]

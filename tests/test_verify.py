@@ -284,3 +284,16 @@ def test_resume_on_dask_computes_only_the_missing_study(
     for name, study in quick_verify[2]["studies"].items():
         assert results["studies"][name]["checks"] == study["checks"]
     assert not (out / "incomplete.json").exists()
+
+
+def test_sweep_values_too_close_to_name_apart_are_refused_in_words_a_user_can_act_on(
+    tmp_path, capsys
+):
+    paper = next(p for p in shipped_studies() if p.stem == "paper")
+    study = tmp_path / "sw.toml"
+    study.write_text(paper.read_text() + "\n[sweep]\nvelocity = [1.0000001, 1.0000002]\n")
+    assert main(["verify", "--quick", "--out", str(tmp_path / "run"), str(study)]) == 2
+    err = capsys.readouterr().err
+    assert f"the [sweep] of {study} gives two studies the name 'paper-v01'" in err
+    assert "rename one" not in err and err.count("\n") == 1
+    assert not (tmp_path / "run").exists()

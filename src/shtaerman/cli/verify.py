@@ -67,10 +67,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("resume: name the folder to complete with --out DIR")
     paths = [find_study(name) for name in args.studies] or shipped_studies()
     studies = [study for path in paths for study in load_study(path)]
-    names = [study.name for study in studies]
-    duplicates = sorted({name for name in names if names.count(name) > 1})
-    if duplicates:
-        raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
+    _check_unique_names(studies)
     marker = PROGRESS_FILE if args.resume else None
     out = check_output_folder(
         Path(args.out) if args.out is not None else default_out(),
@@ -94,6 +91,21 @@ def run(args: argparse.Namespace) -> int:
         return 130 if isinstance(stop.cause, KeyboardInterrupt) else 143
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
+
+
+def _check_unique_names(studies: list) -> None:
+    """Raise InputError when two studies share a name (their result folder)."""
+    names = [study.name for study in studies]
+    duplicates = sorted({name for name in names if names.count(name) > 1})
+    if not duplicates:
+        return
+    sources = {str(getattr(s, "source", "")) for s in studies if s.name == duplicates[0]}
+    if len(sources) == 1:  # one file's [sweep] values that round to the same name
+        raise InputError(
+            f"studies: the [sweep] of {sources.pop()} gives two studies the name "
+            f"{duplicates[0]!r}: its values must differ within 6 significant digits"
+        )
+    raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
 
 
 def _interrupted_text(args: argparse.Namespace, stop: BaseException, out: Path) -> str:

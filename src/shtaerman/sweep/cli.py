@@ -142,12 +142,11 @@ def _failed_text(args: argparse.Namespace, out: Path, error: OSError) -> str:
 
 def _report(args: argparse.Namespace, spec: Any, out: Path, outcome: Any) -> None:
     """The summary line, the warnings, and where the results are (or how to complete them)."""
-    done = (
-        f"{outcome.computed} computed on {outcome.workers} "
-        f"worker{'s' if outcome.workers != 1 else ''}"
-        if outcome.computed
-        else "nothing to compute"
-    )
+    if outcome.computed:
+        plural = "s" if outcome.workers != 1 else ""
+        done = f"{outcome.computed} computed on {outcome.workers} worker{plural}"
+    else:
+        done = f"none of {outcome.lost} could run" if outcome.lost else "nothing to compute"
     if outcome.reused:
         done += f", {outcome.reused} from an earlier run"
     print(
