@@ -495,3 +495,21 @@ def test_a_dynamic_case_whose_checks_fail_is_recorded_failed_with_its_reason():
     assert record["error"].startswith("check failed: energy balance error ")
     assert "exceeds 0.01" in record["error"]
     assert record["outputs"]["energy_balance_error"] > 0.01  # the numbers are kept to see
+
+
+def test_no_more_workers_than_cases_and_a_private_scratch_folder(tmp_path, monkeypatch):
+    import tempfile
+
+    # a link planted where dask puts its scratch space by default must not be followed
+    victim = tmp_path / "victim"
+    victim.mkdir()
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    (temporary / "dask-scratch-space").symlink_to(victim)
+    monkeypatch.setattr(tempfile, "tempdir", str(temporary))
+    monkeypatch.setenv("TMPDIR", str(temporary))
+    path, _ = probe_sweep(tmp_path, [1, 2])
+    outcome = run_sweep(load_sweep(path), tmp_path / "out", workers=4, figures=False)
+    assert outcome.exit_code == 0 and outcome.workers == 2
+    assert list(victim.iterdir()) == []
+    assert sorted(p.name for p in temporary.iterdir()) == ["dask-scratch-space"]

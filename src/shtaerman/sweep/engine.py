@@ -502,25 +502,31 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
     # printed a "heartbeat" traceback at shutdown, about 1 run in 2 of two studies
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
-        cluster = _local_cluster(workers)
+    scratch = tempfile.mkdtemp(prefix="shtaerman-dask-")  # private (0700), never a planted link
     try:
-        client = Client(cluster)
+        settings = {"distributed.nanny.pre-spawn-environ": environ, "temporary-directory": scratch}
+        with dask.config.set(settings):
+            cluster = _local_cluster(workers, scratch)
         try:
-            yield client
+            client = Client(cluster)
+            try:
+                yield client
+            finally:
+                with _signals_ignored():
+                    client.close()
         finally:
             with _signals_ignored():
-                client.close()
+                cluster.close()
     finally:
-        with _signals_ignored():
-            cluster.close()
+        shutil.rmtree(scratch, ignore_errors=True)
 
 
-def _local_cluster(workers: int | None) -> Any:
+def _local_cluster(workers: int | None, scratch: str) -> Any:
     from distributed import LocalCluster
 
     return LocalCluster(
         n_workers=workers or default_workers(),
+        local_directory=scratch,
         threads_per_worker=1,
         processes=True,
         dashboard_address=None,
@@ -744,6 +750,8 @@ def _compute(
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
     by_key = dict(zip(keys, pending, strict=True))
     with bar, _quiet_dask():
+        if scheduler is None:  # no more processes than cases
+            workers = min(workers or default_workers(), len(pending))
         with _client(workers, scheduler) as client:
             stop.check()
             ready()

@@ -296,9 +296,12 @@ def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
     if not values:
         raise SweepError(f"{where}: {key} is empty; give at least one value")
     converted = [_value(where, f"{key}[{i}]", kind, name, v) for i, v in enumerate(values)]
+    seen = set()
     for i, value in enumerate(converted):
-        if value in converted[:i]:
+        hashable = tuple(value) if isinstance(value, list) else value
+        if hashable in seen:
             raise SweepError(f"{where}: {key} lists {values[i]!r} twice")
+        seen.add(hashable)
     return converted
 
 
