@@ -4,8 +4,10 @@ No cluster is started here except by ``test_cli_runs_a_shipped_sweep`` (the swee
 on dask, killed workers, resume and SIGTERM are in test_sweep_cluster.py).
 """
 
+import contextlib
 import json
 import math
+import os
 import shutil
 from pathlib import Path
 
@@ -534,7 +536,7 @@ def test_a_signal_while_the_cluster_starts_says_nothing_was_saved(tmp_path, caps
     from shtaerman.sweep import engine
 
     @contextlib.contextmanager
-    def starting(workers, scheduler):
+    def starting(workers, scheduler, stop=None):
         os.kill(os.getpid(), signal.SIGTERM)  # arrives while the cluster starts
         yield None
 
@@ -544,3 +546,63 @@ def test_a_signal_while_the_cluster_starts_says_nothing_was_saved(tmp_path, caps
     assert code == 128 + signal.SIGTERM
     assert err == "shtaerman: sweep 'grid' interrupted (SIGTERM) before any case was saved\n"
     assert not out.exists() and list(tmp_path.iterdir()) == [tmp_path / "sweep.toml"]
+
+
+@pytest.fixture
+def silent_scheduler():
+    """A TCP server on 127.0.0.1 that accepts connections and never says a word."""
+    import socket
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+    accepted = []
+
+    def accept():
+        with contextlib.suppress(OSError):
+            while True:
+                accepted.append(server.accept()[0])
+
+    threading.Thread(target=accept, daemon=True).start()
+    yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    server.close()
+    for connection in accepted:
+        connection.close()
+
+
+def test_a_scheduler_that_never_answers_is_given_up_on(
+    tmp_path, capsys, monkeypatch, silent_scheduler
+):
+    import time
+
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "1s")
+    out = tmp_path / "out"
+    start = time.monotonic()
+    code, _, err = run_cli(
+        capsys, write(tmp_path, IMPACT), "--out", out, "--scheduler", silent_scheduler
+    )
+    assert code == 2 and time.monotonic() - start < 30  # 1 s and dask's own, not for ever
+    assert_one_line_error(err, f"scheduler: cannot connect to {silent_scheduler!r}")
+    assert not out.exists()
+
+
+def test_sigterm_while_waiting_for_a_silent_scheduler_ends_the_sweep(tmp_path, silent_scheduler):
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    sweep = write(tmp_path, IMPACT)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "shtaerman", "sweep", str(sweep), "--out", str(tmp_path / "o"),
+         "--scheduler", silent_scheduler],
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+    time.sleep(3)  # well into the wait (dask's timeout is 10 s)
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=20)
+    assert process.returncode == 128 + signal.SIGTERM, err
+    assert "Traceback" not in err and "before any case was saved" in err

@@ -475,18 +475,48 @@ def _quiet_dask() -> Iterator[None]:
         logger.setLevel(level)
 
 
+def _connect(scheduler: str, stop: _StopFlag | None) -> Any:
+    """A client of the existing ``scheduler``, made in a helper thread: a peer that accepts
+    the connection and never answers cannot hold this process past the connect timeout, and
+    SIGINT/SIGTERM (``stop``) end the wait at once."""
+    from dask.utils import parse_timedelta
+    from distributed import Client
+
+    made: dict[str, Any] = {}
+
+    def connect() -> None:
+        try:
+            made["client"] = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except Exception as error:
+            made["error"] = error
+
+    thread = threading.Thread(target=connect, name="shtaerman-connect", daemon=True)
+    thread.start()
+    seconds = parse_timedelta(CONNECT_TIMEOUT)
+    deadline = time.monotonic() + seconds + 5.0  # dask's own timeout first, when it works
+    while thread.is_alive() and time.monotonic() < deadline:
+        thread.join(0.05)
+        if stop is not None:
+            stop.check()
+    error = made.get("error")
+    if thread.is_alive():
+        error = TimeoutError(f"no answer within {seconds:g} s")
+    if isinstance(error, OSError | TimeoutError | ValueError | TypeError):  # a malformed address
+        raise InputError(f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})")
+    if error is not None:
+        raise error
+    return made["client"]
+
+
 @contextlib.contextmanager
-def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
+def _client(
+    workers: int | None, scheduler: str | None, stop: _StopFlag | None = None
+) -> Iterator[Any]:
     import dask
     from distributed import Client
 
     if scheduler is not None:
-        try:
-            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except (OSError, TimeoutError, ValueError) as error:  # ValueError: a malformed address
-            raise InputError(
-                f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})"
-            ) from None
+        client = _connect(scheduler, stop)
         try:
             yield client
         finally:
@@ -752,7 +782,7 @@ def _compute(
     with bar, _quiet_dask():
         if scheduler is None:  # no more processes than cases
             workers = min(workers or default_workers(), len(pending))
-        with _client(workers, scheduler) as client:
+        with _client(workers, scheduler, stop) as client:
             stop.check()
             ready()
             nthreads = sum(client.nthreads().values())
