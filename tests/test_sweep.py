@@ -548,9 +548,8 @@ def test_a_signal_while_the_cluster_starts_says_nothing_was_saved(tmp_path, caps
     assert not out.exists() and list(tmp_path.iterdir()) == [tmp_path / "sweep.toml"]
 
 
-@pytest.fixture
-def silent_scheduler():
-    """A TCP server on 127.0.0.1 that accepts connections and never says a word."""
+def fake_server(answer: bytes):
+    """A TCP server on 127.0.0.1 that accepts connections and sends ``answer`` on each."""
     import socket
     import threading
 
@@ -563,12 +562,47 @@ def silent_scheduler():
         with contextlib.suppress(OSError):
             while True:
                 accepted.append(server.accept()[0])
+                if answer:
+                    accepted[-1].sendall(answer)
 
     threading.Thread(target=accept, daemon=True).start()
     yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
     server.close()
     for connection in accepted:
         connection.close()
+
+
+@pytest.fixture
+def silent_scheduler():
+    """A TCP server that accepts connections and never says a word."""
+    yield from fake_server(b"")
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [
+        b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
+        b"\x05\x00\x00\x00\x00\x00\x00\x00\x01",  # a truncated dask frame
+    ],
+)
+def test_a_server_that_is_not_a_dask_scheduler_is_one_line(tmp_path, capsys, monkeypatch, answer):
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "2s")
+    server = fake_server(answer)
+    address = next(server)
+    try:
+        code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--scheduler", address)
+    finally:
+        next(server, None)
+    assert code == 2
+    assert_one_line_error(err, f"scheduler: cannot connect to {address!r}")
+
+
+@pytest.mark.parametrize("address", ["ucx://127.0.0.1:1", "tls://127.0.0.1:1"])
+def test_other_scheduler_protocols_are_one_line(tmp_path, capsys, monkeypatch, address):
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "1s")
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--scheduler", address)
+    assert code == 2
+    assert_one_line_error(err, f"scheduler: cannot connect to {address!r}")
 
 
 def test_a_scheduler_that_never_answers_is_given_up_on(

@@ -501,10 +501,8 @@ def _connect(scheduler: str, stop: _StopFlag | None) -> Any:
     error = made.get("error")
     if thread.is_alive():
         error = TimeoutError(f"no answer within {seconds:g} s")
-    if isinstance(error, OSError | TimeoutError | ValueError | TypeError):  # a malformed address
+    if error is not None:  # refused, malformed, not a dask scheduler (its answer undecodable)
         raise InputError(f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})")
-    if error is not None:
-        raise error
     return made["client"]
 
 
