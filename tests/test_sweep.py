@@ -303,6 +303,10 @@ def test_a_symlinked_out_and_the_current_folder_are_refused(tmp_path, capsys, mo
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", real, "--force")
     assert code == 2
     assert_one_line_error(err, "is the current folder or one of its parents")
+    monkeypatch.chdir(real)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", ".", "--force")
+    assert code == 2
+    assert_one_line_error(err, "'.' is the current folder or one of its parents")
     assert (real / "cases").is_dir() and snapshot(real) == before
 
 
