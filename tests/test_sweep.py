@@ -506,7 +506,12 @@ def test_unreadable_sweep_files_are_one_line_errors(tmp_path, capsys):
     deep = write(tmp_path, "a = " + "[" * 5000, "deep.toml")
     fifo = tmp_path / "fifo.toml"
     os.mkfifo(fifo)
+    huge = tmp_path / "huge.toml"
+    with open(huge, "wb") as stream:
+        stream.truncate(17 << 20)  # sparse: 17 MB read as zeros
     for path, needle in [
+        (huge, f"{17 << 20} bytes; a sweep file has at most {16 << 20} bytes"),
+        (Path("/dev/zero"), "not a regular file"),
         (bad, "not UTF-8 text (byte 0xef at offset 10)"),
         (deep, "not valid TOML (nested too deeply)"),
         (fifo, "not a regular file"),
