@@ -557,6 +557,10 @@ def test_a_signal_while_the_cluster_starts_says_nothing_was_saved(tmp_path, caps
     assert not out.exists() and list(tmp_path.iterdir()) == [tmp_path / "sweep.toml"]
 
 
+ACCEPTED: dict[str, list] = {}
+"""The connections each fake server accepted, by its address."""
+
+
 def fake_server(answer: bytes):
     """A TCP server on 127.0.0.1 that accepts connections and sends ``answer`` on each."""
     import socket
@@ -575,7 +579,9 @@ def fake_server(answer: bytes):
                     accepted[-1].sendall(answer)
 
     threading.Thread(target=accept, daemon=True).start()
-    yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    ACCEPTED[address] = accepted
+    yield address
     server.close()
     for connection in accepted:
         connection.close()
@@ -644,7 +650,11 @@ def test_sigterm_while_waiting_for_a_silent_scheduler_ends_the_sweep(tmp_path, s
         stderr=subprocess.PIPE,
         text=True,
     )  # fmt: skip
-    time.sleep(3)  # well into the wait (dask's timeout is 10 s)
+    deadline = time.monotonic() + 60
+    while not ACCEPTED[silent_scheduler]:  # the sweep is waiting for the scheduler's answer
+        assert process.poll() is None and time.monotonic() < deadline
+        time.sleep(0.05)
+    time.sleep(0.5)
     process.send_signal(signal.SIGTERM)
     _, err = process.communicate(timeout=20)
     assert process.returncode == 128 + signal.SIGTERM, err

@@ -2,8 +2,11 @@
 
 The result folder::
 
-    DIR/sweep.toml          the sweep file, copied (``--resume`` checks it is the same sweep)
-    DIR/cases/<index>.json  one record per finished case, written atomically as it completes
+    DIR/.shtaerman-sweep.json  the marker that makes DIR a sweep folder (--resume, --force)
+    DIR/sweep.toml          the sweep file, copied (``--resume`` checks its fixed parameters)
+    DIR/cases/<index>.json  one record per finished case (its inputs, outputs and a digest),
+                            written atomically as it completes
+    DIR/cases/unused/       records of cases a resumed grid dropped (reused if they return)
     DIR/cases.csv           one row per case, sorted by index (written at the end)
     DIR/results.json        spec, cases, summary, timings (written at the end)
     DIR/figures/*.png       per output: curves over a 1-axis sweep, heat maps over 2 axes
@@ -11,7 +14,7 @@ The result folder::
 Nothing is lost: a case that raises is recorded with its error (one line) and the others go on;
 a worker that dies mid-case has its case rerun by dask on another worker (the scheduler
 reschedules tasks of lost workers); an interrupted sweep (SIGINT, SIGTERM) keeps every finished
-case, and ``resume=True`` computes only the cases without a record.
+case, and ``resume=True`` computes only the cases without a valid record, matched by inputs.
 """
 
 from __future__ import annotations
@@ -643,15 +646,14 @@ def run_sweep(
     spec : SweepSpec
         From :func:`shtaerman.sweep.load_sweep` (every case's inputs already checked).
     out : path
-        Result folder. An existing one is refused unless ``resume`` (complete it: only cases
-        without a record are computed; the sweep file must be the same) or ``force`` (replace
-        it; only a sweep folder is ever removed). ``resume`` on a folder that does not exist
-        starts the sweep there. The folder is created once the cluster is up.
+        Result folder, created once the cluster is up. An existing one is refused unless
+        ``resume`` (complete it: saved records are reused by their inputs, so the sweep may
+        add or change axis values but not its fixed parameters) or ``force`` (replace it;
+        only a folder a sweep wrote is ever removed).
     workers : int, optional
-        Single-threaded worker processes of the local cluster (default: the usable cores).
+        Single-threaded local worker processes (default: the usable cores; at most the cases).
     scheduler : str, optional
-        Address of an existing cluster's scheduler, e.g. ``"tcp://host:8786"``; its workers
-        need shtaerman importable.
+        Address of an existing cluster's scheduler, e.g. ``"tcp://host:8786"``.
     retries : int
         Reruns dask grants a task that raised outside the case (a case's own exception is
         recorded, never retried).
@@ -660,15 +662,10 @@ def run_sweep(
     figures : bool
         Draw ``out/figures``.
 
-    Returns
-    -------
-    SweepOutcome
-
     Raises
     ------
     InputError
-        Bad folder, different sweep on resume, unreachable scheduler (nothing computed,
-        nothing written).
+        Bad folder, different sweep on resume, unreachable scheduler (nothing computed).
     SweepInterrupted
         On SIGINT/SIGTERM in the main thread, after the cluster is shut down; finished cases
         are on disk.
@@ -685,17 +682,23 @@ def run_sweep(
         ready = _check_folder(spec, out, backup, resume=resume, force=force)
         records: dict[int, dict] = {}
         if resume and is_sweep_folder(out):
-            records, invalid = read_records(out, cases)
-            for path in invalid:
-                warnings.warn(
-                    f"{path} is not a case record this tool wrote (edited or damaged); its "
-                    "case is computed again",
-                    stacklevel=2,
-                )
+            records = _saved_records(out, cases)
             ready = _settled(ready, out, dict(records))
         run = _Run(spec, out, cases, records, len(records), start)
         with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
             return run.execute(ready, workers, scheduler, retries, progress, figures, stop)
+
+
+def _saved_records(out: Path, cases: list[Case]) -> dict[int, dict]:
+    """:func:`read_records`, with a warning for each file that holds no valid record."""
+    records, invalid = read_records(out, cases)
+    for path in invalid:
+        warnings.warn(
+            f"{path} is not a case record this tool wrote (edited or damaged); its case is "
+            "computed again",
+            stacklevel=3,
+        )
+    return records
 
 
 def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
