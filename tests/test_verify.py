@@ -297,3 +297,24 @@ def test_sweep_values_too_close_to_name_apart_are_refused_in_words_a_user_can_ac
     assert f"the [sweep] of {study} gives two studies the name 'paper-v01'" in err
     assert "rename one" not in err and err.count("\n") == 1
     assert not (tmp_path / "run").exists()
+
+
+def test_study_files_that_cannot_be_read_are_one_line(tmp_path, capsys):
+    import os
+
+    deep = tmp_path / "deep.toml"
+    deep.write_text("a = " + "[" * 5000)
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    huge = tmp_path / "huge.toml"
+    with open(huge, "wb") as stream:
+        stream.truncate(17 << 20)
+    for path, needle in [
+        (deep, "not valid TOML (nested too deeply)"),
+        (fifo, "not a regular file"),
+        (huge, "a study file has at most"),
+    ]:
+        assert main(["verify", "--out", str(tmp_path / "run"), str(path)]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"shtaerman: error: {path}: {needle}") and err.count("\n") == 1
+    assert not (tmp_path / "run").exists()
