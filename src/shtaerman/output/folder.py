@@ -62,10 +62,13 @@ class VerifyInterrupted(BaseException):
 
 
 def study_fingerprint(study: Any) -> str:
-    """A digest of every input of ``study`` but the path of its file (hex, 16 characters)."""
+    """A digest of every input of ``study`` but the path of its file, and of this shtaerman's
+    version (hex, 16 characters): a study is kept for a resume only if both are the same."""
+    from .. import __version__
+
     if dataclasses.is_dataclass(study) and hasattr(study, "source"):
         study = dataclasses.replace(study, source=Path(""))
-    return hashlib.sha256(repr(study).encode()).hexdigest()[:16]
+    return hashlib.sha256(f"{__version__}\n{study!r}".encode()).hexdigest()[:16]
 
 
 def save_progress(
