@@ -266,3 +266,64 @@ def test_sigkill_leftovers_are_cleaned_by_the_next_run(tmp_path):
     with staged_folder(tmp_path / "run") as stage:
         (stage / "f.txt").write_text("1")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_keep_staged_moves_the_finished_part_into_place(tmp_path):
+    from shtaerman.output.files import KeepStaged
+
+    target = tmp_path / "run"
+    with pytest.raises(KeyboardInterrupt):
+        with staged_folder(target) as stage:
+            (stage / "done.txt").write_text("done")
+            (stage / "marker").write_text("{}")
+            raise KeepStaged(KeyboardInterrupt())
+    assert sorted(p.name for p in target.iterdir()) == ["done.txt", "marker"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    # a folder without the marker is not resumed; one with it starts the stage with its files
+    with pytest.raises(InputError, match="holds no interrupted run"):
+        check_output_folder(target, force=False, resume_marker="other")
+    with pytest.raises(RuntimeError):
+        with staged_folder(target, resume_marker="marker") as stage:
+            assert (stage / "done.txt").read_text() == "done"
+            (stage / "done.txt").unlink()
+            raise RuntimeError("boom")
+    assert sorted(p.name for p in target.iterdir()) == ["done.txt", "marker"]  # restored
+    with staged_folder(target, resume_marker="marker") as stage:
+        (stage / "marker").unlink()
+        (stage / "more.txt").write_text("more")
+    assert sorted(p.name for p in target.iterdir()) == ["done.txt", "more.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_a_planted_marker_link_is_not_a_resumable_folder(tmp_path):
+    target = tmp_path / "run"
+    target.mkdir()
+    (target / "notes.txt").write_text("mine")
+    (target / "marker").symlink_to(tmp_path / "elsewhere")
+    with pytest.raises(InputError, match="holds no interrupted run"):
+        with staged_folder(target, resume_marker="marker"):
+            pass
+    assert sorted(p.name for p in target.iterdir()) == ["marker", "notes.txt"]
+
+
+def test_a_killed_run_that_had_filled_its_folder_keeps_the_one_it_replaced(tmp_path):
+    import warnings
+
+    from shtaerman.output.files import folder_lock
+
+    target = tmp_path / "run"
+    pid = dead_pid()
+    stale = tmp_path / f".run.partial-{pid}"
+    (stale / "replaced").mkdir(parents=True)
+    (stale / "replaced" / "old.txt").write_text("old")
+    target.mkdir()
+    (target / "new.txt").write_text("new")  # a sweep writes in place
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with folder_lock(target):
+            pass
+    assert (tmp_path / f"run.replaced-{pid}" / "old.txt").read_text() == "old"
+    assert (target / "new.txt").read_text() == "new"
+    [warning] = caught
+    assert f"run.replaced-{pid}" in str(warning.message)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run", f"run.replaced-{pid}"]

@@ -4,8 +4,10 @@ No cluster is started here except by ``test_cli_runs_a_shipped_sweep`` (the swee
 on dask, killed workers, resume and SIGTERM are in test_sweep_cluster.py).
 """
 
+import contextlib
 import json
 import math
+import os
 import shutil
 from pathlib import Path
 
@@ -246,22 +248,70 @@ def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):
     assert (out / "thesis.tex").read_text() == "precious"
 
 
-def test_cli_resume_refuses_a_different_sweep(tmp_path, capsys):
-    out = tmp_path / "out"
+def sweep_folder(out, text=IMPACT):
+    """A folder as a sweep leaves it before its first case: the file and the marker."""
+    from shtaerman.sweep.engine import MARKER_FILE, MARKER_FORMAT
+
     out.mkdir()
-    (out / "sweep.toml").write_text(IMPACT)
-    changed = write(tmp_path, IMPACT.replace("[0.3, 0.5]", "[0.3, 0.4]"))
+    (out / "sweep.toml").write_text(text)
+    (out / MARKER_FILE).write_text(json.dumps({"format": MARKER_FORMAT}))
+    return out
+
+
+@pytest.mark.parametrize(
+    ("edit", "key"),
+    [
+        (("mass = 0.7", "mass = 0.8"), "parameters.mass"),
+        (('kind = "impact"', 'kind = "dynamic"'), "kind"),
+        (("nu2 = [0.3, 0.5]", "E2 = [1e7]"), "axes (their names)"),
+    ],
+)
+def test_cli_resume_refuses_a_changed_fixed_parameter(tmp_path, capsys, edit, key):
+    out = sweep_folder(tmp_path / "out")
+    changed = write(tmp_path, IMPACT.replace(*edit))
     before = snapshot(out)
     code, _, err = run_cli(capsys, changed, "--out", out, "--resume")
     assert code == 2
-    assert_one_line_error(err, "holds a different sweep (axes.nu2 differs")
+    assert_one_line_error(err, f"holds a different sweep ({key} differs", "axis values only")
     assert snapshot(out) == before
 
 
-def test_cli_resume_and_force_exclude_each_other(tmp_path, capsys):
-    out = tmp_path / "out"
+@pytest.mark.parametrize("option", ["--force", "--resume"])
+def test_a_folder_is_a_sweep_folder_by_its_marker_not_a_file_name(tmp_path, capsys, option):
+    # a project folder that happens to hold a sweep.toml (and a results.json of its own)
+    out = tmp_path / "proj"
     out.mkdir()
     (out / "sweep.toml").write_text(IMPACT)
+    (out / "notes.txt").write_text("notes")
+    (out / "results.json").write_text("mine")
+    before = snapshot(out)
+    code, _, err = run_cli(capsys, out / "sweep.toml", "--out", out, option)
+    assert code == 2
+    assert_one_line_error(err, ".shtaerman-sweep.json")
+    assert snapshot(out) == before
+
+
+def test_a_symlinked_out_and_the_current_folder_are_refused(tmp_path, capsys, monkeypatch):
+    real = sweep_folder(tmp_path / "real")
+    (tmp_path / "link").symlink_to(real)
+    before = snapshot(real)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", tmp_path / "link", "--force")
+    assert code == 2
+    assert_one_line_error(err, "is a symbolic link")
+    (real / "cases").mkdir()
+    monkeypatch.chdir(real / "cases")
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", real, "--force")
+    assert code == 2
+    assert_one_line_error(err, "is the current folder or one of its parents")
+    monkeypatch.chdir(real)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", ".", "--force")
+    assert code == 2
+    assert_one_line_error(err, "'.' is the current folder or one of its parents")
+    assert (real / "cases").is_dir() and snapshot(real) == before
+
+
+def test_cli_resume_and_force_exclude_each_other(tmp_path, capsys):
+    out = sweep_folder(tmp_path / "out")
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--resume", "--force")
     assert code == 2
     assert_one_line_error(err, "resume and force exclude each other")
@@ -452,3 +502,195 @@ def test_steps_was_two_inputs_and_is_now_named_for_each(tmp_path, kind, new):
 def test_an_unknown_parameter_says_what_it_probably_meant(tmp_path):
     message = error_of(tmp_path, IMPACT.replace("mass = 0.7", "mas = 0.7"))
     assert "unknown parameter 'mas' for kind 'impact' (did you mean 'mass'?)" in message
+
+
+def test_a_sweep_folder_another_run_writes_is_refused(tmp_path, capsys):
+    import subprocess
+    import sys
+
+    out = sweep_folder(tmp_path / "out")
+    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        (tmp_path / f".out.partial-{sleeper.pid}").mkdir()
+        before = snapshot(out)
+        code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--force")
+        assert code == 2
+        assert_one_line_error(err, f"another shtaerman run (pid {sleeper.pid}) is writing")
+        assert snapshot(out) == before
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+
+
+def test_resume_refuses_a_linked_cases_folder(tmp_path, capsys):
+    out = sweep_folder(tmp_path / "out")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (out / "cases").symlink_to(elsewhere)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--resume")
+    assert code == 2
+    assert_one_line_error(err, "cases' is not a folder (a symbolic link?)")
+    assert list(elsewhere.iterdir()) == []
+
+
+def test_unreadable_sweep_files_are_one_line_errors(tmp_path, capsys):
+    import os
+
+    bad = tmp_path / "latin.toml"
+    bad.write_bytes(IMPACT.encode().replace(b'"grid"', b'"gr\xefd"'))
+    deep = write(tmp_path, "a = " + "[" * 5000, "deep.toml")
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    huge = tmp_path / "huge.toml"
+    with open(huge, "wb") as stream:
+        stream.truncate(17 << 20)  # sparse: 17 MB read as zeros
+    for path, needle in [
+        (huge, f"{17 << 20} bytes; a sweep file has at most {16 << 20} bytes"),
+        (Path("/dev/zero"), "not a regular file"),
+        (bad, "not UTF-8 text (byte 0xef at offset 10)"),
+        (deep, "not valid TOML (nested too deeply)"),
+        (fifo, "not a regular file"),
+    ]:
+        code, _, err = run_cli(capsys, path)
+        assert code == 2
+        assert_one_line_error(err, f"{path}: {needle}")
+
+
+def test_a_sweep_whose_cases_could_not_run_does_not_say_nothing_to_compute(
+    tmp_path, capsys, monkeypatch
+):
+    from shtaerman.sweep import engine
+
+    def lost(spec, out, **kwargs):
+        return engine.SweepOutcome(out, 4, 0, 0, 4, 0, 0, 1.0, 2, "KilledWorker: case 0")
+
+    monkeypatch.setattr(engine, "run_sweep", lost)
+    code, out, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", tmp_path / "o")
+    assert code == 1
+    assert "4 cases, 0 ok, 0 failed (none of 4 could run)" in out
+    assert "nothing to compute" not in out
+    assert "4 cases could not run (KilledWorker: case 0); complete them with: " in err
+
+
+def test_a_signal_while_the_cluster_starts_says_nothing_was_saved(tmp_path, capsys, monkeypatch):
+    import contextlib
+    import os
+    import signal
+
+    from shtaerman.sweep import engine
+
+    @contextlib.contextmanager
+    def starting(workers, scheduler, stop=None):
+        os.kill(os.getpid(), signal.SIGTERM)  # arrives while the cluster starts
+        yield None
+
+    monkeypatch.setattr(engine, "_client", starting)
+    out = tmp_path / "st1"
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out)
+    assert code == 128 + signal.SIGTERM
+    assert err == "shtaerman: sweep 'grid' interrupted (SIGTERM) before any case was saved\n"
+    assert not out.exists() and list(tmp_path.iterdir()) == [tmp_path / "sweep.toml"]
+
+
+ACCEPTED: dict[str, list] = {}
+"""The connections each fake server accepted, by its address."""
+
+
+def fake_server(answer: bytes):
+    """A TCP server on 127.0.0.1 that accepts connections and sends ``answer`` on each."""
+    import socket
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+    accepted = []
+
+    def accept():
+        with contextlib.suppress(OSError):
+            while True:
+                accepted.append(server.accept()[0])
+                if answer:
+                    accepted[-1].sendall(answer)
+
+    threading.Thread(target=accept, daemon=True).start()
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    ACCEPTED[address] = accepted
+    yield address
+    server.close()
+    for connection in accepted:
+        connection.close()
+
+
+@pytest.fixture
+def silent_scheduler():
+    """A TCP server that accepts connections and never says a word."""
+    yield from fake_server(b"")
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [
+        b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
+        b"\x05\x00\x00\x00\x00\x00\x00\x00\x01",  # a truncated dask frame
+    ],
+)
+def test_a_server_that_is_not_a_dask_scheduler_is_one_line(tmp_path, capsys, monkeypatch, answer):
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "2s")
+    server = fake_server(answer)
+    address = next(server)
+    try:
+        code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--scheduler", address)
+    finally:
+        next(server, None)
+    assert code == 2
+    assert_one_line_error(err, f"scheduler: cannot connect to {address!r}")
+
+
+@pytest.mark.parametrize("address", ["ucx://127.0.0.1:1", "tls://127.0.0.1:1"])
+def test_other_scheduler_protocols_are_one_line(tmp_path, capsys, monkeypatch, address):
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "1s")
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--scheduler", address)
+    assert code == 2
+    assert_one_line_error(err, f"scheduler: cannot connect to {address!r}")
+
+
+def test_a_scheduler_that_never_answers_is_given_up_on(
+    tmp_path, capsys, monkeypatch, silent_scheduler
+):
+    import time
+
+    monkeypatch.setattr("shtaerman.sweep.engine.CONNECT_TIMEOUT", "1s")
+    out = tmp_path / "out"
+    start = time.monotonic()
+    code, _, err = run_cli(
+        capsys, write(tmp_path, IMPACT), "--out", out, "--scheduler", silent_scheduler
+    )
+    assert code == 2 and time.monotonic() - start < 30  # 1 s and dask's own, not for ever
+    assert_one_line_error(err, f"scheduler: cannot connect to {silent_scheduler!r}")
+    assert not out.exists()
+
+
+def test_sigterm_while_waiting_for_a_silent_scheduler_ends_the_sweep(tmp_path, silent_scheduler):
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    sweep = write(tmp_path, IMPACT)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "shtaerman", "sweep", str(sweep), "--out", str(tmp_path / "o"),
+         "--scheduler", silent_scheduler],
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+    deadline = time.monotonic() + 60
+    while not ACCEPTED[silent_scheduler]:  # the sweep is waiting for the scheduler's answer
+        assert process.poll() is None and time.monotonic() < deadline
+        time.sleep(0.05)
+    time.sleep(0.5)
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=20)
+    assert process.returncode == 128 + signal.SIGTERM, err
+    assert "Traceback" not in err and "before any case was saved" in err

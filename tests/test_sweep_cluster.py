@@ -346,3 +346,170 @@ def test_warnings_of_a_case_are_recorded_and_reported(tmp_path, capsys, external
     [message] = results["summary"]["warnings"]["1"]
     assert "velocity 6 m/s exceeds 5 m/s" in message
     assert results["cases"][0]["warnings"] == []
+
+
+def test_resume_extends_the_grid_and_computes_only_the_new_cases(tmp_path, capsys):
+    path, markers = probe_sweep(tmp_path, [1, 2, 3])
+    out = tmp_path / "out"
+    assert run_sweep(load_sweep(path), out, workers=1, figures=False).computed == 3
+    # new values on the axis, between and after the saved ones: their cases only
+    extended, _ = probe_sweep(tmp_path, [1, 1.5, 2, 3, 4])
+    outcome = run_sweep(load_sweep(extended), out, workers=1, resume=True, figures=False)
+    assert (outcome.computed, outcome.reused, outcome.succeeded) == (2, 3, 5)
+    assert sweep_probe.computations(markers) == {1.0: 1, 1.5: 1, 2.0: 1, 3.0: 1, 4.0: 1}
+    assert case_files(out) == list(range(5))
+    rows = csv_rows(out)
+    assert [float(r["x [m]"]) for r in rows] == [1, 1.5, 2, 3, 4]
+    assert [float(r["y [m^2]"]) for r in rows] == [x * x + 1 for x in (1, 1.5, 2, 3, 4)]
+    for index, x in enumerate((1, 1.5, 2, 3, 4)):
+        record = json.loads((out / "cases" / f"{index}.json").read_text())
+        assert record["index"] == index and record["inputs"]["x"] == x
+    # a changed value: the dropped case's record is kept aside and reused if it comes back
+    changed, _ = probe_sweep(tmp_path, [1, 5])
+    outcome = run_sweep(load_sweep(changed), out, workers=1, resume=True, figures=False)
+    assert (outcome.computed, outcome.reused) == (1, 1)
+    assert case_files(out) == [0, 1]
+    back, _ = probe_sweep(tmp_path, [1, 1.5, 2, 3, 4, 5])
+    outcome = run_sweep(load_sweep(back), out, workers=1, resume=True, figures=False)
+    assert (outcome.computed, outcome.reused) == (0, 6)
+    assert sweep_probe.computations(markers) == {x: 1 for x in (1.0, 1.5, 2.0, 3.0, 4.0, 5.0)}
+    assert [float(r["x [m]"]) for r in csv_rows(out)] == [1, 1.5, 2, 3, 4, 5]
+    assert not list((out / "cases" / "unused").iterdir())
+    # a changed fixed parameter is still refused, one line
+    moved = tmp_path / "moved.toml"
+    moved.write_text(back.read_text().replace("sleep = 0.0", "sleep = 0.001"))
+    assert main(["sweep", str(moved), "--out", str(out), "--resume"]) == 2
+    err = capsys.readouterr().err
+    assert "holds a different sweep (parameters.sleep differs" in err and err.count("\n") == 1
+
+
+AB = """\
+name = "ab"
+kind = "impact"
+[axes]
+velocity = [1.0, 2.0]
+mass = [0.1, 10.0]
+"""
+
+
+def test_resume_after_reordering_axes_keeps_each_result_with_its_case(tmp_path):
+    ab = tmp_path / "ab.toml"
+    ab.write_text(AB)
+    ba = tmp_path / "ba.toml"
+    ba.write_text(
+        AB.replace(
+            "velocity = [1.0, 2.0]\nmass = [0.1, 10.0]", "mass = [0.1, 10.0]\nvelocity = [1.0, 2.0]"
+        )
+    )
+    out, fresh = tmp_path / "r", tmp_path / "fresh"
+    run_sweep(load_sweep(ab), out, workers=1, figures=False)
+    for index in (2, 3):
+        (out / "cases" / f"{index}.json").unlink()
+    outcome = run_sweep(load_sweep(ba), out, workers=1, resume=True, figures=False)
+    assert (outcome.computed, outcome.reused) == (2, 2)
+    run_sweep(load_sweep(ba), fresh, workers=1, figures=False)
+    assert (out / "cases.csv").read_text() == (fresh / "cases.csv").read_text()
+    for index in range(4):
+        record = json.loads((out / "cases" / f"{index}.json").read_text())
+        assert {k: record["inputs"][k] for k in record["axis_values"]} == record["axis_values"]
+
+
+def test_resume_recomputes_hand_edited_or_damaged_records(tmp_path, capsys):
+    path, markers = probe_sweep(tmp_path, [1, 2, 3, 4, 5, 6])
+    out = tmp_path / "out"
+    assert run_sweep(load_sweep(path), out, workers=1, figures=False).computed == 6
+    first = (out / "cases.csv").read_text()
+    cases = out / "cases"
+    (cases / "0.json").write_text("[1, 2]")
+    record = json.loads((cases / "1.json").read_text())
+    del record["outputs"]
+    (cases / "1.json").write_text(json.dumps(record))
+    record = json.loads((cases / "2.json").read_text())
+    record["outputs"]["y"] = -5.0  # a plausible-looking edit
+    (cases / "2.json").write_text(json.dumps(record))
+    (cases / "3.json").unlink()
+    os.mkfifo(cases / "3.json")
+    (cases / "4.json").unlink()
+    (cases / "4.json").symlink_to("/dev/zero")
+    (cases / "01.json").write_text((cases / "5.json").read_text().replace("2.0", "7.0"))
+    (cases / "5.json").write_bytes(b"\xff" + b"[" * 5000)
+    code = main(["sweep", str(path), "--out", str(out), "--resume", "--workers", "1"])
+    _, err = capsys.readouterr()
+    assert code == 0 and "Traceback" not in err
+    assert err.count("is not a case record this tool wrote") == 6
+    assert (out / "cases.csv").read_text() == first
+    assert sweep_probe.computations(markers) == {float(x): 2 for x in range(1, 7)}
+
+
+def test_a_forced_run_that_fails_at_the_end_keeps_its_cases(tmp_path, capsys, monkeypatch):
+    import errno
+
+    from shtaerman.sweep import engine
+
+    path, markers = probe_sweep(tmp_path, [1, 2])
+    out = tmp_path / "out"
+    assert main(["sweep", str(path), "--out", str(out), "--workers", "1"]) == 0
+    capsys.readouterr()
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device", str(out / "cases.csv"))
+
+    monkeypatch.setattr(engine, "_write_results", full)
+    assert main(["sweep", str(path), "--out", str(out), "--workers", "1", "--force"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No space left on device" in err
+    assert f"complete the sweep with: shtaerman sweep {path} --out {out} --resume" in err
+    assert case_files(out) == [0, 1] and not (out / "cases.csv").exists()
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
+    monkeypatch.undo()
+    assert main(["sweep", str(path), "--out", str(out), "--resume"]) == 0
+    assert sweep_probe.computations(markers) == {1.0: 2, 2.0: 2}
+
+
+def test_resume_does_not_follow_a_link_planted_among_the_figures(tmp_path):
+    path = tmp_path / "ab.toml"
+    path.write_text(AB.replace("mass = [0.1, 10.0]\n", ""))
+    out = tmp_path / "out"
+    run_sweep(load_sweep(path), out, workers=1)
+    precious = tmp_path / "precious"
+    precious.write_text("mine")
+    (out / "figures" / "x_c.png").unlink()
+    (out / "figures" / "x_c.png").symlink_to(precious)
+    outcome = run_sweep(load_sweep(path), out, resume=True)  # nothing to compute: no cluster
+    assert (outcome.computed, outcome.reused) == (0, 2)
+    assert precious.read_text() == "mine"
+    assert not (out / "figures" / "x_c.png").is_symlink()
+    assert (out / "figures" / "x_c.png").stat().st_size > 1000
+
+
+def test_a_dynamic_case_whose_checks_fail_is_recorded_failed_with_its_reason():
+    # a rubber 1000x denser than rubber on a coarse mesh: the energy account is off by about
+    # the whole kinetic energy; `shtaerman dynamic` warns and exits 1 on the same inputs
+    from shtaerman.sweep.engine import execute_case
+    from shtaerman.sweep.kinds import get_kind
+
+    kind = get_kind("dynamic")
+    params = {**kind.defaults(), "density2": 1e6, "steps": 100, "mesh_size": 0.05}
+    record = execute_case(kind.case, 0, params)
+    assert record["status"] == "failed"
+    assert record["error"].startswith("check failed: energy balance error ")
+    assert "exceeds 0.01" in record["error"]
+    assert record["outputs"]["energy_balance_error"] > 0.01  # the numbers are kept to see
+
+
+def test_no_more_workers_than_cases_and_a_private_scratch_folder(tmp_path, monkeypatch):
+    import tempfile
+
+    # a link planted where dask puts its scratch space by default must not be followed
+    victim = tmp_path / "victim"
+    victim.mkdir()
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    (temporary / "dask-scratch-space").symlink_to(victim)
+    monkeypatch.setattr(tempfile, "tempdir", str(temporary))
+    monkeypatch.setenv("TMPDIR", str(temporary))
+    path, _ = probe_sweep(tmp_path, [1, 2])
+    outcome = run_sweep(load_sweep(path), tmp_path / "out", workers=4, figures=False)
+    assert outcome.exit_code == 0 and outcome.workers == 2
+    assert list(victim.iterdir()) == []
+    assert sorted(p.name for p in temporary.iterdir()) == ["dask-scratch-space"]

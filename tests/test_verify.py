@@ -2,6 +2,7 @@
 
 import json
 import re
+from pathlib import Path
 
 import matplotlib.image as mpimg
 import numpy as np
@@ -14,6 +15,8 @@ from shtaerman.study.schema import shipped_studies
 
 STUDIES = [str(p) for p in shipped_studies() if p.stem in ("paper", "hertz")]
 """The studies of the session's quick verify run (tests/conftest.py)."""
+FIRST, SECOND = (Path(p).stem for p in STUDIES)
+"""Their names, in the order they run."""
 
 
 @pytest.fixture(scope="module")
@@ -157,3 +160,161 @@ def test_a_study_the_fem_refuses_at_run_time_names_its_file(tmp_path, capfd, wor
     assert re.search(r"shtaerman: error: .*tiny2?\.toml: study '(paper|tiny2)': depth 1e-15 m", err)
     assert "Traceback" not in err and "Compute Failed" not in err
     assert not out.exists()
+
+
+def _interrupting(quick_outcomes, stop_at, served):
+    """A run_study that serves the session's quick outcomes and raises ``stop_at`` (an
+    exception instance) for the study named in it."""
+
+    def run_study(study, *, quick=False, progress=None):
+        served.append(study.name)
+        if study.name == stop_at[0]:
+            raise stop_at[1]
+        assert quick and quick_outcomes[study.name].study == study
+        return quick_outcomes[study.name]
+
+    return run_study
+
+
+@pytest.mark.parametrize(("signal_like", "code"), [(KeyboardInterrupt(), 130), ("terminated", 143)])
+def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
+    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys, signal_like, code
+):
+    from shtaerman.cli import Terminated
+
+    stop = Terminated() if signal_like == "terminated" else signal_like
+    served = []
+    patched = _interrupting(quick_outcomes, [SECOND, stop], served)
+    monkeypatch.setattr(shtaerman.output.folder, "run_study", patched)
+    out = tmp_path / "run"
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]
+    assert main(argv) == code
+    err = capsys.readouterr().err
+    assert served == [FIRST, SECOND]
+    # the finished study is kept, complete, with the marker; no results.json, no report
+    assert sorted(p.name for p in out.iterdir()) == sorted(["incomplete.json", FIRST])
+    assert sorted(p.name for p in (out / FIRST).iterdir()) == sorted(
+        p.name for p in (quick_verify[1] / FIRST).iterdir()
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]  # no staging debris
+    assert "1 of 2 studies finished and kept" in err
+    command = err.split("complete them with: ")[1].strip()
+    assert command.endswith("--resume") and "--quick" in command
+    # the printed command computes only the missing study and writes the whole folder
+    served.clear()
+    monkeypatch.setattr(
+        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+    )
+    assert main(command.split()[1:]) == 0
+    assert served == [SECOND]
+    results = json.loads((out / "results.json").read_text())
+    expected = quick_verify[2]
+    assert list(results["studies"]) == [FIRST, SECOND]
+    for name, study in expected["studies"].items():
+        assert results["studies"][name]["checks"] == study["checks"]
+    assert not (out / "incomplete.json").exists() and (out / "report.html").is_file()
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        p.name for p in quick_verify[1].iterdir()
+    )
+
+
+def test_resume_refuses_a_folder_no_interrupted_run_left(quick_verify, tmp_path, capsys):
+    _, out, _ = quick_verify
+    before = sorted(p.name for p in out.iterdir())
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), "--resume", *STUDIES]
+    assert main(argv) == 2
+    assert "holds no interrupted run to complete (no incomplete.json)" in capsys.readouterr().err
+    assert sorted(p.name for p in out.iterdir()) == before
+
+
+def test_resume_recomputes_a_study_whose_inputs_changed(
+    quick_outcomes, tmp_path, monkeypatch, capsys
+):
+    served = []
+    monkeypatch.setattr(
+        shtaerman.output.folder,
+        "run_study",
+        _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], served),
+    )
+    out = tmp_path / "run"
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
+    # the kept study was run for other inputs (edited file): it is computed again
+    progress = json.loads((out / "incomplete.json").read_text())
+    progress["studies"][FIRST]["fingerprint"] = "0" * 16
+    (out / "incomplete.json").write_text(json.dumps(progress))
+    served.clear()
+    monkeypatch.setattr(
+        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+    )
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), "--resume", *STUDIES]
+    assert main(argv) == 0
+    assert served == [FIRST, SECOND]
+    # and a quick folder is not completed by a full run
+    capsys.readouterr()
+    out2 = tmp_path / "run2"
+    monkeypatch.setattr(
+        shtaerman.output.folder,
+        "run_study",
+        _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], served),
+    )
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out2), *STUDIES]) == 130
+    argv = ["verify", "--workers", "1", "--out", str(out2), "--resume", *STUDIES]
+    assert main(argv) == 2
+    assert "the interrupted run was with --quick" in capsys.readouterr().err
+    assert sorted(p.name for p in out2.iterdir()) == sorted(["incomplete.json", FIRST])
+
+
+def test_resume_on_dask_computes_only_the_missing_study(
+    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys
+):
+    served = []
+    monkeypatch.setattr(
+        shtaerman.output.folder,
+        "run_study",
+        _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], served),
+    )
+    out = tmp_path / "run"
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
+    capsys.readouterr()
+    argv = ["verify", "--quick", "--workers", "2", "--out", str(out), "--resume", *STUDIES]
+    assert main(argv) == 0
+    assert "1 studies on 1 workers" in capsys.readouterr().err
+    results = json.loads((out / "results.json").read_text())
+    assert list(results["studies"]) == [FIRST, SECOND]
+    for name, study in quick_verify[2]["studies"].items():
+        assert results["studies"][name]["checks"] == study["checks"]
+    assert not (out / "incomplete.json").exists()
+
+
+def test_sweep_values_too_close_to_name_apart_are_refused_in_words_a_user_can_act_on(
+    tmp_path, capsys
+):
+    paper = next(p for p in shipped_studies() if p.stem == "paper")
+    study = tmp_path / "sw.toml"
+    study.write_text(paper.read_text() + "\n[sweep]\nvelocity = [1.0000001, 1.0000002]\n")
+    assert main(["verify", "--quick", "--out", str(tmp_path / "run"), str(study)]) == 2
+    err = capsys.readouterr().err
+    assert f"the [sweep] of {study} gives two studies the name 'paper-v01'" in err
+    assert "rename one" not in err and err.count("\n") == 1
+    assert not (tmp_path / "run").exists()
+
+
+def test_study_files_that_cannot_be_read_are_one_line(tmp_path, capsys):
+    import os
+
+    deep = tmp_path / "deep.toml"
+    deep.write_text("a = " + "[" * 5000)
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    huge = tmp_path / "huge.toml"
+    with open(huge, "wb") as stream:
+        stream.truncate(17 << 20)
+    for path, needle in [
+        (deep, "not valid TOML (nested too deeply)"),
+        (fifo, "not a regular file"),
+        (huge, "a study file has at most"),
+    ]:
+        assert main(["verify", "--out", str(tmp_path / "run"), str(path)]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"shtaerman: error: {path}: {needle}") and err.count("\n") == 1
+    assert not (tmp_path / "run").exists()

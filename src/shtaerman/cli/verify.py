@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 import os
+import shlex
+import sys
 import time
 from pathlib import Path
 
@@ -31,6 +33,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_inputs(p, ("out", "force"), None, derived={"out": "a new shtaerman-results-* folder"})
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
     add_figure_format(p)
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="complete the folder an interrupted run left in --out: compute only the studies "
+        "it lacks",
+    )
     cores = "the number of cores; 1 runs the studies one after another in this process"
     add_inputs(p, ("workers",), None, derived={"workers": cores})
     p.set_defaults(handler=run)
@@ -45,38 +53,74 @@ def default_out() -> Path:
 def run(args: argparse.Namespace) -> int:
     """Run the studies; print a verdict per study and every failing check."""
     from ..output.files import check_output_folder
-    from ..output.folder import ProgressBar, run_verification
+    from ..output.folder import PROGRESS_FILE, ProgressBar, VerifyInterrupted, run_verification
     from ..study.schema import find_study, load_study, shipped_studies
 
+    if args.resume and args.force:
+        raise InputError("resume and force exclude each other: resume keeps the folder")
+    if args.resume and args.out is None:
+        raise InputError("resume: name the folder to complete with --out DIR")
     paths = [find_study(name) for name in args.studies] or shipped_studies()
     studies = [study for path in paths for study in load_study(path)]
-    names = [study.name for study in studies]
-    duplicates = sorted({name for name in names if names.count(name) > 1})
-    if duplicates:
-        raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
+    _check_unique_names(studies)
+    marker = PROGRESS_FILE if args.resume else None
     out = check_output_folder(
-        Path(args.out) if args.out is not None else default_out(), force=args.force
+        Path(args.out) if args.out is not None else default_out(),
+        force=args.force,
+        resume_marker=marker,
     )
     workers = args.workers or os.cpu_count() or 1
-    if workers > 1 and len(studies) > 1:
-        from ..sweep.verify import run_verification_on_dask
+    options = {
+        "quick": args.quick,
+        "force": args.force,
+        "resume": args.resume,
+        "figure_format": args.figure_format,
+    }
+    try:
+        if workers > 1 and len(studies) > 1:
+            from ..sweep.verify import run_verification_on_dask
 
-        bar = ProgressBar(len(studies))
-        results = run_verification_on_dask(
-            studies,
-            out,
-            quick=args.quick,
-            workers=min(workers, len(studies)),
-            force=args.force,
-            progress=bar,
-            figure_format=args.figure_format,
-        )
-    else:
-        results = run_verification(
-            studies, out, quick=args.quick, force=args.force, figure_format=args.figure_format
-        )
+            bar = ProgressBar(len(studies))
+            results = run_verification_on_dask(
+                studies, out, workers=min(workers, len(studies)), progress=bar, **options
+            )
+        else:
+            results = run_verification(studies, out, **options)
+    except VerifyInterrupted as stop:
+        print(_interrupted_text(args, stop, out), file=sys.stderr)
+        return 130 if isinstance(stop.cause, KeyboardInterrupt) else 143
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
+
+
+def _check_unique_names(studies: list) -> None:
+    """Raise InputError when two studies share a name (their result folder)."""
+    names = [study.name for study in studies]
+    duplicates = sorted({name for name in names if names.count(name) > 1})
+    if not duplicates:
+        return
+    sources = {str(getattr(s, "source", "")) for s in studies if s.name == duplicates[0]}
+    if len(sources) == 1:  # one file's [sweep] values that round to the same name
+        raise InputError(
+            f"studies: the [sweep] of {sources.pop()} gives two studies the name "
+            f"{duplicates[0]!r}: its values must differ within 6 significant digits"
+        )
+    raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
+
+
+def _interrupted_text(args: argparse.Namespace, stop: BaseException, out: Path) -> str:
+    """What an interrupted run kept, and the command that completes it."""
+    command = ["shtaerman", "verify", *args.studies, "--out", str(out)]
+    if args.quick:
+        command.append("--quick")
+    if args.workers is not None:
+        command += ["--workers", str(args.workers)]
+    command.append("--resume")
+    reason = "interrupted" if isinstance(stop.cause, KeyboardInterrupt) else "terminated"
+    return (
+        f"shtaerman: {reason}: {stop.kept} of {stop.total} studies finished and kept in "
+        f"{str(out)!r}; complete them with: {shlex.join(command)}"
+    )
 
 
 def verify_text(results: dict, out: Path) -> str:

@@ -28,6 +28,7 @@ import os
 import re
 import shutil
 import stat
+import warnings
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
@@ -38,12 +39,16 @@ from ..validation import InputError
 
 __all__ = [
     "CSV_UNITS",
+    "KeepStaged",
+    "check_folder_path",
     "check_output_file",
     "check_output_folder",
     "csv_header",
     "file_mode",
+    "folder_lock",
     "json_safe",
     "missing_folder",
+    "resumable",
     "staged_file",
     "staged_folder",
     "write_csv",
@@ -106,7 +111,10 @@ def _remove(path: Path) -> None:
 
 
 def _clean_stale(target: Path, stage: Path) -> None:
-    """Undo what a killed run left: restore the folder it was replacing, drop its reservation."""
+    """Undo what a killed run left: restore the folder it was replacing, drop its reservation.
+
+    When the killed run had already filled ``target`` (a sweep writes in place), the folder it
+    was replacing is kept beside it as ``NAME.replaced-PID`` and a warning says where."""
     retired, content = stage / "replaced", stage / "content"
     with contextlib.suppress(OSError):
         if content.is_dir() or retired.is_dir():
@@ -114,6 +122,14 @@ def _clean_stale(target: Path, stage: Path) -> None:
                 os.rmdir(target)  # its empty reservation
             if retired.is_dir() and not os.path.lexists(target):
                 os.rename(retired, target)
+        if retired.is_dir():
+            kept = target.with_name(f"{target.name}.replaced-{stage.name.rsplit('-', 1)[-1]}")
+            os.rename(retired, kept)
+            warnings.warn(
+                f"a killed run was replacing {str(target)!r}; the folder it replaced is kept "
+                f"as {str(kept)!r}",
+                stacklevel=2,
+            )
     _remove(stage)
 
 
@@ -164,13 +180,40 @@ def probe_writable(option: str, folder: Path, name: str) -> None:
     os.rmdir(probe)
 
 
-def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path:
-    """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
+class KeepStaged(BaseException):
+    """Raised inside :func:`staged_folder`: move what is staged into place, then raise ``reason``.
 
-    A folder that exists and is not empty is refused unless ``force`` is set; its parent must
-    exist and be writable; the current folder, its parents, symbolic links and a folder that
-    another run is writing are refused.
+    For a run stopped part way whose finished part is complete in itself and says what is
+    missing (a marker file the caller wrote), so that a later run can complete it.
     """
+
+    def __init__(self, reason: BaseException) -> None:
+        super().__init__(str(reason))
+        self.reason = reason
+
+
+def resumable(folder: Path, marker: str | None) -> bool:
+    """True when ``folder`` holds ``marker`` as a regular file (not a symbolic link)."""
+    if marker is None:
+        return False
+    try:
+        return stat.S_ISREG(os.lstat(folder / marker).st_mode)
+    except OSError:
+        return False
+
+
+def _not_empty(option: str, path: object, marker: str | None) -> InputError:
+    if marker is not None:
+        return InputError(
+            f"{option}: folder {str(path)!r} holds no interrupted run to complete (no {marker}); "
+            "use --force to replace it"
+        )
+    return InputError(f"{option}: folder {str(path)!r} is not empty (use --force to replace it)")
+
+
+def check_folder_path(path: Path, option: str = "out") -> Path:
+    """``path`` made absolute (symbolic links not resolved), or raise InputError when it names
+    no folder, is a symbolic link, or is the current folder or one of its parents."""
     try:
         raw = Path(path).expanduser()
         target = _absolute(raw)
@@ -186,18 +229,6 @@ def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path
                 f"{option}: {str(path)!r} is the current folder or one of its parents; name a "
                 f"new folder (e.g. {option} results)"
             )
-        if target.exists() and not target.is_dir():
-            raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
-        if not target.parent.is_dir():
-            raise InputError(f"{option}: {missing_folder(target.parent)}")
-        live = _other_writers(target)  # first: cleaning may restore a folder
-        if live:
-            raise _busy(option, target, live)
-        if target.is_dir() and any(target.iterdir()) and not force:
-            raise InputError(
-                f"{option}: folder {str(path)!r} is not empty (use --force to replace it)"
-            )
-        probe_writable(option, target.parent, _stage_path(target).name)
     except ValueError as error:  # a NUL byte in the name
         if isinstance(error, InputError):
             raise
@@ -208,19 +239,69 @@ def check_output_folder(path: Path, *, force: bool, option: str = "out") -> Path
 
 
 @contextlib.contextmanager
-def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> Iterator[Path]:
-    """Yield an empty folder to fill; on success it becomes ``target`` in one rename.
-
-    ``target`` may exist only as an empty folder, or (``force``) as any folder, which is then
-    replaced. On any failure (an exception, Ctrl-C, SIGTERM raised as an exception) everything
-    written is removed and ``target`` is left exactly as it was.
+def folder_lock(target: Path, option: str = "out") -> Iterator[Path]:
+    """Hold ``target`` for this run: the staging folder ``.NAME.partial-PID`` beside it, which
+    every writer of ``target`` checks (a run killed meanwhile is cleaned up by the next). Yields
+    that folder; a ``replaced`` folder inside it is restored by the next run after a SIGKILL.
 
     Raises
     ------
     InputError
-        If another run is writing ``target``, or ``target`` is not ours to replace.
+        If another live run writes ``target``.
     """
-    target = check_output_folder(target, force=force, option=option)
+    live = [pid for pid in _other_writers(target) if pid != os.getpid()]
+    if live:
+        raise _busy(option, target, live)
+    try:
+        stage = _claim(target, option)
+    except FileNotFoundError:
+        raise InputError(f"{option}: {missing_folder(target.parent)}") from None
+    except OSError as error:
+        if isinstance(error, InputError):
+            raise
+        raise InputError(
+            f"{option}: cannot write in {str(target.parent)!r} ({error.strerror or error})"
+        ) from None
+    try:
+        yield stage
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def check_output_folder(
+    path: Path, *, force: bool, option: str = "out", resume_marker: str | None = None
+) -> Path:
+    """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
+
+    A folder that exists and is not empty is refused unless ``force`` is set, or unless it
+    holds the file ``resume_marker`` (a run left it incomplete, to be completed); its parent
+    must exist and be writable; the current folder, its parents, symbolic links and a folder
+    that another run is writing are refused.
+    """
+    target = check_folder_path(path, option)
+    try:
+        if target.exists() and not target.is_dir():
+            raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
+        if not target.parent.is_dir():
+            raise InputError(f"{option}: {missing_folder(target.parent)}")
+        live = _other_writers(target)  # first: cleaning may restore a folder
+        if live:
+            raise _busy(option, target, live)
+        if target.is_dir() and any(target.iterdir()) and not force:
+            if not resumable(target, resume_marker):
+                raise _not_empty(option, path, resume_marker)
+        probe_writable(option, target.parent, _stage_path(target).name)
+    except ValueError as error:  # a NUL byte in the name
+        if isinstance(error, InputError):
+            raise
+        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
+    except OSError as error:
+        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
+    return target
+
+
+def _claim(target: Path, option: str) -> Path:
+    """Create this run's staging folder beside ``target``; refuse when a rival runs."""
     stage = _stage_path(target)
     try:
         os.mkdir(stage)
@@ -231,14 +312,49 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
     if rivals and min(rivals) < os.getpid():
         os.rmdir(stage)
         raise _busy(option, target, rivals)
+    return stage
+
+
+def _link_tree(source: Path, destination: Path) -> None:
+    """Hard-link (copy where links fail) the tree ``source`` into ``destination``; symbolic
+    links are recreated as links, never followed."""
+
+    def link(src: str, dst: str) -> None:
+        try:
+            os.link(src, dst, follow_symlinks=False)
+        except OSError:
+            shutil.copy2(src, dst, follow_symlinks=False)
+
+    shutil.copytree(source, destination, symlinks=True, copy_function=link, dirs_exist_ok=True)
+
+
+@contextlib.contextmanager
+def staged_folder(
+    target: Path, *, force: bool = False, option: str = "out", resume_marker: str | None = None
+) -> Iterator[Path]:
+    """Yield a folder to fill; on success it becomes ``target`` in one rename.
+
+    ``target`` may exist only as an empty folder, or (``force``) as any folder, which is then
+    replaced. A folder holding the file ``resume_marker`` is replaced too, and the yielded
+    folder starts with its content (hard links) for the run to complete. On any failure (an
+    exception, Ctrl-C, SIGTERM raised as an exception) everything written is removed and
+    ``target`` is left exactly as it was; :class:`KeepStaged` instead moves what is staged
+    into place (replacing the old folder) and raises its reason.
+
+    Raises
+    ------
+    InputError
+        If another run is writing ``target``, or ``target`` is not ours to replace.
+    """
+    target = check_output_folder(target, force=force, option=option, resume_marker=resume_marker)
+    stage = _claim(target, option)
     content, retired = stage / "content", stage / "replaced"
     reserved = False
     try:
+        resumed = resumable(target, resume_marker)
         if os.path.lexists(target):
-            if not force and any(target.iterdir()):
-                raise InputError(
-                    f"{option}: folder {str(target)!r} is not empty (use --force to replace it)"
-                )
+            if not force and not resumed and any(target.iterdir()):
+                raise _not_empty(option, target, resume_marker)
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it
@@ -248,14 +364,15 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
             ) from None
         reserved = True
         os.mkdir(content)
-        yield content
+        if resumed:
+            _link_tree(retired, content)
         try:
-            os.rename(content, target)  # onto our empty reservation: atomic, complete at once
-        except OSError as error:  # someone wrote into the reservation meanwhile
-            raise InputError(
-                f"{option}: {str(target)!r} was changed by another program during the run "
-                f"({error.strerror}); it was left alone and this run's results discarded"
-            ) from None
+            yield content
+        except KeepStaged as keep:
+            _publish(content, target, option)
+            reserved = False
+            raise keep.reason from None
+        _publish(content, target, option)
         reserved = False
     except BaseException:
         if reserved:
@@ -266,6 +383,17 @@ def staged_folder(target: Path, *, force: bool = False, option: str = "out") -> 
         raise
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+def _publish(content: Path, target: Path, option: str) -> None:
+    """Rename the finished ``content`` onto the empty reservation ``target``."""
+    try:
+        os.rename(content, target)  # onto our empty reservation: atomic, complete at once
+    except OSError as error:  # someone wrote into the reservation meanwhile
+        raise InputError(
+            f"{option}: {str(target)!r} was changed by another program during the run "
+            f"({error.strerror}); it was left alone and this run's results discarded"
+        ) from None
 
 
 def check_output_file(path: str | Path, *, force: bool, option: str = "history") -> Path:

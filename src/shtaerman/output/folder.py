@@ -1,17 +1,24 @@
-"""``shtaerman verify``: run studies and write a complete result folder, or nothing.
+"""``shtaerman verify``: run studies and write a complete result folder.
 
 The folder is assembled aside and moved into place only when every file is written, so a
-failed or interrupted run never leaves something that looks complete.
+failed run never leaves something that looks complete. Each study is recorded in
+:data:`PROGRESS_FILE` as it finishes; an interrupted run (Ctrl-C, SIGTERM) with finished
+studies moves them into place with that file and without results.json or reports, and
+``resume=True`` completes such a folder, computing only the studies it lacks.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import json
+import os
+import shutil
 import sys
 import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any, NoReturn, TextIO
 
 from ..plots.formats import check_figure_format
 from ..plots.gallery import (
@@ -22,17 +29,129 @@ from ..plots.gallery import (
 )
 from ..study.kinds import kind_function
 from ..study.run import StudyOutcome, run_study
+from ..validation import InputError
 from .export import write_indentation
-from .files import json_safe, staged_folder, write_csv
+from .files import KeepStaged, json_safe, staged_folder, write_csv
 from .report import results_document, study_document, write_reports
 
 __all__ = [
+    "PROGRESS_FILE",
     "ProgressBar",
+    "VerifyInterrupted",
     "finish_verification",
+    "keep_finished",
+    "kept_entries",
     "run_verification",
+    "save_progress",
     "study_entry",
     "write_contact_study",
 ]
+
+
+PROGRESS_FILE = "incomplete.json"
+"""Marker of a result folder whose run was interrupted: the finished studies' entries."""
+PROGRESS_FORMAT = "shtaerman-verify-progress-1"
+
+
+class VerifyInterrupted(BaseException):
+    """A verify run stopped by ``cause`` (Ctrl-C, SIGTERM) after ``kept`` of ``total`` studies
+    finished; those are in the result folder, which ``resume=True`` completes."""
+
+    def __init__(self, cause: BaseException, kept: int, total: int) -> None:
+        super().__init__(type(cause).__name__)
+        self.cause, self.kept, self.total = cause, kept, total
+
+
+def study_fingerprint(study: Any) -> str:
+    """A digest of every input of ``study`` but the path of its file, and of this shtaerman's
+    version (hex, 16 characters): a study is kept for a resume only if both are the same."""
+    from .. import __version__
+
+    if dataclasses.is_dataclass(study) and hasattr(study, "source"):
+        study = dataclasses.replace(study, source=Path(""))
+    return hashlib.sha256(f"{__version__}\n{study!r}".encode()).hexdigest()[:16]
+
+
+def save_progress(
+    stage: Path, studies: list[Any], entries: Mapping[str, dict], quick: bool
+) -> None:
+    """Write :data:`PROGRESS_FILE` in ``stage``: the finished studies' entries (atomic)."""
+    fingerprints = {study.name: study_fingerprint(study) for study in studies}
+    document = {
+        "format": PROGRESS_FORMAT,
+        "quick": quick,
+        "studies": {
+            name: {"fingerprint": fingerprints[name], "entry": entry}
+            for name, entry in entries.items()
+        },
+    }
+    temporary = stage / f".{PROGRESS_FILE}.tmp"
+    temporary.write_text(json.dumps(document), encoding="utf-8")
+    os.replace(temporary, stage / PROGRESS_FILE)
+
+
+def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, dict]:
+    """The entries of the finished studies a resumed folder holds (``stage`` starts with its
+    content) whose inputs are the same as now; everything else in ``stage`` is removed.
+
+    Raises
+    ------
+    InputError
+        When the folder was run with another ``quick``, or its progress file is unreadable.
+    """
+    marker = stage / PROGRESS_FILE
+    if not marker.is_file():
+        return {}
+    try:
+        document = json.loads(marker.read_text(encoding="utf-8"))
+        stored = document["studies"] if document["format"] == PROGRESS_FORMAT else None
+        if not isinstance(stored, dict) or not isinstance(document["quick"], bool):
+            raise ValueError("not a progress file")
+    except (OSError, ValueError, KeyError, TypeError):
+        raise InputError(
+            f"resume: {PROGRESS_FILE} is not one this tool wrote; use --force to start again"
+        ) from None
+    if document["quick"] != quick:
+        mode = "with --quick" if document["quick"] else "without --quick"
+        raise InputError(f"resume: the interrupted run was {mode}; resume it the same way")
+    wanted = {study.name: study_fingerprint(study) for study in studies}
+    kept = {
+        name: item["entry"]
+        for name, item in stored.items()
+        if isinstance(item, dict)
+        and isinstance(item.get("entry"), dict)
+        and wanted.get(name) == item.get("fingerprint")
+    }
+    for path in stage.iterdir():
+        if path.name not in kept or path.name == PROGRESS_FILE:  # unfinished, changed, marker
+            _remove_entry(path)
+    return kept
+
+
+def _remove_entry(path: Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path)
+    else:
+        path.unlink()
+
+
+def keep_finished(
+    stage: Path,
+    studies: list[Any],
+    entries: Mapping[str, dict],
+    error: BaseException,
+    *,
+    quick: bool,
+) -> NoReturn:
+    """Re-raise ``error``; for an interruption after some studies finished, as
+    :class:`KeepStaged` that moves them (with :data:`PROGRESS_FILE`) into place."""
+    if isinstance(error, Exception) or not entries:
+        raise error
+    for path in stage.iterdir():
+        if path.name not in entries:
+            _remove_entry(path)
+    save_progress(stage, studies, entries, quick)
+    raise KeepStaged(VerifyInterrupted(error, len(entries), len(studies))) from None
 
 
 class ProgressBar:
@@ -119,6 +238,7 @@ def run_verification(
     progress: Callable[[str], None] | None = None,
     force: bool = False,
     figure_format: str = "png",
+    resume: bool = False,
 ) -> dict[str, object]:
     """Run the studies one after another in this process and write ``out`` (results.json,
     report.md, report.html, per-study VTU fields, CSV curves and histories, PNG figures, and
@@ -126,16 +246,34 @@ def run_verification(
     Returns the results document. (``shtaerman verify`` runs them as dask tasks instead:
     :mod:`shtaerman.sweep.verify`.)
 
-    ``out`` may exist only as an empty folder, or with ``force`` as any folder (replaced)."""
+    ``out`` may exist only as an empty folder, or with ``force`` as any folder (replaced), or
+    with ``resume`` as a folder an interrupted run left (its finished studies are kept).
+
+    Raises
+    ------
+    VerifyInterrupted
+        Ctrl-C or SIGTERM after some studies finished: they are in ``out``.
+    """
     check_figure_format(figure_format)
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
-    with staged_folder(out, force=force) as stage:
-        entries = {}
-        for study in studies:
-            outcome = run_study(study, quick=quick, progress=bar)
-            bar(f"{study.name}: files and figures")
-            entries[study.name] = study_entry(outcome, stage, figure_format)
+    marker = PROGRESS_FILE if resume else None
+    with staged_folder(out, force=force, resume_marker=marker) as stage:
+        entries = kept_entries(stage, studies, quick=quick)
+        for _ in entries:
             advance()
-            bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
-        return finish_verification(stage, entries, quick=quick, figure_format=figure_format)
+        try:
+            for study in studies:
+                if study.name in entries:
+                    continue
+                outcome = run_study(study, quick=quick, progress=bar)
+                bar(f"{study.name}: files and figures")
+                entries[study.name] = study_entry(outcome, stage, figure_format)
+                save_progress(stage, studies, entries, quick)
+                advance()
+                bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
+        except BaseException as error:
+            keep_finished(stage, studies, entries, error, quick=quick)
+        (stage / PROGRESS_FILE).unlink(missing_ok=True)
+        in_file_order = {study.name: entries[study.name] for study in studies}
+        return finish_verification(stage, in_file_order, quick=quick, figure_format=figure_format)

@@ -509,6 +509,10 @@ def normalized(path: Path, kind: str, data: dict[str, Any]) -> dict[str, Any]:
     return data
 
 
+MAX_STUDY_BYTES = 16 << 20
+"""Largest study file read."""
+
+
 def load_study(path: str | Path) -> list[Any]:
     """Read and check a study file of any kind; a ``[sweep]`` may expand it into several.
 
@@ -521,7 +525,11 @@ def load_study(path: str | Path) -> list[Any]:
         the file, the key and what was expected), or the FEM cannot run it.
     """
     path = Path(path)
+    if path.exists() and not path.is_file():  # a FIFO would hang, /dev/zero fill the memory
+        raise StudyError(f"{path}: not a regular file; name a study file (.toml)")
     try:
+        if path.stat().st_size > MAX_STUDY_BYTES:
+            raise StudyError(f"{path}: a study file has at most {MAX_STUDY_BYTES} bytes")
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise StudyError(f"{path}: study file not found") from None
@@ -529,6 +537,8 @@ def load_study(path: str | Path) -> list[Any]:
         raise StudyError(f"{path}: cannot read the study file ({error})") from None
     except tomllib.TOMLDecodeError as error:
         raise StudyError(f"{path}: not valid TOML ({error})") from None
+    except RecursionError:
+        raise StudyError(f"{path}: not valid TOML (nested too deeply)") from None
     kind = data.pop("kind", "contact")
     if kind not in study_kinds():
         raise StudyError(

@@ -8,9 +8,11 @@ interrupted: 128 + the signal number), 2 bad input (one line on stderr, nothing 
 from __future__ import annotations
 
 import argparse
+import shlex
 import signal
 import sys
 from pathlib import Path
+from typing import Any
 
 from ..plots.formats import add_figure_format
 from ..validation import InputError
@@ -97,26 +99,57 @@ def run(args: argparse.Namespace) -> int:
         print(f"shtaerman: sweep {spec.name!r} interrupted (SIGINT)", file=sys.stderr)
         return 128 + signal.SIGINT
     except SweepInterrupted as stop:
-        if stop.restored:
-            print(
-                f"shtaerman: sweep {spec.name!r} interrupted ({stop}); --force kept the previous "
-                f"sweep in {out}, unchanged",
-                file=sys.stderr,
-            )
-            return 128 + stop.signum
-        print(
-            f"shtaerman: sweep {spec.name!r} interrupted ({stop}): {stop.saved} of {stop.total} "
-            f"cases saved in {out}; resume with: shtaerman sweep {args.sweep} --out {out} "
-            "--resume",
-            file=sys.stderr,
-        )
+        print(_interrupted_text(args, spec.name, out, stop), file=sys.stderr)
         return 128 + stop.signum
-    done = (
-        f"{outcome.computed} computed on {outcome.workers} "
-        f"worker{'s' if outcome.workers != 1 else ''}"
-        if outcome.computed
-        else "nothing to compute"
+    except OSError as error:  # a full disk, a lost mount: what is saved stays saved
+        print(_failed_text(args, out, error), file=sys.stderr)
+        return 1
+    _report(args, spec, out, outcome)
+    return outcome.exit_code
+
+
+def _resume_command(args: argparse.Namespace, out: Path) -> str:
+    return shlex.join(["shtaerman", "sweep", str(args.sweep), "--out", str(out), "--resume"])
+
+
+def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any) -> str:
+    """One line: what an interrupted sweep kept, and how to complete it."""
+    from .engine import is_sweep_folder
+
+    if stop.restored:
+        return (
+            f"shtaerman: sweep {name!r} interrupted ({stop}); --force kept the previous sweep in "
+            f"{out}, unchanged"
+        )
+    if not stop.saved and not is_sweep_folder(out):
+        return f"shtaerman: sweep {name!r} interrupted ({stop}) before any case was saved"
+    return (
+        f"shtaerman: sweep {name!r} interrupted ({stop}): {stop.saved} of {stop.total} cases "
+        f"saved in {out}; resume with: {_resume_command(args, out)}"
     )
+
+
+def _failed_text(args: argparse.Namespace, out: Path, error: OSError) -> str:
+    """One line for a failed write: the error, and how to complete what is saved."""
+    from .engine import is_sweep_folder
+
+    what = error.strerror or str(error)
+    where = f" ({error.filename})" if error.filename else ""
+    if not is_sweep_folder(out):
+        return f"shtaerman: error: {what}{where}; nothing was saved"
+    return (
+        f"shtaerman: error: {what}{where}; the finished cases are saved in {out}: complete the "
+        f"sweep with: {_resume_command(args, out)}"
+    )
+
+
+def _report(args: argparse.Namespace, spec: Any, out: Path, outcome: Any) -> None:
+    """The summary line, the warnings, and where the results are (or how to complete them)."""
+    if outcome.computed:
+        plural = "s" if outcome.workers != 1 else ""
+        done = f"{outcome.computed} computed on {outcome.workers} worker{plural}"
+    else:
+        done = f"none of {outcome.lost} could run" if outcome.lost else "nothing to compute"
     if outcome.reused:
         done += f", {outcome.reused} from an earlier run"
     print(
@@ -132,9 +165,8 @@ def run(args: argparse.Namespace) -> int:
     if outcome.lost:
         print(
             f"shtaerman: {outcome.lost} cases could not run ({outcome.lost_reason}); complete "
-            f"them with: shtaerman sweep {args.sweep} --out {out} --resume",
+            f"them with: {_resume_command(args, out)}",
             file=sys.stderr,
         )
     else:
         print(f"results: {out / 'cases.csv'}  {out / 'results.json'}  {out / 'figures'}")
-    return outcome.exit_code

@@ -2,8 +2,11 @@
 
 The result folder::
 
-    DIR/sweep.toml          the sweep file, copied (``--resume`` checks it is the same sweep)
-    DIR/cases/<index>.json  one record per finished case, written atomically as it completes
+    DIR/.shtaerman-sweep.json  the marker that makes DIR a sweep folder (--resume, --force)
+    DIR/sweep.toml          the sweep file, copied (``--resume`` checks its fixed parameters)
+    DIR/cases/<index>.json  one record per finished case (its inputs, outputs and a digest),
+                            written atomically as it completes
+    DIR/cases/unused/       records of cases a resumed grid dropped (reused if they return)
     DIR/cases.csv           one row per case, sorted by index (written at the end)
     DIR/results.json        spec, cases, summary, timings (written at the end)
     DIR/figures/*.png       per output: curves over a 1-axis sweep, heat maps over 2 axes
@@ -11,20 +14,23 @@ The result folder::
 Nothing is lost: a case that raises is recorded with its error (one line) and the others go on;
 a worker that dies mid-case has its case rerun by dask on another worker (the scheduler
 reschedules tasks of lost workers); an interrupted sweep (SIGINT, SIGTERM) keeps every finished
-case, and ``resume=True`` computes only the cases without a record.
+case, and ``resume=True`` computes only the cases without a valid record, matched by inputs.
 """
 
 from __future__ import annotations
 
 import contextlib
 import csv
+import hashlib
 import io
 import json
 import logging
 import os
+import re
 import shutil
 import signal
 import socket
+import stat
 import sys
 import tempfile
 import threading
@@ -37,10 +43,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..output.files import file_mode, json_safe, missing_folder, probe_writable
+from ..output.files import (
+    check_folder_path,
+    file_mode,
+    folder_lock,
+    json_safe,
+    missing_folder,
+    probe_writable,
+)
 from ..plots.formats import check_figure_format
 from ..validation import InputError
-from .kinds import unit_suffix
+from .kinds import CaseCheckFailed, unit_suffix
 from .spec import Case, SweepSpec
 
 __all__ = [
@@ -49,12 +62,21 @@ __all__ = [
     "dask_client",
     "default_workers",
     "execute_case",
+    "is_sweep_folder",
     "read_records",
     "run_sweep",
 ]
 
 SPEC_FILE = "sweep.toml"
 CASES_DIR = "cases"
+UNUSED_DIR = "unused"
+"""Inside ``cases``: the records of cases a resumed grid no longer holds (reused if it does)."""
+MARKER_FILE = ".shtaerman-sweep.json"
+"""What makes a folder a sweep folder (``--resume`` and ``--force`` touch no other)."""
+MARKER_FORMAT = "shtaerman-sweep-1"
+RECORD_NAME = re.compile(r"(0|[1-9][0-9]*)\.json|[0-9a-f]{16}\.json")
+MAX_RECORD_BYTES = 1 << 20
+"""Largest case record read on ``--resume`` (a record is about 1 kB)."""
 BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 """Worker environment of the local cluster: one BLAS thread per single-threaded worker."""
 CONNECT_TIMEOUT = "10s"
@@ -153,6 +175,9 @@ def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: 
     BLAS is capped to one thread (threadpoolctl) whatever the worker's environment, so an
     existing cluster with several threads per worker does not oversubscribe its cores.
 
+    A case that raises :class:`~shtaerman.sweep.kinds.CaseCheckFailed` is "failed" with its
+    outputs kept.
+
     Returns
     -------
     dict
@@ -169,6 +194,9 @@ def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: 
         try:
             raw = case(dict(params))
             outputs = {str(name): _scalar(name, value) for name, value in raw.items()}
+        except CaseCheckFailed as failed:  # it ran, but its own checks fail: kept, as failed
+            outputs = {str(name): _scalar(name, value) for name, value in failed.outputs.items()}
+            error = "check failed: " + " ".join(str(failed).split())
         except Exception as exc:
             outputs, error = {}, _one_line(exc)
     return {
@@ -188,7 +216,8 @@ def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: 
 
 
 def _atomic_write(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same folder + os.replace."""
+    """Write ``text`` to ``path`` through a temporary file in the same folder + os.replace
+    (a symbolic link at ``path`` is replaced, never followed)."""
     handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
         os.fchmod(handle, file_mode())  # mkstemp makes 0600; results are shared like any file
@@ -200,23 +229,119 @@ def _atomic_write(path: Path, text: str) -> None:
         raise
 
 
-def _write_record(out: Path, record: dict) -> None:
-    _atomic_write(out / CASES_DIR / f"{record['index']}.json", json.dumps(json_safe(record)))
-
-
-def read_records(out: str | Path, total: int) -> dict[int, dict]:
-    """Every readable case record in ``out/cases`` with an index below ``total``."""
-    records = {}
-    for path in (Path(out) / CASES_DIR).glob("*.json"):
-        if not path.stem.isdigit() or int(path.stem) >= total:
-            continue
+def _read_regular(path: Path, limit: int = MAX_RECORD_BYTES) -> str | None:
+    """The UTF-8 text of ``path`` if it is a regular file (not a link, FIFO or device) of at
+    most ``limit`` bytes; None otherwise."""
+    try:
+        handle = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:
+        return None
+    with os.fdopen(handle, "rb") as stream:
+        info = os.fstat(handle)
+        if not stat.S_ISREG(info.st_mode) or info.st_size > limit:
+            return None
         try:
-            record = json.loads(path.read_text())
-        except (OSError, ValueError):
-            continue  # unreadable: the case is simply computed again
-        if record.get("index") == int(path.stem) and record.get("status") in {"ok", "failed"}:
-            records[int(path.stem)] = record
-    return records
+            return stream.read(limit + 1).decode("utf-8")
+        except (OSError, UnicodeDecodeError):
+            return None
+
+
+def _digest(record: Mapping[str, Any]) -> str:
+    body = {key: value for key, value in record.items() if key != "digest"}
+    return hashlib.sha256(json.dumps(body, sort_keys=True).encode()).hexdigest()
+
+
+def _sealed(record: Mapping[str, Any]) -> dict:
+    """``record`` as strict JSON data with its ``digest`` (a hand edit or damage shows)."""
+    safe = json_safe({key: value for key, value in record.items() if key != "digest"})
+    return {**safe, "digest": _digest(safe)}
+
+
+def _write_record(out: Path, record: dict) -> None:
+    _atomic_write(out / CASES_DIR / f"{record['index']}.json", json.dumps(record))
+
+
+def _load_record(path: Path) -> dict | None:
+    """The record in ``path`` if it is one this tool wrote, unchanged; None otherwise."""
+    text = _read_regular(path)
+    if text is None:
+        return None
+    try:
+        record = json.loads(text)
+    except (ValueError, RecursionError):
+        return None
+    valid = (
+        isinstance(record, dict)
+        and record.get("digest") == _digest(record)
+        and isinstance(record.get("index"), int)
+        and record.get("status") in {"ok", "failed"}
+        and isinstance(record.get("inputs"), dict)
+        and isinstance(record.get("outputs"), dict)
+        and isinstance(record.get("seconds"), int | float)
+    )
+    return record if valid else None
+
+
+def _case_key(params: Mapping[str, Any]) -> str:
+    return json.dumps(json_safe(dict(params)), sort_keys=True)
+
+
+def _record_files(out: Path) -> list[Path]:
+    """The record files of ``out/cases`` and of its ``unused`` folder (kept records of cases
+    no longer in the grid); a symbolic link there is refused."""
+    folders = [out / CASES_DIR, out / CASES_DIR / UNUSED_DIR]
+    files = []
+    for folder in folders:
+        if folder.is_symlink() or (os.path.lexists(folder) and not folder.is_dir()):
+            raise InputError(f"resume: {str(folder)!r} is not a folder (a symbolic link?)")
+        if folder.is_dir():
+            files += [p for p in sorted(folder.iterdir()) if RECORD_NAME.fullmatch(p.name)]
+    return files
+
+
+def read_records(out: str | Path, cases: list[Case]) -> tuple[dict[int, dict], list[Path]]:
+    """The saved records of ``cases`` in ``out``, matched by their inputs (so a grid whose
+    axes were reordered or extended keeps them), each relabelled with its case's index and
+    axis values; and the files that hold no valid record (edited, damaged or not a file)."""
+    wanted = {_case_key(case.params): case for case in cases}
+    records: dict[int, dict] = {}
+    invalid = []
+    for path in _record_files(Path(out)):
+        record = _load_record(path)
+        if record is None:
+            invalid.append(path)
+            continue
+        case = wanted.get(_case_key(record["inputs"]))
+        if case is None or case.index in records:
+            continue
+        record = {**record, "index": case.index, "axis_values": case.axis_values}
+        records[case.index] = _sealed(record)
+    return records, invalid
+
+
+def _settle_records(out: Path, records: Mapping[int, dict]) -> None:
+    """Give every kept record its current file name ``cases/<index>.json``; valid records of
+    cases no longer in the grid move to ``cases/unused``. Each step keeps every record in at
+    least one file, so an interruption anywhere loses none."""
+    cases, unused = out / CASES_DIR, out / CASES_DIR / UNUSED_DIR
+    top = {p.name: _load_record(p) for p in cases.iterdir() if RECORD_NAME.fullmatch(p.name)}
+    current = {f"{index}.json": record for index, record in records.items()}
+    for name, record in top.items():
+        if record is not None and current.get(name) != record:
+            unused.mkdir(exist_ok=True)
+            _atomic_write(unused / f"{record['digest'][:16]}.json", json.dumps(record))
+    for name, record in current.items():
+        if top.get(name) != record:
+            _atomic_write(cases / name, json.dumps(record))
+    for name, record in top.items():
+        if name not in current and record is not None:
+            (cases / name).unlink()
+    if unused.is_dir():
+        keys = {_case_key(record["inputs"]) for record in records.values()}
+        for path in list(unused.iterdir()):
+            record = _load_record(path)
+            if record is not None and _case_key(record["inputs"]) in keys:
+                path.unlink()
 
 
 def _first_difference(old: Any, new: Any, prefix: str = "") -> str | None:
@@ -232,7 +357,40 @@ def _first_difference(old: Any, new: Any, prefix: str = "") -> str | None:
     return None if old == new else (prefix or "(top level)")
 
 
-def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> Callable[[], None]:
+def is_sweep_folder(out: Path) -> bool:
+    """True when ``out`` holds the marker a sweep writes (a regular file of that format)."""
+    text = _read_regular(out / MARKER_FILE, 4096)
+    try:
+        return text is not None and json.loads(text).get("format") == MARKER_FORMAT
+    except (ValueError, AttributeError):
+        return False
+
+
+def _check_same_sweep(spec: SweepSpec, out: Path) -> None:
+    """Refuse to resume ``out`` with a sweep that differs in more than its axis values."""
+    text = _read_regular(out / SPEC_FILE, 1 << 20)
+    try:
+        old = tomllib.loads(text) if text is not None else None
+    except (tomllib.TOMLDecodeError, RecursionError):
+        old = None
+    key = "the file" if old is None else None
+    if old is not None:
+        fixed = {k: v for k, v in old.items() if k != "axes"}
+        key = _first_difference(fixed, {k: v for k, v in spec.data.items() if k != "axes"})
+        axes = old.get("axes")
+        if key is None and (not isinstance(axes, dict) or set(axes) != set(spec.axes)):
+            key = "axes (their names)"
+    if key is not None:
+        raise InputError(
+            f"resume: {str(out)!r} holds a different sweep ({key} differs from {spec.path}); a "
+            "resume may add or change axis values only: use another --out, or --force to start "
+            "again"
+        )
+
+
+def _check_folder(
+    spec: SweepSpec, out: Path, backup: Path, *, resume: bool, force: bool
+) -> Callable[[], None]:
     """Check the result folder, touching nothing; returns what makes it ready (called once the
     cluster is up, so that an unreachable scheduler leaves no folder behind)."""
     if resume and force:
@@ -242,65 +400,66 @@ def _check_folder(spec: SweepSpec, out: Path, *, resume: bool, force: bool) -> C
     if not out.parent.is_dir():
         raise InputError(f"out: {missing_folder(out.parent)}")
     probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
-    stored = out / SPEC_FILE
-    if out.is_dir() and resume:
-        if not stored.is_file():
-            raise InputError(f"resume: {str(out)!r} is not a sweep folder (no {SPEC_FILE})")
-        try:
-            old = tomllib.loads(stored.read_text())
-        except (OSError, tomllib.TOMLDecodeError):
-            old = None
-        if old != spec.data:
-            key = "the file" if old is None else _first_difference(old, spec.data)
+    full = out.is_dir() and any(out.iterdir())
+    if full and resume:
+        if not is_sweep_folder(out):
             raise InputError(
-                f"resume: {str(out)!r} holds a different sweep ({key} differs from "
-                f"{spec.path}); use another --out, or --force to start again"
+                f"resume: {str(out)!r} is not a sweep folder (no {MARKER_FILE} written by "
+                "shtaerman sweep); pick another --out"
             )
-        return lambda: (out / CASES_DIR).mkdir(exist_ok=True)
-    replace = False
-    if out.is_dir() and any(out.iterdir()):
-        if not force:
-            raise InputError(
-                f"out: folder {str(out)!r} exists; use --resume to complete it or --force to "
-                "replace it"
-            )
-        if not stored.is_file():
-            raise InputError(
-                f"out: --force replaces only a sweep folder, and {str(out)!r} has no "
-                f"{SPEC_FILE}; remove it yourself or pick another --out"
-            )
-        replace = True
+        _check_same_sweep(spec, out)
+        return lambda: _atomic_write(out / SPEC_FILE, spec.text)
+    if full and not force:
+        raise InputError(
+            f"out: folder {str(out)!r} exists; use --resume to complete it or --force to replace it"
+        )
+    if full and not is_sweep_folder(out):
+        raise InputError(
+            f"out: --force replaces only a sweep folder, and {str(out)!r} has no {MARKER_FILE} "
+            "written by shtaerman sweep; remove it yourself or pick another --out"
+        )
 
     def create() -> None:
-        if replace:  # kept until the new sweep completes (see _replaced)
-            os.replace(out, _backup(out))
+        if full:  # kept until the new sweep completes (see _replaced)
+            os.replace(out, backup)
         out.mkdir(exist_ok=True)
         (out / CASES_DIR).mkdir()
-        _atomic_write(stored, spec.text)
+        _atomic_write(out / SPEC_FILE, spec.text)
+        marker = {"format": MARKER_FORMAT, "name": spec.name, "kind": spec.kind}
+        _atomic_write(out / MARKER_FILE, json.dumps(marker))
 
     return create
 
 
-def _backup(out: Path) -> Path:
-    """Where ``--force`` keeps the sweep it replaces while the new one runs."""
-    return out.parent / f".{out.name}.replaced-{os.getpid()}"
-
-
 @contextlib.contextmanager
-def _replaced(out: Path) -> Iterator[None]:
-    """Drop the replaced sweep when the block ends normally; put it back if it raises."""
-    backup = _backup(out)
+def _replaced(out: Path, backup: Path, saved_new: Callable[[], bool]) -> Iterator[None]:
+    """Drop the sweep ``--force`` replaces (``backup``) when the block ends normally. If it
+    raises: put it back when the new sweep saved no case, else keep the new one (for
+    ``--resume``) and drop the old."""
     try:
         yield
     except BaseException as error:
         if backup.is_dir():
-            shutil.rmtree(out, ignore_errors=True)
-            os.replace(backup, out)
-            if isinstance(error, SweepInterrupted):
-                error.restored = True
+            if not saved_new():
+                shutil.rmtree(out, ignore_errors=True)
+                os.replace(backup, out)
+                if isinstance(error, SweepInterrupted):
+                    error.restored = True
+            else:
+                shutil.rmtree(backup, ignore_errors=True)
         raise
     if backup.is_dir():
         shutil.rmtree(backup)
+
+
+def _unlink_links(folder: Path) -> None:
+    """Remove symbolic links at ``folder`` and in it, so that what is drawn there stays there."""
+    if folder.is_symlink() or (os.path.lexists(folder) and not folder.is_dir()):
+        folder.unlink()
+    if folder.is_dir():
+        for path in folder.iterdir():
+            if path.is_symlink():
+                path.unlink()
 
 
 # --- the cluster ------------------------------------------------------------------------------
@@ -320,18 +479,46 @@ def _quiet_dask() -> Iterator[None]:
         logger.setLevel(level)
 
 
+def _connect(scheduler: str, stop: _StopFlag | None) -> Any:
+    """A client of the existing ``scheduler``, made in a helper thread: a peer that accepts
+    the connection and never answers cannot hold this process past the connect timeout, and
+    SIGINT/SIGTERM (``stop``) end the wait at once."""
+    from dask.utils import parse_timedelta
+    from distributed import Client
+
+    made: dict[str, Any] = {}
+
+    def connect() -> None:
+        try:
+            made["client"] = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except Exception as error:
+            made["error"] = error
+
+    thread = threading.Thread(target=connect, name="shtaerman-connect", daemon=True)
+    thread.start()
+    seconds = parse_timedelta(CONNECT_TIMEOUT)
+    deadline = time.monotonic() + seconds + 5.0  # dask's own timeout first, when it works
+    while thread.is_alive() and time.monotonic() < deadline:
+        thread.join(0.05)
+        if stop is not None:
+            stop.check()
+    error = made.get("error")
+    if thread.is_alive():
+        error = TimeoutError(f"no answer within {seconds:g} s")
+    if error is not None:  # refused, malformed, not a dask scheduler (its answer undecodable)
+        raise InputError(f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})")
+    return made["client"]
+
+
 @contextlib.contextmanager
-def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
+def _client(
+    workers: int | None, scheduler: str | None, stop: _StopFlag | None = None
+) -> Iterator[Any]:
     import dask
     from distributed import Client
 
     if scheduler is not None:
-        try:
-            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except (OSError, TimeoutError, ValueError) as error:  # ValueError: a malformed address
-            raise InputError(
-                f"scheduler: cannot connect to {scheduler!r} ({_one_line(error)})"
-            ) from None
+        client = _connect(scheduler, stop)
         try:
             yield client
         finally:
@@ -346,25 +533,31 @@ def _client(workers: int | None, scheduler: str | None) -> Iterator[Any]:
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
     # would print a "heartbeat" traceback at shutdown
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
-        cluster = _local_cluster(workers)
+    scratch = tempfile.mkdtemp(prefix="shtaerman-dask-")  # private (0700), never a planted link
     try:
-        client = Client(cluster)
+        settings = {"distributed.nanny.pre-spawn-environ": environ, "temporary-directory": scratch}
+        with dask.config.set(settings):
+            cluster = _local_cluster(workers, scratch)
         try:
-            yield client
+            client = Client(cluster)
+            try:
+                yield client
+            finally:
+                with _signals_ignored():
+                    client.close()
         finally:
             with _signals_ignored():
-                client.close()
+                cluster.close()
     finally:
-        with _signals_ignored():
-            cluster.close()
+        shutil.rmtree(scratch, ignore_errors=True)
 
 
-def _local_cluster(workers: int | None) -> Any:
+def _local_cluster(workers: int | None, scratch: str) -> Any:
     from distributed import LocalCluster
 
     return LocalCluster(
         n_workers=workers or default_workers(),
+        local_directory=scratch,
         threads_per_worker=1,
         processes=True,
         dashboard_address=None,
@@ -454,15 +647,14 @@ def run_sweep(
     spec : SweepSpec
         From :func:`shtaerman.sweep.load_sweep` (every case's inputs already checked).
     out : path
-        Result folder. An existing one is refused unless ``resume`` (complete it: only cases
-        without a record are computed; the sweep file must be the same) or ``force`` (replace
-        it; only a sweep folder is ever removed). ``resume`` on a folder that does not exist
-        starts the sweep there. The folder is created once the cluster is up.
+        Result folder, created once the cluster is up. An existing one is refused unless
+        ``resume`` (complete it: saved records are reused by their inputs, so the sweep may
+        add or change axis values but not its fixed parameters) or ``force`` (replace it;
+        only a folder a sweep wrote is ever removed).
     workers : int, optional
-        Single-threaded worker processes of the local cluster (default: the usable cores).
+        Single-threaded local worker processes (default: the usable cores; at most the cases).
     scheduler : str, optional
-        Address of an existing cluster's scheduler, e.g. ``"tcp://host:8786"``; its workers
-        need shtaerman importable.
+        Address of an existing cluster's scheduler, e.g. ``"tcp://host:8786"``.
     retries : int
         Reruns dask grants a task that raised outside the case (a case's own exception is
         recorded, never retried).
@@ -473,15 +665,10 @@ def run_sweep(
     figure_format : {"png", "svg", "pdf"}
         "svg" or "pdf" also writes each figure in that format beside its PNG.
 
-    Returns
-    -------
-    SweepOutcome
-
     Raises
     ------
     InputError
-        Bad folder, different sweep on resume, unreachable scheduler (nothing computed,
-        nothing written).
+        Bad folder, different sweep on resume, unreachable scheduler (nothing computed).
     SweepInterrupted
         On SIGINT/SIGTERM in the main thread, after the cluster is shut down; finished cases
         are on disk.
@@ -492,42 +679,91 @@ def run_sweep(
         raise InputError(f"workers must be an integer >= 1, got {workers!r}")
     check_figure_format(figure_format)
     start = time.perf_counter()
-    out = Path(out).expanduser()
+    out = check_folder_path(Path(out), "out")
     cases = spec.cases()
-    ready = _check_folder(spec, out, resume=resume, force=force)
-    records = read_records(out, len(cases)) if resume and out.is_dir() else {}
-    reused = len(records)
-    pending = [case for case in cases if case.index not in records]
-    lost: dict[int, str] = {}
-    used_workers = 0
-    with _replaced(out), _StopFlag() as stop:
+    with folder_lock(out, "out") as lock:
+        backup = lock / "replaced"
+        ready = _check_folder(spec, out, backup, resume=resume, force=force)
+        records: dict[int, dict] = {}
+        if resume and is_sweep_folder(out):
+            records = _saved_records(out, cases)
+            ready = _settled(ready, out, dict(records))
+        run = _Run(spec, out, cases, records, len(records), start)
+        with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
+            return run.execute(
+                ready, workers, scheduler, retries, progress, figures and figure_format, stop
+            )
+
+
+def _saved_records(out: Path, cases: list[Case]) -> dict[int, dict]:
+    """:func:`read_records`, with a warning for each file that holds no valid record."""
+    records, invalid = read_records(out, cases)
+    for path in invalid:
+        warnings.warn(
+            f"{path} is not a case record this tool wrote (edited or damaged); its case is "
+            "computed again",
+            stacklevel=3,
+        )
+    return records
+
+
+def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
+    def settle() -> None:
+        (out / CASES_DIR).mkdir(exist_ok=True)
+        _settle_records(out, records)
+        ready()
+
+    return settle
+
+
+class _Run:
+    """One call of :func:`run_sweep` once its folder is checked: what is saved, what is not."""
+
+    def __init__(self, spec, out, cases, records, reused, start) -> None:
+        self.spec, self.out, self.cases, self.records = spec, out, cases, records
+        self.reused, self.start = reused, start
+
+    def saved_new(self) -> bool:
+        """True once this run has saved a case."""
+        return len(self.records) > self.reused
+
+    def execute(self, ready, workers, scheduler, retries, progress, figures, stop) -> SweepOutcome:
+        """Compute the cases without a record, then write the summary if none is missing."""
+        pending = [case for case in self.cases if case.index not in self.records]
+        lost: dict[int, str] = {}
+        used_workers = 0
         if not pending:
             ready()
         else:
-            bar = _progress(len(cases), reused, spec.name, progress)
+            bar = _progress(len(self.cases), self.reused, self.spec.name, progress)
             try:
                 used_workers = _compute(
-                    spec, out, ready, pending, records, lost, workers, scheduler, retries, bar, stop
-                )
+                    self.spec, self.out, ready, pending, self.records, lost, workers,
+                    scheduler, retries, bar, stop,
+                )  # fmt: skip
             except SweepInterrupted as interrupted:
-                interrupted.saved, interrupted.total = len(records), len(cases)
+                interrupted.saved, interrupted.total = len(self.records), len(self.cases)
                 raise
-        outcome = SweepOutcome(
-            out=out,
-            total=len(cases),
+        outcome = self._outcome(lost, used_workers)
+        if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
+            _write_results(self.spec, self.out, self.cases, self.records, outcome, figures)
+        return outcome
+
+    def _outcome(self, lost: dict[int, str], used_workers: int) -> SweepOutcome:
+        records = self.records
+        return SweepOutcome(
+            out=self.out,
+            total=len(self.cases),
             succeeded=sum(r["status"] == "ok" for r in records.values()),
             failed=sum(r["status"] == "failed" for r in records.values()),
-            lost=len(cases) - len(records),
-            computed=len(records) - reused,
-            reused=reused,
-            seconds=time.perf_counter() - start,
+            lost=len(self.cases) - len(records),
+            computed=len(records) - self.reused,
+            reused=self.reused,
+            seconds=time.perf_counter() - self.start,
             workers=used_workers,
             lost_reason=next(iter(lost.values()), None),
             warned=sum(bool(r.get("warnings")) for r in records.values()),
         )
-        if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
-            _write_results(spec, out, cases, records, outcome, figures and figure_format)
-    return outcome
 
 
 def _compute(
@@ -551,7 +787,9 @@ def _compute(
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
     by_key = dict(zip(keys, pending, strict=True))
     with bar, _quiet_dask():
-        with _client(workers, scheduler) as client:
+        if scheduler is None:  # no more processes than cases
+            workers = min(workers or default_workers(), len(pending))
+        with _client(workers, scheduler, stop) as client:
             stop.check()
             ready()
             nthreads = sum(client.nthreads().values())
@@ -585,7 +823,7 @@ def _collect(out: Path, future: Any, case: Case, records: dict, lost: dict) -> N
         return
     finally:
         future.release()
-    record = {**result, "inputs": case.params, "axis_values": case.axis_values}
+    record = _sealed({**result, "inputs": case.params, "axis_values": case.axis_values})
     _write_record(out, record)
     records[case.index] = record
 
@@ -685,6 +923,7 @@ def _write_results(
         from .figures import sweep_figures
 
         try:
+            _unlink_links(out / "figures")
             sweep_figures(out / "results.json", out / "figures", figures)
         except Exception as error:  # the results are safe; say what went wrong with the figures
             warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -48,6 +49,7 @@ from ..validation import InputError, validate_increasing, validate_positive
 
 __all__ = [
     "KINDS",
+    "CaseCheckFailed",
     "Kind",
     "KindNotAvailableError",
     "Parameter",
@@ -55,6 +57,15 @@ __all__ = [
     "register_kind",
     "unit_suffix",
 ]
+
+
+class CaseCheckFailed(Exception):  # noqa: N818 (a verdict, named for what it says)
+    """Raised by a kind's case whose run finished but fails its own checks (an energy account
+    that does not balance): the case is recorded failed with this reason and ``outputs``."""
+
+    def __init__(self, reason: str, outputs: Mapping[str, float]) -> None:
+        super().__init__(reason)
+        self.outputs = dict(outputs)
 
 
 def unit_suffix(name: str, unit: str) -> str:
@@ -294,15 +305,16 @@ error_difference_worst is the largest of those three."""
 
 
 def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
-    """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate."""
-    from ..study.dynamic import run_case
+    """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
+    :class:`CaseCheckFailed` when its energy balance is off by more than the studies allow."""
+    from ..study.dynamic import DynamicTolerances, run_case
 
     start = time.perf_counter()
     case = run_case(*_dynamic_inputs(p), ladder=p["estimate"])
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
     compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
-    return {
+    outputs = {
         "restitution": float(result.restitution),
         "energy_radiated_fraction": float(result.energy_radiated_fraction),
         "estimate_energy_fraction": float(case.estimate.energy_fraction),
@@ -319,6 +331,14 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
         "seconds": seconds,
         **_dynamic_errors(case),
     }
+    limit = DynamicTolerances().energy_balance
+    if not outputs["energy_balance_error"] <= limit:  # NaN included
+        raise CaseCheckFailed(
+            f"energy balance error {outputs['energy_balance_error']:.1e} of M v0^2/2 exceeds "
+            f"{limit:g}: the mesh and time steps do not resolve this impact",
+            outputs,
+        )
+    return outputs
 
 
 def _dynamic_errors(case: Any) -> dict[str, float]:

@@ -20,7 +20,9 @@ from __future__ import annotations
 import importlib.resources
 import itertools
 import math
+import os
 import re
+import stat
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -45,6 +47,8 @@ __all__ = [
 ]
 
 MAX_CASES = 100_000
+MAX_FILE_BYTES = 16 << 20
+"""Largest sweep file read (a 100,000-value axis takes about 2 MB)."""
 TOP_LEVEL = ("name", "kind", "description", "parameters", "axes")
 _PLAIN_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*")
 
@@ -161,9 +165,24 @@ def load_sweep(path: str | Path) -> SweepSpec:
     """
     path = Path(path)
     try:
-        text = path.read_text()
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError as error:
         raise SweepError(f"{path}: cannot read the sweep file ({error.strerror})") from None
+    with os.fdopen(handle, "rb") as stream:
+        info = os.fstat(handle)
+        if not stat.S_ISREG(info.st_mode):
+            raise SweepError(f"{path}: not a regular file; name a sweep file (.toml)")
+        if info.st_size > MAX_FILE_BYTES:
+            raise SweepError(
+                f"{path}: {info.st_size} bytes; a sweep file has at most {MAX_FILE_BYTES} bytes"
+            )
+        data = stream.read(MAX_FILE_BYTES + 1)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise SweepError(
+            f"{path}: not UTF-8 text (byte {data[error.start]:#04x} at offset {error.start})"
+        ) from None
     return parse_sweep(text, path)
 
 
@@ -174,6 +193,8 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SweepError(f"{path}: not valid TOML ({error})") from None
+    except RecursionError:
+        raise SweepError(f"{path}: not valid TOML (nested too deeply)") from None
     where = str(path)
     unknown = sorted(set(data) - set(TOP_LEVEL))
     if unknown:
@@ -304,9 +325,12 @@ def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
     if not values:
         raise SweepError(f"{where}: {key} is empty; give at least one value")
     converted = [_value(where, f"{key}[{i}]", kind, name, v) for i, v in enumerate(values)]
+    seen = set()
     for i, value in enumerate(converted):
-        if value in converted[:i]:
+        hashable = tuple(value) if isinstance(value, list) else value
+        if hashable in seen:
             raise SweepError(f"{where}: {key} lists {values[i]!r} twice")
+        seen.add(hashable)
     return converted
 
 
@@ -339,8 +363,8 @@ def shipped_sweeps() -> list[str]:
 def find_sweep(argument: str | Path) -> Path:
     """The sweep file named by ``argument``: a path to a file, or the name of a shipped sweep."""
     path = Path(argument).expanduser()
-    if path.is_file():
-        return path
+    if path.exists() and (path.suffix == ".toml" or not path.is_dir()):
+        return path  # load_sweep refuses what is not a regular file
     text = str(argument)
     if "/" not in text and not text.endswith(".toml"):
         shipped = sweeps_folder() / f"{text}.toml"

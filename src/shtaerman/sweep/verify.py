@@ -14,7 +14,15 @@ from pathlib import Path
 from typing import Any
 
 from ..output.files import staged_folder
-from ..output.folder import finish_verification, study_entry
+from ..output.folder import (
+    PROGRESS_FILE,
+    finish_verification,
+    keep_finished,
+    kept_entries,
+    save_progress,
+    study_entry,
+)
+from ..plots.formats import check_figure_format
 from ..study.run import run_study
 from ..validation import InputError
 from .engine import dask_client
@@ -56,6 +64,7 @@ def run_verification_on_dask(
     quick: bool = False,
     workers: int | None = None,
     force: bool = False,
+    resume: bool = False,
     progress: Callable[[str], None] | None = None,
     figure_format: str = "png",
 ) -> dict[str, object]:
@@ -66,38 +75,71 @@ def run_verification_on_dask(
     studies : list
         Loaded studies of any kind.
     out : Path
-        The result folder (new, or replaced with ``force``).
+        The result folder (new, or replaced with ``force``, or completed with ``resume``).
     quick : bool
         Coarse settings (CI).
     workers : int, optional
         Worker processes (default: the cores).
+    resume : bool
+        Keep the finished studies of a folder an interrupted run left; compute the others.
     progress : callable, optional
         Receives one line per finished study.
     figure_format : {"png", "svg", "pdf"}
         "svg" or "pdf" also writes each chart in that format beside its PNG.
-    """
-    from distributed import as_completed
 
+    Raises
+    ------
+    VerifyInterrupted
+        Ctrl-C or SIGTERM after some studies finished: they are in ``out``.
+    """
+    check_figure_format(figure_format)
     report = progress or (lambda _line: None)
-    advance = getattr(report, "advance", lambda: None)
-    with staged_folder(out, force=force) as stage:
-        with dask_client(workers) as client:
-            report(f"{len(studies)} studies on {len(client.scheduler_info()['workers'])} workers")
-            task = (str(stage), quick, figure_format)
-            futures = {
-                client.submit(verify_task, study, *task, pure=False): study.name
-                for study in submission_order(studies)
-            }
-            entries = {}
-            for future in as_completed(futures):
-                entry = future.result()
-                if INPUT_ERROR in entry:
-                    client.cancel(list(futures))  # the other studies' results are moot
-                    raise InputError(entry[INPUT_ERROR])
-                name = futures[future]
-                entries[name] = entry
-                advance()
-                verdict = "PASS" if entry["passed"] else "FAIL"
-                report(f"{name}: {verdict} (computed in {entry['seconds']:.1f} s)")
+    marker = PROGRESS_FILE if resume else None
+    with staged_folder(out, force=force, resume_marker=marker) as stage:
+        entries = kept_entries(stage, studies, quick=quick)
+        todo = [study for study in studies if study.name not in entries]
+        try:
+            for _ in entries:
+                getattr(report, "advance", lambda: None)()
+            if todo:
+                task = (str(stage), quick, figure_format)
+                _run_on_dask(todo, studies, task, entries, workers, report)
+        except BaseException as error:
+            keep_finished(stage, studies, entries, error, quick=quick)
+        (stage / PROGRESS_FILE).unlink(missing_ok=True)
         in_file_order = {study.name: entries[study.name] for study in studies}
         return finish_verification(stage, in_file_order, quick=quick, figure_format=figure_format)
+
+
+def _run_on_dask(
+    todo: list[Any],
+    studies: list[Any],
+    task: tuple[str, bool, str],
+    entries: dict[str, dict],
+    workers: int | None,
+    report: Callable[[str], None],
+) -> None:
+    """Compute ``todo`` on a local cluster (``task``: the stage folder, quick and the figure
+    format of :func:`verify_task`); each entry is added to ``entries`` and saved in the
+    progress file as it arrives."""
+    stage, quick = Path(task[0]), task[1]
+    from distributed import as_completed
+
+    advance = getattr(report, "advance", lambda: None)
+    with dask_client(None if workers is None else min(workers, len(todo))) as client:
+        report(f"{len(todo)} studies on {len(client.scheduler_info()['workers'])} workers")
+        futures = {
+            client.submit(verify_task, study, *task, pure=False): study.name
+            for study in submission_order(todo)
+        }
+        for future in as_completed(futures):
+            entry = future.result()
+            if INPUT_ERROR in entry:
+                client.cancel(list(futures))  # the other studies' results are moot
+                raise InputError(entry[INPUT_ERROR])
+            name = futures[future]
+            entries[name] = entry
+            save_progress(stage, studies, entries, quick)
+            advance()
+            verdict = "PASS" if entry["passed"] else "FAIL"
+            report(f"{name}: {verdict} (computed in {entry['seconds']:.1f} s)")
