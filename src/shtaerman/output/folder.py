@@ -65,7 +65,7 @@ class VerifyInterrupted(BaseException):
 def study_fingerprint(study: Any) -> str:
     """A digest of every input of ``study`` but the path of its file, and of this shtaerman's
     version (hex, 16 characters): a study is kept for a resume only if both are the same."""
-    from .. import __version__
+    from ..version import __version__
 
     if dataclasses.is_dataclass(study) and hasattr(study, "source"):
         study = dataclasses.replace(study, source=Path(""))
