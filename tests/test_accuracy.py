@@ -92,7 +92,7 @@ def test_contact_json_carries_the_estimates(capsys):
     [
         (["--refine", "0"], "refine must be > 0"),
         (["--refine", "0.3"], r"refine must be >= 0.5 with these mesh settings .* got 0.3"),
-        (["--accuracy", "nan"], "accuracy must be a finite number > 0"),
+        (["--accuracy", "nan"], r"--accuracy must be a number in \(0, 0.1\], got 'nan'"),
         (["--accuracy", "1e-5", "--max-time", "-1"], "max-time must be > 0 s"),
         # the truncation at the largest domain, 1.886 / (1e7 x 1.25) = 1.5e-7, is left alone
         (["--accuracy", "1e-7"], r"accuracy must be >= 3e-07: the clamped far boundary"),

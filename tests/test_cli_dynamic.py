@@ -91,12 +91,10 @@ def test_text_summary(capsys):
 
 def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
     # a striker far lighter than the rubber it touches: the mesh and steps sized from the
-    # quasi-static impact cannot resolve it (e > 1); the run stops once its energy balance is
-    # off by the whole initial energy, with one line naming both possible causes
+    # quasi-static impact cannot resolve it (e > 1, balance error ~5); not a silent success
     code, out, err = run(capsys, "dynamic", "--mass", "1e-30", "--no-estimate", *COARSE)
-    assert code == 1 and out == ""
-    assert "error: the energy balance is off by" in err and err.count("\n") == 1
-    assert "do not resolve this impact" in err
+    assert code == 1 and "restitution e" in out
+    assert "warning: energy balance error" in err and err.count("\n") == 1
 
 
 @pytest.mark.parametrize(
@@ -128,7 +126,7 @@ def test_unstable_time_stepping_is_a_failure_not_bad_input(capsys):
     assert code == 1
     assert len(err) == 1
     assert "time stepping became unstable" in err[0] and "use fewer time steps" in err[0]
-    assert "energy balance is off by" in err[0]
+    assert "energy balance" in err[0]
 
 
 def test_steps_is_a_deprecated_alias_of_time_steps(capsys):

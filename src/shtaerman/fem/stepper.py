@@ -71,8 +71,9 @@ ENERGY_NAMES = (
 UNSTABLE_BALANCE = 1e-3
 """|numerical energy| / (M v0^2 / 2) beyond which a contact that spreads to the edge of the
 refined zone is blamed on the time stepping, not on the zone."""
-RUNAWAY_BALANCE = 1.0
-"""|numerical energy| / (M v0^2 / 2) at which a run stops: the stepping has gone unstable."""
+RUNAWAY_BALANCE = 10.0
+"""|numerical energy| / (M v0^2 / 2) at which a run stops: ten times the energy it was given
+is no longer a resolution error but a time stepping gone unstable."""
 
 
 class ContactEdgeReachedError(InputError):
