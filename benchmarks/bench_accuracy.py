@@ -20,14 +20,14 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.accuracy import (
+from shtaerman.study.contact.accuracy import (
     LADDER_RATIO,
     AccuracyResult,
     LadderLevel,
     estimate_errors,
     run_to_accuracy,
 )
-from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.study.contact.indentation import default_depths, run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

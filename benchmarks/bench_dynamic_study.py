@@ -68,11 +68,11 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.dynamic_contact import run_dynamic_impact
-from shtaerman.study.accuracy import LADDER_RATIO
-from shtaerman.study.dynamic import run_case
-from shtaerman.study.dynamic_accuracy import DynamicLadder
+from shtaerman.study.contact.accuracy import LADDER_RATIO
+from shtaerman.study.contact.runner import run_study
+from shtaerman.study.dynamic.accuracy import DynamicLadder
+from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.richardson import richardson
-from shtaerman.study.run import run_study
 from shtaerman.study.schema import find_study, load_study
 
 KEYS = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")

@@ -11,8 +11,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
-from ..study.finite import FiniteStudyOutcome
-from ..study.finite_accuracy import CROSSING_KEYS, resolved
+from ..study.finite.accuracy import CROSSING_KEYS, resolved
+from ..study.finite.runner import FiniteStudyOutcome
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables

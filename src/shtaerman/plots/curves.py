@@ -15,8 +15,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
-from ..study.convergence import ConvergenceStudy
-from ..study.indentation import IndentationResult
+from ..study.contact.convergence import ConvergenceStudy
+from ..study.contact.indentation import IndentationResult
 from ..theory.contact import paper_pressure_eq5
 from .labels import LABELS, describe
 from .style import (

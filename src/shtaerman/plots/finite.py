@@ -35,7 +35,7 @@ from .style import (
 )
 
 if TYPE_CHECKING:
-    from ..study.finite import FiniteStudyOutcome
+    from ..study.finite.runner import FiniteStudyOutcome
 
 __all__ = [
     "FINITE_COLOUR",

@@ -21,8 +21,8 @@ from .revolved import plot_revolved
 from .sections import plot_field
 
 if TYPE_CHECKING:
-    from ..study.indentation import IndentationResult
-    from ..study.run import StudyOutcome
+    from ..study.contact.indentation import IndentationResult
+    from ..study.contact.runner import StudyOutcome
 
 __all__ = [
     "FIELD_FIGURES",

@@ -57,7 +57,7 @@ from ..theory.materials import RIGID, Material
 from ..validation import InputError
 from ..vocabulary import VOCABULARY, deprecated, suggestion
 from ..vocabulary import entry as vocabulary_entry
-from .indentation import validate_fem_inputs
+from .contact.indentation import validate_fem_inputs
 from .kinds import kind_function, study_kinds
 
 __all__ = [

@@ -21,12 +21,12 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..fem.mesh import MAX_DOMAIN, MeshSettings
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..validation import InputError, validate_positive
+from ...fem.mesh import MAX_DOMAIN, MeshSettings
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError, validate_positive
+from ..richardson import Estimate, curve_richardson, richardson
 from .indentation import IndentationResult, default_depths, run_indentation
-from .richardson import Estimate, curve_richardson, richardson
 
 __all__ = [
     "LADDER_RATIO",

@@ -46,7 +46,7 @@ from typing import Annotated, Any
 
 import msgspec
 
-from ..fem.dynamic_contact import (
+from ...fem.dynamic_contact import (
     MAX_DOFS,
     DynamicImpactResult,
     DynamicSettings,
@@ -54,18 +54,17 @@ from ..fem.dynamic_contact import (
     run_dynamic_impact,
     validate_density,
 )
-from ..theory.contact import PowerLawContact
-from ..theory.impact import ImpactResult, solve_impact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material, effective_modulus
-from ..theory.radiation import RadiationEstimate, radiation_estimate
-from ..validation import InputError
-from .checks import Check
-from .dynamic_accuracy import DynamicLadder, check_ladder, complete_ladder
-from .indentation import validate_fem_inputs
-from .limits import LEVELS, thresholds
-from .richardson import Estimate
-from .schema import (
+from ...theory.contact import PowerLawContact
+from ...theory.impact import ImpactResult, solve_impact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.radiation import RadiationEstimate, radiation_estimate
+from ...validation import InputError
+from ..checks import Check
+from ..contact.indentation import validate_fem_inputs
+from ..limits import LEVELS, thresholds
+from ..richardson import Estimate
+from ..schema import (
     MESH_FIELDS,
     Poisson,
     Positive,
@@ -77,6 +76,7 @@ from .schema import (
     ranged,
     validate_name,
 )
+from .accuracy import DynamicLadder, check_ladder, complete_ladder
 
 __all__ = [
     "COMPARED",

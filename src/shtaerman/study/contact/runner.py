@@ -15,18 +15,18 @@ from typing import Any
 
 import numpy as np
 
-from ..theory.contact import PowerLawContact
-from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
-from ..theory.impact_ode import integrate_impact
-from ..theory.materials import effective_modulus
-from ..validation import InputError
+from ...theory.contact import PowerLawContact
+from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ...theory.impact_ode import integrate_impact
+from ...theory.materials import effective_modulus
+from ...validation import InputError
+from ..checks import Check
+from ..kinds import kind_function
+from ..schema import Study
 from .accuracy import AccuracyResult, run_ladder
-from .checks import Check
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, depths_up_to
-from .kinds import kind_function
-from .schema import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
 

@@ -49,22 +49,20 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
 
-from .. import vocabulary
-from ..fem.finite_contact import FINITE_MESH
-from ..fem.mesh import MeshSettings
-from ..theory.contact import PowerLawContact
-from ..theory.impact import ImpactHistory, ImpactResult, solve_impact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material, effective_modulus
-from ..validation import InputError
-from .accuracy import check_ladder, ladder_factors
-from .checks import Check
-from .contact_law import fem_contact_law
-from .finite_accuracy import FiniteEstimates, estimate_study
-from .finite_indentation import FiniteIndentationResult, run_finite_study
-from .indentation import IndentationResult, run_indentation
-from .run import HISTORY_POINTS, Progress, impact_maxima, tabulated_impact
-from .schema import (
+from ... import vocabulary
+from ...fem.finite_contact import FINITE_MESH
+from ...fem.mesh import MeshSettings
+from ...theory.contact import PowerLawContact
+from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material, effective_modulus
+from ...validation import InputError
+from ..checks import Check
+from ..contact.accuracy import check_ladder, ladder_factors
+from ..contact.contact_law import fem_contact_law
+from ..contact.indentation import IndentationResult, run_indentation
+from ..contact.runner import HISTORY_POINTS, Progress, impact_maxima, tabulated_impact
+from ..schema import (
     ImpactTable,
     IndenterTable,
     MaterialTable,
@@ -79,6 +77,8 @@ from .schema import (
     validate_name,
     validated,
 )
+from .accuracy import FiniteEstimates, estimate_study
+from .indentation import FiniteIndentationResult, run_finite_study
 
 __all__ = [
     "QUICK_FINITE_MESH",

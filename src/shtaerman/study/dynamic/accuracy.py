@@ -21,12 +21,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from operator import attrgetter
 
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..validation import InputError, validate_positive
-from .accuracy import LADDER_RATIO
-from .richardson import Estimate, richardson
+from ...fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError, validate_positive
+from ..contact.accuracy import LADDER_RATIO
+from ..richardson import Estimate, richardson
 
 __all__ = [
     "DYNAMIC_ESTIMATED",

@@ -14,19 +14,19 @@ from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
-from ..fem.finite_contact import (
+from ...fem.finite_contact import (
     FINITE_MESH,
     FiniteContactCurve,
     FiniteContactStep,
     run_finite_indentation,
 )
-from ..fem.fit import PowerLawFit, fit_power_law
-from ..fem.mesh import MeshSettings
-from ..theory.contact import PowerLawContact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material, effective_modulus
-from .accuracy import AccuracyResult, run_mesh_ladder
-from .indentation import (
+from ...fem.fit import PowerLawFit, fit_power_law
+from ...fem.mesh import MeshSettings
+from ...theory.contact import PowerLawContact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material, effective_modulus
+from ..contact.accuracy import AccuracyResult, run_mesh_ladder
+from ..contact.indentation import (
     curve_document,
     default_depths,
     validate_fem_inputs,

@@ -27,8 +27,8 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .accuracy import LADDER_RATIO
-from .richardson import Estimate, richardson
+from ..contact.accuracy import LADDER_RATIO
+from ..richardson import Estimate, richardson
 
 __all__ = [
     "CROSSING_KEYS",
