@@ -164,7 +164,8 @@ def depth_at_ratio(ratio: float) -> float:
 
 
 def mesh_convergence(factors: list[float]) -> None:
-    """Whole size field scaled by t (size, axis size and both growth rates; study.convergence)."""
+    """Whole size field scaled by t (size, axis size and both growth rates;
+    study.contact.convergence)."""
     depths = [depth_at_ratio(0.5), depth_at_ratio(0.9)]
     print(
         f"\n(d) mesh convergence of P at x/a = 0.5, 0.9 (depths {depths[0]:.4e}, "

@@ -14,8 +14,9 @@ import pytest
 
 from shtaerman.cli import main
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.contact.accuracy import LADDER_RATIO, run_ladder, run_to_accuracy
+from shtaerman.study.contact.accuracy import run_ladder, run_to_accuracy
 from shtaerman.study.contact.indentation import default_depths, run_indentation
+from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

@@ -11,7 +11,7 @@ import warnings
 import pytest
 
 from shtaerman.cli import main
-from shtaerman.study.contact.runner import run_study
+from shtaerman.study.run import run_study
 from shtaerman.study.schema import find_study, load_study, shipped_studies
 
 

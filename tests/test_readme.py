@@ -16,7 +16,7 @@ import pytest
 
 import shtaerman.output.folder
 from shtaerman.cli import main
-from shtaerman.study.contact.runner import run_study
+from shtaerman.study.run import run_study
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")

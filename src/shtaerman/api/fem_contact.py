@@ -209,7 +209,7 @@ def _check_options(model: str, accuracy: object, estimate: bool, solver: str) ->
 
 def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
     """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh."""
-    from ..study.contact.accuracy import check_ladder
+    from ..study.ladder import check_ladder
 
     try:
         check_ladder(mesh, refine)

@@ -72,7 +72,7 @@ def run_study(
     from ..output.files import check_output_folder, json_safe, staged_folder
     from ..output.folder import finish_verification, study_entry
     from ..output.report import study_document
-    from ..study.contact.runner import run_study as run_one
+    from ..study.run import run_study as run_one
     from ..study.schema import find_study, load_study
 
     studies = load_study(find_study(str(name_or_path)))

@@ -270,7 +270,7 @@ def plot_convergence(
 
     Parameters
     ----------
-    study : shtaerman.study.convergence.ConvergenceStudy
+    study : shtaerman.study.contact.convergence.ConvergenceStudy
         Its levels ``{"size": h, "dofs": int, "errors": {"force": .., ...}}`` (h the
         smallest element size / the refined zone's radius; relative errors, dimensionless;
         non-positive ones are not drawn) and fitted orders.

@@ -8,7 +8,7 @@
   finite-strain x_c;
 - :func:`plot_finite_impact`: x(t) and P(t), the paper's linear impact against real rubber.
 
-Only reads results (:class:`shtaerman.study.finite.FiniteStudyOutcome`).
+Only reads results (:class:`shtaerman.study.finite.runner.FiniteStudyOutcome`).
 """
 
 from __future__ import annotations

@@ -165,7 +165,7 @@ register_kind(
     Kind(
         "contact",
         "linear FEM frictionless contact against Shtaerman's exact solution",
-        load="shtaerman.study.schema:load_contact",
+        load="shtaerman.study.contact.loader:load_contact",
         run="shtaerman.study.contact.runner:run_contact_study",
         write="shtaerman.output.folder:write_contact_study",
     )
@@ -174,8 +174,8 @@ register_kind(
     Kind(
         "dynamic",
         "dynamic FE impact (elastic waves) against the quasi-static impact",
-        load="shtaerman.study.dynamic.case:load_dynamic",
-        run="shtaerman.study.dynamic.case:run_dynamic_study",
+        load="shtaerman.study.dynamic.loader:load_dynamic",
+        run="shtaerman.study.dynamic.runner:run_dynamic_study",
         write="shtaerman.output.dynamic:write_dynamic_study",
     )
 )
@@ -183,7 +183,7 @@ register_kind(
     Kind(
         "finite-strain",
         "neo-Hookean finite-strain contact against Shtaerman, and the impact on it",
-        load="shtaerman.study.finite.runner:load_finite",
+        load="shtaerman.study.finite.loader:load_finite",
         run="shtaerman.study.finite.runner:run_finite_strain_study",
         write="shtaerman.output.finite:write_finite_study",
     )

@@ -297,7 +297,7 @@ DYNAMIC_ERRORS = {
     "error_difference_t": "",
     "error_difference_worst": "",
 }
-"""With ``estimate = true`` (:mod:`shtaerman.study.dynamic_accuracy`: two coarser runs, about
+"""With ``estimate = true`` (:mod:`shtaerman.study.dynamic.accuracy`: two coarser runs, about
 0.75 of the case's cost again): the Richardson estimates of the FEM's error. error_x_max ..
 error_energy_radiated_fraction are relative; error_difference_x, _P, _t are absolute, in the
 unit of the difference (estimated on the difference's own values over the ladder);
@@ -307,7 +307,8 @@ error_difference_worst is the largest of those three."""
 def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
     """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
     :class:`CaseCheckFailed` when its energy balance is off by more than the studies allow."""
-    from ..study.dynamic.case import DynamicTolerances, run_case
+    from ..study.dynamic.case import run_case
+    from ..study.dynamic.loader import DynamicTolerances
 
     start = time.perf_counter()
     case = run_case(*_dynamic_inputs(p), ladder=p["estimate"])
@@ -376,7 +377,7 @@ FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)
 
 
 def _finite_inputs(p: dict[str, Any]):
-    from ..study.finite.runner import FiniteStudy, Ladder
+    from ..study.finite.loader import FiniteStudy, Ladder
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
     names = ("reach", "depth_steps", "small_ratio", "small_steps")

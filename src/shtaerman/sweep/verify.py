@@ -23,7 +23,7 @@ from ..output.folder import (
     study_entry,
 )
 from ..plots.formats import check_figure_format
-from ..study.contact.runner import run_study
+from ..study.run import run_study
 from ..validation import InputError
 from .engine import dask_client
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -19,16 +18,14 @@ from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ...theory.impact_ode import integrate_impact
 from ...theory.materials import effective_modulus
-from ...validation import InputError
 from ..checks import Check
-from ..kinds import kind_function
-from ..schema import Study
 from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, depths_up_to
+from .loader import Study
 
-__all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_study"]
+__all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_contact_study"]
 
 IMPACT_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 """SI keys of every impact entry (those of ``shtaerman impact --json``)."""
@@ -127,23 +124,6 @@ def _checks(study: Study, contact: IndentationResult, impacts: dict) -> list[Che
             for key in CHECKED_IMPACT_KEYS
         ]
     return checks
-
-
-def run_study(study: Any, *, quick: bool = False, progress: Progress | None = None) -> Any:
-    """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`).
-
-    Raises
-    ------
-    InputError
-        An input the FEM refuses only once it runs (e.g. a contact smaller than the mesh
-        resolves), prefixed with the study file and the study's name.
-    """
-    run = kind_function(getattr(study, "kind", "contact"), "run")
-    try:
-        return run(study, quick, progress)
-    except InputError as error:
-        where = f"{study.source}: study {study.name!r}"
-        raise InputError(f"{where}: {error}", error.parameter) from None
 
 
 def run_contact_study(
