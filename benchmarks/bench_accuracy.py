@@ -4,7 +4,7 @@
     refine factor of a sqrt(2) sequence; every three consecutive levels form a ladder, whose
     finest level's estimated and true relative errors of force (worst depth) and beta, and
     their ratio, the effectivity index, are printed (the issue asks [1/3, 3]). The first four
-    cases (with n = 1.35 and 1.65) calibrated :data:`shtaerman.study.accuracy.ORDERS`; the
+    cases (with n = 1.35 and 1.65) calibrated :data:`shtaerman.study.contact.accuracy.ORDERS`; the
     "unseen" ones were not seen then.
 (b) ``run_to_accuracy`` for 1e-4 and 1e-5 on unseen cases: the ladder used, the time and the
     true error reached (the issue asks <= 2 TOL within 60 s on 2 cores).
@@ -20,14 +20,14 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.accuracy import (
-    LADDER_RATIO,
+from shtaerman.study.contact.accuracy import (
     AccuracyResult,
     LadderLevel,
     estimate_errors,
     run_to_accuracy,
 )
-from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.study.contact.indentation import default_depths, run_indentation
+from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

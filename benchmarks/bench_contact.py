@@ -43,13 +43,13 @@ from shtaerman.fem.contact import (
 from shtaerman.fem.elasticity import ElasticSystem, assemble
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.solver import available_backends, factorize
-from shtaerman.study.convergence import (
+from shtaerman.study.contact.convergence import (
     convergence_study,
     fitted_order,
     observed_orders,
     refined_settings,
 )
-from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.study.contact.indentation import default_depths, run_indentation
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material

@@ -12,7 +12,7 @@ Asserts nothing about time.
 DynamicSettings.refined(K), K = 1/2 .. --finest (default 2.83) by sqrt 2, every 3-level
 ladder of consecutive levels against the finest run (estimate / difference), by the old
 estimator (observed order, last difference as fallback) and the dynamic ladder's
-(:mod:`shtaerman.study.dynamic_accuracy`); --split also refines only the time step or only
+(:mod:`shtaerman.study.dynamic.accuracy`); --split also refines only the time step or only
 the mesh (the other at K = 1), to see which dominates.
 
 Measured on 2 shared cores (load average 3.5-5 from other jobs), 2026-11-22:
@@ -68,9 +68,9 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.dynamic_contact import run_dynamic_impact
-from shtaerman.study.accuracy import LADDER_RATIO
-from shtaerman.study.dynamic import run_case
-from shtaerman.study.dynamic_accuracy import DynamicLadder
+from shtaerman.study.dynamic.accuracy import DynamicLadder
+from shtaerman.study.dynamic.case import run_case
+from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.study.richardson import richardson
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import find_study, load_study

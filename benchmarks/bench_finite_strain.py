@@ -42,10 +42,10 @@ from scipy.interpolate import PchipInterpolator
 
 from shtaerman.fem.finite_contact import FINITE_MESH, _Stepper, run_finite_indentation
 from shtaerman.fem.hyperelastic import HyperelasticSystem
-from shtaerman.study.convergence import refined_settings
-from shtaerman.study.finite import run_finite_strain_study
-from shtaerman.study.finite_accuracy import reported_values
-from shtaerman.study.indentation import run_indentation
+from shtaerman.study.contact.convergence import refined_settings
+from shtaerman.study.contact.indentation import run_indentation
+from shtaerman.study.finite.accuracy import reported_values
+from shtaerman.study.finite.runner import run_finite_strain_study
 from shtaerman.study.schema import load_study, shipped_studies
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact_ode import integrate_impact
@@ -164,7 +164,8 @@ def depth_at_ratio(ratio: float) -> float:
 
 
 def mesh_convergence(factors: list[float]) -> None:
-    """Whole size field scaled by t (size, axis size and both growth rates; study.convergence)."""
+    """Whole size field scaled by t (size, axis size and both growth rates;
+    study.contact.convergence)."""
     depths = [depth_at_ratio(0.5), depth_at_ratio(0.9)]
     print(
         f"\n(d) mesh convergence of P at x/a = 0.5, 0.9 (depths {depths[0]:.4e}, "

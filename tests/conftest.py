@@ -14,7 +14,8 @@ import pytest
 
 import shtaerman.output.folder
 from shtaerman.cli import main
-from shtaerman.study.run import StudyOutcome, run_study
+from shtaerman.study.contact.runner import StudyOutcome
+from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study, shipped_studies
 
 QUICK_STUDIES = ("paper", "hertz")

@@ -14,8 +14,9 @@ import pytest
 
 from shtaerman.cli import main
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.accuracy import LADDER_RATIO, run_ladder, run_to_accuracy
-from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.study.contact.accuracy import run_ladder, run_to_accuracy
+from shtaerman.study.contact.indentation import default_depths, run_indentation
+from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
@@ -109,7 +110,7 @@ def test_bad_accuracy_options(capsys, argv, message):
 def test_the_size_guard_refuses_a_ladder_before_its_first_level(capsys, monkeypatch):
     # --refine 4 puts the finest level at about 445k dofs; the two coarse levels (107k, 213k)
     # used to run first, 16 s and 1.75 GB, before the finest one was refused (QA)
-    import shtaerman.study.accuracy as accuracy
+    import shtaerman.study.contact.accuracy as accuracy
 
     def no_level(*args, **kwargs):
         raise AssertionError("a ladder level ran")

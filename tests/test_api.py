@@ -178,7 +178,7 @@ def test_one_depth_figure_states_that_the_exponent_needs_two(tmp_path):
 def test_contact_defaults_are_the_papers_impact():
     paper = sh.PowerLawIndenter(5.0, 1.5)
     depths = contact_depths(paper, sh.Material(7.5e6, 0.5))
-    from shtaerman.study.indentation import default_depths
+    from shtaerman.study.contact.indentation import default_depths
 
     assert np.array_equal(depths, default_depths(paper, sh.Material(7.5e6, 0.5)))
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from shtaerman.study.contact_law import FemContactLaw
+from shtaerman.study.contact.contact_law import FemContactLaw
 
 
 @pytest.fixture

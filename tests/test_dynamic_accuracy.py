@@ -8,8 +8,8 @@ from types import SimpleNamespace
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.study.accuracy import LADDER_RATIO
-from shtaerman.study.dynamic_accuracy import DYNAMIC_ESTIMATED, DynamicLadder, run_dynamic_ladder
+from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, DynamicLadder, run_dynamic_ladder
+from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.study.richardson import richardson
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material

@@ -22,7 +22,7 @@ from shtaerman.fem.contact import (
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.schur import TailFactorization
 from shtaerman.fem.solver import factorize
-from shtaerman.study.indentation import default_depths, run_indentation
+from shtaerman.study.contact.indentation import default_depths, run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

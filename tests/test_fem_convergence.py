@@ -10,7 +10,7 @@ import math
 import pytest
 
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.convergence import (
+from shtaerman.study.contact.convergence import (
     convergence_study,
     fitted_order,
     observed_orders,

@@ -25,7 +25,7 @@ from shtaerman.fem.hyperelastic import (
     solve_dirichlet,
 )
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.study.indentation import run_indentation
+from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

@@ -19,7 +19,7 @@ from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
 from shtaerman.plots import curves, gallery, impact, revolved, sections, style
-from shtaerman.study.convergence import ConvergenceStudy
+from shtaerman.study.contact.convergence import ConvergenceStudy
 from shtaerman.validation import InputError
 
 MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}

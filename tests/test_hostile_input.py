@@ -141,8 +141,8 @@ def test_mesh_size_estimate_agrees_with_gmsh():
 
 
 def _quick(indenter, depths, E=7.5e6):
-    from shtaerman.study.indentation import run_indentation
-    from shtaerman.study.schema import QUICK_MESH
+    from shtaerman.study.contact.indentation import run_indentation
+    from shtaerman.study.contact.loader import QUICK_MESH
 
     return run_indentation(indenter, Material(E, 0.5), depths, QUICK_MESH)
 

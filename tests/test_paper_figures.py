@@ -17,7 +17,7 @@ from PIL import Image
 
 from shtaerman.cli import main
 from shtaerman.plots import curves, dynamic, finite, labels, style
-from shtaerman.study.convergence import ConvergenceStudy
+from shtaerman.study.contact.convergence import ConvergenceStudy
 from shtaerman.sweep import figures as sweep_figures_module
 from shtaerman.sweep.figures import sweep_figures
 from shtaerman.validation import InputError

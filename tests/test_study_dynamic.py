@@ -25,7 +25,7 @@ from shtaerman.output.report import report_context, results_document, study_docu
 from shtaerman.plots import style
 from shtaerman.plots.fields import MAGNITUDE
 from shtaerman.plots.sections import CONTACT_COLOUR
-from shtaerman.study.dynamic import DynamicStudy
+from shtaerman.study.dynamic.loader import DynamicStudy
 from shtaerman.study.limits import thresholds
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, find_study, load_study

@@ -23,8 +23,9 @@ from shtaerman.output.report import (
     results_document,
     study_document,
 )
-from shtaerman.study.finite import FiniteStudy, depth_at_ratio, ladder
-from shtaerman.study.finite_accuracy import CROSSING_KEYS, reported_values
+from shtaerman.study.finite.accuracy import CROSSING_KEYS, reported_values
+from shtaerman.study.finite.loader import FiniteStudy
+from shtaerman.study.finite.runner import depth_at_ratio, ladder
 from shtaerman.study.richardson import ORDER_RANGE
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study, shipped_studies

@@ -10,7 +10,7 @@ import pytest
 
 import shtaerman.output.folder
 from shtaerman.cli import main
-from shtaerman.study.run import IMPACT_KEYS
+from shtaerman.study.contact.runner import IMPACT_KEYS
 from shtaerman.study.schema import shipped_studies
 
 STUDIES = [str(p) for p in shipped_studies() if p.stem in ("paper", "hertz")]

@@ -169,7 +169,7 @@ def contact_depths(
     shtaerman.validation.InputError
         If depths are not positive and increasing, or are given with mass or velocity.
     """
-    from ..study.indentation import depths_up_to
+    from ..study.contact.indentation import depths_up_to
 
     if depths is not None:
         for name, value in (("mass", mass), ("velocity", velocity)):
@@ -209,7 +209,7 @@ def _check_options(model: str, accuracy: object, estimate: bool, solver: str) ->
 
 def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
     """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh."""
-    from ..study.accuracy import check_ladder
+    from ..study.ladder import check_ladder
 
     try:
         check_ladder(mesh, refine)
@@ -239,9 +239,9 @@ class _Plan:
 
 def _solve(plan: _Plan) -> tuple[Any, Any]:
     """The finest FEM run and the ladder (None without the estimate)."""
-    from ..study.accuracy import run_ladder, run_to_accuracy
-    from ..study.finite_indentation import run_finite_ladder, run_finite_study
-    from ..study.indentation import run_indentation
+    from ..study.contact.accuracy import run_ladder, run_to_accuracy
+    from ..study.contact.indentation import run_indentation
+    from ..study.finite.indentation import run_finite_ladder, run_finite_study
 
     inputs = (plan.indenter, plan.body)
     finest = plan.mesh.refined(plan.refine) if not plan.estimate else None

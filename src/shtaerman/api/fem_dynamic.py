@@ -17,7 +17,7 @@ from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
-    from ..study.dynamic import DynamicCase
+    from ..study.dynamic.case import DynamicCase
 
 __all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
 
@@ -126,7 +126,7 @@ def dynamic_settings(
 
 def _result(case: DynamicCase) -> DynamicResult:
     """The result of a case (with or without its ladder)."""
-    from ..study.dynamic import compare
+    from ..study.dynamic.case import compare
 
     document = dataclasses.replace(case, ladder=None).document()
     differences = compare(case.quasi, case.result)
@@ -241,8 +241,8 @@ def dynamic(
     """
     from ..output.dynamic import write_case_figures
     from ..output.files import check_output_folder, staged_folder
-    from ..study.dynamic import run_case
-    from ..study.dynamic_accuracy import complete_ladder
+    from ..study.dynamic.accuracy import complete_ladder
+    from ..study.dynamic.case import run_case
 
     options = dict(steps=steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
@@ -274,7 +274,7 @@ def _checked(
     """Mass (kg), velocity (m/s), refine and the refined settings, every input checked
     (the ladder's coarsest level too, with ``estimate``) before anything runs."""
     from ..fem.contact import validate_fem_inputs
-    from ..study.dynamic_accuracy import check_ladder
+    from ..study.dynamic.accuracy import check_ladder
 
     check_bodies(indenter, body)
     mass = validate_positive("mass", numbers[0], "kg")

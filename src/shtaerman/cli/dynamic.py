@@ -6,7 +6,7 @@ import argparse
 
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..output.files import write_csv
-from ..study.dynamic import DynamicTolerances
+from ..study.dynamic.loader import DynamicTolerances
 from ..theory.materials import Material
 from .common import CASE, add_figure_format, add_inputs, indenter, print_json, warn
 from .impact import history_path

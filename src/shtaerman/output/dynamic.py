@@ -21,7 +21,8 @@ import numpy as np
 
 from ..fem.dynamic_contact import DynamicImpactResult
 from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
-from ..study.dynamic import SEPARATION_SNAPSHOT, DynamicCase, DynamicStudyOutcome
+from ..study.dynamic.case import DynamicCase
+from ..study.dynamic.runner import SEPARATION_SNAPSHOT, DynamicStudyOutcome
 from .files import write_csv
 
 __all__ = ["SUMMARY_HEADER", "history_columns", "write_case_figures", "write_dynamic_study"]

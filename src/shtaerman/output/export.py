@@ -9,7 +9,7 @@ import meshio
 import numpy as np
 
 from ..fem.elasticity import ElasticSolution
-from ..study.indentation import IndentationResult
+from ..study.contact.indentation import IndentationResult
 from .files import write_csv
 
 __all__ = [

@@ -30,8 +30,8 @@ from .files import write_csv
 
 if TYPE_CHECKING:
     from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
-    from ..study.finite import FiniteStudyOutcome
-    from ..study.finite_indentation import FiniteIndentationResult
+    from ..study.finite.indentation import FiniteIndentationResult
+    from ..study.finite.runner import FiniteStudyOutcome
 
 __all__ = ["write_finite_curve", "write_finite_field", "write_finite_study"]
 

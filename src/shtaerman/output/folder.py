@@ -27,8 +27,9 @@ from ..plots.gallery import (
     study_field_figures,
     study_figures,
 )
+from ..study.contact.runner import StudyOutcome
 from ..study.kinds import kind_function
-from ..study.run import StudyOutcome, run_study
+from ..study.run import run_study
 from ..validation import InputError
 from .export import write_indentation
 from .files import KeepStaged, json_safe, staged_folder, write_csv

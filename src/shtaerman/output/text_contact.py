@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from ..study.run import IMPACT_KEYS, StudyOutcome
+from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
 from .wording import number, plus_minus, seconds
 
 __all__ = [

@@ -10,7 +10,8 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
-from ..study.dynamic import COMPARED, DynamicStudyOutcome, compare
+from ..study.dynamic.case import COMPARED, compare
+from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.richardson import Estimate
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings

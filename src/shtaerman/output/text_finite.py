@@ -1,7 +1,7 @@
 """The finite-strain kind's text: findings, tables and ± strings from its outcome's numbers.
 
 Relative errors throughout (a finite-strain estimate is relative, see
-:class:`shtaerman.study.finite_accuracy.FiniteEstimates`), except in the report's validity
+:class:`shtaerman.study.finite.accuracy.FiniteEstimates`), except in the report's validity
 table, whose ± is in the value's unit like every kind's there.
 """
 
@@ -11,8 +11,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
-from ..study.finite import FiniteStudyOutcome
-from ..study.finite_accuracy import CROSSING_KEYS, resolved
+from ..study.finite.accuracy import CROSSING_KEYS, resolved
+from ..study.finite.runner import FiniteStudyOutcome
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables
@@ -270,7 +270,7 @@ def entry(
 def _depth(entry: Mapping[str, Any] | None) -> str:
     """A depth limit: x/a and the impact velocity reaching it, ± their estimated errors in
     the value's unit; "not resolved" where the departure's estimated error there is not below
-    a fifth of the level (:func:`shtaerman.study.finite_accuracy.resolved`)."""
+    a fifth of the level (:func:`shtaerman.study.finite.accuracy.resolved`)."""
     if not entry or entry.get("depth_to_radius") is None:
         return "-"
     ratio, velocity = entry["depth_to_radius"], entry["velocity"]

@@ -15,8 +15,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
-from ..study.convergence import ConvergenceStudy
-from ..study.indentation import IndentationResult
+from ..study.contact.convergence import ConvergenceStudy
+from ..study.contact.indentation import IndentationResult
 from ..theory.contact import paper_pressure_eq5
 from .labels import LABELS, describe
 from .style import (
@@ -270,7 +270,7 @@ def plot_convergence(
 
     Parameters
     ----------
-    study : shtaerman.study.convergence.ConvergenceStudy
+    study : shtaerman.study.contact.convergence.ConvergenceStudy
         Its levels ``{"size": h, "dofs": int, "errors": {"force": .., ...}}`` (h the
         smallest element size / the refined zone's radius; relative errors, dimensionless;
         non-positive ones are not drawn) and fitted orders.

@@ -21,7 +21,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ..study.dynamic import DynamicCase, DynamicStudyOutcome
+from ..study.dynamic.case import DynamicCase
+from ..study.dynamic.runner import DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
 from .labels import MINUS, axis_label
 from .render import picture

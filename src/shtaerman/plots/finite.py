@@ -8,7 +8,7 @@
   finite-strain x_c;
 - :func:`plot_finite_impact`: x(t) and P(t), the paper's linear impact against real rubber.
 
-Only reads results (:class:`shtaerman.study.finite.FiniteStudyOutcome`).
+Only reads results (:class:`shtaerman.study.finite.runner.FiniteStudyOutcome`).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ from .style import (
 )
 
 if TYPE_CHECKING:
-    from ..study.finite import FiniteStudyOutcome
+    from ..study.finite.runner import FiniteStudyOutcome
 
 __all__ = [
     "FINITE_COLOUR",

@@ -21,8 +21,8 @@ from .revolved import plot_revolved
 from .sections import plot_field
 
 if TYPE_CHECKING:
-    from ..study.indentation import IndentationResult
-    from ..study.run import StudyOutcome
+    from ..study.contact.indentation import IndentationResult
+    from ..study.contact.runner import StudyOutcome
 
 __all__ = [
     "FIELD_FIGURES",
@@ -68,7 +68,7 @@ def study_figures(
 
     Parameters
     ----------
-    outcome : shtaerman.study.run.StudyOutcome
+    outcome : shtaerman.study.contact.runner.StudyOutcome
         The study: its ``contact``, ``histories`` and ``exact`` are drawn.
     folder : path-like
         Where the PNGs go (created if missing).
@@ -120,7 +120,7 @@ def study_convergence_figures(
 
     Parameters
     ----------
-    outcome : shtaerman.study.run.StudyOutcome
+    outcome : shtaerman.study.contact.runner.StudyOutcome
         The study; its ``convergence`` is drawn.
     folder : path-like
         Where the PNG goes (created if missing).
@@ -150,7 +150,7 @@ def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, 
 
     Parameters
     ----------
-    outcome : shtaerman.study.run.StudyOutcome
+    outcome : shtaerman.study.contact.runner.StudyOutcome
         The study; its ``contact`` (IndentationResult) is drawn.
     folder : path-like
         Where the PNGs go (created if missing).

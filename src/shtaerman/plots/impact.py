@@ -26,7 +26,7 @@ VARIANT_LABELS = {
     "fem_fitted": r"FEM-fitted $\beta x^q$ (Ateb)",
     "fem_tabulated": r"FEM-tabulated $P(x)$ (ODE)",
 }
-"""Legend text of the impact variants of :class:`shtaerman.study.run.StudyOutcome`."""
+"""Legend text of the impact variants of :class:`shtaerman.study.contact.runner.StudyOutcome`."""
 
 _MOTION = (("x", "x_c", "$x/x_c$"), ("P", "P_c", "$P/P_c$"))
 _CONTACT = (("a", "a_c", "$a/a_c$"), ("p0", "p_c", "$p(0,t)/p_c$"))

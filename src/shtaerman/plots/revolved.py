@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pyvista as pv
 
-from ..study.indentation import IndentationResult
+from ..study.contact.indentation import IndentationResult
 from ..validation import InputError
 from .fields import add_coloured, isolines, shown
 from .render import picture, save

@@ -22,7 +22,7 @@ from vtkmodules.vtkRenderingCore import vtkBillboardTextActor3D
 
 from ..fem.contact import ContactStep
 from ..fem.elasticity import ElasticSolution
-from ..study.indentation import IndentationResult
+from ..study.contact.indentation import IndentationResult
 from ..validation import InputError, validate_positive
 from .fields import FIELDS, add_coloured, check_field, decimals, isolines, nice_step, shown
 from .render import FONT_SIZE, WINDOW_SIZE, picture, save, use_font

@@ -165,8 +165,8 @@ register_kind(
     Kind(
         "contact",
         "linear FEM frictionless contact against Shtaerman's exact solution",
-        load="shtaerman.study.schema:load_contact",
-        run="shtaerman.study.run:run_contact_study",
+        load="shtaerman.study.contact.loader:load_contact",
+        run="shtaerman.study.contact.runner:run_contact_study",
         write="shtaerman.output.folder:write_contact_study",
     )
 )
@@ -174,8 +174,8 @@ register_kind(
     Kind(
         "dynamic",
         "dynamic FE impact (elastic waves) against the quasi-static impact",
-        load="shtaerman.study.dynamic:load_dynamic",
-        run="shtaerman.study.dynamic:run_dynamic_study",
+        load="shtaerman.study.dynamic.loader:load_dynamic",
+        run="shtaerman.study.dynamic.runner:run_dynamic_study",
         write="shtaerman.output.dynamic:write_dynamic_study",
     )
 )
@@ -183,8 +183,8 @@ register_kind(
     Kind(
         "finite-strain",
         "neo-Hookean finite-strain contact against Shtaerman, and the impact on it",
-        load="shtaerman.study.finite:load_finite",
-        run="shtaerman.study.finite:run_finite_strain_study",
+        load="shtaerman.study.finite.loader:load_finite",
+        run="shtaerman.study.finite.runner:run_finite_strain_study",
         write="shtaerman.output.finite:write_finite_study",
     )
 )

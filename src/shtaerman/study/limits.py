@@ -3,7 +3,7 @@
 The dynamic study and the validity sweep state where the quasi-static model holds to 1 % and
 5 % (:data:`LEVELS`) of the dynamic FE impact. The limit is interpolated linearly between the
 computed points where |difference| crosses the level, and it is a conclusion only where the
-FEM's own estimated error of the difference (Richardson, :mod:`.dynamic_accuracy`) is below
+FEM's own estimated error of the difference (Richardson, :mod:`.dynamic.accuracy`) is below
 a fifth of the level (:data:`RESOLUTION`) at the points that decide it: the two points around
 the crossing, the smallest input when already it is off, the largest difference when every
 point holds. Elsewhere the limit is "not resolved". Pure Python: imported by the sweep kinds.

@@ -1,34 +1,7 @@
-"""Cross-check studies as data: TOML files naming indenter, materials, depths, mesh, impact and
-the tolerances that decide pass or fail.
+"""The schema helpers every study kind shares: typed TOML tables, decoding with messages that
+name the file and the key, old keys renamed, and finding and loading a study file of any kind.
 
-A study file (``shtaerman init-study`` writes a commented one; see also ``fem/paper.toml``)
-names every input as the vocabulary does (:mod:`shtaerman.vocabulary`: the CLI's words in
-snake_case)::
-
-    name = "paper"                       # optional; default: the file's stem (a plain name)
-    description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5
-    [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
-    [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
-    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
-    [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
-                 domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
-    [quick]      the [numerics] keys for ``verify --quick``
-    [tolerances] relative, in (0, 1]: force, beta, exponent, contact_radius, central_pressure,
-                 impact
-    [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
-                 mesh-convergence study refining the whole mesh (``verify --quick``: the
-                 coarsest three)
-    [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
-                 "velocity") and a list of values; the study runs once per value.
-
-A vocabulary key may also be written at the top level (``E2 = 4e6``): it goes to its table.
-The keys of earlier releases (``youngs_modulus``, ``[mesh] size``, ``[quick_mesh]``, ...) still
-work for one release with a one-line :class:`~shtaerman.vocabulary.DeprecatedKeyWarning`
-naming the new key; an unknown key names the likely one.
-
-The file is decoded into typed structures by msgspec (``forbid_unknown_fields``, numeric
+A study file is decoded into typed structures by msgspec (``forbid_unknown_fields``, numeric
 constraints), chosen over a hand-written reader (200 lines before) and over pydantic (a larger
 dependency for the same checks): it rejects unknown keys, wrong types and out-of-range values
 and reports where. Every mistake raises :class:`StudyError` naming the file, the key and what
@@ -40,31 +13,25 @@ from __future__ import annotations
 
 import copy
 import importlib.resources
-import itertools
 import math
 import re
 import tomllib
 from collections.abc import Iterator
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import Annotated, Any, Literal, get_args, get_type_hints
 
 import msgspec
 
+from ..fem.contact import validate_fem_inputs
 from ..fem.mesh import MeshSettings
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material
 from ..validation import InputError
 from ..vocabulary import VOCABULARY, deprecated, suggestion
 from ..vocabulary import entry as vocabulary_entry
-from .indentation import validate_fem_inputs
 from .kinds import kind_function, study_kinds
 
 __all__ = [
-    "QUICK_MESH",
-    "Study",
     "StudyError",
-    "Tolerances",
     "fem_input_error",
     "find_study",
     "load_study",
@@ -73,11 +40,6 @@ __all__ = [
     "validate_name",
 ]
 
-QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
-"""Coarse mesh of ``verify --quick``."""
-
-SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "v0"}
-"""Sweepable parameters and the symbol that names each expanded study."""
 EXPECTED = {
     **{
         item.name: ("" if item.type == "int" else "a number ")
@@ -151,16 +113,6 @@ class ImpactTable(Table):
     velocity: Positive
 
 
-class _Contact(Table):
-    depths: list[Positive] | Literal["impact"] = "impact"
-
-    def __post_init__(self) -> None:
-        if self.depths != "impact" and (
-            len(self.depths) < 2 or any(b <= a for a, b in itertools.pairwise(self.depths))
-        ):
-            raise ValueError(f"depths: {EXPECTED['depths']}")
-
-
 MESH_FIELDS = {"mesh_size": "size", "mesh_margin": "margin", "domain_factor": "domain"}
 """Study-file key -> MeshSettings / DynamicSettings field, where the two differ."""
 
@@ -192,90 +144,6 @@ class MeshTable(Table):
             raise InputError(f"[{table}] {error}") from None
 
 
-class _Tolerances(Table):
-    force: Relative = 1e-3
-    beta: Relative = 1e-3
-    exponent: Relative = 1e-3
-    contact_radius: Relative = 1e-2
-    central_pressure: Relative = 1e-2
-    impact: Relative = 2e-3
-
-
-class _Convergence(Table):
-    sizes: list[Annotated[float, msgspec.Meta(gt=0, lt=1)]] = []
-
-    def __post_init__(self) -> None:
-        if len(self.sizes) == 1 or any(b >= a for a, b in itertools.pairwise(self.sizes)):
-            raise ValueError(f"sizes: {EXPECTED['sizes']}")
-
-
-class _Sweep(Table):
-    shape_coefficient: list[Positive] | None = None
-    exponent: list[Positive] | None = None
-    mass: list[Positive] | None = None
-    velocity: list[Positive] | None = None
-
-    def chosen(self) -> tuple[str, list[float]]:
-        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
-        if len(given) != 1 or not next(iter(given.values())):
-            raise ValueError(f"expected exactly one of {sorted(SYMBOLS)} with a list of values")
-        return next(iter(given.items()))
-
-    def __post_init__(self) -> None:
-        self.chosen()
-
-
-class _StudyFile(Table):
-    indenter: IndenterTable
-    half_space: MaterialTable
-    impact: ImpactTable
-    name: str | None = None
-    description: str = ""
-    striker: StrikerTable | None = None
-    contact: _Contact = _Contact()
-    numerics: MeshTable = MeshTable()
-    quick: MeshTable = MeshTable()
-    tolerances: _Tolerances = _Tolerances()
-    convergence: _Convergence = _Convergence()
-    sweep: _Sweep | None = None
-
-
-@dataclass(frozen=True)
-class Tolerances:
-    """Relative tolerances that decide pass or fail."""
-
-    force: float = 1e-3
-    beta: float = 1e-3
-    exponent: float = 1e-3
-    contact_radius: float = 1e-2
-    central_pressure: float = 1e-2
-    impact: float = 2e-3
-    """For x_c, P_c and t_c of the FEM-fed impacts against the exact one."""
-
-
-@dataclass(frozen=True)
-class Study:
-    """One cross-check: a contact curve and the impact it implies (SI units)."""
-
-    name: str
-    description: str
-    source: Path
-    indenter: PowerLawIndenter
-    striker: Material
-    half_space: Material
-    mass: float
-    velocity: float
-    depths: tuple[float, ...] | None
-    mesh: MeshSettings
-    quick_mesh: MeshSettings
-    tolerances: Tolerances = field(default_factory=Tolerances)
-    convergence_sizes: tuple[float, ...] = ()
-    """Smallest-element sizes / refined radius of a mesh-convergence study (empty: none)."""
-    refine: float = 1.0
-    """Refinement factor of the whole size field ([mesh] refine; the ladder adds K/2, K/sqrt2)."""
-    kind: str = "contact"
-
-
 def validate_name(name: object, what: str = "name") -> str:
     """Return a plain study name (it becomes a folder), or raise InputError."""
     if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name) or set(name) == {"."}:
@@ -286,8 +154,8 @@ def validate_name(name: object, what: str = "name") -> str:
     return name
 
 
-def _allowed_keys(path: list[str], root: type = _StudyFile) -> list[str]:
-    """The keys of the table at ``path`` in the schema ``root`` (default: a contact study)."""
+def _allowed_keys(path: list[str], root: type) -> list[str]:
+    """The keys of the table at ``path`` in the schema ``root``."""
     struct: Any = root
     for key in path:
         hint = get_type_hints(struct)[key]
@@ -321,7 +189,7 @@ def _expectation(keys: list[str], text: str) -> str:
     return text.replace("`", "").removeprefix("Expected ").removeprefix("expected ")
 
 
-def _located(message: str, data: dict[str, Any], root: type = _StudyFile) -> tuple[list[str], str]:
+def _located(message: str, data: dict[str, Any], root: type) -> tuple[list[str], str]:
     """Split a msgspec message into the key path and the expectation, with the value given."""
     text, _, where = message.partition(" - at `$")
     keys = [k for k in re.split(r"\.|\[\d+\]", where.rstrip("`")) if k]
@@ -347,8 +215,8 @@ def _located(message: str, data: dict[str, Any], root: type = _StudyFile) -> tup
     return keys, f"{expectation}{shown}"
 
 
-def decode(path: Path, data: dict[str, Any], root: type = _StudyFile) -> Any:
-    """``data`` as the schema ``root`` (a :class:`Table`; default: a contact study file), or
+def decode(path: Path, data: dict[str, Any], root: type) -> Any:
+    """``data`` as the schema ``root`` (a :class:`Table`), or
     :class:`StudyError` naming the file, the key and what was expected."""
     try:
         decoded = msgspec.convert(data, root)
@@ -377,60 +245,6 @@ def _numbers(data: Any, keys: tuple[str, ...] = ()) -> Iterator[tuple[tuple[str,
             yield from _numbers(item, keys)
     elif isinstance(data, float):
         yield keys, data
-
-
-def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
-    """The convergence sizes, each level's mesh checked now (size guard, growth <= 1)."""
-    base = raw.numerics.settings(MeshSettings(), "numerics")
-    for size in raw.convergence.sizes:
-        try:
-            base.refined(base.size / size).check_size()
-        except InputError as error:
-            raise StudyError(f"{path}: key 'convergence.sizes': size {size!r}: {error}") from None
-    return tuple(raw.convergence.sizes)
-
-
-def _material(table: StrikerTable) -> Material:
-    if table.E1 == "inf":
-        return RIGID
-    return Material(table.E1, table.nu1)
-
-
-def _build(path: Path, raw: _StudyFile) -> Study:
-    try:
-        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
-    except InputError as error:
-        raise StudyError(f"{path}: key 'name': {error}") from None
-    return Study(
-        name=name,
-        description=raw.description,
-        source=path,
-        indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
-        striker=RIGID if raw.striker is None else _material(raw.striker),
-        half_space=Material(raw.half_space.E2, raw.half_space.nu2),
-        mass=raw.impact.mass,
-        velocity=raw.impact.velocity,
-        depths=None if raw.contact.depths == "impact" else tuple(raw.contact.depths),
-        mesh=raw.numerics.settings(MeshSettings(), "numerics"),
-        quick_mesh=raw.quick.settings(QUICK_MESH, "quick"),
-        tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
-        convergence_sizes=_convergence_sizes(path, raw),
-        refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
-    )
-
-
-def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
-    if sweep is None:
-        return [study]
-    key, values = sweep.chosen()
-    studies = []
-    for value in values:
-        if key in ("shape_coefficient", "exponent"):
-            changed = replace(study, indenter=replace(study.indenter, **{key: value}))
-        else:
-            changed = replace(study, **{key: value})
-        studies.append(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
-    return studies
 
 
 TABLE_OF = {
@@ -577,18 +391,6 @@ def validated(path: Path, studies: list) -> list:
         except InputError as error:
             raise fem_input_error(path, error) from None
     return studies
-
-
-def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
-    """The studies of a parsed contact study file (the default kind)."""
-    raw = decode(path, data)
-    try:
-        studies = _expanded(_build(path, raw), raw.sweep)
-    except StudyError:
-        raise
-    except InputError as error:
-        raise StudyError(f"{path}: {error}") from None
-    return validated(path, studies)
 
 
 def studies_folder() -> Path:

@@ -189,7 +189,7 @@ CONTACT_OUTPUTS = {
 
 def contact_case(p: dict[str, Any]) -> dict[str, float]:
     """FEM contact curve: fitted beta and exponent, worst relative errors, size and time."""
-    from ..study.indentation import run_indentation
+    from ..study.contact.indentation import run_indentation
 
     indenter, half_space, depths, mesh, solver = _contact_inputs(p)
     start = time.perf_counter()
@@ -240,7 +240,7 @@ def _dynamic_inputs(p: dict[str, Any]):
 
     from ..fem.contact import validate_fem_inputs
     from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs, validate_density
-    from ..study.dynamic_accuracy import check_ladder
+    from ..study.dynamic.accuracy import check_ladder
 
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
     validate_fem_inputs(indenter, half_space)
@@ -297,7 +297,7 @@ DYNAMIC_ERRORS = {
     "error_difference_t": "",
     "error_difference_worst": "",
 }
-"""With ``estimate = true`` (:mod:`shtaerman.study.dynamic_accuracy`: two coarser runs, about
+"""With ``estimate = true`` (:mod:`shtaerman.study.dynamic.accuracy`: two coarser runs, about
 0.75 of the case's cost again): the Richardson estimates of the FEM's error. error_x_max ..
 error_energy_radiated_fraction are relative; error_difference_x, _P, _t are absolute, in the
 unit of the difference (estimated on the difference's own values over the ladder);
@@ -307,7 +307,8 @@ error_difference_worst is the largest of those three."""
 def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
     """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
     :class:`CaseCheckFailed` when its energy balance is off by more than the studies allow."""
-    from ..study.dynamic import DynamicTolerances, run_case
+    from ..study.dynamic.case import run_case
+    from ..study.dynamic.loader import DynamicTolerances
 
     start = time.perf_counter()
     case = run_case(*_dynamic_inputs(p), ladder=p["estimate"])
@@ -376,7 +377,7 @@ FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)
 
 
 def _finite_inputs(p: dict[str, Any]):
-    from ..study.finite import FiniteStudy, Ladder
+    from ..study.finite.loader import FiniteStudy, Ladder
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
     names = ("reach", "depth_steps", "small_ratio", "small_steps")
@@ -425,7 +426,7 @@ def finite_strain_case(p: dict[str, Any]) -> dict[str, float]:
     error-estimate ladder) reduced to scalars."""
     import numpy as np
 
-    from ..study.finite import run_finite_strain_study
+    from ..study.finite.runner import run_finite_strain_study
 
     outcome = run_finite_strain_study(_finite_inputs(p), estimate=False)
     rows = outcome.rows()

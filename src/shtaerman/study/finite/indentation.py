@@ -4,7 +4,8 @@
 adds the power-law fit and the JSON of ``shtaerman contact --model neo-hookean``: the linear
 report's keys, with ``model``, per-step ``strain_energy`` (J) and ``newton_iterations``, and the
 departures from Shtaerman's linear solution in place of errors. :func:`run_finite_ladder` runs it
-on the three meshes of :func:`.accuracy.run_mesh_ladder` for Richardson error estimates.
+on the three meshes of :func:`shtaerman.study.contact.accuracy.run_mesh_ladder` for Richardson
+error estimates.
 """
 
 from __future__ import annotations
@@ -14,24 +15,20 @@ from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
-from ..fem.finite_contact import (
+from ...fem.contact import validate_fem_inputs
+from ...fem.finite_contact import (
     FINITE_MESH,
     FiniteContactCurve,
     FiniteContactStep,
     run_finite_indentation,
 )
-from ..fem.fit import PowerLawFit, fit_power_law
-from ..fem.mesh import MeshSettings
-from ..theory.contact import PowerLawContact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material, effective_modulus
-from .accuracy import AccuracyResult, run_mesh_ladder
-from .indentation import (
-    curve_document,
-    default_depths,
-    validate_fem_inputs,
-    worst_against_analytic,
-)
+from ...fem.fit import PowerLawFit, fit_power_law
+from ...fem.mesh import MeshSettings
+from ...theory.contact import PowerLawContact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material, effective_modulus
+from ..contact.accuracy import AccuracyResult, run_mesh_ladder
+from ..contact.indentation import curve_document, default_depths, worst_against_analytic
 
 __all__ = ["FiniteIndentationResult", "run_finite_ladder", "run_finite_study"]
 
@@ -142,7 +139,8 @@ def run_finite_ladder(
 ) -> AccuracyResult:
     """:func:`run_finite_study` on the meshes refined by refine / 2, refine / sqrt(2) and
     refine, with Richardson estimates of the finest level's force, contact radius, central
-    pressure (worst depth), beta and exponent (:func:`.accuracy.estimate_errors`).
+    pressure (worst depth), beta and exponent
+    (:func:`shtaerman.study.contact.accuracy.estimate_errors`).
 
     Parameters
     ----------

@@ -2,11 +2,11 @@
 
 Three runs with :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined` factors K/2,
 K/sqrt(2) and K (element sizes / sqrt(2) and time steps x sqrt(2) per level) and Richardson
-estimates (:mod:`.richardson`) of the finest run's x_max, P_max, t_contact, restitution and
-radiated fraction 1 - e^2. There is no exact solution to compare with here: the estimate is
-what the number carries. A quantity derived from a run (a ratio to the quasi-static value) is
-estimated by Richardson on its own values over the levels (:meth:`DynamicLadder.estimate`),
-not by propagating the estimates above.
+estimates (:mod:`shtaerman.study.richardson`) of the finest run's x_max, P_max, t_contact,
+restitution and radiated fraction 1 - e^2. There is no exact solution to compare with here:
+the estimate is what the number carries. A quantity derived from a run (a ratio to the
+quasi-static value) is estimated by Richardson on its own values over the levels
+(:meth:`DynamicLadder.estimate`), not by propagating the estimates above.
 
 The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``): x_max
 converges regularly, while P_max, t_contact and e scatter from level to level (the graded
@@ -21,12 +21,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from operator import attrgetter
 
-from ..fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..validation import InputError, validate_positive
-from .accuracy import LADDER_RATIO
-from .richardson import Estimate, richardson
+from ...fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError, validate_positive
+from ..ladder import LADDER_RATIO
+from ..richardson import Estimate, richardson
 
 __all__ = [
     "DYNAMIC_ESTIMATED",

@@ -26,10 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..fem.mesh import MeshSettings
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..validation import InputError, validate_positive
+from ...fem.mesh import MeshSettings
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError, validate_positive
 from .indentation import run_indentation
 
 __all__ = [

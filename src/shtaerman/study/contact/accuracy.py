@@ -1,13 +1,12 @@
 """Every FEM contact number with its error bar: a mesh ladder, Richardson estimates, a target.
 
 The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.refined`) by
-:data:`LADDER_RATIO` = sqrt(2) per level, so each level has about twice the dofs of the one
-before. Every
-quantity of the finest level gets a Richardson estimate (:mod:`.richardson`): the force, the
-contact radius and the central pressure at every depth (the worst depth is reported), beta
-and the fitted exponent. Where the exact solution is known (the linear power-law contact) the
-true error stands beside the estimate: their ratio, the effectivity index, verifies the
-estimator itself in every run.
+:data:`~shtaerman.study.ladder.LADDER_RATIO` = sqrt(2) per level, so each level has about twice
+the dofs of the one before. Every quantity of the finest level gets a Richardson estimate
+(:mod:`shtaerman.study.richardson`): the force, the contact radius and the central pressure at
+every depth (the worst depth is reported), beta and the fitted exponent. Where the exact
+solution is known (the linear power-law contact) the true error stands beside the estimate:
+their ratio, the effectivity index, verifies the estimator itself in every run.
 """
 
 from __future__ import annotations
@@ -21,28 +20,25 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..fem.mesh import MAX_DOMAIN, MeshSettings
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..validation import InputError, validate_positive
+from ...fem.mesh import MAX_DOMAIN, MeshSettings
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError, validate_positive
+from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
+from ..richardson import Estimate, curve_richardson, richardson
 from .indentation import IndentationResult, default_depths, run_indentation
-from .richardson import Estimate, curve_richardson, richardson
 
 __all__ = [
-    "LADDER_RATIO",
     "AccuracyResult",
     "LadderLevel",
-    "check_ladder",
-    "ladder_factors",
     "run_ladder",
     "run_mesh_ladder",
     "run_to_accuracy",
 ]
 
-LADDER_RATIO = math.sqrt(2.0)
-"""Element-size ratio of consecutive ladder levels (dofs ratio about 2)."""
 STEP_QUANTITIES = ("force", "contact_radius", "central_pressure")
-"""Estimated over the depths: the estimate of the worst depth (:func:`.curve_richardson`)."""
+"""Estimated over the depths: the estimate of the worst depth
+(:func:`~shtaerman.study.richardson.curve_richardson`)."""
 CURVE_QUANTITIES = ("beta", "exponent")
 FORCE_LIKE = ("force", "beta")
 """What ``--accuracy`` drives below its tolerance."""
@@ -74,25 +70,6 @@ class LadderCurve(Protocol):
 
 Solve = Callable[[MeshSettings], LadderCurve]
 """One contact curve on the given mesh (the depths and materials bound in)."""
-
-
-def check_ladder(mesh: MeshSettings, refine: float = 1.0) -> None:
-    """Raise InputError unless every level of the ladder ending at ``refine`` is a valid
-    mesh: the coarsest, refine / 2, must keep every size and growth of ``mesh`` <= 1, and the
-    finest must pass the size guard (``max_dofs``) before the coarse levels cost anything."""
-    smallest = LADDER_RATIO**2 * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
-    if not refine >= smallest * (1.0 - 1e-12):
-        raise InputError(
-            f"refine must be >= {smallest:.3g} with these mesh settings (the error-estimate "
-            f"ladder's coarsest mesh, refine / 2, keeps every size and growth <= 1), got "
-            f"{refine!r}"
-        )
-    mesh.refined(refine).check_size()
-
-
-def ladder_factors(refine: float) -> list[float]:
-    """Refinement factors of the three levels whose finest is ``refine``: K/2, K/sqrt(2), K."""
-    return [refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine]
 
 
 @dataclass(frozen=True)
@@ -187,9 +164,9 @@ def _truncation(result: IndentationResult, key: str) -> float:
 def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     """Estimates of the finest level from the last three levels (two at least).
 
-    Richardson over the depths (:func:`.curve_richardson`) for the force, contact radius and
-    central pressure, over the levels for beta and the exponent, with the orders
-    :data:`ORDERS` where the observed order confirms the asymptotic range
+    Richardson over the depths (:func:`~shtaerman.study.richardson.curve_richardson`) for the
+    force, contact radius and central pressure, over the levels for beta and the exponent, with
+    the orders :data:`ORDERS` where the observed order confirms the asymptotic range
     :data:`SANE_ORDERS` (else the two-level difference); plus, for force and beta, the known
     far-field truncation (:data:`TRUNCATION`).
     """

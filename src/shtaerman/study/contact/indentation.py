@@ -15,15 +15,15 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..fem.contact import ContactCurve, ContactStep, solve_contact, validate_fem_inputs
-from ..fem.elasticity import ElasticSolution, assemble
-from ..fem.fit import PowerLawFit, fit_power_law
-from ..fem.mesh import MeshSettings
-from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material, effective_modulus
-from ..validation import InputError
+from ...fem.contact import ContactCurve, ContactStep, solve_contact, validate_fem_inputs
+from ...fem.elasticity import ElasticSolution, assemble
+from ...fem.fit import PowerLawFit, fit_power_law
+from ...fem.mesh import MeshSettings
+from ...theory.contact import PowerLawContact
+from ...theory.impact import solve_impact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material, effective_modulus
+from ...validation import InputError
 
 __all__ = [
     "IndentationResult",

@@ -1,7 +1,8 @@
 """Error bars for the finite-strain study: its numbers on three meshes, Richardson estimates.
 
-The study (:mod:`.finite`) runs on its mesh refined by 1/2, 1/sqrt(2) and 1 (the finest
-answers), and every number it reports gets a Richardson estimate (:mod:`.richardson`) from
+The study (:mod:`.runner`) runs on its mesh refined by 1/2, 1/sqrt(2) and 1 (the finest
+answers), and every number it reports gets a Richardson estimate
+(:mod:`shtaerman.study.richardson`) from
 the three values: per depth P/(beta x^q), P/P_linear-FEM, a/a_linear, p(0)/p_avg and the
 stored energy; the four ratios at the finite-strain x_c (log-log interpolated); the
 finite-strain impact's maxima (whose relative errors are also those of their ratios to
@@ -27,8 +28,8 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .accuracy import LADDER_RATIO
-from .richardson import Estimate, richardson
+from ..ladder import LADDER_RATIO
+from ..richardson import Estimate, richardson
 
 __all__ = [
     "CROSSING_KEYS",

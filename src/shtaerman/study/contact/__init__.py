@@ -1,0 +1,1 @@
+"""The contact kind: linear FEM frictionless contact against Shtaerman's exact solution."""

@@ -1,0 +1,230 @@
+"""The contact study file (the default kind): indenter, materials, depths, mesh, impact and the
+tolerances that decide pass or fail.
+
+A study file (``shtaerman init-study`` writes a commented one; see also ``fem/paper.toml``)
+names every input as the vocabulary does (:mod:`shtaerman.vocabulary`: the CLI's words in
+snake_case)::
+
+    name = "paper"                       # optional; default: the file's stem (a plain name)
+    description = "..."
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5
+    [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
+    [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
+    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
+    [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
+                 domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
+    [quick]      the [numerics] keys for ``verify --quick``
+    [tolerances] relative, in (0, 1]: force, beta, exponent, contact_radius, central_pressure,
+                 impact
+    [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
+                 mesh-convergence study refining the whole mesh (``verify --quick``: the
+                 coarsest three)
+    [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
+                 "velocity") and a list of values; the study runs once per value.
+
+A vocabulary key may also be written at the top level (``E2 = 4e6``): it goes to its table.
+The keys of earlier releases (``youngs_modulus``, ``[mesh] size``, ``[quick_mesh]``, ...) still
+work for one release with a one-line :class:`~shtaerman.vocabulary.DeprecatedKeyWarning`
+naming the new key; an unknown key names the likely one.
+
+It is checked by the shared schema helpers (:mod:`shtaerman.study.schema`): every mistake raises
+:class:`~shtaerman.study.schema.StudyError` naming the file, the key and what was expected.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import msgspec
+
+from ...fem.mesh import MeshSettings
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material
+from ...validation import InputError
+from ..schema import (
+    EXPECTED,
+    ImpactTable,
+    IndenterTable,
+    MaterialTable,
+    MeshTable,
+    Positive,
+    Relative,
+    StrikerTable,
+    StudyError,
+    Table,
+    decode,
+    validate_name,
+    validated,
+)
+
+__all__ = ["QUICK_MESH", "Study", "Tolerances", "load_contact"]
+
+QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
+"""Coarse mesh of ``verify --quick``."""
+
+SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "v0"}
+"""Sweepable parameters and the symbol that names each expanded study."""
+
+
+class _Contact(Table):
+    depths: list[Positive] | Literal["impact"] = "impact"
+
+    def __post_init__(self) -> None:
+        if self.depths != "impact" and (
+            len(self.depths) < 2 or any(b <= a for a, b in itertools.pairwise(self.depths))
+        ):
+            raise ValueError(f"depths: {EXPECTED['depths']}")
+
+
+class _Tolerances(Table):
+    force: Relative = 1e-3
+    beta: Relative = 1e-3
+    exponent: Relative = 1e-3
+    contact_radius: Relative = 1e-2
+    central_pressure: Relative = 1e-2
+    impact: Relative = 2e-3
+
+
+class _Convergence(Table):
+    sizes: list[Annotated[float, msgspec.Meta(gt=0, lt=1)]] = []  # noqa: RUF012 (a msgspec.Struct copies it)
+
+    def __post_init__(self) -> None:
+        if len(self.sizes) == 1 or any(b >= a for a, b in itertools.pairwise(self.sizes)):
+            raise ValueError(f"sizes: {EXPECTED['sizes']}")
+
+
+class _Sweep(Table):
+    shape_coefficient: list[Positive] | None = None
+    exponent: list[Positive] | None = None
+    mass: list[Positive] | None = None
+    velocity: list[Positive] | None = None
+
+    def chosen(self) -> tuple[str, list[float]]:
+        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
+        if len(given) != 1 or not next(iter(given.values())):
+            raise ValueError(f"expected exactly one of {sorted(SYMBOLS)} with a list of values")
+        return next(iter(given.items()))
+
+    def __post_init__(self) -> None:
+        self.chosen()
+
+
+class _StudyFile(Table):
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
+    name: str | None = None
+    description: str = ""
+    striker: StrikerTable | None = None
+    contact: _Contact = _Contact()
+    numerics: MeshTable = MeshTable()
+    quick: MeshTable = MeshTable()
+    tolerances: _Tolerances = _Tolerances()
+    convergence: _Convergence = _Convergence()
+    sweep: _Sweep | None = None
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """Relative tolerances that decide pass or fail."""
+
+    force: float = 1e-3
+    beta: float = 1e-3
+    exponent: float = 1e-3
+    contact_radius: float = 1e-2
+    central_pressure: float = 1e-2
+    impact: float = 2e-3
+    """For x_c, P_c and t_c of the FEM-fed impacts against the exact one."""
+
+
+@dataclass(frozen=True)
+class Study:
+    """One cross-check: a contact curve and the impact it implies (SI units)."""
+
+    name: str
+    description: str
+    source: Path
+    indenter: PowerLawIndenter
+    striker: Material
+    half_space: Material
+    mass: float
+    velocity: float
+    depths: tuple[float, ...] | None
+    mesh: MeshSettings
+    quick_mesh: MeshSettings
+    tolerances: Tolerances = field(default_factory=Tolerances)
+    convergence_sizes: tuple[float, ...] = ()
+    """Smallest-element sizes / refined radius of a mesh-convergence study (empty: none)."""
+    refine: float = 1.0
+    """Refinement factor of the whole size field ([mesh] refine; the ladder adds K/2, K/sqrt2)."""
+    kind: str = "contact"
+
+
+def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
+    """The convergence sizes, each level's mesh checked now (size guard, growth <= 1)."""
+    base = raw.numerics.settings(MeshSettings(), "numerics")
+    for size in raw.convergence.sizes:
+        try:
+            base.refined(base.size / size).check_size()
+        except InputError as error:
+            raise StudyError(f"{path}: key 'convergence.sizes': size {size!r}: {error}") from None
+    return tuple(raw.convergence.sizes)
+
+
+def _material(table: StrikerTable) -> Material:
+    if table.E1 == "inf":
+        return RIGID
+    return Material(table.E1, table.nu1)
+
+
+def _build(path: Path, raw: _StudyFile) -> Study:
+    try:
+        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
+    except InputError as error:
+        raise StudyError(f"{path}: key 'name': {error}") from None
+    return Study(
+        name=name,
+        description=raw.description,
+        source=path,
+        indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
+        striker=RIGID if raw.striker is None else _material(raw.striker),
+        half_space=Material(raw.half_space.E2, raw.half_space.nu2),
+        mass=raw.impact.mass,
+        velocity=raw.impact.velocity,
+        depths=None if raw.contact.depths == "impact" else tuple(raw.contact.depths),
+        mesh=raw.numerics.settings(MeshSettings(), "numerics"),
+        quick_mesh=raw.quick.settings(QUICK_MESH, "quick"),
+        tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
+        convergence_sizes=_convergence_sizes(path, raw),
+        refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
+    )
+
+
+def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
+    if sweep is None:
+        return [study]
+    key, values = sweep.chosen()
+    studies = []
+    for value in values:
+        if key in ("shape_coefficient", "exponent"):
+            changed = replace(study, indenter=replace(study.indenter, **{key: value}))
+        else:
+            changed = replace(study, **{key: value})
+        studies.append(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
+    return studies
+
+
+def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
+    """The studies of a parsed contact study file (the default kind)."""
+    raw = decode(path, data, _StudyFile)
+    try:
+        studies = _expanded(_build(path, raw), raw.sweep)
+    except StudyError:
+        raise
+    except InputError as error:
+        raise StudyError(f"{path}: {error}") from None
+    return validated(path, studies)

@@ -1,0 +1,195 @@
+"""One cross-check study: FEM contact curve -> fits -> the impact three ways -> pass or fail.
+
+The impact is solved (a) with the exact analytic beta (Ateb solution), (b) with the FEM-fitted
+beta and exponent through the same Ateb solution, and (c) by integrating M x'' = -P(x) on the
+tabulated FEM force curve itself (no power-law assumption). In (b) and (c) the contact radius
+a(t) and central pressure p(0, t) come from the FEM curves too.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...theory.contact import PowerLawContact
+from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ...theory.impact_ode import integrate_impact
+from ...theory.materials import effective_modulus
+from ..checks import Check
+from .accuracy import AccuracyResult, run_ladder
+from .contact_law import FemContactLaw, fem_contact_law
+from .convergence import ConvergenceStudy, convergence_study
+from .indentation import IndentationResult, depths_up_to
+from .loader import Study
+
+__all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_contact_study"]
+
+IMPACT_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
+"""SI keys of every impact entry (those of ``shtaerman impact --json``)."""
+CHECKED_IMPACT_KEYS = ("x_c", "P_c", "t_c")
+DEPTH_OVERSHOOT = 1.01
+"""The FEM depths reach 1.01 x_c so the FEM-fed impacts interpolate, not extrapolate."""
+HISTORY_POINTS = 201
+
+Progress = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class StudyOutcome:
+    """Everything a study produced (SI units)."""
+
+    study: Study
+    contact: IndentationResult
+    law: FemContactLaw
+    impacts: dict[str, dict[str, float]]
+    """Maxima per variant: "analytic", "fem_fitted", "fem_tabulated"."""
+    histories: dict[str, ImpactHistory]
+    exact: ImpactResult
+    checks: list[Check]
+    seconds: float
+    convergence: ConvergenceStudy | None = None
+    """The study's mesh-convergence study, if it asks for one."""
+    accuracy: AccuracyResult | None = None
+    """The mesh ladder whose finest level is ``contact``, with its error estimates."""
+
+    @property
+    def passed(self) -> bool:
+        """Whether every check passed."""
+        return all(check.passed for check in self.checks)
+
+    def differences(self) -> dict[str, dict[str, float]]:
+        """Relative differences of the FEM-fed impacts against the analytic one."""
+        exact = self.impacts["analytic"]
+        return {
+            variant: {key: values[key] / exact[key] - 1.0 for key in IMPACT_KEYS[1:]}
+            for variant, values in self.impacts.items()
+            if variant != "analytic"
+        }
+
+
+def _study_depths(study: Study, exact: ImpactResult) -> np.ndarray:
+    if study.depths is not None:
+        return np.asarray(study.depths)
+    return depths_up_to(DEPTH_OVERSHOOT * exact.x_c, study.indenter.exponent)
+
+
+def tabulated_impact(
+    study: Study, law: FemContactLaw, guess: float
+) -> tuple[dict[str, float], ImpactHistory]:
+    """The impact M x'' = -P(x) on a tabulated FEM curve: its maxima (beta NaN) and history.
+
+    ``guess`` (m) sets the ODE's length scale (the exact impact's x_c).
+    """
+    numerical = integrate_impact(study.mass, study.velocity, law.force, guess)
+    t = np.linspace(0.0, numerical.t_y, HISTORY_POINTS)
+    x, v = numerical.sample(t)
+    x = np.maximum(x, 0.0)
+    x[-1] = 0.0
+    a, p0 = law.contact_radius(x), law.central_pressure(x)
+    history = ImpactHistory(t, x, v, law.force(x), a, p0)
+    maxima = {
+        "beta": float("nan"),  # no power law assumed
+        "x_c": numerical.x_c,
+        "P_c": numerical.P_c,
+        "a_c": float(law.contact_radius(numerical.x_c)),
+        "p_c": float(law.central_pressure(numerical.x_c)),
+        "t_c": numerical.t_c,
+        "t_y": numerical.t_y,
+    }
+    return maxima, history
+
+
+def impact_maxima(result: ImpactResult) -> dict[str, float]:
+    """beta and the maxima x_c, P_c, a_c, p_c, t_c, t_y of an impact (SI units)."""
+    return {key: float(getattr(result, key)) for key in IMPACT_KEYS}
+
+
+def _checks(study: Study, contact: IndentationResult, impacts: dict) -> list[Check]:
+    tolerances, errors = study.tolerances, contact.errors()
+    checks = [
+        Check(f"contact {key}", errors[key], getattr(tolerances, key))
+        for key in ("force", "beta", "exponent", "contact_radius", "central_pressure")
+    ]
+    exact = impacts["analytic"]
+    for variant in ("fem_fitted", "fem_tabulated"):
+        checks += [
+            Check(
+                f"impact {variant} {key}",
+                impacts[variant][key] / exact[key] - 1.0,
+                tolerances.impact,
+            )
+            for key in CHECKED_IMPACT_KEYS
+        ]
+    return checks
+
+
+def run_contact_study(
+    study: Study, quick: bool = False, progress: Progress | None = None
+) -> StudyOutcome:
+    """Run one study: the FEM contact curve, the fits and the three impacts.
+
+    Parameters
+    ----------
+    study : Study
+    quick : bool
+        Use the study's coarse ``quick_mesh`` (CI) instead of its ``mesh``.
+    progress : callable, optional
+        Receives a short line per stage.
+    """
+    report = progress or (lambda _line: None)
+    start = time.perf_counter()
+    modulus = effective_modulus(study.striker, study.half_space)
+    exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
+    report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
+    accuracy = run_ladder(
+        study.indenter,
+        study.half_space,
+        _study_depths(study, exact),
+        study.quick_mesh if quick else study.mesh,
+        refine=study.refine,
+    )
+    contact = accuracy.finest
+    report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
+    law = fem_contact_law(contact, modulus)
+    fitted = solve_impact(study.mass, study.velocity, law)
+    tabulated, tabulated_history = tabulated_impact(study, law, exact.x_c)
+    impacts = {
+        "analytic": impact_maxima(exact),
+        "fem_fitted": impact_maxima(fitted),
+        "fem_tabulated": tabulated,
+    }
+    histories = {
+        "analytic": exact.history(HISTORY_POINTS),
+        "fem_fitted": fitted.history(HISTORY_POINTS),
+        "fem_tabulated": tabulated_history,
+    }
+    convergence = _convergence(study, contact, quick, report)
+    return StudyOutcome(
+        study=study,
+        contact=contact,
+        law=law,
+        impacts=impacts,
+        histories=histories,
+        exact=exact,
+        checks=_checks(study, contact, impacts),
+        seconds=time.perf_counter() - start,
+        convergence=convergence,
+        accuracy=accuracy,
+    )
+
+
+def _convergence(
+    study: Study, contact: IndentationResult, quick: bool, report: Progress
+) -> ConvergenceStudy | None:
+    """The study's mesh-convergence levels (the coarsest three in quick mode), or None."""
+    sizes = study.convergence_sizes[:3] if quick else study.convergence_sizes
+    if not sizes:
+        return None
+    report(f"{study.name}: mesh convergence, {len(sizes)} meshes")
+    depths = [step.depth for step in contact.steps]
+    return convergence_study(
+        study.indenter, study.half_space, sizes, depths=depths, base=study.mesh
+    )

@@ -1,0 +1,1 @@
+"""The dynamic kind: the elastodynamic FE impact against the quasi-static impact."""

@@ -1,0 +1,140 @@
+"""One dynamic case: the elastodynamic FE impact against the quasi-static (Ateb) impact.
+
+:func:`run_case` (also what ``shtaerman dynamic`` runs) computes the exact quasi-static impact,
+the first-order radiation estimate (:mod:`shtaerman.theory.radiation`) and the dynamic FE impact
+(:mod:`shtaerman.fem.dynamic_contact`) for the same striker and half-space; :func:`compare` states
+how far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and t_contact / 2
+(quasi-static / dynamic - 1).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from ...fem.dynamic_contact import (
+    DynamicImpactResult,
+    DynamicSettings,
+    run_dynamic_impact,
+)
+from ...theory.contact import PowerLawContact
+from ...theory.impact import ImpactResult, solve_impact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.radiation import RadiationEstimate, radiation_estimate
+from ..richardson import Estimate
+from .accuracy import DynamicLadder, complete_ladder
+
+__all__ = ["COMPARED", "DynamicCase", "compare", "run_case"]
+
+QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
+COMPARED = {
+    "x": ("x_c", "x_max", "maximum approach"),
+    "P": ("P_c", "P_max", "maximum force"),
+    "t": ("t_c", "t_half", "compression time (against t_contact / 2)"),
+}
+"""Compared quantity -> (quasi-static key, dynamic key, words)."""
+
+
+def compare(quasi: ImpactResult, result: DynamicImpactResult) -> dict[str, float]:
+    """Quasi-static / dynamic - 1 for x, P and t (keys of :data:`COMPARED`; t_c against
+    t_contact / 2, the same as t_y against t_contact), dimensionless."""
+    dynamic = {"x_max": result.x_max, "P_max": result.P_max, "t_half": 0.5 * result.t_contact}
+    return {key: getattr(quasi, qs) / dynamic[dyn] - 1.0 for key, (qs, dyn, _) in COMPARED.items()}
+
+
+@dataclass(frozen=True)
+class DynamicCase:
+    """One approach velocity: the quasi-static impact, the estimate and the dynamic FE impact
+    (with its error-estimate ladder, or ``None`` when it was skipped)."""
+
+    velocity: float
+    quasi: ImpactResult
+    estimate: RadiationEstimate
+    result: DynamicImpactResult
+    ladder: DynamicLadder | None = None
+
+    def differences(self) -> dict[str, float]:
+        """:func:`compare` and the measured loss against the first-order estimate."""
+        out = compare(self.quasi, self.result)
+        out["loss_vs_estimate"] = (
+            self.result.energy_radiated_fraction / self.estimate.energy_fraction - 1.0
+        )
+        return out
+
+    def estimates(self) -> dict[str, Estimate]:
+        """Richardson estimates from the ladder ({} without one): x_max, P_max, t_contact,
+        restitution, energy_radiated_fraction, and ``difference_x``, ``difference_P``,
+        ``difference_t`` (:func:`compare` on every level; use ``absolute_error``)."""
+        if self.ladder is None:
+            return {}
+        quasi = self.quasi
+        differences = {
+            f"difference_{key}": self.ladder.estimate(lambda r, key=key: compare(quasi, r)[key])
+            for key in COMPARED
+        }
+        return {**self.ladder.estimates, **differences}
+
+    def document(self) -> dict[str, object]:
+        """The JSON of ``shtaerman dynamic --json`` (DESIGN.md interface contract), with the
+        ladder's ``error_estimate``, ``extrapolated``, ``estimate_details``, ``mesh_ladder``."""
+        maxima = self.quasi.maxima()
+        return {
+            "quasi_static": {key: maxima[key] for key in QUASI_STATIC_KEYS},
+            "dynamic": self.result.summary(),
+            "radiation_estimate": self.estimate.to_dict(),
+            "mesh": self.result.mesh,
+            "timings": self.result.timings,
+            "parameters": self.result.parameters,
+            **(self.ladder.to_dict(self.estimates()) if self.ladder is not None else {}),
+        }
+
+
+def run_case(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings | None = None,
+    *,
+    snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
+    ladder: bool = False,
+) -> DynamicCase:
+    """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        The rigid striker's profile z = A r^n.
+    half_space : Material
+        E2 in Pa, nu2 in [0, 0.5].
+    density : float
+        Half-space density in kg/m^3.
+    mass, velocity : float
+        Striker mass in kg and approach velocity in m/s.
+    settings : DynamicSettings, optional
+        Numerical controls of the dynamic impact.
+    snapshots : callable, optional
+        Given the quasi-static impact, the times in s at which to keep the fields.
+    ladder : bool
+        Also run the two coarser levels of the error-estimate ladder
+        (``settings.refined(1/2)`` must be valid).
+    """
+    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    quasi = solve_impact(mass, velocity, law)
+    estimate = radiation_estimate(
+        mass,
+        velocity,
+        law.beta,
+        law.force_exponent,
+        density,
+        half_space.shear_modulus,
+        half_space.poisson_ratio,
+    )
+    times = tuple(snapshots(quasi)) if snapshots is not None else ()
+    settings = DynamicSettings() if settings is None else settings
+    inputs = (indenter, half_space, density, mass, velocity)
+    result = run_dynamic_impact(*inputs, settings, snapshot_times=times)
+    levels = complete_ladder(result, *inputs, settings) if ladder else None
+    return DynamicCase(velocity, quasi, estimate, result, levels)

@@ -1,0 +1,243 @@
+"""The dynamic study file: one striker and half-space, the impact at several approach velocities.
+
+A study (kind ``dynamic``, e.g. ``fem/dynamic.toml``) runs a case (:func:`.case.run_case`) per
+approach velocity (:mod:`.runner`)::
+
+    kind = "dynamic"
+    name = "dynamic"                      # optional; default: the file's stem
+    description = "..."
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3)
+    [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
+                 figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
+                 the findings; default: the middle one, the upper of two)
+    [numerics]   time_steps, mesh_size, mesh_margin, domain_factor, growth, axis_size,
+                 layer_rate and the other DynamicSettings fields, optional; refine = K
+                 divides the mesh sizes and the time step by K after them
+    [quick]      velocity = [...] (must hold figure_velocity; default: the smallest velocity
+                 and figure_velocity) and the numerics of ``verify --quick`` (default:
+                 [numerics])
+    [tolerances] energy_balance = 1e-2 (of M v0^2/2), reflected = 1e-2 (of the radiated),
+                 estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
+                 estimate is below estimate_below = 0.08)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Any
+
+import msgspec
+
+from ...fem.contact import validate_fem_inputs
+from ...fem.dynamic_contact import (
+    MAX_DOFS,
+    DynamicSettings,
+    estimate_dofs,
+    validate_density,
+)
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError
+from ..schema import (
+    MESH_FIELDS,
+    Poisson,
+    Positive,
+    Relative,
+    StudyError,
+    Table,
+    decode,
+    fem_input_error,
+    ranged,
+    validate_name,
+)
+from .accuracy import check_ladder
+
+__all__ = ["DynamicStudy", "DynamicTolerances", "load_dynamic"]
+
+
+class _DynIndenter(Table):
+    shape_coefficient: Positive
+    exponent: Positive
+
+
+class _DynHalfSpace(Table):
+    E2: Positive
+    nu2: Poisson
+    density2: Positive
+
+
+class _Numerics(Table):
+    refine: Positive | None = None
+    time_steps: ranged("time_steps", "dynamic") | None = None
+    mesh_margin: Positive | None = None
+    mesh_size: Positive | None = None
+    axis_size: Positive | None = None
+    growth: Positive | None = None
+    domain_factor: Positive | None = None
+    layer_start: Positive | None = None
+    layer_ramp: Positive | None = None
+    layer_rate: ranged("layer_rate", "dynamic") | None = None
+    tail: Annotated[float, msgspec.Meta(ge=0)] | None = None
+    layer_width: Positive | None = None
+    spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
+
+
+class _DynImpact(Table):
+    mass: Positive
+    velocity: Positive | list[Positive]
+    figure_velocity: Positive | None = None
+
+
+class _Quick(_Numerics):
+    velocity: Positive | list[Positive] | None = None
+
+
+class _DynTolerances(Table):
+    energy_balance: Relative = 1e-2
+    reflected: Relative = 1e-2
+    estimate: Relative = 0.2
+    estimate_below: Relative = 0.08
+
+
+class _DynamicFile(Table):
+    indenter: _DynIndenter
+    half_space: _DynHalfSpace
+    impact: _DynImpact
+    name: str | None = None
+    description: str = ""
+    numerics: _Numerics = _Numerics()
+    quick: _Quick = _Quick()
+    tolerances: _DynTolerances = _DynTolerances()
+
+
+@dataclass(frozen=True)
+class DynamicTolerances:
+    """Pass/fail limits of a dynamic study."""
+
+    energy_balance: float = 1e-2
+    """Largest energy balance error, of the initial kinetic energy."""
+    reflected: float = 1e-2
+    """Largest reflected energy, of the radiated energy."""
+    estimate: float = 0.2
+    """Largest |measured loss / first-order estimate - 1| ..."""
+    estimate_below: float = 0.08
+    """... checked where the estimated fraction is below this (first order in it)."""
+
+
+@dataclass(frozen=True)
+class DynamicStudy:
+    """A dynamic study: one striker and half-space, several approach velocities (SI units)."""
+
+    name: str
+    description: str
+    source: Path
+    indenter: PowerLawIndenter
+    half_space: Material
+    density: float
+    mass: float
+    velocities: tuple[float, ...]
+    example: float
+    """The velocity of the figures and the findings (one of ``velocities``)."""
+    settings: DynamicSettings
+    quick_velocities: tuple[float, ...]
+    quick_settings: DynamicSettings
+    tolerances: DynamicTolerances = field(default_factory=DynamicTolerances)
+    kind: str = "dynamic"
+
+
+SETTINGS_FIELDS = {**MESH_FIELDS, "time_steps": "steps"}
+"""Study-file key -> DynamicSettings field, where the two differ."""
+
+
+def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
+    """``base`` with the table's numerics; an invalid value names its key."""
+    keys = {SETTINGS_FIELDS.get(k, k): k for k in _Numerics.__struct_fields__}
+    given = {
+        setting: getattr(raw, key)
+        for setting, key in keys.items()
+        if getattr(raw, key) is not None and setting in DynamicSettings.__dataclass_fields__
+    }
+    for setting, value in given.items():
+        try:
+            dataclasses.replace(base, **{setting: value})
+        except InputError as error:
+            raise StudyError(f"{path}: key '{table}.{keys[setting]}': {error}") from None
+    try:
+        settings = dataclasses.replace(base, **given)
+        if raw.refine is not None:
+            settings = settings.refined(raw.refine)
+    except InputError as error:
+        raise StudyError(f"{path}: key '{table}': {error}") from None
+    if estimate_dofs(settings) > MAX_DOFS:
+        raise StudyError(
+            f"{path}: key '{table}.mesh_size': the mesh would have about {estimate_dofs(settings)} "
+            f"dofs, above the limit {MAX_DOFS}; coarsen size or growth"
+        )
+    return settings
+
+
+def _velocities(
+    path: Path, key: str, given: float | list[float], example: float | None
+) -> tuple[float, ...]:
+    """The velocities of ``key`` (one value or an increasing list), holding ``example``."""
+    values = given if isinstance(given, list) else [given]
+    if not values or any(b <= a for a, b in itertools.pairwise(values)):
+        raise StudyError(
+            f"{path}: key '{key}': expected a velocity > 0 (m/s) or a list of increasing ones, "
+            f"got {given!r}"
+        )
+    if example is not None and example not in values:
+        raise StudyError(
+            f"{path}: key '{key}': expected to hold impact.figure_velocity = {example!r} m/s, "
+            f"got {given!r}"
+        )
+    return tuple(values)
+
+
+def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
+    """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
+    raw: _DynamicFile = decode(path, data, _DynamicFile)
+    try:
+        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
+    except InputError as error:
+        raise StudyError(f"{path}: key 'name': {error}") from None
+    indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
+    half_space = Material(raw.half_space.E2, raw.half_space.nu2)
+    try:
+        validate_fem_inputs(indenter, half_space)
+        validate_density(raw.half_space.density2)
+    except InputError as error:
+        raise fem_input_error(path, error) from None
+    example = raw.impact.figure_velocity
+    velocities = _velocities(path, "impact.velocity", raw.impact.velocity, example)
+    if example is None:  # the middle velocity (of two, the upper)
+        example = velocities[len(velocities) // 2]
+    quick = raw.quick.velocity
+    if quick is None:  # the smallest velocity and the example (or the example and the largest)
+        quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
+    settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
+    try:
+        check_ladder(settings)  # the full study runs the ladder; verify --quick does not
+    except InputError as error:
+        raise StudyError(f"{path}: key 'numerics': {error}") from None
+    return [
+        DynamicStudy(
+            name=name,
+            description=raw.description,
+            source=path,
+            indenter=indenter,
+            half_space=half_space,
+            density=raw.half_space.density2,
+            mass=raw.impact.mass,
+            velocities=velocities,
+            example=example,
+            settings=settings,
+            quick_velocities=_velocities(path, "quick.velocity", quick, example),
+            quick_settings=_settings(path, "quick", raw.quick, settings),
+            tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        )
+    ]

@@ -1,0 +1,231 @@
+"""The finite-strain study file: how far real (neo-Hookean) rubber departs from Shtaerman.
+
+A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it runs in
+:mod:`.runner`)::
+
+    name = "finite-strain"               # optional; default: the file's stem
+    description = "..."
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1)
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5])
+    [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
+    [contact]    reach = 1.1 (deepest depth / the linear impact's x_c), depth_steps = 12
+                 (equal depth steps up to it), small_ratio = 0.01 (x/a of a first, tiny
+                 depth: the small-strain limit), small_steps = 5 (geometric depths from it to
+                 the first equal step)
+    [numerics]   refine = K and the mesh keys (mesh_size, growth, ...; default: FINITE_MESH):
+                 the finest mesh of the error-estimate ladder (K/2, K/sqrt(2), K)
+    [quick]      depth_steps, small_steps, small_ratio, small_strain and the mesh keys for
+                 ``verify --quick``
+    [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
+    [sweep]      optional: one of nu2, mass, velocity with a list of values
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import msgspec
+
+from ... import vocabulary
+from ...fem.finite_contact import FINITE_MESH
+from ...fem.mesh import MeshSettings
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...validation import InputError
+from ..ladder import check_ladder
+from ..schema import (
+    ImpactTable,
+    IndenterTable,
+    MaterialTable,
+    MeshTable,
+    Poisson,
+    Positive,
+    Relative,
+    StudyError,
+    Table,
+    decode,
+    ranged,
+    validate_name,
+    validated,
+)
+
+__all__ = [
+    "QUICK_FINITE_MESH",
+    "FiniteStudy",
+    "FiniteTolerances",
+    "Ladder",
+    "load_finite",
+]
+
+QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_growth=0.35)
+"""Coarse mesh of ``verify --quick`` (one mesh, no error estimates)."""
+SWEEPABLE = {"nu2": "nu", "mass": "M", "velocity": "v0"}
+
+
+class _Contact(Table):
+    reach: ranged("reach") = vocabulary.entry("reach").default
+    depth_steps: ranged("depth_steps") = vocabulary.entry("depth_steps").default
+    small_ratio: ranged("small_ratio") = vocabulary.entry("small_ratio").default
+    small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
+
+
+class _Quick(MeshTable):
+    depth_steps: ranged("depth_steps") = 6
+    small_steps: ranged("small_steps") = 2
+    small_ratio: ranged("small_ratio") = 0.02
+    small_strain: Relative = 2e-2
+
+
+class _Tolerances(Table):
+    small_strain: Relative = 5e-3
+    small_strain_fem: Relative = 2e-3
+    conservation: Relative = 2e-3
+    newton: Relative = 1e-6
+    complementarity: Relative = 1e-6
+
+
+class _Sweep(Table):
+    nu2: list[Poisson] | None = None
+    mass: list[Positive] | None = None
+    velocity: list[Positive] | None = None
+
+    def chosen(self) -> tuple[str, list[float]]:
+        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
+        if len(given) != 1 or not next(iter(given.values())):
+            raise ValueError(f"expected exactly one of {sorted(SWEEPABLE)} with a list of values")
+        return next(iter(given.items()))
+
+    def __post_init__(self) -> None:
+        self.chosen()
+
+
+class _FiniteFile(Table):
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
+    name: str | None = None
+    description: str = ""
+    contact: _Contact = _Contact()
+    numerics: MeshTable = MeshTable()
+    quick: _Quick = _Quick()
+    tolerances: _Tolerances = _Tolerances()
+    sweep: _Sweep | None = None
+
+
+@dataclass(frozen=True)
+class FiniteTolerances:
+    """Tolerances of the checks that need no reference (relative)."""
+
+    small_strain: float = 5e-3
+    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
+    small_strain_fem: float = 2e-3
+    """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
+    conservation: float = 2e-3
+    """|Simpson's Int P dx / stored energy - 1|."""
+    newton: float = 1e-6
+    """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
+    complementarity: float = 1e-6
+    """Largest |gap| on contact, or penetration off it, / depth."""
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """Depth ladder: ``steps`` equal steps to ``reach`` x_c after ``small_steps`` geometric
+    depths from x/a = ``small_ratio``."""
+
+    reach: float
+    steps: int
+    small_ratio: float
+    small_steps: int
+
+
+@dataclass(frozen=True)
+class FiniteStudy:
+    """One finite-strain study (SI units)."""
+
+    name: str
+    description: str
+    source: Path
+    indenter: PowerLawIndenter
+    half_space: Material
+    mass: float
+    velocity: float
+    ladder: Ladder
+    quick_ladder: Ladder
+    mesh: MeshSettings
+    quick_mesh: MeshSettings
+    tolerances: FiniteTolerances = field(default_factory=FiniteTolerances)
+    quick_small_strain: float = 2e-2
+    """The small-strain tolerance against Shtaerman on the quick mesh (its error ~1e-2)."""
+    depths: tuple[float, ...] | None = None
+    """Explicit depths in m instead of the ladder (a sweep's ``depths``), increasing."""
+    kind: str = "finite-strain"
+
+
+def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
+    settings = table.settings(default, where)
+    refine = 1.0 if table.refine is None else table.refine
+    try:
+        if where == "numerics":  # the study's mesh is the finest level of its ladder
+            check_ladder(settings, refine)
+        return settings.refined(refine)
+    except InputError as error:
+        raise InputError(f"[{where}] {error}") from None
+
+
+def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
+    try:
+        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
+    except InputError as error:
+        raise StudyError(f"{path}: key 'name': {error}") from None
+    contact, quick = raw.contact, raw.quick
+    return FiniteStudy(
+        name=name,
+        description=raw.description,
+        source=path,
+        indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
+        half_space=Material(raw.half_space.E2, raw.half_space.nu2),
+        mass=raw.impact.mass,
+        velocity=raw.impact.velocity,
+        ladder=Ladder(contact.reach, contact.depth_steps, contact.small_ratio, contact.small_steps),
+        quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
+        mesh=_mesh(raw.numerics, FINITE_MESH, "numerics"),
+        quick_mesh=_mesh(quick, QUICK_FINITE_MESH, "quick"),
+        tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        quick_small_strain=quick.small_strain,
+    )
+
+
+def _expanded(study: FiniteStudy, sweep: _Sweep | None) -> list[FiniteStudy]:
+    if sweep is None:
+        return [study]
+    key, values = sweep.chosen()
+    studies = []
+    for value in values:
+        if key == "nu2":
+            changed = replace(study, half_space=replace(study.half_space, poisson_ratio=value))
+        else:
+            changed = replace(study, **{key: value})
+        studies.append(replace(changed, name=f"{study.name}-{SWEEPABLE[key]}{value:g}"))
+    return studies
+
+
+def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
+    """The studies of a parsed finite-strain study file (``kind`` removed).
+
+    Raises
+    ------
+    StudyError
+        Naming the file and the key, for any unknown key, wrong type or value out of range,
+        or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
+    """
+    raw = decode(path, data, _FiniteFile)
+    try:
+        studies = _expanded(_build(path, raw), raw.sweep)
+    except StudyError:
+        raise
+    except InputError as error:
+        raise StudyError(f"{path}: {error}") from None
+    return validated(path, studies)
