@@ -147,3 +147,19 @@ def test_steps_is_a_deprecated_alias_of_time_steps(capsys):
     warning, error = err.splitlines()
     assert warning.startswith("shtaerman: warning: --steps is deprecated; write --time-steps")
     assert error == "shtaerman: error: --time-steps must be an integer in [50, 1e5], got '10'"
+
+
+def test_an_option_and_its_deprecated_alias_together_are_refused(capsys):
+    code, out, err = run(capsys, "dynamic", "--time-steps", "60", "--steps", "80")
+    assert code == 2 and out == ""
+    assert err.strip().splitlines()[-1] == (
+        "shtaerman: error: --time-steps and --steps name one input; keep --time-steps"
+    )
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "1e400"])
+def test_time_steps_not_an_integer_is_one_line(capsys, value):
+    # int(nan) raised ValueError and int(inf) OverflowError: a traceback, exit 1
+    code, out, err = run(capsys, "dynamic", "--time-steps", value)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert f"--time-steps must be an integer in [50, 1e5], got '{value}'" in err

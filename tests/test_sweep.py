@@ -694,3 +694,10 @@ def test_sigterm_while_waiting_for_a_silent_scheduler_ends_the_sweep(tmp_path, s
     _, err = process.communicate(timeout=20)
     assert process.returncode == 128 + signal.SIGTERM, err
     assert "Traceback" not in err and "before any case was saved" in err
+
+
+def test_study_file_names_were_never_sweep_keys(tmp_path):
+    """'youngs_modulus' is an old study-file key ([half_space] E2, [striker] E1); in an impact
+    sweep it silently set the striker's E1 (and E2 in a contact sweep). It is unknown."""
+    message = error_of(tmp_path, IMPACT.replace("mass = 0.7", "youngs_modulus = 4e6"))
+    assert "unknown parameter 'youngs_modulus' for kind 'impact'" in message

@@ -243,7 +243,8 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
     expected = expected.removesuffix(rigid)
     unit = (f" {item.unit}" if item.unit else "") + rigid
     is_number = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
-    if item.type == "int" and not (is_number and float(value) == int(value)):
+    whole = is_number and math.isfinite(value) and float(value) == int(value)
+    if item.type == "int" and not whole:
         raise says.error(item, f"must be {expected}", value)
     where = "in " if expected[0] in "([" else ""
     if not is_number or math.isnan(value):

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
@@ -123,14 +124,15 @@ class ContactResult:
         return self._column("central_pressure")
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON object of ``shtaerman contact --json`` (same keys, same order)."""
+        """The JSON object of ``shtaerman contact --json`` (same keys, same order): non-finite
+        numbers are None (the CLI's null)."""
         document: dict[str, Any] = {}
         for key in self.key_order:
             value = self.extra[key] if key in self.extra else getattr(self, key)
             if key in ("steps", "mesh_ladder"):
                 value = [dict(row) for row in value]
             document[key] = value
-        return document
+        return json_safe(document)
 
 
 def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSettings:

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
@@ -22,15 +23,15 @@ if TYPE_CHECKING:
 __all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
 
 SETTINGS_OPTIONS = {
-    "steps": "steps",
+    "time_steps": "steps",
     "mesh_size": "size",
     "mesh_margin": "margin",
     "domain_factor": "domain",
     "growth": "growth",
     "layer_rate": "layer_rate",
 }
-"""Numerical keywords (``steps`` is ``--time-steps``, ``mesh_size`` ``--mesh-size``, ...): the
-DynamicSettings field each sets."""
+"""Numerical keywords (the vocabulary's: ``time_steps`` is ``--time-steps``, ``mesh_size``
+``--mesh-size``, ...): the DynamicSettings field each sets."""
 DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
 """The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
 P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
@@ -88,7 +89,8 @@ class DynamicResult:
         return self.solution.history_columns()
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON object of ``shtaerman dynamic --json``."""
+        """The JSON object of ``shtaerman dynamic --json``: non-finite numbers
+        are None (the CLI's null)."""
         document: dict[str, Any] = {
             "quasi_static": dict(self.quasi_static),
             "dynamic": dict(self.dynamic),
@@ -109,7 +111,7 @@ class DynamicResult:
                 estimate_details=self.estimate_details,
                 mesh_ladder=[dict(level) for level in self.mesh_ladder],
             )
-        return document
+        return json_safe(document)
 
 
 def dynamic_settings(
@@ -196,7 +198,7 @@ def dynamic(
     refine: float = 1.0,
     estimate: bool = True,
     settings: DynamicSettings | None = None,
-    steps: int | None = None,
+    time_steps: int | None = None,
     mesh_size: float | None = None,
     mesh_margin: float | None = None,
     domain_factor: float | None = None,
@@ -222,7 +224,7 @@ def dynamic(
         Run the two coarser levels of the ladder (refine/2, refine/sqrt 2) for the error
         estimates (about 0.75 of the run's cost again).
     settings : DynamicSettings, optional
-        The numerical controls; ``steps``, ``mesh_size``, ``mesh_margin``, ``domain_factor``,
+        The numerical controls; ``time_steps``, ``mesh_size``, ``mesh_margin``, ``domain_factor``,
         ``growth`` and ``layer_rate`` (the ``--time-steps`` ... options) override its fields.
     out : path, optional
         A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
@@ -244,7 +246,7 @@ def dynamic(
     from ..study.dynamic.accuracy import complete_ladder
     from ..study.dynamic.case import run_case
 
-    options = dict(steps=steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
+    options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
     mass, velocity, refine, chosen = _checked(
         indenter, body, (mass, velocity, refine), estimate, dynamic_settings(settings, options)

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..output.files import json_safe
 from ..theory import impact as theory
 from ..theory.contact import PowerLawContact
 from ..theory.impact_ode import integrate_impact
@@ -82,13 +83,14 @@ class ImpactResult:
         return self.solution.history(points, times)
 
     def to_dict(self) -> dict[str, object]:
-        """The JSON object of ``shtaerman impact --json`` (SI units)."""
+        """The JSON object of ``shtaerman impact --json`` (SI units): non-finite numbers
+        are None (the CLI's null)."""
         document: dict[str, object] = {name: getattr(self, name) for name in MAXIMA}
         document["force_exponent"] = self.force_exponent
         document["modulus"] = self.modulus
         if self.ode_check is not None:
             document["ode_check"] = dict(self.ode_check)
-        return document
+        return json_safe(document)
 
 
 def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:

@@ -87,6 +87,12 @@ class Input(argparse.Action):
         super().__init__(*args, **kwargs)
 
     def __call__(self, parser, namespace, values, option_string=None) -> None:  # type: ignore[override]
+        spelled = vars(namespace).setdefault("_spelled", {})
+        if spelled.setdefault(self.dest, option_string) != option_string:
+            raise InputError(
+                f"{spelled[self.dest]} and {option_string} name one input; keep "
+                f"{self.item.cli_option}"
+            )
         if option_string is not None and option_string != self.item.cli_option:
             warnings.warn(
                 f"{option_string} is deprecated; write {self.item.cli_option} (the old option "

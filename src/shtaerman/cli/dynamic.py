@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..output.files import write_csv
@@ -13,8 +14,6 @@ from .impact import history_path
 
 ENERGY_BALANCE_LIMIT = DynamicTolerances().energy_balance
 """A run whose energy account is off by more (of M v0^2/2) warns and exits with code 1."""
-CONTROLS = {"time_steps": "steps", **{o: o for o in SETTINGS_OPTIONS if o != "steps"}}
-"""The numerical options and the keyword of :func:`shtaerman.dynamic` each sets."""
 
 
 NOTES = {
@@ -50,7 +49,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "expert numerical controls (relative to the quasi-static impact; --refine scales the "
         "mesh sizes and steps together)"
     )
-    add_inputs(numerics, CONTROLS, "dynamic", aliases={"time_steps": ("--steps",)})
+    add_inputs(numerics, tuple(SETTINGS_OPTIONS), "dynamic", aliases={"time_steps": ("--steps",)})
     p.set_defaults(handler=run)
 
 
@@ -65,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
         velocity=args.velocity,
         refine=args.refine,
         estimate=args.estimate,
-        **{keyword: getattr(args, option) for option, keyword in CONTROLS.items()},
+        **{keyword: getattr(args, keyword) for keyword in SETTINGS_OPTIONS},
         out=args.out,
         force=args.force,
         figure_format=args.figure_format,
@@ -77,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
         print_json(report)
     else:
         print(dynamic_text(report))
-    balance = report["dynamic"]["energy_balance_error"]
+    balance = result.energy_balance_error
     if not balance <= ENERGY_BALANCE_LIMIT:  # NaN included
         warn(
             f"energy balance error {balance:.1e} of M v0^2/2 exceeds {ENERGY_BALANCE_LIMIT:g}: "
@@ -104,8 +103,11 @@ def _differences_text(report: dict) -> str:
 
 
 def dynamic_text(report: dict) -> str:
-    """A readable summary (SI units)."""
-    qs, dyn, est = report["quasi_static"], report["dynamic"], report["radiation_estimate"]
+    """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
+    qs, dyn, est = (
+        {key: math.nan if value is None else value for key, value in report[part].items()}
+        for part in ("quasi_static", "dynamic", "radiation_estimate")
+    )
     mesh, timings = report["mesh"], report["timings"]
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",

@@ -57,6 +57,12 @@ class SweepError(InputError):
     """A sweep file that cannot be used; the message names the file and the key."""
 
 
+FORMER_SWEEP_KEYS = ("steps",)
+"""Sweep parameters of earlier releases that were renamed (``steps``: ``time_steps`` of the
+dynamic kind, ``depth_steps`` of the finite-strain one). The study-file names among the
+vocabulary's old names (``youngs_modulus``, ...) never were sweep keys: they stay unknown."""
+
+
 def _renamed(where: str, table: str, kind: Kind, keys: dict[str, Any]) -> dict[str, Any]:
     """``keys`` with each old parameter name replaced by the kind's new one, with a one-line
     :class:`DeprecatedKeyWarning` naming the new key."""
@@ -66,7 +72,9 @@ def _renamed(where: str, table: str, kind: Kind, keys: dict[str, Any]) -> dict[s
             (
                 item.name
                 for item in VOCABULARY
-                if key in item.old_names and item.name in kind.parameters
+                if key in FORMER_SWEEP_KEYS
+                and key in item.old_names
+                and item.name in kind.parameters
             ),
             None,
         )
