@@ -47,11 +47,32 @@ QUICK_ERROR = (
 
 def _pm(outcome: FiniteStudyOutcome, key: str, step: int | None = None) -> str:
     """ " ± e", e the estimated relative error of a scalar (or of ``key`` at depth ``step``);
-    "" without a ladder."""
+    "" without a ladder (the tables, whose captions say so)."""
     if outcome.estimates is None:
         return ""
     estimates = outcome.estimates
     return plus_minus((estimates.scalars if step is None else estimates.steps[step])[key].error)
+
+
+def _relative(outcome: FiniteStudyOutcome, key: str) -> float | None:
+    """The estimated relative error of scalar ``key``; None without a ladder."""
+    if outcome.estimates is None:
+        return None
+    return outcome.estimates.scalars[key].error
+
+
+def _shift(outcome: FiniteStudyOutcome, key: str, ratio: float) -> str:
+    """A ratio r as its shift in per cent, "+1.69 ± 0.04 %": the ± (r's estimated relative
+    error times r) in percentage points, like the dynamic kind's findings."""
+    error = _relative(outcome, key)
+    spread = plus_minus(None if error is None else 100 * error * abs(ratio), ".1g")
+    return f"{100 * (ratio - 1):+.2f}{spread} %"
+
+
+def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> str:
+    """``value`` by ``spec`` ± its estimated error in the value's own unit."""
+    error = _relative(outcome, key)
+    return f"{value:{spec}}" + plus_minus(None if error is None else error * abs(value), ".1g")
 
 
 def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
@@ -68,7 +89,7 @@ def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
 
 def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
     """Sentences for the report's opening section, with the measured numbers and, after a
-    ladder, their estimated relative errors (± ...)."""
+    ladder, their estimated errors in each value's unit (± ...)."""
     study, ratios, at = outcome.study, outcome.ratios(), outcome.at_maximum()
     exact = outcome.impacts["linear_exact"]
     fem = {
@@ -77,23 +98,21 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
     }
     whose = "the paper's" if is_paper_case(_inputs(outcome)) else "this case's"
 
-    def pm(key: str) -> str:
-        return _pm(outcome, key)
-
     return [
         f"Real rubber (neo-Hookean, nu2 = {study.half_space.poisson_ratio:g}) moves {whose} "
-        f"impact ({study.mass:g} kg at {study.velocity:g} m/s): x_c {ratios['x_c'] - 1:+.2%}"
-        f"{pm('x_c')}, P_c {ratios['P_c'] - 1:+.2%}{pm('P_c')}, t_c "
-        f"{ratios['t_c'] - 1:+.2%}{pm('t_c')} against Shtaerman's "
+        f"impact ({study.mass:g} kg at {study.velocity:g} m/s): x_c "
+        f"{_shift(outcome, 'x_c', ratios['x_c'])}, P_c {_shift(outcome, 'P_c', ratios['P_c'])}, "
+        f"t_c {_shift(outcome, 't_c', ratios['t_c'])} against Shtaerman's "
         f"linear x_c = {exact['x_c'] * 1e3:.3f} mm, P_c = {exact['P_c']:.1f} N, "
         f"t_c = {exact['t_c'] * 1e3:.3f} ms (against the linear FEM on the same mesh, "
-        f"which cancels the discretization: {fem['x_c']:+.2%}{pm('x_c_vs_fem')}, "
-        f"{fem['P_c']:+.2%}{pm('P_c_vs_fem')}, {fem['t_c']:+.2%}{pm('t_c_vs_fem')}).",
+        f"which cancels the discretization: {_shift(outcome, 'x_c_vs_fem', 1 + fem['x_c'])}, "
+        f"{_shift(outcome, 'P_c_vs_fem', 1 + fem['P_c'])}, "
+        f"{_shift(outcome, 't_c_vs_fem', 1 + fem['t_c'])}).",
         f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): P/(beta x^q) = "
-        f"{at['force_ratio']:.4f}{pm('force_ratio_at_x_c')}, p(0)/p_avg = "
-        f"{at['central_to_mean']:.3f}{pm('central_to_mean_at_x_c')} (linear "
+        f"{_value(outcome, 'force_ratio_at_x_c', at['force_ratio'], '.4f')}, p(0)/p_avg = "
+        f"{_value(outcome, 'central_to_mean_at_x_c', at['central_to_mean'], '.3f')} (linear "
         f"{outcome.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
-        f"{at['radius_ratio']:.4f}{pm('radius_ratio_at_x_c')}.",
+        f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}.",
         _validity_finding(outcome),
         QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
     ]
@@ -106,12 +125,17 @@ def _crossing_words(entry: Mapping[str, Any]) -> str:
             f"to {level}: not resolved (the departure's estimated error there, "
             f"{entry['departure_error']:.1e}, is not below a fifth of {level})"
         )
-    errors = entry.get("errors", {})
-    pm = {k: plus_minus(errors.get(k)) for k in CROSSING_KEYS}
+    errors, scale = entry.get("errors", {}), {"depth": 1e3}
+    pm = {
+        k: plus_minus(
+            None if errors.get(k) is None else errors[k] * entry[k] * scale.get(k, 1.0), ".1g"
+        )
+        for k in CROSSING_KEYS
+    }
     where = (
         f"x/a = {entry['depth_to_radius']:.3f}{pm['depth_to_radius']} (depth "
-        f"{entry['depth'] * 1e3:.3g} mm{pm['depth']}, reached by an impact at "
-        f"{entry['velocity']:.2g} m/s{pm['velocity']})"
+        f"{entry['depth'] * 1e3:.3g}{pm['depth']} mm, reached by an impact at "
+        f"{entry['velocity']:.2g}{pm['velocity']} m/s)"
     )
     if entry["status"] == "beyond":
         return f"to {level} at every computed depth, up to {where}"
@@ -135,11 +159,12 @@ def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
     every = [*estimates.scalars.values(), *(e for s in estimates.steps for e in s.values())]
     fallback = sum(e.method != "richardson" for e in every)
     return (
-        "± is the estimated relative error of the value: Richardson extrapolation over "
+        "± is the estimated error of the value, in its unit (percentage points for a shift "
+        "in %): Richardson extrapolation over "
         f"the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
         f"({'/'.join(str(d) for d in estimates.dofs)} dofs, "
         f"{sum(estimates.cpu_seconds):.0f} s of CPU time in all). Largest over the depths: "
-        f"P/(beta x^q){plus_minus(estimates.scalars['force_ratio_worst'].error)} at x/a = "
+        f"P/(beta x^q) relative error {estimates.scalars['force_ratio_worst'].error:.1e} at x/a = "
         f"{outcome.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {len(every)} estimates "
         "fell back to the difference of the two finest meshes (differences not shrinking, "
         "or an observed order outside 1.5-4.5: the ~1e-4 noise of non-nested meshes)."
