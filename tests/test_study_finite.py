@@ -9,6 +9,7 @@ that quick mesh (2k/2.4k/3.7k dofs, about 11 s) serves the estimate tests.
 
 import json
 import math
+import re
 from dataclasses import replace
 
 import meshio
@@ -314,6 +315,11 @@ def test_tables_and_findings_carry_the_estimates(laddered, outcome):
     assert all("resolved" in row[-1] for row in validity["rows"])
     found = text_finite.study_findings(laddered)
     assert "Richardson" in found[-1] and " ± " in found[0]
+    # every ± of the findings in its value's unit: shifts in percentage points, ratios and
+    # crossings as plain numbers (no relative '± 3.8e-02' beside an absolute value)
+    assert re.search(r"x_c [+-]\d+\.\d\d ± [\d.]+ %, P_c [+-]\d+\.\d\d ± [\d.]+ %", found[0])
+    assert re.search(r"P/\(beta x\^q\) = \d\.\d{4} ± 0\.\d+,", found[1])
+    assert not any(re.search(r"± \d(\.\d+)?e-", sentence) for sentence in found[:3])
     # quick mode: one mesh, says so, and shows no error bars
     found, tables = text_finite.study_findings(outcome), text_finite.study_tables(outcome)
     assert outcome.estimates is None and "no error estimates" in found[-1]
