@@ -285,3 +285,20 @@ def test_sweep_runs_a_file(tmp_path):
     assert (tmp_path / "out" / "cases.csv").is_file()
     again = sh.sweep(sh.sweep.load_sweep(path), out=tmp_path / "out", resume=True)
     assert again.computed == 0 and again.reused == 2
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda: sh.contact(INDENTER, RUBBER, mesh=0.01), "mesh must be a shtaerman.fem.mesh"),
+        (lambda: sh.contact(INDENTER, RUBBER, out=5), "out must be a string, got 5"),
+        (lambda: sh.sweep("nu-grid", workers=1.5), "workers must be an integer in [1, 256]"),
+    ],
+)
+def test_wrong_types_are_input_errors_naming_the_keyword(call, message):
+    # they were TypeErrors from deep inside: 'replace() should be called on dataclass
+    # instances', 'expected str, bytes or os.PathLike object', "'float' object cannot be
+    # interpreted as an integer"
+    with pytest.raises(sh.InputError) as caught:
+        call()
+    assert message in str(caught.value)

@@ -296,7 +296,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
     from ..fem.finite_contact import FINITE_MESH
-    from ..fem.mesh import DEFAULTS
+    from ..fem.mesh import DEFAULTS, MeshSettings
 
     model, estimate = options["model"], bool(options["estimate"])
     check_bodies(indenter, body, RIGID if options["striker"] is None else options["striker"])
@@ -307,6 +307,12 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     base = options["mesh"]
     if base is None:
         base = FINITE_MESH if model == "neo-hookean" else DEFAULTS
+    elif not isinstance(base, MeshSettings):
+        raise InputError(
+            f"mesh must be a shtaerman.fem.mesh.MeshSettings, got {type(base).__name__}; the "
+            "keywords mesh_size, mesh_margin, ... set single fields",
+            "mesh",
+        )
     mesh = mesh_settings(base, {k: options[k] for k in MESH_OPTIONS})
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
@@ -404,9 +410,9 @@ def contact(
     """
     options = dict(locals())
     plan = _plan(indenter, body, options)
-    from ..output.files import check_output_folder, staged_folder
+    from ..output.files import output_folder, staged_folder
 
-    folder = check_output_folder(Path(out), force=force) if out is not None else None
+    folder = output_folder(out, force=force)
     with contextlib.ExitStack() as stack:  # the folder is reserved before the FEM starts
         stage = stack.enter_context(staged_folder(folder, force=force)) if folder else None
         solution, ladder = _solve(plan)

@@ -242,7 +242,7 @@ def dynamic(
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
     from ..output.dynamic import write_case_figures
-    from ..output.files import check_output_folder, staged_folder
+    from ..output.files import output_folder, staged_folder
     from ..study.dynamic.accuracy import complete_ladder
     from ..study.dynamic.case import run_case
 
@@ -252,7 +252,7 @@ def dynamic(
         indenter, body, (mass, velocity, refine), estimate, dynamic_settings(settings, options)
     )
     check_figure_format(figure_format)
-    folder = check_output_folder(Path(out), force=force) if out is not None else None
+    folder = output_folder(out, force=force)
     inputs = (indenter, body, _density(body), mass, velocity)
     case = run_case(*inputs, chosen, snapshots=_snapshots if folder is not None else None)
     if estimate:

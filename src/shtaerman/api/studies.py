@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .. import vocabulary
 from ..validation import InputError
 
 if TYPE_CHECKING:
@@ -69,7 +70,7 @@ def run_study(
     shtaerman.validation.InputError
         A missing or invalid study file (naming the file and the key).
     """
-    from ..output.files import check_output_folder, json_safe, staged_folder
+    from ..output.files import json_safe, output_folder, staged_folder
     from ..output.folder import finish_verification, study_entry
     from ..output.report import study_document
     from ..study.run import run_study as run_one
@@ -77,7 +78,7 @@ def run_study(
 
     studies = load_study(find_study(str(name_or_path)))
     report = progress or (lambda _line: None)
-    folder = None if out is None else check_output_folder(Path(out), force=force)
+    folder = output_folder(out, force=force)
     if folder is None:
         outcomes = tuple(run_one(study, quick=quick, progress=report) for study in studies)
         documents = {o.study.name: json_safe(study_document(o, {})) for o in outcomes}
@@ -127,6 +128,7 @@ def sweep(
     shtaerman.sweep.SweepOutcome
         Counts of cases computed, reused, failed; ``exit_code``.
     """
+    from ..output.files import output_path
     from ..sweep.engine import run_sweep
     from ..sweep.spec import SweepSpec, find_sweep, load_sweep
 
@@ -142,7 +144,9 @@ def sweep(
         )
     if workers is not None and scheduler is not None:
         raise InputError("workers: sizes the local cluster; drop it with scheduler", "workers")
-    folder = Path(out) if out is not None else Path(f"sweep-{spec.name}")
+    if workers is not None:
+        workers = vocabulary.entry("workers").check(workers)
+    folder = Path(f"sweep-{spec.name}") if out is None else output_path(out)
     return run_sweep(
         spec,
         folder,

@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import vocabulary
 from ..validation import InputError
 
 __all__ = [
@@ -48,6 +49,7 @@ __all__ = [
     "folder_lock",
     "json_safe",
     "missing_folder",
+    "output_folder",
     "resumable",
     "staged_file",
     "staged_folder",
@@ -236,6 +238,18 @@ def check_folder_path(path: Path, option: str = "out") -> Path:
     except OSError as error:
         raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
     return target
+
+
+def output_path(out: object) -> Path:
+    """A Python caller's ``out``, a path or a string (the vocabulary's ``out``), as a Path."""
+    path = os.fspath(out) if isinstance(out, os.PathLike) else out
+    return Path(vocabulary.entry("out").check(path))
+
+
+def output_folder(out: object, *, force: bool) -> Path | None:
+    """:func:`check_output_folder` of a Python caller's ``out`` (:func:`output_path`; None:
+    no folder)."""
+    return None if out is None else check_output_folder(output_path(out), force=force)
 
 
 @contextlib.contextmanager
