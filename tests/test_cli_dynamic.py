@@ -149,3 +149,35 @@ def test_steps_is_a_deprecated_alias_of_time_steps(capsys):
     warning, error = err.splitlines()
     assert warning.startswith("shtaerman: warning: --steps is deprecated; write --time-steps")
     assert error == "shtaerman: error: --time-steps must be an integer in [50, 1e5], got '10'"
+
+
+def test_force_replaces_an_existing_out_folder(capsys, tmp_path):
+    """--out EXISTING --force replaces the folder (the API was once called without force=, so
+    the run computed everything and then exited 2 with 'not empty (use --force)')."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "old.txt").write_text("old\n")
+    code, _, err = run(capsys, "dynamic", "--no-estimate", "--out", str(out), "--force", *COARSE)
+    assert code == 0 and err == ""
+    names = {path.name for path in out.iterdir()}
+    assert "dynamic.json" in names and "old.txt" not in names
+
+
+def test_a_history_write_that_fails_leaves_no_partial_file(capsys, tmp_path, monkeypatch):
+    """A --history write cut short (a file-size limit, a full disk) leaves no file behind: the
+    history is staged beside the target and renamed into place; written in place, the first
+    bytes stayed although the message says nothing partial is kept."""
+    import errno
+
+    import shtaerman.cli.dynamic as command
+
+    def cut_short(path, columns):
+        with open(path, "w") as stream:
+            stream.write("t [s],x [m]\n0,0\n")
+        raise OSError(errno.EFBIG, "File too large")
+
+    monkeypatch.setattr(command, "write_csv", cut_short)
+    history = tmp_path / "h.csv"
+    code, _, err = run(capsys, "dynamic", "--no-estimate", "--history", str(history), *COARSE)
+    assert code == 1 and "nothing partial is kept" in err
+    assert list(tmp_path.iterdir()) == []

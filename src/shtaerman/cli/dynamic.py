@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
-from ..output.files import write_csv
+from ..output.files import staged_file, write_csv
 from ..study.dynamic import DynamicTolerances
 from ..theory.materials import Material
 from .common import CASE, add_figure_format, add_inputs, indenter, print_json, warn
@@ -72,7 +72,8 @@ def run(args: argparse.Namespace) -> int:
     )
     report = result.to_dict()
     if history is not None:
-        write_csv(history, result.history())
+        with staged_file(history, force=args.force) as stage:
+            write_csv(stage, result.history())
     if args.json:
         print_json(report)
     else:
