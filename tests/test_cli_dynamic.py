@@ -181,3 +181,22 @@ def test_a_history_write_that_fails_leaves_no_partial_file(capsys, tmp_path, mon
     code, _, err = run(capsys, "dynamic", "--no-estimate", "--history", str(history), *COARSE)
     assert code == 1 and "nothing partial is kept" in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_run_whose_boundary_reflects_the_waves_says_so_and_exits_1(capsys):
+    """--layer-rate 1e9 makes the far boundary reflect (0.79 of the radiated energy comes back on
+    this mesh; the studies allow 1e-2): the rebound is not a half-space's, so the run warns in
+    one line and exits 1 (it exited 0 without a word, e = 0.96 instead of 0.93)."""
+    code, out, err = run(capsys, "dynamic", "--layer-rate", "1e9", "--no-estimate", *COARSE)
+    assert code == 1 and "restitution e" in out
+    assert err.count("\n") == 1 and "reflected energy 7.9e-01 of the radiated exceeds 0.01" in err
+    assert "energy balance" not in err
+
+
+def test_the_dynamic_checks_name_each_failure():
+    from shtaerman.sweep.kinds import dynamic_check_failures
+
+    assert dynamic_check_failures(1e-3, 2e-3) == []
+    assert len(dynamic_check_failures(0.02, 0.5)) == 2
+    assert len(dynamic_check_failures(float("nan"), 0.0)) == 1
+    assert "reflected energy" in dynamic_check_failures(0.0, float("nan"))[0]
