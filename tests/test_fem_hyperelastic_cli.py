@@ -145,3 +145,36 @@ def test_bad_input_is_one_line(capsys, argv, names):
     code, out, err = run(capsys, "contact", *argv)
     assert code == 2 and out == ""
     assert names in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    ("depths", "message"),
+    [
+        # Newton failed after 109 s of halved load steps (the surface folds at d/a ~ 2)
+        ("0.05,0.1", "0.1 m gives depth / contact radius 2.01, beyond the neo-hookean"),
+        # 'refine the mesh' after 19 s: strains of 4e-10 have no digits left in F = I + grad u
+        ("1e-30,1e-29", "1e-30 m gives depth / contact radius 4.3e-10, below the neo-hookean"),
+    ],
+)
+def test_depths_the_finite_strain_contact_cannot_resolve_are_refused_at_once(
+    capsys, monkeypatch, depths, message
+):
+    import shtaerman.fem.finite_contact as finite
+
+    def never(*args, **kwargs):
+        raise AssertionError("the FEM ran")
+
+    monkeypatch.setattr(finite, "assemble_hyperelastic", never)
+    code, out, err = run(capsys, "contact", "--model", "neo-hookean", "--depths", depths)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert message in err and "[1e-06, 1.5]" in err
+
+
+def test_the_studies_depths_pass_the_finite_strain_check():
+    """The finite-strain study's depths (x/a from 0.01 up to 3 x_c of the paper's impact) lie
+    inside the range the check allows."""
+    from shtaerman.fem.finite_contact import check_finite_depths
+
+    x_c = 0.008517340195359727
+    depths = [float(PAPER.depth(1e-6)), 3 * x_c]  # d/a 0.009 and 1.27
+    check_finite_depths(PowerLawIndenter(5.0, 1.5), depths)

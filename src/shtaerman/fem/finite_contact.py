@@ -67,6 +67,7 @@ __all__ = [
     "ContactOutgrowsMeshError",
     "FiniteContactCurve",
     "FiniteContactStep",
+    "check_finite_depths",
     "run_finite_indentation",
     "solve_finite_contact",
 ]
@@ -74,6 +75,14 @@ __all__ = [
 FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
 iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
+
+MIN_DEPTH_RATIO = 1e-6
+"""Smallest depth / contact radius d/a (a: Shtaerman's, the small-strain limit) of a
+finite-strain step: the strains are of this order, and F = I + grad u keeps only ~1e-16 / (d/a)
+of them, too few digits for Newton's tolerance below it."""
+MAX_DEPTH_RATIO = 1.5
+"""Largest d/a: beyond it the surface folds over the indenter's flank and Newton fails after
+minutes of halved load steps (the studies stay below 1.3: reach <= 3 x_c)."""
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:
@@ -562,6 +571,36 @@ def _step(
     )
 
 
+def check_finite_depths(indenter: PowerLawIndenter, depths: ArrayLike) -> None:
+    """Refuse, before any work, depths (m) the finite-strain contact cannot resolve: d/a
+    (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        Naming the depth, its d/a and the range.
+    """
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    law = PowerLawContact(indenter, 1.0)  # d/a does not depend on the modulus
+    ratios = [(float(d), float(d / law.contact_radius(d))) for d in (depths[0], depths[-1])]
+    (small, low), (deep, high) = ratios
+    valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
+    if low < MIN_DEPTH_RATIO:
+        raise InputError(
+            f"depths: {small:g} m gives depth / contact radius {low:.2g}, below the "
+            f"neo-hookean model's {valid}: strains this small lose their digits in F = I + "
+            f"grad u; raise the smallest depth (the linear model is exact there)",
+            "depths",
+        )
+    if high > MAX_DEPTH_RATIO:
+        raise InputError(
+            f"depths: {deep:g} m gives depth / contact radius {high:.3g}, beyond the "
+            f"neo-hookean model's {valid}: the finite-strain contact does not converge "
+            f"there; lower the deepest depth",
+            "depths",
+        )
+
+
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
     return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
 
@@ -596,6 +635,7 @@ def run_finite_indentation(
     """
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
+    check_finite_depths(indenter, depths)
     mesh = FINITE_MESH if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])
     start = time.perf_counter()
