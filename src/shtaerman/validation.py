@@ -48,7 +48,8 @@ def shown(value: object) -> str:
     """``repr(value)`` for a message, short: a list, tuple or array of more than
     :data:`SHOWN_ITEMS` + 1 values shows its first ones and its length (``[1, 2, 3, 4, ...
     (100000 values)]``); any other long text is cut at :data:`SHOWN_CHARACTERS`."""
-    if isinstance(value, list | tuple | np.ndarray) and len(value) > SHOWN_ITEMS + 1:
+    listed = isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim)
+    if listed and len(value) > SHOWN_ITEMS + 1:  # type: ignore[arg-type]
         head = ", ".join(shown(item) for item in list(value[:SHOWN_ITEMS]))
         return f"[{head}, ... ({len(value)} values)]"
     text = repr(value)
