@@ -202,3 +202,17 @@ def test_a_fold_beyond_the_contact_edge_is_a_failure_not_a_numpy_warning():
         warnings.simplefilter("error")
         with pytest.raises(NumericalFailureError, match="zero gap"):
             _step(Folded(), PAPER, 1e-3, np.zeros(3), loaded, 1, 1, [])
+
+
+def test_a_smallest_depth_the_mesh_cannot_resolve_is_refused_before_newton():
+    """A smallest depth whose contact covers no surface node is refused before any Newton
+    step (from Shtaerman's contact radius); it ran and returned the numbers of no contact."""
+    from shtaerman.fem.finite_contact import run_finite_indentation
+    from shtaerman.fem.mesh import MeshSettings
+    from shtaerman.theory.materials import Material
+    from shtaerman.validation import InputError
+
+    coarse = MeshSettings(size=0.1, growth=0.3, domain=1e3, axis_size=0.1)  # no axis grading
+    depths = [1e-3 * 0.03**1.5, 1e-3]  # contact radii 7e-5 and 2.3e-3 m; elements 4.4e-4 m
+    with pytest.raises(InputError, match="covers no surface node besides the axis"):
+        run_finite_indentation(PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), depths, coarse)

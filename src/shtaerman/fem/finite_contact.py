@@ -457,6 +457,7 @@ def solve_finite_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
     stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
+    _check_resolved(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
@@ -512,6 +513,22 @@ def _reach(
         increment *= 2.0
         _check_edge(stepper, lam, trial)
     return history, iterations, total, corrections
+
+
+def _check_resolved(stepper: _Stepper, law: PowerLawContact, depth: float) -> None:
+    """Refuse, before any Newton step, a smallest ``depth`` (m) whose small-strain contact
+    radius covers no surface node besides the axis: its results would be those of no contact.
+    (One or two nodes run: a study's coarse ladder levels start there and mark such points
+    unresolved; the linear model asks :data:`shtaerman.fem.contact.MIN_CONTACT_NODES`.)"""
+    radius = float(law.contact_radius(depth))
+    covered = int(np.count_nonzero((stepper.nodes.radius > 0) & (stepper.nodes.radius < radius)))
+    if covered == 0:
+        raise InputError(
+            f"depth {depth:g} m: its contact (radius {radius:.3g} m) covers no surface node "
+            f"besides the axis: smaller than this mesh resolves; raise the smallest depth or "
+            f"refine the mesh",
+            "depths",
+        )
 
 
 def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
