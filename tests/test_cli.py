@@ -150,3 +150,24 @@ def test_verify_workers_is_checked_by_the_vocabulary(capsys, value):
     code, out, err = run(capsys, "verify", "paper", "--workers", value)
     assert code == 2 and out == ""
     assert err == f"shtaerman: error: --workers must be an integer in [1, 256], got '{value}'\n"
+
+
+def test_a_velocity_just_above_the_limit_is_printed_with_its_digits(capsys):
+    """5.0000001 m/s was printed with %g as '5 m/s exceeds 5 m/s'."""
+    code, _, err = run(capsys, "impact", "--velocity", "5.0000001")
+    assert code == 0 and "velocity 5.0000001 m/s exceeds 5 m/s" in err
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        # a negative list reads as a value, so the range check names it (was 'expected one
+        # argument', as argparse took '-1e-3,2e-3' for an option)
+        (["contact", "--depths", "-1e-3,2e-3"], "--depths must be > 0 m, got '-1e-3,2e-3'"),
+        (["impact", "--history", "-h.csv"], "attach it, --history=-VALUE"),
+    ],
+)
+def test_a_value_starting_with_a_dash_is_explained(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert message in err

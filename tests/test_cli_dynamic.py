@@ -163,3 +163,54 @@ def test_time_steps_not_an_integer_is_one_line(capsys, value):
     code, out, err = run(capsys, "dynamic", "--time-steps", value)
     assert code == 2 and out == "" and err.count("\n") == 1
     assert f"--time-steps must be an integer in [50, 1e5], got '{value}'" in err
+
+
+def test_force_replaces_an_existing_out_folder(capsys, tmp_path):
+    """--out EXISTING --force replaces the folder (the API was once called without force=, so
+    the run computed everything and then exited 2 with 'not empty (use --force)')."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "old.txt").write_text("old\n")
+    code, _, err = run(capsys, "dynamic", "--no-estimate", "--out", str(out), "--force", *COARSE)
+    assert code == 0 and err == ""
+    names = {path.name for path in out.iterdir()}
+    assert "dynamic.json" in names and "old.txt" not in names
+
+
+def test_a_history_write_that_fails_leaves_no_partial_file(capsys, tmp_path, monkeypatch):
+    """A --history write cut short (a file-size limit, a full disk) leaves no file behind: the
+    history is staged beside the target and renamed into place; written in place, the first
+    bytes stayed although the message says nothing partial is kept."""
+    import errno
+
+    import shtaerman.cli.dynamic as command
+
+    def cut_short(path, columns):
+        with open(path, "w") as stream:
+            stream.write("t [s],x [m]\n0,0\n")
+        raise OSError(errno.EFBIG, "File too large")
+
+    monkeypatch.setattr(command, "write_csv", cut_short)
+    history = tmp_path / "h.csv"
+    code, _, err = run(capsys, "dynamic", "--no-estimate", "--history", str(history), *COARSE)
+    assert code == 1 and "nothing partial is kept" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_run_whose_boundary_reflects_the_waves_says_so_and_exits_1(capsys):
+    """--layer-rate 1e9 makes the far boundary reflect (0.79 of the radiated energy comes back on
+    this mesh; the studies allow 1e-2): the rebound is not a half-space's, so the run warns in
+    one line and exits 1 (it exited 0 without a word, e = 0.96 instead of 0.93)."""
+    code, out, err = run(capsys, "dynamic", "--layer-rate", "1e9", "--no-estimate", *COARSE)
+    assert code == 1 and "restitution e" in out
+    assert err.count("\n") == 1 and "reflected energy 7.9e-01 of the radiated exceeds 0.01" in err
+    assert "energy balance" not in err
+
+
+def test_the_dynamic_checks_name_each_failure():
+    from shtaerman.study.dynamic.loader import dynamic_check_failures
+
+    assert dynamic_check_failures(1e-3, 2e-3) == []
+    assert len(dynamic_check_failures(0.02, 0.5)) == 2
+    assert len(dynamic_check_failures(float("nan"), 0.0)) == 1
+    assert "reflected energy" in dynamic_check_failures(0.0, float("nan"))[0]

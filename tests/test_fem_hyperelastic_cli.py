@@ -145,3 +145,74 @@ def test_bad_input_is_one_line(capsys, argv, names):
     code, out, err = run(capsys, "contact", *argv)
     assert code == 2 and out == ""
     assert names in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    ("depths", "message"),
+    [
+        # Newton failed after 109 s of halved load steps (as it does from d/a ~ 1.27)
+        ("0.05,0.1", "0.1 m gives depth / contact radius 2.01, beyond the neo-hookean"),
+        # 'refine the mesh' after 19 s: strains of 4e-10 have no digits left in F = I + grad u
+        ("1e-30,1e-29", "1e-30 m gives depth / contact radius 4.3e-10, below the neo-hookean"),
+    ],
+)
+def test_depths_the_finite_strain_contact_cannot_resolve_are_refused_at_once(
+    capsys, monkeypatch, depths, message
+):
+    import shtaerman.fem.finite_contact as finite
+
+    def never(*args, **kwargs):
+        raise AssertionError("the FEM ran")
+
+    monkeypatch.setattr(finite, "assemble_hyperelastic", never)
+    code, out, err = run(capsys, "contact", "--model", "neo-hookean", "--depths", depths)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert message in err and "[1e-06, 1.2]" in err
+
+
+def test_the_studies_depths_pass_the_finite_strain_check():
+    """Finite-strain study depths (x/a from 0.01 up to 2 x_c of the paper's impact) lie inside
+    the range the check allows."""
+    from shtaerman.fem.finite_contact import check_finite_depths
+
+    x_c = 0.008517340195359727
+    depths = [float(PAPER.depth(1e-6)), 2 * x_c]  # d/a 0.009 and 1.11
+    check_finite_depths(PowerLawIndenter(5.0, 1.5), depths)
+
+
+def test_a_fold_beyond_the_contact_edge_is_a_failure_not_a_numpy_warning():
+    """Free surface nodes lying on the indenter (zero gap past the last loaded node) made the
+    edge extrapolation divide 0 by 0: 'invalid value encountered in scalar divide' reached the
+    user and the contact radius was NaN. It is now one NumericalFailureError."""
+    import warnings
+
+    import numpy as np
+
+    from shtaerman.fem.finite_contact import _step
+    from shtaerman.validation import NumericalFailureError
+
+    radius = np.linspace(0.0, 1e-2, 41)
+    loaded = np.where(radius < 3e-3, 1.0, 0.0)
+
+    class Folded:
+        def geometry(self, x, depth):
+            return radius, np.zeros_like(radius), None, None
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(NumericalFailureError, match="zero gap"):
+            _step(Folded(), PAPER, 1e-3, np.zeros(3), loaded, 1, 1, [])
+
+
+def test_a_smallest_depth_the_mesh_cannot_resolve_is_refused_before_newton():
+    """A smallest depth whose contact covers no surface node is refused before any Newton
+    step (from Shtaerman's contact radius); it ran and returned the numbers of no contact."""
+    from shtaerman.fem.finite_contact import run_finite_indentation
+    from shtaerman.fem.mesh import MeshSettings
+    from shtaerman.theory.materials import Material
+    from shtaerman.validation import InputError
+
+    coarse = MeshSettings(size=0.1, growth=0.3, domain=1e3, axis_size=0.1)  # no axis grading
+    depths = [1e-3 * 0.03**1.5, 1e-3]  # contact radii 7e-5 and 2.3e-3 m; elements 4.4e-4 m
+    with pytest.raises(InputError, match="covers no surface node besides the axis"):
+        run_finite_indentation(PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), depths, coarse)

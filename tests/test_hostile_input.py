@@ -167,3 +167,31 @@ def test_contact_is_unit_free(indenter, depths, E):
 def test_a_soft_body_under_a_huge_contact_is_refused():
     with pytest.raises(InputError, match="E2 / contact zone radius"):
         _quick(PowerLawIndenter(5.0, 1.5), [1e3, 2e3], 1e-3)  # 1e-7 Pa/m: 6e-6 backward error
+
+
+def test_errors_show_a_few_values_of_a_long_list(tmp_path, capsys):
+    """A 100k-value list in a study file is named by its first values and its length (the whole
+    list, 1.3 MB, was echoed): StudyError formats the list itself, InputError shortens it."""
+    assert main(["init-study", str(tmp_path / "big.toml")]) == 0
+    text = (tmp_path / "big.toml").read_text()
+    sizes = ", ".join(f"{1e-3 + 1e-9 * i:.12g}" for i in range(100000))  # increasing: refused
+    text = text.replace("# [convergence]", "[convergence]")
+    text = text.replace("# sizes = [0.01887, 0.01333, 0.00943]", f"sizes = [{sizes}]")
+    (tmp_path / "big.toml").write_text(text)
+    capsys.readouterr()
+    code, _, err = run(capsys, "verify", str(tmp_path / "big.toml"), "--quick")
+    assert code == 2 and err.count("\n") == 1 and len(err) < 400
+    assert "got [0.001, 0.001000001, 0.001000002, 0.001000003, ... (100000 values)]" in err
+
+
+def test_shown_values_are_short():
+    from shtaerman.validation import shown, validate_increasing
+
+    assert shown([1.0, 2.0]) == "[1.0, 2.0]"
+    assert shown(list(range(10**5))) == "[0, 1, 2, 3, ... (100000 values)]"
+    assert shown(np.arange(6.0)).endswith(", ... (6 values)]")
+    assert shown(np.float64(2.5)) == repr(np.float64(2.5)) and shown(np.array(1.0))
+    assert shown("x" * 10**6).endswith("... (1000002 characters)")
+    with pytest.raises(InputError) as error:
+        validate_increasing("sizes", [f"{v}" for v in range(10**5, 0, -1)])
+    assert len(str(error.value)) < 200 and "(100000 values)" in str(error.value)

@@ -112,3 +112,44 @@ def test_an_unknown_kind_is_one_line_exit_2(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--kind" in err and "dynamic" in err and err.count("\n") == 1
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_force_under_a_file_size_limit_keeps_the_users_file(tmp_path):
+    """'ulimit -f 1' cuts the ~3 KB template short: the user's file stays as it was and no
+    stage is left (opened with 'w', the truncated template replaced it)."""
+    import resource
+    import subprocess
+    import sys
+
+    path = tmp_path / "mine.toml"
+    path.write_text("precious\n")
+
+    def limit():
+        resource.setrlimit(
+            resource.RLIMIT_FSIZE, (1024, resource.getrlimit(resource.RLIMIT_FSIZE)[1])
+        )
+
+    done = subprocess.run(
+        [sys.executable, "-m", "shtaerman", "init-study", str(path), "--force"],
+        capture_output=True,
+        text=True,
+        preexec_fn=limit,
+        check=False,
+    )
+    assert done.returncode == 2 and "cannot write" in done.stderr
+    assert done.stderr.count("\n") == 1
+    assert path.read_text() == "precious\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine.toml"]
+
+
+def test_a_file_name_that_is_not_utf8_is_written_whole(tmp_path, capsys):
+    """A name with a byte that is not UTF-8 (s\\xff.toml) gets the whole template, shown as
+    s\\xff in its text and in the message (it raised UnicodeEncodeError after creating an empty
+    file)."""
+    import os
+
+    path = tmp_path / os.fsdecode(b"s\xff.toml")
+    assert main(["init-study", str(path)]) == 0
+    assert "s\\xff.toml" in capsys.readouterr().out
+    text = path.read_bytes().decode("utf-8")
+    assert text.startswith("# A shtaerman cross-check study") and "s\\xff.toml --quick" in text

@@ -8,6 +8,7 @@ import contextlib
 import json
 import math
 import os
+import re
 import shutil
 from pathlib import Path
 
@@ -701,3 +702,39 @@ def test_study_file_names_were_never_sweep_keys(tmp_path):
     sweep it silently set the striker's E1 (and E2 in a contact sweep). It is unknown."""
     message = error_of(tmp_path, IMPACT.replace("mass = 0.7", "youngs_modulus = 4e6"))
     assert "unknown parameter 'youngs_modulus' for kind 'impact'" in message
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        # x_c underflows: each case failed at run time; the load check now solves the
+        # quasi-static impact of every case (a closed form) and refuses
+        (
+            'name = "t"\nkind = "impact"\n[parameters]\nvelocity = 1e-300\n[axes]\n'
+            "mass = [1e-300, 1.0]\n",
+            "case 0 (mass = 1e-300): mass 1e-300 kg and velocity 1e-300 m/s give x_c = 0",
+        ),
+        (
+            'name = "t"\nkind = "dynamic"\n[parameters]\nmass = 1e-300\n[axes]\n'
+            "velocity = [1e-300]\n",
+            "give x_c = 0",
+        ),
+        (
+            'name = "t"\nkind = "contact"\n[parameters]\nsolver = "pardiso"\n[axes]\n'
+            "nu2 = [0.3, 0.5]\n",
+            "solver 'pardiso' needs the package pypardiso",
+        ),
+        (
+            'name = "t"\nkind = "contact"\n[parameters]\ndepths = ['
+            + ", ".join(f"{1e-6 * (i + 1):g}" for i in range(1001))
+            + "]\n[axes]\nnu2 = [0.3, 0.5]\n",
+            "depths: at most 1000 per curve, got 1001",
+        ),
+    ],
+)
+def test_cases_that_cannot_run_are_refused_at_load(tmp_path, monkeypatch, text, message):
+    import shtaerman.fem.solver
+
+    monkeypatch.setattr(shtaerman.fem.solver, "available_backends", lambda: ["superlu"])
+    with pytest.raises(SweepError, match=re.escape(message)):
+        parse_sweep(text, tmp_path / "s.toml")

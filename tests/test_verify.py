@@ -318,3 +318,24 @@ def test_study_files_that_cannot_be_read_are_one_line(tmp_path, capsys):
         err = capsys.readouterr().err
         assert err.startswith(f"shtaerman: error: {path}: {needle}") and err.count("\n") == 1
     assert not (tmp_path / "run").exists()
+
+
+def test_too_many_study_depths_are_refused_before_the_run(tmp_path, capsys, monkeypatch):
+    """1001 depths in a study were refused by the FEM only once the run (and its progress bar)
+    had started; the check now runs with the others, before the output folder is made."""
+    import shtaerman.output.folder as folder
+
+    def never(*args, **kwargs):
+        raise AssertionError("the run started")
+
+    monkeypatch.setattr(folder, "run_verification", never)
+    path = tmp_path / "many.toml"
+    assert main(["init-study", str(path)]) == 0
+    depths = ", ".join(f"{1e-6 * (i + 1):g}" for i in range(1001))
+    path.write_text(path.read_text().replace('depths = "impact"', f"depths = [{depths}]"))
+    capsys.readouterr()
+    code = main(["verify", str(path), "--quick", "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1
+    assert "contact.depths: at most 1000 per curve, got 1001" in err
+    assert not (tmp_path / "out").exists()

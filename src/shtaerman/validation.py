@@ -7,6 +7,7 @@ the parameter, the value given and the valid range; the CLI prints that line and
 from __future__ import annotations
 
 import math
+import re
 import sys
 from collections.abc import Sequence
 
@@ -15,6 +16,7 @@ import numpy as np
 __all__ = [
     "InputError",
     "NumericalFailureError",
+    "shown",
     "validate_increasing",
     "validate_poisson",
     "validate_positive",
@@ -31,8 +33,42 @@ class InputError(ValueError):
     """
 
     def __init__(self, message: str, parameter: str | None = None) -> None:
-        super().__init__(message)
+        super().__init__(_abbreviated(message))
         self.parameter = parameter
+
+
+SHOWN_ITEMS = 4
+"""A message shows this many items of a longer list, then how many it holds."""
+SHOWN_CHARACTERS = 200
+"""A message shows at most this many characters of a value."""
+_FLAT_LIST = re.compile(r"\[([^\[\]'\"]*)\]")
+
+
+def shown(value: object) -> str:
+    """``repr(value)`` for a message, short: a list, tuple or array of more than
+    :data:`SHOWN_ITEMS` + 1 values shows its first ones and its length (``[1, 2, 3, 4, ...
+    (100000 values)]``); any other long text is cut at :data:`SHOWN_CHARACTERS`."""
+    listed = isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim)
+    if listed and len(value) > SHOWN_ITEMS + 1:  # type: ignore[arg-type]
+        head = ", ".join(shown(item) for item in list(value[:SHOWN_ITEMS]))
+        return f"[{head}, ... ({len(value)} values)]"
+    text = repr(value)
+    if len(text) > SHOWN_CHARACTERS:
+        return f"{text[:SHOWN_CHARACTERS]}... ({len(text)} characters)"
+    return text
+
+
+def _abbreviated(message: str) -> str:
+    """``message`` with every long flat list written in it shortened as :func:`shown` does,
+    whoever formatted it."""
+
+    def short(match: re.Match[str]) -> str:
+        items = match[1].split(", ")
+        if len(items) <= SHOWN_ITEMS + 1:
+            return match[0]
+        return f"[{', '.join(items[:SHOWN_ITEMS])}, ... ({len(items)} values)]"
+
+    return _FLAT_LIST.sub(short, message)
 
 
 class NumericalFailureError(RuntimeError):
@@ -42,13 +78,13 @@ class NumericalFailureError(RuntimeError):
 
 def _as_float(name: str, value: object, valid: str) -> float:
     if isinstance(value, bool | np.bool_):  # True == 1, but a flag is no quantity
-        raise InputError(f"{name} must be a finite number {valid}, got {value!r}", name)
+        raise InputError(f"{name} must be a finite number {valid}, got {shown(value)}", name)
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
         number = math.nan
     if not math.isfinite(number):
-        raise InputError(f"{name} must be a finite number {valid}, got {value!r}", name)
+        raise InputError(f"{name} must be a finite number {valid}, got {shown(value)}", name)
     return number
 
 
@@ -57,11 +93,11 @@ def validate_positive(name: str, value: object, unit: str = "") -> float:
     valid = f"> 0 {unit}".rstrip()
     number = _as_float(name, value, valid)
     if number <= 0:
-        raise InputError(f"{name} must be {valid}, got {value!r}", name)
+        raise InputError(f"{name} must be {valid}, got {shown(value)}", name)
     if number < sys.float_info.min:  # subnormal: the number itself has lost its digits
         raise InputError(
             f"{name} must be {valid} and at least {sys.float_info.min:.4g} (the smallest "
-            f"normal float), got {value!r}",
+            f"normal float), got {shown(value)}",
             name,
         )
     return number
@@ -78,7 +114,7 @@ def validate_poisson(name: str, value: object, low: float = -1.0) -> float:
     number = _as_float(name, value, f"in {valid}")
     inside = -1.0 < number <= 0.5 if low == -1.0 else low <= number <= 0.5
     if not inside:
-        raise InputError(f"{name} (Poisson's ratio) must lie in {valid}, got {value!r}", name)
+        raise InputError(f"{name} (Poisson's ratio) must lie in {valid}, got {shown(value)}", name)
     return number
 
 
@@ -88,5 +124,5 @@ def validate_increasing(name: str, values: Sequence[object], unit: str = "") -> 
     if numbers.size == 0:
         raise InputError(f"{name} must list at least one value", name)
     if np.any(np.diff(numbers) <= 0):
-        raise InputError(f"{name} must be strictly increasing, got {list(values)!r}", name)
+        raise InputError(f"{name} must be strictly increasing, got {shown(list(values))}", name)
     return numbers

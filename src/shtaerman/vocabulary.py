@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .validation import InputError
+from .validation import InputError, shown
 
 __all__ = [
     "KIND_NAMES",
@@ -212,7 +212,7 @@ class Entry:
                 value = math.inf
         else:
             value = text
-        return self.check(value, kind, called=called, given=repr(text))
+        return self.check(value, kind, called=called, given=shown(text))
 
 
 def _float(text: str) -> float | str:
@@ -231,7 +231,7 @@ class _Says:
     given: str = ""
 
     def error(self, item: Entry, verdict: str, value: Any) -> InputError:
-        return InputError(f"{self.called} {verdict}, got {self.given or repr(value)}", item.name)
+        return InputError(f"{self.called} {verdict}, got {self.given or shown(value)}", item.name)
 
 
 def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | int:

@@ -332,6 +332,9 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
         striker=options["striker"],
     )
     if model == "neo-hookean":
+        from ..fem.finite_contact import check_finite_depths
+
+        check_finite_depths(indenter, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
     if estimate:
         _check_coarsest(mesh, refine)

@@ -49,17 +49,27 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
 class Parser(argparse.ArgumentParser):
     """argparse that reports a usage error as one line (no usage dump) with exit code 2.
 
-    It also reads ``-2e11`` as a (negative) number, so the range check can name it, rather than
-    as an unknown option.
+    It also reads ``-2e11`` and ``-1e-3,2e-3`` as (negative) numbers, so the range check can
+    name them, rather than as an unknown option; a value that still reads as an option is
+    explained (attach it: ``--history=-h.csv``).
     """
 
     def __init__(self, *args, **kwargs) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*-?{_NUMBER})*,?$")
 
     def error(self, message: str) -> None:  # type: ignore[override]
+        missing = re.fullmatch(r"argument ([^/:]+)\S*: expected one argument", message)
+        if missing:
+            option = missing[1]
+            message += (
+                f" (a value that starts with '-' reads as an option: attach it, {option}=-VALUE)"
+            )
         raise InputError(message)
+
+
+_NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
 
 
 METAVARS = {

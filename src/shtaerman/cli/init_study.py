@@ -6,6 +6,7 @@ import argparse
 import os
 from pathlib import Path
 
+from ..output.files import staged_file
 from ..validation import InputError
 from .common import add_inputs
 
@@ -192,6 +193,9 @@ def write_template(path: Path, *, force: bool = False, kind: str = "contact") ->
     """Write the template of study ``kind`` (:data:`TEMPLATES`) to ``path`` (a new file unless
     ``force``); returns it.
 
+    The file appears whole or not at all: it is written beside ``path`` and renamed into place,
+    so a write cut short (a full disk, a file-size limit) leaves the file there untouched.
+
     Raises
     ------
     shtaerman.validation.InputError
@@ -200,24 +204,29 @@ def write_template(path: Path, *, force: bool = False, kind: str = "contact") ->
     """
     if kind not in TEMPLATES:
         raise InputError(f"kind must be one of {sorted(TEMPLATES)}, got {kind!r}")
+    shown = display_path(path)
     if path.suffix != ".toml":
-        raise InputError(f"FILE must end in .toml, got '{path}'")
+        raise InputError(f"FILE must end in .toml, got '{shown}'")
     if path.is_symlink() or (path.exists() and not path.is_file()):
-        raise InputError(f"'{path}' exists and is not a regular file; pick another FILE")
-    text = TEMPLATES[kind].format(file=path, name=path.stem)
-    mode = "w" if force else "x"
+        raise InputError(f"'{shown}' exists and is not a regular file; pick another FILE")
+    if path.exists() and not force:
+        raise InputError(f"'{shown}' exists; use --force to replace it")
+    text = TEMPLATES[kind].format(file=shown, name=display_path(Path(path.stem)))
     try:
-        with path.open(mode, encoding="utf-8") as stream:
-            stream.write(text)
-    except FileExistsError:
-        raise InputError(f"'{path}' exists; use --force to replace it") from None
+        with staged_file(path, force=force, option="FILE") as stage:
+            stage.write_text(text, encoding="utf-8")
     except OSError as error:
-        raise InputError(f"cannot write '{path}': {error.strerror or error}") from None
+        raise InputError(f"cannot write '{shown}': {error.strerror or error}") from None
     return path
+
+
+def display_path(path: Path) -> str:
+    """``path`` as printable text: bytes that are not UTF-8 in its name shown as ``\\xff``."""
+    return os.fsencode(path).decode("utf-8", "backslashreplace")
 
 
 def run(args: argparse.Namespace) -> int:
     """Write the template and say how to run it."""
-    path = write_template(Path(os.fspath(args.file)), force=args.force, kind=args.kind)
+    path = display_path(write_template(Path(args.file), force=args.force, kind=args.kind))
     print(f"wrote {path}: edit it, then run 'shtaerman verify {path} --quick'")
     return 0

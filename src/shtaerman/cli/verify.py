@@ -63,6 +63,7 @@ def run(args: argparse.Namespace) -> int:
     paths = [find_study(name) for name in args.studies] or shipped_studies()
     studies = [study for path in paths for study in load_study(path)]
     _check_unique_names(studies)
+    _check_depth_counts(studies)
     marker = PROGRESS_FILE if args.resume else None
     out = check_output_folder(
         Path(args.out) if args.out is not None else default_out(),
@@ -91,6 +92,21 @@ def run(args: argparse.Namespace) -> int:
         return 130 if isinstance(stop.cause, KeyboardInterrupt) else 143
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
+
+
+def _check_depth_counts(studies: list) -> None:
+    """Raise InputError, before anything runs, when a study lists more depths than one FEM
+    curve takes (:data:`shtaerman.fem.contact.MAX_DEPTHS`)."""
+    from ..fem.contact import MAX_DEPTHS
+
+    for study in studies:
+        depths = getattr(study, "depths", None) or ()
+        if len(depths) > MAX_DEPTHS:
+            raise InputError(
+                f"{study.source}: study {study.name!r}: contact.depths: at most {MAX_DEPTHS} "
+                f"per curve, got {len(depths)}",
+                "depths",
+            )
 
 
 def _check_unique_names(studies: list) -> None:

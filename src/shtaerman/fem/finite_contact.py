@@ -49,7 +49,7 @@ from numpy.typing import ArrayLike
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
-from ..validation import InputError, validate_poisson
+from ..validation import InputError, NumericalFailureError, validate_poisson
 from .contact import EDGE_MARGIN, central_pressure, edge_radius
 from .elasticity import dof_nodes
 from .hyperelastic import (
@@ -67,6 +67,7 @@ __all__ = [
     "ContactOutgrowsMeshError",
     "FiniteContactCurve",
     "FiniteContactStep",
+    "check_finite_depths",
     "run_finite_indentation",
     "solve_finite_contact",
 ]
@@ -74,6 +75,14 @@ __all__ = [
 FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
 iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
+
+MIN_DEPTH_RATIO = 1e-6
+"""Smallest depth / contact radius d/a (a: Shtaerman's, the small-strain limit) of a
+finite-strain step: the strains are of this order, and F = I + grad u keeps only ~1e-16 / (d/a)
+of them, too few digits for Newton's tolerance below it."""
+MAX_DEPTH_RATIO = 1.2
+"""Largest d/a: a little beyond it Newton fails, after minutes of halved load steps (the
+shipped studies stay near 0.9: reach 1.1 x_c)."""
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:
@@ -448,6 +457,7 @@ def solve_finite_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
     stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
+    _check_resolved(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
@@ -505,12 +515,30 @@ def _reach(
     return history, iterations, total, corrections
 
 
+def _check_resolved(stepper: _Stepper, law: PowerLawContact, depth: float) -> None:
+    """Refuse, before any Newton step, a smallest ``depth`` (m) whose small-strain contact
+    radius covers no surface node besides the axis: its results would be those of no contact.
+    (One or two nodes run: a study's coarse ladder levels start there and mark such points
+    unresolved; the linear model asks :data:`shtaerman.fem.contact.MIN_CONTACT_NODES`.)"""
+    radius = float(law.contact_radius(depth))
+    covered = int(np.count_nonzero((stepper.nodes.radius > 0) & (stepper.nodes.radius < radius)))
+    if covered == 0:
+        raise InputError(
+            f"depth {depth:g} m: its contact (radius {radius:.3g} m) covers no surface node "
+            f"besides the axis: smaller than this mesh resolves; raise the smallest depth or "
+            f"refine the mesh",
+            "depths",
+        )
+
+
 def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
     """Linear extrapolation in depth from the last two converged states."""
     d1, x1, lam1 = history[-1]
     if len(history) < 2:
         return x1, lam1
     d0, x0, lam0 = history[-2]
+    if d1 == d0:
+        return x1, lam1
     t = (depth - d1) / (d1 - d0)
     return x1 + t * (x1 - x0), np.maximum(lam1 + t * (lam1 - lam0), 0.0)
 
@@ -540,7 +568,13 @@ def _step(
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
     pressure = _recover_pressure(r, lam)
-    radius = edge_radius(r, lam, gap)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a fold: checked just below
+        radius = edge_radius(r, lam, gap)
+    if not np.isfinite(radius):
+        raise NumericalFailureError(
+            f"depth {depth:g} m: the free surface beyond the contact edge lies on the indenter "
+            f"(zero gap), so the contact radius is undefined; lower the deepest depth"
+        )
     return FiniteContactStep(
         depth=float(depth),
         force=float(lam.sum()),
@@ -560,6 +594,36 @@ def _step(
         pressure=pressure,
         corrections=corrections,
     )
+
+
+def check_finite_depths(indenter: PowerLawIndenter, depths: ArrayLike) -> None:
+    """Refuse, before any work, depths (m) the finite-strain contact cannot resolve: d/a
+    (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        Naming the depth, its d/a and the range.
+    """
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    law = PowerLawContact(indenter, 1.0)  # d/a does not depend on the modulus
+    ratios = [(float(d), float(d / law.contact_radius(d))) for d in (depths[0], depths[-1])]
+    (small, low), (deep, high) = ratios
+    valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
+    if low < MIN_DEPTH_RATIO:
+        raise InputError(
+            f"depths: {small:g} m gives depth / contact radius {low:.2g}, below the "
+            f"neo-hookean model's {valid}: strains this small lose their digits in F = I + "
+            f"grad u; raise the smallest depth (the linear model is exact there)",
+            "depths",
+        )
+    if high > MAX_DEPTH_RATIO:
+        raise InputError(
+            f"depths: {deep:g} m gives depth / contact radius {high:.3g}, beyond the "
+            f"neo-hookean model's {valid}: the finite-strain contact does not converge "
+            f"there; lower the deepest depth",
+            "depths",
+        )
 
 
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
@@ -596,6 +660,7 @@ def run_finite_indentation(
     """
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
+    check_finite_depths(indenter, depths)
     mesh = FINITE_MESH if mesh is None else mesh
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])
     start = time.perf_counter()

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..validation import InputError
+from ..validation import InputError, shown
 from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, deprecated, suggestion
 from .kinds import KINDS, Kind, Parameter, get_kind
 
@@ -211,7 +211,7 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
     kind = _kind(where, data)
     description = data.get("description", "")
     if not isinstance(description, str):
-        raise SweepError(f"{where}: description must be a string, got {description!r}")
+        raise SweepError(f"{where}: description must be a string, got {shown(description)}")
     parameters = _renamed(
         where, "parameters", kind, _table(where, data, "parameters", required=False)
     )
@@ -246,7 +246,7 @@ def _name(where: str, data: Mapping[str, Any]) -> str:
     ):
         raise SweepError(
             f"{where}: name must be a plain folder name (letters, digits, '_', '-', '.'; no "
-            f"'/', '..' or leading dot; at most 100 characters), got {name!r}"
+            f"'/', '..' or leading dot; at most 100 characters), got {shown(name)}"
         )
     return name
 
@@ -271,7 +271,7 @@ def _table(where: str, data: Mapping[str, Any], key: str, *, required: bool) -> 
         return {}
     table = data[key]
     if not isinstance(table, dict):
-        raise SweepError(f"{where}: {key} must be a table [{key}], got {table!r}")
+        raise SweepError(f"{where}: {key} must be a table [{key}], got {shown(table)}")
     return dict(table)
 
 
@@ -285,7 +285,7 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
     parameter = kind.parameters[name]
     converted = _convert(parameter, value)
     if converted is None:
-        raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {value!r}")
+        raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
     return converted
 
 
@@ -329,7 +329,7 @@ def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
             f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
         )
     if not isinstance(values, list):
-        raise SweepError(f"{where}: {key} must be a list of values, got {values!r}")
+        raise SweepError(f"{where}: {key} must be a list of values, got {shown(values)}")
     if not values:
         raise SweepError(f"{where}: {key} is empty; give at least one value")
     converted = [_value(where, f"{key}[{i}]", kind, name, v) for i, v in enumerate(values)]

@@ -184,7 +184,8 @@ class ImpactResult:
 def _check_velocity(velocity: float) -> None:
     if velocity > QUASI_STATIC_VELOCITY_LIMIT:
         warnings.warn(
-            f"velocity {velocity:g} m/s exceeds {QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
+            f"velocity {repr(float(velocity)).removesuffix('.0')} m/s exceeds "
+            f"{QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
             "validity of the quasi-static impact theory; results are outside it",
             QuasiStaticValidityWarning,
             stacklevel=3,

@@ -56,7 +56,7 @@ from ..schema import (
 )
 from .accuracy import check_ladder
 
-__all__ = ["DynamicStudy", "DynamicTolerances", "load_dynamic"]
+__all__ = ["DynamicStudy", "DynamicTolerances", "dynamic_check_failures", "load_dynamic"]
 
 
 class _DynIndenter(Table):
@@ -241,3 +241,22 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
             tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
         )
     ]
+
+
+def dynamic_check_failures(balance: float, reflected: float) -> list[str]:
+    """What a dynamic run fails of the studies' own checks (:class:`DynamicTolerances`): its
+    energy balance error (of M v0^2/2) and the energy reflected back by the far boundary (of
+    the radiated energy), one reason each; [] when both hold (NaN fails)."""
+    limits, failures = DynamicTolerances(), []
+    if not balance <= limits.energy_balance:
+        failures.append(
+            f"energy balance error {balance:.1e} of M v0^2/2 exceeds {limits.energy_balance:g}: "
+            "the mesh and time steps do not resolve this impact"
+        )
+    if not reflected <= limits.reflected:
+        failures.append(
+            f"reflected energy {reflected:.1e} of the radiated exceeds {limits.reflected:g}: "
+            "the far boundary sends the waves back to the contact (domain_factor or layer_rate "
+            "do not absorb them)"
+        )
+    return failures
