@@ -32,6 +32,7 @@ from .kinds import kind_function, study_kinds
 
 __all__ = [
     "StudyError",
+    "SweepTable",
     "fem_input_error",
     "find_study",
     "load_study",
@@ -85,6 +86,23 @@ def ranged(name: str, kind: str | None = None) -> Any:
 
 class Table(msgspec.Struct, forbid_unknown_fields=True, frozen=True):
     """A TOML table: unknown keys are errors."""
+
+
+class SweepTable(Table):
+    """A study file's ``[sweep]``: exactly one of its fields, a list of values (a kind's
+    subclass declares the fields it may sweep)."""
+
+    def chosen(self) -> tuple[str, list[float]]:
+        """The swept key and its values."""
+        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
+        if len(given) != 1 or not next(iter(given.values())):
+            raise ValueError(
+                f"expected exactly one of {sorted(self.__struct_fields__)} with a list of values"
+            )
+        return next(iter(given.items()))
+
+    def __post_init__(self) -> None:
+        self.chosen()
 
 
 class IndenterTable(Table):

@@ -55,6 +55,7 @@ from ..schema import (
     Relative,
     StrikerTable,
     StudyError,
+    SweepTable,
     Table,
     decode,
     validate_name,
@@ -97,20 +98,11 @@ class _Convergence(Table):
             raise ValueError(f"sizes: {EXPECTED['sizes']}")
 
 
-class _Sweep(Table):
+class _Sweep(SweepTable):
     shape_coefficient: list[Positive] | None = None
     exponent: list[Positive] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
-
-    def chosen(self) -> tuple[str, list[float]]:
-        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
-        if len(given) != 1 or not next(iter(given.values())):
-            raise ValueError(f"expected exactly one of {sorted(SYMBOLS)} with a list of values")
-        return next(iter(given.items()))
-
-    def __post_init__(self) -> None:
-        self.chosen()
 
 
 class _StudyFile(Table):

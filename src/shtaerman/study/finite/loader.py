@@ -44,6 +44,7 @@ from ..schema import (
     Positive,
     Relative,
     StudyError,
+    SweepTable,
     Table,
     decode,
     ranged,
@@ -86,19 +87,10 @@ class _Tolerances(Table):
     complementarity: Relative = 1e-6
 
 
-class _Sweep(Table):
+class _Sweep(SweepTable):
     nu2: list[Poisson] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
-
-    def chosen(self) -> tuple[str, list[float]]:
-        given = {k: v for k, v in msgspec.structs.asdict(self).items() if v is not None}
-        if len(given) != 1 or not next(iter(given.values())):
-            raise ValueError(f"expected exactly one of {sorted(SWEEPABLE)} with a list of values")
-        return next(iter(given.items()))
-
-    def __post_init__(self) -> None:
-        self.chosen()
 
 
 class _FiniteFile(Table):
