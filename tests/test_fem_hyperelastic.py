@@ -383,3 +383,12 @@ def test_the_fallback_factorization_gives_the_same_contact(monkeypatch):
         # the Newton floor of ~2e-10 of the depth moves them by up to 4e-11)
         assert a.force == pytest.approx(b.force, rel=1e-9)
         assert a.contact_radius == pytest.approx(b.contact_radius, rel=1e-9)
+
+
+def test_depths_that_do_not_increase_are_an_input_error():
+    # the depth list is checked where it enters (CLI, study file, API); a direct caller of the
+    # FEM with depths out of order got an UnboundLocalError from the load stepping
+    indenter, depth = _blunt(1.5, 2e-3)
+    depths = [0.5 * depth, depth, 0.75 * depth]
+    with pytest.raises(InputError, match=r"depths must be strictly increasing"):
+        run_finite_indentation(indenter, Material(E2, 0.5), depths, COARSE)

@@ -280,7 +280,6 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     """contact.json, the curve CSVs and VTU fields, and (linear model) the curve figures."""
     from ..output import export
-    from ..output.files import json_safe
     from ..output.finite import write_finite_curve
     from ..plots.gallery import contact_figures
 
@@ -289,7 +288,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     else:
         export.write_indentation(result.solution, folder)
         contact_figures(result.solution, folder, figure_format)
-    (folder / "contact.json").write_text(json.dumps(json_safe(result.to_dict()), indent=2))
+    (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
 
 
 def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:

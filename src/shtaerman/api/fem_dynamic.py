@@ -160,10 +160,10 @@ def _write_folder(result: DynamicResult, folder: Path) -> None:
     import meshio
 
     from ..output.export import field_mesh
-    from ..output.files import json_safe, write_csv
+    from ..output.files import write_csv
 
     solution = result.solution
-    (folder / "dynamic.json").write_text(json.dumps(json_safe(result.to_dict()), indent=2))
+    (folder / "dynamic.json").write_text(json.dumps(result.to_dict(), indent=2))
     write_csv(folder / "history.csv", result.history())
     write_csv(
         folder / "energies.csv",

@@ -481,12 +481,16 @@ def _reach(
 
     Raises
     ------
+    InputError
+        If ``target`` is not beyond the last converged depth.
     NewtonError
         After ``max_cuts`` consecutive halvings.
     ContactOutgrowsMeshError
         The contact zone reached the edge of the candidate region.
     """
     done = history[-1][0]
+    if not target > done:  # the depths are checked where they enter; a direct caller too
+        raise InputError(f"depths must be strictly increasing, got {target:g} m after {done:g} m")
     increment = target - done
     total = 0
     cuts = 0

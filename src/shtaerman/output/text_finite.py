@@ -11,8 +11,9 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
-from ..study.finite.accuracy import CROSSING_KEYS, resolved
+from ..study.finite.accuracy import CROSSING_KEYS
 from ..study.finite.runner import FiniteStudyOutcome
+from ..study.limits import resolved
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables
@@ -120,7 +121,7 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
 
 def _crossing_words(entry: Mapping[str, Any]) -> str:
     level = f"{entry['level']:.0%}"
-    if "departure_error" in entry and not resolved(entry["level"], entry["departure_error"]):
+    if "departure_error" in entry and not resolved(entry["departure_error"], entry["level"]):
         return (
             f"to {level}: not resolved (the departure's estimated error there, "
             f"{entry['departure_error']:.1e}, is not below a fifth of {level})"
@@ -249,7 +250,7 @@ def _validity_cell(entry: Mapping[str, Any], key: str, scale: float, fmt: str) -
 def _decided(entry: Mapping[str, Any]) -> str:
     if "departure_error" not in entry:
         return "not estimated (quick)"
-    verdict = resolved(entry["level"], entry["departure_error"])
+    verdict = resolved(entry["departure_error"], entry["level"])
     return f"{entry['departure_error']:.1e} ({'' if verdict else 'not '}resolved)"
 
 
@@ -295,14 +296,14 @@ def entry(
 def _depth(entry: Mapping[str, Any] | None) -> str:
     """A depth limit: x/a and the impact velocity reaching it, ± their estimated errors in
     the value's unit; "not resolved" where the departure's estimated error there is not below
-    a fifth of the level (:func:`shtaerman.study.finite.accuracy.resolved`)."""
+    a fifth of the level (:func:`shtaerman.study.limits.resolved`)."""
     if not entry or entry.get("depth_to_radius") is None:
         return "-"
     ratio, velocity = entry["depth_to_radius"], entry["velocity"]
     if "departure_error" not in entry:
         return f"x/a = {ratio:.2f} (v0 = {velocity:.2g} m/s; not estimated)"
     error = entry["departure_error"]
-    if error is None or not resolved(entry["level"], error):
+    if not resolved(error, entry["level"]):
         return f"not resolved (estimated error of the departure {number(error, '.1e')})"
     errors = entry.get("errors") or {}
 

@@ -30,7 +30,7 @@ from matplotlib.patches import Rectangle
 from ..plots.formats import check_figure_format
 from ..plots.labels import LABELS, axis_label, describe
 from ..plots.labels import scale as shown_scale
-from ..plots.style import points, save, si_prefix
+from ..plots.style import points, save, si_prefix, unresolved
 from ..study.limits import RESOLUTION, resolved
 
 __all__ = ["sweep_figures"]
@@ -79,14 +79,6 @@ def _contours(ax: Any, grid: np.ndarray, errors: np.ndarray, levels: list[float]
             ax.clabel(drawn, fmt={level: f"{100 * level:g} %"}, fontsize=8)
 
 
-def _unresolved(values: np.ndarray, errors: np.ndarray | None) -> np.ndarray:
-    """Cases whose estimated error is not below the value's own size (an effect not seen)."""
-    if errors is None:
-        return np.zeros(values.shape, dtype=bool)
-    with np.errstate(invalid="ignore"):
-        return np.isfinite(values) & ~(errors < np.abs(values))
-
-
 PREFIXED = ("m", "s", "N", "Pa")
 """SI units shown with a prefix that puts the values in [1, 1000) (mm, ms, kN, MPa)."""
 
@@ -124,7 +116,7 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
     x = x_factor * x
     raw, errors = _output_values(results["cases"], name), _errors(results, name)
     factor, y_label = _display(name, unit, raw)
-    y, open_ = factor * raw, _unresolved(raw, errors)
+    y, open_ = factor * raw, np.isfinite(raw) & unresolved(raw, errors)
     figure = Figure(figsize=(6.0, 4.0), layout="constrained")
     ax = figure.add_subplot()
     bars = None if errors is None else factor * errors
@@ -158,7 +150,7 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     grid = _output_values(results["cases"], name).reshape(len(rows), len(cols))
     errors = _errors(results, name)
     errors = None if errors is None else errors.reshape(grid.shape)
-    open_ = _unresolved(grid, errors)
+    open_ = np.isfinite(grid) & unresolved(grid, errors)
     figure = Figure(figsize=(1.2 * len(cols) + 3.0, 0.6 * len(rows) + 2.8), layout="constrained")
     ax = figure.add_subplot()
     factor, label = _display(name, unit, grid)

@@ -12,7 +12,8 @@ The depths where the departure |P/P_linear-FEM - 1| reaches 1 % and 5 % get the 
 estimates: Richardson's over the three levels' crossings, and how far the finest crossing moves
 when every departure moves by its own estimated error (two neighbouring depths decide a
 crossing, and the three levels' crossings may agree by chance). A crossing is *resolved* when
-the estimated error of the departure there is below :data:`RESOLVED_FRACTION` of its level.
+the estimated error of the departure there is below a fifth of its level
+(:func:`shtaerman.study.limits.resolved`).
 
 There is no exact solution here: what the estimator is worth is measured against finer meshes
 in ``benchmarks/bench_finite_strain.py`` (f).
@@ -33,13 +34,11 @@ from ..richardson import Estimate, richardson
 
 __all__ = [
     "CROSSING_KEYS",
-    "RESOLVED_FRACTION",
     "STEP_KEYS",
     "FiniteEstimates",
     "LevelOutcome",
     "estimate_study",
     "reported_values",
-    "resolved",
 ]
 
 STEP_KEYS = ("force_ratio", "force_ratio_fem", "radius_ratio", "central_to_mean", "strain_energy")
@@ -52,9 +51,6 @@ IMPACT_KEYS = ("x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 FEM impact's."""
 CROSSING_KEYS = ("depth_to_radius", "depth", "velocity")
 """What a 1 % / 5 % crossing reports (x/a, depth in m, impact velocity in m/s)."""
-RESOLVED_FRACTION = 0.2
-"""A crossing is stated only where the departure's estimated error is below this fraction
-of its level (1 % -> 2e-3 of force)."""
 
 
 class LevelOutcome(Protocol):
@@ -71,12 +67,6 @@ class LevelOutcome(Protocol):
     def at_maximum(self) -> dict[str, float]: ...
 
     def validity(self, departure_shift: ArrayLike = 0.0) -> list[dict[str, Any]]: ...
-
-
-def resolved(level: float, departure_error: float) -> bool:
-    """Whether a departure level (e.g. 0.01) is resolved by a departure error (absolute, same
-    unit: a fraction of the force) below :data:`RESOLVED_FRACTION` of it."""
-    return bool(departure_error < RESOLVED_FRACTION * level)
 
 
 @dataclass(frozen=True)
