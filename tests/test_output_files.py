@@ -327,3 +327,31 @@ def test_a_killed_run_that_had_filled_its_folder_keeps_the_one_it_replaced(tmp_p
     [warning] = caught
     assert f"run.replaced-{pid}" in str(warning.message)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run", f"run.replaced-{pid}"]
+
+
+def test_a_forced_run_marks_the_folder_it_replaced_superseded_once_published(
+    tmp_path, monkeypatch
+):
+    """A run killed while deleting its stage, after the new folder is in place: the old one
+    is marked superseded first, so the next run neither keeps it as NAME.replaced-PID nor
+    warns (it did, for verify and contact --force, as if a sweep had been interrupted)."""
+    import shutil
+    import warnings
+
+    target = tmp_path / "run"
+    target.mkdir()
+    (target / "old.txt").write_text("old")
+    stages = []
+    monkeypatch.setattr(shutil, "rmtree", lambda path, **kw: stages.append(path))  # killed
+    with staged_folder(target, force=True) as stage:
+        (stage / "new.txt").write_text("new")
+    monkeypatch.undo()
+    [stage] = stages
+    assert sorted(p.name for p in stage.iterdir()) == ["superseded"]
+    stage.rename(tmp_path / f".run.partial-{dead_pid()}")  # left by a process now dead
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with staged_folder(target, force=True) as again:  # the next run cleans it silently
+            (again / "newer.txt").write_text("newer")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    assert (target / "newer.txt").read_text() == "newer"

@@ -385,9 +385,11 @@ def staged_folder(
         except KeepStaged as keep:
             _publish(content, target, option)
             reserved = False
+            _discard(retired)
             raise keep.reason from None
         _publish(content, target, option)
         reserved = False
+        _discard(retired)
     except BaseException:
         if reserved:
             with contextlib.suppress(OSError):
@@ -397,6 +399,13 @@ def staged_folder(
         raise
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+def _discard(retired: Path) -> None:
+    """Mark the replaced folder as superseded once the new one is in place, so that a run
+    killed while deleting the stage leaves nothing :func:`_clean_stale` would keep."""
+    with contextlib.suppress(OSError):
+        os.rename(retired, retired.with_name("superseded"))
 
 
 def _publish(content: Path, target: Path, option: str) -> None:
