@@ -262,6 +262,11 @@ def test_resume_recomputes_a_study_whose_inputs_changed(
     assert main(argv) == 2
     assert "the interrupted run was with --quick" in capsys.readouterr().err
     assert sorted(p.name for p in out2.iterdir()) == sorted(["incomplete.json", FIRST])
+    # nor by a run of other studies: the finished one would be deleted without a word
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out2), "--resume", STUDIES[1]]
+    assert main(argv) == 2
+    assert f"the interrupted run also finished '{FIRST}'" in capsys.readouterr().err
+    assert sorted(p.name for p in out2.iterdir()) == sorted(["incomplete.json", FIRST])
 
 
 def test_resume_on_dask_computes_only_the_missing_study(

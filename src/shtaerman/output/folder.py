@@ -98,7 +98,8 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
     Raises
     ------
     InputError
-        When the folder was run with another ``quick``, or its progress file is unreadable.
+        When the folder was run with another ``quick``, finished a study not in ``studies``
+        (it would be lost), or its progress file is unreadable.
     """
     marker = stage / PROGRESS_FILE
     if not marker.is_file():
@@ -116,6 +117,12 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
         mode = "with --quick" if document["quick"] else "without --quick"
         raise InputError(f"resume: the interrupted run was {mode}; resume it the same way")
     wanted = {study.name: study_fingerprint(study) for study in studies}
+    dropped = sorted(name for name in stored if name not in wanted)
+    if dropped:
+        raise InputError(
+            f"resume: the interrupted run also finished {', '.join(map(repr, dropped))}, which "
+            "this command does not name; resume with the same studies (the command it printed)"
+        )
     kept = {
         name: item["entry"]
         for name, item in stored.items()
