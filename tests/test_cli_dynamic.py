@@ -214,3 +214,11 @@ def test_the_dynamic_checks_name_each_failure():
     assert len(dynamic_check_failures(0.02, 0.5)) == 2
     assert len(dynamic_check_failures(float("nan"), 0.0)) == 1
     assert "reflected energy" in dynamic_check_failures(0.0, float("nan"))[0]
+
+
+def test_too_few_time_steps_for_the_estimate_name_time_steps(capsys):
+    # it blamed 'refine' (never given) with 'got 0.4999999999999999'
+    code, out, err = run(capsys, "dynamic", "--time-steps", "60")
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "time_steps: the error-estimate ladder's coarsest level halves the time steps" in err
+    assert "got 60" in err and "refine must" not in err

@@ -17,11 +17,17 @@ reported where no clean order is observed. Its effectivity is measured in
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from operator import attrgetter
 
-from ...fem.dynamic_contact import DynamicImpactResult, DynamicSettings, run_dynamic_impact
+from ...fem.dynamic_contact import (
+    MIN_STEPS,
+    DynamicImpactResult,
+    DynamicSettings,
+    run_dynamic_impact,
+)
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError, validate_positive
@@ -105,6 +111,13 @@ class DynamicLadder:
 def check_ladder(settings: DynamicSettings) -> None:
     """Raise :class:`~shtaerman.validation.InputError` unless the ladder's coarsest level
     (``settings.refined(1/2)``: mesh sizes x2, steps / 2) is valid, before anything runs."""
+    fewest = math.ceil((MIN_STEPS - 0.5) * LADDER_RATIO**2)  # its level rounds to MIN_STEPS
+    if settings.steps < fewest:  # the usual cause: name the input the user gave
+        raise InputError(
+            f"time_steps: the error-estimate ladder's coarsest level halves the time steps, so "
+            f"it needs at least {fewest} per t_y, got {settings.steps}",
+            "time_steps",
+        )
     try:
         settings.refined(1.0 / LADDER_RATIO**2)
     except InputError as error:
