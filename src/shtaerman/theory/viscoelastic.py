@@ -1,0 +1,513 @@
+"""Exact references for a rigid power-law striker on an incompressible viscoelastic half-space.
+
+The half-space relaxes in shear by a Prony series on its instantaneous (glassy) modulus
+(Abaqus' convention), its bulk response elastic and nu = 1/2, so the contact modulus relaxes as
+E*(t) = E*_0 psi(t) with
+
+    psi(t) = G(t)/G0 = g_inf + sum_i g_i exp(-t/tau_i),  g_inf = 1 - sum_i g_i > 0.
+
+With beta0, q of the elastic law P = beta0 x^q at E*_0 and F = x^q (Lee & Radok 1960, Ting 1966;
+exact in the method of dimensionality reduction, Popov, Willert & Hess 2018):
+
+- loading (contact radius growing, x' > 0): a(t) follows the elastic geometry of x(t), and
+  P(t) = beta0 Int_0^t psi(t - s) dF(s) = beta0 [g_inf F(t) + sum_i g_i K_i(t)],
+  K_i(t) = Int_0^t exp(-(t - s)/tau_i) dF(s);
+- unloading (radius shrinking, x' < 0): a(t) = a(t1), t1 < t the loading instant with the same
+  radius, fixed by Phi(t1, t) = Int_{t1}^t psi(t - s) x'(s) ds = 0, and
+  P(t) = beta0 Int_0^{t1} psi(t - s) dF(s) = beta0 [g_inf F(t1) + sum_i g_i e^{-(t-t1)/tau_i}
+  K_i(t1)]; the contact is lost (P = 0) when Phi(0, t) = g_inf x(t) + sum_i g_i H_i(t) reaches 0,
+  H_i(t) = Int_0^t exp(-(t - s)/tau_i) x'(s) ds.
+
+Both x and F are taken piecewise linear in time between the instants given (or the time steps);
+over such a piece the kernels update exactly, K_i(t + h) = e^{-h/tau_i} K_i(t) +
+tau_i (1 - e^{-h/tau_i}) dF/h, and Phi, P are exact closed forms of t1 inside a piece. The error
+is that of the linear interpolation, second order in the spacing.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import brentq
+
+from ..validation import InputError, validate_positive
+from .contact import PowerLawContact
+from .impact import ImpactResult, solve_impact
+
+__all__ = [
+    "PronySeries",
+    "ViscoelasticImpact",
+    "indentation_force",
+    "limit_impacts",
+    "viscoelastic_impact",
+]
+
+_TERM = re.compile(r"^\s*([^:,\s]+)\s*:\s*([^:,\s]+)\s*$")
+
+
+def _number(name: str, text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise InputError(f"{name} must be a number, got {text!r}", name) from None
+
+
+@dataclass(frozen=True)
+class PronySeries:
+    """Shear relaxation G(t) = G0 [1 - sum_i g_i (1 - exp(-t/tau_i))] on the glassy G0.
+
+    Parameters
+    ----------
+    weights : tuple of float
+        g_i >= 0, dimensionless, with sum_i g_i < 1 (the relaxed modulus G0 g_inf stays > 0).
+    times : tuple of float
+        Relaxation times tau_i > 0 in s, one per weight.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If a value lies outside its range or the lengths differ.
+    """
+
+    weights: tuple[float, ...]
+    times: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        weights, times = tuple(self.weights), tuple(self.times)
+        if len(weights) != len(times):
+            raise InputError(
+                f"prony needs one relaxation time per weight, got {len(weights)} weights "
+                f"and {len(times)} times",
+                "prony",
+            )
+        for i, (g, tau) in enumerate(zip(weights, times, strict=True), start=1):
+            if isinstance(g, bool) or not (isinstance(g, int | float) and 0.0 <= g < 1.0):
+                raise InputError(f"prony weight g{i} must lie in [0, 1), got {g!r}", "prony")
+            if isinstance(tau, bool) or not (isinstance(tau, int | float) and 0.0 < tau < math.inf):
+                raise InputError(
+                    f"prony time tau{i} must be a finite number > 0 s, got {tau!r}", "prony"
+                )
+        if not math.fsum(weights) < 1.0:
+            raise InputError(
+                f"prony weights must sum to less than 1 (relaxed modulus > 0), got "
+                f"sum g_i = {math.fsum(weights)!r}",
+                "prony",
+            )
+        object.__setattr__(self, "weights", tuple(float(g) for g in weights))
+        object.__setattr__(self, "times", tuple(float(tau) for tau in times))
+
+    @classmethod
+    def parse(cls, text: str) -> PronySeries:
+        """The series written ``g1:tau1,g2:tau2,...`` (tau in s), e.g. ``0.5:1e-3``."""
+        terms = [term for term in str(text).split(",")]
+        pairs = [_TERM.match(term) for term in terms]
+        if not terms or any(pair is None for pair in pairs):
+            raise InputError(
+                f"prony must be written g1:tau1,g2:tau2,... (tau in s), got {text!r}", "prony"
+            )
+        weights = tuple(_number("prony", pair[1]) for pair in pairs)  # type: ignore[index]
+        times = tuple(_number("prony", pair[2]) for pair in pairs)  # type: ignore[index]
+        return cls(weights, times)
+
+    @property
+    def g_inf(self) -> float:
+        """Relaxed fraction g_inf = 1 - sum_i g_i = G(inf)/G0."""
+        return 1.0 - math.fsum(self.weights)
+
+    def relaxation(self, time: ArrayLike) -> np.ndarray:
+        """psi(t) = G(t)/G0 at times t >= 0 in s (1 at t = 0, g_inf as t -> inf)."""
+        t = np.asarray(time, dtype=float)
+        psi = np.full_like(t, self.g_inf)
+        for g, tau in zip(self.weights, self.times, strict=True):
+            psi = psi + g * np.exp(-t / tau)
+        return psi
+
+    def scaled(self, factor: float) -> PronySeries:
+        """The same weights with every tau_i multiplied by ``factor`` (> 0)."""
+        factor = validate_positive("factor", factor)
+        return PronySeries(self.weights, tuple(tau * factor for tau in self.times))
+
+
+class _Memory:
+    """The loading history: x and F = x^q linear in time between nodes t_0 < ... < t_m, with the
+    kernels H_i, K_i at each node; evaluates the unloading quantities at any t1 in [t_0, t_m]."""
+
+    def __init__(self, prony: PronySeries, beta: float) -> None:
+        self.g = np.asarray(prony.weights, dtype=float)
+        self.tau = np.asarray(prony.times, dtype=float)
+        self.g_inf = prony.g_inf
+        self.beta = beta
+        self.nodes: list[tuple[float, float, float, np.ndarray, np.ndarray]] = []
+
+    def append(self, t: float, x: float, F: float, H: np.ndarray, K: np.ndarray) -> None:
+        """Record node (t, x, F, H_i, K_i) of the loading phase."""
+        self.nodes.append((t, x, F, H, K))
+
+    def freeze(self) -> None:
+        """End of loading: the nodes become arrays and the pieces' slopes are set."""
+        t, x, F, H, K = zip(*self.nodes, strict=True)
+        self.t, self.x, self.F = np.array(t), np.array(x), np.array(F)
+        self.H, self.K = np.array(H).reshape(len(t), -1), np.array(K).reshape(len(t), -1)
+        step = np.diff(self.t)
+        self.x_rate, self.F_rate = np.diff(self.x) / step, np.diff(self.F) / step
+        self.last = len(self.t) - 1
+
+    def evaluate(self, u: float, t: float, piece: int) -> tuple[float, float, float]:
+        """x(u) in m, E(u) = sum_i g_i e^{-(t-u)/tau_i} H_i(u) in m and the unloading force
+        P(u) = beta0 [g_inf F(u) + sum_i g_i e^{-(t-u)/tau_i} K_i(u)] in N, for u in piece
+        [t_k, t_k+1] (k = ``piece``) and a later time t in s."""
+        k = min(max(piece, 0), self.last - 1)
+        lag = u - self.t[k]
+        decay_node = np.exp(-(t - self.t[k]) / self.tau)
+        ramp = np.exp(-(t - u) / self.tau) * -np.expm1(-lag / self.tau) * self.tau
+        x_u = self.x[k] + self.x_rate[k] * lag
+        E_u = float(self.g @ (decay_node * self.H[k] + self.x_rate[k] * ramp))
+        F_u = self.F[k] + self.F_rate[k] * lag
+        force = self.beta * (
+            self.g_inf * F_u + float(self.g @ (decay_node * self.K[k] + self.F_rate[k] * ramp))
+        )
+        return float(x_u), E_u, float(force)
+
+    def edge_time(self, residual, t: float, start: int) -> tuple[float, int] | None:
+        """The instant t1 in [t_0, t_m] where ``residual(x, E, P)`` (decreasing in t1) vanishes,
+        and its piece; None when it is <= 0 already at t_0 (the contact is lost)."""
+
+        def at(u: float, k: int) -> float:
+            return residual(*self.evaluate(u, t, k))
+
+        if at(self.t[0], 0) <= 0.0:
+            return None
+        j = min(max(start + 1, 1), self.last)
+        while j < self.last and at(self.t[j], j - 1) > 0.0:
+            j += 1
+        if at(self.t[j], j - 1) > 0.0:
+            return float(self.t[j]), j - 1
+        while j > 1 and at(self.t[j - 1], j - 1) <= 0.0:
+            j -= 1
+        k = j - 1
+        lo, hi = float(self.t[k]), float(self.t[j])
+        root = brentq(lambda u: at(u, k), lo, hi, xtol=1e-15 * hi, rtol=8.9e-16)
+        return float(root), k
+
+
+def _validate_history(times: ArrayLike, depth: ArrayLike) -> tuple[np.ndarray, np.ndarray, int]:
+    """Times, depths and the index of the (last) peak of one loading-unloading history."""
+    t = np.atleast_1d(np.asarray(times, dtype=float))
+    x = np.atleast_1d(np.asarray(depth, dtype=float))
+    if t.ndim != 1 or t.shape != x.shape or t.size < 2:
+        raise InputError("times and depth must be 1-D arrays of the same length >= 2", "times")
+    if not (np.all(np.isfinite(t)) and np.all(np.diff(t) > 0)):
+        raise InputError("times must be finite and strictly increasing (s)", "times")
+    if not (np.all(np.isfinite(x)) and np.all(x >= 0) and x[0] == 0.0):
+        raise InputError("depth must be finite, >= 0 m, and 0 at the first instant", "depth")
+    peak = int(x.size - 1 - np.argmax(x[::-1]))
+    if np.any(np.diff(x[: peak + 1]) < 0) or np.any(np.diff(x[peak:]) > 0):
+        raise InputError(
+            "depth must rise to one maximum and then fall (one loading, one unloading)", "depth"
+        )
+    if x[peak] == 0.0:
+        raise InputError("depth must rise above 0 m at some instant", "depth")
+    return t, x, peak
+
+
+def indentation_force(
+    times: ArrayLike, depth: ArrayLike, law: PowerLawContact, prony: PronySeries
+) -> tuple[np.ndarray, np.ndarray]:
+    """Force and contact radius for a prescribed depth history: Lee-Radok, then Ting.
+
+    The depth x(t) and F = x^q are linear in time between the instants given; the kernels follow
+    exactly (see the module docstring), so the result is exact for such a history and second
+    order in the spacing for a smooth one.
+
+    Parameters
+    ----------
+    times : array_like
+        Instants t in s, strictly increasing, the first one at first touch.
+    depth : array_like
+        Depth x(t) in m at those instants: 0 at the first, rising to one maximum, then falling.
+    law : PowerLawContact
+        The elastic contact at the instantaneous modulus E*_0 (gives beta0, q and a(x)).
+    prony : PronySeries
+        The half-space's shear relaxation.
+
+    Returns
+    -------
+    force, contact_radius : ndarray
+        P(t) in N and a(t) in m (both 0 once the contact is lost while unloading).
+    """
+    t, x, peak = _validate_history(times, depth)
+    memory = _Memory(prony, law.beta)
+    q, g, tau = law.force_exponent, memory.g, memory.tau
+    F = x**q
+    H, K = np.zeros_like(g), np.zeros_like(g)
+    force, radius = np.zeros_like(x), np.zeros_like(x)
+    piece, lost = peak - 1, False
+    for n in range(t.size):
+        if n:
+            h = t[n] - t[n - 1]
+            decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
+            H = decay * H + ramp * (x[n] - x[n - 1])
+            K = decay * K + ramp * (F[n] - F[n - 1])
+        if n <= peak:
+            memory.append(t[n], x[n], F[n], H, K)
+            force[n] = law.beta * (memory.g_inf * F[n] + float(g @ K))
+            radius[n] = float(law.contact_radius(x[n]))
+            continue
+        if n == peak + 1:
+            memory.freeze()
+        total = memory.g_inf * x[n] + float(g @ H)
+        found = (
+            None
+            if lost
+            else memory.edge_time(
+                lambda x_u, E_u, _P, total=total: total - memory.g_inf * x_u - E_u, t[n], piece
+            )
+        )
+        if found is None:
+            lost = True
+            continue
+        t1, piece = found
+        x1, _, force[n] = memory.evaluate(t1, t[n], piece)
+        radius[n] = float(law.contact_radius(x1))
+    return force, radius
+
+
+@dataclass(frozen=True)
+class ViscoelasticImpact:
+    """The quasi-static impact of a rigid striker on the viscoelastic half-space (SI units).
+
+    Integrated by the trapezoidal (average-acceleration Newmark) rule, second order in the step;
+    ``history`` holds the steps up to the one in which the contact is lost.
+    """
+
+    mass: float
+    """Striker mass M in kg."""
+    velocity: float
+    """Approach velocity at first touch v0 in m/s."""
+    x_max: float
+    """Maximum approach in m."""
+    P_max: float
+    """Maximum force in N (reached before x_max: the force relaxes while x still grows)."""
+    t_x_max: float
+    """Time of maximum approach in s."""
+    t_contact: float
+    """Duration of the contact in s (first touch to P = 0)."""
+    v_out: float
+    """Approach velocity after separation in m/s (negative: the striker rebounds)."""
+    restitution: float
+    """e = -v_out / v0."""
+    energy_lost: float
+    """Energy the striker leaves in the half-space, M v0^2 (1 - e^2) / 2, in J."""
+    work: float
+    """Work of the contact force on the surface, the loop integral of P dx, in J."""
+    energy_balance_error: float
+    """|work - energy_lost| / (M v0^2 / 2)."""
+    time_step: float
+    """Step h in s."""
+    history: dict[str, np.ndarray] = field(repr=False, compare=False)
+    """Arrays t (s), x (m), v (m/s), P (N), a (m) over the steps."""
+
+    def to_dict(self) -> dict[str, float]:
+        """The scalar results by name."""
+        names = (
+            "mass", "velocity", "x_max", "P_max", "t_x_max", "t_contact", "v_out",
+            "restitution", "energy_lost", "work", "energy_balance_error", "time_step",
+        )  # fmt: skip
+        return {name: float(getattr(self, name)) for name in names}
+
+
+@dataclass
+class _State:
+    """One instant of the impact: time, depth, velocity, force and the kernels H_i, K_i."""
+
+    t: float
+    x: float
+    v: float
+    P: float
+    H: np.ndarray
+    K: np.ndarray
+    a: float = 0.0
+
+
+def _loading_step(s: _State, h: float, mass: float, law: PowerLawContact, memory: _Memory):
+    """The next state while the contact grows (Lee-Radok), or None if x would decrease."""
+    q, g, tau = law.force_exponent, memory.g, memory.tau
+    decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
+    F_n = s.x**q
+    rest = float(g @ (decay * s.K - ramp * F_n))
+    stiff = memory.g_inf + float(g @ ramp)
+
+    def force(x: float) -> float:
+        return law.beta * (stiff * x**q + rest)
+
+    def residual(x: float) -> float:
+        return x - s.x - h * s.v + h * h / (4.0 * mass) * (s.P + force(x))
+
+    if residual(s.x) > 0.0:
+        return None
+    upper = s.x + h * s.v
+    x = upper if residual(upper) <= 0.0 else brentq(residual, s.x, upper, xtol=1e-15 * upper)
+    P = force(x)
+    return _State(
+        t=s.t + h,
+        x=x,
+        v=s.v - h / (2.0 * mass) * (s.P + P),
+        P=P,
+        H=decay * s.H + ramp * (x - s.x),
+        K=decay * s.K + ramp * (x**q - F_n),
+        a=float(law.contact_radius(x)),
+    )
+
+
+def _unloading_step(
+    s: _State, h: float, mass: float, law: PowerLawContact, memory: _Memory, piece: int
+) -> tuple[_State, int | None]:
+    """The next state while the contact shrinks (Ting) and the piece of t1; piece None: the
+    contact is lost within the step (P = 0 at its end)."""
+    g, tau = memory.g, memory.tau
+    decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
+    base = float(g @ (decay * s.H - ramp * s.x))
+    stiff = memory.g_inf + float(g @ ramp)
+    free = s.x + h * s.v - h * h / (4.0 * mass) * s.P
+
+    def residual(x_u: float, E_u: float, P_u: float) -> float:
+        # Newmark's x_{n+1} for the force P(t1) minus the x_{n+1} making Phi(t1, t_{n+1}) = 0
+        return free - h * h / (4.0 * mass) * P_u - (memory.g_inf * x_u + E_u - base) / stiff
+
+    t = s.t + h
+    found = memory.edge_time(residual, t, piece)
+    if found is None:
+        x, P, a, piece_next = free, 0.0, 0.0, None
+    else:
+        t1, piece_next = found
+        x1, _, P = memory.evaluate(t1, t, piece_next)
+        x, a = free - h * h / (4.0 * mass) * P, float(law.contact_radius(x1))
+    state = _State(t, x, s.v - h / (2.0 * mass) * (s.P + P), P, decay * s.H + ramp * (x - s.x),
+                   s.K, a)  # fmt: skip
+    return state, piece_next
+
+
+MAX_DURATION = 100.0
+"""The integration gives up after this many glassy compression times t_c without separation."""
+
+
+def _integrate(mass: float, velocity: float, law: PowerLawContact, prony: PronySeries, h: float,
+               limit: int) -> tuple[list[_State], float]:  # fmt: skip
+    """All states from first touch to the step that loses contact, and the separation time."""
+    memory = _Memory(prony, law.beta)
+    zero = np.zeros(len(prony.weights))
+    states = [_State(0.0, 0.0, velocity, 0.0, zero, zero)]
+    memory.append(0.0, 0.0, 0.0, zero, zero)
+    loading, piece = True, 0
+    while len(states) <= limit:
+        s = states[-1]
+        if loading:
+            nxt = _loading_step(s, h, mass, law, memory)
+            if nxt is not None:
+                states.append(nxt)
+                memory.append(nxt.t, nxt.x, nxt.x**law.force_exponent, nxt.H, nxt.K)
+                continue
+            loading, piece = False, len(states) - 2
+            memory.freeze()
+        nxt, piece = _unloading_step(s, h, mass, law, memory, piece)
+        states.append(nxt)
+        if piece is None:  # Phi(0, t) = g_inf x + sum g_i H_i crossed 0: interpolate linearly
+            before = memory.g_inf * s.x + float(memory.g @ s.H)
+            after = memory.g_inf * nxt.x + float(memory.g @ nxt.H)
+            return states, s.t + h * before / (before - after)
+    raise RuntimeError(f"no separation within {limit} steps (h = {h:g} s)")
+
+
+def _peak_depth(t: np.ndarray, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+    """Maximum of the trapezoidal rule's own parabola over the step where v changes sign."""
+    j = int(np.flatnonzero(v > 0.0)[-1])
+    if j + 1 >= v.size:
+        return float(x[j]), float(t[j])
+    h = t[j + 1] - t[j]
+    accel = (v[j + 1] - v[j]) / h
+    lag = min(-v[j] / accel, h)
+    return float(x[j] + v[j] * lag + 0.5 * accel * lag * lag), float(t[j] + lag)
+
+
+def _peak_force(t: np.ndarray, P: np.ndarray) -> float:
+    """Maximum of the parabola through the largest sampled force and its neighbours."""
+    j = int(np.argmax(P))
+    if j == 0 or j + 1 >= P.size:
+        return float(P[j])
+    low, mid, high = P[j - 1], P[j], P[j + 1]
+    curvature = low - 2.0 * mid + high
+    if curvature >= 0.0:
+        return float(mid)
+    return float(mid - (high - low) ** 2 / (8.0 * curvature))
+
+
+def viscoelastic_impact(
+    mass: float,
+    velocity: float,
+    law: PowerLawContact,
+    prony: PronySeries,
+    *,
+    steps: int = 2000,
+) -> ViscoelasticImpact:
+    """The quasi-static impact M x'' = -P(t), x(0) = 0, x'(0) = v0, on the viscoelastic
+    half-space: Lee-Radok while x grows, Ting while it falls, until P = 0.
+
+    Parameters
+    ----------
+    mass : float
+        Striker mass M in kg (> 0).
+    velocity : float
+        Approach velocity v0 in m/s (> 0).
+    law : PowerLawContact
+        The elastic contact of the rigid striker at the instantaneous modulus E*_0 = E2/(1 -
+        nu2^2), nu2 = 1/2 (beta0, q and a(x)).
+    prony : PronySeries
+        The half-space's shear relaxation.
+    steps : int
+        Time steps per glassy compression time t_c (the elastic impact at E*_0), >= 20; the
+        errors fall as steps^-2.
+
+    Returns
+    -------
+    ViscoelasticImpact
+    """
+    mass = validate_positive("mass", mass, "kg")
+    velocity = validate_positive("velocity", velocity, "m/s")
+    if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 20:
+        raise InputError(f"steps must be an integer >= 20 per t_c, got {steps!r}", "steps")
+    t_c = solve_impact(mass, velocity, law).t_c
+    h = t_c / int(steps)
+    states, t_contact = _integrate(mass, velocity, law, prony, h, int(MAX_DURATION * steps))
+    t, x, v, P, a = (np.array([getattr(s, k) for s in states]) for k in ("t", "x", "v", "P", "a"))
+    x_max, t_x_max = _peak_depth(t, x, v)
+    kinetic = 0.5 * mass * velocity**2
+    energy_lost = 0.5 * mass * (velocity**2 - v[-1] ** 2)
+    work = float(np.sum(0.5 * (P[1:] + P[:-1]) * np.diff(x)))
+    return ViscoelasticImpact(
+        mass=mass,
+        velocity=velocity,
+        x_max=x_max,
+        P_max=_peak_force(t, P),
+        t_x_max=t_x_max,
+        t_contact=float(t_contact),
+        v_out=float(v[-1]),
+        restitution=float(-v[-1] / velocity),
+        energy_lost=float(energy_lost),
+        work=work,
+        energy_balance_error=abs(work - energy_lost) / kinetic,
+        time_step=h,
+        history={"t": t, "x": x, "v": v, "P": P, "a": a},
+    )
+
+
+def limit_impacts(
+    mass: float, velocity: float, law: PowerLawContact, prony: PronySeries
+) -> tuple[ImpactResult, ImpactResult]:
+    """The exact elastic impacts of the two limits: glassy (tau -> inf, modulus E*_0) and
+    relaxed (tau -> 0, modulus g_inf E*_0); both rebound with e = 1."""
+    relaxed = PowerLawContact(law.indenter, law.modulus * prony.g_inf)
+    return solve_impact(mass, velocity, law), solve_impact(mass, velocity, relaxed)
