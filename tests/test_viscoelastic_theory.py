@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import hyp1f1
 
@@ -192,6 +193,34 @@ def test_ting_loses_contact_before_the_depth_returns_to_zero():
     assert x[lost] > 0.0 and np.all(force[lost:] == 0.0) and np.all(radius[lost:] == 0.0)
     exact = ting_triangle(t, 3.0, T_C, TWO_TERMS)
     assert np.flatnonzero(exact[1:] == 0.0)[0] + 1 == lost
+
+
+def test_ting_depth_follows_the_creep_form():
+    """Ting's depth in creep form: x(t) = g1(a(t)) + Int_{t1}^t phi(t - s) dsigma(s), with
+    sigma(s) = Int_{t1}^s psi(s - r) x'(r) dr the relaxation history of the current edge
+    (sigma(t) = 0) and phi the creep function, psi * dphi = 1. For one term,
+    phi(t) = 1/g_inf - (g/g_inf) exp(-g_inf t/tau). Checked with the module's own a(t): the
+    triangle is piecewise linear, so the module's t1 is exact and the two sides agree to
+    round-off (quad at 1e-12)."""
+    g, tau, speed = 0.5, 0.7 * T_C, 3.0
+    prony = PronySeries((g,), (tau,))
+    t, x = triangle(401, speed, T_C)
+    _, radius = indentation_force(t, x, LAW, prony)
+    g_inf = prony.g_inf
+
+    def creep(s: float) -> float:
+        return 1.0 / g_inf - g / g_inf * math.exp(-g_inf * s / tau)
+
+    def rate(s: float, t1: float) -> float:  # dsigma/ds for the triangle
+        kink = 2.0 * prony.relaxation(s - T_C) if s > T_C else 0.0
+        return speed * float(prony.relaxation(s - t1) - kink)
+
+    for n in (450, 550, 650):  # t = 1.125, 1.375, 1.625 t_m: unloading
+        depth_at_t1 = float(LAW.depth(radius[n]))  # g1(a(t)) = x(t1)
+        t1 = depth_at_t1 / speed
+        creep_part = quad(lambda s, t1=t1, now=t[n]: creep(now - s) * rate(s, t1), t1, t[n],
+                          points=[T_C], epsabs=0, epsrel=1e-12)[0]  # fmt: skip
+        assert x[n] == pytest.approx(depth_at_t1 + creep_part, rel=1e-11)
 
 
 def mdr_spring_bed(t: np.ndarray, x: np.ndarray, prony: PronySeries, springs: int) -> np.ndarray:

@@ -28,7 +28,9 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from numbers import Real
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -85,9 +87,9 @@ class PronySeries:
                 "prony",
             )
         for i, (g, tau) in enumerate(zip(weights, times, strict=True), start=1):
-            if isinstance(g, bool) or not (isinstance(g, int | float) and 0.0 <= g < 1.0):
+            if isinstance(g, bool) or not (isinstance(g, Real) and 0.0 <= g < 1.0):
                 raise InputError(f"prony weight g{i} must lie in [0, 1), got {g!r}", "prony")
-            if isinstance(tau, bool) or not (isinstance(tau, int | float) and 0.0 < tau < math.inf):
+            if isinstance(tau, bool) or not (isinstance(tau, Real) and 0.0 < tau < math.inf):
                 raise InputError(
                     f"prony time tau{i} must be a finite number > 0 s, got {tau!r}", "prony"
                 )
@@ -103,9 +105,8 @@ class PronySeries:
     @classmethod
     def parse(cls, text: str) -> PronySeries:
         """The series written ``g1:tau1,g2:tau2,...`` (tau in s), e.g. ``0.5:1e-3``."""
-        terms = [term for term in str(text).split(",")]
-        pairs = [_TERM.match(term) for term in terms]
-        if not terms or any(pair is None for pair in pairs):
+        pairs = [_TERM.match(term) for term in str(text).split(",")]
+        if any(pair is None for pair in pairs):
             raise InputError(
                 f"prony must be written g1:tau1,g2:tau2,... (tau in s), got {text!r}", "prony"
             )
@@ -172,7 +173,9 @@ class _Memory:
         )
         return float(x_u), E_u, float(force)
 
-    def edge_time(self, residual, t: float, start: int) -> tuple[float, int] | None:
+    def edge_time(
+        self, residual: Callable[[float, float, float], float], t: float, start: int
+    ) -> tuple[float, int] | None:
         """The instant t1 in [t_0, t_m] where ``residual(x, E, P)`` (decreasing in t1) vanishes,
         and its piece; None when it is <= 0 already at t_0 (the contact is lost)."""
 
@@ -333,7 +336,9 @@ class _State:
     a: float = 0.0
 
 
-def _loading_step(s: _State, h: float, mass: float, law: PowerLawContact, memory: _Memory):
+def _loading_step(
+    s: _State, h: float, mass: float, law: PowerLawContact, memory: _Memory
+) -> _State | None:
     """The next state while the contact grows (Lee-Radok), or None if x would decrease."""
     q, g, tau = law.force_exponent, memory.g, memory.tau
     decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
