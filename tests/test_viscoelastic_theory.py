@@ -23,6 +23,7 @@ from scipy.optimize import brentq
 from scipy.special import hyp1f1
 
 from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.viscoelastic import (
     PronySeries,
@@ -83,6 +84,24 @@ def test_prony_parse_and_relaxation():
     assert psi[1] == pytest.approx(0.5, abs=1e-15)  # relaxed: g_inf (e^-2000 underflows to 0)
     with pytest.raises(InputError, match="sum to less than 1"):
         PronySeries.parse("0.5:1,0.5:2")
+
+
+def test_prony_scaled_multiplies_every_time_and_only_the_times():
+    prony = PronySeries((0.3, 0.2), (1e-3, 0.5)).scaled(4.0)
+    assert prony == PronySeries((0.3, 0.2), (4e-3, 2.0))
+    with pytest.raises(InputError, match="factor"):
+        prony.scaled(0.0)
+
+
+def test_restitution_depends_on_tau_only_through_the_deborah_number():
+    """In units of x_c and t_c the impact depends only on g and tau/t_c: half the mass with tau
+    scaled by its own t_c gives the same e (same steps per t_c: equal to round-off)."""
+    light = solve_impact(0.35, 3.0, LAW)
+    heavy = viscoelastic_impact(0.7, 3.0, LAW, one_term(2.0), steps=100)
+    prony = PronySeries((0.5,), (light.t_c / 2.0,))
+    assert viscoelastic_impact(0.35, 3.0, LAW, prony, steps=100).restitution == pytest.approx(
+        heavy.restitution, rel=1e-12
+    )
 
 
 # --- Lee-Radok (loading) ---------------------------------------------------------------------
