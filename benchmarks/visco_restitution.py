@@ -3,8 +3,9 @@
 The paper's striker (0.7 kg, 3 m/s, A = 5 m^-1/2, n = 3/2, rigid) on an incompressible rubber
 half-space with E2 = 7.5 MPa instantaneous and a one-term Prony series g (default 0.5): Lee-Radok
 while the contact grows, Ting while it shrinks (shtaerman.theory.viscoelastic). t_c is the glassy
-compression time (the elastic impact at E2). Each row is computed at two step sizes; the last
-column is their difference, the error estimate of the finer one times 4/3 (second order).
+compression time (the elastic impact at E2). Each row is computed at N and N/2 steps per t_c;
+the column 'error' is |e(N) - e(N/2)| / 3, the second-order estimate of the error of e(N);
+'lost' is the fraction of the impact energy left in the rubber, 1 - e^2.
 
 Run: python benchmarks/visco_restitution.py [--weight G] [--steps N] [--figure PATH.png]
 """
