@@ -222,9 +222,10 @@ def indentation_force(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Force and contact radius for a prescribed depth history: Lee-Radok, then Ting.
 
-    The depth x(t) and F = x^q are linear in time between the instants given; the kernels follow
-    exactly (see the module docstring), so the result is exact for such a history and second
-    order in the spacing for a smooth one.
+    x(t) and F = x^q are each taken linear in time between the instants given, and the kernels
+    follow exactly over each piece (see the module docstring): the error is that of the
+    interpolation, second order in the spacing for a smooth history, O(h^q) as the contact
+    closes (t1 in the first pieces, where F ~ t^q).
 
     Parameters
     ----------
