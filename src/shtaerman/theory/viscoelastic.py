@@ -36,7 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from ..validation import InputError, validate_positive
+from ..validation import InputError, NumericalFailureError, validate_positive
 from .contact import PowerLawContact
 from .impact import ImpactResult, solve_impact
 
@@ -397,8 +397,9 @@ def _unloading_step(
     return state, piece_next
 
 
-MAX_DURATION = 100.0
-"""The integration gives up after this many glassy compression times t_c without separation."""
+MAX_DURATION = 10.0
+"""The integration gives up after this many relaxed impact durations (the elastic impact at
+g_inf E*_0, the longest of the two limits) without separation."""
 
 
 def _integrate(mass: float, velocity: float, law: PowerLawContact, prony: PronySeries, h: float,
@@ -425,7 +426,10 @@ def _integrate(mass: float, velocity: float, law: PowerLawContact, prony: PronyS
             before = memory.g_inf * s.x + float(memory.g @ s.H)
             after = memory.g_inf * nxt.x + float(memory.g @ nxt.H)
             return states, s.t + h * before / (before - after)
-    raise RuntimeError(f"no separation within {limit} steps (h = {h:g} s)")
+    raise NumericalFailureError(
+        f"no separation within {limit} steps of {h:g} s; report this case (mass, velocity, law "
+        f"and prony)"
+    )
 
 
 def _peak_depth(t: np.ndarray, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
@@ -487,7 +491,9 @@ def viscoelastic_impact(
         raise InputError(f"steps must be an integer >= 20 per t_c, got {steps!r}", "steps")
     t_c = solve_impact(mass, velocity, law).t_c
     h = t_c / int(steps)
-    states, t_contact = _integrate(mass, velocity, law, prony, h, int(MAX_DURATION * steps))
+    relaxed_duration = 2.0 * prony.g_inf ** (-1.0 / (law.force_exponent + 1.0))  # in t_c
+    limit = math.ceil(MAX_DURATION * relaxed_duration * steps)
+    states, t_contact = _integrate(mass, velocity, law, prony, h, limit)
     t, x, v, P, a = (np.array([getattr(s, k) for s in states]) for k in ("t", "x", "v", "P", "a"))
     x_max, t_x_max = _peak_depth(t, x, v)
     kinetic = 0.5 * mass * velocity**2
