@@ -337,6 +337,18 @@ def test_impact_converges_at_second_order(refined, key):
     assert abs(values[2] - values[1]) < 1e-5 * abs(values[2])  # 400 steps: error ~ 3e-6
 
 
+def test_impact_force_agrees_with_the_spring_bed_on_its_own_trajectory():
+    """End to end: the spring bed, driven by the impact's own x(t), gives the same force (to
+    1.1e-5 of P_max, largest in the last steps where the module's error is O(h^q)), and its
+    impulse M v0 (1 + e) gives e to 1.4e-6 of the module's."""
+    result = viscoelastic_impact(0.7, 3.0, LAW, TWO_TERMS, steps=400)
+    history = result.history
+    bed = mdr_spring_bed(history["t"], history["x"], TWO_TERMS, 10000)
+    assert np.max(np.abs(bed - history["P"])) < 3e-5 * result.P_max
+    impulse = np.sum(0.5 * (bed[1:] + bed[:-1])) * result.time_step
+    assert impulse / (0.7 * 3.0) - 1.0 == pytest.approx(result.restitution, abs=5e-6)
+
+
 def test_energy_account_closes_and_the_loss_is_the_lost_kinetic_energy():
     """The trapezoidal rule makes the loop integral of P dx equal to M v0^2 (1 - e^2)/2 up to
     round-off (the bookkeeping check); the loss is positive between the limits."""
