@@ -70,10 +70,15 @@ SUMMARY_LEGEND = (
     "against the exact impact. Each study's checks below give every value with its tolerance."
 )
 TIMING_LEGEND = (
-    "FEM curve (s): meshing, assembly, factorization and contact solves of the study's depth "
-    "ladder. Study total (s): wall time of the whole study: the FEM curve, fits, the three "
-    "impacts, the mesh-convergence study if any, and writing its files and figures."
+    "Study total (s): wall time of the whole study, its computation and the writing of its "
+    "files and figures."
 )
+CONTACT_TIMING_LEGEND = (
+    "FEM curve (s): meshing, assembly, factorization and contact solves of the study's depth "
+    "ladder; its study total adds the fits, the three impacts and the mesh-convergence study "
+    "if any."
+)
+"""Legends of the summary (every kind) and of the contact cross-check (contact studies only)."""
 
 
 def _text(kind: str) -> ModuleType:
@@ -221,6 +226,7 @@ def _summaries(studies: dict) -> dict[str, dict[str, object]]:
             "rows": [_summary_row(name, study) for name, study in studies.items()],
         },
         "contact_summary": {
+            "timing_legend": CONTACT_TIMING_LEGEND,
             "header": [
                 "study",
                 "verdict",
