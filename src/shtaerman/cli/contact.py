@@ -49,13 +49,15 @@ def _mesh_default(field: str) -> str:
 
 
 DERIVED = {
-    "mass": "0.7, or none with --depths",
-    "velocity": "3, or none with --depths",
+    "mass": "0.7; not with --depths",
+    "velocity": "3; not with --depths",
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
     **{option: _mesh_default(field) for option, field in MESH_OPTIONS.items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
 NOTES = {
+    "mass": "with --velocity, sets the impact whose x_c the default depths reach",
+    "velocity": "with --mass, sets the impact whose x_c the default depths reach",
     "out": "contact.json, CSV curves, VTU fields and (linear model) force_depth.png and "
     "pressure.png",
     "force": "an existing --out folder",
