@@ -116,7 +116,7 @@ def finite_contact_text(report: dict) -> str:
     rows = [
         f"Neo-Hookean contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
-        "Shtaerman's linear solution)",
+        "Shtaerman's linear solution)" + _impact_words(report),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
         "  energy (J)  Newton",
     ]
@@ -162,7 +162,7 @@ def contact_text(report: dict) -> str:
         f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
     )
     rows = [
-        head,
+        head + _impact_words(report),
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg",
     ]
     for step in report["steps"]:
@@ -188,6 +188,13 @@ def contact_text(report: dict) -> str:
     if "error_estimate" in report:
         rows += _estimate_text(report)
     return "\n".join(rows)
+
+
+def _impact_words(report: dict) -> str:
+    """ "; depths up to the x_c of M = 0.25 kg at 2 m/s" when the impact set the depths."""
+    if report.get("mass") is None:
+        return ""
+    return f"; depths up to the x_c of M = {report['mass']:g} kg at {report['velocity']:g} m/s"
 
 
 def _estimate_text(report: dict) -> list[str]:
