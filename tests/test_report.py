@@ -234,7 +234,7 @@ def test_validity_table_states_a_dynamic_limit_only_where_resolved():
         ["not resolved (no error estimate)", "not resolved (no error estimate)"],
     ]
     assert (
-        "shown only where the estimated FEM error is below a fifth of the effect"
+        "stated only where the estimated FEM error of the difference is below a fifth of the level"
         in (table["title"])
     )
 
@@ -267,4 +267,4 @@ def test_finite_depth_limits_stated_only_where_the_error_is_below_a_fifth(
         assert cell == "x/a = 0.164 ± 0.006 (v0 = 0.0036 ± 0.0005 m/s)"
     else:
         assert cell == f"not resolved (estimated error of the departure {departure_error:.1e})"
-    assert "fifth of the effect" in table["title"] and "10-100" not in table["title"]
+    assert "fifth of the level" in table["title"] and "10-100" not in table["title"]

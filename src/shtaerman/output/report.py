@@ -187,9 +187,11 @@ def validity_table(studies: dict) -> dict[str, object] | None:
     if not rows:
         return None
     return {
-        "title": "Where the model holds (limits interpolated between computed points; "
-        "shown only where the estimated FEM error is below a fifth of the effect; ± the "
-        "estimated error in the value's unit)",
+        "title": "Where the model holds: up to which input its difference from the FEM stays "
+        "within 1 % and 5 % (limits interpolated between computed points; stated only where "
+        "the estimated FEM error of the difference is below a fifth of the level; ± the "
+        "estimated error in the value's unit; 'the whole range computed' where the level is "
+        "never crossed: the limit lies beyond)",
         "header": ["assumption tested", "holds to 1 % up to", "holds to 5 % up to"],
         "rows": rows,
     }
