@@ -127,7 +127,7 @@ def _scale_to_resolved(
     off = int(np.sum(hidden & ((values < low) | (values > high))))
     if off:
         axes.text(
-            0.99, 0.02, f"{off} unresolved points off scale (not drawn)", transform=axes.transAxes,
+            0.99, 0.02, f"{off} unresolved points off scale", transform=axes.transAxes,
             ha="right", va="bottom", fontsize=7.5, color="0.3",
         )  # fmt: skip
 
