@@ -104,3 +104,34 @@ def test_dynamic_findings_say_which_way_and_how_it_moves_with_velocity():
     )
     single = SimpleNamespace(cases=cases[:1])
     assert text_dynamic._trend(single) == "" and text_dynamic._loss_trend(single) == ""
+
+
+def test_a_dynamic_limit_inside_the_range_has_the_tables_precision():
+    limit = thresholds([0.5, 1.0], [0.0077, 0.013], 0.01, errors=[7e-5, 7e-5])
+    assert text_dynamic._limit_text(limit, 0.5) == "up to 0.717 m/s"
+    row = validity_table({"d": {"kind": "dynamic", "limits": {"x": {"1%": limit}}}})["rows"][0]
+    assert row[1].startswith("v0 = 0.717")
+
+
+def estimate(error, absolute, method="richardson"):
+    return SimpleNamespace(error=error, absolute_error=absolute, method=method)
+
+
+def test_the_dynamic_estimate_finding_names_the_difference_errors_in_percentage_points():
+    estimates = {key: estimate(1e-4, 1e-4) for key in text_dynamic.RELATIVE_ESTIMATES}
+    estimates |= {f"difference_{k}": estimate(0.1, 0.004 if k == "t" else 1e-4) for k in "xPt"}
+    quasi = SimpleNamespace(x_c=1.03, P_c=1.05, t_c=0.5 * 0.99)
+    result = SimpleNamespace(x_max=1.0, P_max=1.0, t_contact=1.0)
+    case = SimpleNamespace(velocity=3.0, estimates=lambda: estimates, quasi=quasi, result=result)
+    ladder = SimpleNamespace(
+        settings=[SimpleNamespace(steps=s) for s in (100, 141, 200)],
+        results=[SimpleNamespace(mesh={"dofs": d}) for d in (6284, 7795, 11654)],
+    )
+    studied = SimpleNamespace(
+        estimated=True, cases=[case], example=SimpleNamespace(ladder=ladder, velocity=3.0)
+    )
+    sentence = text_dynamic._estimate_finding(studied)
+    assert "of the differences quasi-static / dynamic - 1, at most 0.4 percentage points" in (
+        sentence
+    )
+    assert "(absolute)" not in sentence and "closest: t_c at 3 m/s" in sentence

@@ -75,7 +75,7 @@ def _limit_text(limit: Mapping[str, Any], smallest: float, *, error: bool = Fals
             f"the limit lies beyond{joint}{suffix})"
         )
     spread = plus_minus(limit.get("velocity_error"), ".1g") if error else ""
-    return f"up to {limit['velocity']:.2f}{spread} m/s" + (f" ({suffix})" if suffix else "")
+    return f"up to {limit['velocity']:.3g}{spread} m/s" + (f" ({suffix})" if suffix else "")
 
 
 def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
@@ -105,8 +105,8 @@ def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
         f"together: {levels} at {example.velocity:g} m/s), the largest over the "
         "velocities: relative "
         + ", ".join(f"{RELATIVE_ESTIMATES[k]} {v:.1e}" for k, v in worst.items())
-        + f"; the differences quasi-static / dynamic - 1 to {100 * largest:.2g} % "
-        f"(absolute), at least {ratio:.0f} times smaller than the difference itself (the "
+        + f"; of the differences quasi-static / dynamic - 1, at most {100 * largest:.2g} "
+        f"percentage points, at least {ratio:.0f} times smaller than the difference itself (the "
         f"closest: {COMPARED[key][0]} at {velocity:g} m/s). {fallbacks} of the "
         f"{sum(map(len, estimates))} estimates are the largest difference between "
         "consecutive levels instead (no clean observed order: the levels scatter)."
