@@ -109,6 +109,9 @@ def test_dynamic_findings_say_which_way_and_how_it_moves_with_velocity():
 def test_a_dynamic_limit_inside_the_range_has_the_tables_precision():
     limit = thresholds([0.5, 1.0], [0.0077, 0.013], 0.01, errors=[7e-5, 7e-5])
     assert text_dynamic._limit_text(limit, 0.5) == "up to 0.717 m/s"
+    # the table: ± in m/s, and the difference's own estimated error named as such
+    with_error = text_dynamic._limit_text(limit, 0.5, error=True)
+    assert with_error == "up to 0.717 ± 0.007 m/s (difference ± 0.007 %)"
     row = validity_table({"d": {"kind": "dynamic", "limits": {"x": {"1%": limit}}}})["rows"][0]
     assert row[1].startswith("v0 = 0.717")
 

@@ -65,7 +65,7 @@ def _limit_text(limit: Mapping[str, Any], smallest: float, *, error: bool = Fals
         if limit["error"] is None:
             return "not resolved (no error estimate)"
         return f"not resolved (estimate {100 * limit['error']:.2g} %)"
-    suffix = f"± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
+    suffix = f"difference ± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
     joint = "; " if suffix else ""
     if limit["bound"] == "none":
         return f"not even at {smallest:g} m/s (the smallest v0 computed{joint}{suffix})"
@@ -276,9 +276,9 @@ def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
         },
         {
             "title": "Velocity up to which the quasi-static value holds (linear "
-            "interpolation between the computed velocities; stated where the estimated "
-            "error of the difference at the deciding velocities, given as ±, is below a "
-            "fifth of the level)",
+            "interpolation between the computed velocities, ± in m/s; 'difference ± e': the "
+            "estimated error of the difference at the deciding velocities, in percentage "
+            "points; stated where it is below a fifth of the level)",
             "header": ["quantity", "to 1 %", "to 5 %"],
             "rows": limit_rows,
         },
