@@ -200,5 +200,5 @@ def summary_row(name: str, study: Mapping[str, Any]) -> list[str]:
 
 
 def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
-    """None: a contact study tests no assumption of the impact model."""
+    """No rows: a contact study tests no assumption of the impact model."""
     return []
