@@ -135,9 +135,13 @@ def tutorial_page(script: Path, execute: bool = False) -> str:
 
 API_MARKER = "<!-- public-api -->"
 API_GROUPS = {
-    "Inputs": lambda name, obj: inspect.isclass(obj) and name in ("PowerLawIndenter", "Material"),
+    "Inputs": lambda name, obj: (
+        inspect.isclass(obj) and name in ("PowerLawIndenter", "Material", "SweepSpec")
+    ),
     "Computations": lambda name, obj: inspect.isfunction(obj),
-    "Results": lambda name, obj: inspect.isclass(obj) and name.endswith(("Result", "Results")),
+    "Results": lambda name, obj: (
+        inspect.isclass(obj) and name.endswith(("Result", "Results", "Outcome"))
+    ),
     "Errors": lambda name, obj: inspect.isclass(obj) and issubclass(obj, Exception),
 }
 

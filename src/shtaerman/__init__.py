@@ -7,7 +7,7 @@ The public API (``import shtaerman as sh``; see :mod:`shtaerman.api`)::
     q = sh.impact(indenter, rubber, mass=0.25, velocity=2.0)   # exact quasi-static impact
     c = sh.contact(indenter, rubber, mass=0.25, velocity=2.0)  # FEM curve up to q.x_c
     d = sh.dynamic(indenter, rubber, mass=0.25, velocity=2.0)  # dynamic FE impact
-    sh.run_study("paper", out="results"); sh.sweep("nu-grid", workers=2)
+    sh.run_study("paper", out="results"); sh.sweep("nu-grid", workers=2)   # -> sh.SweepOutcome
 
 Names are imported on first use, so ``import shtaerman`` loads neither numpy nor the FEM.
 ``sh.sweep`` is the :mod:`shtaerman.sweep` package, callable as :func:`shtaerman.api.sweep`.
@@ -37,6 +37,8 @@ if TYPE_CHECKING:
         run_study,
         sweep,
     )
+    from .sweep.engine import SweepOutcome
+    from .sweep.spec import SweepSpec
 
 from .version import __version__
 
@@ -49,6 +51,8 @@ __all__ = [
     "Material",
     "PowerLawIndenter",
     "StudyResults",
+    "SweepOutcome",
+    "SweepSpec",
     "__version__",
     "contact",
     "dynamic",
@@ -58,12 +62,18 @@ __all__ = [
 ]
 
 
+_FROM_SWEEP = ("SweepOutcome", "SweepSpec")
+"""What :func:`sweep` takes and returns, from :mod:`shtaerman.sweep`."""
+
+
 def __getattr__(name: str) -> Any:
-    """The API's names, imported from :mod:`shtaerman.api` on first use."""
+    """The API's names, imported from :mod:`shtaerman.api` (or :mod:`shtaerman.sweep`) on
+    first use."""
     if name == "sweep":
         return importlib.import_module(".sweep", __name__)
     if name in __all__:
-        value = getattr(importlib.import_module(".api", __name__), name)
+        home = ".sweep" if name in _FROM_SWEEP else ".api"
+        value = getattr(importlib.import_module(home, __name__), name)
         globals()[name] = value
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

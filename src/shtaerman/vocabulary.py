@@ -287,7 +287,7 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "velocity",
         "m/s",
-        "approach velocity v0 (a dynamic study takes a list)",
+        "approach velocity v0",
         "Approach velocity v0",
         3.0,
         ("impact", "finite-strain", "dynamic"),
@@ -357,7 +357,7 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "depths",
         "m",
-        "indentation depths (default: up to the impact's x_c)",
+        "indentation depths",
         "Depth x",
         None,
         ("contact", "finite-strain"),
@@ -376,7 +376,7 @@ VOCABULARY: tuple[Entry, ...] = (
     # --- the numerics -----------------------------------------------------------------------
     _numeric(
         "refine",
-        "divide the whole mesh size field (and the time step) by K",
+        "divide the whole mesh size field by K",
         "Mesh refinement factor K",
         1.0,
     ),
@@ -509,8 +509,7 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "estimate",
         "",
-        "Richardson error estimates from two coarser runs (about 0.75 of the run's cost again; "
-        "a sweep: estimate = true)",
+        "error estimates by Richardson extrapolation from two coarser runs (K/2 and K/sqrt(2))",
         "Error estimates",
         True,
         ("dynamic",),

@@ -54,7 +54,9 @@ class ContactResult:
     when it did not run (``estimate=False``); ``errors`` is the linear model's true error
     against Shtaerman's solution, ``departures_from_linear`` the neo-Hookean model's
     departure from it. ``solution`` is the finest FEM run (fields on demand), ``ladder``
-    the mesh ladder; neither is part of :meth:`to_dict`.
+    the mesh ladder; neither is part of :meth:`to_dict`. ``mass`` (kg) and ``velocity``
+    (m/s) are those of the impact whose x_c the default depths reach (None, and not in the
+    JSON, when the depths were given).
     """
 
     model: str
@@ -82,6 +84,8 @@ class ContactResult:
     effectivity: dict[str, float] | None = None
     mesh_ladder: tuple[dict[str, Any], ...] | None = None
     accuracy_target: float | None = None
+    mass: float | None = None
+    velocity: float | None = None
     extra: dict[str, Any] = field(default_factory=dict, repr=False)
     solution: Any = field(default=None, repr=False, compare=False)
     ladder: Any = field(default=None, repr=False, compare=False)
@@ -187,6 +191,23 @@ def contact_depths(
     velocity = DEFAULT_VELOCITY if velocity is None else velocity
     x_c = impact(indenter, body, mass=mass, velocity=velocity, striker=striker).x_c
     return depths_up_to(x_c, indenter.exponent)
+
+
+def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[str, Any]:
+    """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the impact
+    whose x_c the default depths reach; unchanged when the depths were given."""
+    if options["depths"] is not None:
+        return dict(report)
+    impact_inputs = {
+        "mass": float(DEFAULT_MASS if options["mass"] is None else options["mass"]),
+        "velocity": float(DEFAULT_VELOCITY if options["velocity"] is None else options["velocity"]),
+    }
+    out: dict[str, Any] = {}
+    for key, value in report.items():
+        out[key] = value
+        if key == "nu2":
+            out.update(impact_inputs)
+    return out
 
 
 def _check_options(model: str, accuracy: object, estimate: bool, solver: str) -> None:
@@ -419,7 +440,7 @@ def contact(
         stage = stack.enter_context(staged_folder(folder, force=force)) if folder else None
         solution, ladder = _solve(plan)
         report = {**solution.to_dict(), **(ladder.to_dict() if ladder is not None else {})}
-        result = ContactResult.from_report(report, solution, ladder)
+        result = ContactResult.from_report(_with_impact(report, options), solution, ladder)
         if stage is not None:
             _write(result, stage, options["figure_format"])
     return result

@@ -49,13 +49,15 @@ def _mesh_default(field: str) -> str:
 
 
 DERIVED = {
-    "mass": "0.7, or none with --depths",
-    "velocity": "3, or none with --depths",
+    "mass": "0.7; not with --depths",
+    "velocity": "3; not with --depths",
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
     **{option: _mesh_default(field) for option, field in MESH_OPTIONS.items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
 NOTES = {
+    "mass": "with --velocity, sets the impact whose x_c the default depths reach",
+    "velocity": "with --mass, sets the impact whose x_c the default depths reach",
     "out": "contact.json, CSV curves, VTU fields and (linear model) force_depth.png and "
     "pressure.png",
     "force": "an existing --out folder",
@@ -114,7 +116,7 @@ def finite_contact_text(report: dict) -> str:
     rows = [
         f"Neo-Hookean contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
-        "Shtaerman's linear solution)",
+        "Shtaerman's linear solution)" + _impact_words(report),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
         "  energy (J)  Newton",
     ]
@@ -160,7 +162,7 @@ def contact_text(report: dict) -> str:
         f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
     )
     rows = [
-        head,
+        head + _impact_words(report),
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg",
     ]
     for step in report["steps"]:
@@ -186,6 +188,13 @@ def contact_text(report: dict) -> str:
     if "error_estimate" in report:
         rows += _estimate_text(report)
     return "\n".join(rows)
+
+
+def _impact_words(report: dict) -> str:
+    """ "; depths up to the x_c of M = 0.25 kg at 2 m/s" when the impact set the depths."""
+    if report.get("mass") is None:
+        return ""
+    return f"; depths up to the x_c of M = {report['mass']:g} kg at {report['velocity']:g} m/s"
 
 
 def _estimate_text(report: dict) -> list[str]:

@@ -41,7 +41,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "
         "K/2, K/sqrt(2), K)"
     )
-    add_inputs(accuracy, ("refine", "estimate"), "dynamic")
+    add_inputs(accuracy, ("refine", "estimate"), "dynamic", notes={"refine": "the time step too"})
     numerics = p.add_argument_group(
         "expert numerical controls (relative to the quasi-static impact; --refine scales the "
         "mesh sizes and steps together)"

@@ -147,15 +147,17 @@ def findings(name: str, study: Mapping[str, Any]) -> list[str]:
     """How closely the FEM reproduces the contact law, and its own estimate of that."""
     errors = study["contact"]["errors"]
     text = (
-        f"{name}: the FEM reproduces Shtaerman's contact law to {number(errors['force'], '.1e')}"
-        f" (force), {number(errors['beta'], '.1e')} (beta) and p(0) to "
-        f"{number(errors['central_pressure'], '.1e')}"
+        f"{name}: the FEM reproduces Shtaerman's contact law within a relative "
+        f"{number(errors['force'], '.1e')} in the force, {number(errors['beta'], '.1e')} in "
+        f"beta and {number(errors['central_pressure'], '.1e')} in p(0) (the largest errors "
+        "over the depths, on the study's mesh)"
     )
     accuracy = study.get("accuracy")
     if accuracy:
         text += (
-            f"; its own error estimate says {number(accuracy['error_estimate']['force'], '.1e')}"
-            f" (force), {number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
+            "; its own error estimate, which needs no exact solution, says "
+            f"{number(accuracy['error_estimate']['force'], '.1e')} (force) and "
+            f"{number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
         )
     return [text + "."]
 
@@ -198,5 +200,5 @@ def summary_row(name: str, study: Mapping[str, Any]) -> list[str]:
 
 
 def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
-    """None: a contact study tests no assumption of the impact model."""
+    """No rows: a contact study tests no assumption of the impact model."""
     return []

@@ -65,14 +65,17 @@ def _limit_text(limit: Mapping[str, Any], smallest: float, *, error: bool = Fals
         if limit["error"] is None:
             return "not resolved (no error estimate)"
         return f"not resolved (estimate {100 * limit['error']:.2g} %)"
-    suffix = f"± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
+    suffix = f"difference ± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
     joint = "; " if suffix else ""
     if limit["bound"] == "none":
         return f"not even at {smallest:g} m/s (the smallest v0 computed{joint}{suffix})"
     if limit["bound"] == "all":
-        return f"up to at least {limit['velocity']:g} m/s (every v0 computed{joint}{suffix})"
+        return (
+            f"over the whole range computed (to {limit['velocity']:g} m/s, the fastest v0; "
+            f"the limit lies beyond{joint}{suffix})"
+        )
     spread = plus_minus(limit.get("velocity_error"), ".1g") if error else ""
-    return f"up to {limit['velocity']:.2f}{spread} m/s" + (f" ({suffix})" if suffix else "")
+    return f"up to {limit['velocity']:.3g}{spread} m/s" + (f" ({suffix})" if suffix else "")
 
 
 def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
@@ -102,8 +105,8 @@ def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
         f"together: {levels} at {example.velocity:g} m/s), the largest over the "
         "velocities: relative "
         + ", ".join(f"{RELATIVE_ESTIMATES[k]} {v:.1e}" for k, v in worst.items())
-        + f"; the differences quasi-static / dynamic - 1 to {100 * largest:.2g} % "
-        f"(absolute), at least {ratio:.0f} times smaller than the difference itself (the "
+        + f"; of the differences quasi-static / dynamic - 1, at most {100 * largest:.2g} "
+        f"percentage points, at least {ratio:.0f} times smaller than the difference itself (the "
         f"closest: {COMPARED[key][0]} at {velocity:g} m/s). {fallbacks} of the "
         f"{sum(map(len, estimates))} estimates are the largest difference between "
         "consecutive levels instead (no clean observed order: the levels scatter)."
@@ -133,20 +136,23 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
     case = outcome.example
     d, dyn, quasi = case.differences(), case.result, case.quasi
     pm = _plus_minus(case.estimates())
+
+    def off(key: str) -> str:
+        return _off(d[key], key, pm(f"difference_{key}", 100))
+
     found = [
-        f"{_case_words(outcome)} the quasi-static model is off by "
-        f"{100 * d['x']:+.2f}{pm('difference_x', 100)} % in x_c ({quasi.x_c * 1e3:.3f} mm "
-        f"against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), "
-        f"{100 * d['P']:+.2f}{pm('difference_P', 100)} % in P_c ({quasi.P_c:.1f} N against "
-        f"P_max {dyn.P_max:.1f} N) and {100 * d['t']:+.2f}{pm('difference_t', 100)} % in t_c "
-        f"({quasi.t_c * 1e3:.3f} ms against half the dynamic contact time, "
-        f"{0.5e3 * dyn.t_contact:.3f} ms; the same as t_y against t_contact); the dynamic "
-        f"maximum approach comes at {dyn.t_x_max * 1e3:.3f} ms.",
+        f"{_case_words(outcome)} the quasi-static model {off('x')} ({quasi.x_c * 1e3:.3f} mm "
+        f"against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), {off('P')} ({quasi.P_c:.1f} N "
+        f"against P_max {dyn.P_max:.1f} N) and {off('t')} ({quasi.t_c * 1e3:.3f} ms against "
+        f"half the dynamic contact time, {0.5e3 * dyn.t_contact:.3f} ms; the same as t_y "
+        f"against t_contact); the dynamic maximum approach comes at "
+        f"{dyn.t_x_max * 1e3:.3f} ms.{_trend(outcome)}",
         f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
         f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
         f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
         f"half-space as elastic waves (first-order estimate "
-        f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f}).",
+        f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f})"
+        f"{_loss_trend(outcome)}.",
         _estimate_finding(outcome),
     ]
     limits = outcome.limits()
@@ -162,6 +168,44 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
             "the limits are interpolated linearly between them)."
         )
     return found
+
+
+def _off(difference: float, key: str, spread: str) -> str:
+    """ "overestimates x_c by 3.00 ± 0.1 %" for quasi-static / dynamic - 1 = +0.03."""
+    way = "over" if difference > 0 else "under"
+    return f"{way}estimates {NAMES[key]} by {100 * abs(difference):.2f}{spread} %"
+
+
+def _grows(first: float, last: float) -> str:
+    return "grows" if abs(last) > abs(first) else "shrinks"
+
+
+def _trend(outcome: DynamicStudyOutcome) -> str:
+    """ " The largest of the three differences grows with v0: ... at v0 = a m/s, ... at b m/s."
+    over the computed velocities; "" for one velocity."""
+    if len(outcome.cases) < 2:
+        return ""
+    first, last = outcome.cases[0], outcome.cases[-1]
+    worst = [
+        max(abs(v) for k, v in c.differences().items() if k in COMPARED) for c in (first, last)
+    ]
+    return (
+        f" The largest of the three differences {_grows(*worst)} with v0: "
+        f"{100 * worst[0]:.2f} % at {first.velocity:g} m/s, {100 * worst[1]:.2f} % at "
+        f"{last.velocity:g} m/s."
+    )
+
+
+def _loss_trend(outcome: DynamicStudyOutcome) -> str:
+    """ "; the fraction grows with v0, from ... % at a m/s to ... % at b m/s"; "" for one v0."""
+    if len(outcome.cases) < 2:
+        return ""
+    first, last = (c.result.energy_radiated_fraction for c in (outcome.cases[0], outcome.cases[-1]))
+    return (
+        f"; the fraction {_grows(first, last)} with v0, from {100 * first:.2f} % at "
+        f"{outcome.cases[0].velocity:g} m/s to {100 * last:.2f} % at "
+        f"{outcome.cases[-1].velocity:g} m/s"
+    )
 
 
 HEADER = [
@@ -232,9 +276,9 @@ def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
         },
         {
             "title": "Velocity up to which the quasi-static value holds (linear "
-            "interpolation between the computed velocities; stated where the estimated "
-            "error of the difference at the deciding velocities, given as ±, is below a "
-            "fifth of the level)",
+            "interpolation between the computed velocities, ± in m/s; 'difference ± e': the "
+            "estimated error of the difference at the deciding velocities, in percentage "
+            "points; stated where it is below a fifth of the level)",
             "header": ["quantity", "to 1 %", "to 5 %"],
             "rows": limit_rows,
         },
@@ -255,7 +299,7 @@ def entry(
 
 
 def _velocity(limit: Mapping[str, Any] | None) -> str:
-    """A velocity limit: "v0 = 3.12 ± 0.1 m/s" (± in m/s), "every v0 computed (to 5 m/s)",
+    """A velocity limit: "v0 = 3.12 ± 0.1 m/s" (± in m/s), "the whole range computed (...)",
     "no: ...", or "not resolved (...)" where its estimated error is not below a fifth of the
     level."""
     if limit and not limit.get("resolved"):
@@ -265,7 +309,10 @@ def _velocity(limit: Mapping[str, Any] | None) -> str:
     if not limit or limit.get("velocity") is None:
         return "no: already off at the slowest v0 computed"
     if limit.get("bound") == "all":
-        return f"every v0 computed (to {limit['velocity']:.3g} m/s)"
+        return (
+            f"the whole range computed (to v0 = {limit['velocity']:.3g} m/s, the fastest; the "
+            "limit lies beyond)"
+        )
     return f"v0 = {limit['velocity']:.3g}{plus_minus(limit.get('velocity_error'), '.1g')} m/s"
 
 

@@ -119,8 +119,12 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
     ]
 
 
+def _level(entry: Mapping[str, Any]) -> str:
+    return f"{100 * entry['level']:g} %"
+
+
 def _crossing_words(entry: Mapping[str, Any]) -> str:
-    level = f"{entry['level']:.0%}"
+    level = _level(entry)
     if "departure_error" in entry and not resolved(entry["departure_error"], entry["level"]):
         return (
             f"to {level}: not resolved (the departure's estimated error there, "
@@ -139,15 +143,21 @@ def _crossing_words(entry: Mapping[str, Any]) -> str:
         f"{entry['velocity']:.2g}{pm['velocity']} m/s)"
     )
     if entry["status"] == "beyond":
-        return f"to {level} at every computed depth, up to {where}"
+        return (
+            f"to {level} over the whole range computed (to the deepest depth, {where}; the "
+            "limit lies deeper)"
+        )
     if entry["status"] == "below":
-        return f"to {level} not even at the first depth, {where}"
+        return f"to {level} not even at the first depth computed ({where})"
     return f"to {level} up to {where}"
 
 
 def _validity_finding(outcome: FiniteStudyOutcome) -> str:
+    last = outcome.rows()[-1]["force_ratio_fem"]
+    way = "falls below" if last < 1 else "rises above"
     return (
-        "The linear force beta x^q holds "
+        f"Real rubber's force {way} the linear beta x^q as the depth grows; the linear force "
+        "holds "
         + "; ".join(_crossing_words(entry) for entry in outcome.limits())
         + " (P against the linear FEM on the same mesh; crossings interpolated linearly in x/a "
         "between computed depths; velocities from the stored energy, v = sqrt(2 W / M))."
@@ -244,7 +254,18 @@ def _impact_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
 
 
 def _validity_cell(entry: Mapping[str, Any], key: str, scale: float, fmt: str) -> str:
-    return f"{entry[key] * scale:{fmt}}" + plus_minus(entry.get("errors", {}).get(key))
+    """The value by ``fmt`` ± its estimated error in the value's unit (the entry's errors
+    are relative)."""
+    value, relative = entry[key] * scale, entry.get("errors", {}).get(key)
+    return f"{value:{fmt}}" + plus_minus(None if relative is None else relative * value, ".1g")
+
+
+HOW = {
+    "interpolated": "crossing, interpolated",
+    "beyond": "not crossed: the deepest depth computed",
+    "below": "crossed before the first depth",
+}
+"""A validity entry's status -> how its depth was found, in words."""
 
 
 def _decided(entry: Mapping[str, Any]) -> str:
@@ -256,8 +277,9 @@ def _decided(entry: Mapping[str, Any]) -> str:
 
 def _validity_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
     return {
-        "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; resolved where "
-        "the departure's estimated error is below a fifth of the level)",
+        "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; ± the estimated "
+        "error in the value's unit; resolved where the departure's estimated error is below a "
+        "fifth of the level)",
         "header": [
             "level",
             "up to x/a",
@@ -268,11 +290,11 @@ def _validity_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
         ],
         "rows": [
             [
-                f"{e['level']:.0%}",
+                _level(e),
                 _validity_cell(e, "depth_to_radius", 1.0, ".3f"),
                 _validity_cell(e, "depth", 1e3, ".4g"),
                 _validity_cell(e, "velocity", 1.0, ".3g"),
-                str(e["status"]),
+                HOW.get(str(e["status"]), str(e["status"])),
                 _decided(e),
             ]
             for e in outcome.limits()
@@ -295,26 +317,34 @@ def entry(
 
 def _depth(entry: Mapping[str, Any] | None) -> str:
     """A depth limit: x/a and the impact velocity reaching it, ± their estimated errors in
-    the value's unit; "not resolved" where the departure's estimated error there is not below
-    a fifth of the level (:func:`shtaerman.study.limits.resolved`)."""
+    the value's unit; "the whole range computed: ..." where the level is never crossed (the
+    deepest depth, a lower bound), "no: ..." where it is crossed before the first depth, and
+    "not resolved" where the departure's estimated error there is not below a fifth of the
+    level (:func:`shtaerman.study.limits.resolved`)."""
     if not entry or entry.get("depth_to_radius") is None:
         return "-"
     ratio, velocity = entry["depth_to_radius"], entry["velocity"]
-    if "departure_error" not in entry:
-        return f"x/a = {ratio:.2f} (v0 = {velocity:.2g} m/s; not estimated)"
-    error = entry["departure_error"]
-    if not resolved(error, entry["level"]):
-        return f"not resolved (estimated error of the departure {number(error, '.1e')})"
+    estimated = "departure_error" in entry
+    if estimated and not resolved(entry["departure_error"], entry["level"]):
+        error = number(entry["departure_error"], ".1e")
+        return f"not resolved (estimated error of the departure {error})"
+    if entry.get("status") == "below":
+        return f"no: already off at the first depth computed, x/a = {ratio:.2g}"
     errors = entry.get("errors") or {}
 
     def absolute(key: str) -> str:
         relative = errors.get(key)
         return plus_minus(None if relative is None else relative * entry[key], ".1g")
 
-    return (
-        f"x/a = {ratio:.3g}{absolute('depth_to_radius')} "
+    where = (
+        f"x/a = {ratio:.2f} (v0 = {velocity:.2g} m/s; not estimated)"
+        if not estimated
+        else f"x/a = {ratio:.3g}{absolute('depth_to_radius')} "
         f"(v0 = {velocity:.2g}{absolute('velocity')} m/s)"
     )
+    if entry.get("status") == "beyond":
+        return f"the whole range computed: to the deepest depth, {where}; the limit lies deeper"
+    return where
 
 
 def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:

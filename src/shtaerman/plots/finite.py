@@ -85,6 +85,9 @@ def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple,
     """The neo-Hookean and linear FEM values of ``key`` over ``x``, unresolved ones open."""
     finite, linear, exact = (np.asarray(v, dtype=float) for v in values)
     hidden, error = _resolution(outcome, finite, linear, exact, key)
+    limits = _resolved_limits(np.concatenate([finite, linear, exact]), np.tile(hidden, 3))
+    if error is not None and limits is not None:  # no bar for a point off the plotted scale
+        error = np.where((finite < limits[0]) | (finite > limits[1]), np.nan, error)
     style = (FINITE_COLOUR, "o", "--", "neo-Hookean FEM")
     points(axes, x, finite, style, error=error, hidden=hidden)
     points(axes, x, linear, (FEM_COLOUR, "s", ":", "linear FEM, same mesh"), hidden=hidden)
@@ -99,18 +102,27 @@ def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple,
                    label="open: unresolved (mesh error ≥ finite-strain effect)")
         )  # fmt: skip
     axes.legend(handles=handles, loc="best", fontsize=7.5)
-    _scale_to_resolved(axes, np.concatenate([finite, linear, exact]), np.tile(hidden, 3))
+    _scale_to_resolved(axes, np.concatenate([finite, linear, exact]), np.tile(hidden, 3), limits)
 
 
-def _scale_to_resolved(axes: Any, values: np.ndarray, hidden: np.ndarray) -> None:
-    """y-limits that fit the resolved values and the exact one; an unresolved point beyond
-    them is left out of the picture, and a note says how many."""
+def _resolved_limits(values: np.ndarray, hidden: np.ndarray) -> tuple[float, float] | None:
+    """y-limits that fit the resolved values and the exact one, padded; None without any."""
     shown = values[~hidden & np.isfinite(values)]
     if not shown.size:
-        return
+        return None
     low, high = float(shown.min()), float(shown.max())
     pad = 0.08 * max(high - low, 0.02 * abs(high))
-    low, high = low - pad, high + pad
+    return low - pad, high + pad
+
+
+def _scale_to_resolved(
+    axes: Any, values: np.ndarray, hidden: np.ndarray, limits: tuple[float, float] | None
+) -> None:
+    """Set the y-limits (:func:`_resolved_limits`); an unresolved point beyond them is left
+    out of the picture, with its error bar, and a note says how many."""
+    if limits is None:
+        return
+    low, high = limits
     axes.set_ylim(low, high)
     off = int(np.sum(hidden & ((values < low) | (values > high))))
     if off:
