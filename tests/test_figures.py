@@ -16,6 +16,7 @@ import matplotlib as mpl
 import numpy as np
 import pytest
 import pyvista as pv
+from matplotlib.figure import Figure
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
@@ -204,6 +205,27 @@ def test_figures_leave_matplotlib_state_alone(outcome, folder):
     before = dict(mpl.rcParams)
     curves.plot_pressure(outcome.contact, folder / "state.png")
     assert dict(mpl.rcParams) == before
+
+
+def zlib_level_class(path: Path) -> int:
+    """FLEVEL of the first IDAT's zlib header: 0 for levels 0-1, 1 for 2-5, 2 for 6, 3 for 7-9."""
+    data = path.read_bytes()
+    start = data.index(b"IDAT") + 4
+    return data[start + 1] >> 6
+
+
+def test_pngs_are_compressed_fast_and_losslessly(outcome, folder):
+    path = curves.plot_pressure(outcome.contact, folder / "fast.png")
+    assert zlib_level_class(path) == 1  # style.PNG_COMPRESSION = 3; matplotlib's default is 6
+    assert style.PNG_COMPRESSION == 3
+    with mpl.rc_context(style.STYLE):
+        figure = Figure(figsize=(2.0, 1.5))
+        figure.add_subplot().plot([0, 1], [1, 0], label=r"$p/p_{avg}$")
+        default = folder / "default.png"
+        figure.savefig(default, dpi=style.DPI)
+        style.save(figure, folder / "level3.png")
+    assert zlib_level_class(default) == 2
+    assert (pixels(default) == pixels(folder / "level3.png")).all()
 
 
 def test_si_prefix():
