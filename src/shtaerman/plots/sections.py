@@ -40,6 +40,7 @@ __all__ = [
     "plot_field",
     "plot_fields",
     "section",
+    "segments",
 ]
 
 CONTACT_COLOUR = "#2ca02c"
