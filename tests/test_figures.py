@@ -15,10 +15,12 @@ from pathlib import Path
 import matplotlib as mpl
 import numpy as np
 import pytest
+import pyvista as pv
+from matplotlib.figure import Figure
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
-from shtaerman.plots import curves, gallery, impact, revolved, sections, style
+from shtaerman.plots import curves, gallery, impact, render, revolved, sections, style
 from shtaerman.study.contact.convergence import ConvergenceStudy
 from shtaerman.validation import InputError
 
@@ -26,6 +28,9 @@ MIN_STD = {"matplotlib": 25.0, "pyvista": 12.0}
 """Pixel standard deviation floors; measured minima 37.9 and 24.7 (sigma_rr)."""
 MIN_COLOURS = 300
 """Distinct RGB colours; measured minimum 497 (a pale sigma_tt section)."""
+RIM_PIXELS = 300
+"""Grey pixels along the rim of a black disc on white anti-aliased (measured 810 with FXAA, 701
+with 8x multisampling, 0 with neither)."""
 TOLERANCE = 16
 """Largest channel difference (0-255) for a pixel to count as a given colour (antialiasing)."""
 
@@ -202,6 +207,27 @@ def test_figures_leave_matplotlib_state_alone(outcome, folder):
     assert dict(mpl.rcParams) == before
 
 
+def zlib_level_class(path: Path) -> int:
+    """FLEVEL of the first IDAT's zlib header: 0 for levels 0-1, 1 for 2-5, 2 for 6, 3 for 7-9."""
+    data = path.read_bytes()
+    start = data.index(b"IDAT") + 4
+    return data[start + 1] >> 6
+
+
+def test_pngs_are_compressed_fast_and_losslessly(outcome, folder):
+    path = curves.plot_pressure(outcome.contact, folder / "fast.png")
+    assert zlib_level_class(path) == 1  # style.PNG_COMPRESSION = 3; matplotlib's default is 6
+    assert style.PNG_COMPRESSION == 3
+    with mpl.rc_context(style.STYLE):
+        figure = Figure(figsize=(2.0, 1.5))
+        figure.add_subplot().plot([0, 1], [1, 0], label=r"$p/p_{avg}$")
+        default = folder / "default.png"
+        figure.savefig(default, dpi=style.DPI)
+        style.save(figure, folder / "level3.png")
+    assert zlib_level_class(default) == 2
+    assert (pixels(default) == pixels(folder / "level3.png")).all()
+
+
 def test_si_prefix():
     assert style.si_prefix(8.5e-3, "m") == (1e3, "mm")
     assert style.si_prefix(8.4e6, "Pa") == (1e-6, "MPa")
@@ -222,7 +248,9 @@ def assert_colour_bar(image: np.ndarray) -> None:
     """A vertical colour gradient right of the section: one column with many colours."""
     right = np.sort(packed(image[:, int(0.7 * image.shape[1]) :]), axis=0)
     colours_per_column = 1 + (np.diff(right, axis=0) != 0).sum(axis=0)
-    assert colours_per_column.max() > 150  # measured 350 (full picture), 190 (2 x 2 panel)
+    # measured 143 for a one-signed field (its half of the diverging map, 2 x 2 panel alike),
+    # 273 for von Mises; multisampling blended neighbouring bands into more (215, 352)
+    assert colours_per_column.max() > 100
 
 
 def assert_contact_top_left(image: np.ndarray, depth: float = 0.3) -> None:
@@ -277,6 +305,50 @@ def test_revolved_view(made):
     circle_rows, _ = np.nonzero(colour_mask(image, sections.CONTACT_COLOUR))
     assert circle_rows.size > 200 and circle_rows.mean() < rows.mean()  # the circle on top
     assert_colour_bar(image)
+
+
+def test_each_field_from_one_section_is_the_field_by_field_picture(outcome, folder):
+    """The pictures drawn from the shared section are those drawn one field at a time, to the
+    pixel: the section is cut from the same fields and left unchanged by each picture."""
+    names = ("sigma_zz", "von_mises")
+    shared = sections.plot_each_field(
+        outcome.contact, {name: folder / f"shared_{name}.png" for name in names}, extent=2.0
+    )
+    assert list(shared) == list(names)
+    for name in names:
+        alone = sections.plot_field(outcome.contact, folder / f"alone_{name}.png", name, extent=2.0)
+        assert (pixels(shared[name]) == pixels(alone)).all(), name
+    assert not (pixels(shared["sigma_zz"]) == pixels(shared["von_mises"])).all()
+
+
+def test_each_field_checks_every_name_before_drawing(outcome, folder):
+    paths = {"u_z": folder / "first.png", "stress": folder / "second.png"}
+    with pytest.raises(InputError, match="Unknown field 'stress'"):
+        sections.plot_each_field(outcome.contact, paths)
+    assert not paths["u_z"].exists()
+
+
+def test_axis_segments_are_one_mesh():
+    lines = [([0.0, 5.0], [-3.0, -3.0]), ([0.0, 0.0], [-3.0, 1.0]), ([2.5, 2.5], [-3.0, -3.2])]
+    mesh = sections.segments(lines)
+    assert mesh.n_lines == 3 and mesh.n_points == 6
+    expected = [[0.0, -3.0], [5.0, -3.0], [0.0, -3.0], [0.0, 1.0], [2.5, -3.0], [2.5, -3.2]]
+    np.testing.assert_array_equal(mesh.points[:, :2], expected)
+    assert (mesh.points[:, 2] == 0.01).all()  # in front of the section, as polyline()
+    np.testing.assert_array_equal(mesh.lines, [2, 0, 1, 2, 2, 3, 2, 4, 5])
+
+
+def test_pictures_smooth_edges_without_multisampling(tmp_path):
+    """FXAA, not multisampling (several times the render's cost in software OpenGL): a black
+    disc on white gets grey pixels along its rim, which no anti-aliasing leaves pure."""
+    with render.picture((1, 2)) as plotter:
+        assert plotter.render_window.GetMultiSamples() == 0
+        assert all(renderer.GetUseFXAA() for renderer in plotter.renderers)
+        plotter.add_mesh(pv.Disc(inner=0.0, c_res=90), color="black", lighting=False)
+        path = render.save(plotter, tmp_path / "disc.png")
+    grey = pixels(path).max(axis=2)
+    rim = (grey > 40) & (grey < 215)
+    assert (grey < 40).sum() > 50_000 and rim.sum() > RIM_PIXELS
 
 
 def test_vtk_warnings_restored(outcome, folder):

@@ -197,6 +197,11 @@ class ImpactProblem:
         return self.body_mass.diagonal() > 0
 
     @cached_property
+    def massless(self) -> np.ndarray:
+        """Indices of the dofs without mass."""
+        return np.flatnonzero(~self.massive)
+
+    @cached_property
     def damped(self) -> bool:
         """Whether there is a layer."""
         return self.damping.nnz > 0
@@ -261,7 +266,8 @@ class ImpactState:
 
 
 def _predictor(problem: ImpactProblem, state: ImpactState) -> tuple[np.ndarray, np.ndarray]:
-    """x_hat (the explicit part) and x_pred (the step without new contact forces)."""
+    """x_hat (the explicit part, all dofs) and x_pred (the step without new contact forces)
+    on the free dofs."""
     alpha_m, alpha_f = problem.scheme.alpha_m, problem.scheme.alpha_f
     beta, gamma, dt = problem.scheme.beta, problem.scheme.gamma, problem.scheme.dt
     x, v, a = state.x, state.v, state.a
@@ -275,32 +281,32 @@ def _predictor(problem: ImpactProblem, state: ImpactState) -> tuple[np.ndarray, 
     if alpha_f:
         load = state.stiffness_x.copy()  # K x_n
         load[problem.candidates.dofs] += state.forces
-        rhs -= alpha_f * load
-    x_pred = np.zeros(problem.system.n_dofs)
-    x_pred[problem.free] = problem.factorization.solve(rhs[problem.free])
-    return x_hat, x_pred
+        load *= alpha_f
+        rhs -= load
+    return x_hat, problem.factorization.solve(rhs[problem.free])
 
 
 def _contact(
     problem: ImpactProblem, state: ImpactState, x_pred: np.ndarray, big_pred: float
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The new contact forces and x_new = x_pred - (1 - alpha_f) W F.
+    """The new contact forces and x_new = x_pred - (1 - alpha_f) W F, both on the free dofs
+    (``x_pred`` is corrected in place).
 
     Raises
     ------
     shtaerman.validation.InputError
         If the contact reaches the edge of the candidates.
     """
-    candidates, free = problem.candidates, problem.free
+    candidates = problem.candidates
     r_c = candidates.radius
-    clearance = candidates.profile - big_pred - x_pred[free][candidates.position]
+    clearance = candidates.profile - big_pred - x_pred[candidates.position]
     new_forces, _, _ = complementarity(problem.lcp_matrix, clearance)
     active = np.flatnonzero(new_forces > 0)
     x_new = x_pred
     if active.size:
         reach = active[-1] + 1  # contact is a disc: the candidates up to its edge
         weight = 1.0 - problem.scheme.alpha_f
-        x_new[free] -= weight * (problem.correction[:, :reach] @ new_forces[:reach])
+        x_new -= weight * (problem.correction[:, :reach] @ new_forces[:reach])
         if active[-1] + EDGE_MARGIN >= r_c.size:
             t = (state.step + 1) * problem.scheme.dt
             raise ContactEdgeReachedError(
@@ -330,7 +336,9 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
     big_pred = big_hat - beta * dt**2 * (alpha_f * forces.sum() + alpha_m * striker * big_a) / (
         (1.0 - alpha_m) * striker
     )
-    new_forces, x_new = _contact(problem, state, x_pred, big_pred)
+    new_forces, x_free = _contact(problem, state, x_pred, big_pred)
+    x_new = np.zeros(problem.system.n_dofs)
+    x_new[problem.free] = x_free
     total = float(new_forces.sum())
     big_a_new = -((1.0 - alpha_f) * total + alpha_f * forces.sum() + alpha_m * striker * big_a) / (
         (1.0 - alpha_m) * striker
@@ -339,13 +347,13 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
     big_v_new = big_v + dt * ((1.0 - gamma) * big_a + gamma * big_a_new)
     a_new = (x_new - x_hat) / (beta * dt**2)
     v_new = state.v + dt * ((1.0 - gamma) * state.a + gamma * a_new)
-    a_new[~problem.massive], v_new[~problem.massive] = 0.0, 0.0
+    a_new[problem.massless], v_new[problem.massless] = 0.0, 0.0
     absorbed = state.absorbed
     if problem.damped:  # midpoint velocity: exact for Newmark (dt/4 |v_n + v_n+1|_D^2)
         v_sum = state.v + v_new
         absorbed += 0.25 * dt * float(v_sum @ (problem.damping @ v_sum))
     candidates = problem.candidates
-    new_gap = candidates.profile - big_new - x_new[problem.free][candidates.position]
+    new_gap = candidates.profile - big_new - x_free[candidates.position]
     contact_term = state.contact_term - 0.5 * float((forces + new_forces) @ (new_gap - state.gap))
     return ImpactState(
         step=state.step + 1,

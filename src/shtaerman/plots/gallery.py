@@ -18,7 +18,7 @@ from .curves import plot_convergence, plot_force_depth, plot_pressure
 from .fields import SIGMA
 from .impact import plot_impact_contact, plot_impact_motion
 from .revolved import plot_revolved
-from .sections import plot_field
+from .sections import plot_each_field
 
 if TYPE_CHECKING:
     from ..study.contact.indentation import IndentationResult
@@ -161,10 +161,8 @@ def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, 
         Caption to PNG path.
     """
     folder, result = Path(folder), outcome.contact
-    made = {
-        caption: plot_field(result, folder / f"field_{name}.png", name)
-        for name, caption in FIELD_FIGURES.items()
-    }
+    paths = {name: folder / f"field_{name}.png" for name in FIELD_FIGURES}
+    made = {FIELD_FIGURES[name]: path for name, path in plot_each_field(result, paths).items()}
     made[REVOLVED_CAPTION] = plot_revolved(result, folder / "field_revolved.png")
     return made
 

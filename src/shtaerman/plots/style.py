@@ -39,6 +39,7 @@ __all__ = [
     "FEM_COLOUR",
     "FIGURE_FORMATS",
     "PAPER_COLOUR",
+    "PNG_COMPRESSION",
     "SECOND_COLOUR",
     "STYLE",
     "WIDTH",
@@ -55,6 +56,9 @@ __all__ = [
 ]
 
 DPI = 200
+PNG_COMPRESSION = 3
+"""zlib level of the PNGs (lossless at any level): 3 encodes in about 0.7 of the time of the
+default 6, for files about 10 % larger."""
 WIDTH = 6.4
 """Figure width in inches (1280 pixels at :data:`DPI`)."""
 EXACT_COLOUR = "#000000"
@@ -135,16 +139,19 @@ def save(figure: Figure, path: Path | str, figure_format: str = "png") -> Path:
         raise InputError(f"figure path must end in .png, .svg or .pdf, got {str(path)!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
     with mpl.rc_context(STYLE):
-        figure.savefig(path, dpi=DPI, metadata=_metadata(suffix))
+        figure.savefig(path, dpi=DPI, **_options(suffix))
         if figure_format not in ("png", suffix):
             twin = path.with_suffix(f".{figure_format}")
-            figure.savefig(twin, dpi=DPI, metadata=_metadata(figure_format))
+            figure.savefig(twin, dpi=DPI, **_options(figure_format))
     return path
 
 
-def _metadata(figure_format: str) -> dict[str, object] | None:
-    """No creation date in vector files: the same figure gives the same bytes."""
-    return {"Date": None} if figure_format in ("svg", "pdf") else None
+def _options(figure_format: str) -> dict[str, object]:
+    """No creation date in vector files (the same figure gives the same bytes); PNGs at
+    :data:`PNG_COMPRESSION`."""
+    if figure_format == "png":
+        return {"pil_kwargs": {"compress_level": PNG_COMPRESSION}}
+    return {"metadata": {"Date": None}}
 
 
 def plain_log(axis: Axis) -> None:
