@@ -65,6 +65,7 @@ __all__ = [
     "is_sweep_folder",
     "read_records",
     "run_sweep",
+    "worker_count",
 ]
 
 SPEC_FILE = "sweep.toml"
@@ -142,6 +143,40 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
+
+
+WORKER_MEMORY = {"impact": 250e6, "contact": 400e6, "dynamic": 400e6}
+"""Resident memory of a local worker process running cases of a sweep kind, bytes (dask and
+the kind's modules, about 230 MB, and the case's own arrays); other kinds: the largest."""
+
+
+def available_memory() -> float:
+    """Memory that new processes may use on this machine, bytes (psutil's available)."""
+    import psutil
+
+    return float(psutil.virtual_memory().available)
+
+
+def worker_count(asked: int | None, tasks: int, memory: float, what: str = "cases") -> int:
+    """Local worker processes to start for ``tasks`` tasks (``what``: their name, plural):
+    ``asked`` (default: the cores), at most one per task and at most what the available memory
+    holds at ``memory`` bytes per worker (at least one). Prints one line on stderr when that is
+    fewer than asked, or when the memory caps the default.
+    """
+    wanted = asked or default_workers()
+    available = available_memory()
+    fits = max(1, int(available // memory))
+    count = max(1, min(wanted, tasks, fits))
+    if count < wanted and (count < tasks or asked is not None):
+        if count == fits and fits < min(wanted, tasks):
+            why = (
+                f"the available memory ({available / 1e9:.1f} GB) holds {fits} of about "
+                f"{memory / 1e6:.0f} MB each"
+            )
+        else:
+            why = f"{tasks} {what} to compute"
+        print(f"shtaerman: starting {count} of {wanted} workers: {why}", file=sys.stderr)
+    return count
 
 
 # --- on the worker ----------------------------------------------------------------------------
@@ -787,8 +822,9 @@ def _compute(
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
     by_key = dict(zip(keys, pending, strict=True))
     with bar, _quiet_dask():
-        if scheduler is None:  # no more processes than cases
-            workers = min(workers or default_workers(), len(pending))
+        if scheduler is None:  # no more processes than cases, nor than the memory holds
+            memory = WORKER_MEMORY.get(spec.kind, max(WORKER_MEMORY.values()))
+            workers = worker_count(workers, len(pending), memory)
         with _client(workers, scheduler, stop) as client:
             stop.check()
             ready()
