@@ -450,3 +450,35 @@ def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
     results = json.loads((out / "results.json").read_text())
     assert list(results["studies"]) == [FIRST, SECOND] and results["passed"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_verify_workers_are_capped_at_the_studies_to_compute_and_the_memory(
+    tmp_path, monkeypatch, capsys
+):
+    """verify --workers 16 for 2 studies started 16 worker processes; now one per study left
+    to compute and no more than the available memory holds, said in one line."""
+    import contextlib
+
+    import shtaerman.sweep.engine as engine
+    import shtaerman.sweep.verify as on_dask
+
+    started = []
+
+    @contextlib.contextmanager
+    def no_cluster(workers=None, scheduler=None):
+        started.append(workers)
+        raise KeyboardInterrupt
+        yield
+
+    monkeypatch.setattr(on_dask, "dask_client", no_cluster)
+    argv = ["verify", "--quick", "--workers", "16", *STUDIES]
+    assert main([*argv, "--out", str(tmp_path / "a")]) == 130
+    assert started == [2]
+    assert "shtaerman: starting 2 of 16 workers: 2 studies to compute\n" in capsys.readouterr().err
+    monkeypatch.setattr(engine, "available_memory", lambda: 1.2e9)
+    assert main([*argv, "--out", str(tmp_path / "b")]) == 130
+    assert started == [2, 1]
+    assert (
+        "shtaerman: starting 1 of 16 workers: the available memory (1.2 GB) holds 1 of about "
+        "800 MB\n" in capsys.readouterr().err
+    )

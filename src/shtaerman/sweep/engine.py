@@ -171,7 +171,7 @@ def worker_count(asked: int | None, tasks: int, memory: float, what: str = "case
         if count == fits and fits < min(wanted, tasks):
             why = (
                 f"the available memory ({available / 1e9:.1f} GB) holds {fits} of about "
-                f"{memory / 1e6:.0f} MB each"
+                f"{memory / 1e6:.0f} MB"
             )
         else:
             why = f"{tasks} {what} to compute"
@@ -500,18 +500,26 @@ def _unlink_links(folder: Path) -> None:
 # --- the cluster ------------------------------------------------------------------------------
 
 
+QUIET_LOGGERS = ("distributed", "tornado", "asyncio")
+"""Loggers silenced during a run: what they would say (worker restarts, a task given up after
+its worker died, unresponsive loops, connections closed at shutdown) reaches the user as this
+tool's own one-line messages, or not at all."""
+
+
 @contextlib.contextmanager
 def _quiet_dask() -> Iterator[None]:
-    """Dask's INFO/WARNING chatter (worker restarts, unresponsive loops) hidden for the run."""
-    logger = logging.getLogger("distributed")
-    level = logger.level
-    logger.setLevel(logging.ERROR)
+    """Dask's log records (up to ERROR and CRITICAL) and warnings hidden for the run."""
+    loggers = [logging.getLogger(name) for name in QUIET_LOGGERS]
+    levels = [logger.level for logger in loggers]
+    for logger in loggers:
+        logger.setLevel(logging.CRITICAL + 1)
     try:
         with warnings.catch_warnings():
             warnings.filterwarnings("ignore", module=r"distributed(\.|$)")
             yield
     finally:
-        logger.setLevel(level)
+        for logger, level in zip(loggers, levels, strict=True):
+            logger.setLevel(level)
 
 
 def _connect(scheduler: str, stop: _StopFlag | None) -> Any:
@@ -850,12 +858,19 @@ def _compute(
             return nthreads
 
 
+def _lost_reason(error: Exception) -> str:
+    """Why the cluster could not run a case, in a few words."""
+    if type(error).__name__ == "KilledWorker":
+        return "KilledWorker: the worker processes running it died"
+    return _one_line(error)
+
+
 def _collect(out: Path, future: Any, case: Case, records: dict, lost: dict) -> None:
     """Write the record of a finished future (or note a case the cluster could not run)."""
     try:
         result = future.result()
     except Exception as error:  # lost worker beyond dask's allowance, scheduler gone
-        lost[case.index] = _one_line(error)
+        lost[case.index] = _lost_reason(error)
         return
     finally:
         future.release()
