@@ -482,3 +482,18 @@ def test_verify_workers_are_capped_at_the_studies_to_compute_and_the_memory(
         "shtaerman: starting 1 of 16 workers: the available memory (1.2 GB) holds 1 of about "
         "800 MB\n" in capsys.readouterr().err
     )
+
+
+def test_a_failed_computation_on_a_dask_worker_comes_back_as_itself(monkeypatch):
+    """A study task returns its refused input or failed computation (the worker logs no
+    traceback); the executor raises it again in this process, named by its study."""
+    import shtaerman.sweep.verify as on_dask
+    from shtaerman.validation import InputError, NumericalFailureError
+
+    def failing(study, stage, quick, figure_format):
+        raise NumericalFailureError(f"{study}: Newton did not converge")
+
+    monkeypatch.setattr(on_dask, "compute_study", failing)
+    result = on_dask.verify_task("s.toml: study 'a'", "/nowhere", True)
+    assert result == {"failure": ("numerical", "s.toml: study 'a': Newton did not converge")}
+    assert on_dask.FAILURES == {"input": InputError, "numerical": NumericalFailureError}
