@@ -168,8 +168,11 @@ def test_time_steps_not_an_integer_is_one_line(capsys, value):
 def test_force_replaces_an_existing_out_folder(capsys, tmp_path):
     """--out EXISTING --force replaces the folder (the API was once called without force=, so
     the run computed everything and then exited 2 with 'not empty (use --force)')."""
+    from shtaerman.output.files import FOLDER_MARKER
+
     out = tmp_path / "out"
     out.mkdir()
+    (out / FOLDER_MARKER).write_text("{}")  # a folder this tool wrote
     (out / "old.txt").write_text("old\n")
     code, _, err = run(capsys, "dynamic", "--no-estimate", "--out", str(out), "--force", *COARSE)
     assert code == 0 and err == ""

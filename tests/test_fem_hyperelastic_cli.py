@@ -105,7 +105,7 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
     assert "Neo-Hookean contact" in out and "energy (J)" in out and "Newton" in out
     saved = json.loads((folder / "contact.json").read_text())
     assert saved["model"] == "neo-hookean" and saved["steps"][0]["strain_energy"] > 0
-    assert sorted(p.name for p in folder.iterdir()) == [
+    assert sorted(p.name for p in folder.iterdir() if not p.name.startswith(".")) == [
         "contact.json",
         "field_max_depth.vtu",
         "finite_curve.csv",
@@ -116,13 +116,17 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
 def test_neo_hookean_force_replaces_a_used_folder(capsys, tmp_path):
     # --force was not passed on to the staging of the neo-Hookean path: the run computed,
     # then refused its own folder (QA)
+    from shtaerman.output.files import FOLDER_MARKER
+
     folder = tmp_path / "run"
     folder.mkdir()
+    (folder / FOLDER_MARKER).write_text("{}")  # a folder this tool wrote
     (folder / "old").write_text("old")
     argv = ["contact", "--model", "neo-hookean", "--no-estimate", "--depths", "1e-3"]
     code, _, err = run(capsys, *argv, "--out", str(folder), "--force", *COARSE)
     assert code == 0, err
     assert sorted(p.name for p in folder.iterdir()) == [
+        FOLDER_MARKER,
         "contact.json",
         "field_max_depth.vtu",
         "finite_curve.csv",

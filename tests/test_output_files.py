@@ -12,6 +12,7 @@ import pytest
 
 from shtaerman.cli import main
 from shtaerman.output.files import (
+    FOLDER_MARKER,
     check_output_folder,
     staged_file,
     staged_folder,
@@ -24,6 +25,18 @@ def run(capsys, *argv):
     code = main(list(argv))
     out, err = capsys.readouterr()
     return code, out, err
+
+
+def names(folder: Path) -> list[str]:
+    """The entries of ``folder`` but the marker of a result folder of this tool."""
+    return sorted(p.name for p in folder.iterdir() if p.name != FOLDER_MARKER)
+
+
+def ours(folder: Path) -> Path:
+    """``folder`` created as a result folder this tool wrote (with its marker)."""
+    folder.mkdir()
+    (folder / FOLDER_MARKER).write_text('{"format": "shtaerman-folder-1"}')
+    return folder
 
 
 def dead_pid() -> int:
@@ -74,19 +87,18 @@ def test_a_reservation_filled_by_someone_else_is_not_replaced(tmp_path):
 
 
 def test_a_failed_forced_run_restores_the_old_folder(tmp_path):
-    target = tmp_path / "run"
-    target.mkdir()
+    target = ours(tmp_path / "run")
     (target / "old.txt").write_text("old")
     with pytest.raises(RuntimeError):
         with staged_folder(target, force=True) as stage:
             assert not (target / "old.txt").exists()
             (stage / "new.txt").write_text("new")
             raise RuntimeError("boom")
-    assert [p.name for p in target.iterdir()] == ["old.txt"]
+    assert names(target) == ["old.txt"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
     with staged_folder(target, force=True) as stage:
         (stage / "new.txt").write_text("new")
-    assert [p.name for p in target.iterdir()] == ["new.txt"]
+    assert names(target) == ["new.txt"] and (target / FOLDER_MARKER).is_file()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 
 
@@ -277,7 +289,7 @@ def test_keep_staged_moves_the_finished_part_into_place(tmp_path):
             (stage / "done.txt").write_text("done")
             (stage / "marker").write_text("{}")
             raise KeepStaged(KeyboardInterrupt())
-    assert sorted(p.name for p in target.iterdir()) == ["done.txt", "marker"]
+    assert names(target) == ["done.txt", "marker"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
     # a folder without the marker is not resumed; one with it starts the stage with its files
     with pytest.raises(InputError, match="holds no interrupted run"):
@@ -287,11 +299,11 @@ def test_keep_staged_moves_the_finished_part_into_place(tmp_path):
             assert (stage / "done.txt").read_text() == "done"
             (stage / "done.txt").unlink()
             raise RuntimeError("boom")
-    assert sorted(p.name for p in target.iterdir()) == ["done.txt", "marker"]  # restored
+    assert names(target) == ["done.txt", "marker"]  # restored
     with staged_folder(target, resume_marker="marker") as stage:
         (stage / "marker").unlink()
         (stage / "more.txt").write_text("more")
-    assert sorted(p.name for p in target.iterdir()) == ["done.txt", "more.txt"]
+    assert names(target) == ["done.txt", "more.txt"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 
 
@@ -329,17 +341,14 @@ def test_a_killed_run_that_had_filled_its_folder_keeps_the_one_it_replaced(tmp_p
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run", f"run.replaced-{pid}"]
 
 
-def test_a_forced_run_marks_the_folder_it_replaced_superseded_once_published(
-    tmp_path, monkeypatch
-):
+def test_a_forced_run_marks_the_folder_it_replaced_superseded_once_published(tmp_path, monkeypatch):
     """A run killed while deleting its stage, after the new folder is in place: the old one
     is marked superseded first, so the next run neither keeps it as NAME.replaced-PID nor
     warns (it did, for verify and contact --force, as if a sweep had been interrupted)."""
     import shutil
     import warnings
 
-    target = tmp_path / "run"
-    target.mkdir()
+    target = ours(tmp_path / "run")
     (target / "old.txt").write_text("old")
     stages = []
     monkeypatch.setattr(shutil, "rmtree", lambda path, **kw: stages.append(path))  # killed
@@ -355,3 +364,54 @@ def test_a_forced_run_marks_the_folder_it_replaced_superseded_once_published(
             (again / "newer.txt").write_text("newer")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
     assert (target / "newer.txt").read_text() == "newer"
+
+
+@pytest.mark.parametrize("marker", ["missing", "link", "folder"])
+def test_force_replaces_no_folder_this_tool_did_not_write(tmp_path, capsys, marker):
+    """--force replaced any folder, a user's project folder too: only a folder holding the
+    marker this tool writes (a regular file, not a link to one) is replaced."""
+    project = tmp_path / "project"
+    project.mkdir()
+    (project / "notes.txt").write_text("mine")
+    if marker == "link":
+        (tmp_path / "m.json").write_text("{}")
+        (project / FOLDER_MARKER).symlink_to(tmp_path / "m.json")
+    elif marker == "folder":
+        (project / FOLDER_MARKER).mkdir()
+    with pytest.raises(InputError, match="was not written by shtaerman"):
+        with staged_folder(project, force=True):
+            pass
+    for argv in (
+        ["contact", "--depths", "1e-3"],
+        ["dynamic", "--no-estimate"],
+        ["verify", "--quick", "paper"],
+    ):
+        code, out, err = run(capsys, *argv, "--out", str(project), "--force")
+        assert code == 2 and out == "" and err.count("\n") == 1, (argv, err)
+        assert f"out: folder '{project}' was not written by shtaerman" in err
+        assert "name a new folder with --out" in err
+    assert names(project) == ["notes.txt"] and (project / "notes.txt").read_text() == "mine"
+    expected = ["m.json", "project"] if marker == "link" else ["project"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == expected
+
+
+def test_a_killed_run_that_kept_a_resumable_part_has_it_moved_into_place(tmp_path):
+    """After a SIGKILL, a stage whose content holds its ``keep_marker`` file (a verify's
+    progress) is moved into place by the next run writing the folder, with a warning saying
+    where; without that file it is removed as before."""
+    target = tmp_path / "run"
+    stale = tmp_path / f".run.partial-{dead_pid()}"
+    (stale / "content" / "done").mkdir(parents=True)
+    (stale / "content" / "progress.json").write_text("{}")
+    (stale / "keep").write_text("progress.json")
+    (stale / "replaced").mkdir()  # a forced run: the folder it replaced goes, as on SIGTERM
+    target.mkdir()  # its reservation
+    with pytest.warns(UserWarning, match=f"left its finished part in '{target}'"):
+        check_output_folder(target, force=False, resume_marker="progress.json")
+    assert sorted(p.name for p in target.iterdir()) == ["done", "progress.json"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    # the stage is recorded as keepable only for a run that asks for it
+    with staged_folder(tmp_path / "other", keep_marker="progress.json") as stage:
+        assert (stage.parent / "keep").read_text() == "progress.json"
+    with staged_folder(tmp_path / "plain") as stage:
+        assert not (stage.parent / "keep").exists()

@@ -513,3 +513,66 @@ def test_no_more_workers_than_cases_and_a_private_scratch_folder(tmp_path, monke
     assert outcome.exit_code == 0 and outcome.workers == 2
     assert list(victim.iterdir()) == []
     assert sorted(p.name for p in temporary.iterdir()) == ["dask-scratch-space"]
+
+
+def test_a_case_dask_gives_up_on_is_one_line_of_ours_and_no_dask_log(tmp_path, capfd):
+    """After KilledWorker the CLI says how many cases could not run and how to complete them,
+    in its own words: no "distributed.scheduler - ERROR" line, no "nothing to compute"."""
+    path, markers = probe_sweep(tmp_path, [1, 2, 3], sleep=1.0)
+    out = tmp_path / "out"
+    killer = FirstCaseKiller(markers)
+    killer.start()
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        code = main(["sweep", str(path), "--out", str(out), "--workers", "2"])
+    killer.join()
+    stdout, stderr = capfd.readouterr()
+    assert code == 1 and killer.pid is not None
+    lost = 3 - len(case_files(out))
+    assert lost >= 1 and "nothing to compute" not in stdout
+    assert f"3 cases, {3 - lost} ok, 0 failed ({3 - lost} computed on 2 workers)" in stdout
+    [line] = stderr.strip().splitlines()
+    assert line.startswith(f"shtaerman: {lost} cases could not run (KilledWorker: ")
+    assert line.endswith(f"complete them with: shtaerman sweep {path} --out {out} --resume")
+    assert "distributed" not in stderr
+
+
+def test_sigterm_while_the_cluster_starts_says_nothing_was_saved(tmp_path, capfd, monkeypatch):
+    """SIGTERM while the local cluster starts: one line, no folder named that does not
+    exist, no dask log."""
+    import shtaerman.sweep.engine as engine
+
+    start = engine._local_cluster
+
+    def terminated_while_starting(workers, scratch):
+        os.kill(os.getpid(), signal.SIGTERM)
+        return start(workers, scratch)
+
+    monkeypatch.setattr(engine, "_local_cluster", terminated_while_starting)
+    path, _ = probe_sweep(tmp_path, [1, 2, 3, 4, 5, 6])
+    out = tmp_path / "st1"
+    assert main(["sweep", str(path), "--out", str(out), "--workers", "2"]) == 128 + signal.SIGTERM
+    stdout, stderr = capfd.readouterr()
+    assert stdout == "" and not out.exists()
+    assert stderr == "shtaerman: sweep 'probe' interrupted (SIGTERM) before any case was saved\n"
+
+
+def test_workers_are_capped_at_the_cases_and_the_memory_with_one_line(tmp_path, capfd, monkeypatch):
+    """--workers 16 for 2 cases started 17 processes (one per case now, and said so); the
+    available memory caps the workers too."""
+    import shtaerman.sweep.engine as engine
+
+    path, _ = probe_sweep(tmp_path, [1, 2])
+    assert main(["sweep", str(path), "--out", str(tmp_path / "a"), "--workers", "16"]) == 0
+    stdout, stderr = capfd.readouterr()
+    assert "(2 computed on 2 workers)" in stdout
+    assert stderr == "shtaerman: starting 2 of 16 workers: 2 cases to compute\n"
+    monkeypatch.setattr(
+        engine, "available_memory", lambda: 1.5 * max(engine.WORKER_MEMORY.values())
+    )
+    assert main(["sweep", str(path), "--out", str(tmp_path / "b"), "--workers", "2"]) == 0
+    stdout, stderr = capfd.readouterr()
+    assert "(2 computed on 1 worker)" in stdout
+    assert stderr == (
+        "shtaerman: starting 1 of 2 workers: the available memory (0.6 GB) holds 1 of about "
+        "400 MB\n"
+    )

@@ -8,8 +8,10 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 
+import shtaerman
 import shtaerman.output.folder
 from shtaerman.cli import main
+from shtaerman.output.files import FOLDER_MARKER
 from shtaerman.study.contact.runner import IMPACT_KEYS
 from shtaerman.study.schema import shipped_studies
 
@@ -192,7 +194,9 @@ def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
     err = capsys.readouterr().err
     assert served == [FIRST, SECOND]
     # the finished study is kept, complete, with the marker; no results.json, no report
-    assert sorted(p.name for p in out.iterdir()) == sorted(["incomplete.json", FIRST])
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        [FOLDER_MARKER, "incomplete.json", FIRST]
+    )
     assert sorted(p.name for p in (out / FIRST).iterdir()) == sorted(
         p.name for p in (quick_verify[1] / FIRST).iterdir()
     )
@@ -261,12 +265,16 @@ def test_resume_recomputes_a_study_whose_inputs_changed(
     argv = ["verify", "--workers", "1", "--out", str(out2), "--resume", *STUDIES]
     assert main(argv) == 2
     assert "the interrupted run was with --quick" in capsys.readouterr().err
-    assert sorted(p.name for p in out2.iterdir()) == sorted(["incomplete.json", FIRST])
+    assert sorted(p.name for p in out2.iterdir()) == sorted(
+        [FOLDER_MARKER, "incomplete.json", FIRST]
+    )
     # nor by a run of other studies: the finished one would be deleted without a word
     argv = ["verify", "--quick", "--workers", "1", "--out", str(out2), "--resume", STUDIES[1]]
     assert main(argv) == 2
     assert f"the interrupted run also finished '{FIRST}'" in capsys.readouterr().err
-    assert sorted(p.name for p in out2.iterdir()) == sorted(["incomplete.json", FIRST])
+    assert sorted(p.name for p in out2.iterdir()) == sorted(
+        [FOLDER_MARKER, "incomplete.json", FIRST]
+    )
 
 
 def test_resume_on_dask_computes_only_the_missing_study(
@@ -344,3 +352,148 @@ def test_too_many_study_depths_are_refused_before_the_run(tmp_path, capsys, monk
     assert code == 2 and err.count("\n") == 1
     assert "contact.depths: at most 1000 per curve, got 1001" in err
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("failure", ["numerical", "disk full"])
+def test_an_error_keeps_the_finished_studies_and_says_how_to_resume(
+    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys, failure
+):
+    """An error that is no signal (a failed FEM computation, a full disk while writing) kept
+    nothing of the studies that had finished; they are kept as for Ctrl-C, and a failed
+    computation names its study file and study."""
+    import errno
+
+    from shtaerman.validation import NumericalFailureError
+
+    served = []
+    if failure == "numerical":
+        error = NumericalFailureError("Newton did not converge; refine the mesh")
+        monkeypatch.setattr(
+            shtaerman.output.folder,
+            "run_study",
+            _interrupting(quick_outcomes, [SECOND, error], served),
+        )
+    else:
+        monkeypatch.setattr(
+            shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+        )
+        write = shtaerman.output.folder.study_entry
+
+        def full_disk(outcome, stage, figure_format="png"):
+            if outcome.study.name == SECOND:
+                raise OSError(errno.ENOSPC, "No space left on device", str(stage / SECOND))
+            return write(outcome, stage, figure_format)
+
+        monkeypatch.setattr(shtaerman.output.folder, "study_entry", full_disk)
+    out = tmp_path / "run"
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 1
+    [line] = capsys.readouterr().err.strip().splitlines()[-1:]
+    source = next(path for path in STUDIES if Path(path).stem == SECOND)
+    if failure == "numerical":
+        assert line.startswith(f"shtaerman: error: {source}: study '{SECOND}': Newton did not ")
+    else:
+        assert line.startswith("shtaerman: error: No space left on device (")
+    assert f"; 1 of 2 studies finished and kept in '{out}'; complete them with: " in line
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        [FOLDER_MARKER, "incomplete.json", FIRST]
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    monkeypatch.undo()
+    served.clear()
+    monkeypatch.setattr(
+        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+    )
+    assert main(line.split("complete them with: ")[1].split()[1:]) == 0
+    assert served == [SECOND]
+    results = json.loads((out / "results.json").read_text())
+    assert list(results["studies"]) == [FIRST, SECOND]
+
+
+def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
+    quick_outcomes, tmp_path, monkeypatch, capsys
+):
+    """SIGKILL of the verify process after its first study finished: the next
+    ``verify --resume --out SAME`` finds that study (it is kept, not computed again) and says
+    where it is; SIGTERM and Ctrl-C kept it, SIGKILL lost it."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "run"
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]
+    env = {**os.environ, "PYTHONPATH": str(Path(shtaerman.__file__).parents[1])}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "shtaerman", *argv],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    deadline = time.monotonic() + 300
+    progress = tmp_path / f".run.partial-{process.pid}" / "content" / "incomplete.json"
+    while not progress.is_file():
+        assert process.poll() is None and time.monotonic() < deadline
+        time.sleep(0.05)
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    kept = {p.name: p.stat().st_mtime_ns for p in (progress.parent / FIRST).iterdir()}
+    served = []
+    monkeypatch.setattr(
+        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+    )
+    assert main([*argv, "--resume"]) == 0
+    err = capsys.readouterr().err
+    assert f"a killed run (pid {process.pid}) left its finished part in '{out}'" in err
+    assert served == [SECOND]
+    assert {p.name: p.stat().st_mtime_ns for p in (out / FIRST).iterdir()} == kept
+    results = json.loads((out / "results.json").read_text())
+    assert list(results["studies"]) == [FIRST, SECOND] and results["passed"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
+def test_verify_workers_are_capped_at_the_studies_to_compute_and_the_memory(
+    tmp_path, monkeypatch, capsys
+):
+    """verify --workers 16 for 2 studies started 16 worker processes; now one per study left
+    to compute and no more than the available memory holds, said in one line."""
+    import contextlib
+
+    import shtaerman.sweep.engine as engine
+    import shtaerman.sweep.verify as on_dask
+
+    started = []
+
+    @contextlib.contextmanager
+    def no_cluster(workers=None, scheduler=None):
+        started.append(workers)
+        raise KeyboardInterrupt
+        yield
+
+    monkeypatch.setattr(on_dask, "dask_client", no_cluster)
+    argv = ["verify", "--quick", "--workers", "16", *STUDIES]
+    assert main([*argv, "--out", str(tmp_path / "a")]) == 130
+    assert started == [2]
+    assert "shtaerman: starting 2 of 16 workers: 2 studies to compute\n" in capsys.readouterr().err
+    monkeypatch.setattr(engine, "available_memory", lambda: 1.2e9)
+    assert main([*argv, "--out", str(tmp_path / "b")]) == 130
+    assert started == [2, 1]
+    assert (
+        "shtaerman: starting 1 of 16 workers: the available memory (1.2 GB) holds 1 of about "
+        "800 MB\n" in capsys.readouterr().err
+    )
+
+
+def test_a_failed_computation_on_a_dask_worker_comes_back_as_itself(monkeypatch):
+    """A study task returns its refused input or failed computation (the worker logs no
+    traceback); the executor raises it again in this process, named by its study."""
+    import shtaerman.sweep.verify as on_dask
+    from shtaerman.validation import InputError, NumericalFailureError
+
+    def failing(study, stage, quick, figure_format):
+        raise NumericalFailureError(f"{study}: Newton did not converge")
+
+    monkeypatch.setattr(on_dask, "compute_study", failing)
+    result = on_dask.verify_task("s.toml: study 'a'", "/nowhere", True)
+    assert result == {"failure": ("numerical", "s.toml: study 'a': Newton did not converge")}
+    assert on_dask.FAILURES == {"input": InputError, "numerical": NumericalFailureError}

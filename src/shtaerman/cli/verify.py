@@ -8,6 +8,7 @@ import shlex
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 from ..validation import InputError
 from .common import add_figure_format, add_inputs
@@ -55,6 +56,7 @@ def run(args: argparse.Namespace) -> int:
     from ..output.files import check_output_folder
     from ..output.folder import PROGRESS_FILE, ProgressBar, VerifyInterrupted, run_verification
     from ..study.schema import find_study, load_study, shipped_studies
+    from ..sweep.engine import default_workers
 
     if args.resume and args.force:
         raise InputError("resume and force exclude each other: resume keeps the folder")
@@ -70,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         force=args.force,
         resume_marker=marker,
     )
-    workers = args.workers or os.cpu_count() or 1
+    workers = args.workers or default_workers()
     options = {
         "quick": args.quick,
         "force": args.force,
@@ -83,13 +85,13 @@ def run(args: argparse.Namespace) -> int:
 
             bar = ProgressBar(len(studies))
             results = run_verification_on_dask(
-                studies, out, workers=min(workers, len(studies)), progress=bar, **options
+                studies, out, workers=args.workers, progress=bar, **options
             )
         else:
             results = run_verification(studies, out, **options)
     except VerifyInterrupted as stop:
         print(_interrupted_text(args, stop, out), file=sys.stderr)
-        return 130 if isinstance(stop.cause, KeyboardInterrupt) else 143
+        return _stopped_code(stop.cause)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
 
@@ -124,19 +126,40 @@ def _check_unique_names(studies: list) -> None:
     raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
 
 
-def _interrupted_text(args: argparse.Namespace, stop: BaseException, out: Path) -> str:
-    """What an interrupted run kept, and the command that completes it."""
+def _stopped_code(cause: BaseException) -> int:
+    """The exit code of a run stopped by ``cause``: 130 Ctrl-C, 2 a refused input, 1 another
+    error, 143 SIGTERM."""
+    if isinstance(cause, KeyboardInterrupt):
+        return 130
+    if isinstance(cause, Exception):
+        return 2 if isinstance(cause, InputError) else 1
+    return 143
+
+
+def _interrupted_text(args: argparse.Namespace, stop: Any, out: Path) -> str:
+    """What a stopped run kept, and the command that completes it."""
     command = ["shtaerman", "verify", *args.studies, "--out", str(out)]
     if args.quick:
         command.append("--quick")
     if args.workers is not None:
         command += ["--workers", str(args.workers)]
     command.append("--resume")
-    reason = "interrupted" if isinstance(stop.cause, KeyboardInterrupt) else "terminated"
+    if isinstance(stop.cause, Exception):
+        reason = f"error: {_one_line(stop.cause)};"
+    else:
+        reason = "interrupted:" if isinstance(stop.cause, KeyboardInterrupt) else "terminated:"
     return (
-        f"shtaerman: {reason}: {stop.kept} of {stop.total} studies finished and kept in "
+        f"shtaerman: {reason} {stop.kept} of {stop.total} studies finished and kept in "
         f"{str(out)!r}; complete them with: {shlex.join(command)}"
     )
+
+
+def _one_line(error: Exception) -> str:
+    """An error in one line: its message, or for an OSError its reason and file."""
+    if isinstance(error, OSError) and error.strerror:
+        where = f" ({error.filename})" if error.filename else ""
+        return f"{error.strerror}{where}"
+    return " ".join(str(error).split()) or type(error).__name__
 
 
 def verify_text(results: dict, out: Path) -> str:

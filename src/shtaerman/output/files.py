@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import json
 import math
 import os
 import re
@@ -40,6 +41,7 @@ from ..validation import InputError
 
 __all__ = [
     "CSV_UNITS",
+    "FOLDER_MARKER",
     "KeepStaged",
     "check_folder_path",
     "check_output_file",
@@ -58,6 +60,13 @@ __all__ = [
 
 STAGE_SUFFIX = ".partial-"
 """Staging names are ``.NAME.partial-PID``."""
+FOLDER_MARKER = ".shtaerman-folder.json"
+"""Written into every result folder :func:`staged_folder` makes: ``force`` replaces only a
+folder that holds it (a folder this tool wrote), never a user's own folder."""
+FOLDER_FORMAT = "shtaerman-folder-1"
+KEEP_FILE = "keep"
+"""In a staging folder: the name of the file whose presence in ``content`` makes what a killed
+run staged worth keeping (:func:`staged_folder`'s ``keep_marker``)."""
 
 
 def missing_folder(folder: Path) -> str:
@@ -118,6 +127,9 @@ def _clean_stale(target: Path, stage: Path) -> None:
     When the killed run had already filled ``target`` (a sweep writes in place), the folder it
     was replacing is kept beside it as ``NAME.replaced-PID`` and a warning says where."""
     retired, content = stage / "replaced", stage / "content"
+    if _worth_keeping(stage):
+        _keep_stale(target, stage)
+        return
     with contextlib.suppress(OSError):
         if content.is_dir() or retired.is_dir():
             if target.is_dir() and not target.is_symlink() and not any(target.iterdir()):
@@ -132,6 +144,40 @@ def _clean_stale(target: Path, stage: Path) -> None:
                 f"as {str(kept)!r}",
                 stacklevel=2,
             )
+    _remove(stage)
+
+
+def _worth_keeping(stage: Path) -> bool:
+    """True when ``stage`` (a killed run's) has content its run marked as resumable."""
+    try:
+        marker = (stage / KEEP_FILE).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return False
+    return bool(marker) and "/" not in marker and resumable(stage / "content", marker)
+
+
+def _keep_stale(target: Path, stage: Path) -> None:
+    """Move a killed run's resumable content into place as ``target`` (as an interrupted run
+    would have; the folder it was replacing is dropped, as then), or beside it when
+    ``target`` holds something else; a warning says where."""
+    pid = stage.name.rsplit("-", 1)[-1]
+    with contextlib.suppress(OSError):
+        if target.is_dir() and not target.is_symlink() and not any(target.iterdir()):
+            os.rmdir(target)  # its empty reservation
+    place = target
+    try:
+        os.rename(stage / "content", target)  # fails if target holds anything
+    except OSError:
+        place = target.with_name(f"{target.name}.incomplete-{pid}")
+        try:
+            os.rename(stage / "content", place)
+        except OSError:
+            return  # another run took it meanwhile
+    warnings.warn(
+        f"a killed run (pid {pid}) left its finished part in {str(place)!r}; complete it with "
+        "--resume --out on that folder",
+        stacklevel=2,
+    )
     _remove(stage)
 
 
@@ -202,6 +248,27 @@ def resumable(folder: Path, marker: str | None) -> bool:
         return stat.S_ISREG(os.lstat(folder / marker).st_mode)
     except OSError:
         return False
+
+
+def ours(folder: Path) -> bool:
+    """True when ``folder`` holds :data:`FOLDER_MARKER` as a regular file: a result folder this
+    tool wrote."""
+    return resumable(folder, FOLDER_MARKER)
+
+
+def _mark(folder: Path) -> None:
+    """Write :data:`FOLDER_MARKER` into ``folder`` (a new file: a hard-linked old one is not
+    written through)."""
+    temporary = folder / f".{FOLDER_MARKER}.tmp"
+    temporary.write_text(json.dumps({"format": FOLDER_FORMAT}), encoding="utf-8")
+    os.replace(temporary, folder / FOLDER_MARKER)
+
+
+def _not_ours(option: str, path: object) -> InputError:
+    return InputError(
+        f"{option}: folder {str(path)!r} was not written by shtaerman (no {FOLDER_MARKER}); "
+        f"--force replaces only result folders of this tool: name a new folder with --{option}"
+    )
 
 
 def _not_empty(option: str, path: object, marker: str | None) -> InputError:
@@ -301,9 +368,11 @@ def check_output_folder(
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
-        if target.is_dir() and any(target.iterdir()) and not force:
-            if not resumable(target, resume_marker):
+        if target.is_dir() and any(target.iterdir()):
+            if not force and not resumable(target, resume_marker):
                 raise _not_empty(option, path, resume_marker)
+            if force and not ours(target):
+                raise _not_ours(option, path)
         probe_writable(option, target.parent, _stage_path(target).name)
     except ValueError as error:  # a NUL byte in the name
         if isinstance(error, InputError):
@@ -344,16 +413,23 @@ def _link_tree(source: Path, destination: Path) -> None:
 
 @contextlib.contextmanager
 def staged_folder(
-    target: Path, *, force: bool = False, option: str = "out", resume_marker: str | None = None
+    target: Path,
+    *,
+    force: bool = False,
+    option: str = "out",
+    resume_marker: str | None = None,
+    keep_marker: str | None = None,
 ) -> Iterator[Path]:
     """Yield a folder to fill; on success it becomes ``target`` in one rename.
 
-    ``target`` may exist only as an empty folder, or (``force``) as any folder, which is then
-    replaced. A folder holding the file ``resume_marker`` is replaced too, and the yielded
-    folder starts with its content (hard links) for the run to complete. On any failure (an
-    exception, Ctrl-C, SIGTERM raised as an exception) everything written is removed and
-    ``target`` is left exactly as it was; :class:`KeepStaged` instead moves what is staged
-    into place (replacing the old folder) and raises its reason.
+    ``target`` may exist only as an empty folder, or (``force``) as a folder this tool wrote
+    (:data:`FOLDER_MARKER`, written into every folder made here), which is then replaced. A
+    folder holding the file ``resume_marker`` is replaced too, and the yielded folder starts
+    with its content (hard links) for the run to complete. On any failure (an exception,
+    Ctrl-C, SIGTERM raised as an exception) everything written is removed and ``target`` is
+    left exactly as it was; :class:`KeepStaged` instead moves what is staged into place
+    (replacing the old folder) and raises its reason. After a SIGKILL, the next run writing
+    ``target`` moves the staged folder into place when it holds the file ``keep_marker``.
 
     Raises
     ------
@@ -367,8 +443,11 @@ def staged_folder(
     try:
         resumed = resumable(target, resume_marker)
         if os.path.lexists(target):
-            if not force and not resumed and any(target.iterdir()):
-                raise _not_empty(option, target, resume_marker)
+            if any(target.iterdir()):
+                if not force and not resumed:
+                    raise _not_empty(option, target, resume_marker)
+                if not resumed and not ours(target):
+                    raise _not_ours(option, target)
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it
@@ -380,6 +459,9 @@ def staged_folder(
         os.mkdir(content)
         if resumed:
             _link_tree(retired, content)
+        _mark(content)
+        if keep_marker is not None:
+            (stage / KEEP_FILE).write_text(keep_marker, encoding="utf-8")
         try:
             yield content
         except KeepStaged as keep:

@@ -9,6 +9,7 @@ studies moves them into place with that file and without results.json or reports
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import json
@@ -30,16 +31,19 @@ from ..plots.gallery import (
 from ..study.contact.runner import StudyOutcome
 from ..study.kinds import kind_function
 from ..study.run import run_study
-from ..validation import InputError
+from ..validation import InputError, NumericalFailureError
 from .export import write_indentation
-from .files import KeepStaged, json_safe, staged_folder, write_csv
+from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder, write_csv
 from .report import results_document, study_document, write_reports
 
 __all__ = [
     "PROGRESS_FILE",
+    "Executor",
     "ProgressBar",
     "VerifyInterrupted",
+    "compute_study",
     "finish_verification",
+    "in_process",
     "keep_finished",
     "kept_entries",
     "run_verification",
@@ -55,8 +59,9 @@ PROGRESS_FORMAT = "shtaerman-verify-progress-1"
 
 
 class VerifyInterrupted(BaseException):
-    """A verify run stopped by ``cause`` (Ctrl-C, SIGTERM) after ``kept`` of ``total`` studies
-    finished; those are in the result folder, which ``resume=True`` completes."""
+    """A verify run stopped by ``cause`` (Ctrl-C, SIGTERM, an error) after ``kept`` of
+    ``total`` studies finished; those are in the result folder, which ``resume=True``
+    completes."""
 
     def __init__(self, cause: BaseException, kept: int, total: int) -> None:
         super().__init__(type(cause).__name__)
@@ -131,6 +136,8 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
         and wanted.get(name) == item.get("fingerprint")
     }
     for path in stage.iterdir():
+        if path.name == FOLDER_MARKER:
+            continue
         if path.name not in kept or path.name == PROGRESS_FILE:  # unfinished, changed, marker
             _remove_entry(path)
     return kept
@@ -151,14 +158,15 @@ def keep_finished(
     *,
     quick: bool,
 ) -> NoReturn:
-    """Re-raise ``error``; for an interruption after some studies finished, as
-    :class:`KeepStaged` that moves them (with :data:`PROGRESS_FILE`) into place."""
-    if isinstance(error, Exception) or not entries:
+    """Re-raise ``error``; after some studies finished, as :class:`KeepStaged` that moves them
+    (with :data:`PROGRESS_FILE`) into place, for an interruption and an error alike."""
+    if not entries:
         raise error
     for path in stage.iterdir():
-        if path.name not in entries:
+        if path.name not in entries and path.name not in (PROGRESS_FILE, FOLDER_MARKER):
             _remove_entry(path)
-    save_progress(stage, studies, entries, quick)
+    with contextlib.suppress(OSError):  # a full disk: the file of the last study stands
+        save_progress(stage, studies, entries, quick)
     raise KeepStaged(VerifyInterrupted(error, len(entries), len(studies))) from None
 
 
@@ -238,6 +246,50 @@ def finish_verification(
     return results
 
 
+Finished = Callable[[Any, dict], None]
+"""Told each study with its results.json entry as soon as its files are written."""
+Executor = Callable[[list[Any], Path, bool, str, Callable[[str], None], Finished], None]
+"""Runs ``(todo, stage, quick, figure_format, progress, finished)``: computes each study of
+``todo``, writes its files into ``stage`` (:func:`compute_study`) and calls ``finished``."""
+
+
+def compute_study(
+    study: Any,
+    stage: Path,
+    quick: bool,
+    figure_format: str = "png",
+    progress: Callable[[str], None] | None = None,
+) -> dict[str, object]:
+    """Run one study and write its files and figures into ``stage``; its results.json entry.
+
+    Raises
+    ------
+    InputError, NumericalFailureError
+        An input the FEM refuses, a computation that failed: the message starts with the
+        study file and the study's name.
+    """
+    try:
+        outcome = run_study(study, quick=quick, progress=progress)
+    except NumericalFailureError as error:
+        raise NumericalFailureError(f"{study.source}: study {study.name!r}: {error}") from None
+    if progress is not None:
+        progress(f"{study.name}: files and figures")
+    return study_entry(outcome, stage, figure_format)
+
+
+def in_process(
+    todo: list[Any],
+    stage: Path,
+    quick: bool,
+    figure_format: str,
+    progress: Callable[[str], None],
+    finished: Finished,
+) -> None:
+    """The :data:`Executor` that runs the studies one after another in this process."""
+    for study in todo:
+        finished(study, compute_study(study, stage, quick, figure_format, progress))
+
+
 def run_verification(
     studies: list[Any],
     out: Path,
@@ -247,41 +299,48 @@ def run_verification(
     force: bool = False,
     figure_format: str = "png",
     resume: bool = False,
+    executor: Executor = in_process,
 ) -> dict[str, object]:
-    """Run the studies one after another in this process and write ``out`` (results.json,
-    report.md, report.html, per-study VTU fields, CSV curves and histories, PNG figures, and
-    with ``figure_format`` "svg" or "pdf" each chart also in that format beside its PNG).
-    Returns the results document. (``shtaerman verify`` runs them as dask tasks instead:
-    :mod:`shtaerman.sweep.verify`.)
+    """Run the studies and write ``out`` (results.json, report.md, report.html, per-study VTU
+    fields, CSV curves and histories, PNG figures, and with ``figure_format`` "svg" or "pdf"
+    each chart also in that format beside its PNG). Returns the results document.
 
-    ``out`` may exist only as an empty folder, or with ``force`` as any folder (replaced), or
-    with ``resume`` as a folder an interrupted run left (its finished studies are kept).
+    ``executor`` computes the studies (default: one after another in this process;
+    :mod:`shtaerman.sweep.verify` runs them as dask tasks). ``out`` may exist only as an empty
+    folder, or with ``force`` as a result folder of this tool (replaced), or with ``resume``
+    as a folder a stopped run left (its finished studies are kept). Each finished study is
+    recorded in :data:`PROGRESS_FILE` at once: a run stopped by a signal or an error keeps
+    them in ``out``, and after a SIGKILL the next run writing ``out`` moves them there.
 
     Raises
     ------
     VerifyInterrupted
-        Ctrl-C or SIGTERM after some studies finished: they are in ``out``.
+        Ctrl-C, SIGTERM or an error after some studies finished: they are in ``out``.
     """
     check_figure_format(figure_format)
     bar = progress or ProgressBar(len(studies))
     advance = getattr(bar, "advance", lambda: None)
     marker = PROGRESS_FILE if resume else None
-    with staged_folder(out, force=force, resume_marker=marker) as stage:
+    with staged_folder(out, force=force, resume_marker=marker, keep_marker=PROGRESS_FILE) as stage:
         entries = kept_entries(stage, studies, quick=quick)
         for _ in entries:
             advance()
+
+        def finished(study: Any, entry: dict) -> None:
+            save_progress(stage, studies, {**entries, study.name: entry}, quick)
+            entries[study.name] = entry
+            advance()
+            bar(f"{study.name}: {'PASS' if entry['passed'] else 'FAIL'}")
+
         try:
-            for study in studies:
-                if study.name in entries:
-                    continue
-                outcome = run_study(study, quick=quick, progress=bar)
-                bar(f"{study.name}: files and figures")
-                entries[study.name] = study_entry(outcome, stage, figure_format)
-                save_progress(stage, studies, entries, quick)
-                advance()
-                bar(f"{study.name}: {'PASS' if outcome.passed else 'FAIL'}")
+            todo = [study for study in studies if study.name not in entries]
+            if todo:
+                executor(todo, stage, quick, figure_format, bar, finished)
+            in_file_order = {study.name: entries[study.name] for study in studies}
+            results = finish_verification(
+                stage, in_file_order, quick=quick, figure_format=figure_format
+            )
         except BaseException as error:
             keep_finished(stage, studies, entries, error, quick=quick)
-        (stage / PROGRESS_FILE).unlink(missing_ok=True)
-        in_file_order = {study.name: entries[study.name] for study in studies}
-        return finish_verification(stage, in_file_order, quick=quick, figure_format=figure_format)
+        (stage / PROGRESS_FILE).unlink()
+        return results

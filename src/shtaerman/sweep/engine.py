@@ -65,6 +65,7 @@ __all__ = [
     "is_sweep_folder",
     "read_records",
     "run_sweep",
+    "worker_count",
 ]
 
 SPEC_FILE = "sweep.toml"
@@ -142,6 +143,40 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
+
+
+WORKER_MEMORY = {"impact": 250e6, "contact": 400e6, "dynamic": 400e6}
+"""Resident memory of a local worker process running cases of a sweep kind, bytes (dask and
+the kind's modules, about 230 MB, and the case's own arrays); other kinds: the largest."""
+
+
+def available_memory() -> float:
+    """Memory that new processes may use on this machine, bytes (psutil's available)."""
+    import psutil
+
+    return float(psutil.virtual_memory().available)
+
+
+def worker_count(asked: int | None, tasks: int, memory: float, what: str = "cases") -> int:
+    """Local worker processes to start for ``tasks`` tasks (``what``: their name, plural):
+    ``asked`` (default: the cores), at most one per task and at most what the available memory
+    holds at ``memory`` bytes per worker (at least one). Prints one line on stderr when that is
+    fewer than asked, or when the memory caps the default.
+    """
+    wanted = asked or default_workers()
+    available = available_memory()
+    fits = max(1, int(available // memory))
+    count = max(1, min(wanted, tasks, fits))
+    if count < wanted and (count < tasks or asked is not None):
+        if count == fits and fits < min(wanted, tasks):
+            why = (
+                f"the available memory ({available / 1e9:.1f} GB) holds {fits} of about "
+                f"{memory / 1e6:.0f} MB"
+            )
+        else:
+            why = f"{tasks} {what} to compute"
+        print(f"shtaerman: starting {count} of {wanted} workers: {why}", file=sys.stderr)
+    return count
 
 
 # --- on the worker ----------------------------------------------------------------------------
@@ -465,18 +500,26 @@ def _unlink_links(folder: Path) -> None:
 # --- the cluster ------------------------------------------------------------------------------
 
 
+QUIET_LOGGERS = ("distributed", "tornado", "asyncio")
+"""Loggers silenced during a run: what they would say (worker restarts, a task given up after
+its worker died, unresponsive loops, connections closed at shutdown) reaches the user as this
+tool's own one-line messages, or not at all."""
+
+
 @contextlib.contextmanager
 def _quiet_dask() -> Iterator[None]:
-    """Dask's INFO/WARNING chatter (worker restarts, unresponsive loops) hidden for the run."""
-    logger = logging.getLogger("distributed")
-    level = logger.level
-    logger.setLevel(logging.ERROR)
+    """Dask's log records (up to ERROR and CRITICAL) and warnings hidden for the run."""
+    loggers = [logging.getLogger(name) for name in QUIET_LOGGERS]
+    levels = [logger.level for logger in loggers]
+    for logger in loggers:
+        logger.setLevel(logging.CRITICAL + 1)
     try:
         with warnings.catch_warnings():
             warnings.filterwarnings("ignore", module=r"distributed(\.|$)")
             yield
     finally:
-        logger.setLevel(level)
+        for logger, level in zip(loggers, levels, strict=True):
+            logger.setLevel(level)
 
 
 def _connect(scheduler: str, stop: _StopFlag | None) -> Any:
@@ -787,8 +830,9 @@ def _compute(
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
     by_key = dict(zip(keys, pending, strict=True))
     with bar, _quiet_dask():
-        if scheduler is None:  # no more processes than cases
-            workers = min(workers or default_workers(), len(pending))
+        if scheduler is None:  # no more processes than cases, nor than the memory holds
+            memory = WORKER_MEMORY.get(spec.kind, max(WORKER_MEMORY.values()))
+            workers = worker_count(workers, len(pending), memory)
         with _client(workers, scheduler, stop) as client:
             stop.check()
             ready()
@@ -814,12 +858,19 @@ def _compute(
             return nthreads
 
 
+def _lost_reason(error: Exception) -> str:
+    """Why the cluster could not run a case, in a few words."""
+    if type(error).__name__ == "KilledWorker":
+        return "KilledWorker: the worker processes running it died"
+    return _one_line(error)
+
+
 def _collect(out: Path, future: Any, case: Case, records: dict, lost: dict) -> None:
     """Write the record of a finished future (or note a case the cluster could not run)."""
     try:
         result = future.result()
     except Exception as error:  # lost worker beyond dask's allowance, scheduler gone
-        lost[case.index] = _one_line(error)
+        lost[case.index] = _lost_reason(error)
         return
     finally:
         future.release()
