@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,59 +19,49 @@ from ..validation import InputError
 
 __all__ = ["ImpactResult", "check_bodies", "impact"]
 
-MAXIMA = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
-"""The maxima and durations, in the order of ``shtaerman impact --json``."""
+
+def _solved(name: str, doc: str) -> Any:
+    """The closed-form solution's ``name`` as a float attribute of the result."""
+    return property(lambda self: float(getattr(self.solution, name)), doc=doc)
 
 
 @dataclass(frozen=True)
 class ImpactResult:
-    """The quasi-static impact: the keys of ``shtaerman impact --json`` (SI units).
+    """The quasi-static impact: the keys of ``shtaerman impact --json`` (SI units), read from
+    its closed-form solution.
 
     Attributes
     ----------
-    beta : float
-        Force-law coefficient of P = beta x^q, N m^-q.
-    x_c, P_c, a_c, p_c : float
-        Maximum approach (m), force (N), contact radius (m), central pressure (Pa; inf for
-        n <= 1).
-    t_c, t_y : float
-        Compression time and impact duration, s.
-    impulse, impulse_simpson : float
-        2 M v0 and the paper's Simpson estimate of it (its eq. 16), N s.
-    force_exponent : float
-        q = (n + 1) / n.
-    modulus : float
-        Combined modulus E* of striker and body, Pa.
+    solution : shtaerman.theory.impact.ImpactResult
+        The closed-form solution behind these numbers (its contact law included).
     ode_check : dict or None
         The numerical ODE's x_c, t_c, t_y, rebound_velocity and max_history_difference (the
         largest |x_ode - x| / x_c), when asked for with ``check=True``.
-    solution : shtaerman.theory.impact.ImpactResult
-        The closed-form solution behind these numbers (its contact law included).
     """
 
-    beta: float
-    x_c: float
-    P_c: float
-    a_c: float
-    p_c: float
-    t_c: float
-    t_y: float
-    impulse: float
-    impulse_simpson: float
-    force_exponent: float
-    modulus: float
-    solution: theory.ImpactResult = field(repr=False, compare=False)
+    solution: theory.ImpactResult = field(repr=False)
     ode_check: dict[str, float] | None = None
 
-    @property
-    def mass(self) -> float:
-        """Striker mass M in kg."""
-        return self.solution.mass
+    beta = _solved("beta", "Force-law coefficient of P = beta x^q, N m^-q.")
+    x_c = _solved("x_c", "Maximum approach, m.")
+    P_c = _solved("P_c", "Maximum force, N.")
+    a_c = _solved("a_c", "Maximum contact radius, m.")
+    p_c = _solved("p_c", "Maximum central pressure, Pa (inf for n <= 1).")
+    t_c = _solved("t_c", "Compression time, s.")
+    t_y = _solved("t_y", "Impact duration, s.")
+    impulse = _solved("impulse", "2 M v0, N s.")
+    impulse_simpson = _solved("impulse_simpson", "The paper's Simpson estimate of 2 M v0, N s.")
+    force_exponent = _solved("force_exponent", "q = (n + 1) / n.")
+    mass = _solved("mass", "Striker mass M, kg.")
+    velocity = _solved("velocity", "Approach velocity v0, m/s.")
 
     @property
-    def velocity(self) -> float:
-        """Approach velocity v0 in m/s."""
-        return self.solution.velocity
+    def modulus(self) -> float:
+        """Combined modulus E* of striker and body, Pa."""
+        return float(self.solution.law.modulus)
+
+    def __repr__(self) -> str:
+        return f"ImpactResult({', '.join(f'{k}={v!r}' for k, v in self.to_dict().items())})"
 
     def history(self, points: int = 201, times: ArrayLike | None = None) -> theory.ImpactHistory:
         """The exact t, x, v, P, a, p0 over [0, t_y] (``points`` instants, or ``times`` in s).
@@ -85,7 +76,7 @@ class ImpactResult:
     def to_dict(self) -> dict[str, object]:
         """The JSON object of ``shtaerman impact --json`` (SI units): non-finite numbers
         are None (the CLI's null)."""
-        document: dict[str, object] = {name: getattr(self, name) for name in MAXIMA}
+        document: dict[str, object] = self.solution.maxima()
         document["force_exponent"] = self.force_exponent
         document["modulus"] = self.modulus
         if self.ode_check is not None:
@@ -150,14 +141,7 @@ def impact(
     check_bodies(indenter, body, striker)
     modulus = effective_modulus(striker, body)
     result = theory.solve_impact(mass, velocity, PowerLawContact(indenter, modulus))
-    maxima = result.maxima()
-    return ImpactResult(
-        **maxima,
-        force_exponent=result.force_exponent,
-        modulus=modulus,
-        solution=result,
-        ode_check=_ode_check(result) if check else None,
-    )
+    return ImpactResult(result, _ode_check(result) if check else None)
 
 
 def _ode_check(result: theory.ImpactResult) -> dict[str, float]:
