@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,18 +19,35 @@ from ..validation import InputError
 __all__ = ["ImpactResult", "check_bodies", "impact"]
 
 
-def _solved(name: str, doc: str) -> Any:
-    """The closed-form solution's ``name`` as a float attribute of the result."""
-    return property(lambda self: float(getattr(self.solution, name)), doc=doc)
+SOLVED = (
+    *("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson"),
+    *("force_exponent", "mass", "velocity"),
+)
+"""The attributes an :class:`ImpactResult` reads from its closed-form solution (as floats)."""
 
 
 @dataclass(frozen=True)
 class ImpactResult:
     """The quasi-static impact: the keys of ``shtaerman impact --json`` (SI units), read from
-    its closed-form solution.
+    its closed-form solution (:data:`SOLVED`).
 
     Attributes
     ----------
+    beta : float
+        Force-law coefficient of P = beta x^q, N m^-q.
+    x_c, P_c, a_c, p_c : float
+        Maximum approach (m), force (N), contact radius (m), central pressure (Pa; inf for
+        n <= 1).
+    t_c, t_y : float
+        Compression time and impact duration, s.
+    impulse, impulse_simpson : float
+        2 M v0 and the paper's Simpson estimate of it (its eq. 16), N s.
+    force_exponent : float
+        q = (n + 1) / n.
+    mass, velocity : float
+        Striker mass M in kg and approach velocity v0 in m/s.
+    modulus : float
+        Combined modulus E* of striker and body, Pa.
     solution : shtaerman.theory.impact.ImpactResult
         The closed-form solution behind these numbers (its contact law included).
     ode_check : dict or None
@@ -42,18 +58,10 @@ class ImpactResult:
     solution: theory.ImpactResult = field(repr=False)
     ode_check: dict[str, float] | None = None
 
-    beta = _solved("beta", "Force-law coefficient of P = beta x^q, N m^-q.")
-    x_c = _solved("x_c", "Maximum approach, m.")
-    P_c = _solved("P_c", "Maximum force, N.")
-    a_c = _solved("a_c", "Maximum contact radius, m.")
-    p_c = _solved("p_c", "Maximum central pressure, Pa (inf for n <= 1).")
-    t_c = _solved("t_c", "Compression time, s.")
-    t_y = _solved("t_y", "Impact duration, s.")
-    impulse = _solved("impulse", "2 M v0, N s.")
-    impulse_simpson = _solved("impulse_simpson", "The paper's Simpson estimate of 2 M v0, N s.")
-    force_exponent = _solved("force_exponent", "q = (n + 1) / n.")
-    mass = _solved("mass", "Striker mass M, kg.")
-    velocity = _solved("velocity", "Approach velocity v0, m/s.")
+    def __getattr__(self, name: str) -> float:
+        if name in SOLVED:
+            return float(getattr(self.solution, name))
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     @property
     def modulus(self) -> float:

@@ -26,6 +26,7 @@ __all__ = [
     "add_inputs",
     "in_option_words",
     "indenter",
+    "keywords",
     "print_json",
     "striker",
     "warn",
@@ -190,6 +191,11 @@ def in_option_words() -> Iterator[None]:
             raise
         option = entry(name).cli_option
         raise type(error)(option + message[len(name) :], name) from None
+
+
+def keywords(args: argparse.Namespace, names: Iterable[str]) -> dict[str, Any]:
+    """The parsed options ``names`` as the API's keywords (an option's dest is its keyword)."""
+    return {name: getattr(args, name) for name in names}
 
 
 def striker(args: argparse.Namespace) -> Material:

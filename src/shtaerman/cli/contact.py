@@ -10,7 +10,7 @@ from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS
 from ..theory.materials import Material
 from ..vocabulary import entry, fields
-from .common import add_figure_format, add_inputs, in_option_words, indenter, print_json
+from .common import add_figure_format, add_inputs, in_option_words, indenter, keywords, print_json
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -62,26 +62,17 @@ NOTES = {
 """What ``contact`` does with its output options."""
 
 
+KEYWORDS = (
+    *("mass", "velocity", "depths", "model", "refine", "estimate", "accuracy", "max_time"),
+    *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
+)
+"""The options passed to :func:`shtaerman.contact` as its keywords."""
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
     with in_option_words():
-        result = contact(
-            indenter(args),
-            Material(args.E2, args.nu2),
-            mass=args.mass,
-            velocity=args.velocity,
-            depths=args.depths,
-            model=args.model,
-            refine=args.refine,
-            estimate=args.estimate,
-            accuracy=args.accuracy,
-            max_time=args.max_time,
-            **{option: getattr(args, option) for option in MESH_OPTIONS},
-            solver=args.solver,
-            out=args.out,
-            force=args.force,
-            figure_format=args.figure_format,
-        )
+        result = contact(indenter(args), Material(args.E2, args.nu2), **keywords(args, KEYWORDS))
     report = result.to_dict()
     if args.json:
         print_json(report)

@@ -15,6 +15,7 @@ from .common import (
     add_inputs,
     in_option_words,
     indenter,
+    keywords,
     print_json,
     warn,
 )
@@ -62,18 +63,12 @@ def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     history = history_path(args.history, force=args.force)
+    names = ("mass", "velocity", "refine", "estimate", *SETTINGS_OPTIONS, "out", "force")
     with in_option_words():
         result = dynamic(
             indenter(args),
             Material(args.E2, args.nu2, args.density2),
-            mass=args.mass,
-            velocity=args.velocity,
-            refine=args.refine,
-            estimate=args.estimate,
-            **{keyword: getattr(args, keyword) for keyword in SETTINGS_OPTIONS},
-            out=args.out,
-            force=args.force,
-            figure_format=args.figure_format,
+            **keywords(args, (*names, "figure_format")),
         )
     report = result.to_dict()
     if history is not None:
