@@ -41,8 +41,10 @@ def _cell(text: str) -> str:
 
 
 def _default(action: argparse.Action) -> str:
-    if isinstance(action, argparse._StoreTrueAction | argparse._StoreFalseAction):
-        return "off" if action.default is False else "on"
+    if isinstance(action, argparse._StoreTrueAction):
+        return "off"
+    if isinstance(action, argparse._StoreFalseAction):  # --no-estimate: switches on an input
+        return f"off ({action.dest} on)"
     if action.default in (None, argparse.SUPPRESS):
         return ""
     return f"`{action.default}`"

@@ -220,8 +220,9 @@ def test_far_boundary_too_close_is_refused():
 
 
 def test_cone_is_refused():
+    # where input enters (the API, the CLI, a study file); the FEM layers trust it
     with pytest.raises(InputError, match="exponent must be > 1"):
-        run_indentation(PowerLawIndenter(5.0, 1.0), RUBBER, mesh=COARSE)
+        contact(PowerLawIndenter(5.0, 1.0), RUBBER, mesh=COARSE)
 
 
 def test_contact_cli_json_and_files(tmp_path, capsys):

@@ -350,7 +350,8 @@ def test_too_many_study_depths_are_refused_before_the_run(tmp_path, capsys, monk
     code = main(["verify", str(path), "--quick", "--out", str(tmp_path / "out")])
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1
-    assert "contact.depths: at most 1000 per curve, got 1001" in err
+    assert "key 'contact.depths': expected a list of 2 to 1000 increasing depths" in err
+    assert "(1001 values)" in err
     assert not (tmp_path / "out").exists()
 
 

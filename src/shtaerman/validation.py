@@ -79,6 +79,10 @@ class NumericalFailureError(RuntimeError):
 def _as_float(name: str, value: object, valid: str) -> float:
     if isinstance(value, bool | np.bool_):  # True == 1, but a flag is no quantity
         raise InputError(f"{name} must be a finite number {valid}, got {shown(value)}", name)
+    if isinstance(value, str | bytes | np.str_):  # numpy would not convert it where it is used
+        raise InputError(
+            f"{name} must be a finite number {valid}, not a string: got {shown(value)}", name
+        )
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):

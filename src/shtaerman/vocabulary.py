@@ -14,7 +14,7 @@ import itertools
 import math
 import numbers
 import warnings
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,12 +24,14 @@ from .validation import InputError, shown
 
 __all__ = [
     "KIND_NAMES",
+    "MAX_STUDIES",
     "VOCABULARY",
     "DeprecatedKeyWarning",
     "Entry",
     "Range",
     "deprecated",
     "entry",
+    "fields",
     "inputs_of",
     "parameter_table",
     "suggestion",
@@ -93,6 +95,11 @@ def _shown(number: float) -> str:
 POSITIVE = Range()
 POISSON = Range(-1.0, 0.5)
 FRACTION = Range(0.0, 1.0)
+MAX_STUDIES = 100
+"""Most studies one study file expands into (the values of its ``[sweep]``): each is a full
+study."""
+MAX_VELOCITIES = 100
+"""Most approach velocities of a dynamic study: each is a dynamic FE run."""
 
 
 @dataclass(frozen=True)
@@ -131,6 +138,14 @@ class Entry:
         Keys that meant it before (accepted with a deprecation message).
     infinite : bool
         Whether ``inf`` is valid (a rigid striker's E1).
+    setting : str
+        The settings field it sets (``MeshSettings``, ``DynamicSettings``; "": the name).
+    max_items : int or None
+        Most values of a list (``type="floats"``, or a dynamic study's velocities): each costs
+        a computation.
+    sweep_default : mapping
+        Kind -> default in a sweep where it differs from the command line's, the API's and
+        the study file's (:meth:`default_for`).
     """
 
     name: str
@@ -148,6 +163,9 @@ class Entry:
     group: str = "case"
     old_names: tuple[str, ...] = ()
     infinite: bool = False
+    setting: str = ""
+    max_items: int | None = None
+    sweep_default: Mapping[str, Any] = field(default_factory=dict)
 
     @property
     def cli_option(self) -> str:
@@ -155,8 +173,18 @@ class Entry:
         return self.option or "--" + self.name.replace("_", "-")
 
     def default_for(self, kind: str | None = None) -> Any:
-        """The default in computation ``kind`` (the common default if it has none of its own)."""
+        """The default in computation ``kind`` (the common default if it has none of its own)
+        on the command line, in the API and in a study file."""
         return self.by_kind.get(kind, self.default) if kind else self.default
+
+    def sweep_default_for(self, kind: str) -> Any:
+        """The default in a sweep of computation ``kind``."""
+        return self.sweep_default.get(kind, self.default_for(kind))
+
+    @property
+    def settings_field(self) -> str:
+        """The settings field it sets: ``mesh_size`` sets ``MeshSettings.size``."""
+        return self.setting or self.name
 
     def range_for(self, kind: str | None = None) -> Range | None:
         """The valid range in computation ``kind``."""
@@ -187,6 +215,10 @@ class Entry:
         if self.type == "floats":
             if isinstance(value, str | bytes) or not hasattr(value, "__iter__"):
                 value = [value]
+            value = list(value)
+            if self.max_items is not None and len(value) > self.max_items:
+                count = _Says(says.called)  # the count, not the (long) list
+                raise count.error(self, f"must list at most {self.max_items} values", len(value))
             numbers = [_number(self, v, kind, says) for v in value]
             if not numbers or any(b <= a for a, b in itertools.pairwise(numbers)):
                 raise says.error(self, f"must be {self.range_text(kind)}", value)
@@ -205,7 +237,11 @@ class Entry:
         """Command-line ``text`` converted to the entry's type and checked (:meth:`check`):
         a number, ``inf`` or ``rigid`` where infinity is valid, or comma-separated numbers."""
         if self.type == "floats":
-            value: Any = [_float(item) for item in text.split(",") if item.strip()]
+            items = text.split(",")
+            if any(not item.strip() for item in items):
+                says = _Says(called or self.name, shown(text))
+                raise says.error(self, "must be numbers separated by single commas", text)
+            value: Any = [_float(item) for item in items]
         elif self.type in ("float", "int"):
             value = _float(text)
             if self.infinite and text.strip().lower() == "rigid":
@@ -292,8 +328,17 @@ VOCABULARY: tuple[Entry, ...] = (
         3.0,
         ("impact", "finite-strain", "dynamic"),
         old_names=("velocities",),
+        max_items=MAX_VELOCITIES,
     ),
-    Entry("shape_coefficient", "m^(1-n)", "A in z = A r^n", "Shape coefficient A", 5.0, KIND_NAMES),
+    Entry(
+        "shape_coefficient",
+        "m^(1-n)",
+        "A in z = A r^n (the FEM: up to 1e100, beyond which the depths underflow)",
+        "Shape coefficient A",
+        5.0,
+        KIND_NAMES,
+        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(0.0, 1e100)),
+    ),
     Entry(
         "exponent",
         "",
@@ -362,6 +407,7 @@ VOCABULARY: tuple[Entry, ...] = (
         None,
         ("contact", "finite-strain"),
         type="floats",
+        max_items=1000,
     ),
     Entry(
         "model",
@@ -389,6 +435,7 @@ VOCABULARY: tuple[Entry, ...] = (
         valid=FRACTION,
         valid_by_kind={"dynamic": Range(0.0, 0.2)},
         old_names=("size",),
+        setting="size",
     ),
     _numeric(
         "mesh_margin",
@@ -399,6 +446,7 @@ VOCABULARY: tuple[Entry, ...] = (
         valid_by_kind={"dynamic": Range(1.0)},
         by_kind={"dynamic": 1.3},
         old_names=("margin",),
+        setting="margin",
     ),
     _numeric(
         "domain_factor",
@@ -408,6 +456,7 @@ VOCABULARY: tuple[Entry, ...] = (
         valid=Range(1e2, 1e7, low_open=False),
         by_kind={"dynamic": 1e4},
         old_names=("domain",),
+        setting="domain",
     ),
     _numeric(
         "growth",
@@ -443,13 +492,15 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     _numeric(
         "time_steps",
-        "time steps per quasi-static impact duration t_y",
+        "time steps per quasi-static impact duration t_y (more leave the contact stepping "
+        "unstable at the default mesh; refine scales them with the mesh)",
         "Time steps per impact duration t_y",
         200,
         ("dynamic",),
-        valid=Range(50.0, 100_000.0, low_open=False),
+        valid=Range(50.0, 5000.0, low_open=False),
         old_names=("steps",),
         type="int",
+        setting="steps",
     ),
     _numeric(
         "layer_rate",
@@ -514,7 +565,7 @@ VOCABULARY: tuple[Entry, ...] = (
         True,
         ("dynamic",),
         valid=None,
-        by_kind={"dynamic": False},
+        sweep_default={"dynamic": False},
         type="bool",
         group="numerics",
         option="--no-estimate",
@@ -586,6 +637,11 @@ def inputs_of(kind: str) -> dict[str, Entry]:
     return {item.name: item for item in VOCABULARY if kind in item.kinds}
 
 
+def fields(names: Iterable[str]) -> dict[str, str]:
+    """Input name -> the settings field it sets (``mesh_size`` -> ``size``), for ``names``."""
+    return {name: entry(name).settings_field for name in names}
+
+
 def suggestion(word: str, known: Any) -> str:
     """``" (did you mean 'x'?)"`` for the closest of ``known`` to ``word`` ("" if none is)."""
     close = difflib.get_close_matches(word, [str(k) for k in known], n=1, cutoff=0.5)
@@ -595,21 +651,26 @@ def suggestion(word: str, known: Any) -> str:
     return f" (did you mean {close[0]!r}?)" if close else ""
 
 
+def _value_text(item: Entry, value: Any) -> str:
+    if value is None:
+        return _UNSET[item.group]
+    if isinstance(value, bool):
+        return str(value).lower()
+    return f"{value:.6g}" if _is_real(value) else str(value)
+
+
 def _default_text(item: Entry) -> str:
-    shown = {}
+    """The defaults by kind, and in a sweep where it has its own."""
+    shown: dict[str, list] = {}
     for kind in item.kinds or (None,):
-        value = item.default_for(kind)
-        text = (
-            _UNSET[item.group]
-            if value is None
-            else f"{value:.6g}"
-            if _is_real(value)
-            else str(value)
-        )
-        shown.setdefault(text, []).append(kind)
+        shown.setdefault(_value_text(item, item.default_for(kind)), []).append(kind)
     if len(shown) == 1:
-        return next(iter(shown))
-    return ", ".join(f"{text} ({', '.join(kinds)})" for text, kinds in shown.items())
+        text = next(iter(shown))
+    else:
+        text = ", ".join(f"{text} ({', '.join(kinds)})" for text, kinds in shown.items())
+    for kind, value in item.sweep_default.items():
+        text += f"; {_value_text(item, value)} in a {kind} sweep"
+    return text
 
 
 _UNSET = {"case": "derived", "numerics": "-", "output": "-"}
@@ -629,6 +690,8 @@ def parameter_table() -> str:
         valid = item.range_text()
         if any(item.range_text(kind) != valid for kind in item.kinds):
             valid = f"{valid}; FEM {item.range_text(FEM_KINDS[0])}"
+        if item.type == "floats" and item.max_items:
+            valid += f"; at most {item.max_items} values"
         old = f" (formerly {', '.join(f'`{n}`' for n in item.old_names)})" if item.old_names else ""
         rows.append(
             f"| `{item.name}` | `{item.cli_option}` | {item.unit or '-'} | {valid or '-'} | "

@@ -6,29 +6,25 @@
 - :func:`run_study`, :func:`sweep`: study files and parameter sweeps.
 
 Every result is a frozen dataclass whose attributes are the keys of the matching CLI
-command's ``--json`` object, and whose ``to_dict()`` is that object.
+command's ``--json`` object, and whose ``to_dict()`` is that object. The public names are
+listed once, in :data:`shtaerman.__all__`.
 """
 
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import RIGID, Material
-from ..validation import InputError
-from .fem_contact import ContactResult, contact
-from .fem_dynamic import DynamicResult, dynamic
-from .quasi_static import ImpactResult, impact
-from .studies import StudyResults, run_study, sweep
+import sys
 
-__all__ = [
-    "RIGID",
-    "ContactResult",
-    "DynamicResult",
-    "ImpactResult",
-    "InputError",
-    "Material",
-    "PowerLawIndenter",
-    "StudyResults",
-    "contact",
-    "dynamic",
-    "impact",
-    "run_study",
-    "sweep",
-]
+from ..theory.indenter import PowerLawIndenter as PowerLawIndenter
+from ..theory.materials import RIGID as RIGID
+from ..theory.materials import Material as Material
+from ..validation import InputError as InputError
+from .fem_contact import ContactResult as ContactResult
+from .fem_contact import contact as contact
+from .fem_dynamic import DynamicResult as DynamicResult
+from .fem_dynamic import dynamic as dynamic
+from .quasi_static import ImpactResult as ImpactResult
+from .quasi_static import impact as impact
+from .studies import StudyResults as StudyResults
+from .studies import run_study as run_study
+from .studies import sweep as sweep
+
+_PACKAGE = sys.modules[__name__.rpartition(".")[0]]  # shtaerman, loaded before its subpackages
+__all__ = [name for name in _PACKAGE.__all__ if name != "__version__"]

@@ -18,8 +18,8 @@ from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
-from ..vocabulary import entry
-from .quasi_static import check_bodies, impact
+from ..vocabulary import entry, fields
+from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
@@ -28,18 +28,9 @@ __all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths
 
 MODELS = ("linear", "neo-hookean")
 """Material models of ``model=`` (``--model``): the first is the default."""
-MESH_OPTIONS = {
-    "mesh_size": "size",
-    "mesh_margin": "margin",
-    "domain_factor": "domain",
-    "growth": "growth",
-    "max_dofs": "max_dofs",
-}
-"""Mesh keywords (``--mesh-size``, ...) and the MeshSettings field each sets."""
-DEFAULT_MASS = 0.7
-"""kg: the paper's striker, the default of ``mass`` (and of the CLI's ``--mass``)."""
-DEFAULT_VELOCITY = 3.0
-"""m/s: the paper's approach velocity, the default of ``velocity``."""
+MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
+"""Mesh keywords (``--mesh-size``, ...): each sets the MeshSettings field
+:func:`shtaerman.vocabulary.fields` names."""
 NOT_IN_JSON = ("extra", "solution", "ladder", "key_order")
 """ContactResult fields that are not keys of the JSON."""
 
@@ -146,8 +137,9 @@ def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSett
     """
     from ..fem.mesh import MeshSettings
 
-    chosen = {MESH_OPTIONS[k]: v for k, v in options.items() if v is not None}
-    for name, field_name in MESH_OPTIONS.items():
+    names = fields(MESH_OPTIONS)
+    chosen = {names[k]: v for k, v in options.items() if v is not None}
+    for name, field_name in names.items():
         if field_name not in chosen:
             continue
         try:
@@ -167,15 +159,15 @@ def contact_depths(
     striker: Material | None = None,
 ) -> np.ndarray:
     """The depths of a contact curve, m: ``depths`` checked, or by default eight up to the
-    x_c of this impact (``mass`` in kg, default 0.7, at ``velocity`` in m/s, default 3),
-    geometric, contact radii a_c/3 .. a_c.
+    x_c of this impact (``mass`` in kg at ``velocity`` in m/s, defaults the vocabulary's),
+    geometric, contact radii a_c/3 .. a_c (:func:`.indentation.default_depths`).
 
     Raises
     ------
     shtaerman.validation.InputError
         If depths are not positive and increasing, or are given with mass or velocity.
     """
-    from ..study.contact.indentation import depths_up_to
+    from ..study.contact.indentation import default_depths
 
     if depths is not None:
         for name, value in (("mass", mass), ("velocity", velocity)):
@@ -187,10 +179,8 @@ def contact_depths(
                 )
         given = depths.tolist() if isinstance(depths, np.ndarray) else depths
         return np.array(entry("depths").check(given, "contact"))
-    mass = DEFAULT_MASS if mass is None else mass
-    velocity = DEFAULT_VELOCITY if velocity is None else velocity
-    x_c = impact(indenter, body, mass=mass, velocity=velocity, striker=striker).x_c
-    return depths_up_to(x_c, indenter.exponent)
+    check_bodies(indenter, body, RIGID if striker is None else striker)
+    return default_depths(indenter, body, mass, velocity, RIGID if striker is None else striker)
 
 
 def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[str, Any]:
@@ -199,8 +189,10 @@ def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[
     if options["depths"] is not None:
         return dict(report)
     impact_inputs = {
-        "mass": float(DEFAULT_MASS if options["mass"] is None else options["mass"]),
-        "velocity": float(DEFAULT_VELOCITY if options["velocity"] is None else options["velocity"]),
+        "mass": float(entry("mass").default if options["mass"] is None else options["mass"]),
+        "velocity": float(
+            entry("velocity").default if options["velocity"] is None else options["velocity"]
+        ),
     }
     out: dict[str, Any] = {}
     for key, value in report.items():
@@ -210,24 +202,37 @@ def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[
     return out
 
 
-def _check_options(model: str, accuracy: object, estimate: bool, solver: str) -> None:
-    from ..fem.solver import BACKENDS
+def _check_options(options: Mapping[str, Any]) -> None:
+    """Refuse a model, solver or options that exclude each other (the CLI's checks too: its
+    messages name the options, :func:`shtaerman.cli.common.in_option_words`)."""
+    from ..fem.solver import check_backend
 
+    model, accuracy, refine = options["model"], options["accuracy"], options["refine"]
     if model not in MODELS:
         raise InputError(f"model: unknown model {model!r}. Pick one of {list(MODELS)}", "model")
-    solvers = ("auto", *BACKENDS)
-    if solver not in solvers:
-        raise InputError(f"solver: unknown solver {solver!r}. Pick one of {solvers}", "solver")
-    if model == "neo-hookean" and solver == "pardiso":
+    if model == "neo-hookean" and options["solver"] == "pardiso":
         raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'", "solver")
-    if accuracy is not None and model == "neo-hookean":
+    check_backend(options["solver"])
+    if accuracy is None:
+        return
+    if model == "neo-hookean":
         raise InputError(
             "accuracy: applies to the linear model only; for the neo-hookean model use refine, "
             "whose estimates come with every run",
             "accuracy",
         )
-    if accuracy is not None and not estimate:
-        raise InputError("accuracy: needs the error estimates (estimate=True)", "accuracy")
+    if not options["estimate"]:
+        raise InputError(
+            "accuracy: needs the error estimates, which estimate=False (--no-estimate) "
+            "switches off",
+            "accuracy",
+        )
+    if refine != 1.0:
+        raise InputError(
+            f"refine: accuracy chooses the refinement itself (its ladder starts at refine 1), "
+            f"got refine {refine:g}; give one of them",
+            "refine",
+        )
 
 
 def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
@@ -320,7 +325,6 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
 
     model, estimate = options["model"], bool(options["estimate"])
     check_bodies(indenter, body, RIGID if options["striker"] is None else options["striker"])
-    _check_options(model, options["accuracy"], estimate, options["solver"])
     check_figure_format(options["figure_format"])
     validate_fem_inputs(indenter, body)
     max_time = validate_positive("max_time", options["max_time"], "s")
@@ -337,12 +341,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
-    if tolerance is not None and refine != 1.0:
-        raise InputError(
-            f"refine: accuracy chooses the refinement itself (its ladder starts at refine 1), "
-            f"got refine {refine:g}; give one of them",
-            "refine",
-        )
+    _check_options(options)
     depths = contact_depths(
         indenter,
         body,

@@ -14,6 +14,7 @@ from ..plots.formats import check_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
+from ..vocabulary import entry, fields
 from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
@@ -22,16 +23,17 @@ if TYPE_CHECKING:
 
 __all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
 
-SETTINGS_OPTIONS = {
-    "time_steps": "steps",
-    "mesh_size": "size",
-    "mesh_margin": "margin",
-    "domain_factor": "domain",
-    "growth": "growth",
-    "layer_rate": "layer_rate",
-}
+SETTINGS_OPTIONS = (
+    "time_steps",
+    "mesh_size",
+    "mesh_margin",
+    "domain_factor",
+    "growth",
+    "layer_rate",
+)
 """Numerical keywords (the vocabulary's: ``time_steps`` is ``--time-steps``, ``mesh_size``
-``--mesh-size``, ...): the DynamicSettings field each sets."""
+``--mesh-size``, ...): each sets the DynamicSettings field :func:`shtaerman.vocabulary.fields`
+names."""
 DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
 """The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
 P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
@@ -118,11 +120,12 @@ def dynamic_settings(
     base: DynamicSettings | None, options: Mapping[str, object]
 ) -> DynamicSettings:
     """``base`` (default ``DynamicSettings()``) with the options of :data:`SETTINGS_OPTIONS`
-    that are not None."""
+    that are not None, each checked against its range (InputError naming it)."""
     from ..fem.dynamic_contact import DynamicSettings
 
     base = DynamicSettings() if base is None else base
-    chosen = {SETTINGS_OPTIONS[k]: v for k, v in options.items() if v is not None}
+    names = fields(SETTINGS_OPTIONS)
+    chosen = {names[k]: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
     return dataclasses.replace(base, **chosen)  # type: ignore[arg-type]
 
 

@@ -18,13 +18,18 @@ from ..validation import InputError
 
 __all__ = ["ImpactResult", "check_bodies", "impact"]
 
-MAXIMA = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
-"""The maxima and durations, in the order of ``shtaerman impact --json``."""
+
+SOLVED = (
+    *("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson"),
+    *("force_exponent", "mass", "velocity"),
+)
+"""The attributes an :class:`ImpactResult` reads from its closed-form solution (as floats)."""
 
 
 @dataclass(frozen=True)
 class ImpactResult:
-    """The quasi-static impact: the keys of ``shtaerman impact --json`` (SI units).
+    """The quasi-static impact: the keys of ``shtaerman impact --json`` (SI units), read from
+    its closed-form solution (:data:`SOLVED`).
 
     Attributes
     ----------
@@ -39,38 +44,32 @@ class ImpactResult:
         2 M v0 and the paper's Simpson estimate of it (its eq. 16), N s.
     force_exponent : float
         q = (n + 1) / n.
+    mass, velocity : float
+        Striker mass M in kg and approach velocity v0 in m/s.
     modulus : float
         Combined modulus E* of striker and body, Pa.
+    solution : shtaerman.theory.impact.ImpactResult
+        The closed-form solution behind these numbers (its contact law included).
     ode_check : dict or None
         The numerical ODE's x_c, t_c, t_y, rebound_velocity and max_history_difference (the
         largest |x_ode - x| / x_c), when asked for with ``check=True``.
-    solution : shtaerman.theory.impact.ImpactResult
-        The closed-form solution behind these numbers (its contact law included).
     """
 
-    beta: float
-    x_c: float
-    P_c: float
-    a_c: float
-    p_c: float
-    t_c: float
-    t_y: float
-    impulse: float
-    impulse_simpson: float
-    force_exponent: float
-    modulus: float
-    solution: theory.ImpactResult = field(repr=False, compare=False)
+    solution: theory.ImpactResult = field(repr=False)
     ode_check: dict[str, float] | None = None
 
-    @property
-    def mass(self) -> float:
-        """Striker mass M in kg."""
-        return self.solution.mass
+    def __getattr__(self, name: str) -> float:
+        if name in SOLVED:
+            return float(getattr(self.solution, name))
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     @property
-    def velocity(self) -> float:
-        """Approach velocity v0 in m/s."""
-        return self.solution.velocity
+    def modulus(self) -> float:
+        """Combined modulus E* of striker and body, Pa."""
+        return float(self.solution.law.modulus)
+
+    def __repr__(self) -> str:
+        return f"ImpactResult({', '.join(f'{k}={v!r}' for k, v in self.to_dict().items())})"
 
     def history(self, points: int = 201, times: ArrayLike | None = None) -> theory.ImpactHistory:
         """The exact t, x, v, P, a, p0 over [0, t_y] (``points`` instants, or ``times`` in s).
@@ -85,7 +84,7 @@ class ImpactResult:
     def to_dict(self) -> dict[str, object]:
         """The JSON object of ``shtaerman impact --json`` (SI units): non-finite numbers
         are None (the CLI's null)."""
-        document: dict[str, object] = {name: getattr(self, name) for name in MAXIMA}
+        document: dict[str, object] = self.solution.maxima()
         document["force_exponent"] = self.force_exponent
         document["modulus"] = self.modulus
         if self.ode_check is not None:
@@ -150,14 +149,7 @@ def impact(
     check_bodies(indenter, body, striker)
     modulus = effective_modulus(striker, body)
     result = theory.solve_impact(mass, velocity, PowerLawContact(indenter, modulus))
-    maxima = result.maxima()
-    return ImpactResult(
-        **maxima,
-        force_exponent=result.force_exponent,
-        modulus=modulus,
-        solution=result,
-        ode_check=_ode_check(result) if check else None,
-    )
+    return ImpactResult(result, _ode_check(result) if check else None)
 
 
 def _ode_check(result: theory.ImpactResult) -> dict[str, float]:

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import re
 import sys
 import warnings
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from typing import Any
 
 from ..output.files import json_safe
@@ -16,14 +17,16 @@ from ..plots.formats import add_figure_format
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
-from ..vocabulary import DeprecatedKeyWarning, Entry, entry
+from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, Entry, entry
 
 __all__ = [
     "Input",
     "Parser",
     "add_figure_format",
     "add_inputs",
+    "in_option_words",
     "indenter",
+    "keywords",
     "print_json",
     "striker",
     "warn",
@@ -172,6 +175,27 @@ def _metavar(item: Entry) -> str:
     if item.type == "str":
         return "{" + ",".join(item.choices) + "}" if item.choices else "TEXT"
     return item.unit.upper() if item.unit and "^" not in item.unit else "X"
+
+
+@contextlib.contextmanager
+def in_option_words() -> Iterator[None]:
+    """Re-raise an :class:`InputError` of the API whose message begins with the input's key
+    (``mass: ...``, ``solver 'pardiso' ...``) with its command-line option instead
+    (``--mass: ...``): the user of the CLI gave options, not keywords."""
+    try:
+        yield
+    except InputError as error:
+        name, message = error.parameter, str(error)
+        known = name is not None and name in {item.name for item in VOCABULARY}
+        if not known or not re.match(rf"{re.escape(name)}\b(?![-=])", message):
+            raise
+        option = entry(name).cli_option
+        raise type(error)(option + message[len(name) :], name) from None
+
+
+def keywords(args: argparse.Namespace, names: Iterable[str]) -> dict[str, Any]:
+    """The parsed options ``names`` as the API's keywords (an option's dest is its keyword)."""
+    return {name: getattr(args, name) for name in names}
 
 
 def striker(args: argparse.Namespace) -> Material:

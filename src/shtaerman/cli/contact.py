@@ -9,8 +9,8 @@ from ..api.fem_contact import MESH_OPTIONS, contact
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS
 from ..theory.materials import Material
-from ..validation import InputError
-from .common import add_figure_format, add_inputs, indenter, print_json
+from ..vocabulary import entry, fields
+from .common import add_figure_format, add_inputs, in_option_words, indenter, keywords, print_json
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -49,10 +49,9 @@ def _mesh_default(field: str) -> str:
 
 
 DERIVED = {
-    "mass": "0.7; not with --depths",
-    "velocity": "3; not with --depths",
+    **{name: f"{entry(name).default:g}; not with --depths" for name in ("mass", "velocity")},
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
-    **{option: _mesh_default(field) for option, field in MESH_OPTIONS.items()},
+    **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
 NOTES = {
@@ -65,42 +64,17 @@ NOTES = {
 """What ``contact`` does with its output options."""
 
 
-def _check_combinations(args: argparse.Namespace) -> None:
-    """Refuse options that exclude each other, in the command line's words."""
-    if args.accuracy is not None and args.model == "neo-hookean":
-        raise InputError(
-            "accuracy: applies to the linear model only; for --model neo-hookean use --refine "
-            "K, whose estimates come with every run"
-        )
-    if args.accuracy is not None and not args.estimate:
-        raise InputError("accuracy: needs the error estimates; drop --no-estimate")
-    if args.accuracy is not None and args.refine != 1.0:
-        raise InputError(
-            f"refine: --accuracy chooses the refinement itself (its ladder starts at refine 1), "
-            f"got --refine {args.refine:g}; drop one of them"
-        )
+KEYWORDS = (
+    *("mass", "velocity", "depths", "model", "refine", "estimate", "accuracy", "max_time"),
+    *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
+)
+"""The options passed to :func:`shtaerman.contact` as its keywords."""
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
-    _check_combinations(args)
-    result = contact(
-        indenter(args),
-        Material(args.E2, args.nu2),
-        mass=args.mass,
-        velocity=args.velocity,
-        depths=args.depths,
-        model=args.model,
-        refine=args.refine,
-        estimate=args.estimate,
-        accuracy=args.accuracy,
-        max_time=args.max_time,
-        **{option: getattr(args, option) for option in MESH_OPTIONS},
-        solver=args.solver,
-        out=args.out,
-        force=args.force,
-        figure_format=args.figure_format,
-    )
+    with in_option_words():
+        result = contact(indenter(args), Material(args.E2, args.nu2), **keywords(args, KEYWORDS))
     report = result.to_dict()
     if args.json:
         print_json(report)

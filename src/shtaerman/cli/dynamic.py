@@ -9,7 +9,16 @@ from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..output.files import staged_file, write_csv
 from ..study.dynamic.loader import dynamic_check_failures
 from ..theory.materials import Material
-from .common import CASE, add_figure_format, add_inputs, indenter, print_json, warn
+from .common import (
+    CASE,
+    add_figure_format,
+    add_inputs,
+    in_option_words,
+    indenter,
+    keywords,
+    print_json,
+    warn,
+)
 from .impact import history_path
 
 NOTES = {
@@ -54,18 +63,13 @@ def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     history = history_path(args.history, force=args.force)
-    result = dynamic(
-        indenter(args),
-        Material(args.E2, args.nu2, args.density2),
-        mass=args.mass,
-        velocity=args.velocity,
-        refine=args.refine,
-        estimate=args.estimate,
-        **{keyword: getattr(args, keyword) for keyword in SETTINGS_OPTIONS},
-        out=args.out,
-        force=args.force,
-        figure_format=args.figure_format,
-    )
+    names = ("mass", "velocity", "refine", "estimate", *SETTINGS_OPTIONS, "out", "force")
+    with in_option_words():
+        result = dynamic(
+            indenter(args),
+            Material(args.E2, args.nu2, args.density2),
+            **keywords(args, (*names, "figure_format")),
+        )
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:

@@ -10,7 +10,7 @@ from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
 from ..theory.impact import ImpactResult
 from ..theory.materials import Material
-from .common import CASE, add_inputs, indenter, print_json, striker
+from .common import CASE, add_inputs, in_option_words, indenter, print_json, striker
 
 NOTES = {
     "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
@@ -41,14 +41,15 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
 def run(args: argparse.Namespace) -> int:
     """Solve the impact (:func:`shtaerman.impact`) and print it; write the history if asked."""
     history = history_path(args.history, force=args.force)
-    result = impact(
-        indenter(args),
-        Material(args.E2, args.nu2),
-        mass=args.mass,
-        velocity=args.velocity,
-        striker=striker(args),
-        check=args.check,
-    )
+    with in_option_words():
+        result = impact(
+            indenter(args),
+            Material(args.E2, args.nu2),
+            mass=args.mass,
+            velocity=args.velocity,
+            striker=striker(args),
+            check=args.check,
+        )
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:

@@ -35,8 +35,9 @@ import scipy.linalg as la
 from scipy.optimize import nnls
 from threadpoolctl import threadpool_limits
 
-from ..validation import InputError, validate_poisson
-from .elasticity import FEM_MODULUS_RANGE, ElasticSolution, ElasticSystem, postprocess
+from ..validation import InputError, NumericalFailureError
+from ..vocabulary import entry
+from .elasticity import ElasticSolution, ElasticSystem, postprocess
 from .schur import TailFactorization, TailPivotError
 from .solver import Factorization, factorize
 
@@ -61,45 +62,32 @@ MIN_MODULUS_PER_LENGTH = 0.1
 its inverse."""
 EDGE_MARGIN = 3
 """Candidate nodes that must stay free beyond the contact edge, or the zone is too small."""
-MAX_DEPTHS = 1000
-"""Most depths of one contact curve: every depth keeps its full solution vector (depths x dofs
-x 8 bytes)."""
+MAX_DEPTHS = entry("depths").max_items
+"""Most depths of one contact curve (:mod:`shtaerman.vocabulary`): every depth keeps its full
+solution vector (depths x dofs x 8 bytes)."""
 MIN_CONTACT_NODES = 3
 """Fewest loaded surface nodes of a contact (the axis node carries none): fewer cannot resolve
 the force and the radius."""
 
 
-MAX_SHAPE_COEFFICIENT = 1e100
-"""Largest A (m^(1-n)) of the FEM contact (beyond, the depths underflow)."""
+FEM_INPUTS = ("exponent", "shape_coefficient", "E2", "nu2")
+"""The inputs whose range the FEM narrows (:mod:`shtaerman.vocabulary`, kind "contact")."""
 
 
 def validate_fem_inputs(indenter: object, half_space: object) -> None:
-    """Raise InputError unless the FEM contact applies: n > 1, A <= 1e100, E2 in
-    :data:`shtaerman.fem.elasticity.FEM_MODULUS_RANGE` and nu2 in [0, 0.5].
-
-    The one place of these limits (static, dynamic and finite-strain FEM alike): n > 1 keeps
-    the central pressure bounded; nu2 < 0 lies outside the range the FEM is tested on.
-    """
-    if indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the FEM contact (bounded central pressure), got "
-            f"{indenter.exponent!r}",
-            "exponent",
-        )
-    if not indenter.shape_coefficient <= MAX_SHAPE_COEFFICIENT:
-        raise InputError(
-            f"shape_coefficient must lie in (0, {MAX_SHAPE_COEFFICIENT:g}] m^(1-n) for the FEM "
-            f"contact, got {indenter.shape_coefficient!r}",
-            "shape_coefficient",
-        )
-    low, high = FEM_MODULUS_RANGE
-    if not low <= half_space.youngs_modulus <= high:
-        raise InputError(
-            f"E2 must lie in [{low:g}, {high:g}] Pa for the FEM contact, got "
-            f"{half_space.youngs_modulus!r}",
-            "E2",
-        )
-    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
+    """Raise InputError unless the FEM contact applies: the indenter's exponent and shape
+    coefficient and the half-space's E2 and nu2 within the FEM's ranges of the vocabulary
+    (n > 1 keeps the central pressure bounded; A <= 1e100 keeps the depths from underflowing;
+    E2 in [1e-3, 1e100] Pa keeps the scaled factorization accurate; nu2 in [0, 0.5] is the
+    range the FEM is tested on). Static, dynamic and finite-strain FEM alike."""
+    values = (
+        indenter.exponent,
+        indenter.shape_coefficient,
+        half_space.youngs_modulus,
+        half_space.poisson_ratio,
+    )
+    for name, value in zip(FEM_INPUTS, values, strict=True):
+        entry(name).check(value, "contact")
 
 
 @dataclass(frozen=True, eq=False)
@@ -307,12 +295,22 @@ def edge_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
     nearby, the two-node linear extrapolation is used. The discrete contact may
     carry a small force one node past the true edge, so the result is kept between the
     last-but-one loaded node and the first free one.
+
+    Raises
+    ------
+    shtaerman.validation.NumericalFailureError
+        If the gap does not open between the first two free nodes (the free surface lies on
+        the indenter there): the edge is undefined.
     """
     last = np.flatnonzero(forces > 0)[-1]
     lowest, first = r[max(last - 1, 0)], r[last + 1]
-    linear = first - gap[last + 1] ** (2 / 3) * (r[last + 2] - first) / (
-        gap[last + 2] ** (2 / 3) - gap[last + 1] ** (2 / 3)
-    )
+    rise = gap[last + 2] ** (2 / 3) - gap[last + 1] ** (2 / 3)
+    if rise == 0.0:
+        raise NumericalFailureError(
+            f"the free surface beyond the contact edge lies on the indenter (zero gap opening "
+            f"at r = {first:.4g} m), so the contact radius is undefined"
+        )
+    linear = first - gap[last + 1] ** (2 / 3) * (r[last + 2] - first) / rise
     window = np.arange(r.size)[last + 1 :][EDGE_FIT_NODES]
     estimate = linear
     if window.size == EDGE_FIT_NODES.stop - EDGE_FIT_NODES.start:

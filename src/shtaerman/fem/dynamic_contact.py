@@ -36,7 +36,7 @@ from ..theory.materials import DENSITY_RANGE, Material
 from ..theory.radiation import rayleigh_root
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
-from .contact import mass_factor, validate_fem_inputs
+from .contact import mass_factor
 from .elasticity import (
     TWO_PI,
     ElasticSolution,
@@ -621,7 +621,6 @@ def prepare_dynamic_impact(
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
-    validate_fem_inputs(indenter, half_space)
     estimate = _checked_estimate(settings)
     scales = _scales(indenter, half_space, rho, striker, settings)
     clock = [time.perf_counter()]

@@ -572,13 +572,12 @@ def _step(
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
     pressure = _recover_pressure(r, lam)
-    with np.errstate(divide="ignore", invalid="ignore"):  # a fold: checked just below
+    try:
         radius = edge_radius(r, lam, gap)
-    if not np.isfinite(radius):
+    except NumericalFailureError as error:
         raise NumericalFailureError(
-            f"depth {depth:g} m: the free surface beyond the contact edge lies on the indenter "
-            f"(zero gap), so the contact radius is undefined; lower the deepest depth"
-        )
+            f"depth {depth:g} m: {error}; lower the deepest depth"
+        ) from None
     return FiniteContactStep(
         depth=float(depth),
         force=float(lam.sum()),

@@ -86,6 +86,21 @@ def available_backends() -> list[str]:
     return found
 
 
+def check_backend(backend: str) -> str:
+    """``backend`` if this machine has it (``"auto"``, ``"superlu"``, ``"pardiso"`` with
+    pypardiso installed), or InputError naming ``solver``."""
+    choices = ("auto", *BACKENDS)
+    if backend not in choices:
+        raise InputError(f"solver: unknown solver {backend!r}. Pick one of {choices}", "solver")
+    if backend != "auto" and backend not in available_backends():
+        raise InputError(
+            f"solver {backend!r} needs the package pypardiso (pip install pypardiso), not "
+            "installed here; use 'superlu' or 'auto'",
+            "solver",
+        )
+    return backend
+
+
 def factorize(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     """Factorize a square sparse matrix.
 
@@ -110,14 +125,8 @@ def factorize(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     RuntimeError
         If the matrix is singular to working precision.
     """
-    choices = ("auto", *BACKENDS)
-    if backend not in choices:
-        raise InputError(f"Unknown backend {backend!r}. Pick one of {list(choices)}")
-    requested = backend
-    if backend == "auto":
-        backend = "superlu"
-    if backend not in available_backends():
-        raise InputError(f"backend {backend!r} needs the package pypardiso (pip install pypardiso)")
+    requested = check_backend(backend)
+    backend = "superlu" if requested == "auto" else requested
     if matrix.shape[0] != matrix.shape[1]:
         raise ValueError(f"matrix must be square, got shape {matrix.shape}")
     if backend == "pardiso":
@@ -133,7 +142,7 @@ def _checked_pardiso(matrix: sp.spmatrix, explicit: bool) -> PardisoFactorizatio
         factorization = PardisoFactorization(matrix)
     except (ImportError, OSError) as error:  # pypardiso present, MKL library missing
         if explicit:
-            raise InputError(f"backend 'pardiso' cannot load MKL: {error}") from None
+            raise InputError(f"solver 'pardiso' cannot load MKL: {error}", "solver") from None
         warnings.warn(f"PARDISO unavailable ({error}); using SuperLU", stacklevel=3)
         return None
     if backward_error(matrix, factorization) <= ACCURACY_CHECK:

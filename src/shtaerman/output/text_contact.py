@@ -7,6 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
+from .entry import kind_entry
 from .wording import number, plus_minus, seconds
 
 __all__ = [
@@ -72,10 +73,7 @@ def entry(
     figures) and ``total``; ``figures``: caption to PNG path relative to the result folder.
     """
     study = outcome.study
-    return {
-        "kind": "contact",
-        "description": study.description,
-        "source": str(study.source),
+    document = {
         "inputs": {
             "shape_coefficient": study.indenter.shape_coefficient,
             "exponent": study.indenter.exponent,
@@ -89,15 +87,14 @@ def entry(
         "contact": outcome.contact.to_dict(),
         "impact": outcome.impacts,
         "differences": outcome.differences(),
-        "checks": [check.to_dict() for check in outcome.checks],
-        "passed": outcome.passed,
-        "seconds": outcome.seconds,
-        "timings": _timings(outcome, output_seconds),
-        "files": files,
-        "figures": dict(figures or {}),
-        **({"convergence": outcome.convergence.to_dict()} if outcome.convergence else {}),
-        **({"accuracy": outcome.accuracy.to_dict()} if outcome.accuracy else {}),
     }
+    result = kind_entry(outcome, document, files, output_seconds, figures)
+    result["timings"] = _timings(outcome, output_seconds)
+    if outcome.convergence:
+        result["convergence"] = outcome.convergence.to_dict()
+    if outcome.accuracy:
+        result["accuracy"] = outcome.accuracy.to_dict()
+    return result
 
 
 def _impact_table(study: Mapping[str, Any]) -> dict[str, object]:

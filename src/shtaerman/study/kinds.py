@@ -156,7 +156,7 @@ def kind_function(kind: str, role: str) -> Callable[..., Any]:
 def vocabulary_parameters(kind: str) -> dict[str, Parameter]:
     """The sweep parameters of ``kind`` from :mod:`shtaerman.vocabulary` (defaults by kind)."""
     return {
-        name: Parameter(item.default_for(kind), item.unit, item.type, item.choices)
+        name: Parameter(item.sweep_default_for(kind), item.unit, item.type, item.choices)
         for name, item in inputs_of(kind).items()
     }
 

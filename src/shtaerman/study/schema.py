@@ -26,7 +26,7 @@ import msgspec
 from ..fem.contact import validate_fem_inputs
 from ..fem.mesh import MeshSettings
 from ..validation import InputError
-from ..vocabulary import VOCABULARY, deprecated, suggestion
+from ..vocabulary import MAX_STUDIES, VOCABULARY, deprecated, fields, suggestion
 from ..vocabulary import entry as vocabulary_entry
 from .kinds import kind_function, study_kinds
 
@@ -51,7 +51,8 @@ EXPECTED = {
     },
     "E1": 'a number > 0 (Pa), or "inf" for a rigid striker',
     "velocity": "a number > 0 (m/s), or (a dynamic study) a list of increasing ones",
-    "depths": 'a list of at least 2 increasing depths > 0 (m), or "impact"',
+    "depths": f"a list of 2 to {vocabulary_entry('depths').max_items} increasing depths > 0 (m), "
+    'or "impact"',
     "sizes": "a list of at least 2 decreasing sizes in (0, 1) (element / refined radius)",
     "name": "a string",
     "description": "a string",
@@ -99,7 +100,13 @@ class SweepTable(Table):
             raise ValueError(
                 f"expected exactly one of {sorted(self.__struct_fields__)} with a list of values"
             )
-        return next(iter(given.items()))
+        key, values = next(iter(given.items()))
+        if len(values) > MAX_STUDIES:
+            raise ValueError(
+                f"expected at most {MAX_STUDIES} values of {key} (each is a study), got "
+                f"{len(values)}"
+            )
+        return key, values
 
     def __post_init__(self) -> None:
         self.chosen()
@@ -131,7 +138,7 @@ class ImpactTable(Table):
     velocity: Positive
 
 
-MESH_FIELDS = {"mesh_size": "size", "mesh_margin": "margin", "domain_factor": "domain"}
+SETTINGS_FIELDS = fields(item.name for item in VOCABULARY if item.setting)
 """Study-file key -> MeshSettings / DynamicSettings field, where the two differ."""
 
 
@@ -149,7 +156,7 @@ class MeshTable(Table):
 
     def settings(self, default: MeshSettings, table: str) -> MeshSettings:
         given = {
-            MESH_FIELDS.get(k, k): v
+            SETTINGS_FIELDS.get(k, k): v
             for k, v in msgspec.structs.asdict(self).items()
             if v is not None and k in MeshTable.__struct_fields__
         }

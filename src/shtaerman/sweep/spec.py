@@ -51,6 +51,7 @@ MAX_FILE_BYTES = 16 << 20
 """Largest sweep file read (a 100,000-value axis takes about 2 MB)."""
 TOP_LEVEL = ("name", "kind", "description", "parameters", "axes")
 _PLAIN_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*")
+_ENTRIES = {item.name: item for item in VOCABULARY}
 
 
 class SweepError(InputError):
@@ -286,6 +287,12 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
     converted = _convert(parameter, value)
     if converted is None:
         raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
+    item = _ENTRIES.get(name)
+    if item is not None and kind.name in item.kinds:  # the vocabulary's range for this kind
+        try:
+            converted = item.check(converted, kind.name, called=key)
+        except InputError as error:
+            raise SweepError(f"{where}: {error}") from None
     return converted
 
 

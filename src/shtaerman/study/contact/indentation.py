@@ -15,7 +15,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ...fem.contact import ContactCurve, ContactStep, solve_contact, validate_fem_inputs
+from ...fem.contact import ContactCurve, ContactStep, solve_contact
 from ...fem.elasticity import ElasticSolution, assemble
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
@@ -24,17 +24,15 @@ from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...validation import InputError
+from ...vocabulary import entry
 
 __all__ = [
     "IndentationResult",
     "default_depths",
     "depths_up_to",
     "run_indentation",
-    "validate_fem_inputs",
 ]
 
-PAPER_MASS = 0.7  # kg, the paper's example
-PAPER_VELOCITY = 3.0  # m/s
 DEFAULT_STEPS = 8
 DEFAULT_RADIUS_SPAN = 3.0
 """The default depths span contact radii a_c/3 .. a_c."""
@@ -49,10 +47,20 @@ def depths_up_to(deepest: float, exponent: float) -> np.ndarray:
     return deepest * np.geomspace(1.0 / span, 1.0, DEFAULT_STEPS)
 
 
-def default_depths(indenter: PowerLawIndenter, half_space: Material) -> np.ndarray:
-    """Eight depths (m) up to the paper's impact x_c (0.7 kg at 3 m/s), radii a_c/3 .. a_c."""
-    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
-    x_c = solve_impact(PAPER_MASS, PAPER_VELOCITY, law).x_c
+def default_depths(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    mass: float | None = None,
+    velocity: float | None = None,
+    striker: Material = RIGID,
+) -> np.ndarray:
+    """Eight depths (m) up to the x_c of the impact of ``mass`` (kg) at ``velocity`` (m/s)
+    by ``striker`` (defaults: the vocabulary's, the paper's 0.7 kg at 3 m/s, rigid), radii
+    a_c/3 .. a_c."""
+    mass = entry("mass").default if mass is None else mass
+    velocity = entry("velocity").default if velocity is None else velocity
+    law = PowerLawContact(indenter, effective_modulus(striker, half_space))
+    x_c = solve_impact(mass, velocity, law).x_c
     return depths_up_to(x_c, indenter.exponent)
 
 
@@ -234,7 +242,6 @@ def run_indentation(
     -------
     IndentationResult
     """
-    validate_fem_inputs(indenter, half_space)
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     mesh = MeshSettings() if mesh is None else mesh

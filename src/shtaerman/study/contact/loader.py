@@ -45,6 +45,7 @@ from ...fem.mesh import MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material
 from ...validation import InputError
+from ...vocabulary import entry
 from ..schema import (
     EXPECTED,
     ImpactTable,
@@ -76,7 +77,8 @@ class _Contact(Table):
 
     def __post_init__(self) -> None:
         if self.depths != "impact" and (
-            len(self.depths) < 2 or any(b <= a for a, b in itertools.pairwise(self.depths))
+            not 2 <= len(self.depths) <= entry("depths").max_items
+            or any(b <= a for a, b in itertools.pairwise(self.depths))
         ):
             raise ValueError(f"depths: {EXPECTED['depths']}")
 

@@ -41,9 +41,10 @@ from ...fem.dynamic_contact import (
 )
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
-from ...validation import InputError
+from ...validation import InputError, shown
+from ...vocabulary import entry
 from ..schema import (
-    MESH_FIELDS,
+    SETTINGS_FIELDS,
     Poisson,
     Positive,
     Relative,
@@ -149,10 +150,6 @@ class DynamicStudy:
     kind: str = "dynamic"
 
 
-SETTINGS_FIELDS = {**MESH_FIELDS, "time_steps": "steps"}
-"""Study-file key -> DynamicSettings field, where the two differ."""
-
-
 def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
     """``base`` with the table's numerics; an invalid value names its key."""
     keys = {SETTINGS_FIELDS.get(k, k): k for k in _Numerics.__struct_fields__}
@@ -185,10 +182,11 @@ def _velocities(
 ) -> tuple[float, ...]:
     """The velocities of ``key`` (one value or an increasing list), holding ``example``."""
     values = given if isinstance(given, list) else [given]
-    if not values or any(b <= a for a, b in itertools.pairwise(values)):
+    most = entry("velocity").max_items
+    if not 0 < len(values) <= most or any(b <= a for a, b in itertools.pairwise(values)):
         raise StudyError(
-            f"{path}: key '{key}': expected a velocity > 0 (m/s) or a list of increasing ones, "
-            f"got {given!r}"
+            f"{path}: key '{key}': expected a velocity > 0 (m/s) or a list of at most {most} "
+            f"increasing ones, got {shown(given)}"
         )
     if example is not None and example not in values:
         raise StudyError(

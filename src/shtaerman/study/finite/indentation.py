@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
-from ...fem.contact import validate_fem_inputs
 from ...fem.finite_contact import (
     FINITE_MESH,
     FiniteContactCurve,
@@ -119,7 +118,6 @@ def run_finite_study(
     -------
     FiniteIndentationResult
     """
-    validate_fem_inputs(indenter, half_space)
     depths = default_depths(indenter, half_space) if depths is None else depths
     curve = run_finite_indentation(indenter, half_space, depths, mesh or FINITE_MESH)
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
@@ -156,7 +154,6 @@ def run_finite_ladder(
     AccuracyResult
         With ``exact = False``: there is no exact finite-strain solution to compare with.
     """
-    validate_fem_inputs(indenter, half_space)
     depths = default_depths(indenter, half_space) if depths is None else depths
 
     def solve(level: MeshSettings) -> FiniteIndentationResult:
