@@ -16,10 +16,12 @@ from scipy.optimize import brentq
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.layer import (
-    CompressibleThinLayer,
+    FoundationLayer,
     IncompressibleThinLayer,
     half_space_limit,
     oedometric_stiffness,
+    sliding_stiffness,
+    thin_layer_limit,
 )
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
@@ -52,7 +54,7 @@ def test_oedometric_stiffness_formula_and_range():
 
 @pytest.mark.parametrize("indenter", INDENTERS)
 def test_compressible_force_is_the_integral_of_the_foundation_pressure(indenter):
-    layer = CompressibleThinLayer(indenter, RUBBER, 0.002)
+    layer = FoundationLayer(indenter, oedometric_stiffness(RUBBER, 0.002))
     depth = 1.3e-3
     a = float(layer.contact_radius(depth))
     assert indenter.profile(a) == pytest.approx(depth, rel=1e-14)  # A a^n = d
@@ -139,4 +141,26 @@ def test_bad_input_names_the_parameter():
     with pytest.raises(InputError, match="thickness"):
         IncompressibleThinLayer(PowerLawIndenter(5.0, 1.5), 1e6, -1.0)
     with pytest.raises(InputError, match="depth"):
-        CompressibleThinLayer(PowerLawIndenter(5.0, 1.5), RUBBER, 0.01).force(-1e-3)
+        FoundationLayer(PowerLawIndenter(5.0, 1.5), 1e9).force(-1e-3)
+
+
+def test_sliding_stiffness_is_the_plane_strain_modulus_over_the_thickness():
+    # k = E / ((1 - nu^2) H) = E* / H; finite at nu = 0.5 (4 mu / H)
+    assert sliding_stiffness(RUBBER, 0.01) == pytest.approx(7.5e6 / (0.91 * 0.01), rel=1e-14)
+    incompressible = Material(7.5e6, 0.5)
+    assert sliding_stiffness(incompressible, 0.01) == pytest.approx(
+        4 * incompressible.shear_modulus / 0.01, rel=1e-14
+    )
+
+
+def test_thin_layer_limit_picks_the_limit_of_the_base():
+    indenter, h = PowerLawIndenter(5.0, 1.5), 0.01
+    incompressible = Material(7.5e6, 0.5)
+    film = thin_layer_limit(indenter, incompressible, h)
+    assert isinstance(film, IncompressibleThinLayer)
+    oedometric = thin_layer_limit(indenter, RUBBER, h, "bonded")
+    assert oedometric.stiffness == oedometric_stiffness(RUBBER, h)
+    sliding = thin_layer_limit(indenter, incompressible, h, "lubricated")
+    assert sliding.stiffness == sliding_stiffness(incompressible, h)
+    with pytest.raises(InputError, match="base: unknown base 'glued'"):
+        thin_layer_limit(indenter, RUBBER, h, "glued")

@@ -1,15 +1,20 @@
 """Analytic limits of a rigid power-law indenter pressed into an elastic layer on a rigid base.
 
 A striker z = A r^n (n > 1), frictionless, pressed to depth d into a layer of thickness H,
-shear modulus mu and Poisson's ratio nu, lying on a rigid base. Three limits are known in closed
+shear modulus mu and Poisson's ratio nu, lying on a rigid base. Four limits are known in closed
 form (derivations in ``docs/theory.md``, section "Layer on a rigid base"):
 
 - thick layer, H >> a: Shtaerman's half-space, :class:`shtaerman.theory.contact.PowerLawContact`
   with E* = E / (1 - nu^2) (:func:`half_space_limit`);
 - thin compressible layer bonded to the base, H << a, nu not near 1/2: every column of the layer
-  is compressed oedometrically (no lateral strain), p = k w with
-  k = 2 mu (1 - nu) / ((1 - 2 nu) H); the contact edge is where the profile meets the depth,
-  A a^n = d, and P = pi k d a^2 n / (n + 2) (:class:`CompressibleThinLayer`);
+  is compressed oedometrically (no lateral strain), a foundation p = k w with
+  k = 2 mu (1 - nu) / ((1 - 2 nu) H) (:func:`oedometric_stiffness`);
+- thin layer on a lubricated base (any nu <= 1/2): both faces are free of shear, the in-plane
+  stresses are those of a plate restraining the Poisson expansion, sigma_rr + sigma_tt = -nu p,
+  and the layer is a foundation with k = E / ((1 - nu^2) H) = E* / H
+  (:func:`sliding_stiffness`);
+- on a foundation the contact edge is where the profile meets the depth, A a^n = d, and
+  P = pi k d a^2 n / (n + 2) (:class:`FoundationLayer`);
 - thin incompressible layer bonded to the base: the layer squeezes out like a thin film,
   (1/r)(r p')' = -(3 mu / H^3)(d - A r^n) in the contact with p(a) = p'(a) = 0, so
   d = 2 A a^n / (n + 2) and P = 3 pi mu A n a^(n+4) / (4 H^3 (n + 2)(n + 4))
@@ -17,9 +22,7 @@ form (derivations in ``docs/theory.md``, section "Layer on a rigid base"):
   classic P = 2 pi mu R^2 d^3 / H^3 (Jaffar, Int. J. Mech. Sci. 31, 1989; Chadwick, SIAM
   J. Appl. Math. 62, 2002).
 
-A thin layer on a lubricated base (free to slide) has no local limit of this kind: its columns
-are not confined, the unloaded layer around the contact carries the load by in-plane stretching,
-and no closed form is given here.
+:func:`thin_layer_limit` picks the limit of a base and a Poisson's ratio.
 """
 
 from __future__ import annotations
@@ -37,10 +40,12 @@ from .materials import Material
 
 __all__ = [
     "BASES",
-    "CompressibleThinLayer",
+    "FoundationLayer",
     "IncompressibleThinLayer",
     "half_space_limit",
     "oedometric_stiffness",
+    "sliding_stiffness",
+    "thin_layer_limit",
 ]
 
 BASES = ("bonded", "lubricated")
@@ -75,28 +80,36 @@ def _depths(depth: ArrayLike) -> np.ndarray:
     return d
 
 
+def sliding_stiffness(body: Material, thickness: float) -> float:
+    """Foundation stiffness k = E / ((1 - nu^2) H) in Pa/m of a thin layer on a lubricated base.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If nu is not in [0, 0.5] or H <= 0.
+    """
+    nu = validate_poisson("nu2", body.poisson_ratio, low=0.0)
+    h = validate_positive("thickness", thickness, "m")
+    return body.youngs_modulus / ((1.0 - nu * nu) * h)
+
+
 @dataclass(frozen=True)
-class CompressibleThinLayer:
-    """Thin compressible layer bonded to a rigid base: the oedometric foundation p = k w.
+class FoundationLayer:
+    """A thin layer that acts as a foundation p = k w under a rigid power-law indenter.
 
     Parameters
     ----------
     indenter : PowerLawIndenter
         z = A r^n, n > 0.
-    body : Material
-        The layer: E in Pa, nu in [0, 0.5).
-    thickness : float
-        H in m.
+    stiffness : float
+        k in Pa/m (:func:`oedometric_stiffness`, :func:`sliding_stiffness`).
     """
 
     indenter: PowerLawIndenter
-    body: Material
-    thickness: float
+    stiffness: float
 
-    @property
-    def stiffness(self) -> float:
-        """k in Pa/m, see :func:`oedometric_stiffness`."""
-        return oedometric_stiffness(self.body, self.thickness)
+    def __post_init__(self) -> None:
+        validate_positive("stiffness", self.stiffness, "Pa/m")
 
     def contact_radius(self, depth: ArrayLike) -> np.ndarray:
         """a = (d / A)^(1/n) in m for a depth d in m (the profile meets the depth)."""
@@ -164,3 +177,25 @@ class IncompressibleThinLayer:
         r = np.minimum(np.abs(np.asarray(radius, dtype=float)), a)
         inside = d * (a * a - r * r) / 4.0 - big_a * (a ** (n + 2) - r ** (n + 2)) / (n + 2) ** 2
         return self.film_coefficient * np.maximum(inside, 0.0)
+
+
+def thin_layer_limit(
+    indenter: PowerLawIndenter, body: Material, thickness: float, base: str = "bonded"
+) -> FoundationLayer | IncompressibleThinLayer:
+    """The H -> 0 limit of a layer of ``body`` on a ``base`` ("bonded" or "lubricated").
+
+    Bonded: the thin film for nu = 0.5, else the oedometric foundation; lubricated: the
+    foundation k = E* / H for any nu.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If ``base`` is unknown or a value is out of range.
+    """
+    if base not in BASES:
+        raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
+    if base == "lubricated":
+        return FoundationLayer(indenter, sliding_stiffness(body, thickness))
+    if body.poisson_ratio == 0.5:
+        return IncompressibleThinLayer(indenter, body.shear_modulus, thickness)
+    return FoundationLayer(indenter, oedometric_stiffness(body, thickness))
