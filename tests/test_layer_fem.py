@@ -159,3 +159,12 @@ def test_bad_layer_input_is_one_clear_error(options, message):
 def test_cli_refuses_a_bad_thickness_with_exit_code_2(capsys):
     assert main(["contact", "--thickness", "0"]) == 2
     assert "--thickness must be > 0 m" in capsys.readouterr().err
+
+
+def test_layer_error_estimates_have_no_half_space_truncation_or_truth():
+    body = Material(7.5e6, 0.5)
+    result = sh.contact(INDENTER, body, depths=[_depth(body)], thickness=0.02, mesh_size=COARSE)
+    # the half-space's far-field term (1.9 a/R) would add 8 % with R the layer's lateral extent
+    assert result.error_estimate["force"] < 2e-3
+    # the departure from the half-space is not an error: no true error, no effectivity
+    assert result.true_error is None and result.effectivity is None
