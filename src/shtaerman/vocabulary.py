@@ -419,6 +419,24 @@ VOCABULARY: tuple[Entry, ...] = (
         type="str",
         choices=("linear", "neo-hookean"),
     ),
+    # --- a layer on a rigid base (the half-space without thickness) ---------------------------
+    Entry(
+        "thickness",
+        "m",
+        "thickness H of a layer on a rigid base",
+        "Layer thickness H",
+        None,
+    ),
+    Entry(
+        "base",
+        "",
+        "the layer's rigid base: bonded (u = 0) or lubricated (u_z = 0, free to slide)",
+        "Layer base",
+        "bonded",
+        valid=None,
+        type="str",
+        choices=("bonded", "lubricated"),
+    ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(
         "refine",

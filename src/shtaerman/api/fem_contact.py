@@ -317,6 +317,17 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
 
 
+def _layer(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
+    """``mesh`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
+    base = entry("base").check(options["base"])
+    if options["thickness"] is None:
+        return mesh
+    thickness = entry("thickness").check(options["thickness"])
+    if options["model"] != "linear":
+        raise InputError("thickness: a layer is available for the linear model only", "thickness")
+    return dataclasses.replace(mesh, thickness=thickness, base=base)
+
+
 def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
@@ -337,7 +348,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
             "keywords mesh_size, mesh_margin, ... set single fields",
             "mesh",
         )
-    mesh = mesh_settings(base, {k: options[k] for k in MESH_OPTIONS})
+    mesh = _layer(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), options)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
@@ -369,6 +380,8 @@ def contact(
     velocity: float | None = None,
     depths: Sequence[float] | np.ndarray | None = None,
     striker: Material | None = None,
+    thickness: float | None = None,
+    base: str = "bonded",
     model: str = "linear",
     refine: float = 1.0,
     estimate: bool = True,
@@ -399,6 +412,11 @@ def contact(
         with ``striker`` (default rigid) as the striker's material; not with ``depths``.
     depths : sequence of float, optional
         Depths in m, increasing (default: eight up to that x_c, radii a_c/3 .. a_c).
+    thickness : float, optional
+        Thickness H in m of a layer of ``body`` on a rigid base (linear model); None: the
+        half-space. The ``*_analytic`` values stay Shtaerman's half-space solution.
+    base : {"bonded", "lubricated"}
+        The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
     model : {"linear", "neo-hookean"}
         Linear elasticity, or a neo-Hookean solid at finite strain (same E2, nu2).
     refine : float

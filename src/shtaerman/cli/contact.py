@@ -27,7 +27,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "and (linear model) the figures. SI units."
         ),
     )
-    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "model", "mass", "velocity")
+    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "model")
+    inputs = (*inputs, "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -51,6 +52,7 @@ def _mesh_default(field: str) -> str:
 DERIVED = {
     **{name: f"{entry(name).default:g}; not with --depths" for name in ("mass", "velocity")},
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
+    "thickness": "none: the half-space",
     **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
@@ -65,7 +67,8 @@ NOTES = {
 
 
 KEYWORDS = (
-    *("mass", "velocity", "depths", "model", "refine", "estimate", "accuracy", "max_time"),
+    *("mass", "velocity", "depths", "thickness", "base", "model", "refine", "estimate"),
+    *("accuracy", "max_time"),
     *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
 )
 """The options passed to :func:`shtaerman.contact` as its keywords."""
@@ -135,10 +138,15 @@ def contact_text(report: dict) -> str:
         f"FEM contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} on "
         f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
     )
-    rows = [
-        head + _impact_words(report),
-        "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg",
-    ]
+    rows = [head + _impact_words(report)]
+    if "thickness" in report["mesh"]:
+        rows.append(
+            f"  layer H = {report['mesh']['thickness']:g} m on a {report['mesh']['base']} rigid "
+            "base: rel.err = departure from the half-space"
+        )
+    rows.append(
+        "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg"
+    )
     for step in report["steps"]:
         errors = [
             step[k] / step[f"{k}_analytic"] - 1

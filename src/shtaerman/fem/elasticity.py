@@ -214,6 +214,8 @@ def assemble(mesh: MeshTri, youngs_modulus: float, poisson_ratio: float) -> Elas
     ubasis = Basis(mesh, ElementVector(ElementTriP2()))
     pbasis = ubasis.with_element(ElementTriP1())
     stiffness = asm(deviatoric_stiffness(e_mod / (2.0 * (1.0 + nu))), ubasis)
+    if "base" in mesh.boundaries:  # a layer on a lubricated base: the exterior beyond r = L
+        stiffness = stiffness + _exterior_layer(ubasis, e_mod / (2.0 * (1.0 + nu)))
     coupling = asm(divergence_coupling, ubasis, pbasis)
     inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
     pressure_block = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
@@ -236,8 +238,30 @@ def assemble(mesh: MeshTri, youngs_modulus: float, poisson_ratio: float) -> Elas
 
 def _clamped_dofs(ubasis: Basis) -> np.ndarray:
     axis = ubasis.get_dofs("axis").all("u^1")
+    if "base" in ubasis.mesh.boundaries:  # a layer's lubricated base: u_z = 0, free to slide
+        return np.union1d(axis, ubasis.get_dofs("base").all("u^2")).astype(np.int64)
     far = ubasis.get_dofs("far").all()
     return np.union1d(axis, far).astype(np.int64)
+
+
+def _exterior_layer(ubasis: Basis, shear_modulus: float) -> sp.csr_matrix:
+    """Stiffness of a lubricated layer beyond its lateral edge r = L, int 2 mu u_r v_r / L dA.
+
+    Far from the contact a layer free to slide on its base and free on top deforms as
+    u_r = C / r, u_z = 0 (isochoric; sigma_zz = sigma_rz = 0, sigma_rr = -2 mu u_r / r): the
+    exterior pulls the edge back with the traction -2 mu u_r / L, exact in the far field, where
+    a clamp would stiffen the layer by O(a / L).
+    """
+    mesh = ubasis.mesh
+    facets = mesh.boundaries["far"]
+    edge = float(mesh.p[0, mesh.facets[:, facets]].max())
+    fbasis = FacetBasis(mesh, ubasis.elem, facets=facets, intorder=4)
+
+    @BilinearForm
+    def spring(u, v, w):
+        return TWO_PI * w.x[0] * 2.0 * shear_modulus / edge * u[0] * v[0]
+
+    return asm(spring, fbasis)
 
 
 def _surface(

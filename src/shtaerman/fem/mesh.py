@@ -1,10 +1,14 @@
-"""Graded gmsh mesh of the axisymmetric elastic half-space, read into scikit-fem.
+"""Graded gmsh mesh of the axisymmetric elastic half-space (or layer), read into scikit-fem.
 
 The geometry is ``meshes/halfspace.geo`` (shipped in the wheel as ``shtaerman/meshes``): the
 quarter disc r >= 0, z <= 0, r^2 + z^2 <= R^2 in the r-z plane (mesh x = r, y = z, metres).
 The element size is ``smallest_size`` on the surface segment 0 <= r <= ``refined_radius`` and
 grows linearly with the distance d from it, h = smallest_size + growth * d, so the element count
 grows only with log(R / refined_radius).
+
+A layer of thickness H on a rigid base is ``meshes/layer.geo``: the rectangle 0 <= r <= L,
+-H <= z <= 0 with the same size field, capped so that a thin layer keeps several elements
+through its thickness (:func:`layer_mesh`).
 """
 
 from __future__ import annotations
@@ -23,6 +27,7 @@ import numpy as np
 from skfem import MeshTri
 from skfem.io.meshio import from_meshio
 
+from ..theory.layer import BASES
 from ..validation import InputError, validate_positive
 from .signals import deferred
 
@@ -31,10 +36,14 @@ __all__ = [
     "MeshSettings",
     "geometry_path",
     "halfspace_mesh",
+    "layer_mesh",
 ]
 
 BOUNDARIES = ("axis", "surface", "far")
-"""Named boundaries of the mesh: r = 0, z = 0 and the far arc."""
+"""Named boundaries of the mesh: r = 0, z = 0 and the far arc (the clamped far boundary)."""
+BASE = "base"
+"""The rigid base z = -H of a layer on a lubricated base (u_z = 0, free to slide); a bonded
+base is clamped, so it belongs to ``"far"``."""
 
 _PARAMETERS = {
     "refined_radius": "Parameters/1Refined radius (m)",
@@ -45,11 +54,24 @@ _PARAMETERS = {
     "axis_growth": "Parameters/6Growth rate from the axis (size per distance)",
 }
 _GEOMETRY = "halfspace.geo"
+_LAYER_PARAMETERS = {
+    "refined_radius": "Parameters/1Refined radius (m)",
+    "lateral_extent": "Parameters/2Lateral extent (m)",
+    "smallest_size": "Parameters/3Smallest element size (m)",
+    "growth": "Parameters/4Growth rate (size per distance)",
+    "axis_size": "Parameters/5Element size at the axis (m)",
+    "axis_growth": "Parameters/6Growth rate from the axis (size per distance)",
+    "thickness": "Parameters/7Layer thickness (m)",
+    "thickness_size": "Parameters/8Element size through the thickness (m)",
+    "largest_size": "Parameters/9Largest element size (m)",
+}
+_LAYER_GEOMETRY = "layer.geo"
 _PETSC_OPTIONS = "PETSC_OPTIONS"
 
 
-def geometry_path() -> Path:
-    """Path of ``halfspace.geo``: the installed package data, else the repository's ``meshes/``.
+def geometry_path(name: str = _GEOMETRY) -> Path:
+    """Path of ``halfspace.geo`` (or ``name``): the installed package data, else the
+    repository's ``meshes/``.
 
     Returns
     -------
@@ -61,12 +83,12 @@ def geometry_path() -> Path:
     FileNotFoundError
         If neither location holds the file (a wheel built without ``meshes/``).
     """
-    packaged = importlib.resources.files("shtaerman") / "meshes" / _GEOMETRY
+    packaged = importlib.resources.files("shtaerman") / "meshes" / name
     if packaged.is_file():
         return Path(str(packaged))
-    repository = Path(__file__).resolve().parents[3] / "meshes" / _GEOMETRY
+    repository = Path(__file__).resolve().parents[3] / "meshes" / name
     if not repository.is_file():
-        raise FileNotFoundError(f"{_GEOMETRY} is neither in shtaerman/meshes nor at {repository}")
+        raise FileNotFoundError(f"{name} is neither in shtaerman/meshes nor at {repository}")
     return repository
 
 
@@ -129,6 +151,62 @@ def halfspace_mesh(
     unit = {key: value / scale if key in lengths else value for key, value in parameters.items()}
     with _gmsh_session():
         points, triangles, lines = _generate(unit)
+    return _to_skfem(points * scale, triangles, lines)
+
+
+def layer_mesh(
+    refined_radius: float,
+    thickness: float,
+    *,
+    lateral_extent: float,
+    smallest_size: float,
+    growth: float,
+    axis_size: float,
+    axis_growth: float,
+    thickness_size: float,
+    bonded: bool = True,
+) -> MeshTri:
+    """Mesh the axisymmetric layer 0 <= r <= ``lateral_extent``, -``thickness`` <= z <= 0.
+
+    Parameters
+    ----------
+    refined_radius, smallest_size, growth, axis_size, axis_growth : float
+        As for :func:`halfspace_mesh` (m, m, -, m, -), already checked.
+    thickness : float
+        Layer thickness H in m.
+    lateral_extent : float
+        Radius L > ``refined_radius`` of the truncated layer in m (clamped edge r = L).
+    thickness_size : float
+        Element size in m at the refined zone, at most (several elements through the
+        thickness at the contact); it grows by ``growth`` per unit distance up to
+        ``LARGEST_THICKNESS_SIZE`` times itself.
+    bonded : bool
+        True: the base z = -H joins the clamped boundary ``"far"``; False: it is the boundary
+        :data:`BASE` (the solver then holds only u_z there).
+
+    Returns
+    -------
+    skfem.MeshTri
+        Boundaries ``"axis"``, ``"surface"``, ``"far"`` and, for a lubricated base, ``"base"``.
+    """
+    parameters = {
+        "refined_radius": refined_radius,
+        "lateral_extent": lateral_extent,
+        "smallest_size": smallest_size,
+        "growth": growth,
+        "axis_size": axis_size,
+        "axis_growth": axis_growth,
+        "thickness": thickness,
+        "thickness_size": thickness_size,
+        "largest_size": LARGEST_THICKNESS_SIZE * thickness_size,
+    }
+    scale = refined_radius
+    rates = ("growth", "axis_growth")
+    unit = {key: value if key in rates else value / scale for key, value in parameters.items()}
+    with _gmsh_session():
+        points, triangles, lines = _generate(unit, _LAYER_PARAMETERS, _LAYER_GEOMETRY)
+    if bonded:
+        lines["far"] = np.concatenate([lines["far"], lines.pop(BASE)])
     return _to_skfem(points * scale, triangles, lines)
 
 
@@ -210,18 +288,20 @@ def _petsc_leaving_signals_alone() -> Iterator[None]:
             os.environ[_PETSC_OPTIONS] = previous
 
 
-def _generate(parameters: dict[str, float]) -> tuple[np.ndarray, np.ndarray, dict]:
+def _generate(
+    parameters: dict[str, float], names: dict[str, str] = _PARAMETERS, geometry: str = _GEOMETRY
+) -> tuple[np.ndarray, np.ndarray, dict]:
     """Mesh the .geo in a model of its own; return points, triangles and tagged lines."""
-    for key, name in _PARAMETERS.items():
+    for key, name in names.items():
         gmsh.onelab.setNumber(name, [parameters[key]])
     gmsh.model.add("shtaerman_halfspace")
     try:
-        gmsh.merge(str(geometry_path()))
+        gmsh.merge(str(geometry_path(geometry)))
         gmsh.model.mesh.generate(2)
         return _read_back()
     finally:
         gmsh.model.remove()
-        for name in _PARAMETERS.values():
+        for name in names.values():
             gmsh.onelab.clear(name)
 
 
@@ -248,7 +328,7 @@ def _to_skfem(points: np.ndarray, triangles: np.ndarray, lines: dict) -> MeshTri
     used = np.unique(triangles)
     renumber = np.full(points.shape[0], -1, dtype=np.int64)
     renumber[used] = np.arange(used.size)
-    names = [name for name in BOUNDARIES if name in lines]
+    names = [name for name in (*BOUNDARIES, BASE) if name in lines]
     edges = np.concatenate([lines[name] for name in names])
     ends = np.cumsum([0] + [lines[name].shape[0] for name in names])
     cell_sets = {"body": [np.arange(triangles.shape[0]), None]}
@@ -262,6 +342,8 @@ def _to_skfem(points: np.ndarray, triangles: np.ndarray, lines: dict) -> MeshTri
     return mesh
 
 
+DEFAULTS_SIZE = 1.0 / 150.0
+"""The default :attr:`MeshSettings.size` (the layer's size cap scales with the size)."""
 MIN_DOMAIN = 100.0
 MAX_DOMAIN = 1e7
 MAX_MARGIN = 10.0
@@ -296,6 +378,37 @@ def estimate_elements(settings: MeshSettings) -> float:
     )
 
 
+LAYER_EXTENT = 10.0
+"""Lateral extent of a layer mesh beyond its refined zone, in thicknesses (the clamped edge
+r = L; its effect on the force is measured in benchmarks/FEM_NOTES.md, "Layer")."""
+THICKNESS_ELEMENTS = 8.0
+"""Elements through the thickness of a layer at the default size (scaled with ``size``)."""
+LARGEST_THICKNESS_SIZE = 4.0
+"""Largest element size of a layer / its size through the thickness at the contact."""
+MIN_THICKNESS = 0.01
+"""Thinnest layer the mesh resolves, in refined radii."""
+_TRIANGLES_PER_SQUARE = 2.3
+"""Triangles of gmsh per area h^2 (an equilateral triangle has area 0.433 h^2)."""
+
+
+def _layer_elements(settings: MeshSettings, thickness: float) -> float:
+    """Triangles of a layer mesh of ``thickness`` refined radii: a quadrature of
+    Int dA / h^2 over the rectangle (graded grid), plus the axis grading term of
+    :func:`estimate_elements`."""
+    s, g, cap = settings.size, settings.growth, settings.thickness_size(thickness)
+    extent = settings.lateral_extent(thickness)
+    x = np.concatenate([np.linspace(0.0, 1.0, 65), 1.0 + np.geomspace(1e-3, extent - 1.0, 200)])
+    y = -np.concatenate([[0.0], np.geomspace(1e-4 * thickness, thickness, 120)])
+    xm, ym = 0.5 * (x[1:] + x[:-1]), 0.5 * (y[1:] + y[:-1])
+    xx, yy = np.meshgrid(xm, ym, indexing="ij")
+    distance = np.hypot(np.maximum(xx - 1.0, 0.0), yy)
+    size = np.minimum(LARGEST_THICKNESS_SIZE * cap, min(s, cap) + g * distance)
+    area = np.outer(np.diff(x), -np.diff(y))
+    axis, axis_growth = min(settings.axis_size, s), settings.axis_growth
+    grading = 3.67 * math.log(max(min(s, cap) / axis, 1.0)) / axis_growth**2
+    return float(_TRIANGLES_PER_SQUARE * np.sum(area / size**2) + grading + 167.0)
+
+
 @dataclass(frozen=True)
 class MeshSettings:
     """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
@@ -321,20 +434,33 @@ class MeshSettings:
     max_dofs : float
         Refuse (InputError, before meshing) a mesh whose estimated number of unknowns exceeds
         this (default :data:`MAX_DOFS`); a guard against runaway work, not a mesh control.
+    thickness : float or None
+        Thickness H in m of a layer on a rigid base (an absolute length, unlike the fields
+        above); None: the half-space.
+    base : {"bonded", "lubricated"}
+        The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
     """
 
     margin: float = 1.25
-    size: float = 1.0 / 150.0
+    size: float = DEFAULTS_SIZE
     domain: float = 1.0e5
     growth: float = 0.25
     axis_size: float = 1.0e-6
     axis_growth: float = 0.1
     max_dofs: float = MAX_DOFS
+    thickness: float | None = None
+    base: str = "bonded"
 
     def __post_init__(self) -> None:
         names = ("margin", "size", "domain", "growth", "axis_size", "axis_growth", "max_dofs")
         for name in names:
             object.__setattr__(self, name, validate_positive(name, getattr(self, name)))
+        if self.thickness is not None:
+            object.__setattr__(
+                self, "thickness", validate_positive("thickness", self.thickness, "m")
+            )
+        if self.base not in BASES:
+            raise InputError(f"base: unknown base {self.base!r}. Pick one of {list(BASES)}")
         if not 1.0 < self.margin <= MAX_MARGIN:
             raise InputError(
                 f"margin must lie in (1, {MAX_MARGIN:g}] (the refined zone / contact radius; "
@@ -380,8 +506,28 @@ class MeshSettings:
     @property
     def estimated_dofs(self) -> int:
         """Unknowns of the FEM system on this mesh, estimated before meshing (within about
-        30 %, see :func:`estimate_elements`)."""
+        30 %, see :func:`estimate_elements`); a layer's own estimate needs the refined
+        radius and is checked when it is built (:meth:`layer_dofs`)."""
         return round(DOFS_PER_ELEMENT * estimate_elements(self))
+
+    def layer_dofs(self, thickness: float) -> int:
+        """Estimated unknowns of the layer mesh of ``thickness`` refined radii."""
+        return round(DOFS_PER_ELEMENT * _layer_elements(self, thickness))
+
+    def thickness_size(self, thickness: float) -> float:
+        """Largest element size of a layer of ``thickness`` (any unit; same unit back)."""
+        return thickness / THICKNESS_ELEMENTS * self.size / DEFAULTS_SIZE
+
+    def lateral_extent(self, thickness: float) -> float:
+        """Radius of a layer mesh in refined radii for ``thickness`` refined radii:
+        1 + LAYER_EXTENT * thickness, at most ``domain``."""
+        return min(1.0 + LAYER_EXTENT * thickness, self.domain)
+
+    def zone_factor(self, exponent: float) -> float:
+        """Contact radius bound / geometric radius (A a^n = d): 1 on the half-space;
+        ((n + 2)/2)^(1/n) on a layer, whose thin incompressible limit bulges the contact to
+        d = 2 A a^n/(n + 2) (see :mod:`shtaerman.theory.layer`)."""
+        return 1.0 if self.thickness is None else ((exponent + 2.0) / 2.0) ** (1.0 / exponent)
 
     def check_size(self) -> None:
         """Raise InputError if the estimated mesh exceeds ``max_dofs`` (before any work)."""
@@ -399,6 +545,8 @@ class MeshSettings:
 
         Raises InputError before meshing if the estimated size exceeds ``max_dofs``.
         """
+        if self.thickness is not None:
+            return self._build_layer(refined_radius)
         self.check_size()
         return halfspace_mesh(
             refined_radius,
@@ -407,6 +555,33 @@ class MeshSettings:
             growth=self.growth,
             axis_size=min(self.axis_size, self.size) * refined_radius,
             axis_growth=self.axis_growth,
+        )
+
+    def _build_layer(self, refined_radius: float) -> MeshTri:
+        """The layer mesh of :meth:`build` (checks the thickness against the refined zone)."""
+        ratio = self.thickness / refined_radius
+        if ratio < MIN_THICKNESS:
+            raise InputError(
+                f"thickness must be >= {MIN_THICKNESS:g} * refined radius = "
+                f"{MIN_THICKNESS * refined_radius:.3g} m (thinner than the mesh resolves at "
+                f"these depths), got {self.thickness!r}"
+            )
+        dofs = self.layer_dofs(ratio)
+        if dofs > self.max_dofs:
+            raise InputError(
+                f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
+                f"max_dofs = {self.max_dofs:.3g}; coarsen it or raise max_dofs (--max-dofs)"
+            )
+        return layer_mesh(
+            refined_radius,
+            self.thickness,
+            lateral_extent=self.lateral_extent(ratio) * refined_radius,
+            smallest_size=self.size * refined_radius,
+            growth=self.growth,
+            axis_size=min(self.axis_size, self.size) * refined_radius,
+            axis_growth=self.axis_growth,
+            thickness_size=self.thickness_size(self.thickness),
+            bonded=self.base == "bonded",
         )
 
 

@@ -245,7 +245,8 @@ def run_indentation(
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     mesh = MeshSettings() if mesh is None else mesh
-    refined = mesh.margin * _geometric_radius(indenter, depths[-1])
+    zone = mesh.zone_factor(indenter.exponent)  # 1 on the half-space
+    refined = mesh.margin * _geometric_radius(indenter, depths[-1]) * zone
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined)
     meshed = time.perf_counter()
@@ -272,4 +273,7 @@ def run_indentation(
         "domain_radius": mesh.domain * refined,
         "smallest_size": mesh.size * refined,
     }
+    if mesh.thickness is not None:  # a layer: force_analytic stays the half-space's
+        stats |= {"thickness": mesh.thickness, "base": mesh.base}
+        stats["domain_radius"] = mesh.lateral_extent(mesh.thickness / refined) * refined
     return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)
