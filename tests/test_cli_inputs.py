@@ -95,8 +95,8 @@ def test_default_depths_are_one_function_with_the_vocabularys_impact():
 def test_the_contact_help_states_the_vocabularys_striker(monkeypatch):
     from shtaerman.cli import contact
 
-    assert contact.DERIVED["mass"].startswith(f"{entry('mass').default:g}, ")
-    assert contact.DERIVED["velocity"].startswith(f"{entry('velocity').default:g}, ")
+    assert contact.DERIVED["mass"].startswith(f"{entry('mass').default:g}; ")
+    assert contact.DERIVED["velocity"].startswith(f"{entry('velocity').default:g}; ")
 
 
 def test_estimate_default_is_declared_per_surface():

@@ -23,6 +23,7 @@ ALLOWED = {
         "theory.contact",
         "theory.impact",
         "theory.radiation",
+        "theory.layer",
     },
     "study": {"study", "fem", "theory", "paper"},
     "plots": {"plots", "study", "fem", "theory", "paper"},
