@@ -15,6 +15,7 @@ SHIPPED = [
     "shtaerman/output/templates/report.md.j2",
     "shtaerman/output/templates/report.html.j2",
     "shtaerman/meshes/halfspace.geo",
+    "shtaerman/meshes/layer.geo",
     "shtaerman/studies/paper.toml",
     "shtaerman/studies/hertz.toml",
     "shtaerman/studies/compressible.toml",
