@@ -27,4 +27,4 @@ from .studies import run_study as run_study
 from .studies import sweep as sweep
 
 _PACKAGE = sys.modules[__name__.rpartition(".")[0]]  # shtaerman, loaded before its subpackages
-__all__ = [name for name in _PACKAGE.__all__ if name != "__version__"]
+__all__ = [name for name in _PACKAGE.__all__ if name in globals()]  # not __version__, sweep types
