@@ -148,7 +148,9 @@ def test_the_api_reports_the_layer_and_compares_with_the_half_space():
         ({"thickness": -1.0}, "thickness must be > 0 m"),
         ({"thickness": 0.01, "base": "glued"}, "base must be one of bonded, lubricated"),
         ({"thickness": 0.01, "model": "neo-hookean"}, "thickness: a layer is available for"),
-        ({"thickness": 1e-6}, "thickness must be >= 0.01 \\* refined radius"),
+        ({"thickness": 1e-6}, "thickness: must lie in \\[.*0.01 to 1000 refined radii"),
+        ({"thickness": 1e9}, "thickness: must lie in \\[.*0.01 to 1000 refined radii"),
+        ({"base": "lubricated"}, "base: applies to a layer only"),
     ],
 )
 def test_bad_layer_input_is_one_clear_error(options, message):
@@ -168,3 +170,16 @@ def test_layer_error_estimates_have_no_half_space_truncation_or_truth():
     assert result.error_estimate["force"] < 2e-3
     # the departure from the half-space is not an error: no true error, no effectivity
     assert result.true_error is None and result.effectivity is None
+
+
+@pytest.mark.parametrize(
+    ("argv", "start"),
+    [
+        (["--base", "lubricated"], "shtaerman: error: --base: applies to a layer only"),
+        (["--thickness", "1e9"], "shtaerman: error: --thickness: must lie in ["),
+    ],
+)
+def test_cli_names_the_layer_option_it_refuses(capsys, argv, start):
+    """A base without a layer was ignored; a 1e9 m layer was meshed until memory ran out."""
+    assert main(["contact", "--no-estimate", *argv]) == 2
+    assert capsys.readouterr().err.startswith(start)

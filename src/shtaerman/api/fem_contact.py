@@ -319,9 +319,13 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
 
 def _layer(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
     """``mesh`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
-    base = entry("base").check(options["base"])
     if options["thickness"] is None:
+        if options["base"] is not None:
+            raise InputError("base: applies to a layer only; give its thickness too", "base")
         return mesh
+    base = entry("base").check(
+        entry("base").default if options["base"] is None else options["base"]
+    )
     thickness = entry("thickness").check(options["thickness"])
     if options["model"] != "linear":
         raise InputError("thickness: a layer is available for the linear model only", "thickness")
@@ -381,7 +385,7 @@ def contact(
     depths: Sequence[float] | np.ndarray | None = None,
     striker: Material | None = None,
     thickness: float | None = None,
-    base: str = "bonded",
+    base: str | None = None,
     model: str = "linear",
     refine: float = 1.0,
     estimate: bool = True,
@@ -415,8 +419,9 @@ def contact(
     thickness : float, optional
         Thickness H in m of a layer of ``body`` on a rigid base (linear model); None: the
         half-space. The ``*_analytic`` values stay Shtaerman's half-space solution.
-    base : {"bonded", "lubricated"}
-        The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
+    base : {"bonded", "lubricated"}, optional
+        The layer's base: bonded (u = 0, the default with ``thickness``) or lubricated
+        (u_z = 0, free to slide); only with ``thickness``.
     model : {"linear", "neo-hookean"}
         Linear elasticity, or a neo-Hookean solid at finite strain (same E2, nu2).
     refine : float

@@ -53,6 +53,7 @@ DERIVED = {
     **{name: f"{entry(name).default:g}; not with --depths" for name in ("mass", "velocity")},
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
     "thickness": "none: the half-space",
+    "base": "bonded; only with --thickness",
     **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""

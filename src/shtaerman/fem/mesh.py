@@ -387,6 +387,9 @@ LARGEST_THICKNESS_SIZE = 4.0
 """Largest element size of a layer / its size through the thickness at the contact."""
 MIN_THICKNESS = 0.01
 """Thinnest layer the mesh resolves, in refined radii."""
+MAX_THICKNESS = 1000.0
+"""Thickest layer meshed, in refined radii: a thicker one is the half-space to below 0.1 %
+of the force (benchmarks/FEM_NOTES.md, "Layer"), which the mesh without a thickness is."""
 _TRIANGLES_PER_SQUARE = 2.3
 """Triangles of gmsh per area h^2 (an equilateral triangle has area 0.433 h^2)."""
 
@@ -560,11 +563,13 @@ class MeshSettings:
     def _build_layer(self, refined_radius: float) -> MeshTri:
         """The layer mesh of :meth:`build` (checks the thickness against the refined zone)."""
         ratio = self.thickness / refined_radius
-        if ratio < MIN_THICKNESS:
+        if not MIN_THICKNESS <= ratio <= MAX_THICKNESS:
             raise InputError(
-                f"thickness must be >= {MIN_THICKNESS:g} * refined radius = "
-                f"{MIN_THICKNESS * refined_radius:.3g} m (thinner than the mesh resolves at "
-                f"these depths), got {self.thickness!r}"
+                f"thickness: must lie in [{MIN_THICKNESS * refined_radius:.3g}, "
+                f"{MAX_THICKNESS * refined_radius:.3g}] m at these depths ({MIN_THICKNESS:g} to "
+                f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
+                f"half-space, run without a thickness), got {self.thickness!r}",
+                "thickness",
             )
         dofs = self.layer_dofs(ratio)
         if dofs > self.max_dofs:
