@@ -1,5 +1,6 @@
 """Outputs that never lose or fake anything: staged folders and files (issue 7, item 3)."""
 
+import json
 import os
 import signal
 import stat
@@ -415,3 +416,25 @@ def test_a_killed_run_that_kept_a_resumable_part_has_it_moved_into_place(tmp_pat
         assert (stage.parent / "keep").read_text() == "progress.json"
     with staged_folder(tmp_path / "plain") as stage:
         assert not (stage.parent / "keep").exists()
+
+
+def test_force_keeps_the_files_a_user_added_to_a_result_folder(tmp_path):
+    """--force deleted a note the user had put into a result folder: the marker now lists the
+    files the run wrote, and a folder holding others is refused, with nothing touched."""
+    target = tmp_path / "run"
+    with staged_folder(target) as stage:
+        (stage / "sub").mkdir()
+        (stage / "sub" / "a.csv").write_text("1")
+    assert json.loads((target / FOLDER_MARKER).read_text())["files"] == ["sub/a.csv"]
+    (target / "sub" / "notes.txt").write_text("mine")
+    with pytest.raises(InputError, match=r"holds 'sub/notes.txt', not written by shtaerman"):
+        check_output_folder(target, force=True)
+    with pytest.raises(InputError, match="move it or name a new folder with --out"):
+        with staged_folder(target, force=True):
+            pass
+    assert (target / "sub" / "notes.txt").read_text() == "mine"
+    (target / "sub" / "notes.txt").unlink()
+    (target / "sub" / "a.csv").unlink()  # a file the user deleted is no obstacle
+    with staged_folder(target, force=True) as stage:
+        (stage / "b.csv").write_text("2")
+    assert names(target) == ["b.csv"]

@@ -10,7 +10,9 @@ The rules, for a result folder ``DIR`` (and likewise a single result file):
 - ``DIR`` itself is reserved at the start with ``os.mkdir`` (atomic: exactly one run gets it)
   and the finished folder is renamed onto that empty reservation at the end, so the complete
   folder appears in one step and never replaces anything it was not told to. An old ``DIR``
-  (``force``) is moved into the staging folder first and restored if the run fails.
+  (``force``) is moved into the staging folder first and restored if the run fails; it must
+  be one this tool wrote, holding no file its marker does not list (a user's note is never
+  deleted).
 - Folders and files get the permissions of the umask (0777/0666 masked), like ``mkdir`` and
   ``open`` would give, not the 0700/0600 of ``mkdtemp``/``mkstemp``.
 - The current folder, its parents and symbolic links are refused as result folders: replacing
@@ -256,18 +258,49 @@ def ours(folder: Path) -> bool:
     return resumable(folder, FOLDER_MARKER)
 
 
-def _mark(folder: Path) -> None:
+def _mark(folder: Path, *, sealed: bool = False) -> None:
     """Write :data:`FOLDER_MARKER` into ``folder`` (a new file: a hard-linked old one is not
-    written through)."""
+    written through); ``sealed``: with the list of the files the folder holds now."""
+    content: dict[str, object] = {"format": FOLDER_FORMAT}
+    if sealed:
+        content["files"] = sorted(_files_in(folder) - {FOLDER_MARKER})
     temporary = folder / f".{FOLDER_MARKER}.tmp"
-    temporary.write_text(json.dumps({"format": FOLDER_FORMAT}), encoding="utf-8")
+    temporary.write_text(json.dumps(content), encoding="utf-8")
     os.replace(temporary, folder / FOLDER_MARKER)
+
+
+def _files_in(folder: Path) -> set[str]:
+    """Paths (POSIX, relative to ``folder``) of every non-folder entry below it."""
+    found = set()
+    for root, folders, files in os.walk(folder):
+        here = Path(root).relative_to(folder)
+        links = [name for name in folders if os.path.islink(os.path.join(root, name))]
+        found.update((here / name).as_posix() for name in [*files, *links])
+    return found
+
+
+def _foreign_files(folder: Path) -> list[str]:
+    """Files in a folder this tool wrote that its marker does not list (a user's additions);
+    none for a marker without a list (an interrupted run, an older version)."""
+    try:
+        listed = json.loads((folder / FOLDER_MARKER).read_text(encoding="utf-8"))["files"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return []
+    return sorted(_files_in(folder) - set(listed) - {FOLDER_MARKER})
 
 
 def _not_ours(option: str, path: object) -> InputError:
     return InputError(
         f"{option}: folder {str(path)!r} was not written by shtaerman (no {FOLDER_MARKER}); "
         f"--force replaces only result folders of this tool: name a new folder with --{option}"
+    )
+
+
+def _not_only_ours(option: str, path: object, foreign: list[str]) -> InputError:
+    more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
+    return InputError(
+        f"{option}: folder {str(path)!r} holds {foreign[0]!r}{more}, not written by shtaerman; "
+        f"--force replaces only what this tool wrote: move it or name a new folder with --{option}"
     )
 
 
@@ -373,6 +406,8 @@ def check_output_folder(
                 raise _not_empty(option, path, resume_marker)
             if force and not ours(target):
                 raise _not_ours(option, path)
+            if force and _foreign_files(target):
+                raise _not_only_ours(option, path, _foreign_files(target))
         probe_writable(option, target.parent, _stage_path(target).name)
     except ValueError as error:  # a NUL byte in the name
         if isinstance(error, InputError):
@@ -423,7 +458,8 @@ def staged_folder(
     """Yield a folder to fill; on success it becomes ``target`` in one rename.
 
     ``target`` may exist only as an empty folder, or (``force``) as a folder this tool wrote
-    (:data:`FOLDER_MARKER`, written into every folder made here), which is then replaced. A
+    (:data:`FOLDER_MARKER`, written into every folder made here with the list of its files)
+    holding only the files listed, which is then replaced. A
     folder holding the file ``resume_marker`` is replaced too, and the yielded folder starts
     with its content (hard links) for the run to complete. On any failure (an exception,
     Ctrl-C, SIGTERM raised as an exception) everything written is removed and ``target`` is
@@ -448,6 +484,8 @@ def staged_folder(
                     raise _not_empty(option, target, resume_marker)
                 if not resumed and not ours(target):
                     raise _not_ours(option, target)
+                if not resumed and _foreign_files(target):
+                    raise _not_only_ours(option, target, _foreign_files(target))
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it
@@ -465,10 +503,12 @@ def staged_folder(
         try:
             yield content
         except KeepStaged as keep:
+            _mark(content, sealed=True)
             _publish(content, target, option)
             reserved = False
             _discard(retired)
             raise keep.reason from None
+        _mark(content, sealed=True)
         _publish(content, target, option)
         reserved = False
         _discard(retired)
