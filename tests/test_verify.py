@@ -453,6 +453,37 @@ def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 
 
+def test_a_killed_verify_in_a_default_folder_is_found_by_the_next_run(
+    quick_outcomes, tmp_path, monkeypatch, capsys
+):
+    """A SIGKILLed verify without --out left its finished part in a hidden staging folder that
+    a later run (another time stamp, another name) never looked at: the next verify without
+    --out puts it in place and says how to complete it."""
+    import subprocess
+    import sys
+
+    from shtaerman.output.folder import PROGRESS_FILE
+
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    name = "shtaerman-results-20260101-000000-1"
+    content = tmp_path / f".{name}.partial-{child.pid}" / "content"
+    content.mkdir(parents=True)
+    (content / PROGRESS_FILE).write_text("{}")
+    (content.parent / "keep").write_text(PROGRESS_FILE)
+    (tmp_path / name).mkdir()  # its reservation
+    monkeypatch.chdir(tmp_path)
+    served = []
+    monkeypatch.setattr(
+        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+    )
+    assert main(["verify", "--quick", "--workers", "1", *STUDIES]) == 0
+    err = capsys.readouterr().err
+    assert f"a killed run (pid {child.pid}) left its finished part in" in err and name in err
+    assert (tmp_path / name / PROGRESS_FILE).read_text() == "{}"
+    assert not any(p.name.startswith(".") for p in tmp_path.iterdir())
+
+
 def test_verify_workers_are_capped_at_the_studies_to_compute_and_the_memory(
     tmp_path, monkeypatch, capsys
 ):

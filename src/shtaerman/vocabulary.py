@@ -604,7 +604,15 @@ VOCABULARY: tuple[Entry, ...] = (
         for name, unit, meaning, label, default, valid, kind in (
             ("json", "", "print one JSON object (SI units)", "JSON", False, None, "flag"),
             ("out", "", "write the results to this folder", "folder", None, None, "path"),
-            ("force", "", "replace outputs this tool wrote (never files you added)", "replace", False, None, "flag"),
+            (
+                "force",
+                "",
+                "replace outputs this tool wrote (never files you added)",
+                "replace",
+                False,
+                None,
+                "flag",
+            ),
             ("history", "", "write the time history as CSV", "history", None, None, "path"),
             (
                 "points",

@@ -45,15 +45,18 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=run)
 
 
+DEFAULT_OUT_PREFIX = "shtaerman-results-"
+
+
 def default_out() -> Path:
     """A new folder name, unique per run: time stamp and process id."""
     stamp = time.strftime("%Y%m%d-%H%M%S")
-    return Path(f"shtaerman-results-{stamp}-{os.getpid()}")
+    return Path(f"{DEFAULT_OUT_PREFIX}{stamp}-{os.getpid()}")
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the studies; print a verdict per study and every failing check."""
-    from ..output.files import check_output_folder
+    from ..output.files import adopt_killed_runs, check_output_folder
     from ..output.folder import PROGRESS_FILE, ProgressBar, VerifyInterrupted, run_verification
     from ..study.schema import find_study, load_study, shipped_studies
     from ..sweep.engine import default_workers
@@ -65,8 +68,9 @@ def run(args: argparse.Namespace) -> int:
     paths = [find_study(name) for name in args.studies] or shipped_studies()
     studies = [study for path in paths for study in load_study(path)]
     _check_unique_names(studies)
-    _check_depth_counts(studies)
     marker = PROGRESS_FILE if args.resume else None
+    if args.out is None:
+        adopt_killed_runs(Path.cwd(), DEFAULT_OUT_PREFIX)
     out = check_output_folder(
         Path(args.out) if args.out is not None else default_out(),
         force=args.force,
@@ -94,21 +98,6 @@ def run(args: argparse.Namespace) -> int:
         return _stopped_code(stop.cause)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
-
-
-def _check_depth_counts(studies: list) -> None:
-    """Raise InputError, before anything runs, when a study lists more depths than one FEM
-    curve takes (:data:`shtaerman.fem.contact.MAX_DEPTHS`)."""
-    from ..fem.contact import MAX_DEPTHS
-
-    for study in studies:
-        depths = getattr(study, "depths", None) or ()
-        if len(depths) > MAX_DEPTHS:
-            raise InputError(
-                f"{study.source}: study {study.name!r}: contact.depths: at most {MAX_DEPTHS} "
-                f"per curve, got {len(depths)}",
-                "depths",
-            )
 
 
 def _check_unique_names(studies: list) -> None:

@@ -183,6 +183,17 @@ def _keep_stale(target: Path, stage: Path) -> None:
     _remove(stage)
 
 
+def adopt_killed_runs(parent: Path, prefix: str) -> None:
+    """Put in place what killed runs left beside the folders ``parent/prefix*`` (as the next run
+    writing each folder would; a warning names each), so a run under a new name finds them."""
+    pattern = re.compile(rf"\.({re.escape(prefix)}.*){re.escape(STAGE_SUFFIX)}\d+$")
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(parent):
+            match = pattern.match(entry.name)
+            if match:
+                _other_writers(parent / match.group(1))
+
+
 def _other_writers(target: Path) -> list[int]:
     """Clean the staging leftovers of dead processes; return the pids of live writers
     (this process included: one process writes one target at a time)."""
