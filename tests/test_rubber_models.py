@@ -1,0 +1,203 @@
+"""Rubber models beyond neo-Hookean (Mooney-Rivlin, Yeoh, Gent) and the volumetric energy.
+
+Pointwise: the stress against closed-form homogeneous deformations, the tangent against finite
+differences, the neo-Hookean special cases. Contact (coarse mesh): the special cases equal the
+neo-Hookean contact, Mooney-Rivlin departs, the small-strain limit. Options: one-line errors.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from shtaerman.fem.hyperelastic import NeoHookean, NewtonError, kinematics
+from shtaerman.fem.rubber import Rubber, energy_derivatives, invariant_kinematics, rubber_model
+from shtaerman.validation import InputError
+
+E2 = 7.5e6
+MU = E2 / 3.0
+MATERIALS = {
+    "mooney-rivlin": dict(model="mooney-rivlin", mooney_ratio=0.3),
+    "yeoh": dict(model="yeoh", yeoh=(-0.05, 0.01)),
+    "gent": dict(model="gent", gent_limit=20.0),
+    "neo-hookean-log": dict(model="neo-hookean", volumetric="logarithmic"),
+    "yeoh-log": dict(model="yeoh", yeoh=(0.2, 0.03), volumetric="logarithmic"),
+}
+
+
+def _psi(name: str, nu: float, x1: float) -> tuple[float, float]:
+    """dW/dI1bar and dW/dI2bar of each model, written from its energy (Pa)."""
+    mu = E2 / (2 * (1 + nu))
+    spec = MATERIALS[name]
+    if spec["model"] == "mooney-rivlin":
+        r = spec["mooney_ratio"]
+        return (1 - r) * mu / 2, r * mu / 2
+    if spec["model"] == "yeoh":
+        c2, c3 = spec["yeoh"]
+        return mu / 2 * (1 + 2 * c2 * x1 + 3 * c3 * x1**2), 0.0
+    if spec["model"] == "gent":
+        return mu / 2 / (1 - x1 / spec["gent_limit"]), 0.0
+    return mu / 2, 0.0
+
+
+def _principal(stretches):
+    """grad, u_r, radius of the homogeneous deformation diag(l_r, l_theta, l_z) (R = 1 m)."""
+    lr, lt, lz = stretches
+    grad = np.array([[lr - 1.0, 0.0], [0.0, lz - 1.0]])[..., None]
+    return grad, np.array([lt - 1.0]), np.array([1.0])
+
+
+def _closed_form(name: str, nu: float, stretches, p: float) -> np.ndarray:
+    """Cauchy (rr, tt, zz) of a principal stretch state: (2/J) dev[(psi1 + I1bar psi2) Bbar -
+    psi2 Bbar^2] - p g'(J), g' = 1 (J - 1) or 1/J (ln J)."""
+    lam = np.asarray(stretches, dtype=float)
+    J = float(np.prod(lam))
+    bbar = J ** (-2 / 3) * lam**2
+    i1, i2 = bbar.sum(), 0.5 * (bbar.sum() ** 2 - (bbar**2).sum())
+    psi1, psi2 = _psi(name, nu, i1 - 3)
+    tensor = (psi1 + i1 * psi2) * bbar - psi2 * bbar**2
+    trace = psi1 * i1 + 2 * psi2 * i2
+    slope = 1 / J if MATERIALS[name].get("volumetric") == "logarithmic" else 1.0
+    return 2 / J * (tensor - trace / 3) - p * slope
+
+
+def _material(name: str, nu: float) -> Rubber:
+    return Rubber(E2, nu, **MATERIALS[name])
+
+
+HOMOGENEOUS = {
+    "uniaxial": (1.5**-0.5, 1.5**-0.5, 1.5),
+    "equibiaxial": (1.3, 1.3, 1.3**-2),
+    "hoop": (1.2, 0.85, 1 / (1.2 * 0.85)),
+    "compressible": (1.1, 0.95, 0.8),
+}
+
+
+@pytest.mark.parametrize("name", MATERIALS)
+@pytest.mark.parametrize("state", HOMOGENEOUS)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_stress_of_homogeneous_deformations_is_the_closed_form(name, state, nu):
+    stretches, p = HOMOGENEOUS[state], 0.37 * MU
+    grad, u_r, radius = _principal(stretches)
+    k = kinematics(_material(name, nu), grad, u_r, radius, np.array([p]))
+    S, F = k.stress[:, 0], k.F[:, 0]
+    cauchy = np.array([S[0] * F[0], S[4] * F[4], S[3] * F[3]]) / k.J[0]
+    assert np.max(np.abs(cauchy - _closed_form(name, nu, stretches, p))) <= 1e-10 * MU
+    assert abs(S[1]) + abs(S[2]) <= 1e-10 * MU  # no shear in a principal state
+
+
+def _random_state(seed: int, size: int = 6):
+    rng = np.random.default_rng(seed)
+    grad = 0.25 * rng.standard_normal((2, 2, size))
+    u_r = 0.2 * rng.standard_normal(size)
+    return grad, u_r, np.ones(size), 0.3 * MU * rng.standard_normal(size)
+
+
+def _from_F(F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    grad = np.array([[F[0] - 1.0, F[1]], [F[2], F[3] - 1.0]])
+    return grad, F[4] - 1.0
+
+
+@pytest.mark.parametrize("name", MATERIALS)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_tangent_is_the_derivative_of_the_stress(name, nu):
+    material = _material(name, nu)
+    grad, u_r, radius, p = _random_state(1)
+    k = kinematics(material, grad, u_r, radius, p)
+    eps = 1e-6
+    for m in range(5):
+        step = np.zeros((5, 1))
+        step[m] = eps
+        plus = kinematics(material, *_from_F(k.F + step), radius, p)
+        minus = kinematics(material, *_from_F(k.F - step), radius, p)
+        fd = (plus.stress - minus.stress) / (2 * eps)
+        scale = np.abs(k.tangent).max()
+        # central differences: O(eps^2) truncation ~1e-12 relative; a wrong term is O(1e-2)
+        assert np.abs(fd.T - k.tangent[:, :, m]).max() <= 1e-7 * scale
+        fd_energy = (plus.energy_density - minus.energy_density) / (2 * eps)
+        assert np.abs(fd_energy - k.stress[m]).max() <= 1e-7 * np.abs(k.stress).max()
+    assert np.abs(k.tangent - np.swapaxes(k.tangent, -1, -2)).max() <= 1e-12 * scale
+
+
+@pytest.mark.parametrize(
+    "spec",
+    [
+        dict(model="neo-hookean"),
+        dict(model="mooney-rivlin", mooney_ratio=0.0),
+        dict(model="yeoh", yeoh=(0.0, 0.0)),
+    ],
+)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_special_cases_are_neo_hookean_pointwise(spec, nu):
+    grad, u_r, radius, p = _random_state(2)
+    fast = kinematics(NeoHookean(E2, nu), grad, u_r, radius, p)
+    general = invariant_kinematics(Rubber(E2, nu, **spec), grad, u_r, radius, p)
+    for key in ("stress", "tangent", "volume_gradient", "constraint", "energy_density"):
+        a, b = getattr(fast, key), getattr(general, key)
+        assert np.abs(a - b).max() <= 1e-12 * max(np.abs(a).max(), MU), key
+
+
+def test_the_default_rubber_runs_the_neo_hookean_code_bitwise():
+    grad, u_r, radius, p = _random_state(3)
+    fast = kinematics(NeoHookean(E2, 0.3), grad, u_r, radius, p)
+    default = kinematics(Rubber(E2, 0.3), grad, u_r, radius, p)
+    assert np.array_equal(fast.tangent, default.tangent)
+    assert np.array_equal(fast.energy_density, default.energy_density)
+
+
+def test_small_strain_energy_is_linear_elasticity_for_every_model():
+    """The second derivative at F = I (the small-strain modulus) equals the neo-Hookean one."""
+    zero = (np.zeros((2, 2, 1)), np.zeros(1), np.ones(1), np.zeros(1))
+    reference = kinematics(NeoHookean(E2, 0.3), *zero).tangent
+    for name in MATERIALS:
+        tangent = kinematics(_material(name, 0.3), *zero).tangent
+        assert np.abs(tangent - reference).max() <= 1e-12 * MU, name
+
+
+def test_gent_limit_stops_the_step():
+    grad = np.array([[3.0, 0.0], [0.0, 1 / 16 - 1]])[..., None]  # I1bar - 3 ~ 13
+    material = Rubber(E2, 0.5, model="gent", gent_limit=5.0)
+    with pytest.raises(NewtonError, match="gent limit"):
+        kinematics(material, grad, np.zeros(1), np.ones(1), np.zeros(1))
+
+
+def test_yeoh_energy_derivatives():
+    material = Rubber(E2, 0.5, model="yeoh", yeoh=(-0.05, 0.01))
+    x = np.array([0.0, 0.7, 4.0])
+    w, psi1, _, psi11, _, _ = energy_derivatives(material, x, x)
+    C10 = MU / 2
+    assert np.allclose(w, C10 * (x - 0.05 * x**2 + 0.01 * x**3), rtol=1e-14)
+    assert np.allclose(psi1, C10 * (1 - 0.1 * x + 0.03 * x**2), rtol=1e-14)
+    assert np.allclose(psi11, C10 * (-0.1 + 0.06 * x), rtol=1e-14)
+
+
+@pytest.mark.parametrize(
+    "options, word",
+    [
+        (dict(model="mooney-rivlin", mooney_ratio=1.0), "mooney_ratio"),
+        (dict(model="mooney-rivlin", mooney_ratio=-0.1), "mooney_ratio"),
+        (dict(model="mooney-rivlin", mooney_ratio=math.nan), "mooney_ratio"),
+        (dict(model="yeoh", yeoh="0.1"), "yeoh"),
+        (dict(model="yeoh", yeoh="a,b"), "yeoh"),
+        (dict(model="yeoh", yeoh=(-0.5, 0.0)), "yeoh"),
+        (dict(model="yeoh", yeoh=(-0.5, 0.08)), "yeoh"),
+        (dict(model="yeoh", yeoh=(0.1, -0.01)), "yeoh"),
+        (dict(model="yeoh", yeoh=(0.1, math.inf)), "yeoh"),
+        (dict(model="gent"), "gent_limit"),
+        (dict(model="gent", gent_limit=0.0), "gent_limit"),
+        (dict(model="neo-hookean", mooney_ratio=0.2), "mooney_ratio"),
+        (dict(model="mooney-rivlin", yeoh=(0.1, 0.0)), "yeoh"),
+        (dict(model="neo-hookean", volumetric="cubic"), "volumetric"),
+        (dict(model="ogden"), "model"),
+    ],
+)
+def test_bad_rubber_options_are_one_line_naming_the_option(options, word):
+    with pytest.raises(InputError) as error:
+        rubber_model(**options)
+    assert word in str(error.value) and "\n" not in str(error.value)
+
+
+def test_stable_negative_c2_is_allowed():
+    assert rubber_model("yeoh", yeoh="-0.1,0.004").yeoh == (-0.1, 0.004)
