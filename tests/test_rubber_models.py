@@ -7,13 +7,19 @@ neo-Hookean contact, Mooney-Rivlin departs, the small-strain limit. Options: one
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
 import pytest
 
+from shtaerman.fem.finite_contact import run_finite_indentation
 from shtaerman.fem.hyperelastic import NeoHookean, NewtonError, kinematics
+from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.rubber import Rubber, energy_derivatives, invariant_kinematics, rubber_model
+from shtaerman.study.contact.indentation import run_indentation
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
 
 E2 = 7.5e6
@@ -201,3 +207,125 @@ def test_bad_rubber_options_are_one_line_naming_the_option(options, word):
 
 def test_stable_negative_c2_is_allowed():
     assert rubber_model("yeoh", yeoh="-0.1,0.004").yeoh == (-0.1, 0.004)
+
+
+# --- the contact -------------------------------------------------------------------------------
+COARSE = MeshSettings(size=0.1, domain=1e4, growth=0.3, axis_size=1e-4, axis_growth=0.2)
+"""~5.5k dofs (as in test_fem_hyperelastic)."""
+PAPER = PowerLawIndenter(5.0, 1.5)
+
+
+@pytest.fixture(scope="module")
+def neo_hookean_curve():
+    """The paper's rubber to x/a = 0.6 (linear a), coarse mesh, neo-Hookean."""
+    return run_finite_indentation(PAPER, Material(E2, 0.5), _DEPTHS, COARSE)
+
+
+_DEPTHS = np.array([0.25, 0.5, 0.75, 1.0]) * 6e-3 * (0.6 / 0.78541) ** 3
+"""Up to x/a = 0.6 on the linear solution (x/a ~ x^(1/3))."""
+
+
+@pytest.mark.parametrize(
+    "model", [rubber_model("mooney-rivlin", 0.0), rubber_model("yeoh", yeoh=(0.0, 0.0))]
+)
+def test_special_cases_equal_the_neo_hookean_contact(neo_hookean_curve, model):
+    curve = run_finite_indentation(PAPER, Material(E2, 0.5), _DEPTHS, COARSE, model)
+    for step, reference in zip(curve.steps, neo_hookean_curve.steps, strict=True):
+        assert step.force == pytest.approx(reference.force, rel=1e-8)
+        assert step.contact_radius == pytest.approx(reference.contact_radius, rel=1e-8)
+
+
+def test_mooney_rivlin_departs_measurably_at_x_over_a_0_6(neo_hookean_curve):
+    curve = run_finite_indentation(
+        PAPER, Material(E2, 0.5), _DEPTHS, COARSE, rubber_model("mooney-rivlin", 0.3)
+    )
+    step, reference = curve.steps[-1], neo_hookean_curve.steps[-1]
+    assert 0.55 < step.depth / step.contact_radius_linear < 0.65
+    # the I2 term stiffens: observed +2.5 % on the force (the mesh's own error ~1e-3)
+    assert step.force / reference.force - 1 > 1e-2
+
+
+@pytest.mark.parametrize(
+    "model",
+    [
+        rubber_model("mooney-rivlin", 0.3),
+        rubber_model("yeoh", yeoh=(-0.05, 0.01)),
+        rubber_model("gent", gent_limit=20.0),
+        rubber_model("neo-hookean", volumetric="logarithmic"),
+    ],
+)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_small_strain_limit_of_every_model(model, nu):
+    ratio, radius = 2e-3, 0.01
+    kappa = PowerLawIndenter(1.0, 1.5).kappa
+    indenter = PowerLawIndenter(ratio / (kappa * radius**0.5), 1.5)
+    depth = kappa * indenter.shape_coefficient * radius**1.5
+    finite = run_finite_indentation(indenter, Material(E2, nu), [depth], COARSE, model)
+    linear = run_indentation(indenter, Material(E2, nu), [depth], COARSE, aligned=False)
+    assert finite.steps[0].force == pytest.approx(linear.steps[0].force, rel=3e-3)
+
+
+# --- the command line and the API ---------------------------------------------------------------
+def _cli(capsys, *argv):
+    from shtaerman.cli import main
+
+    code = main(["contact", *argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize(
+    ("argv", "name"),
+    [
+        (["--model", "mooney-rivlin", "--mooney-ratio", "1"], "--mooney-ratio"),
+        (["--model", "mooney-rivlin", "--mooney-ratio", "x"], "--mooney-ratio"),
+        (["--model", "yeoh", "--yeoh=-0.5,0"], "--yeoh"),
+        (["--model", "yeoh", "--yeoh", "0.1"], "--yeoh"),
+        (["--model", "yeoh", "--yeoh", "0.1,,2"], "--yeoh"),
+        (["--model", "yeoh", "--mooney-ratio", "0.2"], "--mooney-ratio"),
+        (["--model", "gent"], "--gent-limit"),
+        (["--model", "gent", "--gent-limit", "-1"], "--gent-limit"),
+        (["--mooney-ratio", "0.2"], "--mooney-ratio"),
+        (["--volumetric", "logarithmic"], "--volumetric"),
+        (["--model", "yeoh", "--volumetric", "ln"], "--volumetric"),
+        (["--model", "mooney-rivlin", "--solver", "pardiso"], "--solver"),
+        (["--model", "yeoh", "--accuracy", "1e-3"], "--accuracy"),
+        (["--model", "yeoh", "--thickness", "0.1"], "--thickness"),
+    ],
+)
+def test_bad_rubber_options_exit_2_with_one_line(capsys, argv, name):
+    code, out, err = _cli(capsys, *argv, "--depths", "1e-3")
+    assert code == 2 and out == ""
+    assert name in err and err.count("\n") == 1
+
+
+def test_mooney_rivlin_json_names_the_model(capsys):
+    argv = ["--model", "mooney-rivlin", "--mooney-ratio", "0.3", "--nu2", "0.4"]
+    argv += ["--volumetric", "logarithmic", "--json", "--no-estimate", "--depths", "2e-3"]
+    code, out, _ = _cli(capsys, *argv, "--mesh-size", "0.1", "--domain-factor", "1e4")
+    report = json.loads(out)
+    assert code == 0
+    assert (report["model"], report["mooney_ratio"], report["volumetric"]) == (
+        "mooney-rivlin",
+        0.3,
+        "logarithmic",
+    )
+    mesh = ["--mesh-size", "0.1", "--domain-factor", "1e4"]
+    code, out, _ = _cli(capsys, *argv[:-4], "--no-estimate", "--depths", "2e-3", *mesh)
+    assert code == 0 and out.startswith("Mooney-Rivlin (r = 0.3, logarithmic volumetric energy)")
+
+
+def test_the_api_takes_the_rubber_keywords():
+    import shtaerman as sh
+
+    result = sh.contact(
+        PAPER,
+        Material(E2, 0.5),
+        model="yeoh",
+        yeoh=(-0.05, 0.01),
+        depths=[2e-3],
+        estimate=False,
+        mesh_size=0.1,
+        domain_factor=1e4,
+    )
+    assert result.model == "yeoh" and result.to_dict()["yeoh"] == [-0.05, 0.01]
