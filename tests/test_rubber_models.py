@@ -329,3 +329,17 @@ def test_the_api_takes_the_rubber_keywords():
         domain_factor=1e4,
     )
     assert result.model == "yeoh" and result.to_dict()["yeoh"] == [-0.05, 0.01]
+
+
+@pytest.mark.parametrize(
+    ("pressure", "radius", "words"),
+    [
+        (0.942, 1.033, ("5.8 % below", "3.3 % larger")),
+        (1.02, 0.99, ("2.0 % above", "1.0 % smaller")),
+    ],
+)
+def test_central_pressure_wording_follows_the_numbers(pressure, radius, words):
+    from shtaerman.output.text_finite import central_pressure_words
+
+    sentence = central_pressure_words(pressure, radius)
+    assert all(word in sentence for word in words)

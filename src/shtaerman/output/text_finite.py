@@ -24,6 +24,7 @@ from .wording import times_text as timing_text
 __all__ = [
     "QUICK_ERROR",
     "VARIANTS",
+    "central_pressure_words",
     "entry",
     "findings",
     "study_findings",
@@ -113,10 +114,24 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         f"{_value(outcome, 'force_ratio_at_x_c', at['force_ratio'], '.4f')}, p(0)/p_avg = "
         f"{_value(outcome, 'central_to_mean_at_x_c', at['central_to_mean'], '.3f')} (linear "
         f"{outcome.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
-        f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}.",
+        f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}. "
+        + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"]),
         _validity_finding(outcome),
         QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
     ]
+
+
+def central_pressure_words(pressure_ratio: float, radius_ratio: float) -> str:
+    """What a changed p(0)/p_avg means: whether p(0) itself lies below or above Shtaerman's at
+    the same depth (``pressure_ratio`` = p(0) / p(0)_linear), and that the ratio also moves with
+    the contact radius (``radius_ratio`` = a / a_linear), through p_avg = P / (pi a^2)."""
+    pressure = "below" if pressure_ratio < 1 else "above"
+    radius = "larger" if radius_ratio > 1 else "smaller"
+    return (
+        f"The central pressure p(0) itself is {100 * abs(pressure_ratio - 1):.1f} % {pressure} "
+        f"Shtaerman's at the same depth; p(0)/p_avg moves also because the contact radius is "
+        f"{100 * abs(radius_ratio - 1):.1f} % {radius} (p_avg = P/(pi a^2))."
+    )
 
 
 def _level(entry: Mapping[str, Any]) -> str:
