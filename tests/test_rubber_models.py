@@ -16,7 +16,13 @@ import pytest
 from shtaerman.fem.finite_contact import run_finite_indentation
 from shtaerman.fem.hyperelastic import NeoHookean, NewtonError, kinematics
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.rubber import Rubber, energy_derivatives, invariant_kinematics, rubber_model
+from shtaerman.fem.rubber import (
+    Rubber,
+    RubberModel,
+    energy_derivatives,
+    invariant_kinematics,
+    rubber_model,
+)
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
@@ -343,3 +349,69 @@ def test_central_pressure_wording_follows_the_numbers(pressure, radius, words):
 
     sentence = central_pressure_words(pressure, radius)
     assert all(word in sentence for word in words)
+
+
+# --- the study files ----------------------------------------------------------------------------
+def _study_file(tmp_path, rubber: str, sweep: str = "") -> str:
+    path = tmp_path / "rubber.toml"
+    path.write_text(
+        'kind = "finite-strain"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 7.5e6\nnu2 = 0.3\n[impact]\nmass = 0.7\nvelocity = 3.0\n"
+        f"[rubber]\n{rubber}\n" + (f"[sweep]\n{sweep}\n" if sweep else "")
+    )
+    return str(path)
+
+
+def test_study_file_sweeps_the_model_with_each_models_shape(tmp_path):
+    from shtaerman.study.schema import load_study
+
+    text = "mooney_ratio = 0.1\nyeoh = [-0.1, 0.01]"
+    studies = load_study(_study_file(tmp_path, text, 'model = ["neo-hookean", "yeoh"]'))
+    assert [s.name for s in studies] == ["rubber-neo-hookean", "rubber-yeoh"]
+    assert studies[0].rubber == rubber_model("neo-hookean")
+    assert studies[1].rubber == rubber_model("yeoh", yeoh=(-0.1, 0.01))
+    [study] = load_study(_study_file(tmp_path, 'volumetric = "logarithmic"'))
+    assert study.rubber.volumetric == "logarithmic"
+
+
+@pytest.mark.parametrize(
+    "rubber",
+    [
+        'model = "yeoh"\nmooney_ratio = 0.1',
+        'model = "yeoh"\nyeoh = [-1.0, 0.0]',
+        'volumetric = "x"',
+    ],
+)
+def test_bad_rubber_table_names_the_file_and_key(tmp_path, rubber):
+    from shtaerman.study.schema import StudyError, load_study
+
+    with pytest.raises(StudyError, match=r"rubber\.toml: \[rubber\]"):
+        load_study(_study_file(tmp_path, rubber))
+
+
+def test_shipped_rubber_studies_carry_the_treloar_fit():
+    from shtaerman.study.schema import load_study, shipped_studies
+
+    paths = {p.stem: p for p in shipped_studies()}
+    models = {s.name: s.rubber for s in load_study(paths["rubber_models"])}
+    assert models["rubber-mooney-rivlin"].mooney_ratio == 0.085
+    assert models["rubber-yeoh"].yeoh == (-0.101, 0.0127)
+    assert "Treloar" in paths["rubber_models"].read_text()
+    [volumetric] = load_study(paths["rubber_volumetric"])
+    assert volumetric.rubber.volumetric == "logarithmic"
+
+
+def test_findings_name_the_model_and_flag_the_volumetric_energy():
+    from types import SimpleNamespace
+
+    from shtaerman.output.text_finite import rubber_finding
+
+    def finding(nu: float, model: RubberModel) -> list[str]:
+        study = SimpleNamespace(rubber=model, half_space=Material(E2, nu))
+        return rubber_finding(SimpleNamespace(study=study))
+
+    assert finding(0.5, RubberModel()) == []
+    [flag] = finding(0.3, RubberModel())
+    assert "depend on the volumetric energy" in flag and "K/2 (J-1)^2" in flag
+    [named, flag] = finding(0.3, rubber_model("yeoh", yeoh=(-0.1, 0.01), volumetric="logarithmic"))
+    assert "Yeoh with c2, c3 = C20/C10, C30/C10 = -0.1, 0.01" in named and "(ln J)^2" in flag

@@ -237,9 +237,10 @@ def energy_derivatives(material: Rubber, x1: np.ndarray, x2: np.ndarray) -> tupl
         return energy, first, 0.0, half * (2.0 * c2 + 6.0 * c3 * x1), 0.0, 0.0
     limit = material.gent_limit
     slack = 1.0 - x1 / limit
-    if not np.all(slack > 0):
+    if np.any(slack <= 0):  # NaN (an inverted element) passes to the caller's J check
         raise NewtonError(f"the gent limit I1bar - 3 < Jm = {limit:g} was reached")
-    energy = -half * limit * np.log1p(-x1 / limit)
+    with np.errstate(invalid="ignore"):
+        energy = -half * limit * np.log1p(-x1 / limit)
     return energy, half / slack, 0.0, half / (limit * slack**2), 0.0, 0.0
 
 
@@ -325,7 +326,8 @@ def invariant_kinematics(
     d_bar1 = 2.0 * j23 * F - (2.0 / 3.0) * (bar1 / J) * Jg
     d_bar2 = j43 * dI2 - (4.0 / 3.0) * (bar2 / J) * Jg
     energy, psi1, psi2, psi11, psi12, psi22 = energy_derivatives(material, x1, x2)
-    g, dg, ddg = _volumetric(material.volumetric, J_m1, J)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        g, dg, ddg = _volumetric(material.volumetric, J_m1, J)
     stress = psi1 * d_bar1 + psi2 * d_bar2 - p * dg * Jg
     tangent = _invariant_tangent(
         F, Jg, (bar1, bar2, J, j23, j43), (psi1, psi2, psi11, psi12, psi22), (d_bar1, d_bar2)

@@ -83,12 +83,15 @@ class FiniteIndentationResult:
         """Largest |finite / linear - 1| over the depths (not errors: the physics differs)."""
         return worst_against_analytic(self.step_table())
 
+    def to_dict_model(self) -> dict[str, object]:
+        """``model``, and the other rubber keys unless it is the default neo-Hookean."""
+        return {"model": "neo-hookean"} if self.rubber == RubberModel() else self.rubber.to_dict()
+
     def to_dict(self) -> dict[str, object]:
         """The JSON of ``shtaerman contact --model neo-hookean --json`` (SI units): ``model``,
         then the other rubber keys (:meth:`RubberModel.to_dict`) unless it is the default."""
-        model = {"model": "neo-hookean"} if self.rubber == RubberModel() else self.rubber.to_dict()
         return {
-            **model,
+            **self.to_dict_model(),
             **curve_document(self.indenter, self.half_space, self.exact, self.fit),
             "steps": self.step_table(),
             "departures_from_linear": self.departures(),

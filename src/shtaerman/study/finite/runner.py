@@ -118,8 +118,7 @@ class FiniteStudyOutcome:
                     "radius_ratio": step.contact_radius / step.contact_radius_linear,
                     "central_pressure": step.central_pressure,
                     "central_to_mean": step.central_pressure / step.mean_pressure,
-                    "central_pressure_ratio": step.central_pressure
-                    / step.central_pressure_linear,
+                    "central_pressure_ratio": step.central_pressure / step.central_pressure_linear,
                     "strain_energy": step.strain_energy,
                     "newton_iterations": step.total_iterations,
                 }
@@ -234,7 +233,7 @@ class FiniteStudyOutcome:
         mesh = self.mesh
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
         return {
-            "model": "neo-hookean",
+            **self.finite.to_dict_model(),
             "quick": self.quick,
             "inputs": {
                 "shape_coefficient": self.study.indenter.shape_coefficient,
@@ -321,7 +320,7 @@ def _run_level(
     """The curve, the same-mesh linear FEM and three impacts on one mesh (no estimates)."""
     start, cpu = time.perf_counter(), time.process_time()
     modulus = effective_modulus(RIGID, study.half_space)
-    finite = run_finite_study(study.indenter, study.half_space, depths, mesh)
+    finite = run_finite_study(study.indenter, study.half_space, depths, mesh, study.rubber)
     # nodal-sum forces, the finite-strain solver's own discretization: the ratio cancels it
     linear = run_indentation(study.indenter, study.half_space, depths, mesh, aligned=False)
     impacts = {"linear_exact": {k: v for k, v in impact_maxima(exact).items() if k != "beta"}}
