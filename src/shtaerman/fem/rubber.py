@@ -154,7 +154,10 @@ def rubber_model(
         One line naming the option and its valid range.
     """
     if model not in MODELS:
-        raise InputError(f"model: unknown finite-strain model {model!r}; pick one of {MODELS}")
+        raise InputError(
+            f"model: unknown finite-strain model {model!r}; pick one of {', '.join(MODELS)}",
+            "model",
+        )
     owner = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
     given = {"mooney_ratio": mooney_ratio, "yeoh": yeoh, "gent_limit": gent_limit}
     for name, value in given.items():
@@ -173,7 +176,9 @@ def rubber_model(
             raise InputError("gent_limit: the gent model needs Jm > 0 (e.g. 97.2)", "gent_limit")
         ok = isinstance(gent_limit, int | float) and not isinstance(gent_limit, bool)
         if not ok or not 0.0 < gent_limit < math.inf:
-            raise InputError(f"gent_limit must be > 0, got {gent_limit!r}", "gent_limit")
+            raise InputError(
+                f"gent_limit must be a finite number > 0, got {gent_limit!r}", "gent_limit"
+            )
         limit = float(gent_limit)
     pair = (0.0, 0.0) if yeoh is None else _yeoh_pair(yeoh)
     return RubberModel(model, float(ratio), pair, limit, volumetric or "quadratic")
