@@ -334,3 +334,14 @@ def test_report_shows_the_finite_rows_with_estimates(laddered):
     finite = next(line for line in page.splitlines() if "neo-Hookean finite strain" in line)
     assert finite.count("±") == 6
     assert json.loads(json.dumps(entry))["accuracy"]["mesh_ladder"][2]["refine"] == 1.0
+
+
+def test_central_pressure_finding_says_p0_is_below_shtaermans(outcome):
+    """p(0)/p_avg rises above 2.5 while p(0) itself falls below Shtaerman's: the contact radius
+    grows (the finding must not read as a higher central pressure)."""
+    at = outcome.at_maximum()
+    assert at["central_pressure_ratio"] < 1 < at["central_to_mean"] / 2.5
+    assert at["radius_ratio"] > 1
+    sentence = text_finite.study_findings(outcome)[1]
+    assert "p(0) itself is" in sentence and "% below Shtaerman's at the same depth" in sentence
+    assert "contact radius is" in sentence and "% larger" in sentence

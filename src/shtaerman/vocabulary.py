@@ -417,7 +417,44 @@ VOCABULARY: tuple[Entry, ...] = (
         "linear",
         valid=None,
         type="str",
-        choices=("linear", "neo-hookean"),
+        choices=("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"),
+    ),
+    # --- rubber models beyond neo-Hookean (all with the small-strain E2, nu2) -----------------
+    Entry(
+        "mooney_ratio",
+        "",
+        "Mooney-Rivlin r = C01 / (C10 + C01), C10 + C01 = E2 / (4 (1 + nu2))",
+        "Mooney ratio r",
+        None,
+        valid=Range(0.0, 1.0, low_open=False, high_open=True),
+    ),
+    Entry(
+        "yeoh",
+        "",
+        "Yeoh c2,c3 = C20/C10, C30/C10 (C10 = E2 / (4 (1 + nu2))), |c2| <= 10, c3 in [0, 10]; "
+        "a negative c2 needs c2^2 < 3 c3 (dW/dI1 > 0)",
+        "Yeoh c2, c3",
+        None,
+        valid=None,
+        type="str",
+    ),
+    Entry(
+        "gent_limit",
+        "",
+        "Gent limit Jm of I1 - 3 (W = -mu/2 Jm ln(1 - (I1 - 3)/Jm))",
+        "Gent limit Jm",
+        None,
+    ),
+    Entry(
+        "volumetric",
+        "",
+        "volumetric energy of a finite-strain model for nu2 < 0.5: K/2 (J-1)^2 (quadratic) or "
+        "K/2 (ln J)^2 (logarithmic)",
+        "Volumetric energy",
+        None,
+        valid=None,
+        type="str",
+        choices=("quadratic", "logarithmic"),
     ),
     # --- a layer on a rigid base (the half-space without thickness) ---------------------------
     Entry(

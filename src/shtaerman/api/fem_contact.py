@@ -23,14 +23,17 @@ from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
+    from ..fem.rubber import RubberModel
 
 __all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
 
-MODELS = ("linear", "neo-hookean")
+MODELS = ("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent")
 """Material models of ``model=`` (``--model``): the first is the default."""
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
 """Mesh keywords (``--mesh-size``, ...): each sets the MeshSettings field
 :func:`shtaerman.vocabulary.fields` names."""
+RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
+"""The finite-strain models' options (:func:`shtaerman.fem.rubber.rubber_model`)."""
 NOT_IN_JSON = ("extra", "solution", "ladder", "key_order")
 """ContactResult fields that are not keys of the JSON."""
 
@@ -210,14 +213,14 @@ def _check_options(options: Mapping[str, Any]) -> None:
     model, accuracy, refine = options["model"], options["accuracy"], options["refine"]
     if model not in MODELS:
         raise InputError(f"model: unknown model {model!r}. Pick one of {list(MODELS)}", "model")
-    if model == "neo-hookean" and options["solver"] == "pardiso":
-        raise InputError("solver: the neo-hookean model uses superlu only, got 'pardiso'", "solver")
+    if model != "linear" and options["solver"] == "pardiso":
+        raise InputError(f"solver: the {model} model uses superlu only, got 'pardiso'", "solver")
     check_backend(options["solver"])
     if accuracy is None:
         return
-    if model == "neo-hookean":
+    if model != "linear":
         raise InputError(
-            "accuracy: applies to the linear model only; for the neo-hookean model use refine, "
+            f"accuracy: applies to the linear model only; for the {model} model use refine, "
             "whose estimates come with every run",
             "accuracy",
         )
@@ -256,6 +259,7 @@ class _Plan:
     body: Material
     depths: np.ndarray
     model: str
+    rubber: RubberModel | None
     mesh: MeshSettings
     refine: float
     estimate: bool
@@ -273,11 +277,16 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 
     inputs = (plan.indenter, plan.body)
     finest = plan.mesh.refined(plan.refine) if not plan.estimate else None
-    if plan.model == "neo-hookean":
+    if plan.model != "linear":
         if finest is not None:
-            return run_finite_study(*inputs, plan.depths, finest), None
+            return run_finite_study(*inputs, plan.depths, finest, plan.rubber), None
         ladder = run_finite_ladder(
-            *inputs, plan.depths, plan.mesh, refine=plan.refine, progress=plan.progress
+            *inputs,
+            plan.depths,
+            plan.mesh,
+            refine=plan.refine,
+            progress=plan.progress,
+            rubber=plan.rubber,
         )
     elif finest is not None:
         return run_indentation(*inputs, plan.depths, finest, backend=plan.solver), None
@@ -309,7 +318,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     from ..output.finite import write_finite_curve
     from ..plots.gallery import contact_figures
 
-    if result.model == "neo-hookean":
+    if result.model != "linear":
         write_finite_curve(result.solution, folder)
     else:
         export.write_indentation(result.solution, folder)
@@ -345,7 +354,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     max_time = validate_positive("max_time", options["max_time"], "s")
     base = options["mesh"]
     if base is None:
-        base = FINITE_MESH if model == "neo-hookean" else DEFAULTS
+        base = FINITE_MESH if model != "linear" else DEFAULTS
     elif not isinstance(base, MeshSettings):
         raise InputError(
             f"mesh must be a shtaerman.fem.mesh.MeshSettings, got {type(base).__name__}; the "
@@ -357,6 +366,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
     _check_options(options)
+    rubber = _rubber(options)
     depths = contact_depths(
         indenter,
         body,
@@ -365,7 +375,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
         velocity=options["velocity"],
         striker=options["striker"],
     )
-    if model == "neo-hookean":
+    if model != "linear":
         from ..fem.finite_contact import check_finite_depths
 
         check_finite_depths(indenter, depths)
@@ -373,7 +383,20 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     if estimate:
         _check_coarsest(mesh, refine)
     rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])
-    return _Plan(indenter, body, depths, model, mesh, *rest)
+    return _Plan(indenter, body, depths, model, rubber, mesh, *rest)
+
+
+def _rubber(options: Mapping[str, Any]) -> RubberModel | None:
+    """The checked rubber model (None for the linear model, which refuses its options)."""
+    from ..fem.rubber import rubber_model
+
+    given = {name: options[name] for name in RUBBER_OPTIONS}
+    if options["model"] == "linear":
+        for name, value in given.items():
+            if value is not None:
+                raise InputError(f"{name}: applies to the finite-strain models only", name)
+        return None
+    return rubber_model(options["model"], **given)
 
 
 def contact(
@@ -387,6 +410,10 @@ def contact(
     thickness: float | None = None,
     base: str | None = None,
     model: str = "linear",
+    mooney_ratio: float | None = None,
+    yeoh: str | Sequence[float] | None = None,
+    gent_limit: float | None = None,
+    volumetric: str | None = None,
     refine: float = 1.0,
     estimate: bool = True,
     accuracy: float | None = None,
@@ -422,8 +449,12 @@ def contact(
     base : {"bonded", "lubricated"}, optional
         The layer's base: bonded (u = 0, the default with ``thickness``) or lubricated
         (u_z = 0, free to slide); only with ``thickness``.
-    model : {"linear", "neo-hookean"}
-        Linear elasticity, or a neo-Hookean solid at finite strain (same E2, nu2).
+    model : {"linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"}
+        Linear elasticity, or a rubber at finite strain with the same E2, nu2 at small strain.
+    mooney_ratio, yeoh, gent_limit, volumetric : optional
+        The rubber's shape: r = C01/(C10 + C01) in [0, 1) (Mooney-Rivlin, default 0), "c2,c3"
+        or (c2, c3) = (C20, C30)/C10 (Yeoh, default 0,0), Jm > 0 (Gent, required), and the
+        volumetric energy "quadratic" K/2 (J-1)^2 (default) or "logarithmic" K/2 (ln J)^2.
     refine : float
         Divide the mesh size field by it (dofs ~ refine^2).
     estimate : bool

@@ -85,6 +85,9 @@ METAVARS = {
     "refine": "K",
     "accuracy": "TOL",
     "max_time": "S",
+    "mooney_ratio": "R",
+    "yeoh": "C2,C3",
+    "gent_limit": "JM",
 }
 """The placeholder of an option's value in the help, where its unit does not make one."""
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..api.fem_contact import MESH_OPTIONS, contact
+from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS
 from ..theory.materials import Material
@@ -22,13 +22,13 @@ def register(commands: argparse._SubParsersAction) -> None:
             "Press a rigid indenter z = A r^n into the FEM half-space (gmsh + scikit-fem, "
             "Taylor-Hood P2-P1) and compare force, contact radius and central pressure with "
             "the exact solution. The default depths reach the x_c of the impact of --mass at "
-            "--velocity. --model neo-hookean: a neo-Hookean solid at finite strain with the "
-            "same E2, nu2 at small strain. --out writes contact.json, CSV curves, VTU fields "
-            "and (linear model) the figures. SI units."
+            "--velocity. --model neo-hookean (mooney-rivlin, yeoh, gent): a rubber at finite "
+            "strain with the same E2, nu2 at small strain. --out writes contact.json, CSV "
+            "curves, VTU fields and (linear model) the figures. SI units."
         ),
     )
     inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "model")
-    inputs = (*inputs, "mass", "velocity")
+    inputs = (*inputs, *RUBBER_OPTIONS, "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -54,6 +54,10 @@ DERIVED = {
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
     "thickness": "none: the half-space",
     "base": "bonded; only with --thickness",
+    "mooney_ratio": "0; only with --model mooney-rivlin",
+    "yeoh": "0,0; only with --model yeoh",
+    "gent_limit": "none: required with --model gent",
+    "volumetric": "quadratic; finite-strain models only (no effect at nu2 = 0.5)",
     **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
@@ -68,7 +72,8 @@ NOTES = {
 
 
 KEYWORDS = (
-    *("mass", "velocity", "depths", "thickness", "base", "model", "refine", "estimate"),
+    *("mass", "velocity", "depths", "thickness", "base", "model", *RUBBER_OPTIONS),
+    *("refine", "estimate"),
     *("accuracy", "max_time"),
     *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
 )
@@ -82,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     report = result.to_dict()
     if args.json:
         print_json(report)
-    elif result.model == "neo-hookean":
+    elif result.model != "linear":
         print(finite_contact_text(report))
     else:
         print(contact_text(report))
@@ -92,7 +97,8 @@ def run(args: argparse.Namespace) -> int:
 def finite_contact_text(report: dict) -> str:
     """The finite-strain contact curve beside the linear exact values (SI units)."""
     rows = [
-        f"Neo-Hookean contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} "
+        f"{_model_words(report)} contact of z = {report['shape_coefficient']:g} "
+        f"r^{report['exponent']:g} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
         "Shtaerman's linear solution)" + _impact_words(report),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
@@ -119,6 +125,26 @@ def finite_contact_text(report: dict) -> str:
     if "error_estimate" in report:
         rows += _estimate_text(report)
     return "\n".join(rows)
+
+
+MODEL_NAMES = {"neo-hookean": "Neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
+"""A finite-strain model's name in the text's title."""
+
+
+def _model_words(report: dict) -> str:
+    """ "Neo-Hookean", "Mooney-Rivlin (r = 0.3)", ... with the volumetric energy if not the
+    default."""
+    model = report["model"]
+    words = MODEL_NAMES.get(model, model.capitalize())
+    shape = {
+        "mooney-rivlin": lambda: f"r = {report['mooney_ratio']:g}",
+        "yeoh": lambda: "c2, c3 = {:g}, {:g}".format(*report["yeoh"]),
+        "gent": lambda: f"Jm = {report['gent_limit']:g}",
+    }
+    details = [shape[model]()] if model in shape else []
+    if report.get("volumetric", "quadratic") != "quadratic":
+        details.append(f"{report['volumetric']} volumetric energy")
+    return words + (f" ({', '.join(details)})" if details else "")
 
 
 def _exponent_text(report: dict, against: str = "") -> str:

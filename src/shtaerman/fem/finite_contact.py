@@ -60,6 +60,7 @@ from .hyperelastic import (
 )
 from .mesh import MeshSettings
 from .pattern import Pattern
+from .rubber import RubberModel
 from .solver import PatternSolver
 
 __all__ = [
@@ -638,9 +639,10 @@ def run_finite_indentation(
     half_space: Material,
     depths: ArrayLike,
     mesh: MeshSettings | None = None,
+    rubber: RubberModel | None = None,
     **options: float,
 ) -> FiniteContactCurve:
-    """Mesh, assemble and press a rigid power-law indenter into a neo-Hookean half-space.
+    """Mesh, assemble and press a rigid power-law indenter into a rubber half-space.
 
     Parameters
     ----------
@@ -653,6 +655,8 @@ def run_finite_indentation(
     mesh : MeshSettings, optional
         Default :data:`FINITE_MESH`; the refined zone is ``margin`` times the geometric
         contact radius (d_max / A)^(1/n).
+    rubber : RubberModel, optional
+        The rubber model (default neo-Hookean, :mod:`.rubber`).
     **options
         Passed to :func:`solve_finite_contact` (``tolerance``, ``max_iterations``,
         ``max_cuts``).
@@ -669,9 +673,9 @@ def run_finite_indentation(
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined)
     meshed = time.perf_counter()
-    system = assemble_hyperelastic(
-        skfem_mesh, NeoHookean(half_space.youngs_modulus, half_space.poisson_ratio)
-    )
+    constants = (half_space.youngs_modulus, half_space.poisson_ratio)
+    material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
+    system = assemble_hyperelastic(skfem_mesh, material)
     assembled = time.perf_counter()
     curve = solve_finite_contact(system, indenter, depths, refined, **options)
     stats = {

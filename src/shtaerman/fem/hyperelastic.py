@@ -167,6 +167,10 @@ def kinematics(
     -------
     Kinematics
     """
+    if getattr(material, "uses_invariants", False):  # a rubber model beyond neo-Hookean
+        from .rubber import invariant_kinematics
+
+        return invariant_kinematics(material, grad, u_r, radius, p)
     mu, inverse_bulk = material.shear_modulus, material.inverse_bulk
     a, b = 1.0 + grad[0, 0], grad[0, 1]
     c, d = grad[1, 0], 1.0 + grad[1, 1]

@@ -24,6 +24,7 @@ from .wording import times_text as timing_text
 __all__ = [
     "QUICK_ERROR",
     "VARIANTS",
+    "central_pressure_words",
     "entry",
     "findings",
     "study_findings",
@@ -76,6 +77,48 @@ def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> st
     return f"{value:{spec}}" + plus_minus(None if error is None else error * abs(value), ".1g")
 
 
+MODEL_LABELS = {"neo-hookean": "neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
+"""A rubber model's name in the findings and tables."""
+
+
+def model_label(model: str) -> str:
+    """ "neo-Hookean", "Mooney-Rivlin", "Yeoh", "Gent"."""
+    return MODEL_LABELS.get(model, model.capitalize())
+
+
+def _variant(outcome: FiniteStudyOutcome, variant: str) -> str:
+    """The impact variant's label, the finite-strain one naming the study's rubber model."""
+    if variant != "finite_strain":
+        return VARIANTS[variant]
+    return f"{model_label(outcome.study.rubber.name)} finite strain"
+
+
+def rubber_finding(outcome: FiniteStudyOutcome) -> list[str]:
+    """The rubber model's constants (none for the default neo-Hookean), and for nu2 < 0.5 the
+    plain flag that the result depends on the volumetric energy."""
+    rubber, nu = outcome.study.rubber, outcome.study.half_space.poisson_ratio
+    shape = {
+        "mooney-rivlin": f"r = C01/(C10 + C01) = {rubber.mooney_ratio:g}",
+        "yeoh": "c2, c3 = C20/C10, C30/C10 = {:g}, {:g}".format(*rubber.yeoh),
+        "gent": f"Jm = {rubber.gent_limit:g}",
+    }
+    out = []
+    if rubber.name in shape:
+        out.append(
+            f"Rubber model: {model_label(rubber.name)} with {shape[rubber.name]}, the "
+            "small-strain modulus kept at E2 (its departures from the neo-Hookean study are "
+            "the model's)."
+        )
+    if nu < 0.5:
+        energy = {"quadratic": "K/2 (J-1)^2", "logarithmic": "K/2 (ln J)^2"}[rubber.volumetric]
+        out.append(
+            f"Compressible (nu2 = {nu:g}): these numbers depend on the volumetric energy chosen, "
+            f"here {energy}, not only on E2 and nu2; the other choice (--volumetric) moves them "
+            "(docs/findings.md, 'Rubber models')."
+        )
+    return out
+
+
 def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
     study = outcome.study
     return {
@@ -99,8 +142,9 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
     }
     whose = "the paper's" if is_paper_case(_inputs(outcome)) else "this case's"
 
+    model = model_label(study.rubber.name)
     return [
-        f"Real rubber (neo-Hookean, nu2 = {study.half_space.poisson_ratio:g}) moves {whose} "
+        f"Real rubber ({model}, nu2 = {study.half_space.poisson_ratio:g}) moves {whose} "
         f"impact ({study.mass:g} kg at {study.velocity:g} m/s): x_c "
         f"{_shift(outcome, 'x_c', ratios['x_c'])}, P_c {_shift(outcome, 'P_c', ratios['P_c'])}, "
         f"t_c {_shift(outcome, 't_c', ratios['t_c'])} against Shtaerman's "
@@ -113,10 +157,25 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         f"{_value(outcome, 'force_ratio_at_x_c', at['force_ratio'], '.4f')}, p(0)/p_avg = "
         f"{_value(outcome, 'central_to_mean_at_x_c', at['central_to_mean'], '.3f')} (linear "
         f"{outcome.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
-        f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}.",
+        f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}. "
+        + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"]),
         _validity_finding(outcome),
+        *rubber_finding(outcome),
         QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
     ]
+
+
+def central_pressure_words(pressure_ratio: float, radius_ratio: float) -> str:
+    """What a changed p(0)/p_avg means: whether p(0) itself lies below or above Shtaerman's at
+    the same depth (``pressure_ratio`` = p(0) / p(0)_linear), and that the ratio also moves with
+    the contact radius (``radius_ratio`` = a / a_linear), through p_avg = P / (pi a^2)."""
+    pressure = "below" if pressure_ratio < 1 else "above"
+    radius = "larger" if radius_ratio > 1 else "smaller"
+    return (
+        f"The central pressure p(0) itself is {100 * abs(pressure_ratio - 1):.1f} % {pressure} "
+        f"Shtaerman's at the same depth; p(0)/p_avg moves also because the contact radius is "
+        f"{100 * abs(radius_ratio - 1):.1f} % {radius} (p_avg = P/(pi a^2))."
+    )
 
 
 def _level(entry: Mapping[str, Any]) -> str:
@@ -225,7 +284,7 @@ def _impact_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
     )
     rows = [
         [
-            VARIANTS[variant],
+            _variant(outcome, variant),
             *[
                 f"{values[k] * s:.5g}{_pm(outcome, k) if variant == 'finite_strain' else ''}"
                 for k, s, _ in keys
@@ -353,9 +412,10 @@ def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
         return []
     levels = {round(entry["level"], 4): entry for entry in study["validity"]}
     nu = study.get("inputs", {}).get("nu2")
+    model = model_label(study.get("model", "neo-hookean"))
     return [
         [
-            f"linear elasticity ({name}): beta x^q against neo-Hookean rubber"
+            f"linear elasticity ({name}): beta x^q against {model} rubber"
             + (f", nu2 = {nu:g}" if nu is not None else ""),
             _depth(levels.get(0.01)),
             _depth(levels.get(0.05)),

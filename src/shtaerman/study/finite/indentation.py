@@ -11,7 +11,7 @@ error estimates.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from numpy.typing import ArrayLike
 
@@ -23,6 +23,7 @@ from ...fem.finite_contact import (
 )
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
+from ...fem.rubber import RubberModel
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
@@ -41,6 +42,7 @@ class FiniteIndentationResult:
     exact: PowerLawContact
     curve: FiniteContactCurve
     fit: PowerLawFit
+    rubber: RubberModel = field(default_factory=RubberModel)
 
     @property
     def steps(self) -> list[FiniteContactStep]:
@@ -81,10 +83,15 @@ class FiniteIndentationResult:
         """Largest |finite / linear - 1| over the depths (not errors: the physics differs)."""
         return worst_against_analytic(self.step_table())
 
+    def to_dict_model(self) -> dict[str, object]:
+        """``model``, and the other rubber keys unless it is the default neo-Hookean."""
+        return {"model": "neo-hookean"} if self.rubber == RubberModel() else self.rubber.to_dict()
+
     def to_dict(self) -> dict[str, object]:
-        """The JSON of ``shtaerman contact --model neo-hookean --json`` (SI units)."""
+        """The JSON of ``shtaerman contact --model neo-hookean --json`` (SI units): ``model``,
+        then the other rubber keys (:meth:`RubberModel.to_dict`) unless it is the default."""
         return {
-            "model": "neo-hookean",
+            **self.to_dict_model(),
             **curve_document(self.indenter, self.half_space, self.exact, self.fit),
             "steps": self.step_table(),
             "departures_from_linear": self.departures(),
@@ -99,8 +106,9 @@ def run_finite_study(
     half_space: Material,
     depths: ArrayLike | None = None,
     mesh: MeshSettings | None = None,
+    rubber: RubberModel | None = None,
 ) -> FiniteIndentationResult:
-    """Press a rigid power-law indenter into a neo-Hookean half-space; compare with linear.
+    """Press a rigid power-law indenter into a rubber half-space; compare with linear.
 
     Parameters
     ----------
@@ -113,17 +121,20 @@ def run_finite_study(
         eight depths up to the paper's impact x_c.
     mesh : MeshSettings, optional
         Default :data:`shtaerman.fem.finite_contact.FINITE_MESH`.
+    rubber : RubberModel, optional
+        Default neo-Hookean with the quadratic volumetric energy.
 
     Returns
     -------
     FiniteIndentationResult
     """
     depths = default_depths(indenter, half_space) if depths is None else depths
-    curve = run_finite_indentation(indenter, half_space, depths, mesh or FINITE_MESH)
+    rubber = RubberModel() if rubber is None else rubber
+    curve = run_finite_indentation(indenter, half_space, depths, mesh or FINITE_MESH, rubber)
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [s.force for s in curve.steps]
     fit = fit_power_law([s.depth for s in curve.steps], forces, exact.force_exponent)
-    return FiniteIndentationResult(indenter, half_space, exact, curve, fit)
+    return FiniteIndentationResult(indenter, half_space, exact, curve, fit, rubber)
 
 
 def run_finite_ladder(
@@ -134,6 +145,7 @@ def run_finite_ladder(
     *,
     refine: float = 1.0,
     progress: Callable[[str], None] | None = None,
+    rubber: RubberModel | None = None,
 ) -> AccuracyResult:
     """:func:`run_finite_study` on the meshes refined by refine / 2, refine / sqrt(2) and
     refine, with Richardson estimates of the finest level's force, contact radius, central
@@ -142,7 +154,7 @@ def run_finite_ladder(
 
     Parameters
     ----------
-    indenter, half_space, depths, mesh
+    indenter, half_space, depths, mesh, rubber
         As for :func:`run_finite_study`.
     refine : float
         Refinement factor of the finest level (element sizes divided by it everywhere).
@@ -157,7 +169,7 @@ def run_finite_ladder(
     depths = default_depths(indenter, half_space) if depths is None else depths
 
     def solve(level: MeshSettings) -> FiniteIndentationResult:
-        return run_finite_study(indenter, half_space, depths, level)
+        return run_finite_study(indenter, half_space, depths, level, rubber)
 
     base = mesh or FINITE_MESH
     return run_mesh_ladder(solve, base, refine=refine, progress=progress, exact=False)

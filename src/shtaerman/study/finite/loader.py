@@ -17,7 +17,10 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it
     [quick]      depth_steps, small_steps, small_ratio, small_strain and the mesh keys for
                  ``verify --quick``
     [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
-    [sweep]      optional: one of nu2, mass, velocity with a list of values
+    [rubber]     optional: model = "neo-hookean" (mooney-rivlin, yeoh, gent), mooney_ratio,
+                 yeoh = [c2, c3], gent_limit, volumetric (:func:`shtaerman.fem.rubber.rubber_model`;
+                 a shape key applies to its own model only, also when the model is swept)
+    [sweep]      optional: one of nu2, mass, velocity, model, volumetric with a list of values
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ import msgspec
 from ... import vocabulary
 from ...fem.finite_contact import FINITE_MESH
 from ...fem.mesh import MeshSettings
+from ...fem.rubber import RubberModel, rubber_model
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError
@@ -62,7 +66,7 @@ __all__ = [
 
 QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_growth=0.35)
 """Coarse mesh of ``verify --quick`` (one mesh, no error estimates)."""
-SWEEPABLE = {"nu2": "nu", "mass": "M", "velocity": "v0"}
+SWEEPABLE = {"nu2": "nu", "mass": "M", "velocity": "v0", "model": "", "volumetric": ""}
 
 
 class _Contact(Table):
@@ -87,10 +91,20 @@ class _Tolerances(Table):
     complementarity: Relative = 1e-6
 
 
+class _Rubber(Table):
+    model: str = "neo-hookean"
+    mooney_ratio: float | None = None
+    yeoh: list[float] | None = None
+    gent_limit: float | None = None
+    volumetric: str | None = None
+
+
 class _Sweep(SweepTable):
     nu2: list[Poisson] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
+    model: list[str] | None = None
+    volumetric: list[str] | None = None
 
 
 class _FiniteFile(Table):
@@ -103,6 +117,7 @@ class _FiniteFile(Table):
     numerics: MeshTable = MeshTable()
     quick: _Quick = _Quick()
     tolerances: _Tolerances = _Tolerances()
+    rubber: _Rubber = _Rubber()
     sweep: _Sweep | None = None
 
 
@@ -154,6 +169,22 @@ class FiniteStudy:
     depths: tuple[float, ...] | None = None
     """Explicit depths in m instead of the ladder (a sweep's ``depths``), increasing."""
     kind: str = "finite-strain"
+    rubber: RubberModel = field(default_factory=RubberModel)
+    """The rubber model (default neo-Hookean, K/2 (J - 1)^2)."""
+
+
+def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
+    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place;
+    shape keys of another model than the one chosen are left out."""
+    given = msgspec.structs.asdict(table) | chosen
+    model = given.pop("model")
+    owner = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
+    if "model" in chosen:
+        given = {k: v for k, v in given.items() if owner.get(k, model) == model}
+    try:
+        return rubber_model(model, **given)
+    except InputError as error:
+        raise InputError(f"[rubber] {error}") from None
 
 
 def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
@@ -187,10 +218,17 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         quick_mesh=_mesh(quick, QUICK_FINITE_MESH, "quick"),
         tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
         quick_small_strain=quick.small_strain,
+        rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
     )
 
 
-def _expanded(study: FiniteStudy, sweep: _Sweep | None) -> list[FiniteStudy]:
+def _sweeps_model(raw: _FiniteFile) -> bool:
+    """Whether the ``[sweep]`` chooses the model (each study's rubber is built there)."""
+    return raw.sweep is not None and raw.sweep.model is not None
+
+
+def _expanded(study: FiniteStudy, raw: _FiniteFile) -> list[FiniteStudy]:
+    sweep = raw.sweep
     if sweep is None:
         return [study]
     key, values = sweep.chosen()
@@ -198,9 +236,12 @@ def _expanded(study: FiniteStudy, sweep: _Sweep | None) -> list[FiniteStudy]:
     for value in values:
         if key == "nu2":
             changed = replace(study, half_space=replace(study.half_space, poisson_ratio=value))
+        elif key in ("model", "volumetric"):
+            changed = replace(study, rubber=_rubber(raw.rubber, **{key: value}))
         else:
             changed = replace(study, **{key: value})
-        studies.append(replace(changed, name=f"{study.name}-{SWEEPABLE[key]}{value:g}"))
+        shown = value if isinstance(value, str) else f"{value:g}"
+        studies.append(replace(changed, name=f"{study.name}-{SWEEPABLE[key]}{shown}"))
     return studies
 
 
@@ -215,7 +256,7 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
     """
     raw = decode(path, data, _FiniteFile)
     try:
-        studies = _expanded(_build(path, raw), raw.sweep)
+        studies = _expanded(_build(path, raw), raw)
     except StudyError:
         raise
     except InputError as error:

@@ -118,6 +118,7 @@ class FiniteStudyOutcome:
                     "radius_ratio": step.contact_radius / step.contact_radius_linear,
                     "central_pressure": step.central_pressure,
                     "central_to_mean": step.central_pressure / step.mean_pressure,
+                    "central_pressure_ratio": step.central_pressure / step.central_pressure_linear,
                     "strain_energy": step.strain_energy,
                     "newton_iterations": step.total_iterations,
                 }
@@ -196,8 +197,8 @@ class FiniteStudyOutcome:
         return {key: finite[key] / exact[key] for key in ("x_c", "P_c", "a_c", "p_c", "t_c", "t_y")}
 
     def at_maximum(self) -> dict[str, float]:
-        """At the finite-strain x_c: P / (beta x^q), p(0) / p_avg, a / a_linear (log-log
-        interpolated between the computed depths)."""
+        """At the finite-strain x_c: P / (beta x^q), p(0) / p_avg, a / a_linear and p(0) /
+        Shtaerman's p(0) at the same depth (log-log interpolated between the computed depths)."""
         rows, x_c = self.rows(), self.impacts["finite_strain"]["x_c"]
         depth = np.log([row["depth"] for row in rows])
 
@@ -209,6 +210,7 @@ class FiniteStudyOutcome:
             "force_ratio_fem": at("force_ratio_fem"),
             "central_to_mean": at("central_to_mean"),
             "radius_ratio": at("radius_ratio"),
+            "central_pressure_ratio": at("central_pressure_ratio"),
             "depth_to_radius": at("depth_to_radius"),
             "beyond_last_depth": x_c / rows[-1]["depth"] - 1.0,
         }
@@ -231,7 +233,7 @@ class FiniteStudyOutcome:
         mesh = self.mesh
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
         return {
-            "model": "neo-hookean",
+            **self.finite.to_dict_model(),
             "quick": self.quick,
             "inputs": {
                 "shape_coefficient": self.study.indenter.shape_coefficient,
@@ -318,7 +320,7 @@ def _run_level(
     """The curve, the same-mesh linear FEM and three impacts on one mesh (no estimates)."""
     start, cpu = time.perf_counter(), time.process_time()
     modulus = effective_modulus(RIGID, study.half_space)
-    finite = run_finite_study(study.indenter, study.half_space, depths, mesh)
+    finite = run_finite_study(study.indenter, study.half_space, depths, mesh, study.rubber)
     # nodal-sum forces, the finite-strain solver's own discretization: the ratio cancels it
     linear = run_indentation(study.indenter, study.half_space, depths, mesh, aligned=False)
     impacts = {"linear_exact": {k: v for k, v in impact_maxima(exact).items() if k != "beta"}}

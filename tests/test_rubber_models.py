@@ -1,0 +1,417 @@
+"""Rubber models beyond neo-Hookean (Mooney-Rivlin, Yeoh, Gent) and the volumetric energy.
+
+Pointwise: the stress against closed-form homogeneous deformations, the tangent against finite
+differences, the neo-Hookean special cases. Contact (coarse mesh): the special cases equal the
+neo-Hookean contact, Mooney-Rivlin departs, the small-strain limit. Options: one-line errors.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from shtaerman.fem.finite_contact import run_finite_indentation
+from shtaerman.fem.hyperelastic import NeoHookean, NewtonError, kinematics
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.rubber import (
+    Rubber,
+    RubberModel,
+    energy_derivatives,
+    invariant_kinematics,
+    rubber_model,
+)
+from shtaerman.study.contact.indentation import run_indentation
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.validation import InputError
+
+E2 = 7.5e6
+MU = E2 / 3.0
+MATERIALS = {
+    "mooney-rivlin": dict(model="mooney-rivlin", mooney_ratio=0.3),
+    "yeoh": dict(model="yeoh", yeoh=(-0.05, 0.01)),
+    "gent": dict(model="gent", gent_limit=20.0),
+    "neo-hookean-log": dict(model="neo-hookean", volumetric="logarithmic"),
+    "yeoh-log": dict(model="yeoh", yeoh=(0.2, 0.03), volumetric="logarithmic"),
+}
+
+
+def _psi(name: str, nu: float, x1: float) -> tuple[float, float]:
+    """dW/dI1bar and dW/dI2bar of each model, written from its energy (Pa)."""
+    mu = E2 / (2 * (1 + nu))
+    spec = MATERIALS[name]
+    if spec["model"] == "mooney-rivlin":
+        r = spec["mooney_ratio"]
+        return (1 - r) * mu / 2, r * mu / 2
+    if spec["model"] == "yeoh":
+        c2, c3 = spec["yeoh"]
+        return mu / 2 * (1 + 2 * c2 * x1 + 3 * c3 * x1**2), 0.0
+    if spec["model"] == "gent":
+        return mu / 2 / (1 - x1 / spec["gent_limit"]), 0.0
+    return mu / 2, 0.0
+
+
+def _principal(stretches):
+    """grad, u_r, radius of the homogeneous deformation diag(l_r, l_theta, l_z) (R = 1 m)."""
+    lr, lt, lz = stretches
+    grad = np.array([[lr - 1.0, 0.0], [0.0, lz - 1.0]])[..., None]
+    return grad, np.array([lt - 1.0]), np.array([1.0])
+
+
+def _closed_form(name: str, nu: float, stretches, p: float) -> np.ndarray:
+    """Cauchy (rr, tt, zz) of a principal stretch state: (2/J) dev[(psi1 + I1bar psi2) Bbar -
+    psi2 Bbar^2] - p g'(J), g' = 1 (J - 1) or 1/J (ln J)."""
+    lam = np.asarray(stretches, dtype=float)
+    J = float(np.prod(lam))
+    bbar = J ** (-2 / 3) * lam**2
+    i1, i2 = bbar.sum(), 0.5 * (bbar.sum() ** 2 - (bbar**2).sum())
+    psi1, psi2 = _psi(name, nu, i1 - 3)
+    tensor = (psi1 + i1 * psi2) * bbar - psi2 * bbar**2
+    trace = psi1 * i1 + 2 * psi2 * i2
+    slope = 1 / J if MATERIALS[name].get("volumetric") == "logarithmic" else 1.0
+    return 2 / J * (tensor - trace / 3) - p * slope
+
+
+def _material(name: str, nu: float) -> Rubber:
+    return Rubber(E2, nu, **MATERIALS[name])
+
+
+HOMOGENEOUS = {
+    "uniaxial": (1.5**-0.5, 1.5**-0.5, 1.5),
+    "equibiaxial": (1.3, 1.3, 1.3**-2),
+    "hoop": (1.2, 0.85, 1 / (1.2 * 0.85)),
+    "compressible": (1.1, 0.95, 0.8),
+}
+
+
+@pytest.mark.parametrize("name", MATERIALS)
+@pytest.mark.parametrize("state", HOMOGENEOUS)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_stress_of_homogeneous_deformations_is_the_closed_form(name, state, nu):
+    stretches, p = HOMOGENEOUS[state], 0.37 * MU
+    grad, u_r, radius = _principal(stretches)
+    k = kinematics(_material(name, nu), grad, u_r, radius, np.array([p]))
+    S, F = k.stress[:, 0], k.F[:, 0]
+    cauchy = np.array([S[0] * F[0], S[4] * F[4], S[3] * F[3]]) / k.J[0]
+    assert np.max(np.abs(cauchy - _closed_form(name, nu, stretches, p))) <= 1e-10 * MU
+    assert abs(S[1]) + abs(S[2]) <= 1e-10 * MU  # no shear in a principal state
+
+
+def _random_state(seed: int, size: int = 6):
+    rng = np.random.default_rng(seed)
+    grad = 0.25 * rng.standard_normal((2, 2, size))
+    u_r = 0.2 * rng.standard_normal(size)
+    return grad, u_r, np.ones(size), 0.3 * MU * rng.standard_normal(size)
+
+
+def _from_F(F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    grad = np.array([[F[0] - 1.0, F[1]], [F[2], F[3] - 1.0]])
+    return grad, F[4] - 1.0
+
+
+@pytest.mark.parametrize("name", MATERIALS)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_tangent_is_the_derivative_of_the_stress(name, nu):
+    material = _material(name, nu)
+    grad, u_r, radius, p = _random_state(1)
+    k = kinematics(material, grad, u_r, radius, p)
+    eps = 1e-6
+    for m in range(5):
+        step = np.zeros((5, 1))
+        step[m] = eps
+        plus = kinematics(material, *_from_F(k.F + step), radius, p)
+        minus = kinematics(material, *_from_F(k.F - step), radius, p)
+        fd = (plus.stress - minus.stress) / (2 * eps)
+        scale = np.abs(k.tangent).max()
+        # central differences: O(eps^2) truncation ~1e-12 relative; a wrong term is O(1e-2)
+        assert np.abs(fd.T - k.tangent[:, :, m]).max() <= 1e-7 * scale
+        fd_energy = (plus.energy_density - minus.energy_density) / (2 * eps)
+        assert np.abs(fd_energy - k.stress[m]).max() <= 1e-7 * np.abs(k.stress).max()
+    assert np.abs(k.tangent - np.swapaxes(k.tangent, -1, -2)).max() <= 1e-12 * scale
+
+
+@pytest.mark.parametrize(
+    "spec",
+    [
+        dict(model="neo-hookean"),
+        dict(model="mooney-rivlin", mooney_ratio=0.0),
+        dict(model="yeoh", yeoh=(0.0, 0.0)),
+    ],
+)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_special_cases_are_neo_hookean_pointwise(spec, nu):
+    grad, u_r, radius, p = _random_state(2)
+    fast = kinematics(NeoHookean(E2, nu), grad, u_r, radius, p)
+    general = invariant_kinematics(Rubber(E2, nu, **spec), grad, u_r, radius, p)
+    for key in ("stress", "tangent", "volume_gradient", "constraint", "energy_density"):
+        a, b = getattr(fast, key), getattr(general, key)
+        assert np.abs(a - b).max() <= 1e-12 * max(np.abs(a).max(), MU), key
+
+
+def test_the_default_rubber_runs_the_neo_hookean_code_bitwise():
+    grad, u_r, radius, p = _random_state(3)
+    fast = kinematics(NeoHookean(E2, 0.3), grad, u_r, radius, p)
+    default = kinematics(Rubber(E2, 0.3), grad, u_r, radius, p)
+    assert np.array_equal(fast.tangent, default.tangent)
+    assert np.array_equal(fast.energy_density, default.energy_density)
+
+
+def test_small_strain_energy_is_linear_elasticity_for_every_model():
+    """The second derivative at F = I (the small-strain modulus) equals the neo-Hookean one."""
+    zero = (np.zeros((2, 2, 1)), np.zeros(1), np.ones(1), np.zeros(1))
+    reference = kinematics(NeoHookean(E2, 0.3), *zero).tangent
+    for name in MATERIALS:
+        tangent = kinematics(_material(name, 0.3), *zero).tangent
+        assert np.abs(tangent - reference).max() <= 1e-12 * MU, name
+
+
+def test_gent_limit_stops_the_step():
+    grad = np.array([[3.0, 0.0], [0.0, 1 / 16 - 1]])[..., None]  # I1bar - 3 ~ 13
+    material = Rubber(E2, 0.5, model="gent", gent_limit=5.0)
+    with pytest.raises(NewtonError, match="gent limit"):
+        kinematics(material, grad, np.zeros(1), np.ones(1), np.zeros(1))
+
+
+def test_yeoh_energy_derivatives():
+    material = Rubber(E2, 0.5, model="yeoh", yeoh=(-0.05, 0.01))
+    x = np.array([0.0, 0.7, 4.0])
+    w, psi1, _, psi11, _, _ = energy_derivatives(material, x, x)
+    C10 = MU / 2
+    assert np.allclose(w, C10 * (x - 0.05 * x**2 + 0.01 * x**3), rtol=1e-14)
+    assert np.allclose(psi1, C10 * (1 - 0.1 * x + 0.03 * x**2), rtol=1e-14)
+    assert np.allclose(psi11, C10 * (-0.1 + 0.06 * x), rtol=1e-14)
+
+
+@pytest.mark.parametrize(
+    "options, word",
+    [
+        (dict(model="mooney-rivlin", mooney_ratio=1.0), "mooney_ratio"),
+        (dict(model="mooney-rivlin", mooney_ratio=-0.1), "mooney_ratio"),
+        (dict(model="mooney-rivlin", mooney_ratio=math.nan), "mooney_ratio"),
+        (dict(model="yeoh", yeoh="0.1"), "yeoh"),
+        (dict(model="yeoh", yeoh="a,b"), "yeoh"),
+        (dict(model="yeoh", yeoh=(-0.5, 0.0)), "yeoh"),
+        (dict(model="yeoh", yeoh=(-0.5, 0.08)), "yeoh"),
+        (dict(model="yeoh", yeoh=(0.1, -0.01)), "yeoh"),
+        (dict(model="yeoh", yeoh=(0.1, math.inf)), "yeoh"),
+        (dict(model="gent"), "gent_limit"),
+        (dict(model="gent", gent_limit=0.0), "gent_limit"),
+        (dict(model="neo-hookean", mooney_ratio=0.2), "mooney_ratio"),
+        (dict(model="mooney-rivlin", yeoh=(0.1, 0.0)), "yeoh"),
+        (dict(model="neo-hookean", volumetric="cubic"), "volumetric"),
+        (dict(model="ogden"), "model"),
+    ],
+)
+def test_bad_rubber_options_are_one_line_naming_the_option(options, word):
+    with pytest.raises(InputError) as error:
+        rubber_model(**options)
+    assert word in str(error.value) and "\n" not in str(error.value)
+
+
+def test_stable_negative_c2_is_allowed():
+    assert rubber_model("yeoh", yeoh="-0.1,0.004").yeoh == (-0.1, 0.004)
+
+
+# --- the contact -------------------------------------------------------------------------------
+COARSE = MeshSettings(size=0.1, domain=1e4, growth=0.3, axis_size=1e-4, axis_growth=0.2)
+"""~5.5k dofs (as in test_fem_hyperelastic)."""
+PAPER = PowerLawIndenter(5.0, 1.5)
+
+
+@pytest.fixture(scope="module")
+def neo_hookean_curve():
+    """The paper's rubber to x/a = 0.6 (linear a), coarse mesh, neo-Hookean."""
+    return run_finite_indentation(PAPER, Material(E2, 0.5), _DEPTHS, COARSE)
+
+
+_DEPTHS = np.array([0.25, 0.5, 0.75, 1.0]) * 6e-3 * (0.6 / 0.78541) ** 3
+"""Up to x/a = 0.6 on the linear solution (x/a ~ x^(1/3))."""
+
+
+@pytest.mark.parametrize(
+    "model", [rubber_model("mooney-rivlin", 0.0), rubber_model("yeoh", yeoh=(0.0, 0.0))]
+)
+def test_special_cases_equal_the_neo_hookean_contact(neo_hookean_curve, model):
+    curve = run_finite_indentation(PAPER, Material(E2, 0.5), _DEPTHS, COARSE, model)
+    for step, reference in zip(curve.steps, neo_hookean_curve.steps, strict=True):
+        assert step.force == pytest.approx(reference.force, rel=1e-8)
+        assert step.contact_radius == pytest.approx(reference.contact_radius, rel=1e-8)
+
+
+def test_mooney_rivlin_departs_measurably_at_x_over_a_0_6(neo_hookean_curve):
+    curve = run_finite_indentation(
+        PAPER, Material(E2, 0.5), _DEPTHS, COARSE, rubber_model("mooney-rivlin", 0.3)
+    )
+    step, reference = curve.steps[-1], neo_hookean_curve.steps[-1]
+    assert 0.55 < step.depth / step.contact_radius_linear < 0.65
+    # the I2 term stiffens: observed +2.3 % on the force (the mesh's own error ~1e-3)
+    assert step.force / reference.force - 1 > 1e-2
+
+
+@pytest.mark.parametrize(
+    "model",
+    [
+        rubber_model("mooney-rivlin", 0.3),
+        rubber_model("yeoh", yeoh=(-0.05, 0.01)),
+        rubber_model("gent", gent_limit=20.0),
+        rubber_model("neo-hookean", volumetric="logarithmic"),
+    ],
+)
+@pytest.mark.parametrize("nu", [0.5, 0.3])
+def test_small_strain_limit_of_every_model(model, nu):
+    ratio, radius = 2e-3, 0.01
+    kappa = PowerLawIndenter(1.0, 1.5).kappa
+    indenter = PowerLawIndenter(ratio / (kappa * radius**0.5), 1.5)
+    depth = kappa * indenter.shape_coefficient * radius**1.5
+    finite = run_finite_indentation(indenter, Material(E2, nu), [depth], COARSE, model)
+    linear = run_indentation(indenter, Material(E2, nu), [depth], COARSE, aligned=False)
+    assert finite.steps[0].force == pytest.approx(linear.steps[0].force, rel=3e-3)
+
+
+# --- the command line and the API ---------------------------------------------------------------
+def _cli(capsys, *argv):
+    from shtaerman.cli import main
+
+    code = main(["contact", *argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize(
+    ("argv", "name"),
+    [
+        (["--model", "mooney-rivlin", "--mooney-ratio", "1"], "--mooney-ratio"),
+        (["--model", "mooney-rivlin", "--mooney-ratio", "x"], "--mooney-ratio"),
+        (["--model", "yeoh", "--yeoh=-0.5,0"], "--yeoh"),
+        (["--model", "yeoh", "--yeoh", "0.1"], "--yeoh"),
+        (["--model", "yeoh", "--yeoh", "0.1,,2"], "--yeoh"),
+        (["--model", "yeoh", "--mooney-ratio", "0.2"], "--mooney-ratio"),
+        (["--model", "gent"], "--gent-limit"),
+        (["--model", "gent", "--gent-limit", "-1"], "--gent-limit"),
+        (["--mooney-ratio", "0.2"], "--mooney-ratio"),
+        (["--volumetric", "logarithmic"], "--volumetric"),
+        (["--model", "yeoh", "--volumetric", "ln"], "--volumetric"),
+        (["--model", "mooney-rivlin", "--solver", "pardiso"], "--solver"),
+        (["--model", "yeoh", "--accuracy", "1e-3"], "--accuracy"),
+        (["--model", "yeoh", "--thickness", "0.1"], "--thickness"),
+    ],
+)
+def test_bad_rubber_options_exit_2_with_one_line(capsys, argv, name):
+    code, out, err = _cli(capsys, *argv, "--depths", "1e-3")
+    assert code == 2 and out == ""
+    assert name in err and err.count("\n") == 1
+
+
+def test_mooney_rivlin_json_names_the_model(capsys):
+    argv = ["--model", "mooney-rivlin", "--mooney-ratio", "0.3", "--nu2", "0.4"]
+    argv += ["--volumetric", "logarithmic", "--json", "--no-estimate", "--depths", "2e-3"]
+    code, out, _ = _cli(capsys, *argv, "--mesh-size", "0.1", "--domain-factor", "1e4")
+    report = json.loads(out)
+    assert code == 0
+    assert (report["model"], report["mooney_ratio"], report["volumetric"]) == (
+        "mooney-rivlin",
+        0.3,
+        "logarithmic",
+    )
+    mesh = ["--mesh-size", "0.1", "--domain-factor", "1e4"]
+    code, out, _ = _cli(capsys, *argv[:-4], "--no-estimate", "--depths", "2e-3", *mesh)
+    assert code == 0 and out.startswith("Mooney-Rivlin (r = 0.3, logarithmic volumetric energy)")
+
+
+def test_the_api_takes_the_rubber_keywords():
+    import shtaerman as sh
+
+    result = sh.contact(
+        PAPER,
+        Material(E2, 0.5),
+        model="yeoh",
+        yeoh=(-0.05, 0.01),
+        depths=[2e-3],
+        estimate=False,
+        mesh_size=0.1,
+        domain_factor=1e4,
+    )
+    assert result.model == "yeoh" and result.to_dict()["yeoh"] == [-0.05, 0.01]
+
+
+@pytest.mark.parametrize(
+    ("pressure", "radius", "words"),
+    [
+        (0.942, 1.033, ("5.8 % below", "3.3 % larger")),
+        (1.02, 0.99, ("2.0 % above", "1.0 % smaller")),
+    ],
+)
+def test_central_pressure_wording_follows_the_numbers(pressure, radius, words):
+    from shtaerman.output.text_finite import central_pressure_words
+
+    sentence = central_pressure_words(pressure, radius)
+    assert all(word in sentence for word in words)
+
+
+# --- the study files ----------------------------------------------------------------------------
+def _study_file(tmp_path, rubber: str, sweep: str = "") -> str:
+    path = tmp_path / "rubber.toml"
+    path.write_text(
+        'kind = "finite-strain"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 7.5e6\nnu2 = 0.3\n[impact]\nmass = 0.7\nvelocity = 3.0\n"
+        f"[rubber]\n{rubber}\n" + (f"[sweep]\n{sweep}\n" if sweep else "")
+    )
+    return str(path)
+
+
+def test_study_file_sweeps_the_model_with_each_models_shape(tmp_path):
+    from shtaerman.study.schema import load_study
+
+    text = "mooney_ratio = 0.1\nyeoh = [-0.1, 0.01]"
+    studies = load_study(_study_file(tmp_path, text, 'model = ["neo-hookean", "yeoh"]'))
+    assert [s.name for s in studies] == ["rubber-neo-hookean", "rubber-yeoh"]
+    assert studies[0].rubber == rubber_model("neo-hookean")
+    assert studies[1].rubber == rubber_model("yeoh", yeoh=(-0.1, 0.01))
+    [study] = load_study(_study_file(tmp_path, 'volumetric = "logarithmic"'))
+    assert study.rubber.volumetric == "logarithmic"
+
+
+@pytest.mark.parametrize(
+    "rubber",
+    [
+        'model = "yeoh"\nmooney_ratio = 0.1',
+        'model = "yeoh"\nyeoh = [-1.0, 0.0]',
+        'volumetric = "x"',
+    ],
+)
+def test_bad_rubber_table_names_the_file_and_key(tmp_path, rubber):
+    from shtaerman.study.schema import StudyError, load_study
+
+    with pytest.raises(StudyError, match=r"rubber\.toml: \[rubber\]"):
+        load_study(_study_file(tmp_path, rubber))
+
+
+def test_shipped_rubber_studies_carry_the_treloar_fit():
+    from shtaerman.study.schema import load_study, shipped_studies
+
+    paths = {p.stem: p for p in shipped_studies()}
+    models = {s.name: s.rubber for s in load_study(paths["rubber_models"])}
+    assert models["rubber-mooney-rivlin"].mooney_ratio == 0.085
+    assert models["rubber-yeoh"].yeoh == (-0.101, 0.0127)
+    assert "Treloar" in paths["rubber_models"].read_text()
+    [volumetric] = load_study(paths["rubber_volumetric"])
+    assert volumetric.rubber.volumetric == "logarithmic"
+
+
+def test_findings_name_the_model_and_flag_the_volumetric_energy():
+    from types import SimpleNamespace
+
+    from shtaerman.output.text_finite import rubber_finding
+
+    def finding(nu: float, model: RubberModel) -> list[str]:
+        study = SimpleNamespace(rubber=model, half_space=Material(E2, nu))
+        return rubber_finding(SimpleNamespace(study=study))
+
+    assert finding(0.5, RubberModel()) == []
+    [flag] = finding(0.3, RubberModel())
+    assert "depend on the volumetric energy" in flag and "K/2 (J-1)^2" in flag
+    [named, flag] = finding(0.3, rubber_model("yeoh", yeoh=(-0.1, 0.01), volumetric="logarithmic"))
+    assert "Yeoh with c2, c3 = C20/C10, C30/C10 = -0.1, 0.01" in named and "(ln J)^2" in flag
