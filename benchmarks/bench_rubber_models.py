@@ -7,7 +7,7 @@ machine and its load (printed beside them).
 (a) TRELOAR FIT. Mooney-Rivlin and Yeoh constants by linear least squares (relative residuals)
     on Treloar's (1944) incompressible uniaxial and equibiaxial nominal stresses, over three
     stretch ranges; the dimensionless shapes r = C01/(C10 + C01) and c2, c3 = C20/C10, C30/C10
-    that fem/rubber_models.toml uses.
+    that fem/extended/rubber_models.toml uses.
 (b) THE FORCE AT THE PAPER'S x_c PER MODEL. A = 5 m^-1/2, n = 1.5, E2 = 7.5 MPa (every model
     with this small-strain modulus), the default depths up to the linear x_c = 8.52 mm, default
     mesh (FINITE_MESH, one mesh): P / P_Shtaerman, P / P_neo-Hookean, a / a_lin, p(0)/p_avg at

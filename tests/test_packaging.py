@@ -20,6 +20,7 @@ SHIPPED = [
     "shtaerman/studies/hertz.toml",
     "shtaerman/studies/compressible.toml",
     "shtaerman/studies/table4.toml",
+    "shtaerman/studies/extended/rubber_models.toml",
     "shtaerman/sweeps/nu-grid.toml",
     "shtaerman/sweeps/impact-velocity.toml",
 ]

@@ -392,7 +392,7 @@ def test_bad_rubber_table_names_the_file_and_key(tmp_path, rubber):
 def test_shipped_rubber_studies_carry_the_treloar_fit():
     from shtaerman.study.schema import load_study, shipped_studies
 
-    paths = {p.stem: p for p in shipped_studies()}
+    paths = {p.stem: p for p in shipped_studies(extended=True)}
     models = {s.name: s.rubber for s in load_study(paths["rubber_models"])}
     assert models["rubber-mooney-rivlin"].mooney_ratio == 0.085
     assert models["rubber-yeoh"].yeoh == (-0.101, 0.0127)

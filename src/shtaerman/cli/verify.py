@@ -29,7 +29,13 @@ def register(commands: argparse._SubParsersAction) -> None:
         "studies",
         nargs="*",
         metavar="STUDY",
-        help="study files (.toml) or shipped study names (default: every shipped study)",
+        help="study files (.toml) or shipped study names (default: the shipped studies but "
+        "the extended ones)",
+    )
+    p.add_argument(
+        "--extended",
+        action="store_true",
+        help="also the extended shipped studies (rubber models and other minutes-long ones)",
     )
     add_inputs(p, ("out", "force"), None, derived={"out": "a new shtaerman-results-* folder"})
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
@@ -65,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("resume and force exclude each other: resume keeps the folder")
     if args.resume and args.out is None:
         raise InputError("resume: name the folder to complete with --out DIR")
-    paths = [find_study(name) for name in args.studies] or shipped_studies()
+    paths = [find_study(name) for name in args.studies] or shipped_studies(extended=args.extended)
     studies = [study for path in paths for study in load_study(path)]
     _check_unique_names(studies)
     marker = PROGRESS_FILE if args.resume else None

@@ -31,6 +31,7 @@ from ..vocabulary import entry as vocabulary_entry
 from .kinds import kind_function, study_kinds
 
 __all__ = [
+    "EXTENDED_STUDIES",
     "StudyError",
     "SweepTable",
     "fem_input_error",
@@ -426,9 +427,16 @@ def studies_folder() -> Path:
     return Path(__file__).resolve().parents[3] / "fem"
 
 
-def shipped_studies() -> list[Path]:
-    """The study files shipped with shtaerman, sorted by name."""
-    return sorted(studies_folder().glob("*.toml"))
+EXTENDED_STUDIES = "extended"
+"""Subfolder of the shipped studies that ``verify`` runs only with ``--extended`` (minutes)."""
+
+
+def shipped_studies(*, extended: bool = False) -> list[Path]:
+    """The study files shipped with shtaerman, sorted by name; ``extended``: followed by the
+    slower ones of the :data:`EXTENDED_STUDIES` subfolder."""
+    folder = studies_folder()
+    paths = sorted(folder.glob("*.toml"))
+    return paths + sorted((folder / EXTENDED_STUDIES).glob("*.toml")) if extended else paths
 
 
 def find_study(name_or_path: str) -> Path:
@@ -442,7 +450,7 @@ def find_study(name_or_path: str) -> Path:
     path = Path(name_or_path).expanduser()
     if path.suffix == ".toml" or path.exists() or "/" in name_or_path:
         return path
-    shipped = {p.stem: p for p in shipped_studies()}
+    shipped = {p.stem: p for p in shipped_studies(extended=True)}
     if name_or_path not in shipped:
         raise StudyError(
             f"study {name_or_path!r} is neither a file nor a shipped study; "
