@@ -113,6 +113,10 @@ def test_reference_refuses_bad_input():
         LayerReference(PowerLawIndenter(5.0, 1.0), body, 0.01)
     with pytest.raises(InputError, match="depth must be > 0 m"):
         LayerReference(indenter, body, 0.01).force(-1e-3)
+    with pytest.raises(InputError, match=r"thickness: the layer reference needs H >= 0\.01"):
+        LayerReference(indenter, body, 1e-9).force(1e-3)  # would need ~1e13 quadrature nodes
+    with pytest.raises(InputError, match=r"h: H / a must be >= 0\.01"):
+        layer_contact(1e-4, 1.5, 0.3)
     with pytest.raises(InputError, match="t must be finite"):
         compliance_factor([math.nan], 0.3)
 

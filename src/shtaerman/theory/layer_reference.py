@@ -55,6 +55,9 @@ PANEL_NODES = 16
 """Gauss-Legendre nodes per panel of the contact interval (Nystrom)."""
 FREQUENCY_NODES = 12
 """Gauss-Legendre nodes per panel of the transform variable u = xi H."""
+MIN_RATIO = 0.01
+"""Thinnest layer solved, H / a: the work grows as (a / H)^3 (below it, the thin limits of
+:mod:`shtaerman.theory.layer` are within about 1e-5 of the force)."""
 FREQUENCY_CUTOFF = 24.0
 """Upper limit of u = xi H: 1 - K(u) < 1e-16 beyond it (it decays as u^2 exp(-2u))."""
 
@@ -160,7 +163,7 @@ def layer_contact(
     Parameters
     ----------
     h : float
-        H / a, > 0.
+        H / a, >= :data:`MIN_RATIO`.
     exponent : float
         n > 1 of the profile z = A r^n.
     poisson_ratio : float
@@ -173,6 +176,12 @@ def layer_contact(
     h, n = validate_positive("h", h), validate_positive("exponent", exponent)
     resolution = validate_positive("resolution", resolution)
     _check_base(base)
+    if h < MIN_RATIO:
+        raise InputError(
+            f"h: H / a must be >= {MIN_RATIO:g} for the layer reference (use the thin limits "
+            f"of shtaerman.theory.layer), got {h!r}",
+            "h",
+        )
     tau, weights = _contact_nodes(h, resolution)
     points = np.concatenate([tau, [1.0]])
     kernel = _kernel(points, h, nu, base, resolution) * weights
@@ -243,11 +252,18 @@ class LayerReference:
         d = validate_positive("depth", depth, "m")
         n, big_a = self.indenter.exponent, self.indenter.shape_coefficient
         low = (d / (big_a * 1.01 * (n + 1.0) * _shape_constant(n))) ** (1.0 / n)
-        high = (d / (big_a * 0.9 * 2.0 / (n + 2.0))) ** (1.0 / n)
+        high = min((d / (big_a * 0.9 * 2.0 / (n + 2.0))) ** (1.0 / n), self.thickness / MIN_RATIO)
 
         def mismatch(log_radius: float) -> float:
             return math.log(self.at_radius(math.exp(log_radius))[0] / d)
 
+        if low >= high or mismatch(math.log(high)) < 0.0:
+            raise InputError(
+                f"thickness: the layer reference needs H >= {MIN_RATIO:g} contact radii; "
+                f"{self.thickness!r} m is thinner at depth {d!r} m (use the thin limits of "
+                f"shtaerman.theory.layer)",
+                "thickness",
+            )
         return math.exp(brentq(mismatch, math.log(low), math.log(high), xtol=1e-12))
 
     def force(self, depth: float) -> float:
