@@ -381,12 +381,13 @@ def estimate_elements(settings: MeshSettings) -> float:
 LAYER_EXTENT = 10.0
 """Lateral extent of a layer mesh beyond its refined zone, in thicknesses (the clamped edge
 r = L; its effect on the force is measured in benchmarks/FEM_NOTES.md, "Layer")."""
-THICKNESS_ELEMENTS = 4.0
+THICKNESS_ELEMENTS = 5.0
 """Elements through the thickness of a layer at the contact at the default size (scaled with
-``size``): quadratic elements, within 1e-5 of the reference force at H/a = 0.05, where a
-finer cap would put more contact candidates on the surface than the half-space has
-(benchmarks/FEM_NOTES.md, "Layer reference")."""
-LARGEST_THICKNESS_SIZE = 2.0
+``size``): quadratic elements, within 1e-5 of the reference force and 0.12 % of its contact
+radius at H/a = 0.05; the cap also sets the surface size, and a finer one puts more contact
+candidates on a thin layer than the half-space has, and costs more (benchmarks/FEM_NOTES.md,
+"Layer reference")."""
+LARGEST_THICKNESS_SIZE = 2.5
 """Largest element size of a layer / its size through the thickness at the contact."""
 MIN_THICKNESS = 0.01
 """Thinnest layer the mesh resolves, in refined radii."""
