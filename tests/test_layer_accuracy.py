@@ -91,3 +91,13 @@ def test_api_refuses_a_too_large_layer_before_any_level():
             progress=progress.append,
         )
     assert progress == []
+
+
+def test_cli_refuses_an_unresolved_layer_without_a_misleading_hint(capsys):
+    """The thickness is checked before the ladder; running without it would not help."""
+    from shtaerman.cli import main
+
+    assert main(["contact", "--thickness", "1e-300"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("shtaerman: error: --thickness: must lie in [")
+    assert "--no-estimate" not in err

@@ -243,6 +243,8 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
     try:
         check_ladder(mesh, refine, refined)
     except InputError as error:
+        if error.parameter == "thickness":  # a layer the mesh cannot resolve, estimate or not
+            raise
         raise InputError(
             f"{error}; or run without the estimate (estimate=False, --no-estimate)",
             error.parameter,
