@@ -171,6 +171,16 @@ def layer_contact(
     base : {"bonded", "lubricated"}
     resolution : float
         Divides every quadrature panel width (1 gives about 1e-11 in the force).
+
+    Returns
+    -------
+    LayerContact
+        Depth and force in units of A a^n and E* A a^(n+1).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If a value is out of range (H / a below :data:`MIN_RATIO`).
     """
     nu = validate_poisson("nu2", poisson_ratio, low=0.0)
     h, n = validate_positive("h", h), validate_positive("exponent", exponent)
