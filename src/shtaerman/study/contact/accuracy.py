@@ -56,9 +56,10 @@ contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, ``benchmarks/bench_con
 LAYER_TRUNCATION = 1e-5
 """Bound on the relative change of force and beta by a layer's lateral edge r = L, the same
 on every level (L is ``LAYER_EXTENT`` thicknesses beyond the refined zone, where the layer's
-field has decayed; the change when L doubles is at most 3e-6 from H/a = 0.05 to 100,
-benchmarks/FEM_NOTES.md, "Layer" and "Layer reference"); added to the force and beta
-estimates as :data:`TRUNCATION` is on the half-space."""
+field has decayed; doubling L changes the force by at most 1e-5 from H/a = 0.05 to 100 on
+the default mesh, mostly by re-meshing, and by 1e-7 at refine 2, benchmarks/FEM_NOTES.md,
+"Layer reference"); added to the force and beta estimates as :data:`TRUNCATION` is on the
+half-space."""
 
 Progress = Callable[[str], None]
 
