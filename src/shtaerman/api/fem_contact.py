@@ -238,13 +238,16 @@ def _check_options(options: Mapping[str, Any]) -> None:
         )
 
 
-def _check_coarsest(mesh: MeshSettings, refine: float) -> None:
-    """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh."""
+def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = None) -> None:
+    """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh (or
+    whose finest is too large; a layer's estimate needs its ``refined`` radius in m)."""
     from ..study.ladder import check_ladder
 
     try:
-        check_ladder(mesh, refine)
+        check_ladder(mesh, refine, refined)
     except InputError as error:
+        if error.parameter == "thickness":  # a layer the mesh cannot resolve, estimate or not
+            raise
         raise InputError(
             f"{error}; or run without the estimate (estimate=False, --no-estimate)",
             error.parameter,
@@ -381,7 +384,9 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
         check_finite_depths(indenter, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
     if estimate:
-        _check_coarsest(mesh, refine)
+        from ..study.contact.indentation import refined_radius
+
+        _check_coarsest(mesh, refine, refined_radius(indenter, depths, mesh))
     rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])
     return _Plan(indenter, body, depths, model, rubber, mesh, *rest)
 

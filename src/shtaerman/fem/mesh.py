@@ -381,9 +381,13 @@ def estimate_elements(settings: MeshSettings) -> float:
 LAYER_EXTENT = 10.0
 """Lateral extent of a layer mesh beyond its refined zone, in thicknesses (the clamped edge
 r = L; its effect on the force is measured in benchmarks/FEM_NOTES.md, "Layer")."""
-THICKNESS_ELEMENTS = 8.0
-"""Elements through the thickness of a layer at the default size (scaled with ``size``)."""
-LARGEST_THICKNESS_SIZE = 4.0
+THICKNESS_ELEMENTS = 5.0
+"""Elements through the thickness of a layer at the contact at the default size (scaled with
+``size``): quadratic elements, within 1e-5 of the reference force and 0.12 % of its contact
+radius at H/a = 0.05; the cap also sets the surface size, and a finer one puts more contact
+candidates on a thin layer than the half-space has, and costs more (benchmarks/FEM_NOTES.md,
+"Layer reference")."""
+LARGEST_THICKNESS_SIZE = 2.5
 """Largest element size of a layer / its size through the thickness at the contact."""
 MIN_THICKNESS = 0.01
 """Thinnest layer the mesh resolves, in refined radii."""
@@ -532,8 +536,15 @@ class MeshSettings:
         d = 2 A a^n/(n + 2) (see :mod:`shtaerman.theory.layer`)."""
         return 1.0 if self.thickness is None else ((exponent + 2.0) / 2.0) ** (1.0 / exponent)
 
-    def check_size(self) -> None:
-        """Raise InputError if the estimated mesh exceeds ``max_dofs`` (before any work)."""
+    def check_size(self, refined_radius: float | None = None) -> None:
+        """Raise InputError if the estimated mesh exceeds ``max_dofs`` (before any work).
+
+        A layer's estimate needs its ``refined_radius`` in m (:meth:`layer_dofs`; its thickness
+        is checked too); without it a layer is checked as the half-space of these settings.
+        """
+        if self.thickness is not None and refined_radius is not None:
+            self._check_layer(refined_radius)
+            return
         if self.estimated_dofs > self.max_dofs:
             raise InputError(
                 f"max_dofs: this mesh would have about {self.estimated_dofs:.3g} unknowns "
@@ -560,8 +571,9 @@ class MeshSettings:
             axis_growth=self.axis_growth,
         )
 
-    def _build_layer(self, refined_radius: float) -> MeshTri:
-        """The layer mesh of :meth:`build` (checks the thickness against the refined zone)."""
+    def _check_layer(self, refined_radius: float) -> float:
+        """The thickness in refined radii, checked against the range the mesh resolves and
+        the layer mesh's estimated size against ``max_dofs`` (InputError)."""
         ratio = self.thickness / refined_radius
         if not MIN_THICKNESS <= ratio <= MAX_THICKNESS:
             raise InputError(
@@ -577,6 +589,11 @@ class MeshSettings:
                 f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
                 f"max_dofs = {self.max_dofs:.3g}; coarsen it or raise max_dofs (--max-dofs)"
             )
+        return ratio
+
+    def _build_layer(self, refined_radius: float) -> MeshTri:
+        """The layer mesh of :meth:`build` (checks the thickness against the refined zone)."""
+        ratio = self._check_layer(refined_radius)
         return layer_mesh(
             refined_radius,
             self.thickness,

@@ -26,7 +26,7 @@ from ...theory.materials import Material
 from ...validation import InputError, validate_positive
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
 from ..richardson import Estimate, curve_richardson, richardson
-from .indentation import IndentationResult, default_depths, run_indentation
+from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
 
 __all__ = [
     "AccuracyResult",
@@ -53,6 +53,13 @@ TRUNCATION = {"force": 1.886, "beta": 1.16}
 """Stiffening by the clamped far boundary, times R / a (R the domain radius, a the largest
 contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, ``benchmarks/bench_contact.py``
 (c)); a bias common to every level, unseen by the ladder, so added to the estimate."""
+LAYER_TRUNCATION = 1e-5
+"""Bound on the relative change of force and beta by a layer's lateral edge r = L, the same
+on every level (L is ``LAYER_EXTENT`` thicknesses beyond the refined zone, where the layer's
+field has decayed; doubling L changes the force by at most 1e-5 from H/a = 0.05 to 100 on
+the default mesh, mostly by re-meshing, and by 1e-7 at refine 2, benchmarks/FEM_NOTES.md,
+"Layer reference"); added to the force and beta estimates as :data:`TRUNCATION` is on the
+half-space."""
 
 Progress = Callable[[str], None]
 
@@ -157,8 +164,10 @@ def _curve_value(result: IndentationResult, key: str) -> float:
 
 def _truncation(result: IndentationResult, key: str) -> float:
     """The far-boundary stiffening of ``key`` (relative) on this mesh."""
-    if "thickness" in result.mesh_stats:  # a layer's lateral edge: below 1e-5 (FEM_NOTES.md)
+    if key not in TRUNCATION:
         return 0.0
+    if "thickness" in result.mesh_stats:  # a layer's lateral edge
+        return LAYER_TRUNCATION
     largest = result.steps[-1].contact_radius
     return TRUNCATION.get(key, 0.0) * largest / result.mesh_stats["domain_radius"]
 
@@ -202,6 +211,7 @@ def run_mesh_ladder(
     refine: float = 1.0,
     progress: Progress | None = None,
     exact: bool = True,
+    refined: float | None = None,
 ) -> AccuracyResult:
     """Any contact curve on three meshes, ``mesh`` refined by refine / 2, refine / sqrt(2)
     and refine, with the estimates of :func:`estimate_errors` for the finest.
@@ -218,9 +228,11 @@ def run_mesh_ladder(
         Receives one line per level.
     exact : bool
         Whether the results' ``errors()`` are true errors (see :class:`AccuracyResult`).
+    refined : float, optional
+        Refined-zone radius in m of the curve, for a layer's size guard before any level.
     """
     refine = validate_positive("refine", refine)
-    check_ladder(mesh, refine)  # every level checked before the first is computed
+    check_ladder(mesh, refine, refined)  # every level checked before the first is computed
     factors = ladder_factors(refine)
     report = progress or (lambda _line: None)
     levels = tuple(_level(solve, mesh, factor, report) for factor in factors)
@@ -263,8 +275,38 @@ def run_ladder(
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     solve = _linear(indenter, half_space, depths, backend)
-    exact = mesh.thickness is None  # a layer's errors() are departures from the half-space
-    return run_mesh_ladder(solve, mesh, refine=refine, progress=progress, exact=exact)
+    refined = refined_radius(indenter, depths, mesh)
+    return run_mesh_ladder(
+        solve, mesh, refine=refine, progress=progress, exact=_exact(mesh), refined=refined
+    )
+
+
+def _exact(mesh: MeshSettings) -> bool:
+    """Whether the curve's ``errors()`` are true errors: on a layer they are its departures
+    from the half-space (its reference is :mod:`shtaerman.theory.layer_reference`)."""
+    return mesh.thickness is None
+
+
+def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:
+    """``mesh`` with the domain enlarged until the half-space's far-boundary truncation is a
+    tenth of ``tolerance``; InputError if the truncation alone exceeds half of it."""
+    if mesh.thickness is not None:
+        if tolerance < 2.0 * LAYER_TRUNCATION:
+            raise InputError(
+                f"accuracy must be >= {2.0 * LAYER_TRUNCATION:.2g} on a layer: its lateral "
+                f"edge alone may change the force by {LAYER_TRUNCATION:.2g}, which no "
+                f"refinement removes; got {tolerance!r}"
+            )
+        return mesh
+    floor = 2.0 * TRUNCATION["force"] / (MAX_DOMAIN * mesh.margin)
+    if tolerance < floor:
+        raise InputError(
+            f"accuracy must be >= {floor:.2g}: the clamped far boundary alone stiffens the "
+            f"force by about {floor / 2:.2g} at the largest domain ({MAX_DOMAIN:g} refined "
+            f"radii), which no refinement removes; got {tolerance!r}"
+        )
+    domain = min(max(mesh.domain, 10.0 * TRUNCATION["force"] / tolerance), MAX_DOMAIN)
+    return replace(mesh, domain=domain)
 
 
 def _force_error(result: AccuracyResult) -> float:
@@ -314,7 +356,9 @@ def run_to_accuracy(
     The domain is enlarged (up to the mesh's limit, :data:`shtaerman.fem.mesh.MAX_DOMAIN`) so
     that the far-field truncation, which the ladder does not see, stays below a tenth of the
     tolerance; at that limit it is about 1.5e-7, so below TOL = 1.5e-6 it takes a larger share,
-    and a TOL under twice it is refused. After the first three
+    and a TOL under twice it is refused (on a layer the domain stays: its lateral edge
+    contributes :data:`LAYER_TRUNCATION`, and a TOL under twice that is refused). After the
+    first three
     levels the needed refinement is predicted from the observed order; a target that needs
     more than ``max_dofs`` or ``max_time`` is refused at once with an InputError.
 
@@ -339,21 +383,12 @@ def run_to_accuracy(
         raise InputError(f"accuracy must lie in (0, 0.1], got {tolerance!r}")
     max_time = validate_positive("max-time", max_time, "s")
     start = time.perf_counter()
-    mesh = MeshSettings() if mesh is None else mesh
-    floor = 2.0 * TRUNCATION["force"] / (MAX_DOMAIN * mesh.margin)
-    if tolerance < floor:
-        raise InputError(
-            f"accuracy must be >= {floor:.2g}: the clamped far boundary alone stiffens the "
-            f"force by about {floor / 2:.2g} at the largest domain ({MAX_DOMAIN:g} refined "
-            f"radii), which no refinement removes; got {tolerance!r}"
-        )
-    domain = min(max(mesh.domain, 10.0 * TRUNCATION["force"] / tolerance), MAX_DOMAIN)
-    mesh = replace(mesh, domain=domain)
+    mesh = _far_field(MeshSettings() if mesh is None else mesh, tolerance)
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     solve = _linear(indenter, half_space, depths, backend)
-    exact = mesh.thickness is None
-    result = run_mesh_ladder(solve, mesh, progress=progress, exact=exact)
+    exact, refined = _exact(mesh), refined_radius(indenter, depths, mesh)
+    result = run_mesh_ladder(solve, mesh, progress=progress, exact=exact, refined=refined)
     report = progress or (lambda _line: None)
     while _force_error(result) > tolerance:
         _check_reachable(result, tolerance, max_dofs, max_time - (time.perf_counter() - start))

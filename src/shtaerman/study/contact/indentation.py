@@ -30,6 +30,7 @@ __all__ = [
     "IndentationResult",
     "default_depths",
     "depths_up_to",
+    "refined_radius",
     "run_indentation",
 ]
 
@@ -211,6 +212,12 @@ def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
     return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
 
 
+def refined_radius(indenter: PowerLawIndenter, depths: np.ndarray, mesh: MeshSettings) -> float:
+    """Radius in m of the refined (contact candidate) zone of a curve to ``depths`` (m)."""
+    zone = mesh.zone_factor(indenter.exponent)  # 1 on the half-space
+    return mesh.margin * _geometric_radius(indenter, depths[-1]) * zone
+
+
 def run_indentation(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -245,8 +252,7 @@ def run_indentation(
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     mesh = MeshSettings() if mesh is None else mesh
-    zone = mesh.zone_factor(indenter.exponent)  # 1 on the half-space
-    refined = mesh.margin * _geometric_radius(indenter, depths[-1]) * zone
+    refined = refined_radius(indenter, depths, mesh)
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined)
     meshed = time.perf_counter()
