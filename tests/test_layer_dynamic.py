@@ -150,6 +150,8 @@ def test_bad_layer_is_refused_before_meshing(options, message):
         (["--thickness", "0"], "--thickness"),
         (["--thickness", "-1"], "--thickness"),
         (["--thickness", "1e-6"], "thickness: must lie in"),
+        (["--thickness", "1e300"], "thickness: must lie in"),
+        (["--thickness", "inf"], "--thickness must be a finite number"),
         (["--thickness", "0.02", "--base", "glued"], "--base"),
         (["--base", "lubricated"], "applies to a layer only"),
     ],

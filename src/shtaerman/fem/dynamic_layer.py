@@ -109,6 +109,18 @@ def lateral_absorber(
     return layer, max(static, end), True
 
 
+def _check_thickness(thickness: float, refined: float) -> None:
+    """InputError unless ``thickness`` (m) is MIN_THICKNESS to MAX_THICKNESS ``refined`` (m)."""
+    if not MIN_THICKNESS <= thickness / refined <= MAX_THICKNESS:
+        raise InputError(
+            f"thickness: must lie in [{MIN_THICKNESS * refined:.3g}, "
+            f"{MAX_THICKNESS * refined:.3g}] m for this impact ({MIN_THICKNESS:g} to "
+            f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
+            f"half-space, run without a thickness), got {thickness!r}",
+            "thickness",
+        )
+
+
 def _thickness_size(settings: DynamicSettings) -> float:
     """Element size through the thickness at the contact, m."""
     return settings.thickness / THICKNESS_ELEMENTS * settings.size / _SIZE
@@ -116,7 +128,14 @@ def _thickness_size(settings: DynamicSettings) -> float:
 
 def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
     """Unknowns of the layer mesh estimated before meshing: a quadrature of Int dA / h^2 over
-    the rectangle, as :func:`.mesh.estimate_elements` (within about 30 %)."""
+    the rectangle, as :func:`.mesh.estimate_elements` (within about 30 %).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS`` refined radii.
+    """
+    _check_thickness(settings.thickness, refined)
     s, g = settings.size, settings.growth
     thickness = settings.thickness / refined
     cap = _thickness_size(settings) / refined
@@ -147,14 +166,6 @@ def layer_impact_mesh(
         refined radii, or the estimated mesh exceeds ``max_dofs``.
     """
     thickness = settings.thickness
-    if not MIN_THICKNESS <= thickness / refined <= MAX_THICKNESS:
-        raise InputError(
-            f"thickness: must lie in [{MIN_THICKNESS * refined:.3g}, "
-            f"{MAX_THICKNESS * refined:.3g}] m for this impact ({MIN_THICKNESS:g} to "
-            f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
-            f"half-space, run without a thickness), got {thickness!r}",
-            "thickness",
-        )
     dofs = layer_dofs(settings, refined, extent)
     if dofs > max_dofs:
         raise InputError(
