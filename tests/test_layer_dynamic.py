@@ -20,6 +20,7 @@ import shtaerman as sh
 from shtaerman.cli import main
 from shtaerman.fem.absorbing import AbsorbingLayer
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
+from shtaerman.fem.dynamic_layer import LATERAL_RATE, MAX_LATERAL, lateral_absorber
 from shtaerman.study.dynamic.layer import quasi_static_layer_impact
 from shtaerman.study.schema import StudyError, load_study
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -111,6 +112,22 @@ def test_a_massless_layer_is_the_quasi_static_impact_on_its_static_law(base):
     assert light.P_max == pytest.approx(exact.P_c, rel=2e-3)
     assert light.t_contact == pytest.approx(exact.t_y, rel=2e-3)
     assert light.restitution == pytest.approx(1.0, abs=1e-3)
+
+
+def test_the_lateral_edge_lies_beyond_the_absorber_unless_it_is_too_far():
+    c_s, t_y, refined = 47.7, 8.2e-3, 0.0125  # the paper's rubber and impact
+    settings = DynamicSettings(thickness=PAD)
+    layer, edge, on = lateral_absorber(settings, c_s, t_y, refined)
+    # the sin^2 bump from 0.75 to 3.75 c_s t_y, in r only; the edge at its end
+    assert on and layer.lateral and layer.rate == pytest.approx(LATERAL_RATE / t_y)
+    assert edge == pytest.approx(3.75 * c_s * t_y) and edge > refined + 10 * PAD
+    # a nearly massless layer (c_s x 1000): no absorber, the edge at 10 thicknesses
+    layer, edge, on = lateral_absorber(settings, 1000 * c_s, t_y, refined)
+    assert not on and edge == pytest.approx(refined + 10 * PAD)
+    # an explicit layer_rate is the absorber's
+    rated = dataclasses.replace(settings, layer_rate=3.0)
+    assert lateral_absorber(rated, c_s, t_y, refined)[0].rate == pytest.approx(3.0 / t_y)
+    assert 3.75 * c_s * t_y < MAX_LATERAL * 0.001  # a 1 mm pad still has one
 
 
 def test_the_lateral_absorber_ignores_the_depth():

@@ -64,7 +64,7 @@ __all__ = [
 
 LATERAL_RATE = 10.0
 """Peak damping rate zeta_max t_y of a layer's lateral absorber when ``layer_rate`` is 0."""
-MAX_LATERAL = 1000.0
+MAX_LATERAL = 3000.0
 """Farthest edge of the lateral absorber, in thicknesses (beyond it: no absorber)."""
 _SIZE = 1.0 / 40.0
 """The dynamic default mesh size (``DynamicSettings.size``), at which the layer has
