@@ -84,7 +84,10 @@ def run(args: argparse.Namespace) -> int:
         print_json(report)
     else:
         print(dynamic_text(report))
-    failures = dynamic_check_failures(result.energy_balance_error, result.reflected_energy_fraction)
+    of = "the radiated" if "thickness" not in result.mesh else "M v0^2/2"
+    failures = dynamic_check_failures(
+        result.energy_balance_error, result.reflected_energy_fraction, of
+    )
     if failures:
         warn("; ".join(failures) + ", so this run's numbers are not to be trusted")
         return 1

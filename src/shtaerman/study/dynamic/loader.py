@@ -262,10 +262,11 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     ]
 
 
-def dynamic_check_failures(balance: float, reflected: float) -> list[str]:
+def dynamic_check_failures(balance: float, reflected: float, of: str = "the radiated") -> list[str]:
     """What a dynamic run fails of the studies' own checks (:class:`DynamicTolerances`): its
     energy balance error (of M v0^2/2) and the energy reflected back by the far boundary (of
-    the radiated energy), one reason each; [] when both hold (NaN fails)."""
+    the radiated energy; ``of`` names the reference, M v0^2/2 on a layer), one reason each;
+    [] when both hold (NaN fails)."""
     limits, failures = DynamicTolerances(), []
     if not balance <= limits.energy_balance:
         failures.append(
@@ -274,7 +275,7 @@ def dynamic_check_failures(balance: float, reflected: float) -> list[str]:
         )
     if not reflected <= limits.reflected:
         failures.append(
-            f"reflected energy {reflected:.1e} of the radiated exceeds {limits.reflected:g}: "
+            f"reflected energy {reflected:.1e} of {of} exceeds {limits.reflected:g}: "
             "the far boundary sends the waves back to the contact (domain_factor or layer_rate "
             "do not absorb them)"
         )
