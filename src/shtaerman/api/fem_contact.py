@@ -339,8 +339,10 @@ def _layer(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
         entry("base").default if options["base"] is None else options["base"]
     )
     thickness = entry("thickness").check(options["thickness"])
-    if options["model"] != "linear":
-        raise InputError("thickness: a layer is available for the linear model only", "thickness")
+    if options["model"] != "linear" and base != "bonded":
+        from ..fem.finite_contact import FINITE_BASE
+
+        raise InputError(FINITE_BASE, "base")
     return dataclasses.replace(mesh, thickness=thickness, base=base)
 
 

@@ -198,6 +198,8 @@ def dynamic(
     *,
     mass: float,
     velocity: float,
+    thickness: float | None = None,
+    base: str | None = None,
     refine: float = 1.0,
     estimate: bool = True,
     settings: DynamicSettings | None = None,
@@ -221,6 +223,12 @@ def dynamic(
         The half-space: E2 in Pa, nu2 in [0, 0.5] and its density in kg/m^3 (required).
     mass, velocity : float
         Striker mass in kg and approach velocity in m/s.
+    thickness : float, optional
+        Thickness H in m of a layer of ``body`` on a rigid base, whose waves reflect at the
+        base; None: the half-space. The ``quasi_static`` values stay the half-space's.
+    base : {"bonded", "lubricated"}, optional
+        The layer's base: bonded (u = 0, the default with ``thickness``) or lubricated
+        (u_z = 0, free to slide); only with ``thickness``.
     refine : float
         Divide the mesh size field and the time step by it together.
     estimate : bool
@@ -251,8 +259,9 @@ def dynamic(
 
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
+    chosen = _layer(dynamic_settings(settings, options), thickness, base)
     mass, velocity, refine, chosen = _checked(
-        indenter, body, (mass, velocity, refine), estimate, dynamic_settings(settings, options)
+        indenter, body, (mass, velocity, refine), estimate, chosen
     )
     check_figure_format(figure_format)
     folder = output_folder(out, force=force)
@@ -267,6 +276,17 @@ def dynamic(
             _write_folder(result, stage)
             write_case_figures(case, stage, figure_format)
     return result
+
+
+def _layer(settings: DynamicSettings, thickness: object, base: object) -> DynamicSettings:
+    """``settings`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
+    if thickness is None:
+        if base is not None:
+            raise InputError("base: applies to a layer only; give its thickness too", "base")
+        return settings
+    base = entry("base").check(entry("base").default if base is None else base)
+    thickness = entry("thickness").check(thickness)
+    return dataclasses.replace(settings, thickness=thickness, base=base)
 
 
 def _checked(

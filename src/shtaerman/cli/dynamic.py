@@ -27,6 +27,8 @@ NOTES = {
     "force": "an existing --history file or --out folder",
 }
 """What ``dynamic`` does with its output options."""
+DERIVED = {"thickness": "none: the half-space", "base": "bonded; only with --thickness"}
+"""Inputs whose default follows from the others, and that default in words."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -40,11 +42,14 @@ def register(commands: argparse._SubParsersAction) -> None:
             "exact unilateral contact every step. Reports the rebound, the energy carried "
             "away by elastic waves and the first-order estimate of it. SI units. Exit code 1 "
             "(with a warning) when the energy balance is off by more than 1e-2 of M v0^2/2, or "
-            "the far boundary reflects more than 1e-2 of the radiated energy."
+            "the far boundary reflects more than 1e-2 of the radiated energy. --thickness H: "
+            "a layer on a rigid base (bonded or lubricated) whose base reflects the waves, with "
+            "a lateral absorber; its reflected energy is counted of M v0^2/2."
         ),
     )
-    inputs = (*CASE, "E2", "nu2", "density2", "json", "history", "out", "force")
-    add_inputs(p, inputs, "dynamic", notes=NOTES)
+    inputs = (*CASE, "E2", "nu2", "density2", "thickness", "base")
+    inputs = (*inputs, "json", "history", "out", "force")
+    add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "
@@ -63,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     history = history_path(args.history, force=args.force)
-    names = ("mass", "velocity", "refine", "estimate", *SETTINGS_OPTIONS, "out", "force")
+    names = ("mass", "velocity", "thickness", "base", "refine", "estimate", *SETTINGS_OPTIONS)
+    names = (*names, "out", "force")
     with in_option_words():
         result = dynamic(
             indenter(args),
@@ -78,7 +84,10 @@ def run(args: argparse.Namespace) -> int:
         print_json(report)
     else:
         print(dynamic_text(report))
-    failures = dynamic_check_failures(result.energy_balance_error, result.reflected_energy_fraction)
+    of = "the radiated" if "thickness" not in result.mesh else "M v0^2/2"
+    failures = dynamic_check_failures(
+        result.energy_balance_error, result.reflected_energy_fraction, of
+    )
     if failures:
         warn("; ".join(failures) + ", so this run's numbers are not to be trusted")
         return 1
@@ -100,6 +109,16 @@ def _differences_text(report: dict) -> str:
     )
 
 
+def _layer_rows(mesh: dict) -> list[str]:
+    """The line naming a layer (none on the half-space)."""
+    if "thickness" not in mesh:
+        return []
+    return [
+        f"  layer H = {mesh['thickness']:g} m on a {mesh['base']} rigid base (quasi-static: "
+        "the half-space's)"
+    ]
+
+
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
     qs, dyn, est = (
@@ -107,8 +126,10 @@ def dynamic_text(report: dict) -> str:
         for part in ("quasi_static", "dynamic", "radiation_estimate")
     )
     mesh, timings = report["mesh"], report["timings"]
+    of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
+        *_layer_rows(mesh),
         "                          dynamic FEM     quasi-static",
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
@@ -120,7 +141,7 @@ def dynamic_text(report: dict) -> str:
         f"estimate {est['energy_fraction']:.6f})",
         _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
-        f"{dyn['reflected_energy_fraction']:.1e} of the radiated",
+        f"{dyn['reflected_energy_fraction']:.1e} of {of}",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
         f"{mesh['contact_candidates']} contact candidates",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),

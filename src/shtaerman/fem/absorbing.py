@@ -47,16 +47,20 @@ class AbsorbingLayer:
     width : float or None
         W in m: a bump zeta = zeta_max sin^2(pi (R - R_a) / W) on R_a < R < R_a + W, zero
         beyond; None: the ramp-plateau profile.
+    lateral : bool
+        True: R is the radius r alone (the lateral absorber of a layer on a rigid base, whose
+        base reflects); False: R = sqrt(r^2 + z^2).
     """
 
     start: float
     ramp: float
     rate: float
     width: float | None = None
+    lateral: bool = False
 
     def damping_rate(self, r: np.ndarray, z: np.ndarray) -> np.ndarray:
         """zeta(R) in 1/s at points (r, z) in m."""
-        distance = np.hypot(r, z)
+        distance = np.abs(r) if self.lateral else np.hypot(r, z)
         phase = np.clip((distance - self.start) / self.ramp, 0.0, 1.0)
         if self.width is None:
             return self.rate * phase**2

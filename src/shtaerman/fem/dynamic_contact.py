@@ -26,7 +26,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import BilinearForm, asm
+from skfem import BilinearForm, MeshTri, asm
 from threadpoolctl import threadpool_limits
 
 from ..theory.contact import PowerLawContact
@@ -37,6 +37,7 @@ from ..theory.radiation import rayleigh_root
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
+from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
 from .elasticity import (
     TWO_PI,
     ElasticSolution,
@@ -132,6 +133,11 @@ class DynamicSettings:
     spectral_radius : float or None
         rho_inf of generalized-alpha in [0, 1] (0.9: stiff modes damped, resolved ones not);
         None: Newmark average acceleration (exact energy identity, undamped ripple).
+    thickness : float or None
+        Thickness H in m of a layer on a rigid base (an absolute length, unlike the fields
+        above; :mod:`.dynamic_layer`); None: the half-space.
+    base : {"bonded", "lubricated"}
+        The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
     """
 
     steps: int = 200
@@ -146,6 +152,8 @@ class DynamicSettings:
     tail: float = 1.25
     layer_width: float | None = 3.0
     spectral_radius: float | None = 0.9
+    thickness: float | None = None
+    base: str = "bonded"
 
     def __post_init__(self) -> None:
         if not isinstance(self.steps, (int, np.integer)) or not (
@@ -182,6 +190,7 @@ class DynamicSettings:
             )
         if not (math.isfinite(self.tail) and self.tail >= 0):
             raise InputError(f"tail must be >= 0, got {self.tail!r}")
+        check_layer(self.thickness, self.base)
 
     def refined(self, factor: float) -> DynamicSettings:
         """These settings with the mesh size field divided and the time steps multiplied by
@@ -269,7 +278,9 @@ class DynamicImpactResult:
         any wave sent during the contact would be inside) over the radiated energy: an upper
         bound of what the mesh grading, the layer and the far arc send back (it includes the
         slow decay of the near field). nan without a tail, or when R_a lies beyond half the
-        domain (the nearly massless limit: nothing radiates).
+        domain (the nearly massless limit: nothing radiates). On a layer, whose base sends
+        waves back by design and may radiate almost nothing, it is that energy over
+        M v0^2 / 2 instead: the most a reflection can change e^2 by.
     mesh : dict
         ``nodes``, ``elements``, ``dofs`` and the geometry (m).
     timings : dict of str to float
@@ -432,6 +443,9 @@ def _scales(
         rate=settings.layer_rate / t_y,
         width=None if settings.layer_width is None else settings.layer_width * c_s * t_y,
     )
+    has_layer = layer.start + layer.ramp < 0.5 * domain_radius and settings.layer_rate > 0
+    if settings.thickness is not None:  # a layer: its lateral edge and absorber
+        layer, domain_radius, has_layer = lateral_absorber(settings, c_s, t_y, refined)
     return _Scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
@@ -440,7 +454,7 @@ def _scales(
         refined=refined,
         domain_radius=domain_radius,
         layer=layer,
-        has_layer=layer.start + layer.ramp < 0.5 * domain_radius and settings.layer_rate > 0,
+        has_layer=has_layer,
     )
 
 
@@ -621,17 +635,13 @@ def prepare_dynamic_impact(
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
-    estimate = _checked_estimate(settings)
+    layered = settings.thickness is not None
+    estimate = 0 if layered else _checked_estimate(settings)
     scales = _scales(indenter, half_space, rho, striker, settings)
+    if layered:
+        estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
     clock = [time.perf_counter()]
-    mesh = halfspace_mesh(
-        scales.refined,
-        domain_radius=scales.domain_radius,
-        smallest_size=settings.size * scales.refined,
-        growth=settings.growth,
-        axis_size=min(settings.axis_size, settings.size) * scales.refined,
-        axis_growth=0.1,
-    )
+    mesh = _mesh(settings, scales)
     clock.append(time.perf_counter())
     system = assemble(mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     body = _assemble_body(system, indenter, rho, scales)
@@ -645,12 +655,26 @@ def prepare_dynamic_impact(
         tail_time=settings.tail * scales.inner_radius / scales.rayleigh_wave_speed,
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
-        mesh=_mesh_stats(problem, estimate, scales, settings.size * scales.refined),
+        mesh=_mesh_stats(problem, estimate, scales, settings),
         parameters=_parameters(indenter, half_space, rho, problem, scales),
         timings={
             name: clock[k + 1] - clock[k]
             for k, name in enumerate(("mesh", "assembly", "factorization"))
         },
+    )
+
+
+def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
+    """The half-space mesh, or the layer's (:mod:`.dynamic_layer`) with a thickness."""
+    if settings.thickness is not None:
+        return layer_impact_mesh(settings, scales.refined, scales.domain_radius, MAX_DOFS)
+    return halfspace_mesh(
+        scales.refined,
+        domain_radius=scales.domain_radius,
+        smallest_size=settings.size * scales.refined,
+        growth=settings.growth,
+        axis_size=min(settings.axis_size, settings.size) * scales.refined,
+        axis_growth=0.1,
     )
 
 
@@ -708,10 +732,18 @@ def run_dynamic_impact(
 
 
 def _mesh_stats(
-    problem: ImpactProblem, estimate: int, scales: _Scales, smallest_size: float
+    problem: ImpactProblem, estimate: int, scales: _Scales, settings: DynamicSettings
 ) -> dict[str, float]:
-    """Mesh sizes (counts) and geometry (m)."""
+    """Mesh sizes (counts) and geometry (m); a layer's thickness (m) and base."""
     mesh = problem.system.mesh
+    layer = (
+        {}
+        if settings.thickness is None
+        else {
+            "thickness": settings.thickness,
+            "base": settings.base,
+        }
+    )
     return {
         "nodes": int(mesh.p.shape[1]),
         "elements": int(mesh.t.shape[1]),
@@ -719,8 +751,9 @@ def _mesh_stats(
         "estimated_dofs": estimate,
         "contact_candidates": int(problem.candidates.dofs.size),
         "refined_radius": scales.refined,
-        "domain_radius": scales.domain_radius,
-        "smallest_size": smallest_size,
+        "domain_radius": float(scales.domain_radius),
+        "smallest_size": settings.size * scales.refined,
+        **layer,
     }
 
 
@@ -772,7 +805,8 @@ def _result(
         v_out = -float(history.v[-1])
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
-        reflected = _reflected_fraction(history, energy0, setup.reflection_measured)
+        layered = "thickness" in setup.mesh
+        reflected = _reflected_fraction(history, energy0, setup.reflection_measured, layered)
     return DynamicImpactResult(
         t=t,
         x=history.x,
@@ -798,8 +832,13 @@ def _result(
     )
 
 
-def _reflected_fraction(history: ImpactHistory, energy0: float, measured: bool) -> float:
-    """Body energy inside R_a at the end over the radiated energy (nan if not measured)."""
+def _reflected_fraction(
+    history: ImpactHistory, energy0: float, measured: bool, layered: bool = False
+) -> float:
+    """Body energy inside R_a at the end over the radiated energy, or over ``energy0`` on a
+    layer (nan if not measured)."""
+    if layered:
+        return float(history.energies["inner"][-1] / energy0) if measured else math.nan
     radiated_energy = energy0 - history.energies["striker_kinetic"][-1]
     if measured and radiated_energy > 0:
         return float(history.energies["inner"][-1] / radiated_energy)

@@ -630,6 +630,13 @@ def check_finite_depths(indenter: PowerLawIndenter, depths: ArrayLike) -> None:
         )
 
 
+FINITE_BASE = (
+    "base: a layer at finite strain is bonded only (the lubricated base's exterior stiffness "
+    "beyond the lateral edge is linear); use --base bonded or --model linear"
+)
+"""The refusal of a lubricated layer at finite strain."""
+
+
 def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
     return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
 
@@ -654,7 +661,8 @@ def run_finite_indentation(
         Depths in m, positive, increasing (the entry points check them).
     mesh : MeshSettings, optional
         Default :data:`FINITE_MESH`; the refined zone is ``margin`` times the geometric
-        contact radius (d_max / A)^(1/n).
+        contact radius (d_max / A)^(1/n) (times :meth:`MeshSettings.zone_factor` on a layer,
+        whose ``base`` must be bonded: the lubricated base's exterior spring is linear).
     rubber : RubberModel, optional
         The rubber model (default neo-Hookean, :mod:`.rubber`).
     **options
@@ -669,7 +677,10 @@ def run_finite_indentation(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     check_finite_depths(indenter, depths)
     mesh = FINITE_MESH if mesh is None else mesh
+    if mesh.thickness is not None and mesh.base != "bonded":
+        raise InputError(FINITE_BASE, "base")
     refined = mesh.margin * _geometric_radius(indenter, depths[-1])
+    refined *= mesh.zone_factor(indenter.exponent)  # 1 on the half-space, more on a layer
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined)
     meshed = time.perf_counter()
@@ -684,8 +695,9 @@ def run_finite_indentation(
         "dofs": int(system.n_dofs),
         "contact_candidates": int(curve.steps[0].multipliers.size),
         "refined_radius": refined,
-        "domain_radius": mesh.domain * refined,
+        "domain_radius": float(skfem_mesh.p[0].max()) if mesh.thickness else mesh.domain * refined,
         "smallest_size": mesh.size * refined,
+        **({"thickness": mesh.thickness, "base": mesh.base} if mesh.thickness else {}),
     }
     timings = {
         "mesh": meshed - start,

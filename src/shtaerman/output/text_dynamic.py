@@ -131,6 +131,14 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
     return f"In this case ({details} kg/m^3)"
 
 
+def _body_words(settings: object) -> str:
+    """ "half-space", or the layer of the settings ("20 mm bonded layer")."""
+    thickness = getattr(settings, "thickness", None)
+    if thickness is None:
+        return "half-space"
+    return f"{1e3 * thickness:g} mm {getattr(settings, 'base', '')} layer"
+
+
 def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
     """Sentences for the report's opening section."""
     case = outcome.example
@@ -150,7 +158,8 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
         f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
         f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
-        f"half-space as elastic waves (first-order estimate "
+        f"{_body_words(outcome.settings)} as elastic waves (first-order estimate"
+        f"{'' if outcome.settings.thickness is None else ' for the half-space'} "
         f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f})"
         f"{_loss_trend(outcome)}.",
         _estimate_finding(outcome),

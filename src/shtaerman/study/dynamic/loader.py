@@ -7,7 +7,9 @@ approach velocity (:mod:`.runner`)::
     name = "dynamic"                      # optional; default: the file's stem
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3)
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3),
+                 thickness = 0.02 (m, optional: a layer on a rigid base; default: the
+                 half-space), base = "bonded" or "lubricated" (only with thickness)
     [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
                  figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
                  the findings; default: the middle one, the upper of two)
@@ -69,6 +71,8 @@ class _DynHalfSpace(Table):
     E2: Positive
     nu2: Poisson
     density2: Positive
+    thickness: Positive | None = None
+    base: str | None = None
 
 
 class _Numerics(Table):
@@ -177,6 +181,23 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     return settings
 
 
+def _layer(path: Path, body: _DynHalfSpace) -> DynamicSettings:
+    """The default settings on the table's layer (none: the half-space)."""
+    if body.thickness is None:
+        if body.base is not None:
+            raise StudyError(
+                f"{path}: key 'half_space.base': applies to a layer only; give "
+                "half_space.thickness (m) too"
+            )
+        return DynamicSettings()
+    base = entry("base").default if body.base is None else body.base
+    try:
+        entry("base").check(base)
+        return DynamicSettings(thickness=body.thickness, base=base)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'half_space.base': {error}") from None
+
+
 def _velocities(
     path: Path, key: str, given: float | list[float], example: float | None
 ) -> tuple[float, ...]:
@@ -217,7 +238,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
-    settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
+    settings = _settings(path, "numerics", raw.numerics, _layer(path, raw.half_space))
     try:
         check_ladder(settings)  # the full study runs the ladder; verify --quick does not
     except InputError as error:
@@ -241,10 +262,11 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     ]
 
 
-def dynamic_check_failures(balance: float, reflected: float) -> list[str]:
+def dynamic_check_failures(balance: float, reflected: float, of: str = "the radiated") -> list[str]:
     """What a dynamic run fails of the studies' own checks (:class:`DynamicTolerances`): its
     energy balance error (of M v0^2/2) and the energy reflected back by the far boundary (of
-    the radiated energy), one reason each; [] when both hold (NaN fails)."""
+    the radiated energy; ``of`` names the reference, M v0^2/2 on a layer), one reason each;
+    [] when both hold (NaN fails)."""
     limits, failures = DynamicTolerances(), []
     if not balance <= limits.energy_balance:
         failures.append(
@@ -253,7 +275,7 @@ def dynamic_check_failures(balance: float, reflected: float) -> list[str]:
         )
     if not reflected <= limits.reflected:
         failures.append(
-            f"reflected energy {reflected:.1e} of the radiated exceeds {limits.reflected:g}: "
+            f"reflected energy {reflected:.1e} of {of} exceeds {limits.reflected:g}: "
             "the far boundary sends the waves back to the contact (domain_factor or layer_rate "
             "do not absorb them)"
         )

@@ -1,0 +1,185 @@
+"""The dynamic impact on a layer of thickness H on a rigid base: its mesh and lateral absorber.
+
+The layer 0 <= r <= L, -H <= z <= 0 (``meshes/layer.geo``) is meshed like the dynamic
+half-space near the contact (the same size field from the refined zone and toward the axis),
+with at least ``THICKNESS_ELEMENTS`` elements through the thickness at the contact (scaled
+with the mesh size) and at most ``LARGEST_THICKNESS_SIZE`` times fewer anywhere. The base
+reflects every wave: bonded, u = 0; lubricated, u_z = 0 (free to slide).
+
+Waves guided along the layer stay resolved out to its edge (the element size is capped by the
+thickness), so unlike the half-space's graded fan the mesh absorbs nothing: a layer always
+has the lateral absorber of :mod:`.absorbing` (zeta_max t_y = ``layer_rate``, or
+``LATERAL_RATE`` when it is 0), a function of r alone from R_a = ``layer_start`` c_s t_y over
+the width ``layer_width`` c_s t_y. The edge r = L lies beyond it and at least
+``LAYER_EXTENT`` thicknesses out (clamped, or the exterior spring of a lubricated base,
+:mod:`.elasticity`). Where the absorber would lie more than ``MAX_LATERAL`` thicknesses out
+(a nearly massless layer: fast waves carrying nothing), the layer has no absorber and its
+edge is at ``LAYER_EXTENT`` thicknesses.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Protocol
+
+import numpy as np
+from skfem import MeshTri
+
+from ..theory.layer import BASES
+from ..validation import InputError, validate_positive
+from .absorbing import AbsorbingLayer
+from .mesh import (
+    DOFS_PER_ELEMENT,
+    LARGEST_THICKNESS_SIZE,
+    LAYER_EXTENT,
+    MAX_THICKNESS,
+    MIN_THICKNESS,
+    THICKNESS_ELEMENTS,
+    layer_mesh,
+)
+
+
+class DynamicSettings(Protocol):
+    """The fields of :class:`.dynamic_contact.DynamicSettings` a layer reads."""
+
+    thickness: float
+    base: str
+    size: float
+    growth: float
+    axis_size: float
+    layer_start: float
+    layer_ramp: float
+    layer_rate: float
+    layer_width: float | None
+
+
+__all__ = [
+    "LATERAL_RATE",
+    "MAX_LATERAL",
+    "check_layer",
+    "lateral_absorber",
+    "layer_dofs",
+    "layer_impact_mesh",
+]
+
+LATERAL_RATE = 10.0
+"""Peak damping rate zeta_max t_y of a layer's lateral absorber when ``layer_rate`` is 0."""
+MAX_LATERAL = 3000.0
+"""Farthest edge of the lateral absorber, in thicknesses (beyond it: no absorber)."""
+_SIZE = 1.0 / 40.0
+"""The dynamic default mesh size (``DynamicSettings.size``), at which the layer has
+``THICKNESS_ELEMENTS`` elements through its thickness at the contact."""
+_TRIANGLES_PER_SQUARE = 2.3
+"""Triangles of gmsh per area h^2 (the calibration of :mod:`.mesh`'s layer estimate)."""
+_AXIS_GROWTH = 0.1
+"""Growth of the element size from the axis (as on the dynamic half-space)."""
+
+
+def check_layer(thickness: float | None, base: str) -> None:
+    """Raise InputError unless ``thickness`` is None or > 0 (m) and ``base`` a known base."""
+    if thickness is not None:
+        validate_positive("thickness", thickness, "m")
+    if base not in BASES:
+        raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
+
+
+def lateral_absorber(
+    settings: DynamicSettings, shear_wave_speed: float, t_y: float, refined: float
+) -> tuple[AbsorbingLayer, float, bool]:
+    """The lateral absorber of a layer, its edge radius L in m and whether it is on.
+
+    ``settings`` is a ``DynamicSettings`` with a thickness; ``shear_wave_speed`` in m/s,
+    ``t_y`` the quasi-static impact duration in s, ``refined`` the refined radius in m.
+    """
+    scale = shear_wave_speed * t_y
+    rate = settings.layer_rate if settings.layer_rate > 0 else LATERAL_RATE
+    width = None if settings.layer_width is None else settings.layer_width * scale
+    layer = AbsorbingLayer(
+        start=settings.layer_start * scale,
+        ramp=settings.layer_ramp * scale,
+        rate=rate / t_y,
+        width=width,
+        lateral=True,
+    )
+    end = layer.start + (2.0 * layer.ramp if width is None else width)
+    thickness = settings.thickness
+    static = refined + LAYER_EXTENT * thickness
+    if end > MAX_LATERAL * thickness:
+        return layer, static, False
+    return layer, max(static, end), True
+
+
+def _check_thickness(thickness: float, refined: float) -> None:
+    """InputError unless ``thickness`` (m) is MIN_THICKNESS to MAX_THICKNESS ``refined`` (m)."""
+    if not MIN_THICKNESS <= thickness / refined <= MAX_THICKNESS:
+        raise InputError(
+            f"thickness: must lie in [{MIN_THICKNESS * refined:.3g}, "
+            f"{MAX_THICKNESS * refined:.3g}] m for this impact ({MIN_THICKNESS:g} to "
+            f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
+            f"half-space, run without a thickness), got {thickness!r}",
+            "thickness",
+        )
+
+
+def _thickness_size(settings: DynamicSettings) -> float:
+    """Element size through the thickness at the contact, m."""
+    return settings.thickness / THICKNESS_ELEMENTS * settings.size / _SIZE
+
+
+def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
+    """Unknowns of the layer mesh estimated before meshing: a quadrature of Int dA / h^2 over
+    the rectangle, as :func:`.mesh.estimate_elements` (within about 30 %).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS`` refined radii.
+    """
+    _check_thickness(settings.thickness, refined)
+    s, g = settings.size, settings.growth
+    thickness = settings.thickness / refined
+    cap = _thickness_size(settings) / refined
+    length = extent / refined
+    x = np.concatenate([np.linspace(0.0, 1.0, 65), 1.0 + np.geomspace(1e-3, length - 1.0, 200)])
+    y = -np.concatenate([[0.0], np.geomspace(1e-4 * thickness, thickness, 120)])
+    xm, ym = 0.5 * (x[1:] + x[:-1]), 0.5 * (y[1:] + y[:-1])
+    xx, yy = np.meshgrid(xm, ym, indexing="ij")
+    distance = np.hypot(np.maximum(xx - 1.0, 0.0), yy)
+    size = np.minimum(LARGEST_THICKNESS_SIZE * cap, min(s, cap) + g * distance)
+    area = np.outer(np.diff(x), -np.diff(y))
+    axis = min(settings.axis_size, s)
+    grading = 3.67 * math.log(max(min(s, cap) / axis, 1.0)) / _AXIS_GROWTH**2
+    elements = _TRIANGLES_PER_SQUARE * np.sum(area / size**2) + grading + 167.0
+    return round(DOFS_PER_ELEMENT * float(elements))
+
+
+def layer_impact_mesh(
+    settings: DynamicSettings, refined: float, extent: float, max_dofs: int
+) -> MeshTri:
+    """The layer mesh of a dynamic impact (``settings`` a ``DynamicSettings`` with a
+    thickness; ``refined`` and ``extent`` in m).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        Before meshing, if the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS``
+        refined radii, or the estimated mesh exceeds ``max_dofs``.
+    """
+    thickness = settings.thickness
+    dofs = layer_dofs(settings, refined, extent)
+    if dofs > max_dofs:
+        raise InputError(
+            f"the layer mesh would have about {dofs} dofs, above the limit {max_dofs}; "
+            f"coarsen size (now {settings.size!r}) or growth (now {settings.growth!r})"
+        )
+    return layer_mesh(
+        refined,
+        thickness,
+        lateral_extent=extent,
+        smallest_size=settings.size * refined,
+        growth=settings.growth,
+        axis_size=min(settings.axis_size, settings.size) * refined,
+        axis_growth=_AXIS_GROWTH,
+        thickness_size=_thickness_size(settings),
+        bonded=settings.base == "bonded",
+    )
