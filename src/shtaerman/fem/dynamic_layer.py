@@ -3,7 +3,8 @@
 The layer 0 <= r <= L, -H <= z <= 0 (``meshes/layer.geo``) is meshed like the dynamic
 half-space near the contact (the same size field from the refined zone and toward the axis),
 with at least ``THICKNESS_ELEMENTS`` elements through the thickness at the contact (scaled
-with the mesh size) and at most ``LARGEST_THICKNESS_SIZE`` times fewer anywhere. The base
+with the mesh size; more than the static layer's, for the waves through it) and at most
+``LARGEST_THICKNESS_SIZE`` times fewer anywhere. The base
 reflects every wave: bonded, u = 0; lubricated, u_z = 0 (free to slide).
 
 Waves guided along the layer stay resolved out to its edge (the element size is capped by the
@@ -30,11 +31,9 @@ from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .mesh import (
     DOFS_PER_ELEMENT,
-    LARGEST_THICKNESS_SIZE,
     LAYER_EXTENT,
     MAX_THICKNESS,
     MIN_THICKNESS,
-    THICKNESS_ELEMENTS,
     layer_mesh,
 )
 
@@ -62,6 +61,10 @@ __all__ = [
     "layer_impact_mesh",
 ]
 
+THICKNESS_ELEMENTS = 8.0
+"""Elements through the thickness at the contact at the default size."""
+LARGEST_THICKNESS_SIZE = 4.0
+"""Largest element size over the size through the thickness at the contact."""
 LATERAL_RATE = 10.0
 """Peak damping rate zeta_max t_y of a layer's lateral absorber when ``layer_rate`` is 0."""
 MAX_LATERAL = 3000.0
@@ -181,5 +184,6 @@ def layer_impact_mesh(
         axis_size=min(settings.axis_size, settings.size) * refined,
         axis_growth=_AXIS_GROWTH,
         thickness_size=_thickness_size(settings),
+        largest_size=LARGEST_THICKNESS_SIZE * _thickness_size(settings),
         bonded=settings.base == "bonded",
     )

@@ -164,6 +164,7 @@ def layer_mesh(
     axis_size: float,
     axis_growth: float,
     thickness_size: float,
+    largest_size: float | None = None,
     bonded: bool = True,
 ) -> MeshTri:
     """Mesh the axisymmetric layer 0 <= r <= ``lateral_extent``, -``thickness`` <= z <= 0.
@@ -179,7 +180,7 @@ def layer_mesh(
     thickness_size : float
         Element size in m at the refined zone, at most (several elements through the
         thickness at the contact); it grows by ``growth`` per unit distance up to
-        ``LARGEST_THICKNESS_SIZE`` times itself.
+        ``largest_size`` (m; default ``LARGEST_THICKNESS_SIZE`` times itself).
     bonded : bool
         True: the base z = -H joins the clamped boundary ``"far"``; False: it is the boundary
         :data:`BASE` (the solver then holds only u_z there).
@@ -198,7 +199,7 @@ def layer_mesh(
         "axis_growth": axis_growth,
         "thickness": thickness,
         "thickness_size": thickness_size,
-        "largest_size": LARGEST_THICKNESS_SIZE * thickness_size,
+        "largest_size": largest_size or LARGEST_THICKNESS_SIZE * thickness_size,
     }
     scale = refined_radius
     rates = ("growth", "axis_growth")
