@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 import math
 
+import numpy as np
 import pytest
 
 from shtaerman.cli import main
@@ -146,9 +147,16 @@ def test_a_thickness_the_mesh_cannot_resolve_is_refused_naming_it(tmp_path):
 # --- what a layer does ------------------------------------------------------------------------
 
 
-def test_the_force_ratio_grows_as_the_layer_thins_and_the_impact_stiffens(tmp_path):
+@pytest.fixture(scope="module")
+def bonded_pair(tmp_path_factory):
+    """The coarse paper example on bonded layers of H / a_c = 1 and 10 (nu2 = 0.3)."""
     extra = '[layer]\nbase = "bonded"\n[sweep]\nthickness_ratio = [1.0, 10.0]\n'
-    thin, thick = (run_contact_study(s) for s in load_study(_write(tmp_path, extra, nu2=0.3)))
+    path = _write(tmp_path_factory.mktemp("pair"), extra, nu2=0.3)
+    return tuple(run_contact_study(study) for study in load_study(path))
+
+
+def test_the_force_ratio_grows_as_the_layer_thins_and_the_impact_stiffens(bonded_pair):
+    thin, thick = bonded_pair
     # bonded, nu 0.3: about 3.0 at H/a_c = 1 and 1.10 at 10 (FEM_NOTES "Layer"); a layer on a
     # rigid base is stiffer than the half-space, and more so the thinner it is
     assert thin.layer.force_ratio > thick.layer.force_ratio > 1.02
@@ -254,3 +262,27 @@ def test_the_shipped_layer_sweeps_span_the_question():
     assert spec.axes["nu2"] == [0.3, 0.45, 0.5]
     assert spec.axes["base"] == ["bonded", "lubricated"]
     assert math.isclose(spec.parameters["velocity"], 3.0)
+
+
+# --- the report -------------------------------------------------------------------------------
+
+
+def test_a_layer_study_reports_its_departure_as_a_finding_with_the_map(bonded_pair, tmp_path):
+    from PIL import Image
+
+    from shtaerman.output import text_contact
+    from shtaerman.plots.gallery import study_figures
+    from shtaerman.plots.layer import LAYER_MAP_CAPTION
+
+    thin = bonded_pair[0]
+    document = text_contact.entry(thin, files={})
+    assert document["layer"]["force_ratio"] == thin.layer.force_ratio
+    assert document["layer"]["restitution"] is None  # the dynamic impact on a layer: not here
+    (finding,) = text_contact.findings("pad", document)
+    assert "layer on a bonded rigid base (H / a_c = 1," in finding
+    assert f"carries {100 * (thin.layer.force_ratio - 1):.3g} % ±" in finding
+    assert text_contact.summary_row("pad", document) is None  # no error against Shtaerman
+    figures = study_figures(thin, tmp_path)
+    image = Image.open(figures[LAYER_MAP_CAPTION]).convert("L")
+    assert image.size == (1280, 920)
+    assert np.unique(np.asarray(image)).size > 50  # lines, bands and text, not a blank canvas

@@ -200,8 +200,11 @@ def timing_text(study: Mapping[str, Any]) -> str:
     return "; ".join(parts)
 
 
-def summary_row(name: str, study: Mapping[str, Any]) -> list[str]:
-    """The study's row of the contact cross-check: worst contact errors and impact differences."""
+def summary_row(name: str, study: Mapping[str, Any]) -> list[str] | None:
+    """The study's row of the contact cross-check: worst contact errors and impact differences
+    (None on a layer: its departures from Shtaerman are its findings, not errors)."""
+    if study.get("layer"):
+        return None
     errors = study["contact"]["errors"]
     differences = [study["differences"][v] for v in ("fem_fitted", "fem_tabulated")]
     worst = {
