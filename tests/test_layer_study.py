@@ -81,6 +81,13 @@ def test_a_half_space_study_has_no_layer(tmp_path):
     assert study.layer is None and study.mesh.thickness is None
 
 
+def test_a_layer_that_is_no_table_is_refused_naming_the_table(tmp_path):
+    path = tmp_path / "top.toml"
+    path.write_text("layer = 5\n" + STUDY.format(E1="2e11", nu2=0.5), "utf-8")
+    with pytest.raises(StudyError, match=r"key 'layer': expected a \[layer\] table: .*, got 5$"):
+        load_study(path)
+
+
 def test_a_top_level_thickness_goes_to_the_layer_table(tmp_path):
     path = tmp_path / "top.toml"
     path.write_text("thickness_ratio = 2.0\n" + STUDY.format(E1="2e11", nu2=0.5), "utf-8")
@@ -121,6 +128,7 @@ def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
             r"key 'sweep\.thickness_ratio': expected a number \[0\.05, 500\]",
         ),
         ("[layer]\nthicknes = 0.02\n", r"key 'layer\.thicknes'.*did you mean 'thickness'"),
+        ("[layer.thickness]\nvalue = 0.02\n", r"key 'layer\.thickness': expected a number > 0"),
     ],
 )
 def test_the_loader_refuses_a_bad_layer_in_one_line(tmp_path, extra, message):
@@ -286,3 +294,15 @@ def test_a_layer_study_reports_its_departure_as_a_finding_with_the_map(bonded_pa
     image = Image.open(figures[LAYER_MAP_CAPTION]).convert("L")
     assert image.size == (1280, 920)
     assert np.unique(np.asarray(image)).size > 50  # lines, bands and text, not a blank canvas
+
+
+def test_the_template_s_layer_block_loads_once_uncommented(tmp_path):
+    path = tmp_path / "pad.toml"
+    assert main(["init-study", str(path)]) == 0
+    lines = path.read_text(encoding="utf-8").splitlines()
+    start = lines.index(next(line for line in lines if line.startswith("# [layer]")))
+    block = [line.removeprefix("# ") for line in lines[start : start + 5]]  # comments stay
+    path.write_text("\n".join(lines + block) + "\n", encoding="utf-8")
+    (study,) = load_study(path)
+    assert study.layer.thickness_ratio == 5.0 and study.mesh.base == "bonded"
+    assert study.mesh.thickness == pytest.approx(5.0 * _half_space_a_c(), rel=1e-12)

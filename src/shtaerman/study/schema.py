@@ -57,6 +57,7 @@ EXPECTED = {
     "name": "a string",
     "description": "a string",
     "base": 'one of "bonded", "lubricated"',
+    "layer": "a [layer] table: thickness (m) or thickness_ratio (H / a_c), and base",
 }
 """What each leaf key expects, for the error messages (tolerances: a number in (0, 1])."""
 NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]{0,99}")
