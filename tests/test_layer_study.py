@@ -145,11 +145,32 @@ def test_verify_refuses_a_bad_layer_with_exit_code_2(tmp_path, capsys):
     assert len(error.splitlines()) == 1
 
 
-def test_a_thickness_the_mesh_cannot_resolve_is_refused_naming_it(tmp_path):
-    (study,) = load_study(_write(tmp_path, "[layer]\nthickness = 1e-6\n"))
-    with pytest.raises(InputError, match=r"^thickness: must lie in \[") as caught:
-        run_contact_study(study, quick=True)
-    assert "\n" not in str(caught.value)
+@pytest.mark.parametrize("thickness", [1e-6, 30.0])
+def test_a_thickness_the_mesh_cannot_take_is_refused_at_load(tmp_path, thickness):
+    path = _write(tmp_path, f"[layer]\nthickness = {thickness}\n")
+    with pytest.raises(
+        StudyError, match=r"pad\.toml: thickness: must lie in \[0\.000261, 26\.1\] m"
+    ):
+        load_study(path)
+    text = "thickness = [1e-6]"
+    with pytest.raises(InputError, match=r"case 0 \(thickness = 1e-06\): thickness: must lie in"):
+        parse_sweep(SWEEP.format(parameters="", axes=text))
+
+
+def test_the_load_time_bounds_are_the_mesh_s(tmp_path):
+    from dataclasses import replace
+
+    from shtaerman.study.contact.indentation import run_indentation
+
+    extra = "[contact]\ndepths = [1e-3, 4e-3]\n[layer]\nthickness = 1e-6\n"
+    with pytest.raises(StudyError) as at_load:
+        load_study(_write(tmp_path, extra))
+    (study,) = load_study(_write(tmp_path, extra.replace("1e-6", "0.01")))
+    mesh = replace(study.mesh, thickness=1e-6)
+    with pytest.raises(InputError) as at_run:  # refused before meshing
+        run_indentation(study.indenter, study.half_space, [1e-3, 4e-3], mesh)
+    bounds = str(at_run.value).split(" m at ")[0].removeprefix("thickness: must lie in ")
+    assert f"thickness: must lie in {bounds} m at this study's depths" in str(at_load.value)
 
 
 # --- what a layer does ------------------------------------------------------------------------

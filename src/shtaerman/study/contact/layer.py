@@ -22,12 +22,21 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import MAX_THICKNESS, MIN_THICKNESS, MeshSettings
+from ...theory.indenter import PowerLawIndenter
+from ...validation import InputError
 from ..checks import Check
 from .accuracy import AccuracyResult
 from .contact_law import FemContactLaw
 
-__all__ = ["LEVELS", "LayerFindings", "LayerSpec", "layer_checks", "layer_findings"]
+__all__ = [
+    "LEVELS",
+    "LayerFindings",
+    "LayerSpec",
+    "check_thickness",
+    "layer_checks",
+    "layer_findings",
+]
 
 LEVELS = (0.01, 0.05)
 """Departures P / P_Shtaerman - 1 the findings and the map mark: 1 % and 5 %."""
@@ -54,6 +63,23 @@ class LayerSpec:
     def on(self, mesh: MeshSettings) -> MeshSettings:
         """``mesh`` on this (resolved) layer."""
         return replace(mesh, thickness=self.thickness, base=self.base)
+
+
+def check_thickness(mesh: MeshSettings, indenter: PowerLawIndenter, deepest: float) -> None:
+    """Refuse (InputError naming the thickness) the layer of ``mesh`` (``mesh.thickness`` m)
+    if its mesh does not take it at the deepest depth ``deepest`` m: the mesh's own bounds,
+    :data:`~shtaerman.fem.mesh.MIN_THICKNESS` .. ``MAX_THICKNESS`` refined radii."""
+    thickness = mesh.thickness
+    geometric = (deepest / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
+    refined = mesh.margin * geometric * mesh.zone_factor(indenter.exponent)
+    low, high = MIN_THICKNESS * refined, MAX_THICKNESS * refined
+    if not low <= thickness <= high:
+        raise InputError(
+            f"thickness: must lie in [{low:.3g}, {high:.3g}] m at this study's depths "
+            f"({MIN_THICKNESS:g} to {MAX_THICKNESS:g} refined radii: thinner is not resolved, "
+            f"thicker is the half-space, run without a layer), got {thickness!r}",
+            "thickness",
+        )
 
 
 @dataclass(frozen=True)

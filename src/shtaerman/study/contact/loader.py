@@ -69,7 +69,7 @@ from ..schema import (
     validate_name,
     validated,
 )
-from .layer import LayerSpec
+from .layer import LayerSpec, check_thickness
 
 __all__ = ["QUICK_MESH", "Study", "Tolerances", "load_contact", "on_layer"]
 
@@ -249,13 +249,24 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
 
 
 def on_layer(study: Study) -> Study:
-    """``study`` with its layer resolved (H and H / a_c at its impact's x_c) and meshed."""
+    """``study`` with its layer resolved (H and H / a_c at its impact's x_c) and meshed.
+
+    Raises
+    ------
+    InputError
+        If the thickness is outside what the mesh resolves at the study's deepest depth.
+    """
     if study.layer is None:
         return study
+    from .runner import DEPTH_OVERSHOOT  # the depths reach past x_c (runner imports this module)
+
     modulus = effective_modulus(study.striker, study.half_space)
     exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
     layer = study.layer.resolved(float(exact.a_c))
+    deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
     mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
+    for settings in (mesh, quick):
+        check_thickness(settings, study.indenter, deepest)
     return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
 
 
