@@ -128,6 +128,10 @@ def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
             r"key 'sweep\.thickness_ratio': expected a number \[0\.05, 500\]",
         ),
         ("[layer]\nthicknes = 0.02\n", r"key 'layer\.thicknes'.*did you mean 'thickness'"),
+        (
+            "[convergence]\nsizes = [0.02, 0.014]\n[sweep]\nthickness = [0.01, 0.02]\n",
+            r"key 'convergence': expected no mesh-convergence study on a layer",
+        ),
         ("[layer.thickness]\nvalue = 0.02\n", r"key 'layer\.thickness': expected a number > 0"),
     ],
 )

@@ -231,16 +231,25 @@ def _build(path: Path, raw: _StudyFile) -> Study:
 def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
     """The study file's layer as given (thickness or H / a_c, unresolved), or None."""
     layer, swept = raw.layer, raw.sweep.chosen()[0] if raw.sweep is not None else None
+    swept = swept if swept in ("thickness", "thickness_ratio") else None
+    if layer is None and swept is None:
+        return None
+    if raw.convergence.sizes:
+        raise StudyError(
+            f"{path}: key 'convergence': expected no mesh-convergence study on a layer (it "
+            "measures errors against Shtaerman's half-space, from which a layer departs; the "
+            "3-mesh ladder gives a layer's error estimates)"
+        )
     if layer is None:
-        return LayerSpec() if swept in ("thickness", "thickness_ratio") else None
+        return LayerSpec()
     given = [key for key in ("thickness", "thickness_ratio") if getattr(layer, key) is not None]
-    if len(given) > 1 or (given and swept in ("thickness", "thickness_ratio")):
+    if len(given) > 1 or (given and swept):
         where = f"sweep.{swept}" if len(given) == 1 else "layer.thickness_ratio"
         raise StudyError(
             f"{path}: key '{where}': expected the layer's thickness once: layer.thickness (m), "
             "layer.thickness_ratio (H / a_c) or one of them in [sweep]"
         )
-    if not given and swept not in ("thickness", "thickness_ratio"):
+    if not given and not swept:
         raise StudyError(
             f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
             f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
