@@ -315,6 +315,11 @@ def test_a_layer_study_reports_its_departure_as_a_finding_with_the_map(bonded_pa
     assert "layer on a bonded rigid base (H / a_c = 1," in finding
     assert f"carries {100 * (thin.layer.force_ratio - 1):.3g} % ±" in finding
     assert text_contact.summary_row("pad", document) is None  # no error against Shtaerman
+    impact = text_contact.tables(document)[0]
+    assert [row[0] for row in impact["rows"]][::2] == [
+        "half-space (Shtaerman, Ateb)",
+        "layer: FEM P(x) tabulated, ODE",
+    ]
     figures = study_figures(thin, tmp_path)
     image = Image.open(figures[LAYER_MAP_CAPTION]).convert("L")
     assert image.size == (1280, 920)

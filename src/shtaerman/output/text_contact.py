@@ -99,10 +99,19 @@ def entry(
     return result
 
 
+LAYER_VARIANTS = {
+    "analytic": "half-space (Shtaerman, Ateb)",
+    "fem_fitted": "layer: FEM power-law fit, Ateb",
+    "fem_tabulated": "layer: FEM P(x) tabulated, ODE",
+}
+"""The variants' labels on a layer: the analytic impact is the half-space's."""
+
+
 def _impact_table(study: Mapping[str, Any]) -> dict[str, object]:
+    variants = LAYER_VARIANTS if study.get("layer") else VARIANTS
     rows = [
         [label] + [number(study["impact"][variant][key], ".6g") for key in IMPACT_KEYS]
-        for variant, label in VARIANTS.items()
+        for variant, label in variants.items()
         if variant in study["impact"]
     ]
     header = ["impact", *(f"{k} ({UNITS[k]})" for k in IMPACT_KEYS)]
