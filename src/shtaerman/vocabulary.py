@@ -4,7 +4,7 @@ The name is the study-file and sweep key and the Python keyword (snake_case); th
 the kebab-case of the same word (the interface contract keeps ``--E2``, ``--nu2``, ...). Study
 files, sweeps, their validation and the documentation's parameter table come from
 :data:`VOCABULARY`; defaults that depend on the computation are given per kind (``impact``,
-``contact``, ``finite-strain``, ``dynamic``).
+``contact``, ``finite-strain``, ``dynamic``, ``layer``).
 """
 
 from __future__ import annotations
