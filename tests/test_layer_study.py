@@ -336,3 +336,15 @@ def test_the_template_s_layer_block_loads_once_uncommented(tmp_path):
     (study,) = load_study(path)
     assert study.layer.thickness_ratio == 5.0 and study.mesh.base == "bonded"
     assert study.mesh.thickness == pytest.approx(5.0 * _half_space_a_c(), rel=1e-12)
+
+
+def test_the_reference_map_is_what_the_layer_study_computes(bonded_pair):
+    from shtaerman.study.contact.layer import REFERENCE_MAP, REFERENCE_THICKNESS
+
+    thin, thick = bonded_pair  # H / a_c = 1 and 10, bonded, nu2 = 0.3, coarse mesh
+    measured = dict(zip(REFERENCE_THICKNESS, REFERENCE_MAP[("bonded", 0.3)], strict=True))
+    # the reference was measured at the default mesh; the coarse ladder (3k dofs) is within
+    # its own error estimate of it
+    for outcome, h in ((thin, 1.0), (thick, 10.0)):
+        error = max(outcome.layer.force_ratio_error, 1e-4)
+        assert outcome.layer.force_ratio == pytest.approx(measured[h], rel=2 * error)

@@ -36,6 +36,8 @@ class MapSeries:
     base: str = "bonded"
     points: bool = True
     """Markers at the values (False: a plain line, e.g. a curve over the depths)."""
+    reference: bool = False
+    """A thin grey-toned background line (measured elsewhere), not a result of this run."""
 
 
 @styled
@@ -73,8 +75,14 @@ def plot_layer_map(
         excess = np.asarray(line.force_ratio, dtype=float) - 1.0
         shown = excess > 0
         marker = _MARKERS[index % len(_MARKERS)] if line.points else ""
+        style = {"lw": 0.9, "alpha": 0.45} if line.reference else {"lw": 2.0}
         drawn = axes.loglog(
-            h[shown], excess[shown], ls=_STYLES.get(line.base, "-"), marker=marker, label=label
+            h[shown],
+            excess[shown],
+            ls=_STYLES.get(line.base, "-"),
+            marker=marker,
+            label=label,
+            **style,
         )
         if line.error is not None and line.points:
             error = np.asarray(line.error, dtype=float) * (1.0 + excess)
@@ -93,5 +101,5 @@ def plot_layer_map(
     plain_log(axes.xaxis)
     axes.set_xlabel("Layer thickness / half-space contact radius, H / a")
     axes.set_ylabel(r"$P\,/\,P_{\mathrm{Shtaerman}} - 1$ at the same depth")
-    axes.legend(loc="lower left", ncols=2)
+    axes.legend(loc="lower left", ncols=2, fontsize=7)
     return save(figure, path, figure_format)

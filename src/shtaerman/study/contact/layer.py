@@ -40,6 +40,27 @@ __all__ = [
 
 LEVELS = (0.01, 0.05)
 """Departures P / P_Shtaerman - 1 the findings and the map mark: 1 % and 5 %."""
+REFERENCE_EXPONENT = 1.5
+"""The indenter exponent n of :data:`REFERENCE_MAP`."""
+REFERENCE_THICKNESS = (0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0)
+"""H / a_c of :data:`REFERENCE_MAP`."""
+# fmt: off
+REFERENCE_MAP = {
+    ("bonded", 0.3): (30.0016, 14.9627, 5.93703, 3.00689, 1.73734, 1.21767, 1.09765, 1.04628,
+                      1.01796, 1.00892, 1.00446),
+    ("bonded", 0.45): (71.8964, 33.3697, 10.3979, 4.16324, 2.00426, 1.26928, 1.11775, 1.05519,
+                       1.02129, 1.01055, 1.00526),
+    ("bonded", 0.5): (1477.95, 204.155, 20.5443, 5.47300, 2.21019, 1.30190, 1.12988, 1.06046,
+                      1.02324, 1.01150, 1.00574),
+    ("lubricated", 0.5): (24.5172, 12.2619, 4.92951, 2.56747, 1.58010, 1.17847, 1.08146,
+                          1.03894, 1.01520, 1.00757, 1.00379),
+}
+# fmt: on
+"""P / P_Shtaerman at x_c over :data:`REFERENCE_THICKNESS` for n = 3/2 (any A and E2: the
+ratio of a power-law indenter depends on H / a, n, nu2 and the base alone), measured by
+``sweeps/layer.toml`` at the default mesh (estimated errors below 7e-4 of the ratio; a
+lubricated layer's ratio is the same for nu2 = 0.3-0.5 to 1e-5). The layer map of a study with
+n = 3/2 draws them as reference lines."""
 
 
 @dataclass(frozen=True)
