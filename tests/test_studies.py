@@ -29,6 +29,7 @@ def test_shipped_studies_cover_the_issue():
         "finite-strain-nu0.5",
         "finite-strain-nu0.3",
         "hertz",
+        "layer",
         "paper",
         "table4-A2",
         "table4-A4",

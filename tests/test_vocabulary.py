@@ -89,7 +89,7 @@ def test_parameter_table_has_one_row_per_input():
     row = next(line for line in table if line.startswith("| `time_steps` "))
     assert "`--time-steps`" in row and "| 200 |" in row and "formerly `steps`" in row
     row = next(line for line in table if line.startswith("| `mesh_size` "))
-    assert "0.025 (dynamic)" in row and "0.00666667 (contact)" in row
+    assert "0.025 (dynamic)" in row and "0.00666667 (contact, layer)" in row
 
 
 # --- the defaults: declared once, the same through every entry point ------------------------------
@@ -111,7 +111,7 @@ def test_dynamic_defaults_are_the_settings_defaults():
             assert item.default_for("dynamic") == getattr(settings, field), name
 
 
-@pytest.mark.parametrize("kind", ["impact", "contact", "finite-strain", "dynamic"])
+@pytest.mark.parametrize("kind", ["impact", "contact", "finite-strain", "dynamic", "layer"])
 def test_sweep_parameters_are_the_vocabulary(kind):
     parameters = get_kind(kind).parameters
     assert list(parameters) == list(inputs_of(kind))

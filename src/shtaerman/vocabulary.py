@@ -4,7 +4,7 @@ The name is the study-file and sweep key and the Python keyword (snake_case); th
 the kebab-case of the same word (the interface contract keeps ``--E2``, ``--nu2``, ...). Study
 files, sweeps, their validation and the documentation's parameter table come from
 :data:`VOCABULARY`; defaults that depend on the computation are given per kind (``impact``,
-``contact``, ``finite-strain``, ``dynamic``).
+``contact``, ``finite-strain``, ``dynamic``, ``layer``).
 """
 
 from __future__ import annotations
@@ -37,9 +37,9 @@ __all__ = [
     "suggestion",
 ]
 
-KIND_NAMES = ("impact", "contact", "finite-strain", "dynamic")
+KIND_NAMES = ("impact", "contact", "finite-strain", "dynamic", "layer")
 """The computations an input can belong to (study and sweep kinds)."""
-FEM_KINDS = ("contact", "finite-strain", "dynamic")
+FEM_KINDS = ("contact", "finite-strain", "dynamic", "layer")
 
 
 class DeprecatedKeyWarning(FutureWarning):
@@ -318,7 +318,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "striker mass M",
         "Striker mass M",
         0.7,
-        ("impact", "finite-strain", "dynamic"),
+        ("impact", "finite-strain", "dynamic", "layer"),
     ),
     Entry(
         "velocity",
@@ -326,7 +326,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "approach velocity v0",
         "Approach velocity v0",
         3.0,
-        ("impact", "finite-strain", "dynamic"),
+        ("impact", "finite-strain", "dynamic", "layer"),
         old_names=("velocities",),
         max_items=MAX_VELOCITIES,
     ),
@@ -354,7 +354,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "striker Young's modulus",
         "Striker Young's modulus E1",
         2e11,
-        ("impact",),
+        ("impact", "layer"),
         infinite=True,
         old_names=("youngs_modulus",),
     ),
@@ -364,7 +364,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "striker Poisson's ratio",
         "Striker Poisson's ratio \N{GREEK SMALL LETTER NU}1",
         0.25,
-        ("impact",),
+        ("impact", "layer"),
         valid=POISSON,
         old_names=("poisson_ratio",),
     ),
@@ -460,9 +460,20 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "thickness",
         "m",
-        "thickness H of a layer on a rigid base",
+        "thickness H of a layer on a rigid base (a contact study's [layer] table too)",
         "Layer thickness H",
         None,
+        ("layer",),
+    ),
+    Entry(
+        "thickness_ratio",
+        "",
+        "layer thickness H / a_c, the half-space contact radius at the impact's x_c (instead "
+        "of thickness; a contact study's [layer] table too)",
+        "Layer thickness H / a_c",
+        None,
+        ("layer",),
+        valid=Range(0.05, 500.0, low_open=False),
     ),
     Entry(
         "base",
@@ -470,6 +481,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "the layer's rigid base: bonded (u = 0) or lubricated (u_z = 0, free to slide)",
         "Layer base",
         "bonded",
+        ("layer",),
         valid=None,
         type="str",
         choices=("bonded", "lubricated"),
@@ -534,7 +546,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "element size growth away from the axis",
         "Element size growth from the first contact point",
         0.1,
-        ("contact", "finite-strain"),
+        ("contact", "finite-strain", "layer"),
         valid=FRACTION,
         by_kind={"finite-strain": 0.15},
     ),
@@ -543,7 +555,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "refuse a mesh estimated (before meshing) above this many unknowns",
         "largest mesh (dofs)",
         400_000.0,
-        ("contact", "finite-strain"),
+        ("contact", "finite-strain", "layer"),
     ),
     _numeric(
         "time_steps",

@@ -64,8 +64,14 @@ impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against t
 # [convergence]             # a mesh-convergence study: sizes refine the whole mesh, decreasing
 # sizes = [0.01887, 0.01333, 0.00943]   # (--quick runs the coarsest three)
 
+# [layer]                   # a pad of thickness H on a rigid base instead of the half-space
+# thickness_ratio = 5.0     # H / a_c (a_c: the half-space contact radius at x_c), or
+#                           # thickness = 0.02 (m)
+# base = "bonded"           # or "lubricated" (free to slide on the base)
+
 # [sweep]                   # run the study once per value of ONE parameter: shape_coefficient,
-# velocity = [1.0, 2.0, 3.0]  # exponent, mass or velocity (each run's name gets the value)
+# velocity = [1.0, 2.0, 3.0]  # exponent, mass, velocity, thickness or thickness_ratio (each
+#                           # run's name gets the value)
 """
 """The contact study template (the default kind)."""
 

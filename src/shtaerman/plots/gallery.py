@@ -13,12 +13,16 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..study.contact.layer import REFERENCE_EXPONENT, REFERENCE_MAP, REFERENCE_THICKNESS
 from .ateb import PAPER_EXPONENT, plot_ateb
 from .curves import plot_convergence, plot_force_depth, plot_pressure
 from .fields import SIGMA
 from .impact import plot_impact_contact, plot_impact_motion
+from .layer import LAYER_MAP_CAPTION, MapSeries, plot_layer_map
 from .revolved import plot_revolved
 from .sections import plot_each_field
+
+NU = "\N{GREEK SMALL LETTER NU}"
 
 if TYPE_CHECKING:
     from ..study.contact.indentation import IndentationResult
@@ -83,6 +87,7 @@ def study_figures(
     folder, fmt = Path(folder), {"figure_format": figure_format}
     contact, histories, exact = outcome.contact, outcome.histories, outcome.exact
     return {
+        **_layer_figures(outcome, folder, figure_format),
         **contact_figures(contact, folder, figure_format),
         "Impact: approach x/x_c and force P/P_c against t/t_c (the paper's Fig. 3)": (
             plot_impact_motion(histories, exact, folder / "impact_motion.png", **fmt)
@@ -91,6 +96,40 @@ def study_figures(
             histories, exact, folder / "impact_contact.png", **fmt
         ),
     }
+
+
+def _layer_figures(outcome: StudyOutcome, folder: Path, figure_format: str) -> dict[str, Path]:
+    """``layer_map.png`` of a study on a layer: its curve over the depths and its point at the
+    half-space impact's x_c, over the measured map of n = 3/2 where the study's n is 3/2 ({} on
+    the half-space)."""
+    layer = outcome.layer
+    if layer is None:
+        return {}
+    h, ratio = zip(*layer.curve, strict=True)
+    nu2 = outcome.study.half_space.poisson_ratio
+    series = {}
+    if outcome.study.indenter.exponent == REFERENCE_EXPONENT:
+        series = {
+            f"{base}, {NU}2 = {nu2:g} (sweeps/layer.toml)"
+            if base == "bonded"
+            else f"{base}, any {NU}2 (sweeps/layer.toml)": MapSeries(
+                REFERENCE_THICKNESS, ratios, base=base, points=False, reference=True
+            )
+            for (base, nu2), ratios in REFERENCE_MAP.items()
+        }
+    series |= {
+        f"this study ({layer.base}, {NU}2 = {nu2:g}), over the depths": MapSeries(
+            h, ratio, base=layer.base, points=False
+        ),
+        f"at x_c (H / a_c = {layer.thickness_ratio:.3g})": MapSeries(
+            (layer.thickness_ratio,),
+            (layer.force_ratio,),
+            (layer.force_ratio_error,),
+            layer.base,
+        ),
+    }
+    path = plot_layer_map(series, folder / "layer_map.png", figure_format=figure_format)
+    return {LAYER_MAP_CAPTION: path}
 
 
 def contact_figures(

@@ -74,6 +74,14 @@ LABELS: dict[str, Label] = {
     "velocity_within_1pct": Label("v0 up to which P is within 1 % of linear", "m/s"),
     "velocity_within_5pct": Label("v0 up to which P is within 5 % of linear", "m/s"),
     "checks_passed": Label("Checks passed"),
+    # a layer on a rigid base
+    "H": Label("Layer thickness H", "m"),
+    "H_over_a_c": Label("Layer thickness / half-space contact radius H/a_c"),
+    "force_ratio": Label("Layer / half-space force P/P_Shtaerman at x_c"),
+    "x_max_layer": Label("Quasi-static maximum approach on the layer", "m"),
+    "P_max_layer": Label("Quasi-static maximum force on the layer", "N"),
+    "x_max_ratio": Label("Layer / half-space maximum approach x_max/x_c"),
+    "P_max_ratio": Label("Layer / half-space maximum force P_max/P_c"),
     "error_exponent": Label("Error of the FEM force exponent q", percent=True),
     # cost
     "dofs": Label("Unknowns (degrees of freedom)"),

@@ -57,6 +57,8 @@ EXPECTED = {
     "sizes": "a list of at least 2 decreasing sizes in (0, 1) (element / refined radius)",
     "name": "a string",
     "description": "a string",
+    "base": 'one of "bonded", "lubricated"',
+    "layer": "a [layer] table: thickness (m) or thickness_ratio (H / a_c), and base",
 }
 """What each leaf key expects, for the error messages (tolerances: a number in (0, 1])."""
 NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]{0,99}")
@@ -282,6 +284,7 @@ TABLE_OF = {
         name: "contact" for name in ("depths", "reach", "depth_steps", "small_ratio", "small_steps")
     },
     **{item.name: "numerics" for item in VOCABULARY if item.group == "numerics"},
+    **{name: "layer" for name in ("thickness", "thickness_ratio", "base")},
 }
 """A vocabulary key written at the top level of a study file -> the table it belongs to."""
 OLD_TABLES = {"mesh": "numerics", "quick_mesh": "quick"}

@@ -373,6 +373,106 @@ register_kind(
 )
 
 
+# --- layer: the FEM contact on a layer against Shtaerman's half-space, and the impact on it ----
+
+
+def _layer_study(p: dict[str, Any]):
+    """The contact study of a layer case (its thickness resolved at the impact's x_c)."""
+    from ..fem.mesh import MeshSettings
+    from ..study.contact.layer import LayerSpec
+    from ..study.contact.loader import Study, on_layer
+
+    given = [key for key in ("thickness", "thickness_ratio") if p[key] is not None]
+    if len(given) != 1:
+        raise InputError(
+            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
+            f"exactly one of them; got {' and '.join(given) or 'neither'}",
+            "thickness",
+        )
+    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
+    if p["refine"] != 1.0:
+        mesh.refined(p["refine"])  # an InputError names refine now, not at run time
+    study = Study(
+        name="case",
+        description="",
+        source=Path("sweep"),
+        indenter=_indenter(p),
+        striker=_material(p, "E1", "nu1"),
+        half_space=_material(p, "E2", "nu2"),
+        mass=p["mass"],
+        velocity=p["velocity"],
+        depths=None,
+        mesh=mesh,
+        quick_mesh=mesh,
+        refine=p["refine"],
+        layer=LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]),
+    )
+    return on_layer(study)
+
+
+LAYER_OUTPUTS = {
+    "H": "m",
+    "H_over_a_c": "",
+    "a_c": "m",
+    "force_ratio": "",
+    "error_force_ratio": "",
+    "x_c": "m",
+    "P_c": "N",
+    "x_max_layer": "m",
+    "P_max_layer": "N",
+    "x_max_ratio": "",
+    "P_max_ratio": "",
+    "checks_passed": "",
+    "dofs": "",
+    "seconds": "s",
+}
+"""H and H / a_c: the layer (a_c the half-space contact radius at the half-space impact's x_c);
+force_ratio: P_layer / P_Shtaerman at x_c, error_force_ratio its estimated relative error (the
+3-mesh ladder's Richardson estimate of the force, worst depth, plus the interpolation to x_c);
+x_c, P_c: the half-space impact (exact); x_max_layer, P_max_layer: the quasi-static impact
+integrated on the layer's tabulated FE law, and their ratios x_max_ratio, P_max_ratio to x_c
+and P_c. The restitution on a layer needs the
+dynamic impact (the dynamic kind with a thickness), not this quasi-static one."""
+
+
+def layer_case(p: dict[str, Any]) -> dict[str, float]:
+    """One layer study (3-mesh ladder, the impact on its FE law) reduced to scalars."""
+    from ..study.contact.runner import run_contact_study
+
+    outcome = run_contact_study(_layer_study(p))
+    layer, half_space = outcome.layer, outcome.impacts["analytic"]
+    return {
+        "H": layer.thickness,
+        "H_over_a_c": layer.thickness_ratio,
+        "a_c": layer.contact_radius,
+        "force_ratio": layer.force_ratio,
+        "error_force_ratio": layer.force_ratio_error,
+        "x_c": half_space["x_c"],
+        "P_c": half_space["P_c"],
+        "x_max_layer": float(layer.x_max),
+        "P_max_layer": float(layer.P_max),
+        "x_max_ratio": float(layer.x_max_ratio),
+        "P_max_ratio": float(layer.P_max_ratio),
+        "checks_passed": float(outcome.passed),
+        "dofs": int(outcome.contact.mesh_stats["dofs"]),
+        "seconds": outcome.seconds,
+    }
+
+
+register_kind(
+    Kind(
+        name="layer",
+        description="FEM contact on a layer on a rigid base against Shtaerman's half-space at "
+        "the impact's x_c, and the quasi-static impact on the layer's FE law",
+        parameters=vocabulary_parameters("layer"),
+        outputs=LAYER_OUTPUTS,
+        case=layer_case,
+        check=_quasi_static(_layer_study),
+        nondeterministic=("seconds",),
+    )
+)
+
+
 # --- finite-strain: neo-Hookean contact against Shtaerman, and the impact on it ----------------
 
 FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)

@@ -3,7 +3,7 @@
 ::
 
     name = "nu-grid"
-    kind = "contact"          # contact | finite-strain | dynamic | impact
+    kind = "contact"          # contact | finite-strain | dynamic | impact | layer
     [parameters]              # fixed inputs, named like the CLI options in snake_case
     shape_coefficient = 3.3
     [axes]                    # the grid: every combination is one case

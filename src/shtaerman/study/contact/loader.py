@@ -20,8 +20,12 @@ snake_case)::
     [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
                  mesh-convergence study refining the whole mesh (``verify --quick``: the
                  coarsest three)
+    [layer]      optional: a layer on a rigid base instead of the half-space: thickness (m)
+                 or thickness_ratio (H / a_c, a_c the half-space contact radius at the
+                 impact's x_c; in [0.05, 500]), and base = "bonded" (default) or "lubricated"
     [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
-                 "velocity") and a list of values; the study runs once per value.
+                 "velocity", "thickness", "thickness_ratio") and a list of values; the study
+                 runs once per value.
 
 A vocabulary key may also be written at the top level (``E2 = 4e6``): it goes to its table.
 The keys of earlier releases (``youngs_modulus``, ``[mesh] size``, ``[quick_mesh]``, ...) still
@@ -42,8 +46,10 @@ from typing import Annotated, Any, Literal
 import msgspec
 
 from ...fem.mesh import MeshSettings
+from ...theory.contact import PowerLawContact
+from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
-from ...theory.materials import RIGID, Material
+from ...theory.materials import RIGID, Material, effective_modulus
 from ...validation import InputError
 from ...vocabulary import entry
 from ..schema import (
@@ -59,16 +65,25 @@ from ..schema import (
     SweepTable,
     Table,
     decode,
+    ranged,
     validate_name,
     validated,
 )
+from .layer import LayerSpec, check_thickness
 
-__all__ = ["QUICK_MESH", "Study", "Tolerances", "load_contact"]
+__all__ = ["QUICK_MESH", "Study", "Tolerances", "load_contact", "on_layer"]
 
 QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
 """Coarse mesh of ``verify --quick``."""
 
-SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "v0"}
+SYMBOLS = {
+    "shape_coefficient": "A",
+    "exponent": "n",
+    "mass": "M",
+    "velocity": "v0",
+    "thickness": "H",
+    "thickness_ratio": "Ha",
+}
 """Sweepable parameters and the symbol that names each expanded study."""
 
 
@@ -81,6 +96,15 @@ class _Contact(Table):
             or any(b <= a for a, b in itertools.pairwise(self.depths))
         ):
             raise ValueError(f"depths: {EXPECTED['depths']}")
+
+
+ThicknessRatio = ranged("thickness_ratio")
+
+
+class _Layer(Table):
+    thickness: Positive | None = None
+    thickness_ratio: ThicknessRatio | None = None
+    base: Literal["bonded", "lubricated"] = "bonded"
 
 
 class _Tolerances(Table):
@@ -105,6 +129,8 @@ class _Sweep(SweepTable):
     exponent: list[Positive] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
+    thickness: list[Positive] | None = None
+    thickness_ratio: list[ThicknessRatio] | None = None
 
 
 class _StudyFile(Table):
@@ -119,6 +145,7 @@ class _StudyFile(Table):
     quick: MeshTable = MeshTable()
     tolerances: _Tolerances = _Tolerances()
     convergence: _Convergence = _Convergence()
+    layer: _Layer | None = None
     sweep: _Sweep | None = None
 
 
@@ -156,6 +183,8 @@ class Study:
     refine: float = 1.0
     """Refinement factor of the whole size field ([mesh] refine; the ladder adds K/2, K/sqrt2)."""
     kind: str = "contact"
+    layer: LayerSpec | None = None
+    """A layer on a rigid base instead of the half-space (resolved: thickness and H / a_c)."""
 
 
 def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
@@ -195,20 +224,75 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
         convergence_sizes=_convergence_sizes(path, raw),
         refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
+        layer=_layer(path, raw),
     )
+
+
+def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
+    """The study file's layer as given (thickness or H / a_c, unresolved), or None."""
+    layer, swept = raw.layer, raw.sweep.chosen()[0] if raw.sweep is not None else None
+    swept = swept if swept in ("thickness", "thickness_ratio") else None
+    if layer is None and swept is None:
+        return None
+    if raw.convergence.sizes:
+        raise StudyError(
+            f"{path}: key 'convergence': expected no mesh-convergence study on a layer (it "
+            "measures errors against Shtaerman's half-space, from which a layer departs; the "
+            "3-mesh ladder gives a layer's error estimates)"
+        )
+    if layer is None:
+        return LayerSpec()
+    given = [key for key in ("thickness", "thickness_ratio") if getattr(layer, key) is not None]
+    if len(given) > 1 or (given and swept):
+        where = f"sweep.{swept}" if len(given) == 1 else "layer.thickness_ratio"
+        raise StudyError(
+            f"{path}: key '{where}': expected the layer's thickness once: layer.thickness (m), "
+            "layer.thickness_ratio (H / a_c) or one of them in [sweep]"
+        )
+    if not given and not swept:
+        raise StudyError(
+            f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
+            f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
+        )
+    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base)
+
+
+def on_layer(study: Study) -> Study:
+    """``study`` with its layer resolved (H and H / a_c at its impact's x_c) and meshed.
+
+    Raises
+    ------
+    InputError
+        If the thickness is outside what the mesh resolves at the study's deepest depth.
+    """
+    if study.layer is None:
+        return study
+    from .runner import DEPTH_OVERSHOOT  # the depths reach past x_c (runner imports this module)
+
+    modulus = effective_modulus(study.striker, study.half_space)
+    exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
+    layer = study.layer.resolved(float(exact.a_c))
+    deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
+    mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
+    for settings in (mesh, quick):
+        check_thickness(settings, study.indenter, deepest)
+    return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
 
 
 def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
     if sweep is None:
-        return [study]
+        return [on_layer(study)]
     key, values = sweep.chosen()
     studies = []
     for value in values:
         if key in ("shape_coefficient", "exponent"):
             changed = replace(study, indenter=replace(study.indenter, **{key: value}))
+        elif key in ("thickness", "thickness_ratio"):
+            changed = replace(study, layer=replace(study.layer, **{key: value}))
         else:
             changed = replace(study, **{key: value})
-        studies.append(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
+        changed = on_layer(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
+        studies.append(changed)
     return studies
 
 
