@@ -437,6 +437,17 @@ VOCABULARY: tuple[Entry, ...] = (
         type="str",
         choices=("bonded", "lubricated"),
     ),
+    # --- the indenter's surface ---------------------------------------------------------------
+    Entry(
+        "interface",
+        "",
+        "the indenter's surface: frictionless, or bonded (no slip once in contact; linear model)",
+        "Interface",
+        "frictionless",
+        valid=None,
+        type="str",
+        choices=("frictionless", "bonded"),
+    ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(
         "refine",

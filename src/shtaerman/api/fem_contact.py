@@ -332,6 +332,18 @@ def _layer(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
     return dataclasses.replace(mesh, thickness=thickness, base=base)
 
 
+def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
+    """``mesh`` with the indenter's ``interface`` (frictionless or bonded, linear model)."""
+    interface = entry("interface").check(options["interface"])
+    if interface == "bonded" and options["model"] != "linear":
+        raise InputError(
+            "interface: bonded is available for the linear model only (the neo-hookean "
+            "contact is frictionless)",
+            "interface",
+        )
+    return dataclasses.replace(mesh, interface=interface)
+
+
 def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
@@ -353,6 +365,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
             "mesh",
         )
     mesh = _layer(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), options)
+    mesh = _interface(mesh, options)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
@@ -386,6 +399,7 @@ def contact(
     striker: Material | None = None,
     thickness: float | None = None,
     base: str | None = None,
+    interface: str = "frictionless",
     model: str = "linear",
     refine: float = 1.0,
     estimate: bool = True,
@@ -422,6 +436,9 @@ def contact(
     base : {"bonded", "lubricated"}, optional
         The layer's base: bonded (u = 0, the default with ``thickness``) or lubricated
         (u_z = 0, free to slide); only with ``thickness``.
+    interface : {"frictionless", "bonded"}
+        The indenter's surface: frictionless, or bonded (a point that touches it sticks; linear
+        model, solved in load steps). The ``*_analytic`` values stay the frictionless ones.
     model : {"linear", "neo-hookean"}
         Linear elasticity, or a neo-Hookean solid at finite strain (same E2, nu2).
     refine : float

@@ -27,8 +27,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "and (linear model) the figures. SI units."
         ),
     )
-    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "model")
-    inputs = (*inputs, "mass", "velocity")
+    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "interface")
+    inputs = (*inputs, "model", "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -68,7 +68,8 @@ NOTES = {
 
 
 KEYWORDS = (
-    *("mass", "velocity", "depths", "thickness", "base", "model", "refine", "estimate"),
+    *("mass", "velocity", "depths", "thickness", "base", "interface", "model", "refine"),
+    "estimate",
     *("accuracy", "max_time"),
     *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
 )
@@ -144,6 +145,11 @@ def contact_text(report: dict) -> str:
         rows.append(
             f"  layer H = {report['mesh']['thickness']:g} m on a {report['mesh']['base']} rigid "
             "base: rel.err = departure from the half-space"
+        )
+    if "interface" in report["mesh"]:
+        rows.append(
+            f"  {report['mesh']['interface']} indenter (no slip once in contact): rel.err = "
+            "departure from the frictionless solution"
         )
     rows.append(
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg"

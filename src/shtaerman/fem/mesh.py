@@ -385,6 +385,8 @@ THICKNESS_ELEMENTS = 8.0
 """Elements through the thickness of a layer at the default size (scaled with ``size``)."""
 LARGEST_THICKNESS_SIZE = 4.0
 """Largest element size of a layer / its size through the thickness at the contact."""
+INTERFACES = ("frictionless", "bonded")
+"""Indenter surfaces of ``interface`` (``--interface``): the first is the default."""
 MIN_THICKNESS = 0.01
 """Thinnest layer the mesh resolves, in refined radii."""
 MAX_THICKNESS = 1000.0
@@ -442,6 +444,9 @@ class MeshSettings:
         above); None: the half-space.
     base : {"bonded", "lubricated"}
         The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
+    interface : {"frictionless", "bonded"}
+        The indenter's surface (not a mesh control; carried here so that every mesh of a
+        ladder solves the same contact): frictionless, or bonded (no slip once in contact).
     """
 
     margin: float = 1.25
@@ -453,6 +458,7 @@ class MeshSettings:
     max_dofs: float = MAX_DOFS
     thickness: float | None = None
     base: str = "bonded"
+    interface: str = "frictionless"
 
     def __post_init__(self) -> None:
         names = ("margin", "size", "domain", "growth", "axis_size", "axis_growth", "max_dofs")
@@ -464,6 +470,10 @@ class MeshSettings:
             )
         if self.base not in BASES:
             raise InputError(f"base: unknown base {self.base!r}. Pick one of {list(BASES)}")
+        if self.interface not in INTERFACES:
+            raise InputError(
+                f"interface: unknown interface {self.interface!r}. Pick one of {list(INTERFACES)}"
+            )
         if not 1.0 < self.margin <= MAX_MARGIN:
             raise InputError(
                 f"margin must lie in (1, {MAX_MARGIN:g}] (the refined zone / contact radius; "

@@ -19,6 +19,7 @@ from ...fem.contact import ContactCurve, ContactStep, solve_contact
 from ...fem.elasticity import ElasticSolution, assemble
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
+from ...fem.stick import solve_bonded_contact
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -236,7 +237,9 @@ def run_indentation(
         Sparse solver ("auto", "superlu", "pardiso").
     aligned : bool
         Forces of the vertex-aligned contacts (default) or nodal sums, see
-        :func:`shtaerman.fem.contact.solve_contact`.
+        :func:`shtaerman.fem.contact.solve_contact`. ``mesh.interface`` "bonded" presses an
+        indenter the surface sticks to (:func:`shtaerman.fem.stick.solve_bonded_contact`,
+        nodal sums).
 
     Returns
     -------
@@ -252,9 +255,12 @@ def run_indentation(
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
-    curve = solve_contact(
-        system, indenter.profile, depths, refined, backend=backend, aligned=aligned
-    )
+    if mesh.interface == "bonded":
+        curve = solve_bonded_contact(system, indenter.profile, depths, refined, backend=backend)
+    else:
+        curve = solve_contact(
+            system, indenter.profile, depths, refined, backend=backend, aligned=aligned
+        )
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [step.force for step in curve.steps]
     fit = fit_power_law(depths, forces, exact.force_exponent)
@@ -276,4 +282,6 @@ def run_indentation(
     if mesh.thickness is not None:  # a layer: force_analytic stays the half-space's
         stats |= {"thickness": mesh.thickness, "base": mesh.base}
         stats["domain_radius"] = mesh.lateral_extent(mesh.thickness / refined) * refined
+    if mesh.interface != "frictionless":  # the *_analytic values stay the frictionless ones
+        stats["interface"] = mesh.interface
     return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)
