@@ -172,3 +172,32 @@ def test_bonded_indenter_on_a_layer():
         for interface in ("frictionless", "bonded")
     ]
     assert forces[1].force > 1.05 * forces[0].force
+
+
+STUDY = """
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 1e6
+nu2 = 0.3
+[impact]
+mass = 0.7
+velocity = 3.0
+[contact]
+depths = [0.0002, 0.0005]
+"""
+
+
+def test_study_file_contact_interface(tmp_path):
+    from shtaerman.study.schema import StudyError, load_study
+
+    path = tmp_path / "stuck.toml"
+    path.write_text(STUDY + 'interface = "bonded"\n')
+    [study] = load_study(path)
+    assert study.mesh.interface == "bonded" and study.quick_mesh.interface == "bonded"
+    path.write_text(STUDY)
+    assert load_study(path)[0].mesh.interface == "frictionless"
+    path.write_text(STUDY + 'interface = "glued"\n')
+    with pytest.raises(StudyError, match=r"contact\.interface.*frictionless"):
+        load_study(path)

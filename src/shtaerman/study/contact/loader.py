@@ -11,7 +11,8 @@ snake_case)::
     [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
-    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
+    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m;
+                 interface = "frictionless" (default) or "bonded" (no slip at the indenter)
     [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
                  domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
     [quick]      the [numerics] keys for ``verify --quick``
@@ -41,7 +42,7 @@ from typing import Annotated, Any, Literal
 
 import msgspec
 
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import INTERFACES, MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material
 from ...validation import InputError
@@ -74,8 +75,11 @@ SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "
 
 class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
+    interface: str = "frictionless"
 
     def __post_init__(self) -> None:
+        if self.interface not in INTERFACES:
+            raise ValueError(f"interface: one of {list(INTERFACES)}")
         if self.depths != "impact" and (
             not 2 <= len(self.depths) <= entry("depths").max_items
             or any(b <= a for a, b in itertools.pairwise(self.depths))
@@ -175,6 +179,11 @@ def _material(table: StrikerTable) -> Material:
     return Material(table.E1, table.nu1)
 
 
+def _surface(raw: _StudyFile) -> dict[str, str]:
+    """The indenter's surface ([contact] interface), a field of every mesh of the study."""
+    return {"interface": raw.contact.interface}
+
+
 def _build(path: Path, raw: _StudyFile) -> Study:
     try:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
@@ -190,8 +199,8 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
         depths=None if raw.contact.depths == "impact" else tuple(raw.contact.depths),
-        mesh=raw.numerics.settings(MeshSettings(), "numerics"),
-        quick_mesh=raw.quick.settings(QUICK_MESH, "quick"),
+        mesh=replace(raw.numerics.settings(MeshSettings(), "numerics"), **_surface(raw)),
+        quick_mesh=replace(raw.quick.settings(QUICK_MESH, "quick"), **_surface(raw)),
         tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
         convergence_sizes=_convergence_sizes(path, raw),
         refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
