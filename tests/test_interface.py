@@ -201,3 +201,31 @@ def test_study_file_contact_interface(tmp_path):
     path.write_text(STUDY + 'interface = "glued"\n')
     with pytest.raises(StudyError, match=r"contact\.interface.*frictionless"):
         load_study(path)
+
+
+def test_bonded_ladder_reports_no_true_error():
+    # the departure from the frictionless solution is physics, not the FE error
+    indenter = PowerLawIndenter(5.0, 1.5)
+    depth = 5.0 * RADIUS**1.5
+    result = sh.contact(
+        indenter,
+        Material(E2, 0.3),
+        interface="bonded",
+        depths=[depth / 2, depth],
+        mesh_size=1 / 12,
+    )
+    assert result.error_estimate["force"] < 1e-2
+    assert result.true_error is None and result.effectivity is None
+
+
+def test_report_estimate_table_without_a_true_error():
+    # a bonded study's ladder has no exact solution: the report leaves those cells empty
+    from shtaerman.output.text_contact import _estimate_table
+
+    accuracy = {
+        "mesh_ladder": [{"dofs": 10}, {"dofs": 20}, {"dofs": 40}],
+        "error_estimate": {"force": 1e-3},
+        "estimate_details": {"force": {"value": 1.0, "method": "richardson", "reason": ""}},
+    }
+    [row] = _estimate_table({"accuracy": accuracy})["rows"]
+    assert row[2:4] == ["-", "-"]

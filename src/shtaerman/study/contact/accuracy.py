@@ -263,7 +263,8 @@ def run_ladder(
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     solve = _linear(indenter, half_space, depths, backend)
-    exact = mesh.thickness is None  # a layer's errors() are departures from the half-space
+    # a layer's or a bonded indenter's errors() are departures from Shtaerman's solution
+    exact = mesh.thickness is None and mesh.interface == "frictionless"
     return run_mesh_ladder(solve, mesh, refine=refine, progress=progress, exact=exact)
 
 
@@ -352,7 +353,7 @@ def run_to_accuracy(
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     solve = _linear(indenter, half_space, depths, backend)
-    exact = mesh.thickness is None
+    exact = mesh.thickness is None and mesh.interface == "frictionless"
     result = run_mesh_ladder(solve, mesh, progress=progress, exact=exact)
     report = progress or (lambda _line: None)
     while _force_error(result) > tolerance:
