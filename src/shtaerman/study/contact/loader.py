@@ -179,11 +179,6 @@ def _material(table: StrikerTable) -> Material:
     return Material(table.E1, table.nu1)
 
 
-def _surface(raw: _StudyFile) -> dict[str, str]:
-    """The indenter's surface ([contact] interface), a field of every mesh of the study."""
-    return {"interface": raw.contact.interface}
-
-
 def _build(path: Path, raw: _StudyFile) -> Study:
     try:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
@@ -199,11 +194,19 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
         depths=None if raw.contact.depths == "impact" else tuple(raw.contact.depths),
-        mesh=replace(raw.numerics.settings(MeshSettings(), "numerics"), **_surface(raw)),
-        quick_mesh=replace(raw.quick.settings(QUICK_MESH, "quick"), **_surface(raw)),
+        mesh=raw.numerics.settings(MeshSettings(), "numerics"),
+        quick_mesh=raw.quick.settings(QUICK_MESH, "quick"),
         tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
         convergence_sizes=_convergence_sizes(path, raw),
         refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
+    )
+
+
+def _with_interface(study: Study, raw: _StudyFile) -> Study:
+    """``study`` with the indenter's surface ([contact] interface) in each of its meshes."""
+    surface = {"interface": raw.contact.interface}
+    return replace(
+        study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
     )
 
 
@@ -225,7 +228,7 @@ def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
     try:
-        studies = _expanded(_build(path, raw), raw.sweep)
+        studies = _expanded(_with_interface(_build(path, raw), raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
