@@ -3,10 +3,10 @@
 Once a surface point touches the rigid indenter it sticks to it. The indenter moves only
 vertically, so a point in contact keeps the radial displacement it had when it touched and its
 vertical one follows the indenter, u_z = f(r) - d. The contact is history dependent: it is
-solved by incremental loading over a geometric ladder of depths (ratio ``step_ratio``) from
-'the depth at which the indenter reaches the :data:`START_NODE`-th candidate node (the axis
-grading of the mesh makes it a tiny fraction of the first depth) up to the last, the requested
-depths included.
+solved by incremental loading over a geometric ladder of depths (ratio ``step_ratio``) from the
+depth at which the indenter reaches candidate node :data:`START_NODE` (the axis grading of the
+mesh makes it a tiny fraction of the first depth) up to the last, the requested depths
+included.
 
 The surface compliance G (m/N) couples the candidates' u_z and u_r dofs: u = G f for nodal
 forces f on the body (f_z = -F for a downward contact force F >= 0). It comes from the one
@@ -19,9 +19,9 @@ depth step a primal-dual active-set iteration on the nodes in contact:
 - a node in contact whose normal force turns tensile is released and forgets its radial
   displacement (it would get a new one on re-entry).
 
-The force reported is the sum of the nodal normal forces (the nodal sum of the frictionless
-solver, without its vertex alignment), the tangential nodal forces (N, on the body, along +r)
-are kept per depth for the fields.
+The force reported is the sum of the nodal normal forces (the frictionless solver's nodal sum;
+its vertex alignment needs a history-free contact). The tangential nodal forces (N, on the
+body, along +r) are kept per depth for the fields.
 """
 
 from __future__ import annotations
