@@ -6,8 +6,10 @@ References:
   force (chi = ln 3 = 1.0986 at nu = 0, 1.0286 at nu = 0.3, -> 1 at nu = 0.5, where the
   bonded force 4 G a d ln(3 - 4 nu) / (1 - 2 nu) tends to the frictionless 8 G a d).
 - Under incremental no-slip loading each depth increment is such a bonded flat punch of the
-  current radius a (the stuck points keep their displacement), so dP/dd = 2 E* chi a; for the
+  current radius a (the stuck points keep their displacement), so dP/dd = 2 E* chi a (Borodich
+  and Keer, Proc. R. Soc. A 460, 2004: the factor is independent of the punch's shape); for the
   self-similar z = A r^n, P = 2 E* chi a d n / (n + 1) (frictionless: chi = 1, Shtaerman).
+  Spence's (1975) Hertz no-slip tables were not at hand: this identity stands in for them.
 - nu = 0.5: Dundurs' beta = 0, normal and tangential surface loads uncouple, so the bonded
   contact is the frictionless one.
 Coarse meshes; the same mesh for both interfaces, so that the ratios cancel most of the FE
