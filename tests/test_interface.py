@@ -231,3 +231,32 @@ def test_report_estimate_table_without_a_true_error():
     }
     [row] = _estimate_table({"accuracy": accuracy})["rows"]
     assert row[2:4] == ["-", "-"]
+
+
+def test_coulomb_friction_spans_frictionless_to_bonded():
+    # mu = 0: every contact node slides freely (the frictionless contact); mu -> inf: no slip
+    free, stuck = _pair(0.0, 2.0)
+    refined = COARSE.margin * RADIUS
+    system, indenter = stuck.system, PowerLawIndenter(5.0, 2.0)
+    depths = np.array([step.depth for step in stuck.steps])
+    forces = []
+    for mu in (0.0, 0.3):
+        curve = solve_bonded_contact(system, indenter.profile, depths, refined, friction=mu)
+        step = curve.steps[-1]
+        # the shear never exceeds mu times the normal force at its node
+        shear = np.zeros(step.nodal_forces.size)
+        shear[
+            np.searchsorted(
+                curve.compliance.r,
+                system.displacement_basis.doflocs[0, curve.compliance.radial_dofs],
+            )
+        ] = step.tangential_forces
+        assert np.all(np.abs(shear) <= mu * step.nodal_forces * (1 + 1e-8) + 1e-12 * step.force)
+        forces.append(step.force)
+    assert forces[0] == pytest.approx(free.steps[-1].force, rel=1e-9)
+    # measured (z = 5 r^2, nu 0, size 1/20): 1.0321 at mu = 0.3 and 1.0545 with no slip, times
+    # the frictionless force
+    assert forces[0] < forces[1] < stuck.steps[-1].force
+    assert 1.025 < forces[1] / forces[0] < 1.04
+    with pytest.raises(InputError, match="friction"):
+        solve_bonded_contact(system, indenter.profile, depths, refined, friction=-0.1)

@@ -26,6 +26,7 @@ body, along +r) are kept per depth for the fields.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 
@@ -74,14 +75,17 @@ class _Coupled:
 
 @dataclass(frozen=True, eq=False)
 class _State:
-    """The contact after one load step (candidate arrays; ``held`` NaN off the contact)."""
+    """The contact at one load step, per candidate: ``held`` u_r (m) of the stuck nodes (NaN
+    off the contact), ``radial`` u_r (m; 0 on the axis), ``slip`` 0 (stuck or free) or the
+    direction +-1 of a sliding node; the nodal ``forces`` and ``shear`` (N) once solved."""
 
     active: np.ndarray
     held: np.ndarray
     radial: np.ndarray
     gap: np.ndarray
-    forces: np.ndarray
-    shear: np.ndarray
+    slip: np.ndarray
+    forces: np.ndarray | None = None
+    shear: np.ndarray | None = None
 
 
 def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndarray:
@@ -157,75 +161,105 @@ def _field_solutions(
 
 
 def _solve_stuck(
-    coupled: _Coupled, heights: np.ndarray, depth: float, active: np.ndarray, held: np.ndarray
+    coupled: _Coupled, heights: np.ndarray, depth: float, state: _State, friction: float
 ) -> tuple[np.ndarray, ...]:
     """Nodal normal forces F (N), shear (N), u_z (m) at the candidates and u_r (m) at the
-    radial dofs with the ``active`` nodes stuck (u_z = f - d, u_r = ``held``)."""
-    m = heights.size
-    nodes = np.flatnonzero(active)
-    radial = np.flatnonzero(active[coupled.radial_node])
-    rows = np.concatenate([nodes, m + radial])
-    target = np.concatenate([heights[nodes] - depth, held[coupled.radial_node[radial]]])
-    forces, shear = np.zeros(m), np.zeros(coupled.radial_node.size)
+    radial dofs with the ``state.active`` nodes on the indenter (u_z = f - d): stuck ones at
+    u_r = ``state.held``, sliding ones (``state.slip`` = +-1, the direction of the slip) under
+    the shear -slip ``friction`` F."""
+    m, node_of = heights.size, coupled.radial_node
+    nodes = np.flatnonzero(state.active)
+    on = state.active[node_of]
+    stuck = np.flatnonzero(on & (state.slip[node_of] == 0))
+    sliding = np.flatnonzero(on & (state.slip[node_of] != 0))
+    rows = np.concatenate([nodes, m + stuck])
+    target = np.concatenate([heights[nodes] - depth, state.held[node_of[stuck]]])
+    forces, shear = np.zeros(m), np.zeros(node_of.size)
     displacement = np.zeros(coupled.matrix.shape[0])
     if rows.size:
         block = coupled.matrix[np.ix_(rows, rows)]
-        loads = la.cho_solve(la.cho_factor(block), target)
+        if sliding.size:  # shear = slip mu f_z: a column of the sliding node's f_z
+            scale = state.slip[node_of[sliding]] * friction
+            column = np.searchsorted(nodes, node_of[sliding])
+            block[:, column] += coupled.matrix[np.ix_(rows, m + sliding)] * scale
+            loads = la.solve(block, target)
+            shear[sliding] = scale * loads[column]
+            displacement = coupled.matrix[:, m + sliding] @ shear[sliding]
+        else:
+            loads = la.cho_solve(la.cho_factor(block), target)
         forces[nodes] = -loads[: nodes.size]
-        shear[radial] = loads[nodes.size :]
-        displacement = coupled.matrix[:, rows] @ loads
+        shear[stuck] = loads[nodes.size :]
+        displacement = displacement + coupled.matrix[:, rows] @ loads
     return forces, shear, displacement[:m], displacement[m:]
 
 
-def _worst_only(
-    release: np.ndarray, enter: np.ndarray, forces: np.ndarray, gap: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """``release`` and ``enter`` cut to the one most violated condition: the most tensile
-    node, else the deepest penetration (the cautious update after a cycle)."""
-    one = np.zeros_like(release)
-    if release.any():
-        one[np.flatnonzero(release)[np.argmin(forces[release])]] = True
-        return one, np.zeros_like(enter)
-    one[np.flatnonzero(enter)[np.argmin(gap[enter])]] = True
-    return np.zeros_like(release), one
+def _worst_only(changes: list[np.ndarray], excess: list[np.ndarray]) -> list[np.ndarray]:
+    """``changes`` (boolean masks, in order of priority) cut to the single node of the first
+    non-empty one with the largest ``excess`` (the cautious update after a cycle)."""
+    cut = [np.zeros_like(change) for change in changes]
+    for change, amount, one in zip(changes, excess, cut, strict=True):
+        if change.any():
+            one[np.flatnonzero(change)[np.argmax(amount[change])]] = True
+            break
+    return cut
 
 
-def _load_step(coupled: _Coupled, heights: np.ndarray, depth: float, last: _State) -> _State:
+def _changes(
+    state: _State, solved: tuple[np.ndarray, ...], gap: np.ndarray, band: float, friction: float
+) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """The violated conditions (release, enter, stick to slip, slip to stick) and their size;
+    ``solved`` holds per candidate F, shear and u_r, ``band`` the gap's round-off (m)."""
+    forces, traction, radial = solved
+    moved = state.slip * (radial - state.radial)
+    release = state.active & (forces < -ROUND_OFF * np.abs(forces).max(initial=0.0))
+    enter = ~state.active & (gap < -band)
+    excess = np.full(forces.size, -np.inf)
+    if np.isfinite(friction):
+        excess = np.abs(traction) - friction * forces
+    to_slip = state.active & (state.slip == 0) & (excess > ROUND_OFF * np.abs(forces).max())
+    to_stick = state.active & (moved < -ROUND_OFF * np.abs(radial).max(initial=0.0))
+    return [release, enter, to_slip, to_stick], [-forces, -gap, excess, -moved]
+
+
+def _load_step(
+    coupled: _Coupled, heights: np.ndarray, depth: float, last: _State, friction: float
+) -> _State:
     """The contact at ``depth`` from the contact ``last`` at the previous load step.
 
-    All violated conditions change at once; should the active set repeat, one at a time."""
-    active, held = last.active.copy(), last.held.copy()
-    has_radial = np.zeros(heights.size, dtype=bool)
-    has_radial[coupled.radial_node] = True
-    last_radial = np.zeros(heights.size)
-    last_radial[has_radial] = last.radial
+    All violated conditions change at once; should a contact state repeat, one at a time."""
+    state = _State(last.active, last.held.copy(), last.radial, last.gap, last.slip.copy())
+    band = ROUND_OFF * np.abs(heights - depth).max()
     seen: set[bytes] = set()
     cautious = False
-    for _ in range(MAX_ACTIVE_SET_ITERATIONS + heights.size):
-        forces, shear, u_z, u_r = _solve_stuck(coupled, heights, depth, active, held)
-        gap = np.where(active, 0.0, heights - depth - u_z)
-        force_band = ROUND_OFF * np.abs(forces).max(initial=0.0)
-        gap_band = ROUND_OFF * np.abs(heights - depth).max()
-        release = active & (forces < -force_band)
-        enter = ~active & (gap < -gap_band)
-        if not (release.any() or enter.any()):
-            return _State(active, held, u_r, np.maximum(gap, 0.0), np.maximum(forces, 0.0), shear)
+    for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * heights.size):
+        forces, shear, u_z, u_r = _solve_stuck(coupled, heights, depth, state, friction)
+        gap = np.where(state.active, 0.0, heights - depth - u_z)
+        traction, radial = np.zeros(heights.size), np.zeros(heights.size)
+        traction[coupled.radial_node], radial[coupled.radial_node] = shear, u_r
+        changes, excess = _changes(state, (forces, traction, radial), gap, band, friction)
+        if not any(change.any() for change in changes):
+            gap, forces = np.maximum(gap, 0.0), np.maximum(forces, 0.0)
+            return _State(state.active, state.held, radial, gap, state.slip, forces, shear)
         if cautious:
-            release, enter = _worst_only(release, enter, forces, gap)
-        seen.add(active.tobytes())
-        radial_now = np.zeros(heights.size)
-        radial_now[has_radial] = u_r
+            changes = _worst_only(changes, excess)
+        release, enter, to_slip, to_stick = changes
+        seen.add(state.active.tobytes() + state.slip.tobytes())
         closing = last.gap[enter] / (last.gap[enter] - gap[enter])
-        held[enter] = last_radial[enter] + closing * (radial_now[enter] - last_radial[enter])
+        held, slip = state.held, state.slip
+        held[enter] = last.radial[enter] + closing * (radial[enter] - last.radial[enter])
         held[release] = np.nan
-        active = (active & ~release) | enter
-        if active.tobytes() in seen:
+        held[to_stick] = last.radial[to_stick]
+        slip[to_slip] = -np.sign(traction[to_slip])
+        slip[release | to_stick] = 0
+        active = (state.active & ~release) | enter
+        state = _State(active, held, last.radial, last.gap, slip)
+        if active.tobytes() + slip.tobytes() in seen:
             if cautious:
                 break
             cautious, seen = True, set()
     raise NumericalFailureError(
-        f"depth {depth:g} m: the bonded contact set did not settle; refine the mesh near the "
-        "edge or take smaller load steps"
+        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
+        "the edge or take smaller load steps"
     )
 
 
@@ -263,23 +297,22 @@ def _contact_step(
 
 
 def _load_history(
-    coupled: _Coupled, normal: SurfaceCompliance, profile: Profile, depths: np.ndarray, ratio: float
+    coupled: _Coupled,
+    normal: SurfaceCompliance,
+    profile: Profile,
+    depths: np.ndarray,
+    loading: tuple[float, float],
 ) -> list[ContactStep]:
-    """Load through :func:`depth_ladder` and keep the contact at each requested depth."""
+    """Load through :func:`depth_ladder` (``loading``: step ratio, friction coefficient) and
+    keep the contact at each requested depth."""
+    ratio, friction = loading
     heights = np.asarray(profile(normal.r), dtype=float)
-    size = coupled.radial_node.size
-    state = _State(
-        np.zeros(heights.size, dtype=bool),
-        np.full(heights.size, np.nan),
-        np.zeros(size),
-        heights.copy(),
-        np.zeros(heights.size),
-        np.zeros(size),
-    )
+    m = heights.size
+    state = _State(np.zeros(m, bool), np.full(m, np.nan), np.zeros(m), heights.copy(), np.zeros(m))
     wanted, steps, taken = set(depths.tolist()), [], 0
     start = float(heights[min(START_NODE, heights.size - 1)])
     for depth in depth_ladder(start if start > 0 else depths[0], depths, ratio):
-        state = _load_step(coupled, heights, float(depth), state)
+        state = _load_step(coupled, heights, float(depth), state, friction)
         taken += 1
         if float(depth) in wanted:
             steps.append(_contact_step(normal, heights, float(depth), state, taken))
@@ -295,17 +328,21 @@ def solve_bonded_contact(
     *,
     backend: str = "auto",
     step_ratio: float = STEP_RATIO,
+    friction: float = math.inf,
 ) -> ContactCurve:
     """Press a rigid indenter z = f(r) that the surface sticks to, in load steps.
 
     Parameters and result as :func:`.contact.solve_contact` (without ``aligned``: the force
-    is the nodal sum), with ``step_ratio`` > 1 the depth ratio of consecutive
-    load steps. Each step's ``iterations`` counts the load steps since the previous depth;
-    its ``tangential_forces`` are the nodal forces (N) along +r on the body at the radial
-    dofs ``compliance.radial_dofs``.
+    is the nodal sum), with ``step_ratio`` > 1 the depth ratio of consecutive load steps and
+    ``friction`` >= 0 the Coulomb coefficient (inf: no slip; a node in contact slides once its
+    shear exceeds ``friction`` times its normal force). Each step's ``iterations`` counts the
+    load steps since the previous depth; its ``tangential_forces`` are the nodal forces (N)
+    along +r on the body at the radial dofs ``compliance.radial_dofs``.
     """
     if not step_ratio > 1.0:
         raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
+    if not friction >= 0.0:
+        raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
     free = system.free_dofs()
     start = time.perf_counter()
     inside = system.surface_r <= candidate_radius * (1 + 1e-12)
@@ -322,7 +359,7 @@ def solve_bonded_contact(
     )
     coupled = _Coupled(inverse, radial_node, radial_dofs)
     with threadpool_limits(limits=1, user_api="blas"):
-        steps = _load_history(coupled, normal, profile, depths, step_ratio)
+        steps = _load_history(coupled, normal, profile, depths, (step_ratio, friction))
     solutions = _field_solutions(system, factorization, free, normal, steps)
     done = time.perf_counter()
     return ContactCurve(
