@@ -129,6 +129,9 @@ def test_api_and_cli_take_the_interface(capsys):
     free = sh.contact(indenter, Material(E2, 0.3), **kwargs)
     assert bonded.mesh["interface"] == "bonded" and "interface" not in free.mesh
     assert bonded.force[-1] > 1.01 * free.force[-1]
+    sliding = sh.contact(indenter, Material(E2, 0.3), interface="bonded", friction=0.2, **kwargs)
+    assert sliding.mesh["friction"] == 0.2 and "friction" not in bonded.mesh
+    assert free.force[-1] < sliding.force[-1] < bonded.force[-1]
     argv = ["contact", "--nu2", "0.3", "--interface", "bonded", "--no-estimate"]
     argv += ["--mesh-size", "0.05", "--depths", f"{depth / 2},{depth}"]
     assert main(argv) == 0
@@ -140,6 +143,8 @@ def test_api_and_cli_take_the_interface(capsys):
     [
         (["--interface", "sticky"], "--interface"),
         (["--interface", "bonded", "--model", "neo-hookean"], "linear model only"),
+        (["--friction", "0.3"], "bonded indenter only"),
+        (["--interface", "bonded", "--friction", "-1"], ">= 0"),
     ],
 )
 def test_bad_interface_is_one_line_and_exit_2(argv, words, capsys):
@@ -203,6 +208,12 @@ def test_study_file_contact_interface(tmp_path):
     path.write_text(STUDY + 'interface = "glued"\n')
     with pytest.raises(StudyError, match=r"contact\.interface.*frictionless"):
         load_study(path)
+    path.write_text(STUDY + 'interface = "bonded"\nfriction = 0.4\n')
+    assert load_study(path)[0].mesh.friction == 0.4
+    for bad in ("friction = 0.4", 'interface = "bonded"\nfriction = -1'):
+        path.write_text(STUDY + bad + "\n")
+        with pytest.raises(StudyError, match="friction"):
+            load_study(path)
 
 
 def test_bonded_ladder_reports_no_true_error():

@@ -448,6 +448,15 @@ VOCABULARY: tuple[Entry, ...] = (
         type="str",
         choices=("frictionless", "bonded"),
     ),
+    Entry(
+        "friction",
+        "",
+        "Coulomb friction coefficient of a bonded indenter: a point in contact slides where its "
+        "shear exceeds friction x its pressure",
+        "Friction coefficient",
+        None,
+        valid=Range(0.0, None, low_open=False),
+    ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(
         "refine",

@@ -341,7 +341,15 @@ def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
             "contact is frictionless)",
             "interface",
         )
-    return dataclasses.replace(mesh, interface=interface)
+    friction = options["friction"]
+    if friction is not None:
+        if interface != "bonded":
+            raise InputError(
+                "friction: applies to a bonded indenter only; give interface 'bonded' too",
+                "friction",
+            )
+        friction = float(entry("friction").check(friction))
+    return dataclasses.replace(mesh, interface=interface, friction=friction)
 
 
 def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
@@ -400,6 +408,7 @@ def contact(
     thickness: float | None = None,
     base: str | None = None,
     interface: str = "frictionless",
+    friction: float | None = None,
     model: str = "linear",
     refine: float = 1.0,
     estimate: bool = True,
@@ -439,6 +448,9 @@ def contact(
     interface : {"frictionless", "bonded"}
         The indenter's surface: frictionless, or bonded (a point that touches it sticks; linear
         model, solved in load steps). The ``*_analytic`` values stay the frictionless ones.
+    friction : float, optional
+        Coulomb coefficient >= 0 of a bonded indenter: a point in contact slides where its
+        shear exceeds friction x its pressure; None: no slip. Only with ``interface="bonded"``.
     model : {"linear", "neo-hookean"}
         Linear elasticity, or a neo-Hookean solid at finite strain (same E2, nu2).
     refine : float

@@ -28,7 +28,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "interface")
-    inputs = (*inputs, "model", "mass", "velocity")
+    inputs = (*inputs, "friction", "model", "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -54,6 +54,7 @@ DERIVED = {
     "depths": "8 up to the x_c of the impact of --mass at --velocity, contact radii a_c/3 .. a_c",
     "thickness": "none: the half-space",
     "base": "bonded; only with --thickness",
+    "friction": "none: no slip; only with --interface bonded",
     **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
@@ -68,8 +69,8 @@ NOTES = {
 
 
 KEYWORDS = (
-    *("mass", "velocity", "depths", "thickness", "base", "interface", "model", "refine"),
-    "estimate",
+    *("mass", "velocity", "depths", "thickness", "base", "interface", "friction", "model"),
+    *("refine", "estimate"),
     *("accuracy", "max_time"),
     *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
 )
@@ -148,8 +149,13 @@ def contact_text(report: dict) -> str:
         )
     if "interface" in report["mesh"]:
         rows.append(
-            f"  {report['mesh']['interface']} indenter (no slip once in contact): rel.err = "
-            "departure from the frictionless solution"
+            f"  {report['mesh']['interface']} indenter ("
+            + (
+                f"Coulomb friction {report['mesh']['friction']:g}"
+                if "friction" in report["mesh"]
+                else "no slip once in contact"
+            )
+            + "): rel.err = departure from the frictionless solution"
         )
     rows.append(
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg"

@@ -447,6 +447,8 @@ class MeshSettings:
     interface : {"frictionless", "bonded"}
         The indenter's surface (not a mesh control; carried here so that every mesh of a
         ladder solves the same contact): frictionless, or bonded (no slip once in contact).
+    friction : float or None
+        Coulomb coefficient >= 0 of a bonded indenter; None: no slip.
     """
 
     margin: float = 1.25
@@ -459,6 +461,7 @@ class MeshSettings:
     thickness: float | None = None
     base: str = "bonded"
     interface: str = "frictionless"
+    friction: float | None = None
 
     def __post_init__(self) -> None:
         names = ("margin", "size", "domain", "growth", "axis_size", "axis_growth", "max_dofs")
@@ -474,6 +477,8 @@ class MeshSettings:
             raise InputError(
                 f"interface: unknown interface {self.interface!r}. Pick one of {list(INTERFACES)}"
             )
+        if self.friction is not None and not 0.0 <= self.friction < math.inf:
+            raise InputError(f"friction: must be >= 0 (None: no slip), got {self.friction!r}")
         if not 1.0 < self.margin <= MAX_MARGIN:
             raise InputError(
                 f"margin must lie in (1, {MAX_MARGIN:g}] (the refined zone / contact radius; "

@@ -8,6 +8,7 @@ curve P(x) is fitted by a power law.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -256,7 +257,10 @@ def run_indentation(
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
     if mesh.interface == "bonded":
-        curve = solve_bonded_contact(system, indenter.profile, depths, refined, backend=backend)
+        friction = math.inf if mesh.friction is None else mesh.friction
+        curve = solve_bonded_contact(
+            system, indenter.profile, depths, refined, backend=backend, friction=friction
+        )
     else:
         curve = solve_contact(
             system, indenter.profile, depths, refined, backend=backend, aligned=aligned
@@ -284,4 +288,6 @@ def run_indentation(
         stats["domain_radius"] = mesh.lateral_extent(mesh.thickness / refined) * refined
     if mesh.interface != "frictionless":  # the *_analytic values stay the frictionless ones
         stats["interface"] = mesh.interface
+        if mesh.friction is not None:
+            stats["friction"] = mesh.friction
     return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)

@@ -12,7 +12,8 @@ snake_case)::
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
     [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m;
-                 interface = "frictionless" (default) or "bonded" (no slip at the indenter)
+                 interface = "frictionless" (default) or "bonded" (no slip at the indenter);
+                 friction = mu (bonded only: Coulomb friction; default none, no slip)
     [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
                  domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
     [quick]      the [numerics] keys for ``verify --quick``
@@ -76,10 +77,13 @@ SYMBOLS = {"shape_coefficient": "A", "exponent": "n", "mass": "M", "velocity": "
 class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
     interface: str = "frictionless"
+    friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
 
     def __post_init__(self) -> None:
         if self.interface not in INTERFACES:
             raise ValueError(f"interface: one of {list(INTERFACES)}")
+        if self.friction is not None and self.interface != "bonded":
+            raise ValueError('friction: applies to interface = "bonded" only')
         if self.depths != "impact" and (
             not 2 <= len(self.depths) <= entry("depths").max_items
             or any(b <= a for a, b in itertools.pairwise(self.depths))
@@ -204,7 +208,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
 
 def _with_interface(study: Study, raw: _StudyFile) -> Study:
     """``study`` with the indenter's surface ([contact] interface) in each of its meshes."""
-    surface = {"interface": raw.contact.interface}
+    surface = {"interface": raw.contact.interface, "friction": raw.contact.friction}
     return replace(
         study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
     )
