@@ -8,6 +8,7 @@ incremental flat-punch identity P (n+1) / (2 E* a d n) against Mossakovskii's ch
 cost (factorization + contact, s) of both interfaces. Prints a Markdown table.
 
     PYTHONPATH=src python benchmarks/interface_friction.py [n ...]
+    PYTHONPATH=src python benchmarks/interface_friction.py friction   # Coulomb: P(mu) / P_f
 """
 
 from __future__ import annotations
@@ -80,5 +81,28 @@ def main(exponents: list[float]) -> None:
             )
 
 
+def friction_table(exponent: float = 1.5, coefficients=(0.1, 0.2, 0.3, 0.5, 1.0)) -> None:
+    """P(mu) / P_frictionless at the deepest default depth, default mesh, nu2 0 and 0.3."""
+    indenter = PowerLawIndenter(5.0, exponent)
+    print(f"\n| nu2 | {' | '.join(f'mu {mu:g}' for mu in coefficients)} | no slip |")
+    print("|---|" + "---|" * (len(coefficients) + 1))
+    for nu in (0.0, 0.3):
+        body = Material(E2, nu)
+        depths = default_depths(indenter, body)
+        mesh = MeshSettings()
+        a_g = (depths[-1] / indenter.shape_coefficient) ** (1 / indenter.exponent)
+        refined = mesh.margin * a_g
+        system = assemble(mesh.build(refined), E2, nu)
+        free = solve_contact(system, indenter.profile, depths, refined, aligned=False)
+        cells = []
+        for mu in (*coefficients, math.inf):
+            curve = solve_bonded_contact(system, indenter.profile, depths, refined, friction=mu)
+            cells.append(f"{curve.steps[-1].force / free.steps[-1].force:.5f}")
+        print(f"| {nu:g} | {' | '.join(cells)} |", flush=True)
+
+
 if __name__ == "__main__":
-    main([float(x) for x in sys.argv[1:]] or [1.5, 2.0])
+    if sys.argv[1:2] == ["friction"]:
+        friction_table()
+    else:
+        main([float(x) for x in sys.argv[1:]] or [1.5, 2.0])

@@ -1,4 +1,4 @@
-"""Bonded (no-slip) contact of a rigid axisymmetric indenter with the FEM body, loaded in steps.
+"""Bonded contact (no slip, or Coulomb friction) of a rigid axisymmetric indenter, loaded in steps.
 
 Once a surface point touches the rigid indenter it sticks to it. The indenter moves only
 vertically, so a point in contact keeps the radial displacement it had when it touched and its
@@ -17,7 +17,10 @@ depth step a primal-dual active-set iteration on the nodes in contact:
   the value interpolated linearly between the last depth and the current iterate, at the point
   where its gap closes;
 - a node in contact whose normal force turns tensile is released and forgets its radial
-  displacement (it would get a new one on re-entry).
+  displacement (it would get a new one on re-entry);
+- with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu F slides (its shear
+  is then mu F against the direction of its slip), and a sliding node whose slip reverses
+  sticks again at its radial displacement of the last depth.
 
 The force reported is the sum of the nodal normal forces (the frictionless solver's nodal sum;
 its vertex alignment needs a history-free contact). The tangential nodal forces (N, on the
