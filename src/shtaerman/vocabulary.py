@@ -486,6 +486,26 @@ VOCABULARY: tuple[Entry, ...] = (
         type="str",
         choices=("bonded", "lubricated"),
     ),
+    # --- the indenter's surface ---------------------------------------------------------------
+    Entry(
+        "interface",
+        "",
+        "the indenter's surface: frictionless, or bonded (no slip once in contact; linear model)",
+        "Interface",
+        "frictionless",
+        valid=None,
+        type="str",
+        choices=("frictionless", "bonded"),
+    ),
+    Entry(
+        "friction",
+        "",
+        "Coulomb friction coefficient of a bonded indenter: a point in contact slides where its "
+        "shear exceeds friction x its pressure",
+        "Friction coefficient",
+        None,
+        valid=Range(0.0, None, low_open=False),
+    ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(
         "refine",

@@ -346,6 +346,26 @@ def _layer(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
     return dataclasses.replace(mesh, thickness=thickness, base=base)
 
 
+def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
+    """``mesh`` with the indenter's ``interface`` (frictionless or bonded, linear model)."""
+    interface = entry("interface").check(options["interface"])
+    if interface == "bonded" and options["model"] != "linear":
+        raise InputError(
+            "interface: bonded is available for the linear model only (the neo-hookean "
+            "contact is frictionless)",
+            "interface",
+        )
+    friction = options["friction"]
+    if friction is not None:
+        if interface != "bonded":
+            raise InputError(
+                "friction: applies to a bonded indenter only; give interface 'bonded' too",
+                "friction",
+            )
+        friction = float(entry("friction").check(friction))
+    return dataclasses.replace(mesh, interface=interface, friction=friction)
+
+
 def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
@@ -367,6 +387,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
             "mesh",
         )
     mesh = _layer(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), options)
+    mesh = _interface(mesh, options)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
@@ -416,6 +437,8 @@ def contact(
     striker: Material | None = None,
     thickness: float | None = None,
     base: str | None = None,
+    interface: str = "frictionless",
+    friction: float | None = None,
     model: str = "linear",
     mooney_ratio: float | None = None,
     yeoh: str | Sequence[float] | None = None,
@@ -456,6 +479,12 @@ def contact(
     base : {"bonded", "lubricated"}, optional
         The layer's base: bonded (u = 0, the default with ``thickness``) or lubricated
         (u_z = 0, free to slide); only with ``thickness``.
+    interface : {"frictionless", "bonded"}
+        The indenter's surface: frictionless, or bonded (a point that touches it sticks; linear
+        model, solved in load steps). The ``*_analytic`` values stay the frictionless ones.
+    friction : float, optional
+        Coulomb coefficient >= 0 of a bonded indenter: a point in contact slides where its
+        shear exceeds friction x its pressure; None: no slip. Only with ``interface="bonded"``.
     model : {"linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"}
         Linear elasticity, or a rubber at finite strain with the same E2, nu2 at small strain.
     mooney_ratio, yeoh, gent_limit, volumetric : optional

@@ -27,8 +27,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "curves, VTU fields and (linear model) the figures. SI units."
         ),
     )
-    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "model")
-    inputs = (*inputs, *RUBBER_OPTIONS, "mass", "velocity")
+    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "interface")
+    inputs = (*inputs, "friction", "model", *RUBBER_OPTIONS, "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -58,6 +58,7 @@ DERIVED = {
     "yeoh": "0,0; only with --model yeoh",
     "gent_limit": "none: required with --model gent",
     "volumetric": "quadratic; finite-strain models only (no effect at nu2 = 0.5)",
+    "friction": "none: no slip; only with --interface bonded",
     **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
@@ -72,7 +73,8 @@ NOTES = {
 
 
 KEYWORDS = (
-    *("mass", "velocity", "depths", "thickness", "base", "model", *RUBBER_OPTIONS),
+    *("mass", "velocity", "depths", "thickness", "base", "interface", "friction", "model"),
+    *RUBBER_OPTIONS,
     *("refine", "estimate"),
     *("accuracy", "max_time"),
     *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
@@ -170,6 +172,16 @@ def contact_text(report: dict) -> str:
         rows.append(
             f"  layer H = {report['mesh']['thickness']:g} m on a {report['mesh']['base']} rigid "
             "base: rel.err = departure from the half-space"
+        )
+    if "interface" in report["mesh"]:
+        rows.append(
+            f"  {report['mesh']['interface']} indenter ("
+            + (
+                f"Coulomb friction {report['mesh']['friction']:g}"
+                if "friction" in report["mesh"]
+                else "no slip once in contact"
+            )
+            + "): rel.err = departure from the frictionless solution"
         )
     rows.append(
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg"

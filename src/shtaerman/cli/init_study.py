@@ -45,6 +45,8 @@ velocity = 3.0              # m/s
 [contact]
 depths = "impact"           # 8 depths up to the impact's x_c (contact radii a_c/3 .. a_c),
                             # or a list of at least 2 increasing depths in m, e.g. [1e-3, 2e-3]
+# interface = "bonded"      # the rubber sticks to the indenter (default "frictionless"); the
+                            # force then departs from Shtaerman's by physics (nu2 < 0.5)
 
 [tolerances]                # relative errors that decide PASS or FAIL (these are the defaults)
 force = 1e-3                # FEM force against Shtaerman's P(x), worst over the depths

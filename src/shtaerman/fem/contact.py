@@ -111,6 +111,8 @@ class SurfaceCompliance:
     mass: np.ndarray
     vertex: np.ndarray
     dofs: np.ndarray = field(repr=False)
+    radial_dofs: np.ndarray | None = field(default=None, repr=False)
+    """Global u_r dofs of the candidates off the axis, where a bonded contact loads them."""
 
     @cached_property
     def mass_factor(self) -> tuple[np.ndarray, tuple]:
@@ -213,6 +215,8 @@ class ContactStep:
     pressure: np.ndarray = field(repr=False)
     gap: np.ndarray = field(repr=False)
     iterations: int
+    tangential_forces: np.ndarray | None = field(default=None, repr=False)
+    """Bonded contact only: nodal forces (N) along +r on the body at ``radial_dofs``."""
 
     @property
     def mean_pressure(self) -> float:
@@ -492,6 +496,8 @@ class ContactCurve:
 def _contact_load(curve: ContactCurve, step: ContactStep) -> np.ndarray:
     load = np.zeros(curve.system.n_dofs)
     load[curve.compliance.dofs] = -step.nodal_forces
+    if step.tangential_forces is not None:
+        load[curve.compliance.radial_dofs] = step.tangential_forces
     return load
 
 

@@ -133,7 +133,7 @@ def _estimate_table(study: Mapping[str, Any]) -> dict[str, object] | None:
             [
                 label,
                 number(details["value"], ".6g") + plus_minus(accuracy["error_estimate"][key]),
-                number(accuracy.get("true_error", {}).get(key), ".1e"),
+                number(accuracy.get("true_error", {}).get(key), ".1e"),  # none: no exact
                 number(accuracy.get("effectivity", {}).get(key), ".2f"),
                 details["method"] + (f" ({details['reason']})" if details["reason"] else ""),
             ]

@@ -282,9 +282,10 @@ def run_ladder(
 
 
 def _exact(mesh: MeshSettings) -> bool:
-    """Whether the curve's ``errors()`` are true errors: on a layer they are its departures
-    from the half-space (its reference is :mod:`shtaerman.theory.layer_reference`)."""
-    return mesh.thickness is None
+    """Whether the curve's ``errors()`` are true errors: on a layer or under a bonded indenter
+    they are departures from Shtaerman's solution (a layer's reference is
+    :mod:`shtaerman.theory.layer_reference`)."""
+    return mesh.thickness is None and mesh.interface == "frictionless"
 
 
 def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:

@@ -8,6 +8,7 @@ curve P(x) is fitted by a power law.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -19,6 +20,7 @@ from ...fem.contact import ContactCurve, ContactStep, solve_contact
 from ...fem.elasticity import ElasticSolution, assemble
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
+from ...fem.stick import solve_bonded_contact
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -243,7 +245,9 @@ def run_indentation(
         Sparse solver ("auto", "superlu", "pardiso").
     aligned : bool
         Forces of the vertex-aligned contacts (default) or nodal sums, see
-        :func:`shtaerman.fem.contact.solve_contact`.
+        :func:`shtaerman.fem.contact.solve_contact`. ``mesh.interface`` "bonded" presses an
+        indenter the surface sticks to (:func:`shtaerman.fem.stick.solve_bonded_contact`,
+        nodal sums).
 
     Returns
     -------
@@ -258,9 +262,15 @@ def run_indentation(
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
-    curve = solve_contact(
-        system, indenter.profile, depths, refined, backend=backend, aligned=aligned
-    )
+    if mesh.interface == "bonded":
+        friction = math.inf if mesh.friction is None else mesh.friction
+        curve = solve_bonded_contact(
+            system, indenter.profile, depths, refined, backend=backend, friction=friction
+        )
+    else:
+        curve = solve_contact(
+            system, indenter.profile, depths, refined, backend=backend, aligned=aligned
+        )
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [step.force for step in curve.steps]
     fit = fit_power_law(depths, forces, exact.force_exponent)
@@ -282,4 +292,8 @@ def run_indentation(
     if mesh.thickness is not None:  # a layer: force_analytic stays the half-space's
         stats |= {"thickness": mesh.thickness, "base": mesh.base}
         stats["domain_radius"] = mesh.lateral_extent(mesh.thickness / refined) * refined
+    if mesh.interface != "frictionless":  # the *_analytic values stay the frictionless ones
+        stats["interface"] = mesh.interface
+        if mesh.friction is not None:
+            stats["friction"] = mesh.friction
     return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)

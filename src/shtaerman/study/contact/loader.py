@@ -11,7 +11,9 @@ snake_case)::
     [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
-    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m
+    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m;
+                 interface = "frictionless" (default) or "bonded" (no slip at the indenter);
+                 friction = mu (bonded only: Coulomb friction; default none, no slip)
     [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
                  domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
     [quick]      the [numerics] keys for ``verify --quick``
@@ -45,7 +47,7 @@ from typing import Annotated, Any, Literal
 
 import msgspec
 
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import INTERFACES, MeshSettings
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -89,8 +91,14 @@ SYMBOLS = {
 
 class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
+    interface: str = "frictionless"
+    friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
 
     def __post_init__(self) -> None:
+        if self.interface not in INTERFACES:
+            raise ValueError(f"interface: one of {list(INTERFACES)}")
+        if self.friction is not None and self.interface != "bonded":
+            raise ValueError('friction: applies to interface = "bonded" only')
         if self.depths != "impact" and (
             not 2 <= len(self.depths) <= entry("depths").max_items
             or any(b <= a for a, b in itertools.pairwise(self.depths))
@@ -279,6 +287,14 @@ def on_layer(study: Study) -> Study:
     return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
 
 
+def _with_interface(study: Study, raw: _StudyFile) -> Study:
+    """``study`` with the indenter's surface ([contact] interface) in each of its meshes."""
+    surface = {"interface": raw.contact.interface, "friction": raw.contact.friction}
+    return replace(
+        study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
+    )
+
+
 def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
     if sweep is None:
         return [on_layer(study)]
@@ -300,7 +316,7 @@ def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
     try:
-        studies = _expanded(_build(path, raw), raw.sweep)
+        studies = _expanded(_with_interface(_build(path, raw), raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
