@@ -296,7 +296,7 @@ def _cli(capsys, *argv):
         (["--model", "yeoh", "--volumetric", "ln"], "--volumetric"),
         (["--model", "mooney-rivlin", "--solver", "pardiso"], "--solver"),
         (["--model", "yeoh", "--accuracy", "1e-3"], "--accuracy"),
-        (["--model", "yeoh", "--thickness", "0.1"], "--thickness"),
+        (["--model", "yeoh", "--thickness", "0.1", "--base", "lubricated"], "--base"),
     ],
 )
 def test_bad_rubber_options_exit_2_with_one_line(capsys, argv, name):
