@@ -71,7 +71,15 @@ from ..schema import (
 )
 from .layer import LayerSpec, check_thickness
 
-__all__ = ["QUICK_MESH", "Study", "Tolerances", "load_contact", "on_layer"]
+__all__ = [
+    "QUICK_MESH",
+    "LayerTable",
+    "Study",
+    "Tolerances",
+    "layer_spec",
+    "load_contact",
+    "on_layer",
+]
 
 QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
 """Coarse mesh of ``verify --quick``."""
@@ -101,10 +109,13 @@ class _Contact(Table):
 ThicknessRatio = ranged("thickness_ratio")
 
 
-class _Layer(Table):
+class LayerTable(Table):
+    """``[layer]``: a layer on a rigid base (the contact and the dynamic study files)."""
+
     thickness: Positive | None = None
     thickness_ratio: ThicknessRatio | None = None
     base: Literal["bonded", "lubricated"] = "bonded"
+    dynamic: bool = False
 
 
 class _Tolerances(Table):
@@ -145,7 +156,7 @@ class _StudyFile(Table):
     quick: MeshTable = MeshTable()
     tolerances: _Tolerances = _Tolerances()
     convergence: _Convergence = _Convergence()
-    layer: _Layer | None = None
+    layer: LayerTable | None = None
     sweep: _Sweep | None = None
 
 
@@ -240,6 +251,12 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
             "measures errors against Shtaerman's half-space, from which a layer departs; the "
             "3-mesh ladder gives a layer's error estimates)"
         )
+    return layer_spec(path, layer, swept)
+
+
+def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> LayerSpec:
+    """The layer of a ``[layer]`` table (unresolved), its thickness given exactly once: in
+    the table (m or H / a_c) or as the swept key ``swept``; :class:`StudyError` otherwise."""
     if layer is None:
         return LayerSpec()
     given = [key for key in ("thickness", "thickness_ratio") if getattr(layer, key) is not None]

@@ -1,0 +1,71 @@
+"""A layer is spelled one way in every study file, swept by the dynamic kind, and a layer
+study or sweep may add the restitution of the dynamic impact on its layer."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from shtaerman.study.schema import StudyError, load_study
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import RIGID, Material, effective_modulus
+
+DYNAMIC = """kind = "dynamic"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 7.5e6
+nu2 = 0.5
+density2 = 1100.0
+[impact]
+mass = 0.7
+velocity = [1.0, 3.0]
+{layer}
+"""
+
+
+def _half_space_contact_radius(velocity: float) -> float:
+    contact = PowerLawContact(
+        PowerLawIndenter(5.0, 1.5), effective_modulus(RIGID, Material(7.5e6, 0.5))
+    )
+    return float(solve_impact(0.7, velocity, contact).a_c)
+
+
+def test_dynamic_study_takes_the_contact_studys_layer_table(tmp_path: Path):
+    path = tmp_path / "pad.toml"
+    path.write_text(DYNAMIC.format(layer='[layer]\nthickness_ratio = 2.0\nbase = "lubricated"'))
+    (study,) = load_study(path)
+    # H / a_c resolved at the figure velocity's half-space contact radius (3 m/s here)
+    assert study.settings.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
+    assert study.settings.base == "lubricated"
+    assert study.quick_settings.thickness == study.settings.thickness
+    path.write_text("thickness = 0.02\n" + DYNAMIC.format(layer=""))  # top level: to [layer]
+    (study,) = load_study(path)
+    assert study.settings.thickness == 0.02 and study.settings.base == "bonded"
+
+
+@pytest.mark.parametrize(
+    ("layer", "message"),
+    [
+        ("[layer]\nthickness = 0.02\nthickness_ratio = 2.0", "layer.thickness_ratio'"),
+        ("[layer]\nthickness_ratio = 0.01", "layer.thickness_ratio"),
+        ("[layer]\nthickness = 0.02\ndynamic = true", "layer.dynamic'"),
+    ],
+)
+def test_dynamic_study_refuses_a_bad_layer_table(tmp_path: Path, layer: str, message: str):
+    path = tmp_path / "bad.toml"
+    path.write_text(DYNAMIC.format(layer=layer))
+    with pytest.raises(StudyError, match=r"bad\.toml") as error:
+        load_study(path)
+    assert message in str(error.value) and "\n" not in str(error.value)
+
+
+def test_dynamic_study_refuses_the_layer_under_half_space(tmp_path: Path):
+    path = tmp_path / "old.toml"
+    path.write_text(DYNAMIC.format(layer="").replace("density2", "thickness = 0.02\ndensity2"))
+    with pytest.raises(StudyError, match=r"half_space\.thickness'.*\[layer\] table"):
+        load_study(path)
