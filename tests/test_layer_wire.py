@@ -69,3 +69,40 @@ def test_dynamic_study_refuses_the_layer_under_half_space(tmp_path: Path):
     path.write_text(DYNAMIC.format(layer="").replace("density2", "thickness = 0.02\ndensity2"))
     with pytest.raises(StudyError, match=r"half_space\.thickness'.*\[layer\] table"):
         load_study(path)
+
+
+def _dynamic_case(**given):
+    from shtaerman.sweep.kinds import get_kind
+
+    kind = get_kind("dynamic")
+    return {**kind.defaults(), "estimate": False, **given}
+
+
+def test_dynamic_sweep_kind_takes_the_layer():
+    from shtaerman.sweep.kinds import _dynamic_inputs, get_kind
+
+    assert {"thickness", "thickness_ratio", "base"} <= set(get_kind("dynamic").parameters)
+    *_, settings = _dynamic_inputs(_dynamic_case())
+    assert settings.thickness is None  # no thickness: the half-space, as before
+    *_, settings = _dynamic_inputs(_dynamic_case(thickness_ratio=2.0, base="lubricated"))
+    assert settings.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
+    assert settings.base == "lubricated"
+    *_, settings = _dynamic_inputs(_dynamic_case(thickness=0.02, refine=2.0))
+    assert settings.thickness == 0.02 and settings.base == "bonded"
+
+
+@pytest.mark.parametrize(
+    ("given", "message"),
+    [
+        ({"thickness": 0.02, "thickness_ratio": 2.0}, "thickness: give"),
+        ({"base": "lubricated"}, "base: applies to a layer only"),
+        ({"thickness": -0.02}, "thickness"),
+        ({"thickness": 0.02, "base": "glued"}, "base"),
+    ],
+)
+def test_dynamic_sweep_kind_refuses_a_bad_layer(given, message):
+    from shtaerman.sweep.kinds import _dynamic_inputs
+    from shtaerman.validation import InputError
+
+    with pytest.raises(InputError, match=message):
+        _dynamic_inputs(_dynamic_case(**given))

@@ -460,19 +460,19 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "thickness",
         "m",
-        "thickness H of a layer on a rigid base (a contact study's [layer] table too)",
+        "thickness H of a layer on a rigid base (a study's [layer] table too)",
         "Layer thickness H",
         None,
-        ("layer",),
+        ("layer", "dynamic"),
     ),
     Entry(
         "thickness_ratio",
         "",
-        "layer thickness H / a_c, the half-space contact radius at the impact's x_c (instead "
-        "of thickness; a contact study's [layer] table too)",
+        "layer thickness H / a_c, the half-space contact radius at the (quasi-static) impact's "
+        "x_c (instead of thickness; a study's [layer] table too)",
         "Layer thickness H / a_c",
         None,
-        ("layer",),
+        ("layer", "dynamic"),
         valid=Range(0.05, 500.0, low_open=False),
     ),
     Entry(
@@ -481,7 +481,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "the layer's rigid base: bonded (u = 0) or lubricated (u_z = 0, free to slide)",
         "Layer base",
         "bonded",
-        ("layer",),
+        ("layer", "dynamic"),
         valid=None,
         type="str",
         choices=("bonded", "lubricated"),

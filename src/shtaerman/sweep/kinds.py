@@ -255,6 +255,7 @@ def _dynamic_inputs(p: dict[str, Any]):
     settings = DynamicSettings()
     for name, field_name in _DYNAMIC_NUMERICS.items():
         settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+    settings = _dynamic_layer(p, indenter, half_space, settings)
     refine = p["refine"]
     if refine != 1.0:
         settings = settings.refined(refine)
@@ -266,6 +267,35 @@ def _dynamic_inputs(p: dict[str, Any]):
     if p["estimate"]:
         check_ladder(settings)
     return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
+
+
+def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
+    """``settings`` on the case's layer (thickness in m or H / a_c at the case's quasi-static
+    x_c on the half-space, and base); unchanged without one (the half-space)."""
+    from dataclasses import replace
+
+    from ..study.contact.layer import LayerSpec
+    from ..theory.contact import PowerLawContact
+    from ..theory.impact import solve_impact
+    from ..theory.materials import RIGID, effective_modulus
+
+    given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
+    if not given:
+        if p.get("base", "bonded") != "bonded":
+            raise InputError(
+                "base: applies to a layer only; give thickness (m) or thickness_ratio too", "base"
+            )
+        return settings
+    if len(given) > 1:
+        raise InputError(
+            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
+            "exactly one of them; got thickness and thickness_ratio",
+            "thickness",
+        )
+    contact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    a_c = float(solve_impact(p["mass"], p["velocity"], contact).a_c)
+    layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
+    return replace(settings, thickness=layer.thickness, base=layer.base)
 
 
 DYNAMIC_OUTPUTS = {
