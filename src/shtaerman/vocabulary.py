@@ -395,7 +395,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "half-space density (the paper gives none; 1100 is natural rubber)",
         "Half-space density \N{GREEK SMALL LETTER RHO}2",
         1100.0,
-        ("dynamic",),
+        ("dynamic", "layer"),
         valid=Range(1e-6, 1e6, low_open=False),
         old_names=("density",),
     ),
@@ -485,6 +485,17 @@ VOCABULARY: tuple[Entry, ...] = (
         valid=None,
         type="str",
         choices=("bonded", "lubricated"),
+    ),
+    Entry(
+        "dynamic",
+        "",
+        "also the dynamic FE impact on the layer (elastic waves, rigid striker, density2): its "
+        "restitution, x_max and P_max (about 5 s per case; a contact study's [layer] table too)",
+        "Dynamic impact on the layer",
+        False,
+        ("layer",),
+        valid=None,
+        type="bool",
     ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(

@@ -435,7 +435,9 @@ def _layer_study(p: dict[str, Any]):
         mesh=mesh,
         quick_mesh=mesh,
         refine=p["refine"],
-        layer=LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]),
+        layer=LayerSpec(
+            p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"]
+        ),
     )
     return on_layer(study)
 
@@ -461,8 +463,15 @@ force_ratio: P_layer / P_Shtaerman at x_c, error_force_ratio its estimated relat
 3-mesh ladder's Richardson estimate of the force, worst depth, plus the interpolation to x_c);
 x_c, P_c: the half-space impact (exact); x_max_layer, P_max_layer: the quasi-static impact
 integrated on the layer's tabulated FE law, and their ratios x_max_ratio, P_max_ratio to x_c
-and P_c. The restitution on a layer needs the
-dynamic impact (the dynamic kind with a thickness), not this quasi-static one."""
+and P_c."""
+LAYER_DYNAMIC_OUTPUTS = {
+    "restitution": "",
+    "x_max_dynamic": "m",
+    "P_max_dynamic": "N",
+    "energy_balance_error": "",
+}
+"""With ``dynamic = true``: the dynamic FE impact on the layer (rigid striker, density2): its
+restitution, maxima and energy balance error (of M v0^2/2)."""
 
 
 def layer_case(p: dict[str, Any]) -> dict[str, float]:
@@ -486,6 +495,19 @@ def layer_case(p: dict[str, Any]) -> dict[str, float]:
         "checks_passed": float(outcome.passed),
         "dofs": int(outcome.contact.mesh_stats["dofs"]),
         "seconds": outcome.seconds,
+        **_layer_dynamic(layer),
+    }
+
+
+def _layer_dynamic(layer: Any) -> dict[str, float]:
+    """:data:`LAYER_DYNAMIC_OUTPUTS` of a layer's findings ({} without its dynamic impact)."""
+    if layer.restitution is None:
+        return {}
+    return {
+        "restitution": float(layer.restitution),
+        "x_max_dynamic": float(layer.x_max_dynamic),
+        "P_max_dynamic": float(layer.P_max_dynamic),
+        "energy_balance_error": float(layer.dynamic_energy_balance),
     }
 
 
@@ -499,6 +521,7 @@ register_kind(
         case=layer_case,
         check=_quasi_static(_layer_study),
         nondeterministic=("seconds",),
+        optional_outputs={"dynamic": LAYER_DYNAMIC_OUTPUTS},
     )
 )
 

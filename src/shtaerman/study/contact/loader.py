@@ -23,6 +23,9 @@ snake_case)::
     [layer]      optional: a layer on a rigid base instead of the half-space: thickness (m)
                  or thickness_ratio (H / a_c, a_c the half-space contact radius at the
                  impact's x_c; in [0.05, 500]), and base = "bonded" (default) or "lubricated"
+                 dynamic = true (optional, about 5 s per study) adds the dynamic FE impact
+                 on the layer (rigid striker, [half_space] density2 = 1100 kg/m^3 by
+                 default): its restitution, x_max and P_max
     [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
                  "velocity", "thickness", "thickness_ratio") and a list of values; the study
                  runs once per value.
@@ -118,6 +121,10 @@ class LayerTable(Table):
     dynamic: bool = False
 
 
+class _HalfSpace(MaterialTable):
+    density2: Positive | None = None
+
+
 class _Tolerances(Table):
     force: Relative = 1e-3
     beta: Relative = 1e-3
@@ -146,7 +153,7 @@ class _Sweep(SweepTable):
 
 class _StudyFile(Table):
     indenter: IndenterTable
-    half_space: MaterialTable
+    half_space: _HalfSpace
     impact: ImpactTable
     name: str | None = None
     description: str = ""
@@ -243,6 +250,12 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
     """The study file's layer as given (thickness or H / a_c, unresolved), or None."""
     layer, swept = raw.layer, raw.sweep.chosen()[0] if raw.sweep is not None else None
     swept = swept if swept in ("thickness", "thickness_ratio") else None
+    density = raw.half_space.density2
+    if density is not None and not (layer is not None and layer.dynamic):
+        raise StudyError(
+            f"{path}: key 'half_space.density2': applies to the dynamic impact on a layer only; "
+            "give layer.dynamic = true too"
+        )
     if layer is None and swept is None:
         return None
     if raw.convergence.sizes:
@@ -251,7 +264,8 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
             "measures errors against Shtaerman's half-space, from which a layer departs; the "
             "3-mesh ladder gives a layer's error estimates)"
         )
-    return layer_spec(path, layer, swept)
+    spec = layer_spec(path, layer, swept)
+    return spec if density is None else replace(spec, density=density)
 
 
 def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> LayerSpec:
@@ -271,7 +285,7 @@ def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Layer
             f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
             f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
         )
-    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base)
+    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
 
 
 def on_layer(study: Study) -> Study:

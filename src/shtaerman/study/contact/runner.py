@@ -25,7 +25,7 @@ from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, depths_up_to
-from .layer import LayerFindings, layer_checks, layer_findings
+from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
 from .loader import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_contact_study"]
@@ -178,6 +178,12 @@ def run_contact_study(
     checks = _checks(study, contact, impacts)
     if study.layer is not None:
         layer = layer_findings(study.layer, accuracy, law, impacts["analytic"], tabulated)
+        if study.layer.dynamic:
+            report(f"{study.name}: dynamic FE impact on the layer (restitution)")
+            impact = (study.mass, study.velocity)
+            layer = with_dynamic_impact(
+                layer, study.layer, study.indenter, study.half_space, impact, quick
+            )
         checks = layer_checks(layer, study.tolerances.force, study.tolerances.impact)
     return StudyOutcome(
         study=study,
