@@ -178,12 +178,7 @@ def run_contact_study(
     checks = _checks(study, contact, impacts)
     if study.layer is not None:
         layer = layer_findings(study.layer, accuracy, law, impacts["analytic"], tabulated)
-        if study.layer.dynamic:
-            report(f"{study.name}: dynamic FE impact on the layer (restitution)")
-            impact = (study.mass, study.velocity)
-            layer = with_dynamic_impact(
-                layer, study.layer, study.indenter, study.half_space, impact, quick
-            )
+        layer = _dynamic_layer(study, layer, quick, report)
         checks = layer_checks(layer, study.tolerances.force, study.tolerances.impact)
     return StudyOutcome(
         study=study,
@@ -198,6 +193,17 @@ def run_contact_study(
         accuracy=accuracy,
         layer=layer,
     )
+
+
+def _dynamic_layer(
+    study: Study, layer: LayerFindings, quick: bool, report: Progress
+) -> LayerFindings:
+    """``layer`` with the dynamic impact on it where the study asks for it (``dynamic``)."""
+    if not study.layer.dynamic:
+        return layer
+    report(f"{study.name}: dynamic FE impact on the layer (restitution)")
+    impact = (study.mass, study.velocity)
+    return with_dynamic_impact(layer, study.layer, study.indenter, study.half_space, impact, quick)
 
 
 def _convergence(
