@@ -210,7 +210,7 @@ velocity = 3.0
 
 def test_study_file_takes_the_layer(tmp_path: Path):
     path = tmp_path / "pad.toml"
-    path.write_text(STUDY.format(layer='thickness = 0.02\nbase = "lubricated"'))
+    path.write_text(STUDY.format(layer='[layer]\nthickness = 0.02\nbase = "lubricated"'))
     (study,) = load_study(path)
     assert study.settings.thickness == 0.02 and study.settings.base == "lubricated"
     assert study.quick_settings.thickness == 0.02
@@ -221,7 +221,7 @@ def test_study_file_takes_the_layer(tmp_path: Path):
 
 def test_a_layer_study_runs_and_its_findings_name_the_layer(tmp_path: Path):
     path = tmp_path / "pad.toml"
-    layer = 'thickness = 0.02\nbase = "lubricated"'
+    layer = '[layer]\nthickness = 0.02\nbase = "lubricated"'
     text = STUDY.format(layer=layer).replace("velocity = 3.0", "velocity = [1.0, 3.0]")
     path.write_text(text + "[quick]\ntime_steps = 60\nmesh_size = 0.05\n")
     (study,) = load_study(path)
@@ -240,9 +240,10 @@ def test_a_layer_study_runs_and_its_findings_name_the_layer(tmp_path: Path):
 @pytest.mark.parametrize(
     ("layer", "message"),
     [
-        ('base = "lubricated"', "half_space.base': applies to a layer only"),
-        ('thickness = 0.02\nbase = "glued"', "half_space.base'"),
-        ("thickness = -0.02", "half_space.thickness"),
+        ('base = "lubricated"', "half_space.base': the layer is the [layer] table"),
+        ('[layer]\nbase = "lubricated"', "layer': expected thickness"),
+        ('[layer]\nthickness = 0.02\nbase = "glued"', "layer.base'"),
+        ("[layer]\nthickness = -0.02", "layer.thickness"),
     ],
 )
 def test_study_file_refuses_a_bad_layer(tmp_path: Path, layer: str, message: str):

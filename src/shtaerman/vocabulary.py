@@ -395,7 +395,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "half-space density (the paper gives none; 1100 is natural rubber)",
         "Half-space density \N{GREEK SMALL LETTER RHO}2",
         1100.0,
-        ("dynamic",),
+        ("dynamic", "layer"),
         valid=Range(1e-6, 1e6, low_open=False),
         old_names=("density",),
     ),
@@ -460,19 +460,19 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "thickness",
         "m",
-        "thickness H of a layer on a rigid base (a contact study's [layer] table too)",
+        "thickness H of a layer on a rigid base (a study's [layer] table too)",
         "Layer thickness H",
         None,
-        ("layer",),
+        ("layer", "dynamic"),
     ),
     Entry(
         "thickness_ratio",
         "",
-        "layer thickness H / a_c, the half-space contact radius at the impact's x_c (instead "
-        "of thickness; a contact study's [layer] table too)",
+        "layer thickness H / a_c, the half-space contact radius at the (quasi-static) impact's "
+        "x_c (instead of thickness; a study's [layer] table too)",
         "Layer thickness H / a_c",
         None,
-        ("layer",),
+        ("layer", "dynamic"),
         valid=Range(0.05, 500.0, low_open=False),
     ),
     Entry(
@@ -481,10 +481,21 @@ VOCABULARY: tuple[Entry, ...] = (
         "the layer's rigid base: bonded (u = 0) or lubricated (u_z = 0, free to slide)",
         "Layer base",
         "bonded",
-        ("layer",),
+        ("layer", "dynamic"),
         valid=None,
         type="str",
         choices=("bonded", "lubricated"),
+    ),
+    Entry(
+        "dynamic",
+        "",
+        "also the dynamic FE impact on the layer (elastic waves, rigid striker, density2): its "
+        "restitution, x_max and P_max (about 5 s per case; a contact study's [layer] table too)",
+        "Dynamic impact on the layer",
+        False,
+        ("layer",),
+        valid=None,
+        type="bool",
     ),
     # --- the indenter's surface ---------------------------------------------------------------
     Entry(

@@ -70,6 +70,7 @@ impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against t
 # thickness_ratio = 5.0     # H / a_c (a_c: the half-space contact radius at x_c), or
 #                           # thickness = 0.02 (m)
 # base = "bonded"           # or "lubricated" (free to slide on the base)
+# dynamic = false           # true: also the dynamic impact on the pad, its restitution (~5 s)
 
 # [sweep]                   # run the study once per value of ONE parameter: shape_coefficient,
 # velocity = [1.0, 2.0, 3.0]  # exponent, mass, velocity, thickness or thickness_ratio (each

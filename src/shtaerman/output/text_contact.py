@@ -164,7 +164,15 @@ def _layer_findings(name: str, layer: Mapping[str, Any]) -> list[str]:
         f"law reaches x_max = {number(layer['x_max'], '.4g')} m "
         f"({100 * (layer['x_max_ratio'] - 1.0):+.3g} % of x_c) and P_max = "
         f"{number(layer['P_max'], '.4g')} N ({100 * (layer['P_max_ratio'] - 1.0):+.3g} % of "
-        "P_c); the restitution on a layer needs the dynamic impact, not computed here."
+        "P_c); "
+        + (
+            "the restitution on a layer needs the dynamic impact, not computed here."
+            if layer.get("restitution") is None
+            else "the dynamic FE impact on the layer (elastic waves, rigid striker) has "
+            f"restitution {layer['restitution']:.4f}, x_max = "
+            f"{number(layer['x_max_dynamic'], '.4g')} m and P_max = "
+            f"{number(layer['P_max_dynamic'], '.4g')} N."
+        )
     ]
 
 

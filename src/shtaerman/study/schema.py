@@ -284,7 +284,7 @@ TABLE_OF = {
         name: "contact" for name in ("depths", "reach", "depth_steps", "small_ratio", "small_steps")
     },
     **{item.name: "numerics" for item in VOCABULARY if item.group == "numerics"},
-    **{name: "layer" for name in ("thickness", "thickness_ratio", "base")},
+    **{name: "layer" for name in ("thickness", "thickness_ratio", "base", "dynamic")},
 }
 """A vocabulary key written at the top level of a study file -> the table it belongs to."""
 OLD_TABLES = {"mesh": "numerics", "quick_mesh": "quick"}

@@ -255,6 +255,7 @@ def _dynamic_inputs(p: dict[str, Any]):
     settings = DynamicSettings()
     for name, field_name in _DYNAMIC_NUMERICS.items():
         settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+    settings = _dynamic_layer(p, indenter, half_space, settings)
     refine = p["refine"]
     if refine != 1.0:
         settings = settings.refined(refine)
@@ -266,6 +267,35 @@ def _dynamic_inputs(p: dict[str, Any]):
     if p["estimate"]:
         check_ladder(settings)
     return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
+
+
+def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
+    """``settings`` on the case's layer (thickness in m or H / a_c at the case's quasi-static
+    x_c on the half-space, and base); unchanged without one (the half-space)."""
+    from dataclasses import replace
+
+    from ..study.contact.layer import LayerSpec
+    from ..theory.contact import PowerLawContact
+    from ..theory.impact import solve_impact
+    from ..theory.materials import RIGID, effective_modulus
+
+    given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
+    if not given:
+        if p.get("base", "bonded") != "bonded":
+            raise InputError(
+                "base: applies to a layer only; give thickness (m) or thickness_ratio too", "base"
+            )
+        return settings
+    if len(given) > 1:
+        raise InputError(
+            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
+            "exactly one of them; got thickness and thickness_ratio",
+            "thickness",
+        )
+    contact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    a_c = float(solve_impact(p["mass"], p["velocity"], contact).a_c)
+    layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
+    return replace(settings, thickness=layer.thickness, base=layer.base)
 
 
 DYNAMIC_OUTPUTS = {
@@ -405,7 +435,9 @@ def _layer_study(p: dict[str, Any]):
         mesh=mesh,
         quick_mesh=mesh,
         refine=p["refine"],
-        layer=LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]),
+        layer=LayerSpec(
+            p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"]
+        ),
     )
     return on_layer(study)
 
@@ -431,8 +463,15 @@ force_ratio: P_layer / P_Shtaerman at x_c, error_force_ratio its estimated relat
 3-mesh ladder's Richardson estimate of the force, worst depth, plus the interpolation to x_c);
 x_c, P_c: the half-space impact (exact); x_max_layer, P_max_layer: the quasi-static impact
 integrated on the layer's tabulated FE law, and their ratios x_max_ratio, P_max_ratio to x_c
-and P_c. The restitution on a layer needs the
-dynamic impact (the dynamic kind with a thickness), not this quasi-static one."""
+and P_c."""
+LAYER_DYNAMIC_OUTPUTS = {
+    "restitution": "",
+    "x_max_dynamic": "m",
+    "P_max_dynamic": "N",
+    "energy_balance_error": "",
+}
+"""With ``dynamic = true``: the dynamic FE impact on the layer (rigid striker, density2): its
+restitution, maxima and energy balance error (of M v0^2/2)."""
 
 
 def layer_case(p: dict[str, Any]) -> dict[str, float]:
@@ -456,6 +495,19 @@ def layer_case(p: dict[str, Any]) -> dict[str, float]:
         "checks_passed": float(outcome.passed),
         "dofs": int(outcome.contact.mesh_stats["dofs"]),
         "seconds": outcome.seconds,
+        **_layer_dynamic(layer),
+    }
+
+
+def _layer_dynamic(layer: Any) -> dict[str, float]:
+    """:data:`LAYER_DYNAMIC_OUTPUTS` of a layer's findings ({} without its dynamic impact)."""
+    if layer.restitution is None:
+        return {}
+    return {
+        "restitution": float(layer.restitution),
+        "x_max_dynamic": float(layer.x_max_dynamic),
+        "P_max_dynamic": float(layer.P_max_dynamic),
+        "energy_balance_error": float(layer.dynamic_energy_balance),
     }
 
 
@@ -469,6 +521,7 @@ register_kind(
         case=layer_case,
         check=_quasi_static(_layer_study),
         nondeterministic=("seconds",),
+        optional_outputs={"dynamic": LAYER_DYNAMIC_OUTPUTS},
     )
 )
 

@@ -11,8 +11,9 @@ on the half-space: "how many contact radii thick is my pad". The findings are
 - the quasi-static impact integrated on the layer's tabulated FE law (M x'' = -P(x)): x_max and
   P_max, and their ratios to the half-space impact's x_c and P_c.
 
-The restitution needs the dynamic impact on a layer (``dynamic --thickness``); the findings keep
-a ``restitution`` slot, ``None`` until then.
+With ``dynamic = true`` in the ``[layer]`` table (or the layer sweep's ``dynamic``) the
+findings add the dynamic FE impact on the same layer (elastic waves, the striker rigid, the
+half-space density ``density2``): its restitution, x_max and P_max; ``None`` without it.
 """
 
 from __future__ import annotations
@@ -22,8 +23,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ...fem.dynamic_contact import DynamicSettings
 from ...fem.mesh import MAX_THICKNESS, MIN_THICKNESS, MeshSettings
 from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
 from ...validation import InputError
 from ..checks import Check
 from .accuracy import AccuracyResult
@@ -31,6 +34,7 @@ from .contact_law import FemContactLaw
 
 __all__ = [
     "LEVELS",
+    "QUICK_DYNAMIC",
     "LayerFindings",
     "LayerSpec",
     "check_thickness",
@@ -38,6 +42,8 @@ __all__ = [
     "layer_findings",
 ]
 
+QUICK_DYNAMIC = DynamicSettings(steps=100, size=0.05)
+"""Coarse dynamic settings of a layer study's dynamic impact in ``verify --quick``."""
 LEVELS = (0.01, 0.05)
 """Departures P / P_Shtaerman - 1 the findings and the map mark: 1 % and 5 %."""
 REFERENCE_EXPONENT = 1.5
@@ -72,6 +78,10 @@ class LayerSpec:
     thickness_ratio: float | None = None
     """H / a_c (a_c: the half-space contact radius at the half-space impact's x_c)."""
     base: str = "bonded"
+    dynamic: bool = False
+    """Also run the dynamic FE impact on the layer (its restitution)."""
+    density: float = 1100.0
+    """The layer's density in kg/m^3 (for ``dynamic``)."""
 
     def resolved(self, contact_radius: float) -> LayerSpec:
         """Both spellings filled in for the half-space contact radius a_c in m."""
@@ -119,8 +129,11 @@ class LayerFindings:
         x_max / x_c and P_max / P_c of the half-space impact.
     curve : tuple of (float, float)
         (H / a, P / P_Shtaerman) at every depth of the study, a the half-space contact radius.
-    restitution : float or None
-        From the dynamic impact on a layer; None until it is computed.
+    restitution, x_max_dynamic, P_max_dynamic : float or None
+        The dynamic FE impact on the layer: its restitution and maxima (m, N); None unless
+        the study asks for it.
+    dynamic_energy_balance : float or None
+        Its energy balance error, of M v0^2/2.
     """
 
     thickness: float
@@ -135,6 +148,9 @@ class LayerFindings:
     P_max_ratio: float
     curve: tuple[tuple[float, float], ...]
     restitution: float | None = None
+    x_max_dynamic: float | None = None
+    P_max_dynamic: float | None = None
+    dynamic_energy_balance: float | None = None
 
     def to_dict(self) -> dict[str, object]:
         """Plain data for JSON (``curve`` as two lists)."""
@@ -202,14 +218,43 @@ def layer_findings(
     )
 
 
+def with_dynamic_impact(
+    findings: LayerFindings,
+    layer: LayerSpec,
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    impact: tuple[float, float],
+    quick: bool = False,
+) -> LayerFindings:
+    """``findings`` with the dynamic FE impact (mass kg, velocity m/s) of a rigid striker on the
+    resolved ``layer`` of ``half_space`` (density ``layer.density``): restitution, x_max (m),
+    P_max (N) and its energy balance error; :data:`QUICK_DYNAMIC` settings if ``quick``."""
+    from ...fem.dynamic_contact import run_dynamic_impact
+
+    settings = replace(
+        QUICK_DYNAMIC if quick else DynamicSettings(), thickness=layer.thickness, base=layer.base
+    )
+    result = run_dynamic_impact(indenter, half_space, layer.density, *impact, settings)
+    return replace(
+        findings,
+        restitution=float(result.restitution),
+        x_max_dynamic=float(result.x_max),
+        P_max_dynamic=float(result.P_max),
+        dynamic_energy_balance=float(result.energy_balance_error),
+    )
+
+
 def layer_checks(findings: LayerFindings, force: float, impact: float) -> list[Check]:
     """Pass or fail of a layer study: the FE error estimate of the force ratio within ``force``;
     the layer no softer than the half-space (within its error and ``force``); the impact on it
     no deeper and no softer than on the half-space (within ``impact``)."""
     error = findings.force_ratio_error
-    return [
+    checks = [
         Check("layer force ratio error estimate", error, force),
         Check("layer P / P_Shtaerman >= 1", min(0.0, findings.force_ratio - 1.0 + error), force),
         Check("layer impact x_max <= x_c", max(0.0, findings.x_max_ratio - 1.0), impact),
         Check("layer impact P_max >= P_c", min(0.0, findings.P_max_ratio - 1.0), impact),
     ]
+    if findings.dynamic_energy_balance is not None:  # the dynamic studies' own limit
+        checks.append(Check("layer dynamic energy balance", findings.dynamic_energy_balance, 1e-2))
+    return checks

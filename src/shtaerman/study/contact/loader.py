@@ -25,6 +25,9 @@ snake_case)::
     [layer]      optional: a layer on a rigid base instead of the half-space: thickness (m)
                  or thickness_ratio (H / a_c, a_c the half-space contact radius at the
                  impact's x_c; in [0.05, 500]), and base = "bonded" (default) or "lubricated"
+                 dynamic = true (optional, about 5 s per study) adds the dynamic FE impact
+                 on the layer (rigid striker, [half_space] density2 = 1100 kg/m^3 by
+                 default): its restitution, x_max and P_max
     [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
                  "velocity", "thickness", "thickness_ratio") and a list of values; the study
                  runs once per value.
@@ -73,7 +76,15 @@ from ..schema import (
 )
 from .layer import LayerSpec, check_thickness
 
-__all__ = ["QUICK_MESH", "Study", "Tolerances", "load_contact", "on_layer"]
+__all__ = [
+    "QUICK_MESH",
+    "LayerTable",
+    "Study",
+    "Tolerances",
+    "layer_spec",
+    "load_contact",
+    "on_layer",
+]
 
 QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, axis_growth=0.2)
 """Coarse mesh of ``verify --quick``."""
@@ -109,10 +120,17 @@ class _Contact(Table):
 ThicknessRatio = ranged("thickness_ratio")
 
 
-class _Layer(Table):
+class LayerTable(Table):
+    """``[layer]``: a layer on a rigid base (the contact and the dynamic study files)."""
+
     thickness: Positive | None = None
     thickness_ratio: ThicknessRatio | None = None
     base: Literal["bonded", "lubricated"] = "bonded"
+    dynamic: bool = False
+
+
+class _HalfSpace(MaterialTable):
+    density2: Positive | None = None
 
 
 class _Tolerances(Table):
@@ -143,7 +161,7 @@ class _Sweep(SweepTable):
 
 class _StudyFile(Table):
     indenter: IndenterTable
-    half_space: MaterialTable
+    half_space: _HalfSpace
     impact: ImpactTable
     name: str | None = None
     description: str = ""
@@ -153,7 +171,7 @@ class _StudyFile(Table):
     quick: MeshTable = MeshTable()
     tolerances: _Tolerances = _Tolerances()
     convergence: _Convergence = _Convergence()
-    layer: _Layer | None = None
+    layer: LayerTable | None = None
     sweep: _Sweep | None = None
 
 
@@ -240,6 +258,12 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
     """The study file's layer as given (thickness or H / a_c, unresolved), or None."""
     layer, swept = raw.layer, raw.sweep.chosen()[0] if raw.sweep is not None else None
     swept = swept if swept in ("thickness", "thickness_ratio") else None
+    density = raw.half_space.density2
+    if density is not None and not (layer is not None and layer.dynamic):
+        raise StudyError(
+            f"{path}: key 'half_space.density2': applies to the dynamic impact on a layer only; "
+            "give layer.dynamic = true too"
+        )
     if layer is None and swept is None:
         return None
     if raw.convergence.sizes:
@@ -248,6 +272,13 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
             "measures errors against Shtaerman's half-space, from which a layer departs; the "
             "3-mesh ladder gives a layer's error estimates)"
         )
+    spec = layer_spec(path, layer, swept)
+    return spec if density is None else replace(spec, density=density)
+
+
+def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> LayerSpec:
+    """The layer of a ``[layer]`` table (unresolved), its thickness given exactly once: in
+    the table (m or H / a_c) or as the swept key ``swept``; :class:`StudyError` otherwise."""
     if layer is None:
         return LayerSpec()
     given = [key for key in ("thickness", "thickness_ratio") if getattr(layer, key) is not None]
@@ -262,7 +293,7 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
             f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
             f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
         )
-    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base)
+    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
 
 
 def on_layer(study: Study) -> Study:

@@ -25,7 +25,7 @@ from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, depths_up_to
-from .layer import LayerFindings, layer_checks, layer_findings
+from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
 from .loader import Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_contact_study"]
@@ -178,6 +178,7 @@ def run_contact_study(
     checks = _checks(study, contact, impacts)
     if study.layer is not None:
         layer = layer_findings(study.layer, accuracy, law, impacts["analytic"], tabulated)
+        layer = _dynamic_layer(study, layer, quick, report)
         checks = layer_checks(layer, study.tolerances.force, study.tolerances.impact)
     return StudyOutcome(
         study=study,
@@ -192,6 +193,17 @@ def run_contact_study(
         accuracy=accuracy,
         layer=layer,
     )
+
+
+def _dynamic_layer(
+    study: Study, layer: LayerFindings, quick: bool, report: Progress
+) -> LayerFindings:
+    """``layer`` with the dynamic impact on it where the study asks for it (``dynamic``)."""
+    if not study.layer.dynamic:
+        return layer
+    report(f"{study.name}: dynamic FE impact on the layer (restitution)")
+    impact = (study.mass, study.velocity)
+    return with_dynamic_impact(layer, study.layer, study.indenter, study.half_space, impact, quick)
 
 
 def _convergence(

@@ -7,9 +7,11 @@ approach velocity (:mod:`.runner`)::
     name = "dynamic"                      # optional; default: the file's stem
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3),
-                 thickness = 0.02 (m, optional: a layer on a rigid base; default: the
-                 half-space), base = "bonded" or "lubricated" (only with thickness)
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3)
+    [layer]      optional, as in a contact study: a layer on a rigid base instead of the
+                 half-space: thickness (m) or thickness_ratio (H / a_c, a_c the half-space
+                 contact radius at the quasi-static x_c of figure_velocity), base = "bonded"
+                 (default) or "lubricated"
     [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
                  figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
                  the findings; default: the middle one, the upper of two)
@@ -41,10 +43,13 @@ from ...fem.dynamic_contact import (
     estimate_dofs,
     validate_density,
 )
+from ...theory.contact import PowerLawContact
+from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
-from ...theory.materials import Material
+from ...theory.materials import RIGID, Material, effective_modulus
 from ...validation import InputError, shown
 from ...vocabulary import entry
+from ..contact.loader import LayerTable, layer_spec
 from ..schema import (
     SETTINGS_FIELDS,
     Poisson,
@@ -71,8 +76,6 @@ class _DynHalfSpace(Table):
     E2: Positive
     nu2: Poisson
     density2: Positive
-    thickness: Positive | None = None
-    base: str | None = None
 
 
 class _Numerics(Table):
@@ -117,6 +120,7 @@ class _DynamicFile(Table):
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
     tolerances: _DynTolerances = _DynTolerances()
+    layer: LayerTable | None = None
 
 
 @dataclass(frozen=True)
@@ -181,21 +185,35 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     return settings
 
 
-def _layer(path: Path, body: _DynHalfSpace) -> DynamicSettings:
-    """The default settings on the table's layer (none: the half-space)."""
-    if body.thickness is None:
-        if body.base is not None:
-            raise StudyError(
-                f"{path}: key 'half_space.base': applies to a layer only; give "
-                "half_space.thickness (m) too"
-            )
+def _layer(path: Path, raw: _DynamicFile, example: float) -> DynamicSettings:
+    """The default settings on the file's ``[layer]`` (none: the half-space), H / a_c
+    resolved at the quasi-static impact of ``example`` m/s on the half-space."""
+    if raw.layer is None:
         return DynamicSettings()
-    base = entry("base").default if body.base is None else body.base
+    if raw.layer.dynamic:
+        raise StudyError(
+            f"{path}: key 'layer.dynamic': applies to a contact study (a dynamic study is one)"
+        )
+    spec = layer_spec(path, raw.layer, None)
+    indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
+    body = Material(raw.half_space.E2, raw.half_space.nu2)
+    half_space = PowerLawContact(indenter, effective_modulus(RIGID, body))
+    spec = spec.resolved(float(solve_impact(raw.impact.mass, example, half_space).a_c))
     try:
-        entry("base").check(base)
-        return DynamicSettings(thickness=body.thickness, base=base)
+        return DynamicSettings(thickness=spec.thickness, base=spec.base)
     except InputError as error:
-        raise StudyError(f"{path}: key 'half_space.base': {error}") from None
+        raise StudyError(f"{path}: key 'layer': {error}") from None
+
+
+def _moved_layer(path: Path, data: dict[str, Any]) -> None:
+    """Refuse the layer keys under ``[half_space]``: a layer is the ``[layer]`` table."""
+    body = data.get("half_space")
+    for key in ("thickness", "base"):
+        if isinstance(body, dict) and key in body:
+            raise StudyError(
+                f"{path}: key 'half_space.{key}': the layer is the [layer] table, as in a "
+                "contact study: thickness (m) or thickness_ratio (H / a_c), and base"
+            )
 
 
 def _velocities(
@@ -219,6 +237,7 @@ def _velocities(
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
+    _moved_layer(path, data)
     raw: _DynamicFile = decode(path, data, _DynamicFile)
     try:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
@@ -238,7 +257,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
-    settings = _settings(path, "numerics", raw.numerics, _layer(path, raw.half_space))
+    settings = _settings(path, "numerics", raw.numerics, _layer(path, raw, example))
     try:
         check_ladder(settings)  # the full study runs the ladder; verify --quick does not
     except InputError as error:
