@@ -32,7 +32,8 @@ from threadpoolctl import threadpool_limits
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.materials import Material
+from ..theory.materials import validate_density as validate_material_density
 from ..theory.radiation import rayleigh_root
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
@@ -82,14 +83,9 @@ MAX_STEPS = 100_000
 
 
 def validate_density(density: object) -> float:
-    """Return the half-space density in kg/m^3, or raise InputError naming ``density2``."""
-    rho = validate_positive("density2", density, "kg/m^3")
-    low, high = DENSITY_RANGE
-    if not low <= rho <= high:
-        raise InputError(
-            f"density2 must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}", "density2"
-        )
-    return rho
+    """Return the half-space density in kg/m^3 (0: massless), or raise InputError naming
+    ``density2``."""
+    return validate_material_density("density2", density)
 
 
 @dataclass(frozen=True)
@@ -422,7 +418,7 @@ def _scales(
     qs = _quasi_static(indenter, half_space, striker)
     nu = half_space.poisson_ratio
     shear = half_space.youngs_modulus / (2.0 * (1.0 + nu))
-    c_s = math.sqrt(shear / rho)
+    c_s = math.sqrt(shear / rho) if rho > 0 else math.inf  # massless: no waves
     t_y = qs.t_y
     refined = settings.margin * qs.a_c
     domain_radius = settings.domain * refined
@@ -495,11 +491,16 @@ def _assemble_body(
         profile=np.asarray(indenter.profile(r_c), dtype=float),
         surface_factor=mass_factor(system.surface_mass[selected][:, selected].toarray()),
     )
-    body_mass = redistribute_normal_mass(consistent_mass(system, rho), dofs)
+    n = system.n_dofs
+    body_mass = (
+        redistribute_normal_mass(consistent_mass(system, rho), dofs)
+        if rho > 0
+        else sp.csr_matrix((n, n))
+    )
     damping = (
         weighted_mass(system, scales.layer.weight(rho))
         if scales.has_layer
-        else sp.csr_matrix((system.n_dofs, system.n_dofs))
+        else sp.csr_matrix((n, n))
     )
     inner_stiffness, inner_unit_mass = _inner_energy_matrices(system, scales.inner_radius)
     return _Body(
@@ -773,6 +774,8 @@ def _result(
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
         reflected = _reflected_fraction(history, energy0, setup.reflection_measured)
+        if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
+            reflected = 0.0
     return DynamicImpactResult(
         t=t,
         x=history.x,

@@ -9,6 +9,8 @@ how far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and 
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -57,8 +59,9 @@ class DynamicCase:
     def differences(self) -> dict[str, float]:
         """:func:`compare` and the measured loss against the first-order estimate."""
         out = compare(self.quasi, self.result)
+        estimated = self.estimate.energy_fraction
         out["loss_vs_estimate"] = (
-            self.result.energy_radiated_fraction / self.estimate.energy_fraction - 1.0
+            self.result.energy_radiated_fraction / estimated - 1.0 if estimated > 0 else math.nan
         )
         return out
 
@@ -88,6 +91,21 @@ class DynamicCase:
             "parameters": self.result.parameters,
             **(self.ladder.to_dict(self.estimates()) if self.ladder is not None else {}),
         }
+
+
+def _radiation(
+    mass: float, velocity: float, law: PowerLawContact, density: float, half_space: Material
+) -> RadiationEstimate:
+    """The first-order radiation estimate; a massless half-space (density 0) radiates nothing."""
+    shear, nu = half_space.shear_modulus, half_space.poisson_ratio
+    p = law.force_exponent
+    if density > 0:
+        return radiation_estimate(mass, velocity, law.beta, p, density, shear, nu)
+    lossless = radiation_estimate(mass, velocity, law.beta, p, 1.0, shear, nu)
+    return dataclasses.replace(
+        lossless, shear_wave_speed=math.inf, radiated_energy=0.0, energy_fraction=0.0,
+        restitution=1.0,
+    )  # fmt: skip
 
 
 def run_case(
@@ -123,15 +141,7 @@ def run_case(
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     quasi = solve_impact(mass, velocity, law)
-    estimate = radiation_estimate(
-        mass,
-        velocity,
-        law.beta,
-        law.force_exponent,
-        density,
-        half_space.shear_modulus,
-        half_space.poisson_ratio,
-    )
+    estimate = _radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)

@@ -7,7 +7,8 @@ approach velocity (:mod:`.runner`)::
     name = "dynamic"                      # optional; default: the file's stem
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3)
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3; 0:
+                 massless)
     [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
                  figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
                  the findings; default: the middle one, the upper of two)
@@ -68,7 +69,7 @@ class _DynIndenter(Table):
 class _DynHalfSpace(Table):
     E2: Positive
     nu2: Poisson
-    density2: Positive
+    density2: Annotated[float, msgspec.Meta(ge=0)]  # 0: massless
 
 
 class _Numerics(Table):
