@@ -12,11 +12,24 @@ from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import RIGID, Material, effective_modulus
+from shtaerman.theory.viscoelastic import (
+    PronySeries,
+    indentation_force,
+    limit_impacts,
+    viscoelastic_impact,
+)
 
 INDENTER = PowerLawIndenter(5.0, 1.5)
 RUBBER = Material(7.5e6, 0.5)
 MASS, VELOCITY = 0.7, 3.0
 COARSE = DynamicSettings(steps=100, size=0.05)
+LAW = PowerLawContact(INDENTER, effective_modulus(RIGID, RUBBER))
+ONE_TERM = PronySeries((0.5,), (2e-3,))
+"""g = 0.5 at tau = t_c / 2 (t_c = 4.1 ms, the paper's glassy compression time)."""
+
+
+def visco_run(prony, density=0.0, settings=COARSE):
+    return run_dynamic_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, prony=prony)
 
 
 @pytest.fixture(scope="module")
@@ -77,3 +90,66 @@ mass = 0.7
 velocity = [1.0, 3.0]
 figure_velocity = 3.0
 """
+
+
+@pytest.fixture(scope="module")
+def hysteresis():
+    """Density 0 and one Prony term: hysteresis without waves."""
+    return visco_run(ONE_TERM)
+
+
+def test_force_follows_lee_radok_while_loading(hysteresis):
+    """Lee-Radok evaluated on the FE's own x(t), up to the largest approach."""
+    peak = int(np.argmax(hysteresis.x))
+    times, depth = hysteresis.t[: peak + 1], hysteresis.x[: peak + 1]
+    force, _ = indentation_force(times, depth, LAW, ONE_TERM)
+    deviation = np.max(np.abs(force - hysteresis.force[: peak + 1]))
+    assert deviation < 2e-3 * hysteresis.P_max
+
+
+def test_quasi_static_restitution_is_tings(hysteresis):
+    reference = viscoelastic_impact(MASS, VELOCITY, LAW, ONE_TERM, steps=4000)
+    assert hysteresis.restitution == pytest.approx(reference.restitution, abs=1e-3)
+    assert hysteresis.x_max == pytest.approx(reference.x_max, rel=2e-3)
+    assert hysteresis.t_contact == pytest.approx(reference.t_contact, rel=2e-3)
+    assert 0.6 < hysteresis.restitution < 0.75  # far from the elastic 1
+
+
+def test_energy_closes_with_dissipation(hysteresis):
+    energies, e0 = hysteresis.energies, 0.5 * MASS * VELOCITY**2
+    assert hysteresis.energy_balance_error < 1e-3
+    assert np.all(np.diff(energies["dissipated"]) >= 0.0) and energies["dissipated"][0] == 0.0
+    lost = 1.0 - hysteresis.restitution**2
+    left = energies["dissipated"][-1] + energies["strain"][-1]  # the rest heats later
+    assert left / e0 == pytest.approx(lost, abs=1e-3)
+    assert energies["dissipated"][-1] > 0.3 * e0
+
+
+@pytest.mark.parametrize(("tau", "modulus"), [(1e3, 1.0), (1e-9, 0.5)])
+def test_glassy_and_relaxed_limits_are_elastic(tau, modulus):
+    run = visco_run(PronySeries((0.5,), (tau,)))
+    glassy, relaxed = limit_impacts(MASS, VELOCITY, LAW, PronySeries((0.5,), (tau,)))
+    exact = glassy if modulus == 1.0 else relaxed
+    assert run.x_max == pytest.approx(exact.x_c, rel=2e-3)
+    assert run.restitution == pytest.approx(1.0, abs=1e-4)
+
+
+def test_waves_and_hysteresis_together_close_the_balance():
+    run = visco_run(ONE_TERM, density=1100.0, settings=DynamicSettings(steps=60, size=0.1))
+    assert run.energy_balance_error < 1e-3
+    assert np.all(np.diff(run.energies["dissipated"]) >= 0.0)
+    assert np.any(run.energies["body_kinetic"] > 0.0)
+
+
+def test_strain_operator_gives_the_deviatoric_energy(massless):
+    """G0 Int dev e : dev e 2 pi r dA from B equals 1/2 u.A u of the assembled matrix."""
+    from shtaerman.fem.viscoelastic import _deviator, strain_operator
+
+    system = massless.system
+    strain, weights, _ = strain_operator(system)
+    rng = np.random.default_rng(1)
+    x = np.zeros(system.n_dofs)
+    x[: system.n_displacement] = rng.standard_normal(system.n_displacement)
+    deviator = _deviator(strain @ x).reshape(4, -1)
+    from_b = system.shear_modulus * float(np.sum(deviator**2, axis=0) @ weights)
+    assert from_b == pytest.approx(0.5 * float(x @ (system.matrix @ x)), rel=1e-10)

@@ -35,6 +35,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.materials import validate_density as validate_material_density
 from ..theory.radiation import rayleigh_root
+from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
@@ -59,6 +60,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
+from .viscoelastic import ViscoelasticShear, viscoelastic_shear
 
 __all__ = [
     "MAX_DOFS",
@@ -395,6 +397,7 @@ class _Scales:
     domain_radius: float
     layer: AbsorbingLayer
     has_layer: bool
+    longest_t_y: float
 
     @property
     def t_y(self) -> float:
@@ -413,30 +416,41 @@ def _scales(
     rho: float,
     striker: Striker,
     settings: DynamicSettings,
+    relaxed: float = 1.0,
 ) -> _Scales:
-    """Quasi-static impact, wave speeds, time step, refined and domain radii, layer."""
+    """Quasi-static impact, wave speeds, time step, refined and domain radii, layer.
+
+    ``relaxed`` < 1 (a viscoelastic body, g_inf): the refined zone, the layer and the run's
+    length are sized for the slower, wider impact on the relaxed modulus E2 g_inf; dt for the
+    glassy impact.
+    """
     qs = _quasi_static(indenter, half_space, striker)
     nu = half_space.poisson_ratio
     shear = half_space.youngs_modulus / (2.0 * (1.0 + nu))
     c_s = math.sqrt(shear / rho) if rho > 0 else math.inf  # massless: no waves
-    t_y = qs.t_y
-    refined = settings.margin * qs.a_c
+    t_y, widest = qs.t_y, qs.a_c
+    if relaxed < 1.0:
+        slow = Material(half_space.youngs_modulus * relaxed, nu)
+        slow_qs = _quasi_static(indenter, slow, striker)
+        t_y, widest = slow_qs.t_y, slow_qs.a_c
+    refined = settings.margin * widest
     domain_radius = settings.domain * refined
     layer = AbsorbingLayer(
         start=settings.layer_start * c_s * t_y,
         ramp=settings.layer_ramp * c_s * t_y,
-        rate=settings.layer_rate / t_y,
+        rate=settings.layer_rate / qs.t_y,
         width=None if settings.layer_width is None else settings.layer_width * c_s * t_y,
     )
     return _Scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
         rayleigh_wave_speed=c_s / rayleigh_root(nu),
-        dt=t_y / settings.steps,
+        dt=qs.t_y / settings.steps,
         refined=refined,
         domain_radius=domain_radius,
         layer=layer,
         has_layer=layer.start + layer.ramp < 0.5 * domain_radius and settings.layer_rate > 0,
+        longest_t_y=t_y,
     )
 
 
@@ -508,8 +522,14 @@ def _assemble_body(
     )
 
 
-def _factorized_problem(body: _Body, striker: Striker, scheme: TimeScheme) -> ImpactProblem:
-    """K_eff factorized once on the free dofs, W = K_eff^-1 S and the LCP matrix.
+def _factorized_problem(
+    body: _Body,
+    striker: Striker,
+    scheme: TimeScheme,
+    material: ViscoelasticShear | None = None,
+) -> ImpactProblem:
+    """K_eff factorized once on the free dofs, W = K_eff^-1 S and the LCP matrix (K: the
+    ``material``'s stiffness at its step's shear modulus when the body is viscoelastic).
 
     Raises
     ------
@@ -519,8 +539,9 @@ def _factorized_problem(body: _Body, striker: Striker, scheme: TimeScheme) -> Im
     alpha_m, alpha_f, beta, gamma = scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma
     dt = scheme.dt
     free, position = body.free, body.candidates.position
+    stiffness = body.system.matrix if material is None else material.stiffness
     effective = (
-        (1.0 - alpha_f) * body.system.matrix
+        (1.0 - alpha_f) * stiffness
         + ((1.0 - alpha_f) * gamma / (beta * dt)) * body.damping
         + ((1.0 - alpha_m) / (beta * dt**2)) * body.body_mass
     ).tocsr()
@@ -553,6 +574,7 @@ def _factorized_problem(body: _Body, striker: Striker, scheme: TimeScheme) -> Im
         factorization=factorization,
         correction=correction,
         lcp_matrix=lcp_matrix,
+        material=material,
     )
 
 
@@ -606,6 +628,7 @@ def prepare_dynamic_impact(
     mass: float,
     velocity: float,
     settings: DynamicSettings | None = None,
+    prony: PronySeries | None = None,
 ) -> DynamicImpactSetup:
     """Mesh, assemble and factorize the dynamic impact (arguments of :func:`run_dynamic_impact`).
 
@@ -623,7 +646,8 @@ def prepare_dynamic_impact(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
     estimate = _checked_estimate(settings)
-    scales = _scales(indenter, half_space, rho, striker, settings)
+    relaxed = 1.0 if prony is None else prony.g_inf
+    scales = _scales(indenter, half_space, rho, striker, settings, relaxed)
     clock = [time.perf_counter()]
     mesh = halfspace_mesh(
         scales.refined,
@@ -638,11 +662,14 @@ def prepare_dynamic_impact(
     body = _assemble_body(system, indenter, rho, scales)
     clock.append(time.perf_counter())
     scheme = TimeScheme.generalized_alpha(settings.spectral_radius, scales.dt)
-    problem = _factorized_problem(body, striker, scheme)
+    material = (
+        None if prony is None else viscoelastic_shear(system, prony, scales.dt, scales.inner_radius)
+    )
+    problem = _factorized_problem(body, striker, scheme, material)
     clock.append(time.perf_counter())
     return DynamicImpactSetup(
         problem=problem,
-        duration=3.0 * scales.t_y,
+        duration=3.0 * scales.longest_t_y,
         tail_time=settings.tail * scales.inner_radius / scales.rayleigh_wave_speed,
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
@@ -664,6 +691,7 @@ def run_dynamic_impact(
     settings: DynamicSettings | None = None,
     *,
     snapshot_times: tuple[float, ...] = (),
+    prony: PronySeries | None = None,
 ) -> DynamicImpactResult:
     """Strike the elastic half-space with a rigid power-law striker and follow the waves.
 
@@ -683,6 +711,9 @@ def run_dynamic_impact(
         Numerical controls (default ``DynamicSettings()``).
     snapshot_times : tuple of float
         Times in s at which to keep the solution vectors (nearest step), for field output.
+    prony : PronySeries, optional
+        Shear relaxation of the half-space (E2 and nu2 are then its instantaneous values, the
+        bulk response elastic); None: elastic.
 
     Returns
     -------
@@ -694,7 +725,7 @@ def run_dynamic_impact(
         For inputs out of range, a mesh above ``MAX_DOFS`` (estimated before meshing), or a
         contact that outgrows the refined zone during the run.
     """
-    setup = prepare_dynamic_impact(indenter, half_space, density, mass, velocity, settings)
+    setup = prepare_dynamic_impact(indenter, half_space, density, mass, velocity, settings, prony)
     start = time.perf_counter()
     history = march(
         setup.problem,

@@ -25,10 +25,15 @@ an LCP with a symmetric positive definite matrix solved exactly by
 W = K_eff^-1 S kept dense; C = S^T W. The contact forces enter the alpha-weighted balance like
 any load; the gap is enforced at n+1.
 
-Energy bookkeeping (:func:`march`): striker and body kinetic energy, strain energy, the work
-absorbed by the layer (by the midpoint velocity; exact for Newmark), and the rest as the
-scheme's numerical dissipation, of which the contact term -1/2 (F_n + F_{n+1}) . (g_{n+1} - g_n)
-is computed separately (for Newmark the two agree to round-off).
+A viscoelastic body (:mod:`.viscoelastic`) replaces K x by its internal force: K at the
+step's effective shear modulus times x plus the history force of its Prony branches, which
+enters the predictor as a load.
+
+Energy bookkeeping (:func:`march`): striker and body kinetic energy, strain energy (stored), the
+work absorbed by the layer (by the midpoint velocity; exact for Newmark), the energy dissipated
+by a viscoelastic body, and the rest as the scheme's numerical dissipation, of which the contact
+term -1/2 (F_n + F_{n+1}) . (g_{n+1} - g_n) is computed separately (for Newmark the two agree
+to round-off).
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -45,6 +51,9 @@ from ..validation import InputError, NumericalFailureError
 from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
 from .elasticity import ElasticSystem
 from .solver import Factorization
+
+if TYPE_CHECKING:
+    from .viscoelastic import ShearMemory, ViscoelasticShear
 
 __all__ = [
     "ContactCandidates",
@@ -66,6 +75,7 @@ ENERGY_NAMES = (
     "numerical",
     "contact_term",
     "inner",
+    "dissipated",
 )
 """Keys of :attr:`ImpactHistory.energies`, in J."""
 UNSTABLE_BALANCE = 1e-3
@@ -176,6 +186,8 @@ class ImpactProblem:
         W = K_eff^-1 S (m/N), free dofs x candidates, column-major.
     lcp_matrix : numpy.ndarray
         (1 - a_f) (C + beta dt^2 / ((1 - a_m) M) 1 1^T) in m/N.
+    material : ViscoelasticShear or None
+        The body's Prony shear (its stiffness at G_eff is the K of K_eff); None: elastic.
     """
 
     system: ElasticSystem = field(repr=False)
@@ -190,6 +202,7 @@ class ImpactProblem:
     factorization: Factorization = field(repr=False)
     correction: np.ndarray = field(repr=False)
     lcp_matrix: np.ndarray = field(repr=False)
+    material: ViscoelasticShear | None = field(default=None, repr=False)
 
     @cached_property
     def massive(self) -> np.ndarray:
@@ -217,7 +230,7 @@ class ImpactState:
     x, v, a : numpy.ndarray
         Body displacement (m), velocity (m/s), acceleration (m/s^2); pressure dofs in Pa.
     stiffness_x : numpy.ndarray
-        K x in N.
+        The internal force in N: K x (viscoelastic: with the shear's history force).
     striker_x, striker_v, striker_a : float
         Striker displacement X (m), velocity (m/s), acceleration (m/s^2), downward.
     forces, gap : numpy.ndarray
@@ -226,6 +239,8 @@ class ImpactState:
         Work absorbed by the layer so far, J.
     contact_term : float
         Trapezoidal contact work so far, J.
+    memory : ShearMemory or None
+        The viscoelastic shear's internal variables (None: elastic body).
     """
 
     step: int
@@ -240,6 +255,7 @@ class ImpactState:
     gap: np.ndarray = field(repr=False)
     absorbed: float
     contact_term: float
+    memory: ShearMemory | None = field(default=None, repr=False)
 
     @classmethod
     def first_touch(cls, problem: ImpactProblem) -> ImpactState:
@@ -258,6 +274,7 @@ class ImpactState:
             gap=problem.candidates.profile.copy(),
             absorbed=0.0,
             contact_term=0.0,
+            memory=None if problem.material is None else problem.material.first_memory(),
         )
 
     def time(self, scheme: TimeScheme) -> float:
@@ -278,6 +295,8 @@ def _predictor(problem: ImpactProblem, state: ImpactState) -> tuple[np.ndarray, 
         rhs += (1.0 - alpha_f) * (
             damping @ (gamma / (beta * dt) * x_hat - v - dt * (1 - gamma) * a)
         ) - alpha_f * (damping @ v)
+    if state.memory is not None:  # the shear's history, a load of the step
+        rhs -= (1.0 - alpha_f) * state.memory.force
     if alpha_f:
         load = state.stiffness_x.copy()  # K x_n
         load[problem.candidates.dofs] += state.forces
@@ -355,12 +374,16 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
     candidates = problem.candidates
     new_gap = candidates.profile - big_new - x_free[candidates.position]
     contact_term = state.contact_term - 0.5 * float((forces + new_forces) @ (new_gap - state.gap))
+    if problem.material is None:
+        stiffness_x, memory = problem.system.matrix @ x_new, None
+    else:
+        stiffness_x, memory = problem.material.advance(state.memory, x_new)
     return ImpactState(
         step=state.step + 1,
         x=x_new,
         v=v_new,
         a=a_new,
-        stiffness_x=problem.system.matrix @ x_new,
+        stiffness_x=stiffness_x,
         striker_x=big_new,
         striker_v=big_v_new,
         striker_a=big_a_new,
@@ -368,6 +391,7 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
         gap=new_gap,
         absorbed=absorbed,
         contact_term=contact_term,
+        memory=memory,
     )
 
 
@@ -420,10 +444,16 @@ def _observe(problem: ImpactProblem, state: ImpactState) -> tuple[tuple, tuple]:
     inner = 0.5 * float(v @ (problem.inner_mass @ v)) + 0.5 * float(
         x @ (problem.inner_stiffness @ x)
     )
+    dissipated = 0.0
+    if state.memory is not None:  # viscoelastic: the branches' springs store, their dashpots heat
+        strain = problem.material.stored_energy(state.memory, x)
+        inner -= problem.material.inner_relaxed(state.memory)
+        dissipated = state.memory.dissipated
     striker_kinetic = 0.5 * problem.striker.mass * state.striker_v**2
     numerical = problem.striker.kinetic_energy - striker_kinetic - kinetic - strain - state.absorbed
+    numerical -= dissipated
     energies = (striker_kinetic, kinetic, strain, state.absorbed, numerical, state.contact_term)
-    return row, (*energies, inner)
+    return row, (*energies, inner, dissipated)
 
 
 def march(
@@ -459,7 +489,7 @@ def march(
     state = ImpactState.first_touch(problem)
     energy0 = problem.striker.kinetic_energy
     rows: list[tuple] = [(0.0, 0.0, problem.striker.velocity, 0.0, 0.0, 0.0)]
-    energy_rows: list[tuple] = [(energy0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)]
+    energy_rows: list[tuple] = [(energy0, *[0.0] * (len(ENERGY_NAMES) - 1))]
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = {}
     wanted = sorted(float(s) for s in snapshot_times)
     touched, t_contact, end = False, math.nan, math.inf
