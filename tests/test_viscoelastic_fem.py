@@ -153,3 +153,56 @@ def test_strain_operator_gives_the_deviatoric_energy(massless):
     deviator = _deviator(strain @ x).reshape(4, -1)
     from_b = system.shear_modulus * float(np.sum(deviator**2, axis=0) @ weights)
     assert from_b == pytest.approx(0.5 * float(x @ (system.matrix @ x)), rel=1e-10)
+
+
+@pytest.mark.parametrize(
+    ("text", "reason"),
+    [
+        ("-0.1:1e-3", "weight g1 must lie in [0, 1), got -0.1"),
+        ("0.6:1e-3,0.5:1e-2", "weights must sum to less than 1"),
+        ("0.5:0", "time tau1 must be a finite number > 0 s, got 0.0"),
+        ("0.5;1e-3", "must be written g1:tau1,g2:tau2,..."),
+        ("0.5:1e-3,", "must be written g1:tau1,g2:tau2,..."),
+        (",".join(["0.01:1e-3"] * 21), "21 terms is too many"),
+    ],
+)
+def test_bad_prony_is_one_line_and_exit_2(capsys, text, reason):
+    from shtaerman.cli import main
+
+    assert main(["dynamic", f"--prony={text}", "--no-estimate"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"shtaerman: error: --prony: {reason}") and err.count("\n") == 1
+    assert "each g_i >= 0, sum g_i < 1, tau_i > 0 s" in err
+
+
+def test_cli_prony_reports_the_dissipation(capsys):
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--density2", "0", "--prony", "0.5:2e-3", "--no-estimate", "--json"]
+    assert main([*argv, "--time-steps", "50", "--mesh-size", "0.1"]) == 0
+    dyn = json.loads(capsys.readouterr().out)["dynamic"]
+    lost = 1.0 - dyn["restitution"] ** 2
+    assert dyn["energy_dissipated_fraction"] > 0.3
+    assert dyn["energy_hysteresis_fraction"] == pytest.approx(lost, abs=1e-4)  # no waves
+    assert abs(dyn["energy_wave_fraction"]) < 1e-4
+    assert main([*argv[:-1], "--time-steps", "50", "--mesh-size", "0.1"]) == 0
+    assert "of which hysteresis" in capsys.readouterr().out
+
+
+def test_api_and_study_file_take_prony(tmp_path):
+    import shtaerman as sh
+    from shtaerman.study.schema import StudyError, load_study
+
+    body = sh.Material(7.5e6, 0.5, density=0.0)
+    result = sh.dynamic(
+        INDENTER, body, mass=MASS, velocity=VELOCITY, estimate=False, time_steps=50,
+        mesh_size=0.1, prony=ONE_TERM,
+    )  # fmt: skip
+    assert 0.6 < result.restitution < 0.75 and result.energy_dissipated_fraction > 0.3
+    path = tmp_path / "visco.toml"
+    path.write_text(STUDY.replace("density2 = 1100.0", 'density2 = 0\nprony = "0.5:2e-3"'))
+    [study] = load_study(path)
+    assert study.prony == ONE_TERM
+    path.write_text(STUDY.replace("density2 = 1100.0", 'density2 = 0\nprony = "1.5:2e-3"'))
+    with pytest.raises(StudyError, match=r"key 'half_space.prony': prony: weight g1"):
+        load_study(path)

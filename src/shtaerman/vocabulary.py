@@ -109,6 +109,8 @@ MAX_STUDIES = 100
 study."""
 MAX_VELOCITIES = 100
 """Most approach velocities of a dynamic study: each is a dynamic FE run."""
+MAX_PRONY_TERMS = 20
+"""Most terms of a Prony series: each adds internal variables at every quadrature point."""
 
 
 @dataclass(frozen=True)
@@ -408,6 +410,19 @@ VOCABULARY: tuple[Entry, ...] = (
         ("dynamic",),
         valid=Range(1e-6, 1e6, low_open=False, zero=True),
         old_names=("density",),
+    ),
+    Entry(
+        "prony",
+        "",
+        "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s):"
+        " G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 and nu2 the instantaneous values, "
+        f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
+        "terms; unset: elastic",
+        "Prony series (g_i:tau_i)",
+        None,
+        ("dynamic",),
+        valid=None,
+        type="str",
     ),
     Entry(
         "depths",

@@ -43,7 +43,7 @@ def register(commands: argparse._SubParsersAction) -> None:
             "the far boundary reflects more than 1e-2 of the radiated energy."
         ),
     )
-    inputs = (*CASE, "E2", "nu2", "density2", "json", "history", "out", "force")
+    inputs = (*CASE, "E2", "nu2", "density2", "prony", "json", "history", "out", "force")
     add_inputs(p, inputs, "dynamic", notes=NOTES)
     add_figure_format(p)
     accuracy = p.add_argument_group(
@@ -63,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     history = history_path(args.history, force=args.force)
-    names = ("mass", "velocity", "refine", "estimate", *SETTINGS_OPTIONS, "out", "force")
+    names = ("mass", "velocity", "refine", "estimate", *SETTINGS_OPTIONS, "prony", "out", "force")
     with in_option_words():
         result = dynamic(
             indenter(args),
@@ -100,6 +100,17 @@ def _differences_text(report: dict) -> str:
     )
 
 
+def _losses_text(dyn: dict) -> list[str]:
+    """A viscoelastic run's 1 - e^2 split into waves and hysteresis ([] for an elastic one)."""
+    if "energy_dissipated_fraction" not in dyn:
+        return []
+    return [
+        f"    of which waves        {dyn['energy_wave_fraction']:<14.6f}  (beyond R_a, absorbed)",
+        f"    of which hysteresis   {dyn['energy_hysteresis_fraction']:<14.6f}  (dissipated "
+        f"{dyn['energy_dissipated_fraction']:.6f}, the rest to be dissipated near the contact)",
+    ]
+
+
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
     qs, dyn, est = (
@@ -118,6 +129,7 @@ def dynamic_text(report: dict) -> str:
         f"{est['restitution']:.6f})",
         f"  energy to waves 1-e^2   {dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
         f"estimate {est['energy_fraction']:.6f})",
+        *_losses_text(dyn),
         _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
         f"{dyn['reflected_energy_fraction']:.1e} of the radiated",

@@ -275,6 +275,11 @@ class DynamicImpactResult:
         compliance and W), ``stepping``, ``total``.
     parameters : dict
         Inputs and derived scales (dt, c_s, R_a, quasi-static x_c, t_y, ...).
+    viscoelastic : dict of str to float
+        A viscoelastic body only ({} otherwise), of M v0^2 / 2: ``energy_dissipated_fraction``
+        (heat by the end of the run), ``energy_wave_fraction`` (the body's energy beyond R_a
+        and the layer's at the end: the waves) and ``energy_hysteresis_fraction`` (the rest of
+        1 - e^2: dissipated, or still inside R_a, where the body will dissipate it).
     """
 
     t: np.ndarray = field(repr=False)
@@ -298,6 +303,7 @@ class DynamicImpactResult:
     parameters: dict[str, float]
     system: ElasticSystem = field(repr=False)
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(repr=False)
+    viscoelastic: dict[str, float] = field(default_factory=dict)
 
     def summary(self) -> dict[str, float]:
         """The scalar results (the ``dynamic`` object of ``shtaerman dynamic --json``)."""
@@ -312,7 +318,7 @@ class DynamicImpactResult:
             "energy_balance_error",
             "reflected_energy_fraction",
         )
-        return {key: float(getattr(self, key)) for key in keys}
+        return {key: float(getattr(self, key)) for key in keys} | self.viscoelastic
 
     def history_columns(self) -> dict[str, np.ndarray]:
         """t (s), x (m), v (m/s), P (N), a (m), p0 (Pa), one row per step."""
@@ -829,7 +835,22 @@ def _result(
         parameters=parameters,
         system=problem.system,
         snapshots=history.snapshots,
+        viscoelastic=_losses(problem, history, radiated) if problem.material is not None else {},
     )
+
+
+def _losses(problem: ImpactProblem, history: ImpactHistory, radiated: float) -> dict[str, float]:
+    """The loss 1 - e^2 split into waves (body energy beyond R_a and the layer's) and
+    hysteresis (the rest: dissipated, or still inside R_a to be dissipated)."""
+    energies = {key: float(values[-1]) for key, values in history.energies.items()}
+    energy0 = problem.striker.kinetic_energy
+    body = energies["body_kinetic"] + energies["strain"] - energies["inner"]
+    waves = (body + energies["absorbed"]) / energy0
+    return {
+        "energy_dissipated_fraction": energies["dissipated"] / energy0,
+        "energy_hysteresis_fraction": radiated - waves,
+        "energy_wave_fraction": waves if not math.isnan(radiated) else math.nan,
+    }
 
 
 def _reflected_fraction(history: ImpactHistory, energy0: float, measured: bool) -> float:

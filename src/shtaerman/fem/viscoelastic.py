@@ -31,17 +31,47 @@ import scipy.sparse as sp
 from skfem import asm
 
 from ..theory.viscoelastic import PronySeries
+from ..validation import InputError
+from ..vocabulary import MAX_PRONY_TERMS
 from .elasticity import TWO_PI, ElasticSystem, deviatoric_stiffness
 
 __all__ = [
+    "PRONY_FORM",
     "ShearMemory",
     "ViscoelasticShear",
     "effective_shear_modulus",
+    "prony_input",
     "strain_operator",
     "viscoelastic_shear",
 ]
 
 ROOT2 = np.sqrt(2.0)
+PRONY_FORM = (
+    f"write g1:tau1,g2:tau2,... with each g_i >= 0, sum g_i < 1, tau_i > 0 s, at most "
+    f"{MAX_PRONY_TERMS} terms"
+)
+"""The valid Prony input, in words."""
+
+
+def prony_input(value: object, name: str = "prony") -> PronySeries | None:
+    """``value`` as a Prony series: None (elastic), a :class:`PronySeries` or its text
+    ``g1:tau1,g2:tau2,...`` (tau in s); InputError naming ``name`` and the valid form."""
+    if value is None:
+        return None
+    try:
+        if isinstance(value, PronySeries):
+            series = value
+        elif isinstance(value, str):
+            series = PronySeries.parse(value)
+        else:
+            raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
+    except InputError as error:
+        raise InputError(
+            f"{name}: {str(error).removeprefix('prony ')} ({PRONY_FORM})", name
+        ) from None
+    if len(series.weights) > MAX_PRONY_TERMS:
+        raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)
+    return series
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,29 +164,35 @@ def _excess(x: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class _Step:
-    """Per-term constants of one step dt (arrays over the terms)."""
+    """Per-term constants of one step dt (arrays over the terms; x = dt / tau_i).
+
+    Branch i dissipates, over the step, 2 G0 g_i / tau_i Int |A e^{-s/tau_i} + C|^2 ds with
+    C = tau_i (d^{n+1} - d^n) / dt and A = h_i^n - C; that is
+    ``square`` |h_i^n + ``mix`` (d^{n+1} - d^n)|^2 + ``steady`` |d^{n+1} - d^n|^2 (per unit
+    volume), tau_i cancelled so that any tau_i > 0 stays finite.
+    """
 
     gain: np.ndarray  # g_i
-    decay: np.ndarray  # exp(-x), x = dt / tau_i
+    decay: np.ndarray  # exp(-x)
     ramp: np.ndarray  # (1 - exp(-x)) / x
-    mix: np.ndarray  # (b/a - 1) tau / dt: h_i + mix (d^{n+1} - d^n) in the first square
-    square: np.ndarray  # 2 G0 g_i / tau_i a: its weight, J per m^3 of strain^2
-    steady: float  # sum_i 2 G0 g_i / tau_i tau_i (x - 2 tanh(x/2)) (tau_i / dt)^2
+    mix: np.ndarray  # tanh(x/2) / x
+    square: np.ndarray  # G0 g_i (1 - exp(-2x)), Pa
+    steady: np.ndarray  # 2 G0 g_i (x - 2 tanh(x/2)) / x^2, Pa
 
     @classmethod
     def of(cls, prony: PronySeries, shear_modulus: float, dt: float) -> _Step:
         gain, tau = np.asarray(prony.weights), np.asarray(prony.times)
-        x = dt / tau
-        rate = 2.0 * shear_modulus * gain / tau
-        a = -0.5 * tau * np.expm1(-2.0 * x)  # Int_0^dt exp(-2 s/tau) ds
-        return cls(
-            gain=gain,
-            decay=np.exp(-x),
-            ramp=-np.expm1(-x) / x,
-            mix=(2.0 / (1.0 + np.exp(-x)) - 1.0) / x,
-            square=rate * a,
-            steady=float(np.sum(rate * tau * _excess(x) / (x * x))),
-        )
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # x -> inf or 0
+            x = dt / tau
+            excess = np.where(x > 1e3, 1.0 / x - 2.0 / (x * x), _excess(x) / (x * x))
+            return cls(
+                gain=gain,
+                decay=np.exp(-x),
+                ramp=-np.expm1(-x) / x,
+                mix=np.tanh(0.5 * x) / x,
+                square=-shear_modulus * gain * np.expm1(-2.0 * x),
+                steady=2.0 * shear_modulus * gain * np.nan_to_num(excess, nan=0.0),
+            )
 
 
 @dataclass(frozen=True, eq=False)
@@ -217,7 +253,7 @@ class ViscoelasticShear:
         mixed = step.mix[:, None] * change
         mixed += memory.branches
         heat = step.square @ ((mixed * mixed) @ weights)
-        heat += step.steady * float((change * change) @ weights)
+        heat += float(np.sum(step.steady)) * float((change * change) @ weights)
         branches = step.ramp[:, None] * change
         branches += step.decay[:, None] * memory.branches
         history = (step.gain * step.decay) @ branches

@@ -265,7 +265,15 @@ def _dynamic_inputs(p: dict[str, Any]):
         )
     if p["estimate"]:
         check_ladder(settings)
+    _prony(p)  # refused up front
     return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
+
+
+def _prony(p: dict[str, Any]):
+    """The case's Prony series (None: elastic)."""
+    from ..fem.viscoelastic import prony_input
+
+    return prony_input(p.get("prony"))
 
 
 DYNAMIC_OUTPUTS = {
@@ -316,7 +324,7 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
     from ..study.dynamic.loader import dynamic_check_failures
 
     start = time.perf_counter()
-    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"])
+    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p))
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
     compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}

@@ -24,10 +24,11 @@ from ...theory.impact import ImpactResult, solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.radiation import RadiationEstimate, radiation_estimate
+from ...theory.viscoelastic import PronySeries
 from ..richardson import Estimate
 from .accuracy import DynamicLadder, complete_ladder
 
-__all__ = ["COMPARED", "DynamicCase", "compare", "run_case"]
+__all__ = ["COMPARED", "DynamicCase", "compare", "radiation", "run_case"]
 
 QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 COMPARED = {
@@ -93,7 +94,7 @@ class DynamicCase:
         }
 
 
-def _radiation(
+def radiation(
     mass: float, velocity: float, law: PowerLawContact, density: float, half_space: Material
 ) -> RadiationEstimate:
     """The first-order radiation estimate; a massless half-space (density 0) radiates nothing."""
@@ -118,6 +119,7 @@ def run_case(
     *,
     snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
     ladder: bool = False,
+    prony: PronySeries | None = None,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
 
@@ -138,13 +140,15 @@ def run_case(
     ladder : bool
         Also run the two coarser levels of the error-estimate ladder
         (``settings.refined(1/2)`` must be valid).
+    prony : PronySeries, optional
+        Shear relaxation of the half-space (E2, nu2 its instantaneous values); None: elastic.
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     quasi = solve_impact(mass, velocity, law)
-    estimate = _radiation(mass, velocity, law, density, half_space)
+    estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
-    result = run_dynamic_impact(*inputs, settings, snapshot_times=times)
-    levels = complete_ladder(result, *inputs, settings) if ladder else None
+    result = run_dynamic_impact(*inputs, settings, snapshot_times=times, prony=prony)
+    levels = complete_ladder(result, *inputs, settings, prony=prony) if ladder else None
     return DynamicCase(velocity, quasi, estimate, result, levels)

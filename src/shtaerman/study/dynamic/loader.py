@@ -8,7 +8,8 @@ approach velocity (:mod:`.runner`)::
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3; 0:
-                 massless)
+                 massless), prony = "g1:tau1,g2:tau2,..." (optional: a viscoelastic
+                 half-space, E2 and nu2 its instantaneous values; tau in s)
     [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
                  figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
                  the findings; default: the middle one, the upper of two)
@@ -40,8 +41,10 @@ from ...fem.dynamic_contact import (
     estimate_dofs,
     validate_density,
 )
+from ...fem.viscoelastic import prony_input
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
+from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
 from ..schema import (
@@ -70,6 +73,7 @@ class _DynHalfSpace(Table):
     E2: Positive
     nu2: Poisson
     density2: Annotated[float, msgspec.Meta(ge=0)]  # 0: massless
+    prony: str | None = None
 
 
 class _Numerics(Table):
@@ -149,6 +153,10 @@ class DynamicStudy:
     quick_settings: DynamicSettings
     tolerances: DynamicTolerances = field(default_factory=DynamicTolerances)
     kind: str = "dynamic"
+    prony: PronySeries | None = None
+    """Shear relaxation of the half-space (None: elastic)."""
+    prony_text: str = ""
+    """``prony`` as written in the file."""
 
 
 def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
@@ -211,6 +219,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         validate_density(raw.half_space.density2)
     except InputError as error:
         raise fem_input_error(path, error) from None
+    try:
+        prony = prony_input(raw.half_space.prony)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
     example = raw.impact.figure_velocity
     velocities = _velocities(path, "impact.velocity", raw.impact.velocity, example)
     if example is None:  # the middle velocity (of two, the upper)
@@ -238,6 +250,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
             quick_velocities=_velocities(path, "quick.velocity", quick, example),
             quick_settings=_settings(path, "quick", raw.quick, settings),
             tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
+            prony=prony,
+            prony_text=raw.half_space.prony or "",
         )
     ]
 
