@@ -206,3 +206,24 @@ def test_api_and_study_file_take_prony(tmp_path):
     path.write_text(STUDY.replace("density2 = 1100.0", 'density2 = 0\nprony = "1.5:2e-3"'))
     with pytest.raises(StudyError, match=r"key 'half_space.prony': prony: weight g1"):
         load_study(path)
+
+
+def test_a_run_too_long_for_the_steps_is_refused(capsys):
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--prony", "0.999:1e-9", "--time-steps", "5000", "--no-estimate"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("shtaerman: error: --prony: the viscoelastic impact lasts 13.3 glassy")
+    assert err.count("\n") == 1
+
+
+def test_a_dynamic_sweep_case_takes_prony():
+    from shtaerman.sweep.kinds import get_kind
+
+    kind = get_kind("dynamic")
+    params = {**kind.defaults(), "density2": 0.0, "time_steps": 60, "mesh_size": 0.1}
+    elastic = kind.case({**params, "estimate": False})
+    visco = kind.case({**params, "estimate": False, "prony": "0.5:2e-3"})
+    assert elastic["restitution"] == pytest.approx(1.0, abs=1e-5)
+    assert 0.6 < visco["restitution"] < 0.75

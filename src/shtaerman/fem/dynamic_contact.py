@@ -35,7 +35,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.materials import validate_density as validate_material_density
 from ..theory.radiation import rayleigh_root
-from ..theory.viscoelastic import PronySeries
+from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
@@ -391,6 +391,35 @@ def _quasi_static(
     )
 
 
+def _viscoelastic_extent(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    striker: Striker,
+    prony: PronySeries,
+    settings: DynamicSettings,
+) -> tuple[float, float]:
+    """Contact time (s) and largest contact radius (m) of the quasi-static viscoelastic impact
+    (:func:`shtaerman.theory.viscoelastic.viscoelastic_impact`, coarse: for sizing only).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If the run would need more than ``MAX_STEPS`` time steps.
+    """
+    law = PowerLawContact(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
+    glassy = _quasi_static(indenter, half_space, striker).t_y
+    slow = viscoelastic_impact(striker.mass, striker.velocity, law, prony, steps=100)
+    steps = 3.0 * slow.t_contact / glassy * settings.steps
+    if steps > MAX_STEPS:
+        raise InputError(
+            f"prony: the viscoelastic impact lasts {slow.t_contact / glassy:.3g} glassy impact "
+            f"durations, {steps:.3g} time steps at {settings.steps} per t_y (at most "
+            f"{MAX_STEPS}); use fewer time steps or a series that relaxes less",
+            "prony",
+        )
+    return slow.t_contact, float(law.contact_radius(slow.x_max))
+
+
 @dataclass(frozen=True)
 class _Scales:
     """Lengths, times and speeds of one impact, derived from the inputs and the settings."""
@@ -422,23 +451,21 @@ def _scales(
     rho: float,
     striker: Striker,
     settings: DynamicSettings,
-    relaxed: float = 1.0,
+    prony: PronySeries | None = None,
 ) -> _Scales:
     """Quasi-static impact, wave speeds, time step, refined and domain radii, layer.
 
-    ``relaxed`` < 1 (a viscoelastic body, g_inf): the refined zone, the layer and the run's
-    length are sized for the slower, wider impact on the relaxed modulus E2 g_inf; dt for the
-    glassy impact.
+    With ``prony`` (a viscoelastic body) the refined zone, the layer and the run's length are
+    sized for the quasi-static viscoelastic impact (Lee-Radok/Ting, its largest contact radius
+    and its contact time); dt still follows the glassy impact.
     """
     qs = _quasi_static(indenter, half_space, striker)
     nu = half_space.poisson_ratio
     shear = half_space.youngs_modulus / (2.0 * (1.0 + nu))
     c_s = math.sqrt(shear / rho) if rho > 0 else math.inf  # massless: no waves
     t_y, widest = qs.t_y, qs.a_c
-    if relaxed < 1.0:
-        slow = Material(half_space.youngs_modulus * relaxed, nu)
-        slow_qs = _quasi_static(indenter, slow, striker)
-        t_y, widest = slow_qs.t_y, slow_qs.a_c
+    if prony is not None:
+        t_y, widest = _viscoelastic_extent(indenter, half_space, striker, prony, settings)
     refined = settings.margin * widest
     domain_radius = settings.domain * refined
     layer = AbsorbingLayer(
@@ -652,8 +679,7 @@ def prepare_dynamic_impact(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
     estimate = _checked_estimate(settings)
-    relaxed = 1.0 if prony is None else prony.g_inf
-    scales = _scales(indenter, half_space, rho, striker, settings, relaxed)
+    scales = _scales(indenter, half_space, rho, striker, settings, prony)
     clock = [time.perf_counter()]
     mesh = halfspace_mesh(
         scales.refined,
