@@ -227,3 +227,22 @@ def test_a_dynamic_sweep_case_takes_prony():
     visco = kind.case({**params, "estimate": False, "prony": "0.5:2e-3"})
     assert elastic["restitution"] == pytest.approx(1.0, abs=1e-5)
     assert 0.6 < visco["restitution"] < 0.75
+
+
+def test_fields_carry_the_relaxed_shear_stress():
+    """Glassy limit: the stresses of the elastic body; g = 0.5 at tau = t_c/2: lower stresses."""
+    times = (0.5 * 4.105e-3,)
+    runs = [
+        run_dynamic_impact(
+            INDENTER, RUBBER, 0.0, MASS, VELOCITY, COARSE, snapshot_times=times, prony=prony
+        )
+        for prony in (PronySeries((0.5,), (1e3,)), ONE_TERM)
+    ]
+    glassy, relaxing = (run.field_solution(times[0])[1] for run in runs)
+    from shtaerman.fem.elasticity import postprocess
+
+    x = runs[0].snapshots[times[0]][1]
+    reference = postprocess(runs[0].system, x, np.zeros_like(x))
+    peak = np.max(reference.von_mises)
+    assert np.max(np.abs(glassy.von_mises - reference.von_mises)) < 1e-5 * peak
+    assert np.max(relaxing.von_mises) < 0.95 * peak

@@ -60,7 +60,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
-from .viscoelastic import ViscoelasticShear, viscoelastic_shear
+from .viscoelastic import ShearMemory, ViscoelasticShear, viscoelastic_shear
 
 __all__ = [
     "MAX_DOFS",
@@ -304,6 +304,8 @@ class DynamicImpactResult:
     system: ElasticSystem = field(repr=False)
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(repr=False)
     viscoelastic: dict[str, float] = field(default_factory=dict)
+    material: ViscoelasticShear | None = field(default=None, repr=False)
+    memories: dict[float, ShearMemory | None] = field(default_factory=dict, repr=False)
 
     def summary(self) -> dict[str, float]:
         """The scalar results (the ``dynamic`` object of ``shtaerman dynamic --json``)."""
@@ -350,12 +352,17 @@ class DynamicImpactResult:
         """Fields kept for a requested time: (actual time s, solution, velocity vector m/s).
 
         The solution carries u, the mean pressure and the stresses (von Mises included) at
-        the mesh vertices; the velocity is the full dof vector (zero on the pressure dofs).
+        the mesh vertices (a viscoelastic body's relaxed deviatoric stress from its branches);
+        the velocity is the full dof vector (zero on the pressure dofs).
         """
         if time_requested not in self.snapshots:
             raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_dynamic_impact")
         actual, coefficients, velocity = self.snapshots[time_requested]
-        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients))
+        memory = self.memories.get(time_requested)
+        deviatoric = None
+        if self.material is not None and memory is not None:  # the relaxing shear stress
+            deviatoric = self.material.deviatoric_stress(memory)
+        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients), deviatoric)
         return actual, solution, velocity
 
 
@@ -862,6 +869,8 @@ def _result(
         system=problem.system,
         snapshots=history.snapshots,
         viscoelastic=_losses(problem, history, radiated) if problem.material is not None else {},
+        material=problem.material,
+        memories=history.memories,
     )
 
 

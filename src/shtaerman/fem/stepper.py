@@ -410,6 +410,8 @@ class ImpactHistory:
         Requested time -> (actual time s, x, v).
     t_contact : float
         Separation time in s (nan if the striker never separated).
+    memories : dict
+        Requested time -> the viscoelastic shear's memory at that snapshot (None: elastic).
     """
 
     t: np.ndarray
@@ -421,6 +423,7 @@ class ImpactHistory:
     energies: dict[str, np.ndarray]
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]]
     t_contact: float
+    memories: dict[float, ShearMemory | None] = field(default_factory=dict)
 
     @property
     def separated(self) -> bool:
@@ -491,6 +494,7 @@ def march(
     rows: list[tuple] = [(0.0, 0.0, problem.striker.velocity, 0.0, 0.0, 0.0)]
     energy_rows: list[tuple] = [(energy0, *[0.0] * (len(ENERGY_NAMES) - 1))]
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = {}
+    memories: dict[float, ShearMemory | None] = {}
     wanted = sorted(float(s) for s in snapshot_times)
     touched, t_contact, end = False, math.nan, math.inf
     max_steps = math.ceil(duration / dt)
@@ -508,6 +512,7 @@ def march(
             rows.append(row)
             energy_rows.append(energies)
             while wanted and wanted[0] <= t + 0.5 * dt:
+                memories[wanted[0]] = state.memory
                 snapshots[wanted.pop(0)] = (t, state.x.copy(), state.v.copy())
             touched = touched or bool(np.any(state.forces > 0))
             if touched and math.isnan(t_contact) and row[3] == 0.0:
@@ -517,13 +522,17 @@ def march(
             if t >= end - 1e-12 * dt:
                 break
     for s in wanted:  # asked beyond the run: the last state
-        snapshots[s] = (state.time(problem.scheme), state.x.copy(), state.v.copy())
+        snapshots[s], memories[s] = (
+            (state.time(problem.scheme), state.x.copy(), state.v.copy()),
+            state.memory,
+        )
     table, energy = np.array(rows), np.array(energy_rows)
     return ImpactHistory(
         *(table[:, k] for k in range(6)),
         energies={name: energy[:, k] for k, name in enumerate(ENERGY_NAMES)},
         snapshots=snapshots,
         t_contact=t_contact,
+        memories=memories,
     )
 
 

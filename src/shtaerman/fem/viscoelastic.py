@@ -216,6 +216,8 @@ class ViscoelasticShear:
         Weights of the points inside the monitor radius (0 elsewhere), m^3.
     pressure_block : scipy.sparse.csr_matrix
         The matrix' pressure block -C (bulk compliance, m^3/Pa; empty when incompressible).
+    strain_shape : tuple of int
+        (elements, points per element) of the quadrature.
     """
 
     prony: PronySeries
@@ -226,6 +228,7 @@ class ViscoelasticShear:
     weights: np.ndarray = field(repr=False)
     inner: np.ndarray = field(repr=False)
     pressure_block: sp.csr_matrix = field(repr=False)
+    strain_shape: tuple[int, int] = (0, 0)
 
     def __post_init__(self) -> None:
         step = _Step.of(self.prony, self.shear_modulus, self.time_step)
@@ -270,6 +273,13 @@ class ViscoelasticShear:
         )
         return force, memory
 
+    def deviatoric_stress(self, memory: ShearMemory) -> np.ndarray:
+        """s = 2 G0 [g_inf d + sum_i g_i h_i] in Pa, (rr, tt, zz, rz) x (elements, points)."""
+        stress = self.prony.g_inf * memory.deviator + self._step.gain @ memory.branches
+        stress = (2.0 * self.shear_modulus * stress).reshape(4, -1)
+        stress[3] /= ROOT2
+        return stress.reshape(4, *self.strain_shape)
+
     def stored_energy(self, memory: ShearMemory, x: np.ndarray) -> float:
         """Energy stored in the body (bulk and the springs of every branch), J."""
         n_p = self.pressure_block.shape[0]
@@ -309,4 +319,5 @@ def viscoelastic_shear(
         weights=weights,
         inner=np.where(distance < inner_radius, weights, 0.0),
         pressure_block=system.matrix[system.n_displacement :, system.n_displacement :].tocsr(),
+        strain_shape=system.displacement_basis.dx.shape,
     )
