@@ -38,7 +38,9 @@ def register(commands: argparse._SubParsersAction) -> None:
             "Rigid striker z = A r^n (mass M, velocity v0) on an elastic half-space with "
             "inertia: axisymmetric Taylor-Hood P2-P1 FEM, generalized-alpha time stepping, "
             "exact unilateral contact every step. Reports the rebound, the energy carried "
-            "away by elastic waves and the first-order estimate of it. SI units. Exit code 1 "
+            "away by elastic waves and the first-order estimate of it; with --prony the "
+            "half-space is viscoelastic and the loss is split into waves and hysteresis; "
+            "--density2 0 takes the waves out. SI units. Exit code 1 "
             "(with a warning) when the energy balance is off by more than 1e-2 of M v0^2/2, or "
             "the far boundary reflects more than 1e-2 of the radiated energy."
         ),
