@@ -246,3 +246,19 @@ def test_fields_carry_the_relaxed_shear_stress():
     peak = np.max(reference.von_mises)
     assert np.max(np.abs(glassy.von_mises - reference.von_mises)) < 1e-5 * peak
     assert np.max(relaxing.von_mises) < 0.95 * peak
+
+
+def test_a_massless_viscoelastic_study_runs_and_draws(tmp_path):
+    """No wave speed to frame the field pictures by, no first-order wave estimate to check."""
+    from shtaerman.output.dynamic import write_dynamic_study
+    from shtaerman.study.run import run_study
+    from shtaerman.study.schema import load_study
+
+    path = tmp_path / "visco.toml"
+    text = STUDY.replace("density2 = 1100.0", 'density2 = 0\nprony = "0.5:2e-3"')
+    path.write_text(text + "[quick]\nvelocity = [3.0]\ntime_steps = 50\nmesh_size = 0.1\n")
+    [study] = load_study(path)
+    outcome = run_study(study, quick=True)
+    assert all(check.passed for check in outcome.checks) and len(outcome.checks) == 2
+    _, figures = write_dynamic_study(outcome, tmp_path / "out", tmp_path)
+    assert any("Wave field" in caption for caption in figures)
