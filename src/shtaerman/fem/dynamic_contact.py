@@ -243,8 +243,9 @@ class DynamicImpactResult:
     energies : dict of str to numpy.ndarray
         Per step, J: ``striker_kinetic``, ``body_kinetic``, ``strain``, ``absorbed`` (by the
         layer, cumulative), ``numerical`` (E0 minus the rest: the scheme's dissipation),
-        ``contact_term`` (the trapezoidal contact work, the predicted value of ``numerical``)
-        and ``inner`` (body energy inside R_a).
+        ``contact_term`` (the trapezoidal contact work, the predicted value of ``numerical``),
+        ``inner`` (body energy inside R_a), ``dissipated`` (by a viscoelastic body) and
+        ``inner_kinetic`` (body kinetic energy inside R_a).
     x_max : float
         Largest approach in m.
     P_max : float
@@ -266,8 +267,9 @@ class DynamicImpactResult:
         tail (t_contact + tail R_a / c_R, when every direct wave has left and a reflection of
         any wave sent during the contact would be inside) over the radiated energy: an upper
         bound of what the mesh grading, the layer and the far arc send back (it includes the
-        slow decay of the near field). nan without a tail, or when R_a lies beyond half the
-        domain (the nearly massless limit: nothing radiates).
+        slow decay of the near field; a viscoelastic body: twice the kinetic energy there, its
+        creeping near field left out). nan without a tail, or when R_a lies beyond half the
+        domain (the nearly massless limit: nothing radiates); 0 for a massless body.
     mesh : dict
         ``nodes``, ``elements``, ``dofs`` and the geometry (m).
     timings : dict of str to float
@@ -843,7 +845,9 @@ def _result(
         v_out = -float(history.v[-1])
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
-        reflected = _reflected_fraction(history, energy0, setup.reflection_measured)
+        reflected = _reflected_fraction(
+            history, energy0, setup.reflection_measured, problem.material is not None
+        )
         if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
             reflected = 0.0
     return DynamicImpactResult(
@@ -888,11 +892,18 @@ def _losses(problem: ImpactProblem, history: ImpactHistory, radiated: float) -> 
     }
 
 
-def _reflected_fraction(history: ImpactHistory, energy0: float, measured: bool) -> float:
-    """Body energy inside R_a at the end over the radiated energy (nan if not measured)."""
+def _reflected_fraction(
+    history: ImpactHistory, energy0: float, measured: bool, viscoelastic: bool = False
+) -> float:
+    """Body energy inside R_a at the end over the radiated energy (nan if not measured).
+
+    A viscoelastic body still stores energy in its slowly creeping near field then: twice the
+    kinetic energy inside R_a stands for the waves (kinetic and strain energy equal on average).
+    """
     radiated_energy = energy0 - history.energies["striker_kinetic"][-1]
+    inner = history.energies["inner_kinetic"][-1] * 2.0 if viscoelastic else None
     if measured and radiated_energy > 0:
-        return float(history.energies["inner"][-1] / radiated_energy)
+        return float((history.energies["inner"][-1] if inner is None else inner) / radiated_energy)
     return math.nan
 
 

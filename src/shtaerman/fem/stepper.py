@@ -76,6 +76,7 @@ ENERGY_NAMES = (
     "contact_term",
     "inner",
     "dissipated",
+    "inner_kinetic",
 )
 """Keys of :attr:`ImpactHistory.energies`, in J."""
 UNSTABLE_BALANCE = 1e-3
@@ -444,9 +445,8 @@ def _observe(problem: ImpactProblem, state: ImpactState) -> tuple[tuple, tuple]:
     x, v = state.x, state.v
     kinetic = 0.5 * float(v @ (problem.body_mass @ v))
     strain = 0.5 * float(x @ state.stiffness_x)
-    inner = 0.5 * float(v @ (problem.inner_mass @ v)) + 0.5 * float(
-        x @ (problem.inner_stiffness @ x)
-    )
+    inner_kinetic = 0.5 * float(v @ (problem.inner_mass @ v))
+    inner = inner_kinetic + 0.5 * float(x @ (problem.inner_stiffness @ x))
     dissipated = 0.0
     if state.memory is not None:  # viscoelastic: the branches' springs store, their dashpots heat
         strain = problem.material.stored_energy(state.memory, x)
@@ -456,7 +456,7 @@ def _observe(problem: ImpactProblem, state: ImpactState) -> tuple[tuple, tuple]:
     numerical = problem.striker.kinetic_energy - striker_kinetic - kinetic - strain - state.absorbed
     numerical -= dissipated
     energies = (striker_kinetic, kinetic, strain, state.absorbed, numerical, state.contact_term)
-    return row, (*energies, inner, dissipated)
+    return row, (*energies, inner, dissipated, inner_kinetic)
 
 
 def march(
