@@ -110,7 +110,7 @@ def test_impact_history():
         (lambda: sh.impact(INDENTER, 4e6, mass=1, velocity=1), "body"),
         (lambda: sh.impact(INDENTER, RUBBER, mass=-1, velocity=1), "mass"),
         (lambda: sh.impact(INDENTER, sh.RIGID, mass=1, velocity=1, striker=sh.RIGID), "body"),
-        (lambda: sh.Material(4e6, 0.49, density=0.0), "density"),
+        (lambda: sh.Material(4e6, 0.49, density=-1.0), "density"),
         (lambda: sh.Material(4e6, 0.49, density=1e9), "density"),
         (lambda: sh.Material(math.inf, 3.0), "poisson_ratio"),
     ],
@@ -124,6 +124,7 @@ def test_bad_input_names_the_parameter(call, name):
 def test_material_density_is_optional_and_checked_like_density2():
     assert sh.Material(4e6, 0.49).density is None and sh.RIGID.density is None
     assert sh.Material(4e6, 0.49, density=1100).density == 1100.0
+    assert sh.Material(4e6, 0.49, density=0).density == 0.0  # massless
     with pytest.raises(sh.InputError, match=r"density must lie in \[1e-06, 1e\+06\] kg/m\^3"):
         sh.Material(4e6, 0.49, density=2e6)
 

@@ -100,7 +100,7 @@ def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["--density2", "0"], "density2 must lie in [1e-6, 1e6] kg/m^3"),
+        (["--density2", "1e-7"], "density2 must lie in [1e-6, 1e6] or 0 kg/m^3"),
         (["--density2", "nan"], "density2 must be a number"),
         (["--time-steps", "10"], "time-steps must be an integer in [50, 5000], got '10'"),
         (["--time-steps", "1.5"], "time-steps must be an integer"),

@@ -57,15 +57,22 @@ def deprecated(where: str, old: str, new: str) -> None:
 
 @dataclass(frozen=True)
 class Range:
-    """An interval of valid numbers; ``None`` ends are unbounded."""
+    """An interval of valid numbers; ``None`` ends are unbounded; ``zero``: 0 is valid too."""
 
     low: float | None = 0.0
     high: float | None = None
     low_open: bool = True
     high_open: bool = False
+    zero: bool = False
 
     def text(self) -> str:
-        """The range as written in messages and help: ``> 0``, ``(-1, 0.5]``, ``[50, 1e+05]``."""
+        """The range as written in messages and help: ``> 0``, ``(-1, 0.5]``, ``[50, 1e+05]``,
+        ``[1e-6, 1e6] or 0``."""
+        if self.zero:
+            return self._interval() + " or 0"
+        return self._interval()
+
+    def _interval(self) -> str:
         if self.high is None:
             return f"{'>' if self.low_open else '>='} {_shown(self.low)}"
         if self.low is None:
@@ -77,6 +84,8 @@ class Range:
 
     def contains(self, number: float) -> bool:
         """Whether ``number`` lies in the range."""
+        if self.zero and number == 0:
+            return True
         if self.low is not None and (number <= self.low if self.low_open else number < self.low):
             return False
         return self.high is None or (number < self.high if self.high_open else number <= self.high)
@@ -100,6 +109,8 @@ MAX_STUDIES = 100
 study."""
 MAX_VELOCITIES = 100
 """Most approach velocities of a dynamic study: each is a dynamic FE run."""
+MAX_PRONY_TERMS = 20
+"""Most terms of a Prony series: each adds internal variables at every quadrature point."""
 
 
 @dataclass(frozen=True)
@@ -392,12 +403,26 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "density2",
         "kg/m^3",
-        "half-space density (the paper gives none; 1100 is natural rubber)",
+        "half-space density (the paper gives none; 1100 is natural rubber; 0: massless, "
+        "the quasi-static impact without waves)",
         "Half-space density \N{GREEK SMALL LETTER RHO}2",
         1100.0,
         ("dynamic", "layer"),
-        valid=Range(1e-6, 1e6, low_open=False),
+        valid=Range(1e-6, 1e6, low_open=False, zero=True),
         old_names=("density",),
+    ),
+    Entry(
+        "prony",
+        "",
+        "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s):"
+        " G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 and nu2 the instantaneous values, "
+        f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
+        "terms; unset: elastic",
+        "Prony series (g_i:tau_i)",
+        None,
+        ("dynamic",),
+        valid=None,
+        type="str",
     ),
     Entry(
         "depths",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +21,7 @@ from .quasi_static import check_bodies
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
     from ..study.dynamic.case import DynamicCase
+    from ..theory.viscoelastic import PronySeries
 
 __all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
 
@@ -85,6 +87,21 @@ class DynamicResult:
     reflected_energy_fraction = _dynamic_key(
         "reflected_energy_fraction", "Energy reflected by the far boundary, of the radiated."
     )
+
+    @property
+    def energy_dissipated_fraction(self) -> float:
+        """Energy dissipated by a viscoelastic half-space (of M v0^2 / 2; nan if elastic)."""
+        return self.dynamic.get("energy_dissipated_fraction", math.nan)
+
+    @property
+    def energy_hysteresis_fraction(self) -> float:
+        """The part of 1 - e^2 lost to hysteresis (of M v0^2 / 2; nan if elastic)."""
+        return self.dynamic.get("energy_hysteresis_fraction", math.nan)
+
+    @property
+    def energy_wave_fraction(self) -> float:
+        """The part of 1 - e^2 carried away by waves (of M v0^2 / 2; nan if elastic)."""
+        return self.dynamic.get("energy_wave_fraction", math.nan)
 
     def history(self) -> dict[str, Any]:
         """The histories t, x, v, P, a, p0 at every time step (arrays, SI units)."""
@@ -209,6 +226,7 @@ def dynamic(
     domain_factor: float | None = None,
     growth: float | None = None,
     layer_rate: float | None = None,
+    prony: PronySeries | str | None = None,
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
@@ -237,6 +255,10 @@ def dynamic(
     settings : DynamicSettings, optional
         The numerical controls; ``time_steps``, ``mesh_size``, ``mesh_margin``, ``domain_factor``,
         ``growth`` and ``layer_rate`` (the ``--time-steps`` ... options) override its fields.
+    prony : PronySeries or str, optional
+        Shear relaxation of the half-space, or its text ``g1:tau1,g2:tau2,...`` (tau in s):
+        ``body`` then gives the instantaneous E2 and nu2 and the bulk stays elastic. None:
+        elastic.
     out : path, optional
         A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
         the figures; an existing one is replaced only with ``force``.
@@ -252,6 +274,7 @@ def dynamic(
     shtaerman.validation.InputError
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
+    from ..fem.viscoelastic import prony_input
     from ..output.dynamic import write_case_figures
     from ..output.files import output_folder, staged_folder
     from ..study.dynamic.accuracy import complete_ladder
@@ -263,12 +286,14 @@ def dynamic(
     mass, velocity, refine, chosen = _checked(
         indenter, body, (mass, velocity, refine), estimate, chosen
     )
+    series = prony_input(prony)
     check_figure_format(figure_format)
     folder = output_folder(out, force=force)
     inputs = (indenter, body, _density(body), mass, velocity)
-    case = run_case(*inputs, chosen, snapshots=_snapshots if folder is not None else None)
+    shots = _snapshots if folder is not None else None
+    case = run_case(*inputs, chosen, snapshots=shots, prony=series)
     if estimate:
-        ladder = complete_ladder(case.result, *inputs, chosen, refine=refine)
+        ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, prony=series)
         case = dataclasses.replace(case, ladder=ladder)
     result = _result(case)
     if folder is not None:

@@ -79,6 +79,7 @@ METAVARS = {
     "shape_coefficient": "A",
     "exponent": "N",
     "density2": "KG/M3",
+    "prony": "G1:TAU1,...",
     "depths": "D1,D2,...",
     "history": "FILE.csv",
     "out": "DIR",

@@ -40,14 +40,16 @@ def register(commands: argparse._SubParsersAction) -> None:
             "Rigid striker z = A r^n (mass M, velocity v0) on an elastic half-space with "
             "inertia: axisymmetric Taylor-Hood P2-P1 FEM, generalized-alpha time stepping, "
             "exact unilateral contact every step. Reports the rebound, the energy carried "
-            "away by elastic waves and the first-order estimate of it. SI units. Exit code 1 "
+            "away by elastic waves and the first-order estimate of it; with --prony the "
+            "half-space is viscoelastic and the loss is split into waves and hysteresis; "
+            "--density2 0 takes the waves out. SI units. Exit code 1 "
             "(with a warning) when the energy balance is off by more than 1e-2 of M v0^2/2, or "
             "the far boundary reflects more than 1e-2 of the radiated energy. --thickness H: "
             "a layer on a rigid base (bonded or lubricated) whose base reflects the waves, with "
             "a lateral absorber; its reflected energy is counted of M v0^2/2."
         ),
     )
-    inputs = (*CASE, "E2", "nu2", "density2", "thickness", "base")
+    inputs = (*CASE, "E2", "nu2", "density2", "prony", "thickness", "base")
     inputs = (*inputs, "json", "history", "out", "force")
     add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -69,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
     history and folder if asked."""
     history = history_path(args.history, force=args.force)
     names = ("mass", "velocity", "thickness", "base", "refine", "estimate", *SETTINGS_OPTIONS)
-    names = (*names, "out", "force")
+    names = (*names, "prony", "out", "force")
     with in_option_words():
         result = dynamic(
             indenter(args),
@@ -119,6 +121,17 @@ def _layer_rows(mesh: dict) -> list[str]:
     ]
 
 
+def _losses_text(dyn: dict) -> list[str]:
+    """A viscoelastic run's 1 - e^2 split into waves and hysteresis ([] for an elastic one)."""
+    if "energy_dissipated_fraction" not in dyn:
+        return []
+    return [
+        f"    of which waves        {dyn['energy_wave_fraction']:<14.6f}  (beyond R_a, absorbed)",
+        f"    of which hysteresis   {dyn['energy_hysteresis_fraction']:<14.6f}  (dissipated "
+        f"{dyn['energy_dissipated_fraction']:.6f}, the rest to be dissipated near the contact)",
+    ]
+
+
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
     qs, dyn, est = (
@@ -139,6 +152,7 @@ def dynamic_text(report: dict) -> str:
         f"{est['restitution']:.6f})",
         f"  energy to waves 1-e^2   {dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
         f"estimate {est['energy_fraction']:.6f})",
+        *_losses_text(dyn),
         _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
         f"{dyn['reflected_energy_fraction']:.1e} of {of}",

@@ -32,8 +32,10 @@ from threadpoolctl import threadpool_limits
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.materials import Material
+from ..theory.materials import validate_density as validate_material_density
 from ..theory.radiation import rayleigh_root
+from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
@@ -59,6 +61,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
+from .viscoelastic import ShearMemory, ViscoelasticShear, viscoelastic_shear
 
 __all__ = [
     "MAX_DOFS",
@@ -83,14 +86,9 @@ MAX_STEPS = 100_000
 
 
 def validate_density(density: object) -> float:
-    """Return the half-space density in kg/m^3, or raise InputError naming ``density2``."""
-    rho = validate_positive("density2", density, "kg/m^3")
-    low, high = DENSITY_RANGE
-    if not low <= rho <= high:
-        raise InputError(
-            f"density2 must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}", "density2"
-        )
-    return rho
+    """Return the half-space density in kg/m^3 (0: massless), or raise InputError naming
+    ``density2``."""
+    return validate_material_density("density2", density)
 
 
 @dataclass(frozen=True)
@@ -254,8 +252,9 @@ class DynamicImpactResult:
     energies : dict of str to numpy.ndarray
         Per step, J: ``striker_kinetic``, ``body_kinetic``, ``strain``, ``absorbed`` (by the
         layer, cumulative), ``numerical`` (E0 minus the rest: the scheme's dissipation),
-        ``contact_term`` (the trapezoidal contact work, the predicted value of ``numerical``)
-        and ``inner`` (body energy inside R_a).
+        ``contact_term`` (the trapezoidal contact work, the predicted value of ``numerical``),
+        ``inner`` (body energy inside R_a), ``dissipated`` (by a viscoelastic body) and
+        ``inner_kinetic`` (body kinetic energy inside R_a).
     x_max : float
         Largest approach in m.
     P_max : float
@@ -277,10 +276,11 @@ class DynamicImpactResult:
         tail (t_contact + tail R_a / c_R, when every direct wave has left and a reflection of
         any wave sent during the contact would be inside) over the radiated energy: an upper
         bound of what the mesh grading, the layer and the far arc send back (it includes the
-        slow decay of the near field). nan without a tail, or when R_a lies beyond half the
-        domain (the nearly massless limit: nothing radiates). On a layer, whose base sends
-        waves back by design and may radiate almost nothing, it is that energy over
-        M v0^2 / 2 instead: the most a reflection can change e^2 by.
+        slow decay of the near field; a viscoelastic body: twice the kinetic energy there, its
+        creeping near field left out). nan without a tail, or when R_a lies beyond half the
+        domain (the nearly massless limit: nothing radiates); 0 for a massless body. On a
+        layer, whose base sends waves back by design and may radiate almost nothing, it is that
+        energy over M v0^2 / 2 instead: the most a reflection can change e^2 by.
     mesh : dict
         ``nodes``, ``elements``, ``dofs`` and the geometry (m).
     timings : dict of str to float
@@ -288,6 +288,11 @@ class DynamicImpactResult:
         compliance and W), ``stepping``, ``total``.
     parameters : dict
         Inputs and derived scales (dt, c_s, R_a, quasi-static x_c, t_y, ...).
+    viscoelastic : dict of str to float
+        A viscoelastic body only ({} otherwise), of M v0^2 / 2: ``energy_dissipated_fraction``
+        (heat by the end of the run), ``energy_wave_fraction`` (the body's energy beyond R_a
+        and the layer's at the end: the waves) and ``energy_hysteresis_fraction`` (the rest of
+        1 - e^2: dissipated, or still inside R_a, where the body will dissipate it).
     """
 
     t: np.ndarray = field(repr=False)
@@ -311,6 +316,9 @@ class DynamicImpactResult:
     parameters: dict[str, float]
     system: ElasticSystem = field(repr=False)
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(repr=False)
+    viscoelastic: dict[str, float] = field(default_factory=dict)
+    material: ViscoelasticShear | None = field(default=None, repr=False)
+    memories: dict[float, ShearMemory | None] = field(default_factory=dict, repr=False)
 
     def summary(self) -> dict[str, float]:
         """The scalar results (the ``dynamic`` object of ``shtaerman dynamic --json``)."""
@@ -325,7 +333,7 @@ class DynamicImpactResult:
             "energy_balance_error",
             "reflected_energy_fraction",
         )
-        return {key: float(getattr(self, key)) for key in keys}
+        return {key: float(getattr(self, key)) for key in keys} | self.viscoelastic
 
     def history_columns(self) -> dict[str, np.ndarray]:
         """t (s), x (m), v (m/s), P (N), a (m), p0 (Pa), one row per step."""
@@ -357,12 +365,17 @@ class DynamicImpactResult:
         """Fields kept for a requested time: (actual time s, solution, velocity vector m/s).
 
         The solution carries u, the mean pressure and the stresses (von Mises included) at
-        the mesh vertices; the velocity is the full dof vector (zero on the pressure dofs).
+        the mesh vertices (a viscoelastic body's relaxed deviatoric stress from its branches);
+        the velocity is the full dof vector (zero on the pressure dofs).
         """
         if time_requested not in self.snapshots:
             raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_dynamic_impact")
         actual, coefficients, velocity = self.snapshots[time_requested]
-        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients))
+        memory = self.memories.get(time_requested)
+        deviatoric = None
+        if self.material is not None and memory is not None:  # the relaxing shear stress
+            deviatoric = self.material.deviatoric_stress(memory)
+        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients), deviatoric)
         return actual, solution, velocity
 
 
@@ -398,6 +411,35 @@ def _quasi_static(
     )
 
 
+def _viscoelastic_extent(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    striker: Striker,
+    prony: PronySeries,
+    settings: DynamicSettings,
+) -> tuple[float, float]:
+    """Contact time (s) and largest contact radius (m) of the quasi-static viscoelastic impact
+    (:func:`shtaerman.theory.viscoelastic.viscoelastic_impact`, coarse: for sizing only).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If the run would need more than ``MAX_STEPS`` time steps.
+    """
+    law = PowerLawContact(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
+    glassy = _quasi_static(indenter, half_space, striker).t_y
+    slow = viscoelastic_impact(striker.mass, striker.velocity, law, prony, steps=100)
+    steps = 3.0 * slow.t_contact / glassy * settings.steps
+    if steps > MAX_STEPS:
+        raise InputError(
+            f"prony: the viscoelastic impact lasts {slow.t_contact / glassy:.3g} glassy impact "
+            f"durations, {steps:.3g} time steps at {settings.steps} per t_y (at most "
+            f"{MAX_STEPS}); use fewer time steps or a series that relaxes less",
+            "prony",
+        )
+    return slow.t_contact, float(law.contact_radius(slow.x_max))
+
+
 @dataclass(frozen=True)
 class _Scales:
     """Lengths, times and speeds of one impact, derived from the inputs and the settings."""
@@ -410,6 +452,7 @@ class _Scales:
     domain_radius: float
     layer: AbsorbingLayer
     has_layer: bool
+    longest_t_y: float
 
     @property
     def t_y(self) -> float:
@@ -428,19 +471,27 @@ def _scales(
     rho: float,
     striker: Striker,
     settings: DynamicSettings,
+    prony: PronySeries | None = None,
 ) -> _Scales:
-    """Quasi-static impact, wave speeds, time step, refined and domain radii, layer."""
+    """Quasi-static impact, wave speeds, time step, refined and domain radii, layer.
+
+    With ``prony`` (a viscoelastic body) the refined zone, the layer and the run's length are
+    sized for the quasi-static viscoelastic impact (Lee-Radok/Ting, its largest contact radius
+    and its contact time); dt still follows the glassy impact.
+    """
     qs = _quasi_static(indenter, half_space, striker)
     nu = half_space.poisson_ratio
     shear = half_space.youngs_modulus / (2.0 * (1.0 + nu))
-    c_s = math.sqrt(shear / rho)
-    t_y = qs.t_y
-    refined = settings.margin * qs.a_c
+    c_s = math.sqrt(shear / rho) if rho > 0 else math.inf  # massless: no waves
+    t_y, widest = qs.t_y, qs.a_c
+    if prony is not None:
+        t_y, widest = _viscoelastic_extent(indenter, half_space, striker, prony, settings)
+    refined = settings.margin * widest
     domain_radius = settings.domain * refined
     layer = AbsorbingLayer(
         start=settings.layer_start * c_s * t_y,
         ramp=settings.layer_ramp * c_s * t_y,
-        rate=settings.layer_rate / t_y,
+        rate=settings.layer_rate / qs.t_y,
         width=None if settings.layer_width is None else settings.layer_width * c_s * t_y,
     )
     has_layer = layer.start + layer.ramp < 0.5 * domain_radius and settings.layer_rate > 0
@@ -450,11 +501,12 @@ def _scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
         rayleigh_wave_speed=c_s / rayleigh_root(nu),
-        dt=t_y / settings.steps,
+        dt=qs.t_y / settings.steps,
         refined=refined,
         domain_radius=domain_radius,
         layer=layer,
         has_layer=has_layer,
+        longest_t_y=t_y,
     )
 
 
@@ -509,11 +561,16 @@ def _assemble_body(
         profile=np.asarray(indenter.profile(r_c), dtype=float),
         surface_factor=mass_factor(system.surface_mass[selected][:, selected].toarray()),
     )
-    body_mass = redistribute_normal_mass(consistent_mass(system, rho), dofs)
+    n = system.n_dofs
+    body_mass = (
+        redistribute_normal_mass(consistent_mass(system, rho), dofs)
+        if rho > 0
+        else sp.csr_matrix((n, n))
+    )
     damping = (
         weighted_mass(system, scales.layer.weight(rho))
         if scales.has_layer
-        else sp.csr_matrix((system.n_dofs, system.n_dofs))
+        else sp.csr_matrix((n, n))
     )
     inner_stiffness, inner_unit_mass = _inner_energy_matrices(system, scales.inner_radius)
     return _Body(
@@ -521,8 +578,14 @@ def _assemble_body(
     )
 
 
-def _factorized_problem(body: _Body, striker: Striker, scheme: TimeScheme) -> ImpactProblem:
-    """K_eff factorized once on the free dofs, W = K_eff^-1 S and the LCP matrix.
+def _factorized_problem(
+    body: _Body,
+    striker: Striker,
+    scheme: TimeScheme,
+    material: ViscoelasticShear | None = None,
+) -> ImpactProblem:
+    """K_eff factorized once on the free dofs, W = K_eff^-1 S and the LCP matrix (K: the
+    ``material``'s stiffness at its step's shear modulus when the body is viscoelastic).
 
     Raises
     ------
@@ -532,8 +595,9 @@ def _factorized_problem(body: _Body, striker: Striker, scheme: TimeScheme) -> Im
     alpha_m, alpha_f, beta, gamma = scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma
     dt = scheme.dt
     free, position = body.free, body.candidates.position
+    stiffness = body.system.matrix if material is None else material.stiffness
     effective = (
-        (1.0 - alpha_f) * body.system.matrix
+        (1.0 - alpha_f) * stiffness
         + ((1.0 - alpha_f) * gamma / (beta * dt)) * body.damping
         + ((1.0 - alpha_m) / (beta * dt**2)) * body.body_mass
     ).tocsr()
@@ -566,6 +630,7 @@ def _factorized_problem(body: _Body, striker: Striker, scheme: TimeScheme) -> Im
         factorization=factorization,
         correction=correction,
         lcp_matrix=lcp_matrix,
+        material=material,
     )
 
 
@@ -619,6 +684,7 @@ def prepare_dynamic_impact(
     mass: float,
     velocity: float,
     settings: DynamicSettings | None = None,
+    prony: PronySeries | None = None,
 ) -> DynamicImpactSetup:
     """Mesh, assemble and factorize the dynamic impact (arguments of :func:`run_dynamic_impact`).
 
@@ -637,7 +703,7 @@ def prepare_dynamic_impact(
     )
     layered = settings.thickness is not None
     estimate = 0 if layered else _checked_estimate(settings)
-    scales = _scales(indenter, half_space, rho, striker, settings)
+    scales = _scales(indenter, half_space, rho, striker, settings, prony)
     if layered:
         estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
     clock = [time.perf_counter()]
@@ -647,11 +713,14 @@ def prepare_dynamic_impact(
     body = _assemble_body(system, indenter, rho, scales)
     clock.append(time.perf_counter())
     scheme = TimeScheme.generalized_alpha(settings.spectral_radius, scales.dt)
-    problem = _factorized_problem(body, striker, scheme)
+    material = (
+        None if prony is None else viscoelastic_shear(system, prony, scales.dt, scales.inner_radius)
+    )
+    problem = _factorized_problem(body, striker, scheme, material)
     clock.append(time.perf_counter())
     return DynamicImpactSetup(
         problem=problem,
-        duration=3.0 * scales.t_y,
+        duration=3.0 * scales.longest_t_y,
         tail_time=settings.tail * scales.inner_radius / scales.rayleigh_wave_speed,
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
@@ -687,6 +756,7 @@ def run_dynamic_impact(
     settings: DynamicSettings | None = None,
     *,
     snapshot_times: tuple[float, ...] = (),
+    prony: PronySeries | None = None,
 ) -> DynamicImpactResult:
     """Strike the elastic half-space with a rigid power-law striker and follow the waves.
 
@@ -706,6 +776,9 @@ def run_dynamic_impact(
         Numerical controls (default ``DynamicSettings()``).
     snapshot_times : tuple of float
         Times in s at which to keep the solution vectors (nearest step), for field output.
+    prony : PronySeries, optional
+        Shear relaxation of the half-space (E2 and nu2 are then its instantaneous values, the
+        bulk response elastic); None: elastic.
 
     Returns
     -------
@@ -717,7 +790,7 @@ def run_dynamic_impact(
         For inputs out of range, a mesh above ``MAX_DOFS`` (estimated before meshing), or a
         contact that outgrows the refined zone during the run.
     """
-    setup = prepare_dynamic_impact(indenter, half_space, density, mass, velocity, settings)
+    setup = prepare_dynamic_impact(indenter, half_space, density, mass, velocity, settings, prony)
     start = time.perf_counter()
     history = march(
         setup.problem,
@@ -805,8 +878,15 @@ def _result(
         v_out = -float(history.v[-1])
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
-        layered = "thickness" in setup.mesh
-        reflected = _reflected_fraction(history, energy0, setup.reflection_measured, layered)
+        reflected = _reflected_fraction(
+            history,
+            energy0,
+            setup.reflection_measured,
+            layered="thickness" in setup.mesh,
+            viscoelastic=problem.material is not None,
+        )
+        if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
+            reflected = 0.0
     return DynamicImpactResult(
         t=t,
         x=history.x,
@@ -829,19 +909,47 @@ def _result(
         parameters=parameters,
         system=problem.system,
         snapshots=history.snapshots,
+        viscoelastic=_losses(problem, history, radiated) if problem.material is not None else {},
+        material=problem.material,
+        memories=history.memories,
     )
 
 
+def _losses(problem: ImpactProblem, history: ImpactHistory, radiated: float) -> dict[str, float]:
+    """The loss 1 - e^2 split into waves (body energy beyond R_a and the layer's) and
+    hysteresis (the rest: dissipated, or still inside R_a to be dissipated)."""
+    energies = {key: float(values[-1]) for key, values in history.energies.items()}
+    energy0 = problem.striker.kinetic_energy
+    body = energies["body_kinetic"] + energies["strain"] - energies["inner"]
+    waves = (body + energies["absorbed"]) / energy0
+    return {
+        "energy_dissipated_fraction": energies["dissipated"] / energy0,
+        "energy_hysteresis_fraction": radiated - waves,
+        "energy_wave_fraction": waves if not math.isnan(radiated) else math.nan,
+    }
+
+
 def _reflected_fraction(
-    history: ImpactHistory, energy0: float, measured: bool, layered: bool = False
+    history: ImpactHistory,
+    energy0: float,
+    measured: bool,
+    *,
+    layered: bool = False,
+    viscoelastic: bool = False,
 ) -> float:
     """Body energy inside R_a at the end over the radiated energy, or over ``energy0`` on a
-    layer (nan if not measured)."""
+    layer (nan if not measured).
+
+    A viscoelastic body still stores energy in its slowly creeping near field then: twice the
+    kinetic energy inside R_a stands for the waves (kinetic and strain energy equal on average).
+    """
+    inner = history.energies["inner_kinetic"][-1] * 2.0 if viscoelastic else None
+    inner = history.energies["inner"][-1] if inner is None else inner
     if layered:
-        return float(history.energies["inner"][-1] / energy0) if measured else math.nan
+        return float(inner / energy0) if measured else math.nan
     radiated_energy = energy0 - history.energies["striker_kinetic"][-1]
     if measured and radiated_energy > 0:
-        return float(history.energies["inner"][-1] / radiated_energy)
+        return float(inner / radiated_energy)
     return math.nan
 
 

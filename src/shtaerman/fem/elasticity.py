@@ -405,7 +405,9 @@ def solve(
     return postprocess(system, x, load)
 
 
-def postprocess(system: ElasticSystem, x: np.ndarray, load: np.ndarray) -> ElasticSolution:
+def postprocess(
+    system: ElasticSystem, x: np.ndarray, load: np.ndarray, deviatoric: np.ndarray | None = None
+) -> ElasticSolution:
     """The fields (vertex values, projected stresses) of a solution vector ``x`` under ``load``.
 
     Parameters
@@ -415,12 +417,19 @@ def postprocess(system: ElasticSystem, x: np.ndarray, load: np.ndarray) -> Elast
         Full solution vector [u (m), p (Pa)].
     load : numpy.ndarray
         The nodal forces (N) it was solved for; the reactions are ``matrix @ x - load``.
+    deviatoric : numpy.ndarray, optional
+        The deviatoric stress (rr, tt, zz, rz) in Pa at the quadrature points, shape
+        (4, elements, points), in place of 2 mu dev e(u) (a viscoelastic body).
     """
     reactions = system.matrix @ x - load
     ubasis, pbasis = system.displacement_basis, system.pressure_basis
     u, p = x[: system.n_displacement], x[system.n_displacement :]
     nodal = ubasis.nodal_dofs
-    stresses = _projected_stresses(system, u, p)
+    stresses = (
+        _projected_stresses(system, u, p)
+        if deviatoric is None
+        else _projected_given(system, p, deviatoric)
+    )
     return ElasticSolution(
         system=system,
         coefficients=x,
@@ -455,6 +464,25 @@ def _projected_stresses(system: ElasticSystem, u: np.ndarray, p: np.ndarray) -> 
     rhs = np.column_stack([asm(component(k), pbasis, u=ufield, p=pfield) for k in range(4)])
     values = factorize(asm(_mass, pbasis), backend="superlu").solve(rhs)
     nodal = pbasis.nodal_dofs[0]
+    return {name: values[nodal, k] for k, name in enumerate(names)}
+
+
+def _projected_given(system: ElasticSystem, p: np.ndarray, deviatoric: np.ndarray) -> dict:
+    """As :func:`_projected_stresses`, for a deviatoric stress given at the quadrature points."""
+    pbasis = system.pressure_basis
+    pfield = pbasis.interpolate(p)
+
+    def component(k: int) -> LinearForm:
+        @LinearForm
+        def form(v, w):
+            return (w.s - (w.p if k < 3 else 0.0)) * v
+
+        return form
+
+    rhs = np.column_stack([asm(component(k), pbasis, p=pfield, s=deviatoric[k]) for k in range(4)])
+    values = factorize(asm(_mass, pbasis), backend="superlu").solve(rhs)
+    nodal = pbasis.nodal_dofs[0]
+    names = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz")
     return {name: values[nodal, k] for k, name in enumerate(names)}
 
 

@@ -25,10 +25,15 @@ an LCP with a symmetric positive definite matrix solved exactly by
 W = K_eff^-1 S kept dense; C = S^T W. The contact forces enter the alpha-weighted balance like
 any load; the gap is enforced at n+1.
 
-Energy bookkeeping (:func:`march`): striker and body kinetic energy, strain energy, the work
-absorbed by the layer (by the midpoint velocity; exact for Newmark), and the rest as the
-scheme's numerical dissipation, of which the contact term -1/2 (F_n + F_{n+1}) . (g_{n+1} - g_n)
-is computed separately (for Newmark the two agree to round-off).
+A viscoelastic body (:mod:`.viscoelastic`) replaces K x by its internal force: K at the
+step's effective shear modulus times x plus the history force of its Prony branches, which
+enters the predictor as a load.
+
+Energy bookkeeping (:func:`march`): striker and body kinetic energy, strain energy (stored), the
+work absorbed by the layer (by the midpoint velocity; exact for Newmark), the energy dissipated
+by a viscoelastic body, and the rest as the scheme's numerical dissipation, of which the contact
+term -1/2 (F_n + F_{n+1}) . (g_{n+1} - g_n) is computed separately (for Newmark the two agree
+to round-off).
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -45,6 +51,9 @@ from ..validation import InputError, NumericalFailureError
 from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
 from .elasticity import ElasticSystem
 from .solver import Factorization
+
+if TYPE_CHECKING:
+    from .viscoelastic import ShearMemory, ViscoelasticShear
 
 __all__ = [
     "ContactCandidates",
@@ -66,6 +75,8 @@ ENERGY_NAMES = (
     "numerical",
     "contact_term",
     "inner",
+    "dissipated",
+    "inner_kinetic",
 )
 """Keys of :attr:`ImpactHistory.energies`, in J."""
 UNSTABLE_BALANCE = 1e-3
@@ -176,6 +187,8 @@ class ImpactProblem:
         W = K_eff^-1 S (m/N), free dofs x candidates, column-major.
     lcp_matrix : numpy.ndarray
         (1 - a_f) (C + beta dt^2 / ((1 - a_m) M) 1 1^T) in m/N.
+    material : ViscoelasticShear or None
+        The body's Prony shear (its stiffness at G_eff is the K of K_eff); None: elastic.
     """
 
     system: ElasticSystem = field(repr=False)
@@ -190,6 +203,7 @@ class ImpactProblem:
     factorization: Factorization = field(repr=False)
     correction: np.ndarray = field(repr=False)
     lcp_matrix: np.ndarray = field(repr=False)
+    material: ViscoelasticShear | None = field(default=None, repr=False)
 
     @cached_property
     def massive(self) -> np.ndarray:
@@ -217,7 +231,7 @@ class ImpactState:
     x, v, a : numpy.ndarray
         Body displacement (m), velocity (m/s), acceleration (m/s^2); pressure dofs in Pa.
     stiffness_x : numpy.ndarray
-        K x in N.
+        The internal force in N: K x (viscoelastic: with the shear's history force).
     striker_x, striker_v, striker_a : float
         Striker displacement X (m), velocity (m/s), acceleration (m/s^2), downward.
     forces, gap : numpy.ndarray
@@ -226,6 +240,8 @@ class ImpactState:
         Work absorbed by the layer so far, J.
     contact_term : float
         Trapezoidal contact work so far, J.
+    memory : ShearMemory or None
+        The viscoelastic shear's internal variables (None: elastic body).
     """
 
     step: int
@@ -240,6 +256,7 @@ class ImpactState:
     gap: np.ndarray = field(repr=False)
     absorbed: float
     contact_term: float
+    memory: ShearMemory | None = field(default=None, repr=False)
 
     @classmethod
     def first_touch(cls, problem: ImpactProblem) -> ImpactState:
@@ -258,6 +275,7 @@ class ImpactState:
             gap=problem.candidates.profile.copy(),
             absorbed=0.0,
             contact_term=0.0,
+            memory=None if problem.material is None else problem.material.first_memory(),
         )
 
     def time(self, scheme: TimeScheme) -> float:
@@ -278,6 +296,8 @@ def _predictor(problem: ImpactProblem, state: ImpactState) -> tuple[np.ndarray, 
         rhs += (1.0 - alpha_f) * (
             damping @ (gamma / (beta * dt) * x_hat - v - dt * (1 - gamma) * a)
         ) - alpha_f * (damping @ v)
+    if state.memory is not None:  # the shear's history, a load of the step
+        rhs -= (1.0 - alpha_f) * state.memory.force
     if alpha_f:
         load = state.stiffness_x.copy()  # K x_n
         load[problem.candidates.dofs] += state.forces
@@ -355,12 +375,16 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
     candidates = problem.candidates
     new_gap = candidates.profile - big_new - x_free[candidates.position]
     contact_term = state.contact_term - 0.5 * float((forces + new_forces) @ (new_gap - state.gap))
+    if problem.material is None:
+        stiffness_x, memory = problem.system.matrix @ x_new, None
+    else:
+        stiffness_x, memory = problem.material.advance(state.memory, x_new)
     return ImpactState(
         step=state.step + 1,
         x=x_new,
         v=v_new,
         a=a_new,
-        stiffness_x=problem.system.matrix @ x_new,
+        stiffness_x=stiffness_x,
         striker_x=big_new,
         striker_v=big_v_new,
         striker_a=big_a_new,
@@ -368,6 +392,7 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
         gap=new_gap,
         absorbed=absorbed,
         contact_term=contact_term,
+        memory=memory,
     )
 
 
@@ -386,6 +411,8 @@ class ImpactHistory:
         Requested time -> (actual time s, x, v).
     t_contact : float
         Separation time in s (nan if the striker never separated).
+    memories : dict
+        Requested time -> the viscoelastic shear's memory at that snapshot (None: elastic).
     """
 
     t: np.ndarray
@@ -397,6 +424,7 @@ class ImpactHistory:
     energies: dict[str, np.ndarray]
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]]
     t_contact: float
+    memories: dict[float, ShearMemory | None] = field(default_factory=dict)
 
     @property
     def separated(self) -> bool:
@@ -417,13 +445,18 @@ def _observe(problem: ImpactProblem, state: ImpactState) -> tuple[tuple, tuple]:
     x, v = state.x, state.v
     kinetic = 0.5 * float(v @ (problem.body_mass @ v))
     strain = 0.5 * float(x @ state.stiffness_x)
-    inner = 0.5 * float(v @ (problem.inner_mass @ v)) + 0.5 * float(
-        x @ (problem.inner_stiffness @ x)
-    )
+    inner_kinetic = 0.5 * float(v @ (problem.inner_mass @ v))
+    inner = inner_kinetic + 0.5 * float(x @ (problem.inner_stiffness @ x))
+    dissipated = 0.0
+    if state.memory is not None:  # viscoelastic: the branches' springs store, their dashpots heat
+        strain = problem.material.stored_energy(state.memory, x)
+        inner -= problem.material.inner_relaxed(state.memory)
+        dissipated = state.memory.dissipated
     striker_kinetic = 0.5 * problem.striker.mass * state.striker_v**2
     numerical = problem.striker.kinetic_energy - striker_kinetic - kinetic - strain - state.absorbed
+    numerical -= dissipated
     energies = (striker_kinetic, kinetic, strain, state.absorbed, numerical, state.contact_term)
-    return row, (*energies, inner)
+    return row, (*energies, inner, dissipated, inner_kinetic)
 
 
 def march(
@@ -459,8 +492,9 @@ def march(
     state = ImpactState.first_touch(problem)
     energy0 = problem.striker.kinetic_energy
     rows: list[tuple] = [(0.0, 0.0, problem.striker.velocity, 0.0, 0.0, 0.0)]
-    energy_rows: list[tuple] = [(energy0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)]
+    energy_rows: list[tuple] = [(energy0, *[0.0] * (len(ENERGY_NAMES) - 1))]
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = {}
+    memories: dict[float, ShearMemory | None] = {}
     wanted = sorted(float(s) for s in snapshot_times)
     touched, t_contact, end = False, math.nan, math.inf
     max_steps = math.ceil(duration / dt)
@@ -478,6 +512,7 @@ def march(
             rows.append(row)
             energy_rows.append(energies)
             while wanted and wanted[0] <= t + 0.5 * dt:
+                memories[wanted[0]] = state.memory
                 snapshots[wanted.pop(0)] = (t, state.x.copy(), state.v.copy())
             touched = touched or bool(np.any(state.forces > 0))
             if touched and math.isnan(t_contact) and row[3] == 0.0:
@@ -487,13 +522,17 @@ def march(
             if t >= end - 1e-12 * dt:
                 break
     for s in wanted:  # asked beyond the run: the last state
-        snapshots[s] = (state.time(problem.scheme), state.x.copy(), state.v.copy())
+        snapshots[s], memories[s] = (
+            (state.time(problem.scheme), state.x.copy(), state.v.copy()),
+            state.memory,
+        )
     table, energy = np.array(rows), np.array(energy_rows)
     return ImpactHistory(
         *(table[:, k] for k in range(6)),
         energies={name: energy[:, k] for k, name in enumerate(ENERGY_NAMES)},
         snapshots=snapshots,
         t_contact=t_contact,
+        memories=memories,
     )
 
 

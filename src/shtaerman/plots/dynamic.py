@@ -181,6 +181,10 @@ def _wave_colours(values: np.ndarray) -> FieldColours:
     return FieldColours(1.0, title, top - DECADES, top, 0.5, MAGNITUDE)
 
 
+MASSLESS_EXTENT = 8.0
+"""Window width of a massless body's field picture, in quasi-static contact radii."""
+
+
 def plot_wave_field(
     case: DynamicCase, time_requested: float, path: Path | str, *, reach: float = 1.2
 ) -> Path:
@@ -195,12 +199,14 @@ def plot_wave_field(
     path : path-like
         PNG to write.
     reach : float
-        Window width / the distance c_s t a shear wave travels by then.
+        Window width / the distance c_s t a shear wave travels by then (a massless body, c_s
+        infinite: ``MASSLESS_EXTENT`` contact radii).
     """
     actual, solution, _ = case.result.field_solution(time_requested)
     c_s = case.estimate.shear_wave_speed
     a_c = case.quasi.a_c
-    window = frame(a_c, reach * c_s * max(actual, case.quasi.t_c) / a_c)
+    extent = reach * c_s * max(actual, case.quasi.t_c) / a_c
+    window = frame(a_c, extent if math.isfinite(extent) else MASSLESS_EXTENT)
     cut = section(solution, window, deformed=False)
     colours = _wave_colours(np.asarray(cut.point_data["von_mises"]))
     floor = 10.0**colours.low
@@ -221,10 +227,12 @@ def plot_wave_field(
             )
         draw_axes(plotter, window)
         front = c_s * actual * window.scale
+        if not math.isfinite(front):  # a massless body: no wave front
+            front = 0.0
         angle = np.linspace(0.0, -0.5 * np.pi, 90)
         arc_r, arc_z = front * np.cos(angle), front * np.sin(angle)
         inside = (arc_r <= window.width) & (arc_z >= -window.depth)
-        if inside.sum() > 1:
+        if front > 0 and inside.sum() > 1:
             plotter.add_mesh(polyline(arc_r[inside], arc_z[inside]), color="white", line_width=2)
         state = (
             f"contact radius {radius * 1e3:.2f} mm"

@@ -266,6 +266,7 @@ def _dynamic_inputs(p: dict[str, Any]):
         )
     if p["estimate"]:
         check_ladder(settings)
+    _prony(p)  # refused up front
     return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
 
 
@@ -296,6 +297,13 @@ def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: 
     a_c = float(solve_impact(p["mass"], p["velocity"], contact).a_c)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
     return replace(settings, thickness=layer.thickness, base=layer.base)
+
+
+def _prony(p: dict[str, Any]):
+    """The case's Prony series (None: elastic)."""
+    from ..fem.viscoelastic import prony_input
+
+    return prony_input(p.get("prony"))
 
 
 DYNAMIC_OUTPUTS = {
@@ -346,7 +354,7 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
     from ..study.dynamic.loader import dynamic_check_failures
 
     start = time.perf_counter()
-    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"])
+    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p))
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
     compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}

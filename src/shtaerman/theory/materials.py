@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from numbers import Real
 
 from .. import vocabulary
 from ..validation import InputError, validate_poisson, validate_positive
 
-__all__ = ["DENSITY_RANGE", "RIGID", "Material", "effective_modulus"]
+__all__ = ["DENSITY_RANGE", "RIGID", "Material", "effective_modulus", "validate_density"]
 
 _DENSITY = vocabulary.entry("density2").valid
 DENSITY_RANGE = (_DENSITY.low, _DENSITY.high)
-"""Densities in kg/m^3 a material may have: the vocabulary's range of ``density2``."""
+"""Densities in kg/m^3 a material may have besides 0 (massless): the vocabulary's range of
+``density2``."""
 
 
 @dataclass(frozen=True)
@@ -26,8 +28,8 @@ class Material:
     poisson_ratio : float
         Poisson's ratio nu in (-1, 0.5]; 0.5 is incompressible (the paper's rubber).
     density : float, optional
-        Mass density rho in kg/m^3, within :data:`DENSITY_RANGE`; needed only where inertia
-        counts (the dynamic impact). None: not given.
+        Mass density rho in kg/m^3, within :data:`DENSITY_RANGE` or 0 (massless: no inertia);
+        needed only where inertia counts (the dynamic impact). None: not given.
 
     Raises
     ------
@@ -59,11 +61,20 @@ class Material:
 
 
 def _validate_density(density: object) -> float:
-    rho = validate_positive("density", density, "kg/m^3")
+    return validate_density("density", density)
+
+
+def validate_density(name: str, density: object) -> float:
+    """``density`` in kg/m^3 as a float: 0 (massless) or within :data:`DENSITY_RANGE`;
+    InputError naming ``name`` otherwise."""
+    if isinstance(density, Real) and not isinstance(density, bool) and density == 0:
+        return 0.0
+    rho = validate_positive(name, density, "kg/m^3 (or 0: massless)")
     low, high = DENSITY_RANGE
     if not low <= rho <= high:
         raise InputError(
-            f"density must lie in [{low:g}, {high:g}] kg/m^3, got {density!r}", "density"
+            f"{name} must lie in [{low:g}, {high:g}] kg/m^3 or be 0 (massless), got {density!r}",
+            name,
         )
     return rho
 

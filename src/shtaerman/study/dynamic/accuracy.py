@@ -30,6 +30,7 @@ from ...fem.dynamic_contact import (
 )
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
+from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, validate_positive
 from ..ladder import LADDER_RATIO
 from ..richardson import Estimate, richardson
@@ -146,14 +147,17 @@ def complete_ladder(
     *,
     refine: float = 1.0,
     progress: Callable[[str], None] | None = None,
+    prony: PronySeries | None = None,
 ) -> DynamicLadder:
-    """The ladder of a run already made with ``settings``: the two coarser levels
-    (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the estimates."""
+    """The ladder of a run already made with ``settings`` (and ``prony``): the two coarser
+    levels (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the estimates."""
     report = progress or (lambda _line: None)
     coarse = [settings.refined(1.0 / LADDER_RATIO**2), settings.refined(1.0 / LADDER_RATIO)]
     results = []
     for level in coarse:
-        result = run_dynamic_impact(indenter, half_space, density, mass, velocity, level)
+        result = run_dynamic_impact(
+            indenter, half_space, density, mass, velocity, level, prony=prony
+        )
         report(f"dynamic ladder: {result.mesh['dofs']} dofs, {level.steps} steps")
         results.append(result)
     results.append(finest)
@@ -185,7 +189,7 @@ def run_dynamic_ladder(
     progress : callable, optional
         Receives one line per level.
     **options
-        Passed to the finest run (e.g. ``snapshot_times``).
+        Passed to the finest run (e.g. ``snapshot_times``); ``prony`` to every level.
 
     Returns
     -------
@@ -205,4 +209,5 @@ def run_dynamic_ladder(
         finest,
         refine=refine,
         progress=progress,
+        prony=options.get("prony"),  # type: ignore[arg-type]
     )

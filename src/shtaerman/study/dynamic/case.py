@@ -9,6 +9,8 @@ how far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and 
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -22,10 +24,11 @@ from ...theory.impact import ImpactResult, solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.radiation import RadiationEstimate, radiation_estimate
+from ...theory.viscoelastic import PronySeries
 from ..richardson import Estimate
 from .accuracy import DynamicLadder, complete_ladder
 
-__all__ = ["COMPARED", "DynamicCase", "compare", "run_case"]
+__all__ = ["COMPARED", "DynamicCase", "compare", "radiation", "run_case"]
 
 QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 COMPARED = {
@@ -57,8 +60,9 @@ class DynamicCase:
     def differences(self) -> dict[str, float]:
         """:func:`compare` and the measured loss against the first-order estimate."""
         out = compare(self.quasi, self.result)
+        estimated = self.estimate.energy_fraction
         out["loss_vs_estimate"] = (
-            self.result.energy_radiated_fraction / self.estimate.energy_fraction - 1.0
+            self.result.energy_radiated_fraction / estimated - 1.0 if estimated > 0 else math.nan
         )
         return out
 
@@ -90,6 +94,21 @@ class DynamicCase:
         }
 
 
+def radiation(
+    mass: float, velocity: float, law: PowerLawContact, density: float, half_space: Material
+) -> RadiationEstimate:
+    """The first-order radiation estimate; a massless half-space (density 0) radiates nothing."""
+    shear, nu = half_space.shear_modulus, half_space.poisson_ratio
+    p = law.force_exponent
+    if density > 0:
+        return radiation_estimate(mass, velocity, law.beta, p, density, shear, nu)
+    lossless = radiation_estimate(mass, velocity, law.beta, p, 1.0, shear, nu)
+    return dataclasses.replace(
+        lossless, shear_wave_speed=math.inf, radiated_energy=0.0, energy_fraction=0.0,
+        restitution=1.0,
+    )  # fmt: skip
+
+
 def run_case(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -100,6 +119,7 @@ def run_case(
     *,
     snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
     ladder: bool = False,
+    prony: PronySeries | None = None,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
 
@@ -120,21 +140,15 @@ def run_case(
     ladder : bool
         Also run the two coarser levels of the error-estimate ladder
         (``settings.refined(1/2)`` must be valid).
+    prony : PronySeries, optional
+        Shear relaxation of the half-space (E2, nu2 its instantaneous values); None: elastic.
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     quasi = solve_impact(mass, velocity, law)
-    estimate = radiation_estimate(
-        mass,
-        velocity,
-        law.beta,
-        law.force_exponent,
-        density,
-        half_space.shear_modulus,
-        half_space.poisson_ratio,
-    )
+    estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
-    result = run_dynamic_impact(*inputs, settings, snapshot_times=times)
-    levels = complete_ladder(result, *inputs, settings) if ladder else None
+    result = run_dynamic_impact(*inputs, settings, snapshot_times=times, prony=prony)
+    levels = complete_ladder(result, *inputs, settings, prony=prony) if ladder else None
     return DynamicCase(velocity, quasi, estimate, result, levels)

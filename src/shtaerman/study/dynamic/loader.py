@@ -7,7 +7,9 @@ approach velocity (:mod:`.runner`)::
     name = "dynamic"                      # optional; default: the file's stem
     description = "..."
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3)
+    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3; 0:
+                 massless), prony = "g1:tau1,g2:tau2,..." (optional: a viscoelastic
+                 half-space, E2 and nu2 its instantaneous values; tau in s)
     [layer]      optional, as in a contact study: a layer on a rigid base instead of the
                  half-space: thickness (m) or thickness_ratio (H / a_c, a_c the half-space
                  contact radius at the quasi-static x_c of figure_velocity), base = "bonded"
@@ -43,10 +45,12 @@ from ...fem.dynamic_contact import (
     estimate_dofs,
     validate_density,
 )
+from ...fem.viscoelastic import prony_input
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
 from ..contact.loader import LayerTable, layer_spec
@@ -75,7 +79,8 @@ class _DynIndenter(Table):
 class _DynHalfSpace(Table):
     E2: Positive
     nu2: Poisson
-    density2: Positive
+    density2: Annotated[float, msgspec.Meta(ge=0)]  # 0: massless
+    prony: str | None = None
 
 
 class _Numerics(Table):
@@ -156,6 +161,10 @@ class DynamicStudy:
     quick_settings: DynamicSettings
     tolerances: DynamicTolerances = field(default_factory=DynamicTolerances)
     kind: str = "dynamic"
+    prony: PronySeries | None = None
+    """Shear relaxation of the half-space (None: elastic)."""
+    prony_text: str = ""
+    """``prony`` as written in the file."""
 
 
 def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
@@ -250,6 +259,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         validate_density(raw.half_space.density2)
     except InputError as error:
         raise fem_input_error(path, error) from None
+    try:
+        prony = prony_input(raw.half_space.prony)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
     example = raw.impact.figure_velocity
     velocities = _velocities(path, "impact.velocity", raw.impact.velocity, example)
     if example is None:  # the middle velocity (of two, the upper)
@@ -277,6 +290,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
             quick_velocities=_velocities(path, "quick.velocity", quick, example),
             quick_settings=_settings(path, "quick", raw.quick, settings),
             tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
+            prony=prony,
+            prony_text=raw.half_space.prony or "",
         )
     ]
 
