@@ -311,6 +311,29 @@ def _parabola_peak(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     return float(y1 - 0.25 * (y0 - y2) * shift), float(t[k] + shift * (t[k + 1] - t[k]))
 
 
+def _turning_point(
+    x: np.ndarray, v: np.ndarray, force: np.ndarray, mass: float
+) -> tuple[float, float]:
+    """x_max (m) and P_max (N) from the step's energy identity M V^2 / 2 + Pi(X) = E0.
+
+    From the sample k of largest X: x_max = X_k + M V_k^2 / (2 P_k) to first order in the
+    (small) kinetic energy left there, corrected by the quadratic through the samples
+    (X, P) around k; P_max is that quadratic at x_max.
+    """
+    k = int(np.argmax(x))
+    if k == 0 or k == x.size - 1 or force[k] <= 0:
+        return float(x[k]), float(force[k])
+    around = slice(k - 1, k + 2)
+    curve = np.polyfit(x[around] - x[k], force[around], 2)
+    energy = 0.5 * mass * v[k] ** 2  # Pi(x_max) - Pi(X_k) = int_Xk^x_max P dX
+    step = energy / force[k]
+    for _ in range(20):  # Newton on int_0^s P(X_k + y) dy = energy
+        c2, c1, c0 = curve
+        work = c2 * step**3 / 3 + c1 * step**2 / 2 + c0 * step
+        step -= (work - energy) / np.polyval(curve, step)
+    return float(x[k] + step), float(np.polyval(curve, step))
+
+
 def check_density(density: object) -> float:
     """Return the half-space density (kg/m^3) the finite-strain impact supports: 0 only.
 
@@ -423,8 +446,8 @@ def _result(t, x, v, force, strain, mass, timings, stats, parameters, iterations
     kinetic = 0.5 * mass * v * v
     zeros = np.zeros_like(t)
     numerical = energy0 - kinetic - strain
-    x_max, t_x_max = _parabola_peak(t, x)
-    p_max, _ = _parabola_peak(t, force)
+    _, t_x_max = _parabola_peak(t, x)
+    x_max, p_max = _turning_point(x, v, force, mass)
     t_contact = v_out = restitution = radiated = math.nan
     if x[-1] <= 0.0 and x.size > 2:
         t_contact = float(t[-2] + (t[-1] - t[-2]) * x[-2] / (x[-2] - x[-1]))
