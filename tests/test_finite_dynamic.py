@@ -73,3 +73,53 @@ def test_density_other_than_zero_is_refused(density):
 def test_bad_steps_are_refused(steps):
     with pytest.raises(InputError, match="steps"):
         FiniteImpactSettings(steps=steps)
+
+
+def _run(capsys, *argv):
+    from shtaerman.cli import main
+
+    code = main(list(argv))
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (("--model", "neo-hookean", "--density2", "1100"), "density2 must be 0"),
+        (("--mooney-ratio", "0.3"), "--mooney-ratio: applies to the finite-strain models only"),
+        (("--model", "neo-hookean", "--layer-rate", "1"), "--layer-rate: not supported"),
+        (("--model", "neo-hookean", "--refine", "2"), "--refine: not supported"),
+        (("--model", "yeoh", "--mooney-ratio", "0.3"), "--mooney-ratio: applies to the mooney"),
+    ],
+)
+def test_cli_model_refusals_are_one_line_exit_2(capsys, argv, message):
+    code, out, err = _run(capsys, "dynamic", *argv)
+    assert code == 2 and out == ""
+    assert message in err and err.count("\n") == 1
+
+
+def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
+    import shtaerman as sh
+    import shtaerman.fem.finite_contact as finite_contact
+
+    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
+    result = sh.dynamic(
+        INDENTER,
+        RUBBER,
+        mass=MASS,
+        velocity=1.0,
+        model="mooney-rivlin",
+        mooney_ratio=0.0,
+        density=0.0,
+        time_steps=30,
+    )
+    assert result.model == "mooney-rivlin"
+    assert result.restitution == pytest.approx(1.0, abs=5e-4)
+    report = result.to_dict()
+    assert report["dynamic"]["x_max"] == result.x_max > report["quasi_static"]["x_c"]
+    assert report["differences"]["x_c"] == pytest.approx(
+        report["quasi_static"]["x_c"] / result.x_max - 1
+    )
+    with pytest.raises(TypeError, match="unexpected"):
+        sh.dynamic(INDENTER, RUBBER, mass=MASS, velocity=1.0, model="yeoh", colour=1)

@@ -28,12 +28,11 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.materials import Material
 from ..validation import InputError, NumericalFailureError, validate_poisson, validate_positive
 from .finite_contact import (
     FINITE_MESH,
@@ -43,7 +42,6 @@ from .finite_contact import (
     _Stepper,
 )
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
-from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import RubberModel
 
@@ -77,15 +75,11 @@ class FiniteImpactSettings:
     margin : float
         Refined (candidate) radius / geometric contact radius (x_c / A)^(1/n) at the
         small-strain x_c, > 1.
-    spectral_radius : float
-        rho_inf in [0, 1] of the Wood-Bossak-Zienkiewicz scheme of the body with inertia
-        (1: no numerical damping).
     """
 
     steps: int = 100
     mesh: MeshSettings = FINITE_MESH
     margin: float = IMPACT_MARGIN
-    spectral_radius: float = 0.9
 
     def __post_init__(self) -> None:
         if not isinstance(self.steps, (int, np.integer)) or not (
@@ -100,13 +94,6 @@ class FiniteImpactSettings:
             self.margin <= 1.0
         ):
             raise InputError(f"margin must be > 1, got {self.margin!r}", "margin")
-        rho_inf = self.spectral_radius
-        if isinstance(rho_inf, bool) or not (
-            isinstance(rho_inf, (int, float)) and 0.0 <= rho_inf <= 1.0
-        ):
-            raise InputError(
-                f"spectral_radius must lie in [0, 1], got {rho_inf!r}", "spectral_radius"
-            )
 
 
 @dataclass(frozen=True, eq=False)
@@ -348,24 +335,21 @@ def _turning_point(
 
 
 def check_density(density: object) -> float:
-    """Return the half-space density in kg/m^3: 0 (massless body) or within DENSITY_RANGE.
+    """Return the half-space density (kg/m^3) the finite-strain impact supports: 0 only.
 
     Raises
     ------
     shtaerman.validation.InputError
-        Naming ``density2`` and the valid values.
+        For any other value (the finite-strain body with inertia is not implemented).
     """
-    low, high = DENSITY_RANGE
-    if (
-        isinstance(density, bool)
-        or not isinstance(density, (int, float))
-        or not (density == 0 or low <= density <= high)
-    ):
+    if isinstance(density, bool) or not isinstance(density, (int, float)) or density != 0:
         raise InputError(
-            f"density2 must be 0 (massless body) or in [{low:g}, {high:g}] kg/m^3, got {density!r}",
+            f"density2 must be 0 (massless body: the finite-strain quasi-static impact) with a "
+            f"rubber model; the finite-strain body with inertia is not implemented, got "
+            f"{density!r}",
             "density2",
         )
-    return float(density)
+    return 0.0
 
 
 def run_finite_impact(
@@ -425,21 +409,9 @@ def run_finite_impact(
     stepper = _Stepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
     clock.append(time.perf_counter())
     dt = t_y / settings.steps
-    if rho == 0.0:
-        body = _QuasiStaticBody(stepper)
-        t, x, v, force, strain = _march(body, mass, velocity, dt, 3.0 * t_y)
-        kinetic, iterations = np.zeros_like(t), body.iterations
-    else:
-        candidates = stepper.nodes.uz
-        body_mass = redistribute_normal_mass(consistent_mass(system, rho), candidates)
-        import os
-
-        if os.environ.get("FSD_NOREDIST"):
-            body_mass = consistent_mass(system, rho)
-        inertial = _InertialSystem(system, body_mass, bossak(settings.spectral_radius, dt))
-        stepper.system = inertial
-        columns, iterations = _march_inertial(stepper, inertial, mass, velocity, 3.0 * t_y)
-        t, x, v, force, strain, kinetic = columns
+    body = _QuasiStaticBody(stepper)
+    t, x, v, force, strain = _march(body, mass, velocity, dt, 3.0 * t_y)
+    kinetic, iterations = np.zeros_like(t), body.iterations
     clock.append(time.perf_counter())
     timings = {
         name: clock[k + 1] - clock[k] for k, name in enumerate(("mesh", "assembly", "stepping"))
@@ -513,165 +485,3 @@ def _result(t, x, v, force, energies, mass, timings, stats, parameters, iteratio
         parameters=parameters,
         newton_iterations=iterations,
     )
-
-
-# --- the body with inertia --------------------------------------------------------------------
-
-
-class _InertialSystem:
-    """The hyperelastic system seen by the contact Newton during one Bossak step.
-
-    Residual R(x) + M ((1 - a_m) a(x) + a_m a_n) with a(x) = (x - x_hat) / (beta dt^2), its
-    tangent K_T(x) + (1 - a_m) / (beta dt^2) M; everything else is the static system's.
-    """
-
-    def __init__(self, system, mass: sp.csr_matrix, scheme: tuple[float, float, float, float]):
-        self.static = system
-        self.mass = mass
-        self.alpha_m, self.beta, self.gamma, self.dt = scheme
-        coo = mass.tocoo()
-        self.mass_data = np.zeros(system.pattern.nnz)
-        np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
-        self.x_hat = np.zeros(system.n_dofs)
-        self.a_n = np.zeros(system.n_dofs)
-
-    def __getattr__(self, name: str):
-        return getattr(self.static, name)
-
-    def acceleration(self, x: np.ndarray) -> np.ndarray:
-        """a_{n+1} (m/s^2) of the step ending at x."""
-        return (x - self.x_hat) / (self.beta * self.dt**2)
-
-    def residual(self, x: np.ndarray, state=None) -> np.ndarray:
-        inertia = (1.0 - self.alpha_m) * self.acceleration(x) + self.alpha_m * self.a_n
-        return self.static.residual(x, state) + self.mass @ inertia
-
-    def tangent_data(self, x: np.ndarray, state=None) -> np.ndarray:
-        factor = (1.0 - self.alpha_m) / (self.beta * self.dt**2)
-        return self.static.tangent_data(x, state) + factor * self.mass_data
-
-
-def bossak(spectral_radius: float, dt: float) -> tuple[float, float, float, float]:
-    """Wood-Bossak-Zienkiewicz alpha_m, beta, gamma (second order, high frequencies damped to
-    ``spectral_radius``) and dt (s)."""
-    alpha_m = (spectral_radius - 1.0) / (spectral_radius + 1.0)
-    return alpha_m, 0.25 * (1.0 - alpha_m) ** 2, 0.5 - alpha_m, dt
-
-
-@dataclass
-class _Dynamic:
-    """State at step n: body x, v, a; striker X, V, A; multipliers; stored energy."""
-
-    x: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    lam: np.ndarray
-    depth: float
-    speed: float
-    accel: float
-    energy: float
-
-
-def _body_step(stepper, inertial, state: _Dynamic, depth: float) -> tuple[np.ndarray, ...]:
-    """The body's Bossak step against the striker at ``depth`` (m): x, lambda, iterations.
-
-    A failing Newton is continued in depth within the same time step: the step's problem at
-    the mid depth first, its solution the guess of the full one (halved up to MAX_HALVINGS).
-    """
-    x = state.x
-    lam, done, total = state.lam, max(state.depth, 0.0), 0
-    increment, cuts = depth - done, 0
-    while True:
-        trial = depth if abs(depth - (done + increment)) < 1e-9 * abs(depth) else done + increment
-        try:
-            x_new, lam_new, iterations, _ = stepper.solve(trial, x, lam)
-        except NewtonError:
-            cuts += 1
-            if cuts > MAX_HALVINGS:
-                raise
-            increment *= 0.5
-            continue
-        x, lam, done, total = x_new, lam_new, trial, total + iterations
-        if trial == depth:
-            return x, lam, total
-        increment = min(2.0 * increment, depth - done) if depth > done else depth - done
-
-
-def _dynamic_step(stepper, inertial, state: _Dynamic, mass: float, k: float):
-    """One step of body and striker; the striker depth by a secant on its equation."""
-    alpha_m, beta, gamma, dt = inertial.alpha_m, inertial.beta, inertial.gamma, inertial.dt
-    inertial.x_hat = state.x + dt * state.v + dt**2 * (0.5 - beta) * state.a
-    inertial.a_n = state.a
-    big_hat = state.depth + dt * state.speed + dt**2 * (0.5 - beta) * state.accel
-    stiffness = mass * (1.0 - alpha_m) / (beta * dt**2)
-    scale = mass * max(abs(state.speed), 1e-300) / dt
-    iterations = 0
-
-    def residual(depth: float):
-        nonlocal iterations
-        x, lam, count = _body_step(stepper, inertial, state, depth)
-        iterations += count
-        return stiffness * (depth - big_hat) + mass * alpha_m * state.accel + lam.sum(), x, lam
-
-    d0 = big_hat - (mass * alpha_m * state.accel + lam_sum(state)) / (stiffness + k)
-    r0, x, lam = residual(d0)
-    slope = stiffness + k
-    for _ in range(MAX_SECANT):
-        if abs(r0) <= SECANT_TOLERANCE * scale:
-            break
-        d1 = d0 - r0 / slope
-        r1, x, lam = residual(d1)
-        if d1 != d0:
-            slope = max((r1 - r0) / (d1 - d0), 0.5 * stiffness)
-        d0, r0 = d1, r1
-    else:
-        raise NumericalFailureError(
-            f"the striker's step equation did not converge at depth {state.depth:g} m"
-        )
-    a = inertial.acceleration(x)
-    accel = (d0 - big_hat) / (beta * dt**2)
-    new = _Dynamic(
-        x=x,
-        v=state.v + dt * ((1.0 - gamma) * state.a + gamma * a),
-        a=a,
-        lam=lam,
-        depth=d0,
-        speed=state.speed + dt * ((1.0 - gamma) * state.accel + gamma * accel),
-        accel=accel,
-        energy=inertial.static.energy(x),
-    )
-    return new, iterations
-
-
-def lam_sum(state: _Dynamic) -> float:
-    """Total contact force (N) of a state."""
-    return float(state.lam.sum())
-
-
-def _march_inertial(stepper, inertial, mass: float, velocity: float, duration: float):
-    """Step from first touch until the contact force vanishes with the striker rebounding
-    (or ``duration`` s): arrays t, X, V, P, Pi, body kinetic energy; Newton iterations."""
-    n = inertial.static.n_dofs
-    zero = np.zeros(n)
-    state = _Dynamic(zero, zero, zero, np.zeros(stepper.nodes.radius.size), 0.0, velocity, 0.0, 0.0)
-    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0)]
-    total, k, t = 0, 0.0, 0.0
-    while t < duration:
-        try:
-            new, iterations = _dynamic_step(stepper, inertial, state, mass, k)
-        except NewtonError:
-            import os
-
-            if not os.environ.get("FSD_DEBUG"):
-                raise
-            break
-        total += iterations
-        if new.depth != state.depth:
-            k = max((lam_sum(new) - lam_sum(state)) / (new.depth - state.depth), 0.0)
-        state, t = new, t + inertial.dt
-        body = 0.5 * float(state.v @ (inertial.mass @ state.v))
-        rows.append((t, state.depth, state.speed, lam_sum(state), state.energy, body))
-        if lam_sum(state) == 0.0 and state.speed < 0:
-            break
-    columns = tuple(np.array(column) for column in zip(*rows, strict=True))
-    return columns, total
