@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -361,25 +362,12 @@ def run_finite_impact(
     settings: FiniteImpactSettings | None = None,
     rubber: RubberModel | None = None,
 ) -> FiniteImpactResult:
-    """Strike a rubber half-space (finite strain) with a rigid power-law striker.
+    """Strike a rubber half-space (finite strain, massless) with a rigid power-law striker.
 
-    Parameters
-    ----------
-    indenter : PowerLawIndenter
-        Striker profile z = A r^n, n > 1.
-    half_space : Material
-        Small-strain E2 (Pa) and nu2 in [0, 0.5].
-    density : float
-        Half-space density in kg/m^3: 0 (massless body) is the only value supported.
-    mass, velocity : float
-        Striker mass M (kg) and impact velocity v0 (m/s), > 0.
-    settings : FiniteImpactSettings, optional
-    rubber : RubberModel, optional
-        Default neo-Hookean.
-
-    Returns
-    -------
-    FiniteImpactResult
+    Parameters: ``indenter`` z = A r^n with n > 1; ``half_space`` the small-strain E2 (Pa)
+    and nu2 in [0, 0.5]; ``density`` in kg/m^3, 0 only (massless body); striker ``mass`` (kg)
+    and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
+    ``rubber`` (default neo-Hookean).
 
     Raises
     ------
@@ -388,14 +376,8 @@ def run_finite_impact(
     NewtonError
         A static contact solve failed after halving its depth increment.
     """
-    rho = check_density(density)
-    mass = validate_positive("mass", mass, "kg")
-    velocity = validate_positive("velocity", velocity, "m/s")
-    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
-    if indenter.exponent <= 1.0:
-        raise InputError(f"exponent must be > 1 with a rubber model, got {indenter.exponent!r}")
+    mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
     settings = FiniteImpactSettings() if settings is None else settings
-    law = PowerLawContact(indenter, half_space.youngs_modulus / (1 - half_space.poisson_ratio**2))
     q = law.force_exponent
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
     t_y = 2.0 * duration_integral(q) * x_c / velocity
@@ -403,75 +385,103 @@ def run_finite_impact(
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
-    constants = (half_space.youngs_modulus, half_space.poisson_ratio)
-    material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
-    system = assemble_hyperelastic(mesh, material)
-    stepper = _Stepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    stepper = _assembled(mesh, indenter, half_space, rubber, refined)
+    system = stepper.system
     clock.append(time.perf_counter())
-    dt = t_y / settings.steps
     body = _QuasiStaticBody(stepper)
-    t, x, v, force, strain = _march(body, mass, velocity, dt, 3.0 * t_y)
-    kinetic, iterations = np.zeros_like(t), body.iterations
+    columns = _march(body, mass, velocity, t_y / settings.steps, 3.0 * t_y)
     clock.append(time.perf_counter())
     timings = {
         name: clock[k + 1] - clock[k] for k, name in enumerate(("mesh", "assembly", "stepping"))
     }
     timings["total"] = clock[-1] - clock[0]
-    stats = {
-        "nodes": int(mesh.p.shape[1]),
-        "elements": int(mesh.t.shape[1]),
-        "dofs": int(system.n_dofs),
-        "contact_candidates": int(stepper.nodes.radius.size),
-        "refined_radius": refined,
+    context = {
+        "timings": timings,
+        "mesh": {
+            "nodes": int(mesh.p.shape[1]),
+            "elements": int(mesh.t.shape[1]),
+            "dofs": int(system.n_dofs),
+            "contact_candidates": int(stepper.nodes.radius.size),
+            "refined_radius": refined,
+        },
+        "parameters": _parameters(indenter, half_space, mass, velocity, t_y / settings.steps),
+        "newton_iterations": body.iterations,
     }
-    parameters = {
+    context["parameters"].update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=law.beta)
+    return _result(columns, mass, context)
+
+
+def _checked(
+    indenter: PowerLawIndenter, half_space: Material, density: object, mass: float, velocity: float
+) -> tuple[float, float, PowerLawContact]:
+    """Mass (kg), velocity (m/s) and Shtaerman's law, every input checked."""
+    check_density(density)
+    mass = validate_positive("mass", mass, "kg")
+    velocity = validate_positive("velocity", velocity, "m/s")
+    validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
+    if indenter.exponent <= 1.0:
+        raise InputError(f"exponent must be > 1 with a rubber model, got {indenter.exponent!r}")
+    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
+    return mass, velocity, PowerLawContact(indenter, modulus)
+
+
+def _assembled(
+    mesh: Any,
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    rubber: RubberModel | None,
+    refined: float,
+) -> _Stepper:
+    """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``)."""
+    constants = (half_space.youngs_modulus, half_space.poisson_ratio)
+    material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
+    system = assemble_hyperelastic(mesh, material)
+    return _Stepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+
+
+def _parameters(
+    indenter: PowerLawIndenter, half_space: Material, mass: float, velocity: float, dt: float
+) -> dict[str, float]:
+    """Inputs and the time step, SI units."""
+    return {
         "mass": mass,
         "velocity": velocity,
-        "density2": rho,
+        "density2": 0.0,
         "shape_coefficient": indenter.shape_coefficient,
         "exponent": indenter.exponent,
         "E2": half_space.youngs_modulus,
         "nu2": half_space.poisson_ratio,
         "time_step": dt,
-        "quasi_static_x_c": x_c,
-        "quasi_static_t_y": t_y,
-        "beta": law.beta,
     }
-    energies = {"strain": strain, "body_kinetic": kinetic}
-    return _result(t, x, v, force, energies, mass, timings, stats, parameters, iterations)
 
 
-def _result(t, x, v, force, energies, mass, timings, stats, parameters, iterations):
-    """Maxima, separation and energies of a run."""
+def _result(
+    columns: tuple[np.ndarray, ...], mass: float, context: dict[str, Any]
+) -> FiniteImpactResult:
+    """Maxima, separation and energies of a run: ``columns`` t, X, V, P, Pi; ``context`` its
+    timings, mesh, parameters and Newton iterations."""
+    t, x, v, force, strain = columns
     v0 = v[0]
     energy0 = 0.5 * mass * v0 * v0
     kinetic = 0.5 * mass * v * v
     zeros = np.zeros_like(t)
-    strain, body = energies["strain"], energies["body_kinetic"]
-    numerical = energy0 - kinetic - strain - body
+    numerical = energy0 - kinetic - strain
     _, t_x_max = _parabola_peak(t, x)
     x_max, p_max = _turning_point(x, v, force, mass)
     t_contact = v_out = restitution = radiated = math.nan
-    if x[-1] <= 0.0 and x.size > 2:
+    if x[-1] <= 0.0 and x.size > 2:  # X back to 0 between the last two steps
         t_contact = float(t[-2] + (t[-1] - t[-2]) * x[-2] / (x[-2] - x[-1]))
-    elif force[-1] == 0.0 and v[-1] < 0:  # the body's surface lags: contact ends at X > 0
-        t_contact = float(t[-1])
-    if math.isfinite(t_contact):
         v_out = -float(v[-1])
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
+    energies = {"striker_kinetic": kinetic, "body_kinetic": zeros, "strain": strain}
+    energies.update(absorbed=zeros, numerical=numerical)
     return FiniteImpactResult(
         t=t,
         x=x,
         v=v,
         force=force,
-        energies={
-            "striker_kinetic": kinetic,
-            "body_kinetic": body,
-            "strain": strain,
-            "absorbed": zeros,
-            "numerical": numerical,
-        },
+        energies=energies,
         x_max=x_max,
         P_max=p_max,
         t_x_max=t_x_max,
@@ -480,8 +490,5 @@ def _result(t, x, v, force, energies, mass, timings, stats, parameters, iteratio
         restitution=restitution,
         energy_radiated_fraction=radiated,
         energy_balance_error=float(np.max(np.abs(numerical)) / energy0),
-        timings=timings,
-        mesh=stats,
-        parameters=parameters,
-        newton_iterations=iterations,
+        **context,
     )
