@@ -135,7 +135,7 @@ def finite_dynamic(
         Half-space density in kg/m^3; 0: massless body (the finite-strain quasi-static
         impact, the only one supported).
     time_steps : int, optional
-        Steps per quasi-static impact duration (default 100).
+        Steps per quasi-static impact duration (default 50).
     mesh_size : float, optional
         Smallest element / refined radius (default the finite-strain contact's).
     mooney_ratio, yeoh, gent_limit, volumetric

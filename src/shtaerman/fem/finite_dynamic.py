@@ -78,7 +78,7 @@ class FiniteImpactSettings:
         small-strain x_c, > 1.
     """
 
-    steps: int = 100
+    steps: int = 50
     mesh: MeshSettings = FINITE_MESH
     margin: float = IMPACT_MARGIN
 
