@@ -230,6 +230,8 @@ def dynamic(
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
+    model: str = "linear",
+    **rubber: Any,
 ) -> DynamicResult:
     """The dynamic FE impact of a rigid striker z = A r^n on an elastic half-space.
 
@@ -264,6 +266,11 @@ def dynamic(
         the figures; an existing one is replaced only with ``force``.
     figure_format : {"png", "svg", "pdf"}
         "svg" or "pdf" also writes each chart in that format beside its PNG.
+    model : str
+        ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
+        ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
+        :func:`shtaerman.api.finite_dynamic.finite_dynamic` runs (no error estimate) and
+        returns its :class:`~shtaerman.api.finite_dynamic.FiniteDynamicResult`.
 
     Returns
     -------
@@ -280,6 +287,13 @@ def dynamic(
     from ..study.dynamic.accuracy import complete_ladder
     from ..study.dynamic.case import run_case
 
+    if model != "linear" or rubber:
+        from .finite_dynamic import finite_strain_route
+
+        numbers = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
+        numbers.update(layer_rate=layer_rate, settings=settings, out=out, refine=refine != 1.0)
+        kept = dict(mass=mass, velocity=velocity, time_steps=time_steps, mesh_size=mesh_size)
+        return finite_strain_route(indenter, body, model, numbers, kept, rubber)
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
     chosen = _layer(dynamic_settings(settings, options), thickness, base)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..output.files import staged_file, write_csv
 from ..study.dynamic.loader import dynamic_check_failures
@@ -19,6 +20,7 @@ from .common import (
     print_json,
     warn,
 )
+from .finite_dynamic import run_finite
 from .impact import history_path
 
 NOTES = {
@@ -29,6 +31,9 @@ NOTES = {
 """What ``dynamic`` does with its output options."""
 DERIVED = {"thickness": "none: the half-space", "base": "bonded; only with --thickness"}
 """Inputs whose default follows from the others, and that default in words."""
+MODEL_NOTES = {
+    "model": "a rubber model: the finite-strain impact, --density2 0 only (massless body)"
+}
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -52,6 +57,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     inputs = (*CASE, "E2", "nu2", "density2", "prony", "thickness", "base")
     inputs = (*inputs, "json", "history", "out", "force")
     add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
+    add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
     add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "
@@ -69,6 +75,8 @@ def register(commands: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
+    if args.model != "linear" or any(getattr(args, name) for name in RUBBER_OPTIONS):
+        return run_finite(args)
     history = history_path(args.history, force=args.force)
     names = ("mass", "velocity", "thickness", "base", "refine", "estimate", *SETTINGS_OPTIONS)
     names = (*names, "prony", "out", "force")

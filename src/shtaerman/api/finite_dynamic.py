@@ -1,0 +1,185 @@
+"""``shtaerman.dynamic(model=...)``: the impact on a rubber half-space at finite strain."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from ..theory.contact import PowerLawContact
+from ..theory.impact import solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from ..validation import InputError
+from .quasi_static import check_bodies
+
+if TYPE_CHECKING:
+    from ..fem.finite_dynamic import FiniteImpactResult
+
+__all__ = ["FiniteDynamicResult", "finite_dynamic", "finite_strain_route"]
+
+
+@dataclass(frozen=True)
+class FiniteDynamicResult:
+    """The finite-strain impact: the keys of ``shtaerman dynamic --model ... --json`` (SI).
+
+    ``dynamic`` holds the FE results (the linear dynamic impact's keys); ``quasi_static`` the
+    paper's (Shtaerman's small-strain law, Ateb solution); ``differences`` quasi-static /
+    dynamic - 1 of x (x_c against x_max), P (P_c against P_max) and t (t_c against
+    t_contact / 2). ``solution`` is the FE run (histories), not part of :meth:`to_dict`.
+    """
+
+    model: str
+    rubber: dict[str, Any]
+    quasi_static: dict[str, float]
+    dynamic: dict[str, float]
+    differences: dict[str, float]
+    mesh: dict[str, float]
+    timings: dict[str, float]
+    parameters: dict[str, float]
+    solution: FiniteImpactResult = field(repr=False, compare=False)
+
+    def __getattr__(self, name: str) -> Any:
+        dynamic = self.__dict__.get("dynamic", {})
+        if name in dynamic:
+            return dynamic[name]
+        raise AttributeError(name)
+
+    def history(self) -> dict[str, Any]:
+        """The histories t, x, v, P at every time step (arrays, SI units)."""
+        return self.solution.history_columns()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (nan as None)."""
+
+        def clean(values: dict[str, Any]) -> dict[str, Any]:
+            return {
+                key: None if isinstance(value, float) and not math.isfinite(value) else value
+                for key, value in values.items()
+            }
+
+        return {
+            "model": self.model,
+            "rubber": dict(self.rubber),
+            "quasi_static": clean(self.quasi_static),
+            "dynamic": clean(self.dynamic),
+            "differences": clean(self.differences),
+            "mesh": dict(self.mesh),
+            "timings": dict(self.timings),
+            "parameters": clean(self.parameters),
+        }
+
+
+def check_unsupported(model: str, given: dict[str, Any]) -> None:
+    """Refuse, in one line naming it, an option the finite-strain impact does not take."""
+    for name, value in given.items():
+        if value is not None and value is not False:
+            raise InputError(
+                f"{name}: not supported with model {model!r} (the finite-strain impact takes "
+                f"mass, velocity, density2, time_steps, mesh_size and the rubber options)",
+                name,
+            )
+
+
+def finite_strain_route(
+    indenter: PowerLawIndenter,
+    body: Material,
+    model: str,
+    unsupported: dict[str, Any],
+    kept: dict[str, Any],
+    rubber: dict[str, Any],
+) -> FiniteDynamicResult:
+    """:func:`finite_dynamic` from ``shtaerman.dynamic``'s keywords, refusing in one line
+    the linear impact's options it does not take (``unsupported``, None or False when not
+    given) and the rubber options with the linear model. ``rubber`` may also give
+    ``density`` (kg/m^3, 0: massless body) in place of the body's."""
+    allowed = ("mooney_ratio", "yeoh", "gent_limit", "volumetric", "density")
+    unknown = sorted(set(rubber) - set(allowed))
+    if unknown:
+        raise TypeError(f"dynamic() got unexpected keyword arguments {unknown}")
+    if model == "linear":
+        name = next(iter(rubber))
+        raise InputError(f"{name}: applies to the finite-strain models only", name)
+    check_unsupported(model, unsupported)
+    return finite_dynamic(indenter, body, model=model, **kept, **rubber)
+
+
+def finite_dynamic(
+    indenter: PowerLawIndenter,
+    body: Material,
+    *,
+    mass: float,
+    velocity: float,
+    model: str = "neo-hookean",
+    density: float | None = None,
+    time_steps: int | None = None,
+    mesh_size: float | None = None,
+    mooney_ratio: float | None = None,
+    yeoh: Any = None,
+    gent_limit: float | None = None,
+    volumetric: str | None = None,
+) -> FiniteDynamicResult:
+    """The impact of a rigid striker z = A r^n on a rubber half-space at finite strain.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        n > 1.
+    body : Material
+        Small-strain E2 (Pa), nu2 in [0, 0.5]; its density unless ``density`` is given.
+    mass, velocity : float
+        Striker mass (kg) and impact velocity (m/s).
+    model : str
+        ``neo-hookean``, ``mooney-rivlin``, ``yeoh`` or ``gent`` (:mod:`shtaerman.fem.rubber`).
+    density : float, optional
+        Half-space density in kg/m^3; 0: massless body (the finite-strain quasi-static
+        impact, the only one supported).
+    time_steps : int, optional
+        Steps per quasi-static impact duration (default 50).
+    mesh_size : float, optional
+        Smallest element / refined radius (default the finite-strain contact's).
+    mooney_ratio, yeoh, gent_limit, volumetric
+        The rubber model's options (:func:`shtaerman.fem.rubber.rubber_model`).
+
+    Returns
+    -------
+    FiniteDynamicResult
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        An input out of range, or a density other than 0.
+    """
+    from dataclasses import replace
+
+    from ..fem.finite_contact import FINITE_MESH
+    from ..fem.finite_dynamic import FiniteImpactSettings, check_density, run_finite_impact
+    from ..fem.rubber import rubber_model
+
+    check_bodies(indenter, body)
+    rubber = rubber_model(model, mooney_ratio, yeoh, gent_limit, volumetric)
+    rho = check_density(body.density if density is None else density)
+    mesh = FINITE_MESH if mesh_size is None else replace(FINITE_MESH, size=mesh_size)
+    settings = FiniteImpactSettings(
+        mesh=mesh, **({} if time_steps is None else {"steps": time_steps})
+    )
+    run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber)
+    law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
+    quasi = solve_impact(mass, velocity, law)
+    summary = run.summary()
+    differences = {
+        "x_c": quasi.x_c / summary["x_max"] - 1.0,
+        "P_c": quasi.P_c / summary["P_max"] - 1.0,
+        "t_c": quasi.t_c / (0.5 * summary["t_contact"]) - 1.0,
+    }
+    return FiniteDynamicResult(
+        model=model,
+        rubber=rubber.to_dict(),
+        quasi_static={key: quasi.maxima()[key] for key in ("x_c", "P_c", "t_c", "t_y")},
+        dynamic=summary,
+        differences=differences,
+        mesh=run.mesh,
+        timings=run.timings,
+        parameters=run.parameters,
+        solution=run,
+    )

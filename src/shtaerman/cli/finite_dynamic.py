@@ -1,0 +1,70 @@
+"""``shtaerman dynamic --model MODEL``: the impact on a rubber half-space at finite strain."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from ..api.fem_contact import RUBBER_OPTIONS
+from ..api.finite_dynamic import finite_strain_route
+from ..theory.materials import Material
+from ..vocabulary import entry
+from .common import in_option_words, indenter, print_json
+
+LINEAR_ONLY = ("history", "out", "mesh_margin", "domain_factor", "growth", "layer_rate")
+"""``dynamic`` options the finite-strain impact refuses when given."""
+
+
+def run_finite(args: argparse.Namespace) -> int:
+    """Run :func:`shtaerman.api.finite_dynamic.finite_dynamic` from the parsed options; print
+    text or JSON."""
+    unsupported = {
+        name: getattr(args, name)
+        for name in LINEAR_ONLY
+        if getattr(args, name) != entry(name).default_for("dynamic")  # given
+    }
+    unsupported["refine"] = args.refine != 1.0
+    kept = {name: getattr(args, name) for name in ("mass", "velocity", "time_steps", "mesh_size")}
+    for name in ("time_steps", "mesh_size"):  # the linear impact's defaults: not given
+        if kept[name] == entry(name).default_for("dynamic"):
+            kept[name] = None
+    rubber = {name: getattr(args, name) for name in RUBBER_OPTIONS if getattr(args, name)}
+    with in_option_words():
+        result = finite_strain_route(
+            indenter(args),
+            Material(args.E2, args.nu2),
+            args.model,
+            unsupported,
+            kept,
+            {**rubber, "density": args.density2},
+        )
+    report = result.to_dict()
+    if args.json:
+        print_json(report)
+    else:
+        print(finite_dynamic_text(report))
+    return 0
+
+
+def finite_dynamic_text(report: dict) -> str:
+    """A readable summary (SI units); a quantity the run could not give is nan."""
+    qs, dyn = (
+        {key: math.nan if value is None else value for key, value in report[part].items()}
+        for part in ("quasi_static", "dynamic")
+    )
+    mesh = report["mesh"]
+    rows = [
+        f"Finite-strain impact ({report['model']}, density2 "
+        f"{report['parameters']['density2']:g} kg/m^3) against the quasi-static theory (SI)",
+        "                          finite strain   quasi-static (Shtaerman)",
+        f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
+        f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
+        f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
+        f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
+        f"  restitution e           {dyn['restitution']:<14.6f}  1",
+        f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs; "
+        "no error estimate",
+        "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
+    ]
+    return "\n".join(rows)

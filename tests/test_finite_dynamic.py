@@ -1,0 +1,125 @@
+"""The finite-strain impact in time (fem/finite_dynamic.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from shtaerman.fem.finite_contact import solve_finite_contact
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.validation import InputError
+
+INDENTER = PowerLawIndenter(5.0, 1.5)
+RUBBER = Material(7.5e6, 0.5)
+MASS = 0.7
+COARSE = MeshSettings(size=0.15, domain=1e3, growth=0.35, axis_size=1e-3, axis_growth=0.25)
+SETTINGS = FiniteImpactSettings(steps=30, mesh=COARSE)
+
+
+@pytest.fixture(scope="module")
+def massless():
+    return run_finite_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, SETTINGS)
+
+
+def _static_reference(result):
+    """x_max, P_max of the impact integrated on the same mesh's static curve (energy root)."""
+    refined = result.mesh["refined_radius"]
+    system = assemble_hyperelastic(COARSE.build(refined), NeoHookean(7.5e6, 0.5))
+    depths = result.x_max * np.linspace(0.97, 1.03, 7)
+    curve = solve_finite_contact(system, INDENTER, depths, refined)
+    energy = np.array([s.strain_energy for s in curve.steps])
+    force = np.array([s.force for s in curve.steps])
+    target = 0.5 * MASS * 3.0**2
+    # Pi / d^(q+1) and P / d^q are smooth: interpolate them, then solve Pi(x) = E0
+    q = 5.0 / 3.0
+    pi_fit = np.polyfit(depths, energy / depths ** (q + 1), 4)
+    p_fit = np.polyfit(depths, force / depths**q, 4)
+    x = result.x_max
+    for _ in range(30):
+        pi = np.polyval(pi_fit, x) * x ** (q + 1)
+        x -= (pi - target) / (np.polyval(p_fit, x) * x**q)
+    return x, np.polyval(p_fit, x) * x**q
+
+
+def test_massless_body_is_the_impact_on_the_static_curve(massless):
+    x_ref, p_ref = _static_reference(massless)
+    assert massless.x_max == pytest.approx(x_ref, rel=3e-3)
+    assert massless.P_max == pytest.approx(p_ref, rel=3e-3)
+    # the finite-strain force is below Shtaerman's: the depth beyond the small-strain x_c
+    assert massless.x_max > massless.parameters["quasi_static_x_c"]
+
+
+def test_massless_body_restitution_is_one(massless):
+    assert massless.restitution == pytest.approx(1.0, abs=5e-4)
+    assert massless.energy_balance_error < 1e-6
+    assert massless.t_contact > 0
+    summary = massless.summary()
+    assert {"x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction"} <= set(
+        summary
+    )
+
+
+@pytest.mark.parametrize("density", [1100.0, -1.0, "x", True])
+def test_density_other_than_zero_is_refused(density):
+    with pytest.raises(InputError, match="density2"):
+        run_finite_impact(INDENTER, RUBBER, density, MASS, 3.0, SETTINGS)
+
+
+@pytest.mark.parametrize("steps", [5, 10.5, 10**6])
+def test_bad_steps_are_refused(steps):
+    with pytest.raises(InputError, match="steps"):
+        FiniteImpactSettings(steps=steps)
+
+
+def _run(capsys, *argv):
+    from shtaerman.cli import main
+
+    code = main(list(argv))
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (("--model", "neo-hookean", "--density2", "1100"), "density2 must be 0"),
+        (("--mooney-ratio", "0.3"), "--mooney-ratio: applies to the finite-strain models only"),
+        (("--model", "neo-hookean", "--layer-rate", "1"), "--layer-rate: not supported"),
+        (("--model", "neo-hookean", "--refine", "2"), "--refine: not supported"),
+        (("--model", "yeoh", "--mooney-ratio", "0.3"), "--mooney-ratio: applies to the mooney"),
+    ],
+)
+def test_cli_model_refusals_are_one_line_exit_2(capsys, argv, message):
+    code, out, err = _run(capsys, "dynamic", *argv)
+    assert code == 2 and out == ""
+    assert message in err and err.count("\n") == 1
+
+
+def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
+    import shtaerman as sh
+    import shtaerman.fem.finite_contact as finite_contact
+
+    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
+    result = sh.dynamic(
+        INDENTER,
+        RUBBER,
+        mass=MASS,
+        velocity=1.0,
+        model="mooney-rivlin",
+        mooney_ratio=0.0,
+        density=0.0,
+        time_steps=30,
+    )
+    assert result.model == "mooney-rivlin"
+    assert result.restitution == pytest.approx(1.0, abs=5e-4)
+    report = result.to_dict()
+    assert report["dynamic"]["x_max"] == result.x_max > report["quasi_static"]["x_c"]
+    assert report["differences"]["x_c"] == pytest.approx(
+        report["quasi_static"]["x_c"] / result.x_max - 1
+    )
+    with pytest.raises(TypeError, match="unexpected"):
+        sh.dynamic(INDENTER, RUBBER, mass=MASS, velocity=1.0, model="yeoh", colour=1)
