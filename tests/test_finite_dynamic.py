@@ -91,6 +91,10 @@ def _run(capsys, *argv):
         (("--model", "neo-hookean", "--layer-rate", "1"), "--layer-rate: not supported"),
         (("--model", "neo-hookean", "--refine", "2"), "--refine: not supported"),
         (("--model", "yeoh", "--mooney-ratio", "0.3"), "--mooney-ratio: applies to the mooney"),
+        # not combined yet with a viscoelastic or layered body: refused, not ignored
+        (("--model", "neo-hookean", "--density2", "0", "--prony", "0.5:2e-3"), "--prony: not"),
+        (("--model", "neo-hookean", "--density2", "0", "--thickness", "0.02"), "--thickness: not"),
+        (("--model", "neo-hookean", "--density2", "0", "--base", "lubricated"), "--base: not"),
     ],
 )
 def test_cli_model_refusals_are_one_line_exit_2(capsys, argv, message):

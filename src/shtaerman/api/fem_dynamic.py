@@ -292,6 +292,7 @@ def dynamic(
 
         numbers = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
         numbers.update(layer_rate=layer_rate, settings=settings, out=out, refine=refine != 1.0)
+        numbers.update(prony=prony, thickness=thickness, base=base)
         kept = dict(mass=mass, velocity=velocity, time_steps=time_steps, mesh_size=mesh_size)
         return finite_strain_route(indenter, body, model, numbers, kept, rubber)
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)

@@ -11,7 +11,8 @@ from ..theory.materials import Material
 from ..vocabulary import entry
 from .common import in_option_words, indenter, print_json
 
-LINEAR_ONLY = ("history", "out", "mesh_margin", "domain_factor", "growth", "layer_rate")
+LINEAR_ONLY = ("history", "out", "mesh_margin", "domain_factor", "growth", "layer_rate", "prony")
+LINEAR_ONLY = (*LINEAR_ONLY, "thickness", "base")
 """``dynamic`` options the finite-strain impact refuses when given."""
 
 
