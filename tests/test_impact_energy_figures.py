@@ -1,5 +1,7 @@
 """The force-depth loop and the energy account of a dynamic impact: the figures' data."""
 
+import re
+
 import numpy as np
 import pytest
 from PIL import Image
@@ -8,6 +10,7 @@ from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.output.dynamic import write_case_figures
 from shtaerman.plots.impact_energy import energy_shares, force_depth_loop, loop_work
 from shtaerman.study.dynamic.case import run_case
+from shtaerman.study.schema import StudyError, find_study, load_study
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.theory.viscoelastic import PronySeries
@@ -89,3 +92,40 @@ def test_case_figures_include_the_loop_and_the_energy_account(both, tmp_path):
     for stem in ("force_depth_loop", "energy_history"):
         assert Image.open(tmp_path / f"{stem}.png").format == "PNG"
         assert (tmp_path / f"{stem}.svg").read_text().lstrip().startswith("<?xml")
+
+
+def test_the_viscoelastic_study_splits_into_its_three_losses():
+    waves, hysteresis, both_ = load_study(find_study("viscoelastic"))
+    assert [s.name for s in (waves, hysteresis, both_)] == [
+        "viscoelastic-waves",
+        "viscoelastic-hysteresis",
+        "viscoelastic-both",
+    ]
+    assert (waves.density, waves.prony) == (1100.0, None)
+    assert (hysteresis.density, hysteresis.prony) == (0.0, both_.prony)
+    assert both_.density == 1100.0 and both_.prony == PronySeries((0.5,), (2.05e-3,))
+    assert waves.velocities == (0.5, 1.0, 2.0, 3.0, 4.0, 5.0) and waves.example == 3.0
+
+
+@pytest.mark.parametrize(
+    ("sweep", "reason"),
+    [
+        ('loss = ["waves", "heat"]', "expected distinct values of waves, hysteresis, both"),
+        ('loss = ["waves", "waves"]', "expected distinct values"),
+        ("loss = []", "expected distinct values"),
+    ],
+)
+def test_a_bad_loss_sweep_names_its_key(tmp_path, sweep, reason):
+    text = find_study("viscoelastic").read_text()
+    path = tmp_path / "bad.toml"
+    path.write_text(re.sub(r"loss = \[[^\]]*\]", sweep, text))
+    with pytest.raises(StudyError, match=r"key 'sweep.loss': " + reason):
+        load_study(path)
+
+
+def test_a_loss_sweep_needs_density_and_prony(tmp_path):
+    text = find_study("viscoelastic").read_text().replace('prony = "0.5:2.05e-3"', "")
+    path = tmp_path / "elastic.toml"
+    path.write_text(text)
+    with pytest.raises(StudyError, match=r"key 'sweep.loss': .*density2 > 0 and a prony"):
+        load_study(path)
