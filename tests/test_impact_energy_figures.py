@@ -1,15 +1,19 @@
 """The force-depth loop and the energy account of a dynamic impact: the figures' data."""
 
+import csv
+import dataclasses
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 from PIL import Image
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.output.dynamic import write_case_figures
+from shtaerman.output.dynamic import write_case_figures, write_dynamic_study
 from shtaerman.plots.impact_energy import energy_shares, force_depth_loop, loop_work
 from shtaerman.study.dynamic.case import run_case
+from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, find_study, load_study
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
@@ -129,3 +133,18 @@ def test_a_loss_sweep_needs_density_and_prony(tmp_path):
     path.write_text(text)
     with pytest.raises(StudyError, match=r"key 'sweep.loss': .*density2 > 0 and a prony"):
         load_study(path)
+
+
+def test_a_viscoelastic_study_writes_its_loss_split_and_figures(tmp_path):
+    [_, _, study] = load_study(find_study("viscoelastic"))
+    study = dataclasses.replace(study, quick_velocities=(3.0,), quick_settings=CHEAP)
+    outcome = run_study(study, quick=True)
+    files, figures = write_dynamic_study(outcome, tmp_path / "viscoelastic-both", tmp_path)
+    with (tmp_path / files["summary"]).open() as stream:
+        [row] = list(csv.DictReader(stream))
+    losses = outcome.example.result.viscoelastic
+    for key in ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction"):
+        assert float(row[f"{key} [1]"]) == losses[key]
+    assert float(row["energy_hysteresis_fraction [1]"]) > 0.5
+    stems = {Path(path).stem for path in figures.values()}
+    assert {"force_depth_loop", "energy_history", "dynamic_history"} <= stems

@@ -5,7 +5,9 @@ Into ``root/<study name>/``:
 - ``history_v<v0>.csv`` per velocity: t, x, v, P, a, p0 of the dynamic FE impact every time
   step, units in the header (as ``shtaerman dynamic --history``);
 - ``summary.csv``: one row per velocity, the dynamic and quasi-static maxima and times, their
-  relative differences, restitution, the radiated fraction and its first-order estimate;
+  relative differences, restitution, the radiated fraction and its first-order estimate, and
+  (a viscoelastic body) the dissipated energy and the split of 1 - e^2 into waves and
+  hysteresis;
 - figures: x(t), P(t), the force-depth loop and the energy account at the example velocity;
   e, 1 - e^2 and the differences over v0; the wave field (von Mises) at the quasi-static t_c
   and at 1.05 t_y (after separation).
@@ -48,8 +50,15 @@ SUMMARY_HEADER = (
     "estimate_energy_fraction [1]",
     "energy_balance_error [1]",
     "reflected_energy_fraction [1]",
+    "energy_dissipated_fraction [1]",
+    "energy_wave_fraction [1]",
+    "energy_hysteresis_fraction [1]",
 )
-"""Columns of summary.csv, one row per velocity, in the ``name [unit]`` convention."""
+"""Columns of summary.csv, one row per velocity, in the ``name [unit]`` convention; the last
+three (the viscoelastic split of 1 - e^2, :attr:`DynamicImpactResult.viscoelastic`) are NaN
+for an elastic body."""
+
+LOSS_KEYS = ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction")
 
 
 def history_columns(result: DynamicImpactResult) -> dict[str, object]:
@@ -81,6 +90,7 @@ def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
                 case.estimate.energy_fraction,
                 r.energy_balance_error,
                 r.reflected_energy_fraction,
+                *(r.viscoelastic.get(key, np.nan) for key in LOSS_KEYS),
             )
         )
     table = np.array(rows, dtype=float)
