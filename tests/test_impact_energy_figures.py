@@ -117,6 +117,8 @@ def test_the_viscoelastic_study_splits_into_its_three_losses():
         ('loss = ["waves", "heat"]', "expected distinct values of waves, hysteresis, both"),
         ('loss = ["waves", "waves"]', "expected distinct values"),
         ("loss = []", "expected distinct values"),
+        ('loss = "waves"', "expected a list of distinct values"),
+        ("loss = [1]", "expected a list of distinct values"),
     ],
 )
 def test_a_bad_loss_sweep_names_its_key(tmp_path, sweep, reason):
