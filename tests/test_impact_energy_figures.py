@@ -150,3 +150,10 @@ def test_a_viscoelastic_study_writes_its_loss_split_and_figures(tmp_path):
     assert float(row["energy_hysteresis_fraction [1]"]) > 0.5
     stems = {Path(path).stem for path in figures.values()}
     assert {"force_depth_loop", "energy_history", "dynamic_history"} <= stems
+
+
+def test_the_history_figure_names_the_losses_of_the_run(both, elastic):
+    from shtaerman.plots.dynamic import _losses
+
+    assert _losses(both.result) == "waves + hysteresis"
+    assert _losses(elastic.result) == "waves"
