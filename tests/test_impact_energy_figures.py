@@ -11,6 +11,7 @@ from PIL import Image
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.output.dynamic import write_case_figures, write_dynamic_study
+from shtaerman.output.text_dynamic import study_findings
 from shtaerman.plots.impact_energy import energy_shares, force_depth_loop, loop_work
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.run import run_study
@@ -150,6 +151,16 @@ def test_a_viscoelastic_study_writes_its_loss_split_and_figures(tmp_path):
     assert float(row["energy_hysteresis_fraction [1]"]) > 0.5
     stems = {Path(path).stem for path in figures.values()}
     assert {"force_depth_loop", "energy_history", "dynamic_history"} <= stems
+    rebound = study_findings(outcome)[1]
+    assert "as waves and hysteresis" in rebound and "elastic waves" not in rebound
+    assert f"{100 * losses['energy_wave_fraction']:.2f} %" in rebound
+
+
+def test_a_massless_study_reports_hysteresis_not_waves():
+    [_, study, _] = load_study(find_study("viscoelastic"))
+    study = dataclasses.replace(study, quick_velocities=(3.0,), quick_settings=CHEAP)
+    rebound = study_findings(run_study(study, quick=True))[1]
+    assert "as hysteresis (massless body: no waves" in rebound and "waves (" not in rebound
 
 
 def test_the_history_figure_names_the_losses_of_the_run(both, elastic):
