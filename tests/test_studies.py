@@ -37,7 +37,14 @@ def test_shipped_studies_cover_the_issue():
     ]
     slower = sorted(set(shipped_studies(extended=True)) - set(shipped_studies()))
     extended = [study.name for path in slower for study in load_study(path)]
-    assert extended == ["rubber-mooney-rivlin", "rubber-yeoh", "rubber-volumetric"]
+    assert extended == [
+        "rubber-mooney-rivlin",
+        "rubber-yeoh",
+        "rubber-volumetric",
+        "viscoelastic-waves",
+        "viscoelastic-hysteresis",
+        "viscoelastic-both",
+    ]
     assert find_study("rubber_models") == slower[0]  # run by name like the others
 
 

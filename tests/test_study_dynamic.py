@@ -329,7 +329,7 @@ def assert_not_blank(image: np.ndarray) -> None:
 
 def test_figures_are_not_blank_and_show_their_curves(written):
     root, _, figures = written
-    assert len(figures) == 4
+    assert len(figures) == 6
     by_stem = {Path(path).stem: root / path for path in figures.values()}
     history = pixels(by_stem["dynamic_history"])
     assert_not_blank(history)

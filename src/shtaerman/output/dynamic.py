@@ -5,12 +5,15 @@ Into ``root/<study name>/``:
 - ``history_v<v0>.csv`` per velocity: t, x, v, P, a, p0 of the dynamic FE impact every time
   step, units in the header (as ``shtaerman dynamic --history``);
 - ``summary.csv``: one row per velocity, the dynamic and quasi-static maxima and times, their
-  relative differences, restitution, the radiated fraction and its first-order estimate;
-- figures: x(t), P(t) at the example velocity; e, 1 - e^2 and the differences over v0; the
-  wave field (von Mises) at the quasi-static t_c and at 1.05 t_y (after separation).
+  relative differences, restitution, the radiated fraction and its first-order estimate, and
+  (a viscoelastic body) the dissipated energy and the split of 1 - e^2 into waves and
+  hysteresis;
+- figures: x(t), P(t), the force-depth loop and the energy account at the example velocity;
+  e, 1 - e^2 and the differences over v0; the wave field (von Mises) at the quasi-static t_c
+  and at 1.05 t_y (after separation).
 
-:func:`write_case_figures` draws one impact's (``dynamic --out``): x(t), P(t) and the wave field
-at each kept time.
+:func:`write_case_figures` draws one impact's (``dynamic --out``): x(t), P(t), the force-depth
+loop, the energy account and the wave field at each kept time.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ import numpy as np
 
 from ..fem.dynamic_contact import DynamicImpactResult
 from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
+from ..plots.impact_energy import plot_energy_history, plot_force_depth_loop
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import SEPARATION_SNAPSHOT, DynamicStudyOutcome
 from .files import write_csv
@@ -46,8 +50,15 @@ SUMMARY_HEADER = (
     "estimate_energy_fraction [1]",
     "energy_balance_error [1]",
     "reflected_energy_fraction [1]",
+    "energy_dissipated_fraction [1]",
+    "energy_wave_fraction [1]",
+    "energy_hysteresis_fraction [1]",
 )
-"""Columns of summary.csv, one row per velocity, in the ``name [unit]`` convention."""
+"""Columns of summary.csv, one row per velocity, in the ``name [unit]`` convention; the last
+three (the viscoelastic split of 1 - e^2, :attr:`DynamicImpactResult.viscoelastic`) are NaN
+for an elastic body."""
+
+LOSS_KEYS = ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction")
 
 
 def history_columns(result: DynamicImpactResult) -> dict[str, object]:
@@ -79,10 +90,28 @@ def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
                 case.estimate.energy_fraction,
                 r.energy_balance_error,
                 r.reflected_energy_fraction,
+                *(r.viscoelastic.get(key, np.nan) for key in LOSS_KEYS),
             )
         )
     table = np.array(rows, dtype=float)
     return {name: table[:, i] for i, name in enumerate(SUMMARY_HEADER)}
+
+
+def _loss_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict[str, Path]:
+    """The force-depth loop and the energy account of one impact; ``{caption: path}``."""
+    v0 = f"{case.velocity:g} m/s"
+    return {
+        f"Force-depth loop at {v0}: loading and unloading of the dynamic FE impact beside the "
+        "quasi-static elastic law (the loop's area is the energy left in the body)": (
+            plot_force_depth_loop(
+                case, folder / "force_depth_loop.png", figure_format=figure_format
+            )
+        ),
+        f"Energy account at {v0} (fractions of M v0^2 / 2): striker, half-space stored, "
+        "absorbed (waves), dissipated (hysteresis), numerical residue": (
+            plot_energy_history(case, folder / "energy_history.png", figure_format=figure_format)
+        ),
+    }
 
 
 def write_dynamic_study(
@@ -108,6 +137,7 @@ def write_dynamic_study(
                 example, folder / "dynamic_history.png", figure_format=figure_format
             )
         ),
+        **_loss_figures(example, folder, figure_format),
         "Restitution and energy left in the half-space (%) over v0 (first-order estimate "
         "dashed); quasi-static / dynamic - 1 of x, P and contact time (%), open markers where "
         "the estimated error is not below the difference": (
@@ -150,6 +180,7 @@ def write_case_figures(
             )
         )
     }
+    figures.update(_loss_figures(case, folder, figure_format))
     for index, key in enumerate(sorted(case.result.snapshots)):
         figures[f"Wave field (von Mises) at {v0}, t = {key * 1e3:.3g} ms"] = plot_wave_field(
             case, key, folder / f"wave_field_{index}.png"

@@ -139,6 +139,27 @@ def _body_words(settings: object) -> str:
     return f"{1e3 * thickness:g} mm {getattr(settings, 'base', '')} layer"
 
 
+def _loss_words(outcome: DynamicStudyOutcome) -> str:
+    """What 1 - e^2 of the example went to: elastic waves (with the first-order estimate), or
+    a viscoelastic body's hysteresis (and waves, with the single-run split)."""
+    case = outcome.example
+    losses = case.result.viscoelastic
+    if not losses:
+        return (
+            "as elastic waves (first-order estimate"
+            f"{'' if outcome.settings.thickness is None else ' for the half-space'} "
+            f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f})"
+        )
+    heat = f"{100 * losses['energy_dissipated_fraction']:.2f} % of M v0^2/2 dissipated by the end"
+    if outcome.study.density == 0:
+        return f"as hysteresis (massless body: no waves; {heat} of the run)"
+    return (
+        f"as waves and hysteresis ({heat} of the run; the single-run split: waves beyond R_a "
+        f"{100 * losses['energy_wave_fraction']:.2f} %, hysteresis "
+        f"{100 * losses['energy_hysteresis_fraction']:.2f} %)"
+    )
+
+
 def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
     """Sentences for the report's opening section."""
     case = outcome.example
@@ -158,9 +179,7 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
         f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
         f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
-        f"{_body_words(outcome.settings)} as elastic waves (first-order estimate"
-        f"{'' if outcome.settings.thickness is None else ' for the half-space'} "
-        f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f})"
+        f"{_body_words(outcome.settings)} {_loss_words(outcome)}"
         f"{_loss_trend(outcome)}.",
         _estimate_finding(outcome),
     ]

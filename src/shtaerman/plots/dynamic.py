@@ -21,6 +21,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..fem.dynamic_contact import DynamicImpactResult
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
@@ -58,6 +59,14 @@ its largest value in the window: the waves (kPa) are 2-4 decades below the conta
 concentration (MPa) and would be invisible on a linear scale."""
 
 
+def _losses(result: DynamicImpactResult) -> str:
+    """What the run loses energy to: "waves", "hysteresis" or "waves + hysteresis"."""
+    waves = result.parameters["density2"] > 0
+    if result.material is None:
+        return "waves" if waves else "no loss"
+    return "waves + hysteresis" if waves else "hysteresis"
+
+
 @styled
 def plot_dynamic_histories(
     case: DynamicCase, path: Path | str, *, figure_format: str = "png"
@@ -83,7 +92,7 @@ def plot_dynamic_histories(
             dynamic_values[shown],
             color=FEM_COLOUR,
             linestyle="--",
-            label="dynamic FEM (waves)",
+            label=f"dynamic FEM ({_losses(result)})",
         )
         ax.set_ylabel(label)
         ax.set_ylim(bottom=min(0.0, float(np.min(dynamic_values[shown]))))

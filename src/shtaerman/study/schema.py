@@ -58,6 +58,7 @@ EXPECTED = {
     "name": "a string",
     "description": "a string",
     "base": 'one of "bonded", "lubricated"',
+    "loss": 'a list of distinct values of "waves", "hysteresis", "both"',
     "layer": "a [layer] table: thickness (m) or thickness_ratio (H / a_c), and base",
 }
 """What each leaf key expects, for the error messages (tolerances: a number in (0, 1])."""

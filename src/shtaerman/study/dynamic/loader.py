@@ -26,6 +26,10 @@ approach velocity (:mod:`.runner`)::
     [tolerances] energy_balance = 1e-2 (of M v0^2/2), reflected = 1e-2 (of the radiated),
                  estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
                  estimate is below estimate_below = 0.08)
+    [sweep]      optional, with a prony: loss = ["waves", "hysteresis", "both"] (any of them,
+                 in order) splits the study into one per loss, named <name>-<loss>: waves is
+                 the elastic half-space with density2 (no prony), hysteresis the massless one
+                 (density2 = 0) with the prony, both the file as written
 """
 
 from __future__ import annotations
@@ -116,6 +120,14 @@ class _DynTolerances(Table):
     estimate_below: Relative = 0.08
 
 
+LOSSES = ("waves", "hysteresis", "both")
+"""The losses a ``[sweep] loss`` list may hold: one study each."""
+
+
+class _DynSweep(Table):
+    loss: list[str]
+
+
 class _DynamicFile(Table):
     indenter: _DynIndenter
     half_space: _DynHalfSpace
@@ -126,6 +138,7 @@ class _DynamicFile(Table):
     quick: _Quick = _Quick()
     tolerances: _DynTolerances = _DynTolerances()
     layer: LayerTable | None = None
+    sweep: _DynSweep | None = None
 
 
 @dataclass(frozen=True)
@@ -275,24 +288,49 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         check_ladder(settings)  # the full study runs the ladder; verify --quick does not
     except InputError as error:
         raise StudyError(f"{path}: key 'numerics': {error}") from None
-    return [
-        DynamicStudy(
-            name=name,
-            description=raw.description,
-            source=path,
-            indenter=indenter,
-            half_space=half_space,
-            density=raw.half_space.density2,
-            mass=raw.impact.mass,
-            velocities=velocities,
-            example=example,
-            settings=settings,
-            quick_velocities=_velocities(path, "quick.velocity", quick, example),
-            quick_settings=_settings(path, "quick", raw.quick, settings),
-            tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
-            prony=prony,
-            prony_text=raw.half_space.prony or "",
+    study = DynamicStudy(
+        name=name,
+        description=raw.description,
+        source=path,
+        indenter=indenter,
+        half_space=half_space,
+        density=raw.half_space.density2,
+        mass=raw.impact.mass,
+        velocities=velocities,
+        example=example,
+        settings=settings,
+        quick_velocities=_velocities(path, "quick.velocity", quick, example),
+        quick_settings=_settings(path, "quick", raw.quick, settings),
+        tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        prony=prony,
+        prony_text=raw.half_space.prony or "",
+    )
+    return _split_losses(path, study, raw.sweep)
+
+
+def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:
+    """``study``, or one study per loss of ``[sweep] loss`` (:data:`LOSSES`)."""
+    if sweep is None:
+        return [study]
+    losses = sweep.loss
+    if not losses or any(loss not in LOSSES for loss in losses) or len(set(losses)) < len(losses):
+        raise StudyError(
+            f"{path}: key 'sweep.loss': expected distinct values of {', '.join(LOSSES)}, "
+            f"got {shown(losses)}"
         )
+    if study.prony is None or study.density <= 0:
+        raise StudyError(
+            f"{path}: key 'sweep.loss': splits the losses of a half-space with both a "
+            "density2 > 0 and a prony series"
+        )
+    variants = {
+        "waves": {"prony": None, "prony_text": ""},
+        "hysteresis": {"density": 0.0},
+        "both": {},
+    }
+    return [
+        dataclasses.replace(study, name=f"{study.name}-{loss}", **variants[loss])  # type: ignore[arg-type]
+        for loss in losses
     ]
 
 

@@ -1,0 +1,157 @@
+"""Figures of one dynamic impact's losses: the force-depth loop and the energy account.
+
+- :func:`force_depth_loop`, :func:`plot_force_depth_loop`: the contact force P against the
+  approach x, loading (to x_max) and unloading branches, beside the elastic quasi-static law
+  P = beta x^q; the loop's area is the energy the striker left in the body, E0 (1 - e^2);
+- :func:`energy_shares`, :func:`plot_energy_history`: the energy account over time as
+  fractions of E0 = M v0^2 / 2: the striker's kinetic energy, the body's stored (kinetic +
+  strain) energy, the energy absorbed by the layer (waves), the energy dissipated by a
+  viscoelastic body (hysteresis; left out of an elastic run) and the numerical residue.
+
+Colours as everywhere (:mod:`.style`): the quasi-static theory black, the FEM blue.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..fem.dynamic_contact import DynamicImpactResult
+from ..study.dynamic.case import DynamicCase
+from .labels import MINUS
+from .style import (
+    APPROXIMATION_COLOUR,
+    EXACT_COLOUR,
+    FEM_COLOUR,
+    SECOND_COLOUR,
+    WIDTH,
+    save,
+    si_prefix,
+    styled,
+)
+
+__all__ = [
+    "energy_shares",
+    "force_depth_loop",
+    "loop_work",
+    "plot_energy_history",
+    "plot_force_depth_loop",
+]
+
+ENERGY_STYLES = {
+    "striker kinetic": (FEM_COLOUR, "-"),
+    "half-space stored (kinetic + strain)": (SECOND_COLOUR, "-"),
+    "absorbed by the layer (waves)": ("#2ca02c", "-"),
+    "dissipated (hysteresis)": (APPROXIMATION_COLOUR, "-"),
+    "numerical residue": ("0.45", ":"),
+}
+"""Legend label -> (colour, line style) of :func:`plot_energy_history`, in drawing order."""
+
+
+def force_depth_loop(result: DynamicImpactResult) -> dict[str, np.ndarray]:
+    """The loop's branches, m and N: ``x_load``, ``P_load`` from first touch to the largest
+    approach, ``x_unload``, ``P_unload`` from there to separation (to the run's end if the
+    striker never separates)."""
+    peak = int(np.argmax(result.x))
+    end = result.t.size
+    if np.isfinite(result.t_contact):
+        end = int(np.searchsorted(result.t, result.t_contact, side="right"))
+    end = max(end, peak + 1)
+    return {
+        "x_load": result.x[: peak + 1],
+        "P_load": result.force[: peak + 1],
+        "x_unload": result.x[peak:end],
+        "P_unload": result.force[peak:end],
+    }
+
+
+def loop_work(result: DynamicImpactResult) -> float:
+    """The net work of the contact force on the body over the run, J: the trapezoidal
+    integral of P dx, the loop's area; E0 - M v_out^2 / 2 = E0 (1 - e^2) once separated."""
+    return float(np.trapezoid(result.force, result.x))
+
+
+def energy_shares(result: DynamicImpactResult) -> dict[str, np.ndarray]:
+    """The energy account per step as fractions of E0 (dimensionless), keyed by the labels of
+    :data:`ENERGY_STYLES`; they sum to 1 (the residue closes it). The dissipated share is
+    left out where it is 0 throughout (an elastic body)."""
+    energies = result.energies
+    energy0 = 0.5 * result.parameters["mass"] * result.parameters["velocity"] ** 2
+    shares = {
+        "striker kinetic": energies["striker_kinetic"],
+        "half-space stored (kinetic + strain)": energies["body_kinetic"] + energies["strain"],
+        "absorbed by the layer (waves)": energies["absorbed"],
+        "dissipated (hysteresis)": energies["dissipated"],
+        "numerical residue": energies["numerical"],
+    }
+    if not np.any(energies["dissipated"]):
+        del shares["dissipated (hysteresis)"]
+    return {label: np.asarray(values) / energy0 for label, values in shares.items()}
+
+
+@styled
+def plot_force_depth_loop(
+    case: DynamicCase, path: Path | str, *, figure_format: str = "png"
+) -> Path:
+    """P against x of the dynamic FE impact, loading solid and unloading dashed, beside the
+    elastic quasi-static P = beta x^q (PNG, and ``figure_format`` "svg" or "pdf" beside it);
+    the title states the loop's area against E0 (1 - e^2)."""
+    result, quasi = case.result, case.quasi
+    loop = force_depth_loop(result)
+    x_scale, x_unit = si_prefix(max(quasi.x_c, result.x_max), "m")
+    reach = max(quasi.x_c, result.x_max)
+    x = np.linspace(0.0, reach, 301)
+    figure = Figure(figsize=(WIDTH, 4.4), layout="constrained")
+    ax = figure.subplots()
+    ax.plot(x * x_scale, quasi.beta * x**quasi.force_exponent, color=EXACT_COLOUR,
+            label=r"quasi-static elastic $\beta x^q$")  # fmt: skip
+    ax.plot(loop["x_load"] * x_scale, loop["P_load"], color=FEM_COLOUR, label="FEM loading")
+    ax.plot(loop["x_unload"] * x_scale, loop["P_unload"], color=SECOND_COLOUR, linestyle="--",
+            label="FEM unloading")  # fmt: skip
+    ax.fill(
+        np.concatenate([loop["x_load"], loop["x_unload"]]) * x_scale,
+        np.concatenate([loop["P_load"], loop["P_unload"]]),
+        color=FEM_COLOUR,
+        alpha=0.12,
+        linewidth=0,
+    )
+    ax.set_xlabel(f"Approach x ({x_unit})")
+    ax.set_ylabel("Contact force P (N)")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    ax.legend(loc="upper left")
+    energy0 = 0.5 * quasi.mass * quasi.velocity**2
+    ax.set_title(
+        f"v0 = {case.velocity:g} m/s: loop area / E0 = {loop_work(result) / energy0:.4f}, "
+        f"1 {MINUS} e² = {result.energy_radiated_fraction:.4f}",
+        fontsize=9,
+    )
+    return save(figure, path, figure_format)
+
+
+@styled
+def plot_energy_history(case: DynamicCase, path: Path | str, *, figure_format: str = "png") -> Path:
+    """The energy account of the dynamic FE impact over time, fractions of E0 (PNG, and
+    ``figure_format`` "svg" or "pdf" beside it); the dotted line marks separation."""
+    result = case.result
+    t_scale, t_unit = si_prefix(float(result.t[-1]), "s")
+    figure = Figure(figsize=(WIDTH, 4.4), layout="constrained")
+    ax = figure.subplots()
+    for label, values in energy_shares(result).items():
+        colour, style = ENERGY_STYLES[label]
+        ax.plot(result.t * t_scale, values, color=colour, linestyle=style, label=label)
+    if np.isfinite(result.t_contact):
+        ax.axvline(result.t_contact * t_scale, color="0.6", linewidth=0.8, linestyle=":")
+    ax.axhline(0.0, color=EXACT_COLOUR, linewidth=0.8)
+    ax.set_xlabel(f"Time t ({t_unit}); dotted: separation")
+    ax.set_ylabel(r"Energy / $E_0 = M v_0^2/2$")
+    ax.set_xlim(0.0, float(result.t[-1]) * t_scale)
+    ax.legend(loc="upper right")
+    ax.set_title(
+        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, energy balance error "
+        f"{result.energy_balance_error:.1e}",
+        fontsize=9,
+    )
+    return save(figure, path, figure_format)
