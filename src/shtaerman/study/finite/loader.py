@@ -38,7 +38,7 @@ from ...fem.rubber import RubberModel, rubber_model
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError
-from ..ladder import check_ladder
+from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     ImpactTable,
     IndenterTable,
@@ -193,6 +193,7 @@ def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
     try:
         if where == "numerics":  # the study's mesh is the finest level of its ladder
             check_ladder(settings, refine)
+            nested_ladder(settings.refined(refine))  # its finest level: sizes / (2 refine)
         return settings.refined(refine)
     except InputError as error:
         raise InputError(f"[{where}] {error}") from None
