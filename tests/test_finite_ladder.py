@@ -57,6 +57,8 @@ def test_nested_settings_refuse_bad_levels_and_count_refined_dofs():
         NestedMeshSettings(nested=-1)
     with pytest.raises(InputError, match="nested must be"):
         NestedMeshSettings(nested=1.5)
+    with pytest.raises(InputError, match="nested must be"):
+        NestedMeshSettings(nested=True)
     with pytest.raises(InputError, match="max_dofs"):
         nested_ladder(replace(COARSE, max_dofs=2000.0).refined(2.0))
     with pytest.raises(InputError, match="refine"):  # the coarse level: growth 0.8 * 2 > 1

@@ -70,7 +70,8 @@ class NestedMeshSettings(MeshSettings):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not (isinstance(self.nested, int) and 0 <= self.nested <= 4):
+        whole = isinstance(self.nested, int) and not isinstance(self.nested, bool)
+        if not (whole and 0 <= self.nested <= 4):
             raise InputError(f"nested must be an integer in [0, 4], got {self.nested!r}")
 
     @property
