@@ -13,7 +13,8 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it
                  depth: the small-strain limit), small_steps = 5 (geometric depths from it to
                  the first equal step)
     [numerics]   refine = K and the mesh keys (mesh_size, growth, ...; default: FINITE_MESH):
-                 the finest mesh of the error-estimate ladder (K/2, K/sqrt(2), K)
+                 the middle mesh of the nested error-estimate ladder (a gmsh mesh at K/2
+                 refined uniformly once and twice: K/2, K, 2K)
     [quick]      depth_steps, small_steps, small_ratio, small_strain and the mesh keys for
                  ``verify --quick``
     [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
@@ -191,7 +192,7 @@ def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
     settings = table.settings(default, where)
     refine = 1.0 if table.refine is None else table.refine
     try:
-        if where == "numerics":  # the study's mesh is the finest level of its ladder
+        if where == "numerics":  # the study's mesh is the middle level of its ladder
             check_ladder(settings, refine)
             nested_ladder(settings.refined(refine))  # its finest level: sizes / (2 refine)
         return settings.refined(refine)
