@@ -7,6 +7,7 @@ table, whose ± is in the value's unit like every kind's there.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -63,18 +64,27 @@ def _relative(outcome: FiniteStudyOutcome, key: str) -> float | None:
     return outcome.estimates.scalars[key].error
 
 
+def _plain(error: float | None) -> str:
+    """ " ± e" with one significant digit as a plain decimal (0.00005, never 5e-05: beside a
+    value in its unit); "" as :func:`plus_minus` gives it."""
+    if error is None or not math.isfinite(error) or error <= 0:
+        return plus_minus(error)
+    digits = max(0, -math.floor(math.log10(float(f"{error:.1g}"))))
+    return plus_minus(error, f".{digits}f")
+
+
 def _shift(outcome: FiniteStudyOutcome, key: str, ratio: float) -> str:
     """A ratio r as its shift in per cent, "+1.69 ± 0.04 %": the ± (r's estimated relative
     error times r) in percentage points, like the dynamic kind's findings."""
     error = _relative(outcome, key)
-    spread = plus_minus(None if error is None else 100 * error * abs(ratio), ".1g")
+    spread = _plain(None if error is None else 100 * error * abs(ratio))
     return f"{100 * (ratio - 1):+.2f}{spread} %"
 
 
 def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> str:
     """``value`` by ``spec`` ± its estimated error in the value's own unit."""
     error = _relative(outcome, key)
-    return f"{value:{spec}}" + plus_minus(None if error is None else error * abs(value), ".1g")
+    return f"{value:{spec}}" + _plain(None if error is None else error * abs(value))
 
 
 MODEL_LABELS = {"neo-hookean": "neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
