@@ -67,7 +67,7 @@ def main() -> None:
     depths = ladder(study.indenter, modulus, exact.x_c, study.ladder)
     print(f"load: {os.getloadavg()}; {depths.size} depths, study mesh refine {args.refine}")
     start = time.process_time()
-    coarse = ladder_meshes(study.mesh)[1][0]
+    coarse = ladder_meshes(study.mesh, True)[1][0]
     reference = _run_level(study, depths, replace(coarse, nested=3), exact, False)
     truth = reported_values(reference)
     dofs = reference.finite.mesh_stats["dofs"]

@@ -27,13 +27,14 @@ from shtaerman.study.ladder import (
     nested_ladder,
 )
 from shtaerman.study.richardson import Estimate, richardson
-from shtaerman.study.schema import load_study
+from shtaerman.study.schema import StudyError, load_study
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.materials import RIGID, effective_modulus
 from shtaerman.validation import InputError
 
 SHIPPED = Path(__file__).resolve().parents[1] / "fem" / "finite_strain.toml"
+NESTED = SHIPPED.parent / "extended" / "finite_strain_nested.toml"
 COARSE = MeshSettings(size=1 / 12, growth=0.8, axis_size=1e-3, axis_growth=0.6)
 
 
@@ -143,3 +144,17 @@ def test_depth_range_message_names_the_model_in_use():
         check_finite_depths(indenter, [1e-4, 0.05], "yeoh")
     with pytest.raises(InputError, match="below the gent model's"):
         check_finite_depths(indenter, [1e-24, 1e-3], "gent")
+
+
+def test_the_ladder_is_independent_unless_the_study_file_asks_for_nested(tmp_path):
+    shipped, nested = load_study(SHIPPED), load_study(NESTED)
+    assert {s.mesh_ladder for s in shipped} == {"independent"}
+    assert {s.mesh_ladder for s in nested} == {"nested"}
+    assert [s.mesh for s in nested] == [s.mesh for s in shipped]  # same refine = 0.8 mesh
+    assert {s.name for s in nested}.isdisjoint(s.name for s in shipped)
+    factors, meshes = ladder_meshes(shipped[0].mesh)  # the default: three gmsh meshes
+    assert factors == pytest.approx([0.5, 2**-0.5, 1.0]) and meshes[-1] == shipped[0].mesh
+    path = tmp_path / "bad.toml"
+    path.write_text(NESTED.read_text().replace('ladder = "nested"', 'ladder = "nest"'))
+    with pytest.raises(StudyError, match=r"numerics.ladder': must be one of independent, nested"):
+        load_study(path)

@@ -54,7 +54,7 @@ def outcome():
 
 @pytest.fixture(scope="module")
 def laddered():
-    """The shipped paper case, not quick, on the nested ladder around the quick mesh."""
+    """The shipped paper case, not quick, on a ladder whose finest mesh is the quick one."""
     study = load_study(SHIPPED)[0]
     return run_study(replace(study, mesh=study.quick_mesh, ladder=study.quick_ladder))
 
@@ -259,13 +259,12 @@ def every_estimate(outcome):
 
 def test_ladder_estimates_have_a_sane_order_or_say_why_not(laddered):
     estimates = laddered.estimates
-    assert estimates.refines == pytest.approx([0.5, 1.0, 2.0])  # nested: ratio 2
+    assert estimates.refines == pytest.approx([0.5, 2**-0.5, 1.0])
     assert estimates.dofs[0] < estimates.dofs[1] < estimates.dofs[2]
     assert estimates.dofs[-1] == laddered.finite.curve.mesh_stats["dofs"]
     every = every_estimate(laddered)
     richardson = [e for e in every if e.method == "richardson"]
-    # observed on this coarse nested ladder: 19 of 57 Richardson (7 of 57 on independent
-    # gmsh levels), the rest not yet asymptotic (two-level)
+    # observed on this coarse ladder: 7 of 57 Richardson, the rest noise (two-level)
     assert richardson and len(richardson) < len(every)
     assert all(ORDER_RANGE[0] <= e.order <= ORDER_RANGE[1] for e in richardson)
     assert all(e.method == "two-level" and e.reason for e in every if e not in richardson)
@@ -316,6 +315,7 @@ def test_tables_and_findings_carry_the_estimates(laddered, outcome):
     assert all("resolved" in row[-1] for row in validity["rows"])
     found = text_finite.study_findings(laddered)
     assert "Richardson" in found[-1] and " ± " in found[0]
+    assert "the study's mesh refined by 1/2, 1/sqrt(2) and 1" in found[-1]  # the default ladder
     # every ± of the findings in its value's unit: shifts in percentage points, ratios and
     # crossings as plain numbers (no relative '± 3.8e-02' beside an absolute value)
     assert re.search(r"x_c [+-]\d+\.\d\d ± [\d.]+ %, P_c [+-]\d+\.\d\d ± [\d.]+ %", found[0])
@@ -334,7 +334,7 @@ def test_report_shows_the_finite_rows_with_estimates(laddered):
     assert validity.count("±") + validity.count("not resolved") >= 2
     finite = next(line for line in page.splitlines() if "neo-Hookean finite strain" in line)
     assert finite.count("±") == 6
-    assert json.loads(json.dumps(entry))["accuracy"]["mesh_ladder"][2]["refine"] == 2.0
+    assert json.loads(json.dumps(entry))["accuracy"]["mesh_ladder"][2]["refine"] == 1.0
 
 
 def test_central_pressure_finding_says_p0_is_below_shtaermans(outcome):

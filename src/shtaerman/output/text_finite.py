@@ -14,6 +14,7 @@ from typing import Any
 from ..paper.case import is_paper_case
 from ..study.finite.accuracy import CROSSING_KEYS
 from ..study.finite.runner import FiniteStudyOutcome
+from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
@@ -237,16 +238,23 @@ def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
     estimates = outcome.estimates
     worst = estimates.worst_step()
     fallback, total = estimates.fallbacks()
+    nested = estimates.ratio != LADDER_RATIO
+    ladder = (
+        "a nested ladder, one gmsh mesh with the study's sizes doubled and its two uniform "
+        "refinements "
+        if nested
+        else "the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
+    )
     return (
         "± is the estimated error of the value, in its unit (percentage points for a shift "
-        "in %): Richardson extrapolation over a nested ladder, one gmsh mesh with the study's "
-        "sizes doubled and its two uniform refinements "
+        f"in %): Richardson extrapolation over {ladder}"
         f"({'/'.join(str(d) for d in estimates.dofs)} dofs, "
         f"{sum(estimates.cpu_seconds):.0f} s of CPU time in all). Largest over the depths: "
         f"P/(beta x^q) relative error {estimates.scalars['force_ratio_worst'].error:.1e} at x/a = "
         f"{outcome.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {total} estimates "
         "fell back to the difference of the two finest meshes (differences not shrinking, "
-        "or an observed order outside 1.5-4.5)."
+        "or an observed order outside 1.5-4.5"
+        + (")." if nested else ": the ~1e-4 noise of non-nested meshes).")
     )
 
 

@@ -89,6 +89,9 @@ class FiniteEstimates:
     crossings : tuple of dict
         Per departure level (:data:`.finite.LEVELS`): ``errors`` (relative, for
         :data:`CROSSING_KEYS`) and ``departure_error`` (absolute, a fraction of the force).
+    ratio : float
+        Element-size ratio of consecutive levels: sqrt(2) on independent gmsh meshes, 2 on a
+        nested ladder.
     """
 
     refines: tuple[float, ...]
@@ -98,6 +101,7 @@ class FiniteEstimates:
     scalars: dict[str, Estimate]
     steps: tuple[dict[str, Estimate], ...]
     crossings: tuple[dict[str, object], ...]
+    ratio: float = LADDER_RATIO
 
     def worst_step(self, key: str = "force_ratio") -> int:
         """Index of the depth with the largest estimated error of ``key``."""
@@ -228,4 +232,5 @@ def estimate_study(
         scalars=scalars,
         steps=steps,
         crossings=_crossings(outcomes, steps, ratio),
+        ratio=ratio,
     )

@@ -9,11 +9,12 @@ changes E* by 5e-5 for the paper's rubber). A study runs:
 3. three impacts M x'' = -P(x): Shtaerman's exact (the paper's), and the tabulated linear-FEM
    and finite-strain curves (:mod:`shtaerman.study.contact.contact_law`,
    :func:`shtaerman.study.contact.runner.tabulated_impact`);
-4. all of it on a nested ladder: one gmsh mesh with the study's sizes doubled and its two
-   uniform refinements (:func:`shtaerman.study.ladder.nested_ladder`, the finest level twice
-   as fine as the study's mesh): Richardson estimates of every reported number
-   (:mod:`.accuracy`). ``verify --quick`` runs one coarse mesh
-   and estimates nothing.
+4. all of it again on the study's mesh refined by 1/2 and 1/sqrt(2) (``[numerics] ladder =
+   "independent"``, the default), or on a nested ladder: one gmsh mesh with the study's sizes
+   doubled and its two uniform refinements (``"nested"``,
+   :func:`shtaerman.study.ladder.nested_ladder`, the finest level twice as fine as the study's
+   mesh): Richardson estimates of every reported number (:mod:`.accuracy`). ``verify
+   --quick`` runs one coarse mesh and estimates nothing.
 
 Checks that need no reference: the small-strain limit at the tiny first depth, conservation
 (Simpson's Int P dx against the stored energy), Newton's final correction and complementarity
@@ -361,12 +362,12 @@ def _run_level(
 
 
 def ladder_meshes(
-    mesh: MeshSettings, nested: bool = True
+    mesh: MeshSettings, nested: bool = False
 ) -> tuple[list[float], list[MeshSettings]]:
     """The error-estimate ladder around the study's ``mesh``: refinement factors (relative to
     ``mesh``) and settings, coarse to fine, every level checked before any meshing.
 
-    ``nested`` (the study's): :func:`shtaerman.study.ladder.nested_ladder`, factors 1/2, 1, 2,
+    ``nested``: :func:`shtaerman.study.ladder.nested_ladder`, factors 1/2, 1, 2,
     ratio :data:`~shtaerman.study.ladder.NESTED_RATIO`. Otherwise three independent gmsh
     meshes refined by 1/2, 1/sqrt(2), 1 (ratio :data:`~shtaerman.study.ladder.LADDER_RATIO`).
     """
@@ -388,7 +389,7 @@ def run_finite_strain_study(
     estimate: bool = True,
 ) -> FiniteStudyOutcome:
     """Run one finite-strain study: the curve, the same-mesh linear FEM and three impacts, on
-    the nested ladder around the study's mesh (:func:`ladder_meshes`) for the error estimates.
+    the study's ladder around its mesh (:func:`ladder_meshes`) for the error estimates.
 
     Parameters
     ----------
@@ -403,8 +404,9 @@ def run_finite_strain_study(
     Returns
     -------
     FiniteStudyOutcome
-        The finest level's (twice as fine as the study's mesh), with ``estimates`` unless
-        ``quick`` or not ``estimate``; without estimates the study's mesh alone. Its
+        The finest level's (the study's mesh; twice as fine on a nested ladder), with
+        ``estimates`` unless ``quick`` or not ``estimate``; without estimates the study's
+        mesh alone. Its
         ``seconds`` and ``cpu_seconds`` count every level.
     """
     report = progress or (lambda _line: None)
@@ -417,7 +419,11 @@ def run_finite_strain_study(
         depths = np.asarray(study.depths, dtype=float)
     else:
         depths = ladder(study.indenter, modulus, exact.x_c, spec)
-    factors, meshes = ladder_meshes(mesh) if estimate and not quick else ([1.0], [mesh])
+    nested = study.mesh_ladder == "nested"
+    if estimate and not quick:
+        factors, meshes = ladder_meshes(mesh, nested)
+    else:
+        factors, meshes = [1.0], [mesh]
     outcomes = []
     for factor, level in zip(factors, meshes, strict=True):
         report(
@@ -425,7 +431,8 @@ def run_finite_strain_study(
             "linear FEM on the same mesh, impacts"
         )
         outcomes.append(_run_level(study, depths, level, exact, quick))
-    estimates = estimate_study(outcomes, factors, NESTED_RATIO) if len(outcomes) > 1 else None
+    ratio = LADDER_RATIOS[nested]
+    estimates = estimate_study(outcomes, factors, ratio) if len(outcomes) > 1 else None
     return replace(
         outcomes[-1],
         estimates=estimates,
