@@ -224,7 +224,7 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
     contact, quick = raw.contact, raw.quick
     if raw.numerics.ladder not in MESH_LADDERS:
         raise StudyError(
-            f"{path}: key 'numerics.ladder': must be one of {', '.join(MESH_LADDERS)}, "
+            f"{path}: key 'numerics.ladder': expected {' or '.join(MESH_LADDERS)}, "
             f"got {raw.numerics.ladder!r}"
         )
     return FiniteStudy(
