@@ -1,5 +1,5 @@
 """The finite-strain ratio figure: unresolved points off the plotted scale draw nothing, not
-even their error bars; unresolved points on it stay open markers with their bars."""
+even their error bars; unresolved points on it are open markers without a bar (no data)."""
 
 from types import SimpleNamespace
 
@@ -36,7 +36,7 @@ def test_no_error_bar_floats_where_its_point_is_off_scale():
     assert axes.get_ylim()[0] > 0.9  # the off-scale point is left out of the scale ...
     drawn = bars(axes)
     assert 0.1 not in drawn  # ... and draws no bar into the picture
-    assert 0.2 in drawn  # an unresolved point on the scale keeps its bar
+    assert 0.2 not in drawn and 0.3 in drawn  # an unresolved point draws no bar, data does
     open_markers = [line for line in axes.get_lines() if line.get_label().endswith("unresolved")]
     assert any(0.2 in line.get_xdata() for line in open_markers)
     assert any("off scale" in text.get_text() for text in axes.texts)

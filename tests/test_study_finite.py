@@ -315,6 +315,7 @@ def test_tables_and_findings_carry_the_estimates(laddered, outcome):
     assert all("resolved" in row[-1] for row in validity["rows"])
     found = text_finite.study_findings(laddered)
     assert "Richardson" in found[-1] and " ± " in found[0]
+    assert "the study's mesh refined by 1/2, 1/sqrt(2) and 1" in found[-1]  # the default ladder
     # every ± of the findings in its value's unit: shifts in percentage points, ratios and
     # crossings as plain numbers (no relative '± 3.8e-02' beside an absolute value)
     assert re.search(r"x_c [+-]\d+\.\d\d ± [\d.]+ %, P_c [+-]\d+\.\d\d ± [\d.]+ %", found[0])

@@ -440,9 +440,11 @@ VOCABULARY: tuple[Entry, ...] = (
         "material model of the half-space",
         "model",
         "linear",
+        ("finite-strain",),
         valid=None,
         type="str",
         choices=("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"),
+        sweep_default={"finite-strain": "neo-hookean"},
     ),
     # --- rubber models beyond neo-Hookean (all with the small-strain E2, nu2) -----------------
     Entry(
@@ -451,6 +453,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Mooney-Rivlin r = C01 / (C10 + C01), C10 + C01 = E2 / (4 (1 + nu2))",
         "Mooney ratio r",
         None,
+        ("finite-strain",),
         valid=Range(0.0, 1.0, low_open=False, high_open=True),
     ),
     Entry(
@@ -460,6 +463,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "a negative c2 needs c2^2 < 3 c3 (dW/dI1 > 0)",
         "Yeoh c2, c3",
         None,
+        ("finite-strain",),
         valid=None,
         type="str",
     ),
@@ -469,6 +473,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Gent limit Jm of I1 - 3 (W = -mu/2 Jm ln(1 - (I1 - 3)/Jm))",
         "Gent limit Jm",
         None,
+        ("finite-strain",),
     ),
     Entry(
         "volumetric",
@@ -477,6 +482,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "K/2 (ln J)^2 (logarithmic)",
         "Volumetric energy",
         None,
+        ("finite-strain",),
         valid=None,
         type="str",
         choices=("quadratic", "logarithmic"),

@@ -404,7 +404,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
     if model != "linear":
         from ..fem.finite_contact import check_finite_depths
 
-        check_finite_depths(indenter, depths)
+        check_finite_depths(indenter, depths, model)
         mesh.refined(refine)  # the finest level first: its message names refine's value
     if estimate:
         from ..study.contact.indentation import refined_radius

@@ -600,9 +600,12 @@ def _step(
     )
 
 
-def check_finite_depths(indenter: PowerLawIndenter, depths: ArrayLike) -> None:
+def check_finite_depths(
+    indenter: PowerLawIndenter, depths: ArrayLike, model: str = "neo-hookean"
+) -> None:
     """Refuse, before any work, depths (m) the finite-strain contact cannot resolve: d/a
     (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
+    ``model`` names the rubber model in the message.
 
     Raises
     ------
@@ -617,14 +620,14 @@ def check_finite_depths(indenter: PowerLawIndenter, depths: ArrayLike) -> None:
     if low < MIN_DEPTH_RATIO:
         raise InputError(
             f"depths: {small:g} m gives depth / contact radius {low:.2g}, below the "
-            f"neo-hookean model's {valid}: strains this small lose their digits in F = I + "
+            f"{model} model's {valid}: strains this small lose their digits in F = I + "
             f"grad u; raise the smallest depth (the linear model is exact there)",
             "depths",
         )
     if high > MAX_DEPTH_RATIO:
         raise InputError(
             f"depths: {deep:g} m gives depth / contact radius {high:.3g}, beyond the "
-            f"neo-hookean model's {valid}: the finite-strain contact does not converge "
+            f"{model} model's {valid}: the finite-strain contact does not converge "
             f"there; lower the deepest depth",
             "depths",
         )
@@ -675,7 +678,7 @@ def run_finite_indentation(
     """
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)  # the FEM's tested range
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
-    check_finite_depths(indenter, depths)
+    check_finite_depths(indenter, depths, "neo-hookean" if rubber is None else rubber.name)
     mesh = FINITE_MESH if mesh is None else mesh
     if mesh.thickness is not None and mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")

@@ -7,12 +7,14 @@ table, whose ± is in the value's unit like every kind's there.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
 from ..study.finite.accuracy import CROSSING_KEYS
 from ..study.finite.runner import FiniteStudyOutcome
+from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
@@ -63,18 +65,27 @@ def _relative(outcome: FiniteStudyOutcome, key: str) -> float | None:
     return outcome.estimates.scalars[key].error
 
 
+def _plain(error: float | None) -> str:
+    """ " ± e" with one significant digit as a plain decimal (0.00005, never 5e-05: beside a
+    value in its unit); "" as :func:`plus_minus` gives it."""
+    if error is None or not math.isfinite(error) or error <= 0:
+        return plus_minus(error)
+    digits = max(0, -math.floor(math.log10(float(f"{error:.1g}"))))
+    return plus_minus(error, f".{digits}f")
+
+
 def _shift(outcome: FiniteStudyOutcome, key: str, ratio: float) -> str:
     """A ratio r as its shift in per cent, "+1.69 ± 0.04 %": the ± (r's estimated relative
     error times r) in percentage points, like the dynamic kind's findings."""
     error = _relative(outcome, key)
-    spread = plus_minus(None if error is None else 100 * error * abs(ratio), ".1g")
+    spread = _plain(None if error is None else 100 * error * abs(ratio))
     return f"{100 * (ratio - 1):+.2f}{spread} %"
 
 
 def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> str:
     """``value`` by ``spec`` ± its estimated error in the value's own unit."""
     error = _relative(outcome, key)
-    return f"{value:{spec}}" + plus_minus(None if error is None else error * abs(value), ".1g")
+    return f"{value:{spec}}" + _plain(None if error is None else error * abs(value))
 
 
 MODEL_LABELS = {"neo-hookean": "neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
@@ -226,18 +237,24 @@ def _validity_finding(outcome: FiniteStudyOutcome) -> str:
 def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
     estimates = outcome.estimates
     worst = estimates.worst_step()
-    every = [*estimates.scalars.values(), *(e for s in estimates.steps for e in s.values())]
-    fallback = sum(e.method != "richardson" for e in every)
+    fallback, total = estimates.fallbacks()
+    nested = estimates.ratio != LADDER_RATIO
+    ladder = (
+        "a nested ladder, one gmsh mesh with the study's sizes doubled and its two uniform "
+        "refinements "
+        if nested
+        else "the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
+    )
     return (
         "± is the estimated error of the value, in its unit (percentage points for a shift "
-        "in %): Richardson extrapolation over "
-        f"the study's mesh refined by 1/2, 1/sqrt(2) and 1 "
+        f"in %): Richardson extrapolation over {ladder}"
         f"({'/'.join(str(d) for d in estimates.dofs)} dofs, "
         f"{sum(estimates.cpu_seconds):.0f} s of CPU time in all). Largest over the depths: "
         f"P/(beta x^q) relative error {estimates.scalars['force_ratio_worst'].error:.1e} at x/a = "
-        f"{outcome.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {len(every)} estimates "
+        f"{outcome.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {total} estimates "
         "fell back to the difference of the two finest meshes (differences not shrinking, "
-        "or an observed order outside 1.5-4.5: the ~1e-4 noise of non-nested meshes)."
+        "or an observed order outside 1.5-4.5"
+        + (")." if nested else ": the ~1e-4 noise of non-nested meshes).")
     )
 
 

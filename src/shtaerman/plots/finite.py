@@ -2,7 +2,8 @@
 
 - :func:`plot_finite_ratios`: P/(beta x^q) and p(0)/p_avg against x/a (linear a), the
   neo-Hookean FEM against the linear FEM on the same mesh and the exact linear values; depths
-  where the mesh's error is not below the finite-strain effect are open markers (unresolved);
+  where the mesh's error is not below the finite-strain effect are open markers without an
+  error bar (unresolved);
 - :func:`plot_finite_section`: von Mises stress on the deformed r-z section under the rigid
   indenter (pyvista, off-screen, drawn by :mod:`.sections`) at the computed depth nearest the
   finite-strain x_c;
@@ -40,6 +41,7 @@ if TYPE_CHECKING:
 __all__ = [
     "FINITE_COLOUR",
     "nearest_step",
+    "panel_points",
     "plot_finite_impact",
     "plot_finite_ratios",
     "plot_finite_section",
@@ -81,13 +83,41 @@ def _resolution(
     return unresolved(finite / linear - 1, error), estimated
 
 
-def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple, key: str) -> None:
-    """The neo-Hookean and linear FEM values of ``key`` over ``x``, unresolved ones open."""
+def panel_points(outcome: FiniteStudyOutcome, values: tuple, key: str) -> dict[str, Any]:
+    """The points of a :func:`plot_finite_ratios` panel as drawn.
+
+    Parameters
+    ----------
+    outcome : FiniteStudyOutcome
+    values : tuple of array_like
+        Per depth: the finite-strain, same-mesh linear FEM and exact linear values of ``key``.
+    key : str
+        A per-depth estimate key (``force_ratio``, ``central_to_mean``).
+
+    Returns
+    -------
+    dict
+        ``finite``, ``linear``, ``exact`` (arrays), ``unresolved`` (bool per depth: drawn as
+        open markers without an error bar), ``error`` (the finite-strain error bar, absolute;
+        NaN where none is drawn: unresolved or off the plotted scale; None without a ladder)
+        and ``limits`` (the y-limits, or None).
+    """
     finite, linear, exact = (np.asarray(v, dtype=float) for v in values)
     hidden, error = _resolution(outcome, finite, linear, exact, key)
     limits = _resolved_limits(np.concatenate([finite, linear, exact]), np.tile(hidden, 3))
-    if error is not None and limits is not None:  # no bar for a point off the plotted scale
-        error = np.where((finite < limits[0]) | (finite > limits[1]), np.nan, error)
+    if error is not None:  # an unresolved point is no data: no error bar
+        error = np.where(hidden, np.nan, error)
+        if limits is not None:  # nor for a point off the plotted scale
+            error = np.where((finite < limits[0]) | (finite > limits[1]), np.nan, error)
+    return {"finite": finite, "linear": linear, "exact": exact, "unresolved": hidden,
+            "error": error, "limits": limits}  # fmt: skip
+
+
+def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple, key: str) -> None:
+    """The neo-Hookean and linear FEM values of ``key`` over ``x``, unresolved ones open."""
+    drawn = panel_points(outcome, values, key)
+    finite, linear, exact = drawn["finite"], drawn["linear"], drawn["exact"]
+    hidden, error, limits = drawn["unresolved"], drawn["error"], drawn["limits"]
     style = (FINITE_COLOUR, "o", "--", "neo-Hookean FEM")
     points(axes, x, finite, style, error=error, hidden=hidden)
     points(axes, x, linear, (FEM_COLOUR, "s", ":", "linear FEM, same mesh"), hidden=hidden)
@@ -99,7 +129,7 @@ def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple,
     if hidden.any():
         handles.append(
             Line2D([], [], color="0.3", marker="o", linestyle="none", markerfacecolor="white",
-                   label="open: unresolved (mesh error ≥ finite-strain effect)")
+                   label="open, no bar: unresolved (mesh error ≥ finite-strain effect)")
         )  # fmt: skip
     axes.legend(handles=handles, loc="best", fontsize=7.5)
     _scale_to_resolved(axes, np.concatenate([finite, linear, exact]), np.tile(hidden, 3), limits)

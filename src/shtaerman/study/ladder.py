@@ -1,13 +1,26 @@
-"""The refinement ladder every error estimate climbs: three levels K/2, K/sqrt(2), K."""
+"""The refinement ladders the error estimates climb: three gmsh levels K/2, K/sqrt(2), K, or
+a nested ladder (one gmsh mesh refined uniformly once and twice, element-size ratio 2)."""
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, fields
+
+from skfem import MeshTri
 
 from ..fem.mesh import MeshSettings
 from ..validation import InputError
 
-__all__ = ["LADDER_RATIO", "check_ladder", "ladder_factors"]
+__all__ = [
+    "LADDER_RATIO",
+    "NESTED_LEVELS",
+    "NESTED_RATIO",
+    "NestedMeshSettings",
+    "check_ladder",
+    "ladder_factors",
+    "nested_factors",
+    "nested_ladder",
+]
 
 LADDER_RATIO = math.sqrt(2.0)
 """Element-size ratio of consecutive ladder levels (dofs ratio about 2)."""
@@ -34,3 +47,74 @@ def check_ladder(
 def ladder_factors(refine: float) -> list[float]:
     """Refinement factors of the three levels whose finest is ``refine``: K/2, K/sqrt(2), K."""
     return [refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine]
+
+
+NESTED_RATIO = 2.0
+"""Element-size ratio of consecutive nested levels (one uniform refinement: dofs ratio 4)."""
+NESTED_LEVELS = 3
+"""Levels of a nested ladder: the coarse gmsh mesh and its two uniform refinements."""
+
+
+@dataclass(frozen=True)
+class NestedMeshSettings(MeshSettings):
+    """Mesh settings whose gmsh mesh is then refined uniformly ``nested`` times.
+
+    Each refinement splits every triangle into four (scikit-fem's ``refined``): the element
+    size halves everywhere, the coarse vertices stay (first, in their order), boundaries and
+    the refined radius' vertex are kept, and the Taylor-Hood spaces of consecutive levels are
+    nested. ``nested = 0`` builds the same mesh as :class:`MeshSettings`.
+
+    Attributes
+    ----------
+    nested : int
+        Uniform refinements after meshing (>= 0).
+    """
+
+    nested: int = 0
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        whole = isinstance(self.nested, int) and not isinstance(self.nested, bool)
+        if not (whole and 0 <= self.nested <= 4):
+            raise InputError(f"nested must be an integer in [0, 4], got {self.nested!r}")
+
+    @property
+    def estimated_dofs(self) -> int:
+        """Unknowns estimated before meshing: the gmsh mesh's times 4 per refinement."""
+        return round(MeshSettings(**_fields(self)).estimated_dofs * 4**self.nested)
+
+    def build(self, refined_radius: float) -> MeshTri:
+        """The gmsh mesh of :meth:`MeshSettings.build`, refined uniformly ``nested`` times
+        (the size guard counts the refined mesh)."""
+        mesh = super().build(refined_radius)
+        for _ in range(self.nested):
+            mesh = mesh.refined()
+        return mesh
+
+
+def _fields(settings: MeshSettings) -> dict[str, object]:
+    return {f.name: getattr(settings, f.name) for f in fields(MeshSettings)}
+
+
+def nested_ladder(mesh: MeshSettings) -> list[NestedMeshSettings]:
+    """The nested ladder whose middle level has the size field of ``mesh``: one gmsh mesh
+    with ``mesh``'s sizes doubled (refine / 2), and its first and second uniform refinements
+    (sizes / 2 per level, :data:`NESTED_RATIO`). Every level and the finest's size guard
+    are checked before any meshing.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If the coarse level coarsens a size or growth beyond 1, or the finest level
+        exceeds ``max_dofs``.
+    """
+    coarse = _fields(mesh.refined(1.0 / NESTED_RATIO))
+    levels = [NestedMeshSettings(**coarse, nested=k) for k in range(NESTED_LEVELS)]
+    levels[-1].check_size()
+    return levels
+
+
+def nested_factors(refine: float = 1.0) -> list[float]:
+    """Equivalent refinement factors of :func:`nested_ladder`'s levels: refine / 2, refine,
+    2 refine."""
+    return [refine * NESTED_RATIO ** (k - 1) for k in range(NESTED_LEVELS)]

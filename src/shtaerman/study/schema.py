@@ -55,6 +55,7 @@ EXPECTED = {
     "depths": f"a list of 2 to {vocabulary_entry('depths').max_items} increasing depths > 0 (m), "
     'or "impact"',
     "sizes": "a list of at least 2 decreasing sizes in (0, 1) (element / refined radius)",
+    "ladder": "independent or nested (the error-estimate mesh ladder)",
     "name": "a string",
     "description": "a string",
     "base": 'one of "bonded", "lubricated"',

@@ -540,10 +540,24 @@ FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)
 """x/a (linear contact radius) at which a finite-strain case reports P / P_linear-FEM."""
 
 
+RUBBER_SHAPES = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
+"""Shape parameter -> the rubber model it belongs to (left out for a case of another model,
+as a study file's swept model does)."""
+
+
+def _rubber(p: dict[str, Any]):
+    """The case's rubber model: ``model`` with its own shape parameters and ``volumetric``."""
+    from ..fem.rubber import rubber_model
+
+    shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
+    return rubber_model(p["model"], volumetric=p["volumetric"], **shapes)
+
+
 def _finite_inputs(p: dict[str, Any]):
     from ..study.finite.loader import FiniteStudy, Ladder
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
+    rubber = _rubber(p)
     names = ("reach", "depth_steps", "small_ratio", "small_steps")
     ladder = Ladder(*(p[name] for name in names))
     return FiniteStudy(
@@ -559,6 +573,7 @@ def _finite_inputs(p: dict[str, Any]):
         mesh=mesh,
         quick_mesh=mesh,
         depths=None if depths is None else tuple(float(d) for d in depths),
+        rubber=rubber,
     )
 
 
@@ -621,7 +636,7 @@ def finite_strain_case(p: dict[str, Any]) -> dict[str, float]:
 register_kind(
     Kind(
         name="finite-strain",
-        description="neo-Hookean finite-strain contact against Shtaerman, and the impact on it",
+        description="rubber finite-strain contact against Shtaerman, and the impact on it",
         parameters=vocabulary_parameters("finite-strain"),
         outputs=FINITE_OUTPUTS,
         case=finite_strain_case,

@@ -89,6 +89,9 @@ class FiniteEstimates:
     crossings : tuple of dict
         Per departure level (:data:`.finite.LEVELS`): ``errors`` (relative, for
         :data:`CROSSING_KEYS`) and ``departure_error`` (absolute, a fraction of the force).
+    ratio : float
+        Element-size ratio of consecutive levels: sqrt(2) on independent gmsh meshes, 2 on a
+        nested ladder.
     """
 
     refines: tuple[float, ...]
@@ -98,14 +101,24 @@ class FiniteEstimates:
     scalars: dict[str, Estimate]
     steps: tuple[dict[str, Estimate], ...]
     crossings: tuple[dict[str, object], ...]
+    ratio: float = LADDER_RATIO
 
     def worst_step(self, key: str = "force_ratio") -> int:
         """Index of the depth with the largest estimated error of ``key``."""
         return _worst(self.steps, key)
 
+    def fallbacks(self) -> tuple[int, int]:
+        """How many of the estimated numbers (scalars and per-depth values) fell back to a
+        two-level difference, and of how many."""
+        every = [*self.scalars.values(), *(e for step in self.steps for e in step.values())]
+        return sum(e.method != "richardson" for e in every), len(every)
+
     def to_dict(self) -> dict[str, object]:
-        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details."""
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder``, ``fallbacks``
+        (count and total, :meth:`fallbacks`) and details."""
+        fallen, total = self.fallbacks()
         return {
+            "fallbacks": {"count": fallen, "of": total},
             "error_estimate": {k: e.error for k, e in self.scalars.items()},
             "extrapolated": {k: e.extrapolated for k, e in self.scalars.items()},
             "estimate_details": {k: e.to_dict() for k, e in self.scalars.items()},
@@ -146,7 +159,7 @@ def _departure_error(entry: dict, ratio: np.ndarray, error: np.ndarray) -> float
     return float(max(error[k - 1], error[k]))
 
 
-def _crossing(index: int, levels: list[list[dict]], moved: list[list[dict]]) -> dict:
+def _crossing(index: int, levels: list[list[dict]], moved: list[list[dict]], ratio: float) -> dict:
     """Relative errors of crossing ``index``: Richardson over the trailing levels with the
     finest's status, or the move of the finest's crossing, whichever is larger."""
     finest = levels[-1][index]
@@ -155,13 +168,13 @@ def _crossing(index: int, levels: list[list[dict]], moved: list[list[dict]]) -> 
     errors = {}
     for key in CROSSING_KEYS:
         shift = max(abs(m[index][key] / finest[key] - 1.0) for m in moved)
-        ladder = richardson([v[key] for v in same], LADDER_RATIO).error if len(same) > 1 else 0.0
+        ladder = richardson([v[key] for v in same], ratio).error if len(same) > 1 else 0.0
         errors[key] = max(shift, ladder)
     return errors
 
 
 def _crossings(
-    outcomes: Sequence[LevelOutcome], steps: tuple[dict[str, Estimate], ...]
+    outcomes: Sequence[LevelOutcome], steps: tuple[dict[str, Estimate], ...], spacing: float
 ) -> tuple[dict[str, object], ...]:
     """``errors`` and ``departure_error`` of each 1 % / 5 % crossing of the finest outcome."""
     finest = outcomes[-1]
@@ -177,14 +190,16 @@ def _crossings(
     moved = [finest.validity(error), finest.validity(-error)]
     return tuple(
         {
-            "errors": _crossing(i, levels, moved),
+            "errors": _crossing(i, levels, moved, spacing),
             "departure_error": _departure_error(entry, ratio, error),
         }
         for i, entry in enumerate(levels[-1])
     )
 
 
-def estimate_study(outcomes: Sequence[LevelOutcome], refines: Sequence[float]) -> FiniteEstimates:
+def estimate_study(
+    outcomes: Sequence[LevelOutcome], refines: Sequence[float], ratio: float = LADDER_RATIO
+) -> FiniteEstimates:
     """Estimates of the last (finest) of three study outcomes on one mesh ladder.
 
     Parameters
@@ -192,17 +207,20 @@ def estimate_study(outcomes: Sequence[LevelOutcome], refines: Sequence[float]) -
     outcomes : sequence of LevelOutcome
         The study on the ladder's meshes, coarse to fine (same depths), without estimates.
     refines : sequence of float
-        Their refinement factors (consecutive ratio :data:`.accuracy.LADDER_RATIO`).
+        Their refinement factors (consecutive ratio ``ratio``).
+    ratio : float
+        Element-size ratio of consecutive levels (> 1): 2 on the nested ladder,
+        sqrt(2) on independent gmsh levels.
 
     Returns
     -------
     FiniteEstimates
     """
     values = [reported_values(outcome) for outcome in outcomes]
-    scalars = {key: richardson([v[key] for v in values], LADDER_RATIO) for key in values[-1]}
+    scalars = {key: richardson([v[key] for v in values], ratio) for key in values[-1]}
     rows = [outcome.rows() for outcome in outcomes]
     steps = tuple(
-        {key: richardson([r[k][key] for r in rows], LADDER_RATIO) for key in STEP_KEYS}
+        {key: richardson([r[k][key] for r in rows], ratio) for key in STEP_KEYS}
         for k in range(len(rows[-1]))
     )
     scalars["force_ratio_worst"] = steps[_worst(steps, "force_ratio")]["force_ratio"]
@@ -213,5 +231,6 @@ def estimate_study(outcomes: Sequence[LevelOutcome], refines: Sequence[float]) -
         cpu_seconds=tuple(o.cpu_seconds for o in outcomes),
         scalars=scalars,
         steps=steps,
-        crossings=_crossings(outcomes, steps),
+        crossings=_crossings(outcomes, steps, ratio),
+        ratio=ratio,
     )

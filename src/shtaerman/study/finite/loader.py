@@ -12,8 +12,11 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it
                  (equal depth steps up to it), small_ratio = 0.01 (x/a of a first, tiny
                  depth: the small-strain limit), small_steps = 5 (geometric depths from it to
                  the first equal step)
-    [numerics]   refine = K and the mesh keys (mesh_size, growth, ...; default: FINITE_MESH):
-                 the finest mesh of the error-estimate ladder (K/2, K/sqrt(2), K)
+    [numerics]   refine = K and the mesh keys (mesh_size, growth, ...; default: FINITE_MESH);
+                 ladder = "independent" (default): K is the finest mesh of the error-estimate
+                 ladder K/2, K/sqrt(2), K (three gmsh meshes); ladder = "nested": K is the
+                 middle mesh of a nested ladder (a gmsh mesh at K/2 refined uniformly once
+                 and twice: K/2, K, 2K)
     [quick]      depth_steps, small_steps, small_ratio, small_strain and the mesh keys for
                  ``verify --quick``
     [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
@@ -38,7 +41,7 @@ from ...fem.rubber import RubberModel, rubber_model
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError
-from ..ladder import check_ladder
+from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     ImpactTable,
     IndenterTable,
@@ -74,6 +77,14 @@ class _Contact(Table):
     depth_steps: ranged("depth_steps") = vocabulary.entry("depth_steps").default
     small_ratio: ranged("small_ratio") = vocabulary.entry("small_ratio").default
     small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
+
+
+MESH_LADDERS = ("independent", "nested")
+"""Values of ``[numerics] ladder``: three gmsh meshes, or one refined uniformly twice."""
+
+
+class _Numerics(MeshTable):
+    ladder: str = "independent"
 
 
 class _Quick(MeshTable):
@@ -114,7 +125,7 @@ class _FiniteFile(Table):
     name: str | None = None
     description: str = ""
     contact: _Contact = _Contact()
-    numerics: MeshTable = MeshTable()
+    numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
     tolerances: _Tolerances = _Tolerances()
     rubber: _Rubber = _Rubber()
@@ -171,6 +182,9 @@ class FiniteStudy:
     kind: str = "finite-strain"
     rubber: RubberModel = field(default_factory=RubberModel)
     """The rubber model (default neo-Hookean, K/2 (J - 1)^2)."""
+    mesh_ladder: str = "independent"
+    """The error-estimate ladder (:data:`MESH_LADDERS`): ``independent``, ``mesh`` the finest
+    of three gmsh meshes; ``nested``, ``mesh`` the middle of one gmsh mesh refined twice."""
 
 
 def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
@@ -187,12 +201,16 @@ def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
         raise InputError(f"[rubber] {error}") from None
 
 
-def _mesh(table: MeshTable, default: MeshSettings, where: str) -> MeshSettings:
+def _mesh(
+    table: MeshTable, default: MeshSettings, where: str, nested: bool = False
+) -> MeshSettings:
     settings = table.settings(default, where)
     refine = 1.0 if table.refine is None else table.refine
     try:
-        if where == "numerics":  # the study's mesh is the finest level of its ladder
+        if where == "numerics":  # the study's mesh is the finest (middle if nested) level
             check_ladder(settings, refine)
+            if nested:  # the finest level: sizes / (2 refine)
+                nested_ladder(settings.refined(refine))
         return settings.refined(refine)
     except InputError as error:
         raise InputError(f"[{where}] {error}") from None
@@ -204,6 +222,11 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
     contact, quick = raw.contact, raw.quick
+    if raw.numerics.ladder not in MESH_LADDERS:
+        raise StudyError(
+            f"{path}: key 'numerics.ladder': expected {' or '.join(MESH_LADDERS)}, "
+            f"got {raw.numerics.ladder!r}"
+        )
     return FiniteStudy(
         name=name,
         description=raw.description,
@@ -214,11 +237,12 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         velocity=raw.impact.velocity,
         ladder=Ladder(contact.reach, contact.depth_steps, contact.small_ratio, contact.small_steps),
         quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
-        mesh=_mesh(raw.numerics, FINITE_MESH, "numerics"),
+        mesh=_mesh(raw.numerics, FINITE_MESH, "numerics", raw.numerics.ladder == "nested"),
         quick_mesh=_mesh(quick, QUICK_FINITE_MESH, "quick"),
         tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
         quick_small_strain=quick.small_strain,
         rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
+        mesh_ladder=raw.numerics.ladder,
     )
 
 

@@ -9,9 +9,12 @@ changes E* by 5e-5 for the paper's rubber). A study runs:
 3. three impacts M x'' = -P(x): Shtaerman's exact (the paper's), and the tabulated linear-FEM
    and finite-strain curves (:mod:`shtaerman.study.contact.contact_law`,
    :func:`shtaerman.study.contact.runner.tabulated_impact`);
-4. all of it again on the study's mesh refined by 1/2 and 1/sqrt(2): Richardson estimates of
-   every reported number (:mod:`.accuracy`). ``verify --quick`` runs one coarse mesh
-   and estimates nothing.
+4. all of it again on the study's mesh refined by 1/2 and 1/sqrt(2) (``[numerics] ladder =
+   "independent"``, the default), or on a nested ladder: one gmsh mesh with the study's sizes
+   doubled and its two uniform refinements (``"nested"``,
+   :func:`shtaerman.study.ladder.nested_ladder`, the finest level twice as fine as the study's
+   mesh): Richardson estimates of every reported number (:mod:`.accuracy`). ``verify
+   --quick`` runs one coarse mesh and estimates nothing.
 
 Checks that need no reference: the small-strain limit at the tiny first depth, conservation
 (Simpson's Int P dx against the stored energy), Newton's final correction and complementarity
@@ -39,13 +42,25 @@ from ..checks import Check
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
-from ..ladder import ladder_factors
+from ..ladder import (
+    LADDER_RATIO,
+    NESTED_RATIO,
+    ladder_factors,
+    nested_factors,
+    nested_ladder,
+)
 from ..run import Progress
 from .accuracy import FiniteEstimates, estimate_study
 from .indentation import FiniteIndentationResult, run_finite_study
 from .loader import FiniteStudy, Ladder
 
-__all__ = ["FiniteStudyOutcome", "depth_at_ratio", "ladder", "run_finite_strain_study"]
+__all__ = [
+    "FiniteStudyOutcome",
+    "depth_at_ratio",
+    "ladder",
+    "ladder_meshes",
+    "run_finite_strain_study",
+]
 
 LEVELS = (0.01, 0.05)
 """Departures of P from the linear force whose depths the study reports."""
@@ -346,6 +361,26 @@ def _run_level(
     )
 
 
+def ladder_meshes(
+    mesh: MeshSettings, nested: bool = False
+) -> tuple[list[float], list[MeshSettings]]:
+    """The error-estimate ladder around the study's ``mesh``: refinement factors (relative to
+    ``mesh``) and settings, coarse to fine, every level checked before any meshing.
+
+    ``nested``: :func:`shtaerman.study.ladder.nested_ladder`, factors 1/2, 1, 2,
+    ratio :data:`~shtaerman.study.ladder.NESTED_RATIO`. Otherwise three independent gmsh
+    meshes refined by 1/2, 1/sqrt(2), 1 (ratio :data:`~shtaerman.study.ladder.LADDER_RATIO`).
+    """
+    if nested:
+        return nested_factors(1.0), list(nested_ladder(mesh))
+    factors = ladder_factors(1.0)
+    return factors, [mesh.refined(factor) for factor in factors]
+
+
+LADDER_RATIOS = {True: NESTED_RATIO, False: LADDER_RATIO}
+"""Element-size ratio of :func:`ladder_meshes`' levels, by ``nested``."""
+
+
 def run_finite_strain_study(
     study: FiniteStudy,
     quick: bool = False,
@@ -354,7 +389,7 @@ def run_finite_strain_study(
     estimate: bool = True,
 ) -> FiniteStudyOutcome:
     """Run one finite-strain study: the curve, the same-mesh linear FEM and three impacts, on
-    the study's mesh refined by 1/2, 1/sqrt(2) and 1 for the error estimates.
+    the study's ladder around its mesh (:func:`ladder_meshes`) for the error estimates.
 
     Parameters
     ----------
@@ -369,7 +404,9 @@ def run_finite_strain_study(
     Returns
     -------
     FiniteStudyOutcome
-        The finest level's, with ``estimates`` unless ``quick`` or not ``estimate``; its
+        The finest level's (the study's mesh; twice as fine on a nested ladder), with
+        ``estimates`` unless ``quick`` or not ``estimate``; without estimates the study's
+        mesh alone. Its
         ``seconds`` and ``cpu_seconds`` count every level.
     """
     report = progress or (lambda _line: None)
@@ -382,8 +419,11 @@ def run_finite_strain_study(
         depths = np.asarray(study.depths, dtype=float)
     else:
         depths = ladder(study.indenter, modulus, exact.x_c, spec)
-    factors = [1.0] if quick or not estimate else ladder_factors(1.0)
-    meshes = [mesh.refined(factor) for factor in factors]  # every level checked first
+    nested = study.mesh_ladder == "nested"
+    if estimate and not quick:
+        factors, meshes = ladder_meshes(mesh, nested)
+    else:
+        factors, meshes = [1.0], [mesh]
     outcomes = []
     for factor, level in zip(factors, meshes, strict=True):
         report(
@@ -391,7 +431,8 @@ def run_finite_strain_study(
             "linear FEM on the same mesh, impacts"
         )
         outcomes.append(_run_level(study, depths, level, exact, quick))
-    estimates = estimate_study(outcomes, factors) if len(outcomes) > 1 else None
+    ratio = LADDER_RATIOS[nested]
+    estimates = estimate_study(outcomes, factors, ratio) if len(outcomes) > 1 else None
     return replace(
         outcomes[-1],
         estimates=estimates,
