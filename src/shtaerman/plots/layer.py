@@ -178,5 +178,5 @@ def plot_layer_restitution(
     plain_log(right.yaxis)
     left.set_ylabel("Restitution e (dynamic FE)")
     right.set_ylabel(r"$P_{\max}\,/\,P_c$ (dynamic FE)")
-    left.legend(loc="lower left", fontsize=7)
+    left.legend(loc="center left", fontsize=7)
     return save(figure, path, figure_format)
