@@ -27,20 +27,26 @@ default dynamic settings; benchmarks/FEM_NOTES.md, "Layer wiring")."""
 
 
 def restitution_series(folder: Path | str) -> dict[tuple[str, float], dict[str, np.ndarray]]:
-    """(base, nu2) -> arrays by increasing H / a_c: h (H / a_c), e (restitution), p
-    (P_max_dynamic / P_c), x (x_max_dynamic / x_c), b (energy balance error); cases that
-    failed are left out. base and nu2 fixed by the sweep's [parameters] come from results.json."""
+    """(base, nu2) -> arrays by increasing H / a_c: h (H / a_c, the case's output column), e
+    (restitution), p (P_max_dynamic / P_c), x (x_max_dynamic / x_c), b (energy balance error);
+    cases that failed are left out. base and nu2 fixed by the sweep's [parameters]: from
+    results.json."""
     folder = Path(folder)
     spec = json.loads((folder / "results.json").read_text(encoding="utf-8"))["spec"]
     fixed = {"base": "bonded", "nu2": 0.5} | spec["parameters"]
     rows = list(csv.DictReader((folder / "cases.csv").open(encoding="utf-8")))
+    if rows and "restitution" not in rows[0]:
+        raise ValueError(
+            f"{folder}: no restitution column; run a layer sweep with dynamic = true "
+            "(e.g. sweeps/layer-dynamic.toml)"
+        )
     out: dict[tuple[str, float], dict[str, list[float]]] = {}
     for row in rows:
         if row["status"] != "ok":
             continue
         key = (str(row.get("base", fixed["base"])), float(row.get("nu2", fixed["nu2"])))
         line = out.setdefault(key, {k: [] for k in "hepxb"})
-        line["h"].append(float(row["thickness_ratio"]))
+        line["h"].append(float(row["H_over_a_c"]))
         line["e"].append(float(row["restitution"]))
         line["p"].append(float(row["P_max_dynamic [N]"]) / float(row["P_c [N]"]))
         line["x"].append(float(row["x_max_dynamic [m]"]) / float(row["x_c [m]"]))

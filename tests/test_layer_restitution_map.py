@@ -18,7 +18,7 @@ COLUMNS = [
     "case",
     "base",
     "nu2",
-    "thickness_ratio",
+    "H_over_a_c",
     "x_c [m]",
     "P_c [N]",
     "restitution",
@@ -64,3 +64,11 @@ def test_plotted_restitution_is_the_csv(tmp_path, script, monkeypatch):
     assert [tuple(line.get_xdata()) for line in lines] == [(0.5, 5.0), (1.0, 50.0)]
     peaks = [tuple(line.get_ydata()) for line in right.get_lines() if len(line.get_xdata()) == 2]
     assert (2.7, 1.3) in peaks and (1.5, 0.95) in peaks
+
+
+def test_a_sweep_without_dynamic_columns_is_named(tmp_path, script):
+    with (tmp_path / "cases.csv").open("w", newline="", encoding="utf-8") as handle:
+        csv.writer(handle).writerows([[*COLUMNS[:6], "status"], [*ROWS[0][:6], "ok"]])
+    (tmp_path / "results.json").write_text(json.dumps({"spec": {"parameters": {}}}))
+    with pytest.raises(ValueError, match="no restitution column; run a layer sweep with dynamic"):
+        script.restitution_series(tmp_path)
