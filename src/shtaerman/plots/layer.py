@@ -13,7 +13,14 @@ from matplotlib.figure import Figure
 from ..study.contact.layer import LEVELS
 from .style import WIDTH, plain_log, save, styled
 
-__all__ = ["LAYER_MAP_CAPTION", "MapSeries", "plot_layer_map"]
+__all__ = [
+    "LAYER_MAP_CAPTION",
+    "LAYER_RESTITUTION_CAPTION",
+    "MapSeries",
+    "RestitutionSeries",
+    "plot_layer_map",
+    "plot_layer_restitution",
+]
 
 LAYER_MAP_CAPTION = (
     "The layer map: P / P_Shtaerman - 1 (log) against the layer thickness H over the "
@@ -102,4 +109,74 @@ def plot_layer_map(
     axes.set_xlabel("Layer thickness / half-space contact radius, H / a")
     axes.set_ylabel(r"$P\,/\,P_{\mathrm{Shtaerman}} - 1$ at the same depth")
     axes.legend(loc="lower left", ncols=2, fontsize=7)
+    return save(figure, path, figure_format)
+
+
+LAYER_RESTITUTION_CAPTION = (
+    "The dynamic FE impact on a layer on a rigid base against the layer thickness H over the "
+    "half-space contact radius a (log): left, the restitution (grey: the half-space's); right, "
+    "the dynamic peak force over Shtaerman's quasi-static P_c on the half-space."
+)
+
+
+@dataclass(frozen=True)
+class RestitutionSeries:
+    """One line of the restitution map: thicknesses H / a, the dynamic restitutions and peak
+    forces over the half-space's quasi-static P_c, and the base (its line style)."""
+
+    thickness_ratio: Sequence[float]
+    restitution: Sequence[float]
+    peak_ratio: Sequence[float]
+    base: str = "bonded"
+
+
+@styled
+def plot_layer_restitution(
+    series: Mapping[str, RestitutionSeries],
+    path: Path | str,
+    *,
+    half_space: float | None = None,
+    figure_format: str = "png",
+) -> Path:
+    """Write the restitution map: restitution and P_max / P_c against H / a, one line each.
+
+    Parameters
+    ----------
+    series : mapping of str to RestitutionSeries
+        Legend label -> the series.
+    path : path-like
+        PNG to write.
+    half_space : float, optional
+        The half-space's dynamic restitution, drawn as a grey reference line.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside the PNG.
+    """
+    figure = Figure(figsize=(WIDTH, 3.6), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    if half_space is not None:
+        left.axhline(half_space, color="#808080", lw=1.0, zorder=1)
+        left.text(
+            0.02,
+            half_space,
+            f"half-space {half_space:.3f}",
+            va="bottom",
+            fontsize=7,
+            color="#505050",
+            transform=left.get_yaxis_transform(),
+        )
+    for index, (label, line) in enumerate(series.items()):
+        style = {"ls": _STYLES.get(line.base, "-"), "marker": _MARKERS[index % len(_MARKERS)]}
+        h = np.asarray(line.thickness_ratio, dtype=float)
+        drawn = left.semilogx(h, np.asarray(line.restitution, dtype=float), label=label, **style)
+        right.loglog(
+            h, np.asarray(line.peak_ratio, dtype=float), color=drawn[0].get_color(), **style
+        )
+    right.axhline(1.0, color="#808080", lw=1.0, zorder=1)
+    for axes in (left, right):
+        plain_log(axes.xaxis)
+        axes.set_xlabel("H / a")
+    plain_log(right.yaxis)
+    left.set_ylabel("Restitution e (dynamic FE)")
+    right.set_ylabel(r"$P_{\max}\,/\,P_c$ (dynamic FE)")
+    left.legend(loc="center left", fontsize=7)
     return save(figure, path, figure_format)
