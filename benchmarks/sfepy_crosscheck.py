@@ -39,7 +39,7 @@ import numpy as np
 RADIUS = 1.0  # sphere radius R, m
 YOUNG = 1.0  # small-strain E, Pa
 NU = 0.45
-DEPTHS = (0.02, 0.05, 0.1, 0.2, 0.3)  # delta / R
+DEPTHS = (0.05, 0.1, 0.2, 0.3)  # delta / R
 FAR_GROWTH = 0.3  # SfePy mesh: element size growth per unit distance beyond d = R
 MARGIN, DOMAIN = 1.25, 100.0  # shtaerman's refined zone / a_g and domain / refined zone
 
@@ -82,6 +82,10 @@ def octant_mesh(path: Path, size: float, growth: float, radius: float) -> None:
         gmsh.finalize()
 
 
+def _norm(x: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.sum(x * x, axis=1))
+
+
 def worker(args: argparse.Namespace) -> None:
     """Inside the SfePy venv: press the sphere into the octant mesh, print JSON forces."""
     from sfepy.base.base import IndexedStruct
@@ -89,7 +93,10 @@ def worker(args: argparse.Namespace) -> None:
         Equation,
         Equations,
         FieldVariable,
+        Function,
+        Functions,
         Integral,
+        Integrals,
         Material,
         Problem,
     )
@@ -106,9 +113,9 @@ def worker(args: argparse.Namespace) -> None:
     sym_x = domain.create_region("SymX", f"vertices in (x < {eps})", "facet")
     sym_y = domain.create_region("SymY", f"vertices in (y < {eps})", "facet")
     top = domain.create_region("Top", f"vertices in (z > -{eps})", "facet")
-    far = domain.create_region(
-        "Far", f"vertices in (x**2 + y**2 + z**2 > {(rd * (1 - 1e-6)) ** 2})", "facet"
-    )
+    on_ball = Function("on_ball", lambda x, domain=None: np.flatnonzero(_norm(x) > rd * 0.999999))
+    functions = Functions([on_ball])
+    far = domain.create_region("Far", "vertices by on_ball", "facet", functions=functions)
     field = Field.from_args("displacement", np.float64, "vector", omega, approx_order=2)
     u = FieldVariable("u", "unknown", field)
     v = FieldVariable("v", "test", field, primary_var_name="u")
@@ -116,7 +123,8 @@ def worker(args: argparse.Namespace) -> None:
     bulk = YOUNG / (3 * (1 - 2 * NU))
     solid = Material("solid", mu=mu, K=bulk)
     stiffness = args.penalty * YOUNG / RADIUS
-    sphere = Material("cs", f=[stiffness, 0.0], c=[0.0, 0.0, RADIUS], r=RADIUS)
+    centre = np.array([0.0, 0.0, RADIUS])  # moved in place: the term keeps this array
+    sphere = Material("cs", values={"f": [[stiffness, 0.0]], ".c": centre, ".r": RADIUS})
     volume, surface = Integral("i", order=4), Integral("is", order=4)
     terms = (
         Term.new("dw_tl_he_neohook(solid.mu, v, u)", volume, omega, solid=solid, v=v, u=u)
@@ -133,36 +141,39 @@ def worker(args: argparse.Namespace) -> None:
             ]
         )
     )
-    status = IndexedStruct()
-    newton = Newton(
-        {"i_max": 40, "eps_a": 1e-10, "eps_r": 1e-9, "ls_on": 0.99999, "ls_red": 0.5},
-        lin_solver=ScipyDirect({}),
-        status=status,
-    )
-    problem.set_solver(newton)
-    problem.time_update()
-    state, forces = None, []
+    options = {"i_max": 25, "eps_a": 1e-12, "eps_r": 1e-9, "ls_on": 0.99999, "ls_red": 0.5}
+    nls_status = IndexedStruct()
+    problem.set_solver(Newton(options, lin_solver=ScipyDirect({}), status=nls_status))
+    state, forces, reached = None, [], 0.0
     for depth in args.depths:
-        for sub in np.linspace(forces[-1][0] if forces else 0.0, depth, 3)[1:]:
-            sphere.set_all_data({"f": [stiffness, 0.0], "c": [0.0, 0.0, RADIUS - sub], "r": RADIUS})
-            problem.update_materials(verbose=False)
-            state = problem.solve(state0=state, save_results=False, status=IndexedStruct())
-            converged = bool(problem.nls_status.condition == 0)
+        converged = True
+        for sub in np.linspace(reached, depth, args.substeps + 1)[1:]:
+            centre[2] = RADIUS - sub
+            state = problem.solve(state0=state, save_results=False)
+            converged &= bool(nls_status.condition == 0)
+        reached = depth
         vector = problem.evaluate(
-            "dw_contact_sphere.is.Top(cs.f, cs.c, cs.r, v, u)", mode="weak", dw_mode="vector"
+            "dw_contact_sphere.is.Top(cs.f, cs.c, cs.r, v, u)",
+            mode="weak",
+            dw_mode="vector",
+            integrals=Integrals([surface]),
+            copy_materials=False,
+            cs=sphere,
         )
-        force_z = 4.0 * float(np.sum(vector.reshape(-1, 3)[:, 2]))
+        full = problem.equations.make_full_vec(vector, force_value=0.0)
+        force_z = 4.0 * float(np.sum(full.reshape(-1, 3)[:, 2]))
         forces.append((depth, abs(force_z), converged))
+        print(depth, abs(force_z), converged, file=sys.stderr, flush=True)
     json.dump({"dofs": int(field.n_nod * 3), "forces": forces}, sys.stdout)
 
 
-def run_sfepy(python: str, size: float, growth: float, penalty: float) -> dict:
+def run_sfepy(python: str, size: float, growth: float, penalty: float, substeps: int) -> dict:
     """Mesh here, solve in the SfePy venv; returns the worker's JSON."""
     with tempfile.TemporaryDirectory() as folder:
         mesh = Path(folder) / "octant.mesh"
         octant_mesh(mesh, size, growth, domain_radius())
         command = [python, __file__, "--worker", "--mesh", str(mesh), "--penalty", str(penalty)]
-        command += ["--domain", repr(domain_radius())]
+        command += ["--domain", repr(domain_radius()), "--substeps", str(substeps)]
         command += ["--depths", ",".join(repr(d * RADIUS) for d in DEPTHS)]
         done = subprocess.run(command, capture_output=True, text=True, check=False)
     if done.returncode != 0:
@@ -217,19 +228,20 @@ def ours_with_estimate(profile: str) -> tuple[list[float], list[float], int]:
 
 
 def sfepy_with_estimate(args: argparse.Namespace) -> tuple[list[float], list[float], str]:
-    """SfePy forces on the finer mesh, the larger of the mesh and penalty differences, and a
-    note of the meshes (unknowns) and of any unconverged step."""
+    """SfePy forces on the finer mesh and their estimate |fine - coarse| + |coarse at 4 k -
+    coarse at k| (mesh and penalty), with a note of the unknowns and unconverged steps."""
     coarse_size, fine_size = (float(s) for s in args.sizes.split(","))
     growth = args.growth * fine_size / coarse_size
-    coarse = run_sfepy(args.sfepy_python, coarse_size, args.growth, args.penalty)
-    fine = run_sfepy(args.sfepy_python, fine_size, growth, args.penalty)
-    stiff = run_sfepy(args.sfepy_python, fine_size, growth, 4.0 * args.penalty)
-    runs = (coarse, fine, stiff)
+    python, k, steps = args.sfepy_python, args.penalty, args.substeps
+    coarse = run_sfepy(python, coarse_size, args.growth, k, steps)
+    stiff = run_sfepy(python, coarse_size, args.growth, 4.0 * k, steps)
+    fine = run_sfepy(python, fine_size, growth, k, steps)
+    runs = (coarse, stiff, fine)
     forces = [[f for _, f, _ in run["forces"]] for run in runs]
-    estimates = [max(abs(c - f), abs(k - f)) for c, f, k in zip(*forces, strict=True)]
+    estimates = [abs(f - c) + abs(s - c) for c, s, f in zip(*forces, strict=True)]
     failed = sum(not ok for run in runs for _, _, ok in run["forces"])
     note = f"SfePy unknowns {coarse['dofs']} / {fine['dofs']}; unconverged steps {failed}"
-    note += f"; penalty k R/E = {args.penalty:g} and {4 * args.penalty:g}"
+    note += f"; penalty k R/E = {k:g} and {4 * k:g}"
     return forces[2], estimates, note
 
 
@@ -262,9 +274,10 @@ def main() -> None:
     parser.add_argument("--domain", type=float, help=argparse.SUPPRESS)
     parser.add_argument("--depths", help=argparse.SUPPRESS)
     parser.add_argument("--penalty", type=float, default=1e3, help="penalty k R / E")
+    parser.add_argument("--substeps", type=int, default=1, help="SfePy load steps per depth")
     parser.add_argument("--sfepy-python", default="/work/sfepy-venv/bin/python")
-    parser.add_argument("--sizes", default="0.12,0.085", help="SfePy mesh sizes at the origin / R")
-    parser.add_argument("--growth", type=float, default=0.3, help="SfePy size growth")
+    parser.add_argument("--sizes", default="0.07,0.05", help="SfePy mesh sizes at the origin / R")
+    parser.add_argument("--growth", type=float, default=0.14, help="SfePy size growth")
     args = parser.parse_args()
     if args.worker:
         args.depths = [float(d) for d in args.depths.split(",")]
