@@ -149,7 +149,8 @@ def worker(args: argparse.Namespace) -> None:
         converged = True
         for sub in np.linspace(reached, depth, args.substeps + 1)[1:]:
             centre[2] = RADIUS - sub
-            state = problem.solve(state0=state, save_results=False)
+            state0 = None if state is None else state.get_state()
+            state = problem.solve(state0=state0, save_results=False)
             converged &= bool(nls_status.condition == 0)
         reached = depth
         vector = problem.evaluate(
@@ -167,8 +168,14 @@ def worker(args: argparse.Namespace) -> None:
     json.dump({"dofs": int(field.n_nod * 3), "forces": forces}, sys.stdout)
 
 
-def run_sfepy(python: str, size: float, growth: float, penalty: float, substeps: int) -> dict:
-    """Mesh here, solve in the SfePy venv; returns the worker's JSON."""
+def run_sfepy(
+    python: str, size: float, growth: float, penalty: float, substeps: int, cache: str | None
+) -> dict:
+    """Mesh here, solve in the SfePy venv; returns the worker's JSON (kept in ``cache``, a
+    folder, when given, and read back from there on a rerun with the same settings)."""
+    name = f"sfepy_h{size:g}_g{growth:g}_k{penalty:g}_s{substeps}.json"
+    if cache is not None and (Path(cache) / name).exists():
+        return json.loads((Path(cache) / name).read_text())
     with tempfile.TemporaryDirectory() as folder:
         mesh = Path(folder) / "octant.mesh"
         octant_mesh(mesh, size, growth, domain_radius())
@@ -178,7 +185,11 @@ def run_sfepy(python: str, size: float, growth: float, penalty: float, substeps:
         done = subprocess.run(command, capture_output=True, text=True, check=False)
     if done.returncode != 0:
         raise RuntimeError(f"SfePy worker failed ({done.returncode}):\n{done.stderr[-3000:]}")
-    return json.loads(done.stdout.strip().splitlines()[-1])
+    result = json.loads(done.stdout.strip().splitlines()[-1])
+    if cache is not None:
+        Path(cache).mkdir(parents=True, exist_ok=True)
+        (Path(cache) / name).write_text(json.dumps(result))
+    return result
 
 
 # ------------------------------------------------------------------- shtaerman side ----
@@ -232,10 +243,10 @@ def sfepy_with_estimate(args: argparse.Namespace) -> tuple[list[float], list[flo
     coarse at k| (mesh and penalty), with a note of the unknowns and unconverged steps."""
     coarse_size, fine_size = (float(s) for s in args.sizes.split(","))
     growth = args.growth * fine_size / coarse_size
-    python, k, steps = args.sfepy_python, args.penalty, args.substeps
-    coarse = run_sfepy(python, coarse_size, args.growth, k, steps)
-    stiff = run_sfepy(python, coarse_size, args.growth, 4.0 * k, steps)
-    fine = run_sfepy(python, fine_size, growth, k, steps)
+    python, k, steps, cache = args.sfepy_python, args.penalty, args.substeps, args.cache
+    coarse = run_sfepy(python, coarse_size, args.growth, k, steps, cache)
+    stiff = run_sfepy(python, coarse_size, args.growth, 4.0 * k, steps, cache)
+    fine = run_sfepy(python, fine_size, growth, k, steps, cache)
     runs = (coarse, stiff, fine)
     forces = [[f for _, f, _ in run["forces"]] for run in runs]
     estimates = [abs(f - c) + abs(s - c) for c, s, f in zip(*forces, strict=True)]
@@ -275,6 +286,7 @@ def main() -> None:
     parser.add_argument("--depths", help=argparse.SUPPRESS)
     parser.add_argument("--penalty", type=float, default=1e3, help="penalty k R / E")
     parser.add_argument("--substeps", type=int, default=1, help="SfePy load steps per depth")
+    parser.add_argument("--cache", help="folder keeping the SfePy runs' JSON (default: none)")
     parser.add_argument("--sfepy-python", default="/work/sfepy-venv/bin/python")
     parser.add_argument("--sizes", default="0.07,0.05", help="SfePy mesh sizes at the origin / R")
     parser.add_argument("--growth", type=float, default=0.14, help="SfePy size growth")
