@@ -185,6 +185,8 @@ def run_sfepy(
         command = [python, __file__, "--worker", "--mesh", str(mesh), "--penalty", str(penalty)]
         command += ["--domain", repr(domain_radius()), "--substeps", str(substeps)]
         command += ["--depths", ",".join(repr(d * RADIUS) for d in DEPTHS)]
+        if not Path(python).exists():
+            raise SystemExit(f"--sfepy-python: {python} not found; install SfePy in its own venv")
         done = subprocess.run(command, capture_output=True, text=True, check=False)
     if done.returncode != 0:
         raise RuntimeError(f"SfePy worker failed ({done.returncode}):\n{done.stderr[-3000:]}")
