@@ -45,6 +45,7 @@ NU = 0.45
 DEPTHS = (0.05, 0.1, 0.2, 0.3)  # delta / R
 FAR_GROWTH = 0.3  # SfePy mesh: element size growth per unit distance beyond d = R
 MARGIN, DOMAIN = 1.25, 100.0  # shtaerman's refined zone / a_g and domain / refined zone
+MAX_CUTS = 6  # SfePy: halvings of a failing load step before a depth is given up
 
 
 def domain_radius(depths: tuple[float, ...] = DEPTHS) -> float:
@@ -147,15 +148,22 @@ def worker(args: argparse.Namespace) -> None:
     options = {"i_max": 25, "eps_a": 1e-12, "eps_r": 1e-9, "ls_on": 0.99999, "ls_red": 0.5}
     nls_status = IndexedStruct()
     problem.set_solver(Newton(options, lin_solver=ScipyDirect({}), status=nls_status))
-    state, forces, reached = None, [], 0.0
+    saved, forces, reached = None, [], 0.0
     for depth in args.depths:
-        converged = True
-        for sub in np.linspace(reached, depth, args.substeps + 1)[1:]:
-            centre[2] = RADIUS - sub
-            state0 = None if state is None else state.get_state()
-            state = problem.solve(state0=state0, save_results=False)
-            converged &= bool(nls_status.condition == 0)
-        reached = depth
+        step, cuts, converged = (depth - reached) / args.substeps, 0, True
+        while reached < depth * (1 - 1e-12):
+            trial = min(reached + step, depth)
+            centre[2] = RADIUS - trial
+            state = problem.solve(state0=saved, save_results=False)
+            if nls_status.condition == 0:  # converged: keep it, try a longer step
+                reached, saved, step = trial, state.get_state().copy(), 1.5 * step
+                continue
+            step, cuts = step / 2.0, cuts + 1  # failed: back to the last state, halve
+            if cuts > MAX_CUTS:
+                converged = False
+                break
+        centre[2] = RADIUS - reached
+        problem.solve(state0=saved, save_results=False)  # the last converged state again
         vector = problem.evaluate(
             "dw_contact_sphere.is.Top(cs.f, cs.c, cs.r, v, u)",
             mode="weak",
@@ -166,7 +174,7 @@ def worker(args: argparse.Namespace) -> None:
         )
         full = problem.equations.make_full_vec(vector, force_value=0.0)
         force_z = 4.0 * float(np.sum(full.reshape(-1, 3)[:, 2]))
-        forces.append((depth, abs(force_z), converged))
+        forces.append((reached if converged else depth, abs(force_z), converged))
         print(depth, abs(force_z), converged, file=sys.stderr, flush=True)
     json.dump({"dofs": int(field.n_nod * 3), "forces": forces}, sys.stdout)
 
