@@ -10,7 +10,7 @@ quantity), against
 - the half-space's dynamic impact (the same settings and ladder),
 - the paper's quasi-static impact on the half-space (Shtaerman's law),
 - the quasi-static impact on the layer's own static law (the linear static FE on the same
-  layer at its default mesh, :func:`shtaerman.study.dynamic.layer.quasi_static_layer_impact`).
+  layer at its default mesh, :func:`shtaerman.api.layer_impact.quasi_static_layer_impact`).
 
 ``--refined`` also runs the 20 mm pads at refine 2 (4x the dofs, 2x the steps), the check of
 the ladder's estimate.
@@ -24,7 +24,7 @@ import os
 import numpy as np
 
 import shtaerman as sh
-from shtaerman.study.dynamic.layer import quasi_static_layer_impact
+from shtaerman.api.layer_impact import quasi_static_layer_impact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 

@@ -17,12 +17,12 @@ import numpy as np
 import pytest
 
 import shtaerman as sh
+from shtaerman.api.layer_impact import quasi_static_layer_impact
 from shtaerman.cli import main
 from shtaerman.fem.absorbing import AbsorbingLayer
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
 from shtaerman.fem.dynamic_layer import LATERAL_RATE, MAX_LATERAL, lateral_absorber
 from shtaerman.output.text_dynamic import study_findings
-from shtaerman.study.dynamic.layer import quasi_static_layer_impact
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study
 from shtaerman.theory.indenter import PowerLawIndenter

@@ -24,6 +24,7 @@ ALLOWED = {
         "theory.impact",
         "theory.radiation",
         "theory.layer",
+        "theory.viscoelastic",
     },
     "study": {"study", "fem", "theory", "paper"},
     "plots": {"plots", "study", "fem", "theory", "paper"},

@@ -264,7 +264,7 @@ class FiniteContactCurve:
         }
 
 
-class _Stepper:
+class NewtonStepper:
     """Newton with active set for one depth increment; state kept between increments."""
 
     def __init__(
@@ -353,7 +353,7 @@ def _converged(corrections: list[float], tolerance: float) -> bool:
 
 
 def _eliminate(
-    stepper: _Stepper,
+    stepper: NewtonStepper,
     tangent: np.ndarray,
     residual: np.ndarray,
     rows: np.ndarray,
@@ -457,7 +457,7 @@ def solve_finite_contact(
         )
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
-    stepper = _Stepper(system, indenter, candidate_radius, tolerance, max_iterations)
+    stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
     _check_resolved(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
@@ -472,7 +472,7 @@ def solve_finite_contact(
 
 
 def _reach(
-    stepper: _Stepper, history: list, target: float, max_cuts: int
+    stepper: NewtonStepper, history: list, target: float, max_cuts: int
 ) -> tuple[list, int, int, list[float]]:
     """Sub-step from the last converged state of ``history`` to the depth ``target`` (m).
 
@@ -520,7 +520,7 @@ def _reach(
     return history, iterations, total, corrections
 
 
-def _check_resolved(stepper: _Stepper, law: PowerLawContact, depth: float) -> None:
+def _check_resolved(stepper: NewtonStepper, law: PowerLawContact, depth: float) -> None:
     """Refuse, before any Newton step, a smallest ``depth`` (m) whose small-strain contact
     radius covers no surface node besides the axis: its results would be those of no contact.
     (One or two nodes run: a study's coarse ladder levels start there and mark such points
@@ -548,7 +548,7 @@ def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
     return x1 + t * (x1 - x0), np.maximum(lam1 + t * (lam1 - lam0), 0.0)
 
 
-def _check_edge(stepper: _Stepper, lam: np.ndarray, depth: float) -> None:
+def _check_edge(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
     loaded = np.flatnonzero(lam > 0)
     if loaded.size == 0:
         raise InputError(f"depth {depth:g} m: the indenter does not touch the surface")
@@ -561,7 +561,7 @@ def _check_edge(stepper: _Stepper, lam: np.ndarray, depth: float) -> None:
 
 
 def _step(
-    stepper: _Stepper,
+    stepper: NewtonStepper,
     exact: PowerLawContact,
     depth: float,
     x: np.ndarray,
@@ -640,7 +640,8 @@ FINITE_BASE = (
 """The refusal of a lubricated layer at finite strain."""
 
 
-def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
+def geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
+    """Radius (d / A)^(1/n) in m where the undeformed profile reaches the depth d (m)."""
     return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
 
 
@@ -682,7 +683,7 @@ def run_finite_indentation(
     mesh = FINITE_MESH if mesh is None else mesh
     if mesh.thickness is not None and mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
-    refined = mesh.margin * _geometric_radius(indenter, depths[-1])
+    refined = mesh.margin * geometric_radius(indenter, depths[-1])
     refined *= mesh.zone_factor(indenter.exponent)  # 1 on the half-space, more on a layer
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined)

@@ -39,8 +39,8 @@ from .finite_contact import (
     FINITE_MESH,
     MAX_ITERATIONS,
     NEWTON_TOLERANCE,
-    _geometric_radius,
-    _Stepper,
+    NewtonStepper,
+    geometric_radius,
 )
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
 from .mesh import MeshSettings
@@ -197,7 +197,7 @@ class _State:
 class _QuasiStaticBody:
     """The massless body: the static contact state at any depth, warm-started."""
 
-    def __init__(self, stepper: _Stepper) -> None:
+    def __init__(self, stepper: NewtonStepper) -> None:
         self.stepper = stepper
         n = stepper.system.n_dofs
         self.zero = _State(0.0, np.zeros(n), np.zeros(stepper.nodes.radius.size), 0.0, 0.0)
@@ -381,7 +381,7 @@ def run_finite_impact(
     q = law.force_exponent
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
     t_y = 2.0 * duration_integral(q) * x_c / velocity
-    refined = settings.margin * _geometric_radius(indenter, x_c)
+    refined = settings.margin * geometric_radius(indenter, x_c)
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
@@ -431,12 +431,12 @@ def _assembled(
     half_space: Material,
     rubber: RubberModel | None,
     refined: float,
-) -> _Stepper:
+) -> NewtonStepper:
     """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``)."""
     constants = (half_space.youngs_modulus, half_space.poisson_ratio)
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
     system = assemble_hyperelastic(mesh, material)
-    return _Stepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    return NewtonStepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
 
 
 def _parameters(

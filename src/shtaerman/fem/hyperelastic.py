@@ -168,9 +168,7 @@ def kinematics(
     Kinematics
     """
     if getattr(material, "uses_invariants", False):  # a rubber model beyond neo-Hookean
-        from .rubber import invariant_kinematics
-
-        return invariant_kinematics(material, grad, u_r, radius, p)
+        return material.kinematics(grad, u_r, radius, p)
     mu, inverse_bulk = material.shear_modulus, material.inverse_bulk
     a, b = 1.0 + grad[0, 0], grad[0, 1]
     c, d = grad[1, 0], 1.0 + grad[1, 1]
@@ -214,7 +212,7 @@ def kinematics(
     )
 
 
-_HESSIAN = (
+HESSIAN_TERMS = (
     (0, 3, 1.0, 4),  # H_ad = h
     (1, 2, -1.0, 4),  # H_bc = -h
     (0, 4, 1.0, 3),  # H_ah = d
@@ -247,7 +245,7 @@ def _tangent(
         for m in range(k, N_COMPONENTS):
             tangent[..., k, m] = Jg[k] * row[m] + scaled[k] * Jg[m]
         tangent[..., k, k] += identity
-    for k, m, sign, f in _HESSIAN:
+    for k, m, sign, f in HESSIAN_TERMS:
         tangent[..., k, m] += sign * hessian * F[f]
     for k in range(N_COMPONENTS):
         for m in range(k + 1, N_COMPONENTS):

@@ -44,7 +44,7 @@ from typing import Any
 import numpy as np
 
 from ..validation import InputError
-from .hyperelastic import _HESSIAN, N_COMPONENTS, Kinematics, NeoHookean, NewtonError
+from .hyperelastic import HESSIAN_TERMS, N_COMPONENTS, Kinematics, NeoHookean, NewtonError
 
 __all__ = [
     "MODELS",
@@ -213,6 +213,13 @@ class Rubber(NeoHookean):
         """Whether :func:`invariant_kinematics` evaluates it (all but the default)."""
         return self.model != "neo-hookean" or self.volumetric != "quadratic"
 
+    def kinematics(
+        self, grad: np.ndarray, u_r: np.ndarray, radius: np.ndarray, p: np.ndarray
+    ) -> Kinematics:
+        """:func:`invariant_kinematics` of this rubber (the arguments of
+        :func:`.hyperelastic.kinematics`)."""
+        return invariant_kinematics(self, grad, u_r, radius, p)
+
 
 def energy_derivatives(material: Rubber, x1: np.ndarray, x2: np.ndarray) -> tuple:
     """W (J/m^3) and its derivatives in the invariants, at x1 = I1bar - 3, x2 = I2bar - 3.
@@ -275,7 +282,7 @@ def _symmetric(x: np.ndarray, y: np.ndarray) -> np.ndarray:
 def _hessian_J(F: np.ndarray) -> np.ndarray:
     """(..., 5, 5) d2J/dF2."""
     H = np.zeros((*F.shape[1:], N_COMPONENTS, N_COMPONENTS))
-    for k, m, sign, f in _HESSIAN:
+    for k, m, sign, f in HESSIAN_TERMS:
         H[..., k, m] = H[..., m, k] = sign * F[f]
     return H
 

@@ -82,6 +82,9 @@ LABELS: dict[str, Label] = {
     "P_max_layer": Label("Quasi-static maximum force on the layer", "N"),
     "x_max_ratio": Label("Layer / half-space maximum approach x_max/x_c"),
     "P_max_ratio": Label("Layer / half-space maximum force P_max/P_c"),
+    "x_max_dynamic": Label("Dynamic maximum approach on the layer", "m"),
+    "P_max_dynamic": Label("Dynamic maximum force on the layer", "N"),
+    "model": Label("Rubber model"),
     "error_exponent": Label("Error of the FEM force exponent q", percent=True),
     # cost
     "dofs": Label("Unknowns (degrees of freedom)"),

@@ -100,6 +100,10 @@ SYMBOLS = {
 """Sweepable parameters and the symbol that names each expanded study."""
 
 
+DEPTH_OVERSHOOT = 1.01
+"""The FEM depths reach 1.01 x_c so the FEM-fed impacts interpolate, not extrapolate."""
+
+
 class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
     interface: str = "frictionless"
@@ -306,7 +310,6 @@ def on_layer(study: Study) -> Study:
     """
     if study.layer is None:
         return study
-    from .runner import DEPTH_OVERSHOOT  # the depths reach past x_c (runner imports this module)
 
     modulus = effective_modulus(study.striker, study.half_space)
     exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))

@@ -26,15 +26,13 @@ from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, depths_up_to
 from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
-from .loader import Study
+from .loader import DEPTH_OVERSHOOT, Study
 
 __all__ = ["IMPACT_KEYS", "Check", "StudyOutcome", "run_contact_study"]
 
 IMPACT_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 """SI keys of every impact entry (those of ``shtaerman impact --json``)."""
 CHECKED_IMPACT_KEYS = ("x_c", "P_c", "t_c")
-DEPTH_OVERSHOOT = 1.01
-"""The FEM depths reach 1.01 x_c so the FEM-fed impacts interpolate, not extrapolate."""
 HISTORY_POINTS = 201
 
 Progress = Callable[[str], None]

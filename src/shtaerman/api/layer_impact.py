@@ -15,9 +15,10 @@ from collections.abc import Callable
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from ...theory.impact_ode import NumericalImpact, integrate_impact
-from ...theory.indenter import PowerLawIndenter
-from ...theory.materials import Material
+from ..theory.impact_ode import NumericalImpact, integrate_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from .fem_contact import contact
 
 __all__ = ["layer_force_law", "quasi_static_layer_impact"]
 
@@ -61,8 +62,6 @@ def quasi_static_layer_impact(
     :func:`shtaerman.contact` (e.g. ``estimate=False``). Returns the impact and the contact
     result.
     """
-    from ...api.fem_contact import contact
-
     result = contact(
         indenter, body, depths=depths, thickness=thickness, base=base, **contact_options
     )
