@@ -251,6 +251,21 @@ def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):
     assert (out / "thesis.tex").read_text() == "precious"
 
 
+@pytest.mark.parametrize("added", ["notes.txt", "cases/mine.txt", "figures/draft.tex"])
+def test_cli_force_keeps_a_file_the_user_added_to_a_sweep_folder(tmp_path, capsys, added):
+    """sweep --force deleted a note the user had put into a sweep folder (contact and verify
+    refuse): it is refused, naming the file, and nothing is touched."""
+    out = sweep_folder(tmp_path / "out")
+    (out / "cases").mkdir()
+    (out / "figures").mkdir()
+    (out / "cases" / "0.json").write_text("{}")
+    (out / added).write_text("mine")
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--force")
+    assert code == 2
+    assert_one_line_error(err, f"holds '{added}', not written by shtaerman sweep")
+    assert (out / added).read_text() == "mine" and (out / "cases" / "0.json").exists()
+
+
 def sweep_folder(out, text=IMPACT):
     """A folder as a sweep leaves it before its first case: the file and the marker."""
     from shtaerman.sweep.engine import MARKER_FILE, MARKER_FORMAT

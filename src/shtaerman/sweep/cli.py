@@ -52,7 +52,11 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
         action="store_true",
         help="complete the sweep in DIR: compute only the cases without a saved result",
     )
-    p.add_argument("--force", action="store_true", help="replace an existing result folder")
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="replace a sweep folder this tool wrote (never files you added)",
+    )
     add_figure_format(p)
     p.set_defaults(handler=run)
     return p

@@ -423,6 +423,34 @@ def _check_same_sweep(spec: SweepSpec, out: Path) -> None:
         )
 
 
+_SWEEP_ENTRIES = {MARKER_FILE, SPEC_FILE, CASES_DIR, "cases.csv", "results.json", "figures"}
+"""The top-level entries of a sweep folder, all written by :func:`run_sweep`."""
+
+
+def _foreign_entries(out: Path) -> list[str]:
+    """Paths (relative to ``out``) of what a sweep folder holds that no sweep wrote."""
+    found = sorted(name for name in os.listdir(out) if name not in _SWEEP_ENTRIES)
+    cases = out / CASES_DIR
+    for folder in (cases, cases / UNUSED_DIR):
+        if folder.is_dir():
+            where = folder.relative_to(out).as_posix()
+            names = sorted(os.listdir(folder))
+            found += [f"{where}/{n}" for n in names if not _written(folder == cases, n)]
+    figures = out / "figures"
+    if figures.is_dir():
+        found += [f"figures/{n}" for n in sorted(os.listdir(figures)) if not _figure(n)]
+    return found
+
+
+def _written(in_cases: bool, name: str) -> bool:
+    """Whether ``name`` in ``cases`` (or ``cases/unused``) is a sweep's: a record, ``unused``."""
+    return bool(RECORD_NAME.fullmatch(name)) or (in_cases and name == UNUSED_DIR)
+
+
+def _figure(name: str) -> bool:
+    return name.endswith((".png", ".svg", ".pdf"))
+
+
 def _check_folder(
     spec: SweepSpec, out: Path, backup: Path, *, resume: bool, force: bool
 ) -> Callable[[], None]:
@@ -452,6 +480,12 @@ def _check_folder(
         raise InputError(
             f"out: --force replaces only a sweep folder, and {str(out)!r} has no {MARKER_FILE} "
             "written by shtaerman sweep; remove it yourself or pick another --out"
+        )
+    foreign = _foreign_entries(out) if full else []
+    if foreign:
+        raise InputError(
+            f"out: folder {str(out)!r} holds {foreign[0]!r}, not written by shtaerman sweep; "
+            "--force replaces only what this tool wrote: move it or name a new folder with --out"
         )
 
     def create() -> None:
