@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import json
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -401,6 +402,12 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
         velocity=options["velocity"],
         striker=options["striker"],
     )
+    if mesh.thickness is not None and depths[-1] >= mesh.thickness:
+        warnings.warn(
+            f"depths: the deepest, {depths[-1]:.6g} m, reaches the layer's thickness "
+            f"{mesh.thickness:.6g} m: a strain beyond 100 %, far outside linear elasticity",
+            stacklevel=2,
+        )
     if model != "linear":
         from ..fem.finite_contact import check_finite_depths
 

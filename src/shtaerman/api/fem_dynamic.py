@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -311,6 +312,13 @@ def dynamic(
         ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, prony=series)
         case = dataclasses.replace(case, ladder=ladder)
     result = _result(case)
+    if chosen.thickness is not None and not result.x_max < chosen.thickness:
+        warnings.warn(
+            f"thickness: the striker's approach {result.x_max:.6g} m reached the layer's "
+            f"thickness {chosen.thickness:.6g} m: a strain beyond 100 %, far outside linear "
+            "elasticity (restitution and energies are not physical)",
+            stacklevel=2,
+        )
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
