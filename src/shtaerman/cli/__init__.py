@@ -56,7 +56,12 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+_SIGNALLED: list[int] = []
+"""The SIGTERMs received (a library that catches the raised Terminated may hide it)."""
+
+
 def _terminate(signum: int, frame: object) -> None:
+    _SIGNALLED.append(signum)
     raise Terminated
 
 
@@ -90,6 +95,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if sys.stdout is None:  # started with '>&-': every result would be lost without a word
         print(f"shtaerman: error: {STDOUT_CLOSED}", file=sys.stderr)
         return EXIT_INPUT
+    _SIGNALLED.clear()
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         with warnings.catch_warnings(record=True) as caught:
@@ -106,6 +112,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"shtaerman: interrupted; {NOTHING_PARTIAL}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Terminated:
+        print(f"shtaerman: terminated; {NOTHING_PARTIAL}", file=sys.stderr)
+        return EXIT_TERMINATED
+    except ImportError:  # VTK's lazy loader turns a Terminated raised inside it into this
+        if not _SIGNALLED:
+            raise
         print(f"shtaerman: terminated; {NOTHING_PARTIAL}", file=sys.stderr)
         return EXIT_TERMINATED
     except BrokenPipeError as error:
