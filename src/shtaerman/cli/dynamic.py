@@ -129,6 +129,15 @@ def _layer_rows(mesh: dict) -> list[str]:
     ]
 
 
+def _loss_label(dyn: dict) -> str:
+    """The 1 - e^2 row's name: all of it is waves in an elastic body, not in a viscoelastic one."""
+    return (
+        "energy lost 1-e^2       "
+        if "energy_dissipated_fraction" in dyn
+        else ("energy to waves 1-e^2   ")
+    )
+
+
 def _losses_text(dyn: dict) -> list[str]:
     """A viscoelastic run's 1 - e^2 split into waves and hysteresis ([] for an elastic one)."""
     if "energy_dissipated_fraction" not in dyn:
@@ -158,8 +167,8 @@ def dynamic_text(report: dict) -> str:
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  1 (first-order estimate "
         f"{est['restitution']:.6f})",
-        f"  energy to waves 1-e^2   {dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
-        f"estimate {est['energy_fraction']:.6f})",
+        f"  {_loss_label(dyn)}{dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
+        f"estimate of the waves {est['energy_fraction']:.6f})",
         *_losses_text(dyn),
         _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
