@@ -210,6 +210,9 @@ def test_study_file_contact_interface(tmp_path):
         load_study(path)
     path.write_text(STUDY + 'interface = "bonded"\nfriction = 0.4\n')
     assert load_study(path)[0].mesh.friction == 0.4
+    path.write_text(STUDY + "friction = 0.4\n")  # said "expected a number >= 0, got 0.4"
+    with pytest.raises(StudyError, match=r"contact\.friction': applies to a bonded indenter"):
+        load_study(path)
     for bad in ("friction = 0.4", 'interface = "bonded"\nfriction = -1'):
         path.write_text(STUDY + bad + "\n")
         with pytest.raises(StudyError, match="friction"):

@@ -112,8 +112,6 @@ class _Contact(Table):
     def __post_init__(self) -> None:
         if self.interface not in INTERFACES:
             raise ValueError(f"interface: one of {list(INTERFACES)}")
-        if self.friction is not None and self.interface != "bonded":
-            raise ValueError('friction: applies to interface = "bonded" only')
         if self.depths != "impact" and (
             not 2 <= len(self.depths) <= entry("depths").max_items
             or any(b <= a for a, b in itertools.pairwise(self.depths))
@@ -321,8 +319,13 @@ def on_layer(study: Study) -> Study:
     return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
 
 
-def _with_interface(study: Study, raw: _StudyFile) -> Study:
+def _with_interface(path: Path, study: Study, raw: _StudyFile) -> Study:
     """``study`` with the indenter's surface ([contact] interface) in each of its meshes."""
+    if raw.contact.friction is not None and raw.contact.interface != "bonded":
+        raise StudyError(
+            f"{path}: key 'contact.friction': applies to a bonded indenter only; give "
+            'interface = "bonded" too'
+        )
     surface = {"interface": raw.contact.interface, "friction": raw.contact.friction}
     return replace(
         study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
@@ -350,7 +353,7 @@ def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
     try:
-        studies = _expanded(_with_interface(_build(path, raw), raw), raw.sweep)
+        studies = _expanded(_with_interface(path, _build(path, raw), raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
