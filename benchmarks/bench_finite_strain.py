@@ -40,7 +40,7 @@ import scipy.sparse.linalg as spla
 from scipy.integrate import simpson
 from scipy.interpolate import PchipInterpolator
 
-from shtaerman.fem.finite_contact import FINITE_MESH, _Stepper, run_finite_indentation
+from shtaerman.fem.finite_contact import FINITE_MESH, NewtonStepper, run_finite_indentation
 from shtaerman.fem.hyperelastic import HyperelasticSystem
 from shtaerman.study.contact.convergence import refined_settings
 from shtaerman.study.contact.indentation import run_indentation
@@ -350,7 +350,9 @@ def iteration_cost() -> None:
         )
     ]
     patches.append(mock.patch.object(spla, "splu", _clocked(spla.splu, spent, "factorization")))
-    patches.append(mock.patch.object(_Stepper, "solve", _clocked(_Stepper.solve, spent, "newton")))
+    patches.append(
+        mock.patch.object(NewtonStepper, "solve", _clocked(NewtonStepper.solve, spent, "newton"))
+    )
     depths = 1.01 * X_C * np.arange(1, 13) / 12
     for patch in patches:
         patch.start()

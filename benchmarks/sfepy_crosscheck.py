@@ -224,7 +224,7 @@ def run_ours(profile: str, refine: float) -> list[float]:
     """shtaerman's force P / (E R^2) at DEPTHS on the default mesh refined by ``refine``."""
     from unittest import mock
 
-    from shtaerman.fem.finite_contact import FINITE_MESH, _Stepper, run_finite_indentation
+    from shtaerman.fem.finite_contact import FINITE_MESH, NewtonStepper, run_finite_indentation
     from shtaerman.study.contact.convergence import refined_settings
     from shtaerman.theory.indenter import PowerLawIndenter
     from shtaerman.theory.materials import Material
@@ -234,7 +234,7 @@ def run_ours(profile: str, refine: float) -> list[float]:
     settings = type(settings)(**{**settings.__dict__, "domain": DOMAIN, "margin": MARGIN})
     depths = np.asarray(DEPTHS) * RADIUS
     if profile == "sphere":
-        with mock.patch.object(_Stepper, "geometry", _sphere_geometry):
+        with mock.patch.object(NewtonStepper, "geometry", _sphere_geometry):
             curve = run_finite_indentation(indenter, Material(YOUNG, NU), depths, settings)
     else:
         curve = run_finite_indentation(indenter, Material(YOUNG, NU), depths, settings)

@@ -319,11 +319,11 @@ def test_newton_failure_is_a_clear_error():
 
 
 def test_inverted_element_stops_a_contact_step():
-    from shtaerman.fem.finite_contact import _Stepper
+    from shtaerman.fem.finite_contact import NewtonStepper
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
-    stepper = _Stepper(system, indenter, 5e-3, 1e-8, 5)
+    stepper = NewtonStepper(system, indenter, 5e-3, 1e-8, 5)
     x = np.zeros(system.n_dofs)
     # push one surface node 10 m down: its elements turn inside out
     x[stepper.nodes.uz[5]] = -10.0
@@ -333,11 +333,11 @@ def test_inverted_element_stops_a_contact_step():
 
 def test_newton_step_solves_the_saddle_system():
     """_eliminate's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
-    from shtaerman.fem.finite_contact import _eliminate, _Stepper
+    from shtaerman.fem.finite_contact import NewtonStepper, _eliminate
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
-    stepper = _Stepper(system, indenter, 5e-3, 1e-8, 5)
+    stepper = NewtonStepper(system, indenter, 5e-3, 1e-8, 5)
     nodes, free = stepper.nodes, stepper.free
     x = np.zeros(system.n_dofs)
     x[stepper.nodes.ur] = 1e-6 * stepper.nodes.radius  # curved candidates: f'' enters
