@@ -718,7 +718,8 @@ VOCABULARY: tuple[Entry, ...] = (
             (
                 "force",
                 "",
-                "replace outputs this tool wrote (never files you added)",
+                "replace existing outputs (a result folder only if shtaerman wrote it and you "
+                "added no file)",
                 "replace",
                 False,
                 None,

@@ -402,12 +402,6 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
         velocity=options["velocity"],
         striker=options["striker"],
     )
-    if mesh.thickness is not None and depths[-1] >= mesh.thickness:
-        warnings.warn(
-            f"depths: the deepest, {depths[-1]:.6g} m, reaches the layer's thickness "
-            f"{mesh.thickness:.6g} m: a strain beyond 100 %, far outside linear elasticity",
-            stacklevel=2,
-        )
     if model != "linear":
         from ..fem.finite_contact import check_finite_depths
 
@@ -539,4 +533,16 @@ def contact(
         result = ContactResult.from_report(_with_impact(report, options), solution, ladder)
         if stage is not None:
             _write(result, stage, options["figure_format"])
+    _warn_beyond_the_layer(plan)
     return result
+
+
+def _warn_beyond_the_layer(plan: _Plan) -> None:
+    """Warn when the deepest depth (m) reaches the layer's thickness (m): strain beyond 100 %."""
+    thickness, deepest = plan.mesh.thickness, plan.depths[-1]
+    if thickness is not None and deepest >= thickness:
+        warnings.warn(
+            f"depths: the deepest, {deepest:.6g} m, reaches the layer's thickness "
+            f"{thickness:.6g} m: a strain beyond 100 %, far outside linear elasticity",
+            stacklevel=3,
+        )
