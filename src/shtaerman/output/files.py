@@ -417,8 +417,8 @@ def check_output_folder(
                 raise _not_empty(option, path, resume_marker)
             if force and not ours(target):
                 raise _not_ours(option, path)
-            if force and _foreign_files(target):
-                raise _not_only_ours(option, path, _foreign_files(target))
+            if force and (foreign := _foreign_files(target)):
+                raise _not_only_ours(option, path, foreign)
         probe_writable(option, target.parent, _stage_path(target).name)
     except ValueError as error:  # a NUL byte in the name
         if isinstance(error, InputError):
@@ -495,8 +495,8 @@ def staged_folder(
                     raise _not_empty(option, target, resume_marker)
                 if not resumed and not ours(target):
                     raise _not_ours(option, target)
-                if not resumed and _foreign_files(target):
-                    raise _not_only_ours(option, target, _foreign_files(target))
+                if not resumed and (foreign := _foreign_files(target)):
+                    raise _not_only_ours(option, target, foreign)
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it
