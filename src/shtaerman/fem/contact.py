@@ -46,6 +46,7 @@ __all__ = [
     "ContactStep",
     "SurfaceCompliance",
     "aligned_force",
+    "check_resolved",
     "complementarity",
     "edge_radius",
     "factorize_stiffness",
@@ -415,6 +416,23 @@ def aligned_force(
     return low[1] * (depth / low[0]) ** exponent
 
 
+def check_resolved(r: np.ndarray, forces: np.ndarray, depth: float) -> None:
+    """InputError unless the contact at ``depth`` (m) loads at least ``MIN_CONTACT_NODES``
+    surface nodes and stays ``EDGE_MARGIN`` nodes inside the candidates (radii ``r``, m)."""
+    loaded = np.flatnonzero(forces > 0)
+    if loaded.size < MIN_CONTACT_NODES:
+        raise InputError(
+            f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
+            f"{MIN_CONTACT_NODES}: smaller than this mesh resolves; raise the smallest depth or "
+            f"refine the mesh"
+        )
+    if loaded[-1] + EDGE_MARGIN >= r.size:
+        raise InputError(
+            f"depth {depth:g} m: the contact zone reaches r = {r[loaded[-1]]:.4g} m, "
+            f"the edge of the refined region ({r[-1]:.4g} m); mesh a larger region"
+        )
+
+
 def contact_step(
     compliance: SurfaceCompliance, profile: Profile, depth: float, aligned: bool = True
 ) -> ContactStep:
@@ -429,18 +447,7 @@ def contact_step(
         )
     forces, gap, iterations = complementarity(compliance.matrix, clearance)
     discrete = float(forces.sum())
-    loaded = np.flatnonzero(forces > 0)
-    if loaded.size < MIN_CONTACT_NODES:
-        raise InputError(
-            f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
-            f"{MIN_CONTACT_NODES}: smaller than this mesh resolves; raise the smallest depth or "
-            f"refine the mesh"
-        )
-    if loaded[-1] + EDGE_MARGIN >= compliance.r.size:
-        raise InputError(
-            f"depth {depth:g} m: the contact zone reaches r = {compliance.r[loaded[-1]]:.4g} m, "
-            f"the edge of the refined region ({compliance.r[-1]:.4g} m); mesh a larger region"
-        )
+    check_resolved(compliance.r, forces, depth)
     pressure = recover_pressure(compliance.mass_factor, forces)
     radius = edge_radius(compliance.r, forces, gap)
     return ContactStep(

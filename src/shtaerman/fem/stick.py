@@ -39,15 +39,14 @@ from threadpoolctl import threadpool_limits
 
 from ..validation import InputError, NumericalFailureError
 from .contact import (
-    EDGE_MARGIN,
     MAX_ACTIVE_SET_ITERATIONS,
-    MIN_CONTACT_NODES,
     ROUND_OFF,
     ContactCurve,
     ContactStep,
     Profile,
     SurfaceCompliance,
     central_pressure,
+    check_resolved,
     edge_radius,
     recover_pressure,
     surface_compliance,
@@ -270,18 +269,7 @@ def _contact_step(
     normal: SurfaceCompliance, heights: np.ndarray, depth: float, state: _State, iterations: int
 ) -> ContactStep:
     """The :class:`.contact.ContactStep` of a requested depth (force: the nodal sum)."""
-    loaded = np.flatnonzero(state.forces > 0)
-    if loaded.size < MIN_CONTACT_NODES:
-        raise InputError(
-            f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
-            f"{MIN_CONTACT_NODES}: smaller than this mesh resolves; raise the smallest depth or "
-            f"refine the mesh"
-        )
-    if loaded[-1] + EDGE_MARGIN >= normal.r.size:
-        raise InputError(
-            f"depth {depth:g} m: the contact zone reaches r = {normal.r[loaded[-1]]:.4g} m, "
-            f"the edge of the refined region ({normal.r[-1]:.4g} m); mesh a larger region"
-        )
+    check_resolved(normal.r, state.forces, depth)
     pressure = recover_pressure(normal.mass_factor, state.forces)
     radius = edge_radius(normal.r, state.forces, state.gap)
     total = float(state.forces.sum())
