@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from study_texts import DYNAMIC_STUDY
 
 from shtaerman.study.contact.layer import LayerSpec
 from shtaerman.study.schema import StudyError, load_study
@@ -14,19 +15,7 @@ from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import RIGID, Material, effective_modulus
 
-DYNAMIC = """kind = "dynamic"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-density2 = 1100.0
-[impact]
-mass = 0.7
-velocity = [1.0, 3.0]
-{layer}
-"""
+DYNAMIC = DYNAMIC_STUDY + "{layer}\n"
 
 
 def _half_space_contact_radius(velocity: float) -> float:

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 from matplotlib import colormaps
 from PIL import Image
+from study_texts import DYNAMIC_STUDY
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.output import text_dynamic
@@ -34,20 +35,7 @@ from shtaerman.sweep.engine import cases_csv, csv_columns, execute_case
 from shtaerman.sweep.kinds import DYNAMIC_ERRORS
 from shtaerman.sweep.spec import find_sweep
 
-MINIMAL = """\
-kind = "dynamic"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-density2 = 1100.0
-[impact]
-mass = 0.7
-velocity = [1.0, 3.0]
-figure_velocity = 3.0
-"""
+MINIMAL = DYNAMIC_STUDY
 
 
 def error_of(tmp_path: Path, text: str) -> str:

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from study_texts import DYNAMIC_STUDY
 
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
 from shtaerman.theory.contact import PowerLawContact
@@ -76,20 +77,7 @@ def test_cli_and_study_file_take_density_zero(capsys, tmp_path):
     assert "--density2 must lie in [1e-6, 1e6] or 0 kg/m^3" in capsys.readouterr().err
 
 
-STUDY = """\
-kind = "dynamic"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-density2 = 1100.0
-[impact]
-mass = 0.7
-velocity = [1.0, 3.0]
-figure_velocity = 3.0
-"""
+STUDY = DYNAMIC_STUDY
 
 
 @pytest.fixture(scope="module")

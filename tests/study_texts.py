@@ -1,0 +1,17 @@
+"""Study-file texts the tests share (TOML)."""
+
+DYNAMIC_STUDY = """\
+kind = "dynamic"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 7.5e6
+nu2 = 0.5
+density2 = 1100.0
+[impact]
+mass = 0.7
+velocity = [1.0, 3.0]
+figure_velocity = 3.0
+"""
+"""The paper's striker on rubber at 1 and 3 m/s: the smallest complete dynamic study."""
