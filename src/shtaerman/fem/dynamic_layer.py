@@ -32,8 +32,7 @@ from .absorbing import AbsorbingLayer
 from .mesh import (
     DOFS_PER_ELEMENT,
     LAYER_EXTENT,
-    MAX_THICKNESS,
-    MIN_THICKNESS,
+    check_thickness_range,
     layer_mesh,
 )
 
@@ -114,14 +113,7 @@ def lateral_absorber(
 
 def _check_thickness(thickness: float, refined: float) -> None:
     """InputError unless ``thickness`` (m) is MIN_THICKNESS to MAX_THICKNESS ``refined`` (m)."""
-    if not MIN_THICKNESS <= thickness / refined <= MAX_THICKNESS:
-        raise InputError(
-            f"thickness: must lie in [{MIN_THICKNESS * refined:.3g}, "
-            f"{MAX_THICKNESS * refined:.3g}] m for this impact ({MIN_THICKNESS:g} to "
-            f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
-            f"half-space, run without a thickness), got {thickness!r}",
-            "thickness",
-        )
+    check_thickness_range(thickness, refined, "for this impact")
 
 
 def _thickness_size(settings: DynamicSettings) -> float:

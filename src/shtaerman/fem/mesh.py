@@ -34,6 +34,7 @@ from .signals import deferred
 __all__ = [
     "BOUNDARIES",
     "MeshSettings",
+    "check_thickness_range",
     "geometry_path",
     "halfspace_mesh",
     "layer_mesh",
@@ -419,6 +420,19 @@ def _layer_elements(settings: MeshSettings, thickness: float) -> float:
     return float(_TRIANGLES_PER_SQUARE * np.sum(area / size**2) + grading + 167.0)
 
 
+def check_thickness_range(thickness: float, refined: float, where: str) -> None:
+    """InputError unless ``thickness`` (m) lies within MIN_THICKNESS to MAX_THICKNESS
+    ``refined`` radii (m); ``where`` names the case in the message ("at these depths")."""
+    if not MIN_THICKNESS <= thickness / refined <= MAX_THICKNESS:
+        raise InputError(
+            f"thickness: must lie in [{MIN_THICKNESS * refined:.3g}, "
+            f"{MAX_THICKNESS * refined:.3g}] m {where} ({MIN_THICKNESS:g} to "
+            f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
+            f"half-space, run without a thickness), got {thickness!r}",
+            "thickness",
+        )
+
+
 @dataclass(frozen=True)
 class MeshSettings:
     """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
@@ -590,15 +604,8 @@ class MeshSettings:
     def _check_layer(self, refined_radius: float) -> float:
         """The thickness in refined radii, checked against the range the mesh resolves and
         the layer mesh's estimated size against ``max_dofs`` (InputError)."""
+        check_thickness_range(self.thickness, refined_radius, "at these depths")
         ratio = self.thickness / refined_radius
-        if not MIN_THICKNESS <= ratio <= MAX_THICKNESS:
-            raise InputError(
-                f"thickness: must lie in [{MIN_THICKNESS * refined_radius:.3g}, "
-                f"{MAX_THICKNESS * refined_radius:.3g}] m at these depths ({MIN_THICKNESS:g} to "
-                f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
-                f"half-space, run without a thickness), got {self.thickness!r}",
-                "thickness",
-            )
         dofs = self.layer_dofs(ratio)
         if dofs > self.max_dofs:
             raise InputError(

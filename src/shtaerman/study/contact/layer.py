@@ -24,10 +24,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...fem.dynamic_contact import DynamicSettings
-from ...fem.mesh import MAX_THICKNESS, MIN_THICKNESS, MeshSettings
+from ...fem.mesh import MeshSettings, check_thickness_range
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
-from ...validation import InputError
 from ..checks import Check
 from .accuracy import AccuracyResult
 from .contact_law import FemContactLaw
@@ -103,14 +102,7 @@ def check_thickness(mesh: MeshSettings, indenter: PowerLawIndenter, deepest: flo
     thickness = mesh.thickness
     geometric = (deepest / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
     refined = mesh.margin * geometric * mesh.zone_factor(indenter.exponent)
-    low, high = MIN_THICKNESS * refined, MAX_THICKNESS * refined
-    if not low <= thickness <= high:
-        raise InputError(
-            f"thickness: must lie in [{low:.3g}, {high:.3g}] m at this study's depths "
-            f"({MIN_THICKNESS:g} to {MAX_THICKNESS:g} refined radii: thinner is not resolved, "
-            f"thicker is the half-space, run without a layer), got {thickness!r}",
-            "thickness",
-        )
+    check_thickness_range(thickness, refined, "at this study's depths")
 
 
 @dataclass(frozen=True)
