@@ -10,12 +10,14 @@ import math
 import re
 import sys
 from collections.abc import Sequence
+from decimal import ROUND_HALF_EVEN, Decimal
 
 import numpy as np
 
 __all__ = [
     "InputError",
     "NumericalFailureError",
+    "bound_text",
     "shown",
     "validate_increasing",
     "validate_poisson",
@@ -56,6 +58,26 @@ def shown(value: object) -> str:
     if len(text) > SHOWN_CHARACTERS:
         return f"{text[:SHOWN_CHARACTERS]}... ({len(text)} characters)"
     return text
+
+
+def bound_text(value: float, side: str, digits: int = 3) -> str:
+    """A range end ``value`` for a message, at ``digits`` significant digits rounded inward:
+    up for a lower end (``side="low"``), down for an upper end (``side="high"``).
+
+    The one rule of every printed range: a number typed as printed inside a range (or on its
+    closed end) is accepted by the check the range describes, and a refused number is never
+    printed as inside it.
+    """
+    if not math.isfinite(value) or value == 0:
+        return f"{value:.{digits}g}"
+    exact = Decimal(value)
+    quantum = Decimal(1).scaleb(exact.adjusted() - digits + 1)
+    near = exact.quantize(quantum, rounding=ROUND_HALF_EVEN)
+    if side == "low" and float(near) < value:
+        near += quantum
+    elif side == "high" and float(near) > value:
+        near -= quantum
+    return f"{float(near):.{digits}g}"
 
 
 def _abbreviated(message: str) -> str:
@@ -100,8 +122,8 @@ def validate_positive(name: str, value: object, unit: str = "") -> float:
         raise InputError(f"{name} must be {valid}, got {shown(value)}", name)
     if number < sys.float_info.min:  # subnormal: the number itself has lost its digits
         raise InputError(
-            f"{name} must be {valid} and at least {sys.float_info.min:.4g} (the smallest "
-            f"normal float), got {shown(value)}",
+            f"{name} must be {valid} and at least {bound_text(sys.float_info.min, 'low', 4)} (the "
+            f"smallest normal float), got {shown(value)}",
             name,
         )
     return number

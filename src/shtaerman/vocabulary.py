@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .validation import InputError, shown
+from .validation import InputError, bound_text, shown
 
 __all__ = [
     "KIND_NAMES",
@@ -74,11 +74,12 @@ class Range:
 
     def _interval(self) -> str:
         if self.high is None:
-            return f"{'>' if self.low_open else '>='} {_shown(self.low)}"
+            return f"{'>' if self.low_open else '>='} {_shown(self.low, 'low')}"
         if self.low is None:
-            return f"{'<' if self.high_open else '<='} {_shown(self.high)}"
+            return f"{'<' if self.high_open else '<='} {_shown(self.high, 'high')}"
         return (
-            f"{'(' if self.low_open else '['}{_shown(self.low)}, {_shown(self.high)}"
+            f"{'(' if self.low_open else '['}{_shown(self.low, 'low')}, "
+            f"{_shown(self.high, 'high')}"
             f"{')' if self.high_open else ']'}"
         )
 
@@ -91,13 +92,14 @@ class Range:
         return self.high is None or (number < self.high if self.high_open else number <= self.high)
 
 
-def _shown(number: float) -> str:
-    """A range end as people write it: 0.5, 200, 1e2, 1e-3."""
+def _shown(number: float, side: str) -> str:
+    """A range end as people write it: 0.5, 200, 1e2, 1e-3; rounded inward of the range
+    (:func:`shtaerman.validation.bound_text`) where 6 digits do not write it exactly."""
     if number > 0 and 10.0 ** round(math.log10(number)) == number and not 1e-2 <= number <= 10:
         return f"1e{round(math.log10(number))}"
     if number == int(number) and abs(number) < 1e4:
         return str(int(number))
-    mantissa, _, power = f"{number:g}".partition("e")
+    mantissa, _, power = bound_text(number, side, 6).partition("e")
     return f"{mantissa}e{int(power)}" if power else mantissa
 
 

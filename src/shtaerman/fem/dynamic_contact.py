@@ -36,7 +36,7 @@ from ..theory.materials import Material
 from ..theory.materials import validate_density as validate_material_density
 from ..theory.radiation import rayleigh_root
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
-from ..validation import InputError, validate_positive
+from ..validation import InputError, bound_text, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
 from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
@@ -203,8 +203,12 @@ class DynamicSettings:
         factor = validate_positive("refine", factor)
         steps = self.steps * factor
         if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:  # round(steps) in range
+            low, high = (
+                bound_text(MIN_STEPS / self.steps, "low"),
+                bound_text(MAX_STEPS / self.steps, "high"),
+            )
             raise InputError(
-                f"refine must lie in [{MIN_STEPS / self.steps:.3g}, {MAX_STEPS / self.steps:.3g}]"
+                f"refine must lie in [{low}, {high}]"
                 f" with {self.steps} steps per t_y (it scales the time steps, "
                 f"{MIN_STEPS}-{MAX_STEPS} allowed, and divides the mesh sizes), got {factor!r}"
             )

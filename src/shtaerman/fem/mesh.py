@@ -28,7 +28,7 @@ from skfem import MeshTri
 from skfem.io.meshio import from_meshio
 
 from ..theory.layer import BASES
-from ..validation import InputError, validate_positive
+from ..validation import InputError, bound_text, validate_positive
 from .signals import deferred
 
 __all__ = [
@@ -423,10 +423,11 @@ def _layer_elements(settings: MeshSettings, thickness: float) -> float:
 def check_thickness_range(thickness: float, refined: float, where: str) -> None:
     """InputError unless ``thickness`` (m) lies within MIN_THICKNESS to MAX_THICKNESS
     ``refined`` radii (m); ``where`` names the case in the message ("at these depths")."""
-    if not MIN_THICKNESS <= thickness / refined <= MAX_THICKNESS:
+    low, high = MIN_THICKNESS * refined, MAX_THICKNESS * refined
+    if not low <= thickness <= high:
         raise InputError(
-            f"thickness: must lie in [{MIN_THICKNESS * refined:.3g}, "
-            f"{MAX_THICKNESS * refined:.3g}] m {where} ({MIN_THICKNESS:g} to "
+            f"thickness: must lie in [{bound_text(low, 'low')}, "
+            f"{bound_text(high, 'high')}] m {where} ({MIN_THICKNESS:g} to "
             f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "
             f"half-space, run without a thickness), got {thickness!r}",
             "thickness",

@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike
 from ...fem.mesh import MAX_DOMAIN, MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
-from ...validation import InputError, validate_positive
+from ...validation import InputError, bound_text, validate_positive
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
 from ..richardson import Estimate, curve_richardson, richardson
 from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
@@ -294,17 +294,17 @@ def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:
     if mesh.thickness is not None:
         if tolerance < 2.0 * LAYER_TRUNCATION:
             raise InputError(
-                f"accuracy must be >= {2.0 * LAYER_TRUNCATION:.2g} on a layer: its lateral "
-                f"edge alone may change the force by {LAYER_TRUNCATION:.2g}, which no "
+                f"accuracy must be >= {bound_text(2.0 * LAYER_TRUNCATION, 'low', 2)} on a layer: "
+                f"its lateral edge alone may change the force by {LAYER_TRUNCATION:.2g}, which no "
                 f"refinement removes; got {tolerance!r}"
             )
         return mesh
     floor = 2.0 * TRUNCATION["force"] / (MAX_DOMAIN * mesh.margin)
     if tolerance < floor:
         raise InputError(
-            f"accuracy must be >= {floor:.2g}: the clamped far boundary alone stiffens the "
-            f"force by about {floor / 2:.2g} at the largest domain ({MAX_DOMAIN:g} refined "
-            f"radii), which no refinement removes; got {tolerance!r}"
+            f"accuracy must be >= {bound_text(floor, 'low', 2)}: the clamped far boundary alone "
+            f"stiffens the force by about {floor / 2:.2g} at the largest domain "
+            f"({MAX_DOMAIN:g} refined radii), which no refinement removes; got {tolerance!r}"
         )
     domain = min(max(mesh.domain, 10.0 * TRUNCATION["force"] / tolerance), MAX_DOMAIN)
     return replace(mesh, domain=domain)
