@@ -546,12 +546,19 @@ def _blame_the_stepping(
     raise NumericalFailureError(_unstable(balance, state, problem, where)) from edge
 
 
+SMALL_STEP_CURE = (
+    "use fewer time steps (time_steps, --time-steps) or a finer mesh with them (mesh_size, "
+    "--mesh-size): the contact stepping needs c_s dt not far below the surface element size"
+)
+"""What a message of an unstable contact stepping tells the user to change."""
+
+
 def _runaway(balance: float, state: ImpactState, problem: ImpactProblem) -> str:
     """The one-line message of a run whose energy balance is off by the initial energy."""
     return (
         f"the energy balance is off by {abs(balance):.1e} of M v0^2/2 at t = "
         f"{state.time(problem.scheme):.4g} s: either the time stepping became unstable "
-        f"(dt = {problem.scheme.dt:.3g} s is too small for this mesh: use fewer time steps) or "
+        f"(dt = {problem.scheme.dt:.3g} s is too small for this mesh: {SMALL_STEP_CURE}) or "
         "the mesh and time steps sized from the quasi-static impact do not resolve this impact"
     )
 
@@ -561,7 +568,7 @@ def _unstable(balance: float, state: ImpactState, problem: ImpactProblem, where:
     return (
         f"the time stepping became unstable at t = {state.time(problem.scheme):.4g} s (energy "
         f"balance off by {abs(balance):.1e} of M v0^2/2{where}): dt = {problem.scheme.dt:.3g} s "
-        "with this scheme does not keep the contact stable; use fewer time steps"
+        f"with this scheme does not keep the contact stable; {SMALL_STEP_CURE}"
     )
 
 
