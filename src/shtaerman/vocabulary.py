@@ -623,8 +623,9 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     _numeric(
         "time_steps",
-        "time steps per quasi-static impact duration t_y (more leave the contact stepping "
-        "unstable at the default mesh; refine scales them with the mesh)",
+        "time steps per quasi-static impact duration t_y (more than about 100 / mesh-size leave "
+        "the contact stepping unstable: fewer steps or a finer mesh; refine scales them with "
+        "the mesh)",
         "Time steps per impact duration t_y",
         200,
         ("dynamic",),
