@@ -296,6 +296,12 @@ def dynamic(
         numbers.update(prony=prony, thickness=thickness, base=base)
         kept = dict(mass=mass, velocity=velocity, time_steps=time_steps, mesh_size=mesh_size)
         return finite_strain_route(indenter, body, model, numbers, kept, rubber)
+    if layer_rate is not None and body.density == 0:
+        raise InputError(
+            "layer_rate: applies to a body with mass only: a massless body (density 0) "
+            "radiates no waves for the absorbing layer to damp",
+            "layer_rate",
+        )
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
     chosen = _layer(dynamic_settings(settings, options), thickness, base)

@@ -24,12 +24,14 @@ __all__ = [
     "Parser",
     "add_figure_format",
     "add_inputs",
+    "given",
     "in_option_words",
     "indenter",
     "keywords",
     "print_json",
     "striker",
     "warn",
+    "warn_volumetric",
 ]
 
 CASE = ("mass", "velocity", "shape_coefficient", "exponent")
@@ -197,6 +199,16 @@ def in_option_words() -> Iterator[None]:
         raise type(error)(option + message[len(name) :], name) from None
 
 
+def given(args: argparse.Namespace, name: str) -> bool:
+    """Whether the option of input ``name`` was on the command line, even with its default
+    value (an option stored as read, a path or a flag, counts where it differs from its
+    default)."""
+    if name in vars(args).get("_spelled", {}):
+        return True
+    item = entry(name)
+    return item.type in ("path", "flag", "bool") and getattr(args, name) != item.default_for(None)
+
+
 def keywords(args: argparse.Namespace, names: Iterable[str]) -> dict[str, Any]:
     """The parsed options ``names`` as the API's keywords (an option's dest is its keyword)."""
     return {name: getattr(args, name) for name in names}
@@ -220,3 +232,10 @@ def print_json(document: object) -> None:
 def warn(message: str) -> None:
     """One warning line on stderr."""
     print(f"shtaerman: warning: {message}", file=sys.stderr)
+
+
+def warn_volumetric(args: argparse.Namespace) -> None:
+    """Warn that --volumetric, when given, changes nothing at --nu2 0.5 (an incompressible
+    body stores no volumetric energy); the run goes on."""
+    if given(args, "volumetric") and args.nu2 == 0.5:
+        warn("--volumetric has no effect at --nu2 0.5 (no volumetric energy): ignored")

@@ -14,6 +14,7 @@ from .common import (
     CASE,
     add_figure_format,
     add_inputs,
+    given,
     in_option_words,
     indenter,
     keywords,
@@ -78,6 +79,8 @@ def run(args: argparse.Namespace) -> int:
     if args.model != "linear" or any(getattr(args, name) for name in RUBBER_OPTIONS):
         return run_finite(args)
     history = history_path(args.history, force=args.force)
+    if not given(args, "layer_rate"):  # the API's default: the layer of the case
+        args.layer_rate = None
     names = ("mass", "velocity", "thickness", "base", "refine", "estimate", *SETTINGS_OPTIONS)
     names = (*names, "prony", "out", "force")
     with in_option_words():

@@ -8,8 +8,7 @@ import math
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.finite_dynamic import finite_strain_route
 from ..theory.materials import Material
-from ..vocabulary import entry
-from .common import in_option_words, indenter, print_json
+from .common import given, in_option_words, indenter, print_json, warn_volumetric
 
 LINEAR_ONLY = ("history", "out", "mesh_margin", "domain_factor", "growth", "layer_rate", "prony")
 LINEAR_ONLY = (*LINEAR_ONLY, "thickness", "base")
@@ -20,15 +19,13 @@ def run_finite(args: argparse.Namespace) -> int:
     """Run :func:`shtaerman.api.finite_dynamic.finite_dynamic` from the parsed options; print
     text or JSON."""
     unsupported = {
-        name: getattr(args, name)
-        for name in LINEAR_ONLY
-        if getattr(args, name) != entry(name).default_for("dynamic")  # given
+        name: getattr(args, name) for name in (*LINEAR_ONLY, "refine") if given(args, name)
     }
-    unsupported["refine"] = args.refine != 1.0
     kept = {name: getattr(args, name) for name in ("mass", "velocity", "time_steps", "mesh_size")}
-    for name in ("time_steps", "mesh_size"):  # the linear impact's defaults: not given
-        if kept[name] == entry(name).default_for("dynamic"):
+    for name in ("time_steps", "mesh_size"):  # not given: the finite-strain impact's defaults
+        if not given(args, name):
             kept[name] = None
+    warn_volumetric(args)
     rubber = {name: getattr(args, name) for name in RUBBER_OPTIONS if getattr(args, name)}
     with in_option_words():
         result = finite_strain_route(

@@ -71,6 +71,11 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("resume and force exclude each other: resume keeps the folder")
     if args.resume and args.out is None:
         raise InputError("resume: name the folder to complete with --out DIR")
+    if args.extended and args.studies:
+        raise InputError(
+            "--extended: applies to the shipped studies only (run without study names); a "
+            "named study runs whether it is extended or not"
+        )
     paths = [find_study(name) for name in args.studies] or shipped_studies(extended=args.extended)
     studies = [study for path in paths for study in load_study(path)]
     _check_unique_names(studies)
