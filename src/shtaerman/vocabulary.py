@@ -113,6 +113,10 @@ MAX_VELOCITIES = 100
 """Most approach velocities of a dynamic study: each is a dynamic FE run."""
 MAX_PRONY_TERMS = 20
 """Most terms of a Prony series: each adds internal variables at every quadrature point."""
+MAX_LAYER_RATE = 1e4
+"""Largest absorbing-layer rate zeta_max t_y: far beyond the impact's frequencies the layer is
+a wall (it sends back 0.35 of the radiated energy at 1e4), and from about 1e30 its damping
+swamps the energy balance (benchmarks/FEM_NOTES.md, "Option checks and printed ranges")."""
 
 
 @dataclass(frozen=True)
@@ -636,11 +640,12 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     _numeric(
         "layer_rate",
-        "absorbing-layer damping rate x t_y (0: no layer)",
+        "absorbing-layer damping rate x t_y (0: no layer; a faster layer damps the waves so "
+        "abruptly that it reflects them, like a wall: more the larger the rate)",
         "Absorbing layer rate",
         0.0,
         ("dynamic",),
-        valid=Range(0.0, low_open=False),
+        valid=Range(0.0, MAX_LAYER_RATE, low_open=False),
     ),
     _numeric(
         "reach",
