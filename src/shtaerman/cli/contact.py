@@ -100,9 +100,9 @@ def run(args: argparse.Namespace) -> int:
             "give --accuracy too",
             "max_time",
         )
-    warn_volumetric(args)
     with in_option_words():
         result = contact(indenter(args), Material(args.E2, args.nu2), **keywords(args, KEYWORDS))
+    warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if args.json:
         print_json(report)

@@ -25,7 +25,6 @@ def run_finite(args: argparse.Namespace) -> int:
     for name in ("time_steps", "mesh_size"):  # not given: the finite-strain impact's defaults
         if not given(args, name):
             kept[name] = None
-    warn_volumetric(args)
     rubber = {name: getattr(args, name) for name in RUBBER_OPTIONS if getattr(args, name)}
     with in_option_words():
         result = finite_strain_route(
@@ -36,6 +35,7 @@ def run_finite(args: argparse.Namespace) -> int:
             kept,
             {**rubber, "density": args.density2},
         )
+    warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if args.json:
         print_json(report)
