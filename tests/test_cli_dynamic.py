@@ -108,7 +108,7 @@ def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
         (["--mesh-margin", "0.5"], "margin must be > 1"),
         (
             ["--refine", "1e3"],
-            "refine must lie in [0.25, 500] with 200 steps per t_y (it scales the time steps",
+            "--refine must lie in [0.25, 500] with 200 steps per t_y (it scales the time steps",
         ),
     ],
 )

@@ -210,7 +210,8 @@ class DynamicSettings:
             raise InputError(
                 f"refine must lie in [{low}, {high}]"
                 f" with {self.steps} steps per t_y (it scales the time steps, "
-                f"{MIN_STEPS}-{MAX_STEPS} allowed, and divides the mesh sizes), got {factor!r}"
+                f"{MIN_STEPS}-{MAX_STEPS} allowed, and divides the mesh sizes), got {factor!r}",
+                "refine",
             )
         return replace(
             self,
