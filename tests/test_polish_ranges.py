@@ -72,3 +72,17 @@ def test_a_vocabulary_range_with_more_digits_is_printed_inward():
     assert valid.text() == "[0.333334, 0.666666]"
     assert valid.contains(0.333334) and valid.contains(0.666666)
     assert Range(0.05, 500.0, low_open=False).text() == "[0.05, 500]"  # exact ends unchanged
+
+
+def test_the_printed_end_of_the_history_times_is_accepted():
+    import shtaerman as sh
+
+    # t_y = 0.010805367889682317 s at 1 m/s: the nearest 6 digits, 0.0108054, lie beyond it
+    solution = sh.impact(
+        sh.PowerLawIndenter(5.0, 1.5), sh.Material(7.5e6, 0.5), mass=0.7, velocity=1.0
+    ).solution
+    with pytest.raises(InputError, match=r"\[0, t_y\] = \[0, 0\.0108053\] s") as error:
+        solution.history(times=[1.0])
+    end = float(str(error.value).rsplit("[0, ", 1)[1].split("]")[0])
+    assert end <= solution.t_y
+    solution.history(times=[0.0, end])  # the printed end is accepted

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import beta as beta_function
 
-from ..validation import InputError, validate_positive
+from ..validation import InputError, bound_text, validate_positive
 from .ateb import ateb_pair, ateb_sine
 
 __all__ = [
@@ -163,7 +163,8 @@ class ImpactResult:
         if times is not None:
             t = np.atleast_1d(np.asarray(times, dtype=float))
             if np.any((t < 0) | (t > self.t_y)):
-                raise InputError(f"times must lie within [0, t_y] = [0, {self.t_y:.6g}] s")
+                end = bound_text(float(self.t_y), "high", 6)
+                raise InputError(f"times must lie within [0, t_y] = [0, {end}] s")
             return t
         if int(points) < 2:
             raise InputError(f"points must be >= 2, got {points!r}")
