@@ -105,3 +105,23 @@ def test_the_layer_contact_text_compares_with_the_half_space():
     assert "vs half-space" in text and "p0/pavg half-space" in text
     assert "pressure profile L2 departure from the half-space" in text
     assert "exact" not in text and "L2 error" not in text
+
+
+def test_the_finite_strain_layer_text_names_the_layer_and_the_half_space_reference():
+    from shtaerman.cli.contact import finite_contact_text
+
+    result = sh.contact(
+        PowerLawIndenter(5.0, 1.5),
+        Material(7.5e6, 0.5),
+        depths=[1e-3],
+        thickness=0.1,
+        model="neo-hookean",
+        mesh_size=0.1,
+        estimate=False,
+    )
+    rows = finite_contact_text(result.to_dict()).splitlines()
+    # the layer went unmentioned: its /lin columns read as the layer's own linear solution
+    assert rows[1] == (
+        "  layer H = 0.1 m on a bonded rigid base: /lin = against the linear half-space, not "
+        "the layer"
+    )

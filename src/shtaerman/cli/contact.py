@@ -120,6 +120,7 @@ def finite_contact_text(report: dict) -> str:
         f"r^{report['exponent']:g} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
         "Shtaerman's linear solution)" + _impact_words(report),
+        *_layer_rows(report, "/lin = against the linear half-space, not the layer"),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
         "  energy (J)  Newton",
     ]
@@ -186,11 +187,7 @@ def contact_text(report: dict) -> str:
         f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
     )
     rows = [head + _impact_words(report)]
-    if "thickness" in report["mesh"]:
-        rows.append(
-            f"  layer H = {report['mesh']['thickness']:g} m on a {report['mesh']['base']} rigid "
-            "base: rel.err = departure from the half-space"
-        )
+    rows += _layer_rows(report, "rel.err = departure from the half-space")
     if "interface" in report["mesh"]:
         rows.append(
             f"  {report['mesh']['interface']} indenter ("
@@ -228,6 +225,14 @@ def contact_text(report: dict) -> str:
     if "error_estimate" in report:
         rows += _estimate_text(report)
     return "\n".join(rows)
+
+
+def _layer_rows(report: dict, compared: str) -> list[str]:
+    """The row naming the layer and what the columns are ``compared`` with; none without one."""
+    mesh = report["mesh"]
+    if "thickness" not in mesh:
+        return []
+    return [f"  layer H = {mesh['thickness']:g} m on a {mesh['base']} rigid base: {compared}"]
 
 
 def _reference_words(report: dict) -> tuple[str, str]:
