@@ -111,6 +111,9 @@ MAX_VELOCITIES = 100
 """Most approach velocities of a dynamic study: each is a dynamic FE run."""
 MAX_PRONY_TERMS = 20
 """Most terms of a Prony series: each adds internal variables at every quadrature point."""
+MAX_GLASSY_DURATIONS = 20.0
+"""Longest quasi-static viscoelastic contact accepted, in glassy impact durations t_y: a run
+lasts three contact times, so at most 60 t_y (60 times the steps of the glassy t_y)."""
 
 
 @dataclass(frozen=True)
@@ -417,7 +420,8 @@ VOCABULARY: tuple[Entry, ...] = (
         "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s):"
         " G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 and nu2 the instantaneous values, "
         f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
-        "terms; unset: elastic",
+        f"terms, and the quasi-static impact at most {MAX_GLASSY_DURATIONS:g} glassy impact "
+        "durations long; unset: elastic",
         "Prony series (g_i:tau_i)",
         None,
         ("dynamic",),

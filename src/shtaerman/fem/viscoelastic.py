@@ -33,7 +33,7 @@ from skfem import asm
 from ..theory.contact import PowerLawContact
 from ..theory.viscoelastic import PronySeries, ViscoelasticImpact, viscoelastic_impact
 from ..validation import InputError, NumericalFailureError
-from ..vocabulary import MAX_PRONY_TERMS
+from ..vocabulary import MAX_GLASSY_DURATIONS, MAX_PRONY_TERMS
 from .elasticity import TWO_PI, ElasticSystem, deviatoric_stiffness
 
 __all__ = [
@@ -54,9 +54,6 @@ PRONY_FORM = (
     f"{MAX_PRONY_TERMS} terms"
 )
 """The valid Prony input, in words."""
-MAX_GLASSY_DURATIONS = 20.0
-"""Longest quasi-static viscoelastic contact accepted, in glassy impact durations t_y: a run
-lasts three contact times, so at most 60 t_y (60 times the steps of the glassy t_y)."""
 
 
 def prony_input(value: object, name: str = "prony") -> PronySeries | None:
