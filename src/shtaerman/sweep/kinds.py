@@ -328,7 +328,9 @@ DYNAMIC_OUTPUTS = {
     "seconds": "s",
 }
 """difference_*: quasi-static / dynamic - 1 for x_c / x_max, P_c / P_max and t_c against
-t_contact / 2 (= t_y / t_contact); difference_worst: the largest of their magnitudes."""
+t_contact / 2 (= t_y / t_contact); difference_worst: the largest of their magnitudes.
+energy_radiated_fraction is 1 - e^2, all the energy left in the body (with a ``prony`` series
+waves and hysteresis together: :data:`DYNAMIC_LOSSES` splits it)."""
 DYNAMIC_ERRORS = {
     "error_x_max": "",
     "error_P_max": "",
