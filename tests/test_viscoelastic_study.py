@@ -93,3 +93,17 @@ def test_a_dynamic_sweep_with_prony_has_the_loss_columns():
     assert visco["energy_dissipated_fraction"] > 0.3 and abs(visco["energy_wave_fraction"]) < 1e-4
     elastic = kind.case({**params, "estimate": False})
     assert not set(LOSSES) & set(elastic)
+
+
+def test_the_quasi_static_integration_gives_up_at_longest():
+    from shtaerman.theory.viscoelastic import viscoelastic_impact
+    from shtaerman.validation import InputError, NumericalFailureError
+
+    one_term = PronySeries((0.5,), (2e-3,))
+    whole = viscoelastic_impact(0.7, 3.0, LAW, one_term, steps=100)
+    capped = viscoelastic_impact(0.7, 3.0, LAW, one_term, steps=100, longest=2 * whole.t_contact)
+    assert capped.restitution == whole.restitution  # a bound it does not reach changes nothing
+    with pytest.raises(NumericalFailureError, match="no separation"):
+        viscoelastic_impact(0.7, 3.0, LAW, one_term, steps=100, longest=0.5 * whole.t_contact)
+    with pytest.raises(InputError, match="longest"):
+        viscoelastic_impact(0.7, 3.0, LAW, one_term, steps=100, longest=-1.0)
