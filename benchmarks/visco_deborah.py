@@ -6,7 +6,13 @@ glassy compression time). Per De: the quasi-static reference (Lee-Radok/Ting), t
 inertia (density 0: hysteresis only) and with it (density 1100 kg/m^3: waves and hysteresis),
 beside the elastic dynamic run (waves only, the row De = 0).
 
-Run: python benchmarks/visco_deborah.py [--weight G] [--steps N] [--size H]
+``--ladder``: every FE run is the finest level of the dynamic study's error-estimate ladder
+(:mod:`shtaerman.study.dynamic.accuracy`), and 1 - e^2 and the heat carry ± its estimate. The
+two Deborah numbers where the hysteresis-only loss (Ting's exact quasi-static impact, which the
+massless FE meets to 3e-5) equals the waves-only loss of the elastic run are then found by
+bisection, with the range that the waves-only run's estimate leaves them.
+
+Run: python benchmarks/visco_deborah.py [--weight G] [--steps N] [--size H] [--ladder]
 """
 
 from __future__ import annotations
@@ -14,8 +20,10 @@ from __future__ import annotations
 import argparse
 
 import numpy as np
+from scipy.optimize import brentq
 
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
+from shtaerman.study.dynamic.accuracy import run_dynamic_ladder
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -28,32 +36,65 @@ T_C = solve_impact(MASS, VELOCITY, LAW).t_c
 DEBORAH = np.logspace(-2, 2, 9)
 
 
+def _run(density, settings, prony, ladder):
+    """(result, {quantity: absolute error}) of one FE run; no errors without the ladder."""
+    inputs = (INDENTER, RUBBER, density, MASS, VELOCITY, settings)
+    if not ladder:
+        return run_dynamic_impact(*inputs, prony=prony), {}
+    levels = run_dynamic_ladder(*inputs, prony=prony)
+    return levels.finest, {k: e.absolute_error for k, e in levels.estimates.items()}
+
+
+def _pm(errors, key):
+    return f" ± {errors[key]:.1g}" if key in errors else ""
+
+
+def _ting_loss(deborah, weight):
+    prony = PronySeries((weight,), (T_C / deborah,))
+    return 1.0 - viscoelastic_impact(MASS, VELOCITY, LAW, prony, steps=2000).restitution ** 2
+
+
+def _crossovers(weight, waves, error):
+    """The Deborah numbers where Ting's hysteresis-only loss equals ``waves`` (± ``error``)."""
+    peak = DEBORAH[np.argmax([_ting_loss(d, weight) for d in DEBORAH])]
+    for low, high in ((DEBORAH[0], peak), (peak, DEBORAH[-1])):
+        found = [
+            np.exp(brentq(lambda u, w=w: _ting_loss(np.exp(u), weight) - w, *np.log([low, high])))
+            for w in (waves - error, waves, waves + error)
+        ]
+        print(f"hysteresis-only loss = waves-only loss at t_c/tau = {found[1]:.4g} "
+              f"(range {min(found):.4g} .. {max(found):.4g})")  # fmt: skip
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--weight", type=float, default=0.5)
     parser.add_argument("--steps", type=int, default=200)
     parser.add_argument("--size", type=float, default=1.0 / 40.0)
+    parser.add_argument("--ladder", action="store_true")
     args = parser.parse_args()
     settings = DynamicSettings(steps=args.steps, size=args.size)
-    elastic = run_dynamic_impact(INDENTER, RUBBER, 1100.0, MASS, VELOCITY, settings)
-    e_waves = elastic.restitution
-    print(f"t_c = {T_C:.6e} s, g = {args.weight}; elastic (waves only): e {e_waves:.5f}")
+    elastic, errors = _run(1100.0, settings, None, args.ladder)
+    waves = elastic.energy_radiated_fraction
+    print(f"t_c = {T_C:.6e} s, g = {args.weight}; elastic (waves only): e {elastic.restitution:.5f}"
+          f", 1-e^2 {waves:.5f}{_pm(errors, 'energy_radiated_fraction')}")  # fmt: skip
     print("| t_c/tau | e Ting | e FE rho 0 | e FE rho 1100 | 1-e^2 rho 0 | 1-e^2 rho 1100 | heat |")
     print("|---|---|---|---|---|---|---|")
     for deborah in DEBORAH:
         prony = PronySeries((args.weight,), (T_C / deborah,))
         ting = viscoelastic_impact(MASS, VELOCITY, LAW, prony, steps=2000).restitution
-        runs = [
-            run_dynamic_impact(INDENTER, RUBBER, rho, MASS, VELOCITY, settings, prony=prony)
-            for rho in (0.0, 1100.0)
-        ]
-        e0, e1 = (run.restitution for run in runs)
-        heat = runs[1].viscoelastic["energy_dissipated_fraction"]
+        (r0, err0), (r1, err1) = (_run(rho, settings, prony, args.ladder) for rho in (0.0, 1100.0))
+        heat = r1.viscoelastic["energy_dissipated_fraction"]
+        loss = "energy_radiated_fraction"
         print(
-            f"| {deborah:.3g} | {ting:.5f} | {e0:.5f} | {e1:.5f} | {1 - e0**2:.4f} | "
-            f"{1 - e1**2:.4f} | {heat:.4f} |",
+            f"| {deborah:.3g} | {ting:.5f} | {r0.restitution:.5f} | {r1.restitution:.5f} | "
+            f"{r0.energy_radiated_fraction:.4f}{_pm(err0, loss)} | "
+            f"{r1.energy_radiated_fraction:.4f}{_pm(err1, loss)} | "
+            f"{heat:.4f}{_pm(err1, 'energy_dissipated_fraction')} |",
             flush=True,
         )
+    if args.ladder:
+        _crossovers(args.weight, waves, errors["energy_radiated_fraction"])
 
 
 if __name__ == "__main__":

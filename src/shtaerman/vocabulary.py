@@ -117,6 +117,9 @@ MAX_LAYER_RATE = 1e4
 """Largest absorbing-layer rate zeta_max t_y: far beyond the impact's frequencies the layer is
 a wall (it sends back 0.35 of the radiated energy at 1e4), and from about 1e30 its damping
 swamps the energy balance (benchmarks/FEM_NOTES.md, "Option checks and printed ranges")."""
+MAX_GLASSY_DURATIONS = 20.0
+"""Longest quasi-static viscoelastic contact accepted, in glassy impact durations t_y: a run
+lasts three contact times, so at most 60 t_y (60 times the steps of the glassy t_y)."""
 
 
 @dataclass(frozen=True)
@@ -423,7 +426,8 @@ VOCABULARY: tuple[Entry, ...] = (
         "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s):"
         " G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 and nu2 the instantaneous values, "
         f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
-        "terms; unset: elastic",
+        f"terms, and the quasi-static impact at most {MAX_GLASSY_DURATIONS:g} glassy impact "
+        "durations long; unset: elastic",
         "Prony series (g_i:tau_i)",
         None,
         ("dynamic",),

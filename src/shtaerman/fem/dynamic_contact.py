@@ -35,7 +35,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.materials import validate_density as validate_material_density
 from ..theory.radiation import rayleigh_root
-from ..theory.viscoelastic import PronySeries, viscoelastic_impact
+from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, bound_text, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
@@ -61,7 +61,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
-from .viscoelastic import ShearMemory, ViscoelasticShear, viscoelastic_shear
+from .viscoelastic import ShearMemory, ViscoelasticShear, sizing_impact, viscoelastic_shear
 
 __all__ = [
     "MAX_DOFS",
@@ -429,11 +429,12 @@ def _viscoelastic_extent(
     Raises
     ------
     shtaerman.validation.InputError
-        If the run would need more than ``MAX_STEPS`` time steps.
+        If the run would need more than ``MAX_STEPS`` time steps, or the contact lasts more
+        than :data:`.viscoelastic.MAX_GLASSY_DURATIONS` glassy ones.
     """
     law = PowerLawContact(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
     glassy = _quasi_static(indenter, half_space, striker).t_y
-    slow = viscoelastic_impact(striker.mass, striker.velocity, law, prony, steps=100)
+    slow = sizing_impact(striker.mass, striker.velocity, law, prony, glassy)
     steps = 3.0 * slow.t_contact / glassy * settings.steps
     if steps > MAX_STEPS:
         raise InputError(

@@ -30,17 +30,20 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import asm
 
-from ..theory.viscoelastic import PronySeries
-from ..validation import InputError
-from ..vocabulary import MAX_PRONY_TERMS
+from ..theory.contact import PowerLawContact
+from ..theory.viscoelastic import PronySeries, ViscoelasticImpact, viscoelastic_impact
+from ..validation import InputError, NumericalFailureError
+from ..vocabulary import MAX_GLASSY_DURATIONS, MAX_PRONY_TERMS
 from .elasticity import TWO_PI, ElasticSystem, deviatoric_stiffness
 
 __all__ = [
+    "MAX_GLASSY_DURATIONS",
     "PRONY_FORM",
     "ShearMemory",
     "ViscoelasticShear",
     "effective_shear_modulus",
     "prony_input",
+    "sizing_impact",
     "strain_operator",
     "viscoelastic_shear",
 ]
@@ -321,3 +324,32 @@ def viscoelastic_shear(
         pressure_block=system.matrix[system.n_displacement :, system.n_displacement :].tocsr(),
         strain_shape=system.displacement_basis.dx.shape,
     )
+
+
+def sizing_impact(
+    mass: float, velocity: float, law: PowerLawContact, prony: PronySeries, glassy: float
+) -> ViscoelasticImpact:
+    """The coarse quasi-static viscoelastic impact (100 steps per t_c) that sizes a run.
+
+    ``law`` is the elastic contact at the glassy modulus and ``glassy`` its impact duration t_y
+    in s; SI units. The integration stops at :data:`MAX_GLASSY_DURATIONS` t_y, so its cost is
+    bounded whatever the series.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        Naming ``prony`` when the contact would last longer than that.
+    """
+    longest = MAX_GLASSY_DURATIONS * glassy
+    try:
+        return viscoelastic_impact(mass, velocity, law, prony, steps=100, longest=longest)
+    except NumericalFailureError:
+        pass
+    smallest = MAX_GLASSY_DURATIONS ** -(law.force_exponent + 1.0)  # the relaxed impact's g_inf
+    raise InputError(
+        f"prony: the viscoelastic impact lasts more than {MAX_GLASSY_DURATIONS:g} glassy impact "
+        f"durations (at most {MAX_GLASSY_DURATIONS:g} are run): the series relaxes too far "
+        f"within the impact; 1 - sum g_i >= {smallest:.2g} (the relaxed impact, at "
+        f"E2 (1 - sum g_i), within the bound) or slower terms keep it shorter",
+        "prony",
+    ) from None

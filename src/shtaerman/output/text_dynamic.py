@@ -141,22 +141,26 @@ def _body_words(settings: object) -> str:
 
 def _loss_words(outcome: DynamicStudyOutcome) -> str:
     """What 1 - e^2 of the example went to: elastic waves (with the first-order estimate), or
-    a viscoelastic body's hysteresis (and waves, with the single-run split)."""
+    a viscoelastic body's hysteresis (and waves, with the single-run split; ± its estimated
+    error in percentage points where the study ran its ladder)."""
     case = outcome.example
-    losses = case.result.viscoelastic
+    losses, pm = case.result.viscoelastic, _plus_minus(case.estimates())
     if not losses:
         return (
             "as elastic waves (first-order estimate"
             f"{'' if outcome.settings.thickness is None else ' for the half-space'} "
             f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f})"
         )
-    heat = f"{100 * losses['energy_dissipated_fraction']:.2f} % of M v0^2/2 dissipated by the end"
+
+    def share(key: str) -> str:
+        return f"{100 * losses[key]:.2f}{pm(key, 100)} %"
+
+    heat = f"{share('energy_dissipated_fraction')} of M v0^2/2 dissipated by the end"
     if outcome.study.density == 0:
         return f"as hysteresis (massless body: no waves; {heat} of the run)"
     return (
         f"as waves and hysteresis ({heat} of the run; the single-run split: waves beyond R_a "
-        f"{100 * losses['energy_wave_fraction']:.2f} %, hysteresis "
-        f"{100 * losses['energy_hysteresis_fraction']:.2f} %)"
+        f"{share('energy_wave_fraction')}, hysteresis {share('energy_hysteresis_fraction')})"
     )
 
 

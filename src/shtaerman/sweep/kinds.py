@@ -328,7 +328,9 @@ DYNAMIC_OUTPUTS = {
     "seconds": "s",
 }
 """difference_*: quasi-static / dynamic - 1 for x_c / x_max, P_c / P_max and t_c against
-t_contact / 2 (= t_y / t_contact); difference_worst: the largest of their magnitudes."""
+t_contact / 2 (= t_y / t_contact); difference_worst: the largest of their magnitudes.
+energy_radiated_fraction is 1 - e^2, all the energy left in the body (with a ``prony`` series
+waves and hysteresis together: :data:`DYNAMIC_LOSSES` splits it)."""
 DYNAMIC_ERRORS = {
     "error_x_max": "",
     "error_P_max": "",
@@ -345,6 +347,15 @@ DYNAMIC_ERRORS = {
 error_energy_radiated_fraction are relative; error_difference_x, _P, _t are absolute, in the
 unit of the difference (estimated on the difference's own values over the ladder);
 error_difference_worst is the largest of those three."""
+DYNAMIC_LOSSES = {
+    "energy_dissipated_fraction": "",
+    "energy_wave_fraction": "",
+    "energy_hysteresis_fraction": "",
+}
+"""With a ``prony`` series: the energy dissipated by the end of the run and the single-run split
+of 1 - e^2 (energy_radiated_fraction) into waves beyond the monitor radius and hysteresis,
+fractions of M v0^2/2 (:attr:`~shtaerman.fem.dynamic_contact.DynamicImpactResult.viscoelastic`;
+empty for an elastic case of a prony axis)."""
 
 
 def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
@@ -373,6 +384,7 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
         "reflected_energy_fraction": float(result.reflected_energy_fraction),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
+        **{key: float(result.viscoelastic[key]) for key in DYNAMIC_LOSSES if result.viscoelastic},
         **_dynamic_errors(case),
     }
     failures = dynamic_check_failures(
@@ -405,7 +417,7 @@ register_kind(
         case=dynamic_case,
         check=_quasi_static(_dynamic_inputs),
         nondeterministic=("seconds",),
-        optional_outputs={"estimate": DYNAMIC_ERRORS},
+        optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
         levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
     )
 )

@@ -462,6 +462,7 @@ def viscoelastic_impact(
     prony: PronySeries,
     *,
     steps: int = 2000,
+    longest: float | None = None,
 ) -> ViscoelasticImpact:
     """The quasi-static impact M x'' = -P(t), x(0) = 0, x'(0) = v0, on the viscoelastic
     half-space: Lee-Radok while x grows, Ting while it falls, until P = 0.
@@ -480,6 +481,9 @@ def viscoelastic_impact(
     steps : int
         Time steps per glassy compression time t_c (the elastic impact at E*_0), >= 20; the
         errors fall as steps^-2.
+    longest : float, optional
+        Contact time in s after which the integration gives up (NumericalFailureError); by
+        default :data:`MAX_DURATION` relaxed impact durations.
 
     Returns
     -------
@@ -493,6 +497,8 @@ def viscoelastic_impact(
     h = t_c / int(steps)
     relaxed_duration = 2.0 * prony.g_inf ** (-1.0 / (law.force_exponent + 1.0))  # in t_c
     limit = math.ceil(MAX_DURATION * relaxed_duration * steps)
+    if longest is not None:
+        limit = min(limit, math.ceil(validate_positive("longest", longest, "s") / h))
     states, t_contact = _integrate(mass, velocity, law, prony, h, limit)
     t, x, v, P, a = (np.array([getattr(s, k) for s in states]) for k in ("t", "x", "v", "P", "a"))
     x_max, t_x_max = _peak_depth(t, x, v)

@@ -3,7 +3,8 @@
 Three runs with :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined` factors K/2,
 K/sqrt(2) and K (element sizes / sqrt(2) and time steps x sqrt(2) per level) and Richardson
 estimates (:mod:`shtaerman.study.richardson`) of the finest run's x_max, P_max, t_contact,
-restitution and radiated fraction 1 - e^2. There is no exact solution to compare with here:
+restitution and radiated fraction 1 - e^2 (and a viscoelastic body's split of it into
+dissipated, wave and hysteresis fractions). There is no exact solution to compare with here:
 the estimate is what the number carries. A quantity derived from a run (a ratio to the
 quasi-static value) is estimated by Richardson on its own values over the levels
 (:meth:`DynamicLadder.estimate`), not by propagating the estimates above.
@@ -39,6 +40,7 @@ __all__ = [
     "DYNAMIC_ESTIMATED",
     "DYNAMIC_ORDER",
     "DYNAMIC_SANE",
+    "LOSS_ESTIMATED",
     "DynamicLadder",
     "check_ladder",
     "complete_ladder",
@@ -47,6 +49,13 @@ __all__ = [
 
 DYNAMIC_ESTIMATED = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
 """The dynamic results that get an error estimate."""
+LOSS_ESTIMATED = (
+    "energy_dissipated_fraction",
+    "energy_wave_fraction",
+    "energy_hysteresis_fraction",
+)
+"""A viscoelastic body's split of 1 - e^2 (:attr:`DynamicImpactResult.viscoelastic`), estimated
+too when the runs have it."""
 DYNAMIC_ORDER = 2.0
 """Asymptotic order used for the correction: generalized-alpha is second order in dt, and the
 graded P2 mesh converges at 2.2-2.7 here (x_max refining only the mesh); the smaller order
@@ -70,7 +79,8 @@ class DynamicLadder:
     results : tuple of DynamicImpactResult
         The runs; ``results[-1]`` is the answer.
     estimates : dict of str to Estimate
-        Per quantity of :data:`DYNAMIC_ESTIMATED`.
+        Per quantity of :data:`DYNAMIC_ESTIMATED` (and of :data:`LOSS_ESTIMATED` for a
+        viscoelastic body).
     """
 
     refines: tuple[float, ...]
@@ -163,6 +173,9 @@ def complete_ladder(
     results.append(finest)
     refines = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine)
     estimates = {key: _over_levels(results, attrgetter(key)) for key in DYNAMIC_ESTIMATED}
+    if finest.viscoelastic:
+        for key in LOSS_ESTIMATED:
+            estimates[key] = _over_levels(results, lambda r, key=key: r.viscoelastic[key])
     return DynamicLadder(refines, (*coarse, settings), tuple(results), estimates)
 
 

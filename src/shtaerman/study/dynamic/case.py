@@ -68,7 +68,8 @@ class DynamicCase:
 
     def estimates(self) -> dict[str, Estimate]:
         """Richardson estimates from the ladder ({} without one): x_max, P_max, t_contact,
-        restitution, energy_radiated_fraction, and ``difference_x``, ``difference_P``,
+        restitution, energy_radiated_fraction (a viscoelastic body: also the split of
+        :data:`.accuracy.LOSS_ESTIMATED`), and ``difference_x``, ``difference_P``,
         ``difference_t`` (:func:`compare` on every level; use ``absolute_error``)."""
         if self.ladder is None:
             return {}
