@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import statistics
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -107,7 +108,7 @@ def _report(name, estimates, outcomes, reference) -> None:
         effs = sorted(effs)
         print(
             f"    {group:18s} {method:11s} {len(effs):3d}  {effs[0]:6.2f} "
-            f"{effs[len(effs) // 2]:6.2f} {effs[-1]:8.2f}  {sum(e >= 1 for e in effs)}"
+            f"{statistics.median(effs):6.2f} {effs[-1]:8.2f}  {sum(e >= 1 for e in effs)}"
         )
 
 
