@@ -9,6 +9,7 @@ the nested one (about 40 s of CPU time together).
 from __future__ import annotations
 
 import itertools
+import json
 from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
@@ -17,9 +18,16 @@ import numpy as np
 import pytest
 
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.output.text_finite import _estimate_finding
 from shtaerman.plots.finite import panel_points
-from shtaerman.study.finite.accuracy import estimate_study
-from shtaerman.study.finite.runner import LADDER_RATIOS, _run_level, ladder, ladder_meshes
+from shtaerman.study.finite.accuracy import EDGE_ORDER, IMPACT_KEYS, estimate_study
+from shtaerman.study.finite.runner import (
+    LADDER_RATIOS,
+    _run_level,
+    estimate_ladder,
+    ladder,
+    ladder_meshes,
+)
 from shtaerman.study.ladder import (
     NESTED_RATIO,
     NestedMeshSettings,
@@ -88,7 +96,8 @@ def tiny():
     for nested in (False, True):
         factors, meshes = ladder_meshes(study.mesh, nested)
         outcomes = [_run_level(study, depths, mesh, impact, False) for mesh in meshes]
-        out[nested] = estimate_study(outcomes, factors, LADDER_RATIOS[nested])
+        out[nested] = estimate_ladder(outcomes, factors, nested)
+        out[nested, "richardson"] = estimate_study(outcomes, factors, LADDER_RATIOS[nested])
     return out
 
 
@@ -96,8 +105,95 @@ def test_nested_ladder_falls_back_less_than_the_old_one(tiny):
     old, _ = tiny[False].fallbacks()
     new, total = tiny[True].fallbacks()
     assert tiny[True].refines == (0.5, 1.0, 2.0)
-    assert new < old  # measured 38 against 50 of 57
+    assert new < tiny[True, "richardson"].fallbacks()[0] < old  # measured 35, 38, 50 of 57
     assert tiny[True].to_dict()["fallbacks"] == {"count": new, "of": total}
+    # independent gmsh levels: Richardson alone, as before the nested ladder's rules
+    same = [json.dumps(tiny[False, k].to_dict()) for k in ("richardson",)]
+    assert json.dumps(tiny[False].to_dict()) == same[0]
+
+
+DEPTHS = np.array([1e-3, 2e-3, 4e-3])
+
+
+class _Level:
+    """A synthetic ladder level of element size h: forces converging at order 2 whose ratio's
+    error changes sign between levels, and an edge radius converging at order between 1 and 2."""
+
+    def __init__(self, h: float):
+        self.seconds = self.cpu_seconds = 1.0
+        self.finite = SimpleNamespace(curve=SimpleNamespace(mesh_stats={"dofs": int(1e3 / h**2)}))
+        self.cancel = 1.0 + 0.1 * h**2 - 0.15 * h**3  # P / P_linear-FEM: -0.05, +6e-3, +4e-3
+        self.h = h
+        finite = {key: (1.0 + k) * (1.0 + 0.3 * h**2) for k, key in enumerate(IMPACT_KEYS)}
+        finite["a_c"] = 0.01 * (1.0 + 0.1 * h + 0.05 * h**2)
+        self.impacts = {
+            "finite_strain": finite,
+            "linear_fem": {key: v / self.cancel for key, v in finite.items()},
+        }
+        self.impacts["finite_strain"]["x_c"] = 3e-3 * (1.0 + 0.01 * h**2)
+
+    def rows(self) -> list[dict[str, float]]:
+        h, out = self.h, []
+        for d in DEPTHS:
+            force = 1e6 * d**1.5 * (1.0 + 0.3 * h**2)
+            edge = 1.0 + 0.1 * h + 0.05 * h**2  # observed order 1.35
+            out.append(
+                {
+                    "depth": d,
+                    "depth_to_radius": d / 0.01,
+                    "force": force,
+                    "force_linear_fem": force / self.cancel,
+                    "force_ratio": 1.0 + 0.3 * h**2,
+                    "force_ratio_fem": self.cancel,
+                    "radius_ratio": edge,
+                    "central_to_mean": 2.5 / edge**2,
+                    "strain_energy": d**2.5 * (1.0 + 0.2 * h**2),
+                }
+            )
+        return out
+
+    def at_maximum(self) -> dict[str, float]:
+        x_c, rows = self.impacts["finite_strain"]["x_c"], self.rows()
+        at = {}
+        for key in ("force_ratio", "force_ratio_fem", "radius_ratio", "central_to_mean"):
+            at[key] = float(np.interp(np.log(x_c), np.log(DEPTHS), [r[key] for r in rows]))
+        return at
+
+    def validity(self, departure_shift=0.0) -> list[dict[str, object]]:
+        return [{"status": "beyond", "depth_to_radius": 0.4, "depth": 4e-3, "velocity": 1.0}]
+
+
+def test_nested_rules_propagate_ratios_and_use_the_edge_order():
+    levels = [_Level(h) for h in (1.0, 0.5, 0.25)]
+    plain = estimate_study(levels, [0.5, 1.0, 2.0], NESTED_RATIO)
+    rules = estimate_study(levels, [0.5, 1.0, 2.0], NESTED_RATIO, propagate=True, edge_order=True)
+    rows = [level.rows() for level in levels]
+    for k, (old, new) in enumerate(zip(plain.steps, rules.steps, strict=True)):
+        assert old["force_ratio_fem"].method == old["radius_ratio"].method == "two-level"
+        factors = [
+            richardson([r[k][key] for r in rows], 2.0) for key in ("force", "force_linear_fem")
+        ]
+        assert new["force_ratio_fem"].method == "propagated"
+        assert new["force_ratio_fem"].error == pytest.approx(factors[0].error + factors[1].error)
+        edge = [r[k]["radius_ratio"] for r in rows]  # first order: the correction is d2 / (2 - 1)
+        assert (
+            new["radius_ratio"].method == "richardson" and new["radius_ratio"].order == EDGE_ORDER
+        )
+        assert new["radius_ratio"].extrapolated == pytest.approx(2 * edge[2] - edge[1], rel=1e-14)
+        assert new["force_ratio"] == old["force_ratio"]  # the rest unchanged
+    for key in ("P_c_vs_fem", "force_ratio_fem_at_x_c"):
+        assert (
+            plain.scalars[key].method == "two-level" and rules.scalars[key].method == "propagated"
+        )
+    assert (
+        rules.scalars["a_c"].order == EDGE_ORDER
+        and rules.scalars["a_c_vs_fem"].method == "propagated"
+    )
+    assert rules.fallbacks()[0] < plain.fallbacks()[0]
+    assert rules.fallbacks() == (0, plain.fallbacks()[1])
+    finding = _estimate_finding(SimpleNamespace(estimates=rules, rows=levels[-1].rows))
+    assert f"0 of {plain.fallbacks()[1]} estimates fell back" in finding
+    assert "contact edge's first order" in finding and "sum of their two factors'" in finding
 
 
 def _estimate(value: float, error: float) -> Estimate:

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from shtaerman.study.richardson import Estimate, curve_richardson, richardson
+from shtaerman.study.richardson import Estimate, curve_richardson, propagated, richardson
 from shtaerman.validation import InputError
 
 
@@ -120,3 +120,22 @@ def test_curve_with_sign_changing_points_still_converges():
         assert richardson(column, s).method == "two-level"
     estimate = curve_richardson(curves, s, order=3.0, sane=(1.0, 5.0))
     assert estimate.method == "richardson" and estimate.order == 3.0
+
+
+def test_propagated_bound_adds_the_factors_relative_errors():
+    a = richardson([1.0 + h**2 for h in (1.0, 0.5, 0.25)], 2.0)
+    b = richardson([2.0 + 0.5 * h**3 for h in (1.0, 0.5, 0.25)], 2.0)
+    ratio = propagated(a.value / b.value**2, [(a, 1.0), (b, -2.0)])
+    assert ratio.method == "propagated" and not ratio.reason
+    assert ratio.error == pytest.approx(a.error + 2.0 * b.error, rel=1e-15)
+    assert ratio.extrapolated == ratio.value  # a bound, nothing extrapolated
+
+
+def test_propagated_falls_back_with_a_factor_and_says_which():
+    fine = richardson([1.0 + h**2 for h in (1.0, 0.5, 0.25)], 2.0)
+    noisy = richardson([1.0, 1.1, 1.05], 2.0)  # differences change sign
+    ratio = propagated(1.0, [(fine, 1.0), (noisy, -1.0)])
+    assert ratio.method == "two-level" and "do not shrink monotonically" in ratio.reason
+    assert ratio.error == pytest.approx(fine.error + noisy.error, rel=1e-15)
+    with pytest.raises(InputError, match="factors"):
+        propagated(1.0, [])

@@ -234,6 +234,14 @@ def _validity_finding(outcome: FiniteStudyOutcome) -> str:
     )
 
 
+NESTED_RULES = (
+    "; 0.5-4.5 for a/a_linear, p(0)/p_avg and a_c, estimated at the contact edge's first "
+    "order). P/P_linear-FEM and the ratios to the linear-FEM impact carry the sum of their "
+    "two factors' relative estimates where both are Richardson's (a bound)."
+)
+"""The nested ladder's estimate rules, as the finding states them."""
+
+
 def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
     estimates = outcome.estimates
     worst = estimates.worst_step()
@@ -254,7 +262,7 @@ def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
         f"{outcome.rows()[worst]['depth_to_radius']:.3g}. {fallback} of {total} estimates "
         "fell back to the difference of the two finest meshes (differences not shrinking, "
         "or an observed order outside 1.5-4.5"
-        + (")." if nested else ": the ~1e-4 noise of non-nested meshes).")
+        + (NESTED_RULES if nested else ": the ~1e-4 noise of non-nested meshes).")
     )
 
 

@@ -24,6 +24,9 @@ the asymptotic regime and the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
 largest relative difference over the depths in place of |d1| and |d2|: the estimate of the
 curve's worst point. Per point, the differences change sign where the error passes through
 zero; their largest value converges regularly.
+
+:func:`propagated` bounds a product of powers of separately estimated factors (a ratio of two
+quantities whose own errors cancel in it) by the sum of the factors' relative estimates.
 """
 
 from __future__ import annotations
@@ -37,7 +40,15 @@ from numpy.typing import ArrayLike
 
 from ..validation import InputError
 
-__all__ = ["FALLBACKS", "ORDER_RANGE", "Estimate", "curve_richardson", "richardson"]
+__all__ = [
+    "ESTIMATED",
+    "FALLBACKS",
+    "ORDER_RANGE",
+    "Estimate",
+    "curve_richardson",
+    "propagated",
+    "richardson",
+]
 
 ORDER_RANGE = (1.5, 4.5)
 """Observed orders accepted for extrapolation; outside this range the coarse level is taken as
@@ -46,6 +57,9 @@ not yet asymptotic (P2 contact's orders: ``benchmarks/bench_contact.py`` (b)).""
 FALLBACKS = ("last", "largest")
 """What :func:`richardson` reports without a clean order: the last difference |d2|, or the
 largest of |d1| and |d2| (for a quantity whose levels scatter)."""
+
+ESTIMATED = ("richardson", "propagated")
+"""Methods of an :class:`Estimate` that are estimates; the others are fall-backs."""
 
 
 @dataclass(frozen=True)
@@ -64,7 +78,8 @@ class Estimate:
         The order of the correction: the observed p, or the known order when one was given
         (nan for the fallback).
     method : str
-        ``"richardson"``, or the fallback (see ``reason``): ``"two-level"`` (the last
+        ``"richardson"``, ``"propagated"`` (a bound from separately estimated factors,
+        :func:`propagated`), or the fallback (see ``reason``): ``"two-level"`` (the last
         difference) or ``"scatter"`` (the largest of the two differences).
     reason : str
         Why the fallback was used ("" for Richardson).
@@ -232,3 +247,35 @@ def curve_richardson(
         "",
         observed,
     )
+
+
+def propagated(value: float, factors: Sequence[tuple[Estimate, float]]) -> Estimate:
+    """The error of Q = prod F_i^k_i from its separately estimated factors.
+
+    First-order propagation with the signs of the factors' errors unknown:
+    |dQ / Q| <= sum |k_i| |dF_i / F_i|. A bound: where the factors' errors cancel (two
+    quantities on the same mesh), Q is closer than it says.
+
+    Parameters
+    ----------
+    value : float
+        Q on the finest level (the quantity's unit).
+    factors : sequence of (Estimate, float)
+        Each factor's estimate (relative error) and its exponent k_i.
+
+    Returns
+    -------
+    Estimate
+        Method ``"propagated"`` when every factor's method is in :data:`ESTIMATED`;
+        otherwise ``"two-level"``, its reason naming the factors' fall-backs. Nothing is
+        extrapolated (``extrapolated`` is ``value``).
+    """
+    if not factors:
+        raise InputError("factors must hold at least one (Estimate, exponent) pair, got none")
+    error = sum(abs(k) * e.error for e, k in factors)
+    prefix = "a factor fell back: "
+    fallen = [e.reason.removeprefix(prefix) for e, _ in factors if e.method not in ESTIMATED]
+    if fallen:
+        reason = prefix + "; ".join(dict.fromkeys(fallen))
+        return Estimate(value, value, error, math.nan, "two-level", reason)
+    return Estimate(value, value, error, math.nan, "propagated")

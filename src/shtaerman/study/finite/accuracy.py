@@ -15,6 +15,12 @@ crossing, and the three levels' crossings may agree by chance). A crossing is *r
 the estimated error of the departure there is below a fifth of its level
 (:func:`shtaerman.study.limits.resolved`).
 
+On a nested ladder two rules replace Richardson on the value itself (``estimate_study``'s
+``propagate`` and ``edge_order``): a ratio of two separately computed quantities (P/P_linear-FEM,
+the impact maxima against the linear-FEM impact's) gets the sum of its factors' relative
+estimates where both are Richardson's, and the numbers the contact edge sets (a/a_linear,
+p(0)/p_avg, a_c) are extrapolated at the edge's first order where their differences shrink.
+
 There is no exact solution here: what the estimator is worth is measured against finer meshes
 in ``benchmarks/bench_finite_strain.py`` (f).
 """
@@ -22,6 +28,7 @@ in ``benchmarks/bench_finite_strain.py`` (f).
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -30,7 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..ladder import LADDER_RATIO
-from ..richardson import Estimate, richardson
+from ..richardson import ESTIMATED, Estimate, propagated, richardson
 
 __all__ = [
     "CROSSING_KEYS",
@@ -49,6 +56,12 @@ an estimate."""
 IMPACT_KEYS = ("x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 """Finite-strain impact maxima that get an estimate, also as ratios to the same-mesh linear
 FEM impact's."""
+EDGE_KEYS = ("radius_ratio", "central_to_mean")
+"""Per-depth values set by the contact edge (a, and p(0)/p_avg through p_avg = P/(pi a^2))."""
+EDGE_ORDER = 1.0
+"""Order in h used for :data:`EDGE_KEYS` and the impact's a_c (see :func:`edge_richardson`)."""
+EDGE_BAND = (0.5, 4.5)
+"""Observed orders with which :func:`edge_richardson` accepts :data:`EDGE_ORDER`."""
 CROSSING_KEYS = ("depth_to_radius", "depth", "velocity")
 """What a 1 % / 5 % crossing reports (x/a, depth in m, impact velocity in m/s)."""
 
@@ -111,7 +124,7 @@ class FiniteEstimates:
         """How many of the estimated numbers (scalars and per-depth values) fell back to a
         two-level difference, and of how many."""
         every = [*self.scalars.values(), *(e for step in self.steps for e in step.values())]
-        return sum(e.method != "richardson" for e in every), len(every)
+        return sum(e.method not in ESTIMATED for e in every), len(every)
 
     def to_dict(self) -> dict[str, object]:
         """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder``, ``fallbacks``
@@ -197,8 +210,102 @@ def _crossings(
     )
 
 
+def edge_richardson(values: Sequence[float], ratio: float) -> Estimate:
+    """Richardson with the contact edge's order :data:`EDGE_ORDER`, where the differences
+    shrink monotonically at an observed order in :data:`EDGE_BAND` (else the two-level
+    fall-back). With the observed order above 1 the first-order correction |d2| / (s - 1)
+    is the larger, conservative one."""
+    return richardson(values, ratio, order=EDGE_ORDER, sane=EDGE_BAND)
+
+
+def _edge_estimates(
+    values: list[dict[str, float]],
+    rows: list[list[dict[str, float]]],
+    scalars: dict[str, Estimate],
+    steps: tuple[dict[str, Estimate], ...],
+    ratio: float,
+) -> None:
+    """Replace, in place, the estimates of the edge-driven numbers by :func:`edge_richardson`:
+    :data:`EDGE_KEYS` per depth and at x_c, and the impact's a_c."""
+    for k, step in enumerate(steps):
+        for key in EDGE_KEYS:
+            step[key] = edge_richardson([r[k][key] for r in rows], ratio)
+    for key in [*(f"{k}_at_x_c" for k in EDGE_KEYS), "a_c"]:
+        scalars[key] = edge_richardson([v[key] for v in values], ratio)
+
+
+def _ratio_steps(rows: list[list[dict[str, float]]], ratio: float) -> list[Estimate]:
+    """P/P_linear-FEM per depth, propagated from the two forces' own estimates."""
+    return [
+        propagated(
+            rows[-1][k]["force_ratio_fem"],
+            [
+                (richardson([r[k]["force"] for r in rows], ratio), 1.0),
+                (richardson([r[k]["force_linear_fem"] for r in rows], ratio), -1.0),
+            ],
+        )
+        for k in range(len(rows[-1]))
+    ]
+
+
+def _at_x_c(
+    rows: list[dict[str, float]], steps: Sequence[Estimate], x_c: float, x_c_estimate: Estimate
+) -> Estimate:
+    """A per-depth quantity at x_c, log-log interpolated between the depths bracketing x_c
+    (weights 1 - t and t), propagated from the two depths' estimates and from x_c's, whose
+    error moves the value by its log-log slope there."""
+    depth = np.log([row["depth"] for row in rows])
+    values = np.array([step.value for step in steps])
+    if depth.size == 1:
+        return propagated(float(values[0]), [(steps[0], 1.0)])
+    k = int(np.clip(np.searchsorted(depth, math.log(x_c)), 1, depth.size - 1))
+    t = float(np.clip((math.log(x_c) - depth[k - 1]) / (depth[k] - depth[k - 1]), 0.0, 1.0))
+    slope = math.log(values[k] / values[k - 1]) / (depth[k] - depth[k - 1])
+    value = float(np.interp(math.log(x_c), depth, values))
+    return propagated(value, [(steps[k - 1], 1.0 - t), (steps[k], t), (x_c_estimate, slope)])
+
+
+def _propagate_ratios(
+    outcomes: Sequence[LevelOutcome],
+    scalars: dict[str, Estimate],
+    steps: tuple[dict[str, Estimate], ...],
+    ratio: float,
+    edge_order: bool,
+) -> None:
+    """Replace, in place, the estimates of the ratios of two separately computed quantities
+    by propagation from the factors' own estimates: P/P_linear-FEM per depth and at x_c,
+    and the finite-strain impact maxima / the linear-FEM impact's (the linear-FEM a_c by
+    :func:`edge_richardson` with ``edge_order``); where a factor fell back, the ratio keeps
+    its own estimate."""
+    rows = [outcome.rows() for outcome in outcomes]
+    for step, bound in zip(steps, _ratio_steps(rows, ratio), strict=True):
+        step["force_ratio_fem"] = _preferred(step["force_ratio_fem"], bound)
+    fem = [outcome.impacts["linear_fem"] for outcome in outcomes]
+    for key in IMPACT_KEYS:
+        rule = edge_richardson if edge_order and key == "a_c" else richardson
+        factor = rule([f[key] for f in fem], ratio)
+        direct = scalars[f"{key}_vs_fem"]
+        bound = propagated(direct.value, [(scalars[key], 1.0), (factor, -1.0)])
+        scalars[f"{key}_vs_fem"] = _preferred(direct, bound)
+    x_c = outcomes[-1].impacts["finite_strain"]["x_c"]
+    ratios = [step["force_ratio_fem"] for step in steps]
+    bound = _at_x_c(rows[-1], ratios, x_c, scalars["x_c"])
+    scalars["force_ratio_fem_at_x_c"] = _preferred(scalars["force_ratio_fem_at_x_c"], bound)
+
+
+def _preferred(direct: Estimate, bound: Estimate) -> Estimate:
+    """The propagated bound where every factor was estimated, else the ratio's own estimate
+    (a bound summing the factors' fall-backs ignores that same-mesh errors cancel)."""
+    return bound if bound.method == "propagated" else direct
+
+
 def estimate_study(
-    outcomes: Sequence[LevelOutcome], refines: Sequence[float], ratio: float = LADDER_RATIO
+    outcomes: Sequence[LevelOutcome],
+    refines: Sequence[float],
+    ratio: float = LADDER_RATIO,
+    *,
+    propagate: bool = False,
+    edge_order: bool = False,
 ) -> FiniteEstimates:
     """Estimates of the last (finest) of three study outcomes on one mesh ladder.
 
@@ -211,6 +318,15 @@ def estimate_study(
     ratio : float
         Element-size ratio of consecutive levels (> 1): 2 on the nested ladder,
         sqrt(2) on independent gmsh levels.
+    propagate : bool
+        Estimate the ratios of two separately computed quantities (P/P_linear-FEM per depth
+        and at x_c, the impact maxima against the linear-FEM impact's) by propagating their
+        factors' own estimates (:func:`~shtaerman.study.richardson.propagated`), not by
+        Richardson on the ratio, whose factors' errors cancel and change sign.
+    edge_order : bool
+        Estimate the contact radius' numbers (:data:`EDGE_KEYS` per depth and at x_c, the
+        impact's a_c) with the edge's first order (:func:`edge_richardson`); ``propagate``
+        then carries a_c's estimate into a_c against the linear FEM's.
 
     Returns
     -------
@@ -223,6 +339,10 @@ def estimate_study(
         {key: richardson([r[k][key] for r in rows], ratio) for key in STEP_KEYS}
         for k in range(len(rows[-1]))
     )
+    if edge_order:
+        _edge_estimates(values, rows, scalars, steps, ratio)
+    if propagate:
+        _propagate_ratios(outcomes, scalars, steps, ratio, edge_order)
     scalars["force_ratio_worst"] = steps[_worst(steps, "force_ratio")]["force_ratio"]
     return FiniteEstimates(
         refines=tuple(refines),

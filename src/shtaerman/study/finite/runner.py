@@ -57,6 +57,7 @@ from .loader import FiniteStudy, Ladder
 __all__ = [
     "FiniteStudyOutcome",
     "depth_at_ratio",
+    "estimate_ladder",
     "ladder",
     "ladder_meshes",
     "run_finite_strain_study",
@@ -381,6 +382,17 @@ LADDER_RATIOS = {True: NESTED_RATIO, False: LADDER_RATIO}
 """Element-size ratio of :func:`ladder_meshes`' levels, by ``nested``."""
 
 
+def estimate_ladder(
+    outcomes: list[FiniteStudyOutcome], factors: list[float], nested: bool
+) -> FiniteEstimates:
+    """The estimates of :func:`ladder_meshes`' levels: on a nested ladder the ratios of two
+    separately computed quantities are propagated from their factors' estimates and the
+    contact edge's numbers use its first order (:func:`.accuracy.estimate_study`); on
+    independent gmsh levels Richardson alone."""
+    rules = {"propagate": nested, "edge_order": nested}
+    return estimate_study(outcomes, factors, LADDER_RATIOS[nested], **rules)
+
+
 def run_finite_strain_study(
     study: FiniteStudy,
     quick: bool = False,
@@ -431,8 +443,7 @@ def run_finite_strain_study(
             "linear FEM on the same mesh, impacts"
         )
         outcomes.append(_run_level(study, depths, level, exact, quick))
-    ratio = LADDER_RATIOS[nested]
-    estimates = estimate_study(outcomes, factors, ratio) if len(outcomes) > 1 else None
+    estimates = estimate_ladder(outcomes, factors, nested) if len(outcomes) > 1 else None
     return replace(
         outcomes[-1],
         estimates=estimates,
