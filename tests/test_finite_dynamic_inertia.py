@@ -97,3 +97,15 @@ def test_density_out_of_range_is_refused(density):
 def test_bad_spectral_radius_is_refused(rho_inf):
     with pytest.raises(InputError, match="spectral_radius"):
         FiniteImpactSettings(spectral_radius=rho_inf)
+
+
+def test_a_failing_step_names_the_time_and_the_remedy(monkeypatch):
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+    from shtaerman.fem.hyperelastic import NewtonError
+
+    def fail(*args):
+        raise NewtonError("an element inverted (J <= 0)")
+
+    monkeypatch.setattr(finite_dynamic, "_dynamic_step", fail)
+    with pytest.raises(NewtonError, match=r"from t = 0 s .*inverted.*raise the time steps"):
+        run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)

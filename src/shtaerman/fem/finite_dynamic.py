@@ -450,7 +450,6 @@ def run_finite_impact(
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
     stepper = _assembled(mesh, indenter, half_space, rubber, refined)
-    system = stepper.system
     clock.append(time.perf_counter())
     columns, iterations, separation, far = _stepped(
         stepper,
@@ -460,27 +459,20 @@ def run_finite_impact(
         (t_y / settings.steps, x_c, t_y, q),
     )
     clock.append(time.perf_counter())
-    timings = {
-        name: clock[k + 1] - clock[k] for k, name in enumerate(("mesh", "assembly", "stepping"))
-    }
+    names = ("mesh", "assembly", "stepping")
+    timings = {name: clock[k + 1] - clock[k] for k, name in enumerate(names)}
     timings["total"] = clock[-1] - clock[0]
     context = {
         "timings": timings,
-        "mesh": {
-            "nodes": int(mesh.p.shape[1]),
-            "elements": int(mesh.t.shape[1]),
-            "dofs": int(system.n_dofs),
-            "contact_candidates": int(stepper.nodes.radius.size),
-            "refined_radius": refined,
-        },
+        "mesh": _mesh_stats(mesh, stepper, refined),
         "parameters": _parameters(indenter, half_space, mass, velocity, t_y / settings.steps),
         "newton_iterations": iterations,
+        "reflected_energy_fraction": far,
     }
     context["parameters"].update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=law.beta)
     context["parameters"].update(density2=rho)
     if rho > 0:
         context["parameters"].update(spectral_radius=settings.spectral_radius)
-    context["reflected_energy_fraction"] = far
     return _result(columns, mass, context, separation)
 
 
@@ -505,6 +497,17 @@ def _stepped(
     )
     far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
     return columns, iterations, separation, far
+
+
+def _mesh_stats(mesh: Any, stepper: NewtonStepper, refined: float) -> dict[str, float]:
+    """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run."""
+    return {
+        "nodes": int(mesh.p.shape[1]),
+        "elements": int(mesh.t.shape[1]),
+        "dofs": int(stepper.system.n_dofs),
+        "contact_candidates": int(stepper.nodes.radius.size),
+        "refined_radius": refined,
+    }
 
 
 def _checked(
@@ -788,9 +791,16 @@ def _march_inertial(
     total, k, t, separation = 0, 0.0, 0.0, math.nan
     force_scale = mass * velocity / inertial.dt
     while t < duration:
-        new, iterations = _dynamic_step(
-            stepper, inertial, state, mass, (k, depth_scale, force_scale)
-        )
+        try:
+            new, iterations = _dynamic_step(
+                stepper, inertial, state, mass, (k, depth_scale, force_scale)
+            )
+        except NewtonError as error:
+            raise NewtonError(
+                f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}; "
+                "raise the time steps, or this impact is beyond the body with inertia (e.g. "
+                "faster than the shear waves)"
+            ) from None
         total += iterations
         force, previous = float(new.lam.sum()), float(state.lam.sum())
         if new.depth != state.depth:
