@@ -109,3 +109,20 @@ def test_a_failing_step_names_the_time_and_the_remedy(monkeypatch):
     monkeypatch.setattr(finite_dynamic, "_dynamic_step", fail)
     with pytest.raises(NewtonError, match=r"from t = 0 s .*inverted.*raise the time steps"):
         run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
+
+
+def test_api_dynamic_with_model_and_density_runs_the_body_with_inertia(monkeypatch):
+    import shtaerman as sh
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+
+    monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+    result = sh.dynamic(
+        INDENTER, RUBBER, mass=MASS, velocity=3.0, model="neo-hookean", density=1100.0
+    )
+    report = result.to_dict()
+    assert report["parameters"]["density2"] == 1100.0
+    assert report["parameters"]["time_step"] == pytest.approx(
+        report["parameters"]["quasi_static_t_y"] / 100
+    )
+    assert 0.9 < report["dynamic"]["restitution"] < 0.96
+    assert report["dynamic"]["energy_balance_error"] < 2e-3
