@@ -133,9 +133,9 @@ def finite_dynamic(
         ``neo-hookean``, ``mooney-rivlin``, ``yeoh`` or ``gent`` (:mod:`shtaerman.fem.rubber`).
     density : float, optional
         Half-space density in kg/m^3; 0: massless body (the finite-strain quasi-static
-        impact, the only one supported).
+        impact); in [1e-6, 1e6]: the body with inertia (waves).
     time_steps : int, optional
-        Steps per quasi-static impact duration (default 50).
+        Steps per quasi-static impact duration (default 50; 100 with inertia).
     mesh_size : float, optional
         Smallest element / refined radius (default the finite-strain contact's).
     mooney_ratio, yeoh, gent_limit, volumetric
@@ -148,21 +148,25 @@ def finite_dynamic(
     Raises
     ------
     shtaerman.validation.InputError
-        An input out of range, or a density other than 0.
+        An input out of range.
     """
     from dataclasses import replace
 
     from ..fem.finite_contact import FINITE_MESH
-    from ..fem.finite_dynamic import FiniteImpactSettings, check_density, run_finite_impact
+    from ..fem.finite_dynamic import (
+        INERTIA_MESH,
+        FiniteImpactSettings,
+        check_density,
+        run_finite_impact,
+    )
     from ..fem.rubber import rubber_model
 
     check_bodies(indenter, body)
     rubber = rubber_model(model, mooney_ratio, yeoh, gent_limit, volumetric)
     rho = check_density(body.density if density is None else density)
-    mesh = FINITE_MESH if mesh_size is None else replace(FINITE_MESH, size=mesh_size)
-    settings = FiniteImpactSettings(
-        mesh=mesh, **({} if time_steps is None else {"steps": time_steps})
-    )
+    default = FINITE_MESH if rho == 0 else INERTIA_MESH
+    mesh = default if mesh_size is None else replace(default, size=mesh_size)
+    settings = FiniteImpactSettings(steps=time_steps, mesh=mesh)
     run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber)
     law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
     quasi = solve_impact(mass, velocity, law)

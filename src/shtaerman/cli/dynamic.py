@@ -33,7 +33,8 @@ NOTES = {
 DERIVED = {"thickness": "none: the half-space", "base": "bonded; only with --thickness"}
 """Inputs whose default follows from the others, and that default in words."""
 MODEL_NOTES = {
-    "model": "a rubber model: the finite-strain impact, --density2 0 only (massless body)"
+    "model": "a rubber model: the finite-strain impact (--density2 0: massless body, the "
+    "finite-strain quasi-static impact; > 0: with inertia and waves)"
 }
 
 

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -289,9 +290,15 @@ class NewtonStepper:
         self.solver = PatternSolver(self.pattern, nodes)
         self.tolerance = tolerance
         self.max_iterations = max_iterations
+        self.backtracks = 0  # halvings of an update that inverts an element (0: raise)
         material = system.material
         # complementarity weight c (N/m): lambda_i and c g_i of comparable size
         self.weight = material.shear_modulus * candidate_radius / self.nodes.radius.size
+
+    def folded(self, x: np.ndarray) -> bool:
+        """Whether the candidates' current radii (m) have crossed (or the axis)."""
+        r = self.nodes.radius + x[self.nodes.ur]
+        return bool(np.any(r[1:] <= 0) or np.any(np.diff(r) <= 0))
 
     def geometry(self, x: np.ndarray, depth: float) -> tuple[np.ndarray, ...]:
         """Current radii, gap g, f'(r) and f''(r) at the candidates."""
@@ -308,17 +315,27 @@ class NewtonStepper:
         return r, gap, slope, curvature
 
     def solve(
-        self, depth: float, x: np.ndarray, lam: np.ndarray
+        self, depth: float, x: np.ndarray, lam: np.ndarray, scale: float | None = None
     ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
-        """Newton from (x, lambda) at ``depth``; raises NewtonError on failure."""
+        """Newton from (x, lambda) at ``depth``; raises NewtonError on failure. The corrections
+        are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0)."""
+        scale = depth if scale is None else scale
         system, nodes = self.system, self.nodes
         x, lam = x.copy(), lam.copy()
-        previous = None
+        previous = step = None
         corrections: list[float] = []
+        halvings = 0
         for iteration in range(1, self.max_iterations + 1):
             state = system.state(x)
-            if not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0:
-                raise NewtonError("an element inverted (J <= 0)")
+            if _inverted(state) or (self.backtracks and self.folded(x)):
+                if step is None or halvings == self.backtracks:
+                    raise NewtonError("an element inverted (J <= 0)")
+                halvings += 1  # back-track: halve the last update
+                step = (0.5 * step[0], step[1], 0.5 * step[2])
+                x[self.free] -= step[0]
+                lam[step[1]] -= step[2]
+                continue
+            halvings = 0
             _, gap, slope, curvature = self.geometry(x, depth)
             active = lam - self.weight * gap > 0
             lam[~active] = 0.0
@@ -338,10 +355,16 @@ class NewtonStepper:
                 raise NewtonError(f"singular Newton matrix ({error})") from None
             x[self.free] += du
             lam[rows] += dlam
-            corrections.append(float(np.max(np.abs(du[: self.n_free_u]))) / depth)
+            step = (du, rows, dlam)
+            corrections.append(float(np.max(np.abs(du[: self.n_free_u]))) / scale)
             if not np.isfinite(corrections[-1]):
                 break
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
+
+
+def _inverted(state: Any) -> bool:
+    """Whether some element of the kinematics ``state`` has J <= 0 (or not finite)."""
+    return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
 
 
 def _converged(corrections: list[float], tolerance: float) -> bool:

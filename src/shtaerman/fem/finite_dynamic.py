@@ -16,35 +16,53 @@ tolerances, and it is second order. Each step solves the scalar equation in X_{n
 secant iteration, every evaluation being a static contact solve warm-started from the last
 converged state. After the striker leaves (X_{n+1} <= 0) its speed is final.
 
-Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_contact`); the
-body carries no kinetic energy and radiates nothing, so the energy fractions are those of the
-striker and of the stored energy.
+The body with inertia (density > 0): Wood-Bossak-Zienkiewicz time stepping (rho_inf 0.9 by
+default; second order) of the body, with its consistent mass less the normal mass of the contact
+candidates (:func:`.mass.redistribute_normal_mass`: their u_z follow the indenter
+quasi-statically, without chatter), the inertial force and its tangent added to the contact
+Newton's residual and tangent. The striker's own Bossak equation
+M ((1 - a_m) A_{n+1} + a_m A_n) + P(X_{n+1}) = 0 is solved by a secant in X_{n+1}, each
+evaluation a contact solve of the body's step. Each Newton starts from the last converged state
+with its loaded candidates kept on the indenter in the first iterate, and halves an update that
+inverts an element (damped Newton). No absorbing layer: the far arc lies ``mesh.domain`` refined
+radii away, beyond the waves' reach during the contact; the kinetic energy beyond half its
+radius at the end is reported. The run stops when the contact force vanishes with the striker
+rebounding (separation time from P^(1/q) extrapolated between steps).
+
+Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_contact`). The
+massless body carries no kinetic energy and radiates nothing; with inertia the energies are the
+striker's and the body's kinetic energy, the stored energy and the numerical rest.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
+from ..theory.materials import DENSITY_RANGE, Material
 from ..validation import InputError, NumericalFailureError, validate_poisson, validate_positive
+from .contact import EDGE_MARGIN
 from .finite_contact import (
     FINITE_MESH,
     MAX_ITERATIONS,
     NEWTON_TOLERANCE,
+    ContactOutgrowsMeshError,
     NewtonStepper,
     geometric_radius,
 )
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
+from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import RubberModel
+from .stepper import _separation_time
 
 __all__ = [
     "FiniteImpactResult",
@@ -58,6 +76,15 @@ SECANT_TOLERANCE = 1e-10
 """The step's scalar equation is solved to |residual| <= this * M v0 / dt."""
 MAX_SECANT = 30
 MAX_HALVINGS = 6
+MAX_BACKTRACKS = 10
+"""Halvings of a Newton update of the body with inertia that inverts an element (damped Newton)."""
+MASSLESS_STEPS = 50
+INERTIA_STEPS = 100
+INERTIA_MESH = replace(FINITE_MESH, axis_size=1e-3)
+"""The body with inertia's default mesh: FINITE_MESH graded to 1e-3 of the refined radius at
+the axis, not 1e-6 (the impact reports no central pressure; on the 1e-6 grading the first
+Newton iterates of a step move the u_r of the axis elements by more than their width, and the
+damped Newton stalls)."""
 IMPACT_MARGIN = 1.3
 """Refined radius / geometric contact radius at the small-strain x_c (the finite-strain contact
 is wider by a few per cent)."""
@@ -69,22 +96,30 @@ class FiniteImpactSettings:
 
     Attributes
     ----------
-    steps : int
-        Time steps per quasi-static (small-strain) impact duration t_y, >= 20.
-    mesh : MeshSettings
-        Mesh of the half-space; its ``margin`` is replaced by ``margin`` below.
+    steps : int or None
+        Time steps per quasi-static (small-strain) impact duration t_y, >= 20; None: 50 for
+        the massless body, 100 with inertia (its energy balance is second order in dt).
+    mesh : MeshSettings or None
+        Mesh of the half-space; its ``margin`` is replaced by ``margin`` below. None:
+        :data:`.finite_contact.FINITE_MESH` for the massless body, :data:`INERTIA_MESH` with
+        inertia.
     margin : float
         Refined (candidate) radius / geometric contact radius (x_c / A)^(1/n) at the
         small-strain x_c, > 1.
+    spectral_radius : float
+        rho_inf in [0, 1] of the Wood-Bossak-Zienkiewicz scheme of the body with inertia
+        (1: the trapezoidal rule, no numerical damping); unused by the massless body.
     """
 
-    steps: int = 50
-    mesh: MeshSettings = FINITE_MESH
+    steps: int | None = None
+    mesh: MeshSettings | None = None
     margin: float = IMPACT_MARGIN
+    spectral_radius: float = 0.9
 
     def __post_init__(self) -> None:
-        if not isinstance(self.steps, (int, np.integer)) or not (
-            MIN_STEPS <= self.steps <= MAX_STEPS
+        if self.steps is not None and (
+            not isinstance(self.steps, (int, np.integer))
+            or not (MIN_STEPS <= self.steps <= MAX_STEPS)
         ):
             raise InputError(
                 f"steps (time steps per impact duration) must be an integer in "
@@ -95,6 +130,25 @@ class FiniteImpactSettings:
             self.margin <= 1.0
         ):
             raise InputError(f"margin must be > 1, got {self.margin!r}", "margin")
+        rho_inf = self.spectral_radius
+        if isinstance(rho_inf, bool) or not (
+            isinstance(rho_inf, (int, float)) and 0.0 <= rho_inf <= 1.0
+        ):
+            raise InputError(
+                f"spectral_radius must lie in [0, 1], got {rho_inf!r}", "spectral_radius"
+            )
+
+    def resolved(self, density: float) -> FiniteImpactSettings:
+        """These settings with the defaults of the massless body (``density`` 0) or of the
+        body with inertia filled in."""
+        massless = density == 0
+        steps = self.steps
+        if steps is None:
+            steps = MASSLESS_STEPS if massless else INERTIA_STEPS
+        mesh = self.mesh
+        if mesh is None:
+            mesh = FINITE_MESH if massless else INERTIA_MESH
+        return replace(self, steps=steps, mesh=mesh)
 
 
 @dataclass(frozen=True, eq=False)
@@ -120,6 +174,10 @@ class FiniteImpactResult:
         1 - e^2.
     energy_balance_error : float
         max over t of |numerical| / E0.
+    reflected_energy_fraction : float
+        With inertia: the body's kinetic energy beyond half the domain radius at the end, over
+        E0 (the waves that reached the far arc, from where they could return; no absorbing
+        layer); nan for the massless body.
     timings : dict of str to float
         Seconds: ``mesh``, ``assembly``, ``stepping``, ``total``.
     mesh, parameters : dict
@@ -336,21 +394,24 @@ def _turning_point(
 
 
 def check_density(density: object) -> float:
-    """Return the half-space density (kg/m^3) the finite-strain impact supports: 0 only.
+    """Return the half-space density in kg/m^3: 0 (massless body) or within DENSITY_RANGE.
 
     Raises
     ------
     shtaerman.validation.InputError
-        For any other value (the finite-strain body with inertia is not implemented).
+        Naming ``density2`` and the valid values.
     """
-    if isinstance(density, bool) or not isinstance(density, (int, float)) or density != 0:
+    low, high = DENSITY_RANGE
+    if (
+        isinstance(density, bool)
+        or not isinstance(density, (int, float))
+        or not (density == 0 or low <= density <= high)
+    ):
         raise InputError(
-            f"density2 must be 0 (massless body: the finite-strain quasi-static impact) with a "
-            f"rubber model; the finite-strain body with inertia is not implemented, got "
-            f"{density!r}",
+            f"density2 must be 0 (massless body) or in [{low:g}, {high:g}] kg/m^3, got {density!r}",
             "density2",
         )
-    return 0.0
+    return float(density)
 
 
 def run_finite_impact(
@@ -362,10 +423,11 @@ def run_finite_impact(
     settings: FiniteImpactSettings | None = None,
     rubber: RubberModel | None = None,
 ) -> FiniteImpactResult:
-    """Strike a rubber half-space (finite strain, massless) with a rigid power-law striker.
+    """Strike a rubber half-space (finite strain) with a rigid power-law striker.
 
     Parameters: ``indenter`` z = A r^n with n > 1; ``half_space`` the small-strain E2 (Pa)
-    and nu2 in [0, 0.5]; ``density`` in kg/m^3, 0 only (massless body); striker ``mass`` (kg)
+    and nu2 in [0, 0.5]; ``density`` in kg/m^3, 0 (massless body) or in DENSITY_RANGE (the
+    body with inertia); striker ``mass`` (kg)
     and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
     ``rubber`` (default neo-Hookean).
 
@@ -374,10 +436,12 @@ def run_finite_impact(
     shtaerman.validation.InputError
         Inputs out of range; the contact outgrowing the refined zone.
     NewtonError
-        A static contact solve failed after halving its depth increment.
+        A contact solve failed after halving its depth increment.
+    shtaerman.validation.NumericalFailureError
+        The striker's step equation (body with inertia) did not converge.
     """
-    mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
-    settings = FiniteImpactSettings() if settings is None else settings
+    rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
+    settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho)
     q = law.force_exponent
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
     t_y = 2.0 * duration_integral(q) * x_c / velocity
@@ -386,43 +450,78 @@ def run_finite_impact(
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
     stepper = _assembled(mesh, indenter, half_space, rubber, refined)
-    system = stepper.system
     clock.append(time.perf_counter())
-    body = _QuasiStaticBody(stepper)
-    columns = _march(body, mass, velocity, t_y / settings.steps, 3.0 * t_y)
+    columns, iterations, separation, far = _stepped(
+        stepper,
+        rho,
+        settings.spectral_radius,
+        (mass, velocity),
+        (t_y / settings.steps, x_c, t_y, q),
+    )
     clock.append(time.perf_counter())
-    timings = {
-        name: clock[k + 1] - clock[k] for k, name in enumerate(("mesh", "assembly", "stepping"))
-    }
+    names = ("mesh", "assembly", "stepping")
+    timings = {name: clock[k + 1] - clock[k] for k, name in enumerate(names)}
     timings["total"] = clock[-1] - clock[0]
     context = {
         "timings": timings,
-        "mesh": {
-            "nodes": int(mesh.p.shape[1]),
-            "elements": int(mesh.t.shape[1]),
-            "dofs": int(system.n_dofs),
-            "contact_candidates": int(stepper.nodes.radius.size),
-            "refined_radius": refined,
-        },
+        "mesh": _mesh_stats(mesh, stepper, refined),
         "parameters": _parameters(indenter, half_space, mass, velocity, t_y / settings.steps),
-        "newton_iterations": body.iterations,
+        "newton_iterations": iterations,
+        "reflected_energy_fraction": far,
     }
     context["parameters"].update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=law.beta)
-    return _result(columns, mass, context)
+    context["parameters"].update(density2=rho)
+    if rho > 0:
+        context["parameters"].update(spectral_radius=settings.spectral_radius)
+    return _result(columns, mass, context, separation)
+
+
+def _stepped(
+    stepper: NewtonStepper,
+    density: float,
+    spectral_radius: float,
+    striker: tuple[float, float],
+    scales: tuple[float, float, float, float],
+) -> tuple[tuple[np.ndarray, ...], int, float | None, float]:
+    """The run's columns, Newton iterations, separation time (s; None: the massless body)
+    and far kinetic energy fraction (nan: massless). ``striker``: M (kg), v0 (m/s);
+    ``scales``: dt (s), the quasi-static x_c (m) and t_y (s), q of P ~ X^q."""
+    mass, velocity = striker
+    dt, x_c, t_y, q = scales
+    if density == 0.0:
+        body = _QuasiStaticBody(stepper)
+        return _march(body, mass, velocity, dt, 3.0 * t_y), body.iterations, None, math.nan
+    inertial = _inertial(stepper, density, bossak(spectral_radius, dt))
+    columns, iterations, separation, last = _march_inertial(
+        stepper, inertial, striker, (x_c, 3.0 * t_y, q)
+    )
+    far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
+    return columns, iterations, separation, far
+
+
+def _mesh_stats(mesh: Any, stepper: NewtonStepper, refined: float) -> dict[str, float]:
+    """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run."""
+    return {
+        "nodes": int(mesh.p.shape[1]),
+        "elements": int(mesh.t.shape[1]),
+        "dofs": int(stepper.system.n_dofs),
+        "contact_candidates": int(stepper.nodes.radius.size),
+        "refined_radius": refined,
+    }
 
 
 def _checked(
     indenter: PowerLawIndenter, half_space: Material, density: object, mass: float, velocity: float
-) -> tuple[float, float, PowerLawContact]:
-    """Mass (kg), velocity (m/s) and Shtaerman's law, every input checked."""
-    check_density(density)
+) -> tuple[float, float, float, PowerLawContact]:
+    """Density (kg/m^3), mass (kg), velocity (m/s) and Shtaerman's law, every input checked."""
+    rho = check_density(density)
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
     if indenter.exponent <= 1.0:
         raise InputError(f"exponent must be > 1 with a rubber model, got {indenter.exponent!r}")
     modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
-    return mass, velocity, PowerLawContact(indenter, modulus)
+    return rho, mass, velocity, PowerLawContact(indenter, modulus)
 
 
 def _assembled(
@@ -456,25 +555,35 @@ def _parameters(
 
 
 def _result(
-    columns: tuple[np.ndarray, ...], mass: float, context: dict[str, Any]
+    columns: tuple[np.ndarray, ...],
+    mass: float,
+    context: dict[str, Any],
+    separation: float | None = None,
 ) -> FiniteImpactResult:
-    """Maxima, separation and energies of a run: ``columns`` t, X, V, P, Pi; ``context`` its
-    timings, mesh, parameters and Newton iterations."""
-    t, x, v, force, strain = columns
+    """Maxima, separation and energies of a run: ``columns`` t, X, V, P, Pi and, with inertia,
+    the body's kinetic energy; ``context`` its timings, mesh, parameters and Newton
+    iterations; ``separation`` the time (s) P vanished (None: the massless body, X back to 0)."""
+    t, x, v, force, strain = columns[:5]
     v0 = v[0]
     energy0 = 0.5 * mass * v0 * v0
     kinetic = 0.5 * mass * v * v
     zeros = np.zeros_like(t)
-    numerical = energy0 - kinetic - strain
+    body = columns[5] if len(columns) > 5 else zeros
+    numerical = energy0 - kinetic - strain - body
     _, t_x_max = _parabola_peak(t, x)
-    x_max, p_max = _turning_point(x, v, force, mass)
     t_contact = v_out = restitution = radiated = math.nan
-    if x[-1] <= 0.0 and x.size > 2:  # X back to 0 between the last two steps
-        t_contact = float(t[-2] + (t[-1] - t[-2]) * x[-2] / (x[-2] - x[-1]))
+    if separation is None:
+        x_max, p_max = _turning_point(x, v, force, mass)
+        if x[-1] <= 0.0 and x.size > 2:  # X back to 0 between the last two steps
+            t_contact = float(t[-2] + (t[-1] - t[-2]) * x[-2] / (x[-2] - x[-1]))
+    else:  # with inertia: the parabola through the samples around the largest
+        x_max, p_max = _parabola_peak(t, x)[0], _parabola_peak(t, force)[0]
+        t_contact = separation
+    if math.isfinite(t_contact):
         v_out = -float(v[-1])
         restitution = v_out / v0
         radiated = 1.0 - restitution**2
-    energies = {"striker_kinetic": kinetic, "body_kinetic": zeros, "strain": strain}
+    energies = {"striker_kinetic": kinetic, "body_kinetic": body, "strain": strain}
     energies.update(absorbed=zeros, numerical=numerical)
     return FiniteImpactResult(
         t=t,
@@ -492,3 +601,251 @@ def _result(
         energy_balance_error=float(np.max(np.abs(numerical)) / energy0),
         **context,
     )
+
+
+# --- the body with inertia --------------------------------------------------------------------
+
+
+class _InertialSystem:
+    """The hyperelastic system seen by the contact Newton during one Bossak step.
+
+    Residual R(x) + M ((1 - a_m) a(x) + a_m a_n) with a(x) = (x - x_hat) / (beta dt^2) (N),
+    tangent K_T(x) + (1 - a_m) / (beta dt^2) M; everything else is the static system's.
+    """
+
+    def __init__(self, system: Any, mass: sp.csr_matrix, scheme: tuple[float, ...]) -> None:
+        self.static = system
+        self.mass = mass
+        self.alpha_m, self.beta, self.gamma, self.dt = scheme
+        coo = mass.tocoo()
+        self.mass_data = np.zeros(system.pattern.nnz)
+        np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
+        self.x_hat = np.zeros(system.n_dofs)
+        self.a_n = np.zeros(system.n_dofs)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.static, name)
+
+    def acceleration(self, x: np.ndarray) -> np.ndarray:
+        """a_{n+1} (m/s^2) of the step ending at x."""
+        return (x - self.x_hat) / (self.beta * self.dt**2)
+
+    def residual(self, x: np.ndarray, state: Any = None) -> np.ndarray:
+        """Internal plus inertial forces (N) and the pressure equation (m^3)."""
+        inertia = (1.0 - self.alpha_m) * self.acceleration(x) + self.alpha_m * self.a_n
+        return self.static.residual(x, state) + self.mass @ inertia
+
+    def tangent_data(self, x: np.ndarray, state: Any = None) -> np.ndarray:
+        """The effective tangent's data in the system's pattern (N/m)."""
+        factor = (1.0 - self.alpha_m) / (self.beta * self.dt**2)
+        return self.static.tangent_data(x, state) + factor * self.mass_data
+
+
+def bossak(spectral_radius: float, dt: float) -> tuple[float, float, float, float]:
+    """Wood-Bossak-Zienkiewicz alpha_m, beta, gamma (second order, the high frequencies damped
+    to ``spectral_radius``; 1 is the trapezoidal rule) and dt (s)."""
+    alpha_m = (spectral_radius - 1.0) / (spectral_radius + 1.0)
+    return alpha_m, 0.25 * (1.0 - alpha_m) ** 2, 0.5 - alpha_m, dt
+
+
+@dataclass
+class _Dynamic:
+    """State at a step: body x, v, a; multipliers; striker X (m), V (m/s), A (m/s^2); Pi (J);
+    ``previous`` the body x and striker X (m) of the step before."""
+
+    x: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    lam: np.ndarray
+    depth: float
+    speed: float
+    accel: float
+    energy: float
+    previous: tuple[np.ndarray, float]
+
+    def predicted(self) -> tuple[np.ndarray, np.ndarray, float]:
+        """The next step's start: x and X extrapolated linearly in time, the multipliers."""
+        x_old, depth_old = self.previous
+        return 2.0 * self.x - x_old, self.lam, 2.0 * self.depth - depth_old
+
+
+def _body_step(
+    stepper: NewtonStepper, start: tuple[np.ndarray, np.ndarray, float], depth: float, scale: float
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """The body's step against the striker at ``depth`` (m): x, lambda, Newton iterations.
+
+    ``start``: a converged x, lambda of the same step and its depth (m) (the last step's at
+    first). Every Newton starts from the last converged x, the multipliers of its loaded candidates
+    raised by c (d_last - d) where the indenter withdraws, so that the first iterate keeps
+    them on the indenter and lifts the surface with it (a first active set from the gap alone
+    releases the lightly loaded, massless candidates next to the axis and folds their small
+    elements). A failing Newton is continued in depth within the step: halved, up to
+    MAX_HALVINGS times. ``scale`` (m) measures the Newton corrections.
+    """
+    x, lam, done = start
+    total, increment, cuts = 0, depth - done, 0
+    while True:
+        trial = done + increment
+        if abs(depth - trial) <= 1e-9 * scale:
+            trial = depth
+        guess = lam + stepper.weight * max(done - trial, 0.0) * (lam > 0)
+        try:
+            x_new, lam_new, iterations, _ = stepper.solve(trial, x, guess, scale)
+        except NewtonError:
+            cuts += 1
+            if cuts > MAX_HALVINGS:
+                raise
+            increment *= 0.5
+            continue
+        x, lam, done, total = x_new, lam_new, trial, total + iterations
+        if trial == depth:
+            return x, lam, total
+        increment = depth - done if abs(2.0 * increment) > abs(depth - done) else 2 * increment
+
+
+def _dynamic_step(
+    stepper: NewtonStepper,
+    inertial: _InertialSystem,
+    state: _Dynamic,
+    mass: float,
+    scales: tuple[float, float, float],
+) -> tuple[_Dynamic, int]:
+    """One step of body and striker, and its Newton iterations.
+
+    The striker's Bossak equation M ((1 - a_m) A_{n+1} + a_m A_n) + P(X_{n+1}) = 0 is solved
+    for X_{n+1} by a secant, each evaluation a body step. ``scales``: the contact stiffness
+    guess of the first slope (N/m), the depth (m) and the force (N) scales of the tolerances.
+    """
+    alpha_m, beta, dt = inertial.alpha_m, inertial.beta, inertial.dt
+    inertial.x_hat = state.x + dt * state.v + dt**2 * (0.5 - beta) * state.a
+    inertial.a_n = state.a
+    big_hat = state.depth + dt * state.speed + dt**2 * (0.5 - beta) * state.accel
+    stiffness = mass * (1.0 - alpha_m) / (beta * dt**2)
+    k, depth_scale, force_scale = scales
+    load = mass * alpha_m * state.accel
+    iterations, latest = 0, state.predicted()
+
+    def residual(depth: float) -> tuple[float, np.ndarray, np.ndarray]:
+        nonlocal iterations, latest
+        x, lam, count = _body_step(stepper, latest, depth, depth_scale)
+        iterations, latest = iterations + count, (x, lam, depth)
+        return stiffness * (depth - big_hat) + load + float(lam.sum()), x, lam
+
+    slope = stiffness + k  # the linearized force P_n + k (X - X_n)
+    d0 = (stiffness * big_hat + k * state.depth - load - float(state.lam.sum())) / slope
+    r0, x, lam = residual(d0)
+    for _ in range(MAX_SECANT):
+        if abs(r0) <= SECANT_TOLERANCE * force_scale:
+            return _advanced(inertial, state, (x, lam, d0, big_hat)), iterations
+        d1 = d0 - r0 / slope
+        r1, x, lam = residual(d1)
+        if d1 != d0:  # the step's own slope is at least the striker's: keep half of it
+            slope = max((r1 - r0) / (d1 - d0), 0.5 * stiffness)
+        d0, r0 = d1, r1
+    raise NumericalFailureError(
+        f"the striker's step equation did not converge at depth {state.depth:g} m; "
+        f"raise the time steps"
+    )
+
+
+def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dynamic:
+    """The Bossak update of velocities and accelerations from ``solved`` = (x, lambda,
+    X_{n+1} (m), the striker's predictor X_hat (m))."""
+    x, lam, depth, big_hat = solved
+    beta, gamma, dt = inertial.beta, inertial.gamma, inertial.dt
+    a = inertial.acceleration(x)
+    accel = (depth - big_hat) / (beta * dt**2)
+    return _Dynamic(
+        x=x,
+        v=state.v + dt * ((1.0 - gamma) * state.a + gamma * a),
+        a=a,
+        lam=lam,
+        depth=depth,
+        speed=state.speed + dt * ((1.0 - gamma) * state.accel + gamma * accel),
+        accel=accel,
+        energy=inertial.static.energy(x),
+        previous=(state.x, state.depth),
+    )
+
+
+def _march_inertial(
+    stepper: NewtonStepper,
+    inertial: _InertialSystem,
+    striker: tuple[float, float],
+    scales: tuple[float, float, float],
+) -> tuple[tuple[np.ndarray, ...], int, float, _Dynamic]:
+    """Step from first touch until the contact force vanishes with the striker rebounding.
+
+    ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
+    run (s) and q of P ~ X^q (for the separation time between steps). Returns the columns
+    t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
+    (s; nan if the run ended first) and the last state.
+    """
+    mass, velocity = striker
+    depth_scale, duration, exponent = scales
+    n = inertial.static.n_dofs
+    zero = np.zeros(n)
+    lam = np.zeros(stepper.nodes.radius.size)
+    state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0))
+    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0)]
+    total, k, t, separation = 0, 0.0, 0.0, math.nan
+    force_scale = mass * velocity / inertial.dt
+    while t < duration:
+        try:
+            new, iterations = _dynamic_step(
+                stepper, inertial, state, mass, (k, depth_scale, force_scale)
+            )
+        except NewtonError as error:
+            raise NewtonError(
+                f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}; "
+                "raise the time steps, or this impact is beyond the body with inertia (e.g. "
+                "faster than the shear waves)"
+            ) from None
+        total += iterations
+        force, previous = float(new.lam.sum()), float(state.lam.sum())
+        if new.depth != state.depth:
+            k = max((force - previous) / (new.depth - state.depth), 0.0)
+        _check_candidates(stepper, new.lam, new.depth)
+        state, t = new, t + inertial.dt
+        body = 0.5 * float(state.v @ (inertial.mass @ state.v))
+        rows.append((t, state.depth, state.speed, force, state.energy, body))
+        if force == 0.0 and state.speed < 0:
+            times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
+            separation = _separation_time(times, forces, exponent, len(rows) - 1)
+            break
+    columns = tuple(np.array(column) for column in zip(*rows, strict=True))
+    return columns, total, separation, state
+
+
+def _far_kinetic(inertial: _InertialSystem, v: np.ndarray) -> float:
+    """Kinetic energy (J) of the velocities ``v`` (m/s) beyond half the domain radius: what
+    the waves carried to the far arc, from where it could come back."""
+    locations = inertial.static.displacement_basis.doflocs
+    distance = np.hypot(locations[0], locations[1])
+    far = np.zeros_like(v)
+    outer = np.flatnonzero(distance > 0.5 * distance.max())
+    far[outer] = v[outer]
+    return 0.5 * float(far @ (inertial.mass @ far))
+
+
+def _check_candidates(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
+    """Refuse a contact (multipliers ``lam``, N) that reached the edge of the candidates."""
+    loaded = np.flatnonzero(lam > 0)
+    if loaded.size and loaded[-1] + EDGE_MARGIN >= lam.size:
+        r = stepper.nodes.radius
+        raise ContactOutgrowsMeshError(
+            f"depth {depth:g} m: the contact zone reaches R = {r[loaded[-1]]:.4g} m, the edge "
+            f"of the refined region ({r[-1]:.4g} m); raise the margin"
+        )
+
+
+def _inertial(stepper: NewtonStepper, density: float, scheme: tuple) -> _InertialSystem:
+    """The body's consistent mass (``density`` kg/m^3) without the normal mass of the contact
+    candidates, wrapped with the Bossak ``scheme`` around the stepper's system (which it
+    replaces in the stepper, whose Newton then back-tracks an update that inverts an element)."""
+    system = stepper.system
+    mass = redistribute_normal_mass(consistent_mass(system, density), stepper.nodes.uz)
+    inertial = _InertialSystem(system, mass, scheme)
+    stepper.system = inertial
+    stepper.backtracks = MAX_BACKTRACKS
+    return inertial
