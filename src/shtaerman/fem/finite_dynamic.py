@@ -62,7 +62,7 @@ from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import RubberModel
-from .stepper import _separation_time
+from .stepper import separation_time
 
 __all__ = [
     "FiniteImpactResult",
@@ -811,7 +811,7 @@ def _march_inertial(
         rows.append((t, state.depth, state.speed, force, state.energy, body))
         if force == 0.0 and state.speed < 0:
             times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
-            separation = _separation_time(times, forces, exponent, len(rows) - 1)
+            separation = separation_time(times, forces, exponent, len(rows) - 1)
             break
     columns = tuple(np.array(column) for column in zip(*rows, strict=True))
     return columns, total, separation, state

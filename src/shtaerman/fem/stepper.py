@@ -65,6 +65,7 @@ __all__ = [
     "TimeScheme",
     "advance",
     "march",
+    "separation_time",
 ]
 
 ENERGY_NAMES = (
@@ -517,7 +518,7 @@ def march(
             touched = touched or bool(np.any(state.forces > 0))
             if touched and math.isnan(t_contact) and row[3] == 0.0:
                 times, force = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
-                t_contact = _separation_time(times, force, force_exponent, state.step)
+                t_contact = separation_time(times, force, force_exponent, state.step)
                 end = t + tail_time
             if t >= end - 1e-12 * dt:
                 break
@@ -572,7 +573,7 @@ def _unstable(balance: float, state: ImpactState, problem: ImpactProblem, where:
     )
 
 
-def _separation_time(t: np.ndarray, force: np.ndarray, q: float, k: int) -> float:
+def separation_time(t: np.ndarray, force: np.ndarray, q: float, k: int) -> float:
     """Time where P vanishes between steps k - 1 (P > 0) and k (P = 0).
 
     Near a smooth separation P ~ (t_s - t)^q, so P^(1/q) is linear: extrapolate it from the
