@@ -7,9 +7,8 @@ two study files, its ``run_study`` calls served from ``quick_outcomes`` (the ide
 and mode, checked, so the result folder is what a plain run writes).
 
 Under pytest-xdist (``-n auto`` in pyproject.toml, at most two workers unless
-``PYTEST_XDIST_AUTO_NUM_WORKERS`` or ``-n N`` says otherwise; ``-n 0`` runs in one process), the
-tests that share a module- or session-scoped fixture of this folder run on one worker, so that
-each such fixture is computed once; the other tests are spread one by one.
+``PYTEST_XDIST_AUTO_NUM_WORKERS`` or ``-n N`` says otherwise; ``-n 0`` runs in one process), each
+worker computes the session and module fixtures its tests need.
 """
 
 import json
@@ -29,54 +28,18 @@ from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study, shipped_studies
 
 QUICK_STUDIES = ("paper", "hertz")
-SHARED_SCOPES = ("class", "module", "package", "session")
 AUTO_WORKERS = 2
 """Workers of ``-n auto``: measured on 2 cores; each worker holds its own FE runs in memory."""
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_auto_num_workers(config) -> int | None:
-    """``-n auto``: the available cores, at most :data:`AUTO_WORKERS` (None: the environment's
+    """``-n auto``: the available cores, at most :data:`AUTO_WORKERS` (None: a whole number in
     ``PYTEST_XDIST_AUTO_NUM_WORKERS`` decides, as pytest-xdist reads it)."""
-    if os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS"):
+    if os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS", "").strip().isdigit():
         return None
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     return max(1, min(AUTO_WORKERS, cores or 1))
-
-
-def _shared_fixtures(item) -> list[str]:
-    """The module-, class- or session-scoped fixtures of ``tests/`` that ``item`` uses."""
-    info = getattr(item, "_fixtureinfo", None)
-    if info is None:
-        return []
-    shared = []
-    for name in item.fixturenames:
-        defs = info.name2fixturedefs.get(name, ())
-        if defs and defs[-1].scope in SHARED_SCOPES and defs[-1].baseid:  # "": pytest's own
-            shared.append(f"{defs[-1].baseid}::{name}")
-    return shared
-
-
-@pytest.hookimpl(tryfirst=True)
-def pytest_collection_modifyitems(config, items) -> None:
-    """Mark the tests that share a fixture (directly or through other tests) with one
-    ``xdist_group``, which ``--dist loadgroup`` runs on one worker."""
-    if not config.pluginmanager.hasplugin("xdist"):
-        return
-    parent: dict[str, str] = {}
-
-    def root(key: str) -> str:
-        while parent.setdefault(key, key) != key:
-            key = parent[key]
-        return key
-
-    shared = {item.nodeid: _shared_fixtures(item) for item in items}
-    for keys in shared.values():
-        for key in keys[1:]:
-            parent[root(key)] = root(keys[0])
-    for item in items:
-        if shared[item.nodeid]:
-            item.add_marker(pytest.mark.xdist_group(root(shared[item.nodeid][0])))
 
 
 def quick_study_files() -> list[str]:
