@@ -5,10 +5,19 @@ the suite's most expensive computation. They run once per session: ``quick_outco
 their outcomes, and ``quick_verify`` runs ``shtaerman verify --quick`` end to end on the same
 two study files, its ``run_study`` calls served from ``quick_outcomes`` (the identical study
 and mode, checked, so the result folder is what a plain run writes).
+
+Under pytest-xdist (``-n auto`` in pyproject.toml, at most two workers unless
+``PYTEST_XDIST_AUTO_NUM_WORKERS`` or ``-n N`` says otherwise; ``-n 0`` runs in one process), each
+worker computes the session and module fixtures its tests need.
 """
 
 import json
+import os
 from pathlib import Path
+
+if os.environ.get("PYTEST_XDIST_WORKER"):  # one BLAS/OpenMP thread per worker (before numpy)
+    for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_variable, "1")
 
 import pytest
 
@@ -19,6 +28,18 @@ from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study, shipped_studies
 
 QUICK_STUDIES = ("paper", "hertz")
+AUTO_WORKERS = 2
+"""Workers of ``-n auto``: measured on 2 cores; each worker holds its own FE runs in memory."""
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_auto_num_workers(config) -> int | None:
+    """``-n auto``: the available cores, at most :data:`AUTO_WORKERS` (None: a whole number in
+    ``PYTEST_XDIST_AUTO_NUM_WORKERS`` decides, as pytest-xdist reads it)."""
+    if os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS", "").strip().isdigit():
+        return None
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return max(1, min(AUTO_WORKERS, cores or 1))
 
 
 def quick_study_files() -> list[str]:

@@ -24,6 +24,14 @@ from shtaerman.sweep.spec import find_sweep, shipped_sweeps
 
 ROOT = Path(__file__).resolve().parents[1]
 
+
+@pytest.fixture(autouse=True)
+def _working_folder(tmp_path, monkeypatch):
+    """Each test in its own working folder: a sweep given no --out writes sweep-NAME there, not
+    in the checkout, where two tests on two workers would meet in one folder."""
+    monkeypatch.chdir(tmp_path)
+
+
 IMPACT = """\
 name = "grid"
 kind = "impact"
