@@ -46,6 +46,9 @@ LABELS: dict[str, Label] = {
     # the dynamic impact
     "restitution": Label("Restitution e"),
     "energy_radiated_fraction": Label(f"Energy left in the half-space 1 {MINUS} e²", percent=True),
+    "energy_dissipated_fraction": Label("Energy dissipated in the rubber", percent=True),
+    "energy_wave_fraction": Label(f"Part of 1 {MINUS} e² lost to waves", percent=True),
+    "energy_hysteresis_fraction": Label(f"Part of 1 {MINUS} e² lost to hysteresis", percent=True),
     "estimate_energy_fraction": Label("First-order estimate of the energy left λ", percent=True),
     "x_max": Label("Dynamic maximum approach x_max", "m"),
     "P_max": Label("Dynamic maximum force P_max", "N"),
