@@ -102,13 +102,16 @@ def test_bad_spectral_radius_is_refused(rho_inf):
 def test_a_failing_step_names_the_time_and_the_remedy(monkeypatch):
     import shtaerman.fem.finite_dynamic as finite_dynamic
     from shtaerman.fem.hyperelastic import NewtonError
+    from shtaerman.validation import InputError, NumericalFailureError
 
     def fail(*args):
         raise NewtonError("an element inverted (J <= 0)")
 
     monkeypatch.setattr(finite_dynamic, "_dynamic_step", fail)
-    with pytest.raises(NewtonError, match=r"from t = 0 s .*inverted.*raise the time steps"):
+    # valid input the solver cannot follow: a numerical failure (CLI exit 1), not bad input (2)
+    with pytest.raises(NumericalFailureError, match=r"from t = 0 s .*inverted.*--density2 0"):
         run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
+    assert not issubclass(NumericalFailureError, InputError)
 
 
 def test_api_dynamic_with_model_and_density_runs_the_body_with_inertia(monkeypatch):

@@ -86,3 +86,14 @@ def test_the_printed_end_of_the_history_times_is_accepted():
     end = float(str(error.value).rsplit("[0, ", 1)[1].split("]")[0])
     assert end <= solution.t_y
     solution.history(times=[0.0, end])  # the printed end is accepted
+
+
+def test_half_the_largest_dynamic_mesh_size_passes_the_estimate_ladder():
+    # 0.1 doubled by the ladder (1/sqrt(2)^2) is 0.20000000000000007 in floats: the top of
+    # (0, 0.2] must still be accepted, and a size the ladder cannot double names mesh_size
+    from shtaerman.fem.dynamic_contact import DynamicSettings
+    from shtaerman.study.dynamic.accuracy import check_ladder
+
+    check_ladder(DynamicSettings(size=0.1, steps=100))
+    with pytest.raises(InputError, match=r"mesh_size: .*\(0, 0\.1\].*got 0\.15"):
+        check_ladder(DynamicSettings(size=0.15, steps=100))

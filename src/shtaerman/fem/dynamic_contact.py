@@ -91,6 +91,10 @@ def validate_density(density: object) -> float:
     return validate_material_density("density2", density)
 
 
+MAX_SIZE = 0.2
+"""Largest smallest-element size of the dynamic mesh, in refined radii."""
+
+
 @dataclass(frozen=True)
 class DynamicSettings:
     """Numerical controls of the dynamic impact, relative to the quasi-static impact.
@@ -167,8 +171,8 @@ class DynamicSettings:
             raise InputError(
                 f"margin must be > 1 (contact inside the refined zone), got {self.margin!r}"
             )
-        if self.size > 0.2:
-            raise InputError(f"size must lie in (0, 0.2] refined radii, got {self.size!r}")
+        if self.size > MAX_SIZE * (1.0 + 1e-12):  # a ladder's size / (1/sqrt 2)^2 rounds up
+            raise InputError(f"size must lie in (0, {MAX_SIZE:g}] refined radii, got {self.size!r}")
         if self.growth > 1.0:
             raise InputError(f"growth must lie in (0, 1], got {self.growth!r}")
         if not 1e2 <= self.domain <= 1e7:

@@ -796,10 +796,11 @@ def _march_inertial(
                 stepper, inertial, state, mass, (k, depth_scale, force_scale)
             )
         except NewtonError as error:
-            raise NewtonError(
+            raise NumericalFailureError(
                 f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}; "
-                "raise the time steps, or this impact is beyond the body with inertia (e.g. "
-                "faster than the shear waves)"
+                "the body with inertia cannot follow this impact at these settings (other "
+                "time steps may help; a striker faster than the shear waves never converges): "
+                "--density2 0 gives the massless finite-strain impact"
             ) from None
         total += iterations
         force, previous = float(new.lam.sum()), float(state.lam.sum())

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from operator import attrgetter
 
 from ...fem.dynamic_contact import (
+    MAX_SIZE,
     MIN_STEPS,
     DynamicImpactResult,
     DynamicSettings,
@@ -128,6 +129,14 @@ def check_ladder(settings: DynamicSettings) -> None:
             f"time_steps: the error-estimate ladder's coarsest level halves the time steps, so "
             f"it needs at least {fewest} per t_y, got {settings.steps}",
             "time_steps",
+        )
+    largest = MAX_SIZE / LADDER_RATIO**2
+    if settings.size > largest * (1.0 + 1e-12):
+        raise InputError(
+            f"mesh_size: the error-estimate ladder's coarsest level doubles the mesh size, so it "
+            f"must lie in (0, {largest:g}] with the estimate (or turn the estimate off), got "
+            f"{settings.size!r}",
+            "mesh_size",
         )
     try:
         settings.refined(1.0 / LADDER_RATIO**2)
