@@ -125,3 +125,20 @@ def test_the_finite_strain_layer_text_names_the_layer_and_the_half_space_referen
         "  layer H = 0.1 m on a bonded rigid base: /lin = against the linear half-space, not "
         "the layer"
     )
+
+
+@pytest.mark.parametrize(("keyword", "value"), [("mesh_size", 0.5), ("mesh_size", 0.9)])
+def test_the_finite_strain_api_states_the_command_lines_ranges(keyword, value):
+    # sh.dynamic(model=...) took mesh_size 0.5, which the CLI refuses
+    from shtaerman.validation import InputError
+
+    with pytest.raises(InputError, match=rf"^{keyword} must (be|lie in)"):
+        sh.dynamic(
+            PowerLawIndenter(5.0, 1.5),
+            Material(7.5e6, 0.5),
+            mass=0.7,
+            velocity=3.0,
+            model="neo-hookean",
+            density=0.0,
+            **{keyword: value},
+        )

@@ -11,6 +11,7 @@ from ..theory.impact import solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError
+from ..vocabulary import entry
 from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
@@ -101,6 +102,9 @@ def finite_strain_route(
         name = next(iter(rubber))
         raise InputError(f"{name}: applies to the finite-strain models only", name)
     check_unsupported(model, unsupported)
+    for name in ("mesh_size",):  # the range the command line states
+        if kept.get(name) is not None:
+            kept = {**kept, name: entry(name).check(kept[name], "dynamic")}
     return finite_dynamic(indenter, body, model=model, **kept, **rubber)
 
 
