@@ -100,7 +100,8 @@ def finite_strain_route(
         raise TypeError(f"dynamic() got unexpected keyword arguments {unknown}")
     if model == "linear":
         name = next(iter(rubber))
-        raise InputError(f"{name}: applies to the finite-strain models only", name)
+        where = " (the linear model takes the body's density)" if name == "density" else ""
+        raise InputError(f"{name}: applies to the finite-strain models only{where}", name)
     check_unsupported(model, unsupported)
     for name in ("mesh_size",):  # the range the command line states
         if kept.get(name) is not None:
