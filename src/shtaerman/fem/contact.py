@@ -50,7 +50,9 @@ __all__ = [
     "complementarity",
     "edge_radius",
     "factorize_stiffness",
+    "factorize_tail",
     "solve_contact",
+    "tail_compliance",
     "validate_fem_inputs",
 ]
 
@@ -128,13 +130,37 @@ def _candidates(system: ElasticSystem, free: np.ndarray, radius: float) -> tuple
     return candidates, dofs, np.searchsorted(free, dofs)
 
 
-def _compliance_by_solves(
-    factorization: Factorization, size: int, position: np.ndarray
-) -> np.ndarray:
-    """(K^-1) on the candidates by one multi-RHS solve of unit loads (any backend)."""
-    unit_loads = np.zeros((size, position.size))
-    unit_loads[position, np.arange(position.size)] = 1.0
-    return factorization.solve(unit_loads)[position]
+def tail_compliance(factorization: Factorization, size: int, position: np.ndarray) -> np.ndarray:
+    """(K^-1) on the dofs at ``position`` (of ``size`` free dofs), symmetrised (m/N).
+
+    The inverse of the trailing Schur block for a :class:`.schur.TailFactorization`, else one
+    multi-RHS solve of unit loads (any backend).
+    """
+    if hasattr(factorization, "tail_inverse"):  # a TailFactorization
+        inverse = factorization.tail_inverse()
+    else:
+        unit_loads = np.zeros((size, position.size))
+        unit_loads[position, np.arange(position.size)] = 1.0
+        inverse = factorization.solve(unit_loads)[position]
+    return 0.5 * (inverse + inverse.T)
+
+
+def factorize_tail(
+    system: ElasticSystem, free: np.ndarray, position: np.ndarray, backend: str = "auto"
+) -> Factorization:
+    """The one sparse factorization of the stiffness (free dofs), the dofs at ``position``
+    (indices into ``free``) eliminated last where SuperLU allows.
+
+    Should that factorization pivot a tail row away (the trailing block is then no Schur
+    complement), the plain SuperLU factorization is used instead.
+    """
+    matrix = system.reduced_matrix(free)
+    if backend in ("auto", "superlu"):
+        try:
+            return TailFactorization(matrix, position, system.dof_nodes()[free])
+        except TailPivotError:
+            backend = "superlu"
+    return factorize(matrix, backend=backend)
 
 
 def factorize_stiffness(
@@ -149,15 +175,7 @@ def factorize_stiffness(
     slower).
     """
     _, _, position = _candidates(system, free, radius)
-    matrix = system.reduced_matrix(free)
-    if backend in ("auto", "superlu"):
-        try:
-            return TailFactorization(matrix, position, system.dof_nodes()[free])
-        except TailPivotError:
-            # a zero pivot made SuperLU pull a candidate row forward: the trailing block is
-            # no Schur complement
-            backend = "superlu"
-    return factorize(matrix, backend=backend)
+    return factorize_tail(system, free, position, backend)
 
 
 def surface_compliance(
@@ -169,12 +187,8 @@ def surface_compliance(
     multi-RHS solve of unit loads.
     """
     candidates, dofs, position = _candidates(system, free, radius)
-    if hasattr(factorization, "tail_inverse"):  # a TailFactorization
-        inverse = factorization.tail_inverse()
-    else:
-        inverse = _compliance_by_solves(factorization, free.size, position)
     # a downward force -F e_i moves the surface by -C F: C = (K^-1)_cc, symmetrised
-    compliance = 0.5 * (inverse + inverse.T)
+    compliance = tail_compliance(factorization, free.size, position)
     mass = system.surface_mass[candidates][:, candidates].toarray()
     vertex = system.dof_nodes()[dofs] < system.mesh.p.shape[1]
     return SurfaceCompliance(system.surface_r[candidates], compliance, mass, vertex, dofs)

@@ -48,12 +48,13 @@ from .contact import (
     central_pressure,
     check_resolved,
     edge_radius,
+    factorize_tail,
     recover_pressure,
     surface_compliance,
+    tail_compliance,
 )
 from .elasticity import ElasticSystem
-from .schur import TailFactorization, TailPivotError
-from .solver import Factorization, factorize
+from .solver import Factorization
 
 __all__ = ["STEP_RATIO", "depth_ladder", "solve_bonded_contact"]
 
@@ -113,34 +114,6 @@ def _radial_dofs(system: ElasticSystem, candidates: np.ndarray) -> tuple[np.ndar
     if not np.array_equal(candidates[np.minimum(node, candidates.size - 1)], radii):
         raise NumericalFailureError("the surface u_r and u_z dofs do not share their nodes")
     return dofs, node
-
-
-def _factorize(
-    system: ElasticSystem, free: np.ndarray, tail: np.ndarray, backend: str
-) -> Factorization:
-    """The one factorization, the ``tail`` dofs eliminated last where SuperLU allows."""
-    matrix = system.reduced_matrix(free)
-    position = np.searchsorted(free, tail)
-    if backend in ("auto", "superlu"):
-        try:
-            return TailFactorization(matrix, position, system.dof_nodes()[free])
-        except TailPivotError:
-            backend = "superlu"
-    return factorize(matrix, backend=backend)
-
-
-def _coupled_compliance(
-    system: ElasticSystem, factorization: Factorization, free: np.ndarray, tail: np.ndarray
-) -> np.ndarray:
-    """(K^-1) on the ``tail`` dofs, symmetrised (m/N)."""
-    position = np.searchsorted(free, tail)
-    if hasattr(factorization, "tail_inverse"):
-        inverse = factorization.tail_inverse()
-    else:
-        loads = np.zeros((free.size, position.size))
-        loads[position, np.arange(position.size)] = 1.0
-        inverse = factorization.solve(loads)[position]
-    return 0.5 * (inverse + inverse.T)
 
 
 def _field_solutions(
@@ -340,9 +313,10 @@ def solve_bonded_contact(
     normal_dofs = system.surface_dofs[inside]
     radial_dofs, radial_node = _radial_dofs(system, system.surface_r[inside])
     tail = np.concatenate([normal_dofs, radial_dofs])
-    factorization = _factorize(system, free, tail, backend)
+    position = np.searchsorted(free, tail)
+    factorization = factorize_tail(system, free, position, backend)
     factorized = time.perf_counter()
-    inverse = _coupled_compliance(system, factorization, free, tail)
+    inverse = tail_compliance(factorization, free.size, position)
     m = normal_dofs.size
     normal = surface_compliance(system, _Known(inverse[:m, :m]), free, candidate_radius)
     normal = SurfaceCompliance(
