@@ -20,10 +20,8 @@ edge is at ``LAYER_EXTENT`` thicknesses.
 
 from __future__ import annotations
 
-import math
 from typing import Protocol
 
-import numpy as np
 from skfem import MeshTri
 
 from ..theory.layer import BASES
@@ -34,6 +32,7 @@ from .mesh import (
     LAYER_EXTENT,
     check_thickness_range,
     layer_mesh,
+    layer_triangles,
 )
 
 
@@ -131,20 +130,9 @@ def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
         If the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS`` refined radii.
     """
     _check_thickness(settings.thickness, refined)
-    s, g = settings.size, settings.growth
     thickness = settings.thickness / refined
     cap = _thickness_size(settings) / refined
-    length = extent / refined
-    x = np.concatenate([np.linspace(0.0, 1.0, 65), 1.0 + np.geomspace(1e-3, length - 1.0, 200)])
-    y = -np.concatenate([[0.0], np.geomspace(1e-4 * thickness, thickness, 120)])
-    xm, ym = 0.5 * (x[1:] + x[:-1]), 0.5 * (y[1:] + y[:-1])
-    xx, yy = np.meshgrid(xm, ym, indexing="ij")
-    distance = np.hypot(np.maximum(xx - 1.0, 0.0), yy)
-    size = np.minimum(LARGEST_THICKNESS_SIZE * cap, min(s, cap) + g * distance)
-    area = np.outer(np.diff(x), -np.diff(y))
-    axis = min(settings.axis_size, s)
-    grading = 3.67 * math.log(max(min(s, cap) / axis, 1.0)) / _AXIS_GROWTH**2
-    elements = _TRIANGLES_PER_SQUARE * np.sum(area / size**2) + grading + 167.0
+    elements = layer_triangles(thickness, extent / refined, cap, settings, _AXIS_GROWTH)
     return round(DOFS_PER_ELEMENT * float(elements))
 
 

@@ -20,6 +20,7 @@ import os
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import gmsh
 import meshio
@@ -38,6 +39,7 @@ __all__ = [
     "geometry_path",
     "halfspace_mesh",
     "layer_mesh",
+    "layer_triangles",
 ]
 
 BOUNDARIES = ("axis", "surface", "far")
@@ -403,11 +405,24 @@ _TRIANGLES_PER_SQUARE = 2.3
 
 
 def _layer_elements(settings: MeshSettings, thickness: float) -> float:
-    """Triangles of a layer mesh of ``thickness`` refined radii: a quadrature of
-    Int dA / h^2 over the rectangle (graded grid), plus the axis grading term of
-    :func:`estimate_elements`."""
-    s, g, cap = settings.size, settings.growth, settings.thickness_size(thickness)
-    extent = settings.lateral_extent(thickness)
+    """Triangles of a layer mesh of ``thickness`` refined radii (:func:`layer_triangles`)."""
+    return layer_triangles(
+        thickness,
+        settings.lateral_extent(thickness),
+        settings.thickness_size(thickness),
+        settings,
+        settings.axis_growth,
+    )
+
+
+def layer_triangles(
+    thickness: float, extent: float, cap: float, settings: Any, axis_growth: float
+) -> float:
+    """Triangles gmsh makes in a layer of ``thickness`` and lateral ``extent`` (refined radii),
+    its element size capped at ``cap`` (refined radii): a quadrature of Int dA / h^2 over the
+    rectangle (graded grid), plus the axis grading term of :func:`estimate_elements`.
+    ``settings`` gives ``size``, ``growth`` and ``axis_size`` (refined radii)."""
+    s, g = settings.size, settings.growth
     x = np.concatenate([np.linspace(0.0, 1.0, 65), 1.0 + np.geomspace(1e-3, extent - 1.0, 200)])
     y = -np.concatenate([[0.0], np.geomspace(1e-4 * thickness, thickness, 120)])
     xm, ym = 0.5 * (x[1:] + x[:-1]), 0.5 * (y[1:] + y[:-1])
@@ -415,7 +430,7 @@ def _layer_elements(settings: MeshSettings, thickness: float) -> float:
     distance = np.hypot(np.maximum(xx - 1.0, 0.0), yy)
     size = np.minimum(LARGEST_THICKNESS_SIZE * cap, min(s, cap) + g * distance)
     area = np.outer(np.diff(x), -np.diff(y))
-    axis, axis_growth = min(settings.axis_size, s), settings.axis_growth
+    axis = min(settings.axis_size, s)
     grading = 3.67 * math.log(max(min(s, cap) / axis, 1.0)) / axis_growth**2
     return float(_TRIANGLES_PER_SQUARE * np.sum(area / size**2) + grading + 167.0)
 
