@@ -303,10 +303,9 @@ class NewtonStepper:
     def geometry(self, x: np.ndarray, depth: float) -> tuple[np.ndarray, ...]:
         """Current radii, gap g, f'(r) and f''(r) at the candidates."""
         A, n = self.indenter.shape_coefficient, self.indenter.exponent
-        r = self.nodes.radius + x[self.nodes.ur]
-        if np.any(r[1:] <= 0) or np.any(np.diff(r) <= 0):
+        if self.folded(x):
             raise NewtonError("the contact surface folded (candidate nodes crossed)")
-        r = np.maximum(r, 0.0)
+        r = np.maximum(self.nodes.radius + x[self.nodes.ur], 0.0)
         gap = A * r**n - depth - x[self.nodes.uz]
         slope = n * A * r ** (n - 1.0)
         curvature = np.zeros_like(r)
