@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
@@ -53,11 +52,13 @@ def test_trapezoidal_rule_runs_through_separation(rubber_3):
 
 
 def test_energy_balance_closes_at_second_order(rubber_3):
-    energies = rubber_3.energies
-    total = sum(energies[k] for k in ("striker_kinetic", "body_kinetic", "strain", "numerical"))
-    assert np.allclose(total, 0.5 * MASS * 3.0**2, rtol=1e-12)
     # 20 steps per t_y on the coarse mesh: 8.5e-3; 30 steps 4.1e-3, 60 steps 1.1e-3
     assert rubber_3.energy_balance_error < 1.2e-2
+    finer = run_finite_impact(
+        INDENTER, RUBBER, 1100.0, MASS, 3.0, FiniteImpactSettings(steps=30, mesh=COARSE)
+    )
+    # dt / 1.5 divides a second-order error by 2.25 (first order: by 1.5); measured 2.07
+    assert rubber_3.energy_balance_error / finer.energy_balance_error > 1.9
     assert rubber_3.t_contact > rubber_3.t_x_max > 0
     assert rubber_3.parameters["density2"] == 1100.0
 
