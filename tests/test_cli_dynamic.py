@@ -13,6 +13,7 @@ import meshio
 import pytest
 
 from shtaerman.cli import main
+from shtaerman.cli.dynamic import _unsigned_zero
 
 COARSE = ("--time-steps", "100", "--mesh-size", "0.05")  # the ladder adds 50 and 71 steps
 QUASI_STATIC_KEYS = {"beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y"}
@@ -234,3 +235,9 @@ def test_too_few_time_steps_for_the_estimate_name_time_steps(capsys):
     assert code == 2 and out == "" and err.count("\n") == 1
     assert "error: --time-steps: the error-estimate ladder's coarsest level halves the time" in err
     assert "got 60" in err and "refine must" not in err
+
+
+def test_a_round_off_loss_prints_without_a_minus_sign():
+    # a massless run's 1 - e^2 is -1e-13 (restitution 1 to round-off): the text says 0.000000
+    assert f"{_unsigned_zero(-1e-13):.6f}" == "0.000000"
+    assert f"{_unsigned_zero(-0.0012344):.6f}" == "-0.001234"  # a real value keeps its sign

@@ -142,14 +142,22 @@ def _loss_label(dyn: dict) -> str:
     )
 
 
+def _unsigned_zero(value: float) -> float:
+    """``value`` to 6 decimals with no sign on a zero: round-off (a massless run's 1 - e^2 is
+    -1e-13) prints 0.000000, not -0.000000."""
+    return round(value, 6) + 0.0
+
+
 def _losses_text(dyn: dict) -> list[str]:
     """A viscoelastic run's 1 - e^2 split into waves and hysteresis ([] for an elastic one)."""
     if "energy_dissipated_fraction" not in dyn:
         return []
     return [
-        f"    of which waves        {dyn['energy_wave_fraction']:<14.6f}  (beyond R_a, absorbed)",
-        f"    of which hysteresis   {dyn['energy_hysteresis_fraction']:<14.6f}  (dissipated "
-        f"{dyn['energy_dissipated_fraction']:.6f}, the rest to be dissipated near the contact)",
+        f"    of which waves        {_unsigned_zero(dyn['energy_wave_fraction']):<14.6f}  "
+        "(beyond R_a, absorbed)",
+        f"    of which hysteresis   {_unsigned_zero(dyn['energy_hysteresis_fraction']):<14.6f}  "
+        f"(dissipated {_unsigned_zero(dyn['energy_dissipated_fraction']):.6f}, the rest to be "
+        "dissipated near the contact)",
     ]
 
 
@@ -171,8 +179,8 @@ def dynamic_text(report: dict) -> str:
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  1 (first-order estimate "
         f"{est['restitution']:.6f})",
-        f"  {_loss_label(dyn)}{dyn['energy_radiated_fraction']:<14.6f}  0 (first-order "
-        f"estimate of the waves {est['energy_fraction']:.6f})",
+        f"  {_loss_label(dyn)}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  0 "
+        f"(first-order estimate of the waves {est['energy_fraction']:.6f})",
         *_losses_text(dyn),
         _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "

@@ -470,7 +470,9 @@ def run_finite_impact(
         "reflected_energy_fraction": far,
     }
     context["parameters"].update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=law.beta)
-    context["parameters"].update(density2=rho)
+    context["parameters"].update(
+        density2=rho, time_steps=settings.steps, mesh_size=settings.mesh.size
+    )
     if rho > 0:
         context["parameters"].update(spectral_radius=settings.spectral_radius)
     return _result(columns, mass, context, separation)
