@@ -19,7 +19,8 @@ at order 2: an effectivity of 1 +- 0.1 cannot be told from 1), for a few headlin
 summarized over every number by group and method. The nested ladder is estimated twice on the
 same runs: by Richardson alone, and by the rules the study uses on it
 (:func:`shtaerman.study.finite.runner.estimate_ladder`: ratios propagated from their factors,
-the contact edge's numbers at first order).
+the contact edge's numbers at first order, every per-depth number at least its neighbourhood's
+envelope).
 """
 
 from __future__ import annotations

@@ -105,7 +105,7 @@ def test_nested_ladder_falls_back_less_than_the_old_one(tiny):
     old, _ = tiny[False].fallbacks()
     new, total = tiny[True].fallbacks()
     assert tiny[True].refines == (0.5, 1.0, 2.0)
-    assert new < tiny[True, "richardson"].fallbacks()[0] < old  # measured 35, 38, 50 of 57
+    assert new < tiny[True, "richardson"].fallbacks()[0] < old  # measured 20, 38, 50 of 57
     assert tiny[True].to_dict()["fallbacks"] == {"count": new, "of": total}
     # independent gmsh levels: Richardson alone, as before the nested ladder's rules
     same = [json.dumps(tiny[False, k].to_dict()) for k in ("richardson",)]
@@ -194,6 +194,32 @@ def test_nested_rules_propagate_ratios_and_use_the_edge_order():
     finding = _estimate_finding(SimpleNamespace(estimates=rules, rows=levels[-1].rows))
     assert f"0 of {plain.fallbacks()[1]} estimates fell back" in finding
     assert "contact edge's first order" in finding and "sum of their two factors'" in finding
+
+
+class _Oscillating(_Level):
+    """P/(beta x^q) whose error, 0.3 h^2 at every depth, changes sign at the middle depth on the
+    middle level (the contact edge at another place between the nodes)."""
+
+    def rows(self) -> list[dict[str, float]]:
+        out = super().rows()
+        out[1]["force_ratio"] = 1.0 + (-1.0 if self.h == 0.5 else 1.0) * 0.3 * self.h**2
+        return out
+
+
+def test_every_depth_carries_at_least_its_neighbourhoods_envelope():
+    levels = [_Oscillating(h) for h in (1.0, 0.5, 0.25)]
+    plain = estimate_study(levels, [0.5, 1.0, 2.0], NESTED_RATIO)
+    rules = estimate_study(levels, [0.5, 1.0, 2.0], NESTED_RATIO, envelopes=True)
+    assert plain.steps[1]["force_ratio"].method == "two-level"  # +0.375 then -0.094
+    assert plain.steps[0]["force_ratio"].method == "richardson"  # 0.225 then 0.056
+    # largest differences over the depths 0.375 then 0.094 (the middle depth), order 2:
+    # every depth (each sees the middle one) carries 0.094 / (2^2 - 1) relative to 1.01875
+    for step in rules.steps:
+        assert step["force_ratio"].method == "envelope"
+        assert step["force_ratio"].error == pytest.approx(0.09375 / 3 / 1.01875, rel=1e-12)
+    assert plain.steps[0]["force_ratio"].error < rules.steps[0]["force_ratio"].error
+    assert rules.fallbacks()[0] < plain.fallbacks()[0]
+    assert rules.scalars["force_ratio_worst"].method == "envelope"
 
 
 def _estimate(value: float, error: float) -> Estimate:

@@ -4,7 +4,13 @@ import math
 
 import pytest
 
-from shtaerman.study.richardson import Estimate, curve_richardson, propagated, richardson
+from shtaerman.study.richardson import (
+    Estimate,
+    curve_richardson,
+    envelope,
+    propagated,
+    richardson,
+)
 from shtaerman.validation import InputError
 
 
@@ -139,3 +145,31 @@ def test_propagated_falls_back_with_a_factor_and_says_which():
     assert ratio.error == pytest.approx(fine.error + noisy.error, rel=1e-15)
     with pytest.raises(InputError, match="factors"):
         propagated(1.0, [])
+
+
+# Three points on three levels (coarse to fine, ratio 2). Point 1's differences change sign
+# (+6e-3, -2e-3: its own estimate falls back); the largest differences over points 0-2 are 8e-3
+# then 2e-3 (point 0), order log2(4) = 2: the envelope's estimate is 2e-3 / (2^2 - 1). Point 2's
+# neighbourhood is points 1-2: 6e-3 then 2e-3, order log2(3), estimate 2e-3 / (3 - 1).
+OSCILLATING = [[1.010, 1.004, 1.0], [1.002, 0.998, 1.001], [1.0, 1.0, 1.002]]
+
+
+def test_envelope_gives_a_point_whose_own_differences_oscillate_its_neighbourhoods_estimate():
+    own = richardson([level[1] for level in OSCILLATING], 2.0)
+    assert own.method == "two-level"
+    estimate = envelope(own, OSCILLATING, 1, 2.0)
+    assert estimate.method == "envelope" and estimate.observed_order == pytest.approx(2.0)
+    assert estimate.error == pytest.approx(2e-3 / 3.0, rel=1e-12)  # 2e-3 relative to 1.0
+    assert estimate.value == estimate.extrapolated == 1.0  # the point's own value, kept
+    last = envelope(richardson([level[2] for level in OSCILLATING], 2.0), OSCILLATING, 2, 2.0)
+    assert last.method == "envelope" and last.error == pytest.approx(1e-3, rel=1e-12)
+
+
+def test_envelope_keeps_a_larger_own_estimate_and_a_fallback_without_a_clean_envelope():
+    larger = Estimate(1.0, 0.99, 0.01, 2.0, "richardson")
+    assert envelope(larger, OSCILLATING, 1, 2.0) is larger
+    noisy = [[1.0, 1.0, 1.0], [1.001, 0.999, 1.0], [1.0, 1.002, 1.0]]  # largest 1e-3 then 2e-3
+    own = richardson([level[1] for level in noisy], 2.0)
+    assert envelope(own, noisy, 1, 2.0) is own and own.method == "two-level"
+    with pytest.raises(InputError, match="half_width must be >= 1"):
+        envelope(own, noisy, 1, 2.0, half_width=0)

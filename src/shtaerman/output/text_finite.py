@@ -237,7 +237,10 @@ def _validity_finding(outcome: FiniteStudyOutcome) -> str:
 NESTED_RULES = (
     "; 0.5-4.5 for a/a_linear, p(0)/p_avg and a_c, estimated at the contact edge's first "
     "order). P/P_linear-FEM and the ratios to the linear-FEM impact carry the sum of their "
-    "two factors' relative estimates where both are Richardson's (a bound)."
+    "two factors' relative estimates where both are Richardson's (a bound). Every per-depth "
+    "number carries at least its neighbourhood's estimate (the depth and one on each side, "
+    "Richardson on their largest difference, orders 0.5-4.5): the envelope of the contact "
+    "edge's error, which changes sign from depth to depth."
 )
 """The nested ladder's estimate rules, as the finding states them."""
 

@@ -27,6 +27,12 @@ zero; their largest value converges regularly.
 
 :func:`propagated` bounds a product of powers of separately estimated factors (a ratio of two
 quantities whose own errors cancel in it) by the sum of the factors' relative estimates.
+
+:func:`envelope` estimates one point of a curve whose per-point differences oscillate (a
+discrete contact edge crossing the element nodes: the error's sign and size follow the edge's
+place between nodes, which changes from level to level) by the larger of its own estimate and
+:func:`curve_richardson` over the point and its neighbours, whose largest difference samples
+the oscillation's envelope at other places of the edge between the nodes.
 """
 
 from __future__ import annotations
@@ -46,6 +52,7 @@ __all__ = [
     "ORDER_RANGE",
     "Estimate",
     "curve_richardson",
+    "envelope",
     "propagated",
     "richardson",
 ]
@@ -58,7 +65,7 @@ FALLBACKS = ("last", "largest")
 """What :func:`richardson` reports without a clean order: the last difference |d2|, or the
 largest of |d1| and |d2| (for a quantity whose levels scatter)."""
 
-ESTIMATED = ("richardson", "propagated")
+ESTIMATED = ("richardson", "propagated", "envelope")
 """Methods of an :class:`Estimate` that are estimates; the others are fall-backs."""
 
 
@@ -79,7 +86,8 @@ class Estimate:
         (nan for the fallback).
     method : str
         ``"richardson"``, ``"propagated"`` (a bound from separately estimated factors,
-        :func:`propagated`), or the fallback (see ``reason``): ``"two-level"`` (the last
+        :func:`propagated`), ``"envelope"`` (a neighbourhood's largest error,
+        :func:`envelope`), or the fallback (see ``reason``): ``"two-level"`` (the last
         difference) or ``"scatter"`` (the largest of the two differences).
     reason : str
         Why the fallback was used ("" for Richardson).
@@ -279,3 +287,50 @@ def propagated(value: float, factors: Sequence[tuple[Estimate, float]]) -> Estim
         reason = prefix + "; ".join(dict.fromkeys(fallen))
         return Estimate(value, value, error, math.nan, "two-level", reason)
     return Estimate(value, value, error, math.nan, "propagated")
+
+
+def envelope(
+    own: Estimate,
+    curves: Sequence[ArrayLike],
+    index: int,
+    ratio: float,
+    *,
+    half_width: int = 1,
+    order: float | None = None,
+    sane: tuple[float, float] = ORDER_RANGE,
+) -> Estimate:
+    """The larger of a point's own estimate and its neighbourhood's :func:`curve_richardson`.
+
+    Parameters
+    ----------
+    own : Estimate
+        The point's own estimate (any rule); kept where it is the larger estimate.
+    curves : sequence of array_like
+        The quantity at every point on the last levels, coarsest first (last three used).
+    index : int
+        The point.
+    ratio, order, sane
+        As for :func:`curve_richardson` over points ``index - half_width`` to
+        ``index + half_width``.
+    half_width : int
+        Neighbours on each side (>= 1).
+
+    Returns
+    -------
+    Estimate
+        ``own`` where it is an estimate (:data:`ESTIMATED`) at least as large as the
+        neighbourhood's, or where neither is one; else method ``"envelope"`` with the
+        neighbourhood's error and order, and the point's own value (not extrapolated).
+    """
+    if half_width < 1:
+        raise InputError(f"half_width must be >= 1, got {half_width!r}")
+    start = max(0, index - half_width)
+    near = [np.asarray(c, dtype=float)[start : index + half_width + 1] for c in curves]
+    widest = curve_richardson(near, ratio, order=order, sane=sane)
+    if widest.method not in ESTIMATED:
+        return own
+    if own.method in ESTIMATED and own.error >= widest.error:
+        return own
+    return Estimate(
+        own.value, own.value, widest.error, widest.order, "envelope", "", widest.observed_order
+    )

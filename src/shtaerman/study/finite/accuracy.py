@@ -15,11 +15,16 @@ crossing, and the three levels' crossings may agree by chance). A crossing is *r
 the estimated error of the departure there is below a fifth of its level
 (:func:`shtaerman.study.limits.resolved`).
 
-On a nested ladder two rules replace Richardson on the value itself (``estimate_study``'s
-``propagate`` and ``edge_order``): a ratio of two separately computed quantities (P/P_linear-FEM,
-the impact maxima against the linear-FEM impact's) gets the sum of its factors' relative
-estimates where both are Richardson's, and the numbers the contact edge sets (a/a_linear,
-p(0)/p_avg, a_c) are extrapolated at the edge's first order where their differences shrink.
+On a nested ladder three rules replace Richardson on the value itself (``estimate_study``'s
+``propagate``, ``edge_order`` and ``envelopes``): a ratio of two separately computed
+quantities (P/P_linear-FEM, the impact maxima against the linear-FEM impact's) gets the sum of
+its factors' relative estimates where both are Richardson's; the numbers the contact edge
+sets (a/a_linear, p(0)/p_avg, a_c) are extrapolated at the edge's first order where their
+differences shrink; and every per-depth number carries at least its neighbourhood's estimate
+(:func:`~shtaerman.study.richardson.envelope`): the contact edge's error oscillates with the
+edge's place between the nodes, from depth to depth and level to level, so a depth's own
+differences may change sign or nearly vanish by chance while the largest difference over its
+neighbours shrinks regularly.
 
 There is no exact solution here: what the estimator is worth is measured against finer meshes
 in ``benchmarks/bench_finite_strain.py`` (f).
@@ -37,7 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..ladder import LADDER_RATIO
-from ..richardson import ESTIMATED, Estimate, propagated, richardson
+from ..richardson import ESTIMATED, Estimate, envelope, propagated, richardson
 
 __all__ = [
     "CROSSING_KEYS",
@@ -234,6 +239,23 @@ def _edge_estimates(
         scalars[key] = edge_richardson([v[key] for v in values], ratio)
 
 
+def _envelope_estimates(
+    rows: list[list[dict[str, float]]],
+    steps: tuple[dict[str, Estimate], ...],
+    ratio: float,
+    edge_order: bool,
+) -> None:
+    """Replace, in place, every per-depth estimate by the larger of its own and its
+    neighbourhood's (:func:`~shtaerman.study.richardson.envelope`, the depth and one on each
+    side, orders in :data:`EDGE_BAND`; the edge's numbers at :data:`EDGE_ORDER` with
+    ``edge_order``)."""
+    for key in STEP_KEYS:
+        curves = [[row[key] for row in level] for level in rows]
+        order = EDGE_ORDER if edge_order and key in EDGE_KEYS else None
+        for k, step in enumerate(steps):
+            step[key] = envelope(step[key], curves, k, ratio, order=order, sane=EDGE_BAND)
+
+
 def _ratio_steps(rows: list[list[dict[str, float]]], ratio: float) -> list[Estimate]:
     """P/P_linear-FEM per depth, propagated from the two forces' own estimates."""
     return [
@@ -306,6 +328,7 @@ def estimate_study(
     *,
     propagate: bool = False,
     edge_order: bool = False,
+    envelopes: bool = False,
 ) -> FiniteEstimates:
     """Estimates of the last (finest) of three study outcomes on one mesh ladder.
 
@@ -327,6 +350,10 @@ def estimate_study(
         Estimate the contact radius' numbers (:data:`EDGE_KEYS` per depth and at x_c, the
         impact's a_c) with the edge's first order (:func:`edge_richardson`); ``propagate``
         then carries a_c's estimate into a_c against the linear FEM's.
+    envelopes : bool
+        Give every per-depth number the larger of its own estimate and its neighbourhood's
+        (:func:`_envelope_estimates`): the contact edge's error oscillates from depth to
+        depth and level to level, and a depth's own differences may cross zero by chance.
 
     Returns
     -------
@@ -341,6 +368,8 @@ def estimate_study(
     )
     if edge_order:
         _edge_estimates(values, rows, scalars, steps, ratio)
+    if envelopes:
+        _envelope_estimates(rows, steps, ratio, edge_order)
     if propagate:
         _propagate_ratios(outcomes, scalars, steps, ratio, edge_order)
     scalars["force_ratio_worst"] = steps[_worst(steps, "force_ratio")]["force_ratio"]

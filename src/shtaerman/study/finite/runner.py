@@ -389,7 +389,7 @@ def estimate_ladder(
     separately computed quantities are propagated from their factors' estimates and the
     contact edge's numbers use its first order (:func:`.accuracy.estimate_study`); on
     independent gmsh levels Richardson alone."""
-    rules = {"propagate": nested, "edge_order": nested}
+    rules = {"propagate": nested, "edge_order": nested, "envelopes": nested}
     return estimate_study(outcomes, factors, LADDER_RATIOS[nested], **rules)
 
 
