@@ -222,6 +222,13 @@ def test_every_depth_carries_at_least_its_neighbourhoods_envelope():
     assert rules.scalars["force_ratio_worst"].method == "envelope"
 
 
+def test_the_independent_ladders_finding_names_the_nested_remedy():
+    levels = [_Level(h) for h in (1.0, 2**-0.5, 0.5)]
+    plain = estimate_study(levels, [0.5, 2**-0.5, 1.0], LADDER_RATIOS[False])
+    finding = _estimate_finding(SimpleNamespace(estimates=plain, rows=levels[-1].rows))
+    assert "noise of non-nested meshes" in finding and 'ladder = "nested"' in finding
+
+
 def _estimate(value: float, error: float) -> Estimate:
     return Estimate(value, value, error, 2.0, "richardson")
 
