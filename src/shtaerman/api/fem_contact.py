@@ -330,7 +330,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
 
 
-def _layer(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
+def layer_mesh(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
     """``mesh`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
     if options["thickness"] is None:
         if options["base"] is not None:
@@ -387,7 +387,7 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
             "keywords mesh_size, mesh_margin, ... set single fields",
             "mesh",
         )
-    mesh = _layer(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), options)
+    mesh = layer_mesh(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), options)
     mesh = _interface(mesh, options)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]

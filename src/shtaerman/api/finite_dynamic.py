@@ -77,7 +77,8 @@ def check_unsupported(model: str, given: dict[str, Any]) -> None:
         if value is not None and value is not False:
             raise InputError(
                 f"{name}: not supported with model {model!r} (the finite-strain impact takes "
-                f"mass, velocity, density2, time_steps, mesh_size and the rubber options)",
+                f"mass, velocity, density2, time_steps, mesh_size, thickness, base (bonded) "
+                "and the rubber options)",
                 name,
             )
 
@@ -119,6 +120,8 @@ def finite_dynamic(
     density: float | None = None,
     time_steps: int | None = None,
     mesh_size: float | None = None,
+    thickness: float | None = None,
+    base: str | None = None,
     mooney_ratio: float | None = None,
     yeoh: Any = None,
     gent_limit: float | None = None,
@@ -143,6 +146,10 @@ def finite_dynamic(
         Steps per quasi-static impact duration (default 50; 100 with inertia).
     mesh_size : float, optional
         Smallest element / refined radius (default the finite-strain contact's).
+    thickness : float, optional
+        A rubber layer of this thickness (m) on a rigid base instead of the half-space.
+    base : str, optional
+        The layer's base: ``bonded`` only at finite strain (the default with ``thickness``).
     mooney_ratio, yeoh, gent_limit, volumetric
         The rubber model's options (:func:`shtaerman.fem.rubber.rubber_model`).
 
@@ -165,12 +172,14 @@ def finite_dynamic(
         run_finite_impact,
     )
     from ..fem.rubber import rubber_model
+    from .fem_contact import layer_mesh
 
     check_bodies(indenter, body)
     rubber = rubber_model(model, mooney_ratio, yeoh, gent_limit, volumetric)
     rho = check_density(body.density if density is None else density)
     default = FINITE_MESH if rho == 0 else INERTIA_MESH
     mesh = default if mesh_size is None else replace(default, size=mesh_size)
+    mesh = layer_mesh(mesh, {"thickness": thickness, "base": base, "model": model})
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh)
     run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber)
     law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))

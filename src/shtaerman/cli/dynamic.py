@@ -21,7 +21,7 @@ from .common import (
     print_json,
     warn,
 )
-from .finite_dynamic import run_finite
+from .finite_dynamic import layer_rows, run_finite
 from .impact import history_path
 
 NOTES = {
@@ -123,16 +123,6 @@ def _differences_text(report: dict) -> str:
     )
 
 
-def _layer_rows(mesh: dict) -> list[str]:
-    """The line naming a layer (none on the half-space)."""
-    if "thickness" not in mesh:
-        return []
-    return [
-        f"  layer H = {mesh['thickness']:g} m on a {mesh['base']} rigid base (quasi-static: "
-        "the half-space's)"
-    ]
-
-
 def _loss_label(dyn: dict) -> str:
     """The 1 - e^2 row's name: all of it is waves in an elastic body, not in a viscoelastic one."""
     return (
@@ -171,7 +161,7 @@ def dynamic_text(report: dict) -> str:
     of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
-        *_layer_rows(mesh),
+        *layer_rows(mesh),
         "                          dynamic FEM     quasi-static",
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",

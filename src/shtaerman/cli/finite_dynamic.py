@@ -11,7 +11,6 @@ from ..theory.materials import Material
 from .common import given, in_option_words, indenter, print_json, warn_volumetric
 
 LINEAR_ONLY = ("history", "out", "mesh_margin", "domain_factor", "growth", "layer_rate", "prony")
-LINEAR_ONLY = (*LINEAR_ONLY, "thickness", "base")
 """``dynamic`` options the finite-strain impact refuses when given."""
 
 
@@ -21,8 +20,9 @@ def run_finite(args: argparse.Namespace) -> int:
     unsupported = {
         name: getattr(args, name) for name in (*LINEAR_ONLY, "refine") if given(args, name)
     }
-    kept = {name: getattr(args, name) for name in ("mass", "velocity", "time_steps", "mesh_size")}
-    for name in ("time_steps", "mesh_size"):  # not given: the finite-strain impact's defaults
+    names = ("mass", "velocity", "time_steps", "mesh_size", "thickness", "base")
+    kept = {name: getattr(args, name) for name in names}
+    for name in names[2:]:  # not given: the finite-strain impact's defaults
         if not given(args, name):
             kept[name] = None
     rubber = {name: getattr(args, name) for name in RUBBER_OPTIONS if getattr(args, name)}
@@ -54,6 +54,7 @@ def finite_dynamic_text(report: dict) -> str:
     rows = [
         f"Finite-strain impact ({report['model']}, density2 "
         f"{report['parameters']['density2']:g} kg/m^3) against the quasi-static theory (SI)",
+        *layer_rows(mesh),
         "                          finite strain   quasi-static (Shtaerman)",
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
@@ -66,3 +67,13 @@ def finite_dynamic_text(report: dict) -> str:
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
     ]
     return "\n".join(rows)
+
+
+def layer_rows(mesh: dict) -> list[str]:
+    """The line naming a layer (none on the half-space)."""
+    if "thickness" not in mesh:
+        return []
+    return [
+        f"  layer H = {mesh['thickness']:g} m on a {mesh['base']} rigid base (quasi-static: "
+        "the half-space's)"
+    ]

@@ -51,6 +51,7 @@ from ..theory.materials import DENSITY_RANGE, Material
 from ..validation import InputError, NumericalFailureError, validate_poisson, validate_positive
 from .contact import EDGE_MARGIN
 from .finite_contact import (
+    FINITE_BASE,
     FINITE_MESH,
     MAX_ITERATIONS,
     NEWTON_TOLERANCE,
@@ -445,7 +446,10 @@ def run_finite_impact(
     q = law.force_exponent
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
     t_y = 2.0 * duration_integral(q) * x_c / velocity
+    if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
+        raise InputError(FINITE_BASE, "base")
     refined = settings.margin * geometric_radius(indenter, x_c)
+    refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
@@ -464,7 +468,7 @@ def run_finite_impact(
     timings["total"] = clock[-1] - clock[0]
     context = {
         "timings": timings,
-        "mesh": _mesh_stats(mesh, stepper, refined),
+        "mesh": _mesh_stats(mesh, stepper, refined, settings.mesh),
         "parameters": _parameters(indenter, half_space, mass, velocity, t_y / settings.steps),
         "newton_iterations": iterations,
         "reflected_energy_fraction": far,
@@ -501,14 +505,18 @@ def _stepped(
     return columns, iterations, separation, far
 
 
-def _mesh_stats(mesh: Any, stepper: NewtonStepper, refined: float) -> dict[str, float]:
-    """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run."""
+def _mesh_stats(
+    mesh: Any, stepper: NewtonStepper, refined: float, layer: MeshSettings
+) -> dict[str, Any]:
+    """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run; a
+    layer's thickness (m) and base (``layer``: the run's mesh settings)."""
     return {
         "nodes": int(mesh.p.shape[1]),
         "elements": int(mesh.t.shape[1]),
         "dofs": int(stepper.system.n_dofs),
         "contact_candidates": int(stepper.nodes.radius.size),
         "refined_radius": refined,
+        **({"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}),
     }
 
 
