@@ -174,3 +174,23 @@ def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
     )
     with pytest.raises(TypeError, match="unexpected"):
         sh.dynamic(INDENTER, RUBBER, mass=MASS, velocity=1.0, model="yeoh", colour=1)
+
+
+def test_a_contact_newton_failure_mid_run_is_a_numerical_failure_not_bad_input():
+    from types import SimpleNamespace
+
+    from shtaerman.fem.finite_dynamic import _QuasiStaticBody
+    from shtaerman.fem.hyperelastic import NewtonError
+    from shtaerman.validation import NumericalFailureError
+
+    def fails(*_args):
+        raise NewtonError("Newton did not converge in 30 iterations")
+
+    stepper = SimpleNamespace(
+        system=SimpleNamespace(n_dofs=4), nodes=SimpleNamespace(radius=np.zeros(2)), solve=fails
+    )
+    # a thin pad strained beyond what its mesh resolves (3 mm at 3 m/s fails at 1.9 mm):
+    # exit 1 with the depth and what to change, not exit 2 as if an input were out of range
+    expected = r"failed at depth 0\.002 m .*finer --mesh-size"
+    with pytest.raises(NumericalFailureError, match=expected):
+        _QuasiStaticBody(stepper).at(2e-3)

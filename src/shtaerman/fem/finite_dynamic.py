@@ -267,7 +267,14 @@ class _QuasiStaticBody:
         """The static state at ``depth`` (m); 0 without contact (depth <= 0)."""
         if depth <= 0.0:  # no contact: the free striker at this depth
             return _State(depth, self.zero.x, self.zero.lam, 0.0, 0.0)
-        return self._solve(depth, MAX_HALVINGS)
+        try:
+            return self._solve(depth, MAX_HALVINGS)
+        except NewtonError as error:  # the run's numerics, not its input
+            raise NumericalFailureError(
+                f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
+                "is strained beyond what this mesh resolves: a finer --mesh-size, a lower "
+                "velocity or a thicker layer"
+            ) from error
 
     def accept(self, state: _State) -> None:
         """Keep ``state`` as the newest converged one (the predictor's base)."""
