@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
@@ -24,6 +27,20 @@ SETTINGS = FiniteImpactSettings(steps=20, mesh=COARSE)
 def rubber_3():
     """The paper's example at 3 m/s with the density of natural rubber."""
     return run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
+
+
+@pytest.fixture(scope="module")
+def rubber_3_at_30_steps():
+    """As ``rubber_3``, 30 steps per t_y."""
+    settings = FiniteImpactSettings(steps=30, mesh=COARSE)
+    return run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, settings)
+
+
+@pytest.fixture(scope="module")
+def rubber_3_at_40_steps():
+    """As ``rubber_3``, 40 steps per t_y: the last step fails and is cut."""
+    settings = FiniteImpactSettings(steps=40, mesh=COARSE)
+    return run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, settings)
 
 
 def test_waves_take_energy_and_the_body_keeps_it(rubber_3):
@@ -51,16 +68,70 @@ def test_trapezoidal_rule_runs_through_separation(rubber_3):
     assert run.parameters["spectral_radius"] == 1.0
 
 
-def test_energy_balance_closes_at_second_order(rubber_3):
+def test_energy_balance_closes_at_second_order(rubber_3, rubber_3_at_30_steps):
     # 20 steps per t_y on the coarse mesh: 8.5e-3; 30 steps 4.1e-3, 60 steps 1.1e-3
     assert rubber_3.energy_balance_error < 1.2e-2
-    finer = run_finite_impact(
-        INDENTER, RUBBER, 1100.0, MASS, 3.0, FiniteImpactSettings(steps=30, mesh=COARSE)
-    )
+    finer = rubber_3_at_30_steps
     # dt / 1.5 divides a second-order error by 2.25 (first order: by 1.5); measured 2.07
     assert rubber_3.energy_balance_error / finer.energy_balance_error > 1.9
     assert rubber_3.t_contact > rubber_3.t_x_max > 0
     assert rubber_3.parameters["density2"] == 1100.0
+
+
+def test_a_step_failing_at_separation_is_cut_in_halves(rubber_3_at_30_steps, rubber_3_at_40_steps):
+    """40 steps per t_y: the last step's Newton, started from the state extrapolated in time
+    (the surface lifted with the leaving striker), folds the axis elements; the step's first
+    half runs and ends the contact. Energy balance measured 3.57e-3, 2.00e-3, 1.02e-3 at 30,
+    40, 60 steps: on the second-order line."""
+    run, coarser = rubber_3_at_40_steps, rubber_3_at_30_steps
+    assert math.isfinite(run.t_contact) and run.force[-1] == 0.0 and run.v[-1] < 0
+    dt = run.parameters["time_step"]
+    steps = np.diff(run.t)
+    assert steps[:-1] == pytest.approx(dt, rel=1e-12)
+    assert steps[-1] == pytest.approx(dt / 2, rel=1e-12)  # the cut step's first half
+    assert run.energy_balance_error < coarser.energy_balance_error
+    assert run.energy_balance_error * (40 / 30) ** 2 == pytest.approx(
+        coarser.energy_balance_error, rel=0.1
+    )
+
+
+def test_a_cut_run_agrees_with_finer_and_coarser_steps(rubber_3_at_30_steps, rubber_3_at_40_steps):
+    """Restitution measured 0.930664, 0.930815, 0.930655 at 30, 40, 60 steps per t_y."""
+    run, coarser = rubber_3_at_40_steps, rubber_3_at_30_steps
+    finer = run_finite_impact(
+        INDENTER, RUBBER, 1100.0, MASS, 3.0, FiniteImpactSettings(steps=60, mesh=COARSE)
+    )
+    assert finer.energy_balance_error < run.energy_balance_error
+    # e is not monotone in dt on this mesh: over 30-100 steps it spans 0.930583-0.930769, and
+    # halving only the steps of the separation moves it by up to 2e-4 (30 steps: -1.95e-4);
+    # 3e-4 is the numerical rest at separation at 60 steps (4.9e-4 of E0) expressed in e
+    middle = 0.5 * (coarser.restitution + finer.restitution)
+    assert run.restitution == pytest.approx(middle, abs=3e-4)
+    assert run.x_max == pytest.approx(finer.x_max, rel=1e-3)
+    assert run.P_max == pytest.approx(finer.P_max, rel=1e-2)
+
+
+def test_a_step_cut_twice_during_loading_keeps_the_run(rubber_3, monkeypatch):
+    """The sixth step fails, and so does its first half: quarter, quarter, half steps."""
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+    from shtaerman.fem.hyperelastic import NewtonError
+
+    calls, step = [], finite_dynamic._dynamic_step
+
+    def failing(*args):
+        calls.append(None)
+        if len(calls) in (6, 7):
+            raise NewtonError("an element inverted (J <= 0)")
+        return step(*args)
+
+    monkeypatch.setattr(finite_dynamic, "_dynamic_step", failing)
+    run = run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
+    fractions = np.diff(run.t)[:9] / run.parameters["time_step"]
+    assert fractions == pytest.approx([1, 1, 1, 1, 1, 0.25, 0.25, 0.5, 1], rel=1e-12)
+    # measured: e -1.8e-4, x_max -1.7e-4, energy balance 7.85e-3 against 7.49e-3
+    assert run.restitution == pytest.approx(rubber_3.restitution, abs=3e-4)
+    assert run.x_max == pytest.approx(rubber_3.x_max, rel=1e-3)
+    assert run.energy_balance_error == pytest.approx(rubber_3.energy_balance_error, rel=0.1)
 
 
 def test_small_density_is_the_massless_impact():
@@ -110,7 +181,9 @@ def test_a_failing_step_names_the_time_and_the_remedy(monkeypatch):
 
     monkeypatch.setattr(finite_dynamic, "_dynamic_step", fail)
     # valid input the solver cannot follow: a numerical failure (CLI exit 1), not bad input (2)
-    with pytest.raises(NumericalFailureError, match=r"from t = 0 s .*inverted.*--density2 0"):
+    with pytest.raises(
+        NumericalFailureError, match=r"from t = 0 s .*inverted.*cut 4 times.*--density2 0"
+    ):
         run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
     assert not issubclass(NumericalFailureError, InputError)
 

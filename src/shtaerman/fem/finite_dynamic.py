@@ -22,10 +22,14 @@ candidates (:func:`.mass.redistribute_normal_mass`: their u_z follow the indente
 quasi-statically, without chatter), the inertial force and its tangent added to the contact
 Newton's residual and tangent. The striker's own Bossak equation
 M ((1 - a_m) A_{n+1} + a_m A_n) + P(X_{n+1}) = 0 is solved by a secant in X_{n+1}, each
-evaluation a contact solve of the body's step. Each Newton starts from the last converged state
-with its loaded candidates kept on the indenter in the first iterate, and halves an update that
-inverts an element (damped Newton). No absorbing layer: the far arc lies ``mesh.domain`` refined
-radii away, beyond the waves' reach during the contact; the kinetic energy beyond half its
+evaluation a contact solve of the body's step. Each step starts from x and X extrapolated
+linearly in time, each Newton with its loaded candidates kept on the indenter in the first
+iterate, and halves an update that inverts an element (damped Newton). A step whose Newton or
+secant still fails (near separation the extrapolated start lifts the surface with the leaving
+striker) is cut in two halves of dt / 2, recursively up to MAX_STEP_CUTS times, each half a
+Bossak step recorded as a step of its own (the energy account is that of the smaller steps);
+a step that converges is unchanged. No absorbing layer: the far arc lies ``mesh.domain``
+refined radii away, beyond the waves' reach during the contact; the kinetic energy beyond half its
 radius at the end is reported. The run stops when the contact force vanishes with the striker
 rebounding (separation time from P^(1/q) extrapolated between steps).
 
@@ -77,6 +81,8 @@ SECANT_TOLERANCE = 1e-10
 """The step's scalar equation is solved to |residual| <= this * M v0 / dt."""
 MAX_SECANT = 30
 MAX_HALVINGS = 6
+MAX_STEP_CUTS = 4
+"""Halvings of a time step of the body with inertia whose Newton or secant failed."""
 MAX_BACKTRACKS = 10
 """Halvings of a Newton update of the body with inertia that inverts an element (damped Newton)."""
 MASSLESS_STEPS = 50
@@ -446,7 +452,8 @@ def run_finite_impact(
     NewtonError
         A contact solve failed after halving its depth increment.
     shtaerman.validation.NumericalFailureError
-        The striker's step equation (body with inertia) did not converge.
+        With inertia: a time step failed (Newton or the striker's step equation), also when
+        cut MAX_STEP_CUTS times.
     """
     rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
     settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho)
@@ -668,7 +675,8 @@ def bossak(spectral_radius: float, dt: float) -> tuple[float, float, float, floa
 @dataclass
 class _Dynamic:
     """State at a step: body x, v, a; multipliers; striker X (m), V (m/s), A (m/s^2); Pi (J);
-    ``previous`` the body x and striker X (m) of the step before."""
+    ``previous`` the body x and striker X (m) of the step before, ``interval`` (s) the time
+    step that led here."""
 
     x: np.ndarray
     v: np.ndarray
@@ -679,11 +687,20 @@ class _Dynamic:
     accel: float
     energy: float
     previous: tuple[np.ndarray, float]
+    interval: float
 
-    def predicted(self) -> tuple[np.ndarray, np.ndarray, float]:
-        """The next step's start: x and X extrapolated linearly in time, the multipliers."""
+    def predicted(self, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
+        """The start of a step of ``dt`` (s): x and X extrapolated linearly in time, the
+        multipliers."""
         x_old, depth_old = self.previous
-        return 2.0 * self.x - x_old, self.lam, 2.0 * self.depth - depth_old
+        if dt == self.interval:
+            return 2.0 * self.x - x_old, self.lam, 2.0 * self.depth - depth_old
+        ratio = dt / self.interval
+        return (
+            self.x + ratio * (self.x - x_old),
+            self.lam,
+            self.depth + ratio * (self.depth - depth_old),
+        )
 
 
 def _body_step(
@@ -740,7 +757,7 @@ def _dynamic_step(
     stiffness = mass * (1.0 - alpha_m) / (beta * dt**2)
     k, depth_scale, force_scale = scales
     load = mass * alpha_m * state.accel
-    iterations, latest = 0, state.predicted()
+    iterations, latest = 0, state.predicted(dt)
 
     def residual(depth: float) -> tuple[float, np.ndarray, np.ndarray]:
         nonlocal iterations, latest
@@ -765,6 +782,46 @@ def _dynamic_step(
     )
 
 
+def _cut_step(
+    stepper: NewtonStepper,
+    inertial: _InertialSystem,
+    state: _Dynamic,
+    mass: float,
+    scales: tuple[float, float, float],
+    cuts: int = 0,
+) -> tuple[list[_Dynamic], int]:
+    """One time step of :func:`_dynamic_step`, or where it fails, the step in two halves.
+
+    Each half is a Bossak step of dt / 2 (same alpha_m, beta, gamma), started like any step
+    from the state before it, and cut again where it fails, at most MAX_STEP_CUTS deep. The
+    halves' states are recorded as steps of their own, so the energy account holds at every
+    recorded state as with uniform steps; the second half is skipped if the first ends the
+    contact. Returns the states reached (in time order) and the converged Newton iterations.
+    A step that needs no cut is the uncut step, bit for bit.
+    """
+    try:
+        new, iterations = _dynamic_step(stepper, inertial, state, mass, scales)
+        return [new], iterations
+    except (NewtonError, NumericalFailureError):
+        if cuts == MAX_STEP_CUTS:
+            raise
+    dt = inertial.dt
+    inertial.dt = 0.5 * dt
+    try:
+        first, iterations = _cut_step(stepper, inertial, state, mass, scales, cuts + 1)
+        if _separated(first[-1]):
+            return first, iterations
+        second, more = _cut_step(stepper, inertial, first[-1], mass, scales, cuts + 1)
+    finally:
+        inertial.dt = dt
+    return first + second, iterations + more
+
+
+def _separated(state: _Dynamic) -> bool:
+    """Whether the contact has ended: no contact force, the striker rebounding."""
+    return float(state.lam.sum()) == 0.0 and state.speed < 0
+
+
 def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dynamic:
     """The Bossak update of velocities and accelerations from ``solved`` = (x, lambda,
     X_{n+1} (m), the striker's predictor X_hat (m))."""
@@ -782,6 +839,7 @@ def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dyn
         accel=accel,
         energy=inertial.static.energy(x),
         previous=(state.x, state.depth),
+        interval=dt,
     )
 
 
@@ -803,34 +861,36 @@ def _march_inertial(
     n = inertial.static.n_dofs
     zero = np.zeros(n)
     lam = np.zeros(stepper.nodes.radius.size)
-    state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0))
+    state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0), inertial.dt)
     rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0)]
     total, k, t, separation = 0, 0.0, 0.0, math.nan
     force_scale = mass * velocity / inertial.dt
-    while t < duration:
+    while t < duration and math.isnan(separation):
         try:
-            new, iterations = _dynamic_step(
+            states, iterations = _cut_step(
                 stepper, inertial, state, mass, (k, depth_scale, force_scale)
             )
         except NewtonError as error:
             raise NumericalFailureError(
-                f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}; "
+                f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}, "
+                f"also in steps cut {MAX_STEP_CUTS} times; "
                 "the body with inertia cannot follow this impact at these settings (other "
                 "time steps may help; a striker faster than the shear waves never converges): "
                 "--density2 0 gives the massless finite-strain impact"
             ) from None
         total += iterations
-        force, previous = float(new.lam.sum()), float(state.lam.sum())
-        if new.depth != state.depth:
-            k = max((force - previous) / (new.depth - state.depth), 0.0)
-        _check_candidates(stepper, new.lam, new.depth)
-        state, t = new, t + inertial.dt
-        body = 0.5 * float(state.v @ (inertial.mass @ state.v))
-        rows.append((t, state.depth, state.speed, force, state.energy, body))
-        if force == 0.0 and state.speed < 0:
-            times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
-            separation = separation_time(times, forces, exponent, len(rows) - 1)
-            break
+        for new in states:
+            force, previous = float(new.lam.sum()), float(state.lam.sum())
+            if new.depth != state.depth:
+                k = max((force - previous) / (new.depth - state.depth), 0.0)
+            _check_candidates(stepper, new.lam, new.depth)
+            state, t = new, t + new.interval
+            body = 0.5 * float(state.v @ (inertial.mass @ state.v))
+            rows.append((t, state.depth, state.speed, force, state.energy, body))
+            if _separated(state):
+                times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
+                separation = separation_time(times, forces, exponent, len(rows) - 1)
+                break
     columns = tuple(np.array(column) for column in zip(*rows, strict=True))
     return columns, total, separation, state
 
