@@ -24,13 +24,18 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it
                  yeoh = [c2, c3], gent_limit, volumetric (:func:`shtaerman.fem.rubber.rubber_model`;
                  a shape key applies to its own model only, also when the model is swept)
     [sweep]      optional: one of nu2, mass, velocity, model, volumetric with a list of values
+    [corrections] optional: velocities = [1.0, 3.0] (m/s, > 0), density2 = 1100.0 (kg/m^3, in
+                 [1e-6, 1e6]): at each velocity the linear dynamic impact, the massless
+                 finite-strain impact and the nonlinear dynamic one (the study's rubber with
+                 inertia), to see whether the wave and finite-strain corrections add
+                 (:mod:`.corrections`)
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import msgspec
 
@@ -61,6 +66,7 @@ from ..schema import (
 
 __all__ = [
     "QUICK_FINITE_MESH",
+    "Corrections",
     "FiniteStudy",
     "FiniteTolerances",
     "Ladder",
@@ -118,6 +124,13 @@ class _Sweep(SweepTable):
     volumetric: list[str] | None = None
 
 
+class _Corrections(Table):
+    velocities: Annotated[
+        list[Positive], msgspec.Meta(min_length=1, max_length=vocabulary.MAX_VELOCITIES)
+    ]
+    density2: ranged("density2") = vocabulary.entry("density2").default
+
+
 class _FiniteFile(Table):
     indenter: IndenterTable
     half_space: MaterialTable
@@ -130,6 +143,16 @@ class _FiniteFile(Table):
     tolerances: _Tolerances = _Tolerances()
     rubber: _Rubber = _Rubber()
     sweep: _Sweep | None = None
+    corrections: _Corrections | None = None
+
+
+@dataclass(frozen=True)
+class Corrections:
+    """The ``[corrections]`` table: impact velocities (m/s) and the body's density (kg/m^3)
+    of the dynamic impacts that test whether the wave and finite-strain corrections add."""
+
+    velocities: tuple[float, ...]
+    density: float
 
 
 @dataclass(frozen=True)
@@ -185,6 +208,8 @@ class FiniteStudy:
     mesh_ladder: str = "independent"
     """The error-estimate ladder (:data:`MESH_LADDERS`): ``independent``, ``mesh`` the finest
     of three gmsh meshes; ``nested``, ``mesh`` the middle of one gmsh mesh refined twice."""
+    corrections: Corrections | None = None
+    """The dynamic impacts of ``[corrections]``; None: none run."""
 
 
 def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
@@ -243,7 +268,14 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         quick_small_strain=quick.small_strain,
         rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
         mesh_ladder=raw.numerics.ladder,
+        corrections=_corrections(raw.corrections),
     )
+
+
+def _corrections(table: _Corrections | None) -> Corrections | None:
+    if table is None:
+        return None
+    return Corrections(tuple(float(v) for v in table.velocities), float(table.density2))
 
 
 def _sweeps_model(raw: _FiniteFile) -> bool:
