@@ -66,6 +66,8 @@ def outcome(tmp_path_factory):
         ("velocities = [-1.0, 3.0]\n", "corrections.velocities"),
         ("velocities = []\n", "corrections.velocities"),
         ('velocities = "fast"\n', "corrections.velocities"),
+        ("velocities = [true]\n", "corrections.velocities"),
+        ('velocities = [1.0]\ndensity2 = "heavy"\n', "corrections.density2"),
         ("velocities = [1.0]\ndensity2 = 0.0\n", "corrections.density2"),
         ("velocities = [1.0]\ndensity2 = -5.0\n", "corrections.density2"),
         ("velocities = [1.0]\ndensity2 = 2e6\n", "corrections.density2"),
@@ -81,6 +83,8 @@ def test_bad_corrections_table_is_one_line_exit_2(tmp_path, capsys, table, key):
     assert main(["verify", "--quick", "--out", str(tmp_path / "run"), str(path)]) == 2
     err = capsys.readouterr().err
     assert f"bad.toml: key '{key}'" in err and err.count("\n") == 1
+    if key == "corrections.density2":  # the range of a body with inertia: 0 is not in it
+        assert "expected a density in [1e-06, 1e+06] (kg/m^3" in err and " or 0" not in err
     assert not (tmp_path / "run").exists()
 
 

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 import msgspec
 
@@ -124,11 +124,9 @@ class _Sweep(SweepTable):
     volumetric: list[str] | None = None
 
 
-class _Corrections(Table):
-    velocities: Annotated[
-        list[Positive], msgspec.Meta(min_length=1, max_length=vocabulary.MAX_VELOCITIES)
-    ]
-    density2: ranged("density2") = vocabulary.entry("density2").default
+class _Corrections(Table):  # values checked by _corrections, whose messages name the range
+    velocities: list[Any]
+    density2: Any = vocabulary.entry("density2").default
 
 
 class _FiniteFile(Table):
@@ -268,14 +266,32 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         quick_small_strain=quick.small_strain,
         rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
         mesh_ladder=raw.numerics.ladder,
-        corrections=_corrections(raw.corrections),
+        corrections=_corrections(path, raw.corrections),
     )
 
 
-def _corrections(table: _Corrections | None) -> Corrections | None:
+def _number(value: object) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _corrections(path: Path, table: _Corrections | None) -> Corrections | None:
+    """The ``[corrections]`` table checked: 1 to MAX_VELOCITIES velocities > 0 (m/s), and a
+    density (kg/m^3) of a body with inertia (density2's range without the massless 0)."""
     if table is None:
         return None
-    return Corrections(tuple(float(v) for v in table.velocities), float(table.density2))
+    most, velocities = vocabulary.MAX_VELOCITIES, table.velocities
+    if not 1 <= len(velocities) <= most or not all(_number(v) and v > 0 for v in velocities):
+        raise StudyError(
+            f"{path}: key 'corrections.velocities': expected a list of 1 to {most} velocities "
+            f"> 0 (m/s), got {velocities!r}"
+        )
+    valid = vocabulary.entry("density2").valid
+    if not (_number(table.density2) and valid.low <= table.density2 <= valid.high):
+        raise StudyError(
+            f"{path}: key 'corrections.density2': expected a density in [{valid.low:g}, "
+            f"{valid.high:g}] (kg/m^3, a body with inertia), got {table.density2!r}"
+        )
+    return Corrections(tuple(float(v) for v in velocities), float(table.density2))
 
 
 def _sweeps_model(raw: _FiniteFile) -> bool:
