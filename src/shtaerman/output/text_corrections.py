@@ -49,7 +49,7 @@ def corrections_finding(data: Mapping[str, Any], model: str) -> str:
     rows = data["rows"]
     at = ", ".join(
         f"{r['departure']['P_max']:+.2f} pp at {r['velocity']:g} m/s "
-        f"({100 * r['shifts']['nonlinear']['P_max']:+.2f} % against "
+        f"(nonlinear {100 * r['shifts']['nonlinear']['P_max']:+.2f} % against the sum "
         f"{100 * r['shifts']['sum']['P_max']:+.2f} %)"
         for r in rows
     )
