@@ -22,6 +22,7 @@ from shtaerman.output.report import (
     results_document,
     study_document,
 )
+from shtaerman.output.text_corrections import QUICK_WORDS
 from shtaerman.study.finite.corrections import COLUMNS, QUANTITIES
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study, shipped_studies
@@ -157,6 +158,7 @@ def test_table_and_finding_reach_results_json_and_the_report(outcome):
     assert table["rows"][1][-1] == f"{row['departure']['P_max']:+.2f} pp"
     finding = entry["findings"][-1]
     assert "Do the corrections add?" in finding and " pp at 1 m/s" in finding
+    assert finding.endswith(QUICK_WORDS)  # a quick run's departures are not the answer
     assert ("less" in finding) == (
         abs(row["shifts"]["nonlinear"]["P_max"]) < abs(row["shifts"]["sum"]["P_max"])
     )
