@@ -20,6 +20,7 @@ from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables
 from .entry import text_entry
+from .text_corrections import corrections_finding, corrections_table
 from .wording import number, plus_minus
 from .wording import times_text as timing_text
 
@@ -173,7 +174,15 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         _validity_finding(outcome),
         *rubber_finding(outcome),
         QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
+        *_corrections(outcome, corrections_finding),
     ]
+
+
+def _corrections(outcome: FiniteStudyOutcome, text: Any) -> list[Any]:
+    """``text(corrections, model label)`` in a list after a ``[corrections]`` table, else []."""
+    if outcome.corrections is None:
+        return []
+    return [text(outcome.corrections, model_label(outcome.study.rubber.name))]
 
 
 def central_pressure_words(pressure_ratio: float, radius_ratio: float) -> str:
@@ -275,8 +284,13 @@ def _estimate_finding(outcome: FiniteStudyOutcome) -> str:
 
 def study_tables(outcome: FiniteStudyOutcome) -> list[dict[str, object]]:
     """The curve, the three impacts and the validity depths as display strings (after a
-    ladder: value ± estimated relative error)."""
-    return [_curve_table(outcome), _impact_table(outcome), _validity_table(outcome)]
+    ladder: value ± estimated relative error), after ``[corrections]`` its table."""
+    return [
+        _curve_table(outcome),
+        _impact_table(outcome),
+        _validity_table(outcome),
+        *_corrections(outcome, corrections_table),
+    ]
 
 
 def _curve_table(outcome: FiniteStudyOutcome) -> dict[str, object]:

@@ -24,6 +24,11 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it
                  yeoh = [c2, c3], gent_limit, volumetric (:func:`shtaerman.fem.rubber.rubber_model`;
                  a shape key applies to its own model only, also when the model is swept)
     [sweep]      optional: one of nu2, mass, velocity, model, volumetric with a list of values
+    [corrections] optional: velocities = [1.0, 3.0] (m/s, > 0), density2 = 1100.0 (kg/m^3, in
+                 [1e-6, 1e6]): at each velocity the linear dynamic impact, the massless
+                 finite-strain impact and the nonlinear dynamic one (the study's rubber with
+                 inertia), to see whether the wave and finite-strain corrections add
+                 (:mod:`.corrections`)
 """
 
 from __future__ import annotations
@@ -61,6 +66,7 @@ from ..schema import (
 
 __all__ = [
     "QUICK_FINITE_MESH",
+    "Corrections",
     "FiniteStudy",
     "FiniteTolerances",
     "Ladder",
@@ -118,6 +124,11 @@ class _Sweep(SweepTable):
     volumetric: list[str] | None = None
 
 
+class _Corrections(Table):  # values checked by _corrections, whose messages name the range
+    velocities: list[Any]
+    density2: Any = vocabulary.entry("density2").default
+
+
 class _FiniteFile(Table):
     indenter: IndenterTable
     half_space: MaterialTable
@@ -130,6 +141,16 @@ class _FiniteFile(Table):
     tolerances: _Tolerances = _Tolerances()
     rubber: _Rubber = _Rubber()
     sweep: _Sweep | None = None
+    corrections: _Corrections | None = None
+
+
+@dataclass(frozen=True)
+class Corrections:
+    """The ``[corrections]`` table: impact velocities (m/s) and the body's density (kg/m^3)
+    of the dynamic impacts that test whether the wave and finite-strain corrections add."""
+
+    velocities: tuple[float, ...]
+    density: float
 
 
 @dataclass(frozen=True)
@@ -185,6 +206,8 @@ class FiniteStudy:
     mesh_ladder: str = "independent"
     """The error-estimate ladder (:data:`MESH_LADDERS`): ``independent``, ``mesh`` the finest
     of three gmsh meshes; ``nested``, ``mesh`` the middle of one gmsh mesh refined twice."""
+    corrections: Corrections | None = None
+    """The dynamic impacts of ``[corrections]``; None: none run."""
 
 
 def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
@@ -243,7 +266,32 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         quick_small_strain=quick.small_strain,
         rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
         mesh_ladder=raw.numerics.ladder,
+        corrections=_corrections(path, raw.corrections),
     )
+
+
+def _number(value: object) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _corrections(path: Path, table: _Corrections | None) -> Corrections | None:
+    """The ``[corrections]`` table checked: 1 to MAX_VELOCITIES velocities > 0 (m/s), and a
+    density (kg/m^3) of a body with inertia (density2's range without the massless 0)."""
+    if table is None:
+        return None
+    most, velocities = vocabulary.MAX_VELOCITIES, table.velocities
+    if not 1 <= len(velocities) <= most or not all(_number(v) and v > 0 for v in velocities):
+        raise StudyError(
+            f"{path}: key 'corrections.velocities': expected a list of 1 to {most} velocities "
+            f"> 0 (m/s), got {velocities!r}"
+        )
+    valid = vocabulary.entry("density2").valid
+    if not (_number(table.density2) and valid.low <= table.density2 <= valid.high):
+        raise StudyError(
+            f"{path}: key 'corrections.density2': expected a density in [{valid.low:g}, "
+            f"{valid.high:g}] (kg/m^3, a body with inertia), got {table.density2!r}"
+        )
+    return Corrections(tuple(float(v) for v in velocities), float(table.density2))
 
 
 def _sweeps_model(raw: _FiniteFile) -> bool:

@@ -51,6 +51,7 @@ from ..ladder import (
 )
 from ..run import Progress
 from .accuracy import FiniteEstimates, estimate_study
+from .corrections import run_corrections
 from .indentation import FiniteIndentationResult, run_finite_study
 from .loader import FiniteStudy, Ladder
 
@@ -105,6 +106,8 @@ class FiniteStudyOutcome:
     cpu_seconds: float
     estimates: FiniteEstimates | None = None
     """The mesh ladder's estimates of this (its finest) level; None in quick mode."""
+    corrections: dict[str, Any] | None = None
+    """The ``[corrections]`` impacts (:func:`.corrections.run_corrections`); None without."""
 
     @property
     def passed(self) -> bool:
@@ -245,9 +248,11 @@ class FiniteStudyOutcome:
         """The study's numbers for results.json (JSON-ready; :mod:`shtaerman.output.text_finite`
         adds the display ``tables`` and ``findings``), after a mesh ladder its estimates under
         ``accuracy``
-        (:meth:`.finite_accuracy.FiniteEstimates.to_dict`)."""
+        (:meth:`.finite_accuracy.FiniteEstimates.to_dict`), after ``[corrections]`` its
+        impacts under ``corrections``."""
         mesh = self.mesh
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
+        corrections = {} if self.corrections is None else {"corrections": self.corrections}
         return {
             **self.finite.to_dict_model(),
             "quick": self.quick,
@@ -268,6 +273,7 @@ class FiniteStudyOutcome:
             "at_maximum": self.at_maximum(),
             "validity": self.limits(),
             **accuracy,
+            **corrections,
             "cpu_seconds": self.cpu_seconds,
         }
 
@@ -418,7 +424,7 @@ def run_finite_strain_study(
     FiniteStudyOutcome
         The finest level's (the study's mesh; twice as fine on a nested ladder), with
         ``estimates`` unless ``quick`` or not ``estimate``; without estimates the study's
-        mesh alone. Its
+        mesh alone; ``corrections`` after a ``[corrections]`` table (coarse if ``quick``). Its
         ``seconds`` and ``cpu_seconds`` count every level.
     """
     report = progress or (lambda _line: None)
@@ -447,6 +453,7 @@ def run_finite_strain_study(
     return replace(
         outcomes[-1],
         estimates=estimates,
+        corrections=run_corrections(study, quick, report),
         seconds=time.perf_counter() - start,
         cpu_seconds=time.process_time() - cpu,
     )
