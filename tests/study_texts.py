@@ -15,3 +15,17 @@ velocity = [1.0, 3.0]
 figure_velocity = 3.0
 """
 """The paper's striker on rubber at 1 and 3 m/s: the smallest complete dynamic study."""
+
+FINITE_STUDY = """\
+kind = "finite-strain"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 7.5e6
+nu2 = 0.5
+[impact]
+mass = 0.7
+velocity = 3.0
+"""
+"""The paper's striker on neo-Hookean rubber: the smallest finite-strain study."""

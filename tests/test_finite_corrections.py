@@ -13,6 +13,7 @@ import json
 import math
 
 import pytest
+from study_texts import FINITE_STUDY
 
 from shtaerman.cli import main
 from shtaerman.fem.mesh import MeshSettings
@@ -27,18 +28,7 @@ from shtaerman.study.finite.corrections import COLUMNS, QUANTITIES
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study, shipped_studies
 
-MINIMAL = """kind = "finite-strain"
-name = "tiny"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-[impact]
-mass = 0.7
-velocity = 3.0
-"""
+MINIMAL = 'name = "tiny"\n' + FINITE_STUDY
 CORRECTIONS = "[corrections]\nvelocities = [1.0]\ndensity2 = 1100.0\n"
 COARSE = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-3, axis_growth=0.25)
 """The coarse graded mesh of the inertia tests, for every finite-strain impact here."""

@@ -16,6 +16,7 @@ import meshio
 import numpy as np
 import pytest
 from PIL import Image
+from study_texts import FINITE_STUDY
 
 from shtaerman.output import text_finite
 from shtaerman.output.report import (
@@ -33,17 +34,7 @@ from shtaerman.study.schema import StudyError, load_study, shipped_studies
 from shtaerman.theory.indenter import PowerLawIndenter
 
 SHIPPED = next(p for p in shipped_studies() if p.stem == "finite_strain")
-MINIMAL = """kind = "finite-strain"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-[impact]
-mass = 0.7
-velocity = 3.0
-"""
+MINIMAL = FINITE_STUDY
 
 
 @pytest.fixture(scope="module")
