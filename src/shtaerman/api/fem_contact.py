@@ -20,6 +20,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
+from .layer_options import layer_mesh
 from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
@@ -328,23 +329,6 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
         export.write_indentation(result.solution, folder)
         contact_figures(result.solution, folder, figure_format)
     (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
-
-
-def layer_mesh(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
-    """``mesh`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
-    if options["thickness"] is None:
-        if options["base"] is not None:
-            raise InputError("base: applies to a layer only; give its thickness too", "base")
-        return mesh
-    base = entry("base").check(
-        entry("base").default if options["base"] is None else options["base"]
-    )
-    thickness = entry("thickness").check(options["thickness"])
-    if options["model"] != "linear" and base != "bonded":
-        from ..fem.finite_contact import FINITE_BASE
-
-        raise InputError(FINITE_BASE, "base")
-    return dataclasses.replace(mesh, thickness=thickness, base=base)
 
 
 def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:

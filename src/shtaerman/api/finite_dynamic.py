@@ -172,7 +172,7 @@ def finite_dynamic(
         run_finite_impact,
     )
     from ..fem.rubber import rubber_model
-    from .fem_contact import layer_mesh
+    from .layer_options import layer_mesh
 
     check_bodies(indenter, body)
     rubber = rubber_model(model, mooney_ratio, yeoh, gent_limit, volumetric)
