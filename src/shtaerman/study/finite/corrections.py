@@ -1,8 +1,9 @@
 """Whether the corrections add: the wave and finite-strain corrections of the paper's impact,
 computed apart and together, at the velocities of a finite-strain study's ``[corrections]``.
 
-At each velocity three impacts run through :func:`shtaerman.dynamic` (the code paths of
-``shtaerman dynamic``):
+At each velocity three impacts run through the code of ``shtaerman dynamic``
+(:func:`shtaerman.study.dynamic.case.run_case` and
+:func:`shtaerman.fem.finite_dynamic.run_finite_impact`):
 
 - the linear dynamic impact (elastic waves, small strain; no error estimate);
 - the finite-strain quasi-static impact (the study's rubber, massless body: ``density2 = 0``);
@@ -17,10 +18,13 @@ impact's departure from that sum, in percentage points, says how well they add.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import Any
 
-from ...api.fem_dynamic import dynamic
+from ...fem import finite_contact, finite_dynamic
+from ...fem.dynamic_contact import DynamicSettings
 from ...theory.materials import Material
+from ..dynamic.case import run_case
 from ..run import Progress
 from .loader import FiniteStudy
 
@@ -39,40 +43,48 @@ QUICK_SETTINGS = {
 of the defaults'); otherwise every run takes the command's defaults."""
 
 
-def _rubber_options(study: FiniteStudy) -> dict[str, Any]:
-    """The keywords of :func:`shtaerman.dynamic` choosing the study's rubber model."""
-    rubber = study.rubber
-    options: dict[str, Any] = {"model": rubber.name, "volumetric": rubber.volumetric}
-    own = {"mooney-rivlin": "mooney_ratio", "yeoh": "yeoh", "gent": "gent_limit"}
-    if rubber.name in own:
-        options[own[rubber.name]] = getattr(rubber, own[rubber.name])
-    return options
+def _linear(
+    study: FiniteStudy, velocity: float, density: float, options: dict[str, Any]
+) -> tuple[dict[str, float], dict[str, float]]:
+    """The paper's quasi-static maxima and the linear dynamic impact's numbers (SI)."""
+    settings = DynamicSettings()
+    if options:
+        settings = replace(settings, steps=options["time_steps"], size=options["mesh_size"])
+    body = Material(study.half_space.youngs_modulus, study.half_space.poisson_ratio, density)
+    case = run_case(study.indenter, body, density, study.mass, velocity, settings)
+    return case.quasi.maxima(), case.result.summary()
+
+
+def _finite(
+    study: FiniteStudy, velocity: float, density: float, options: dict[str, Any]
+) -> dict[str, float]:
+    """The study's rubber struck at ``velocity`` (m/s), massless (``density`` 0) or not."""
+    # the defaults read at call time, as ``shtaerman dynamic`` does (tests swap in coarse ones)
+    mesh = finite_contact.FINITE_MESH if density == 0 else finite_dynamic.INERTIA_MESH
+    if "mesh_size" in options:
+        mesh = replace(mesh, size=options["mesh_size"])
+    settings = finite_dynamic.FiniteImpactSettings(steps=options.get("time_steps"), mesh=mesh)
+    run = finite_dynamic.run_finite_impact(
+        study.indenter, study.half_space, density, study.mass, velocity, settings, study.rubber
+    )
+    return run.summary()
 
 
 def _impacts(
     study: FiniteStudy, velocity: float, density: float, quick: bool, report: Progress
 ) -> tuple[dict[str, float], dict[str, dict[str, float]]]:
-    """The paper's quasi-static x_c, P_c, t_y and the three impacts' ``dynamic`` numbers."""
-    body = study.half_space
-    common = {"mass": study.mass, "velocity": velocity}
+    """The paper's quasi-static x_c, P_c, t_y and the three impacts' numbers."""
     settings = QUICK_SETTINGS if quick else {column: {} for column in QUICK_SETTINGS}
-    rubber = _rubber_options(study)
-    out = {}
     report(f"{study.name}: corrections at v0 = {velocity:g} m/s: linear dynamic impact")
-    with_density = Material(body.youngs_modulus, body.poisson_ratio, density=density)
-    linear = dynamic(
-        study.indenter, with_density, **common, estimate=False, **settings["linear_dynamic"]
-    )
-    out["linear_dynamic"] = linear.dynamic
+    maxima, linear = _linear(study, velocity, density, settings["linear_dynamic"])
+    out = {"linear_dynamic": linear}
     for column, rho, words in (
         ("finite_strain", 0.0, "massless finite-strain impact"),
         ("nonlinear", density, "nonlinear dynamic impact"),
     ):
         report(f"{study.name}: corrections at v0 = {velocity:g} m/s: {words}")
-        run = dynamic(study.indenter, body, **common, density=rho, **rubber, **settings[column])
-        out[column] = run.dynamic
-    reference = {key: linear.quasi_static[key] for key in QUANTITIES.values()}
-    return reference, out
+        out[column] = _finite(study, velocity, rho, settings[column])
+    return {key: maxima[key] for key in QUANTITIES.values()}, out
 
 
 def correction_row(
