@@ -241,3 +241,20 @@ def test_a_round_off_loss_prints_without_a_minus_sign():
     # a massless run's 1 - e^2 is -1e-13 (restitution 1 to round-off): the text says 0.000000
     assert f"{_unsigned_zero(-1e-13):.6f}" == "0.000000"
     assert f"{_unsigned_zero(-0.0012344):.6f}" == "-0.001234"  # a real value keeps its sign
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (("contact", "--force"), "--force: applies with --out only"),
+        (("contact", "--figure-format", "svg"), "--figure-format: applies with --out only"),
+        (("dynamic", "--force"), "--force: applies with --out or --history only"),
+        (("dynamic", "--model", "neo-hookean", "--force"), "--force: applies with --out or"),
+        (("dynamic", "--figure-format", "pdf"), "--figure-format: applies with --out only"),
+    ],
+)
+def test_output_options_without_an_output_are_refused_in_one_line(capsys, argv, message):
+    # they only act on written outputs: silently ignored before, now exit 2 before any run
+    assert main(list(argv)) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1

@@ -92,7 +92,8 @@ def test_extended_study_is_the_papers_case():
     from shtaerman.study.schema import studies_folder
 
     study = load_study(studies_folder() / "extended" / "corrections.toml")[0]
-    assert study.corrections.velocities == (0.5, 1.0, 3.0, 5.0) and study.corrections.density == 1100.0
+    assert study.corrections.velocities == (0.5, 1.0, 3.0, 5.0)
+    assert study.corrections.density == 1100.0
     assert study.rubber.name == "neo-hookean" and study.half_space.poisson_ratio == 0.5
     assert (study.mass, study.indenter.shape_coefficient, study.indenter.exponent) == (
         0.7,

@@ -29,6 +29,7 @@ __all__ = [
     "indenter",
     "keywords",
     "print_json",
+    "refuse_idle_output_options",
     "striker",
     "warn",
     "warn_volumetric",
@@ -207,6 +208,24 @@ def given(args: argparse.Namespace, name: str) -> bool:
         return True
     item = entry(name)
     return item.type in ("path", "flag", "bool") and getattr(args, name) != item.default_for(None)
+
+
+def refuse_idle_output_options(args: argparse.Namespace, targets: tuple[str, ...]) -> None:
+    """Refuse, in one line, the options that act on written outputs when nothing is written:
+    ``--figure-format`` (not png) without ``--out``, ``--force`` without any of ``targets``."""
+    if args.figure_format != entry("figure_format").default and args.out is None:
+        raise InputError(
+            "--figure-format: applies with --out only (the format of the figures written "
+            "there); give --out too",
+            "figure_format",
+        )
+    if given(args, "force") and all(getattr(args, name) is None for name in targets):
+        where = " or ".join(entry(name).cli_option for name in targets)
+        raise InputError(
+            f"--force: applies with {where} only (it lets the run replace what is there); "
+            f"give {where} too",
+            "force",
+        )
 
 
 def keywords(args: argparse.Namespace, names: Iterable[str]) -> dict[str, Any]:

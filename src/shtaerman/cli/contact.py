@@ -19,6 +19,7 @@ from .common import (
     indenter,
     keywords,
     print_json,
+    refuse_idle_output_options,
     warn_volumetric,
 )
 
@@ -94,6 +95,7 @@ KEYWORDS = (
 
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
+    refuse_idle_output_options(args, ("out",))
     if given(args, "max_time") and args.accuracy is None:
         raise InputError(
             "--max-time: applies with --accuracy only (the time budget of its refinement); "

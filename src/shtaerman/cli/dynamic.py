@@ -19,6 +19,7 @@ from .common import (
     indenter,
     keywords,
     print_json,
+    refuse_idle_output_options,
     warn,
 )
 from .finite_dynamic import layer_rows, run_finite
@@ -77,6 +78,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
+    refuse_idle_output_options(args, ("out", "history"))
     if args.model != "linear" or any(getattr(args, name) for name in RUBBER_OPTIONS):
         return run_finite(args)
     history = history_path(args.history, force=args.force)
