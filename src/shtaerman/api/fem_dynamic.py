@@ -17,6 +17,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
+from .layer_options import layer_mesh
 from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
@@ -305,7 +306,8 @@ def dynamic(
         )
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
-    chosen = _layer(dynamic_settings(settings, options), thickness, base)
+    layer = {"thickness": thickness, "base": base, "model": "linear"}
+    chosen = layer_mesh(dynamic_settings(settings, options), layer)
     mass, velocity, refine, chosen = _checked(
         indenter, body, (mass, velocity, refine), estimate, chosen
     )
@@ -331,17 +333,6 @@ def dynamic(
             _write_folder(result, stage)
             write_case_figures(case, stage, figure_format)
     return result
-
-
-def _layer(settings: DynamicSettings, thickness: object, base: object) -> DynamicSettings:
-    """``settings`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
-    if thickness is None:
-        if base is not None:
-            raise InputError("base: applies to a layer only; give its thickness too", "base")
-        return settings
-    base = entry("base").check(entry("base").default if base is None else base)
-    thickness = entry("thickness").check(thickness)
-    return dataclasses.replace(settings, thickness=thickness, base=base)
 
 
 def _checked(

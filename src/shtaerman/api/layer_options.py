@@ -4,19 +4,21 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import Any, TypeVar
 
 from ..validation import InputError
 from ..vocabulary import entry
 
-if TYPE_CHECKING:
-    from ..fem.mesh import MeshSettings
+Settings = TypeVar("Settings")
+"""Numerics with ``thickness`` and ``base`` fields (MeshSettings, DynamicSettings)."""
 
 __all__ = ["layer_mesh"]
 
 
-def layer_mesh(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
-    """``mesh`` on a layer of ``thickness`` (m) on a ``base`` (None: the half-space)."""
+def layer_mesh(mesh: Settings, options: Mapping[str, Any]) -> Settings:
+    """``mesh`` (settings with ``thickness`` and ``base`` fields) on a layer of ``thickness``
+    (m) on a ``base`` (None: the half-space), both checked; a finite-strain ``model`` takes a
+    bonded base only."""
     if options["thickness"] is None:
         if options["base"] is not None:
             raise InputError("base: applies to a layer only; give its thickness too", "base")
