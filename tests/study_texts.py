@@ -16,8 +16,7 @@ figure_velocity = 3.0
 """
 """The paper's striker on rubber at 1 and 3 m/s: the smallest complete dynamic study."""
 
-FINITE_STUDY = """\
-kind = "finite-strain"
+PAPER_CASE = """\
 [indenter]
 shape_coefficient = 5.0
 exponent = 1.5
@@ -28,4 +27,7 @@ nu2 = 0.5
 mass = 0.7
 velocity = 3.0
 """
+"""The paper's striker, rubber and impact: a contact study without a ``kind`` line."""
+
+FINITE_STUDY = 'kind = "finite-strain"\n' + PAPER_CASE
 """The paper's striker on neo-Hookean rubber: the smallest finite-strain study."""

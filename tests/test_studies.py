@@ -5,20 +5,11 @@ import re
 import warnings
 
 import pytest
+from study_texts import PAPER_CASE
 
 from shtaerman.study.schema import StudyError, find_study, load_study, shipped_studies
 
-PAPER = """
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-[impact]
-mass = 0.7
-velocity = 3.0
-"""
+PAPER = "\n" + PAPER_CASE
 
 
 def test_shipped_studies_cover_the_issue():
