@@ -58,6 +58,7 @@ def outcome(tmp_path_factory):
         ("velocities = []\n", "corrections.velocities"),
         ('velocities = "fast"\n', "corrections.velocities"),
         ("velocities = [true]\n", "corrections.velocities"),
+        ("velocities = [1.0, 1.0]\n", "corrections.velocities"),  # twice the cost, no answer
         ('velocities = [1.0]\ndensity2 = "heavy"\n', "corrections.density2"),
         ("velocities = [1.0]\ndensity2 = 0.0\n", "corrections.density2"),
         ("velocities = [1.0]\ndensity2 = -5.0\n", "corrections.density2"),

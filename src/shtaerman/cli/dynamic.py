@@ -78,9 +78,9 @@ def register(commands: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
-    refuse_idle_output_options(args, ("out", "history"))
     if args.model != "linear" or any(getattr(args, name) for name in RUBBER_OPTIONS):
         return run_finite(args)
+    refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
     if not given(args, "layer_rate"):  # the API's default: the layer of the case
         args.layer_rate = None

@@ -10,7 +10,8 @@ from ..api.finite_dynamic import finite_strain_route
 from ..theory.materials import Material
 from .common import given, in_option_words, indenter, print_json, warn_volumetric
 
-LINEAR_ONLY = ("history", "out", "mesh_margin", "domain_factor", "growth", "layer_rate", "prony")
+LINEAR_ONLY = ("history", "out", "force", "mesh_margin", "domain_factor", "growth", "layer_rate")
+LINEAR_ONLY = (*LINEAR_ONLY, "prony")
 """``dynamic`` options the finite-strain impact refuses when given."""
 
 

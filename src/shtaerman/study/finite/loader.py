@@ -280,10 +280,11 @@ def _corrections(path: Path, table: _Corrections | None) -> Corrections | None:
     if table is None:
         return None
     most, velocities = vocabulary.MAX_VELOCITIES, table.velocities
-    if not 1 <= len(velocities) <= most or not all(_number(v) and v > 0 for v in velocities):
+    numbers = all(_number(v) and v > 0 for v in velocities)
+    if not (1 <= len(velocities) <= most and numbers and len(set(velocities)) == len(velocities)):
         raise StudyError(
-            f"{path}: key 'corrections.velocities': expected a list of 1 to {most} velocities "
-            f"> 0 (m/s), got {velocities!r}"
+            f"{path}: key 'corrections.velocities': expected a list of 1 to {most} distinct "
+            f"velocities > 0 (m/s), got {velocities!r}"
         )
     valid = vocabulary.entry("density2").valid
     if not (_number(table.density2) and valid.low <= table.density2 <= valid.high):
