@@ -279,6 +279,11 @@ def test_old_and_new_key_together_are_refused(tmp_path):
         (("mass = 0.7", "mass = 0.7\nexponent = 2"), r"key 'impact.exponent': .*in \[indenter\]"),
         (("[half_space]", "[halfspace]"), r"key 'halfspace': .*\(did you mean 'half_space'\?\)"),
         (("velocity = 3.0", "velocity = 3.0\n[numerics]\nmesh_sise = 0.1"), r"'mesh_size'\?"),
+        (
+            ("velocity = 3.0", "velocity = 3.0\n[corrections]\nvelocities = [1.0]"),
+            r"key 'corrections': .*unknown key: \[corrections\] belongs in a study of kind = "
+            "'finite-strain'",
+        ),
     ],
 )
 def test_an_unknown_key_says_what_it_probably_meant(tmp_path, edit, message):

@@ -231,6 +231,8 @@ def _located(message: str, data: dict[str, Any], root: type) -> tuple[list[str],
         home = TABLE_OF.get(unknown[1])
         if not hint and home and home not in keys and home in root.__struct_fields__:
             hint = f" (it belongs in [{home}])"
+        if not keys and unknown[1] in KIND_OF_TABLE:
+            hint = f": [{unknown[1]}] belongs in a study of kind = {KIND_OF_TABLE[unknown[1]]!r}"
         return [*keys, unknown[1]], f"one of {allowed} (unknown key{hint})"
     if missing:
         leaf = missing[1]
@@ -289,6 +291,8 @@ TABLE_OF = {
     **{name: "layer" for name in ("thickness", "thickness_ratio", "base", "dynamic")},
 }
 """A vocabulary key written at the top level of a study file -> the table it belongs to."""
+KIND_OF_TABLE = {"corrections": "finite-strain", "rubber": "finite-strain"}
+"""A table that only one kind of study file has -> that kind."""
 OLD_TABLES = {"mesh": "numerics", "quick_mesh": "quick"}
 """Tables of earlier releases -> their name now."""
 _NUMERICS_RENAMED = {
