@@ -113,6 +113,21 @@ def test_a_full_folder_is_not_replaced_without_force(tmp_path):
     assert [p.name for p in target.iterdir()] == ["old.txt"]
 
 
+def test_a_full_folder_advises_force_only_when_force_would_replace_it(tmp_path):
+    target = tmp_path / "run"
+    target.mkdir()
+    (target / "old.txt").write_text("old")
+    foreign = "not empty; it was not written by shtaerman: name a new folder"
+    with pytest.raises(InputError, match=foreign) as error:
+        check_output_folder(target, force=False)
+    assert "--force" not in str(error.value)  # --force refuses a folder this tool did not write
+    with staged_folder(target / "ours") as stage:
+        (stage / "new.txt").write_text("new")
+    with pytest.raises(InputError, match="not empty; use --force to replace it"):
+        check_output_folder(target / "ours", force=False)
+    assert check_output_folder(target / "ours", force=True) == target / "ours"
+
+
 def test_a_stale_staging_folder_of_a_dead_process_is_cleaned(tmp_path):
     target = tmp_path / "run"
     pid = dead_pid()

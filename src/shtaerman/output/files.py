@@ -315,13 +315,13 @@ def _not_only_ours(option: str, path: object, foreign: list[str]) -> InputError:
     )
 
 
-def _not_empty(option: str, path: object, marker: str | None) -> InputError:
-    if marker is not None:
-        return InputError(
-            f"{option}: folder {str(path)!r} holds no interrupted run to complete (no {marker}); "
-            "use --force to replace it"
-        )
-    return InputError(f"{option}: folder {str(path)!r} is not empty (use --force to replace it)")
+def _not_empty(option: str, path: object, marker: str | None, target: Path) -> InputError:
+    state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
+    if not ours(target):  # --force would refuse it too
+        advice = f"it was not written by shtaerman: name a new folder with --{option}"
+    else:
+        advice = "use --force to replace it"
+    return InputError(f"{option}: folder {str(path)!r} {state}; {advice}")
 
 
 def check_folder_path(path: Path, option: str = "out") -> Path:
@@ -414,7 +414,7 @@ def check_output_folder(
             raise _busy(option, target, live)
         if target.is_dir() and any(target.iterdir()):
             if not force and not resumable(target, resume_marker):
-                raise _not_empty(option, path, resume_marker)
+                raise _not_empty(option, path, resume_marker, target)
             if force and not ours(target):
                 raise _not_ours(option, path)
             if force and (foreign := _foreign_files(target)):
@@ -492,7 +492,7 @@ def staged_folder(
         if os.path.lexists(target):
             if any(target.iterdir()):
                 if not force and not resumed:
-                    raise _not_empty(option, target, resume_marker)
+                    raise _not_empty(option, target, resume_marker, target)
                 if not resumed and not ours(target):
                     raise _not_ours(option, target)
                 if not resumed and (foreign := _foreign_files(target)):
