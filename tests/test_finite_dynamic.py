@@ -194,3 +194,21 @@ def test_a_contact_newton_failure_mid_run_is_a_numerical_failure_not_bad_input()
     expected = r"failed at depth 0\.002 m .*finer --mesh-size"
     with pytest.raises(NumericalFailureError, match=expected):
         _QuasiStaticBody(stepper).at(2e-3)
+
+
+def test_dynamic_help_states_the_defaults_the_model_runs_with(capsys):
+    """The help's linear defaults (200 steps, mesh 0.025) are replaced by --model; it says by
+    what, and those are the settings the finite-strain impact resolves to."""
+    import re
+
+    from shtaerman.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["dynamic", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    steps = re.search(r"with --model the default is (\d+) \((\d+) with --density2 0\)", text)
+    size = re.search(r"with --model the default is 1/(\d+)", text)
+    with_inertia, massless = FiniteImpactSettings().resolved(1100.0), FiniteImpactSettings()
+    assert (int(steps[1]), int(steps[2])) == (with_inertia.steps, massless.resolved(0.0).steps)
+    assert 1.0 / int(size[1]) == pytest.approx(massless.resolved(0.0).mesh.size, rel=1e-12)
+    assert with_inertia.mesh.size == massless.resolved(0.0).mesh.size

@@ -7,6 +7,8 @@ import math
 
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
+from ..fem.finite_contact import FINITE_MESH
+from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
 from ..output.files import staged_file, write_csv
 from ..study.dynamic.loader import dynamic_check_failures
 from ..theory.materials import Material
@@ -71,7 +73,13 @@ def register(commands: argparse._SubParsersAction) -> None:
         "expert numerical controls (relative to the quasi-static impact; --refine scales the "
         "mesh sizes and steps together)"
     )
-    add_inputs(numerics, tuple(SETTINGS_OPTIONS), "dynamic", aliases={"time_steps": ("--steps",)})
+    finite = {
+        "time_steps": f"with --model the default is {INERTIA_STEPS} ({MASSLESS_STEPS} with "
+        "--density2 0)",
+        "mesh_size": f"with --model the default is 1/{1 / FINITE_MESH.size:.0f}",
+    }
+    aliases = {"time_steps": ("--steps",)}
+    add_inputs(numerics, tuple(SETTINGS_OPTIONS), "dynamic", aliases=aliases, notes=finite)
     p.set_defaults(handler=run)
 
 
