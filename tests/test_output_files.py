@@ -197,6 +197,18 @@ def test_bad_out_names_are_one_line_errors(tmp_path, monkeypatch, capsys, name):
 
 
 @pytest.mark.skipif(not Path("/sys").is_dir(), reason="needs Linux /sys (read-only to mkdir)")
+def test_a_folder_that_takes_no_new_entries_is_named_as_such(tmp_path, monkeypatch):
+    """mkdir in /proc fails with ENOENT although /proc exists: not "No such file"."""
+    import errno
+
+    def refused(path, *args):
+        raise FileNotFoundError(errno.ENOENT, "No such file or directory", str(path))
+
+    monkeypatch.setattr(os, "mkdir", refused)
+    with pytest.raises(InputError, match=r"in '.+' \(its file system takes no new files\)$"):
+        check_output_folder(tmp_path / "run", force=False)
+
+
 def test_an_unwritable_parent_is_refused_before_computing(capsys, monkeypatch):
     if os.access("/sys", os.W_OK) and not _mkdir_fails("/sys"):
         pytest.skip("/sys is writable here")

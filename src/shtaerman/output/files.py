@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import errno
 import json
 import math
 import os
@@ -235,9 +236,10 @@ def probe_writable(option: str, folder: Path, name: str) -> None:
     except FileExistsError:
         return
     except OSError as error:
-        raise InputError(
-            f"{option}: cannot write in {str(folder)!r} ({error.strerror or error})"
-        ) from None
+        reason = error.strerror or str(error)
+        if error.errno == errno.ENOENT and folder.is_dir():  # /proc: the folder is there
+            reason = "its file system takes no new files"
+        raise InputError(f"{option}: cannot write in {str(folder)!r} ({reason})") from None
     os.rmdir(probe)
 
 
