@@ -657,7 +657,7 @@ def check_finite_depths(
 
 FINITE_BASE = (
     "base: a layer at finite strain is bonded only (the lubricated base's exterior stiffness "
-    "beyond the lateral edge is linear); use --base bonded or --model linear"
+    "beyond the lateral edge is linear): take a bonded base or the linear model"
 )
 """The refusal of a lubricated layer at finite strain."""
 
