@@ -277,12 +277,17 @@ def test_depth_range_message_names_the_model_in_use():
 
 def test_the_ladder_is_independent_unless_the_study_file_asks_for_nested(tmp_path):
     shipped, nested = load_study(SHIPPED), load_study(NESTED)
-    assert {s.mesh_ladder for s in shipped} == {"independent"}
-    assert {s.mesh_ladder for s in nested} == {"nested"}
-    assert [s.mesh for s in nested] == [s.mesh for s in shipped]  # same refine = 0.8 mesh
+    assert {s.mesh_ladder for s in shipped} == {s.mesh_ladder for s in nested} == {"nested"}
+    for coarser, finer in zip(shipped, nested, strict=True):  # refine 0.6 and 0.8
+        assert coarser.mesh.size == pytest.approx(finer.mesh.size * 0.8 / 0.6, rel=1e-12)
+        assert coarser.mesh.axis_size == pytest.approx(finer.mesh.axis_size * 0.8 / 0.6)
     assert {s.name for s in nested}.isdisjoint(s.name for s in shipped)
-    factors, meshes = ladder_meshes(shipped[0].mesh)  # the default: three gmsh meshes
-    assert factors == pytest.approx([0.5, 2**-0.5, 1.0]) and meshes[-1] == shipped[0].mesh
+    path = tmp_path / "mine.toml"
+    path.write_text(SHIPPED.read_text().replace('ladder = "nested"', ""))
+    default = load_study(path)
+    assert {s.mesh_ladder for s in default} == {"independent"}
+    factors, meshes = ladder_meshes(default[0].mesh)  # the default: three gmsh meshes
+    assert factors == pytest.approx([0.5, 2**-0.5, 1.0]) and meshes[-1] == default[0].mesh
     path = tmp_path / "bad.toml"
     path.write_text(NESTED.read_text().replace('ladder = "nested"', 'ladder = "nest"'))
     with pytest.raises(StudyError, match=r"ladder': expected independent or nested, got 'nest'"):

@@ -45,9 +45,11 @@ def outcome():
 
 @pytest.fixture(scope="module")
 def laddered():
-    """The shipped paper case, not quick, on a ladder whose finest mesh is the quick one."""
+    """The shipped paper case, not quick, on the independent ladder (a study file's default)
+    whose finest mesh is the quick one."""
     study = load_study(SHIPPED)[0]
-    return run_study(replace(study, mesh=study.quick_mesh, ladder=study.quick_ladder))
+    coarse = replace(study, mesh=study.quick_mesh, ladder=study.quick_ladder)
+    return run_study(replace(coarse, mesh_ladder="independent"))
 
 
 @pytest.fixture(scope="module")

@@ -56,7 +56,7 @@ for poisson_ratio in (0.5, 0.3):
 # the small-strain limit at x/a = 0.01.)
 #
 # The shipped study `fem/finite_strain.toml` (`shtaerman verify finite_strain`, or
-# `sh.run_study("finite_strain")`) does this properly: 17 depths on a three-mesh ladder, the
+# `sh.run_study("finite_strain")`) does this properly: 17 depths on a nested three-mesh ladder, the
 # linear FEM on the same meshes, the impact integrated on the finite-strain curve, and the
 # depths up to which the linear law holds to 1 % and 5 %, each with its error estimate (see
 # [Findings](../findings.md#finite-strain-real-rubber-is-not-linear-at-these-depths)).
