@@ -254,3 +254,46 @@ def test_a_series_relaxing_too_far_is_refused():
         run_finite_impact(
             INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=PronySeries((0.999999,), (1e-6,))
         )
+
+
+def test_cli_runs_the_viscoelastic_rubber_and_reports_the_dissipation(capsys, monkeypatch):
+    import json
+
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+    from shtaerman.cli import main
+    from shtaerman.cli.finite_dynamic import finite_dynamic_text
+
+    monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+    argv = ["dynamic", "--model", "mooney-rivlin", "--mooney-ratio", "0.2", "--prony"]
+    assert main([*argv, "0.5:2.0526e-3", "--time-steps", "50", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["prony"] == "0.5:0.0020526"
+    dynamic = report["dynamic"]
+    assert 0.3 < dynamic["energy_dissipated_fraction"] < dynamic["energy_radiated_fraction"]
+    assert dynamic["restitution"] < 0.7
+    text = finite_dynamic_text(report)
+    assert "Prony series g:tau      0.5:0.0020526" in text
+    assert f"energy dissipated       {dynamic['energy_dissipated_fraction']:.6f}" in text
+    elastic = {**report, "dynamic": dict(dynamic)}
+    del elastic["prony"]
+    assert "Prony" not in finite_dynamic_text(elastic)
+
+
+def test_api_dynamic_takes_prony_with_a_model(monkeypatch):
+    import shtaerman as sh
+
+    with pytest.raises(InputError, match=r"^prony: needs the body with inertia"):
+        sh.dynamic(
+            INDENTER, RUBBER, mass=MASS, velocity=3.0, model="yeoh", density=0.0, prony="0.5:2e-3"
+        )
+    with pytest.raises(InputError, match=r"^prony: .*g1:tau1"):
+        sh.dynamic(
+            INDENTER,
+            RUBBER,
+            mass=MASS,
+            velocity=3.0,
+            model="gent",
+            gent_limit=90.0,
+            density=1100.0,
+            prony="0.5:2e-3:1",
+        )

@@ -294,7 +294,8 @@ def dynamic(
 
         numbers = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
         numbers.update(layer_rate=layer_rate, settings=settings, out=out, refine=refine != 1.0)
-        numbers.update(prony=prony)
+        if prony is not None:
+            rubber = {**rubber, "prony": prony}
         kept = dict(mass=mass, velocity=velocity, time_steps=time_steps, mesh_size=mesh_size)
         kept.update(thickness=thickness, base=base)
         return finite_strain_route(indenter, body, model, numbers, kept, rubber)
