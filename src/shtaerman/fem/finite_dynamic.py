@@ -479,9 +479,7 @@ def run_finite_impact(
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
-    stepper = _assembled(mesh, indenter, half_space, rubber, refined)
-    if prony is not None:
-        stepper.system = ViscoelasticBody(stepper.system, prony)
+    stepper = _assembled(mesh, indenter, half_space, (rubber, prony), refined)
     clock.append(time.perf_counter())
     columns, iterations, separation, far = _stepped(
         stepper,
@@ -598,14 +596,19 @@ def _assembled(
     mesh: Any,
     indenter: PowerLawIndenter,
     half_space: Material,
-    rubber: RubberModel | None,
+    model: tuple[RubberModel | None, PronySeries | None],
     refined: float,
 ) -> NewtonStepper:
-    """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``)."""
+    """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``);
+    ``model``: the rubber model (None: neo-Hookean) and the Prony series (None: elastic)."""
+    rubber, prony = model
     constants = (half_space.youngs_modulus, half_space.poisson_ratio)
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
     system = assemble_hyperelastic(mesh, material)
-    return NewtonStepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    stepper = NewtonStepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    if prony is not None:
+        stepper.system = ViscoelasticBody(system, prony)
+    return stepper
 
 
 def _parameters(
