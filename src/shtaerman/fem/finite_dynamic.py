@@ -36,6 +36,12 @@ rebounding (separation time from P^(1/q) extrapolated between steps).
 Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_contact`). The
 massless body carries no kinetic energy and radiates nothing; with inertia the energies are the
 striker's and the body's kinetic energy, the stored energy and the numerical rest.
+
+A Prony series (``prony``, the body with inertia only) makes the rubber viscoelastic
+(:mod:`.finite_viscoelastic`: its isochoric stress relaxes); the history is committed when a
+step (or a cut step's half) converges, and the energies gain the dissipated energy. The refined
+zone and the run's length are sized by the larger of the elastic and the quasi-static
+viscoelastic impact (:func:`.viscoelastic.sizing_impact`).
 """
 
 from __future__ import annotations
