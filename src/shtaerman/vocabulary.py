@@ -427,7 +427,8 @@ VOCABULARY: tuple[Entry, ...] = (
         " G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 and nu2 the instantaneous values, "
         f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
         f"terms, and the quasi-static impact at most {MAX_GLASSY_DURATIONS:g} glassy impact "
-        "durations long; unset: elastic",
+        "durations long; with --model the isochoric stress relaxes (Simo's finite-strain "
+        "model; --density2 > 0); unset: elastic",
         "Prony series (g_i:tau_i)",
         None,
         ("dynamic",),

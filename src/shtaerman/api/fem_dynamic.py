@@ -261,7 +261,8 @@ def dynamic(
         ``growth`` and ``layer_rate`` (the ``--time-steps`` ... options) override its fields.
     prony : PronySeries or str, optional
         Shear relaxation of the half-space, or its text ``g1:tau1,g2:tau2,...`` (tau in s):
-        ``body`` then gives the instantaneous E2 and nu2 and the bulk stays elastic. None:
+        ``body`` then gives the instantaneous E2 and nu2 and the bulk stays elastic (with a
+        finite-strain ``model``: the isochoric stress relaxes, a body with inertia only). None:
         elastic.
     out : path, optional
         A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
@@ -294,7 +295,8 @@ def dynamic(
 
         numbers = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
         numbers.update(layer_rate=layer_rate, settings=settings, out=out, refine=refine != 1.0)
-        numbers.update(prony=prony)
+        if prony is not None:
+            rubber = {**rubber, "prony": prony}
         kept = dict(mass=mass, velocity=velocity, time_steps=time_steps, mesh_size=mesh_size)
         kept.update(thickness=thickness, base=base)
         return finite_strain_route(indenter, body, model, numbers, kept, rubber)

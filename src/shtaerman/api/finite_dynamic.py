@@ -39,6 +39,7 @@ class FiniteDynamicResult:
     timings: dict[str, float]
     parameters: dict[str, float]
     solution: FiniteImpactResult = field(repr=False, compare=False)
+    prony: str | None = None
 
     def __getattr__(self, name: str) -> Any:
         dynamic = self.__dict__.get("dynamic", {})
@@ -68,6 +69,7 @@ class FiniteDynamicResult:
             "mesh": dict(self.mesh),
             "timings": dict(self.timings),
             "parameters": clean(self.parameters),
+            **({"prony": self.prony} if self.prony is not None else {}),
         }
 
 
@@ -77,8 +79,8 @@ def check_unsupported(model: str, given: dict[str, Any]) -> None:
         if value is not None and value is not False:
             raise InputError(
                 f"{name}: not supported with model {model!r} (the finite-strain impact takes "
-                f"mass, velocity, density2, time_steps, mesh_size, thickness, base (bonded) "
-                "and the rubber options)",
+                f"mass, velocity, density2, time_steps, mesh_size, thickness, base (bonded), "
+                "prony (density2 > 0) and the rubber options)",
                 name,
             )
 
@@ -95,7 +97,7 @@ def finite_strain_route(
     the linear impact's options it does not take (``unsupported``, None or False when not
     given) and the rubber options with the linear model. ``rubber`` may also give
     ``density`` (kg/m^3, 0: massless body) in place of the body's."""
-    allowed = ("mooney_ratio", "yeoh", "gent_limit", "volumetric", "density")
+    allowed = ("mooney_ratio", "yeoh", "gent_limit", "volumetric", "density", "prony")
     unknown = sorted(set(rubber) - set(allowed))
     if unknown:
         raise TypeError(f"dynamic() got unexpected keyword arguments {unknown}")
@@ -126,6 +128,7 @@ def finite_dynamic(
     yeoh: Any = None,
     gent_limit: float | None = None,
     volumetric: str | None = None,
+    prony: Any = None,
 ) -> FiniteDynamicResult:
     """The impact of a rigid striker z = A r^n on a rubber half-space at finite strain.
 
@@ -152,6 +155,10 @@ def finite_dynamic(
         The layer's base: ``bonded`` only at finite strain (the default with ``thickness``).
     mooney_ratio, yeoh, gent_limit, volumetric
         The rubber model's options (:func:`shtaerman.fem.rubber.rubber_model`).
+    prony : PronySeries or str, optional
+        Shear relaxation of the isochoric stress (``g1:tau1,...``, tau in s;
+        :mod:`shtaerman.fem.finite_viscoelastic`): E2, nu2 are then the instantaneous values;
+        the body with inertia only (density > 0).
 
     Returns
     -------
@@ -172,16 +179,18 @@ def finite_dynamic(
         run_finite_impact,
     )
     from ..fem.rubber import rubber_model
+    from ..fem.viscoelastic import prony_input
     from .layer_options import layer_mesh
 
     check_bodies(indenter, body)
     rubber = rubber_model(model, mooney_ratio, yeoh, gent_limit, volumetric)
+    series = prony_input(prony)
     rho = check_density(body.density if density is None else density)
     default = FINITE_MESH if rho == 0 else INERTIA_MESH
     mesh = default if mesh_size is None else replace(default, size=mesh_size)
     mesh = layer_mesh(mesh, {"thickness": thickness, "base": base, "model": model})
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh)
-    run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber)
+    run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber, series)
     law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
     quasi = solve_impact(mass, velocity, law)
     summary = run.summary()
@@ -200,4 +209,10 @@ def finite_dynamic(
         timings=run.timings,
         parameters=run.parameters,
         solution=run,
+        prony=None if series is None else _prony_text(series),
     )
+
+
+def _prony_text(series: Any) -> str:
+    """``g1:tau1,g2:tau2,...`` of a Prony series (tau in s)."""
+    return ",".join(f"{g:g}:{tau:g}" for g, tau in zip(series.weights, series.times, strict=True))

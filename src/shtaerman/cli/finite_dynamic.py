@@ -11,7 +11,6 @@ from ..theory.materials import Material
 from .common import given, in_option_words, indenter, print_json, warn_volumetric
 
 LINEAR_ONLY = ("history", "out", "force", "mesh_margin", "domain_factor", "growth", "layer_rate")
-LINEAR_ONLY = (*LINEAR_ONLY, "prony")
 """``dynamic`` options the finite-strain impact refuses when given."""
 
 
@@ -27,6 +26,8 @@ def run_finite(args: argparse.Namespace) -> int:
         if not given(args, name):
             kept[name] = None
     rubber = {name: getattr(args, name) for name in RUBBER_OPTIONS if getattr(args, name)}
+    if given(args, "prony"):
+        rubber["prony"] = args.prony
     with in_option_words():
         result = finite_strain_route(
             indenter(args),
@@ -62,12 +63,25 @@ def finite_dynamic_text(report: dict) -> str:
         f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  1",
+        *prony_rows(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs; "
         "no error estimate",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
     ]
     return "\n".join(rows)
+
+
+def prony_rows(report: dict) -> list[str]:
+    """The Prony series and the dissipated energy (none for an elastic body)."""
+    if "prony" not in report:
+        return []
+    share = report["dynamic"]["energy_dissipated_fraction"]
+    return [
+        f"  Prony series g:tau      {report['prony']} (isochoric stress relaxes)",
+        f"  energy dissipated       {share:.6f} of M v0^2/2 by separation "
+        f"(1 - e^2 = {report['dynamic']['energy_radiated_fraction']:.6f})",
+    ]
 
 
 def layer_rows(mesh: dict) -> list[str]:

@@ -36,6 +36,12 @@ rebounding (separation time from P^(1/q) extrapolated between steps).
 Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_contact`). The
 massless body carries no kinetic energy and radiates nothing; with inertia the energies are the
 striker's and the body's kinetic energy, the stored energy and the numerical rest.
+
+A Prony series (``prony``, the body with inertia only) makes the rubber viscoelastic
+(:mod:`.finite_viscoelastic`: its isochoric stress relaxes); the history is committed when a
+step (or a cut step's half) converges, and the energies gain the dissipated energy. The refined
+zone and the run's length are sized by the larger of the elastic and the quasi-static
+viscoelastic impact (:func:`.viscoelastic.sizing_impact`).
 """
 
 from __future__ import annotations
@@ -52,6 +58,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, NumericalFailureError, validate_poisson, validate_positive
 from .contact import EDGE_MARGIN
 from .finite_contact import (
@@ -63,11 +70,13 @@ from .finite_contact import (
     NewtonStepper,
     geometric_radius,
 )
+from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import RubberModel
 from .stepper import separation_time
+from .viscoelastic import sizing_impact
 
 __all__ = [
     "FiniteImpactResult",
@@ -169,7 +178,9 @@ class FiniteImpactResult:
         at every step.
     energies : dict of str to numpy.ndarray
         Per step, J: ``striker_kinetic``, ``body_kinetic`` (0: massless body), ``strain``
-        (stored), ``absorbed`` (0), ``numerical`` (E0 minus the rest).
+        (stored), ``absorbed`` (0), ``numerical`` (E0 minus the rest); a viscoelastic body
+        also ``dissipated`` (:mod:`.finite_viscoelastic`, cumulative; the stored energy then
+        includes its branches').
     x_max, P_max : float
         Largest depth (m) and force (N), from the parabola through the three samples
         around the largest sample.
@@ -212,9 +223,11 @@ class FiniteImpactResult:
     newton_iterations: int
 
     reflected_energy_fraction: float = math.nan
+    energy_dissipated_fraction: float | None = None
 
     def summary(self) -> dict[str, float]:
-        """The scalar results, keys of the linear dynamic impact's summary."""
+        """The scalar results, keys of the linear dynamic impact's summary (and, for a
+        viscoelastic body, ``energy_dissipated_fraction``: dissipated / E0 at the end)."""
         keys = (
             "x_max",
             "P_max",
@@ -226,6 +239,8 @@ class FiniteImpactResult:
             "energy_balance_error",
             "reflected_energy_fraction",
         )
+        if self.energy_dissipated_fraction is not None:
+            keys = (*keys, "energy_dissipated_fraction")
         return {key: float(getattr(self, key)) for key in keys}
 
     def history_columns(self) -> dict[str, np.ndarray]:
@@ -436,6 +451,7 @@ def run_finite_impact(
     velocity: float,
     settings: FiniteImpactSettings | None = None,
     rubber: RubberModel | None = None,
+    prony: PronySeries | None = None,
 ) -> FiniteImpactResult:
     """Strike a rubber half-space (finite strain) with a rigid power-law striker.
 
@@ -443,7 +459,8 @@ def run_finite_impact(
     and nu2 in [0, 0.5]; ``density`` in kg/m^3, 0 (massless body) or in DENSITY_RANGE (the
     body with inertia); striker ``mass`` (kg)
     and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
-    ``rubber`` (default neo-Hookean).
+    ``rubber`` (default neo-Hookean); ``prony`` a shear relaxation of the isochoric stress
+    (:mod:`.finite_viscoelastic`; E2, nu2 the instantaneous values), with inertia only.
 
     Raises
     ------
@@ -462,19 +479,20 @@ def run_finite_impact(
     t_y = 2.0 * duration_integral(q) * x_c / velocity
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
-    refined = settings.margin * geometric_radius(indenter, x_c)
+    x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y, rho))
+    refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
-    stepper = _assembled(mesh, indenter, half_space, rubber, refined)
+    stepper = _assembled(mesh, indenter, half_space, (rubber, prony), refined)
     clock.append(time.perf_counter())
     columns, iterations, separation, far = _stepped(
         stepper,
         rho,
         settings.spectral_radius,
         (mass, velocity),
-        (t_y / settings.steps, x_c, t_y, q),
+        (t_y / settings.steps, x_c, duration, q),
     )
     clock.append(time.perf_counter())
     names = ("mesh", "assembly", "stepping")
@@ -496,6 +514,38 @@ def run_finite_impact(
     return _result(columns, mass, context, separation)
 
 
+def _relaxed_extent(
+    law: PowerLawContact,
+    mass: float,
+    velocity: float,
+    prony: PronySeries | None,
+    scales: tuple[float, float, float],
+) -> tuple[float, float]:
+    """The depth (m) that sizes the refined zone and the longest run (s): the elastic x_c and
+    3 t_y (``scales`` x_c, t_y, density), or with a Prony series having some g_i > 0 the
+    larger of those and of the quasi-static viscoelastic impact's x_max and 3 t_contact.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        Naming ``prony`` for the massless body (a rate-dependent body has no static force
+        curve) or a series that relaxes too far within the impact.
+    """
+    x_c, t_y, density = scales
+    if prony is None:
+        return x_c, 3.0 * t_y
+    if density == 0.0:
+        raise InputError(
+            "prony: needs the body with inertia (density2 > 0): the massless finite-strain "
+            "impact integrates a static force curve, which a viscoelastic body has not",
+            "prony",
+        )
+    if not any(g > 0.0 for g in prony.weights):
+        return x_c, 3.0 * t_y
+    slow = sizing_impact(mass, velocity, law, prony, t_y)
+    return max(x_c, slow.x_max), 3.0 * max(t_y, slow.t_contact)
+
+
 def _stepped(
     stepper: NewtonStepper,
     density: float,
@@ -505,15 +555,15 @@ def _stepped(
 ) -> tuple[tuple[np.ndarray, ...], int, float | None, float]:
     """The run's columns, Newton iterations, separation time (s; None: the massless body)
     and far kinetic energy fraction (nan: massless). ``striker``: M (kg), v0 (m/s);
-    ``scales``: dt (s), the quasi-static x_c (m) and t_y (s), q of P ~ X^q."""
+    ``scales``: dt (s), the quasi-static x_c (m), the longest run (s), q of P ~ X^q."""
     mass, velocity = striker
-    dt, x_c, t_y, q = scales
+    dt, x_c, duration, q = scales
     if density == 0.0:
         body = _QuasiStaticBody(stepper)
-        return _march(body, mass, velocity, dt, 3.0 * t_y), body.iterations, None, math.nan
+        return _march(body, mass, velocity, dt, duration), body.iterations, None, math.nan
     inertial = _inertial(stepper, density, bossak(spectral_radius, dt))
     columns, iterations, separation, last = _march_inertial(
-        stepper, inertial, striker, (x_c, 3.0 * t_y, q)
+        stepper, inertial, striker, (x_c, duration, q)
     )
     far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
     return columns, iterations, separation, far
@@ -552,14 +602,19 @@ def _assembled(
     mesh: Any,
     indenter: PowerLawIndenter,
     half_space: Material,
-    rubber: RubberModel | None,
+    model: tuple[RubberModel | None, PronySeries | None],
     refined: float,
 ) -> NewtonStepper:
-    """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``)."""
+    """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``);
+    ``model``: the rubber model (None: neo-Hookean) and the Prony series (None: elastic)."""
+    rubber, prony = model
     constants = (half_space.youngs_modulus, half_space.poisson_ratio)
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
     system = assemble_hyperelastic(mesh, material)
-    return NewtonStepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    stepper = NewtonStepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    if prony is not None:
+        stepper.system = ViscoelasticBody(system, prony)
+    return stepper
 
 
 def _parameters(
@@ -594,6 +649,8 @@ def _result(
     zeros = np.zeros_like(t)
     body = columns[5] if len(columns) > 5 else zeros
     numerical = energy0 - kinetic - strain - body
+    if len(columns) > 6:  # a viscoelastic body: what it dissipated
+        numerical -= columns[6]
     _, t_x_max = _parabola_peak(t, x)
     t_contact = v_out = restitution = radiated = math.nan
     if separation is None:
@@ -609,6 +666,9 @@ def _result(
         radiated = 1.0 - restitution**2
     energies = {"striker_kinetic": kinetic, "body_kinetic": body, "strain": strain}
     energies.update(absorbed=zeros, numerical=numerical)
+    if len(columns) > 6:
+        energies["dissipated"] = columns[6]
+        context = {**context, "energy_dissipated_fraction": float(columns[6][-1]) / energy0}
     return FiniteImpactResult(
         t=t,
         x=x,
@@ -688,6 +748,7 @@ class _Dynamic:
     energy: float
     previous: tuple[np.ndarray, float]
     interval: float
+    dissipated: float = 0.0
 
     def predicted(self, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
         """The start of a step of ``dt`` (s): x and X extrapolated linearly in time, the
@@ -829,6 +890,9 @@ def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dyn
     beta, gamma, dt = inertial.beta, inertial.gamma, inertial.dt
     a = inertial.acceleration(x)
     accel = (depth - big_hat) / (beta * dt**2)
+    body = inertial.static
+    if isinstance(body, ViscoelasticBody):
+        body.commit(x)
     return _Dynamic(
         x=x,
         v=state.v + dt * ((1.0 - gamma) * state.a + gamma * a),
@@ -837,9 +901,10 @@ def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dyn
         depth=depth,
         speed=state.speed + dt * ((1.0 - gamma) * state.accel + gamma * accel),
         accel=accel,
-        energy=inertial.static.energy(x),
+        energy=body.energy(x),
         previous=(state.x, state.depth),
         interval=dt,
+        dissipated=getattr(body, "dissipated", 0.0),
     )
 
 
@@ -862,7 +927,8 @@ def _march_inertial(
     zero = np.zeros(n)
     lam = np.zeros(stepper.nodes.radius.size)
     state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0), inertial.dt)
-    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0)]
+    viscous = isinstance(inertial.static, ViscoelasticBody)
+    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0, *((0.0,) if viscous else ()))]
     total, k, t, separation = 0, 0.0, 0.0, math.nan
     force_scale = mass * velocity / inertial.dt
     while t < duration and math.isnan(separation):
@@ -887,6 +953,8 @@ def _march_inertial(
             state, t = new, t + new.interval
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))
             rows.append((t, state.depth, state.speed, force, state.energy, body))
+            if viscous:
+                rows[-1] = (*rows[-1], state.dissipated)
             if _separated(state):
                 times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
                 separation = separation_time(times, forces, exponent, len(rows) - 1)
@@ -924,6 +992,8 @@ def _inertial(stepper: NewtonStepper, density: float, scheme: tuple) -> _Inertia
     system = stepper.system
     mass = redistribute_normal_mass(consistent_mass(system, density), stepper.nodes.uz)
     inertial = _InertialSystem(system, mass, scheme)
+    if isinstance(system, ViscoelasticBody):
+        system.clock = inertial  # its step constants follow the (possibly cut) time step
     stepper.system = inertial
     stepper.backtracks = MAX_BACKTRACKS
     return inertial
