@@ -84,3 +84,21 @@ def quick_verify(quick_outcomes, tmp_path_factory) -> tuple[int, Path, dict]:
         )
     assert sorted(served) == sorted(QUICK_STUDIES)
     return code, out, json.loads((out / "results.json").read_text())
+
+
+@pytest.fixture
+def steps_six_and_seven_fail(monkeypatch) -> None:
+    """The finite-strain impact with inertia fails its 6th and 7th step attempts (an inverted
+    element): the 6th step and its first half, so the run cuts it to quarter, quarter, half."""
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+    from shtaerman.fem.hyperelastic import NewtonError
+
+    calls, step = [], finite_dynamic._dynamic_step
+
+    def failing(*args):
+        calls.append(None)
+        if len(calls) in (6, 7):
+            raise NewtonError("an element inverted (J <= 0)")
+        return step(*args)
+
+    monkeypatch.setattr(finite_dynamic, "_dynamic_step", failing)
