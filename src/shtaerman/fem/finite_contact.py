@@ -691,6 +691,8 @@ def run_finite_indentation(
         whose ``base`` must be bonded: the lubricated base's exterior spring is linear).
     rubber : RubberModel, optional
         The rubber model (default neo-Hookean, :mod:`.rubber`).
+        ``mesh.interface`` "bonded" presses an indenter the rubber sticks to
+        (:func:`.finite_stick.solve_finite_bonded_contact`, load steps).
     **options
         Passed to :func:`solve_finite_contact` (``tolerance``, ``max_iterations``,
         ``max_cuts``).
@@ -714,7 +716,13 @@ def run_finite_indentation(
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
     system = assemble_hyperelastic(skfem_mesh, material)
     assembled = time.perf_counter()
-    curve = solve_finite_contact(system, indenter, depths, refined, **options)
+    if mesh.interface == "bonded":
+        from .finite_stick import solve_finite_bonded_contact
+
+        newton = {k: v for k, v in options.items() if k in ("tolerance", "max_iterations")}
+        curve = solve_finite_bonded_contact(system, indenter, depths, refined, **newton)
+    else:
+        curve = solve_finite_contact(system, indenter, depths, refined, **options)
     stats = {
         "nodes": int(skfem_mesh.p.shape[1]),
         "elements": int(skfem_mesh.t.shape[1]),
@@ -724,6 +732,7 @@ def run_finite_indentation(
         "domain_radius": float(skfem_mesh.p[0].max()) if mesh.thickness else mesh.domain * refined,
         "smallest_size": mesh.size * refined,
         **({"thickness": mesh.thickness, "base": mesh.base} if mesh.thickness else {}),
+        **({"interface": mesh.interface} if mesh.interface != "frictionless" else {}),
     }
     timings = {
         "mesh": meshed - start,
