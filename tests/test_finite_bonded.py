@@ -18,6 +18,7 @@ cancels in the ratios):
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import json
 
@@ -27,11 +28,16 @@ from scipy.integrate import simpson
 
 import shtaerman as sh
 import shtaerman.fem.finite_stick as finite_stick
+import shtaerman.study.finite.indentation as finite_study
 from shtaerman.cli import main
 from shtaerman.cli.contact import finite_contact_text
 from shtaerman.fem.contact import solve_contact
 from shtaerman.fem.elasticity import assemble
-from shtaerman.fem.finite_contact import geometric_radius, solve_finite_contact
+from shtaerman.fem.finite_contact import (
+    geometric_radius,
+    run_finite_indentation,
+    solve_finite_contact,
+)
 from shtaerman.fem.finite_stick import solve_finite_bonded_contact
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
 from shtaerman.fem.mesh import MeshSettings
@@ -144,7 +150,7 @@ def _quick(monkeypatch) -> list[dict]:
         calls.append(kwargs)
         return original(*args, step_ratio=2.0, **kwargs)
 
-    monkeypatch.setattr(finite_stick, "solve_finite_bonded_contact", quick)
+    monkeypatch.setattr(finite_study, "solve_finite_bonded_contact", quick)
     return calls
 
 
@@ -191,6 +197,12 @@ def test_bad_bonded_options_are_one_line_and_exit_2(argv, words, capsys):
     assert main(["contact", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
+
+
+def test_a_bonded_mesh_needs_the_bonded_solver():
+    mesh = dataclasses.replace(COARSE, interface="bonded")
+    with pytest.raises(InputError, match="interface"):
+        run_finite_indentation(INDENTER, Material(E2, 0.5), [_depth(0.05)], mesh)
 
 
 def test_bad_ladder_is_an_input_error():

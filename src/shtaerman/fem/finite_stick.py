@@ -28,6 +28,7 @@ radii. Contact radius, pressure, p(0) and the stored energy are reported as
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -42,12 +43,12 @@ from .finite_contact import (
     FiniteContactCurve,
     FiniteContactStep,
     NewtonStepper,
-    _check_edge,
-    _check_resolved,
-    _converged,
-    _entries,
-    _inverted,
-    _step,
+    check_contact_edge,
+    check_smallest_depth,
+    element_inverted,
+    finite_step,
+    newton_converged,
+    pattern_entries,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
 from .stick import START_NODE, STEP_RATIO, depth_ladder
@@ -61,18 +62,25 @@ one step), which moves the force at the smallest depth by ~4e-7 (benchmarks/FEM_
 "Bonded contact at finite strain")."""
 RELEASE_BAND = 1e-6
 """A stuck node is released when its vertical reaction is below -this x the largest one (N):
-Newton stops at corrections of ``NEWTON_TOLERANCE`` x depth, which leaves the reactions
-accurate to far less than round-off (the linear solver's band, 1e-10)."""
+Newton stops at corrections of ``NEWTON_TOLERANCE`` x depth, which leaves noise in the
+reactions far above round-off (the linear solver's band, 1e-10)."""
 
 
+@dataclass
 class _Load:
-    """The converged contact at one load step: the stuck nodes' current radii ``held`` (m;
-    NaN when free), the solution ``x``, the candidates' current ``radius`` (m) and ``gap``
-    (m), the vertical reactions ``lam`` (N) and the Newton record."""
+    """The converged contact at one load step (per candidate node)."""
 
-    def __init__(self, held, x, radius, gap, lam, iterations=0, corrections=()) -> None:
-        self.held, self.x, self.radius, self.gap, self.lam = held, x, radius, gap, lam
-        self.iterations, self.corrections = iterations, list(corrections)
+    held: np.ndarray
+    """Current radius (m) of each stuck node; NaN when free."""
+    x: np.ndarray
+    radius: np.ndarray
+    """Current radius R + u_r (m)."""
+    gap: np.ndarray
+    """Vertical gap (m)."""
+    lam: np.ndarray
+    """Vertical reaction (N, compression positive)."""
+    iterations: int = 0
+    corrections: list[float] = field(default_factory=list)
 
 
 def bonded_ladder(
@@ -123,12 +131,12 @@ def _newton(
     slaves, values = _targets(stepper, held, depth)
     order = np.argsort(slaves)
     slaves, values = slaves[order], values[order]
-    moved = _entries(pattern, slaves) if slaves.size else np.zeros(0, dtype=np.int64)
+    moved = pattern_entries(pattern, slaves) if slaves.size else np.zeros(0, dtype=np.int64)
     x = x.copy()
     corrections: list[float] = []
     for iteration in range(1, stepper.max_iterations + 1):
         state = system.state(x)
-        if _inverted(state):
+        if element_inverted(state):
             raise NewtonError("an element inverted (J <= 0)")
         tangent = system.tangent_data(x, state)[stepper.take]
         residual = system.residual(x, state)[stepper.free]
@@ -147,7 +155,7 @@ def _newton(
         corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / depth)
         if not np.isfinite(corrections[-1]):
             break
-        if _converged(corrections, stepper.tolerance):
+        if newton_converged(corrections, stepper.tolerance):
             return x, iteration, corrections
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
 
@@ -158,15 +166,22 @@ def _reactions(stepper: NewtonStepper, x: np.ndarray, held: np.ndarray) -> np.nd
     return np.where(np.isnan(held), 0.0, -residual[stepper.nodes.uz])
 
 
-def _changes(
-    stepper: NewtonStepper, last: _Load, trial: _Load, depth: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Nodes to release (tensile), nodes that touch (gap < 0) and the amount of each."""
+def _changes(stepper: NewtonStepper, trial: _Load, depth: float, cautious: bool) -> tuple:
+    """Nodes to release (tensile reaction) and nodes that touch (gap < 0) at ``depth`` (m);
+    when ``cautious``, only the most tensile node, or if none the deepest below the indenter."""
     stuck = ~np.isnan(trial.held)
     lam, gap = trial.lam, trial.gap
     release = stuck & (lam < -RELEASE_BAND * np.abs(lam).max(initial=0.0))
     enter = ~stuck & (gap < -stepper.tolerance * depth)
-    return release, enter, np.where(release, -lam, np.where(enter, -gap, -np.inf))
+    if cautious:
+        one = np.zeros_like(release)
+        if release.any():
+            one[np.flatnonzero(release)[np.argmin(lam[release])]] = True
+            return one, np.zeros_like(enter)
+        if enter.any():
+            one[np.flatnonzero(enter)[np.argmin(gap[enter])]] = True
+        return np.zeros_like(release), one
+    return release, enter
 
 
 def _held(
@@ -200,17 +215,11 @@ def _load_step(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: fl
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
         trial = _Load(held, x, radius, gap, _reactions(stepper, x, held), total, corrections)
-        release, enter, excess = _changes(stepper, last, trial, depth)
+        release, enter = _changes(stepper, trial, depth, cautious)
         if not (release.any() or enter.any()):
             trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
             trial.lam = np.maximum(trial.lam, 0.0)
             return trial
-        if cautious:
-            one = int(np.argmax(excess))
-            release, enter = (
-                release & (np.arange(held.size) == one),
-                enter & (np.arange(held.size) == one),
-            )
         seen.add(np.isnan(held).tobytes())
         held = _held(last, held, enter, radius, gap)
         held[release] = np.nan
@@ -267,7 +276,7 @@ def solve_finite_bonded_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     begun = time.perf_counter()
     stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    _check_resolved(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
+    check_smallest_depth(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
     if start is not None and not 0.0 < start <= depths[0]:
@@ -297,12 +306,12 @@ def _load_history(
                 f"depth {depth:g} m (bonded, from {done:g} m): {error}; take smaller load "
                 "steps, refine the mesh or lower the deepest depth"
             ) from None
-        _check_edge(stepper, state.lam, depth)
+        check_contact_edge(stepper, state.lam, depth)
         taken += state.iterations
         previous, previous_depth, last, done = last, done, state, depth
         if depth in wanted:
             steps.append(
-                _step(
+                finite_step(
                     stepper,
                     exact,
                     depth,
