@@ -49,6 +49,8 @@ from shtaerman.validation import InputError
 INDENTER = PowerLawIndenter(5.0, 1.5)
 E2 = 1.0e6
 COARSE = MeshSettings(size=0.1, domain=1e3, growth=0.3, axis_size=1e-4, axis_growth=0.2)
+ROUGH = MeshSettings(size=0.2, domain=1e2, growth=0.5, axis_size=1e-3, axis_growth=0.3)
+"""The wiring tests' mesh."""
 LADDER_RANGE = 89.44 * 27.0
 """Deepest depth / first load step of the nu2 = 0.5 runs: the first requested depth is 1/27
 of the deepest (a/9), the first step a/20 of it."""
@@ -165,7 +167,7 @@ def _quick(monkeypatch) -> list[dict]:
 )
 def test_every_rubber_model_takes_the_bonded_path(model, shape, monkeypatch):
     calls = _quick(monkeypatch)
-    common = {"depths": [_depth(0.05)], "mesh": COARSE, "estimate": False, **shape}
+    common = {"depths": [_depth(0.05)], "mesh": ROUGH, "estimate": False, **shape}
     bonded = sh.contact(INDENTER, Material(E2, 0.5), interface="bonded", model=model, **common)
     assert len(calls) == 1 and bonded.mesh["interface"] == "bonded"
     step = bonded.steps[-1]
@@ -177,7 +179,7 @@ def test_every_rubber_model_takes_the_bonded_path(model, shape, monkeypatch):
 def test_cli_shows_the_bonded_interface(monkeypatch, capsys):
     _quick(monkeypatch)
     argv = ["contact", "--model", "neo-hookean", "--interface", "bonded", "--no-estimate"]
-    argv += ["--E2", "1e6", "--mesh-size", "0.2", "--domain-factor", "1000"]
+    argv += ["--E2", "1e6", "--mesh-size", "0.2", "--domain-factor", "100", "--refine", "0.5"]
     argv += ["--depths", f"{_depth(0.05):.6g}"]
     assert main([*argv, "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
