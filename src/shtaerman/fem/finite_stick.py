@@ -255,10 +255,11 @@ def solve_finite_bonded_contact(
     """Press a rigid power-law indenter that the rubber sticks to, in load steps.
 
     Parameters and result as :func:`.finite_contact.solve_finite_contact`, with
-    ``step_ratio`` > 1 the depth ratio of consecutive load steps and ``start`` (m) the first
-    (default and ladder: :func:`bonded_ladder`). Each
-    step's ``multipliers`` are the vertical reactions (N) of the stuck nodes, its
-    ``total_iterations`` the Newton iterations since the previous requested depth.
+    ``step_ratio`` > 1 the depth ratio of consecutive load steps and ``start`` (m, at most the
+    smallest depth) the first (default and ladder: :func:`bonded_ladder`). Each step's
+    ``multipliers`` are the vertical reactions (N) of the stuck nodes, its
+    ``newton_iterations`` those of its load step (all contact sets tried) and its
+    ``total_iterations`` those since the previous requested depth.
 
     Raises
     ------
