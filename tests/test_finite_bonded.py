@@ -109,9 +109,9 @@ def _incompressible(ratio: float):
 def test_small_strain_bonded_force_is_the_linear_one(small_strain):
     free, bonded, linear_free, linear_bonded = small_strain
     assert linear_bonded / linear_free > 1.01  # the linear bonded effect at nu2 = 0.3
-    # measured 5.6e-4: the finite-strain departure at d/a = 0.01
+    # measured 6.5e-4: the finite-strain departure at d/a = 0.01
     assert bonded / linear_bonded == pytest.approx(1.0, abs=2e-3)
-    # measured 1.01617 against 1.01683
+    # measured 1.01564 against 1.01618
     assert bonded / free == pytest.approx(linear_bonded / linear_free, abs=1.5e-3)
 
 
