@@ -192,7 +192,7 @@ def test_a_fold_beyond_the_contact_edge_is_a_failure_not_a_numpy_warning():
 
     import numpy as np
 
-    from shtaerman.fem.finite_contact import _step
+    from shtaerman.fem.finite_contact import finite_step
     from shtaerman.validation import NumericalFailureError
 
     radius = np.linspace(0.0, 1e-2, 41)
@@ -205,7 +205,7 @@ def test_a_fold_beyond_the_contact_edge_is_a_failure_not_a_numpy_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         with pytest.raises(NumericalFailureError, match="zero gap"):
-            _step(Folded(), PAPER, 1e-3, np.zeros(3), loaded, 1, 1, [])
+            finite_step(Folded(), PAPER, 1e-3, np.zeros(3), loaded, 1, 1, [])
 
 
 def test_a_smallest_depth_the_mesh_cannot_resolve_is_refused_before_newton():

@@ -543,7 +543,7 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "interface",
         "",
-        "the indenter's surface: frictionless, or bonded (no slip once in contact; linear model)",
+        "the indenter's surface: frictionless, or bonded (no slip once in contact)",
         "Interface",
         "frictionless",
         valid=None,
@@ -554,7 +554,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "friction",
         "",
         "Coulomb friction coefficient of a bonded indenter: a point in contact slides where its "
-        "shear exceeds friction x its pressure",
+        "shear exceeds friction x its pressure (linear model)",
         "Friction coefficient",
         None,
         valid=Range(0.0, None, low_open=False),

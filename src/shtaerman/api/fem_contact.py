@@ -332,19 +332,20 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
 
 
 def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
-    """``mesh`` with the indenter's ``interface`` (frictionless or bonded, linear model)."""
+    """``mesh`` with the indenter's ``interface`` (frictionless or bonded; Coulomb friction
+    with the linear model only)."""
     interface = entry("interface").check(options["interface"])
-    if interface == "bonded" and options["model"] != "linear":
-        raise InputError(
-            "interface: bonded is available for the linear model only (the neo-hookean "
-            "contact is frictionless)",
-            "interface",
-        )
     friction = options["friction"]
     if friction is not None:
         if interface != "bonded":
             raise InputError(
                 "friction: applies to a bonded indenter only; give interface 'bonded' too",
+                "friction",
+            )
+        if options["model"] != "linear":
+            raise InputError(
+                f"friction: applies to the linear model only, not {options['model']!r}: the "
+                "bonded indenter is no-slip only with a rubber model (leave friction out)",
                 "friction",
             )
         friction = float(entry("friction").check(friction))
@@ -465,11 +466,12 @@ def contact(
         The layer's base: bonded (u = 0, the default with ``thickness``) or lubricated
         (u_z = 0, free to slide); only with ``thickness``.
     interface : {"frictionless", "bonded"}
-        The indenter's surface: frictionless, or bonded (a point that touches it sticks; linear
-        model, solved in load steps). The ``*_analytic`` values stay the frictionless ones.
+        The indenter's surface: frictionless, or bonded (a point that touches it sticks, solved
+        in load steps; any model). The ``*_analytic`` values stay the frictionless ones.
     friction : float, optional
         Coulomb coefficient >= 0 of a bonded indenter: a point in contact slides where its
-        shear exceeds friction x its pressure; None: no slip. Only with ``interface="bonded"``.
+        shear exceeds friction x its pressure; None: no slip. Only with ``interface="bonded"``
+        and the linear model.
     model : {"linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"}
         Linear elasticity, or a rubber at finite strain with the same E2, nu2 at small strain.
     mooney_ratio, yeoh, gent_limit, volumetric : optional

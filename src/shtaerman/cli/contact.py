@@ -123,6 +123,7 @@ def finite_contact_text(report: dict) -> str:
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
         "Shtaerman's linear solution)" + _impact_words(report),
         *_layer_rows(report, "/lin = against the linear half-space, not the layer"),
+        *_interface_rows(report),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
         "  energy (J)  Newton",
     ]
@@ -147,6 +148,16 @@ def finite_contact_text(report: dict) -> str:
     if "error_estimate" in report:
         rows += _estimate_text(report)
     return "\n".join(rows)
+
+
+def _interface_rows(report: dict) -> list[str]:
+    """The row naming a bonded indenter of the finite-strain contact; none when frictionless."""
+    if "interface" not in report["mesh"]:
+        return []
+    return [
+        f"  {report['mesh']['interface']} indenter (no slip once in contact): /lin = against "
+        "the frictionless linear solution"
+    ]
 
 
 MODEL_NAMES = {"neo-hookean": "Neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}

@@ -39,6 +39,7 @@ the gap (:func:`.contact.edge_radius`); the stored energy Pi.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -326,7 +327,7 @@ class NewtonStepper:
         halvings = 0
         for iteration in range(1, self.max_iterations + 1):
             state = system.state(x)
-            if _inverted(state) or (self.backtracks and self.folded(x)):
+            if element_inverted(state) or (self.backtracks and self.folded(x)):
                 if step is None or halvings == self.backtracks:
                     raise NewtonError("an element inverted (J <= 0)")
                 halvings += 1  # back-track: halve the last update
@@ -339,7 +340,7 @@ class NewtonStepper:
             active = lam - self.weight * gap > 0
             lam[~active] = 0.0
             if previous is not None and np.array_equal(active, previous):
-                if _converged(corrections, self.tolerance):
+                if newton_converged(corrections, self.tolerance):
                     return x, lam, iteration - 1, corrections
             previous = active
             residual = system.residual(x, state)
@@ -361,12 +362,12 @@ class NewtonStepper:
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
 
 
-def _inverted(state: Any) -> bool:
+def element_inverted(state: Any) -> bool:
     """Whether some element of the kinematics ``state`` has J <= 0 (or not finite)."""
     return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
 
 
-def _converged(corrections: list[float], tolerance: float) -> bool:
+def newton_converged(corrections: list[float], tolerance: float) -> bool:
     last = corrections[-1]
     if last <= tolerance:
         return True
@@ -403,7 +404,7 @@ def _eliminate(
     coefficient = np.ones(pattern.size)
     coefficient[slaves] = 0.0
     coefficient[slaves[ok]] = slope[rows][ok]
-    moved = _entries(pattern, slaves)
+    moved = pattern_entries(pattern, slaves)
     i, j = pattern.indices[moved], pattern.columns[moved]
     reduced = tangent.copy()
     reduced[moved] = 0.0
@@ -423,7 +424,7 @@ def _eliminate(
     return du, dlam
 
 
-def _entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
+def pattern_entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
     """Indices in ``data`` of the entries in the rows or columns ``columns`` (sorted, unique)."""
     starts, counts = pattern.indptr[columns], np.diff(pattern.indptr)[columns]
     offsets = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
@@ -480,7 +481,7 @@ def solve_finite_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
     stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    _check_resolved(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
+    check_smallest_depth(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
@@ -488,7 +489,7 @@ def solve_finite_contact(
     for target in depths:
         history, iterations, total, corrections = _reach(stepper, history, target, max_cuts)
         _, x, lam = history[-1]
-        steps.append(_step(stepper, exact, target, x, lam, iterations, total, corrections))
+        steps.append(finite_step(stepper, exact, target, x, lam, iterations, total, corrections))
     timings = {"contact": time.perf_counter() - start}
     return FiniteContactCurve(steps, system, indenter, timings)
 
@@ -538,11 +539,11 @@ def _reach(
         done = trial
         cuts = 0  # count consecutive failures only
         increment *= 2.0
-        _check_edge(stepper, lam, trial)
+        check_contact_edge(stepper, lam, trial)
     return history, iterations, total, corrections
 
 
-def _check_resolved(stepper: NewtonStepper, law: PowerLawContact, depth: float) -> None:
+def check_smallest_depth(stepper: NewtonStepper, law: PowerLawContact, depth: float) -> None:
     """Refuse, before any Newton step, a smallest ``depth`` (m) whose small-strain contact
     radius covers no surface node besides the axis: its results would be those of no contact.
     (One or two nodes run: a study's coarse ladder levels start there and mark such points
@@ -570,7 +571,9 @@ def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
     return x1 + t * (x1 - x0), np.maximum(lam1 + t * (lam1 - lam0), 0.0)
 
 
-def _check_edge(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
+def check_contact_edge(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
+    """Refuse a contact at ``depth`` (m) with no loaded node (``lam`` (N) > 0), or whose last
+    loaded node is within :data:`.contact.EDGE_MARGIN` of the candidates' edge."""
     loaded = np.flatnonzero(lam > 0)
     if loaded.size == 0:
         raise InputError(f"depth {depth:g} m: the indenter does not touch the surface")
@@ -582,7 +585,7 @@ def _check_edge(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
         )
 
 
-def _step(
+def finite_step(
     stepper: NewtonStepper,
     exact: PowerLawContact,
     depth: float,
@@ -592,6 +595,8 @@ def _step(
     total: int,
     corrections: list[float],
 ) -> FiniteContactStep:
+    """The :class:`FiniteContactStep` of the converged ``x`` and vertical contact forces
+    ``lam`` (N) at ``depth`` (m), beside ``exact``'s linear values."""
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
     pressure = _recover_pressure(r, lam)
@@ -673,6 +678,7 @@ def run_finite_indentation(
     depths: ArrayLike,
     mesh: MeshSettings | None = None,
     rubber: RubberModel | None = None,
+    solve: Callable[..., FiniteContactCurve] | None = None,
     **options: float,
 ) -> FiniteContactCurve:
     """Mesh, assemble and press a rigid power-law indenter into a rubber half-space.
@@ -691,9 +697,12 @@ def run_finite_indentation(
         whose ``base`` must be bonded: the lubricated base's exterior spring is linear).
     rubber : RubberModel, optional
         The rubber model (default neo-Hookean, :mod:`.rubber`).
+    solve : callable, optional
+        The contact solver (default :func:`solve_finite_contact`); a bonded ``mesh.interface``
+        needs :func:`.finite_stick.solve_finite_bonded_contact`.
     **options
-        Passed to :func:`solve_finite_contact` (``tolerance``, ``max_iterations``,
-        ``max_cuts``).
+        Passed to ``solve`` (``tolerance``, ``max_iterations``, ``max_cuts`` of
+        :func:`solve_finite_contact`).
 
     Returns
     -------
@@ -705,6 +714,12 @@ def run_finite_indentation(
     mesh = FINITE_MESH if mesh is None else mesh
     if mesh.thickness is not None and mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
+    if mesh.interface == "bonded" and solve in (None, solve_finite_contact):
+        raise InputError(
+            "interface: a bonded indenter needs solve=solve_finite_bonded_contact "
+            "(shtaerman.fem.finite_stick)",
+            "interface",
+        )
     refined = mesh.margin * geometric_radius(indenter, depths[-1])
     refined *= mesh.zone_factor(indenter.exponent)  # 1 on the half-space, more on a layer
     start = time.perf_counter()
@@ -714,7 +729,7 @@ def run_finite_indentation(
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
     system = assemble_hyperelastic(skfem_mesh, material)
     assembled = time.perf_counter()
-    curve = solve_finite_contact(system, indenter, depths, refined, **options)
+    curve = (solve or solve_finite_contact)(system, indenter, depths, refined, **options)
     stats = {
         "nodes": int(skfem_mesh.p.shape[1]),
         "elements": int(skfem_mesh.t.shape[1]),
@@ -724,6 +739,7 @@ def run_finite_indentation(
         "domain_radius": float(skfem_mesh.p[0].max()) if mesh.thickness else mesh.domain * refined,
         "smallest_size": mesh.size * refined,
         **({"thickness": mesh.thickness, "base": mesh.base} if mesh.thickness else {}),
+        **({"interface": mesh.interface} if mesh.interface != "frictionless" else {}),
     }
     timings = {
         "mesh": meshed - start,

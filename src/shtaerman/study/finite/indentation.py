@@ -21,6 +21,7 @@ from ...fem.finite_contact import (
     FiniteContactStep,
     run_finite_indentation,
 )
+from ...fem.finite_stick import solve_finite_bonded_contact
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
 from ...fem.rubber import RubberModel
@@ -120,7 +121,9 @@ def run_finite_study(
         Any increasing depths in m (load stepping is internal); default the linear test's
         eight depths up to the paper's impact x_c.
     mesh : MeshSettings, optional
-        Default :data:`shtaerman.fem.finite_contact.FINITE_MESH`.
+        Default :data:`shtaerman.fem.finite_contact.FINITE_MESH`; its ``interface`` "bonded"
+        presses an indenter the rubber sticks to
+        (:func:`shtaerman.fem.finite_stick.solve_finite_bonded_contact`).
     rubber : RubberModel, optional
         Default neo-Hookean with the quadratic volumetric energy.
 
@@ -130,7 +133,9 @@ def run_finite_study(
     """
     depths = default_depths(indenter, half_space) if depths is None else depths
     rubber = RubberModel() if rubber is None else rubber
-    curve = run_finite_indentation(indenter, half_space, depths, mesh or FINITE_MESH, rubber)
+    mesh = mesh or FINITE_MESH
+    bonded = solve_finite_bonded_contact if mesh.interface == "bonded" else None
+    curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded)
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [s.force for s in curve.steps]
     fit = fit_power_law([s.depth for s in curve.steps], forces, exact.force_exponent)

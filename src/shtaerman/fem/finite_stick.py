@@ -1,0 +1,327 @@
+"""Bonded (no-slip) contact of a rigid power-law indenter with a rubber half-space, finite strain.
+
+The rigid indenter z = A r^n - d moves only vertically. A candidate surface node (reference
+radius R, displacement (u_r, u_z)) is free until its vertical gap
+g = A (R + u_r)^n - d - u_z closes. From then on it sticks: its *current* radius
+x_r = R + u_r keeps the value it had when it touched, and its height follows the indenter,
+x_z = A x_r^n - d. The touching radius is interpolated linearly between the last converged
+depth and the current one at the point where the node's gap closes (as the linear solver
+:mod:`.stick` does). A stuck node whose vertical reaction turns tensile is released and
+forgets its radius (it gets a new one should it touch again).
+
+The contact is history dependent: it is solved by incremental loading over the geometric
+ladder :func:`.stick.depth_ladder` (ratio ``step_ratio``, default :data:`.stick.STEP_RATIO`)
+from the depth at which the indenter reaches candidate node :data:`.stick.START_NODE` up to
+the deepest depth, the requested depths included. At each load step the stuck nodes' two
+displacement dofs are prescribed and Newton solves for the rest (the stepper, pattern and
+solver of :class:`.finite_contact.NewtonStepper`; the prescribed dofs are eliminated from its
+fixed pattern), within an active-set loop that lets free nodes whose gap turned negative touch
+and releases stuck nodes in tension; should a contact set repeat, one node changes at a time.
+
+The force P is the total vertical reaction on the indenter, the sum of the stuck nodes'
+vertical reactions lambda_i = -dPi/du_z,i (N); the radial reactions do no work (the stuck
+nodes do not move radially), so dPi/dd = P up to the ladder's interpolation of the touching
+radii. Contact radius, pressure, p(0) and the stored energy are reported as
+:func:`.finite_contact.solve_finite_contact` does, from the vertical reactions.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..theory.contact import PowerLawContact
+from ..theory.indenter import PowerLawIndenter
+from ..validation import InputError, NumericalFailureError
+from .contact import MAX_ACTIVE_SET_ITERATIONS
+from .finite_contact import (
+    MAX_ITERATIONS,
+    NEWTON_TOLERANCE,
+    FiniteContactCurve,
+    FiniteContactStep,
+    NewtonStepper,
+    check_contact_edge,
+    check_smallest_depth,
+    element_inverted,
+    finite_step,
+    newton_converged,
+    pattern_entries,
+)
+from .hyperelastic import HyperelasticSystem, NewtonError
+from .stick import START_NODE, STEP_RATIO, depth_ladder
+
+__all__ = ["RELEASE_BAND", "bonded_ladder", "solve_finite_bonded_contact"]
+
+START_FRACTION = 0.05
+"""The load steps start where the contact radius is this fraction of the smallest depth's:
+the nodes inside it stick at their reference radii (the history before the first step is
+one step), which moves the force at the smallest depth by ~4e-7 (benchmarks/FEM_NOTES.md,
+"Bonded contact at finite strain")."""
+RELEASE_BAND = 1e-6
+"""A stuck node is released when its vertical reaction is below -this x the largest one (N):
+Newton stops at corrections of ``NEWTON_TOLERANCE`` x depth, which leaves noise in the
+reactions far above round-off (the linear solver's band, 1e-10)."""
+
+
+@dataclass
+class _Load:
+    """The converged contact at one load step (per candidate node)."""
+
+    held: np.ndarray
+    """Current radius (m) of each stuck node; NaN when free."""
+    x: np.ndarray
+    radius: np.ndarray
+    """Current radius R + u_r (m)."""
+    gap: np.ndarray
+    """Vertical gap (m)."""
+    lam: np.ndarray
+    """Vertical reaction (N, compression positive)."""
+    iterations: int = 0
+    corrections: list[float] = field(default_factory=list)
+
+
+def bonded_ladder(
+    stepper: NewtonStepper,
+    depths: ArrayLike,
+    step_ratio: float = STEP_RATIO,
+    start: float | None = None,
+) -> np.ndarray:
+    """The load steps (m) of the bonded contact up to ``depths`` (m, increasing, included):
+    :func:`.stick.depth_ladder` from ``start`` (m) or by default from the later of the depth
+    that reaches candidate node :data:`.stick.START_NODE` and the depth whose contact radius
+    is :data:`START_FRACTION` of the smallest depth's (Shtaerman's d ~ a^n)."""
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    if start is not None:
+        return depth_ladder(start, depths, step_ratio)
+    indenter = stepper.indenter
+    radius = stepper.nodes.radius[min(START_NODE, stepper.nodes.radius.size - 1)]
+    start = float(indenter.shape_coefficient * radius**indenter.exponent)
+    start = max(start, float(depths[0]) * START_FRACTION**indenter.exponent)
+    return depth_ladder(start, depths, step_ratio)
+
+
+def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np.ndarray, ...]:
+    """Free-dof positions and values (m) of the stuck nodes' prescribed u_z and u_r."""
+    nodes, indenter = stepper.nodes, stepper.indenter
+    stuck = np.flatnonzero(~np.isnan(held))
+    radial = stuck[nodes.ur_free[stuck]]
+    height = indenter.shape_coefficient * held[stuck] ** indenter.exponent - depth
+    positions = np.concatenate([nodes.uz[stuck], nodes.ur[radial]])
+    values = np.concatenate([height, held[radial] - nodes.radius[radial]])
+    return stepper.position[positions], values
+
+
+def _newton(
+    stepper: NewtonStepper, x: np.ndarray, held: np.ndarray, depth: float
+) -> tuple[np.ndarray, int, list[float]]:
+    """Newton at ``depth`` (m) from ``x`` with the stuck nodes (``held`` radii) prescribed.
+
+    The prescribed dofs are eliminated in the stepper's pattern: their rows and columns are
+    zeroed with a unit diagonal and their increment moved to the right-hand side.
+
+    Raises
+    ------
+    NewtonError
+        No convergence in ``stepper.max_iterations``, or an element inverted.
+    """
+    system, pattern = stepper.system, stepper.pattern
+    slaves, values = _targets(stepper, held, depth)
+    order = np.argsort(slaves)
+    slaves, values = slaves[order], values[order]
+    moved = pattern_entries(pattern, slaves) if slaves.size else np.zeros(0, dtype=np.int64)
+    x = x.copy()
+    corrections: list[float] = []
+    for iteration in range(1, stepper.max_iterations + 1):
+        state = system.state(x)
+        if element_inverted(state):
+            raise NewtonError("an element inverted (J <= 0)")
+        tangent = system.tangent_data(x, state)[stepper.take]
+        residual = system.residual(x, state)[stepper.free]
+        shift = np.zeros(pattern.size)
+        shift[slaves] = values - x[stepper.free][slaves]
+        load = residual + pattern.matrix(tangent) @ shift
+        load[slaves] = 0.0
+        reduced = tangent.copy()
+        reduced[moved] = 0.0
+        reduced[pattern.diagonal[slaves]] = 1.0
+        try:
+            du = stepper.solver.solve(reduced, -load) + shift
+        except RuntimeError as error:
+            raise NewtonError(f"singular Newton matrix ({error})") from None
+        x[stepper.free] += du
+        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / depth)
+        if not np.isfinite(corrections[-1]):
+            break
+        if newton_converged(corrections, stepper.tolerance):
+            return x, iteration, corrections
+    raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+
+
+def _reactions(stepper: NewtonStepper, x: np.ndarray, held: np.ndarray) -> np.ndarray:
+    """Vertical reactions lambda = -dPi/du_z (N, compression positive) of the stuck nodes."""
+    residual = stepper.system.residual(x)
+    return np.where(np.isnan(held), 0.0, -residual[stepper.nodes.uz])
+
+
+def _changes(stepper: NewtonStepper, trial: _Load, depth: float, cautious: bool) -> tuple:
+    """Nodes to release (tensile reaction) and nodes that touch (gap < 0) at ``depth`` (m);
+    when ``cautious``, only the most tensile node, or if none the deepest below the indenter."""
+    stuck = ~np.isnan(trial.held)
+    lam, gap = trial.lam, trial.gap
+    release = stuck & (lam < -RELEASE_BAND * np.abs(lam).max(initial=0.0))
+    enter = ~stuck & (gap < -stepper.tolerance * depth)
+    if cautious:
+        one = np.zeros_like(release)
+        if release.any():
+            one[np.flatnonzero(release)[np.argmin(lam[release])]] = True
+            return one, np.zeros_like(enter)
+        if enter.any():
+            one[np.flatnonzero(enter)[np.argmin(gap[enter])]] = True
+        return np.zeros_like(release), one
+    return release, enter
+
+
+def _held(
+    last: _Load, held: np.ndarray, enter: np.ndarray, radius: np.ndarray, gap: np.ndarray
+) -> np.ndarray:
+    """``held`` with the ``enter`` nodes stuck at the radius (m) where their gap closes,
+    interpolated between ``last`` and the current ``radius`` and ``gap`` (m)."""
+    closing = last.gap[enter] / (last.gap[enter] - gap[enter])
+    held = held.copy()
+    held[enter] = last.radius[enter] + closing * (radius[enter] - last.radius[enter])
+    return held
+
+
+def _touch(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float) -> np.ndarray:
+    """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
+    the predicted ``guess`` puts below the indenter."""
+    radius, gap, _, _ = stepper.geometry(guess, depth)
+    enter = np.isnan(last.held) & (gap < -stepper.tolerance * depth)
+    return _held(last, last.held, enter, radius, gap)
+
+
+def _load_step(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float) -> _Load:
+    """The contact at ``depth`` (m) from the contact ``last`` at the previous load step.
+
+    All violated conditions change at once; should a contact set repeat, one at a time."""
+    held, x = _touch(stepper, last, guess, depth), guess
+    seen: set[bytes] = set()
+    cautious, total = False, 0
+    for _ in range(MAX_ACTIVE_SET_ITERATIONS + stepper.nodes.radius.size):
+        x, iterations, corrections = _newton(stepper, x, held, depth)
+        total += iterations
+        radius, gap, _, _ = stepper.geometry(x, depth)
+        trial = _Load(held, x, radius, gap, _reactions(stepper, x, held), total, corrections)
+        release, enter = _changes(stepper, trial, depth, cautious)
+        if not (release.any() or enter.any()):
+            trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
+            trial.lam = np.maximum(trial.lam, 0.0)
+            return trial
+        seen.add(np.isnan(held).tobytes())
+        held = _held(last, held, enter, radius, gap)
+        held[release] = np.nan
+        if np.isnan(held).tobytes() in seen:
+            if cautious:
+                break
+            cautious, seen = True, set()
+    raise NumericalFailureError(
+        f"depth {depth:g} m: the bonded contact set did not settle; refine the mesh near the "
+        "edge or take smaller load steps"
+    )
+
+
+def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:
+    """Linear extrapolation of the solution to the next load step (``ratio``: the step's
+    depth increment over the last one)."""
+    if previous is None:
+        return last.x
+    return last.x + ratio * (last.x - previous.x)
+
+
+def solve_finite_bonded_contact(
+    system: HyperelasticSystem,
+    indenter: PowerLawIndenter,
+    depths: ArrayLike,
+    candidate_radius: float,
+    *,
+    step_ratio: float = STEP_RATIO,
+    start: float | None = None,
+    tolerance: float = NEWTON_TOLERANCE,
+    max_iterations: int = MAX_ITERATIONS,
+) -> FiniteContactCurve:
+    """Press a rigid power-law indenter that the rubber sticks to, in load steps.
+
+    Parameters and result as :func:`.finite_contact.solve_finite_contact`, with
+    ``step_ratio`` > 1 the depth ratio of consecutive load steps and ``start`` (m, at most the
+    smallest depth) the first (default and ladder: :func:`bonded_ladder`). Each step's
+    ``multipliers`` are the vertical reactions (N) of the stuck nodes, its
+    ``newton_iterations`` those of its load step (all contact sets tried) and its
+    ``total_iterations`` those since the previous requested depth.
+
+    Raises
+    ------
+    NewtonError
+        A load step did not converge or inverted an element.
+    ContactOutgrowsMeshError
+        The contact zone reached the edge of the candidate region.
+    """
+    if not step_ratio > 1.0:
+        raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
+    if indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
+        )
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    begun = time.perf_counter()
+    stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
+    check_smallest_depth(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
+    material = system.material
+    exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
+    if start is not None and not 0.0 < start <= depths[0]:
+        raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
+    ladder = bonded_ladder(stepper, depths, step_ratio, start)
+    steps = _load_history(stepper, exact, depths, ladder)
+    return FiniteContactCurve(steps, system, indenter, {"contact": time.perf_counter() - begun})
+
+
+def _load_history(
+    stepper: NewtonStepper, exact: PowerLawContact, depths: np.ndarray, ladder: np.ndarray
+) -> list[FiniteContactStep]:
+    """Load through the ``ladder`` (m) and keep the contact at each requested depth."""
+    m = stepper.nodes.radius.size
+    heights = stepper.indenter.shape_coefficient * stepper.nodes.radius**stepper.indenter.exponent
+    zero = np.zeros(stepper.system.n_dofs)
+    last = _Load(np.full(m, np.nan), zero, stepper.nodes.radius.copy(), heights, np.zeros(m))
+    previous, done, previous_depth = None, 0.0, 0.0
+    wanted, steps, taken = set(depths.tolist()), [], 0
+    for depth in map(float, ladder):
+        ratio = (depth - done) / (done - previous_depth) if previous is not None else 0.0
+        guess = _predict(previous, last, ratio)
+        try:
+            state = _load_step(stepper, last, guess, depth)
+        except NewtonError as error:
+            raise NewtonError(
+                f"depth {depth:g} m (bonded, from {done:g} m): {error}; take smaller load "
+                "steps, refine the mesh or lower the deepest depth"
+            ) from None
+        check_contact_edge(stepper, state.lam, depth)
+        taken += state.iterations
+        previous, previous_depth, last, done = last, done, state, depth
+        if depth in wanted:
+            steps.append(
+                finite_step(
+                    stepper,
+                    exact,
+                    depth,
+                    state.x,
+                    state.lam,
+                    state.iterations,
+                    taken,
+                    state.corrections,
+                )
+            )
+            taken = 0
+    return steps
