@@ -112,11 +112,15 @@ def test_restitution_returns_to_one_for_a_glassy_or_a_relaxed_series(factor, mea
 
 
 def test_cli_runs_the_massless_viscoelastic_rubber(capsys, monkeypatch):
+    """At 3 m/s on the coarse mesh graded to 1e-6 at the axis as the default mesh: there the
+    contact's release near separation inverts an axis element in the first Newton iterate
+    unless the Newton back-tracks (the run failed at X = 3.3 mm without it)."""
     import shtaerman.fem.finite_contact as finite_contact
     from shtaerman.cli import main
     from shtaerman.cli.finite_dynamic import finite_dynamic_text
 
-    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
+    graded = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-6, axis_growth=0.25)
+    monkeypatch.setattr(finite_contact, "FINITE_MESH", graded)
     argv = ["dynamic", "--model", "neo-hookean", "--density2", "0", "--prony", "0.5:2.0526e-3"]
     assert main([*argv, "--time-steps", "50", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
@@ -124,7 +128,9 @@ def test_cli_runs_the_massless_viscoelastic_rubber(capsys, monkeypatch):
     assert report["parameters"]["density2"] == 0.0
     dynamic = report["dynamic"]
     assert 0.3 < dynamic["energy_dissipated_fraction"] < dynamic["energy_radiated_fraction"]
-    assert dynamic["restitution"] < 0.7  # measured 0.672 (the elastic massless: 1)
+    # measured 0.67007, at the CLI defaults (14.3k dofs) 0.66989 (the elastic massless: 1)
+    assert dynamic["restitution"] == pytest.approx(0.6699, abs=1e-3)
+    assert report["mesh"]["dofs"] == 4815
     assert dynamic["reflected_energy_fraction"] is None
     text = finite_dynamic_text(report)
     assert "density2 0 kg/m^3" in text
