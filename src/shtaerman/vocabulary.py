@@ -428,7 +428,7 @@ VOCABULARY: tuple[Entry, ...] = (
         f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
         f"terms, and the quasi-static impact at most {MAX_GLASSY_DURATIONS:g} glassy impact "
         "durations long; with --model the isochoric stress relaxes (Simo's finite-strain "
-        "model; --density2 > 0); unset: elastic",
+        "model); unset: elastic",
         "Prony series (g_i:tau_i)",
         None,
         ("dynamic",),

@@ -262,8 +262,7 @@ def dynamic(
     prony : PronySeries or str, optional
         Shear relaxation of the half-space, or its text ``g1:tau1,g2:tau2,...`` (tau in s):
         ``body`` then gives the instantaneous E2 and nu2 and the bulk stays elastic (with a
-        finite-strain ``model``: the isochoric stress relaxes, a body with inertia only). None:
-        elastic.
+        finite-strain ``model``: the isochoric stress relaxes). None: elastic.
     out : path, optional
         A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
         the figures; an existing one is replaced only with ``force``.

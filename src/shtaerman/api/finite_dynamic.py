@@ -80,7 +80,7 @@ def check_unsupported(model: str, given: dict[str, Any]) -> None:
             raise InputError(
                 f"{name}: not supported with model {model!r} (the finite-strain impact takes "
                 f"mass, velocity, density2, time_steps, mesh_size, thickness, base (bonded), "
-                "prony (density2 > 0) and the rubber options)",
+                "prony and the rubber options)",
                 name,
             )
 
@@ -158,7 +158,7 @@ def finite_dynamic(
     prony : PronySeries or str, optional
         Shear relaxation of the isochoric stress (``g1:tau1,...``, tau in s;
         :mod:`shtaerman.fem.finite_viscoelastic`): E2, nu2 are then the instantaneous values;
-        the body with inertia only (density > 0).
+        with density 0 the quasi-static viscoelastic impact at finite strain.
 
     Returns
     -------

@@ -37,11 +37,16 @@ Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_cont
 massless body carries no kinetic energy and radiates nothing; with inertia the energies are the
 striker's and the body's kinetic energy, the stored energy and the numerical rest.
 
-A Prony series (``prony``, the body with inertia only) makes the rubber viscoelastic
-(:mod:`.finite_viscoelastic`: its isochoric stress relaxes); the history is committed when a
-step (or a cut step's half) converges, and the energies gain the dissipated energy. The refined
-zone and the run's length are sized by the larger of the elastic and the quasi-static
-viscoelastic impact (:func:`.viscoelastic.sizing_impact`).
+A Prony series (``prony``) makes the rubber viscoelastic (:mod:`.finite_viscoelastic`: its
+isochoric stress relaxes); the history is committed when a step (or a cut step's half)
+converges, and the energies gain the dissipated energy. The massless viscoelastic body has no
+stored energy function of X: its striker steps by the trapezoidal rule, M (V_{n+1} - V_n) =
+-dt (P_n + P_{n+1}) / 2 with the same X update (second order; the energy account closes to
+second order in dt), each evaluation a static contact with the committed history and the
+relaxation over dt, until the force vanishes with the striker rebounding (the surface, still
+recovering, lags behind it); a series with every g_i = 0 is the elastic run. The refined zone
+and the run's length are sized by the larger of the elastic and the quasi-static viscoelastic
+impact (:func:`.viscoelastic.sizing_impact`).
 """
 
 from __future__ import annotations
@@ -265,28 +270,45 @@ class FiniteImpactResult:
 
 @dataclass
 class _State:
-    """A converged static contact at depth X (m): solution, multipliers, force, energy."""
+    """A converged static contact at depth X (m): solution, multipliers, force (N), stored
+    energy and, for a relaxing body at a committed step, the dissipated energy (J)."""
 
     depth: float
     x: np.ndarray
     lam: np.ndarray
     force: float
     energy: float
+    dissipated: float = 0.0
 
 
 class _QuasiStaticBody:
-    """The massless body: the static contact state at any depth, warm-started."""
+    """The massless body: the static contact state at any depth, warm-started.
 
-    def __init__(self, stepper: NewtonStepper) -> None:
+    A viscoelastic body (:class:`.finite_viscoelastic.ViscoelasticBody`) is solved with the
+    history of its committed steps, its relaxation over steps of ``dt`` (s; this object is its
+    clock); it is ``relaxing`` when some g_i > 0 (with every g_i = 0 it is elastic).
+    """
+
+    def __init__(self, stepper: NewtonStepper, dt: float | None = None) -> None:
         self.stepper = stepper
         n = stepper.system.n_dofs
         self.zero = _State(0.0, np.zeros(n), np.zeros(stepper.nodes.radius.size), 0.0, 0.0)
         self.history = [self.zero]
         self.iterations = 0
+        self.dt = dt
+        self.deepest = 0.0  # the largest committed depth (m)
+        system = stepper.system
+        self.viscous = isinstance(system, ViscoelasticBody)
+        self.relaxing = self.viscous and any(g > 0.0 for g in system.prony.weights)
+        if self.viscous:
+            system.clock = self
+        if self.relaxing:  # its unloading releases the contact under a history: damped Newton
+            stepper.backtracks = MAX_BACKTRACKS
 
     def at(self, depth: float) -> _State:
-        """The static state at ``depth`` (m); 0 without contact (depth <= 0)."""
-        if depth <= 0.0:  # no contact: the free striker at this depth
+        """The static state at ``depth`` (m); an elastic body's is 0 without contact (depth
+        <= 0), a relaxing body's is solved at every depth (its history deforms it)."""
+        if depth <= 0.0 and not self.relaxing:  # no contact: the free striker at this depth
             return _State(depth, self.zero.x, self.zero.lam, 0.0, 0.0)
         try:
             return self._solve(depth, MAX_HALVINGS)
@@ -301,6 +323,16 @@ class _QuasiStaticBody:
         """Keep ``state`` as the newest converged one (the predictor's base)."""
         self.history = [*self.history[-1:], state]
 
+    def commit(self, state: _State) -> _State:
+        """``state`` as the end of a time step: a relaxing body's history committed and its
+        stored and dissipated energies (J) there; an elastic body's ``state`` unchanged."""
+        if not self.relaxing:
+            return state
+        system = self.stepper.system
+        system.commit(state.x)
+        self.deepest = max(self.deepest, state.depth)
+        return replace(state, energy=system.energy(state.x), dissipated=system.dissipated)
+
     def _guess(self, depth: float) -> tuple[np.ndarray, np.ndarray]:
         s1 = self.history[-1]
         if len(self.history) < 2 or self.history[-2].depth == s1.depth:
@@ -311,13 +343,15 @@ class _QuasiStaticBody:
 
     def _solve(self, depth: float, halvings: int) -> _State:
         guess_x, guess_lam = self._guess(depth)
+        # a relaxing body's corrections measured on the deepest depth (it unloads to X <= 0)
+        scale = max(depth, self.deepest) if self.relaxing else None
         try:
-            x, lam, iterations, _ = self.stepper.solve(depth, guess_x, guess_lam)
+            x, lam, iterations, _ = self.stepper.solve(depth, guess_x, guess_lam, scale)
         except NewtonError:
             if halvings == 0:
                 raise
             middle = 0.5 * (depth + self.history[-1].depth)
-            if middle <= 0.0:
+            if middle <= 0.0 and not self.relaxing:
                 raise
             self.accept(self._solve(middle, halvings - 1))
             return self._solve(depth, halvings - 1)
@@ -334,14 +368,27 @@ def _discrete_gradient(a: _State, b: _State) -> float:
     return (b.energy - a.energy) / step
 
 
-def _step(body: _QuasiStaticBody, state: _State, v: float, mass: float, dt: float, k: float):
-    """One discrete-gradient step: the new state and velocity; ``k`` (N/m) the contact
-    stiffness guess of the secant's first slope."""
+def _mean_force(a: _State, b: _State) -> float:
+    """(P_a + P_b) / 2 in N: the trapezoidal rule's force over a step."""
+    return 0.5 * (a.force + b.force)
+
+
+def _step(
+    body: _QuasiStaticBody,
+    state: _State,
+    v: float,
+    mass: float,
+    scales: tuple[float, float],
+    gradient: Any = _discrete_gradient,
+) -> tuple[_State, float]:
+    """One step X_{n+1} - X_n = dt (V_n + V_{n+1}) / 2, M (V_{n+1} - V_n) = -dt G: the new
+    state and velocity. ``scales``: dt (s) and the contact stiffness guess of the secant's
+    first slope k (N/m); ``gradient``: G (N) of the states at the step's ends, the discrete
+    gradient of the stored energy or the trapezoidal rule's mean force."""
+    dt, k = scales
 
     def residual(trial: _State) -> float:
-        return 2.0 * mass * ((trial.depth - state.depth) / dt - v) / dt + _discrete_gradient(
-            state, trial
-        )
+        return 2.0 * mass * ((trial.depth - state.depth) / dt - v) / dt + gradient(state, trial)
 
     scale = mass * max(abs(v), 1e-300) / dt
     # the linearized step: 2 M / dt^2 (D - dt v) + P_n + k D / 2 = 0 for D = X_{n+1} - X_n
@@ -364,26 +411,43 @@ def _step(body: _QuasiStaticBody, state: _State, v: float, mass: float, dt: floa
     )
 
 
-def _march(body: _QuasiStaticBody, mass: float, velocity: float, dt: float, duration: float):
-    """Step from first touch until the striker leaves (or ``duration`` s): arrays t, X, V, P, Pi."""
+def _march(
+    body: _QuasiStaticBody, mass: float, velocity: float, dt: float, scales: tuple[float, float]
+) -> tuple[tuple[np.ndarray, ...], float | None]:
+    """Step from first touch until the striker leaves (or the longest run).
+
+    An elastic body steps by the discrete gradient of its stored energy, until X is back to 0.
+    A relaxing body has no stored energy function of X: it steps by the trapezoidal rule on
+    the contact force (second order, as Ting's quasi-static impact in
+    :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`), its history committed at every
+    step, until the force vanishes with the striker rebounding. ``scales``: the longest run
+    (s) and q of P ~ X^q. Returns the columns t, X, V, P, stored energy and, for a viscoelastic
+    body, the body's kinetic (0) and dissipated energies (SI); and the separation time (s;
+    None for an elastic body, nan if the run ended first).
+    """
+    duration, exponent = scales
     state, v = body.zero, velocity
-    t, xs, vs, forces, energies = [0.0], [0.0], [v], [0.0], [0.0]
-    k = 0.0
-    while t[-1] < duration:
-        new, v_new = _step(body, state, v, mass, dt, k)
+    extra = (0.0, 0.0) if body.viscous else ()
+    rows = [(0.0, 0.0, v, 0.0, 0.0, *extra)]
+    gradient = _mean_force if body.relaxing else _discrete_gradient
+    k, separation = 0.0, (math.nan if body.relaxing else None)
+    while rows[-1][0] < duration:
+        new, v = _step(body, state, v, mass, (dt, k), gradient)
         if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
             k = max((new.force - state.force) / (new.depth - state.depth), 0.0)
+        new = body.commit(new)
         if new.depth > 0:
             body.accept(new)
-        state, v = new, v_new
-        t.append(t[-1] + dt)
-        xs.append(state.depth)
-        vs.append(v)
-        forces.append(state.force)
-        energies.append(state.energy)
+        state = new
+        extra = (0.0, state.dissipated) if body.viscous else ()
+        rows.append((rows[-1][0] + dt, state.depth, v, state.force, state.energy, *extra))
+        if body.relaxing and ((state.force == 0.0 and v < 0.0) or state.depth <= 0.0):
+            times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
+            separation = separation_time(times, forces, exponent, len(rows) - 1)
+            break
         if state.depth <= 0.0:
             break
-    return tuple(np.array(column) for column in (t, xs, vs, forces, energies))
+    return tuple(np.array(column) for column in zip(*rows, strict=True)), separation
 
 
 def _parabola_peak(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
@@ -460,7 +524,7 @@ def run_finite_impact(
     body with inertia); striker ``mass`` (kg)
     and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
     ``rubber`` (default neo-Hookean); ``prony`` a shear relaxation of the isochoric stress
-    (:mod:`.finite_viscoelastic`; E2, nu2 the instantaneous values), with inertia only.
+    (:mod:`.finite_viscoelastic`; E2, nu2 the instantaneous values).
 
     Raises
     ------
@@ -479,7 +543,7 @@ def run_finite_impact(
     t_y = 2.0 * duration_integral(q) * x_c / velocity
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
-    x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y, rho))
+    x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
@@ -519,28 +583,19 @@ def _relaxed_extent(
     mass: float,
     velocity: float,
     prony: PronySeries | None,
-    scales: tuple[float, float, float],
+    scales: tuple[float, float],
 ) -> tuple[float, float]:
     """The depth (m) that sizes the refined zone and the longest run (s): the elastic x_c and
-    3 t_y (``scales`` x_c, t_y, density), or with a Prony series having some g_i > 0 the
-    larger of those and of the quasi-static viscoelastic impact's x_max and 3 t_contact.
+    3 t_y (``scales`` x_c, t_y), or with a Prony series having some g_i > 0 the larger of
+    those and of the quasi-static viscoelastic impact's x_max and 3 t_contact.
 
     Raises
     ------
     shtaerman.validation.InputError
-        Naming ``prony`` for the massless body (a rate-dependent body has no static force
-        curve) or a series that relaxes too far within the impact.
+        Naming ``prony`` for a series that relaxes too far within the impact.
     """
-    x_c, t_y, density = scales
-    if prony is None:
-        return x_c, 3.0 * t_y
-    if density == 0.0:
-        raise InputError(
-            "prony: needs the body with inertia (density2 > 0): the massless finite-strain "
-            "impact integrates a static force curve, which a viscoelastic body has not",
-            "prony",
-        )
-    if not any(g > 0.0 for g in prony.weights):
+    x_c, t_y = scales
+    if prony is None or not any(g > 0.0 for g in prony.weights):
         return x_c, 3.0 * t_y
     slow = sizing_impact(mass, velocity, law, prony, t_y)
     return max(x_c, slow.x_max), 3.0 * max(t_y, slow.t_contact)
@@ -559,8 +614,9 @@ def _stepped(
     mass, velocity = striker
     dt, x_c, duration, q = scales
     if density == 0.0:
-        body = _QuasiStaticBody(stepper)
-        return _march(body, mass, velocity, dt, duration), body.iterations, None, math.nan
+        body = _QuasiStaticBody(stepper, dt)
+        columns, separation = _march(body, mass, velocity, dt, (duration, q))
+        return columns, body.iterations, separation, math.nan
     inertial = _inertial(stepper, density, bossak(spectral_radius, dt))
     columns, iterations, separation, last = _march_inertial(
         stepper, inertial, striker, (x_c, duration, q)
@@ -639,9 +695,10 @@ def _result(
     context: dict[str, Any],
     separation: float | None = None,
 ) -> FiniteImpactResult:
-    """Maxima, separation and energies of a run: ``columns`` t, X, V, P, Pi and, with inertia,
-    the body's kinetic energy; ``context`` its timings, mesh, parameters and Newton
-    iterations; ``separation`` the time (s) P vanished (None: the massless body, X back to 0)."""
+    """Maxima, separation and energies of a run: ``columns`` t, X, V, P, Pi and, with inertia
+    or a viscoelastic body, the body's kinetic energy and then its dissipated energy;
+    ``context`` its timings, mesh, parameters and Newton iterations; ``separation`` the time
+    (s) P vanished (None: the massless elastic body, X back to 0)."""
     t, x, v, force, strain = columns[:5]
     v0 = v[0]
     energy0 = 0.5 * mass * v0 * v0
@@ -657,7 +714,7 @@ def _result(
         x_max, p_max = _turning_point(x, v, force, mass)
         if x[-1] <= 0.0 and x.size > 2:  # X back to 0 between the last two steps
             t_contact = float(t[-2] + (t[-1] - t[-2]) * x[-2] / (x[-2] - x[-1]))
-    else:  # with inertia: the parabola through the samples around the largest
+    else:  # P not a function of X: the parabolas through the samples around the largest
         x_max, p_max = _parabola_peak(t, x)[0], _parabola_peak(t, force)[0]
         t_contact = separation
     if math.isfinite(t_contact):
