@@ -69,6 +69,7 @@ from .contact import EDGE_MARGIN
 from .finite_contact import (
     FINITE_BASE,
     FINITE_MESH,
+    MAX_DEPTH_RATIO,
     MAX_ITERATIONS,
     NEWTON_TOLERANCE,
     ContactOutgrowsMeshError,
@@ -544,6 +545,8 @@ def run_finite_impact(
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
+    if settings.mesh.thickness is None:  # a pad stops the striker short of this depth
+        _check_reach(indenter, x_size, velocity)
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
@@ -576,6 +579,19 @@ def run_finite_impact(
     if rho > 0:
         context["parameters"].update(spectral_radius=settings.spectral_radius)
     return _result(columns, mass, context, separation)
+
+
+def _check_reach(indenter: PowerLawIndenter, depth: float, velocity: float) -> None:
+    """Refuse, before any work, an impact whose quasi-static depth (m) on the half-space lies
+    beyond the finite-strain contact's reach, depth / contact radius > MAX_DEPTH_RATIO."""
+    ratio = depth / PowerLawContact(indenter, 1.0).contact_radius(depth)
+    if ratio > MAX_DEPTH_RATIO:
+        raise InputError(
+            f"velocity: {velocity:g} m/s drives the striker to about {depth * 1e3:.3g} mm, "
+            f"depth / contact radius {ratio:.3g}, beyond the {MAX_DEPTH_RATIO:g} up to which "
+            "the finite-strain contact converges: lower the velocity or the mass",
+            "velocity",
+        )
 
 
 def _relaxed_extent(
