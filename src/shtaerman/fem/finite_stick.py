@@ -1,4 +1,5 @@
-"""Bonded (no-slip) contact of a rigid power-law indenter with a rubber half-space, finite strain.
+"""Bonded contact (no slip, or Coulomb friction) of a rigid power-law indenter with a rubber
+half-space at finite strain.
 
 The rigid indenter z = A r^n - d moves only vertically. A candidate surface node (reference
 radius R, displacement (u_r, u_z)) is free until its vertical gap
@@ -18,10 +19,21 @@ solver of :class:`.finite_contact.NewtonStepper`; the prescribed dofs are elimin
 fixed pattern), within an active-set loop that lets free nodes whose gap turned negative touch
 and releases stuck nodes in tension; should a contact set repeat, one node changes at a time.
 
-The force P is the total vertical reaction on the indenter, the sum of the stuck nodes'
-vertical reactions lambda_i = -dPi/du_z,i (N); the radial reactions do no work (the stuck
-nodes do not move radially), so dPi/dd = P up to the ladder's interpolation of the touching
-radii. Contact radius, pressure, p(0) and the stored energy are reported as
+With a finite Coulomb coefficient mu (``friction``) a stuck node slides once its tangential
+reaction exceeds mu times its normal one, both resolved on the indenter's normal
+(f'(x_r), -1)/|.| at its current radius (at finite strain the slope is not small, so the
+vertical/radial split of the linear solver would make mu = 0 differ from the frictionless
+contact). A sliding node keeps its gap closed as in :mod:`.finite_contact` and carries the
+friction mu N along the indenter's tangent against its slip, with N from the previous Newton
+iterate (a fixed point converged with Newton's own tolerance on the corrections); a sliding
+node whose slip reverses sticks again at its radius of the last load step (or where it
+touched, should it have touched within the step).
+
+The force P is the total vertical reaction on the indenter, the sum of the contact nodes'
+vertical reactions lambda_i = -dPi/du_z,i (N; with friction it includes the friction's
+vertical component). Without slip the radial reactions do no work (the stuck nodes do not
+move radially), so dPi/dd = P up to the ladder's interpolation of the touching radii.
+Contact radius, pressure, p(0) and the stored energy are reported as
 :func:`.finite_contact.solve_finite_contact` does, from the vertical reactions.
 """
 
