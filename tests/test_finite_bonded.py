@@ -190,7 +190,7 @@ def test_cli_shows_the_bonded_interface(monkeypatch, capsys):
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["--interface", "bonded", "--model", "neo-hookean", "--friction", "0.3"], "no-slip"),
+        (["--interface", "bonded", "--model", "neo-hookean", "--friction", "-0.3"], "friction"),
         (["--interface", "glued", "--model", "neo-hookean"], "--interface"),
         (["--model", "yeoh", "--friction", "0.3"], "bonded indenter only"),
     ],
@@ -219,7 +219,7 @@ def test_bad_ladder_is_an_input_error():
             Material(E2, 0.5),
             model="neo-hookean",
             interface="bonded",
-            friction=0.5,
+            friction=-0.5,
             depths=depths,
             estimate=False,
         )

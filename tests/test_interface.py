@@ -142,7 +142,7 @@ def test_api_and_cli_take_the_interface(capsys):
     ("argv", "words"),
     [
         (["--interface", "sticky"], "--interface"),
-        (["--interface", "bonded", "--model", "yeoh", "--friction", "0.3"], "no-slip only"),
+        (["--interface", "bonded", "--model", "yeoh", "--friction", "-0.3"], ">= 0"),
         (["--friction", "0.3"], "bonded indenter only"),
         (["--interface", "bonded", "--friction", "-1"], ">= 0"),
     ],

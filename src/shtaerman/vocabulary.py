@@ -554,7 +554,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "friction",
         "",
         "Coulomb friction coefficient of a bonded indenter: a point in contact slides where its "
-        "shear exceeds friction x its pressure (linear model)",
+        "shear exceeds friction x its pressure",
         "Friction coefficient",
         None,
         valid=Range(0.0, None, low_open=False),

@@ -332,20 +332,14 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
 
 
 def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
-    """``mesh`` with the indenter's ``interface`` (frictionless or bonded; Coulomb friction
-    with the linear model only)."""
+    """``mesh`` with the indenter's ``interface`` (frictionless or bonded, with Coulomb
+    ``friction`` or none)."""
     interface = entry("interface").check(options["interface"])
     friction = options["friction"]
     if friction is not None:
         if interface != "bonded":
             raise InputError(
                 "friction: applies to a bonded indenter only; give interface 'bonded' too",
-                "friction",
-            )
-        if options["model"] != "linear":
-            raise InputError(
-                f"friction: applies to the linear model only, not {options['model']!r}: the "
-                "bonded indenter is no-slip only with a rubber model (leave friction out)",
                 "friction",
             )
         friction = float(entry("friction").check(friction))
@@ -471,7 +465,7 @@ def contact(
     friction : float, optional
         Coulomb coefficient >= 0 of a bonded indenter: a point in contact slides where its
         shear exceeds friction x its pressure; None: no slip. Only with ``interface="bonded"``
-        and the linear model.
+        (any model; at finite strain resolved on the indenter's normal).
     model : {"linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"}
         Linear elasticity, or a rubber at finite strain with the same E2, nu2 at small strain.
     mooney_ratio, yeoh, gent_limit, volumetric : optional

@@ -154,9 +154,14 @@ def _interface_rows(report: dict) -> list[str]:
     """The row naming a bonded indenter of the finite-strain contact; none when frictionless."""
     if "interface" not in report["mesh"]:
         return []
+    mesh = report["mesh"]
+    slip = (
+        f"Coulomb friction {mesh['friction']:g}"
+        if "friction" in mesh
+        else "no slip once in contact"
+    )
     return [
-        f"  {report['mesh']['interface']} indenter (no slip once in contact): /lin = against "
-        "the frictionless linear solution"
+        f"  {mesh['interface']} indenter ({slip}): /lin = against the frictionless linear solution"
     ]
 
 

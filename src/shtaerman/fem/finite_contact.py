@@ -740,6 +740,7 @@ def run_finite_indentation(
         "smallest_size": mesh.size * refined,
         **({"thickness": mesh.thickness, "base": mesh.base} if mesh.thickness else {}),
         **({"interface": mesh.interface} if mesh.interface != "frictionless" else {}),
+        **({"friction": mesh.friction} if mesh.friction is not None else {}),
     }
     timings = {
         "mesh": meshed - start,

@@ -1,4 +1,5 @@
-"""Bonded (no-slip) contact of a rigid power-law indenter with a rubber half-space, finite strain.
+"""Bonded contact (no slip, or Coulomb friction) of a rigid power-law indenter with a rubber
+half-space at finite strain.
 
 The rigid indenter z = A r^n - d moves only vertically. A candidate surface node (reference
 radius R, displacement (u_r, u_z)) is free until its vertical gap
@@ -18,15 +19,27 @@ solver of :class:`.finite_contact.NewtonStepper`; the prescribed dofs are elimin
 fixed pattern), within an active-set loop that lets free nodes whose gap turned negative touch
 and releases stuck nodes in tension; should a contact set repeat, one node changes at a time.
 
-The force P is the total vertical reaction on the indenter, the sum of the stuck nodes'
-vertical reactions lambda_i = -dPi/du_z,i (N); the radial reactions do no work (the stuck
-nodes do not move radially), so dPi/dd = P up to the ladder's interpolation of the touching
-radii. Contact radius, pressure, p(0) and the stored energy are reported as
+With a finite Coulomb coefficient mu (``friction``) a stuck node slides once its tangential
+reaction exceeds mu times its normal one, both resolved on the indenter's normal
+(f'(x_r), -1)/|.| at its current radius (at finite strain the slope is not small, so the
+vertical/radial split of the linear solver would make mu = 0 differ from the frictionless
+contact). A sliding node keeps its gap closed as in :mod:`.finite_contact` and carries the
+friction mu N along the indenter's tangent against its slip, with N from the previous Newton
+iterate (a fixed point converged with Newton's own tolerance on the corrections); a sliding
+node whose slip reverses sticks again at its radius of the last load step (or where it
+touched, should it have touched within the step).
+
+The force P is the total vertical reaction on the indenter, the sum of the contact nodes'
+vertical reactions lambda_i = -dPi/du_z,i (N; with friction it includes the friction's
+vertical component). Without slip the radial reactions do no work (the stuck nodes do not
+move radially), so dPi/dd = P up to the ladder's interpolation of the touching radii.
+Contact radius, pressure, p(0) and the stored energy are reported as
 :func:`.finite_contact.solve_finite_contact` does, from the vertical reactions.
 """
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 
@@ -43,6 +56,7 @@ from .finite_contact import (
     FiniteContactCurve,
     FiniteContactStep,
     NewtonStepper,
+    _eliminate,
     check_contact_edge,
     check_smallest_depth,
     element_inverted,
@@ -51,7 +65,7 @@ from .finite_contact import (
     pattern_entries,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, depth_ladder
+from .stick import START_NODE, STEP_RATIO, _worst_only, depth_ladder
 
 __all__ = ["RELEASE_BAND", "bonded_ladder", "solve_finite_bonded_contact"]
 
@@ -81,6 +95,8 @@ class _Load:
     """Vertical reaction (N, compression positive)."""
     iterations: int = 0
     corrections: list[float] = field(default_factory=list)
+    slip: np.ndarray | None = None
+    """Direction +-1 (along r) of each sliding node, 0 when stuck or free; None: no slip."""
 
 
 def bonded_ladder(
@@ -233,6 +249,134 @@ def _load_step(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: fl
     )
 
 
+def _slide_newton(
+    stepper: NewtonStepper, trial: _Load, friction: float, depth: float
+) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+    """Newton at ``depth`` (m) from ``trial`` (its ``lam``: the sliding nodes' starting
+    multipliers, N) with its stuck nodes prescribed and its sliding nodes on the indenter.
+
+    A sliding node keeps its gap closed (the frictionless solver's elimination, multiplier
+    lambda along the gap's gradient (f', -1)) and carries the friction force
+    -slip ``friction`` lambda (1, f') along the indenter's tangent, lambda lagged one
+    iteration (not linearized). Returns x, the multipliers, the iterations and corrections.
+    """
+    system, pattern, nodes = stepper.system, stepper.pattern, stepper.nodes
+    slip = trial.slip
+    slaves, values = _targets(stepper, np.where(slip != 0, np.nan, trial.held), depth)
+    order = np.argsort(slaves)
+    slaves, values = slaves[order], values[order]
+    moved = pattern_entries(pattern, slaves) if slaves.size else np.zeros(0, dtype=np.int64)
+    rows = np.flatnonzero(slip != 0)
+    x, lam = trial.x.copy(), np.where(slip != 0, trial.lam, 0.0)
+    corrections: list[float] = []
+    for iteration in range(1, stepper.max_iterations + 1):
+        state = system.state(x)
+        if element_inverted(state):
+            raise NewtonError("an element inverted (J <= 0)")
+        _, gap, slope, curvature = stepper.geometry(x, depth)
+        drag = slip * friction * lam
+        residual = system.residual(x, state)
+        np.subtract.at(residual, nodes.ur, lam * slope - drag)
+        np.add.at(residual, nodes.uz, lam + drag * slope)
+        tangent = system.tangent_data(x, state)[stepper.take]
+        tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
+        shift = np.zeros(pattern.size)
+        shift[slaves] = values - x[stepper.free][slaves]
+        load = residual[stepper.free] + pattern.matrix(tangent) @ shift
+        load[slaves] = -shift[slaves]
+        tangent[moved] = 0.0
+        tangent[pattern.diagonal[slaves]] = 1.0
+        try:
+            du, dlam = _eliminate(stepper, tangent, load, rows, slope, gap)
+        except RuntimeError as error:
+            raise NewtonError(f"singular Newton matrix ({error})") from None
+        x[stepper.free] += du
+        lam[rows] += dlam
+        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / depth)
+        if not np.isfinite(corrections[-1]):
+            break
+        if newton_converged(corrections, stepper.tolerance):
+            return x, lam, iteration, corrections
+    raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+
+
+def _slide_changes(
+    stepper: NewtonStepper, trial: _Load, last: _Load, friction: float, depth: float
+) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
+    """The violated conditions (release, enter, stick to slip, slip to stick), their size and
+    the tangential force T (N, on the body along the indenter's tangent (1, f')/|.|).
+
+    ``trial.lam`` holds the vertical reactions (N) of the nodes in contact; a stuck node
+    slides where |T| exceeds ``friction`` x its normal force (the reactions resolved on the
+    indenter's normal and tangent at its current radius)."""
+    nodes = stepper.nodes
+    residual = stepper.system.residual(trial.x)
+    _, _, slope, _ = stepper.geometry(trial.x, depth)
+    push = np.where(nodes.ur_free, residual[nodes.ur], 0.0)  # radial force on the body
+    norm = np.sqrt(1.0 + slope**2)
+    shear = (push - slope * trial.lam) / norm
+    normal = (slope * push + trial.lam) / norm
+    band = RELEASE_BAND * np.abs(trial.lam).max(initial=0.0)
+    contact, sliding = ~np.isnan(trial.held), trial.slip != 0
+    stuck = contact & ~sliding
+    release = contact & (trial.lam < -band)
+    enter = ~contact & (trial.gap < -stepper.tolerance * depth)
+    excess = np.abs(shear) - friction * normal
+    to_slip = stuck & nodes.ur_free & (excess > band)
+    moved = trial.slip * (trial.radius - _origin(last, trial))
+    to_stick = sliding & ~release & (moved < -stepper.tolerance * depth)
+    changes = [release, enter, to_slip, to_stick]
+    return changes, [-trial.lam, -trial.gap, excess, -moved], shear
+
+
+def _origin(last: _Load, trial: _Load) -> np.ndarray:
+    """Where a node's slip is measured from (m): its radius at the last load step if it was in
+    contact then, else (it touched in this step) its touching radius."""
+    return np.where(np.isnan(last.held), trial.held, last.radius)
+
+
+def _slide_step(
+    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, friction: float
+) -> _Load:
+    """The contact with Coulomb ``friction`` at ``depth`` (m) from ``last``: as
+    :func:`_load_step`, with stuck nodes that slide and sliding ones that stick again."""
+    slip = np.zeros(last.held.size) if last.slip is None else last.slip.copy()
+    trial = _Load(_touch(stepper, last, guess, depth), guess, last.radius, last.gap, last.lam)
+    trial.slip, total = slip, 0
+    seen: set[bytes] = set()
+    cautious = False
+    for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * slip.size):
+        x, lam, iterations, corrections = _slide_newton(stepper, trial, friction, depth)
+        total += iterations
+        radius, gap, _, _ = stepper.geometry(x, depth)
+        vertical = _reactions(stepper, x, trial.held)
+        trial = _Load(trial.held, x, radius, gap, vertical, total, corrections, trial.slip)
+        changes, excess, shear = _slide_changes(stepper, trial, last, friction, depth)
+        if not any(change.any() for change in changes):
+            trial.gap = np.where(np.isnan(trial.held), np.maximum(gap, 0.0), 0.0)
+            trial.lam = np.maximum(trial.lam, 0.0)
+            return trial
+        if cautious:
+            changes = _worst_only(changes, excess)
+        release, enter, to_slip, to_stick = changes
+        seen.add(np.isnan(trial.held).tobytes() + trial.slip.tobytes())
+        held, slip = _held(last, trial.held, enter, radius, gap), trial.slip.copy()
+        held[release] = np.nan
+        held[to_stick] = _origin(last, trial)[to_stick]
+        slip[to_slip] = -np.sign(shear[to_slip])
+        slip[release | to_stick] = 0.0
+        lam = np.where(slip != 0, np.where(to_slip, vertical, lam), 0.0)
+        trial = _Load(held, x, radius, gap, lam, total, corrections, slip)
+        if np.isnan(held).tobytes() + slip.tobytes() in seen:
+            if cautious:
+                break
+            cautious, seen = True, set()
+    raise NumericalFailureError(
+        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
+        "the edge or take smaller load steps"
+    )
+
+
 def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:
     """Linear extrapolation of the solution to the next load step (``ratio``: the step's
     depth increment over the last one)."""
@@ -251,6 +395,7 @@ def solve_finite_bonded_contact(
     start: float | None = None,
     tolerance: float = NEWTON_TOLERANCE,
     max_iterations: int = MAX_ITERATIONS,
+    friction: float = math.inf,
 ) -> FiniteContactCurve:
     """Press a rigid power-law indenter that the rubber sticks to, in load steps.
 
@@ -259,7 +404,10 @@ def solve_finite_bonded_contact(
     smallest depth) the first (default and ladder: :func:`bonded_ladder`). Each step's
     ``multipliers`` are the vertical reactions (N) of the stuck nodes, its
     ``newton_iterations`` those of its load step (all contact sets tried) and its
-    ``total_iterations`` those since the previous requested depth.
+    ``total_iterations`` those since the previous requested depth. ``friction`` >= 0 is
+    the Coulomb coefficient (inf: no slip): a stuck node slides once its shear exceeds
+    ``friction`` times its normal force, both resolved on the indenter's normal at its
+    current radius.
 
     Raises
     ------
@@ -270,6 +418,8 @@ def solve_finite_bonded_contact(
     """
     if not step_ratio > 1.0:
         raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
+    if not friction >= 0.0:
+        raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
     if indenter.exponent <= 1.0:
         raise InputError(
             f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
@@ -283,14 +433,19 @@ def solve_finite_bonded_contact(
     if start is not None and not 0.0 < start <= depths[0]:
         raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
     ladder = bonded_ladder(stepper, depths, step_ratio, start)
-    steps = _load_history(stepper, exact, depths, ladder)
+    steps = _load_history(stepper, exact, depths, ladder, friction)
     return FiniteContactCurve(steps, system, indenter, {"contact": time.perf_counter() - begun})
 
 
 def _load_history(
-    stepper: NewtonStepper, exact: PowerLawContact, depths: np.ndarray, ladder: np.ndarray
+    stepper: NewtonStepper,
+    exact: PowerLawContact,
+    depths: np.ndarray,
+    ladder: np.ndarray,
+    friction: float,
 ) -> list[FiniteContactStep]:
-    """Load through the ``ladder`` (m) and keep the contact at each requested depth."""
+    """Load through the ``ladder`` (m) and keep the contact at each requested depth (Coulomb
+    ``friction``; inf: no slip)."""
     m = stepper.nodes.radius.size
     heights = stepper.indenter.shape_coefficient * stepper.nodes.radius**stepper.indenter.exponent
     zero = np.zeros(stepper.system.n_dofs)
@@ -301,7 +456,10 @@ def _load_history(
         ratio = (depth - done) / (done - previous_depth) if previous is not None else 0.0
         guess = _predict(previous, last, ratio)
         try:
-            state = _load_step(stepper, last, guess, depth)
+            if math.isinf(friction):
+                state = _load_step(stepper, last, guess, depth)
+            else:
+                state = _slide_step(stepper, last, guess, depth, friction)
         except NewtonError as error:
             raise NewtonError(
                 f"depth {depth:g} m (bonded, from {done:g} m): {error}; take smaller load "

@@ -10,6 +10,8 @@ error estimates.
 
 from __future__ import annotations
 
+import functools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -134,7 +136,10 @@ def run_finite_study(
     depths = default_depths(indenter, half_space) if depths is None else depths
     rubber = RubberModel() if rubber is None else rubber
     mesh = mesh or FINITE_MESH
-    bonded = solve_finite_bonded_contact if mesh.interface == "bonded" else None
+    bonded = None
+    if mesh.interface == "bonded":
+        friction = math.inf if mesh.friction is None else mesh.friction
+        bonded = functools.partial(solve_finite_bonded_contact, friction=friction)
     curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded)
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     forces = [s.force for s in curve.steps]
