@@ -332,8 +332,8 @@ def test_inverted_element_stops_a_contact_step():
 
 
 def test_newton_step_solves_the_saddle_system():
-    """_eliminate's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
-    from shtaerman.fem.finite_contact import NewtonStepper, _eliminate
+    """eliminate_gaps's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
+    from shtaerman.fem.finite_contact import NewtonStepper, eliminate_gaps
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
@@ -350,7 +350,7 @@ def test_newton_step_solves_the_saddle_system():
     np.add.at(residual, nodes.uz, lam)
     tangent = system.tangent_data(x)[stepper.take]
     tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
-    du, dlam = _eliminate(stepper, tangent, residual[free], rows, slope, gap)
+    du, dlam = eliminate_gaps(stepper, tangent, residual[free], rows, slope, gap)
 
     matrix = stepper.pattern.matrix(tangent)
     position = stepper.position

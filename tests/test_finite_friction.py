@@ -59,12 +59,15 @@ def test_no_friction_is_frictionless_and_large_friction_is_bonded():
     assert large == pytest.approx(bonded, rel=1e-9)
 
 
-def test_the_force_with_friction_is_not_monotone():
-    free, none, some, _, bonded = _incompressible()
-    # measured against frictionless: +2.23e-3 (friction 0.2), +1.46e-3 (bonded); friction 0.5
-    # gives +1.90e-3 (not run here)
-    assert some > bonded > max(none, free)
-    assert some / bonded - 1.0 > 3e-4
+def test_a_little_friction_stiffens_the_incompressible_contact():
+    """mu = 0.2 raises the force above the frictionless one, as sticking does (the nodes that
+    slide keep a share of the bonded effect)."""
+    free, _, some, _, bonded = _incompressible()
+    # measured against frictionless: +2.23e-3 (friction 0.2), +1.46e-3 (bonded). That a little
+    # slip ends above the bonded force on this coarse mesh (two edge nodes slide) is not
+    # asserted: on the default mesh the force rises with mu (benchmarks/FEM_NOTES.md)
+    assert some / free - 1.0 > 5e-4
+    assert bonded / free - 1.0 > 5e-4
 
 
 def test_small_strain_friction_force_is_the_linear_one():

@@ -350,7 +350,7 @@ class NewtonStepper:
             tangent[self.curvature_at] -= (lam * curvature)[nodes.ur_free]  # -lam d2g/du_r^2
             rows = np.flatnonzero(active)
             try:
-                du, dlam = _eliminate(self, tangent, residual[self.free], rows, slope, gap)
+                du, dlam = eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap)
             except RuntimeError as error:
                 raise NewtonError(f"singular Newton matrix ({error})") from None
             x[self.free] += du
@@ -375,7 +375,7 @@ def newton_converged(corrections: list[float], tolerance: float) -> bool:
     return last <= ROUND_OFF_FLOOR and stalled
 
 
-def _eliminate(
+def eliminate_gaps(
     stepper: NewtonStepper,
     tangent: np.ndarray,
     residual: np.ndarray,

@@ -56,16 +56,16 @@ from .finite_contact import (
     FiniteContactCurve,
     FiniteContactStep,
     NewtonStepper,
-    _eliminate,
     check_contact_edge,
     check_smallest_depth,
     element_inverted,
+    eliminate_gaps,
     finite_step,
     newton_converged,
     pattern_entries,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, _worst_only, depth_ladder
+from .stick import START_NODE, STEP_RATIO, depth_ladder, worst_only
 
 __all__ = ["RELEASE_BAND", "bonded_ladder", "solve_finite_bonded_contact"]
 
@@ -287,7 +287,7 @@ def _slide_newton(
         tangent[moved] = 0.0
         tangent[pattern.diagonal[slaves]] = 1.0
         try:
-            du, dlam = _eliminate(stepper, tangent, load, rows, slope, gap)
+            du, dlam = eliminate_gaps(stepper, tangent, load, rows, slope, gap)
         except RuntimeError as error:
             raise NewtonError(f"singular Newton matrix ({error})") from None
         x[stepper.free] += du
@@ -357,7 +357,7 @@ def _slide_step(
             trial.lam = np.maximum(trial.lam, 0.0)
             return trial
         if cautious:
-            changes = _worst_only(changes, excess)
+            changes = worst_only(changes, excess)
         release, enter, to_slip, to_stick = changes
         seen.add(np.isnan(trial.held).tobytes() + trial.slip.tobytes())
         held, slip = _held(last, trial.held, enter, radius, gap), trial.slip.copy()

@@ -168,7 +168,7 @@ def _solve_stuck(
     return forces, shear, displacement[:m], displacement[m:]
 
 
-def _worst_only(changes: list[np.ndarray], excess: list[np.ndarray]) -> list[np.ndarray]:
+def worst_only(changes: list[np.ndarray], excess: list[np.ndarray]) -> list[np.ndarray]:
     """``changes`` (boolean masks, in order of priority) cut to the single node of the first
     non-empty one with the largest ``excess`` (the cautious update after a cycle)."""
     cut = [np.zeros_like(change) for change in changes]
@@ -216,7 +216,7 @@ def _load_step(
             gap, forces = np.maximum(gap, 0.0), np.maximum(forces, 0.0)
             return _State(state.active, state.held, radial, gap, state.slip, forces, shear)
         if cautious:
-            changes = _worst_only(changes, excess)
+            changes = worst_only(changes, excess)
         release, enter, to_slip, to_stick = changes
         seen.add(state.active.tobytes() + state.slip.tobytes())
         closing = last.gap[enter] / (last.gap[enter] - gap[enter])
