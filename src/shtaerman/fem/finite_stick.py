@@ -65,7 +65,7 @@ from .finite_contact import (
     pattern_entries,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, depth_ladder, worst_only
+from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
 
 __all__ = ["RELEASE_BAND", "bonded_ladder", "solve_finite_bonded_contact"]
 
@@ -371,10 +371,7 @@ def _slide_step(
             if cautious:
                 break
             cautious, seen = True, set()
-    raise NumericalFailureError(
-        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
-        "the edge or take smaller load steps"
-    )
+    raise unsettled(depth)
 
 
 def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:

@@ -91,6 +91,14 @@ class _State:
     shear: np.ndarray | None = None
 
 
+def unsettled(depth: float) -> NumericalFailureError:
+    """The failure of a load step at ``depth`` (m) whose stick and slip sets keep cycling."""
+    return NumericalFailureError(
+        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
+        "the edge or take smaller load steps"
+    )
+
+
 def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndarray:
     """Load steps (m): geometric with ``step_ratio`` from ``start`` (at most depths[0]) to
     depths[-1], merged with ``depths`` (each requested depth is one of them)."""
@@ -232,10 +240,7 @@ def _load_step(
             if cautious:
                 break
             cautious, seen = True, set()
-    raise NumericalFailureError(
-        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
-        "the edge or take smaller load steps"
-    )
+    raise unsettled(depth)
 
 
 def _contact_step(
