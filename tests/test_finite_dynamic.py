@@ -139,7 +139,9 @@ def _run(capsys, *argv):
         (("--model", "neo-hookean", "--prony", "0.5"), "--prony:"),
         (("--model", "yeoh", "--prony", "0.7:1e-3,0.4:1e-2"), "--prony:"),
         (("--model", "neo-hookean", "--thickness", "0.02", "--base", "lubricated"), "bonded only"),
-        (("--model", "neo-hookean", "--velocity", "20"), "--velocity: 20 m/s drives the striker"),
+        (("--model", "neo-hookean", "--velocity", "20"), "at most about 10.2 m/s with this"),
+        (("--model", "neo-hookean", "--velocity", "1e300"), "at most about 10.2 m/s with this"),
+        (("--model", "neo-hookean", "--mass", "1e-300"), "below the 1e-06 at which strains"),
         (("--model", "neo-hookean", "--base", "bonded"), "--base: applies to a layer only"),
     ],
 )

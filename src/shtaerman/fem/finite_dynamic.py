@@ -52,6 +52,7 @@ impact (:func:`.viscoelastic.sizing_impact`).
 from __future__ import annotations
 
 import math
+import sys
 import time
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -71,6 +72,7 @@ from .finite_contact import (
     FINITE_MESH,
     MAX_DEPTH_RATIO,
     MAX_ITERATIONS,
+    MIN_DEPTH_RATIO,
     NEWTON_TOLERANCE,
     ContactOutgrowsMeshError,
     NewtonStepper,
@@ -540,13 +542,13 @@ def run_finite_impact(
     rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
     settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho)
     q = law.force_exponent
-    x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
+    x_c = _quasi_static_depth(law, mass, velocity)
     t_y = 2.0 * duration_integral(q) * x_c / velocity
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     if settings.mesh.thickness is None:  # a pad stops the striker short of this depth
-        _check_reach(indenter, x_size, velocity)
+        _check_reach(indenter, x_size, velocity, q)
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
@@ -581,15 +583,48 @@ def run_finite_impact(
     return _result(columns, mass, context, separation)
 
 
-def _check_reach(indenter: PowerLawIndenter, depth: float, velocity: float) -> None:
+def _quasi_static_depth(law: PowerLawContact, mass: float, velocity: float) -> float:
+    """x_c (m) of the impact M x'' = -beta x^q (in logarithms where the direct formula
+    overflows); InputError naming velocity when it is not a normal float."""
+    q = law.force_exponent
+    try:
+        x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
+    except OverflowError:
+        x_c = math.inf
+    if not math.isfinite(x_c):  # the same in logarithms: finite for a finite depth
+        log_x = math.log((q + 1.0) / 2.0) + math.log(mass) + 2.0 * math.log(velocity)
+        log_x = (log_x - math.log(law.beta)) / (q + 1.0)
+        x_c = math.exp(log_x) if log_x < 709.0 else math.inf
+    if not (math.isfinite(x_c) and x_c >= sys.float_info.min):
+        raise InputError(
+            f"velocity: {velocity:g} m/s with mass {mass:g} kg gives x_c = {x_c:g} m, outside "
+            f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]",
+            "velocity",
+        )
+    return x_c
+
+
+def _check_reach(indenter: PowerLawIndenter, depth: float, velocity: float, q: float) -> None:
     """Refuse, before any work, an impact whose quasi-static depth (m) on the half-space lies
-    beyond the finite-strain contact's reach, depth / contact radius > MAX_DEPTH_RATIO."""
+    outside the finite-strain contact's reach, d/a outside [MIN_DEPTH_RATIO, MAX_DEPTH_RATIO];
+    beyond it the message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)),
+    d/a ~ d^(1-1/n))."""
     ratio = depth / PowerLawContact(indenter, 1.0).contact_radius(depth)
+    if ratio < MIN_DEPTH_RATIO:
+        raise InputError(
+            f"velocity: {velocity:g} m/s drives the striker to {depth:.3g} m only, depth / "
+            f"contact radius {ratio:.2g}, below the {MIN_DEPTH_RATIO:g} at which strains keep "
+            "their digits in F = I + grad u: the linear model is exact there",
+            "velocity",
+        )
     if ratio > MAX_DEPTH_RATIO:
+        deepest = depth * (MAX_DEPTH_RATIO / ratio) ** (1.0 / (1.0 - 1.0 / indenter.exponent))
+        fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
         raise InputError(
             f"velocity: {velocity:g} m/s drives the striker to about {depth * 1e3:.3g} mm, "
             f"depth / contact radius {ratio:.3g}, beyond the {MAX_DEPTH_RATIO:g} up to which "
-            "the finite-strain contact converges: lower the velocity or the mass",
+            f"the finite-strain contact converges: at most about {fastest:.3g} m/s with this "
+            "striker and rubber (or a smaller mass)",
             "velocity",
         )
 

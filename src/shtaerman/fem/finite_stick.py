@@ -63,6 +63,7 @@ from .finite_contact import (
     finite_step,
     newton_converged,
     pattern_entries,
+    solve_finite_contact,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
 from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
@@ -404,7 +405,7 @@ def solve_finite_bonded_contact(
     ``total_iterations`` those since the previous requested depth. ``friction`` >= 0 is
     the Coulomb coefficient (inf: no slip): a stuck node slides once its shear exceeds
     ``friction`` times its normal force, both resolved on the indenter's normal at its
-    current radius.
+    current radius; 0 is the frictionless contact, solved as such (no load steps).
 
     Raises
     ------
@@ -421,6 +422,9 @@ def solve_finite_bonded_contact(
         raise InputError(
             f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
         )
+    if friction == 0.0:  # nothing resists slip: no history, no load steps
+        limits = {"tolerance": tolerance, "max_iterations": max_iterations}
+        return solve_finite_contact(system, indenter, depths, candidate_radius, **limits)
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     begun = time.perf_counter()
     stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
