@@ -546,8 +546,11 @@ def run_finite_impact(
     t_y = 2.0 * duration_integral(q) * x_c / velocity
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
+    unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
+    if unbounded:  # before the viscoelastic sizing, which warns of fast impacts
+        _check_reach(indenter, x_c, velocity, q)
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
-    if settings.mesh.thickness is None:  # a pad stops the striker short of this depth
+    if unbounded and x_size > x_c:
         _check_reach(indenter, x_size, velocity, q)
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
