@@ -170,7 +170,7 @@ def test_current_folder_and_parents_are_refused(tmp_path, monkeypatch, capsys, n
     (tmp_path / "keep.txt").write_text("keep")
     code, out, err = run(capsys, "contact", "--out", name, "--force", "--depths", "1e-3")
     assert code == 2 and out == ""
-    assert err.startswith("shtaerman: error: out:") and err.count("\n") == 1
+    assert err.startswith("shtaerman: error: --out:") and err.count("\n") == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.txt"]
 
 
@@ -189,7 +189,7 @@ def test_bad_out_names_are_one_line_errors(tmp_path, monkeypatch, capsys, name):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "file.txt").write_text("")
     code, _, err = run(capsys, "contact", "--out", name, "--depths", "1e-3")
-    assert code == 2 and err.startswith("shtaerman: error: out:") and err.count("\n") == 1
+    assert code == 2 and err.startswith("shtaerman: error: --out:") and err.count("\n") == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file.txt"]
     if name.endswith("/sub"):  # the reason is named: a file is not a missing folder
         expected = "is not a folder" if name.startswith("file") else "does not exist"

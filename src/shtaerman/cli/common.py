@@ -188,11 +188,14 @@ def _metavar(item: Entry) -> str:
 def in_option_words() -> Iterator[None]:
     """Re-raise an :class:`InputError` of the API whose message begins with the input's key
     (``mass: ...``, ``solver 'pardiso' ...``) with its command-line option instead
-    (``--mass: ...``): the user of the CLI gave options, not keywords."""
+    (``--mass: ...``): the user of the CLI gave options, not keywords. An error that names no
+    parameter is read as naming the key its message begins with (``out: ...``)."""
     try:
         yield
     except InputError as error:
-        name, message = error.parameter, str(error)
+        message = str(error)
+        leading = re.match(r"(\w+): ", message)
+        name = error.parameter or (leading[1] if leading else None)
         known = name is not None and name in {item.name for item in VOCABULARY}
         if not known or not re.match(rf"{re.escape(name)}\b(?![-=])", message):
             raise
