@@ -159,9 +159,19 @@ small_steps = 5             # geometric depths from it to the first equal step
 # [numerics]                # the finest mesh of the error-estimate ladder (defaults shown)
 # refine = 1.0              # divide the whole mesh size field by K
 # mesh_size = 0.016667      # smallest element / refined radius (1/60)
+# ladder = "nested"         # instead: one gmsh mesh at K/2 refined twice, K the middle level
+                            # (estimates fall back far less often; about 4x the time)
 # [quick]                   # 'verify --quick': coarser depths and mesh
 # depth_steps = 6
 # small_steps = 2
+
+# [rubber]                  # the rubber model (default neo-hookean; shape keys: mooney_ratio,
+# model = "yeoh"            # yeoh = [c2, c3], gent_limit; volumetric for nu2 < 0.5)
+# yeoh = [-0.101, 0.0127]   # C20/C10, C30/C10 (Treloar's natural rubber)
+
+# [corrections]             # dynamic impacts: do the wave and finite-strain corrections add?
+# velocities = [1.0, 3.0]   # m/s (minutes per velocity)
+# density2 = 1100.0         # kg/m^3, the rubber's
 
 # [sweep]                   # run the study once per value of ONE parameter: nu2, mass or
 # nu2 = [0.5, 0.3]          # velocity (each run's name gets the value)
