@@ -627,6 +627,11 @@ def finite_step(
     )
 
 
+def depth_ratio(indenter: PowerLawIndenter, depth: float) -> float:
+    """d/a: ``depth`` (m) over Shtaerman's contact radius there (independent of the modulus)."""
+    return float(depth / PowerLawContact(indenter, 1.0).contact_radius(depth))
+
+
 def check_finite_depths(
     indenter: PowerLawIndenter, depths: ArrayLike, model: str = "neo-hookean"
 ) -> None:
@@ -640,8 +645,7 @@ def check_finite_depths(
         Naming the depth, its d/a and the range.
     """
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
-    law = PowerLawContact(indenter, 1.0)  # d/a does not depend on the modulus
-    ratios = [(float(d), float(d / law.contact_radius(d))) for d in (depths[0], depths[-1])]
+    ratios = [(float(d), depth_ratio(indenter, float(d))) for d in (depths[0], depths[-1])]
     (small, low), (deep, high) = ratios
     valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
     if low < MIN_DEPTH_RATIO:

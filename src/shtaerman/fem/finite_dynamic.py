@@ -52,8 +52,8 @@ impact (:func:`.viscoelastic.sizing_impact`).
 from __future__ import annotations
 
 import math
-import sys
 import time
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -61,7 +61,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..theory.contact import PowerLawContact
-from ..theory.impact import duration_integral
+from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import DENSITY_RANGE, Material
 from ..theory.viscoelastic import PronySeries
@@ -76,6 +76,7 @@ from .finite_contact import (
     NEWTON_TOLERANCE,
     ContactOutgrowsMeshError,
     NewtonStepper,
+    depth_ratio,
     geometric_radius,
 )
 from .finite_viscoelastic import ViscoelasticBody
@@ -542,8 +543,10 @@ def run_finite_impact(
     rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
     settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho)
     q = law.force_exponent
-    x_c = _quasi_static_depth(law, mass, velocity)
-    t_y = 2.0 * duration_integral(q) * x_c / velocity
+    with warnings.catch_warnings():  # the caller warns of a fast impact beside its results
+        warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+        quasi = solve_impact(mass, velocity, law)
+    x_c, t_y = quasi.x_c, quasi.t_y
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
     unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
@@ -586,33 +589,12 @@ def run_finite_impact(
     return _result(columns, mass, context, separation)
 
 
-def _quasi_static_depth(law: PowerLawContact, mass: float, velocity: float) -> float:
-    """x_c (m) of the impact M x'' = -beta x^q (in logarithms where the direct formula
-    overflows); InputError naming velocity when it is not a normal float."""
-    q = law.force_exponent
-    try:
-        x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
-    except OverflowError:
-        x_c = math.inf
-    if not math.isfinite(x_c):  # the same in logarithms: finite for a finite depth
-        log_x = math.log((q + 1.0) / 2.0) + math.log(mass) + 2.0 * math.log(velocity)
-        log_x = (log_x - math.log(law.beta)) / (q + 1.0)
-        x_c = math.exp(log_x) if log_x < 709.0 else math.inf
-    if not (math.isfinite(x_c) and x_c >= sys.float_info.min):
-        raise InputError(
-            f"velocity: {velocity:g} m/s with mass {mass:g} kg gives x_c = {x_c:g} m, outside "
-            f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]",
-            "velocity",
-        )
-    return x_c
-
-
 def _check_reach(indenter: PowerLawIndenter, depth: float, velocity: float, q: float) -> None:
     """Refuse, before any work, an impact whose quasi-static depth (m) on the half-space lies
     outside the finite-strain contact's reach, d/a outside [MIN_DEPTH_RATIO, MAX_DEPTH_RATIO];
     beyond it the message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)),
     d/a ~ d^(1-1/n))."""
-    ratio = depth / PowerLawContact(indenter, 1.0).contact_radius(depth)
+    ratio = depth_ratio(indenter, depth)
     if ratio < MIN_DEPTH_RATIO:
         raise InputError(
             f"velocity: {velocity:g} m/s drives the striker to {depth:.3g} m only, depth / "
