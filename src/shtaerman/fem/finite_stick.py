@@ -121,14 +121,19 @@ def bonded_ladder(
 
 
 def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np.ndarray, ...]:
-    """Free-dof positions and values (m) of the stuck nodes' prescribed u_z and u_r."""
+    """The stuck nodes' prescribed u_z and u_r: free-dof positions (sorted), their values (m)
+    and the pattern entries of their rows and columns."""
     nodes, indenter = stepper.nodes, stepper.indenter
     stuck = np.flatnonzero(~np.isnan(held))
     radial = stuck[nodes.ur_free[stuck]]
     height = indenter.shape_coefficient * held[stuck] ** indenter.exponent - depth
     positions = np.concatenate([nodes.uz[stuck], nodes.ur[radial]])
     values = np.concatenate([height, held[radial] - nodes.radius[radial]])
-    return stepper.position[positions], values
+    slaves = stepper.position[positions]
+    order = np.argsort(slaves)
+    slaves, values = slaves[order], values[order]
+    moved = pattern_entries(stepper.pattern, slaves) if slaves.size else np.zeros(0, np.int64)
+    return slaves, values, moved
 
 
 def _newton(
@@ -145,10 +150,7 @@ def _newton(
         No convergence in ``stepper.max_iterations``, or an element inverted.
     """
     system, pattern = stepper.system, stepper.pattern
-    slaves, values = _targets(stepper, held, depth)
-    order = np.argsort(slaves)
-    slaves, values = slaves[order], values[order]
-    moved = pattern_entries(pattern, slaves) if slaves.size else np.zeros(0, dtype=np.int64)
+    slaves, values, moved = _targets(stepper, held, depth)
     x = x.copy()
     corrections: list[float] = []
     for iteration in range(1, stepper.max_iterations + 1):
@@ -263,10 +265,7 @@ def _slide_newton(
     """
     system, pattern, nodes = stepper.system, stepper.pattern, stepper.nodes
     slip = trial.slip
-    slaves, values = _targets(stepper, np.where(slip != 0, np.nan, trial.held), depth)
-    order = np.argsort(slaves)
-    slaves, values = slaves[order], values[order]
-    moved = pattern_entries(pattern, slaves) if slaves.size else np.zeros(0, dtype=np.int64)
+    slaves, values, moved = _targets(stepper, np.where(slip != 0, np.nan, trial.held), depth)
     rows = np.flatnonzero(slip != 0)
     x, lam = trial.x.copy(), np.where(slip != 0, trial.lam, 0.0)
     corrections: list[float] = []
