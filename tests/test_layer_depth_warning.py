@@ -17,7 +17,7 @@ def test_contact_deeper_than_the_layer_warns():
 
 def test_dynamic_approach_beyond_the_layer_warns():
     body = sh.Material(7.5e6, 0.5, density=1100.0)
-    with pytest.warns(UserWarning, match="reached the layer's thickness 0.00013 m"):
+    with pytest.warns(UserWarning, match="reaches the layer's thickness 0.00013 m"):
         sh.dynamic(
             PAPER,
             body,

@@ -77,11 +77,11 @@ def test_a_typed_default_reaches_the_finite_strain_impact(monkeypatch, typed, fi
     # the finite-strain impact's own default (50 steps) without a word
     seen = {}
 
-    def route(indenter, body, model, unsupported, kept, rubber):
-        seen.update(kept)
+    def route(problem, **numerics):
+        seen.update(numerics)
         raise ReachedError
 
-    monkeypatch.setattr("shtaerman.cli.finite_dynamic.finite_strain_route", route)
+    monkeypatch.setattr("shtaerman.cli.finite_dynamic.finite_dynamic", route)
     with pytest.raises(ReachedError):
         main(["dynamic", "--model", "neo-hookean", "--density2", "0", *typed])
     assert seen[field] == value

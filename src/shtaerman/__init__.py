@@ -7,6 +7,8 @@ The public API (``import shtaerman as sh``; see :mod:`shtaerman.api`)::
     q = sh.impact(indenter, rubber, mass=0.25, velocity=2.0)   # exact quasi-static impact
     c = sh.contact(indenter, rubber, mass=0.25, velocity=2.0)  # FEM curve up to q.x_c
     d = sh.dynamic(indenter, rubber, mass=0.25, velocity=2.0)  # dynamic FE impact
+    case = sh.Problem.impact(indenter, rubber, mass=0.25, velocity=2.0, thickness=0.012)
+    d = sh.dynamic(case, time_steps=200)                       # the same, from one Problem
     sh.run_study("paper", out="results"); sh.sweep("nu-grid", workers=2)   # -> sh.SweepOutcome
 
 Names are imported on first use, so ``import shtaerman`` loads neither numpy nor the FEM.
@@ -24,12 +26,18 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from .api import (
         RIGID,
+        Body,
         ContactResult,
         DynamicResult,
+        Geometry,
         ImpactResult,
         InputError,
+        Interface,
+        Loading,
         Material,
         PowerLawIndenter,
+        Problem,
+        Striker,
         StudyResults,
         contact,
         dynamic,
@@ -44,12 +52,18 @@ from .version import __version__
 
 __all__ = [
     "RIGID",
+    "Body",
     "ContactResult",
     "DynamicResult",
+    "Geometry",
     "ImpactResult",
     "InputError",
+    "Interface",
+    "Loading",
     "Material",
     "PowerLawIndenter",
+    "Problem",
+    "Striker",
     "StudyResults",
     "SweepOutcome",
     "SweepSpec",

@@ -645,8 +645,9 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     _numeric(
         "layer_rate",
-        "absorbing-layer damping rate x t_y (0: no layer; a faster layer damps the waves so "
-        "abruptly that it reflects them, like a wall: more the larger the rate)",
+        "absorbing-layer damping rate x t_y (0: no layer, on the half-space only: a pad always "
+        "has one, 10 by default; a faster layer damps the waves so abruptly that it reflects "
+        "them, like a wall: more the larger the rate)",
         "Absorbing layer rate",
         0.0,
         ("dynamic",),

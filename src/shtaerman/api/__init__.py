@@ -12,6 +12,12 @@ listed once, in :data:`shtaerman.__all__`.
 
 import sys
 
+from ..problem import Body as Body
+from ..problem import Geometry as Geometry
+from ..problem import Interface as Interface
+from ..problem import Loading as Loading
+from ..problem import Problem as Problem
+from ..problem import Striker as Striker
 from ..theory.indenter import PowerLawIndenter as PowerLawIndenter
 from ..theory.materials import RIGID as RIGID
 from ..theory.materials import Material as Material

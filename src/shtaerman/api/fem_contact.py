@@ -16,12 +16,12 @@ from numpy.typing import ArrayLike
 
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
+from ..problem import MODELS, RUBBER_OPTIONS, Problem, check_bodies, check_options
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
 from .layer_options import layer_mesh
-from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
@@ -29,13 +29,9 @@ if TYPE_CHECKING:
 
 __all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
 
-MODELS = ("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent")
-"""Material models of ``model=`` (``--model``): the first is the default."""
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
 """Mesh keywords (``--mesh-size``, ...): each sets the MeshSettings field
 :func:`shtaerman.vocabulary.fields` names."""
-RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
-"""The finite-strain models' options (:func:`shtaerman.fem.rubber.rubber_model`)."""
 NOT_IN_JSON = ("extra", "solution", "ladder", "key_order")
 """ContactResult fields that are not keys of the JSON."""
 
@@ -213,19 +209,11 @@ def _check_options(options: Mapping[str, Any]) -> None:
     from ..fem.solver import check_backend
 
     model, accuracy, refine = options["model"], options["accuracy"], options["refine"]
-    if model not in MODELS:
-        raise InputError(f"model: unknown model {model!r}. Pick one of {list(MODELS)}", "model")
     if model != "linear" and options["solver"] == "pardiso":
         raise InputError(f"solver: the {model} model uses superlu only, got 'pardiso'", "solver")
     check_backend(options["solver"])
     if accuracy is None:
         return
-    if model != "linear":
-        raise InputError(
-            f"accuracy: applies to the linear model only; for the {model} model use refine, "
-            "whose estimates come with every run",
-            "accuracy",
-        )
     if not options["estimate"]:
         raise InputError(
             "accuracy: needs the error estimates, which estimate=False (--no-estimate) "
@@ -331,29 +319,63 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
 
 
-def _interface(mesh: MeshSettings, options: Mapping[str, Any]) -> MeshSettings:
-    """``mesh`` with the indenter's ``interface`` (frictionless or bonded, with Coulomb
-    ``friction`` or none)."""
-    interface = entry("interface").check(options["interface"])
-    friction = options["friction"]
-    if friction is not None:
-        if interface != "bonded":
-            raise InputError(
-                "friction: applies to a bonded indenter only; give interface 'bonded' too",
-                "friction",
+PHYSICS = ("mass", "velocity", "depths", "striker", "thickness", "base", "interface")
+PHYSICS = (*PHYSICS, "friction", "model", *RUBBER_OPTIONS)
+"""The keywords of :func:`contact` that describe the problem (the rest are numerics)."""
+
+
+def _problem(indenter: Any, body: Any, options: Mapping[str, Any]) -> Problem:
+    """The contact curve of :func:`contact`: ``indenter`` itself when it is a
+    :class:`Problem` (then no other part may be given), else built from the keywords."""
+    physics = {name: options[name] for name in PHYSICS}
+    if isinstance(indenter, Problem):
+        given = [k for k, v in physics.items() if v not in (None, "linear", "frictionless")]
+        if body is not None or given:
+            raise TypeError(f"contact(problem) takes numerics only; the problem holds {given}")
+        if indenter.loading.kind != "curve":
+            raise InputError("problem: contact() presses a contact curve (Problem.curve)")
+        return indenter
+    if physics["striker"] is None:
+        physics["striker"] = RIGID
+    return Problem.curve(indenter, body, **physics)
+
+
+def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
+    """The depths (m) within the finite-strain contact's reach; default depths that are not
+    name the impact that set them (its mass and velocity)."""
+    from ..fem.finite_contact import check_finite_depths
+
+    indenter, model = problem.striker.indenter, problem.body.model
+    if problem.loading.depths is not None:
+        return check_finite_depths(indenter, depths, model)
+    try:
+        check_finite_depths(indenter, depths, model)
+    except InputError as error:
+        mass, velocity = (
+            entry(name).default if value is None else value
+            for name, value in (
+                ("mass", problem.striker.mass),
+                ("velocity", problem.striker.velocity),
             )
-        friction = float(entry("friction").check(friction))
-    return dataclasses.replace(mesh, interface=interface, friction=friction)
+        )
+        reason = str(error).removeprefix("depths: ").split("; ")[0]
+        raise InputError(
+            f"mass, velocity: the default depths reach the x_c of {mass:g} kg at {velocity:g} "
+            f"m/s, and {reason}; lower the mass or the velocity, or give the depths",
+            "velocity",
+        ) from None
 
 
-def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -> _Plan:
+def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
     from ..fem.finite_contact import FINITE_MESH
     from ..fem.mesh import DEFAULTS, MeshSettings
 
-    model, estimate = options["model"], bool(options["estimate"])
-    check_bodies(indenter, body, RIGID if options["striker"] is None else options["striker"])
+    problem = _problem(indenter, body, options)
+    check_options(problem, ["accuracy"] if options["accuracy"] is not None else [])
+    indenter, body, model = problem.striker.indenter, problem.body.material, problem.body.model
+    estimate = bool(options["estimate"])
     check_figure_format(options["figure_format"])
     validate_fem_inputs(indenter, body)
     max_time = validate_positive("max_time", options["max_time"], "s")
@@ -366,50 +388,39 @@ def _plan(indenter: PowerLawIndenter, body: Material, options: dict[str, Any]) -
             "keywords mesh_size, mesh_margin, ... set single fields",
             "mesh",
         )
-    mesh = layer_mesh(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), options)
-    mesh = _interface(mesh, options)
+    mesh = layer_mesh(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), problem.geometry)
+    interface = problem.interface
+    mesh = dataclasses.replace(mesh, interface=interface.kind, friction=interface.friction)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
-    _check_options(options)
-    rubber = _rubber(options)
-    depths = contact_depths(
-        indenter,
-        body,
-        options["depths"],
-        mass=options["mass"],
-        velocity=options["velocity"],
-        striker=options["striker"],
-    )
+    _check_options({**options, "model": model})
+    with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
+        warnings.simplefilter("always")  # is the one line
+        depths = contact_depths(
+            indenter,
+            body,
+            problem.loading.depths,
+            mass=problem.striker.mass,
+            velocity=problem.striker.velocity,
+            striker=problem.striker.material,
+        )
     if model != "linear":
-        from ..fem.finite_contact import check_finite_depths
-
-        check_finite_depths(indenter, depths, model)
+        _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
     if estimate:
         from ..study.contact.indentation import refined_radius
 
         _check_coarsest(mesh, refine, refined_radius(indenter, depths, mesh))
+    for warning in said:
+        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])
-    return _Plan(indenter, body, depths, model, rubber, mesh, *rest)
-
-
-def _rubber(options: Mapping[str, Any]) -> RubberModel | None:
-    """The checked rubber model (None for the linear model, which refuses its options)."""
-    from ..fem.rubber import rubber_model
-
-    given = {name: options[name] for name in RUBBER_OPTIONS}
-    if options["model"] == "linear":
-        for name, value in given.items():
-            if value is not None:
-                raise InputError(f"{name}: applies to the finite-strain models only", name)
-        return None
-    return rubber_model(options["model"], **given)
+    return _Plan(indenter, body, depths, model, problem.body.rubber(), mesh, *rest)
 
 
 def contact(
-    indenter: PowerLawIndenter,
-    body: Material,
+    indenter: PowerLawIndenter | Problem,
+    body: Material | None = None,
     *,
     mass: float | None = None,
     velocity: float | None = None,
@@ -444,8 +455,9 @@ def contact(
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        z = A r^n with n > 1.
+    indenter : PowerLawIndenter or Problem
+        z = A r^n with n > 1; or the whole contact curve (:meth:`shtaerman.Problem.curve`),
+        then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] (the FEM's validated range).
     mass, velocity : float, optional
@@ -518,11 +530,9 @@ def contact(
 
 
 def _warn_beyond_the_layer(plan: _Plan) -> None:
-    """Warn when the deepest depth (m) reaches the layer's thickness (m): strain beyond 100 %."""
-    thickness, deepest = plan.mesh.thickness, plan.depths[-1]
-    if thickness is not None and deepest >= thickness:
-        warnings.warn(
-            f"depths: the deepest, {deepest:.6g} m, reaches the layer's thickness "
-            f"{thickness:.6g} m: a strain beyond 100 %, far outside linear elasticity",
-            stacklevel=3,
-        )
+    """The validity limits the deepest depth (m) passed (:mod:`shtaerman.guards`)."""
+    from ..guards import warn_outside_validity
+
+    finite = plan.model != "linear"
+    deepest = float(plan.depths[-1])
+    warn_outside_validity(plan.indenter, deepest, plan.mesh.thickness, finite, "the deepest depth")

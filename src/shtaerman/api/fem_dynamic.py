@@ -5,7 +5,6 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -13,12 +12,12 @@ from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
+from ..problem import Problem, check_options
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
 from .layer_options import layer_mesh
-from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
@@ -212,11 +211,11 @@ def _density(body: Material) -> float:
 
 
 def dynamic(
-    indenter: PowerLawIndenter,
-    body: Material,
+    indenter: PowerLawIndenter | Problem,
+    body: Material | None = None,
     *,
-    mass: float,
-    velocity: float,
+    mass: float | None = None,
+    velocity: float | None = None,
     thickness: float | None = None,
     base: str | None = None,
     refine: float = 1.0,
@@ -239,8 +238,9 @@ def dynamic(
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        The rigid striker's profile, n > 1.
+    indenter : PowerLawIndenter or Problem
+        The rigid striker's profile, n > 1; or the whole impact (:class:`shtaerman.Problem`),
+        then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] and its density in kg/m^3 (required).
     mass, velocity : float
@@ -283,52 +283,45 @@ def dynamic(
     shtaerman.validation.InputError
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
-    from ..fem.viscoelastic import prony_input
     from ..output.dynamic import write_case_figures
     from ..output.files import output_folder, staged_folder
     from ..study.dynamic.accuracy import complete_ladder
     from ..study.dynamic.case import run_case
 
-    if model != "linear" or rubber:
-        from .finite_dynamic import finite_strain_route
+    physics = dict(model=model, prony=prony, thickness=thickness, base=base, **rubber)
+    problem = _problem(indenter, body, mass, velocity, physics)
+    numerics = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
+    numerics.update(layer_rate=layer_rate, settings=settings, out=out, force=force or None)
+    numerics.update(refine=refine != 1.0 or None, estimate=not estimate or None)
+    numerics.update(figure_format=figure_format != "png" or None)
+    check_options(problem, [name for name, value in numerics.items() if value is not None])
+    _density(problem.body.material)
+    if problem.body.finite:
+        from .finite_dynamic import finite_dynamic
 
-        numbers = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
-        numbers.update(layer_rate=layer_rate, settings=settings, out=out, refine=refine != 1.0)
-        if prony is not None:
-            rubber = {**rubber, "prony": prony}
-        kept = dict(mass=mass, velocity=velocity, time_steps=time_steps, mesh_size=mesh_size)
-        kept.update(thickness=thickness, base=base)
-        return finite_strain_route(indenter, body, model, numbers, kept, rubber)
-    if layer_rate is not None and body.density == 0:
-        raise InputError(
-            "layer_rate: applies to a body with mass only: a massless body (density 0) "
-            "radiates no waves for the absorbing layer to damp",
-            "layer_rate",
-        )
+        return finite_dynamic(problem, time_steps=time_steps, mesh_size=mesh_size)
+    indenter, body = problem.striker.indenter, problem.body.material
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
-    layer = {"thickness": thickness, "base": base, "model": "linear"}
-    chosen = layer_mesh(dynamic_settings(settings, options), layer)
-    mass, velocity, refine, chosen = _checked(
-        indenter, body, (mass, velocity, refine), estimate, chosen
-    )
-    series = prony_input(prony)
+    if layer_rate == 0 and problem.geometry.thickness is not None:
+        raise InputError(
+            "layer_rate: a layer always has its lateral absorber (its guided waves would "
+            "reflect at its edge), 0 is for the half-space only: give a rate in (0, 1e4] or "
+            "leave the default (10 on a layer)",
+            "layer_rate",
+        )
+    chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
+    mass, velocity, refine, chosen = _checked(problem, refine, estimate, chosen)
     check_figure_format(figure_format)
     folder = output_folder(out, force=force)
     inputs = (indenter, body, _density(body), mass, velocity)
     shots = _snapshots if folder is not None else None
+    series = problem.body.prony
     case = run_case(*inputs, chosen, snapshots=shots, prony=series)
     if estimate:
         ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, prony=series)
         case = dataclasses.replace(case, ladder=ladder)
     result = _result(case)
-    if chosen.thickness is not None and not result.x_max < chosen.thickness:
-        warnings.warn(
-            f"thickness: the striker's approach {result.x_max:.6g} m reached the layer's "
-            f"thickness {chosen.thickness:.6g} m: a strain beyond 100 %, far outside linear "
-            "elasticity (restitution and energies are not physical)",
-            stacklevel=2,
-        )
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
@@ -336,24 +329,38 @@ def dynamic(
     return result
 
 
+def _problem(
+    indenter: PowerLawIndenter | Problem,
+    body: Material | None,
+    mass: float | None,
+    velocity: float | None,
+    physics: dict[str, Any],
+) -> Problem:
+    """The impact of :func:`dynamic`: ``indenter`` itself when it is a :class:`Problem` (then
+    no other part may be given), else built from the keywords (``density`` in kg/m^3, of a
+    finite-strain impact, replaces the body's)."""
+    if isinstance(indenter, Problem):
+        extra = [k for k, v in physics.items() if v not in (None, "linear")]
+        extra += [k for k, v in (("body", body), ("mass", mass), ("velocity", velocity)) if v]
+        if extra:
+            raise TypeError(f"dynamic(problem) takes numerics only; the problem holds {extra}")
+        return indenter
+    density = physics.pop("density", None)
+    if density is not None and isinstance(body, Material):
+        body = dataclasses.replace(body, density=density)
+    return Problem.impact(indenter, body, mass=mass, velocity=velocity, **physics)
+
+
 def _checked(
-    indenter: PowerLawIndenter,
-    body: Material,
-    numbers: tuple[float, float, float],
-    estimate: bool,
-    settings: DynamicSettings,
+    problem: Problem, refine: float, estimate: bool, settings: DynamicSettings
 ) -> tuple[float, float, float, DynamicSettings]:
     """Mass (kg), velocity (m/s), refine and the refined settings, every input checked
     (the ladder's coarsest level too, with ``estimate``) before anything runs."""
     from ..fem.contact import validate_fem_inputs
     from ..study.dynamic.accuracy import check_ladder
 
-    check_bodies(indenter, body)
-    mass = validate_positive("mass", numbers[0], "kg")
-    velocity = validate_positive("velocity", numbers[1], "m/s")
-    _density(body)
-    validate_fem_inputs(indenter, body)
-    refine = validate_positive("refine", numbers[2])
+    validate_fem_inputs(problem.striker.indenter, problem.body.material)
+    refine = validate_positive("refine", refine)
     chosen = settings.refined(refine)
     if estimate:
         try:
@@ -364,4 +371,5 @@ def _checked(
                 "--no-estimate)",
                 error.parameter,
             ) from None
-    return mass, velocity, refine, chosen
+    assert problem.striker.mass is not None and problem.striker.velocity is not None
+    return problem.striker.mass, problem.striker.velocity, refine, chosen

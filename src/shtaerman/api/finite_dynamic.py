@@ -8,16 +8,13 @@ from typing import TYPE_CHECKING, Any
 
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..validation import InputError
 from ..vocabulary import entry
-from .quasi_static import check_bodies
 
 if TYPE_CHECKING:
     from ..fem.finite_dynamic import FiniteImpactResult
+    from ..problem import Problem
 
-__all__ = ["FiniteDynamicResult", "finite_dynamic", "finite_strain_route"]
+__all__ = ["FiniteDynamicResult", "finite_dynamic"]
 
 
 @dataclass(frozen=True)
@@ -73,123 +70,42 @@ class FiniteDynamicResult:
         }
 
 
-def check_unsupported(model: str, given: dict[str, Any]) -> None:
-    """Refuse, in one line naming it, an option the finite-strain impact does not take."""
-    for name, value in given.items():
-        if value is not None and value is not False:
-            raise InputError(
-                f"{name}: not supported with model {model!r} (the finite-strain impact takes "
-                f"mass, velocity, density2, time_steps, mesh_size, thickness, base (bonded), "
-                "prony and the rubber options)",
-                name,
-            )
-
-
-def finite_strain_route(
-    indenter: PowerLawIndenter,
-    body: Material,
-    model: str,
-    unsupported: dict[str, Any],
-    kept: dict[str, Any],
-    rubber: dict[str, Any],
-) -> FiniteDynamicResult:
-    """:func:`finite_dynamic` from ``shtaerman.dynamic``'s keywords, refusing in one line
-    the linear impact's options it does not take (``unsupported``, None or False when not
-    given) and the rubber options with the linear model. ``rubber`` may also give
-    ``density`` (kg/m^3, 0: massless body) in place of the body's."""
-    allowed = ("mooney_ratio", "yeoh", "gent_limit", "volumetric", "density", "prony")
-    unknown = sorted(set(rubber) - set(allowed))
-    if unknown:
-        raise TypeError(f"dynamic() got unexpected keyword arguments {unknown}")
-    if model == "linear":
-        name = next(iter(rubber))
-        where = " (the linear model takes the body's density)" if name == "density" else ""
-        raise InputError(f"{name}: applies to the finite-strain models only{where}", name)
-    check_unsupported(model, unsupported)
-    for name in ("mesh_size",):  # the range the command line states
-        if kept.get(name) is not None:
-            kept = {**kept, name: entry(name).check(kept[name], "dynamic")}
-    return finite_dynamic(indenter, body, model=model, **kept, **rubber)
-
-
 def finite_dynamic(
-    indenter: PowerLawIndenter,
-    body: Material,
-    *,
-    mass: float,
-    velocity: float,
-    model: str = "neo-hookean",
-    density: float | None = None,
-    time_steps: int | None = None,
-    mesh_size: float | None = None,
-    thickness: float | None = None,
-    base: str | None = None,
-    mooney_ratio: float | None = None,
-    yeoh: Any = None,
-    gent_limit: float | None = None,
-    volumetric: str | None = None,
-    prony: Any = None,
+    problem: Problem, *, time_steps: int | None = None, mesh_size: float | None = None
 ) -> FiniteDynamicResult:
-    """The impact of a rigid striker z = A r^n on a rubber half-space at finite strain.
+    """The impact of a rigid striker on a rubber body at finite strain.
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        n > 1.
-    body : Material
-        Small-strain E2 (Pa), nu2 in [0, 0.5]; its density unless ``density`` is given.
-    mass, velocity : float
-        Striker mass (kg) and impact velocity (m/s).
-    model : str
-        ``neo-hookean``, ``mooney-rivlin``, ``yeoh`` or ``gent`` (:mod:`shtaerman.fem.rubber`).
-    density : float, optional
-        Half-space density in kg/m^3; 0: massless body (the finite-strain quasi-static
-        impact); in [1e-6, 1e6]: the body with inertia (waves).
+    problem : Problem
+        An impact on a rubber body (``problem.body.finite``): its density 0 gives the
+        finite-strain quasi-static impact (massless body), in [1e-6, 1e6] kg/m^3 the body with
+        inertia (waves); with a Prony series the isochoric stress relaxes
+        (:mod:`shtaerman.fem.finite_viscoelastic`), E2 and nu2 being the instantaneous values.
     time_steps : int, optional
         Steps per quasi-static impact duration (default 50; 100 with inertia).
     mesh_size : float, optional
         Smallest element / refined radius (default the finite-strain contact's).
-    thickness : float, optional
-        A rubber layer of this thickness (m) on a rigid base instead of the half-space.
-    base : str, optional
-        The layer's base: ``bonded`` only at finite strain (the default with ``thickness``).
-    mooney_ratio, yeoh, gent_limit, volumetric
-        The rubber model's options (:func:`shtaerman.fem.rubber.rubber_model`).
-    prony : PronySeries or str, optional
-        Shear relaxation of the isochoric stress (``g1:tau1,...``, tau in s;
-        :mod:`shtaerman.fem.finite_viscoelastic`): E2, nu2 are then the instantaneous values;
-        with density 0 the quasi-static viscoelastic impact at finite strain.
 
     Returns
     -------
     FiniteDynamicResult
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        An input out of range.
     """
     from dataclasses import replace
 
     from ..fem.finite_contact import FINITE_MESH
-    from ..fem.finite_dynamic import (
-        INERTIA_MESH,
-        FiniteImpactSettings,
-        check_density,
-        run_finite_impact,
-    )
-    from ..fem.rubber import rubber_model
-    from ..fem.viscoelastic import prony_input
+    from ..fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
     from .layer_options import layer_mesh
 
-    check_bodies(indenter, body)
-    rubber = rubber_model(model, mooney_ratio, yeoh, gent_limit, volumetric)
-    series = prony_input(prony)
-    rho = check_density(body.density if density is None else density)
+    indenter, body = problem.striker.indenter, problem.body.material
+    mass, velocity = problem.striker.mass, problem.striker.velocity
+    rho = body.density
+    if mesh_size is not None:
+        mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
     default = FINITE_MESH if rho == 0 else INERTIA_MESH
     mesh = default if mesh_size is None else replace(default, size=mesh_size)
-    mesh = layer_mesh(mesh, {"thickness": thickness, "base": base, "model": model})
-    settings = FiniteImpactSettings(steps=time_steps, mesh=mesh)
+    settings = FiniteImpactSettings(steps=time_steps, mesh=layer_mesh(mesh, problem.geometry))
+    rubber, series = problem.body.rubber(), problem.body.prony
     run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber, series)
     law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
     quasi = solve_impact(mass, velocity, law)
@@ -200,7 +116,7 @@ def finite_dynamic(
         "t_c": quasi.t_c / (0.5 * summary["t_contact"]) - 1.0,
     }
     return FiniteDynamicResult(
-        model=model,
+        model=problem.body.model,
         rubber=rubber.to_dict(),
         quasi_static={key: quasi.maxima()[key] for key in ("x_c", "P_c", "t_c", "t_y")},
         dynamic=summary,

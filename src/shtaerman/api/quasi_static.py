@@ -2,19 +2,18 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..output.files import json_safe
+from ..problem import check_bodies
 from ..theory import impact as theory
 from ..theory.contact import PowerLawContact
 from ..theory.impact_ode import integrate_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
-from ..validation import InputError
 
 __all__ = ["ImpactResult", "check_bodies", "impact"]
 
@@ -90,25 +89,6 @@ class ImpactResult:
         if self.ode_check is not None:
             document["ode_check"] = dict(self.ode_check)
         return json_safe(document)
-
-
-def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
-    """Raise InputError unless the arguments are a PowerLawIndenter and two Materials."""
-    if not isinstance(indenter, PowerLawIndenter):
-        raise InputError(
-            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), got "
-            f"{type(indenter).__name__}",
-            "indenter",
-        )
-    for name, value in (("body", body), ("striker", striker)):
-        if not isinstance(value, Material):
-            raise InputError(
-                f"{name} must be a Material(youngs_modulus, poisson_ratio, density=None), got "
-                f"{type(value).__name__}",
-                name,
-            )
-    if math.isinf(body.youngs_modulus) and math.isinf(striker.youngs_modulus):
-        raise InputError("body: a rigid body under a rigid striker has no contact law", "body")
 
 
 def impact(

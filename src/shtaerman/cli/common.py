@@ -194,13 +194,21 @@ def in_option_words() -> Iterator[None]:
         yield
     except InputError as error:
         message = str(error)
+        names = re.match(r"(\w+(?:, \w+)+): ", message)  # "mass, velocity: ..." names both
+        if names and all(name in _KEYS for name in names[1].split(", ")):
+            options = ", ".join(entry(name).cli_option for name in names[1].split(", "))
+            raise type(error)(options + message[len(names[1]) :], error.parameter) from None
         leading = re.match(r"(\w+): ", message)
         name = error.parameter or (leading[1] if leading else None)
-        known = name is not None and name in {item.name for item in VOCABULARY}
+        known = name is not None and name in _KEYS
         if not known or not re.match(rf"{re.escape(name)}\b(?![-=])", message):
             raise
         option = entry(name).cli_option
         raise type(error)(option + message[len(name) :], name) from None
+
+
+_KEYS = frozenset(item.name for item in VOCABULARY)
+"""The inputs' keys, as an API message may begin with them."""
 
 
 def given(args: argparse.Namespace, name: str) -> bool:

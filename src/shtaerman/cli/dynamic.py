@@ -10,8 +10,10 @@ from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
 from ..output.files import staged_file, write_csv
+from ..problem import Problem, check_options
 from ..study.dynamic.loader import dynamic_check_failures
 from ..theory.materials import Material
+from ..vocabulary import entry
 from .common import (
     CASE,
     add_figure_format,
@@ -59,7 +61,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "a lateral absorber; its reflected energy is counted of M v0^2/2."
         ),
     )
-    inputs = (*CASE, "E2", "nu2", "density2", "prony", "thickness", "base")
+    inputs = (*CASE, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
+    inputs = (*inputs, "friction")
     inputs = (*inputs, "json", "history", "out", "force")
     add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
     add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
@@ -83,23 +86,44 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=run)
 
 
+PHYSICS = ("model", *RUBBER_OPTIONS, "prony", "thickness", "base", "interface", "friction")
+"""The problem's parts besides the striker and the body's elasticity: passed when given."""
+OPTIONS = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "history")
+"""Numerical and output options (:func:`shtaerman.problem.check_options`)."""
+
+
+def problem_of(args: argparse.Namespace) -> Problem:
+    """The impact the options describe, checked (:class:`shtaerman.problem.Problem`)."""
+    physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
+    return Problem.impact(
+        indenter(args),
+        Material(args.E2, args.nu2, args.density2),
+        mass=args.mass,
+        velocity=args.velocity,
+        **physics,
+    )
+
+
+def _format(args: argparse.Namespace) -> list[str]:
+    """``["figure_format"]`` when a format other than the default was asked for."""
+    return ["figure_format"] if args.figure_format != entry("figure_format").default else []
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
-    if args.model != "linear" or any(getattr(args, name) for name in RUBBER_OPTIONS):
-        return run_finite(args)
+    with in_option_words():
+        problem = problem_of(args)
+        check_options(problem, [name for name in OPTIONS if given(args, name)] + _format(args))
+    if problem.body.finite:
+        return run_finite(args, problem)
     refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
     if not given(args, "layer_rate"):  # the API's default: the layer of the case
         args.layer_rate = None
-    names = ("mass", "velocity", "thickness", "base", "refine", "estimate", *SETTINGS_OPTIONS)
-    names = (*names, "prony", "out", "force")
+    names = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "figure_format")
     with in_option_words():
-        result = dynamic(
-            indenter(args),
-            Material(args.E2, args.nu2, args.density2),
-            **keywords(args, (*names, "figure_format")),
-        )
+        result = dynamic(problem, **keywords(args, names))
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:

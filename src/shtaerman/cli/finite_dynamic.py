@@ -5,38 +5,18 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..api.fem_contact import RUBBER_OPTIONS
-from ..api.finite_dynamic import finite_strain_route
-from ..theory.materials import Material
-from .common import given, in_option_words, indenter, print_json, warn_volumetric
-
-LINEAR_ONLY = ("history", "out", "force", "mesh_margin", "domain_factor", "growth", "layer_rate")
-"""``dynamic`` options the finite-strain impact refuses when given."""
+from ..api.finite_dynamic import finite_dynamic
+from ..problem import Problem
+from .common import given, in_option_words, print_json, warn_volumetric
 
 
-def run_finite(args: argparse.Namespace) -> int:
-    """Run :func:`shtaerman.api.finite_dynamic.finite_dynamic` from the parsed options; print
-    text or JSON."""
-    unsupported = {
-        name: getattr(args, name) for name in (*LINEAR_ONLY, "refine") if given(args, name)
-    }
-    names = ("mass", "velocity", "time_steps", "mesh_size", "thickness", "base")
-    kept = {name: getattr(args, name) for name in names}
-    for name in names[2:]:  # not given: the finite-strain impact's defaults
-        if not given(args, name):
-            kept[name] = None
-    rubber = {name: getattr(args, name) for name in RUBBER_OPTIONS if getattr(args, name)}
-    if given(args, "prony"):
-        rubber["prony"] = args.prony
+def run_finite(args: argparse.Namespace, problem: Problem) -> int:
+    """Run :func:`shtaerman.api.finite_dynamic.finite_dynamic` on the impact ``problem`` (on a
+    rubber body) with the options' numerics; print text or JSON."""
+    numerics = {name: getattr(args, name) for name in ("time_steps", "mesh_size")}
+    numerics = {name: value if given(args, name) else None for name, value in numerics.items()}
     with in_option_words():
-        result = finite_strain_route(
-            indenter(args),
-            Material(args.E2, args.nu2),
-            args.model,
-            unsupported,
-            kept,
-            {**rubber, "density": args.density2},
-        )
+        result = finite_dynamic(problem, **numerics)
     warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if args.json:

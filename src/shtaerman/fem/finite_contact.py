@@ -48,6 +48,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
+from ..guards import MAX_DEPTH_RATIO, depth_ratio
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
@@ -83,9 +84,6 @@ MIN_DEPTH_RATIO = 1e-6
 """Smallest depth / contact radius d/a (a: Shtaerman's, the small-strain limit) of a
 finite-strain step: the strains are of this order, and F = I + grad u keeps only ~1e-16 / (d/a)
 of them, too few digits for Newton's tolerance below it."""
-MAX_DEPTH_RATIO = 1.2
-"""Largest d/a: a little beyond it Newton fails, after minutes of halved load steps (the
-shipped studies stay near 0.9: reach 1.1 x_c)."""
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:
@@ -625,11 +623,6 @@ def finite_step(
         pressure=pressure,
         corrections=corrections,
     )
-
-
-def depth_ratio(indenter: PowerLawIndenter, depth: float) -> float:
-    """d/a: ``depth`` (m) over Shtaerman's contact radius there (independent of the modulus)."""
-    return float(depth / PowerLawContact(indenter, 1.0).contact_radius(depth))
 
 
 def check_finite_depths(

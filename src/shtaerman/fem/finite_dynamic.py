@@ -60,6 +60,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
+from ..guards import warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.indenter import PowerLawIndenter
@@ -551,10 +552,10 @@ def run_finite_impact(
         raise InputError(FINITE_BASE, "base")
     unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
     if unbounded:  # before the viscoelastic sizing, which warns of fast impacts
-        _check_reach(indenter, x_c, velocity, q)
+        _check_reach(indenter, x_c, (mass, velocity), q)
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     if unbounded and x_size > x_c:
-        _check_reach(indenter, x_size, velocity, q)
+        _check_reach(indenter, x_size, (mass, velocity), q)
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
@@ -586,30 +587,37 @@ def run_finite_impact(
     )
     if rho > 0:
         context["parameters"].update(spectral_radius=settings.spectral_radius)
-    return _result(columns, mass, context, separation)
+    result = _result(columns, mass, context, separation)
+    warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
+    return result
 
 
-def _check_reach(indenter: PowerLawIndenter, depth: float, velocity: float, q: float) -> None:
-    """Refuse, before any work, an impact whose quasi-static depth (m) on the half-space lies
-    outside the finite-strain contact's reach, d/a outside [MIN_DEPTH_RATIO, MAX_DEPTH_RATIO];
-    beyond it the message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)),
-    d/a ~ d^(1-1/n))."""
+def _check_reach(
+    indenter: PowerLawIndenter, depth: float, impact: tuple[float, float], q: float
+) -> None:
+    """Refuse, before any work, an impact (mass in kg, velocity in m/s) whose quasi-static
+    depth (m) on the half-space lies outside the finite-strain contact's reach, d/a outside
+    [MIN_DEPTH_RATIO, MAX_DEPTH_RATIO]; beyond it the message gives the velocity that reaches
+    the limit (depth ~ v^(2/(q+1)), d/a ~ d^(1-1/n)). Both inputs set the depth: the message
+    names both."""
+    mass, velocity = impact
     ratio = depth_ratio(indenter, depth)
+    drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     if ratio < MIN_DEPTH_RATIO:
         raise InputError(
-            f"velocity: {velocity:g} m/s drives the striker to {depth:.3g} m only, depth / "
-            f"contact radius {ratio:.2g}, below the {MIN_DEPTH_RATIO:g} at which strains keep "
-            "their digits in F = I + grad u: the linear model is exact there",
-            "velocity",
+            f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
+            f"{MIN_DEPTH_RATIO:g} at which strains keep their digits in F = I + grad u: the "
+            "linear model is exact there; raise the mass or the velocity",
+            "mass",
         )
     if ratio > MAX_DEPTH_RATIO:
         deepest = depth * (MAX_DEPTH_RATIO / ratio) ** (1.0 / (1.0 - 1.0 / indenter.exponent))
         fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
         raise InputError(
-            f"velocity: {velocity:g} m/s drives the striker to about {depth * 1e3:.3g} mm, "
-            f"depth / contact radius {ratio:.3g}, beyond the {MAX_DEPTH_RATIO:g} up to which "
-            f"the finite-strain contact converges: at most about {fastest:.3g} m/s with this "
-            "striker and rubber (or a smaller mass)",
+            f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
+            f"beyond the {MAX_DEPTH_RATIO:g} up to which the finite-strain contact converges: "
+            f"at most about {fastest:.3g} m/s with this striker, mass and rubber (or a smaller "
+            "mass)",
             "velocity",
         )
 

@@ -19,6 +19,7 @@ from ...fem.dynamic_contact import (
     DynamicSettings,
     run_dynamic_impact,
 )
+from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactResult, solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -151,5 +152,6 @@ def run_case(
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
     result = run_dynamic_impact(*inputs, settings, snapshot_times=times, prony=prony)
+    warn_outside_validity(indenter, result.x_max, settings.thickness, finite=False)
     levels = complete_ladder(result, *inputs, settings, prony=prony) if ladder else None
     return DynamicCase(velocity, quasi, estimate, result, levels)

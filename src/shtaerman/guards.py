@@ -1,0 +1,90 @@
+"""Validity limits of a computed depth, declared once and applied on every route.
+
+A run that ends outside a limit keeps its numbers and warns (:class:`ValidityWarning`, one
+line): the command line prints it, the API issues it, a sweep records it in the case's
+``warnings``. The limits concern the deepest approach x (m) the run reached:
+
+- on a layer of thickness H: x >= H, a strain beyond 100 %, for every model;
+- the depth ratio x/a (a: Shtaerman's contact radius at x, :func:`depth_ratio`, which
+  measures the strain under the indenter) beyond :data:`MAX_DEPTH_RATIO`, where the
+  finite-strain contact has been validated: the linear model is then far outside small strain
+  (at x/a = 0.88 a neo-Hookean rubber already carries 4.9 % less force, docs/findings.md), and
+  the finite-strain result is unverified.
+
+Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
+:func:`shtaerman.fem.finite_dynamic.run_finite_impact`) and the contact curve call
+:func:`warn_outside_validity` with what they reached.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+from .theory.contact import PowerLawContact
+from .theory.indenter import PowerLawIndenter
+
+__all__ = [
+    "MAX_DEPTH_RATIO",
+    "ValidityWarning",
+    "depth_ratio",
+    "outside_validity",
+    "warn_outside_validity",
+]
+
+MAX_DEPTH_RATIO = 1.2
+"""Largest depth / contact radius x/a at which the finite-strain contact converges and was
+checked against the linear one (beyond it Newton fails after minutes of halved load steps)."""
+
+
+class ValidityWarning(UserWarning):
+    """A run that reached beyond a validity limit of its model (its numbers are kept)."""
+
+
+def depth_ratio(indenter: PowerLawIndenter, depth: float) -> float:
+    """x/a: ``depth`` (m) over Shtaerman's contact radius there (independent of the modulus)."""
+    return float(depth / PowerLawContact(indenter, 1.0).contact_radius(depth))
+
+
+def outside_validity(
+    indenter: PowerLawIndenter,
+    deepest: float,
+    thickness: float | None,
+    finite: bool,
+    what: str = "the striker's approach",
+) -> list[str]:
+    """The limits the deepest approach ``deepest`` (m) passed, one sentence each ([] within
+    them); ``thickness``: the layer's (m, None on the half-space), ``finite``: a rubber model
+    at finite strain (False: linear elasticity); ``what`` names the depth in the sentences."""
+    found = []
+    if thickness is not None and deepest >= thickness:
+        found.append(
+            f"thickness: {what} {deepest:.6g} m reaches the layer's thickness "
+            f"{thickness:.6g} m: a strain beyond 100 %, far outside "
+            f"{'the validated range' if finite else 'linear elasticity'} (restitution and "
+            "energies are not physical)"
+        )
+    ratio = depth_ratio(indenter, deepest)
+    if ratio > MAX_DEPTH_RATIO:
+        words = (
+            "unverified: the finite-strain contact was validated up to"
+            if finite
+            else "far outside small strain, where the linear model's numbers are qualitative: "
+            "the finite-strain models are validated up to"
+        )
+        found.append(
+            f"depth: {what} {deepest:.6g} m is {ratio:.3g} contact radii (x/a, with "
+            f"Shtaerman's a), {words} x/a {MAX_DEPTH_RATIO:g}"
+        )
+    return found
+
+
+def warn_outside_validity(
+    indenter: PowerLawIndenter,
+    deepest: float,
+    thickness: float | None,
+    finite: bool,
+    what: str = "the striker's approach",
+) -> None:
+    """Issue a :class:`ValidityWarning` for each limit of :func:`outside_validity` passed."""
+    for sentence in outside_validity(indenter, deepest, thickness, finite, what):
+        warnings.warn(sentence, ValidityWarning, stacklevel=3)

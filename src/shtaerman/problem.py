@@ -1,0 +1,473 @@
+"""The researcher's case as one value: striker, body, geometry, interface and loading.
+
+A :class:`Problem` is built and checked once, where input enters (the command line, the Python
+API, a study file, a sweep case); the layers below trust it. Each part's values are checked by
+the vocabulary (:mod:`shtaerman.vocabulary`, ranges and units); which parts combine is declared
+once, in :data:`SUPPORT`, and which numerical and output options each combination takes, in
+:data:`OPTION_SUPPORT`. The command line's and the API's refusals, and the documentation's
+table of combinations, come from these two tables.
+
+A combination is a :class:`Cell`: the body's model (``linear`` or a ``rubber`` at finite
+strain), whether it relaxes (a Prony series), the geometry (``half-space``, ``layer bonded``,
+``layer lubricated``), the interface (``frictionless``, ``bonded``, ``coulomb``) and the
+loading (``curve``: pressed to given depths; ``massless``: the impact on a body without
+inertia, the quasi-static impact; ``inertia``: the impact with waves).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, fields, replace
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+from .theory.indenter import PowerLawIndenter
+from .theory.materials import RIGID, Material
+from .validation import InputError, validate_positive
+from .vocabulary import entry
+
+if TYPE_CHECKING:
+    from .fem.rubber import RubberModel
+    from .theory.viscoelastic import PronySeries
+
+__all__ = [
+    "MODELS",
+    "OPTION_SUPPORT",
+    "SUPPORT",
+    "Body",
+    "Cell",
+    "Geometry",
+    "Interface",
+    "Loading",
+    "Problem",
+    "Striker",
+    "Unsupported",
+    "check_options",
+    "support_table",
+]
+
+MODELS = ("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent")
+"""The body's material models: linear elasticity (the default), then the rubbers at finite
+strain (:mod:`shtaerman.fem.rubber`)."""
+RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
+"""The rubber models' shape options (:func:`shtaerman.fem.rubber.rubber_model`)."""
+
+
+def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
+    """Raise InputError unless the arguments are a PowerLawIndenter and two Materials."""
+    if not isinstance(indenter, PowerLawIndenter):
+        raise InputError(
+            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), got "
+            f"{type(indenter).__name__}",
+            "indenter",
+        )
+    for name, value in (("body", body), ("striker", striker)):
+        if not isinstance(value, Material):
+            raise InputError(
+                f"{name} must be a Material(youngs_modulus, poisson_ratio, density=None), got "
+                f"{type(value).__name__}",
+                name,
+            )
+    if math.isinf(body.youngs_modulus) and math.isinf(striker.youngs_modulus):
+        raise InputError("body: a rigid body under a rigid striker has no contact law", "body")
+
+
+@dataclass(frozen=True)
+class Striker:
+    """The striker: its profile, and for an impact its mass and approach velocity.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter
+        The profile z = A r^n of its tip.
+    mass : float, optional
+        Mass in kg (an impact, or the impact whose x_c a contact curve's default depths reach).
+    velocity : float, optional
+        Approach velocity in m/s.
+    material : Material
+        Its elasticity (E1, nu1; default rigid).
+    """
+
+    indenter: PowerLawIndenter
+    mass: float | None = None
+    velocity: float | None = None
+    material: Material = RIGID
+
+    def __post_init__(self) -> None:
+        for name, unit in (("mass", "kg"), ("velocity", "m/s")):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, validate_positive(name, value, unit))
+
+
+@dataclass(frozen=True)
+class Body:
+    """The struck body: its small-strain elasticity and density, its material model, and an
+    optional shear relaxation.
+
+    Parameters
+    ----------
+    material : Material
+        E2 (Pa; with ``prony`` the instantaneous value), nu2 and the density in kg/m^3
+        (0: massless, None: not given).
+    model : str
+        One of :data:`MODELS`.
+    mooney_ratio, yeoh, gent_limit, volumetric : optional
+        The rubber's shape (:func:`shtaerman.fem.rubber.rubber_model`); rubber models only.
+    prony : PronySeries or str, optional
+        Shear relaxation ``g1:tau1,...`` (tau in s); None: elastic.
+    """
+
+    material: Material
+    model: str = "linear"
+    mooney_ratio: float | None = None
+    yeoh: Any = None
+    gent_limit: float | None = None
+    volumetric: str | None = None
+    prony: PronySeries | None = None
+
+    def __post_init__(self) -> None:
+        from .fem.viscoelastic import prony_input
+
+        if self.model not in MODELS:
+            raise InputError(f"model: unknown model {self.model!r}. Pick one of {list(MODELS)}")
+        object.__setattr__(self, "prony", prony_input(self.prony))
+        if not self.finite:
+            for name in RUBBER_OPTIONS:
+                if getattr(self, name) is not None:
+                    raise InputError(f"{name}: applies to the finite-strain models only", name)
+        else:
+            self.rubber()  # checks the shape options now, each naming itself
+
+    @property
+    def finite(self) -> bool:
+        """Whether the body is a rubber at finite strain."""
+        return self.model != "linear"
+
+    def rubber(self) -> RubberModel | None:
+        """The rubber model (None for the linear body)."""
+        from .fem.rubber import rubber_model
+
+        if not self.finite:
+            return None
+        return rubber_model(self.model, *(getattr(self, name) for name in RUBBER_OPTIONS))
+
+    def rubber_options(self) -> dict[str, Any]:
+        """The rubber's shape options that were given (None left out)."""
+        return {
+            name: getattr(self, name) for name in RUBBER_OPTIONS if getattr(self, name) is not None
+        }
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """The body's shape: a half-space (``thickness`` None), or a layer of ``thickness`` m on a
+    rigid ``base`` (``bonded``: u = 0, the default; ``lubricated``: u_z = 0)."""
+
+    thickness: float | None = None
+    base: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.thickness is None:
+            if self.base is not None:
+                raise InputError("base: applies to a layer only; give its thickness too", "base")
+            return
+        base = entry("base").default if self.base is None else self.base
+        object.__setattr__(self, "base", entry("base").check(base))
+        object.__setattr__(self, "thickness", float(entry("thickness").check(self.thickness)))
+
+    @property
+    def name(self) -> str:
+        """``half-space``, ``layer bonded`` or ``layer lubricated``."""
+        return "half-space" if self.thickness is None else f"layer {self.base}"
+
+
+@dataclass(frozen=True)
+class Interface:
+    """The striker's surface: ``frictionless``, or ``bonded`` (a point that touches it sticks)
+    with an optional Coulomb coefficient ``friction`` >= 0 (a point slides where its shear
+    exceeds friction x its pressure)."""
+
+    kind: str = "frictionless"
+    friction: float | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", entry("interface").check(self.kind))
+        if self.friction is None:
+            return
+        if self.kind != "bonded":
+            raise InputError(
+                "friction: applies to a bonded indenter only; give interface 'bonded' too",
+                "friction",
+            )
+        object.__setattr__(self, "friction", float(entry("friction").check(self.friction)))
+
+    @property
+    def name(self) -> str:
+        """``frictionless``, ``bonded`` (no slip) or ``coulomb``."""
+        return "coulomb" if self.friction is not None else self.kind
+
+
+@dataclass(frozen=True)
+class Loading:
+    """How the striker loads the body: ``curve`` (pressed to ``depths`` in m, increasing; None:
+    the default depths, up to the x_c of the striker's impact) or ``impact`` (the striker's
+    mass strikes at its velocity)."""
+
+    kind: str = "impact"
+    depths: tuple[float, ...] | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("curve", "impact"):
+            raise InputError(f"loading must be 'curve' or 'impact', got {self.kind!r}", "loading")
+        if self.depths is not None:
+            if self.kind != "curve":
+                raise InputError("depths: apply to a contact curve only", "depths")
+            depths = [float(d) for d in self.depths]
+            object.__setattr__(self, "depths", tuple(entry("depths").check(depths, "contact")))
+
+
+class Cell(NamedTuple):
+    """A combination of the problem's parts: one cell of the support matrix."""
+
+    model: str  # "linear" | "rubber"
+    relaxing: bool
+    geometry: str  # "half-space" | "layer bonded" | "layer lubricated"
+    interface: str  # "frictionless" | "bonded" | "coulomb"
+    loading: str  # "curve" | "massless" | "inertia"
+
+
+@dataclass(frozen=True)
+class Unsupported:
+    """A combination that is refused, and why.
+
+    ``when`` selects the cells (a predicate on :class:`Cell`); ``parameter`` is the input the
+    refusal names (the one that adds the unsupported part); ``reason`` says why, in words that
+    fit the command line and Python alike.
+    """
+
+    when: Callable[[Cell], bool]
+    parameter: str
+    reason: str
+
+
+SUPPORT: tuple[Unsupported, ...] = (
+    Unsupported(
+        lambda c: c.model == "rubber" and c.geometry == "layer lubricated",
+        "base",
+        "a layer at finite strain is bonded only (the lubricated base's exterior stiffness "
+        "beyond the lateral edge is linear): take a bonded base or the linear model",
+    ),
+    Unsupported(
+        lambda c: c.relaxing and c.loading == "curve",
+        "prony",
+        "a contact curve is elastic: a viscoelastic body is pressed by an impact (give mass "
+        "and velocity to the dynamic impact, with density 0 for the quasi-static one)",
+    ),
+    Unsupported(
+        lambda c: c.interface != "frictionless" and c.loading != "curve",
+        "interface",
+        "the impact's contact is frictionless: a bonded or Coulomb indenter is solved in the "
+        "contact curve only",
+    ),
+)
+"""Every refused combination of the problem's parts, each with its reason: the one place that
+decides what combines (everything not refused here runs)."""
+
+
+@dataclass(frozen=True)
+class OptionLimit:
+    """Numerical or output options that a set of combinations does not take."""
+
+    when: Callable[[Cell], bool]
+    options: tuple[str, ...]
+    reason: str
+
+
+OPTION_SUPPORT: tuple[OptionLimit, ...] = (
+    OptionLimit(
+        lambda c: c.model == "rubber" and c.loading != "curve",
+        (
+            "history",
+            "out",
+            "force",
+            "refine",
+            "estimate",
+            "mesh_margin",
+            "domain_factor",
+            "growth",
+            "layer_rate",
+            "figure_format",
+        ),
+        "not supported with a finite-strain model in the impact (it takes mass, velocity, "
+        "density2, time_steps, mesh_size, thickness, base (bonded), prony and the rubber "
+        "options)",
+    ),
+    OptionLimit(
+        lambda c: c.loading == "massless",
+        ("layer_rate",),
+        "applies to a body with mass only: a massless body (density 0) radiates no waves for "
+        "the absorbing layer to damp",
+    ),
+    OptionLimit(
+        lambda c: c.model == "rubber" and c.loading == "curve",
+        ("accuracy",),
+        "applies to the linear model only; for a finite-strain model use refine, whose "
+        "estimates come with every run",
+    ),
+)
+"""Numerical and output options that some combinations do not take."""
+
+
+@dataclass(frozen=True)
+class Problem:
+    """The whole case: striker, body, geometry, interface and loading, checked once.
+
+    Build one with :meth:`impact` or :meth:`curve` (or from its parts); each part checks its
+    own values on construction, and the problem checks that its parts combine
+    (:data:`SUPPORT`). Every entry point builds one; the numerics (mesh, steps, ladder) and the
+    outputs stay outside it.
+    """
+
+    striker: Striker
+    body: Body
+    geometry: Geometry = field(default_factory=Geometry)
+    interface: Interface = field(default_factory=Interface)
+    loading: Loading = field(default_factory=Loading)
+
+    def __post_init__(self) -> None:
+        for part in fields(self):
+            expected = {"striker": Striker, "body": Body, "geometry": Geometry}.get(part.name)
+            expected = expected or {"interface": Interface, "loading": Loading}[part.name]
+            if not isinstance(getattr(self, part.name), expected):
+                raise InputError(
+                    f"{part.name} must be a shtaerman.problem.{expected.__name__}", part.name
+                )
+        check_bodies(self.striker.indenter, self.body.material, self.striker.material)
+        if self.loading.kind == "impact":
+            for name in ("mass", "velocity"):
+                if getattr(self.striker, name) is None:
+                    raise InputError(f"{name}: an impact needs the striker's {name}", name)
+        for limit in SUPPORT:
+            if limit.when(self.cell):
+                raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
+
+    @property
+    def cell(self) -> Cell:
+        """This problem's combination of parts."""
+        loading = self.loading.kind
+        if loading == "impact":
+            loading = "massless" if self.body.material.density == 0 else "inertia"
+        return Cell(
+            "rubber" if self.body.finite else "linear",
+            self.body.prony is not None,
+            self.geometry.name,
+            self.interface.name,
+            loading,
+        )
+
+    @classmethod
+    def impact(
+        cls,
+        indenter: PowerLawIndenter,
+        body: Material,
+        *,
+        mass: float,
+        velocity: float,
+        **parts: Any,
+    ) -> Problem:
+        """The impact of a striker of ``mass`` kg at ``velocity`` m/s on ``body``.
+
+        ``parts`` are the keywords of :func:`parts` (model, rubber options, prony, thickness,
+        base, interface, friction, striker material).
+        """
+        return cls.from_keywords(indenter, body, mass=mass, velocity=velocity, **parts)
+
+    @classmethod
+    def curve(
+        cls,
+        indenter: PowerLawIndenter,
+        body: Material,
+        *,
+        depths: Sequence[float] | None = None,
+        **parts: Any,
+    ) -> Problem:
+        """The contact curve of ``indenter`` pressed into ``body`` to ``depths`` (m; None:
+        eight up to the x_c of the impact of ``mass`` at ``velocity``)."""
+        return cls.from_keywords(indenter, body, loading="curve", depths=depths, **parts)
+
+    @classmethod
+    def from_keywords(cls, indenter: PowerLawIndenter, body: Material, **keywords: Any) -> Problem:
+        """A problem from the API's flat keywords (None: not given), each checked."""
+        unknown = sorted(set(keywords) - set(KEYWORDS))
+        if unknown:
+            raise TypeError(f"unexpected keyword arguments {unknown}")
+        given = {key: value for key, value in keywords.items() if value is not None}
+        depths = given.get("depths")
+        return cls(
+            Striker(
+                indenter, given.get("mass"), given.get("velocity"), given.get("striker", RIGID)
+            ),
+            Body(
+                body,
+                given.get("model", "linear"),
+                *(given.get(name) for name in RUBBER_OPTIONS),
+                prony=given.get("prony"),
+            ),
+            Geometry(given.get("thickness"), given.get("base")),
+            Interface(given.get("interface", "frictionless"), given.get("friction")),
+            Loading(given.get("loading", "impact"), None if depths is None else tuple(depths)),
+        )
+
+    def with_parts(self, **changes: Any) -> Problem:
+        """This problem with some parts replaced (checked again)."""
+        return replace(self, **changes)
+
+
+KEYWORDS = (
+    "mass",
+    "velocity",
+    "striker",
+    "model",
+    *RUBBER_OPTIONS,
+    "prony",
+    "thickness",
+    "base",
+    "interface",
+    "friction",
+    "loading",
+    "depths",
+)
+"""The flat keywords of :meth:`Problem.from_keywords`."""
+
+
+def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) -> None:
+    """Refuse, in one line naming it, a numerical or output option (its key) that the problem's
+    combination does not take (:data:`OPTION_SUPPORT`); ``given`` holds the options set."""
+    cell = problem.cell
+    model = f" {problem.body.model!r}" if problem.body.finite else ""
+    for limit in OPTION_SUPPORT:
+        if not limit.when(cell):
+            continue
+        for name in given:
+            if name in limit.options:
+                reason = limit.reason.replace("with a finite-strain model", f"with model{model}")
+                raise InputError(f"{name}: {reason}", name)
+
+
+def support_table() -> list[tuple[Cell, str]]:
+    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``)."""
+    from itertools import product
+
+    rows = []
+    for cell in product(
+        ("linear", "rubber"),
+        (False, True),
+        ("half-space", "layer bonded", "layer lubricated"),
+        ("frictionless", "bonded", "coulomb"),
+        ("curve", "massless", "inertia"),
+    ):
+        cell = Cell(*cell)
+        refusal = next((limit for limit in SUPPORT if limit.when(cell)), None)
+        rows.append((cell, "runs" if refusal is None else f"{refusal.parameter}: {refusal.reason}"))
+    return rows

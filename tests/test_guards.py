@@ -1,0 +1,64 @@
+"""Validity limits declared once (src/shtaerman/guards.py) and applied on every route: the
+API, the command line and sweep cases (issue 28: the linear impact ran to x/a = 2.27 without a
+word, and a sweep case on a 4 mm pad beyond its thickness reported no warning)."""
+
+import math
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli import main
+from shtaerman.guards import MAX_DEPTH_RATIO, ValidityWarning, depth_ratio, outside_validity
+from shtaerman.sweep.engine import execute_case
+from shtaerman.sweep.kinds import dynamic_case, get_kind
+
+BLUNT = sh.PowerLawIndenter(shape_coefficient=8.0, exponent=1.3)  # the issue's striker
+RUBBER = sh.Material(3e6, 0.49, 0.0)  # massless: the quasi-static FE impact, seconds
+NUMERICS = dict(mesh_size=0.2, time_steps=50, estimate=False)
+
+
+def test_the_depth_ratio_is_shtaermans():
+    """x/a = kappa_n A a^(n-1) (docs/theory.md): at a = 1 mm for z = 5 r^1.5, kappa_1.5 =
+    1.797210 (Gamma functions, DESIGN.md), so x/a = 5 * 1.797210 * 1e-3^0.5 = 0.2841660."""
+    paper = sh.PowerLawIndenter(5.0, 1.5)
+    depth = 1.797210 * 5.0 * 1e-3**1.5
+    assert depth_ratio(paper, depth) == pytest.approx(5.0 * 1.797210 * 1e-3**0.5, rel=1e-6)
+
+
+def test_each_limit_is_named_only_beyond_it():
+    paper = sh.PowerLawIndenter(5.0, 1.5)
+    # x/a = MAX_DEPTH_RATIO at depth d: x/a ~ x^(1 - 1/n) = x^(1/3) for n = 1.5
+    at_limit = 1e-3 * (MAX_DEPTH_RATIO / depth_ratio(paper, 1e-3)) ** 3
+    assert outside_validity(paper, 0.99 * at_limit, None, finite=False) == []
+    (beyond,) = outside_validity(paper, 1.01 * at_limit, None, finite=False)
+    assert beyond.startswith("depth:") and "far outside small strain" in beyond
+    (finite,) = outside_validity(paper, 1.01 * at_limit, None, finite=True)
+    assert "unverified" in finite
+    assert outside_validity(paper, 1e-4, 1e-4, finite=False)[0].startswith("thickness:")
+    assert outside_validity(paper, 1e-4, 1.0001e-4, finite=False) == []
+
+
+def test_the_linear_impact_far_outside_small_strain_warns():
+    """The issue's case (0.12 kg at 1.5 m/s on 3 MPa) reaches x/a near 2.3."""
+    with pytest.warns(ValidityWarning, match=r"contact radii .* far outside small strain") as said:
+        result = sh.dynamic(BLUNT, RUBBER, mass=0.12, velocity=1.5, **NUMERICS)
+    ratio = depth_ratio(BLUNT, result.x_max)
+    assert ratio > 2.0 and f"is {ratio:.3g} contact radii" in str(said[0].message)
+
+
+def test_the_command_line_prints_the_warning(capsys):
+    argv = ["dynamic", "--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6"]
+    argv += ["--nu2", "0.49", "--mass", "0.12", "--velocity", "1.5", "--density2", "0"]
+    argv += ["--mesh-size", "0.2", "--time-steps", "50", "--no-estimate", "--json"]
+    main(argv)
+    assert "far outside small strain" in capsys.readouterr().err
+
+
+def test_a_sweep_case_records_the_warnings_of_its_run():
+    """Beyond the pad's thickness: the same words as the API's, in the case's warnings."""
+    params = get_kind("dynamic").defaults()
+    params.update(mass=0.7, velocity=3.0, thickness=1.3e-4, density2=1100.0)
+    params.update(mesh_size=0.2, time_steps=50, estimate=False)
+    record = execute_case(dynamic_case, 0, params)
+    assert any("reaches the layer's thickness 0.00013 m" in w for w in record["warnings"])
+    assert math.isfinite(record["outputs"]["x_max"])

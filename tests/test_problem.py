@@ -1,0 +1,149 @@
+"""The problem object (src/shtaerman/problem.py): one description of the case, checked once,
+whose combinations are declared in one table that every entry point applies."""
+
+import itertools
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli import main
+from shtaerman.problem import SUPPORT, Cell, check_options, support_table
+
+PAPER = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
+RUBBER = sh.Material(7.5e6, 0.5, 1100.0)
+MASSLESS = sh.Material(7.5e6, 0.5, 0.0)
+
+PARTS = {  # one keyword set per value of each axis of the matrix
+    "model": {"linear": {}, "rubber": {"model": "neo-hookean"}},
+    "relaxing": {False: {}, True: {"prony": "0.3:1e-3"}},
+    "geometry": {
+        "half-space": {},
+        "layer bonded": {"thickness": 0.012, "base": "bonded"},
+        "layer lubricated": {"thickness": 0.012, "base": "lubricated"},
+    },
+    "interface": {
+        "frictionless": {},
+        "bonded": {"interface": "bonded"},
+        "coulomb": {"interface": "bonded", "friction": 0.5},
+    },
+}
+
+
+def _problem(cell: Cell) -> sh.Problem:
+    keywords = {}
+    for axis in PARTS:
+        keywords.update(PARTS[axis][getattr(cell, axis)])
+    if cell.loading == "curve":
+        return sh.Problem.curve(PAPER, RUBBER, **keywords)
+    body = MASSLESS if cell.loading == "massless" else RUBBER
+    return sh.Problem.impact(PAPER, body, mass=0.7, velocity=3.0, **keywords)
+
+
+@pytest.mark.parametrize(("cell", "verdict"), support_table(), ids=lambda v: str(v))
+def test_every_cell_is_built_or_refused_as_the_table_declares(cell, verdict):
+    """Building the problem of each of the 108 cells applies exactly the declared refusal."""
+    if verdict == "runs":
+        assert _problem(cell).cell == cell
+    else:
+        with pytest.raises(sh.InputError) as refused:
+            _problem(cell)
+        assert str(refused.value) == verdict
+        assert refused.value.parameter == verdict.split(":")[0]
+
+
+def test_the_table_refuses_what_no_route_computes_and_nothing_else():
+    """The refusals are the three combinations the code does not compute today."""
+    refused = {cell for cell, verdict in support_table() if verdict != "runs"}
+    lubricated_rubber = {c for c in refused if c.model == "rubber" and "lubricated" in c.geometry}
+    assert len(lubricated_rubber) == 2 * 3 * 3  # relaxing x interface x loading
+    assert all(any(limit.when(cell) for limit in SUPPORT) for cell in refused)
+    axes = (("linear", "rubber"), (False, True), ("half-space",), ("frictionless",))
+    for model, relaxing, geometry, interface in itertools.product(*axes):
+        for loading in ("massless", "inertia"):  # the impact of every body on the half-space
+            assert Cell(model, relaxing, geometry, interface, loading) not in refused
+
+
+def test_a_part_checks_its_own_values_and_names_them():
+    with pytest.raises(sh.InputError, match=r"^thickness must be"):
+        sh.Geometry(thickness=-1.0)
+    with pytest.raises(sh.InputError, match=r"^friction: applies to a bonded indenter only"):
+        sh.Interface("frictionless", friction=0.3)
+    with pytest.raises(sh.InputError, match=r"^mooney_ratio: applies to the finite-strain"):
+        sh.Body(RUBBER, mooney_ratio=0.0)  # 0 is a value, not "not given"
+    with pytest.raises(sh.InputError, match=r"^mass: an impact needs the striker's mass"):
+        sh.Problem(sh.Striker(PAPER, velocity=3.0), sh.Body(RUBBER))
+    with pytest.raises(sh.InputError, match=r"^body must be a Material"):
+        sh.Problem.impact(PAPER, "rubber", mass=0.7, velocity=3.0)
+
+
+def test_options_a_combination_does_not_take_are_refused_by_name():
+    rubber = sh.Problem.impact(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean")
+    for name in ("out", "history", "figure_format", "estimate", "refine", "force"):
+        with pytest.raises(sh.InputError, match=rf"^{name}: not supported with model"):
+            check_options(rubber, [name])
+    check_options(rubber, ["time_steps", "mesh_size"])  # taken
+
+
+@pytest.mark.parametrize(
+    "keywords",
+    [{"figure_format": "svg"}, {"estimate": False}, {"force": True}, {"refine": 2.0}],
+)
+def test_the_api_refuses_what_the_finite_impact_ignored(keywords):
+    """sh.dynamic(model=...) used to drop figure_format, estimate and force without a word."""
+    with pytest.raises(sh.InputError, match="not supported with model 'neo-hookean'"):
+        sh.dynamic(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean", **keywords)
+
+
+def _one_line_error(capsys, argv, words):
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and words in err, err
+    return err
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        # issue 31, item 7: a truthiness test ran the linear model with --mooney-ratio 0
+        (["dynamic", "--mooney-ratio", "0"], "--mooney-ratio: applies to the finite-strain"),
+        # item 8: the mismatched rubber option is named, not only the velocity
+        (
+            ["dynamic", "--model", "neo-hookean", "--mooney-ratio", "0", "--velocity", "11"],
+            "--mooney-ratio: applies to the mooney-rivlin model only",
+        ),
+        # item 10: the mass sets the depth as much as the velocity does
+        (
+            ["dynamic", "--model", "neo-hookean", "--mass", "1e-300"],
+            "--mass, --velocity: 1e-300 kg",
+        ),
+        # item 15: a pad always has its lateral absorber; 0 ran as 10 without a word
+        (["dynamic", "--thickness", "0.02", "--layer-rate", "0"], "--layer-rate: a layer always"),
+        # item 16: silently accepted before
+        (["dynamic", "--model", "neo-hookean", "--figure-format", "svg"], "--figure-format: not"),
+        (["dynamic", "--interface", "bonded", "--density2", "0"], "--interface: the impact's"),
+    ],
+)
+def test_the_cli_refuses_in_one_line_naming_the_options(capsys, argv, words):
+    _one_line_error(capsys, argv, words)
+
+
+def test_default_depths_beyond_the_finite_reach_name_the_impact_not_the_depths(capsys):
+    """Issue 31, item 9: no --depths was given, so the message must not ask to lower them."""
+    argv = ["contact", "--model", "neo-hookean", "--velocity", "11"]
+    err = _one_line_error(capsys, argv, "--mass, --velocity: the default depths reach")
+    assert "--depths" not in err
+
+
+def test_a_problem_runs_as_its_keywords_do():
+    """sh.dynamic(problem) is sh.dynamic(indenter, body, ...) for the same parts (coarse,
+    massless: the quasi-static FE impact in a few seconds)."""
+    numerics = dict(mesh_size=0.2, time_steps=50, estimate=False)
+    keywords = dict(mass=0.7, velocity=1.0, prony="0.3:1e-3")
+    by_keywords = sh.dynamic(PAPER, MASSLESS, **keywords, **numerics)
+    problem = sh.Problem.impact(PAPER, MASSLESS, **keywords)
+    by_problem = sh.dynamic(problem, **numerics)
+    assert by_problem.dynamic == by_keywords.dynamic  # the same run: bitwise
+    with pytest.raises(TypeError, match="takes numerics only"):
+        sh.dynamic(problem, mass=0.7)
+    with pytest.raises(sh.InputError, match="presses a contact curve"):
+        sh.contact(problem)
