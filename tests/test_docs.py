@@ -7,10 +7,13 @@ leaves behind are compared with the library and the command line.
 """
 
 import argparse
+import html
 import importlib.util
 import json
+import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tomllib
@@ -55,16 +58,29 @@ def run_tutorial(name: str, tmp_path: Path, *names: str) -> dict:
     return json.loads(line.removeprefix("NAMESPACE "))
 
 
+def offline() -> list[str]:
+    """A command prefix that runs a command with no network (a new network namespace with only
+    a loopback), where ``unshare`` may make one; else none (the built pages are still checked
+    for loads from the network, by test_theory_page_loads_nothing_from_the_network)."""
+    for prefix in (["unshare", "-n"], ["unshare", "-rn"]):
+        if shutil.which(prefix[0]) and subprocess.run([*prefix, "true"]).returncode == 0:
+            return prefix
+    return []
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
-    """The site built with ``mkdocs build --strict`` into a temporary folder."""
+    """The site built with ``mkdocs build --strict`` into a temporary folder, with no network
+    where the system allows it (:func:`offline`); the tutorials are not run (the tests run
+    them)."""
     out = tmp_path_factory.mktemp("site")
     done = subprocess.run(
-        [sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(out)],
+        [*offline(), sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(out)],
         cwd=ROOT,
         capture_output=True,
         text=True,
         timeout=600,
+        env={name: value for name, value in os.environ.items() if name != "SHTAERMAN_DOCS_EXECUTE"},
     )
     assert done.returncode == 0, f"mkdocs build --strict failed:\n{done.stdout}\n{done.stderr}"
     return out
@@ -78,6 +94,79 @@ def test_site_builds_with_every_page(site):
         text = re.sub(r"<[^>]+>", "", page)  # the highlighted code without its markup
         assert "import shtaerman as sh" in text, script.name  # its code cells are rendered
         assert (site / "tutorials" / script.name).is_file()  # and the script is downloadable
+
+
+LOADS = re.compile(
+    r"<(?:script|link|img|iframe|source|audio|video|embed|object)\b[^>]*?"
+    r"""\b(?:src|href|srcset|data)\s*=\s*["']?\s*((?:https?:)?//[^"'\s>]+)""",
+    re.I,
+)
+"""A URL on the network that an element loads (a script, a stylesheet, a font's preconnect,
+an image); links (``<a href>``) are not loads."""
+CSS_LOADS = re.compile(r"""(?:url\(|@import)\s*["']?\s*((?:https?:)?//[^"')\s]+)""", re.I)
+PROBE = """<script>
+window.addEventListener("load", () => {
+  const out = document.createElement("pre");
+  out.id = "probe";
+  out.textContent = JSON.stringify(performance.getEntriesByType("resource").map((e) => e.name));
+  document.body.appendChild(out);
+});
+</script>"""
+"""Writes, at the load event, every resource the page fetched over the network (Chromium lists
+http(s) loads, refused ones included, and not the site's own file:// ones)."""
+
+
+def network_loads(page: Path) -> list[str]:
+    """URLs on the network that ``page`` loads, itself or through the stylesheets it links."""
+    text = page.read_text(encoding="utf-8")
+    found = LOADS.findall(text)
+    for sheet in re.findall(r'<link\b[^>]*\bhref="([^":]+\.css)"', text):
+        found += CSS_LOADS.findall((page.parent / sheet).read_text(encoding="utf-8"))
+    return found
+
+
+def test_theory_page_loads_nothing_from_the_network(site):
+    theory = site / "theory" / "index.html"
+    # the MathJax of the CDN and the theme's web fonts were loaded from the network
+    assert network_loads(theory) == []
+    scripts = re.findall(r'<script src="([^"]+)"', theory.read_text(encoding="utf-8"))
+    assert "../javascripts/mathjax/tex-svg.js" in scripts  # the MathJax shipped with the site
+    licence = (site / "javascripts" / "mathjax" / "LICENSE").read_text(encoding="utf-8")
+    assert licence.split()[:4] == ["Apache", "License", "Version", "2.0,"]  # shipped with it
+
+
+def test_network_loads_sees_a_script_a_font_and_a_stylesheets_import(tmp_path):
+    page = tmp_path / "page.html"
+    (tmp_path / "style.css").write_text('@import "https://example.org/a.css";', encoding="utf-8")
+    page.write_text(
+        '<script src="https://cdn.example/m.js"></script><link href="//fonts.example/f">'
+        '<link rel="stylesheet" href="style.css"><a href="https://doi.org/10.1">a link</a>',
+        encoding="utf-8",
+    )
+    assert network_loads(page) == [
+        "https://cdn.example/m.js",
+        "//fonts.example/f",
+        "https://example.org/a.css",
+    ]
+
+
+def test_theory_page_typesets_its_equations_with_no_network(site, browser):
+    theory = site / "theory" / "index.html"
+    text = theory.read_text(encoding="utf-8")
+    formulas = text.count('class="arithmatex"')
+    assert formulas > 300  # the page's \( \) and \[ \] formulas (389 when written)
+    probed = theory.with_name("probed.html")  # beside it: the same relative links
+    probed.write_text(text.replace("</body>", PROBE + "</body>"), encoding="utf-8")
+    dom = browser("--virtual-time-budget=20000", "--dump-dom", probed.as_uri())
+    match = re.search(r'<pre id="probe">(.*?)</pre>', dom, re.DOTALL)
+    assert match, "the probe did not run: " + dom[-500:]
+    assert json.loads(html.unescape(match.group(1))) == []  # nothing asked of the network
+    # MathJax replaced each formula by its typeset SVG, none failed, and no TeX is left raw
+    assert dom.count("<mjx-container") == formulas
+    assert dom.count("<svg") >= formulas
+    body = re.sub(r"<(script|style|pre)\b.*?</\1>", "", dom, flags=re.S)  # the page's text
+    assert "merror" not in body and "data-mjx-error" not in body
+    assert "\\[" not in body and "\\(" not in body
 
 
 def test_api_reference_documents_the_public_api(site):
