@@ -6,6 +6,7 @@ subcommand's options with their defaults and help), so it cannot drift from the 
 markdown cells as text, code cells as Python blocks, the script itself offered for download;
 with ``SHTAERMAN_DOCS_EXECUTE=1`` (``make docs``) the tutorials run and each cell's output follows
 it (the tests run the tutorials themselves, so they build without).
+The docstrings' Sphinx roles (``:func:`name```) become cross-references (:class:`SphinxRoles`).
 In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block per name of
 ``shtaerman.__all__`` at its public path, grouped as inputs, computations, results.
 """
@@ -18,10 +19,12 @@ import importlib
 import inspect
 import io
 import os
+import re
 import tempfile
 import types
 from pathlib import Path
 
+import griffe
 import jupytext
 from mkdocs.structure.files import File, Files
 
@@ -181,6 +184,44 @@ def api_blocks() -> str:
             parts.append(f"## {title}")
             parts += [f"::: {path}" for path in members]
     return "\n\n".join(parts)
+
+
+ROLE = re.compile(r":(?:py:)?(?:func|class|meth|attr|data|const|mod|exc|obj):`(~?)([\w.]+)`")
+"""A Sphinx cross-reference role: ``:func:`name```, ``:class:`~a.b.Name``` (shown as ``Name``)."""
+
+
+def _target(obj: griffe.Object, name: str) -> str:
+    """The full path ``name`` means in ``obj``'s docstring ("": none is found)."""
+    head, _, rest = name.partition(".")
+    try:
+        path = name if head == "shtaerman" else obj.resolve(head) + (rest and f".{rest}")
+        return obj.modules_collection[path].canonical_path
+    except (griffe.NameResolutionError, griffe.AliasResolutionError, KeyError):
+        return ""
+
+
+def sphinx_roles_to_markdown(obj: griffe.Object, text: str) -> str:
+    """``text`` with each Sphinx role of ``obj``'s docstring as a code span that links to its
+    target where the site documents it (an optional mkdocs-autorefs reference)."""
+
+    def replace(match: re.Match) -> str:
+        shown = match[2].rsplit(".", 1)[-1] if match[1] else match[2]
+        path = _target(obj, match[2])
+        if not path:
+            return f"`{shown}`"
+        return f'<autoref identifier="{path}" optional><code>{shown}</code></autoref>'
+
+    return ROLE.sub(replace, text)
+
+
+class SphinxRoles(griffe.Extension):
+    """Griffe extension (mkdocs.yml): the docstrings are written with Sphinx roles, which
+    mkdocstrings' markdown would show raw; each becomes a code span, linked where it can be."""
+
+    def on_object(self, *, obj: griffe.Object, **kwargs) -> None:
+        """Rewrite the roles of ``obj``'s docstring, once the whole package is loaded."""
+        if obj.docstring is not None:
+            obj.docstring.value = sphinx_roles_to_markdown(obj, obj.docstring.value)
 
 
 def on_page_markdown(markdown: str, page, config, files) -> str:

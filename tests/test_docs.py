@@ -182,6 +182,17 @@ def test_api_reference_documents_the_public_api(site):
         assert " ".join(obj.__doc__.split()[:3]) in text, name  # with its docstring
 
 
+def test_api_reference_shows_no_raw_sphinx_role(site):
+    page = (site / "api" / "index.html").read_text(encoding="utf-8")
+    text = html.unescape(re.sub(r"<[^>]+>", "", page))
+    # the docstrings' :func:`name` roles (34 were shown raw): as code, linked where documented
+    assert re.findall(r":(?:py:)?[a-z]+:`?\w", text) == []
+    target = "shtaerman.theory.ateb.ateb_sine"
+    assert re.search(f'<a class="autorefs [^>]*href="#{target}"><code>ateb_sine</code></a>', page)
+    # a target the site does not document is code, not a broken link
+    assert '<span title="shtaerman.theory.layer"><code>shtaerman.theory.layer</code></span>' in page
+
+
 def test_parameter_table_lists_every_cli_option_with_its_default(site):
     page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
     [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
