@@ -35,8 +35,10 @@ files, sweep files and the Python API use the command-line names in snake_case
 (`--shape-coefficient` is `shape_coefficient`); SI units everywhere.
 """
 
-VOCABULARY_TEXT = """Every input of a study file, a sweep and the Python API, with its unit, valid
-range, default and the kinds of computation that take it (study and sweep kinds)."""
+VOCABULARY_TEXT = """Every input of a study file, a sweep and the Python API: its key, its
+command-line option and the commands that take it (or none: a study and sweep key only), its
+default, meaning, unit, valid range and the kinds of computation that take it (study and sweep
+kinds)."""
 
 
 def _cell(text: str) -> str:
@@ -84,7 +86,7 @@ def parameters_page() -> str:
         vocabulary = None
     if vocabulary is not None and hasattr(vocabulary, "parameter_table"):
         parts += ["## Study files, sweeps and the Python API", "", VOCABULARY_TEXT, ""]
-        parts.append(vocabulary.parameter_table())
+        parts.append(vocabulary.parameter_table(parser))
     parts += ["## The command line", "", "Every option of every command, and its default.", ""]
     for name, sub in commands.choices.items():
         summary = sub.description.splitlines()[0] if sub.description else ""

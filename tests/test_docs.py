@@ -23,6 +23,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import build_parser, main
+from shtaerman.vocabulary import VOCABULARY, entry
 
 ROOT = Path(__file__).resolve().parents[1]
 TUTORIALS = ROOT / "docs" / "tutorials"
@@ -108,12 +109,30 @@ PROBE = """<script>
 window.addEventListener("load", () => {
   const out = document.createElement("pre");
   out.id = "probe";
-  out.textContent = JSON.stringify(performance.getEntriesByType("resource").map((e) => e.name));
+  out.textContent = JSON.stringify(EXPRESSION);
   document.body.appendChild(out);
 });
 </script>"""
-"""Writes, at the load event, every resource the page fetched over the network (Chromium lists
-http(s) loads, refused ones included, and not the site's own file:// ones)."""
+"""Writes, at the load event, the JSON of a JavaScript expression into the DOM."""
+NETWORK = 'performance.getEntriesByType("resource").map((e) => e.name)'
+"""Every resource the page fetched over the network (Chromium lists http(s) loads, refused ones
+included, and not the site's own file:// ones)."""
+TABLES = """[...document.querySelectorAll("article table")].map((table) => (
+  table.getBoundingClientRect().right - table.closest("article").getBoundingClientRect().right
+))"""
+"""How far each table of the page sticks out of the text's column, in CSS pixels."""
+
+
+def probe(browser, page: Path, expression: str) -> tuple[object, str]:
+    """Load ``page`` in Chromium with a probe of ``expression``: its value at the load event,
+    and the DOM once the page's scripts have run (20 s of virtual time)."""
+    probed = page.with_name("probed.html")  # beside it: the same relative links
+    script = PROBE.replace("EXPRESSION", expression)
+    probed.write_text(page.read_text(encoding="utf-8").replace("</body>", script + "</body>"))
+    dom = browser("--virtual-time-budget=20000", "--dump-dom", probed.as_uri())
+    match = re.search(r'<pre id="probe">(.*?)</pre>', dom, re.DOTALL)
+    assert match, "the probe did not run: " + dom[-500:]
+    return json.loads(html.unescape(match.group(1))), dom
 
 
 def network_loads(page: Path) -> list[str]:
@@ -152,21 +171,24 @@ def test_network_loads_sees_a_script_a_font_and_a_stylesheets_import(tmp_path):
 
 def test_theory_page_typesets_its_equations_with_no_network(site, browser):
     theory = site / "theory" / "index.html"
-    text = theory.read_text(encoding="utf-8")
-    formulas = text.count('class="arithmatex"')
-    assert formulas > 300  # the page's \( \) and \[ \] formulas (389 when written)
-    probed = theory.with_name("probed.html")  # beside it: the same relative links
-    probed.write_text(text.replace("</body>", PROBE + "</body>"), encoding="utf-8")
-    dom = browser("--virtual-time-budget=20000", "--dump-dom", probed.as_uri())
-    match = re.search(r'<pre id="probe">(.*?)</pre>', dom, re.DOTALL)
-    assert match, "the probe did not run: " + dom[-500:]
-    assert json.loads(html.unescape(match.group(1))) == []  # nothing asked of the network
+    formulas = theory.read_text(encoding="utf-8").count('class="arithmatex"')
+    assert formulas > 300  # the page's \\( \\) and \\[ \\] formulas (389 when written)
+    loaded, dom = probe(browser, theory, NETWORK)
+    assert loaded == []  # nothing asked of the network
     # MathJax replaced each formula by its typeset SVG, none failed, and no TeX is left raw
     assert dom.count("<mjx-container") == formulas
     assert dom.count("<svg") >= formulas
     body = re.sub(r"<(script|style|pre)\b.*?</\1>", "", dom, flags=re.S)  # the page's text
     assert "merror" not in body and "data-mjx-error" not in body
     assert "\\[" not in body and "\\(" not in body
+
+
+def test_parameter_tables_fit_the_page(site, browser):
+    sticking_out, _ = probe(browser, site / "parameters" / "index.html", TABLES)
+    # the study-file table's Meaning column ran 49 px past the text's edge, cut off
+    assert max(sticking_out) <= 0.5  # half a pixel: rounding of the layout
+    [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    assert len(sticking_out) == 3 + len(commands.choices)  # a table per group, per command
 
 
 def test_api_reference_documents_the_public_api(site):
@@ -205,6 +227,33 @@ def test_parameter_table_lists_every_cli_option_with_its_default(site):
     refine = contact.split("--refine", 1)[1].split("</tr>", 1)[0]
     default = commands.choices["contact"].get_default("refine")
     assert f"<code>{default}</code>" in refine
+
+
+def help_options(command: str, capsys) -> set[str]:
+    """The options that ``shtaerman COMMAND --help`` lists."""
+    with pytest.raises(SystemExit) as exit:
+        main([command, "--help"])
+    assert exit.value.code == 0
+    return set(re.findall(r"(?<![\w-])--[A-Za-z0-9][\w-]*", capsys.readouterr().out))
+
+
+def test_parameter_page_shows_only_options_the_cli_takes(site, capsys):
+    page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
+    [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    taken = {name: help_options(name, capsys) for name in commands.choices}
+    everywhere = set().union(*taken.values())
+    # every option on the page is one of some command (--thickness-ratio and --dynamic were not)
+    assert set(re.findall(r"<code>(--[\w-]+)", page)) <= everywhere
+    rows = re.findall(r"<td><code>(\w+)</code><br>(.*?)</td>", page)
+    assert len(rows) == len(VOCABULARY)  # one per input, each with its option or none
+    for key, cell in rows:
+        shown = re.fullmatch(r"<code>(--[\w-]+)</code> \(([\w, -]+)\)", cell)
+        if shown is None:  # a study and sweep key with no option
+            assert cell == "study and sweep key only" and entry(key).kinds, key
+            assert "--" + key.replace("_", "-") not in everywhere, key
+            continue
+        option, listed = shown[1], shown[2].split(", ")
+        assert listed == [name for name, options in taken.items() if option in options], key
 
 
 def test_tutorial_own_indenter(tmp_path, capsys):
