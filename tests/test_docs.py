@@ -325,6 +325,13 @@ def test_citation_and_licence_match_the_package():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     assert citation["license"] == project["license"]["text"] == "MIT"
     assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("MIT License\n")
+    assert citation["authors"] == [{"name": "the shtaerman developers"}]  # an entity
+    # the changelog has the package's version, released on the citation's date, and its
+    # version policy, which the README links to
+    changelog = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert f"\n## [{sh.__version__}] - {citation['date-released']}\n" in changelog
+    assert "\n## Version policy\n" in changelog and "**breaking**" in changelog
+    assert "[CHANGELOG.md](CHANGELOG.md)" in (ROOT / "README.md").read_text(encoding="utf-8")
 
 
 def docs_commands() -> list[str]:
