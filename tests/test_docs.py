@@ -64,7 +64,10 @@ def offline() -> list[str]:
     a loopback), where ``unshare`` may make one; else none (the built pages are still checked
     for loads from the network, by test_theory_page_loads_nothing_from_the_network)."""
     for prefix in (["unshare", "-n"], ["unshare", "-rn"]):
-        if shutil.which(prefix[0]) and subprocess.run([*prefix, "true"]).returncode == 0:
+        if (
+            shutil.which(prefix[0])
+            and subprocess.run([*prefix, "true"], capture_output=True).returncode == 0
+        ):
             return prefix
     return []
 
