@@ -6,6 +6,7 @@ subcommand's options with their defaults and help), so it cannot drift from the 
 markdown cells as text, code cells as Python blocks, the script itself offered for download;
 with ``SHTAERMAN_DOCS_EXECUTE=1`` (``make docs``) the tutorials run and each cell's output follows
 it (the tests run the tutorials themselves, so they build without).
+The docstrings' Sphinx roles (``:func:`name```) become cross-references (:class:`SphinxRoles`).
 In ``api.md`` the line ``<!-- public-api -->`` becomes one mkdocstrings block per name of
 ``shtaerman.__all__`` at its public path, grouped as inputs, computations, results.
 """
@@ -18,10 +19,12 @@ import importlib
 import inspect
 import io
 import os
+import re
 import tempfile
 import types
 from pathlib import Path
 
+import griffe
 import jupytext
 from mkdocs.structure.files import File, Files
 
@@ -32,8 +35,10 @@ files, sweep files and the Python API use the command-line names in snake_case
 (`--shape-coefficient` is `shape_coefficient`); SI units everywhere.
 """
 
-VOCABULARY_TEXT = """Every input of a study file, a sweep and the Python API, with its unit, valid
-range, default and the kinds of computation that take it (study and sweep kinds)."""
+VOCABULARY_TEXT = """Every input of a study file, a sweep and the Python API: its key, its
+command-line option and the commands that take it (or none: a study and sweep key only), its
+default, meaning, unit, valid range and the kinds of computation that take it (study and sweep
+kinds)."""
 
 
 def _cell(text: str) -> str:
@@ -81,7 +86,7 @@ def parameters_page() -> str:
         vocabulary = None
     if vocabulary is not None and hasattr(vocabulary, "parameter_table"):
         parts += ["## Study files, sweeps and the Python API", "", VOCABULARY_TEXT, ""]
-        parts.append(vocabulary.parameter_table())
+        parts.append(vocabulary.parameter_table(parser))
     parts += ["## The command line", "", "Every option of every command, and its default.", ""]
     for name, sub in commands.choices.items():
         summary = sub.description.splitlines()[0] if sub.description else ""
@@ -181,6 +186,44 @@ def api_blocks() -> str:
             parts.append(f"## {title}")
             parts += [f"::: {path}" for path in members]
     return "\n\n".join(parts)
+
+
+ROLE = re.compile(r":(?:py:)?(?:func|class|meth|attr|data|const|mod|exc|obj):`(~?)([\w.]+)`")
+"""A Sphinx cross-reference role: ``:func:`name```, ``:class:`~a.b.Name``` (shown as ``Name``)."""
+
+
+def _target(obj: griffe.Object, name: str) -> str:
+    """The full path ``name`` means in ``obj``'s docstring ("": none is found)."""
+    head, _, rest = name.partition(".")
+    try:
+        path = name if head == "shtaerman" else obj.resolve(head) + (rest and f".{rest}")
+        return obj.modules_collection[path].canonical_path
+    except (griffe.NameResolutionError, griffe.AliasResolutionError, KeyError):
+        return ""
+
+
+def sphinx_roles_to_markdown(obj: griffe.Object, text: str) -> str:
+    """``text`` with each Sphinx role of ``obj``'s docstring as a code span that links to its
+    target where the site documents it (an optional mkdocs-autorefs reference)."""
+
+    def replace(match: re.Match) -> str:
+        shown = match[2].rsplit(".", 1)[-1] if match[1] else match[2]
+        path = _target(obj, match[2])
+        if not path:
+            return f"`{shown}`"
+        return f'<autoref identifier="{path}" optional><code>{shown}</code></autoref>'
+
+    return ROLE.sub(replace, text)
+
+
+class SphinxRoles(griffe.Extension):
+    """Griffe extension (mkdocs.yml): the docstrings are written with Sphinx roles, which
+    mkdocstrings' markdown would show raw; each becomes a code span, linked where it can be."""
+
+    def on_object(self, *, obj: griffe.Object, **kwargs) -> None:
+        """Rewrite the roles of ``obj``'s docstring, once the whole package is loaded."""
+        if obj.docstring is not None:
+            obj.docstring.value = sphinx_roles_to_markdown(obj, obj.docstring.value)
 
 
 def on_page_markdown(markdown: str, page, config, files) -> str:

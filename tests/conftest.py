@@ -20,6 +20,7 @@ if os.environ.get("PYTEST_XDIST_WORKER"):  # one BLAS/OpenMP thread per worker (
         os.environ.setdefault(_variable, "1")
 
 import pytest
+from headless import chromium, find_chromium
 
 import shtaerman.output.folder
 from shtaerman.cli import main
@@ -84,6 +85,19 @@ def quick_verify(quick_outcomes, tmp_path_factory) -> tuple[int, Path, dict]:
         )
     assert sorted(served) == sorted(QUICK_STUDIES)
     return code, out, json.loads((out / "results.json").read_text())
+
+
+@pytest.fixture(scope="session")
+def browser(tmp_path_factory):
+    """A function running headless Chromium, with no network, with the given arguments; it
+    returns the browser's stdout (tests/headless.py).
+
+    Session-scoped so that, without a browser, the tests skip before any costly fixture runs.
+    """
+    found = find_chromium()
+    if found is None:
+        pytest.skip("no Chromium on PATH: install Debian's 'chromium' (.ci/run does so)")
+    return chromium(found, tmp_path_factory.mktemp("chromium-profile"))
 
 
 @pytest.fixture

@@ -7,10 +7,13 @@ leaves behind are compared with the library and the command line.
 """
 
 import argparse
+import html
 import importlib.util
 import json
+import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tomllib
@@ -20,6 +23,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import build_parser, main
+from shtaerman.vocabulary import VOCABULARY, entry
 
 ROOT = Path(__file__).resolve().parents[1]
 TUTORIALS = ROOT / "docs" / "tutorials"
@@ -55,16 +59,32 @@ def run_tutorial(name: str, tmp_path: Path, *names: str) -> dict:
     return json.loads(line.removeprefix("NAMESPACE "))
 
 
+def offline() -> list[str]:
+    """A command prefix that runs a command with no network (a new network namespace with only
+    a loopback), where ``unshare`` may make one; else none (the built pages are still checked
+    for loads from the network, by test_theory_page_loads_nothing_from_the_network)."""
+    for prefix in (["unshare", "-n"], ["unshare", "-rn"]):
+        if (
+            shutil.which(prefix[0])
+            and subprocess.run([*prefix, "true"], capture_output=True).returncode == 0
+        ):
+            return prefix
+    return []
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
-    """The site built with ``mkdocs build --strict`` into a temporary folder."""
+    """The site built with ``mkdocs build --strict`` into a temporary folder, with no network
+    where the system allows it (:func:`offline`); the tutorials are not run (the tests run
+    them)."""
     out = tmp_path_factory.mktemp("site")
     done = subprocess.run(
-        [sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(out)],
+        [*offline(), sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(out)],
         cwd=ROOT,
         capture_output=True,
         text=True,
         timeout=600,
+        env={name: value for name, value in os.environ.items() if name != "SHTAERMAN_DOCS_EXECUTE"},
     )
     assert done.returncode == 0, f"mkdocs build --strict failed:\n{done.stdout}\n{done.stderr}"
     return out
@@ -80,6 +100,100 @@ def test_site_builds_with_every_page(site):
         assert (site / "tutorials" / script.name).is_file()  # and the script is downloadable
 
 
+LOADS = re.compile(
+    r"<(?:script|link|img|iframe|source|audio|video|embed|object)\b[^>]*?"
+    r"""\b(?:src|href|srcset|data)\s*=\s*["']?\s*((?:https?:)?//[^"'\s>]+)""",
+    re.I,
+)
+"""A URL on the network that an element loads (a script, a stylesheet, a font's preconnect,
+an image); links (``<a href>``) are not loads."""
+CSS_LOADS = re.compile(r"""(?:url\(|@import)\s*["']?\s*((?:https?:)?//[^"')\s]+)""", re.I)
+PROBE = """<script>
+window.addEventListener("load", () => {
+  const out = document.createElement("pre");
+  out.id = "probe";
+  out.textContent = JSON.stringify(EXPRESSION);
+  document.body.appendChild(out);
+});
+</script>"""
+"""Writes, at the load event, the JSON of a JavaScript expression into the DOM."""
+NETWORK = 'performance.getEntriesByType("resource").map((e) => e.name)'
+"""Every resource the page fetched over the network (Chromium lists http(s) loads, refused ones
+included, and not the site's own file:// ones)."""
+TABLES = """[...document.querySelectorAll("article table")].map((table) => (
+  table.getBoundingClientRect().right - table.closest("article").getBoundingClientRect().right
+))"""
+"""How far each table of the page sticks out of the text's column, in CSS pixels."""
+
+
+def probe(browser, page: Path, expression: str) -> tuple[object, str]:
+    """Load ``page`` in Chromium with a probe of ``expression``: its value at the load event,
+    and the DOM once the page's scripts have run (20 s of virtual time)."""
+    probed = page.with_name("probed.html")  # beside it: the same relative links
+    script = PROBE.replace("EXPRESSION", expression)
+    probed.write_text(page.read_text(encoding="utf-8").replace("</body>", script + "</body>"))
+    dom = browser("--virtual-time-budget=20000", "--dump-dom", probed.as_uri())
+    match = re.search(r'<pre id="probe">(.*?)</pre>', dom, re.DOTALL)
+    assert match, "the probe did not run: " + dom[-500:]
+    return json.loads(html.unescape(match.group(1))), dom
+
+
+def network_loads(page: Path) -> list[str]:
+    """URLs on the network that ``page`` loads, itself or through the stylesheets it links."""
+    text = page.read_text(encoding="utf-8")
+    found = LOADS.findall(text)
+    for sheet in re.findall(r'<link\b[^>]*\bhref="([^":]+\.css)"', text):
+        found += CSS_LOADS.findall((page.parent / sheet).read_text(encoding="utf-8"))
+    return found
+
+
+def test_theory_page_loads_nothing_from_the_network(site):
+    theory = site / "theory" / "index.html"
+    # the MathJax of the CDN and the theme's web fonts were loaded from the network
+    assert network_loads(theory) == []
+    scripts = re.findall(r'<script src="([^"]+)"', theory.read_text(encoding="utf-8"))
+    assert "../javascripts/mathjax/tex-svg.js" in scripts  # the MathJax shipped with the site
+    licence = (site / "javascripts" / "mathjax" / "LICENSE").read_text(encoding="utf-8")
+    assert licence.split()[:4] == ["Apache", "License", "Version", "2.0,"]  # shipped with it
+
+
+def test_network_loads_sees_a_script_a_font_and_a_stylesheets_import(tmp_path):
+    page = tmp_path / "page.html"
+    (tmp_path / "style.css").write_text('@import "https://example.org/a.css";', encoding="utf-8")
+    page.write_text(
+        '<script src="https://cdn.example/m.js"></script><link href="//fonts.example/f">'
+        '<link rel="stylesheet" href="style.css"><a href="https://doi.org/10.1">a link</a>',
+        encoding="utf-8",
+    )
+    assert network_loads(page) == [
+        "https://cdn.example/m.js",
+        "//fonts.example/f",
+        "https://example.org/a.css",
+    ]
+
+
+def test_theory_page_typesets_its_equations_with_no_network(site, browser):
+    theory = site / "theory" / "index.html"
+    formulas = theory.read_text(encoding="utf-8").count('class="arithmatex"')
+    assert formulas > 300  # the page's \\( \\) and \\[ \\] formulas (389 when written)
+    loaded, dom = probe(browser, theory, NETWORK)
+    assert loaded == []  # nothing asked of the network
+    # MathJax replaced each formula by its typeset SVG, none failed, and no TeX is left raw
+    assert dom.count("<mjx-container") == formulas
+    assert dom.count("<svg") >= formulas
+    body = re.sub(r"<(script|style|pre)\b.*?</\1>", "", dom, flags=re.S)  # the page's text
+    assert "merror" not in body and "data-mjx-error" not in body
+    assert "\\[" not in body and "\\(" not in body
+
+
+def test_parameter_tables_fit_the_page(site, browser):
+    sticking_out, _ = probe(browser, site / "parameters" / "index.html", TABLES)
+    # the study-file table's Meaning column ran 49 px past the text's edge, cut off
+    assert max(sticking_out) <= 0.5  # half a pixel: rounding of the layout
+    [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    assert len(sticking_out) == 3 + len(commands.choices)  # a table per group, per command
+
+
 def test_api_reference_documents_the_public_api(site):
     page = (site / "api" / "index.html").read_text(encoding="utf-8")
     text = " ".join(re.sub(r"<[^>]+>", " ", page).split())
@@ -91,6 +205,17 @@ def test_api_reference_documents_the_public_api(site):
         assert f'id="{path}"' in page, name
         obj = getattr(sh.api, name)
         assert " ".join(obj.__doc__.split()[:3]) in text, name  # with its docstring
+
+
+def test_api_reference_shows_no_raw_sphinx_role(site):
+    page = (site / "api" / "index.html").read_text(encoding="utf-8")
+    text = html.unescape(re.sub(r"<[^>]+>", "", page))
+    # the docstrings' :func:`name` roles (34 were shown raw): as code, linked where documented
+    assert re.findall(r":(?:py:)?[a-z]+:`?\w", text) == []
+    target = "shtaerman.theory.ateb.ateb_sine"
+    assert re.search(f'<a class="autorefs [^>]*href="#{target}"><code>ateb_sine</code></a>', page)
+    # a target the site does not document is code, not a broken link
+    assert '<span title="shtaerman.theory.layer"><code>shtaerman.theory.layer</code></span>' in page
 
 
 def test_parameter_table_lists_every_cli_option_with_its_default(site):
@@ -105,6 +230,33 @@ def test_parameter_table_lists_every_cli_option_with_its_default(site):
     refine = contact.split("--refine", 1)[1].split("</tr>", 1)[0]
     default = commands.choices["contact"].get_default("refine")
     assert f"<code>{default}</code>" in refine
+
+
+def help_options(command: str, capsys) -> set[str]:
+    """The options that ``shtaerman COMMAND --help`` lists."""
+    with pytest.raises(SystemExit) as exit:
+        main([command, "--help"])
+    assert exit.value.code == 0
+    return set(re.findall(r"(?<![\w-])--[A-Za-z0-9][\w-]*", capsys.readouterr().out))
+
+
+def test_parameter_page_shows_only_options_the_cli_takes(site, capsys):
+    page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
+    [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    taken = {name: help_options(name, capsys) for name in commands.choices}
+    everywhere = set().union(*taken.values())
+    # every option on the page is one of some command (--thickness-ratio and --dynamic were not)
+    assert set(re.findall(r"<code>(--[\w-]+)", page)) <= everywhere
+    rows = re.findall(r"<td><code>(\w+)</code><br>(.*?)</td>", page)
+    assert len(rows) == len(VOCABULARY)  # one per input, each with its option or none
+    for key, cell in rows:
+        shown = re.fullmatch(r"<code>(--[\w-]+)</code> \(([\w, -]+)\)", cell)
+        if shown is None:  # a study and sweep key with no option
+            assert cell == "study and sweep key only" and entry(key).kinds, key
+            assert "--" + key.replace("_", "-") not in everywhere, key
+            continue
+        option, listed = shown[1], shown[2].split(", ")
+        assert listed == [name for name, options in taken.items() if option in options], key
 
 
 def test_tutorial_own_indenter(tmp_path, capsys):
@@ -176,6 +328,13 @@ def test_citation_and_licence_match_the_package():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     assert citation["license"] == project["license"]["text"] == "MIT"
     assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("MIT License\n")
+    assert citation["authors"] == [{"name": "the shtaerman developers"}]  # an entity
+    # the changelog has the package's version, released on the citation's date, and its
+    # version policy, which the README links to
+    changelog = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert f"\n## [{sh.__version__}] - {citation['date-released']}\n" in changelog
+    assert "\n## Version policy\n" in changelog and "**breaking**" in changelog
+    assert "[CHANGELOG.md](CHANGELOG.md)" in (ROOT / "README.md").read_text(encoding="utf-8")
 
 
 def docs_commands() -> list[str]:

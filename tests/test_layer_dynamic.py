@@ -254,3 +254,29 @@ def test_study_file_refuses_a_bad_layer(tmp_path: Path, layer: str, message: str
     with pytest.raises(StudyError, match=r"bad\.toml") as error:
         load_study(path)
     assert message in str(error.value)
+
+
+def test_the_wave_field_of_a_pad_is_framed_to_the_pad(tmp_path: Path):
+    from PIL import Image
+
+    out = tmp_path / "out"
+    argv = ["dynamic", "--thickness", "0.012", "--no-estimate", "--mesh-size", "0.2"]
+    assert main([*argv, "--time-steps", "60", "--out", str(out)]) == 0
+    for picture in sorted(out.glob("wave_field_*.png")):
+        image = np.asarray(Image.open(picture).convert("RGB"), dtype=int)
+        inked = ((255 - image).max(axis=2) > 30).mean()  # not white (nor anti-aliased white)
+        # the 12 mm pad in a 250 x 150 mm frame inked 4-5 % of the picture; framed to the pad
+        # (25 x 12 mm) 31 %; the window itself is 0.62 x 0.48 of the picture
+        assert inked > 0.25, picture.name
+
+
+def test_body_frame_cuts_a_window_to_a_thin_body_only():
+    from shtaerman.plots.sections import body_frame, frame
+
+    window = frame(8e-3, 30.0)  # 250 x 150 mm around an 8 mm contact
+    assert (window.unit, window.width, window.depth) == ("mm", 250.0, 150.0)
+    assert body_frame(window, 0.5, 8e-3) is window  # a deep body: the same window
+    pad = body_frame(window, 0.012, 8.12e-3)  # 2 thicknesses (24 mm) on 5 mm ticks
+    assert (pad.unit, pad.width, pad.depth, pad.step) == ("mm", 25.0, 12.0, 5.0)
+    wide = body_frame(window, 0.002, 8.12e-3)  # a thin pad: the contact zone, 2 a wide
+    assert (wide.width, wide.depth) == (20.0, 2.0)

@@ -7,24 +7,20 @@ probe is shown to catch both faults on a page that has them. A screenshot of a f
 checks that the red FAILED box is on the first screen.
 
 Skipped, with the reason, only where no Chromium is installed (.ci/run installs Debian's
-``chromium`` when apt-get is available).
+``chromium`` when apt-get is available); the ``browser`` fixture is in conftest.py.
 """
 
 import copy
 import html
 import json
 import re
-import shutil
-import subprocess
 
 import numpy as np
-import pytest
+from headless import WINDOW
 from PIL import Image
 
 from shtaerman.output.report import render_html, report_context
 
-BROWSERS = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
-WINDOW = (1280, 900)
 PROBE = """<script>
 window.addEventListener("load", () => {
   const width = document.documentElement.clientWidth;
@@ -46,45 +42,6 @@ window.addEventListener("load", () => {
 </script>"""
 FAIL_RED = (187, 0, 0)
 """#b00: the FAILED box's border and heading."""
-
-
-@pytest.fixture(scope="session")
-def browser(tmp_path_factory):
-    """A function running headless Chromium with the given arguments; returns its stdout.
-
-    Session-scoped so that, without a browser, the tests skip before the quick run starts.
-    """
-    found = next((path for name in BROWSERS if (path := shutil.which(name))), None)
-    if found is None:
-        pytest.skip("no Chromium on PATH: install Debian's 'chromium' (.ci/run does so)")
-    profile = tmp_path_factory.mktemp("chromium-profile")
-
-    def run(*arguments: str) -> str:
-        flags = [
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--disable-dev-shm-usage",
-            "--hide-scrollbars",
-            f"--user-data-dir={profile}",
-            f"--window-size={WINDOW[0]},{WINDOW[1]}",
-        ]
-        completed = subprocess.run(
-            [found, *flags, *arguments],
-            capture_output=True,
-            text=True,
-            timeout=180,
-            check=False,
-        )
-        assert completed.returncode == 0, completed.stderr[-2000:]
-        return completed.stdout
-
-    return run
 
 
 def probe(browser, page: str, folder) -> dict:

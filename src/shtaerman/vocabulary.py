@@ -9,6 +9,7 @@ files, sweeps, their validation and the documentation's parameter table come fro
 
 from __future__ import annotations
 
+import argparse
 import difflib
 import itertools
 import math
@@ -832,21 +833,36 @@ def _is_real(value: Any) -> bool:
     return isinstance(value, int | float) and not isinstance(value, bool)
 
 
-def parameter_table() -> str:
-    """The documentation's parameter table (markdown): one row per input."""
-    rows = [
-        "| Key | CLI option | Unit | Valid | Default | Kinds | Meaning |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    for item in VOCABULARY:
-        valid = item.range_text()
-        if any(item.range_text(kind) != valid for kind in item.kinds):
-            valid = f"{valid}; FEM {item.range_text(FEM_KINDS[0])}"
-        if item.type == "floats" and item.max_items:
-            valid += f"; at most {item.max_items} values"
-        old = f" (formerly {', '.join(f'`{n}`' for n in item.old_names)})" if item.old_names else ""
-        rows.append(
-            f"| `{item.name}` | `{item.cli_option}` | {item.unit or '-'} | {valid or '-'} | "
-            f"{_default_text(item)} | {', '.join(item.kinds) or 'CLI'} | {item.meaning}{old} |"
-        )
-    return "\n".join(rows) + "\n"
+def parameter_table(cli: argparse.ArgumentParser) -> str:
+    """The documentation's parameter tables (markdown), one per group of inputs (the case, the
+    numerics, the output): each input's key, its option with the commands of ``cli`` (the
+    command line's parser) that take it, or none (a study and sweep key only), its default,
+    meaning, unit, valid values and kinds."""
+    [commands] = [a for a in cli._actions if isinstance(a, argparse._SubParsersAction)]
+    taken: dict[str, list[str]] = {}
+    for command, parser in commands.choices.items():
+        for option in parser._option_string_actions:
+            taken.setdefault(option, []).append(command)
+    titles = {"case": "The case", "numerics": "The numerics", "output": "What is written"}
+    parts = []
+    for group in dict.fromkeys(item.group for item in VOCABULARY):
+        parts += [f"### {titles.get(group, group)}", ""]
+        parts += ["| Key, CLI option | Default | Meaning [unit] |", "|---|---|---|"]
+        for item in (item for item in VOCABULARY if item.group == group):
+            valid = item.range_text()
+            if any(item.range_text(kind) != valid for kind in item.kinds):
+                valid = f"{valid}; FEM {item.range_text(FEM_KINDS[0])}"
+            if item.type == "floats" and item.max_items:
+                valid += f"; at most {item.max_items} values"
+            meaning = item.meaning.replace("|", "\\|") + (f" [{item.unit}]" if item.unit else "")
+            if item.old_names:
+                meaning += f" (formerly {', '.join(f'`{n}`' for n in item.old_names)})"
+            on = taken.get(item.cli_option)
+            option = f"`{item.cli_option}` ({', '.join(on)})" if on else "study and sweep key only"
+            kinds = f"Kinds: {', '.join(item.kinds)}" if item.kinds else "Not a study or sweep key"
+            parts.append(
+                f"| `{item.name}`<br>{option} | {_default_text(item)} | "
+                f"{meaning}. {f'Valid: {valid}. ' if valid else ''}{kinds}. |"
+            )
+        parts.append("")
+    return "\n".join(parts)

@@ -32,6 +32,7 @@ from .sections import (
     BAR_GAP,
     CONTACT_COLOUR,
     add_label,
+    body_frame,
     camera_2d,
     draw_axes,
     frame,
@@ -209,13 +210,16 @@ def plot_wave_field(
         PNG to write.
     reach : float
         Window width / the distance c_s t a shear wave travels by then (a massless body, c_s
-        infinite: ``MASSLESS_EXTENT`` contact radii).
+        infinite: ``MASSLESS_EXTENT`` contact radii); a pad thinner than that window is shown
+        whole in depth, :data:`.sections.PAD_ASPECT` thicknesses wide (:func:`.body_frame`).
     """
     actual, solution, _ = case.result.field_solution(time_requested)
     c_s = case.estimate.shear_wave_speed
     a_c = case.quasi.a_c
     extent = reach * c_s * max(actual, case.quasi.t_c) / a_c
     window = frame(a_c, extent if math.isfinite(extent) else MASSLESS_EXTENT)
+    body_depth = -float(np.min(solution.system.mesh.p[1]))  # a pad's thickness
+    window = body_frame(window, body_depth, float(np.max(case.result.contact_radius)))
     cut = section(solution, window, deformed=False)
     colours = _wave_colours(np.asarray(cut.point_data["von_mises"]))
     floor = 10.0**colours.low
@@ -241,7 +245,8 @@ def plot_wave_field(
         angle = np.linspace(0.0, -0.5 * np.pi, 90)
         arc_r, arc_z = front * np.cos(angle), front * np.sin(angle)
         inside = (arc_r <= window.width) & (arc_z >= -window.depth)
-        if front > 0 and inside.sum() > 1:
+        arc = bool(front > 0 and inside.sum() > 1)  # the front may lie beyond a pad's window
+        if arc:
             plotter.add_mesh(polyline(arc_r[inside], arc_z[inside]), color="white", line_width=2)
         state = (
             f"contact radius {radius * 1e3:.2f} mm"
@@ -250,7 +255,7 @@ def plot_wave_field(
         )
         add_label(
             plotter,
-            f"t = {actual * 1e3:.2f} ms, {state} (white arc: shear front c_s t)",
+            f"t = {actual * 1e3:.2f} ms, {state}{' (white arc: shear front c_s t)' if arc else ''}",
             (0.0, window.top),
             (0, 20),
             (0, 0),

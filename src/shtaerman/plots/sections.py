@@ -2,11 +2,12 @@
 
 The r-z section of the half-space (the body is z <= 0, the axis r = 0 on the left) is cut to a
 window of a few contact radii around the contact, so the stress field there fills the picture
-and not the 1e5-radius domain. Lengths are shown in a prefixed metre unit (mm for the paper's
-example) with r and z rulers on round ticks, fields coloured as :mod:`.fields` describes. The
-contact zone 0 <= r <= a is a thick green line on the surface z = 0 (or, with
-``deformed=True``, on the deformed surface under the grey indenter z = f(r) - d). Pictures are
-made by :func:`shtaerman.plots.render.picture` (off-screen, VTK warnings silenced).
+and not the 1e5-radius domain (a pad thinner than the window: the pad, :func:`body_frame`).
+Lengths are shown in a prefixed metre unit (mm for the paper's example) with r and z rulers on
+round ticks, fields coloured as :mod:`.fields` describes. The contact zone 0 <= r <= a is a
+thick green line on the surface z = 0 (or, with ``deformed=True``, on the deformed surface under
+the grey indenter z = f(r) - d). Pictures are made by :func:`shtaerman.plots.render.picture`
+(off-screen, VTK warnings silenced).
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ __all__ = [
     "FIELDS",
     "WINDOW_SIZE",
     "Frame",
+    "body_frame",
     "contact_step",
     "field_solution",
     "frame",
@@ -83,6 +85,25 @@ def frame(contact_radius: float, extent: float, above: bool = False) -> Frame:
     width = step * math.ceil(span / step - 1e-9)
     depth = step * max(1, round(2 * width / (3 * step)))
     return Frame(scale, unit, width, depth, step if above else 0.0, step)
+
+
+PAD_ASPECT = 2.0
+"""Width / thickness of the window of a pad thinner than the usual window (:func:`body_frame`),
+unless the contact zone needs more: a thin pad fills the picture's height instead of lying as a
+strip along the top of a mostly white frame."""
+
+
+def body_frame(window: Frame, depth: float, contact_radius: float) -> Frame:
+    """``window`` fitted to a body ``depth`` (m) deep where that is shallower than the window
+    (a pad on its rigid base): its whole thickness, and max(:data:`PAD_ASPECT` x ``depth``,
+    2 ``contact_radius``) wide (m) on round ticks, at most ``window``'s width."""
+    if depth * window.scale >= window.depth:
+        return window
+    span = min(window.width / window.scale, max(PAD_ASPECT * depth, 2 * contact_radius))
+    scale, unit = si_prefix(span, "m")
+    step = nice_step(span * scale, 6)
+    width = step * math.ceil(span * scale / step - 1e-9)
+    return Frame(scale, unit, width, depth * scale, window.top / window.scale * scale, step)
 
 
 def section(solution: ElasticSolution, window: Frame, deformed: bool) -> pv.PolyData:
