@@ -55,16 +55,22 @@ class DynamicResult:
     (against x_max), ``P_c`` (P_max) and ``t_c`` (t_contact / 2); ``differences_error``
     their estimated absolute errors. The ladder's keys are None without the estimate.
     ``solution`` is the finest FE run (histories, fields), ``ladder`` the error-estimate
-    ladder; neither is part of :meth:`to_dict`.
+    ladder; neither is part of :meth:`to_dict`. One type for every body: ``model`` names the
+    material model; a rubber at finite strain adds ``rubber`` (its constants) and ``prony``
+    (its series, as given) and has no ``radiation_estimate`` (the first-order estimate is the
+    linear half-space's).
     """
 
     quasi_static: dict[str, float]
     dynamic: dict[str, float]
     differences: dict[str, float]
-    radiation_estimate: dict[str, float]
+    radiation_estimate: dict[str, float] | None
     mesh: dict[str, Any]
     timings: dict[str, float]
     parameters: dict[str, float]
+    model: str = "linear"
+    rubber: dict[str, Any] | None = None
+    prony: str | None = None
     differences_error: dict[str, float] | None = None
     error_estimate: dict[str, float] | None = None
     extrapolated: dict[str, float] | None = None
@@ -118,12 +124,14 @@ class DynamicResult:
         }
         if self.differences_error is not None:
             document["differences_error"] = dict(self.differences_error)
-        document.update(
-            radiation_estimate=self.radiation_estimate,
-            mesh=self.mesh,
-            timings=self.timings,
-            parameters=self.parameters,
-        )
+        if self.radiation_estimate is not None:
+            document["radiation_estimate"] = self.radiation_estimate
+        document.update(mesh=self.mesh, timings=self.timings, parameters=self.parameters)
+        document["model"] = self.model
+        if self.rubber is not None:
+            document["rubber"] = dict(self.rubber)
+        if self.prony is not None:
+            document["prony"] = self.prony
         if self.mesh_ladder is not None:
             document.update(
                 error_estimate=self.error_estimate,
@@ -271,8 +279,7 @@ def dynamic(
     model : str
         ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
         ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
-        :func:`shtaerman.api.finite_dynamic.finite_dynamic` runs (no error estimate) and
-        returns its :class:`~shtaerman.api.finite_dynamic.FiniteDynamicResult`.
+        :func:`shtaerman.api.finite_dynamic.finite_dynamic` runs (no error estimate yet).
 
     Returns
     -------

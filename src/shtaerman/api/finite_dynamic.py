@@ -2,77 +2,23 @@
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..vocabulary import entry
+from .fem_dynamic import DynamicResult
 
 if TYPE_CHECKING:
-    from ..fem.finite_dynamic import FiniteImpactResult
     from ..problem import Problem
+    from ..theory.viscoelastic import PronySeries
 
-__all__ = ["FiniteDynamicResult", "finite_dynamic"]
-
-
-@dataclass(frozen=True)
-class FiniteDynamicResult:
-    """The finite-strain impact: the keys of ``shtaerman dynamic --model ... --json`` (SI).
-
-    ``dynamic`` holds the FE results (the linear dynamic impact's keys); ``quasi_static`` the
-    paper's (Shtaerman's small-strain law, Ateb solution); ``differences`` quasi-static /
-    dynamic - 1 of x (x_c against x_max), P (P_c against P_max) and t (t_c against
-    t_contact / 2). ``solution`` is the FE run (histories), not part of :meth:`to_dict`.
-    """
-
-    model: str
-    rubber: dict[str, Any]
-    quasi_static: dict[str, float]
-    dynamic: dict[str, float]
-    differences: dict[str, float]
-    mesh: dict[str, float]
-    timings: dict[str, float]
-    parameters: dict[str, float]
-    solution: FiniteImpactResult = field(repr=False, compare=False)
-    prony: str | None = None
-
-    def __getattr__(self, name: str) -> Any:
-        dynamic = self.__dict__.get("dynamic", {})
-        if name in dynamic:
-            return dynamic[name]
-        raise AttributeError(name)
-
-    def history(self) -> dict[str, Any]:
-        """The histories t, x, v, P at every time step (arrays, SI units)."""
-        return self.solution.history_columns()
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready (nan as None)."""
-
-        def clean(values: dict[str, Any]) -> dict[str, Any]:
-            return {
-                key: None if isinstance(value, float) and not math.isfinite(value) else value
-                for key, value in values.items()
-            }
-
-        return {
-            "model": self.model,
-            "rubber": dict(self.rubber),
-            "quasi_static": clean(self.quasi_static),
-            "dynamic": clean(self.dynamic),
-            "differences": clean(self.differences),
-            "mesh": dict(self.mesh),
-            "timings": dict(self.timings),
-            "parameters": clean(self.parameters),
-            **({"prony": self.prony} if self.prony is not None else {}),
-        }
+__all__ = ["finite_dynamic"]
 
 
 def finite_dynamic(
     problem: Problem, *, time_steps: int | None = None, mesh_size: float | None = None
-) -> FiniteDynamicResult:
+) -> DynamicResult:
     """The impact of a rigid striker on a rubber body at finite strain.
 
     Parameters
@@ -89,7 +35,8 @@ def finite_dynamic(
 
     Returns
     -------
-    FiniteDynamicResult
+    DynamicResult
+        With ``model``, ``rubber`` and ``prony`` set; no radiation estimate or error bars.
     """
     from dataclasses import replace
 
@@ -115,20 +62,21 @@ def finite_dynamic(
         "P_c": quasi.P_c / summary["P_max"] - 1.0,
         "t_c": quasi.t_c / (0.5 * summary["t_contact"]) - 1.0,
     }
-    return FiniteDynamicResult(
-        model=problem.body.model,
-        rubber=rubber.to_dict(),
+    return DynamicResult(
         quasi_static={key: quasi.maxima()[key] for key in ("x_c", "P_c", "t_c", "t_y")},
         dynamic=summary,
         differences=differences,
+        radiation_estimate=None,
         mesh=run.mesh,
         timings=run.timings,
         parameters=run.parameters,
-        solution=run,
+        model=problem.body.model,
+        rubber=rubber.to_dict(),
         prony=None if series is None else _prony_text(series),
+        solution=run,
     )
 
 
-def _prony_text(series: Any) -> str:
+def _prony_text(series: PronySeries) -> str:
     """``g1:tau1,g2:tau2,...`` of a Prony series (tau in s)."""
     return ",".join(f"{g:g}:{tau:g}" for g, tau in zip(series.weights, series.times, strict=True))
