@@ -213,8 +213,8 @@ def test_a_dynamic_sweep_case_takes_prony():
 
     kind = get_kind("dynamic")
     params = {**kind.defaults(), "density2": 0.0, "time_steps": 60, "mesh_size": 0.1}
-    elastic = kind.case({**params, "estimate": False})
-    visco = kind.case({**params, "estimate": False, "prony": "0.5:2e-3"})
+    elastic = kind.case({**params, "estimate": False}).outputs
+    visco = kind.case({**params, "estimate": False, "prony": "0.5:2e-3"}).outputs
     assert elastic["restitution"] == pytest.approx(1.0, abs=1e-5)
     assert 0.6 < visco["restitution"] < 0.75
 
