@@ -116,7 +116,8 @@ class DynamicSettings:
         about 1.5 / domain (:mod:`.mesh`).
     layer_start : float
         R_a / (c_s t_y), > 1/2: where the absorbing layer starts, and the monitor radius of
-        the reflected energy. For nu < 0.5 a layer should start beyond c_p t_y / 2 (P waves
+        the reflected energy (of a viscoelastic body: c_s the glassy speed, the monitor radius
+        R_a c_s,relaxed / c_s, that of its slowest waves). For nu < 0.5 a layer should start beyond c_p t_y / 2 (P waves
         reflected earlier reach the contact before separation).
     layer_ramp : float
         Ramp length of the layer damping / (c_s t_y) (used when ``layer_width`` is None).
@@ -286,7 +287,9 @@ class DynamicImpactResult:
         any wave sent during the contact would be inside) over the radiated energy: an upper
         bound of what the mesh grading, the layer and the far arc send back (it includes the
         slow decay of the near field; a viscoelastic body: twice the kinetic energy there, its
-        creeping near field left out). nan without a tail, or when R_a lies beyond half the
+        creeping near field and its dissipated energy left out, within R_a and c_R of its
+        relaxed, slowest waves, so that its relaxed limit measures what the elastic body at
+        the relaxed modulus does). nan without a tail, or when R_a lies beyond half the
         domain (the nearly massless limit: nothing radiates); 0 for a massless body. On a
         layer, whose base sends waves back by design and may radiate almost nothing, it is that
         energy over M v0^2 / 2 instead: the most a reflection can change e^2 by.
@@ -457,6 +460,7 @@ class _Scales:
     quasi_static: _QuasiStatic
     shear_wave_speed: float
     rayleigh_wave_speed: float
+    slowest_rayleigh_speed: float
     dt: float
     refined: float
     domain_radius: float
@@ -471,8 +475,12 @@ class _Scales:
 
     @property
     def inner_radius(self) -> float:
-        """Monitor radius R_a of the reflected energy in m."""
-        return min(self.layer.start, 0.5 * self.domain_radius)
+        """Monitor radius R_a of the reflected energy in m: where the layer starts, scaled by
+        the slowest over the fastest wave speed (a viscoelastic body's relaxed over its glassy
+        one; 1 for an elastic body), so that it is the same in the relaxed limit as for the
+        elastic body at the relaxed modulus; within half the domain."""
+        slowest = self.slowest_rayleigh_speed / self.rayleigh_wave_speed
+        return min(self.layer.start * min(slowest, 1.0), 0.5 * self.domain_radius)
 
 
 def _scales(
@@ -511,6 +519,7 @@ def _scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
         rayleigh_wave_speed=c_s / rayleigh_root(nu),
+        slowest_rayleigh_speed=_relaxed_rayleigh_speed(half_space, rho, prony),
         dt=qs.t_y / settings.steps,
         refined=refined,
         domain_radius=domain_radius,
@@ -518,6 +527,22 @@ def _scales(
         has_layer=has_layer,
         longest_t_y=t_y,
     )
+
+
+def _relaxed_rayleigh_speed(
+    half_space: Material, rho: float, prony: PronySeries | None
+) -> float:
+    """Rayleigh wave speed c_R in m/s of the fully relaxed body (shear modulus G0 g_inf, the
+    bulk modulus unchanged: nu rises toward 0.5): the slowest waves of a viscoelastic body,
+    the speed of all of them in its relaxed limit; the elastic c_R without ``prony``."""
+    if rho == 0:
+        return math.inf
+    nu, young = half_space.poisson_ratio, half_space.youngs_modulus
+    shear = young / (2.0 * (1.0 + nu)) * (1.0 if prony is None else prony.g_inf)
+    if nu < 0.5 and prony is not None:
+        bulk = young / (3.0 * (1.0 - 2.0 * nu))
+        nu = (3.0 * bulk - 2.0 * shear) / (2.0 * (3.0 * bulk + shear))
+    return math.sqrt(shear / rho) / rayleigh_root(nu)
 
 
 def _inner_energy_matrices(system: ElasticSystem, radius: float) -> tuple[sp.csr_matrix, ...]:
@@ -731,7 +756,7 @@ def prepare_dynamic_impact(
     return DynamicImpactSetup(
         problem=problem,
         duration=3.0 * scales.longest_t_y,
-        tail_time=settings.tail * scales.inner_radius / scales.rayleigh_wave_speed,
+        tail_time=settings.tail * scales.inner_radius / scales.slowest_rayleigh_speed,
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
         mesh=_mesh_stats(problem, estimate, scales, settings),
