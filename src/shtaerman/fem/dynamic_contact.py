@@ -68,6 +68,7 @@ __all__ = [
     "DynamicImpactResult",
     "DynamicImpactSetup",
     "DynamicSettings",
+    "check_dynamic_impact",
     "estimate_dofs",
     "prepare_dynamic_impact",
     "run_dynamic_impact",
@@ -117,8 +118,8 @@ class DynamicSettings:
     layer_start : float
         R_a / (c_s t_y), > 1/2: where the absorbing layer starts, and the monitor radius of
         the reflected energy (of a viscoelastic body: c_s the glassy speed, the monitor radius
-        R_a c_s,relaxed / c_s, that of its slowest waves). For nu < 0.5 a layer should start beyond c_p t_y / 2 (P waves
-        reflected earlier reach the contact before separation).
+        R_a c_s,relaxed / c_s, that of its slowest waves). For nu < 0.5 a layer should start
+        beyond c_p t_y / 2 (P waves reflected earlier reach the contact before separation).
     layer_ramp : float
         Ramp length of the layer damping / (c_s t_y) (used when ``layer_width`` is None).
     layer_rate : float
@@ -529,9 +530,7 @@ def _scales(
     )
 
 
-def _relaxed_rayleigh_speed(
-    half_space: Material, rho: float, prony: PronySeries | None
-) -> float:
+def _relaxed_rayleigh_speed(half_space: Material, rho: float, prony: PronySeries | None) -> float:
     """Rayleigh wave speed c_R in m/s of the fully relaxed body (shear modulus G0 g_inf, the
     bulk modulus unchanged: nu rises toward 0.5): the slowest waves of a viscoelastic body,
     the speed of all of them in its relaxed limit; the elastic c_R without ``prony``."""
@@ -669,15 +668,53 @@ def _factorized_problem(
     )
 
 
-def _checked_estimate(settings: DynamicSettings) -> int:
-    """The estimated dofs, or InputError above ``MAX_DOFS``."""
-    estimate = estimate_dofs(settings)
+def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
+    """The estimated dofs of the mesh of ``settings``, or InputError above ``MAX_DOFS``."""
     if estimate > MAX_DOFS:
+        mesh = "mesh" if settings.thickness is None else "layer mesh"
         raise InputError(
-            f"the mesh would have about {estimate} dofs, above the limit {MAX_DOFS}; "
+            f"the {mesh} would have about {estimate} dofs, above the limit {MAX_DOFS}; "
             f"coarsen size (now {settings.size!r}) or growth (now {settings.growth!r})"
         )
     return estimate
+
+
+def check_dynamic_impact(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings,
+    prony: PronySeries | None = None,
+) -> tuple[float, Striker, _Scales, int]:
+    """Check every input of a dynamic impact (arguments of :func:`run_dynamic_impact`) before
+    anything is meshed, in well under a second: the density, mass and velocity, the layer's
+    thickness against the impact's refined radius, the duration of a viscoelastic impact and
+    the estimated mesh size. ``shtaerman dynamic`` and a dynamic sweep's load both refuse
+    their inputs here.
+
+    Returns
+    -------
+    tuple
+        The density (kg/m^3), the striker, the impact's scales and the estimated dofs.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        For an input out of range, naming it.
+    """
+    rho = validate_density(density)
+    striker = Striker(
+        validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
+    )
+    if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
+        _checked_estimate(estimate_dofs(settings), settings)
+    scales = _scales(indenter, half_space, rho, striker, settings, prony)
+    if settings.thickness is None:
+        return rho, striker, scales, estimate_dofs(settings)
+    estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
+    return rho, striker, scales, _checked_estimate(estimate, settings)
 
 
 @dataclass(frozen=True, eq=False)
@@ -732,15 +769,9 @@ def prepare_dynamic_impact(
         For inputs out of range or a mesh above ``MAX_DOFS`` (estimated before meshing).
     """
     settings = DynamicSettings() if settings is None else settings
-    rho = validate_density(density)
-    striker = Striker(
-        validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
+    rho, striker, scales, estimate = check_dynamic_impact(
+        indenter, half_space, density, mass, velocity, settings, prony
     )
-    layered = settings.thickness is not None
-    estimate = 0 if layered else _checked_estimate(settings)
-    scales = _scales(indenter, half_space, rho, striker, settings, prony)
-    if layered:
-        estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
     clock = [time.perf_counter()]
     mesh = _mesh(settings, scales)
     clock.append(time.perf_counter())
@@ -771,7 +802,7 @@ def prepare_dynamic_impact(
 def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
     """The half-space mesh, or the layer's (:mod:`.dynamic_layer`) with a thickness."""
     if settings.thickness is not None:
-        return layer_impact_mesh(settings, scales.refined, scales.domain_radius, MAX_DOFS)
+        return layer_impact_mesh(settings, scales.refined, scales.domain_radius)
     return halfspace_mesh(
         scales.refined,
         domain_radius=scales.domain_radius,
