@@ -293,7 +293,9 @@ class DynamicImpactResult:
         the relaxed modulus does). nan without a tail, or when R_a lies beyond half the
         domain (the nearly massless limit: nothing radiates); 0 for a massless body. On a
         layer, whose base sends waves back by design and may radiate almost nothing, it is that
-        energy over M v0^2 / 2 instead: the most a reflection can change e^2 by.
+        energy over M v0^2 / 2 instead: the most a reflection can change e^2 by; measured
+        within half the layer's lateral extent when the layer is too thin for a lateral
+        absorber (R_a beyond it), since M v0^2 / 2 is a reference whatever the radiation.
     mesh : dict
         ``nodes``, ``elements``, ``dofs`` and the geometry (m).
     timings : dict of str to float
@@ -789,7 +791,8 @@ def prepare_dynamic_impact(
         duration=3.0 * scales.longest_t_y,
         tail_time=settings.tail * scales.inner_radius / scales.slowest_rayleigh_speed,
         force_exponent=scales.quasi_static.force_exponent,
-        reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
+        reflection_measured=settings.tail > 0
+        and (settings.thickness is not None or scales.layer.start < 0.5 * scales.domain_radius),
         mesh=_mesh_stats(problem, estimate, scales, settings),
         parameters=_parameters(indenter, half_space, rho, problem, scales),
         timings={
