@@ -13,10 +13,11 @@ import uuid
 from pathlib import Path
 
 from shtaerman.sweep import Kind, Parameter, register_kind
+from shtaerman.sweep.kinds import CaseResult
 from shtaerman.validation import InputError
 
 
-def probe_case(params: dict) -> dict:
+def probe_case(params: dict) -> CaseResult:
     x = params["x"]
     stem = f"x={x!r}-pid={os.getpid()}-{uuid.uuid4().hex[:8]}"
     folder = Path(params["marker_dir"]) if params["marker_dir"] else None
@@ -27,7 +28,7 @@ def probe_case(params: dict) -> dict:
         raise RuntimeError(f"probe asked to fail at x = {x!r}\nsecond line of the message")
     if folder is not None:
         (folder / f"{stem}.done").touch()
-    return {"y": x * x + 1.0, "twice": 2 * x}
+    return CaseResult({"y": x * x + 1.0, "twice": 2 * x}, ())
 
 
 def probe_check(params: dict) -> None:

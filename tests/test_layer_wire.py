@@ -98,6 +98,25 @@ def test_dynamic_sweep_kind_refuses_a_bad_layer(given, message):
         _dynamic_inputs(_dynamic_case(**given))
 
 
+def test_a_dynamic_sweep_refuses_at_load_what_the_cli_refuses(tmp_path: Path, capsys):
+    """Issue 31 item 11: the same check as ``dynamic --thickness 1e-9`` (one function,
+    :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), at load, for every case."""
+    from shtaerman.cli import main
+    from shtaerman.sweep import SweepError, load_sweep
+
+    assert main(["dynamic", "--thickness", "1e-9", "--no-estimate"]) == 2
+    refused = capsys.readouterr().err.strip().removeprefix("shtaerman: error: --")
+    path = tmp_path / "thin.toml"
+    path.write_text('name = "thin"\nkind = "dynamic"\n[axes]\nthickness = [0.02, 1e-9]\n')
+    with pytest.raises(SweepError) as error:
+        load_sweep(path)
+    assert str(error.value) == f"{path}: case 1 (thickness = 1e-09): {refused}"
+    # and a viscoelastic impact that lasts too long (the quasi-static sizing tells, 0.06 s)
+    path.write_text('name = "slow"\nkind = "dynamic"\n[axes]\nprony = ["0.999999:1e-300"]\n')
+    with pytest.raises(SweepError, match=r"case 0 .*: prony: the viscoelastic impact lasts more"):
+        load_sweep(path)
+
+
 # --- the restitution of a layer study: the dynamic impact on its layer, where asked -------------
 
 CONTACT = """name = "pad"

@@ -415,3 +415,49 @@ def test_findings_name_the_model_and_flag_the_volumetric_energy():
     assert "depend on the volumetric energy" in flag and "K/2 (J-1)^2" in flag
     [named, flag] = finding(0.3, rubber_model("yeoh", yeoh=(-0.1, 0.01), volumetric="logarithmic"))
     assert "Yeoh with c2, c3 = C20/C10, C30/C10 = -0.1, 0.01" in named and "(ln J)^2" in flag
+
+
+# --- a Gent rubber that locks is told so, and early (issue 31 items 13 and 14) ---------------
+
+LOCKS = "--gent-limit: the Gent rubber locks at depth "
+
+
+def _locking_depth(err: str) -> float:
+    assert err.startswith(f"shtaerman: error: {LOCKS}") and err.count("\n") == 1, err
+    assert "refine the mesh" not in err and "finer --mesh-size" not in err
+    return float(err.removeprefix(f"shtaerman: error: {LOCKS}").split(" m:")[0])
+
+
+@pytest.mark.parametrize("limit", ["1e-6", "0.01"])
+def test_a_gent_rubber_that_locks_names_the_gent_limit(capsys, limit):
+    code, out, err = _cli(capsys, "--model", "gent", "--gent-limit", limit, "--mesh-size", "0.2")
+    assert code == 2 and out == ""
+    # early: at 0.01 the stretch passes 0.9 Jm by 6.1e-5 m and the run stops there; before, it
+    # crawled on in halved steps with an element at 0.9999 Jm to 3.9e-3 m (27 s; 85 s at the
+    # default mesh) and blamed the mesh
+    assert _locking_depth(err) < 1e-4
+
+
+def test_a_massless_gent_impact_that_locks_names_the_gent_limit(capsys):
+    from shtaerman.cli import main
+
+    code = main(["dynamic", "--model", "gent", "--gent-limit", "1e-6", "--density2", "0"])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == ""
+    assert _locking_depth(err) < 1e-4
+
+
+def test_a_gent_step_is_cut_until_the_rubber_is_near_its_limit():
+    from shtaerman.fem.hyperelastic import assemble_hyperelastic
+    from shtaerman.fem.rubber import LOCKED, GentLockError, gent_locks, gent_stretch
+
+    mesh = MeshSettings(size=0.2).build(1e-2)
+    system = assemble_hyperelastic(mesh, Rubber(E2, 0.5, model="gent", gent_limit=0.01))
+    rest = np.zeros(system.n_dofs)
+    assert gent_stretch(system.material, system.state(rest)) == 0.0
+    overshoot = GentLockError("the gent limit I1bar - 3 < Jm = 0.01 was reached")
+    assert gent_locks(overshoot, system, rest, 1e-4, last=False) is None  # 0 < LOCKED: cut
+    assert gent_locks(NewtonError("no convergence"), system, rest, 1e-4, last=True) is None
+    locked = gent_locks(overshoot, system, rest, 1e-4, last=True)  # no cut left
+    assert locked.parameter == "gent_limit" and "locks at depth 0.0001 m" in str(locked)
+    assert 0.5 < LOCKED < 1.0

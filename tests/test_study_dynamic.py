@@ -388,7 +388,7 @@ def test_sweep_kind_checks_inputs_up_front(tmp_path):
 def test_sweep_kind_case_matches_the_study(tmp_path, outcome):
     [case] = load_sweep(_tiny(tmp_path)).cases()
     kind = KINDS["dynamic"]
-    outputs = kind.case(case.params)
+    outputs = kind.case(case.params).outputs
     assert set(outputs) == set(kind.outputs)
     # the same inputs and settings as the quick study's 3 m/s case: identical numbers
     example = outcome.example

@@ -226,7 +226,7 @@ def test_sweep_kind_runs_a_tiny_case():
     kind = get_kind("finite-strain")
     params = {**kind.defaults(), **TINY}
     kind.check(params)
-    out = kind.case(params)
+    out = kind.case(params).outputs
     assert set(out) == set(FINITE_OUTPUTS)
     # coarse, yet the physics shows: rubber softens (nu2 = 0.5), x_c grows about 2 %
     assert 0.9 < out["force_ratio_xa75"] < 0.99 and 1.0 < out["x_c_ratio"] < 1.04

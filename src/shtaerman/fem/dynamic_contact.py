@@ -68,6 +68,7 @@ __all__ = [
     "DynamicImpactResult",
     "DynamicImpactSetup",
     "DynamicSettings",
+    "check_dynamic_impact",
     "estimate_dofs",
     "prepare_dynamic_impact",
     "run_dynamic_impact",
@@ -116,8 +117,9 @@ class DynamicSettings:
         about 1.5 / domain (:mod:`.mesh`).
     layer_start : float
         R_a / (c_s t_y), > 1/2: where the absorbing layer starts, and the monitor radius of
-        the reflected energy. For nu < 0.5 a layer should start beyond c_p t_y / 2 (P waves
-        reflected earlier reach the contact before separation).
+        the reflected energy (of a viscoelastic body: c_s the glassy speed, the monitor radius
+        R_a c_s,relaxed / c_s, that of its slowest waves). For nu < 0.5 a layer should start
+        beyond c_p t_y / 2 (P waves reflected earlier reach the contact before separation).
     layer_ramp : float
         Ramp length of the layer damping / (c_s t_y) (used when ``layer_width`` is None).
     layer_rate : float
@@ -286,10 +288,14 @@ class DynamicImpactResult:
         any wave sent during the contact would be inside) over the radiated energy: an upper
         bound of what the mesh grading, the layer and the far arc send back (it includes the
         slow decay of the near field; a viscoelastic body: twice the kinetic energy there, its
-        creeping near field left out). nan without a tail, or when R_a lies beyond half the
+        creeping near field and its dissipated energy left out, within R_a and c_R of its
+        relaxed, slowest waves, so that its relaxed limit measures what the elastic body at
+        the relaxed modulus does). nan without a tail, or when R_a lies beyond half the
         domain (the nearly massless limit: nothing radiates); 0 for a massless body. On a
         layer, whose base sends waves back by design and may radiate almost nothing, it is that
-        energy over M v0^2 / 2 instead: the most a reflection can change e^2 by.
+        energy over M v0^2 / 2 instead: the most a reflection can change e^2 by; measured
+        within half the layer's lateral extent when the layer is too thin for a lateral
+        absorber (R_a beyond it), since M v0^2 / 2 is a reference whatever the radiation.
     mesh : dict
         ``nodes``, ``elements``, ``dofs`` and the geometry (m).
     timings : dict of str to float
@@ -457,6 +463,7 @@ class _Scales:
     quasi_static: _QuasiStatic
     shear_wave_speed: float
     rayleigh_wave_speed: float
+    slowest_rayleigh_speed: float
     dt: float
     refined: float
     domain_radius: float
@@ -471,8 +478,12 @@ class _Scales:
 
     @property
     def inner_radius(self) -> float:
-        """Monitor radius R_a of the reflected energy in m."""
-        return min(self.layer.start, 0.5 * self.domain_radius)
+        """Monitor radius R_a of the reflected energy in m: where the layer starts, scaled by
+        the slowest over the fastest wave speed (a viscoelastic body's relaxed over its glassy
+        one; 1 for an elastic body), so that it is the same in the relaxed limit as for the
+        elastic body at the relaxed modulus; within half the domain."""
+        slowest = self.slowest_rayleigh_speed / self.rayleigh_wave_speed
+        return min(self.layer.start * min(slowest, 1.0), 0.5 * self.domain_radius)
 
 
 def _scales(
@@ -511,6 +522,7 @@ def _scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
         rayleigh_wave_speed=c_s / rayleigh_root(nu),
+        slowest_rayleigh_speed=_relaxed_rayleigh_speed(half_space, rho, prony),
         dt=qs.t_y / settings.steps,
         refined=refined,
         domain_radius=domain_radius,
@@ -518,6 +530,20 @@ def _scales(
         has_layer=has_layer,
         longest_t_y=t_y,
     )
+
+
+def _relaxed_rayleigh_speed(half_space: Material, rho: float, prony: PronySeries | None) -> float:
+    """Rayleigh wave speed c_R in m/s of the fully relaxed body (shear modulus G0 g_inf, the
+    bulk modulus unchanged: nu rises toward 0.5): the slowest waves of a viscoelastic body,
+    the speed of all of them in its relaxed limit; the elastic c_R without ``prony``."""
+    if rho == 0:
+        return math.inf
+    nu, young = half_space.poisson_ratio, half_space.youngs_modulus
+    shear = young / (2.0 * (1.0 + nu)) * (1.0 if prony is None else prony.g_inf)
+    if nu < 0.5 and prony is not None:
+        bulk = young / (3.0 * (1.0 - 2.0 * nu))
+        nu = (3.0 * bulk - 2.0 * shear) / (2.0 * (3.0 * bulk + shear))
+    return math.sqrt(shear / rho) / rayleigh_root(nu)
 
 
 def _inner_energy_matrices(system: ElasticSystem, radius: float) -> tuple[sp.csr_matrix, ...]:
@@ -644,15 +670,53 @@ def _factorized_problem(
     )
 
 
-def _checked_estimate(settings: DynamicSettings) -> int:
-    """The estimated dofs, or InputError above ``MAX_DOFS``."""
-    estimate = estimate_dofs(settings)
+def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
+    """The estimated dofs of the mesh of ``settings``, or InputError above ``MAX_DOFS``."""
     if estimate > MAX_DOFS:
+        mesh = "mesh" if settings.thickness is None else "layer mesh"
         raise InputError(
-            f"the mesh would have about {estimate} dofs, above the limit {MAX_DOFS}; "
+            f"the {mesh} would have about {estimate} dofs, above the limit {MAX_DOFS}; "
             f"coarsen size (now {settings.size!r}) or growth (now {settings.growth!r})"
         )
     return estimate
+
+
+def check_dynamic_impact(
+    indenter: PowerLawIndenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings,
+    prony: PronySeries | None = None,
+) -> tuple[float, Striker, _Scales, int]:
+    """Check every input of a dynamic impact (arguments of :func:`run_dynamic_impact`) before
+    anything is meshed, in well under a second: the density, mass and velocity, the layer's
+    thickness against the impact's refined radius, the duration of a viscoelastic impact and
+    the estimated mesh size. ``shtaerman dynamic`` and a dynamic sweep's load both refuse
+    their inputs here.
+
+    Returns
+    -------
+    tuple
+        The density (kg/m^3), the striker, the impact's scales and the estimated dofs.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        For an input out of range, naming it.
+    """
+    rho = validate_density(density)
+    striker = Striker(
+        validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
+    )
+    if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
+        _checked_estimate(estimate_dofs(settings), settings)
+    scales = _scales(indenter, half_space, rho, striker, settings, prony)
+    if settings.thickness is None:
+        return rho, striker, scales, estimate_dofs(settings)
+    estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
+    return rho, striker, scales, _checked_estimate(estimate, settings)
 
 
 @dataclass(frozen=True, eq=False)
@@ -707,15 +771,9 @@ def prepare_dynamic_impact(
         For inputs out of range or a mesh above ``MAX_DOFS`` (estimated before meshing).
     """
     settings = DynamicSettings() if settings is None else settings
-    rho = validate_density(density)
-    striker = Striker(
-        validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
+    rho, striker, scales, estimate = check_dynamic_impact(
+        indenter, half_space, density, mass, velocity, settings, prony
     )
-    layered = settings.thickness is not None
-    estimate = 0 if layered else _checked_estimate(settings)
-    scales = _scales(indenter, half_space, rho, striker, settings, prony)
-    if layered:
-        estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
     clock = [time.perf_counter()]
     mesh = _mesh(settings, scales)
     clock.append(time.perf_counter())
@@ -731,9 +789,10 @@ def prepare_dynamic_impact(
     return DynamicImpactSetup(
         problem=problem,
         duration=3.0 * scales.longest_t_y,
-        tail_time=settings.tail * scales.inner_radius / scales.rayleigh_wave_speed,
+        tail_time=settings.tail * scales.inner_radius / scales.slowest_rayleigh_speed,
         force_exponent=scales.quasi_static.force_exponent,
-        reflection_measured=settings.tail > 0 and scales.layer.start < 0.5 * scales.domain_radius,
+        reflection_measured=settings.tail > 0
+        and (settings.thickness is not None or scales.layer.start < 0.5 * scales.domain_radius),
         mesh=_mesh_stats(problem, estimate, scales, settings),
         parameters=_parameters(indenter, half_space, rho, problem, scales),
         timings={
@@ -746,7 +805,7 @@ def prepare_dynamic_impact(
 def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
     """The half-space mesh, or the layer's (:mod:`.dynamic_layer`) with a thickness."""
     if settings.thickness is not None:
-        return layer_impact_mesh(settings, scales.refined, scales.domain_radius, MAX_DOFS)
+        return layer_impact_mesh(settings, scales.refined, scales.domain_radius)
     return halfspace_mesh(
         scales.refined,
         domain_radius=scales.domain_radius,

@@ -136,25 +136,11 @@ def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
     return round(DOFS_PER_ELEMENT * float(elements))
 
 
-def layer_impact_mesh(
-    settings: DynamicSettings, refined: float, extent: float, max_dofs: int
-) -> MeshTri:
+def layer_impact_mesh(settings: DynamicSettings, refined: float, extent: float) -> MeshTri:
     """The layer mesh of a dynamic impact (``settings`` a ``DynamicSettings`` with a
-    thickness; ``refined`` and ``extent`` in m).
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        Before meshing, if the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS``
-        refined radii, or the estimated mesh exceeds ``max_dofs``.
-    """
+    thickness; ``refined`` and ``extent`` in m), its thickness and size checked before
+    (:func:`.dynamic_contact.check_dynamic_impact`)."""
     thickness = settings.thickness
-    dofs = layer_dofs(settings, refined, extent)
-    if dofs > max_dofs:
-        raise InputError(
-            f"the layer mesh would have about {dofs} dofs, above the limit {max_dofs}; "
-            f"coarsen size (now {settings.size!r}) or growth (now {settings.growth!r})"
-        )
     return layer_mesh(
         refined,
         thickness,

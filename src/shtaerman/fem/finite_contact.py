@@ -63,7 +63,7 @@ from .hyperelastic import (
 )
 from .mesh import MeshSettings
 from .pattern import Pattern
-from .rubber import RubberModel
+from .rubber import RubberModel, gent_locks
 from .solver import PatternSolver
 
 __all__ = [
@@ -525,6 +525,9 @@ def _reach(
             x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
         except NewtonError as error:
             cuts += 1
+            locked = gent_locks(error, stepper.system, history[-1][1], trial, last=cuts > max_cuts)
+            if locked is not None:
+                raise locked from None
             if cuts > max_cuts:
                 raise NewtonError(
                     f"depth {trial:g} m (from {done:g} m): {error}; the load step was "

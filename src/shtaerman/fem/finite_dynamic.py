@@ -84,7 +84,7 @@ from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
-from .rubber import RubberModel
+from .rubber import GentLockError, RubberModel, gent_locks
 from .stepper import separation_time
 from .viscoelastic import sizing_impact
 
@@ -317,6 +317,11 @@ class _QuasiStaticBody:
             return _State(depth, self.zero.x, self.zero.lam, 0.0, 0.0)
         try:
             return self._solve(depth, MAX_HALVINGS)
+        except GentLockError as error:  # the rubber's limit, an input: --gent-limit
+            if error.parameter == "gent_limit":
+                raise
+            limit = self.stepper.system.material.gent_limit
+            raise GentLockError.locking(limit, depth) from None
         except NewtonError as error:  # the run's numerics, not its input
             raise NumericalFailureError(
                 f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
@@ -352,10 +357,14 @@ class _QuasiStaticBody:
         scale = max(depth, self.deepest) if self.relaxing else None
         try:
             x, lam, iterations, _ = self.stepper.solve(depth, guess_x, guess_lam, scale)
-        except NewtonError:
+        except NewtonError as error:
+            last = self.history[-1]
+            locked = gent_locks(error, self.stepper.system, last.x, depth, last=halvings == 0)
+            if locked is not None:
+                raise locked from None
             if halvings == 0:
                 raise
-            middle = 0.5 * (depth + self.history[-1].depth)
+            middle = 0.5 * (depth + last.depth)
             if middle <= 0.0 and not self.relaxing:
                 raise
             self.accept(self._solve(middle, halvings - 1))
@@ -1038,6 +1047,9 @@ def _march_inertial(
                 stepper, inertial, state, mass, (k, depth_scale, force_scale)
             )
         except NewtonError as error:
+            if isinstance(error, GentLockError):  # in every cut step: the rubber locks
+                limit = stepper.system.material.gent_limit
+                raise GentLockError.locking(limit, state.depth) from None
             raise NumericalFailureError(
                 f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}, "
                 f"also in steps cut {MAX_STEP_CUTS} times; "

@@ -47,11 +47,15 @@ from ..validation import InputError
 from .hyperelastic import HESSIAN_TERMS, N_COMPONENTS, Kinematics, NeoHookean, NewtonError
 
 __all__ = [
+    "LOCKED",
     "MODELS",
     "VOLUMETRIC",
+    "GentLockError",
     "Rubber",
     "RubberModel",
     "energy_derivatives",
+    "gent_locks",
+    "gent_stretch",
     "invariant_kinematics",
     "rubber_model",
 ]
@@ -250,10 +254,58 @@ def energy_derivatives(material: Rubber, x1: np.ndarray, x2: np.ndarray) -> tupl
     limit = material.gent_limit
     slack = 1.0 - x1 / limit
     if np.any(slack <= 0):  # NaN (an inverted element) passes to the caller's J check
-        raise NewtonError(f"the gent limit I1bar - 3 < Jm = {limit:g} was reached")
+        raise GentLockError(f"the gent limit I1bar - 3 < Jm = {limit:g} was reached")
     with np.errstate(invalid="ignore"):
         energy = -half * limit * np.log1p(-x1 / limit)
     return energy, half / slack, 0.0, half / (limit * slack**2), 0.0, 0.0
+
+
+LOCKED = 0.9
+"""(I1bar - 3) / Jm of a converged Gent state from which a load step failing on the limit is the
+rubber locking, not a step too long: its shear stiffness mu / (1 - (I1bar - 3) / Jm) is ten
+times mu and grows without bound within the last tenth of the stretch, which no finer mesh or
+shorter step lets it pass."""
+
+
+class GentLockError(NewtonError):
+    """A Gent rubber reached its stretch limit I1bar - 3 = Jm (a Newton iterate beyond it, or the
+    rubber locking); :func:`gent_locks` tells which and words the remedy."""
+
+    @staticmethod
+    def locking(limit: float, depth: float) -> GentLockError:
+        """The one-line diagnosis of a rubber that locks at ``depth`` (m), naming gent_limit."""
+        return GentLockError(
+            f"gent_limit: the Gent rubber locks at depth {depth:.6g} m: its stretch I1bar - 3 "
+            f"reaches its limit Jm = {limit:g} there; give a larger limit (a finer mesh, "
+            "more depths or shorter steps do not pass the limit)",
+            "gent_limit",
+        )
+
+
+def gent_stretch(material: Rubber, state: Kinematics) -> float:
+    """Largest (I1bar - 3) / Jm of a converged ``state`` of a Gent ``material`` over its
+    quadrature points (0 for any other model): 1 is the rubber's stretch limit."""
+    if material.model != "gent":
+        return 0.0
+    a, b, c, d, h = state.F
+    first = (a * a + b * b + c * c + d * d + h * h) * np.abs(state.J) ** (-2.0 / 3.0)
+    return float(np.max(first - 3.0)) / material.gent_limit
+
+
+def gent_locks(
+    error: Exception, system: Any, x: np.ndarray, depth: float, *, last: bool
+) -> GentLockError | None:
+    """The diagnosis of a load step to ``depth`` (m) that failed with ``error``: the Gent rubber
+    locking when the step failed on the Gent limit and either the converged state ``x`` of
+    ``system`` (a hyperelastic system of the rubber) is already at :data:`LOCKED` of its limit
+    (so at the first such failure, not after every halving), or ``last`` (no cut is left);
+    None when it is a step to cut (or no Gent limit at all)."""
+    if not isinstance(error, GentLockError):
+        return None
+    material = system.material
+    if last or gent_stretch(material, system.state(x)) >= LOCKED:
+        return GentLockError.locking(material.gent_limit, depth)
+    return None
 
 
 def _volumetric(name: str, j_m1: np.ndarray, J: np.ndarray) -> tuple:

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
-__all__ = ["Check"]
+__all__ = ["Check", "failures"]
 
 
 @dataclass(frozen=True)
@@ -28,3 +29,12 @@ class Check:
             "tolerance": self.tolerance,
             "passed": self.passed,
         }
+
+
+def failures(checks: Iterable[Check]) -> tuple[str, ...]:
+    """One line per check that fails: its name, its value and its tolerance."""
+    return tuple(
+        f"{check.name}: {check.value:.2e} beyond its tolerance {check.tolerance:g}"
+        for check in checks
+        if not check.passed
+    )

@@ -53,7 +53,7 @@ from ..output.files import (
 )
 from ..plots.formats import check_figure_format
 from ..validation import InputError
-from .kinds import CaseCheckFailed, unit_suffix
+from .kinds import CaseResult, unit_suffix
 from .spec import Case, SweepSpec
 
 __all__ = [
@@ -204,14 +204,16 @@ def _worker_address() -> str:
         return "in-process"
 
 
-def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: dict) -> dict:
+def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -> dict:
     """Run one case; never raises for the case's own errors (they are recorded).
 
     BLAS is capped to one thread (threadpoolctl) whatever the worker's environment, so an
     existing cluster with several threads per worker does not oversubscribe its cores.
 
-    A case that raises :class:`~shtaerman.sweep.kinds.CaseCheckFailed` is "failed" with its
-    outputs kept.
+    This is the one place a case's checks become its status, for every kind: the
+    :class:`~shtaerman.sweep.kinds.CaseResult` a case returns is "ok" without failures, else
+    "failed" with its reasons and its outputs kept; a case that returns no ``CaseResult`` (no
+    verdict) or raises is "failed" without outputs.
 
     Returns
     -------
@@ -227,11 +229,15 @@ def execute_case(case: Callable[[dict], Mapping[str, Any]], index: int, params: 
     with threadpool_limits(limits=1), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            raw = case(dict(params))
-            outputs = {str(name): _scalar(name, value) for name, value in raw.items()}
-        except CaseCheckFailed as failed:  # it ran, but its own checks fail: kept, as failed
-            outputs = {str(name): _scalar(name, value) for name, value in failed.outputs.items()}
-            error = "check failed: " + " ".join(str(failed).split())
+            result = case(dict(params))
+            if not isinstance(result, CaseResult):
+                raise TypeError(
+                    f"the kind's case returned {type(result).__name__}, not a CaseResult "
+                    "(outputs and the failures of its checks)"
+                )
+            outputs = {str(name): _scalar(name, value) for name, value in result.outputs.items()}
+            if result.failures:  # it ran, but its own checks fail: kept, as failed
+                error = "check failed: " + " ".join("; ".join(result.failures).split())
         except Exception as exc:
             outputs, error = {}, _one_line(exc)
     return {

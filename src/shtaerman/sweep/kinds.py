@@ -10,18 +10,20 @@ defaults come from :mod:`shtaerman.vocabulary`. Adding one is a registration::
             description="one line for messages",
             parameters={"mass": Parameter(0.7, "kg"), "E2": Parameter(7.5e6, "Pa")},
             outputs={"x_c": "m", "P_c": "N"},
-            case=my_case,        # my_case(params: dict) -> {"x_c": float, "P_c": float}
+            case=my_case,        # my_case(params: dict) -> CaseResult(outputs, failures)
             check=my_inputs,     # optional: builds and validates the inputs, raises InputError
             optional_outputs={"estimate": {"error_x_c": ""}},  # optional: when a bool is true
         )
     )
 
 ``case`` receives every parameter (defaults, the sweep file's ``[parameters]``, the case's axis
-values) as a plain dict of Python values and returns a flat dict of scalar outputs named as in
-``outputs``. It must be a module-level function (it is shipped to dask workers by reference) and
-deterministic. ``check`` runs in the client on every case before any computation: it should build
-the inputs the case would build (cheap) so that a value out of its physical range is a one-line
-:class:`~shtaerman.validation.InputError` at load time, not a failed case later.
+values) as a plain dict of Python values and returns a :class:`CaseResult`: a flat dict of
+scalar outputs named as in ``outputs``, and the reasons its own checks fail (``()`` for a kind
+without checks). It must be a module-level function (it is shipped to dask workers by
+reference) and deterministic. ``check`` runs in the client on every case before any
+computation: it should build the inputs the case would build (cheap) so that a value out of its
+physical range is a one-line :class:`~shtaerman.validation.InputError` at load time, not a
+failed case later.
 
 This is the only module of :mod:`shtaerman.sweep` that imports the computations of the suite.
 """
@@ -31,6 +33,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -49,7 +52,7 @@ from ..validation import InputError
 
 __all__ = [
     "KINDS",
-    "CaseCheckFailed",
+    "CaseResult",
     "Kind",
     "KindNotAvailableError",
     "Parameter",
@@ -59,13 +62,25 @@ __all__ = [
 ]
 
 
-class CaseCheckFailed(Exception):  # noqa: N818 (a verdict, named for what it says)
-    """Raised by a kind's case whose run finished but fails its own checks (an energy account
-    that does not balance): the case is recorded failed with this reason and ``outputs``."""
+@dataclass(frozen=True)
+class CaseResult:
+    """What every kind's case returns: its outputs and its verdict.
 
-    def __init__(self, reason: str, outputs: Mapping[str, float]) -> None:
-        super().__init__(reason)
-        self.outputs = dict(outputs)
+    :func:`shtaerman.sweep.engine.execute_case` turns it into the case's status, the one place
+    that does for every kind: "ok" when ``failures`` is empty, else "failed" with these reasons
+    and the outputs kept. ``failures`` has no default, so a kind states its checks' verdict (or
+    ``()``, a kind without checks); a case that returns anything else is recorded failed.
+
+    Attributes
+    ----------
+    outputs : Mapping of str to float
+        The case's scalar outputs (units as the kind's ``outputs`` declare).
+    failures : tuple of str
+        One line per failed check of the case's own (those ``verify`` applies to a study).
+    """
+
+    outputs: Mapping[str, float]
+    failures: tuple[str, ...]
 
 
 def unit_suffix(name: str, unit: str) -> str:
@@ -138,12 +153,13 @@ def _quasi_static(check: Any) -> Any:
     return checked
 
 
-def impact_case(p: dict[str, Any]) -> dict[str, float]:
-    """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``)."""
+def impact_case(p: dict[str, Any]) -> CaseResult:
+    """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``); a
+    closed form, without checks of its own."""
     from ..theory.impact import solve_impact
 
     result = solve_impact(*_impact_inputs(p))
-    return {name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}
+    return CaseResult({name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}, ())
 
 
 register_kind(
@@ -202,8 +218,9 @@ CONTACT_OUTPUTS = {
 }
 
 
-def contact_case(p: dict[str, Any]) -> dict[str, float]:
-    """FEM contact curve: fitted beta and exponent, worst relative errors, size and time."""
+def contact_case(p: dict[str, Any]) -> CaseResult:
+    """FEM contact curve: fitted beta and exponent, worst relative errors, size and time (the
+    errors are the case's outputs, mapped over the grid, not checks)."""
     from ..study.contact.indentation import run_indentation
 
     indenter, half_space, depths, mesh, solver = _contact_inputs(p)
@@ -211,7 +228,7 @@ def contact_case(p: dict[str, Any]) -> dict[str, float]:
     result = run_indentation(indenter, half_space, depths, mesh, backend=solver)
     seconds = time.perf_counter() - start
     errors = result.errors()
-    return {
+    outputs = {
         "beta_fem": float(result.fit.beta_fixed_exponent),
         "exponent_fem": float(result.fit.exponent),
         "beta_analytic": float(result.exact.beta),
@@ -222,6 +239,7 @@ def contact_case(p: dict[str, Any]) -> dict[str, float]:
         "dofs": int(result.mesh_stats["dofs"]),
         "seconds": seconds,
     }
+    return CaseResult(outputs, ())
 
 
 register_kind(
@@ -248,7 +266,7 @@ _DYNAMIC_NUMERICS = vocabulary.fields(
 def _dynamic_inputs(p: dict[str, Any]):
     from dataclasses import replace
 
-    from ..fem.dynamic_contact import MAX_DOFS, DynamicSettings, estimate_dofs
+    from ..fem.dynamic_contact import DynamicSettings
     from ..study.dynamic.accuracy import check_ladder
 
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
@@ -259,15 +277,22 @@ def _dynamic_inputs(p: dict[str, Any]):
     refine = p["refine"]
     if refine != 1.0:
         settings = settings.refined(refine)
-    if estimate_dofs(settings) > MAX_DOFS:
-        raise InputError(
-            f"mesh_size {settings.size!r} would give about {estimate_dofs(settings)} dofs, "
-            f"above the limit {MAX_DOFS}"
-        )
     if p["estimate"]:
         check_ladder(settings)
-    _prony(p)  # refused up front
     return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
+
+
+def _dynamic_check(p: dict[str, Any]) -> None:
+    """Every input of a dynamic case checked at load as ``shtaerman dynamic`` checks them
+    (:func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`: the layer's thickness against
+    the impact, the viscoelastic impact's duration, the mesh size), in well under a second."""
+    import warnings
+
+    from ..fem.dynamic_contact import check_dynamic_impact
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a validity warning is the case's to record
+        check_dynamic_impact(*_dynamic_inputs(p), _prony(p))
 
 
 def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
@@ -358,9 +383,9 @@ fractions of M v0^2/2 (:attr:`~shtaerman.fem.dynamic_contact.DynamicImpactResult
 empty for an elastic case of a prony axis)."""
 
 
-def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
+def dynamic_case(p: dict[str, Any]) -> CaseResult:
     """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
-    :class:`CaseCheckFailed` when its energy balance is off by more than the studies allow."""
+    failed when its energy balance or its reflected energy exceed what the studies allow."""
     from ..study.dynamic.case import run_case
     from ..study.dynamic.loader import dynamic_check_failures
 
@@ -390,9 +415,7 @@ def dynamic_case(p: dict[str, Any]) -> dict[str, float]:
     failures = dynamic_check_failures(
         outputs["energy_balance_error"], outputs["reflected_energy_fraction"]
     )
-    if failures:
-        raise CaseCheckFailed("; ".join(failures), outputs)
-    return outputs
+    return CaseResult(outputs, tuple(failures))
 
 
 def _dynamic_errors(case: Any) -> dict[str, float]:
@@ -415,7 +438,7 @@ register_kind(
         parameters=vocabulary_parameters("dynamic"),
         outputs=DYNAMIC_OUTPUTS,
         case=dynamic_case,
-        check=_quasi_static(_dynamic_inputs),
+        check=_quasi_static(_dynamic_check),
         nondeterministic=("seconds",),
         optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
         levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
@@ -494,13 +517,15 @@ LAYER_DYNAMIC_OUTPUTS = {
 restitution, maxima and energy balance error (of M v0^2/2)."""
 
 
-def layer_case(p: dict[str, Any]) -> dict[str, float]:
-    """One layer study (3-mesh ladder, the impact on its FE law) reduced to scalars."""
+def layer_case(p: dict[str, Any]) -> CaseResult:
+    """One layer study (3-mesh ladder, the impact on its FE law) reduced to scalars; failed
+    when the study's checks fail (as ``verify`` judges it)."""
+    from ..study.checks import failures
     from ..study.contact.runner import run_contact_study
 
     outcome = run_contact_study(_layer_study(p))
     layer, half_space = outcome.layer, outcome.impacts["analytic"]
-    return {
+    outputs = {
         "H": layer.thickness,
         "H_over_a_c": layer.thickness_ratio,
         "a_c": layer.contact_radius,
@@ -517,6 +542,7 @@ def layer_case(p: dict[str, Any]) -> dict[str, float]:
         "seconds": outcome.seconds,
         **_layer_dynamic(layer),
     }
+    return CaseResult(outputs, failures(outcome.checks))
 
 
 def _layer_dynamic(layer: Any) -> dict[str, float]:
@@ -612,11 +638,12 @@ the depth (as x/a, and as the impact velocity whose x_c reaches it) up to which 
 1 % / 5 % of the linear force (NaN if the computed depths never leave it)."""
 
 
-def finite_strain_case(p: dict[str, Any]) -> dict[str, float]:
+def finite_strain_case(p: dict[str, Any]) -> CaseResult:
     """One finite-strain study (the study kind's run, on the case's mesh alone: no
-    error-estimate ladder) reduced to scalars."""
+    error-estimate ladder) reduced to scalars; failed when the study's checks fail."""
     import numpy as np
 
+    from ..study.checks import failures
     from ..study.finite.runner import run_finite_strain_study
 
     outcome = run_finite_strain_study(_finite_inputs(p), estimate=False)
@@ -642,7 +669,7 @@ def finite_strain_case(p: dict[str, Any]) -> dict[str, float]:
         "dofs": int(outcome.finite.curve.mesh_stats["dofs"]),
         "seconds": outcome.seconds,
     }
-    return out
+    return CaseResult(out, failures(outcome.checks))
 
 
 register_kind(
