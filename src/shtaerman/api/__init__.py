@@ -22,9 +22,9 @@ from ..theory.indenter import PowerLawIndenter as PowerLawIndenter
 from ..theory.materials import RIGID as RIGID
 from ..theory.materials import Material as Material
 from ..validation import InputError as InputError
+from .dynamic_result import DynamicResult as DynamicResult
 from .fem_contact import ContactResult as ContactResult
 from .fem_contact import contact as contact
-from .fem_dynamic import DynamicResult as DynamicResult
 from .fem_dynamic import dynamic as dynamic
 from .quasi_static import ImpactResult as ImpactResult
 from .quasi_static import impact as impact

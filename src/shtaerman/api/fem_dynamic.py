@@ -4,19 +4,17 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..problem import Problem, check_options
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
+from .dynamic_result import DIFFERENCES, DynamicResult
 from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
@@ -37,109 +35,6 @@ SETTINGS_OPTIONS = (
 """Numerical keywords (the vocabulary's: ``time_steps`` is ``--time-steps``, ``mesh_size``
 ``--mesh-size``, ...): each sets the DynamicSettings field :func:`shtaerman.vocabulary.fields`
 names."""
-DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
-"""The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
-P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
-
-
-def _dynamic_key(name: str, doc: str) -> Any:
-    return property(lambda self: self.dynamic[name], doc=doc)
-
-
-@dataclass(frozen=True)
-class DynamicResult:
-    """The dynamic impact: the keys of ``shtaerman dynamic --json`` (SI units).
-
-    ``dynamic`` holds the FE results; each is also an attribute (``x_max``, ``P_max``,
-    ``restitution``, ...). ``differences`` are quasi-static / dynamic - 1 for ``x_c``
-    (against x_max), ``P_c`` (P_max) and ``t_c`` (t_contact / 2); ``differences_error``
-    their estimated absolute errors. The ladder's keys are None without the estimate.
-    ``solution`` is the finest FE run (histories, fields), ``ladder`` the error-estimate
-    ladder; neither is part of :meth:`to_dict`. One type for every body: ``model`` names the
-    material model; a rubber at finite strain adds ``rubber`` (its constants) and ``prony``
-    (its series, as given) and has no ``radiation_estimate`` (the first-order estimate is the
-    linear half-space's).
-    """
-
-    quasi_static: dict[str, float]
-    dynamic: dict[str, float]
-    differences: dict[str, float]
-    radiation_estimate: dict[str, float] | None
-    mesh: dict[str, Any]
-    timings: dict[str, float]
-    parameters: dict[str, float]
-    model: str = "linear"
-    rubber: dict[str, Any] | None = None
-    prony: str | None = None
-    differences_error: dict[str, float] | None = None
-    error_estimate: dict[str, float] | None = None
-    extrapolated: dict[str, float] | None = None
-    estimate_details: dict[str, dict[str, Any]] | None = None
-    mesh_ladder: tuple[dict[str, Any], ...] | None = None
-    solution: Any = field(default=None, repr=False, compare=False)
-    ladder: Any = field(default=None, repr=False, compare=False)
-
-    x_max = _dynamic_key("x_max", "Maximum approach, m.")
-    P_max = _dynamic_key("P_max", "Maximum contact force, N.")
-    t_x_max = _dynamic_key("t_x_max", "Time of the maximum approach, s.")
-    t_contact = _dynamic_key("t_contact", "Contact duration, s.")
-    v_out = _dynamic_key("v_out", "Rebound velocity, m/s.")
-    restitution = _dynamic_key("restitution", "Coefficient of restitution e = v_out / v0.")
-    energy_radiated_fraction = _dynamic_key(
-        "energy_radiated_fraction", "Energy carried away by waves, 1 - e^2 of M v0^2 / 2."
-    )
-    energy_balance_error = _dynamic_key(
-        "energy_balance_error", "Energy account error, of M v0^2 / 2."
-    )
-    reflected_energy_fraction = _dynamic_key(
-        "reflected_energy_fraction", "Energy reflected by the far boundary, of the radiated."
-    )
-
-    @property
-    def energy_dissipated_fraction(self) -> float:
-        """Energy dissipated by a viscoelastic half-space (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_dissipated_fraction", math.nan)
-
-    @property
-    def energy_hysteresis_fraction(self) -> float:
-        """The part of 1 - e^2 lost to hysteresis (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_hysteresis_fraction", math.nan)
-
-    @property
-    def energy_wave_fraction(self) -> float:
-        """The part of 1 - e^2 carried away by waves (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_wave_fraction", math.nan)
-
-    def history(self) -> dict[str, Any]:
-        """The histories t, x, v, P, a, p0 at every time step (arrays, SI units)."""
-        return self.solution.history_columns()
-
-    def to_dict(self) -> dict[str, Any]:
-        """The JSON object of ``shtaerman dynamic --json``: non-finite numbers
-        are None (the CLI's null)."""
-        document: dict[str, Any] = {
-            "quasi_static": dict(self.quasi_static),
-            "dynamic": dict(self.dynamic),
-            "differences": dict(self.differences),
-        }
-        if self.differences_error is not None:
-            document["differences_error"] = dict(self.differences_error)
-        if self.radiation_estimate is not None:
-            document["radiation_estimate"] = self.radiation_estimate
-        document.update(mesh=self.mesh, timings=self.timings, parameters=self.parameters)
-        document["model"] = self.model
-        if self.rubber is not None:
-            document["rubber"] = dict(self.rubber)
-        if self.prony is not None:
-            document["prony"] = self.prony
-        if self.mesh_ladder is not None:
-            document.update(
-                error_estimate=self.error_estimate,
-                extrapolated=self.extrapolated,
-                estimate_details=self.estimate_details,
-                mesh_ladder=[dict(level) for level in self.mesh_ladder],
-            )
-        return json_safe(document)
 
 
 def dynamic_settings(

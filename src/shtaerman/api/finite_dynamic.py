@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..vocabulary import entry
-from .fem_dynamic import DynamicResult
+from .dynamic_result import DynamicResult
 
 if TYPE_CHECKING:
     from ..problem import Problem
