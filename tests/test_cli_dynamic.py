@@ -249,7 +249,8 @@ def test_a_round_off_loss_prints_without_a_minus_sign():
         (("contact", "--force"), "--force: applies with --out only"),
         (("contact", "--figure-format", "svg"), "--figure-format: applies with --out only"),
         (("dynamic", "--force"), "--force: applies with --out or --history only"),
-        (("dynamic", "--model", "neo-hookean", "--force"), "--force: not supported with model"),
+        (("dynamic", "--model", "neo-hookean", "--force"), "--force: applies with --out or"),
+        (("dynamic", "--model", "yeoh", "--figure-format", "svg"), "--figure-format: applies"),
         (("dynamic", "--figure-format", "pdf"), "--figure-format: applies with --out only"),
     ],
 )

@@ -78,18 +78,16 @@ def test_a_part_checks_its_own_values_and_names_them():
 
 def test_options_a_combination_does_not_take_are_refused_by_name():
     rubber = sh.Problem.impact(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean")
-    for name in ("out", "history", "figure_format", "estimate", "refine", "force"):
+    for name in ("estimate", "refine", "growth", "layer_rate"):
         with pytest.raises(sh.InputError, match=rf"^{name}: not supported with model"):
             check_options(rubber, [name])
-    check_options(rubber, ["time_steps", "mesh_size"])  # taken
+    check_options(rubber, ["time_steps", "mesh_size", "out", "history", "figure_format"])
 
 
-@pytest.mark.parametrize(
-    "keywords",
-    [{"figure_format": "svg"}, {"estimate": False}, {"force": True}, {"refine": 2.0}],
-)
+@pytest.mark.parametrize("keywords", [{"estimate": False}, {"refine": 2.0}])
 def test_the_api_refuses_what_the_finite_impact_ignored(keywords):
-    """sh.dynamic(model=...) used to drop figure_format, estimate and force without a word."""
+    """sh.dynamic(model=...) used to drop estimate and refine without a word (and
+    figure_format and force, which it now takes with out: tests/test_finite_outputs.py)."""
     with pytest.raises(sh.InputError, match="not supported with model 'neo-hookean'"):
         sh.dynamic(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean", **keywords)
 
@@ -118,8 +116,8 @@ def _one_line_error(capsys, argv, words):
         ),
         # item 15: a pad always has its lateral absorber; 0 ran as 10 without a word
         (["dynamic", "--thickness", "0.02", "--layer-rate", "0"], "--layer-rate: a layer always"),
-        # item 16: silently accepted before
-        (["dynamic", "--model", "neo-hookean", "--figure-format", "svg"], "--figure-format: not"),
+        # item 16: silently accepted before (now the finite impact writes figures with --out)
+        (["dynamic", "--model", "neo-hookean", "--figure-format", "svg"], "--figure-format: appl"),
         (["dynamic", "--interface", "bonded", "--density2", "0"], "--interface: the impact's"),
     ],
 )

@@ -288,20 +288,16 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
     OptionLimit(
         lambda c: c.model == "rubber" and c.loading != "curve",
         (
-            "history",
-            "out",
-            "force",
             "refine",
             "estimate",
             "mesh_margin",
             "domain_factor",
             "growth",
             "layer_rate",
-            "figure_format",
         ),
         "not supported with a finite-strain model in the impact (it takes mass, velocity, "
-        "density2, time_steps, mesh_size, thickness, base (bonded), prony and the rubber "
-        "options)",
+        "density2, time_steps, mesh_size, thickness, base (bonded), prony, the rubber "
+        "options and the outputs)",
     ),
     OptionLimit(
         lambda c: c.loading == "massless",

@@ -201,7 +201,8 @@ def dynamic(
     if problem.body.finite:
         from .finite_dynamic import finite_dynamic
 
-        return finite_dynamic(problem, time_steps=time_steps, mesh_size=mesh_size)
+        outputs = dict(out=out, force=force, figure_format=figure_format)
+        return finite_dynamic(problem, time_steps=time_steps, mesh_size=mesh_size, **outputs)
     indenter, body = problem.striker.indenter, problem.body.material
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)

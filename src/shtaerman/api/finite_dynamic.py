@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..theory.contact import PowerLawContact
@@ -17,7 +18,13 @@ __all__ = ["finite_dynamic"]
 
 
 def finite_dynamic(
-    problem: Problem, *, time_steps: int | None = None, mesh_size: float | None = None
+    problem: Problem,
+    *,
+    time_steps: int | None = None,
+    mesh_size: float | None = None,
+    out: str | Path | None = None,
+    force: bool = False,
+    figure_format: str = "png",
 ) -> DynamicResult:
     """The impact of a rigid striker on a rubber body at finite strain.
 
@@ -32,6 +39,12 @@ def finite_dynamic(
         Steps per quasi-static impact duration (default 50; 100 with inertia).
     mesh_size : float, optional
         Smallest element / refined radius (default the finite-strain contact's).
+    out : path, optional
+        A new folder for dynamic.json, history.csv, energies.csv and dynamic_history.png
+        (:func:`shtaerman.output.finite.write_finite_impact`); an existing one is replaced only
+        with ``force``.
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes the figure in that format beside its PNG.
 
     Returns
     -------
@@ -42,7 +55,13 @@ def finite_dynamic(
 
     from ..fem.finite_contact import FINITE_MESH
     from ..fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
+    from ..output.files import output_folder, staged_folder
+    from ..output.finite import write_finite_impact
+    from ..plots.formats import check_figure_format
     from .layer_options import layer_mesh
+
+    check_figure_format(figure_format)
+    folder = output_folder(out, force=force)  # checked before the run
 
     indenter, body = problem.striker.indenter, problem.body.material
     mass, velocity = problem.striker.mass, problem.striker.velocity
@@ -62,7 +81,7 @@ def finite_dynamic(
         "P_c": quasi.P_c / summary["P_max"] - 1.0,
         "t_c": quasi.t_c / (0.5 * summary["t_contact"]) - 1.0,
     }
-    return DynamicResult(
+    result = DynamicResult(
         quasi_static={key: quasi.maxima()[key] for key in ("x_c", "P_c", "t_c", "t_y")},
         dynamic=summary,
         differences=differences,
@@ -75,6 +94,10 @@ def finite_dynamic(
         prony=None if series is None else _prony_text(series),
         solution=run,
     )
+    if folder is not None:
+        with staged_folder(folder, force=force) as stage:
+            write_finite_impact(result, quasi, stage, figure_format)
+    return result
 
 
 def _prony_text(series: PronySeries) -> str:

@@ -25,8 +25,9 @@ from .common import (
     print_json,
     refuse_idle_output_options,
     warn,
+    warn_volumetric,
 )
-from .finite_dynamic import layer_rows, run_finite
+from .finite_dynamic import finite_dynamic_text, layer_rows
 from .impact import history_path
 
 NOTES = {
@@ -109,21 +110,29 @@ def _format(args: argparse.Namespace) -> list[str]:
     return ["figure_format"] if args.figure_format != entry("figure_format").default else []
 
 
+def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
+    """The numerical and output keywords of :func:`shtaerman.dynamic` for ``problem``: a
+    finite-strain impact's own defaults where an option was not given."""
+    outputs = keywords(args, ("out", "force", "figure_format"))
+    if problem.body.finite:
+        names = ("time_steps", "mesh_size")
+        return {**{n: getattr(args, n) if given(args, n) else None for n in names}, **outputs}
+    if not given(args, "layer_rate"):  # the API's default: the layer of the case
+        args.layer_rate = None
+    return {**keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     with in_option_words():
         problem = problem_of(args)
         check_options(problem, [name for name in OPTIONS if given(args, name)] + _format(args))
-    if problem.body.finite:
-        return run_finite(args, problem)
     refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
-    if not given(args, "layer_rate"):  # the API's default: the layer of the case
-        args.layer_rate = None
-    names = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "figure_format")
     with in_option_words():
-        result = dynamic(problem, **keywords(args, names))
+        result = dynamic(problem, **_numerics(args, problem))
+    warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:
@@ -131,7 +140,9 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(report)
     else:
-        print(dynamic_text(report))
+        print(finite_dynamic_text(report) if problem.body.finite else dynamic_text(report))
+    if problem.body.finite:
+        return 0
     of = "the radiated" if "thickness" not in result.mesh else "M v0^2/2"
     failures = dynamic_check_failures(
         result.energy_balance_error, result.reflected_energy_fraction, of

@@ -2,28 +2,7 @@
 
 from __future__ import annotations
 
-import argparse
 import math
-
-from ..api.finite_dynamic import finite_dynamic
-from ..problem import Problem
-from .common import given, in_option_words, print_json, warn_volumetric
-
-
-def run_finite(args: argparse.Namespace, problem: Problem) -> int:
-    """Run :func:`shtaerman.api.finite_dynamic.finite_dynamic` on the impact ``problem`` (on a
-    rubber body) with the options' numerics; print text or JSON."""
-    numerics = {name: getattr(args, name) for name in ("time_steps", "mesh_size")}
-    numerics = {name: value if given(args, name) else None for name, value in numerics.items()}
-    with in_option_words():
-        result = finite_dynamic(problem, **numerics)
-    warn_volumetric(args)  # after the run: a refused input is the one line
-    report = result.to_dict()
-    if args.json:
-        print_json(report)
-    else:
-        print(finite_dynamic_text(report))
-    return 0
 
 
 def finite_dynamic_text(report: dict) -> str:

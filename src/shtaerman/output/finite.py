@@ -6,6 +6,8 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
   stored energy and Newton iterations beside the linear exact and same-mesh linear FEM values;
 - ``history_<variant>.csv``: the impact histories t, x, P, a, p(0) (linear exact, linear FEM,
   finite strain);
+- ``dynamic.json``, ``history.csv``, ``energies.csv`` and ``dynamic_history.png`` of a
+  finite-strain impact (``dynamic --model ... --out``, :func:`write_finite_impact`);
 - ``field_at_x_c.vtu``: the deformed-state fields (reference r-z section, displacements in m,
   Cauchy stresses in Pa) at the computed depth nearest the finite-strain x_c, with the depth,
   force, contact radius, material and model as VTK field data.
@@ -29,11 +31,18 @@ from .export import FIELD_UNITS, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
+    from ..api.dynamic_result import DynamicResult
     from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
+    from ..theory.impact import ImpactResult
 
-__all__ = ["write_finite_curve", "write_finite_field", "write_finite_study"]
+__all__ = [
+    "write_finite_curve",
+    "write_finite_field",
+    "write_finite_impact",
+    "write_finite_study",
+]
 
 
 CURVE_UNITS = {
@@ -144,3 +153,28 @@ def write_finite_study(
     }
     files = {path.stem: str(path.relative_to(root)) for path in written}
     return files, {caption: str(path.relative_to(root)) for caption, path in figures.items()}
+
+
+def write_finite_impact(
+    result: DynamicResult, quasi: ImpactResult, folder: Path, figure_format: str = "png"
+) -> list[Path]:
+    """A finite-strain impact's files in ``folder``: dynamic.json (the ``--json`` object),
+    history.csv (t, x, v, P at every step), energies.csv and dynamic_history.png (x(t), P(t)
+    against the quasi-static impact ``quasi``; also in ``figure_format`` "svg" or "pdf")."""
+    import json
+    from types import SimpleNamespace
+
+    run = result.solution
+    written = [folder / "dynamic.json", folder / "history.csv", folder / "energies.csv"]
+    written[0].write_text(json.dumps(result.to_dict(), indent=2))
+    write_csv(written[1], result.history())
+    write_csv(written[2], {"t [s]": run.t, **{f"{k} [J]": v for k, v in run.energies.items()}})
+    finite = SimpleNamespace(**run.history_columns())
+    histories = {"linear_exact": quasi.history(points=401), "finite_strain": finite}
+    figure = plot_finite_impact(
+        SimpleNamespace(histories=histories),
+        folder / "dynamic_history.png",
+        figure_format=figure_format,
+        model=result.model,
+    )
+    return [*written, figure]

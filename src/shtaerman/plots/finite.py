@@ -49,6 +49,13 @@ __all__ = [
 
 FINITE_COLOUR = SECOND_COLOUR
 """Finite strain (red); the linear FEM is blue, the exact linear solution black."""
+MODEL_LABELS = {
+    "neo-hookean": "neo-Hookean",
+    "mooney-rivlin": "Mooney-Rivlin",
+    "yeoh": "Yeoh",
+    "gent": "Gent",
+}
+"""A rubber model's name in a legend (capitalised where it is a person's name)."""
 IMPACT_STYLES = {
     "linear_exact": (EXACT_COLOUR, "-", "Shtaerman, linear (the paper)"),
     "linear_fem": (FEM_COLOUR, ":", "linear FEM, same mesh"),
@@ -212,14 +219,19 @@ def _mark_x_c(outcome: FiniteStudyOutcome, top: Any, bottom: Any) -> None:
 
 @styled
 def plot_finite_impact(
-    outcome: FiniteStudyOutcome, path: Path | str, *, figure_format: str = "png"
+    outcome: FiniteStudyOutcome,
+    path: Path | str,
+    *,
+    figure_format: str = "png",
+    model: str = "neo-hookean",
 ) -> Path:
     """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain (PNG, and
-    ``figure_format`` "svg" or "pdf" beside it)."""
+    ``figure_format`` "svg" or "pdf" beside it); ``model`` names the rubber in the legend."""
     figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
     for variant, history in outcome.histories.items():
         colour, line, label = IMPACT_STYLES[variant]
+        label = label.replace("neo-Hookean", MODEL_LABELS.get(model, model))
         top.plot(history.t * 1e3, history.x * 1e3, line, color=colour, label=label)
         bottom.plot(history.t * 1e3, history.P, line, color=colour, label=label)
     top.set_ylabel("Approach x (mm)")
