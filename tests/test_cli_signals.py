@@ -86,7 +86,7 @@ def test_a_picture_holds_an_interrupt_until_it_is_done():
 
 VERIFY = ["-m", "shtaerman", "verify", "paper", "--quick", "--workers", "1", "--out", "o"]
 FIGURES = "paper: files and figures"
-SIGNALS = [(signal.SIGINT, 0.0), (signal.SIGTERM, 0.08), (signal.SIGINT, 0.15)]
+SIGNALS = [(signal.SIGINT, 0.1), (signal.SIGTERM, 0.15), (signal.SIGINT, 0.2)]
 """Signal and delay (s) after FIGURES: the first picture's lazy import of VTK's OpenGL
 modules is 0.06-0.25 s after it (issue 31, items 5 and 6)."""
 

@@ -112,7 +112,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"shtaerman: error: {STDOUT_CLOSED}", file=sys.stderr)
         return EXIT_INPUT
     _SIGNALLED.clear()
-    previous = {number: signal.signal(number, _stop) for number in STOPPING}
+    ignored = {number for number in STOPPING if signal.getsignal(number) is signal.SIG_IGN}
+    previous = {n: signal.signal(n, _stop) for n in STOPPING if n not in ignored}  # '&' jobs
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
