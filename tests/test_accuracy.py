@@ -14,6 +14,7 @@ import pytest
 
 from shtaerman.cli import main
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.output.text_contact import tables
 from shtaerman.study.contact.accuracy import run_ladder, run_to_accuracy
 from shtaerman.study.contact.indentation import default_depths, run_indentation
 from shtaerman.study.ladder import LADDER_RATIO
@@ -59,6 +60,25 @@ def test_estimates_are_positive_and_finite(ladder):
     # the extrapolated worst-depth force lies within its own estimate of some FEM force
     forces = np.array([s.force for s in finest])
     assert np.min(np.abs(forces / extrapolated["force"] - 1)) <= estimate["force"]
+
+
+def test_the_extrapolated_values_name_their_depth(ladder):
+    """Issue 31: contact.json gave ``extrapolated.force`` (15.33 N) beside the force at x_c
+    (64.97 N) without saying it belongs to another depth. ``extrapolated_depth`` names it."""
+    report = ladder.to_dict()
+    depths = report["extrapolated_depth"]
+    assert set(depths) == {"force", "contact_radius", "central_pressure"}
+    finest = ladder.finest.steps
+    for key, depth in depths.items():
+        (at,) = [step for step in finest if step.depth == depth]  # one of the run's depths
+        details = report["estimate_details"][key]
+        assert details["value"] == getattr(at, key)  # an identity: the estimate's own point
+        # Richardson moves the value there by its own correction, which is the estimate
+        # (a two-level fallback does not move it); the 1e-12 is rounding of the division
+        moved = abs(report["extrapolated"][key] / getattr(at, key) - 1)
+        assert moved <= report["error_estimate"][key] * (1 + 1e-12)
+    label = tables({"impact": {}, "accuracy": report})[-1]["rows"][0][0]
+    assert label == f"force at depth {depths['force']:.4e} m (the worst)"
 
 
 def test_accuracy_target_is_met_or_refused():

@@ -257,14 +257,35 @@ def test_history_leaves_no_temporary_and_refuses_a_folder(tmp_path, capsys):
     assert code == 2 and "is a folder" in err
 
 
-def test_history_through_a_symlink_replaces_the_file_it_names(tmp_path, capsys):
-    real, link = tmp_path / "real.csv", tmp_path / "link.csv"
-    real.write_text("old")
-    link.symlink_to(real)
+@pytest.mark.parametrize("command", ["impact", "dynamic"])
+@pytest.mark.parametrize("force", [[], ["--force"]])
+def test_a_symlinked_history_is_refused_and_its_target_kept(tmp_path, capsys, command, force):
+    """Issue 31 item 4: ``ln -s precious.csv h.csv; impact --history h.csv --force`` replaced
+    precious.csv; a link into another folder (dynamic) did the same. Refused as --out is."""
+    elsewhere, here = tmp_path / "elsewhere", tmp_path / "here"
+    elsewhere.mkdir(), here.mkdir()
+    precious, link, dangling = elsewhere / "precious.csv", here / "h.csv", here / "new.csv"
+    precious.write_text("precious")
+    link.symlink_to(precious)
+    dangling.symlink_to(elsewhere / "absent.csv")
+    for name in (link, dangling):
+        code, out, err = run(capsys, command, "--history", str(name), *force)
+        assert code == 2 and out == "" and err.count("\n") == 1
+        assert "history: " in err and "is a symbolic link; name the file itself" in err
+    assert precious.read_text() == "precious" and sorted(p.name for p in elsewhere.iterdir()) == [
+        "precious.csv"
+    ]
+    assert link.is_symlink() and dangling.is_symlink() and len(list(here.iterdir())) == 2
+
+
+def test_history_to_a_link_to_a_device_writes_into_it(tmp_path, capsys):
+    """Writing into a special file replaces nothing: a link to one (as /dev/stdout is, to
+    /proc/self/fd/1) stays allowed."""
+    link = tmp_path / "null"
+    link.symlink_to(os.devnull)
     code, _, err = run(capsys, "impact", "--history", str(link), "--points", "3")
-    assert code == 2 and "--force" in err and real.read_text() == "old"
-    assert run(capsys, "impact", "--history", str(link), "--points", "3", "--force")[0] == 0
-    assert link.is_symlink() and real.read_text().count("\n") == 4
+    assert code == 0 and err == "" and link.is_symlink() and os.path.exists(os.devnull)
+    assert stat.S_ISCHR(os.stat(os.devnull).st_mode)
 
 
 def test_sigterm_during_contact_out_leaves_nothing(tmp_path):

@@ -32,6 +32,8 @@ STDOUT_CLOSED = (
     "standard output is closed; redirect it to a file or to /dev/null (e.g. '> run.log')"
 )
 PIPE_OUTPUT = "the reader of an output pipe quit before the output was complete"
+STOPPING = (signal.SIGINT, signal.SIGTERM)
+"""The signals that stop a run cleanly (:func:`_stop`)."""
 SUBCOMMANDS = (impact, tables, contact, dynamic, verify, init_study, sweep)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
@@ -57,12 +59,25 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 _SIGNALLED: list[int] = []
-"""The SIGTERMs received (a library that catches the raised Terminated may hide it)."""
+"""The SIGINTs and SIGTERMs received: a library that catches the exception raised for one
+(VTK's lazy loader turns it into an ImportError; a weakref callback prints and drops it) may
+hide it, and the run must stop all the same."""
 
 
-def _terminate(signum: int, frame: object) -> None:
+def _stop(signum: int, frame: object) -> None:
+    """SIGINT raises KeyboardInterrupt, SIGTERM :class:`Terminated`; both are recorded."""
     _SIGNALLED.append(signum)
-    raise Terminated
+    raise KeyboardInterrupt if signum == signal.SIGINT else Terminated
+
+
+def _stopped(signum: int) -> int:
+    """The line and exit code of a run stopped by ``signum`` (130 SIGINT, 143 SIGTERM)."""
+    interrupted = signum == signal.SIGINT
+    print(
+        f"shtaerman: {'interrupted' if interrupted else 'terminated'}; {NOTHING_PARTIAL}",
+        file=sys.stderr,
+    )
+    return EXIT_INTERRUPTED if interrupted else EXIT_TERMINATED
 
 
 def _run(argv: Sequence[str] | None) -> int:
@@ -91,12 +106,14 @@ def _report(caught: list[warnings.WarningMessage]) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the CLI; returns the exit code (0 success, 1 failed check, 2 bad input)."""
+    """Run the CLI; returns the exit code (0 success, 1 failed check, 2 bad input, 130 Ctrl-C,
+    143 SIGTERM)."""
     if sys.stdout is None:  # started with '>&-': every result would be lost without a word
         print(f"shtaerman: error: {STDOUT_CLOSED}", file=sys.stderr)
         return EXIT_INPUT
     _SIGNALLED.clear()
-    previous = signal.signal(signal.SIGTERM, _terminate)
+    ignored = {number for number in STOPPING if signal.getsignal(number) is signal.SIG_IGN}
+    previous = {n: signal.signal(n, _stop) for n in STOPPING if n not in ignored}  # '&' jobs
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -108,17 +125,16 @@ def main(argv: Sequence[str] | None = None) -> int:
                 caught.clear()
                 print(f"shtaerman: error: {error}", file=sys.stderr)
             _report(caught)
+        if _SIGNALLED and code not in (EXIT_INTERRUPTED, EXIT_TERMINATED):
+            return _stopped(_SIGNALLED[0])  # a library swallowed it; the outputs are whole
     except KeyboardInterrupt:
-        print(f"shtaerman: interrupted; {NOTHING_PARTIAL}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _stopped(signal.SIGINT)
     except Terminated:
-        print(f"shtaerman: terminated; {NOTHING_PARTIAL}", file=sys.stderr)
-        return EXIT_TERMINATED
-    except ImportError:  # VTK's lazy loader turns a Terminated raised inside it into this
+        return _stopped(signal.SIGTERM)
+    except ImportError:  # VTK's lazy loader turns an exception raised inside it into this
         if not _SIGNALLED:
             raise
-        print(f"shtaerman: terminated; {NOTHING_PARTIAL}", file=sys.stderr)
-        return EXIT_TERMINATED
+        return _stopped(_SIGNALLED[0])
     except BrokenPipeError as error:
         if not _stdout_gone():  # an output file was a pipe (FIFO) whose reader quit early
             print(f"shtaerman: error: {error}: {PIPE_OUTPUT}", file=sys.stderr)
@@ -130,7 +146,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"shtaerman: error: {error}; {NOTHING_PARTIAL}", file=sys.stderr)
         return EXIT_FAILED
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for number, handler in previous.items():
+            signal.signal(number, handler)
     return code
 
 

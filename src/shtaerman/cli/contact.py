@@ -284,6 +284,8 @@ def _estimate_text(report: dict) -> list[str]:
         if key in estimate
     ]
     lines = [head, "    " + ", ".join(cells)]
+    depths = ", ".join(f"{k} {v:.4e}" for k, v in report.get("extrapolated_depth", {}).items())
+    lines += [f"    at the worst depth (m): {depths}"] if depths else []
     target = report.get("accuracy_target")
     if target is not None:
         reached = max(estimate[key] for key in ("force", "beta") if key in estimate)

@@ -62,10 +62,13 @@ def default_out() -> Path:
 
 def run(args: argparse.Namespace) -> int:
     """Run the studies; print a verdict per study and every failing check."""
-    from ..output.files import adopt_killed_runs, check_output_folder
-    from ..output.folder import PROGRESS_FILE, ProgressBar, VerifyInterrupted, run_verification
-    from ..study.schema import find_study, load_study, shipped_studies
-    from ..sweep.engine import default_workers
+    from ..fem.signals import deferred
+
+    with deferred():  # VTK's modules: an interrupt in their import was a segfault at times
+        from ..output.files import adopt_killed_runs, check_output_folder
+        from ..output.folder import PROGRESS_FILE, ProgressBar, VerifyInterrupted, run_verification
+        from ..study.schema import find_study, load_study, shipped_studies
+        from ..sweep.engine import default_workers
 
     if args.resume and args.force:
         raise InputError("resume and force exclude each other: resume keeps the folder")

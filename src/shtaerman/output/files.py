@@ -326,6 +326,16 @@ def _not_empty(option: str, path: object, marker: str | None, target: Path) -> I
     return InputError(f"{option}: folder {str(path)!r} {state}; {advice}")
 
 
+def _refuse_link(path: Path, option: str, kind: str) -> None:
+    """Raise InputError when ``path`` itself is a symbolic link (also a broken one): a write
+    there would land in whatever it points to, not in the ``kind`` ("folder", "file") named."""
+    if path.is_symlink():
+        raise InputError(
+            f"{option}: {str(path)!r} is a symbolic link; name the {kind} itself "
+            f"({os.path.realpath(path)!r})"
+        )
+
+
 def check_folder_path(path: Path, option: str = "out") -> Path:
     """``path`` made absolute (symbolic links not resolved), or raise InputError when it names
     no folder, is a symbolic link, or is the current folder or one of its parents."""
@@ -334,11 +344,7 @@ def check_folder_path(path: Path, option: str = "out") -> Path:
         target = _absolute(raw)
         if not target.name or target == target.parent:
             raise InputError(f"{option}: {str(path)!r} names no folder to create")
-        if raw.is_symlink():
-            raise InputError(
-                f"{option}: {str(path)!r} is a symbolic link; name the folder itself "
-                f"({os.path.realpath(raw)!r})"
-            )
+        _refuse_link(raw, option, "folder")
         if _is_cwd_or_parent(target):
             raise InputError(
                 f"{option}: {str(path)!r} is the current folder or one of its parents; name a "
@@ -557,8 +563,9 @@ def _publish(content: Path, target: Path, option: str) -> None:
 def check_output_file(path: str | Path, *, force: bool, option: str = "history") -> Path:
     """Return ``path`` if a run may write that file, or raise before any work is done.
 
-    A regular file (or a symbolic link to one) is replaced only with ``force``; a special file
-    (``/dev/null``, a FIFO, a terminal) is written into, never replaced; a folder is refused.
+    A regular file is replaced only with ``force``; a special file (``/dev/null``, a FIFO, a
+    terminal, also through a link: ``/dev/stdout``) is written into, never replaced; a folder
+    and a symbolic link to anything else (a file elsewhere, nothing) are refused.
     """
     try:
         if not os.fspath(path):
@@ -572,10 +579,9 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
                 if not os.access(path, os.W_OK):
                     raise InputError(f"{option}: cannot write {str(path)!r}")
                 return path
-            if not force:
-                raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
-        if not path.exists() and os.path.lexists(path):
-            raise InputError(f"{option}: {str(path)!r} is a broken symbolic link")
+        _refuse_link(path, option, "file")
+        if path.exists() and not force:
+            raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
         real = Path(os.path.realpath(path))
         if not real.parent.is_dir():
             raise InputError(f"{option}: {missing_folder(path.parent)}")

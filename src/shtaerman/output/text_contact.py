@@ -38,11 +38,11 @@ CONTACT_COLUMNS = {
 IMPACT_COLUMNS = ("x_c", "P_c", "t_c")
 """Impact maxima in the cross-check summary."""
 ESTIMATED = {
-    "force": "force (worst depth)",
+    "force": "force",
     "beta": "beta",
     "exponent": "exponent",
-    "contact_radius": "contact radius (worst depth)",
-    "central_pressure": "p(0) (worst depth)",
+    "contact_radius": "contact radius",
+    "central_pressure": "p(0)",
 }
 
 
@@ -125,13 +125,15 @@ def _estimate_table(study: Mapping[str, Any]) -> dict[str, object] | None:
         return None
     ladder = ", ".join(str(level["dofs"]) for level in accuracy["mesh_ladder"])
     rows = []
+    depths = accuracy.get("extrapolated_depth", {})
     for key, label in ESTIMATED.items():
         if key not in accuracy["error_estimate"]:
             continue
         details = accuracy["estimate_details"][key]
+        where = f" at depth {depths[key]:.4e} m (the worst)" if key in depths else ""
         rows.append(
             [
-                label,
+                label + where,
                 number(details["value"], ".6g") + plus_minus(accuracy["error_estimate"][key]),
                 number(accuracy.get("true_error", {}).get(key), ".1e"),  # none: no exact
                 number(accuracy.get("effectivity", {}).get(key), ".2f"),

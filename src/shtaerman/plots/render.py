@@ -27,6 +27,7 @@ from matplotlib import font_manager
 from vtkmodules.vtkCommonCore import vtkObject
 from vtkmodules.vtkRenderingCore import vtkTextProperty
 
+from ..fem.signals import deferred
 from ..validation import InputError
 
 __all__ = ["FONT_SIZE", "WINDOW_SIZE", "picture", "quiet_vtk", "save", "smooth_edges", "use_font"]
@@ -76,8 +77,13 @@ def smooth_edges(plotter: pv.Plotter) -> None:
 @contextmanager
 def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
     """An off-screen plotter on white, edges smoothed (:func:`smooth_edges`), VTK warnings
-    silenced, closed whatever happens."""
-    with quiet_vtk():
+    silenced, closed whatever happens.
+
+    SIGINT and SIGTERM are held until the picture is done (:func:`~shtaerman.fem.signals.
+    deferred`): the first plotter makes VTK import its OpenGL modules, and an interrupt raised
+    in there became an ImportError, a segfault, or an exception a weakref callback dropped.
+    """
+    with deferred(), quiet_vtk():
         plotter = pv.Plotter(off_screen=True, window_size=WINDOW_SIZE, shape=shape, border=False)
         try:
             smooth_edges(plotter)

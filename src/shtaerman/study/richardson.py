@@ -55,6 +55,7 @@ __all__ = [
     "envelope",
     "propagated",
     "richardson",
+    "worst_point",
 ]
 
 ORDER_RANGE = (1.5, 4.5)
@@ -204,6 +205,13 @@ def richardson(
     return Estimate(fine, extrapolated, error, used, "richardson", "", observed)
 
 
+def worst_point(curves: Sequence[ArrayLike]) -> int:
+    """The point of a curve whose estimate :func:`curve_richardson` reports: the index where
+    the last two levels (``curves[-2]``, ``curves[-1]``) differ most relative to the finest."""
+    coarse, fine = (np.asarray(c, dtype=float) for c in curves[-2:])
+    return int(np.argmax(np.abs(coarse - fine) / np.abs(fine)))
+
+
 def curve_richardson(
     curves: Sequence[ArrayLike],
     ratio: float,
@@ -232,7 +240,7 @@ def curve_richardson(
     fine = curves[-1]
     scale = np.abs(fine)
     last = np.abs(curves[-2] - fine) / scale
-    worst = int(np.argmax(last))
+    worst = worst_point(curves)
     if len(curves) == 2:
         return _two_level(float(curves[-2][worst]), float(fine[worst]), "two levels only")
     d1 = float(np.max(np.abs(curves[0] - curves[1]) / scale))

@@ -53,6 +53,7 @@ from ..output.files import (
 )
 from ..plots.formats import check_figure_format
 from ..validation import InputError
+from .guard import SCRATCH_ENV, check_not_bootstrapping, raise_if_unguarded
 from .kinds import CaseResult, unit_suffix
 from .spec import Case, SweepSpec
 
@@ -617,6 +618,7 @@ def _client(
     # would print a "heartbeat" traceback at shutdown
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
     scratch = tempfile.mkdtemp(prefix="shtaerman-dask-")  # private (0700), never a planted link
+    environ[SCRATCH_ENV] = scratch  # where a worker that re-runs an unguarded script says so
     try:
         settings = {"distributed.nanny.pre-spawn-environ": environ, "temporary-directory": scratch}
         with dask.config.set(settings):
@@ -638,18 +640,22 @@ def _client(
 def _local_cluster(workers: int | None, scratch: str) -> Any:
     from distributed import LocalCluster
 
-    return LocalCluster(
-        n_workers=workers or default_workers(),
-        local_directory=scratch,
-        threads_per_worker=1,
-        processes=True,
-        dashboard_address=None,
-        # no dashboard; the scheduler's HTTP endpoint on a free port, not 8787 (shared machines)
-        scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
-        silence_logs=logging.ERROR,
-        env=BLAS_ENV,
-        preload=["shtaerman.sweep._worker"],  # workers leave Ctrl-C to this process
-    )
+    try:
+        return LocalCluster(
+            n_workers=workers or default_workers(),
+            local_directory=scratch,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            # no dashboard; the scheduler's HTTP endpoint on a free port, not 8787 (shared)
+            scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
+            silence_logs=logging.ERROR,
+            env=BLAS_ENV,
+            preload=["shtaerman.sweep._worker"],  # workers leave Ctrl-C to this process
+        )
+    except Exception:
+        raise_if_unguarded(scratch)
+        raise
 
 
 @contextlib.contextmanager
@@ -756,6 +762,7 @@ def run_sweep(
         On SIGINT/SIGTERM in the main thread, after the cluster is shut down; finished cases
         are on disk.
     """
+    check_not_bootstrapping()  # a worker of this very sweep, running an unguarded script
     if workers is not None and scheduler is not None:
         raise InputError("workers: applies to the local cluster only, not to --scheduler")
     if workers is not None and workers < 1:

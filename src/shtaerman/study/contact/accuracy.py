@@ -4,7 +4,8 @@ The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.
 :data:`~shtaerman.study.ladder.LADDER_RATIO` = sqrt(2) per level, so each level has about twice
 the dofs of the one before. Every quantity of the finest level gets a Richardson estimate
 (:mod:`shtaerman.study.richardson`): the force, the contact radius and the central pressure at
-every depth (the worst depth is reported), beta and the fitted exponent. Where the exact
+every depth (the worst depth is reported, and named: ``extrapolated_depth``), beta and the
+fitted exponent. Where the exact
 solution is known (the linear power-law contact) the true error stands beside the estimate:
 their ratio, the effectivity index, verifies the estimator itself in every run.
 """
@@ -25,7 +26,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError, bound_text, validate_positive
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
-from ..richardson import Estimate, curve_richardson, richardson
+from ..richardson import Estimate, curve_richardson, richardson, worst_point
 from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
 
 __all__ = [
@@ -136,9 +137,21 @@ class AccuracyResult:
             for key, estimate in self.estimates.items()
         }
 
+    def worst_depths(self) -> dict[str, float]:
+        """The depth (m) of each per-depth quantity's estimate and extrapolated value: where the
+        last two levels differ most (:func:`~shtaerman.study.richardson.worst_point`)."""
+        last = [level.result.steps for level in self.levels[-2:]]
+        depths = {}
+        for key in STEP_QUANTITIES:
+            if key in self.estimates:
+                worst = worst_point([[getattr(step, key) for step in steps] for steps in last])
+                depths[key] = float(self.finest.steps[worst].depth)
+        return depths
+
     def to_dict(self) -> dict[str, object]:
-        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details
-        (``true_error`` and ``effectivity`` only where the exact solution is known)."""
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``extrapolated_depth`` (the depth
+        of each per-depth quantity's estimate, m: :meth:`worst_depths`), ``mesh_ladder`` and
+        details (``true_error`` and ``effectivity`` only where the exact solution is known)."""
         truth = {}
         if self.exact:
             truth = {
@@ -148,6 +161,7 @@ class AccuracyResult:
         return {
             "error_estimate": self.error_estimate(),
             "extrapolated": {k: e.extrapolated for k, e in self.estimates.items()},
+            "extrapolated_depth": self.worst_depths(),
             "estimate_details": {k: e.to_dict() for k, e in self.estimates.items()},
             **truth,
             "mesh_ladder": [
