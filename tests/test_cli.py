@@ -142,7 +142,8 @@ def test_a_depth_list_is_checked_once_by_the_cli_and_once_by_the_api(capsys):
     finally:
         sys.setprofile(None)
     assert code == 0 and len(json.loads(capsys.readouterr().out)["steps"]) == 2
-    assert calls == [("entry", "parse"), ("entry", "contact_depths")]
+    # once as the option is read, once as the problem's loading is built (sh.Problem)
+    assert calls == [("entry", "parse"), ("entry", "__post_init__")]
 
 
 @pytest.mark.parametrize("value", ["0", "1000", "2.5", "many"])

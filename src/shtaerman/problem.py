@@ -340,6 +340,14 @@ class Problem:
                     f"{part.name} must be a shtaerman.problem.{expected.__name__}", part.name
                 )
         check_bodies(self.striker.indenter, self.body.material, self.striker.material)
+        if self.loading.depths is not None:
+            for name in ("mass", "velocity"):
+                if getattr(self.striker, name) is not None:
+                    raise InputError(
+                        f"{name}: sets the default depths (up to that impact's x_c); give "
+                        "either depths or mass and velocity",
+                        name,
+                    )
         if self.loading.kind == "impact":
             for name in ("mass", "velocity"):
                 if getattr(self.striker, name) is None:

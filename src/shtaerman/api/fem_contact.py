@@ -397,13 +397,16 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     _check_options({**options, "model": model})
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
-        depths = contact_depths(
-            indenter,
-            body,
-            problem.loading.depths,
-            mass=problem.striker.mass,
-            velocity=problem.striker.velocity,
-            striker=problem.striker.material,
+        depths = (
+            contact_depths(
+                indenter,
+                body,
+                mass=problem.striker.mass,
+                velocity=problem.striker.velocity,
+                striker=problem.striker.material,
+            )
+            if problem.loading.depths is None
+            else np.array(problem.loading.depths)  # checked when the problem was built
         )
     if model != "linear":
         _check_finite_depths(problem, depths)
