@@ -436,6 +436,14 @@ VOCABULARY: tuple[Entry, ...] = (
         type="str",
     ),
     Entry(
+        "rate",
+        "m/s",
+        "pressing speed of a contact curve on a viscoelastic body",
+        "Pressing speed V",
+        None,
+        ("contact",),
+    ),
+    Entry(
         "depths",
         "m",
         "indentation depths",

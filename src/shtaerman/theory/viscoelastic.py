@@ -52,9 +52,11 @@ from scipy.special import hyp1f1
 from ..validation import InputError, NumericalFailureError, validate_positive
 from .contact import PowerLawContact
 from .impact import ImpactResult, solve_impact
+from .indenter import PowerLawIndenter
 
 __all__ = [
     "PronySeries",
+    "RateContact",
     "ViscoelasticImpact",
     "constant_rate_contact",
     "constant_rate_pressure",
@@ -423,6 +425,82 @@ def constant_rate_pressure(
     elastic[0] = 0.0
     profiles = hereditary(times, elastic, prony)
     return profiles[np.searchsorted(times, x / rate)]
+
+
+@dataclass(frozen=True)
+class RateContact:
+    """Lee-Radok's contact curve pressed at a constant rate, in the form of
+    :class:`~shtaerman.theory.contact.PowerLawContact` (the FEM contact curve's reference).
+
+    Its :attr:`beta` and :attr:`force_exponent` are those of the power law fitted to its force
+    at ``depths`` (the curve's depths, as the FEM curve is fitted), so that the fitted FEM
+    values compare like with like; the force, radius and pressures are exact.
+
+    Parameters
+    ----------
+    law : PowerLawContact
+        The elastic contact at the instantaneous modulus E*_0 (nu2 = 1/2).
+    prony : PronySeries
+    rate : float
+        Pressing speed V in m/s (x = V t).
+    depths : tuple of float
+        The curve's depths in m, increasing.
+    """
+
+    law: PowerLawContact
+    prony: PronySeries
+    rate: float
+    depths: tuple[float, ...]
+
+    @property
+    def indenter(self) -> PowerLawIndenter:
+        """The indenter z = A r^n."""
+        return self.law.indenter
+
+    @property
+    def modulus(self) -> float:
+        """The instantaneous E*_0 in Pa."""
+        return self.law.modulus
+
+    @property
+    def force_exponent(self) -> float:
+        """Exponent of the power law fitted to the force at the depths (q with one depth)."""
+        x = np.asarray(self.depths)
+        if x.size < 2:
+            return self.law.force_exponent
+        return float(np.polyfit(np.log(x), np.log(self.force(x)), 1)[0])
+
+    @property
+    def beta(self) -> float:
+        """beta in N m^-q of that power law, its exponent held (the FEM fit's convention)."""
+        x = np.asarray(self.depths)
+        return float(np.exp(np.mean(np.log(self.force(x)) - self.force_exponent * np.log(x))))
+
+    @property
+    def central_to_mean_ratio(self) -> float:
+        """p(0)/p_avg at the deepest depth."""
+        deepest = self.depths[-1]
+        return float(self.central_pressure(deepest) / self.mean_pressure(deepest))
+
+    def contact_radius(self, depth: ArrayLike) -> np.ndarray:
+        """a(x) in m: the elastic geometry's."""
+        return constant_rate_contact(depth, self.rate, self.law, self.prony)["contact_radius"]
+
+    def force(self, depth: ArrayLike) -> np.ndarray:
+        """P in N at depth x (m), reached at t = x / V."""
+        return constant_rate_contact(depth, self.rate, self.law, self.prony)["force"]
+
+    def central_pressure(self, depth: ArrayLike) -> np.ndarray:
+        """p(0) in Pa at depth x (m)."""
+        return constant_rate_contact(depth, self.rate, self.law, self.prony)["central_pressure"]
+
+    def mean_pressure(self, depth: ArrayLike) -> np.ndarray:
+        """P / (pi a^2) in Pa at depth x (m)."""
+        return self.force(depth) / (math.pi * self.contact_radius(depth) ** 2)
+
+    def pressure(self, radius: ArrayLike, depth: float) -> np.ndarray:
+        """p(r) in Pa at depth x (m) (:func:`constant_rate_pressure`)."""
+        return constant_rate_pressure(radius, [depth], self.rate, self.law, self.prony)[0]
 
 
 @dataclass(frozen=True)
