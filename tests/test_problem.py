@@ -34,7 +34,8 @@ def _problem(cell: Cell) -> sh.Problem:
     for axis in PARTS:
         keywords.update(PARTS[axis][getattr(cell, axis)])
     if cell.loading == "curve":
-        return sh.Problem.curve(PAPER, RUBBER, **keywords)
+        rate = {"rate": 0.1} if cell.relaxing else {}  # a viscoelastic curve's pressing speed
+        return sh.Problem.curve(PAPER, RUBBER, **keywords, **rate)
     body = MASSLESS if cell.loading == "massless" else RUBBER
     return sh.Problem.impact(PAPER, body, mass=0.7, velocity=3.0, **keywords)
 
