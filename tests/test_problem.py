@@ -53,7 +53,7 @@ def test_every_cell_is_built_or_refused_as_the_table_declares(cell, verdict):
 
 
 def test_the_table_refuses_what_no_route_computes_and_nothing_else():
-    """The refusals are the three combinations the code does not compute today."""
+    """The refusals are the combinations the code does not compute today."""
     refused = {cell for cell, verdict in support_table() if verdict != "runs"}
     lubricated_rubber = {c for c in refused if c.model == "rubber" and "lubricated" in c.geometry}
     assert len(lubricated_rubber) == 2 * 3 * 3  # relaxing x interface x loading
