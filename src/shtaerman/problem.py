@@ -211,15 +211,20 @@ class Interface:
 @dataclass(frozen=True)
 class Loading:
     """How the striker loads the body: ``curve`` (pressed to ``depths`` in m, increasing; None:
-    the default depths, up to the x_c of the striker's impact) or ``impact`` (the striker's
-    mass strikes at its velocity)."""
+    the default depths, up to the x_c of the striker's impact; at ``rate`` m/s on a viscoelastic
+    body) or ``impact`` (the striker's mass strikes at its velocity)."""
 
     kind: str = "impact"
     depths: tuple[float, ...] | None = None
+    rate: float | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in ("curve", "impact"):
             raise InputError(f"loading must be 'curve' or 'impact', got {self.kind!r}", "loading")
+        if self.rate is not None:
+            if self.kind != "curve":
+                raise InputError("rate: applies to a contact curve only", "rate")
+            object.__setattr__(self, "rate", float(entry("rate").check(self.rate, "contact")))
         if self.depths is not None:
             if self.kind != "curve":
                 raise InputError("depths: apply to a contact curve only", "depths")
@@ -259,10 +264,17 @@ SUPPORT: tuple[Unsupported, ...] = (
         "beyond the lateral edge is linear): take a bonded base or the linear model",
     ),
     Unsupported(
-        lambda c: c.relaxing and c.loading == "curve",
+        lambda c: c.relaxing and c.loading == "curve" and c.model == "rubber",
         "prony",
-        "a contact curve is elastic: a viscoelastic body is pressed by an impact (give mass "
-        "and velocity to the dynamic impact, with density 0 for the quasi-static one)",
+        "a contact curve at finite strain is elastic (the finite-strain contact solver has no "
+        "time): a viscoelastic rubber is pressed by an impact (give mass and velocity to the "
+        "dynamic impact, with density 0 for the quasi-static one), or take the linear model",
+    ),
+    Unsupported(
+        lambda c: c.relaxing and c.loading == "curve" and c.interface != "frictionless",
+        "interface",
+        "a viscoelastic contact curve is frictionless: the bonded and Coulomb indenters are "
+        "solved on an elastic body only",
     ),
     Unsupported(
         lambda c: c.interface != "frictionless" and c.loading != "curve",
@@ -304,6 +316,12 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
         ("layer_rate",),
         "applies to a body with mass only: a massless body (density 0) radiates no waves for "
         "the absorbing layer to damp",
+    ),
+    OptionLimit(
+        lambda c: c.relaxing and c.loading == "curve",
+        ("accuracy",),
+        "applies to the elastic contact curve only; on a viscoelastic body use refine, whose "
+        "estimates come with every run",
     ),
     OptionLimit(
         lambda c: c.model == "rubber" and c.loading == "curve",
@@ -355,6 +373,23 @@ class Problem:
         for limit in SUPPORT:
             if limit.when(self.cell):
                 raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
+        self._check_rate()
+
+    def _check_rate(self) -> None:
+        """A contact curve on a viscoelastic body needs its pressing speed; no other does."""
+        relaxing, rate = self.body.prony is not None, self.loading.rate
+        if relaxing and self.loading.kind == "curve" and rate is None:
+            raise InputError(
+                "rate: a contact curve on a viscoelastic body (prony) is pressed at a speed: "
+                f"give rate {entry('rate').range_text('contact')} m/s",
+                "rate",
+            )
+        if rate is not None and not relaxing:
+            raise InputError(
+                "rate: applies to a viscoelastic body only (an elastic curve does not depend "
+                "on it); give prony too",
+                "rate",
+            )
 
     @property
     def cell(self) -> Cell:
@@ -420,7 +455,11 @@ class Problem:
             ),
             Geometry(given.get("thickness"), given.get("base")),
             Interface(given.get("interface", "frictionless"), given.get("friction")),
-            Loading(given.get("loading", "impact"), None if depths is None else tuple(depths)),
+            Loading(
+                given.get("loading", "impact"),
+                None if depths is None else tuple(depths),
+                given.get("rate"),
+            ),
         )
 
     def with_parts(self, **changes: Any) -> Problem:
@@ -441,6 +480,7 @@ KEYWORDS = (
     "friction",
     "loading",
     "depths",
+    "rate",
 )
 """The flat keywords of :meth:`Problem.from_keywords`."""
 

@@ -437,6 +437,14 @@ VOCABULARY: tuple[Entry, ...] = (
         type="str",
     ),
     Entry(
+        "rate",
+        "m/s",
+        "pressing speed of a contact curve on a viscoelastic body",
+        "Pressing speed V",
+        None,
+        ("contact",),
+    ),
+    Entry(
         "depths",
         "m",
         "indentation depths",

@@ -26,6 +26,7 @@ from .layer_options import layer_mesh
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
     from ..fem.rubber import RubberModel
+    from ..theory.viscoelastic import PronySeries
 
 __all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
 
@@ -260,6 +261,7 @@ class _Plan:
     max_time: float
     solver: str
     progress: Callable[[str], None] | None
+    relaxing: dict[str, Any] = field(default_factory=dict)  # prony and rate, or nothing
 
 
 def _solve(plan: _Plan) -> tuple[Any, Any]:
@@ -282,7 +284,10 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
             rubber=plan.rubber,
         )
     elif finest is not None:
-        return run_indentation(*inputs, plan.depths, finest, backend=plan.solver), None
+        solution = run_indentation(
+            *inputs, plan.depths, finest, backend=plan.solver, **plan.relaxing
+        )
+        return solution, None
     elif plan.tolerance is None:
         ladder = run_ladder(
             *inputs,
@@ -291,6 +296,7 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
             refine=plan.refine,
             backend=plan.solver,
             progress=plan.progress,
+            **plan.relaxing,
         )
     else:
         ladder = run_to_accuracy(
@@ -320,7 +326,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
 
 
 PHYSICS = ("mass", "velocity", "depths", "striker", "thickness", "base", "interface")
-PHYSICS = (*PHYSICS, "friction", "model", *RUBBER_OPTIONS)
+PHYSICS = (*PHYSICS, "friction", "model", *RUBBER_OPTIONS, "prony", "rate")
 """The keywords of :func:`contact` that describe the problem (the rest are numerics)."""
 
 
@@ -418,7 +424,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])
-    return _Plan(indenter, body, depths, model, problem.body.rubber(), mesh, *rest)
+    relaxing = {}
+    if problem.body.prony is not None:
+        relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
+    return _Plan(indenter, body, depths, model, problem.body.rubber(), mesh, *rest, relaxing)
 
 
 def contact(
@@ -438,6 +447,8 @@ def contact(
     yeoh: str | Sequence[float] | None = None,
     gent_limit: float | None = None,
     volumetric: str | None = None,
+    prony: PronySeries | str | None = None,
+    rate: float | None = None,
     refine: float = 1.0,
     estimate: bool = True,
     accuracy: float | None = None,
@@ -487,6 +498,12 @@ def contact(
         The rubber's shape: r = C01/(C10 + C01) in [0, 1) (Mooney-Rivlin, default 0), "c2,c3"
         or (c2, c3) = (C20, C30)/C10 (Yeoh, default 0,0), Jm > 0 (Gent, required), and the
         volumetric energy "quadratic" K/2 (J-1)^2 (default) or "logarithmic" K/2 (ln J)^2.
+    prony : PronySeries or str, optional
+        Shear relaxation ``g1:tau1,...`` (tau in s) of a linear body (E2, nu2 its instantaneous
+        values), pressed at ``rate``; the ``*_analytic`` values are then Lee and Radok's (exact
+        at nu2 = 0.5), the forces nodal sums.
+    rate : float, optional
+        Pressing speed in m/s (depth V t); required with ``prony``, only with it.
     refine : float
         Divide the mesh size field by it (dofs ~ refine^2).
     estimate : bool

@@ -39,7 +39,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "interface")
-    inputs = (*inputs, "friction", "model", *RUBBER_OPTIONS, "mass", "velocity")
+    inputs = (*inputs, "friction", "model", *RUBBER_OPTIONS, "prony", "rate", "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
     add_figure_format(p)
@@ -70,6 +70,7 @@ DERIVED = {
     "gent_limit": "none: required with --model gent",
     "volumetric": "quadratic; finite-strain models only (no effect at nu2 = 0.5)",
     "friction": "none: no slip; only with --interface bonded",
+    "rate": "none: required with --prony, only with it",
     **{option: _mesh_default(field) for option, field in fields(MESH_OPTIONS).items()},
 }
 """Inputs whose default follows from the others, and that default in words."""
@@ -86,6 +87,7 @@ NOTES = {
 KEYWORDS = (
     *("mass", "velocity", "depths", "thickness", "base", "interface", "friction", "model"),
     *RUBBER_OPTIONS,
+    *("prony", "rate"),
     *("refine", "estimate"),
     *("accuracy", "max_time"),
     *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
@@ -205,6 +207,11 @@ def contact_text(report: dict) -> str:
         f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
     )
     rows = [head + _impact_words(report)]
+    if "prony" in report:
+        rows.append(
+            f"  viscoelastic (Prony {report['prony']}) pressed at {report['rate']:g} m/s: "
+            "rel.err against Lee-Radok (exact at nu2 = 0.5); forces are nodal sums"
+        )
     rows += _layer_rows(report, "rel.err = departure from the half-space")
     if "interface" in report["mesh"]:
         rows.append(

@@ -24,6 +24,7 @@ for the same linear strain history (>= 0 by construction).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -262,11 +263,7 @@ class ViscoelasticShear:
         heat += float(np.sum(step.steady)) * float((change * change) @ weights)
         branches = step.ramp[:, None] * change
         branches += step.decay[:, None] * memory.branches
-        history = (step.gain * step.decay) @ branches
-        history -= float(step.gain @ step.ramp) * deviator
-        history *= weights
-        next_force = self._transpose @ history
-        next_force *= 2.0 * g0
+        next_force = self._history_force(branches, deviator)
         squares = (deviator * deviator) @ self._both  # everywhere, inside the monitor radius
         branch_squares = step.gain @ ((branches * branches) @ self._both)
         stored = g0 * (self.prony.g_inf * squares[0] + branch_squares[0])
@@ -275,6 +272,22 @@ class ViscoelasticShear:
             deviator, branches, next_force, memory.dissipated + float(heat), stored, relaxed
         )
         return force, memory
+
+    def _history_force(self, branches: np.ndarray, deviator: np.ndarray) -> np.ndarray:
+        """B^T W s_hist in N: the history's nodal force for the next step of this dt."""
+        step = self._step
+        history = (step.gain * step.decay) @ branches
+        history -= float(step.gain @ step.ramp) * deviator
+        history *= self._weights
+        force = self._transpose @ history
+        force *= 2.0 * self.shear_modulus
+        return force
+
+    def resume(self, memory: ShearMemory) -> ShearMemory:
+        """``memory`` (left by a step of another dt) with the history force for a step of this
+        one: the strains carry over, the force depends on the step."""
+        force = self._history_force(memory.branches, memory.deviator)
+        return dataclasses.replace(memory, force=force)
 
     def deviatoric_stress(self, memory: ShearMemory) -> np.ndarray:
         """s = 2 G0 [g_inf d + sum_i g_i h_i] in Pa, (rr, tt, zz, rz) x (elements, points)."""

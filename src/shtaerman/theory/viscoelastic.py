@@ -22,6 +22,18 @@ Both x and F are taken piecewise linear in time between the instants given (or t
 over such a piece the kernels update exactly, K_i(t + h) = e^{-h/tau_i} K_i(t) +
 tau_i (1 - e^{-h/tau_i}) dF/h, and Phi, P are exact closed forms of t1 inside a piece. The error
 is that of the linear interpolation, second order in the spacing.
+
+Pressed at a constant rate V (x = V t) the loading integrals close: for any response that
+grows as x^m (the force, m = q; the central pressure, m = (n - 1)/n), with s = t u and
+z = t/tau_i,
+
+    Int_0^t exp(-(t - s)/tau_i) d(V s)^m = (V t)^m Int_0^1 m u^(m-1) e^{-z (1 - u)} du
+                                        = (V t)^m M(1, m + 1, -z),
+
+Kummer's function M, equal to m z^-m e^-z Int_0^z y^(m-1) e^y dy (the lower incomplete gamma
+function at the negative argument -z), M -> 1 as z -> 0 and ~ m/z as z -> inf. So the
+viscoelastic response is the elastic one at E*_0 times the rate factor
+R_m(t) = g_inf + sum_i g_i M(1, m + 1, -t/tau_i) (:func:`rate_factor`), exactly, while x grows.
 """
 
 from __future__ import annotations
@@ -35,16 +47,23 @@ from numbers import Real
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
+from scipy.special import hyp1f1
 
 from ..validation import InputError, NumericalFailureError, validate_positive
 from .contact import PowerLawContact
 from .impact import ImpactResult, solve_impact
+from .indenter import PowerLawIndenter
 
 __all__ = [
     "PronySeries",
+    "RateContact",
     "ViscoelasticImpact",
+    "constant_rate_contact",
+    "constant_rate_pressure",
+    "hereditary",
     "indentation_force",
     "limit_impacts",
+    "rate_factor",
     "viscoelastic_impact",
 ]
 
@@ -278,6 +297,210 @@ def indentation_force(
         x1, _, force[n] = memory.evaluate(t1, t[n], piece)
         radius[n] = float(law.contact_radius(x1))
     return force, radius
+
+
+def rate_factor(exponent: float, time: ArrayLike, prony: PronySeries) -> np.ndarray:
+    """R_m(t) = g_inf + sum_i g_i M(1, m + 1, -t/tau_i): a response growing as x^m elastically,
+    pressed at a constant rate, is its glassy value times R_m(t) (module docstring; exact while
+    the contact grows, nu2 = 1/2).
+
+    Parameters
+    ----------
+    exponent : float
+        m > 0 (the force: q = 1 + 1/n; the central pressure: (n - 1)/n).
+    time : array_like
+        t >= 0 in s since first touch.
+    prony : PronySeries
+
+    Returns
+    -------
+    numpy.ndarray
+        R_m(t), dimensionless: 1 at t = 0, falling towards g_inf.
+    """
+    t = np.asarray(time, dtype=float)
+    factor = np.full_like(t, prony.g_inf)
+    for g, tau in zip(prony.weights, prony.times, strict=True):
+        with np.errstate(over="ignore"):  # tau -> 0: z = inf, M = 0
+            z = t / tau
+        factor = factor + g * _kummer(exponent, z)
+    return factor
+
+
+KUMMER_ASYMPTOTIC = 1e8
+"""z beyond which M(1, m + 1, -z) is its asymptotic m/z (1 + (1 - m)/z) (relative error
+< 1e-16; scipy's series fails near z = 1e300)."""
+
+
+def _kummer(exponent: float, z: np.ndarray) -> np.ndarray:
+    """M(1, m + 1, -z) for z >= 0 (inf included: 0)."""
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        far = exponent / z * (1.0 + (1.0 - exponent) / z)
+        return np.where(z > KUMMER_ASYMPTOTIC, far, hyp1f1(1.0, exponent + 1.0, -z))
+
+
+def constant_rate_contact(
+    depth: ArrayLike, rate: float, law: PowerLawContact, prony: PronySeries
+) -> dict[str, np.ndarray]:
+    """Lee-Radok's contact of the rigid power-law indenter pressed at ``rate`` m/s, x = V t.
+
+    Parameters
+    ----------
+    depth : array_like
+        Depths x >= 0 in m (reached at t = x / V).
+    rate : float
+        Pressing speed V > 0 in m/s.
+    law : PowerLawContact
+        The elastic contact at the instantaneous modulus E*_0 (nu2 = 1/2).
+    prony : PronySeries
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``force`` P = beta0 x^q R_q(x/V) in N, ``contact_radius`` a(x) in m (the elastic
+        geometry's, Lee-Radok) and ``central_pressure`` p(0) = p0_el(x) R_m(x/V) in Pa,
+        m = (n - 1)/n.
+    """
+    rate = validate_positive("rate", rate, "m/s")
+    x = np.asarray(depth, dtype=float)
+    t, n = x / rate, law.indenter.exponent
+    return {
+        "force": law.force(x) * rate_factor(law.force_exponent, t, prony),
+        "contact_radius": np.asarray(law.contact_radius(x), dtype=float),
+        "central_pressure": law.central_pressure(x) * rate_factor((n - 1.0) / n, t, prony),
+    }
+
+
+def hereditary(times: ArrayLike, elastic: ArrayLike, prony: PronySeries) -> np.ndarray:
+    """Int_0^t psi(t - s) dR(s) at each instant, R the glassy (elastic) response taken linear in
+    time between the instants (exact kernels over each piece: second order in the spacing).
+
+    Parameters
+    ----------
+    times : array_like
+        Instants in s, increasing, the first at first touch.
+    elastic : array_like
+        R at those instants (first axis: time; any unit, 0 at the first instant).
+    prony : PronySeries
+
+    Returns
+    -------
+    numpy.ndarray
+        The viscoelastic response, the shape of ``elastic``.
+    """
+    t, values = np.asarray(times, dtype=float), np.asarray(elastic, dtype=float)
+    g, tau = np.asarray(prony.weights), np.asarray(prony.times)
+    kernels = np.zeros((g.size, *values.shape[1:]))
+    out = np.empty_like(values)
+    out[0] = values[0]
+    for k in range(1, t.size):
+        h = t[k] - t[k - 1]
+        decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
+        change = values[k] - values[k - 1]
+        kernels = decay.reshape(-1, *[1] * change.ndim) * kernels
+        kernels = kernels + np.multiply.outer(ramp, change)
+        out[k] = prony.g_inf * values[k] + np.tensordot(g, kernels, axes=1)
+    return out
+
+
+PROFILE_STEPS = 400
+"""Time steps of :func:`constant_rate_pressure`: its profiles' relative L2 error is about 4e-5
+(the paper's indenter, g = 0.5, against 4000 steps)."""
+
+
+def constant_rate_pressure(
+    radius: ArrayLike, depths: ArrayLike, rate: float, law: PowerLawContact, prony: PronySeries
+) -> np.ndarray:
+    """Lee-Radok's pressure profiles p(r) in Pa, pressed at ``rate`` m/s, at each of ``depths``
+    (m, increasing): the hereditary integral of the elastic p(r, V s) (:func:`hereditary`, on
+    :data:`PROFILE_STEPS` steps and the depths' instants; the contact edge passing a radius
+    costs O(h^1.5) there). Shape (depths, radii)."""
+    rate = validate_positive("rate", rate, "m/s")
+    r, x = np.asarray(radius, dtype=float), np.asarray(depths, dtype=float)
+    times = np.union1d(np.linspace(0.0, x[-1] / rate, PROFILE_STEPS + 1), x / rate)
+    # self-similar: p(r, x) = (x/X)^((n-1)/n) p(r (X/x)^(1/n), X), one call for every instant
+    n, deepest = law.indenter.exponent, float(x[-1])
+    scale = np.maximum(rate * times, 1e-300) / deepest
+    elastic = law.pressure(np.outer(scale ** (-1.0 / n), r), deepest)
+    elastic *= scale[:, None] ** ((n - 1.0) / n)
+    elastic[0] = 0.0
+    profiles = hereditary(times, elastic, prony)
+    return profiles[np.searchsorted(times, x / rate)]
+
+
+@dataclass(frozen=True)
+class RateContact:
+    """Lee-Radok's contact curve pressed at a constant rate, in the form of
+    :class:`~shtaerman.theory.contact.PowerLawContact` (the FEM contact curve's reference).
+
+    Its :attr:`beta` and :attr:`force_exponent` are those of the power law fitted to its force
+    at ``depths`` (the curve's depths, as the FEM curve is fitted), so that the fitted FEM
+    values compare like with like; the force, radius and pressures are exact.
+
+    Parameters
+    ----------
+    law : PowerLawContact
+        The elastic contact at the instantaneous modulus E*_0 (nu2 = 1/2).
+    prony : PronySeries
+    rate : float
+        Pressing speed V in m/s (x = V t).
+    depths : tuple of float
+        The curve's depths in m, increasing.
+    """
+
+    law: PowerLawContact
+    prony: PronySeries
+    rate: float
+    depths: tuple[float, ...]
+
+    @property
+    def indenter(self) -> PowerLawIndenter:
+        """The indenter z = A r^n."""
+        return self.law.indenter
+
+    @property
+    def modulus(self) -> float:
+        """The instantaneous E*_0 in Pa."""
+        return self.law.modulus
+
+    @property
+    def force_exponent(self) -> float:
+        """Exponent of the power law fitted to the force at the depths (q with one depth)."""
+        x = np.asarray(self.depths)
+        if x.size < 2:
+            return self.law.force_exponent
+        return float(np.polyfit(np.log(x), np.log(self.force(x)), 1)[0])
+
+    @property
+    def beta(self) -> float:
+        """beta in N m^-q of that power law, its exponent held (the FEM fit's convention)."""
+        x = np.asarray(self.depths)
+        return float(np.exp(np.mean(np.log(self.force(x)) - self.force_exponent * np.log(x))))
+
+    @property
+    def central_to_mean_ratio(self) -> float:
+        """p(0)/p_avg at the deepest depth."""
+        deepest = self.depths[-1]
+        return float(self.central_pressure(deepest) / self.mean_pressure(deepest))
+
+    def contact_radius(self, depth: ArrayLike) -> np.ndarray:
+        """a(x) in m: the elastic geometry's."""
+        return constant_rate_contact(depth, self.rate, self.law, self.prony)["contact_radius"]
+
+    def force(self, depth: ArrayLike) -> np.ndarray:
+        """P in N at depth x (m), reached at t = x / V."""
+        return constant_rate_contact(depth, self.rate, self.law, self.prony)["force"]
+
+    def central_pressure(self, depth: ArrayLike) -> np.ndarray:
+        """p(0) in Pa at depth x (m)."""
+        return constant_rate_contact(depth, self.rate, self.law, self.prony)["central_pressure"]
+
+    def mean_pressure(self, depth: ArrayLike) -> np.ndarray:
+        """P / (pi a^2) in Pa at depth x (m)."""
+        return self.force(depth) / (math.pi * self.contact_radius(depth) ** 2)
+
+    def pressure(self, radius: ArrayLike, depth: float) -> np.ndarray:
+        """p(r) in Pa at depth x (m) (:func:`constant_rate_pressure`)."""
+        return constant_rate_pressure(radius, [depth], self.rate, self.law, self.prony)[0]
 
 
 @dataclass(frozen=True)

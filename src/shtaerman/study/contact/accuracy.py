@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike
 from ...fem.mesh import MAX_DOMAIN, MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
+from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, bound_text, validate_positive
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
 from ..richardson import Estimate, curve_richardson, richardson, worst_point
@@ -254,9 +255,11 @@ def run_mesh_ladder(
 
 
 def _linear(
-    indenter: PowerLawIndenter, half_space: Material, depths: np.ndarray, backend: str
+    indenter: PowerLawIndenter, half_space: Material, depths: np.ndarray, backend: str, **relaxing
 ) -> Solve:
-    return lambda mesh: run_indentation(indenter, half_space, depths, mesh, backend=backend)
+    return lambda mesh: run_indentation(
+        indenter, half_space, depths, mesh, backend=backend, **relaxing
+    )
 
 
 def run_ladder(
@@ -268,12 +271,14 @@ def run_ladder(
     refine: float = 1.0,
     backend: str = "auto",
     progress: Progress | None = None,
+    prony: PronySeries | None = None,
+    rate: float | None = None,
 ) -> AccuracyResult:
     """The contact on three meshes, refine / 2, refine / sqrt(2), refine: the finest answers.
 
     Parameters
     ----------
-    indenter, half_space, depths, backend
+    indenter, half_space, depths, backend, prony, rate
         As for :func:`.indentation.run_indentation`.
     mesh : MeshSettings, optional
         The base mesh (refine = 1); default ``MeshSettings()``.
@@ -288,7 +293,7 @@ def run_ladder(
     """
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
-    solve = _linear(indenter, half_space, depths, backend)
+    solve = _linear(indenter, half_space, depths, backend, prony=prony, rate=rate)
     refined = refined_radius(indenter, depths, mesh)
     return run_mesh_ladder(
         solve, mesh, refine=refine, progress=progress, exact=_exact(mesh), refined=refined

@@ -25,6 +25,7 @@ from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.viscoelastic import PronySeries, RateContact
 from ...validation import InputError
 from ...vocabulary import entry
 
@@ -73,7 +74,7 @@ class IndentationResult:
 
     indenter: PowerLawIndenter
     half_space: Material
-    exact: PowerLawContact
+    exact: PowerLawContact | RateContact
     curve: ContactCurve
     fit: PowerLawFit
     mesh_stats: dict[str, float]
@@ -167,9 +168,16 @@ class IndentationResult:
 
     def to_dict(self) -> dict[str, object]:
         """The JSON of ``shtaerman contact --json`` (its keys are an interface other tools use)."""
+        relaxing = {}
+        if isinstance(self.exact, RateContact):  # Lee-Radok's *_analytic
+            series = self.exact.prony
+            terms = zip(series.weights, series.times, strict=True)
+            relaxing = {"prony": ",".join(f"{g!r}:{tau!r}" for g, tau in terms)}
+            relaxing["rate"] = self.exact.rate
         return {
             "model": "linear",
             **curve_document(self.indenter, self.half_space, self.exact, self.fit),
+            **relaxing,
             "steps": self.step_table(),
             "errors": self.errors(),
             "mesh": self.mesh_stats,
@@ -228,6 +236,8 @@ def run_indentation(
     *,
     backend: str = "auto",
     aligned: bool = True,
+    prony: PronySeries | None = None,
+    rate: float | None = None,
 ) -> IndentationResult:
     """Press a rigid power-law indenter into the FEM half-space and compare with the theory.
 
@@ -248,6 +258,11 @@ def run_indentation(
         :func:`shtaerman.fem.contact.solve_contact`. ``mesh.interface`` "bonded" presses an
         indenter the surface sticks to (:func:`shtaerman.fem.stick.solve_bonded_contact`,
         nodal sums).
+    prony : PronySeries, optional
+        A viscoelastic body pressed at ``rate`` m/s
+        (:func:`shtaerman.fem.viscoelastic_contact.press_at_rate`, frictionless, nodal sums:
+        the history breaks the vertex-aligned interpolation), compared with Lee and Radok's
+        exact curve (:class:`shtaerman.theory.viscoelastic.RateContact`).
 
     Returns
     -------
@@ -262,7 +277,13 @@ def run_indentation(
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
-    if mesh.interface == "bonded":
+    if prony is not None:
+        from ...fem.viscoelastic_contact import press_at_rate
+
+        curve = press_at_rate(
+            system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False
+        )
+    elif mesh.interface == "bonded":
         friction = math.inf if mesh.friction is None else mesh.friction
         curve = solve_bonded_contact(
             system, indenter.profile, depths, refined, backend=backend, friction=friction
@@ -272,6 +293,8 @@ def run_indentation(
             system, indenter.profile, depths, refined, backend=backend, aligned=aligned
         )
     exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    if prony is not None:
+        exact = RateContact(exact, prony, rate, tuple(float(d) for d in depths))
     forces = [step.force for step in curve.steps]
     fit = fit_power_law(depths, forces, exact.force_exponent)
     timings = {
