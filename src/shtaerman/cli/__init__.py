@@ -21,7 +21,7 @@ from ..version import __version__
 from . import contact, dynamic, impact, init_study, tables, verify
 from .common import Parser, warn
 
-__all__ = ["EXIT_INPUT", "build_parser", "main"]
+__all__ = ["EXIT_INPUT", "build_parser", "main", "stopped"]
 
 EXIT_FAILED = 1
 EXIT_INPUT = 2
@@ -70,7 +70,7 @@ def _stop(signum: int, frame: object) -> None:
     raise KeyboardInterrupt if signum == signal.SIGINT else Terminated
 
 
-def _stopped(signum: int) -> int:
+def stopped(signum: int) -> int:
     """The line and exit code of a run stopped by ``signum`` (130 SIGINT, 143 SIGTERM)."""
     interrupted = signum == signal.SIGINT
     print(
@@ -126,15 +126,15 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"shtaerman: error: {error}", file=sys.stderr)
             _report(caught)
         if _SIGNALLED and code not in (EXIT_INTERRUPTED, EXIT_TERMINATED):
-            return _stopped(_SIGNALLED[0])  # a library swallowed it; the outputs are whole
+            return stopped(_SIGNALLED[0])  # a library swallowed it; the outputs are whole
     except KeyboardInterrupt:
-        return _stopped(signal.SIGINT)
+        return stopped(signal.SIGINT)
     except Terminated:
-        return _stopped(signal.SIGTERM)
+        return stopped(signal.SIGTERM)
     except ImportError:  # VTK's lazy loader turns an exception raised inside it into this
         if not _SIGNALLED:
             raise
-        return _stopped(_SIGNALLED[0])
+        return stopped(_SIGNALLED[0])
     except BrokenPipeError as error:
         if not _stdout_gone():  # an output file was a pipe (FIFO) whose reader quit early
             print(f"shtaerman: error: {error}: {PIPE_OUTPUT}", file=sys.stderr)
