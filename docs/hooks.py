@@ -87,11 +87,54 @@ def parameters_page() -> str:
     if vocabulary is not None and hasattr(vocabulary, "parameter_table"):
         parts += ["## Study files, sweeps and the Python API", "", VOCABULARY_TEXT, ""]
         parts.append(vocabulary.parameter_table(parser))
+    if hasattr(importlib.import_module("shtaerman.problem"), "support_table"):
+        parts += combinations_section()
     parts += ["## The command line", "", "Every option of every command, and its default.", ""]
     for name, sub in commands.choices.items():
         summary = sub.description.splitlines()[0] if sub.description else ""
         parts += [f"### `shtaerman {name}`", "", _cell(summary), "", *_option_rows(sub), ""]
     return "\n".join(parts)
+
+
+def combinations_section() -> list[str]:
+    """Which parts of a problem combine, from ``shtaerman.problem.support_table()``: one table
+    per loading, rows model x relaxation x geometry, columns the interface; a cell is "runs"
+    or the input its refusal names (the reasons follow)."""
+    from shtaerman.problem import SUPPORT, support_table
+
+    verdicts = dict(support_table())
+    interfaces = ("frictionless", "bonded", "coulomb")
+    bodies = sorted({cell[:3] for cell in verdicts}, key=str)
+    tables = []
+    for loading in ("curve", "massless", "inertia"):
+        tables += [f"**{LOADING_WORDS[loading]}**", ""]
+        tables += ["| body, geometry | " + " | ".join(interfaces) + " |", "|---|---|---|---|"]
+        for model, relaxing, geometry in bodies:
+            cells = [verdicts[(model, relaxing, geometry, face, loading)] for face in interfaces]
+            body = f"{model}{', Prony' if relaxing else ''}, {geometry}"
+            tables.append(f"| {body} | " + " | ".join(c.split(":")[0] for c in cells) + " |")
+        tables.append("")
+    running = sum(verdict == "runs" for verdict in verdicts.values())
+    return [
+        "## Which parts combine",
+        "",
+        f"A problem is a striker, a body, a geometry, an interface and a loading "
+        f"(`sh.Problem`). Of the {len(verdicts)} combinations below, {running} run; each other "
+        "cell names the input that is refused, for the reason listed after the tables "
+        "(`shtaerman.problem.SUPPORT`, the one place that decides it).",
+        "",
+        *tables,
+        *[f"- `{limit.parameter}`: {limit.reason}" for limit in SUPPORT],
+        "",
+    ]
+
+
+LOADING_WORDS = {
+    "curve": "Contact curve (contact)",
+    "massless": "Impact on a massless body (dynamic --density2 0)",
+    "inertia": "Impact with inertia (dynamic)",
+}
+"""A loading's name in the combination tables."""
 
 
 EXECUTE = "SHTAERMAN_DOCS_EXECUTE"

@@ -191,7 +191,8 @@ def test_parameter_tables_fit_the_page(site, browser):
     # the study-file table's Meaning column ran 49 px past the text's edge, cut off
     assert max(sticking_out) <= 0.5  # half a pixel: rounding of the layout
     [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
-    assert len(sticking_out) == 3 + len(commands.choices)  # a table per group, per command
+    # a table per group, per loading of the combinations (3) and per command
+    assert len(sticking_out) == 3 + 3 + len(commands.choices)
 
 
 def test_api_reference_documents_the_public_api(site):
@@ -413,3 +414,14 @@ def test_parameter_page_lists_the_study_and_sweep_vocabulary(site):
     page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
     for item in vocabulary.VOCABULARY:
         assert f"<code>{item.name}</code>" in page, item.name
+
+
+def test_the_parameter_page_shows_which_parts_combine(site):
+    """The grid comes from shtaerman.problem.support_table(): every cell and every reason."""
+    from shtaerman.problem import SUPPORT, support_table
+
+    page = html.unescape(re.sub(r"<[^>]+>", " ", (site / "parameters" / "index.html").read_text()))
+    running = sum(verdict == "runs" for _, verdict in support_table())
+    assert f"Of the 108 combinations below, {running} run" in " ".join(page.split())
+    for limit in SUPPORT:
+        assert " ".join(limit.reason.split()) in " ".join(page.split())
