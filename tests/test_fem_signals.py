@@ -1,4 +1,4 @@
-"""SIGTERM across the METIS ordering, whose C code traps it (:mod:`shtaerman.fem.signals`)."""
+"""SIGTERM across the METIS ordering, whose C code traps it (:mod:`shtaerman.signals`)."""
 
 import ctypes
 import signal

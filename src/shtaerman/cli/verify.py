@@ -62,7 +62,7 @@ def default_out() -> Path:
 
 def run(args: argparse.Namespace) -> int:
     """Run the studies; print a verdict per study and every failing check."""
-    from ..fem.signals import deferred
+    from ..signals import deferred
 
     with deferred():  # VTK's modules: an interrupt in their import was a segfault at times
         from ..output.files import adopt_killed_runs, check_output_folder

@@ -28,9 +28,9 @@ import numpy as np
 from skfem import MeshTri
 from skfem.io.meshio import from_meshio
 
+from ..signals import deferred
 from ..theory.layer import BASES
 from ..validation import InputError, bound_text, validate_positive
-from .signals import deferred
 
 __all__ = [
     "BOUNDARIES",

@@ -29,9 +29,9 @@ import pymetis
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..signals import call_trapping
 from ..validation import InputError
 from .pattern import Pattern
-from .signals import call_trapping
 
 __all__ = [
     "ACCURACY_CHECK",

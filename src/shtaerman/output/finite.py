@@ -16,7 +16,7 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import meshio
 import numpy as np
@@ -31,7 +31,6 @@ from .export import FIELD_UNITS, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
-    from ..api.dynamic_result import DynamicResult
     from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
@@ -156,9 +155,10 @@ def write_finite_study(
 
 
 def write_finite_impact(
-    result: DynamicResult, quasi: ImpactResult, folder: Path, figure_format: str = "png"
+    result: Any, quasi: ImpactResult, folder: Path, figure_format: str = "png"
 ) -> list[Path]:
-    """A finite-strain impact's files in ``folder``: dynamic.json (the ``--json`` object),
+    """A finite-strain impact's files in ``folder`` (``result``: the API's DynamicResult, with
+    ``to_dict``, ``history`` and its run): dynamic.json (the ``--json`` object),
     history.csv (t, x, v, P at every step), energies.csv and dynamic_history.png (x(t), P(t)
     against the quasi-static impact ``quasi``; also in ``figure_format`` "svg" or "pdf")."""
     import json

@@ -27,7 +27,7 @@ from matplotlib import font_manager
 from vtkmodules.vtkCommonCore import vtkObject
 from vtkmodules.vtkRenderingCore import vtkTextProperty
 
-from ..fem.signals import deferred
+from ..signals import deferred
 from ..validation import InputError
 
 __all__ = ["FONT_SIZE", "WINDOW_SIZE", "picture", "quiet_vtk", "save", "smooth_edges", "use_font"]
@@ -79,7 +79,7 @@ def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
     """An off-screen plotter on white, edges smoothed (:func:`smooth_edges`), VTK warnings
     silenced, closed whatever happens.
 
-    SIGINT and SIGTERM are held until the picture is done (:func:`~shtaerman.fem.signals.
+    SIGINT and SIGTERM are held until the picture is done (:func:`~shtaerman.signals.
     deferred`): the first plotter makes VTK import its OpenGL modules, and an interrupt raised
     in there became an ImportError, a segfault, or an exception a weakref callback dropped.
     """
