@@ -8,15 +8,18 @@ and mode, checked, so the result folder is what a plain run writes).
 
 Under pytest-xdist (``-n auto`` in pyproject.toml, at most two workers unless
 ``PYTEST_XDIST_AUTO_NUM_WORKERS`` or ``-n N`` says otherwise; ``-n 0`` runs in one process), each
-worker computes the session and module fixtures its tests need.
+worker computes the session and module fixtures its tests need, on one BLAS thread unless
+``OPENBLAS_NUM_THREADS`` (``OMP_``, ``MKL_``) asks for more. ``SHTAERMAN_TEST_ORDER=reversed``
+runs the tests in the reverse of their collection order. CI's second pass does both (Makefile).
 """
 
 import json
 import os
 from pathlib import Path
 
-if os.environ.get("PYTEST_XDIST_WORKER"):  # one BLAS/OpenMP thread per worker (before numpy)
-    for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+if os.environ.get("PYTEST_XDIST_WORKER"):  # one BLAS/OpenMP thread per worker (before numpy),
+    for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):  # unless asked
+        os.environ.setdefault(f"SHTAERMAN_ASKED_{_variable}", os.environ.get(_variable, ""))
         os.environ.setdefault(_variable, "1")
 
 import pytest
@@ -29,6 +32,12 @@ from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study, shipped_studies
 
 QUICK_STUDIES = ("paper", "hertz")
+BLAS_VARIABLES = {"openblas": "OPENBLAS_NUM_THREADS", "mkl": "MKL_NUM_THREADS"}
+"""The variable that sets each BLAS's threads (``OMP_NUM_THREADS`` for any other)."""
+TEST_ORDER = "SHTAERMAN_TEST_ORDER"
+"""``reversed``: the reverse of the collection order, which swaps every pair of tests, so that a
+test that depends on another having run before it fails in one of CI's two passes (a shuffle
+swaps only half of the pairs, and needs a plugin)."""
 AUTO_WORKERS = 2
 """Workers of ``-n auto``: measured on 2 cores; each worker holds its own FE runs in memory."""
 
@@ -41,6 +50,51 @@ def pytest_xdist_auto_num_workers(config) -> int | None:
         return None
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     return max(1, min(AUTO_WORKERS, cores or 1))
+
+
+def asked_blas_threads(internal_api: str) -> int | None:
+    """The threads this process asks of a BLAS (``internal_api`` as threadpoolctl names it), or
+    None: the library's own default."""
+    variable = BLAS_VARIABLES.get(internal_api, "OMP_NUM_THREADS")
+    value = os.environ.get(f"SHTAERMAN_ASKED_{variable}", os.environ.get(variable, "")).strip()
+    if value.isdigit():
+        return int(value)
+    return 1 if os.environ.get("PYTEST_XDIST_WORKER") else None
+
+
+def pytest_report_header(config) -> list[str]:
+    """The BLAS threads the tests run on, and their order."""
+    from threadpoolctl import threadpool_info
+
+    workers = getattr(config.option, "numprocesses", None)
+    lines = []
+    for info in threadpool_info():
+        if info["user_api"] != "blas":
+            continue
+        threads = info["num_threads"]  # this process's (the tests' own with -n 0)
+        if workers:  # the workers': what was asked, else 1 (set above before numpy loads)
+            threads = asked_blas_threads(info["internal_api"]) or 1
+        where = "per xdist worker" if workers else "in this process"
+        lines.append(
+            f"BLAS threads: {threads} {where} ({info['internal_api']} {info['version']}, "
+            f"{info.get('architecture')})"
+        )
+    order = os.environ.get(TEST_ORDER) or "collection"
+    return [*lines, f"test order: {order} ({TEST_ORDER})"]
+
+
+def pytest_configure(config) -> None:
+    """Refuse an unknown ``SHTAERMAN_TEST_ORDER`` before any test is collected."""
+    order = os.environ.get(TEST_ORDER, "")
+    if order not in ("", "reversed"):
+        raise pytest.UsageError(f"{TEST_ORDER}: 'reversed' or unset, not {order!r}")
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    """Reverse the tests when ``SHTAERMAN_TEST_ORDER=reversed`` (each xdist worker collects
+    the same reversed list, so they agree)."""
+    if os.environ.get(TEST_ORDER) == "reversed":
+        items.reverse()
 
 
 def quick_study_files() -> list[str]:

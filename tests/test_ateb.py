@@ -241,10 +241,13 @@ def test_paper_sine_is_the_inverse_integral():
 
 def test_paper_cosine_mirrors_the_sine():
     # The paper's Ca(5/3, 1, (4/3) zeta) = Sa(5/3, 1, (4/3)(I - zeta)): Table 2 is Table 1
-    # mirrored about eta = I.  Both sides are rounded evaluations of the same value: 4 eps.
+    # mirrored about eta = I.  Both sides are rounded evaluations of the same value at
+    # arguments rounded apart by up to 2 eps |phi| (I - zeta, the 4/3), which |f'| <= 3/4 turns
+    # into 3 eps, plus each one's betaincinv (a few ulp, scipy's version decides): 16 eps
+    # (measured 3 eps on scipy 1.11 and 1.17).
     zeta = np.linspace(0, I_PAPER, 1001)
     cosine = ateb_cosine(5 / 3, 1, 4 / 3 * zeta)
-    assert_allclose(cosine, ateb_sine(5 / 3, 1, 4 / 3 * (I_PAPER - zeta)), rtol=0, atol=4 * EPS)
+    assert_allclose(cosine, ateb_sine(5 / 3, 1, 4 / 3 * (I_PAPER - zeta)), rtol=0, atol=16 * EPS)
     # and it is the restitution: dCa/dzeta = -sqrt(1 - Ca^(8/3)), Ca(0) = 1
     step = 1e-5  # centred difference: truncation ~ step^2 |f'''| ~ 1e-10, rounding ~ eps/step
     inner = zeta[1:-1]
@@ -275,7 +278,8 @@ def test_hertz_duration():
 
 
 def test_tiny_arguments_use_the_taylor_term():
-    # betaincinv clamps at the smallest normal double; Sa ~ 2 phi / (1 + m) exactly there.
+    # betaincinv clamps at the smallest normal double; Sa ~ 2 phi / (1 + m) exactly there:
+    # IEEE arithmetic alone (no library function), so 2 eps holds on every machine.
     phi = np.array([1e-300, 1e-200, 1e-20, 5e-324])
     assert_allclose(ateb_sine(5 / 3, 1, phi), 0.75 * phi, rtol=2 * EPS)
     # one ulp before the zero of Ca(5/3, 1, .): Ca ~ (3/4) ulp, positive, not rounded to 0
@@ -320,8 +324,11 @@ def test_bad_input_raises(call):
 )
 def test_pair_is_sine_and_cosine(m, n):
     # one inversion per point gives both functions; each still from its own side, so both keep
-    # full relative precision: within 4 ulp of the separate evaluations, also near their zeros
+    # full relative precision, also near their zeros. The two paths share the reduction of phi
+    # and differ in one betaincinv and one power: each a few ulp from the truth, by an amount
+    # that depends on scipy's betaincinv (measured apart: 4 ulp on scipy 1.17, 7.6 on 1.11).
+    # 32 eps (7e-15) is that times 4; a wrong side or branch is off by 1e-3 or more.
     phi = np.linspace(-20.0, 20.0, 20001)
     sine, cosine = ateb_pair(m, n, phi)
-    np.testing.assert_allclose(sine, ateb_sine(m, n, phi), rtol=4 * EPS, atol=0)
-    np.testing.assert_allclose(cosine, ateb_cosine(n, m, phi), rtol=4 * EPS, atol=0)
+    np.testing.assert_allclose(sine, ateb_sine(m, n, phi), rtol=32 * EPS, atol=0)
+    np.testing.assert_allclose(cosine, ateb_cosine(n, m, phi), rtol=32 * EPS, atol=0)

@@ -76,7 +76,9 @@ def test_energy_shares_sum_to_the_initial_energy(name, request):
     total = sum(shares.values())
     assert np.max(np.abs(total - 1.0)) < 1e-12
     residue = shares["numerical residue"]
-    assert np.max(np.abs(total - residue - 1.0)) <= result.energy_balance_error + 1e-15
+    # the same residue two ways, from up to five shares of size <= 1 summed in another order:
+    # round-off up to ~6 eps = 1.3e-15 (measured 4e-17); 1e-15 was below that bound
+    assert np.max(np.abs(total - residue - 1.0)) <= result.energy_balance_error + 1e-14
     assert shares["striker kinetic"][0] == pytest.approx(1.0)
     assert shares["striker kinetic"][-1] == pytest.approx(result.restitution**2, rel=1e-6)
 
