@@ -54,3 +54,21 @@ def test_one_result_type_for_every_body(coarse):
     assert isinstance(result, sh.DynamicResult)
     assert result.to_dict()["rubber"]["model"] == "yeoh"
     assert "radiation_estimate" not in result.to_dict()  # the linear half-space's estimate
+
+
+def test_the_energy_check_binds_the_finite_impact_too(coarse, monkeypatch, capsys):
+    """The linear impact exits 1 when its energy balance is off by more than 1e-2 of M v0^2/2;
+    the finite-strain impact exited 0 whatever its balance (one guard, two routes)."""
+    import dataclasses
+
+    import shtaerman.cli.dynamic as command
+
+    run = command.dynamic
+
+    def unbalanced(problem, **numerics):
+        result = run(problem, **numerics)
+        return dataclasses.replace(result, dynamic={**result.dynamic, "energy_balance_error": 0.05})
+
+    monkeypatch.setattr(command, "dynamic", unbalanced)
+    assert main(ARGV) == 1
+    assert "energy balance error 5.0e-02 of M v0^2/2 exceeds 0.01" in capsys.readouterr().err
