@@ -52,6 +52,7 @@ __all__ = [
     "factorize_stiffness",
     "factorize_tail",
     "solve_contact",
+    "step_from_forces",
     "tail_compliance",
     "validate_fem_inputs",
 ]
@@ -459,7 +460,21 @@ def contact_step(
             f"depth {depth:g} m: the indenter profile never touches the surface "
             f"(f(r) - d > 0 at every candidate node); check the profile and depths"
         )
-    forces, gap, iterations = complementarity(compliance.matrix, clearance)
+    solved = complementarity(compliance.matrix, clearance)
+    return step_from_forces(compliance, heights, depth, solved, aligned)
+
+
+def step_from_forces(
+    compliance: SurfaceCompliance,
+    heights: np.ndarray,
+    depth: float,
+    solved: tuple[np.ndarray, np.ndarray, int],
+    aligned: bool = True,
+) -> ContactStep:
+    """The contact step at ``depth`` (m) from the complementarity solution ``solved`` (nodal
+    forces in N, gaps in m, iterations) against the indenter's ``heights`` (m) at the
+    candidate nodes (a viscoelastic body's shifted by its history)."""
+    forces, gap, iterations = solved
     discrete = float(forces.sum())
     check_resolved(compliance.r, forces, depth)
     pressure = recover_pressure(compliance.mass_factor, forces)

@@ -37,13 +37,9 @@ from .contact import (
     ContactCurve,
     ContactStep,
     SurfaceCompliance,
-    aligned_force,
-    central_pressure,
-    check_resolved,
     complementarity,
-    edge_radius,
     factorize_tail,
-    recover_pressure,
+    step_from_forces,
     surface_compliance,
 )
 from .elasticity import ElasticSystem
@@ -132,22 +128,7 @@ def _record(
 ) -> ContactStep:
     """The contact at a requested depth (as :func:`.contact.contact_step`, the clearance
     shifted by the history)."""
-    forces, gap, iterations = solved
-    check_resolved(compliance.r, forces, depth)
-    pressure = recover_pressure(compliance.mass_factor, forces)
-    radius = edge_radius(compliance.r, forces, gap)
-    discrete = float(forces.sum())
-    return ContactStep(
-        depth=depth,
-        force=aligned_force(compliance, shifted, forces, depth) if aligned else discrete,
-        discrete_force=discrete,
-        contact_radius=radius,
-        central_pressure=central_pressure(compliance.r, pressure, radius),
-        nodal_forces=forces,
-        pressure=pressure,
-        gap=gap,
-        iterations=iterations,
-    )
+    return step_from_forces(compliance, shifted, depth, solved, aligned)
 
 
 def press_at_rate(
