@@ -325,6 +325,7 @@ def fake_dynamic(errors):
     return SimpleNamespace(
         velocities=[1.0, 2.0, 3.0],
         cases=cases,
+        settings=SimpleNamespace(thickness=None),  # the half-space: its estimate is drawn
         estimate_curve=lambda: {
             "velocity": [1.0, 3.0],
             "restitution": [0.97, 0.9],

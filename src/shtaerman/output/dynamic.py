@@ -114,6 +114,25 @@ def _loss_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict[s
     }
 
 
+def _over_velocity_caption(outcome: DynamicStudyOutcome) -> str:
+    """The caption of the figure over v0: on a pad, what the pad run measured in place of the
+    half-space's first-order estimate."""
+    settings = outcome.settings
+    if settings.thickness is None:
+        loss = "energy left in the half-space (%) over v0 (first-order estimate dashed)"
+    else:
+        loss = (
+            f"energy left in the {1e3 * settings.thickness:.3g} mm pad on its {settings.base} "
+            "base (%) over v0, with what the pad run measured: the energy its base reflects "
+            "back near the contact and the energy balance error, % of M v0^2 / 2 on a log "
+            "scale (the half-space's first-order radiation estimate does not apply to a pad)"
+        )
+    return (
+        f"Restitution and {loss}; quasi-static / dynamic - 1 of x, P and contact time (%), "
+        "open markers where the estimated error is not below the difference"
+    )
+
+
 def write_dynamic_study(
     outcome: DynamicStudyOutcome, folder: Path, root: Path, figure_format: str = "png"
 ) -> tuple[dict[str, str], dict[str, str]]:
@@ -138,9 +157,7 @@ def write_dynamic_study(
             )
         ),
         **_loss_figures(example, folder, figure_format),
-        "Restitution and energy left in the half-space (%) over v0 (first-order estimate "
-        "dashed); quasi-static / dynamic - 1 of x, P and contact time (%), open markers where "
-        "the estimated error is not below the difference": (
+        _over_velocity_caption(outcome): (
             plot_dynamic_over_velocity(
                 outcome, folder / "dynamic_over_velocity.png", figure_format=figure_format
             )

@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from .case import prefixed
+
 __all__ = ["kind_entry", "no_summary_row", "stored_findings", "stored_tables", "text_entry"]
 
 
@@ -43,12 +45,16 @@ def text_entry(
     files: dict[str, str],
     output_seconds: float | None,
     figures: Mapping[str, str] | None,
+    *,
+    case: str,
 ) -> dict[str, object]:
-    """The entry of a kind whose text is made with the outcome: its numbers, the display
-    ``tables`` and ``findings`` (``text``: the kind's two functions of the outcome) and the
-    common keys (:func:`kind_entry`)."""
+    """The entry of a kind whose text is made with the outcome: its ``case`` in words
+    (:func:`.case.case_words`), its numbers, the display ``tables`` and ``findings``
+    (``text``: the kind's two functions of the outcome) and the common keys
+    (:func:`kind_entry`)."""
     study_tables, study_findings = text
     document = {
+        "case": case,
         **outcome.document(),
         "tables": study_tables(outcome),
         "findings": study_findings(outcome),
@@ -62,8 +68,9 @@ def stored_tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
 
 
 def stored_findings(name: str, study: Mapping[str, Any]) -> list[str]:
-    """The findings stored in a results.json entry, each prefixed with the study's name."""
-    return [f"{name}: {sentence}" for sentence in study.get("findings", [])]
+    """The findings stored in a results.json entry, each prefixed with the study's name and
+    its case (:func:`.case.prefixed`)."""
+    return [prefixed(name, study, sentence) for sentence in study.get("findings", [])]
 
 
 def no_summary_row(name: str, study: Mapping[str, Any]) -> None:

@@ -250,6 +250,7 @@ def _study_section(name: str, study: dict, figures: Mapping[str, str]) -> dict[s
     return {
         "name": name,
         "description": study["description"],
+        "case": study.get("case", ""),
         "verdict": "PASS" if study["passed"] else "FAIL",
         "checks": _checks(study),
         "tables": text.tables(study),

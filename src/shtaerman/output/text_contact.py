@@ -7,6 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
+from .case import case_words, prefixed
 from .entry import kind_entry
 from .wording import number, plus_minus, seconds
 
@@ -72,8 +73,15 @@ def entry(
     ``convergence`` (its meshes), ``computation`` (= ``seconds``), ``output`` (files and
     figures) and ``total``; ``figures``: caption to PNG path relative to the result folder.
     """
-    study = outcome.study
+    study, layer = outcome.study, outcome.study.layer
     document = {
+        "case": case_words(
+            thickness=None if layer is None else layer.thickness,
+            base=None if layer is None else layer.base,
+            interface=study.mesh.interface,
+            friction=study.mesh.friction,
+        ),
+        "interface": {"kind": study.mesh.interface, "friction": study.mesh.friction},
         "inputs": {
             "shape_coefficient": study.indenter.shape_coefficient,
             "exponent": study.indenter.exponent,
@@ -153,12 +161,16 @@ def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
     return [table for table in (_impact_table(study), _estimate_table(study)) if table]
 
 
-def _layer_findings(name: str, layer: Mapping[str, Any]) -> list[str]:
-    """What the layer does to the contact and the impact, with the FE error estimate."""
+def _layer_findings(layer: Mapping[str, Any], interface: Mapping[str, Any]) -> str:
+    """What the layer does to the contact and the impact, with the FE error estimate; the
+    dynamic impact's striker is frictionless whatever ``interface`` the curve had."""
+    striker = "rigid striker"
+    if interface.get("kind", "frictionless") != "frictionless":
+        striker = "rigid frictionless striker: the dynamic impact takes no interface yet"
     excess = layer["force_ratio"] - 1.0
     error = layer["force_ratio_error"] * layer["force_ratio"]
-    return [
-        f"{name}: a {1e3 * layer['thickness']:.3g} mm layer on a {layer['base']} rigid base "
+    return (
+        f"a {1e3 * layer['thickness']:.3g} mm layer on a {layer['base']} rigid base "
         f"(H / a_c = {layer['thickness_ratio']:.3g}, a_c = {1e3 * layer['contact_radius']:.3g} "
         f"mm the half-space contact radius at x_c) carries {100 * excess:.3g} % ± "
         f"{100 * error:.1g} % more force than Shtaerman's half-space at the same depth x_c "
@@ -170,22 +182,23 @@ def _layer_findings(name: str, layer: Mapping[str, Any]) -> list[str]:
         + (
             "the restitution on a layer needs the dynamic impact, not computed here."
             if layer.get("restitution") is None
-            else "the dynamic FE impact on the layer (elastic waves, rigid striker) has "
+            else f"the dynamic FE impact on the layer (elastic waves, {striker}) has "
             f"restitution {layer['restitution']:.4f}, x_max = "
             f"{number(layer['x_max_dynamic'], '.4g')} m and P_max = "
             f"{number(layer['P_max_dynamic'], '.4g')} N."
         )
-    ]
+    )
 
 
 def findings(name: str, study: Mapping[str, Any]) -> list[str]:
     """How closely the FEM reproduces the contact law, and its own estimate of that; on a
     layer, what the layer does to the contact and the impact."""
     if study.get("layer"):
-        return _layer_findings(name, study["layer"])
+        layer, interface = study["layer"], study.get("interface", {})
+        return [prefixed(name, study, _layer_findings(layer, interface))]
     errors = study["contact"]["errors"]
     text = (
-        f"{name}: the FEM reproduces Shtaerman's contact law within a relative "
+        "the FEM reproduces Shtaerman's contact law within a relative "
         f"{number(errors['force'], '.1e')} in the force, {number(errors['beta'], '.1e')} in "
         f"beta and {number(errors['central_pressure'], '.1e')} in p(0) (the largest errors "
         "over the depths, on the study's mesh)"
@@ -197,7 +210,7 @@ def findings(name: str, study: Mapping[str, Any]) -> list[str]:
             f"{number(accuracy['error_estimate']['force'], '.1e')} (force) and "
             f"{number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
         )
-    return [text + "."]
+    return [prefixed(name, study, text + ".")]
 
 
 def timing_text(study: Mapping[str, Any]) -> str:

@@ -9,10 +9,12 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from ..fem.viscoelastic import prony_input
 from ..paper.case import is_paper_case
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.richardson import Estimate
+from .case import body_words, case_words, prony_words
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables
@@ -22,6 +24,7 @@ from .wording import times_text as timing_text
 
 __all__ = [
     "RELATIVE_ESTIMATES",
+    "assumptions",
     "entry",
     "findings",
     "study_findings",
@@ -114,8 +117,8 @@ def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
 
 
 def _case_words(outcome: DynamicStudyOutcome) -> str:
-    """ "At the paper's example (...) assumed)" for the paper's inputs (the paper gives no
-    density), else "In this case (...)"."""
+    """ "At the paper's example (...) assumed)" for the paper's inputs on its elastic
+    half-space (the paper gives no density), else "In this case (...)"."""
     study, velocity = outcome.study, outcome.example.velocity
     inputs = {
         "shape_coefficient": study.indenter.shape_coefficient,
@@ -126,46 +129,64 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
         "velocity": velocity,
     }
     details = f"M = {study.mass:g} kg, v0 = {velocity:g} m/s, rubber density {study.density:g}"
-    if is_paper_case(inputs):
+    papers = study.prony is None and outcome.settings.thickness is None
+    if papers and is_paper_case(inputs):
         return f"At the paper's example ({details} kg/m^3 assumed)"
     return f"In this case ({details} kg/m^3)"
 
 
-def _body_words(settings: object) -> str:
-    """ "half-space", or the layer of the settings ("20 mm bonded layer")."""
-    thickness = getattr(settings, "thickness", None)
-    if thickness is None:
-        return "half-space"
-    return f"{1e3 * thickness:g} mm {getattr(settings, 'base', '')} layer"
+def _model_words(outcome: DynamicStudyOutcome) -> str:
+    """ " (Shtaerman's elastic half-space)" where the study's body is not: on a pad or with a
+    Prony series; "" otherwise."""
+    if outcome.study.prony is None and outcome.settings.thickness is None:
+        return ""
+    return " (Shtaerman's elastic half-space)"
+
+
+def _reflection_words(outcome: DynamicStudyOutcome) -> str:
+    """A pad's measured reflection at the example: the energy back near the contact after the
+    tail, of M v0^2/2 (the most its base's reflections can change e^2 by)."""
+    reflected = outcome.example.result.reflected_energy_fraction
+    return (
+        f"its base's reflections leave {reflected:.1e} of M v0^2/2 near the contact after "
+        "the tail, the most they change e^2 by"
+    )
 
 
 def _loss_words(outcome: DynamicStudyOutcome) -> str:
-    """What 1 - e^2 of the example went to: elastic waves (with the first-order estimate), or
-    a viscoelastic body's hysteresis (and waves, with the single-run split; ± its estimated
-    error in percentage points where the study ran its ladder)."""
-    case = outcome.example
+    """What 1 - e^2 of the example went to: elastic waves (with the first-order estimate on
+    the half-space, the measured reflection on a pad), or a viscoelastic body's hysteresis
+    (and waves, with the single-run split; ± its estimated error in percentage points where
+    the study ran its ladder)."""
+    case, pad = outcome.example, outcome.settings.thickness is not None
     losses, pm = case.result.viscoelastic, _plus_minus(case.estimates())
     if not losses:
+        if pad and outcome.study.density > 0:
+            return (
+                f"as waves along the pad ({_reflection_words(outcome)}; the half-space's "
+                "first-order radiation estimate does not apply to a pad)"
+            )
         return (
-            "as elastic waves (first-order estimate"
-            f"{'' if outcome.settings.thickness is None else ' for the half-space'} "
-            f"{100 * case.estimate.energy_fraction:.1f} %, e = {case.estimate.restitution:.4f})"
+            f"as elastic waves (first-order estimate {100 * case.estimate.energy_fraction:.1f} "
+            f"%, e = {case.estimate.restitution:.4f})"
         )
 
     def share(key: str) -> str:
         return f"{100 * losses[key]:.2f}{pm(key, 100)} %"
 
     heat = f"{share('energy_dissipated_fraction')} of M v0^2/2 dissipated by the end"
+    reflection = f"; {_reflection_words(outcome)}" if pad else ""
     if outcome.study.density == 0:
-        return f"as hysteresis (massless body: no waves; {heat} of the run)"
+        return f"as hysteresis (massless body: no waves; {heat} of the run{reflection})"
     return (
         f"as waves and hysteresis ({heat} of the run; the single-run split: waves beyond R_a "
-        f"{share('energy_wave_fraction')}, hysteresis {share('energy_hysteresis_fraction')})"
+        f"{share('energy_wave_fraction')}, hysteresis {share('energy_hysteresis_fraction')}"
+        f"{reflection})"
     )
 
 
-def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
-    """Sentences for the report's opening section."""
+def _maxima_finding(outcome: DynamicStudyOutcome) -> str:
+    """How far the quasi-static x_c, P_c and t_c lie from the example's dynamic impact."""
     case = outcome.example
     d, dyn, quasi = case.differences(), case.result, case.quasi
     pm = _plus_minus(case.estimates())
@@ -173,18 +194,26 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
     def off(key: str) -> str:
         return _off(d[key], key, pm(f"difference_{key}", 100))
 
+    return (
+        f"{_case_words(outcome)} the quasi-static model{_model_words(outcome)} {off('x')} "
+        f"({quasi.x_c * 1e3:.3f} mm against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), "
+        f"{off('P')} ({quasi.P_c:.1f} N against P_max {dyn.P_max:.1f} N) and {off('t')} "
+        f"({quasi.t_c * 1e3:.3f} ms against half the dynamic contact time, "
+        f"{0.5e3 * dyn.t_contact:.3f} ms; the same as t_y against t_contact); the dynamic "
+        f"maximum approach comes at {dyn.t_x_max * 1e3:.3f} ms.{_trend(outcome)}"
+    )
+
+
+def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
+    """Sentences for the report's opening section."""
+    dyn, pm = outcome.example.result, _plus_minus(outcome.example.estimates())
     found = [
-        f"{_case_words(outcome)} the quasi-static model {off('x')} ({quasi.x_c * 1e3:.3f} mm "
-        f"against the dynamic x_max {dyn.x_max * 1e3:.3f} mm), {off('P')} ({quasi.P_c:.1f} N "
-        f"against P_max {dyn.P_max:.1f} N) and {off('t')} ({quasi.t_c * 1e3:.3f} ms against "
-        f"half the dynamic contact time, {0.5e3 * dyn.t_contact:.3f} ms; the same as t_y "
-        f"against t_contact); the dynamic maximum approach comes at "
-        f"{dyn.t_x_max * 1e3:.3f} ms.{_trend(outcome)}",
+        _maxima_finding(outcome),
         f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
         f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
         f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
-        f"{_body_words(outcome.settings)} {_loss_words(outcome)}"
-        f"{_loss_trend(outcome)}.",
+        f"{body_words(outcome.settings.thickness, outcome.settings.base)} "
+        f"{_loss_words(outcome)}{_loss_trend(outcome)}.",
         _estimate_finding(outcome),
     ]
     limits = outcome.limits()
@@ -258,7 +287,8 @@ HEADER = [
 
 
 def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
-    rows = []
+    """One row per velocity (the half-space's first-order estimate "-" on a pad)."""
+    rows, pad = [], outcome.settings.thickness is not None
     for case in outcome.cases:
         r, d, pm = case.result, case.differences(), _plus_minus(case.estimates())
         rows.append(
@@ -272,7 +302,7 @@ def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
                 f"{100 * d['t']:+.2f}{pm('difference_t', 100)} %",
                 f"{r.restitution:.4f}{pm('restitution')}",
                 f"{r.energy_radiated_fraction:.4f}{pm('energy_radiated_fraction')}",
-                f"{case.estimate.energy_fraction:.4f}",
+                "-" if pad else f"{case.estimate.energy_fraction:.4f}",
                 f"{r.energy_balance_error:.1e}",
                 f"{r.reflected_energy_fraction:.1e}",
             ]
@@ -298,11 +328,16 @@ def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
         if outcome.estimated
         else "no error estimates: a quick run skips the ladder"
     )
+    estimate = "first-order radiated fraction"
+    reflected = "reflected: of the radiated energy"
+    if outcome.settings.thickness is not None:
+        estimate = "the half-space's first-order radiated fraction, not given on a pad"
+        reflected = "reflected: energy back near the contact after the tail, of M v0^2/2"
     return [
         {
             "title": "Dynamic FE impact against the quasi-static model (differences: "
-            f"quasi-static / dynamic - 1; {errors}; estimate: first-order radiated "
-            "fraction)",
+            f"quasi-static / dynamic - 1; {errors}; estimate: {estimate}; {reflected}; "
+            "balance: energy balance error, of M v0^2/2)",
             "header": HEADER,
             "rows": _case_rows(outcome),
         },
@@ -326,8 +361,15 @@ def entry(
     output_seconds: float | None,
     figures: Mapping[str, str] | None,
 ) -> dict[str, object]:
-    """The study's results.json entry (:func:`.entry.text_entry`)."""
-    return text_entry(outcome, (study_tables, study_findings), files, output_seconds, figures)
+    """The study's results.json entry (:func:`.entry.text_entry`) with its ``case`` in words:
+    the half-space or the pad, the Prony series, the frictionless indenter."""
+    study = outcome.study
+    case = case_words(
+        prony=study.prony, thickness=study.settings.thickness, base=study.settings.base
+    )
+    return text_entry(
+        outcome, (study_tables, study_findings), files, output_seconds, figures, case=case
+    )
 
 
 def _velocity(limit: Mapping[str, Any] | None) -> str:
@@ -348,13 +390,30 @@ def _velocity(limit: Mapping[str, Any] | None) -> str:
     return f"v0 = {limit['velocity']:.3g}{plus_minus(limit.get('velocity_error'), '.1g')} m/s"
 
 
+def assumptions(study: Mapping[str, Any]) -> str:
+    """The quasi-static model's assumptions a dynamic study's results.json entry tests, by
+    what its FE impact has: "half-space, not the 20 mm pad on a bonded rigid base; no elastic
+    waves; no hysteresis (Prony series g:tau = 0.5:2e-3 s)"."""
+    settings, inputs = study.get("settings", {}), study.get("inputs", {})
+    tested = []
+    if settings.get("thickness") is not None:
+        tested.append(f"half-space, not the {body_words(settings['thickness'], settings['base'])}")
+    if inputs.get("density2", 1.0) > 0:
+        tested.append("no elastic waves")
+    if inputs.get("prony"):
+        tested.append(f"no hysteresis ({prony_words(prony_input(inputs['prony']))})")
+    return "; ".join(tested) or "none (a massless elastic half-space)"
+
+
 def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
-    """The study's rows of the report's "where the model holds" table."""
+    """The study's rows of the report's "where the model holds" table: the assumptions it
+    tests (:func:`assumptions`) for each compared quantity."""
     limits = study.get("limits", {})
     labels = {"all": "x_c, P_c and t_c", "P": "P_c", "x": "x_c", "t": "t_c"}
+    tested = assumptions(study)
     return [
         [
-            f"no elastic waves ({name}): quasi-static {label} against the dynamic FE impact",
+            f"{tested} ({name}): quasi-static {label} against the dynamic FE impact",
             _velocity(limits[key].get("1%")),
             _velocity(limits[key].get("5%")),
         ]

@@ -16,6 +16,7 @@ from ..study.finite.accuracy import CROSSING_KEYS
 from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
+from .case import case_words, model_label, rubber_words
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables
@@ -87,15 +88,6 @@ def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> st
     """``value`` by ``spec`` ± its estimated error in the value's own unit."""
     error = _relative(outcome, key)
     return f"{value:{spec}}" + _plain(None if error is None else error * abs(value))
-
-
-MODEL_LABELS = {"neo-hookean": "neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
-"""A rubber model's name in the findings and tables."""
-
-
-def model_label(model: str) -> str:
-    """ "neo-Hookean", "Mooney-Rivlin", "Yeoh", "Gent"."""
-    return MODEL_LABELS.get(model, model.capitalize())
 
 
 def _variant(outcome: FiniteStudyOutcome, variant: str) -> str:
@@ -416,8 +408,13 @@ def entry(
     output_seconds: float | None,
     figures: Mapping[str, str] | None,
 ) -> dict[str, object]:
-    """The study's results.json entry (:func:`.entry.text_entry`)."""
-    return text_entry(outcome, (study_tables, study_findings), files, output_seconds, figures)
+    """The study's results.json entry (:func:`.entry.text_entry`) with its ``case`` in words:
+    the rubber model with its constants on the frictionless half-space."""
+    study = outcome.study
+    case = case_words(material=rubber_words(study.rubber, study.half_space.poisson_ratio))
+    return text_entry(
+        outcome, (study_tables, study_findings), files, output_seconds, figures, case=case
+    )
 
 
 def _depth(entry: Mapping[str, Any] | None) -> str:

@@ -2,9 +2,10 @@
 
 - :func:`plot_dynamic_histories`: x(t) and P(t) of the dynamic FE impact against the
   quasi-static (Ateb) impact at one velocity, and the quasi-static minus dynamic difference;
-- :func:`plot_dynamic_over_velocity`: restitution e and the energy left in the half-space
-  1 - e^2 (the first-order estimate as a line), and the quasi-static over dynamic ratios of
-  x, P and the contact time, over the approach velocity;
+- :func:`plot_dynamic_over_velocity`: restitution e and the energy left in the body 1 - e^2
+  (on the half-space the first-order estimate as a line; on a pad the energy its base
+  reflects and the energy balance error, which the pad run measured), and the quasi-static
+  over dynamic ratios of x, P and the contact time, over the approach velocity;
 - :func:`plot_wave_field`: the von Mises stress on the r-z section at one kept time, over a
   window reaching past the shear wave front (off-screen pyvista, :mod:`.render`).
 
@@ -25,6 +26,7 @@ from ..fem.dynamic_contact import DynamicImpactResult
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
+from .impact_energy import PAD_NOTE, on_pad
 from .labels import MINUS, axis_label
 from .render import picture
 from .render import save as save_picture
@@ -86,8 +88,9 @@ def plot_dynamic_histories(
         (axes[0], history.x * x_scale, result.x * x_scale, f"Approach x ({x_unit})"),
         (axes[1], history.P, result.force, "Contact force P (N)"),
     )
+    quasi_label = "quasi-static (Ateb)" + (PAD_NOTE if on_pad(result) else "")
     for ax, quasi_values, dynamic_values, label in rows:
-        ax.plot(history.t * t_scale, quasi_values, color=EXACT_COLOUR, label="quasi-static (Ateb)")
+        ax.plot(history.t * t_scale, quasi_values, color=EXACT_COLOUR, label=quasi_label)
         ax.plot(
             result.t[shown] * t_scale,
             dynamic_values[shown],
@@ -99,57 +102,74 @@ def plot_dynamic_histories(
         ax.set_ylim(bottom=min(0.0, float(np.min(dynamic_values[shown]))))
     axes[0].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
     axes[1].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
-    axes[0].legend(loc="upper right")
+    axes[0].legend(loc="lower left" if on_pad(result) else "upper right")  # a pad: longer
     axes[1].set_xlabel(f"Time t ({t_unit}); dotted: quasi-static t_c")
     axes[1].set_xlim(0.0, 1.05 * end * t_scale)
     loss = 100 * result.energy_radiated_fraction
     x_diff, p_diff = (f"{100 * d:+.2f}".replace("-", MINUS) for d in (
         quasi.x_c / result.x_max - 1, quasi.P_c / result.P_max - 1))  # fmt: skip
     axes[0].set_title(
-        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, energy left in the half-space "
-        f"1 {MINUS} e² = {loss:.2f} %\nx_c/x_max {MINUS} 1 = {x_diff} %, "
-        f"P_c/P_max {MINUS} 1 = {p_diff} %",
+        f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, energy left in the "
+        f"{'pad' if on_pad(result) else 'half-space'} 1 {MINUS} e² = {loss:.2f} %\n"
+        f"x_c/x_max {MINUS} 1 = {x_diff} %, P_c/P_max {MINUS} 1 = {p_diff} %",
         fontsize=9,
     )
     return save(figure, path, figure_format)
 
 
 def _restitution(ax_e: Axes, ax_loss: Axes, outcome: DynamicStudyOutcome) -> None:
-    """e and 1 - e^2 (%) of the dynamic FEM over v0, the first-order estimate dashed."""
+    """e and 1 - e^2 (%) of the dynamic FEM over v0, the first-order estimate dashed (on a
+    pad: what the pad run measured instead, :func:`_pad_account`)."""
     v = np.array(outcome.velocities)
     results = [case.result for case in outcome.cases]
-    curve = outcome.estimate_curve()
+    pad = outcome.settings.thickness is not None
     ax_e.plot(v, [r.restitution for r in results], "o", color=FEM_COLOUR, label="dynamic FEM")
-    ax_e.plot(
-        curve["velocity"],
-        curve["restitution"],
-        "--",
-        color=APPROXIMATION_COLOUR,
-        label=r"estimate $\sqrt{1-\lambda}$",
-    )
+    loss = [100 * r.energy_radiated_fraction for r in results]
+    ax_loss.plot(v, loss, "o", color=FEM_COLOUR, label="dynamic FEM $1-e^2$")
+    if pad:
+        _pad_account(ax_loss, v, results)
+    else:
+        curve = outcome.estimate_curve()
+        ax_e.plot(curve["velocity"], curve["restitution"], "--", color=APPROXIMATION_COLOUR,
+                  label=r"estimate $\sqrt{1-\lambda}$")  # fmt: skip
+        ax_loss.plot(curve["velocity"], 100 * np.asarray(curve["energy_fraction"]), "--",
+                     color=APPROXIMATION_COLOUR, label=r"first-order $\lambda$")  # fmt: skip
+        ax_loss.set_ylim(bottom=0.0)
     ax_e.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0, label="quasi-static")
     ax_e.set_ylabel(axis_label("restitution"))
     ax_e.legend(loc="lower left")
-    loss = [100 * r.energy_radiated_fraction for r in results]
-    ax_loss.plot(v, loss, "o", color=FEM_COLOUR, label="dynamic FEM $1-e^2$")
-    ax_loss.plot(
-        curve["velocity"],
-        100 * np.asarray(curve["energy_fraction"]),
-        "--",
-        color=APPROXIMATION_COLOUR,
-        label=r"first-order $\lambda$",
-    )
-    ax_loss.set_ylabel(axis_label("energy_radiated_fraction"))
-    ax_loss.set_ylim(bottom=0.0)
-    ax_loss.legend(loc="upper left")
+    loss_label = axis_label("energy_radiated_fraction")
+    ax_loss.set_ylabel(loss_label.replace("half-space", "pad") if pad else loss_label)
+    if pad:  # three series over decades: two decades of headroom hold the legend
+        top = max(loss) if max(loss) > 0 else 1.0
+        ax_loss.set_ylim(top=top * 10**2.5)
+        ax_loss.legend(loc="upper center", fontsize=7.5)
+    else:
+        ax_loss.legend(loc="upper left")
+
+
+def _pad_account(ax: Axes, v: np.ndarray, results: list[DynamicImpactResult]) -> None:
+    """What a pad run measured, % of M v0^2/2 on a log scale: the energy its base reflects
+    back near the contact after the tail and the energy balance error (the half-space's
+    first-order radiation estimate does not apply to a pad: not drawn, said in a note)."""
+    for key, colour, marker, label in (
+        ("reflected_energy_fraction", SECOND_COLOUR, "s", "reflected back near the contact"),
+        ("energy_balance_error", "0.45", "^", "energy balance error"),
+    ):
+        label = f"{label}, % of $E_0$"
+        ax.plot(v, [100 * getattr(r, key) for r in results], marker, color=colour, label=label)
+    ax.set_yscale("log")
+    ax.text(0.98, 0.02, "a pad: no half-space radiation estimate", transform=ax.transAxes,
+            ha="right", va="bottom", fontsize=7.5, color="0.3")  # fmt: skip
 
 
 @styled
 def plot_dynamic_over_velocity(
     outcome: DynamicStudyOutcome, path: Path | str, *, figure_format: str = "png"
 ) -> Path:
-    """e and 1 - e^2 (%) with the first-order estimate, and the quasi-static / dynamic
-    differences (%) over v0 (PNG, and ``figure_format`` "svg" or "pdf" beside it).
+    """e and 1 - e^2 (%) with the first-order estimate (on a pad: with its measured reflection
+    and energy balance), and the quasi-static / dynamic differences (%) over v0 (PNG, and
+    ``figure_format`` "svg" or "pdf" beside it).
 
     With error estimates, a difference carries its error bar, and one whose estimated error
     is not below its own size is unresolved: an open marker, not joined to the curve.

@@ -33,9 +33,11 @@ from .style import (
 )
 
 __all__ = [
+    "PAD_NOTE",
     "energy_shares",
     "force_depth_loop",
     "loop_work",
+    "on_pad",
     "plot_energy_history",
     "plot_force_depth_loop",
 ]
@@ -47,7 +49,26 @@ ENERGY_STYLES = {
     "dissipated (hysteresis)": (APPROXIMATION_COLOUR, "-"),
     "numerical residue": ("0.45", ":"),
 }
-"""Legend label -> (colour, line style) of :func:`plot_energy_history`, in drawing order."""
+"""Legend label -> (colour, line style) of :func:`plot_energy_history`, in drawing order (on a
+half-space; a pad's labels are :data:`PAD_LABELS`, drawn in the same styles)."""
+PAD_LABELS = {
+    "half-space stored (kinetic + strain)": "pad stored (kinetic + strain)",
+    "absorbed by the layer (waves)": "absorbed at the pad's lateral edge (waves)",
+}
+"""The half-space's labels that name the body, as a pad's energy account names them: the
+pad stores the energy, and its lateral absorber (not an absorbing layer around a half-space)
+takes the waves that run along it."""
+
+
+QUASI_STATIC_LAW = r"quasi-static elastic $\beta x^q$"
+"""The legend of the quasi-static law: Shtaerman's, of the half-space."""
+PAD_NOTE = " (the half-space's, not this pad's)"
+"""Added to a half-space curve's legend drawn beside a pad run."""
+
+
+def on_pad(result: DynamicImpactResult) -> bool:
+    """Whether the run was on a pad (a layer on a rigid base), not the half-space."""
+    return "thickness" in result.mesh
 
 
 def force_depth_loop(result: DynamicImpactResult) -> dict[str, np.ndarray]:
@@ -75,8 +96,8 @@ def loop_work(result: DynamicImpactResult) -> float:
 
 def energy_shares(result: DynamicImpactResult) -> dict[str, np.ndarray]:
     """The energy account per step as fractions of E0 (dimensionless), keyed by the labels of
-    :data:`ENERGY_STYLES`; they sum to 1 (the residue closes it). The dissipated share is
-    left out where it is 0 throughout (an elastic body)."""
+    :data:`ENERGY_STYLES` (on a pad, :data:`PAD_LABELS`); they sum to 1 (the residue closes
+    it). The dissipated share is left out where it is 0 throughout (an elastic body)."""
     energies = result.energies
     energy0 = 0.5 * result.parameters["mass"] * result.parameters["velocity"] ** 2
     shares = {
@@ -88,7 +109,8 @@ def energy_shares(result: DynamicImpactResult) -> dict[str, np.ndarray]:
     }
     if not np.any(energies["dissipated"]):
         del shares["dissipated (hysteresis)"]
-    return {label: np.asarray(values) / energy0 for label, values in shares.items()}
+    names = PAD_LABELS if on_pad(result) else {}
+    return {names.get(k, k): np.asarray(values) / energy0 for k, values in shares.items()}
 
 
 @styled
@@ -106,7 +128,7 @@ def plot_force_depth_loop(
     figure = Figure(figsize=(WIDTH, 4.4), layout="constrained")
     ax = figure.subplots()
     ax.plot(x * x_scale, quasi.beta * x**quasi.force_exponent, color=EXACT_COLOUR,
-            label=r"quasi-static elastic $\beta x^q$")  # fmt: skip
+            label=QUASI_STATIC_LAW + (PAD_NOTE if on_pad(result) else ""))  # fmt: skip
     ax.plot(loop["x_load"] * x_scale, loop["P_load"], color=FEM_COLOUR, label="FEM loading")
     ax.plot(loop["x_unload"] * x_scale, loop["P_unload"], color=SECOND_COLOUR, linestyle="--",
             label="FEM unloading")  # fmt: skip
@@ -139,8 +161,9 @@ def plot_energy_history(case: DynamicCase, path: Path | str, *, figure_format: s
     t_scale, t_unit = si_prefix(float(result.t[-1]), "s")
     figure = Figure(figsize=(WIDTH, 4.4), layout="constrained")
     ax = figure.subplots()
+    styles = ENERGY_STYLES | {pad: ENERGY_STYLES[label] for label, pad in PAD_LABELS.items()}
     for label, values in energy_shares(result).items():
-        colour, style = ENERGY_STYLES[label]
+        colour, style = styles[label]
         ax.plot(result.t * t_scale, values, color=colour, linestyle=style, label=label)
     if np.isfinite(result.t_contact):
         ax.axvline(result.t_contact * t_scale, color="0.6", linewidth=0.8, linestyle=":")
@@ -149,9 +172,15 @@ def plot_energy_history(case: DynamicCase, path: Path | str, *, figure_format: s
     ax.set_ylabel(r"Energy / $E_0 = M v_0^2/2$")
     ax.set_xlim(0.0, float(result.t[-1]) * t_scale)
     ax.legend(loc="upper right")
+    reflected = ""
+    if on_pad(result):  # what a pad's base sends back, measured after the tail
+        reflected = (
+            f"\nback near the contact after the tail (the base's reflections) "
+            f"{result.reflected_energy_fraction:.1e} E0"
+        )
     ax.set_title(
         f"v0 = {case.velocity:g} m/s: e = {result.restitution:.4f}, energy balance error "
-        f"{result.energy_balance_error:.1e}",
+        f"{result.energy_balance_error:.1e}{reflected}",
         fontsize=9,
     )
     return save(figure, path, figure_format)

@@ -1,0 +1,146 @@
+"""A pad's figures speak of the pad (issue 28 item 8): they draw what the pad run measured
+(its base's reflected energy, the energy balance), not the half-space's first-order radiation
+estimate, and name the body "pad" where the half-space's words would mislead.
+
+The figures are checked on their drawn content (legends, titles, plotted series), captured
+before saving; the runs are coarse (a pad run here takes about a second).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.plots import dynamic, impact_energy
+from shtaerman.study.dynamic.case import run_case
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import load_study
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+
+INDENTER = PowerLawIndenter(5.0, 1.5)
+RUBBER = Material(7.5e6, 0.5)
+PAD = DynamicSettings(steps=60, size=0.2, thickness=0.02)
+HALF_SPACE = DynamicSettings(steps=60, size=0.1)
+STUDY = """kind = "dynamic"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 7.5e6
+nu2 = 0.5
+density2 = 1100.0
+[impact]
+mass = 0.7
+velocity = [1.0, 3.0]
+[layer]
+thickness = 0.02
+[quick]
+time_steps = 60
+mesh_size = 0.05
+"""
+
+
+def _drawn(monkeypatch, module, draw):
+    """The Figure ``draw()`` makes with ``module``'s save replaced by a capture."""
+    captured = []
+
+    def fake(figure, path, *_args, **_kwargs):
+        captured.append(figure)
+        return Path(path)
+
+    monkeypatch.setattr(module, "save", fake)
+    draw()
+    return captured[0]
+
+
+def _legend(ax) -> list[str]:
+    return [text.get_text() for text in ax.get_legend().get_texts()]
+
+
+@pytest.fixture(scope="module")
+def pad_case():
+    return run_case(INDENTER, RUBBER, 1100.0, 0.7, 3.0, PAD)
+
+
+@pytest.fixture(scope="module")
+def pad_outcome(tmp_path_factory):
+    path = tmp_path_factory.mktemp("pad") / "pad.toml"
+    path.write_text(STUDY)
+    (study,) = load_study(path)
+    return run_study(study, quick=True)
+
+
+def test_over_velocity_draws_the_pads_reflection_not_the_half_space_estimate(
+    monkeypatch, pad_outcome
+):
+    figure = _drawn(
+        monkeypatch,
+        dynamic,
+        lambda: dynamic.plot_dynamic_over_velocity(pad_outcome, "unused.png"),
+    )
+    ax_e, ax_loss = figure.axes[:2]
+    assert not any("estimate" in label for label in _legend(ax_e))
+    labels = _legend(ax_loss)
+    assert not any("lambda" in label for label in labels)
+    assert "reflected back near the contact, % of $E_0$" in labels
+    assert "energy balance error, % of $E_0$" in labels
+    assert "pad" in ax_loss.get_ylabel() and "half-space" not in ax_loss.get_ylabel()
+    # the series are the pad run's own measurements, in per cent of M v0^2/2
+    results = [case.result for case in pad_outcome.cases]
+    lines = {line.get_label(): line for line in ax_loss.get_lines()}
+    reflected = lines["reflected back near the contact, % of $E_0$"].get_ydata()
+    np.testing.assert_array_equal(reflected, [100 * r.reflected_energy_fraction for r in results])
+    balance = lines["energy balance error, % of $E_0$"].get_ydata()
+    np.testing.assert_array_equal(balance, [100 * r.energy_balance_error for r in results])
+    assert ax_loss.get_yscale() == "log"  # 1 - e^2 and the checks lie decades apart
+    from shtaerman.output.dynamic import _over_velocity_caption
+
+    caption = _over_velocity_caption(pad_outcome)
+    assert "20 mm pad" in caption and "does not apply to a pad" in caption
+    assert "first-order estimate dashed" not in caption
+
+
+def test_case_figures_name_the_pad(monkeypatch, pad_case):
+    history = _drawn(
+        monkeypatch, dynamic, lambda: dynamic.plot_dynamic_histories(pad_case, "unused.png")
+    )
+    assert "energy left in the pad" in history.axes[0].get_title()
+    assert "half-space 1" not in history.axes[0].get_title()
+    assert "quasi-static (Ateb) (the half-space's, not this pad's)" in _legend(history.axes[0])
+
+    account = _drawn(
+        monkeypatch,
+        impact_energy,
+        lambda: impact_energy.plot_energy_history(pad_case, "unused.png"),
+    )
+    labels = _legend(account.axes[0])
+    assert "pad stored (kinetic + strain)" in labels
+    assert "absorbed at the pad's lateral edge (waves)" in labels
+    assert not any("half-space" in label for label in labels)
+    reflected = f"{pad_case.result.reflected_energy_fraction:.1e} E0"
+    assert "the base's reflections" in account.axes[0].get_title()
+    assert reflected in account.axes[0].get_title()
+
+    loop = _drawn(
+        monkeypatch,
+        impact_energy,
+        lambda: impact_energy.plot_force_depth_loop(pad_case, "unused.png"),
+    )
+    assert r"quasi-static elastic $\beta x^q$ (the half-space's, not this pad's)" in _legend(
+        loop.axes[0]
+    )
+
+
+def test_the_half_space_figures_keep_their_words(monkeypatch):
+    case = run_case(INDENTER, RUBBER, 1100.0, 0.7, 3.0, HALF_SPACE)
+    history = _drawn(
+        monkeypatch, dynamic, lambda: dynamic.plot_dynamic_histories(case, "unused.png")
+    )
+    assert "energy left in the half-space" in history.axes[0].get_title()
+    assert "quasi-static (Ateb)" in _legend(history.axes[0])
+    shares = impact_energy.energy_shares(case.result)
+    assert "half-space stored (kinetic + strain)" in shares
