@@ -144,3 +144,15 @@ def test_the_half_space_figures_keep_their_words(monkeypatch):
     assert "quasi-static (Ateb)" in _legend(history.axes[0])
     shares = impact_energy.energy_shares(case.result)
     assert "half-space stored (kinetic + strain)" in shares
+
+
+def test_the_command_line_text_quotes_no_half_space_estimate_for_a_pad(capsys):
+    """dynamic --thickness printed "first-order estimate 0.918234", the half-space's."""
+    from shtaerman.cli import main
+
+    coarse = ["--mesh-size", "0.2", "--time-steps", "60", "--no-estimate"]
+    main(["dynamic", "--thickness", "0.02", *coarse])
+    pad = capsys.readouterr().out
+    assert "first-order estimate" not in pad and "does not apply to a pad" in pad
+    main(["dynamic", *coarse])
+    assert "(first-order estimate of the waves" in capsys.readouterr().out

@@ -194,6 +194,15 @@ def _losses_text(dyn: dict) -> list[str]:
     ]
 
 
+def _estimate(estimate: dict, mesh: dict, key: str) -> str:
+    """The first-order half-space estimate of ``key`` beside the FE value, in words; on a pad
+    it does not apply (the base reflects what the half-space radiates), and says so once."""
+    if "thickness" in mesh:
+        return " (the half-space estimate does not apply to a pad)" if key == "restitution" else ""
+    words = "first-order estimate" + (" of the waves" if key == "energy_fraction" else "")
+    return f" ({words} {estimate[key]:.6f})"
+
+
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
     qs, dyn, est = (
@@ -210,10 +219,10 @@ def dynamic_text(report: dict) -> str:
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
         f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
-        f"  restitution e           {dyn['restitution']:<14.6f}  1 (first-order estimate "
-        f"{est['restitution']:.6f})",
-        f"  {_loss_label(dyn)}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  0 "
-        f"(first-order estimate of the waves {est['energy_fraction']:.6f})",
+        f"  restitution e           {dyn['restitution']:<14.6f}  "
+        f"1{_estimate(est, mesh, 'restitution')}",
+        f"  {_loss_label(dyn)}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
+        f"0{_estimate(est, mesh, 'energy_fraction')}",
         *_losses_text(dyn),
         _differences_text(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
