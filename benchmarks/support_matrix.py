@@ -24,10 +24,13 @@ from shtaerman.problem import support_table
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rubber-only", action="store_true")
+    parser.add_argument("--impacts", action="store_true", help="with --rubber-only: no curves")
     args = parser.parse_args()
     print(f"load at start {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     for cell, verdict in support_table():
-        if args.rubber_only and cell.model != "rubber":
+        if args.rubber_only and (
+            cell.model != "rubber" or (args.impacts and cell.loading == "curve")
+        ):
             continue
         name = " ".join(str(part) for part in cell)
         if verdict != "runs":
