@@ -14,7 +14,6 @@ from __future__ import annotations
 import contextlib
 import multiprocessing
 import os
-import time
 from pathlib import Path
 
 from ..validation import InputError
@@ -24,8 +23,6 @@ __all__ = ["SCRATCH_ENV", "check_not_bootstrapping", "raise_if_unguarded"]
 SCRATCH_ENV = "SHTAERMAN_SWEEP_SCRATCH"
 """Environment variable of the worker processes: the local cluster's scratch folder."""
 MARK = "unguarded-main"
-MARK_WAIT = 10.0
-"""Longest wait, in s, for a worker's mark after the cluster failed to start."""
 UNGUARDED = (
     "sweep: the main script starts a sweep as it is imported, and dask's worker processes "
     "import it again; start it under 'if __name__ == \"__main__\":' (a notebook needs no guard)"
@@ -50,14 +47,9 @@ def check_not_bootstrapping() -> None:
     raise SystemExit(1)
 
 
-def raise_if_unguarded(scratch: str, wait: float = MARK_WAIT) -> None:
+def raise_if_unguarded(scratch: str) -> None:
     """Raise InputError naming the guard when a worker of the cluster with this ``scratch``
     folder stopped in the main script (:func:`check_not_bootstrapping`); without the
-    exception being handled (dask's "Nanny failed to start", which says less). The mark may
-    come up to ``wait`` s after dask gave up on the worker (a loaded machine: the CI saw it)."""
-    mark, deadline = Path(scratch) / MARK, time.monotonic() + wait
-    while not mark.exists():
-        if time.monotonic() > deadline:
-            return
-        time.sleep(0.05)
-    raise InputError(UNGUARDED) from None
+    exception being handled (dask's "Nanny failed to start", which says less)."""
+    if (Path(scratch) / MARK).exists():
+        raise InputError(UNGUARDED) from None
