@@ -53,3 +53,37 @@ def test_an_ignored_signal_stays_ignored():
     )
     run = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
     assert run.returncode == 0 and '"x_c"' in run.stdout, run.stderr
+
+
+AFTER = """
+import os, signal, sys
+import shtaerman.cli as cli
+import shtaerman.entry as entry
+
+run = cli.main
+
+def run_then_signal(argv=None):
+    code = run(["impact", "--json"])
+    os.kill(os.getpid(), signal.{name})  # the instant after the command line handed back
+    return code
+
+cli.main = run_then_signal
+sys.exit(entry.main())
+"""
+
+
+@pytest.mark.parametrize(
+    ("name", "code", "word"), [("SIGINT", 130, "interrupted"), ("SIGTERM", 143, "terminated")]
+)
+def test_a_signal_right_after_the_last_output_stops_cleanly(name, code, word):
+    """A signal just after the run used to meet the default handler: a KeyboardInterrupt
+    traceback, or a silent death by SIGTERM (-15)."""
+    run = subprocess.run(
+        [sys.executable, "-c", AFTER.replace("{name}", name)], capture_output=True, text=True
+    )
+    assert run.returncode == code, run.stderr
+    assert '"x_c"' in run.stdout  # the run's output is complete
+    assert (
+        run.stderr
+        == f"shtaerman: {word}; every output is complete or absent (nothing partial is kept)\n"
+    )

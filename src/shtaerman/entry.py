@@ -19,23 +19,28 @@ _STOPPING = (signal.SIGINT, signal.SIGTERM)
 
 
 def main() -> int:
-    """Import the command line with SIGINT and SIGTERM held, then run it (its exit code)."""
+    """Import the command line with SIGINT and SIGTERM held, then run it (its exit code).
+
+    The holding handler stays for the life of the process: the command line puts its own in
+    place while it runs and this one back when it returns, so a signal in the instant after
+    the last output (where the default handler used to raise a traceback or kill silently)
+    ends the process the same way, with the line and 130/143: every output is complete."""
     held: list[int] = []
-    ignored = {number for number in _STOPPING if signal.getsignal(number) is signal.SIG_IGN}
-    previous = {
-        number: signal.signal(number, lambda signum, frame: held.append(signum))
-        for number in _STOPPING
-        if number not in ignored
-    }
-    try:
-        from .cli import main as run
-        from .cli import stopped
-    finally:
-        for number, handler in previous.items():
-            signal.signal(number, handler)
+    for number in _STOPPING:
+        if signal.getsignal(number) is not signal.SIG_IGN:  # a '&' job keeps ignoring them
+            signal.signal(number, lambda signum, frame: held.append(signum))
+    from .cli import Terminated, stopped
+    from .cli import main as run
+
     if held:
         return stopped(held[0])
-    return run()
+    try:
+        code = run()
+    except KeyboardInterrupt:  # in the instant the command line hands the signals back
+        return stopped(signal.SIGINT)
+    except Terminated:
+        return stopped(signal.SIGTERM)
+    return stopped(held[0]) if held and code not in (130, 143) else code
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -21,7 +21,7 @@ from ..version import __version__
 from . import contact, dynamic, impact, init_study, tables, verify
 from .common import Parser, warn
 
-__all__ = ["EXIT_INPUT", "build_parser", "main", "stopped"]
+__all__ = ["EXIT_INPUT", "Terminated", "build_parser", "main", "stopped"]
 
 EXIT_FAILED = 1
 EXIT_INPUT = 2
