@@ -62,3 +62,12 @@ def test_a_sweep_case_records_the_warnings_of_its_run():
     record = execute_case(dynamic_case, 0, params)
     assert any("reaches the layer's thickness 0.00013 m" in w for w in record["warnings"])
     assert math.isfinite(record["outputs"]["x_max"])
+
+
+def test_a_striker_that_never_separates_is_a_one_line_failure(capsys):
+    """--prony 0.999:1e-3 held the striker past the run's end: the text ended in a TypeError
+    traceback (None restitution) and the JSON in nulls with a 'reflected energy nan'."""
+    argv = ["dynamic", "--prony", "0.999:1e-3", "--no-estimate", "--mesh-size", "0.2"]
+    assert main([*argv, "--time-steps", "50"]) == 1
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "had not separated" in err, err

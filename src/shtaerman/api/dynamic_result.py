@@ -8,7 +8,7 @@ from typing import Any
 
 from ..output.files import json_safe
 
-__all__ = ["DIFFERENCES", "DynamicResult"]
+__all__ = ["DIFFERENCES", "DynamicResult", "check_separated"]
 
 DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
 """The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
@@ -113,3 +113,18 @@ class DynamicResult:
                 mesh_ladder=[dict(level) for level in self.mesh_ladder],
             )
         return json_safe(document)
+
+
+def check_separated(dynamic: dict[str, float], run_time: float) -> None:
+    """Raise NumericalFailureError when the striker had not left the body by the end of the
+    run (``run_time``, s): its contact duration, rebound and losses do not exist, and the
+    reflection measure is meaningless (the JSON's nulls, a 'reflected energy nan' used to
+    follow)."""
+    from ..validation import NumericalFailureError
+
+    if not math.isfinite(dynamic.get("t_contact", math.nan)):
+        raise NumericalFailureError(
+            f"the striker had not separated from the body at the end of the run "
+            f"({run_time:.3g} s): a strongly relaxing body (Prony weights summing near 1) or a "
+            "pad it sinks through holds it longer; lower the Prony weights or the velocity"
+        )

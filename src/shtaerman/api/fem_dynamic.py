@@ -14,7 +14,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
-from .dynamic_result import DIFFERENCES, DynamicResult
+from .dynamic_result import DIFFERENCES, DynamicResult, check_separated
 from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
@@ -224,6 +224,7 @@ def dynamic(
     if estimate:
         ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, prony=series)
         case = dataclasses.replace(case, ladder=ladder)
+    check_separated({"t_contact": case.result.t_contact}, float(case.result.t[-1]))
     result = _result(case)
     if folder is not None:
         with staged_folder(folder, force=force) as stage:

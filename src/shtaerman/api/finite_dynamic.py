@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..vocabulary import entry
-from .dynamic_result import DynamicResult
+from .dynamic_result import DynamicResult, check_separated
 
 if TYPE_CHECKING:
     from ..problem import Problem
@@ -76,6 +76,7 @@ def finite_dynamic(
     law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
     quasi = solve_impact(mass, velocity, law)
     summary = run.summary()
+    check_separated(summary, float(run.t[-1]))
     differences = {
         "x_c": quasi.x_c / summary["x_max"] - 1.0,
         "P_c": quasi.P_c / summary["P_max"] - 1.0,
