@@ -71,3 +71,24 @@ def test_a_striker_that_never_separates_is_a_one_line_failure(capsys):
     assert main([*argv, "--time-steps", "50"]) == 1
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and "had not separated" in err, err
+
+
+@pytest.mark.parametrize(
+    "argv", [["--mass", "1e-300"], ["--mass", "1e300"], ["--velocity", "1e50"]]
+)
+def test_a_linear_impact_beyond_any_fe_reach_is_refused_in_one_line(capsys, argv):
+    """Mass 1e-300 or 1e300 ended in 'matrix is singular' tracebacks (the mesh's scales left
+    the floating-point range); velocity 1e50 printed a validity warning before its refusal."""
+    coarse = ["--no-estimate", "--mesh-size", "0.2", "--time-steps", "50"]
+    assert main(["dynamic", *argv, *coarse]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "error: --mass, --velocity:" in err, err
+
+
+def test_a_dynamic_sweep_refuses_the_same_at_load():
+    from shtaerman.sweep.kinds import get_kind
+
+    kind = get_kind("dynamic")
+    params = {**kind.defaults(), "mass": 1e-300}
+    with pytest.raises(sh.InputError, match=r"^mass, velocity: 1e-300 kg at 3 m/s"):
+        kind.check(params)

@@ -24,8 +24,11 @@ from .theory.contact import PowerLawContact
 from .theory.indenter import PowerLawIndenter
 
 __all__ = [
+    "LINEAR_REACH",
     "MAX_DEPTH_RATIO",
+    "MIN_DEPTH_RATIO",
     "ValidityWarning",
+    "check_reach",
     "depth_ratio",
     "outside_validity",
     "warn_outside_validity",
@@ -34,6 +37,14 @@ __all__ = [
 MAX_DEPTH_RATIO = 1.2
 """Largest depth / contact radius x/a at which the finite-strain contact converges and was
 checked against the linear one (beyond it Newton fails after minutes of halved load steps)."""
+MIN_DEPTH_RATIO = 1e-6
+"""Smallest x/a an FE impact is run at: the strains are of this order (a finite-strain F = I +
+grad u keeps ~1e-16 / (x/a) of them, too few for Newton), and the linear FE's scales reach
+the floating-point range below it (mass 1e-300 gave a singular matrix); the exact quasi-static
+impact is the answer there."""
+LINEAR_REACH = 100.0
+"""Largest x/a a linear FE impact is run at: a depth of a hundred contact radii is no
+model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular matrix)."""
 
 
 class ValidityWarning(UserWarning):
@@ -88,3 +99,43 @@ def warn_outside_validity(
     """Issue a :class:`ValidityWarning` for each limit of :func:`outside_validity` passed."""
     for sentence in outside_validity(indenter, deepest, thickness, finite, what):
         warnings.warn(sentence, ValidityWarning, stacklevel=3)
+
+
+def check_reach(
+    indenter: PowerLawIndenter,
+    depth: float,
+    impact: tuple[float, float],
+    q: float,
+    finite: bool,
+) -> None:
+    """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
+    depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
+    (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
+    message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)), x/a ~ x^(1-1/n)).
+    Both inputs set the depth: the message names both."""
+    from .validation import InputError
+
+    mass, velocity = impact
+    if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
+        return
+    ratio = depth_ratio(indenter, depth)
+    drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
+    if not ratio >= MIN_DEPTH_RATIO:
+        raise InputError(
+            f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
+            f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
+            "quasi-static impact (shtaerman impact) is the answer there; raise the mass or "
+            "the velocity",
+            "mass",
+        )
+    high = MAX_DEPTH_RATIO if finite else LINEAR_REACH
+    if not ratio <= high:
+        deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / indenter.exponent))
+        fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
+        reach = "the finite-strain contact converges" if finite else "an FE impact is run"
+        raise InputError(
+            f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
+            f"beyond the {high:g} up to which {reach}: at most about {fastest:.3g} m/s with "
+            "this striker, mass and body (or a smaller mass)",
+            "velocity",
+        )

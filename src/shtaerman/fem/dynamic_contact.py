@@ -29,6 +29,7 @@ import scipy.sparse as sp
 from skfem import BilinearForm, MeshTri, asm
 from threadpoolctl import threadpool_limits
 
+from ..guards import check_reach
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
@@ -710,6 +711,9 @@ def check_dynamic_impact(
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
+    qs = _quasi_static(indenter, half_space, striker)
+    if settings.thickness is None:  # a pad stops the striker short of x_c
+        check_reach(indenter, qs.x_c, (striker.mass, striker.velocity), qs.force_exponent, False)
     if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
     scales = _scales(indenter, half_space, rho, striker, settings, prony)

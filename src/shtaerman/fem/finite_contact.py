@@ -48,7 +48,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
-from ..guards import MAX_DEPTH_RATIO, depth_ratio
+from ..guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, depth_ratio
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
@@ -80,10 +80,6 @@ FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_gro
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
 iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
 
-MIN_DEPTH_RATIO = 1e-6
-"""Smallest depth / contact radius d/a (a: Shtaerman's, the small-strain limit) of a
-finite-strain step: the strains are of this order, and F = I + grad u keeps only ~1e-16 / (d/a)
-of them, too few digits for Newton's tolerance below it."""
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:

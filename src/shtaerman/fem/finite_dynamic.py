@@ -60,7 +60,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-from ..guards import warn_outside_validity
+from ..guards import check_reach, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.indenter import PowerLawIndenter
@@ -71,13 +71,10 @@ from .contact import EDGE_MARGIN
 from .finite_contact import (
     FINITE_BASE,
     FINITE_MESH,
-    MAX_DEPTH_RATIO,
     MAX_ITERATIONS,
-    MIN_DEPTH_RATIO,
     NEWTON_TOLERANCE,
     ContactOutgrowsMeshError,
     NewtonStepper,
-    depth_ratio,
     geometric_radius,
 )
 from .finite_viscoelastic import ViscoelasticBody
@@ -561,10 +558,10 @@ def run_finite_impact(
         raise InputError(FINITE_BASE, "base")
     unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
     if unbounded:  # before the viscoelastic sizing, which warns of fast impacts
-        _check_reach(indenter, x_c, (mass, velocity), q)
+        check_reach(indenter, x_c, (mass, velocity), q, finite=True)
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     if unbounded and x_size > x_c:
-        _check_reach(indenter, x_size, (mass, velocity), q)
+        check_reach(indenter, x_size, (mass, velocity), q, finite=True)
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
     clock = [time.perf_counter()]
@@ -599,36 +596,6 @@ def run_finite_impact(
     result = _result(columns, mass, context, separation)
     warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
     return result
-
-
-def _check_reach(
-    indenter: PowerLawIndenter, depth: float, impact: tuple[float, float], q: float
-) -> None:
-    """Refuse, before any work, an impact (mass in kg, velocity in m/s) whose quasi-static
-    depth (m) on the half-space lies outside the finite-strain contact's reach, d/a outside
-    [MIN_DEPTH_RATIO, MAX_DEPTH_RATIO]; beyond it the message gives the velocity that reaches
-    the limit (depth ~ v^(2/(q+1)), d/a ~ d^(1-1/n)). Both inputs set the depth: the message
-    names both."""
-    mass, velocity = impact
-    ratio = depth_ratio(indenter, depth)
-    drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
-    if ratio < MIN_DEPTH_RATIO:
-        raise InputError(
-            f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
-            f"{MIN_DEPTH_RATIO:g} at which strains keep their digits in F = I + grad u: the "
-            "linear model is exact there; raise the mass or the velocity",
-            "mass",
-        )
-    if ratio > MAX_DEPTH_RATIO:
-        deepest = depth * (MAX_DEPTH_RATIO / ratio) ** (1.0 / (1.0 - 1.0 / indenter.exponent))
-        fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
-        raise InputError(
-            f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
-            f"beyond the {MAX_DEPTH_RATIO:g} up to which the finite-strain contact converges: "
-            f"at most about {fastest:.3g} m/s with this striker, mass and rubber (or a smaller "
-            "mass)",
-            "velocity",
-        )
 
 
 def _relaxed_extent(

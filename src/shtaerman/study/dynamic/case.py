@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -146,12 +147,16 @@ def run_case(
         Shear relaxation of the half-space (E2, nu2 its instantaneous values); None: elastic.
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
-    quasi = solve_impact(mass, velocity, law)
-    estimate = radiation(mass, velocity, law, density, half_space)
+    with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
+        warnings.simplefilter("always")  # a refusal is the one line
+        quasi = solve_impact(mass, velocity, law)
+        estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
     result = run_dynamic_impact(*inputs, settings, snapshot_times=times, prony=prony)
+    for warning in said:
+        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     warn_outside_validity(indenter, result.x_max, settings.thickness, finite=False)
     levels = complete_ladder(result, *inputs, settings, prony=prony) if ladder else None
     return DynamicCase(velocity, quasi, estimate, result, levels)
