@@ -144,7 +144,8 @@ def run(args: argparse.Namespace) -> int:
     of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
     massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
     reflected = 0.0 if massless else result.reflected_energy_fraction
-    failures = dynamic_check_failures(result.energy_balance_error, reflected, of)
+    radiated = result.energy_radiated_fraction
+    failures = dynamic_check_failures(result.energy_balance_error, reflected, of, radiated)
     if failures:
         warn("; ".join(failures) + ", so this run's numbers are not to be trusted")
         return 1

@@ -412,9 +412,10 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
         **{key: float(result.viscoelastic[key]) for key in DYNAMIC_LOSSES if result.viscoelastic},
         **_dynamic_errors(case),
     }
-    failures = dynamic_check_failures(
-        outputs["energy_balance_error"], outputs["reflected_energy_fraction"]
-    )
+    of = "the radiated" if p.get("thickness") is None else "M v0^2/2"
+    balance, reflected = outputs["energy_balance_error"], outputs["reflected_energy_fraction"]
+    radiated = outputs["energy_radiated_fraction"]
+    failures = dynamic_check_failures(balance, reflected, of, radiated)
     return CaseResult(outputs, tuple(failures))
 
 
