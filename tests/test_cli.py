@@ -143,7 +143,7 @@ def test_a_depth_list_is_checked_once_by_the_cli_and_once_by_the_api(capsys):
         sys.setprofile(None)
     assert code == 0 and len(json.loads(capsys.readouterr().out)["steps"]) == 2
     # once as the option is read, once as the problem's loading is built (sh.Problem)
-    assert calls == [("entry", "parse"), ("entry", "__post_init__")]
+    assert calls == [("entry", "parse"), ("entry", "_depths")]
 
 
 @pytest.mark.parametrize("value", ["0", "1000", "2.5", "many"])

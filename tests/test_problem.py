@@ -146,3 +146,23 @@ def test_a_problem_runs_as_its_keywords_do():
         sh.dynamic(problem, mass=0.7)
     with pytest.raises(sh.InputError, match="presses a contact curve"):
         sh.contact(problem)
+
+
+@pytest.mark.parametrize(
+    ("call", "words"),
+    [
+        (lambda: sh.Problem.curve(PAPER, RUBBER, depths=1e-3), "^depths must be a sequence"),
+        (lambda: sh.contact(PAPER, RUBBER, depths="3", estimate=False), "^depths must be a seq"),
+        (lambda: sh.contact(PAPER, RUBBER, depths=[1e-3, "x"]), "^depths must be a number"),
+        (lambda: sh.dynamic(sh.Problem.curve(PAPER, RUBBER)), "^problem: dynamic.. runs an"),
+        (lambda: sh.dynamic(PAPER, RUBBER, mass=0.7, velocity=3.0, settings="x"), "^settings"),
+        (lambda: sh.dynamic(PAPER, RUBBER, mass=0.7, velocity=3.0, force="False"), "^force mu"),
+        (lambda: sh.contact(PAPER, RUBBER, estimate="no"), "^estimate must be True or False"),
+        (lambda: sh.contact(PAPER, RUBBER, figure_format="svg"), "^figure_format: applies"),
+    ],
+)
+def test_the_api_refuses_wrong_types_in_one_line(call, words):
+    """An adversary's calls that ended in TypeError/AssertionError tracebacks, ran a 3 m
+    depth from the string "3", or read force="False" as true."""
+    with pytest.raises(sh.InputError, match=words):
+        call()

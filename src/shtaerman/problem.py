@@ -43,6 +43,7 @@ __all__ = [
     "Striker",
     "Unsupported",
     "check_options",
+    "check_outputs",
     "support_table",
 ]
 
@@ -228,8 +229,24 @@ class Loading:
         if self.depths is not None:
             if self.kind != "curve":
                 raise InputError("depths: apply to a contact curve only", "depths")
-            depths = [float(d) for d in self.depths]
-            object.__setattr__(self, "depths", tuple(entry("depths").check(depths, "contact")))
+            object.__setattr__(self, "depths", _depths(self.depths))
+
+
+def _depths(values: Any) -> tuple[float, ...]:
+    """``values`` as depths in m, each checked by the vocabulary; a sequence (a list, a tuple
+    or a 1-D array) is required, not a number or a string."""
+    import numpy as np
+
+    one_dimensional = isinstance(values, np.ndarray) and values.ndim == 1
+    if not (isinstance(values, list | tuple) or one_dimensional):
+        got = (
+            f"an array of shape {values.shape}" if isinstance(values, np.ndarray) else repr(values)
+        )
+        raise InputError(
+            f"depths must be a sequence of depths in m (a list, increasing), got {got}",
+            "depths",
+        )
+    return tuple(float(d) for d in entry("depths").check(list(values), "contact"))
 
 
 class Cell(NamedTuple):
@@ -442,7 +459,6 @@ class Problem:
         if unknown:
             raise TypeError(f"unexpected keyword arguments {unknown}")
         given = {key: value for key, value in keywords.items() if value is not None}
-        depths = given.get("depths")
         return cls(
             Striker(
                 indenter, given.get("mass"), given.get("velocity"), given.get("striker", RIGID)
@@ -457,7 +473,7 @@ class Problem:
             Interface(given.get("interface", "frictionless"), given.get("friction")),
             Loading(
                 given.get("loading", "impact"),
-                None if depths is None else tuple(depths),
+                given.get("depths"),
                 given.get("rate"),
             ),
         )
@@ -515,3 +531,19 @@ def support_table() -> list[tuple[Cell, str]]:
         refusal = next((limit for limit in SUPPORT if limit.when(cell)), None)
         rows.append((cell, "runs" if refusal is None else f"{refusal.parameter}: {refusal.reason}"))
     return rows
+
+
+def check_outputs(out: Any, *, force: Any, estimate: Any, figure_format: str) -> None:
+    """Refuse, in one line naming it, an output keyword of the API that would be read wrong:
+    ``force`` and ``estimate`` other than True or False (``force="False"`` counted as true),
+    and a figure format other than png without ``out`` (nothing is drawn; the command line
+    refuses it too)."""
+    for name, value in (("force", force), ("estimate", estimate)):
+        if not isinstance(value, bool):
+            raise InputError(f"{name} must be True or False, got {value!r}", name)
+    if out is None and figure_format != entry("figure_format").default:
+        raise InputError(
+            "figure_format: applies with out only (the format of the figures written there); "
+            "give out too",
+            "figure_format",
+        )

@@ -16,7 +16,14 @@ from numpy.typing import ArrayLike
 
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
-from ..problem import MODELS, RUBBER_OPTIONS, Problem, check_bodies, check_options
+from ..problem import (
+    MODELS,
+    RUBBER_OPTIONS,
+    Problem,
+    check_bodies,
+    check_options,
+    check_outputs,
+)
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
@@ -380,6 +387,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
 
     problem = _problem(indenter, body, options)
     check_options(problem, ["accuracy"] if options["accuracy"] is not None else [])
+    outputs = {name: options[name] for name in ("force", "estimate", "figure_format")}
+    check_outputs(options["out"], **outputs)
     indenter, body, model = problem.striker.indenter, problem.body.material, problem.body.model
     estimate = bool(options["estimate"])
     check_figure_format(options["figure_format"])

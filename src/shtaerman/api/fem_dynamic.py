@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..plots.formats import check_figure_format
-from ..problem import Problem, check_options
+from ..problem import Problem, check_options, check_outputs
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
@@ -45,6 +45,12 @@ def dynamic_settings(
     from ..fem.dynamic_contact import DynamicSettings
 
     base = DynamicSettings() if base is None else base
+    if not isinstance(base, DynamicSettings):
+        raise InputError(
+            f"settings must be a shtaerman.fem.dynamic_contact.DynamicSettings, got "
+            f"{type(base).__name__}; the keywords time_steps, mesh_size, ... set single fields",
+            "settings",
+        )
     names = fields(SETTINGS_OPTIONS)
     chosen = {names[k]: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
     return dataclasses.replace(base, **chosen)  # type: ignore[arg-type]
@@ -192,6 +198,7 @@ def dynamic(
 
     physics = dict(model=model, prony=prony, thickness=thickness, base=base, **rubber)
     problem = _problem(indenter, body, mass, velocity, physics)
+    check_outputs(out, force=force, estimate=estimate, figure_format=figure_format)
     numerics = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
     numerics.update(layer_rate=layer_rate, settings=settings, out=out, force=force or None)
     numerics.update(refine=refine != 1.0 or None, estimate=not estimate or None)
@@ -248,6 +255,8 @@ def _problem(
         extra += [k for k, v in (("body", body), ("mass", mass), ("velocity", velocity)) if v]
         if extra:
             raise TypeError(f"dynamic(problem) takes numerics only; the problem holds {extra}")
+        if indenter.loading.kind != "impact":
+            raise InputError("problem: dynamic() runs an impact (Problem.impact), not a curve")
         return indenter
     density = physics.pop("density", None)
     if density is not None and isinstance(body, Material):
