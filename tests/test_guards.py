@@ -107,3 +107,17 @@ def test_a_reflection_share_of_almost_no_radiation_is_not_a_failure(capsys):
     coarse = ["--no-estimate", "--mesh-size", "0.2", "--time-steps", "50"]
     assert main(["dynamic", "--velocity", "1e-3", *coarse]) == 0
     assert "reflected" not in capsys.readouterr().err
+
+
+def test_a_finite_strain_study_beyond_the_reach_names_its_impact(tmp_path, capsys):
+    """Issue 31, item 9 in a study file: 'depths: ... lower the deepest depth' for a study
+    whose depths follow from its velocity."""
+    study = tmp_path / "fast.toml"
+    assert main(["init-study", str(study), "--kind", "finite-strain"]) == 0
+    text = study.read_text()
+    study.write_text(text.replace("velocity = 3.0", "velocity = 11.0"))
+    capsys.readouterr()
+    assert main(["verify", str(study), "--quick", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "mass, velocity: the depths reach the x_c of 0.7 kg at 11 m/s" in err
+    assert "lower the deepest depth" not in err

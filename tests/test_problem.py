@@ -129,7 +129,7 @@ def test_the_cli_refuses_in_one_line_naming_the_options(capsys, argv, words):
 def test_default_depths_beyond_the_finite_reach_name_the_impact_not_the_depths(capsys):
     """Issue 31, item 9: no --depths was given, so the message must not ask to lower them."""
     argv = ["contact", "--model", "neo-hookean", "--velocity", "11"]
-    err = _one_line_error(capsys, argv, "--mass, --velocity: the default depths reach")
+    err = _one_line_error(capsys, argv, "--mass, --velocity: the depths reach")
     assert "--depths" not in err
 
 

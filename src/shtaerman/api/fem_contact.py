@@ -358,25 +358,14 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     name the impact that set them (its mass and velocity)."""
     from ..fem.finite_contact import check_finite_depths
 
-    indenter, model = problem.striker.indenter, problem.body.model
-    if problem.loading.depths is not None:
-        return check_finite_depths(indenter, depths, model)
-    try:
-        check_finite_depths(indenter, depths, model)
-    except InputError as error:
-        mass, velocity = (
-            entry(name).default if value is None else value
-            for name, value in (
-                ("mass", problem.striker.mass),
-                ("velocity", problem.striker.velocity),
-            )
+    impact = None
+    if problem.loading.depths is None:
+        mass, velocity = problem.striker.mass, problem.striker.velocity
+        impact = (
+            entry("mass").default if mass is None else mass,
+            entry("velocity").default if velocity is None else velocity,
         )
-        reason = str(error).removeprefix("depths: ").split("; ")[0]
-        raise InputError(
-            f"mass, velocity: the default depths reach the x_c of {mass:g} kg at {velocity:g} "
-            f"m/s, and {reason}; lower the mass or the velocity, or give the depths",
-            "velocity",
-        ) from None
+    check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:

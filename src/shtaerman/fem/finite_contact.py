@@ -625,11 +625,15 @@ def finite_step(
 
 
 def check_finite_depths(
-    indenter: PowerLawIndenter, depths: ArrayLike, model: str = "neo-hookean"
+    indenter: PowerLawIndenter,
+    depths: ArrayLike,
+    model: str = "neo-hookean",
+    impact: tuple[float, float] | None = None,
 ) -> None:
     """Refuse, before any work, depths (m) the finite-strain contact cannot resolve: d/a
     (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
-    ``model`` names the rubber model in the message.
+    ``model`` names the rubber model in the message; ``impact`` (mass in kg, velocity in m/s):
+    the depths were set by that impact's x_c, and the message names those inputs instead.
 
     Raises
     ------
@@ -641,19 +645,28 @@ def check_finite_depths(
     (small, low), (deep, high) = ratios
     valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
     if low < MIN_DEPTH_RATIO:
-        raise InputError(
-            f"depths: {small:g} m gives depth / contact radius {low:.2g}, below the "
-            f"{model} model's {valid}: strains this small lose their digits in F = I + "
-            f"grad u; raise the smallest depth (the linear model is exact there)",
-            "depths",
+        reason = (
+            f"{small:g} m gives depth / contact radius {low:.2g}, below the {model} model's "
+            f"{valid}: strains this small lose their digits in F = I + grad u"
         )
+        _refuse_depths(reason, "raise the smallest depth (the linear model is exact there)", impact)
     if high > MAX_DEPTH_RATIO:
-        raise InputError(
-            f"depths: {deep:g} m gives depth / contact radius {high:.3g}, beyond the "
-            f"{model} model's {valid}: the finite-strain contact does not converge "
-            f"there; lower the deepest depth",
-            "depths",
+        reason = (
+            f"{deep:g} m gives depth / contact radius {high:.3g}, beyond the {model} model's "
+            f"{valid}: the finite-strain contact does not converge there"
         )
+        _refuse_depths(reason, "lower the deepest depth", impact)
+
+
+def _refuse_depths(reason: str, remedy: str, impact: tuple[float, float] | None) -> None:
+    """The refusal of depths out of reach, naming the depths, or the impact that set them."""
+    if impact is None:
+        raise InputError(f"depths: {reason}; {remedy}", "depths")
+    raise InputError(
+        f"mass, velocity: the depths reach the x_c of {impact[0]:g} kg at {impact[1]:g} m/s, "
+        f"and {reason}; change the mass or the velocity, or give the depths",
+        "velocity",
+    )
 
 
 FINITE_BASE = (

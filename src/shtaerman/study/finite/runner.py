@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
 
+from ...fem.finite_contact import check_finite_depths
 from ...fem.mesh import MeshSettings
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
@@ -437,6 +438,8 @@ def run_finite_strain_study(
         depths = np.asarray(study.depths, dtype=float)
     else:
         depths = ladder(study.indenter, modulus, exact.x_c, spec)
+        model = "neo-hookean" if study.rubber is None else study.rubber.name
+        check_finite_depths(study.indenter, depths, model, (study.mass, study.velocity))
     nested = study.mesh_ladder == "nested"
     if estimate and not quick:
         factors, meshes = ladder_meshes(mesh, nested)
