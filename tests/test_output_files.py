@@ -271,7 +271,7 @@ def test_a_symlinked_history_is_refused_and_its_target_kept(tmp_path, capsys, co
     for name in (link, dangling):
         code, out, err = run(capsys, command, "--history", str(name), *force)
         assert code == 2 and out == "" and err.count("\n") == 1
-        assert "history: " in err and "is a symbolic link; name the file itself" in err
+        assert "--history: " in err and "is a symbolic link; name the file itself" in err
     assert precious.read_text() == "precious" and sorted(p.name for p in elsewhere.iterdir()) == [
         "precious.csv"
     ]

@@ -461,3 +461,16 @@ def test_a_gent_step_is_cut_until_the_rubber_is_near_its_limit():
     locked = gent_locks(overshoot, system, rest, 1e-4, last=True)  # no cut left
     assert locked.parameter == "gent_limit" and "locks at depth 0.0001 m" in str(locked)
     assert 0.5 < LOCKED < 1.0
+
+
+def test_a_gent_lock_in_the_first_step_with_inertia_names_a_depth_reached(capsys):
+    """It said 'locks at depth 0 m': the depth before the step, not the one it went for."""
+    import re
+
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--model", "gent", "--gent-limit", "0.01", "--mesh-size", "0.2"]
+    assert main([*argv, "--time-steps", "50"]) == 2
+    err = capsys.readouterr().err
+    depth = float(re.search(r"locks at depth (\S+) m", err)[1])
+    assert 0.0 < depth < 1e-3 and err.count("\n") == 1, err  # within the first steps of 8.5 mm

@@ -32,10 +32,12 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 def history_path(value: str | None, *, force: bool) -> Path | None:
-    """The --history file, checked before any work (see :func:`check_output_file`)."""
+    """The --history file, checked before any work (see :func:`check_output_file`); an error
+    names the option (``--history: ...``), as the other options' do."""
     if value is None:
         return None
-    return check_output_file(value, force=force, option="history")
+    with in_option_words():
+        return check_output_file(value, force=force, option="history")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -1015,8 +1015,9 @@ def _march_inertial(
             )
         except NewtonError as error:
             if isinstance(error, GentLockError):  # in every cut step: the rubber locks
-                limit = stepper.system.material.gent_limit
-                raise GentLockError.locking(limit, state.depth) from None
+                limit = stepper.system.material.gent_limit  # within the step: the depth it
+                reached = state.depth + abs(state.speed) * inertial.dt  # was going to
+                raise GentLockError.locking(limit, reached) from None
             raise NumericalFailureError(
                 f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}, "
                 f"also in steps cut {MAX_STEP_CUTS} times; "
