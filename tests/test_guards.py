@@ -121,3 +121,14 @@ def test_a_finite_strain_study_beyond_the_reach_names_its_impact(tmp_path, capsy
     err = capsys.readouterr().err
     assert "mass, velocity: the depths reach the x_c of 0.7 kg at 11 m/s" in err
     assert "lower the deepest depth" not in err
+
+
+def test_a_dynamic_sweep_builds_each_case_as_a_problem_at_load():
+    """A layer_rate on a massless body ran in a sweep; the command line refuses it."""
+    from shtaerman.sweep.kinds import get_kind
+
+    kind = get_kind("dynamic")
+    params = {**kind.defaults(), "density2": 0.0, "layer_rate": 10.0}
+    with pytest.raises(sh.InputError, match=r"^layer_rate: applies to a body with mass only"):
+        kind.check(params)
+    kind.check({**params, "layer_rate": 0.0})  # the default: no absorbing layer

@@ -290,9 +290,29 @@ def _dynamic_check(p: dict[str, Any]) -> None:
 
     from ..fem.dynamic_contact import check_dynamic_impact
 
+    inputs = _dynamic_inputs(p)
+    _dynamic_problem(p, inputs[-1])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a validity warning is the case's to record
-        check_dynamic_impact(*_dynamic_inputs(p), _prony(p))
+        check_dynamic_impact(*inputs, _prony(p))
+
+
+def _dynamic_problem(p: dict[str, Any], settings: Any) -> None:
+    """The case as a :class:`~shtaerman.problem.Problem`, checked as the command line's is:
+    its parts combine, and it takes its options (a layer_rate on a massless body)."""
+    from ..problem import Problem, check_options
+    from ..theory.materials import Material
+
+    layer = {"thickness": settings.thickness, "base": settings.base}
+    problem = Problem.impact(
+        _indenter(p),
+        Material(p["E2"], p["nu2"], p["density2"]),
+        mass=p["mass"],
+        velocity=p["velocity"],
+        prony=_prony(p),
+        **(layer if settings.thickness is not None else {}),
+    )
+    check_options(problem, ["layer_rate"] if p["layer_rate"] else [])
 
 
 def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
