@@ -42,7 +42,10 @@ kinds)."""
 
 
 def _cell(text: str) -> str:
-    return " ".join(text.split()).replace("|", "\\|")
+    """``text`` on one line of a markdown table cell: ``|`` escaped, and ``<``, ``>`` as
+    entities (the help's ``sweep-<name>`` read as an HTML tag, and vanished)."""
+    text = " ".join(text.split()).replace("<", "&lt;").replace(">", "&gt;")
+    return text.replace("|", "\\|")
 
 
 def _default(action: argparse.Action) -> str:

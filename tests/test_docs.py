@@ -425,3 +425,10 @@ def test_the_parameter_page_shows_which_parts_combine(site):
     assert f"Of the 108 combinations below, {running} run" in " ".join(page.split())
     for limit in SUPPORT:
         assert " ".join(limit.reason.split()) in " ".join(page.split())
+
+
+def test_the_parameter_page_shows_angle_brackets_as_text(site):
+    """The sweep's '--out' help 'sweep-<name>' was read as an HTML tag and vanished."""
+    page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
+    text = html.unescape(re.sub(r"<[^>]+>", "", page))
+    assert "result folder (default: sweep-<name>)" in " ".join(text.split())
