@@ -8,10 +8,10 @@ before saving; the runs are coarse (a pad run here takes about a second).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
+from study_texts import DYNAMIC_STUDY
+from test_paper_figures import capture
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.plots import dynamic, impact_energy
@@ -25,36 +25,15 @@ INDENTER = PowerLawIndenter(5.0, 1.5)
 RUBBER = Material(7.5e6, 0.5)
 PAD = DynamicSettings(steps=60, size=0.2, thickness=0.02)
 HALF_SPACE = DynamicSettings(steps=60, size=0.1)
-STUDY = """kind = "dynamic"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-density2 = 1100.0
-[impact]
-mass = 0.7
-velocity = [1.0, 3.0]
-[layer]
+STUDY = (
+    DYNAMIC_STUDY
+    + """[layer]
 thickness = 0.02
 [quick]
 time_steps = 60
 mesh_size = 0.05
 """
-
-
-def _drawn(monkeypatch, module, draw):
-    """The Figure ``draw()`` makes with ``module``'s save replaced by a capture."""
-    captured = []
-
-    def fake(figure, path, *_args, **_kwargs):
-        captured.append(figure)
-        return Path(path)
-
-    monkeypatch.setattr(module, "save", fake)
-    draw()
-    return captured[0]
+)
 
 
 def _legend(ax) -> list[str]:
@@ -77,7 +56,7 @@ def pad_outcome(tmp_path_factory):
 def test_over_velocity_draws_the_pads_reflection_not_the_half_space_estimate(
     monkeypatch, pad_outcome
 ):
-    figure = _drawn(
+    figure = capture(
         monkeypatch,
         dynamic,
         lambda: dynamic.plot_dynamic_over_velocity(pad_outcome, "unused.png"),
@@ -105,14 +84,14 @@ def test_over_velocity_draws_the_pads_reflection_not_the_half_space_estimate(
 
 
 def test_case_figures_name_the_pad(monkeypatch, pad_case):
-    history = _drawn(
+    history = capture(
         monkeypatch, dynamic, lambda: dynamic.plot_dynamic_histories(pad_case, "unused.png")
     )
     assert "energy left in the pad" in history.axes[0].get_title()
     assert "half-space 1" not in history.axes[0].get_title()
     assert "quasi-static (Ateb) (the half-space's, not this pad's)" in _legend(history.axes[0])
 
-    account = _drawn(
+    account = capture(
         monkeypatch,
         impact_energy,
         lambda: impact_energy.plot_energy_history(pad_case, "unused.png"),
@@ -125,7 +104,7 @@ def test_case_figures_name_the_pad(monkeypatch, pad_case):
     assert "the base's reflections" in account.axes[0].get_title()
     assert reflected in account.axes[0].get_title()
 
-    loop = _drawn(
+    loop = capture(
         monkeypatch,
         impact_energy,
         lambda: impact_energy.plot_force_depth_loop(pad_case, "unused.png"),
@@ -137,7 +116,7 @@ def test_case_figures_name_the_pad(monkeypatch, pad_case):
 
 def test_the_half_space_figures_keep_their_words(monkeypatch):
     case = run_case(INDENTER, RUBBER, 1100.0, 0.7, 3.0, HALF_SPACE)
-    history = _drawn(
+    history = capture(
         monkeypatch, dynamic, lambda: dynamic.plot_dynamic_histories(case, "unused.png")
     )
     assert "energy left in the half-space" in history.axes[0].get_title()

@@ -10,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from study_texts import DYNAMIC_STUDY, FINITE_STUDY, PAPER_CASE
 
 from shtaerman.output.report import (
     render_html,
@@ -22,20 +23,8 @@ from shtaerman.output.text_dynamic import validity_rows
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study
 
-STRIKER = """
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-{density}
-[impact]
-mass = 0.7
-velocity = {velocity}
-"""
 FRICTION = (
-    STRIKER.format(density="", velocity="3.0")
+    PAPER_CASE
     + """
 [contact]
 interface = "bonded"
@@ -51,8 +40,7 @@ base = "lubricated"
 """
 )
 PAD_PRONY = (
-    'kind = "dynamic"\n'
-    + STRIKER.format(density='density2 = 1100.0\nprony = "0.3:2e-3"', velocity="[1.0, 3.0]")
+    DYNAMIC_STUDY.replace("density2 = 1100.0", 'density2 = 1100.0\nprony = "0.3:2e-3"')
     + """
 [layer]
 thickness = 0.02
@@ -62,8 +50,7 @@ mesh_size = 0.05
 """
 )
 MOONEY = (
-    'kind = "finite-strain"\n'
-    + STRIKER.format(density="", velocity="3.0")
+    FINITE_STUDY
     + """
 [rubber]
 model = "mooney-rivlin"
