@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from .theory.indenter import PowerLawIndenter
@@ -152,12 +152,6 @@ class Body:
         if not self.finite:
             return None
         return rubber_model(self.model, *(getattr(self, name) for name in RUBBER_OPTIONS))
-
-    def rubber_options(self) -> dict[str, Any]:
-        """The rubber's shape options that were given (None left out)."""
-        return {
-            name: getattr(self, name) for name in RUBBER_OPTIONS if getattr(self, name) is not None
-        }
 
 
 @dataclass(frozen=True)
@@ -306,7 +300,8 @@ decides what combines (everything not refused here runs)."""
 
 @dataclass(frozen=True)
 class OptionLimit:
-    """Numerical or output options that a set of combinations does not take."""
+    """Numerical or output options that a set of combinations does not take; ``{model}`` in
+    the reason is the body's model."""
 
     when: Callable[[Cell], bool]
     options: tuple[str, ...]
@@ -324,7 +319,7 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
             "growth",
             "layer_rate",
         ),
-        "not supported with a finite-strain model in the impact (it takes mass, velocity, "
+        "not supported with model {model!r} in the impact (it takes mass, velocity, "
         "density2, time_steps, mesh_size, thickness, base (bonded), prony, the rubber "
         "options and the outputs)",
     ),
@@ -478,10 +473,6 @@ class Problem:
             ),
         )
 
-    def with_parts(self, **changes: Any) -> Problem:
-        """This problem with some parts replaced (checked again)."""
-        return replace(self, **changes)
-
 
 KEYWORDS = (
     "mass",
@@ -505,13 +496,12 @@ def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) ->
     """Refuse, in one line naming it, a numerical or output option (its key) that the problem's
     combination does not take (:data:`OPTION_SUPPORT`); ``given`` holds the options set."""
     cell = problem.cell
-    model = f" {problem.body.model!r}" if problem.body.finite else ""
     for limit in OPTION_SUPPORT:
         if not limit.when(cell):
             continue
         for name in given:
             if name in limit.options:
-                reason = limit.reason.replace("with a finite-strain model", f"with model{model}")
+                reason = limit.reason.format(model=problem.body.model)  # a reason may name it
                 raise InputError(f"{name}: {reason}", name)
 
 
