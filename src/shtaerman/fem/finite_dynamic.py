@@ -96,6 +96,10 @@ MAX_STEPS = 100_000
 SECANT_TOLERANCE = 1e-10
 """The step's scalar equation is solved to |residual| <= this * M v0 / dt."""
 MAX_SECANT = 30
+DEPTH_RESOLUTION = 1e-12
+"""A secant update below this x the depth is converged: the static solves' energies carry noise
+of ~1e-12 of the stored energy (their Newton tolerance), which near the turning point, over a
+step of ~1e-4 of the depth, keeps the discrete gradient's residual above SECANT_TOLERANCE."""
 MAX_HALVINGS = 6
 MAX_STEP_CUTS = 4
 """Halvings of a time step of the body with inertia whose Newton or secant failed."""
@@ -411,6 +415,8 @@ def _step(
         if abs(r0) <= SECANT_TOLERANCE * scale:
             return s0, 2.0 * (s0.depth - state.depth) / dt - v
         d1 = d0 - r0 / slope
+        if abs(d1 - d0) <= DEPTH_RESOLUTION * max(abs(d0), abs(state.depth)):
+            return s0, 2.0 * (s0.depth - state.depth) / dt - v  # at the solves' noise floor
         s1 = body.at(d1)
         r1 = residual(s1)
         if d1 != d0:  # the step's own slope is at least 2 M / dt^2: keep half of it
