@@ -288,10 +288,10 @@ SUPPORT: tuple[Unsupported, ...] = (
         "solved on an elastic body only",
     ),
     Unsupported(
-        lambda c: c.interface != "frictionless" and c.loading != "curve",
+        lambda c: c.interface != "frictionless" and c.loading != "curve" and c.model == "linear",
         "interface",
-        "the impact's contact is frictionless: a bonded or Coulomb indenter is solved in the "
-        "contact curve only",
+        "the small-strain impact's contact is frictionless: a bonded or Coulomb indenter strikes "
+        "a rubber model (--model neo-hookean, ...), or is pressed in the linear contact curve",
     ),
 )
 """Every refused combination of the problem's parts, each with its reason: the one place that

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -11,7 +12,7 @@ from ..vocabulary import entry
 from .dynamic_result import DynamicResult, check_separated
 
 if TYPE_CHECKING:
-    from ..problem import Problem
+    from ..problem import Interface, Problem
     from ..theory.viscoelastic import PronySeries
 
 __all__ = ["finite_dynamic"]
@@ -68,11 +69,14 @@ def finite_dynamic(
     rho = body.density
     if mesh_size is not None:
         mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
+    if time_steps is not None:  # the command line's range: one guard on every route
+        time_steps = entry("time_steps").check(time_steps, "dynamic")
     default = FINITE_MESH if rho == 0 else INERTIA_MESH
     mesh = default if mesh_size is None else replace(default, size=mesh_size)
     settings = FiniteImpactSettings(steps=time_steps, mesh=layer_mesh(mesh, problem.geometry))
     rubber, series = problem.body.rubber(), problem.body.prony
-    run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber, series)
+    friction = _friction(problem.interface)
+    run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber, series, friction)
     law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
     quasi = solve_impact(mass, velocity, law)
     summary = run.summary()
@@ -104,3 +108,10 @@ def finite_dynamic(
 def _prony_text(series: PronySeries) -> str:
     """``g1:tau1,g2:tau2,...`` of a Prony series (tau in s)."""
     return ",".join(f"{g:g}:{tau:g}" for g, tau in zip(series.weights, series.times, strict=True))
+
+
+def _friction(interface: Interface) -> float | None:
+    """The impact's friction: None frictionless, inf bonded (no slip), else Coulomb's mu."""
+    if interface.kind == "frictionless":
+        return None
+    return math.inf if interface.friction is None else interface.friction

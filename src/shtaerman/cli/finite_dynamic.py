@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from ..output.case import interface_words
+
 
 def finite_dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give is nan."""
@@ -22,6 +24,7 @@ def finite_dynamic_text(report: dict) -> str:
         f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  1",
+        *interface_rows(report["parameters"]),
         *prony_rows(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs; "
@@ -31,16 +34,26 @@ def finite_dynamic_text(report: dict) -> str:
     return "\n".join(rows)
 
 
-def prony_rows(report: dict) -> list[str]:
-    """The Prony series and the dissipated energy (none for an elastic body)."""
-    if "prony" not in report:
+def interface_rows(parameters: dict) -> list[str]:
+    """The line naming a bonded or Coulomb indenter (none when frictionless)."""
+    if "interface" not in parameters:
         return []
-    share = report["dynamic"]["energy_dissipated_fraction"]
-    return [
-        f"  Prony series g:tau      {report['prony']} (isochoric stress relaxes)",
-        f"  energy dissipated       {share:.6f} of M v0^2/2 by separation "
-        f"(1 - e^2 = {report['dynamic']['energy_radiated_fraction']:.6f})",
-    ]
+    return [f"  {interface_words(parameters['interface'], parameters.get('friction'))}"]
+
+
+def prony_rows(report: dict) -> list[str]:
+    """The Prony series and the energy dissipated by it and by friction (none for an elastic
+    body on a frictionless indenter)."""
+    rows = []
+    if "prony" in report:
+        rows.append(f"  Prony series g:tau      {report['prony']} (isochoric stress relaxes)")
+    share = report["dynamic"].get("energy_dissipated_fraction")
+    if share is not None:
+        rows.append(
+            f"  energy dissipated       {share:.6f} of M v0^2/2 by separation "
+            f"(1 - e^2 = {report['dynamic']['energy_radiated_fraction']:.6f})"
+        )
+    return rows
 
 
 def layer_rows(mesh: dict) -> list[str]:

@@ -77,6 +77,7 @@ from .finite_contact import (
     NewtonStepper,
     geometric_radius,
 )
+from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
 from .mass import consistent_mass, redistribute_normal_mass
@@ -306,6 +307,8 @@ class _QuasiStaticBody:
         system = stepper.system
         self.viscous = isinstance(system, ViscoelasticBody)
         self.relaxing = self.viscous and any(g > 0.0 for g in system.prony.weights)
+        self.frictional = isinstance(stepper, HistoryStepper)
+        self.history_dependent = self.relaxing or self.frictional
         if self.viscous:
             system.clock = self
         if self.relaxing:  # its unloading releases the contact under a history: damped Newton
@@ -335,14 +338,21 @@ class _QuasiStaticBody:
         self.history = [*self.history[-1:], state]
 
     def commit(self, state: _State) -> _State:
-        """``state`` as the end of a time step: a relaxing body's history committed and its
-        stored and dissipated energies (J) there; an elastic body's ``state`` unchanged."""
-        if not self.relaxing:
+        """``state`` as the end of a time step: a relaxing body's and a bonded or Coulomb
+        contact's history committed, and the stored and dissipated energies (J) there; an
+        elastic frictionless body's ``state`` unchanged."""
+        if not self.history_dependent:
             return state
-        system = self.stepper.system
-        system.commit(state.x)
-        self.deepest = max(self.deepest, state.depth)
-        return replace(state, energy=system.energy(state.x), dissipated=system.dissipated)
+        system, stepper = self.stepper.system, self.stepper
+        if self.frictional and (state.depth > 0.0 or self.relaxing):  # else: the run ends
+            stepper.commit(state.x)
+        dissipated = getattr(stepper, "dissipated", 0.0)
+        if self.relaxing:
+            system.commit(state.x)
+            self.deepest = max(self.deepest, state.depth)
+            state = replace(state, energy=system.energy(state.x))
+            dissipated += system.dissipated
+        return replace(state, dissipated=dissipated)
 
     def _guess(self, depth: float) -> tuple[np.ndarray, np.ndarray]:
         s1 = self.history[-1]
@@ -433,21 +443,23 @@ def _march(
 ) -> tuple[tuple[np.ndarray, ...], float | None]:
     """Step from first touch until the striker leaves (or the longest run).
 
-    An elastic body steps by the discrete gradient of its stored energy, until X is back to 0.
-    A relaxing body has no stored energy function of X: it steps by the trapezoidal rule on
-    the contact force (second order, as Ting's quasi-static impact in
-    :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`), its history committed at every
-    step, until the force vanishes with the striker rebounding. ``scales``: the longest run
-    (s) and q of P ~ X^q. Returns the columns t, X, V, P, stored energy and, for a viscoelastic
-    body, the body's kinetic (0) and dissipated energies (SI); and the separation time (s;
-    None for an elastic body, nan if the run ended first).
+    An elastic frictionless body steps by the discrete gradient of its stored energy, until X
+    is back to 0. A relaxing body, or a bonded or Coulomb contact, has no stored energy
+    function of X: it steps by the trapezoidal rule on the contact force (second order, as
+    Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
+    its history committed at every step, until the force vanishes with the striker
+    rebounding. ``scales``: the longest run (s) and q of P ~ X^q. Returns the columns t, X,
+    V, P, stored energy and, for a viscoelastic body or a contact with friction, the body's
+    kinetic (0) and dissipated energies (SI); and the separation time (s; None for an elastic
+    frictionless body, nan if the run ended first).
     """
     duration, exponent = scales
     state, v = body.zero, velocity
-    extra = (0.0, 0.0) if body.viscous else ()
+    dissipative = body.viscous or body.frictional
+    extra = (0.0, 0.0) if dissipative else ()
     rows = [(0.0, 0.0, v, 0.0, 0.0, *extra)]
-    gradient = _mean_force if body.relaxing else _discrete_gradient
-    k, separation = 0.0, (math.nan if body.relaxing else None)
+    gradient = _mean_force if body.history_dependent else _discrete_gradient
+    k, separation = 0.0, (math.nan if body.history_dependent else None)
     while rows[-1][0] < duration:
         new, v = _step(body, state, v, mass, (dt, k), gradient)
         if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
@@ -456,9 +468,9 @@ def _march(
         if new.depth > 0:
             body.accept(new)
         state = new
-        extra = (0.0, state.dissipated) if body.viscous else ()
+        extra = (0.0, state.dissipated) if dissipative else ()
         rows.append((rows[-1][0] + dt, state.depth, v, state.force, state.energy, *extra))
-        if body.relaxing and ((state.force == 0.0 and v < 0.0) or state.depth <= 0.0):
+        if body.history_dependent and ((state.force == 0.0 and v < 0.0) or state.depth <= 0.0):
             times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
             separation = separation_time(times, forces, exponent, len(rows) - 1)
             break
@@ -533,6 +545,7 @@ def run_finite_impact(
     settings: FiniteImpactSettings | None = None,
     rubber: RubberModel | None = None,
     prony: PronySeries | None = None,
+    friction: float | None = None,
 ) -> FiniteImpactResult:
     """Strike a rubber half-space (finite strain) with a rigid power-law striker.
 
@@ -541,7 +554,9 @@ def run_finite_impact(
     body with inertia); striker ``mass`` (kg)
     and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
     ``rubber`` (default neo-Hookean); ``prony`` a shear relaxation of the isochoric stress
-    (:mod:`.finite_viscoelastic`; E2, nu2 the instantaneous values).
+    (:mod:`.finite_viscoelastic`; E2, nu2 the instantaneous values); ``friction`` the
+    indenter's surface: None or 0 frictionless, inf bonded (no slip), else the Coulomb
+    coefficient (:class:`.finite_stick.HistoryStepper`).
 
     Raises
     ------
@@ -573,7 +588,7 @@ def run_finite_impact(
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
-    stepper = _assembled(mesh, indenter, half_space, (rubber, prony), refined)
+    stepper = _assembled(mesh, indenter, half_space, (rubber, prony, friction), refined)
     clock.append(time.perf_counter())
     columns, iterations, separation, far = _stepped(
         stepper,
@@ -599,6 +614,9 @@ def run_finite_impact(
     )
     if rho > 0:
         context["parameters"].update(spectral_radius=settings.spectral_radius)
+    if friction:  # a bonded indenter; Coulomb's mu where finite (JSON has no inf)
+        slip = {} if math.isinf(friction) else {"friction": friction}
+        context["parameters"].update(interface="bonded", **slip)
     result = _result(columns, mass, context, separation)
     warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
     return result
@@ -684,16 +702,21 @@ def _assembled(
     mesh: Any,
     indenter: PowerLawIndenter,
     half_space: Material,
-    model: tuple[RubberModel | None, PronySeries | None],
+    model: tuple[RubberModel | None, PronySeries | None, float | None],
     refined: float,
 ) -> NewtonStepper:
     """The rubber on ``mesh`` assembled, and its contact Newton (candidates up to ``refined``);
-    ``model``: the rubber model (None: neo-Hookean) and the Prony series (None: elastic)."""
-    rubber, prony = model
+    ``model``: the rubber model (None: neo-Hookean), the Prony series (None: elastic) and the
+    friction (None or 0: frictionless; else a :class:`.finite_stick.HistoryStepper`)."""
+    rubber, prony, friction = model
     constants = (half_space.youngs_modulus, half_space.poisson_ratio)
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
     system = assemble_hyperelastic(mesh, material)
-    stepper = NewtonStepper(system, indenter, refined, NEWTON_TOLERANCE, MAX_ITERATIONS)
+    limits = (NEWTON_TOLERANCE, MAX_ITERATIONS)
+    if friction:
+        stepper = HistoryStepper(system, indenter, refined, limits, friction)
+    else:
+        stepper = NewtonStepper(system, indenter, refined, *limits)
     if prony is not None:
         stepper.system = ViscoelasticBody(system, prony)
     return stepper
@@ -914,7 +937,7 @@ def _dynamic_step(
     r0, x, lam = residual(d0)
     for _ in range(MAX_SECANT):
         if abs(r0) <= SECANT_TOLERANCE * force_scale:
-            return _advanced(inertial, state, (x, lam, d0, big_hat)), iterations
+            return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
         d1 = d0 - r0 / slope
         r1, x, lam = residual(d1)
         if d1 != d0:  # the step's own slope is at least the striker's: keep half of it
@@ -966,9 +989,12 @@ def _separated(state: _Dynamic) -> bool:
     return float(state.lam.sum()) == 0.0 and state.speed < 0
 
 
-def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dynamic:
+def _advanced(
+    stepper: NewtonStepper, inertial: _InertialSystem, state: _Dynamic, solved: tuple
+) -> _Dynamic:
     """The Bossak update of velocities and accelerations from ``solved`` = (x, lambda,
-    X_{n+1} (m), the striker's predictor X_hat (m))."""
+    X_{n+1} (m), the striker's predictor X_hat (m)); the body's and the contact's histories
+    committed."""
     x, lam, depth, big_hat = solved
     beta, gamma, dt = inertial.beta, inertial.gamma, inertial.dt
     a = inertial.acceleration(x)
@@ -976,6 +1002,8 @@ def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dyn
     body = inertial.static
     if isinstance(body, ViscoelasticBody):
         body.commit(x)
+    if isinstance(stepper, HistoryStepper):
+        stepper.commit(x)
     return _Dynamic(
         x=x,
         v=state.v + dt * ((1.0 - gamma) * state.a + gamma * a),
@@ -987,7 +1015,7 @@ def _advanced(inertial: _InertialSystem, state: _Dynamic, solved: tuple) -> _Dyn
         energy=body.energy(x),
         previous=(state.x, state.depth),
         interval=dt,
-        dissipated=getattr(body, "dissipated", 0.0),
+        dissipated=getattr(body, "dissipated", 0.0) + getattr(stepper, "dissipated", 0.0),
     )
 
 
@@ -1010,8 +1038,10 @@ def _march_inertial(
     zero = np.zeros(n)
     lam = np.zeros(stepper.nodes.radius.size)
     state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0), inertial.dt)
-    viscous = isinstance(inertial.static, ViscoelasticBody)
-    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0, *((0.0,) if viscous else ()))]
+    dissipative = isinstance(inertial.static, ViscoelasticBody) or isinstance(
+        stepper, HistoryStepper
+    )
+    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0, *((0.0,) if dissipative else ()))]
     total, k, t, separation = 0, 0.0, 0.0, math.nan
     force_scale = mass * velocity / inertial.dt
     while t < duration and math.isnan(separation):
@@ -1040,7 +1070,7 @@ def _march_inertial(
             state, t = new, t + new.interval
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))
             rows.append((t, state.depth, state.speed, force, state.energy, body))
-            if viscous:
+            if dissipative:
                 rows[-1] = (*rows[-1], state.dissipated)
             if _separated(state):
                 times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])

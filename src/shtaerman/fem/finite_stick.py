@@ -68,7 +68,7 @@ from .finite_contact import (
 from .hyperelastic import HyperelasticSystem, NewtonError
 from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
 
-__all__ = ["RELEASE_BAND", "bonded_ladder", "solve_finite_bonded_contact"]
+__all__ = ["RELEASE_BAND", "HistoryStepper", "bonded_ladder", "solve_finite_bonded_contact"]
 
 START_FRACTION = 0.05
 """The load steps start where the contact radius is this fraction of the smallest depth's:
@@ -98,6 +98,8 @@ class _Load:
     corrections: list[float] = field(default_factory=list)
     slip: np.ndarray | None = None
     """Direction +-1 (along r) of each sliding node, 0 when stuck or free; None: no slip."""
+    gripped: np.ndarray | None = None
+    """Nodes in contact at the last load step, released and gripped anew within this one."""
 
 
 def bonded_ladder(
@@ -137,9 +139,10 @@ def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np
 
 
 def _newton(
-    stepper: NewtonStepper, x: np.ndarray, held: np.ndarray, depth: float
+    stepper: NewtonStepper, x: np.ndarray, held: np.ndarray, depth: float, scale: float
 ) -> tuple[np.ndarray, int, list[float]]:
-    """Newton at ``depth`` (m) from ``x`` with the stuck nodes (``held`` radii) prescribed.
+    """Newton at ``depth`` (m) from ``x`` with the stuck nodes (``held`` radii) prescribed; its
+    corrections measured relative to ``scale`` (m).
 
     The prescribed dofs are eliminated in the stepper's pattern: their rows and columns are
     zeroed with a unit diagonal and their increment moved to the right-hand side.
@@ -171,7 +174,7 @@ def _newton(
         except RuntimeError as error:
             raise NewtonError(f"singular Newton matrix ({error})") from None
         x[stepper.free] += du
-        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / depth)
+        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
         if not np.isfinite(corrections[-1]):
             break
         if newton_converged(corrections, stepper.tolerance):
@@ -185,13 +188,14 @@ def _reactions(stepper: NewtonStepper, x: np.ndarray, held: np.ndarray) -> np.nd
     return np.where(np.isnan(held), 0.0, -residual[stepper.nodes.uz])
 
 
-def _changes(stepper: NewtonStepper, trial: _Load, depth: float, cautious: bool) -> tuple:
-    """Nodes to release (tensile reaction) and nodes that touch (gap < 0) at ``depth`` (m);
-    when ``cautious``, only the most tensile node, or if none the deepest below the indenter."""
+def _changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
+    """Nodes to release (tensile reaction) and nodes that touch (gap < 0; ``scale`` (m) the
+    depth that measures it); when ``cautious``, only the most tensile node, or if none the
+    deepest below the indenter."""
     stuck = ~np.isnan(trial.held)
     lam, gap = trial.lam, trial.gap
     release = stuck & (lam < -RELEASE_BAND * np.abs(lam).max(initial=0.0))
-    enter = ~stuck & (gap < -stepper.tolerance * depth)
+    enter = ~stuck & (gap < -stepper.tolerance * scale)
     if cautious:
         one = np.zeros_like(release)
         if release.any():
@@ -207,34 +211,46 @@ def _held(
     last: _Load, held: np.ndarray, enter: np.ndarray, radius: np.ndarray, gap: np.ndarray
 ) -> np.ndarray:
     """``held`` with the ``enter`` nodes stuck at the radius (m) where their gap closes,
-    interpolated between ``last`` and the current ``radius`` and ``gap`` (m)."""
-    closing = last.gap[enter] / (last.gap[enter] - gap[enter])
+    interpolated between ``last`` and the current ``radius`` and ``gap`` (m). A node in
+    contact at ``last`` (gap 0) that was released within this step and penetrates again grips
+    where it is now (an instantaneous slip at zero normal force): stuck again at its radius of
+    ``last`` it would be tensile again, and the contact set would cycle."""
+    before = last.gap[enter]
+    closing = np.ones_like(before)
+    opened = before > 0.0
+    closing[opened] = before[opened] / (before[opened] - gap[enter][opened])
     held = held.copy()
     held[enter] = last.radius[enter] + closing * (radius[enter] - last.radius[enter])
     return held
 
 
-def _touch(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float) -> np.ndarray:
+def _touch(
+    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
+) -> np.ndarray:
     """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
-    the predicted ``guess`` puts below the indenter."""
+    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in _changes)."""
     radius, gap, _, _ = stepper.geometry(guess, depth)
-    enter = np.isnan(last.held) & (gap < -stepper.tolerance * depth)
+    enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
     return _held(last, last.held, enter, radius, gap)
 
 
-def _load_step(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float) -> _Load:
-    """The contact at ``depth`` (m) from the contact ``last`` at the previous load step.
+def _load_step(
+    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
+) -> _Load:
+    """The contact at ``depth`` (m) from the contact ``last`` at the previous load step;
+    ``scale`` (m) measures Newton's corrections and the gaps (the depth, or where it may be
+    <= 0 the impact's).
 
     All violated conditions change at once; should a contact set repeat, one at a time."""
-    held, x = _touch(stepper, last, guess, depth), guess
+    held, x = _touch(stepper, last, guess, depth, scale), guess
     seen: set[bytes] = set()
     cautious, total = False, 0
     for _ in range(MAX_ACTIVE_SET_ITERATIONS + stepper.nodes.radius.size):
-        x, iterations, corrections = _newton(stepper, x, held, depth)
+        x, iterations, corrections = _newton(stepper, x, held, depth, scale)
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
         trial = _Load(held, x, radius, gap, _reactions(stepper, x, held), total, corrections)
-        release, enter = _changes(stepper, trial, depth, cautious)
+        release, enter = _changes(stepper, trial, scale, cautious)
         if not (release.any() or enter.any()):
             trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
             trial.lam = np.maximum(trial.lam, 0.0)
@@ -253,7 +269,7 @@ def _load_step(stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: fl
 
 
 def _slide_newton(
-    stepper: NewtonStepper, trial: _Load, friction: float, depth: float
+    stepper: NewtonStepper, trial: _Load, friction: float, depth: float, scale: float
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
     """Newton at ``depth`` (m) from ``trial`` (its ``lam``: the sliding nodes' starting
     multipliers, N) with its stuck nodes prescribed and its sliding nodes on the indenter.
@@ -292,7 +308,7 @@ def _slide_newton(
             raise NewtonError(f"singular Newton matrix ({error})") from None
         x[stepper.free] += du
         lam[rows] += dlam
-        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / depth)
+        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
         if not np.isfinite(corrections[-1]):
             break
         if newton_converged(corrections, stepper.tolerance):
@@ -300,58 +316,81 @@ def _slide_newton(
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
 
 
+def _resolved(stepper: NewtonStepper, load: _Load, depth: float) -> tuple[np.ndarray, ...]:
+    """The tangential force T along the indenter's tangent (1, f')/|.| and the normal force
+    N on its normal (N, on the body) of each node: ``load``'s vertical reactions and radial
+    forces resolved at its current radius."""
+    nodes = stepper.nodes
+    residual = stepper.system.residual(load.x)
+    _, _, slope, _ = stepper.geometry(load.x, depth)
+    push = np.where(nodes.ur_free, residual[nodes.ur], 0.0)  # radial force on the body
+    norm = np.sqrt(1.0 + slope**2)
+    return (push - slope * load.lam) / norm, (slope * push + load.lam) / norm
+
+
 def _slide_changes(
-    stepper: NewtonStepper, trial: _Load, last: _Load, friction: float, depth: float
+    stepper: NewtonStepper,
+    trial: _Load,
+    last: _Load,
+    friction: float,
+    at: tuple[float, float],
 ) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
     """The violated conditions (release, enter, stick to slip, slip to stick), their size and
     the tangential force T (N, on the body along the indenter's tangent (1, f')/|.|).
 
     ``trial.lam`` holds the vertical reactions (N) of the nodes in contact; a stuck node
-    slides where |T| exceeds ``friction`` x its normal force (the reactions resolved on the
-    indenter's normal and tangent at its current radius)."""
-    nodes = stepper.nodes
-    residual = stepper.system.residual(trial.x)
-    _, _, slope, _ = stepper.geometry(trial.x, depth)
-    push = np.where(nodes.ur_free, residual[nodes.ur], 0.0)  # radial force on the body
-    norm = np.sqrt(1.0 + slope**2)
-    shear = (push - slope * trial.lam) / norm
-    normal = (slope * push + trial.lam) / norm
+    slides where |T| exceeds ``friction`` x its normal force (:func:`_resolved`). ``at``: the
+    depth (m) and the scale (m) that measures gaps and slips."""
+    depth, scale = at
+    shear, normal = _resolved(stepper, trial, depth)
     band = RELEASE_BAND * np.abs(trial.lam).max(initial=0.0)
     contact, sliding = ~np.isnan(trial.held), trial.slip != 0
     stuck = contact & ~sliding
     release = contact & (trial.lam < -band)
-    enter = ~contact & (trial.gap < -stepper.tolerance * depth)
+    enter = ~contact & (trial.gap < -stepper.tolerance * scale)
     excess = np.abs(shear) - friction * normal
-    to_slip = stuck & nodes.ur_free & (excess > band)
+    to_slip = stuck & stepper.nodes.ur_free & (excess > band)
     moved = trial.slip * (trial.radius - _origin(last, trial))
-    to_stick = sliding & ~release & (moved < -stepper.tolerance * depth)
+    to_stick = sliding & ~release & (moved < -stepper.tolerance * scale)
     changes = [release, enter, to_slip, to_stick]
     return changes, [-trial.lam, -trial.gap, excess, -moved], shear
 
 
 def _origin(last: _Load, trial: _Load) -> np.ndarray:
     """Where a node's slip is measured from (m): its radius at the last load step if it was in
-    contact then, else (it touched in this step) its touching radius."""
-    return np.where(np.isnan(last.held), trial.held, last.radius)
+    contact then, else (it touched, or was gripped anew, in this step) its touching radius."""
+    fresh = np.isnan(last.held)
+    if trial.gripped is not None:
+        fresh = fresh | trial.gripped
+    return np.where(fresh, trial.held, last.radius)
 
 
 def _slide_step(
-    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, friction: float
+    stepper: NewtonStepper,
+    last: _Load,
+    guess: np.ndarray,
+    at: tuple[float, float],
+    friction: float,
 ) -> _Load:
-    """The contact with Coulomb ``friction`` at ``depth`` (m) from ``last``: as
-    :func:`_load_step`, with stuck nodes that slide and sliding ones that stick again."""
+    """The contact with Coulomb ``friction`` at depth ``at[0]`` (m; ``at[1]`` the scale as in
+    :func:`_load_step`) from ``last``: as :func:`_load_step`, with stuck nodes that slide and
+    sliding ones that stick again."""
+    depth, scale = at
     slip = np.zeros(last.held.size) if last.slip is None else last.slip.copy()
-    trial = _Load(_touch(stepper, last, guess, depth), guess, last.radius, last.gap, last.lam)
-    trial.slip, total = slip, 0
+    held = _touch(stepper, last, guess, depth, scale)
+    trial = _Load(held, guess, last.radius, last.gap, last.lam)
+    trial.slip, trial.gripped, total = slip, np.zeros(slip.size, dtype=bool), 0
     seen: set[bytes] = set()
     cautious = False
     for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * slip.size):
-        x, lam, iterations, corrections = _slide_newton(stepper, trial, friction, depth)
+        x, lam, iterations, corrections = _slide_newton(stepper, trial, friction, depth, scale)
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
         vertical = _reactions(stepper, x, trial.held)
+        gripped = trial.gripped
         trial = _Load(trial.held, x, radius, gap, vertical, total, corrections, trial.slip)
-        changes, excess, shear = _slide_changes(stepper, trial, last, friction, depth)
+        trial.gripped = gripped
+        changes, excess, shear = _slide_changes(stepper, trial, last, friction, at)
         if not any(change.any() for change in changes):
             trial.gap = np.where(np.isnan(trial.held), np.maximum(gap, 0.0), 0.0)
             trial.lam = np.maximum(trial.lam, 0.0)
@@ -366,12 +405,75 @@ def _slide_step(
         slip[to_slip] = -np.sign(shear[to_slip])
         slip[release | to_stick] = 0.0
         lam = np.where(slip != 0, np.where(to_slip, vertical, lam), 0.0)
-        trial = _Load(held, x, radius, gap, lam, total, corrections, slip)
+        gripped = gripped | (enter & ~np.isnan(last.held))
+        trial = _Load(held, x, radius, gap, lam, total, corrections, slip, gripped)
         if np.isnan(held).tobytes() + slip.tobytes() in seen:
             if cautious:
                 break
             cautious, seen = True, set()
     raise unsettled(depth)
+
+
+class HistoryStepper(NewtonStepper):
+    """The bonded (``friction`` inf: no slip) or Coulomb contact of a time-stepped impact.
+
+    Every :meth:`solve` is one load step (:func:`_load_step`, :func:`_slide_step`) from the
+    committed contact, the end of the last accepted time step; :meth:`commit` makes the latest
+    solve the committed one and adds the work of friction over the step to ``dissipated`` (J):
+    friction x the mean normal force x the arc slid along the indenter, for each node sliding
+    at the step's end and in contact at both ends (a stuck node does not move along the
+    indenter). The multipliers passed to :meth:`solve` are not used: the contact set follows
+    from the committed one.
+    """
+
+    def __init__(
+        self,
+        system: HyperelasticSystem,
+        indenter: PowerLawIndenter,
+        candidate_radius: float,
+        limits: tuple[float, int],
+        friction: float,
+    ) -> None:
+        super().__init__(system, indenter, candidate_radius, *limits)
+        self.friction = friction
+        m = self.nodes.radius.size
+        heights = self.indenter.shape_coefficient * self.nodes.radius**self.indenter.exponent
+        zero = np.zeros(self.system.n_dofs)
+        self.committed = _Load(
+            np.full(m, np.nan), zero, self.nodes.radius.copy(), heights, zero[:m]
+        )
+        self.normal = np.zeros(m)  # the committed normal forces (N)
+        self.latest: tuple[_Load, np.ndarray] | None = None
+        self.dissipated = 0.0
+
+    def solve(
+        self, depth: float, x: np.ndarray, lam: np.ndarray, scale: float | None = None
+    ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+        """The contact at ``depth`` (m) from the committed one, Newton started at ``x``:
+        x, the vertical reactions (N), iterations and corrections (relative to ``scale``, m)."""
+        scale = depth if scale is None else scale
+        if math.isinf(self.friction):
+            load = _load_step(self, self.committed, x, depth, scale)
+        else:
+            load = _slide_step(self, self.committed, x, (depth, scale), self.friction)
+        self.latest = (load, _resolved(self, load, depth)[1])
+        return load.x, load.lam, load.iterations, load.corrections
+
+    def commit(self, x: np.ndarray) -> None:
+        """Make the latest solve, whose solution is ``x``, the committed contact."""
+        assert self.latest is not None and self.latest[0].x is x, "commit the latest solve"
+        load, normal = self.latest
+        if load.slip is not None:
+            before, sliding = self.committed, (load.slip != 0) & ~np.isnan(self.committed.held)
+            moved = np.abs(load.radius - before.radius)[sliding]
+            middle = 0.5 * (load.radius + before.radius)[sliding]
+            indenter = self.indenter
+            slope = (
+                indenter.exponent * indenter.shape_coefficient * middle ** (indenter.exponent - 1)
+            )
+            force = 0.5 * (normal + self.normal)[sliding]
+            self.dissipated += self.friction * float(np.sum(force * moved * np.sqrt(1 + slope**2)))
+        self.committed, self.normal = load, normal
 
 
 def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:
@@ -457,9 +559,9 @@ def _load_history(
         guess = _predict(previous, last, ratio)
         try:
             if math.isinf(friction):
-                state = _load_step(stepper, last, guess, depth)
+                state = _load_step(stepper, last, guess, depth, depth)
             else:
-                state = _slide_step(stepper, last, guess, depth, friction)
+                state = _slide_step(stepper, last, guess, (depth, depth), friction)
         except NewtonError as error:
             raise NewtonError(
                 f"depth {depth:g} m (bonded, from {done:g} m): {error}; take smaller load "
