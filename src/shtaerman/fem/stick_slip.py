@@ -21,7 +21,10 @@ in contact:
   the value interpolated linearly between the last step and the current iterate, at the point
   where its gap closes;
 - a node in contact whose normal force turns tensile is released and forgets its radial
-  displacement (it would get a new one on re-entry);
+  displacement (it would get a new one on re-entry); should it, released in this step,
+  penetrate the indenter once free, it re-enters stuck at its current radial displacement
+  (it lets go and grips again within the step: the receding edge of a bonded contact, whose
+  node can neither stay stuck in tension nor leave);
 - with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu F slides (its shear
   is then mu F against the direction of its slip), and a sliding node whose slip reverses
   sticks again at its radial displacement of the last step.
@@ -198,6 +201,7 @@ def stick_slip_step(
         release, enter, to_slip, to_stick = changes
         seen.add(state.active.tobytes() + state.slip.tobytes())
         closing = last.gap[enter] / (last.gap[enter] - gap[enter])
+        closing[last.active[enter]] = 1.0  # released in this step: where it touches now
         held, slip = state.held, state.slip
         held[enter] = last.radial[enter] + closing * (radial[enter] - last.radial[enter])
         held[release] = np.nan
