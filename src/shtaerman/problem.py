@@ -288,10 +288,10 @@ SUPPORT: tuple[Unsupported, ...] = (
         "solved on an elastic body only",
     ),
     Unsupported(
-        lambda c: c.interface != "frictionless" and c.loading != "curve",
+        lambda c: c.interface != "frictionless" and c.loading != "curve" and c.model != "linear",
         "interface",
-        "the impact's contact is frictionless: a bonded or Coulomb indenter is solved in the "
-        "contact curve only",
+        "the impact's contact at finite strain is frictionless: a bonded or Coulomb indenter "
+        "is solved in the contact curve or by the linear model only",
     ),
 )
 """Every refused combination of the problem's parts, each with its reason: the one place that
