@@ -54,7 +54,7 @@ from .elasticity import (
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
-from .solver import factorize_scaled
+from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
     ImpactHistory,
@@ -702,7 +702,7 @@ def _factorized_problem(
 
 
 def _stick_compliance(
-    factorization: object,
+    factorization: Factorization,
     correction: np.ndarray,
     position: np.ndarray,
     radial: tuple[np.ndarray, np.ndarray],
