@@ -119,10 +119,6 @@ def _one_line_error(capsys, argv, words):
         (["dynamic", "--thickness", "0.02", "--layer-rate", "0"], "--layer-rate: a layer always"),
         # item 16: silently accepted before (now the finite impact writes figures with --out)
         (["dynamic", "--model", "neo-hookean", "--figure-format", "svg"], "--figure-format: appl"),
-        (
-            ["dynamic", "--interface", "bonded", "--density2", "0"],
-            "--interface: the small-strain impact's",
-        ),
     ],
 )
 def test_the_cli_refuses_in_one_line_naming_the_options(capsys, argv, words):

@@ -287,12 +287,6 @@ SUPPORT: tuple[Unsupported, ...] = (
         "a viscoelastic contact curve is frictionless: the bonded and Coulomb indenters are "
         "solved on an elastic body only",
     ),
-    Unsupported(
-        lambda c: c.interface != "frictionless" and c.loading != "curve" and c.model == "linear",
-        "interface",
-        "the small-strain impact's contact is frictionless: a bonded or Coulomb indenter strikes "
-        "a rubber model (--model neo-hookean, ...), or is pressed in the linear contact curve",
-    ),
 )
 """Every refused combination of the problem's parts, each with its reason: the one place that
 decides what combines (everything not refused here runs)."""

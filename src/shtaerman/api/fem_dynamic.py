@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -226,10 +227,14 @@ def dynamic(
     folder = output_folder(out, force=force)
     inputs = (indenter, body, _density(body), mass, velocity)
     shots = _snapshots if folder is not None else None
-    series = problem.body.prony
-    case = run_case(*inputs, chosen, snapshots=shots, prony=series)
+    series, surface = problem.body.prony, problem.interface
+    friction = None if surface.kind == "frictionless" else surface.friction
+    friction = math.inf if surface.kind == "bonded" and friction is None else friction
+    case = run_case(*inputs, chosen, snapshots=shots, prony=series, friction=friction)
     if estimate:
-        ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, prony=series)
+        ladder = complete_ladder(
+            case.result, *inputs, chosen, refine=refine, prony=series, friction=friction
+        )
         case = dataclasses.replace(case, ladder=ladder)
     check_separated({"t_contact": case.result.t_contact}, float(case.result.t[-1]))
     result = _result(case)

@@ -6,10 +6,11 @@ the consistent mass (:mod:`.mass`) with the normal mass taken off the contact ca
 (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and
 the damping of the optional absorbing layer (:mod:`.absorbing`), factorizes the effective
 matrix once (:func:`.solver.factorize_scaled`) and steps the striker (mass M, X(0) = 0,
-X'(0) = v0) and the body with frictionless unilateral contact at the surface nodes
-(:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by default; Newmark average acceleration
-with ``spectral_radius=None``). The time step is set by the accuracy wanted over the impact,
-t_y / ``steps``: both schemes are implicit and unconditionally stable.
+X'(0) = v0) and the body with unilateral contact at the surface nodes, frictionless or
+(``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by
+default; Newmark average acceleration with ``spectral_radius=None``). The time step is set by
+the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
+unconditionally stable.
 
 Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
 entering or leaving excites; Newmark conserves the discrete energy exactly but leaves them
@@ -53,7 +54,7 @@ from .elasticity import (
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
-from .solver import factorize_scaled
+from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
     ImpactHistory,
@@ -62,6 +63,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
+from .stick_slip import CoupledCompliance, radial_dofs
 from .viscoelastic import ShearMemory, ViscoelasticShear, sizing_impact, viscoelastic_shear
 
 __all__ = [
@@ -85,6 +87,20 @@ stricter fallbacks of :func:`.solver.factorize_scaled`."""
 MIN_STEPS = 50
 """Fewest time steps per quasi-static impact duration t_y accepted."""
 MAX_STEPS = 100_000
+
+
+def validate_friction(friction: object) -> float | None:
+    """Return the striker's Coulomb coefficient (None: frictionless, inf: bonded), or raise
+    InputError naming ``friction``."""
+    if friction is None:
+        return None
+    if isinstance(friction, bool) or not isinstance(friction, (int, float)) or not friction >= 0:
+        raise InputError(
+            f"friction: must be >= 0 (inf: bonded, no slip) or None (frictionless), got "
+            f"{friction!r}",
+            "friction",
+        )
+    return float(friction)
 
 
 def validate_density(density: object) -> float:
@@ -265,8 +281,9 @@ class DynamicImpactResult:
         Per step, J: ``striker_kinetic``, ``body_kinetic``, ``strain``, ``absorbed`` (by the
         layer, cumulative), ``numerical`` (E0 minus the rest: the scheme's dissipation),
         ``contact_term`` (the trapezoidal contact work, the predicted value of ``numerical``),
-        ``inner`` (body energy inside R_a), ``dissipated`` (by a viscoelastic body) and
-        ``inner_kinetic`` (body kinetic energy inside R_a).
+        ``inner`` (body energy inside R_a), ``dissipated`` (by a viscoelastic body),
+        ``inner_kinetic`` (body kinetic energy inside R_a) and ``slip`` (dissipated by slip
+        at a Coulomb striker's surface, cumulative; 0 frictionless or bonded).
     x_max : float
         Largest approach in m.
     P_max : float
@@ -620,9 +637,11 @@ def _factorized_problem(
     striker: Striker,
     scheme: TimeScheme,
     material: ViscoelasticShear | None = None,
+    friction: float | None = None,
 ) -> ImpactProblem:
     """K_eff factorized once on the free dofs, W = K_eff^-1 S and the LCP matrix (K: the
-    ``material``'s stiffness at its step's shear modulus when the body is viscoelastic).
+    ``material``'s stiffness at its step's shear modulus when the body is viscoelastic);
+    with ``friction`` also K_eff^-1 at the candidates' u_r and the coupled compliance.
 
     Raises
     ------
@@ -632,6 +651,8 @@ def _factorized_problem(
     alpha_m, alpha_f, beta, gamma = scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma
     dt = scheme.dt
     free, position = body.free, body.candidates.position
+    radial = None if friction is None else radial_dofs(body.system, body.candidates.radius)
+    columns = position.size + (0 if radial is None else radial[0].size)
     stiffness = body.system.matrix if material is None else material.stiffness
     effective = (
         (1.0 - alpha_f) * stiffness
@@ -639,7 +660,7 @@ def _factorized_problem(
         + ((1.0 - alpha_m) / (beta * dt**2)) * body.body_mass
     ).tocsr()
     reduced = effective[free][:, free].tocsc()
-    if free.size * position.size * 8 > MAX_DENSE_CORRECTION:
+    if free.size * columns * 8 > MAX_DENSE_CORRECTION:
         raise InputError(
             f"{position.size} contact candidates on {free.size} dofs need more than "
             f"{MAX_DENSE_CORRECTION / 1e6:.0f} MB; reduce margin or size"
@@ -652,8 +673,15 @@ def _factorized_problem(
         unit[position, np.arange(position.size)] = 1.0
         # W = K_eff^-1 S, free dofs x candidates; column-major so that W[:, :k] is a view
         correction = np.asfortranarray(factorization.solve(unit))
+        stick = {}
+        if radial is not None:
+            stick = _stick_compliance(factorization, correction, position, radial, body.free)
     compliance = 0.5 * (correction[position] + correction[position].T)
-    lcp_matrix = (1.0 - alpha_f) * (compliance + beta * dt**2 / ((1.0 - alpha_m) * striker.mass))
+    striker_term = beta * dt**2 / ((1.0 - alpha_m) * striker.mass)
+    lcp_matrix = (1.0 - alpha_f) * (compliance + striker_term)
+    if stick:
+        stick["coupled"].matrix[: position.size, : position.size] += striker_term
+        stick["coupled"].matrix[...] *= 1.0 - alpha_f
     return ImpactProblem(
         system=body.system,
         free=free,
@@ -668,7 +696,30 @@ def _factorized_problem(
         correction=correction,
         lcp_matrix=lcp_matrix,
         material=material,
+        friction=friction,
+        **stick,
     )
+
+
+def _stick_compliance(
+    factorization: Factorization,
+    correction: np.ndarray,
+    position: np.ndarray,
+    radial: tuple[np.ndarray, np.ndarray],
+    free: np.ndarray,
+) -> dict[str, object]:
+    """K_eff^-1 at the candidates' u_r dofs (``radial``: dofs and candidate of each) and
+    S'^T K_eff^-1 S' on [u_z, u_r] (m/N, symmetrized; the caller adds the striker's term
+    and the weight), as the ``coupled`` and ``radial_correction`` of an ImpactProblem."""
+    dofs, node = radial
+    at = np.searchsorted(free, dofs)
+    unit = np.zeros((free.size, at.size))
+    unit[at, np.arange(at.size)] = 1.0
+    radial_correction = np.asfortranarray(factorization.solve(unit))
+    tail = np.concatenate([position, at])
+    both = np.hstack([correction[tail], radial_correction[tail]])
+    coupled = CoupledCompliance(0.5 * (both + both.T), node, dofs)
+    return {"coupled": coupled, "radial_correction": radial_correction}
 
 
 def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
@@ -690,6 +741,7 @@ def check_dynamic_impact(
     velocity: float,
     settings: DynamicSettings,
     prony: PronySeries | None = None,
+    friction: float | None = None,
 ) -> tuple[float, Striker, _Scales, int]:
     """Check every input of a dynamic impact (arguments of :func:`run_dynamic_impact`) before
     anything is meshed, in well under a second: the density, mass and velocity, the layer's
@@ -708,6 +760,7 @@ def check_dynamic_impact(
         For an input out of range, naming it.
     """
     rho = validate_density(density)
+    validate_friction(friction)
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
@@ -763,6 +816,7 @@ def prepare_dynamic_impact(
     velocity: float,
     settings: DynamicSettings | None = None,
     prony: PronySeries | None = None,
+    friction: float | None = None,
 ) -> DynamicImpactSetup:
     """Mesh, assemble and factorize the dynamic impact (arguments of :func:`run_dynamic_impact`).
 
@@ -776,7 +830,7 @@ def prepare_dynamic_impact(
     """
     settings = DynamicSettings() if settings is None else settings
     rho, striker, scales, estimate = check_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, prony
+        indenter, half_space, density, mass, velocity, settings, prony, friction
     )
     clock = [time.perf_counter()]
     mesh = _mesh(settings, scales)
@@ -788,7 +842,7 @@ def prepare_dynamic_impact(
     material = (
         None if prony is None else viscoelastic_shear(system, prony, scales.dt, scales.inner_radius)
     )
-    problem = _factorized_problem(body, striker, scheme, material)
+    problem = _factorized_problem(body, striker, scheme, material, validate_friction(friction))
     clock.append(time.perf_counter())
     return DynamicImpactSetup(
         problem=problem,
@@ -830,6 +884,7 @@ def run_dynamic_impact(
     *,
     snapshot_times: tuple[float, ...] = (),
     prony: PronySeries | None = None,
+    friction: float | None = None,
 ) -> DynamicImpactResult:
     """Strike the elastic half-space with a rigid power-law striker and follow the waves.
 
@@ -852,6 +907,10 @@ def run_dynamic_impact(
     prony : PronySeries, optional
         Shear relaxation of the half-space (E2 and nu2 are then its instantaneous values, the
         bulk response elastic); None: elastic.
+    friction : float, optional
+        The striker's surface: None frictionless; a point that touches it sticks (bonded)
+        with ``math.inf``, or slides once its shear exceeds ``friction`` >= 0 times its
+        normal force (Coulomb; 0 is frictionless by another path).
 
     Returns
     -------
@@ -863,7 +922,9 @@ def run_dynamic_impact(
         For inputs out of range, a mesh above ``MAX_DOFS`` (estimated before meshing), or a
         contact that outgrows the refined zone during the run.
     """
-    setup = prepare_dynamic_impact(indenter, half_space, density, mass, velocity, settings, prony)
+    setup = prepare_dynamic_impact(
+        indenter, half_space, density, mass, velocity, settings, prony, friction
+    )
     start = time.perf_counter()
     history = march(
         setup.problem,
@@ -931,6 +992,7 @@ def _parameters(
         "quasi_static_a_c": qs.a_c,
         "beta": qs.beta,
         "solver_backward_error": problem.factorization.backward_error,
+        **({} if problem.friction is None else {"friction": problem.friction}),
     }
 
 

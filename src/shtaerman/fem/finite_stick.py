@@ -66,7 +66,8 @@ from .finite_contact import (
     solve_finite_contact,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
+from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled
+from .stick_slip import worst_only
 
 __all__ = ["RELEASE_BAND", "HistoryStepper", "bonded_ladder", "solve_finite_bonded_contact"]
 

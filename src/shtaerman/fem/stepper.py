@@ -1,4 +1,4 @@
-"""Time stepping of a rigid striker and the elastic body in frictionless unilateral contact.
+"""Time stepping of a rigid striker and the elastic body in unilateral contact.
 
 The discrete problem (:class:`ImpactProblem`): the striker (mass M, its downward displacement
 X, X(0) = 0, X'(0) = v0) and the body of free dofs x,
@@ -25,13 +25,23 @@ an LCP with a symmetric positive definite matrix solved exactly by
 W = K_eff^-1 S kept dense; C = S^T W. The contact forces enter the alpha-weighted balance like
 any load; the gap is enforced at n+1.
 
+A bonded (no slip) or Coulomb striker (``friction`` of :class:`ImpactProblem`: inf or mu >= 0)
+adds the candidates' u_r dofs: each step is then the static bonded or Coulomb contact
+(:func:`.stick_slip.stick_slip_step`) against the effective stiffness with the step's load,
+A = (1 - a_f) (S'^T K_eff^-1 S' + the striker's term on the u_z block), S' injecting u_z and
+u_r, reach the clearance f - X_pred - u_z,pred and radial offset u_r,pred; the stuck radii and
+slip directions are committed at the end of the step. The shear enters the alpha-weighted
+balance like the normal forces.
+
 A viscoelastic body (:mod:`.viscoelastic`) replaces K x by its internal force: K at the
 step's effective shear modulus times x plus the history force of its Prony branches, which
 enters the predictor as a load.
 
 Energy bookkeeping (:func:`march`): striker and body kinetic energy, strain energy (stored), the
 work absorbed by the layer (by the midpoint velocity; exact for Newmark), the energy dissipated
-by a viscoelastic body, and the rest as the scheme's numerical dissipation, of which the contact
+by a viscoelastic body, the work dissipated by slip at the contact (-T . du_r of the shear T
+at step n+1 over the nodes sliding then, mu F |du_r| >= 0), and the rest as the scheme's
+numerical dissipation, of which the contact
 term -1/2 (F_n + F_{n+1}) . (g_{n+1} - g_n) is computed separately (for Newmark the two agree
 to round-off).
 """
@@ -51,6 +61,7 @@ from ..validation import InputError, NumericalFailureError
 from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
 from .elasticity import ElasticSystem
 from .solver import Factorization
+from .stick_slip import CoupledCompliance, StickState, stick_slip_step
 
 if TYPE_CHECKING:
     from .viscoelastic import ShearMemory, ViscoelasticShear
@@ -78,6 +89,7 @@ ENERGY_NAMES = (
     "inner",
     "dissipated",
     "inner_kinetic",
+    "slip",
 )
 """Keys of :attr:`ImpactHistory.energies`, in J."""
 UNSTABLE_BALANCE = 1e-3
@@ -190,6 +202,14 @@ class ImpactProblem:
         (1 - a_f) (C + beta dt^2 / ((1 - a_m) M) 1 1^T) in m/N.
     material : ViscoelasticShear or None
         The body's Prony shear (its stiffness at G_eff is the K of K_eff); None: elastic.
+    friction : float or None
+        Coulomb coefficient mu >= 0 of the striker's surface (inf: bonded, no slip); None:
+        frictionless (the LCP above).
+    coupled : CoupledCompliance or None
+        With ``friction``: A (m/N) on the candidates' u_z and u_r (module docstring).
+    radial_correction : numpy.ndarray or None
+        With ``friction``: K_eff^-1 at the radial dofs of ``coupled`` (m/N), free dofs x
+        radial dofs, column-major.
     """
 
     system: ElasticSystem = field(repr=False)
@@ -205,6 +225,15 @@ class ImpactProblem:
     correction: np.ndarray = field(repr=False)
     lcp_matrix: np.ndarray = field(repr=False)
     material: ViscoelasticShear | None = field(default=None, repr=False)
+    friction: float | None = None
+    coupled: CoupledCompliance | None = field(default=None, repr=False)
+    radial_correction: np.ndarray | None = field(default=None, repr=False)
+
+    @cached_property
+    def radial_position(self) -> np.ndarray:
+        """Index of the radial dofs of ``coupled`` among the free dofs."""
+        assert self.coupled is not None
+        return np.searchsorted(self.free, self.coupled.radial_dofs)
 
     @cached_property
     def massive(self) -> np.ndarray:
@@ -243,6 +272,10 @@ class ImpactState:
         Trapezoidal contact work so far, J.
     memory : ShearMemory or None
         The viscoelastic shear's internal variables (None: elastic body).
+    contact : StickState or None
+        A bonded or Coulomb striker's contact (stuck radii, slip, shear); None: frictionless.
+    slip_heat : float
+        Work dissipated by slip so far, J.
     """
 
     step: int
@@ -258,6 +291,8 @@ class ImpactState:
     absorbed: float
     contact_term: float
     memory: ShearMemory | None = field(default=None, repr=False)
+    contact: StickState | None = field(default=None, repr=False)
+    slip_heat: float = 0.0
 
     @classmethod
     def first_touch(cls, problem: ImpactProblem) -> ImpactState:
@@ -277,6 +312,9 @@ class ImpactState:
             absorbed=0.0,
             contact_term=0.0,
             memory=None if problem.material is None else problem.material.first_memory(),
+            contact=None
+            if problem.friction is None
+            else StickState.untouched(problem.candidates.profile),
         )
 
     def time(self, scheme: TimeScheme) -> float:
@@ -302,6 +340,8 @@ def _predictor(problem: ImpactProblem, state: ImpactState) -> tuple[np.ndarray, 
     if alpha_f:
         load = state.stiffness_x.copy()  # K x_n
         load[problem.candidates.dofs] += state.forces
+        if state.contact is not None and state.contact.shear is not None:
+            load[problem.coupled.radial_dofs] -= state.contact.shear
         load *= alpha_f
         rhs -= load
     return x_hat, problem.factorization.solve(rhs[problem.free])
@@ -319,7 +359,6 @@ def _contact(
         If the contact reaches the edge of the candidates.
     """
     candidates = problem.candidates
-    r_c = candidates.radius
     clearance = candidates.profile - big_pred - x_pred[candidates.position]
     new_forces, _, _ = complementarity(problem.lcp_matrix, clearance)
     active = np.flatnonzero(new_forces > 0)
@@ -328,13 +367,66 @@ def _contact(
         reach = active[-1] + 1  # contact is a disc: the candidates up to its edge
         weight = 1.0 - problem.scheme.alpha_f
         x_new -= weight * (problem.correction[:, :reach] @ new_forces[:reach])
-        if active[-1] + EDGE_MARGIN >= r_c.size:
-            t = (state.step + 1) * problem.scheme.dt
-            raise ContactEdgeReachedError(
-                f"the contact reached r = {r_c[active[-1]]:.4g} m at t = {t:.4g} s, the "
-                f"edge of the refined zone ({r_c[-1]:.4g} m); increase margin"
-            )
+        _check_edge(problem, state, active[-1])
     return new_forces, x_new
+
+
+def _check_edge(problem: ImpactProblem, state: ImpactState, last: int) -> None:
+    """Raise ContactEdgeReachedError if candidate ``last`` in contact is within EDGE_MARGIN
+    of the edge of the refined zone."""
+    r_c = problem.candidates.radius
+    if last + EDGE_MARGIN >= r_c.size:
+        t = (state.step + 1) * problem.scheme.dt
+        raise ContactEdgeReachedError(
+            f"the contact reached r = {r_c[last]:.4g} m at t = {t:.4g} s, the "
+            f"edge of the refined zone ({r_c[-1]:.4g} m); increase margin"
+        )
+
+
+def _stick_contact(
+    problem: ImpactProblem, state: ImpactState, x_pred: np.ndarray, big_pred: float
+) -> StickState:
+    """The bonded or Coulomb contact of the step (``x_pred`` corrected in place to x_new on
+    the free dofs, as :func:`_contact` does).
+
+    Raises
+    ------
+    shtaerman.validation.NumericalFailureError
+        If the stick and slip sets do not settle.
+    """
+    candidates, coupled = problem.candidates, problem.coupled
+    assert coupled is not None and state.contact is not None
+    reach = candidates.profile - big_pred - x_pred[candidates.position]
+    offset = x_pred[problem.radial_position]
+    contact = stick_slip_step(coupled, reach, offset, state.contact, problem.friction)
+    if contact is None:
+        t = (state.step + 1) * problem.scheme.dt
+        raise NumericalFailureError(
+            f"the contact's stick and slip did not settle at t = {t:.4g} s; take more time "
+            "steps (time_steps, --time-steps) or a finer mesh (mesh_size, --mesh-size)"
+        )
+    active = np.flatnonzero(contact.active)
+    if active.size:
+        reach_to = active[-1] + 1  # contact is a disc: the candidates up to its edge
+        radial_to = int(np.searchsorted(coupled.radial_node, reach_to))
+        weight = 1.0 - problem.scheme.alpha_f
+        x_pred -= weight * (problem.correction[:, :reach_to] @ contact.forces[:reach_to])
+        x_pred += weight * (problem.radial_correction[:, :radial_to] @ contact.shear[:radial_to])
+        _check_edge(problem, state, active[-1])
+    return contact
+
+
+def _slip_heat(problem: ImpactProblem, state: ImpactState, contact: StickState | None) -> float:
+    """The work dissipated by slip up to the new step, J: mu F |slip| of every node sliding at
+    its end (the Coulomb law is imposed there), the slip counted from where the node was at
+    the last step, or from where it touched in this one; a stuck node does no work."""
+    if contact is None:
+        return state.slip_heat
+    node = problem.coupled.radial_node
+    sliding = contact.slip[node] != 0
+    start = np.where(state.contact.active, state.contact.radial, contact.held)[node]
+    slip = (contact.radial[node] - start)[sliding]
+    return state.slip_heat - float(contact.shear[sliding] @ slip)
 
 
 def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
@@ -357,7 +449,12 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
     big_pred = big_hat - beta * dt**2 * (alpha_f * forces.sum() + alpha_m * striker * big_a) / (
         (1.0 - alpha_m) * striker
     )
-    new_forces, x_free = _contact(problem, state, x_pred, big_pred)
+    contact = None
+    if problem.friction is None:
+        new_forces, x_free = _contact(problem, state, x_pred, big_pred)
+    else:
+        contact = _stick_contact(problem, state, x_pred, big_pred)
+        new_forces, x_free = contact.forces, x_pred
     x_new = np.zeros(problem.system.n_dofs)
     x_new[problem.free] = x_free
     total = float(new_forces.sum())
@@ -394,6 +491,8 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
         absorbed=absorbed,
         contact_term=contact_term,
         memory=memory,
+        contact=contact,
+        slip_heat=_slip_heat(problem, state, contact),
     )
 
 
@@ -456,8 +555,9 @@ def _observe(problem: ImpactProblem, state: ImpactState) -> tuple[tuple, tuple]:
     striker_kinetic = 0.5 * problem.striker.mass * state.striker_v**2
     numerical = problem.striker.kinetic_energy - striker_kinetic - kinetic - strain - state.absorbed
     numerical -= dissipated
+    numerical -= state.slip_heat
     energies = (striker_kinetic, kinetic, strain, state.absorbed, numerical, state.contact_term)
-    return row, (*energies, inner, dissipated, inner_kinetic)
+    return row, (*energies, inner, dissipated, inner_kinetic, state.slip_heat)
 
 
 def march(

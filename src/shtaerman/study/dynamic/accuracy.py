@@ -167,15 +167,17 @@ def complete_ladder(
     refine: float = 1.0,
     progress: Callable[[str], None] | None = None,
     prony: PronySeries | None = None,
+    friction: float | None = None,
 ) -> DynamicLadder:
-    """The ladder of a run already made with ``settings`` (and ``prony``): the two coarser
-    levels (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the estimates."""
+    """The ladder of a run already made with ``settings`` (and ``prony``, ``friction``): the
+    two coarser levels (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the
+    estimates."""
     report = progress or (lambda _line: None)
     coarse = [settings.refined(1.0 / LADDER_RATIO**2), settings.refined(1.0 / LADDER_RATIO)]
     results = []
     for level in coarse:
         result = run_dynamic_impact(
-            indenter, half_space, density, mass, velocity, level, prony=prony
+            indenter, half_space, density, mass, velocity, level, prony=prony, friction=friction
         )
         report(f"dynamic ladder: {result.mesh['dofs']} dofs, {level.steps} steps")
         results.append(result)
@@ -211,7 +213,8 @@ def run_dynamic_ladder(
     progress : callable, optional
         Receives one line per level.
     **options
-        Passed to the finest run (e.g. ``snapshot_times``); ``prony`` to every level.
+        Passed to the finest run (e.g. ``snapshot_times``); ``prony`` and ``friction`` to
+        every level.
 
     Returns
     -------
@@ -232,4 +235,5 @@ def run_dynamic_ladder(
         refine=refine,
         progress=progress,
         prony=options.get("prony"),  # type: ignore[arg-type]
+        friction=options.get("friction"),  # type: ignore[arg-type]
     )

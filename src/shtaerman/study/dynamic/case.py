@@ -123,6 +123,7 @@ def run_case(
     snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
     ladder: bool = False,
     prony: PronySeries | None = None,
+    friction: float | None = None,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
 
@@ -145,6 +146,10 @@ def run_case(
         (``settings.refined(1/2)`` must be valid).
     prony : PronySeries, optional
         Shear relaxation of the half-space (E2, nu2 its instantaneous values); None: elastic.
+    friction : float, optional
+        The striker's surface (:func:`~shtaerman.fem.dynamic_contact.run_dynamic_impact`):
+        None frictionless, ``math.inf`` bonded (no slip), mu >= 0 Coulomb. The quasi-static
+        impact and the radiation estimate stay the frictionless theory's.
     """
     law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
@@ -154,9 +159,15 @@ def run_case(
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
-    result = run_dynamic_impact(*inputs, settings, snapshot_times=times, prony=prony)
+    result = run_dynamic_impact(
+        *inputs, settings, snapshot_times=times, prony=prony, friction=friction
+    )
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     warn_outside_validity(indenter, result.x_max, settings.thickness, finite=False)
-    levels = complete_ladder(result, *inputs, settings, prony=prony) if ladder else None
+    levels = (
+        complete_ladder(result, *inputs, settings, prony=prony, friction=friction)
+        if ladder
+        else None
+    )
     return DynamicCase(velocity, quasi, estimate, result, levels)
