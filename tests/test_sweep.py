@@ -141,6 +141,17 @@ def test_contact_inputs_are_checked_up_front(tmp_path):
     )
 
 
+@pytest.mark.parametrize(
+    "where", ["[parameters]\nrate = 0.1\n[axes]\nnu2 = [0.5]", "[axes]\nrate = [0.1]"]
+)
+def test_a_contact_sweep_refuses_rate_it_would_ignore(tmp_path, where):
+    # rate is the pressing speed of a viscoelastic (prony) curve, and a contact sweep takes no
+    # prony: it was accepted, listed in the kind's parameters, and every case ran elastic
+    message = error_of(tmp_path, f'name = "c"\nkind = "contact"\n{where}\n')
+    assert "rate: unknown parameter 'rate' for kind 'contact'" in message
+    assert "rate" not in load_sweep(find_sweep("nu-grid")).kind_spec.parameters
+
+
 def test_a_rigid_striker_is_e1_inf(tmp_path):
     spec = parse_sweep(IMPACT.replace("mass = 0.7", "E1 = inf"), tmp_path / "s.toml")
     assert math.isinf(spec.cases()[0].params["E1"])

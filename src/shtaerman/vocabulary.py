@@ -442,7 +442,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "pressing speed of a contact curve on a viscoelastic body",
         "Pressing speed V",
         None,
-        ("contact",),
+        (),  # the command line's and the API's: no study or sweep takes a prony series
     ),
     Entry(
         "depths",
