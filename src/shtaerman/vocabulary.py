@@ -661,6 +661,7 @@ VOCABULARY: tuple[Entry, ...] = (
         0.0,
         ("dynamic",),
         valid=Range(0.0, MAX_LAYER_RATE, low_open=False),
+        sweep_default={"dynamic": None},  # the geometry's own: 0 must be told from it
     ),
     _numeric(
         "reach",
