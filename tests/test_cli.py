@@ -55,6 +55,26 @@ def test_history_csv(tmp_path, capsys):
 
 
 @pytest.mark.parametrize(
+    ("argv", "line"),
+    [
+        (
+            ["--points", "50"],
+            "--points: applies with --history only (the rows of the history file); give "
+            "--history too",
+        ),
+        (["--points", "201"], "--points: applies with --history only"),  # the default, given
+        (["--force"], "--force: applies with --history only (it lets the run replace it)"),
+    ],
+)
+def test_impact_refuses_history_options_without_history(capsys, argv, line):
+    # `impact --points N` (or --force) without --history printed the table and exited 0: the
+    # option did nothing, without a word
+    code, out, err = run(capsys, "impact", *argv)
+    assert code == 2 and out == ""
+    assert err.startswith(f"shtaerman: error: {line}") and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
     ("argv", "message"),
     [
         (["--mass", "-1"], "mass must be > 0 kg"),
