@@ -130,7 +130,7 @@ def test_a_contact_mesh_above_max_dofs_is_refused_at_load(tmp_path, fixed, axis)
 
 def test_contact_inputs_are_checked_up_front(tmp_path):
     text = 'name = "c"\nkind = "contact"\n[axes]\nexponent = [1.5, 1.0]\n'
-    assert "axes.exponent[1] must be > 1, got 1.0" in error_of(tmp_path, text)
+    assert "axes.exponent[1] must lie in (1, 20], got 1.0" in error_of(tmp_path, text)
     text = 'name = "c"\nkind = "contact"\n[parameters]\nsolver = "umfpack"\n[axes]\nnu2 = [0.5]\n'
     assert "parameters.solver must be one of ['auto', 'superlu', 'pardiso']" in error_of(
         tmp_path, text
