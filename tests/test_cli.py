@@ -55,12 +55,32 @@ def test_history_csv(tmp_path, capsys):
 
 
 @pytest.mark.parametrize(
+    ("argv", "line"),
+    [
+        (
+            ["--points", "50"],
+            "--points: applies with --history only (the rows of the history file); give "
+            "--history too",
+        ),
+        (["--points", "201"], "--points: applies with --history only"),  # the default, given
+        (["--force"], "--force: applies with --history only (it lets the run replace it)"),
+    ],
+)
+def test_impact_refuses_history_options_without_history(capsys, argv, line):
+    # `impact --points N` (or --force) without --history printed the table and exited 0: the
+    # option did nothing, without a word
+    code, out, err = run(capsys, "impact", *argv)
+    assert code == 2 and out == ""
+    assert err.startswith(f"shtaerman: error: {line}") and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
     ("argv", "message"),
     [
         (["--mass", "-1"], "mass must be > 0 kg"),
         (["--velocity", "0"], "velocity must be > 0 m/s"),
         (["--shape-coefficient", "abc"], "shape-coefficient must be a number > 0"),
-        (["--exponent", "0"], "exponent must be > 0"),
+        (["--exponent", "0"], r"--exponent must lie in \[0.25, 20\], got '0'"),
         (["--E1", "-2e11"], "E1 must be > 0 Pa"),
         (["--E2", "nan"], "E2 must be a number > 0 Pa"),
         (["--nu1", "-1"], r"nu1 must lie in \(-1, 0.5\]"),
@@ -75,6 +95,26 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and err.startswith("shtaerman: error: ")
     assert re.search(message, err)
+
+
+@pytest.mark.parametrize(
+    ("argv", "line"),
+    [
+        (["dynamic", "--exponent", "20.5"], "--exponent must lie in (1, 20], got '20.5'"),
+        (
+            ["dynamic", "--model", "neo-hookean", "--exponent", "21"],
+            "--exponent must lie in (1, 20]",
+        ),
+        (["contact", "--exponent", "1"], "--exponent must lie in (1, 20], got '1'"),
+        (["impact", "--exponent", "20.5"], "--exponent must lie in [0.25, 20], got '20.5'"),
+    ],
+)
+def test_exponent_range_is_the_commands_and_names_the_option(capsys, argv, line):
+    # `dynamic --exponent 20.5` said "exponent must lie in [0.25, 20]" (the theory's range,
+    # without --), which contradicts the FEM's n > 1; each command states its own range
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert err.startswith(f"shtaerman: error: {line}") and err.count("\n") == 1
 
 
 def test_failed_run_keeps_an_existing_history(tmp_path, capsys):

@@ -199,3 +199,37 @@ def test_length_checker_counts_the_body_after_the_docstring(tmp_path):
     )
     root = _write(tmp_path, {"long.py": text})
     assert _long_functions(root) == ["long.py:too_long (61)"]
+
+
+TESTS = Path(__file__).resolve().parent
+LEFT_TEST_IMPORTS = {"test_finite_friction.py": {"test_finite_bonded"}}
+"""Test modules that still import another (its helpers belong in a helper module): the
+finite-strain friction tests, which the friction work of the impact is changing."""
+
+
+def _test_module_imports(folder: Path) -> dict[str, set[str]]:
+    """File name -> the test modules (``test_*``) it imports, for each ``test_*.py`` there."""
+    found: dict[str, set[str]] = {}
+    for path in sorted(folder.glob("test_*.py")):
+        names = set()
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.ImportFrom) and node.module:
+                names.add(node.module)
+            elif isinstance(node, ast.Import):
+                names |= {alias.name for alias in node.names}
+        imported = {name for name in names if name.split(".")[-1].startswith("test_")}
+        if imported:
+            found[path.name] = imported
+    return found
+
+
+def test_no_test_module_imports_another():
+    """Shared test helpers live in helper modules (figure_helpers, study_texts, ...): a test
+    module imported by another has its tests collected twice and ties the two together."""
+    assert _test_module_imports(TESTS) == LEFT_TEST_IMPORTS
+
+
+def test_test_import_checker_sees_an_imported_test_module(tmp_path):
+    (tmp_path / "test_a.py").write_text("from test_b import helper\nimport figure_helpers\n")
+    (tmp_path / "test_b.py").write_text("def helper(): ...\n")
+    assert _test_module_imports(tmp_path) == {"test_a.py": {"test_b"}}

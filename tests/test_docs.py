@@ -186,6 +186,54 @@ def test_theory_page_typesets_its_equations_with_no_network(site, browser):
     assert "\\[" not in body and "\\(" not in body
 
 
+ADD_ON_PAGE = """<!doctype html><html><body>
+<div class="arithmatex">\\[x^{5/3}\\]</div>
+<script>window.document$ = { subscribe: () => {} };</script>
+<script src="CONFIG"></script>
+<script src="MATHJAX"></script>
+<script>
+async function probe() {
+  await MathJax.startup.promise;
+  const found = { menu: MathJax.startup.document.options.enableMenu };
+  for (const name of ["a11y/explorer", "a11y/complexity", "a11y/sre"]) {
+    try { await MathJax.loader.load(name); found[name] = "loaded"; }
+    catch (error) { found[name] = "refused"; }
+  }
+  try { await window.SREfeature.custom("en"); found.locale = "loaded"; }
+  catch (error) { found.locale = "refused"; }
+  found.scripts = [...document.scripts].map((s) => s.src).filter((s) => s.includes("a11y"));
+  found.network = performance.getEntriesByType("resource").map((e) => e.name)
+    .filter((name) => name.startsWith("http"));
+  found.typeset = document.querySelectorAll("mjx-container svg").length;
+  const out = document.createElement("pre");
+  out.id = "probe";
+  out.textContent = JSON.stringify(found);
+  document.body.appendChild(out);
+}
+probe();
+</script></body></html>"""
+"""A page with the docs' MathJax that asks it for its accessibility add-ons and SRE's locale."""
+
+
+def test_mathjax_of_the_docs_loads_no_add_on(tmp_path, browser):
+    # tex-svg.js's menu loads accessibility add-ons as components, and its speech engine's
+    # locale files come from cdn.jsdelivr.net: the docs' config refuses them all, whatever a
+    # reader switches on (the add-on's script was inserted, a request for a file not shipped)
+    scripts = ROOT / "docs" / "javascripts"
+    page = tmp_path / "page.html"
+    text = ADD_ON_PAGE.replace("CONFIG", (scripts / "mathjax.js").as_uri())
+    page.write_text(text.replace("MATHJAX", (scripts / "mathjax" / "tex-svg.js").as_uri()))
+    dom = browser("--virtual-time-budget=20000", "--dump-dom", page.as_uri())
+    match = re.search(r'<pre id="probe">(.*?)</pre>', dom, re.DOTALL)
+    assert match, "the probe did not run: " + dom[-500:]
+    found = json.loads(html.unescape(match.group(1)))
+    assert found["menu"] is False  # no menu to switch an add-on on from
+    for name in ("a11y/explorer", "a11y/complexity", "a11y/sre", "locale"):
+        assert found[name] == "refused", name
+    assert found["scripts"] == [] and found["network"] == []
+    assert found["typeset"] == 1  # and the formula is typeset all the same
+
+
 def test_parameter_tables_fit_the_page(site, browser):
     sticking_out, _ = probe(browser, site / "parameters" / "index.html", TABLES)
     # the study-file table's Meaning column ran 49 px past the text's edge, cut off

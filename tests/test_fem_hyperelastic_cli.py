@@ -3,6 +3,8 @@
 import json
 
 import pytest
+from figure_helpers import svg_text
+from PIL import Image
 
 from shtaerman.cli import main
 from shtaerman.theory.contact import PowerLawContact
@@ -98,9 +100,11 @@ def test_linear_no_estimate_runs_one_mesh(capsys):
 
 
 def test_neo_hookean_text_and_out(capsys, tmp_path):
+    """--out writes the files and the force-depth figure, with --figure-format svg also in SVG
+    beside the PNG, as the linear model does (it wrote no figure, the SVG format was ignored)."""
     folder = tmp_path / "run"
-    argv = ["contact", "--model", "neo-hookean", "--depths", "1e-3", "--out", str(folder)]
-    code, out, _ = run(capsys, *argv, *COARSE)
+    argv = ["contact", "--model", "neo-hookean", "--depths", "1e-3,2e-3", "--out", str(folder)]
+    code, out, _ = run(capsys, *argv, "--figure-format", "svg", *COARSE)
     assert code == 0
     assert "Neo-Hookean contact" in out and "energy (J)" in out and "Newton" in out
     saved = json.loads((folder / "contact.json").read_text())
@@ -109,8 +113,14 @@ def test_neo_hookean_text_and_out(capsys, tmp_path):
         "contact.json",
         "field_max_depth.vtu",
         "finite_curve.csv",
+        "force_depth.png",
+        "force_depth.svg",
     ]
     assert (folder / "finite_curve.csv").read_text().startswith("depth [m],force [N],")
+    assert Image.open(folder / "force_depth.png").format == "PNG"
+    svg = svg_text(folder / "force_depth.svg")
+    # the rubber's points against Shtaerman's linear curve, and their departure from it
+    assert "FEM, neo-Hookean" in svg and "Shtaerman" in svg and "Depth" in svg
 
 
 def test_neo_hookean_force_replaces_a_used_folder(capsys, tmp_path):
@@ -130,6 +140,7 @@ def test_neo_hookean_force_replaces_a_used_folder(capsys, tmp_path):
         "contact.json",
         "field_max_depth.vtu",
         "finite_curve.csv",
+        "force_depth.png",
     ]
 
 

@@ -131,4 +131,28 @@ def test_a_dynamic_sweep_builds_each_case_as_a_problem_at_load():
     params = {**kind.defaults(), "density2": 0.0, "layer_rate": 10.0}
     with pytest.raises(sh.InputError, match=r"^layer_rate: applies to a body with mass only"):
         kind.check(params)
-    kind.check({**params, "layer_rate": 0.0})  # the default: no absorbing layer
+    kind.check({**params, "layer_rate": None})  # the default: the geometry's own (none here)
+    with pytest.raises(sh.InputError, match=r"^layer_rate: applies to a body with mass only"):
+        kind.check({**params, "layer_rate": 0.0})  # given, as `--density2 0 --layer-rate 0`
+
+
+@pytest.mark.parametrize("layer", ["thickness = 0.02", "thickness_ratio = 2.0"])
+def test_a_dynamic_sweep_refuses_layer_rate_0_on_a_layer(tmp_path, layer):
+    """layer_rate = 0 on a layer ran as 10 (the sweep's default was 0, so it could not tell 0
+    given from no value); refused at load as `dynamic --thickness 0.02 --layer-rate 0` is."""
+    from shtaerman.sweep import SweepError, load_sweep
+
+    path = tmp_path / "s.toml"
+    text = f'name = "s"\nkind = "dynamic"\n[parameters]\n{layer}\n'
+    text += "[axes]\nlayer_rate = [0.0, 5.0]\n"
+    path.write_text(text)
+    with pytest.raises(SweepError) as caught:
+        load_sweep(path)
+    message = str(caught.value)
+    assert "case 0 (layer_rate = 0.0)" in message and "\n" not in message
+    assert "layer_rate: a layer always has its lateral absorber" in message
+    assert "give a rate in (0, 1e4] or leave the default (10 on a layer)" in message
+    path.write_text(text.replace("[0.0, 5.0]", "[5.0]"))
+    assert load_sweep(path).cases()[0].params["layer_rate"] == 5.0
+    path.write_text(text.replace("layer_rate = [0.0, 5.0]", "base = ['bonded']"))
+    assert load_sweep(path).cases()[0].params["layer_rate"] is None  # the layer's own, 10

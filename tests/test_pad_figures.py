@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from figure_helpers import capture
 from study_texts import DYNAMIC_STUDY
-from test_paper_figures import capture
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.plots import dynamic, impact_energy

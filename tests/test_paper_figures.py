@@ -13,6 +13,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from figure_helpers import capture, svg_text
 from PIL import Image
 
 from shtaerman.cli import main
@@ -26,25 +27,6 @@ LEVELS = [
     {"size": h, "dofs": int(2000 / h**1.2), "errors": {"force": 3e-2 * h**2, "beta": 2e-2 * h}}
     for h in (0.1, 0.05, 0.025)
 ]
-
-
-def svg_text(path: Path) -> str:
-    text = path.read_text(encoding="utf-8")
-    assert text.startswith("<?xml") and "<svg" in text[:1000]
-    return text
-
-
-def capture(monkeypatch, module, draw):
-    """The (first) matplotlib Figure ``draw`` would save through ``module.save``."""
-    captured = []
-
-    def fake(figure, path, *_args, **_kwargs):
-        captured.append(figure)
-        return Path(path)
-
-    monkeypatch.setattr(module, "save", fake)
-    draw()
-    return captured[0]
 
 
 # --- labels -------------------------------------------------------------------------------------

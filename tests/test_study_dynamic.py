@@ -380,7 +380,7 @@ def test_sweep_kind_checks_inputs_up_front(tmp_path):
     bad_density = sweep_error(tmp_path, TINY_SWEEP.replace("[1100.0]", "[-1.0]"))
     assert "axes.density2[0] must lie in [1e-6, 1e6] or 0 kg/m^3, got -1.0" in bad_density
     assert "steps" in sweep_error(tmp_path, TINY_SWEEP.replace("steps = 60", "steps = 10"))
-    assert "exponent must be > 1" in sweep_error(
+    assert "exponent must lie in (1, 20]" in sweep_error(
         tmp_path, TINY_SWEEP.replace("time_steps = 60", "time_steps = 60\nexponent = 0.9")
     )
 

@@ -130,7 +130,7 @@ def test_a_contact_mesh_above_max_dofs_is_refused_at_load(tmp_path, fixed, axis)
 
 def test_contact_inputs_are_checked_up_front(tmp_path):
     text = 'name = "c"\nkind = "contact"\n[axes]\nexponent = [1.5, 1.0]\n'
-    assert "axes.exponent[1] must be > 1, got 1.0" in error_of(tmp_path, text)
+    assert "axes.exponent[1] must lie in (1, 20], got 1.0" in error_of(tmp_path, text)
     text = 'name = "c"\nkind = "contact"\n[parameters]\nsolver = "umfpack"\n[axes]\nnu2 = [0.5]\n'
     assert "parameters.solver must be one of ['auto', 'superlu', 'pardiso']" in error_of(
         tmp_path, text
@@ -139,6 +139,17 @@ def test_contact_inputs_are_checked_up_front(tmp_path):
     assert "axes.depths[0] must be increasing, each > 0, got [0.002, 0.001]" in error_of(
         tmp_path, text
     )
+
+
+@pytest.mark.parametrize(
+    "where", ["[parameters]\nrate = 0.1\n[axes]\nnu2 = [0.5]", "[axes]\nrate = [0.1]"]
+)
+def test_a_contact_sweep_refuses_rate_it_would_ignore(tmp_path, where):
+    # rate is the pressing speed of a viscoelastic (prony) curve, and a contact sweep takes no
+    # prony: it was accepted, listed in the kind's parameters, and every case ran elastic
+    message = error_of(tmp_path, f'name = "c"\nkind = "contact"\n{where}\n')
+    assert "rate: unknown parameter 'rate' for kind 'contact'" in message
+    assert "rate" not in load_sweep(find_sweep("nu-grid")).kind_spec.parameters
 
 
 def test_a_rigid_striker_is_e1_inf(tmp_path):

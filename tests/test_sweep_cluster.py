@@ -310,6 +310,62 @@ def test_a_signal_keeps_finished_cases_and_says_how_to_resume(tmp_path, signum):
     assert [float(r["x [m]"]) for r in csv_rows(out)] == [float(x) for x in xs]
 
 
+def _signal_while_the_figures_are_drawn(monkeypatch, signum):
+    from shtaerman.sweep import figures
+
+    draw = figures.sweep_figures
+
+    def signalled(*args, **kwargs):
+        os.kill(os.getpid(), signum)
+        return draw(*args, **kwargs)
+
+    monkeypatch.setattr(figures, "sweep_figures", signalled)
+
+
+def _signal_while_the_cluster_shuts_down(monkeypatch, signum):
+    from distributed import LocalCluster
+
+    close = LocalCluster.close
+
+    def signalled(self, *args, **kwargs):
+        os.kill(os.getpid(), signum)
+        return close(self, *args, **kwargs)
+
+    monkeypatch.setattr(LocalCluster, "close", signalled)
+
+
+@pytest.mark.parametrize(
+    "window", [_signal_while_the_figures_are_drawn, _signal_while_the_cluster_shuts_down]
+)
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_after_the_last_case_stops_the_sweep_and_resume_completes_it(
+    tmp_path, capfd, monkeypatch, window, signum
+):
+    """A signal after every case is saved (while the cluster shuts down, or the figures are
+    drawn) was ignored or lost: exit 0. It stops the sweep (130/143, the resume line), every
+    record stays, and a resume writes the summary and figures without computing a case."""
+    path, markers = probe_sweep(tmp_path, [1, 2])
+    out = tmp_path / "out"
+    window(monkeypatch, signum)
+    code = main(["sweep", str(path), "--out", str(out), "--workers", "1"])
+    stdout, stderr = capfd.readouterr()
+    assert code == 128 + signum and stdout == ""
+    name = signal.Signals(signum).name
+    assert stderr == (
+        f"shtaerman: sweep 'probe' interrupted ({name}): all 2 cases saved in {out}, its summary "
+        f"and figures not all written; write them with: shtaerman sweep {path} --out {out} "
+        "--resume\n"
+    )
+    assert case_files(out) == [0, 1]
+    assert not list(out.glob("figures/*.png"))  # stopped before the first figure
+    monkeypatch.undo()
+    assert main(["sweep", str(path), "--out", str(out), "--resume"]) == 0
+    assert "nothing to compute, 2 from an earlier run" in capfd.readouterr().out
+    assert [float(r["y [m^2]"]) for r in csv_rows(out)] == [2.0, 5.0]
+    assert list((out / "figures").glob("*.png"))  # the figures the interrupted run did not draw
+    assert sweep_probe.computations(markers) == {1.0: 1, 2.0: 1}
+
+
 def test_one_tiny_contact_case(tmp_path):
     """The FEM kind through the cluster: a coarse mesh, one depth, errors within reason."""
     path = tmp_path / "c.toml"

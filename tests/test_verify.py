@@ -222,6 +222,38 @@ def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
     )
 
 
+def test_a_verify_stopped_after_every_study_says_the_summary_is_missing_and_resume_writes_it(
+    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys
+):
+    """Ctrl-C once every study has finished, while results.json and the reports are written:
+    it said "2 of 2 studies finished and kept ...; complete them with", as if studies were
+    missing. It says that the summary is, and the command writes it without computing any."""
+    served = []
+    monkeypatch.setattr(
+        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
+    )
+    finish = shtaerman.output.folder.finish_verification
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(shtaerman.output.folder, "finish_verification", interrupted)
+    out = tmp_path / "run"
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
+    err = capsys.readouterr().err.splitlines()[-1]
+    assert served == [FIRST, SECOND] and not (out / "results.json").exists()
+    assert err.startswith(
+        f"shtaerman: interrupted: all 2 studies finished and kept in {str(out)!r}, the summary "
+        "and reports not written; write them with: shtaerman verify "
+    )
+    assert err.endswith("--resume")
+    monkeypatch.setattr(shtaerman.output.folder, "finish_verification", finish)
+    assert main(err.split("write them with: ")[1].split()[1:]) == 0
+    assert served == [FIRST, SECOND]  # no study computed again
+    results = json.loads((out / "results.json").read_text())
+    assert list(results["studies"]) == [FIRST, SECOND] and (out / "report.html").is_file()
+
+
 def test_resume_refuses_a_folder_no_interrupted_run_left(quick_verify, tmp_path, capsys):
     _, out, _ = quick_verify
     before = sorted(p.name for p in out.iterdir())

@@ -51,7 +51,7 @@ def test_names_are_unique_snake_case_and_options_their_kebab_case():
         ("nu2", "contact", -0.2, r"nu2 must lie in \[0, 0.5\], got -0.2"),
         ("nu2", "impact", 0.6, r"nu2 must lie in \(-1, 0.5\], got 0.6"),
         ("nu1", None, 3.0, r"nu1 must lie in \(-1, 0.5\], got 3.0"),
-        ("exponent", "dynamic", 1.0, r"exponent must be > 1, got 1.0"),
+        ("exponent", "dynamic", 1.0, r"exponent must lie in \(1, 20\], got 1.0"),
         ("time_steps", "dynamic", 10, r"time_steps must be an integer in \[50, 5000\], got 10"),
         ("time_steps", "dynamic", 60.5, r"time_steps must be an integer"),
         ("depths", "contact", [2e-3, 1e-3], r"depths must be increasing, each > 0"),

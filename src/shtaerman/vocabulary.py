@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .theory.indenter import MAX_EXPONENT, MIN_EXPONENT
 from .validation import InputError, bound_text, shown
 
 __all__ = [
@@ -367,7 +368,8 @@ VOCABULARY: tuple[Entry, ...] = (
         "Profile exponent n",
         1.5,
         KIND_NAMES,
-        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1.0)),
+        valid=Range(MIN_EXPONENT, MAX_EXPONENT, low_open=False),  # the theory's (indenter.py)
+        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1.0, MAX_EXPONENT)),  # and bounded p(0)
     ),
     Entry(
         "E1",
@@ -442,7 +444,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "pressing speed of a contact curve on a viscoelastic body",
         "Pressing speed V",
         None,
-        ("contact",),
+        (),  # the command line's and the API's: no study or sweep takes a prony series
     ),
     Entry(
         "depths",
@@ -661,6 +663,7 @@ VOCABULARY: tuple[Entry, ...] = (
         0.0,
         ("dynamic",),
         valid=Range(0.0, MAX_LAYER_RATE, low_open=False),
+        sweep_default={"dynamic": None},  # the geometry's own: 0 must be told from it
     ),
     _numeric(
         "reach",

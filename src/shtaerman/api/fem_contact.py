@@ -319,13 +319,16 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 
 
 def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
-    """contact.json, the curve CSVs and VTU fields, and (linear model) the curve figures."""
+    """contact.json, the curve CSVs and VTU fields, and the curve figures (a finite-strain
+    model: the force-depth curve against Shtaerman's linear one)."""
     from ..output import export
     from ..output.finite import write_finite_curve
+    from ..plots.curves import plot_force_depth
     from ..plots.gallery import contact_figures
 
     if result.model != "linear":
         write_finite_curve(result.solution, folder)
+        plot_force_depth(result.solution, folder / "force_depth.png", figure_format=figure_format)
     else:
         export.write_indentation(result.solution, folder)
         contact_figures(result.solution, folder, figure_format)

@@ -192,6 +192,7 @@ def dynamic(
     shtaerman.validation.InputError
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
+    from ..fem.dynamic_layer import check_layer_rate
     from ..output.dynamic import write_case_figures
     from ..output.files import output_folder, staged_folder
     from ..study.dynamic.accuracy import complete_ladder
@@ -214,13 +215,7 @@ def dynamic(
     indenter, body = problem.striker.indenter, problem.body.material
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
-    if layer_rate == 0 and problem.geometry.thickness is not None:
-        raise InputError(
-            "layer_rate: a layer always has its lateral absorber (its guided waves would "
-            "reflect at its edge), 0 is for the half-space only: give a rate in (0, 1e4] or "
-            "leave the default (10 on a layer)",
-            "layer_rate",
-        )
+    check_layer_rate(layer_rate, problem.geometry.thickness)
     chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
     mass, velocity, refine, chosen = _checked(problem, refine, estimate, chosen)
     check_figure_format(figure_format)

@@ -35,7 +35,7 @@ def register(commands: argparse._SubParsersAction) -> None:
             "the exact solution. The default depths reach the x_c of the impact of --mass at "
             "--velocity. --model neo-hookean (mooney-rivlin, yeoh, gent): a rubber at finite "
             "strain with the same E2, nu2 at small strain. --out writes contact.json, CSV "
-            "curves, VTU fields and (linear model) the figures. SI units."
+            "curves, VTU fields and the figures. SI units."
         ),
     )
     inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "interface")
@@ -77,8 +77,7 @@ DERIVED = {
 NOTES = {
     "mass": "with --velocity, sets the impact whose x_c the default depths reach",
     "velocity": "with --mass, sets the impact whose x_c the default depths reach",
-    "out": "contact.json, CSV curves, VTU fields and (linear model) force_depth.png and "
-    "pressure.png",
+    "out": "contact.json, CSV curves, VTU fields, force_depth.png and (linear model) pressure.png",
     "force": "an existing --out folder",
 }
 """What ``contact`` does with its output options."""

@@ -10,7 +10,8 @@ from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
 from ..theory.impact import ImpactResult
 from ..theory.materials import Material
-from .common import CASE, add_inputs, in_option_words, indenter, print_json, striker
+from ..validation import InputError
+from .common import CASE, add_inputs, given, in_option_words, indenter, print_json, striker
 
 NOTES = {
     "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
@@ -40,8 +41,22 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
         return check_output_file(value, force=force, option="history")
 
 
+IDLE = {"points": "the rows of the history file", "force": "it lets the run replace it"}
+"""The options that act on the --history file, and what they do there."""
+
+
+def refuse_idle_options(args: argparse.Namespace) -> None:
+    """Refuse, in one line, --points or --force given without --history (they did nothing)."""
+    for name, what in IDLE.items():
+        if given(args, name) and args.history is None:
+            raise InputError(
+                f"--{name}: applies with --history only ({what}); give --history too", name
+            )
+
+
 def run(args: argparse.Namespace) -> int:
     """Solve the impact (:func:`shtaerman.impact`) and print it; write the history if asked."""
+    refuse_idle_options(args)
     history = history_path(args.history, force=args.force)
     with in_option_words():
         result = impact(

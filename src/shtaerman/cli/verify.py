@@ -151,6 +151,11 @@ def _interrupted_text(args: argparse.Namespace, stop: Any, out: Path) -> str:
         reason = f"error: {_one_line(stop.cause)};"
     else:
         reason = "interrupted:" if isinstance(stop.cause, KeyboardInterrupt) else "terminated:"
+    if stop.kept == stop.total:  # stopped while writing results.json, the reports
+        return (
+            f"shtaerman: {reason} all {stop.total} studies finished and kept in {str(out)!r}, "
+            f"the summary and reports not written; write them with: {shlex.join(command)}"
+        )
     return (
         f"shtaerman: {reason} {stop.kept} of {stop.total} studies finished and kept in "
         f"{str(out)!r}; complete them with: {shlex.join(command)}"

@@ -54,6 +54,7 @@ __all__ = [
     "LATERAL_RATE",
     "MAX_LATERAL",
     "check_layer",
+    "check_layer_rate",
     "lateral_absorber",
     "layer_dofs",
     "layer_impact_mesh",
@@ -82,6 +83,18 @@ def check_layer(thickness: float | None, base: str) -> None:
         validate_positive("thickness", thickness, "m")
     if base not in BASES:
         raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
+
+
+def check_layer_rate(layer_rate: float | None, thickness: float | None) -> None:
+    """Raise InputError for ``layer_rate`` 0 on a layer (``thickness`` in m, None: the
+    half-space), where it cannot mean "no absorber": None is the geometry's own rate."""
+    if layer_rate == 0 and thickness is not None:
+        raise InputError(
+            "layer_rate: a layer always has its lateral absorber (its guided waves would "
+            "reflect at its edge), 0 is for the half-space only: give a rate in (0, 1e4] or "
+            f"leave the default ({LATERAL_RATE:g} on a layer)",
+            "layer_rate",
+        )
 
 
 def lateral_absorber(

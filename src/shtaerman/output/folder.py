@@ -342,5 +342,6 @@ def run_verification(
             )
         except BaseException as error:
             keep_finished(stage, studies, entries, error, quick=quick)
-        (stage / PROGRESS_FILE).unlink()
+        # absent when a resume found every study finished (it wrote no progress of its own)
+        (stage / PROGRESS_FILE).unlink(missing_ok=True)
         return results

@@ -75,11 +75,22 @@ def _fit_note(result: IndentationResult) -> str:
     )
 
 
+def _fem_label(result: IndentationResult) -> str:
+    """ "FEM", or "FEM, neo-Hookean" (the rubber model) for a finite-strain curve."""
+    rubber = getattr(result, "rubber", None)
+    if rubber is None:
+        return "FEM"
+    from .finite import MODEL_LABELS
+
+    return f"FEM, {MODEL_LABELS.get(rubber.name, rubber.name)}"
+
+
 @styled
 def plot_force_depth(
     result: IndentationResult, path: Path | str, *, figure_format: str = "png"
 ) -> Path:
-    """Write the force-depth curve: FEM points against P = beta x^q (log-log).
+    """Write the force-depth curve: FEM points against P = beta x^q (log-log); a finite-strain
+    curve (:class:`~shtaerman.study.finite.indentation.FiniteIndentationResult`) too.
 
     The lower panel is the relative difference of each FEM force from the exact one (%);
     the fitted exponent and beta (exponent held at the theory's) are printed against the
@@ -113,7 +124,7 @@ def plot_force_depth(
         color=EXACT_COLOUR,
         label=rf"Shtaerman: $P = \beta x^{{{q}}}$",
     )
-    top.loglog(depths * x_scale, forces * p_scale, "o", color=FEM_COLOUR, label="FEM")
+    top.loglog(depths * x_scale, forces * p_scale, "o", color=FEM_COLOUR, label=_fem_label(result))
     top.set_ylabel(f"Force $P$ ({p_unit})")
     top.legend(loc="upper left")
     top.text(

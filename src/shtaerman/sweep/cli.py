@@ -127,6 +127,12 @@ def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any)
         )
     if not stop.saved and not is_sweep_folder(out):
         return f"shtaerman: sweep {name!r} interrupted ({stop}) before any case was saved"
+    if stop.total and stop.saved == stop.total:  # stopped while writing the summary
+        return (
+            f"shtaerman: sweep {name!r} interrupted ({stop}): all {stop.total} cases saved in "
+            f"{out}, its summary and figures not all written; write them with: "
+            f"{_resume_command(args, out)}"
+        )
     return (
         f"shtaerman: sweep {name!r} interrupted ({stop}): {stop.saved} of {stop.total} cases "
         f"saved in {out}; resume with: {_resume_command(args, out)}"

@@ -52,6 +52,7 @@ from ..output.files import (
     probe_writable,
 )
 from ..plots.formats import check_figure_format
+from ..signals import deferred
 from ..validation import InputError
 from .guard import SCRATCH_ENV, check_not_bootstrapping, raise_if_unguarded
 from .kinds import CaseResult, unit_suffix
@@ -606,7 +607,7 @@ def _client(
         try:
             yield client
         finally:
-            with _signals_ignored():
+            with deferred():  # a second Ctrl-C must not break the shutdown
                 client.close()
         return
     # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers, which returns every large
@@ -629,10 +630,10 @@ def _client(
             try:
                 yield client
             finally:
-                with _signals_ignored():
+                with deferred():  # a second Ctrl-C must not break the shutdown
                     client.close()
         finally:
-            with _signals_ignored():
+            with deferred():  # a second Ctrl-C must not break the shutdown
                 cluster.close()
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
@@ -694,11 +695,14 @@ def dask_client(workers: int | None = None, scheduler: str | None = None) -> Ite
 
 
 class _StopFlag:
-    """SIGINT/SIGTERM set a flag (main thread only); the loop checks it between results."""
+    """SIGINT/SIGTERM set a flag (main thread only); the loop checks it between results.
+    Inside :meth:`raising` (the summary and figures, once every case is saved) a signal
+    raises at once instead."""
 
     def __init__(self) -> None:
         self.signum: int | None = None
         self._previous: dict[int, Any] = {}
+        self._raise = False
 
     def __enter__(self) -> _StopFlag:
         if threading.current_thread() is threading.main_thread():
@@ -707,28 +711,29 @@ class _StopFlag:
         return self
 
     def _handler(self, signum: int, frame: object) -> None:
-        self.signum = signum
+        self.signum = self.signum or signum
+        if self._raise:
+            self._raise = False  # once: a second signal must not break the clean-up
+            raise SweepInterrupted(signum)
 
     def check(self) -> None:
         if self.signum is not None:
             raise SweepInterrupted(self.signum)
 
+    @contextlib.contextmanager
+    def raising(self) -> Iterator[None]:
+        """A signal raises :class:`SweepInterrupted` where it lands (one already caught, on
+        entry; one swallowed on the way, e.g. by a callback, on exit)."""
+        self.check()
+        self._raise = True
+        try:
+            yield
+        finally:
+            self._raise = False
+        self.check()
+
     def __exit__(self, *exc: object) -> None:
         for s, old in self._previous.items():
-            signal.signal(s, old)
-
-
-@contextlib.contextmanager
-def _signals_ignored() -> Iterator[None]:
-    """A second Ctrl-C must not break the cluster's shutdown."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        yield
-    finally:
-        for s, old in previous.items():
             signal.signal(s, old)
 
 
@@ -862,8 +867,13 @@ class _Run:
                 interrupted.saved, interrupted.total = len(self.records), len(self.cases)
                 raise
         outcome = self._outcome(lost, used_workers)
-        if outcome.lost == 0:  # every case is saved: a signal now lets the summary finish
-            _write_results(self.spec, self.out, self.cases, self.records, outcome, figures)
+        if outcome.lost == 0:  # every case is saved: a signal stops the summary, kept for resume
+            try:
+                with stop.raising():
+                    _write_results(self.spec, self.out, self.cases, self.records, outcome, figures)
+            except SweepInterrupted as interrupted:
+                interrupted.saved, interrupted.total = len(self.records), len(self.cases)
+                raise
         return outcome
 
     def _outcome(self, lost: dict[int, str], used_workers: int) -> SweepOutcome:
@@ -1050,5 +1060,7 @@ def _write_results(
         try:
             _unlink_links(out / "figures")
             sweep_figures(out / "results.json", out / "figures", figures)
+        except SweepInterrupted:
+            raise
         except Exception as error:  # the results are safe; say what went wrong with the figures
             warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)

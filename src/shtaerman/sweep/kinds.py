@@ -267,13 +267,16 @@ def _dynamic_inputs(p: dict[str, Any]):
     from dataclasses import replace
 
     from ..fem.dynamic_contact import DynamicSettings
+    from ..fem.dynamic_layer import check_layer_rate
     from ..study.dynamic.accuracy import check_ladder
 
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
     settings = DynamicSettings()
     for name, field_name in _DYNAMIC_NUMERICS.items():
-        settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+        if p[name] is not None:  # layer_rate None: the geometry's own (0, or 10 on a layer)
+            settings = replace(settings, **{field_name: p[name]})  # InputError names the field
     settings = _dynamic_layer(p, indenter, half_space, settings)
+    check_layer_rate(p["layer_rate"], settings.thickness)  # 0 on a layer ran as 10
     refine = p["refine"]
     if refine != 1.0:
         settings = settings.refined(refine)
@@ -312,7 +315,7 @@ def _dynamic_problem(p: dict[str, Any], settings: Any) -> None:
         prony=_prony(p),
         **(layer if settings.thickness is not None else {}),
     )
-    check_options(problem, ["layer_rate"] if p["layer_rate"] else [])
+    check_options(problem, ["layer_rate"] if p["layer_rate"] is not None else [])
 
 
 def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
