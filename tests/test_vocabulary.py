@@ -88,7 +88,8 @@ def test_parameter_table_has_one_row_per_input():
     row = next(line for line in table if line.startswith("| `nu2`<br>"))
     assert "`--nu2` (impact, contact, dynamic)" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
     row = next(line for line in table if line.startswith("| `time_steps`<br>"))
-    assert "`--time-steps` (dynamic)" in row and "| 200 |" in row and "formerly `steps`" in row
+    assert "`--time-steps` (dynamic)" in row and "formerly `steps`" in row
+    assert "| 200; the model's in a dynamic sweep |" in row  # a rubber's own there
     row = next(line for line in table if line.startswith("| `mesh_size`<br>"))
     assert "0.025 (dynamic)" in row and "0.00666667 (contact, layer)" in row
     row = next(line for line in table if line.startswith("| `thickness_ratio`<br>"))
@@ -140,6 +141,8 @@ def _dynamic_cli_default(*options: str) -> str:
 
 
 def test_dynamic_defaults_agree_through_every_entry_point(tmp_path):
+    from shtaerman.sweep.kinds import _dynamic_inputs
+
     """200 time steps per t_y at mesh size 1/40: the CLI, DynamicSettings(), a study file that
     sets none, the shipped study, a sweep that sets none and the shipped validity sweep."""
     expected = (200, 1 / 40)
@@ -162,8 +165,10 @@ def test_dynamic_defaults_agree_through_every_entry_point(tmp_path):
     [study] = load_study(minimal)
     [shipped] = load_study(find_study("dynamic"))
     assert study.settings == shipped.settings == settings
-    defaults = get_kind("dynamic").defaults()
-    assert (defaults["time_steps"], defaults["mesh_size"]) == expected
+    defaults = get_kind("dynamic").defaults()  # None: the model's, the linear one's here
+    assert (defaults["time_steps"], defaults["mesh_size"]) == (None, None)
+    linear = _dynamic_inputs(defaults)[-1]
+    assert (linear.steps, linear.size) == expected
     validity = load_sweep(find_sweep("validity"))
     assert (validity.parameters["time_steps"], validity.parameters["mesh_size"]) == expected
 

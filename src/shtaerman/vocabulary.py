@@ -462,7 +462,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "material model of the half-space",
         "model",
         "linear",
-        ("finite-strain",),
+        ("finite-strain", "dynamic"),
         valid=None,
         type="str",
         choices=("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent"),
@@ -475,7 +475,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Mooney-Rivlin r = C01 / (C10 + C01), C10 + C01 = E2 / (4 (1 + nu2))",
         "Mooney ratio r",
         None,
-        ("finite-strain",),
+        ("finite-strain", "dynamic"),
         valid=Range(0.0, 1.0, low_open=False, high_open=True),
     ),
     Entry(
@@ -485,7 +485,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "a negative c2 needs c2^2 < 3 c3 (dW/dI1 > 0)",
         "Yeoh c2, c3",
         None,
-        ("finite-strain",),
+        ("finite-strain", "dynamic"),
         valid=None,
         type="str",
     ),
@@ -495,7 +495,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Gent limit Jm of I1 - 3 (W = -mu/2 Jm ln(1 - (I1 - 3)/Jm))",
         "Gent limit Jm",
         None,
-        ("finite-strain",),
+        ("finite-strain", "dynamic"),
     ),
     Entry(
         "volumetric",
@@ -504,7 +504,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "K/2 (ln J)^2 (logarithmic)",
         "Volumetric energy",
         None,
-        ("finite-strain",),
+        ("finite-strain", "dynamic"),
         valid=None,
         type="str",
         choices=("quadratic", "logarithmic"),
@@ -587,6 +587,7 @@ VOCABULARY: tuple[Entry, ...] = (
         valid_by_kind={"dynamic": Range(0.0, 0.2)},
         old_names=("size",),
         setting="size",
+        sweep_default={"dynamic": None},  # the model's: 1/40 linear, finite strain its own
     ),
     _numeric(
         "mesh_margin",
@@ -653,6 +654,7 @@ VOCABULARY: tuple[Entry, ...] = (
         old_names=("steps",),
         type="int",
         setting="steps",
+        sweep_default={"dynamic": None},  # the model's: 200 linear, finite strain its own
     ),
     _numeric(
         "layer_rate",
@@ -833,7 +835,8 @@ def _default_text(item: Entry) -> str:
     else:
         text = ", ".join(f"{text} ({', '.join(kinds)})" for text, kinds in shown.items())
     for kind, value in item.sweep_default.items():
-        text += f"; {_value_text(item, value)} in a {kind} sweep"
+        value_text = "the model's" if value is None else _value_text(item, value)
+        text += f"; {value_text} in a {kind} sweep"
     return text
 
 

@@ -164,6 +164,7 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}. "
         + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"]),
         _validity_finding(outcome),
+        *([] if outcome.start is None else [outcome.start.words()]),
         *rubber_finding(outcome),
         QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
         *_corrections(outcome, corrections_finding),

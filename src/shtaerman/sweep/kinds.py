@@ -273,8 +273,8 @@ def _dynamic_inputs(p: dict[str, Any]):
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
     settings = DynamicSettings()
     for name, field_name in _DYNAMIC_NUMERICS.items():
-        if p[name] is not None:  # layer_rate None: the geometry's own (0, or 10 on a layer)
-            settings = replace(settings, **{field_name: p[name]})  # InputError names the field
+        if p[name] is not None:  # None: the default (time_steps, mesh_size; layer_rate:
+            settings = replace(settings, **{field_name: p[name]})  # the geometry's own)
     settings = _dynamic_layer(p, indenter, half_space, settings)
     check_layer_rate(p["layer_rate"], settings.thickness)  # 0 on a layer ran as 10
     refine = p["refine"]
@@ -293,6 +293,9 @@ def _dynamic_check(p: dict[str, Any]) -> None:
 
     from ..fem.dynamic_contact import check_dynamic_impact
 
+    if p["model"] != "linear":
+        _finite_impact_check(p)
+        return
     inputs = _dynamic_inputs(p)
     _dynamic_problem(p, inputs[-1])
     with warnings.catch_warnings():
@@ -408,10 +411,13 @@ empty for an elastic case of a prony axis)."""
 
 def dynamic_case(p: dict[str, Any]) -> CaseResult:
     """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
-    failed when its energy balance or its reflected energy exceed what the studies allow."""
+    failed when its energy balance or its reflected energy exceed what the studies allow. A
+    rubber ``model``: the finite-strain impact (:func:`finite_impact_case`)."""
     from ..study.dynamic.case import run_case
     from ..study.dynamic.loader import dynamic_check_failures
 
+    if p["model"] != "linear":
+        return finite_impact_case(p)
     start = time.perf_counter()
     case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p))
     seconds = time.perf_counter() - start
@@ -453,6 +459,114 @@ def _dynamic_errors(case: Any) -> dict[str, float]:
         out[f"error_difference_{key}"] = float(estimates[f"difference_{key}"].absolute_error)
     out["error_difference_worst"] = max(out[f"error_difference_{key}"] for key in "xPt")
     return out
+
+
+_FINITE_IMPACT_OPTIONS = ("time_steps", "mesh_size")
+"""The numerics a finite-strain impact case takes (the others keep their defaults)."""
+
+
+def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
+    """A finite-strain impact case as the command line builds it: its
+    :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
+    swept model takes them) and the numerical keywords of :func:`shtaerman.dynamic`; a
+    numerical option it does not take, set to other than its default, is refused."""
+    from ..fem.dynamic_contact import DynamicSettings
+    from ..problem import RUBBER_OPTIONS, Problem, check_options
+    from ..theory.materials import Material
+
+    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
+    layer = _dynamic_layer(p, indenter, half_space, DynamicSettings())
+    geometry = {"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}
+    rubber = {
+        name: p[name]
+        for name in RUBBER_OPTIONS
+        if p[name] is not None and RUBBER_SHAPES.get(name, p["model"]) == p["model"]
+    }
+    problem = Problem.impact(
+        indenter,
+        Material(p["E2"], p["nu2"], p["density2"]),
+        mass=p["mass"],
+        velocity=p["velocity"],
+        model=p["model"],
+        prony=_prony(p),
+        **geometry,
+        **rubber,
+    )
+    defaults = KINDS["dynamic"].defaults()
+    changed = [
+        name
+        for name in (*_DYNAMIC_NUMERICS, "refine", "estimate")
+        if name not in _FINITE_IMPACT_OPTIONS and p[name] != defaults[name]
+    ]
+    if "axis_size" in changed:  # the finite-strain impact grades its own axis
+        raise InputError(
+            f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
+            "time_steps and mesh_size)",
+            "axis_size",
+        )
+    check_options(problem, changed)
+    return problem, {name: p[name] for name in _FINITE_IMPACT_OPTIONS}
+
+
+def _finite_impact_check(p: dict[str, Any]) -> None:
+    """A finite-strain impact case checked at load as ``shtaerman dynamic --model`` checks it:
+    the problem's parts and options, the numerics' ranges, and a half-space impact's depth
+    against the finite-strain contact's reach (velocity and mass)."""
+    import warnings
+
+    from ..fem.finite_dynamic import FiniteImpactSettings, check_density
+    from ..guards import check_reach
+    from ..theory.contact import PowerLawContact
+    from ..theory.impact import solve_impact
+    from ..theory.materials import RIGID, effective_modulus
+
+    problem, numerics = _finite_impact(p)
+    FiniteImpactSettings(steps=numerics["time_steps"])  # its range, naming steps
+    check_density(p["density2"])
+    if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
+        law = PowerLawContact(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # a validity warning is the case's to record
+            x_c = solve_impact(p["mass"], p["velocity"], law).x_c
+        check_reach(_indenter(p), x_c, (p["mass"], p["velocity"]), law.force_exponent, True)
+
+
+def finite_impact_case(p: dict[str, Any]) -> CaseResult:
+    """The finite-strain impact of a rubber ``model`` (:func:`shtaerman.dynamic` on the
+    case's problem, the command line's numbers): its outputs as the linear case's (no
+    radiation estimate: NaN); failed, as ``shtaerman dynamic --model`` exits 1, when its
+    energy balance or (with inertia) its reflected energy exceed the studies' limits."""
+    import warnings
+
+    from ..api.fem_dynamic import dynamic
+    from ..study.dynamic.loader import dynamic_check_failures
+
+    problem, numerics = _finite_impact(p)
+    start = time.perf_counter()
+    result = dynamic(problem, **numerics)
+    seconds = time.perf_counter() - start
+    if p["volumetric"] is not None and p["nu2"] == 0.5:  # as the command line warns
+        warnings.warn(
+            "volumetric has no effect at nu2 0.5 (no volumetric energy): ignored", stacklevel=2
+        )
+    dyn, quasi = result.dynamic, result.quasi_static
+    differences = {key: float(result.differences[f"{key}_c"]) for key in ("x", "P", "t")}
+    outputs = {
+        **{key: float(dyn[key]) for key in (*DYNAMIC_OUTPUTS, *DYNAMIC_LOSSES) if key in dyn},
+        "estimate_energy_fraction": math.nan,
+        **{key: float(quasi[key]) for key in ("x_c", "P_c", "t_c", "t_y")},
+        **{f"difference_{key}": value for key, value in differences.items()},
+        "difference_worst": max(abs(value) for value in differences.values()),
+        "dofs": int(result.mesh["dofs"]),
+        "seconds": seconds,
+    }
+    of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
+    massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
+    reflected = 0.0 if massless else outputs["reflected_energy_fraction"]
+    failures = dynamic_check_failures(
+        outputs["energy_balance_error"], reflected, of, outputs["energy_radiated_fraction"]
+    )
+    return CaseResult(outputs, tuple(failures))
 
 
 register_kind(
@@ -607,6 +721,33 @@ RUBBER_SHAPES = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": 
 as a study file's swept model does)."""
 
 
+def check_rubber_options(parameters: Mapping[str, Any], axes: Mapping[str, list[Any]]) -> None:
+    """Refuse, in one line naming it, a rubber option that no case of the sweep uses: a shape
+    option whose model no case has (``mooney_ratio`` with neo-Hookean alone was ignored), or
+    ``volumetric`` where every case is linear. With ``model`` an axis each option applies to
+    the cases of its model, as a study file's swept model takes them."""
+    from ..problem import RUBBER_OPTIONS
+
+    models = set(axes.get("model", [parameters.get("model")]))
+    for name in RUBBER_OPTIONS:
+        values = axes.get(name, [parameters.get(name)])
+        if all(value is None for value in values):
+            continue
+        owner = RUBBER_SHAPES.get(name)
+        if owner is not None and owner not in models:
+            raise InputError(
+                f"{name}: applies to the {owner} model only; this sweep's model is "
+                f"{', '.join(sorted(models))}: set model = {owner!r} or leave {name} out",
+                name,
+            )
+        if owner is None and models <= {"linear"}:
+            raise InputError(
+                f"{name}: applies to the finite-strain models only (model one of "
+                "neo-hookean, mooney-rivlin, yeoh, gent); this sweep's model is linear",
+                name,
+            )
+
+
 def _rubber(p: dict[str, Any]):
     """The case's rubber model: ``model`` with its own shape parameters and ``volumetric``."""
     from ..fem.rubber import rubber_model
@@ -637,6 +778,32 @@ def _finite_inputs(p: dict[str, Any]):
         depths=None if depths is None else tuple(float(d) for d in depths),
         rubber=rubber,
     )
+
+
+def _finite_check(p: dict[str, Any]) -> Any:
+    """A finite-strain case's inputs, and its depths against the finite-strain contact's
+    reach (x/a in [1e-6, 1.2]) as its run checks them: the given ``depths``, or the ladder up
+    to ``reach`` x the case's linear x_c (naming mass and velocity); at load, not as a failed
+    case."""
+    import numpy as np
+
+    from ..fem.finite_contact import check_finite_depths
+    from ..study.finite.runner import ladder
+    from ..theory.contact import PowerLawContact
+    from ..theory.impact import solve_impact
+    from ..theory.materials import RIGID, effective_modulus
+
+    study = _finite_inputs(p)
+    model = study.rubber.name
+    if study.depths is not None:
+        check_finite_depths(study.indenter, np.asarray(study.depths), model)
+        return study
+    modulus = effective_modulus(RIGID, study.half_space)
+    law = PowerLawContact(study.indenter, modulus)
+    x_c = solve_impact(study.mass, study.velocity, law).x_c
+    depths = ladder(study.indenter, modulus, x_c, study.ladder)
+    check_finite_depths(study.indenter, depths, model, (study.mass, study.velocity))
+    return study
 
 
 FINITE_OUTPUTS = {
@@ -703,7 +870,7 @@ register_kind(
         parameters=vocabulary_parameters("finite-strain"),
         outputs=FINITE_OUTPUTS,
         case=finite_strain_case,
-        check=_quasi_static(_finite_inputs),
+        check=_quasi_static(_finite_check),
         nondeterministic=("seconds",),
     )
 )

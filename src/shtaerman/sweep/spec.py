@@ -31,7 +31,7 @@ from typing import Any
 
 from ..validation import InputError, shown
 from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, deprecated, suggestion
-from .kinds import KINDS, Kind, Parameter, get_kind
+from .kinds import KINDS, Kind, Parameter, check_rubber_options, get_kind
 
 __all__ = [
     "MAX_CASES",
@@ -352,6 +352,12 @@ def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
 def _check_cases(where: str, spec: SweepSpec) -> None:
     """Build every case's inputs (cheap) so a value out of its physical range fails now."""
     check = spec.kind_spec.check
+    if "model" in spec.kind_spec.parameters:
+        defaults = {**spec.kind_spec.defaults(), **spec.parameters}
+        try:
+            check_rubber_options(defaults, spec.axes)
+        except InputError as error:
+            raise SweepError(f"{where}: {error}") from None
     if check is None:
         return
     for case in spec.cases():
