@@ -86,7 +86,7 @@ def test_parameter_table_has_one_row_per_input():
     assert table.count("| Key, CLI option | Default | Meaning [unit] |") == 3
     assert len([line for line in table if line.startswith("| `")]) == len(VOCABULARY)
     row = next(line for line in table if line.startswith("| `nu2`<br>"))
-    assert "`--nu2` (impact, contact, dynamic)" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
+    assert "`--nu2` (impact, contact, dynamic, effects)" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
     row = next(line for line in table if line.startswith("| `time_steps`<br>"))
     assert "`--time-steps` (dynamic)" in row and "| 200 |" in row and "formerly `steps`" in row
     row = next(line for line in table if line.startswith("| `mesh_size`<br>"))

@@ -13,8 +13,8 @@ listed once, in :data:`shtaerman.__all__`.
 
 import sys
 
-from ..effects import EffectTable as EffectTable
-from ..effects import effects as effects
+from ..effect_table import EffectTable as EffectTable
+from ..effect_table import effects as effects
 from ..problem import Body as Body
 from ..problem import Geometry as Geometry
 from ..problem import Interface as Interface
