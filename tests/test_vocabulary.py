@@ -88,7 +88,11 @@ def test_parameter_table_has_one_row_per_input():
     row = next(line for line in table if line.startswith("| `nu2`<br>"))
     assert "`--nu2` (impact, contact, dynamic, effects)" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
     row = next(line for line in table if line.startswith("| `time_steps`<br>"))
-    assert "`--time-steps` (dynamic)" in row and "| 200 |" in row and "formerly `steps`" in row
+    assert (
+        "`--time-steps` (dynamic, effects)" in row
+        and "| 200 |" in row
+        and "formerly `steps`" in row
+    )
     row = next(line for line in table if line.startswith("| `mesh_size`<br>"))
     assert "0.025 (dynamic)" in row and "0.00666667 (contact, layer)" in row
     row = next(line for line in table if line.startswith("| `thickness_ratio`<br>"))
