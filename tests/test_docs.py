@@ -428,6 +428,11 @@ def test_docs_python_blocks_run(page, block):
         cell = ("rubber", True, "layer bonded", "frictionless", "inertia")
         assert namespace["pad"].cell == cell
         assert 0.0 < namespace["result"].restitution <= 1.0
+    elif page == "guide" and "table" in namespace:  # the effect table with friction refused
+        table = namespace["table"]
+        assert table.run("friction alone").refused.startswith("refused: interface:")
+        # the waves alone: P_max 1.5 % below the paper's P_c = 64.96 N (coarse mesh)
+        assert table.run("waves alone").values["P_max"] == pytest.approx(63.95, rel=2e-3)
     elif page == "guide":  # the paper's example with the theory layer
         impact, contact = namespace["impact"], namespace["contact"]
         assert impact.x_c == pytest.approx(8.5175e-3, rel=1e-4)

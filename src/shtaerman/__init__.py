@@ -9,6 +9,7 @@ The public API (``import shtaerman as sh``; see :mod:`shtaerman.api`)::
     d = sh.dynamic(indenter, rubber, mass=0.25, velocity=2.0)  # dynamic FE impact
     case = sh.Problem.impact(indenter, rubber, mass=0.25, velocity=2.0, thickness=0.012)
     d = sh.dynamic(case, time_steps=200)                       # the same, from one Problem
+    table = sh.effects(case)                  # which effect (pad, waves, ...) moves P_max most
     sh.run_study("paper", out="results"); sh.sweep("nu-grid", workers=2)   # -> sh.SweepOutcome
 
 Names are imported on first use, so ``import shtaerman`` loads neither numpy nor the FEM.
@@ -29,6 +30,7 @@ if TYPE_CHECKING:
         Body,
         ContactResult,
         DynamicResult,
+        EffectTable,
         Geometry,
         ImpactResult,
         InputError,
@@ -41,6 +43,7 @@ if TYPE_CHECKING:
         StudyResults,
         contact,
         dynamic,
+        effects,
         impact,
         run_study,
         sweep,
@@ -55,6 +58,7 @@ __all__ = [
     "Body",
     "ContactResult",
     "DynamicResult",
+    "EffectTable",
     "Geometry",
     "ImpactResult",
     "InputError",
@@ -70,6 +74,7 @@ __all__ = [
     "__version__",
     "contact",
     "dynamic",
+    "effects",
     "impact",
     "run_study",
     "sweep",

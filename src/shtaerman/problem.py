@@ -44,6 +44,7 @@ __all__ = [
     "Unsupported",
     "check_options",
     "check_outputs",
+    "parts",
     "support_table",
 ]
 
@@ -444,28 +445,31 @@ class Problem:
     @classmethod
     def from_keywords(cls, indenter: PowerLawIndenter, body: Material, **keywords: Any) -> Problem:
         """A problem from the API's flat keywords (None: not given), each checked."""
-        unknown = sorted(set(keywords) - set(KEYWORDS))
-        if unknown:
-            raise TypeError(f"unexpected keyword arguments {unknown}")
-        given = {key: value for key, value in keywords.items() if value is not None}
-        return cls(
-            Striker(
-                indenter, given.get("mass"), given.get("velocity"), given.get("striker", RIGID)
-            ),
-            Body(
-                body,
-                given.get("model", "linear"),
-                *(given.get(name) for name in RUBBER_OPTIONS),
-                prony=given.get("prony"),
-            ),
-            Geometry(given.get("thickness"), given.get("base")),
-            Interface(given.get("interface", "frictionless"), given.get("friction")),
-            Loading(
-                given.get("loading", "impact"),
-                given.get("depths"),
-                given.get("rate"),
-            ),
-        )
+        return cls(**parts(indenter, body, **keywords))
+
+
+def parts(indenter: PowerLawIndenter, body: Material, **keywords: Any) -> dict[str, Any]:
+    """The parts of a problem (``striker``, ``body``, ``geometry``, ``interface``,
+    ``loading``) from the API's flat keywords (None: not given), each checked on its own but
+    not whether they combine: ``Problem(**parts(...))`` checks that (:data:`SUPPORT`)."""
+    unknown = sorted(set(keywords) - set(KEYWORDS))
+    if unknown:
+        raise TypeError(f"unexpected keyword arguments {unknown}")
+    given = {key: value for key, value in keywords.items() if value is not None}
+    return dict(
+        striker=Striker(
+            indenter, given.get("mass"), given.get("velocity"), given.get("striker", RIGID)
+        ),
+        body=Body(
+            body,
+            given.get("model", "linear"),
+            *(given.get(name) for name in RUBBER_OPTIONS),
+            prony=given.get("prony"),
+        ),
+        geometry=Geometry(given.get("thickness"), given.get("base")),
+        interface=Interface(given.get("interface", "frictionless"), given.get("friction")),
+        loading=Loading(given.get("loading", "impact"), given.get("depths"), given.get("rate")),
+    )
 
 
 KEYWORDS = (

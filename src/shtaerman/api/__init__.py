@@ -3,6 +3,7 @@
 - :func:`impact`: the exact quasi-static impact (Ateb functions);
 - :func:`contact`: the FEM contact curve against Shtaerman's solution, with error estimates;
 - :func:`dynamic`: the elastodynamic FE impact against the quasi-static theory;
+- :func:`effects`: the effect table of an impact (the pad, the waves, finite strain, ...);
 - :func:`run_study`, :func:`sweep`: study files and parameter sweeps.
 
 Every result is a frozen dataclass whose attributes are the keys of the matching CLI
@@ -12,6 +13,8 @@ listed once, in :data:`shtaerman.__all__`.
 
 import sys
 
+from ..effect_table import EffectTable as EffectTable
+from ..effect_table import effects as effects
 from ..problem import Body as Body
 from ..problem import Geometry as Geometry
 from ..problem import Interface as Interface

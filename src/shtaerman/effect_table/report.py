@@ -1,0 +1,149 @@
+"""The effect table as text (``shtaerman effects``), markdown and CSV (``--out``)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+
+from .table import QUANTITIES, UNITS, Cell, EffectTable
+
+__all__ = ["FILES", "table_csv", "table_markdown", "table_text", "write_table"]
+
+FILES = ("effects.json", "effects.csv", "effects.md")
+"""What ``--out`` writes."""
+HEADERS = {"P_max": "P_max (%)", "x_max": "x_max (%)", "t_contact": "t_contact (%)"}
+HEADERS["restitution"] = "e - 1"
+
+
+def _cell(cell: Cell, key: str) -> str:
+    """``+1.49 ± 0.05`` (per cent; e - 1 as is), ``± n/a`` without a bar."""
+    if cell.change is None:
+        return ""
+    scale, digits = (1.0, 4) if QUANTITIES[key] is None else (100.0, 2)
+    bar = "n/a" if cell.error is None else f"{scale * cell.error:.{digits}f}"
+    return f"{scale * cell.change:+.{digits}f} ± {bar}"
+
+
+def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
+    """(label, cells) per row of the table, the paper's values first, the interaction last;
+    a refused run's single cell is its reason."""
+    ref = table.reference
+    paper = [f"{ref[QUANTITIES[k]]:.5g} {UNITS[k]}" if QUANTITIES[k] else "1" for k in QUANTITIES]
+    rows = [("quasi-static (paper)", paper)]
+    for run in table.runs:
+        if run.refused is not None:
+            rows.append((run.label, [run.refused]))
+            continue
+        cells = table.cells(run.label)
+        rows.append((run.label, [_cell(cells[key], key) for key in QUANTITIES]))
+    interaction = table.interaction()
+    missing = [run.label for run in table.runs if run.role in ("alone", "full") and run.refused]
+    if missing:
+        rows.append(("interaction", [f"n/a: {', '.join(missing)} did not run"]))
+    else:
+        rows.append(("interaction", [_cell(interaction[key], key) for key in QUANTITIES]))
+    return rows
+
+
+def _dominant_lines(table: EffectTable) -> list[str]:
+    lines = []
+    for key, found in table.dominant().items():
+        if found["effect"] is None:
+            lines.append(f"  {key}: none ({found['why']})")
+            continue
+        state = {True: "resolved", False: "not resolved", None: "unknown"}[found["resolved"]]
+        lines.append(f"  {key}: {found['effect']} ({state}: {found['why']})")
+    return lines
+
+
+def _notes(table: EffectTable) -> list[str]:
+    """Why a bar is n/a, and which options a run did not take."""
+    lines = [
+        f"  {run.label}: error bar n/a: {run.error_note}"
+        for run in table.runs
+        if run.values is not None and run.error_note
+    ]
+    lines += [f"  {run.label}: {note}" for run in table.runs for note in run.notes]
+    return lines
+
+
+def table_text(table: EffectTable) -> str:
+    """The table as printed: changes from the paper's quasi-static values with error bars."""
+    rows = _rows(table)
+    width = max(len(label) for label, _ in rows) + 2
+    heads = [HEADERS[k] for k in QUANTITIES]
+    columns = [
+        max(len(h), *(len(c[i]) for _, c in rows if len(c) > 1)) for i, h in enumerate(heads)
+    ]
+
+    def line(label: str, cells: list[str]) -> str:
+        padded = (c.ljust(w) for c, w in zip(cells, columns, strict=False))
+        return (label.ljust(width) + "  ".join(padded)).rstrip()
+
+    out = [
+        "Effect table: changes from the paper's quasi-static impact (P_max, x_max, t_contact in "
+        "per cent of P_c, x_c, t_y; e as e - 1), with their estimated errors",
+        line("", heads),
+        *(line(label, cells) for label, cells in rows),
+        "  interaction = full - sum of the single effects (its bar: the sum of their bars)",
+        "  not in the problem: " + (", ".join(table.absent) or "none"),
+        "dominant single effect (largest |change|; resolved: beyond the error bars):",
+        *_dominant_lines(table),
+    ]
+    notes = _notes(table)
+    return "\n".join(out + (["notes:", *notes] if notes else []))
+
+
+def table_markdown(table: EffectTable) -> str:
+    """The table in markdown (a refused run's reason fills its row)."""
+    heads = [HEADERS[k] for k in QUANTITIES]
+    out = ["| variant | " + " | ".join(heads) + " |", "|---" * (len(heads) + 1) + "|"]
+    for label, cells in _rows(table):
+        cells = cells if len(cells) > 1 else [cells[0], "", "", ""]
+        out.append(f"| {label} | " + " | ".join(c.replace("|", "/") for c in cells) + " |")
+    out += ["", "Dominant single effect:", "", *(f"-{line[1:]}" for line in _dominant_lines(table))]
+    notes = _notes(table)
+    return "\n".join(out + (["", "Notes:", "", *(f"-{n[1:]}" for n in notes)] if notes else []))
+
+
+def _blank(value: float | None) -> str:
+    return "" if value is None else repr(value)
+
+
+def table_csv(table: EffectTable) -> str:
+    """One row per run: values (SI), their errors, changes and their bars; empty: n/a."""
+    keys = list(QUANTITIES)
+    head = ["variant", "role", "effect", "refused"]
+    for key in keys:
+        head += [key, f"{key}_error", f"{key}_change", f"{key}_change_error"]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(head)
+    for run in table.runs:
+        row = [run.label, run.role, run.effect or "", run.refused or ""]
+        cells = table.cells(run.label)
+        for key in keys:
+            value = None if run.values is None else run.values[key]
+            error = None if run.errors is None else run.errors[key]
+            row += [
+                _blank(value),
+                _blank(error),
+                _blank(cells[key].change),
+                _blank(cells[key].error),
+            ]
+        writer.writerow(row)
+    interaction = table.interaction()
+    row = ["interaction", "interaction", "", ""]
+    for key in keys:
+        row += ["", "", _blank(interaction[key].change), _blank(interaction[key].error)]
+    writer.writerow(row)
+    return buffer.getvalue()
+
+
+def write_table(table: EffectTable, folder: Path) -> None:
+    """effects.json, effects.csv and effects.md in ``folder``."""
+    (folder / "effects.json").write_text(json.dumps(table.to_dict(), indent=2) + "\n")
+    (folder / "effects.csv").write_text(table_csv(table))
+    (folder / "effects.md").write_text(table_markdown(table) + "\n")

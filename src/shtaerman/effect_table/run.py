@@ -1,0 +1,184 @@
+"""``shtaerman.effects``: run the full problem and the variants that switch each effect off."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from ..problem import OPTION_SUPPORT, Problem
+from ..validation import InputError, NumericalFailureError, validate_positive
+from ..vocabulary import entry
+from .table import QUANTITIES, EffectTable, Run
+from .variants import Parts, Variant, parts_of, variants
+
+__all__ = ["NUMERICS", "effects"]
+
+NUMERICS = ("time_steps", "mesh_size", "mesh_margin", "domain_factor", "growth", "layer_rate")
+"""The numerical keywords passed to every run (:func:`shtaerman.dynamic`'s)."""
+Progress = Callable[[str], None]
+
+
+def _describe(parts: Parts) -> dict[str, Any]:
+    """The full problem's parts in words and numbers (the table's header)."""
+    striker, body = parts["striker"], parts["body"]
+    prony = body.prony
+    return {
+        "indenter": {"A": striker.indenter.shape_coefficient, "n": striker.indenter.exponent},
+        "mass": striker.mass,
+        "velocity": striker.velocity,
+        "E2": body.material.youngs_modulus,
+        "nu2": body.material.poisson_ratio,
+        "density2": body.material.density,
+        "model": body.model,
+        "prony": None if prony is None else list(zip(prony.weights, prony.times, strict=True)),
+        "geometry": parts["geometry"].name,
+        "thickness": parts["geometry"].thickness,
+        "interface": parts["interface"].name,
+        "friction": parts["interface"].friction,
+    }
+
+
+def _options(problem: Problem, given: dict[str, Any]) -> tuple[dict[str, Any], tuple[str, ...]]:
+    """The numerical options of ``given`` that ``problem``'s combination takes, and a note for
+    each it does not (:data:`shtaerman.problem.OPTION_SUPPORT`), left out of its run."""
+    taken, notes = dict(given), []
+    for limit in OPTION_SUPPORT:
+        if limit.when(problem.cell):
+            for name in [name for name in taken if name in limit.options]:
+                del taken[name]
+                notes.append(f"{name} not applied: {limit.reason.format(model=problem.body.model)}")
+    return taken, tuple(notes)
+
+
+def _error_note(problem: Problem, estimate: bool) -> str:
+    """Why a run has no error estimate."""
+    if not estimate:
+        return "the estimate was switched off (estimate=False, --no-estimate)"
+    if any(lim.when(problem.cell) and "estimate" in lim.options for lim in OPTION_SUPPORT):
+        return f"the {problem.body.model} impact has no error estimate yet (no ladder)"
+    return "the run gave no error estimate"
+
+
+def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
+    """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
+    from ..api.fem_dynamic import dynamic
+
+    start = time.perf_counter()
+    try:
+        problem = Problem(**variant.parts)
+    except InputError as error:
+        return Run(variant.label, variant.role, variant.effect, "-", refused=f"refused: {error}")
+    cell = ", ".join(str(part) for part in problem.cell)
+    options, notes = _options(problem, given)
+    head = dict(label=variant.label, role=variant.role, effect=variant.effect, cell=cell)
+    try:
+        result = dynamic(problem, **options)
+    except (InputError, NumericalFailureError) as error:
+        kind = "refused" if isinstance(error, InputError) else "failed"
+        if variant.role == "none" and isinstance(error, InputError):
+            raise  # the paper's own problem: the numerics are bad input for every run
+        seconds = time.perf_counter() - start
+        return Run(**head, refused=f"{kind}: {error}", seconds=seconds, notes=notes)
+    values = {key: float(getattr(result, key)) for key in QUANTITIES}
+    details = result.estimate_details
+    errors = None
+    if details is not None:
+        errors = {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
+    note = None if errors is not None else _error_note(problem, estimate)
+    seconds = time.perf_counter() - start
+    return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
+
+
+def _numerics(refine: float, estimate: bool, options: Mapping[str, Any]) -> dict[str, Any]:
+    """The numerical keywords given (not None, not the default), each checked now."""
+    if not isinstance(estimate, bool):
+        raise InputError(f"estimate must be True or False, got {estimate!r}", "estimate")
+    given = {k: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
+    if validate_positive("refine", refine) != 1.0:
+        given["refine"] = refine
+    if not estimate:
+        given["estimate"] = False
+    return given
+
+
+def _order(variant: Variant) -> tuple[bool, int]:
+    """Cheapest first: the linear problems before the rubbers, fewer effects first."""
+    body = variant.parts["body"]
+    return (body.model != "linear", 0 if variant.role == "none" else 1)
+
+
+def _reference(parts: Parts) -> dict[str, float]:
+    """The paper's exact quasi-static impact (:func:`shtaerman.impact`): x_c, P_c, t_c, t_y."""
+    from ..api.quasi_static import impact
+
+    striker, body = parts["striker"], parts["body"]
+    quasi = impact(striker.indenter, body.material, mass=striker.mass, velocity=striker.velocity)
+    return {key: float(getattr(quasi, key)) for key in ("x_c", "P_c", "t_c", "t_y")}
+
+
+def effects(
+    problem: Problem | Mapping[str, Any],
+    *,
+    refine: float = 1.0,
+    estimate: bool = True,
+    time_steps: int | None = None,
+    mesh_size: float | None = None,
+    mesh_margin: float | None = None,
+    domain_factor: float | None = None,
+    growth: float | None = None,
+    layer_rate: float | None = None,
+    progress: Progress | None = None,
+) -> EffectTable:
+    """The effect table of an impact: which of its effects moves P_max, x_max, t_contact and e.
+
+    Runs (:func:`shtaerman.dynamic`) the problem with every effect off (the paper's problem,
+    by FE), each of its effects alone, the full problem and the full problem without each
+    effect, and measures each against the paper's exact quasi-static impact
+    (:func:`shtaerman.impact`). A variant whose combination, option or validity guard is
+    refused, or whose run fails, shows its one-line reason in its row; the others run.
+
+    Parameters
+    ----------
+    problem : Problem or mapping
+        The full impact (:meth:`shtaerman.Problem.impact`), or its parts as a mapping
+        (:func:`shtaerman.problem.parts`) when they do not combine as a whole (e.g. friction in
+        an impact, today): the variants that do combine run.
+    refine, estimate, time_steps, mesh_size, mesh_margin, domain_factor, growth, layer_rate
+        The numerics of :func:`shtaerman.dynamic`, for every run (a run whose combination does
+        not take one runs without it, and its row says so). None: each run's default.
+    progress : callable, optional
+        Receives one line per run (its label, combination and time).
+
+    Returns
+    -------
+    EffectTable
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If a part or a numerical option is out of range, or the paper's problem itself (every
+        effect off) is refused with these numerics: before the effects are run.
+    """
+    given = _numerics(refine, estimate, dict(time_steps=time_steps, mesh_size=mesh_size))
+    more = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
+    given.update(_numerics(1.0, True, {**more, "layer_rate": layer_rate}))
+    parts = parts_of(problem)
+    rows, absent = variants(parts)
+    reference = _reference(parts)
+    report = progress or (lambda _line: None)
+    done: list[tuple[dict[str, Any], Run]] = []
+    for index, variant in enumerate(sorted(rows, key=_order), start=1):
+        shared = next((run for p, run in done if p == variant.parts), None)
+        if shared is None:
+            report(f"effects: run {index}/{len(rows)}: {variant.label} ...")
+            run = _run(variant, given, estimate)
+            outcome = run.refused or f"done in {run.seconds:.1f} s"
+            report(f"effects: run {index}/{len(rows)}: {variant.label}: {outcome}")
+        else:
+            run = Run(**{**vars(shared), "label": variant.label, "role": variant.role})
+            run = Run(**{**vars(run), "effect": variant.effect, "seconds": 0.0})
+        done.append((variant.parts, run))
+    by_label = {run.label: run for _, run in done}
+    runs = tuple(by_label[variant.label] for variant in rows)
+    return EffectTable(reference, runs, absent, _describe(parts))
