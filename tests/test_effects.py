@@ -15,8 +15,8 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.effect_table.run import _error_note
-from shtaerman.effect_table.table import QUANTITIES, Cell, dominance
+from shtaerman.api.effect_table.run import _error_note
+from shtaerman.api.effect_table.table import QUANTITIES, Cell, dominance
 from shtaerman.problem import parts
 
 INDENTER = sh.PowerLawIndenter(8.0, 1.3)
@@ -83,7 +83,7 @@ def test_a_rubber_run_has_no_error_bar_yet_and_says_so():
 
 
 def test_a_refused_variant_shows_its_reason_and_the_others_run(friction_table):
-    from shtaerman.effect_table.report import table_text
+    from shtaerman.api.effect_table.report import table_text
 
     friction = friction_table.run("friction alone")
     assert friction.values is None and friction.refused.startswith("refused: interface:")

@@ -21,7 +21,6 @@ from typing import Any
 
 import numpy as np
 
-from .theory.indenter import MAX_EXPONENT, MIN_EXPONENT
 from .validation import InputError, bound_text, shown
 
 __all__ = [
@@ -42,6 +41,11 @@ __all__ = [
 KIND_NAMES = ("impact", "contact", "finite-strain", "dynamic", "layer")
 """The computations an input can belong to (study and sweep kinds)."""
 FEM_KINDS = ("contact", "finite-strain", "dynamic", "layer")
+
+MIN_EXPONENT = 0.25
+MAX_EXPONENT = 20.0
+"""The profile exponent n of z = A r^n that the exact theory takes (a force law x^((n+1)/n)
+from nearly linear to a flat punch); the FEM takes (1, MAX_EXPONENT]."""
 
 
 class DeprecatedKeyWarning(FutureWarning):

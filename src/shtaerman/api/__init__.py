@@ -13,8 +13,6 @@ listed once, in :data:`shtaerman.__all__`.
 
 import sys
 
-from ..effect_table import EffectTable as EffectTable
-from ..effect_table import effects as effects
 from ..problem import Body as Body
 from ..problem import Geometry as Geometry
 from ..problem import Interface as Interface
@@ -26,6 +24,8 @@ from ..theory.materials import RIGID as RIGID
 from ..theory.materials import Material as Material
 from ..validation import InputError as InputError
 from .dynamic_result import DynamicResult as DynamicResult
+from .effect_table import EffectTable as EffectTable
+from .effect_table import effects as effects
 from .fem_contact import ContactResult as ContactResult
 from .fem_contact import contact as contact
 from .fem_dynamic import dynamic as dynamic

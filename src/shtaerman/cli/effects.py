@@ -5,10 +5,10 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..api.effect_table import effects
+from ..api.effect_table.report import FILES, table_text, write_table
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS
-from ..effect_table import effects
-from ..effect_table.report import FILES, table_text, write_table
 from ..problem import parts
 from ..theory.materials import Material
 from ..validation import InputError

@@ -98,9 +98,11 @@ SECANT_TOLERANCE = 1e-10
 """The step's scalar equation is solved to |residual| <= this * M v0 / dt."""
 MAX_SECANT = 30
 DEPTH_RESOLUTION = 1e-12
-"""A secant update below this x the depth is converged: the static solves' energies carry noise
-of ~1e-12 of the stored energy (their Newton tolerance), which near the turning point, over a
-step of ~1e-4 of the depth, keeps the discrete gradient's residual above SECANT_TOLERANCE."""
+"""A secant update below this x the depth (with inertia: x the quasi-static x_c) is converged:
+the contact solves carry noise of their Newton tolerance, which keeps the step's residual above
+SECANT_TOLERANCE where the step is small (the massless turning point: the discrete gradient over
+a step of ~1e-4 of the depth) or the contact set flips between two converged states (a Coulomb
+edge node near separation)."""
 MAX_HALVINGS = 6
 MAX_STEP_CUTS = 4
 """Halvings of a time step of the body with inertia whose Newton or secant failed."""
@@ -939,6 +941,8 @@ def _dynamic_step(
         if abs(r0) <= SECANT_TOLERANCE * force_scale:
             return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
         d1 = d0 - r0 / slope
+        if abs(d1 - d0) <= DEPTH_RESOLUTION * depth_scale:  # at the solves' noise floor
+            return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
         r1, x, lam = residual(d1)
         if d1 != d0:  # the step's own slope is at least the striker's: keep half of it
             slope = max((r1 - r0) / (d1 - d0), 0.5 * stiffness)

@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -157,10 +158,14 @@ def _newton(
     slaves, values, moved = _targets(stepper, held, depth)
     x = x.copy()
     corrections: list[float] = []
+    du, halvings = None, 0
     for iteration in range(1, stepper.max_iterations + 1):
         state = system.state(x)
-        if element_inverted(state):
-            raise NewtonError("an element inverted (J <= 0)")
+        if _invalid(stepper, x, state):
+            du, halvings = _back_track(stepper, du, halvings)
+            x[stepper.free] -= du
+            continue
+        halvings = 0
         tangent = system.tangent_data(x, state)[stepper.take]
         residual = system.residual(x, state)[stepper.free]
         shift = np.zeros(pattern.size)
@@ -181,6 +186,20 @@ def _newton(
         if newton_converged(corrections, stepper.tolerance):
             return x, iteration, corrections
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+
+
+def _invalid(stepper: NewtonStepper, x: np.ndarray, state: Any) -> bool:
+    """Whether ``x`` inverts an element or, where the stepper back-tracks (a body with inertia
+    or a relaxing one), folds the contact surface."""
+    return element_inverted(state) or bool(stepper.backtracks and stepper.folded(x))
+
+
+def _back_track(stepper: NewtonStepper, step: Any, halvings: int) -> tuple[Any, int]:
+    """Half of the last Newton ``step`` (to take back) and the halvings so far; NewtonError
+    when there is none or ``stepper.backtracks`` halvings are spent (0: a static contact)."""
+    if step is None or halvings >= stepper.backtracks:
+        raise NewtonError("an element inverted (J <= 0)")
+    return 0.5 * step, halvings + 1
 
 
 def _reactions(stepper: NewtonStepper, x: np.ndarray, held: np.ndarray) -> np.ndarray:
@@ -286,10 +305,15 @@ def _slide_newton(
     rows = np.flatnonzero(slip != 0)
     x, lam = trial.x.copy(), np.where(slip != 0, trial.lam, 0.0)
     corrections: list[float] = []
+    step, halvings = None, 0
     for iteration in range(1, stepper.max_iterations + 1):
         state = system.state(x)
-        if element_inverted(state):
-            raise NewtonError("an element inverted (J <= 0)")
+        if _invalid(stepper, x, state):
+            step, halvings = _back_track(stepper, step, halvings)
+            x[stepper.free] -= step[: stepper.free.size]
+            lam[rows] -= step[stepper.free.size :]
+            continue
+        halvings = 0
         _, gap, slope, curvature = stepper.geometry(x, depth)
         drag = slip * friction * lam
         residual = system.residual(x, state)
@@ -309,6 +333,7 @@ def _slide_newton(
             raise NewtonError(f"singular Newton matrix ({error})") from None
         x[stepper.free] += du
         lam[rows] += dlam
+        step = np.concatenate([du, dlam])
         corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
         if not np.isfinite(corrections[-1]):
             break

@@ -45,6 +45,7 @@ __all__ = [
 EXPECTED = {
     **{
         item.name: ("" if item.type == "int" else "a number ")
+        + ("in " if item.range_text()[:1] in "([" else "")
         + item.range_text()
         + (f" ({item.unit})" if item.unit else "")
         for item in VOCABULARY

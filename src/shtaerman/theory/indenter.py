@@ -10,12 +10,9 @@ from numpy.typing import ArrayLike
 from scipy.special import gammaln
 
 from ..validation import InputError, validate_positive
+from ..vocabulary import MAX_EXPONENT, MIN_EXPONENT
 
 __all__ = ["PowerLawIndenter", "shape_factor", "validate_exponent"]
-
-
-MIN_EXPONENT = 0.25
-MAX_EXPONENT = 20.0
 
 
 def validate_exponent(exponent: object, name: str = "exponent") -> float:

@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..output.files import json_safe
+from ...output.files import json_safe
 
 __all__ = ["QUANTITIES", "EffectTable", "Run", "change", "dominance", "interaction"]
 

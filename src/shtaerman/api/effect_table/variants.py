@@ -23,7 +23,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
-from ..problem import RUBBER_OPTIONS, Geometry, Interface, Problem
+from ...problem import RUBBER_OPTIONS, Geometry, Interface, Problem
 
 __all__ = ["EFFECTS", "Effect", "Variant", "parts_of", "variants"]
 

@@ -6,9 +6,9 @@ import time
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from ..problem import OPTION_SUPPORT, Problem
-from ..validation import InputError, NumericalFailureError, validate_positive
-from ..vocabulary import entry
+from ...problem import OPTION_SUPPORT, Problem
+from ...validation import InputError, NumericalFailureError, validate_positive
+from ...vocabulary import entry
 from .table import QUANTITIES, EffectTable, Run
 from .variants import Parts, Variant, parts_of, variants
 
@@ -62,7 +62,7 @@ def _error_note(problem: Problem, estimate: bool) -> str:
 
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
-    from ..api.fem_dynamic import dynamic
+    from ..fem_dynamic import dynamic
 
     start = time.perf_counter()
     try:
@@ -110,7 +110,7 @@ def _order(variant: Variant) -> tuple[bool, int]:
 
 def _reference(parts: Parts) -> dict[str, float]:
     """The paper's exact quasi-static impact (:func:`shtaerman.impact`): x_c, P_c, t_c, t_y."""
-    from ..api.quasi_static import impact
+    from ..quasi_static import impact
 
     striker, body = parts["striker"], parts["body"]
     quasi = impact(striker.indenter, body.material, mass=striker.mass, velocity=striker.velocity)
