@@ -1,0 +1,149 @@
+"""The finite-strain impact's error bars against a reference two levels finer.
+
+Run ``python benchmarks/finite_impact_effectivity.py [--cases NAME,...] [--refine K]``.
+Nothing is asserted.
+
+For each case (neo-Hookean), the impact runs at refine K/2, K/sqrt(2), K, K sqrt(2) and 2K
+(:func:`shtaerman.study.dynamic.finite_accuracy.refined`: mesh size field / factor, time steps x
+factor) from a modest base mesh (:data:`BASE_SIZE`, :data:`BASE_GROWTH`; the default axis
+grading) and :data:`BASE_STEPS`. The ladder the API runs at K (levels K/2, K/sqrt 2, K) gives
+each headline quantity's estimate (:func:`.finite_accuracy.ladder_estimates`, and the
+quasi-static differences x_c / x_max - 1, P_c / P_max - 1, t_c / (t_contact / 2) - 1); its
+true error is taken as the difference to the 2K run. Printed: effectivity = estimate / true
+error, which should lie in [0.5, 5]. The ladder one level finer (K/sqrt 2, K, K sqrt 2)
+against the same 2K run is printed too (its reference is one level finer only: its true
+error is understated by about 1 / (1 - 2^(-p/2)), some 3.4 at p = 2, so its effectivities
+read high by that factor).
+
+Cases: ``pad-massless`` / ``pad-inertia``: z = 2 r^1.3, 0.12 kg at 1.5 m/s onto a 12 mm pad
+bonded to a rigid base, E2 = 3 MPa, nu2 = 0.49, density 0 / 1000 kg/m^3; ``paper-massless``:
+the paper's striker (z = 5 r^1.5, 0.7 kg) at 1 m/s on the paper's rubber (7.5 MPa, nu2 0.5),
+massless half-space.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import time
+from dataclasses import replace
+
+from shtaerman.fem.finite_contact import FINITE_MESH
+from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+from shtaerman.study.dynamic.case import compare
+from shtaerman.study.dynamic.finite_accuracy import (
+    FiniteImpact,
+    ladder_estimates,
+    over_levels,
+    refined,
+)
+from shtaerman.study.ladder import LADDER_RATIO
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+
+BASE_SIZE = 1.0 / 20.0
+"""Smallest element / refined radius at refine 1 (the default is 1/60)."""
+BASE_GROWTH = 0.45
+"""Growth at refine 1 (<= 0.5: the ladder's coarsest level doubles it)."""
+BASE_STEPS = {"massless": 40, "inertia": 60}
+"""Time steps per t_y at refine 1 (the coarsest level halves them, >= 20)."""
+
+PAD = dict(indenter=PowerLawIndenter(2.0, 1.3), mass=0.12, velocity=1.5, thickness=0.012)
+CASES = {
+    "pad-massless": dict(PAD, body=Material(3e6, 0.49, 0.0)),
+    "pad-inertia": dict(PAD, body=Material(3e6, 0.49, 1000.0)),
+    "paper-massless": dict(
+        indenter=PowerLawIndenter(5.0, 1.5), body=Material(7.5e6, 0.5, 0.0), mass=0.7, velocity=1.0
+    ),
+}
+HEADLINE = ("x_max", "P_max", "t_contact", "restitution")
+
+
+def settings_of(case: dict) -> FiniteImpactSettings:
+    """The case's settings at refine 1."""
+    rho = case["body"].density
+    default = FINITE_MESH if rho == 0 else INERTIA_MESH
+    mesh = replace(default, size=BASE_SIZE, growth=BASE_GROWTH)
+    if case.get("thickness") is not None:
+        mesh = replace(mesh, thickness=case["thickness"], base="bonded")
+    steps = BASE_STEPS["massless" if rho == 0 else "inertia"]
+    return FiniteImpactSettings(steps=steps, mesh=mesh).resolved(rho)
+
+
+def quantities(run, quasi) -> dict[str, float]:
+    """The headline quantities and the differences against the quasi-static impact."""
+    values = {key: float(getattr(run, key)) for key in HEADLINE}
+    values.update({f"difference_{k}": v for k, v in compare(quasi, run).items()})
+    return values
+
+
+def estimates_of(runs, quasi) -> dict[str, float]:
+    """Absolute error estimates of the last of three runs, per quantity."""
+    found = {k: e.absolute_error for k, e in ladder_estimates(runs).items() if k in HEADLINE}
+    for key in ("x", "P", "t"):
+        found[f"difference_{key}"] = over_levels(
+            runs, lambda r, key=key: compare(quasi, r)[key]
+        ).absolute_error
+    return found
+
+
+def run_case(name: str, refine: float) -> None:
+    case = CASES[name]
+    body = case["body"]
+    impact = FiniteImpact(case["indenter"], body, body.density, case["mass"], case["velocity"])
+    base = settings_of(case)
+    modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)
+    quasi = solve_impact(case["mass"], case["velocity"], PowerLawContact(case["indenter"], modulus))
+    factors = [refine * LADDER_RATIO**k for k in range(-2, 3)]
+    runs = []
+    print(f"\n== {name} (base: size {BASE_SIZE:.3g}, growth {BASE_GROWTH}, {base.steps} steps)")
+    for factor in factors:
+        level = refined(base, factor)
+        start, cpu = time.perf_counter(), time.process_time()
+        runs.append(impact.run(level))
+        wall, cpu = time.perf_counter() - start, time.process_time() - cpu
+        print(
+            f"  refine {factor:.3g}: {runs[-1].mesh['dofs']} dofs, {level.steps} steps, "
+            f"{wall:.1f} s wall, {cpu:.1f} s CPU"
+        )
+    values = [quantities(run, quasi) for run in runs]
+    reference = values[-1]
+    print("  quantity              value(K)        estimate(K)  true(K)   eff(K)  eff(K sqrt2)")
+    ladders = (estimates_of(runs[0:3], quasi), estimates_of(runs[1:4], quasi))
+    for key in values[0]:
+        cells = []
+        for index, estimate in zip((2, 3), ladders, strict=True):
+            true = abs(values[index][key] - reference[key])
+            cells.append((estimate.get(key, math.nan), true))
+        (est, true), (est2, true2) = cells
+        print(
+            f"  {key:<20}  {values[2][key]:<14.7g}  {est:<11.3e}  {true:<8.2e}  "
+            f"{_ratio(est, true):<6}  {_ratio(est2, true2)}"
+        )
+
+
+def _ratio(estimate: float, true: float) -> str:
+    if not math.isfinite(estimate):
+        return "n/a"
+    if true == 0.0:
+        return "inf"
+    return f"{estimate / true:.2f}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", default=",".join(CASES), help="comma-separated case names")
+    parser.add_argument("--refine", type=float, default=1.0, help="K of the estimated level")
+    args = parser.parse_args()
+    print("load average at start:", os.getloadavg())
+    start = time.perf_counter()
+    for name in args.cases.split(","):
+        run_case(name, args.refine)
+    print(f"\ntotal {time.perf_counter() - start:.0f} s wall; load average {os.getloadavg()}")
+
+
+if __name__ == "__main__":
+    main()
