@@ -7,12 +7,14 @@ error bar."""
 from __future__ import annotations
 
 import json
+import warnings
 
 import pytest
 
 import shtaerman as sh
 from shtaerman.cli.finite_dynamic import finite_dynamic_text
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.guards import ValidityWarning
 from shtaerman.study.dynamic import finite_accuracy
 from shtaerman.study.dynamic.finite_accuracy import EstimateMissingWarning
 from shtaerman.validation import NumericalFailureError
@@ -36,11 +38,16 @@ def coarse_mesh():
 
 @pytest.fixture(scope="module")
 def ladder(coarse_mesh):
-    """The massless neo-Hookean impact with its ladder (the default estimate)."""
-    return sh.dynamic(INDENTER, MASSLESS, **CASE)
+    """The massless neo-Hookean impact with its ladder (the default estimate), and the
+    warnings it gave."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE)
+    return result, [str(w.message) for w in caught]
 
 
 def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder):
+    ladder, _ = ladder
     assert [level["steps"] for level in ladder.mesh_ladder] == [25, 35, 50]
     assert [level["refine"] for level in ladder.mesh_ladder] == pytest.approx(
         [0.5, 0.7071, 1], 1e-4
@@ -56,6 +63,7 @@ def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder)
 
 
 def test_the_estimate_bounds_the_difference_to_a_finer_run(ladder, coarse_mesh):
+    ladder, _ = ladder
     finer = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=2.0, estimate=False)
     for key in HEADLINE:
         true = abs(ladder.dynamic[key] / finer.dynamic[key] - 1)
@@ -71,6 +79,7 @@ def _failing(monkeypatch, steps: set[int]) -> None:
     def maybe_fail(self, settings):
         if settings.steps in steps:
             raise NumericalFailureError(f"forced failure at {settings.steps} steps")
+        warnings.warn(f"outside validity at {settings.steps} steps", ValidityWarning, stacklevel=2)
         return run(self, settings)
 
     monkeypatch.setattr(finite_accuracy.FiniteImpact, "run", maybe_fail)
@@ -103,7 +112,11 @@ def test_the_finest_level_failing_reports_the_finest_that_passed(coarse_mesh, mo
 
 def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch):
     _failing(monkeypatch, {35})
-    result = sh.dynamic(INDENTER, MASSLESS, **CASE)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE)
+    # the reported (finest) level's validity warning, not one per level
+    assert [str(w.message) for w in caught] == ["outside validity at 50 steps"]
     assert [level["steps"] for level in result.mesh_ladder] == [25, 70, 50]
     assert "passed with 70 steps" in result.mesh_ladder[1]["failure"]
     assert result.estimate_missing is None and set(result.error_estimate) >= set(HEADLINE)

@@ -31,6 +31,7 @@ from ...fem.finite_dynamic import (
 )
 from ...fem.hyperelastic import NewtonError
 from ...fem.rubber import GentLockError, RubberModel
+from ...guards import ValidityWarning
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.viscoelastic import PronySeries
@@ -257,7 +258,10 @@ def run_finite_ladder(
     factors = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine) if estimate else (refine,)
     runs = {factors[-1]: _level(impact, refined(settings, factors[-1]))}  # the finest first:
     for factor in factors[:-1]:  # its refusals (a Gent lock) come before any other cost
-        runs[factor] = _level(impact, refined(settings, factor))
+        with warnings.catch_warnings():  # the reported level's validity warnings only
+            if isinstance(runs[factors[-1]][1], FiniteImpactResult):
+                warnings.simplefilter("ignore", ValidityWarning)
+            runs[factor] = _level(impact, refined(settings, factor))
     used, outcomes, notes = zip(*(runs[factor] for factor in factors), strict=True)
     results = tuple(r if isinstance(r, FiniteImpactResult) else None for r in outcomes)
     if all(result is None for result in results):
