@@ -80,14 +80,12 @@ def quantities(run, quasi) -> dict[str, float]:
     return values
 
 
-def estimates_of(runs, quasi) -> dict[str, float]:
-    """Absolute error estimates of the last of three runs, per quantity."""
-    found = {k: e.absolute_error for k, e in ladder_estimates(runs).items() if k in HEADLINE}
+def estimates_of(runs, quasi) -> dict[str, tuple[float, str]]:
+    """Absolute error estimates of the last of three runs and their methods, per quantity."""
+    found = {k: e for k, e in ladder_estimates(runs).items() if k in HEADLINE}
     for key in ("x", "P", "t"):
-        found[f"difference_{key}"] = over_levels(
-            runs, lambda r, key=key: compare(quasi, r)[key]
-        ).absolute_error
-    return found
+        found[f"difference_{key}"] = over_levels(runs, lambda r, key=key: compare(quasi, r)[key])
+    return {key: (e.absolute_error, e.method) for key, e in found.items()}
 
 
 def run_case(name: str, refine: float) -> None:
@@ -111,16 +109,23 @@ def run_case(name: str, refine: float) -> None:
         )
     values = [quantities(run, quasi) for run in runs]
     reference = values[-1]
-    print("  quantity              value(K)        estimate(K)  true(K)   eff(K)  eff(K sqrt2)")
+    print(
+        "  levels K/2 .. 2K: "
+        + "; ".join(f"{key} " + ", ".join(f"{v[key]:.7g}" for v in values) for key in HEADLINE)
+    )
+    print(
+        "  quantity              value(K)        estimate(K)  method     true(K)   eff(K)  "
+        "eff(K sqrt2)"
+    )
     ladders = (estimates_of(runs[0:3], quasi), estimates_of(runs[1:4], quasi))
     for key in values[0]:
         cells = []
         for index, estimate in zip((2, 3), ladders, strict=True):
             true = abs(values[index][key] - reference[key])
-            cells.append((estimate.get(key, math.nan), true))
-        (est, true), (est2, true2) = cells
+            cells.append((*estimate.get(key, (math.nan, "-")), true))
+        (est, method, true), (est2, _, true2) = cells
         print(
-            f"  {key:<20}  {values[2][key]:<14.7g}  {est:<11.3e}  {true:<8.2e}  "
+            f"  {key:<20}  {values[2][key]:<14.7g}  {est:<11.3e}  {method:<9}  {true:<8.2e}  "
             f"{_ratio(est, true):<6}  {_ratio(est2, true2)}"
         )
 

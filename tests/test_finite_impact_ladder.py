@@ -120,7 +120,7 @@ def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch
     assert [level["steps"] for level in result.mesh_ladder] == [25, 70, 50]
     assert "passed with 70 steps" in result.mesh_ladder[1]["failure"]
     assert result.estimate_missing is None and set(result.error_estimate) >= set(HEADLINE)
-    assert result.dynamic == ladder.dynamic  # the finest run is the same
+    assert result.dynamic == ladder[0].dynamic  # the finest run is the same
 
 
 def test_no_level_passing_is_the_finest_levels_failure(coarse_mesh, monkeypatch):
