@@ -16,9 +16,9 @@ error is understated by about 1 / (1 - 2^(-p/2)), some 3.4 at p = 2, so its effe
 read high by that factor).
 
 Cases: ``pad-massless`` / ``pad-inertia``: z = 2 r^1.3, 0.12 kg at 1.5 m/s onto a 12 mm pad
-bonded to a rigid base, E2 = 3 MPa, nu2 = 0.49, density 0 / 1000 kg/m^3; ``paper-massless``:
-the paper's striker (z = 5 r^1.5, 0.7 kg) at 1 m/s on the paper's rubber (7.5 MPa, nu2 0.5),
-massless half-space.
+bonded to a rigid base, E2 = 3 MPa, nu2 = 0.49, density 0 / 1000 kg/m^3; ``paper-massless`` /
+``paper-inertia``: the paper's striker (z = 5 r^1.5, 0.7 kg) at 1 m/s on the paper's rubber
+(7.5 MPa, nu2 0.5) half-space, density 0 / 1100 kg/m^3.
 """
 
 from __future__ import annotations
@@ -52,12 +52,12 @@ BASE_STEPS = {"massless": 40, "inertia": 60}
 """Time steps per t_y at refine 1 (the coarsest level halves them, >= 20)."""
 
 PAD = dict(indenter=PowerLawIndenter(2.0, 1.3), mass=0.12, velocity=1.5, thickness=0.012)
+PAPER = dict(indenter=PowerLawIndenter(5.0, 1.5), mass=0.7, velocity=1.0)
 CASES = {
     "pad-massless": dict(PAD, body=Material(3e6, 0.49, 0.0)),
     "pad-inertia": dict(PAD, body=Material(3e6, 0.49, 1000.0)),
-    "paper-massless": dict(
-        indenter=PowerLawIndenter(5.0, 1.5), body=Material(7.5e6, 0.5, 0.0), mass=0.7, velocity=1.0
-    ),
+    "paper-massless": dict(PAPER, body=Material(7.5e6, 0.5, 0.0)),
+    "paper-inertia": dict(PAPER, body=Material(7.5e6, 0.5, 1100.0)),
 }
 HEADLINE = ("x_max", "P_max", "t_contact", "restitution")
 

@@ -138,6 +138,10 @@ def _run(capsys, *argv):
             ("--model", "neo-hookean", "--time-steps", "50", "--refine", "0.7"),
             "--time-steps: the er",
         ),
+        (
+            ("--model", "neo-hookean", "--time-steps", "200", "--refine", "0.5"),
+            "--refine must be >= 0.6",
+        ),
         (("--model", "yeoh", "--mooney-ratio", "0.3"), "--mooney-ratio: applies to the mooney"),
         (("--model", "neo-hookean", "--prony", "0.5"), "--prony:"),
         (("--model", "yeoh", "--prony", "0.7:1e-3,0.4:1e-2"), "--prony:"),

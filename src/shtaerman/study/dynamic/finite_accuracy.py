@@ -170,7 +170,7 @@ def check_finite_ladder(settings: FiniteImpactSettings, refine: float, estimate:
     """Raise InputError, before any run, unless every level of the ladder ending at
     ``refine`` (only that level without ``estimate``) has valid settings."""
     refine = validate_positive("refine", refine)
-    lowest = refine / LADDER_RATIO**2 if estimate else refine
+    lowest = refine / 2.0 if estimate else refine
     if settings.steps is not None and settings.steps * lowest < MIN_STEPS - 0.5:
         fewest = math.ceil((MIN_STEPS - 0.5) / lowest)
         coarsest = "the error-estimate ladder's coarsest level halves" if estimate else "refine"
@@ -180,14 +180,17 @@ def check_finite_ladder(settings: FiniteImpactSettings, refine: float, estimate:
             "(estimate=False, --no-estimate)",
             "time_steps",
         )
-    try:
-        refined(settings, lowest)
-    except InputError as error:
+    mesh = settings.mesh
+    assert mesh is not None, "resolve the settings first"
+    smallest = max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth) * refine / lowest
+    if refine < smallest * (1.0 - 1e-12):
         raise InputError(
-            f"the error-estimate ladder's coarsest level (refine {lowest:g}) is invalid: {error}; "
-            "refine more or run without the estimate (estimate=False, --no-estimate)",
-            error.parameter,
-        ) from None
+            f"refine must be >= {smallest:.3g} with these mesh settings ("
+            + ("the error-estimate ladder's coarsest mesh, refine / 2," if estimate else "it")
+            + f" keeps every size and growth <= 1), got {refine!r}"
+            + ("; or run without the estimate (estimate=False, --no-estimate)" if estimate else ""),
+            "refine",
+        )
 
 
 def over_levels(results: Any, quantity: Callable[[Any], float]) -> Estimate:
@@ -255,7 +258,7 @@ def run_finite_ladder(
         (:class:`shtaerman.fem.rubber.GentLockError`) at once, without retry.
     """
     check_finite_ladder(settings, refine, estimate)
-    factors = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine) if estimate else (refine,)
+    factors = (refine / 2.0, refine / LADDER_RATIO, refine) if estimate else (refine,)
     runs = {factors[-1]: _level(impact, refined(settings, factors[-1]))}  # the finest first:
     for factor in factors[:-1]:  # its refusals (a Gent lock) come before any other cost
         with warnings.catch_warnings():  # the reported level's validity warnings only
