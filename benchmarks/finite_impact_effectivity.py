@@ -1,6 +1,7 @@
 """The finite-strain impact's error bars against a reference two levels finer.
 
-Run ``python benchmarks/finite_impact_effectivity.py [--cases NAME,...] [--refine K]``.
+Run ``python benchmarks/finite_impact_effectivity.py [--cases NAME,...] [--refine K]
+[--defaults]`` (``--defaults``: from the API's default mesh and steps instead of the modest base).
 Nothing is asserted.
 
 For each case (neo-Hookean), the impact runs at refine K/2, K/sqrt(2), K, K sqrt(2) and 2K
@@ -86,14 +87,14 @@ CASES = {
 HEADLINE = ("x_max", "P_max", "t_contact", "restitution")
 
 
-def settings_of(case: dict) -> FiniteImpactSettings:
-    """The case's settings at refine 1."""
+def settings_of(case: dict, defaults: bool = False) -> FiniteImpactSettings:
+    """The case's settings at refine 1 (``defaults``: the API's, else the modest base)."""
     rho = case["body"].density
     default = FINITE_MESH if rho == 0 else INERTIA_MESH
-    mesh = replace(default, size=BASE_SIZE, growth=BASE_GROWTH)
+    mesh = default if defaults else replace(default, size=BASE_SIZE, growth=BASE_GROWTH)
     if case.get("thickness") is not None:
         mesh = replace(mesh, thickness=case["thickness"], base="bonded")
-    steps = BASE_STEPS["massless" if rho == 0 else "inertia"]
+    steps = None if defaults else BASE_STEPS["massless" if rho == 0 else "inertia"]
     return FiniteImpactSettings(steps=steps, mesh=mesh).resolved(rho)
 
 
@@ -112,16 +113,19 @@ def estimates_of(runs, quasi) -> dict[str, tuple[float, str]]:
     return {key: (e.absolute_error, e.method) for key, e in found.items()}
 
 
-def run_case(name: str, refine: float) -> None:
+def run_case(name: str, refine: float, defaults: bool = False) -> None:
     case = CASES[name]
     body = case["body"]
     impact = FiniteImpact(case["indenter"], body, body.density, case["mass"], case["velocity"])
-    base = settings_of(case)
+    base = settings_of(case, defaults)
     modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)
     quasi = solve_impact(case["mass"], case["velocity"], PowerLawContact(case["indenter"], modulus))
     factors = [refine * LADDER_RATIO**k for k in range(-2, 3)]
     runs = []
-    print(f"\n== {name} (base: size {BASE_SIZE:.3g}, growth {BASE_GROWTH}, {base.steps} steps)")
+    print(
+        f"\n== {name} (base: size {base.mesh.size:.3g}, growth {base.mesh.growth}, "
+        f"{base.steps} steps)"
+    )
     for factor in factors:
         level = refined(base, factor)
         start, cpu = time.perf_counter(), time.process_time()
@@ -166,11 +170,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", default=",".join(CASES), help="comma-separated case names")
     parser.add_argument("--refine", type=float, default=1.0, help="K of the estimated level")
+    parser.add_argument(
+        "--defaults", action="store_true", help="base settings: the API's defaults (costly)"
+    )
     args = parser.parse_args()
     print("load average at start:", os.getloadavg())
     start = time.perf_counter()
     for name in args.cases.split(","):
-        run_case(name, args.refine)
+        run_case(name, args.refine, args.defaults)
     print(f"\ntotal {time.perf_counter() - start:.0f} s wall; load average {os.getloadavg()}")
 
 
