@@ -38,16 +38,11 @@ def coarse_mesh():
 
 @pytest.fixture(scope="module")
 def ladder(coarse_mesh):
-    """The massless neo-Hookean impact with its ladder (the default estimate), and the
-    warnings it gave."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        result = sh.dynamic(INDENTER, MASSLESS, **CASE)
-    return result, [str(w.message) for w in caught]
+    """The massless neo-Hookean impact with its ladder (the default estimate)."""
+    return sh.dynamic(INDENTER, MASSLESS, **CASE)
 
 
 def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder):
-    ladder, _ = ladder
     assert [level["steps"] for level in ladder.mesh_ladder] == [25, 35, 50]
     assert [level["refine"] for level in ladder.mesh_ladder] == pytest.approx(
         [0.5, 0.7071, 1], 1e-4
@@ -55,6 +50,8 @@ def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder)
     assert ladder.mesh_ladder[-1]["dofs"] == ladder.mesh["dofs"]  # the finest is the answer
     assert set(ladder.error_estimate) == {*HEADLINE, "restitution"}  # 1 - e^2 is 0 here
     assert set(ladder.differences_error) == {"x_c", "P_c", "t_c"}
+    # measured 1.0e-3 (x_max) to 6.3e-3 (P_max) on this coarse mesh: an estimate, not a
+    # fallback's inf or a zero from two levels agreeing
     assert all(0 < ladder.error_estimate[key] < 0.05 for key in HEADLINE)
     document = json.loads(json.dumps(ladder.to_dict()))  # strict JSON, the linear impact's keys
     assert {"error_estimate", "extrapolated", "estimate_details", "mesh_ladder"} <= set(document)
@@ -63,7 +60,6 @@ def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder)
 
 
 def test_the_estimate_bounds_the_difference_to_a_finer_run(ladder, coarse_mesh):
-    ladder, _ = ladder
     finer = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=2.0, estimate=False)
     for key in HEADLINE:
         true = abs(ladder.dynamic[key] / finer.dynamic[key] - 1)
@@ -120,7 +116,7 @@ def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch
     assert [level["steps"] for level in result.mesh_ladder] == [25, 70, 50]
     assert "passed with 70 steps" in result.mesh_ladder[1]["failure"]
     assert result.estimate_missing is None and set(result.error_estimate) >= set(HEADLINE)
-    assert result.dynamic == ladder[0].dynamic  # the finest run is the same
+    assert result.dynamic == ladder.dynamic  # the finest run is the same
 
 
 def test_no_level_passing_is_the_finest_levels_failure(coarse_mesh, monkeypatch):
