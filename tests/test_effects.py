@@ -14,9 +14,9 @@ import math
 import pytest
 
 import shtaerman as sh
-from shtaerman.cli import main
 from shtaerman.api.effect_table.run import _error_note
 from shtaerman.api.effect_table.table import QUANTITIES, Cell, dominance
+from shtaerman.cli import main
 from shtaerman.problem import parts
 
 INDENTER = sh.PowerLawIndenter(8.0, 1.3)

@@ -134,7 +134,14 @@ def _run(capsys, *argv):
         (("--model", "neo-hookean", "--density2", "1e7"), "density2 must lie in [1e-6, 1e6]"),
         (("--mooney-ratio", "0.3"), "--mooney-ratio: applies to the finite-strain models only"),
         (("--model", "neo-hookean", "--layer-rate", "1"), "--layer-rate: not supported"),
-        (("--model", "neo-hookean", "--refine", "2"), "--refine: not supported"),
+        (
+            ("--model", "neo-hookean", "--time-steps", "50", "--refine", "0.7"),
+            "--time-steps: the er",
+        ),
+        (
+            ("--model", "neo-hookean", "--time-steps", "200", "--refine", "0.5"),
+            "--refine must be >= 0.6",
+        ),
         (("--model", "yeoh", "--mooney-ratio", "0.3"), "--mooney-ratio: applies to the mooney"),
         (("--model", "neo-hookean", "--prony", "0.5"), "--prony:"),
         (("--model", "yeoh", "--prony", "0.7:1e-3,0.4:1e-2"), "--prony:"),
@@ -166,6 +173,7 @@ def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
         mooney_ratio=0.0,
         density=0.0,
         time_steps=50,
+        estimate=False,  # not about accuracy: one run
     )
     assert result.model == "mooney-rivlin"
     assert result.restitution == pytest.approx(1.0, abs=5e-4)

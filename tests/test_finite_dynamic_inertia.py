@@ -182,7 +182,13 @@ def test_api_dynamic_with_model_and_density_runs_the_body_with_inertia(monkeypat
 
     monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
     result = sh.dynamic(
-        INDENTER, RUBBER, mass=MASS, velocity=3.0, model="neo-hookean", density=1100.0
+        INDENTER,
+        RUBBER,
+        mass=MASS,
+        velocity=3.0,
+        model="neo-hookean",
+        density=1100.0,
+        estimate=False,
     )
     report = result.to_dict()
     assert report["parameters"]["density2"] == 1100.0

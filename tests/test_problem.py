@@ -79,18 +79,12 @@ def test_a_part_checks_its_own_values_and_names_them():
 
 def test_options_a_combination_does_not_take_are_refused_by_name():
     rubber = sh.Problem.impact(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean")
-    for name in ("estimate", "refine", "growth", "layer_rate"):
+    for name in ("growth", "layer_rate"):
         with pytest.raises(sh.InputError, match=rf"^{name}: not supported with model"):
             check_options(rubber, [name])
-    check_options(rubber, ["time_steps", "mesh_size", "out", "history", "figure_format"])
-
-
-@pytest.mark.parametrize("keywords", [{"estimate": False}, {"refine": 2.0}])
-def test_the_api_refuses_what_the_finite_impact_ignored(keywords):
-    """sh.dynamic(model=...) used to drop estimate and refine without a word (and
-    figure_format and force, which it now takes with out: tests/test_finite_outputs.py)."""
-    with pytest.raises(sh.InputError, match="not supported with model 'neo-hookean'"):
-        sh.dynamic(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean", **keywords)
+    # the finite impact runs its error-estimate ladder (tests/test_finite_impact_ladder.py)
+    taken = ["time_steps", "mesh_size", "refine", "estimate", "out", "history", "figure_format"]
+    check_options(rubber, taken)
 
 
 def _one_line_error(capsys, argv, words):

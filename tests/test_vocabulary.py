@@ -252,7 +252,12 @@ def test_sweep_and_study_keys_that_were_renamed_warn_once(tmp_path):
         ("finite-strain", "quick", "depth_steps = 2", "expected an integer in [4, 200], got 2"),
         ("dynamic", "numerics", "time_steps = 10", "expected an integer in [50, 5000], got 10"),
         ("dynamic", "numerics", "layer_rate = -1.0", "expected a number in [0, 1e4], got -1.0"),
-        ("dynamic", "numerics", "layer_rate = 1e9", "expected a number in [0, 1e4], got 1000000000.0"),
+        (
+            "dynamic",
+            "numerics",
+            "layer_rate = 1e9",
+            "expected a number in [0, 1e4], got 1000000000.0",
+        ),
     ],
 )
 def test_study_files_check_the_vocabulary_ranges(tmp_path, kind, table, line, expected):

@@ -307,16 +307,14 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
     OptionLimit(
         lambda c: c.model == "rubber" and c.loading != "curve",
         (
-            "refine",
-            "estimate",
             "mesh_margin",
             "domain_factor",
             "growth",
             "layer_rate",
         ),
         "not supported with model {model!r} in the impact (it takes mass, velocity, "
-        "density2, time_steps, mesh_size, thickness, base (bonded), prony, the rubber "
-        "options and the outputs)",
+        "density2, time_steps, mesh_size, refine, estimate, thickness, base (bonded), prony, "
+        "the rubber options and the outputs)",
     ),
     OptionLimit(
         lambda c: c.loading == "massless",

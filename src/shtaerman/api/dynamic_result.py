@@ -26,7 +26,9 @@ class DynamicResult:
     ``dynamic`` holds the FE results; each is also an attribute (``x_max``, ``P_max``,
     ``restitution``, ...). ``differences`` are quasi-static / dynamic - 1 for ``x_c``
     (against x_max), ``P_c`` (P_max) and ``t_c`` (t_contact / 2); ``differences_error``
-    their estimated absolute errors. The ladder's keys are None without the estimate.
+    their estimated absolute errors. The ladder's keys are None without the estimate, and
+    without its levels all passing (``estimate_missing`` then says why; ``mesh_ladder`` shows
+    the levels).
     ``solution`` is the finest FE run (histories, fields), ``ladder`` the error-estimate
     ladder; neither is part of :meth:`to_dict`. One type for every body: ``model`` names the
     material model; a rubber at finite strain adds ``rubber`` (its constants) and ``prony``
@@ -49,6 +51,7 @@ class DynamicResult:
     extrapolated: dict[str, float] | None = None
     estimate_details: dict[str, dict[str, Any]] | None = None
     mesh_ladder: tuple[dict[str, Any], ...] | None = None
+    estimate_missing: str | None = None
     solution: Any = field(default=None, repr=False, compare=False)
     ladder: Any = field(default=None, repr=False, compare=False)
 
@@ -112,6 +115,8 @@ class DynamicResult:
                 estimate_details=self.estimate_details,
                 mesh_ladder=[dict(level) for level in self.mesh_ladder],
             )
+        if self.estimate_missing is not None:
+            document["estimate_missing"] = self.estimate_missing
         return json_safe(document)
 
 

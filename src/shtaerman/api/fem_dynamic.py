@@ -181,7 +181,8 @@ def dynamic(
     model : str
         ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
         ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
-        :func:`shtaerman.api.finite_dynamic.finite_dynamic` runs (no error estimate yet).
+        :func:`shtaerman.api.finite_dynamic.finite_dynamic` runs (``refine`` and ``estimate``
+        as here; the ladder of :mod:`shtaerman.study.dynamic.finite_accuracy`).
 
     Returns
     -------
@@ -211,7 +212,8 @@ def dynamic(
         from .finite_dynamic import finite_dynamic
 
         outputs = dict(out=out, force=force, figure_format=figure_format)
-        return finite_dynamic(problem, time_steps=time_steps, mesh_size=mesh_size, **outputs)
+        numbers = dict(time_steps=time_steps, mesh_size=mesh_size, refine=refine)
+        return finite_dynamic(problem, **numbers, estimate=estimate, **outputs)
     indenter, body = problem.striker.indenter, problem.body.material
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)

@@ -3,13 +3,18 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
+from ..fem.finite_dynamic import FiniteImpactSettings
+from ..study.dynamic.case import compare
+from ..study.dynamic.finite_accuracy import FiniteImpact, FiniteLadder, run_finite_ladder
 from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
+from ..theory.impact import ImpactResult, solve_impact
 from ..vocabulary import entry
-from .dynamic_result import DynamicResult, check_separated
+from .dynamic_result import DIFFERENCES, DynamicResult, check_separated
+from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
     from ..problem import Interface, Problem
@@ -23,6 +28,8 @@ def finite_dynamic(
     *,
     time_steps: int | None = None,
     mesh_size: float | None = None,
+    refine: float = 1.0,
+    estimate: bool = True,
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
@@ -40,6 +47,13 @@ def finite_dynamic(
         Steps per quasi-static impact duration (default 50; 100 with inertia).
     mesh_size : float, optional
         Smallest element / refined radius (default the finite-strain contact's).
+    refine : float
+        Divide the mesh size field by it and multiply the time steps by it (the finest level).
+    estimate : bool
+        Also run the ladder's coarser levels (refine / 2, refine / sqrt 2) for the error
+        estimates (:mod:`shtaerman.study.dynamic.finite_accuracy`); a level that fails twice
+        leaves the estimate missing (``estimate_missing`` says why) and the finest level that
+        passed is reported.
     out : path, optional
         A new folder for dynamic.json, history.csv, energies.csv and dynamic_history.png
         (:func:`shtaerman.output.finite.write_finite_impact`); an existing one is replaced only
@@ -50,23 +64,55 @@ def finite_dynamic(
     Returns
     -------
     DynamicResult
-        With ``model``, ``rubber`` and ``prony`` set; no radiation estimate or error bars.
+        With ``model``, ``rubber`` and ``prony`` set, the ladder's keys with ``estimate``; no
+        radiation estimate.
     """
-    from dataclasses import replace
-
-    from ..fem.finite_contact import FINITE_MESH
-    from ..fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
     from ..output.files import output_folder, staged_folder
     from ..output.finite import write_finite_impact
     from ..plots.formats import check_figure_format
-    from .layer_options import layer_mesh
 
     check_figure_format(figure_format)
     folder = output_folder(out, force=force)  # checked before the run
+    impact, settings = _impact(problem, time_steps, mesh_size)
+    ladder = run_finite_ladder(impact, settings, refine=refine, estimate=estimate)
+    run = ladder.finest
+    law = PowerLawContact(
+        impact.indenter,
+        impact.half_space.youngs_modulus / (1.0 - impact.half_space.poisson_ratio**2),
+    )
+    quasi = solve_impact(impact.mass, impact.velocity, law)
+    summary = run.summary()
+    check_separated(summary, float(run.t[-1]))
+    series = problem.body.prony
+    result = DynamicResult(
+        quasi_static={key: quasi.maxima()[key] for key in ("x_c", "P_c", "t_c", "t_y")},
+        dynamic=summary,
+        differences={DIFFERENCES[k]: value for k, value in compare(quasi, run).items()},
+        radiation_estimate=None,
+        mesh=run.mesh,
+        timings=run.timings,
+        parameters=run.parameters,
+        model=problem.body.model,
+        rubber=problem.body.rubber().to_dict(),
+        prony=None if series is None else _prony_text(series),
+        solution=run,
+        ladder=ladder if estimate else None,
+        **(_ladder_keys(ladder, quasi) if estimate else {}),
+    )
+    if folder is not None:
+        with staged_folder(folder, force=force) as stage:
+            write_finite_impact(result, quasi, stage, figure_format)
+    return result
 
-    indenter, body = problem.striker.indenter, problem.body.material
-    mass, velocity = problem.striker.mass, problem.striker.velocity
-    rho = body.density
+
+def _impact(
+    problem: Problem, time_steps: int | None, mesh_size: float | None
+) -> tuple[FiniteImpact, FiniteImpactSettings]:
+    """The case of ``problem`` and its resolved settings of refine 1 (checked)."""
+    from ..fem.finite_contact import FINITE_MESH
+    from ..fem.finite_dynamic import INERTIA_MESH
+
+    body, rho = problem.body.material, problem.body.material.density
     if mesh_size is not None:
         mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
     if time_steps is not None:  # the command line's range: one guard on every route
@@ -74,35 +120,39 @@ def finite_dynamic(
     default = FINITE_MESH if rho == 0 else INERTIA_MESH
     mesh = default if mesh_size is None else replace(default, size=mesh_size)
     settings = FiniteImpactSettings(steps=time_steps, mesh=layer_mesh(mesh, problem.geometry))
-    rubber, series = problem.body.rubber(), problem.body.prony
-    friction = _friction(problem.interface)
-    run = run_finite_impact(indenter, body, rho, mass, velocity, settings, rubber, series, friction)
-    law = PowerLawContact(indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
-    quasi = solve_impact(mass, velocity, law)
-    summary = run.summary()
-    check_separated(summary, float(run.t[-1]))
-    differences = {
-        "x_c": quasi.x_c / summary["x_max"] - 1.0,
-        "P_c": quasi.P_c / summary["P_max"] - 1.0,
-        "t_c": quasi.t_c / (0.5 * summary["t_contact"]) - 1.0,
-    }
-    result = DynamicResult(
-        quasi_static={key: quasi.maxima()[key] for key in ("x_c", "P_c", "t_c", "t_y")},
-        dynamic=summary,
-        differences=differences,
-        radiation_estimate=None,
-        mesh=run.mesh,
-        timings=run.timings,
-        parameters=run.parameters,
-        model=problem.body.model,
-        rubber=rubber.to_dict(),
-        prony=None if series is None else _prony_text(series),
-        solution=run,
+    striker = problem.striker
+    assert rho is not None and striker.mass is not None and striker.velocity is not None
+    impact = FiniteImpact(
+        striker.indenter,
+        body,
+        rho,
+        striker.mass,
+        striker.velocity,
+        problem.body.rubber(),
+        problem.body.prony,
+        _friction(problem.interface),
     )
-    if folder is not None:
-        with staged_folder(folder, force=force) as stage:
-            write_finite_impact(result, quasi, stage, figure_format)
-    return result
+    return impact, settings.resolved(rho)
+
+
+def _ladder_keys(ladder: FiniteLadder, quasi: ImpactResult) -> dict[str, Any]:
+    """The DynamicResult fields of the ladder: the estimates of the finest run and of its
+    differences against the quasi-static impact (None when the estimate is missing)."""
+    document = ladder.to_dict()
+    errors = None
+    if not ladder.missing:
+        errors = {}
+        for key, name in DIFFERENCES.items():
+            estimate = ladder.estimate(lambda r, key=key: compare(quasi, r)[key])
+            errors[name] = estimate.absolute_error
+    return {
+        "differences_error": errors,
+        "error_estimate": document["error_estimate"],
+        "extrapolated": document["extrapolated"],
+        "estimate_details": document["estimate_details"],
+        "mesh_ladder": tuple(document["mesh_ladder"]),
+        "estimate_missing": document.get("estimate_missing"),
+    }
 
 
 def _prony_text(series: PronySeries) -> str:

@@ -27,7 +27,7 @@ from .common import (
     warn,
     warn_volumetric,
 )
-from .finite_dynamic import finite_dynamic_text, layer_rows
+from .finite_dynamic import finite_dynamic_text, ladder_rows, layer_rows
 from .impact import history_path
 
 NOTES = {
@@ -116,7 +116,8 @@ def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
     outputs = keywords(args, ("out", "force", "figure_format"))
     if problem.body.finite:
         names = ("time_steps", "mesh_size")
-        return {**{n: getattr(args, n) if given(args, n) else None for n in names}, **outputs}
+        chosen = {n: getattr(args, n) if given(args, n) else None for n in names}
+        return {**chosen, **keywords(args, ("refine", "estimate")), **outputs}
     if not given(args, "layer_rate"):  # the API's default: the layer of the case
         args.layer_rate = None
     return {**keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
@@ -232,11 +233,4 @@ def dynamic_text(report: dict) -> str:
         f"{mesh['contact_candidates']} contact candidates",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),
     ]
-    if "error_estimate" in report:
-        ladder = ", ".join(f"{lv['dofs']} dofs/{lv['steps']} steps" for lv in report["mesh_ladder"])
-        estimate = report["error_estimate"]
-        rows += [
-            f"  estimated relative errors (ladder {ladder}): "
-            + ", ".join(f"{key} {value:.1e}" for key, value in estimate.items())
-        ]
-    return "\n".join(rows)
+    return "\n".join(rows + ladder_rows(report))

@@ -27,11 +27,30 @@ def finite_dynamic_text(report: dict) -> str:
         *interface_rows(report["parameters"]),
         *prony_rows(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
-        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs; "
-        "no error estimate",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
     ]
-    return "\n".join(rows)
+    return "\n".join(rows + ladder_rows(report))
+
+
+def ladder_rows(report: dict) -> list[str]:
+    """The error-estimate ladder's levels and estimated relative errors, or why the estimate
+    is missing ([] without the estimate)."""
+    if "mesh_ladder" not in report:
+        return []
+    levels = ", ".join(
+        f"{lv['dofs']} dofs/{lv['steps']} steps" if lv["dofs"] is not None else "failed"
+        for lv in report["mesh_ladder"]
+    )
+    if report.get("estimate_missing"):
+        return [f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
+    errors = report["error_estimate"].items()
+    return [
+        f"  estimated relative errors (ladder {levels}): "
+        + ", ".join(
+            f"{key} {'n/a' if value is None else format(value, '.1e')}" for key, value in errors
+        )
+    ]
 
 
 def interface_rows(parameters: dict) -> list[str]:

@@ -1,0 +1,167 @@
+"""The finite-strain impact's error bar (issue 28, item 5): the ladder of the linear impact
+(refine / 2, refine / sqrt 2, refine; mesh and time steps together), a failed level retried
+with doubled time steps, and the finest level that passed reported when the retry fails too.
+Before, ``refine`` and ``estimate`` were refused with a rubber model and nothing carried an
+error bar."""
+
+from __future__ import annotations
+
+import json
+import warnings
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli.finite_dynamic import finite_dynamic_text
+from shtaerman.fem.mesh import MeshSettings
+from shtaerman.guards import ValidityWarning
+from shtaerman.study.dynamic import finite_accuracy
+from shtaerman.study.dynamic.finite_accuracy import EstimateMissingWarning
+from shtaerman.validation import NumericalFailureError
+
+COARSE = MeshSettings(size=0.15, domain=1e3, growth=0.35, axis_size=1e-3, axis_growth=0.25)
+"""tests/test_finite_dynamic.py's coarse graded mesh (a massless impact in a few seconds)."""
+INDENTER = sh.PowerLawIndenter(5.0, 1.5)
+MASSLESS = sh.Material(7.5e6, 0.5, density=0.0)
+CASE = dict(mass=0.7, velocity=1.0, model="neo-hookean", time_steps=50)
+HEADLINE = ("x_max", "P_max", "t_contact")
+
+
+@pytest.fixture(scope="module")
+def coarse_mesh():
+    import shtaerman.fem.finite_contact as finite_contact
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(finite_contact, "FINITE_MESH", COARSE)
+        yield
+
+
+@pytest.fixture(scope="module")
+def ladder(coarse_mesh):
+    """The massless neo-Hookean impact with its ladder (the default estimate)."""
+    return sh.dynamic(INDENTER, MASSLESS, **CASE)
+
+
+def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder):
+    assert [level["steps"] for level in ladder.mesh_ladder] == [25, 35, 50]
+    assert [level["refine"] for level in ladder.mesh_ladder] == pytest.approx(
+        [0.5, 0.7071, 1], 1e-4
+    )
+    assert ladder.mesh_ladder[-1]["dofs"] == ladder.mesh["dofs"]  # the finest is the answer
+    assert set(ladder.error_estimate) == {*HEADLINE, "restitution"}  # 1 - e^2 is 0 here
+    assert set(ladder.differences_error) == {"x_c", "P_c", "t_c"}
+    # measured 1.0e-3 (x_max) to 6.3e-3 (P_max) on this coarse mesh: an estimate, not a
+    # fallback's inf or a zero from two levels agreeing
+    assert all(0 < ladder.error_estimate[key] < 0.05 for key in HEADLINE)
+    document = json.loads(json.dumps(ladder.to_dict()))  # strict JSON, the linear impact's keys
+    assert {"error_estimate", "extrapolated", "estimate_details", "mesh_ladder"} <= set(document)
+    assert "estimate_missing" not in document
+    assert "estimated relative errors (ladder" in finite_dynamic_text(document)
+
+
+def test_the_estimate_bounds_the_difference_to_a_finer_run(ladder, coarse_mesh):
+    finer = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=2.0, estimate=False)
+    for key in HEADLINE:
+        true = abs(ladder.dynamic[key] / finer.dynamic[key] - 1)
+        # the issue's band: an estimate at least half the difference to a run two levels
+        # finer (which itself understates the true error by 1 - 2^-p, 3/4 at order 2)
+        assert true <= 2.0 * ladder.error_estimate[key], key
+
+
+def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
+    """Runs with these time steps per t_y fail (a numerical failure); the others run (and
+    with ``warn`` give a validity warning each)."""
+    run = finite_accuracy.FiniteImpact.run
+
+    def maybe_fail(self, settings):
+        if settings.steps in steps:
+            raise NumericalFailureError(f"forced failure at {settings.steps} steps")
+        if warn:
+            warnings.warn(
+                f"outside validity at {settings.steps} steps", ValidityWarning, stacklevel=2
+            )
+        return run(self, settings)
+
+    monkeypatch.setattr(finite_accuracy.FiniteImpact, "run", maybe_fail)
+
+
+def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(coarse_mesh, monkeypatch):
+    _failing(monkeypatch, {35, 70})  # the middle level and its retry
+    with pytest.warns(EstimateMissingWarning, match="refine 0.707: 35 steps failed"):
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE)
+    assert result.parameters["time_steps"] == 50  # the finest level passed: reported
+    assert result.error_estimate is None and result.differences_error is None
+    assert "retry with 70 steps failed too" in result.estimate_missing
+    middle = result.mesh_ladder[1]
+    assert middle["dofs"] is None and "forced failure" in middle["failure"]
+    document = json.loads(json.dumps(result.to_dict()))
+    assert document["error_estimate"] is None and document["estimate_missing"]
+    assert "no error estimate (ladder" in finite_dynamic_text(document)
+
+
+def test_the_finest_level_failing_reports_the_finest_that_passed(coarse_mesh, monkeypatch):
+    _failing(monkeypatch, {50, 100})
+    with pytest.warns(EstimateMissingWarning, match="refine 1: 50 steps failed"):
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE)
+    assert result.parameters["time_steps"] == 35  # refine 1/sqrt 2
+    assert (
+        result.mesh == result.solution.mesh and result.mesh_ladder[1]["dofs"] == result.mesh["dofs"]
+    )
+    assert result.error_estimate is None
+
+
+def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch):
+    _failing(monkeypatch, {35}, warn=True)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE)
+    # the reported (finest) level's validity warning, not one per level
+    assert [str(w.message) for w in caught] == ["outside validity at 50 steps"]
+    assert [level["steps"] for level in result.mesh_ladder] == [25, 70, 50]
+    assert "passed with 70 steps" in result.mesh_ladder[1]["failure"]
+    assert result.estimate_missing is None and set(result.error_estimate) >= set(HEADLINE)
+    assert result.dynamic == ladder.dynamic  # the finest run is the same
+
+
+def test_no_level_passing_is_the_finest_levels_failure(coarse_mesh, monkeypatch):
+    _failing(monkeypatch, {25, 50, 35, 70, 100})
+    with pytest.raises(NumericalFailureError, match="forced failure at 100 steps"):
+        sh.dynamic(INDENTER, MASSLESS, **CASE)
+
+
+def test_the_cli_takes_refine_and_no_estimate_with_a_model(coarse_mesh, capsys):
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--model", "neo-hookean", "--density2", "0", "--velocity", "1"]
+    assert main([*argv, "--time-steps", "50", "--refine", "0.8", "--no-estimate", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["parameters"]["time_steps"] == 40  # 50 x refine 0.8
+    assert report["parameters"]["mesh_size"] == pytest.approx(COARSE.size / 0.8)
+    assert "error_estimate" not in report and "mesh_ladder" not in report
+
+
+@pytest.mark.parametrize("density", [0.0, 1000.0])
+def test_the_ladder_runs_on_a_viscoelastic_pad_massless_and_with_inertia(density, monkeypatch):
+    """The researcher's case (z = 2 r^1.3 onto a 12 mm pad, Prony 0.3:1e-3) on the coarse mesh:
+    every headline number and the dissipated fraction carry an estimate."""
+    import shtaerman.fem.finite_contact as finite_contact
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+
+    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
+    monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+    result = sh.dynamic(
+        sh.PowerLawIndenter(2.0, 1.3),
+        sh.Material(3e6, 0.49, density=density),
+        mass=0.12,
+        velocity=1.5,
+        model="neo-hookean",
+        thickness=0.012,
+        prony="0.3:1e-3",
+        time_steps=50,
+    )
+    assert result.mesh["thickness"] == 0.012 and result.parameters["density2"] == density
+    estimated = {*HEADLINE, "restitution", "energy_radiated_fraction", "energy_dissipated_fraction"}
+    assert set(result.error_estimate) == estimated
+    # measured 1.2e-3 to 3.0e-2 on this coarse mesh (P_max the largest): a bar, not noise
+    assert all(1e-4 < error < 0.1 for error in result.error_estimate.values())
+    assert all(error > 0 for error in result.differences_error.values())
