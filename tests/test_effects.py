@@ -14,7 +14,6 @@ import math
 import pytest
 
 import shtaerman as sh
-from shtaerman.api.effect_table.run import _error_note
 from shtaerman.api.effect_table.table import QUANTITIES, Cell, dominance
 from shtaerman.cli import main
 from shtaerman.problem import parts
@@ -35,10 +34,16 @@ def pad_table():
     return sh.effects(problem, **COARSE)
 
 
+REFUSED = dict(thickness=0.012, base="lubricated", model="neo-hookean")
+REFUSED.update(interface="bonded", friction=0.5)
+
+
 @pytest.fixture(scope="module")
-def friction_table():
-    """The waves and friction (refused in the impact today): the parts, not a Problem."""
-    return sh.effects(parts(INDENTER, BODY, **CASE, interface="bonded", friction=0.5), **COARSE)
+def refused_table():
+    """A rubber on a lubricated pad, with friction: the parts, not a Problem (a lubricated base
+    at finite strain is refused). Every rubber variant is refused before any work (the base,
+    or x/a = 2.3 beyond the finite-strain reach 1.2); the linear ones run."""
+    return sh.effects(parts(INDENTER, BODY, **CASE, **REFUSED), **COARSE)
 
 
 def test_interaction_closes_the_sum_on_the_real_table(pad_table):
@@ -77,23 +82,18 @@ def test_without_the_error_estimate_every_bar_is_na_and_says_why(pad_table):
     assert pad_table.dominant()["P_max"]["effect"] == "viscoelasticity"
 
 
-def test_a_rubber_run_has_no_error_bar_yet_and_says_so():
-    rubber = sh.Problem.impact(INDENTER, BODY, **CASE, model="neo-hookean")
-    assert "no error estimate yet" in _error_note(rubber, estimate=True)
-
-
-def test_a_refused_variant_shows_its_reason_and_the_others_run(friction_table):
+def test_a_refused_variant_shows_its_reason_and_the_others_run(refused_table):
     from shtaerman.api.effect_table.report import table_text
 
-    friction = friction_table.run("friction alone")
-    assert friction.values is None and friction.refused.startswith("refused: interface:")
-    assert friction_table.run("waves alone").values is not None
-    assert friction_table.run("without friction").values is not None
-    assert friction_table.run("full").refused is not None
-    assert friction_table.interaction()["P_max"].change is None
-    lines = {line.split("  ")[0]: line for line in table_text(friction_table).splitlines()}
-    assert "refused: interface: the impact's contact is frictionless" in lines["friction alone"]
-    assert lines["interaction"].endswith("n/a: friction alone, full did not run")
+    full = refused_table.run("full")
+    assert full.values is None and full.refused.startswith("refused: base:")
+    assert refused_table.run("finite strain alone").refused.startswith("refused:")
+    for label in ("pad alone", "waves alone", "friction alone", "without finite strain"):
+        assert refused_table.run(label).values is not None, label
+    assert refused_table.interaction()["P_max"].change is None
+    lines = {line.split("  ")[0]: line for line in table_text(refused_table).splitlines()}
+    assert "refused: base: a layer at finite strain is bonded only" in lines["full"]
+    assert "did not run" in lines["interaction"]
 
 
 def test_dominance_is_resolved_only_beyond_the_error_bars():
@@ -111,19 +111,20 @@ def test_dominance_is_resolved_only_beyond_the_error_bars():
 
 def test_cli_writes_the_table_as_json_csv_and_markdown(tmp_path, capsys):
     out = tmp_path / "table"
-    argv = ("effects", *ARGV, "--interface", "bonded", "--friction", "0.5", "--json")
+    argv = ("effects", *ARGV, "--thickness", "0.012", "--base", "lubricated")
+    argv += ("--model", "neo-hookean", "--interface", "bonded", "--friction", "0.5", "--json")
     assert main([*argv, "--out", str(out)]) == 0
     printed, err = capsys.readouterr()
     document = json.loads(printed)
     assert json.loads((out / "effects.json").read_text()) == document
-    assert "effects: run 1/6: none: done in" in err  # a progress line per run
+    assert "effects: run 1/10: none: done in" in err  # a progress line per run
     rows = {
         row["variant"]: row
         for row in csv.DictReader(io.StringIO((out / "effects.csv").read_text()))
     }
     waves = next(run for run in document["runs"] if run["label"] == "waves alone")
     assert float(rows["waves alone"]["P_max"]) == waves["values"]["P_max"]
-    assert rows["friction alone"]["refused"].startswith("refused: interface:")
+    assert rows["full"]["refused"].startswith("refused: base:")
     markdown = (out / "effects.md").read_text()
     assert "| waves alone | -1.57 ± n/a |" in markdown  # the coarse run's P_max change
 

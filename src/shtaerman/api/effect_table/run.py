@@ -55,9 +55,7 @@ def _error_note(problem: Problem, estimate: bool) -> str:
     """Why a run has no error estimate."""
     if not estimate:
         return "the estimate was switched off (estimate=False, --no-estimate)"
-    if any(lim.when(problem.cell) and "estimate" in lim.options for lim in OPTION_SUPPORT):
-        return f"the {problem.body.model} impact has no error estimate yet (no ladder)"
-    return "the run gave no error estimate"
+    return "the run gave no error estimate (see its estimate_missing)"
 
 
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
