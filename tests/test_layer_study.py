@@ -109,7 +109,7 @@ def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
     [
         (
             "[layer]\nthickness_ratio = 0.01\n",
-            r"key 'layer\.thickness_ratio': expected a number \[0\.05, 500\], got 0\.01$",
+            r"key 'layer\.thickness_ratio': expected a number in \[0\.05, 500\], got 0\.01$",
         ),
         ("[layer]\nthickness = -0.02\n", r"key 'layer\.thickness': expected a number > 0"),
         ("[layer]\nthickness = 0.0\n", r"key 'layer\.thickness': expected a number > 0"),
@@ -125,7 +125,7 @@ def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
         ),
         (
             "[sweep]\nthickness_ratio = [1.0, 1000.0]\n",
-            r"key 'sweep\.thickness_ratio': expected a number \[0\.05, 500\]",
+            r"key 'sweep\.thickness_ratio': expected a number in \[0\.05, 500\]",
         ),
         ("[layer]\nthicknes = 0.02\n", r"key 'layer\.thicknes'.*did you mean 'thickness'"),
         (

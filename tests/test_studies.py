@@ -63,7 +63,7 @@ def test_minimal_user_study(tmp_path):
     [
         (
             ("exponent = 1.5", "exponent = -1.5"),
-            r"key 'indenter.exponent': expected a number \[0.25, 20\]",
+            r"key 'indenter.exponent': expected a number in \[0.25, 20\]",
         ),
         (("mass = 0.7", "mass = 'heavy'"), r"key 'impact.mass': expected a number > 0 \(kg\)"),
         (("nu2 = 0.5", "nu2 = 0.6"), r"half_space.nu2': expected a"),

@@ -119,8 +119,7 @@ def test_a_failed_energy_balance_fails_the_case(coarse, monkeypatch):
             "mass = [0.7]",
             "mooney_ratio",
         ),
-        ('model = "neo-hookean"\ndensity2 = 0.0\nrefine = 2.0', "mass = [0.7]", "refine"),
-        ('model = "neo-hookean"\ndensity2 = 0.0\nestimate = true', "mass = [0.7]", "estimate"),
+        ('model = "neo-hookean"\ndensity2 = 0.0\ngrowth = 0.3', "mass = [0.7]", "growth"),
         ('model = "neo-hookean"\ndensity2 = 0.0\naxis_size = 0.01', "mass = [0.7]", "axis_size"),
         (
             'model = "neo-hookean"\ndensity2 = 0.0\nbase = "lubricated"\nthickness = 0.02',
@@ -136,6 +135,18 @@ def test_a_rubber_case_is_refused_at_load(parameters, axes, named):
         _sweep(parameters, axes)
     message = str(refused.value)
     assert named in message and "\n" not in message
+
+
+def test_a_rubber_case_takes_refine_and_estimate_as_the_command_line_does():
+    """The finite-strain impact has its error ladder: refine and estimate reach sh.dynamic (they
+    were refused at load before it had one)."""
+    from shtaerman.sweep.kinds import _finite_impact
+
+    spec = _sweep(
+        'model = "neo-hookean"\ndensity2 = 0.0\nestimate = true\nrefine = 0.8', "mass = [0.7]"
+    )
+    _, numerics = _finite_impact(spec.cases()[0].params)
+    assert (numerics["estimate"], numerics["refine"]) == (True, 0.8)
 
 
 def test_a_shape_option_applies_to_the_cases_of_its_model_when_the_model_is_swept():

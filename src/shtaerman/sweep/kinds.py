@@ -448,6 +448,20 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
     return CaseResult(outputs, tuple(failures))
 
 
+def _result_errors(result: Any) -> dict[str, float]:
+    """:data:`DYNAMIC_ERRORS` of a rubber case's :class:`~shtaerman.DynamicResult` run with
+    its ladder ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a massless
+    elastic body, 0 to round-off)."""
+    if result.error_estimate is None:
+        return {}
+    relative = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
+    out = {f"error_{key}": float(result.error_estimate.get(key, math.nan)) for key in relative}
+    for key, name in (("x", "x_c"), ("P", "P_c"), ("t", "t_c")):
+        out[f"error_difference_{key}"] = float(result.differences_error[name])
+    out["error_difference_worst"] = max(out[f"error_difference_{key}"] for key in "xPt")
+    return out
+
+
 def _dynamic_errors(case: Any) -> dict[str, float]:
     """:data:`DYNAMIC_ERRORS` of a case run with its ladder ({} without one)."""
     estimates = case.estimates()
@@ -461,7 +475,7 @@ def _dynamic_errors(case: Any) -> dict[str, float]:
     return out
 
 
-_FINITE_IMPACT_OPTIONS = ("time_steps", "mesh_size")
+_FINITE_IMPACT_OPTIONS = ("time_steps", "mesh_size", "refine", "estimate")
 """The numerics a finite-strain impact case takes (the others keep their defaults)."""
 
 
@@ -495,7 +509,7 @@ def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
     defaults = KINDS["dynamic"].defaults()
     changed = [
         name
-        for name in (*_DYNAMIC_NUMERICS, "refine", "estimate")
+        for name in _DYNAMIC_NUMERICS
         if name not in _FINITE_IMPACT_OPTIONS and p[name] != defaults[name]
     ]
     if "axis_size" in changed:  # the finite-strain impact grades its own axis
@@ -559,6 +573,7 @@ def finite_impact_case(p: dict[str, Any]) -> CaseResult:
         "difference_worst": max(abs(value) for value in differences.values()),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
+        **_result_errors(result),
     }
     of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
     massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
