@@ -313,8 +313,8 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
             "layer_rate",
         ),
         "not supported with model {model!r} in the impact (it takes mass, velocity, "
-        "density2, time_steps, mesh_size, refine, estimate, thickness, base (bonded), prony, "
-        "the rubber options and the outputs)",
+        "density2, time_steps, mesh_size, refine, estimate, thickness, base (bonded), "
+        "interface, friction, prony, the rubber options and the outputs)",
     ),
     OptionLimit(
         lambda c: c.loading == "massless",
