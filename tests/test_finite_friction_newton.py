@@ -72,3 +72,21 @@ def test_a_repeated_solve_is_warm_and_ends_at_the_same_contact():
     assert warm < cold / 2, (warm, cold)
     assert np.max(abs(x_again - x)[: system.n_displacement]) <= 1e-7 * depth
     assert force_again.sum() == pytest.approx(force.sum(), rel=1e-7)
+
+
+def test_a_bonded_step_failure_beyond_the_validated_depth_names_the_limit():
+    """The pad struck by z = 8 r^1.3 (x/a 2.29) fails near separation with friction 0.5 (its
+    last ring in contact slides back and folds the surface; 2 min on a coarse mesh, not run
+    here): the message names x/a beyond 1.2 and the options, not the time steps."""
+    from shtaerman.fem.finite_dynamic import _step_failure
+    from shtaerman.fem.hyperelastic import NewtonError
+
+    indenter = PowerLawIndenter(8.0, 1.3)
+    system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.49))
+    stepper = HistoryStepper(system, indenter, 5e-3, (NEWTON_TOLERANCE, 30), 0.5)
+    folded = NewtonError("the contact surface folded (candidate nodes crossed)")
+    deep = _step_failure(stepper, (0.0101, 1.5e-3, 5.2e-3), folded)
+    assert "x/a = 2.2" in str(deep) and "beyond" in str(deep)
+    assert "--interface frictionless" in str(deep) and "--shape-coefficient" in str(deep)
+    shallow = _step_failure(stepper, (0.0101, 1.5e-4, 2e-4), folded)
+    assert "x/a" not in str(shallow) and "--density2 0" in str(shallow)
