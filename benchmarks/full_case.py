@@ -3,6 +3,11 @@
 Run ``python benchmarks/full_case.py [--exponents 1.2,1.5,2] [--target 0.7]``. Nothing is
 asserted.
 
+Measured 2026-11-28 (2 cores, other agents' load 1.4-2.5), n = 1.5, A = 5.31: friction 0.5
+x_max 3.296e-3 m (rel. error 3.1e-4), P_max 116.6 N (1.1e-3), t_contact 6.19e-3 s (9.0e-4),
+e 0.8199 (2.4e-4), 57 s; frictionless 18 s (ratio 3.1). The researcher's n = 1.3, A = 2 from
+the CLI with its error bar: 50.6 s (load 0.6-1.6), frictionless 24.5 s (load 1.6-2.0).
+
 For each striker z = A r^n (n in ``--exponents``), 0.12 kg at 1.5 m/s onto a 12 mm neo-Hookean
 pad (E2 3 MPa, nu2 0.49, 1000 kg/m^3, Prony 0.3:1e-3) bonded to a rigid base, the indenter
 bonded with Coulomb friction 0.5: A is chosen so that the quasi-static x_c / a_c is
@@ -10,9 +15,10 @@ bonded with Coulomb friction 0.5: A is chosen so that the quasi-static x_c / a_c
 validated to x / a = 1.2) and x_c stays within half the pad; where no A does, the refusal line
 is printed. Each case is built with ``import shtaerman`` only (``sh.Problem.impact``) and run by
 ``sh.dynamic`` with its error bar (the default), then without friction (the same problem,
-frictionless indenter, also with its error bar) right after. Printed: x_max, P_max, t_contact,
-e with their estimates, the wall time of each, the load average beside it and the ratio of
-the times (the other agents' load moves the times, much less their ratio).
+frictionless indenter, also with its error bar) right after. Printed: x_max, P_max,
+t_contact, e with their estimated relative errors, the wall time of each, the load average
+beside it and the ratio of the times (the other agents' load moves the times, much less
+their ratio).
 """
 
 from __future__ import annotations
@@ -56,7 +62,10 @@ def timed(problem: sh.Problem) -> tuple[sh.DynamicResult, float, float]:
 def line(name: str, result: sh.DynamicResult, seconds: float, load: float) -> str:
     """One row: the four headline results with their estimates, time and load."""
     errors = result.error_estimate or {}
-    cells = [f"{key} {result.dynamic[key]:.5g} +- {errors.get(key, math.nan):.2g}" for key in KEYS]
+    cells = [
+        f"{key} {result.dynamic[key]:.5g} (rel. error {errors.get(key, math.nan):.1e})"
+        for key in KEYS
+    ]
     return f"  {name:12s} " + ", ".join(cells) + f"; {seconds:.0f} s (load {load:.1f})"
 
 
