@@ -376,6 +376,7 @@ def eliminate_gaps(
     rows: np.ndarray,
     slope: np.ndarray,
     gap: np.ndarray,
+    drag: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Newton step of the saddle system [[K, -G_A^T], [-G_A, 0]] by eliminating the constraints.
 
@@ -389,6 +390,13 @@ def eliminate_gaps(
     slave rows and columns onto their masters' (same node: same pattern). The slaves keep
     their place as decoupled rows y_s = 0: the pattern and its ordering stay fixed.
     ``tangent`` is K's data in ``stepper.pattern``.
+
+    ``drag`` (per candidate, slip direction x Coulomb coefficient; None: 0) makes the
+    multiplier of node i push along W_i = (f' - drag_i, -(1 + drag_i f')) instead of G_i
+    (the normal force and the friction drag_i lambda along the tangent (1, f'), linearized in
+    lambda): the rows are combined with W's ratio q_i = (f' - drag_i) / (1 + drag_i f')
+    instead of f' (Q^T K T y = -Q^T (R + K c), no longer symmetric) and
+    dlam_i = -(R + K du)_{u_z,i} / (1 + drag_i f').
     """
     nodes, position, pattern = stepper.nodes, stepper.position, stepper.pattern
     slaves = position[nodes.uz[rows]]
@@ -398,6 +406,11 @@ def eliminate_gaps(
     coefficient = np.ones(pattern.size)
     coefficient[slaves] = 0.0
     coefficient[slaves[ok]] = slope[rows][ok]
+    left, normal = coefficient, 1.0
+    if drag is not None:
+        normal = 1.0 + drag[rows] * slope[rows]
+        left = coefficient.copy()
+        left[slaves[ok]] = ((slope[rows] - drag[rows]) / normal)[ok]
     moved = pattern_entries(pattern, slaves)
     i, j = pattern.indices[moved], pattern.columns[moved]
     reduced = tangent.copy()
@@ -405,16 +418,16 @@ def eliminate_gaps(
     np.add.at(
         reduced,
         pattern.find(target[i], target[j]),
-        coefficient[i] * coefficient[j] * tangent[moved],
+        left[i] * coefficient[j] * tangent[moved],
     )
     reduced[pattern.diagonal[slaves]] = 1.0
     matrix = pattern.matrix(tangent)
     shift = np.zeros(pattern.size)
     shift[slaves] = gap[rows]
     load = residual + matrix @ shift
-    rhs = -np.bincount(target, weights=coefficient * load, minlength=pattern.size)  # -T^T load
+    rhs = -np.bincount(target, weights=left * load, minlength=pattern.size)  # -Q^T load
     du = coefficient * stepper.solver.solve(reduced, rhs)[target] + shift
-    dlam = -(residual + matrix @ du)[slaves]
+    dlam = -(residual + matrix @ du)[slaves] / normal
     return du, dlam
 
 

@@ -60,7 +60,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-from ..guards import check_reach, warn_outside_validity
+from ..guards import MAX_DEPTH_RATIO, check_reach, depth_ratio, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.indenter import PowerLawIndenter
@@ -1058,13 +1058,8 @@ def _march_inertial(
                 limit = stepper.system.material.gent_limit  # within the step: the depth it
                 reached = state.depth + abs(state.speed) * inertial.dt  # was going to
                 raise GentLockError.locking(limit, reached) from None
-            raise NumericalFailureError(
-                f"the step from t = {t:.4g} s (striker depth {state.depth:.4g} m): {error}, "
-                f"also in steps cut {MAX_STEP_CUTS} times; "
-                "the body with inertia cannot follow this impact at these settings (other "
-                "time steps may help; a striker faster than the shear waves never converges): "
-                "--density2 0 gives the massless finite-strain impact"
-            ) from None
+            deepest = max(row[1] for row in rows)
+            raise _step_failure(stepper, (t, state.depth, deepest), error) from None
         total += iterations
         for new in states:
             force, previous = float(new.lam.sum()), float(state.lam.sum())
@@ -1082,6 +1077,34 @@ def _march_inertial(
                 break
     columns = tuple(np.array(column) for column in zip(*rows, strict=True))
     return columns, total, separation, state
+
+
+def _step_failure(
+    stepper: NewtonStepper, at: tuple[float, float, float], error: Exception
+) -> NumericalFailureError:
+    """The failure of a step from time ``at[0]`` (s) at striker depth ``at[1]`` (m), the run
+    having reached ``at[2]`` (m): with a bonded or Coulomb indenter beyond the validated x/a
+    (:data:`.guards.MAX_DEPTH_RATIO`) that limit is named (near separation the last ring in
+    contact slides back inward down the steep flank and folds the surface: the A = 8 pad,
+    x/a 2.29), else what may help."""
+    where = (
+        f"the step from t = {at[0]:.4g} s (striker depth {at[1]:.4g} m): {error}, also in "
+        f"steps cut {MAX_STEP_CUTS} times; "
+    )
+    ratio = depth_ratio(stepper.indenter, at[2])
+    if isinstance(stepper, HistoryStepper) and ratio > MAX_DEPTH_RATIO:
+        return NumericalFailureError(
+            where + f"the bonded indenter reached x/a = {ratio:.3g}, beyond the "
+            f"finite-strain contact's validated {MAX_DEPTH_RATIO:g}, where its last ring in "
+            "contact slides back along the steep striker as it leaves: a blunter striker "
+            "(a smaller --shape-coefficient or a slower --velocity) or --interface "
+            "frictionless (run beyond x/a 1.2 with a warning)"
+        )
+    return NumericalFailureError(
+        where + "the body with inertia cannot follow this impact at these settings (other "
+        "time steps may help; a striker faster than the shear waves never converges): "
+        "--density2 0 gives the massless finite-strain impact"
+    )
 
 
 def _far_kinetic(inertial: _InertialSystem, v: np.ndarray) -> float:

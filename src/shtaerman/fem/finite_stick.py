@@ -39,9 +39,10 @@ Contact radius, pressure, p(0) and the stored energy are reported as
 
 from __future__ import annotations
 
+import functools
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -102,6 +103,8 @@ class _Load:
     """Direction +-1 (along r) of each sliding node, 0 when stuck or free; None: no slip."""
     gripped: np.ndarray | None = None
     """Nodes in contact at the last load step, released and gripped anew within this one."""
+    forces: np.ndarray | None = None
+    """The body's residual at ``x`` (N; at the contact nodes, minus the contact's forces)."""
 
 
 def bonded_ladder(
@@ -138,6 +141,44 @@ def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np
     slaves, values = slaves[order], values[order]
     moved = pattern_entries(stepper.pattern, slaves) if slaves.size else np.zeros(0, np.int64)
     return slaves, values, moved
+
+
+def _newton_stuck(
+    stepper: NewtonStepper, trial: _Load, depth: float, scale: float
+) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+    """:func:`_newton` from ``trial.x`` with its ``held`` nodes stuck (and its ``lam``)."""
+    x, iterations, corrections = _newton(stepper, trial.x, trial.held, depth, scale)
+    return x, trial.lam, iterations, corrections
+
+
+def _warm_newton(
+    newton: Any,
+    stepper: NewtonStepper,
+    trial: _Load,
+    at: tuple[float, float],
+    warm: dict[bytes, tuple] | None,
+) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+    """``newton(stepper, trial, *at)`` (:func:`_newton_stuck`, :func:`_slide_newton`) started
+    from the solution (x, lam) that an earlier solve of the time step found with
+    ``trial``'s contact set, if ``warm`` holds one; the solution is recorded in ``warm``.
+
+    The secant of a time step solves the same load step at nearby depths, each through the
+    same sequence of contact sets; each set's Newton converges (to within its tolerance) to
+    the same solution from either start, in one or two iterations from the warm one. Should
+    the warm start fail, Newton starts again from ``trial``."""
+    if warm is None:
+        return newton(stepper, trial, *at)
+    key = np.isnan(trial.held).tobytes() + (b"" if trial.slip is None else trial.slip.tobytes())
+    solved = None
+    if key in warm:
+        try:
+            solved = newton(stepper, replace(trial, x=warm[key][0], lam=warm[key][1]), *at)
+        except NewtonError:
+            solved = None
+    if solved is None:
+        solved = newton(stepper, trial, *at)
+    warm[key] = solved[:2]
+    return solved
 
 
 def _newton(
@@ -202,10 +243,10 @@ def _back_track(stepper: NewtonStepper, step: Any, halvings: int) -> tuple[Any, 
     return 0.5 * step, halvings + 1
 
 
-def _reactions(stepper: NewtonStepper, x: np.ndarray, held: np.ndarray) -> np.ndarray:
-    """Vertical reactions lambda = -dPi/du_z (N, compression positive) of the stuck nodes."""
-    residual = stepper.system.residual(x)
-    return np.where(np.isnan(held), 0.0, -residual[stepper.nodes.uz])
+def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> np.ndarray:
+    """Vertical reactions lambda = -dPi/du_z (N, compression positive) of the stuck nodes
+    from the body's residual ``forces`` (N)."""
+    return np.where(np.isnan(held), 0.0, -forces[stepper.nodes.uz])
 
 
 def _changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
@@ -255,21 +296,30 @@ def _touch(
 
 
 def _load_step(
-    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
+    stepper: NewtonStepper,
+    last: _Load,
+    guess: np.ndarray,
+    at: tuple[float, float],
+    warm: dict[bytes, tuple] | None = None,
 ) -> _Load:
-    """The contact at ``depth`` (m) from the contact ``last`` at the previous load step;
-    ``scale`` (m) measures Newton's corrections and the gaps (the depth, or where it may be
-    <= 0 the impact's).
+    """The contact at depth ``at[0]`` (m) from the contact ``last`` at the previous load step;
+    ``at[1]`` (m) measures Newton's corrections and the gaps (the depth, or where it may be
+    <= 0 the impact's). ``warm``: the solutions of earlier solves from ``last`` by contact
+    set (:func:`_warm_newton`), updated.
 
     All violated conditions change at once; should a contact set repeat, one at a time."""
+    depth, scale = at
     held, x = _touch(stepper, last, guess, depth, scale), guess
     seen: set[bytes] = set()
     cautious, total = False, 0
     for _ in range(MAX_ACTIVE_SET_ITERATIONS + stepper.nodes.radius.size):
-        x, iterations, corrections = _newton(stepper, x, held, depth, scale)
+        trial = _Load(held, x, last.radius, last.gap, last.lam)
+        x, _, iterations, corrections = _warm_newton(_newton_stuck, stepper, trial, at, warm)
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
-        trial = _Load(held, x, radius, gap, _reactions(stepper, x, held), total, corrections)
+        forces = stepper.system.residual(x)
+        trial = _Load(held, x, radius, gap, _reactions(stepper, forces, held), total, corrections)
+        trial.forces = forces
         release, enter = _changes(stepper, trial, scale, cautious)
         if not (release.any() or enter.any()):
             trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
@@ -289,20 +339,25 @@ def _load_step(
 
 
 def _slide_newton(
-    stepper: NewtonStepper, trial: _Load, friction: float, depth: float, scale: float
+    stepper: NewtonStepper, trial: _Load, depth: float, scale: float, friction: float
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
     """Newton at ``depth`` (m) from ``trial`` (its ``lam``: the sliding nodes' starting
     multipliers, N) with its stuck nodes prescribed and its sliding nodes on the indenter.
 
     A sliding node keeps its gap closed (the frictionless solver's elimination, multiplier
     lambda along the gap's gradient (f', -1)) and carries the friction force
-    -slip ``friction`` lambda (1, f') along the indenter's tangent, lambda lagged one
-    iteration (not linearized). Returns x, the multipliers, the iterations and corrections.
+    -slip ``friction`` lambda (1, f') along the indenter's tangent, linearized in lambda and
+    in the node's radius (:func:`.finite_contact.eliminate_gaps` with ``drag``: Newton's
+    quadratic rate; lagged one iteration, the friction converged linearly at ratios of
+    0.1-0.3 where nodes slide back on unloading). Returns x, the multipliers, the iterations
+    and corrections.
     """
     system, pattern, nodes = stepper.system, stepper.pattern, stepper.nodes
     slip = trial.slip
     slaves, values, moved = _targets(stepper, np.where(slip != 0, np.nan, trial.held), depth)
     rows = np.flatnonzero(slip != 0)
+    sliding = rows[nodes.ur_free[rows]]  # d(drag f')/du_r: the u_z row, the u_r column
+    across = pattern.find(stepper.position[nodes.uz[sliding]], stepper.position[nodes.ur[sliding]])
     x, lam = trial.x.copy(), np.where(slip != 0, trial.lam, 0.0)
     corrections: list[float] = []
     step, halvings = None, 0
@@ -321,6 +376,7 @@ def _slide_newton(
         np.add.at(residual, nodes.uz, lam + drag * slope)
         tangent = system.tangent_data(x, state)[stepper.take]
         tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
+        tangent[across] += (drag * curvature)[sliding]
         shift = np.zeros(pattern.size)
         shift[slaves] = values - x[stepper.free][slaves]
         load = residual[stepper.free] + pattern.matrix(tangent) @ shift
@@ -328,7 +384,7 @@ def _slide_newton(
         tangent[moved] = 0.0
         tangent[pattern.diagonal[slaves]] = 1.0
         try:
-            du, dlam = eliminate_gaps(stepper, tangent, load, rows, slope, gap)
+            du, dlam = eliminate_gaps(stepper, tangent, load, rows, slope, gap, slip * friction)
         except RuntimeError as error:
             raise NewtonError(f"singular Newton matrix ({error})") from None
         x[stepper.free] += du
@@ -347,7 +403,7 @@ def _resolved(stepper: NewtonStepper, load: _Load, depth: float) -> tuple[np.nda
     N on its normal (N, on the body) of each node: ``load``'s vertical reactions and radial
     forces resolved at its current radius."""
     nodes = stepper.nodes
-    residual = stepper.system.residual(load.x)
+    residual = load.forces
     _, _, slope, _ = stepper.geometry(load.x, depth)
     push = np.where(nodes.ur_free, residual[nodes.ur], 0.0)  # radial force on the body
     norm = np.sqrt(1.0 + slope**2)
@@ -397,10 +453,11 @@ def _slide_step(
     guess: np.ndarray,
     at: tuple[float, float],
     friction: float,
+    warm: dict[bytes, tuple] | None = None,
 ) -> _Load:
     """The contact with Coulomb ``friction`` at depth ``at[0]`` (m; ``at[1]`` the scale as in
-    :func:`_load_step`) from ``last``: as :func:`_load_step`, with stuck nodes that slide and
-    sliding ones that stick again."""
+    :func:`_load_step`) from ``last``: as :func:`_load_step` (``warm`` too), with stuck nodes
+    that slide and sliding ones that stick again."""
     depth, scale = at
     slip = np.zeros(last.held.size) if last.slip is None else last.slip.copy()
     held = _touch(stepper, last, guess, depth, scale)
@@ -408,14 +465,15 @@ def _slide_step(
     trial.slip, trial.gripped, total = slip, np.zeros(slip.size, dtype=bool), 0
     seen: set[bytes] = set()
     cautious = False
+    newton = functools.partial(_slide_newton, friction=friction)
     for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * slip.size):
-        x, lam, iterations, corrections = _slide_newton(stepper, trial, friction, depth, scale)
+        x, lam, iterations, corrections = _warm_newton(newton, stepper, trial, at, warm)
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
-        vertical = _reactions(stepper, x, trial.held)
-        gripped = trial.gripped
-        trial = _Load(trial.held, x, radius, gap, vertical, total, corrections, trial.slip)
-        trial.gripped = gripped
+        forces = stepper.system.residual(x)
+        vertical = _reactions(stepper, forces, trial.held)
+        trial = replace(trial, x=x, radius=radius, gap=gap, lam=vertical, forces=forces)
+        trial.iterations, trial.corrections = total, corrections
         changes, excess, shear = _slide_changes(stepper, trial, last, friction, at)
         if not any(change.any() for change in changes):
             trial.gap = np.where(np.isnan(trial.held), np.maximum(gap, 0.0), 0.0)
@@ -431,7 +489,7 @@ def _slide_step(
         slip[to_slip] = -np.sign(shear[to_slip])
         slip[release | to_stick] = 0.0
         lam = np.where(slip != 0, np.where(to_slip, vertical, lam), 0.0)
-        gripped = gripped | (enter & ~np.isnan(last.held))
+        gripped = trial.gripped | (enter & ~np.isnan(last.held))
         trial = _Load(held, x, radius, gap, lam, total, corrections, slip, gripped)
         if np.isnan(held).tobytes() + slip.tobytes() in seen:
             if cautious:
@@ -470,6 +528,7 @@ class HistoryStepper(NewtonStepper):
         )
         self.normal = np.zeros(m)  # the committed normal forces (N)
         self.latest: tuple[_Load, np.ndarray] | None = None
+        self.warm: dict[bytes, tuple] = {}  # the solves from the committed contact, by set
         self.dissipated = 0.0
 
     def solve(
@@ -479,9 +538,9 @@ class HistoryStepper(NewtonStepper):
         x, the vertical reactions (N), iterations and corrections (relative to ``scale``, m)."""
         scale = depth if scale is None else scale
         if math.isinf(self.friction):
-            load = _load_step(self, self.committed, x, depth, scale)
+            load = _load_step(self, self.committed, x, (depth, scale), self.warm)
         else:
-            load = _slide_step(self, self.committed, x, (depth, scale), self.friction)
+            load = _slide_step(self, self.committed, x, (depth, scale), self.friction, self.warm)
         self.latest = (load, _resolved(self, load, depth)[1])
         return load.x, load.lam, load.iterations, load.corrections
 
@@ -499,7 +558,7 @@ class HistoryStepper(NewtonStepper):
             )
             force = 0.5 * (normal + self.normal)[sliding]
             self.dissipated += self.friction * float(np.sum(force * moved * np.sqrt(1 + slope**2)))
-        self.committed, self.normal = load, normal
+        self.committed, self.normal, self.warm = load, normal, {}
 
 
 def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:
@@ -585,7 +644,7 @@ def _load_history(
         guess = _predict(previous, last, ratio)
         try:
             if math.isinf(friction):
-                state = _load_step(stepper, last, guess, depth, depth)
+                state = _load_step(stepper, last, guess, (depth, depth))
             else:
                 state = _slide_step(stepper, last, guess, (depth, depth), friction)
         except NewtonError as error:
