@@ -183,3 +183,23 @@ def test_bad_friction_is_refused_naming_it(bad):
     with pytest.raises(InputError, match=r"^friction: must be >= 0") as raised:
         prepare_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, COARSE, friction=bad)
     assert raised.value.parameter == "friction"
+
+
+def test_a_linear_impact_with_friction_names_its_interface_and_slip_work(capsys):
+    """The adversary's item: a bonded linear run's JSON could not be told from a frictionless
+    one (no interface key; friction as inf would not be JSON), and the slip work was only a
+    column of energies.csv."""
+    import json
+
+    from shtaerman.cli import main
+
+    argv = ["dynamic", "--nu2", "0.3", "--mesh-size", "0.2", "--time-steps", "50"]
+    argv += ["--no-estimate", "--interface", "bonded", "--friction", "0.3", "--json"]
+    assert main(argv) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert (report["parameters"]["interface"], report["parameters"]["friction"]) == ("bonded", 0.3)
+    # slip work of a Coulomb 0.3 striker at nu2 0.3: 7.7e-4 of E0 (helper's table)
+    assert 1e-5 < report["dynamic"]["energy_slip_fraction"] < 1e-2
+    assert main(argv[:-3] + ["--interface", "bonded"]) == 0
+    text = capsys.readouterr().out
+    assert "bonded indenter (no slip)" in text

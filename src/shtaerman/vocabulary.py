@@ -305,6 +305,8 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
     expected = expected.removesuffix(rigid)
     unit = (f" {item.unit}" if item.unit else "") + rigid
     is_number = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
+    if is_number and isinstance(value, numbers.Integral) and abs(value) > 2**1023:
+        raise says.error(item, f"must lie in {expected}", "an integer beyond any float")
     whole = is_number and math.isfinite(value) and float(value) == int(value)
     if item.type == "int" and not whole:
         raise says.error(item, f"must be {expected}", value)
@@ -317,7 +319,7 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
         verb = "lie in" if expected[0] in "([" else "be"
         raise says.error(item, f"must {verb} {expected}{unit}", value)
-    return int(value) if item.type == "int" else float(value)
+    return int(value) if item.type == "int" else float(value) + 0.0  # -0.0 is 0
 
 
 def _numeric(
@@ -569,10 +571,10 @@ VOCABULARY: tuple[Entry, ...] = (
         "friction",
         "",
         "Coulomb friction coefficient of a bonded indenter: a point in contact slides where its "
-        "shear exceeds friction x its pressure",
+        "shear exceeds friction x its pressure (no slip at all: leave it out)",
         "Friction coefficient",
         None,
-        valid=Range(0.0, None, low_open=False),
+        valid=Range(0.0, 100.0, low_open=False),  # rubber on steel: up to ~3; 100 never slides
     ),
     # --- the numerics -----------------------------------------------------------------------
     _numeric(

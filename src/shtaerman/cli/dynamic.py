@@ -27,7 +27,7 @@ from .common import (
     warn,
     warn_volumetric,
 )
-from .finite_dynamic import finite_dynamic_text, ladder_rows, layer_rows
+from .finite_dynamic import finite_dynamic_text, interface_rows, ladder_rows, layer_rows
 from .impact import history_path
 
 NOTES = {
@@ -216,6 +216,7 @@ def dynamic_text(report: dict) -> str:
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
         *layer_rows(mesh),
+        *interface_rows(report["parameters"]),
         "                          dynamic FEM     quasi-static",
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",

@@ -41,7 +41,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         p, (*inputs, "friction", "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES
     )
     add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
-    accuracy = p.add_argument_group("accuracy (each linear run's error-estimate ladder)")
+    accuracy = p.add_argument_group("accuracy (each run's error-estimate ladder)")
     add_inputs(accuracy, ("refine", "estimate"), "dynamic")
     numerics = p.add_argument_group("numerical controls (every run; see 'shtaerman dynamic')")
     add_inputs(numerics, tuple(SETTINGS_OPTIONS), "dynamic", aliases={"time_steps": ("--steps",)})

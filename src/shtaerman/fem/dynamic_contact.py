@@ -366,7 +366,11 @@ class DynamicImpactResult:
             "energy_balance_error",
             "reflected_energy_fraction",
         )
-        return {key: float(getattr(self, key)) for key in keys} | self.viscoelastic
+        summary = {key: float(getattr(self, key)) for key in keys} | self.viscoelastic
+        if "interface" in self.parameters:  # the work of friction, of M v0^2 / 2
+            energy0 = 0.5 * self.parameters["mass"] * self.parameters["velocity"] ** 2
+            summary["energy_slip_fraction"] = float(self.energies["slip"][-1]) / energy0
+        return summary
 
     def history_columns(self) -> dict[str, np.ndarray]:
         """t (s), x (m), v (m/s), P (N), a (m), p0 (Pa), one row per step."""
@@ -992,8 +996,16 @@ def _parameters(
         "quasi_static_a_c": qs.a_c,
         "beta": qs.beta,
         "solver_backward_error": problem.factorization.backward_error,
-        **({} if problem.friction is None else {"friction": problem.friction}),
+        **_interface(problem.friction),
     }
+
+
+def _interface(friction: float | None) -> dict[str, object]:
+    """The parameters naming a bonded indenter, and Coulomb's mu where finite (JSON has no
+    inf); none when frictionless."""
+    if friction is None:
+        return {}
+    return {"interface": "bonded", **({} if math.isinf(friction) else {"friction": friction})}
 
 
 def _result(
