@@ -18,6 +18,7 @@ from shtaerman.output.dynamic import write_dynamic_study
 from shtaerman.output.text_dynamic import entry, study_findings, validity_rows
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study
+from shtaerman.sweep import KINDS, load_sweep
 
 ONE_CASE = DYNAMIC_STUDY.replace("velocity = [1.0, 3.0]", "velocity = 3.0")
 COARSE = "[numerics]\nmesh_size = 0.2\ntime_steps = 50\n"
@@ -45,15 +46,43 @@ def _with_friction(text: str) -> str:
     return text.replace("figure_velocity = 3.0\n", "figure_velocity = 3.0\n" + FRICTION)
 
 
-def test_a_linear_study_with_friction_is_the_command_line(tmp_path):
+SWEEP = """\
+name = "friction"
+kind = "dynamic"
+[parameters]
+mesh_size = 0.2
+time_steps = 50
+estimate = false
+interface = "bonded"
+[axes]
+friction = [0.5]
+"""
+
+
+@pytest.fixture(scope="module")
+def linear_cli():
+    """``shtaerman dynamic --interface bonded --friction 0.5`` of the paper's case, coarse."""
+    return _cli("--interface", "bonded", "--friction", "0.5")["dynamic"]
+
+
+def test_a_dynamic_sweep_case_with_friction_is_the_command_line(tmp_path, linear_cli):
+    """Old code: ``interface`` and ``friction`` were no parameters of the dynamic kind."""
+    path = tmp_path / "sweep.toml"
+    path.write_text(SWEEP)
+    [case] = load_sweep(path).cases()
+    outputs = KINDS["dynamic"].case(case.params).outputs
+    for key in ("x_max", "P_max", "t_contact", "restitution"):
+        assert outputs[key] == linear_cli[key], key  # the same run: bit for bit
+
+
+def test_a_linear_study_with_friction_is_the_command_line(tmp_path, linear_cli):
     """Old code: ``impact.interface`` was an unknown key; the study now runs the case the
     command line runs, number for number (the same function on the same problem)."""
     text = _with_friction(ONE_CASE) + "[numerics]\nmesh_size = 0.1\ntime_steps = 100\n" + QUICK
     outcome = run_study(_study(tmp_path, text), quick=True)
     document = outcome.document()["cases"][0]["dynamic"]
-    cli = _cli("--interface", "bonded", "--friction", "0.5")["dynamic"]
     for key in COMPARED:  # the same run: bit for bit
-        assert document[key] == cli[key], key
+        assert document[key] == linear_cli[key], key
     words = entry(outcome, {}, None, None)["case"]
     assert "bonded indenter with Coulomb friction mu = 0.5" in words
     assert outcome.document()["inputs"]["friction"] == 0.5

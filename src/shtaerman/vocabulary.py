@@ -561,6 +561,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "the indenter's surface: frictionless, or bonded (no slip once in contact)",
         "Interface",
         "frictionless",
+        ("dynamic",),
         valid=None,
         type="str",
         choices=("frictionless", "bonded"),
@@ -572,6 +573,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "shear exceeds friction x its pressure",
         "Friction coefficient",
         None,
+        ("dynamic",),
         valid=Range(0.0, None, low_open=False),
     ),
     # --- the numerics -----------------------------------------------------------------------

@@ -317,6 +317,7 @@ def _dynamic_problem(p: dict[str, Any], settings: Any) -> None:
         velocity=p["velocity"],
         prony=_prony(p),
         **(layer if settings.thickness is not None else {}),
+        **_surface(p),
     )
     check_options(problem, ["layer_rate"] if p["layer_rate"] is not None else [])
 
@@ -348,6 +349,12 @@ def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: 
     a_c = float(solve_impact(p["mass"], p["velocity"], contact).a_c)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
     return replace(settings, thickness=layer.thickness, base=layer.base)
+
+
+def _surface(p: dict[str, Any]) -> dict[str, Any]:
+    """The striker's surface of a case: ``interface`` and ``friction`` (Coulomb's mu of a
+    bonded striker; None: no slip), as keywords of :meth:`~shtaerman.problem.Problem.impact`."""
+    return {"interface": p.get("interface", "frictionless"), "friction": p.get("friction")}
 
 
 def _prony(p: dict[str, Any]):
@@ -413,13 +420,15 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
     """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
     failed when its energy balance or its reflected energy exceed what the studies allow. A
     rubber ``model``: the finite-strain impact (:func:`finite_impact_case`)."""
-    from ..study.dynamic.case import run_case
+    from ..problem import Interface
+    from ..study.dynamic.case import impact_friction, run_case
     from ..study.dynamic.loader import dynamic_check_failures
 
     if p["model"] != "linear":
         return finite_impact_case(p)
     start = time.perf_counter()
-    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p))
+    friction = impact_friction(Interface(*_surface(p).values()))
+    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p), friction=friction)
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
     compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
@@ -491,6 +500,7 @@ def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
         prony=_prony(p),
         **geometry,
         **rubber,
+        **_surface(p),
     )
     defaults = KINDS["dynamic"].defaults()
     changed = [
