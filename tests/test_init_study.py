@@ -202,6 +202,7 @@ SCHEMAS = {
     "contact": "shtaerman.study.contact.loader:_StudyFile",
     "dynamic": "shtaerman.study.dynamic.loader:_DynamicFile",
     "finite-strain": "shtaerman.study.finite.loader:_FiniteFile",
+    "effects": "shtaerman.api.effect_table.study:_EffectsFile",
 }
 """Study kind -> the schema its loader decodes a file with."""
 

@@ -245,10 +245,69 @@ small_steps = 5             # geometric depths from it to the first equal step
 """
 """The finite-strain study template."""
 
+EFFECTS_TEMPLATE = """\
+# A shtaerman effects study (TOML): the effect table of one impact, which effect (the pad, the
+# waves, finite strain, viscoelasticity, friction) moves P_max, x_max, t_contact and e away
+# from the paper's quasi-static values (as 'shtaerman effects --out' writes it). Run it with
+#     shtaerman verify {file} --quick    # no error bars, seconds
+#     shtaerman verify {file}            # each run with its error bar
+# SI units everywhere; the keys are those of a dynamic study.
+kind = "effects"
+
+# name = "{name}"           # the study's name in reports and folders; default: the file name
+description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on a rubber pad (edit me)"
+
+[indenter]                  # the (rigid) striker's surface: z = A r^n
+shape_coefficient = 5.0     # A, m^(1-n)
+exponent = 1.5              # n > 1
+
+[half_space]                # the body struck
+E2 = 7.5e6                  # Pa
+nu2 = 0.5                   # in [0, 0.5]
+density2 = 1100.0           # kg/m^3; > 0: the waves are an effect (0: massless)
+# prony = "0.3:1e-3"        # viscoelasticity: g1:tau1,... (tau in s; default none)
+
+[impact]
+mass = 0.7                  # kg
+velocity = 3.0              # m/s
+# interface = "bonded"      # friction as an effect (default "frictionless")
+#   friction = 0.5          # with "bonded": Coulomb's mu >= 0 (default none: no slip)
+
+# [rubber]                  # finite strain as an effect
+# model = "linear"          # the default; or a rubber at finite strain:
+#   model = "neo-hookean"   # or "mooney-rivlin", "yeoh", "gent"
+#   mooney_ratio = 0.1      # mooney-rivlin: r = C01 / (C10 + C01), in [0, 1)
+#   yeoh = [-0.101, 0.0127] # yeoh: C20/C10, C30/C10
+#   gent_limit = 30.0       # gent: Jm, the limit of I1 - 3
+#   volumetric = "quadratic"  # for nu2 < 0.5, or "logarithmic"
+
+[layer]                     # the pad as an effect (leave the table out: the half-space)
+thickness = 0.02            # m, or instead
+#   thickness_ratio = 5.0   # H / a_c (a_c: the half-space contact radius at x_c)
+# base = "bonded"           # or "lubricated"
+#   dynamic = false         # a contact study's key: refused here
+
+[numerics]                  # every run's numerics (defaults: each run's own)
+mesh_size = 0.1             # smallest element / refined radius
+time_steps = 100            # time steps per quasi-static impact duration t_y
+# refine = 1.0              # divide the mesh sizes and the time step by K
+# estimate = true           # each run's error bar (3-level ladder)
+# mesh_margin = 1.3         # refined radius / quasi-static contact radius
+# domain_factor = 1e4       # domain radius / refined radius
+# growth = 0.2              # element growth away from the contact zone
+# layer_rate = 0.0          # absorbing-layer damping rate x t_y
+
+[quick]                     # 'verify --quick': takes the [numerics] keys (default: no estimate)
+mesh_size = 0.2
+time_steps = 50
+"""
+"""The effects study template."""
+
 TEMPLATES = {
     "contact": STUDY_TEMPLATE,
     "dynamic": DYNAMIC_TEMPLATE,
     "finite-strain": FINITE_TEMPLATE,
+    "effects": EFFECTS_TEMPLATE,
 }
 """Study kind -> its commented template."""
 
@@ -268,8 +327,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         "--kind",
         default="contact",
         choices=tuple(TEMPLATES),
-        help="the study's kind: the static FEM contact, the dynamic FE impact, or the "
-        "neo-Hookean finite-strain contact",
+        help="the study's kind: the static FEM contact, the dynamic FE impact, the "
+        "finite-strain contact, or the effect table of an impact",
     )
     add_inputs(p, ("force",), None)
     p.set_defaults(handler=run)
