@@ -158,3 +158,76 @@ def test_a_file_name_that_is_not_utf8_is_written_whole(tmp_path, capsys):
     assert "s\\xff.toml" in capsys.readouterr().out
     text = path.read_bytes().decode("utf-8")
     assert text.startswith("# A shtaerman cross-check study") and "s\\xff.toml --quick" in text
+
+
+def schema_keys(struct: type, prefix: str = "") -> set[str]:
+    """Every key path (``table.key``) a study schema accepts, its tables included."""
+    from typing import get_args, get_type_hints
+
+    from shtaerman.study.schema import Table
+
+    keys, hints = set(), get_type_hints(struct)
+    for name in struct.__struct_fields__:
+        table = next(
+            (
+                c
+                for c in (hints[name], *get_args(hints[name]))
+                if isinstance(c, type) and issubclass(c, Table)
+            ),
+            None,
+        )
+        keys.add(prefix + name)
+        if table is not None:
+            keys |= schema_keys(table, f"{prefix}{name}.")
+    return keys
+
+
+def template_keys(template: str) -> set[str]:
+    """The key paths a template shows, written or commented out (``# key = ...``, and an
+    alternative inside a comment, ``#   # key = ...``), each under the table above it."""
+    keys, table = set(), ""
+    for line in template.splitlines():
+        header = re.match(r"#?\s*\[([a-z_]+)\]", line)
+        if header:
+            table = header[1]
+            keys.add(table)
+            continue
+        key = re.match(r"#?[ #]*([A-Za-z_][A-Za-z0-9_]*) = ", line)
+        if key:
+            keys.add(f"{table}.{key[1]}" if table else key[1])
+    return keys
+
+
+SCHEMAS = {
+    "contact": "shtaerman.study.contact.loader:_StudyFile",
+    "dynamic": "shtaerman.study.dynamic.loader:_DynamicFile",
+    "finite-strain": "shtaerman.study.finite.loader:_FiniteFile",
+    "effects": "shtaerman.api.effect_table.study:_EffectsFile",
+}
+"""Study kind -> the schema its loader decodes a file with."""
+
+
+@pytest.mark.parametrize("kind", sorted(SCHEMAS))
+def test_every_key_of_the_kinds_schema_is_in_its_template(kind):
+    """A [quick] key counts as shown where its [numerics] twin is: the template says [quick]
+    takes the [numerics] keys."""
+    import importlib
+
+    from shtaerman.cli.init_study import TEMPLATES
+
+    module, _, name = SCHEMAS[kind].partition(":")
+    accepted = schema_keys(getattr(importlib.import_module(module), name))
+    shown = template_keys(TEMPLATES[kind])
+    twins = {
+        f"quick.{key.removeprefix('numerics.')}" for key in shown if key.startswith("numerics.")
+    }
+    assert re.search(r"(?m)^#? ?\[quick\].*the \[numerics\] keys", TEMPLATES[kind])
+    assert sorted(accepted - shown - twins) == []
+    assert shown - accepted == {"kind"}  # and nothing the schema refuses
+
+
+def test_the_template_kinds_are_the_study_kinds():
+    from shtaerman.cli.init_study import TEMPLATES
+    from shtaerman.study.kinds import study_kinds
+
+    assert sorted(TEMPLATES) == sorted(SCHEMAS) == study_kinds()

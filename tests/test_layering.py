@@ -39,7 +39,9 @@ ALLOWED = {
     "sweep": {"sweep", "output", "plots", "study", "fem", "theory", "paper", "guards", "problem"}
     # one exception, named: a rubber impact case runs sh.dynamic itself (imported in the case,
     # not at load), so that a sweep row is the command line's numbers by construction
-    | {"api.fem_dynamic"},
+    | {"api.fem_dynamic"}
+    # and an effects case runs sh.effects (the table of shtaerman effects), the same way
+    | {"api.effect_table"},
     # the public Python API stands beside the CLI: everything below it, not the CLI
     "api": {"api", "sweep", "output", "plots", "study", "fem", "theory", "paper", "guards"}
     | {"problem"},

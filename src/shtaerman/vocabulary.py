@@ -563,6 +563,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "the indenter's surface: frictionless, or bonded (no slip once in contact)",
         "Interface",
         "frictionless",
+        ("dynamic",),
         valid=None,
         type="str",
         choices=("frictionless", "bonded"),
@@ -574,6 +575,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "shear exceeds friction x its pressure (no slip at all: leave it out)",
         "Friction coefficient",
         None,
+        ("dynamic",),
         valid=Range(0.0, 100.0, low_open=False),  # rubber on steel: up to ~3; 100 never slides
     ),
     # --- the numerics -----------------------------------------------------------------------

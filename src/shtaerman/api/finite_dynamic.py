@@ -2,22 +2,16 @@
 
 from __future__ import annotations
 
-import math
-from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..fem.finite_dynamic import FiniteImpactSettings
-from ..study.dynamic.case import compare
-from ..study.dynamic.finite_accuracy import FiniteImpact, FiniteLadder, run_finite_ladder
-from ..theory.contact import PowerLawContact
-from ..theory.impact import ImpactResult, solve_impact
-from ..vocabulary import entry
+from ..study.dynamic.case import compare, finite_case
+from ..study.dynamic.finite_accuracy import FiniteLadder
+from ..theory.impact import ImpactResult
 from .dynamic_result import DIFFERENCES, DynamicResult, check_separated
-from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
-    from ..problem import Interface, Problem
+    from ..problem import Problem
     from ..theory.viscoelastic import PronySeries
 
 __all__ = ["finite_dynamic"]
@@ -73,14 +67,9 @@ def finite_dynamic(
 
     check_figure_format(figure_format)
     folder = output_folder(out, force=force)  # checked before the run
-    impact, settings = _impact(problem, time_steps, mesh_size)
-    ladder = run_finite_ladder(impact, settings, refine=refine, estimate=estimate)
-    run = ladder.finest
-    law = PowerLawContact(
-        impact.indenter,
-        impact.half_space.youngs_modulus / (1.0 - impact.half_space.poisson_ratio**2),
-    )
-    quasi = solve_impact(impact.mass, impact.velocity, law)
+    numbers = dict(time_steps=time_steps, mesh_size=mesh_size, refine=refine)
+    case = finite_case(problem, **numbers, estimate=estimate)
+    ladder, run, quasi = case.ladder, case.result, case.quasi
     summary = run.summary()
     check_separated(summary, float(run.t[-1]))
     series = problem.body.prony
@@ -96,43 +85,13 @@ def finite_dynamic(
         rubber=problem.body.rubber().to_dict(),
         prony=None if series is None else _prony_text(series),
         solution=run,
-        ladder=ladder if estimate else None,
-        **(_ladder_keys(ladder, quasi) if estimate else {}),
+        ladder=ladder,
+        **(_ladder_keys(ladder, quasi) if ladder is not None else {}),
     )
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             write_finite_impact(result, quasi, stage, figure_format)
     return result
-
-
-def _impact(
-    problem: Problem, time_steps: int | None, mesh_size: float | None
-) -> tuple[FiniteImpact, FiniteImpactSettings]:
-    """The case of ``problem`` and its resolved settings of refine 1 (checked)."""
-    from ..fem.finite_contact import FINITE_MESH
-    from ..fem.finite_dynamic import INERTIA_MESH
-
-    body, rho = problem.body.material, problem.body.material.density
-    if mesh_size is not None:
-        mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
-    if time_steps is not None:  # the command line's range: one guard on every route
-        time_steps = entry("time_steps").check(time_steps, "dynamic")
-    default = FINITE_MESH if rho == 0 else INERTIA_MESH
-    mesh = default if mesh_size is None else replace(default, size=mesh_size)
-    settings = FiniteImpactSettings(steps=time_steps, mesh=layer_mesh(mesh, problem.geometry))
-    striker = problem.striker
-    assert rho is not None and striker.mass is not None and striker.velocity is not None
-    impact = FiniteImpact(
-        striker.indenter,
-        body,
-        rho,
-        striker.mass,
-        striker.velocity,
-        problem.body.rubber(),
-        problem.body.prony,
-        _friction(problem.interface),
-    )
-    return impact, settings.resolved(rho)
 
 
 def _ladder_keys(ladder: FiniteLadder, quasi: ImpactResult) -> dict[str, Any]:
@@ -158,10 +117,3 @@ def _ladder_keys(ladder: FiniteLadder, quasi: ImpactResult) -> dict[str, Any]:
 def _prony_text(series: PronySeries) -> str:
     """``g1:tau1,g2:tau2,...`` of a Prony series (tau in s)."""
     return ",".join(f"{g:g}:{tau:g}" for g, tau in zip(series.weights, series.times, strict=True))
-
-
-def _friction(interface: Interface) -> float | None:
-    """The impact's friction: None frictionless, inf bonded (no slip), else Coulomb's mu."""
-    if interface.kind == "frictionless":
-        return None
-    return math.inf if interface.friction is None else interface.friction

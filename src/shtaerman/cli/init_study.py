@@ -37,6 +37,7 @@ nu1 = 0.25
 [half_space]                # the body struck, meshed by the FEM
 E2 = 7.5e6                  # Pa
 nu2 = 0.5                   # in [0, 0.5]; 0.5 (incompressible) is exact: mixed u-p elements
+#   density2 = 1100.0       # kg/m^3: only with [layer] dynamic = true (default 1100)
 
 [impact]                    # quasi-static theory, stated valid below about 4-5 m/s
 mass = 0.7                  # kg
@@ -47,6 +48,8 @@ depths = "impact"           # 8 depths up to the impact's x_c (contact radii a_c
                             # or a list of at least 2 increasing depths in m, e.g. [1e-3, 2e-3]
 # interface = "bonded"      # the rubber sticks to the indenter (default "frictionless"); the
                             # force then departs from Shtaerman's by physics (nu2 < 0.5)
+#   friction = 0.5          # with "bonded": Coulomb's mu >= 0, a point slides where its shear
+                            # exceeds mu x its pressure (default none: no slip)
 
 [tolerances]                # relative errors that decide PASS or FAIL (these are the defaults)
 force = 1e-3                # FEM force against Shtaerman's P(x), worst over the depths
@@ -61,7 +64,11 @@ impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against t
 # mesh_size = 0.006667      # smallest element / refined radius (1/150)
 # domain_factor = 1e5       # domain radius / refined radius, in [1e2, 1e7]
 # growth = 0.25             # element growth away from the contact zone
-# [quick]                   # the same keys, for 'verify --quick'
+# mesh_margin = 1.25        # refined radius / largest contact radius, > 1
+# axis_size = 1e-6          # element size at the axis / refined radius, in (0, 1]
+# axis_growth = 0.1         # element size growth away from the axis, in (0, 1]
+# max_dofs = 400000         # refuse a mesh estimated above this many unknowns
+# [quick]                   # 'verify --quick': takes the [numerics] keys
 
 # [convergence]             # a mesh-convergence study: sizes refine the whole mesh, decreasing
 # sizes = [0.01887, 0.01333, 0.00943]   # (--quick runs the coarsest three)
@@ -72,9 +79,13 @@ impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against t
 # base = "bonded"           # or "lubricated" (free to slide on the base)
 # dynamic = false           # true: also the dynamic impact on the pad, its restitution (~5 s)
 
-# [sweep]                   # run the study once per value of ONE parameter: shape_coefficient,
-# velocity = [1.0, 2.0, 3.0]  # exponent, mass, velocity, thickness or thickness_ratio (each
-#                           # run's name gets the value)
+# [sweep]                   # run the study once per value of ONE of these parameters (each
+# velocity = [1.0, 2.0, 3.0]  # m/s; each run's name gets the value), or instead:
+#   shape_coefficient = [2.0, 5.0]   # m^(1-n)
+#   exponent = [1.5, 2.0]
+#   mass = [0.5, 1.0]               # kg
+#   thickness = [0.01, 0.02]        # m (with [layer])
+#   thickness_ratio = [2.0, 5.0]    # H / a_c (with [layer])
 """
 """The contact study template (the default kind)."""
 
@@ -99,29 +110,63 @@ exponent = 1.5              # n > 1
 [half_space]                # the body struck, with its inertia
 E2 = 7.5e6                  # Pa
 nu2 = 0.5                   # in [0, 0.5]
-density2 = 1100.0           # kg/m^3 (natural rubber; the quasi-static theory neglects it)
+density2 = 1100.0           # kg/m^3 (natural rubber; the quasi-static theory neglects it);
+                            # 0: a massless body (no waves)
+# prony = "0.3:1e-3"        # a viscoelastic body: shear relaxation g1:tau1,g2:tau2,... (tau
+                            # in s; E2, nu2 its instantaneous values; default none: elastic)
 
 [impact]
 mass = 0.7                  # kg
 velocity = [1.0, 2.0, 3.0]  # m/s: one value or an increasing list
-# figure_velocity = 2.0     # the velocity of the figures (default: the middle one)
+# figure_velocity = 2.0     # m/s: the velocity of the figures (default: the middle one)
+# interface = "bonded"      # the rubber sticks to the striker (default "frictionless")
+#   friction = 0.5          # with "bonded": Coulomb's mu >= 0 (default none: no slip)
+
+# [rubber]                  # the body's material model
+# model = "linear"          # the default: small strain; or a rubber at finite strain:
+#   model = "neo-hookean"   # or "mooney-rivlin", "yeoh", "gent"
+                            # (its [numerics] and [quick] take time_steps, mesh_size and
+                            # refine only; defaults 100 steps, 50 massless, its own mesh)
+#   mooney_ratio = 0.1      # mooney-rivlin: r = C01 / (C10 + C01), in [0, 1)
+#   yeoh = [-0.101, 0.0127] # yeoh: C20/C10, C30/C10
+#   gent_limit = 30.0       # gent: Jm, the limit of I1 - 3
+#   volumetric = "quadratic"  # for nu2 < 0.5: K/2 (J-1)^2, or "logarithmic" K/2 (ln J)^2
+
+# [layer]                   # a pad of thickness H on a rigid base instead of the half-space
+# thickness = 0.02          # m, or instead
+#   thickness_ratio = 5.0   # H / a_c (a_c: the half-space contact radius at the figure's x_c)
+# base = "bonded"           # or "lubricated" (free to slide on the base; linear model only)
+#   dynamic = false         # a contact study's key: refused here (a dynamic study is one)
 
 # [numerics]                # the dynamic FEM's controls (defaults shown)
+# refine = 1.0              # divide the mesh sizes and the time step by K after the others
 # time_steps = 200          # time steps per quasi-static impact duration t_y
 # mesh_size = 0.025         # smallest element / refined radius
 # mesh_margin = 1.3         # refined radius / quasi-static contact radius
 # domain_factor = 1e4       # domain radius / refined radius
 # growth = 0.2              # element growth away from the contact zone
+# axis_size = 0.00125       # element size at the axis / refined radius
+# layer_rate = 0.0          # absorbing-layer damping rate x t_y (0: none on the half-space)
+# layer_start = 0.75        # where the absorbing layer starts, R_a / (c_s t_y), > 1/2
+# layer_width = 3.0         # width of its damping bump / (c_s t_y)
+# layer_ramp = 1.0          # ramp length / (c_s t_y) of a layer without a width
+# tail = 1.25               # stepping after separation, in R_a / c_R (0: no tail)
+# spectral_radius = 0.9     # generalized-alpha rho_inf in [0, 1]
 
-[quick]                     # 'verify --quick': the smallest and the figure's velocity on
-time_steps = 60             # coarse settings (the same keys as [numerics], and velocity)
+[quick]                     # 'verify --quick': takes the [numerics] keys, and velocity
+time_steps = 60             # (default: the smallest and the figure's velocity, m/s)
 mesh_size = 0.05
+# velocity = [1.0, 2.0]
 
 # [tolerances]              # pass or fail (these are the defaults)
 # energy_balance = 1e-2     # |energy balance error| / (M v0^2 / 2), every step
 # reflected = 1e-2          # energy reflected back to the contact / radiated energy
 # estimate = 0.2            # |measured loss / first-order estimate - 1| ...
 # estimate_below = 0.08     # ... where the first-order estimate is below this
+
+# [sweep]                   # with a prony and density2 > 0: one study per loss, named
+# loss = ["waves", "hysteresis", "both"]  # <name>-<loss> (waves: no prony; hysteresis:
+                            # the massless body; both: as written)
 """
 """The dynamic study template."""
 
@@ -161,27 +206,108 @@ small_steps = 5             # geometric depths from it to the first equal step
 # mesh_size = 0.016667      # smallest element / refined radius (1/60)
 # ladder = "nested"         # instead: one gmsh mesh at K/2 refined twice, K the middle level
                             # (estimates fall back far less often; about 4x the time)
-# [quick]                   # 'verify --quick': coarser depths and mesh
-# depth_steps = 6
+# mesh_margin = 1.25        # refined radius / largest contact radius, > 1
+# domain_factor = 1e5       # domain radius / refined radius, in [1e2, 1e7]
+# growth = 0.3              # element growth away from the contact zone
+# axis_size = 1e-6          # element size at the axis / refined radius
+# axis_growth = 0.15        # element size growth away from the axis
+# max_dofs = 400000         # refuse a mesh estimated above this many unknowns
+# [quick]                   # 'verify --quick': takes the [numerics] keys (but ladder), and
+# depth_steps = 6           # coarser depths
 # small_steps = 2
+# small_ratio = 0.02        # x/a of the first, tiny depth
+# small_strain = 2e-2       # the small-strain tolerance on the quick mesh
 
-# [rubber]                  # the rubber model (default neo-hookean; shape keys: mooney_ratio,
-# model = "yeoh"            # yeoh = [c2, c3], gent_limit; volumetric for nu2 < 0.5)
+# [tolerances]              # pass or fail (these are the defaults)
+# small_strain = 5e-3       # |P / P_Shtaerman - 1| at the first, tiny depth
+# small_strain_fem = 2e-3   # |P / P_linear-FEM - 1| there, on the same mesh
+# conservation = 2e-3       # |integral of P dx / stored energy - 1|
+# newton = 1e-6             # Newton's relative residual
+# complementarity = 1e-6    # contact complementarity
+
+# [rubber]                  # the rubber model (default "neo-hookean")
+# model = "yeoh"            # or "mooney-rivlin", "gent"
 # yeoh = [-0.101, 0.0127]   # C20/C10, C30/C10 (Treloar's natural rubber)
+#   mooney_ratio = 0.1      # mooney-rivlin: r = C01 / (C10 + C01), in [0, 1)
+#   gent_limit = 30.0       # gent: Jm, the limit of I1 - 3
+#   volumetric = "quadratic"  # for nu2 < 0.5: K/2 (J-1)^2, or "logarithmic" K/2 (ln J)^2
 
 # [corrections]             # dynamic impacts: do the wave and finite-strain corrections add?
 # velocities = [1.0, 3.0]   # m/s (minutes per velocity)
 # density2 = 1100.0         # kg/m^3, the rubber's
 
-# [sweep]                   # run the study once per value of ONE parameter: nu2, mass or
-# nu2 = [0.5, 0.3]          # velocity (each run's name gets the value)
+# [sweep]                   # run the study once per value of ONE of these parameters (each
+# nu2 = [0.5, 0.3]          # run's name gets the value), or instead:
+#   mass = [0.5, 1.0]       # kg
+#   velocity = [1.0, 3.0]   # m/s
+#   model = ["neo-hookean", "yeoh"]
+#   volumetric = ["quadratic", "logarithmic"]
 """
 """The finite-strain study template."""
+
+EFFECTS_TEMPLATE = """\
+# A shtaerman effects study (TOML): the effect table of one impact, which effect (the pad, the
+# waves, finite strain, viscoelasticity, friction) moves P_max, x_max, t_contact and e away
+# from the paper's quasi-static values (as 'shtaerman effects --out' writes it). Run it with
+#     shtaerman verify {file} --quick    # no error bars, seconds
+#     shtaerman verify {file}            # each run with its error bar
+# SI units everywhere; the keys are those of a dynamic study.
+kind = "effects"
+
+# name = "{name}"           # the study's name in reports and folders; default: the file name
+description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on a rubber pad (edit me)"
+
+[indenter]                  # the (rigid) striker's surface: z = A r^n
+shape_coefficient = 5.0     # A, m^(1-n)
+exponent = 1.5              # n > 1
+
+[half_space]                # the body struck
+E2 = 7.5e6                  # Pa
+nu2 = 0.5                   # in [0, 0.5]
+density2 = 1100.0           # kg/m^3; > 0: the waves are an effect (0: massless)
+# prony = "0.3:1e-3"        # viscoelasticity: g1:tau1,... (tau in s; default none)
+
+[impact]
+mass = 0.7                  # kg
+velocity = 3.0              # m/s
+# interface = "bonded"      # friction as an effect (default "frictionless")
+#   friction = 0.5          # with "bonded": Coulomb's mu >= 0 (default none: no slip)
+
+# [rubber]                  # finite strain as an effect
+# model = "linear"          # the default; or a rubber at finite strain:
+#   model = "neo-hookean"   # or "mooney-rivlin", "yeoh", "gent"
+#   mooney_ratio = 0.1      # mooney-rivlin: r = C01 / (C10 + C01), in [0, 1)
+#   yeoh = [-0.101, 0.0127] # yeoh: C20/C10, C30/C10
+#   gent_limit = 30.0       # gent: Jm, the limit of I1 - 3
+#   volumetric = "quadratic"  # for nu2 < 0.5, or "logarithmic"
+
+[layer]                     # the pad as an effect (leave the table out: the half-space)
+thickness = 0.02            # m, or instead
+#   thickness_ratio = 5.0   # H / a_c (a_c: the half-space contact radius at x_c)
+# base = "bonded"           # or "lubricated"
+#   dynamic = false         # a contact study's key: refused here
+
+[numerics]                  # every run's numerics (defaults: each run's own)
+mesh_size = 0.1             # smallest element / refined radius
+time_steps = 100            # time steps per quasi-static impact duration t_y
+# refine = 1.0              # divide the mesh sizes and the time step by K
+# estimate = true           # each run's error bar (3-level ladder)
+# mesh_margin = 1.3         # refined radius / quasi-static contact radius
+# domain_factor = 1e4       # domain radius / refined radius
+# growth = 0.2              # element growth away from the contact zone
+# layer_rate = 0.0          # absorbing-layer damping rate x t_y
+
+[quick]                     # 'verify --quick': takes the [numerics] keys (default: no estimate)
+mesh_size = 0.2
+time_steps = 50
+"""
+"""The effects study template."""
 
 TEMPLATES = {
     "contact": STUDY_TEMPLATE,
     "dynamic": DYNAMIC_TEMPLATE,
     "finite-strain": FINITE_TEMPLATE,
+    "effects": EFFECTS_TEMPLATE,
 }
 """Study kind -> its commented template."""
 
@@ -201,8 +327,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         "--kind",
         default="contact",
         choices=tuple(TEMPLATES),
-        help="the study's kind: the static FEM contact, the dynamic FE impact, or the "
-        "neo-Hookean finite-strain contact",
+        help="the study's kind: the static FEM contact, the dynamic FE impact, the "
+        "finite-strain contact, or the effect table of an impact",
     )
     add_inputs(p, ("force",), None)
     p.set_defaults(handler=run)

@@ -175,8 +175,11 @@ def verify_text(results: dict, out: Path) -> str:
     lines = [f"{'study':<24} verdict  {'worst check (value / tolerance)':<48}"]
     for name, study in results["studies"].items():
         checks = study["checks"]
-        worst = max(checks, key=lambda c: abs(c["value"]) / c["tolerance"])
         verdict = "PASS" if study["passed"] else "FAIL"
+        if not checks:  # an effect table has no tolerances
+            lines.append(f"{name:<24} {verdict:<8} (no checks: a table of effects)")
+            continue
+        worst = max(checks, key=lambda c: abs(c["value"]) / c["tolerance"])
         lines.append(
             f"{name:<24} {verdict:<8} {worst['name']}: {abs(worst['value']):.1e} / "
             f"{worst['tolerance']:.0e}"

@@ -90,11 +90,19 @@ def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
                 case.estimate.energy_fraction,
                 r.energy_balance_error,
                 r.reflected_energy_fraction,
-                *(r.viscoelastic.get(key, np.nan) for key in LOSS_KEYS),
+                *(_losses(r).get(key, np.nan) for key in LOSS_KEYS),
             )
         )
     table = np.array(rows, dtype=float)
     return {name: table[:, i] for i, name in enumerate(SUMMARY_HEADER)}
+
+
+def _losses(result: object) -> dict[str, float]:
+    """A linear run's split of 1 - e^2 (``viscoelastic``); a rubber's dissipated fraction."""
+    if hasattr(result, "viscoelastic"):
+        return result.viscoelastic
+    dissipated = getattr(result, "energy_dissipated_fraction", None)
+    return {} if dissipated is None else {"energy_dissipated_fraction": dissipated}
 
 
 def _loss_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict[str, Path]:
@@ -156,7 +164,7 @@ def write_dynamic_study(
                 example, folder / "dynamic_history.png", figure_format=figure_format
             )
         ),
-        **_loss_figures(example, folder, figure_format),
+        **({} if outcome.study.finite else _loss_figures(example, folder, figure_format)),
         _over_velocity_caption(outcome): (
             plot_dynamic_over_velocity(
                 outcome, folder / "dynamic_over_velocity.png", figure_format=figure_format
@@ -173,7 +181,7 @@ def write_dynamic_study(
             "wave_field_separation",
         ),
     ):
-        if key in result.snapshots:
+        if key in getattr(result, "snapshots", {}):  # a rubber's run keeps no fields
             figures[f"Wave field (von Mises) at {v0}, {words}"] = plot_wave_field(
                 example, key, folder / f"{stem}.png"
             )

@@ -26,7 +26,7 @@ from typing import Any
 import jinja2
 
 from ..version import __version__
-from . import text_contact, text_dynamic, text_finite
+from . import text_contact, text_dynamic, text_effects, text_finite
 from .files import json_safe
 from .wording import number, seconds
 
@@ -60,6 +60,7 @@ TEXTS: dict[str, ModuleType] = {
     "contact": text_contact,
     "dynamic": text_dynamic,
     "finite-strain": text_finite,
+    "effects": text_effects,
 }
 """Study kind -> its text module: ``entry``, ``tables``, ``findings``, ``timing_text``,
 ``validity_rows`` and ``summary_row``."""

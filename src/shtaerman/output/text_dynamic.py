@@ -14,7 +14,14 @@ from ..paper.case import is_paper_case
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.richardson import Estimate
-from .case import body_words, case_words, prony_words
+from .case import (
+    body_words,
+    case_words,
+    interface_words,
+    model_label,
+    prony_words,
+    rubber_words,
+)
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
 from .entry import stored_tables as tables
@@ -89,7 +96,11 @@ def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
             "time steps / 2 and / sqrt 2), so the study states no 1 % / 5 % velocity limits."
         )
     estimates = [case.estimates() for case in outcome.cases]
-    worst = {key: max(e[key].error for e in estimates) for key in RELATIVE_ESTIMATES}
+    worst = {  # a massless rubber's 1 - e^2 is 0 by construction: not estimated
+        key: max(e[key].error for e in estimates)
+        for key in RELATIVE_ESTIMATES
+        if all(key in e for e in estimates)
+    }
     signal = [
         (_ratio(d, e[f"difference_{k}"].absolute_error), k, case.velocity)
         for case, e in zip(outcome.cases, estimates, strict=True)
@@ -129,16 +140,17 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
         "velocity": velocity,
     }
     details = f"M = {study.mass:g} kg, v0 = {velocity:g} m/s, rubber density {study.density:g}"
-    papers = study.prony is None and outcome.settings.thickness is None
+    papers = study.prony is None and outcome.settings.thickness is None and not study.physics
     if papers and is_paper_case(inputs):
         return f"At the paper's example ({details} kg/m^3 assumed)"
     return f"In this case ({details} kg/m^3)"
 
 
 def _model_words(outcome: DynamicStudyOutcome) -> str:
-    """ " (Shtaerman's elastic half-space)" where the study's body is not: on a pad or with a
-    Prony series; "" otherwise."""
-    if outcome.study.prony is None and outcome.settings.thickness is None:
+    """ " (Shtaerman's elastic half-space)" where the study's body is not: on a pad, with a
+    Prony series, a rubber or a bonded striker; "" otherwise."""
+    study = outcome.study
+    if study.prony is None and outcome.settings.thickness is None and not study.physics:
         return ""
     return " (Shtaerman's elastic half-space)"
 
@@ -159,6 +171,8 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
     (and waves, with the single-run split; ± its estimated error in percentage points where
     the study ran its ladder)."""
     case, pad = outcome.example, outcome.settings.thickness is not None
+    if outcome.study.finite:
+        return _rubber_loss_words(outcome)
     losses, pm = case.result.viscoelastic, _plus_minus(case.estimates())
     if not losses:
         if pad and outcome.study.density > 0:
@@ -182,6 +196,23 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
         f"as waves and hysteresis ({heat} of the run; the single-run split: waves beyond R_a "
         f"{share('energy_wave_fraction')}, hysteresis {share('energy_hysteresis_fraction')}"
         f"{reflection})"
+    )
+
+
+def _rubber_loss_words(outcome: DynamicStudyOutcome) -> str:
+    """What 1 - e^2 of a rubber's impact went to: waves (and a Prony series' hysteresis, its
+    dissipated share), no first-order estimate (it is the linear half-space's)."""
+    study, result = outcome.study, outcome.example.result
+    model = model_label(study.physics["model"])
+    if study.density == 0:
+        what = "as hysteresis (massless body: no waves)" if study.prony else "(massless body)"
+    else:
+        what = "as waves and hysteresis" if study.prony else "as waves"
+    dissipated = result.energy_dissipated_fraction
+    heat = "" if dissipated is None else f"; {100 * dissipated:.2f} % of M v0^2/2 dissipated"
+    return (
+        f"{what} (the {model} rubber at finite strain{heat}; the linear half-space's first-order "
+        "radiation estimate does not apply)"
     )
 
 
@@ -287,8 +318,8 @@ HEADER = [
 
 
 def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
-    """One row per velocity (the half-space's first-order estimate "-" on a pad)."""
-    rows, pad = [], outcome.settings.thickness is not None
+    """One row per velocity (the half-space's first-order estimate "-" on a pad, a rubber)."""
+    rows, pad = [], outcome.settings.thickness is not None or outcome.study.finite
     for case in outcome.cases:
         r, d, pm = case.result, case.differences(), _plus_minus(case.estimates())
         rows.append(
@@ -365,11 +396,24 @@ def entry(
     the half-space or the pad, the Prony series, the frictionless indenter."""
     study = outcome.study
     case = case_words(
-        prony=study.prony, thickness=study.settings.thickness, base=study.settings.base
+        material=_material_words(study),
+        prony=study.prony,
+        thickness=study.settings.thickness,
+        base=study.settings.base,
+        interface=study.physics.get("interface", "frictionless"),
+        friction=study.physics.get("friction"),
     )
     return text_entry(
         outcome, (study_tables, study_findings), files, output_seconds, figures, case=case
     )
+
+
+def _material_words(study: Any) -> str:
+    """ "linear elastic", or the rubber with its constants (:func:`.case.rubber_words`)."""
+    if not study.finite:
+        return "linear elastic"
+    rubber = study.problem(study.example).body.rubber()
+    return rubber_words(rubber, study.half_space.poisson_ratio)
 
 
 def _velocity(limit: Mapping[str, Any] | None) -> str:
@@ -402,6 +446,11 @@ def assumptions(study: Mapping[str, Any]) -> str:
         tested.append("no elastic waves")
     if inputs.get("prony"):
         tested.append(f"no hysteresis ({prony_words(prony_input(inputs['prony']))})")
+    if inputs.get("model", "linear") != "linear":
+        tested.append(f"small strain, not the {model_label(inputs['model'])} rubber")
+    if inputs.get("interface", "frictionless") != "frictionless":
+        surface = interface_words(inputs["interface"], inputs.get("friction"))
+        tested.append(f"a frictionless striker, not a {surface}")
     return "; ".join(tested) or "none (a massless elastic half-space)"
 
 

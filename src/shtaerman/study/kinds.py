@@ -188,3 +188,13 @@ register_kind(
         write="shtaerman.output.finite:write_finite_study",
     )
 )
+register_kind(
+    Kind(
+        "effects",
+        "the effect table of an impact: which effect moves P_max, x_max, t_contact and e",
+        # the table is the API's (sh.effects); named here, imported only when a study runs
+        load="shtaerman.api.effect_table.study:load_effects",
+        run="shtaerman.api.effect_table.study:run_effects",
+        write="shtaerman.api.effect_table.study:write_effects",
+    )
+)

@@ -317,6 +317,7 @@ def _dynamic_problem(p: dict[str, Any], settings: Any) -> None:
         velocity=p["velocity"],
         prony=_prony(p),
         **(layer if settings.thickness is not None else {}),
+        **_surface(p),
     )
     check_options(problem, ["layer_rate"] if p["layer_rate"] is not None else [])
 
@@ -348,6 +349,12 @@ def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: 
     a_c = float(solve_impact(p["mass"], p["velocity"], contact).a_c)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
     return replace(settings, thickness=layer.thickness, base=layer.base)
+
+
+def _surface(p: dict[str, Any]) -> dict[str, Any]:
+    """The striker's surface of a case: ``interface`` and ``friction`` (Coulomb's mu of a
+    bonded striker; None: no slip), as keywords of :meth:`~shtaerman.problem.Problem.impact`."""
+    return {"interface": p.get("interface", "frictionless"), "friction": p.get("friction")}
 
 
 def _prony(p: dict[str, Any]):
@@ -413,13 +420,15 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
     """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
     failed when its energy balance or its reflected energy exceed what the studies allow. A
     rubber ``model``: the finite-strain impact (:func:`finite_impact_case`)."""
-    from ..study.dynamic.case import run_case
+    from ..problem import Interface
+    from ..study.dynamic.case import impact_friction, run_case
     from ..study.dynamic.loader import dynamic_check_failures
 
     if p["model"] != "linear":
         return finite_impact_case(p)
     start = time.perf_counter()
-    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p))
+    friction = impact_friction(Interface(*_surface(p).values()))
+    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p), friction=friction)
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
     compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
@@ -505,6 +514,7 @@ def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
         prony=_prony(p),
         **geometry,
         **rubber,
+        **_surface(p),
     )
     defaults = KINDS["dynamic"].defaults()
     changed = [
@@ -595,6 +605,121 @@ register_kind(
         nondeterministic=("seconds",),
         optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
         levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
+    )
+)
+
+
+# --- effects: which effect of the impact moves P_max, x_max, t_contact and e ---------------------
+
+EFFECT_NAMES = ("pad", "waves", "finite strain", "viscoelasticity", "friction")
+"""The effects of :mod:`shtaerman.api.effect_table.variants`, in its order: an effects case's
+``dominant_<quantity>`` is the index of the dominant one here (NaN: none ran)."""
+EFFECT_QUANTITIES = ("P_max", "x_max", "t_contact", "restitution")
+EFFECT_NUMERICS = (
+    "time_steps",
+    "mesh_size",
+    "mesh_margin",
+    "domain_factor",
+    "growth",
+    "layer_rate",
+    "refine",
+    "estimate",
+)
+"""The numerics of :func:`shtaerman.effects` an effects case passes where set (others: each
+run's default)."""
+EFFECTS_OUTPUTS = {
+    **{f"dominant_{key}": "" for key in EFFECT_QUANTITIES},
+    **{f"resolved_{key}": "" for key in EFFECT_QUANTITIES},
+    **{f"change_{key}": "" for key in EFFECT_QUANTITIES},
+    **{f"interaction_{key}": "" for key in EFFECT_QUANTITIES},
+    "seconds": "s",
+}
+"""Per quantity (the table's ``dominant``, :meth:`~shtaerman.api.effect_table.EffectTable.
+to_dict`): ``dominant_<q>`` the index in :data:`EFFECT_NAMES` of the effect whose change alone
+is largest, ``resolved_<q>`` 1 when the error bars resolve that ranking, 0 when not, NaN when a
+bar is missing (estimate = false); ``change_<q>`` the full problem's change against the paper's
+quasi-static value (a fraction; e - 1 for the restitution), ``interaction_<q>`` the full
+change minus the sum of the single ones (NaN where a run is refused)."""
+
+
+def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The case's problem as parts (:func:`shtaerman.problem.parts`: they need not combine as
+    a whole, the variants that do run) and the numerical keywords of :func:`shtaerman.effects`
+    set to other than the kind's defaults, each checked."""
+    from ..fem.dynamic_contact import DynamicSettings
+    from ..problem import RUBBER_OPTIONS, parts
+    from ..theory.materials import Material
+
+    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
+    layer = _dynamic_layer(p, indenter, half_space, DynamicSettings())
+    geometry = {"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}
+    rubber = {
+        name: p[name]
+        for name in RUBBER_OPTIONS
+        if p[name] is not None and RUBBER_SHAPES.get(name, p["model"]) == p["model"]
+    }
+    found = parts(
+        indenter,
+        Material(p["E2"], p["nu2"], p["density2"]),
+        mass=p["mass"],
+        velocity=p["velocity"],
+        model=p["model"],
+        prony=_prony(p),
+        **geometry,
+        **rubber,
+        **_surface(p),
+    )
+    defaults = KINDS["effects"].defaults()
+    numerics = {k: p[k] for k in EFFECT_NUMERICS if p[k] is not None and p[k] != defaults[k]}
+    numerics["estimate"] = p["estimate"]  # the sweep's default (false), not the API's
+    for name, value in numerics.items():
+        if name != "estimate":
+            vocabulary.entry(name).check(value, "dynamic")
+    return found, numerics
+
+
+def effects_case(p: dict[str, Any]) -> CaseResult:
+    """The effect table of the case's impact (:func:`shtaerman.effects`, the command line's
+    ``shtaerman effects``): per quantity its dominant effect, whether resolved, the full
+    change and the interaction; without checks of its own (a refused variant is a row of the
+    table, not a failure)."""
+    from ..api.effect_table import effects
+
+    found, numerics = _effects_inputs(p)
+    start = time.perf_counter()
+    table = effects(found, **numerics).to_dict()
+    seconds = time.perf_counter() - start
+    outputs: dict[str, float] = {"seconds": seconds}
+    full = next(run for run in table["runs"] if run["label"] == "full")["changes"]
+    for key in EFFECT_QUANTITIES:
+        dominant = table["dominant"][key]
+        effect, resolved = dominant["effect"], dominant["resolved"]
+        outputs[f"dominant_{key}"] = math.nan if effect is None else EFFECT_NAMES.index(effect)
+        outputs[f"resolved_{key}"] = math.nan if resolved is None else float(resolved)
+        outputs[f"change_{key}"] = _number(full[key]["change"])
+        outputs[f"interaction_{key}"] = _number(table["interaction"][key]["change"])
+    return CaseResult(outputs, ())
+
+
+def _number(value: float | None) -> float:
+    """A table's change (None: n/a) as a sweep output (NaN)."""
+    return math.nan if value is None else float(value)
+
+
+register_kind(
+    Kind(
+        name="effects",
+        description="the effect table of an impact: which effect moves P_max, x_max, "
+        "t_contact and e",
+        parameters={
+            name: parameter
+            for name, parameter in vocabulary_parameters("dynamic").items()
+            if name != "axis_size"  # the effect table's runs grade their own axis
+        },
+        outputs=EFFECTS_OUTPUTS,
+        case=effects_case,
+        check=_quasi_static(lambda p: _effects_inputs(p)),
+        nondeterministic=("seconds",),
     )
 )
 

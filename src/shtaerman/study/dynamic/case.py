@@ -13,7 +13,8 @@ import dataclasses
 import math
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 from ...fem.dynamic_contact import (
     DynamicImpactResult,
@@ -29,8 +30,20 @@ from ...theory.radiation import RadiationEstimate, radiation_estimate
 from ...theory.viscoelastic import PronySeries
 from ..richardson import Estimate
 from .accuracy import DynamicLadder, complete_ladder
+from .finite_accuracy import FiniteImpact, FiniteLadder, run_finite_ladder
 
-__all__ = ["COMPARED", "DynamicCase", "compare", "radiation", "run_case"]
+if TYPE_CHECKING:
+    from ...problem import Interface, Problem
+
+__all__ = [
+    "COMPARED",
+    "DynamicCase",
+    "compare",
+    "finite_case",
+    "impact_friction",
+    "radiation",
+    "run_case",
+]
 
 QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
 COMPARED = {
@@ -57,7 +70,7 @@ class DynamicCase:
     quasi: ImpactResult
     estimate: RadiationEstimate
     result: DynamicImpactResult
-    ladder: DynamicLadder | None = None
+    ladder: DynamicLadder | FiniteLadder | None = None
 
     def differences(self) -> dict[str, float]:
         """:func:`compare` and the measured loss against the first-order estimate."""
@@ -68,12 +81,18 @@ class DynamicCase:
         )
         return out
 
+    @property
+    def estimated(self) -> bool:
+        """Whether the case carries error estimates: it ran its ladder, and (a rubber's ladder,
+        :class:`.finite_accuracy.FiniteLadder`) no level of it failed twice."""
+        return self.ladder is not None and not getattr(self.ladder, "missing", "")
+
     def estimates(self) -> dict[str, Estimate]:
         """Richardson estimates from the ladder ({} without one): x_max, P_max, t_contact,
         restitution, energy_radiated_fraction (a viscoelastic body: also the split of
         :data:`.accuracy.LOSS_ESTIMATED`), and ``difference_x``, ``difference_P``,
         ``difference_t`` (:func:`compare` on every level; use ``absolute_error``)."""
-        if self.ladder is None:
+        if not self.estimated:
             return {}
         quasi = self.quasi
         differences = {
@@ -171,3 +190,71 @@ def run_case(
         else None
     )
     return DynamicCase(velocity, quasi, estimate, result, levels)
+
+
+def impact_friction(interface: Interface) -> float | None:
+    """The impact's friction of the striker's surface: None frictionless, ``math.inf`` bonded
+    (no slip), else Coulomb's mu."""
+    if interface.kind == "frictionless":
+        return None
+    return math.inf if interface.friction is None else interface.friction
+
+
+def finite_case(
+    problem: Problem,
+    *,
+    time_steps: int | None = None,
+    mesh_size: float | None = None,
+    refine: float = 1.0,
+    estimate: bool = True,
+) -> DynamicCase:
+    """The impact of ``problem`` on a rubber body at finite strain (``problem.body.finite``)
+    beside the quasi-static impact: the finest level of its ladder
+    (:func:`.finite_accuracy.run_finite_ladder`; with ``estimate``, the two coarser levels
+    too), as ``shtaerman dynamic --model`` runs it.
+
+    Parameters
+    ----------
+    problem : Problem
+        An impact on a rubber body; its density 0: the massless body.
+    time_steps : int, optional
+        Steps per quasi-static impact duration (default 50; 100 with inertia).
+    mesh_size : float, optional
+        Smallest element / refined radius (default the finite-strain contact's).
+    refine : float
+        Refinement of the finest level.
+    estimate : bool
+        Also run the ladder's coarser levels for the error estimates.
+
+    Returns
+    -------
+    DynamicCase
+        Its ``result`` the finest level that passed, its ``ladder`` the whole ladder (without
+        ``estimate``: one level); ``estimate`` is the half-space's first-order radiation
+        estimate, which does not apply to a rubber (reported as such).
+    """
+    from ...fem.finite_contact import FINITE_MESH
+    from ...fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+    from ...vocabulary import entry
+
+    striker, body = problem.striker, problem.body.material
+    rho = body.density
+    assert rho is not None and striker.mass is not None and striker.velocity is not None
+    if mesh_size is not None:
+        mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
+    if time_steps is not None:  # the command line's range: one guard on every route
+        time_steps = entry("time_steps").check(time_steps, "dynamic")
+    mesh = FINITE_MESH if rho == 0 else INERTIA_MESH
+    mesh = mesh if mesh_size is None else replace(mesh, size=mesh_size)
+    if problem.geometry.thickness is not None:
+        mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
+    settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)
+    body_model = (problem.body.rubber(), problem.body.prony, impact_friction(problem.interface))
+    impact = FiniteImpact(striker.indenter, body, rho, striker.mass, striker.velocity, *body_model)
+    ladder = run_finite_ladder(impact, settings, refine=refine, estimate=estimate)
+    law = PowerLawContact(striker.indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
+    quasi = solve_impact(striker.mass, striker.velocity, law)
+    estimate_ = radiation(striker.mass, striker.velocity, law, rho, body)
+    return DynamicCase(
+        striker.velocity, quasi, estimate_, ladder.finest, ladder if estimate else None
+    )

@@ -16,7 +16,14 @@ approach velocity (:mod:`.runner`)::
                  (default) or "lubricated"
     [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
                  figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
-                 the findings; default: the middle one, the upper of two)
+                 the findings; default: the middle one, the upper of two),
+                 interface = "frictionless" (default) or "bonded" (no slip at the striker),
+                 friction = mu (bonded only: Coulomb friction; default none, no slip)
+    [rubber]     optional: model = "linear" (default) or a rubber at finite strain
+                 ("neo-hookean", "mooney-rivlin", "yeoh", "gent": the impact of
+                 ``shtaerman dynamic --model``), mooney_ratio, yeoh = [c2, c3], gent_limit,
+                 volumetric (:func:`shtaerman.fem.rubber.rubber_model`); a rubber's
+                 [numerics] and [quick] take time_steps, mesh_size and refine only
     [numerics]   time_steps, mesh_size, mesh_margin, domain_factor, growth, axis_size,
                  layer_rate and the other DynamicSettings fields, optional; refine = K
                  divides the mesh sizes and the time step by K after them
@@ -50,6 +57,7 @@ from ...fem.dynamic_contact import (
     validate_density,
 )
 from ...fem.viscoelastic import prony_input
+from ...problem import RUBBER_OPTIONS, Problem
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -107,6 +115,16 @@ class _DynImpact(Table):
     mass: Positive
     velocity: Positive | list[Positive]
     figure_velocity: Positive | None = None
+    interface: str = "frictionless"
+    friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
+
+
+class _DynRubber(Table):
+    model: str = "linear"
+    mooney_ratio: float | None = None
+    yeoh: list[float] | None = None
+    gent_limit: float | None = None
+    volumetric: str | None = None
 
 
 class _Quick(_Numerics):
@@ -138,6 +156,7 @@ class _DynamicFile(Table):
     quick: _Quick = _Quick()
     tolerances: _DynTolerances = _DynTolerances()
     layer: LayerTable | None = None
+    rubber: _DynRubber = _DynRubber()
     sweep: _DynSweep | None = None
 
 
@@ -178,6 +197,33 @@ class DynamicStudy:
     """Shear relaxation of the half-space (None: elastic)."""
     prony_text: str = ""
     """``prony`` as written in the file."""
+    physics: dict[str, Any] = field(default_factory=dict)
+    """The problem's parts besides the striker and the body's elasticity, as keywords of
+    :meth:`shtaerman.problem.Problem.impact` (model, rubber options, interface, friction)."""
+    finite_numerics: dict[str, Any] = field(default_factory=dict)
+    """A rubber's numerical keywords of :func:`shtaerman.dynamic` (time_steps, mesh_size,
+    refine; None: the finite-strain impact's default), and ``quick`` those of ``verify
+    --quick``."""
+    quick_finite_numerics: dict[str, Any] = field(default_factory=dict)
+
+    def problem(self, velocity: float) -> Problem:
+        """The impact at ``velocity`` m/s (:class:`shtaerman.problem.Problem`)."""
+        layer = self.settings.thickness
+        geometry = {} if layer is None else {"thickness": layer, "base": self.settings.base}
+        return Problem.impact(
+            self.indenter,
+            Material(self.half_space.youngs_modulus, self.half_space.poisson_ratio, self.density),
+            mass=self.mass,
+            velocity=velocity,
+            prony=self.prony,
+            **geometry,
+            **self.physics,
+        )
+
+    @property
+    def finite(self) -> bool:
+        """Whether the body is a rubber at finite strain."""
+        return self.physics.get("model", "linear") != "linear"
 
 
 def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
@@ -284,10 +330,12 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
     settings = _settings(path, "numerics", raw.numerics, _layer(path, raw, example))
-    try:
-        check_ladder(settings)  # the full study runs the ladder; verify --quick does not
-    except InputError as error:
-        raise StudyError(f"{path}: key 'numerics': {error}") from None
+    physics = _physics(raw)
+    if physics.get("model", "linear") == "linear":
+        try:
+            check_ladder(settings)  # the full study runs the ladder; verify --quick does not
+        except InputError as error:
+            raise StudyError(f"{path}: key 'numerics': {error}") from None
     study = DynamicStudy(
         name=name,
         description=raw.description,
@@ -304,8 +352,69 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
         prony=prony,
         prony_text=raw.half_space.prony or "",
+        physics=physics,
+        finite_numerics=_finite_numerics(path, "numerics", raw.numerics, physics),
+        quick_finite_numerics=_finite_numerics(path, "quick", raw.quick, physics, raw.numerics),
     )
+    _check_problem(path, study)
     return _split_losses(path, study, raw.sweep)
+
+
+def _physics(raw: _DynamicFile) -> dict[str, Any]:
+    """The keywords of :meth:`Problem.impact` the file gives beyond the striker, the body's
+    elasticity, the Prony series and the layer: the model, its rubber options, the interface."""
+    given = {**msgspec.structs.asdict(raw.rubber), "interface": raw.impact.interface}
+    given["friction"] = raw.impact.friction
+    defaults = {"model": "linear", "interface": "frictionless"}
+    return {k: v for k, v in given.items() if v is not None and v != defaults.get(k)}
+
+
+FINITE_NUMERICS = ("time_steps", "mesh_size", "refine")
+"""The [numerics] keys a rubber's impact takes (the finite-strain impact of
+:func:`shtaerman.dynamic`)."""
+PHYSICS_KEYS = {
+    **{name: f"rubber.{name}" for name in ("model", *RUBBER_OPTIONS)},
+    **{name: f"impact.{name}" for name in ("interface", "friction")},
+    **{name: f"layer.{name}" for name in ("thickness", "base")},
+    "prony": "half_space.prony",
+}
+"""A problem part's keyword -> its study-file key (for a refusal of :class:`Problem`)."""
+
+
+def _finite_numerics(
+    path: Path,
+    table: str,
+    raw: _Numerics,
+    physics: dict[str, Any],
+    parent: _Numerics | None = None,
+) -> dict[str, Any]:
+    """A rubber's numerical keywords of :func:`shtaerman.dynamic` from ``raw`` (over those of
+    ``parent``, the [numerics] of a [quick]); a key the finite-strain impact does not take is
+    refused. {} for the linear model."""
+    if physics.get("model", "linear") == "linear":
+        return {}
+    for key in _Numerics.__struct_fields__:
+        if key not in FINITE_NUMERICS and getattr(raw, key) is not None:
+            raise StudyError(
+                f"{path}: key '{table}.{key}': not supported with model "
+                f"{physics['model']!r} (the finite-strain impact takes "
+                f"{', '.join(FINITE_NUMERICS)})"
+            )
+    inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, physics)
+    given = {key: getattr(raw, key) for key in FINITE_NUMERICS if getattr(raw, key) is not None}
+    return {"time_steps": None, "mesh_size": None, "refine": 1.0, **inherited, **given}
+
+
+def _check_problem(path: Path, study: DynamicStudy) -> None:
+    """Build the study's impact once (at its example velocity): a part out of range, or parts
+    that do not combine, is refused naming the file and the key."""
+    try:
+        study.problem(study.example)
+    except InputError as error:
+        parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
+        key = PHYSICS_KEYS.get(parameter, "rubber")
+        text = str(error).removeprefix(f"{parameter}: ")
+        raise StudyError(f"{path}: key '{key}': {text}") from None
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:

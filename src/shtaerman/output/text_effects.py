@@ -1,0 +1,72 @@
+"""The effects kind's text: the dominant effect per quantity, from a study's effect table
+(its results.json entry holds the table's JSON, ``shtaerman effects --json``)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from .entry import kind_entry
+from .entry import no_summary_row as summary_row
+from .entry import stored_findings as findings
+from .entry import stored_tables as tables
+from .wording import times_text as timing_text
+
+__all__ = [
+    "entry",
+    "findings",
+    "study_findings",
+    "summary_row",
+    "tables",
+    "timing_text",
+    "validity_rows",
+]
+
+NAMES = {"P_max": "P_max", "x_max": "x_max", "t_contact": "t_contact", "restitution": "e"}
+
+
+def study_findings(document: Mapping[str, Any]) -> list[str]:
+    """One sentence per quantity: its dominant effect and whether the bars resolve it."""
+    table = document["effects"]
+    out = []
+    for key, words in NAMES.items():
+        dominant = table["dominant"][key]
+        if dominant["effect"] is None:
+            out.append(f"{words}: no single effect ran ({dominant['why']}).")
+            continue
+        resolved = {True: "resolved", False: "not resolved", None: "unknown"}[dominant["resolved"]]
+        out.append(
+            f"{words} moves most with {dominant['effect']} alone ({resolved}: {dominant['why']})."
+        )
+    return out
+
+
+def study_tables(document: Mapping[str, Any]) -> list[dict[str, object]]:
+    """The change of each run against the paper's quasi-static values (%; e - 1 for e)."""
+    table = document["effects"]
+
+    def cell(change: Mapping[str, Any]) -> str:
+        value = change.get("change")
+        return "-" if value is None else f"{100 * value:+.2f} %"
+
+    rows = [[run["label"], *(cell(run["changes"][key]) for key in NAMES)] for run in table["runs"]]
+    return [{"title": "Effect table", "header": ["run", *NAMES.values()], "rows": rows}]
+
+
+def entry(
+    outcome: Any,
+    files: dict[str, str],
+    output_seconds: float | None,
+    figures: Mapping[str, str] | None,
+) -> dict[str, object]:
+    """The study's results.json entry: the table, its display table and its findings."""
+    document = outcome.document()
+    problem = document["effects"]["problem"]
+    case = f"{problem['geometry']}; {problem['model']}; {problem['interface']}"
+    text = {"tables": study_tables(document), "findings": study_findings(document)}
+    return kind_entry(outcome, {"case": case, **document, **text}, files, output_seconds, figures)
+
+
+def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
+    """None: an effect table states no velocity limit."""
+    return []

@@ -1,0 +1,113 @@
+"""The effects sweep kind: each case is the effect table of ``sh.effects`` reduced to its
+dominant effect, its resolution and the full change per quantity, so a sweep maps which
+effect dominates. Linear effects only (a pad and friction on a massless body: four ~1 s runs
+at mesh 0.2, 50 steps, no estimate)."""
+
+import math
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.problem import Problem
+from shtaerman.sweep import KINDS, SweepError, load_sweep
+from shtaerman.sweep.kinds import EFFECT_NAMES, EFFECT_QUANTITIES
+
+SWEEP = """\
+name = "effects"
+kind = "effects"
+[parameters]
+mesh_size = 0.2
+time_steps = 50
+density2 = 0.0
+thickness = 0.02
+interface = "bonded"
+friction = 0.5
+[axes]
+velocity = [3.0]
+"""
+
+
+def _spec(tmp_path, text=SWEEP):
+    path = tmp_path / "effects.toml"
+    path.write_text(text)
+    return load_sweep(path)
+
+
+def test_an_effects_case_is_the_effect_table(tmp_path):
+    [case] = _spec(tmp_path).cases()
+    outputs = KINDS["effects"].case(case.params).outputs
+    assert set(outputs) == set(KINDS["effects"].outputs)
+    problem = _problem()
+    table = sh.effects(problem, mesh_size=0.2, time_steps=50, estimate=False).to_dict()
+    assert table["effects"] == ["pad", "friction"]
+    full = next(run for run in table["runs"] if run["label"] == "full")["changes"]
+    for key in EFFECT_QUANTITIES:
+        dominant = table["dominant"][key]
+        assert EFFECT_NAMES[int(outputs[f"dominant_{key}"])] == dominant["effect"]
+        assert outputs[f"change_{key}"] == full[key]["change"]  # the same runs: bit for bit
+        assert math.isnan(outputs[f"resolved_{key}"])  # no estimate: no bars, unknown
+    # the pad stops the striker short of the half-space's x_c: a change the mesh resolves
+    assert outputs["change_x_max"] < -0.01
+
+
+def test_an_effects_sweep_refuses_a_part_out_of_range_at_load(tmp_path):
+    with pytest.raises(SweepError, match="friction"):
+        _spec(tmp_path, SWEEP.replace("friction = 0.5", "friction = -1.0"))
+
+
+STUDY = """\
+kind = "effects"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 7.5e6
+nu2 = 0.5
+density2 = 0.0
+[impact]
+mass = 0.7
+velocity = 3.0
+interface = "bonded"
+friction = 0.5
+[layer]
+thickness = 0.02
+[numerics]
+mesh_size = 0.2
+time_steps = 50
+estimate = false
+"""
+
+
+def test_an_effects_study_writes_the_table_of_sh_effects(tmp_path):
+    """Old code: ``kind = "effects"`` was no study kind. The study's files are those of
+    ``shtaerman effects --out``, their table that of ``sh.effects`` on the same problem."""
+    import json
+
+    from shtaerman.output.folder import study_entry
+    from shtaerman.study.run import run_study
+    from shtaerman.study.schema import load_study
+
+    path = tmp_path / "pad.toml"
+    path.write_text(STUDY)
+    [study] = load_study(path)
+    outcome = run_study(study)
+    entry = study_entry(outcome, tmp_path)
+    written = json.loads((tmp_path / "pad" / "effects.json").read_text())
+    table = sh.effects(_problem(), mesh_size=0.2, time_steps=50, estimate=False).to_dict()
+    assert written["dominant"] == table["dominant"] == entry["effects"]["dominant"]
+    for mine, theirs in zip(written["runs"], table["runs"], strict=True):
+        assert mine["changes"] == theirs["changes"], mine["label"]  # the same runs
+    assert {"effects.csv", "effects.md"} <= {p.name for p in (tmp_path / "pad").iterdir()}
+    assert entry["findings"][0].startswith("P_max moves most with pad alone")
+
+
+def _problem():
+    return Problem.impact(
+        sh.PowerLawIndenter(5.0, 1.5),
+        sh.Material(7.5e6, 0.5, 0.0),
+        mass=0.7,
+        velocity=3.0,
+        thickness=0.02,
+        interface="bonded",
+        friction=0.5,
+    )
