@@ -222,6 +222,25 @@ def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
     )
 
 
+def test_resume_refuses_other_studies_than_the_interrupted_runs(
+    quick_outcomes, tmp_path, monkeypatch, capsys
+):
+    """The adversary's item: 'verify paper hertz' stopped after paper, resumed as 'verify paper
+    dynamic --resume', ran dynamic and dropped hertz for good (exit 0)."""
+    patched = _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], [])
+    monkeypatch.setattr(shtaerman.output.folder, "run_study", patched)
+    out = tmp_path / "run"
+    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
+    capsys.readouterr()
+    before = sorted(p.name for p in out.iterdir())
+    other = [study for study in STUDIES if Path(study).stem == FIRST]
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), *other, "--resume"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "resume: the interrupted run was of" in err and SECOND in err and "\n" not in err
+    assert sorted(p.name for p in out.iterdir()) == before  # nothing dropped
+
+
 def test_a_verify_stopped_after_every_study_says_the_summary_is_missing_and_resume_writes_it(
     quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys
 ):

@@ -86,6 +86,7 @@ def save_progress(
     document = {
         "format": PROGRESS_FORMAT,
         "quick": quick,
+        "requested": sorted(fingerprints),
         "studies": {
             name: {"fingerprint": fingerprints[name], "entry": entry}
             for name, entry in entries.items()
@@ -103,8 +104,9 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
     Raises
     ------
     InputError
-        When the folder was run with another ``quick``, finished a study not in ``studies``
-        (it would be lost), or its progress file is unreadable.
+        When the folder was run with another ``quick`` or other studies than ``studies`` (one
+        it finished would be lost, one it did not finish silently dropped), or its progress
+        file is unreadable.
     """
     marker = stage / PROGRESS_FILE
     if not marker.is_file():
@@ -122,6 +124,12 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
         mode = "with --quick" if document["quick"] else "without --quick"
         raise InputError(f"resume: the interrupted run was {mode}; resume it the same way")
     wanted = {study.name: study_fingerprint(study) for study in studies}
+    requested = document.get("requested")  # absent from the files of earlier versions
+    if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
+        raise InputError(
+            f"resume: the interrupted run was of {', '.join(map(str, requested))}; resume it "
+            "with the same studies (the command it printed), or start again with --force"
+        )
     dropped = sorted(name for name in stored if name not in wanted)
     if dropped:
         raise InputError(
