@@ -732,7 +732,8 @@ def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
         mesh = "mesh" if settings.thickness is None else "layer mesh"
         raise InputError(
             f"the {mesh} would have about {estimate} dofs, above the limit {MAX_DOFS}; "
-            f"coarsen size (now {settings.size!r}) or growth (now {settings.growth!r})"
+            f"lower --refine, or coarsen --mesh-size (now {settings.size!r}) or --growth (now "
+            f"{settings.growth!r})"
         )
     return estimate
 

@@ -331,8 +331,8 @@ class _QuasiStaticBody:
         except NewtonError as error:  # the run's numerics, not its input
             raise NumericalFailureError(
                 f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
-                "is strained beyond what this mesh resolves: a finer --mesh-size, a lower "
-                "velocity or a thicker layer"
+                "is strained beyond what this mesh resolves: a finer --mesh-size, more "
+                "--time-steps or a lower --velocity (on a pad: a thicker --thickness)"
             ) from error
 
     def accept(self, state: _State) -> None:

@@ -596,8 +596,8 @@ class MeshSettings:
                 f"max_dofs: this mesh would have about {self.estimated_dofs:.3g} unknowns "
                 f"(size {self.size:.3g}, growth {self.growth:.3g}, domain {self.domain:.3g}, "
                 f"axis_size {min(self.axis_size, self.size):.3g}, axis_growth "
-                f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it or "
-                f"raise max_dofs (--max-dofs)"
+                f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it "
+                f"(--mesh-size, a lower --refine) or, in a contact curve, raise --max-dofs"
             )
 
     def build(self, refined_radius: float) -> MeshTri:
@@ -626,7 +626,8 @@ class MeshSettings:
         if dofs > self.max_dofs:
             raise InputError(
                 f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
-                f"max_dofs = {self.max_dofs:.3g}; coarsen it or raise max_dofs (--max-dofs)"
+                f"max_dofs = {self.max_dofs:.3g}; coarsen it (--mesh-size, a lower --refine) or, "
+                "in a contact curve, raise --max-dofs"
             )
         return ratio
 
