@@ -21,20 +21,23 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import msgspec
 
 from ...problem import parts
 from ...study.checks import Check
 from ...study.contact.loader import LayerTable
-from ...study.dynamic.loader import (
-    PHYSICS_KEYS,
-    _DynHalfSpace,
-    _DynIndenter,
-    _DynRubber,
+from ...study.dynamic.loader import PHYSICS_KEYS, RubberTable
+from ...study.schema import (
+    IndenterTable,
+    Poisson,
+    Positive,
+    StudyError,
+    Table,
+    decode,
+    validate_name,
 )
-from ...study.schema import Positive, StudyError, Table, decode, validate_name
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError
@@ -56,6 +59,13 @@ class _Numerics(Table):
     layer_rate: float | None = None
 
 
+class _HalfSpace(Table):
+    E2: Positive
+    nu2: Poisson
+    density2: Annotated[float, msgspec.Meta(ge=0)]  # 0: massless
+    prony: str | None = None
+
+
 class _Impact(Table):
     mass: Positive
     velocity: Positive
@@ -64,12 +74,12 @@ class _Impact(Table):
 
 
 class _EffectsFile(Table):
-    indenter: _DynIndenter
-    half_space: _DynHalfSpace
+    indenter: IndenterTable
+    half_space: _HalfSpace
     impact: _Impact
     name: str | None = None
     description: str = ""
-    rubber: _DynRubber = _DynRubber()
+    rubber: RubberTable = RubberTable()
     layer: LayerTable | None = None
     numerics: _Numerics = _Numerics()
     quick: _Numerics = _Numerics()

@@ -119,7 +119,7 @@ class _DynImpact(Table):
     friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
 
 
-class _DynRubber(Table):
+class RubberTable(Table):
     model: str = "linear"
     mooney_ratio: float | None = None
     yeoh: list[float] | None = None
@@ -156,7 +156,7 @@ class _DynamicFile(Table):
     quick: _Quick = _Quick()
     tolerances: _DynTolerances = _DynTolerances()
     layer: LayerTable | None = None
-    rubber: _DynRubber = _DynRubber()
+    rubber: RubberTable = RubberTable()
     sweep: _DynSweep | None = None
 
 
