@@ -36,7 +36,11 @@ NOTES = {
     "force": "an existing --history file or --out folder",
 }
 """What ``dynamic`` does with its output options."""
-DERIVED = {"thickness": "none: the half-space", "base": "bonded; only with --thickness"}
+DERIVED = {
+    "thickness": "none: the half-space",
+    "base": "bonded; only with --thickness",
+    "layer_rate": "10 on a layer, 0 (none) on the half-space",
+}
 """Inputs whose default follows from the others, and that default in words."""
 MODEL_NOTES = {
     "model": "a rubber model: the finite-strain impact (--density2 0: massless body, the "
@@ -83,7 +87,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         "mesh_size": f"with --model the default is 1/{1 / FINITE_MESH.size:.0f}",
     }
     aliases = {"time_steps": ("--steps",)}
-    add_inputs(numerics, tuple(SETTINGS_OPTIONS), "dynamic", aliases=aliases, notes=finite)
+    add_inputs(
+        numerics, tuple(SETTINGS_OPTIONS), "dynamic", derived=DERIVED, aliases=aliases, notes=finite
+    )
     p.set_defaults(handler=run)
 
 
