@@ -486,3 +486,17 @@ def test_force_keeps_the_files_a_user_added_to_a_result_folder(tmp_path):
     with staged_folder(target, force=True) as stage:
         (stage / "b.csv").write_text("2")
     assert names(target) == ["b.csv"]
+
+
+def test_a_full_disk_names_the_output_it_was_writing(tmp_path):
+    """ENOSPC carries no file name: the message said only "[Errno 28] No space left on
+    device" (adversary); it now names the option and the folder, and nothing is left."""
+    import errno
+
+    target = tmp_path / "run"
+    with pytest.raises(OSError, match=r"No space left on device \(writing --out '.*run'\)") as e:
+        with staged_folder(target) as stage:
+            (stage / "a.txt").write_text("x")
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    assert e.value.errno == errno.ENOSPC
+    assert not target.exists() and sorted(p.name for p in tmp_path.iterdir()) == []

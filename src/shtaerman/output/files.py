@@ -527,6 +527,11 @@ def staged_folder(
             reserved = False
             _discard(retired)
             raise keep.reason from None
+        except OSError as error:  # a full disk names no file: say which output it was
+            if error.filename is not None or error.errno is None:
+                raise
+            where = f"{error.strerror} (writing --{option.replace('_', '-')} {str(target)!r})"
+            raise OSError(error.errno, where) from error
         _mark(content, sealed=True)
         _publish(content, target, option)
         reserved = False
