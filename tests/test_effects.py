@@ -143,3 +143,20 @@ def test_bad_input_exits_2_with_one_line(capsys, extra, option):
     _, err = capsys.readouterr()
     lines = err.strip().splitlines()
     assert len(lines) == 1 and option in lines[0]
+
+
+def test_a_failed_out_keeps_the_printed_table(tmp_path, capsys, monkeypatch):
+    """A full disk under --out lost the computed table (adversary): it is printed first."""
+    import errno
+
+    import shtaerman.cli.effects as cli_effects
+
+    def full(table, stage):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(cli_effects, "write_table", full)
+    argv = ["effects", *ARGV, "--json", "--out", str(tmp_path / "table")]
+    assert main(argv) == 1
+    printed, err = capsys.readouterr()
+    assert json.loads(printed)["runs"]  # the whole table, on stdout
+    assert "--out" in err and not (tmp_path / "table").exists()

@@ -65,11 +65,12 @@ def run(args: argparse.Namespace) -> int:
         folder = output_folder(args.out, force=args.force)
         names = ("refine", "estimate", *(n for n in SETTINGS_OPTIONS if given(args, n)))
         table = effects(full, **keywords(args, names), progress=_progress)
-    if folder is not None:
-        with staged_folder(folder, force=args.force) as stage:
-            write_table(table, stage)
-    if args.json:
+    if args.json:  # printed first: a failed --out (a full disk) does not lose the table
         print_json(table.to_dict())
     else:
         print(table_text(table))
+    if folder is not None:
+        sys.stdout.flush()
+        with staged_folder(folder, force=args.force) as stage:
+            write_table(table, stage)
     return 0
