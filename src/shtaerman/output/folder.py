@@ -124,17 +124,17 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
         mode = "with --quick" if document["quick"] else "without --quick"
         raise InputError(f"resume: the interrupted run was {mode}; resume it the same way")
     wanted = {study.name: study_fingerprint(study) for study in studies}
-    requested = document.get("requested")  # absent from the files of earlier versions
-    if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
-        raise InputError(
-            f"resume: the interrupted run was of {', '.join(map(str, requested))}; resume it "
-            "with the same studies (the command it printed), or start again with --force"
-        )
     dropped = sorted(name for name in stored if name not in wanted)
     if dropped:
         raise InputError(
             f"resume: the interrupted run also finished {', '.join(map(repr, dropped))}, which "
             "this command does not name; resume with the same studies (the command it printed)"
+        )
+    requested = document.get("requested")  # absent from the files of earlier versions
+    if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
+        raise InputError(
+            f"resume: the interrupted run was of {', '.join(map(str, requested))}; resume it "
+            "with the same studies (the command it printed), or start again with --force"
         )
     kept = {
         name: item["entry"]
