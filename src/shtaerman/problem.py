@@ -203,6 +203,14 @@ class Interface:
         """``frictionless``, ``bonded`` (no slip) or ``coulomb``."""
         return "coulomb" if self.friction is not None else self.kind
 
+    @property
+    def coefficient(self) -> float | None:
+        """The solvers' friction: None frictionless, ``math.inf`` bonded (no slip), else
+        Coulomb's mu."""
+        if self.kind == "frictionless":
+            return None
+        return math.inf if self.friction is None else self.friction
+
 
 @dataclass(frozen=True)
 class Loading:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -224,9 +223,7 @@ def dynamic(
     folder = output_folder(out, force=force)
     inputs = (indenter, body, _density(body), mass, velocity)
     shots = _snapshots if folder is not None else None
-    series, surface = problem.body.prony, problem.interface
-    friction = None if surface.kind == "frictionless" else surface.friction
-    friction = math.inf if surface.kind == "bonded" and friction is None else friction
+    series, friction = problem.body.prony, problem.interface.coefficient
     case = run_case(*inputs, chosen, snapshots=shots, prony=series, friction=friction)
     if estimate:
         ladder = complete_ladder(

@@ -421,13 +421,13 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
     failed when its energy balance or its reflected energy exceed what the studies allow. A
     rubber ``model``: the finite-strain impact (:func:`finite_impact_case`)."""
     from ..problem import Interface
-    from ..study.dynamic.case import impact_friction, run_case
+    from ..study.dynamic.case import run_case
     from ..study.dynamic.loader import dynamic_check_failures
 
     if p["model"] != "linear":
         return finite_impact_case(p)
     start = time.perf_counter()
-    friction = impact_friction(Interface(*_surface(p).values()))
+    friction = Interface(*_surface(p).values()).coefficient
     case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p), friction=friction)
     seconds = time.perf_counter() - start
     result, quasi, differences = case.result, case.quasi, case.differences()
@@ -488,13 +488,12 @@ _FINITE_IMPACT_OPTIONS = ("time_steps", "mesh_size", "refine", "estimate")
 """The numerics a finite-strain impact case takes (the others keep their defaults)."""
 
 
-def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
-    """A finite-strain impact case as the command line builds it: its
-    :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
-    swept model takes them) and the numerical keywords of :func:`shtaerman.dynamic`; a
-    numerical option it does not take, set to other than its default, is refused."""
+def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
+    """The striker, the body and the keywords of a dynamic or effects case's impact, as
+    :meth:`shtaerman.problem.Problem.impact` and :func:`shtaerman.problem.parts` take them
+    (a rubber option only for the case's own model, as a study file's swept model takes it)."""
     from ..fem.dynamic_contact import DynamicSettings
-    from ..problem import RUBBER_OPTIONS, Problem, check_options
+    from ..problem import RUBBER_OPTIONS
     from ..theory.materials import Material
 
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
@@ -505,17 +504,20 @@ def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
         for name in RUBBER_OPTIONS
         if p[name] is not None and RUBBER_SHAPES.get(name, p["model"]) == p["model"]
     }
-    problem = Problem.impact(
-        indenter,
-        Material(p["E2"], p["nu2"], p["density2"]),
-        mass=p["mass"],
-        velocity=p["velocity"],
-        model=p["model"],
-        prony=_prony(p),
-        **geometry,
-        **rubber,
-        **_surface(p),
-    )
+    body = Material(p["E2"], p["nu2"], p["density2"])
+    keywords = dict(mass=p["mass"], velocity=p["velocity"], model=p["model"], prony=_prony(p))
+    return indenter, body, {**keywords, **geometry, **rubber, **_surface(p)}
+
+
+def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
+    """A finite-strain impact case as the command line builds it: its
+    :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
+    swept model takes them) and the numerical keywords of :func:`shtaerman.dynamic`; a
+    numerical option it does not take, set to other than its default, is refused."""
+    from ..problem import Problem, check_options
+
+    indenter, body, keywords = _struck_case(p)
+    problem = Problem.impact(indenter, body, **keywords)
     defaults = KINDS["dynamic"].defaults()
     changed = [
         name
@@ -646,29 +648,10 @@ def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     """The case's problem as parts (:func:`shtaerman.problem.parts`: they need not combine as
     a whole, the variants that do run) and the numerical keywords of :func:`shtaerman.effects`
     set to other than the kind's defaults, each checked."""
-    from ..fem.dynamic_contact import DynamicSettings
-    from ..problem import RUBBER_OPTIONS, parts
-    from ..theory.materials import Material
+    from ..problem import parts
 
-    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
-    layer = _dynamic_layer(p, indenter, half_space, DynamicSettings())
-    geometry = {"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}
-    rubber = {
-        name: p[name]
-        for name in RUBBER_OPTIONS
-        if p[name] is not None and RUBBER_SHAPES.get(name, p["model"]) == p["model"]
-    }
-    found = parts(
-        indenter,
-        Material(p["E2"], p["nu2"], p["density2"]),
-        mass=p["mass"],
-        velocity=p["velocity"],
-        model=p["model"],
-        prony=_prony(p),
-        **geometry,
-        **rubber,
-        **_surface(p),
-    )
+    indenter, body, keywords = _struck_case(p)
+    found = parts(indenter, body, **keywords)
     defaults = KINDS["effects"].defaults()
     numerics = {k: p[k] for k in EFFECT_NUMERICS if p[k] is not None and p[k] != defaults[k]}
     numerics["estimate"] = p["estimate"]  # the sweep's default (false), not the API's

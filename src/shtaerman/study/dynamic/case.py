@@ -33,14 +33,13 @@ from .accuracy import DynamicLadder, complete_ladder
 from .finite_accuracy import FiniteImpact, FiniteLadder, run_finite_ladder
 
 if TYPE_CHECKING:
-    from ...problem import Interface, Problem
+    from ...problem import Problem
 
 __all__ = [
     "COMPARED",
     "DynamicCase",
     "compare",
     "finite_case",
-    "impact_friction",
     "radiation",
     "run_case",
 ]
@@ -192,14 +191,6 @@ def run_case(
     return DynamicCase(velocity, quasi, estimate, result, levels)
 
 
-def impact_friction(interface: Interface) -> float | None:
-    """The impact's friction of the striker's surface: None frictionless, ``math.inf`` bonded
-    (no slip), else Coulomb's mu."""
-    if interface.kind == "frictionless":
-        return None
-    return math.inf if interface.friction is None else interface.friction
-
-
 def finite_case(
     problem: Problem,
     *,
@@ -249,7 +240,7 @@ def finite_case(
     if problem.geometry.thickness is not None:
         mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)
-    body_model = (problem.body.rubber(), problem.body.prony, impact_friction(problem.interface))
+    body_model = (problem.body.rubber(), problem.body.prony, problem.interface.coefficient)
     impact = FiniteImpact(striker.indenter, body, rho, striker.mass, striker.velocity, *body_model)
     ladder = run_finite_ladder(impact, settings, refine=refine, estimate=estimate)
     law = PowerLawContact(striker.indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))

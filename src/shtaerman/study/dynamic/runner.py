@@ -25,7 +25,7 @@ from ...theory.contact import PowerLawContact
 from ...theory.materials import RIGID, effective_modulus
 from ..checks import Check
 from ..limits import LEVELS, thresholds
-from .case import COMPARED, DynamicCase, finite_case, impact_friction, radiation, run_case
+from .case import COMPARED, DynamicCase, finite_case, radiation, run_case
 from .loader import DynamicStudy
 
 __all__ = ["SEPARATION_SNAPSHOT", "DynamicStudyOutcome", "run_dynamic_study"]
@@ -201,7 +201,7 @@ def run_dynamic_study(
                 snapshots=snapshots,
                 ladder=not quick,
                 prony=study.prony,
-                friction=impact_friction(problem.interface),
+                friction=problem.interface.coefficient,
             )
         )
     return DynamicStudyOutcome(
