@@ -84,7 +84,7 @@ def main() -> None:
         prony = PronySeries((args.weight,), (T_C / deborah,))
         ting = viscoelastic_impact(MASS, VELOCITY, LAW, prony, steps=2000).restitution
         (r0, err0), (r1, err1) = (_run(rho, settings, prony, args.ladder) for rho in (0.0, 1100.0))
-        heat = r1.viscoelastic["energy_dissipated_fraction"]
+        heat = r1.losses["energy_dissipated_fraction"]
         loss = "energy_radiated_fraction"
         print(
             f"| {deborah:.3g} | {ting:.5f} | {r0.restitution:.5f} | {r1.restitution:.5f} | "

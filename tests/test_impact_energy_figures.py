@@ -62,7 +62,7 @@ def test_loop_splits_at_the_largest_approach_and_shows_hysteresis(both):
     unloading = np.interp(depth, loop["x_unload"][::-1], loop["P_unload"][::-1])
     assert unloading < 0.8 * loading
     # the loop's area holds the dissipated energy and the waves' share of 1 - e^2
-    losses = result.viscoelastic
+    losses = result.losses
     shares = losses["energy_hysteresis_fraction"] + losses["energy_wave_fraction"]
     assert loop_work(result) / energy0(both) == pytest.approx(
         shares, abs=result.energy_balance_error
@@ -88,7 +88,7 @@ def test_dissipated_share_only_where_the_body_dissipates(both, elastic):
     dissipated = energy_shares(both.result)["dissipated (hysteresis)"]
     assert np.all(np.diff(dissipated) >= 0.0) and dissipated[-1] > 0.05
     assert dissipated[-1] == pytest.approx(
-        both.result.viscoelastic["energy_dissipated_fraction"], rel=1e-12
+        both.result.losses["energy_dissipated_fraction"], rel=1e-12
     )
 
 
@@ -147,7 +147,7 @@ def test_a_viscoelastic_study_writes_its_loss_split_and_figures(tmp_path):
     files, figures = write_dynamic_study(outcome, tmp_path / "viscoelastic-both", tmp_path)
     with (tmp_path / files["summary"]).open() as stream:
         [row] = list(csv.DictReader(stream))
-    losses = outcome.example.result.viscoelastic
+    losses = outcome.example.result.losses
     for key in ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction"):
         assert float(row[f"{key} [1]"]) == losses[key]
     assert float(row["energy_hysteresis_fraction [1]"]) > 0.5

@@ -34,7 +34,7 @@ def test_the_split_of_the_loss_carries_estimates(laddered):
     for key in LOSSES:
         assert key in estimates and estimates[key].absolute_error >= 0.0
     hysteresis = estimates["energy_hysteresis_fraction"]
-    assert hysteresis.absolute_error < 0.01 * case.result.viscoelastic[LOSSES[2]]
+    assert hysteresis.absolute_error < 0.01 * case.result.losses[LOSSES[2]]
     details = case.document()["error_estimate"]
     assert set(LOSSES) <= set(details)
 

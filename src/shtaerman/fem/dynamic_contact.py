@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -44,14 +44,13 @@ from .contact import mass_factor
 from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
 from .elasticity import (
     TWO_PI,
-    ElasticSolution,
     ElasticSystem,
     assemble,
     compressibility,
     deviatoric_stiffness,
     divergence_coupling,
-    postprocess,
 )
+from .impact_run import ImpactRun, fitted_peak, parabola_peak
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
 from .solver import Factorization, factorize_scaled
@@ -64,11 +63,10 @@ from .stepper import (
     march,
 )
 from .stick_slip import CoupledCompliance, radial_dofs
-from .viscoelastic import ShearMemory, ViscoelasticShear, sizing_impact, viscoelastic_shear
+from .viscoelastic import ViscoelasticShear, sizing_impact, viscoelastic_shear
 
 __all__ = [
     "MAX_DOFS",
-    "DynamicImpactResult",
     "DynamicImpactSetup",
     "DynamicSettings",
     "check_dynamic_impact",
@@ -257,163 +255,6 @@ def estimate_dofs(settings: DynamicSettings) -> int:
     fan = (math.pi / (g * g)) * math.log(max(settings.domain * g / h0, 2.0))
     axis = math.log(max(h0 / settings.axis_size, 1.0)) / 0.1 * 4.0
     return int(4.5 * 2.0 * (strip + fan + axis))
-
-
-@dataclass(frozen=True, eq=False)
-class DynamicImpactResult:
-    """The dynamic impact: histories, maxima, energy bookkeeping and costs (SI units).
-
-    Attributes
-    ----------
-    t : numpy.ndarray
-        Time in s from first touch, every step.
-    x : numpy.ndarray
-        Striker displacement (approach to the far field) X in m, positive into the body.
-    v : numpy.ndarray
-        Striker velocity X' in m/s (positive downward).
-    force : numpy.ndarray
-        Contact force P in N.
-    contact_radius : numpy.ndarray
-        Contact radius a in m (0 without contact).
-    central_pressure : numpy.ndarray
-        Pressure at the axis p(0, t) in Pa.
-    energies : dict of str to numpy.ndarray
-        Per step, J: ``striker_kinetic``, ``body_kinetic``, ``strain``, ``absorbed`` (by the
-        layer, cumulative), ``numerical`` (E0 minus the rest: the scheme's dissipation),
-        ``contact_term`` (the trapezoidal contact work, the predicted value of ``numerical``),
-        ``inner`` (body energy inside R_a), ``dissipated`` (by a viscoelastic body),
-        ``inner_kinetic`` (body kinetic energy inside R_a) and ``slip`` (dissipated by slip
-        at a Coulomb striker's surface, cumulative; 0 frictionless or bonded).
-    x_max : float
-        Largest approach in m.
-    P_max : float
-        Largest contact force in N (peak of a parabola fitted over +-5 % of t_y).
-    t_x_max : float
-        Time of the largest approach in s.
-    t_contact : float
-        Separation time in s (nan if the striker never separates in the run).
-    v_out : float
-        Rebound speed in m/s (positive, upward).
-    restitution : float
-        e = v_out / v0.
-    energy_radiated_fraction : float
-        1 - e^2: the share of the initial kinetic energy left in the half-space.
-    energy_balance_error : float
-        max over t of |E0 - striker - body - absorbed| / E0.
-    reflected_energy_fraction : float
-        Body energy inside the monitor radius R_a = layer_start c_s t_y at the end of the
-        tail (t_contact + tail R_a / c_R, when every direct wave has left and a reflection of
-        any wave sent during the contact would be inside) over the radiated energy: an upper
-        bound of what the mesh grading, the layer and the far arc send back (it includes the
-        slow decay of the near field; a viscoelastic body: twice the kinetic energy there, its
-        creeping near field and its dissipated energy left out, within R_a and c_R of its
-        relaxed, slowest waves, so that its relaxed limit measures what the elastic body at
-        the relaxed modulus does). nan without a tail, or when R_a lies beyond half the
-        domain (the nearly massless limit: nothing radiates); 0 for a massless body. On a
-        layer, whose base sends waves back by design and may radiate almost nothing, it is that
-        energy over M v0^2 / 2 instead: the most a reflection can change e^2 by; measured
-        within half the layer's lateral extent when the layer is too thin for a lateral
-        absorber (R_a beyond it), since M v0^2 / 2 is a reference whatever the radiation.
-    mesh : dict
-        ``nodes``, ``elements``, ``dofs`` and the geometry (m).
-    timings : dict of str to float
-        Seconds: ``mesh``, ``assembly``, ``factorization`` (K_eff once, its surface
-        compliance and W), ``stepping``, ``total``.
-    parameters : dict
-        Inputs and derived scales (dt, c_s, R_a, quasi-static x_c, t_y, ...).
-    viscoelastic : dict of str to float
-        A viscoelastic body only ({} otherwise), of M v0^2 / 2: ``energy_dissipated_fraction``
-        (heat by the end of the run), ``energy_wave_fraction`` (the body's energy beyond R_a
-        and the layer's at the end: the waves) and ``energy_hysteresis_fraction`` (the rest of
-        1 - e^2: dissipated, or still inside R_a, where the body will dissipate it).
-    """
-
-    t: np.ndarray = field(repr=False)
-    x: np.ndarray = field(repr=False)
-    v: np.ndarray = field(repr=False)
-    force: np.ndarray = field(repr=False)
-    contact_radius: np.ndarray = field(repr=False)
-    central_pressure: np.ndarray = field(repr=False)
-    energies: dict[str, np.ndarray] = field(repr=False)
-    x_max: float
-    P_max: float
-    t_x_max: float
-    t_contact: float
-    v_out: float
-    restitution: float
-    energy_radiated_fraction: float
-    energy_balance_error: float
-    reflected_energy_fraction: float
-    mesh: dict[str, float]
-    timings: dict[str, float]
-    parameters: dict[str, float]
-    system: ElasticSystem = field(repr=False)
-    snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(repr=False)
-    viscoelastic: dict[str, float] = field(default_factory=dict)
-    material: ViscoelasticShear | None = field(default=None, repr=False)
-    memories: dict[float, ShearMemory | None] = field(default_factory=dict, repr=False)
-
-    def summary(self) -> dict[str, float]:
-        """The scalar results (the ``dynamic`` object of ``shtaerman dynamic --json``)."""
-        keys = (
-            "x_max",
-            "P_max",
-            "t_x_max",
-            "t_contact",
-            "v_out",
-            "restitution",
-            "energy_radiated_fraction",
-            "energy_balance_error",
-            "reflected_energy_fraction",
-        )
-        summary = {key: float(getattr(self, key)) for key in keys} | self.viscoelastic
-        if "interface" in self.parameters:  # the work of friction, of M v0^2 / 2
-            energy0 = 0.5 * self.parameters["mass"] * self.parameters["velocity"] ** 2
-            summary["energy_slip_fraction"] = float(self.energies["slip"][-1]) / energy0
-        return summary
-
-    def history_columns(self) -> dict[str, np.ndarray]:
-        """t (s), x (m), v (m/s), P (N), a (m), p0 (Pa), one row per step."""
-        return {
-            "t": self.t,
-            "x": self.x,
-            "v": self.v,
-            "P": self.force,
-            "a": self.contact_radius,
-            "p0": self.central_pressure,
-        }
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready: scalars, histories as lists, mesh, timings, parameters (SI units)."""
-
-        def clean(value: float) -> float | None:
-            return float(value) if math.isfinite(value) else None
-
-        return {
-            **{key: clean(value) for key, value in self.summary().items()},
-            "history": {key: column.tolist() for key, column in self.history_columns().items()},
-            "energies": {key: column.tolist() for key, column in self.energies.items()},
-            "mesh": dict(self.mesh),
-            "timings": dict(self.timings),
-            "parameters": {key: clean(value) for key, value in self.parameters.items()},
-        }
-
-    def field_solution(self, time_requested: float) -> tuple[float, ElasticSolution, np.ndarray]:
-        """Fields kept for a requested time: (actual time s, solution, velocity vector m/s).
-
-        The solution carries u, the mean pressure and the stresses (von Mises included) at
-        the mesh vertices (a viscoelastic body's relaxed deviatoric stress from its branches);
-        the velocity is the full dof vector (zero on the pressure dofs).
-        """
-        if time_requested not in self.snapshots:
-            raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_dynamic_impact")
-        actual, coefficients, velocity = self.snapshots[time_requested]
-        memory = self.memories.get(time_requested)
-        deviatoric = None
-        if self.material is not None and memory is not None:  # the relaxing shear stress
-            deviatoric = self.material.deviatoric_stress(memory)
-        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients), deviatoric)
-        return actual, solution, velocity
 
 
 @dataclass(frozen=True)
@@ -798,7 +639,7 @@ class DynamicImpactSetup:
     reflection_measured : bool
         Whether the energy left inside R_a at the end measures the reflections.
     mesh, parameters : dict
-        As in :class:`DynamicImpactResult`.
+        As in :class:`.impact_run.ImpactRun`.
     timings : dict of str to float
         Seconds: ``mesh``, ``assembly``, ``factorization``.
     """
@@ -890,7 +731,7 @@ def run_dynamic_impact(
     snapshot_times: tuple[float, ...] = (),
     prony: PronySeries | None = None,
     friction: float | None = None,
-) -> DynamicImpactResult:
+) -> ImpactRun:
     """Strike the elastic half-space with a rigid power-law striker and follow the waves.
 
     Parameters
@@ -919,7 +760,7 @@ def run_dynamic_impact(
 
     Returns
     -------
-    DynamicImpactResult
+    ImpactRun
 
     Raises
     ------
@@ -1011,15 +852,15 @@ def _interface(friction: float | None) -> dict[str, object]:
 
 def _result(
     setup: DynamicImpactSetup, history: ImpactHistory, timings: dict[str, float]
-) -> DynamicImpactResult:
+) -> ImpactRun:
     """Maxima, rebound and energy fractions of a run."""
     problem, parameters = setup.problem, setup.parameters
     t, dt, v0 = history.t, problem.scheme.dt, problem.striker.velocity
     energy0 = problem.striker.kinetic_energy
-    x_max, t_x_max = _parabola_peak(t, history.x, int(np.argmax(history.x)))
+    x_max, t_x_max = parabola_peak(t, history.x)
     t_y = parameters["quasi_static_t_y"]
     force = history.force
-    p_max = _fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
+    p_max = fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
     v_out = restitution = radiated = reflected = math.nan
     if history.separated:
         # the last velocity: after separation the striker's acceleration decays geometrically
@@ -1035,7 +876,7 @@ def _result(
         )
         if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
             reflected = 0.0
-    return DynamicImpactResult(
+    return ImpactRun(
         t=t,
         x=history.x,
         v=history.v,
@@ -1057,7 +898,7 @@ def _result(
         parameters=parameters,
         system=problem.system,
         snapshots=history.snapshots,
-        viscoelastic=_losses(problem, history, radiated) if problem.material is not None else {},
+        losses=_losses(problem, history, radiated) if problem.material is not None else {},
         material=problem.material,
         memories=history.memories,
     )
@@ -1099,30 +940,3 @@ def _reflected_fraction(
     if measured and radiated_energy > 0:
         return float(inner / radiated_energy)
     return math.nan
-
-
-def _fitted_peak(t: np.ndarray, y: np.ndarray, k: int, half_width: int) -> float:
-    """Peak of the least-squares parabola through samples k - w .. k + w (w = 5 % of t_y).
-
-    The fit averages out the damped residue of the stiff-mode ripple on the force's flat top,
-    which a 3-point parabola would follow.
-    """
-    window = slice(max(k - half_width, 0), min(k + half_width + 1, y.size))
-    centre, scale = t[k], t[1] - t[0]
-    c2, c1, c0 = np.polyfit((t[window] - centre) / scale, y[window], 2)
-    if c2 >= 0:
-        return float(y[k])
-    return float(c0 - 0.25 * c1 * c1 / c2)
-
-
-def _parabola_peak(t: np.ndarray, y: np.ndarray, k: int) -> tuple[float, float]:
-    """Peak value and time of the parabola through samples k - 1, k, k + 1."""
-    if k == 0 or k == y.size - 1:
-        return float(y[k]), float(t[k])
-    y0, y1, y2 = y[k - 1], y[k], y[k + 1]
-    curvature = y0 - 2.0 * y1 + y2
-    if curvature >= 0:
-        return float(y1), float(t[k])
-    shift = 0.5 * (y0 - y2) / curvature
-    h = t[k + 1] - t[k]
-    return float(y1 - 0.25 * (y0 - y2) * shift), float(t[k] + shift * h)

@@ -54,7 +54,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -80,14 +80,14 @@ from .finite_contact import (
 from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
+from .impact_run import ImpactRun, parabola_peak
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import GentLockError, RubberModel, gent_locks
-from .stepper import separation_time
+from .stepper import TimeScheme, separation_time
 from .viscoelastic import sizing_impact
 
 __all__ = [
-    "FiniteImpactResult",
     "FiniteImpactSettings",
     "run_finite_impact",
 ]
@@ -179,102 +179,6 @@ class FiniteImpactSettings:
         if mesh is None:
             mesh = FINITE_MESH if massless else INERTIA_MESH
         return replace(self, steps=steps, mesh=mesh)
-
-
-@dataclass(frozen=True, eq=False)
-class FiniteImpactResult:
-    """The finite-strain impact: histories, maxima, energies and cost (SI units).
-
-    Attributes
-    ----------
-    t, x, v, force : numpy.ndarray
-        Time (s), striker depth X (m), velocity X' (m/s, downward) and contact force P (N)
-        at every step.
-    energies : dict of str to numpy.ndarray
-        Per step, J: ``striker_kinetic``, ``body_kinetic`` (0: massless body), ``strain``
-        (stored), ``absorbed`` (0), ``numerical`` (E0 minus the rest); a viscoelastic body
-        also ``dissipated`` (:mod:`.finite_viscoelastic`, cumulative; the stored energy then
-        includes its branches').
-    x_max, P_max : float
-        Largest depth (m) and force (N), from the parabola through the three samples
-        around the largest sample.
-    t_x_max, t_contact : float
-        Time of x_max and separation time (X back to 0, linear between steps), s.
-    v_out, restitution : float
-        Rebound speed (m/s, upward) and e = v_out / v0.
-    energy_radiated_fraction : float
-        1 - e^2.
-    energy_balance_error : float
-        max over t of |numerical| / E0.
-    reflected_energy_fraction : float
-        With inertia: the body's kinetic energy beyond half the domain radius at the end, over
-        E0 (the waves that reached the far arc, from where they could return; no absorbing
-        layer); nan for the massless body.
-    timings : dict of str to float
-        Seconds: ``mesh``, ``assembly``, ``stepping``, ``total``.
-    mesh, parameters : dict
-        Mesh counts and geometry; inputs and derived scales.
-    newton_iterations : int
-        Newton iterations over the run.
-    """
-
-    t: np.ndarray = field(repr=False)
-    x: np.ndarray = field(repr=False)
-    v: np.ndarray = field(repr=False)
-    force: np.ndarray = field(repr=False)
-    energies: dict[str, np.ndarray] = field(repr=False)
-    x_max: float
-    P_max: float
-    t_x_max: float
-    t_contact: float
-    v_out: float
-    restitution: float
-    energy_radiated_fraction: float
-    energy_balance_error: float
-    timings: dict[str, float]
-    mesh: dict[str, float]
-    parameters: dict[str, float]
-    newton_iterations: int
-
-    reflected_energy_fraction: float = math.nan
-    energy_dissipated_fraction: float | None = None
-
-    def summary(self) -> dict[str, float]:
-        """The scalar results, keys of the linear dynamic impact's summary (and, for a
-        viscoelastic body, ``energy_dissipated_fraction``: dissipated / E0 at the end)."""
-        keys = (
-            "x_max",
-            "P_max",
-            "t_x_max",
-            "t_contact",
-            "v_out",
-            "restitution",
-            "energy_radiated_fraction",
-            "energy_balance_error",
-            "reflected_energy_fraction",
-        )
-        if self.energy_dissipated_fraction is not None:
-            keys = (*keys, "energy_dissipated_fraction")
-        return {key: float(getattr(self, key)) for key in keys}
-
-    def history_columns(self) -> dict[str, np.ndarray]:
-        """t (s), x (m), v (m/s), P (N), one row per step."""
-        return {"t": self.t, "x": self.x, "v": self.v, "P": self.force}
-
-    def to_dict(self) -> dict[str, object]:
-        """JSON-ready: scalars, histories, energies, mesh, timings, parameters (SI)."""
-
-        def clean(value: float) -> float | None:
-            return float(value) if math.isfinite(value) else None
-
-        return {
-            **{key: clean(value) for key, value in self.summary().items()},
-            "history": {key: column.tolist() for key, column in self.history_columns().items()},
-            "energies": {key: column.tolist() for key, column in self.energies.items()},
-            "mesh": dict(self.mesh),
-            "timings": dict(self.timings),
-            "parameters": {key: clean(value) for key, value in self.parameters.items()},
-        }
 
 
 @dataclass
@@ -481,19 +385,6 @@ def _march(
     return tuple(np.array(column) for column in zip(*rows, strict=True)), separation
 
 
-def _parabola_peak(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
-    """Peak value and time of the parabola through the largest sample and its neighbours."""
-    k = int(np.argmax(y))
-    if k == 0 or k == y.size - 1:
-        return float(y[k]), float(t[k])
-    y0, y1, y2 = y[k - 1], y[k], y[k + 1]
-    curvature = y0 - 2.0 * y1 + y2
-    if curvature >= 0:
-        return float(y1), float(t[k])
-    shift = 0.5 * (y0 - y2) / curvature
-    return float(y1 - 0.25 * (y0 - y2) * shift), float(t[k] + shift * (t[k + 1] - t[k]))
-
-
 def _turning_point(
     x: np.ndarray, v: np.ndarray, force: np.ndarray, mass: float
 ) -> tuple[float, float]:
@@ -548,7 +439,7 @@ def run_finite_impact(
     rubber: RubberModel | None = None,
     prony: PronySeries | None = None,
     friction: float | None = None,
-) -> FiniteImpactResult:
+) -> ImpactRun:
     """Strike a rubber half-space (finite strain) with a rigid power-law striker.
 
     Parameters: ``indenter`` z = A r^n with n > 1; ``half_space`` the small-strain E2 (Pa)
@@ -663,7 +554,7 @@ def _stepped(
         body = _QuasiStaticBody(stepper, dt)
         columns, separation = _march(body, mass, velocity, dt, (duration, q))
         return columns, body.iterations, separation, math.nan
-    inertial = _inertial(stepper, density, bossak(spectral_radius, dt))
+    inertial = _inertial(stepper, density, TimeScheme.bossak(spectral_radius, dt))
     columns, iterations, separation, last = _march_inertial(
         stepper, inertial, striker, (x_c, duration, q)
     )
@@ -745,7 +636,7 @@ def _result(
     mass: float,
     context: dict[str, Any],
     separation: float | None = None,
-) -> FiniteImpactResult:
+) -> ImpactRun:
     """Maxima, separation and energies of a run: ``columns`` t, X, V, P, Pi and, with inertia
     or a viscoelastic body, the body's kinetic energy and then its dissipated energy;
     ``context`` its timings, mesh, parameters and Newton iterations; ``separation`` the time
@@ -759,14 +650,14 @@ def _result(
     numerical = energy0 - kinetic - strain - body
     if len(columns) > 6:  # a viscoelastic body: what it dissipated
         numerical -= columns[6]
-    _, t_x_max = _parabola_peak(t, x)
+    _, t_x_max = parabola_peak(t, x)
     t_contact = v_out = restitution = radiated = math.nan
     if separation is None:
         x_max, p_max = _turning_point(x, v, force, mass)
         if x[-1] <= 0.0 and x.size > 2:  # X back to 0 between the last two steps
             t_contact = float(t[-2] + (t[-1] - t[-2]) * x[-2] / (x[-2] - x[-1]))
     else:  # P not a function of X: the parabolas through the samples around the largest
-        x_max, p_max = _parabola_peak(t, x)[0], _parabola_peak(t, force)[0]
+        x_max, p_max = parabola_peak(t, x)[0], parabola_peak(t, force)[0]
         t_contact = separation
     if math.isfinite(t_contact):
         v_out = -float(v[-1])
@@ -776,8 +667,9 @@ def _result(
     energies.update(absorbed=zeros, numerical=numerical)
     if len(columns) > 6:
         energies["dissipated"] = columns[6]
-        context = {**context, "energy_dissipated_fraction": float(columns[6][-1]) / energy0}
-    return FiniteImpactResult(
+        fraction = float(columns[6][-1]) / energy0
+        context = {**context, "losses": {"energy_dissipated_fraction": fraction}}
+    return ImpactRun(
         t=t,
         x=x,
         v=v,
@@ -805,10 +697,11 @@ class _InertialSystem:
     tangent K_T(x) + (1 - a_m) / (beta dt^2) M; everything else is the static system's.
     """
 
-    def __init__(self, system: Any, mass: sp.csr_matrix, scheme: tuple[float, ...]) -> None:
+    def __init__(self, system: Any, mass: sp.csr_matrix, scheme: TimeScheme) -> None:
         self.static = system
         self.mass = mass
-        self.alpha_m, self.beta, self.gamma, self.dt = scheme
+        self.alpha_m, self.beta, self.gamma = scheme.alpha_m, scheme.beta, scheme.gamma
+        self.dt = scheme.dt  # halved where a step is cut
         coo = mass.tocoo()
         self.mass_data = np.zeros(system.pattern.nnz)
         np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
@@ -831,13 +724,6 @@ class _InertialSystem:
         """The effective tangent's data in the system's pattern (N/m)."""
         factor = (1.0 - self.alpha_m) / (self.beta * self.dt**2)
         return self.static.tangent_data(x, state) + factor * self.mass_data
-
-
-def bossak(spectral_radius: float, dt: float) -> tuple[float, float, float, float]:
-    """Wood-Bossak-Zienkiewicz alpha_m, beta, gamma (second order, the high frequencies damped
-    to ``spectral_radius``; 1 is the trapezoidal rule) and dt (s)."""
-    alpha_m = (spectral_radius - 1.0) / (spectral_radius + 1.0)
-    return alpha_m, 0.25 * (1.0 - alpha_m) ** 2, 0.5 - alpha_m, dt
 
 
 @dataclass
@@ -1129,7 +1015,7 @@ def _check_candidates(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> 
         )
 
 
-def _inertial(stepper: NewtonStepper, density: float, scheme: tuple) -> _InertialSystem:
+def _inertial(stepper: NewtonStepper, density: float, scheme: TimeScheme) -> _InertialSystem:
     """The body's consistent mass (``density`` kg/m^3) without the normal mass of the contact
     candidates, wrapped with the Bossak ``scheme`` around the stepper's system (which it
     replaces in the stepper, whose Newton then back-tracks an update that inverts an element)."""

@@ -138,6 +138,14 @@ class TimeScheme:
         beta = 0.25 * (1.0 - alpha_m + alpha_f) ** 2
         return cls(dt, alpha_m, alpha_f, beta, 0.5 - alpha_m + alpha_f)
 
+    @classmethod
+    def bossak(cls, spectral_radius: float, dt: float) -> TimeScheme:
+        """Wood, Bossak and Zienkiewicz's case of the scheme: alpha_f = 0 (the internal force at
+        the step's end, as a nonlinear body wants), alpha_m = (rho_inf - 1)/(rho_inf + 1), the
+        same gamma and beta (second order; 1 is the trapezoidal rule)."""
+        alpha_m = (float(spectral_radius) - 1.0) / (float(spectral_radius) + 1.0)
+        return cls(dt, alpha_m, 0.0, 0.25 * (1.0 - alpha_m) ** 2, 0.5 - alpha_m)
+
 
 @dataclass(frozen=True)
 class Striker:

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fem.dynamic_contact import DynamicImpactResult
+from ..fem.impact_run import ImpactRun
 from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
 from ..plots.impact_energy import plot_energy_history, plot_force_depth_loop
 from ..study.dynamic.case import DynamicCase
@@ -55,13 +55,13 @@ SUMMARY_HEADER = (
     "energy_hysteresis_fraction [1]",
 )
 """Columns of summary.csv, one row per velocity, in the ``name [unit]`` convention; the last
-three (the viscoelastic split of 1 - e^2, :attr:`DynamicImpactResult.viscoelastic`) are NaN
+three (the viscoelastic split of 1 - e^2, :attr:`ImpactRun.losses`) are NaN
 for an elastic body."""
 
 LOSS_KEYS = ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction")
 
 
-def history_columns(result: DynamicImpactResult) -> dict[str, object]:
+def history_columns(result: ImpactRun) -> dict[str, object]:
     """The dynamic history t, x, v, P, a, p0 (write_csv adds the units: ``t [s]``, ...)."""
     return result.history_columns()
 
@@ -90,19 +90,11 @@ def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
                 case.estimate.energy_fraction,
                 r.energy_balance_error,
                 r.reflected_energy_fraction,
-                *(_losses(r).get(key, np.nan) for key in LOSS_KEYS),
+                *(r.losses.get(key, np.nan) for key in LOSS_KEYS),
             )
         )
     table = np.array(rows, dtype=float)
     return {name: table[:, i] for i, name in enumerate(SUMMARY_HEADER)}
-
-
-def _losses(result: object) -> dict[str, float]:
-    """A linear run's split of 1 - e^2 (``viscoelastic``); a rubber's dissipated fraction."""
-    if hasattr(result, "viscoelastic"):
-        return result.viscoelastic
-    dissipated = getattr(result, "energy_dissipated_fraction", None)
-    return {} if dissipated is None else {"energy_dissipated_fraction": dissipated}
 
 
 def _loss_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict[str, Path]:
@@ -181,7 +173,7 @@ def write_dynamic_study(
             "wave_field_separation",
         ),
     ):
-        if key in getattr(result, "snapshots", {}):  # a rubber's run keeps no fields
+        if key in result.snapshots:  # a rubber's run keeps no fields
             figures[f"Wave field (von Mises) at {v0}, {words}"] = plot_wave_field(
                 example, key, folder / f"{stem}.png"
             )

@@ -173,7 +173,7 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
     case, pad = outcome.example, outcome.settings.thickness is not None
     if outcome.study.finite:
         return _rubber_loss_words(outcome)
-    losses, pm = case.result.viscoelastic, _plus_minus(case.estimates())
+    losses, pm = case.result.losses, _plus_minus(case.estimates())
     if not losses:
         if pad and outcome.study.density > 0:
             return (
@@ -208,7 +208,7 @@ def _rubber_loss_words(outcome: DynamicStudyOutcome) -> str:
         what = "as hysteresis (massless body: no waves)" if study.prony else "(massless body)"
     else:
         what = "as waves and hysteresis" if study.prony else "as waves"
-    dissipated = result.energy_dissipated_fraction
+    dissipated = result.losses.get("energy_dissipated_fraction")
     heat = "" if dissipated is None else f"; {100 * dissipated:.2f} % of M v0^2/2 dissipated"
     return (
         f"{what} (the {model} rubber at finite strain{heat}; the linear half-space's first-order "

@@ -22,7 +22,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ..fem.dynamic_contact import DynamicImpactResult
+from ..fem.impact_run import ImpactRun
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
@@ -62,10 +62,10 @@ its largest value in the window: the waves (kPa) are 2-4 decades below the conta
 concentration (MPa) and would be invisible on a linear scale."""
 
 
-def _losses(result: DynamicImpactResult) -> str:
+def _losses(result: ImpactRun) -> str:
     """What the run loses energy to: "waves", "hysteresis" or "waves + hysteresis"."""
     waves = result.parameters["density2"] > 0
-    if getattr(result, "material", None) is None:  # a rubber's run names no Prony series
+    if result.material is None and not result.losses:  # elastic (a rubber: no material)
         return "waves" if waves else "no loss"
     return "waves + hysteresis" if waves else "hysteresis"
 
@@ -148,7 +148,7 @@ def _restitution(ax_e: Axes, ax_loss: Axes, outcome: DynamicStudyOutcome) -> Non
         ax_loss.legend(loc="upper left")
 
 
-def _pad_account(ax: Axes, v: np.ndarray, results: list[DynamicImpactResult]) -> None:
+def _pad_account(ax: Axes, v: np.ndarray, results: list[ImpactRun]) -> None:
     """What a pad run measured, % of M v0^2/2 on a log scale: the energy its base reflects
     back near the contact after the tail and the energy balance error (the half-space's
     first-order radiation estimate does not apply to a pad: not drawn, said in a note)."""

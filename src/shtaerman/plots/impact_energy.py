@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..fem.dynamic_contact import DynamicImpactResult
+from ..fem.impact_run import ImpactRun
 from ..study.dynamic.case import DynamicCase
 from .labels import MINUS
 from .style import (
@@ -66,12 +66,12 @@ PAD_NOTE = " (the half-space's, not this pad's)"
 """Added to a half-space curve's legend drawn beside a pad run."""
 
 
-def on_pad(result: DynamicImpactResult) -> bool:
+def on_pad(result: ImpactRun) -> bool:
     """Whether the run was on a pad (a layer on a rigid base), not the half-space."""
     return "thickness" in result.mesh
 
 
-def force_depth_loop(result: DynamicImpactResult) -> dict[str, np.ndarray]:
+def force_depth_loop(result: ImpactRun) -> dict[str, np.ndarray]:
     """The loop's branches, m and N: ``x_load``, ``P_load`` from first touch to the largest
     approach, ``x_unload``, ``P_unload`` from there to separation (to the run's end if the
     striker never separates)."""
@@ -88,13 +88,13 @@ def force_depth_loop(result: DynamicImpactResult) -> dict[str, np.ndarray]:
     }
 
 
-def loop_work(result: DynamicImpactResult) -> float:
+def loop_work(result: ImpactRun) -> float:
     """The net work of the contact force on the body over the run, J: the trapezoidal
     integral of P dx, the loop's area; E0 - M v_out^2 / 2 = E0 (1 - e^2) once separated."""
     return float(np.trapezoid(result.force, result.x))
 
 
-def energy_shares(result: DynamicImpactResult) -> dict[str, np.ndarray]:
+def energy_shares(result: ImpactRun) -> dict[str, np.ndarray]:
     """The energy account per step as fractions of E0 (dimensionless), keyed by the labels of
     :data:`ENERGY_STYLES` (on a pad, :data:`PAD_LABELS`); they sum to 1 (the residue closes
     it). The dissipated share is left out where it is 0 throughout (an elastic body)."""

@@ -412,7 +412,7 @@ DYNAMIC_LOSSES = {
 }
 """With a ``prony`` series: the energy dissipated by the end of the run and the single-run split
 of 1 - e^2 (energy_radiated_fraction) into waves beyond the monitor radius and hysteresis,
-fractions of M v0^2/2 (:attr:`~shtaerman.fem.dynamic_contact.DynamicImpactResult.viscoelastic`;
+fractions of M v0^2/2 (:attr:`~shtaerman.fem.impact_run.ImpactRun.losses`;
 empty for an elastic case of a prony axis)."""
 
 
@@ -447,7 +447,7 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
         "reflected_energy_fraction": float(result.reflected_energy_fraction),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
-        **{key: float(result.viscoelastic[key]) for key in DYNAMIC_LOSSES if result.viscoelastic},
+        **{key: float(result.losses[key]) for key in DYNAMIC_LOSSES if result.losses},
         **_dynamic_errors(case),
     }
     of = "the radiated" if p.get("thickness") is None else "M v0^2/2"

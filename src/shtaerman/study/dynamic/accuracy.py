@@ -26,8 +26,8 @@ from operator import attrgetter
 from ...fem.dynamic_contact import (
     MAX_SIZE,
     MIN_STEPS,
-    DynamicImpactResult,
     DynamicSettings,
+    ImpactRun,
     run_dynamic_impact,
 )
 from ...theory.indenter import PowerLawIndenter
@@ -55,7 +55,7 @@ LOSS_ESTIMATED = (
     "energy_wave_fraction",
     "energy_hysteresis_fraction",
 )
-"""A viscoelastic body's split of 1 - e^2 (:attr:`DynamicImpactResult.viscoelastic`), estimated
+"""A viscoelastic body's split of 1 - e^2 (:attr:`ImpactRun.losses`), estimated
 too when the runs have it."""
 DYNAMIC_ORDER = 2.0
 """Asymptotic order used for the correction: generalized-alpha is second order in dt, and the
@@ -77,7 +77,7 @@ class DynamicLadder:
         Refinement factors of the levels.
     settings : tuple of DynamicSettings
         The numerical settings of the levels.
-    results : tuple of DynamicImpactResult
+    results : tuple of ImpactRun
         The runs; ``results[-1]`` is the answer.
     estimates : dict of str to Estimate
         Per quantity of :data:`DYNAMIC_ESTIMATED` (and of :data:`LOSS_ESTIMATED` for a
@@ -86,15 +86,15 @@ class DynamicLadder:
 
     refines: tuple[float, ...]
     settings: tuple[DynamicSettings, ...]
-    results: tuple[DynamicImpactResult, ...]
+    results: tuple[ImpactRun, ...]
     estimates: dict[str, Estimate]
 
     @property
-    def finest(self) -> DynamicImpactResult:
+    def finest(self) -> ImpactRun:
         """The finest run: the reported numbers."""
         return self.results[-1]
 
-    def estimate(self, quantity: Callable[[DynamicImpactResult], float]) -> Estimate:
+    def estimate(self, quantity: Callable[[ImpactRun], float]) -> Estimate:
         """Richardson on ``quantity`` of each level's run (e.g. x_c / x_max - 1)."""
         return _over_levels(self.results, quantity)
 
@@ -146,9 +146,7 @@ def check_ladder(settings: DynamicSettings) -> None:
         ) from None
 
 
-def _over_levels(
-    results: Sequence[DynamicImpactResult], quantity: Callable[[DynamicImpactResult], float]
-) -> Estimate:
+def _over_levels(results: Sequence[ImpactRun], quantity: Callable[[ImpactRun], float]) -> Estimate:
     values = [quantity(result) for result in results]
     return richardson(
         values, LADDER_RATIO, order=DYNAMIC_ORDER, sane=DYNAMIC_SANE, fallback="largest"
@@ -156,7 +154,7 @@ def _over_levels(
 
 
 def complete_ladder(
-    finest: DynamicImpactResult,
+    finest: ImpactRun,
     indenter: PowerLawIndenter,
     half_space: Material,
     density: float,
@@ -184,9 +182,9 @@ def complete_ladder(
     results.append(finest)
     refines = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine)
     estimates = {key: _over_levels(results, attrgetter(key)) for key in DYNAMIC_ESTIMATED}
-    if finest.viscoelastic:
+    if finest.losses:
         for key in LOSS_ESTIMATED:
-            estimates[key] = _over_levels(results, lambda r, key=key: r.viscoelastic[key])
+            estimates[key] = _over_levels(results, lambda r, key=key: r.losses[key])
     return DynamicLadder(refines, (*coarse, settings), tuple(results), estimates)
 
 

@@ -17,10 +17,10 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from ...fem.dynamic_contact import (
-    DynamicImpactResult,
     DynamicSettings,
     run_dynamic_impact,
 )
+from ...fem.impact_run import ImpactRun
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactResult, solve_impact
@@ -53,7 +53,7 @@ COMPARED = {
 """Compared quantity -> (quasi-static key, dynamic key, words)."""
 
 
-def compare(quasi: ImpactResult, result: DynamicImpactResult) -> dict[str, float]:
+def compare(quasi: ImpactResult, result: ImpactRun) -> dict[str, float]:
     """Quasi-static / dynamic - 1 for x, P and t (keys of :data:`COMPARED`; t_c against
     t_contact / 2, the same as t_y against t_contact), dimensionless."""
     dynamic = {"x_max": result.x_max, "P_max": result.P_max, "t_half": 0.5 * result.t_contact}
@@ -68,7 +68,7 @@ class DynamicCase:
     velocity: float
     quasi: ImpactResult
     estimate: RadiationEstimate
-    result: DynamicImpactResult
+    result: ImpactRun
     ladder: DynamicLadder | FiniteLadder | None = None
 
     def differences(self) -> dict[str, float]:

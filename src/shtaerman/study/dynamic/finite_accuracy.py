@@ -25,8 +25,8 @@ from typing import Any
 from ...fem.finite_dynamic import (
     MAX_STEPS,
     MIN_STEPS,
-    FiniteImpactResult,
     FiniteImpactSettings,
+    ImpactRun,
     run_finite_impact,
 )
 from ...fem.hyperelastic import NewtonError
@@ -79,7 +79,7 @@ class FiniteImpact:
     friction: float | None = None
     """None frictionless, inf bonded (no slip), else Coulomb's mu."""
 
-    def run(self, settings: FiniteImpactSettings) -> FiniteImpactResult:
+    def run(self, settings: FiniteImpactSettings) -> ImpactRun:
         """One run with ``settings``."""
         return run_finite_impact(
             self.indenter,
@@ -104,7 +104,7 @@ class FiniteLadder:
         Refinement factors of the levels.
     settings : tuple of FiniteImpactSettings
         The settings each level ran with (a retried level's doubled steps).
-    results : tuple of FiniteImpactResult or None
+    results : tuple of ImpactRun or None
         The runs; None where a level failed twice.
     failures : tuple of str
         Per level, "" or what failed (a retry that passed is noted too).
@@ -116,13 +116,13 @@ class FiniteLadder:
 
     refines: tuple[float, ...]
     settings: tuple[FiniteImpactSettings, ...]
-    results: tuple[FiniteImpactResult | None, ...]
+    results: tuple[ImpactRun | None, ...]
     failures: tuple[str, ...]
     estimates: dict[str, Estimate]
     missing: str = ""
 
     @property
-    def finest(self) -> FiniteImpactResult:
+    def finest(self) -> ImpactRun:
         """The finest run that passed: the reported numbers."""
         return next(r for r in reversed(self.results) if r is not None)
 
@@ -211,7 +211,7 @@ def over_levels(results: Any, quantity: Callable[[Any], float]) -> Estimate:
 
 def _level(
     impact: FiniteImpact, settings: FiniteImpactSettings
-) -> tuple[FiniteImpactSettings, FiniteImpactResult | Exception, str]:
+) -> tuple[FiniteImpactSettings, ImpactRun | Exception, str]:
     """One level run; on a numerical failure run again with :data:`RETRY_STEPS` x its time
     steps. Returns the settings last used, the result (or the retry's error) and a note."""
     try:
@@ -266,11 +266,11 @@ def run_finite_ladder(
     runs = {factors[-1]: _level(impact, refined(settings, factors[-1]))}  # the finest first:
     for factor in factors[:-1]:  # its refusals (a Gent lock) come before any other cost
         with warnings.catch_warnings():  # the reported level's validity warnings only
-            if isinstance(runs[factors[-1]][1], FiniteImpactResult):
+            if isinstance(runs[factors[-1]][1], ImpactRun):
                 warnings.simplefilter("ignore", ValidityWarning)
             runs[factor] = _level(impact, refined(settings, factor))
     used, outcomes, notes = zip(*(runs[factor] for factor in factors), strict=True)
-    results = tuple(r if isinstance(r, FiniteImpactResult) else None for r in outcomes)
+    results = tuple(r if isinstance(r, ImpactRun) else None for r in outcomes)
     if all(result is None for result in results):
         raise outcomes[-1]
     missing, estimates = "", {}
@@ -290,15 +290,15 @@ def run_finite_ladder(
     return FiniteLadder(factors, used, results, notes, estimates, missing)
 
 
-def ladder_estimates(results: Sequence[FiniteImpactResult]) -> dict[str, Estimate]:
+def ladder_estimates(results: Sequence[ImpactRun]) -> dict[str, Estimate]:
     """The estimates of the last of three levels' runs (coarse to fine): the quantities of
     :data:`.accuracy.DYNAMIC_ESTIMATED` and a viscoelastic body's dissipated fraction; not
     1 - e^2 of a massless elastic body (0 by construction, its energy-conserving stepping's
     round-off has no relative error)."""
     finest = results[-1]
     keys = list(DYNAMIC_ESTIMATED)
-    if finest.energy_dissipated_fraction is not None:
+    if "energy_dissipated_fraction" in finest.losses:
         keys.append("energy_dissipated_fraction")
     elif finest.parameters["density2"] == 0:
         keys.remove("energy_radiated_fraction")
-    return {key: over_levels(results, lambda r, key=key: getattr(r, key)) for key in keys}
+    return {key: over_levels(results, lambda r, key=key: r.summary()[key]) for key in keys}

@@ -1,0 +1,182 @@
+"""One FE impact run, whatever the body: :class:`ImpactRun` and the peaks of its histories.
+
+Every impact of the FEM (the linear body with its one factorization, a rubber at finite
+strain, massless or with inertia, elastic or relaxing, on a half-space or a pad, with any
+interface) ends in the same record: the striker's histories, the maxima, the energy account and
+the costs. What only some runs have is optional: the contact radius and central pressure
+histories (the linear body), the split of the losses (a relaxing or frictional body), the
+fields kept for pictures (the linear body) and the Newton iterations (finite strain).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from .elasticity import ElasticSolution, ElasticSystem
+    from .viscoelastic import ShearMemory, ViscoelasticShear
+
+__all__ = ["SUMMARY_KEYS", "ImpactRun", "fitted_peak", "parabola_peak"]
+
+SUMMARY_KEYS = (
+    *("x_max", "P_max", "t_x_max", "t_contact", "v_out", "restitution"),
+    *("energy_radiated_fraction", "energy_balance_error", "reflected_energy_fraction"),
+)
+"""The scalars of every run (the ``dynamic`` object of ``shtaerman dynamic --json``)."""
+
+
+@dataclass(frozen=True, eq=False)
+class ImpactRun:
+    """An FE impact: histories, maxima, energy bookkeeping and costs (SI units).
+
+    Attributes
+    ----------
+    t, x, v, force : numpy.ndarray
+        Time from first touch (s), striker approach X (m, into the body), its velocity X'
+        (m/s, downward) and the contact force P (N), every step.
+    energies : dict of str to numpy.ndarray
+        Per step, J: ``striker_kinetic``, ``body_kinetic``, ``strain``, ``absorbed`` (by an
+        absorbing layer, cumulative) and ``numerical`` (E0 minus the rest); as the body has
+        them ``dissipated`` (cumulative), ``contact_term``, ``inner``, ``inner_kinetic`` and
+        ``slip`` (see the driver that made the run).
+    x_max, P_max, t_x_max : float
+        Largest approach (m), largest force (N) and the time of x_max (s).
+    t_contact, v_out, restitution : float
+        Separation time (s), rebound speed (m/s, upward) and e = v_out / v0; nan if the striker
+        never separates in the run.
+    energy_radiated_fraction : float
+        1 - e^2: the share of M v0^2 / 2 left in the body.
+    energy_balance_error : float
+        max over t of |numerical| / E0.
+    reflected_energy_fraction : float
+        What the far boundary sends back (the driver defines its measure); nan where none is
+        measured, 0 for a massless body.
+    mesh, timings, parameters : dict
+        Mesh counts and geometry (m); seconds per phase; inputs and derived scales (SI).
+    contact_radius, central_pressure : numpy.ndarray or None
+        Contact radius a (m) and axis pressure p0 (Pa) every step, where the run records them.
+    losses : dict of str to float
+        Fractions of M v0^2 / 2 lost in the body: ``energy_dissipated_fraction`` (a relaxing
+        or frictional body) and for the linear viscoelastic body ``energy_wave_fraction`` and
+        ``energy_hysteresis_fraction``; {} for an elastic frictionless body.
+    newton_iterations : int or None
+        Newton iterations over the run (finite strain).
+    system, snapshots, material, memories
+        The fields kept for pictures (the linear body): its system, the state at requested
+        times, its relaxing shear and its memories there (see :meth:`field_solution`).
+    """
+
+    t: np.ndarray = field(repr=False)
+    x: np.ndarray = field(repr=False)
+    v: np.ndarray = field(repr=False)
+    force: np.ndarray = field(repr=False)
+    energies: dict[str, np.ndarray] = field(repr=False)
+    x_max: float
+    P_max: float
+    t_x_max: float
+    t_contact: float
+    v_out: float
+    restitution: float
+    energy_radiated_fraction: float
+    energy_balance_error: float
+    reflected_energy_fraction: float
+    mesh: dict[str, Any]
+    timings: dict[str, float]
+    parameters: dict[str, Any]
+    contact_radius: np.ndarray | None = field(default=None, repr=False)
+    central_pressure: np.ndarray | None = field(default=None, repr=False)
+    losses: dict[str, float] = field(default_factory=dict)
+    newton_iterations: int | None = None
+    system: ElasticSystem | None = field(default=None, repr=False)
+    snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(
+        default_factory=dict, repr=False
+    )
+    material: ViscoelasticShear | None = field(default=None, repr=False)
+    memories: dict[float, ShearMemory | None] = field(default_factory=dict, repr=False)
+
+    def summary(self) -> dict[str, float]:
+        """The scalar results: :data:`SUMMARY_KEYS`, the losses and, with friction at the
+        striker's surface recorded as slip, ``energy_slip_fraction`` (of M v0^2 / 2)."""
+        summary = {key: float(getattr(self, key)) for key in SUMMARY_KEYS} | self.losses
+        if "interface" in self.parameters and "slip" in self.energies:
+            energy0 = 0.5 * self.parameters["mass"] * self.parameters["velocity"] ** 2
+            summary["energy_slip_fraction"] = float(self.energies["slip"][-1]) / energy0
+        return summary
+
+    def history_columns(self) -> dict[str, np.ndarray]:
+        """t (s), x (m), v (m/s), P (N) and, where recorded, a (m) and p0 (Pa), one row a
+        step."""
+        columns = {"t": self.t, "x": self.x, "v": self.v, "P": self.force}
+        if self.contact_radius is not None:
+            columns.update(a=self.contact_radius, p0=self.central_pressure)
+        return columns
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready: scalars, histories as lists, energies, mesh, timings, parameters (SI;
+        non-finite numbers None)."""
+        return {
+            **{key: _clean(value) for key, value in self.summary().items()},
+            "history": {key: column.tolist() for key, column in self.history_columns().items()},
+            "energies": {key: column.tolist() for key, column in self.energies.items()},
+            "mesh": dict(self.mesh),
+            "timings": dict(self.timings),
+            "parameters": {key: _clean(value) for key, value in self.parameters.items()},
+        }
+
+    def field_solution(self, time_requested: float) -> tuple[float, ElasticSolution, np.ndarray]:
+        """Fields kept for a requested time: (actual time s, solution, velocity vector m/s).
+
+        The solution carries u, the mean pressure and the stresses (von Mises included) at
+        the mesh vertices (a viscoelastic body's relaxed deviatoric stress from its branches);
+        the velocity is the full dof vector (zero on the pressure dofs).
+        """
+        from .elasticity import postprocess
+
+        if time_requested not in self.snapshots:
+            raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_dynamic_impact")
+        actual, coefficients, velocity = self.snapshots[time_requested]
+        memory = self.memories.get(time_requested)
+        deviatoric = None
+        if self.material is not None and memory is not None:  # the relaxing shear stress
+            deviatoric = self.material.deviatoric_stress(memory)
+        solution = postprocess(self.system, coefficients, np.zeros_like(coefficients), deviatoric)
+        return actual, solution, velocity
+
+
+def _clean(value: Any) -> Any:
+    """A float, None where not finite; anything else (a string parameter) as it is."""
+    if isinstance(value, (int, float, np.floating)) and not isinstance(value, bool):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def parabola_peak(t: np.ndarray, y: np.ndarray, k: int | None = None) -> tuple[float, float]:
+    """Peak value and time of the parabola through samples k - 1, k, k + 1 (``k`` default:
+    the largest sample); the sample itself at an end or where y is not concave there."""
+    k = int(np.argmax(y)) if k is None else k
+    if k == 0 or k == y.size - 1:
+        return float(y[k]), float(t[k])
+    y0, y1, y2 = y[k - 1], y[k], y[k + 1]
+    curvature = y0 - 2.0 * y1 + y2
+    if curvature >= 0:
+        return float(y1), float(t[k])
+    shift = 0.5 * (y0 - y2) / curvature
+    return float(y1 - 0.25 * (y0 - y2) * shift), float(t[k] + shift * (t[k + 1] - t[k]))
+
+
+def fitted_peak(t: np.ndarray, y: np.ndarray, k: int, half_width: int) -> float:
+    """Peak of the least-squares parabola through samples k - w .. k + w (w = ``half_width``).
+
+    The fit averages out the damped residue of the stiff-mode ripple on the force's flat top,
+    which a 3-point parabola would follow.
+    """
+    window = slice(max(k - half_width, 0), min(k + half_width + 1, y.size))
+    centre, scale = t[k], t[1] - t[0]
+    c2, c1, c0 = np.polyfit((t[window] - centre) / scale, y[window], 2)
+    if c2 >= 0:
+        return float(y[k])
+    return float(c0 - 0.25 * c1 * c1 / c2)
