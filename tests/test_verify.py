@@ -596,3 +596,25 @@ def test_dask_submits_the_longest_studies_first():
     assert names[3] == "paper"  # the one shipped contact study with a convergence study
     contact = [study.name for study in studies if study.kind == "contact"]
     assert names[4:] == [name for name in contact if name != "paper"]
+
+
+def test_the_verify_process_imports_no_renderer_before_its_workers_start():
+    """The process that hands the studies to dask draws no study's figure: pyvista, VTK's
+    rendering and matplotlib's axes cost it ~0.5 s of CPU (0.8 s instead of 1.3 s of imports
+    before the cluster starts, benchmarks/verify_cost.py) while both cores wait for work."""
+    import subprocess
+    import sys
+
+    probe = (
+        "import sys\n"
+        "from shtaerman.cli import verify\n"
+        "from shtaerman.output.folder import run_verification\n"
+        "from shtaerman.sweep.verify import run_verification_on_dask\n"
+        "from shtaerman.study.schema import load_study, shipped_studies\n"
+        "[s for p in shipped_studies() for s in load_study(p)]\n"
+        "heavy = ('pyvista', 'vtkmodules.vtkRenderingCore', 'matplotlib.axes')\n"
+        "print(sorted(m for m in heavy if m in sys.modules))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "[]"
