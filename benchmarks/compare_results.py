@@ -3,7 +3,8 @@
 Run: python benchmarks/compare_results.py OLD_DIR NEW_DIR [--rtol 1e-9]. Every numeric leaf of
 results.json and every numeric cell of the studies' CSV files is compared; a pair differs when
 |a - b| > rtol max(|a|, |b|) (so a zero must stay exactly zero). Keys that vary from run to run
-are skipped: timings, seconds, cpu_seconds, generated, environment. Prints each difference
+are skipped: timings, seconds, cpu_seconds, generated, environment, and the CPU time a text quotes
+("31 s of CPU time"). Prints each difference
 (path, old, new, relative change) and a summary line; exit code 1 when anything differs, or a
 key, a file or a row is on one side only.
 """
@@ -14,12 +15,15 @@ import argparse
 import csv
 import json
 import math
+import re
 import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 SKIPPED = {"timings", "seconds", "cpu_seconds", "generated", "environment"}
 """Keys whose values vary from run to run."""
+CPU_IN_TEXT = re.compile(r"[0-9.]+ s of CPU")
+"""A CPU time quoted in a finding."""
 
 
 def leaves(value: object, path: str = "") -> Iterator[tuple[str, object]]:
@@ -31,6 +35,8 @@ def leaves(value: object, path: str = "") -> Iterator[tuple[str, object]]:
     elif isinstance(value, list):
         for index, item in enumerate(value):
             yield from leaves(item, f"{path}[{index}]")
+    elif isinstance(value, str):
+        yield path, CPU_IN_TEXT.sub("(time) s of CPU", value)
     else:
         yield path, value
 
