@@ -582,22 +582,6 @@ def test_a_failed_computation_on_a_dask_worker_comes_back_as_itself(monkeypatch)
     assert on_dask.FAILURES == {"input": InputError, "numerical": NumericalFailureError}
 
 
-def test_dask_submits_the_longest_studies_first():
-    """Longest first (LPT) balances the two workers: finite strain, dynamic, then the contact
-    study with a mesh-convergence study (paper, 7.5 s CPU against 4.2-4.8 s for the other
-    contact studies, benchmarks/verify_cost.py), then the other contact studies in file order."""
-    from shtaerman.study.schema import load_study
-    from shtaerman.sweep.verify import submission_order
-
-    studies = [study for path in shipped_studies() for study in load_study(path)]
-    names = [study.name for study in submission_order(studies)]
-    kinds = [getattr(study, "kind", "contact") for study in submission_order(studies)]
-    assert kinds[:3] == ["finite-strain", "finite-strain", "dynamic"]
-    assert names[3] == "paper"  # the one shipped contact study with a convergence study
-    contact = [study.name for study in studies if study.kind == "contact"]
-    assert names[4:] == [name for name in contact if name != "paper"]
-
-
 def test_the_verify_process_imports_no_renderer_before_its_workers_start():
     """The process that hands the studies to dask draws no study's figure: pyvista, VTK's
     rendering and matplotlib's axes cost it ~0.5 s of CPU (0.8 s instead of 1.3 s of imports

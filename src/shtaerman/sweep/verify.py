@@ -20,20 +20,10 @@ __all__ = ["on_dask", "run_verification_on_dask", "submission_order", "verify_ta
 
 
 def submission_order(studies: list[Any]) -> list[Any]:
-    """The long studies first, so the workers finish together instead of one waiting on a
-    late long study: finite strain, dynamic, a contact study with a mesh-convergence study,
-    the other contact studies (file order within each).
-
-    CPU seconds of the shipped studies (benchmarks/verify_cost.py, one process each, files
-    and figures included): finite strain 31-32, dynamic 23, paper (with its convergence
-    study) 7.5, the other contact studies 4.2-4.8."""
+    """The long studies first (finite strain, then dynamic, then contact), so the workers
+    finish together instead of one waiting on a late long study."""
     rank = {"finite-strain": 0, "dynamic": 1}
-
-    def cost_rank(study: Any) -> tuple[int, int]:
-        converges = bool(getattr(study, "convergence_sizes", ()))
-        return rank.get(getattr(study, "kind", ""), 2), 0 if converges else 1
-
-    return sorted(studies, key=cost_rank)
+    return sorted(studies, key=lambda study: rank.get(getattr(study, "kind", ""), 2))
 
 
 FAILURE = "failure"
