@@ -454,7 +454,8 @@ class PatternSolver:
         """
         pattern = self.pattern
         scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
-        scaled = data * scale[pattern.indices] * scale[pattern.columns]
+        scaled = data * scale[pattern.indices]
+        scaled *= np.repeat(scale, np.diff(pattern.indptr))  # the columns' scale, in order
         solution = self._ordered_solve(scaled, (scale * rhs)[self.order])
         if solution is not None:
             out = np.empty_like(solution)

@@ -19,22 +19,18 @@ import sys
 import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, NoReturn, TextIO
+from typing import TYPE_CHECKING, Any, NoReturn, TextIO
 
 from ..plots.formats import check_figure_format
-from ..plots.gallery import (
-    paper_figures,
-    study_convergence_figures,
-    study_field_figures,
-    study_figures,
-)
-from ..study.contact.runner import StudyOutcome
 from ..study.kinds import kind_function
 from ..study.run import run_study
 from ..validation import InputError, NumericalFailureError
 from .export import write_indentation
 from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder, write_csv
 from .report import results_document, study_document, write_reports
+
+if TYPE_CHECKING:
+    from ..study.contact.runner import StudyOutcome
 
 __all__ = [
     "PROGRESS_FILE",
@@ -223,6 +219,11 @@ def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, s
 def _study_figures(
     outcome: StudyOutcome, folder: Path, root: Path, figure_format: str
 ) -> dict[str, str]:
+    # imported here, not at the top: the process that runs the studies on dask workers
+    # draws no study's figures, and matplotlib, pyvista and VTK cost it ~1 s before the
+    # workers start (benchmarks/verify_cost.py)
+    from ..plots.gallery import study_convergence_figures, study_field_figures, study_figures
+
     made = {
         **study_field_figures(outcome, folder),
         **study_figures(outcome, folder, figure_format),
@@ -245,6 +246,8 @@ def finish_verification(
 ) -> dict[str, object]:
     """The figures of no study (the Ateb functions for each indenter exponent of the
     studies), results.json and both reports, from the studies' entries."""
+    from ..plots.gallery import paper_figures
+
     exponents = [entry["inputs"]["exponent"] for entry in entries.values() if "inputs" in entry]
     made = paper_figures(stage, exponents, figure_format)
     shared = {title: str(path.relative_to(stage)) for title, path in made.items()}
