@@ -1,0 +1,159 @@
+"""``sh.fit``: the rubber's constants from a measurement, with 95 % intervals."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..output.files import output_folder
+from ..problem import Problem
+from ..validation import InputError, validate_positive
+from .data import measurement
+from .engine import solve
+from .models import Known, build_model
+from .result import FitResult, fitted_entries, known_values
+
+__all__ = ["fit", "known_of"]
+
+ABSCISSA = {"indentation": "depth", "force-history": "time"}
+"""The data column each kind's figure and fit.csv run along (rebound data: the velocity)."""
+
+
+def known_of(problem: Problem, *, time_offset: float = 0.0, baseline: float = 0.0,
+             steps: int = 200) -> Known:  # fmt: skip
+    """The known parts of ``problem`` (its E2 and nu2 are the starting values), refusing the
+    parts whose corrections the fit does not have yet (a pad, friction, finite strain)."""
+    if problem.geometry.thickness is not None:
+        raise InputError(
+            "thickness: the fit's forward models are the half-space's (the pad's FE correction "
+            "is not in the fit yet); leave thickness unset",
+            "thickness",
+        )
+    if problem.interface.kind != "frictionless":
+        raise InputError("interface: the fit takes a frictionless contact only", "interface")
+    if problem.body.model != "linear":
+        raise InputError("model: the fit takes the linear (small-strain) body only", "model")
+    striker, body = problem.striker, problem.body.material
+    return Known(
+        indenter=striker.indenter,
+        striker=striker.material,
+        E2=body.youngs_modulus,
+        nu2=body.poisson_ratio,
+        mass=validate_positive("mass", 1.0 if striker.mass is None else striker.mass, "kg"),
+        velocity=1.0 if striker.velocity is None else striker.velocity,
+        prony=problem.body.prony,
+        time_offset=float(time_offset),
+        baseline=float(baseline),
+        steps=int(steps),
+    )
+
+
+def _names(unknowns: Sequence[str] | str) -> list[str]:
+    names = [unknowns] if isinstance(unknowns, str) else list(unknowns)
+    names = [n.strip() for part in names for n in str(part).split(",") if n.strip()]
+    return list(dict.fromkeys(names))
+
+
+def fit(
+    kind: str,
+    data: str | Path | Mapping[str, ArrayLike],
+    problem: Problem,
+    *,
+    unknowns: Sequence[str] | str = ("E2",),
+    noise: float | None = None,
+    time_offset: float = 0.0,
+    baseline: float = 0.0,
+    units: Mapping[str, str] | None = None,
+    steps: int = 200,
+    out: str | Path | None = None,
+    force: bool = False,
+    figure_format: str = "png",
+) -> FitResult:
+    """Fit the unknowns of ``problem`` to a measurement by the exact quasi-static models.
+
+    Parameters
+    ----------
+    kind : str
+        ``indentation`` (depth, force), ``force-history`` (time, force), ``rebound``
+        (velocity with restitution and/or contact_time) or ``resilience`` (velocity,
+        resilience = e^2, ISO 4662).
+    data : str, Path or mapping
+        A CSV with a header ``name [unit]``, or the columns in SI units.
+    problem : Problem
+        The known parts (striker, mass, velocity, Prony times); its E2, nu2, mass, velocity
+        and Prony weights are the starting values of those fitted.
+    unknowns : sequence of str
+        Names to fit: E2, nu2, mass, velocity, time_offset, baseline, prony (the weights g_i
+        of the problem's series, at its fixed tau_i); which a kind takes: see ``--help``.
+    noise : float, optional
+        Standard deviation of the data in the residual's unit (N for a force; relative for
+        rebound data); None: estimated from the residual.
+    time_offset, baseline : float
+        The force history's time of first touch in s and its zero force in N, when not
+        fitted.
+    units : mapping, optional
+        Column -> unit for CSV header cells that give none.
+    steps : int
+        Time steps per t_c of the viscoelastic impact (with a Prony series).
+    out : str or Path, optional
+        Folder to write fit.json, fit.csv and the figure fit.png into.
+    force : bool
+        Replace ``out`` if shtaerman wrote it.
+    figure_format : str
+        png, or svg / pdf besides.
+
+    Returns
+    -------
+    FitResult
+    """
+    folder = output_folder(out, force=force)
+    measured = measurement(kind, data, units)
+    known = known_of(problem, time_offset=time_offset, baseline=baseline, steps=steps)
+    names = _names(unknowns)
+    model = build_model(known, measured, names)
+    if noise is not None:
+        noise = validate_positive("noise", noise)
+    sol = solve(model, noise)
+    result = _result(kind, measured, known, model, sol, names)
+    if folder is not None:
+        from ..output.fit import write_fit
+
+        write_fit(result, folder, force=force, figure_format=figure_format)
+    return result
+
+
+def _result(kind, measured, known, model, sol, names) -> FitResult:  # noqa: ANN001
+    """The :class:`FitResult` of solution ``sol``."""
+    params = [p.name for p in model.parameters]
+    axis = ABSCISSA.get(kind, "velocity")
+    repeat = model.observed.size // measured.rows
+    curves = {
+        axis: np.tile(measured.columns[axis], repeat),
+        "data": model.observed,
+        "model": sol.model,
+        "residual": sol.residual,
+    }
+    rms = float(np.sqrt(np.mean(sol.residual**2)))
+    scale = np.abs(model.observed) if model.relative else 1.0
+    relative = sol.residual / scale
+    return FitResult(
+        kind=kind,
+        fitted=fitted_entries(known, params, sol, names),
+        correlation={"names": params, "matrix": sol.correlation.tolist()},
+        residual={
+            "rms": float(np.sqrt(np.mean(relative**2))) if model.relative else rms,
+            "max": float(np.max(np.abs(relative))),
+            "unit": model.unit,
+            "values": int(model.observed.size),
+        },
+        noise={"value": sol.noise, "unit": model.unit, "estimated": sol.noise_estimated},
+        forward_model=model.description,
+        corrections=[],
+        data={"source": measured.source, "rows": measured.rows, "units": dict(measured.units)},
+        known=known_values(known),
+        evaluations=sol.evaluations,
+        curves=curves,
+    )
