@@ -22,7 +22,15 @@ from numpy.typing import ArrayLike
 
 from ..validation import InputError
 
-__all__ = ["KIND_COLUMNS", "KINDS", "UNITS", "Measurement", "measurement", "parse_units"]
+__all__ = [
+    "KINDS",
+    "KIND_COLUMNS",
+    "UNITS",
+    "Measurement",
+    "measured_unit",
+    "measurement",
+    "parse_units",
+]
 
 KIND_COLUMNS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "indentation": (("depth", "force"), ()),
@@ -157,13 +165,14 @@ def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
     for name in _wanted(kind, names, where, header):
         index = names.index(name)
         unit = header[index][1]
-        unit = unit if unit is not None else units.get(name, _si(name))
+        unit = unit if unit is not None else units.get(name, measured_unit(name))
         written[name] = unit
         columns[name] = _column(where, name, index, rows) * _factor(where, name, unit)
     return Measurement(kind, columns, where, written)
 
 
-def _si(name: str) -> str:
+def measured_unit(name: str) -> str:
+    """The SI unit of column ``name`` (``1`` for a ratio)."""
     return next(iter(UNITS[QUANTITY[name]]))
 
 
@@ -173,7 +182,7 @@ def _wanted(kind: str, names: list[str], where: str, header: list) -> list[str]:
     shown = ", ".join(f"{n} [{u}]" if u is not None else n for n, u in header)
     for name in needed:
         if name not in names:
-            wanted = ", ".join(f"{n} [{_si(n)}]" for n in needed)
+            wanted = ", ".join(f"{n} [{measured_unit(n)}]" for n in needed)
             raise InputError(
                 f"{where}: no column {name!r} (the header has {shown}); a {kind} needs {wanted}",
                 "data",
@@ -246,4 +255,4 @@ def measurement(
     }
     if len({len(values) for values in columns.values()}) != 1:
         raise InputError("data: the columns must have equal lengths", "data")
-    return _check_values(Measurement(kind, columns, "data", {n: _si(n) for n in columns}))
+    return _check_values(Measurement(kind, columns, "data", {n: measured_unit(n) for n in columns}))

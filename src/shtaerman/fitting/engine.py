@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.stats import norm, t as student
+from scipy.stats import norm
+from scipy.stats import t as student
 
 from ..validation import InputError, NumericalFailureError
 from .models import Model
@@ -34,6 +35,8 @@ __all__ = ["CONFIDENCE", "RANK_TOLERANCE", "Solution", "solve"]
 CONFIDENCE = 0.95
 RANK_TOLERANCE = 1e-9
 """A singular value of J below this fraction of the largest spans a null direction."""
+MAX_EVALUATIONS = 60
+"""Most evaluations of the forward model per fitted parameter (and one) in a search."""
 NULL_COMPONENT = 1e-6
 """A parameter whose component along a null direction exceeds this is not identifiable."""
 
@@ -114,8 +117,10 @@ def _optimum(model: Model, noise: float | None, fixed: dict[str, float]) -> dict
     def residual(x: np.ndarray) -> np.ndarray:
         return (model.predict(natural(x)) - model.observed) / scale
 
-    found = least_squares(residual, start, bounds=(low, high), method="trf", x_scale="jac",
-                          xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=100 * (start.size + 1))  # fmt: skip
+    found = least_squares(
+        residual, start, bounds=(low, high), method="trf", x_scale="jac",
+        xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=MAX_EVALUATIONS * (start.size + 1),
+    )  # fmt: skip
     if found.status <= 0:
         raise NumericalFailureError(f"the fit did not converge: {found.message}")
     s, quantile, estimated = _noise(residual(found.x), start.size, noise)

@@ -197,9 +197,7 @@ def _time_offset_start(known: Known, data: Measurement) -> float:
     return float(time[first] - (time[peak] - time[first]) / 6.0)
 
 
-def _parameters(
-    known: Known, data: Measurement, unknowns: Sequence[str]
-) -> tuple[Parameter, ...]:
+def _parameters(known: Known, data: Measurement, unknowns: Sequence[str]) -> tuple[Parameter, ...]:
     """The fitted parameters of ``unknowns`` with their starts and bounds."""
     params = []
     if "E2" in unknowns or "nu2" in unknowns:
@@ -246,8 +244,10 @@ def build_model(known: Known, data: Measurement, unknowns: Sequence[str]) -> Mod
     _check_unknowns(kind, unknowns, known)
     params = _parameters(known, data, unknowns)
     viscous = known.prony is not None
-    impact = "viscoelastic quasi-static impact (Lee-Radok, Ting)" if viscous else (
-        "quasi-static impact (Ateb functions)"
+    impact = (
+        "viscoelastic quasi-static impact (Lee-Radok, Ting)"
+        if viscous
+        else ("quasi-static impact (Ateb functions)")
     )
     if kind == "indentation":
         law = PowerLawContact(known.indenter, 1.0)  # P = E* times this law's force

@@ -114,6 +114,7 @@ def fitted_entries(known: Known, names: list[str], sol: Solution, unknowns: list
 def known_values(known: Known) -> dict[str, Any]:
     """The problem's known values as JSON."""
     striker: Material = known.striker
+    prony = known.prony
     return {
         "shape_coefficient": known.indenter.shape_coefficient,
         "exponent": known.indenter.exponent,
@@ -123,8 +124,8 @@ def known_values(known: Known) -> dict[str, Any]:
         "nu2": known.nu2,
         "mass": known.mass,
         "velocity": known.velocity,
-        "prony": None if known.prony is None else
-        [{"g": g, "tau": tau} for g, tau in zip(known.prony.weights, known.prony.times, strict=True)],
+        "prony": None if prony is None else
+        [{"g": g, "tau": tau} for g, tau in zip(prony.weights, prony.times, strict=True)],
         "time_offset": known.time_offset,
         "baseline": known.baseline,
         "steps": known.steps,

@@ -11,9 +11,9 @@ from numpy.typing import ArrayLike
 from ..output.files import output_folder
 from ..problem import Problem
 from ..validation import InputError, validate_positive
-from .data import measurement
-from .engine import solve
-from .models import Known, build_model
+from .data import Measurement, measured_unit, measurement
+from .engine import Solution, solve
+from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
 
 __all__ = ["fit", "known_of"]
@@ -125,17 +125,11 @@ def fit(
     return result
 
 
-def _result(kind, measured, known, model, sol, names) -> FitResult:  # noqa: ANN001
+def _result(
+    kind: str, measured: Measurement, known: Known, model: Model, sol: Solution, names: list[str]
+) -> FitResult:
     """The :class:`FitResult` of solution ``sol``."""
     params = [p.name for p in model.parameters]
-    axis = ABSCISSA.get(kind, "velocity")
-    repeat = model.observed.size // measured.rows
-    curves = {
-        axis: np.tile(measured.columns[axis], repeat),
-        "data": model.observed,
-        "model": sol.model,
-        "residual": sol.residual,
-    }
     rms = float(np.sqrt(np.mean(sol.residual**2)))
     scale = np.abs(model.observed) if model.relative else 1.0
     relative = sol.residual / scale
@@ -155,5 +149,21 @@ def _result(kind, measured, known, model, sol, names) -> FitResult:  # noqa: ANN
         data={"source": measured.source, "rows": measured.rows, "units": dict(measured.units)},
         known=known_values(known),
         evaluations=sol.evaluations,
-        curves=curves,
+        curves=_curves(kind, measured, sol),
     )
+
+
+def _curves(kind: str, measured: Measurement, sol: Solution) -> dict[str, np.ndarray]:
+    """The columns of fit.csv, headed ``name [unit]`` (SI): the abscissa, then each observed
+    column beside its fit (``NAME_fit``), and for a force the residual fit - data."""
+    axis = ABSCISSA.get(kind, "velocity")
+    curves = {f"{axis} [{measured_unit(axis)}]": measured.columns[axis]}
+    observed = [name for name in measured.columns if name not in ("depth", "time", "velocity")]
+    rows = measured.rows
+    for k, name in enumerate(observed):
+        unit = measured_unit(name)
+        curves[f"{name} [{unit}]"] = measured.columns[name]
+        curves[f"{name}_fit [{unit}]"] = sol.model[k * rows : (k + 1) * rows]
+    if kind in ABSCISSA:
+        curves["residual [N]"] = sol.residual
+    return curves
