@@ -244,4 +244,10 @@ def test_an_unknown_the_kind_cannot_fit_is_refused(tmp_path, capsys):
     data = indentation()
     csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(*data.values(), strict=True))
     assert main(["fit", "indentation", csv, "--fit", "E2,velocity"]) == 2
-    assert "--fit: a indentation cannot fit 'velocity'" in capsys.readouterr().err
+    assert "--fit: indentation data cannot fit 'velocity'" in capsys.readouterr().err
+
+
+def test_a_drop_test_without_the_mass_is_refused():
+    curve = sh.Problem.curve(INDENTER, sh.Material(5e6, NU2), striker=STEEL)
+    with pytest.raises(sh.InputError, match="mass: a force-history fit needs the striker's mass"):
+        sh.fit("force-history", drop(), curve)

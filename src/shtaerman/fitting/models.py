@@ -225,7 +225,7 @@ def _check_unknowns(kind: str, unknowns: Sequence[str], known: Known) -> None:
     for name in unknowns:
         if name not in UNKNOWNS[kind]:
             raise InputError(
-                f"fit: a {kind} cannot fit {name!r}; choose from {', '.join(UNKNOWNS[kind])}",
+                f"fit: {kind} data cannot fit {name!r}; choose from {', '.join(UNKNOWNS[kind])}",
                 "fit",
             )
     if "prony" in unknowns and known.prony is None:

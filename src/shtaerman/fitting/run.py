@@ -22,10 +22,11 @@ ABSCISSA = {"indentation": "depth", "force-history": "time"}
 """The data column each kind's figure and fit.csv run along (rebound data: the velocity)."""
 
 
-def known_of(problem: Problem, *, time_offset: float = 0.0, baseline: float = 0.0,
+def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline: float = 0.0,
              steps: int = 200) -> Known:  # fmt: skip
     """The known parts of ``problem`` (its E2 and nu2 are the starting values), refusing the
-    parts whose corrections the fit does not have yet (a pad, friction, finite strain)."""
+    parts whose corrections the fit does not have yet (a pad, friction, finite strain) and an
+    impact's measurement without the striker's mass (and a force history's velocity)."""
     if problem.geometry.thickness is not None:
         raise InputError(
             "thickness: the fit's forward models are the half-space's (the pad's FE correction "
@@ -37,6 +38,14 @@ def known_of(problem: Problem, *, time_offset: float = 0.0, baseline: float = 0.
     if problem.body.model != "linear":
         raise InputError("model: the fit takes the linear (small-strain) body only", "model")
     striker, body = problem.striker, problem.body.material
+    needed = {"mass": kind != "indentation", "velocity": kind == "force-history"}
+    for name, needs in needed.items():
+        if needs and getattr(striker, name) is None:
+            raise InputError(
+                f"{name}: a {kind} fit needs the striker's {name} (known, or the starting "
+                f"value of a fitted one); give it in the problem (Problem.impact)",
+                name,
+            )
     return Known(
         indenter=striker.indenter,
         striker=striker.material,
@@ -110,8 +119,8 @@ def fit(
     FitResult
     """
     folder = output_folder(out, force=force)
-    measured = measurement(kind, data, units)
-    known = known_of(problem, time_offset=time_offset, baseline=baseline, steps=steps)
+    measured = measurement(kind, data, units)  # the kind checked first
+    known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
     model = build_model(known, measured, names)
     if noise is not None:
