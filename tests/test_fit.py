@@ -251,3 +251,13 @@ def test_a_drop_test_without_the_mass_is_refused():
     curve = sh.Problem.curve(INDENTER, sh.Material(5e6, NU2), striker=STEEL)
     with pytest.raises(sh.InputError, match="mass: a force-history fit needs the striker's mass"):
         sh.fit("force-history", drop(), curve)
+
+
+def test_a_drop_faster_than_the_theory_holds_warns_once(tmp_path, capsys):
+    data = {"velocity": [2.0, 6.0], "contact_time": [9.6e-3, 8.0e-3]}
+    csv = write(tmp_path / "r.csv", "velocity [m/s],contact_time [s]",
+                zip(*data.values(), strict=True))  # fmt: skip
+    assert main(["fit", "rebound", csv]) == 0
+    err = capsys.readouterr().err
+    # the search and the rows ran 30 impacts at 6 m/s: one line says so
+    assert err.count("exceeds 5 m/s") == 1 and err.count("\n") == 1

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -10,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from ..output.files import output_folder
 from ..problem import Problem
+from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
 from .data import Measurement, measured_unit, measurement
 from .engine import Solution, solve
@@ -122,16 +124,37 @@ def fit(
     measured = measurement(kind, data, units)  # the kind checked first
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
-    model = build_model(known, measured, names)
     if noise is not None:
         noise = validate_positive("noise", noise)
-    sol = solve(model, noise)
+    with warnings.catch_warnings():  # the search may try any velocity: warned once below
+        warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+        model = build_model(known, measured, names)
+        sol = solve(model, noise)
+    _check_velocities(measured, known, model, sol)
     result = _result(kind, measured, known, model, sol, names)
     if folder is not None:
         from ..output.fit import write_fit
 
         write_fit(result, folder, force=force, figure_format=figure_format)
     return result
+
+
+def _check_velocities(measured: Measurement, known: Known, model: Model, sol: Solution) -> None:
+    """One :class:`QuasiStaticValidityWarning` if an impact of the fit is faster than the
+    quasi-static theory's stated validity."""
+    if measured.kind == "indentation":
+        return
+    names = [p.name for p in model.parameters]
+    fitted = sol.values[names.index("velocity")] if "velocity" in names else known.velocity
+    velocities = measured.columns.get("velocity", np.array([fitted]))
+    fastest = float(np.max(velocities))
+    if fastest > QUASI_STATIC_VELOCITY_LIMIT:
+        warnings.warn(
+            f"velocity {fastest:.4g} m/s exceeds {QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
+            "validity of the quasi-static impact theory the fit uses",
+            QuasiStaticValidityWarning,
+            stacklevel=3,
+        )
 
 
 def _result(
