@@ -86,7 +86,10 @@ def test_parameter_table_has_one_row_per_input():
     assert table.count("| Key, CLI option | Default | Meaning [unit] |") == 3
     assert len([line for line in table if line.startswith("| `")]) == len(VOCABULARY)
     row = next(line for line in table if line.startswith("| `nu2`<br>"))
-    assert "`--nu2` (impact, contact, dynamic, effects, fit)" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
+    assert (
+        "`--nu2` (impact, contact, dynamic, effects, fit)" in row
+        and "(-1, 0.5]; FEM [0, 0.5]" in row
+    )
     row = next(line for line in table if line.startswith("| `time_steps`<br>"))
     assert "`--time-steps` (dynamic, effects)" in row and "formerly `steps`" in row
     assert "| 200; the model's in a dynamic sweep |" in row  # a rubber's own there

@@ -48,6 +48,13 @@ NOTES = {
     "prony": "the weights are the starting values with --fit prony, the tau_i stay fixed",
 }
 """What ``fit`` does with some of its options."""
+PRONY_HELP = (
+    "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s): "
+    "G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 the instantaneous modulus; the fit uses "
+    "the viscoelastic quasi-static impact, and with --fit prony the g_i are the starting "
+    "values, the tau_i fixed; unset: elastic"
+)
+"""The help of ``--prony`` for a fit."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -62,6 +69,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "fit", "noise", "time_offset",
               "baseline", "units", "json", "out", "force")  # fmt: skip
     add_inputs(p, inputs, None, notes=NOTES)
+    prony = next(a for a in p._actions if "--prony" in a.option_strings)
+    prony.help = PRONY_HELP  # the series' own help speaks of --model, which fit does not take
     add_figure_format(p)
     p.set_defaults(handler=run)
 
