@@ -261,3 +261,16 @@ def test_a_drop_faster_than_the_theory_holds_warns_once(tmp_path, capsys):
     err = capsys.readouterr().err
     # the search and the rows ran 30 impacts at 6 m/s: one line says so
     assert err.count("exceeds 5 m/s") == 1 and err.count("\n") == 1
+
+
+def test_units_by_option_for_a_header_without_them(tmp_path, capsys):
+    data = indentation()
+    csv = write(tmp_path / "c.csv", "depth,force",
+                zip(data["depth"] * 1e3, data["force"], strict=True))  # fmt: skip
+    assert main(["fit", "indentation", csv, "--units", "depth=mm", "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    # read as metres, the depths would be 1000 times too deep and E2 ~3e4 times too small
+    assert printed["fitted"]["E2"]["value"] == pytest.approx(E2, rel=1e-10)
+    assert printed["data"]["units"] == {"depth": "mm", "force": "N"}
+    assert main(["fit", "indentation", csv, "--units", "depth=furlong"]) == 2
+    assert "column 'depth': unit 'furlong' is not a length unit" in capsys.readouterr().err
