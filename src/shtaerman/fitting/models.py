@@ -245,9 +245,10 @@ def build_model(known: Known, data: Measurement, unknowns: Sequence[str]) -> Mod
     params = _parameters(known, data, unknowns)
     viscous = known.prony is not None
     impact = (
-        "viscoelastic quasi-static impact (Lee-Radok, Ting)"
+        "viscoelastic quasi-static impact (Lee-Radok, Ting; the striker's compliance added to "
+        "the glassy half-space's)"
         if viscous
-        else ("quasi-static impact (Ateb functions)")
+        else "quasi-static impact (Ateb functions)"
     )
     if kind == "indentation":
         law = PowerLawContact(known.indenter, 1.0)  # P = E* times this law's force
