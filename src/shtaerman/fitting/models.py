@@ -13,6 +13,7 @@ parameters live in a transformed space (logarithms of positive scales) with fini
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -25,6 +26,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material, effective_modulus
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 from ..validation import InputError
+from .corrections import Correction, exact_impact
 from .data import Measurement
 
 __all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "build_model"]
@@ -58,6 +60,8 @@ class Known:
     time_offset: float = 0.0
     baseline: float = 0.0
     steps: int = 200
+    correction: Correction | None = None
+    """The FE correction of a force history (a pad, waves, finite strain), held fixed."""
 
     @property
     def modulus(self) -> float:
@@ -133,22 +137,12 @@ def _impact(known: Known, values: Mapping[str, float], velocity: float) -> tuple
 
 def force_history(known: Known, values: Mapping[str, float], time: np.ndarray) -> np.ndarray:
     """The force in N at ``time`` (s, the data's clock): the impact shifted by the time
-    offset, plus the baseline."""
-    law = PowerLawContact(known.indenter, values["E_star"])
+    offset, with the known FE correction if any, plus the baseline."""
     t = np.asarray(time, dtype=float) - values["time_offset"]
-    prony = _prony(known, values)
-    if prony is None:
-        result = solve_impact(values["mass"], values["velocity"], law)
-        inside = (t > 0.0) & (t < result.t_y)
-        force = np.zeros_like(t)
-        force[inside] = result.history(times=t[inside]).P
-    else:
-        result = viscoelastic_impact(
-            values["mass"], values["velocity"], law, prony, steps=known.steps
-        )
-        history = result.history
-        force = np.interp(t, history["t"], history["P"], left=0.0, right=0.0)
-    return force + values["baseline"]
+    exact, peak, duration = exact_impact(known, values, _prony(known, values))
+    if known.correction is None:
+        return exact(t) + values["baseline"]
+    return known.correction.apply(exact, peak, duration, t) + values["baseline"]
 
 
 def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarray]:
@@ -238,11 +232,21 @@ def _check_unknowns(kind: str, unknowns: Sequence[str], known: Known) -> None:
         raise InputError(f"fit: name at least one of {', '.join(UNKNOWNS[kind])}", "fit")
 
 
-def build_model(known: Known, data: Measurement, unknowns: Sequence[str]) -> Model:
-    """The forward model of ``data.kind`` with the parameters of ``unknowns``."""
+def build_model(
+    known: Known,
+    data: Measurement,
+    unknowns: Sequence[str],
+    starts: Mapping[str, float] | None = None,
+) -> Model:
+    """The forward model of ``data.kind`` with the parameters of ``unknowns``, started from
+    ``starts`` (fitted name -> natural value; a previous optimum) where given."""
     kind = data.kind
     _check_unknowns(kind, unknowns, known)
-    params = _parameters(known, data, unknowns)
+    params = tuple(
+        dataclasses.replace(p, start=min(max(starts[p.name], p.low), p.high))
+        if starts and p.name in starts else p
+        for p in _parameters(known, data, unknowns)
+    )  # fmt: skip
     viscous = known.prony is not None
     impact = (
         "viscoelastic quasi-static impact (Lee-Radok, Ting; the striker's compliance added to "

@@ -44,21 +44,31 @@ class FitResult:
     forward_model: str
     """The exact model the data were compared with."""
     corrections: list[dict[str, Any]]
-    """The corrections to the forward model that entered (none yet: the FE corrections for a
-    pad, waves, finite strain and friction come later)."""
+    """The FE correction that entered (a pad, waves, finite strain; empty without them): its
+    name, the FE / exact ratios of the peak force (force_scale) and contact time
+    (time_scale), the largest shape difference (shape_max, of the peak), the FE run's
+    relative error estimates (fe_error) and the point of its last FE run (at)."""
     data: dict[str, Any]
     """source, rows and the columns' units."""
     known: dict[str, Any]
     """The known values of the problem (SI units)."""
     evaluations: int
     """Forward-model evaluations used."""
+    fe_runs: int = 0
+    """FE impacts run for the corrections (each with its two coarser ladder levels)."""
+    forward_error: dict[str, dict[str, float]] = field(default_factory=dict)
+    """Fitted name -> source -> the shift that the forward model's own error makes, added
+    in quadrature to the interval's half-widths: fe_P_max, fe_t_contact (the FE run's error
+    estimates), steps (the viscoelastic impact's time steps); natural units (E_star, the
+    combined modulus, in Pa)."""
     curves: dict[str, np.ndarray] = field(repr=False, compare=False, default_factory=dict)
     """The columns of fit.csv: the abscissa, data, model and residual (SI units)."""
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON of ``shtaerman fit --json``."""
         names = ("kind", "fitted", "correlation", "residual", "noise", "forward_model",
-                 "corrections", "data", "known", "evaluations")  # fmt: skip
+                 "corrections", "data", "known", "evaluations", "fe_runs",
+                 "forward_error")  # fmt: skip
         return {name: getattr(self, name) for name in names}
 
 

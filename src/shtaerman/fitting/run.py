@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -13,8 +14,10 @@ from ..output.files import output_folder
 from ..problem import Problem
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
+from .corrections import needs_fe
 from .data import Measurement, measured_unit, measurement
 from .engine import Solution, solve
+from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
 
@@ -27,18 +30,20 @@ ABSCISSA = {"indentation": "depth", "force-history": "time"}
 def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline: float = 0.0,
              steps: int = 200) -> Known:  # fmt: skip
     """The known parts of ``problem`` (its E2 and nu2 are the starting values), refusing the
-    parts whose corrections the fit does not have yet (a pad, friction, finite strain) and an
-    impact's measurement without the striker's mass (and a force history's velocity)."""
-    if problem.geometry.thickness is not None:
+    parts whose corrections the fit does not have (friction; a pad, waves and finite strain
+    but in a force history) and an impact's measurement without the striker's mass (and a
+    force history's velocity)."""
+    if needs_fe(problem) and kind != "force-history":
+        name = "thickness" if problem.geometry.thickness is not None else "density2"
+        name = "model" if problem.body.model != "linear" else name
         raise InputError(
-            "thickness: the fit's forward models are the half-space's (the pad's FE correction "
-            "is not in the fit yet); leave thickness unset",
-            "thickness",
+            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for a "
+            f"force history only; a {kind} fit takes the half-space's exact models (leave "
+            "thickness, density2 and model unset)",
+            name,
         )
     if problem.interface.kind != "frictionless":
         raise InputError("interface: the fit takes a frictionless contact only", "interface")
-    if problem.body.model != "linear":
-        raise InputError("model: the fit takes the linear (small-strain) body only", "model")
     striker, body = problem.striker, problem.body.material
     needed = {"mass": kind != "indentation", "velocity": kind == "force-history"}
     for name, needs in needed.items():
@@ -79,6 +84,7 @@ def fit(
     baseline: float = 0.0,
     units: Mapping[str, str] | None = None,
     steps: int = 200,
+    refine: float = 0.5,
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
@@ -109,6 +115,10 @@ def fit(
         Column -> unit for CSV header cells that give none.
     steps : int
         Time steps per t_c of the viscoelastic impact (with a Prony series).
+    refine : float
+        The mesh and time-step refinement of the FE runs that correct a force history for a
+        pad (thickness), waves (density2 > 0) or finite strain (model); each FE run comes
+        with its error estimate (0.5: a coarse mesh, seconds a run).
     out : str or Path, optional
         Folder to write fit.json, fit.csv and the figure fit.png into.
     force : bool
@@ -124,19 +134,38 @@ def fit(
     measured = measurement(kind, data, units)  # the kind checked first
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
+    refine = validate_positive("refine", refine)
     if noise is not None:
         noise = validate_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-        model = build_model(known, measured, names)
-        sol = solve(model, noise)
+        if needs_fe(problem):
+            fitted = corrected_fit(problem, known, measured, names, noise, refine)
+            known, model, sol, corrections = fitted
+        else:
+            model, corrections = build_model(known, measured, names), []
+            sol = solve(model, noise)
+        shifts = forward_error(known, measured, names, noise, model, sol)
     _check_velocities(measured, known, model, sol)
-    result = _result(kind, measured, known, model, sol, names)
+    result = _result(kind, measured, known, model, widened(sol, shifts), names)
+    result = dataclasses.replace(
+        result,
+        corrections=[c.entry(problem) for c in corrections[-1:]],
+        fe_runs=len(corrections),
+        forward_error=_forward_entries(model, shifts),
+    )
     if folder is not None:
         from ..output.fit import write_fit
 
         write_fit(result, folder, force=force, figure_format=figure_format)
     return result
+
+
+def _forward_entries(model: Model, shifts: dict[str, np.ndarray]) -> dict[str, dict]:
+    """Fitted name -> source -> the shift its interval took in from the forward model's own
+    error (natural units; E_star, the combined modulus, in Pa)."""
+    names = [p.name for p in model.parameters]
+    return {n: {k: float(abs(v[j])) for k, v in shifts.items()} for j, n in enumerate(names)}
 
 
 def _check_velocities(measured: Measurement, known: Known, model: Model, sol: Solution) -> None:
