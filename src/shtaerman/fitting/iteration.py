@@ -6,7 +6,9 @@ then, in turn, one FE impact at the fitted point measures the correction
 identifiable value moves by less than :data:`TOLERANCE` of its interval. A fit so costs a
 handful of FE runs (each with its error-estimate ladder), not one per trial of the search.
 
-The forward model's own error enters each interval, added in quadrature to its half-widths:
+The forward model's own error enters each interval: each estimate below is taken as one
+standard deviation of a model error, and 1.96 of it (the interval's normal quantile) is added
+in quadrature to the interval's half-widths:
 
 - the FE run's error estimate: the fit is repeated with the peak-force and the contact-time
   correction each moved by its estimated relative error, and the shifts taken;
@@ -21,12 +23,13 @@ import dataclasses
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+from scipy.stats import norm
 
 from ..problem import Problem
 from ..validation import NumericalFailureError
 from .corrections import Correction, fe_correction
 from .data import Measurement
-from .engine import Solution, solve
+from .engine import CONFIDENCE, Solution, solve
 from .models import Known, Model, _prony, _values, build_model
 
 __all__ = ["MAX_FE_RUNS", "TOLERANCE", "corrected_fit", "forward_error"]
@@ -119,10 +122,13 @@ def forward_error(
 
 
 def widened(sol: Solution, shifts: Mapping[str, np.ndarray]) -> Solution:
-    """``sol`` with the shifts added in quadrature to each identifiable half-interval."""
+    """``sol`` with the shifts, each taken as one standard deviation of the forward model's
+    error (times the normal quantile of the interval's confidence), added in quadrature to
+    each identifiable half-interval."""
     if not shifts:
         return sol
-    error = np.sqrt(sum(np.asarray(s) ** 2 for s in shifts.values()))
+    quantile = norm.ppf(0.5 + CONFIDENCE / 2)
+    error = quantile * np.sqrt(sum(np.asarray(s) ** 2 for s in shifts.values()))
     error = np.where(sol.identifiable, np.nan_to_num(error), 0.0)
     low = sol.values - np.hypot(sol.values - sol.low, error)
     high = sol.values + np.hypot(sol.high - sol.values, error)
