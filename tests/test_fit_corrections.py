@@ -10,6 +10,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import shtaerman as sh
+from shtaerman.cli import main
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
 
@@ -150,3 +151,37 @@ def test_independent_closed_form_impacts_are_fitted_within_their_intervals(weigh
     assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=0.02)
     if weight:
         assert covers(result.fitted["g1"], weight)
+
+
+def test_cli_passes_the_pad_the_density_and_refine_but_no_default_density(tmp_path, monkeypatch):
+    """--thickness, --base, --density2 and --refine reach the fit; without --density2 the
+    body has no density (the dynamic command's default 1100 kg/m^3 would call for FE runs)."""
+    from shtaerman.cli import fit as fit_cli
+
+    seen = []
+
+    def record(kind, data, problem, **options):
+        seen.append((problem, options["refine"]))
+        raise sh.InputError("fit: recorded", "fit")
+
+    monkeypatch.setattr(fit_cli, "fit", record)
+    csv = tmp_path / "f.csv"
+    csv.write_text("time [s],force [N]\n0,0\n1e-3,5\n2e-3,0\n")
+    base = ["fit", "force-history", str(csv), "--mass", "0.2", "--velocity", "2"]
+    assert main([*base, "--thickness", "0.02", "--base", "lubricated", "--density2", "1100",
+                 "--refine", "0.8"]) == 2  # fmt: skip
+    assert main(base) == 2
+    (padded, refine), (bare, default) = seen
+    assert padded.geometry.thickness == 0.02 and padded.geometry.base == "lubricated"
+    assert padded.body.material.density == 1100.0 and refine == 0.8
+    assert bare.body.material.density is None and bare.geometry.thickness is None
+    assert default == 0.6
+
+
+def test_a_pad_is_refused_for_rebound_data(tmp_path, capsys):
+    csv = tmp_path / "r.csv"
+    csv.write_text("velocity [m/s],contact_time [s]\n1,5e-3\n2,4e-3\n")
+    assert main(["fit", "rebound", str(csv), "--mass", "0.2", "--thickness", "0.02"]) == 2
+    err = capsys.readouterr().err
+    assert "--thickness: the FE corrections" in err and "force history only" in err
+    assert err.count("\n") == 1

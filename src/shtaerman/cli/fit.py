@@ -6,8 +6,8 @@ import argparse
 
 from ..fitting.data import KINDS, parse_units
 from ..fitting.result import FitResult
-from ..fitting.run import fit
-from ..problem import Problem
+from ..fitting.run import FE_REFINE, fit
+from ..problem import RUBBER_OPTIONS, Problem
 from ..theory.materials import Material
 from .common import (
     CASE,
@@ -23,12 +23,17 @@ from .common import (
 
 __all__ = ["fit_text", "problem_of", "register", "run"]
 
+PHYSICS = ("prony", "thickness", "base", "model", *RUBBER_OPTIONS)
+"""The problem's parts besides the striker and the body's elasticity: passed when given."""
+
 DESCRIPTION = """\
 Fit the unknowns of a problem to a measurement by the exact quasi-static models: the power-law
 contact law (indentation), the Ateb impact or with --prony the viscoelastic one (Lee-Radok,
 Ting) (force-history, rebound, resilience). The known values are the usual options; those of
-the unknowns are the starting values. No correction (pad, waves, finite strain, friction)
-enters yet.
+the unknowns are the starting values. A force history on a pad (--thickness), with waves
+(--density2) or at finite strain (--model) is corrected by FE impacts at the fitted point
+(fit, FE run, fit again: a handful of FE runs); their error estimates and the viscoelastic
+impact's step error widen the intervals. Friction is not fitted.
 
 KIND and the CSV columns it reads (header 'name [unit]'):
   indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known)
@@ -48,6 +53,11 @@ NOTES = {
     "prony": "the weights are the starting values with --fit prony, the tau_i stay fixed",
 }
 """What ``fit`` does with some of its options."""
+DERIVED = {
+    "density2": "unset: no waves",
+    "refine": f"{FE_REFINE:g}: a coarse mesh with its error estimate, seconds a run",
+}
+"""The defaults of ``fit`` that differ from the other commands'."""
 PRONY_HELP = (
     "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s): "
     "G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 the instantaneous modulus; the fit uses "
@@ -66,9 +76,10 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     p.add_argument("kind", choices=KINDS, metavar="KIND", help=f"one of {', '.join(KINDS)}")
     p.add_argument("data", metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'")
-    inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "fit", "noise", "time_offset",
-              "baseline", "units", "json", "out", "force")  # fmt: skip
-    add_inputs(p, inputs, None, notes=NOTES)
+    inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
+              "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
+              "refine", "json", "out", "force")  # fmt: skip
+    add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
     prony = next(a for a in p._actions if "--prony" in a.option_strings)
     prony.help = PRONY_HELP  # the series' own help speaks of --model, which fit does not take
     add_figure_format(p)
@@ -77,14 +88,14 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 def problem_of(args: argparse.Namespace) -> Problem:
     """The problem the options describe: its known parts and the unknowns' starts."""
-    prony = {"prony": args.prony} if given(args, "prony") else {}
+    physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
     return Problem.impact(
         indenter(args),
-        Material(args.E2, args.nu2),
+        Material(args.E2, args.nu2, args.density2 if given(args, "density2") else None),
         mass=args.mass,
         velocity=args.velocity,
         striker=striker(args),
-        **prony,
+        **physics,
     )
 
 
@@ -101,6 +112,7 @@ def run(args: argparse.Namespace) -> int:
             time_offset=args.time_offset,
             baseline=args.baseline,
             units=parse_units(args.units),
+            refine=FE_REFINE if args.refine is None else args.refine,
             out=args.out,
             force=args.force,
             figure_format=args.figure_format,
@@ -112,12 +124,25 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _corrections_text(result: FitResult) -> list[str]:
+    """The corrections line(s) of the text output."""
+    if not result.corrections:
+        return ["  corrections:   none (a half-space of no density at small strain)"]
+    rows = []
+    for item in result.corrections:
+        rows.append(
+            f"  corrections:   {item['name']}: peak force x{item['force_scale']:.4g}, contact "
+            f"time x{item['time_scale']:.4g} at the fitted point ({result.fe_runs} FE runs)"
+        )
+    return rows
+
+
 def fit_text(result: FitResult) -> str:
     """The fitted values, intervals and residual as text."""
     rows = [
         f"Fit of a {result.kind} ({result.data['rows']} rows of {result.data['source']})",
         f"  forward model: {result.forward_model}",
-        "  corrections:   none (the FE corrections are not in the fit yet)",
+        *_corrections_text(result),
         f"  {'unknown':<12} {'value':>13} {'95 % interval':>29}  unit",
     ]
     for name, item in result.fitted.items():

@@ -27,16 +27,28 @@ import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
 from ..problem import Problem
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
+from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 
 __all__ = ["Correction", "exact_impact", "fe_correction", "needs_fe"]
+
+
+class Known(Protocol):
+    """What the corrections read of the fit's known parts (:class:`.models.Known`)."""
+
+    indenter: PowerLawIndenter
+    striker: Material
+    nu2: float
+    steps: int
+
 
 SHAPE_POINTS = 400
 """Samples of the shape difference delta over the FE contact."""
@@ -98,7 +110,7 @@ def _name(problem: Problem) -> str:
     return "FE impact: " + ", ".join(parts)
 
 
-def exact_impact(known, values: Mapping[str, float], prony: PronySeries | None,
+def exact_impact(known: Known, values: Mapping[str, float], prony: PronySeries | None,
                  ) -> tuple[Callable[[np.ndarray], np.ndarray], float, float]:  # fmt: skip
     """(force in N at times in s from the touch, peak force in N, contact time in s) of the
     exact quasi-static impact (the Ateb impact, or the viscoelastic one with ``prony``)."""
@@ -122,7 +134,7 @@ def exact_impact(known, values: Mapping[str, float], prony: PronySeries | None,
     return relaxing, float(run.P_max), float(run.t_contact)
 
 
-def _point(problem: Problem, known, values: Mapping[str, float],
+def _point(problem: Problem, known: Known, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
     rest = 1.0 / values["E_star"] - known.striker.compliance
@@ -138,7 +150,7 @@ def _point(problem: Problem, known, values: Mapping[str, float],
     return dataclasses.replace(problem, striker=striker, body=body), at
 
 
-def fe_correction(problem: Problem, known, values: Mapping[str, float],
+def fe_correction(problem: Problem, known: Known, values: Mapping[str, float],
                   prony: PronySeries | None, refine: float) -> Correction:  # fmt: skip
     """The :class:`Correction` measured by one FE impact of ``problem`` at ``values`` (with
     its error-estimate ladder at ``refine``)."""

@@ -30,7 +30,7 @@ from ..validation import NumericalFailureError
 from .corrections import Correction, fe_correction
 from .data import Measurement
 from .engine import CONFIDENCE, Solution, solve
-from .models import Known, Model, _prony, _values, build_model
+from .models import Known, Model, all_values, build_model, prony_at
 
 __all__ = ["MAX_FE_RUNS", "TOLERANCE", "corrected_fit", "forward_error"]
 
@@ -68,8 +68,8 @@ def corrected_fit(
     sol = solve(model, noise)
     corrections: list[Correction] = []
     while len(corrections) < MAX_FE_RUNS:
-        values = _values(known, _fitted(model, sol))
-        correction = fe_correction(problem, known, values, _prony(known, values), refine)
+        values = all_values(known, _fitted(model, sol))
+        correction = fe_correction(problem, known, values, prony_at(known, values), refine)
         corrections.append(correction)
         known = dataclasses.replace(known, correction=correction)
         new_model = build_model(known, measured, names, _fitted(model, sol))

@@ -29,7 +29,7 @@ from ..validation import InputError
 from .corrections import Correction, exact_impact
 from .data import Measurement
 
-__all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "build_model"]
+__all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "all_values", "build_model", "prony_at"]
 
 UNKNOWNS = {
     "indentation": ("E2", "nu2"),
@@ -102,7 +102,7 @@ class Model:
     description: str
 
 
-def _values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
+def all_values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
     """Every parameter of the forward model: the fitted ones, else the known ones."""
     values = {
         "E_star": known.modulus,
@@ -115,7 +115,7 @@ def _values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
     return values
 
 
-def _prony(known: Known, values: Mapping[str, float]) -> PronySeries | None:
+def prony_at(known: Known, values: Mapping[str, float]) -> PronySeries | None:
     """The Prony series with the fitted weights g1, g2, ... in place of the given ones."""
     if known.prony is None:
         return None
@@ -128,7 +128,7 @@ def _prony(known: Known, values: Mapping[str, float]) -> PronySeries | None:
 def _impact(known: Known, values: Mapping[str, float], velocity: float) -> tuple[float, float]:
     """(restitution, contact time in s) of the impact at ``velocity`` in m/s."""
     law = PowerLawContact(known.indenter, values["E_star"])
-    prony = _prony(known, values)
+    prony = prony_at(known, values)
     if prony is None:
         return 1.0, solve_impact(values["mass"], velocity, law).t_y
     result = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
@@ -139,7 +139,7 @@ def force_history(known: Known, values: Mapping[str, float], time: np.ndarray) -
     """The force in N at ``time`` (s, the data's clock): the impact shifted by the time
     offset, with the known FE correction if any, plus the baseline."""
     t = np.asarray(time, dtype=float) - values["time_offset"]
-    exact, peak, duration = exact_impact(known, values, _prony(known, values))
+    exact, peak, duration = exact_impact(known, values, prony_at(known, values))
     if known.correction is None:
         return exact(t) + values["baseline"]
     return known.correction.apply(exact, peak, duration, t) + values["baseline"]
@@ -150,7 +150,7 @@ def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarra
     names = [name for name in ("restitution", "contact_time", "resilience") if name in data.columns]
 
     def predict(fitted: Mapping[str, float]) -> np.ndarray:
-        values = _values(known, fitted)
+        values = all_values(known, fitted)
         rows = [_impact(known, values, v) for v in data.columns["velocity"]]
         out = {
             "restitution": [e for e, _ in rows],
@@ -258,14 +258,14 @@ def build_model(
         law = PowerLawContact(known.indenter, 1.0)  # P = E* times this law's force
         shape = law.force(data.columns["depth"])
         return Model(
-            params, data.columns["force"], lambda f: _values(known, f)["E_star"] * shape,
+            params, data.columns["force"], lambda f: all_values(known, f)["E_star"] * shape,
             False, "N", "power-law contact P = beta x^q (Shtaerman; Hertz for n = 2), exact",
         )  # fmt: skip
     if kind == "force-history":
         time = data.columns["time"]
         return Model(
             params, data.columns["force"],
-            lambda f: force_history(known, _values(known, f), time), False, "N",
+            lambda f: force_history(known, all_values(known, f), time), False, "N",
             f"{impact}, force history with time offset and baseline",
         )  # fmt: skip
     observed = [data.columns[n] for n in ("restitution", "contact_time", "resilience")

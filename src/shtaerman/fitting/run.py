@@ -21,7 +21,10 @@ from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
 
-__all__ = ["fit", "known_of"]
+__all__ = ["FE_REFINE", "fit", "known_of"]
+
+FE_REFINE = 0.6
+"""The default refinement of the FE runs that correct a force history."""
 
 ABSCISSA = {"indentation": "depth", "force-history": "time"}
 """The data column each kind's figure and fit.csv run along (rebound data: the velocity)."""
@@ -84,7 +87,7 @@ def fit(
     baseline: float = 0.0,
     units: Mapping[str, str] | None = None,
     steps: int = 200,
-    refine: float = 0.5,
+    refine: float = FE_REFINE,
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
@@ -118,7 +121,8 @@ def fit(
     refine : float
         The mesh and time-step refinement of the FE runs that correct a force history for a
         pad (thickness), waves (density2 > 0) or finite strain (model); each FE run comes
-        with its error estimate (0.5: a coarse mesh, seconds a run).
+        with its error estimate (0.6, the default: a coarse mesh, seconds a run for the linear
+        body; 0.6 is the least the finite-strain ladder takes).
     out : str or Path, optional
         Folder to write fit.json, fit.csv and the figure fit.png into.
     force : bool
@@ -152,6 +156,8 @@ def fit(
         result,
         corrections=[c.entry(problem) for c in corrections[-1:]],
         fe_runs=len(corrections),
+        forward_model=model.description
+        + ("; corrected by FE impacts (see corrections)" if corrections else ""),
         forward_error=_forward_entries(model, shifts),
     )
     if folder is not None:
