@@ -7,7 +7,11 @@ FE run (``--truth-refine``, no estimate) sampled at 50 kHz from 1 ms before the 
 and the density, starts from E2 = 5 MPa and fits E2, the time offset and the baseline, its
 FE corrections on a coarse mesh (``--refine``, with its error estimate).
 
+With ``--model neo-hookean`` the pad is a rubber at finite strain, the data and the
+corrections are finite-strain FE runs.
+
 Run: python benchmarks/fit_fe_corrections.py [--seeds N] [--refine R] [--truth-refine R]
+     [--model neo-hookean]
 """
 
 from __future__ import annotations
@@ -24,15 +28,16 @@ E2, NU2, DENSITY, THICKNESS = 7.5e6, 0.45, 1100.0, 0.02
 MASS, VELOCITY, OFFSET, BASELINE = 0.2, 2.0, 1e-3, 0.5
 
 
-def case(e2: float) -> sh.Problem:
-    """The drop test with the pad and its density, at ``e2``."""
+def case(e2: float, model: str) -> sh.Problem:
+    """The drop test with the pad and its density, at ``e2``, of body ``model``."""
     body = sh.Material(e2, NU2, density=DENSITY)
-    return sh.Problem.impact(INDENTER, body, mass=MASS, velocity=VELOCITY, thickness=THICKNESS)
+    return sh.Problem.impact(INDENTER, body, mass=MASS, velocity=VELOCITY, thickness=THICKNESS,
+                             model=model)  # fmt: skip
 
 
-def measurement(refine: float, seed: int) -> dict[str, np.ndarray]:
+def measurement(refine: float, seed: int, model: str) -> dict[str, np.ndarray]:
     """The synthetic record: the FE force history at ``refine`` plus noise."""
-    run = sh.dynamic(case(E2), refine=refine, estimate=False)
+    run = sh.dynamic(case(E2, model), refine=refine, estimate=False)
     history = run.history()
     t = np.arange(0.0, 2.5 * run.t_contact + OFFSET, 2e-5)
     force = np.interp(t - OFFSET, history["t"], history["P"], left=0.0, right=0.0)
@@ -43,16 +48,18 @@ def measurement(refine: float, seed: int) -> dict[str, np.ndarray]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=1)
-    parser.add_argument("--refine", type=float, default=0.5)
+    parser.add_argument("--refine", type=float, default=0.6)
+    parser.add_argument("--model", default="linear", help="linear, or a rubber: neo-hookean")
     parser.add_argument("--truth-refine", type=float, default=1.0)
     args = parser.parse_args()
-    print(f"truth E2 = {E2:.4g} Pa; data: FE at refine {args.truth_refine}, 1 % noise")
+    print(f"truth E2 = {E2:.4g} Pa ({args.model}); data: FE at refine {args.truth_refine}, "
+          f"1 % noise; fit: FE at refine {args.refine}")  # fmt: skip
     print(" seed  FE runs  time [s]  E2 fitted [Pa]  95 % interval [Pa]        covers  c_P    c_t")
     for seed in range(args.seeds):
-        data = measurement(args.truth_refine, seed)
+        data = measurement(args.truth_refine, seed, args.model)
         start = time.perf_counter()
         result = sh.fit(
-            "force-history", data, case(5e6), unknowns="E2,time_offset,baseline",
+            "force-history", data, case(5e6, args.model), unknowns="E2,time_offset,baseline",
             refine=args.refine,
         )  # fmt: skip
         elapsed = time.perf_counter() - start
