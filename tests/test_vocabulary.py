@@ -28,7 +28,7 @@ from shtaerman.vocabulary import (
 
 CONTRACT = {"--E1", "--E2", "--nu1", "--nu2", "--density2"}
 """Options of the interface contract spelt as their key (no case change, no hyphen to add)."""
-COMMANDS = {"impact": "impact", "contact": "contact", "dynamic": "dynamic"}
+COMMANDS = {"impact": "impact", "contact": "contact", "dynamic": "dynamic", "fit": None}
 """CLI subcommand -> the kind whose defaults and ranges it uses."""
 
 
@@ -86,7 +86,10 @@ def test_parameter_table_has_one_row_per_input():
     assert table.count("| Key, CLI option | Default | Meaning [unit] |") == 3
     assert len([line for line in table if line.startswith("| `")]) == len(VOCABULARY)
     row = next(line for line in table if line.startswith("| `nu2`<br>"))
-    assert "`--nu2` (impact, contact, dynamic, effects)" in row and "(-1, 0.5]; FEM [0, 0.5]" in row
+    assert (
+        "`--nu2` (impact, contact, dynamic, effects, fit)" in row
+        and "(-1, 0.5]; FEM [0, 0.5]" in row
+    )
     row = next(line for line in table if line.startswith("| `time_steps`<br>"))
     assert "`--time-steps` (dynamic, effects)" in row and "formerly `steps`" in row
     assert "| 200; the model's in a dynamic sweep |" in row  # a rubber's own there
@@ -298,4 +301,4 @@ def test_every_cli_value_is_checked_by_its_entry(command):
         assert message.startswith(f"{option} must ") and valid.text() in message, message
         assert error.value.parameter == item.name and "\n" not in message
         checked += 1
-    assert checked >= {"impact": 9, "contact": 14, "dynamic": 14}[command]
+    assert checked >= {"impact": 9, "contact": 14, "dynamic": 14, "fit": 9}[command]

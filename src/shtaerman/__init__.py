@@ -10,6 +10,7 @@ The public API (``import shtaerman as sh``; see :mod:`shtaerman.api`)::
     case = sh.Problem.impact(indenter, rubber, mass=0.25, velocity=2.0, thickness=0.012)
     d = sh.dynamic(case, time_steps=200)                       # the same, from one Problem
     table = sh.effects(case)                  # which effect (pad, waves, ...) moves P_max most
+    fitted = sh.fit("indentation", "curve.csv", case, unknowns=["E2"])  # E2 from a measurement
     sh.run_study("paper", out="results"); sh.sweep("nu-grid", workers=2)   # -> sh.SweepOutcome
 
 Names are imported on first use, so ``import shtaerman`` loads neither numpy nor the FEM.
@@ -31,6 +32,7 @@ if TYPE_CHECKING:
         ContactResult,
         DynamicResult,
         EffectTable,
+        FitResult,
         Geometry,
         ImpactResult,
         InputError,
@@ -44,6 +46,7 @@ if TYPE_CHECKING:
         contact,
         dynamic,
         effects,
+        fit,
         impact,
         run_study,
         sweep,
@@ -59,6 +62,7 @@ __all__ = [
     "ContactResult",
     "DynamicResult",
     "EffectTable",
+    "FitResult",
     "Geometry",
     "ImpactResult",
     "InputError",
@@ -75,6 +79,7 @@ __all__ = [
     "contact",
     "dynamic",
     "effects",
+    "fit",
     "impact",
     "run_study",
     "sweep",

@@ -444,6 +444,51 @@ VOCABULARY: tuple[Entry, ...] = (
         valid=None,
         type="str",
     ),
+    # --- a fit (shtaerman fit: command line and sh.fit only) ------------------------------
+    Entry(
+        "fit",
+        "",
+        "the unknowns NAME[,NAME...] to fit: E2, nu2 (nu2 alone needs E2 known), mass, "
+        "velocity, time_offset, baseline, prony (the weights g_i of --prony at its fixed tau_i)",
+        "fitted unknowns",
+        "E2",
+        valid=None,
+        type="str",
+    ),
+    Entry(
+        "noise",
+        "",
+        "standard deviation of the data, in the residual's unit (N for a force; relative, "
+        "e.g. 0.01, for rebound data); unset: estimated from the residual",
+        "noise level",
+        None,
+    ),
+    Entry(
+        "time_offset",
+        "s",
+        "the force history's time of first touch on the data's clock, unless fitted",
+        "time offset",
+        0.0,
+        valid=None,
+    ),
+    Entry(
+        "baseline",
+        "N",
+        "the force history's zero force (the force read before and after contact), unless fitted",
+        "force baseline",
+        0.0,
+        valid=None,
+    ),
+    Entry(
+        "units",
+        "",
+        "units of the data columns whose header gives none, COLUMN=UNIT,... (e.g. "
+        "depth=mm,force=kN); a header 'depth [mm]' gives its own",
+        "data units",
+        None,
+        valid=None,
+        type="str",
+    ),
     Entry(
         "rate",
         "m/s",

@@ -4,6 +4,7 @@
 - :func:`contact`: the FEM contact curve against Shtaerman's solution, with error estimates;
 - :func:`dynamic`: the elastodynamic FE impact against the quasi-static theory;
 - :func:`effects`: the effect table of an impact (the pad, the waves, finite strain, ...);
+- :func:`fit`: the rubber's constants from a measurement, with 95 % intervals;
 - :func:`run_study`, :func:`sweep`: study files and parameter sweeps.
 
 Every result is a frozen dataclass whose attributes are the keys of the matching CLI
@@ -13,6 +14,8 @@ listed once, in :data:`shtaerman.__all__`.
 
 import sys
 
+from ..fitting.result import FitResult as FitResult
+from ..fitting.run import fit as fit
 from ..problem import Body as Body
 from ..problem import Geometry as Geometry
 from ..problem import Interface as Interface

@@ -92,6 +92,8 @@ METAVARS = {
     "mooney_ratio": "R",
     "yeoh": "C2,C3",
     "gent_limit": "JM",
+    "fit": "NAME,...",
+    "units": "COLUMN=UNIT,...",
 }
 """The placeholder of an option's value in the help, where its unit does not make one."""
 

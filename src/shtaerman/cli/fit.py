@@ -1,0 +1,158 @@
+"""``shtaerman fit``: the rubber's constants from a measurement, with 95 % intervals."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..fitting.data import KINDS, parse_units
+from ..fitting.result import FitResult
+from ..fitting.run import FE_REFINE, fit
+from ..problem import RUBBER_OPTIONS, Problem
+from ..theory.materials import Material
+from .common import (
+    CASE,
+    add_figure_format,
+    add_inputs,
+    given,
+    in_option_words,
+    indenter,
+    print_json,
+    refuse_idle_output_options,
+    striker,
+)
+
+__all__ = ["fit_text", "problem_of", "register", "run"]
+
+PHYSICS = ("prony", "thickness", "base", "model", *RUBBER_OPTIONS)
+"""The problem's parts besides the striker and the body's elasticity: passed when given."""
+
+DESCRIPTION = """\
+Fit the unknowns of a problem to a measurement by the exact quasi-static models: the power-law
+contact law (indentation), the Ateb impact or with --prony the viscoelastic one (Lee-Radok,
+Ting) (force-history, rebound, resilience). The known values are the usual options; those of
+the unknowns are the starting values. A force history on a pad (--thickness), with waves
+(--density2) or at finite strain (--model) is corrected by FE impacts at the fitted point
+(fit, FE run, fit again: a handful of FE runs); their error estimates and the viscoelastic
+impact's step error widen the intervals. Friction is not fitted.
+
+KIND and the CSV columns it reads (header 'name [unit]'):
+  indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known)
+  force-history   time [s], force [N]                       -> E2, time_offset, baseline,
+                                                               mass or velocity, prony
+  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony
+  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony
+
+The result gives each unknown's value and 95 % interval, and identifiable false (with its
+bounds as the interval) for what the data cannot determine."""
+NOTES = {
+    "out": "fit.json (the --json object), fit.csv (data, fit, residual) and fit.png",
+    "E2": "known, or the starting value with --fit E2",
+    "nu2": "known, or the starting value with --fit nu2",
+    "mass": "known, or the starting value with --fit mass",
+    "velocity": "of a force history: known, or the starting value with --fit velocity",
+    "prony": "the weights are the starting values with --fit prony, the tau_i stay fixed",
+}
+"""What ``fit`` does with some of its options."""
+DERIVED = {
+    "density2": "unset: no waves",
+    "refine": f"{FE_REFINE:g}: a coarse mesh with its error estimate, seconds a run",
+}
+"""The defaults of ``fit`` that differ from the other commands'."""
+PRONY_HELP = (
+    "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s): "
+    "G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 the instantaneous modulus; the fit uses "
+    "the viscoelastic quasi-static impact, and with --fit prony the g_i are the starting "
+    "values, the tau_i fixed; unset: elastic"
+)
+"""The help of ``--prony`` for a fit."""
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``fit`` subcommand."""
+    p = commands.add_parser(
+        "fit",
+        help="fit E2 (and nu2, Prony weights, ...) to a measured curve, history or rebound",
+        description=DESCRIPTION,
+    )
+    p.add_argument("kind", choices=KINDS, metavar="KIND", help=f"one of {', '.join(KINDS)}")
+    p.add_argument("data", metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'")
+    inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
+              "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
+              "refine", "json", "out", "force")  # fmt: skip
+    add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
+    prony = next(a for a in p._actions if "--prony" in a.option_strings)
+    prony.help = PRONY_HELP  # the series' own help speaks of --model, which fit does not take
+    add_figure_format(p)
+    p.set_defaults(handler=run)
+
+
+def problem_of(args: argparse.Namespace) -> Problem:
+    """The problem the options describe: its known parts and the unknowns' starts."""
+    physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
+    return Problem.impact(
+        indenter(args),
+        Material(args.E2, args.nu2, args.density2 if given(args, "density2") else None),
+        mass=args.mass,
+        velocity=args.velocity,
+        striker=striker(args),
+        **physics,
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    """Fit (:func:`shtaerman.fit`) and print the fitted values or the JSON."""
+    refuse_idle_output_options(args, ("out",))
+    with in_option_words():
+        result = fit(
+            args.kind,
+            args.data,
+            problem_of(args),
+            unknowns=args.fit,
+            noise=args.noise,
+            time_offset=args.time_offset,
+            baseline=args.baseline,
+            units=parse_units(args.units),
+            refine=FE_REFINE if args.refine is None else args.refine,
+            out=args.out,
+            force=args.force,
+            figure_format=args.figure_format,
+        )
+    if args.json:
+        print_json(result.to_dict())
+    else:
+        print(fit_text(result))
+    return 0
+
+
+def _corrections_text(result: FitResult) -> list[str]:
+    """The corrections line(s) of the text output."""
+    if not result.corrections:
+        return ["  corrections:   none (a half-space of no density at small strain)"]
+    rows = []
+    for item in result.corrections:
+        rows.append(
+            f"  corrections:   {item['name']}: peak force x{item['force_scale']:.4g}, contact "
+            f"time x{item['time_scale']:.4g} at the fitted point ({result.fe_runs} FE runs)"
+        )
+    return rows
+
+
+def fit_text(result: FitResult) -> str:
+    """The fitted values, intervals and residual as text."""
+    rows = [
+        f"Fit of a {result.kind} ({result.data['rows']} rows of {result.data['source']})",
+        f"  forward model: {result.forward_model}",
+        *_corrections_text(result),
+        f"  {'unknown':<12} {'value':>13} {'95 % interval':>29}  unit",
+    ]
+    for name, item in result.fitted.items():
+        interval = f"[{item['low']:.6g}, {item['high']:.6g}]"
+        note = "" if item["identifiable"] else "  not identifiable from these data"
+        rows.append(f"  {name:<12} {item['value']:>13.6g} {interval:>29}  {item['unit']}{note}")
+    noise = result.noise
+    how = "estimated from the residual" if noise["estimated"] else "given"
+    rows.append(
+        f"  residual rms {result.residual['rms']:.4g} {result.residual['unit']}; noise "
+        f"{noise['value']:.4g} {noise['unit']} ({how})"
+    )
+    return "\n".join(rows)

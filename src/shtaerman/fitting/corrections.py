@@ -1,0 +1,170 @@
+"""The FE correction of a force history: a pad, waves and finite strain at the fitted point.
+
+The exact quasi-static impact knows neither a pad (a layer on a rigid base), nor the body's
+inertia (waves), nor finite strain. Their effect is measured by the FE impact
+(:func:`shtaerman.dynamic`) of the problem at the fitted point and applied to the exact model
+as a correction that is held fixed while the exact model is fitted again:
+
+    F(t) = c_P [F_ex(t / c_t) + P_ex delta(t / (c_t T_ex))]
+
+with F_ex the exact force history at the trial parameters (peak P_ex, contact time T_ex), c_P
+and c_t the FE / exact ratios of the peak force and of the contact time at the point of the
+FE run, and delta(tau) the remaining difference of the two shapes (each normalised by its
+peak, against the time in units of its contact time). At the point of the FE run the
+corrected model is the FE force history itself; away from it, the scales follow the exact
+model. :func:`shtaerman.fitting.run.fit` repeats fit, FE run, fit until the fitted values
+move by less than a tenth of their intervals (typically two or three FE runs).
+
+E2 does not scale out of the FE impact: E2, density2 and the striker's mass multiplied
+together by lambda give the same motion with the forces times lambda, but at a fixed density
+and mass a new E2 changes the ratio of the wave transit time to the contact time (and of
+the depth to the pad), so each new point needs its FE run.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from ..problem import Problem
+from ..theory.contact import PowerLawContact
+from ..theory.impact import solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material
+from ..theory.viscoelastic import PronySeries, viscoelastic_impact
+
+__all__ = ["Correction", "exact_impact", "fe_correction", "needs_fe"]
+
+
+class Known(Protocol):
+    """What the corrections read of the fit's known parts (:class:`.models.Known`)."""
+
+    indenter: PowerLawIndenter
+    striker: Material
+    nu2: float
+    steps: int
+
+
+SHAPE_POINTS = 400
+"""Samples of the shape difference delta over the FE contact."""
+
+
+@dataclass(frozen=True)
+class Correction:
+    """The FE / exact correction of a force history, measured at one point."""
+
+    force_scale: float
+    """c_P = P_max(FE) / P_max(exact)."""
+    time_scale: float
+    """c_t = t_contact(FE) / t_contact(exact)."""
+    tau: np.ndarray
+    """Time over the FE contact time, 0 ... 1."""
+    shape: np.ndarray
+    """delta(tau): the FE shape minus the exact shape, each over its peak."""
+    errors: Mapping[str, float]
+    """The FE run's relative error estimates of P_max and t_contact (0 if not estimated)."""
+    at: Mapping[str, float]
+    """The point of the FE run: E2, nu2, mass, velocity and the Prony weights."""
+
+    def apply(self, exact: Callable[[np.ndarray], np.ndarray], peak: float, duration: float,
+              t: np.ndarray) -> np.ndarray:  # fmt: skip
+        """The corrected force in N at ``t`` (s from the touch) from the exact history
+        ``exact`` (peak ``peak`` N, contact time ``duration`` s)."""
+        stretched = t / self.time_scale
+        delta = np.interp(stretched / duration, self.tau, self.shape, left=0.0, right=0.0)
+        return self.force_scale * (exact(stretched) + peak * delta)
+
+    def entry(self, problem: Problem) -> dict[str, object]:
+        """The correction as the result's JSON (``corrections``)."""
+        return {
+            "name": _name(problem),
+            "force_scale": self.force_scale,
+            "time_scale": self.time_scale,
+            "shape_max": float(np.max(np.abs(self.shape))),
+            "fe_error": dict(self.errors),
+            "at": dict(self.at),
+        }
+
+
+def needs_fe(problem: Problem) -> bool:
+    """Whether ``problem`` has a part the exact models lack: a pad, density or finite strain."""
+    density = problem.body.material.density
+    return (problem.geometry.thickness is not None or bool(density)
+            or problem.body.model != "linear")  # fmt: skip
+
+
+def _name(problem: Problem) -> str:
+    """The parts the FE correction stands for, in words."""
+    parts = []
+    if problem.geometry.thickness is not None:
+        parts.append(f"pad {problem.geometry.thickness:g} m ({problem.geometry.base} base)")
+    if problem.body.material.density:
+        parts.append(f"waves (density2 {problem.body.material.density:g} kg/m^3)")
+    if problem.body.model != "linear":
+        parts.append(f"finite strain ({problem.body.model})")
+    return "FE impact: " + ", ".join(parts)
+
+
+def exact_impact(known: Known, values: Mapping[str, float], prony: PronySeries | None,
+                 ) -> tuple[Callable[[np.ndarray], np.ndarray], float, float]:  # fmt: skip
+    """(force in N at times in s from the touch, peak force in N, contact time in s) of the
+    exact quasi-static impact (the Ateb impact, or the viscoelastic one with ``prony``)."""
+    law = PowerLawContact(known.indenter, values["E_star"])
+    if prony is None:
+        result = solve_impact(values["mass"], values["velocity"], law)
+
+        def elastic(t: np.ndarray) -> np.ndarray:
+            inside = (t > 0.0) & (t < result.t_y)
+            force = np.zeros_like(t)
+            force[inside] = result.history(times=t[inside]).P
+            return force
+
+        return elastic, float(result.P_c), float(result.t_y)
+    run = viscoelastic_impact(values["mass"], values["velocity"], law, prony, steps=known.steps)
+    history = run.history
+
+    def relaxing(t: np.ndarray) -> np.ndarray:
+        return np.interp(t, history["t"], history["P"], left=0.0, right=0.0)
+
+    return relaxing, float(run.P_max), float(run.t_contact)
+
+
+def _point(problem: Problem, known: Known, values: Mapping[str, float],
+           prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
+    """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
+    rest = 1.0 / values["E_star"] - known.striker.compliance
+    e2 = (1.0 - known.nu2**2) / rest
+    body = problem.body
+    material = Material(e2, known.nu2, body.material.density)
+    striker = dataclasses.replace(problem.striker, mass=values["mass"],
+                                  velocity=values["velocity"])  # fmt: skip
+    body = dataclasses.replace(body, material=material, prony=prony)
+    at = {"E2": e2, "nu2": known.nu2, "mass": values["mass"], "velocity": values["velocity"]}
+    if prony is not None:
+        at.update({f"g{i}": g for i, g in enumerate(prony.weights, start=1)})
+    return dataclasses.replace(problem, striker=striker, body=body), at
+
+
+def fe_correction(problem: Problem, known: Known, values: Mapping[str, float],
+                  prony: PronySeries | None, refine: float) -> Correction:  # fmt: skip
+    """The :class:`Correction` measured by one FE impact of ``problem`` at ``values`` (with
+    its error-estimate ladder at ``refine``)."""
+    from ..api.fem_dynamic import dynamic
+
+    case, at = _point(problem, known, values, prony)
+    run = dynamic(case, refine=refine, estimate=True)
+    exact, peak, duration = exact_impact(known, values, prony)
+    history = run.history()
+    c_p, c_t = run.P_max / peak, run.t_contact / duration
+    tau = np.linspace(0.0, 1.0, SHAPE_POINTS)
+    fe = np.interp(tau * run.t_contact, history["t"], history["P"]) / run.P_max
+    ex = exact(tau * duration) / peak
+    estimate = run.error_estimate or {}
+    errors = {k: float(estimate.get(k) or 0.0) for k in ("P_max", "t_contact")}
+    errors = {k: v if math.isfinite(v) else 0.0 for k, v in errors.items()}
+    return Correction(c_p, c_t, tau, fe - ex, errors, at)

@@ -1,0 +1,258 @@
+"""A measurement to fit: named columns in SI units, read from a CSV ``name [unit]`` header.
+
+The columns each kind of measurement takes (:data:`KIND_COLUMNS`): an indentation curve
+``depth [m]``, ``force [N]``; a drop test's force history ``time [s]``, ``force [N]``; rebound
+data ``velocity [m/s]`` with ``restitution [1]`` and/or ``contact_time [s]`` (the whole time in
+contact); a rebound resilience (ISO 4662) ``velocity [m/s]``, ``resilience [1]`` (the fraction
+of the energy returned, e^2). A unit is taken from the header, else from ``units``, else SI.
+Every problem with the file is an :class:`InputError` naming the column or the row.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..validation import InputError
+
+__all__ = [
+    "KINDS",
+    "KIND_COLUMNS",
+    "UNITS",
+    "Measurement",
+    "measured_unit",
+    "measurement",
+    "parse_units",
+]
+
+KIND_COLUMNS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    "indentation": (("depth", "force"), ()),
+    "force-history": (("time", "force"), ()),
+    "rebound": (("velocity",), ("restitution", "contact_time")),
+    "resilience": (("velocity", "resilience"), ()),
+}
+"""Kind -> (columns it needs, columns of which it needs at least one)."""
+KINDS = tuple(KIND_COLUMNS)
+
+QUANTITY = {
+    "depth": "length",
+    "force": "force",
+    "time": "time",
+    "velocity": "velocity",
+    "restitution": "ratio",
+    "contact_time": "time",
+    "resilience": "ratio",
+}
+"""Column -> the physical quantity its unit must measure."""
+UNITS: dict[str, dict[str, float]] = {
+    "length": {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "cm": 1e-2, "nm": 1e-9},
+    "force": {"N": 1.0, "kN": 1e3, "mN": 1e-3, "uN": 1e-6, "µN": 1e-6},
+    "time": {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6},
+    "velocity": {"m/s": 1.0, "mm/s": 1e-3, "cm/s": 1e-2, "km/h": 1.0 / 3.6},
+    "ratio": {"1": 1.0, "": 1.0, "%": 1e-2},
+}
+"""Quantity -> unit -> its value in SI."""
+_HEADER = re.compile(r"^\s*([^\[\]]*?)\s*(?:\[\s*([^\[\]]*?)\s*\])?\s*$")
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """The measured columns of one kind, in SI units, and where they came from."""
+
+    kind: str
+    """One of :data:`KINDS`."""
+    columns: Mapping[str, np.ndarray]
+    """Column name -> values in SI units (m, N, s, m/s, 1)."""
+    source: str = "data"
+    """The file's path or ``data`` for values given in Python."""
+    units: Mapping[str, str] = field(default_factory=dict)
+    """Column name -> the unit it was written in."""
+
+    @property
+    def rows(self) -> int:
+        """Number of data rows."""
+        return len(next(iter(self.columns.values())))
+
+
+def parse_units(text: str | None) -> dict[str, str]:
+    """``depth=mm,force=kN`` -> {"depth": "mm", "force": "kN"} (the --units option)."""
+    if not text:
+        return {}
+    units = {}
+    for item in str(text).split(","):
+        name, sep, unit = item.partition("=")
+        if not sep or name.strip() not in QUANTITY:
+            raise InputError(
+                f"units must be written COLUMN=UNIT,... with COLUMN one of "
+                f"{', '.join(QUANTITY)}, got {item.strip()!r}",
+                "units",
+            )
+        units[name.strip()] = unit.strip()
+    return units
+
+
+def _factor(where: str, name: str, unit: str) -> float:
+    """The SI value of ``unit`` for column ``name``, or an InputError naming the column."""
+    known = UNITS[QUANTITY[name]]
+    if unit not in known:
+        listed = ", ".join(u for u in known if u)
+        raise InputError(
+            f"{where}: column {name!r}: unit {unit!r} is not a {QUANTITY[name]} unit; "
+            f"use one of {listed}",
+            "data",
+        )
+    return known[unit]
+
+
+def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
+    """(name, unit or None) of each header cell."""
+    cells = []
+    for text in row:
+        match = _HEADER.match(text)
+        if match is None or not match[1]:
+            raise InputError(f"{where}: header cell {text!r} is not 'name [unit]'", "data")
+        cells.append((match[1].strip().lower().replace(" ", "_"), match[2]))
+    return cells
+
+
+def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]]:
+    """The header's (name, unit) cells and the data rows of ``path``."""
+    where = str(path)
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as stream:
+            rows = [row for row in csv.reader(stream) if any(cell.strip() for cell in row)]
+    except (OSError, UnicodeDecodeError) as error:
+        reason = getattr(error, "strerror", None) or str(error)
+        raise InputError(f"DATA: cannot read {where!r}: {reason}", "data") from None
+    if not rows:
+        raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
+    return _header(where, rows[0]), rows[1:]
+
+
+def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndarray:
+    """Column ``index`` of the data rows as floats; an InputError names the row (the file's
+    line number, header = 1)."""
+    values = np.empty(len(rows))
+    for number, row in enumerate(rows):
+        text = row[index].strip() if index < len(row) else ""
+        try:
+            values[number] = float(text)
+        except ValueError:
+            raise InputError(
+                f"{where}: row {number + 2}: column {name!r} holds {text!r}, not a number", "data"
+            ) from None
+        if not math.isfinite(values[number]):
+            raise InputError(
+                f"{where}: row {number + 2}: column {name!r} holds {text!r}, not a finite number",
+                "data",
+            )
+    return values
+
+
+def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
+    """The columns of ``kind`` read from the CSV at ``path``."""
+    where = str(path)
+    header, rows = _read_csv(path)
+    names = [name for name, _ in header]
+    columns, written = {}, {}
+    for name in _wanted(kind, names, where, header):
+        index = names.index(name)
+        unit = header[index][1]
+        unit = unit if unit is not None else units.get(name, measured_unit(name))
+        written[name] = unit
+        columns[name] = _column(where, name, index, rows) * _factor(where, name, unit)
+    return Measurement(kind, columns, where, written)
+
+
+def measured_unit(name: str) -> str:
+    """The SI unit of column ``name`` (``1`` for a ratio)."""
+    return next(iter(UNITS[QUANTITY[name]]))
+
+
+def _wanted(kind: str, names: list[str], where: str, header: list) -> list[str]:
+    """The columns of ``kind`` present in the header, or an InputError naming the missing."""
+    needed, some = KIND_COLUMNS[kind]
+    shown = ", ".join(f"{n} [{u}]" if u is not None else n for n, u in header)
+    for name in needed:
+        if name not in names:
+            wanted = ", ".join(f"{n} [{measured_unit(n)}]" for n in needed)
+            raise InputError(
+                f"{where}: no column {name!r} (the header has {shown}); a {kind} needs {wanted}",
+                "data",
+            )
+    present = [name for name in some if name in names]
+    if some and not present:
+        raise InputError(
+            f"{where}: no column {' or '.join(repr(n) for n in some)} (the header has {shown})",
+            "data",
+        )
+    return [*needed, *present]
+
+
+def _check_values(data: Measurement) -> Measurement:
+    """Refuse values no measurement of the kind can hold, naming the column and row."""
+    if data.rows == 0:
+        raise InputError(f"{data.source}: no data rows under the header", "data")
+    for name, values in data.columns.items():
+        bad = np.flatnonzero(~np.isfinite(values))
+        if name in ("depth", "velocity", "contact_time", "restitution", "resilience"):
+            bad = np.flatnonzero(~(values > 0) | ~np.isfinite(values))
+        if name in ("restitution", "resilience"):
+            bad = np.flatnonzero(~((values > 0) & (values <= 1)))
+        if bad.size:
+            valid = "in (0, 1]" if name in ("restitution", "resilience") else "> 0"
+            valid = "finite" if name in ("force", "time") else valid
+            raise InputError(
+                f"{data.source}: row {bad[0] + 2}: column {name!r} must be {valid}, got "
+                f"{values[bad[0]]:g}",
+                "data",
+            )
+    if "time" in data.columns and np.any(np.diff(data.columns["time"]) <= 0):
+        row = int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 3
+        raise InputError(f"{data.source}: row {row}: column 'time' must increase", "data")
+    return data
+
+
+def measurement(
+    kind: str, data: str | Path | Mapping[str, ArrayLike], units: Mapping[str, str] | None = None
+) -> Measurement:
+    """The measurement of ``kind`` from a CSV path or a mapping column -> values (SI units).
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    data : str, Path or mapping
+        A CSV file with a header ``name [unit]`` (units from the header, else ``units``, else
+        SI), or the columns themselves in SI units.
+    units : mapping, optional
+        Column -> unit for header cells without one (e.g. ``{"depth": "mm"}``).
+
+    Raises
+    ------
+    InputError
+        One line naming the file's column or row that is missing or wrong.
+    """
+    if kind not in KIND_COLUMNS:
+        raise InputError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}", "kind")
+    for name in units or {}:
+        if name not in QUANTITY:
+            raise InputError(f"units: unknown column {name!r}; one of {', '.join(QUANTITY)}")
+    if isinstance(data, str | Path):
+        return _check_values(_from_file(kind, Path(data), units or {}))
+    names = list(data)
+    header = [(name, None) for name in names]
+    columns = {
+        name: np.atleast_1d(np.asarray(data[name], dtype=float))
+        for name in _wanted(kind, names, "data", header)
+    }
+    if len({len(values) for values in columns.values()}) != 1:
+        raise InputError("data: the columns must have equal lengths", "data")
+    return _check_values(Measurement(kind, columns, "data", {n: measured_unit(n) for n in columns}))

@@ -1,0 +1,194 @@
+"""Least squares on a forward model, with intervals from the Jacobian at the optimum.
+
+The residual r = (model - data) (divided by the data for relative residuals) is minimised by
+:func:`scipy.optimize.least_squares` within the parameters' bounds, in the fitting space of
+each parameter (logarithms of positive scales). At the optimum the covariance is
+s^2 (J^T J)^-1 by the SVD of the central-difference Jacobian J, with s the given noise or the
+residual's s^2 = |r|^2/(m - p); the 95 % interval is the estimate +- t s_j (Student's t with
+m - p degrees of freedom when s is estimated, the normal quantile when it is given).
+
+A parameter is not identifiable when the data cannot determine it:
+
+- it has a component along a direction of J that is null (singular value below
+  :data:`RANK_TOLERANCE` of the largest): a combination of parameters the data do not see;
+- its interval reaches past both of its bounds;
+- moving it across its whole range changes the residual by less than the noise
+  (|J_j| (high - low) < s): e.g. a relaxation time far outside the measured times.
+
+It is then reported with its bounds as its interval, never with a small error bar.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.stats import norm
+from scipy.stats import t as student
+
+from ..validation import InputError, NumericalFailureError
+from .models import Model
+
+__all__ = ["CONFIDENCE", "RANK_TOLERANCE", "Solution", "solve"]
+
+CONFIDENCE = 0.95
+RANK_TOLERANCE = 1e-9
+"""A singular value of J below this fraction of the largest spans a null direction."""
+MAX_EVALUATIONS = 60
+"""Most evaluations of the forward model per fitted parameter (and one) in a search."""
+NULL_COMPONENT = 1e-6
+"""A parameter whose component along a null direction exceeds this is not identifiable."""
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The optimum, its intervals and the residual (natural units)."""
+
+    values: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    identifiable: np.ndarray
+    correlation: np.ndarray
+    model: np.ndarray
+    residual: np.ndarray
+    """model - data, in the data's units."""
+    noise: float
+    """s, in the residual's units (relative for relative residuals)."""
+    noise_estimated: bool
+    evaluations: int
+
+
+def _jacobian(function, x: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """Central differences (one-sided at a bound), step 1e-6 of the parameter's range or of
+    its log."""
+    columns = []
+    for j in range(x.size):
+        step = 1e-6 * min(high[j] - low[j], 1.0)
+        up, down = x.copy(), x.copy()
+        up[j] = min(x[j] + step, high[j])
+        down[j] = max(x[j] - step, low[j])
+        columns.append((function(up) - function(down)) / (up[j] - down[j]))
+    return np.column_stack(columns)
+
+
+def _covariance(jac: np.ndarray, noise: float) -> np.ndarray:
+    """s^2 (J^T J)^-1 by the SVD; infinite variance along the null directions."""
+    _, sing, vt = np.linalg.svd(jac, full_matrices=False)
+    kept = sing > RANK_TOLERANCE * sing[0] if sing.size and sing[0] > 0 else sing > np.inf
+    cov = (vt[kept].T / sing[kept] ** 2) @ vt[kept] * noise**2
+    null = np.zeros(jac.shape[1], dtype=bool)
+    if np.any(~kept):
+        null = np.max(np.abs(vt[~kept]), axis=0) > NULL_COMPONENT
+    cov[null, :] = np.nan
+    cov[:, null] = np.nan
+    cov[null, null] = np.inf
+    return cov
+
+
+def _noise(residual: np.ndarray, count: int, noise: float | None) -> tuple[float, float, bool]:
+    """(s, quantile of the 95 % interval, whether s was estimated)."""
+    if noise is not None:
+        return float(noise), float(norm.ppf(0.5 + CONFIDENCE / 2)), False
+    dof = residual.size - count
+    if dof < 1:
+        raise InputError(
+            f"noise: {residual.size} data value(s) for {count} unknown(s) leave no residual to "
+            "estimate the noise from; give noise (the measurement's standard deviation)",
+            "noise",
+        )
+    s = float(np.sqrt(np.sum(residual**2) / dof))
+    return s, float(student.ppf(0.5 + CONFIDENCE / 2, dof)), True
+
+
+def _optimum(model: Model, noise: float | None, fixed: dict[str, float]) -> dict:
+    """Least squares over the parameters not in ``fixed`` (natural values), and their
+    intervals and identifiability at the optimum (fitting space)."""
+    params = [p for p in model.parameters if p.name not in fixed]
+    low = np.array([p.to_space(p.low) for p in params], dtype=float)
+    high = np.array([p.to_space(p.high) for p in params], dtype=float)
+    start = np.clip([p.to_space(p.start) for p in params], low, high)
+    scale = np.abs(model.observed) if model.relative else np.ones_like(model.observed)
+
+    def natural(x: np.ndarray) -> dict[str, float]:
+        values = {p.name: float(p.from_space(v)) for p, v in zip(params, x, strict=True)}
+        return {**fixed, **values}
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        return (model.predict(natural(x)) - model.observed) / scale
+
+    found = least_squares(
+        residual, start, bounds=(low, high), method="trf", x_scale="jac",
+        xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=MAX_EVALUATIONS * (start.size + 1),
+    )  # fmt: skip
+    if found.status <= 0:
+        raise NumericalFailureError(f"the fit did not converge: {found.message}")
+    s, quantile, estimated = _noise(residual(found.x), start.size, noise)
+    jac = _jacobian(residual, found.x, low, high)
+    cov = _covariance(jac, s)
+    half = quantile * np.sqrt(np.diag(cov))
+    lo, hi = found.x - half, found.x + half
+    reach = np.linalg.norm(jac, axis=0) * (high - low)
+    seen = reach >= s if s > 0 else np.ones(start.size, dtype=bool)
+    return {
+        "params": params, "x": found.x, "low": np.clip(lo, low, high),
+        "high": np.clip(hi, low, high), "bounds": (low, high), "cov": cov, "noise": s,
+        "estimated": estimated, "values": natural(found.x),
+        "identifiable": np.isfinite(half) & ~((lo <= low) & (hi >= high)) & seen,
+        "evaluations": int(found.nfev) + 2 * start.size,
+    }  # fmt: skip
+
+
+def solve(model: Model, noise: float | None = None) -> Solution:
+    """Fit ``model`` to its data; ``noise`` in the residual's unit, None: from the residual.
+
+    The parameters found not identifiable are then held at their starting values and the
+    others fitted again: their intervals are those of the data's information alone, not of a
+    search that wandered along an unseen direction (a weight of a relaxation time outside the
+    measured times, free to reach the bound sum g_i < 1 and so to take another weight with it).
+    """
+    fixed: dict[str, float] = {}
+    found = _optimum(model, noise, fixed)
+    evaluations = found["evaluations"]
+    while 0 < np.count_nonzero(~found["identifiable"]) < len(found["params"]):
+        blind = [p for p, ok in zip(found["params"], found["identifiable"], strict=True) if not ok]
+        fixed.update({p.name: p.start for p in blind})
+        found = _optimum(model, noise, fixed)
+        evaluations += found["evaluations"]
+    return _solution(model, found, fixed, evaluations)
+
+
+def _solution(model: Model, found: dict, fixed: dict[str, float], evaluations: int) -> Solution:
+    """The :class:`Solution` of every parameter: the fitted ones from ``found``, the fixed
+    (not identifiable) ones at their starts with their bounds as interval."""
+    names = [p.name for p in model.parameters]
+    index = {p.name: j for j, p in enumerate(found["params"])}
+    ok = found["identifiable"]
+    cov = np.full((len(names), len(names)), np.nan)
+    for a, name in enumerate(names):
+        for b, other in enumerate(names):
+            if name in index and other in index and ok[index[name]] and ok[index[other]]:
+                cov[a, b] = found["cov"][index[name], index[other]]
+    sd = np.sqrt(np.diag(cov))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(sd, sd)
+    low, high, ident = [], [], []
+    for p in model.parameters:
+        j = index.get(p.name)
+        seen = j is not None and bool(ok[j])
+        ident.append(seen)
+        low.append(p.from_space(found["low"][j]) if seen else p.low)
+        high.append(p.from_space(found["high"][j]) if seen else p.high)
+    fitted = model.predict(found["values"])
+    return Solution(
+        values=np.array([found["values"].get(n, np.nan) for n in names]),
+        low=np.array(low),
+        high=np.array(high),
+        identifiable=np.array(ident),
+        correlation=corr,
+        model=fitted,
+        residual=fitted - model.observed,
+        noise=found["noise"],
+        noise_estimated=found["estimated"],
+        evaluations=evaluations,
+    )

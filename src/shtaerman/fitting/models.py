@@ -1,0 +1,276 @@
+"""The exact quasi-static forward models a fit compares a measurement with.
+
+- indentation: P = beta x^q, the power-law (Shtaerman, Hertz) contact law, linear in E*;
+- force history: the Ateb quasi-static impact, or with a Prony series the viscoelastic one
+  (Lee-Radok while loading, Ting while unloading), shifted by a time offset and a baseline;
+- rebound and resilience: the restitution e and contact time t_c of the same impacts at each
+  drop velocity (the elastic impact rebounds with e = 1); the resilience is e^2.
+
+Every model depends on the moduli only through the combined modulus E*, 1/E* = Q1 + Q2,
+Q = (1 - nu^2)/E: E2 and nu2 are fitted as E* (:func:`modulus_report`). Each model's
+parameters live in a transformed space (logarithms of positive scales) with finite bounds.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..theory.contact import PowerLawContact
+from ..theory.impact import solve_impact
+from ..theory.indenter import PowerLawIndenter
+from ..theory.materials import Material, effective_modulus
+from ..theory.viscoelastic import PronySeries, viscoelastic_impact
+from ..validation import InputError
+from .corrections import Correction, exact_impact
+from .data import Measurement
+
+__all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "all_values", "build_model", "prony_at"]
+
+UNKNOWNS = {
+    "indentation": ("E2", "nu2"),
+    "force-history": ("E2", "nu2", "mass", "velocity", "time_offset", "baseline", "prony"),
+    "rebound": ("E2", "nu2", "mass", "prony"),
+    "resilience": ("E2", "nu2", "mass", "prony"),
+}
+"""Kind -> the names ``--fit`` takes."""
+MODULUS_SPAN = 1e4
+"""E* is sought within [E*_start / span, E*_start * span]."""
+SCALE_SPAN = 10.0
+"""Mass and velocity are sought within a factor of this of the given values."""
+MAX_WEIGHT = 0.999
+"""Upper bound of each fitted Prony weight g_i."""
+
+
+@dataclass(frozen=True)
+class Known:
+    """The known parts of the problem and the starting values of the unknowns (SI units)."""
+
+    indenter: PowerLawIndenter
+    striker: Material
+    E2: float
+    nu2: float
+    mass: float
+    velocity: float
+    prony: PronySeries | None = None
+    time_offset: float = 0.0
+    baseline: float = 0.0
+    steps: int = 200
+    correction: Correction | None = None
+    """The FE correction of a force history (a pad, waves, finite strain), held fixed."""
+
+    @property
+    def modulus(self) -> float:
+        """The combined modulus E* in Pa of the given E2, nu2 and striker."""
+        return effective_modulus(self.striker, Material(self.E2, self.nu2))
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One fitted parameter: start, bounds (natural units) and whether it is fitted in log."""
+
+    name: str
+    start: float
+    low: float
+    high: float
+    log: bool = False
+
+    def to_space(self, value: float | np.ndarray) -> float | np.ndarray:
+        """The natural value in the fitting space."""
+        return np.log(value) if self.log else value
+
+    def from_space(self, value: float | np.ndarray) -> float | np.ndarray:
+        """The fitting space's value in natural units."""
+        return np.exp(value) if self.log else value
+
+
+@dataclass(frozen=True)
+class Model:
+    """What the solver needs: the parameters, the observed vector and its prediction."""
+
+    parameters: tuple[Parameter, ...]
+    observed: np.ndarray
+    predict: Callable[[Mapping[str, float]], np.ndarray]
+    relative: bool
+    """Residuals relative to the observed values (rebound data) or in their unit."""
+    unit: str
+    """The residual's unit."""
+    description: str
+
+
+def all_values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
+    """Every parameter of the forward model: the fitted ones, else the known ones."""
+    values = {
+        "E_star": known.modulus,
+        "mass": known.mass,
+        "velocity": known.velocity,
+        "time_offset": known.time_offset,
+        "baseline": known.baseline,
+    }
+    values.update(fitted)
+    return values
+
+
+def prony_at(known: Known, values: Mapping[str, float]) -> PronySeries | None:
+    """The Prony series with the fitted weights g1, g2, ... in place of the given ones."""
+    if known.prony is None:
+        return None
+    weights = [values.get(f"g{i}", g) for i, g in enumerate(known.prony.weights, start=1)]
+    if math.fsum(weights) >= MAX_WEIGHT:  # the search went past the relaxed modulus: scale
+        weights = [w * MAX_WEIGHT / math.fsum(weights) for w in weights]
+    return PronySeries(tuple(weights), known.prony.times)
+
+
+def _impact(known: Known, values: Mapping[str, float], velocity: float) -> tuple[float, float]:
+    """(restitution, contact time in s) of the impact at ``velocity`` in m/s."""
+    law = PowerLawContact(known.indenter, values["E_star"])
+    prony = prony_at(known, values)
+    if prony is None:
+        return 1.0, solve_impact(values["mass"], velocity, law).t_y
+    result = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
+    return result.restitution, result.t_contact
+
+
+def force_history(known: Known, values: Mapping[str, float], time: np.ndarray) -> np.ndarray:
+    """The force in N at ``time`` (s, the data's clock): the impact shifted by the time
+    offset, with the known FE correction if any, plus the baseline."""
+    t = np.asarray(time, dtype=float) - values["time_offset"]
+    exact, peak, duration = exact_impact(known, values, prony_at(known, values))
+    if known.correction is None:
+        return exact(t) + values["baseline"]
+    return known.correction.apply(exact, peak, duration, t) + values["baseline"]
+
+
+def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarray]:
+    """The predicted observations of rebound (or resilience) data, row by row."""
+    names = [name for name in ("restitution", "contact_time", "resilience") if name in data.columns]
+
+    def predict(fitted: Mapping[str, float]) -> np.ndarray:
+        values = all_values(known, fitted)
+        rows = [_impact(known, values, v) for v in data.columns["velocity"]]
+        out = {
+            "restitution": [e for e, _ in rows],
+            "contact_time": [t for _, t in rows],
+            "resilience": [e * e for e, _ in rows],
+        }
+        return np.concatenate([np.asarray(out[name]) for name in names])
+
+    return predict
+
+
+def _modulus_start(known: Known, data: Measurement, kind: str) -> float:
+    """A starting E* in Pa from the data: exact for an indentation (P linear in E*), from the
+    peak force (P_c ~ E*^(1/(q+1))) or the contact time (t_c ~ E*^(-1/(q+1))) otherwise."""
+    law = PowerLawContact(known.indenter, known.modulus)
+    q = law.force_exponent
+    columns = data.columns
+    if kind == "indentation":
+        shape = law.force(columns["depth"]) / law.modulus
+        return float(np.sum(columns["force"] * shape) / np.sum(shape * shape))
+    if kind == "force-history":
+        peak = float(np.max(columns["force"]) - known.baseline)
+        model = solve_impact(known.mass, known.velocity, law).P_c
+        return known.modulus * (max(peak, 1e-300) / model) ** (q + 1.0)
+    if "contact_time" in columns:
+        model = [solve_impact(known.mass, v, law).t_y for v in columns["velocity"]]
+        ratio = float(np.median(np.asarray(model) / columns["contact_time"]))
+        return known.modulus * ratio ** (q + 1.0)
+    return known.modulus
+
+
+def _time_offset_start(known: Known, data: Measurement) -> float:
+    """The time of first touch read off the data: where the force first exceeds 5 % of its
+    peak, moved back by a sixth of the rise to the peak."""
+    time, force = data.columns["time"], data.columns["force"] - known.baseline
+    peak = int(np.argmax(force))
+    first = int(np.flatnonzero(force > 0.05 * force[peak])[0])
+    return float(time[first] - (time[peak] - time[first]) / 6.0)
+
+
+def _parameters(known: Known, data: Measurement, unknowns: Sequence[str]) -> tuple[Parameter, ...]:
+    """The fitted parameters of ``unknowns`` with their starts and bounds."""
+    params = []
+    if "E2" in unknowns or "nu2" in unknowns:
+        start = _modulus_start(known, data, data.kind)
+        params.append(Parameter("E_star", start, start / MODULUS_SPAN, start * MODULUS_SPAN, True))
+    for name in ("mass", "velocity"):
+        if name in unknowns:
+            value = getattr(known, name)
+            params.append(Parameter(name, value, value / SCALE_SPAN, value * SCALE_SPAN, True))
+    if "time_offset" in unknowns:
+        time = data.columns["time"]
+        span = float(time[-1] - time[0])
+        start = _time_offset_start(known, data)
+        params.append(Parameter("time_offset", start, float(time[0]) - span, float(time[-1])))
+    if "baseline" in unknowns:
+        size = float(np.max(np.abs(data.columns["force"])))
+        params.append(Parameter("baseline", known.baseline, -size, size))
+    if "prony" in unknowns:
+        for i, g in enumerate(known.prony.weights, start=1):  # type: ignore[union-attr]
+            params.append(Parameter(f"g{i}", min(max(g, 1e-3), 0.9), 0.0, MAX_WEIGHT))
+    return tuple(params)
+
+
+def _check_unknowns(kind: str, unknowns: Sequence[str], known: Known) -> None:
+    for name in unknowns:
+        if name not in UNKNOWNS[kind]:
+            raise InputError(
+                f"fit: {kind} data cannot fit {name!r}; choose from {', '.join(UNKNOWNS[kind])}",
+                "fit",
+            )
+    if "prony" in unknowns and known.prony is None:
+        raise InputError(
+            "fit: 'prony' fits the weights g_i of a given series at fixed tau_i; give prony "
+            "(g1:tau1,...: the weights are the starting values)",
+            "fit",
+        )
+    if not unknowns:
+        raise InputError(f"fit: name at least one of {', '.join(UNKNOWNS[kind])}", "fit")
+
+
+def build_model(
+    known: Known,
+    data: Measurement,
+    unknowns: Sequence[str],
+    starts: Mapping[str, float] | None = None,
+) -> Model:
+    """The forward model of ``data.kind`` with the parameters of ``unknowns``, started from
+    ``starts`` (fitted name -> natural value; a previous optimum) where given."""
+    kind = data.kind
+    _check_unknowns(kind, unknowns, known)
+    params = tuple(
+        dataclasses.replace(p, start=min(max(starts[p.name], p.low), p.high))
+        if starts and p.name in starts else p
+        for p in _parameters(known, data, unknowns)
+    )  # fmt: skip
+    viscous = known.prony is not None
+    impact = (
+        "viscoelastic quasi-static impact (Lee-Radok, Ting; the striker's compliance added to "
+        "the glassy half-space's)"
+        if viscous
+        else "quasi-static impact (Ateb functions)"
+    )
+    if kind == "indentation":
+        law = PowerLawContact(known.indenter, 1.0)  # P = E* times this law's force
+        shape = law.force(data.columns["depth"])
+        return Model(
+            params, data.columns["force"], lambda f: all_values(known, f)["E_star"] * shape,
+            False, "N", "power-law contact P = beta x^q (Shtaerman; Hertz for n = 2), exact",
+        )  # fmt: skip
+    if kind == "force-history":
+        time = data.columns["time"]
+        return Model(
+            params, data.columns["force"],
+            lambda f: force_history(known, all_values(known, f), time), False, "N",
+            f"{impact}, force history with time offset and baseline",
+        )  # fmt: skip
+    observed = [data.columns[n] for n in ("restitution", "contact_time", "resilience")
+                if n in data.columns]  # fmt: skip
+    return Model(
+        params, np.concatenate(observed), _rebound_predict(known, data), True, "1 (relative)",
+        f"{impact}: restitution e and contact time per drop velocity (resilience e^2)",
+    )  # fmt: skip

@@ -1,0 +1,142 @@
+"""The result of a fit: the fitted values with their 95 % intervals, as ``fit --json``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..theory.materials import Material
+from .engine import Solution
+from .models import Known
+
+__all__ = ["UNITS", "FitResult", "fitted_entries"]
+
+UNITS = {
+    "E2": "Pa",
+    "nu2": "1",
+    "mass": "kg",
+    "velocity": "m/s",
+    "time_offset": "s",
+    "baseline": "N",
+}
+"""The unit of each fitted name (the Prony weights g_i: 1)."""
+NU2_RANGE = (0.0, 0.5)
+"""The Poisson's ratios a fit considers (nu2 enters only as nu2^2: its sign is not seen)."""
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """A fit of a forward model to a measurement; the attributes are the JSON keys."""
+
+    kind: str
+    """indentation, force-history, rebound or resilience."""
+    fitted: dict[str, dict[str, Any]]
+    """Name -> value, low, high (the 95 % interval), identifiable, unit."""
+    correlation: dict[str, Any]
+    """names (the fitted parameters) and matrix (null where a variance is unbounded)."""
+    residual: dict[str, Any]
+    """rms and max of model - data, their unit, and the number of values."""
+    noise: dict[str, Any]
+    """value (the standard deviation used for the intervals), unit, estimated (from the
+    residual) or given."""
+    forward_model: str
+    """The exact model the data were compared with."""
+    corrections: list[dict[str, Any]]
+    """The FE correction that entered (a pad, waves, finite strain; empty without them): its
+    name, the FE / exact ratios of the peak force (force_scale) and contact time
+    (time_scale), the largest shape difference (shape_max, of the peak), the FE run's
+    relative error estimates (fe_error) and the point of its last FE run (at)."""
+    data: dict[str, Any]
+    """source, rows and the columns' units."""
+    known: dict[str, Any]
+    """The known values of the problem (SI units)."""
+    evaluations: int
+    """Forward-model evaluations used."""
+    fe_runs: int = 0
+    """FE impacts run for the corrections (each with its two coarser ladder levels)."""
+    forward_error: dict[str, dict[str, float]] = field(default_factory=dict)
+    """Fitted name -> source -> the shift that the forward model's own error makes, added
+    in quadrature to the interval's half-widths: fe_P_max, fe_t_contact (the FE run's error
+    estimates), steps (the viscoelastic impact's time steps); natural units (E_star, the
+    combined modulus, in Pa)."""
+    curves: dict[str, np.ndarray] = field(repr=False, compare=False, default_factory=dict)
+    """The columns of fit.csv: the abscissa, data, model and residual (SI units)."""
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON of ``shtaerman fit --json``."""
+        names = ("kind", "fitted", "correlation", "residual", "noise", "forward_model",
+                 "corrections", "data", "known", "evaluations", "fe_runs",
+                 "forward_error")  # fmt: skip
+        return {name: getattr(self, name) for name in names}
+
+
+def _entry(value: float, low: float, high: float, ident: bool, unit: str) -> dict[str, Any]:
+    return {"value": float(value), "low": float(low), "high": float(high),
+            "identifiable": bool(ident), "unit": unit}  # fmt: skip
+
+
+def _young(known: Known, modulus: float, nu2: float) -> float:
+    """E2 in Pa giving the combined modulus ``modulus`` with the striker and ``nu2``."""
+    rest = 1.0 / modulus - known.striker.compliance
+    return (1.0 - nu2 * nu2) / rest if rest > 0 else float("inf")
+
+
+def _poisson(known: Known, modulus: float) -> float:
+    """nu2 giving the combined modulus ``modulus`` with the known E2 (NaN if none does)."""
+    square = 1.0 - known.E2 * (1.0 / modulus - known.striker.compliance)
+    return float(np.sqrt(square)) if square >= 0 else float("nan")
+
+
+def _moduli(known: Known, sol: Solution, j: int, unknowns: list[str]) -> dict[str, dict]:
+    """E2 and/or nu2 from the fitted combined modulus E* (parameter ``j``)."""
+    value, low, high, ident = sol.values[j], sol.low[j], sol.high[j], sol.identifiable[j]
+    out = {}
+    if "E2" in unknowns and "nu2" in unknowns:  # only E* is seen: E2 over every nu2
+        out["E2"] = _entry(_young(known, value, known.nu2), _young(known, low, NU2_RANGE[1]),
+                           _young(known, high, NU2_RANGE[0]), ident, "Pa")  # fmt: skip
+        out["nu2"] = _entry(known.nu2, *NU2_RANGE, False, "1")
+    elif "E2" in unknowns:
+        nu2 = known.nu2
+        out["E2"] = _entry(_young(known, value, nu2), _young(known, low, nu2),
+                           _young(known, high, nu2), ident, "Pa")  # fmt: skip
+    else:
+        ends = [_poisson(known, low), _poisson(known, high)]
+        ends = [NU2_RANGE[0] if np.isnan(e) else min(e, NU2_RANGE[1]) for e in ends]
+        spans = ends[0] <= NU2_RANGE[0] and ends[1] >= NU2_RANGE[1]
+        out["nu2"] = _entry(_poisson(known, value), *ends, ident and not spans, "1")
+    return out
+
+
+def fitted_entries(known: Known, names: list[str], sol: Solution, unknowns: list[str]) -> dict:
+    """Name -> value, low, high, identifiable and unit of every unknown."""
+    out: dict[str, dict] = {}
+    for j, name in enumerate(names):
+        if name == "E_star":
+            out.update(_moduli(known, sol, j, unknowns))
+        else:
+            unit = UNITS.get(name, "1")
+            out[name] = _entry(sol.values[j], sol.low[j], sol.high[j], sol.identifiable[j], unit)
+    return out
+
+
+def known_values(known: Known) -> dict[str, Any]:
+    """The problem's known values as JSON."""
+    striker: Material = known.striker
+    prony = known.prony
+    return {
+        "shape_coefficient": known.indenter.shape_coefficient,
+        "exponent": known.indenter.exponent,
+        "E1": striker.youngs_modulus,
+        "nu1": striker.poisson_ratio,
+        "E2": known.E2,
+        "nu2": known.nu2,
+        "mass": known.mass,
+        "velocity": known.velocity,
+        "prony": None if prony is None else
+        [{"g": g, "tau": tau} for g, tau in zip(prony.weights, prony.times, strict=True)],
+        "time_offset": known.time_offset,
+        "baseline": known.baseline,
+        "steps": known.steps,
+    }  # fmt: skip

@@ -1,0 +1,236 @@
+"""``sh.fit``: the rubber's constants from a measurement, with 95 % intervals."""
+
+from __future__ import annotations
+
+import dataclasses
+import warnings
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..output.files import output_folder
+from ..problem import Problem
+from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
+from ..validation import InputError, validate_positive
+from .corrections import needs_fe
+from .data import Measurement, measured_unit, measurement
+from .engine import Solution, solve
+from .iteration import corrected_fit, forward_error, widened
+from .models import Known, Model, build_model
+from .result import FitResult, fitted_entries, known_values
+
+__all__ = ["FE_REFINE", "fit", "known_of"]
+
+FE_REFINE = 0.6
+"""The default refinement of the FE runs that correct a force history."""
+
+ABSCISSA = {"indentation": "depth", "force-history": "time"}
+"""The data column each kind's figure and fit.csv run along (rebound data: the velocity)."""
+
+
+def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline: float = 0.0,
+             steps: int = 200) -> Known:  # fmt: skip
+    """The known parts of ``problem`` (its E2 and nu2 are the starting values), refusing the
+    parts whose corrections the fit does not have (friction; a pad, waves and finite strain
+    but in a force history) and an impact's measurement without the striker's mass (and a
+    force history's velocity)."""
+    if needs_fe(problem) and kind != "force-history":
+        name = "thickness" if problem.geometry.thickness is not None else "density2"
+        name = "model" if problem.body.model != "linear" else name
+        raise InputError(
+            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for a "
+            f"force history only; a {kind} fit takes the half-space's exact models (leave "
+            "thickness, density2 and model unset)",
+            name,
+        )
+    if problem.interface.kind != "frictionless":
+        raise InputError("interface: the fit takes a frictionless contact only", "interface")
+    striker, body = problem.striker, problem.body.material
+    needed = {"mass": kind != "indentation", "velocity": kind == "force-history"}
+    for name, needs in needed.items():
+        if needs and getattr(striker, name) is None:
+            raise InputError(
+                f"{name}: a {kind} fit needs the striker's {name} (known, or the starting "
+                f"value of a fitted one); give it in the problem (Problem.impact)",
+                name,
+            )
+    return Known(
+        indenter=striker.indenter,
+        striker=striker.material,
+        E2=body.youngs_modulus,
+        nu2=body.poisson_ratio,
+        mass=validate_positive("mass", 1.0 if striker.mass is None else striker.mass, "kg"),
+        velocity=1.0 if striker.velocity is None else striker.velocity,
+        prony=problem.body.prony,
+        time_offset=float(time_offset),
+        baseline=float(baseline),
+        steps=int(steps),
+    )
+
+
+def _names(unknowns: Sequence[str] | str) -> list[str]:
+    names = [unknowns] if isinstance(unknowns, str) else list(unknowns)
+    names = [n.strip() for part in names for n in str(part).split(",") if n.strip()]
+    return list(dict.fromkeys(names))
+
+
+def fit(
+    kind: str,
+    data: str | Path | Mapping[str, ArrayLike],
+    problem: Problem,
+    *,
+    unknowns: Sequence[str] | str = ("E2",),
+    noise: float | None = None,
+    time_offset: float = 0.0,
+    baseline: float = 0.0,
+    units: Mapping[str, str] | None = None,
+    steps: int = 200,
+    refine: float = FE_REFINE,
+    out: str | Path | None = None,
+    force: bool = False,
+    figure_format: str = "png",
+) -> FitResult:
+    """Fit the unknowns of ``problem`` to a measurement by the exact quasi-static models.
+
+    Parameters
+    ----------
+    kind : str
+        ``indentation`` (depth, force), ``force-history`` (time, force), ``rebound``
+        (velocity with restitution and/or contact_time) or ``resilience`` (velocity,
+        resilience = e^2, ISO 4662).
+    data : str, Path or mapping
+        A CSV with a header ``name [unit]``, or the columns in SI units.
+    problem : Problem
+        The known parts (striker, mass, velocity, Prony times); its E2, nu2, mass, velocity
+        and Prony weights are the starting values of those fitted.
+    unknowns : sequence of str
+        Names to fit: E2, nu2, mass, velocity, time_offset, baseline, prony (the weights g_i
+        of the problem's series, at its fixed tau_i); which a kind takes: see ``--help``.
+    noise : float, optional
+        Standard deviation of the data in the residual's unit (N for a force; relative for
+        rebound data); None: estimated from the residual.
+    time_offset, baseline : float
+        The force history's time of first touch in s and its zero force in N, when not
+        fitted.
+    units : mapping, optional
+        Column -> unit for CSV header cells that give none.
+    steps : int
+        Time steps per t_c of the viscoelastic impact (with a Prony series).
+    refine : float
+        The mesh and time-step refinement of the FE runs that correct a force history for a
+        pad (thickness), waves (density2 > 0) or finite strain (model); each FE run comes
+        with its error estimate (0.6, the default: a coarse mesh, seconds a run for the linear
+        body; 0.6 is the least the finite-strain ladder takes).
+    out : str or Path, optional
+        Folder to write fit.json, fit.csv and the figure fit.png into.
+    force : bool
+        Replace ``out`` if shtaerman wrote it.
+    figure_format : str
+        png, or svg / pdf besides.
+
+    Returns
+    -------
+    FitResult
+    """
+    folder = output_folder(out, force=force)
+    measured = measurement(kind, data, units)  # the kind checked first
+    known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
+    names = _names(unknowns)
+    refine = validate_positive("refine", refine)
+    if noise is not None:
+        noise = validate_positive("noise", noise)
+    with warnings.catch_warnings():  # the search may try any velocity: warned once below
+        warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+        if needs_fe(problem):
+            fitted = corrected_fit(problem, known, measured, names, noise, refine)
+            known, model, sol, corrections = fitted
+        else:
+            model, corrections = build_model(known, measured, names), []
+            sol = solve(model, noise)
+        shifts = forward_error(known, measured, names, noise, model, sol)
+    _check_velocities(measured, known, model, sol)
+    result = _result(kind, measured, known, model, widened(sol, shifts), names)
+    result = dataclasses.replace(
+        result,
+        corrections=[c.entry(problem) for c in corrections[-1:]],
+        fe_runs=len(corrections),
+        forward_model=model.description
+        + ("; corrected by FE impacts (see corrections)" if corrections else ""),
+        forward_error=_forward_entries(model, shifts),
+    )
+    if folder is not None:
+        from ..output.fit import write_fit
+
+        write_fit(result, folder, force=force, figure_format=figure_format)
+    return result
+
+
+def _forward_entries(model: Model, shifts: dict[str, np.ndarray]) -> dict[str, dict]:
+    """Fitted name -> source -> the shift its interval took in from the forward model's own
+    error (natural units; E_star, the combined modulus, in Pa)."""
+    names = [p.name for p in model.parameters]
+    return {n: {k: float(abs(v[j])) for k, v in shifts.items()} for j, n in enumerate(names)}
+
+
+def _check_velocities(measured: Measurement, known: Known, model: Model, sol: Solution) -> None:
+    """One :class:`QuasiStaticValidityWarning` if an impact of the fit is faster than the
+    quasi-static theory's stated validity."""
+    if measured.kind == "indentation":
+        return
+    names = [p.name for p in model.parameters]
+    fitted = sol.values[names.index("velocity")] if "velocity" in names else known.velocity
+    velocities = measured.columns.get("velocity", np.array([fitted]))
+    fastest = float(np.max(velocities))
+    if fastest > QUASI_STATIC_VELOCITY_LIMIT:
+        warnings.warn(
+            f"velocity {fastest:.4g} m/s exceeds {QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
+            "validity of the quasi-static impact theory the fit uses",
+            QuasiStaticValidityWarning,
+            stacklevel=3,
+        )
+
+
+def _result(
+    kind: str, measured: Measurement, known: Known, model: Model, sol: Solution, names: list[str]
+) -> FitResult:
+    """The :class:`FitResult` of solution ``sol``."""
+    params = [p.name for p in model.parameters]
+    rms = float(np.sqrt(np.mean(sol.residual**2)))
+    scale = np.abs(model.observed) if model.relative else 1.0
+    relative = sol.residual / scale
+    return FitResult(
+        kind=kind,
+        fitted=fitted_entries(known, params, sol, names),
+        correlation={"names": params, "matrix": sol.correlation.tolist()},
+        residual={
+            "rms": float(np.sqrt(np.mean(relative**2))) if model.relative else rms,
+            "max": float(np.max(np.abs(relative))),
+            "unit": model.unit,
+            "values": int(model.observed.size),
+        },
+        noise={"value": sol.noise, "unit": model.unit, "estimated": sol.noise_estimated},
+        forward_model=model.description,
+        corrections=[],
+        data={"source": measured.source, "rows": measured.rows, "units": dict(measured.units)},
+        known=known_values(known),
+        evaluations=sol.evaluations,
+        curves=_curves(kind, measured, sol),
+    )
+
+
+def _curves(kind: str, measured: Measurement, sol: Solution) -> dict[str, np.ndarray]:
+    """The columns of fit.csv, headed ``name [unit]`` (SI): the abscissa, then each observed
+    column beside its fit (``NAME_fit``), and for a force the residual fit - data."""
+    axis = ABSCISSA.get(kind, "velocity")
+    curves = {f"{axis} [{measured_unit(axis)}]": measured.columns[axis]}
+    observed = [name for name in measured.columns if name not in ("depth", "time", "velocity")]
+    rows = measured.rows
+    for k, name in enumerate(observed):
+        unit = measured_unit(name)
+        curves[f"{name} [{unit}]"] = measured.columns[name]
+        curves[f"{name}_fit [{unit}]"] = sol.model[k * rows : (k + 1) * rows]
+    if kind in ABSCISSA:
+        curves["residual [N]"] = sol.residual
+    return curves

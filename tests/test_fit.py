@@ -1,0 +1,276 @@
+"""``shtaerman fit`` and ``sh.fit``: synthetic measurements made with the suite's forward models
+(and one independent closed form, Hertz's), fitted back; intervals, identifiability, files."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from figure_helpers import capture
+
+import shtaerman as sh
+from shtaerman.cli import main
+from shtaerman.plots import fit as fit_plot
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.impact import solve_impact
+from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
+
+INDENTER = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
+STEEL = sh.Material(2e11, 0.25)
+E2, NU2, MASS, VELOCITY = 7.5e6, 0.5, 0.7, 3.0
+E_STAR = 1.0 / (STEEL.compliance + (1 - NU2**2) / E2)
+DEPTHS = np.linspace(2e-4, 5e-3, 30)
+TIMES = np.linspace(0.0, 0.02, 300)
+VELOCITIES = np.array([0.5, 1.0, 2.0, 3.0, 4.0])
+STEPS = 40
+"""Viscoelastic steps per t_c of the data and the fit: the same model both ways, so the round
+trip is exact whatever the step (the cost of a fit is ~steps)."""
+
+
+def problem(E2=5e6, prony=None, nu2=NU2):
+    """The known parts, with a wrong starting E2 (5 MPa against the true 7.5 MPa)."""
+    extra = {"prony": prony} if prony is not None else {}
+    return sh.Problem.impact(INDENTER, sh.Material(E2, nu2), mass=MASS, velocity=VELOCITY,
+                             striker=STEEL, **extra)  # fmt: skip
+
+
+def indentation(noise=0.0, seed=0):
+    force = PowerLawContact(INDENTER, E_STAR).force(DEPTHS)
+    rng = np.random.default_rng(seed)
+    return {"depth": DEPTHS, "force": force + noise * rng.standard_normal(DEPTHS.size)}
+
+
+def drop(noise=0.0, seed=0, offset=1e-3, baseline=0.5):
+    """An elastic drop test's force history, shifted and on a baseline (Ateb, exact)."""
+    impact = solve_impact(MASS, VELOCITY, PowerLawContact(INDENTER, E_STAR))
+    t = TIMES - offset
+    inside = (t > 0) & (t < impact.t_y)
+    force = np.full(t.size, baseline)
+    force[inside] += impact.history(times=t[inside]).P
+    rng = np.random.default_rng(seed)
+    return {"time": TIMES, "force": force + noise * rng.standard_normal(t.size)}
+
+
+def rebound(series, noise=0.0, seed=0):
+    law = PowerLawContact(INDENTER, E_STAR)
+    runs = [viscoelastic_impact(MASS, v, law, series, steps=STEPS) for v in VELOCITIES]
+    rng = np.random.default_rng(seed)
+    e = np.array([r.restitution for r in runs]) * (1 + noise * rng.standard_normal(5))
+    t = np.array([r.t_contact for r in runs]) * (1 + noise * rng.standard_normal(5))
+    return {"velocity": VELOCITIES, "restitution": e, "contact_time": t}
+
+
+def covers(item, true):
+    return item["identifiable"] and item["low"] <= true <= item["high"]
+
+
+def test_indentation_without_noise_gives_e2_exactly():
+    result = sh.fit("indentation", indentation(), problem())
+    item = result.fitted["E2"]
+    # P is linear in E*: solved exactly; 1e-10 is round-off on 30 points, not a tolerance
+    assert item["value"] == pytest.approx(E2, rel=1e-10)
+    assert item["identifiable"] and item["high"] - item["low"] < 1e-8 * E2
+    assert result.corrections == [] and "Shtaerman" in result.forward_model
+
+
+def test_indentation_of_a_hertz_sphere_recovers_e2():
+    """Data from Hertz's own closed form P = (4/3) E* sqrt(R) x^(3/2), independent of the
+    suite's power-law contact: a sphere z = r^2/(2R) is A = 1/(2R), n = 2."""
+    radius = 0.01
+    force = 4.0 / 3.0 * E_STAR * math.sqrt(radius) * DEPTHS**1.5
+    hertz = sh.Problem.curve(sh.PowerLawIndenter(1 / (2 * radius), 2.0), sh.Material(5e6, NU2),
+                             striker=STEEL)  # fmt: skip
+    result = sh.fit("indentation", {"depth": DEPTHS, "force": force}, hertz)
+    assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=1e-10)  # round-off only
+
+
+def test_interval_scales_with_the_noise():
+    widths = []
+    for noise in (1.0, 4.0):
+        item = sh.fit("indentation", indentation(noise, seed=3), problem()).fitted["E2"]
+        widths.append(item["high"] - item["low"])
+    # the same draws scaled by 4: the estimated s and the interval of E* scale by 4 exactly;
+    # E2(E*) is nearly linear over the interval (striker compliance 1e-5 of the rubber's)
+    assert widths[1] / widths[0] == pytest.approx(4.0, rel=1e-3)
+
+
+def test_indentation_intervals_cover_the_truth_at_their_rate():
+    """60 seeds of 1 % noise (of the largest force): the 95 % intervals (noise estimated,
+    Student's t) cover E2 in 0.88-1.0 of them (binomial sd at 0.95 and 60: 0.028; 0.88 is 2.5
+    sd below). The seeds are fixed: the test is deterministic."""
+    noise = 0.01 * PowerLawContact(INDENTER, E_STAR).force(DEPTHS[-1])
+    hits = [
+        covers(sh.fit("indentation", indentation(noise, seed), problem()).fitted["E2"], E2)
+        for seed in range(60)
+    ]
+    assert 0.88 <= np.mean(hits) <= 1.0
+
+
+def test_drop_test_without_noise_gives_e2_offset_and_baseline():
+    result = sh.fit("force-history", drop(), problem(), unknowns="E2,time_offset,baseline")
+    fitted = result.fitted
+    # the exact model at the exact point: least squares stops at round-off (measured 1e-15)
+    assert fitted["E2"]["value"] == pytest.approx(E2, rel=1e-9)
+    assert fitted["time_offset"]["value"] == pytest.approx(1e-3, rel=1e-9)
+    assert fitted["baseline"]["value"] == pytest.approx(0.5, abs=1e-6)  # 1e-9 of P_c ~ 1 kN
+
+
+def test_drop_test_intervals_cover_the_truth_with_given_noise():
+    """30 seeds of 10 N noise (1 % of P_c), the noise given: the normal 95 % intervals of E2
+    and the time offset cover the truth in 0.83-1.0 of them (binomial sd 0.04 at 30)."""
+    hits = []
+    for seed in range(30):
+        result = sh.fit("force-history", drop(10.0, seed), problem(), noise=10.0,
+                        unknowns=["E2", "time_offset", "baseline"])  # fmt: skip
+        hits.append(covers(result.fitted["E2"], E2) and covers(result.fitted["time_offset"], 1e-3))
+    assert 0.83 <= np.mean(hits) <= 1.0
+    assert result.noise == {"value": 10.0, "unit": "N", "estimated": False}
+
+
+def test_viscoelastic_drop_test_gives_e2_and_the_prony_weight():
+    true = PronySeries((0.3,), (2e-3,))
+    law = PowerLawContact(INDENTER, E_STAR)
+    run = viscoelastic_impact(MASS, VELOCITY, law, true, steps=STEPS)
+    force = np.interp(TIMES, run.history["t"], run.history["P"], left=0.0, right=0.0)
+    result = sh.fit("force-history", {"time": TIMES, "force": force},
+                    problem(prony="0.1:2e-3"), unknowns="E2,prony", steps=STEPS)  # fmt: skip
+    # round trip through one model: round-off and the root finder's 1e-15 (measured 1e-14)
+    assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=1e-8)
+    assert result.fitted["g1"]["value"] == pytest.approx(0.3, abs=1e-8)
+    assert "viscoelastic" in result.forward_model
+
+
+def test_rebound_data_give_e2_and_two_prony_weights():
+    data = rebound(PronySeries((0.3, 0.2), (2e-3, 2e-2)))
+    result = sh.fit("rebound", data, problem(prony="0.1:2e-3,0.1:2e-2"),
+                    unknowns="E2,prony", steps=STEPS)  # fmt: skip
+    assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=1e-8)  # round-off (1e-15)
+    assert result.fitted["g1"]["value"] == pytest.approx(0.3, abs=1e-6)
+    assert result.fitted["g2"]["value"] == pytest.approx(0.2, abs=1e-6)
+
+
+def test_a_relaxation_time_beyond_the_contact_is_not_identifiable():
+    """tau2 = 100 s against contacts of 8-14 ms: g2 changes e and t_c by ~1e-4 of itself,
+    below the 1 % noise, so it is reported with its bounds; E2 and g1 stay determined."""
+    data = rebound(PronySeries((0.3, 0.2), (2e-3, 100.0)), noise=0.01, seed=1)
+    result = sh.fit("rebound", data, problem(prony="0.1:2e-3,0.1:100"),
+                    unknowns="E2,prony", steps=STEPS)  # fmt: skip
+    g2 = result.fitted["g2"]
+    assert not g2["identifiable"] and (g2["low"], g2["high"]) == (0.0, 0.999)
+    assert covers(result.fitted["E2"], E2) and covers(result.fitted["g1"], 0.3)
+    assert result.correlation["matrix"][2][2] is None or math.isnan(
+        result.correlation["matrix"][2][2]
+    )
+
+
+def test_nu2_is_not_identifiable_beside_e2_from_a_force_curve():
+    result = sh.fit("indentation", indentation(1.0), problem(), unknowns="E2,nu2")
+    nu2, e2 = result.fitted["nu2"], result.fitted["E2"]
+    assert not nu2["identifiable"] and (nu2["low"], nu2["high"]) == (0.0, 0.5)
+    # E2's interval spans every nu2 in [0, 0.5]: E2 = (1 - nu2^2) E*, a factor 4/3 wide
+    assert e2["high"] / e2["low"] > 4.0 / 3.0 and e2["low"] < E2 < e2["high"]
+
+
+def test_nu2_alone_is_identifiable_with_e2_known():
+    result = sh.fit("indentation", indentation(), problem(E2=E2, nu2=0.45), unknowns="nu2")
+    assert result.fitted["nu2"]["value"] == pytest.approx(0.5, abs=1e-8)
+
+
+def test_mass_velocity_and_modulus_together_are_not_identifiable():
+    """A force history sees P_c and t_c only: M, v0 and E* make three, one combination is
+    unseen, so none of the three is reported with a small interval."""
+    result = sh.fit("force-history", drop(5.0, baseline=0.0), problem(),
+                    unknowns="E2,mass,velocity,time_offset")  # fmt: skip
+    assert not any(result.fitted[name]["identifiable"] for name in ("E2", "mass", "velocity"))
+    assert result.fitted["time_offset"]["identifiable"]
+
+
+def test_a_single_resilience_needs_the_noise_and_then_gives_the_weight():
+    law = PowerLawContact(INDENTER, E_STAR)
+    run = viscoelastic_impact(MASS, 2.0, law, PronySeries((0.3,), (2e-3,)), steps=STEPS)
+    data = {"velocity": [2.0], "resilience": [run.restitution**2]}
+    case = problem(E2=E2, prony="0.1:2e-3")
+    with pytest.raises(sh.InputError, match="give noise"):
+        sh.fit("resilience", data, case, unknowns="prony", steps=STEPS)
+    result = sh.fit("resilience", data, case, unknowns="prony", noise=0.01, steps=STEPS)
+    assert result.fitted["g1"]["value"] == pytest.approx(0.3, abs=1e-8)  # round-off
+    assert result.fitted["g1"]["low"] < 0.3 < result.fitted["g1"]["high"]
+
+
+def write(path, header, rows):
+    path.write_text(header + "\n" + "\n".join(",".join(map(str, r)) for r in rows) + "\n")
+    return str(path)
+
+
+def test_cli_json_from_a_csv_in_millimetres_and_the_folder(tmp_path, capsys, monkeypatch):
+    data = indentation()
+    csv = write(tmp_path / "curve.csv", "depth [mm],force [kN]",
+                zip(data["depth"] * 1e3, data["force"] / 1e3, strict=True))  # fmt: skip
+    out = tmp_path / "out"
+    code = main(["fit", "indentation", csv, "--E2", "5e6", "--json", "--out", str(out)])
+    assert code == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["fitted"]["E2"]["value"] == pytest.approx(E2, rel=1e-10)  # round-off
+    assert printed["data"]["units"] == {"depth": "mm", "force": "kN"}
+    assert json.loads((out / "fit.json").read_text()) == printed
+    header = (out / "fit.csv").read_text().splitlines()[0]
+    assert header == "depth [m],force [N],force_fit [N],residual [N]"
+    result = sh.fit("indentation", data, problem())
+    figure = capture(monkeypatch, fit_plot, lambda: fit_plot.plot_fit(result, tmp_path / "f.png"))
+    dots, line = figure.axes[0].get_lines()[:2]
+    assert np.allclose(dots.get_ydata(), data["force"]) and np.allclose(
+        line.get_ydata(), result.curves["force_fit [N]"]
+    )
+
+
+@pytest.mark.parametrize(
+    ("header", "rows", "message"),
+    [
+        ("depth [m],F [N]", [(1e-3, 1.0)], "no column 'force'"),
+        ("depth [m],force [N]", [(1e-3, 1.0), (2e-3, "x")], "row 3: column 'force' holds 'x'"),
+        ("depth [m],force [lbf]", [(1e-3, 1.0)], "column 'force': unit 'lbf' is not a force"),
+        ("depth [m],force [N]", [(1e-3, 1.0), (-2e-3, 2.0)], "row 3: column 'depth' must be > 0"),
+        ("depth [m],force [N]", [], "no data rows"),
+    ],
+)
+def test_a_bad_file_is_one_line_naming_the_column_or_row(tmp_path, capsys, header, rows, message):
+    csv = write(tmp_path / "bad.csv", header, rows)
+    assert main(["fit", "indentation", csv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_an_unknown_the_kind_cannot_fit_is_refused(tmp_path, capsys):
+    data = indentation()
+    csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(*data.values(), strict=True))
+    assert main(["fit", "indentation", csv, "--fit", "E2,velocity"]) == 2
+    assert "--fit: indentation data cannot fit 'velocity'" in capsys.readouterr().err
+
+
+def test_a_drop_test_without_the_mass_is_refused():
+    curve = sh.Problem.curve(INDENTER, sh.Material(5e6, NU2), striker=STEEL)
+    with pytest.raises(sh.InputError, match="mass: a force-history fit needs the striker's mass"):
+        sh.fit("force-history", drop(), curve)
+
+
+def test_a_drop_faster_than_the_theory_holds_warns_once(tmp_path, capsys):
+    data = {"velocity": [2.0, 6.0], "contact_time": [9.6e-3, 8.0e-3]}
+    csv = write(tmp_path / "r.csv", "velocity [m/s],contact_time [s]",
+                zip(*data.values(), strict=True))  # fmt: skip
+    assert main(["fit", "rebound", csv]) == 0
+    err = capsys.readouterr().err
+    # the search and the rows ran 30 impacts at 6 m/s: one line says so
+    assert err.count("exceeds 5 m/s") == 1 and err.count("\n") == 1
+
+
+def test_units_by_option_for_a_header_without_them(tmp_path, capsys):
+    data = indentation()
+    csv = write(tmp_path / "c.csv", "depth,force",
+                zip(data["depth"] * 1e3, data["force"], strict=True))  # fmt: skip
+    assert main(["fit", "indentation", csv, "--units", "depth=mm", "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    # read as metres, the depths would be 1000 times too deep and E2 ~3e4 times too small
+    assert printed["fitted"]["E2"]["value"] == pytest.approx(E2, rel=1e-10)
+    assert printed["data"]["units"] == {"depth": "mm", "force": "N"}
+    assert main(["fit", "indentation", csv, "--units", "depth=furlong"]) == 2
+    assert "column 'depth': unit 'furlong' is not a length unit" in capsys.readouterr().err

@@ -1,0 +1,187 @@
+"""``sh.fit`` with the forward model's corrections and errors: a pad-plus-waves drop test fitted
+with its FE corrections (coarse meshes, a few FE runs of seconds each), E2's scaling in the FE
+impact, the viscoelastic impact's step error in the intervals, and independent closed forms
+(Hertz and Lee-Radok impacts integrated by solve_ivp here, not by the suite's code)."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import shtaerman as sh
+from shtaerman.cli import main
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
+
+INDENTER = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
+E2, NU2, DENSITY, THICKNESS, MASS, VELOCITY = 7.5e6, 0.45, 1100.0, 0.02, 0.2, 2.0
+OFFSET, BASELINE = 1e-3, 0.5
+
+
+def pad(e2=E2, density=DENSITY, mass=MASS, thickness=THICKNESS):
+    """The drop test on a 20 mm pad with waves (rigid striker)."""
+    return sh.Problem.impact(INDENTER, sh.Material(e2, NU2, density=density), mass=mass,
+                             velocity=VELOCITY, thickness=thickness)  # fmt: skip
+
+
+def covers(item, true):
+    return item["identifiable"] and item["low"] <= true <= item["high"]
+
+
+@pytest.fixture(scope="module")
+def pad_record():
+    """A finer FE run (refine 0.7) than the fit's (0.5), at 50 kHz with 1 % noise."""
+    run = sh.dynamic(pad(), refine=0.7, estimate=False)
+    history = run.history()
+    t = np.arange(0.0, 2.5 * run.t_contact + OFFSET, 2e-5)
+    force = np.interp(t - OFFSET, history["t"], history["P"], left=0.0, right=0.0)
+    noise = np.random.default_rng(3).standard_normal(t.size) * 0.01 * run.P_max
+    return {"time": t, "force": force + BASELINE + noise}
+
+
+def test_a_pad_and_waves_drop_test_is_fitted_with_its_fe_corrections(pad_record):
+    result = sh.fit("force-history", pad_record, pad(e2=5e6),
+                    unknowns="E2,time_offset,baseline", refine=0.5)  # fmt: skip
+    assert covers(result.fitted["E2"], E2)
+    assert covers(result.fitted["time_offset"], OFFSET)
+    # the issue's budget is 20 FE runs; this one settles in 4 (measured)
+    assert 1 <= result.fe_runs <= 6
+    (correction,) = result.corrections
+    # the 20 mm pad stiffens the impact: measured P_max(FE)/P_c = 1.18, t_contact/t_y = 0.89
+    assert correction["force_scale"] == pytest.approx(1.18, abs=0.02)
+    assert correction["time_scale"] == pytest.approx(0.89, abs=0.02)
+    assert "pad 0.02 m" in correction["name"] and "waves" in correction["name"]
+    assert correction["at"]["E2"] == pytest.approx(result.fitted["E2"]["value"], rel=0.01)
+    # the FE error estimate entered the interval (in quadrature, so it widens it)
+    assert result.forward_error["E_star"]["fe_P_max"] > 0
+
+
+def test_without_the_corrections_the_half_space_model_misses_the_pad(pad_record):
+    """The control: the same record fitted by the exact half-space model is 40 % off E2 and
+    its interval excludes the truth; this is what the corrections are for."""
+    bare = sh.Problem.impact(INDENTER, sh.Material(5e6, NU2), mass=MASS, velocity=VELOCITY)
+    result = sh.fit("force-history", pad_record, bare, unknowns="E2,time_offset,baseline")
+    assert result.fe_runs == 0 and result.corrections == []
+    assert not covers(result.fitted["E2"], E2)
+    assert result.fitted["E2"]["value"] > 1.2 * E2
+
+
+def test_e2_scales_out_of_the_fe_impact_only_with_the_density_and_the_mass():
+    """E2, density2 and the mass times 2 give the same motion with twice the force (to
+    round-off: the meshes follow the quasi-static a_c and t_y, which do not change); E2 alone
+    times 2 does not give the quasi-static scaling t ~ E^(-3/8), P ~ E^(3/8) (n = 3/2,
+    q = 5/3): the waves' transit time and the pad do not scale with it."""
+    runs = [sh.dynamic(case, refine=0.5, estimate=False)
+            for case in (pad(), pad(2 * E2, 2 * DENSITY, 2 * MASS), pad(e2=2 * E2))]  # fmt: skip
+    base, scaled, stiffer = runs
+    np.testing.assert_allclose(scaled.history()["t"], base.history()["t"], rtol=1e-12)
+    np.testing.assert_allclose(scaled.history()["P"], 2 * base.history()["P"],
+                               atol=1e-10 * scaled.P_max)  # fmt: skip
+    # measured 0.786 against 0.771 and 1.261 against 1.297: 2-3 %, far beyond the FE's 0.1 %
+    assert stiffer.t_contact / base.t_contact > 1.01 * 2 ** (-3 / 8)
+    assert stiffer.P_max / base.P_max < 0.98 * 2 ** (3 / 8)
+
+
+def test_the_step_error_of_the_viscoelastic_model_enters_the_interval():
+    """Noise-free data from a fine viscoelastic impact (2000 steps) fitted with 20 steps: the
+    fit's E2 is off by the model's step error; the step error estimated (20 against 40 steps)
+    is that bias within a factor of 2 (the errors fall as steps^-2 only asymptotically) and
+    the interval covers the truth."""
+    striker = sh.Material(2e11, 0.25)
+    e_star = 1.0 / (striker.compliance + (1 - 0.25) / E2)
+    law = PowerLawContact(INDENTER, e_star)
+    run = viscoelastic_impact(0.7, 3.0, law, PronySeries((0.3,), (2e-3,)), steps=2000)
+    t = np.linspace(0.0, 0.02, 300)
+    force = np.interp(t, run.history["t"], run.history["P"], left=0.0, right=0.0)
+    case = sh.Problem.impact(INDENTER, sh.Material(5e6, 0.5), mass=0.7, velocity=3.0,
+                             striker=striker, prony="0.3:2e-3")  # fmt: skip
+    result = sh.fit("force-history", {"time": t, "force": force}, case, unknowns="E2",
+                    steps=20, noise=1e-3)  # fmt: skip
+    fitted = result.fitted["E2"]
+    bias = 1.0 / (striker.compliance + 0.75 / fitted["value"]) - e_star  # in E*, Pa
+    estimate = result.forward_error["E_star"]["steps"]
+    assert 0.5 < estimate / abs(bias) < 2.0
+    assert covers(fitted, E2)
+
+
+def impact_ode(radius, e_star, weight, tau, mass, velocity, whole):
+    """The impact of a rigid sphere on a half-space whose E* relaxes as
+    E*(t) = E*_0 [1 - g (1 - exp(-t/tau))], integrated by solve_ivp: Lee-Radok's
+    P = (4/3) sqrt(R) int E*(t - s) d(x^(3/2)) with the hidden state h' = -h/tau + d(x^1.5)/dt,
+    valid while the contact grows (to the deepest point); for g = 0 Hertz's impact, valid to
+    the separation (``whole``). Returns (times, forces)."""
+
+    def force(state):
+        x, _, h = state
+        return 4.0 / 3.0 * math.sqrt(radius) * e_star * ((1 - weight) * max(x, 0.0) ** 1.5
+                                                         + weight * h)  # fmt: skip
+
+    def rates(_, state):
+        x, v, h = state
+        return [v, -force(state) / mass, -h / tau + 1.5 * math.sqrt(max(x, 0.0)) * v]
+
+    def end(_, state):
+        return state[0] if whole else state[1]
+
+    end.terminal, end.direction = True, -1
+    found = solve_ivp(rates, (0.0, 1.0), [0.0, velocity, 0.0], events=end, rtol=1e-11,
+                      atol=1e-16, dense_output=True, max_step=1e-5)  # fmt: skip
+    t = np.linspace(0.0, found.t_events[0][0], 120)[1:-1]
+    return t, np.array([force(found.sol(s)) for s in t])
+
+
+@pytest.mark.parametrize(
+    ("weight", "whole"),
+    [(0.0, True), (0.3, False)],
+    ids=["hertz-whole-impact", "lee-radok-loading"],
+)
+def test_independent_closed_form_impacts_are_fitted_within_their_intervals(weight, whole):
+    """A sphere (R = 10 mm, n = 2) of 0.05 kg at 1 m/s on E2 = 7.5 MPa, nu2 = 0.5 (E* = 10 MPa),
+    with 1 % noise: the suite's Ateb or Lee-Radok impact fits E2 (and g) back."""
+    radius, e_star, tau = 0.01, E2 / 0.75, 2e-4
+    t, force = impact_ode(radius, e_star, weight, tau, 0.05, 1.0, whole)
+    force = force + 0.01 * force.max() * np.random.default_rng(1).standard_normal(t.size)
+    sphere = sh.PowerLawIndenter(1 / (2 * radius), 2.0)
+    prony = {"prony": f"0.1:{tau}"} if weight else {}
+    case = sh.Problem.impact(sphere, sh.Material(5e6, 0.5), mass=0.05, velocity=1.0, **prony)
+    unknowns = "E2,prony" if weight else "E2"
+    result = sh.fit("force-history", {"time": t, "force": force}, case, unknowns=unknowns)
+    assert covers(result.fitted["E2"], E2)
+    assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=0.02)
+    if weight:
+        assert covers(result.fitted["g1"], weight)
+
+
+def test_cli_passes_the_pad_the_density_and_refine_but_no_default_density(tmp_path, monkeypatch):
+    """--thickness, --base, --density2 and --refine reach the fit; without --density2 the
+    body has no density (the dynamic command's default 1100 kg/m^3 would call for FE runs)."""
+    from shtaerman.cli import fit as fit_cli
+
+    seen = []
+
+    def record(kind, data, problem, **options):
+        seen.append((problem, options["refine"]))
+        raise sh.InputError("fit: recorded", "fit")
+
+    monkeypatch.setattr(fit_cli, "fit", record)
+    csv = tmp_path / "f.csv"
+    csv.write_text("time [s],force [N]\n0,0\n1e-3,5\n2e-3,0\n")
+    base = ["fit", "force-history", str(csv), "--mass", "0.2", "--velocity", "2"]
+    assert main([*base, "--thickness", "0.02", "--base", "lubricated", "--density2", "1100",
+                 "--refine", "0.8"]) == 2  # fmt: skip
+    assert main(base) == 2
+    (padded, refine), (bare, default) = seen
+    assert padded.geometry.thickness == 0.02 and padded.geometry.base == "lubricated"
+    assert padded.body.material.density == 1100.0 and refine == 0.8
+    assert bare.body.material.density is None and bare.geometry.thickness is None
+    assert default == 0.6
+
+
+def test_a_pad_is_refused_for_rebound_data(tmp_path, capsys):
+    csv = tmp_path / "r.csv"
+    csv.write_text("velocity [m/s],contact_time [s]\n1,5e-3\n2,4e-3\n")
+    assert main(["fit", "rebound", str(csv), "--mass", "0.2", "--thickness", "0.02"]) == 2
+    err = capsys.readouterr().err
+    assert "--thickness: the FE corrections" in err and "force history only" in err
+    assert err.count("\n") == 1
