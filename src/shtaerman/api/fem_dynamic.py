@@ -56,33 +56,56 @@ def dynamic_settings(
     return dataclasses.replace(base, **chosen)  # type: ignore[arg-type]
 
 
-def _result(case: DynamicCase) -> DynamicResult:
-    """The result of a case (with or without its ladder)."""
+def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
+    """The result of ``problem``'s case, with its ladder's keys where it ran one (the
+    differences' errors None where the estimate is missing); a rubber has no radiation
+    estimate (the first-order estimate is the linear half-space's)."""
     from ..study.dynamic.case import compare
 
     document = dataclasses.replace(case, ladder=None).document()
     differences = compare(case.quasi, case.result)
     ladder, errors = case.ladder, None
-    if ladder is not None:
+    if case.estimated:
         estimates = case.estimates()
         errors = {DIFFERENCES[k]: estimates[f"difference_{k}"].absolute_error for k in DIFFERENCES}
+    if ladder is not None:
         document.update(ladder.to_dict())
+    body = problem.body
+    series = body.prony
     return DynamicResult(
         quasi_static=document["quasi_static"],
         dynamic=document["dynamic"],
         differences={DIFFERENCES[k]: value for k, value in differences.items()},
-        radiation_estimate=document["radiation_estimate"],
+        radiation_estimate=None if body.finite else document["radiation_estimate"],
         mesh=document["mesh"],
         timings=document["timings"],
         parameters=document["parameters"],
+        model=body.model,
+        rubber=body.rubber().to_dict() if body.finite else None,
+        prony=None if series is None or not body.finite else series.text(),
         differences_error=errors,
         error_estimate=document.get("error_estimate"),
         extrapolated=document.get("extrapolated"),
         estimate_details=document.get("estimate_details"),
         mesh_ladder=tuple(document["mesh_ladder"]) if ladder is not None else None,
+        estimate_missing=document.get("estimate_missing"),
         solution=case.result,
         ladder=ladder,
     )
+
+
+def _write_figures(
+    case: DynamicCase, result: DynamicResult, folder: Path, figure_format: str
+) -> None:
+    """The figures of the case: a rubber's x(t), P(t) against the quasi-static impact; the
+    linear body's histories, losses and wave fields."""
+    from ..output.dynamic import write_case_figures
+    from ..output.finite import write_finite_figure
+
+    if result.model == "linear":
+        write_case_figures(case, folder, figure_format)
+    else:
+        write_finite_figure(result, case.quasi, folder, figure_format)
 
 
 def _write_folder(result: DynamicResult, folder: Path) -> None:
@@ -180,8 +203,10 @@ def dynamic(
     model : str
         ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
         ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
-        :func:`shtaerman.api.finite_dynamic.finite_dynamic` runs (``refine`` and ``estimate``
-        as here; the ladder of :mod:`shtaerman.study.dynamic.finite_accuracy`).
+        :func:`shtaerman.study.dynamic.case.finite_case` runs (``refine`` and ``estimate``
+        as here; the ladder of :mod:`shtaerman.study.dynamic.finite_accuracy`; density 0: the
+        massless body; ``time_steps`` default 50, 100 with inertia; ``mesh_size`` the
+        finite-strain contact's).
 
     Returns
     -------
@@ -192,11 +217,7 @@ def dynamic(
     shtaerman.validation.InputError
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
-    from ..fem.dynamic_layer import check_layer_rate
-    from ..output.dynamic import write_case_figures
     from ..output.files import output_folder, staged_folder
-    from ..study.dynamic.accuracy import complete_ladder
-    from ..study.dynamic.case import run_case
 
     physics = dict(model=model, prony=prony, thickness=thickness, base=base, **rubber)
     problem = _problem(indenter, body, mass, velocity, physics)
@@ -207,36 +228,66 @@ def dynamic(
     numerics.update(figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
-    if problem.body.finite:
-        from .finite_dynamic import finite_dynamic
-
-        outputs = dict(out=out, force=force, figure_format=figure_format)
-        numbers = dict(time_steps=time_steps, mesh_size=mesh_size, refine=refine)
-        return finite_dynamic(problem, **numbers, estimate=estimate, **outputs)
-    indenter, body = problem.striker.indenter, problem.body.material
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
-    check_layer_rate(layer_rate, problem.geometry.thickness)
-    chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
-    mass, velocity, refine, chosen = _checked(problem, refine, estimate, chosen)
+    checked = _checked_linear(problem, settings, options, refine, estimate)
     check_figure_format(figure_format)
-    folder = output_folder(out, force=force)
-    inputs = (indenter, body, _density(body), mass, velocity)
-    shots = _snapshots if folder is not None else None
-    series, friction = problem.body.prony, problem.interface.coefficient
-    case = run_case(*inputs, chosen, snapshots=shots, prony=series, friction=friction)
-    if estimate:
-        ladder = complete_ladder(
-            case.result, *inputs, chosen, refine=refine, prony=series, friction=friction
-        )
-        case = dataclasses.replace(case, ladder=ladder)
-    check_separated({"t_contact": case.result.t_contact}, float(case.result.t[-1]))
-    result = _result(case)
+    folder = output_folder(out, force=force)  # checked before the run
+    case = _case(problem, checked, options, refine, estimate, snapshots=folder is not None)
+    check_separated(case.result.summary(), float(case.result.t[-1]))
+    result = _result(case, problem)
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
-            write_case_figures(case, stage, figure_format)
+            _write_figures(case, result, stage, figure_format)
     return result
+
+
+def _checked_linear(
+    problem: Problem,
+    settings: DynamicSettings | None,
+    options: dict[str, Any],
+    refine: float,
+    estimate: bool,
+) -> tuple[float, DynamicSettings] | None:
+    """The linear body's refine and settings, every input checked (None: a rubber, whose
+    numerics :func:`shtaerman.study.dynamic.case.finite_case` checks)."""
+    from ..fem.dynamic_layer import check_layer_rate
+
+    if problem.body.finite:
+        return None
+    check_layer_rate(options["layer_rate"], problem.geometry.thickness)
+    chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
+    return _checked(problem, refine, estimate, chosen)
+
+
+def _case(
+    problem: Problem,
+    checked: tuple[float, DynamicSettings] | None,
+    options: dict[str, Any],
+    refine: float,
+    estimate: bool,
+    snapshots: bool,
+) -> DynamicCase:
+    """The impact of ``problem`` with its ladder (``estimate``): a rubber's by
+    :func:`.finite_case`, the linear body's by :func:`.run_case` and :func:`.complete_ladder`
+    (``checked``: its refine and settings; ``snapshots``: keep fields for an ``out`` folder)."""
+    from ..study.dynamic.accuracy import complete_ladder
+    from ..study.dynamic.case import finite_case, run_case
+
+    if checked is None:
+        numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
+        return finite_case(problem, **numbers, refine=refine, estimate=estimate)
+    refine, chosen = checked
+    striker, body = problem.striker, problem.body.material
+    inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
+    physics = dict(prony=problem.body.prony, friction=problem.interface.coefficient)
+    shots = _snapshots if snapshots else None
+    case = run_case(*inputs, chosen, snapshots=shots, **physics)
+    if estimate:
+        ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, **physics)
+        case = dataclasses.replace(case, ladder=ladder)
+    return case
 
 
 def _problem(
@@ -265,9 +316,9 @@ def _problem(
 
 def _checked(
     problem: Problem, refine: float, estimate: bool, settings: DynamicSettings
-) -> tuple[float, float, float, DynamicSettings]:
-    """Mass (kg), velocity (m/s), refine and the refined settings, every input checked
-    (the ladder's coarsest level too, with ``estimate``) before anything runs."""
+) -> tuple[float, DynamicSettings]:
+    """Refine and the refined settings, every input checked (the ladder's coarsest level too,
+    with ``estimate``) before anything runs."""
     from ..fem.contact import validate_fem_inputs
     from ..study.dynamic.accuracy import check_ladder
 
@@ -283,5 +334,4 @@ def _checked(
                 "--no-estimate)",
                 error.parameter,
             ) from None
-    assert problem.striker.mass is not None and problem.striker.velocity is not None
-    return problem.striker.mass, problem.striker.velocity, refine, chosen
+    return refine, chosen

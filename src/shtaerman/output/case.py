@@ -55,8 +55,7 @@ def prony_words(prony: PronySeries | None) -> str:
     """ "Prony series g:tau = 0.5:0.0020526 s" ("" for an elastic body)."""
     if prony is None:
         return ""
-    terms = ",".join(f"{g:g}:{tau:g}" for g, tau in zip(prony.weights, prony.times, strict=True))
-    return f"Prony series g:tau = {terms} s"
+    return f"Prony series g:tau = {prony.text()} s"
 
 
 def body_words(thickness: float | None, base: str | None = None) -> str:

@@ -6,8 +6,8 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
   stored energy and Newton iterations beside the linear exact and same-mesh linear FEM values;
 - ``history_<variant>.csv``: the impact histories t, x, P, a, p(0) (linear exact, linear FEM,
   finite strain);
-- ``dynamic.json``, ``history.csv``, ``energies.csv`` and ``dynamic_history.png`` of a
-  finite-strain impact (``dynamic --model ... --out``, :func:`write_finite_impact`);
+- ``dynamic_history.png`` of a finite-strain impact (``dynamic --model ... --out``,
+  :func:`write_finite_figure`; its other files are every impact's);
 - ``field_at_x_c.vtu``: the deformed-state fields (reference r-z section, displacements in m,
   Cauchy stresses in Pa) at the computed depth nearest the finite-strain x_c, with the depth,
   force, contact radius, material and model as VTK field data.
@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 __all__ = [
     "write_finite_curve",
     "write_finite_field",
-    "write_finite_impact",
+    "write_finite_figure",
     "write_finite_study",
 ]
 
@@ -154,27 +154,19 @@ def write_finite_study(
     return files, {caption: str(path.relative_to(root)) for caption, path in figures.items()}
 
 
-def write_finite_impact(
+def write_finite_figure(
     result: Any, quasi: ImpactResult, folder: Path, figure_format: str = "png"
-) -> list[Path]:
-    """A finite-strain impact's files in ``folder`` (``result``: the API's DynamicResult, with
-    ``to_dict``, ``history`` and its run): dynamic.json (the ``--json`` object),
-    history.csv (t, x, v, P at every step), energies.csv and dynamic_history.png (x(t), P(t)
-    against the quasi-static impact ``quasi``; also in ``figure_format`` "svg" or "pdf")."""
-    import json
+) -> Path:
+    """A finite-strain impact's dynamic_history.png in ``folder`` (``result``: the API's
+    DynamicResult): x(t), P(t) against the quasi-static impact ``quasi``; also in
+    ``figure_format`` "svg" or "pdf"."""
     from types import SimpleNamespace
 
-    run = result.solution
-    written = [folder / "dynamic.json", folder / "history.csv", folder / "energies.csv"]
-    written[0].write_text(json.dumps(result.to_dict(), indent=2))
-    write_csv(written[1], result.history())
-    write_csv(written[2], {"t [s]": run.t, **{f"{k} [J]": v for k, v in run.energies.items()}})
-    finite = SimpleNamespace(**run.history_columns())
+    finite = SimpleNamespace(**result.solution.history_columns())
     histories = {"linear_exact": quasi.history(points=401), "finite_strain": finite}
-    figure = plot_finite_impact(
+    return plot_finite_impact(
         SimpleNamespace(histories=histories),
         folder / "dynamic_history.png",
         figure_format=figure_format,
         model=result.model,
     )
-    return [*written, figure]

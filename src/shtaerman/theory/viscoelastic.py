@@ -121,6 +121,10 @@ class PronySeries:
         object.__setattr__(self, "weights", tuple(float(g) for g in weights))
         object.__setattr__(self, "times", tuple(float(tau) for tau in times))
 
+    def text(self) -> str:
+        """The series as ``g1:tau1,g2:tau2,...`` (tau in s; :meth:`parse` reads it back)."""
+        return ",".join(f"{g:g}:{tau:g}" for g, tau in zip(self.weights, self.times, strict=True))
+
     @classmethod
     def parse(cls, text: str) -> PronySeries:
         """The series written ``g1:tau1,g2:tau2,...`` (tau in s), e.g. ``0.5:1e-3``."""
