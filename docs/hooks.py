@@ -105,7 +105,7 @@ def combinations_section() -> list[str]:
     or the input its refusal names (the reasons follow)."""
     from shtaerman.problem import SUPPORT, support_table
 
-    verdicts = dict(support_table())
+    verdicts = {cell[:5]: verdict for cell, verdict in support_table()}  # the power law's
     interfaces = ("frictionless", "bonded", "coulomb")
     bodies = sorted({cell[:3] for cell in verdicts}, key=str)
     tables = []
@@ -124,7 +124,9 @@ def combinations_section() -> list[str]:
         f"A problem is a striker, a body, a geometry, an interface and a loading "
         f"(`sh.Problem`). Of the {len(verdicts)} combinations below, {running} run; each other "
         "cell names the input that is refused, for the reason listed after the tables "
-        "(`shtaerman.problem.SUPPORT`, the one place that decides it).",
+        "(`shtaerman.problem.SUPPORT`, the one place that decides it). The tables are the "
+        "power-law striker's; a sphere or a tabulated profile runs where the `profile` reason "
+        "below says.",
         "",
         *tables,
         *[f"- `{limit.parameter}`: {limit.reason}" for limit in SUPPORT],

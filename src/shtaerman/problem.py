@@ -21,13 +21,13 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from .theory.indenter import PowerLawIndenter
 from .theory.materials import RIGID, Material
 from .validation import InputError, validate_positive
 from .vocabulary import entry
 
 if TYPE_CHECKING:
     from .fem.rubber import RubberModel
+    from .theory.sneddon import Indenter
     from .theory.viscoelastic import PronySeries
 
 __all__ = [
@@ -56,11 +56,14 @@ RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
 
 
 def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
-    """Raise InputError unless the arguments are a PowerLawIndenter and two Materials."""
-    if not isinstance(indenter, PowerLawIndenter):
+    """Raise InputError unless the arguments are an indenter (PowerLawIndenter, SphereIndenter
+    or TabulatedIndenter) and two Materials."""
+    from .theory.sneddon import INDENTERS
+
+    if not isinstance(indenter, INDENTERS):
         raise InputError(
-            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), got "
-            f"{type(indenter).__name__}",
+            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), a "
+            f"SphereIndenter(radius) or a TabulatedIndenter, got {type(indenter).__name__}",
             "indenter",
         )
     for name, value in (("body", body), ("striker", striker)):
@@ -80,8 +83,8 @@ class Striker:
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        The profile z = A r^n of its tip.
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        The profile of its tip: z = A r^n, the exact sphere, or a tabulated z(r).
     mass : float, optional
         Mass in kg (an impact, or the impact whose x_c a contact curve's default depths reach).
     velocity : float, optional
@@ -90,7 +93,7 @@ class Striker:
         Its elasticity (E1, nu1; default rigid).
     """
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     mass: float | None = None
     velocity: float | None = None
     material: Material = RIGID
@@ -260,6 +263,7 @@ class Cell(NamedTuple):
     geometry: str  # "half-space" | "layer bonded" | "layer lubricated"
     interface: str  # "frictionless" | "bonded" | "coulomb"
     loading: str  # "curve" | "massless" | "inertia"
+    profile: str = "power-law"  # "power-law" | "sphere" | "tabulated"
 
 
 @dataclass(frozen=True)
@@ -276,7 +280,23 @@ class Unsupported:
     reason: str
 
 
+PROFILE_ROUTES = (
+    "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
+    "(sh.impact, shtaerman impact) and by the FEM in the linear elastic contact curve on the "
+    "half-space; this combination takes the power law (shape_coefficient, exponent) only"
+)
+"""Where a profile other than the power law goes (the refusal's reason)."""
+
 SUPPORT: tuple[Unsupported, ...] = (
+    Unsupported(
+        lambda c: (
+            c.profile != "power-law"
+            and (c.model, c.relaxing, c.geometry, c.loading)
+            != ("linear", False, "half-space", "curve")
+        ),
+        "profile",
+        PROFILE_ROUTES,
+    ),
     Unsupported(
         lambda c: c.model == "rubber" and c.geometry == "layer lubricated",
         "base",
@@ -416,12 +436,13 @@ class Problem:
             self.geometry.name,
             self.interface.name,
             loading,
+            self.striker.indenter.kind,
         )
 
     @classmethod
     def impact(
         cls,
-        indenter: PowerLawIndenter,
+        indenter: Indenter,
         body: Material,
         *,
         mass: float,
@@ -438,7 +459,7 @@ class Problem:
     @classmethod
     def curve(
         cls,
-        indenter: PowerLawIndenter,
+        indenter: Indenter,
         body: Material,
         *,
         depths: Sequence[float] | None = None,
@@ -449,12 +470,12 @@ class Problem:
         return cls.from_keywords(indenter, body, loading="curve", depths=depths, **parts)
 
     @classmethod
-    def from_keywords(cls, indenter: PowerLawIndenter, body: Material, **keywords: Any) -> Problem:
+    def from_keywords(cls, indenter: Indenter, body: Material, **keywords: Any) -> Problem:
         """A problem from the API's flat keywords (None: not given), each checked."""
         return cls(**parts(indenter, body, **keywords))
 
 
-def parts(indenter: PowerLawIndenter, body: Material, **keywords: Any) -> dict[str, Any]:
+def parts(indenter: Indenter, body: Material, **keywords: Any) -> dict[str, Any]:
     """The parts of a problem (``striker``, ``body``, ``geometry``, ``interface``,
     ``loading``) from the API's flat keywords (None: not given), each checked on its own but
     not whether they combine: ``Problem(**parts(...))`` checks that (:data:`SUPPORT`)."""
@@ -509,8 +530,9 @@ def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) ->
                 raise InputError(f"{name}: {reason}", name)
 
 
-def support_table() -> list[tuple[Cell, str]]:
-    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``)."""
+def support_table(profiles: Sequence[str] = ("power-law",)) -> list[tuple[Cell, str]]:
+    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``),
+    for each striker profile of ``profiles`` (``power-law``, ``sphere``, ``tabulated``)."""
     from itertools import product
 
     rows = []
@@ -520,6 +542,7 @@ def support_table() -> list[tuple[Cell, str]]:
         ("half-space", "layer bonded", "layer lubricated"),
         ("frictionless", "bonded", "coulomb"),
         ("curve", "massless", "inertia"),
+        profiles,
     ):
         cell = Cell(*cell)
         refusal = next((limit for limit in SUPPORT if limit.when(cell)), None)

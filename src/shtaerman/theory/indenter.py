@@ -58,6 +58,8 @@ class PowerLawIndenter:
     shape_coefficient: float
     exponent: float
 
+    kind = "power-law"
+
     def __post_init__(self) -> None:
         validate_positive("shape_coefficient", self.shape_coefficient, "m^(1-n)")
         validate_exponent(self.exponent)
@@ -72,6 +74,16 @@ class PowerLawIndenter:
         """Sneddon's factor kappa_n (see :func:`shape_factor`)."""
         return shape_factor(self.exponent)
 
+    @property
+    def parameters(self) -> dict[str, float]:
+        """The JSON's ``profile.parameters``: shape_coefficient A in m^(1-n) and exponent n."""
+        return {"shape_coefficient": self.shape_coefficient, "exponent": self.exponent}
+
     def profile(self, radius: ArrayLike) -> np.ndarray:
         """Height of the striker's surface above its tip, A r^n, in m at radius r in m."""
         return self.shape_coefficient * np.abs(np.asarray(radius, dtype=float)) ** self.exponent
+
+    def radius_at(self, height: ArrayLike) -> np.ndarray:
+        """The radius (h/A)^(1/n) in m at which the profile reaches a height h in m."""
+        h = np.asarray(height, dtype=float)
+        return (h / self.shape_coefficient) ** (1.0 / self.exponent)

@@ -199,6 +199,7 @@ class ProfileImpactResult:
                 raise InputError(f"times must lie within [0, t_y] = [0, {self.t_y:.6g}] s")
         mirrored = np.minimum(t, self.t_y - t)  # restitution mirrors compression
         a = self.a_c * (1.0 - self._u_at(np.clip(self.t_c - mirrored, 0.0, None)) ** 2)
+        a[mirrored <= 0.0] = 0.0  # first touch and separation
         v = np.where(t <= self.t_c, 1.0, -1.0) * self.speed(a)
         with np.errstate(divide="ignore", invalid="ignore"):
             p0 = np.where(a > 0, self.law.central_pressure_at_radius(a), 0.0)

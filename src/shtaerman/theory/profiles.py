@@ -62,14 +62,15 @@ class SphereIndenter:
         return np.sqrt(h * (2.0 * self.radius - h))
 
 
-def _float(text: str, row: int, column: str) -> float:
+def _float(text: str, row: int, column: str, path: Path) -> float:
     try:
         value = float(text)
     except ValueError:
         value = math.nan
     if not math.isfinite(value):
         raise InputError(
-            f"profile: row {row}, column {column}: expected a finite number in m, got {text!r}",
+            f"profile: {str(path)!r} row {row}, column {column}: expected a finite number in m, "
+            f"got {text!r}",
             "profile",
         )
     return value
@@ -103,8 +104,10 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     for number, row in enumerate(rows[1:], start=2):
         for name, index in columns.items():
             if index >= len(row):
-                raise InputError(f"profile: row {number}, column {name}: missing", "profile")
-        values.append([_float(row[columns[n]].strip(), number, n) for n in ("r", "z")])
+                raise InputError(
+                    f"profile: {str(path)!r} row {number}, column {name}: missing", "profile"
+                )
+        values.append([_float(row[columns[n]].strip(), number, n, path) for n in ("r", "z")])
     table = np.array(values, dtype=float).reshape(-1, 2)
     return table[:, 0], table[:, 1]
 

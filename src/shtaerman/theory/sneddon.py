@@ -41,9 +41,15 @@ from scipy.optimize import brentq
 from scipy.special import roots_legendre, spence
 
 from ..validation import InputError, validate_positive
+from .contact import PowerLawContact
+from .indenter import PowerLawIndenter
 from .profiles import SphereIndenter, TabulatedIndenter
 
-__all__ = ["SneddonContact", "legendre_chi2"]
+Indenter = PowerLawIndenter | SphereIndenter | TabulatedIndenter
+"""A striker's profile: the power law z = A r^n, the exact sphere or a tabulated z(r)."""
+INDENTERS = (PowerLawIndenter, SphereIndenter, TabulatedIndenter)
+
+__all__ = ["INDENTERS", "Indenter", "SneddonContact", "contact_law", "legendre_chi2"]
 
 GAUSS_NODES, GAUSS_WEIGHTS = roots_legendre(5)
 """Exact for polynomials of degree <= 9: s G'(s) (cubic in s) is of degree 6 in w."""
@@ -233,3 +239,11 @@ class SneddonContact:
         integrand = self.depth_slope(x) / x
         p[inside] = self.modulus / math.pi * 0.5 * span[:, 0] * (integrand @ PRESSURE_WEIGHTS)
         return p
+
+
+def contact_law(indenter: Indenter, modulus: float) -> PowerLawContact | SneddonContact:
+    """The exact contact of ``indenter`` on a half-space of combined modulus E* (Pa): the power
+    law's closed form, or Sneddon's integrals of any other profile."""
+    if isinstance(indenter, PowerLawIndenter):
+        return PowerLawContact(indenter, modulus)
+    return SneddonContact(indenter, modulus)
