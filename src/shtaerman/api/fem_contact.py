@@ -1,4 +1,4 @@
-"""``shtaerman.contact``: the FEM contact curve of a rigid power-law indenter, with estimates."""
+"""``shtaerman.contact``: the FEM contact curve of a rigid indenter, with estimates."""
 
 from __future__ import annotations
 
@@ -24,7 +24,6 @@ from ..problem import (
     check_options,
     check_outputs,
 )
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
@@ -33,6 +32,7 @@ from .layer_options import layer_mesh
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
     from ..fem.rubber import RubberModel
+    from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
 
 __all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
@@ -159,7 +159,7 @@ def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSett
 
 
 def contact_depths(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     body: Material,
     depths: ArrayLike | None = None,
     *,
@@ -256,7 +256,7 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
 class _Plan:
     """Checked inputs of one contact run."""
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     body: Material
     depths: np.ndarray
     model: str
@@ -432,7 +432,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
 
 
 def contact(
-    indenter: PowerLawIndenter | Problem,
+    indenter: Indenter | Problem,
     body: Material | None = None,
     *,
     mass: float | None = None,
@@ -470,9 +470,10 @@ def contact(
 
     Parameters
     ----------
-    indenter : PowerLawIndenter or Problem
-        z = A r^n with n > 1; or the whole contact curve (:meth:`shtaerman.Problem.curve`),
-        then only numerical and output keywords follow.
+    indenter : PowerLawIndenter, SphereIndenter, TabulatedIndenter or Problem
+        z = A r^n with n > 1 (against Shtaerman), the exact sphere or a tabulated z(r)
+        (against Sneddon; linear, half-space); or the whole contact curve
+        (:meth:`shtaerman.Problem.curve`), then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] (the FEM's validated range).
     mass, velocity : float, optional

@@ -206,5 +206,11 @@ class TabulatedIndenter:
         if height >= top:
             slope = 2.0 * self.r_max * float(self.interpolant(self.r_max**2, 1))
             return self.r_max + (height - top) / slope
-        s = brentq(lambda s: float(self.interpolant(s)) - height, 0.0, self.r_max**2, xtol=0)
+        s = brentq(
+            lambda s: float(self.interpolant(s)) - height,
+            0.0,
+            self.r_max**2,
+            xtol=1e-300,
+            rtol=1e-15,
+        )
         return math.sqrt(s)

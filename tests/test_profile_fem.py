@@ -1,0 +1,61 @@
+"""The FEM contact curve of a sphere and of a tabulated profile (issue 29 item 1): the gap is
+the profile's, the reference Sneddon's; other routes refuse the profile in one line."""
+
+import numpy as np
+import pytest
+
+import shtaerman as sh
+from shtaerman.problem import support_table
+from shtaerman.theory.contact import PowerLawContact
+
+RUBBER = sh.Material(7.5e6, 0.5)
+RADIUS = 0.01
+DEPTHS = [1e-3, 2e-3, 3e-3]  # down to x/R = 0.3, where the sphere is 3 % below Hertz
+
+
+@pytest.fixture(scope="module")
+def curves():
+    """The default mesh (no ladder): the sphere, and the paraboloid of the same radius."""
+    sphere = sh.contact(sh.SphereIndenter(RADIUS), RUBBER, depths=DEPTHS, estimate=False)
+    hertz = sh.PowerLawIndenter.sphere(RADIUS)
+    paraboloid = sh.contact(hertz, RUBBER, depths=DEPTHS, estimate=False)
+    return sphere, paraboloid
+
+
+def test_the_fem_sphere_matches_sneddon_as_the_paraboloid_matches_hertz(curves):
+    sphere, paraboloid = curves
+    # measured at this mesh: sphere 9.09e-5 against Sneddon, paraboloid 9.12e-5 against Hertz
+    assert sphere.errors["force"] < 1e-4
+    assert sphere.errors["force"] < 1.2 * paraboloid.errors["force"]
+    assert sphere.errors["beta"] < 1.2 * paraboloid.errors["beta"]
+    assert sphere.errors["central_pressure"] < 1.2 * paraboloid.errors["central_pressure"]
+    # and it is the sphere the FEM pressed: 3.0 % below Hertz's paraboloid at x = 0.3 R
+    hertz = PowerLawContact(sh.PowerLawIndenter.sphere(RADIUS), 1e7)
+    assert sphere.force[-1] / float(hertz.force(DEPTHS[-1])) - 1 == pytest.approx(-0.030, abs=1e-3)
+    assert sphere.to_dict()["profile"] == {"kind": "sphere", "parameters": {"radius": RADIUS}}
+
+
+def test_a_tabulated_paraboloid_is_the_power_law_in_the_fem(curves, tmp_path):
+    _, paraboloid = curves
+    r = np.linspace(0.0, 0.02, 81)
+    path = tmp_path / "tip.csv"
+    np.savetxt(path, np.c_[r, r**2 / (2 * RADIUS)], delimiter=",", header="r,z", comments="")
+    table = sh.contact(sh.TabulatedIndenter.from_csv(path), RUBBER, depths=DEPTHS, estimate=False)
+    # the same gap to round-off, the same mesh up to the round-off of its radius
+    np.testing.assert_allclose(table.force, paraboloid.force, rtol=1e-9)
+    assert table.beta_analytic == pytest.approx(paraboloid.beta_analytic, rel=1e-12)
+
+
+def test_routes_without_a_profile_refuse_it_in_one_line():
+    ball = sh.SphereIndenter(RADIUS)
+    with pytest.raises(sh.InputError, match=r"^profile: a sphere or a tabulated profile") as no:
+        sh.Problem.impact(ball, sh.Material(7.5e6, 0.5, 1100.0), mass=0.7, velocity=3.0)
+    assert no.value.parameter == "profile" and "\n" not in str(no.value)
+    with pytest.raises(sh.InputError, match=r"^profile: "):
+        sh.contact(ball, RUBBER, depths=DEPTHS, model="neo-hookean")
+    runs = [cell for cell, verdict in support_table(("sphere",)) if verdict == "runs"]
+    # the linear elastic curve on the half-space, under each interface
+    assert {(c.model, c.relaxing, c.geometry, c.loading) for c in runs} == {
+        ("linear", False, "half-space", "curve")
+    }
+    assert len(runs) == 3
