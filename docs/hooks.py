@@ -103,9 +103,9 @@ def combinations_section() -> list[str]:
     """Which parts of a problem combine, from ``shtaerman.problem.support_table()``: one table
     per loading, rows model x relaxation x geometry, columns the interface; a cell is "runs"
     or the input its refusal names (the reasons follow)."""
-    from shtaerman.problem import SUPPORT, support_table
+    from shtaerman.problem import PROFILE_SUPPORT, SUPPORT, support_table
 
-    verdicts = {cell[:5]: verdict for cell, verdict in support_table()}  # the power law's
+    verdicts = dict(support_table())  # the power law's
     interfaces = ("frictionless", "bonded", "coulomb")
     bodies = sorted({cell[:3] for cell in verdicts}, key=str)
     tables = []
@@ -129,7 +129,7 @@ def combinations_section() -> list[str]:
         "below says.",
         "",
         *tables,
-        *[f"- `{limit.parameter}`: {limit.reason}" for limit in SUPPORT],
+        *[f"- `{limit.parameter}`: {limit.reason}" for limit in (*SUPPORT, *PROFILE_SUPPORT)],
         "",
     ]
 

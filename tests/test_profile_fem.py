@@ -53,9 +53,24 @@ def test_routes_without_a_profile_refuse_it_in_one_line():
     assert no.value.parameter == "profile" and "\n" not in str(no.value)
     with pytest.raises(sh.InputError, match=r"^profile: "):
         sh.contact(ball, RUBBER, depths=DEPTHS, model="neo-hookean")
-    runs = [cell for cell, verdict in support_table(("sphere",)) if verdict == "runs"]
+    runs = [cell for cell, verdict in support_table("sphere") if verdict == "runs"]
     # the linear elastic curve on the half-space, under each interface
     assert {(c.model, c.relaxing, c.geometry, c.loading) for c in runs} == {
         ("linear", False, "half-space", "curve")
     }
     assert len(runs) == 3
+
+
+def test_a_contact_beyond_the_table_is_refused_before_the_fem(monkeypatch):
+    import shtaerman.study.contact.indentation as indentation
+
+    def no_fem(*args, **kwargs):
+        raise AssertionError("the FEM ran")
+
+    monkeypatch.setattr(indentation, "run_indentation", no_fem)
+    r = np.linspace(0.0, 2e-3, 21)  # to r = 2 mm: in contact from x = 0.4 mm (x = a^2/R)
+    table = sh.TabulatedIndenter(r, r**2 / (2 * RADIUS))
+    with pytest.raises(sh.InputError, match=r"^profile: depth 0.001 m reaches beyond the table"):
+        sh.contact(table, RUBBER, depths=[1e-3], estimate=False)
+    with pytest.raises(sh.InputError, match=r"^profile: the striker's energy .* beyond the table"):
+        sh.impact(table, RUBBER, mass=0.7, velocity=3.0)

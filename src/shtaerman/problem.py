@@ -33,6 +33,7 @@ if TYPE_CHECKING:
 __all__ = [
     "MODELS",
     "OPTION_SUPPORT",
+    "PROFILE_SUPPORT",
     "SUPPORT",
     "Body",
     "Cell",
@@ -263,7 +264,6 @@ class Cell(NamedTuple):
     geometry: str  # "half-space" | "layer bonded" | "layer lubricated"
     interface: str  # "frictionless" | "bonded" | "coulomb"
     loading: str  # "curve" | "massless" | "inertia"
-    profile: str = "power-law"  # "power-law" | "sphere" | "tabulated"
 
 
 @dataclass(frozen=True)
@@ -280,23 +280,7 @@ class Unsupported:
     reason: str
 
 
-PROFILE_ROUTES = (
-    "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
-    "(sh.impact, shtaerman impact) and by the FEM in the linear elastic contact curve on the "
-    "half-space; this combination takes the power law (shape_coefficient, exponent) only"
-)
-"""Where a profile other than the power law goes (the refusal's reason)."""
-
 SUPPORT: tuple[Unsupported, ...] = (
-    Unsupported(
-        lambda c: (
-            c.profile != "power-law"
-            and (c.model, c.relaxing, c.geometry, c.loading)
-            != ("linear", False, "half-space", "curve")
-        ),
-        "profile",
-        PROFILE_ROUTES,
-    ),
     Unsupported(
         lambda c: c.model == "rubber" and c.geometry == "layer lubricated",
         "base",
@@ -319,6 +303,29 @@ SUPPORT: tuple[Unsupported, ...] = (
 )
 """Every refused combination of the problem's parts, each with its reason: the one place that
 decides what combines (everything not refused here runs)."""
+
+
+PROFILE_SUPPORT: tuple[Unsupported, ...] = (
+    Unsupported(
+        lambda c: (
+            (c.model, c.relaxing, c.geometry, c.loading) != ("linear", False, "half-space", "curve")
+        ),
+        "profile",
+        "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
+        "(sh.impact, shtaerman impact) and by the FEM in the linear elastic contact curve on "
+        "the half-space; this combination takes the power law (shape_coefficient, exponent) "
+        "only",
+    ),
+)
+"""The combinations refused to a striker profile other than the power law (a sphere, a
+tabulated z(r)), on top of :data:`SUPPORT`."""
+
+
+def refusal(cell: Cell, profile: str = "power-law") -> Unsupported | None:
+    """The first limit that refuses ``cell`` for a striker of ``profile`` (its ``kind``:
+    ``power-law``, ``sphere``, ``tabulated``), or None: it runs."""
+    limits = SUPPORT if profile == "power-law" else (*PROFILE_SUPPORT, *SUPPORT)
+    return next((limit for limit in limits if limit.when(cell)), None)
 
 
 @dataclass(frozen=True)
@@ -403,9 +410,9 @@ class Problem:
             for name in ("mass", "velocity"):
                 if getattr(self.striker, name) is None:
                     raise InputError(f"{name}: an impact needs the striker's {name}", name)
-        for limit in SUPPORT:
-            if limit.when(self.cell):
-                raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
+        limit = refusal(self.cell, self.striker.indenter.kind)
+        if limit is not None:
+            raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
         self._check_rate()
 
     def _check_rate(self) -> None:
@@ -436,7 +443,6 @@ class Problem:
             self.geometry.name,
             self.interface.name,
             loading,
-            self.striker.indenter.kind,
         )
 
     @classmethod
@@ -530,9 +536,9 @@ def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) ->
                 raise InputError(f"{name}: {reason}", name)
 
 
-def support_table(profiles: Sequence[str] = ("power-law",)) -> list[tuple[Cell, str]]:
-    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``),
-    for each striker profile of ``profiles`` (``power-law``, ``sphere``, ``tabulated``)."""
+def support_table(profile: str = "power-law") -> list[tuple[Cell, str]]:
+    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``)
+    for a striker of ``profile`` (``power-law``, ``sphere``, ``tabulated``)."""
     from itertools import product
 
     rows = []
@@ -542,11 +548,10 @@ def support_table(profiles: Sequence[str] = ("power-law",)) -> list[tuple[Cell, 
         ("half-space", "layer bonded", "layer lubricated"),
         ("frictionless", "bonded", "coulomb"),
         ("curve", "massless", "inertia"),
-        profiles,
     ):
         cell = Cell(*cell)
-        refusal = next((limit for limit in SUPPORT if limit.when(cell)), None)
-        rows.append((cell, "runs" if refusal is None else f"{refusal.parameter}: {refusal.reason}"))
+        limit = refusal(cell, profile)
+        rows.append((cell, "runs" if limit is None else f"{limit.parameter}: {limit.reason}"))
     return rows
 
 

@@ -418,6 +418,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     if model != "linear":
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
+    if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
+        from ..theory.sneddon import contact_law
+
+        contact_law(indenter, 1.0).contact_radius(depths[-1])
     if estimate:
         from ..study.contact.indentation import refined_radius
 

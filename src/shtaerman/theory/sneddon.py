@@ -22,9 +22,9 @@ the sphere z = R - sqrt(R^2 - r^2), with t = a/R (f'(r) = r / sqrt(R^2 - r^2)):
 For a tabulated profile z = G(r^2) (G piecewise cubic, :mod:`shtaerman.theory.profiles`),
 f'(r) dr = G'(s) ds with s = r^2, so with X = a^2
 
-- delta = a I[G'](X), P = 2 E* I[s G'](X), g'(a) = I[G'](X) + 2 sqrt(X) G'(0) + 2 X I[G''](X),
+- delta = a I(G'; X), P = 2 E* I(s G'; X), g'(a) = I(G'; X) + 2 sqrt(X) G'(0) + 2 X I(G''; X),
 
-where I[h](X) = Int_0^X h(s) / sqrt(X - s) ds = 2 Int_0^sqrt(X) h(X - w^2) dw is, piece by piece
+where I(h; X) = Int_0^X h(s) / sqrt(X - s) ds = 2 Int_0^sqrt(X) h(X - w^2) dw is, piece by piece
 in w, the integral of a polynomial: Gauss-Legendre with 5 nodes is exact to round-off.
 """
 
@@ -74,7 +74,7 @@ def _sphere_force_series(t: np.ndarray) -> np.ndarray:
 def _piece_integral(
     indenter: TabulatedIndenter, poly: PPoly, X: ArrayLike, moment: bool = False
 ) -> np.ndarray:
-    """I[h](X) = 2 Int_0^sqrt(X) h(X - w^2) dw for each X, with h the piecewise polynomial
+    """I(h; X) = 2 Int_0^sqrt(X) h(X - w^2) dw for each X, with h the piecewise polynomial
     ``poly`` of s on the table's pieces [s_k, s_k+1] (times s with ``moment``): exact
     Gauss-Legendre per piece in w, each piece's polynomial evaluated by Horner."""
     knots = indenter.radii**2
