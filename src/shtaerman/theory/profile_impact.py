@@ -86,20 +86,36 @@ def _work(law: SneddonContact, squares: _Cumulative, a: ArrayLike) -> np.ndarray
 
 
 def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
-    """a_c in m from W(a_c) = M v0^2 / 2."""
+    """a_c in m from W(a_c) = M v0^2 / 2: a first guess on equal panels over the whole
+    profile, then the exact root on the fine panels up to 1.25 times it (or the whole)."""
     energy = 0.5 * mass * velocity**2
     top = law.max_contact_radius
     top = math.nextafter(top, 0.0) if law.sphere else top
-    squares = _Cumulative.of(_panels(law, top, law.sphere), lambda s: law.depth(s) ** 2)
-    if float(_work(law, squares, top)) < energy:
-        raise InputError(
-            f"profile: the striker's energy {energy:.6g} J drives the contact beyond the "
-            f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",
-            "profile",
-        )
-    return brentq(
-        lambda a: float(_work(law, squares, a)) - energy, 0.0, top, xtol=1e-300, rtol=1e-15
+    square = lambda s: law.depth(s) ** 2  # noqa: E731
+    rough = _Cumulative.of(_panels(law, top, law.sphere) if law.sphere else _even(top), square)
+    guess = top
+    if float(_work(law, rough, top)) >= energy:
+        guess = brentq(lambda a: float(_work(law, rough, a)) - energy, 0.0, top, rtol=1e-6)
+    for reach in (min(top, 1.25 * guess), top):
+        squares = _Cumulative.of(_panels(law, reach, law.sphere), square)
+        if float(_work(law, squares, reach)) >= energy:
+            return brentq(
+                lambda a, squares=squares: float(_work(law, squares, a)) - energy,
+                0.0,
+                reach,
+                xtol=1e-300,
+                rtol=1e-15,
+            )
+    raise InputError(
+        f"profile: the striker's energy {energy:.6g} J drives the contact beyond the "
+        f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",
+        "profile",
     )
+
+
+def _even(top: float) -> np.ndarray:
+    """Equal panel ends over [0, top] m."""
+    return np.linspace(0.0, top, PANELS + 1)
 
 
 @dataclass(frozen=True)

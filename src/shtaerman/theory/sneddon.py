@@ -77,8 +77,10 @@ def _piece_integral(
     """I(h; X) = 2 Int_0^sqrt(X) h(X - w^2) dw for each X, with h the piecewise polynomial
     ``poly`` of s on the table's pieces [s_k, s_k+1] (times s with ``moment``): exact
     Gauss-Legendre per piece in w, each piece's polynomial evaluated by Horner."""
-    knots = indenter.radii**2
     X = np.asarray(X, dtype=float).reshape(-1, 1, 1)  # (M, 1, 1)
+    pieces = int(np.searchsorted(indenter.radii**2, X.max(initial=0.0))) + 1  # those below X
+    knots = indenter.radii[: pieces + 1] ** 2
+    coefficients = poly.c[:, : knots.size - 1]
     high = np.sqrt(np.clip(X[..., 0] - knots[:-1], 0.0, None))  # w at s = s_k (M, pieces)
     low = np.sqrt(np.clip(X[..., 0] - knots[1:], 0.0, None))  # w at s = s_k+1
     half = 0.5 * (high - low)
@@ -86,7 +88,7 @@ def _piece_integral(
     s = np.clip(X - w**2, knots[:-1, None], knots[1:, None])  # stay in the piece
     d = s - knots[:-1, None]
     values = np.zeros_like(d)
-    for row in poly.c:  # highest power first
+    for row in coefficients:  # highest power first
         values = values * d + row[:, None]
     if moment:
         values *= s
