@@ -54,11 +54,9 @@ def test_routes_without_a_profile_refuse_it_in_one_line():
     with pytest.raises(sh.InputError, match=r"^profile: "):
         sh.contact(ball, RUBBER, depths=DEPTHS, model="neo-hookean")
     runs = [cell for cell, verdict in support_table("sphere") if verdict == "runs"]
-    # the linear elastic curve on the half-space, under each interface
-    assert {(c.model, c.relaxing, c.geometry, c.loading) for c in runs} == {
-        ("linear", False, "half-space", "curve")
-    }
-    assert len(runs) == 3
+    # the linear elastic curve, on the half-space or a layer, under each interface
+    assert {(c.model, c.relaxing, c.loading) for c in runs} == {("linear", False, "curve")}
+    assert len(runs) == 3 * 3
 
 
 def test_a_contact_beyond_the_table_is_refused_before_the_fem(monkeypatch):
@@ -74,3 +72,14 @@ def test_a_contact_beyond_the_table_is_refused_before_the_fem(monkeypatch):
         sh.contact(table, RUBBER, depths=[1e-3], estimate=False)
     with pytest.raises(sh.InputError, match=r"^profile: the striker's energy .* beyond the table"):
         sh.impact(table, RUBBER, mass=0.7, velocity=3.0)
+
+
+def test_a_tabulated_paraboloid_on_a_layer_is_the_power_law():
+    hertz = sh.PowerLawIndenter.sphere(1.0)
+    r = np.linspace(0.0, 0.05, 101)
+    layer = {"depths": [1e-4, 2e-4], "thickness": 0.005, "estimate": False}
+    power_law = sh.contact(hertz, RUBBER, **layer)
+    table = sh.contact(sh.TabulatedIndenter(r, hertz.profile(r)), RUBBER, **layer)
+    # the same refined zone (the tip's n = 2 bulge) and gap: the same numbers (measured: equal)
+    np.testing.assert_allclose(table.force, power_law.force, rtol=1e-12)
+    assert table.to_dict()["mesh"]["thickness"] == 0.005

@@ -307,14 +307,12 @@ decides what combines (everything not refused here runs)."""
 
 PROFILE_SUPPORT: tuple[Unsupported, ...] = (
     Unsupported(
-        lambda c: (
-            (c.model, c.relaxing, c.geometry, c.loading) != ("linear", False, "half-space", "curve")
-        ),
+        lambda c: (c.model, c.relaxing, c.loading) != ("linear", False, "curve"),
         "profile",
         "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
-        "(sh.impact, shtaerman impact) and by the FEM in the linear elastic contact curve on "
-        "the half-space; this combination takes the power law (shape_coefficient, exponent) "
-        "only",
+        "(sh.impact, shtaerman impact) and by the FEM in the linear elastic contact curve (on "
+        "the half-space or a layer, any interface); this combination takes the power law "
+        "(shape_coefficient, exponent) only",
     ),
 )
 """The combinations refused to a striker profile other than the power law (a sphere, a
