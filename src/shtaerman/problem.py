@@ -307,11 +307,11 @@ decides what combines (everything not refused here runs)."""
 
 PROFILE_SUPPORT: tuple[Unsupported, ...] = (
     Unsupported(
-        lambda c: (c.model, c.relaxing, c.loading) != ("linear", False, "curve"),
+        lambda c: c.relaxing or c.loading != "curve",
         "profile",
         "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
-        "(sh.impact, shtaerman impact) and by the FEM in the linear elastic contact curve (on "
-        "the half-space or a layer, any interface); this combination takes the power law "
+        "(sh.impact, shtaerman impact) and by the FEM in the elastic contact curve (any model, "
+        "geometry and interface); the FE impacts and a viscoelastic body take the power law "
         "(shape_coefficient, exponent) only",
     ),
 )

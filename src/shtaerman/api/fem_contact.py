@@ -476,7 +476,7 @@ def contact(
     ----------
     indenter : PowerLawIndenter, SphereIndenter, TabulatedIndenter or Problem
         z = A r^n with n > 1 (against Shtaerman), the exact sphere or a tabulated z(r)
-        (against Sneddon; the linear model, half-space or layer); or the whole contact curve
+        (against Sneddon; an elastic body); or the whole contact curve
         (:meth:`shtaerman.Problem.curve`), then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] (the FEM's validated range).

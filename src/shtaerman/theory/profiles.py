@@ -56,6 +56,23 @@ class SphereIndenter:
         r = np.minimum(np.abs(np.asarray(radius, dtype=float)), self.radius)
         return r**2 / (self.radius + np.sqrt((self.radius - r) * (self.radius + r)))
 
+    def slope(self, radius: ArrayLike) -> np.ndarray:
+        """f'(r) = r / sqrt(R^2 - r^2) at radii r >= 0 in m (0 beyond R, where z stays R)."""
+        r = np.asarray(radius, dtype=float)
+        inside = r < self.radius
+        slope = np.zeros_like(r)
+        slope[inside] = r[inside] / np.sqrt((self.radius - r[inside]) * (self.radius + r[inside]))
+        return slope
+
+    def curvature(self, radius: ArrayLike) -> np.ndarray:
+        """f''(r) = R^2 / (R^2 - r^2)^(3/2) in 1/m at radii r >= 0 in m (0 beyond R)."""
+        r = np.asarray(radius, dtype=float)
+        inside = r < self.radius
+        curvature = np.zeros_like(r)
+        squared = (self.radius - r[inside]) * (self.radius + r[inside])
+        curvature[inside] = self.radius**2 / squared**1.5
+        return curvature
+
     def radius_at(self, height: ArrayLike) -> np.ndarray:
         """The radius r in m at which z(r) = height (m), sqrt(2 R h - h^2); R beyond h = R."""
         h = np.minimum(np.asarray(height, dtype=float), self.radius)
@@ -190,6 +207,19 @@ class TabulatedIndenter:
         inside = self.interpolant(np.minimum(r, self.r_max) ** 2)
         slope = 2.0 * self.r_max * self.interpolant(self.r_max**2, 1)
         return inside + slope * np.maximum(r - self.r_max, 0.0)
+
+    def slope(self, radius: ArrayLike) -> np.ndarray:
+        """f'(r) = 2 r G'(r^2) at radii r >= 0 in m (the last slope beyond the table)."""
+        r = np.minimum(np.abs(np.asarray(radius, dtype=float)), self.r_max)
+        return 2.0 * r * self.interpolant(r**2, 1)
+
+    def curvature(self, radius: ArrayLike) -> np.ndarray:
+        """f''(r) = 2 G'(r^2) + 4 r^2 G''(r^2) in 1/m at radii r >= 0 in m (0 beyond the
+        table)."""
+        r = np.abs(np.asarray(radius, dtype=float))
+        s = np.minimum(r, self.r_max) ** 2
+        curvature = 2.0 * self.interpolant(s, 1) + 4.0 * s * self.interpolant(s, 2)
+        return np.where(r > self.r_max, 0.0, curvature)
 
     def radius_at(self, height: ArrayLike) -> np.ndarray:
         """The radius r in m at which z(r) = height (m) (the monotone inverse)."""
