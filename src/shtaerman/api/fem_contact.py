@@ -53,15 +53,18 @@ class ContactResult:
     keys of the error-estimate ladder (``error_estimate``, ``extrapolated``, ...) are None
     when it did not run (``estimate=False``); ``errors`` is the linear model's true error
     against Shtaerman's solution, ``departures_from_linear`` the neo-Hookean model's
-    departure from it. ``solution`` is the finest FEM run (fields on demand), ``ladder``
-    the mesh ladder; neither is part of :meth:`to_dict`. ``mass`` (kg) and ``velocity``
-    (m/s) are those of the impact whose x_c the default depths reach (None, and not in the
-    JSON, when the depths were given).
+    departure from it. A sphere's or a tabulated profile's curve has ``shape_coefficient`` and
+    ``exponent`` None, its inputs in ``extra["profile"]`` (the JSON's ``profile``), and is
+    compared with Sneddon's exact curve, whose ``beta_analytic`` and ``exponent_analytic`` are
+    the exact forces at the same depths fitted as the FEM's. ``solution`` is the finest FEM
+    run (fields on demand), ``ladder`` the mesh ladder; neither is part of :meth:`to_dict`.
+    ``mass`` (kg) and ``velocity`` (m/s) are those of the impact whose x_c the default depths
+    reach (None, and not in the JSON, when the depths were given).
     """
 
     model: str
-    shape_coefficient: float
-    exponent: float
+    shape_coefficient: float | None
+    exponent: float | None
     E2: float
     nu2: float
     modulus: float
