@@ -82,3 +82,17 @@ def test_a_bad_profile_file_names_its_row_on_the_command_line(capsys, tmp_path):
     path.write_text("r,z\n0,0\n1e-3,5e-5\n2e-3,nan\n")
     line = error_line(capsys, "impact", "--profile", str(path))
     assert line == f"--profile: '{path}' row 4, column z: expected a finite number in m, got 'nan'"
+
+
+@pytest.mark.parametrize("model", ["linear", "neo-hookean"])
+def test_contact_on_a_sphere_writes_its_outputs(tmp_path, model):
+    out = tmp_path / "run"
+    argv = ["contact", "--sphere-radius", "0.01", "--depths", "1e-3,2e-3", "--no-estimate"]
+    assert main([*argv, *RUBBER, "--model", model, "--out", str(out)]) == 0
+    document = json.loads((out / "contact.json").read_text())
+    assert document["profile"] == {"kind": "sphere", "parameters": {"radius": 0.01}}
+    assert document["shape_coefficient"] is None and document["beta_analytic"] > 0
+    import meshio
+
+    field = meshio.read(out / "field_max_depth.vtu")
+    assert float(field.field_data["indenter_sphere_radius [m]"][0]) == 0.01

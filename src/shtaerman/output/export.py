@@ -16,6 +16,7 @@ __all__ = [
     "FIELD_NAMES",
     "FIELD_UNITS",
     "field_mesh",
+    "indenter_field_data",
     "near_field",
     "write_indentation",
     "write_vtu",
@@ -94,7 +95,7 @@ def near_field(full: meshio.Mesh, radius: float) -> meshio.Mesh:
     )
 
 
-def _indenter_data(indenter: object) -> dict[str, float]:
+def indenter_field_data(indenter: object) -> dict[str, float]:
     """The striker's profile as VTK field data (numbers): z = A r^n's A and n, the sphere's
     radius, or a table's last radius."""
     if indenter.kind == "sphere":
@@ -139,7 +140,7 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
         "depth [m]": step.depth,
         "contact_radius [m]": step.contact_radius,
         "force [N]": step.force,
-        **_indenter_data(result.indenter),
+        **indenter_field_data(result.indenter),
         "youngs_modulus [Pa]": result.half_space.youngs_modulus,
         "poisson_ratio [1]": result.half_space.poisson_ratio,
         # the material model, as a flag (VTK field data are numbers)

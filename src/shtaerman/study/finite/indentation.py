@@ -55,7 +55,8 @@ class FiniteIndentationResult:
         return self.curve.steps
 
     @property
-    def _depths(self) -> np.ndarray:
+    def depths(self) -> np.ndarray:
+        """The depths in m."""
         return np.array([step.depth for step in self.steps])
 
     @property
@@ -101,7 +102,7 @@ class FiniteIndentationResult:
         then the other rubber keys (:meth:`RubberModel.to_dict`) unless it is the default."""
         return {
             **self.to_dict_model(),
-            **curve_document(self.indenter, self.half_space, self.exact, self.fit, self._depths),
+            **curve_document(self.indenter, self.half_space, self.exact, self.fit, self.depths),
             "steps": self.step_table(),
             "departures_from_linear": self.departures(),
             "mesh": self.curve.mesh_stats,
