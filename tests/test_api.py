@@ -82,6 +82,7 @@ def test_impact_matches_the_cli_to_1e_12():
     q = sh.impact(INDENTER, RUBBER, mass=0.25, velocity=2.0)
     cli = cli_json("impact", *CASE, *IMPACT, "--E1", "inf")
     assert set(q.to_dict()) == set(cli)
+    assert cli.pop("profile") == q.to_dict()["profile"]  # the striker's profile: its inputs
     for key, value in cli.items():
         assert q.to_dict()[key] == pytest.approx(value, rel=1e-12), key
     # this case's x_c: 4.63 mm (the paper's mass and velocity would give 9.50 mm)

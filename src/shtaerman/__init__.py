@@ -5,6 +5,8 @@ The public API (``import shtaerman as sh``; see :mod:`shtaerman.api`)::
     indenter = sh.PowerLawIndenter(shape_coefficient=12.0, exponent=1.8)
     rubber = sh.Material(youngs_modulus=4e6, poisson_ratio=0.49, density=1100.0)
     q = sh.impact(indenter, rubber, mass=0.25, velocity=2.0)   # exact quasi-static impact
+    ball = sh.SphereIndenter(radius=0.01)    # or sh.TabulatedIndenter.from_csv("tip.csv")
+    q = sh.impact(ball, rubber, mass=0.25, velocity=2.0)       # Sneddon's sphere, exact
     c = sh.contact(indenter, rubber, mass=0.25, velocity=2.0)  # FEM curve up to q.x_c
     d = sh.dynamic(indenter, rubber, mass=0.25, velocity=2.0)  # dynamic FE impact
     case = sh.Problem.impact(indenter, rubber, mass=0.25, velocity=2.0, thickness=0.012)
@@ -41,8 +43,10 @@ if TYPE_CHECKING:
         Material,
         PowerLawIndenter,
         Problem,
+        SphereIndenter,
         Striker,
         StudyResults,
+        TabulatedIndenter,
         contact,
         dynamic,
         effects,
@@ -71,10 +75,12 @@ __all__ = [
     "Material",
     "PowerLawIndenter",
     "Problem",
+    "SphereIndenter",
     "Striker",
     "StudyResults",
     "SweepOutcome",
     "SweepSpec",
+    "TabulatedIndenter",
     "__version__",
     "contact",
     "dynamic",

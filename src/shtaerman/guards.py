@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import warnings
 
-from .theory.contact import PowerLawContact
 from .theory.indenter import PowerLawIndenter
+from .theory.sneddon import Indenter, contact_law
 
 __all__ = [
     "LINEAR_REACH",
@@ -51,13 +51,14 @@ class ValidityWarning(UserWarning):
     """A run that reached beyond a validity limit of its model (its numbers are kept)."""
 
 
-def depth_ratio(indenter: PowerLawIndenter, depth: float) -> float:
-    """x/a: ``depth`` (m) over Shtaerman's contact radius there (independent of the modulus)."""
-    return float(depth / PowerLawContact(indenter, 1.0).contact_radius(depth))
+def depth_ratio(indenter: Indenter, depth: float) -> float:
+    """x/a: ``depth`` (m) over the exact contact radius there (Shtaerman's, or Sneddon's for
+    another profile; independent of the modulus)."""
+    return float(depth / contact_law(indenter, 1.0).contact_radius(depth))
 
 
 def outside_validity(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     deepest: float,
     thickness: float | None,
     finite: bool,
@@ -90,7 +91,7 @@ def outside_validity(
 
 
 def warn_outside_validity(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     deepest: float,
     thickness: float | None,
     finite: bool,

@@ -21,18 +21,19 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from .theory.indenter import PowerLawIndenter
 from .theory.materials import RIGID, Material
 from .validation import InputError, validate_positive
 from .vocabulary import entry
 
 if TYPE_CHECKING:
     from .fem.rubber import RubberModel
+    from .theory.sneddon import Indenter
     from .theory.viscoelastic import PronySeries
 
 __all__ = [
     "MODELS",
     "OPTION_SUPPORT",
+    "PROFILE_SUPPORT",
     "SUPPORT",
     "Body",
     "Cell",
@@ -56,11 +57,14 @@ RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
 
 
 def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
-    """Raise InputError unless the arguments are a PowerLawIndenter and two Materials."""
-    if not isinstance(indenter, PowerLawIndenter):
+    """Raise InputError unless the arguments are an indenter (PowerLawIndenter, SphereIndenter
+    or TabulatedIndenter) and two Materials."""
+    from .theory.sneddon import INDENTERS
+
+    if not isinstance(indenter, INDENTERS):
         raise InputError(
-            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), got "
-            f"{type(indenter).__name__}",
+            f"indenter must be a PowerLawIndenter(shape_coefficient, exponent), a "
+            f"SphereIndenter(radius) or a TabulatedIndenter, got {type(indenter).__name__}",
             "indenter",
         )
     for name, value in (("body", body), ("striker", striker)):
@@ -80,8 +84,8 @@ class Striker:
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        The profile z = A r^n of its tip.
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        The profile of its tip: z = A r^n, the exact sphere, or a tabulated z(r).
     mass : float, optional
         Mass in kg (an impact, or the impact whose x_c a contact curve's default depths reach).
     velocity : float, optional
@@ -90,7 +94,7 @@ class Striker:
         Its elasticity (E1, nu1; default rigid).
     """
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     mass: float | None = None
     velocity: float | None = None
     material: Material = RIGID
@@ -301,6 +305,27 @@ SUPPORT: tuple[Unsupported, ...] = (
 decides what combines (everything not refused here runs)."""
 
 
+PROFILE_SUPPORT: tuple[Unsupported, ...] = (
+    Unsupported(
+        lambda c: c.relaxing or c.loading != "curve",
+        "profile",
+        "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
+        "(sh.impact, shtaerman impact) and by the FEM in the elastic contact curve (any model, "
+        "geometry and interface); the FE impacts and a viscoelastic body take the power law "
+        "(shape_coefficient, exponent) only",
+    ),
+)
+"""The combinations refused to a striker profile other than the power law (a sphere, a
+tabulated z(r)), on top of :data:`SUPPORT`."""
+
+
+def refusal(cell: Cell, profile: str = "power-law") -> Unsupported | None:
+    """The first limit that refuses ``cell`` for a striker of ``profile`` (its ``kind``:
+    ``power-law``, ``sphere``, ``tabulated``), or None: it runs."""
+    limits = SUPPORT if profile == "power-law" else (*PROFILE_SUPPORT, *SUPPORT)
+    return next((limit for limit in limits if limit.when(cell)), None)
+
+
 @dataclass(frozen=True)
 class OptionLimit:
     """Numerical or output options that a set of combinations does not take; ``{model}`` in
@@ -383,9 +408,9 @@ class Problem:
             for name in ("mass", "velocity"):
                 if getattr(self.striker, name) is None:
                     raise InputError(f"{name}: an impact needs the striker's {name}", name)
-        for limit in SUPPORT:
-            if limit.when(self.cell):
-                raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
+        limit = refusal(self.cell, self.striker.indenter.kind)
+        if limit is not None:
+            raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
         self._check_rate()
 
     def _check_rate(self) -> None:
@@ -421,7 +446,7 @@ class Problem:
     @classmethod
     def impact(
         cls,
-        indenter: PowerLawIndenter,
+        indenter: Indenter,
         body: Material,
         *,
         mass: float,
@@ -438,7 +463,7 @@ class Problem:
     @classmethod
     def curve(
         cls,
-        indenter: PowerLawIndenter,
+        indenter: Indenter,
         body: Material,
         *,
         depths: Sequence[float] | None = None,
@@ -449,12 +474,12 @@ class Problem:
         return cls.from_keywords(indenter, body, loading="curve", depths=depths, **parts)
 
     @classmethod
-    def from_keywords(cls, indenter: PowerLawIndenter, body: Material, **keywords: Any) -> Problem:
+    def from_keywords(cls, indenter: Indenter, body: Material, **keywords: Any) -> Problem:
         """A problem from the API's flat keywords (None: not given), each checked."""
         return cls(**parts(indenter, body, **keywords))
 
 
-def parts(indenter: PowerLawIndenter, body: Material, **keywords: Any) -> dict[str, Any]:
+def parts(indenter: Indenter, body: Material, **keywords: Any) -> dict[str, Any]:
     """The parts of a problem (``striker``, ``body``, ``geometry``, ``interface``,
     ``loading``) from the API's flat keywords (None: not given), each checked on its own but
     not whether they combine: ``Problem(**parts(...))`` checks that (:data:`SUPPORT`)."""
@@ -509,8 +534,9 @@ def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) ->
                 raise InputError(f"{name}: {reason}", name)
 
 
-def support_table() -> list[tuple[Cell, str]]:
-    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``)."""
+def support_table(profile: str = "power-law") -> list[tuple[Cell, str]]:
+    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``)
+    for a striker of ``profile`` (``power-law``, ``sphere``, ``tabulated``)."""
     from itertools import product
 
     rows = []
@@ -522,8 +548,8 @@ def support_table() -> list[tuple[Cell, str]]:
         ("curve", "massless", "inertia"),
     ):
         cell = Cell(*cell)
-        refusal = next((limit for limit in SUPPORT if limit.when(cell)), None)
-        rows.append((cell, "runs" if refusal is None else f"{refusal.parameter}: {refusal.reason}"))
+        limit = refusal(cell, profile)
+        rows.append((cell, "runs" if limit is None else f"{limit.parameter}: {limit.reason}"))
     return rows
 
 

@@ -378,6 +378,22 @@ VOCABULARY: tuple[Entry, ...] = (
         valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1.0, MAX_EXPONENT)),  # and bounded p(0)
     ),
     Entry(
+        "sphere_radius",
+        "m",
+        "radius R of an exact sphere z = R - sqrt(R^2 - r^2), in place of the power law "
+        "(--shape-coefficient, --exponent)",
+        "Sphere radius R",
+    ),
+    Entry(
+        "profile",
+        "",
+        "a tabulated tip z(r): a CSV file whose header names the columns r and z (m), from the "
+        "tip r = 0, z = 0, both increasing; in place of the power law",
+        "tabulated profile",
+        valid=None,
+        type="path",
+    ),
+    Entry(
         "E1",
         "Pa",
         "striker Young's modulus",

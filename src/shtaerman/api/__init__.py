@@ -25,6 +25,8 @@ from ..problem import Striker as Striker
 from ..theory.indenter import PowerLawIndenter as PowerLawIndenter
 from ..theory.materials import RIGID as RIGID
 from ..theory.materials import Material as Material
+from ..theory.profiles import SphereIndenter as SphereIndenter
+from ..theory.profiles import TabulatedIndenter as TabulatedIndenter
 from ..validation import InputError as InputError
 from .dynamic_result import DynamicResult as DynamicResult
 from .effect_table import EffectTable as EffectTable

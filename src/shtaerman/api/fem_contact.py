@@ -1,4 +1,4 @@
-"""``shtaerman.contact``: the FEM contact curve of a rigid power-law indenter, with estimates."""
+"""``shtaerman.contact``: the FEM contact curve of a rigid indenter, with estimates."""
 
 from __future__ import annotations
 
@@ -24,7 +24,6 @@ from ..problem import (
     check_options,
     check_outputs,
 )
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
@@ -33,6 +32,7 @@ from .layer_options import layer_mesh
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
     from ..fem.rubber import RubberModel
+    from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
 
 __all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
@@ -53,15 +53,18 @@ class ContactResult:
     keys of the error-estimate ladder (``error_estimate``, ``extrapolated``, ...) are None
     when it did not run (``estimate=False``); ``errors`` is the linear model's true error
     against Shtaerman's solution, ``departures_from_linear`` the neo-Hookean model's
-    departure from it. ``solution`` is the finest FEM run (fields on demand), ``ladder``
-    the mesh ladder; neither is part of :meth:`to_dict`. ``mass`` (kg) and ``velocity``
-    (m/s) are those of the impact whose x_c the default depths reach (None, and not in the
-    JSON, when the depths were given).
+    departure from it. A sphere's or a tabulated profile's curve has ``shape_coefficient`` and
+    ``exponent`` None, its inputs in ``extra["profile"]`` (the JSON's ``profile``), and is
+    compared with Sneddon's exact curve, whose ``beta_analytic`` and ``exponent_analytic`` are
+    the exact forces at the same depths fitted as the FEM's. ``solution`` is the finest FEM
+    run (fields on demand), ``ladder`` the mesh ladder; neither is part of :meth:`to_dict`.
+    ``mass`` (kg) and ``velocity`` (m/s) are those of the impact whose x_c the default depths
+    reach (None, and not in the JSON, when the depths were given).
     """
 
     model: str
-    shape_coefficient: float
-    exponent: float
+    shape_coefficient: float | None
+    exponent: float | None
     E2: float
     nu2: float
     modulus: float
@@ -159,7 +162,7 @@ def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSett
 
 
 def contact_depths(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     body: Material,
     depths: ArrayLike | None = None,
     *,
@@ -256,7 +259,7 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
 class _Plan:
     """Checked inputs of one contact run."""
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     body: Material
     depths: np.ndarray
     model: str
@@ -418,6 +421,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     if model != "linear":
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
+    if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
+        from ..theory.sneddon import contact_law
+
+        contact_law(indenter, 1.0).contact_radius(depths[-1])
     if estimate:
         from ..study.contact.indentation import refined_radius
 
@@ -432,7 +439,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
 
 
 def contact(
-    indenter: PowerLawIndenter | Problem,
+    indenter: Indenter | Problem,
     body: Material | None = None,
     *,
     mass: float | None = None,
@@ -470,9 +477,10 @@ def contact(
 
     Parameters
     ----------
-    indenter : PowerLawIndenter or Problem
-        z = A r^n with n > 1; or the whole contact curve (:meth:`shtaerman.Problem.curve`),
-        then only numerical and output keywords follow.
+    indenter : PowerLawIndenter, SphereIndenter, TabulatedIndenter or Problem
+        z = A r^n with n > 1 (against Shtaerman), the exact sphere or a tabulated z(r)
+        (against Sneddon; an elastic body); or the whole contact curve
+        (:meth:`shtaerman.Problem.curve`), then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] (the FEM's validated range).
     mass, velocity : float, optional

@@ -1,4 +1,4 @@
-"""``shtaerman.impact``: the exact quasi-static impact of a power-law striker."""
+"""``shtaerman.impact``: the exact quasi-static impact of a striker of any profile."""
 
 from __future__ import annotations
 
@@ -14,6 +14,8 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact_ode import integrate_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
+from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
+from ..theory.sneddon import Indenter, SneddonContact
 
 __all__ = ["ImpactResult", "check_bodies", "impact"]
 
@@ -42,19 +44,22 @@ class ImpactResult:
     impulse, impulse_simpson : float
         2 M v0 and the paper's Simpson estimate of it (its eq. 16), N s.
     force_exponent : float
-        q = (n + 1) / n.
+        q = (n + 1) / n (a sphere's or a tabulated profile's: its smooth tip's 3/2, and
+        ``beta`` NaN, null in the JSON: their force law is no power law).
     mass, velocity : float
         Striker mass M in kg and approach velocity v0 in m/s.
     modulus : float
         Combined modulus E* of striker and body, Pa.
-    solution : shtaerman.theory.impact.ImpactResult
-        The closed-form solution behind these numbers (its contact law included).
+    solution : shtaerman.theory.impact.ImpactResult or ProfileImpactResult
+        The solution behind these numbers (its contact law included): the Ateb closed form
+        of the power law, or the quadrature of any other profile
+        (:mod:`shtaerman.theory.profile_impact`).
     ode_check : dict or None
         The numerical ODE's x_c, t_c, t_y, rebound_velocity and max_history_difference (the
         largest |x_ode - x| / x_c), when asked for with ``check=True``.
     """
 
-    solution: theory.ImpactResult = field(repr=False)
+    solution: theory.ImpactResult | ProfileImpactResult = field(repr=False)
     ode_check: dict[str, float] | None = None
 
     def __getattr__(self, name: str) -> float:
@@ -85,6 +90,8 @@ class ImpactResult:
         are None (the CLI's null)."""
         document: dict[str, object] = self.solution.maxima()
         document["force_exponent"] = self.force_exponent
+        indenter = self.solution.law.indenter
+        document["profile"] = {"kind": indenter.kind, "parameters": indenter.parameters}
         document["modulus"] = self.modulus
         if self.ode_check is not None:
             document["ode_check"] = dict(self.ode_check)
@@ -92,7 +99,7 @@ class ImpactResult:
 
 
 def impact(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     body: Material,
     *,
     mass: float,
@@ -100,12 +107,13 @@ def impact(
     striker: Material | None = None,
     check: bool = False,
 ) -> ImpactResult:
-    """The exact quasi-static impact of a striker z = A r^n on an elastic half-space.
+    """The exact quasi-static impact of a striker on an elastic half-space.
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        The striker's profile z = A r^n (A in m^(1-n)).
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        The striker's profile: z = A r^n (A in m^(1-n), the Ateb closed form), the exact
+        sphere or a tabulated z(r) (Sneddon's contact law, the impact by quadrature).
     body : Material
         The half-space (its density is not used).
     mass, velocity : float
@@ -128,11 +136,14 @@ def impact(
     striker = RIGID if striker is None else striker
     check_bodies(indenter, body, striker)
     modulus = effective_modulus(striker, body)
-    result = theory.solve_impact(mass, velocity, PowerLawContact(indenter, modulus))
+    if isinstance(indenter, PowerLawIndenter):
+        result = theory.solve_impact(mass, velocity, PowerLawContact(indenter, modulus))
+    else:
+        result = solve_profile_impact(mass, velocity, SneddonContact(indenter, modulus))
     return ImpactResult(result, _ode_check(result) if check else None)
 
 
-def _ode_check(result: theory.ImpactResult) -> dict[str, float]:
+def _ode_check(result: theory.ImpactResult | ProfileImpactResult) -> dict[str, float]:
     """The numerical ODE's maxima and its largest history difference from the exact one."""
     numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
     exact = result.history(2001)

@@ -10,7 +10,7 @@ import re
 import sys
 import warnings
 from collections.abc import Iterable, Iterator, Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
@@ -18,6 +18,9 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
 from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, Entry, entry
+
+if TYPE_CHECKING:
+    from ..theory.sneddon import Indenter
 
 __all__ = [
     "Input",
@@ -37,6 +40,9 @@ __all__ = [
 
 CASE = ("mass", "velocity", "shape_coefficient", "exponent")
 """The striker and its impact: the first options of the computing subcommands."""
+PROFILES = ("sphere_radius", "profile")
+"""The striker profiles beyond the power law (``impact`` and ``contact``), each in place of
+--shape-coefficient and --exponent."""
 
 
 class HelpFormatter(argparse.RawDescriptionHelpFormatter):
@@ -251,8 +257,25 @@ def striker(args: argparse.Namespace) -> Material:
     return RIGID if math.isinf(args.E1) else Material(args.E1, args.nu1)
 
 
-def indenter(args: argparse.Namespace) -> PowerLawIndenter:
-    """The profile z = A r^n from --shape-coefficient and --exponent."""
+def indenter(args: argparse.Namespace) -> Indenter:
+    """The striker's profile: z = A r^n from --shape-coefficient and --exponent, or the
+    sphere of --sphere-radius, or the table of --profile (one of the three)."""
+    from ..theory.profiles import SphereIndenter, TabulatedIndenter
+
+    chosen = [name for name in PROFILES if getattr(args, name, None) is not None]
+    power_law = [name for name in ("shape_coefficient", "exponent") if given(args, name)]
+    if len(chosen) > 1 or (chosen and power_law):
+        first, second = (chosen + power_law)[:2]
+        raise InputError(
+            f"{entry(first).cli_option}: give one striker profile: the power law "
+            "(--shape-coefficient, --exponent), --sphere-radius or --profile; "
+            f"{entry(second).cli_option} was given too",
+            first,
+        )
+    if chosen == ["sphere_radius"]:
+        return SphereIndenter(args.sphere_radius)
+    if chosen == ["profile"]:
+        return TabulatedIndenter.from_csv(args.profile)
     return PowerLawIndenter(args.shape_coefficient, args.exponent)
 
 

@@ -12,6 +12,7 @@ from ..theory.materials import Material
 from ..validation import InputError
 from ..vocabulary import entry, fields
 from .common import (
+    PROFILES,
     add_figure_format,
     add_inputs,
     given,
@@ -30,15 +31,17 @@ def register(commands: argparse._SubParsersAction) -> None:
         "contact",
         help="FEM frictionless contact against Shtaerman's solution",
         description=(
-            "Press a rigid indenter z = A r^n into the FEM half-space (gmsh + scikit-fem, "
+            "Press a rigid indenter z = A r^n (or an exact sphere, --sphere-radius, or a "
+            "tabulated z(r), --profile) into the FEM half-space (gmsh + scikit-fem, "
             "Taylor-Hood P2-P1) and compare force, contact radius and central pressure with "
-            "the exact solution. The default depths reach the x_c of the impact of --mass at "
-            "--velocity. --model neo-hookean (mooney-rivlin, yeoh, gent): a rubber at finite "
-            "strain with the same E2, nu2 at small strain. --out writes contact.json, CSV "
-            "curves, VTU fields and the figures. SI units."
+            "the exact solution (Shtaerman's, or Sneddon's). The default depths reach the x_c "
+            "of the impact of --mass at --velocity. --model neo-hookean (mooney-rivlin, yeoh, "
+            "gent): a rubber at finite strain with the same E2, nu2 at small strain. --out "
+            "writes contact.json, CSV curves, VTU fields and the figures. SI units."
         ),
     )
-    inputs = ("shape_coefficient", "exponent", "E2", "nu2", "thickness", "base", "interface")
+    inputs = ("shape_coefficient", "exponent", *PROFILES, "E2", "nu2", "thickness", "base")
+    inputs = (*inputs, "interface")
     inputs = (*inputs, "friction", "model", *RUBBER_OPTIONS, "prony", "rate", "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
     add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
@@ -116,13 +119,28 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _exact_owner(report: dict) -> str:
+    """Whose exact solution the curve is compared with: Shtaerman's or Sneddon's."""
+    kind = report.get("profile", {"kind": "power-law"})["kind"]
+    return "Shtaerman" if kind == "power-law" else "Sneddon"
+
+
+def profile_words(report: dict) -> str:
+    """The striker's profile of a contact report in words."""
+    profile = report.get("profile", {"kind": "power-law"})
+    if profile["kind"] == "sphere":
+        return f"an exact sphere of radius {profile['parameters']['radius']:g} m"
+    if profile["kind"] == "tabulated":
+        return f"the tabulated profile {profile['parameters']['file']}"
+    return f"z = {report['shape_coefficient']:g} r^{report['exponent']:g}"
+
+
 def finite_contact_text(report: dict) -> str:
     """The finite-strain contact curve beside the linear exact values (SI units)."""
     rows = [
-        f"{_model_words(report)} contact of z = {report['shape_coefficient']:g} "
-        f"r^{report['exponent']:g} "
+        f"{_model_words(report)} contact of {profile_words(report)} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
-        "Shtaerman's linear solution)" + _impact_words(report),
+        f"{_exact_owner(report)}'s linear solution)" + _impact_words(report),
         *_layer_rows(report, "/lin = against the linear half-space, not the layer"),
         *_interface_rows(report),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
@@ -199,10 +217,15 @@ def _exponent_text(report: dict, against: str = "") -> str:
     return text
 
 
+def _ratio_text(ratio: float | None) -> str:
+    """p0/pavg of the exact solution: null (depth dependent) for another profile."""
+    return "depends on depth" if ratio is None else f"{ratio:.4f}"
+
+
 def contact_text(report: dict) -> str:
     """The contact curve as a readable table (SI units)."""
     head = (
-        f"FEM contact of z = {report['shape_coefficient']:g} r^{report['exponent']:g} on "
+        f"FEM contact of {profile_words(report)} on "
         f"E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (E* = {report['modulus']:.6g} Pa)"
     )
     rows = [head + _impact_words(report)]
@@ -240,8 +263,8 @@ def contact_text(report: dict) -> str:
     rows += [
         f"  beta (q fixed) {report['beta_fem']:.6e} vs {against} {report['beta_analytic']:.6e} "
         f"({errors['beta']:.1e});  {_exponent_text(report, '' if against == 'exact' else against)}",
-        f"  p0/pavg {against} {report['central_to_mean_analytic']:.4f};  pressure profile L2 "
-        f"{error} <= {errors['pressure_profile']:.1e}",
+        f"  p0/pavg {against} {_ratio_text(report['central_to_mean_analytic'])};  pressure "
+        f"profile L2 {error} <= {errors['pressure_profile']:.1e}",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
         f"{mesh['contact_candidates']} contact candidates; solver {report['solver']}",
         "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),

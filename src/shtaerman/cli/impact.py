@@ -10,8 +10,18 @@ from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
 from ..theory.impact import ImpactResult
 from ..theory.materials import Material
+from ..theory.sneddon import Indenter
 from ..validation import InputError
-from .common import CASE, add_inputs, given, in_option_words, indenter, print_json, striker
+from .common import (
+    CASE,
+    PROFILES,
+    add_inputs,
+    given,
+    in_option_words,
+    indenter,
+    print_json,
+    striker,
+)
 
 NOTES = {
     "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
@@ -25,9 +35,22 @@ def register(commands: argparse._SubParsersAction) -> None:
     p = commands.add_parser(
         "impact",
         help="exact quasi-static impact (the paper's example by default)",
-        description="Exact quasi-static impact M x'' = -beta x^q (Ateb functions), SI units.",
+        description="Exact quasi-static impact M x'' = -P(x), SI units: Ateb functions for "
+        "z = A r^n, Sneddon's integrals and quadrature for a sphere or a tabulated profile.",
     )
-    inputs = (*CASE, "E1", "nu1", "E2", "nu2", "json", "history", "points", "force", "check")
+    inputs = (
+        *CASE,
+        *PROFILES,
+        "E1",
+        "nu1",
+        "E2",
+        "nu2",
+        "json",
+        "history",
+        "points",
+        "force",
+        "check",
+    )
     add_inputs(p, inputs, "impact", notes=NOTES)
     p.set_defaults(handler=run)
 
@@ -78,16 +101,31 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _striker_words(indenter: Indenter) -> str:
+    """The striker's profile in words for the text report."""
+    if indenter.kind == "sphere":
+        return f"an exact sphere of radius {indenter.radius:g} m"
+    if indenter.kind == "tabulated":
+        return f"the tabulated profile {indenter.source} ({indenter.radii.size} points)"
+    return f"z = {indenter.shape_coefficient:g} r^{indenter.exponent:g}"
+
+
 def _impact_text(result: ImpactResult, report: dict) -> str:
     law = result.law
-    n, A = law.indenter.exponent, law.indenter.shape_coefficient
     rows = [
-        f"Quasi-static impact of z = {A:g} r^{n:g} on an elastic half-space (SI units)",
+        f"Quasi-static impact of {_striker_words(law.indenter)} on an elastic half-space "
+        "(SI units)",
         f"  mass M                    {result.mass:>14.6g} kg",
         f"  approach velocity v0      {result.velocity:>14.6g} m/s",
         f"  combined modulus E*       {law.modulus:>14.6e} Pa",
-        f"  force law P = beta x^q    q = {result.force_exponent:.6g}",
-        f"  beta                      {result.beta:>14.6e} N/m^{result.force_exponent:.4g}",
+    ]
+    if law.indenter.kind == "power-law":
+        q = result.force_exponent
+        rows.append(f"  force law P = beta x^q    q = {q:.6g}")
+        rows.append(f"  beta                      {result.beta:>14.6e} N/m^{q:.4g}")
+    else:
+        rows.append("  force law (Sneddon)       exact, no power law (quadrature)")
+    rows += [
         f"  max approach x_c          {result.x_c:>14.6e} m",
         f"  max force P_c             {result.P_c:>14.6e} N",
         f"  max contact radius a_c    {result.a_c:>14.6e} m",
@@ -97,7 +135,7 @@ def _impact_text(result: ImpactResult, report: dict) -> str:
         f"  impulse 2 M v0            {result.impulse:>14.6e} N s",
         f"  impulse, paper eq. (16)   {result.impulse_simpson:>14.6e} N s",
     ]
-    if not math.isfinite(result.p_c) and n <= 1:
+    if not math.isfinite(result.p_c) and law.indenter.kind == "power-law":
         rows.append("  (n <= 1: the pressure at the centre of the contact is unbounded)")
     if "ode_check" in report:
         check = report["ode_check"]

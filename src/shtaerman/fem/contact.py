@@ -83,14 +83,13 @@ def validate_fem_inputs(indenter: object, half_space: object) -> None:
     coefficient and the half-space's E2 and nu2 within the FEM's ranges of the vocabulary
     (n > 1 keeps the central pressure bounded; A <= 1e100 keeps the depths from underflowing;
     E2 in [1e-3, 1e100] Pa keeps the scaled factorization accurate; nu2 in [0, 0.5] is the
-    range the FEM is tested on). Static, dynamic and finite-strain FEM alike."""
-    values = (
-        indenter.exponent,
-        indenter.shape_coefficient,
-        half_space.youngs_modulus,
-        half_space.poisson_ratio,
+    range the FEM is tested on; a sphere or a tabulated profile: E2 and nu2 only). Static,
+    dynamic and finite-strain FEM alike."""
+    profile = (
+        (indenter.exponent, indenter.shape_coefficient) if indenter.kind == "power-law" else ()
     )
-    for name, value in zip(FEM_INPUTS, values, strict=True):
+    values = (*profile, half_space.youngs_modulus, half_space.poisson_ratio)
+    for name, value in zip(FEM_INPUTS[-len(values) :], values, strict=True):
         entry(name).check(value, "contact")
 
 

@@ -52,6 +52,7 @@ from ..guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, depth_ratio
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
+from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..validation import InputError, NumericalFailureError, validate_poisson
 from .contact import EDGE_MARGIN, central_pressure, edge_radius
 from .elasticity import dof_nodes
@@ -297,16 +298,12 @@ class NewtonStepper:
 
     def geometry(self, x: np.ndarray, depth: float) -> tuple[np.ndarray, ...]:
         """Current radii, gap g, f'(r) and f''(r) at the candidates."""
-        A, n = self.indenter.shape_coefficient, self.indenter.exponent
         if self.folded(x):
             raise NewtonError("the contact surface folded (candidate nodes crossed)")
         r = np.maximum(self.nodes.radius + x[self.nodes.ur], 0.0)
-        gap = A * r**n - depth - x[self.nodes.uz]
-        slope = n * A * r ** (n - 1.0)
-        curvature = np.zeros_like(r)
-        inside = r > 0  # the axis node's u_r is clamped: its curvature never enters
-        curvature[inside] = n * (n - 1.0) * A * r[inside] ** (n - 2.0)
-        return r, gap, slope, curvature
+        gap = self.indenter.profile(r) - depth - x[self.nodes.uz]
+        # the axis node's u_r is clamped: its curvature never enters
+        return r, gap, self.indenter.slope(r), self.indenter.curvature(r)
 
     def solve(
         self, depth: float, x: np.ndarray, lam: np.ndarray, scale: float | None = None
@@ -481,16 +478,16 @@ def solve_finite_contact(
     ContactOutgrowsMeshError
         The contact zone reached the edge of the candidate region.
     """
-    if indenter.exponent <= 1.0:
+    if indenter.kind == "power-law" and indenter.exponent <= 1.0:
         raise InputError(
             f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
         )
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
     stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    check_smallest_depth(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
+    check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
     material = system.material
-    exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
+    exact = contact_law(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
     steps = []
     for target in depths:
@@ -553,7 +550,9 @@ def _reach(
     return history, iterations, total, corrections
 
 
-def check_smallest_depth(stepper: NewtonStepper, law: PowerLawContact, depth: float) -> None:
+def check_smallest_depth(
+    stepper: NewtonStepper, law: PowerLawContact | SneddonContact, depth: float
+) -> None:
     """Refuse, before any Newton step, a smallest ``depth`` (m) whose small-strain contact
     radius covers no surface node besides the axis: its results would be those of no contact.
     (One or two nodes run: a study's coarse ladder levels start there and mark such points
@@ -689,9 +688,15 @@ FINITE_BASE = (
 """The refusal of a lubricated layer at finite strain."""
 
 
-def geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
-    """Radius (d / A)^(1/n) in m where the undeformed profile reaches the depth d (m)."""
-    return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
+def geometric_radius(indenter: Indenter, depth: float) -> float:
+    """Radius in m where the undeformed profile reaches the depth d (m): (d / A)^(1/n)."""
+    return float(indenter.radius_at(depth))
+
+
+def tip_exponent(indenter: Indenter) -> float:
+    """The power law's n, or a smooth tip's 2 (a sphere's, a tabulated profile's): the
+    exponent a layer's bulge of the contact zone is sized by."""
+    return indenter.exponent if indenter.kind == "power-law" else 2.0
 
 
 def run_finite_indentation(
@@ -743,7 +748,7 @@ def run_finite_indentation(
             "interface",
         )
     refined = mesh.margin * geometric_radius(indenter, depths[-1])
-    refined *= mesh.zone_factor(indenter.exponent)  # 1 on the half-space, more on a layer
+    refined *= mesh.zone_factor(tip_exponent(indenter))  # 1 on the half-space, more on a layer
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined)
     meshed = time.perf_counter()

@@ -50,6 +50,7 @@ from numpy.typing import ArrayLike
 
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
+from ..theory.sneddon import SneddonContact, contact_law
 from ..validation import InputError, NumericalFailureError
 from .contact import MAX_ACTIVE_SET_ITERATIONS
 from .finite_contact import (
@@ -66,6 +67,7 @@ from .finite_contact import (
     newton_converged,
     pattern_entries,
     solve_finite_contact,
+    tip_exponent,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
 from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled
@@ -122,8 +124,8 @@ def bonded_ladder(
         return depth_ladder(start, depths, step_ratio)
     indenter = stepper.indenter
     radius = stepper.nodes.radius[min(START_NODE, stepper.nodes.radius.size - 1)]
-    start = float(indenter.shape_coefficient * radius**indenter.exponent)
-    start = max(start, float(depths[0]) * START_FRACTION**indenter.exponent)
+    start = float(indenter.profile(radius))
+    start = max(start, float(depths[0]) * START_FRACTION ** tip_exponent(indenter))
     return depth_ladder(start, depths, step_ratio)
 
 
@@ -133,7 +135,7 @@ def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np
     nodes, indenter = stepper.nodes, stepper.indenter
     stuck = np.flatnonzero(~np.isnan(held))
     radial = stuck[nodes.ur_free[stuck]]
-    height = indenter.shape_coefficient * held[stuck] ** indenter.exponent - depth
+    height = indenter.profile(held[stuck]) - depth
     positions = np.concatenate([nodes.uz[stuck], nodes.ur[radial]])
     values = np.concatenate([height, held[radial] - nodes.radius[radial]])
     slaves = stepper.position[positions]
@@ -521,7 +523,7 @@ class HistoryStepper(NewtonStepper):
         super().__init__(system, indenter, candidate_radius, *limits)
         self.friction = friction
         m = self.nodes.radius.size
-        heights = self.indenter.shape_coefficient * self.nodes.radius**self.indenter.exponent
+        heights = self.indenter.profile(self.nodes.radius)
         zero = np.zeros(self.system.n_dofs)
         self.committed = _Load(
             np.full(m, np.nan), zero, self.nodes.radius.copy(), heights, zero[:m]
@@ -552,10 +554,7 @@ class HistoryStepper(NewtonStepper):
             before, sliding = self.committed, (load.slip != 0) & ~np.isnan(self.committed.held)
             moved = np.abs(load.radius - before.radius)[sliding]
             middle = 0.5 * (load.radius + before.radius)[sliding]
-            indenter = self.indenter
-            slope = (
-                indenter.exponent * indenter.shape_coefficient * middle ** (indenter.exponent - 1)
-            )
+            slope = self.indenter.slope(middle)
             force = 0.5 * (normal + self.normal)[sliding]
             self.dissipated += self.friction * float(np.sum(force * moved * np.sqrt(1 + slope**2)))
         self.committed, self.normal, self.warm = load, normal, {}
@@ -604,7 +603,7 @@ def solve_finite_bonded_contact(
         raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
     if not friction >= 0.0:
         raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
-    if indenter.exponent <= 1.0:
+    if indenter.kind == "power-law" and indenter.exponent <= 1.0:
         raise InputError(
             f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
         )
@@ -614,9 +613,9 @@ def solve_finite_bonded_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     begun = time.perf_counter()
     stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    check_smallest_depth(stepper, PowerLawContact(indenter, 1.0), float(depths[0]))
+    check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
     material = system.material
-    exact = PowerLawContact(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
+    exact = contact_law(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
     if start is not None and not 0.0 < start <= depths[0]:
         raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
     ladder = bonded_ladder(stepper, depths, step_ratio, start)
@@ -626,7 +625,7 @@ def solve_finite_bonded_contact(
 
 def _load_history(
     stepper: NewtonStepper,
-    exact: PowerLawContact,
+    exact: PowerLawContact | SneddonContact,
     depths: np.ndarray,
     ladder: np.ndarray,
     friction: float,
@@ -634,7 +633,7 @@ def _load_history(
     """Load through the ``ladder`` (m) and keep the contact at each requested depth (Coulomb
     ``friction``; inf: no slip)."""
     m = stepper.nodes.radius.size
-    heights = stepper.indenter.shape_coefficient * stepper.nodes.radius**stepper.indenter.exponent
+    heights = stepper.indenter.profile(stepper.nodes.radius)
     zero = np.zeros(stepper.system.n_dofs)
     last = _Load(np.full(m, np.nan), zero, stepper.nodes.radius.copy(), heights, np.zeros(m))
     previous, done, previous_depth = None, 0.0, 0.0

@@ -16,6 +16,7 @@ __all__ = [
     "FIELD_NAMES",
     "FIELD_UNITS",
     "field_mesh",
+    "indenter_field_data",
     "near_field",
     "write_indentation",
     "write_vtu",
@@ -94,6 +95,19 @@ def near_field(full: meshio.Mesh, radius: float) -> meshio.Mesh:
     )
 
 
+def indenter_field_data(indenter: object) -> dict[str, float]:
+    """The striker's profile as VTK field data (numbers): z = A r^n's A and n, the sphere's
+    radius, or a table's last radius."""
+    if indenter.kind == "sphere":
+        return {"indenter_sphere_radius [m]": indenter.radius}
+    if indenter.kind == "tabulated":
+        return {"indenter_table_last_radius [m]": indenter.r_max}
+    return {
+        "indenter_shape_coefficient [m^(1-n)]": indenter.shape_coefficient,
+        "indenter_exponent [1]": indenter.exponent,
+    }
+
+
 def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
     """Write ``contact_curve.csv``, ``pressure_profiles.csv``, ``field_max_depth.vtu`` and its
     near field ``field_max_depth_near.vtu`` (``NEAR_FIELD_RADII`` contact radii).
@@ -122,13 +136,11 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
     field_path = folder / "field_max_depth.vtu"
     near_path = folder / "field_max_depth_near.vtu"
     step = result.steps[-1]
-    exponent, coefficient = result.indenter.exponent, result.indenter.shape_coefficient
     field_data = {
         "depth [m]": step.depth,
         "contact_radius [m]": step.contact_radius,
         "force [N]": step.force,
-        "indenter_shape_coefficient [m^(1-n)]": coefficient,
-        "indenter_exponent [1]": exponent,
+        **indenter_field_data(result.indenter),
         "youngs_modulus [Pa]": result.half_space.youngs_modulus,
         "poisson_ratio [1]": result.half_space.poisson_ratio,
         # the material model, as a flag (VTK field data are numbers)

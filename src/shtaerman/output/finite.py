@@ -27,7 +27,7 @@ from ..plots.finite import (
     plot_finite_ratios,
     plot_finite_section,
 )
-from .export import FIELD_UNITS, write_vtu
+from .export import FIELD_UNITS, indenter_field_data, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
@@ -89,8 +89,7 @@ def write_finite_field(
         "force [N]": step.force,
         "contact_radius [m]": step.contact_radius,
         "strain_energy [J]": step.strain_energy,
-        "indenter_shape_coefficient [m^(1-n)]": curve.indenter.shape_coefficient,
-        "indenter_exponent [1]": curve.indenter.exponent,
+        **indenter_field_data(curve.indenter),
         "youngs_modulus [Pa]": material.youngs_modulus,
         "poisson_ratio [1]": material.poisson_ratio,
         "model_neo-hookean [1]": 1.0,  # the material model as a flag (field data are numbers)

@@ -56,11 +56,21 @@ CONVERGENCE_KEYS = ("force", "beta", "contact_radius", "central_pressure")
 # --- force against depth -----------------------------------------------------------------------
 
 
+def _exact_name(result: IndentationResult) -> str:
+    """Whose exact solution: Shtaerman's (the power law) or Sneddon's (another profile)."""
+    return "Shtaerman" if result.indenter.kind == "power-law" else "Sneddon"
+
+
 def _fit_note(result: IndentationResult) -> str:
-    q_exact, fit = result.exact.force_exponent, result.fit
-    beta_exact, q_text = result.exact.beta, fraction(q_exact)
+    from ..study.contact.indentation import analytic_fit
+
+    fit, analytic = result.fit, analytic_fit(result)
+    q_exact, beta_exact = analytic.exponent, analytic.beta
+    q_text = fraction(result.exact.force_exponent)
+    power_law = result.indenter.kind == "power-law"  # else: the exact curve fitted alike
+    exact_words = f"exact {q_text}" if power_law else "exact curve's fit"
     free = (
-        rf"FEM, free fit: $q$ = {fit.exponent:.5f} (exact {q_text} = {q_exact:.5f}, "
+        rf"FEM, free fit: $q$ = {fit.exponent:.5f} ({exact_words} = {q_exact:.5f}, "
         f"{percent(fit.exponent / q_exact - 1)})"
         if math.isfinite(fit.exponent)
         else r"FEM, free fit: $q$ fitted only from $\geq$ 2 depths"
@@ -122,7 +132,9 @@ def plot_force_depth(
         line * x_scale,
         result.exact.force(line) * p_scale,
         color=EXACT_COLOUR,
-        label=rf"Shtaerman: $P = \beta x^{{{q}}}$",
+        label=rf"Shtaerman: $P = \beta x^{{{q}}}$"
+        if _exact_name(result) == "Shtaerman"
+        else "Sneddon",
     )
     top.loglog(depths * x_scale, forces * p_scale, "o", color=FEM_COLOUR, label=_fem_label(result))
     top.set_ylabel(f"Force $P$ ({p_unit})")
@@ -155,7 +167,7 @@ def _exact_profile(result: IndentationResult, depth: float, rho: np.ndarray) -> 
     """p/p_avg at r/a = rho: the paper's eq. (5) for n = 3/2, else the hypergeometric form."""
     exact, a = result.exact, float(result.exact.contact_radius(depth))
     mean = float(exact.mean_pressure(depth))
-    if result.indenter.exponent != 1.5:
+    if getattr(result.indenter, "exponent", None) != 1.5:
         return exact.pressure(rho * a, depth) / mean
     inside = rho <= 1.0
     p = np.zeros_like(rho)
@@ -240,14 +252,17 @@ def plot_pressure(
     axes = figure.subplots()
     rho = np.linspace(0.0, 1.3, 521)
     deepest = result.steps[-1].depth
-    label = "paper's eq. (5)" if result.indenter.exponent == 1.5 else "exact"
-    axes.plot(
-        rho, _exact_profile(result, deepest, rho), color=EXACT_COLOUR, label=f"Shtaerman, {label}"
-    )
+    label = "paper's eq. (5)" if getattr(result.indenter, "exponent", None) == 1.5 else "exact"
+    if result.indenter.kind != "power-law":  # p/p_avg depends on depth: the deepest's
+        label = f"exact at x = {deepest * 1e3:.3g} mm"
+    profile = _exact_profile(result, deepest, rho)
+    axes.plot(rho, profile, color=EXACT_COLOUR, label=f"{_exact_name(result)}, {label}")
     centre = []
     for index, style in zip(_pressure_steps(result, steps), DEPTH_STYLES, strict=False):
         centre.append(_pressure_markers(axes, result, index, style))
     ratio = result.exact.central_to_mean_ratio
+    if not math.isfinite(ratio):  # another profile: the deepest depth's
+        ratio = float(profile[0])
     axes.axhline(ratio, color="0.4", linestyle=":", linewidth=1.0)
     note = r"$p(0)/p_{avg}$" + f"\nexact {ratio:g}\nFEM {min(centre):.3f} to {max(centre):.3f}"
     axes.text(1.02, 0.97 * ratio, note, ha="left", va="top", fontsize=8.5)

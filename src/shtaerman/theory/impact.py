@@ -182,7 +182,7 @@ class ImpactResult:
         return {name: float(getattr(self, name)) for name in names}
 
 
-def _check_velocity(velocity: float) -> None:
+def check_velocity(velocity: float) -> None:
     if velocity > QUASI_STATIC_VELOCITY_LIMIT:
         warnings.warn(
             f"velocity {repr(float(velocity)).removesuffix('.0')} m/s exceeds "
@@ -228,7 +228,7 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     """
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
-    _check_velocity(velocity)
+    check_velocity(velocity)
     beta, q = validate_positive("beta", law.beta), law.force_exponent
     # in logarithms: M v0^2 alone under- or overflows for extreme but representable inputs
     log_x_c = (

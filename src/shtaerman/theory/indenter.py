@@ -58,6 +58,8 @@ class PowerLawIndenter:
     shape_coefficient: float
     exponent: float
 
+    kind = "power-law"
+
     def __post_init__(self) -> None:
         validate_positive("shape_coefficient", self.shape_coefficient, "m^(1-n)")
         validate_exponent(self.exponent)
@@ -72,6 +74,31 @@ class PowerLawIndenter:
         """Sneddon's factor kappa_n (see :func:`shape_factor`)."""
         return shape_factor(self.exponent)
 
+    @property
+    def parameters(self) -> dict[str, float]:
+        """The JSON's ``profile.parameters``: shape_coefficient A in m^(1-n) and exponent n."""
+        return {"shape_coefficient": self.shape_coefficient, "exponent": self.exponent}
+
     def profile(self, radius: ArrayLike) -> np.ndarray:
         """Height of the striker's surface above its tip, A r^n, in m at radius r in m."""
         return self.shape_coefficient * np.abs(np.asarray(radius, dtype=float)) ** self.exponent
+
+    def slope(self, radius: ArrayLike) -> np.ndarray:
+        """f'(r) = n A r^(n-1) (dimensionless) at radii r >= 0 in m."""
+        r = np.asarray(radius, dtype=float)
+        return self.exponent * self.shape_coefficient * r ** (self.exponent - 1.0)
+
+    def curvature(self, radius: ArrayLike) -> np.ndarray:
+        """f''(r) = n (n-1) A r^(n-2) in 1/m at radii r >= 0 in m (0 on the axis, where the
+        finite-strain contact never uses it)."""
+        r = np.asarray(radius, dtype=float)
+        n, A = self.exponent, self.shape_coefficient
+        curvature = np.zeros_like(r)
+        inside = r > 0
+        curvature[inside] = n * (n - 1.0) * A * r[inside] ** (n - 2.0)
+        return curvature
+
+    def radius_at(self, height: ArrayLike) -> np.ndarray:
+        """The radius (h/A)^(1/n) in m at which the profile reaches a height h in m."""
+        h = np.asarray(height, dtype=float)
+        return (h / self.shape_coefficient) ** (1.0 / self.exponent)

@@ -12,6 +12,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,6 +26,8 @@ from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.profile_impact import solve_profile_impact
+from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...theory.viscoelastic import PronySeries, RateContact
 from ...validation import InputError
 from ...vocabulary import entry
@@ -52,7 +55,7 @@ def depths_up_to(deepest: float, exponent: float) -> np.ndarray:
 
 
 def default_depths(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     mass: float | None = None,
     velocity: float | None = None,
@@ -60,21 +63,24 @@ def default_depths(
 ) -> np.ndarray:
     """Eight depths (m) up to the x_c of the impact of ``mass`` (kg) at ``velocity`` (m/s)
     by ``striker`` (defaults: the vocabulary's, the paper's 0.7 kg at 3 m/s, rigid), radii
-    a_c/3 .. a_c."""
+    a_c/3 .. a_c (another profile than the power law: the depths of those radii)."""
     mass = entry("mass").default if mass is None else mass
     velocity = entry("velocity").default if velocity is None else velocity
-    law = PowerLawContact(indenter, effective_modulus(striker, half_space))
+    law = contact_law(indenter, effective_modulus(striker, half_space))
+    if isinstance(law, SneddonContact):
+        a_c = solve_profile_impact(mass, velocity, law).a_c
+        return law.depth(a_c * np.geomspace(1.0 / DEFAULT_RADIUS_SPAN, 1.0, DEFAULT_STEPS))
     x_c = solve_impact(mass, velocity, law).x_c
     return depths_up_to(x_c, indenter.exponent)
 
 
 @dataclass(frozen=True)
 class IndentationResult:
-    """FEM contact curve of a power-law indenter against the exact solution (SI units)."""
+    """FEM contact curve of an indenter against the exact solution (SI units)."""
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     half_space: Material
-    exact: PowerLawContact | RateContact
+    exact: PowerLawContact | SneddonContact | RateContact
     curve: ContactCurve
     fit: PowerLawFit
     mesh_stats: dict[str, float]
@@ -84,6 +90,11 @@ class IndentationResult:
     def steps(self) -> list[ContactStep]:
         """The contact at each depth."""
         return self.curve.steps
+
+    @property
+    def depths(self) -> np.ndarray:
+        """The depths in m."""
+        return np.array([step.depth for step in self.steps])
 
     def field(self, index: int = -1) -> ElasticSolution:
         """Displacements and stresses at step ``index`` (the deepest, computed once, by default).
@@ -161,8 +172,8 @@ class IndentationResult:
         rows = self.step_table()
         return {
             **worst_against_analytic(rows),
-            "beta": abs(self.fit.beta_fixed_exponent / self.exact.beta - 1.0),
-            "exponent": abs(self.fit.exponent / self.exact.force_exponent - 1.0),
+            "beta": abs(self.fit.beta_fixed_exponent / analytic_fit(self).beta - 1.0),
+            "exponent": abs(self.fit.exponent / analytic_fit(self).exponent - 1.0),
             "pressure_profile": max(row["pressure_profile_error"] for row in rows),
         }
 
@@ -176,7 +187,7 @@ class IndentationResult:
             relaxing["rate"] = self.exact.rate
         return {
             "model": "linear",
-            **curve_document(self.indenter, self.half_space, self.exact, self.fit),
+            **curve_document(self.indenter, self.half_space, self.exact, self.fit, self.depths),
             **relaxing,
             "steps": self.step_table(),
             "errors": self.errors(),
@@ -198,38 +209,69 @@ def worst_against_analytic(rows: list[dict[str, float]]) -> dict[str, float]:
     }
 
 
+class AnalyticFit(NamedTuple):
+    """The exact force law in the form the FEM curve is fitted: beta (N m^-q) with q held at
+    ``force_exponent``, and the free exponent."""
+
+    beta: float
+    exponent: float
+
+
+def analytic_fit(result: IndentationResult) -> AnalyticFit:
+    """The power law's exact beta and q; another profile's exact forces at the curve's
+    depths fitted as the FEM's are (its force law is no power law)."""
+    return exact_fit(result.exact, result.depths)
+
+
+def exact_fit(exact: object, depths: np.ndarray) -> AnalyticFit:
+    """The exact beta and exponent of ``exact`` (see :func:`analytic_fit`) at ``depths`` (m)."""
+    if not isinstance(exact, SneddonContact):
+        return AnalyticFit(exact.beta, exact.force_exponent)
+    fit = fit_power_law(depths, exact.force(depths), exact.force_exponent)
+    exponent = fit.exponent if np.size(depths) > 1 else exact.force_exponent
+    return AnalyticFit(fit.beta_fixed_exponent, exponent)
+
+
 def curve_document(
-    indenter: PowerLawIndenter, half_space: Material, exact: PowerLawContact, fit: PowerLawFit
-) -> dict[str, float]:
+    indenter: Indenter,
+    half_space: Material,
+    exact: PowerLawContact | SneddonContact,
+    fit: PowerLawFit,
+    depths: np.ndarray | None = None,
+) -> dict[str, object]:
     """The inputs and the fitted force law beside the exact one: the head of the ``contact``
-    JSON, shared by the linear and the neo-Hookean model (SI units)."""
+    JSON, shared by the linear and the neo-Hookean model (SI units). For another profile
+    than the power law ``shape_coefficient`` and ``exponent`` are None, and the analytic
+    beta and exponent are the exact forces at the same ``depths`` fitted as the FEM's."""
+    analytic = exact_fit(exact, depths)
+    power_law = isinstance(indenter, PowerLawIndenter)
     return {
-        "shape_coefficient": indenter.shape_coefficient,
-        "exponent": indenter.exponent,
+        "shape_coefficient": indenter.shape_coefficient if power_law else None,
+        "exponent": indenter.exponent if power_law else None,
+        "profile": {"kind": indenter.kind, "parameters": indenter.parameters},
         "E2": half_space.youngs_modulus,
         "nu2": half_space.poisson_ratio,
         "modulus": exact.modulus,
         "beta_fem": fit.beta_fixed_exponent,
-        "beta_analytic": exact.beta,
+        "beta_analytic": analytic.beta,
         "exponent_fem": fit.exponent,
-        "exponent_analytic": exact.force_exponent,
+        "exponent_analytic": analytic.exponent,
         "beta_fem_free_exponent": fit.beta,
         "central_to_mean_analytic": exact.central_to_mean_ratio,
     }
 
 
-def _geometric_radius(indenter: PowerLawIndenter, depth: float) -> float:
-    return (depth / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
-
-
-def refined_radius(indenter: PowerLawIndenter, depths: np.ndarray, mesh: MeshSettings) -> float:
-    """Radius in m of the refined (contact candidate) zone of a curve to ``depths`` (m)."""
-    zone = mesh.zone_factor(indenter.exponent)  # 1 on the half-space
-    return mesh.margin * _geometric_radius(indenter, depths[-1]) * zone
+def refined_radius(indenter: Indenter, depths: np.ndarray, mesh: MeshSettings) -> float:
+    """Radius in m of the refined (contact candidate) zone of a curve to ``depths`` (m): the
+    margin times the radius where the profile reaches the deepest depth (on a layer, times
+    its bulge, that of the smooth tip n = 2 for another profile than the power law)."""
+    exponent = indenter.exponent if isinstance(indenter, PowerLawIndenter) else 2.0
+    zone = mesh.zone_factor(exponent)  # 1 on the half-space
+    return mesh.margin * float(indenter.radius_at(depths[-1])) * zone
 
 
 def run_indentation(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     depths: ArrayLike | None = None,
     mesh: MeshSettings | None = None,
@@ -239,12 +281,14 @@ def run_indentation(
     prony: PronySeries | None = None,
     rate: float | None = None,
 ) -> IndentationResult:
-    """Press a rigid power-law indenter into the FEM half-space and compare with the theory.
+    """Press a rigid indenter into the FEM half-space and compare with the theory.
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        Profile z = A r^n, n > 1 (bounded pressure at the centre).
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        Profile z = A r^n, n > 1 (bounded pressure at the centre), compared with Shtaerman;
+        or the exact sphere or a tabulated z(r), compared with Sneddon
+        (:class:`shtaerman.theory.sneddon.SneddonContact`).
     half_space : Material
         E2 in Pa, nu2 in [0, 0.5].
     depths : array_like, optional
@@ -292,7 +336,7 @@ def run_indentation(
         curve = solve_contact(
             system, indenter.profile, depths, refined, backend=backend, aligned=aligned
         )
-    exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    exact = contact_law(indenter, effective_modulus(RIGID, half_space))
     if prony is not None:
         exact = RateContact(exact, prony, rate, tuple(float(d) for d in depths))
     forces = [step.force for step in curve.steps]

@@ -15,6 +15,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from ...fem.finite_contact import (
@@ -30,6 +31,7 @@ from ...fem.rubber import RubberModel
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ..contact.accuracy import AccuracyResult, run_mesh_ladder
 from ..contact.indentation import curve_document, default_depths, worst_against_analytic
 
@@ -40,9 +42,9 @@ __all__ = ["FiniteIndentationResult", "run_finite_ladder", "run_finite_study"]
 class FiniteIndentationResult:
     """Finite-strain contact curve of a power-law indenter beside the linear exact solution."""
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     half_space: Material
-    exact: PowerLawContact
+    exact: PowerLawContact | SneddonContact
     curve: FiniteContactCurve
     fit: PowerLawFit
     rubber: RubberModel = field(default_factory=RubberModel)
@@ -51,6 +53,11 @@ class FiniteIndentationResult:
     def steps(self) -> list[FiniteContactStep]:
         """The converged contact at each depth (as :attr:`.IndentationResult.steps`)."""
         return self.curve.steps
+
+    @property
+    def depths(self) -> np.ndarray:
+        """The depths in m."""
+        return np.array([step.depth for step in self.steps])
 
     @property
     def mesh_stats(self) -> dict[str, float]:
@@ -95,7 +102,7 @@ class FiniteIndentationResult:
         then the other rubber keys (:meth:`RubberModel.to_dict`) unless it is the default."""
         return {
             **self.to_dict_model(),
-            **curve_document(self.indenter, self.half_space, self.exact, self.fit),
+            **curve_document(self.indenter, self.half_space, self.exact, self.fit, self.depths),
             "steps": self.step_table(),
             "departures_from_linear": self.departures(),
             "mesh": self.curve.mesh_stats,
@@ -141,7 +148,7 @@ def run_finite_study(
         friction = math.inf if mesh.friction is None else mesh.friction
         bonded = functools.partial(solve_finite_bonded_contact, friction=friction)
     curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded)
-    exact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
+    exact = contact_law(indenter, effective_modulus(RIGID, half_space))
     forces = [s.force for s in curve.steps]
     fit = fit_power_law([s.depth for s in curve.steps], forces, exact.force_exponent)
     return FiniteIndentationResult(indenter, half_space, exact, curve, fit, rubber)

@@ -1,0 +1,251 @@
+"""Quasi-static impact M x'' = -P(x) on any axisymmetric profile, exact by quadrature.
+
+The power law has its closed form (:mod:`shtaerman.theory.impact`, Ateb functions); any other
+profile (:class:`~shtaerman.theory.sneddon.SneddonContact`) is integrated in its contact
+radius a, with x = delta(a):
+
+- the work W(a) = Int_0^x P dx. With dP/da = 2 E* a delta'(a), by parts
+  W = P delta - E* a delta^2 + E* Int_0^a delta(s)^2 ds (for Hertz 8 E* a^5/(15 R^2));
+- the maximum a_c from W(a_c) = M v0^2 / 2, then x_c = delta(a_c), P_c = P(a_c);
+- the time t(a) = Int_0^a delta'(s) ds / v(s), v^2 = v0^2 - 2 W / M, whose 1/sqrt singularity
+  at a_c is removed by a = a_c (1 - u^2); t_c = t(a_c), and t_y = 2 t_c (restitution
+  mirrors compression);
+- impulse 2 M v0 and the paper's Simpson estimate (t_c/3) (P_c + 4 P(t_c/2)).
+
+Each integral is Gauss-Legendre on panels between the table's radii (a tabulated profile's
+delta is smooth between them), with a Legendre interpolant on each panel for the integral to
+any point; the history inverts t(u) by bisection on that interpolant.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+from numpy.polynomial import legendre
+from numpy.typing import ArrayLike
+from scipy.optimize import brentq
+from scipy.special import roots_legendre
+
+from ..validation import InputError, validate_positive
+from .impact import ImpactHistory, check_velocity
+from .sneddon import SneddonContact
+
+__all__ = ["ProfileImpactResult", "solve_profile_impact"]
+
+NODES, WEIGHTS = roots_legendre(16)
+PANELS = 16
+"""Equal panels over [0, a_c] (the work) and over u in [0, 1] (the time), joined by a tabulated
+profile's radii; on each, 16 Gauss-Legendre nodes carry a degree-15 Legendre interpolant whose
+antiderivative gives the integral to any point (round-off for an analytic integrand)."""
+
+
+@dataclass(frozen=True)
+class _Cumulative:
+    """Int_ends[0]^x f for any x in [ends[0], ends[-1]], from f at the panels' Gauss nodes."""
+
+    ends: np.ndarray
+    antiderivative: np.ndarray  # Legendre coefficients per panel, (16 + 1, panels)
+    totals: np.ndarray  # the integral up to each panel end
+
+    @classmethod
+    def of(cls, ends: np.ndarray, integrand) -> _Cumulative:
+        half = 0.5 * np.diff(ends)
+        x = 0.5 * (ends[:-1] + ends[1:])[:, None] + half[:, None] * NODES  # (panels, nodes)
+        fit = legendre.legfit(NODES, integrand(x).T, NODES.size - 1)  # on [-1, 1] per panel
+        anti = legendre.legint(fit, lbnd=-1.0) * half  # Int_-1^y, scaled to x
+        totals = np.concatenate([[0.0], np.cumsum(legendre.legval(1.0, anti))])
+        return cls(ends, anti, totals)
+
+    def __call__(self, x: ArrayLike) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        k = np.clip(np.searchsorted(self.ends, x, side="right") - 1, 0, self.ends.size - 2)
+        y = (2.0 * x - self.ends[k] - self.ends[k + 1]) / (self.ends[k + 1] - self.ends[k])
+        return self.totals[k] + legendre.legval(y, self.antiderivative[:, k], tensor=False)
+
+
+def _panels(law: SneddonContact, top: float, to_the_equator: bool = False) -> np.ndarray:
+    """Panel ends over [0, top] m: equal panels, plus a tabulated profile's radii below (or
+    halving towards the sphere's equator, where delta^2 grows as ln^2)."""
+    ends = np.linspace(0.0, top, PANELS + 1)
+    if to_the_equator:
+        ends = np.union1d(ends, top - (top - ends[-2]) * 0.5 ** np.arange(1, 40))
+    elif not law.sphere:
+        radii = law.indenter.radii
+        ends = np.union1d(ends, radii[radii < top])
+    return ends
+
+
+def _work(law: SneddonContact, squares: _Cumulative, a: ArrayLike) -> np.ndarray:
+    """W(a) = P delta - E* (a delta^2 - Int_0^a delta^2) in J at contact radii a (m)."""
+    a = np.asarray(a, dtype=float)
+    delta, force = law.depth(a), law.force_at_radius(a)
+    return force * delta - law.modulus * (a * delta**2 - squares(a))
+
+
+def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
+    """a_c in m from W(a_c) = M v0^2 / 2: a first guess on equal panels over the whole
+    profile, then the exact root on the fine panels up to 1.25 times it (or the whole)."""
+    energy = 0.5 * mass * velocity**2
+    top = law.max_contact_radius
+    top = math.nextafter(top, 0.0) if law.sphere else top
+    square = lambda s: law.depth(s) ** 2  # noqa: E731
+    rough = _Cumulative.of(_panels(law, top, law.sphere) if law.sphere else _even(top), square)
+    guess = top
+    if float(_work(law, rough, top)) >= energy:
+        guess = brentq(lambda a: float(_work(law, rough, a)) - energy, 0.0, top, rtol=1e-6)
+    for reach in (min(top, 1.25 * guess), top):
+        squares = _Cumulative.of(_panels(law, reach, law.sphere), square)
+        if float(_work(law, squares, reach)) >= energy:
+            return brentq(
+                lambda a, squares=squares: float(_work(law, squares, a)) - energy,
+                0.0,
+                reach,
+                xtol=1e-300,
+                rtol=1e-15,
+            )
+    raise InputError(
+        f"profile: the striker's energy {energy:.6g} J drives the contact beyond the "
+        f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",
+        "profile",
+    )
+
+
+def _even(top: float) -> np.ndarray:
+    """Equal panel ends over [0, top] m."""
+    return np.linspace(0.0, top, PANELS + 1)
+
+
+@dataclass(frozen=True)
+class ProfileImpactResult:
+    """Maxima and durations of a quasi-static impact on a :class:`SneddonContact` profile
+    (SI units; the keys of :class:`shtaerman.theory.impact.ImpactResult`). ``beta`` is NaN
+    and ``force_exponent`` the tip's 3/2: the force law is no power law."""
+
+    mass: float
+    velocity: float
+    x_c: float
+    P_c: float
+    a_c: float
+    p_c: float
+    law: SneddonContact = field(repr=False, compare=False)
+    beta: float = math.nan
+    force_exponent: float = 1.5
+
+    @cached_property
+    def _u_ends(self) -> np.ndarray:
+        """Panel ends in u, a = a_c (1 - u^2): equal, plus the images of the table's radii."""
+        ends = np.sqrt(1.0 - _panels(self.law, self.a_c) / self.a_c)
+        return np.union1d(np.linspace(0.0, 1.0, PANELS + 1), ends)
+
+    @cached_property
+    def _clock(self) -> tuple[_Cumulative, _Cumulative]:
+        """t_c - t(u) (s, the time still to reach a_c) and Int_u^1 delta^2 da (m^3), both on
+        the u panels; the second gives W at the first's nodes."""
+        law, a_c = self.law, self.a_c
+        squares = _Cumulative.of(
+            self._u_ends, lambda u: 2.0 * a_c * u * law.depth(a_c * (1.0 - u**2)) ** 2
+        )
+        whole = float(squares(1.0))
+
+        def rate(u: np.ndarray) -> np.ndarray:  # dt/du = 2 a_c u delta'(a) / v(a), finite at 0
+            a = a_c * (1.0 - u**2)
+            work = law.force_at_radius(a) * law.depth(a) - law.modulus * (
+                a * law.depth(a) ** 2 - (whole - squares(u))
+            )
+            speed = np.sqrt(np.clip(self.velocity**2 - 2.0 * work / self.mass, 0.0, None))
+            return 2.0 * a_c * u * law.depth_slope(a) / speed
+
+        return _Cumulative.of(self._u_ends, rate), squares
+
+    def speed(self, a: ArrayLike) -> np.ndarray:
+        """|dx/dt| in m/s at contact radii a in [0, a_c] m."""
+        a = np.asarray(a, dtype=float)
+        _, squares = self._clock
+        below = float(squares(1.0)) - squares(np.sqrt(np.clip(1.0 - a / self.a_c, 0.0, 1.0)))
+        work = self.law.force_at_radius(a) * self.law.depth(a) - self.law.modulus * (
+            a * self.law.depth(a) ** 2 - below
+        )
+        return np.sqrt(np.clip(self.velocity**2 - 2.0 * work / self.mass, 0.0, None))
+
+    @property
+    def t_c(self) -> float:
+        """Duration of compression in s."""
+        return float(self._clock[0](1.0))
+
+    @property
+    def t_y(self) -> float:
+        """Duration of the whole impact in s (2 t_c)."""
+        return 2.0 * self.t_c
+
+    @property
+    def impulse(self) -> float:
+        """2 M v0 in N s."""
+        return 2.0 * self.mass * self.velocity
+
+    @property
+    def impulse_simpson(self) -> float:
+        """The paper's Simpson estimate (t_c/3) (P_c + 4 P(t_c/2)) in N s."""
+        middle = float(self.history(times=[0.5 * self.t_c]).P[0])
+        return self.t_c / 3.0 * (self.P_c + 4.0 * middle)
+
+    def _u_at(self, left: np.ndarray) -> np.ndarray:
+        """u at which the time still to reach a_c is ``left`` (s): bisection on the monotone
+        interpolant t_c - t(u) (60 halvings: to round-off)."""
+        clock, _ = self._clock
+        low, high = np.zeros_like(left), np.ones_like(left)
+        for _ in range(60):
+            middle = 0.5 * (low + high)
+            below = clock(middle) < left
+            low, high = np.where(below, middle, low), np.where(below, high, middle)
+        return 0.5 * (low + high)
+
+    def history(self, points: int = 201, times: ArrayLike | None = None) -> ImpactHistory:
+        """The histories t, x, v, P, a, p0 over [0, t_y] (``points`` instants, or ``times``
+        in s), each exact to the quadrature's round-off."""
+        if times is None:
+            if int(points) < 2:
+                raise InputError(f"points must be >= 2, got {points!r}")
+            t = np.linspace(0.0, self.t_y, int(points))
+        else:
+            t = np.atleast_1d(np.asarray(times, dtype=float))
+            if np.any((t < 0) | (t > self.t_y)):
+                raise InputError(f"times must lie within [0, t_y] = [0, {self.t_y:.6g}] s")
+        mirrored = np.minimum(t, self.t_y - t)  # restitution mirrors compression
+        a = self.a_c * (1.0 - self._u_at(np.clip(self.t_c - mirrored, 0.0, None)) ** 2)
+        a[mirrored <= 0.0] = 0.0  # first touch and separation
+        v = np.where(t <= self.t_c, 1.0, -1.0) * self.speed(a)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            p0 = np.where(a > 0, self.law.central_pressure_at_radius(a), 0.0)
+        return ImpactHistory(t, self.law.depth(a), v, self.law.force_at_radius(a), a, p0)
+
+    def maxima(self) -> dict[str, float]:
+        """The SI keys of ``shtaerman impact --json``."""
+        names = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
+        return {name: float(getattr(self, name)) for name in names}
+
+
+def solve_profile_impact(mass: float, velocity: float, law: SneddonContact) -> ProfileImpactResult:
+    """The quasi-static impact of ``mass`` kg at ``velocity`` m/s on the profile of ``law``.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        If an input lies outside its range, or a tabulated profile's contact would outgrow
+        the table.
+    """
+    mass = validate_positive("mass", mass, "kg")
+    velocity = validate_positive("velocity", velocity, "m/s")
+    check_velocity(velocity)
+    a_c = _maximum_radius(law, mass, velocity)
+    return ProfileImpactResult(
+        mass,
+        velocity,
+        x_c=float(law.depth(a_c)),
+        P_c=float(law.force_at_radius(a_c)),
+        a_c=a_c,
+        p_c=float(law.central_pressure_at_radius(a_c)),
+        law=law,
+    )

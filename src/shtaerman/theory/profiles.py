@@ -1,0 +1,246 @@
+"""Axisymmetric striker profiles beyond the power law: the exact sphere and a tabulated z(r).
+
+Each profile f(r) (m, f(0) = 0 at the tip, increasing) gives the contact law through
+Sneddon's integrals (:mod:`shtaerman.theory.sneddon`), which need its slope f'(r), and the FEM
+gap (:meth:`profile`). Like :class:`~shtaerman.theory.indenter.PowerLawIndenter`, each has a
+``kind`` and ``parameters`` (the JSON's ``profile`` object) and ``radius_at`` (the radius at
+which the profile reaches a height, which sizes the FEM's contact zone).
+
+A tabulated profile is interpolated in s = r^2: z = G(r^2) with G the monotone cubic (PCHIP)
+through the points (r_i^2, z_i). So the tip is smooth (f'(0) = 0), a sampled paraboloid is
+reproduced exactly (PCHIP reproduces a linear G), and Sneddon's integrals of the piecewise
+cubic G are closed forms (:func:`shtaerman.theory.sneddon.tabulated_integrals`).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.interpolate import PchipInterpolator
+
+from ..validation import InputError, validate_positive
+
+__all__ = ["SphereIndenter", "TabulatedIndenter", "read_profile_csv"]
+
+
+@dataclass(frozen=True)
+class SphereIndenter:
+    """The exact sphere of radius R: z = R - sqrt(R^2 - r^2) for r <= R.
+
+    Parameters
+    ----------
+    radius : float
+        R in m. Beyond r = R the profile stays at z = R (the equator: no part of the sphere
+        is lower there, and no contact reaches it, since the depth diverges as a -> R).
+    """
+
+    radius: float
+
+    kind = "sphere"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "radius", validate_positive("radius", self.radius, "m"))
+
+    @property
+    def parameters(self) -> dict[str, float]:
+        """The JSON's ``profile.parameters``: radius in m."""
+        return {"radius": self.radius}
+
+    def profile(self, radius: ArrayLike) -> np.ndarray:
+        """Height z(r) of the surface above its tip in m at radius r in m."""
+        r = np.minimum(np.abs(np.asarray(radius, dtype=float)), self.radius)
+        return r**2 / (self.radius + np.sqrt((self.radius - r) * (self.radius + r)))
+
+    def slope(self, radius: ArrayLike) -> np.ndarray:
+        """f'(r) = r / sqrt(R^2 - r^2) at radii r >= 0 in m (0 beyond R, where z stays R)."""
+        r = np.asarray(radius, dtype=float)
+        inside = r < self.radius
+        slope = np.zeros_like(r)
+        slope[inside] = r[inside] / np.sqrt((self.radius - r[inside]) * (self.radius + r[inside]))
+        return slope
+
+    def curvature(self, radius: ArrayLike) -> np.ndarray:
+        """f''(r) = R^2 / (R^2 - r^2)^(3/2) in 1/m at radii r >= 0 in m (0 beyond R)."""
+        r = np.asarray(radius, dtype=float)
+        inside = r < self.radius
+        curvature = np.zeros_like(r)
+        squared = (self.radius - r[inside]) * (self.radius + r[inside])
+        curvature[inside] = self.radius**2 / squared**1.5
+        return curvature
+
+    def radius_at(self, height: ArrayLike) -> np.ndarray:
+        """The radius r in m at which z(r) = height (m), sqrt(2 R h - h^2); R beyond h = R."""
+        h = np.minimum(np.asarray(height, dtype=float), self.radius)
+        return np.sqrt(h * (2.0 * self.radius - h))
+
+
+def _float(text: str, row: int, column: str, path: Path) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise InputError(
+            f"profile: {str(path)!r} row {row}, column {column}: expected a finite number in m, "
+            f"got {text!r}",
+            "profile",
+        )
+    return value
+
+
+def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """The columns r and z (m) of a profile CSV with a header naming ``r`` and ``z``.
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        One line naming the file and the row or column at fault.
+    """
+    path = Path(path)
+    try:
+        with path.open(newline="", encoding="utf-8") as handle:
+            rows = list(csv.reader(handle))
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"profile: cannot read {str(path)!r}: {error}", "profile") from None
+    rows = [row for row in rows if any(cell.strip() for cell in row)]
+    header = [cell.strip().lower() for cell in rows[0]] if rows else []
+    missing = [name for name in ("r", "z") if name not in header]
+    if missing:
+        raise InputError(
+            f"profile: {str(path)!r} needs a header row naming the columns r and z (m); "
+            f"column {missing[0]} is missing",
+            "profile",
+        )
+    columns = {name: header.index(name) for name in ("r", "z")}
+    values = []
+    for number, row in enumerate(rows[1:], start=2):
+        for name, index in columns.items():
+            if index >= len(row):
+                raise InputError(
+                    f"profile: {str(path)!r} row {number}, column {name}: missing", "profile"
+                )
+        values.append([_float(row[columns[n]].strip(), number, n, path) for n in ("r", "z")])
+    table = np.array(values, dtype=float).reshape(-1, 2)
+    return table[:, 0], table[:, 1]
+
+
+def _check_table(r: np.ndarray, z: np.ndarray) -> None:
+    """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing."""
+    if r.size < 3:
+        raise InputError(f"profile: needs at least 3 rows (r, z), got {r.size}", "profile")
+    if r[0] != 0.0 or z[0] != 0.0:
+        raise InputError(
+            f"profile: row 2 (the first) must be the tip r = 0, z = 0, got r = {r[0]!r}, "
+            f"z = {z[0]!r}",
+            "profile",
+        )
+    for name, values in (("r", r), ("z", z)):
+        step = np.flatnonzero(np.diff(values) <= 0.0)
+        if step.size:
+            row = int(step[0]) + 3  # the header is row 1, the tip row 2
+            raise InputError(
+                f"profile: column {name} must increase strictly from row to row; row {row} "
+                f"has {name} = {values[step[0] + 1]!r} after {values[step[0]]!r}",
+                "profile",
+            )
+
+
+@dataclass(frozen=True, eq=False)
+class TabulatedIndenter:
+    """A measured tip z(r): points (r_i, z_i) in m from the tip r = 0, z = 0, both increasing.
+
+    Parameters
+    ----------
+    radii, heights : array_like
+        r_i and z_i in m. Interpolated by the monotone cubic (PCHIP) in r^2 (see the module);
+        beyond the last radius the profile is extended by its last slope (no contact may
+        reach it: the entry points refuse a contact radius beyond the table).
+    source : str, optional
+        Where the points came from (the CSV's path), for the JSON.
+    """
+
+    radii: np.ndarray
+    heights: np.ndarray
+    source: str | None = None
+    interpolant: PchipInterpolator = field(init=False, repr=False)
+
+    kind = "tabulated"
+
+    def __post_init__(self) -> None:
+        r = np.asarray(self.radii, dtype=float).ravel()
+        z = np.asarray(self.heights, dtype=float).ravel()
+        if r.shape != z.shape or not (np.all(np.isfinite(r)) and np.all(np.isfinite(z))):
+            raise InputError("profile: radii and heights must be finite, of one length")
+        _check_table(r, z)
+        object.__setattr__(self, "radii", r)
+        object.__setattr__(self, "heights", z)
+        object.__setattr__(self, "interpolant", PchipInterpolator(r**2, z, extrapolate=True))
+
+    @classmethod
+    def from_csv(cls, path: str | Path) -> TabulatedIndenter:
+        """The profile of a CSV file with columns r and z in m (header row; see the class)."""
+        r, z = read_profile_csv(path)
+        try:
+            return cls(r, z, str(path))
+        except InputError as error:
+            raise InputError(f"{error} (in {str(path)!r})", "profile") from None
+
+    @property
+    def parameters(self) -> dict[str, object]:
+        """The JSON's ``profile.parameters``: the file, the number of points and the last
+        radius (m)."""
+        return {"file": self.source, "points": int(self.radii.size), "r_max": self.r_max}
+
+    @property
+    def r_max(self) -> float:
+        """The table's last radius in m: no contact may reach beyond it."""
+        return float(self.radii[-1])
+
+    def profile(self, radius: ArrayLike) -> np.ndarray:
+        """Height z(r) in m at radius r in m (the last slope beyond the table)."""
+        r = np.abs(np.asarray(radius, dtype=float))
+        inside = self.interpolant(np.minimum(r, self.r_max) ** 2)
+        slope = 2.0 * self.r_max * self.interpolant(self.r_max**2, 1)
+        return inside + slope * np.maximum(r - self.r_max, 0.0)
+
+    def slope(self, radius: ArrayLike) -> np.ndarray:
+        """f'(r) = 2 r G'(r^2) at radii r >= 0 in m (the last slope beyond the table)."""
+        r = np.minimum(np.abs(np.asarray(radius, dtype=float)), self.r_max)
+        return 2.0 * r * self.interpolant(r**2, 1)
+
+    def curvature(self, radius: ArrayLike) -> np.ndarray:
+        """f''(r) = 2 G'(r^2) + 4 r^2 G''(r^2) in 1/m at radii r >= 0 in m (0 beyond the
+        table)."""
+        r = np.abs(np.asarray(radius, dtype=float))
+        s = np.minimum(r, self.r_max) ** 2
+        curvature = 2.0 * self.interpolant(s, 1) + 4.0 * s * self.interpolant(s, 2)
+        return np.where(r > self.r_max, 0.0, curvature)
+
+    def radius_at(self, height: ArrayLike) -> np.ndarray:
+        """The radius r in m at which z(r) = height (m) (the monotone inverse)."""
+        h = np.asarray(height, dtype=float)
+        roots = [self._root(float(value)) for value in h.ravel()]
+        return np.array(roots, dtype=float).reshape(h.shape)
+
+    def _root(self, height: float) -> float:
+        from scipy.optimize import brentq
+
+        if height <= 0.0:
+            return 0.0
+        top = float(self.heights[-1])
+        if height >= top:
+            slope = 2.0 * self.r_max * float(self.interpolant(self.r_max**2, 1))
+            return self.r_max + (height - top) / slope
+        s = brentq(
+            lambda s: float(self.interpolant(s)) - height,
+            0.0,
+            self.r_max**2,
+            xtol=1e-300,
+            rtol=1e-15,
+        )
+        return math.sqrt(s)
