@@ -90,7 +90,7 @@ def test_a_vanishing_relaxation_is_the_elastic_finite_strain_impact():
     physics = dict(model="neo-hookean", thickness=PAD)
     elastic = impact(1100.0, 0.3, **physics)
     relaxing = impact(1100.0, 0.3, **physics, prony="1e-9:1e-3")
-    # the same marcher and Newton with a shear stress relaxed by 1e-9: measured 1e-10
+    # the same marcher and Newton with a shear stress relaxed by 1e-9: measured 1e-10 (0.1 m/s)
     assert largest_difference(relaxing, elastic) < 1e-7
 
 
@@ -125,7 +125,7 @@ def test_a_vanishing_relaxation_is_the_elastic_contact_curve(few_rate_steps):
 @pytest.mark.parametrize("model", ["linear", "neo-hookean"])
 def test_no_friction_is_the_frictionless_contact_curve(model):
     """mu = 0 is frictionless exactly: its curve reported the nodal sums of the stick-slip
-    solver (1.9e-3 N, 9.6e-4 above the frictionless aligned force at 0.2 mm) in 6 x the time."""
+    solver (1.9003 N against the frictionless aligned force 1.8985 N at 0.2 mm) in 6 x the time."""
     coulomb, frictionless = curve(model=model, interface="bonded", friction=0.0), curve(model=model)
     assert coulomb.force.tolist() == frictionless.force.tolist()
     assert coulomb.contact_radius.tolist() == frictionless.contact_radius.tolist()
@@ -148,15 +148,24 @@ def test_friction_limits_of_the_linear_impact(density):
     )
     coulomb = impact(density, interface="bonded", friction=100.0)
     assert largest_difference(coulomb, bonded) < 1e-12
-    # and friction matters at all: bonded differs from frictionless (1.1e-4 in P_max at 1 m/s)
+    # and friction matters at all: bonded differs from frictionless (P_max 1.1e-4 massless,
+    # 3e-5 with inertia)
     assert largest_difference(bonded, frictionless) > 1e-5
 
 
 def test_friction_limits_of_the_finite_strain_impact():
-    """Neo-Hookean with inertia on a pad: mu = 0 is frictionless exactly (the solver's None)."""
+    """Neo-Hookean with inertia on a pad: mu = 0 is frictionless (the solver's None), mu = 100
+    never slips, so it is the bonded contact (the same history-dependent Newton)."""
     physics = dict(model="neo-hookean", thickness=PAD)
-    frictionless = impact(1100.0, 0.3, **physics)
+    frictionless, bonded = (
+        impact(1100.0, 0.3, **physics),
+        impact(1100.0, 0.3, **physics, interface="bonded"),
+    )
     assert impact(1100.0, 0.3, **physics, interface="bonded", friction=0.0) == frictionless
+    coulomb = impact(1100.0, 0.3, **physics, interface="bonded", friction=100.0)
+    assert largest_difference(coulomb, bonded) < 1e-12  # measured equal to the last digit
+    # and the interface matters: bonded is 2.6 % stiffer (P_max) than frictionless here
+    assert largest_difference(bonded, frictionless) > 0.01
 
 
 # --- 3. a layer of growing thickness tends to the half-space ---------------------------------
@@ -200,11 +209,14 @@ def test_a_neo_hookean_impact_at_low_velocity_is_linear():
     linear = impact(1100.0, 0.3, thickness=PAD)
     rubber = impact(1100.0, 0.3, thickness=PAD, model="neo-hookean")
     ratio = depth_ratio(PAPER, linear["x_max"])
-    # first order in x/a (0.45 here) as the curve: P_max, x_max within 0.1 x/a
-    for key in ("P_max", "x_max"):
-        assert abs(rubber[key] / linear[key] - 1.0) < 0.1 * ratio
-    # both rebound elastically (restitution of the waves the pad traps and the coarse steps)
-    assert rubber["restitution"] == pytest.approx(linear["restitution"], abs=0.01)
+    # first order in x/a (0.46 here), smaller than on the curve (0.056 x/a): measured x_max
+    # +0.59 %, t_contact +0.50 %, P_max +2e-5 (the rubber's softening in compression and its
+    # stiffening under the pad's confinement nearly cancel at the peak force)
+    for key in ("P_max", "x_max", "t_contact"):
+        assert abs(rubber[key] / linear[key] - 1.0) < 0.02 * ratio
+    # both rebound elastically: the pad traps its waves (measured e = 0.99997 and 1.00004,
+    # the coarse steps' energy error)
+    assert rubber["restitution"] == pytest.approx(linear["restitution"], abs=1e-3)
 
 
 # --- 5. the massless impact is the quasi-static limit of the impact with inertia -------------
