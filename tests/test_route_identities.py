@@ -257,9 +257,15 @@ def test_the_impact_is_the_same_from_the_api_the_cli_a_study_and_a_sweep(tmp_pat
         "[impact]\nmass = 0.7\nvelocity = 1.0\n[numerics]\ntime_steps = 100\nmesh_size = 0.1\n"
     )
     (case,) = sh.run_study(study).studies["case"]["cases"]
-    params = get_kind("dynamic").defaults()
-    params.update(mass=0.7, velocity=1.0, density2=1100.0, **settings)
-    row = execute_case(get_kind("dynamic").case, 0, params)
+    sweep = tmp_path / "one.toml"
+    sweep.write_text(
+        'name = "one"\nkind = "dynamic"\n[parameters]\nmass = 0.7\nshape_coefficient = 5.0\n'
+        "exponent = 1.5\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\ntime_steps = 100\n"
+        "mesh_size = 0.1\nestimate = false\n[axes]\nvelocity = [1.0]\n"
+    )
+    assert sh.sweep(sweep, workers=1, out=tmp_path / "sweep").succeeded == 1
+    (row,) = json.loads((tmp_path / "sweep" / "results.json").read_text())["cases"]
+    assert row["warnings"] == []  # within every limit: x/a 0.67
     for key in QUANTITIES:
         # one code path, deterministic: equal to round-off (the JSON keeps 17 digits)
         assert cli[key] == pytest.approx(api.dynamic[key], rel=1e-12)
