@@ -28,6 +28,7 @@ __all__ = [
     "LINEAR_REACH",
     "MAX_DEPTH_RATIO",
     "MIN_DEPTH_RATIO",
+    "FailedCheckWarning",
     "ValidityWarning",
     "check_reach",
     "depth_ratio",
@@ -50,6 +51,12 @@ model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular ma
 
 class ValidityWarning(UserWarning):
     """A run that reached beyond a validity limit of its model (its numbers are kept)."""
+
+
+class FailedCheckWarning(ValidityWarning):
+    """A dynamic run that fails the studies' own checks (its energy balance, the energy
+    reflected back to the contact): the API warns, the command line exits 1, a study fails
+    the check, a sweep records the case as failed."""
 
 
 def depth_ratio(indenter: PowerLawIndenter, depth: float) -> float:

@@ -14,7 +14,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
-from .dynamic_result import DIFFERENCES, DynamicResult, check_separated
+from .dynamic_result import DIFFERENCES, DynamicResult, check_separated, warn_failed_checks
 from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
@@ -212,7 +212,9 @@ def dynamic(
 
         outputs = dict(out=out, force=force, figure_format=figure_format)
         numbers = dict(time_steps=time_steps, mesh_size=mesh_size, refine=refine)
-        return finite_dynamic(problem, **numbers, estimate=estimate, **outputs)
+        result = finite_dynamic(problem, **numbers, estimate=estimate, **outputs)
+        warn_failed_checks(result, problem)
+        return result
     indenter, body = problem.striker.indenter, problem.body.material
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
@@ -236,6 +238,7 @@ def dynamic(
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
             write_case_figures(case, stage, figure_format)
+    warn_failed_checks(result, problem)
     return result
 
 
