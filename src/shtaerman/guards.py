@@ -12,8 +12,9 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   the finite-strain result is unverified.
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
-:func:`shtaerman.fem.finite_dynamic.run_finite_impact`) and the contact curve call
-:func:`warn_outside_validity` with what they reached.
+:func:`shtaerman.fem.finite_dynamic.run_finite_impact`) and the contact curve (the API, a
+contact sweep case, a contact or layer study) call :func:`warn_outside_validity` with what
+they reached.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ __all__ = [
     "LINEAR_REACH",
     "MAX_DEPTH_RATIO",
     "MIN_DEPTH_RATIO",
+    "FailedCheckWarning",
     "ValidityWarning",
     "check_reach",
     "depth_ratio",
@@ -49,6 +51,12 @@ model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular ma
 
 class ValidityWarning(UserWarning):
     """A run that reached beyond a validity limit of its model (its numbers are kept)."""
+
+
+class FailedCheckWarning(ValidityWarning):
+    """A dynamic run that fails the studies' own checks (its energy balance, the energy
+    reflected back to the contact): the API warns, the command line exits 1, a study fails
+    the check, a sweep records the case as failed."""
 
 
 def depth_ratio(indenter: Indenter, depth: float) -> float:

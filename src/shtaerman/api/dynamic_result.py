@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
+
+if TYPE_CHECKING:
+    from ..problem import Problem
 
 __all__ = ["DIFFERENCES", "DynamicResult", "check_separated"]
 
@@ -133,3 +137,29 @@ def check_separated(dynamic: dict[str, float], run_time: float) -> None:
             f"({run_time:.3g} s): a strongly relaxing body (Prony weights summing near 1) or a "
             "pad it sinks through holds it longer; lower the Prony weights or the velocity"
         )
+
+
+UNTRUSTED = ", so this run's numbers are not to be trusted"
+"""How a failed check's reasons end, on every route that states them."""
+
+
+def check_failures(result: DynamicResult, problem: Problem) -> list[str]:
+    """The studies' own checks (:func:`shtaerman.study.dynamic.loader.dynamic_check_failures`)
+    that the run of ``problem`` fails, one reason each: its energy balance, and the energy
+    reflected back (of the radiated energy; of M v0^2/2 on a layer; none without waves)."""
+    from ..study.dynamic.loader import dynamic_check_failures
+
+    of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
+    massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
+    reflected = 0.0 if massless else result.reflected_energy_fraction
+    radiated = result.energy_radiated_fraction
+    return dynamic_check_failures(result.energy_balance_error, reflected, of, radiated)
+
+
+def warn_failed_checks(result: DynamicResult, problem: Problem) -> None:
+    """A :class:`shtaerman.guards.FailedCheckWarning`, one line, when the run fails a check."""
+    from ..guards import FailedCheckWarning
+
+    failures = check_failures(result, problem)
+    if failures:
+        warnings.warn("; ".join(failures) + UNTRUSTED, FailedCheckWarning, stacklevel=3)

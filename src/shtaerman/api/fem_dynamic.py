@@ -14,7 +14,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
-from .dynamic_result import DIFFERENCES, DynamicResult, check_separated
+from .dynamic_result import DIFFERENCES, DynamicResult, check_separated, warn_failed_checks
 from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
@@ -240,6 +240,7 @@ def dynamic(
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
             _write_figures(case, result, stage, figure_format)
+    warn_failed_checks(result, problem)
     return result
 
 

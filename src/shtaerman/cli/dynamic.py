@@ -4,14 +4,16 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 
+from ..api.dynamic_result import UNTRUSTED, check_failures
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
+from ..guards import FailedCheckWarning
 from ..output.files import staged_file, write_csv
 from ..problem import Problem, check_options
-from ..study.dynamic.loader import dynamic_check_failures
 from ..theory.materials import Material
 from ..vocabulary import entry
 from .common import (
@@ -137,7 +139,8 @@ def run(args: argparse.Namespace) -> int:
         check_options(problem, [name for name in OPTIONS if given(args, name)] + _format(args))
     refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
-    with in_option_words():
+    with in_option_words(), warnings.catch_warnings():
+        warnings.simplefilter("ignore", FailedCheckWarning)  # said below, with the exit code
         result = dynamic(problem, **_numerics(args, problem))
     warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
@@ -148,13 +151,9 @@ def run(args: argparse.Namespace) -> int:
         print_json(report)
     else:
         print(finite_dynamic_text(report) if problem.body.finite else dynamic_text(report))
-    of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
-    massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
-    reflected = 0.0 if massless else result.reflected_energy_fraction
-    radiated = result.energy_radiated_fraction
-    failures = dynamic_check_failures(result.energy_balance_error, reflected, of, radiated)
+    failures = check_failures(result, problem)
     if failures:
-        warn("; ".join(failures) + ", so this run's numbers are not to be trusted")
+        warn("; ".join(failures) + UNTRUSTED)
         return 1
     return 0
 

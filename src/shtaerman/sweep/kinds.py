@@ -221,12 +221,15 @@ CONTACT_OUTPUTS = {
 def contact_case(p: dict[str, Any]) -> CaseResult:
     """FEM contact curve: fitted beta and exponent, worst relative errors, size and time (the
     errors are the case's outputs, mapped over the grid, not checks)."""
+    from ..guards import warn_outside_validity
     from ..study.contact.indentation import run_indentation
 
     indenter, half_space, depths, mesh, solver = _contact_inputs(p)
     start = time.perf_counter()
     result = run_indentation(indenter, half_space, depths, mesh, backend=solver)
     seconds = time.perf_counter() - start
+    deepest = result.steps[-1].depth  # recorded in the case's warnings, as the API warns
+    warn_outside_validity(indenter, deepest, None, False, "the deepest depth")
     errors = result.errors()
     outputs = {
         "beta_fem": float(result.fit.beta_fixed_exponent),

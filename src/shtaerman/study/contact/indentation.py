@@ -301,7 +301,8 @@ def run_indentation(
         Forces of the vertex-aligned contacts (default) or nodal sums, see
         :func:`shtaerman.fem.contact.solve_contact`. ``mesh.interface`` "bonded" presses an
         indenter the surface sticks to (:func:`shtaerman.fem.stick.solve_bonded_contact`,
-        nodal sums).
+        nodal sums), or slides on past Coulomb's ``mesh.friction`` (0: the frictionless
+        solve, whose contact it is).
     prony : PronySeries, optional
         A viscoelastic body pressed at ``rate`` m/s
         (:func:`shtaerman.fem.viscoelastic_contact.press_at_rate`, frictionless, nodal sums:
@@ -327,7 +328,7 @@ def run_indentation(
         curve = press_at_rate(
             system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False
         )
-    elif mesh.interface == "bonded":
+    elif mesh.interface == "bonded" and mesh.friction != 0.0:  # mu = 0 is frictionless
         friction = math.inf if mesh.friction is None else mesh.friction
         curve = solve_bonded_contact(
             system, indenter.profile, depths, refined, backend=backend, friction=friction

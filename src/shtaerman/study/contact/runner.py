@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import IntegrationWarning
 
+from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ...theory.impact_ode import integrate_impact
@@ -157,6 +158,8 @@ def run_contact_study(
         refine=study.refine,
     )
     contact = accuracy.finest
+    deepest, thickness = contact.steps[-1].depth, contact.mesh_stats.get("thickness")
+    warn_outside_validity(study.indenter, deepest, thickness, False, "the deepest depth")
     report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
     law = fem_contact_law(contact, modulus)
     fitted = solve_impact(study.mass, study.velocity, law)
