@@ -38,7 +38,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 
-__all__ = ["Correction", "exact_impact", "fe_correction", "needs_fe"]
+__all__ = ["Correction", "RowCorrection", "exact_impact", "fe_correction", "fe_rows", "needs_fe"]
 
 
 class Known(Protocol):
@@ -78,6 +78,16 @@ class Correction:
         stretched = t / self.time_scale
         delta = np.interp(stretched / duration, self.tau, self.shape, left=0.0, right=0.0)
         return self.force_scale * (exact(stretched) + peak * delta)
+
+    runs = 1
+    """FE impacts behind this correction."""
+
+    def moved(self, key: str) -> Correction:
+        """This correction with the ratio of ``key`` (P_max or t_contact) moved by its FE
+        error estimate."""
+        scale = {"P_max": "force_scale", "t_contact": "time_scale"}[key]
+        factor = 1.0 + self.errors[key]
+        return dataclasses.replace(self, **{scale: getattr(self, scale) * factor})
 
     def entry(self, problem: Problem) -> dict[str, object]:
         """The correction as the result's JSON (``corrections``)."""
@@ -168,3 +178,72 @@ def fe_correction(problem: Problem, known: Known, values: Mapping[str, float],
     errors = {k: float(estimate.get(k) or 0.0) for k in ("P_max", "t_contact")}
     errors = {k: v if math.isfinite(v) else 0.0 for k, v in errors.items()}
     return Correction(c_p, c_t, tau, fe - ex, errors, at)
+
+
+@dataclass(frozen=True)
+class RowCorrection:
+    """The FE / exact ratios of the restitution and the contact time at each drop velocity
+    of rebound data, measured at one point (one FE run per velocity)."""
+
+    restitution: np.ndarray
+    """e(FE) / e(exact) per velocity."""
+    contact_time: np.ndarray
+    """t_contact(FE) / t_contact(exact) per velocity."""
+    errors: Mapping[str, float]
+    """The FE runs' largest relative error estimates of e (restitution) and t_contact."""
+    at: Mapping[str, float]
+    """The point of the FE runs."""
+
+    @property
+    def runs(self) -> int:
+        """FE impacts behind this correction (one per velocity)."""
+        return len(self.restitution)
+
+    def apply(self, rows: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        """The corrected (restitution, contact time) of the exact ``rows``."""
+        ratios = zip(self.restitution, self.contact_time, strict=True)
+        return [(e * r, t * c) for (e, t), (r, c) in zip(rows, ratios, strict=True)]
+
+    def moved(self, key: str) -> RowCorrection:
+        """This correction with the ratios of ``key`` (restitution or t_contact) moved by
+        their FE error estimate."""
+        name = {"restitution": "restitution", "t_contact": "contact_time"}[key]
+        return dataclasses.replace(self, **{name: getattr(self, name) * (1 + self.errors[key])})
+
+    def entry(self, problem: Problem) -> dict[str, object]:
+        """The correction as the result's JSON (``corrections``)."""
+        return {
+            "name": _name(problem),
+            "restitution_scale": self.restitution.tolist(),
+            "time_scale": self.contact_time.tolist(),
+            "fe_error": dict(self.errors),
+            "at": dict(self.at),
+        }
+
+
+def fe_rows(problem: Problem, known: Known, values: Mapping[str, float],
+            prony: PronySeries | None, refine: float, velocities: np.ndarray,
+            ) -> RowCorrection:  # fmt: skip
+    """The :class:`RowCorrection` measured by one FE impact of ``problem`` at ``values`` per
+    drop velocity (each with its error-estimate ladder at ``refine``)."""
+    from ..api.fem_dynamic import dynamic
+
+    ratios, errors = [], {"restitution": 0.0, "t_contact": 0.0}
+    for velocity in velocities:
+        point = {**values, "velocity": float(velocity)}
+        case, at = _point(problem, known, point, prony)
+        run = dynamic(case, refine=refine, estimate=True)
+        law = PowerLawContact(known.indenter, values["E_star"])
+        if prony is None:
+            e, t_c = 1.0, solve_impact(values["mass"], velocity, law).t_y
+        else:
+            exact = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
+            e, t_c = exact.restitution, exact.t_contact
+        ratios.append((run.restitution / e, run.t_contact / t_c))
+        estimate = run.error_estimate or {}
+        for key in errors:
+            value = float(estimate.get(key) or 0.0)
+            errors[key] = max(errors[key], value if math.isfinite(value) else 0.0)
+    at.pop("velocity")
+    ratio = np.array(ratios)
+    return RowCorrection(ratio[:, 0], ratio[:, 1], errors, at)

@@ -36,13 +36,13 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
     parts whose corrections the fit does not have (friction; a pad, waves and finite strain
     but in a force history) and an impact's measurement without the striker's mass (and a
     force history's velocity)."""
-    if needs_fe(problem) and kind != "force-history":
+    if needs_fe(problem) and kind == "indentation":
         name = "thickness" if problem.geometry.thickness is not None else "density2"
         name = "model" if problem.body.model != "linear" else name
         raise InputError(
-            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for a "
-            f"force history only; a {kind} fit takes the half-space's exact models (leave "
-            "thickness, density2 and model unset)",
+            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for an "
+            "impact's force history or rebound data; an indentation fit takes the "
+            "half-space's exact power law (leave thickness, density2 and model unset)",
             name,
         )
     if problem.interface.kind != "frictionless":
@@ -155,7 +155,7 @@ def fit(
     result = dataclasses.replace(
         result,
         corrections=[c.entry(problem) for c in corrections[-1:]],
-        fe_runs=len(corrections),
+        fe_runs=sum(c.runs for c in corrections),
         forward_model=model.description
         + ("; corrected by FE impacts (see corrections)" if corrections else ""),
         forward_error=_forward_entries(model, shifts),
