@@ -188,20 +188,20 @@ def test_a_pad_is_refused_for_an_indentation_curve(tmp_path, capsys):
 
 
 def test_rebound_data_on_a_pad_are_fitted_with_a_correction_per_velocity():
-    """Contact times at 1, 2 and 3 m/s on the elastic pad (FE at refine 0.7, 1 % relative
-    noise; its restitution, 0.9999, says nothing of E2) fitted from E2 = 5 MPa: one FE run
+    """Contact times at 1 and 3 m/s on the elastic pad (FE at refine 0.7, 1 % relative noise,
+    given; its restitution, 0.9999, says nothing of E2) fitted from E2 = 5 MPa: one FE run
     per velocity per round."""
-    velocities = np.array([1.0, 2.0, 3.0])
+    velocities = np.array([1.0, 3.0])
     runs = [sh.dynamic(pad_at(v), refine=0.7, estimate=False) for v in velocities]
-    noisy = 1 + 0.01 * np.random.default_rng(2).standard_normal(3)
+    noisy = 1 + 0.01 * np.random.default_rng(2).standard_normal(2)
     data = {"velocity": velocities, "contact_time": np.array([r.t_contact for r in runs]) * noisy}
-    result = sh.fit("rebound", data, pad_at(2.0, e2=5e6), unknowns="E2", refine=0.5)
+    result = sh.fit("rebound", data, pad_at(2.0, e2=5e6), unknowns="E2", refine=0.5, noise=0.01)
     assert covers(result.fitted["E2"], E2)
     (correction,) = result.corrections
-    assert result.fe_runs % 3 == 0 and 3 <= result.fe_runs <= 15  # 3 velocities a round
-    # the pad shortens the contact more at 3 m/s (deeper into it): measured 0.91 to 0.86
+    assert result.fe_runs % 2 == 0 and 2 <= result.fe_runs <= 10  # 2 velocities a round
+    # the pad shortens the contact more at 3 m/s (deeper into it): measured 0.92 and 0.87, 6 FE runs
     ratios = correction["time_scale"]
-    assert ratios[2] < ratios[1] < ratios[0] < 0.95
+    assert ratios[1] < ratios[0] < 0.95
     assert result.forward_error["E_star"]["fe_t_contact"] > 0
 
 
