@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 
 import shtaerman as sh
 from shtaerman.cli import main
+from shtaerman.cli.fit import fit_text
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
 
@@ -55,6 +56,9 @@ def test_a_pad_and_waves_drop_test_is_fitted_with_its_fe_corrections(pad_record)
     assert correction["at"]["E2"] == pytest.approx(result.fitted["E2"]["value"], rel=0.01)
     # the FE error estimate entered the interval (in quadrature, so it widens it)
     assert result.forward_error["E_star"]["fe_P_max"] > 0
+    assert "peak force x1.18" in fit_text(result) and f"({result.fe_runs} FE runs)" in fit_text(
+        result
+    )
 
 
 def test_without_the_corrections_the_half_space_model_misses_the_pad(pad_record):
@@ -203,6 +207,7 @@ def test_rebound_data_on_a_pad_are_fitted_with_a_correction_per_velocity():
     ratios = correction["time_scale"]
     assert ratios[1] < ratios[0] < 0.95
     assert result.forward_error["E_star"]["fe_t_contact"] > 0
+    assert "contact time x(0.92" in fit_text(result) and "per velocity" in fit_text(result)
 
 
 def pad_at(velocity, e2=E2):
