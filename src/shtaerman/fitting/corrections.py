@@ -41,7 +41,7 @@ from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 __all__ = ["Correction", "RowCorrection", "exact_impact", "fe_correction", "fe_rows", "needs_fe"]
 
 
-class Known(Protocol):
+class KnownParts(Protocol):
     """What the corrections read of the fit's known parts (:class:`.models.Known`)."""
 
     indenter: PowerLawIndenter
@@ -120,7 +120,7 @@ def _name(problem: Problem) -> str:
     return "FE impact: " + ", ".join(parts)
 
 
-def exact_impact(known: Known, values: Mapping[str, float], prony: PronySeries | None,
+def exact_impact(known: KnownParts, values: Mapping[str, float], prony: PronySeries | None,
                  ) -> tuple[Callable[[np.ndarray], np.ndarray], float, float]:  # fmt: skip
     """(force in N at times in s from the touch, peak force in N, contact time in s) of the
     exact quasi-static impact (the Ateb impact, or the viscoelastic one with ``prony``)."""
@@ -144,7 +144,7 @@ def exact_impact(known: Known, values: Mapping[str, float], prony: PronySeries |
     return relaxing, float(run.P_max), float(run.t_contact)
 
 
-def _point(problem: Problem, known: Known, values: Mapping[str, float],
+def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
     rest = 1.0 / values["E_star"] - known.striker.compliance
@@ -160,7 +160,7 @@ def _point(problem: Problem, known: Known, values: Mapping[str, float],
     return dataclasses.replace(problem, striker=striker, body=body), at
 
 
-def fe_correction(problem: Problem, known: Known, values: Mapping[str, float],
+def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, float],
                   prony: PronySeries | None, refine: float) -> Correction:  # fmt: skip
     """The :class:`Correction` measured by one FE impact of ``problem`` at ``values`` (with
     its error-estimate ladder at ``refine``)."""
@@ -221,7 +221,7 @@ class RowCorrection:
         }
 
 
-def fe_rows(problem: Problem, known: Known, values: Mapping[str, float],
+def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
             prony: PronySeries | None, refine: float, velocities: np.ndarray,
             ) -> RowCorrection:  # fmt: skip
     """The :class:`RowCorrection` measured by one FE impact of ``problem`` at ``values`` per
