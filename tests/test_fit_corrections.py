@@ -214,3 +214,47 @@ def pad_at(velocity, e2=E2):
     """The pad's drop test at ``velocity``."""
     return sh.Problem.impact(INDENTER, sh.Material(e2, NU2, density=DENSITY), mass=MASS,
                              velocity=velocity, thickness=THICKNESS)  # fmt: skip
+
+
+def test_an_fe_run_without_its_error_estimate_adds_no_fe_error():
+    """A correction whose ladder gave no estimate of P_max (NaN) moves only t_contact. A 1 %
+    longer contact is met by a stiffer E*: at most by 1.01^(8/3) - 1 = 2.7 % (t_c ~
+    E*^(-3/8) for n = 3/2, were the time all the fit saw), less since the peak force then
+    rises (P_c ~ E*^(3/8)); measured 2.35 %."""
+    from shtaerman.fitting.corrections import Correction
+    from shtaerman.fitting.data import measurement
+    from shtaerman.fitting.engine import solve
+    from shtaerman.fitting.iteration import forward_error
+    from shtaerman.fitting.models import build_model
+    from shtaerman.fitting.run import known_of
+
+    case = sh.Problem.impact(INDENTER, sh.Material(E2, 0.5), mass=0.7, velocity=3.0)
+    tau = np.linspace(0.0, 1.0, 5)
+    errors = {"P_max": math.nan, "t_contact": 0.01}
+    correction = Correction(1.0, 1.0, tau, np.zeros(5), errors, {})
+    known = known_of(case, "force-history")
+    known = type(known)(**{**known.__dict__, "correction": correction})
+    t = np.linspace(0.0, 0.02, 200)
+    data = measurement("force-history", {"time": t, "force": force_of(known, t)})
+    model = build_model(known, data, ["E2"])
+    sol = solve(model)
+    shifts = forward_error(known, data, ["E2"], None, model, sol)
+    assert set(shifts) == {"fe_t_contact"}
+    assert 0.5 * 0.0269 < shifts["fe_t_contact"][0] / sol.values[0] < 0.0269
+
+
+def force_of(known, t):
+    from shtaerman.fitting.models import all_values, force_history
+
+    return force_history(known, all_values(known, {}), t)
+
+
+def test_a_missing_fe_error_estimate_is_nan_not_zero():
+    """An FE run whose ladder gave no estimate (estimate_missing) must not read as exact."""
+    from types import SimpleNamespace
+
+    from shtaerman.fitting.corrections import relative_error
+
+    assert math.isnan(relative_error(SimpleNamespace(error_estimate=None), "P_max"))
+    assert math.isnan(relative_error(SimpleNamespace(error_estimate={"P_max": None}), "P_max"))
+    assert relative_error(SimpleNamespace(error_estimate={"P_max": 2e-3}), "P_max") == 2e-3

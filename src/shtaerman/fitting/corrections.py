@@ -31,6 +31,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ..api.dynamic_result import DynamicResult
 from ..problem import Problem
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
@@ -38,7 +39,15 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 
-__all__ = ["Correction", "RowCorrection", "exact_impact", "fe_correction", "fe_rows", "needs_fe"]
+__all__ = [
+    "Correction",
+    "RowCorrection",
+    "exact_impact",
+    "fe_correction",
+    "fe_rows",
+    "needs_fe",
+    "relative_error",
+]
 
 
 class KnownParts(Protocol):
@@ -67,7 +76,7 @@ class Correction:
     shape: np.ndarray
     """delta(tau): the FE shape minus the exact shape, each over its peak."""
     errors: Mapping[str, float]
-    """The FE run's relative error estimates of P_max and t_contact (0 if not estimated)."""
+    """The FE run's relative error estimates of P_max and t_contact (NaN if not estimated)."""
     at: Mapping[str, float]
     """The point of the FE run: E2, nu2, mass, velocity and the Prony weights."""
 
@@ -174,10 +183,15 @@ def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, floa
     tau = np.linspace(0.0, 1.0, SHAPE_POINTS)
     fe = np.interp(tau * run.t_contact, history["t"], history["P"]) / run.P_max
     ex = exact(tau * duration) / peak
-    estimate = run.error_estimate or {}
-    errors = {k: float(estimate.get(k) or 0.0) for k in ("P_max", "t_contact")}
-    errors = {k: v if math.isfinite(v) else 0.0 for k, v in errors.items()}
+    errors = {k: relative_error(run, k) for k in ("P_max", "t_contact")}
     return Correction(c_p, c_t, tau, fe - ex, errors, at)
+
+
+def relative_error(run: DynamicResult, key: str) -> float:
+    """The FE run's estimated relative error of ``key``; NaN when its ladder gave none (the
+    result's fe_error is then null and no FE error enters the interval)."""
+    value = (run.error_estimate or {}).get(key)
+    return float(value) if value is not None and math.isfinite(value) else math.nan
 
 
 @dataclass(frozen=True)
@@ -240,10 +254,9 @@ def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
             exact = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
             e, t_c = exact.restitution, exact.t_contact
         ratios.append((run.restitution / e, run.t_contact / t_c))
-        estimate = run.error_estimate or {}
-        for key in errors:
-            value = float(estimate.get(key) or 0.0)
-            errors[key] = max(errors[key], value if math.isfinite(value) else 0.0)
+        for key, known_error in errors.items():  # NaN if any run has none
+            error = relative_error(run, key)
+            errors[key] = math.nan if math.isnan(error) else max(known_error, error)
     at.pop("velocity")
     ratio = np.array(ratios)
     return RowCorrection(ratio[:, 0], ratio[:, 1], errors, at)
