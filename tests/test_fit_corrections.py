@@ -258,3 +258,9 @@ def test_a_missing_fe_error_estimate_is_nan_not_zero():
     assert math.isnan(relative_error(SimpleNamespace(error_estimate=None), "P_max"))
     assert math.isnan(relative_error(SimpleNamespace(error_estimate={"P_max": None}), "P_max"))
     assert relative_error(SimpleNamespace(error_estimate={"P_max": 2e-3}), "P_max") == 2e-3
+
+
+def test_nu2_is_refused_with_the_fe_corrections():
+    with pytest.raises(sh.InputError, match="fit: nu2 cannot be fitted with the FE corr"):
+        sh.fit("force-history", {"time": [0.0, 1e-3, 2e-3], "force": [0.0, 5.0, 0.0]},
+               pad(), unknowns="nu2")  # fmt: skip

@@ -139,6 +139,12 @@ def fit(
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
     refine = validate_positive("refine", refine)
+    if needs_fe(problem) and "nu2" in names:
+        raise InputError(
+            "fit: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
+            "acts beyond the combined modulus the exact model sees); give nu2 and fit E2",
+            "fit",
+        )
     if noise is not None:
         noise = validate_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
