@@ -30,10 +30,11 @@ DESCRIPTION = """\
 Fit the unknowns of a problem to a measurement by the exact quasi-static models: the power-law
 contact law (indentation), the Ateb impact or with --prony the viscoelastic one (Lee-Radok,
 Ting) (force-history, rebound, resilience). The known values are the usual options; those of
-the unknowns are the starting values. A force history on a pad (--thickness), with waves
-(--density2) or at finite strain (--model) is corrected by FE impacts at the fitted point
-(fit, FE run, fit again: a handful of FE runs); their error estimates and the viscoelastic
-impact's step error widen the intervals. Friction is not fitted.
+the unknowns are the starting values. A force history or rebound data on a pad
+(--thickness), with waves (--density2) or at finite strain (--model) are corrected by FE
+impacts at the fitted point (fit, FE runs, fit again: a handful of rounds, one FE run per
+drop velocity of rebound data); their error estimates and the viscoelastic impact's step
+error widen the intervals. Friction is not fitted, nor an indentation curve on a pad.
 
 KIND and the CSV columns it reads (header 'name [unit]'):
   indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known)
@@ -130,10 +131,14 @@ def _corrections_text(result: FitResult) -> list[str]:
         return ["  corrections:   none (a half-space of no density at small strain)"]
     rows = []
     for item in result.corrections:
-        rows.append(
-            f"  corrections:   {item['name']}: peak force x{item['force_scale']:.4g}, contact "
-            f"time x{item['time_scale']:.4g} at the fitted point ({result.fe_runs} FE runs)"
-        )
+        if "force_scale" in item:  # a force history's
+            sizes = f"peak force x{item['force_scale']:.4g}, contact time x{item['time_scale']:.4g}"
+        else:  # rebound data's, per velocity
+            e = ", ".join(f"{r:.4g}" for r in item["restitution_scale"])
+            t = ", ".join(f"{r:.4g}" for r in item["time_scale"])
+            sizes = f"restitution x({e}), contact time x({t}) per velocity"
+        rows.append(f"  corrections:   {item['name']}: {sizes} at the fitted point "
+                    f"({result.fe_runs} FE runs)")  # fmt: skip
     return rows
 
 

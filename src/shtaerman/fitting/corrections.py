@@ -31,6 +31,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ..api.dynamic_result import DynamicResult
 from ..problem import Problem
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
@@ -38,10 +39,18 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 
-__all__ = ["Correction", "exact_impact", "fe_correction", "needs_fe"]
+__all__ = [
+    "Correction",
+    "RowCorrection",
+    "exact_impact",
+    "fe_correction",
+    "fe_rows",
+    "needs_fe",
+    "relative_error",
+]
 
 
-class Known(Protocol):
+class KnownParts(Protocol):
     """What the corrections read of the fit's known parts (:class:`.models.Known`)."""
 
     indenter: PowerLawIndenter
@@ -67,7 +76,7 @@ class Correction:
     shape: np.ndarray
     """delta(tau): the FE shape minus the exact shape, each over its peak."""
     errors: Mapping[str, float]
-    """The FE run's relative error estimates of P_max and t_contact (0 if not estimated)."""
+    """The FE run's relative error estimates of P_max and t_contact (NaN if not estimated)."""
     at: Mapping[str, float]
     """The point of the FE run: E2, nu2, mass, velocity and the Prony weights."""
 
@@ -78,6 +87,16 @@ class Correction:
         stretched = t / self.time_scale
         delta = np.interp(stretched / duration, self.tau, self.shape, left=0.0, right=0.0)
         return self.force_scale * (exact(stretched) + peak * delta)
+
+    runs = 1
+    """FE impacts behind this correction."""
+
+    def moved(self, key: str) -> Correction:
+        """This correction with the ratio of ``key`` (P_max or t_contact) moved by its FE
+        error estimate."""
+        scale = {"P_max": "force_scale", "t_contact": "time_scale"}[key]
+        factor = 1.0 + self.errors[key]
+        return dataclasses.replace(self, **{scale: getattr(self, scale) * factor})
 
     def entry(self, problem: Problem) -> dict[str, object]:
         """The correction as the result's JSON (``corrections``)."""
@@ -110,7 +129,7 @@ def _name(problem: Problem) -> str:
     return "FE impact: " + ", ".join(parts)
 
 
-def exact_impact(known: Known, values: Mapping[str, float], prony: PronySeries | None,
+def exact_impact(known: KnownParts, values: Mapping[str, float], prony: PronySeries | None,
                  ) -> tuple[Callable[[np.ndarray], np.ndarray], float, float]:  # fmt: skip
     """(force in N at times in s from the touch, peak force in N, contact time in s) of the
     exact quasi-static impact (the Ateb impact, or the viscoelastic one with ``prony``)."""
@@ -134,7 +153,7 @@ def exact_impact(known: Known, values: Mapping[str, float], prony: PronySeries |
     return relaxing, float(run.P_max), float(run.t_contact)
 
 
-def _point(problem: Problem, known: Known, values: Mapping[str, float],
+def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
     rest = 1.0 / values["E_star"] - known.striker.compliance
@@ -150,7 +169,7 @@ def _point(problem: Problem, known: Known, values: Mapping[str, float],
     return dataclasses.replace(problem, striker=striker, body=body), at
 
 
-def fe_correction(problem: Problem, known: Known, values: Mapping[str, float],
+def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, float],
                   prony: PronySeries | None, refine: float) -> Correction:  # fmt: skip
     """The :class:`Correction` measured by one FE impact of ``problem`` at ``values`` (with
     its error-estimate ladder at ``refine``)."""
@@ -164,7 +183,80 @@ def fe_correction(problem: Problem, known: Known, values: Mapping[str, float],
     tau = np.linspace(0.0, 1.0, SHAPE_POINTS)
     fe = np.interp(tau * run.t_contact, history["t"], history["P"]) / run.P_max
     ex = exact(tau * duration) / peak
-    estimate = run.error_estimate or {}
-    errors = {k: float(estimate.get(k) or 0.0) for k in ("P_max", "t_contact")}
-    errors = {k: v if math.isfinite(v) else 0.0 for k, v in errors.items()}
+    errors = {k: relative_error(run, k) for k in ("P_max", "t_contact")}
     return Correction(c_p, c_t, tau, fe - ex, errors, at)
+
+
+def relative_error(run: DynamicResult, key: str) -> float:
+    """The FE run's estimated relative error of ``key``; NaN when its ladder gave none (the
+    result's fe_error is then null and no FE error enters the interval)."""
+    value = (run.error_estimate or {}).get(key)
+    return float(value) if value is not None and math.isfinite(value) else math.nan
+
+
+@dataclass(frozen=True)
+class RowCorrection:
+    """The FE / exact ratios of the restitution and the contact time at each drop velocity
+    of rebound data, measured at one point (one FE run per velocity)."""
+
+    restitution: np.ndarray
+    """e(FE) / e(exact) per velocity."""
+    contact_time: np.ndarray
+    """t_contact(FE) / t_contact(exact) per velocity."""
+    errors: Mapping[str, float]
+    """The FE runs' largest relative error estimates of e (restitution) and t_contact."""
+    at: Mapping[str, float]
+    """The point of the FE runs."""
+
+    @property
+    def runs(self) -> int:
+        """FE impacts behind this correction (one per velocity)."""
+        return len(self.restitution)
+
+    def apply(self, rows: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        """The corrected (restitution, contact time) of the exact ``rows``."""
+        ratios = zip(self.restitution, self.contact_time, strict=True)
+        return [(e * r, t * c) for (e, t), (r, c) in zip(rows, ratios, strict=True)]
+
+    def moved(self, key: str) -> RowCorrection:
+        """This correction with the ratios of ``key`` (restitution or t_contact) moved by
+        their FE error estimate."""
+        name = {"restitution": "restitution", "t_contact": "contact_time"}[key]
+        return dataclasses.replace(self, **{name: getattr(self, name) * (1 + self.errors[key])})
+
+    def entry(self, problem: Problem) -> dict[str, object]:
+        """The correction as the result's JSON (``corrections``)."""
+        return {
+            "name": _name(problem),
+            "restitution_scale": self.restitution.tolist(),
+            "time_scale": self.contact_time.tolist(),
+            "fe_error": dict(self.errors),
+            "at": dict(self.at),
+        }
+
+
+def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
+            prony: PronySeries | None, refine: float, velocities: np.ndarray,
+            ) -> RowCorrection:  # fmt: skip
+    """The :class:`RowCorrection` measured by one FE impact of ``problem`` at ``values`` per
+    drop velocity (each with its error-estimate ladder at ``refine``)."""
+    from ..api.fem_dynamic import dynamic
+
+    ratios, errors = [], {"restitution": 0.0, "t_contact": 0.0}
+    for velocity in velocities:
+        point = {**values, "velocity": float(velocity)}
+        case, at = _point(problem, known, point, prony)
+        run = dynamic(case, refine=refine, estimate=True)
+        law = PowerLawContact(known.indenter, values["E_star"])
+        if prony is None:
+            e, t_c = 1.0, solve_impact(values["mass"], velocity, law).t_y
+        else:
+            exact = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
+            e, t_c = exact.restitution, exact.t_contact
+        ratios.append((run.restitution / e, run.t_contact / t_c))
+        for key, known_error in errors.items():  # NaN if any run has none
+            error = relative_error(run, key)
+            errors[key] = math.nan if math.isnan(error) else max(known_error, error)
+    at.pop("velocity")
+    ratio = np.array(ratios)
+    return RowCorrection(ratio[:, 0], ratio[:, 1], errors, at)

@@ -27,15 +27,16 @@ from scipy.stats import norm
 
 from ..problem import Problem
 from ..validation import NumericalFailureError
-from .corrections import Correction, fe_correction
+from .corrections import Correction, RowCorrection, fe_correction, fe_rows
 from .data import Measurement
 from .engine import CONFIDENCE, Solution, solve
 from .models import Known, Model, all_values, build_model, prony_at
 
-__all__ = ["MAX_FE_RUNS", "TOLERANCE", "corrected_fit", "forward_error"]
+__all__ = ["MAX_ROUNDS", "TOLERANCE", "corrected_fit", "forward_error"]
 
-MAX_FE_RUNS = 8
-"""Most FE runs of one fit."""
+MAX_ROUNDS = 8
+"""Most rounds of FE runs of one fit (one FE run a round for a force history, one per drop
+velocity for rebound data)."""
 MIN_STEPS = 20
 """The fewest time steps the viscoelastic impact takes."""
 TOLERANCE = 0.1
@@ -61,15 +62,20 @@ def corrected_fit(
     names: Sequence[str],
     noise: float | None,
     refine: float,
-) -> tuple[Known, Model, Solution, list[Correction]]:
-    """Fit, FE run, fit again, until the values settle: the known parts with the last
-    correction, the model, its solution and every correction measured (one per FE run)."""
+) -> tuple[Known, Model, Solution, list[Correction | RowCorrection]]:
+    """Fit, FE run(s), fit again, until the values settle: the known parts with the last
+    correction, the model, its solution and every correction measured (one per round)."""
     model = build_model(known, measured, names)
     sol = solve(model, noise)
-    corrections: list[Correction] = []
-    while len(corrections) < MAX_FE_RUNS:
+    corrections: list[Correction | RowCorrection] = []
+    while len(corrections) < MAX_ROUNDS:
         values = all_values(known, _fitted(model, sol))
-        correction = fe_correction(problem, known, values, prony_at(known, values), refine)
+        prony = prony_at(known, values)
+        if measured.kind == "force-history":
+            correction = fe_correction(problem, known, values, prony, refine)
+        else:
+            velocities = measured.columns["velocity"]
+            correction = fe_rows(problem, known, values, prony, refine, velocities)
         corrections.append(correction)
         known = dataclasses.replace(known, correction=correction)
         new_model = build_model(known, measured, names, _fitted(model, sol))
@@ -79,7 +85,7 @@ def corrected_fit(
         if not moved:
             return known, model, sol, corrections
     raise NumericalFailureError(
-        f"the FE corrections did not settle in {MAX_FE_RUNS} FE runs (the fitted values "
+        f"the FE corrections did not settle in {MAX_ROUNDS} rounds of FE runs (the fitted values "
         "still moved by more than a tenth of their intervals): give starting values nearer "
         "the data (E2, ...) or a finer FE run (refine)"
     )
@@ -105,13 +111,10 @@ def forward_error(
     starts = _fitted(model, sol)
     shifts = {}
     correction = known.correction
-    if correction is not None:
-        for key, scale in (("P_max", "force_scale"), ("t_contact", "time_scale")):
-            error = correction.errors[key]
+    if correction is not None:  # one shift per FE error estimate
+        for key, error in correction.errors.items():
             if error > 0:
-                moved = {scale: getattr(correction, scale) * (1.0 + error)}
-                changed = dataclasses.replace(correction, **moved)
-                again = dataclasses.replace(known, correction=changed)
+                again = dataclasses.replace(known, correction=correction.moved(key))
                 shifts[f"fe_{key}"] = _refit(again, measured, names, noise, starts) - sol.values
     if known.prony is not None:
         other = known.steps // 2 if known.steps >= 2 * MIN_STEPS else 2 * known.steps

@@ -26,7 +26,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material, effective_modulus
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
 from ..validation import InputError
-from .corrections import Correction, exact_impact
+from .corrections import Correction, RowCorrection, exact_impact
 from .data import Measurement
 
 __all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "all_values", "build_model", "prony_at"]
@@ -60,8 +60,9 @@ class Known:
     time_offset: float = 0.0
     baseline: float = 0.0
     steps: int = 200
-    correction: Correction | None = None
-    """The FE correction of a force history (a pad, waves, finite strain), held fixed."""
+    correction: Correction | RowCorrection | None = None
+    """The FE correction of a force history or of rebound data (a pad, waves, finite
+    strain), held fixed."""
 
     @property
     def modulus(self) -> float:
@@ -142,7 +143,7 @@ def force_history(known: Known, values: Mapping[str, float], time: np.ndarray) -
     exact, peak, duration = exact_impact(known, values, prony_at(known, values))
     if known.correction is None:
         return exact(t) + values["baseline"]
-    return known.correction.apply(exact, peak, duration, t) + values["baseline"]
+    return known.correction.apply(exact, peak, duration, t) + values["baseline"]  # type: ignore[union-attr]
 
 
 def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarray]:
@@ -152,6 +153,8 @@ def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarra
     def predict(fitted: Mapping[str, float]) -> np.ndarray:
         values = all_values(known, fitted)
         rows = [_impact(known, values, v) for v in data.columns["velocity"]]
+        if isinstance(known.correction, RowCorrection):
+            rows = known.correction.apply(rows)
         out = {
             "restitution": [e for e, _ in rows],
             "contact_time": [t for _, t in rows],

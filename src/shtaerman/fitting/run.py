@@ -36,13 +36,13 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
     parts whose corrections the fit does not have (friction; a pad, waves and finite strain
     but in a force history) and an impact's measurement without the striker's mass (and a
     force history's velocity)."""
-    if needs_fe(problem) and kind != "force-history":
+    if needs_fe(problem) and kind == "indentation":
         name = "thickness" if problem.geometry.thickness is not None else "density2"
         name = "model" if problem.body.model != "linear" else name
         raise InputError(
-            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for a "
-            f"force history only; a {kind} fit takes the half-space's exact models (leave "
-            "thickness, density2 and model unset)",
+            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for an "
+            "impact's force history or rebound data; an indentation fit takes the "
+            "half-space's exact power law (leave thickness, density2 and model unset)",
             name,
         )
     if problem.interface.kind != "frictionless":
@@ -139,6 +139,12 @@ def fit(
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
     refine = validate_positive("refine", refine)
+    if needs_fe(problem) and "nu2" in names:
+        raise InputError(
+            "fit: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
+            "acts beyond the combined modulus the exact model sees); give nu2 and fit E2",
+            "fit",
+        )
     if noise is not None:
         noise = validate_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
@@ -155,7 +161,7 @@ def fit(
     result = dataclasses.replace(
         result,
         corrections=[c.entry(problem) for c in corrections[-1:]],
-        fe_runs=len(corrections),
+        fe_runs=sum(c.runs for c in corrections),
         forward_model=model.description
         + ("; corrected by FE impacts (see corrections)" if corrections else ""),
         forward_error=_forward_entries(model, shifts),
