@@ -371,6 +371,19 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
+def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
+    """Refuse, naming mass and velocity, default depths whose contact zone is too large for
+    the body's modulus (:func:`shtaerman.fem.contact.check_contact_scale`)."""
+    from ..fem.contact import check_contact_scale
+    from ..study.contact.indentation import refined_radius
+
+    striker = problem.striker
+    mass = entry("mass").default if striker.mass is None else striker.mass
+    velocity = entry("velocity").default if striker.velocity is None else striker.velocity
+    radius = refined_radius(problem.striker.indenter, depths, mesh)
+    check_contact_scale(problem.body.material.youngs_modulus, radius, (mass, velocity))
+
+
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
@@ -418,6 +431,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     if model != "linear":
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
+    elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
+        _check_scale(problem, depths, mesh)
     if estimate:
         from ..study.contact.indentation import refined_radius
 
