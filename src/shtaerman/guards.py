@@ -97,8 +97,10 @@ def warn_outside_validity(
     what: str = "the striker's approach",
 ) -> None:
     """Issue a :class:`ValidityWarning` for each limit of :func:`outside_validity` passed."""
+    from .validation import caller_stacklevel
+
     for sentence in outside_validity(indenter, deepest, thickness, finite, what):
-        warnings.warn(sentence, ValidityWarning, stacklevel=3)
+        warnings.warn(sentence, ValidityWarning, stacklevel=caller_stacklevel())
 
 
 def check_reach(
