@@ -2,6 +2,8 @@
 
 from pathlib import Path
 
+import pytest
+
 from shtaerman.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -75,3 +77,23 @@ def test_effects_says_a_warning_of_every_run_once():
     said = [str(warning.message) for warning in caught if "6 m/s exceeds" in str(warning.message)]
     assert len(said) == 1 and "(runs:" not in said[0]  # it applies to every run
     assert {warning.filename for warning in caught} == {__file__}
+
+
+@pytest.mark.parametrize(
+    ("argv", "named"),
+    [
+        # ZeroDivisionError tracebacks: the mesh estimates' products underflowed
+        (["contact", "--no-estimate", "--refine", "1e300"], "--refine"),
+        (["contact", "--no-estimate", "--growth", "1e-300"], "--growth"),
+        (["dynamic", "--no-estimate", "--growth", "1e-300"], "--growth"),
+        # a 300-digit integer in the message
+        (["dynamic", "--no-estimate", "--mesh-size", "1e-300"], "--mesh-size"),
+        # a singular matrix / an unsettled active set: forces below the float range
+        (["contact", "--no-estimate", "--depths", "1e-300"], "--depths"),
+        (["contact", "--no-estimate", "--depths", "1e-200"], "--depths"),
+    ],
+)
+def test_extreme_numerics_are_refused_in_one_line(capsys, argv, named):
+    code, _, err = run(capsys, *argv)
+    assert code == 2 and err.count("\n") == 1 and "Traceback" not in err
+    assert named in err and len(err) < 400

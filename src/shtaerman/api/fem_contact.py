@@ -192,6 +192,27 @@ def contact_depths(
     return default_depths(indenter, body, mass, velocity, RIGID if striker is None else striker)
 
 
+def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
+    """Refuse given depths whose exact force (Shtaerman's, on the rigid striker) leaves the
+    normal floating-point range: the FE system's numbers underflow there (depth 1e-200 m
+    left the active set unsettled, 1e-300 m a singular matrix)."""
+    import sys
+
+    from ..theory.contact import PowerLawContact
+    from ..theory.materials import effective_modulus
+
+    law = PowerLawContact(indenter, effective_modulus(RIGID, body))
+    for depth in (depths[0], depths[-1]):
+        force = float(law.force(depth))
+        if not sys.float_info.min <= force <= sys.float_info.max:
+            raise InputError(
+                f"depths: {depth:g} m gives a contact force of {force:.3g} N, outside the "
+                f"floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}] "
+                "the FEM computes in; give depths of a physical size",
+                "depths",
+            )
+
+
 def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[str, Any]:
     """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the impact
     whose x_c the default depths reach; unchanged when the depths were given."""
@@ -433,6 +454,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
         mesh.refined(refine)  # the finest level first: its message names refine's value
     elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
         _check_scale(problem, depths, mesh)
+    else:
+        _check_force_range(indenter, body, depths)
     if estimate:
         from ..study.contact.indentation import refined_radius
 
