@@ -88,6 +88,11 @@ def test_effects_says_a_warning_of_every_run_once():
         (["dynamic", "--no-estimate", "--growth", "1e-300"], "--growth"),
         # a 300-digit integer in the message
         (["dynamic", "--no-estimate", "--mesh-size", "1e-300"], "--mesh-size"),
+        # an array of infs (the refined radius), an OverflowError (beta^2 of the radiation
+        # estimate; then the message blamed the mass and the velocity)
+        (["dynamic", "--no-estimate", "--mesh-margin", "1e300"], "--mesh-margin"),
+        (["dynamic", "--no-estimate", "--shape-coefficient", "1e-300"], "--shape-coefficient:"),
+        (["dynamic", "--no-estimate", "--shape-coefficient", "1e30"], "--shape-coefficient:"),
         # a singular matrix / an unsettled active set: forces below the float range
         (["contact", "--no-estimate", "--depths", "1e-300"], "--depths"),
         (["contact", "--no-estimate", "--depths", "1e-200"], "--depths"),
