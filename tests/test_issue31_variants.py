@@ -102,3 +102,16 @@ def test_extreme_numerics_are_refused_in_one_line(capsys, argv, named):
     code, _, err = run(capsys, *argv)
     assert code == 2 and err.count("\n") == 1 and "Traceback" not in err
     assert named in err and len(err) < 400
+
+
+@pytest.mark.parametrize("command", ["verify", "sweep"])
+def test_verify_and_sweep_name_the_out_option(capsys, tmp_path, command):
+    # a symbolic link at --out is refused (and left alone) naming the option, as contact,
+    # dynamic and effects do; verify and sweep said the API's keyword "out:"
+    (tmp_path / "precious").write_text("keep\n")
+    (tmp_path / "link").symlink_to(tmp_path / "precious")
+    first = {"verify": ["hertz", "--quick"], "sweep": [ROOT / "sweeps" / "impact-velocity.toml"]}
+    argv = [command, *first[command], "--workers", "1", "--out", tmp_path / "link"]
+    code, _, err = run(capsys, *argv)
+    assert code == 2 and err.startswith("shtaerman: error: --out: ") and err.count("\n") == 1
+    assert (tmp_path / "precious").read_text() == "keep\n"

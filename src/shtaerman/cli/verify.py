@@ -88,6 +88,7 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_folder(
         Path(args.out) if args.out is not None else default_out(),
         force=args.force,
+        option="--out",
         resume_marker=marker,
     )
     workers = args.workers or default_workers()
