@@ -115,3 +115,12 @@ def test_verify_and_sweep_name_the_out_option(capsys, tmp_path, command):
     code, _, err = run(capsys, *argv)
     assert code == 2 and err.startswith("shtaerman: error: --out: ") and err.count("\n") == 1
     assert (tmp_path / "precious").read_text() == "keep\n"
+
+
+def test_effects_refuses_a_pad_no_run_can_take(capsys):
+    # thickness 1e300 m is outside the pad's range for this impact in every run that has the
+    # pad: it printed a table of refused pad rows and exited 0; dynamic refuses it (exit 2)
+    argv = ["effects", "--no-estimate", "--time-steps", "50", "--mesh-size", "0.2"]
+    code, out, err = run(capsys, *argv, "--thickness", "1e300")
+    last = err.strip().splitlines()[-1]  # after the progress lines on stderr
+    assert code == 2 and out == "" and last.startswith("shtaerman: error: --thickness: must lie")

@@ -66,6 +66,25 @@ def _error_note(problem: Problem, estimate: bool) -> str:
     return "the run gave no error estimate (see its estimate_missing)"
 
 
+OWN_INPUTS = {
+    "pad": ("thickness", "base", "layer_rate"),
+    "waves": ("density2",),
+    "viscoelasticity": ("prony",),
+    "friction": ("friction",),
+}
+"""The inputs of an effect: one of them refused where the effect is alone (the paper's problem
+with it) is bad input, as ``shtaerman dynamic`` refuses it, not a row of the table."""
+
+
+def _own_input(error: Exception, effect: str | None) -> bool:
+    """Whether ``error`` is an :class:`InputError` naming an input of ``effect``."""
+    if not isinstance(error, InputError):
+        return False
+    leading = re.match(r"(\w+): ", str(error))
+    name = error.parameter or (leading[1] if leading else None)
+    return name in OWN_INPUTS.get(effect or "", ())
+
+
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
     from ..fem_dynamic import dynamic
@@ -84,6 +103,8 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
         kind = "refused" if isinstance(error, InputError) else "failed"
         if variant.role == "none" and isinstance(error, InputError):
             raise  # the paper's own problem: the numerics are bad input for every run
+        if variant.role == "alone" and _own_input(error, variant.effect):
+            raise  # the effect's own input out of its range: no run can measure it
         seconds = time.perf_counter() - start
         return Run(**head, refused=f"{kind}: {error}", seconds=seconds, notes=notes)
     values = {key: float(getattr(result, key)) for key in QUANTITIES}
@@ -164,7 +185,9 @@ def effects(
     ------
     shtaerman.validation.InputError
         If a part or a numerical option is out of range, or the paper's problem itself (every
-        effect off) is refused with these numerics: before the effects are run.
+        effect off) is refused with these numerics: before the effects are run; or an effect
+        alone is refused for its own input (:data:`OWN_INPUTS`: a pad's thickness outside its
+        range for this impact).
     """
     given = _numerics(refine, estimate, dict(time_steps=time_steps, mesh_size=mesh_size))
     more = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
