@@ -124,3 +124,24 @@ def test_effects_refuses_a_pad_no_run_can_take(capsys):
     code, out, err = run(capsys, *argv, "--thickness", "1e300")
     last = err.strip().splitlines()[-1]  # after the progress lines on stderr
     assert code == 2 and out == "" and last.startswith("shtaerman: error: --thickness: must lie")
+
+
+@pytest.mark.parametrize(
+    ("kind", "line", "named"),
+    [
+        # an OverflowError traceback in the dynamic check's arithmetic
+        ("dynamic", "velocity = 1e300", "velocity 1e+300 m/s give P_c = inf"),
+        # the effects kind took no vocabulary range: the Material's keyword was named
+        ("effects", "E2 = 0", "parameters.E2 must lie in [1e-3, 1e100] Pa"),
+        ("effects", "density2 = 1e300", "parameters.density2 must lie in"),
+        ("effects", "nu2 = 1e300", "parameters.nu2 must lie in [0, 0.5]"),
+    ],
+)
+def test_a_sweep_refuses_extreme_values_at_load_naming_its_key(capsys, tmp_path, kind, line, named):
+    text = f'kind = "{kind}"\nname = "t"\n[parameters]\n{line}\n[axes]\nmesh_size = [0.2]\n'
+    (tmp_path / "s.toml").write_text(text)
+    code, _, err = run(
+        capsys, "sweep", tmp_path / "s.toml", "--workers", "1", "--out", tmp_path / "o"
+    )
+    assert code == 2 and err.count("\n") == 1 and named in err
+    assert not (tmp_path / "o").exists()  # refused before any case ran
