@@ -145,3 +145,10 @@ def test_a_sweep_refuses_extreme_values_at_load_naming_its_key(capsys, tmp_path,
     )
     assert code == 2 and err.count("\n") == 1 and named in err
     assert not (tmp_path / "o").exists()  # refused before any case ran
+
+
+def test_contact_with_a_flat_striker_names_the_striker(capsys):
+    # shape coefficient 1e-300: the paper's impact would not fit either, so the mass and the
+    # velocity (the first fix's blame) are not at fault
+    code, _, err = run(capsys, "contact", "--no-estimate", "--shape-coefficient", "1e-300")
+    assert code == 2 and err.startswith("shtaerman: error: --E2, --shape-coefficient: ")

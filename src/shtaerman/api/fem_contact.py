@@ -396,13 +396,16 @@ def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     """Refuse, naming mass and velocity, default depths whose contact zone is too large for
     the body's modulus (:func:`shtaerman.fem.contact.check_contact_scale`)."""
     from ..fem.contact import check_contact_scale
-    from ..study.contact.indentation import refined_radius
+    from ..study.contact.indentation import default_depths, refined_radius
 
     striker = problem.striker
     mass = entry("mass").default if striker.mass is None else striker.mass
     velocity = entry("velocity").default if striker.velocity is None else striker.velocity
-    radius = refined_radius(problem.striker.indenter, depths, mesh)
-    check_contact_scale(problem.body.material.youngs_modulus, radius, (mass, velocity))
+    indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
+    paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh)
+    check_contact_scale(modulus, paper)  # fails at the paper's impact too: not the mass's fault
+    radius = refined_radius(indenter, depths, mesh)
+    check_contact_scale(modulus, radius, (mass, velocity))
 
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:

@@ -569,7 +569,7 @@ def check_contact_scale(
         "the mixed u-p system then loses digits (a soft body under a huge contact)"
     )
     if impact is None:
-        raise InputError(f"{where}; check E2 and the depths", "E2")
+        raise InputError(f"E2, shape_coefficient: {where}; check them and the depths", "E2")
     raise InputError(
         f"mass, velocity: {impact[0]:g} kg at {impact[1]:g} m/s set the depths (up to the "
         f"impact's x_c), a contact zone of {radius:.3g} m: {where}; lower the mass or the "
