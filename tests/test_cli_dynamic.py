@@ -106,7 +106,7 @@ def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys):
         (["--time-steps", "10"], "time-steps must be an integer in [50, 5000], got '10'"),
         (["--time-steps", "1.5"], "time-steps must be an integer"),
         (["--nu2", "-0.2"], "nu2 must lie in [0, 0.5]"),
-        (["--mesh-margin", "0.5"], "margin must be > 1"),
+        (["--mesh-margin", "0.5"], "mesh-margin must lie in (1, 10]"),
         (
             ["--refine", "1e3"],
             "--refine must lie in [0.25, 500] with 200 steps per t_y (it scales the time steps",

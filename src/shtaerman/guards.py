@@ -106,8 +106,10 @@ def warn_outside_validity(
     what: str = "the striker's approach",
 ) -> None:
     """Issue a :class:`ValidityWarning` for each limit of :func:`outside_validity` passed."""
+    from .validation import caller_stacklevel
+
     for sentence in outside_validity(indenter, deepest, thickness, finite, what):
-        warnings.warn(sentence, ValidityWarning, stacklevel=3)
+        warnings.warn(sentence, ValidityWarning, stacklevel=caller_stacklevel())
 
 
 def check_reach(
@@ -128,6 +130,16 @@ def check_reach(
     if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
         return
     ratio = depth_ratio(indenter, depth)
+    high = MAX_DEPTH_RATIO if finite else LINEAR_REACH
+    if not MIN_DEPTH_RATIO <= ratio <= high and _striker_at_fault(indenter, depth, q, high):
+        raise InputError(
+            f"shape_coefficient: the striker z = {indenter.shape_coefficient:g} "
+            f"r^{indenter.exponent:g} at {mass:g} kg and {velocity:g} m/s reaches depth / "
+            f"contact radius {ratio:.2g}, outside the [{MIN_DEPTH_RATIO:g}, {high:g}] an FE "
+            "impact resolves, where the paper's striker would not: a striker of a physical "
+            "size (the exact quasi-static impact, shtaerman impact, takes any)",
+            "shape_coefficient",
+        )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     if not ratio >= MIN_DEPTH_RATIO:
         raise InputError(
@@ -137,7 +149,6 @@ def check_reach(
             "the velocity",
             "mass",
         )
-    high = MAX_DEPTH_RATIO if finite else LINEAR_REACH
     if not ratio <= high:
         deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / indenter.exponent))
         fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
@@ -148,3 +159,16 @@ def check_reach(
             "this striker, mass and body (or a smaller mass)",
             "velocity",
         )
+
+
+def _striker_at_fault(indenter: PowerLawIndenter, depth: float, q: float, high: float) -> bool:
+    """Whether the paper's shape coefficient, at the same mass, velocity and body, would bring
+    the depth ``depth`` (m) of this impact (force exponent ``q``) within x/a in
+    [:data:`MIN_DEPTH_RATIO`, ``high``]: then the striker's, not the impact's, is at fault
+    (x_c ~ A^(1 / (n (q + 1))) as beta ~ A^(-1/n))."""
+    from .vocabulary import entry
+
+    paper = PowerLawIndenter(entry("shape_coefficient").default, indenter.exponent)
+    scale = paper.shape_coefficient / indenter.shape_coefficient
+    moved = depth * scale ** (1.0 / (indenter.exponent * (q + 1.0)))
+    return MIN_DEPTH_RATIO <= depth_ratio(paper, moved) <= high

@@ -7,6 +7,7 @@ the parameter, the value given and the valid range; the CLI prints that line and
 from __future__ import annotations
 
 import math
+import os
 import re
 import sys
 from collections.abc import Sequence
@@ -18,6 +19,7 @@ __all__ = [
     "InputError",
     "NumericalFailureError",
     "bound_text",
+    "caller_stacklevel",
     "shown",
     "validate_increasing",
     "validate_poisson",
@@ -91,6 +93,22 @@ def _abbreviated(message: str) -> str:
         return f"[{', '.join(items[:SHOWN_ITEMS])}, ... ({len(items)} values)]"
 
     return _FLAT_LIST.sub(short, message)
+
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def caller_stacklevel() -> int:
+    """The ``stacklevel`` for :func:`warnings.warn`, called in the function that calls this
+    one, that makes the warning name the first frame outside this package: the user's line
+    that called ``sh.*`` (or the command line's entry point), whatever the depth of the call
+    inside the package (``warnings.warn(skip_file_prefixes=...)`` from Python 3.12)."""
+    frame = sys._getframe(1)
+    level = 1
+    while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        frame = frame.f_back
+        level += 1
+    return level
 
 
 class NumericalFailureError(RuntimeError):

@@ -663,8 +663,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "refined radius / largest contact radius",
         "Refined-zone radius / contact radius",
         1.25,
-        valid=Range(1.0, 10.0),
-        valid_by_kind={"dynamic": Range(1.0)},
+        valid=Range(1.0, 10.0),  # dynamic too: 1e300 made the mesh's radii inf
         by_kind={"dynamic": 1.3},
         old_names=("margin",),
         setting="margin",

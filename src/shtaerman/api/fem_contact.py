@@ -195,6 +195,27 @@ def contact_depths(
     return default_depths(indenter, body, mass, velocity, RIGID if striker is None else striker)
 
 
+def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
+    """Refuse given depths whose exact force (Shtaerman's or Sneddon's, on the rigid striker)
+    leaves the normal floating-point range: the FE system's numbers underflow there (depth
+    1e-200 m left the active set unsettled, 1e-300 m a singular matrix)."""
+    import sys
+
+    from ..theory.materials import effective_modulus
+    from ..theory.sneddon import contact_law
+
+    law = contact_law(indenter, effective_modulus(RIGID, body))
+    for depth in (depths[0], depths[-1]):
+        force = float(law.force(depth))
+        if not sys.float_info.min <= force <= sys.float_info.max:
+            raise InputError(
+                f"depths: {depth:g} m gives a contact force of {force:.3g} N, outside the "
+                f"floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}] "
+                "the FEM computes in; give depths of a physical size",
+                "depths",
+            )
+
+
 def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[str, Any]:
     """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the impact
     whose x_c the default depths reach; unchanged when the depths were given."""
@@ -374,6 +395,22 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
+def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
+    """Refuse, naming mass and velocity, default depths whose contact zone is too large for
+    the body's modulus (:func:`shtaerman.fem.contact.check_contact_scale`)."""
+    from ..fem.contact import check_contact_scale
+    from ..study.contact.indentation import default_depths, refined_radius
+
+    striker = problem.striker
+    mass = entry("mass").default if striker.mass is None else striker.mass
+    velocity = entry("velocity").default if striker.velocity is None else striker.velocity
+    indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
+    paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh)
+    check_contact_scale(modulus, paper)  # fails at the paper's impact too: not the mass's fault
+    radius = refined_radius(indenter, depths, mesh)
+    check_contact_scale(modulus, radius, (mass, velocity))
+
+
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
@@ -421,6 +458,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     if model != "linear":
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
+    elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
+        _check_scale(problem, depths, mesh)
+    else:
+        _check_force_range(indenter, body, depths)
     if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
         from ..theory.sneddon import contact_law
 

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from ..validation import InputError
-from .common import add_figure_format, add_inputs
+from .common import add_figure_format, add_inputs, in_option_words
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -85,11 +85,12 @@ def run(args: argparse.Namespace) -> int:
     marker = PROGRESS_FILE if args.resume else None
     if args.out is None:
         adopt_killed_runs(Path.cwd(), DEFAULT_OUT_PREFIX)
-    out = check_output_folder(
-        Path(args.out) if args.out is not None else default_out(),
-        force=args.force,
-        resume_marker=marker,
-    )
+    with in_option_words():  # "--out: ...", not the API's keyword
+        out = check_output_folder(
+            Path(args.out) if args.out is not None else default_out(),
+            force=args.force,
+            resume_marker=marker,
+        )
     workers = args.workers or default_workers()
     options = {
         "quick": args.quick,

@@ -553,6 +553,30 @@ def _field_coefficients(
     return solutions
 
 
+def check_contact_scale(
+    youngs_modulus: float, radius: float, impact: tuple[float, float] | None = None
+) -> None:
+    """Refuse a contact zone of ``radius`` m on a body of ``youngs_modulus`` Pa whose ratio is
+    below :data:`MIN_MODULUS_PER_LENGTH` Pa/m (the mixed u-p system loses digits there).
+    ``impact``: the mass (kg) and velocity (m/s) whose x_c set the depths, named as the cause
+    (None: the depths were given, E2 and the depths are named)."""
+    ratio = youngs_modulus / radius
+    if ratio >= MIN_MODULUS_PER_LENGTH:
+        return
+    where = (
+        f"E2 / contact zone radius = {ratio:.3g} Pa/m is below {MIN_MODULUS_PER_LENGTH:g}: "
+        "the mixed u-p system then loses digits (a soft body under a huge contact)"
+    )
+    if impact is None:
+        raise InputError(f"E2, shape_coefficient: {where}; check them and the depths", "E2")
+    raise InputError(
+        f"mass, velocity: {impact[0]:g} kg at {impact[1]:g} m/s set the depths (up to the "
+        f"impact's x_c), a contact zone of {radius:.3g} m: {where}; lower the mass or the "
+        "velocity, or give the depths",
+        "mass",
+    )
+
+
 def solve_contact(
     system: ElasticSystem,
     profile: Profile,
@@ -588,13 +612,7 @@ def solve_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     if depths.size > MAX_DEPTHS:
         raise InputError(f"depths: at most {MAX_DEPTHS} per curve, got {depths.size}", "depths")
-    ratio = system.youngs_modulus / candidate_radius
-    if ratio < MIN_MODULUS_PER_LENGTH:
-        raise InputError(
-            f"E2 / contact zone radius = {ratio:.3g} Pa/m is below {MIN_MODULUS_PER_LENGTH:g}: "
-            f"the mixed u-p system then loses digits (a soft body under a huge contact); "
-            f"check E2 and the depths"
-        )
+    check_contact_scale(system.youngs_modulus, candidate_radius)
     free = system.free_dofs()
     start = time.perf_counter()
     factorization = factorize_stiffness(system, free, candidate_radius, backend)

@@ -22,6 +22,7 @@ the rest as numerical dissipation.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from dataclasses import dataclass, replace
 
@@ -251,10 +252,13 @@ def estimate_dofs(settings: DynamicSettings) -> int:
     4.5 dofs per element.
     """
     h0, g = settings.size, settings.growth
-    strip = 1.0 / (h0 * g)
-    fan = (math.pi / (g * g)) * math.log(max(settings.domain * g / h0, 2.0))
+    try:
+        strip = 1.0 / (h0 * g)
+        fan = (math.pi / (g * g)) * math.log(max(settings.domain * g / h0, 2.0))
+    except ZeroDivisionError:  # a size or growth whose product underflows: no mesh
+        return round(sys.float_info.max)
     axis = math.log(max(h0 / settings.axis_size, 1.0)) / 0.1 * 4.0
-    return int(4.5 * 2.0 * (strip + fan + axis))
+    return round(min(4.5 * 2.0 * (strip + fan + axis), sys.float_info.max))
 
 
 @dataclass(frozen=True)
@@ -572,7 +576,7 @@ def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
     if estimate > MAX_DOFS:
         mesh = "mesh" if settings.thickness is None else "layer mesh"
         raise InputError(
-            f"the {mesh} would have about {estimate} dofs, above the limit {MAX_DOFS}; "
+            f"the {mesh} would have about {estimate:.3g} dofs, above the limit {MAX_DOFS}; "
             f"lower --refine, or coarsen --mesh-size (now {settings.size!r}) or --growth (now "
             f"{settings.growth!r})"
         )

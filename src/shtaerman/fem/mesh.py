@@ -17,6 +17,7 @@ import contextlib
 import importlib.resources
 import math
 import os
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -374,12 +375,15 @@ def estimate_elements(settings: MeshSettings) -> float:
     """
     s, g = settings.size, settings.growth
     axis, axis_growth = min(settings.axis_size, s), settings.axis_growth
-    return (
-        3.19 / (g * s)
-        + 3.14 * math.log1p(g * settings.domain / s) / g**2
-        + 3.67 * math.log(s / axis) / axis_growth**2
-        + 167.0
-    )
+    try:
+        return (
+            3.19 / (g * s)
+            + 3.14 * math.log1p(g * settings.domain / s) / g**2
+            + 3.67 * math.log(s / axis) / axis_growth**2
+            + 167.0
+        )
+    except (ZeroDivisionError, OverflowError):  # sizes or growths so small that their
+        return math.inf  # products underflow (growth 1e-300, refine 1e300): no mesh
 
 
 LAYER_EXTENT = 10.0
@@ -559,9 +563,10 @@ class MeshSettings:
     @property
     def estimated_dofs(self) -> int:
         """Unknowns of the FEM system on this mesh, estimated before meshing (within about
-        30 %, see :func:`estimate_elements`); a layer's own estimate needs the refined
-        radius and is checked when it is built (:meth:`layer_dofs`)."""
-        return round(DOFS_PER_ELEMENT * estimate_elements(self))
+        30 %, see :func:`estimate_elements`; the largest float where it is unbounded); a
+        layer's own estimate needs the refined radius and is checked when it is built
+        (:meth:`layer_dofs`)."""
+        return round(min(DOFS_PER_ELEMENT * estimate_elements(self), sys.float_info.max))
 
     def layer_dofs(self, thickness: float) -> int:
         """Estimated unknowns of the layer mesh of ``thickness`` refined radii."""
@@ -597,7 +602,8 @@ class MeshSettings:
                 f"(size {self.size:.3g}, growth {self.growth:.3g}, domain {self.domain:.3g}, "
                 f"axis_size {min(self.axis_size, self.size):.3g}, axis_growth "
                 f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it "
-                f"(--mesh-size, a lower --refine) or, in a contact curve, raise --max-dofs"
+                f"(--mesh-size, --growth, a lower --refine) or, in a contact curve, raise "
+                "--max-dofs"
             )
 
     def build(self, refined_radius: float) -> MeshTri:

@@ -30,7 +30,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..signals import call_trapping
-from ..validation import InputError
+from ..validation import InputError, caller_stacklevel
 from .pattern import Pattern
 
 __all__ = [
@@ -143,11 +143,15 @@ def _checked_pardiso(matrix: sp.spmatrix, explicit: bool) -> PardisoFactorizatio
     except (ImportError, OSError) as error:  # pypardiso present, MKL library missing
         if explicit:
             raise InputError(f"solver 'pardiso' cannot load MKL: {error}", "solver") from None
-        warnings.warn(f"PARDISO unavailable ({error}); using SuperLU", stacklevel=3)
+        warnings.warn(
+            f"PARDISO unavailable ({error}); using SuperLU", stacklevel=caller_stacklevel()
+        )
         return None
     if backward_error(matrix, factorization) <= ACCURACY_CHECK:
         return factorization
-    warnings.warn("PARDISO factorization inaccurate; falling back to SuperLU", stacklevel=3)
+    warnings.warn(
+        "PARDISO factorization inaccurate; falling back to SuperLU", stacklevel=caller_stacklevel()
+    )
     return None
 
 

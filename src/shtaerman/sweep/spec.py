@@ -287,13 +287,18 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
     converted = _convert(parameter, value)
     if converted is None:
         raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
-    item = _ENTRIES.get(name)
-    if item is not None and kind.name in item.kinds:  # the vocabulary's range for this kind
+    item, ranges = _ENTRIES.get(name), RANGES_OF.get(kind.name, kind.name)
+    if item is not None and ranges in item.kinds:  # the vocabulary's range for this kind
         try:
-            converted = item.check(converted, kind.name, called=key)
+            converted = item.check(converted, ranges, called=key)
         except InputError as error:
             raise SweepError(f"{where}: {error}") from None
     return converted
+
+
+RANGES_OF = {"effects": "dynamic"}
+"""A kind whose parameters are another's (:mod:`.kinds`) -> that kind, whose vocabulary ranges
+they take (an effects case's E2 0 was refused as the Material's youngs_modulus)."""
 
 
 def _convert(parameter: Parameter, value: Any) -> Any:

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import beta as beta_function
 
-from ..validation import InputError, bound_text, validate_positive
+from ..validation import InputError, bound_text, caller_stacklevel, validate_positive
 from .ateb import ateb_pair, ateb_sine
 
 __all__ = [
@@ -189,7 +189,7 @@ def check_velocity(velocity: float) -> None:
             f"{QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
             "validity of the quasi-static impact theory; results are outside it",
             QuasiStaticValidityWarning,
-            stacklevel=3,
+            stacklevel=caller_stacklevel(),
         )
 
 

@@ -247,15 +247,13 @@ def radiation_estimate(
     rho = validate_positive("density", density, "kg/m^3")
     g = validate_positive("shear_modulus", shear_modulus, "Pa")
     x_m = ((p + 1.0) * m * v0**2 / (2.0 * b)) ** (1.0 / (p + 1.0))
-    rate = (
-        2.0
-        * p**2
-        * b**2
-        * v0
-        * x_m ** (2.0 * p - 1.0)
-        * beta_function((2.0 * p - 1.0) / (p + 1.0), 1.5)
-        / (p + 1.0)
-    )
+    shape = 2.0 * p**2 * v0 * beta_function((2.0 * p - 1.0) / (p + 1.0), 1.5) / (p + 1.0)
+    try:
+        rate = shape * b**2 * x_m ** (2.0 * p - 1.0)
+    except OverflowError:  # b^2 beyond the floats (a striker of A 1e-300): in logarithms
+        rate = math.exp(
+            min(math.log(shape) + 2.0 * math.log(b) + (2.0 * p - 1.0) * math.log(x_m), 709.0)
+        )
     energy = radiated_energy(rate, rho, g, poisson_ratio)
     fraction = energy / (0.5 * m * v0**2)
     return RadiationEstimate(

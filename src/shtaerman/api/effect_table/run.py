@@ -2,12 +2,20 @@
 
 from __future__ import annotations
 
+import contextlib
+import re
 import time
-from collections.abc import Callable, Mapping
+import warnings
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
 from ...problem import OPTION_SUPPORT, Problem
-from ...validation import InputError, NumericalFailureError, validate_positive
+from ...validation import (
+    InputError,
+    NumericalFailureError,
+    caller_stacklevel,
+    validate_positive,
+)
 from ...vocabulary import entry
 from .table import QUANTITIES, EffectTable, Run
 from .variants import Parts, Variant, parts_of, variants
@@ -58,6 +66,25 @@ def _error_note(problem: Problem, estimate: bool) -> str:
     return "the run gave no error estimate (see its estimate_missing)"
 
 
+OWN_INPUTS = {
+    "pad": ("thickness", "base", "layer_rate"),
+    "waves": ("density2",),
+    "viscoelasticity": ("prony",),
+    "friction": ("friction",),
+}
+"""The inputs of an effect: one of them refused where the effect is alone (the paper's problem
+with it) is bad input, as ``shtaerman dynamic`` refuses it, not a row of the table."""
+
+
+def _own_input(error: Exception, effect: str | None) -> bool:
+    """Whether ``error`` is an :class:`InputError` naming an input of ``effect``."""
+    if not isinstance(error, InputError):
+        return False
+    leading = re.match(r"(\w+): ", str(error))
+    name = error.parameter or (leading[1] if leading else None)
+    return name in OWN_INPUTS.get(effect or "", ())
+
+
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
     from ..fem_dynamic import dynamic
@@ -76,6 +103,8 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
         kind = "refused" if isinstance(error, InputError) else "failed"
         if variant.role == "none" and isinstance(error, InputError):
             raise  # the paper's own problem: the numerics are bad input for every run
+        if variant.role == "alone" and _own_input(error, variant.effect):
+            raise  # the effect's own input out of its range: no run can measure it
         seconds = time.perf_counter() - start
         return Run(**head, refused=f"{kind}: {error}", seconds=seconds, notes=notes)
     values = {key: float(getattr(result, key)) for key in QUANTITIES}
@@ -156,27 +185,69 @@ def effects(
     ------
     shtaerman.validation.InputError
         If a part or a numerical option is out of range, or the paper's problem itself (every
-        effect off) is refused with these numerics: before the effects are run.
+        effect off) is refused with these numerics: before the effects are run; or an effect
+        alone is refused for its own input (:data:`OWN_INPUTS`: a pad's thickness outside its
+        range for this impact).
     """
     given = _numerics(refine, estimate, dict(time_steps=time_steps, mesh_size=mesh_size))
     more = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
     given.update(_numerics(1.0, True, {**more, "layer_rate": layer_rate}))
     parts = parts_of(problem)
     rows, absent = variants(parts)
-    reference = _reference(parts)
+    said: Said = {}
+    with _recorded(said, "quasi-static (paper)"):
+        reference = _reference(parts)
     report = progress or (lambda _line: None)
-    done: list[tuple[dict[str, Any], Run]] = []
+    done: list[tuple[dict[str, Any], Run, list[Any]]] = []
     for index, variant in enumerate(sorted(rows, key=_order), start=1):
-        shared = next((run for p, run in done if p == variant.parts), None)
+        shared = next(((run, keys) for p, run, keys in done if p == variant.parts), None)
         if shared is None:
             report(f"effects: run {index}/{len(rows)}: {variant.label} ...")
-            run = _run(variant, given, estimate)
+            with _recorded(said, variant.label) as keys:
+                run = _run(variant, given, estimate)
             outcome = run.refused or f"done in {run.seconds:.1f} s"
             report(f"effects: run {index}/{len(rows)}: {variant.label}: {outcome}")
         else:
-            run = Run(**{**vars(shared), "label": variant.label, "role": variant.role})
+            run, keys = shared
+            for key, text in keys:  # the same run: its warnings apply to this row too
+                said[key].append((variant.label, text))
+            run = Run(**{**vars(run), "label": variant.label, "role": variant.role})
             run = Run(**{**vars(run), "effect": variant.effect, "seconds": 0.0})
-        done.append((variant.parts, run))
-    by_label = {run.label: run for _, run in done}
+        done.append((variant.parts, run, keys))
+    _say_once(said, 1 + len(rows))
+    by_label = {run.label: run for _, run, _ in done}
     runs = tuple(by_label[variant.label] for variant in rows)
     return EffectTable(reference, runs, absent, _describe(parts))
+
+
+Said = dict[tuple[type[Warning], str], list[tuple[str, str]]]
+"""The runs' warnings: (category, text with its numbers masked) -> (run label, text) each."""
+_NUMBER = re.compile(r"[-+]?\d+(?:\.\d*)?(?:e[-+]?\d+)?")
+
+
+@contextlib.contextmanager
+def _recorded(said: Said, label: str) -> Iterator[list]:
+    """Record the warnings of one run into ``said``; yields the (key, text) this run gave."""
+    keys: list[tuple[tuple[type[Warning], str], str]] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        yield keys
+    for warning in caught:
+        text = str(warning.message)
+        key = (warning.category, _NUMBER.sub("#", text))
+        if key not in [known for known, _ in keys]:
+            keys.append((key, text))
+            said.setdefault(key, []).append((label, text))
+
+
+def _say_once(said: Said, total: int) -> None:
+    """Each warning of the runs once (the same limit passed by several runs at other numbers
+    is one warning), with the runs it applies to; none named: all ``total``, the quasi-static
+    reference included."""
+    for (category, _), given in said.items():
+        labels, texts = [label for label, _ in given], {text for _, text in given}
+        where = "" if len(labels) == total else f" (runs: {', '.join(labels)}"
+        if len(texts) > 1:
+            where += f"{'; ' if where else ' ('}the numbers are {labels[0]}'s"
+        where += ")" if where else ""
+        warnings.warn(given[0][1] + where, category, stacklevel=caller_stacklevel())

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import IntegrationWarning
 
+from ...fem.contact import check_contact_scale
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
@@ -25,7 +26,7 @@ from ..checks import Check
 from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
-from .indentation import IndentationResult, depths_up_to
+from .indentation import IndentationResult, depths_up_to, refined_radius
 from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
 from .loader import DEPTH_OVERSHOOT, Study
 
@@ -149,14 +150,12 @@ def run_contact_study(
     start = time.perf_counter()
     modulus = effective_modulus(study.striker, study.half_space)
     exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
+    mesh, depths = study.quick_mesh if quick else study.mesh, _study_depths(study, exact)
+    if study.depths is None:  # the impact's x_c set them: a huge one names mass and velocity
+        radius = refined_radius(study.indenter, depths, mesh)
+        check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
-    accuracy = run_ladder(
-        study.indenter,
-        study.half_space,
-        _study_depths(study, exact),
-        study.quick_mesh if quick else study.mesh,
-        refine=study.refine,
-    )
+    accuracy = run_ladder(study.indenter, study.half_space, depths, mesh, refine=study.refine)
     contact = accuracy.finest
     deepest, thickness = contact.steps[-1].depth, contact.mesh_stats.get("thickness")
     warn_outside_validity(study.indenter, deepest, thickness, False, "the deepest depth")

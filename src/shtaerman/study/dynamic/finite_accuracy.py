@@ -35,7 +35,12 @@ from ...guards import ValidityWarning
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.viscoelastic import PronySeries
-from ...validation import InputError, NumericalFailureError, validate_positive
+from ...validation import (
+    InputError,
+    NumericalFailureError,
+    caller_stacklevel,
+    validate_positive,
+)
 from ..ladder import LADDER_RATIO
 from ..richardson import Estimate, richardson
 from .accuracy import DYNAMIC_ESTIMATED, DYNAMIC_ORDER, DYNAMIC_SANE
@@ -283,7 +288,7 @@ def run_finite_ladder(
             f"no error estimate: {missing}; the finest level that passed is reported. More "
             "time steps (time_steps, --time-steps) or a finer mesh (refine, --refine) may pass",
             EstimateMissingWarning,
-            stacklevel=2,
+            stacklevel=caller_stacklevel(),
         )
     elif estimate:
         estimates = ladder_estimates(results)

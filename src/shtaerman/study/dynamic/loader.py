@@ -245,9 +245,10 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
             settings = settings.refined(raw.refine)
     except InputError as error:
         raise StudyError(f"{path}: key '{table}': {error}") from None
-    if estimate_dofs(settings) > MAX_DOFS:
+    dofs = estimate_dofs(settings)
+    if dofs > MAX_DOFS:
         raise StudyError(
-            f"{path}: key '{table}.mesh_size': the mesh would have about {estimate_dofs(settings)} "
+            f"{path}: key '{table}.mesh_size': the mesh would have about {dofs:.3g} "
             f"dofs, above the limit {MAX_DOFS}; coarsen size or growth"
         )
     return settings
