@@ -14,7 +14,7 @@ import pytest
 
 from shtaerman.cli import main
 from shtaerman.theory.layer_reference import thick_layer_coefficient
-from shtaerman.validation_suite import Row, hunter, layer, suite_text
+from shtaerman.validation_suite import Row, hunter, layer, long2011, suite_text
 
 
 def test_layer_rows_bonded_agree_and_lubricated_dimitriadis_is_refuted():
@@ -91,3 +91,13 @@ def test_cli_exits_1_on_a_disagreeing_row_and_writes_json(monkeypatch, tmp_path,
     monkeypatch.setattr(command, "run_suite", lambda quick, progress: [_row(1.0)])
     assert main(["validate"]) == 0
     assert np.isclose(float(capsys.readouterr().out.split("published")[1].split()[0]), 1.0)
+
+
+def test_long_psi_rows_at_coarse_mesh_and_an_unlisted_point():
+    rows = long2011.long_rows(refine=0.6)
+    # each row within 3 % of F (psi's residual, assumed) + 3 of the FE's error bars
+    assert all(row.verdict == "agrees" for row in rows), suite_text(rows)
+    # where the layer matters most at small strain (R/h <= 1), finite strain is within 1 %
+    assert all(abs(row.difference) < 0.01 * row.published for row in rows[:4])
+    # psi at small w: 1 / psi -> 1 + 1.15 chi, the bonded layer's first order (1.127 derived)
+    assert 1 / long2011.long_psi(1.0, 1e-6) - 1 == pytest.approx(1.15e-3, rel=2e-2)
