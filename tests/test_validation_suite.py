@@ -101,3 +101,25 @@ def test_long_psi_rows_at_coarse_mesh_and_an_unlisted_point():
     assert all(abs(row.difference) < 0.01 * row.published for row in rows[:4])
     # psi at small w: 1 / psi -> 1 + 1.15 chi, the bonded layer's first order (1.127 derived)
     assert 1 / long2011.long_psi(1.0, 1e-6) - 1 == pytest.approx(1.15e-3, rel=2e-2)
+
+
+def test_the_lubricated_layer_fe_does_not_depend_on_nu_at_fixed_e_star():
+    # the argument of docs/validation.md: a frictionless base is a traction problem whose
+    # compliance is 2/E* times a nu-free kernel; the FE at nu 0.45 and 0.5 (coarse mesh)
+    # agrees far below its error bar (about 1e-4) while Chadwick's alpha0 moves 5 %
+    ratios = {}
+    for nu in (0.45, 0.5):
+        result = layer.contact(
+            layer.PowerLawIndenter(50.0, 2.0),
+            layer.Material(1e6, nu),
+            depths=[1e-4, 9e-4],
+            thickness=0.01,
+            base="lubricated",
+            refine=0.5,
+            estimate=False,
+        )
+        e_star = 1e6 / (1 - nu**2)
+        ratios[nu] = result.force / (4 / 3 * e_star * 0.1 * np.array([1e-4, 9e-4]) ** 1.5)
+    np.testing.assert_allclose(ratios[0.45], ratios[0.5], rtol=1e-4)
+    alpha = {nu: 0.347 * (3 - 2 * nu) / (1 - nu) for nu in (0.45, 0.5)}
+    assert alpha[0.5] / alpha[0.45] - 1 > 0.04
