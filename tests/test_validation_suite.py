@@ -53,7 +53,7 @@ def test_the_lubricated_coefficient_is_the_kernels_not_chadwicks():
     assert any(v == "refuted" for s, v in verdicts.items() if s.startswith("Dimitriadis"))
 
 
-@pytest.mark.parametrize("exponent", [2.0, 1.5])
+@pytest.mark.parametrize("exponent", [2.0, 1.5, 1.25])
 def test_hunter_exponent_and_constant_at_coarse_mesh(exponent):
     rows = hunter.hunter_rows((exponent,), refine=0.5)
     # exponent 3 / (2n + 1) within 0.02 + 3 fit errors (second order in v / c over a decade);
