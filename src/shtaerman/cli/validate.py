@@ -20,7 +20,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "difference and the tolerance the reference's accuracy allows. Exit code 1 when a "
         "row expected to agree does not.",
     )
-    p.add_argument("--quick", action="store_true", help="coarse meshes (about 40 s)")
+    p.add_argument("--quick", action="store_true", help="coarse meshes (about 20 s, not 1 min)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--out", metavar="DIR", help="write DIR/validation.json")
     p.set_defaults(handler=run)
