@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from ..sweep import cli as sweep
 from ..validation import InputError, NumericalFailureError
 from ..version import __version__
-from . import contact, dynamic, effects, impact, init_study, tables, verify
+from . import contact, dynamic, effects, impact, init_study, prony_plot, tables, verify
 from .common import Parser, warn
 
 __all__ = ["EXIT_INPUT", "Terminated", "build_parser", "main", "stopped"]
@@ -34,7 +34,7 @@ STDOUT_CLOSED = (
 PIPE_OUTPUT = "the reader of an output pipe quit before the output was complete"
 STOPPING = (signal.SIGINT, signal.SIGTERM)
 """The signals that stop a run cleanly (:func:`_stop`)."""
-SUBCOMMANDS = (impact, tables, contact, dynamic, effects, verify, init_study, sweep)
+SUBCOMMANDS = (impact, tables, contact, dynamic, effects, verify, init_study, prony_plot, sweep)
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a
 striker z = A r^n on an elastic half-space (Ol'shanskii et al. 2019). SI units everywhere.

@@ -35,6 +35,7 @@ __all__ = [
     "prony_from_moduli",
     "prony_from_text",
     "prony_moduli",
+    "prony_with_modulus",
     "shipped_rubber",
 ]
 
@@ -108,7 +109,7 @@ def _number(text: str, where: str) -> float:
         raise InputError(f"prony: {where} must be a number, got {text!r}", "prony") from None
 
 
-def _moduli_text(text: str) -> PronySeries:
+def _moduli_text(text: str) -> tuple[PronySeries, float]:
     relaxed, _, terms = text.partition(";")
     pairs = [term.split(":") for term in terms.split(",")]
     if any(len(pair) != 2 for pair in pairs):
@@ -118,7 +119,7 @@ def _moduli_text(text: str) -> PronySeries:
         )
     moduli = tuple(_number(m, f"E{i}") for i, (m, _) in enumerate(pairs, start=1))
     times = tuple(_number(t, f"tau{i}") for i, (_, t) in enumerate(pairs, start=1))
-    return prony_from_moduli(_number(relaxed, "E_inf"), moduli, times)[0]
+    return prony_from_moduli(_number(relaxed, "E_inf"), moduli, times)
 
 
 def _header(line: str, where: str) -> str:
@@ -199,15 +200,22 @@ def shipped_rubber(name: str) -> ShippedRubber:
     return ShippedRubber(name, series, instantaneous, keys["nu"], keys["density"], provenance)
 
 
-def prony_from_text(text: str) -> PronySeries:
-    """The series ``text`` in any of the module's forms (see there)."""
+def prony_with_modulus(text: str) -> tuple[PronySeries, float | None]:
+    """The series ``text`` in any of the module's forms (see there), and its instantaneous
+    modulus E0 in Pa where the form gives one (moduli, a CSV of E, a shipped rubber)."""
     text = str(text).strip()
     if text in SHIPPED:
-        return shipped_rubber(text).series
+        rubber = shipped_rubber(text)
+        return rubber.series, rubber.youngs_modulus
     if text.lower().endswith(".csv"):
-        return prony_from_csv(text)[0]
+        return prony_from_csv(text)
     if ";" in text:
         return _moduli_text(text)
     if re.fullmatch(r"[A-Za-z][\w.-]*", text):
         raise InputError(f"prony: unknown rubber {text!r}. Pick one of {list(SHIPPED)}", "prony")
-    return PronySeries.parse(text)
+    return PronySeries.parse(text), None
+
+
+def prony_from_text(text: str) -> PronySeries:
+    """The series ``text`` in any of the module's forms (see there)."""
+    return prony_with_modulus(text)[0]
