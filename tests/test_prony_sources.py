@@ -10,6 +10,7 @@ import pytest
 from shtaerman.cli import main
 from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
 from shtaerman.fem.viscoelastic import prony_input
+from shtaerman.study.schema import find_study, load_study
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import RIGID, Material, effective_modulus
@@ -116,3 +117,14 @@ def test_fe_impact_on_the_silicone_is_tings():
     assert fe.restitution == pytest.approx(exact.restitution, abs=5e-4)
     assert fe.P_max == pytest.approx(exact.P_max, rel=2e-3)
     assert fe.x_max == pytest.approx(exact.x_max, rel=1e-3)
+
+
+def test_silicone_study_runs_the_shipped_rubber():
+    """fem/extended/silicone.toml: the shipped series with its own E0, nu and density."""
+    rubber = shipped_rubber(NAME)
+    waves, hysteresis, both_ = load_study(find_study("silicone"))
+    assert (waves.prony, hysteresis.density) == (None, 0.0)
+    assert hysteresis.prony == both_.prony == rubber.series
+    assert both_.half_space.youngs_modulus == rubber.youngs_modulus
+    assert (both_.half_space.poisson_ratio, both_.density) == (0.45, rubber.density)
+    assert both_.prony_text == NAME
