@@ -2,8 +2,10 @@
 rubber's name (:mod:`shtaerman.theory.prony_sources`), and the FE impact on the shipped silicone."""
 
 import contextlib
+import importlib.util
 import io
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 
@@ -128,3 +130,24 @@ def test_silicone_study_runs_the_shipped_rubber():
     assert both_.half_space.youngs_modulus == rubber.youngs_modulus
     assert (both_.half_space.poisson_ratio, both_.density) == (0.45, rubber.density)
     assert both_.prony_text == NAME
+
+
+def _silicone_map():
+    path = Path(__file__).parents[1] / "benchmarks" / "silicone_map.py"
+    spec = importlib.util.spec_from_file_location("silicone_map", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_silicone_map_crosses_between_half_and_one_metre_per_second():
+    """benchmarks/silicone_map.py, steel ball R = 10 mm: hysteresis (exact, Ting) outweighs the
+    first-order waves at 0.464 m/s (ratio 0.81), the waves outweigh it at 1 m/s (1.26); the
+    quick FE study (fem/extended/silicone.toml) agrees in order: 0.085 waves against 0.137
+    hysteresis at 0.3 m/s, 0.166 against 0.142 at 1 m/s."""
+    module = _silicone_map()
+    slow, fast = (module.row(0.01, v, steps=100) for v in (0.464, 1.0))
+    # the ratio's step-halving error is ~3e-6 / 0.15 at 400 steps, 16 times that at 100
+    assert slow["ratio"] == pytest.approx(0.81, abs=0.01)
+    assert fast["ratio"] == pytest.approx(1.26, abs=0.01)
+    assert module.crossing([slow, fast]) == pytest.approx(0.672, rel=0.01)
