@@ -19,14 +19,15 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="draw a Prony series' E(t), E', E'' and tan delta (check it before a run)",
         description=(
             "Draw the relaxation E(t) and the storage and loss moduli E'(f), E''(f) with tan "
-            "delta of a Prony series, and print E0, E_inf and the loss peak. SERIES is any "
-            f"--prony value: {PRONY_FORM}. The moduli are in MPa when the series carries E0 "
-            "(moduli, a CSV of E, a shipped rubber) or --E2 is given, else ratios to E0."
+            "delta of a Prony series, and print E0, E_inf and the loss peak. SERIES takes the "
+            f"dynamic command's prony forms: {PRONY_FORM}. The moduli are in MPa when the series "
+            "carries E0 (moduli, a CSV of E, a shipped rubber) or --E0 is given, else ratios to "
+            "E0."
         ),
     )
-    p.add_argument("series", metavar="SERIES", help="the Prony series (as --prony takes it)")
+    p.add_argument("series", metavar="SERIES", help="the Prony series (as dynamic's prony)")
     p.add_argument("--out", required=True, metavar="FILE.png", help="the figure (.png/.svg/.pdf)")
-    p.add_argument("--E2", type=float, metavar="PA", help="E0, the instantaneous modulus, in Pa")
+    p.add_argument("--E0", type=float, metavar="PA", help="the instantaneous modulus, in Pa, > 0")
     p.set_defaults(handler=run)
 
 
@@ -37,7 +38,7 @@ def run(args: argparse.Namespace) -> int:
         carried = prony_with_modulus(args.series)[1] if isinstance(args.series, str) else None
     except InputError:  # pragma: no cover - prony_input has refused it already
         carried = None
-    modulus = carried if args.E2 is None else validate_positive("--E2", args.E2, "Pa")
+    modulus = carried if args.E0 is None else validate_positive("--E0", args.E0, "Pa")
     path = prony_figure(series, args.out, modulus, args.series)
     data = prony_curves(series, modulus)
     peak = int(np.argmax(data["tan_delta"]))
