@@ -114,7 +114,8 @@ def _moduli_text(text: str) -> tuple[PronySeries, float]:
     pairs = [term.split(":") for term in terms.split(",")]
     if any(len(pair) != 2 for pair in pairs):
         raise InputError(
-            f"prony: moduli must be written Einf;E1:tau1,E2:tau2,... (Pa, s), got {text!r}",
+            f"prony must be written g1:tau1,g2:tau2,... or, in moduli, Einf;E1:tau1,E2:tau2,... "
+            f"(Pa, s), got {text!r}",
             "prony",
         )
     moduli = tuple(_number(m, f"E{i}") for i, (m, _) in enumerate(pairs, start=1))
