@@ -22,7 +22,7 @@ from shtaerman.theory.prony_sources import (
     prony_moduli,
     shipped_rubber,
 )
-from shtaerman.theory.viscoelastic import viscoelastic_impact
+from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
 from shtaerman.validation import InputError
 
 NAME = "zhermack-elite-double-32"
@@ -151,3 +151,17 @@ def test_silicone_map_crosses_between_half_and_one_metre_per_second():
     assert slow["ratio"] == pytest.approx(0.81, abs=0.01)
     assert fast["ratio"] == pytest.approx(1.26, abs=0.01)
     assert module.crossing([slow, fast]) == pytest.approx(0.672, rel=0.01)
+
+
+def test_study_reads_a_csv_beside_it(tmp_path, monkeypatch):
+    """A study's relative ``prony = "rubber.csv"`` is the file beside the study, wherever the
+    command runs."""
+    folder = tmp_path / "studies"
+    folder.mkdir()
+    (folder / "rubber.csv").write_text("tau [s],g [1]\n2e-3,0.5\n")
+    text = find_study("silicone").read_text()
+    text = text.replace('prony = "zhermack-elite-double-32"', 'prony = "rubber.csv"')
+    (folder / "mine.toml").write_text(text.replace('name = "silicone"', 'name = "mine"'))
+    monkeypatch.chdir(tmp_path)
+    *_, both_ = load_study(folder / "mine.toml")
+    assert both_.prony == PronySeries((0.5,), (2e-3,)) and both_.prony_text == "rubber.csv"
