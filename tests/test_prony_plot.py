@@ -63,3 +63,12 @@ def test_cli_refuses_a_typo_in_one_line(tmp_path):
     lines = err.getvalue().strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("shtaerman: error: SERIES:")
     assert "sum to less than 1" in lines[0] and not (tmp_path / "x.png").exists()
+
+
+def test_cli_names_out_for_a_wrong_suffix(tmp_path, capsys):
+    assert main(["prony-plot", "0.5:1e-3", "--out", str(tmp_path / "x.txt")]) == 2
+    err = capsys.readouterr().err
+    assert (
+        err.startswith("shtaerman: error: --out: the figure must end in .png")
+        and err.count("\n") == 1
+    )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 import numpy as np
 
@@ -33,6 +34,8 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Draw the figure and print the summary."""
+    if Path(args.out).suffix.lower() not in (".png", ".svg", ".pdf"):
+        raise InputError(f"--out: the figure must end in .png, .svg or .pdf, got {args.out!r}")
     series = prony_input(args.series, "SERIES")
     try:
         carried = prony_with_modulus(args.series)[1] if isinstance(args.series, str) else None
