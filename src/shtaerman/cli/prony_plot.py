@@ -37,10 +37,7 @@ def run(args: argparse.Namespace) -> int:
     if Path(args.out).suffix.lower() not in (".png", ".svg", ".pdf"):
         raise InputError(f"--out: the figure must end in .png, .svg or .pdf, got {args.out!r}")
     series = prony_input(args.series, "SERIES")
-    try:
-        carried = prony_with_modulus(args.series)[1] if isinstance(args.series, str) else None
-    except InputError:  # pragma: no cover - prony_input has refused it already
-        carried = None
+    carried = prony_with_modulus(args.series)[1]  # read again: prony_input has checked it
     modulus = carried if args.E0 is None else validate_positive("--E0", args.E0, "Pa")
     path = prony_figure(series, args.out, modulus, args.series)
     data = prony_curves(series, modulus)
