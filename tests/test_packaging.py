@@ -21,6 +21,8 @@ SHIPPED = [
     "shtaerman/studies/compressible.toml",
     "shtaerman/studies/table4.toml",
     "shtaerman/studies/extended/rubber_models.toml",
+    "shtaerman/studies/extended/silicone.toml",
+    "shtaerman/data/prony/zhermack-elite-double-32.csv",
     "shtaerman/sweeps/nu-grid.toml",
     "shtaerman/sweeps/impact-velocity.toml",
 ]

@@ -18,7 +18,18 @@ from collections.abc import Sequence
 from ..sweep import cli as sweep
 from ..validation import InputError, NumericalFailureError
 from ..version import __version__
-from . import contact, dynamic, effects, fit, impact, init_study, tables, validate, verify
+from . import (
+    contact,
+    dynamic,
+    effects,
+    fit,
+    impact,
+    init_study,
+    prony_plot,
+    tables,
+    validate,
+    verify,
+)
 from .common import Parser, warn
 
 __all__ = ["EXIT_INPUT", "Terminated", "build_parser", "main", "stopped"]
@@ -35,7 +46,17 @@ PIPE_OUTPUT = "the reader of an output pipe quit before the output was complete"
 STOPPING = (signal.SIGINT, signal.SIGTERM)
 """The signals that stop a run cleanly (:func:`_stop`)."""
 SUBCOMMANDS = (
-    *(impact, tables, contact, dynamic, effects, fit, verify, validate, init_study, sweep),
+    impact,
+    tables,
+    contact,
+    dynamic,
+    effects,
+    fit,
+    verify,
+    validate,
+    init_study,
+    prony_plot,
+    sweep,
 )
 DESCRIPTION = """\
 Finite-element cross-check of Shtaerman's power-law contact and the quasi-static impact of a

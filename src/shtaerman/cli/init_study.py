@@ -113,7 +113,10 @@ nu2 = 0.5                   # in [0, 0.5]
 density2 = 1100.0           # kg/m^3 (natural rubber; the quasi-static theory neglects it);
                             # 0: a massless body (no waves)
 # prony = "0.3:1e-3"        # a viscoelastic body: shear relaxation g1:tau1,g2:tau2,... (tau
-                            # in s; E2, nu2 its instantaneous values; default none: elastic)
+                            # in s; E2, nu2 its instantaneous values; default none: elastic);
+                            # or "Einf;E1:tau1,..." (Pa), a .csv file, or a shipped rubber
+                            # "zhermack-elite-double-32" (E2 = 2.912e6, nu2 = 0.45,
+                            # density2 = 1134); check it: shtaerman prony-plot SERIES --out f.png
 
 [impact]
 mass = 0.7                  # kg

@@ -150,6 +150,16 @@ class PronySeries:
             psi = psi + g * np.exp(-t / tau)
         return psi
 
+    def dynamic_modulus(self, frequency: ArrayLike) -> np.ndarray:
+        """E*(omega)/E0 = g_inf + sum_i g_i i omega tau_i / (1 + i omega tau_i) at angular
+        frequencies omega in rad/s: its real part the storage ratio E'/E0, its imaginary part
+        the loss ratio E''/E0, their ratio tan delta (the same for G at a constant nu)."""
+        w = np.asarray(frequency, dtype=float)
+        ratio = np.full(w.shape, self.g_inf, dtype=complex)
+        for g, tau in zip(self.weights, self.times, strict=True):
+            ratio = ratio + g * (1j * w * tau) / (1.0 + 1j * w * tau)
+        return ratio
+
     def scaled(self, factor: float) -> PronySeries:
         """The same weights with every tau_i multiplied by ``factor`` (> 0)."""
         factor = validate_positive("factor", factor)

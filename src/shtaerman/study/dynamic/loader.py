@@ -9,7 +9,8 @@ approach velocity (:mod:`.runner`)::
     [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3; 0:
                  massless), prony = "g1:tau1,g2:tau2,..." (optional: a viscoelastic
-                 half-space, E2 and nu2 its instantaneous values; tau in s)
+                 half-space, E2 and nu2 its instantaneous values; tau in s; or any form of
+                 :func:`shtaerman.theory.prony_sources.prony_from_text`, e.g. a shipped name)
     [layer]      optional, as in a contact study: a layer on a rigid base instead of the
                  half-space: thickness (m) or thickness_ratio (H / a_c, a_c the half-space
                  contact radius at the quasi-static x_c of figure_velocity), base = "bonded"
@@ -320,7 +321,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     except InputError as error:
         raise fem_input_error(path, error) from None
     try:
-        prony = prony_input(raw.half_space.prony)
+        prony = prony_input(_beside(path, raw.half_space.prony))
     except InputError as error:
         raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
     example = raw.impact.figure_velocity
@@ -359,6 +360,14 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     )
     _check_problem(path, study)
     return _split_losses(path, study, raw.sweep)
+
+
+def _beside(path: Path, prony: str | None) -> str | None:
+    """``prony`` with a relative .csv path taken from the study file's folder."""
+    if prony is None or not prony.strip().lower().endswith(".csv"):
+        return prony
+    csv = Path(prony.strip())
+    return prony if csv.is_absolute() else str(path.parent / csv)
 
 
 def _physics(raw: _DynamicFile) -> dict[str, Any]:

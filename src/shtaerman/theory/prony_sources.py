@@ -1,0 +1,222 @@
+"""Where a Prony series comes from: its text in either convention, a CSV file or a shipped rubber.
+
+A series is given either as the Abaqus weights g_i on the instantaneous modulus (the suite's
+:class:`.viscoelastic.PronySeries`) or as moduli, E(t) = E_inf + sum_i E_i exp(-t/tau_i). At a
+constant Poisson's ratio both describe the same relaxation, exactly:
+
+    E0 = E_inf + sum_i E_i,   g_i = E_i / E0,   g_inf = E_inf / E0,
+
+and G(t)/G0 = E(t)/E0, so the g_i relax the shear modulus as the E_i relax Young's.
+
+Text forms (:func:`prony_from_text`):
+
+- ``g1:tau1,g2:tau2,...`` the weights (tau in s);
+- ``Einf;E1:tau1,E2:tau2,...`` the moduli in Pa (the ``;`` marks this form);
+- a path ending in ``.csv``: a header ``tau,E`` (moduli in Pa, one row with tau = inf holding
+  E_inf) or ``tau,g`` (weights), units in brackets allowed (``tau [s],E [Pa]``), ``#`` comments;
+- the name of a shipped rubber (:data:`SHIPPED`), e.g. ``zhermack-elite-double-32``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from ..validation import InputError
+from .viscoelastic import PronySeries
+
+__all__ = [
+    "SHIPPED",
+    "ShippedRubber",
+    "prony_from_csv",
+    "prony_from_moduli",
+    "prony_from_text",
+    "prony_moduli",
+    "prony_with_modulus",
+    "shipped_rubber",
+]
+
+_DATA = "shtaerman.data.prony"
+SHIPPED = tuple(
+    sorted(
+        entry.name.removesuffix(".csv")
+        for entry in resources.files(_DATA).iterdir()
+        if entry.name.endswith(".csv")
+    )
+)
+"""The names of the shipped rubbers' series (``src/shtaerman/data/prony/<name>.csv``)."""
+_COLUMN = re.compile(r"^\s*(\w+)\s*(\[[^\]]*\])?\s*$")
+_KEY = re.compile(r"^#\s*(nu|density)\s*=\s*(\S+)\s*$")
+
+
+@dataclass(frozen=True)
+class ShippedRubber:
+    """A shipped rubber: its series and the elastic constants that go with it (SI units).
+
+    Attributes
+    ----------
+    name : str
+        The name that loads it (``--prony NAME``).
+    series : PronySeries
+        The weights g_i = E_i / E0 and times tau_i in s.
+    youngs_modulus : float
+        The instantaneous modulus E0 = E_inf + sum E_i in Pa (the suite's E2).
+    poisson_ratio : float
+        nu, taken constant in time.
+    density : float
+        kg/m^3.
+    provenance : str
+        The file's comment lines: where the values come from and what was not verified.
+    """
+
+    name: str
+    series: PronySeries
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+    provenance: str
+
+
+def prony_from_moduli(
+    relaxed: float, moduli: tuple[float, ...], times: tuple[float, ...]
+) -> tuple[PronySeries, float]:
+    """The weights g_i = E_i / E0 of E(t) = E_inf + sum E_i exp(-t/tau_i), and E0 in Pa.
+
+    ``relaxed`` is E_inf > 0 and ``moduli`` the E_i >= 0, in Pa (any one unit: only the ratios
+    enter g_i); ``times`` the tau_i in s.
+    """
+    if not (math.isfinite(relaxed) and relaxed > 0.0):
+        raise InputError(f"prony: E_inf must be a finite number > 0 Pa, got {relaxed!r}", "prony")
+    for i, modulus in enumerate(moduli, start=1):
+        if not (math.isfinite(modulus) and modulus >= 0.0):
+            raise InputError(f"prony: E{i} must be a finite number >= 0 Pa, got {modulus}", "prony")
+    instantaneous = math.fsum((relaxed, *moduli))
+    return PronySeries(tuple(m / instantaneous for m in moduli), tuple(times)), instantaneous
+
+
+def prony_moduli(series: PronySeries, instantaneous: float) -> tuple[float, tuple[float, ...]]:
+    """(E_inf, E_i) in Pa of ``series`` on the instantaneous modulus E0 = ``instantaneous``."""
+    return series.g_inf * instantaneous, tuple(g * instantaneous for g in series.weights)
+
+
+def _number(text: str, where: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise InputError(f"prony: {where} must be a number, got {text!r}", "prony") from None
+
+
+def _moduli_text(text: str) -> tuple[PronySeries, float]:
+    relaxed, _, terms = text.partition(";")
+    pairs = [term.split(":") for term in terms.split(",")]
+    if any(len(pair) != 2 for pair in pairs):
+        raise InputError(
+            f"prony must be written g1:tau1,g2:tau2,... or, in moduli, Einf;E1:tau1,E2:tau2,... "
+            f"(Pa, s), got {text!r}",
+            "prony",
+        )
+    moduli = tuple(_number(m, f"E{i}") for i, (m, _) in enumerate(pairs, start=1))
+    times = tuple(_number(t, f"tau{i}") for i, (_, t) in enumerate(pairs, start=1))
+    return prony_from_moduli(_number(relaxed, "E_inf"), moduli, times)
+
+
+def _header(line: str, where: str) -> str:
+    names = []
+    for cell in line.split(","):
+        match = _COLUMN.match(cell)
+        names.append(match[1] if match else cell.strip())
+    if names not in (["tau", "E"], ["tau", "g"]):  # case kept: G would be a shear modulus
+        raise InputError(
+            f"prony: {where}: the header must be 'tau [s],E [Pa]' or 'tau [s],g [1]', got "
+            f"{line.strip()!r}",
+            "prony",
+        )
+    return names[1].lower()
+
+
+def _rows(text: str, where: str) -> tuple[str, list[tuple[int, float, float]]]:
+    """The value column's name ('e' or 'g') and the rows (line number, tau, value)."""
+    lines = [(k, line) for k, line in enumerate(text.splitlines(), start=1)]
+    body = [(k, line) for k, line in lines if line.strip() and not line.lstrip().startswith("#")]
+    if not body:
+        raise InputError(f"prony: {where} holds no header and no rows", "prony")
+    column, rows = _header(body[0][1], where), []
+    for k, line in body[1:]:
+        cells = line.split(",")
+        if len(cells) != 2:
+            raise InputError(
+                f"prony: {where} row {k}: expected 2 columns, got {len(cells)}", "prony"
+            )
+        tau = _number(cells[0], f"{where} row {k} column tau")
+        value = _number(cells[1], f"{where} row {k} column {'E' if column == 'e' else 'g'}")
+        rows.append((k, tau, value))
+    return column, rows
+
+
+def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: str) -> tuple:
+    relaxed = [value for _, tau, value in rows if tau == math.inf]
+    terms = [(k, tau, value) for k, tau, value in rows if tau != math.inf]
+    for k, tau, _ in terms:
+        if not (tau > 0.0 and math.isfinite(tau)):
+            raise InputError(
+                f"prony: {where} row {k} column tau: must be > 0 s, got {tau}", "prony"
+            )
+    times = tuple(tau for _, tau, _ in terms)
+    values = tuple(value for _, _, value in terms)
+    if column == "g":
+        if relaxed:
+            raise InputError(f"prony: {where}: a g column takes no tau = inf row", "prony")
+        return PronySeries(values, times), None
+    if len(relaxed) != 1:
+        raise InputError(
+            f"prony: {where}: an E column needs exactly one row with tau = inf (E_inf), got "
+            f"{len(relaxed)}",
+            "prony",
+        )
+    return prony_from_moduli(relaxed[0], values, times)
+
+
+def prony_from_csv(path: str | Path) -> tuple[PronySeries, float | None]:
+    """The series of a CSV file (see the module) and E0 in Pa (None for a g column)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise InputError(f"prony: cannot read {str(path)!r}: {error.strerror}", "prony") from None
+    return _series_from_rows(*_rows(text, path.name), path.name)
+
+
+def shipped_rubber(name: str) -> ShippedRubber:
+    """The shipped rubber ``name`` (one of :data:`SHIPPED`)."""
+    if name not in SHIPPED:
+        raise InputError(f"prony: unknown rubber {name!r}. Pick one of {list(SHIPPED)}", "prony")
+    text = resources.files(_DATA).joinpath(f"{name}.csv").read_text(encoding="utf-8")
+    series, instantaneous = _series_from_rows(*_rows(text, name), name)
+    comments = [line for line in text.splitlines() if line.startswith("#")]
+    keys = {m[1]: float(m[2]) for m in map(_KEY.match, comments) if m}
+    provenance = "\n".join(c.lstrip("# ") for c in comments if not _KEY.match(c))
+    return ShippedRubber(name, series, instantaneous, keys["nu"], keys["density"], provenance)
+
+
+def prony_with_modulus(text: str) -> tuple[PronySeries, float | None]:
+    """The series ``text`` in any of the module's forms (see there), and its instantaneous
+    modulus E0 in Pa where the form gives one (moduli, a CSV of E, a shipped rubber)."""
+    text = str(text).strip()
+    if text in SHIPPED:
+        rubber = shipped_rubber(text)
+        return rubber.series, rubber.youngs_modulus
+    if text.lower().endswith(".csv"):
+        return prony_from_csv(text)
+    if ";" in text:
+        return _moduli_text(text)
+    if re.fullmatch(r"[A-Za-z][\w.-]*", text):
+        raise InputError(f"prony: unknown rubber {text!r}. Pick one of {list(SHIPPED)}", "prony")
+    return PronySeries.parse(text), None
+
+
+def prony_from_text(text: str) -> PronySeries:
+    """The series ``text`` in any of the module's forms (see there)."""
+    return prony_with_modulus(text)[0]
