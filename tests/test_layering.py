@@ -31,6 +31,9 @@ ALLOWED = {
         "theory.radiation",
         "theory.layer",
         "theory.viscoelastic",
+        "theory.sneddon",  # the exact contact of any profile (the power law's included)
+        "theory.profiles",
+        "theory.prony_sources",  # a Prony series given as moduli, a CSV or a shipped name
     },
     "study": {"study", "fem", "theory", "paper", "guards", "problem"},
     "plots": {"plots", "study", "fem", "theory", "paper", "problem"},

@@ -411,6 +411,31 @@ def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     check_contact_scale(modulus, radius, (mass, velocity))
 
 
+def _check_depths(
+    problem: Problem, depths: np.ndarray, mesh: Any, refine: float, estimate: bool
+) -> None:
+    """Refuse, before any work, depths the FEM cannot take: beyond the finite-strain reach,
+    too large a contact zone (naming mass and velocity where the impact set them), forces
+    outside the floating-point range, beyond a table's last radius, or a ladder whose
+    coarsest level ``mesh`` / ``refine`` cannot hold them."""
+    indenter, body = problem.striker.indenter, problem.body.material
+    if problem.body.model != "linear":
+        _check_finite_depths(problem, depths)
+        mesh.refined(refine)  # the finest level first: its message names refine's value
+    elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
+        _check_scale(problem, depths, mesh)
+    else:
+        _check_force_range(indenter, body, depths)
+    if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
+        from ..theory.sneddon import contact_law
+
+        contact_law(indenter, 1.0).contact_radius(depths[-1])
+    if estimate:
+        from ..study.contact.indentation import refined_radius
+
+        _check_coarsest(mesh, refine, refined_radius(indenter, depths, mesh))
+
+
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
     from ..fem.contact import validate_fem_inputs
@@ -455,21 +480,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             if problem.loading.depths is None
             else np.array(problem.loading.depths)  # checked when the problem was built
         )
-    if model != "linear":
-        _check_finite_depths(problem, depths)
-        mesh.refined(refine)  # the finest level first: its message names refine's value
-    elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
-        _check_scale(problem, depths, mesh)
-    else:
-        _check_force_range(indenter, body, depths)
-    if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
-        from ..theory.sneddon import contact_law
-
-        contact_law(indenter, 1.0).contact_radius(depths[-1])
-    if estimate:
-        from ..study.contact.indentation import refined_radius
-
-        _check_coarsest(mesh, refine, refined_radius(indenter, depths, mesh))
+    _check_depths(problem, depths, mesh, refine, estimate)
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     rest = (refine, estimate, tolerance, max_time, options["solver"], options["progress"])

@@ -62,9 +62,7 @@ def _exact_name(result: IndentationResult) -> str:
 
 
 def _fit_note(result: IndentationResult) -> str:
-    from ..study.contact.indentation import analytic_fit
-
-    fit, analytic = result.fit, analytic_fit(result)
+    fit, analytic = result.fit, result.analytic
     q_exact, beta_exact = analytic.exponent, analytic.beta
     q_text = fraction(result.exact.force_exponent)
     power_law = result.indenter.kind == "power-law"  # else: the exact curve fitted alike

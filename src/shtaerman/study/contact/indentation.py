@@ -92,6 +92,12 @@ class IndentationResult:
         return self.curve.steps
 
     @property
+    def analytic(self) -> AnalyticFit:
+        """The power law's exact beta and q; another profile's exact forces at the curve's
+        depths fitted as the FEM's are (its force law is no power law)."""
+        return exact_fit(self.exact, self.depths)
+
+    @property
     def depths(self) -> np.ndarray:
         """The depths in m."""
         return np.array([step.depth for step in self.steps])
@@ -172,8 +178,8 @@ class IndentationResult:
         rows = self.step_table()
         return {
             **worst_against_analytic(rows),
-            "beta": abs(self.fit.beta_fixed_exponent / analytic_fit(self).beta - 1.0),
-            "exponent": abs(self.fit.exponent / analytic_fit(self).exponent - 1.0),
+            "beta": abs(self.fit.beta_fixed_exponent / self.analytic.beta - 1.0),
+            "exponent": abs(self.fit.exponent / self.analytic.exponent - 1.0),
             "pressure_profile": max(row["pressure_profile_error"] for row in rows),
         }
 
@@ -217,14 +223,9 @@ class AnalyticFit(NamedTuple):
     exponent: float
 
 
-def analytic_fit(result: IndentationResult) -> AnalyticFit:
-    """The power law's exact beta and q; another profile's exact forces at the curve's
-    depths fitted as the FEM's are (its force law is no power law)."""
-    return exact_fit(result.exact, result.depths)
-
-
 def exact_fit(exact: object, depths: np.ndarray) -> AnalyticFit:
-    """The exact beta and exponent of ``exact`` (see :func:`analytic_fit`) at ``depths`` (m)."""
+    """The exact beta and exponent of ``exact`` at ``depths`` (m): see
+    :attr:`IndentationResult.analytic`."""
     if not isinstance(exact, SneddonContact):
         return AnalyticFit(exact.beta, exact.force_exponent)
     fit = fit_power_law(depths, exact.force(depths), exact.force_exponent)
