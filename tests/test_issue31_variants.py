@@ -152,3 +152,18 @@ def test_contact_with_a_flat_striker_names_the_striker(capsys):
     # velocity (the first fix's blame) are not at fault
     code, _, err = run(capsys, "contact", "--no-estimate", "--shape-coefficient", "1e-300")
     assert code == 2 and err.startswith("shtaerman: error: --E2, --shape-coefficient: ")
+
+
+def test_a_layer_study_with_a_huge_mass_names_the_mass(capsys, tmp_path):
+    # the impact's x_c sets the depths and so the thickness range: with 1e300 kg the layer's
+    # thickness was blamed ("thickness: must lie in [2.85e+71, ...]"), not the mass
+    text = (ROOT / "fem" / "layer.toml").read_text()
+    lines = ["mass = 1e300" if line.startswith("mass =") else line for line in text.splitlines()]
+    study = tmp_path / "big.toml"
+    study.write_text("\n".join(lines) + "\n")
+    code, _, err = run(
+        capsys, "verify", study, "--quick", "--workers", "1", "--out", tmp_path / "o"
+    )
+    assert code == 2
+    last = err.strip().splitlines()[-1]
+    assert "mass, velocity: 1e+300 kg" in last and "thickness: must lie" not in last

@@ -49,7 +49,9 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import msgspec
+import numpy as np
 
+from ...fem.contact import check_contact_scale
 from ...fem.mesh import INTERFACES, MeshSettings
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
@@ -74,6 +76,7 @@ from ..schema import (
     validate_name,
     validated,
 )
+from .indentation import refined_radius
 from .layer import LayerSpec, check_thickness
 
 __all__ = [
@@ -314,6 +317,9 @@ def on_layer(study: Study) -> Study:
     layer = study.layer.resolved(float(exact.a_c))
     deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
     mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
+    if not study.depths:  # the impact's x_c set them: a huge one names mass and velocity
+        radius = refined_radius(study.indenter, np.array([deepest]), mesh)
+        check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     for settings in (mesh, quick):
         check_thickness(settings, study.indenter, deepest)
     return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
