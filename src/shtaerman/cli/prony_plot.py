@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 
 from ..fem.viscoelastic import PRONY_FORM, prony_input
-from ..plots.prony import prony_curves, prony_figure
 from ..theory.prony_sources import prony_with_modulus
 from ..validation import InputError, validate_positive
 
@@ -34,6 +33,8 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Draw the figure and print the summary."""
+    from ..plots.prony import prony_curves, prony_figure  # matplotlib only when it draws
+
     if Path(args.out).suffix.lower() not in (".png", ".svg", ".pdf"):
         raise InputError(f"--out: the figure must end in .png, .svg or .pdf, got {args.out!r}")
     series = prony_input(args.series, "SERIES")

@@ -33,7 +33,13 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ..contact.accuracy import AccuracyResult, run_mesh_ladder
-from ..contact.indentation import curve_document, default_depths, worst_against_analytic
+from ..contact.indentation import (
+    AnalyticFit,
+    curve_document,
+    default_depths,
+    exact_fit,
+    worst_against_analytic,
+)
 
 __all__ = ["FiniteIndentationResult", "run_finite_ladder", "run_finite_study"]
 
@@ -53,6 +59,12 @@ class FiniteIndentationResult:
     def steps(self) -> list[FiniteContactStep]:
         """The converged contact at each depth (as :attr:`.IndentationResult.steps`)."""
         return self.curve.steps
+
+    @property
+    def analytic(self) -> AnalyticFit:
+        """The linear exact beta and q (another profile's: its exact forces fitted as the
+        FEM's are; :func:`shtaerman.study.contact.indentation.exact_fit`)."""
+        return exact_fit(self.exact, self.depths)
 
     @property
     def depths(self) -> np.ndarray:
