@@ -22,7 +22,11 @@ Newton: a semi-smooth (primal-dual active-set) Newton on the KKT system
 with the consistent tangent d2Pi/dx2 - sum lambda_i d2g_i/du_r^2 (f'' at the current radius)
 and, on the active set A, the linearized constraints -G_A dx = g_A, solved together as one
 sparse symmetric saddle-point system [[K, -G_A^T], [-G_A, 0]]. Converged when the active set
-repeats and the displacement correction is below ``tolerance * depth``: complementarity then
+repeats and the displacement correction is below ``tolerance * depth``. A modified Newton
+saves factorizations on the depth ladder (:func:`solve_finite_contact`; an impact's steps use
+full Newton): while the active set stays that of the last factorization (also from the
+previous depth) and each correction shrinks by :data:`CONTRACTION`, the step reuses it (and its
+tangent); a step that reused it converges only with that contraction. Complementarity then
 holds exactly (lambda = 0 off A, g = 0 on A up to the Newton tolerance, lambda > 0 on A,
 g >= 0 off A). Depth stepping: from the last converged state to each requested depth, with a
 linear predictor; a step that fails (no convergence, an inverted element J <= 0) is halved, up
@@ -88,6 +92,11 @@ at Newton's quadratic rate the error left is then ~1e-16 depth. Below ``ROUND_OF
 correction that no longer shrinks (ratio > 1/2) is round-off and counts as converged too (the
 stiffness spans ~1e17 from the axis elements to the far arc: the floor is ~2e-10 depth)."""
 ROUND_OFF_FLOOR = 1e-6
+CONTRACTION = 0.2
+"""A modified Newton step (the last factorization reused, see :meth:`NewtonStepper.reusable`)
+must shrink the correction by this factor, else the next step takes a fresh tangent; it
+converges only with that contraction, so the error it leaves is at most
+0.2 / (1 - 0.2) = 1/4 of the last correction (<= ``NEWTON_TOLERANCE`` * depth)."""
 MAX_ITERATIONS = 30
 MAX_CUTS = 8
 _GAUSS = np.polynomial.legendre.leggauss(4)
@@ -287,6 +296,9 @@ class NewtonStepper:
         self.tolerance = tolerance
         self.max_iterations = max_iterations
         self.backtracks = 0  # halvings of an update that inverts an element (0: raise)
+        self.factorization: Callable[[np.ndarray], np.ndarray] | None = None  # the last one
+        self.kept: tuple | None = None  # system, rows, tangent, factorization of a fresh step
+        self.modified = False  # reuse factorizations (the quasi-static curve's Newton)
         material = system.material
         # complementarity weight c (N/m): lambda_i and c g_i of comparable size
         self.weight = material.shear_modulus * candidate_radius / self.nodes.radius.size
@@ -315,6 +327,7 @@ class NewtonStepper:
         x, lam = x.copy(), lam.copy()
         previous = step = None
         corrections: list[float] = []
+        fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
         halvings = 0
         for iteration in range(1, self.max_iterations + 1):
             state = system.state(x)
@@ -331,19 +344,21 @@ class NewtonStepper:
             active = lam - self.weight * gap > 0
             lam[~active] = 0.0
             if previous is not None and np.array_equal(active, previous):
-                if newton_converged(corrections, self.tolerance):
+                if self.converged(corrections, fresh):
                     return x, lam, iteration - 1, corrections
             previous = active
             residual = system.residual(x, state)
             np.subtract.at(residual, nodes.ur, lam * slope)
             np.add.at(residual, nodes.uz, lam)
-            tangent = system.tangent_data(x, state)[self.take]  # free dofs
-            tangent[self.curvature_at] -= (lam * curvature)[nodes.ur_free]  # -lam d2g/du_r^2
             rows = np.flatnonzero(active)
+            reuse = self.reusable(rows, corrections, fresh)
             try:
-                du, dlam = eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap)
+                du, dlam = self.linear_step(
+                    x, lam, state, residual, (rows, slope, gap, curvature), reuse
+                )
             except RuntimeError as error:
                 raise NewtonError(f"singular Newton matrix ({error})") from None
+            fresh.append(not reuse)
             x[self.free] += du
             lam[rows] += dlam
             step = (du, rows, dlam)
@@ -351,6 +366,54 @@ class NewtonStepper:
             if not np.isfinite(corrections[-1]):
                 break
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
+
+    def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
+        """Whether the next step may reuse the last factorization (modified Newton, if
+        ``modified``; the impacts' time steps keep full Newton): made for this system and
+        active set ``rows``, and, after a step that reused it, the correction
+        shrank by at least :data:`CONTRACTION`."""
+        kept = self.kept
+        if (
+            not self.modified
+            or kept is None
+            or kept[0] is not self.system
+            or not np.array_equal(kept[1], rows)
+        ):
+            return False
+        return not (len(fresh) > 1 and not fresh[-1] and not self.contracting(corrections))
+
+    def contracting(self, corrections: list[float]) -> bool:
+        """Whether the last correction is at most :data:`CONTRACTION` times the one before."""
+        return len(corrections) > 1 and corrections[-1] <= CONTRACTION * corrections[-2]
+
+    def converged(self, corrections: list[float], fresh: list[bool]) -> bool:
+        """:func:`newton_converged` after a fresh tangent's step; after a reused one, also a
+        contraction by :data:`CONTRACTION` (the error left is then at most a quarter of the
+        last correction) and no round-off floor (a slow contraction is not round-off)."""
+        if fresh[-1]:
+            return newton_converged(corrections, self.tolerance)
+        return corrections[-1] <= self.tolerance and self.contracting(corrections)
+
+    def linear_step(
+        self,
+        x: np.ndarray,
+        lam: np.ndarray,
+        state: Any,
+        residual: np.ndarray,
+        contact: tuple[np.ndarray, ...],
+        reuse: bool,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Newton's (du, dlambda) for the active ``rows`` with the consistent tangent at x,
+        factorized and kept; or, if ``reuse``, with the kept tangent and factorization."""
+        rows, slope, gap, curvature = contact
+        if reuse:
+            tangent, again = self.kept[2], self.kept[3]
+            return eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap, again=again)
+        tangent = self.system.tangent_data(x, state)[self.take]  # free dofs
+        tangent[self.curvature_at] -= (lam * curvature)[self.nodes.ur_free]  # -lam d2g/du_r^2
+        step = eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap)
+        self.kept = (self.system, rows, tangent, self.factorization)
+        return step
 
 
 def element_inverted(state: Any) -> bool:
@@ -374,6 +437,7 @@ def eliminate_gaps(
     slope: np.ndarray,
     gap: np.ndarray,
     drag: np.ndarray | None = None,
+    again: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Newton step of the saddle system [[K, -G_A^T], [-G_A, 0]] by eliminating the constraints.
 
@@ -394,6 +458,10 @@ def eliminate_gaps(
     lambda): the rows are combined with W's ratio q_i = (f' - drag_i) / (1 + drag_i f')
     instead of f' (Q^T K T y = -Q^T (R + K c), no longer symmetric) and
     dlam_i = -(R + K du)_{u_z,i} / (1 + drag_i f').
+
+    ``again``: solve with this factorization of an earlier T^T K T (a modified Newton step:
+    ``tangent`` is that K) instead of factorizing; else the new factorization is left in
+    ``stepper.factorization``.
     """
     nodes, position, pattern = stepper.nodes, stepper.position, stepper.pattern
     slaves = position[nodes.uz[rows]]
@@ -408,6 +476,32 @@ def eliminate_gaps(
         normal = 1.0 + drag[rows] * slope[rows]
         left = coefficient.copy()
         left[slaves[ok]] = ((slope[rows] - drag[rows]) / normal)[ok]
+    matrix = pattern.matrix(tangent)
+    shift = np.zeros(pattern.size)
+    shift[slaves] = gap[rows]
+    load = residual + matrix @ shift
+    rhs = -np.bincount(target, weights=left * load, minlength=pattern.size)  # -Q^T load
+    if again is None:
+        reduced = reduce_tangent(pattern, tangent, slaves, target, left, coefficient)
+        solution, stepper.factorization = stepper.solver.factorized(reduced, rhs)
+    else:
+        solution = again(rhs)
+    du = coefficient * solution[target] + shift
+    dlam = -(residual + matrix @ du)[slaves] / normal
+    return du, dlam
+
+
+def reduce_tangent(
+    pattern: Pattern,
+    tangent: np.ndarray,
+    slaves: np.ndarray,
+    target: np.ndarray,
+    left: np.ndarray,
+    coefficient: np.ndarray,
+) -> np.ndarray:
+    """Q^T K T's data in ``pattern``: the slaves' rows and columns moved onto their
+    ``target`` masters with the weights ``left`` (rows) and ``coefficient`` (columns), the
+    slaves kept as decoupled unit rows (see :func:`eliminate_gaps`)."""
     moved = pattern_entries(pattern, slaves)
     i, j = pattern.indices[moved], pattern.columns[moved]
     reduced = tangent.copy()
@@ -418,14 +512,7 @@ def eliminate_gaps(
         left[i] * coefficient[j] * tangent[moved],
     )
     reduced[pattern.diagonal[slaves]] = 1.0
-    matrix = pattern.matrix(tangent)
-    shift = np.zeros(pattern.size)
-    shift[slaves] = gap[rows]
-    load = residual + matrix @ shift
-    rhs = -np.bincount(target, weights=left * load, minlength=pattern.size)  # -Q^T load
-    du = coefficient * stepper.solver.solve(reduced, rhs)[target] + shift
-    dlam = -(residual + matrix @ du)[slaves] / normal
-    return du, dlam
+    return reduced
 
 
 def pattern_entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
@@ -485,6 +572,7 @@ def solve_finite_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
     stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
+    stepper.modified = True
     check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = contact_law(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))

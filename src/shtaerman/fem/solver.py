@@ -22,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import importlib.util
 import warnings
+from collections.abc import Callable
 from typing import ClassVar, Protocol
 
 import numpy as np
@@ -456,28 +457,56 @@ class PatternSolver:
         RuntimeError
             If the matrix is singular to working precision.
         """
+        return self.factorized(data, rhs)[0]
+
+    def factorized(
+        self, data: np.ndarray, rhs: np.ndarray
+    ) -> tuple[np.ndarray, Callable[[np.ndarray], np.ndarray]]:
+        """The solution of A x = rhs, and a function solving A x = b for other b with the same
+        factorization (a modified Newton's reuse).
+
+        Raises
+        ------
+        RuntimeError
+            If the matrix is singular to working precision.
+        """
         pattern = self.pattern
         scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
         scaled = data * scale[pattern.indices]
         scaled *= np.repeat(scale, np.diff(pattern.indptr))  # the columns' scale, in order
-        solution = self._ordered_solve(scaled, (scale * rhs)[self.order])
-        if solution is not None:
-            out = np.empty_like(solution)
-            out[self.order] = solution
-            return scale * out
-        return scale * factorize(pattern.matrix(scaled)).solve(scale * rhs)
+        ordered = self._ordered_solve(scaled, (scale * rhs)[self.order])
+        if ordered is not None:
+            lu = ordered[1]
 
-    def _ordered_solve(self, scaled: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
-        """The solution in the nested-dissection order, or None if SuperLU fails the check."""
+            def again(b: np.ndarray) -> np.ndarray:
+                out = np.empty_like(b)
+                out[self.order] = lu.solve((scale * b)[self.order])
+                return scale * out
+
+            out = np.empty_like(ordered[0])
+            out[self.order] = ordered[0]
+            return scale * out, again
+        fallback = factorize(pattern.matrix(scaled))
+
+        def again_fallback(b: np.ndarray) -> np.ndarray:
+            return scale * fallback.solve(scale * b)
+
+        return again_fallback(rhs), again_fallback
+
+    def _ordered_solve(
+        self, scaled: np.ndarray, rhs: np.ndarray
+    ) -> tuple[np.ndarray, spla.SuperLU] | None:
+        """The solution in the nested-dissection order and its SuperLU, or None if SuperLU
+        fails the check."""
         matrix = self.ordered.matrix(scaled[self.take])
         try:
             lu = _superlu_in_order(matrix)
         except RuntimeError:  # an exactly zero pivot
             return None
         solution = lu.solve(rhs)
-        return (
-            solution if solution_backward_error(matrix, solution, rhs) <= ACCURACY_CHECK else None
-        )
+        if solution_backward_error(matrix, solution, rhs) <= ACCURACY_CHECK:
+            return solution, lu
+        return None
 
 
 class PardisoFactorization:
