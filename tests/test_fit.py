@@ -274,3 +274,16 @@ def test_units_by_option_for_a_header_without_them(tmp_path, capsys):
     assert printed["data"]["units"] == {"depth": "mm", "force": "N"}
     assert main(["fit", "indentation", csv, "--units", "depth=furlong"]) == 2
     assert "column 'depth': unit 'furlong' is not a length unit" in capsys.readouterr().err
+
+
+def test_the_suites_own_history_csv_is_a_force_history(tmp_path, capsys):
+    # `impact --history` writes t [s], x [m], P [N], ...: the fit read no column 'time' and
+    # refused the suite's own file; t and P now stand for time and force
+    history = tmp_path / "h.csv"
+    assert main(["impact", "--history", str(history)]) == 0
+    capsys.readouterr()
+    argv = ["fit", "force-history", str(history), "--fit", "E2", "--json"]
+    assert main([*argv, "--mass", "0.7", "--velocity", "3"]) == 0
+    fitted = json.loads(capsys.readouterr().out)["fitted"]["E2"]
+    # noise-free data of the same closed form: E2 back to the history's 10 printed digits
+    assert fitted["value"] == pytest.approx(7.5e6, rel=1e-6)

@@ -41,6 +41,10 @@ KIND_COLUMNS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 """Kind -> (columns it needs, columns of which it needs at least one)."""
 KINDS = tuple(KIND_COLUMNS)
 
+ALIASES = {"t": "time", "x": "depth", "p": "force", "v0": "velocity"}
+"""Other names a column may carry (read in lower case): those of the suite's own ``--history``
+CSV (t, x, P) and the usual symbols."""
+
 QUANTITY = {
     "depth": "length",
     "force": "force",
@@ -160,7 +164,7 @@ def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
     """The columns of ``kind`` read from the CSV at ``path``."""
     where = str(path)
     header, rows = _read_csv(path)
-    names = [name for name, _ in header]
+    names = [ALIASES.get(name, name) for name, _ in header]
     columns, written = {}, {}
     for name in _wanted(kind, names, where, header):
         index = names.index(name)
@@ -180,7 +184,7 @@ def _wanted(kind: str, names: list[str], where: str, header: list) -> list[str]:
     """The columns of ``kind`` present in the header, or an InputError naming the missing."""
     needed, some = KIND_COLUMNS[kind]
     shown = ", ".join(f"{n} [{u}]" if u is not None else n for n, u in header)
-    for name in needed:
+    for name in needed:  # ``names``: the header's, with ALIASES read as what they stand for
         if name not in names:
             wanted = ", ".join(f"{n} [{measured_unit(n)}]" for n in needed)
             raise InputError(
