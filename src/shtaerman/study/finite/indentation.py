@@ -33,7 +33,13 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ..contact.accuracy import AccuracyResult, run_mesh_ladder
-from ..contact.indentation import curve_document, default_depths, worst_against_analytic
+from ..contact.indentation import (
+    AnalyticFit,
+    curve_document,
+    default_depths,
+    exact_fit,
+    worst_against_analytic,
+)
 
 __all__ = ["FiniteIndentationResult", "run_finite_ladder", "run_finite_study"]
 
@@ -58,6 +64,12 @@ class FiniteIndentationResult:
     def depths(self) -> np.ndarray:
         """The depths in m."""
         return np.array([step.depth for step in self.steps])
+
+    @property
+    def analytic(self) -> AnalyticFit:
+        """The linear exact law's beta and q (another profile's: its exact forces at the
+        curve's depths fitted as the FEM's are), as the plots draw beside the FEM."""
+        return exact_fit(self.exact, self.depths)
 
     @property
     def mesh_stats(self) -> dict[str, float]:
