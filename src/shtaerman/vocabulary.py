@@ -46,6 +46,9 @@ MIN_EXPONENT = 0.25
 MAX_EXPONENT = 20.0
 """The profile exponent n of z = A r^n that the exact theory takes (a force law x^((n+1)/n)
 from nearly linear to a flat punch); the FEM takes (1, MAX_EXPONENT]."""
+MAX_SPHERE_RADIUS = 1e6
+"""Largest sphere radius in m: beyond it R^2 and the contact's round-off leave no digits of
+the sphere's own correction, and the paraboloid (exponent 2, A = 1/(2R)) is the same striker."""
 
 
 class DeprecatedKeyWarning(FutureWarning):
@@ -383,6 +386,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "radius R of an exact sphere z = R - sqrt(R^2 - r^2), in place of the power law "
         "(--shape-coefficient, --exponent)",
         "Sphere radius R",
+        valid=Range(0.0, MAX_SPHERE_RADIUS),
     ),
     Entry(
         "profile",

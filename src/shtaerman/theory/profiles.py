@@ -15,6 +15,7 @@ cubic G are closed forms (:func:`shtaerman.theory.sneddon.tabulated_integrals`).
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,9 +24,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
+from ..input_file import read_input_text
 from ..validation import InputError, validate_positive
+from ..vocabulary import MAX_SPHERE_RADIUS
 
-__all__ = ["SphereIndenter", "TabulatedIndenter", "read_profile_csv"]
+__all__ = ["MAX_SPHERE_RADIUS", "SphereIndenter", "TabulatedIndenter", "read_profile_csv"]
 
 
 @dataclass(frozen=True)
@@ -44,7 +47,14 @@ class SphereIndenter:
     kind = "sphere"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "radius", validate_positive("radius", self.radius, "m"))
+        radius = validate_positive("radius", self.radius, "m")
+        if radius > MAX_SPHERE_RADIUS:
+            raise InputError(
+                f"radius must be in (0, {MAX_SPHERE_RADIUS:g}] m, got {radius:g} (a larger "
+                "sphere is the paraboloid z = r^2 / 2R: exponent 2, shape coefficient 1/(2R))",
+                "radius",
+            )
+        object.__setattr__(self, "radius", radius)
 
     @property
     def parameters(self) -> dict[str, float]:
@@ -102,11 +112,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         One line naming the file and the row or column at fault.
     """
     path = Path(path)
-    try:
-        with path.open(newline="", encoding="utf-8") as handle:
-            rows = list(csv.reader(handle))
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"profile: cannot read {str(path)!r}: {error}", "profile") from None
+    rows = list(csv.reader(io.StringIO(read_input_text(path, "profile", "profile"))))
     rows = [row for row in rows if any(cell.strip() for cell in row)]
     header = [cell.strip().lower() for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
@@ -135,8 +141,8 @@ def _check_table(r: np.ndarray, z: np.ndarray) -> None:
         raise InputError(f"profile: needs at least 3 rows (r, z), got {r.size}", "profile")
     if r[0] != 0.0 or z[0] != 0.0:
         raise InputError(
-            f"profile: row 2 (the first) must be the tip r = 0, z = 0, got r = {r[0]!r}, "
-            f"z = {z[0]!r}",
+            f"profile: row 2 (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
+            f"z = {z[0]:g}",
             "profile",
         )
     for name, values in (("r", r), ("z", z)):
@@ -145,7 +151,7 @@ def _check_table(r: np.ndarray, z: np.ndarray) -> None:
             row = int(step[0]) + 3  # the header is row 1, the tip row 2
             raise InputError(
                 f"profile: column {name} must increase strictly from row to row; row {row} "
-                f"has {name} = {values[step[0] + 1]!r} after {values[step[0]]!r}",
+                f"has {name} = {values[step[0] + 1]:g} after {values[step[0]]:g}",
                 "profile",
             )
 

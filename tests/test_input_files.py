@@ -1,0 +1,93 @@
+"""A user's input files and options that once crashed or hung the new commands (new-user pass):
+a device or a directory given as a CSV, a force history too short to fit or that never
+pushes, a sphere so large the impact's quadrature lost its digits."""
+
+import os
+
+import numpy as np
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli import main
+from shtaerman.fitting.data import measurement
+from shtaerman.validation import InputError
+
+RIGID = ("--E1", "inf")
+
+
+def error_line(capsys, *argv):
+    """The one error line of a refused command (exit code 2, nothing on stdout)."""
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    assert code == 2 and out == "" and err.count("\n") == 1, (code, out, err)
+    return err.removeprefix("shtaerman: error: ").strip()
+
+
+@pytest.fixture
+def device(tmp_path):
+    """A .csv name linked to /dev/zero: endless, once read until the memory ran out."""
+    link = tmp_path / "zero.csv"
+    os.symlink("/dev/zero", link)
+    return link
+
+
+@pytest.mark.parametrize(
+    ("argv", "option"),
+    [
+        (("fit", "force-history", "{}", "--E2", "5e6"), "DATA"),
+        (("impact", *RIGID, "--profile", "{}"), "--profile"),
+        (("dynamic", "--prony", "{}"), "--prony"),
+        (("prony-plot", "{}", "--out", "{}.png"), "SERIES"),
+    ],
+)
+@pytest.mark.parametrize("which", ["device", "directory"])
+def test_a_file_that_is_no_regular_file_is_refused_naming_the_option(
+    capsys, device, tmp_path, argv, option, which
+):
+    path = device
+    if which == "directory":
+        path = tmp_path / "folder.csv"
+        path.mkdir()
+    line = error_line(capsys, *(a.format(path) for a in argv))
+    assert line.startswith(option) and "is not a regular file" in line, line
+
+
+@pytest.mark.parametrize("rows", [1, 2])
+def test_a_force_history_of_fewer_than_three_rows_is_refused(rows):
+    t = np.arange(rows) * 1e-3
+    with pytest.raises(InputError, match=f"at least 3 rows, got {rows}") as error:
+        measurement("force-history", {"time": t, "force": t + 1.0})
+    assert error.value.parameter == "data"
+
+
+def test_a_force_history_that_never_pushes_is_refused(capsys, tmp_path):
+    path = tmp_path / "neg.csv"
+    path.write_text("time [ms],force [N]\n0,-1\n1,-2\n2,-3\n3,-4\n")
+    line = error_line(capsys, "fit", "force-history", str(path), "--E2", "5e6")
+    assert "column 'force' must rise above 0 N" in line and "-1 N" in line, line
+
+
+def test_a_sphere_beyond_its_range_is_refused_naming_the_option(capsys):
+    line = error_line(capsys, "impact", *RIGID, "--sphere-radius", "1e300")
+    assert line.startswith("--sphere-radius") and "1e6" in line, line
+    with pytest.raises(InputError, match=r"radius must be in \(0, 1e\+06\] m"):
+        sh.SphereIndenter(1e300)
+
+
+@pytest.mark.parametrize("radius", [1e3, 1e6])
+def test_a_huge_sphere_impacts_as_its_paraboloid(radius):
+    """A contact ~1e-6 of the radius (the quadrature once lost it in round-off)."""
+    rubber = sh.Material(7.5e6, 0.5)
+    kwargs = {"mass": 1e-6, "velocity": 1e-3}
+    sphere = sh.impact(sh.SphereIndenter(radius), rubber, **kwargs)
+    paraboloid = sh.impact(sh.PowerLawIndenter(0.5 / radius, 2.0), rubber, **kwargs)
+    # sphere - paraboloid is O(x_c / R) < 1e-12 here; 1e-9 leaves room for the quadrature
+    assert sphere.x_c == pytest.approx(paraboloid.x_c, rel=1e-9)
+    assert sphere.P_c == pytest.approx(paraboloid.P_c, rel=1e-9)
+
+
+def test_a_profile_error_shows_plain_numbers(capsys, tmp_path):
+    path = tmp_path / "tip.csv"
+    path.write_text("r,z\n0,0\n0.001,0.0002\n0.002,0.0001\n0.003,0.0005\n")
+    line = error_line(capsys, "impact", *RIGID, "--profile", str(path))
+    assert "z = 0.0001 after 0.0002" in line and "np.float64" not in line, line
