@@ -91,3 +91,10 @@ def test_a_profile_error_shows_plain_numbers(capsys, tmp_path):
     path.write_text("r,z\n0,0\n0.001,0.0002\n0.002,0.0001\n0.003,0.0005\n")
     line = error_line(capsys, "impact", *RIGID, "--profile", str(path))
     assert "z = 0.0001 after 0.0002" in line and "np.float64" not in line, line
+
+
+def test_a_sphere_too_small_for_the_impact_is_named_as_the_sphere(capsys):
+    """It once said '--profile: ... beyond the table's last radius' for a sphere."""
+    line = error_line(capsys, "impact", *RIGID, "--sphere-radius", "1e-5")
+    assert line.startswith("--sphere-radius: ") and "sphere's equator" in line, line
+    assert "table" not in line and "--profile" not in line, line

@@ -110,6 +110,13 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
                 xtol=1e-300,
                 rtol=1e-15,
             )
+    if law.sphere:
+        raise InputError(
+            f"sphere_radius: the striker's energy {energy:.6g} J drives the contact to the "
+            f"sphere's equator (radius {top:.6g} m); take a larger sphere or a lower mass "
+            "or velocity",
+            "sphere_radius",
+        )
     raise InputError(
         f"profile: the striker's energy {energy:.6g} J drives the contact beyond the "
         f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",
