@@ -98,3 +98,17 @@ def test_a_sphere_too_small_for_the_impact_is_named_as_the_sphere(capsys):
     line = error_line(capsys, "impact", *RIGID, "--sphere-radius", "1e-5")
     assert line.startswith("--sphere-radius: ") and "sphere's equator" in line, line
     assert "table" not in line and "--profile" not in line, line
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "expected"),
+    [
+        ("--time-offset", "nan", "--time-offset must be a number s, got 'nan'"),
+        ("--baseline", "inf", "--baseline must be a finite number N, got 'inf'"),
+    ],
+)
+def test_an_unbounded_option_says_number_once(capsys, tmp_path, option, value, expected):
+    """They once said 'must be a number a number s'."""
+    path = tmp_path / "drop.csv"
+    path.write_text("time [ms],force [N]\n0,0\n1,2\n2,1\n")
+    assert error_line(capsys, "fit", "force-history", str(path), option, value) == expected

@@ -314,10 +314,11 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
     if item.type == "int" and not whole:
         raise says.error(item, f"must be {expected}", value)
     where = "in " if expected[0] in "([" else ""
+    bounded = "" if expected == "a number" else f" {where}{expected}"  # not "a number a number"
     if not is_number or math.isnan(value):
-        raise says.error(item, f"must be a number {where}{expected}{unit}", value)
+        raise says.error(item, f"must be a number{bounded}{unit}", value)
     if math.isinf(value) and not (item.infinite and value > 0):
-        raise says.error(item, f"must be a finite number {where}{expected}{unit}", value)
+        raise says.error(item, f"must be a finite number{bounded}{unit}", value)
     valid = item.range_for(kind)
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
         verb = "lie in" if expected[0] in "([" else "be"
