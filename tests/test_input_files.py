@@ -112,3 +112,11 @@ def test_an_unbounded_option_says_number_once(capsys, tmp_path, option, value, e
     path = tmp_path / "drop.csv"
     path.write_text("time [ms],force [N]\n0,0\n1,2\n2,1\n")
     assert error_line(capsys, "fit", "force-history", str(path), option, value) == expected
+
+
+def test_a_unit_no_column_could_take_is_refused_even_when_the_header_has_units(capsys, tmp_path):
+    """--units time=parsec was silently ignored beside a header that names its units."""
+    path = tmp_path / "drop.csv"
+    path.write_text("time [ms],force [N]\n0,0\n1,2\n2,1\n")
+    line = error_line(capsys, "fit", "force-history", str(path), "--units", "time=parsec")
+    assert line.startswith("--units: ") and "'parsec' is not a time unit" in line, line

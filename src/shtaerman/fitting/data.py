@@ -96,6 +96,7 @@ def parse_units(text: str | None) -> dict[str, str]:
                 f"{', '.join(QUANTITY)}, got {item.strip()!r}",
                 "units",
             )
+        _factor("units", name.strip(), unit.strip())  # a unit no column could take: now
         units[name.strip()] = unit.strip()
     return units
 
@@ -108,7 +109,7 @@ def _factor(where: str, name: str, unit: str) -> float:
         raise InputError(
             f"{where}: column {name!r}: unit {unit!r} is not a {QUANTITY[name]} unit; "
             f"use one of {listed}",
-            "data",
+            "units" if where == "units" else "data",
         )
     return known[unit]
 
