@@ -120,3 +120,15 @@ def test_a_unit_no_column_could_take_is_refused_even_when_the_header_has_units(c
     path.write_text("time [ms],force [N]\n0,0\n1,2\n2,1\n")
     line = error_line(capsys, "fit", "force-history", str(path), "--units", "time=parsec")
     assert line.startswith("--units: ") and "'parsec' is not a time unit" in line, line
+
+
+def test_prony_plot_keeps_an_existing_figure_unless_forced(capsys, tmp_path):
+    """It once overwrote any file at --out without a word."""
+    out = tmp_path / "mine.png"
+    out.write_bytes(b"precious")
+    line = error_line(capsys, "prony-plot", "0.5:2e-3", "--out", str(out))
+    assert line.startswith("--out: ") and "--force" in line, line
+    assert out.read_bytes() == b"precious"
+    assert main(["prony-plot", "0.5:2e-3", "--out", str(out), "--force"]) == 0
+    assert out.read_bytes().startswith(b"\x89PNG")
+    assert capsys.readouterr().out.startswith("Prony series, 1 term (tau 0.002 to 0.002 s)")
