@@ -132,3 +132,16 @@ def test_prony_plot_keeps_an_existing_figure_unless_forced(capsys, tmp_path):
     assert main(["prony-plot", "0.5:2e-3", "--out", str(out), "--force"]) == 0
     assert out.read_bytes().startswith(b"\x89PNG")
     assert capsys.readouterr().out.startswith("Prony series, 1 term (tau 0.002 to 0.002 s)")
+
+
+def test_a_profile_header_with_units_in_m_is_read_and_other_units_refused(capsys, tmp_path):
+    """'r [m],z [m]' (the fit's header style) once read as 'column r is missing'."""
+    rows = "0,0\n0.001,0.00005\n0.002,0.0002\n0.05,0.125\n"
+    plain, metres, millimetres = (tmp_path / f"{n}.csv" for n in ("plain", "m", "mm"))
+    plain.write_text("r,z\n" + rows)
+    metres.write_text("r [m],z [m]\n" + rows)
+    millimetres.write_text("r [mm],z [mm]\n" + rows)
+    r, z = sh.TabulatedIndenter.from_csv(metres).radii, sh.TabulatedIndenter.from_csv(plain).radii
+    np.testing.assert_array_equal(r, z)  # the same table, read alike
+    line = error_line(capsys, "impact", *RIGID, "--profile", str(millimetres))
+    assert line.startswith("--profile: ") and "unit [mm] is not m" in line, line

@@ -114,7 +114,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     path = Path(path)
     rows = list(csv.reader(io.StringIO(read_input_text(path, "profile", "profile"))))
     rows = [row for row in rows if any(cell.strip() for cell in row)]
-    header = [cell.strip().lower() for cell in rows[0]] if rows else []
+    header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
     if missing:
         raise InputError(
@@ -133,6 +133,18 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         values.append([_float(row[columns[n]].strip(), number, n, path) for n in ("r", "z")])
     table = np.array(values, dtype=float).reshape(-1, 2)
     return table[:, 0], table[:, 1]
+
+
+def _header_name(cell: str, path: Path) -> str:
+    """A header cell's column name: ``r``, ``r [m]`` -> ``r``; a unit other than m refused."""
+    name, _, unit = cell.strip().lower().partition("[")
+    if unit and unit.rstrip("] ").strip() != "m" and name.strip() in ("r", "z"):
+        raise InputError(
+            f"profile: {str(path)!r} column {name.strip()}: unit [{unit.rstrip('] ').strip()}] "
+            "is not m; give r and z in m (header 'r [m],z [m]' or 'r,z')",
+            "profile",
+        )
+    return name.strip()
 
 
 def _check_table(r: np.ndarray, z: np.ndarray) -> None:
