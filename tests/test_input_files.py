@@ -145,3 +145,14 @@ def test_a_profile_header_with_units_in_m_is_read_and_other_units_refused(capsys
     np.testing.assert_array_equal(r, z)  # the same table, read alike
     line = error_line(capsys, "impact", *RIGID, "--profile", str(millimetres))
     assert line.startswith("--profile: ") and "unit [mm] is not m" in line, line
+
+
+def test_a_profile_of_too_many_rows_is_refused_before_the_quadrature():
+    """2e6 rows once asked numpy for 27 GiB (ArrayMemoryError traceback)."""
+    from shtaerman.theory.profiles import MAX_PROFILE_ROWS
+
+    r = np.linspace(0.0, 0.05, MAX_PROFILE_ROWS + 1)
+    with pytest.raises(InputError, match=f"at most {MAX_PROFILE_ROWS} rows"):
+        sh.TabulatedIndenter(r, r**2 / 0.02)
+    r = np.linspace(0.0, 0.05, MAX_PROFILE_ROWS)  # the limit itself is taken
+    assert sh.TabulatedIndenter(r, r**2 / 0.02).radii.size == MAX_PROFILE_ROWS
