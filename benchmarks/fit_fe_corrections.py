@@ -12,7 +12,7 @@ corrections are finite-strain FE runs. With ``--prony 0.3:2e-3`` the pad relaxes
 knows tau_i, starts every weight at 0.1 and fits the weights too.
 
 Run: python benchmarks/fit_fe_corrections.py [--seeds N] [--refine R] [--truth-refine R]
-     [--model neo-hookean] [--prony G1:TAU1,...]
+     [--model neo-hookean] [--prony G1:TAU1,...] [--write-csv pad.csv]
 """
 
 from __future__ import annotations
@@ -53,7 +53,13 @@ def main() -> None:
     parser.add_argument("--model", default="linear", help="linear, or a rubber: neo-hookean")
     parser.add_argument("--prony", default=None, help="the true series g1:tau1,... (fitted)")
     parser.add_argument("--truth-refine", type=float, default=1.0)
+    parser.add_argument("--write-csv", metavar="FILE", help="write seed 0's record, then stop")
     args = parser.parse_args()
+    if args.write_csv:  # the docs' pad.csv: shtaerman fit force-history pad.csv ...
+        data = measurement(args.truth_refine, 0, args.model, args.prony)
+        table = np.c_[data["time"] * 1e3, data["force"]]
+        np.savetxt(args.write_csv, table, delimiter=",", header="time [ms],force [N]", comments="")
+        return
     print(f"truth E2 = {E2:.4g} Pa ({args.model}); data: FE at refine {args.truth_refine}, "
           f"1 % noise; fit: FE at refine {args.refine}")  # fmt: skip
     print(" seed  FE runs  time [s]  E2 fitted [Pa]  95 % interval [Pa]        covers  c_P    c_t")

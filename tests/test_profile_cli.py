@@ -68,7 +68,7 @@ def test_impact_on_a_tabulated_paraboloid_is_the_power_law_n_2(paraboloid_csv):
     [
         (("--sphere-radius", "0.01", "--exponent", "2"), "--sphere-radius: give one striker"),
         (("--profile", "tip.csv", "--sphere-radius", "0.01"), "--sphere-radius: give one"),
-        (("--sphere-radius", "0"), "--sphere-radius must be > 0 m"),
+        (("--sphere-radius", "0"), "--sphere-radius must lie in (0, 1e6] m"),
         (("--profile", "/no/such/tip.csv"), "--profile: cannot read '/no/such/tip.csv'"),
     ],
 )

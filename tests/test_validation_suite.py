@@ -123,3 +123,27 @@ def test_the_lubricated_layer_fe_does_not_depend_on_nu_at_fixed_e_star():
     np.testing.assert_allclose(ratios[0.45], ratios[0.5], rtol=1e-4)
     alpha = {nu: 0.347 * (3 - 2 * nu) / (1 - nu) for nu in (0.45, 0.5)}
     assert alpha[0.5] / alpha[0.45] - 1 > 0.04
+
+
+def test_cli_out_refuses_a_file_or_a_foreign_folder_before_running(monkeypatch, tmp_path, capsys):
+    """--out onto a file or a folder shtaerman did not write: one line, exit 2, the suite not
+    run and nothing there changed (it once ran 20 s, then failed with exit 1 or overwrote)."""
+    import shtaerman.cli.validate as command
+
+    ran = []
+    monkeypatch.setattr(command, "run_suite", lambda quick, progress: ran.append(1) or [_row(1.0)])
+    afile = tmp_path / "afile"
+    afile.write_text("keep\n")
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "validation.json").write_text("precious\n")
+    for target in (afile, foreign):
+        assert main(["validate", "--out", str(target)]) == 2
+        out, err = capsys.readouterr()
+        assert out == "" and err.count("\n") == 1 and "--out" in err, err
+    assert not ran
+    assert afile.read_text() == "keep\n"
+    assert (foreign / "validation.json").read_text() == "precious\n"
+    new = tmp_path / "new"
+    assert main(["validate", "--out", str(new)]) == 0
+    assert json.loads((new / "validation.json").read_text())["rows"][0]["verdict"] == "agrees"

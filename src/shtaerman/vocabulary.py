@@ -46,6 +46,9 @@ MIN_EXPONENT = 0.25
 MAX_EXPONENT = 20.0
 """The profile exponent n of z = A r^n that the exact theory takes (a force law x^((n+1)/n)
 from nearly linear to a flat punch); the FEM takes (1, MAX_EXPONENT]."""
+MAX_SPHERE_RADIUS = 1e6
+"""Largest sphere radius in m: beyond it R^2 and the contact's round-off leave no digits of
+the sphere's own correction, and the paraboloid (exponent 2, A = 1/(2R)) is the same striker."""
 
 
 class DeprecatedKeyWarning(FutureWarning):
@@ -311,10 +314,11 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
     if item.type == "int" and not whole:
         raise says.error(item, f"must be {expected}", value)
     where = "in " if expected[0] in "([" else ""
+    bounded = "" if expected == "a number" else f" {where}{expected}"  # not "a number a number"
     if not is_number or math.isnan(value):
-        raise says.error(item, f"must be a number {where}{expected}{unit}", value)
+        raise says.error(item, f"must be a number{bounded}{unit}", value)
     if math.isinf(value) and not (item.infinite and value > 0):
-        raise says.error(item, f"must be a finite number {where}{expected}{unit}", value)
+        raise says.error(item, f"must be a finite number{bounded}{unit}", value)
     valid = item.range_for(kind)
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
         verb = "lie in" if expected[0] in "([" else "be"
@@ -383,6 +387,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "radius R of an exact sphere z = R - sqrt(R^2 - r^2), in place of the power law "
         "(--shape-coefficient, --exponent)",
         "Sphere radius R",
+        valid=Range(0.0, MAX_SPHERE_RADIUS),
     ),
     Entry(
         "profile",

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..fem.viscoelastic import PRONY_FORM, prony_input
+from ..output.files import check_output_file
 from ..theory.prony_sources import prony_with_modulus
 from ..validation import InputError, validate_positive
 
@@ -28,6 +29,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("series", metavar="SERIES", help="the Prony series (as dynamic's prony)")
     p.add_argument("--out", required=True, metavar="FILE.png", help="the figure (.png/.svg/.pdf)")
     p.add_argument("--E0", type=float, metavar="PA", help="the instantaneous modulus, in Pa, > 0")
+    p.add_argument("--force", action="store_true", help="replace --out if it exists")
     p.set_defaults(handler=run)
 
 
@@ -37,6 +39,7 @@ def run(args: argparse.Namespace) -> int:
 
     if Path(args.out).suffix.lower() not in (".png", ".svg", ".pdf"):
         raise InputError(f"--out: the figure must end in .png, .svg or .pdf, got {args.out!r}")
+    check_output_file(args.out, force=args.force, option="--out")  # an existing file is kept
     series = prony_input(args.series, "SERIES")
     carried = prony_with_modulus(args.series)[1]  # read again: prony_input has checked it
     modulus = carried if args.E0 is None else validate_positive("--E0", args.E0, "Pa")
@@ -46,7 +49,8 @@ def run(args: argparse.Namespace) -> int:
     scale, unit = (1.0, "E0") if modulus is None else (1e-6, "MPa")
     e0 = 1.0 if modulus is None else modulus
     print(
-        f"Prony series, {len(series.weights)} terms (tau {min(series.times):.3g} to "
+        f"Prony series, {len(series.weights)} term{'s' * (len(series.weights) != 1)} "
+        f"(tau {min(series.times):.3g} to "
         f"{max(series.times):.3g} s)"
     )
     print(f"  E0    = {scale * e0:.6g} {unit} (instantaneous)")

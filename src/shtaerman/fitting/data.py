@@ -11,6 +11,7 @@ Every problem with the file is an :class:`InputError` naming the column or the r
 from __future__ import annotations
 
 import csv
+import io
 import math
 import re
 from collections.abc import Mapping
@@ -20,6 +21,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..input_file import read_input_text
 from ..validation import InputError
 
 __all__ = [
@@ -98,6 +100,7 @@ def parse_units(text: str | None) -> dict[str, str]:
                 f"{', '.join(QUANTITY)}, got {item.strip()!r}",
                 "units",
             )
+        _factor("units", name.strip(), unit.strip())  # a unit no column could take: now
         units[name.strip()] = unit.strip()
     return units
 
@@ -110,7 +113,7 @@ def _factor(where: str, name: str, unit: str) -> float:
         raise InputError(
             f"{where}: column {name!r}: unit {unit!r} is not a {QUANTITY[name]} unit; "
             f"use one of {listed}",
-            "data",
+            "units" if where == "units" else "data",
         )
     return known[unit]
 
@@ -129,12 +132,8 @@ def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
 def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]]:
     """The header's (name, unit) cells and the data rows of ``path``."""
     where = str(path)
-    try:
-        with open(path, newline="", encoding="utf-8-sig") as stream:
-            rows = [row for row in csv.reader(stream) if any(cell.strip() for cell in row)]
-    except (OSError, UnicodeDecodeError) as error:
-        reason = getattr(error, "strerror", None) or str(error)
-        raise InputError(f"DATA: cannot read {where!r}: {reason}", "data") from None
+    text = read_input_text(path, "data", "DATA")
+    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
     return _header(where, rows[0]), rows[1:]
@@ -218,10 +217,27 @@ def _check_values(data: Measurement) -> Measurement:
                 f"{values[bad[0]]:g}",
                 "data",
             )
+    if data.kind == "force-history":
+        _check_history(data)
     if "time" in data.columns and np.any(np.diff(data.columns["time"]) <= 0):
         row = int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 3
         raise InputError(f"{data.source}: row {row}: column 'time' must increase", "data")
     return data
+
+
+def _check_history(data: Measurement) -> None:
+    """A force history spans a time (at least 3 rows) and rises above zero force."""
+    if data.rows < 3:
+        raise InputError(
+            f"{data.source}: a force-history needs at least 3 rows, got {data.rows}", "data"
+        )
+    largest = float(np.max(data.columns["force"]))
+    if largest <= 0.0:
+        raise InputError(
+            f"{data.source}: column 'force' must rise above 0 N (the striker's push), its "
+            f"largest value is {largest:g} N",
+            "data",
+        )
 
 
 def measurement(

@@ -92,7 +92,11 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     top = law.max_contact_radius
     top = math.nextafter(top, 0.0) if law.sphere else top
     square = lambda s: law.depth(s) ** 2  # noqa: E731
-    rough = _Cumulative.of(_panels(law, top, law.sphere) if law.sphere else _even(top), square)
+    ends = _panels(law, top, law.sphere) if law.sphere else _even(top)
+    # halving towards the tip too: a contact far smaller than the profile (a huge sphere)
+    # is then integrated on panels of its own size, not lost in a big panel's round-off
+    ends = np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 100))
+    rough = _Cumulative.of(ends, square)
     guess = top
     if float(_work(law, rough, top)) >= energy:
         guess = brentq(lambda a: float(_work(law, rough, a)) - energy, 0.0, top, rtol=1e-6)
@@ -106,6 +110,13 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
                 xtol=1e-300,
                 rtol=1e-15,
             )
+    if law.sphere:
+        raise InputError(
+            f"sphere_radius: the striker's energy {energy:.6g} J drives the contact to the "
+            f"sphere's equator (radius {top:.6g} m); take a larger sphere or a lower mass "
+            "or velocity",
+            "sphere_radius",
+        )
     raise InputError(
         f"profile: the striker's energy {energy:.6g} J drives the contact beyond the "
         f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",

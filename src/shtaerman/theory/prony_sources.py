@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
+from ..input_file import read_input_text
 from ..validation import InputError
 from .viscoelastic import PronySeries
 
@@ -182,10 +183,7 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
 def prony_from_csv(path: str | Path) -> tuple[PronySeries, float | None]:
     """The series of a CSV file (see the module) and E0 in Pa (None for a g column)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise InputError(f"prony: cannot read {str(path)!r}: {error.strerror}", "prony") from None
+    text = read_input_text(path, "prony", "prony")
     return _series_from_rows(*_rows(text, path.name), path.name)
 
 

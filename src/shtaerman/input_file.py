@@ -1,0 +1,63 @@
+"""Reading a user's small input file (a measurement, a profile, a Prony series) safely.
+
+A path that is not a regular file (a directory, a device such as ``/dev/zero``, a FIFO) or a
+file larger than :data:`MAX_INPUT_BYTES` is refused in one line before anything is read, so a
+wrong path can neither hang the run nor exhaust the memory.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+
+from .validation import InputError
+
+__all__ = ["MAX_INPUT_BYTES", "read_input_text"]
+
+MAX_INPUT_BYTES = 200 << 20
+"""Largest input file read, in bytes (200 MiB: some 10 million rows of a two-column CSV)."""
+
+
+def read_input_text(path: str | Path, option: str, what: str) -> str:
+    """The UTF-8 text of the regular file ``path`` (a BOM dropped).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file; a symbolic link to a regular file is followed.
+    option : str
+        The parameter named in an error (e.g. ``"profile"``).
+    what : str
+        Prefix of the error message (e.g. ``"--profile"``).
+
+    Raises
+    ------
+    InputError
+        The file cannot be opened, is not a regular file, is larger than
+        :data:`MAX_INPUT_BYTES` or is not UTF-8.
+    """
+    where = str(path)
+    try:
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except OSError as error:
+        raise InputError(f"{what}: cannot read {where!r}: {error.strerror}", option) from None
+    info = os.fstat(handle)
+    if not stat.S_ISREG(info.st_mode):
+        os.close(handle)
+        raise InputError(
+            f"{what}: {where!r} is not a regular file (a directory, device or pipe); "
+            "give a CSV file",
+            option,
+        )
+    with os.fdopen(handle, "rb") as stream:
+        if info.st_size > MAX_INPUT_BYTES:
+            raise InputError(
+                f"{what}: {where!r} holds {info.st_size} bytes; at most {MAX_INPUT_BYTES} are read",
+                option,
+            )
+        try:
+            return stream.read(MAX_INPUT_BYTES + 1).decode("utf-8-sig")
+        except (OSError, UnicodeDecodeError) as error:
+            reason = getattr(error, "strerror", None) or str(error)
+            raise InputError(f"{what}: cannot read {where!r}: {reason}", option) from None
