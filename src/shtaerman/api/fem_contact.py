@@ -419,7 +419,7 @@ def _check_depths(
     outside the floating-point range, beyond a table's last radius, or a ladder whose
     coarsest level ``mesh`` / ``refine`` cannot hold them."""
     indenter, body = problem.striker.indenter, problem.body.material
-    if problem.body.model != "linear":
+    if problem.body.finite:
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
     elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
@@ -453,7 +453,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     max_time = validate_positive("max_time", options["max_time"], "s")
     base = options["mesh"]
     if base is None:
-        base = FINITE_MESH if model != "linear" else DEFAULTS
+        base = FINITE_MESH if problem.body.finite else DEFAULTS
     elif not isinstance(base, MeshSettings):
         raise InputError(
             f"mesh must be a shtaerman.fem.mesh.MeshSettings, got {type(base).__name__}; the "

@@ -95,17 +95,17 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
 
 
 def _write_figures(
-    case: DynamicCase, result: DynamicResult, folder: Path, figure_format: str
+    case: DynamicCase, result: DynamicResult, folder: Path, figure_format: str, finite: bool
 ) -> None:
-    """The figures of the case: a rubber's x(t), P(t) against the quasi-static impact; the
-    linear body's histories, losses and wave fields."""
+    """The figures of the case: a rubber's (``finite``) x(t), P(t) against the quasi-static
+    impact; the linear body's histories, losses and wave fields."""
     from ..output.dynamic import write_case_figures
     from ..output.finite import write_finite_figure
 
-    if result.model == "linear":
-        write_case_figures(case, folder, figure_format)
-    else:
+    if finite:
         write_finite_figure(result, case.quasi, folder, figure_format)
+    else:
+        write_case_figures(case, folder, figure_format)
 
 
 def _write_folder(result: DynamicResult, folder: Path) -> None:
@@ -239,7 +239,7 @@ def dynamic(
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
-            _write_figures(case, result, stage, figure_format)
+            _write_figures(case, result, stage, figure_format, problem.body.finite)
     warn_failed_checks(result, problem)
     return result
 
