@@ -256,7 +256,7 @@ def estimate_dofs(settings: DynamicSettings) -> int:
         strip = 1.0 / (h0 * g)
         fan = (math.pi / (g * g)) * math.log(max(settings.domain * g / h0, 2.0))
     except ZeroDivisionError:  # a size or growth whose product underflows: no mesh
-        return round(sys.float_info.max)
+        return int(sys.float_info.max)
     axis = math.log(max(h0 / settings.axis_size, 1.0)) / 0.1 * 4.0
     return int(min(4.5 * 2.0 * (strip + fan + axis), sys.float_info.max))  # int: as before
 

@@ -22,14 +22,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fem.impact_run import ImpactRun
 from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
 from ..plots.impact_energy import plot_energy_history, plot_force_depth_loop
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import SEPARATION_SNAPSHOT, DynamicStudyOutcome
 from .files import write_csv
 
-__all__ = ["SUMMARY_HEADER", "history_columns", "write_case_figures", "write_dynamic_study"]
+__all__ = ["SUMMARY_HEADER", "write_case_figures", "write_dynamic_study"]
 
 SUMMARY_HEADER = (
     "v0 [m/s]",
@@ -59,11 +58,6 @@ three (the viscoelastic split of 1 - e^2, :attr:`ImpactRun.losses`) are NaN
 for an elastic body."""
 
 LOSS_KEYS = ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction")
-
-
-def history_columns(result: ImpactRun) -> dict[str, object]:
-    """The dynamic history t, x, v, P, a, p0 (write_csv adds the units: ``t [s]``, ...)."""
-    return result.history_columns()
 
 
 def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
@@ -142,7 +136,7 @@ def write_dynamic_study(
     written = []
     for case in outcome.cases:
         path = folder / f"history_v{case.velocity:g}.csv"
-        write_csv(path, history_columns(case.result))
+        write_csv(path, case.result.history_columns())
         written.append(path)
     summary = folder / "summary.csv"
     write_csv(summary, _summary(outcome))
