@@ -6,6 +6,7 @@ import os
 
 import numpy as np
 import pytest
+from cli_helpers import error_line
 
 import shtaerman as sh
 from shtaerman.cli import main
@@ -13,14 +14,6 @@ from shtaerman.fitting.data import measurement
 from shtaerman.validation import InputError
 
 RIGID = ("--E1", "inf")
-
-
-def error_line(capsys, *argv):
-    """The one error line of a refused command (exit code 2, nothing on stdout)."""
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    assert code == 2 and out == "" and err.count("\n") == 1, (code, out, err)
-    return err.removeprefix("shtaerman: error: ").strip()
 
 
 @pytest.fixture

@@ -8,6 +8,7 @@ import json
 
 import numpy as np
 import pytest
+from cli_helpers import error_line
 
 import shtaerman as sh
 from shtaerman.cli import main
@@ -22,14 +23,6 @@ def cli_json(*argv):
         code = main([*argv, "--json"])
     assert code == 0
     return json.loads(stream.getvalue())
-
-
-def error_line(capsys, *argv):
-    """The one error line of a refused command (exit code 2, nothing on stdout)."""
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    assert code == 2 and out == "" and err.count("\n") == 1, (code, out, err)
-    return err.removeprefix("shtaerman: error: ").strip()
 
 
 @pytest.fixture
