@@ -294,6 +294,11 @@ class _Plan:
     progress: Callable[[str], None] | None
     relaxing: dict[str, Any] = field(default_factory=dict)  # prony and rate, or nothing
 
+    @property
+    def finite(self) -> bool:
+        """Whether the body is a rubber at finite strain (it has a rubber model)."""
+        return self.rubber is not None
+
 
 def _solve(plan: _Plan) -> tuple[Any, Any]:
     """The finest FEM run and the ladder (None without the estimate)."""
@@ -303,7 +308,7 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 
     inputs = (plan.indenter, plan.body)
     finest = plan.mesh.refined(plan.refine) if not plan.estimate else None
-    if plan.model != "linear":
+    if plan.finite:
         if finest is not None:
             return run_finite_study(*inputs, plan.depths, finest, plan.rubber), None
         ladder = run_finite_ladder(
@@ -614,6 +619,6 @@ def _warn_beyond_the_layer(plan: _Plan) -> None:
     """The validity limits the deepest depth (m) passed (:mod:`shtaerman.guards`)."""
     from ..guards import warn_outside_validity
 
-    finite = plan.model != "linear"
     deepest = float(plan.depths[-1])
-    warn_outside_validity(plan.indenter, deepest, plan.mesh.thickness, finite, "the deepest depth")
+    where = "the deepest depth"
+    warn_outside_validity(plan.indenter, deepest, plan.mesh.thickness, plan.finite, where)

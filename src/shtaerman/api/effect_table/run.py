@@ -131,8 +131,7 @@ def _numerics(refine: float, estimate: bool, options: Mapping[str, Any]) -> dict
 
 def _order(variant: Variant) -> tuple[bool, int]:
     """Cheapest first: the linear problems before the rubbers, fewer effects first."""
-    body = variant.parts["body"]
-    return (body.model != "linear", 0 if variant.role == "none" else 1)
+    return (variant.parts["body"].finite, 0 if variant.role == "none" else 1)
 
 
 def _reference(parts: Parts) -> dict[str, float]:
