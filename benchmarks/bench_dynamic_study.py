@@ -68,7 +68,7 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.dynamic_contact import run_dynamic_impact
-from shtaerman.study.dynamic.accuracy import DynamicLadder
+from shtaerman.study.dynamic.accuracy import ImpactLadder
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.study.richardson import richardson
@@ -126,7 +126,7 @@ def effectivity_table(study, direction: str, finest: float, velocity: float = 3.
             values = [getattr(r, key) for r in results[k : k + 3]]
             difference = abs(values[-1] / getattr(results[-1], key) - 1)
             old = richardson(values, LADDER_RATIO)
-            ladder = DynamicLadder(tuple(refines[k : k + 3]), (), tuple(results[k : k + 3]), {})
+            ladder = ImpactLadder(tuple(refines[k : k + 3]), (), tuple(results[k : k + 3]), {})
             new = ladder.estimate(lambda r, key=key: getattr(r, key))
             cells.append(
                 f"{key} {old.error / difference:.2g}{old.method[0]} -> "

@@ -5,16 +5,15 @@ Run ``python benchmarks/finite_impact_effectivity.py [--cases NAME,...] [--refin
 Nothing is asserted.
 
 For each case (neo-Hookean), the impact runs at refine K/2, K/sqrt(2), K, K sqrt(2) and 2K
-(:func:`shtaerman.study.dynamic.finite_accuracy.refined`: mesh size field / factor, time steps x
-factor) from a modest base mesh (:data:`BASE_SIZE`, :data:`BASE_GROWTH`; the default axis
-grading) and :data:`BASE_STEPS`. The ladder the API runs at K (levels K/2, K/sqrt 2, K) gives
-each headline quantity's estimate (:func:`.finite_accuracy.ladder_estimates`, and the
-quasi-static differences x_c / x_max - 1, P_c / P_max - 1, t_c / (t_contact / 2) - 1); its
-true error is taken as the difference to the 2K run. Printed: effectivity = estimate / true
-error, which should lie in [0.5, 5]. The ladder one level finer (K/sqrt 2, K, K sqrt 2)
-against the same 2K run is printed too (its reference is one level finer only: its true
-error is understated by about 1 / (1 - 2^(-p/2)), some 3.4 at p = 2, so its effectivities
-read high by that factor).
+(:meth:`shtaerman.fem.finite_dynamic.FiniteImpactSettings.refined`: mesh size field / factor, time
+steps x factor) from a modest base mesh (:data:`BASE_SIZE`, :data:`BASE_GROWTH`; the default axis
+grading) and :data:`BASE_STEPS`. The ladder the API runs at K (levels K/2, K/sqrt 2, K) gives each
+headline quantity's estimate (:func:`shtaerman.study.dynamic.accuracy.ladder_estimates`, and the
+quasi-static differences x_c / x_max - 1, P_c / P_max - 1, t_c / (t_contact / 2) - 1); its true
+error is taken as the difference to the 2K run. Printed: effectivity = estimate / true error, which
+should lie in [0.5, 5]. The ladder one level finer (K/sqrt 2, K, K sqrt 2) against the same 2K run
+is printed too (its reference is one level finer only: its true error is understated by about 1 / (1
+- 2^(-p/2)), some 3.4 at p = 2, so its effectivities read high by that factor).
 
 Cases: ``pad-massless`` / ``pad-inertia``: z = 2 r^1.3, 0.12 kg at 1.5 m/s onto a 12 mm pad
 bonded to a rigid base, E2 = 3 MPa, nu2 = 0.49, density 0 / 1000 kg/m^3; ``paper-massless`` /
@@ -69,14 +68,9 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.finite_contact import FINITE_MESH
-from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
+from shtaerman.study.dynamic.accuracy import ladder_estimates, over_levels
 from shtaerman.study.dynamic.case import compare
-from shtaerman.study.dynamic.finite_accuracy import (
-    FiniteImpact,
-    ladder_estimates,
-    over_levels,
-    refined,
-)
 from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
@@ -130,7 +124,7 @@ def estimates_of(runs, quasi) -> dict[str, tuple[float, str]]:
 def run_case(name: str, refine: float, defaults: bool = False) -> None:
     case = CASES[name]
     body = case["body"]
-    impact = FiniteImpact(case["indenter"], body, body.density, case["mass"], case["velocity"])
+    inputs = (case["indenter"], body, body.density, case["mass"], case["velocity"])
     base = settings_of(case, defaults)
     modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)
     quasi = solve_impact(case["mass"], case["velocity"], PowerLawContact(case["indenter"], modulus))
@@ -141,9 +135,9 @@ def run_case(name: str, refine: float, defaults: bool = False) -> None:
         f"{base.steps} steps)"
     )
     for factor in factors:
-        level = refined(base, factor)
+        level = base.refined(factor)
         start, cpu = time.perf_counter(), time.process_time()
-        runs.append(impact.run(level))
+        runs.append(run_finite_impact(*inputs, level))
         wall, cpu = time.perf_counter() - start, time.process_time() - cpu
         print(
             f"  refine {factor:.3g}: {runs[-1].mesh['dofs']} dofs, {level.steps} steps, "

@@ -8,7 +8,7 @@ from types import SimpleNamespace
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, DynamicLadder, run_dynamic_ladder
+from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, ImpactLadder, run_dynamic_ladder
 from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.study.richardson import richardson
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -71,10 +71,10 @@ def test_cli_json_carries_the_estimates(capsys):
 # --- derived quantities: Richardson on their own values over the levels ------------------------
 
 
-def fake_ladder(name: str, values: list[float]) -> DynamicLadder:
+def fake_ladder(name: str, values: list[float]) -> ImpactLadder:
     """A ladder whose runs hold only the result ``name`` (coarsest first); no FEM."""
     results = tuple(SimpleNamespace(**{name: value}) for value in values)
-    return DynamicLadder((0.5, 0.71, 1.0), (), results, {})
+    return ImpactLadder((0.5, 0.71, 1.0), (), results, {})
 
 
 def test_derived_estimate_of_the_radiated_fraction_matches_its_propagation():
@@ -139,3 +139,26 @@ def test_estimate_covers_the_difference_to_the_finest_run(key):
     assert estimate.error < 10 * difference
     old = richardson(levels, LADDER_RATIO)  # the old estimator: not conservative for P_max
     assert (old.error < 0.05 * difference) == (key == "P_max")
+
+
+def test_the_linear_body_retries_a_failed_level_as_the_rubber_does(monkeypatch):
+    """One ladder for every body (issue 28): a level of the linear impact that fails
+    numerically is run again with doubled time steps and enters the ladder with them; before,
+    the linear ladder aborted the whole run."""
+    import shtaerman.study.dynamic.accuracy as accuracy
+    from shtaerman.validation import NumericalFailureError
+
+    run = accuracy.run_dynamic_impact
+
+    def fail_at_113(*inputs, **options):
+        if inputs[5].steps == 113:  # the middle level, once
+            raise NumericalFailureError("forced failure at 113 steps")
+        return run(*inputs, **options)
+
+    monkeypatch.setattr(accuracy, "run_dynamic_impact", fail_at_113)
+    retried = run_dynamic_ladder(
+        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE
+    )
+    assert [level.steps for level in retried.settings] == [80, 226, 160]
+    assert "passed with 226 steps" in retried.failures[1] and not retried.missing
+    assert set(retried.estimates) == set(DYNAMIC_ESTIMATED)

@@ -13,10 +13,10 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli.finite_dynamic import finite_dynamic_text
+from shtaerman.fem import finite_dynamic
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.guards import ValidityWarning
-from shtaerman.study.dynamic import finite_accuracy
-from shtaerman.study.dynamic.finite_accuracy import EstimateMissingWarning
+from shtaerman.study.dynamic.accuracy import EstimateMissingWarning
 from shtaerman.validation import NumericalFailureError
 
 COARSE = MeshSettings(size=0.15, domain=1e3, growth=0.35, axis_size=1e-3, axis_growth=0.25)
@@ -71,18 +71,19 @@ def test_the_estimate_bounds_the_difference_to_a_finer_run(ladder, coarse_mesh):
 def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
     """Runs with these time steps per t_y fail (a numerical failure); the others run (and
     with ``warn`` give a validity warning each)."""
-    run = finite_accuracy.FiniteImpact.run
+    run = finite_dynamic.run_finite_impact
 
-    def maybe_fail(self, settings):
+    def maybe_fail(*inputs):
+        settings = inputs[5]
         if settings.steps in steps:
             raise NumericalFailureError(f"forced failure at {settings.steps} steps")
         if warn:
             warnings.warn(
                 f"outside validity at {settings.steps} steps", ValidityWarning, stacklevel=2
             )
-        return run(self, settings)
+        return run(*inputs)
 
-    monkeypatch.setattr(finite_accuracy.FiniteImpact, "run", maybe_fail)
+    monkeypatch.setattr(finite_dynamic, "run_finite_impact", maybe_fail)
 
 
 def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(coarse_mesh, monkeypatch):

@@ -204,7 +204,7 @@ def dynamic(
         ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
         ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
         :func:`shtaerman.study.dynamic.case.finite_case` runs (``refine`` and ``estimate``
-        as here; the ladder of :mod:`shtaerman.study.dynamic.finite_accuracy`; density 0: the
+        as here; the ladder of :mod:`shtaerman.study.dynamic.accuracy`; density 0: the
         massless body; ``time_steps`` default 50, 100 with inertia; ``mesh_size`` the
         finite-strain contact's).
 
@@ -271,9 +271,8 @@ def _case(
     snapshots: bool,
 ) -> DynamicCase:
     """The impact of ``problem`` with its ladder (``estimate``): a rubber's by
-    :func:`.finite_case`, the linear body's by :func:`.run_case` and :func:`.complete_ladder`
+    :func:`.finite_case`, the linear body's by :func:`.run_case`
     (``checked``: its refine and settings; ``snapshots``: keep fields for an ``out`` folder)."""
-    from ..study.dynamic.accuracy import complete_ladder
     from ..study.dynamic.case import finite_case, run_case
 
     if checked is None:
@@ -284,11 +283,7 @@ def _case(
     inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
     physics = dict(prony=problem.body.prony, friction=problem.interface.coefficient)
     shots = _snapshots if snapshots else None
-    case = run_case(*inputs, chosen, snapshots=shots, **physics)
-    if estimate:
-        ladder = complete_ladder(case.result, *inputs, chosen, refine=refine, **physics)
-        case = dataclasses.replace(case, ladder=ladder)
-    return case
+    return run_case(*inputs, chosen, snapshots=shots, ladder=estimate, refine=refine, **physics)
 
 
 def _problem(

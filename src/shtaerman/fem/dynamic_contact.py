@@ -51,7 +51,7 @@ from .elasticity import (
     deviatoric_stiffness,
     divergence_coupling,
 )
-from .impact_run import ImpactRun, fitted_peak, parabola_peak
+from .impact_run import ImpactRun, fitted_peak, impact_parameters, mesh_counts, parabola_peak
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
 from .solver import Factorization, factorize_scaled
@@ -792,26 +792,11 @@ def _mesh_stats(
     problem: ImpactProblem, estimate: int, scales: _Scales, settings: DynamicSettings
 ) -> dict[str, float]:
     """Mesh sizes (counts) and geometry (m); a layer's thickness (m) and base."""
-    mesh = problem.system.mesh
-    layer = (
-        {}
-        if settings.thickness is None
-        else {
-            "thickness": settings.thickness,
-            "base": settings.base,
-        }
-    )
-    return {
-        "nodes": int(mesh.p.shape[1]),
-        "elements": int(mesh.t.shape[1]),
-        "dofs": int(problem.system.n_dofs),
-        "estimated_dofs": estimate,
-        "contact_candidates": int(problem.candidates.dofs.size),
-        "refined_radius": scales.refined,
-        "domain_radius": float(scales.domain_radius),
-        "smallest_size": settings.size * scales.refined,
-        **layer,
-    }
+    system, candidates = problem.system, problem.candidates.dofs.size
+    counts = mesh_counts(system.mesh, system.n_dofs, candidates, scales.refined, settings)
+    extent = {"domain_radius": float(scales.domain_radius)}
+    extent["smallest_size"] = settings.size * scales.refined
+    return {**counts, "estimated_dofs": estimate, **extent}
 
 
 def _parameters(
@@ -823,17 +808,12 @@ def _parameters(
 ) -> dict[str, float]:
     """Inputs and derived scales, SI units."""
     qs, layer, has_layer = scales.quasi_static, scales.layer, scales.has_layer
+    striker = (problem.striker.mass, problem.striker.velocity, rho)
+    parameters = impact_parameters(indenter, half_space, striker, scales.dt, problem.friction)
     return {
-        "mass": problem.striker.mass,
-        "velocity": problem.striker.velocity,
-        "density2": rho,
-        "shape_coefficient": indenter.shape_coefficient,
-        "exponent": indenter.exponent,
-        "E2": half_space.youngs_modulus,
-        "nu2": half_space.poisson_ratio,
+        **parameters,
         "shear_wave_speed": scales.shear_wave_speed,
         "rayleigh_wave_speed": scales.rayleigh_wave_speed,
-        "time_step": scales.dt,
         "layer_start": layer.start if has_layer else math.nan,
         "layer_ramp": layer.ramp if has_layer else math.nan,
         "layer_rate": layer.rate if has_layer else 0.0,
@@ -842,16 +822,7 @@ def _parameters(
         "quasi_static_a_c": qs.a_c,
         "beta": qs.beta,
         "solver_backward_error": problem.factorization.backward_error,
-        **_interface(problem.friction),
     }
-
-
-def _interface(friction: float | None) -> dict[str, object]:
-    """The parameters naming a bonded indenter, and Coulomb's mu where finite (JSON has no
-    inf); none when frictionless."""
-    if friction is None:
-        return {}
-    return {"interface": "bonded", **({} if math.isinf(friction) else {"friction": friction})}
 
 
 def _result(

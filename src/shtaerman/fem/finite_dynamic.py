@@ -80,7 +80,7 @@ from .finite_contact import (
 from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
-from .impact_run import ImpactRun, parabola_peak
+from .impact_run import ImpactRun, impact_parameters, mesh_counts, parabola_peak
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import GentLockError, RubberModel, gent_locks
@@ -179,6 +179,21 @@ class FiniteImpactSettings:
         if mesh is None:
             mesh = FINITE_MESH if massless else INERTIA_MESH
         return replace(self, steps=steps, mesh=mesh)
+
+    def refined(self, factor: float) -> FiniteImpactSettings:
+        """These (resolved) settings with the mesh size field divided and the time steps
+        multiplied by ``factor`` (> 1 refines), as
+        :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined`."""
+        factor = validate_positive("refine", factor)
+        assert self.steps is not None and self.mesh is not None, "resolve the settings first"
+        steps = self.steps * factor
+        if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:
+            raise InputError(
+                f"refine {factor:g} gives {steps:.4g} time steps per t_y from {self.steps}; "
+                f"{MIN_STEPS}-{MAX_STEPS} are allowed",
+                "refine",
+            )
+        return replace(self, steps=round(steps), mesh=self.mesh.refined(factor))
 
 
 @dataclass
@@ -496,20 +511,19 @@ def run_finite_impact(
     timings["total"] = clock[-1] - clock[0]
     context = {
         "timings": timings,
-        "mesh": _mesh_stats(mesh, stepper, refined, settings.mesh),
-        "parameters": _parameters(indenter, half_space, mass, velocity, t_y / settings.steps),
+        "mesh": mesh_counts(
+            mesh, stepper.system.n_dofs, stepper.nodes.radius.size, refined, settings.mesh
+        ),
+        "parameters": impact_parameters(
+            indenter, half_space, (mass, velocity, rho), t_y / settings.steps, friction or None
+        ),
         "newton_iterations": iterations,
         "reflected_energy_fraction": far,
     }
     context["parameters"].update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=law.beta)
-    context["parameters"].update(
-        density2=rho, time_steps=settings.steps, mesh_size=settings.mesh.size
-    )
+    context["parameters"].update(time_steps=settings.steps, mesh_size=settings.mesh.size)
     if rho > 0:
         context["parameters"].update(spectral_radius=settings.spectral_radius)
-    if friction:  # a bonded indenter; Coulomb's mu where finite (JSON has no inf)
-        slip = {} if math.isinf(friction) else {"friction": friction}
-        context["parameters"].update(interface="bonded", **slip)
     result = _result(columns, mass, context, separation)
     warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
     return result
@@ -562,21 +576,6 @@ def _stepped(
     return columns, iterations, separation, far
 
 
-def _mesh_stats(
-    mesh: Any, stepper: NewtonStepper, refined: float, layer: MeshSettings
-) -> dict[str, Any]:
-    """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run; a
-    layer's thickness (m) and base (``layer``: the run's mesh settings)."""
-    return {
-        "nodes": int(mesh.p.shape[1]),
-        "elements": int(mesh.t.shape[1]),
-        "dofs": int(stepper.system.n_dofs),
-        "contact_candidates": int(stepper.nodes.radius.size),
-        "refined_radius": refined,
-        **({"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}),
-    }
-
-
 def _checked(
     indenter: PowerLawIndenter, half_space: Material, density: object, mass: float, velocity: float
 ) -> tuple[float, float, float, PowerLawContact]:
@@ -613,22 +612,6 @@ def _assembled(
     if prony is not None:
         stepper.system = ViscoelasticBody(system, prony)
     return stepper
-
-
-def _parameters(
-    indenter: PowerLawIndenter, half_space: Material, mass: float, velocity: float, dt: float
-) -> dict[str, float]:
-    """Inputs and the time step, SI units."""
-    return {
-        "mass": mass,
-        "velocity": velocity,
-        "density2": 0.0,
-        "shape_coefficient": indenter.shape_coefficient,
-        "exponent": indenter.exponent,
-        "E2": half_space.youngs_modulus,
-        "nu2": half_space.poisson_ratio,
-        "time_step": dt,
-    }
 
 
 def _result(

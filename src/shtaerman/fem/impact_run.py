@@ -20,7 +20,14 @@ if TYPE_CHECKING:
     from .elasticity import ElasticSolution, ElasticSystem
     from .viscoelastic import ShearMemory, ViscoelasticShear
 
-__all__ = ["SUMMARY_KEYS", "ImpactRun", "fitted_peak", "parabola_peak"]
+__all__ = [
+    "SUMMARY_KEYS",
+    "ImpactRun",
+    "fitted_peak",
+    "impact_parameters",
+    "mesh_counts",
+    "parabola_peak",
+]
 
 SUMMARY_KEYS = (
     *("x_max", "P_max", "t_x_max", "t_contact", "v_out", "restitution"),
@@ -180,3 +187,37 @@ def fitted_peak(t: np.ndarray, y: np.ndarray, k: int, half_width: int) -> float:
     if c2 >= 0:
         return float(y[k])
     return float(c0 - 0.25 * c1 * c1 / c2)
+
+
+def impact_parameters(
+    indenter: Any,
+    half_space: Any,
+    striker: tuple[float, float, float],
+    time_step: float,
+    friction: float | None,
+) -> dict[str, float]:
+    """The inputs every run reports (SI): ``striker`` (mass kg, velocity m/s, body density
+    kg/m^3), the striker's profile, E2, nu2, the time step (s) and the interface: none
+    frictionless, ``interface`` bonded with Coulomb's ``friction`` where finite (JSON has no
+    inf)."""
+    mass, velocity, density = striker
+    parameters = {"mass": mass, "velocity": velocity, "density2": density}
+    parameters.update(shape_coefficient=indenter.shape_coefficient, exponent=indenter.exponent)
+    parameters.update(E2=half_space.youngs_modulus, nu2=half_space.poisson_ratio)
+    parameters["time_step"] = time_step
+    if friction is not None:
+        slip = {} if math.isinf(friction) else {"friction": friction}
+        parameters.update(interface="bonded", **slip)
+    return parameters
+
+
+def mesh_counts(
+    mesh: Any, dofs: int, candidates: int, refined: float, layer: Any
+) -> dict[str, Any]:
+    """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run; a
+    layer's thickness (m) and base (``layer``: settings with ``thickness`` and ``base``)."""
+    counts = {"nodes": int(mesh.p.shape[1]), "elements": int(mesh.t.shape[1])}
+    counts.update(dofs=int(dofs), contact_candidates=int(candidates), refined_radius=refined)
+    if layer.thickness is not None:
+        counts.update(thickness=layer.thickness, base=layer.base)
+    return counts

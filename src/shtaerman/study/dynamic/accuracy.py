@@ -1,39 +1,54 @@
-"""Error bars for the dynamic impact: a ladder refining mesh and time step together.
+"""Error bars for the impact, every body: one ladder refining mesh and time step together.
 
-Three runs with :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined` factors K/2,
-K/sqrt(2) and K (element sizes / sqrt(2) and time steps x sqrt(2) per level) and Richardson
-estimates (:mod:`shtaerman.study.richardson`) of the finest run's x_max, P_max, t_contact,
-restitution and radiated fraction 1 - e^2 (and a viscoelastic body's split of it into
-dissipated, wave and hysteresis fractions). There is no exact solution to compare with here:
-the estimate is what the number carries. A quantity derived from a run (a ratio to the
-quasi-static value) is estimated by Richardson on its own values over the levels
-(:meth:`DynamicLadder.estimate`), not by propagating the estimates above.
+Three runs of the impact at refinement K/2, K/sqrt(2) and K (each level's settings
+``settings.refined(factor)``: element sizes / factor, time steps x factor, so h and dt shrink
+together) and Richardson estimates (:mod:`shtaerman.study.richardson`) of the finest run's x_max,
+P_max, t_contact, restitution and radiated fraction 1 - e^2 (and a viscoelastic body's split of it,
+:data:`LOSS_ESTIMATED`). The linear body (:class:`~shtaerman.fem.dynamic_contact.DynamicSettings`)
+and the rubber at finite strain (:class:`~shtaerman.fem.finite_dynamic.FiniteImpactSettings`) climb
+the same ladder: only the run differs. There is no exact solution to compare with here: the estimate
+is what the number carries. A quantity derived from a run (a ratio to the quasi-static value) is
+estimated by Richardson on its own values over the levels (:meth:`ImpactLadder.estimate`), not by
+propagating the estimates above.
+
+A level whose run fails numerically (a Newton or a step equation that does not converge, a
+runaway energy) is run again with :data:`RETRY_STEPS` times its time steps; it then enters the
+ladder with those steps (its time error is smaller than its place in the ladder assumes, which
+enlarges the last difference: the estimate stays on the safe side). If the retry fails too, the
+ladder keeps the levels that passed, reports the finest of them and marks the estimate as
+missing, with the reason (:attr:`ImpactLadder.missing`) and a warning; it fails only when no
+level passed.
 
 The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``): x_max
 converges regularly, while P_max, t_contact and e scatter from level to level (the graded
 meshes are not nested), so the larger of the two differences between consecutive levels is
 reported where no clean order is observed. Its effectivity is measured in
-``benchmarks/bench_dynamic_study.py`` (c).
+``benchmarks/bench_dynamic_study.py`` (c) and ``benchmarks/finite_impact_effectivity.py``.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from operator import attrgetter
+from dataclasses import dataclass, replace
+from typing import Any, Protocol, TypeVar
 
-from ...fem.dynamic_contact import (
-    MAX_SIZE,
-    MIN_STEPS,
-    DynamicSettings,
-    ImpactRun,
-    run_dynamic_impact,
-)
+from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings, run_dynamic_impact
+from ...fem.finite_dynamic import MIN_STEPS as FINITE_MIN_STEPS
+from ...fem.finite_dynamic import FiniteImpactSettings
+from ...fem.hyperelastic import NewtonError
+from ...fem.impact_run import ImpactRun
+from ...fem.rubber import GentLockError
+from ...guards import ValidityWarning
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
-from ...theory.viscoelastic import PronySeries
-from ...validation import InputError, validate_positive
+from ...validation import (
+    InputError,
+    NumericalFailureError,
+    caller_stacklevel,
+    validate_positive,
+)
 from ..ladder import LADDER_RATIO
 from ..richardson import Estimate, richardson
 
@@ -42,21 +57,26 @@ __all__ = [
     "DYNAMIC_ORDER",
     "DYNAMIC_SANE",
     "LOSS_ESTIMATED",
-    "DynamicLadder",
+    "RETRY_STEPS",
+    "EstimateMissingWarning",
+    "ImpactLadder",
+    "check_finite_ladder",
     "check_ladder",
-    "complete_ladder",
+    "ladder_estimates",
+    "over_levels",
     "run_dynamic_ladder",
+    "run_ladder",
 ]
 
 DYNAMIC_ESTIMATED = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
-"""The dynamic results that get an error estimate."""
+"""The impact's results that get an error estimate."""
 LOSS_ESTIMATED = (
     "energy_dissipated_fraction",
     "energy_wave_fraction",
     "energy_hysteresis_fraction",
 )
-"""A viscoelastic body's split of 1 - e^2 (:attr:`ImpactRun.losses`), estimated
-too when the runs have it."""
+"""A viscoelastic body's split of 1 - e^2 (:attr:`ImpactRun.losses`), estimated too where the
+runs have it (a rubber at finite strain records the dissipated fraction only)."""
 DYNAMIC_ORDER = 2.0
 """Asymptotic order used for the correction: generalized-alpha is second order in dt, and the
 graded P2 mesh converges at 2.2-2.7 here (x_max refining only the mesh); the smaller order
@@ -65,64 +85,99 @@ the time and mesh parts mixing), the estimate fell to 0.51 of the difference to 
 DYNAMIC_SANE = (1.0, 5.0)
 """Observed orders taken as asymptotic (as :data:`.accuracy.SANE_ORDERS`); otherwise, and for
 differences that do not shrink monotonically, the largest of the two differences."""
+LEVELS = (1.0 / LADDER_RATIO**2, 1.0 / LADDER_RATIO, 1.0)
+"""Refinement of each level relative to the finest, coarse to fine."""
+RETRY_STEPS = 2
+"""A failed level is run once more with this many times its time steps."""
+FAILURES = (NewtonError, NumericalFailureError)
+"""The numerical failures of a run that a retry may cure (bad input is not retried)."""
+
+
+class EstimateMissingWarning(UserWarning):
+    """A ladder level failed twice: the finest level that passed is reported, with no
+    error estimate."""
+
+
+class ImpactSettings(Protocol):
+    """What the ladder needs of a body's numerical settings."""
+
+    steps: Any
+
+    def refined(self, factor: float) -> Any:
+        """The settings with mesh sizes / ``factor`` and time steps x ``factor``."""
+
+
+Settings = TypeVar("Settings", bound=ImpactSettings)
 
 
 @dataclass(frozen=True)
-class DynamicLadder:
-    """Three dynamic runs, coarse to fine, and the estimates of the finest.
+class ImpactLadder:
+    """The levels of an impact, coarse to fine, and the estimates of the finest.
 
     Attributes
     ----------
     refines : tuple of float
         Refinement factors of the levels.
-    settings : tuple of DynamicSettings
-        The numerical settings of the levels.
-    results : tuple of ImpactRun
-        The runs; ``results[-1]`` is the answer.
+    settings : tuple
+        The settings each level ran with (a retried level's doubled steps).
+    results : tuple of ImpactRun or None
+        The runs; None where a level failed twice.
     estimates : dict of str to Estimate
-        Per quantity of :data:`DYNAMIC_ESTIMATED` (and of :data:`LOSS_ESTIMATED` for a
-        viscoelastic body).
+        Per quantity; empty when the estimate is missing.
+    failures : tuple of str
+        Per level, "" or what failed (a retry that passed is noted too); () for none.
+    missing : str
+        Why the estimate is missing ("" when there is one).
     """
 
     refines: tuple[float, ...]
-    settings: tuple[DynamicSettings, ...]
-    results: tuple[ImpactRun, ...]
+    settings: tuple[Any, ...]
+    results: tuple[ImpactRun | None, ...]
     estimates: dict[str, Estimate]
+    failures: tuple[str, ...] = ()
+    missing: str = ""
 
     @property
     def finest(self) -> ImpactRun:
-        """The finest run: the reported numbers."""
-        return self.results[-1]
+        """The finest run that passed: the reported numbers."""
+        return next(r for r in reversed(self.results) if r is not None)
 
-    def estimate(self, quantity: Callable[[ImpactRun], float]) -> Estimate:
-        """Richardson on ``quantity`` of each level's run (e.g. x_c / x_max - 1)."""
-        return _over_levels(self.results, quantity)
+    def estimate(self, quantity: Callable[[Any], float]) -> Estimate | None:
+        """Richardson on ``quantity`` of each level's run (e.g. x_c / x_max - 1); None when
+        the estimate is missing."""
+        return None if self.missing else over_levels(self.results, quantity)
 
     def to_dict(self, estimates: dict[str, Estimate] | None = None) -> dict[str, object]:
-        """The JSON keys ``error_estimate``, ``extrapolated``, ``mesh_ladder`` and details,
-        of ``estimates`` (default: :attr:`estimates`)."""
+        """The JSON keys ``error_estimate``, ``extrapolated``, ``estimate_details`` (None
+        when the estimate is missing; then ``estimate_missing`` says why) and
+        ``mesh_ladder`` (a failed level's dofs and seconds None, its ``failure`` named) of
+        ``estimates`` (default: :attr:`estimates`)."""
         estimates = self.estimates if estimates is None else estimates
-        return {
-            "error_estimate": {k: e.error for k, e in estimates.items()},
-            "extrapolated": {k: e.extrapolated for k, e in estimates.items()},
-            "estimate_details": {k: e.to_dict() for k, e in estimates.items()},
-            "mesh_ladder": [
-                {
-                    "refine": refine,
-                    "dofs": int(result.mesh["dofs"]),
-                    "steps": level.steps,
-                    "seconds": float(result.timings.get("total", float("nan"))),
-                }
-                for refine, level, result in zip(
-                    self.refines, self.settings, self.results, strict=True
-                )
-            ],
-        }
+        failures = self.failures or ("",) * len(self.results)
+        levels = []
+        for refine, level, result, failure in zip(
+            self.refines, self.settings, self.results, failures, strict=True
+        ):
+            row: dict[str, Any] = {"refine": refine, "steps": level.steps}
+            row["dofs"] = None if result is None else int(result.mesh["dofs"])
+            row["seconds"] = (
+                None if result is None else float(result.timings.get("total", math.nan))
+            )
+            levels.append({**row, **({"failure": failure} if failure else {})})
+        document: dict[str, object] = {"mesh_ladder": levels}
+        if self.missing:
+            document.update(error_estimate=None, extrapolated=None, estimate_details=None)
+            return {**document, "estimate_missing": self.missing}
+        document["error_estimate"] = {k: e.error for k, e in estimates.items()}
+        document["extrapolated"] = {k: e.extrapolated for k, e in estimates.items()}
+        document["estimate_details"] = {k: e.to_dict() for k, e in estimates.items()}
+        return document
 
 
 def check_ladder(settings: DynamicSettings) -> None:
-    """Raise :class:`~shtaerman.validation.InputError` unless the ladder's coarsest level
-    (``settings.refined(1/2)``: mesh sizes x2, steps / 2) is valid, before anything runs."""
+    """Raise :class:`~shtaerman.validation.InputError` unless the linear body's ladder's
+    coarsest level (``settings.refined(1/2)``: mesh sizes x2, steps / 2) is valid, before
+    anything runs."""
     fewest = math.ceil((MIN_STEPS - 0.5) * LADDER_RATIO**2)  # its level rounds to MIN_STEPS
     if settings.steps < fewest:  # the usual cause: name the input the user gave
         raise InputError(
@@ -139,53 +194,162 @@ def check_ladder(settings: DynamicSettings) -> None:
             "mesh_size",
         )
     try:
-        settings.refined(1.0 / LADDER_RATIO**2)
+        settings.refined(LEVELS[0])
     except InputError as error:
         raise InputError(
             f"the error-estimate ladder's coarsest level (mesh x2, steps / 2) is invalid: {error}"
         ) from None
 
 
-def _over_levels(results: Sequence[ImpactRun], quantity: Callable[[ImpactRun], float]) -> Estimate:
+def check_finite_ladder(settings: FiniteImpactSettings, refine: float, estimate: bool) -> None:
+    """Raise InputError, before any run, unless every level of the rubber's ladder ending at
+    ``refine`` (only that level without ``estimate``) has valid settings (``settings``
+    resolved, of refine 1)."""
+    refine = validate_positive("refine", refine)
+    lowest = refine / 2.0 if estimate else refine
+    if settings.steps is not None and settings.steps * lowest < FINITE_MIN_STEPS - 0.5:
+        fewest = math.ceil((FINITE_MIN_STEPS - 0.5) / lowest)
+        coarsest = "the error-estimate ladder's coarsest level halves" if estimate else "refine"
+        raise InputError(
+            f"time_steps: {coarsest} the time steps (refine {lowest:g}), so it needs at least "
+            f"{fewest} per t_y, got {settings.steps}; or run without the estimate "
+            "(estimate=False, --no-estimate)",
+            "time_steps",
+        )
+    mesh = settings.mesh
+    assert mesh is not None, "resolve the settings first"
+    smallest = max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth) * refine / lowest
+    if refine < smallest * (1.0 - 1e-12):
+        raise InputError(
+            f"refine must be >= {smallest:.3g} with these mesh settings ("
+            + ("the error-estimate ladder's coarsest mesh, refine / 2," if estimate else "it")
+            + f" keeps every size and growth <= 1), got {refine!r}"
+            + ("; or run without the estimate (estimate=False, --no-estimate)" if estimate else ""),
+            "refine",
+        )
+
+
+def over_levels(results: Sequence[Any], quantity: Callable[[Any], float]) -> Estimate:
+    """Richardson on ``quantity`` over the levels; a level without the value (nan) gives an
+    estimate of nan error (method ``missing``)."""
     values = [quantity(result) for result in results]
-    return richardson(
-        values, LADDER_RATIO, order=DYNAMIC_ORDER, sane=DYNAMIC_SANE, fallback="largest"
-    )
+    if all(math.isfinite(value) for value in values):
+        return richardson(
+            values, LADDER_RATIO, order=DYNAMIC_ORDER, sane=DYNAMIC_SANE, fallback="largest"
+        )
+    fine = values[-1]
+    return Estimate(fine, fine, math.nan, math.nan, "missing", "a level gave no value")
 
 
-def complete_ladder(
-    finest: ImpactRun,
-    indenter: PowerLawIndenter,
-    half_space: Material,
-    density: float,
-    mass: float,
-    velocity: float,
-    settings: DynamicSettings,
+def ladder_estimates(results: Sequence[ImpactRun]) -> dict[str, Estimate]:
+    """The estimates of the last of three levels' runs (coarse to fine): the quantities of
+    :data:`DYNAMIC_ESTIMATED` and the losses of :data:`LOSS_ESTIMATED` the runs have; not
+    1 - e^2 of a massless elastic body (0 by construction, its energy-conserving stepping's
+    round-off has no relative error)."""
+    finest = results[-1]
+    keys = [*DYNAMIC_ESTIMATED, *(key for key in LOSS_ESTIMATED if key in finest.losses)]
+    if finest.parameters.get("density2") == 0 and not finest.losses:
+        keys.remove("energy_radiated_fraction")
+    return {key: over_levels(results, lambda r, key=key: r.summary()[key]) for key in keys}
+
+
+def _level(
+    run: Callable[[Settings], ImpactRun], settings: Settings
+) -> tuple[Settings, ImpactRun | Exception, str]:
+    """One level run; on a numerical failure run again with :data:`RETRY_STEPS` x its time
+    steps. Returns the settings last used, the result (or the last error) and a note."""
+    try:
+        return settings, run(settings), ""
+    except GentLockError:  # the rubber's limit, not the numerics: no retry cures it
+        raise
+    except FAILURES as error:
+        first, failed = f"{settings.steps} steps failed ({error})", error
+    try:
+        retry = replace(settings, steps=RETRY_STEPS * settings.steps)
+    except InputError:  # already at the most time steps: a retry would fail the same way
+        return settings, failed, f"{first}; no retry beyond the most time steps"
+    try:
+        return retry, run(retry), f"{first}; passed with {retry.steps} steps"
+    except FAILURES as error:
+        return retry, error, f"{first}; the retry with {retry.steps} steps failed too ({error})"
+
+
+def run_ladder(
+    run: Callable[[Settings], ImpactRun],
+    settings: Settings,
     *,
     refine: float = 1.0,
+    estimate: bool = True,
+    finest: ImpactRun | None = None,
     progress: Callable[[str], None] | None = None,
-    prony: PronySeries | None = None,
-    friction: float | None = None,
-) -> DynamicLadder:
-    """The ladder of a run already made with ``settings`` (and ``prony``, ``friction``): the
-    two coarser levels (``settings.refined(1/2)`` and ``refined(1/sqrt 2)``) are run, then the
-    estimates."""
+) -> ImpactLadder:
+    """The impact at ``settings`` (the finest level, of refinement ``refine``) and, with
+    ``estimate``, at its refinement 1/2 and 1/sqrt(2), with error estimates.
+
+    Parameters
+    ----------
+    run : callable
+        One run of the impact with given settings (every body: the linear
+        :func:`~shtaerman.fem.dynamic_contact.run_dynamic_impact`, the rubber's
+        :func:`~shtaerman.fem.finite_dynamic.run_finite_impact`).
+    settings : DynamicSettings or FiniteImpactSettings
+        The finest level's settings (resolved).
+    refine : float
+        The finest level's refinement, as reported.
+    estimate : bool
+        Run the two coarser levels and estimate (else one level, no estimates).
+    finest : ImpactRun, optional
+        The finest level's run when already made (with ``settings``).
+    progress : callable, optional
+        Receives one line per level run here.
+
+    Returns
+    -------
+    ImpactLadder
+
+    Raises
+    ------
+    NewtonError, shtaerman.validation.NumericalFailureError
+        When no level passed (the finest level's last error); a Gent rubber's lock
+        (:class:`shtaerman.fem.rubber.GentLockError`) at once, without retry.
+    """
     report = progress or (lambda _line: None)
-    coarse = [settings.refined(1.0 / LADDER_RATIO**2), settings.refined(1.0 / LADDER_RATIO)]
-    results = []
-    for level in coarse:
-        result = run_dynamic_impact(
-            indenter, half_space, density, mass, velocity, level, prony=prony, friction=friction
-        )
-        report(f"dynamic ladder: {result.mesh['dofs']} dofs, {level.steps} steps")
-        results.append(result)
-    results.append(finest)
-    refines = (refine / LADDER_RATIO**2, refine / LADDER_RATIO, refine)
-    estimates = {key: _over_levels(results, attrgetter(key)) for key in DYNAMIC_ESTIMATED}
-    if finest.losses:
-        for key in LOSS_ESTIMATED:
-            estimates[key] = _over_levels(results, lambda r, key=key: r.losses[key])
-    return DynamicLadder(refines, (*coarse, settings), tuple(results), estimates)
+    factors = LEVELS if estimate else LEVELS[-1:]
+    runs = {1.0: (settings, finest, "") if finest is not None else _level(run, settings)}
+    for factor in factors[:-1]:  # the finest first: its refusals come before any other cost
+        with warnings.catch_warnings():  # the reported level's validity warnings only
+            if isinstance(runs[1.0][1], ImpactRun):
+                warnings.simplefilter("ignore", ValidityWarning)
+            runs[factor] = _level(run, settings.refined(factor))
+        if isinstance(runs[factor][1], ImpactRun):
+            report(f"ladder: {runs[factor][1].mesh['dofs']} dofs, {runs[factor][0].steps} steps")
+    used, outcomes, notes = zip(*(runs[factor] for factor in factors), strict=True)
+    results = tuple(r if isinstance(r, ImpactRun) else None for r in outcomes)
+    if all(result is None for result in results):
+        raise outcomes[-1]
+    refines = tuple(refine * factor for factor in factors)
+    missing = _missing(refines, notes, results)
+    estimates = ladder_estimates(results) if estimate and not missing else {}
+    return ImpactLadder(refines, used, results, estimates, notes, missing)
+
+
+def _missing(
+    refines: tuple[float, ...], notes: tuple[str, ...], results: tuple[ImpactRun | None, ...]
+) -> str:
+    """Why the estimate is missing ("" when every level passed), said once as a warning."""
+    if None not in results:
+        return ""
+    failed = [
+        f"refine {f:.3g}: {n}" for f, n, r in zip(refines, notes, results, strict=True) if r is None
+    ]
+    missing = "a ladder level failed twice, " + "; ".join(failed)
+    warnings.warn(
+        f"no error estimate: {missing}; the finest level that passed is reported. More "
+        "time steps (time_steps, --time-steps) or a finer mesh (refine, --refine) may pass",
+        EstimateMissingWarning,
+        stacklevel=caller_stacklevel(),
+    )
+    return missing
 
 
 def run_dynamic_ladder(
@@ -199,8 +363,9 @@ def run_dynamic_ladder(
     refine: float = 1.0,
     progress: Callable[[str], None] | None = None,
     **options: object,
-) -> DynamicLadder:
-    """The dynamic impact at refine / 2, refine / sqrt(2) and refine, with error estimates.
+) -> ImpactLadder:
+    """The linear body's impact at refine / 2, refine / sqrt(2) and refine, with error
+    estimates.
 
     Parameters
     ----------
@@ -216,22 +381,16 @@ def run_dynamic_ladder(
 
     Returns
     -------
-    DynamicLadder
+    ImpactLadder
     """
     refine = validate_positive("refine", refine)
     finest = (DynamicSettings() if settings is None else settings).refined(refine)
     check_ladder(finest)  # every level checked before any run
-    result = run_dynamic_impact(indenter, half_space, density, mass, velocity, finest, **options)
-    return complete_ladder(
-        result,
-        indenter,
-        half_space,
-        density,
-        mass,
-        velocity,
-        finest,
-        refine=refine,
-        progress=progress,
-        prony=options.get("prony"),  # type: ignore[arg-type]
-        friction=options.get("friction"),  # type: ignore[arg-type]
-    )
+    inputs = (indenter, half_space, density, mass, velocity)
+    result = run_dynamic_impact(*inputs, finest, **options)
+    physics = {key: options.get(key) for key in ("prony", "friction")}
+
+    def run(level: DynamicSettings) -> ImpactRun:
+        return run_dynamic_impact(*inputs, level, **physics)
+
+    return run_ladder(run, finest, refine=refine, finest=result, progress=progress)

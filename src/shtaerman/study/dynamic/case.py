@@ -14,6 +14,7 @@ import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from functools import partial
 from typing import TYPE_CHECKING
 
 from ...fem.dynamic_contact import (
@@ -29,8 +30,7 @@ from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.radiation import RadiationEstimate, radiation_estimate
 from ...theory.viscoelastic import PronySeries
 from ..richardson import Estimate
-from .accuracy import DynamicLadder, complete_ladder
-from .finite_accuracy import FiniteImpact, FiniteLadder, run_finite_ladder
+from .accuracy import ImpactLadder, check_finite_ladder, run_ladder
 
 if TYPE_CHECKING:
     from ...problem import Problem
@@ -69,7 +69,7 @@ class DynamicCase:
     quasi: ImpactResult
     estimate: RadiationEstimate
     result: ImpactRun
-    ladder: DynamicLadder | FiniteLadder | None = None
+    ladder: ImpactLadder | None = None
 
     def differences(self) -> dict[str, float]:
         """:func:`compare` and the measured loss against the first-order estimate."""
@@ -82,9 +82,9 @@ class DynamicCase:
 
     @property
     def estimated(self) -> bool:
-        """Whether the case carries error estimates: it ran its ladder, and (a rubber's ladder,
-        :class:`.finite_accuracy.FiniteLadder`) no level of it failed twice."""
-        return self.ladder is not None and not getattr(self.ladder, "missing", "")
+        """Whether the case carries error estimates: it ran its ladder, and no level of it
+        failed twice."""
+        return self.ladder is not None and not self.ladder.missing
 
     def estimates(self) -> dict[str, Estimate]:
         """Richardson estimates from the ladder ({} without one): x_max, P_max, t_contact,
@@ -140,6 +140,7 @@ def run_case(
     *,
     snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
     ladder: bool = False,
+    refine: float = 1.0,
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> DynamicCase:
@@ -162,6 +163,8 @@ def run_case(
     ladder : bool
         Also run the two coarser levels of the error-estimate ladder
         (``settings.refined(1/2)`` must be valid).
+    refine : float
+        The refinement ``settings`` stand for, as the ladder reports it.
     prony : PronySeries, optional
         Shear relaxation of the half-space (E2, nu2 its instantaneous values); None: elastic.
     friction : float, optional
@@ -176,18 +179,15 @@ def run_case(
         estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
-    inputs = (indenter, half_space, density, mass, velocity)
-    result = run_dynamic_impact(
-        *inputs, settings, snapshot_times=times, prony=prony, friction=friction
-    )
+    run = partial(run_dynamic_impact, indenter, half_space, density, mass, velocity)
+    result = run(settings, snapshot_times=times, prony=prony, friction=friction)
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     warn_outside_validity(indenter, result.x_max, settings.thickness, finite=False)
-    levels = (
-        complete_ladder(result, *inputs, settings, prony=prony, friction=friction)
-        if ladder
-        else None
-    )
+    levels = None
+    if ladder:
+        physics = partial(run, prony=prony, friction=friction)
+        levels = run_ladder(physics, settings, refine=refine, finest=result)
     return DynamicCase(velocity, quasi, estimate, result, levels)
 
 
@@ -201,8 +201,8 @@ def finite_case(
 ) -> DynamicCase:
     """The impact of ``problem`` on a rubber body at finite strain (``problem.body.finite``)
     beside the quasi-static impact: the finest level of its ladder
-    (:func:`.finite_accuracy.run_finite_ladder`; with ``estimate``, the two coarser levels
-    too), as ``shtaerman dynamic --model`` runs it.
+    (:func:`.accuracy.run_ladder`; with ``estimate``, the two coarser levels too), as
+    ``shtaerman dynamic --model`` runs it.
 
     Parameters
     ----------
@@ -225,7 +225,7 @@ def finite_case(
         estimate, which does not apply to a rubber (reported as such).
     """
     from ...fem.finite_contact import FINITE_MESH
-    from ...fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+    from ...fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
     from ...vocabulary import entry
 
     striker, body = problem.striker, problem.body.material
@@ -240,9 +240,14 @@ def finite_case(
     if problem.geometry.thickness is not None:
         mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)
+    check_finite_ladder(settings, refine, estimate)
     body_model = (problem.body.rubber(), problem.body.prony, problem.interface.coefficient)
-    impact = FiniteImpact(striker.indenter, body, rho, striker.mass, striker.velocity, *body_model)
-    ladder = run_finite_ladder(impact, settings, refine=refine, estimate=estimate)
+    inputs = (striker.indenter, body, rho, striker.mass, striker.velocity)
+
+    def run(level: FiniteImpactSettings) -> ImpactRun:
+        return run_finite_impact(*inputs, level, *body_model)
+
+    ladder = run_ladder(run, settings.refined(refine), refine=refine, estimate=estimate)
     law = PowerLawContact(striker.indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
     quasi = solve_impact(striker.mass, striker.velocity, law)
     estimate_ = radiation(striker.mass, striker.velocity, law, rho, body)
