@@ -3,6 +3,7 @@ study or sweep may add the restitution of the dynamic impact on its layer."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -203,6 +204,29 @@ def test_a_lubricated_pad_loses_more_than_a_bonded_one(bonded_pad):
     # the sliding base lets the waves run along the pad, away from the contact (observed
     # 0.9932 against 0.99993)
     assert 0.9 <= lubricated < bonded <= 1.0
+
+
+def test_a_layer_studys_dynamic_impact_takes_its_interface(tmp_path: Path, bonded_pad):
+    """Issue 28 (friction composes): the dynamic impact on a layer study's pad strikes with the
+    study's interface; before, it ran frictionless whatever [contact] interface said, and the
+    finding said "the dynamic impact takes no interface yet"."""
+    from shtaerman.output.text_contact import findings
+    from shtaerman.study.contact.runner import run_contact_study
+
+    study = _contact_study(tmp_path, "dynamic = true")
+    surface = {"interface": "bonded"}  # as [contact] interface = "bonded" sets both meshes
+    study = replace(
+        study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
+    )
+    no_slip = run_contact_study(study, quick=True).layer
+    # a no-slip striker stiffens the pad's contact: shallower than the frictionless impact. At
+    # nu = 0.5 friction does nothing on the half-space (the incompressible no-slip and
+    # frictionless solutions coincide, Spence 1975); on this pad it is 1.1e-3 (measured), far
+    # above the runs' round-off (~1e-10), so 1e-4 tells "took the interface" from "did not"
+    assert no_slip.x_max_dynamic < bonded_pad.layer.x_max_dynamic * (1 - 1e-4)
+    interface = {"kind": "bonded", "friction": None}
+    (line,) = findings("pad", {"layer": no_slip.to_dict(), "interface": interface})
+    assert "rigid bonded indenter (no slip)" in line and "no interface" not in line
 
 
 def test_the_layer_sweep_kind_asks_for_the_dynamic_impact():

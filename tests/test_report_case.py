@@ -87,15 +87,15 @@ def test_every_contact_finding_names_the_friction(tmp_path: Path):
     )
 
 
-def test_a_pad_finding_names_the_pad_and_the_friction_its_dynamic_impact_lacks(tmp_path):
+def test_a_pad_finding_names_the_pad_and_the_friction_of_its_dynamic_impact(tmp_path):
     text = PAD_FRICTION.replace('base = "lubricated"', 'base = "lubricated"\ndynamic = true')
     context = _report(tmp_path, "padfric", text)
     _every_finding_says(
         context, "20 mm pad on a lubricated rigid base", "Coulomb friction mu = 0.3"
     )
-    # the dynamic FE impact on the layer has no interface: the finding says its striker is
-    # frictionless rather than let it read as the friction case
-    assert "rigid frictionless striker" in context["findings"][0]
+    # the dynamic FE impact on the layer strikes with the study's interface (issue 28), and
+    # its finding says so
+    assert "rigid bonded indenter with Coulomb friction mu = 0.3" in context["findings"][0]
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
-from .case import case_words, prefixed
+from .case import case_words, interface_words, prefixed
 from .entry import kind_entry
 from .wording import number, plus_minus, seconds
 
@@ -162,11 +162,9 @@ def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
 
 
 def _layer_findings(layer: Mapping[str, Any], interface: Mapping[str, Any]) -> str:
-    """What the layer does to the contact and the impact, with the FE error estimate; the
-    dynamic impact's striker is frictionless whatever ``interface`` the curve had."""
-    striker = "rigid striker"
-    if interface.get("kind", "frictionless") != "frictionless":
-        striker = "rigid frictionless striker: the dynamic impact takes no interface yet"
+    """What the layer does to the contact and the impact (whose striker has the curve's
+    ``interface``), with the FE error estimate."""
+    striker = interface_words(interface.get("kind", "frictionless"), interface.get("friction"))
     excess = layer["force_ratio"] - 1.0
     error = layer["force_ratio_error"] * layer["force_ratio"]
     return (
@@ -182,7 +180,7 @@ def _layer_findings(layer: Mapping[str, Any], interface: Mapping[str, Any]) -> s
         + (
             "the restitution on a layer needs the dynamic impact, not computed here."
             if layer.get("restitution") is None
-            else f"the dynamic FE impact on the layer (elastic waves, {striker}) has "
+            else f"the dynamic FE impact on the layer (elastic waves, rigid {striker}) has "
             f"restitution {layer['restitution']:.4f}, x_max = "
             f"{number(layer['x_max_dynamic'], '.4g')} m and P_max = "
             f"{number(layer['P_max_dynamic'], '.4g')} N."

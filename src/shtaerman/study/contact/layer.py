@@ -217,16 +217,20 @@ def with_dynamic_impact(
     half_space: Material,
     impact: tuple[float, float],
     quick: bool = False,
+    friction: float | None = None,
 ) -> LayerFindings:
     """``findings`` with the dynamic FE impact (mass kg, velocity m/s) of a rigid striker on the
     resolved ``layer`` of ``half_space`` (density ``layer.density``): restitution, x_max (m),
-    P_max (N) and its energy balance error; :data:`QUICK_DYNAMIC` settings if ``quick``."""
+    P_max (N) and its energy balance error; :data:`QUICK_DYNAMIC` settings if ``quick``;
+    ``friction`` the striker's surface (None frictionless, inf bonded, else Coulomb's mu)."""
     from ...fem.dynamic_contact import run_dynamic_impact
 
     settings = replace(
         QUICK_DYNAMIC if quick else DynamicSettings(), thickness=layer.thickness, base=layer.base
     )
-    result = run_dynamic_impact(indenter, half_space, layer.density, *impact, settings)
+    result = run_dynamic_impact(
+        indenter, half_space, layer.density, *impact, settings, friction=friction
+    )
     return replace(
         findings,
         restitution=float(result.restitution),

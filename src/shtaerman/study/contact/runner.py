@@ -18,6 +18,7 @@ from scipy.integrate import IntegrationWarning
 
 from ...fem.contact import check_contact_scale
 from ...guards import warn_outside_validity
+from ...problem import Interface
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ...theory.impact_ode import integrate_impact
@@ -203,7 +204,10 @@ def _dynamic_layer(
         return layer
     report(f"{study.name}: dynamic FE impact on the layer (restitution)")
     impact = (study.mass, study.velocity)
-    return with_dynamic_impact(layer, study.layer, study.indenter, study.half_space, impact, quick)
+    friction = Interface(study.mesh.interface, study.mesh.friction).coefficient
+    return with_dynamic_impact(
+        layer, study.layer, study.indenter, study.half_space, impact, quick, friction
+    )
 
 
 def _convergence(
