@@ -22,6 +22,7 @@ from shtaerman.fem.mesh import MeshSettings
 from shtaerman.problem import Problem
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
+from shtaerman.theory.viscoelastic import PronySeries
 
 INDENTER = PowerLawIndenter(5.0, 1.5)
 RUBBER = Material(7.5e6, 0.5)
@@ -134,3 +135,21 @@ def test_the_api_checks_the_time_steps_as_the_cli_does():
     )
     with pytest.raises(InputError, match=r"time_steps must be an integer in \[50, 5000\]"):
         sh.dynamic(problem, time_steps=20)
+
+
+@pytest.mark.parametrize("friction", [math.inf, 0.5])
+def test_a_frictional_impact_on_a_pad_beyond_the_reach_is_refused_before_any_work(friction):
+    """Issue 28: the researcher's full case with z = 8 r^1.3 (pad 12 mm, Prony, Coulomb 0.5,
+    inertia) failed at separation after 15 minutes (x/a 2.26, beyond the 1.2 that a frictional
+    finite-strain contact converges to). The half-space's quasi-static depth bounds the pad's
+    (x/a 2.27 here), so the run is refused at once, naming velocity and the frictionless
+    alternative; the same striker without friction still runs on the pad (with a warning)."""
+    from shtaerman.validation import InputError
+
+    pad = FiniteImpactSettings(mesh=MeshSettings(thickness=0.012))
+    with pytest.raises(InputError, match=r"2\.27.*--interface frictionless") as refused:
+        run_finite_impact(
+            PowerLawIndenter(8.0, 1.3), Material(3e6, 0.49), 1000.0, 0.12, 1.5, pad,
+            prony=PronySeries.parse("0.3:1e-3"), friction=friction,
+        )  # fmt: skip
+    assert refused.value.parameter == "velocity"

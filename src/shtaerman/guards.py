@@ -118,12 +118,13 @@ def check_reach(
     impact: tuple[float, float],
     q: float,
     finite: bool,
+    note: str = "",
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
     (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
     message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)), x/a ~ x^(1-1/n)).
-    Both inputs set the depth: the message names both."""
+    Both inputs set the depth: the message names both; ``note`` ends it (the case's remedy)."""
     from .validation import InputError
 
     mass, velocity = impact
@@ -156,7 +157,7 @@ def check_reach(
         raise InputError(
             f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: at most about {fastest:.3g} m/s with "
-            "this striker, mass and body (or a smaller mass)",
+            f"this striker, mass and body (or a smaller mass){note}",
             "velocity",
         )
 
