@@ -130,6 +130,11 @@ class ContactResult:
         """FEM pressure at the centre of the contact at each depth, Pa."""
         return self._column("central_pressure")
 
+    @property
+    def finite(self) -> bool:
+        """Whether the curve is a rubber's at finite strain (else the linear body's)."""
+        return self.model != "linear"
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of ``shtaerman contact --json`` (same keys, same order): non-finite
         numbers are None (the CLI's null)."""
@@ -355,7 +360,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     from ..plots.curves import plot_force_depth
     from ..plots.gallery import contact_figures
 
-    if result.model != "linear":
+    if result.finite:
         write_finite_curve(result.solution, folder)
         plot_force_depth(result.solution, folder / "force_depth.png", figure_format=figure_format)
     else:

@@ -112,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
     report = result.to_dict()
     if args.json:
         print_json(report)
-    elif result.model != "linear":
+    elif result.finite:
         print(finite_contact_text(report))
     else:
         print(contact_text(report))
