@@ -39,9 +39,9 @@ error widen the intervals. Friction is not fitted, nor an indentation curve on a
 KIND and the CSV columns it reads (header 'name [unit]'):
   indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known)
   force-history   time [s], force [N]                       -> E2, time_offset, baseline,
-                                                               mass or velocity, prony
-  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony
-  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony
+                                                               mass or velocity, prony, tau
+  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau
+  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony, tau
 
 The result gives each unknown's value and 95 % interval, and identifiable false (with its
 bounds as the interval) for what the data cannot determine."""
@@ -51,7 +51,8 @@ NOTES = {
     "nu2": "known, or the starting value with --fit nu2",
     "mass": "known, or the starting value with --fit mass",
     "velocity": "of a force history: known, or the starting value with --fit velocity",
-    "prony": "the weights are the starting values with --fit prony, the tau_i stay fixed",
+    "prony": "the starting values with --fit prony (the g_i) and --fit tau (the tau_i); its "
+    "number of terms is the fitted series'",
 }
 """What ``fit`` does with some of its options."""
 DERIVED = {
@@ -62,8 +63,8 @@ DERIVED = {
 PRONY_HELP = (
     "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s): "
     "G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 the instantaneous modulus; the fit uses "
-    "the viscoelastic quasi-static impact, and with --fit prony the g_i are the starting "
-    "values, the tau_i fixed; unset: elastic"
+    "the viscoelastic quasi-static impact, and with --fit prony the g_i, with --fit tau the "
+    "tau_i are the starting values (the others fixed); unset: elastic"
 )
 """The help of ``--prony`` for a fit."""
 

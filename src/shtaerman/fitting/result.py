@@ -21,7 +21,7 @@ UNITS = {
     "time_offset": "s",
     "baseline": "N",
 }
-"""The unit of each fitted name (the Prony weights g_i: 1)."""
+"""The unit of each fitted name (the Prony weights g_i: 1; the times tau_i: s)."""
 NU2_RANGE = (0.0, 0.5)
 """The Poisson's ratios a fit considers (nu2 enters only as nu2^2: its sign is not seen)."""
 
@@ -116,7 +116,7 @@ def fitted_entries(known: Known, names: list[str], sol: Solution, unknowns: list
         if name == "E_star":
             out.update(_moduli(known, sol, j, unknowns))
         else:
-            unit = UNITS.get(name, "1")
+            unit = UNITS.get(name, "s" if name.startswith("tau") else "1")
             out[name] = _entry(sol.values[j], sol.low[j], sol.high[j], sol.identifiable[j], unit)
     return out
 

@@ -107,7 +107,9 @@ def fit(
         and Prony weights are the starting values of those fitted.
     unknowns : sequence of str
         Names to fit: E2, nu2, mass, velocity, time_offset, baseline, prony (the weights g_i
-        of the problem's series, at its fixed tau_i); which a kind takes: see ``--help``.
+        of the problem's series), tau (its relaxation times tau_i in s, fitted in log; one
+        outside the measured time range is not identifiable, and its g_i with it); which a
+        kind takes: see ``--help``.
     noise : float, optional
         Standard deviation of the data in the residual's unit (N for a force; relative for
         rebound data); None: estimated from the residual.
