@@ -329,3 +329,50 @@ def test_the_suites_own_history_csv_is_a_force_history(tmp_path, capsys):
     fitted = json.loads(capsys.readouterr().out)["fitted"]["E2"]
     # noise-free data of the same closed form: E2 back to the history's 10 printed digits
     assert fitted["value"] == pytest.approx(7.5e6, rel=1e-6)
+
+
+def test_resampling_gives_an_over_dense_span_its_fair_weight():
+    """A record with 20 times the rows over 1 ms around the peak, where the force reads 2 %
+    high (a disturbance of the sensor): unresampled, those rows outweigh the rest of the
+    contact and pull E2 up; resampled uniformly in time they weigh as the 1 ms they span."""
+    impact = solve_impact(MASS, VELOCITY, PowerLawContact(INDENTER, E_STAR))
+    middle = impact.t_y / 2
+    time = np.union1d(TIMES, np.linspace(middle - 5e-4, middle + 5e-4, 6000))
+    inside = (time > 0) & (time < impact.t_y)
+    force = np.zeros(time.size)
+    force[inside] = impact.history(times=time[inside]).P
+    force[np.abs(time - middle) < 5e-4] *= 1.02
+    data = {"time": time, "force": force}
+    errors = []
+    for resample in (None, 300):
+        result = sh.fit("force-history", data, problem(), resample=resample)
+        errors.append(abs(result.fitted["E2"]["value"] / E2 - 1))
+    assert result.data["rows"] == 300 and result.data["rows_read"] == time.size
+    # measured: 0.049 unresampled, 0.0041 resampled (a factor 12); 5: the disturbance's
+    # weight falls from 20/21 of the rows near the peak to 1/9 of the contact either way
+    assert errors[1] < errors[0] / 5
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--resample", "2"], "--resample must be an integer in [3, 1e7], got '2'"),
+        (["--resample", "2.5"], "--resample must be an integer in [3, 1e7]"),
+        (["--time-offset", "1e300"], "--time-offset must lie in [-0.02, 0.02] s"),
+        (["--baseline", "1e300"], "--baseline must lie in ("),
+        (["--baseline", "-1e300"], "--baseline must lie in ("),
+    ],
+)
+def test_a_bad_reading_option_is_one_line_naming_it(tmp_path, capsys, argv, message):
+    data = drop(baseline=0.0)
+    csv = write(tmp_path / "h.csv", "time [s],force [N]", zip(*data.values(), strict=True))
+    assert main(["fit", "force-history", csv, "--mass", "0.7", "--velocity", "3", *argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_rebound_data_are_not_resampled(tmp_path, capsys):
+    csv = write(tmp_path / "r.csv", "velocity [m/s],restitution [1]", [(1.0, 0.8), (2.0, 0.7)])
+    assert main(["fit", "rebound", csv, "--resample", "10"]) == 2
+    err = capsys.readouterr().err
+    assert "--resample: rebound data hold one row per drop" in err and err.count("\n") == 1

@@ -492,7 +492,9 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "time_offset",
         "s",
-        "the force history's time of first touch on the data's clock, unless fitted",
+        "the force history's time of first touch on the data's clock, unless fitted (the "
+        "starting value is then read off the data); from the record's first time less its "
+        "span to its last time",
         "time offset",
         0.0,
         valid=None,
@@ -500,10 +502,24 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "baseline",
         "N",
-        "the force history's zero force (the force read before and after contact), unless fitted",
+        "the force history's zero force (the force read before and after contact), unless "
+        "fitted (then its starting value); above minus the largest |force| and below the "
+        "largest force",
         "force baseline",
         0.0,
         valid=None,
+    ),
+    Entry(
+        "resample",
+        "",
+        "points to resample the data onto before the fit, uniform in time (a force history) "
+        "or in depth (an indentation), by linear interpolation over the record's span: an "
+        "irregular or over-dense record then gives each span of time fair weight, and a long "
+        "one fits faster; unset: the rows as read",
+        "resampled points",
+        None,
+        valid=Range(3.0, 1e7, low_open=False),
+        type="int",
     ),
     Entry(
         "units",

@@ -80,7 +80,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("data", metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'")
     inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
               "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
-              "refine", "json", "out", "force")  # fmt: skip
+              "resample", "refine", "json", "out", "force")  # fmt: skip
     add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
     prony = next(a for a in p._actions if "--prony" in a.option_strings)
     prony.help = PRONY_HELP  # the series' own help speaks of --model, which fit does not take
@@ -114,6 +114,7 @@ def run(args: argparse.Namespace) -> int:
             time_offset=args.time_offset,
             baseline=args.baseline,
             units=parse_units(args.units),
+            resample=args.resample,
             refine=FE_REFINE if args.refine is None else args.refine,
             out=args.out,
             force=args.force,

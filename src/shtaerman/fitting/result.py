@@ -49,7 +49,8 @@ class FitResult:
     (time_scale), the largest shape difference (shape_max, of the peak), the FE run's
     relative error estimates (fe_error) and the point of its last FE run (at)."""
     data: dict[str, Any]
-    """source, rows and the columns' units."""
+    """source, rows (fitted: after resample), rows_read (in the file) and the columns'
+    units."""
     known: dict[str, Any]
     """The known values of the problem (SI units)."""
     evaluations: int

@@ -14,8 +14,15 @@ from ..output.files import output_folder
 from ..problem import Problem
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
+from ..vocabulary import entry
 from .corrections import needs_fe
-from .data import Measurement, measured_unit, measurement
+from .data import (
+    Measurement,
+    check_history_options,
+    measured_unit,
+    measurement,
+    resampled,
+)
 from .engine import Solution, solve
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
@@ -86,6 +93,7 @@ def fit(
     time_offset: float = 0.0,
     baseline: float = 0.0,
     units: Mapping[str, str] | None = None,
+    resample: int | None = None,
     steps: int = 200,
     refine: float = FE_REFINE,
     out: str | Path | None = None,
@@ -118,6 +126,10 @@ def fit(
         fitted.
     units : mapping, optional
         Column -> unit for CSV header cells that give none.
+    resample : int, optional
+        Points to resample a force history (uniform in time) or an indentation (uniform in
+        depth) onto before the fit, by linear interpolation, in [3, 1e7]; None: the rows as
+        read.
     steps : int
         Time steps per t_c of the viscoelastic impact (with a Prony series).
     refine : float
@@ -137,7 +149,7 @@ def fit(
     FitResult
     """
     folder = output_folder(out, force=force)
-    measured = measurement(kind, data, units)  # the kind checked first
+    measured, rows_read = _read(kind, data, units, resample, time_offset, baseline)
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
     refine = validate_positive("refine", refine)
@@ -167,12 +179,28 @@ def fit(
         forward_model=model.description
         + ("; corrected by FE impacts (see corrections)" if corrections else ""),
         forward_error=_forward_entries(model, shifts),
+        data={**result.data, "rows_read": rows_read},
     )
     if folder is not None:
         from ..output.fit import write_fit
 
         write_fit(result, folder, force=force, figure_format=figure_format)
     return result
+
+
+def _read(kind: str, data: str | Path | Mapping[str, ArrayLike], units: Mapping[str, str] | None,
+          resample: int | None, time_offset: float, baseline: float,
+          ) -> tuple[Measurement, int]:  # fmt: skip
+    """The measurement, resampled if asked, with the force history's offset and baseline
+    checked against it, and the number of rows read."""
+    measured = measurement(kind, data, units)  # the kind checked first
+    rows = measured.rows
+    if resample is not None:
+        measured = resampled(measured, entry("resample").check(resample))
+    if kind == "force-history":
+        offset = entry("time_offset").check(time_offset)
+        check_history_options(measured, offset, entry("baseline").check(baseline))
+    return measured, rows
 
 
 def _forward_entries(model: Model, shifts: dict[str, np.ndarray]) -> dict[str, dict]:
