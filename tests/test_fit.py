@@ -376,3 +376,25 @@ def test_rebound_data_are_not_resampled(tmp_path, capsys):
     assert main(["fit", "rebound", csv, "--resample", "10"]) == 2
     err = capsys.readouterr().err
     assert "--resample: rebound data hold one row per drop" in err and err.count("\n") == 1
+
+
+def test_a_long_record_reports_its_progress(tmp_path, capsys, monkeypatch):
+    """A record of PROGRESS_VALUES values or more prints a line every PROGRESS_EVERY
+    evaluations on stderr (a 1e6-row history took 26 s under load, silent before); the
+    threshold is lowered here so that the 300-row drop test counts as long."""
+    from shtaerman.fitting import engine
+
+    data = drop()
+    csv = write(tmp_path / "h.csv", "time [s],force [N]", zip(*data.values(), strict=True))
+    argv = ["fit", "force-history", csv, "--mass", "0.7", "--velocity", "3", "--E2", "5e6",
+            "--fit", "E2,time_offset,baseline", "--baseline", "0.5", "--json"]  # fmt: skip
+    assert main(argv) == 0
+    assert capsys.readouterr().err == ""  # 300 values: short, silent
+    monkeypatch.setattr(engine, "PROGRESS_VALUES", 300)
+    assert main(argv) == 0
+    captured = capsys.readouterr()
+    lines = captured.err.splitlines()
+    evaluations = json.loads(captured.out)["evaluations"]
+    # one line per 10 evaluations: the search, its Jacobians and the intervals (counted all)
+    assert len(lines) == evaluations // 10 >= 1
+    assert lines[0].startswith("fit: 10 evaluations of the forward model on 300 values")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..fitting.data import KINDS, parse_units
 from ..fitting.result import FitResult
@@ -119,6 +120,7 @@ def run(args: argparse.Namespace) -> int:
             out=args.out,
             force=args.force,
             figure_format=args.figure_format,
+            progress=lambda line: print(line, file=sys.stderr, flush=True),
         )
     if args.json:
         print_json(result.to_dict())

@@ -54,7 +54,8 @@ class FitResult:
     known: dict[str, Any]
     """The known values of the problem (SI units)."""
     evaluations: int
-    """Forward-model evaluations used."""
+    """Forward-model evaluations used: the search's, its Jacobians' and the intervals'
+    (the forward model's own error refits are not counted)."""
     fe_runs: int = 0
     """FE impacts run for the corrections (each with its two coarser ladder levels)."""
     forward_error: dict[str, dict[str, float]] = field(default_factory=dict)

@@ -23,7 +23,7 @@ from .data import (
     measurement,
     resampled,
 )
-from .engine import Solution, solve
+from .engine import Progress, Solution, solve
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
@@ -99,6 +99,7 @@ def fit(
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
+    progress: Progress | None = None,
 ) -> FitResult:
     """Fit the unknowns of ``problem`` to a measurement by the exact quasi-static models.
 
@@ -143,6 +144,9 @@ def fit(
         Replace ``out`` if shtaerman wrote it.
     figure_format : str
         png, or svg / pdf besides.
+    progress : callable, optional
+        Told a line of progress every few evaluations of the forward model on a long record
+        (:data:`~shtaerman.fitting.engine.PROGRESS_VALUES` values or more).
 
     Returns
     -------
@@ -168,7 +172,7 @@ def fit(
             known, model, sol, corrections = fitted
         else:
             model, corrections = build_model(known, measured, names), []
-            sol = solve(model, noise)
+            sol = solve(model, noise, progress=progress)
         shifts = forward_error(known, measured, names, noise, model, sol)
     _check_velocities(measured, known, model, sol)
     result = _result(kind, measured, known, model, widened(sol, shifts), names)
