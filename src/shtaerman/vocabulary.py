@@ -475,7 +475,8 @@ VOCABULARY: tuple[Entry, ...] = (
         "the unknowns NAME[,NAME...] to fit: E2, nu2 (nu2 alone needs E2 known), mass, "
         "velocity, time_offset, baseline, prony (the weights g_i of --prony), tau (its relaxation "
         "times tau_i, fitted in log; a tau_i outside the measured time range is reported not "
-        "identifiable, its g_i with it); --prony's terms are the starting values",
+        "identifiable, its g_i with it); --prony's terms are the starting values; an indentation "
+        "with --model: E2 and, for mooney-rivlin, mooney_ratio (from FE curves)",
         "fitted unknowns",
         "E2",
         valid=None,

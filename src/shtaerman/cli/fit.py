@@ -35,10 +35,13 @@ the unknowns are the starting values. A force history or rebound data on a pad
 (--thickness), with waves (--density2) or at finite strain (--model) are corrected by FE
 impacts at the fitted point (fit, FE runs, fit again: a handful of rounds, one FE run per
 drop velocity of rebound data); their error estimates and the viscoelastic impact's step
-error widen the intervals. Friction is not fitted, nor an indentation curve on a pad.
+error widen the intervals. An indentation curve at finite strain (--model) is fitted by FE
+contact curves (E2 scales out: one FE curve; --fit E2,mooney_ratio with --model mooney-rivlin:
+3 or more). Friction is not fitted, nor an indentation curve on a pad.
 
 KIND and the CSV columns it reads (header 'name [unit]'):
-  indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known)
+  indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known;
+                                                               mooney_ratio with --model)
   force-history   time [s], force [N]                       -> E2, time_offset, baseline,
                                                                mass or velocity, prony, tau
   rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau
@@ -158,6 +161,8 @@ def fit_text(result: FitResult) -> str:
         interval = f"[{item['low']:.6g}, {item['high']:.6g}]"
         note = "" if item["identifiable"] else "  not identifiable from these data"
         rows.append(f"  {name:<12} {item['value']:>13.6g} {interval:>29}  {item['unit']}{note}")
+        if "reason" in item:
+            rows.append(f"  {'':<12} ({item['reason']})")
     noise = result.noise
     how = "estimated from the residual" if noise["estimated"] else "given"
     rows.append(

@@ -33,7 +33,8 @@ class FitResult:
     kind: str
     """indentation, force-history, rebound or resilience."""
     fitted: dict[str, dict[str, Any]]
-    """Name -> value, low, high (the 95 % interval), identifiable, unit."""
+    """Name -> value, low, high (the 95 % interval), identifiable, unit (and reason, why
+    the Mooney ratio of an indentation is not identifiable)."""
     correlation: dict[str, Any]
     """names (the fitted parameters) and matrix (null where a variance is unbounded)."""
     residual: dict[str, Any]

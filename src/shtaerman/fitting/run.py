@@ -24,6 +24,7 @@ from .data import (
     resampled,
 )
 from .engine import Progress, Solution, solve
+from .hyperelastic import finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
@@ -43,13 +44,13 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
     parts whose corrections the fit does not have (friction; a pad, waves and finite strain
     but in a force history) and an impact's measurement without the striker's mass (and a
     force history's velocity)."""
-    if needs_fe(problem) and kind == "indentation":
+    pad_or_waves = problem.geometry.thickness is not None or problem.body.material.density
+    if pad_or_waves and kind == "indentation":
         name = "thickness" if problem.geometry.thickness is not None else "density2"
-        name = "model" if problem.body.model != "linear" else name
         raise InputError(
-            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for an "
-            "impact's force history or rebound data; an indentation fit takes the "
-            "half-space's exact power law (leave thickness, density2 and model unset)",
+            f"{name}: the FE corrections of a pad and of waves are fitted for an impact's "
+            "force history or rebound data; an indentation fit takes the half-space's exact "
+            "power law, or its FE curves at finite strain (leave thickness and density2 unset)",
             name,
         )
     if problem.interface.kind != "frictionless":
@@ -117,8 +118,9 @@ def fit(
     unknowns : sequence of str
         Names to fit: E2, nu2, mass, velocity, time_offset, baseline, prony (the weights g_i
         of the problem's series), tau (its relaxation times tau_i in s, fitted in log; one
-        outside the measured time range is not identifiable, and its g_i with it); which a
-        kind takes: see ``--help``.
+        outside the measured time range is not identifiable, and its g_i with it),
+        mooney_ratio (an indentation of a mooney-rivlin body: FE curves); which a kind
+        takes: see ``--help``.
     noise : float, optional
         Standard deviation of the data in the residual's unit (N for a force; relative for
         rebound data); None: estimated from the residual.
@@ -167,29 +169,58 @@ def fit(
         noise = validate_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-        if needs_fe(problem):
-            fitted = corrected_fit(problem, known, measured, names, noise, refine)
-            known, model, sol, corrections = fitted
-        else:
-            model, corrections = build_model(known, measured, names), []
-            sol = solve(model, noise, progress=progress)
-        shifts = forward_error(known, measured, names, noise, model, sol)
+        known, model, sol, extra = _fitted(problem, known, measured, names, noise, refine,
+                                           progress)  # fmt: skip
     _check_velocities(measured, known, model, sol)
-    result = _result(kind, measured, known, model, widened(sol, shifts), names)
-    result = dataclasses.replace(
-        result,
-        corrections=[c.entry(problem) for c in corrections[-1:]],
-        fe_runs=sum(c.runs for c in corrections),
-        forward_model=model.description
-        + ("; corrected by FE impacts (see corrections)" if corrections else ""),
-        forward_error=_forward_entries(model, shifts),
-        data={**result.data, "rows_read": rows_read},
-    )
+    result = _result(kind, measured, known, model, sol, names)
+    reason = extra.pop("reason", None)
+    if reason is not None:
+        result.fitted["mooney_ratio"]["reason"] = reason
+    result = dataclasses.replace(result, **extra, data={**result.data, "rows_read": rows_read})
     if folder is not None:
         from ..output.fit import write_fit
 
         write_fit(result, folder, force=force, figure_format=figure_format)
     return result
+
+
+def _fitted(problem: Problem, known: Known, measured: Measurement, names: list[str],
+            noise: float | None, refine: float, progress: Progress | None,
+            ) -> tuple[Known, Model, Solution, dict]:  # fmt: skip
+    """The known parts, model and solution (intervals widened by the forward model's own
+    error) and the result's fields on the corrections and the forward error."""
+    if measured.kind == "indentation" and problem.body.finite:
+        model, sol, curves, reason, shifts = finite_indentation_fit(
+            problem, measured, names, noise, refine, progress
+        )
+        entry = {
+            "name": f"FE contact curves: finite strain ({problem.body.model})",
+            "mooney_ratios": sorted(curves.table),
+            "fe_error": {"force": curves.error},
+        }
+        return known, model, sol, {
+            "corrections": [entry], "fe_runs": len(curves.table), "reason": reason,
+            "forward_model": model.description, "forward_error": _forward_entries(model, shifts),
+        }  # fmt: skip
+    if needs_fe(problem):
+        known, model, sol, corrections = corrected_fit(problem, known, measured, names, noise,
+                                                       refine)  # fmt: skip
+    else:
+        model, corrections = build_model(known, measured, names), []
+        sol = solve(model, noise, progress=progress)
+    shifts = forward_error(known, measured, names, noise, model, sol)
+    return (
+        known,
+        model,
+        widened(sol, shifts),
+        {
+            "corrections": [c.entry(problem) for c in corrections[-1:]],
+            "fe_runs": sum(c.runs for c in corrections),
+            "forward_model": model.description
+            + ("; corrected by FE impacts (see corrections)" if corrections else ""),
+            "forward_error": _forward_entries(model, shifts),
+        },
+    )
 
 
 def _read(kind: str, data: str | Path | Mapping[str, ArrayLike], units: Mapping[str, str] | None,
