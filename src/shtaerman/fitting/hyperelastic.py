@@ -158,6 +158,11 @@ def finite_indentation_fit(problem: Problem, measured: Measurement, names: Seque
         change, floor = _shape_change(model, sol, curves)
         shifts = _shifts(sol, curves, change)
         wide = widened(sol, shifts)
+        low, high = (
+            np.maximum(wide.low, [0.0, RATIO_NODES[0]]),
+            np.minimum(wide.high, [np.inf, RATIO_NODES[-1]]),
+        )
+        wide = dataclasses.replace(wide, low=low, high=high)
         seen = wide.identifiable[1] and (wide.low[1] > RATIO_NODES[0]
                                          or wide.high[1] < RATIO_NODES[-1])  # fmt: skip
         ratio, half = float(sol.values[1]), float(wide.high[1] - wide.low[1]) / 2
