@@ -1,6 +1,8 @@
 """``sh.fit`` of an indentation curve at finite strain: E2 (and the Mooney ratio) from FE
 contact curves, E2 scaled out exactly, the ratio fitted on a few FE curves."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -24,16 +26,30 @@ def start(model):
     return sh.Problem.curve(INDENTER, sh.Material(5e6, 0.5), model=model)
 
 
-def test_a_neo_hookean_curve_gives_e2_back_from_one_fe_run():
-    result = sh.fit("indentation", fe_curve("neo-hookean"), start("neo-hookean"), refine=REFINE)
-    item = result.fitted["E2"]
+def test_a_neo_hookean_curve_gives_e2_back_from_one_fe_run(tmp_path, capsys):
+    """Through the command line (whose problem carries the default mass and velocity, which
+    the FE curve must drop, and whose text output printed the corrections of an impact)."""
+    data = fe_curve("neo-hookean")
+    csv = tmp_path / "curve.csv"
+    rows = "".join(
+        f"{x * 1e3:.17g},{p:.17g}\n" for x, p in zip(data["depth"], data["force"], strict=True)
+    )
+    csv.write_text("depth [mm],force [N]\n" + rows)
+    out = tmp_path / "out"
+    argv = ["fit", "indentation", str(csv), "--model", "neo-hookean", "--E2", "5e6",
+            "--refine", str(REFINE), "--out", str(out)]  # fmt: skip
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "corrections:   FE contact curves: finite strain (neo-hookean)" in text
+    result = json.loads((out / "fit.json").read_text())
+    item = result["fitted"]["E2"]
     # E2 scales out of the FE curve (measured 4e-12 between E2 and 2 E2): the round trip is
     # linear least squares on the same curve, measured 1.2e-12
     assert item["value"] == pytest.approx(E2, rel=1e-6) and item["identifiable"]
-    assert result.fe_runs == 1
+    assert result["fe_runs"] == 1
     # the interval is the FE force error estimate's (0.15 % at refine 0.6) times 1.96, the
     # data having no noise: not a round-off interval
-    error = result.corrections[0]["fe_error"]["force"]
+    error = result["corrections"][0]["fe_error"]["force"]
     assert (item["high"] - item["low"]) / 2 == pytest.approx(1.96 * error * E2, rel=1e-3)
 
 
@@ -78,4 +94,6 @@ def test_the_mooney_ratio_of_a_deep_curve_is_fitted_back():
     assert 0.0 <= ratio["low"] < 0.3 < ratio["high"] <= 0.9 and "reason" not in ratio
     assert (ratio["low"], ratio["high"]) != (0.0, 0.9)
     assert e2["value"] == pytest.approx(E2, rel=1e-4)  # measured 9e-7 with 8 depths
+    # E2 moves with r: its interval spans E2 at both ends of r's, not the 0.25 % of a held r
+    assert e2["low"] < E2 < e2["high"] and e2["high"] / e2["low"] > 1.01
     assert 4 <= result.fe_runs <= 6  # 3 nodes, then one per round (the issue: a handful)

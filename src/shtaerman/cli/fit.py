@@ -138,6 +138,11 @@ def _corrections_text(result: FitResult) -> list[str]:
         return ["  corrections:   none (a half-space of no density at small strain)"]
     rows = []
     for item in result.corrections:
+        if "mooney_ratios" in item:  # an indentation's FE curves
+            ratios = ", ".join(f"{r:.4g}" for r in item["mooney_ratios"])
+            sizes = f"force error {item['fe_error']['force']:.2g}, at mooney_ratio {ratios}"
+            rows.append(f"  corrections:   {item['name']}: {sizes} ({result.fe_runs} FE runs)")
+            continue
         if "force_scale" in item:  # a force history's
             sizes = f"peak force x{item['force_scale']:.4g}, contact time x{item['time_scale']:.4g}"
         else:  # rebound data's, per velocity

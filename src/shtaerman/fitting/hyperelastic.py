@@ -13,8 +13,8 @@ itself). A fit so costs a handful of FE runs.
 The FE curves' own force error estimate e enters the intervals: E2's by e (P = E2 p), r's
 by e / c of r's range, c the largest change of the curve's shape (E2 refitted: a change of r
 mostly rescales the curve like E2) that r makes over its range. r is not identifiable when
-its interval so widened spans that whole range; E2 is then reported over every r in it, not
-at a held r.
+its interval so widened spans that whole range. E2 moves with r, so E2's interval spans its
+fits with r held at each end of r's interval (the whole range when r is not identifiable).
 """
 
 from __future__ import annotations
@@ -67,6 +67,7 @@ class FECurves:
         material = Material(E_REF, body.material.poisson_ratio)
         case = dataclasses.replace(
             self.problem,
+            striker=dataclasses.replace(self.problem.striker, mass=None, velocity=None),
             body=dataclasses.replace(body, material=material, prony=None, **shape),
             loading=Loading("curve", tuple(float(x) for x in self.depths)),
         )
@@ -171,14 +172,30 @@ def finite_indentation_fit(problem: Problem, measured: Measurement, names: Seque
             break
         curves.add(ratio)  # an FE curve at the fitted r: the model there is the FE itself
         start = ratio
+    reason = None
     if seen:
-        return model, wide, curves, None, shifts
-    reason = (f"over mooney_ratio {RATIO_NODES[0]:g}-{RATIO_NODES[-1]:g} the curve's shape (E2 "
-              f"refitted) changes by at most {change:.2g} of the largest force, against noise "
-              f"and FE error {floor:.2g}: indent deeper, refine the FE curves, or give "
-              "mooney_ratio")  # fmt: skip
-    shifts = {"fe_force": shifts["fe_force"] * [1.0, 0.0]}
-    return model, widened(_over_every_ratio(model, noise, sol), shifts), curves, reason, shifts
+        ends = (float(wide.low[1]), float(wide.high[1]))
+    else:
+        ends = (RATIO_NODES[0], RATIO_NODES[-1])
+        reason = (f"over mooney_ratio {ends[0]:g}-{ends[1]:g} the curve's shape (E2 refitted) "
+                  f"changes by at most {change:.2g} of the largest force, against noise and FE "
+                  f"error {floor:.2g}: indent deeper, refine the FE curves, or give "
+                  "mooney_ratio")  # fmt: skip
+    final = widened(
+        _e2_over(model, noise, sol, ends, seen), {"fe_force": shifts["fe_force"] * [1, 0]}
+    )
+    return model, final, curves, reason, shifts
+
+
+def _e2_over(model: Model, noise: float | None, sol: Solution, ends: tuple[float, float],
+             seen: bool) -> Solution:  # fmt: skip
+    """``sol`` with the Mooney ratio's interval ``ends`` (identifiable if ``seen``) and E2's
+    interval spanning E2's fits with r held at each end: E2 moves with r (a change of r
+    mostly rescales the curve), so E2 is no better known than r."""
+    fits = [solve(model, noise, hold={"mooney_ratio": r}) for r in ends]
+    low = np.array([min(sol.low[0], *(f.low[0] for f in fits)), ends[0]])
+    high = np.array([max(sol.high[0], *(f.high[0] for f in fits)), ends[1]])
+    return dataclasses.replace(sol, low=low, high=high, identifiable=np.array([True, seen]))
 
 
 def _shifts(sol: Solution, curves: FECurves, change: float | None = None) -> dict:
@@ -203,15 +220,3 @@ def _shape_change(model: Model, sol: Solution, curves: FECurves) -> tuple[float,
         ends.append(shape * np.sum(force * shape) / np.sum(shape * shape))
     change = float(np.max(np.abs(ends[1] - ends[0]))) / top
     return change, float(np.hypot(sol.noise / top, curves.error))
-
-
-def _over_every_ratio(model: Model, noise: float | None, sol: Solution) -> Solution:
-    """``sol`` with the Mooney ratio not identifiable (its bounds as interval) and E2's
-    interval spanning its fits at every r of :data:`RATIO_NODES`' span."""
-    fits = [
-        solve(model, noise, hold={"mooney_ratio": r}) for r in RATIO_NODES[:: len(RATIO_NODES) - 1]
-    ]
-    low = np.array([min(f.low[0] for f in fits), RATIO_NODES[0]])
-    high = np.array([max(f.high[0] for f in fits), RATIO_NODES[-1]])
-    return dataclasses.replace(sol, low=low, high=high,
-                               identifiable=np.array([True, False]))  # fmt: skip
