@@ -162,6 +162,18 @@ def test_a_free_relaxation_time_is_fitted_back():
     assert tau["unit"] == "s" and tau["low"] < 2e-3 < tau["high"]
 
 
+def test_rebound_data_give_a_free_relaxation_time_back():
+    """Restitution and contact time at five velocities (contacts 8-14 ms): tau1 = 4 ms, started
+    at 2 ms, lies within their window (0.01-10 contact times) and comes back."""
+    data = rebound(PronySeries((0.3,), (4e-3,)))
+    result = sh.fit("rebound", data, problem(prony="0.1:2e-3"), unknowns="E2,prony,tau",
+                    steps=STEPS)  # fmt: skip
+    # one model both ways: measured 2e-14; 1e-4 is the issue's
+    assert result.fitted["tau1"]["value"] == pytest.approx(4e-3, rel=1e-4)
+    assert result.fitted["g1"]["value"] == pytest.approx(0.3, abs=1e-4)
+    assert result.fitted["tau1"]["identifiable"]
+
+
 def test_a_relaxation_time_beyond_the_record_is_not_identifiable_without_noise():
     """tau2 = 1 s against a 20 ms record: only g2/tau2 is seen, and noise-free data would give
     tau2 a tiny Jacobian interval; it lies outside the measured time range, so tau2 and g2
