@@ -174,11 +174,17 @@ def test_rebound_data_give_a_free_relaxation_time_back():
     assert result.fitted["tau1"]["identifiable"]
 
 
-def test_a_relaxation_time_beyond_the_record_is_not_identifiable_without_noise():
+def test_a_relaxation_time_beyond_the_record_is_not_identifiable_without_noise(monkeypatch):
     """tau2 = 1 s against a 20 ms record: only g2/tau2 is seen, and noise-free data would give
     tau2 a tiny Jacobian interval; it lies outside the measured time range, so tau2 and g2
-    are reported with their bounds while g1 and tau1 come back to 1e-4."""
-    steps = 20  # the fewest the viscoelastic impact takes: this fit crawls the unseen valley
+    are reported with their bounds while g1 and tau1 come back to 1e-4. The search crawls
+    along the unseen g2/tau2 until its evaluations run out (then holds that term instead of
+    failing): the budget is cut from 60 to 20 per parameter here to keep the test cheap
+    (16 s -> 4 s; tau2 is left at 0.34 s instead of 0.44 s)."""
+    from shtaerman.fitting import engine
+
+    monkeypatch.setattr(engine, "MAX_EVALUATIONS", 20)
+    steps = 20  # the fewest the viscoelastic impact takes
     data = relaxing_drop(PronySeries((0.3, 0.2), (2e-3, 1.0)), steps)
     result = sh.fit("force-history", data, problem(prony="0.1:1e-3,0.1:0.3"),
                     unknowns="E2,prony,tau", steps=steps)  # fmt: skip
@@ -187,8 +193,8 @@ def test_a_relaxation_time_beyond_the_record_is_not_identifiable_without_noise()
         assert not fitted[name]["identifiable"]
     assert (fitted["g2"]["low"], fitted["g2"]["high"]) == (0.0, 0.999)
     assert fitted["tau2"]["high"] == pytest.approx(2.0)  # 100 times the 20 ms record
-    # tau2 held where the search left it (measured 0.44 s; g2/tau2 = 0.2 then): the others
-    # absorb that term's leftover, measured 2e-5 of tau1 and 1e-5 of g1
+    # tau2 held where the search left it (measured 0.34 s, g2 0.068: g2/tau2 = 0.2): the
+    # others absorb that term's leftover, measured 2.8e-5 of tau1 and 1.3e-5 of g1
     assert fitted["tau1"]["value"] == pytest.approx(2e-3, rel=1e-4)
     assert fitted["g1"]["value"] == pytest.approx(0.3, abs=1e-4)
     assert covers(fitted["tau1"], 2e-3) and covers(fitted["g1"], 0.3)
