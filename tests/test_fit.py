@@ -416,3 +416,20 @@ def test_a_long_record_reports_its_progress(tmp_path, capsys, monkeypatch):
     # one line per 10 evaluations: the search, its Jacobians and the intervals (counted all)
     assert len(lines) == evaluations // 10 >= 1
     assert lines[0].startswith("fit: 10 evaluations of the forward model on 300 values")
+
+
+def test_a_record_on_a_shifted_clock_fits_its_offset_and_refuses_the_default(tmp_path, capsys):
+    """Times 100.000-100.020 s: with --fit time_offset the start is read off the data and the
+    default --time-offset 0 is not checked; without it 0 lies before the record and is
+    refused (the fit would have no touch on the record)."""
+    data = drop(offset=1e-3)
+    rows = zip(data["time"] + 100.0, data["force"], strict=True)
+    csv = write(tmp_path / "h.csv", "time [s],force [N]", rows)
+    argv = ["fit", "force-history", csv, "--mass", "0.7", "--velocity", "3", "--json"]
+    assert main([*argv, "--fit", "E2,time_offset,baseline"]) == 0
+    fitted = json.loads(capsys.readouterr().out)["fitted"]
+    # noise-free, exact model; the CSV's 17 digits of 100 s leave ~1e-14 s of the offset
+    assert fitted["time_offset"]["value"] == pytest.approx(100.001, abs=1e-9)
+    assert fitted["E2"]["value"] == pytest.approx(E2, rel=1e-6)
+    assert main([*argv, "--fit", "E2"]) == 2
+    assert "--time-offset must lie in [99.98, 100.02] s" in capsys.readouterr().err

@@ -317,12 +317,13 @@ def resampled(data: Measurement, points: int) -> Measurement:
     return Measurement(data.kind, columns, data.source, data.units)
 
 
-def check_history_options(data: Measurement, time_offset: float, baseline: float) -> None:
-    """Refuse a force history's time offset outside [first time - span, last time] and a
-    baseline outside (-largest |force|, largest force): no touch, or no push, on the record."""
+def check_history_options(data: Measurement, time_offset: float | None, baseline: float) -> None:
+    """Refuse a force history's time offset outside [first time - span, last time] (None: not
+    checked, a fitted one) and a baseline outside (-largest |force|, largest force): no
+    touch, or no push, on the record."""
     time, force = data.columns["time"], data.columns["force"]
     first, last = float(time[0]), float(time[-1])
-    if not first - (last - first) <= time_offset <= last:
+    if time_offset is not None and not first - (last - first) <= time_offset <= last:
         raise InputError(
             f"time_offset must lie in [{first - (last - first):g}, {last:g}] s (the record's "
             f"first time less its span, to its last time), got {time_offset:g}",

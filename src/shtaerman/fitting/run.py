@@ -155,9 +155,10 @@ def fit(
     FitResult
     """
     folder = output_folder(out, force=force)
-    measured, rows_read = _read(kind, data, units, resample, time_offset, baseline)
-    known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
+    offset = None if "time_offset" in names else time_offset  # fitted: read off the data
+    measured, rows_read = _read(kind, data, units, resample, offset, baseline)
+    known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     refine = validate_positive("refine", refine)
     if needs_fe(problem) and "nu2" in names:
         raise InputError(
@@ -224,16 +225,16 @@ def _fitted(problem: Problem, known: Known, measured: Measurement, names: list[s
 
 
 def _read(kind: str, data: str | Path | Mapping[str, ArrayLike], units: Mapping[str, str] | None,
-          resample: int | None, time_offset: float, baseline: float,
+          resample: int | None, time_offset: float | None, baseline: float,
           ) -> tuple[Measurement, int]:  # fmt: skip
-    """The measurement, resampled if asked, with the force history's offset and baseline
-    checked against it, and the number of rows read."""
+    """The measurement, resampled if asked, with the force history's offset (None: fitted,
+    not checked) and baseline checked against it, and the number of rows read."""
     measured = measurement(kind, data, units)  # the kind checked first
     rows = measured.rows
     if resample is not None:
         measured = resampled(measured, entry("resample").check(resample))
     if kind == "force-history":
-        offset = entry("time_offset").check(time_offset)
+        offset = None if time_offset is None else entry("time_offset").check(time_offset)
         check_history_options(measured, offset, entry("baseline").check(baseline))
     return measured, rows
 
