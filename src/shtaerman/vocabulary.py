@@ -473,7 +473,10 @@ VOCABULARY: tuple[Entry, ...] = (
         "fit",
         "",
         "the unknowns NAME[,NAME...] to fit: E2, nu2 (nu2 alone needs E2 known), mass, "
-        "velocity, time_offset, baseline, prony (the weights g_i of --prony at its fixed tau_i)",
+        "velocity, time_offset, baseline, prony (the weights g_i of --prony), tau (its relaxation "
+        "times tau_i, fitted in log; a tau_i outside the measured time range is reported not "
+        "identifiable, its g_i with it); --prony's terms are the starting values; an indentation "
+        "with --model: E2 and, for mooney-rivlin, mooney_ratio (from FE curves)",
         "fitted unknowns",
         "E2",
         valid=None,
@@ -490,7 +493,9 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "time_offset",
         "s",
-        "the force history's time of first touch on the data's clock, unless fitted",
+        "the force history's time of first touch on the data's clock, unless fitted (the "
+        "starting value is then read off the data); from the record's first time less its "
+        "span to its last time",
         "time offset",
         0.0,
         valid=None,
@@ -498,10 +503,24 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "baseline",
         "N",
-        "the force history's zero force (the force read before and after contact), unless fitted",
+        "the force history's zero force (the force read before and after contact), unless "
+        "fitted (then its starting value); above minus the largest |force| and below the "
+        "largest force",
         "force baseline",
         0.0,
         valid=None,
+    ),
+    Entry(
+        "resample",
+        "",
+        "points to resample the data onto before the fit, uniform in time (a force history) "
+        "or in depth (an indentation), by linear interpolation over the record's span: an "
+        "irregular or over-dense record then gives each span of time fair weight, and a long "
+        "one fits faster; unset: the rows as read",
+        "resampled points",
+        None,
+        valid=Range(3.0, 1e7, low_open=False),
+        type="int",
     ),
     Entry(
         "units",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..fitting.data import KINDS, parse_units
 from ..fitting.result import FitResult
@@ -34,14 +35,17 @@ the unknowns are the starting values. A force history or rebound data on a pad
 (--thickness), with waves (--density2) or at finite strain (--model) are corrected by FE
 impacts at the fitted point (fit, FE runs, fit again: a handful of rounds, one FE run per
 drop velocity of rebound data); their error estimates and the viscoelastic impact's step
-error widen the intervals. Friction is not fitted, nor an indentation curve on a pad.
+error widen the intervals. An indentation curve at finite strain (--model) is fitted by FE
+contact curves (E2 scales out: one FE curve; --fit E2,mooney_ratio with --model mooney-rivlin:
+3 or more). Friction is not fitted, nor an indentation curve on a pad.
 
 KIND and the CSV columns it reads (header 'name [unit]'):
-  indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known)
+  indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known;
+                                                               mooney_ratio with --model)
   force-history   time [s], force [N]                       -> E2, time_offset, baseline,
-                                                               mass or velocity, prony
-  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony
-  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony
+                                                               mass or velocity, prony, tau
+  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau
+  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony, tau
 
 The result gives each unknown's value and 95 % interval, and identifiable false (with its
 bounds as the interval) for what the data cannot determine."""
@@ -51,7 +55,8 @@ NOTES = {
     "nu2": "known, or the starting value with --fit nu2",
     "mass": "known, or the starting value with --fit mass",
     "velocity": "of a force history: known, or the starting value with --fit velocity",
-    "prony": "the weights are the starting values with --fit prony, the tau_i stay fixed",
+    "prony": "the starting values with --fit prony (the g_i) and --fit tau (the tau_i); its "
+    "number of terms is the fitted series'",
 }
 """What ``fit`` does with some of its options."""
 DERIVED = {
@@ -62,8 +67,8 @@ DERIVED = {
 PRONY_HELP = (
     "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s): "
     "G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 the instantaneous modulus; the fit uses "
-    "the viscoelastic quasi-static impact, and with --fit prony the g_i are the starting "
-    "values, the tau_i fixed; unset: elastic"
+    "the viscoelastic quasi-static impact, and with --fit prony the g_i, with --fit tau the "
+    "tau_i are the starting values (the others fixed); unset: elastic"
 )
 """The help of ``--prony`` for a fit."""
 
@@ -79,7 +84,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument("data", metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'")
     inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
               "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
-              "refine", "json", "out", "force")  # fmt: skip
+              "resample", "refine", "json", "out", "force")  # fmt: skip
     add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
     prony = next(a for a in p._actions if "--prony" in a.option_strings)
     prony.help = PRONY_HELP  # the series' own help speaks of --model, which fit does not take
@@ -113,10 +118,12 @@ def run(args: argparse.Namespace) -> int:
             time_offset=args.time_offset,
             baseline=args.baseline,
             units=parse_units(args.units),
+            resample=args.resample,
             refine=FE_REFINE if args.refine is None else args.refine,
             out=args.out,
             force=args.force,
             figure_format=args.figure_format,
+            progress=lambda line: print(line, file=sys.stderr, flush=True),
         )
     if args.json:
         print_json(result.to_dict())
@@ -131,6 +138,11 @@ def _corrections_text(result: FitResult) -> list[str]:
         return ["  corrections:   none (a half-space of no density at small strain)"]
     rows = []
     for item in result.corrections:
+        if "mooney_ratios" in item:  # an indentation's FE curves
+            ratios = ", ".join(f"{r:.4g}" for r in item["mooney_ratios"])
+            sizes = f"force error {item['fe_error']['force']:.2g}, at mooney_ratio {ratios}"
+            rows.append(f"  corrections:   {item['name']}: {sizes} ({result.fe_runs} FE runs)")
+            continue
         if "force_scale" in item:  # a force history's
             sizes = f"peak force x{item['force_scale']:.4g}, contact time x{item['time_scale']:.4g}"
         else:  # rebound data's, per velocity
@@ -154,6 +166,8 @@ def fit_text(result: FitResult) -> str:
         interval = f"[{item['low']:.6g}, {item['high']:.6g}]"
         note = "" if item["identifiable"] else "  not identifiable from these data"
         rows.append(f"  {name:<12} {item['value']:>13.6g} {interval:>29}  {item['unit']}{note}")
+        if "reason" in item:
+            rows.append(f"  {'':<12} ({item['reason']})")
     noise = result.noise
     how = "estimated from the residual" if noise["estimated"] else "given"
     rows.append(

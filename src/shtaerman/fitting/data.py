@@ -29,9 +29,11 @@ __all__ = [
     "KIND_COLUMNS",
     "UNITS",
     "Measurement",
+    "check_history_options",
     "measured_unit",
     "measurement",
     "parse_units",
+    "resampled",
 ]
 
 KIND_COLUMNS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
@@ -133,7 +135,7 @@ def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]
     """The header's (name, unit) cells and the data rows of ``path``."""
     where = str(path)
     text = read_input_text(path, "data", "DATA")
-    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
+    rows = [row for row in csv.reader(io.StringIO(text)) if "".join(row).strip()]
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
     return _header(where, rows[0]), rows[1:]
@@ -142,6 +144,12 @@ def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]
 def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndarray:
     """Column ``index`` of the data rows as floats; an InputError names the row (the file's
     line number, header = 1)."""
+    try:  # at once: a million rows in a second; else row by row, to name the bad one
+        values = np.array([row[index] for row in rows], dtype=float)
+        if np.all(np.isfinite(values)):
+            return values
+    except (IndexError, ValueError):
+        pass
     values = np.empty(len(rows))
     for number, row in enumerate(rows):
         text = row[index].strip() if index < len(row) else ""
@@ -276,3 +284,55 @@ def measurement(
     if len({len(values) for values in columns.values()}) != 1:
         raise InputError("data: the columns must have equal lengths", "data")
     return _check_values(Measurement(kind, columns, "data", {n: measured_unit(n) for n in columns}))
+
+
+def resampled(data: Measurement, points: int) -> Measurement:
+    """``data`` linearly interpolated onto ``points`` abscissae uniform over its span: time
+    for a force history, depth for an indentation (whose depths must then increase).
+
+    Raises
+    ------
+    InputError
+        For rebound or resilience data (one row per drop, no record to resample) and for an
+        indentation whose depths do not increase (a loading and unloading curve).
+    """
+    axis = {"force-history": "time", "indentation": "depth"}.get(data.kind)
+    if axis is None:
+        raise InputError(
+            f"resample: {data.kind} data hold one row per drop, not a record; leave resample unset",
+            "resample",
+        )
+    x = data.columns[axis]
+    steps = np.diff(x)
+    if np.any(steps <= 0):
+        row = int(np.flatnonzero(steps <= 0)[0]) + 3
+        raise InputError(
+            f"resample: {data.source}: row {row}: column {axis!r} must increase to be resampled "
+            "(fit the loading part only), or leave it unset",
+            "resample",
+        )
+    uniform = np.linspace(x[0], x[-1], int(points))
+    columns = {name: np.interp(uniform, x, values) for name, values in data.columns.items()}
+    columns[axis] = uniform
+    return Measurement(data.kind, columns, data.source, data.units)
+
+
+def check_history_options(data: Measurement, time_offset: float | None, baseline: float) -> None:
+    """Refuse a force history's time offset outside [first time - span, last time] (None: not
+    checked, a fitted one) and a baseline outside (-largest |force|, largest force): no
+    touch, or no push, on the record."""
+    time, force = data.columns["time"], data.columns["force"]
+    first, last = float(time[0]), float(time[-1])
+    if time_offset is not None and not first - (last - first) <= time_offset <= last:
+        raise InputError(
+            f"time_offset must lie in [{first - (last - first):g}, {last:g}] s (the record's "
+            f"first time less its span, to its last time), got {time_offset:g}",
+            "time_offset",
+        )
+    size, top = float(np.max(np.abs(force))), float(np.max(force))
+    if not -size < baseline < top:
+        raise InputError(
+            f"baseline must lie in ({-size:g}, {top:g}) N (above minus the largest |force|, "
+            f"below the largest force), got {baseline:g}",
+            "baseline",
+        )

@@ -13,13 +13,18 @@ A parameter is not identifiable when the data cannot determine it:
   :data:`RANK_TOLERANCE` of the largest): a combination of parameters the data do not see;
 - its interval reaches past both of its bounds;
 - moving it across its whole range changes the residual by less than the noise
-  (|J_j| (high - low) < s): e.g. a relaxation time far outside the measured times.
+  (|J_j| (high - low) < s): e.g. a relaxation time far outside the measured times;
+- its value lies outside its window (:attr:`Parameter.window`: a relaxation time outside the
+  measured time range), or that of a parameter it is tied to (a weight to its time). This
+  holds without noise too, where the Jacobian alone would give a small error bar.
 
 It is then reported with its bounds as its interval, never with a small error bar.
 """
 
 from __future__ import annotations
 
+import itertools
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,15 +33,22 @@ from scipy.stats import norm
 from scipy.stats import t as student
 
 from ..validation import InputError, NumericalFailureError
-from .models import Model
+from .models import Model, Parameter
 
-__all__ = ["CONFIDENCE", "RANK_TOLERANCE", "Solution", "solve"]
+__all__ = ["CONFIDENCE", "RANK_TOLERANCE", "Progress", "Solution", "solve"]
+
+Progress = Callable[[str], None]
+"""Told a line of the fit's progress."""
 
 CONFIDENCE = 0.95
 RANK_TOLERANCE = 1e-9
 """A singular value of J below this fraction of the largest spans a null direction."""
 MAX_EVALUATIONS = 60
 """Most evaluations of the forward model per fitted parameter (and one) in a search."""
+PROGRESS_VALUES = 100_000
+"""A model of at least this many values reports its progress (a long record)."""
+PROGRESS_EVERY = 10
+"""Evaluations of the forward model between two progress lines."""
 NULL_COMPONENT = 1e-6
 """A parameter whose component along a null direction exceeds this is not identifiable."""
 
@@ -101,9 +113,12 @@ def _noise(residual: np.ndarray, count: int, noise: float | None) -> tuple[float
     return s, float(student.ppf(0.5 + CONFIDENCE / 2, dof)), True
 
 
-def _optimum(model: Model, noise: float | None, fixed: dict[str, float]) -> dict:
+def _optimum(model: Model, noise: float | None, fixed: dict[str, float],
+             progress: Progress | None = None) -> dict:  # fmt: skip
     """Least squares over the parameters not in ``fixed`` (natural values), and their
-    intervals and identifiability at the optimum (fitting space)."""
+    intervals and identifiability at the optimum (fitting space); ``progress`` is told of
+    every :data:`PROGRESS_EVERY` th evaluation of a model of at least :data:`PROGRESS_VALUES`
+    values."""
     params = [p for p in model.parameters if p.name not in fixed]
     low = np.array([p.to_space(p.low) for p in params], dtype=float)
     high = np.array([p.to_space(p.high) for p in params], dtype=float)
@@ -114,14 +129,23 @@ def _optimum(model: Model, noise: float | None, fixed: dict[str, float]) -> dict
         values = {p.name: float(p.from_space(v)) for p, v in zip(params, x, strict=True)}
         return {**fixed, **values}
 
+    count = itertools.count(1)
+    tell = progress if progress is not None and model.observed.size >= PROGRESS_VALUES else None
+
     def residual(x: np.ndarray) -> np.ndarray:
-        return (model.predict(natural(x)) - model.observed) / scale
+        r = (model.predict(natural(x)) - model.observed) / scale
+        if (n := next(count)) % PROGRESS_EVERY == 0 and tell is not None:
+            rms = float(np.sqrt(np.mean(r * r)))
+            tell(f"fit: {n} evaluations of the forward model on {r.size} values, residual "
+                 f"rms {rms:.4g} {model.unit}")  # fmt: skip
+        return r
 
     found = least_squares(
         residual, start, bounds=(low, high), method="trf", x_scale="jac",
         xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=MAX_EVALUATIONS * (start.size + 1),
     )  # fmt: skip
-    if found.status <= 0:
+    outside = _outside(params, natural(found.x))
+    if found.status < 0 or (found.status == 0 and not np.any(outside)):  # 0: evaluations
         raise NumericalFailureError(f"the fit did not converge: {found.message}")
     s, quantile, estimated = _noise(residual(found.x), start.size, noise)
     jac = _jacobian(residual, found.x, low, high)
@@ -134,26 +158,44 @@ def _optimum(model: Model, noise: float | None, fixed: dict[str, float]) -> dict
         "params": params, "x": found.x, "low": np.clip(lo, low, high),
         "high": np.clip(hi, low, high), "bounds": (low, high), "cov": cov, "noise": s,
         "estimated": estimated, "values": natural(found.x),
-        "identifiable": np.isfinite(half) & ~((lo <= low) & (hi >= high)) & seen,
-        "evaluations": int(found.nfev) + 2 * start.size,
+        "identifiable": np.isfinite(half) & ~((lo <= low) & (hi >= high)) & seen & ~outside,
+        "outside": outside, "evaluations": next(count) - 1,
     }  # fmt: skip
 
 
-def solve(model: Model, noise: float | None = None) -> Solution:
-    """Fit ``model`` to its data; ``noise`` in the residual's unit, None: from the residual.
+def _outside(params: list[Parameter], values: dict[str, float]) -> np.ndarray:
+    """Which parameters lie outside their window, or are tied to one that does."""
+    windows = {p.name: p.window for p in params if p.window is not None}
+    out = {name for name, (low, high) in windows.items() if not low <= values[name] <= high}
+    out |= {name for p in params if p.name in out for name in p.tied}
+    return np.array([p.name in out for p in params], dtype=bool)
 
-    The parameters found not identifiable are then held at their starting values and the
-    others fitted again: their intervals are those of the data's information alone, not of a
-    search that wandered along an unseen direction (a weight of a relaxation time outside the
-    measured times, free to reach the bound sum g_i < 1 and so to take another weight with it).
+
+def solve(model: Model, noise: float | None = None, hold: dict[str, float] | None = None,
+          progress: Progress | None = None) -> Solution:  # fmt: skip
+    """Fit ``model`` to its data; ``noise`` in the residual's unit, None: from the residual;
+    ``hold``: parameters held (not identifiable) from the start, name -> natural value;
+    ``progress``: told a line every few evaluations of a long record's model.
+
+    A search that runs out of evaluations while a parameter lies outside its window (a
+    relaxation time crawling along the unseen g_i / tau_i of a term slower than the record)
+    has found that parameter not identifiable, not failed.
+
+    The parameters found not identifiable are then held at their starting values (those
+    outside their window at the values found: a relaxation time beyond the record stays
+    there) and the others fitted again: their intervals are those of the data's information
+    alone, not of a search that wandered along an unseen direction (a weight of a relaxation
+    time outside the measured times, free to reach the bound sum g_i < 1 and so to take
+    another weight with it).
     """
-    fixed: dict[str, float] = {}
-    found = _optimum(model, noise, fixed)
+    fixed: dict[str, float] = dict(hold or {})
+    found = _optimum(model, noise, fixed, progress)
     evaluations = found["evaluations"]
     while 0 < np.count_nonzero(~found["identifiable"]) < len(found["params"]):
-        blind = [p for p, ok in zip(found["params"], found["identifiable"], strict=True) if not ok]
-        fixed.update({p.name: p.start for p in blind})
-        found = _optimum(model, noise, fixed)
+        rows = zip(found["params"], found["identifiable"], found["outside"], strict=True)
+        fixed.update({p.name: found["values"][p.name] if out else p.start
+                      for p, ok, out in rows if not ok})  # fmt: skip
+        found = _optimum(model, noise, fixed, progress)
         evaluations += found["evaluations"]
     return _solution(model, found, fixed, evaluations)
 

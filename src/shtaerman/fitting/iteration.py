@@ -92,9 +92,11 @@ def corrected_fit(
 
 
 def _refit(known: Known, measured: Measurement, names: Sequence[str], noise: float | None,
-           starts: Mapping[str, float]) -> np.ndarray:  # fmt: skip
-    """The fitted values of the model of ``known``, started from ``starts``."""
-    return solve(build_model(known, measured, names, starts), noise).values
+           sol: Solution, starts: Mapping[str, float]) -> np.ndarray:  # fmt: skip
+    """The fitted values of the model of ``known``, started from ``starts``, with the
+    parameters ``sol`` found not identifiable held there."""
+    hold = {n: v for (n, v), ok in zip(starts.items(), sol.identifiable, strict=True) if not ok}
+    return solve(build_model(known, measured, names, starts), noise, hold).values
 
 
 def forward_error(
@@ -115,11 +117,13 @@ def forward_error(
         for key, error in correction.errors.items():
             if error > 0:
                 again = dataclasses.replace(known, correction=correction.moved(key))
-                shifts[f"fe_{key}"] = _refit(again, measured, names, noise, starts) - sol.values
+                shifts[f"fe_{key}"] = (
+                    _refit(again, measured, names, noise, sol, starts) - sol.values
+                )
     if known.prony is not None:
         other = known.steps // 2 if known.steps >= 2 * MIN_STEPS else 2 * known.steps
         again = dataclasses.replace(known, steps=other)
-        shift = _refit(again, measured, names, noise, starts) - sol.values
+        shift = _refit(again, measured, names, noise, sol, starts) - sol.values
         shifts["steps"] = shift / abs((known.steps / other) ** 2 - 1.0)
     return shifts
 

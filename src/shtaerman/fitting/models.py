@@ -33,9 +33,9 @@ __all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "all_values", "build_model
 
 UNKNOWNS = {
     "indentation": ("E2", "nu2"),
-    "force-history": ("E2", "nu2", "mass", "velocity", "time_offset", "baseline", "prony"),
-    "rebound": ("E2", "nu2", "mass", "prony"),
-    "resilience": ("E2", "nu2", "mass", "prony"),
+    "force-history": ("E2", "nu2", "mass", "velocity", "time_offset", "baseline", "prony", "tau"),
+    "rebound": ("E2", "nu2", "mass", "prony", "tau"),
+    "resilience": ("E2", "nu2", "mass", "prony", "tau"),
 }
 """Kind -> the names ``--fit`` takes."""
 MODULUS_SPAN = 1e4
@@ -44,6 +44,11 @@ SCALE_SPAN = 10.0
 """Mass and velocity are sought within a factor of this of the given values."""
 MAX_WEIGHT = 0.999
 """Upper bound of each fitted Prony weight g_i."""
+TAU_SPAN = 100.0
+"""A free relaxation time is sought within this factor beyond the measured time range."""
+REBOUND_WINDOW = (0.01, 10.0)
+"""The relaxation times rebound data can determine, in units of the shortest and the longest
+contact time: a faster term has relaxed before the rebound, a slower one has barely begun."""
 
 
 @dataclass(frozen=True)
@@ -79,6 +84,12 @@ class Parameter:
     low: float
     high: float
     log: bool = False
+    window: tuple[float, float] | None = None
+    """The values the data can determine (natural units); outside it the parameter is
+    reported not identifiable, whatever its Jacobian (a relaxation time outside the measured
+    time range)."""
+    tied: tuple[str, ...] = ()
+    """The parameters not identifiable with this one (a Prony weight with its time)."""
 
     def to_space(self, value: float | np.ndarray) -> float | np.ndarray:
         """The natural value in the fitting space."""
@@ -117,13 +128,15 @@ def all_values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
 
 
 def prony_at(known: Known, values: Mapping[str, float]) -> PronySeries | None:
-    """The Prony series with the fitted weights g1, g2, ... in place of the given ones."""
+    """The Prony series with the fitted weights g1, g2, ... and times tau1, tau2, ... in
+    place of the given ones."""
     if known.prony is None:
         return None
     weights = [values.get(f"g{i}", g) for i, g in enumerate(known.prony.weights, start=1)]
     if math.fsum(weights) >= MAX_WEIGHT:  # the search went past the relaxed modulus: scale
         weights = [w * MAX_WEIGHT / math.fsum(weights) for w in weights]
-    return PronySeries(tuple(weights), known.prony.times)
+    times = [values.get(f"tau{i}", tau) for i, tau in enumerate(known.prony.times, start=1)]
+    return PronySeries(tuple(weights), tuple(times))
 
 
 def _impact(known: Known, values: Mapping[str, float], velocity: float) -> tuple[float, float]:
@@ -215,7 +228,38 @@ def _parameters(known: Known, data: Measurement, unknowns: Sequence[str]) -> tup
     if "prony" in unknowns:
         for i, g in enumerate(known.prony.weights, start=1):  # type: ignore[union-attr]
             params.append(Parameter(f"g{i}", min(max(g, 1e-3), 0.9), 0.0, MAX_WEIGHT))
+    if "tau" in unknowns:
+        params.extend(_tau_parameters(known, data, "prony" in unknowns))
     return tuple(params)
+
+
+def time_window(known: Known, data: Measurement) -> tuple[float, float]:
+    """The measured time range in s: a force history's sampling step to its span; for
+    rebound data :data:`REBOUND_WINDOW` times the shortest and the longest contact time (the
+    measured ones, else the elastic impacts' at the starting values)."""
+    if "time" in data.columns:
+        time = data.columns["time"]
+        return float(np.median(np.diff(time))), float(time[-1] - time[0])
+    if "contact_time" in data.columns:
+        times = data.columns["contact_time"]
+    else:
+        law = PowerLawContact(known.indenter, known.modulus)
+        times = np.array([solve_impact(known.mass, v, law).t_y for v in data.columns["velocity"]])
+    return REBOUND_WINDOW[0] * float(np.min(times)), REBOUND_WINDOW[1] * float(np.max(times))
+
+
+def _tau_parameters(known: Known, data: Measurement, weights: bool) -> list[Parameter]:
+    """The free relaxation times tau_i (fitted in log) within :data:`TAU_SPAN` beyond the
+    measured time range; each outside that range is not identifiable, and its weight g_i
+    (when fitted) with it: only g_i / tau_i is seen of a slow term, g_i alone of a fast one."""
+    low, high = time_window(known, data)
+    params = []
+    for i, tau in enumerate(known.prony.times, start=1):  # type: ignore[union-attr]
+        start = min(max(tau, low / TAU_SPAN), high * TAU_SPAN)
+        tied = (f"g{i}",) if weights else ()
+        params.append(Parameter(f"tau{i}", start, low / TAU_SPAN, high * TAU_SPAN, True,
+                                (low, high), tied))  # fmt: skip
+    return params
 
 
 def _check_unknowns(kind: str, unknowns: Sequence[str], known: Known) -> None:
@@ -225,12 +269,13 @@ def _check_unknowns(kind: str, unknowns: Sequence[str], known: Known) -> None:
                 f"fit: {kind} data cannot fit {name!r}; choose from {', '.join(UNKNOWNS[kind])}",
                 "fit",
             )
-    if "prony" in unknowns and known.prony is None:
-        raise InputError(
-            "fit: 'prony' fits the weights g_i of a given series at fixed tau_i; give prony "
-            "(g1:tau1,...: the weights are the starting values)",
-            "fit",
-        )
+    for name, what in (("prony", "the weights g_i"), ("tau", "the relaxation times tau_i")):
+        if name in unknowns and known.prony is None:
+            raise InputError(
+                f"fit: {name!r} fits {what} of a given series (its number of terms); give "
+                "prony (g1:tau1,...: the starting values)",
+                "fit",
+            )
     if not unknowns:
         raise InputError(f"fit: name at least one of {', '.join(UNKNOWNS[kind])}", "fit")
 

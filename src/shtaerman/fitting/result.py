@@ -21,7 +21,7 @@ UNITS = {
     "time_offset": "s",
     "baseline": "N",
 }
-"""The unit of each fitted name (the Prony weights g_i: 1)."""
+"""The unit of each fitted name (the Prony weights g_i: 1; the times tau_i: s)."""
 NU2_RANGE = (0.0, 0.5)
 """The Poisson's ratios a fit considers (nu2 enters only as nu2^2: its sign is not seen)."""
 
@@ -33,7 +33,8 @@ class FitResult:
     kind: str
     """indentation, force-history, rebound or resilience."""
     fitted: dict[str, dict[str, Any]]
-    """Name -> value, low, high (the 95 % interval), identifiable, unit."""
+    """Name -> value, low, high (the 95 % interval), identifiable, unit (and reason, why
+    the Mooney ratio of an indentation is not identifiable)."""
     correlation: dict[str, Any]
     """names (the fitted parameters) and matrix (null where a variance is unbounded)."""
     residual: dict[str, Any]
@@ -49,11 +50,13 @@ class FitResult:
     (time_scale), the largest shape difference (shape_max, of the peak), the FE run's
     relative error estimates (fe_error) and the point of its last FE run (at)."""
     data: dict[str, Any]
-    """source, rows and the columns' units."""
+    """source, rows (fitted: after resample), rows_read (in the file) and the columns'
+    units."""
     known: dict[str, Any]
     """The known values of the problem (SI units)."""
     evaluations: int
-    """Forward-model evaluations used."""
+    """Forward-model evaluations used: the search's, its Jacobians' and the intervals'
+    (the forward model's own error refits are not counted)."""
     fe_runs: int = 0
     """FE impacts run for the corrections (each with its two coarser ladder levels)."""
     forward_error: dict[str, dict[str, float]] = field(default_factory=dict)
@@ -116,7 +119,7 @@ def fitted_entries(known: Known, names: list[str], sol: Solution, unknowns: list
         if name == "E_star":
             out.update(_moduli(known, sol, j, unknowns))
         else:
-            unit = UNITS.get(name, "1")
+            unit = UNITS.get(name, "s" if name.startswith("tau") else "1")
             out[name] = _entry(sol.values[j], sol.low[j], sol.high[j], sol.identifiable[j], unit)
     return out
 

@@ -14,9 +14,17 @@ from ..output.files import output_folder
 from ..problem import Problem
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
+from ..vocabulary import entry
 from .corrections import needs_fe
-from .data import Measurement, measured_unit, measurement
-from .engine import Solution, solve
+from .data import (
+    Measurement,
+    check_history_options,
+    measured_unit,
+    measurement,
+    resampled,
+)
+from .engine import Progress, Solution, solve
+from .hyperelastic import finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
@@ -36,13 +44,13 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
     parts whose corrections the fit does not have (friction; a pad, waves and finite strain
     but in a force history) and an impact's measurement without the striker's mass (and a
     force history's velocity)."""
-    if needs_fe(problem) and kind == "indentation":
+    pad_or_waves = problem.geometry.thickness is not None or problem.body.material.density
+    if pad_or_waves and kind == "indentation":
         name = "thickness" if problem.geometry.thickness is not None else "density2"
-        name = "model" if problem.body.model != "linear" else name
         raise InputError(
-            f"{name}: the FE corrections (a pad, waves, finite strain) are fitted for an "
-            "impact's force history or rebound data; an indentation fit takes the "
-            "half-space's exact power law (leave thickness, density2 and model unset)",
+            f"{name}: the FE corrections of a pad and of waves are fitted for an impact's "
+            "force history or rebound data; an indentation fit takes the half-space's exact "
+            "power law, or its FE curves at finite strain (leave thickness and density2 unset)",
             name,
         )
     if problem.interface.kind != "frictionless":
@@ -86,11 +94,13 @@ def fit(
     time_offset: float = 0.0,
     baseline: float = 0.0,
     units: Mapping[str, str] | None = None,
+    resample: int | None = None,
     steps: int = 200,
     refine: float = FE_REFINE,
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
+    progress: Progress | None = None,
 ) -> FitResult:
     """Fit the unknowns of ``problem`` to a measurement by the exact quasi-static models.
 
@@ -107,7 +117,10 @@ def fit(
         and Prony weights are the starting values of those fitted.
     unknowns : sequence of str
         Names to fit: E2, nu2, mass, velocity, time_offset, baseline, prony (the weights g_i
-        of the problem's series, at its fixed tau_i); which a kind takes: see ``--help``.
+        of the problem's series), tau (its relaxation times tau_i in s, fitted in log; one
+        outside the measured time range is not identifiable, and its g_i with it),
+        mooney_ratio (an indentation of a mooney-rivlin body: FE curves); which a kind
+        takes: see ``--help``.
     noise : float, optional
         Standard deviation of the data in the residual's unit (N for a force; relative for
         rebound data); None: estimated from the residual.
@@ -116,6 +129,10 @@ def fit(
         fitted.
     units : mapping, optional
         Column -> unit for CSV header cells that give none.
+    resample : int, optional
+        Points to resample a force history (uniform in time) or an indentation (uniform in
+        depth) onto before the fit, by linear interpolation, in [3, 1e7]; None: the rows as
+        read.
     steps : int
         Time steps per t_c of the viscoelastic impact (with a Prony series).
     refine : float
@@ -129,15 +146,19 @@ def fit(
         Replace ``out`` if shtaerman wrote it.
     figure_format : str
         png, or svg / pdf besides.
+    progress : callable, optional
+        Told a line of progress every few evaluations of the forward model on a long record
+        (:data:`~shtaerman.fitting.engine.PROGRESS_VALUES` values or more).
 
     Returns
     -------
     FitResult
     """
     folder = output_folder(out, force=force)
-    measured = measurement(kind, data, units)  # the kind checked first
-    known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     names = _names(unknowns)
+    offset = None if "time_offset" in names else time_offset  # fitted: read off the data
+    measured, rows_read = _read(kind, data, units, resample, offset, baseline)
+    known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     refine = validate_positive("refine", refine)
     if needs_fe(problem) and "nu2" in names:
         raise InputError(
@@ -149,28 +170,73 @@ def fit(
         noise = validate_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-        if needs_fe(problem):
-            fitted = corrected_fit(problem, known, measured, names, noise, refine)
-            known, model, sol, corrections = fitted
-        else:
-            model, corrections = build_model(known, measured, names), []
-            sol = solve(model, noise)
-        shifts = forward_error(known, measured, names, noise, model, sol)
+        known, model, sol, extra = _fitted(problem, known, measured, names, noise, refine,
+                                           progress)  # fmt: skip
     _check_velocities(measured, known, model, sol)
-    result = _result(kind, measured, known, model, widened(sol, shifts), names)
-    result = dataclasses.replace(
-        result,
-        corrections=[c.entry(problem) for c in corrections[-1:]],
-        fe_runs=sum(c.runs for c in corrections),
-        forward_model=model.description
-        + ("; corrected by FE impacts (see corrections)" if corrections else ""),
-        forward_error=_forward_entries(model, shifts),
-    )
+    result = _result(kind, measured, known, model, sol, names)
+    reason = extra.pop("reason", None)
+    if reason is not None:
+        result.fitted["mooney_ratio"]["reason"] = reason
+    result = dataclasses.replace(result, **extra, data={**result.data, "rows_read": rows_read})
     if folder is not None:
         from ..output.fit import write_fit
 
         write_fit(result, folder, force=force, figure_format=figure_format)
     return result
+
+
+def _fitted(problem: Problem, known: Known, measured: Measurement, names: list[str],
+            noise: float | None, refine: float, progress: Progress | None,
+            ) -> tuple[Known, Model, Solution, dict]:  # fmt: skip
+    """The known parts, model and solution (intervals widened by the forward model's own
+    error) and the result's fields on the corrections and the forward error."""
+    if measured.kind == "indentation" and problem.body.finite:
+        model, sol, curves, reason, shifts = finite_indentation_fit(
+            problem, measured, names, noise, refine, progress
+        )
+        entry = {
+            "name": f"FE contact curves: finite strain ({problem.body.model})",
+            "mooney_ratios": sorted(curves.table),
+            "fe_error": {"force": curves.error},
+        }
+        return known, model, sol, {
+            "corrections": [entry], "fe_runs": len(curves.table), "reason": reason,
+            "forward_model": model.description, "forward_error": _forward_entries(model, shifts),
+        }  # fmt: skip
+    if needs_fe(problem):
+        known, model, sol, corrections = corrected_fit(problem, known, measured, names, noise,
+                                                       refine)  # fmt: skip
+    else:
+        model, corrections = build_model(known, measured, names), []
+        sol = solve(model, noise, progress=progress)
+    shifts = forward_error(known, measured, names, noise, model, sol)
+    return (
+        known,
+        model,
+        widened(sol, shifts),
+        {
+            "corrections": [c.entry(problem) for c in corrections[-1:]],
+            "fe_runs": sum(c.runs for c in corrections),
+            "forward_model": model.description
+            + ("; corrected by FE impacts (see corrections)" if corrections else ""),
+            "forward_error": _forward_entries(model, shifts),
+        },
+    )
+
+
+def _read(kind: str, data: str | Path | Mapping[str, ArrayLike], units: Mapping[str, str] | None,
+          resample: int | None, time_offset: float | None, baseline: float,
+          ) -> tuple[Measurement, int]:  # fmt: skip
+    """The measurement, resampled if asked, with the force history's offset (None: fitted,
+    not checked) and baseline checked against it, and the number of rows read."""
+    measured = measurement(kind, data, units)  # the kind checked first
+    rows = measured.rows
+    if resample is not None:
+        measured = resampled(measured, entry("resample").check(resample))
+    if kind == "force-history":
+        offset = None if time_offset is None else entry("time_offset").check(time_offset)
+        check_history_options(measured, offset, entry("baseline").check(baseline))
+    return measured, rows
 
 
 def _forward_entries(model: Model, shifts: dict[str, np.ndarray]) -> dict[str, dict]:

@@ -1,0 +1,101 @@
+"""``sh.fit`` of an indentation curve at finite strain: E2 (and the Mooney ratio) from FE
+contact curves, E2 scaled out exactly, the ratio fitted on a few FE curves."""
+
+import json
+
+import numpy as np
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli import main
+
+INDENTER = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
+DEPTHS = np.linspace(5e-4, 4e-3, 4)
+E2 = 7.5e6
+REFINE = 0.6  # the coarse FE curves of a fit's default; data and fit alike
+# 4 depths, not more: an FE curve costs ~ its depths (4: 2.9 s, 6: 4.0 s)
+
+
+def fe_curve(model, **shape):
+    """The suite's own FE curve: the data of a round trip."""
+    case = sh.Problem.curve(INDENTER, sh.Material(E2, 0.5), model=model, depths=list(DEPTHS),
+                            **shape)  # fmt: skip
+    return {"depth": DEPTHS, "force": np.asarray(sh.contact(case, refine=REFINE).force)}
+
+
+def start(model):
+    return sh.Problem.curve(INDENTER, sh.Material(5e6, 0.5), model=model)
+
+
+def test_a_neo_hookean_curve_gives_e2_back_from_one_fe_run(tmp_path, capsys):
+    """Through the command line (whose problem carries the default mass and velocity, which
+    the FE curve must drop, and whose text output printed the corrections of an impact)."""
+    data = fe_curve("neo-hookean")
+    csv = tmp_path / "curve.csv"
+    rows = "".join(
+        f"{x * 1e3:.17g},{p:.17g}\n" for x, p in zip(data["depth"], data["force"], strict=True)
+    )
+    csv.write_text("depth [mm],force [N]\n" + rows)
+    out = tmp_path / "out"
+    argv = ["fit", "indentation", str(csv), "--model", "neo-hookean", "--E2", "5e6",
+            "--refine", str(REFINE), "--out", str(out)]  # fmt: skip
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "corrections:   FE contact curves: finite strain (neo-hookean)" in text
+    result = json.loads((out / "fit.json").read_text())
+    item = result["fitted"]["E2"]
+    # E2 scales out of the FE curve (measured 4e-12 between E2 and 2 E2): the round trip is
+    # linear least squares on the same curve, measured 1.2e-12
+    assert item["value"] == pytest.approx(E2, rel=1e-6) and item["identifiable"]
+    assert result["fe_runs"] == 1
+    # the interval is the FE force error estimate's (0.15 % at refine 0.6) times 1.96, the
+    # data having no noise: not a round-off interval
+    error = result["corrections"][0]["fe_error"]["force"]
+    assert (item["high"] - item["low"]) / 2 == pytest.approx(1.96 * error * E2, rel=1e-3)
+
+
+def test_the_mooney_ratio_of_a_shallow_curve_is_not_identifiable_and_says_why():
+    """At depths up to 4 mm (x/a < 0.5) r over [0, 0.9] changes the curve's shape by 0.4 % of
+    its peak with E2 refitted (4 depths; 0.45 % with 6), twice the FE error estimate: the
+    ratio's interval, widened by that error, spans its range. It is reported so, with the
+    reason, after the 3 first FE curves; E2 is then given over every r, an interval holding
+    the truth."""
+    result = sh.fit("indentation", fe_curve("mooney-rivlin", mooney_ratio=0.3),
+                    start("mooney-rivlin"), unknowns="E2,mooney_ratio", refine=REFINE)  # fmt: skip
+    ratio, e2 = result.fitted["mooney_ratio"], result.fitted["E2"]
+    assert not ratio["identifiable"] and (ratio["low"], ratio["high"]) == (0.0, 0.9)
+    assert "changes by at most" in ratio["reason"] and "give mooney_ratio" in ratio["reason"]
+    assert result.fe_runs == 3
+    # E2 at r = 0 and at r = 0.9 differ by ~5 % (measured [7.11, 7.73] MPa): the interval
+    # spans them, not the ~0.3 % of E2 at a held r
+    assert e2["low"] < E2 < e2["high"] and e2["high"] / e2["low"] > 1.03
+
+
+def test_unknowns_an_indentation_at_finite_strain_cannot_fit_are_refused(tmp_path, capsys):
+    csv = tmp_path / "c.csv"
+    csv.write_text("depth [m],force [N]\n0.001,10\n0.002,30\n0.003,60\n")
+    argv = ["fit", "indentation", str(csv), "--model", "neo-hookean", "--fit", "E2,mooney_ratio"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "--fit: an indentation at finite strain (neo-hookean) cannot fit 'mooney_ratio'" in err
+    assert err.count("\n") == 1
+
+
+def test_the_mooney_ratio_of_a_deep_curve_is_fitted_back():
+    """To 7 mm (x/a near 1) r changes the shape by several times the FE error: r = 0.3 comes
+    back with an interval inside [0, 0.9], after one FE curve more than the first 3."""
+    depths = np.linspace(1e-3, 7e-3, 5)
+    case = sh.Problem.curve(INDENTER, sh.Material(E2, 0.5), model="mooney-rivlin",
+                            mooney_ratio=0.3, depths=list(depths))  # fmt: skip
+    data = {"depth": depths, "force": np.asarray(sh.contact(case, refine=REFINE).force)}
+    result = sh.fit("indentation", data, start("mooney-rivlin"), unknowns="E2,mooney_ratio",
+                    refine=REFINE)  # fmt: skip
+    ratio, e2 = result.fitted["mooney_ratio"], result.fitted["E2"]
+    # the fitted r lies between FE nodes (quadratic in r): measured 1.7e-5 off with 8 depths
+    assert ratio["identifiable"] and ratio["value"] == pytest.approx(0.3, abs=1e-3)
+    assert 0.0 <= ratio["low"] < 0.3 < ratio["high"] <= 0.9 and "reason" not in ratio
+    assert (ratio["low"], ratio["high"]) != (0.0, 0.9)
+    assert e2["value"] == pytest.approx(E2, rel=1e-4)  # measured 9e-7 with 8 depths
+    # E2 moves with r: its interval spans E2 at both ends of r's, not the 0.25 % of a held r
+    assert e2["low"] < E2 < e2["high"] and e2["high"] / e2["low"] > 1.01
+    assert 4 <= result.fe_runs <= 6  # 3 nodes, then one per round (the issue: a handful)
