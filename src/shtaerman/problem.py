@@ -313,14 +313,6 @@ PROFILE_SUPPORT: tuple[Unsupported, ...] = (
         "its references (Lee-Radok, Ting) and the sizing of its impact are the power law's "
         "closed forms; a sphere or a tabulated profile runs on an elastic body",
     ),
-    Unsupported(
-        lambda c: c.model == "rubber" and c.loading != "curve",
-        "profile",
-        "the finite-strain impact takes the power law (shape_coefficient, exponent) only: "
-        "its scales are the power law's closed forms; a sphere or a tabulated profile runs in "
-        "the linear model's impact (with or without inertia) and in the finite-strain "
-        "contact curve",
-    ),
 )
 """The combinations refused to a striker profile other than the power law (a sphere, a
 tabulated z(r)), on top of :data:`SUPPORT`."""

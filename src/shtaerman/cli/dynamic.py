@@ -30,8 +30,13 @@ from .common import (
     warn,
     warn_volumetric,
 )
-from .contact import profile_words
-from .finite_dynamic import finite_dynamic_text, interface_rows, ladder_rows, layer_rows
+from .finite_dynamic import (
+    finite_dynamic_text,
+    interface_rows,
+    ladder_rows,
+    layer_rows,
+    profile_rows,
+)
 from .impact import history_path
 
 NOTES = {
@@ -59,7 +64,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="elastodynamic FE impact (waves included) against the quasi-static theory",
         description=(
             "Rigid striker z = A r^n (or an exact sphere, --sphere-radius, or a tabulated z(r), "
-            "--profile; the linear body) (mass M, velocity v0) on an elastic half-space with "
+            "--profile) (mass M, velocity v0) on an elastic half-space with "
             "inertia: axisymmetric Taylor-Hood P2-P1 FEM, generalized-alpha time stepping, "
             "exact unilateral contact every step. Reports the rebound, the energy carried "
             "away by elastic waves and the first-order estimate of it; with --prony the "
@@ -213,14 +218,6 @@ def _estimate(estimate: dict, mesh: dict, key: str) -> str:
     return f" ({words} {estimate[key]:.6f})"
 
 
-def _profile_rows(report: dict) -> list[str]:
-    """The striker's profile when it is not the power law (the quasi-static column is then
-    Sneddon's, by quadrature); [] for the power law."""
-    if report.get("profile", {"kind": "power-law"})["kind"] == "power-law":
-        return []
-    return [f"  striker: {profile_words(report)} (quasi-static: Sneddon's contact law)"]
-
-
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
     qs, dyn, est = (
@@ -231,7 +228,7 @@ def dynamic_text(report: dict) -> str:
     of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
-        *_profile_rows(report),
+        *profile_rows(report),
         *layer_rows(mesh),
         *interface_rows(report["parameters"]),
         "                          dynamic FEM     quasi-static",

@@ -28,7 +28,7 @@ from ...theory.impact import ImpactResult, solve_impact
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
-from ...theory.sneddon import Indenter, contact_law
+from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...theory.viscoelastic import PronySeries
 from ..richardson import Estimate
 from .accuracy import DynamicLadder, complete_ladder
@@ -119,18 +119,22 @@ class DynamicCase:
 
 
 def radiation(
-    quasi: ImpactResult | ProfileImpactResult, density: float, half_space: Material
+    mass: float,
+    velocity: float,
+    law: PowerLawContact | SneddonContact,
+    density: float,
+    half_space: Material,
 ) -> RadiationEstimate:
-    """The first-order radiation estimate of the quasi-static impact ``quasi`` (the power
-    law's closed form, another profile's quadrature); a massless half-space (density 0)
-    radiates nothing."""
+    """The first-order radiation estimate of the quasi-static impact on ``law`` (the power
+    law's closed form; a sphere's or a table's Int (dP/dt)^2 dt by quadrature over its exact
+    impact); a massless half-space (density 0) radiates nothing."""
     shear, nu = half_space.shear_modulus, half_space.poisson_ratio
     rho = density if density > 0 else 1.0
-    if isinstance(quasi, ProfileImpactResult):
-        estimate = profile_radiation_estimate(quasi, rho, shear, nu)
+    if isinstance(law, SneddonContact):
+        exact = solve_profile_impact(mass, velocity, law)
+        estimate = profile_radiation_estimate(exact, rho, shear, nu)
     else:
-        inputs = (quasi.mass, quasi.velocity, quasi.beta, quasi.force_exponent)
-        estimate = radiation_estimate(*inputs, rho, shear, nu)
+        estimate = radiation_estimate(mass, velocity, law.beta, law.force_exponent, rho, shear, nu)
     if density > 0:
         return estimate
     return dataclasses.replace(
@@ -140,11 +144,11 @@ def radiation(
 
 
 def exact_impact(
-    mass: float, velocity: float, indenter: Indenter, half_space: Material
+    mass: float, velocity: float, law: PowerLawContact | SneddonContact
 ) -> ImpactResult | ProfileImpactResult:
-    """The quasi-static impact of a rigid striker of ``indenter``'s profile on ``half_space``:
-    the power law's closed form (Ateb), another profile's quadrature (Sneddon)."""
-    law = contact_law(indenter, effective_modulus(RIGID, half_space))
+    """The quasi-static impact of ``mass`` kg at ``velocity`` m/s on the contact ``law``
+    (:func:`shtaerman.theory.sneddon.contact_law`): the power law's closed form (Ateb),
+    another profile's quadrature (Sneddon)."""
     if isinstance(law, PowerLawContact):
         return solve_impact(mass, velocity, law)
     return solve_profile_impact(mass, velocity, law)
@@ -192,8 +196,9 @@ def run_case(
     """
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
-        quasi = exact_impact(mass, velocity, indenter, half_space)
-        estimate = radiation(quasi, density, half_space)
+        law = contact_law(indenter, effective_modulus(RIGID, half_space))
+        quasi = exact_impact(mass, velocity, law)
+        estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
@@ -263,9 +268,10 @@ def finite_case(
     body_model = (problem.body.rubber(), problem.body.prony, problem.interface.coefficient)
     impact = FiniteImpact(striker.indenter, body, rho, striker.mass, striker.velocity, *body_model)
     ladder = run_finite_ladder(impact, settings, refine=refine, estimate=estimate)
-    law = PowerLawContact(striker.indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
-    quasi = solve_impact(striker.mass, striker.velocity, law)
-    estimate_ = radiation(quasi, rho, body)
+    modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)  # the run's, to the bit
+    law = contact_law(striker.indenter, modulus)
+    quasi = exact_impact(striker.mass, striker.velocity, law)
+    estimate_ = radiation(striker.mass, striker.velocity, law, rho, body)
     return DynamicCase(
         striker.velocity, quasi, estimate_, ladder.finest, ladder if estimate else None
     )
