@@ -113,7 +113,7 @@ def warn_outside_validity(
 
 
 def check_reach(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     depth: float,
     impact: tuple[float, float],
     q: float,
@@ -151,7 +151,8 @@ def check_reach(
             "mass",
         )
     if not ratio <= high:
-        deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / indenter.exponent))
+        n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
+        deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / n))
         fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
         reach = "the finite-strain contact converges" if finite else "an FE impact is run"
         raise InputError(
@@ -162,13 +163,15 @@ def check_reach(
         )
 
 
-def _striker_at_fault(indenter: PowerLawIndenter, depth: float, q: float, high: float) -> bool:
+def _striker_at_fault(indenter: Indenter, depth: float, q: float, high: float) -> bool:
     """Whether the paper's shape coefficient, at the same mass, velocity and body, would bring
     the depth ``depth`` (m) of this impact (force exponent ``q``) within x/a in
     [:data:`MIN_DEPTH_RATIO`, ``high``]: then the striker's, not the impact's, is at fault
     (x_c ~ A^(1 / (n (q + 1))) as beta ~ A^(-1/n))."""
     from .vocabulary import entry
 
+    if not isinstance(indenter, PowerLawIndenter):  # a sphere's or a table's size is its own
+        return False
     paper = PowerLawIndenter(entry("shape_coefficient").default, indenter.exponent)
     scale = paper.shape_coefficient / indenter.shape_coefficient
     moved = depth * scale ** (1.0 / (indenter.exponent * (q + 1.0)))

@@ -307,12 +307,11 @@ decides what combines (everything not refused here runs)."""
 
 PROFILE_SUPPORT: tuple[Unsupported, ...] = (
     Unsupported(
-        lambda c: c.relaxing or c.loading != "curve",
+        lambda c: c.relaxing,
         "profile",
-        "a sphere or a tabulated profile is solved exactly by the quasi-static impact "
-        "(sh.impact, shtaerman impact) and by the FEM in the elastic contact curve (any model, "
-        "geometry and interface); the FE impacts and a viscoelastic body take the power law "
-        "(shape_coefficient, exponent) only",
+        "a viscoelastic body (prony) takes the power law (shape_coefficient, exponent) only: "
+        "its references (Lee-Radok, Ting) and the sizing of its impact are the power law's "
+        "closed forms; a sphere or a tabulated profile runs on an elastic body",
     ),
 )
 """The combinations refused to a striker profile other than the power law (a sphere, a

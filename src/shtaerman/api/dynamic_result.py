@@ -37,7 +37,8 @@ class DynamicResult:
     ladder; neither is part of :meth:`to_dict`. One type for every body: ``model`` names the
     material model; a rubber at finite strain adds ``rubber`` (its constants) and ``prony``
     (its series, as given) and has no ``radiation_estimate`` (the first-order estimate is the
-    linear half-space's).
+    linear half-space's). ``profile`` names the striker's profile (``kind`` and
+    ``parameters``, as ``impact --json``).
     """
 
     quasi_static: dict[str, float]
@@ -56,6 +57,7 @@ class DynamicResult:
     estimate_details: dict[str, dict[str, Any]] | None = None
     mesh_ladder: tuple[dict[str, Any], ...] | None = None
     estimate_missing: str | None = None
+    profile: dict[str, Any] | None = None
     solution: Any = field(default=None, repr=False, compare=False)
     ladder: Any = field(default=None, repr=False, compare=False)
 
@@ -107,6 +109,8 @@ class DynamicResult:
         if self.radiation_estimate is not None:
             document["radiation_estimate"] = self.radiation_estimate
         document.update(mesh=self.mesh, timings=self.timings, parameters=self.parameters)
+        if self.profile is not None:
+            document["profile"] = dict(self.profile)
         document["model"] = self.model
         if self.rubber is not None:
             document["rubber"] = dict(self.rubber)

@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING, Any
 
 from ..plots.formats import check_figure_format
 from ..problem import Problem, check_options, check_outputs
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
@@ -20,6 +19,7 @@ from .layer_options import layer_mesh
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
     from ..study.dynamic.case import DynamicCase
+    from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
 
 __all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
@@ -70,7 +70,7 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
         errors = {DIFFERENCES[k]: estimates[f"difference_{k}"].absolute_error for k in DIFFERENCES}
     if ladder is not None:
         document.update(ladder.to_dict())
-    body = problem.body
+    body, indenter = problem.body, problem.striker.indenter
     series = body.prony
     return DynamicResult(
         quasi_static=document["quasi_static"],
@@ -89,6 +89,7 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
         estimate_details=document.get("estimate_details"),
         mesh_ladder=tuple(document["mesh_ladder"]) if ladder is not None else None,
         estimate_missing=document.get("estimate_missing"),
+        profile={"kind": indenter.kind, "parameters": indenter.parameters},
         solution=case.result,
         ladder=ladder,
     )
@@ -143,7 +144,7 @@ def _density(body: Material) -> float:
 
 
 def dynamic(
-    indenter: PowerLawIndenter | Problem,
+    indenter: Indenter | Problem,
     body: Material | None = None,
     *,
     mass: float | None = None,
@@ -166,13 +167,14 @@ def dynamic(
     model: str = "linear",
     **rubber: Any,
 ) -> DynamicResult:
-    """The dynamic FE impact of a rigid striker z = A r^n on an elastic half-space.
+    """The dynamic FE impact of a rigid striker on an elastic half-space.
 
     Parameters
     ----------
-    indenter : PowerLawIndenter or Problem
-        The rigid striker's profile, n > 1; or the whole impact (:class:`shtaerman.Problem`),
-        then only numerical and output keywords follow.
+    indenter : PowerLawIndenter, SphereIndenter, TabulatedIndenter or Problem
+        The rigid striker's profile (z = A r^n, n > 1; the exact sphere or a tabulated z(r)
+        on the linear elastic body, :data:`shtaerman.problem.PROFILE_SUPPORT`); or the whole
+        impact (:class:`shtaerman.Problem`), then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] and its density in kg/m^3 (required).
     mass, velocity : float
@@ -287,7 +289,7 @@ def _case(
 
 
 def _problem(
-    indenter: PowerLawIndenter | Problem,
+    indenter: Indenter | Problem,
     body: Material | None,
     mass: float | None,
     velocity: float | None,

@@ -119,7 +119,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _exact_owner(report: dict) -> str:
+def exact_owner(report: dict) -> str:
     """Whose exact solution the curve is compared with: Shtaerman's or Sneddon's."""
     kind = report.get("profile", {"kind": "power-law"})["kind"]
     return "Shtaerman" if kind == "power-law" else "Sneddon"
@@ -140,7 +140,7 @@ def finite_contact_text(report: dict) -> str:
     rows = [
         f"{_model_words(report)} contact of {profile_words(report)} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
-        f"{_exact_owner(report)}'s linear solution)" + _impact_words(report),
+        f"{exact_owner(report)}'s linear solution)" + _impact_words(report),
         *_layer_rows(report, "/lin = against the linear half-space, not the layer"),
         *_interface_rows(report),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"

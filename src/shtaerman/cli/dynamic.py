@@ -18,6 +18,7 @@ from ..theory.materials import Material
 from ..vocabulary import entry
 from .common import (
     CASE,
+    PROFILES,
     add_figure_format,
     add_inputs,
     given,
@@ -29,7 +30,13 @@ from .common import (
     warn,
     warn_volumetric,
 )
-from .finite_dynamic import finite_dynamic_text, interface_rows, ladder_rows, layer_rows
+from .finite_dynamic import (
+    finite_dynamic_text,
+    interface_rows,
+    ladder_rows,
+    layer_rows,
+    profile_rows,
+)
 from .impact import history_path
 
 NOTES = {
@@ -56,7 +63,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         "dynamic",
         help="elastodynamic FE impact (waves included) against the quasi-static theory",
         description=(
-            "Rigid striker z = A r^n (mass M, velocity v0) on an elastic half-space with "
+            "Rigid striker z = A r^n (or an exact sphere, --sphere-radius, or a tabulated z(r), "
+            "--profile) (mass M, velocity v0) on an elastic half-space with "
             "inertia: axisymmetric Taylor-Hood P2-P1 FEM, generalized-alpha time stepping, "
             "exact unilateral contact every step. Reports the rebound, the energy carried "
             "away by elastic waves and the first-order estimate of it; with --prony the "
@@ -68,8 +76,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "a lateral absorber; its reflected energy is counted of M v0^2/2."
         ),
     )
-    inputs = (*CASE, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
-    inputs = (*inputs, "friction")
+    inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
+    inputs = (*inputs, "interface", "friction")
     inputs = (*inputs, "json", "history", "out", "force")
     add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
     add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
@@ -220,6 +228,7 @@ def dynamic_text(report: dict) -> str:
     of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
+        *profile_rows(report),
         *layer_rows(mesh),
         *interface_rows(report["parameters"]),
         "                          dynamic FEM     quasi-static",

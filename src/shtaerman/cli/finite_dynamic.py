@@ -5,6 +5,15 @@ from __future__ import annotations
 import math
 
 from ..output.case import interface_words
+from .contact import exact_owner, profile_words
+
+
+def profile_rows(report: dict) -> list[str]:
+    """The striker's profile when it is not the power law (the quasi-static column is then
+    Sneddon's, by quadrature); [] for the power law."""
+    if report.get("profile", {"kind": "power-law"})["kind"] == "power-law":
+        return []
+    return [f"  striker: {profile_words(report)} (quasi-static: Sneddon's contact law)"]
 
 
 def finite_dynamic_text(report: dict) -> str:
@@ -17,8 +26,9 @@ def finite_dynamic_text(report: dict) -> str:
     rows = [
         f"Finite-strain impact ({report['model']}, density2 "
         f"{report['parameters']['density2']:g} kg/m^3) against the quasi-static theory (SI)",
+        *profile_rows(report),
         *layer_rows(mesh),
-        "                          finite strain   quasi-static (Shtaerman)",
+        f"                          finite strain   quasi-static ({exact_owner(report)})",
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
         f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",

@@ -106,6 +106,10 @@ description = "z = 5 r^(3/2) rigid striker, 0.7 kg, on rubber, over v0 (edit me)
 [indenter]                  # the (rigid) striker's surface: z = A r^n
 shape_coefficient = 5.0     # A, m^(1-n)
 exponent = 1.5              # n > 1
+#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
+#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+                            # this file (not with prony: the viscoelastic body is the power
+                            # law's)
 
 [half_space]                # the body struck, with its inertia
 E2 = 7.5e6                  # Pa

@@ -1,4 +1,5 @@
-"""Dynamic impact of a rigid striker z = A r^n on the elastic half-space (elastodynamic FEM).
+"""Dynamic impact of a rigid striker z = A r^n, a sphere or a tabulated z(r), on the elastic
+half-space (elastodynamic FEM).
 
 :func:`run_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
 (:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles
@@ -37,7 +38,9 @@ from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.materials import validate_density as validate_material_density
+from ..theory.profile_impact import solve_profile_impact
 from ..theory.radiation import rayleigh_root
+from ..theory.sneddon import Indenter, SneddonContact
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, bound_text, validate_positive
 from .absorbing import AbsorbingLayer
@@ -272,16 +275,22 @@ class _QuasiStatic:
     a_c: float
 
 
-def _quasi_static(
-    indenter: PowerLawIndenter, half_space: Material, striker: Striker
-) -> _QuasiStatic:
-    """x_c from the energy balance M v0^2 / 2 = beta x_c^(q+1) / (q+1), t_y = 2 I x_c / v0.
+def _quasi_static(indenter: Indenter, half_space: Material, striker: Striker) -> _QuasiStatic:
+    """x_c from the energy balance M v0^2 / 2 = beta x_c^(q+1) / (q+1), t_y = 2 I x_c / v0;
+    another profile's by quadrature (:func:`shtaerman.theory.profile_impact.solve_profile_impact`,
+    beta NaN, q its smooth tip's 3/2).
 
-    x_c is taken in this power form rather than from :func:`shtaerman.theory.impact.solve_impact`
-    (logarithms, another last bit): the refined radius follows from it, and gmsh's mesh
-    depends on the last bit of its inputs.
+    The power law's x_c is taken in this power form rather than from
+    :func:`shtaerman.theory.impact.solve_impact` (logarithms, another last bit): the refined
+    radius follows from it, and gmsh's mesh depends on the last bit of its inputs.
     """
-    law = PowerLawContact(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
+    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
+    if not isinstance(indenter, PowerLawIndenter):
+        exact = solve_profile_impact(
+            striker.mass, striker.velocity, SneddonContact(indenter, modulus)
+        )
+        return _QuasiStatic(math.nan, exact.force_exponent, exact.x_c, exact.t_y, exact.a_c)
+    law = PowerLawContact(indenter, modulus)
     q, mass, velocity = law.force_exponent, striker.mass, striker.velocity
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
     return _QuasiStatic(
@@ -354,7 +363,7 @@ class _Scales:
 
 
 def _scales(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     rho: float,
     striker: Striker,
@@ -449,9 +458,7 @@ class _Body:
     inner_mass: sp.csr_matrix
 
 
-def _assemble_body(
-    system: ElasticSystem, indenter: PowerLawIndenter, rho: float, scales: _Scales
-) -> _Body:
+def _assemble_body(system: ElasticSystem, indenter: Indenter, rho: float, scales: _Scales) -> _Body:
     """Candidates r <= the refined radius, mass (normal mass redistributed), layer damping."""
     free = system.free_dofs()
     selected = np.flatnonzero(system.surface_r <= scales.refined * (1 + 1e-12))
@@ -584,7 +591,7 @@ def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
 
 
 def check_dynamic_impact(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     density: float,
     mass: float,
@@ -659,7 +666,7 @@ class DynamicImpactSetup:
 
 
 def prepare_dynamic_impact(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     density: float,
     mass: float,
@@ -725,7 +732,7 @@ def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
 
 
 def run_dynamic_impact(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     density: float,
     mass: float,
@@ -736,12 +743,14 @@ def run_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> ImpactRun:
-    """Strike the elastic half-space with a rigid power-law striker and follow the waves.
+    """Strike the elastic half-space with a rigid striker and follow the waves.
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        Striker profile z = A r^n, n > 1.
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        Striker profile: z = A r^n, n > 1, the exact sphere or a tabulated z(r) (the scales
+        of the run from its exact quasi-static impact, :func:`_quasi_static`; a
+        viscoelastic body takes the power law only).
     half_space : Material
         E2 in Pa, nu2 in [0, 0.5].
     density : float
@@ -800,7 +809,7 @@ def _mesh_stats(
 
 
 def _parameters(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     rho: float,
     problem: ImpactProblem,

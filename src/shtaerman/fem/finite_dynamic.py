@@ -63,8 +63,9 @@ import scipy.sparse as sp
 from ..guards import MAX_DEPTH_RATIO, check_reach, depth_ratio, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.profile_impact import solve_profile_impact
+from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, NumericalFailureError, validate_poisson, validate_positive
 from .contact import EDGE_MARGIN
@@ -76,6 +77,7 @@ from .finite_contact import (
     ContactOutgrowsMeshError,
     NewtonStepper,
     geometric_radius,
+    tip_exponent,
 )
 from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
@@ -453,7 +455,7 @@ def check_density(density: object) -> float:
 
 
 def run_finite_impact(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     density: float,
     mass: float,
@@ -463,9 +465,11 @@ def run_finite_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> ImpactRun:
-    """Strike a rubber half-space (finite strain) with a rigid power-law striker.
+    """Strike a rubber half-space (finite strain) with a rigid striker.
 
-    Parameters: ``indenter`` z = A r^n with n > 1; ``half_space`` the small-strain E2 (Pa)
+    Parameters: ``indenter`` z = A r^n with n > 1, the exact sphere or a tabulated z(r) (its
+    quasi-static impact Sneddon's, by quadrature; elastic only: a Prony series is sized by
+    the power law's viscoelastic impact); ``half_space`` the small-strain E2 (Pa)
     and nu2 in [0, 0.5]; ``density`` in kg/m^3, 0 (massless body) or in DENSITY_RANGE (the
     body with inertia); striker ``mass`` (kg)
     and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
@@ -489,7 +493,10 @@ def run_finite_impact(
     q = law.force_exponent
     with warnings.catch_warnings():  # the caller warns of a fast impact beside its results
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-        quasi = solve_impact(mass, velocity, law)
+        if isinstance(law, PowerLawContact):
+            quasi = solve_impact(mass, velocity, law)
+        else:  # a sphere, a table: Sneddon's law, the impact by quadrature
+            quasi = solve_profile_impact(mass, velocity, law)
     x_c, t_y = quasi.x_c, quasi.t_y
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
@@ -504,7 +511,7 @@ def run_finite_impact(
     if unbounded and x_size > x_c:
         check_reach(indenter, x_size, (mass, velocity), q, finite=True)
     refined = settings.margin * geometric_radius(indenter, x_size)
-    refined *= settings.mesh.zone_factor(indenter.exponent)  # 1 on the half-space
+    refined *= settings.mesh.zone_factor(tip_exponent(indenter))  # 1 on the half-space
     clock = [time.perf_counter()]
     mesh = settings.mesh.build(refined)
     clock.append(time.perf_counter())
@@ -589,22 +596,23 @@ def _stepped(
 
 
 def _checked(
-    indenter: PowerLawIndenter, half_space: Material, density: object, mass: float, velocity: float
-) -> tuple[float, float, float, PowerLawContact]:
-    """Density (kg/m^3), mass (kg), velocity (m/s) and Shtaerman's law, every input checked."""
+    indenter: Indenter, half_space: Material, density: object, mass: float, velocity: float
+) -> tuple[float, float, float, PowerLawContact | SneddonContact]:
+    """Density (kg/m^3), mass (kg), velocity (m/s) and the exact law (Shtaerman's, or
+    Sneddon's for a sphere or a table), every input checked."""
     rho = check_density(density)
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
-    if indenter.exponent <= 1.0:
+    if indenter.kind == "power-law" and indenter.exponent <= 1.0:
         raise InputError(f"exponent must be > 1 with a rubber model, got {indenter.exponent!r}")
     modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
-    return rho, mass, velocity, PowerLawContact(indenter, modulus)
+    return rho, mass, velocity, contact_law(indenter, modulus)
 
 
 def _assembled(
     mesh: Any,
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     model: tuple[RubberModel | None, PronySeries | None, float | None],
     refined: float,

@@ -202,7 +202,9 @@ def impact_parameters(
     inf)."""
     mass, velocity, density = striker
     parameters = {"mass": mass, "velocity": velocity, "density2": density}
-    parameters.update(shape_coefficient=indenter.shape_coefficient, exponent=indenter.exponent)
+    profile = {"shape_coefficient": getattr(indenter, "shape_coefficient", None)}
+    profile["exponent"] = getattr(indenter, "exponent", None)  # None: a sphere or a table
+    parameters.update(profile)
     parameters.update(E2=half_space.youngs_modulus, nu2=half_space.poisson_ratio)
     parameters["time_step"] = time_step
     if friction is not None:

@@ -15,6 +15,7 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -168,4 +169,5 @@ def write_finite_figure(
         folder / "dynamic_history.png",
         figure_format=figure_format,
         model=result.model,
+        exact=None if math.isfinite(quasi.beta) else "Sneddon, linear (a sphere or a table)",
     )

@@ -14,6 +14,7 @@ from ..paper.case import is_paper_case
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.richardson import Estimate
+from ..theory.sneddon import profile_inputs
 from .case import (
     body_words,
     case_words,
@@ -132,8 +133,7 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
     half-space (the paper gives no density), else "In this case (...)"."""
     study, velocity = outcome.study, outcome.example.velocity
     inputs = {
-        "shape_coefficient": study.indenter.shape_coefficient,
-        "exponent": study.indenter.exponent,
+        **profile_inputs(study.indenter),
         "E2": study.half_space.youngs_modulus,
         "nu2": study.half_space.poisson_ratio,
         "mass": study.mass,

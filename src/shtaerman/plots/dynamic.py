@@ -88,7 +88,8 @@ def plot_dynamic_histories(
         (axes[0], history.x * x_scale, result.x * x_scale, f"Approach x ({x_unit})"),
         (axes[1], history.P, result.force, "Contact force P (N)"),
     )
-    quasi_label = "quasi-static (Ateb)" + (PAD_NOTE if on_pad(result) else "")
+    exact = "Ateb" if math.isfinite(quasi.beta) else "Sneddon"  # a sphere's, a table's: no beta
+    quasi_label = f"quasi-static ({exact})" + (PAD_NOTE if on_pad(result) else "")
     for ax, quasi_values, dynamic_values, label in rows:
         ax.plot(history.t * t_scale, quasi_values, color=EXACT_COLOUR, label=quasi_label)
         ax.plot(

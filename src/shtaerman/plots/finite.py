@@ -224,14 +224,17 @@ def plot_finite_impact(
     *,
     figure_format: str = "png",
     model: str = "neo-hookean",
+    exact: str | None = None,
 ) -> Path:
     """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain (PNG, and
-    ``figure_format`` "svg" or "pdf" beside it); ``model`` names the rubber in the legend."""
+    ``figure_format`` "svg" or "pdf" beside it); ``model`` names the rubber in the legend,
+    ``exact`` the linear exact impact (None: the paper's, Shtaerman)."""
     figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
     for variant, history in outcome.histories.items():
         colour, line, label = IMPACT_STYLES[variant]
         label = label.replace("neo-Hookean", MODEL_LABELS.get(model, model))
+        label = label if exact is None or variant != "linear_exact" else exact
         top.plot(history.t * 1e3, history.x * 1e3, line, color=colour, label=label)
         bottom.plot(history.t * 1e3, history.P, line, color=colour, label=label)
     top.set_ylabel("Approach x (mm)")

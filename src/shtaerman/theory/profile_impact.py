@@ -197,6 +197,24 @@ class ProfileImpactResult:
         return 2.0 * self.mass * self.velocity
 
     @property
+    def force_rate_squared_integral(self) -> float:
+        """Int (dP/dt)^2 dt over [0, t_y] in N^2/s, the first-order radiation's integral
+        (:mod:`shtaerman.theory.radiation`).
+
+        dP/dt = 2 E* a v (dP/da = 2 E* a delta'(a), da/dt = v / delta'(a)) and dt = delta' da / v,
+        so compression and restitution each give 4 E*^2 Int_0^a_c a^2 v delta'(a) da, here on
+        the u panels (a = a_c (1 - u^2): v ~ u at a_c, a smooth integrand).
+        """
+        a_c, law = self.a_c, self.law
+
+        def integrand(u: np.ndarray) -> np.ndarray:
+            a = a_c * (1.0 - u**2)
+            return a**2 * self.speed(a) * law.depth_slope(a) * 2.0 * a_c * u
+
+        whole = _Cumulative.of(self._u_ends, integrand)
+        return 8.0 * law.modulus**2 * float(whole(1.0))
+
+    @property
     def impulse_simpson(self) -> float:
         """The paper's Simpson estimate (t_c/3) (P_c + 4 P(t_c/2)) in N s."""
         middle = float(self.history(times=[0.5 * self.t_c]).P[0])

@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.integrate import quad
@@ -49,8 +50,12 @@ from scipy.special import beta as beta_function
 
 from ..validation import InputError, validate_poisson, validate_positive
 
+if TYPE_CHECKING:
+    from .profile_impact import ProfileImpactResult
+
 __all__ = [
     "RadiationEstimate",
+    "profile_radiation_estimate",
     "radiated_energy",
     "radiation_estimate",
     "radiation_integral",
@@ -254,6 +259,27 @@ def radiation_estimate(
         rate = math.exp(
             min(math.log(shape) + 2.0 * math.log(b) + (2.0 * p - 1.0) * math.log(x_m), 709.0)
         )
+    return _estimate(m, v0, x_m, rate, rho, g, poisson_ratio)
+
+
+def profile_radiation_estimate(
+    quasi: ProfileImpactResult, density: float, shear_modulus: float, poisson_ratio: float
+) -> RadiationEstimate:
+    """First-order radiated energy of the quasi-static impact ``quasi`` on a sphere or a
+    tabulated profile (:mod:`shtaerman.theory.profile_impact`), whose Int (dP/dt)^2 dt is a
+    quadrature (the power law's closed form in :func:`radiation_estimate`); density in
+    kg/m^3, shear modulus in Pa."""
+    rho = validate_positive("density", density, "kg/m^3")
+    g = validate_positive("shear_modulus", shear_modulus, "Pa")
+    rate = quasi.force_rate_squared_integral
+    return _estimate(quasi.mass, quasi.velocity, quasi.x_c, rate, rho, g, poisson_ratio)
+
+
+def _estimate(
+    m: float, v0: float, x_m: float, rate: float, rho: float, g: float, poisson_ratio: float
+) -> RadiationEstimate:
+    """The estimate of an impact of ``m`` kg at ``v0`` m/s reaching ``x_m`` m with
+    Int (dP/dt)^2 dt = ``rate`` N^2/s, on a body of density ``rho``, shear modulus ``g``."""
     energy = radiated_energy(rate, rho, g, poisson_ratio)
     fraction = energy / (0.5 * m * v0**2)
     return RadiationEstimate(

@@ -49,7 +49,14 @@ Indenter = PowerLawIndenter | SphereIndenter | TabulatedIndenter
 """A striker's profile: the power law z = A r^n, the exact sphere or a tabulated z(r)."""
 INDENTERS = (PowerLawIndenter, SphereIndenter, TabulatedIndenter)
 
-__all__ = ["INDENTERS", "Indenter", "SneddonContact", "contact_law", "legendre_chi2"]
+__all__ = [
+    "INDENTERS",
+    "Indenter",
+    "SneddonContact",
+    "contact_law",
+    "legendre_chi2",
+    "profile_inputs",
+]
 
 GAUSS_NODES, GAUSS_WEIGHTS = roots_legendre(5)
 """Exact for polynomials of degree <= 9: s G'(s) (cubic in s) is of degree 6 in w."""
@@ -241,6 +248,16 @@ class SneddonContact:
         integrand = self.depth_slope(x) / x
         p[inside] = self.modulus / math.pi * 0.5 * span[:, 0] * (integrand @ PRESSURE_WEIGHTS)
         return p
+
+
+def profile_inputs(indenter: Indenter) -> dict[str, object]:
+    """A striker's profile as a document's inputs: the power law's ``shape_coefficient`` and
+    ``exponent``; for another profile those None and its ``profile`` (``kind`` and
+    ``parameters``, as ``impact --json``)."""
+    if isinstance(indenter, PowerLawIndenter):
+        return {"shape_coefficient": indenter.shape_coefficient, "exponent": indenter.exponent}
+    profile = {"kind": indenter.kind, "parameters": indenter.parameters}
+    return {"shape_coefficient": None, "exponent": None, "profile": profile}
 
 
 def contact_law(indenter: Indenter, modulus: float) -> PowerLawContact | SneddonContact:

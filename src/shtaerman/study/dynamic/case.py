@@ -1,4 +1,5 @@
-"""One dynamic case: the elastodynamic FE impact against the quasi-static (Ateb) impact.
+"""One dynamic case: the elastodynamic FE impact against the quasi-static (Ateb) impact (a
+sphere's or a tabulated profile's: Sneddon's law, :mod:`shtaerman.theory.profile_impact`).
 
 :func:`run_case` (also what ``shtaerman dynamic`` runs) computes the exact quasi-static impact,
 the first-order radiation estimate (:mod:`shtaerman.theory.radiation`) and the dynamic FE impact
@@ -25,9 +26,10 @@ from ...fem.impact_run import ImpactRun
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactResult, solve_impact
-from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
-from ...theory.radiation import RadiationEstimate, radiation_estimate
+from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
+from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
+from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...theory.viscoelastic import PronySeries
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_finite_ladder, run_ladder
@@ -39,6 +41,7 @@ __all__ = [
     "COMPARED",
     "DynamicCase",
     "compare",
+    "exact_impact",
     "finite_case",
     "radiation",
     "run_case",
@@ -53,7 +56,7 @@ COMPARED = {
 """Compared quantity -> (quasi-static key, dynamic key, words)."""
 
 
-def compare(quasi: ImpactResult, result: ImpactRun) -> dict[str, float]:
+def compare(quasi: ImpactResult | ProfileImpactResult, result: ImpactRun) -> dict[str, float]:
     """Quasi-static / dynamic - 1 for x, P and t (keys of :data:`COMPARED`; t_c against
     t_contact / 2, the same as t_y against t_contact), dimensionless."""
     dynamic = {"x_max": result.x_max, "P_max": result.P_max, "t_half": 0.5 * result.t_contact}
@@ -66,7 +69,7 @@ class DynamicCase:
     (with its error-estimate ladder, or ``None`` when it was skipped)."""
 
     velocity: float
-    quasi: ImpactResult
+    quasi: ImpactResult | ProfileImpactResult
     estimate: RadiationEstimate
     result: ImpactRun
     ladder: ImpactLadder | None = None
@@ -116,22 +119,43 @@ class DynamicCase:
 
 
 def radiation(
-    mass: float, velocity: float, law: PowerLawContact, density: float, half_space: Material
+    mass: float,
+    velocity: float,
+    law: PowerLawContact | SneddonContact,
+    density: float,
+    half_space: Material,
 ) -> RadiationEstimate:
-    """The first-order radiation estimate; a massless half-space (density 0) radiates nothing."""
+    """The first-order radiation estimate of the quasi-static impact on ``law`` (the power
+    law's closed form; a sphere's or a table's Int (dP/dt)^2 dt by quadrature over its exact
+    impact); a massless half-space (density 0) radiates nothing."""
     shear, nu = half_space.shear_modulus, half_space.poisson_ratio
-    p = law.force_exponent
+    rho = density if density > 0 else 1.0
+    if isinstance(law, SneddonContact):
+        exact = solve_profile_impact(mass, velocity, law)
+        estimate = profile_radiation_estimate(exact, rho, shear, nu)
+    else:
+        estimate = radiation_estimate(mass, velocity, law.beta, law.force_exponent, rho, shear, nu)
     if density > 0:
-        return radiation_estimate(mass, velocity, law.beta, p, density, shear, nu)
-    lossless = radiation_estimate(mass, velocity, law.beta, p, 1.0, shear, nu)
+        return estimate
     return dataclasses.replace(
-        lossless, shear_wave_speed=math.inf, radiated_energy=0.0, energy_fraction=0.0,
+        estimate, shear_wave_speed=math.inf, radiated_energy=0.0, energy_fraction=0.0,
         restitution=1.0,
     )  # fmt: skip
 
 
+def exact_impact(
+    mass: float, velocity: float, law: PowerLawContact | SneddonContact
+) -> ImpactResult | ProfileImpactResult:
+    """The quasi-static impact of ``mass`` kg at ``velocity`` m/s on the contact ``law``
+    (:func:`shtaerman.theory.sneddon.contact_law`): the power law's closed form (Ateb),
+    another profile's quadrature (Sneddon)."""
+    if isinstance(law, PowerLawContact):
+        return solve_impact(mass, velocity, law)
+    return solve_profile_impact(mass, velocity, law)
+
+
 def run_case(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     density: float,
     mass: float,
@@ -148,8 +172,9 @@ def run_case(
 
     Parameters
     ----------
-    indenter : PowerLawIndenter
-        The rigid striker's profile z = A r^n.
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        The rigid striker's profile: z = A r^n (the quasi-static impact Ateb's closed form),
+        the exact sphere or a tabulated z(r) (Sneddon's law, the impact by quadrature).
     half_space : Material
         E2 in Pa, nu2 in [0, 0.5].
     density : float
@@ -172,10 +197,10 @@ def run_case(
         None frictionless, ``math.inf`` bonded (no slip), mu >= 0 Coulomb. The quasi-static
         impact and the radiation estimate stay the frictionless theory's.
     """
-    law = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
-        quasi = solve_impact(mass, velocity, law)
+        law = contact_law(indenter, effective_modulus(RIGID, half_space))
+        quasi = exact_impact(mass, velocity, law)
         estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
@@ -248,8 +273,9 @@ def finite_case(
         return run_finite_impact(*inputs, level, *body_model)
 
     ladder = run_ladder(run, settings.refined(refine), refine=refine, estimate=estimate)
-    law = PowerLawContact(striker.indenter, body.youngs_modulus / (1.0 - body.poisson_ratio**2))
-    quasi = solve_impact(striker.mass, striker.velocity, law)
+    modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)  # the run's, to the bit
+    law = contact_law(striker.indenter, modulus)
+    quasi = exact_impact(striker.mass, striker.velocity, law)
     estimate_ = radiation(striker.mass, striker.velocity, law, rho, body)
     return DynamicCase(
         striker.velocity, quasi, estimate_, ladder.finest, ladder if estimate else None

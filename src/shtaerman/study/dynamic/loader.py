@@ -6,7 +6,9 @@ approach velocity (:mod:`.runner`)::
     kind = "dynamic"
     name = "dynamic"                      # optional; default: the file's stem
     description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid)
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid),
+                 or sphere_radius = 0.01 (m), or profile = "tip.csv" (r, z in m; relative to
+                 the study file)
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3; 0:
                  massless), prony = "g1:tau1,g2:tau2,..." (optional: a viscoelastic
                  half-space, E2 and nu2 its instantaneous values; tau in s; or any form of
@@ -59,10 +61,10 @@ from ...fem.dynamic_contact import (
 )
 from ...fem.viscoelastic import prony_input
 from ...problem import RUBBER_OPTIONS, Problem
-from ...theory.contact import PowerLawContact
-from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.profiles import SphereIndenter, TabulatedIndenter
+from ...theory.sneddon import Indenter, contact_law
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
@@ -80,13 +82,43 @@ from ..schema import (
     validate_name,
 )
 from .accuracy import check_ladder
+from .case import exact_impact
 
 __all__ = ["DynamicStudy", "DynamicTolerances", "dynamic_check_failures", "load_dynamic"]
 
 
 class _DynIndenter(Table):
-    shape_coefficient: Positive
-    exponent: Positive
+    """The striker's profile: z = A r^n (both keys), an exact sphere (``sphere_radius``, m) or
+    a tabulated z(r) (``profile``, a CSV path, relative to the study file)."""
+
+    shape_coefficient: Positive | None = None
+    exponent: Positive | None = None
+    sphere_radius: Positive | None = None
+    profile: str | None = None
+
+
+def _indenter(path: Path, raw: _DynIndenter) -> Indenter:
+    """The profile of ``[indenter]``: exactly one of the power law (shape_coefficient and
+    exponent), sphere_radius or profile; a refusal names the file and the key."""
+    given = [k for k in _DynIndenter.__struct_fields__ if getattr(raw, k) is not None]
+    power_law = [k for k in given if k in ("shape_coefficient", "exponent")]
+    others = [k for k in given if k not in power_law]
+    if len(others) > 1 or (others and power_law) or (not others and len(power_law) < 2):
+        raise StudyError(
+            f"{path}: key 'indenter': expected one striker profile: shape_coefficient and "
+            f"exponent (z = A r^n), sphere_radius (m) or profile (a CSV of r, z in m), got "
+            f"{given or 'none'}"
+        )
+    key = others[0] if others else "exponent"
+    try:
+        if key == "sphere_radius":
+            return SphereIndenter(raw.sphere_radius)
+        if key == "profile":
+            table = Path(raw.profile)
+            return TabulatedIndenter.from_csv(table if table.is_absolute() else path.parent / table)
+        return PowerLawIndenter(raw.shape_coefficient, raw.exponent)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'indenter.{key}': {error}") from None
 
 
 class _DynHalfSpace(Table):
@@ -182,7 +214,7 @@ class DynamicStudy:
     name: str
     description: str
     source: Path
-    indenter: PowerLawIndenter
+    indenter: Indenter
     half_space: Material
     density: float
     mass: float
@@ -265,10 +297,9 @@ def _layer(path: Path, raw: _DynamicFile, example: float) -> DynamicSettings:
             f"{path}: key 'layer.dynamic': applies to a contact study (a dynamic study is one)"
         )
     spec = layer_spec(path, raw.layer, None)
-    indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
     body = Material(raw.half_space.E2, raw.half_space.nu2)
-    half_space = PowerLawContact(indenter, effective_modulus(RIGID, body))
-    spec = spec.resolved(float(solve_impact(raw.impact.mass, example, half_space).a_c))
+    half_space = contact_law(_indenter(path, raw.indenter), effective_modulus(RIGID, body))
+    spec = spec.resolved(float(exact_impact(raw.impact.mass, example, half_space).a_c))
     try:
         return DynamicSettings(thickness=spec.thickness, base=spec.base)
     except InputError as error:
@@ -313,7 +344,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
-    indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
+    indenter = _indenter(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     try:
         validate_fem_inputs(indenter, half_space)
@@ -387,6 +418,7 @@ PHYSICS_KEYS = {
     **{name: f"impact.{name}" for name in ("interface", "friction")},
     **{name: f"layer.{name}" for name in ("thickness", "base")},
     "prony": "half_space.prony",
+    "profile": "indenter",
 }
 """A problem part's keyword -> its study-file key (for a refusal of :class:`Problem`)."""
 

@@ -21,8 +21,8 @@ from dataclasses import dataclass
 from ...fem.dynamic_contact import (
     DynamicSettings,
 )
-from ...theory.contact import PowerLawContact
 from ...theory.materials import RIGID, effective_modulus
+from ...theory.sneddon import contact_law, profile_inputs
 from ..checks import Check
 from ..limits import LEVELS, thresholds
 from .case import COMPARED, DynamicCase, finite_case, radiation, run_case
@@ -65,7 +65,7 @@ class DynamicStudyOutcome:
         """The first-order estimate over the study's velocity range: ``velocity`` (m/s),
         ``energy_fraction`` lambda and ``restitution`` sqrt(1 - lambda)."""
         study, low, high = self.study, self.velocities[0], self.velocities[-1]
-        law = PowerLawContact(study.indenter, effective_modulus(RIGID, study.half_space))
+        law = contact_law(study.indenter, effective_modulus(RIGID, study.half_space))
         curve: dict[str, list[float]] = {"velocity": [], "energy_fraction": [], "restitution": []}
         for i in range(points):
             v = low + (high - low) * i / (points - 1)
@@ -115,8 +115,7 @@ class DynamicStudyOutcome:
         study, settings = self.study, self.settings
         return {
             "inputs": {
-                "shape_coefficient": study.indenter.shape_coefficient,
-                "exponent": study.indenter.exponent,
+                **profile_inputs(study.indenter),
                 "E2": study.half_space.youngs_modulus,
                 "nu2": study.half_space.poisson_ratio,
                 "density2": study.density,

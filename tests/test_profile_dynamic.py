@@ -1,0 +1,118 @@
+"""The dynamic FE impact (with inertia, and massless) of a sphere and of a tabulated profile
+(issue 29): its scales come from the profile's exact quasi-static impact (Sneddon's law by
+quadrature, :mod:`shtaerman.theory.profile_impact`), its gap from the profile itself.
+
+Coarse: the default DynamicSettings (size 1/40 of the refined radius, 11.7k dofs, 200 steps
+per t_y), no ladder.
+"""
+
+import contextlib
+import io
+import json
+
+import numpy as np
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli import main
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.study.dynamic.case import compare, run_case
+
+RUBBER = sh.Material(7.5e6, 0.5)
+RADIUS = 0.01
+BALL = sh.SphereIndenter(RADIUS)
+COARSE = DynamicSettings()  # size 1/40, 200 steps per t_y
+COMPARED = ("x_max", "P_max", "t_x_max", "t_contact", "restitution")
+
+
+def test_a_tabulated_paraboloid_is_the_power_law_n_2_in_the_dynamic_impact():
+    r = np.linspace(0.0, 0.05, 201)
+    table = sh.TabulatedIndenter(r, r**2 / (2 * RADIUS))
+    hertz = sh.PowerLawIndenter(1 / (2 * RADIUS), 2.0)
+    power_law = run_case(hertz, RUBBER, 1100.0, 0.7, 3.0, COARSE)
+    tabulated = run_case(table, RUBBER, 1100.0, 0.7, 3.0, COARSE)
+    # the same refined radius to the last bit (a_c of the quadrature equals the closed form's
+    # here, measured), so gmsh makes the same mesh, and the gap is the same to round-off
+    np.testing.assert_array_equal(tabulated.result.system.mesh.p, power_law.result.system.mesh.p)
+    # what differs is dt = t_y / steps: the quadrature's t_y is the Ateb closed form's to
+    # 3.3e-12 (measured), so each step lands 3e-12 t_y elsewhere; at the maxima (zero slope)
+    # that moves the values by far less: measured 4e-15 (x_max), 1.6e-13 (P_max)
+    for key in COMPARED:
+        assert getattr(tabulated.result, key) == pytest.approx(
+            getattr(power_law.result, key), rel=1e-12
+        ), key
+    # the radiation estimate's Int (dP/dt)^2 dt by quadrature against the closed form: 2e-16
+    assert tabulated.estimate.energy_fraction == pytest.approx(
+        power_law.estimate.energy_fraction, rel=1e-12
+    )
+    assert tabulated.result.parameters["shape_coefficient"] is None
+
+
+def test_a_tabulated_paraboloid_on_a_bonded_layer_is_the_power_law():
+    """The layer's mesh and the bonded indenter's stick take the profile as they take the
+    power law's gap."""
+    r = np.linspace(0.0, 0.05, 201)
+    body = sh.Material(7.5e6, 0.5, 1100.0)
+    pad = {"mass": 0.7, "velocity": 1.0, "thickness": 0.01, "interface": "bonded"}
+    hertz = sh.dynamic(sh.PowerLawIndenter.sphere(RADIUS), body, **pad, estimate=False)
+    table = sh.TabulatedIndenter(r, r**2 / (2 * RADIUS))
+    tabulated = sh.dynamic(table, body, **pad, estimate=False)
+    # here a_c's quadrature differs from the closed form in the last bit, and the lateral
+    # edge (c_s t_y) by t_y's 6e-13: gmsh makes the same mesh all the same
+    for key, value in hertz.mesh.items():
+        same = value if isinstance(value, str) else pytest.approx(value, rel=1e-12)
+        assert tabulated.mesh[key] == same, key
+    # as on the half-space: the time step's 3e-12 only; measured <= 6e-14
+    for key in COMPARED:
+        assert getattr(tabulated, key) == pytest.approx(getattr(hertz, key), rel=1e-12), key
+
+
+@pytest.mark.parametrize("density", [0.0, 1e-3])
+def test_a_light_sphere_impact_is_the_quasi_static_sphere_impact(density):
+    """Massless, or rho2 = 1e-3 kg/m^3 (radiated lambda ~ rho^(1/2) ~ 1e-4): at 1 m/s the
+    ball reaches x = 0.34 R, where Sneddon's sphere is 3 % softer than Hertz's paraboloid."""
+    case = run_case(BALL, RUBBER, density, 0.7, 1.0, COARSE)
+    differences = compare(case.quasi, case.result)
+    # the coarse mesh's static error, as for the power law (test_fem_dynamic: 8e-5, 1.1e-4):
+    # measured x 8.7e-5, P -1.4e-4, t 4.3e-5 (massless and light alike); bound 3e-4
+    for key, value in differences.items():
+        assert abs(value) < 3e-4, key
+    paraboloid = sh.impact(sh.PowerLawIndenter.sphere(RADIUS), RUBBER, mass=0.7, velocity=1.0)
+    # and it is the sphere: at the same energy Sneddon's P_c is 1.97 % below Hertz's (exact
+    # impacts), 65 times the bound above; the FE's (measured -1.956 %) within the same 3e-4
+    assert case.result.P_max / paraboloid.P_c - 1 == pytest.approx(-0.0197, abs=3e-4)
+    assert case.result.restitution == pytest.approx(1.0, abs=1e-5)  # measured 1 - e < 2e-7
+
+
+@pytest.fixture(scope="module")
+def dense():
+    """The sphere on rubber of 1100 kg/m^3 at 0.3 and 3 m/s, by the API."""
+    body = sh.Material(7.5e6, 0.5, 1100.0)
+    return {v: sh.dynamic(BALL, body, mass=0.7, velocity=v, estimate=False) for v in (0.3, 3.0)}
+
+
+def test_the_sphere_radiates_as_its_first_order_estimate_says(dense):
+    slow, fast = dense[0.3], dense[3.0]
+    # the waves take energy: quasi-static / dynamic - 1 of x measured +0.77 % at 0.3 m/s,
+    # +2.84 % at 3 m/s (the coarse mesh's own error is 1e-4: the test above); the sphere's
+    # loss grows as v^0.5-0.6 (Hunter's 3/5 for a Hertzian sphere)
+    assert 0.005 < slow.differences["x_c"] < 0.4 * fast.differences["x_c"]
+    for run in (slow, fast):
+        estimate = run.radiation_estimate["energy_fraction"]
+        # first order in lambda: measured -2.4 % (lambda 0.037) and -8 % (lambda 0.13)
+        assert run.energy_radiated_fraction == pytest.approx(estimate, rel=0.1)
+    assert fast.to_dict()["profile"] == {"kind": "sphere", "parameters": {"radius": RADIUS}}
+    assert fast.quasi_static["beta"] is None or np.isnan(fast.quasi_static["beta"])
+
+
+def test_the_command_line_is_the_api(dense):
+    stream = io.StringIO()
+    argv = ["dynamic", "--sphere-radius", "0.01", "--velocity", "3", "--no-estimate", "--json"]
+    with contextlib.redirect_stdout(stream):
+        code = main([*argv, "--E2", "7.5e6", "--nu2", "0.5", "--density2", "1100"])
+    assert code == 0
+    document = json.loads(stream.getvalue())
+    api = dense[3.0].to_dict()
+    for part in (document, api):
+        part.pop("timings")
+    assert document == api  # one computation: every number equal
