@@ -51,6 +51,7 @@ __all__ = [
     "edge_radius",
     "factorize_stiffness",
     "factorize_tail",
+    "field_solutions",
     "solve_contact",
     "step_from_forces",
     "tail_compliance",
@@ -536,18 +537,23 @@ def _contact_load(curve: ContactCurve, step: ContactStep) -> np.ndarray:
     return load
 
 
-def _field_coefficients(
+def field_solutions(
     system: ElasticSystem,
     factorization: Factorization,
     free: np.ndarray,
     compliance: SurfaceCompliance,
     steps: list[ContactStep],
 ) -> np.ndarray:
-    """Solution vectors of every depth by one solve with one right-hand side per depth."""
+    """Solution vectors of every depth by one solve with one right-hand side per depth (the
+    normal nodal forces and, where a step has them, the tangential ones)."""
     loads = np.zeros((free.size, len(steps)))
-    position = np.searchsorted(free, compliance.dofs)
+    normal = np.searchsorted(free, compliance.dofs)
+    radial = compliance.radial_dofs
+    radial = None if radial is None else np.searchsorted(free, radial)
     for column, step in enumerate(steps):
-        loads[position, column] = -step.nodal_forces
+        loads[normal, column] = -step.nodal_forces
+        if step.tangential_forces is not None:
+            loads[radial, column] = step.tangential_forces
     solutions = np.zeros((len(steps), system.n_dofs))
     solutions[:, free] = factorization.solve(loads).T
     return solutions
@@ -620,7 +626,7 @@ def solve_contact(
     compliance = surface_compliance(system, factorization, free, candidate_radius)
     with threadpool_limits(limits=1, user_api="blas"):  # small dense solves: threads only hurt
         steps = [contact_step(compliance, profile, float(depth), aligned) for depth in depths]
-    solutions = _field_coefficients(system, factorization, free, compliance, steps)
+    solutions = field_solutions(system, factorization, free, compliance, steps)
     done = time.perf_counter()
     return ContactCurve(
         steps=steps,

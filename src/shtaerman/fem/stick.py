@@ -38,12 +38,12 @@ from .contact import (
     check_resolved,
     edge_radius,
     factorize_tail,
+    field_solutions,
     recover_pressure,
     surface_compliance,
     tail_compliance,
 )
 from .elasticity import ElasticSystem
-from .solver import Factorization
 from .stick_slip import CoupledCompliance, StickState, radial_dofs, stick_slip_step
 
 __all__ = [
@@ -76,25 +76,6 @@ def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndar
     count = int(np.ceil(np.log(depths[-1] / start) / np.log(step_ratio)))
     ladder = start * step_ratio ** np.arange(count)
     return np.union1d(ladder[ladder < depths[-1]], depths)
-
-
-def _field_solutions(
-    system: ElasticSystem,
-    factorization: Factorization,
-    free: np.ndarray,
-    compliance: SurfaceCompliance,
-    steps: list[ContactStep],
-) -> np.ndarray:
-    """Solution vectors of every depth (normal and tangential nodal forces) by one solve."""
-    loads = np.zeros((free.size, len(steps)))
-    normal = np.searchsorted(free, compliance.dofs)
-    radial = np.searchsorted(free, compliance.radial_dofs)
-    for column, step in enumerate(steps):
-        loads[normal, column] = -step.nodal_forces
-        loads[radial, column] = step.tangential_forces
-    solutions = np.zeros((len(steps), system.n_dofs))
-    solutions[:, free] = factorization.solve(loads).T
-    return solutions
 
 
 def _contact_step(
@@ -186,7 +167,7 @@ def solve_bonded_contact(
     coupled = CoupledCompliance(inverse, radial_node, radial)
     with threadpool_limits(limits=1, user_api="blas"):
         steps = _load_history(coupled, normal, profile, depths, (step_ratio, friction))
-    solutions = _field_solutions(system, factorization, free, normal, steps)
+    solutions = field_solutions(system, factorization, free, normal, steps)
     done = time.perf_counter()
     return ContactCurve(
         steps=steps,
