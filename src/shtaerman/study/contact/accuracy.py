@@ -45,8 +45,24 @@ CURVE_QUANTITIES = ("beta", "exponent")
 FORCE_LIKE = ("force", "beta")
 """What ``--accuracy`` drives below its tolerance."""
 ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 2.5}
-"""Asymptotic orders used for the correction (the exponent uses its observed order); their
-effectivity against the exact solution is measured in ``benchmarks/bench_accuracy.py``."""
+"""Orders of the extrapolation, and the largest orders of the error estimates: a ladder that
+observes a lower order (in :data:`SANE_ORDERS`) reports the correction at its own order as the
+error, the larger one (the exponent always uses its observed order). The force's error has two
+terms of opposite sign: the far field's (order 4 in the growth rate, dominant on the default
+ladders, whose observed orders are 2.3-2.5) and the contact edge's (order 2 in the surface
+size, dominant on fine or slowly graded meshes: toward 1e-6 it stays while the other vanishes);
+at order 3 the fine ladders' estimates were 0.37-0.55 of the true error
+(``benchmarks/accuracy_1e6.py``)."""
+EDGE_ORDER = 2.0
+"""The slowest order of the force's error: the contact edge's, in the surface size (the paper's
+case on the default family at domain 1e7, worst depth: 7.3e-6, 5.1e-6, 2.6e-6, 1.4e-6 from
+116k to 887k dofs, i.e. order 1.9-2.0 once the far field's term has gone)."""
+FORCE_SAFETY = 1.25
+"""Factor on the force and beta estimates (Roache's factor of safety of a three-mesh study
+at its observed order): with the observed order the effectivity on ladders where the edge term
+dominates is 0.94-1.01 (the paper's case from 116k to 447k dofs, and size 1/80, growth 0.1,
+up to 62k dofs; the far-field term, of the other sign, shrinks faster than the ladder's order
+assumes); with the factor 1.17-1.26 (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 SANE_ORDERS = (1.0, 5.0)
 """Observed orders (of the largest difference over the depths) taken as asymptotic."""
 TIME_GROWTH = 2.4
@@ -192,25 +208,63 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
 
     Richardson over the depths (:func:`~shtaerman.study.richardson.curve_richardson`) for the
     force, contact radius and central pressure, over the levels for beta and the exponent, with
-    the orders :data:`ORDERS` where the observed order confirms the asymptotic range
-    :data:`SANE_ORDERS` (else the two-level difference); plus, for force and beta, the known
-    far-field truncation (:data:`TRUNCATION`).
+    the orders :data:`ORDERS` (the error at the observed order where that is lower), where
+    the observed order lies in :data:`SANE_ORDERS` (else the two-level difference); for force
+    and beta at least :func:`_edge_floor`, times :data:`FORCE_SAFETY`, plus the known
+    far-field truncation (:data:`TRUNCATION`); beta's at least the force's.
     """
     results = [level.result for level in levels]
-    estimates = {}
+    estimates, ladders = {}, {}
     for key in STEP_QUANTITIES:
-        curves = [[getattr(step, key) for step in result.steps] for result in results]
-        estimates[key] = curve_richardson(curves, LADDER_RATIO, order=ORDERS[key], sane=SANE_ORDERS)
+        ladders[key] = [[getattr(step, key) for step in result.steps] for result in results]
+        estimates[key] = _at_most(curve_richardson, ladders[key], ORDERS[key])
     for key in CURVE_QUANTITIES:
         values = [_curve_value(result, key) for result in results]
         if all(math.isfinite(v) for v in values):
-            estimates[key] = richardson(
-                values, LADDER_RATIO, order=ORDERS.get(key), sane=SANE_ORDERS
-            )
+            ladders[key] = values
+            estimates[key] = _at_most(richardson, values, ORDERS.get(key))
     for key in FORCE_LIKE:
-        truncation = _truncation(results[-1], key)
-        estimates[key] = replace(estimates[key], error=estimates[key].error + truncation)
+        error = max(estimates[key].error, _edge_floor(ladders[key], estimates[key]))
+        error = FORCE_SAFETY * error + _truncation(results[-1], key)
+        estimates[key] = replace(estimates[key], error=error)
+    if "beta" in estimates:  # exp(mean(ln P_i - q ln x_i)): errs as the mean of the depths'
+        # force errors, at most as the worst depth's, which the force's estimate bounds
+        error = max(estimates["beta"].error, estimates["force"].error)
+        estimates["beta"] = replace(estimates["beta"], error=error)
     return estimates
+
+
+def _edge_floor(values: list, estimate: Estimate) -> float:
+    """The least error a force-like quantity's ladder allows (relative): its first difference
+    D1 (the largest over the depths) shrunk by one level at the edge's order
+    :data:`EDGE_ORDER`, then corrected as ``estimate`` is (at the lower of its order and the
+    observed one; a fall-back at the edge's order). The last difference D2 can be far below
+    D1 / s^2 where the far field's faster term, of the other sign, still shrinks in it: on the
+    paper's ladder to 228k dofs D2 was 3.3e-6 at the deep end while the shallow end's true
+    error was 5.1e-6 (D1 / 2 = 8.5e-6); where the edge term dominates D2 = D1 / s^2 and the
+    floor changes nothing."""
+    levels = [np.atleast_1d(np.asarray(v, dtype=float)) for v in values[-3:]]
+    if len(levels) < 3:
+        return 0.0
+    first = float(np.max(np.abs(levels[0] - levels[1]) / np.abs(levels[-1])))
+    orders = [p for p in (estimate.order, estimate.observed_order) if math.isfinite(p)]
+    order = min(orders, default=EDGE_ORDER)
+    return first / LADDER_RATIO**EDGE_ORDER / (LADDER_RATIO**order - 1.0)
+
+
+def _at_most(
+    estimate: Callable[..., Estimate], values: list, order: float | None, **options: str
+) -> Estimate:
+    """``estimate`` (:func:`richardson` or :func:`curve_richardson`, with ``options``) of
+    ``values`` at ``order``; where the observed order is lower, its error is the correction at
+    the observed order (the larger), its extrapolated value stays at ``order`` (on the default
+    ladders, whose observed orders 2.3-2.5 mix the far field's order 4 with the edge's order 2,
+    order 3 extrapolates the force to 2.4e-5 of the exact, the observed order to 7.8e-5)."""
+    known = estimate(values, LADDER_RATIO, order=order, sane=SANE_ORDERS, **options)
+    if known.method == "richardson" and known.observed_order < known.order:
+        observed = estimate(values, LADDER_RATIO, sane=SANE_ORDERS, **options)
+        return replace(known, error=observed.error)
+    return known
 
 
 def _level(solve: Solve, base: MeshSettings, refine: float, progress: Progress) -> LadderLevel:
@@ -340,8 +394,9 @@ def _check_reachable(
     error = _force_error(result)
     if error <= tolerance:
         return
-    orders = [result.estimates[k].order for k in FORCE_LIKE if k in result.estimates]
-    order = min((p for p in orders if math.isfinite(p)), default=ORDERS["force"])
+    estimates = [result.estimates[k] for k in FORCE_LIKE if k in result.estimates]
+    orders = [p for e in estimates for p in (e.order, e.observed_order) if math.isfinite(p)]
+    order = max(min(orders, default=ORDERS["force"]), SANE_ORDERS[0])
     steps = math.ceil(math.log(error / tolerance) / (order * math.log(LADDER_RATIO)))
     dofs = result.levels[-1].dofs * 2**steps
     seconds = sum(result.levels[-1].seconds * TIME_GROWTH**k for k in range(1, steps + 1))
