@@ -7,6 +7,7 @@ mesh_size 0.05: 1-3 s a case) and a coarse contact mesh (mesh_size 0.05, about 3
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -126,3 +127,17 @@ def test_a_bad_striker_profile_is_refused_at_load_naming_its_key(parameters, axe
 def test_the_contact_kind_refuses_two_profiles_too():
     with pytest.raises(SweepError, match=r"parameters\.sphere_radius: one striker profile"):
         _sweep("sphere_radius = 0.01\nshape_coefficient = 3.0", "nu2 = [0.5]", kind="contact")
+
+
+def test_a_sphere_driven_past_its_radius_is_refused_before_any_run():
+    """R = 5 mm at 0.7 kg and 3 m/s on the paper's rubber: Sneddon's x_c = 9.88 mm = 2 R. The
+    FE's ball ends at its equator (a flat rim beyond): the run reached the rim and failed at
+    the refined zone's edge after the work; now refused at load and before the FE run."""
+    from shtaerman.validation import InputError
+
+    says = "sphere_radius: 0.7 kg at 3 m/s drive the sphere to about 9.88 mm, beyond its radius"
+    with pytest.raises(SweepError, match=re.escape("case 0 (sphere_radius = 0.005): ")) as error:
+        _sweep("", "sphere_radius = [0.005, 0.01]")
+    assert says in str(error.value)
+    with pytest.raises(InputError, match=re.escape(says)):
+        sh.dynamic(sh.SphereIndenter(0.005), BODY, mass=0.7, velocity=3.0, estimate=False)
