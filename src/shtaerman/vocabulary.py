@@ -387,6 +387,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "radius R of an exact sphere z = R - sqrt(R^2 - r^2), in place of the power law "
         "(--shape-coefficient, --exponent)",
         "Sphere radius R",
+        kinds=("contact", "dynamic"),
         valid=Range(0.0, MAX_SPHERE_RADIUS),
     ),
     Entry(
@@ -395,6 +396,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "a tabulated tip z(r): a CSV file whose header names the columns r and z (m), from the "
         "tip r = 0, z = 0, both increasing; in place of the power law",
         "tabulated profile",
+        kinds=("contact", "dynamic"),
         valid=None,
         type="path",
     ),

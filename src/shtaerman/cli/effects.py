@@ -12,7 +12,16 @@ from ..api.fem_dynamic import SETTINGS_OPTIONS
 from ..problem import parts
 from ..theory.materials import Material
 from ..validation import InputError
-from .common import CASE, add_inputs, given, in_option_words, indenter, keywords, print_json
+from .common import (
+    CASE,
+    PROFILES,
+    add_inputs,
+    given,
+    in_option_words,
+    indenter,
+    keywords,
+    print_json,
+)
 from .dynamic import DERIVED, MODEL_NOTES, PHYSICS
 
 NOTES = {"out": ", ".join(FILES), "force": "an existing --out folder"}
@@ -32,11 +41,13 @@ def register(commands: argparse._SubParsersAction) -> None:
             "interaction (full - sum of the single changes) and the dominant effect. The "
             "effects: the pad (--thickness), the waves (--density2 > 0), finite strain "
             "(--model), viscoelasticity (--prony), friction (--interface bonded, --friction). "
+            "A sphere (--sphere-radius) or a tabulated tip (--profile) drops viscoelasticity "
+            "(a viscoelastic body takes the power law only), said in one line before the runs. "
             "A variant that is refused (its combination, an option, a validity limit) or "
             "fails shows its reason in its row; the others run. Progress on stderr, SI units."
         ),
     )
-    inputs = (*CASE, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
+    inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
     add_inputs(
         p, (*inputs, "friction", "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES
     )

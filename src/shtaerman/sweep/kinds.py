@@ -30,6 +30,7 @@ This is the only module of :mod:`shtaerman.sweep` that imports the computations 
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Mapping
@@ -98,9 +99,25 @@ def unit_suffix(name: str, unit: str) -> str:
 
 
 def _indenter(p: dict[str, Any]):
+    """The case's striker profile: an exact sphere (``sphere_radius``), a tabulated z(r)
+    (``profile``, an absolute path since the sweep file was read) or the power law."""
     from ..theory.indenter import PowerLawIndenter
+    from ..theory.profiles import SphereIndenter
 
+    if p.get("sphere_radius") is not None:
+        return SphereIndenter(p["sphere_radius"])
+    if p.get("profile") is not None:
+        return _tabulated(p["profile"])
     return PowerLawIndenter(p["shape_coefficient"], p["exponent"])
+
+
+@functools.lru_cache(maxsize=4)
+def _tabulated(path: str):
+    """The tabulated profile of the CSV at ``path``, read once per process (every case of a
+    sweep has the same one)."""
+    from ..theory.profiles import TabulatedIndenter
+
+    return TabulatedIndenter.from_csv(path)
 
 
 def _material(p: dict[str, Any], young: str, poisson: str):
@@ -137,16 +154,16 @@ def _quasi_static(check: Any) -> Any:
     range are refused at load rather than as failed cases."""
     import warnings
 
-    from ..theory.contact import PowerLawContact
-    from ..theory.impact import solve_impact
+    from ..study.dynamic.case import exact_impact
     from ..theory.materials import RIGID, effective_modulus
+    from ..theory.sneddon import contact_law
 
     def checked(p: dict[str, Any]) -> Any:
         striker = _material(p, "E1", "nu1") if "E1" in p else RIGID
-        law = PowerLawContact(_indenter(p), effective_modulus(striker, _material(p, "E2", "nu2")))
+        law = contact_law(_indenter(p), effective_modulus(striker, _material(p, "E2", "nu2")))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a validity warning is the case's to record
-            solve_impact(p["mass"], p["velocity"], law)  # first: velocity 1e300 overflowed
+            exact_impact(p["mass"], p["velocity"], law)  # first: velocity 1e300 overflowed
         return check(p)  # in the dynamic check's own arithmetic (an OverflowError)
 
     return checked
@@ -233,7 +250,7 @@ def contact_case(p: dict[str, Any]) -> CaseResult:
     outputs = {
         "beta_fem": float(result.fit.beta_fixed_exponent),
         "exponent_fem": float(result.fit.exponent),
-        "beta_analytic": float(result.exact.beta),
+        "beta_analytic": float(result.analytic.beta),  # a profile's: fitted as the FEM's
         **{
             f"error_{key}": float(errors[key])
             for key in ("force", "beta", "exponent", "contact_radius", "central_pressure")
@@ -330,9 +347,9 @@ def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: 
     from dataclasses import replace
 
     from ..study.contact.layer import LayerSpec
-    from ..theory.contact import PowerLawContact
-    from ..theory.impact import solve_impact
+    from ..study.dynamic.case import exact_impact
     from ..theory.materials import RIGID, effective_modulus
+    from ..theory.sneddon import contact_law
 
     given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
     if not given:
@@ -347,8 +364,8 @@ def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: 
             "exactly one of them; got thickness and thickness_ratio",
             "thickness",
         )
-    contact = PowerLawContact(indenter, effective_modulus(RIGID, half_space))
-    a_c = float(solve_impact(p["mass"], p["velocity"], contact).a_c)
+    contact = contact_law(indenter, effective_modulus(RIGID, half_space))
+    a_c = float(exact_impact(p["mass"], p["velocity"], contact).a_c)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
     return replace(settings, thickness=layer.thickness, base=layer.base)
 
@@ -544,18 +561,18 @@ def _finite_impact_check(p: dict[str, Any]) -> None:
 
     from ..fem.finite_dynamic import FiniteImpactSettings, check_density
     from ..guards import check_reach
-    from ..theory.contact import PowerLawContact
-    from ..theory.impact import solve_impact
+    from ..study.dynamic.case import exact_impact
     from ..theory.materials import RIGID, effective_modulus
+    from ..theory.sneddon import contact_law
 
     problem, numerics = _finite_impact(p)
     FiniteImpactSettings(steps=numerics["time_steps"])  # its range, naming steps
     check_density(p["density2"])
     if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
-        law = PowerLawContact(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
+        law = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a validity warning is the case's to record
-            x_c = solve_impact(p["mass"], p["velocity"], law).x_c
+            x_c = exact_impact(p["mass"], p["velocity"], law).x_c
         check_reach(_indenter(p), x_c, (p["mass"], p["velocity"]), law.force_exponent, True)
 
 
@@ -615,6 +632,8 @@ register_kind(
 
 # --- effects: which effect of the impact moves P_max, x_max, t_contact and e ---------------------
 
+_PROFILE_KEYS = ("sphere_radius", "profile")
+"""The dynamic kind's striker profiles beside the power law, which an effects case lacks."""
 EFFECT_NAMES = ("pad", "waves", "finite strain", "viscoelasticity", "friction")
 """The effects of :mod:`shtaerman.api.effect_table.variants`, in its order: an effects case's
 ``dominant_<quantity>`` is the index of the dominant one here (NaN: none ran)."""
@@ -699,8 +718,8 @@ register_kind(
         parameters={
             name: parameter
             for name, parameter in vocabulary_parameters("dynamic").items()
-            if name != "axis_size"  # the effect table's runs grade their own axis
-        },
+            if name not in ("axis_size", *_PROFILE_KEYS)  # its runs grade their own axis;
+        },  # the effect table takes the power law's striker
         outputs=EFFECTS_OUTPUTS,
         case=effects_case,
         check=_quasi_static(lambda p: _effects_inputs(p)),

@@ -149,7 +149,10 @@ class SweepSpec:
         cases = []
         for index, values in enumerate(itertools.product(*self.axes.values())):
             at = dict(zip(names, values, strict=True))
-            cases.append(Case(index, at, {**base, **at}))
+            params = {**base, **at}
+            if params.get("sphere_radius") is not None or params.get("profile") is not None:
+                params |= {"shape_coefficient": None, "exponent": None}  # not the power law
+            cases.append(Case(index, at, params))
         return cases
 
     def to_dict(self) -> dict[str, Any]:
@@ -227,12 +230,48 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
                 f"{where}: {key!r} is both in [parameters] and in [axes]; keep it in one"
             )
         axes[key] = _axis(where, kind, key, values)
+    _striker(where, path, parameters, axes)
     count = math.prod(len(values) for values in axes.values())
     if count > MAX_CASES:
         raise SweepError(f"{where}: [axes] makes {count} cases; at most {MAX_CASES} are allowed")
     spec = SweepSpec(path, name, kind.name, description, parameters, axes, data, text)
     _check_cases(where, spec)
     return spec
+
+
+STRIKER_KEYS = ("shape_coefficient", "exponent", "sphere_radius", "profile")
+"""The keys of the striker's profile: the power law's pair, or one of the two others."""
+
+
+def _striker(where: str, path: Path, parameters: dict[str, Any], axes: dict[str, Any]) -> None:
+    """Refuse two striker profiles in a sweep (the power law's keys beside ``sphere_radius``
+    or ``profile``, or both of those) and a ``profile`` axis (a file is fixed); read the
+    ``profile`` CSV now, its path made absolute (given relative to the sweep file), so a bad
+    table is refused at load naming the key, and the cases find it from any folder."""
+    from ..theory.profiles import TabulatedIndenter
+
+    if "profile" in axes:
+        raise SweepError(
+            f"{where}: axes.profile: a tabulated profile is fixed: give it in [parameters] "
+            "(sphere_radius or the power law's keys can be axes)"
+        )
+    given = [key for key in STRIKER_KEYS if key in parameters or key in axes]
+    others = [key for key in given if key in ("sphere_radius", "profile")]
+    if others and len(given) > 1:
+        table = "axes" if others[0] in axes else "parameters"
+        raise SweepError(
+            f"{where}: {table}.{others[0]}: one striker profile per case: shape_coefficient "
+            "and exponent (z = A r^n), sphere_radius (m) or profile (a CSV of r, z in m), "
+            f"got {given}"
+        )
+    if "profile" in parameters:
+        table = Path(parameters["profile"]).expanduser()
+        table = (table if table.is_absolute() else path.parent / table).resolve()
+        try:
+            TabulatedIndenter.from_csv(table)
+        except InputError as error:
+            raise SweepError(f"{where}: parameters.profile: {error}") from None
+        parameters["profile"] = str(table)
 
 
 def _name(where: str, data: Mapping[str, Any]) -> str:
@@ -308,6 +347,8 @@ def _convert(parameter: Parameter, value: Any) -> Any:
         return float(value) if is_number else None
     if parameter.type == "int":
         return value if isinstance(value, int) and not isinstance(value, bool) else None
+    if parameter.type == "path":
+        return value if isinstance(value, str) and value else None
     if parameter.type == "str":
         ok = isinstance(value, str) and (not parameter.choices or value in parameter.choices)
         return value if ok else None
@@ -329,6 +370,7 @@ def _expected(parameter: Parameter) -> str:
         "int": "an integer",
         "str": f"one of {list(parameter.choices)}" if parameter.choices else "a string",
         "floats": f"a non-empty list of numbers{unit}",
+        "path": "a file path (relative to the sweep file)",
         "bool": "true or false",
     }[parameter.type]
 

@@ -18,7 +18,7 @@ from ...validation import (
 )
 from ...vocabulary import entry
 from .table import QUANTITIES, EffectTable, Run
-from .variants import Parts, Variant, parts_of, variants
+from .variants import EFFECTS, Parts, Variant, parts_of, variants
 
 __all__ = ["NUMERICS", "effects"]
 
@@ -29,10 +29,14 @@ Progress = Callable[[str], None]
 
 def _describe(parts: Parts) -> dict[str, Any]:
     """The full problem's parts in words and numbers (the table's header)."""
+    from ...theory.sneddon import profile_inputs
+
     striker, body = parts["striker"], parts["body"]
     prony = body.prony
+    shape = profile_inputs(striker.indenter)  # a sphere's, a table's: A and n None
+    indenter = {"A": shape["shape_coefficient"], "n": shape["exponent"]}
     return {
-        "indenter": {"A": striker.indenter.shape_coefficient, "n": striker.indenter.exponent},
+        "indenter": {**indenter, **({"profile": shape["profile"]} if "profile" in shape else {})},
         "mass": striker.mass,
         "velocity": striker.velocity,
         "E2": body.material.youngs_modulus,
@@ -117,6 +121,26 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
 
 
+def dropped_effects(parts: Parts, rows: tuple[Variant, ...]) -> dict[str, str]:
+    """The effects the striker's profile leaves out of the table: effect -> why, for each
+    effect whose every variant a sphere or a tabulated profile refuses
+    (:data:`shtaerman.problem.PROFILE_SUPPORT`: a viscoelastic body takes the power law
+    only). Found before any run: building a :class:`Problem` computes nothing."""
+    refused = {}
+    for variant in rows:
+        try:
+            Problem(**variant.parts)
+        except InputError as error:
+            if error.parameter == "profile":  # PROFILE_SUPPORT's refusals name it
+                refused[variant.label] = str(error)
+    dropped = {}
+    for effect in EFFECTS:
+        having = [variant for variant in rows if effect.present(variant.parts)]
+        if having and all(variant.label in refused for variant in having):
+            dropped[effect.name] = refused[having[0].label]
+    return dropped
+
+
 def _numerics(refine: float, estimate: bool, options: Mapping[str, Any]) -> dict[str, Any]:
     """The numerical keywords given (not None, not the default), each checked now."""
     if not isinstance(estimate, bool):
@@ -162,7 +186,10 @@ def effects(
     by FE), each of its effects alone, the full problem and the full problem without each
     effect, and measures each against the paper's exact quasi-static impact
     (:func:`shtaerman.impact`). A variant whose combination, option or validity guard is
-    refused, or whose run fails, shows its one-line reason in its row; the others run.
+    refused, or whose run fails, shows its one-line reason in its row; the others run. An
+    effect that the striker's profile refuses in every run that has it (a sphere or a
+    tabulated profile on a viscoelastic body) is dropped: one line says so before any run
+    (``progress`` and a warning), the table's ``dropped`` keeps the reason.
 
     Parameters
     ----------
@@ -193,10 +220,15 @@ def effects(
     given.update(_numerics(1.0, True, {**more, "layer_rate": layer_rate}))
     parts = parts_of(problem)
     rows, absent = variants(parts)
+    report = progress or (lambda _line: None)
+    dropped = dropped_effects(parts, rows)
+    for name, reason in dropped.items():  # one line each, before any run
+        line = f"effects: {name} dropped (every run with it is refused): {reason}"
+        report(line)
+        warnings.warn(line, UserWarning, stacklevel=caller_stacklevel())
     said: Said = {}
     with _recorded(said, "quasi-static (paper)"):
         reference = _reference(parts)
-    report = progress or (lambda _line: None)
     done: list[tuple[dict[str, Any], Run, list[Any]]] = []
     for index, variant in enumerate(sorted(rows, key=_order), start=1):
         shared = next(((run, keys) for p, run, keys in done if p == variant.parts), None)
@@ -216,7 +248,7 @@ def effects(
     _say_once(said, 1 + len(rows))
     by_label = {run.label: run for _, run, _ in done}
     runs = tuple(by_label[variant.label] for variant in rows)
-    return EffectTable(reference, runs, absent, _describe(parts))
+    return EffectTable(reference, runs, absent, _describe(parts), dropped)
 
 
 Said = dict[tuple[type[Warning], str], list[tuple[str, str]]]
