@@ -308,5 +308,8 @@ def test_a_refined_zone_too_small_still_asks_for_a_larger_margin():
     """A balanced run whose contact outgrows the refined zone (margin 1.01 of a_c, 100 steps)
     is the input's fault: an InputError that names the margin, not a numerical failure."""
     settings = DynamicSettings(steps=100, size=0.1, margin=1.01)
-    with pytest.raises(ContactEdgeReachedError, match=r"refined zone .*increase margin"):
+    with pytest.raises(
+        ContactEdgeReachedError,
+        match=r"refined zone .*increase the margin \(mesh_margin, --mesh-margin\)",
+    ):
         run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)

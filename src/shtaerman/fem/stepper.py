@@ -387,7 +387,8 @@ def _check_edge(problem: ImpactProblem, state: ImpactState, last: int) -> None:
         t = (state.step + 1) * problem.scheme.dt
         raise ContactEdgeReachedError(
             f"the contact reached r = {r_c[last]:.4g} m at t = {t:.4g} s, the "
-            f"edge of the refined zone ({r_c[-1]:.4g} m); increase margin"
+            f"edge of the refined zone ({r_c[-1]:.4g} m); increase the margin (mesh_margin, "
+            "--mesh-margin)"
         )
 
 
