@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..input_file import read_input_text
+from ..input_file import read_input_csv
 from ..validation import InputError
 
 __all__ = [
@@ -132,7 +132,7 @@ def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
 def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]]:
     """The header's (name, unit) cells and the data rows of ``path``."""
     where = str(path)
-    text = read_input_text(path, "data", "DATA")
+    text = read_input_csv(path, "data", "DATA")
     rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")

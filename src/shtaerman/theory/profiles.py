@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
-from ..input_file import read_input_text
+from ..input_file import read_input_csv
 from ..validation import InputError, validate_positive
 from ..vocabulary import MAX_SPHERE_RADIUS
 
@@ -122,7 +122,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         One line naming the file and the row or column at fault.
     """
     path = Path(path)
-    rows = list(csv.reader(io.StringIO(read_input_text(path, "profile", "profile"))))
+    rows = list(csv.reader(io.StringIO(read_input_csv(path, "profile", "profile"))))
     rows = [row for row in rows if any(cell.strip() for cell in row)]
     header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
