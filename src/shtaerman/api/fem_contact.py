@@ -265,6 +265,7 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
     whose finest is too large; a layer's estimate needs its ``refined`` radius in m)."""
     from ..study.ladder import check_ladder
 
+    mesh.refined(refine).check_size(refined)  # the run's own mesh: no estimate makes it smaller
     try:
         check_ladder(mesh, refine, refined)
     except InputError as error:
