@@ -64,3 +64,119 @@ def test_a_dynamic_study_with_a_tiny_growth_names_its_key(capsys, tmp_path):
     study.write_text(text)
     line = error_line(capsys, "verify", study, "--quick", "--out", tmp_path / "o")
     assert "key 'numerics.growth': must lie in [" in line
+
+
+@pytest.mark.parametrize("typed", ["nan", "inf", "1e999", "-0", "abc", "1e-320", "0x10"])
+def test_prony_plot_reads_e0_as_every_numeric_option(capsys, tmp_path, typed):
+    # --E0 was argparse's float: "invalid float value" for abc, "got inf" for 1e999, "got
+    # -0.0" for -0, and 1e-320 drew an empty figure with a matplotlib warning
+    line = error_line(
+        capsys, "prony-plot", "0.5:1e-3", "--out", tmp_path / "p.png", f"--E0={typed}"
+    )
+    assert line.startswith("--E0 must ") and "> 0 Pa" in line and line.endswith(f"got '{typed}'")
+    assert not (tmp_path / "p.png").exists()
+
+
+@pytest.mark.parametrize("command", ["impact", "contact", "dynamic"])
+def test_a_subnormal_modulus_names_the_option(capsys, command):
+    # impact named the API's keyword: "youngs_modulus must be > 0 Pa (or math.inf: rigid)"
+    line = error_line(capsys, command, "--E2", "1e-320")
+    assert line.startswith("--E2 must ") and line.endswith("got '1e-320'")  # a range, or:
+    assert command != "impact" or "at least 2.226e-308 (the smallest normal float)" in line
+
+
+@pytest.mark.parametrize("typed", ["\u0661", "1_000", "\uff11"])
+def test_a_number_in_other_digits_is_refused(capsys, typed):
+    # Python's float reads '١' (Arabic-Indic one), '１' and '1_000': the mass was 1 or 1000 kg
+    assert error_line(capsys, "impact", f"--mass={typed}").endswith(f"got '{typed}'")
+
+
+@pytest.mark.parametrize(
+    ("yeoh", "said"),
+    [
+        ("0,inf", "c3 must lie in [0, 10], got inf"),  # it blamed c2: "c2 ... got 0"
+        ("0,1e999", "c3 must lie in [0, 10], got 1e999"),
+        ("1e999,0", "c2 must lie in [-10, 10], got 1e999"),  # "got inf"
+    ],
+)
+def test_a_yeoh_pair_names_the_term_as_typed(capsys, yeoh, said):
+    line = error_line(capsys, "contact", "--model", "yeoh", f"--yeoh={yeoh}")
+    assert line.startswith("--yeoh: ") and said in line
+
+
+@pytest.mark.parametrize(
+    ("series", "said"),
+    [
+        ("0.5:1e999", "time tau1 must be a finite number > 0 s, got 1e999"),  # "got inf"
+        ("0.5:-0", "time tau1 must be a finite number > 0 s, got -0 ("),  # "got -0.0"
+        ("1e999:1", "weight g1 must lie in [0, 1), got 1e999"),
+        ("0.5:1e-3,x:1", "weight g2 must be a number, got 'x'"),  # named no term
+    ],
+)
+def test_a_prony_term_is_shown_as_typed(capsys, series, said):
+    assert said in error_line(capsys, "dynamic", f"--prony={series}")
+
+
+EMPTY_NAMES = [
+    ["impact", "--history="],
+    ["contact", "--profile="],
+    ["verify", "hertz", "--quick", "--out="],
+    ["validate", "--quick", "--out="],
+    ["prony-plot", "0.5:1e-3", "--out="],
+    ["init-study", ""],
+    ["fit", "indentation", ""],
+    ["verify", ""],
+]
+
+
+@pytest.mark.parametrize("argv", EMPTY_NAMES, ids=lambda argv: " ".join(argv))
+def test_an_empty_name_names_no_file(capsys, argv):
+    # Path("") is the current folder: "'.' is not a regular file", "'.' is the current folder"
+    assert error_line(capsys, *argv).endswith(": an empty name names no file or folder")
+
+
+def test_a_sweep_with_an_empty_out_is_refused_not_sent_to_the_default(
+    capsys, tmp_path, monkeypatch
+):
+    # `if args.out`: the empty name wrote sweep-impact-velocity/ in the current folder
+    monkeypatch.chdir(tmp_path)
+    line = error_line(capsys, "sweep", "impact-velocity", "--workers", "1", "--out=")
+    assert line == "--out: an empty name names no file or folder"
+    assert list(tmp_path.iterdir()) == []
+
+
+DEPTHS = (1e-4, 2e-4, 3e-4, 4e-4)
+FORCES = (0.09, 0.25, 0.47, 0.72)  # about 7.5 MPa under z = 5 r^1.5
+
+
+@pytest.mark.parametrize(
+    ("scale", "sign"),
+    [(1.0, -1.0), (1e300, 1.0), (1e-300, 1.0)],
+    ids=["negative forces", "values near the largest float", "values near the smallest"],
+)
+def test_an_indentation_without_a_usable_start_is_one_line(capsys, tmp_path, scale, sign):
+    # a ValueError traceback ("Initial guess is outside of provided bounds", exit 1): the
+    # starting E* from the data was negative or nan
+    data = tmp_path / "i.csv"
+    rows = "".join(f"{d * scale},{sign * f * scale}\n" for d, f in zip(DEPTHS, FORCES, strict=True))
+    data.write_text("depth [m],force [N]\n" + rows)
+    line = error_line(capsys, "fit", "indentation", data)
+    assert "i.csv: the data give no usable starting modulus" in line and "signs and units" in line
+
+
+@pytest.mark.parametrize("second", ["force [N]", "force [kN]", "p [N]"])
+def test_a_column_given_twice_is_refused(capsys, tmp_path, second):
+    # the first one was taken without a word (force [N] beside force [kN]; p is force)
+    data = tmp_path / "i.csv"
+    rows = "".join(f"{d},{f},{f}\n" for d, f in zip(DEPTHS, FORCES, strict=True))
+    data.write_text(f"depth [m],force [N],{second}\n" + rows)
+    line = error_line(capsys, "fit", "indentation", data)
+    assert line.endswith("column 'force' appears twice (columns 2 and 3 of the header); keep one")
+
+
+def test_an_indentation_is_an_indentation(capsys, tmp_path):
+    data = tmp_path / "i.csv"
+    data.write_text("depth [m]\n1e-3\n")
+    assert "; an indentation needs depth [m], force [N]" in error_line(
+        capsys, "fit", "indentation", data
+    )  # "a indentation"

@@ -20,6 +20,7 @@ __all__ = [
     "NumericalFailureError",
     "bound_text",
     "caller_stacklevel",
+    "plain_float",
     "shown",
     "validate_increasing",
     "validate_poisson",
@@ -114,6 +115,15 @@ def caller_stacklevel() -> int:
 class NumericalFailureError(RuntimeError):
     """A computation whose own checks failed on valid input (an unstable time stepping, a
     solver that did not converge); the message says what to change. The CLI exits with 1."""
+
+
+def plain_float(text: str) -> float:
+    """``float(text)`` for a number written in ASCII without ``_`` (``1e3``, ``-0.5``, ``inf``,
+    ``nan``): a typed ``1_000`` or ``\u0661`` (an Arabic-Indic one), which Python's float reads,
+    raises ValueError, as any text that is no number does."""
+    if not text.isascii() or "_" in text:
+        raise ValueError(f"not a number written in ASCII digits: {text!r}")
+    return float(text)
 
 
 def _as_float(name: str, value: object, valid: str) -> float:

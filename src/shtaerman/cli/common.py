@@ -31,6 +31,7 @@ __all__ = [
     "in_option_words",
     "indenter",
     "keywords",
+    "path_text",
     "print_json",
     "refuse_idle_output_options",
     "striker",
@@ -78,10 +79,18 @@ class Parser(argparse.ArgumentParser):
             message += (
                 f" (a value that starts with '-' reads as an option: attach it, {option}=-VALUE)"
             )
-        raise InputError(message)
+        raise InputError(re.sub(r"^argument ([^/:\s]+)(/\S+)?: ", r"\1: ", message))
 
 
 _NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+
+
+def path_text(text: str) -> str:
+    """A file or folder name of the command line (an argparse ``type``): an empty one names
+    none, where ``Path("")`` would be the current folder."""
+    if not text:
+        raise argparse.ArgumentTypeError("an empty name names no file or folder")
+    return text
 
 
 METAVARS = {
@@ -176,6 +185,7 @@ def add_inputs(
             parser.add_argument(
                 *options,
                 action=Input if item.type != "path" else "store",
+                **({"type": path_text} if item.type == "path" else {}),
                 default=default,
                 metavar=METAVARS.get(name) or _metavar(item),
                 help=_help(item, kind, shown, note),

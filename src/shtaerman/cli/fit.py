@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..fitting.data import KINDS, parse_units
+from ..fitting.data import KINDS, article, parse_units
 from ..fitting.result import FitResult
 from ..fitting.run import FE_REFINE, fit
 from ..problem import RUBBER_OPTIONS, Problem
@@ -16,6 +16,7 @@ from .common import (
     given,
     in_option_words,
     indenter,
+    path_text,
     print_json,
     refuse_idle_output_options,
     striker,
@@ -76,7 +77,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         description=DESCRIPTION,
     )
     p.add_argument("kind", choices=KINDS, metavar="KIND", help=f"one of {', '.join(KINDS)}")
-    p.add_argument("data", metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'")
+    p.add_argument(
+        "data", type=path_text, metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'"
+    )
     inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
               "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
               "refine", "json", "out", "force")  # fmt: skip
@@ -145,7 +148,7 @@ def _corrections_text(result: FitResult) -> list[str]:
 def fit_text(result: FitResult) -> str:
     """The fitted values, intervals and residual as text."""
     rows = [
-        f"Fit of a {result.kind} ({result.data['rows']} rows of {result.data['source']})",
+        f"Fit of {article(result.kind)} ({result.data['rows']} rows of {result.data['source']})",
         f"  forward model: {result.forward_model}",
         *_corrections_text(result),
         f"  {'unknown':<12} {'value':>13} {'95 % interval':>29}  unit",

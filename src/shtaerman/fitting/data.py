@@ -22,13 +22,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..input_file import read_input_csv
-from ..validation import InputError
+from ..validation import InputError, plain_float
 
 __all__ = [
     "KINDS",
     "KIND_COLUMNS",
     "UNITS",
     "Measurement",
+    "article",
     "measured_unit",
     "measurement",
     "parse_units",
@@ -146,7 +147,7 @@ def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndar
     for number, row in enumerate(rows):
         text = row[index].strip() if index < len(row) else ""
         try:
-            values[number] = float(text)
+            values[number] = plain_float(text)
         except ValueError:
             raise InputError(
                 f"{where}: row {number + 2}: column {name!r} holds {text!r}, not a number", "data"
@@ -167,11 +168,23 @@ def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
     columns, written = {}, {}
     for name in _wanted(kind, names, where, header):
         index = names.index(name)
+        if names.count(name) > 1:  # which one is meant? (depth [m] beside depth [mm])
+            again = names.index(name, index + 1)
+            raise InputError(
+                f"{where}: column {name!r} appears twice (columns {index + 1} and {again + 1} "
+                "of the header); keep one",
+                "data",
+            )
         unit = header[index][1]
         unit = unit if unit is not None else units.get(name, measured_unit(name))
         written[name] = unit
         columns[name] = _column(where, name, index, rows) * _factor(where, name, unit)
     return Measurement(kind, columns, where, written)
+
+
+def article(kind: str) -> str:
+    """``kind`` with its indefinite article: "an indentation", "a rebound"."""
+    return f"{'an' if kind[0] in 'aeiou' else 'a'} {kind}"
 
 
 def measured_unit(name: str) -> str:
@@ -187,7 +200,8 @@ def _wanted(kind: str, names: list[str], where: str, header: list) -> list[str]:
         if name not in names:
             wanted = ", ".join(f"{n} [{measured_unit(n)}]" for n in needed)
             raise InputError(
-                f"{where}: no column {name!r} (the header has {shown}); a {kind} needs {wanted}",
+                f"{where}: no column {name!r} (the header has {shown}); {article(kind)} needs "
+                f"{wanted}",
                 "data",
             )
     present = [name for name in some if name in names]

@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..cli.common import path_text
 from ..plots.formats import add_figure_format
 from ..validation import InputError
 
@@ -33,6 +34,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
     )
     p.add_argument(
         "sweep",
+        type=path_text,
         metavar="FILE.toml|NAME",
         help="a sweep file, or the name of a shipped sweep (e.g. nu-grid, impact-velocity)",
     )
@@ -46,7 +48,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
         metavar="ADDRESS",
         help="use an existing dask cluster, e.g. tcp://host:8786 (its workers need shtaerman)",
     )
-    p.add_argument("--out", metavar="DIR", help="result folder (default: sweep-<name>)")
+    p.add_argument(
+        "--out", type=path_text, metavar="DIR", help="result folder (default: sweep-<name>)"
+    )
     p.add_argument(
         "--resume",
         action="store_true",

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
 from ..input_file import read_input_csv
-from ..validation import InputError, validate_positive
+from ..validation import InputError, plain_float, validate_positive
 from ..vocabulary import MAX_SPHERE_RADIUS
 
 __all__ = [
@@ -101,7 +101,7 @@ class SphereIndenter:
 
 def _float(text: str, row: int, column: str, path: Path) -> float:
     try:
-        value = float(text)
+        value = plain_float(text)
     except ValueError:
         value = math.nan
     if not math.isfinite(value):

@@ -26,7 +26,7 @@ from importlib import resources
 from pathlib import Path
 
 from ..input_file import read_input_csv
-from ..validation import InputError
+from ..validation import InputError, plain_float
 from .viscoelastic import PronySeries
 
 __all__ = [
@@ -105,7 +105,7 @@ def prony_moduli(series: PronySeries, instantaneous: float) -> tuple[float, tupl
 
 def _number(text: str, where: str) -> float:
     try:
-        return float(text)
+        return plain_float(text)
     except ValueError:
         raise InputError(f"prony: {where} must be a number, got {text!r}", "prony") from None
 
