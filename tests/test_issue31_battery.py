@@ -180,3 +180,26 @@ def test_an_indentation_is_an_indentation(capsys, tmp_path):
     assert "; an indentation needs depth [m], force [N]" in error_line(
         capsys, "fit", "indentation", data
     )  # "a indentation"
+
+
+@pytest.mark.parametrize(
+    ("kind", "text"),
+    [
+        # OverflowError tracebacks (exit 1) and a ValueError of least_squares' bounds
+        ("force-history", "time [s],force [N]\n0,0\n1e-3,1e300\n2e-3,1e299\n3e-3,0\n"),
+        ("rebound", "velocity [m/s],contact_time [s]\n1,1e-300\n2,1e-300\n"),
+        ("rebound", "velocity [m/s],contact_time [s]\n1,1e300\n2,1e300\n"),
+    ],
+)
+def test_data_near_the_float_range_are_one_line(capsys, tmp_path, kind, text):
+    data = tmp_path / "d.csv"
+    data.write_text(text)
+    assert "d.csv: the data give no usable starting modulus" in error_line(
+        capsys, "fit", kind, data
+    )
+
+
+def test_a_force_history_below_zero_says_its_largest_force_plainly(capsys, tmp_path):
+    data = tmp_path / "d.csv"
+    data.write_text("time [s],force [N]\n0,-1\n1e-3,-2\n2e-3,-0\n")
+    assert error_line(capsys, "fit", "force-history", data).endswith("its largest value is 0 N")

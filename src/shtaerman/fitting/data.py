@@ -245,7 +245,7 @@ def _check_history(data: Measurement) -> None:
         raise InputError(
             f"{data.source}: a force-history needs at least 3 rows, got {data.rows}", "data"
         )
-    largest = float(np.max(data.columns["force"]))
+    largest = float(np.max(data.columns["force"])) + 0.0  # -0.0 is 0
     if largest <= 0.0:
         raise InputError(
             f"{data.source}: column 'force' must rise above 0 N (the striker's push), its "

@@ -194,8 +194,8 @@ def _checked_start(start: float, data: Measurement) -> float:
     if not (low >= sys.float_info.min and math.isfinite(high)):
         raise InputError(
             f"{data.source}: the data give no usable starting modulus (E* = {start:.3g} Pa from "
-            f"the columns {', '.join(data.columns)}); check their signs and units: the force "
-            "must rise above 0 and the values lie well inside the floating-point range",
+            f"the columns {', '.join(data.columns)}); check their signs and units: the values "
+            "must lie well inside the floating-point range",
             "data",
         )
     return start
@@ -215,7 +215,11 @@ def _parameters(known: Known, data: Measurement, unknowns: Sequence[str]) -> tup
     params = []
     if "E2" in unknowns or "nu2" in unknowns:
         with np.errstate(all="ignore"):  # an overflow is refused, naming the data
-            start = _checked_start(_modulus_start(known, data, data.kind), data)
+            try:
+                start = _modulus_start(known, data, data.kind)
+            except OverflowError:  # a float's power beyond the range (a force of 1e300 N)
+                start = math.inf
+        start = _checked_start(start, data)
         params.append(Parameter("E_star", start, start / MODULUS_SPAN, start * MODULUS_SPAN, True))
     for name in ("mass", "velocity"):
         if name in unknowns:
