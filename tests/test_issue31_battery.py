@@ -203,3 +203,54 @@ def test_a_force_history_below_zero_says_its_largest_force_plainly(capsys, tmp_p
     data = tmp_path / "d.csv"
     data.write_text("time [s],force [N]\n0,-1\n1e-3,-2\n2e-3,-0\n")
     assert error_line(capsys, "fit", "force-history", data).endswith("its largest value is 0 N")
+
+
+def _profile(tmp_path, header: str, rows: list[tuple[float, ...]]):
+    path = tmp_path / "tip.csv"
+    path.write_text(header + "\n" + "".join(",".join(map(str, row)) + "\n" for row in rows))
+    return path
+
+
+TIP = [(0.0, 0.0), (1e-3, 5e-5), (2e-3, 2e-4), (3e-3, 4.5e-4)]  # z = r^2 / 2R, R = 1 cm
+
+
+@pytest.mark.parametrize("scale", [1e300, 1e-300])
+def test_a_profile_near_the_float_range_is_one_line(capsys, tmp_path, scale):
+    # ValueError tracebacks of the interpolant (exit 1): r^2 overflowed or underflowed
+    path = _profile(tmp_path, "r [m],z [m]", [(r * scale, z * scale) for r, z in TIP])
+    line = error_line(capsys, "impact", "--E1", "rigid", "--profile", path)
+    assert line.startswith("--profile: column r must lie within [1.5e-154, 1.34e+154] m")
+
+
+def test_a_profile_column_given_twice_is_refused(capsys, tmp_path):
+    path = _profile(tmp_path, "r [m],z [m],z [m]", [(r, z, z) for r, z in TIP])
+    line = error_line(capsys, "impact", "--E1", "rigid", "--profile", path)
+    assert line == f"--profile: {str(path)!r} names column z twice; keep one"
+
+
+def test_a_profile_tip_written_minus_zero_is_the_tip(capsys, tmp_path):
+    path = _profile(tmp_path, "r [m],z [m]", [(-0.0, 0.0), (-1e-3, 5e-5), (2e-3, 2e-4)])
+    line = error_line(capsys, "impact", "--E1", "rigid", "--profile", path)
+    assert "r = -0.001 after 0 (in" in line  # "after -0"
+
+
+@pytest.mark.parametrize("depth", ["1e-3", "2e-3"])
+def test_a_sphere_pressed_to_its_equator_names_the_depths(capsys, depth):
+    # beyond z = R the FE profile is flat, no sphere: 2e-3 m said "the contact zone reaches
+    # r = 0.00125 m, the edge of the refined region; mesh a larger region" naming no option,
+    # and 1.1e-3 m ran with a 5 % pressure error
+    argv = ["contact", "--sphere-radius", "1e-3", "--depths", depth, "--no-estimate"]
+    line = error_line(capsys, *argv, "--mesh-size", "0.2")
+    assert line.startswith(f"--depths: {float(depth):g} m reaches the sphere's equator height")
+    assert "--sphere-radius" in line
+
+
+def test_effects_refuses_a_rubber_no_run_can_take(capsys):
+    # the Gent rubber locks at once with Jm = 1e-6 in every run with finite strain: a table
+    # of refused rows exited 0, as the pad's thickness once did (dynamic refuses it, exit 2)
+    argv = ["effects", "--no-estimate", "--time-steps", "50", "--mesh-size", "0.2"]
+    code = main([*argv, "--model", "gent", "--gent-limit", "1e-6"])
+    out, err = capsys.readouterr()
+    last = err.strip().splitlines()[-1]  # after the progress lines on stderr
+    assert code == 2 and out == "" and last.startswith("shtaerman: error: --gent-limit: ")
+    assert "give a larger limit" in last

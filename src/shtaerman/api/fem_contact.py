@@ -432,6 +432,13 @@ def _check_depths(
         _check_scale(problem, depths, mesh)
     else:
         _check_force_range(indenter, body, depths)
+    if indenter.kind == "sphere" and depths[-1] >= indenter.radius:
+        raise InputError(  # the FE profile is flat at z = R beyond the equator: no sphere
+            f"depths: {depths[-1]:.6g} m reaches the sphere's equator height (radius "
+            f"{indenter.radius:.6g} m), beyond which the FE profile is no sphere; give depths "
+            "below the radius or a larger sphere (sphere_radius, --sphere-radius)",
+            "depths",
+        )
     if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
         from ..theory.sneddon import contact_law
 
