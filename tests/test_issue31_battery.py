@@ -254,3 +254,25 @@ def test_effects_refuses_a_rubber_no_run_can_take(capsys):
     last = err.strip().splitlines()[-1]  # after the progress lines on stderr
     assert code == 2 and out == "" and last.startswith("shtaerman: error: --gent-limit: ")
     assert "give a larger limit" in last
+
+
+@pytest.mark.parametrize(
+    ("series", "said"),
+    [
+        # read as an unknown option: "the following arguments are required: SERIES"
+        ("-0.5:1e-3", "weight g1 must lie in [0, 1), got -0.5"),
+        ("-1;1e6:1e-3", "E_inf must be a finite number > 0 Pa, got -1"),
+        # a subnormal time drew a figure after "invalid value encountered in divide"
+        ("0.5:1e-320", "time tau1 must be a finite number > 0 s, got 1e-320"),
+    ],
+)
+def test_prony_plot_reads_a_series_that_starts_with_a_minus(capsys, tmp_path, series, said):
+    line = error_line(capsys, "prony-plot", series, "--out", tmp_path / "p.png")
+    assert line.startswith("SERIES: ") and said in line
+
+
+@pytest.mark.parametrize("series", ["x" * 100_000, "0.5:1e-3," * 3000 + "x"])
+def test_a_pasted_series_is_not_echoed_whole(capsys, tmp_path, series):
+    # the one error line held the whole 100 kB text
+    line = error_line(capsys, "prony-plot", series, "--out", tmp_path / "p.png")
+    assert len(line) < 1000 and f"({len(series)} characters)" in line

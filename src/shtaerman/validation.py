@@ -47,6 +47,7 @@ SHOWN_ITEMS = 4
 SHOWN_CHARACTERS = 200
 """A message shows at most this many characters of a value."""
 _FLAT_LIST = re.compile(r"\[([^\[\]'\"]*)\]")
+_LONG_QUOTED = re.compile(rf"'[^'\n]{{{SHOWN_CHARACTERS + 1},}}'")
 
 
 def shown(value: object) -> str:
@@ -84,8 +85,8 @@ def bound_text(value: float, side: str, digits: int = 3) -> str:
 
 
 def _abbreviated(message: str) -> str:
-    """``message`` with every long flat list written in it shortened as :func:`shown` does,
-    whoever formatted it."""
+    """``message`` with every long flat list and long quoted text written in it shortened as
+    :func:`shown` does, whoever formatted it."""
 
     def short(match: re.Match[str]) -> str:
         items = match[1].split(", ")
@@ -93,7 +94,11 @@ def _abbreviated(message: str) -> str:
             return match[0]
         return f"[{', '.join(items[:SHOWN_ITEMS])}, ... ({len(items)} values)]"
 
-    return _FLAT_LIST.sub(short, message)
+    def cut(match: re.Match[str]) -> str:  # a long quoted text: a pasted file, a typo'd list
+        inside = match[0][1:-1]  # cut to SHOWN_CHARACTERS with "...": not cut again
+        return f"'{inside[: SHOWN_CHARACTERS - 3]}...' ({len(inside)} characters)"
+
+    return _LONG_QUOTED.sub(cut, _FLAT_LIST.sub(short, message))
 
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep

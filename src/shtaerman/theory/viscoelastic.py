@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from numbers import Real
@@ -84,7 +85,9 @@ def _check_term(i: int, g: object, tau: object, typed: tuple[str, str] | None = 
     shown_g, shown_tau = typed or (repr(g), repr(tau))
     if isinstance(g, bool) or not (isinstance(g, Real) and 0.0 <= g < 1.0):
         raise InputError(f"prony weight g{i} must lie in [0, 1), got {shown_g}", "prony")
-    if isinstance(tau, bool) or not (isinstance(tau, Real) and 0.0 < tau < math.inf):
+    if isinstance(tau, bool) or not (
+        isinstance(tau, Real) and sys.float_info.min <= tau < math.inf
+    ):
         raise InputError(
             f"prony time tau{i} must be a finite number > 0 s, got {shown_tau}", "prony"
         )
