@@ -276,3 +276,18 @@ def test_a_pasted_series_is_not_echoed_whole(capsys, tmp_path, series):
     # the one error line held the whole 100 kB text
     line = error_line(capsys, "prony-plot", series, "--out", tmp_path / "p.png")
     assert len(line) < 1000 and f"({len(series)} characters)" in line
+
+
+@pytest.mark.parametrize(("key", "table"), [("E2", "half_space"), ("mass", "impact")])
+def test_a_study_with_a_subnormal_value_names_its_key(capsys, tmp_path, key, table):
+    # E2 = 1e-320 named the Material's keyword: "youngs_modulus must be > 0 Pa (or math.inf:
+    # rigid) and at least 2.226e-308"
+    text = (ROOT / "fem" / "hertz.toml").read_text()
+    lines = [
+        f"{key} = 1e-320" if line.startswith(f"{key} =") else line for line in text.splitlines()
+    ]
+    study = tmp_path / "s.toml"
+    study.write_text("\n".join(lines) + "\n")
+    line = error_line(capsys, "verify", study, "--quick", "--out", tmp_path / "o")
+    assert f"key '{table}.{key}': expected a number > 0" in line
+    assert line.endswith("and at least 2.226e-308 (the smallest normal float), got 1e-320")
