@@ -291,3 +291,24 @@ def test_a_study_with_a_subnormal_value_names_its_key(capsys, tmp_path, key, tab
     line = error_line(capsys, "verify", study, "--quick", "--out", tmp_path / "o")
     assert f"key '{table}.{key}': expected a number > 0" in line
     assert line.endswith("and at least 2.226e-308 (the smallest normal float), got 1e-320")
+
+
+@pytest.mark.parametrize(
+    ("kind", "option", "said"),
+    [
+        ("indentation", "--time-offset=1e-3", "--time-offset: applies to force-history data"),
+        ("indentation", "--baseline=5", "--baseline: applies to force-history data"),
+        ("indentation", "--mass=3", "--mass: applies to force-history or rebound or resilience"),
+        ("resilience", "--velocity=7", "--velocity: applies to force-history data"),
+        ("indentation", "--units=time=ms", "--units: an indentation reads no column 'time'"),
+    ],
+)
+def test_fit_refuses_an_option_its_data_do_not_use(capsys, tmp_path, kind, option, said):
+    # each was ignored without a word (as dynamic's --figure-format once was)
+    data = tmp_path / "d.csv"
+    text = {
+        "indentation": "depth [m],force [N]\n1e-4,0.09\n2e-4,0.25\n3e-4,0.47\n",
+        "resilience": "velocity [m/s],resilience [1]\n1,0.8\n2,0.78\n",
+    }[kind]
+    data.write_text(text)
+    assert error_line(capsys, "fit", kind, data, option).startswith(said)

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import argparse
 
-from ..fitting.data import KINDS, article, parse_units
+from ..fitting.data import KIND_COLUMNS, KINDS, article, parse_units
 from ..fitting.result import FitResult
 from ..fitting.run import FE_REFINE, fit
 from ..problem import RUBBER_OPTIONS, Problem
 from ..theory.materials import Material
+from ..validation import InputError
+from ..vocabulary import entry
 from .common import (
     CASE,
     add_figure_format,
@@ -103,10 +105,38 @@ def problem_of(args: argparse.Namespace) -> Problem:
     )
 
 
+USED_BY = {
+    "mass": ("force-history", "rebound", "resilience"),
+    "velocity": ("force-history",),  # rebound data give one per row
+    "time_offset": ("force-history",),
+    "baseline": ("force-history",),
+}
+"""The kinds of data an option of the impact applies to (it was ignored for the others)."""
+
+
+def refuse_unused(args: argparse.Namespace) -> None:
+    """InputError naming an option the kind of data does not use, or a --units column it
+    does not read."""
+    for name, kinds in USED_BY.items():
+        if given(args, name) and args.kind not in kinds:
+            raise InputError(
+                f"{entry(name).cli_option}: applies to {' or '.join(kinds)} data, not to "
+                f"{article(args.kind)}"
+            )
+    needed, some = KIND_COLUMNS[args.kind]
+    for column in parse_units(args.units):
+        if column not in (*needed, *some):
+            raise InputError(
+                f"--units: {article(args.kind)} reads no column {column!r} (it reads "
+                f"{', '.join((*needed, *some))})"
+            )
+
+
 def run(args: argparse.Namespace) -> int:
     """Fit (:func:`shtaerman.fit`) and print the fitted values or the JSON."""
     refuse_idle_output_options(args, ("out",))
     with in_option_words():
+        refuse_unused(args)
         result = fit(
             args.kind,
             args.data,
