@@ -312,3 +312,10 @@ def test_fit_refuses_an_option_its_data_do_not_use(capsys, tmp_path, kind, optio
     }[kind]
     data.write_text(text)
     assert error_line(capsys, "fit", kind, data, option).startswith(said)
+
+
+@pytest.mark.parametrize("typed", ["nan", "0", "1e999", "abc"])
+def test_sweep_names_its_workers_option(capsys, typed):
+    # sweep said "workers must be ...": the API's keyword; verify says "--workers"
+    line = error_line(capsys, "sweep", "impact-velocity", f"--workers={typed}")
+    assert line == f"--workers must be an integer in [1, 256], got '{typed}'"

@@ -14,14 +14,11 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ..cli.common import path_text
+from ..cli.common import add_inputs, path_text
 from ..plots.formats import add_figure_format
 from ..validation import InputError
 
 __all__ = ["add_parser", "register", "run"]
-
-MAX_WORKERS = 256
-"""Most local worker processes (--workers), the bound of ``verify --workers`` too."""
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -38,11 +35,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
         metavar="FILE.toml|NAME",
         help="a sweep file, or the name of a shipped sweep (e.g. nu-grid, impact-velocity)",
     )
-    p.add_argument(
-        "--workers",
-        metavar="N",
-        help="worker processes of the local cluster, one thread each (default: the cores)",
-    )
+    add_inputs(p, ("workers",), None, derived={"workers": "the cores"})  # as verify's
     p.add_argument(
         "--scheduler",
         metavar="ADDRESS",
@@ -71,24 +64,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_parser(commands)
 
 
-def _workers(value: str | None) -> int | None:
-    if value is None:
-        return None
-    try:
-        workers = int(value)
-    except ValueError:
-        workers = 0
-    if not 1 <= workers <= MAX_WORKERS:  # as verify: a typo must not start 1000 processes
-        raise InputError(f"workers must be an integer in [1, {MAX_WORKERS}], got {value!r}")
-    return workers
-
-
 def run(args: argparse.Namespace) -> int:
     """Run the sweep named by ``args``; returns the exit code (raises InputError on bad input)."""
     from .engine import SweepInterrupted, run_sweep
     from .spec import find_sweep, load_sweep
 
-    workers = _workers(args.workers)
+    workers = args.workers
     if workers is not None and args.scheduler:
         raise InputError("workers: --workers sizes the local cluster; drop it with --scheduler")
     spec = load_sweep(find_sweep(args.sweep))
