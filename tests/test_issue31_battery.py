@@ -319,3 +319,9 @@ def test_sweep_names_its_workers_option(capsys, typed):
     # sweep said "workers must be ...": the API's keyword; verify says "--workers"
     line = error_line(capsys, "sweep", "impact-velocity", f"--workers={typed}")
     assert line == f"--workers must be an integer in [1, 256], got '{typed}'"
+
+
+def test_sweep_names_its_scheduler_option(capsys, tmp_path):
+    # "scheduler: cannot connect to ''": the API's keyword (an empty address fails at once)
+    argv = ["sweep", "impact-velocity", "--scheduler=", "--out", tmp_path / "s"]
+    assert error_line(capsys, *argv).startswith("--scheduler: cannot connect to ''")

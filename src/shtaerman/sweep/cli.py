@@ -93,8 +93,9 @@ def run(args: argparse.Namespace) -> int:
     except OSError as error:  # a full disk, a lost mount: what is saved stays saved
         print(_failed_text(args, out, error), file=sys.stderr)
         return 1
-    except InputError as error:  # the API's keyword out / resume is an option here
-        key = next((k for k in ("out", "resume") if str(error).startswith(f"{k}: ")), None)
+    except InputError as error:  # the API's keywords out, resume, scheduler are options here
+        keys = ("out", "resume", "scheduler")
+        key = next((k for k in keys if str(error).startswith(f"{k}: ")), None)
         if key is None:
             raise
         raise InputError(f"--{error}", key) from None
