@@ -96,12 +96,12 @@ def test_a_sphere_too_small_for_the_impact_is_named_as_the_sphere(capsys):
 @pytest.mark.parametrize(
     ("option", "value", "expected"),
     [
-        ("--time-offset", "nan", "--time-offset must be a number s, got 'nan'"),
-        ("--baseline", "inf", "--baseline must be a finite number N, got 'inf'"),
+        ("--time-offset", "nan", "--time-offset must be a number (in s), got 'nan'"),
+        ("--baseline", "inf", "--baseline must be a finite number (in N), got 'inf'"),
     ],
 )
 def test_an_unbounded_option_says_number_once(capsys, tmp_path, option, value, expected):
-    """They once said 'must be a number a number s'."""
+    """They once said 'must be a number a number s', then 'must be a number s'."""
     path = tmp_path / "drop.csv"
     path.write_text("time [ms],force [N]\n0,0\n1,2\n2,1\n")
     assert error_line(capsys, "fit", "force-history", str(path), option, value) == expected

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from .validation import InputError
 
-__all__ = ["MAX_INPUT_BYTES", "read_input_text"]
+__all__ = ["MAX_INPUT_BYTES", "read_input_csv", "read_input_text"]
 
 MAX_INPUT_BYTES = 200 << 20
 """Largest input file read, in bytes (200 MiB: some 10 million rows of a two-column CSV)."""
@@ -61,3 +61,29 @@ def read_input_text(path: str | Path, option: str, what: str) -> str:
         except (OSError, UnicodeDecodeError) as error:
             reason = getattr(error, "strerror", None) or str(error)
             raise InputError(f"{what}: cannot read {where!r}: {reason}", option) from None
+
+
+_SEPARATORS = (";", "\t")
+"""Column separators of other locales' spreadsheets (European Excel writes ';'), refused by name."""
+
+
+def read_input_csv(path: str | Path, option: str, what: str) -> str:
+    """The text of the CSV file ``path`` (:func:`read_input_text`), whose columns are separated
+    by ','.
+
+    Raises
+    ------
+    InputError
+        As :func:`read_input_text`, or if the header line (the first line neither blank nor a
+        ``#`` comment) separates its columns by ';' or a tab instead of ','.
+    """
+    text = read_input_text(path, option, what)
+    lines = (line for line in text.splitlines() if line.strip())
+    header = next((line for line in lines if not line.lstrip().startswith("#")), "")
+    for separator in _SEPARATORS:
+        if separator in header and "," not in header:
+            shown = repr(separator)
+            raise InputError(
+                f"{what}: {str(path)!r}: column separator {shown} found; use ','", option
+            )
+    return text

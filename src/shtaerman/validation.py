@@ -20,6 +20,7 @@ __all__ = [
     "NumericalFailureError",
     "bound_text",
     "caller_stacklevel",
+    "plain_float",
     "shown",
     "validate_increasing",
     "validate_poisson",
@@ -46,6 +47,7 @@ SHOWN_ITEMS = 4
 SHOWN_CHARACTERS = 200
 """A message shows at most this many characters of a value."""
 _FLAT_LIST = re.compile(r"\[([^\[\]'\"]*)\]")
+_LONG_QUOTED = re.compile(rf"'[^'\n]{{{SHOWN_CHARACTERS + 1},}}'")
 
 
 def shown(value: object) -> str:
@@ -83,8 +85,8 @@ def bound_text(value: float, side: str, digits: int = 3) -> str:
 
 
 def _abbreviated(message: str) -> str:
-    """``message`` with every long flat list written in it shortened as :func:`shown` does,
-    whoever formatted it."""
+    """``message`` with every long flat list and long quoted text written in it shortened as
+    :func:`shown` does, whoever formatted it."""
 
     def short(match: re.Match[str]) -> str:
         items = match[1].split(", ")
@@ -92,7 +94,11 @@ def _abbreviated(message: str) -> str:
             return match[0]
         return f"[{', '.join(items[:SHOWN_ITEMS])}, ... ({len(items)} values)]"
 
-    return _FLAT_LIST.sub(short, message)
+    def cut(match: re.Match[str]) -> str:  # a long quoted text: a pasted file, a typo'd list
+        inside = match[0][1:-1]  # cut to SHOWN_CHARACTERS with "...": not cut again
+        return f"'{inside[: SHOWN_CHARACTERS - 3]}...' ({len(inside)} characters)"
+
+    return _LONG_QUOTED.sub(cut, _FLAT_LIST.sub(short, message))
 
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
@@ -114,6 +120,15 @@ def caller_stacklevel() -> int:
 class NumericalFailureError(RuntimeError):
     """A computation whose own checks failed on valid input (an unstable time stepping, a
     solver that did not converge); the message says what to change. The CLI exits with 1."""
+
+
+def plain_float(text: str) -> float:
+    """``float(text)`` for a number written in ASCII without ``_`` (``1e3``, ``-0.5``, ``inf``,
+    ``nan``): a typed ``1_000`` or ``\u0661`` (an Arabic-Indic one), which Python's float reads,
+    raises ValueError, as any text that is no number does."""
+    if not text.isascii() or "_" in text:
+        raise ValueError(f"not a number written in ASCII digits: {text!r}")
+    return float(text)
 
 
 def _as_float(name: str, value: object, valid: str) -> float:

@@ -14,6 +14,7 @@ import difflib
 import itertools
 import math
 import numbers
+import sys
 import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -21,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .validation import InputError, bound_text, shown
+from .validation import InputError, bound_text, plain_float, shown
 
 __all__ = [
     "KIND_NAMES",
@@ -283,7 +284,7 @@ class Entry:
 def _float(text: str) -> float | str:
     """``text`` as a float, or ``text`` itself when it is no number (the check names it)."""
     try:
-        return float(text)
+        return plain_float(text)
     except ValueError:
         return text
 
@@ -315,14 +316,20 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
         raise says.error(item, f"must be {expected}", value)
     where = "in " if expected[0] in "([" else ""
     bounded = "" if expected == "a number" else f" {where}{expected}"  # not "a number a number"
+    if not bounded and unit:
+        unit = f" (in {unit.lstrip()})"  # not "a number s"
     if not is_number or math.isnan(value):
         raise says.error(item, f"must be a number{bounded}{unit}", value)
     if math.isinf(value) and not (item.infinite and value > 0):
         raise says.error(item, f"must be a finite number{bounded}{unit}", value)
     valid = item.range_for(kind)
+    verb = "lie in" if expected[0] in "([" else "be"
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
-        verb = "lie in" if expected[0] in "([" else "be"
         raise says.error(item, f"must {verb} {expected}{unit}", value)
+    if valid is not None and valid.low == 0 and valid.low_open and value < sys.float_info.min:
+        least = bound_text(sys.float_info.min, "low", 4)  # a subnormal has lost its digits
+        verdict = f"must {verb} {expected}{unit} and at least {least} (the smallest normal float)"
+        raise says.error(item, verdict, value)
     return int(value) if item.type == "int" else float(value) + 0.0  # -0.0 is 0
 
 

@@ -270,6 +270,7 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
     whose finest is too large; a layer's estimate needs its ``refined`` radius in m)."""
     from ..study.ladder import check_ladder
 
+    mesh.refined(refine).check_size(refined)  # the run's own mesh: no estimate makes it smaller
     try:
         check_ladder(mesh, refine, refined)
     except InputError as error:
@@ -436,6 +437,13 @@ def _check_depths(
         _check_scale(problem, depths, mesh)
     else:
         _check_force_range(indenter, body, depths)
+    if indenter.kind == "sphere" and depths[-1] >= indenter.radius:
+        raise InputError(  # the FE profile is flat at z = R beyond the equator: no sphere
+            f"depths: {depths[-1]:.6g} m reaches the sphere's equator height (radius "
+            f"{indenter.radius:.6g} m), beyond which the FE profile is no sphere; give depths "
+            "below the radius or a larger sphere (sphere_radius, --sphere-radius)",
+            "depths",
+        )
     if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
         from ..theory.sneddon import contact_law
 

@@ -31,6 +31,7 @@ __all__ = [
     "in_option_words",
     "indenter",
     "keywords",
+    "path_text",
     "print_json",
     "refuse_idle_output_options",
     "striker",
@@ -61,15 +62,15 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
 class Parser(argparse.ArgumentParser):
     """argparse that reports a usage error as one line (no usage dump) with exit code 2.
 
-    It also reads ``-2e11`` and ``-1e-3,2e-3`` as (negative) numbers, so the range check can
-    name them, rather than as an unknown option; a value that still reads as an option is
-    explained (attach it: ``--history=-h.csv``).
+    It also reads a value that starts with a negative number (``-2e11``, ``-1e-3,2e-3``,
+    ``-1;1e6:1e-3``) as a value, so its check can name it, rather than as an unknown option;
+    a value that still reads as an option is explained (attach it: ``--history=-h.csv``).
     """
 
     def __init__(self, *args, **kwargs) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*-?{_NUMBER})*,?$")
+        self._negative_number_matcher = re.compile(r"^-\.?\d")  # -2e11, -1e-3,2e-3, -1;E1:tau1
 
     def error(self, message: str) -> None:  # type: ignore[override]
         missing = re.fullmatch(r"argument ([^/:]+)\S*: expected one argument", message)
@@ -78,10 +79,15 @@ class Parser(argparse.ArgumentParser):
             message += (
                 f" (a value that starts with '-' reads as an option: attach it, {option}=-VALUE)"
             )
-        raise InputError(message)
+        raise InputError(re.sub(r"^argument ([^/:\s]+)(/\S+)?: ", r"\1: ", message))
 
 
-_NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+def path_text(text: str) -> str:
+    """A file or folder name of the command line (an argparse ``type``): an empty one names
+    none, where ``Path("")`` would be the current folder."""
+    if not text:
+        raise argparse.ArgumentTypeError("an empty name names no file or folder")
+    return text
 
 
 METAVARS = {
@@ -176,6 +182,7 @@ def add_inputs(
             parser.add_argument(
                 *options,
                 action=Input if item.type != "path" else "store",
+                **({"type": path_text} if item.type == "path" else {}),
                 default=default,
                 metavar=METAVARS.get(name) or _metavar(item),
                 help=_help(item, kind, shown, note),

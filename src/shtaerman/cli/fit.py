@@ -5,11 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..fitting.data import KINDS, parse_units
+from ..fitting.data import KIND_COLUMNS, KINDS, article, parse_units
 from ..fitting.result import FitResult
 from ..fitting.run import FE_REFINE, fit
 from ..problem import RUBBER_OPTIONS, Problem
 from ..theory.materials import Material
+from ..validation import InputError
+from ..vocabulary import entry
 from .common import (
     CASE,
     add_figure_format,
@@ -17,6 +19,7 @@ from .common import (
     given,
     in_option_words,
     indenter,
+    path_text,
     print_json,
     refuse_idle_output_options,
     striker,
@@ -81,7 +84,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         description=DESCRIPTION,
     )
     p.add_argument("kind", choices=KINDS, metavar="KIND", help=f"one of {', '.join(KINDS)}")
-    p.add_argument("data", metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'")
+    p.add_argument(
+        "data", type=path_text, metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'"
+    )
     inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
               "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
               "resample", "refine", "json", "out", "force")  # fmt: skip
@@ -105,10 +110,38 @@ def problem_of(args: argparse.Namespace) -> Problem:
     )
 
 
+USED_BY = {
+    "mass": ("force-history", "rebound", "resilience"),
+    "velocity": ("force-history",),  # rebound data give one per row
+    "time_offset": ("force-history",),
+    "baseline": ("force-history",),
+}
+"""The kinds of data an option of the impact applies to (it was ignored for the others)."""
+
+
+def refuse_unused(args: argparse.Namespace) -> None:
+    """InputError naming an option the kind of data does not use, or a --units column it
+    does not read."""
+    for name, kinds in USED_BY.items():
+        if given(args, name) and args.kind not in kinds:
+            raise InputError(
+                f"{entry(name).cli_option}: applies to {' or '.join(kinds)} data, not to "
+                f"{article(args.kind)}"
+            )
+    needed, some = KIND_COLUMNS[args.kind]
+    for column in parse_units(args.units):
+        if column not in (*needed, *some):
+            raise InputError(
+                f"--units: {article(args.kind)} reads no column {column!r} (it reads "
+                f"{', '.join((*needed, *some))})"
+            )
+
+
 def run(args: argparse.Namespace) -> int:
     """Fit (:func:`shtaerman.fit`) and print the fitted values or the JSON."""
     refuse_idle_output_options(args, ("out",))
     with in_option_words():
+        refuse_unused(args)
         result = fit(
             args.kind,
             args.data,
@@ -157,7 +190,7 @@ def _corrections_text(result: FitResult) -> list[str]:
 def fit_text(result: FitResult) -> str:
     """The fitted values, intervals and residual as text."""
     rows = [
-        f"Fit of a {result.kind} ({result.data['rows']} rows of {result.data['source']})",
+        f"Fit of {article(result.kind)} ({result.data['rows']} rows of {result.data['source']})",
         f"  forward model: {result.forward_model}",
         *_corrections_text(result),
         f"  {'unknown':<12} {'value':>13} {'95 % interval':>29}  unit",

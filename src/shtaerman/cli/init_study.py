@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ..output.files import staged_file
 from ..validation import InputError
-from .common import add_inputs
+from .common import add_inputs, path_text
 
 __all__ = ["STUDY_TEMPLATE", "TEMPLATES", "register", "run", "write_template"]
 
@@ -329,7 +329,7 @@ def register(commands: argparse._SubParsersAction) -> None:
             "key explained. Edit it, then run 'shtaerman verify FILE.toml --quick'."
         ),
     )
-    p.add_argument("file", metavar="FILE.toml", help="the study file to write")
+    p.add_argument("file", type=path_text, metavar="FILE.toml", help="the study file to write")
     p.add_argument(
         "--kind",
         default="contact",

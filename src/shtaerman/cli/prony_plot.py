@@ -10,7 +10,12 @@ import numpy as np
 from ..fem.viscoelastic import PRONY_FORM, prony_input
 from ..output.files import check_output_file
 from ..theory.prony_sources import prony_with_modulus
-from ..validation import InputError, validate_positive
+from ..validation import InputError
+from ..vocabulary import Entry
+from .common import Input, path_text
+
+INSTANTANEOUS = Entry("E0", "Pa", "the instantaneous modulus", "E0", option="--E0")
+"""``--E0``: read and checked as every numeric option is (:class:`~.common.Input`)."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -27,8 +32,21 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     p.add_argument("series", metavar="SERIES", help="the Prony series (as dynamic's prony)")
-    p.add_argument("--out", required=True, metavar="FILE.png", help="the figure (.png/.svg/.pdf)")
-    p.add_argument("--E0", type=float, metavar="PA", help="the instantaneous modulus, in Pa, > 0")
+    p.add_argument(
+        "--out",
+        type=path_text,
+        required=True,
+        metavar="FILE.png",
+        help="the figure (.png/.svg/.pdf)",
+    )
+    p.add_argument(
+        "--E0",
+        action=Input,
+        item=INSTANTANEOUS,
+        kind=None,
+        metavar="PA",
+        help="the instantaneous modulus, in Pa, > 0",
+    )
     p.add_argument("--force", action="store_true", help="replace --out if it exists")
     p.set_defaults(handler=run)
 
@@ -42,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     check_output_file(args.out, force=args.force, option="--out")  # an existing file is kept
     series = prony_input(args.series, "SERIES")
     carried = prony_with_modulus(args.series)[1]  # read again: prony_input has checked it
-    modulus = carried if args.E0 is None else validate_positive("--E0", args.E0, "Pa")
+    modulus = carried if args.E0 is None else args.E0
     path = prony_figure(series, args.out, modulus, args.series)
     data = prony_curves(series, modulus)
     peak = int(np.argmax(data["tan_delta"]))

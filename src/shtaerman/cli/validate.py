@@ -8,7 +8,7 @@ import sys
 
 from ..output.files import output_folder, staged_folder
 from ..validation_suite import run_suite, suite_text
-from .common import in_option_words, print_json
+from .common import in_option_words, path_text, print_json
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -22,7 +22,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--quick", action="store_true", help="coarse meshes (about 20 s, not 1 min)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--out", metavar="DIR", help="write DIR/validation.json (a new folder)")
+    p.add_argument(
+        "--out", type=path_text, metavar="DIR", help="write DIR/validation.json (a new folder)"
+    )
     p.add_argument("--force", action="store_true", help="replace --out if shtaerman wrote it")
     p.set_defaults(handler=run)
 

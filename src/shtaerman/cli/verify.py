@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from ..validation import InputError
-from .common import add_figure_format, add_inputs, in_option_words
+from .common import add_figure_format, add_inputs, in_option_words, path_text
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -28,6 +28,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument(
         "studies",
         nargs="*",
+        type=path_text,
         metavar="STUDY",
         help="study files (.toml) or shipped study names (default: the shipped studies but "
         "the extended ones)",

@@ -439,12 +439,13 @@ def check_resolved(r: np.ndarray, forces: np.ndarray, depth: float) -> None:
         raise InputError(
             f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
             f"{MIN_CONTACT_NODES}: smaller than this mesh resolves; raise the smallest depth or "
-            f"refine the mesh"
+            f"refine the mesh (--mesh-size, --refine)"
         )
     if loaded[-1] + EDGE_MARGIN >= r.size:
         raise InputError(
             f"depth {depth:g} m: the contact zone reaches r = {r[loaded[-1]]:.4g} m, "
-            f"the edge of the refined region ({r[-1]:.4g} m); mesh a larger region"
+            f"the edge of the refined region ({r[-1]:.4g} m); mesh a larger region (raise "
+            "--mesh-margin)"
         )
 
 

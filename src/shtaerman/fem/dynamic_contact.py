@@ -57,6 +57,7 @@ from .elasticity import (
 from .impact_run import ImpactRun, fitted_peak, impact_parameters, mesh_counts, parabola_peak
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
+from .mesh_budget import growth_error
 from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
@@ -581,6 +582,9 @@ def _stick_compliance(
 def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
     """The estimated dofs of the mesh of ``settings``, or InputError above ``MAX_DOFS``."""
     if estimate > MAX_DOFS:
+        blamed = growth_error(settings, estimate_dofs, MAX_DOFS, MAX_SIZE)
+        if blamed is not None:
+            raise blamed
         mesh = "mesh" if settings.thickness is None else "layer mesh"
         raise InputError(
             f"the {mesh} would have about {estimate:.3g} dofs, above the limit {MAX_DOFS}; "

@@ -32,6 +32,7 @@ from skfem.io.meshio import from_meshio
 from ..signals import deferred
 from ..theory.layer import BASES
 from ..validation import InputError, bound_text, validate_positive
+from .mesh_budget import growth_error
 
 __all__ = [
     "BOUNDARIES",
@@ -597,6 +598,10 @@ class MeshSettings:
             self._check_layer(refined_radius)
             return
         if self.estimated_dofs > self.max_dofs:
+            also = "; or raise --max-dofs"
+            blamed = growth_error(self, lambda mesh: mesh.estimated_dofs, self.max_dofs, 1.0, also)
+            if blamed is not None:
+                raise blamed
             raise InputError(
                 f"max_dofs: this mesh would have about {self.estimated_dofs:.3g} unknowns "
                 f"(size {self.size:.3g}, growth {self.growth:.3g}, domain {self.domain:.3g}, "

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ..validation import InputError
+from ..validation import InputError, plain_float
 from .hyperelastic import HESSIAN_TERMS, N_COMPONENTS, Kinematics, NeoHookean, NewtonError
 
 __all__ = [
@@ -121,15 +121,16 @@ def _yeoh_pair(value: Any) -> tuple[float, float]:
     """(c2, c3) from "c2,c3" or a pair of numbers; InputError naming ``yeoh`` otherwise."""
     items = value.split(",") if isinstance(value, str) else value
     try:
-        c2, c3 = (float(item) for item in items)
+        c2, c3 = (plain_float(item) if isinstance(item, str) else float(item) for item in items)
     except (TypeError, ValueError):
         raise InputError(
             f"yeoh must be two numbers c2,c3 (C20/C10, C30/C10), got {value!r}", "yeoh"
         ) from None
-    if not (math.isfinite(c2) and math.isfinite(c3)) or abs(c2) > YEOH_BOUND:
-        raise InputError(f"yeoh: c2 must lie in [-10, 10], got {c2:g}", "yeoh")
+    typed = [str(item).strip() for item in items]  # as written: 1e999, not inf
+    if not abs(c2) <= YEOH_BOUND:  # nan and inf too
+        raise InputError(f"yeoh: c2 must lie in [-10, 10], got {typed[0]}", "yeoh")
     if not 0.0 <= c3 <= YEOH_BOUND:
-        raise InputError(f"yeoh: c3 must lie in [0, 10], got {c3:g}", "yeoh")
+        raise InputError(f"yeoh: c3 must lie in [0, 10], got {typed[1]}", "yeoh")
     if c2 < 0.0 and c2 * c2 >= 3.0 * c3:
         raise InputError(
             f"yeoh: c2 = {c2:g}, c3 = {c3:g} soften without bound (dW/dI1 = C10 (1 + 2 c2 x + "

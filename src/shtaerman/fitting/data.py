@@ -21,14 +21,15 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..input_file import read_input_text
-from ..validation import InputError
+from ..input_file import read_input_csv
+from ..validation import InputError, plain_float
 
 __all__ = [
     "KINDS",
     "KIND_COLUMNS",
     "UNITS",
     "Measurement",
+    "article",
     "check_history_options",
     "measured_unit",
     "measurement",
@@ -134,8 +135,8 @@ def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
 def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]]:
     """The header's (name, unit) cells and the data rows of ``path``."""
     where = str(path)
-    text = read_input_text(path, "data", "DATA")
-    rows = [row for row in csv.reader(io.StringIO(text)) if "".join(row).strip()]
+    text = read_input_csv(path, "data", "DATA")
+    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
     return _header(where, rows[0]), rows[1:]
@@ -154,7 +155,7 @@ def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndar
     for number, row in enumerate(rows):
         text = row[index].strip() if index < len(row) else ""
         try:
-            values[number] = float(text)
+            values[number] = plain_float(text)
         except ValueError:
             raise InputError(
                 f"{where}: row {number + 2}: column {name!r} holds {text!r}, not a number", "data"
@@ -175,11 +176,23 @@ def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
     columns, written = {}, {}
     for name in _wanted(kind, names, where, header):
         index = names.index(name)
+        if names.count(name) > 1:  # which one is meant? (depth [m] beside depth [mm])
+            again = names.index(name, index + 1)
+            raise InputError(
+                f"{where}: column {name!r} appears twice (columns {index + 1} and {again + 1} "
+                "of the header); keep one",
+                "data",
+            )
         unit = header[index][1]
         unit = unit if unit is not None else units.get(name, measured_unit(name))
         written[name] = unit
         columns[name] = _column(where, name, index, rows) * _factor(where, name, unit)
     return Measurement(kind, columns, where, written)
+
+
+def article(kind: str) -> str:
+    """``kind`` with its indefinite article: "an indentation", "a rebound"."""
+    return f"{'an' if kind[0] in 'aeiou' else 'a'} {kind}"
 
 
 def measured_unit(name: str) -> str:
@@ -195,7 +208,8 @@ def _wanted(kind: str, names: list[str], where: str, header: list) -> list[str]:
         if name not in names:
             wanted = ", ".join(f"{n} [{measured_unit(n)}]" for n in needed)
             raise InputError(
-                f"{where}: no column {name!r} (the header has {shown}); a {kind} needs {wanted}",
+                f"{where}: no column {name!r} (the header has {shown}); {article(kind)} needs "
+                f"{wanted}",
                 "data",
             )
     present = [name for name in some if name in names]
@@ -239,7 +253,7 @@ def _check_history(data: Measurement) -> None:
         raise InputError(
             f"{data.source}: a force-history needs at least 3 rows, got {data.rows}", "data"
         )
-    largest = float(np.max(data.columns["force"]))
+    largest = float(np.max(data.columns["force"])) + 0.0  # -0.0 is 0
     if largest <= 0.0:
         raise InputError(
             f"{data.source}: column 'force' must rise above 0 N (the striker's push), its "

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -198,6 +199,21 @@ def _modulus_start(known: Known, data: Measurement, kind: str) -> float:
     return known.modulus
 
 
+def _checked_start(start: float, data: Measurement) -> float:
+    """The starting E* in Pa, or InputError naming the data when its search range, start /
+    MODULUS_SPAN to start * MODULUS_SPAN, is not one of positive normal floats (a force that
+    does not rise above 0, values near the float range's ends: wrong signs or units)."""
+    low, high = start / MODULUS_SPAN, start * MODULUS_SPAN
+    if not (low >= sys.float_info.min and math.isfinite(high)):
+        raise InputError(
+            f"{data.source}: the data give no usable starting modulus (E* = {start:.3g} Pa from "
+            f"the columns {', '.join(data.columns)}); check their signs and units: the values "
+            "must lie well inside the floating-point range",
+            "data",
+        )
+    return start
+
+
 def _time_offset_start(known: Known, data: Measurement) -> float:
     """The time of first touch read off the data: where the force first exceeds 5 % of its
     peak, moved back by a sixth of the rise to the peak."""
@@ -211,7 +227,12 @@ def _parameters(known: Known, data: Measurement, unknowns: Sequence[str]) -> tup
     """The fitted parameters of ``unknowns`` with their starts and bounds."""
     params = []
     if "E2" in unknowns or "nu2" in unknowns:
-        start = _modulus_start(known, data, data.kind)
+        with np.errstate(all="ignore"):  # an overflow is refused, naming the data
+            try:
+                start = _modulus_start(known, data, data.kind)
+            except OverflowError:  # a float's power beyond the range (a force of 1e300 N)
+                start = math.inf
+        start = _checked_start(start, data)
         params.append(Parameter("E_star", start, start / MODULUS_SPAN, start * MODULUS_SPAN, True))
     for name in ("mass", "velocity"):
         if name in unknowns:

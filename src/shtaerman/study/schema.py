@@ -15,6 +15,7 @@ import copy
 import importlib.resources
 import math
 import re
+import sys
 import tomllib
 from collections.abc import Iterator
 from dataclasses import replace
@@ -25,7 +26,7 @@ import msgspec
 
 from ..fem.contact import validate_fem_inputs
 from ..fem.mesh import MeshSettings
-from ..validation import InputError
+from ..validation import InputError, bound_text
 from ..vocabulary import MAX_STUDIES, VOCABULARY, deprecated, fields, suggestion
 from ..vocabulary import entry as vocabulary_entry
 from .kinds import kind_function, study_kinds
@@ -72,7 +73,9 @@ class StudyError(InputError):
     """A study file that cannot be used; the message names the file and the key."""
 
 
-Positive = Annotated[float, msgspec.Meta(gt=0)]
+SMALLEST = sys.float_info.min
+"""The least number > 0 a study file takes: a subnormal (1e-320) has lost its digits."""
+Positive = Annotated[float, msgspec.Meta(ge=SMALLEST)]
 Relative = Annotated[float, msgspec.Meta(gt=0, le=1)]
 Poisson = Annotated[float, msgspec.Meta(gt=-1, le=0.5)]
 
@@ -86,6 +89,8 @@ def ranged(name: str, kind: str | None = None) -> Any:
     bounds: dict[str, float] = {}
     if valid is not None and valid.low is not None:
         bounds["gt" if valid.low_open else "ge"] = number(valid.low)
+        if valid.low == 0 and valid.low_open and number is float:
+            bounds = {"ge": SMALLEST}
     if valid is not None and valid.high is not None:
         bounds["lt" if valid.high_open else "le"] = number(valid.high)
     return Annotated[number, msgspec.Meta(**bounds)]
@@ -245,6 +250,8 @@ def _located(message: str, data: dict[str, Any], root: type) -> tuple[list[str],
     given = _value(data, keys)
     expectation = _expectation(keys, text).split(", got ")[0]  # msgspec may say "got" itself
     shown = "" if given is msgspec.UNSET else f", got {given!r}"
+    if isinstance(given, float) and 0 < given < SMALLEST:
+        shown = f" and at least {bound_text(SMALLEST, 'low', 4)} (the smallest normal float){shown}"
     return keys, f"{expectation}{shown}"
 
 

@@ -14,13 +14,11 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..cli.common import add_inputs, path_text
 from ..plots.formats import add_figure_format
 from ..validation import InputError
 
 __all__ = ["add_parser", "register", "run"]
-
-MAX_WORKERS = 256
-"""Most local worker processes (--workers), the bound of ``verify --workers`` too."""
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -33,20 +31,19 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
     )
     p.add_argument(
         "sweep",
+        type=path_text,
         metavar="FILE.toml|NAME",
         help="a sweep file, or the name of a shipped sweep (e.g. nu-grid, impact-velocity)",
     )
-    p.add_argument(
-        "--workers",
-        metavar="N",
-        help="worker processes of the local cluster, one thread each (default: the cores)",
-    )
+    add_inputs(p, ("workers",), None, derived={"workers": "the cores"})  # as verify's
     p.add_argument(
         "--scheduler",
         metavar="ADDRESS",
         help="use an existing dask cluster, e.g. tcp://host:8786 (its workers need shtaerman)",
     )
-    p.add_argument("--out", metavar="DIR", help="result folder (default: sweep-<name>)")
+    p.add_argument(
+        "--out", type=path_text, metavar="DIR", help="result folder (default: sweep-<name>)"
+    )
     p.add_argument(
         "--resume",
         action="store_true",
@@ -67,24 +64,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_parser(commands)
 
 
-def _workers(value: str | None) -> int | None:
-    if value is None:
-        return None
-    try:
-        workers = int(value)
-    except ValueError:
-        workers = 0
-    if not 1 <= workers <= MAX_WORKERS:  # as verify: a typo must not start 1000 processes
-        raise InputError(f"workers must be an integer in [1, {MAX_WORKERS}], got {value!r}")
-    return workers
-
-
 def run(args: argparse.Namespace) -> int:
     """Run the sweep named by ``args``; returns the exit code (raises InputError on bad input)."""
     from .engine import SweepInterrupted, run_sweep
     from .spec import find_sweep, load_sweep
 
-    workers = _workers(args.workers)
+    workers = args.workers
     if workers is not None and args.scheduler:
         raise InputError("workers: --workers sizes the local cluster; drop it with --scheduler")
     spec = load_sweep(find_sweep(args.sweep))
@@ -108,8 +93,9 @@ def run(args: argparse.Namespace) -> int:
     except OSError as error:  # a full disk, a lost mount: what is saved stays saved
         print(_failed_text(args, out, error), file=sys.stderr)
         return 1
-    except InputError as error:  # the API's keyword out / resume is an option here
-        key = next((k for k in ("out", "resume") if str(error).startswith(f"{k}: ")), None)
+    except InputError as error:  # the API's keywords out, resume, scheduler are options here
+        keys = ("out", "resume", "scheduler")
+        key = next((k for k in keys if str(error).startswith(f"{k}: ")), None)
         if key is None:
             raise
         raise InputError(f"--{error}", key) from None

@@ -17,6 +17,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -24,8 +25,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
-from ..input_file import read_input_text
-from ..validation import InputError, validate_positive
+from ..input_file import read_input_csv
+from ..validation import InputError, bound_text, plain_float, validate_positive
 from ..vocabulary import MAX_SPHERE_RADIUS
 
 __all__ = [
@@ -101,7 +102,7 @@ class SphereIndenter:
 
 def _float(text: str, row: int, column: str, path: Path) -> float:
     try:
-        value = float(text)
+        value = plain_float(text)
     except ValueError:
         value = math.nan
     if not math.isfinite(value):
@@ -122,7 +123,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         One line naming the file and the row or column at fault.
     """
     path = Path(path)
-    rows = list(csv.reader(io.StringIO(read_input_text(path, "profile", "profile"))))
+    rows = list(csv.reader(io.StringIO(read_input_csv(path, "profile", "profile"))))
     rows = [row for row in rows if any(cell.strip() for cell in row)]
     header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
@@ -132,6 +133,9 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
             f"column {missing[0]} is missing",
             "profile",
         )
+    twice = next((name for name in ("r", "z") if header.count(name) > 1), None)
+    if twice is not None:  # which one is meant?
+        raise InputError(f"profile: {str(path)!r} names column {twice} twice; keep one", "profile")
     columns = {name: header.index(name) for name in ("r", "z")}
     values = []
     for number, row in enumerate(rows[1:], start=2):
@@ -157,6 +161,10 @@ def _header_name(cell: str, path: Path) -> str:
     return name.strip()
 
 
+_SMALLEST_R, _LARGEST_R = math.sqrt(sys.float_info.min), math.sqrt(sys.float_info.max)
+"""The radii whose squares (the interpolation's variable) are normal floats, in m."""
+
+
 def _check_table(r: np.ndarray, z: np.ndarray) -> None:
     """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing."""
     if r.size < 3:
@@ -172,6 +180,15 @@ def _check_table(r: np.ndarray, z: np.ndarray) -> None:
         raise InputError(
             f"profile: row 2 (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
             f"z = {z[0]:g}",
+            "profile",
+        )
+    with np.errstate(all="ignore"):
+        squares = r * r
+    if not (np.isfinite(squares[-1]) and squares[1] >= sys.float_info.min):
+        raise InputError(  # the table is interpolated in r^2: its squares must be floats
+            f"profile: column r must lie within [{bound_text(_SMALLEST_R, 'low')}, "
+            f"{bound_text(_LARGEST_R, 'high')}] m beyond the tip (it is interpolated in "
+            f"r^2), got {r[1]:g} to {r[-1]:g}",
             "profile",
         )
     for name, values in (("r", r), ("z", z)):
@@ -207,8 +224,8 @@ class TabulatedIndenter:
     kind = "tabulated"
 
     def __post_init__(self) -> None:
-        r = np.asarray(self.radii, dtype=float).ravel()
-        z = np.asarray(self.heights, dtype=float).ravel()
+        r = np.asarray(self.radii, dtype=float).ravel() + 0.0  # -0.0 is the tip 0
+        z = np.asarray(self.heights, dtype=float).ravel() + 0.0
         if r.shape != z.shape or not (np.all(np.isfinite(r)) and np.all(np.isfinite(z))):
             raise InputError("profile: radii and heights must be finite, of one length")
         _check_table(r, z)

@@ -25,8 +25,8 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from ..input_file import read_input_text
-from ..validation import InputError
+from ..input_file import read_input_csv
+from ..validation import InputError, plain_float
 from .viscoelastic import PronySeries
 
 __all__ = [
@@ -105,7 +105,7 @@ def prony_moduli(series: PronySeries, instantaneous: float) -> tuple[float, tupl
 
 def _number(text: str, where: str) -> float:
     try:
-        return float(text)
+        return plain_float(text)
     except ValueError:
         raise InputError(f"prony: {where} must be a number, got {text!r}", "prony") from None
 
@@ -183,7 +183,7 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
 def prony_from_csv(path: str | Path) -> tuple[PronySeries, float | None]:
     """The series of a CSV file (see the module) and E0 in Pa (None for a g column)."""
     path = Path(path)
-    text = read_input_text(path, "prony", "prony")
+    text = read_input_csv(path, "prony", "prony")
     return _series_from_rows(*_rows(text, path.name), path.name)
 
 

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from numbers import Real
@@ -49,7 +50,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 from scipy.special import hyp1f1
 
-from ..validation import InputError, NumericalFailureError, validate_positive
+from ..validation import InputError, NumericalFailureError, plain_float, validate_positive
 from .contact import PowerLawContact
 from .impact import ImpactResult, solve_impact
 from .indenter import PowerLawIndenter
@@ -70,11 +71,26 @@ __all__ = [
 _TERM = re.compile(r"^\s*([^:,\s]+)\s*:\s*([^:,\s]+)\s*$")
 
 
-def _number(name: str, text: str) -> float:
+def _number(where: str, text: str) -> float:
+    """``text`` as a float, or InputError naming the Prony series' term ``where``."""
     try:
-        return float(text)
+        return plain_float(text)
     except ValueError:
-        raise InputError(f"{name} must be a number, got {text!r}", name) from None
+        raise InputError(f"prony {where} must be a number, got {text!r}", "prony") from None
+
+
+def _check_term(i: int, g: object, tau: object, typed: tuple[str, str] | None = None) -> None:
+    """Refuse term ``i`` of a Prony series unless 0 <= g < 1 and 0 < tau < inf (s); the
+    message shows the ``typed`` text (g, tau) where the series was written (1e999, not inf)."""
+    shown_g, shown_tau = typed or (repr(g), repr(tau))
+    if isinstance(g, bool) or not (isinstance(g, Real) and 0.0 <= g < 1.0):
+        raise InputError(f"prony weight g{i} must lie in [0, 1), got {shown_g}", "prony")
+    if isinstance(tau, bool) or not (
+        isinstance(tau, Real) and sys.float_info.min <= tau < math.inf
+    ):
+        raise InputError(
+            f"prony time tau{i} must be a finite number > 0 s, got {shown_tau}", "prony"
+        )
 
 
 @dataclass(frozen=True)
@@ -106,12 +122,7 @@ class PronySeries:
                 "prony",
             )
         for i, (g, tau) in enumerate(zip(weights, times, strict=True), start=1):
-            if isinstance(g, bool) or not (isinstance(g, Real) and 0.0 <= g < 1.0):
-                raise InputError(f"prony weight g{i} must lie in [0, 1), got {g!r}", "prony")
-            if isinstance(tau, bool) or not (isinstance(tau, Real) and 0.0 < tau < math.inf):
-                raise InputError(
-                    f"prony time tau{i} must be a finite number > 0 s, got {tau!r}", "prony"
-                )
+            _check_term(i, g, tau)
         if not math.fsum(weights) < 1.0:
             raise InputError(
                 f"prony weights must sum to less than 1 (relaxed modulus > 0), got "
@@ -133,8 +144,10 @@ class PronySeries:
             raise InputError(
                 f"prony must be written g1:tau1,g2:tau2,... (tau in s), got {text!r}", "prony"
             )
-        weights = tuple(_number("prony", pair[1]) for pair in pairs)  # type: ignore[index]
-        times = tuple(_number("prony", pair[2]) for pair in pairs)  # type: ignore[index]
+        weights = tuple(_number(f"weight g{i}", p[1]) for i, p in enumerate(pairs, 1))  # type: ignore[index]
+        times = tuple(_number(f"time tau{i}", p[2]) for i, p in enumerate(pairs, 1))  # type: ignore[index]
+        for i, (g, tau, pair) in enumerate(zip(weights, times, pairs, strict=True), start=1):
+            _check_term(i, g, tau, typed=pair.groups())  # type: ignore[union-attr]
         return cls(weights, times)
 
     @property

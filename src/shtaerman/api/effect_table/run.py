@@ -75,6 +75,7 @@ OWN_INPUTS = {
     "waves": ("density2",),
     "viscoelasticity": ("prony",),
     "friction": ("friction",),
+    "finite strain": ("model", "mooney_ratio", "yeoh", "gent_limit", "volumetric"),
 }
 """The inputs of an effect: one of them refused where the effect is alone (the paper's problem
 with it) is bad input, as ``shtaerman dynamic`` refuses it, not a row of the table."""

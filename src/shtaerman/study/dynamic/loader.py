@@ -55,10 +55,12 @@ import msgspec
 from ...fem.contact import validate_fem_inputs
 from ...fem.dynamic_contact import (
     MAX_DOFS,
+    MAX_SIZE,
     DynamicSettings,
     estimate_dofs,
     validate_density,
 )
+from ...fem.mesh_budget import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import RUBBER_OPTIONS, Problem
 from ...theory.indenter import PowerLawIndenter
@@ -279,6 +281,9 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     except InputError as error:
         raise StudyError(f"{path}: key '{table}': {error}") from None
     dofs = estimate_dofs(settings)
+    blamed = growth_error(settings, estimate_dofs, MAX_DOFS, MAX_SIZE) if dofs > MAX_DOFS else None
+    if blamed is not None:
+        raise StudyError(f"{path}: key '{table}.growth': {str(blamed).removeprefix('growth: ')}")
     if dofs > MAX_DOFS:
         raise StudyError(
             f"{path}: key '{table}.mesh_size': the mesh would have about {dofs:.3g} "
