@@ -273,6 +273,9 @@ def test_cli_json_from_a_csv_in_millimetres_and_the_folder(tmp_path, capsys, mon
     assert printed["fitted"]["E2"]["value"] == pytest.approx(E2, rel=1e-10)  # round-off
     assert printed["data"]["units"] == {"depth": "mm", "force": "kN"}
     assert json.loads((out / "fit.json").read_text()) == printed
+    assert main(["fit", "indentation", csv, "--E2", "5e6"]) == 0
+    # the text's title names the kind of data (it read "Fit of a indentation")
+    assert capsys.readouterr().out.startswith("Fit of indentation data (")
     header = (out / "fit.csv").read_text().splitlines()[0]
     assert header == "depth [m],force [N],force_fit [N],residual [N]"
     result = sh.fit("indentation", data, problem())

@@ -157,7 +157,7 @@ def _corrections_text(result: FitResult) -> list[str]:
 def fit_text(result: FitResult) -> str:
     """The fitted values, intervals and residual as text."""
     rows = [
-        f"Fit of a {result.kind} ({result.data['rows']} rows of {result.data['source']})",
+        f"Fit of {result.kind} data ({result.data['rows']} rows of {result.data['source']})",
         f"  forward model: {result.forward_model}",
         *_corrections_text(result),
         f"  {'unknown':<12} {'value':>13} {'95 % interval':>29}  unit",
