@@ -436,3 +436,20 @@ def test_a_record_on_a_shifted_clock_fits_its_offset_and_refuses_the_default(tmp
     assert fitted["E2"]["value"] == pytest.approx(E2, rel=1e-6)
     assert main([*argv, "--fit", "E2"]) == 2
     assert "--time-offset must lie in [99.98, 100.02] s" in capsys.readouterr().err
+
+
+def test_cli_rebound_text_fits_the_mass_and_says_relative_once(tmp_path, capsys):
+    """The help's KIND table left the mass out of what rebound data fit, and the text printed
+    the relative residual as 'residual rms 0 1 (relative)'."""
+    law = PowerLawContact(INDENTER, E_STAR)
+    times = [2 * solve_impact(MASS, v, law).t_c for v in VELOCITIES]
+    csv = write(tmp_path / "drops.csv", "velocity [m/s],contact_time [s]",
+                zip(VELOCITIES, times, strict=True))  # fmt: skip
+    argv = ["fit", "rebound", csv, "--E2", str(E2), "--mass", "0.5", "--fit", "mass"]
+    assert main([*argv, "--noise", "0.01"]) == 0
+    text = capsys.readouterr().out
+    assert "(relative); noise 0.01 (relative) (given)" in text and " 1 (relative)" not in text
+    with pytest.raises(SystemExit):
+        main(["fit", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "contact_time [s] -> E2, prony, tau, mass" in help_text

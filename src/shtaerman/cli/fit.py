@@ -44,7 +44,8 @@ KIND and the CSV columns it reads (header 'name [unit]'):
                                                                mooney_ratio with --model)
   force-history   time [s], force [N]                       -> E2, time_offset, baseline,
                                                                mass or velocity, prony, tau
-  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau
+  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau,
+                                                               mass
   resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony, tau
 
 The result gives each unknown's value and 95 % interval, and identifiable false (with its
@@ -170,8 +171,9 @@ def fit_text(result: FitResult) -> str:
             rows.append(f"  {'':<12} ({item['reason']})")
     noise = result.noise
     how = "estimated from the residual" if noise["estimated"] else "given"
+    units = [item["unit"].removeprefix("1 ") for item in (result.residual, noise)]  # relative
     rows.append(
-        f"  residual rms {result.residual['rms']:.4g} {result.residual['unit']}; noise "
-        f"{noise['value']:.4g} {noise['unit']} ({how})"
+        f"  residual rms {result.residual['rms']:.4g} {units[0]}; noise "
+        f"{noise['value']:.4g} {units[1]} ({how})"
     )
     return "\n".join(rows)
