@@ -63,6 +63,9 @@ NOTES = {
 DERIVED = {
     "density2": "unset: no waves",
     "refine": f"{FE_REFINE:g}: a coarse mesh with its error estimate, seconds a run",
+    "mooney_ratio": "0, the start of --fit mooney_ratio; only with --model mooney-rivlin",
+    "yeoh": "0,0; only with --model yeoh",
+    "gent_limit": "none: required with --model gent",
 }
 """The defaults of ``fit`` that differ from the other commands'."""
 PRONY_HELP = (
