@@ -39,7 +39,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument(
         "--workers",
         metavar="N",
-        help="worker processes of the local cluster, one thread each (default: the cores)",
+        help="worker processes of the local cluster, one thread each, an integer in "
+        f"[1, {MAX_WORKERS}] (default: the cores)",
     )
     p.add_argument(
         "--scheduler",
@@ -75,7 +76,7 @@ def _workers(value: str | None) -> int | None:
     except ValueError:
         workers = 0
     if not 1 <= workers <= MAX_WORKERS:  # as verify: a typo must not start 1000 processes
-        raise InputError(f"workers must be an integer in [1, {MAX_WORKERS}], got {value!r}")
+        raise InputError(f"--workers must be an integer in [1, {MAX_WORKERS}], got {value!r}")
     return workers
 
 
