@@ -273,6 +273,9 @@ def test_cli_json_from_a_csv_in_millimetres_and_the_folder(tmp_path, capsys, mon
     assert printed["fitted"]["E2"]["value"] == pytest.approx(E2, rel=1e-10)  # round-off
     assert printed["data"]["units"] == {"depth": "mm", "force": "kN"}
     assert json.loads((out / "fit.json").read_text()) == printed
+    assert main(["fit", "indentation", csv, "--E2", "5e6"]) == 0
+    # the text's title names the kind of data (it read "Fit of a indentation")
+    assert capsys.readouterr().out.startswith("Fit of indentation data (")
     header = (out / "fit.csv").read_text().splitlines()[0]
     assert header == "depth [m],force [N],force_fit [N],residual [N]"
     result = sh.fit("indentation", data, problem())
@@ -433,3 +436,23 @@ def test_a_record_on_a_shifted_clock_fits_its_offset_and_refuses_the_default(tmp
     assert fitted["E2"]["value"] == pytest.approx(E2, rel=1e-6)
     assert main([*argv, "--fit", "E2"]) == 2
     assert "--time-offset must lie in [99.98, 100.02] s" in capsys.readouterr().err
+
+
+def test_cli_rebound_text_fits_the_mass_and_says_relative_once(tmp_path, capsys):
+    """The help's KIND table left the mass out of what rebound data fit, and the text printed
+    the relative residual as 'residual rms 0 1 (relative)'."""
+    law = PowerLawContact(INDENTER, E_STAR)
+    times = [2 * solve_impact(MASS, v, law).t_c for v in VELOCITIES]
+    csv = write(tmp_path / "drops.csv", "velocity [m/s],contact_time [s]",
+                zip(VELOCITIES, times, strict=True))  # fmt: skip
+    argv = ["fit", "rebound", csv, "--E2", str(E2), "--mass", "0.5", "--fit", "mass"]
+    assert main([*argv, "--noise", "0.01"]) == 0
+    text = capsys.readouterr().out
+    assert "(relative); noise 0.01 (relative) (given)" in text and " 1 (relative)" not in text
+    with pytest.raises(SystemExit):
+        main(["fit", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "contact_time [s] -> E2, prony, tau, mass" in help_text
+    # the rubber's shape options state their defaults, as contact's do (--mooney-ratio gave none)
+    assert "[0, 1) (default: 0, the start of --fit mooney_ratio; only with --model" in help_text
+    assert "(default: none: required with --model gent)" in help_text

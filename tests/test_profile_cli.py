@@ -89,3 +89,18 @@ def test_contact_on_a_sphere_writes_its_outputs(tmp_path, model):
 
     field = meshio.read(out / "field_max_depth.vtu")
     assert float(field.field_data["indenter_sphere_radius [m]"][0]) == 0.01
+
+
+@pytest.mark.parametrize("command", ["impact", "contact", "dynamic"])
+def test_the_help_names_the_profile_a_csv_file_and_its_row_limit(command, capsys):
+    """--profile's metavar was X (a number's) and its help gave no row range."""
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--profile FILE.csv" in text and "3 to 2000 rows" in text
+
+
+def test_a_sphere_on_a_relaxing_body_names_the_option_given(capsys):
+    """The refusal said '--profile: ...' to a user who gave --sphere-radius."""
+    line = error_line(capsys, "dynamic", "--sphere-radius", "0.01", "--prony", "0.3:1e-3")
+    assert line.startswith("--sphere-radius: a viscoelastic body (prony) takes the power law")

@@ -55,6 +55,15 @@ def test_cli_draws_and_prints_the_silicone(tmp_path, capsys):
     assert red.sum() > 300 and blue.sum() > 300 and black.sum() > 3000
 
 
+def test_cli_prints_one_term_and_a_ratio_series_plainly(tmp_path, capsys):
+    """It printed 'tau 0.002 to 0.002 s' for one term and 'E0 = 1 E0' without a modulus."""
+    assert main(["prony-plot", "0.3:2e-3", "--out", str(tmp_path / "one.png")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "Prony series, 1 term (tau 0.002 s)"
+    assert lines[1] == "  E0    = 1 (the moduli are ratios to E0; --E0 gives them in MPa)"
+    assert lines[2] == "  E_inf = 0.7 E0 (g_inf = 0.7)"
+
+
 def test_cli_refuses_a_typo_in_one_line(tmp_path):
     err = io.StringIO()
     with contextlib.redirect_stderr(err):

@@ -256,8 +256,15 @@ def test_cli_workers_are_bounded_like_verify(tmp_path, capsys, workers):
     # --workers 1000 would start a thousand worker processes on the local machine
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--workers", workers)
     assert code == 2
-    assert_one_line_error(err, f"workers must be an integer in [1, 256], got '{workers}'")
+    # the option's name, as verify's (it said 'workers must be')
+    assert_one_line_error(err, f"--workers must be an integer in [1, 256], got '{workers}'")
     assert not (tmp_path / "sweep-grid").exists()
+
+
+def test_cli_help_states_the_workers_range(capsys):
+    with pytest.raises(SystemExit):
+        main(["sweep", "--help"])
+    assert "an integer in [1, 256]" in " ".join(capsys.readouterr().out.split())
 
 
 def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):

@@ -147,3 +147,12 @@ def test_cli_out_refuses_a_file_or_a_foreign_folder_before_running(monkeypatch, 
     new = tmp_path / "new"
     assert main(["validate", "--out", str(new)]) == 0
     assert json.loads((new / "validation.json").read_text())["rows"][0]["verdict"] == "agrees"
+
+
+def test_the_help_names_every_published_source(capsys):
+    """The command list named Dimitriadis, Garcia and Hunter, not Long et al. (2011)."""
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    entry = text[text.index("validate published") : text.index("init-study")]
+    assert all(name in entry for name in ("Dimitriadis", "Garcia", "Hunter", "Long"))

@@ -407,9 +407,12 @@ class Problem:
             for name in ("mass", "velocity"):
                 if getattr(self.striker, name) is None:
                     raise InputError(f"{name}: an impact needs the striker's {name}", name)
-        limit = refusal(self.cell, self.striker.indenter.kind)
-        if limit is not None:
-            raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
+        kind = self.striker.indenter.kind
+        limit = refusal(self.cell, kind)
+        if limit is not None:  # a profile's refusal names the sphere's radius if one was given
+            name = "sphere_radius" if (limit.parameter, kind) == ("profile", "sphere") else None
+            name = name or limit.parameter
+            raise InputError(f"{name}: {limit.reason}", name)
         self._check_rate()
 
     def _check_rate(self) -> None:

@@ -400,8 +400,8 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "profile",
         "",
-        "a tabulated tip z(r): a CSV file whose header names the columns r and z (m), from the "
-        "tip r = 0, z = 0, both increasing; in place of the power law",
+        "a tabulated tip z(r): a CSV file whose header names the columns r and z (m), 3 to "
+        "2000 rows from the tip r = 0, z = 0, both increasing; in place of the power law",
         "tabulated profile",
         kinds=("contact", "dynamic"),
         valid=None,

@@ -97,6 +97,7 @@ METAVARS = {
     "prony": "G1:TAU1,...",
     "depths": "D1,D2,...",
     "history": "FILE.csv",
+    "profile": "FILE.csv",
     "out": "DIR",
     "refine": "K",
     "accuracy": "TOL",

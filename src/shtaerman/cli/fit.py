@@ -47,7 +47,8 @@ KIND and the CSV columns it reads (header 'name [unit]'):
                                                                mooney_ratio with --model)
   force-history   time [s], force [N]                       -> E2, time_offset, baseline,
                                                                mass or velocity, prony, tau
-  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau
+  rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau,
+                                                               mass
   resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony, tau
 
 The result gives each unknown's value and 95 % interval, and identifiable false (with its
@@ -65,6 +66,9 @@ NOTES = {
 DERIVED = {
     "density2": "unset: no waves",
     "refine": f"{FE_REFINE:g}: a coarse mesh with its error estimate, seconds a run",
+    "mooney_ratio": "0, the start of --fit mooney_ratio; only with --model mooney-rivlin",
+    "yeoh": "0,0; only with --model yeoh",
+    "gent_limit": "none: required with --model gent",
 }
 """The defaults of ``fit`` that differ from the other commands'."""
 PRONY_HELP = (
@@ -190,7 +194,7 @@ def _corrections_text(result: FitResult) -> list[str]:
 def fit_text(result: FitResult) -> str:
     """The fitted values, intervals and residual as text."""
     rows = [
-        f"Fit of {article(result.kind)} ({result.data['rows']} rows of {result.data['source']})",
+        f"Fit of {result.kind} data ({result.data['rows']} rows of {result.data['source']})",
         f"  forward model: {result.forward_model}",
         *_corrections_text(result),
         f"  {'unknown':<12} {'value':>13} {'95 % interval':>29}  unit",
@@ -203,8 +207,9 @@ def fit_text(result: FitResult) -> str:
             rows.append(f"  {'':<12} ({item['reason']})")
     noise = result.noise
     how = "estimated from the residual" if noise["estimated"] else "given"
+    units = [item["unit"].removeprefix("1 ") for item in (result.residual, noise)]  # relative
     rows.append(
-        f"  residual rms {result.residual['rms']:.4g} {result.residual['unit']}; noise "
-        f"{noise['value']:.4g} {noise['unit']} ({how})"
+        f"  residual rms {result.residual['rms']:.4g} {units[0]}; noise "
+        f"{noise['value']:.4g} {units[1]} ({how})"
     )
     return "\n".join(rows)

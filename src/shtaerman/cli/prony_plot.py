@@ -66,12 +66,14 @@ def run(args: argparse.Namespace) -> int:
     peak = int(np.argmax(data["tan_delta"]))
     scale, unit = (1.0, "E0") if modulus is None else (1e-6, "MPa")
     e0 = 1.0 if modulus is None else modulus
-    print(
-        f"Prony series, {len(series.weights)} term{'s' * (len(series.weights) != 1)} "
-        f"(tau {min(series.times):.3g} to "
-        f"{max(series.times):.3g} s)"
-    )
-    print(f"  E0    = {scale * e0:.6g} {unit} (instantaneous)")
+    low, high = f"{min(series.times):.3g}", f"{max(series.times):.3g}"
+    count = len(series.weights)
+    taus = low if low == high else f"{low} to {high}"
+    print(f"Prony series, {count} term{'s' * (count != 1)} (tau {taus} s)")
+    if modulus is None:
+        print("  E0    = 1 (the moduli are ratios to E0; --E0 gives them in MPa)")
+    else:
+        print(f"  E0    = {scale * e0:.6g} {unit} (instantaneous)")
     print(f"  E_inf = {scale * e0 * series.g_inf:.6g} {unit} (g_inf = {series.g_inf:.6g})")
     print(
         f"  tan delta peaks at {data['tan_delta'][peak]:.4g}, f = {data['frequency'][peak]:.3g} Hz"

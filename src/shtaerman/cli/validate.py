@@ -15,7 +15,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``validate`` subcommand."""
     p = commands.add_parser(
         "validate",
-        help="published results (Dimitriadis, Garcia, Hunter) recomputed by the suite",
+        help="published results (Dimitriadis, Garcia, Hunter, Long) recomputed by the suite",
         description="Each row: a published value, the suite's value with its error bar, the "
         "difference and the tolerance the reference's accuracy allows. Exit code 1 when a "
         "row expected to agree does not.",

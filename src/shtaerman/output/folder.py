@@ -244,11 +244,13 @@ def study_entry(outcome: Any, stage: Path, figure_format: str = "png") -> dict[s
 def finish_verification(
     stage: Path, entries: Mapping[str, dict], *, quick: bool, figure_format: str = "png"
 ) -> dict[str, object]:
-    """The figures of no study (the Ateb functions for each indenter exponent of the
-    studies), results.json and both reports, from the studies' entries."""
+    """The figures of no study (the Ateb functions for each power-law exponent of the
+    studies; a sphere or a tabulated profile has none), results.json and both reports, from
+    the studies' entries."""
     from ..plots.gallery import paper_figures
 
-    exponents = [entry["inputs"]["exponent"] for entry in entries.values() if "inputs" in entry]
+    inputs = [entry["inputs"] for entry in entries.values() if "inputs" in entry]
+    exponents = [given["exponent"] for given in inputs if given["exponent"] is not None]
     made = paper_figures(stage, exponents, figure_format)
     shared = {title: str(path.relative_to(stage)) for title, path in made.items()}
     results = results_document(entries, quick=quick, figures=shared)

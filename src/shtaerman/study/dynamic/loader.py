@@ -424,6 +424,7 @@ PHYSICS_KEYS = {
     **{name: f"layer.{name}" for name in ("thickness", "base")},
     "prony": "half_space.prony",
     "profile": "indenter",
+    "sphere_radius": "indenter",
 }
 """A problem part's keyword -> its study-file key (for a refusal of :class:`Problem`)."""
 
