@@ -34,6 +34,7 @@ ALLOWED = {
         "theory.sneddon",  # the exact contact of any profile (the power law's included)
         "theory.profiles",
         "theory.prony_sources",  # a Prony series given as moduli, a CSV or a shipped name
+        "theory.profile_impact",  # a profile's exact quasi-static impact sizes its FE impact
     },
     "study": {"study", "fem", "theory", "paper", "guards", "problem"},
     "plots": {"plots", "study", "fem", "theory", "paper", "problem"},
@@ -44,7 +45,10 @@ ALLOWED = {
     # not at load), so that a sweep row is the command line's numbers by construction
     | {"api.fem_dynamic"}
     # and an effects case runs sh.effects (the table of shtaerman effects), the same way
-    | {"api.effect_table"},
+    | {"api.effect_table"}
+    # sweep/cli.py, the sweep command's parser, declares --workers as verify's does (one
+    # option builder from the vocabulary, its range in the help and the error)
+    | {"cli.common"},
     # the public Python API stands beside the CLI: everything below it, not the CLI
     "api": {"api", "sweep", "output", "plots", "study", "fem", "theory", "paper", "guards"}
     | {"problem", "fitting"},
