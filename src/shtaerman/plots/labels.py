@@ -32,7 +32,7 @@ class Label:
 
 
 MINUS = "\N{MINUS SIGN}"
-NU, RHO = "\N{GREEK SMALL LETTER NU}", "\N{GREEK SMALL LETTER RHO}"
+NU = "\N{GREEK SMALL LETTER NU}"
 _DIFFERENCE = f"quasi-static / dynamic {MINUS} 1"
 LABELS: dict[str, Label] = {
     # the quasi-static impact

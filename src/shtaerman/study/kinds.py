@@ -40,7 +40,6 @@ __all__ = [
 ]
 
 CaseFunction = Callable[[dict[str, Any]], Mapping[str, float]]
-STUDY_ROLES = ("load", "run", "write")
 
 
 @dataclass(frozen=True)

@@ -35,7 +35,7 @@ from .sneddon import SneddonContact
 
 __all__ = ["ProfileImpactResult", "solve_profile_impact"]
 
-NODES, WEIGHTS = roots_legendre(16)
+NODES = roots_legendre(16)[0]
 PANELS = 16
 """Equal panels over [0, a_c] (the work) and over u in [0, 1] (the time), joined by a tabulated
 profile's radii; on each, 16 Gauss-Legendre nodes carry a degree-15 Legendre interpolant whose
