@@ -325,3 +325,52 @@ def test_sweep_names_its_scheduler_option(capsys, tmp_path):
     # "scheduler: cannot connect to ''": the API's keyword (an empty address fails at once)
     argv = ["sweep", "impact-velocity", "--scheduler=", "--out", tmp_path / "s"]
     assert error_line(capsys, *argv).startswith("--scheduler: cannot connect to ''")
+
+
+def _tabulated_paraboloid(rows: int, r_max: float):
+    import numpy as np
+
+    from shtaerman.theory.profiles import TabulatedIndenter
+    from shtaerman.theory.sneddon import SneddonContact
+
+    r = np.linspace(0.0, r_max, rows)
+    return SneddonContact(TabulatedIndenter(r, r**2 / (2 * 0.05)), 1e7)  # R = 50 mm
+
+
+@pytest.mark.parametrize("r_max", [0.01, 0.05])  # the refusal "beyond the table", and a run
+def test_a_table_of_the_most_rows_costs_little_memory(r_max):
+    # a 2000-row table took 16.7 GB (and 90 s) to refuse, and each impact grew as rows^2: the
+    # quadrature joined every radius to its panels, and evaluated Sneddon's integrals at all
+    # their nodes over all pieces at once
+    import tracemalloc
+
+    from shtaerman.theory.profile_impact import solve_profile_impact
+    from shtaerman.theory.profiles import MAX_PROFILE_ROWS
+    from shtaerman.validation import InputError
+
+    law = _tabulated_paraboloid(MAX_PROFILE_ROWS, r_max)
+    tracemalloc.start()
+    try:
+        result = solve_profile_impact(0.7, 3.0, law)
+        result.maxima()
+    except InputError as error:
+        assert r_max == 0.01 and "beyond the table" in str(error)
+    finally:
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+    # measured 55 MB (chunks of 2^20 values per array, a few arrays at once); was 16.7 GB
+    assert peak < 300e6
+
+
+def test_a_dense_tabulated_paraboloid_is_still_the_ateb_solution():
+    import shtaerman as sh
+    from shtaerman.theory.contact import PowerLawContact
+    from shtaerman.theory.impact import solve_impact
+    from shtaerman.theory.profile_impact import solve_profile_impact
+
+    law = _tabulated_paraboloid(2000, 0.05)
+    ours = solve_profile_impact(0.7, 3.0, law)
+    ateb = solve_impact(0.7, 3.0, PowerLawContact(sh.PowerLawIndenter(10.0, 2.0), 1e7))
+    for name in ("x_c", "P_c", "a_c", "t_c", "impulse_simpson"):
+        # round-off of 2000-piece sums (as the 101-row test in test_sneddon.py, 1e-10 on t_c)
+        assert getattr(ours, name) == pytest.approx(getattr(ateb, name), rel=1e-10), name

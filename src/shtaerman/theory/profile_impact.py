@@ -40,6 +40,12 @@ PANELS = 16
 """Equal panels over [0, a_c] (the work) and over u in [0, 1] (the time), joined by a tabulated
 profile's radii; on each, 16 Gauss-Legendre nodes carry a degree-15 Legendre interpolant whose
 antiderivative gives the integral to any point (round-off for an analytic integrand)."""
+TABLE_PANELS = 128
+"""Most of a tabulated profile's radii that join the panels: a denser table joins every k-th
+radius, so that the quadrature's nodes (at each of which Sneddon's integrals run over the
+table's pieces) do not grow with its rows, and the cost stays linear in them, not quadratic.
+Between the joined radii the integrands are smooth but for kinks of the order of the
+interpolant's own error (the jumps of G'' of a dense table)."""
 
 
 @dataclass(frozen=True)
@@ -74,7 +80,9 @@ def _panels(law: SneddonContact, top: float, to_the_equator: bool = False) -> np
         ends = np.union1d(ends, top - (top - ends[-2]) * 0.5 ** np.arange(1, 40))
     elif not law.sphere:
         radii = law.indenter.radii
-        ends = np.union1d(ends, radii[radii < top])
+        radii = radii[radii < top]
+        step = -(-radii.size // TABLE_PANELS)  # every radius, or every step-th of a dense table
+        ends = np.union1d(ends, radii[::step])
     return ends
 
 
