@@ -374,3 +374,13 @@ def test_a_dense_tabulated_paraboloid_is_still_the_ateb_solution():
     for name in ("x_c", "P_c", "a_c", "t_c", "impulse_simpson"):
         # round-off of 2000-piece sums (as the 101-row test in test_sneddon.py, 1e-10 on t_c)
         assert getattr(ours, name) == pytest.approx(getattr(ateb, name), rel=1e-10), name
+
+
+def test_the_profile_help_states_the_row_limit_the_reader_applies(monkeypatch):
+    # the help's "3 to 2000 rows" was typed apart from MAX_PROFILE_ROWS
+    from shtaerman import vocabulary
+    from shtaerman.theory import profiles
+
+    assert profiles.MAX_PROFILE_ROWS is vocabulary.MAX_PROFILE_ROWS
+    help_text = vocabulary.entry("profile").meaning
+    assert f"3 to {vocabulary.MAX_PROFILE_ROWS} rows" in help_text
