@@ -384,3 +384,25 @@ def test_the_profile_help_states_the_row_limit_the_reader_applies(monkeypatch):
     assert profiles.MAX_PROFILE_ROWS is vocabulary.MAX_PROFILE_ROWS
     help_text = vocabulary.entry("profile").meaning
     assert f"3 to {vocabulary.MAX_PROFILE_ROWS} rows" in help_text
+
+
+def test_a_dense_sampled_power_law_keeps_its_accuracy():
+    # the cheap quadrature joins only some of a dense table's radii: its error must stay at
+    # the interpolant's own (a 1000-row table of 5 r^1.5 joined to every radius: 2.2e-8)
+    import numpy as np
+
+    import shtaerman as sh
+    from shtaerman.theory.contact import PowerLawContact
+    from shtaerman.theory.impact import solve_impact
+    from shtaerman.theory.profile_impact import solve_profile_impact
+    from shtaerman.theory.profiles import TabulatedIndenter
+    from shtaerman.theory.sneddon import SneddonContact
+
+    paper = sh.PowerLawIndenter(5.0, 1.5)
+    r = np.linspace(0.0, 0.05, 2000)
+    ours = solve_profile_impact(
+        0.7, 3.0, SneddonContact(TabulatedIndenter(r, paper.profile(r)), 1e7)
+    )
+    ateb = solve_impact(0.7, 3.0, PowerLawContact(paper, 1e7))
+    # measured 1e-8 (128 joined radii gave 1.9e-6)
+    assert ours.t_c == pytest.approx(ateb.t_c, rel=1e-7)

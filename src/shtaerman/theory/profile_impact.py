@@ -40,12 +40,13 @@ PANELS = 16
 """Equal panels over [0, a_c] (the work) and over u in [0, 1] (the time), joined by a tabulated
 profile's radii; on each, 16 Gauss-Legendre nodes carry a degree-15 Legendre interpolant whose
 antiderivative gives the integral to any point (round-off for an analytic integrand)."""
-TABLE_PANELS = 128
+TABLE_PANELS = 512
 """Most of a tabulated profile's radii that join the panels: a denser table joins every k-th
 radius, so that the quadrature's nodes (at each of which Sneddon's integrals run over the
 table's pieces) do not grow with its rows, and the cost stays linear in them, not quadratic.
-Between the joined radii the integrands are smooth but for kinks of the order of the
-interpolant's own error (the jumps of G'' of a dense table)."""
+Between the joined radii the integrands have kinks of the size of the jumps of G'' (the
+interpolant's own error): a 2000-row sampled z = 5 r^1.5 gives t_c 1e-8 from the Ateb value
+(128 radii: 2e-6), a 1000-row one the same as when every radius was joined."""
 
 
 @dataclass(frozen=True)
