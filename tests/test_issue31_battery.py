@@ -406,3 +406,47 @@ def test_a_dense_sampled_power_law_keeps_its_accuracy():
     ateb = solve_impact(0.7, 3.0, PowerLawContact(paper, 1e7))
     # measured 1e-8 (128 joined radii gave 1.9e-6)
     assert ours.t_c == pytest.approx(ateb.t_c, rel=1e-7)
+
+
+COMMENTED = "# drop test, 2026-11-28\ndepth [m],force [N]\n\n# loading\n1e-4,1.0\n2e-4,{second}\n"
+
+
+@pytest.mark.parametrize(
+    ("second", "said"),
+    [
+        ("x", "row 6: column 'force' holds 'x', not a number"),  # _column
+        ("inf", "row 6: column 'force' holds 'inf', not a finite number"),
+    ],
+)
+def test_fit_takes_comment_lines_and_names_the_file_line(capsys, tmp_path, second, said):
+    # a '#' line was read as the header ("header cell '# drop test' is not 'name [unit]'"),
+    # and a row's number counted data rows only, not the blank and comment lines
+    data = tmp_path / "commented.csv"
+    data.write_text(COMMENTED.format(second=second))
+    assert said in error_line(capsys, "fit", "indentation", data)
+
+
+@pytest.mark.parametrize(
+    ("kind", "text", "said"),
+    [
+        ("rebound", "velocity [m/s],restitution [1]\n# v2\n1,0.8\n\n2,1.5\n", "row 5:"),
+        ("force-history", "# t\ntime [s],force [N]\n0,0\n#\n1e-3,5\n1e-3,0\n", "row 6:"),
+    ],
+)
+def test_a_refused_value_names_its_file_line(tmp_path, kind, text, said):
+    from shtaerman.fitting.data import measurement
+    from shtaerman.validation import InputError
+
+    path = tmp_path / "d.csv"
+    path.write_text(text)
+    with pytest.raises(InputError, match=said):
+        measurement(kind, path)
+
+
+def test_a_commented_file_is_read_as_its_rows(tmp_path):
+    from shtaerman.fitting.data import measurement
+
+    path = tmp_path / "d.csv"
+    path.write_text(COMMENTED.format(second="2.8"))
+    data = measurement("indentation", path)
+    assert data.rows == 2 and data.columns["force"].tolist() == [1.0, 2.8]
