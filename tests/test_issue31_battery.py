@@ -450,3 +450,48 @@ def test_a_commented_file_is_read_as_its_rows(tmp_path):
     path.write_text(COMMENTED.format(second="2.8"))
     data = measurement("indentation", path)
     assert data.rows == 2 and data.columns["force"].tolist() == [1.0, 2.8]
+
+
+def test_effects_refuses_what_its_inputs_decide_before_any_progress_line(capsys):
+    # the pad alone's thickness refusal came after "run 1/6: none ... done in 3.2 s" and
+    # "run 2/6: pad alone ...": the paper's problem had run, for nothing
+    code = main(["effects", "--thickness", "1e-9"])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == ""
+    assert err.startswith("shtaerman: error: --thickness: must lie in") and err.count("\n") == 1
+
+
+def test_the_api_effects_refuses_before_any_progress_line():
+    import shtaerman as sh
+    from shtaerman.validation import InputError
+
+    lines = []
+    problem = sh.problem.parts(
+        sh.PowerLawIndenter(5.0, 1.5),
+        sh.Material(7.5e6, 0.5, 1100.0),
+        mass=0.7,
+        velocity=3.0,
+        thickness=1e-9,
+    )
+    with pytest.raises(InputError, match="thickness"):
+        sh.effects(problem, progress=lines.append)
+    assert lines == []
+
+
+@pytest.mark.parametrize(
+    ("kind", "column"), [("resilience", "resilience [1]"), ("rebound", "restitution [1]")]
+)
+def test_fit_refuses_a_loss_without_a_prony_series(capsys, tmp_path, kind, column):
+    # exit 0 with "E2 not identifiable": an elastic body has no loss (e = 1 at every
+    # velocity), and a waves correction (density2) is an FE ratio held fixed in the fit
+    data = tmp_path / "drops.csv"
+    data.write_text(f"velocity [m/s],{column}\n1,0.8\n2,0.75\n3,0.7\n")
+    line = error_line(capsys, "fit", kind, data, "--mass", "0.01")
+    assert line.startswith("--prony: ") and "below 1" in line
+
+
+def test_fit_takes_a_resilience_with_a_prony_series(capsys, tmp_path):
+    data = tmp_path / "drops.csv"
+    data.write_text("velocity [m/s],resilience [1]\n1,0.8\n2,0.75\n3,0.7\n")
+    code = main(["fit", "resilience", str(data), "--mass", "0.01", "--prony", "0.5:1e-3"])
+    assert code == 0, capsys.readouterr().err
