@@ -13,8 +13,9 @@ radius a, with x = delta(a):
 - impulse 2 M v0 and the paper's Simpson estimate (t_c/3) (P_c + 4 P(t_c/2)).
 
 Each integral is Gauss-Legendre on panels between the table's radii (a tabulated profile's
-delta is smooth between them; of a dense table, between every k-th, :data:`TABLE_PANELS`), with a Legendre interpolant on each panel for the integral to
-any point; the history inverts t(u) by bisection on that interpolant.
+delta is smooth between them; of a dense table, between every k-th, :data:`TABLE_PANELS`),
+with a Legendre interpolant on each panel for the integral to any point; the history inverts
+t(u) by bisection on that interpolant.
 """
 
 from __future__ import annotations
