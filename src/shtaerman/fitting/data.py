@@ -11,8 +11,6 @@ an :class:`InputError` naming the column, or the row by its line number in the f
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import re
 from collections.abc import Mapping
@@ -22,7 +20,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..input_file import read_input_csv
+from ..input_file import csv_rows, read_input_csv
 from ..validation import InputError, plain_float
 
 __all__ = [
@@ -144,12 +142,7 @@ def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]
     """The header's (name, unit) cells, the data rows of ``path`` and their line numbers
     (blank lines and lines starting with ``#``, comments, skipped)."""
     where = str(path)
-    reader = csv.reader(io.StringIO(read_input_csv(path, "data", "DATA")))
-    rows, lines = [], []
-    for row in reader:
-        if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
-            rows.append(row)
-            lines.append(reader.line_num)
+    rows, lines = csv_rows(read_input_csv(path, "data", "DATA"))
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
     return _header(where, rows[0]), rows[1:], lines[1:]

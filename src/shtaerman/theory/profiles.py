@@ -14,8 +14,6 @@ cubic G are closed forms (:func:`shtaerman.theory.sneddon.tabulated_integrals`).
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import sys
 from dataclasses import dataclass, field
@@ -25,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
-from ..input_file import read_input_csv
+from ..input_file import csv_rows, read_input_csv
 from ..validation import InputError, bound_text, plain_float, validate_positive
 from ..vocabulary import MAX_PROFILE_ROWS, MAX_SPHERE_RADIUS
 
@@ -111,7 +109,8 @@ def _float(text: str, row: int, column: str, path: Path) -> float:
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """The columns r and z (m) of a profile CSV with a header naming ``r`` and ``z``.
+    """The columns r and z (m) of a profile CSV with a header naming ``r`` and ``z`` (blank
+    lines and ``#`` comment lines skipped; a row is named by its line in the file).
 
     Raises
     ------
@@ -119,8 +118,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         One line naming the file and the row or column at fault.
     """
     path = Path(path)
-    rows = list(csv.reader(io.StringIO(read_input_csv(path, "profile", "profile"))))
-    rows = [row for row in rows if any(cell.strip() for cell in row)]
+    rows, lines = csv_rows(read_input_csv(path, "profile", "profile"))
     header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
     if missing:
@@ -134,7 +132,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         raise InputError(f"profile: {str(path)!r} names column {twice} twice; keep one", "profile")
     columns = {name: header.index(name) for name in ("r", "z")}
     values = []
-    for number, row in enumerate(rows[1:], start=2):
+    for number, row in zip(lines[1:], rows[1:], strict=True):
         for name, index in columns.items():
             if index >= len(row):
                 raise InputError(
