@@ -510,3 +510,16 @@ def test_a_profile_csv_takes_comments_and_names_the_file_line(tmp_path):
     path.write_text("# a measured tip\nr [m],z [m]\n0,0\n# mid\n1e-3,1e-5\n2e-3,4e-5\n")
     r, z = read_profile_csv(path)
     assert r.tolist() == [0.0, 1e-3, 2e-3] and z.tolist() == [0.0, 1e-5, 4e-5]
+
+
+def test_a_profile_table_error_names_the_file_line(tmp_path):
+    from shtaerman.theory.profiles import TabulatedIndenter
+    from shtaerman.validation import InputError
+
+    path = tmp_path / "tip.csv"
+    path.write_text("# a measured tip\nr [m],z [m]\n0,0\n1e-3,1e-5\n\n5e-4,2e-5\n")
+    with pytest.raises(InputError, match=r"row 6 has r = 0\.0005 after 0\.001"):  # said row 4
+        TabulatedIndenter.from_csv(path)
+    path.write_text("# a measured tip\nr [m],z [m]\n1e-4,0\n1e-3,1e-5\n2e-3,4e-5\n")
+    with pytest.raises(InputError, match=r"row 3 \(the first\) must be the tip"):  # said row 2
+        TabulatedIndenter.from_csv(path)

@@ -109,8 +109,21 @@ def _float(text: str, row: int, column: str, path: Path) -> float:
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """The columns r and z (m) of a profile CSV (:func:`_read_rows`).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        One line naming the file and the row (its line in the file) or column at fault.
+    """
+    r, z, _ = _read_rows(Path(path))
+    return r, z
+
+
+def _read_rows(path: Path) -> tuple[np.ndarray, np.ndarray, list[int]]:
     """The columns r and z (m) of a profile CSV with a header naming ``r`` and ``z`` (blank
-    lines and ``#`` comment lines skipped; a row is named by its line in the file).
+    lines and ``#`` comment lines skipped; a row is named by its line in the file), and the
+    line of each row.
 
     Raises
     ------
@@ -139,8 +152,8 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
                     f"profile: {str(path)!r} row {number}, column {name}: missing", "profile"
                 )
         values.append([_float(row[columns[n]].strip(), number, n, path) for n in ("r", "z")])
-    table = np.array(values, dtype=float).reshape(-1, 2)
-    return table[:, 0], table[:, 1]
+    table = np.array(values, dtype=float).reshape(-1, 2) + 0.0  # -0.0 is the tip 0
+    return table[:, 0], table[:, 1], lines[1:]
 
 
 def _header_name(cell: str, path: Path) -> str:
@@ -159,8 +172,10 @@ _SMALLEST_R, _LARGEST_R = math.sqrt(sys.float_info.min), math.sqrt(sys.float_inf
 """The radii whose squares (the interpolation's variable) are normal floats, in m."""
 
 
-def _check_table(r: np.ndarray, z: np.ndarray) -> None:
-    """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing."""
+def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -> None:
+    """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing. Row
+    k is named by ``lines[k]``, its file line (None: k + 2, the rows under a header)."""
+    line = (lambda k: lines[k]) if lines is not None else (lambda k: k + 2)
     if r.size < 3:
         raise InputError(f"profile: needs at least 3 rows (r, z), got {r.size}", "profile")
     if r.size > MAX_PROFILE_ROWS:
@@ -171,7 +186,7 @@ def _check_table(r: np.ndarray, z: np.ndarray) -> None:
         )
     if r[0] != 0.0 or z[0] != 0.0:
         raise InputError(
-            f"profile: row 2 (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
+            f"profile: row {line(0)} (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
             f"z = {z[0]:g}",
             "profile",
         )
@@ -187,7 +202,7 @@ def _check_table(r: np.ndarray, z: np.ndarray) -> None:
     for name, values in (("r", r), ("z", z)):
         step = np.flatnonzero(np.diff(values) <= 0.0)
         if step.size:
-            row = int(step[0]) + 3  # the header is row 1, the tip row 2
+            row = line(int(step[0]) + 1)
             raise InputError(
                 f"profile: column {name} must increase strictly from row to row; row {row} "
                 f"has {name} = {values[step[0] + 1]:g} after {values[step[0]]:g}",
@@ -229,8 +244,9 @@ class TabulatedIndenter:
     @classmethod
     def from_csv(cls, path: str | Path) -> TabulatedIndenter:
         """The profile of a CSV file with columns r and z in m (header row; see the class)."""
-        r, z = read_profile_csv(path)
+        r, z, lines = _read_rows(Path(path))
         try:
+            _check_table(r, z, lines)  # its rows named by their file lines
             return cls(r, z, str(path))
         except InputError as error:
             raise InputError(f"{error} (in {str(path)!r})", "profile") from None
