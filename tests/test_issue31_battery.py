@@ -325,3 +325,201 @@ def test_sweep_names_its_scheduler_option(capsys, tmp_path):
     # "scheduler: cannot connect to ''": the API's keyword (an empty address fails at once)
     argv = ["sweep", "impact-velocity", "--scheduler=", "--out", tmp_path / "s"]
     assert error_line(capsys, *argv).startswith("--scheduler: cannot connect to ''")
+
+
+def _tabulated_paraboloid(rows: int, r_max: float):
+    import numpy as np
+
+    from shtaerman.theory.profiles import TabulatedIndenter
+    from shtaerman.theory.sneddon import SneddonContact
+
+    r = np.linspace(0.0, r_max, rows)
+    return SneddonContact(TabulatedIndenter(r, r**2 / (2 * 0.05)), 1e7)  # R = 50 mm
+
+
+@pytest.mark.parametrize("r_max", [0.01, 0.05])  # the refusal "beyond the table", and a run
+def test_a_table_of_the_most_rows_costs_little_memory(r_max):
+    # a 2000-row table took 16.7 GB (and 90 s) to refuse, and each impact grew as rows^2: the
+    # quadrature joined every radius to its panels, and evaluated Sneddon's integrals at all
+    # their nodes over all pieces at once
+    import tracemalloc
+
+    from shtaerman.theory.profile_impact import solve_profile_impact
+    from shtaerman.theory.profiles import MAX_PROFILE_ROWS
+    from shtaerman.validation import InputError
+
+    law = _tabulated_paraboloid(MAX_PROFILE_ROWS, r_max)
+    tracemalloc.start()
+    try:
+        result = solve_profile_impact(0.7, 3.0, law)
+        result.maxima()
+    except InputError as error:
+        assert r_max == 0.01 and "beyond the table" in str(error)
+    finally:
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+    # measured 55 MB (chunks of 2^20 values per array, a few arrays at once); was 16.7 GB
+    assert peak < 300e6
+
+
+def test_a_dense_tabulated_paraboloid_is_still_the_ateb_solution():
+    import shtaerman as sh
+    from shtaerman.theory.contact import PowerLawContact
+    from shtaerman.theory.impact import solve_impact
+    from shtaerman.theory.profile_impact import solve_profile_impact
+
+    law = _tabulated_paraboloid(2000, 0.05)
+    ours = solve_profile_impact(0.7, 3.0, law)
+    ateb = solve_impact(0.7, 3.0, PowerLawContact(sh.PowerLawIndenter(10.0, 2.0), 1e7))
+    for name in ("x_c", "P_c", "a_c", "t_c", "impulse_simpson"):
+        # round-off of 2000-piece sums (as the 101-row test in test_sneddon.py, 1e-10 on t_c)
+        assert getattr(ours, name) == pytest.approx(getattr(ateb, name), rel=1e-10), name
+
+
+def test_the_profile_help_states_the_row_limit_the_reader_applies(monkeypatch):
+    # the help's "3 to 2000 rows" was typed apart from MAX_PROFILE_ROWS
+    from shtaerman import vocabulary
+    from shtaerman.theory import profiles
+
+    assert profiles.MAX_PROFILE_ROWS is vocabulary.MAX_PROFILE_ROWS
+    help_text = vocabulary.entry("profile").meaning
+    assert f"3 to {vocabulary.MAX_PROFILE_ROWS} rows" in help_text
+
+
+def test_a_dense_sampled_power_law_keeps_its_accuracy():
+    # the cheap quadrature joins only some of a dense table's radii: its error must stay at
+    # the interpolant's own (a 1000-row table of 5 r^1.5 joined to every radius: 2.2e-8)
+    import numpy as np
+
+    import shtaerman as sh
+    from shtaerman.theory.contact import PowerLawContact
+    from shtaerman.theory.impact import solve_impact
+    from shtaerman.theory.profile_impact import solve_profile_impact
+    from shtaerman.theory.profiles import TabulatedIndenter
+    from shtaerman.theory.sneddon import SneddonContact
+
+    paper = sh.PowerLawIndenter(5.0, 1.5)
+    r = np.linspace(0.0, 0.05, 2000)
+    ours = solve_profile_impact(
+        0.7, 3.0, SneddonContact(TabulatedIndenter(r, paper.profile(r)), 1e7)
+    )
+    ateb = solve_impact(0.7, 3.0, PowerLawContact(paper, 1e7))
+    # measured 1e-8 (128 joined radii gave 1.9e-6)
+    assert ours.t_c == pytest.approx(ateb.t_c, rel=1e-7)
+
+
+COMMENTED = "# drop test, 2026-11-28\ndepth [m],force [N]\n\n# loading\n1e-4,1.0\n2e-4,{second}\n"
+
+
+@pytest.mark.parametrize(
+    ("second", "said"),
+    [
+        ("x", "row 6: column 'force' holds 'x', not a number"),  # _column
+        ("inf", "row 6: column 'force' holds 'inf', not a finite number"),
+    ],
+)
+def test_fit_takes_comment_lines_and_names_the_file_line(capsys, tmp_path, second, said):
+    # a '#' line was read as the header ("header cell '# drop test' is not 'name [unit]'"),
+    # and a row's number counted data rows only, not the blank and comment lines
+    data = tmp_path / "commented.csv"
+    data.write_text(COMMENTED.format(second=second))
+    assert said in error_line(capsys, "fit", "indentation", data)
+
+
+@pytest.mark.parametrize(
+    ("kind", "text", "said"),
+    [
+        ("rebound", "velocity [m/s],restitution [1]\n# v2\n1,0.8\n\n2,1.5\n", "row 5:"),
+        ("force-history", "# t\ntime [s],force [N]\n0,0\n#\n1e-3,5\n1e-3,0\n", "row 6:"),
+    ],
+)
+def test_a_refused_value_names_its_file_line(tmp_path, kind, text, said):
+    from shtaerman.fitting.data import measurement
+    from shtaerman.validation import InputError
+
+    path = tmp_path / "d.csv"
+    path.write_text(text)
+    with pytest.raises(InputError, match=said):
+        measurement(kind, path)
+
+
+def test_a_commented_file_is_read_as_its_rows(tmp_path):
+    from shtaerman.fitting.data import measurement
+
+    path = tmp_path / "d.csv"
+    path.write_text(COMMENTED.format(second="2.8"))
+    data = measurement("indentation", path)
+    assert data.rows == 2 and data.columns["force"].tolist() == [1.0, 2.8]
+
+
+def test_effects_refuses_what_its_inputs_decide_before_any_progress_line(capsys):
+    # the pad alone's thickness refusal came after "run 1/6: none ... done in 3.2 s" and
+    # "run 2/6: pad alone ...": the paper's problem had run, for nothing
+    code = main(["effects", "--thickness", "1e-9"])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == ""
+    assert err.startswith("shtaerman: error: --thickness: must lie in") and err.count("\n") == 1
+
+
+def test_the_api_effects_refuses_before_any_progress_line():
+    import shtaerman as sh
+    from shtaerman.validation import InputError
+
+    lines = []
+    problem = sh.problem.parts(
+        sh.PowerLawIndenter(5.0, 1.5),
+        sh.Material(7.5e6, 0.5, 1100.0),
+        mass=0.7,
+        velocity=3.0,
+        thickness=1e-9,
+    )
+    with pytest.raises(InputError, match="thickness"):
+        sh.effects(problem, progress=lines.append)
+    assert lines == []
+
+
+@pytest.mark.parametrize(
+    ("kind", "column"), [("resilience", "resilience [1]"), ("rebound", "restitution [1]")]
+)
+def test_fit_refuses_a_loss_without_a_prony_series(capsys, tmp_path, kind, column):
+    # exit 0 with "E2 not identifiable": an elastic body has no loss (e = 1 at every
+    # velocity), and a waves correction (density2) is an FE ratio held fixed in the fit
+    data = tmp_path / "drops.csv"
+    data.write_text(f"velocity [m/s],{column}\n1,0.8\n2,0.75\n3,0.7\n")
+    line = error_line(capsys, "fit", kind, data, "--mass", "0.01")
+    assert line.startswith("--prony: ") and "below 1" in line
+
+
+def test_fit_takes_a_resilience_with_a_prony_series(capsys, tmp_path):
+    data = tmp_path / "drops.csv"
+    data.write_text("velocity [m/s],resilience [1]\n1,0.8\n2,0.75\n3,0.7\n")
+    code = main(["fit", "resilience", str(data), "--mass", "0.01", "--prony", "0.5:1e-3"])
+    assert code == 0, capsys.readouterr().err
+
+
+def test_a_profile_csv_takes_comments_and_names_the_file_line(tmp_path):
+    # the profile's reader took a '#' line for its header, and counted rows without the
+    # blank lines: the same reader as fit's now (input_file.csv_rows)
+    from shtaerman.theory.profiles import read_profile_csv
+    from shtaerman.validation import InputError
+
+    path = tmp_path / "tip.csv"
+    path.write_text("# a measured tip\nr [m],z [m]\n0,0\n\n1e-3,1e-5\n2e-3,x\n")
+    with pytest.raises(InputError, match="row 6, column z"):
+        read_profile_csv(path)
+    path.write_text("# a measured tip\nr [m],z [m]\n0,0\n# mid\n1e-3,1e-5\n2e-3,4e-5\n")
+    r, z = read_profile_csv(path)
+    assert r.tolist() == [0.0, 1e-3, 2e-3] and z.tolist() == [0.0, 1e-5, 4e-5]
+
+
+def test_a_profile_table_error_names_the_file_line(tmp_path):
+    from shtaerman.theory.profiles import TabulatedIndenter
+    from shtaerman.validation import InputError
+
+    path = tmp_path / "tip.csv"
+    path.write_text("# a measured tip\nr [m],z [m]\n0,0\n1e-3,1e-5\n\n5e-4,2e-5\n")
+    with pytest.raises(InputError, match=r"row 6 has r = 0\.0005 after 0\.001"):  # said row 4
+        TabulatedIndenter.from_csv(path)
+    path.write_text("# a measured tip\nr [m],z [m]\n1e-4,0\n1e-3,1e-5\n2e-3,4e-5\n")
+    with pytest.raises(InputError, match=r"row 3 \(the first\) must be the tip"):  # said row 2
+        TabulatedIndenter.from_csv(path)

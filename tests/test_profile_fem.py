@@ -48,12 +48,12 @@ def test_a_tabulated_paraboloid_is_the_power_law_in_the_fem(curves, tmp_path):
 
 def test_routes_without_a_profile_refuse_it_in_one_line():
     ball = sh.SphereIndenter(RADIUS)
-    with pytest.raises(sh.InputError, match=r"^profile: a viscoelastic body \(prony\)") as no:
+    with pytest.raises(sh.InputError, match=r"^sphere_radius: a viscoelastic body \(prony\)") as no:
         sh.Problem.impact(
             ball, sh.Material(7.5e6, 0.5, 1100.0), mass=0.7, velocity=3.0, prony="0.3:1e-3"
         )
-    assert no.value.parameter == "profile" and "\n" not in str(no.value)
-    with pytest.raises(sh.InputError, match=r"^profile: a viscoelastic body"):
+    assert no.value.parameter == "sphere_radius" and "\n" not in str(no.value)
+    with pytest.raises(sh.InputError, match=r"^sphere_radius: a viscoelastic body"):
         sh.contact(ball, RUBBER, depths=DEPTHS, prony="0.3:1e-3", rate=0.1)
     runs = {cell for cell, verdict in support_table("sphere") if verdict == "runs"}
     # every elastic (not relaxing) cell the power law runs

@@ -55,7 +55,7 @@ def test_the_problem_takes_a_sphere_at_finite_strain_but_not_on_a_relaxing_body(
     ball = sh.SphereIndenter(RADIUS)
     impact = sh.Problem.impact(ball, RUBBER, mass=0.7, velocity=1.0, model="neo-hookean")
     assert impact.cell.model == "rubber"
-    with pytest.raises(sh.InputError, match=r"^profile: a viscoelastic body \(prony\) takes"):
+    with pytest.raises(sh.InputError, match=r"^sphere_radius: a viscoelastic body \(prony\) takes"):
         sh.Problem.impact(
             ball, RUBBER, mass=0.7, velocity=1.0, model="neo-hookean", prony="0.3:1e-3"
         )

@@ -114,7 +114,7 @@ def test_a_profile_csv_is_read_beside_the_sweep_file(tmp_path, monkeypatch):
         (
             'sphere_radius = 0.01\nprony = "0.5:1e-3"',
             "mass = [0.7]",
-            "case 0 (mass = 0.7): profile: a viscoelastic body (prony) takes the power law",
+            "case 0 (mass = 0.7): sphere_radius: a viscoelastic body (prony) takes the power law",
         ),
     ],
 )

@@ -7,13 +7,15 @@ wrong path can neither hang the run nor exhaust the memory.
 
 from __future__ import annotations
 
+import csv
+import io
 import os
 import stat
 from pathlib import Path
 
 from .validation import InputError
 
-__all__ = ["MAX_INPUT_BYTES", "read_input_csv", "read_input_text"]
+__all__ = ["MAX_INPUT_BYTES", "csv_rows", "read_input_csv", "read_input_text"]
 
 MAX_INPUT_BYTES = 200 << 20
 """Largest input file read, in bytes (200 MiB: some 10 million rows of a two-column CSV)."""
@@ -87,3 +89,16 @@ def read_input_csv(path: str | Path, option: str, what: str) -> str:
                 f"{what}: {str(path)!r}: column separator {shown} found; use ','", option
             )
     return text
+
+
+def csv_rows(text: str) -> tuple[list[list[str]], list[int]]:
+    """The rows of the CSV ``text`` (the header first) and each one's line number in the file,
+    blank lines and lines starting with ``#`` (comments) skipped, so that an error names a
+    row as an editor shows it."""
+    reader = csv.reader(io.StringIO(text))
+    rows, lines = [], []
+    for row in reader:
+        if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
+            rows.append(row)
+            lines.append(reader.line_num)
+    return rows, lines

@@ -22,7 +22,14 @@ if TYPE_CHECKING:
     from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
 
-__all__ = ["DIFFERENCES", "SETTINGS_OPTIONS", "DynamicResult", "dynamic", "dynamic_settings"]
+__all__ = [
+    "DIFFERENCES",
+    "SETTINGS_OPTIONS",
+    "DynamicResult",
+    "check_dynamic",
+    "dynamic",
+    "dynamic_settings",
+]
 
 SETTINGS_OPTIONS = (
     "time_steps",
@@ -223,17 +230,10 @@ def dynamic(
 
     physics = dict(model=model, prony=prony, thickness=thickness, base=base, **rubber)
     problem = _problem(indenter, body, mass, velocity, physics)
-    check_outputs(out, force=force, estimate=estimate, figure_format=figure_format)
-    numerics = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
-    numerics.update(layer_rate=layer_rate, settings=settings, out=out, force=force or None)
-    numerics.update(refine=refine != 1.0 or None, estimate=not estimate or None)
-    numerics.update(figure_format=figure_format != "png" or None)
-    check_options(problem, [name for name, value in numerics.items() if value is not None])
-    _density(problem.body.material)
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
-    checked = _checked_linear(problem, settings, options, refine, estimate)
-    check_figure_format(figure_format)
+    outputs = dict(out=out, force=force, figure_format=figure_format)
+    checked = check_dynamic(problem, refine, estimate, settings, **options, **outputs)
     folder = output_folder(out, force=force)  # checked before the run
     case = _case(problem, checked, options, refine, estimate, snapshots=folder is not None)
     check_separated(case.result.summary(), float(case.result.t[-1]))
@@ -244,6 +244,64 @@ def dynamic(
             _write_figures(case, result, stage, figure_format, problem.body.finite)
     warn_failed_checks(result, problem)
     return result
+
+
+def check_dynamic(
+    problem: Problem,
+    refine: float = 1.0,
+    estimate: bool = True,
+    settings: DynamicSettings | None = None,
+    *,
+    out: str | Path | None = None,
+    force: bool = False,
+    figure_format: str = "png",
+    **options: Any,
+) -> tuple[float, DynamicSettings] | None:
+    """Every input of ``dynamic(problem, ...)`` (the same keywords; ``options`` the
+    ``time_steps`` ... ``layer_rate`` ones) checked, nothing computed: what a run would refuse
+    for its inputs alone, it refuses now (:func:`shtaerman.effects` checks all its runs so).
+
+    Returns
+    -------
+    tuple or None
+        The linear body's refine and refined settings (None: a rubber, whose numerics
+        :func:`shtaerman.study.dynamic.case.finite_case` checks).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        As :func:`dynamic`.
+    """
+    unknown = sorted(set(options) - set(SETTINGS_OPTIONS))
+    if unknown:
+        raise TypeError(f"unexpected keyword arguments {unknown}")
+    options = {name: options.get(name) for name in SETTINGS_OPTIONS}
+    check_outputs(out, force=force, estimate=estimate, figure_format=figure_format)
+    numerics = {name: options[name] for name in ("mesh_margin", "domain_factor", "growth")}
+    numerics.update(layer_rate=options["layer_rate"], settings=settings, out=out)
+    numerics.update(force=force or None, refine=refine != 1.0 or None)
+    numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
+    check_options(problem, [name for name, value in numerics.items() if value is not None])
+    _density(problem.body.material)
+    checked = _checked_linear(problem, settings, options, refine, estimate)
+    check_figure_format(figure_format)
+    if checked is not None:
+        _check_impact(problem, checked[1])
+    return checked
+
+
+def _check_impact(problem: Problem, settings: DynamicSettings) -> None:
+    """The linear impact's own checks (the layer's thickness against it, the mesh's size, a
+    viscoelastic impact's duration), as the run makes them first (its warnings are the run's)."""
+    import warnings
+
+    from ..fem.dynamic_contact import check_dynamic_impact
+
+    striker, body = problem.striker, problem.body.material
+    inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity, settings)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        check_dynamic_impact(*inputs, problem.body.prony, problem.interface.coefficient)
 
 
 def _checked_linear(

@@ -5,13 +5,12 @@ The columns each kind of measurement takes (:data:`KIND_COLUMNS`): an indentatio
 data ``velocity [m/s]`` with ``restitution [1]`` and/or ``contact_time [s]`` (the whole time in
 contact); a rebound resilience (ISO 4662) ``velocity [m/s]``, ``resilience [1]`` (the fraction
 of the energy returned, e^2). A unit is taken from the header, else from ``units``, else SI.
-Every problem with the file is an :class:`InputError` naming the column or the row.
+Blank lines and lines starting with ``#`` (comments) are skipped. Every problem with the file is
+an :class:`InputError` naming the column, or the row by its line number in the file.
 """
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import re
 from collections.abc import Mapping
@@ -21,7 +20,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..input_file import read_input_csv
+from ..input_file import csv_rows, read_input_csv
 from ..validation import InputError, plain_float
 
 __all__ = [
@@ -83,11 +82,18 @@ class Measurement:
     """The file's path or ``data`` for values given in Python."""
     units: Mapping[str, str] = field(default_factory=dict)
     """Column name -> the unit it was written in."""
+    lines: tuple[int, ...] | None = None
+    """The file's line number of each data row (blank and ``#`` comment lines counted), or
+    None for values given in Python (then row k is called row k + 2, as under a header)."""
 
     @property
     def rows(self) -> int:
         """Number of data rows."""
         return len(next(iter(self.columns.values())))
+
+    def line(self, index: int) -> int:
+        """The number by which an error names data row ``index`` (0-based): its file line."""
+        return int(self.lines[index]) if self.lines is not None else int(index) + 2
 
 
 def parse_units(text: str | None) -> dict[str, str]:
@@ -132,19 +138,21 @@ def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
     return cells
 
 
-def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]]:
-    """The header's (name, unit) cells and the data rows of ``path``."""
+def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]], list[int]]:
+    """The header's (name, unit) cells, the data rows of ``path`` and their line numbers
+    (blank lines and lines starting with ``#``, comments, skipped)."""
     where = str(path)
-    text = read_input_csv(path, "data", "DATA")
-    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
+    rows, lines = csv_rows(read_input_csv(path, "data", "DATA"))
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
-    return _header(where, rows[0]), rows[1:]
+    return _header(where, rows[0]), rows[1:], lines[1:]
 
 
-def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndarray:
-    """Column ``index`` of the data rows as floats; an InputError names the row (the file's
-    line number, header = 1)."""
+def _column(
+    where: str, name: str, index: int, rows: list[list[str]], lines: list[int]
+) -> np.ndarray:
+    """Column ``index`` of the data rows as floats; an InputError names the row by its file
+    line number (``lines``)."""
     try:  # at once: a million rows in a second; else row by row, to name the bad one
         values = np.array([row[index] for row in rows], dtype=float)
         if np.all(np.isfinite(values)):
@@ -158,11 +166,13 @@ def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndar
             values[number] = plain_float(text)
         except ValueError:
             raise InputError(
-                f"{where}: row {number + 2}: column {name!r} holds {text!r}, not a number", "data"
+                f"{where}: row {lines[number]}: column {name!r} holds {text!r}, not a number",
+                "data",
             ) from None
         if not math.isfinite(values[number]):
             raise InputError(
-                f"{where}: row {number + 2}: column {name!r} holds {text!r}, not a finite number",
+                f"{where}: row {lines[number]}: column {name!r} holds {text!r}, not a finite "
+                "number",
                 "data",
             )
     return values
@@ -171,7 +181,7 @@ def _column(where: str, name: str, index: int, rows: list[list[str]]) -> np.ndar
 def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
     """The columns of ``kind`` read from the CSV at ``path``."""
     where = str(path)
-    header, rows = _read_csv(path)
+    header, rows, lines = _read_csv(path)
     names = [ALIASES.get(name, name) for name, _ in header]
     columns, written = {}, {}
     for name in _wanted(kind, names, where, header):
@@ -186,8 +196,8 @@ def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
         unit = header[index][1]
         unit = unit if unit is not None else units.get(name, measured_unit(name))
         written[name] = unit
-        columns[name] = _column(where, name, index, rows) * _factor(where, name, unit)
-    return Measurement(kind, columns, where, written)
+        columns[name] = _column(where, name, index, rows, lines) * _factor(where, name, unit)
+    return Measurement(kind, columns, where, written, tuple(lines))
 
 
 def article(kind: str) -> str:
@@ -235,14 +245,14 @@ def _check_values(data: Measurement) -> Measurement:
             valid = "in (0, 1]" if name in ("restitution", "resilience") else "> 0"
             valid = "finite" if name in ("force", "time") else valid
             raise InputError(
-                f"{data.source}: row {bad[0] + 2}: column {name!r} must be {valid}, got "
+                f"{data.source}: row {data.line(bad[0])}: column {name!r} must be {valid}, got "
                 f"{values[bad[0]]:g}",
                 "data",
             )
     if data.kind == "force-history":
         _check_history(data)
     if "time" in data.columns and np.any(np.diff(data.columns["time"]) <= 0):
-        row = int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 3
+        row = data.line(int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 1)
         raise InputError(f"{data.source}: row {row}: column 'time' must increase", "data")
     return data
 
@@ -319,7 +329,7 @@ def resampled(data: Measurement, points: int) -> Measurement:
     x = data.columns[axis]
     steps = np.diff(x)
     if np.any(steps <= 0):
-        row = int(np.flatnonzero(steps <= 0)[0]) + 3
+        row = data.line(int(np.flatnonzero(steps <= 0)[0]) + 1)
         raise InputError(
             f"resample: {data.source}: row {row}: column {axis!r} must increase to be resampled "
             "(fit the loading part only), or leave it unset",

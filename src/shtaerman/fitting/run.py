@@ -78,6 +78,27 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
     )
 
 
+def _check_loss(measured: Measurement, problem: Problem) -> None:
+    """Refuse a restitution or resilience below 1, with no contact time, and no Prony series.
+
+    The elastic impact loses no energy (e = 1 at every velocity), so E2 could not move it.
+    Waves (density2) do radiate energy, but the fit holds their FE correction fixed while it
+    fits the exact model (:mod:`.iteration`), so no fitted value moves that loss either: the
+    model's only loss that the unknowns move is the Prony series' hysteresis."""
+    observed = [n for n in ("restitution", "resilience") if n in measured.columns]
+    if problem.body.prony is not None or "contact_time" in measured.columns or not observed:
+        return
+    name = observed[0]
+    if np.all(measured.columns[name] >= 1.0):
+        return
+    raise InputError(
+        f"prony: {name} below 1 needs a loss the fit can move: give the rubber's Prony series "
+        "(g1:tau1,...; fit its weights with --fit prony); the elastic body loses nothing (e = "
+        "1), and the waves' loss (density2) enters as an FE ratio held fixed in the fit",
+        "prony",
+    )
+
+
 def _names(unknowns: Sequence[str] | str) -> list[str]:
     names = [unknowns] if isinstance(unknowns, str) else list(unknowns)
     names = [n.strip() for part in names for n in str(part).split(",") if n.strip()]
@@ -159,6 +180,7 @@ def fit(
     offset = None if "time_offset" in names else time_offset  # fitted: read off the data
     measured, rows_read = _read(kind, data, units, resample, offset, baseline)
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
+    _check_loss(measured, problem)
     refine = validate_positive("refine", refine)
     if needs_fe(problem) and "nu2" in names:
         raise InputError(

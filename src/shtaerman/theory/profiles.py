@@ -14,8 +14,6 @@ cubic G are closed forms (:func:`shtaerman.theory.sneddon.tabulated_integrals`).
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import sys
 from dataclasses import dataclass, field
@@ -25,9 +23,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
-from ..input_file import read_input_csv
+from ..input_file import csv_rows, read_input_csv
 from ..validation import InputError, bound_text, plain_float, validate_positive
-from ..vocabulary import MAX_SPHERE_RADIUS
+from ..vocabulary import MAX_PROFILE_ROWS, MAX_SPHERE_RADIUS
 
 __all__ = [
     "MAX_PROFILE_ROWS",
@@ -36,10 +34,6 @@ __all__ = [
     "TabulatedIndenter",
     "read_profile_csv",
 ]
-
-MAX_PROFILE_ROWS = 2000
-"""Most rows of a tabulated profile (measured: 1000 rows 0.6 GB and 3 s, 2000 rows 1.1 GB and
-4.7 s, 20000 rows 23 GB, for one impact)."""
 
 
 @dataclass(frozen=True)
@@ -115,7 +109,21 @@ def _float(text: str, row: int, column: str, path: Path) -> float:
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """The columns r and z (m) of a profile CSV with a header naming ``r`` and ``z``.
+    """The columns r and z (m) of a profile CSV (:func:`_read_rows`).
+
+    Raises
+    ------
+    shtaerman.validation.InputError
+        One line naming the file and the row (its line in the file) or column at fault.
+    """
+    r, z, _ = _read_rows(Path(path))
+    return r, z
+
+
+def _read_rows(path: Path) -> tuple[np.ndarray, np.ndarray, list[int]]:
+    """The columns r and z (m) of a profile CSV with a header naming ``r`` and ``z`` (blank
+    lines and ``#`` comment lines skipped; a row is named by its line in the file), and the
+    line of each row.
 
     Raises
     ------
@@ -123,8 +131,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         One line naming the file and the row or column at fault.
     """
     path = Path(path)
-    rows = list(csv.reader(io.StringIO(read_input_csv(path, "profile", "profile"))))
-    rows = [row for row in rows if any(cell.strip() for cell in row)]
+    rows, lines = csv_rows(read_input_csv(path, "profile", "profile"))
     header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
     if missing:
@@ -138,15 +145,15 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         raise InputError(f"profile: {str(path)!r} names column {twice} twice; keep one", "profile")
     columns = {name: header.index(name) for name in ("r", "z")}
     values = []
-    for number, row in enumerate(rows[1:], start=2):
+    for number, row in zip(lines[1:], rows[1:], strict=True):
         for name, index in columns.items():
             if index >= len(row):
                 raise InputError(
                     f"profile: {str(path)!r} row {number}, column {name}: missing", "profile"
                 )
         values.append([_float(row[columns[n]].strip(), number, n, path) for n in ("r", "z")])
-    table = np.array(values, dtype=float).reshape(-1, 2)
-    return table[:, 0], table[:, 1]
+    table = np.array(values, dtype=float).reshape(-1, 2) + 0.0  # -0.0 is the tip 0
+    return table[:, 0], table[:, 1], lines[1:]
 
 
 def _header_name(cell: str, path: Path) -> str:
@@ -165,20 +172,21 @@ _SMALLEST_R, _LARGEST_R = math.sqrt(sys.float_info.min), math.sqrt(sys.float_inf
 """The radii whose squares (the interpolation's variable) are normal floats, in m."""
 
 
-def _check_table(r: np.ndarray, z: np.ndarray) -> None:
-    """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing."""
+def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -> None:
+    """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing. Row
+    k is named by ``lines[k]``, its file line (None: k + 2, the rows under a header)."""
+    line = (lambda k: lines[k]) if lines is not None else (lambda k: k + 2)
     if r.size < 3:
         raise InputError(f"profile: needs at least 3 rows (r, z), got {r.size}", "profile")
     if r.size > MAX_PROFILE_ROWS:
         raise InputError(
             f"profile: takes at most {MAX_PROFILE_ROWS} rows (r, z), got {r.size}; resample "
-            "the tip more coarsely (the impact's quadrature grows as rows^2: 2000 rows took "
-            "1.1 GB, 20000 rows 23 GB)",
+            "the tip more coarsely",
             "profile",
         )
     if r[0] != 0.0 or z[0] != 0.0:
         raise InputError(
-            f"profile: row 2 (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
+            f"profile: row {line(0)} (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
             f"z = {z[0]:g}",
             "profile",
         )
@@ -194,7 +202,7 @@ def _check_table(r: np.ndarray, z: np.ndarray) -> None:
     for name, values in (("r", r), ("z", z)):
         step = np.flatnonzero(np.diff(values) <= 0.0)
         if step.size:
-            row = int(step[0]) + 3  # the header is row 1, the tip row 2
+            row = line(int(step[0]) + 1)
             raise InputError(
                 f"profile: column {name} must increase strictly from row to row; row {row} "
                 f"has {name} = {values[step[0] + 1]:g} after {values[step[0]]:g}",
@@ -236,8 +244,9 @@ class TabulatedIndenter:
     @classmethod
     def from_csv(cls, path: str | Path) -> TabulatedIndenter:
         """The profile of a CSV file with columns r and z in m (header row; see the class)."""
-        r, z = read_profile_csv(path)
+        r, z, lines = _read_rows(Path(path))
         try:
+            _check_table(r, z, lines)  # its rows named by their file lines
             return cls(r, z, str(path))
         except InputError as error:
             raise InputError(f"{error} (in {str(path)!r})", "profile") from None

@@ -78,15 +78,37 @@ def _sphere_force_series(t: np.ndarray) -> np.ndarray:
     return np.sum(4.0 * j / (4.0 * j**2 - 1.0) * t[..., None] ** (2 * j + 1), axis=-1)
 
 
+CHUNK_VALUES = 2**20
+"""Most (point, piece, node) values :func:`_piece_integral` holds at once (8 MB each array):
+its memory is bounded whatever the number of points and of the table's rows."""
+
+
 def _piece_integral(
     indenter: TabulatedIndenter, poly: PPoly, X: ArrayLike, moment: bool = False
 ) -> np.ndarray:
     """I(h; X) = 2 Int_0^sqrt(X) h(X - w^2) dw for each X, with h the piecewise polynomial
     ``poly`` of s on the table's pieces [s_k, s_k+1] (times s with ``moment``): exact
-    Gauss-Legendre per piece in w, each piece's polynomial evaluated by Horner."""
-    X = np.asarray(X, dtype=float).reshape(-1, 1, 1)  # (M, 1, 1)
-    pieces = int(np.searchsorted(indenter.radii**2, X.max(initial=0.0))) + 1  # those below X
-    knots = indenter.radii[: pieces + 1] ** 2
+    Gauss-Legendre per piece in w, each piece's polynomial evaluated by Horner. The X are
+    taken in increasing chunks, each over the pieces below its largest X only."""
+    X = np.asarray(X, dtype=float).ravel()
+    order = np.argsort(X)
+    squares = indenter.radii**2
+    result = np.empty_like(X)
+    start = 0
+    while start < X.size:
+        pieces = int(np.searchsorted(squares, X[order[-1]])) + 1
+        size = max(1, CHUNK_VALUES // (pieces * GAUSS_NODES.size))
+        chunk = order[start : start + size]
+        result[chunk] = _pieces_below(squares, poly, X[chunk], moment)
+        start += size
+    return result
+
+
+def _pieces_below(squares: np.ndarray, poly: PPoly, X: np.ndarray, moment: bool) -> np.ndarray:
+    """:func:`_piece_integral` for increasing X, over the pieces below the last X."""
+    X = X.reshape(-1, 1, 1)  # (M, 1, 1)
+    pieces = int(np.searchsorted(squares, X[-1, 0, 0])) + 1  # those below X
+    knots = squares[: pieces + 1]
     coefficients = poly.c[:, : knots.size - 1]
     high = np.sqrt(np.clip(X[..., 0] - knots[:-1], 0.0, None))  # w at s = s_k (M, pieces)
     low = np.sqrt(np.clip(X[..., 0] - knots[1:], 0.0, None))  # w at s = s_k+1

@@ -90,6 +90,32 @@ def _own_input(error: Exception, effect: str | None) -> bool:
     return name in OWN_INPUTS.get(effect or "", ())
 
 
+def _refuses_the_table(variant: Variant, error: Exception) -> bool:
+    """Whether a run's ``error`` is bad input of the whole table, not a row's refusal."""
+    if variant.role == "none" and isinstance(error, InputError):
+        return True  # the paper's own problem: the numerics are bad input for every run
+    return variant.role == "alone" and _own_input(error, variant.effect)  # no run measures it
+
+
+def check_runs(rows: tuple[Variant, ...], given: dict[str, Any]) -> None:
+    """Refuse, before any run, what a run would refuse for the table as a whole
+    (:func:`_refuses_the_table`) for its inputs alone (:func:`shtaerman.api.fem_dynamic.
+    check_dynamic`, nothing computed), so no progress line comes before the refusal."""
+    from ..fem_dynamic import check_dynamic
+
+    for variant in rows:
+        try:
+            problem = Problem(**variant.parts)
+        except InputError:
+            continue  # its combination: the row says so
+        options, _ = _options(problem, given)
+        try:
+            check_dynamic(problem, **options)
+        except InputError as error:
+            if _refuses_the_table(variant, error):
+                raise
+
+
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
     from ..fem_dynamic import dynamic
@@ -106,10 +132,8 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
         result = dynamic(problem, **options)
     except (InputError, NumericalFailureError) as error:
         kind = "refused" if isinstance(error, InputError) else "failed"
-        if variant.role == "none" and isinstance(error, InputError):
-            raise  # the paper's own problem: the numerics are bad input for every run
-        if variant.role == "alone" and _own_input(error, variant.effect):
-            raise  # the effect's own input out of its range: no run can measure it
+        if _refuses_the_table(variant, error):
+            raise
         seconds = time.perf_counter() - start
         return Run(**head, refused=f"{kind}: {error}", seconds=seconds, notes=notes)
     values = {key: float(getattr(result, key)) for key in QUANTITIES}
@@ -132,7 +156,7 @@ def dropped_effects(parts: Parts, rows: tuple[Variant, ...]) -> dict[str, str]:
         try:
             Problem(**variant.parts)
         except InputError as error:
-            if error.parameter == "profile":  # PROFILE_SUPPORT's refusals name it
+            if error.parameter in ("profile", "sphere_radius"):  # PROFILE_SUPPORT's
                 refused[variant.label] = str(error)
     dropped = {}
     for effect in EFFECTS:
@@ -221,6 +245,7 @@ def effects(
     given.update(_numerics(1.0, True, {**more, "layer_rate": layer_rate}))
     parts = parts_of(problem)
     rows, absent = variants(parts)
+    check_runs(rows, given)
     report = progress or (lambda _line: None)
     dropped = dropped_effects(parts, rows)
     for name, reason in dropped.items():  # one line each, before any run
