@@ -247,7 +247,9 @@ def finish_verification(
     """The figures of no study (the Ateb functions for each power-law exponent of the
     studies; a sphere or a tabulated profile has none), results.json and both reports, from
     the studies' entries."""
-    from ..plots.gallery import paper_figures
+    # not from plots.gallery: this process (on dask, the one that runs no study) draws no
+    # field, and gallery's pyvista and VTK cost it ~0.25 s CPU (benchmarks/verify_cost.py)
+    from ..plots.ateb import paper_figures
 
     inputs = [entry["inputs"] for entry in entries.values() if "inputs" in entry]
     exponents = [given["exponent"] for given in inputs if given["exponent"] is not None]
