@@ -628,3 +628,23 @@ def test_shared_figures_load_no_vtk(run, tmp_path):
     figures, pyvista, vtk = json.loads(done.stdout.splitlines()[-1])
     assert figures and (stage / "ateb.png").is_file()  # the Ateb figure was drawn again
     assert not pyvista and not vtk
+
+
+def test_in_process_runs_the_studies_on_one_blas_thread(tmp_path, monkeypatch):
+    # as a dask task does (sweep/verify.py): on two BLAS threads `verify --workers 1` printed
+    # numbers up to 9e-7 (relative) from the default run's (issue 32)
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    folder = shtaerman.output.folder
+    seen = []
+
+    def record(study, *args):
+        seen.append(
+            {info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas"}
+        )
+        return {}
+
+    monkeypatch.setattr(folder, "compute_study", record)
+    with threadpool_limits(limits=2, user_api="blas"):
+        folder.in_process([object()], tmp_path, True, "png", print, lambda study, entry: None)
+    assert seen == [{1}]

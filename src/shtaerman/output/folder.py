@@ -300,9 +300,15 @@ def in_process(
     progress: Callable[[str], None],
     finished: Finished,
 ) -> None:
-    """The :data:`Executor` that runs the studies one after another in this process."""
-    for study in todo:
-        finished(study, compute_study(study, stage, quick, figure_format, progress))
+    """The :data:`Executor` that runs the studies one after another in this process, on one
+    BLAS thread as a dask task runs them (:func:`shtaerman.sweep.verify.verify_task`): with
+    the BLAS's default threads ``--workers 1`` printed other numbers than the default run (up
+    to 9e-7 relative in the finite-strain estimates, issue 32)."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        for study in todo:
+            finished(study, compute_study(study, stage, quick, figure_format, progress))
 
 
 def run_verification(
