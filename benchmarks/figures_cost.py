@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from shtaerman.output.dynamic import SEPARATION_SNAPSHOT
-from shtaerman.plots import curves, dynamic, finite, gallery, impact, revolved, sections
+from shtaerman.plots import ateb, curves, dynamic, finite, gallery, impact, revolved, sections
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study, shipped_studies
 
@@ -138,7 +138,7 @@ def main() -> None:
                 args.profile = None
         print(f"{study.name:<20} {'all':<24} {study_total[0]:7.2f} {study_total[1]:7.2f}")
     for exponent in sorted(exponents):
-        draw = lambda out, n=exponent: gallery.paper_figures(out, [n])  # noqa: E731
+        draw = lambda out, n=exponent: ateb.paper_figures(out, [n])  # noqa: E731
         totals[f"ateb (n = {exponent:g})"] = list(cpu_seconds(draw, args.repeat))
     print("\nper figure kind, summed over the studies:")
     for name, seconds in totals.items():

@@ -13,12 +13,19 @@ import gmsh
 import numpy as np
 import pytest
 
+from shtaerman.fem import mesh as mesh_module
 from shtaerman.fem.mesh import geometry_path, halfspace_mesh
 from shtaerman.validation import InputError
 
 A = 1.0  # refined radius, m
 H0 = 0.1  # coarse smallest size, m
 GROWTH = 0.25
+
+
+@pytest.fixture(autouse=True)
+def _mesh_with_gmsh():
+    """Each test meshes with gmsh, not from the meshes an earlier test left in the process."""
+    mesh_module._unit_meshes.clear()
 
 
 @pytest.fixture(scope="module")
@@ -175,6 +182,24 @@ def test_meshing_is_reproducible_within_a_process():
     again = halfspace_mesh(0.01, smallest_size=0.01 / 40, growth=GROWTH)
     assert first.t.shape == again.t.shape
     np.testing.assert_allclose(first.p, again.p, rtol=0, atol=1e-12)
+
+
+def test_a_scaled_mesh_is_made_once_per_process(monkeypatch):
+    # issue 32: the ladders' levels, the linear and finite-strain runs and the dynamic study's
+    # velocities ask gmsh the same unit-radius mesh again (the dynamic study 18 times, 3 distinct)
+    calls = []
+    generate = mesh_module._generate
+    monkeypatch.setattr(
+        mesh_module, "_generate", lambda *args: calls.append(args) or generate(*args)
+    )
+    first = halfspace_mesh(A, domain_radius=1e3, smallest_size=0.2)
+    twice = halfspace_mesh(2.0 * A, domain_radius=2e3, smallest_size=0.4)
+    assert len(calls) == 1
+    np.testing.assert_array_equal(twice.t, first.t)
+    np.testing.assert_array_equal(twice.p, 2.0 * first.p)  # the same scaling as gmsh's mesh
+    assert {k: v.tolist() for k, v in twice.boundaries.items()} == {
+        k: v.tolist() for k, v in first.boundaries.items()
+    }
 
 
 def test_triangles_are_well_shaped(mesh):

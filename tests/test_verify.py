@@ -602,3 +602,49 @@ def test_the_verify_process_imports_no_renderer_before_its_workers_start():
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "[]"
+
+
+def test_shared_figures_load_no_vtk(run, tmp_path):
+    """The reports and the figures of no study (the Ateb functions) are drawn by the process
+    that, on dask, runs no study: it must not import pyvista and VTK for them (issue 32; they
+    cost it ~0.25 s CPU). Run in a fresh interpreter, on the session run's entries."""
+    import shutil
+    import subprocess
+    import sys
+
+    stage = tmp_path / "run"
+    shutil.copytree(run[1], stage)  # the reports read the studies' figures; keep run's folder
+    (stage / "ateb.png").unlink()
+    script = (
+        "import json, sys; from pathlib import Path\n"
+        "from shtaerman.output.folder import finish_verification\n"
+        f"studies = json.loads(Path({str(stage / 'results.json')!r}).read_text())['studies']\n"
+        f"results = finish_verification(Path({str(stage)!r}), studies, quick=True)\n"
+        "print(json.dumps([sorted(results['figures']), 'pyvista' in sys.modules,"
+        " 'vtkmodules' in sys.modules]))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    figures, pyvista, vtk = json.loads(done.stdout.splitlines()[-1])
+    assert figures and (stage / "ateb.png").is_file()  # the Ateb figure was drawn again
+    assert not pyvista and not vtk
+
+
+def test_in_process_runs_the_studies_on_one_blas_thread(tmp_path, monkeypatch):
+    # as a dask task does (sweep/verify.py): on two BLAS threads `verify --workers 1` printed
+    # numbers up to 9e-7 (relative) from the default run's (issue 32)
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    folder = shtaerman.output.folder
+    seen = []
+
+    def record(study, *args):
+        seen.append(
+            {info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas"}
+        )
+        return {}
+
+    monkeypatch.setattr(folder, "compute_study", record)
+    with threadpool_limits(limits=2, user_api="blas"):
+        folder.in_process([object()], tmp_path, True, "png", print, lambda study, entry: None)
+    assert seen == [{1}]

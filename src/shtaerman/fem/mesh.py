@@ -145,6 +145,8 @@ def halfspace_mesh(
     gmsh is a process-wide singleton: do not call this from several threads at once. If the
     caller already initialized gmsh, the session is left running (meshing happens in a model
     of its own, removed afterwards); otherwise gmsh is finalized on return. No file is written.
+    The mesh at unit refined radius is made once per process for given parameters (a scaled
+    copy is returned again, :func:`_unit_mesh`).
     """
     parameters = _mesh_parameters(refined_radius, domain_radius, smallest_size, growth)
     parameters |= _axis_parameters(parameters["smallest_size"], axis_size, axis_growth)
@@ -154,8 +156,7 @@ def halfspace_mesh(
     scale = parameters["refined_radius"]
     lengths = ("refined_radius", "domain_radius", "smallest_size", "axis_size")
     unit = {key: value / scale if key in lengths else value for key, value in parameters.items()}
-    with _gmsh_session():
-        points, triangles, lines = _generate(unit)
+    points, triangles, lines = _unit_mesh(unit)
     return _to_skfem(points * scale, triangles, lines)
 
 
@@ -209,8 +210,7 @@ def layer_mesh(
     scale = refined_radius
     rates = ("growth", "axis_growth")
     unit = {key: value if key in rates else value / scale for key, value in parameters.items()}
-    with _gmsh_session():
-        points, triangles, lines = _generate(unit, _LAYER_PARAMETERS, _LAYER_GEOMETRY)
+    points, triangles, lines = _unit_mesh(unit, _LAYER_PARAMETERS, _LAYER_GEOMETRY)
     if bonded:
         lines["far"] = np.concatenate([lines["far"], lines.pop(BASE)])
     return _to_skfem(points * scale, triangles, lines)
@@ -292,6 +292,35 @@ def _petsc_leaving_signals_alone() -> Iterator[None]:
             os.environ.pop(_PETSC_OPTIONS, None)
         else:
             os.environ[_PETSC_OPTIONS] = previous
+
+
+UNIT_MESHES_KEPT = 32
+"""gmsh meshes (at unit refined radius) :func:`_unit_mesh` keeps per process."""
+_unit_meshes: dict[tuple, tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]] = {}
+
+
+def _unit_mesh(
+    parameters: dict[str, float], names: dict[str, str] = _PARAMETERS, geometry: str = _GEOMETRY
+) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """:func:`_generate` in a gmsh session, each parameter set meshed once per process.
+
+    The meshes are made at unit refined radius, so the ladders' levels, the studies' linear
+    and finite-strain runs and the impact velocities of one settings ask the same ones again
+    (issue 32: a dynamic study meshed 18 times, 3 distinct). gmsh's mesh of given parameters
+    is reproducible, so a kept one is the mesh gmsh would make. The arrays are read-only; the
+    dict of lines is a new one per call (the layer moves its base into ``"far"``).
+    """
+    key = (geometry, tuple(sorted(parameters.items())))
+    if key not in _unit_meshes:
+        with _gmsh_session():
+            made = _generate(parameters, names, geometry)
+        for array in (made[0], made[1], *made[2].values()):
+            array.flags.writeable = False
+        if len(_unit_meshes) >= UNIT_MESHES_KEPT:
+            del _unit_meshes[next(iter(_unit_meshes))]
+        _unit_meshes[key] = made
+    points, triangles, lines = _unit_meshes[key]
+    return points, triangles, dict(lines)
 
 
 def _generate(

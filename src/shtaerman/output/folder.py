@@ -247,7 +247,9 @@ def finish_verification(
     """The figures of no study (the Ateb functions for each power-law exponent of the
     studies; a sphere or a tabulated profile has none), results.json and both reports, from
     the studies' entries."""
-    from ..plots.gallery import paper_figures
+    # not from plots.gallery: this process (on dask, the one that runs no study) draws no
+    # field, and gallery's pyvista and VTK cost it ~0.25 s CPU (benchmarks/verify_cost.py)
+    from ..plots.ateb import paper_figures
 
     inputs = [entry["inputs"] for entry in entries.values() if "inputs" in entry]
     exponents = [given["exponent"] for given in inputs if given["exponent"] is not None]
@@ -298,9 +300,15 @@ def in_process(
     progress: Callable[[str], None],
     finished: Finished,
 ) -> None:
-    """The :data:`Executor` that runs the studies one after another in this process."""
-    for study in todo:
-        finished(study, compute_study(study, stage, quick, figure_format, progress))
+    """The :data:`Executor` that runs the studies one after another in this process, on one
+    BLAS thread as a dask task runs them (:func:`shtaerman.sweep.verify.verify_task`): with
+    the BLAS's default threads ``--workers 1`` printed other numbers than the default run (up
+    to 9e-7 relative in the finite-strain estimates, issue 32)."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        for study in todo:
+            finished(study, compute_study(study, stage, quick, figure_format, progress))
 
 
 def run_verification(

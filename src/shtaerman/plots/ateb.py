@@ -3,6 +3,7 @@ approximations, for any other exponent the exact pair alone."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +15,7 @@ from ..theory.ateb import ateb_cosine, ateb_sine
 from ..theory.impact import duration_integral
 from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, PAPER_COLOUR, save, styled
 
-__all__ = ["plot_ateb"]
+__all__ = ["paper_figures", "plot_ateb"]
 
 PAPER_EXPONENT = 1.5
 """The exponent of the paper's indenter, the only one its tables and approximations are for."""
@@ -134,3 +135,41 @@ def plot_ateb(
     _ateb_column(axes[0, 1], axes[1, 1], "cosine")
     axes[1, 0].set_ylabel("Approximation\nerror (%)")
     return save(figure, path, figure_format)
+
+
+def paper_figures(
+    folder: Path | str, exponents: Iterable[float] = (1.5,), figure_format: str = "png"
+) -> dict[str, Path]:
+    """The figures that depend on no study, written into ``folder``: the Ateb functions of
+    the impact for each indenter exponent of the run (``ateb.png`` for the paper's n = 3/2,
+    against its Tables 1-2; ``ateb_n<n>.png`` for any other).
+
+    Parameters
+    ----------
+    folder : path-like
+        Where the PNGs go (created if missing).
+    exponents : iterable of float
+        The studies' indenter exponents n (repeats ignored).
+    figure_format : {"png", "svg", "pdf"}
+        "svg" or "pdf" also writes each figure in that format beside its PNG.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Caption to PNG path.
+    """
+    made, fmt = {}, {"figure_format": figure_format}
+    for exponent in sorted(set(exponents)):
+        if exponent == PAPER_EXPONENT:
+            caption = (
+                "Ateb functions of the impact against the paper's Tables 1-2 and approximations"
+            )
+            made[caption] = plot_ateb(Path(folder) / "ateb.png", **fmt)
+            continue
+        q = (exponent + 1.0) / exponent
+        caption = (
+            f"Ateb functions of the impact for n = {exponent:g} (q = {q:.4g}): x/x_c in "
+            "compression, the velocity in restitution"
+        )
+        made[caption] = plot_ateb(Path(folder) / f"ateb_n{exponent:g}.png", exponent, **fmt)
+    return made

@@ -9,12 +9,10 @@ rendered bitmap anyway and re-sets the text in another font.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..study.contact.layer import REFERENCE_EXPONENT, REFERENCE_MAP, REFERENCE_THICKNESS
-from .ateb import PAPER_EXPONENT, plot_ateb
 from .curves import plot_convergence, plot_force_depth, plot_pressure
 from .fields import SIGMA
 from .impact import plot_impact_contact, plot_impact_motion
@@ -31,7 +29,6 @@ if TYPE_CHECKING:
 __all__ = [
     "FIELD_FIGURES",
     "contact_figures",
-    "paper_figures",
     "study_convergence_figures",
     "study_field_figures",
     "study_figures",
@@ -203,42 +200,4 @@ def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, 
     paths = {name: folder / f"field_{name}.png" for name in FIELD_FIGURES}
     made = {FIELD_FIGURES[name]: path for name, path in plot_each_field(result, paths).items()}
     made[REVOLVED_CAPTION] = plot_revolved(result, folder / "field_revolved.png")
-    return made
-
-
-def paper_figures(
-    folder: Path | str, exponents: Iterable[float] = (1.5,), figure_format: str = "png"
-) -> dict[str, Path]:
-    """The figures that depend on no study, written into ``folder``: the Ateb functions of
-    the impact for each indenter exponent of the run (``ateb.png`` for the paper's n = 3/2,
-    against its Tables 1-2; ``ateb_n<n>.png`` for any other).
-
-    Parameters
-    ----------
-    folder : path-like
-        Where the PNGs go (created if missing).
-    exponents : iterable of float
-        The studies' indenter exponents n (repeats ignored).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes each figure in that format beside its PNG.
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Caption to PNG path.
-    """
-    made, fmt = {}, {"figure_format": figure_format}
-    for exponent in sorted(set(exponents)):
-        if exponent == PAPER_EXPONENT:
-            caption = (
-                "Ateb functions of the impact against the paper's Tables 1-2 and approximations"
-            )
-            made[caption] = plot_ateb(Path(folder) / "ateb.png", **fmt)
-            continue
-        q = (exponent + 1.0) / exponent
-        caption = (
-            f"Ateb functions of the impact for n = {exponent:g} (q = {q:.4g}): x/x_c in "
-            "compression, the velocity in restitution"
-        )
-        made[caption] = plot_ateb(Path(folder) / f"ateb_n{exponent:g}.png", exponent, **fmt)
     return made
