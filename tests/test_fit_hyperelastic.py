@@ -81,21 +81,22 @@ def test_unknowns_an_indentation_at_finite_strain_cannot_fit_are_refused(tmp_pat
     assert err.count("\n") == 1
 
 
-def test_the_mooney_ratio_of_a_deep_curve_is_fitted_back():
-    """To 7 mm (x/a near 1) r changes the shape by several times the FE error: r = 0.3 comes
-    back with an interval inside [0, 0.9], after one FE curve more than the first 3."""
-    depths = np.linspace(1e-3, 7e-3, 5)
+def test_the_mooney_ratio_of_a_deep_curve_is_bounded_by_the_fe_error():
+    """To 7 mm (x/a near 1) r = 0.3 changes the curve's shape (E2 refitted) by 0.56 % of the
+    peak force over [0, 0.9]. Since the contact's FE error estimate takes the contact edge's
+    order 2 as a floor (issue 32: 0.27 % of the force on these refine-0.6 curves, about 0.16 %
+    before), that is only twice the FE error: r is reported not identifiable, with its reason,
+    after the first 3 FE curves, and E2's interval holds the truth over every r."""
+    depths = np.linspace(1e-3, 7e-3, 8)
     case = sh.Problem.curve(INDENTER, sh.Material(E2, 0.5), model="mooney-rivlin",
                             mooney_ratio=0.3, depths=list(depths))  # fmt: skip
     data = {"depth": depths, "force": np.asarray(sh.contact(case, refine=REFINE).force)}
     result = sh.fit("indentation", data, start("mooney-rivlin"), unknowns="E2,mooney_ratio",
                     refine=REFINE)  # fmt: skip
     ratio, e2 = result.fitted["mooney_ratio"], result.fitted["E2"]
-    # the fitted r lies between FE nodes (quadratic in r): measured 1.7e-5 off with 8 depths
-    assert ratio["identifiable"] and ratio["value"] == pytest.approx(0.3, abs=1e-3)
-    assert 0.0 <= ratio["low"] < 0.3 < ratio["high"] <= 0.9 and "reason" not in ratio
-    assert (ratio["low"], ratio["high"]) != (0.0, 0.9)
-    assert e2["value"] == pytest.approx(E2, rel=1e-4)  # measured 9e-7 with 8 depths
-    # E2 moves with r: its interval spans E2 at both ends of r's, not the 0.25 % of a held r
-    assert e2["low"] < E2 < e2["high"] and e2["high"] / e2["low"] > 1.01
-    assert 4 <= result.fe_runs <= 6  # 3 nodes, then one per round (the issue: a handful)
+    assert not ratio["identifiable"] and "FE error" in ratio["reason"]
+    assert (ratio["low"], ratio["high"]) == (0.0, 0.9)
+    # the interpolated value between the three FE nodes: measured 0.3038
+    assert ratio["value"] == pytest.approx(0.3, abs=1e-2)
+    assert e2["low"] < E2 < e2["high"] and e2["value"] == pytest.approx(E2, rel=1e-3)
+    assert result.fe_runs == 3

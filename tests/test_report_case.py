@@ -37,8 +37,14 @@ PAD_FRICTION = (
 [layer]
 thickness = 0.02
 base = "lubricated"
+[tolerances]
+force = 2e-3
 """
 )
+"""The Coulomb pad on the quick meshes: its force-ratio estimate is 1.6e-3 since the contact
+estimates take the contact edge's order 2 as a floor (issue 32), so
+the force tolerance is that of the shipped layer study's check (2e-3): the findings' wording,
+not the quick mesh's accuracy, is what these tests read."""
 PAD_PRONY = (
     DYNAMIC_STUDY.replace("density2 = 1100.0", 'density2 = 1100.0\nprony = "0.3:2e-3"')
     + """

@@ -148,7 +148,7 @@ def test_strain_operator_gives_the_deviatoric_energy(massless):
     [
         ("-0.1:1e-3", "weight g1 must lie in [0, 1), got -0.1"),
         ("0.6:1e-3,0.5:1e-2", "weights must sum to less than 1"),
-        ("0.5:0", "time tau1 must be a finite number > 0 s, got 0.0"),
+        ("0.5:0", "time tau1 must be a finite number > 0 s, got 0"),
         ("0.5;1e-3", "must be written g1:tau1,g2:tau2,..."),
         ("0.5:1e-3,", "must be written g1:tau1,g2:tau2,..."),
         (",".join(["0.01:1e-3"] * 21), "21 terms is too many"),
