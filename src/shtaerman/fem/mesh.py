@@ -306,7 +306,7 @@ def _unit_mesh(
 
     The meshes are made at unit refined radius, so the ladders' levels, the studies' linear
     and finite-strain runs and the impact velocities of one settings ask the same ones again
-    (issue 32: a dynamic study meshed 18 times, 3 distinct). gmsh's mesh of given parameters
+    (a dynamic study asked for 18, 3 distinct). gmsh's mesh of given parameters
     is reproducible, so a kept one is the mesh gmsh would make. The arrays are read-only; the
     dict of lines is a new one per call (the layer moves its base into ``"far"``).
     """
