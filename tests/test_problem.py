@@ -3,6 +3,7 @@ whose combinations are declared in one table that every entry point applies."""
 
 import itertools
 
+import numpy as np
 import pytest
 
 import shtaerman as sh
@@ -139,6 +140,10 @@ def test_a_problem_runs_as_its_keywords_do():
         sh.dynamic(problem, mass=0.7)
     with pytest.raises(sh.InputError, match="presses a contact curve"):
         sh.contact(problem)
+    curve = sh.Problem.curve(PAPER, MASSLESS)
+    for depths in ([1e-3, 2e-3], np.array([1e-3, 2e-3])):  # an array raised a bare ValueError
+        with pytest.raises(TypeError, match=r"takes numerics only; the problem holds \['depths'\]"):
+            sh.contact(curve, depths=depths)
 
 
 @pytest.mark.parametrize(

@@ -301,9 +301,8 @@ def in_process(
     finished: Finished,
 ) -> None:
     """The :data:`Executor` that runs the studies one after another in this process, on one
-    BLAS thread as a dask task runs them (:func:`shtaerman.sweep.verify.verify_task`): with
-    the BLAS's default threads ``--workers 1`` printed other numbers than the default run (up
-    to 9e-7 relative in the finite-strain estimates, issue 32)."""
+    BLAS thread as a dask task runs them (:func:`shtaerman.sweep.verify.verify_task`), so that
+    ``--workers 1`` prints the default run's numbers."""
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1, user_api="blas"):
