@@ -19,6 +19,7 @@ from ..plots.formats import check_figure_format
 from ..problem import (
     MODELS,
     RUBBER_OPTIONS,
+    Body,
     Problem,
     check_bodies,
     check_options,
@@ -133,7 +134,7 @@ class ContactResult:
     @property
     def finite(self) -> bool:
         """Whether the curve is a rubber's at finite strain (else the linear body's)."""
-        return self.model != "linear"
+        return self.departures_from_linear is not None  # a rubber's report has no exact errors
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of ``shtaerman contact --json`` (same keys, same order): non-finite
@@ -240,14 +241,16 @@ def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[
     return out
 
 
-def _check_options(options: Mapping[str, Any]) -> None:
+def _check_options(options: Mapping[str, Any], body: Body) -> None:
     """Refuse a model, solver or options that exclude each other (the CLI's checks too: its
     messages name the options, :func:`shtaerman.cli.common.in_option_words`)."""
     from ..fem.solver import check_backend
 
-    model, accuracy, refine = options["model"], options["accuracy"], options["refine"]
-    if model != "linear" and options["solver"] == "pardiso":
-        raise InputError(f"solver: the {model} model uses superlu only, got 'pardiso'", "solver")
+    accuracy, refine = options["accuracy"], options["refine"]
+    if body.finite and options["solver"] == "pardiso":
+        raise InputError(
+            f"solver: the {body.model} model uses superlu only, got 'pardiso'", "solver"
+        )
     check_backend(options["solver"])
     if accuracy is None:
         return
@@ -490,7 +493,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
-    _check_options({**options, "model": model})
+    _check_options(options, problem.body)
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
         depths = (
