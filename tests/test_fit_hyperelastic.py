@@ -100,3 +100,51 @@ def test_the_mooney_ratio_of_a_deep_curve_is_bounded_by_the_fe_error():
     assert ratio["value"] == pytest.approx(0.3, abs=1e-2)
     assert e2["low"] < E2 < e2["high"] and e2["value"] == pytest.approx(E2, rel=1e-3)
     assert result.fe_runs == 3
+
+
+def test_gent_limit_round_trip_reports_what_four_depths_cannot_tell():
+    """Gent's Jm = 20 to 7 mm (4 depths): the FE curves at Jm 10, 19.8 and 1000 (quadratic in
+    1/Jm) give Jm back (measured 20.0000015: the energy is nearly quadratic in 1/Jm over that
+    span), but Jm over [10, 1000] moves the curve's shape (E2 refitted) by less than the FE
+    force error estimate (measured 0.07 % against 0.25 %): Jm is reported not identifiable,
+    with its reason, and E2's interval spans its fits over the whole range of Jm."""
+    depths = np.linspace(1e-3, 7e-3, 4)
+    case = sh.Problem.curve(INDENTER, sh.Material(E2, 0.5), model="gent", gent_limit=20.0,
+                            depths=list(depths))  # fmt: skip
+    data = {"depth": depths, "force": np.asarray(sh.contact(case, refine=REFINE).force)}
+    begin = sh.Problem.curve(INDENTER, sh.Material(5e6, 0.5), model="gent", gent_limit=100.0)
+    result = sh.fit("indentation", data, begin, unknowns="E2,gent_limit", refine=REFINE)
+    limit, e2 = result.fitted["gent_limit"], result.fitted["E2"]
+    assert not limit["identifiable"] and "gent_limit" in limit["reason"]
+    assert (limit["low"], limit["high"]) == (10.0, 1000.0)
+    # the interpolation's error in Jm, not a round-off: within 1 % of the truth
+    assert limit["value"] == pytest.approx(20.0, rel=1e-2)
+    assert e2["low"] < E2 < e2["high"] and e2["value"] == pytest.approx(E2, rel=1e-3)
+    assert result.fe_runs == 3
+    assert result.corrections[0]["shape"] == "gent_limit"
+
+
+def test_yeoh_c2_is_sought_where_c3_keeps_the_energy_stiffening():
+    """Yeoh's c2 is sought with c3 held, down to -0.99 sqrt(3 c3): below it dW/dI1 reaches
+    zero (the bound rubber_model refuses); with c3 = 0 the range starts at 0."""
+    from shtaerman.fitting.hyperelastic import shape_axis
+
+    def body(yeoh):
+        return sh.Problem.curve(INDENTER, sh.Material(E2, 0.5), model="yeoh", yeoh=yeoh).body
+
+    axis = shape_axis(body("0.1,0.03"))
+    assert axis.name == "yeoh_c2" and (axis.low, axis.high) == (-0.99 * 0.3, 1.0)
+    assert axis.start(body("0.1,0.03")) == 0.1
+    assert axis.fields(-0.2, body("0.1,0.03")) == {"yeoh": (-0.2, 0.03)}
+    assert shape_axis(body("0.1,0")).low == 0.0
+
+
+def test_a_shape_constant_of_another_model_is_refused_naming_the_choices(tmp_path, capsys):
+    csv = tmp_path / "curve.csv"
+    csv.write_text("depth [mm],force [N]\n1,10\n2,30\n")
+    argv = ["fit", "indentation", str(csv), "--model", "mooney-rivlin", "--fit",
+            "E2,yeoh_c2"]  # fmt: skip
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["shtaerman: error: --fit: an indentation at finite strain (mooney-rivlin) "
+                   "cannot fit 'yeoh_c2'; choose from E2, mooney_ratio"]  # fmt: skip

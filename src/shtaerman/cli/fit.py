@@ -39,12 +39,13 @@ the unknowns are the starting values. A force history or rebound data on a pad
 impacts at the fitted point (fit, FE runs, fit again: a handful of rounds, one FE run per
 drop velocity of rebound data); their error estimates and the viscoelastic impact's step
 error widen the intervals. An indentation curve at finite strain (--model) is fitted by FE
-contact curves (E2 scales out: one FE curve; --fit E2,mooney_ratio with --model mooney-rivlin:
-3 or more). Friction is not fitted, nor an indentation curve on a pad.
+contact curves (E2 scales out: one FE curve; one shape constant besides, 3 or more: --fit
+E2,mooney_ratio with --model mooney-rivlin, E2,yeoh_c2 with yeoh (c3 held), E2,gent_limit with
+gent). Friction is not fitted, nor an indentation curve on a pad.
 
 KIND and the CSV columns it reads (header 'name [unit]'):
   indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known;
-                                                               mooney_ratio with --model)
+                                                               with --model a shape constant)
   force-history   time [s], force [N]                       -> E2, time_offset, baseline,
                                                                mass or velocity, prony, tau
   rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau,
@@ -67,8 +68,8 @@ DERIVED = {
     "density2": "unset: no waves",
     "refine": f"{FE_REFINE:g}: a coarse mesh with its error estimate, seconds a run",
     "mooney_ratio": "0, the start of --fit mooney_ratio; only with --model mooney-rivlin",
-    "yeoh": "0,0; only with --model yeoh",
-    "gent_limit": "none: required with --model gent",
+    "yeoh": "0,0; only with --model yeoh; c2 the start of --fit yeoh_c2",
+    "gent_limit": "none: required with --model gent; the start of --fit gent_limit",
 }
 """The defaults of ``fit`` that differ from the other commands'."""
 PRONY_HELP = (
@@ -175,9 +176,10 @@ def _corrections_text(result: FitResult) -> list[str]:
         return ["  corrections:   none (a half-space of no density at small strain)"]
     rows = []
     for item in result.corrections:
-        if "mooney_ratios" in item:  # an indentation's FE curves
-            ratios = ", ".join(f"{r:.4g}" for r in item["mooney_ratios"])
-            sizes = f"force error {item['fe_error']['force']:.2g}, at mooney_ratio {ratios}"
+        if "nodes" in item:  # an indentation's FE curves
+            nodes = ", ".join(f"{r:.4g}" for r in item["nodes"])
+            where = f", at {item['shape']} {nodes}" if item["shape"] else ""
+            sizes = f"force error {item['fe_error']['force']:.2g}{where}"
             rows.append(f"  corrections:   {item['name']}: {sizes} ({result.fe_runs} FE runs)")
             continue
         if "force_scale" in item:  # a force history's

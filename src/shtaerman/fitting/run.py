@@ -140,7 +140,8 @@ def fit(
         Names to fit: E2, nu2, mass, velocity, time_offset, baseline, prony (the weights g_i
         of the problem's series), tau (its relaxation times tau_i in s, fitted in log; one
         outside the measured time range is not identifiable, and its g_i with it),
-        mooney_ratio (an indentation of a mooney-rivlin body: FE curves); which a kind
+        mooney_ratio, yeoh_c2 or gent_limit (an indentation of a mooney-rivlin, yeoh or
+        gent body: FE curves, :data:`~shtaerman.fitting.hyperelastic.SHAPE_AXES`); which a kind
         takes: see ``--help``.
     noise : float, optional
         Standard deviation of the data in the residual's unit (N for a force; relative for
@@ -196,9 +197,9 @@ def fit(
                                            progress)  # fmt: skip
     _check_velocities(measured, known, model, sol)
     result = _result(kind, measured, known, model, sol, names)
-    reason = extra.pop("reason", None)
+    reason, shape = extra.pop("reason", None), extra.pop("shape", None)
     if reason is not None:
-        result.fitted["mooney_ratio"]["reason"] = reason
+        result.fitted[shape]["reason"] = reason
     result = dataclasses.replace(result, **extra, data={**result.data, "rows_read": rows_read})
     if folder is not None:
         from ..output.fit import write_fit
@@ -218,11 +219,13 @@ def _fitted(problem: Problem, known: Known, measured: Measurement, names: list[s
         )
         entry = {
             "name": f"FE contact curves: finite strain ({problem.body.model})",
-            "mooney_ratios": sorted(curves.table),
+            "shape": None if curves.axis is None else curves.axis.name,
+            "nodes": sorted(curves.table),
             "fe_error": {"force": curves.error},
         }
         return known, model, sol, {
             "corrections": [entry], "fe_runs": len(curves.table), "reason": reason,
+            "shape": entry["shape"],
             "forward_model": model.description, "forward_error": _forward_entries(model, shifts),
         }  # fmt: skip
     if needs_fe(problem):
