@@ -496,3 +496,17 @@ def test_the_parameter_page_shows_angle_brackets_as_text(site):
     page = (site / "parameters" / "index.html").read_text(encoding="utf-8")
     text = html.unescape(re.sub(r"<[^>]+>", "", page))
     assert "result folder (default: sweep-<name>)" in " ".join(text.split())
+
+
+def test_findings_link_every_validated_result_to_its_row():
+    """Each published comparison of the Validation page (a ``##`` section) is quoted by the
+    finding it covers, and every such link names a heading of that page (mkdocs --strict
+    reports a broken anchor only as INFO)."""
+    from markdown.extensions.toc import slugify
+
+    headings = re.findall(r"^#{2,3} (.+)$", (ROOT / "docs/validation.md").read_text(), re.M)
+    anchors = {slugify(h, "-") for h in headings}
+    sections = re.findall(r"^## (.+)$", (ROOT / "docs/validation.md").read_text(), re.M)
+    linked = re.findall(r"\(validation\.md#([\w-]+)\)", (ROOT / "docs/findings.md").read_text())
+    assert set(linked) <= anchors, set(linked) - anchors
+    assert {slugify(h, "-") for h in sections} <= set(linked)
