@@ -455,4 +455,4 @@ def test_cli_rebound_text_fits_the_mass_and_says_relative_once(tmp_path, capsys)
     assert "contact_time [s] -> E2, prony, tau, mass" in help_text
     # the rubber's shape options state their defaults, as contact's do (--mooney-ratio gave none)
     assert "[0, 1) (default: 0, the start of --fit mooney_ratio; only with --model" in help_text
-    assert "(default: none: required with --model gent)" in help_text
+    assert "(default: none: required with --model gent; the start of --fit gent_limit)" in help_text

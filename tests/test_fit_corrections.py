@@ -182,12 +182,14 @@ def test_cli_passes_the_pad_the_density_and_refine_but_no_default_density(tmp_pa
     assert default == 0.6
 
 
-def test_a_pad_is_refused_for_an_indentation_curve(tmp_path, capsys):
+def test_waves_are_refused_for_an_indentation_curve(tmp_path, capsys):
+    """An indentation is quasi-static: a density (the waves) is refused in one line; a pad
+    is fitted by its FE curves (tests/test_fit_fe_indentation.py)."""
     csv = tmp_path / "c.csv"
     csv.write_text("depth [m],force [N]\n1e-3,5\n2e-3,14\n")
-    assert main(["fit", "indentation", str(csv), "--thickness", "0.02"]) == 2
+    assert main(["fit", "indentation", str(csv), "--density2", "1100"]) == 2
     err = capsys.readouterr().err
-    assert "--thickness: the FE corrections" in err and "force history or rebound" in err
+    assert "--density2: the FE correction of waves" in err and "quasi-static" in err
     assert err.count("\n") == 1
 
 

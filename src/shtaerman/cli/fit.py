@@ -38,10 +38,10 @@ the unknowns are the starting values. A force history or rebound data on a pad
 (--thickness), with waves (--density2) or at finite strain (--model) are corrected by FE
 impacts at the fitted point (fit, FE runs, fit again: a handful of rounds, one FE run per
 drop velocity of rebound data); their error estimates and the viscoelastic impact's step
-error widen the intervals. An indentation curve at finite strain (--model) is fitted by FE
-contact curves (E2 scales out: one FE curve; one shape constant besides, 3 or more: --fit
-E2,mooney_ratio with --model mooney-rivlin, E2,yeoh_c2 with yeoh (c3 held), E2,gent_limit with
-gent). Friction is not fitted, nor an indentation curve on a pad.
+error widen the intervals. An indentation curve at finite strain (--model) or on a pad
+(--thickness) is fitted by FE contact curves (E2 scales out: one FE curve; one shape constant
+besides, 3 or more: --fit E2,mooney_ratio with --model mooney-rivlin, E2,yeoh_c2 with yeoh (c3
+held), E2,gent_limit with gent, E2,nu2 on a bonded pad). Friction is not fitted.
 
 KIND and the CSV columns it reads (header 'name [unit]'):
   indentation     depth [m], force [N]                      -> E2 (or nu2 with E2 known;

@@ -27,17 +27,19 @@ import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from ..api.dynamic_result import DynamicResult
 from ..problem import Problem
 from ..theory.contact import PowerLawContact
 from ..theory.impact import solve_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
 from ..theory.viscoelastic import PronySeries, viscoelastic_impact
+
+if TYPE_CHECKING:  # the api package imports the fit's result: a cycle at run time
+    from ..api.dynamic_result import DynamicResult
 
 __all__ = [
     "Correction",

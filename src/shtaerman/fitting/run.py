@@ -24,7 +24,7 @@ from .data import (
     resampled,
 )
 from .engine import Progress, Solution, solve
-from .hyperelastic import finite_indentation_fit
+from .fe_indentation import fe_parts, finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
@@ -41,17 +41,14 @@ ABSCISSA = {"indentation": "depth", "force-history": "time"}
 def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline: float = 0.0,
              steps: int = 200) -> Known:  # fmt: skip
     """The known parts of ``problem`` (its E2 and nu2 are the starting values), refusing the
-    parts whose corrections the fit does not have (friction; a pad, waves and finite strain
-    but in a force history) and an impact's measurement without the striker's mass (and a
+    parts whose corrections the fit does not have (friction; waves in an indentation) and an
+    impact's measurement without the striker's mass (and a
     force history's velocity)."""
-    pad_or_waves = problem.geometry.thickness is not None or problem.body.material.density
-    if pad_or_waves and kind == "indentation":
-        name = "thickness" if problem.geometry.thickness is not None else "density2"
+    if problem.body.material.density and kind == "indentation":
         raise InputError(
-            f"{name}: the FE corrections of a pad and of waves are fitted for an impact's "
-            "force history or rebound data; an indentation fit takes the half-space's exact "
-            "power law, or its FE curves at finite strain (leave thickness and density2 unset)",
-            name,
+            "density2: the FE correction of waves is fitted for an impact's force history or "
+            "rebound data; an indentation is quasi-static (leave density2 unset)",
+            "density2",
         )
     if problem.interface.kind != "frictionless":
         raise InputError("interface: the fit takes a frictionless contact only", "interface")
@@ -141,7 +138,7 @@ def fit(
         of the problem's series), tau (its relaxation times tau_i in s, fitted in log; one
         outside the measured time range is not identifiable, and its g_i with it),
         mooney_ratio, yeoh_c2 or gent_limit (an indentation of a mooney-rivlin, yeoh or
-        gent body: FE curves, :data:`~shtaerman.fitting.hyperelastic.SHAPE_AXES`); which a kind
+        gent body: FE curves, :data:`~shtaerman.fitting.fe_indentation.SHAPE_AXES`); which a kind
         takes: see ``--help``.
     noise : float, optional
         Standard deviation of the data in the residual's unit (N for a force; relative for
@@ -183,7 +180,7 @@ def fit(
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     _check_loss(measured, problem)
     refine = validate_positive("refine", refine)
-    if needs_fe(problem) and "nu2" in names:
+    if needs_fe(problem) and "nu2" in names and kind != "indentation":
         raise InputError(
             "fit: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
             "acts beyond the combined modulus the exact model sees); give nu2 and fit E2",
@@ -213,12 +210,12 @@ def _fitted(problem: Problem, known: Known, measured: Measurement, names: list[s
             ) -> tuple[Known, Model, Solution, dict]:  # fmt: skip
     """The known parts, model and solution (intervals widened by the forward model's own
     error) and the result's fields on the corrections and the forward error."""
-    if measured.kind == "indentation" and problem.body.finite:
+    if measured.kind == "indentation" and needs_fe(problem):
         model, sol, curves, reason, shifts = finite_indentation_fit(
             problem, measured, names, noise, refine, progress
         )
         entry = {
-            "name": f"FE contact curves: finite strain ({problem.body.model})",
+            "name": f"FE contact curves: {fe_parts(problem)}",
             "shape": None if curves.axis is None else curves.axis.name,
             "nodes": sorted(curves.table),
             "fe_error": {"force": curves.error},

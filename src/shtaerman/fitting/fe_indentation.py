@@ -1,15 +1,18 @@
-"""The indentation fit of a rubber at finite strain: E2 and one shape constant from FE curves.
+"""The indentation fit by FE contact curves (a rubber at finite strain, a pad): E2 and one
+shape constant.
 
-E2 scales out of a rubber's FE contact curve exactly: at a fixed nu2 and a fixed shape of the
-strain energy (Mooney ratio r, Yeoh c2 and c3, Gent Jm) every constant of W is proportional
-to E2, so P(x; E2, s) = E2 p(x; s) (measured: 4e-12 between E2 and 2 E2). One FE curve at the
-data's depths then gives p for a known shape, and E2 is fitted exactly (P is linear in it).
+E2 scales out of the FE contact curve of a rigid indenter exactly: at a fixed nu2, a fixed
+geometry and a fixed shape of the strain energy (Mooney ratio r, Yeoh c2 and c3, Gent Jm)
+every constant of the body is proportional to E2, so P(x; E2, s) = E2 p(x; s) (measured:
+4e-12 between E2 and 2 E2). One FE curve at the data's depths then gives p for a known shape,
+and E2 is fitted exactly (P is linear in it).
 
-One shape constant s (:data:`SHAPE_AXES`: the Mooney ratio, Yeoh's c2 with c3 held, or Gent's
-Jm) changes p: it is fitted on p tabulated at three values of s (quadratic interpolation, in
-1/Jm for Gent, through the three nodes nearest s), with one FE curve added at each fitted s
-until s settles (the fitted s is then a node: the model there is the FE curve itself). A fit
-so costs a handful of FE runs.
+One shape constant s (:func:`shape_axes`: the Mooney ratio, Yeoh's c2 with c3 held, Gent's Jm,
+or on a pad nu2, which the half-space's curve hides in E*) changes p: it is fitted on p
+tabulated at three values of s and interpolated (in 1/Jm for Gent) by the not-a-knot cubic
+spline through every FE curve run (through three, their quadratic), with one FE curve added
+at each fitted s until s settles (the fitted s is then a node: the model there is the FE curve
+itself). A fit so costs a handful of FE runs.
 
 The FE curves' own force error estimate e enters the intervals: E2's by e (P = E2 p), s's
 by e / c of s's range, c the largest change of the curve's shape (E2 refitted: a change of s
@@ -26,6 +29,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from ..problem import Body, Loading, Problem
 from ..theory.materials import Material
@@ -35,7 +39,16 @@ from .engine import Progress, Solution, solve
 from .iteration import widened
 from .models import Model, Parameter
 
-__all__ = ["SHAPE_AXES", "FECurves", "ShapeAxis", "finite_indentation_fit", "shape_axis"]
+__all__ = [
+    "POISSON_AXIS",
+    "SHAPE_AXES",
+    "FECurves",
+    "ShapeAxis",
+    "fe_parts",
+    "finite_indentation_fit",
+    "shape_axes",
+    "shape_axis",
+]
 
 E_REF = 1e6
 """E2 in Pa of the FE curves (scaled out)."""
@@ -75,8 +88,9 @@ class ShapeAxis:
 
     def start(self, body: Body) -> float:
         """The body's own value of the constant, within the bounds."""
-        value = {"mooney-rivlin": body.mooney_ratio, "gent": body.gent_limit}.get(body.model)
-        if body.model == "yeoh":
+        value = {"mooney_ratio": body.mooney_ratio, "gent_limit": body.gent_limit,
+                 "nu2": body.material.poisson_ratio}.get(self.name)  # fmt: skip
+        if self.name == "yeoh_c2":
             value = body.rubber().yeoh[0]
         return float(min(max(value if value is not None else self.low, self.low), self.high))
 
@@ -106,10 +120,24 @@ Yeoh's c2 over [-0.99 sqrt(3 c3), 1] with c3 held; Gent's Jm over [10, 1000], in
 in 1/Jm)."""
 
 
+POISSON_AXIS = ShapeAxis("nu2", 0.0, 0.5, lambda s, b: {"material": Material(E_REF, s)})
+"""nu2 over [0, 0.5] on a bonded pad: its curve's shape depends on nu2 (a thin one stiffens
+steeply as nu2 -> 0.5), where a half-space's and a lubricated pad's depend on E* alone."""
+
+
 def shape_axis(body: Body) -> ShapeAxis | None:
     """The shape constant of ``body``'s model, or None (neo-Hookean: no shape constant)."""
     make = SHAPE_AXES.get(body.model)
     return None if make is None else make(body)
+
+
+def shape_axes(problem: Problem) -> dict[str, ShapeAxis]:
+    """Name -> the shape constants an indentation fit of ``problem`` can seek (one at a
+    time): its rubber model's, and nu2 on a bonded pad."""
+    axes = [shape_axis(problem.body)]
+    if problem.geometry.thickness is not None and problem.geometry.base == "bonded":
+        axes.append(POISSON_AXIS)
+    return {axis.name: axis for axis in axes if axis is not None}
 
 
 @dataclass
@@ -131,36 +159,32 @@ class FECurves:
         from ..api.fem_contact import contact
 
         body = self.problem.body
-        shape = {} if value is None else self.axis.fields(value, body)
-        material = Material(E_REF, body.material.poisson_ratio)
+        fields = {"material": Material(E_REF, body.material.poisson_ratio), "prony": None}
+        fields |= {} if value is None else self.axis.fields(value, body)
         case = dataclasses.replace(
             self.problem,
             striker=dataclasses.replace(self.problem.striker, mass=None, velocity=None),
-            body=dataclasses.replace(body, material=material, prony=None, **shape),
+            body=dataclasses.replace(body, **fields),
             loading=Loading("curve", tuple(float(x) for x in self.depths)),
         )
         if self.progress is not None:
             where = "" if value is None else f", {self.axis.name} {value:.6g}"
-            self.progress(f"fit: FE contact curve {len(self.table) + 1} ({body.model}{where})")
+            self.progress(f"fit: FE contact curve {len(self.table) + 1} ({fe_parts(case)}{where})")
         run = contact(case, refine=self.refine, estimate=True)
         self.table[0.0 if value is None else value] = np.asarray(run.force, float) / E_REF
         error = (run.error_estimate or {}).get("force")
         self.errors.append(float(error) if error is not None else 0.0)
 
     def shape(self, value: float) -> np.ndarray:
-        """p(x; s) in N/Pa: the quadratic (in the axis' coordinate) through the (up to) three
-        nodes nearest ``value``."""
+        """p(x; s) in N/Pa: the not-a-knot cubic spline (in the axis' coordinate) through
+        every FE curve's value at each depth; through three, their quadratic."""
         if self.axis is None:
             return next(iter(self.table.values()))
-        u = self.axis.coordinate
-        nodes = sorted(self.table, key=lambda r: abs(u(r) - u(value)))[:3]
-        out = np.zeros_like(self.depths)
-        for i, a in enumerate(nodes):
-            weight = np.prod(
-                [(u(value) - u(b)) / (u(a) - u(b)) for j, b in enumerate(nodes) if j != i]
-            )
-            out += weight * self.table[a]
-        return out
+        nodes = sorted(self.table, key=self.axis.coordinate)
+        u = np.array([self.axis.coordinate(r) for r in nodes])
+        curves = np.array([self.table[r] for r in nodes])
+        spline = CubicSpline(u, curves, axis=0, bc_type="not-a-knot")
+        return spline(self.axis.coordinate(value))
 
     @property
     def error(self) -> float:
@@ -183,33 +207,51 @@ def _model(curves: FECurves, measured: Measurement, value: float | None) -> Mode
         return values["E2"] * curves.shape(values.get(axis.name, 0.0) if axis else 0.0)
 
     return Model(tuple(params), force, predict, False, "N",
-                 f"FE contact curves at finite strain ({curves.problem.body.model}); E2 "
-                 "scaled out exactly")  # fmt: skip
+                 f"FE contact curves: {fe_parts(curves.problem)}; E2 scaled out "
+                 "exactly")  # fmt: skip
+
+
+def fe_parts(problem: Problem) -> str:
+    """What the FE curves of ``problem`` stand for, in words: a pad, finite strain."""
+    parts = []
+    if problem.geometry.thickness is not None:
+        parts.append(f"pad {problem.geometry.thickness:g} m ({problem.geometry.base} base)")
+    if problem.body.finite:
+        parts.append(f"finite strain ({problem.body.model})")
+    return ", ".join(parts)
 
 
 def _check(problem: Problem, names: Sequence[str]) -> ShapeAxis | None:
-    """The shape constant sought (None: E2 alone); refuses unknowns the finite-strain
+    """The shape constant sought (None: E2 alone); refuses unknowns the FE-curve
     indentation fit does not take."""
     if problem.body.prony is not None:
-        raise InputError("prony: an indentation curve at finite strain is fitted elastic; "
+        raise InputError("prony: an indentation curve by FE curves is fitted elastic; "
                          "leave prony unset", "prony")  # fmt: skip
-    axis = shape_axis(problem.body)
-    allowed = ("E2",) if axis is None else ("E2", axis.name)
+    axes = shape_axes(problem)
+    allowed = ("E2", *axes)
+    if "nu2" in names and "nu2" not in axes and problem.geometry.thickness is not None:
+        raise InputError("fit: nu2 is not identifiable from a lubricated pad's curve: like a "
+                         "half-space's it depends on E2 / (1 - nu2^2) alone; give nu2 and fit "
+                         "E2", "fit")  # fmt: skip
     for name in names:
         if name not in allowed:
             raise InputError(
-                f"fit: an indentation at finite strain ({problem.body.model}) cannot fit "
+                f"fit: an indentation with {fe_parts(problem)} cannot fit "
                 f"{name!r}; choose from {', '.join(allowed)}",
                 "fit",
             )
-    return axis if axis is not None and axis.name in names else None
+    sought = [axes[name] for name in names if name in axes]
+    if len(sought) > 1:
+        raise InputError(f"fit: one shape constant per fit, got {', '.join(a.name for a in sought)}"
+                         "; give the others", "fit")  # fmt: skip
+    return sought[0] if sought else None
 
 
 def finite_indentation_fit(problem: Problem, measured: Measurement, names: Sequence[str],
                            noise: float | None, refine: float,
                            progress: Progress | None = None,
                            ) -> tuple[Model, Solution, FECurves, str | None, dict]:  # fmt: skip
-    """Fit E2 (and one shape constant, :data:`SHAPE_AXES`) of a rubber's indentation curve:
+    """Fit E2 (and one shape constant, :func:`shape_axes`) of an indentation curve by FE:
     the model, its solution (E2 over the constant's whole range when that is not
     identifiable; the intervals widened by the FE error), the FE curves run, why the constant
     is not identifiable (None if it is, or not fitted) and the shifts the FE error made

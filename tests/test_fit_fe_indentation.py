@@ -1,6 +1,7 @@
 """``sh.fit`` of an indentation curve at finite strain: E2 (and the Mooney ratio) from FE
 contact curves, E2 scaled out exactly, the ratio fitted on a few FE curves."""
 
+import dataclasses
 import json
 
 import numpy as np
@@ -77,7 +78,7 @@ def test_unknowns_an_indentation_at_finite_strain_cannot_fit_are_refused(tmp_pat
     argv = ["fit", "indentation", str(csv), "--model", "neo-hookean", "--fit", "E2,mooney_ratio"]
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert "--fit: an indentation at finite strain (neo-hookean) cannot fit 'mooney_ratio'" in err
+    assert "--fit: an indentation with finite strain (neo-hookean) cannot fit 'mooney_ratio'" in err
     assert err.count("\n") == 1
 
 
@@ -127,7 +128,7 @@ def test_gent_limit_round_trip_reports_what_four_depths_cannot_tell():
 def test_yeoh_c2_is_sought_where_c3_keeps_the_energy_stiffening():
     """Yeoh's c2 is sought with c3 held, down to -0.99 sqrt(3 c3): below it dW/dI1 reaches
     zero (the bound rubber_model refuses); with c3 = 0 the range starts at 0."""
-    from shtaerman.fitting.hyperelastic import shape_axis
+    from shtaerman.fitting.fe_indentation import shape_axis
 
     def body(yeoh):
         return sh.Problem.curve(INDENTER, sh.Material(E2, 0.5), model="yeoh", yeoh=yeoh).body
@@ -146,5 +147,48 @@ def test_a_shape_constant_of_another_model_is_refused_naming_the_choices(tmp_pat
             "E2,yeoh_c2"]  # fmt: skip
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert err == ["shtaerman: error: --fit: an indentation at finite strain (mooney-rivlin) "
+    assert err == ["shtaerman: error: --fit: an indentation with finite strain (mooney-rivlin) "
                    "cannot fit 'yeoh_c2'; choose from E2, mooney_ratio"]  # fmt: skip
+
+
+PAD = 0.005  # 5 mm: x/H up to 0.8 at the 4 mm depth, where the pad dominates the curve
+
+
+def pad_curve(base, nu2):
+    case = sh.Problem.curve(INDENTER, sh.Material(E2, nu2), thickness=PAD, base=base,
+                            depths=list(DEPTHS))  # fmt: skip
+    return {"depth": DEPTHS, "force": np.asarray(sh.contact(case, refine=REFINE).force)}
+
+
+def test_an_indentation_on_a_pad_gives_e2_back_from_one_fe_curve():
+    """A lubricated 5 mm pad (its curve 2.4 times the half-space's at 4 mm): E2 scales out of
+    the linear layer's FE curve exactly, so one FE run gives E2 back (round-off: measured
+    1e-12) with the FE force error as its interval, where the exact power law is refused."""
+    data = pad_curve("lubricated", 0.45)
+    begin = sh.Problem.curve(INDENTER, sh.Material(5e6, 0.45), thickness=PAD, base="lubricated")
+    result = sh.fit("indentation", data, begin, unknowns="E2", refine=REFINE)
+    item = result.fitted["E2"]
+    assert item["value"] == pytest.approx(E2, rel=1e-6) and result.fe_runs == 1
+    error = result.corrections[0]["fe_error"]["force"]
+    assert (item["high"] - item["low"]) / 2 == pytest.approx(1.96 * error * E2, rel=1e-3)
+    assert result.corrections[0]["name"] == "FE contact curves: pad 0.005 m (lubricated base)"
+
+
+def test_nu2_of_a_bonded_pad_is_identified_and_of_a_lubricated_one_refused():
+    """A bonded pad's curve changes shape with nu2 (its force at 4 mm over that at 0.5 mm:
+    73 at nu2 = 0, 112 at 0.45, 150 at 0.5), so nu2 is fitted with E2 from a start at 0.3:
+    the spline through the FE curves is refined at each fitted nu2 until it settles (measured
+    7 FE runs, nu2 0.449996, E2 within 2e-5). Both intervals hold the truth; they are wide
+    (measured nu2 0.40-0.50) because the FE force error (0.3 %) widens them, not the data,
+    which have no noise. A lubricated pad's curve depends on E2 / (1 - nu2^2) alone: refused."""
+    data = pad_curve("bonded", 0.45)
+    begin = sh.Problem.curve(INDENTER, sh.Material(5e6, 0.3), thickness=PAD, base="bonded")
+    result = sh.fit("indentation", data, begin, unknowns="E2,nu2", refine=REFINE)
+    nu2, e2 = result.fitted["nu2"], result.fitted["E2"]
+    assert nu2["identifiable"] and nu2["low"] < 0.45 < nu2["high"] <= 0.5
+    # the settled nu2 is an FE node within a tenth of its half-interval (SETTLE) of the fit
+    assert nu2["value"] == pytest.approx(0.45, abs=0.1 * (nu2["high"] - nu2["low"]) / 2)
+    assert e2["low"] < E2 < e2["high"] and e2["value"] == pytest.approx(E2, rel=1e-3)
+    lubricated = dataclasses.replace(begin, geometry=sh.Geometry(PAD, "lubricated"))
+    with pytest.raises(sh.InputError, match="nu2 is not identifiable from a lubricated pad"):
+        sh.fit("indentation", data, lubricated, unknowns="E2,nu2", refine=REFINE)
