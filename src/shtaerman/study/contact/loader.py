@@ -89,6 +89,7 @@ __all__ = [
     "Study",
     "Tolerances",
     "check_profile_depths",
+    "check_profile_reach",
     "layer_spec",
     "load_contact",
     "on_layer",
@@ -387,8 +388,7 @@ def _check_swept_profile(path: Path, raw: _StudyFile) -> None:
         )
 
 
-def check_profile_depths(
-    path: Path,
+def check_profile_reach(
     indenter: Indenter,
     modulus: float,
     depths: tuple[float, ...] | None,
@@ -398,33 +398,56 @@ def check_profile_depths(
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
     Pa) beyond what its FE profile is: a sphere's radius (its equator; beyond it the FE
-    profile is flat) or a table's last row. The refusal names the file and the key."""
+    profile is flat) or a table's last row.
+
+    Raises
+    ------
+    InputError
+        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``.
+    """
     if indenter.kind == "power-law":
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
-        deepest, key = depths[-1], "contact.depths"
+        deepest, parameter = depths[-1], "depths"
         drive = f"depth {deepest:.6g} m"
     else:
-        key = "indenter.sphere_radius" if indenter.kind == "sphere" else "indenter.profile"
-        try:
-            deepest = overshoot * exact_impact(*impact, law).x_c
-        except InputError as error:
-            raise StudyError(f"{path}: key '{key}': {error}") from None
+        parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
+        deepest = overshoot * exact_impact(*impact, law).x_c  # a table's names profile
         drive = (
             f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
             f"({overshoot:g} x_c, the deepest depth)"
         )
     if indenter.kind == "sphere" and deepest >= indenter.radius:
-        raise StudyError(
-            f"{path}: key '{key}': {drive}, beyond the sphere's radius {indenter.radius:.6g} m "
-            "(its equator, past which the FE profile is no sphere); give depths below the "
-            "radius, a larger sphere, or a lower mass or velocity"
+        raise InputError(
+            f"{parameter}: {drive}, beyond the sphere's radius {indenter.radius:.6g} m (its "
+            "equator, past which the FE profile is no sphere); give depths below the radius, "
+            "a larger sphere, or a lower mass or velocity",
+            parameter,
         )
     try:
         law.contact_radius(deepest)  # a table's contact within its last row
     except InputError as error:
-        raise StudyError(f"{path}: key '{key}': {drive}: {error}") from None
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        raise InputError(f"{parameter}: {drive}: {text}", parameter) from None
+
+
+PROFILE_KEYS = {
+    "depths": "contact.depths",
+    "sphere_radius": "indenter.sphere_radius",
+    "profile": "indenter.profile",
+}
+"""A parameter of :func:`check_profile_reach`'s refusal -> its study-file key."""
+
+
+def check_profile_depths(path: Path, indenter: Indenter, *reach: Any) -> None:
+    """:func:`check_profile_reach` (its arguments after ``indenter``) in a study file: the
+    refusal names the file and the key."""
+    try:
+        check_profile_reach(indenter, *reach)
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        raise StudyError(f"{path}: key '{PROFILE_KEYS[error.parameter]}': {text}") from None
 
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
