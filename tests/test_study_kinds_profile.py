@@ -145,6 +145,16 @@ def test_depth_at_ratio_of_a_sphere_is_r_tanh():
         )
 
 
+def test_depth_at_ratio_of_a_tabulated_paraboloid_is_the_power_laws():
+    r = np.linspace(0.0, 0.02, 401)
+    table = sh.TabulatedIndenter(r, 10.0 * r**2)
+    # the table's C1 piecewise quadratic of an exact quadratic is the paraboloid: Sneddon's
+    # depth(a) to round-off, so the root of x/a = ratio too (brentq's rtol 1e-13)
+    for ratio in (0.02, 0.1):
+        power_law = depth_at_ratio(sh.PowerLawIndenter(10.0, 2.0), ratio)
+        assert depth_at_ratio(table, ratio) == pytest.approx(power_law, rel=1e-10)
+
+
 def test_a_finite_strain_study_of_a_sphere_starts_on_sneddon_and_is_sh_contacts(tmp_path):
     [study] = load_study(write(tmp_path, FINITE, f"sphere_radius = {RADIUS}"))
     assert study.indenter == sh.SphereIndenter(RADIUS)

@@ -151,6 +151,7 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
     author = "Shtaerman's" if study.indenter.kind == "power-law" else "Sneddon's"
     x_c = outcome.impacts["finite_strain"]["x_c"]
     linear_ratio = float(law.central_pressure(x_c) / law.mean_pressure(x_c))
+    force_ratio = "P/(beta x^q)" if study.indenter.kind == "power-law" else "P/P_linear"
 
     model = model_label(study.rubber.name)
     return [
@@ -163,12 +164,12 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         f"which cancels the discretization: {_shift(outcome, 'x_c_vs_fem', 1 + fem['x_c'])}, "
         f"{_shift(outcome, 'P_c_vs_fem', 1 + fem['P_c'])}, "
         f"{_shift(outcome, 't_c_vs_fem', 1 + fem['t_c'])}).",
-        f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): P/(beta x^q) = "
+        f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): {force_ratio} = "
         f"{_value(outcome, 'force_ratio_at_x_c', at['force_ratio'], '.4f')}, p(0)/p_avg = "
         f"{_value(outcome, 'central_to_mean_at_x_c', at['central_to_mean'], '.3f')} (linear "
         f"{linear_ratio:.2f}), a/a_linear = "
         f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}. "
-        + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"]),
+        + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"], author),
         _validity_finding(outcome),
         *([] if outcome.start is None else [outcome.start.words()]),
         *rubber_finding(outcome),
@@ -184,15 +185,18 @@ def _corrections(outcome: FiniteStudyOutcome, text: Any) -> list[Any]:
     return [text(outcome.corrections, model_label(outcome.study.rubber.name))]
 
 
-def central_pressure_words(pressure_ratio: float, radius_ratio: float) -> str:
-    """What a changed p(0)/p_avg means: whether p(0) itself lies below or above Shtaerman's at
-    the same depth (``pressure_ratio`` = p(0) / p(0)_linear), and that the ratio also moves with
-    the contact radius (``radius_ratio`` = a / a_linear), through p_avg = P / (pi a^2)."""
+def central_pressure_words(
+    pressure_ratio: float, radius_ratio: float, author: str = "Shtaerman's"
+) -> str:
+    """What a changed p(0)/p_avg means: whether p(0) itself lies below or above the linear
+    exact one (``author``'s) at the same depth (``pressure_ratio`` = p(0) / p(0)_linear), and
+    that the ratio also moves with the contact radius (``radius_ratio`` = a / a_linear),
+    through p_avg = P / (pi a^2)."""
     pressure = "below" if pressure_ratio < 1 else "above"
     radius = "larger" if radius_ratio > 1 else "smaller"
     return (
         f"The central pressure p(0) itself is {100 * abs(pressure_ratio - 1):.1f} % {pressure} "
-        f"Shtaerman's at the same depth; p(0)/p_avg moves also because the contact radius is "
+        f"{author} at the same depth; p(0)/p_avg moves also because the contact radius is "
         f"{100 * abs(radius_ratio - 1):.1f} % {radius} (p_avg = P/(pi a^2))."
     )
 
