@@ -307,11 +307,12 @@ decides what combines (everything not refused here runs)."""
 
 PROFILE_SUPPORT: tuple[Unsupported, ...] = (
     Unsupported(
-        lambda c: c.relaxing,
+        lambda c: c.relaxing and c.model == "linear" and c.loading != "curve",
         "profile",
-        "a viscoelastic body (prony) takes the power law (shape_coefficient, exponent) only: "
-        "its references (Lee-Radok, Ting) and the sizing of its impact are the power law's "
-        "closed forms; a sphere or a tabulated profile runs on an elastic body",
+        "a viscoelastic body (prony) takes the power law only in the linear FE impact, "
+        "which is sized on the power law's closed form; no physical limit: Lee-Radok and "
+        "Ting hold for any profile, and a sphere or a table runs on a viscoelastic body in "
+        "the contact curve (rate) and in a rubber's impact (model)",
     ),
 )
 """The combinations refused to a striker profile other than the power law (a sphere, a

@@ -397,7 +397,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "radius R of an exact sphere z = R - sqrt(R^2 - r^2), in place of the power law "
         "(--shape-coefficient, --exponent)",
         "Sphere radius R",
-        kinds=("contact", "dynamic"),
+        kinds=KIND_NAMES,
         valid=Range(0.0, MAX_SPHERE_RADIUS),
     ),
     Entry(
@@ -407,7 +407,7 @@ VOCABULARY: tuple[Entry, ...] = (
         f"{MAX_PROFILE_ROWS} rows from the tip r = 0, z = 0, both increasing; in place of the "
         "power law",
         "tabulated profile",
-        kinds=("contact", "dynamic"),
+        kinds=KIND_NAMES,
         valid=None,
         type="path",
     ),

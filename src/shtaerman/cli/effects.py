@@ -42,7 +42,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "effects: the pad (--thickness), the waves (--density2 > 0), finite strain "
             "(--model), viscoelasticity (--prony), friction (--interface bonded, --friction). "
             "A sphere (--sphere-radius) or a tabulated tip (--profile) drops viscoelasticity "
-            "(a viscoelastic body takes the power law only), said in one line before the runs. "
+            "on a linear body (its FE impact takes the power law only), said in one line "
+            "before the runs. "
             "A variant that is refused (its combination, an option, a validity limit) or "
             "fails shows its reason in its row; the others run. Progress on stderr, SI units."
         ),

@@ -28,7 +28,10 @@ description = "z = 5 r^(3/2) steel striker, 0.7 kg at 3 m/s, on rubber (edit me)
 
 [indenter]                  # the striker's surface near its first contact point: z = A r^n
 shape_coefficient = 5.0     # A, m^(1-n)
-exponent = 1.5              # n > 1 (n = 2, A = 1/(2R): a sphere of radius R, Hertz)
+exponent = 1.5              # n > 1 (n = 2, A = 1/(2R): Hertz's paraboloid)
+#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
+#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+                            # this file
 
 [striker]                   # scales the contact law through 1/E* = Q1 + Q2; omit it for a rigid
 E1 = 2e11                   # striker (or write "inf"); Pa
@@ -83,6 +86,7 @@ impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against t
 # velocity = [1.0, 2.0, 3.0]  # m/s; each run's name gets the value), or instead:
 #   shape_coefficient = [2.0, 5.0]   # m^(1-n)
 #   exponent = [1.5, 2.0]
+#   sphere_radius = [0.01, 0.02]    # m (with [indenter] sphere_radius)
 #   mass = [0.5, 1.0]               # kg
 #   thickness = [0.01, 0.02]        # m (with [layer])
 #   thickness_ratio = [2.0, 5.0]    # H / a_c (with [layer])
@@ -193,6 +197,9 @@ description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on neo-Hookean rubb
 [indenter]                  # the (rigid) striker's surface: z = A r^n
 shape_coefficient = 5.0     # A, m^(1-n)
 exponent = 1.5              # n > 1
+#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
+#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+                            # this file
 
 [half_space]                # the small-strain constants of the neo-Hookean solid
 E2 = 7.5e6                  # Pa
@@ -267,6 +274,10 @@ description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on a rubber pad (ed
 [indenter]                  # the (rigid) striker's surface: z = A r^n
 shape_coefficient = 5.0     # A, m^(1-n)
 exponent = 1.5              # n > 1
+#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
+#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+                            # this file (a prony series is then dropped: its
+                            # theory is the power law's)
 
 [half_space]                # the body struck
 E2 = 7.5e6                  # Pa

@@ -7,6 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
+from ..theory.sneddon import profile_inputs
 from .case import case_words, interface_words, prefixed
 from .entry import kind_entry
 from .wording import number, plus_minus, seconds
@@ -83,8 +84,7 @@ def entry(
         ),
         "interface": {"kind": study.mesh.interface, "friction": study.mesh.friction},
         "inputs": {
-            "shape_coefficient": study.indenter.shape_coefficient,
-            "exponent": study.indenter.exponent,
+            **profile_inputs(study.indenter),
             "E1": study.striker.youngs_modulus,
             "nu1": study.striker.poisson_ratio,
             "E2": study.half_space.youngs_modulus,
@@ -115,8 +115,25 @@ LAYER_VARIANTS = {
 """The variants' labels on a layer: the analytic impact is the half-space's."""
 
 
+def exact_law(study: Mapping[str, Any]) -> tuple[str, str]:
+    """Whose exact contact law the study's striker has, and how its impact is solved:
+    Shtaerman's and Ateb's for z = A r^n, Sneddon's and the quadrature for a sphere or a
+    tabulated profile (``inputs.profile``)."""
+    profile = study.get("inputs", {}).get("profile")
+    if profile is None:
+        return "Shtaerman's", "Ateb"
+    return f"Sneddon's ({profile['kind']} profile)", "quadrature"
+
+
 def _impact_table(study: Mapping[str, Any]) -> dict[str, object]:
     variants = LAYER_VARIANTS if study.get("layer") else VARIANTS
+    name, solution = exact_law(study)
+    if solution != "Ateb":
+        variants = variants | {
+            "analytic": variants["analytic"]
+            .replace("analytic beta, Ateb", f"{name} law, {solution}")
+            .replace("Shtaerman, Ateb", f"{name} law, {solution}")
+        }
     rows = [
         [label] + [number(study["impact"][variant][key], ".6g") for key in IMPACT_KEYS]
         for variant, label in variants.items()
@@ -161,9 +178,11 @@ def tables(study: Mapping[str, Any]) -> list[dict[str, object]]:
     return [table for table in (_impact_table(study), _estimate_table(study)) if table]
 
 
-def _layer_findings(layer: Mapping[str, Any], interface: Mapping[str, Any]) -> str:
+def _layer_findings(
+    layer: Mapping[str, Any], interface: Mapping[str, Any], law: str = "Shtaerman's"
+) -> str:
     """What the layer does to the contact and the impact (whose striker has the curve's
-    ``interface``), with the FE error estimate."""
+    ``interface``), with the FE error estimate; ``law`` names the half-space's exact law."""
     striker = interface_words(interface.get("kind", "frictionless"), interface.get("friction"))
     excess = layer["force_ratio"] - 1.0
     error = layer["force_ratio_error"] * layer["force_ratio"]
@@ -171,7 +190,7 @@ def _layer_findings(layer: Mapping[str, Any], interface: Mapping[str, Any]) -> s
         f"a {1e3 * layer['thickness']:.3g} mm layer on a {layer['base']} rigid base "
         f"(H / a_c = {layer['thickness_ratio']:.3g}, a_c = {1e3 * layer['contact_radius']:.3g} "
         f"mm the half-space contact radius at x_c) carries {100 * excess:.3g} % ± "
-        f"{100 * error:.1g} % more force than Shtaerman's half-space at the same depth x_c "
+        f"{100 * error:.1g} % more force than {law} half-space at the same depth x_c "
         "(FE estimate and interpolation to x_c). The quasi-static impact on its FE force-depth "
         f"law reaches x_max = {number(layer['x_max'], '.4g')} m "
         f"({100 * (layer['x_max_ratio'] - 1.0):+.3g} % of x_c) and P_max = "
@@ -193,10 +212,10 @@ def findings(name: str, study: Mapping[str, Any]) -> list[str]:
     layer, what the layer does to the contact and the impact."""
     if study.get("layer"):
         layer, interface = study["layer"], study.get("interface", {})
-        return [prefixed(name, study, _layer_findings(layer, interface))]
+        return [prefixed(name, study, _layer_findings(layer, interface, exact_law(study)[0]))]
     errors = study["contact"]["errors"]
     text = (
-        "the FEM reproduces Shtaerman's contact law within a relative "
+        f"the FEM reproduces {exact_law(study)[0]} contact law within a relative "
         f"{number(errors['force'], '.1e')} in the force, {number(errors['beta'], '.1e')} in "
         f"beta and {number(errors['central_pressure'], '.1e')} in p(0) (the largest errors "
         "over the depths, on the study's mesh)"

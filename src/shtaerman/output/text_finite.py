@@ -16,6 +16,7 @@ from ..study.finite.accuracy import CROSSING_KEYS
 from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
+from ..theory.sneddon import profile_inputs
 from .case import case_words, model_label, rubber_words
 from .entry import no_summary_row as summary_row
 from .entry import stored_findings as findings
@@ -92,6 +93,8 @@ def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> st
 
 def _variant(outcome: FiniteStudyOutcome, variant: str) -> str:
     """The impact variant's label, the finite-strain one naming the study's rubber model."""
+    if variant == "linear_exact" and outcome.study.indenter.kind != "power-law":
+        return f"Sneddon, linear ({outcome.study.indenter.kind} profile)"
     if variant != "finite_strain":
         return VARIANTS[variant]
     return f"{model_label(outcome.study.rubber.name)} finite strain"
@@ -126,8 +129,7 @@ def rubber_finding(outcome: FiniteStudyOutcome) -> list[str]:
 def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
     study = outcome.study
     return {
-        "shape_coefficient": study.indenter.shape_coefficient,
-        "exponent": study.indenter.exponent,
+        **profile_inputs(study.indenter),
         "E2": study.half_space.youngs_modulus,
         "nu2": study.half_space.poisson_ratio,
         "mass": study.mass,
@@ -145,24 +147,29 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         for k in ("x_c", "P_c", "t_c")
     }
     whose = "the paper's" if is_paper_case(_inputs(outcome)) else "this case's"
+    law = outcome.finite.exact  # Shtaerman's, or Sneddon's for another profile
+    author = "Shtaerman's" if study.indenter.kind == "power-law" else "Sneddon's"
+    x_c = outcome.impacts["finite_strain"]["x_c"]
+    linear_ratio = float(law.central_pressure(x_c) / law.mean_pressure(x_c))
+    force_ratio = "P/(beta x^q)" if study.indenter.kind == "power-law" else "P/P_linear"
 
     model = model_label(study.rubber.name)
     return [
         f"Real rubber ({model}, nu2 = {study.half_space.poisson_ratio:g}) moves {whose} "
         f"impact ({study.mass:g} kg at {study.velocity:g} m/s): x_c "
         f"{_shift(outcome, 'x_c', ratios['x_c'])}, P_c {_shift(outcome, 'P_c', ratios['P_c'])}, "
-        f"t_c {_shift(outcome, 't_c', ratios['t_c'])} against Shtaerman's "
+        f"t_c {_shift(outcome, 't_c', ratios['t_c'])} against {author} "
         f"linear x_c = {exact['x_c'] * 1e3:.3f} mm, P_c = {exact['P_c']:.1f} N, "
         f"t_c = {exact['t_c'] * 1e3:.3f} ms (against the linear FEM on the same mesh, "
         f"which cancels the discretization: {_shift(outcome, 'x_c_vs_fem', 1 + fem['x_c'])}, "
         f"{_shift(outcome, 'P_c_vs_fem', 1 + fem['P_c'])}, "
         f"{_shift(outcome, 't_c_vs_fem', 1 + fem['t_c'])}).",
-        f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): P/(beta x^q) = "
+        f"At the finite-strain x_c (x/a = {at['depth_to_radius']:.2f}): {force_ratio} = "
         f"{_value(outcome, 'force_ratio_at_x_c', at['force_ratio'], '.4f')}, p(0)/p_avg = "
         f"{_value(outcome, 'central_to_mean_at_x_c', at['central_to_mean'], '.3f')} (linear "
-        f"{outcome.finite.exact.central_to_mean_ratio:.2f}), a/a_linear = "
+        f"{linear_ratio:.2f}), a/a_linear = "
         f"{_value(outcome, 'radius_ratio_at_x_c', at['radius_ratio'], '.4f')}. "
-        + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"]),
+        + central_pressure_words(at["central_pressure_ratio"], at["radius_ratio"], author),
         _validity_finding(outcome),
         *([] if outcome.start is None else [outcome.start.words()]),
         *rubber_finding(outcome),
@@ -178,15 +185,18 @@ def _corrections(outcome: FiniteStudyOutcome, text: Any) -> list[Any]:
     return [text(outcome.corrections, model_label(outcome.study.rubber.name))]
 
 
-def central_pressure_words(pressure_ratio: float, radius_ratio: float) -> str:
-    """What a changed p(0)/p_avg means: whether p(0) itself lies below or above Shtaerman's at
-    the same depth (``pressure_ratio`` = p(0) / p(0)_linear), and that the ratio also moves with
-    the contact radius (``radius_ratio`` = a / a_linear), through p_avg = P / (pi a^2)."""
+def central_pressure_words(
+    pressure_ratio: float, radius_ratio: float, author: str = "Shtaerman's"
+) -> str:
+    """What a changed p(0)/p_avg means: whether p(0) itself lies below or above the linear
+    exact one (``author``'s) at the same depth (``pressure_ratio`` = p(0) / p(0)_linear), and
+    that the ratio also moves with the contact radius (``radius_ratio`` = a / a_linear),
+    through p_avg = P / (pi a^2)."""
     pressure = "below" if pressure_ratio < 1 else "above"
     radius = "larger" if radius_ratio > 1 else "smaller"
     return (
         f"The central pressure p(0) itself is {100 * abs(pressure_ratio - 1):.1f} % {pressure} "
-        f"Shtaerman's at the same depth; p(0)/p_avg moves also because the contact radius is "
+        f"{author} at the same depth; p(0)/p_avg moves also because the contact radius is "
         f"{100 * abs(radius_ratio - 1):.1f} % {radius} (p_avg = P/(pi a^2))."
     )
 

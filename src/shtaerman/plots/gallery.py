@@ -105,7 +105,7 @@ def _layer_figures(outcome: StudyOutcome, folder: Path, figure_format: str) -> d
     h, ratio = zip(*layer.curve, strict=True)
     nu2 = outcome.study.half_space.poisson_ratio
     series = {}
-    if outcome.study.indenter.exponent == REFERENCE_EXPONENT:
+    if getattr(outcome.study.indenter, "exponent", None) == REFERENCE_EXPONENT:  # a power law
         series = {
             f"{base}, {NU}2 = {nu2:g} (sweeps/layer.toml)"
             if base == "bonded"

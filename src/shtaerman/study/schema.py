@@ -20,7 +20,7 @@ import tomllib
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
-from typing import Annotated, Any, Literal, get_args, get_type_hints
+from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
 
 import msgspec
 
@@ -31,12 +31,16 @@ from ..vocabulary import MAX_STUDIES, VOCABULARY, deprecated, fields, suggestion
 from ..vocabulary import entry as vocabulary_entry
 from .kinds import kind_function, study_kinds
 
+if TYPE_CHECKING:
+    from ..theory.sneddon import Indenter
+
 __all__ = [
     "EXTENDED_STUDIES",
     "StudyError",
     "SweepTable",
     "fem_input_error",
     "find_study",
+    "indenter_of",
     "load_study",
     "normalized",
     "shipped_studies",
@@ -124,10 +128,41 @@ class SweepTable(Table):
 
 
 class IndenterTable(Table):
-    """``[indenter]``: z = A r^n, A in m^(1-n)."""
+    """``[indenter]``: the striker's profile: z = A r^n (``shape_coefficient`` A in m^(1-n)
+    and ``exponent`` n), an exact sphere (``sphere_radius``, m) or a tabulated z(r)
+    (``profile``, a CSV path, relative to the study file): :func:`indenter_of`."""
 
-    shape_coefficient: Positive
-    exponent: Positive
+    shape_coefficient: Positive | None = None
+    exponent: Positive | None = None
+    sphere_radius: Positive | None = None
+    profile: str | None = None
+
+
+def indenter_of(path: Path, raw: IndenterTable) -> Indenter:
+    """The profile of ``[indenter]``: exactly one of the power law (shape_coefficient and
+    exponent), sphere_radius or profile; a refusal names the file and the key."""
+    from ..theory.indenter import PowerLawIndenter
+    from ..theory.profiles import SphereIndenter, TabulatedIndenter
+
+    given = [k for k in IndenterTable.__struct_fields__ if getattr(raw, k) is not None]
+    power_law = [k for k in given if k in ("shape_coefficient", "exponent")]
+    others = [k for k in given if k not in power_law]
+    if len(others) > 1 or (others and power_law) or (not others and len(power_law) < 2):
+        raise StudyError(
+            f"{path}: key 'indenter': expected one striker profile: shape_coefficient and "
+            f"exponent (z = A r^n), sphere_radius (m) or profile (a CSV of r, z in m), got "
+            f"{given or 'none'}"
+        )
+    key = others[0] if others else "exponent"
+    try:
+        if key == "sphere_radius":
+            return SphereIndenter(raw.sphere_radius)
+        if key == "profile":
+            table = Path(raw.profile).expanduser()
+            return TabulatedIndenter.from_csv(table if table.is_absolute() else path.parent / table)
+        return PowerLawIndenter(raw.shape_coefficient, raw.exponent)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'indenter.{key}': {error}") from None
 
 
 class StrikerTable(Table):
@@ -288,7 +323,7 @@ def _numbers(data: Any, keys: tuple[str, ...] = ()) -> Iterator[tuple[tuple[str,
 
 
 TABLE_OF = {
-    **{name: "indenter" for name in ("shape_coefficient", "exponent")},
+    **{name: "indenter" for name in ("shape_coefficient", "exponent", "sphere_radius", "profile")},
     **{name: "striker" for name in ("E1", "nu1")},
     **{name: "half_space" for name in ("E2", "nu2", "density2")},
     **{name: "impact" for name in ("mass", "velocity", "figure_velocity")},

@@ -129,11 +129,13 @@ def _material(p: dict[str, Any], young: str, poisson: str):
 
 
 def _impact_inputs(p: dict[str, Any]):
-    from ..theory.contact import PowerLawContact
+    """Mass, velocity and the exact contact law (Shtaerman's, or Sneddon's of a sphere or a
+    table) of an impact case."""
     from ..theory.materials import effective_modulus
+    from ..theory.sneddon import contact_law
 
     striker, half_space = _material(p, "E1", "nu1"), _material(p, "E2", "nu2")
-    law = PowerLawContact(_indenter(p), effective_modulus(striker, half_space))
+    law = contact_law(_indenter(p), effective_modulus(striker, half_space))
     return p["mass"], p["velocity"], law
 
 
@@ -170,18 +172,20 @@ def _quasi_static(check: Any) -> Any:
 
 
 def impact_case(p: dict[str, Any]) -> CaseResult:
-    """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``); a
-    closed form, without checks of its own."""
-    from ..theory.impact import solve_impact
+    """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``): a
+    closed form (Ateb) for the power law, Sneddon's quadrature for a sphere or a table (beta
+    NaN: no power law); without checks of its own."""
+    from ..study.dynamic.case import exact_impact
 
-    result = solve_impact(*_impact_inputs(p))
+    result = exact_impact(*_impact_inputs(p))
     return CaseResult({name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}, ())
 
 
 register_kind(
     Kind(
         name="impact",
-        description="exact quasi-static impact M x'' = -beta x^q (Ateb functions)",
+        description="exact quasi-static impact M x'' = -P(x) (Ateb functions; Sneddon's "
+        "quadrature for a sphere or a table)",
         parameters=vocabulary_parameters("impact"),
         outputs=IMPACT_OUTPUTS,
         case=impact_case,
@@ -632,8 +636,6 @@ register_kind(
 
 # --- effects: which effect of the impact moves P_max, x_max, t_contact and e ---------------------
 
-_PROFILE_KEYS = ("sphere_radius", "profile")
-"""The dynamic kind's striker profiles beside the power law, which an effects case lacks."""
 EFFECT_NAMES = ("pad", "waves", "finite strain", "viscoelasticity", "friction")
 """The effects of :mod:`shtaerman.api.effect_table.variants`, in its order: an effects case's
 ``dominant_<quantity>`` is the index of the dominant one here (NaN: none ran)."""
@@ -718,8 +720,8 @@ register_kind(
         parameters={
             name: parameter
             for name, parameter in vocabulary_parameters("dynamic").items()
-            if name not in ("axis_size", *_PROFILE_KEYS)  # its runs grade their own axis;
-        },  # the effect table takes the power law's striker
+            if name != "axis_size"  # the effect table's runs grade their own axis
+        },
         outputs=EFFECTS_OUTPUTS,
         case=effects_case,
         check=_quasi_static(lambda p: _effects_inputs(p)),
@@ -735,7 +737,8 @@ def _layer_study(p: dict[str, Any]):
     """The contact study of a layer case (its thickness resolved at the impact's x_c)."""
     from ..fem.mesh import MeshSettings
     from ..study.contact.layer import LayerSpec
-    from ..study.contact.loader import Study, on_layer
+    from ..study.contact.loader import Study, check_profile_reach, on_layer
+    from ..theory.materials import effective_modulus
 
     given = [key for key in ("thickness", "thickness_ratio") if p[key] is not None]
     if len(given) != 1:
@@ -764,6 +767,8 @@ def _layer_study(p: dict[str, Any]):
             p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"]
         ),
     )
+    modulus = effective_modulus(study.striker, study.half_space)
+    check_profile_reach(study.indenter, modulus, None, (study.mass, study.velocity))
     return on_layer(study)
 
 
@@ -932,21 +937,22 @@ def _finite_check(p: dict[str, Any]) -> Any:
     import numpy as np
 
     from ..fem.finite_contact import check_finite_depths
+    from ..study.contact.loader import check_profile_reach
+    from ..study.dynamic.case import exact_impact
     from ..study.finite.runner import ladder
-    from ..theory.contact import PowerLawContact
-    from ..theory.impact import solve_impact
     from ..theory.materials import RIGID, effective_modulus
+    from ..theory.sneddon import contact_law
 
     study = _finite_inputs(p)
-    model = study.rubber.name
+    model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
+    impact = (study.mass, study.velocity)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
     if study.depths is not None:
         check_finite_depths(study.indenter, np.asarray(study.depths), model)
         return study
-    modulus = effective_modulus(RIGID, study.half_space)
-    law = PowerLawContact(study.indenter, modulus)
-    x_c = solve_impact(study.mass, study.velocity, law).x_c
+    x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
     depths = ladder(study.indenter, modulus, x_c, study.ladder)
-    check_finite_depths(study.indenter, depths, model, (study.mass, study.velocity))
+    check_finite_depths(study.indenter, depths, model, impact)
     return study
 
 

@@ -1,4 +1,4 @@
-"""Exact references for a rigid power-law striker on an incompressible viscoelastic half-space.
+"""Exact references for a rigid striker on an incompressible viscoelastic half-space.
 
 The half-space relaxes in shear by a Prony series on its instantaneous (glassy) modulus
 (Abaqus' convention), its bulk response elastic and nu = 1/2, so the contact modulus relaxes as
@@ -7,7 +7,10 @@ E*(t) = E*_0 psi(t) with
     psi(t) = G(t)/G0 = g_inf + sum_i g_i exp(-t/tau_i),  g_inf = 1 - sum_i g_i > 0.
 
 With beta0, q of the elastic law P = beta0 x^q at E*_0 and F = x^q (Lee & Radok 1960, Ting 1966;
-exact in the method of dimensionality reduction, Popov, Willert & Hess 2018):
+exact in the method of dimensionality reduction, Popov, Willert & Hess 2018). Any other
+axisymmetric profile (a sphere, a tabulated tip: Sneddon's law) is the same with beta0 = 1 and
+F(x) its elastic force at E*_0: its contact radius a(x) is the geometry's alone, as the power
+law's, which is all the two solutions use (:func:`elastic_shape`):
 
 - loading (contact radius growing, x' > 0): a(t) follows the elastic geometry of x(t), and
   P(t) = beta0 Int_0^t psi(t - s) dF(s) = beta0 [g_inf F(t) + sum_i g_i K_i(t)],
@@ -53,7 +56,11 @@ from scipy.special import hyp1f1
 from ..validation import InputError, NumericalFailureError, plain_float, validate_positive
 from .contact import PowerLawContact
 from .impact import ImpactResult, solve_impact
-from .indenter import PowerLawIndenter
+from .profile_impact import ProfileImpactResult, solve_profile_impact
+from .sneddon import Indenter, SneddonContact, contact_law
+
+Law = PowerLawContact | SneddonContact
+"""An elastic contact law at the instantaneous modulus: the power law's or Sneddon's."""
 
 __all__ = [
     "PronySeries",
@@ -61,6 +68,7 @@ __all__ = [
     "ViscoelasticImpact",
     "constant_rate_contact",
     "constant_rate_pressure",
+    "elastic_shape",
     "hereditary",
     "indentation_force",
     "limit_impacts",
@@ -179,6 +187,22 @@ class PronySeries:
         return PronySeries(self.weights, tuple(tau * factor for tau in self.times))
 
 
+def elastic_shape(law: Law) -> tuple[float, Callable[[ArrayLike], np.ndarray]]:
+    """beta0 and F of the elastic force P = beta0 F(x) at E*_0 (x in m): the power law's beta
+    and x^q, or 1 and Sneddon's force of another profile (N)."""
+    if isinstance(law, PowerLawContact):
+        q = law.force_exponent
+        return law.beta, lambda x: np.asarray(x, dtype=float) ** q
+    return 1.0, lambda x: np.asarray(law.force(x), dtype=float)
+
+
+def _impact(mass: float, velocity: float, law: Law) -> ImpactResult | ProfileImpactResult:
+    """The exact elastic impact on ``law``: Ateb's of the power law, Sneddon's quadrature."""
+    if isinstance(law, PowerLawContact):
+        return solve_impact(mass, velocity, law)
+    return solve_profile_impact(mass, velocity, law)
+
+
 class _Memory:
     """The loading history: x and F = x^q linear in time between nodes t_0 < ... < t_m, with the
     kernels H_i, K_i at each node; evaluates the unloading quantities at any t1 in [t_0, t_m]."""
@@ -264,7 +288,7 @@ def _validate_history(times: ArrayLike, depth: ArrayLike) -> tuple[np.ndarray, n
 
 
 def indentation_force(
-    times: ArrayLike, depth: ArrayLike, law: PowerLawContact, prony: PronySeries
+    times: ArrayLike, depth: ArrayLike, law: Law, prony: PronySeries
 ) -> tuple[np.ndarray, np.ndarray]:
     """Force and contact radius for a prescribed depth history: Lee-Radok, then Ting.
 
@@ -279,8 +303,8 @@ def indentation_force(
         Instants t in s, strictly increasing, the first one at first touch.
     depth : array_like
         Depth x(t) in m at those instants: 0 at the first, rising to one maximum, then falling.
-    law : PowerLawContact
-        The elastic contact at the instantaneous modulus E*_0 (gives beta0, q and a(x)).
+    law : PowerLawContact or SneddonContact
+        The elastic contact at the instantaneous modulus E*_0 (gives beta0, F and a(x)).
     prony : PronySeries
         The half-space's shear relaxation.
 
@@ -290,9 +314,10 @@ def indentation_force(
         P(t) in N and a(t) in m (both 0 once the contact is lost while unloading).
     """
     t, x, peak = _validate_history(times, depth)
-    memory = _Memory(prony, law.beta)
-    q, g, tau = law.force_exponent, memory.g, memory.tau
-    F = x**q
+    beta, shape = elastic_shape(law)
+    memory = _Memory(prony, beta)
+    g, tau = memory.g, memory.tau
+    F = shape(x)
     H, K = np.zeros_like(g), np.zeros_like(g)
     force, radius = np.zeros_like(x), np.zeros_like(x)
     piece, lost = peak - 1, False
@@ -304,7 +329,7 @@ def indentation_force(
             K = decay * K + ramp * (F[n] - F[n - 1])
         if n <= peak:
             memory.append(t[n], x[n], F[n], H, K)
-            force[n] = law.beta * (memory.g_inf * F[n] + float(g @ K))
+            force[n] = beta * (memory.g_inf * F[n] + float(g @ K))
             radius[n] = float(law.contact_radius(x[n]))
             continue
         if n == peak + 1:
@@ -366,7 +391,7 @@ def _kummer(exponent: float, z: np.ndarray) -> np.ndarray:
 
 
 def constant_rate_contact(
-    depth: ArrayLike, rate: float, law: PowerLawContact, prony: PronySeries
+    depth: ArrayLike, rate: float, law: Law, prony: PronySeries
 ) -> dict[str, np.ndarray]:
     """Lee-Radok's contact of the rigid power-law indenter pressed at ``rate`` m/s, x = V t.
 
@@ -389,11 +414,45 @@ def constant_rate_contact(
     """
     rate = validate_positive("rate", rate, "m/s")
     x = np.asarray(depth, dtype=float)
+    if isinstance(law, SneddonContact):
+        return _profile_rate_contact(x, rate, law, prony)
     t, n = x / rate, law.indenter.exponent
     return {
         "force": law.force(x) * rate_factor(law.force_exponent, t, prony),
         "contact_radius": np.asarray(law.contact_radius(x), dtype=float),
         "central_pressure": law.central_pressure(x) * rate_factor((n - 1.0) / n, t, prony),
+    }
+
+
+RATE_STEPS = 2000
+"""Equal steps in the contact radius of a profile's constant-rate contact (:func:`hereditary`
+of its elastic force and central pressure, second order: a sphere's force within 2e-7 of the
+quadrature of tests/test_viscoelastic_profile.py)."""
+
+
+def _profile_rate_contact(
+    x: np.ndarray, rate: float, law: SneddonContact, prony: PronySeries
+) -> dict[str, np.ndarray]:
+    """Lee-Radok's contact of a sphere or a table (Sneddon's ``law`` at E*_0) pressed at
+    ``rate`` m/s to the depths ``x`` (m): the hereditary integrals of its elastic force and
+    central pressure on :data:`RATE_STEPS` equal steps of the contact radius (denser in time
+    near first touch; Sneddon's closed forms in the radius, no root per instant) and the
+    depths' own radii."""
+    radii = np.asarray(law.contact_radius(x), dtype=float)
+    deepest = float(np.max(radii, initial=0.0))
+    if deepest <= 0.0:
+        zero = np.zeros_like(x)
+        return {"force": zero, "contact_radius": zero, "central_pressure": zero}
+    grid = np.union1d(np.linspace(0.0, deepest, RATE_STEPS + 1), radii)
+    elastic = np.zeros((grid.size, 2))
+    elastic[1:, 0] = law.force_at_radius(grid[1:])
+    elastic[1:, 1] = law.central_pressure_at_radius(grid[1:])
+    times = np.asarray(law.depth(grid), dtype=float) / rate
+    response = hereditary(times, elastic, prony)[np.searchsorted(grid, radii)]
+    return {
+        "force": response[..., 0],
+        "contact_radius": radii,
+        "central_pressure": response[..., 1],
     }
 
 
@@ -435,7 +494,7 @@ PROFILE_STEPS = 400
 
 
 def constant_rate_pressure(
-    radius: ArrayLike, depths: ArrayLike, rate: float, law: PowerLawContact, prony: PronySeries
+    radius: ArrayLike, depths: ArrayLike, rate: float, law: Law, prony: PronySeries
 ) -> np.ndarray:
     """Lee-Radok's pressure profiles p(r) in Pa, pressed at ``rate`` m/s, at each of ``depths``
     (m, increasing): the hereditary integral of the elastic p(r, V s) (:func:`hereditary`, on
@@ -444,6 +503,10 @@ def constant_rate_pressure(
     rate = validate_positive("rate", rate, "m/s")
     r, x = np.asarray(radius, dtype=float), np.asarray(depths, dtype=float)
     times = np.union1d(np.linspace(0.0, x[-1] / rate, PROFILE_STEPS + 1), x / rate)
+    if isinstance(law, SneddonContact):  # no self-similarity: each instant's own profile
+        elastic = np.zeros((times.size, r.size))
+        elastic[1:] = [law.pressure(r, rate * t) for t in times[1:]]
+        return hereditary(times, elastic, prony)[np.searchsorted(times, x / rate)]
     # self-similar: p(r, x) = (x/X)^((n-1)/n) p(r (X/x)^(1/n), X), one call for every instant
     n, deepest = law.indenter.exponent, float(x[-1])
     scale = np.maximum(rate * times, 1e-300) / deepest
@@ -465,7 +528,7 @@ class RateContact:
 
     Parameters
     ----------
-    law : PowerLawContact
+    law : PowerLawContact or SneddonContact
         The elastic contact at the instantaneous modulus E*_0 (nu2 = 1/2).
     prony : PronySeries
     rate : float
@@ -474,14 +537,14 @@ class RateContact:
         The curve's depths in m, increasing.
     """
 
-    law: PowerLawContact
+    law: Law
     prony: PronySeries
     rate: float
     depths: tuple[float, ...]
 
     @property
-    def indenter(self) -> PowerLawIndenter:
-        """The indenter z = A r^n."""
+    def indenter(self) -> Indenter:
+        """The striker's profile (z = A r^n, a sphere or a table)."""
         return self.law.indenter
 
     @property
@@ -587,18 +650,17 @@ class _State:
     a: float = 0.0
 
 
-def _loading_step(
-    s: _State, h: float, mass: float, law: PowerLawContact, memory: _Memory
-) -> _State | None:
+def _loading_step(s: _State, h: float, mass: float, law: Law, memory: _Memory) -> _State | None:
     """The next state while the contact grows (Lee-Radok), or None if x would decrease."""
-    q, g, tau = law.force_exponent, memory.g, memory.tau
+    g, tau = memory.g, memory.tau
+    beta, shape = elastic_shape(law)
     decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
-    F_n = s.x**q
+    F_n = float(shape(s.x))
     rest = float(g @ (decay * s.K - ramp * F_n))
     stiff = memory.g_inf + float(g @ ramp)
 
     def force(x: float) -> float:
-        return law.beta * (stiff * x**q + rest)
+        return beta * (stiff * float(shape(x)) + rest)
 
     def residual(x: float) -> float:
         return x - s.x - h * s.v + h * h / (4.0 * mass) * (s.P + force(x))
@@ -614,13 +676,13 @@ def _loading_step(
         v=s.v - h / (2.0 * mass) * (s.P + P),
         P=P,
         H=decay * s.H + ramp * (x - s.x),
-        K=decay * s.K + ramp * (x**q - F_n),
+        K=decay * s.K + ramp * (float(shape(x)) - F_n),
         a=float(law.contact_radius(x)),
     )
 
 
 def _unloading_step(
-    s: _State, h: float, mass: float, law: PowerLawContact, memory: _Memory, piece: int
+    s: _State, h: float, mass: float, law: Law, memory: _Memory, piece: int
 ) -> tuple[_State, int | None]:
     """The next state while the contact shrinks (Ting) and the piece of t1; piece None: the
     contact is lost within the step (P = 0 at its end)."""
@@ -652,10 +714,11 @@ MAX_DURATION = 10.0
 g_inf E*_0, the longest of the two limits) without separation."""
 
 
-def _integrate(mass: float, velocity: float, law: PowerLawContact, prony: PronySeries, h: float,
+def _integrate(mass: float, velocity: float, law: Law, prony: PronySeries, h: float,
                limit: int) -> tuple[list[_State], float]:  # fmt: skip
     """All states from first touch to the step that loses contact, and the separation time."""
-    memory = _Memory(prony, law.beta)
+    beta, shape = elastic_shape(law)
+    memory = _Memory(prony, beta)
     zero = np.zeros(len(prony.weights))
     states = [_State(0.0, 0.0, velocity, 0.0, zero, zero)]
     memory.append(0.0, 0.0, 0.0, zero, zero)
@@ -666,7 +729,7 @@ def _integrate(mass: float, velocity: float, law: PowerLawContact, prony: PronyS
             nxt = _loading_step(s, h, mass, law, memory)
             if nxt is not None:
                 states.append(nxt)
-                memory.append(nxt.t, nxt.x, nxt.x**law.force_exponent, nxt.H, nxt.K)
+                memory.append(nxt.t, nxt.x, float(shape(nxt.x)), nxt.H, nxt.K)
                 continue
             loading, piece = False, len(states) - 2
             memory.freeze()
@@ -708,7 +771,7 @@ def _peak_force(t: np.ndarray, P: np.ndarray) -> float:
 def viscoelastic_impact(
     mass: float,
     velocity: float,
-    law: PowerLawContact,
+    law: Law,
     prony: PronySeries,
     *,
     steps: int = 2000,
@@ -723,9 +786,9 @@ def viscoelastic_impact(
         Striker mass M in kg (> 0).
     velocity : float
         Approach velocity v0 in m/s (> 0).
-    law : PowerLawContact
+    law : PowerLawContact or SneddonContact
         The elastic contact of the rigid striker at the instantaneous modulus E*_0 = E2/(1 -
-        nu2^2), nu2 = 1/2 (beta0, q and a(x)).
+        nu2^2), nu2 = 1/2 (beta0, F and a(x); a sphere's or a table's by Sneddon).
     prony : PronySeries
         The half-space's shear relaxation.
     steps : int
@@ -743,9 +806,10 @@ def viscoelastic_impact(
     velocity = validate_positive("velocity", velocity, "m/s")
     if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 20:
         raise InputError(f"steps must be an integer >= 20 per t_c, got {steps!r}", "steps")
-    t_c = solve_impact(mass, velocity, law).t_c
+    t_c = _impact(mass, velocity, law).t_c
     h = t_c / int(steps)
-    relaxed_duration = 2.0 * prony.g_inf ** (-1.0 / (law.force_exponent + 1.0))  # in t_c
+    # in t_c; a profile's at its tip's q (the relaxed impact is shallower: nearer the tip)
+    relaxed_duration = 2.0 * prony.g_inf ** (-1.0 / (law.force_exponent + 1.0))
     limit = math.ceil(MAX_DURATION * relaxed_duration * steps)
     if longest is not None:
         limit = min(limit, math.ceil(validate_positive("longest", longest, "s") / h))
@@ -773,9 +837,9 @@ def viscoelastic_impact(
 
 
 def limit_impacts(
-    mass: float, velocity: float, law: PowerLawContact, prony: PronySeries
-) -> tuple[ImpactResult, ImpactResult]:
+    mass: float, velocity: float, law: Law, prony: PronySeries
+) -> tuple[ImpactResult | ProfileImpactResult, ImpactResult | ProfileImpactResult]:
     """The exact elastic impacts of the two limits: glassy (tau -> inf, modulus E*_0) and
     relaxed (tau -> 0, modulus g_inf E*_0); both rebound with e = 1."""
-    relaxed = PowerLawContact(law.indenter, law.modulus * prony.g_inf)
-    return solve_impact(mass, velocity, law), solve_impact(mass, velocity, relaxed)
+    relaxed = contact_law(law.indenter, law.modulus * prony.g_inf)
+    return _impact(mass, velocity, law), _impact(mass, velocity, relaxed)

@@ -149,8 +149,8 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
 def dropped_effects(parts: Parts, rows: tuple[Variant, ...]) -> dict[str, str]:
     """The effects the striker's profile leaves out of the table: effect -> why, for each
     effect whose every variant a sphere or a tabulated profile refuses
-    (:data:`shtaerman.problem.PROFILE_SUPPORT`: a viscoelastic body takes the power law
-    only). Found before any run: building a :class:`Problem` computes nothing."""
+    (:data:`shtaerman.problem.PROFILE_SUPPORT`: a viscoelastic linear body's FE impact takes
+    the power law only). Found before any run: building a :class:`Problem` computes nothing."""
     refused = {}
     for variant in rows:
         try:

@@ -3,7 +3,8 @@
 
     kind = "effects"
     name = "..."; description = "..."   # optional
-    [indenter]   shape_coefficient (m^(1-n)), exponent
+    [indenter]   shape_coefficient (m^(1-n)), exponent; or sphere_radius (m); or profile
+                 (a CSV of r, z in m, relative to the study file)
     [half_space] E2 (Pa), nu2, density2 (kg/m^3; 0: massless), prony (optional)
     [impact]     mass (kg), velocity (m/s), interface, friction (as a dynamic study's)
     [rubber]     optional: model and its options (as a dynamic study's)
@@ -36,9 +37,9 @@ from ...study.schema import (
     StudyError,
     Table,
     decode,
+    indenter_of,
     validate_name,
 )
-from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError
 from .report import write_table
@@ -122,18 +123,17 @@ def _geometry(path: Path, raw: _EffectsFile) -> dict[str, Any]:
     """The layer's thickness (m) and base ({} for the half-space); thickness_ratio resolved at
     the quasi-static impact on the half-space, as a dynamic study does."""
     from ...study.contact.loader import layer_spec
-    from ...theory.contact import PowerLawContact
-    from ...theory.impact import solve_impact
+    from ...study.dynamic.case import exact_impact
     from ...theory.materials import RIGID, effective_modulus
+    from ...theory.sneddon import contact_law
 
     if raw.layer is None:
         return {}
     if raw.layer.dynamic:
         raise StudyError(f"{path}: key 'layer.dynamic': applies to a contact study")
-    indenter = PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent)
     body = Material(raw.half_space.E2, raw.half_space.nu2)
-    law = PowerLawContact(indenter, effective_modulus(RIGID, body))
-    a_c = float(solve_impact(raw.impact.mass, raw.impact.velocity, law).a_c)
+    law = contact_law(indenter_of(path, raw.indenter), effective_modulus(RIGID, body))
+    a_c = float(exact_impact(raw.impact.mass, raw.impact.velocity, law).a_c)
     spec = layer_spec(path, raw.layer, None).resolved(a_c)
     return {"thickness": spec.thickness, "base": spec.base}
 
@@ -154,7 +154,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     rubber = {k: v for k, v in msgspec.structs.asdict(raw.rubber).items() if v is not None}
     try:
         found = parts(
-            PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
+            indenter_of(path, raw.indenter),
             Material(raw.half_space.E2, raw.half_space.nu2, raw.half_space.density2),
             mass=raw.impact.mass,
             velocity=raw.impact.velocity,

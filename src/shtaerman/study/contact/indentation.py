@@ -60,18 +60,22 @@ def default_depths(
     mass: float | None = None,
     velocity: float | None = None,
     striker: Material = RIGID,
+    overshoot: float = 1.0,
 ) -> np.ndarray:
-    """Eight depths (m) up to the x_c of the impact of ``mass`` (kg) at ``velocity`` (m/s)
-    by ``striker`` (defaults: the vocabulary's, the paper's 0.7 kg at 3 m/s, rigid), radii
-    a_c/3 .. a_c (another profile than the power law: the depths of those radii)."""
+    """Eight depths (m) up to ``overshoot`` times the x_c of the impact of ``mass`` (kg) at
+    ``velocity`` (m/s) by ``striker`` (defaults: the vocabulary's, the paper's 0.7 kg at
+    3 m/s, rigid), radii a/3 .. a at the deepest (another profile than the power law: the
+    depths of those radii)."""
     mass = entry("mass").default if mass is None else mass
     velocity = entry("velocity").default if velocity is None else velocity
     law = contact_law(indenter, effective_modulus(striker, half_space))
     if isinstance(law, SneddonContact):
         a_c = solve_profile_impact(mass, velocity, law).a_c
+        if overshoot != 1.0:
+            a_c = float(law.contact_radius(overshoot * law.depth(a_c)))
         return law.depth(a_c * np.geomspace(1.0 / DEFAULT_RADIUS_SPAN, 1.0, DEFAULT_STEPS))
     x_c = solve_impact(mass, velocity, law).x_c
-    return depths_up_to(x_c, indenter.exponent)
+    return depths_up_to(overshoot * x_c, indenter.exponent)
 
 
 @dataclass(frozen=True)

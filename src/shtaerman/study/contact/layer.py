@@ -25,11 +25,12 @@ import numpy as np
 
 from ...fem.dynamic_contact import DynamicSettings
 from ...fem.mesh import MeshSettings, check_thickness_range
-from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
+from ...theory.sneddon import Indenter
 from ..checks import Check
 from .accuracy import AccuracyResult
 from .contact_law import FemContactLaw
+from .indentation import refined_radius
 
 __all__ = [
     "LEVELS",
@@ -95,14 +96,13 @@ class LayerSpec:
         return replace(mesh, thickness=self.thickness, base=self.base)
 
 
-def check_thickness(mesh: MeshSettings, indenter: PowerLawIndenter, deepest: float) -> None:
+def check_thickness(mesh: MeshSettings, indenter: Indenter, deepest: float) -> None:
     """Refuse (InputError naming the thickness) the layer of ``mesh`` (``mesh.thickness`` m)
     if its mesh does not take it at the deepest depth ``deepest`` m: the mesh's own bounds,
-    :data:`~shtaerman.fem.mesh.MIN_THICKNESS` .. ``MAX_THICKNESS`` refined radii."""
-    thickness = mesh.thickness
-    geometric = (deepest / indenter.shape_coefficient) ** (1.0 / indenter.exponent)
-    refined = mesh.margin * geometric * mesh.zone_factor(indenter.exponent)
-    check_thickness_range(thickness, refined, "at this study's depths")
+    :data:`~shtaerman.fem.mesh.MIN_THICKNESS` .. ``MAX_THICKNESS`` refined radii (of any
+    profile: :func:`.indentation.refined_radius`)."""
+    refined = refined_radius(indenter, np.array([deepest]), mesh)
+    check_thickness_range(mesh.thickness, refined, "at this study's depths")
 
 
 @dataclass(frozen=True)
@@ -213,7 +213,7 @@ def layer_findings(
 def with_dynamic_impact(
     findings: LayerFindings,
     layer: LayerSpec,
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     impact: tuple[float, float],
     quick: bool = False,

@@ -7,7 +7,9 @@ snake_case)::
 
     name = "paper"                       # optional; default: the file's stem (a plain name)
     description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (z = A r^n), or
+                 sphere_radius = 0.01 (m; an exact sphere, Sneddon's law), or profile =
+                 "tip.csv" (a tabulated z(r): r, z in m; relative to the study file)
     [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
@@ -28,9 +30,10 @@ snake_case)::
                  dynamic = true (optional, about 5 s per study) adds the dynamic FE impact
                  on the layer (rigid striker, [half_space] density2 = 1100 kg/m^3 by
                  default): its restitution, x_max and P_max
-    [sweep]      optional: one parameter ("shape_coefficient", "exponent", "mass",
-                 "velocity", "thickness", "thickness_ratio") and a list of values; the study
-                 runs once per value.
+    [sweep]      optional: one parameter ("shape_coefficient", "exponent", "sphere_radius",
+                 "mass", "velocity", "thickness", "thickness_ratio") and a list of values;
+                 the study runs once per value (the power law's keys of a power law, the
+                 sphere_radius of a sphere).
 
 A vocabulary key may also be written at the top level (``E2 = 4e6``): it goes to its table.
 The keys of earlier releases (``youngs_modulus``, ``[mesh] size``, ``[quick_mesh]``, ...) still
@@ -53,12 +56,12 @@ import numpy as np
 
 from ...fem.contact import check_contact_scale
 from ...fem.mesh import INTERFACES, MeshSettings
-from ...theory.contact import PowerLawContact
-from ...theory.impact import solve_impact
-from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.profiles import SphereIndenter
+from ...theory.sneddon import Indenter, contact_law
 from ...validation import InputError
 from ...vocabulary import entry
+from ..dynamic.case import exact_impact
 from ..schema import (
     EXPECTED,
     ImpactTable,
@@ -72,6 +75,7 @@ from ..schema import (
     SweepTable,
     Table,
     decode,
+    indenter_of,
     ranged,
     validate_name,
     validated,
@@ -84,6 +88,8 @@ __all__ = [
     "LayerTable",
     "Study",
     "Tolerances",
+    "check_profile_depths",
+    "check_profile_reach",
     "layer_spec",
     "load_contact",
     "on_layer",
@@ -95,6 +101,7 @@ QUICK_MESH = MeshSettings(size=1 / 90, domain=1e4, growth=0.3, axis_size=1e-5, a
 SYMBOLS = {
     "shape_coefficient": "A",
     "exponent": "n",
+    "sphere_radius": "R",
     "mass": "M",
     "velocity": "v0",
     "thickness": "H",
@@ -158,6 +165,7 @@ class _Convergence(Table):
 class _Sweep(SweepTable):
     shape_coefficient: list[Positive] | None = None
     exponent: list[Positive] | None = None
+    sphere_radius: list[Positive] | None = None
     mass: list[Positive] | None = None
     velocity: list[Positive] | None = None
     thickness: list[Positive] | None = None
@@ -200,7 +208,8 @@ class Study:
     name: str
     description: str
     source: Path
-    indenter: PowerLawIndenter
+    indenter: Indenter
+    """The striker's profile: z = A r^n, an exact sphere or a tabulated z(r)."""
     striker: Material
     half_space: Material
     mass: float
@@ -244,7 +253,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         name=name,
         description=raw.description,
         source=path,
-        indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
+        indenter=indenter_of(path, raw.indenter),
         striker=RIGID if raw.striker is None else _material(raw.striker),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
@@ -313,7 +322,7 @@ def on_layer(study: Study) -> Study:
         return study
 
     modulus = effective_modulus(study.striker, study.half_space)
-    exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
+    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     layer = study.layer.resolved(float(exact.a_c))
     deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
     mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
@@ -346,6 +355,8 @@ def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
     for value in values:
         if key in ("shape_coefficient", "exponent"):
             changed = replace(study, indenter=replace(study.indenter, **{key: value}))
+        elif key == "sphere_radius":
+            changed = replace(study, indenter=SphereIndenter(value))
         elif key in ("thickness", "thickness_ratio"):
             changed = replace(study, layer=replace(study.layer, **{key: value}))
         else:
@@ -355,13 +366,102 @@ def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
     return studies
 
 
+SWEPT_PROFILES = {
+    "shape_coefficient": "power-law",
+    "exponent": "power-law",
+    "sphere_radius": "sphere",
+}
+"""A swept key of the striker's profile -> the [indenter] it varies."""
+
+
+def _check_swept_profile(path: Path, raw: _StudyFile) -> None:
+    """Refuse a [sweep] of a profile key the [indenter] does not have (the power law's keys of
+    a sphere or a table, sphere_radius of another profile), naming the swept key."""
+    key = raw.sweep.chosen()[0] if raw.sweep is not None else None
+    if key not in SWEPT_PROFILES:
+        return
+    kind = indenter_of(path, raw.indenter).kind
+    if kind != SWEPT_PROFILES[key]:
+        raise StudyError(
+            f"{path}: key 'sweep.{key}': varies a {SWEPT_PROFILES[key]} striker, but "
+            f"[indenter] is a {kind} one; sweep a key of its own profile or change [indenter]"
+        )
+
+
+def check_profile_reach(
+    indenter: Indenter,
+    modulus: float,
+    depths: tuple[float, ...] | None,
+    impact: tuple[float, float],
+    overshoot: float = DEPTH_OVERSHOOT,
+) -> None:
+    """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
+    m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
+    Pa) beyond what its FE profile is: a sphere's radius (its equator; beyond it the FE
+    profile is flat) or a table's last row.
+
+    Raises
+    ------
+    InputError
+        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``.
+    """
+    if indenter.kind == "power-law":
+        return
+    law = contact_law(indenter, modulus)
+    if depths is not None:
+        deepest, parameter = depths[-1], "depths"
+        drive = f"depth {deepest:.6g} m"
+    else:
+        parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
+        deepest = overshoot * exact_impact(*impact, law).x_c  # a table's names profile
+        drive = (
+            f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
+            f"({overshoot:g} x_c, the deepest depth)"
+        )
+    if indenter.kind == "sphere" and deepest >= indenter.radius:
+        raise InputError(
+            f"{parameter}: {drive}, beyond the sphere's radius {indenter.radius:.6g} m (its "
+            "equator, past which the FE profile is no sphere); give depths below the radius, "
+            "a larger sphere, or a lower mass or velocity",
+            parameter,
+        )
+    try:
+        law.contact_radius(deepest)  # a table's contact within its last row
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        raise InputError(f"{parameter}: {drive}: {text}", parameter) from None
+
+
+PROFILE_KEYS = {
+    "depths": "contact.depths",
+    "sphere_radius": "indenter.sphere_radius",
+    "profile": "indenter.profile",
+}
+"""A parameter of :func:`check_profile_reach`'s refusal -> its study-file key."""
+
+
+def check_profile_depths(path: Path, indenter: Indenter, *reach: Any) -> None:
+    """:func:`check_profile_reach` (its arguments after ``indenter``) in a study file: the
+    refusal names the file and the key."""
+    try:
+        check_profile_reach(indenter, *reach)
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        raise StudyError(f"{path}: key '{PROFILE_KEYS[error.parameter]}': {text}") from None
+
+
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
+    _check_swept_profile(path, raw)
     try:
         studies = _expanded(_with_interface(path, _build(path, raw), raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
+    for study in studies:
+        modulus = effective_modulus(study.striker, study.half_space)
+        impact = (study.mass, study.velocity)
+        check_profile_depths(path, study.indenter, modulus, study.depths, impact)
     return validated(path, studies)

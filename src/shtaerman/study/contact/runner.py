@@ -19,15 +19,17 @@ from scipy.integrate import IntegrationWarning
 from ...fem.contact import check_contact_scale
 from ...guards import warn_outside_validity
 from ...problem import Interface
-from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ...theory.impact_ode import integrate_impact
 from ...theory.materials import effective_modulus
+from ...theory.profile_impact import ProfileImpactResult
+from ...theory.sneddon import contact_law
 from ..checks import Check
+from ..dynamic.case import exact_impact
 from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
-from .indentation import IndentationResult, depths_up_to, refined_radius
+from .indentation import IndentationResult, default_depths, refined_radius
 from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
 from .loader import DEPTH_OVERSHOOT, Study
 
@@ -51,7 +53,8 @@ class StudyOutcome:
     impacts: dict[str, dict[str, float]]
     """Maxima per variant: "analytic", "fem_fitted", "fem_tabulated"."""
     histories: dict[str, ImpactHistory]
-    exact: ImpactResult
+    exact: ImpactResult | ProfileImpactResult
+    """The exact quasi-static impact: Ateb's of the power law, Sneddon's of another profile."""
     checks: list[Check]
     seconds: float
     convergence: ConvergenceStudy | None = None
@@ -76,10 +79,13 @@ class StudyOutcome:
         }
 
 
-def _study_depths(study: Study, exact: ImpactResult) -> np.ndarray:
+def _study_depths(study: Study) -> np.ndarray:
+    """The study's depths, m: as given, or eight up to 1.01 x_c of its impact (radii a/3 .. a
+    of any profile)."""
     if study.depths is not None:
         return np.asarray(study.depths)
-    return depths_up_to(DEPTH_OVERSHOOT * exact.x_c, study.indenter.exponent)
+    impact = (study.mass, study.velocity, study.striker)
+    return default_depths(study.indenter, study.half_space, *impact, overshoot=DEPTH_OVERSHOOT)
 
 
 def tabulated_impact(
@@ -110,7 +116,7 @@ def tabulated_impact(
     return maxima, history
 
 
-def impact_maxima(result: ImpactResult) -> dict[str, float]:
+def impact_maxima(result: ImpactResult | ProfileImpactResult) -> dict[str, float]:
     """beta and the maxima x_c, P_c, a_c, p_c, t_c, t_y of an impact (SI units)."""
     return {key: float(getattr(result, key)) for key in IMPACT_KEYS}
 
@@ -150,8 +156,8 @@ def run_contact_study(
     report = progress or (lambda _line: None)
     start = time.perf_counter()
     modulus = effective_modulus(study.striker, study.half_space)
-    exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
-    mesh, depths = study.quick_mesh if quick else study.mesh, _study_depths(study, exact)
+    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
+    mesh, depths = study.quick_mesh if quick else study.mesh, _study_depths(study)
     if study.depths is None:  # the impact's x_c set them: a huge one names mass and velocity
         radius = refined_radius(study.indenter, depths, mesh)
         check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))

@@ -63,9 +63,7 @@ from ...fem.dynamic_contact import (
 from ...fem.mesh_budget import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import RUBBER_OPTIONS, Problem
-from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
-from ...theory.profiles import SphereIndenter, TabulatedIndenter
 from ...theory.sneddon import Indenter, contact_law
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
@@ -73,6 +71,7 @@ from ...vocabulary import entry
 from ..contact.loader import LayerTable, layer_spec
 from ..schema import (
     SETTINGS_FIELDS,
+    IndenterTable,
     Poisson,
     Positive,
     Relative,
@@ -80,6 +79,7 @@ from ..schema import (
     Table,
     decode,
     fem_input_error,
+    indenter_of,
     ranged,
     validate_name,
 )
@@ -87,40 +87,6 @@ from .accuracy import check_ladder
 from .case import exact_impact
 
 __all__ = ["DynamicStudy", "DynamicTolerances", "dynamic_check_failures", "load_dynamic"]
-
-
-class _DynIndenter(Table):
-    """The striker's profile: z = A r^n (both keys), an exact sphere (``sphere_radius``, m) or
-    a tabulated z(r) (``profile``, a CSV path, relative to the study file)."""
-
-    shape_coefficient: Positive | None = None
-    exponent: Positive | None = None
-    sphere_radius: Positive | None = None
-    profile: str | None = None
-
-
-def _indenter(path: Path, raw: _DynIndenter) -> Indenter:
-    """The profile of ``[indenter]``: exactly one of the power law (shape_coefficient and
-    exponent), sphere_radius or profile; a refusal names the file and the key."""
-    given = [k for k in _DynIndenter.__struct_fields__ if getattr(raw, k) is not None]
-    power_law = [k for k in given if k in ("shape_coefficient", "exponent")]
-    others = [k for k in given if k not in power_law]
-    if len(others) > 1 or (others and power_law) or (not others and len(power_law) < 2):
-        raise StudyError(
-            f"{path}: key 'indenter': expected one striker profile: shape_coefficient and "
-            f"exponent (z = A r^n), sphere_radius (m) or profile (a CSV of r, z in m), got "
-            f"{given or 'none'}"
-        )
-    key = others[0] if others else "exponent"
-    try:
-        if key == "sphere_radius":
-            return SphereIndenter(raw.sphere_radius)
-        if key == "profile":
-            table = Path(raw.profile)
-            return TabulatedIndenter.from_csv(table if table.is_absolute() else path.parent / table)
-        return PowerLawIndenter(raw.shape_coefficient, raw.exponent)
-    except InputError as error:
-        raise StudyError(f"{path}: key 'indenter.{key}': {error}") from None
 
 
 class _DynHalfSpace(Table):
@@ -182,7 +148,7 @@ class _DynSweep(Table):
 
 
 class _DynamicFile(Table):
-    indenter: _DynIndenter
+    indenter: IndenterTable
     half_space: _DynHalfSpace
     impact: _DynImpact
     name: str | None = None
@@ -303,7 +269,7 @@ def _layer(path: Path, raw: _DynamicFile, example: float) -> DynamicSettings:
         )
     spec = layer_spec(path, raw.layer, None)
     body = Material(raw.half_space.E2, raw.half_space.nu2)
-    half_space = contact_law(_indenter(path, raw.indenter), effective_modulus(RIGID, body))
+    half_space = contact_law(indenter_of(path, raw.indenter), effective_modulus(RIGID, body))
     spec = spec.resolved(float(exact_impact(raw.impact.mass, example, half_space).a_c))
     try:
         return DynamicSettings(thickness=spec.thickness, base=spec.base)
@@ -349,7 +315,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         name = validate_name(raw.name if raw.name is not None else path.stem, "name")
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
-    indenter = _indenter(path, raw.indenter)
+    indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     try:
         validate_fem_inputs(indenter, half_space)

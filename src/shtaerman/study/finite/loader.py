@@ -5,7 +5,9 @@ A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it
 
     name = "finite-strain"               # optional; default: the file's stem
     description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1)
+    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1), or
+                 sphere_radius = 0.01 (m; an exact sphere, against Sneddon's linear law), or
+                 profile = "tip.csv" (a tabulated z(r): r, z in m; relative to the file)
     [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5])
     [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
     [contact]    reach = 1.1 (deepest depth / the linear impact's x_c), depth_steps = 12
@@ -43,9 +45,10 @@ from ... import vocabulary
 from ...fem.finite_contact import FINITE_MESH
 from ...fem.mesh import MeshSettings
 from ...fem.rubber import RubberModel, rubber_model
-from ...theory.indenter import PowerLawIndenter
-from ...theory.materials import Material
+from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.sneddon import Indenter
 from ...validation import InputError
+from ..contact.loader import check_profile_depths
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     ImpactTable,
@@ -59,6 +62,7 @@ from ..schema import (
     SweepTable,
     Table,
     decode,
+    indenter_of,
     ranged,
     validate_name,
     validated,
@@ -187,7 +191,8 @@ class FiniteStudy:
     name: str
     description: str
     source: Path
-    indenter: PowerLawIndenter
+    indenter: Indenter
+    """The rigid striker's profile: z = A r^n, an exact sphere or a tabulated z(r)."""
     half_space: Material
     mass: float
     velocity: float
@@ -254,7 +259,7 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         name=name,
         description=raw.description,
         source=path,
-        indenter=PowerLawIndenter(raw.indenter.shape_coefficient, raw.indenter.exponent),
+        indenter=indenter_of(path, raw.indenter),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
@@ -334,4 +339,9 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
+    for study in studies:  # the deepest depth: reach x_c
+        modulus = effective_modulus(RIGID, study.half_space)
+        impact = (study.mass, study.velocity)
+        reach = study.ladder.reach
+        check_profile_depths(path, study.indenter, modulus, study.depths, impact, reach)
     return validated(path, studies)

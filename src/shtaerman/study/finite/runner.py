@@ -32,18 +32,21 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
+from scipy.optimize import brentq
 
 from ...fem.contact import MIN_CONTACT_NODES
-from ...fem.finite_contact import check_finite_depths, geometric_radius
+from ...fem.finite_contact import check_finite_depths, geometric_radius, tip_exponent
 from ...fem.mesh import MeshSettings
-from ...theory.contact import PowerLawContact
-from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
+from ...theory.impact import ImpactHistory, ImpactResult
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, effective_modulus
+from ...theory.profile_impact import ProfileImpactResult
+from ...theory.sneddon import Indenter, contact_law, profile_inputs
 from ..checks import Check
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
+from ..dynamic.case import exact_impact
 from ..ladder import (
     LADDER_RATIO,
     NESTED_RATIO,
@@ -72,15 +75,27 @@ VARIANTS = ("linear_exact", "linear_fem", "finite_strain")
 """Impact variants: Shtaerman's exact, the same-mesh linear FEM and the finite-strain FEM."""
 
 
-def depth_at_ratio(indenter: PowerLawIndenter, ratio: float) -> float:
-    """Depth in m whose linear contact has x/a = ``ratio``: x = kappa A a^n, so
-    a = (ratio / (kappa A))^(1/(n-1)) and x = ratio a."""
-    kappa_a = indenter.kappa * indenter.shape_coefficient
-    return ratio * (ratio / kappa_a) ** (1.0 / (indenter.exponent - 1.0))
+def depth_at_ratio(indenter: Indenter, ratio: float) -> float:
+    """Depth in m whose linear contact has x/a = ``ratio``: for z = A r^n, x = kappa A a^n,
+    so a = (ratio / (kappa A))^(1/(n-1)) and x = ratio a; for another profile the root of
+    x(a) / a = ratio on Sneddon's law (NaN where x/a never reaches it)."""
+    if isinstance(indenter, PowerLawIndenter):
+        kappa_a = indenter.kappa * indenter.shape_coefficient
+        return ratio * (ratio / kappa_a) ** (1.0 / (indenter.exponent - 1.0))
+    law = contact_law(indenter, 1.0)  # x/a is geometry's alone
+    top = law.max_contact_radius * (1.0 - 1e-9)
+    low = top * 1e-9
+
+    def excess(a: float) -> float:
+        return float(law.depth(a)) / a - ratio
+
+    if not excess(low) < 0.0 < excess(top):
+        return math.nan
+    return ratio * brentq(excess, low, top, xtol=1e-15 * top, rtol=1e-13)
 
 
 def ladder(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     modulus: float,
     x_c: float,
     spec: Ladder,
@@ -88,10 +103,10 @@ def ladder(
 ) -> np.ndarray:
     """Depths in m: geometric from x/a = ``small_ratio`` (linear a), or from ``smallest`` m
     if deeper (where the mesh resolves the contact), to the first of ``steps`` equal steps
-    up to ``reach`` x_c. x/a = kappa A a^(n-1) on the linear solution."""
+    up to ``reach`` x_c. x/a on the linear solution (:func:`depth_at_ratio`)."""
     top = spec.reach * x_c
     first = top / spec.steps
-    exact = PowerLawContact(indenter, modulus)
+    exact = contact_law(indenter, modulus)
     tiny = max(depth_at_ratio(indenter, spec.small_ratio), smallest)
     equal = top * np.arange(1, spec.steps + 1) / spec.steps
     if not tiny < first or not math.isfinite(tiny) or exact.force(tiny) <= 0:
@@ -152,11 +167,12 @@ class LadderStart:
         }
 
 
-def surface_radii(indenter: PowerLawIndenter, top: float, mesh: MeshSettings) -> np.ndarray:
+def surface_radii(indenter: Indenter, top: float, mesh: MeshSettings) -> np.ndarray:
     """Radii in m of the surface nodes besides the axis (vertices and mid-sides), increasing,
     of ``mesh`` meshed for the deepest depth ``top`` (m) as
     :func:`shtaerman.fem.finite_contact.run_finite_indentation` meshes it (about 0.1 s)."""
-    refined = mesh.margin * geometric_radius(indenter, top) * mesh.zone_factor(indenter.exponent)
+    zone = mesh.zone_factor(tip_exponent(indenter))
+    refined = mesh.margin * geometric_radius(indenter, top) * zone
     built = mesh.build(refined)
     ends = built.p[0, built.facets[:, built.boundaries["surface"]]]
     radii = np.unique(np.concatenate([ends.ravel(), 0.5 * (ends[0] + ends[1])]))
@@ -333,8 +349,7 @@ class FiniteStudyOutcome:
             **self.finite.to_dict_model(),
             "quick": self.quick,
             "inputs": {
-                "shape_coefficient": self.study.indenter.shape_coefficient,
-                "exponent": self.study.indenter.exponent,
+                **profile_inputs(self.study.indenter),
                 "E2": self.study.half_space.youngs_modulus,
                 "nu2": self.study.half_space.poisson_ratio,
                 "mass": self.study.mass,
@@ -418,7 +433,7 @@ def _run_level(
     study: FiniteStudy,
     depths: np.ndarray,
     mesh: MeshSettings,
-    exact: ImpactResult,
+    exact: ImpactResult | ProfileImpactResult,
     quick: bool,
     first: LadderStart | None = None,
 ) -> FiniteStudyOutcome:
@@ -490,7 +505,7 @@ def _depths(
     (else None): a ``small_ratio`` depth whose contact covers fewer than MIN_CONTACT_NODES
     surface nodes moves to the smallest depth covering :data:`START_NODES`."""
     radii = surface_radii(study.indenter, spec.reach * x_c, coarsest)
-    law = PowerLawContact(study.indenter, modulus)
+    law = contact_law(study.indenter, modulus)
     requested = depth_at_ratio(study.indenter, spec.small_ratio)
     covered = np.count_nonzero(radii < law.contact_radius(requested))
     if covered >= MIN_CONTACT_NODES or radii.size < START_NODES:
@@ -532,7 +547,7 @@ def run_finite_strain_study(
     report = progress or (lambda _line: None)
     start, cpu = time.perf_counter(), time.process_time()
     modulus = effective_modulus(RIGID, study.half_space)
-    exact = solve_impact(study.mass, study.velocity, PowerLawContact(study.indenter, modulus))
+    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     spec = study.quick_ladder if quick else study.ladder
     mesh = study.quick_mesh if quick else study.mesh
     nested = study.mesh_ladder == "nested"
