@@ -15,7 +15,12 @@ DefineConstant[
   smallest_size = {0.01, Name "Parameters/3Smallest element size (m)"},
   growth = {0.15, Name "Parameters/4Growth rate (size per distance)"},
   axis_size = {0.01, Name "Parameters/5Element size at the axis (m)"},
-  axis_growth = {0.05, Name "Parameters/6Growth rate from the axis (size per distance)"}
+  axis_growth = {0.05, Name "Parameters/6Growth rate from the axis (size per distance)"},
+  band_start = {1, Name "Parameters/7Start of the graded band (m)"},
+  near_growth = {0.15, Name "Parameters/8Growth rate near the surface (size per distance)"},
+  near_depth = {0, Name "Parameters/9Depth of the near growth (m)"},
+  far_growth = {0.15, Name "Parameters/10Growth rate far away (size per distance)"},
+  far_start = {1e300, Name "Parameters/11Distance where the far growth starts (m)"}
 ];
 
 If (domain_radius <= refined_radius)
@@ -43,8 +48,24 @@ Physical Surface("body", 4) = {1};
 // Exact distance to the refined segment {0 <= x <= refined_radius, y = 0} (a Distance field
 // would measure it to sample points only, leaving bumps between them).
 Field[1] = MathEval;
-Field[1].F = Sprintf("%.17g + %.17g * Sqrt(Max(x - %.17g, 0)^2 + y^2)",
-                     smallest_size, growth, refined_radius);
+If (band_start < refined_radius || near_depth > 0 || far_start < domain_radius)
+  // The graded family of `contact --accuracy`: on the surface the size grows in proportion to
+  // r beyond band_start (smallest_size * r / band_start up to the refined radius), so every
+  // contact edge of the band meets the same size relative to its radius; with the distance d
+  // from the segment it grows by near_growth up to near_depth, by growth beyond, and by
+  // far_growth beyond far_start.
+  distance = Sprintf("Sqrt(Max(x - %.17g, 0)^2 + y^2)", refined_radius);
+  Field[1].F = StrCat(Sprintf("%.17g * Max(Min(x, %.17g), %.17g)", smallest_size / band_start,
+                              refined_radius, band_start),
+                      Sprintf(" + %.17g * ", growth), distance,
+                      Sprintf(" + %.17g * Min(", near_growth - growth), distance,
+                      Sprintf(", %.17g)", near_depth),
+                      Sprintf(" + %.17g * Max(", far_growth - growth), distance,
+                      Sprintf(" - %.17g, 0)", far_start));
+Else
+  Field[1].F = Sprintf("%.17g + %.17g * Sqrt(Max(x - %.17g, 0)^2 + y^2)",
+                       smallest_size, growth, refined_radius);
+EndIf
 // Grading toward the first contact point (0, 0): the size grows from axis_size at the origin
 // by axis_growth per unit distance up to smallest_size, and the field stops there (beyond it
 // the segment's field alone sets the size). Every contact radius r then gets elements of about

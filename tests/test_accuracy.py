@@ -1,23 +1,27 @@
 """The mesh ladder behind every contact number's error estimate, and ``--accuracy``.
 
-Coarse meshes here (a ladder of about 3k/5k/9k dofs, 2-3 s); the effectivity of the estimates
-on unseen cases and the ``--accuracy`` timings are measured in benchmarks/bench_accuracy.py.
+Coarse meshes here (a ladder of about 3k/5k/9k dofs, 2-3 s), but for the one run of
+``--accuracy 1e-6`` at the default caps (five levels to 214k dofs, about 20 CPU s and 1.9 GB:
+the issue's promise itself); the effectivity of the estimates on unseen cases and the
+``--accuracy`` timings are measured in benchmarks/bench_accuracy.py and accuracy_1e6.py.
 """
 
 import itertools
 import json
 import math
 import re
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from shtaerman.cli import main
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Grading, MeshSettings, halfspace_mesh
 from shtaerman.output.text_contact import tables
 from shtaerman.study.contact.accuracy import (
     LadderLevel,
+    accuracy_mesh,
     estimate_errors,
     run_ladder,
     run_to_accuracy,
@@ -196,3 +200,38 @@ def test_the_force_estimate_sees_the_shallow_depth_behind_the_far_fields_cancell
     # the true errors of the finest level: 5.11e-6 (force, shallowest depth) and 1.26e-6 (beta)
     assert estimates["force"].error >= 5.11e-6
     assert estimates["beta"].error >= 1.26e-6
+
+
+def test_the_graded_field_sizes_the_surface_in_proportion_to_r():
+    """Issue 32: ``--accuracy``'s meshes grade the surface across the band of contact radii,
+    size * r / band_start, so that every depth's contact edge meets the same relative size."""
+    grading = Grading(band_start=0.25, near_growth=0.5, near_depth=0.05, far_growth=0.5)
+    mesh = halfspace_mesh(1.0, domain_radius=1e3, smallest_size=0.01, growth=0.2, grading=grading)
+    edges = mesh.facets[:, mesh.boundaries["surface"]]
+    r = mesh.p[0, edges].mean(axis=0)
+    length = np.abs(np.diff(mesh.p[0, edges], axis=0))[0]
+    inner, outer = (np.median(length[(r > lo) & (r < hi)]) for lo, hi in ((0.1, 0.2), (0.9, 1.0)))
+    # 0.01 below r = 0.25, 0.01 x 0.95 / 0.25 = 0.038 at r = 0.95: a ratio of 3.8 (gmsh's edges
+    # follow the field to about 10 %); the plain field keeps 0.01 on the whole refined zone
+    assert 3.8 / 1.3 < outer / inner < 3.8 * 1.3
+    assert np.median(length[r < 0.2]) == pytest.approx(0.01, rel=0.2)
+
+
+def test_accuracy_1e6_is_met_at_the_default_caps():
+    """Issue 32: ``contact --accuracy 1e-6`` on the paper's case was refused at the default caps
+    (the default family needed about 1.02e6 dofs; with the caps raised, 887k dofs gave a true
+    error of 1.41e-6). The graded family of ``--accuracy`` meets it near 214k dofs."""
+    result = run_to_accuracy(*PAPER, 1e-6, max_time=1e4)  # no wall-clock limit in a test
+    true, estimate = result.finest.errors(), result.error_estimate()
+    assert result.levels[-1].dofs <= MeshSettings().max_dofs
+    # the promise: the true error within the target (measured 5.3e-7 force, 2.4e-7 beta) and
+    # an estimate that does not understate it (effectivity measured 1.11 and 2.40)
+    for key in ("force", "beta"):
+        assert true[key] <= estimate[key] <= 1e-6
+    # the caps are checked on estimates made before meshing: within 15 % here (measured 2-10 %)
+    stats = result.finest.mesh_stats
+    mesh = replace(MeshSettings(), domain=stats["domain_radius"] / stats["refined_radius"])
+    family = accuracy_mesh(mesh, PAPER[0], default_depths(*PAPER), 1e-6)
+    assert family.grading is not None
+    for level in result.levels:
+        assert family.refined(level.refine).estimated_dofs == pytest.approx(level.dofs, rel=0.15)

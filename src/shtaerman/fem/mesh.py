@@ -5,6 +5,8 @@ quarter disc r >= 0, z <= 0, r^2 + z^2 <= R^2 in the r-z plane (mesh x = r, y = 
 The element size is ``smallest_size`` on the surface segment 0 <= r <= ``refined_radius`` and
 grows linearly with the distance d from it, h = smallest_size + growth * d, so the element count
 grows only with log(R / refined_radius).
+``contact --accuracy`` grades that field further (:class:`Grading`): the surface size in
+proportion to r across the band of contact radii, and three growth rates with depth.
 
 A layer of thickness H on a rigid base is ``meshes/layer.geo``: the rectangle 0 <= r <= L,
 -H <= z <= 0 with the same size field, capped so that a thin layer keeps several elements
@@ -21,7 +23,7 @@ import sys
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import gmsh
 import meshio
@@ -36,6 +38,8 @@ from .mesh_budget import growth_error
 
 __all__ = [
     "BOUNDARIES",
+    "GradedMesh",
+    "Grading",
     "MeshSettings",
     "check_thickness_range",
     "geometry_path",
@@ -57,7 +61,14 @@ _PARAMETERS = {
     "growth": "Parameters/4Growth rate (size per distance)",
     "axis_size": "Parameters/5Element size at the axis (m)",
     "axis_growth": "Parameters/6Growth rate from the axis (size per distance)",
+    "band_start": "Parameters/7Start of the graded band (m)",
+    "near_growth": "Parameters/8Growth rate near the surface (size per distance)",
+    "near_depth": "Parameters/9Depth of the near growth (m)",
+    "far_growth": "Parameters/10Growth rate far away (size per distance)",
+    "far_start": "Parameters/11Distance where the far growth starts (m)",
 }
+"""The .geo's parameters; those of :class:`Grading` are set only for a graded mesh (else the
+.geo's defaults keep its plain size field)."""
 _GEOMETRY = "halfspace.geo"
 _LAYER_PARAMETERS = {
     "refined_radius": "Parameters/1Refined radius (m)",
@@ -105,6 +116,7 @@ def halfspace_mesh(
     growth: float | None = None,
     axis_size: float | None = None,
     axis_growth: float | None = None,
+    grading: Grading | None = None,
 ) -> MeshTri:
     """Mesh the axisymmetric half-space with gmsh and return it as a scikit-fem mesh.
 
@@ -127,6 +139,9 @@ def halfspace_mesh(
         the refined zone. Default ``smallest_size`` (no extra grading).
     axis_growth : float
         Growth of the element size per unit distance from the origin, in (0, 1].
+    grading : Grading, optional
+        The graded size field of ``contact --accuracy`` (lengths in refined radii); default
+        none: ``smallest_size`` on the refined zone, one ``growth`` everywhere.
 
     Returns
     -------
@@ -150,11 +165,13 @@ def halfspace_mesh(
     """
     parameters = _mesh_parameters(refined_radius, domain_radius, smallest_size, growth)
     parameters |= _axis_parameters(parameters["smallest_size"], axis_size, axis_growth)
+    if grading is not None:
+        parameters |= grading.parameters(parameters["refined_radius"])
     # mesh at unit refined radius, then scale: gmsh's absolute limits (Geometry.Tolerance 1e-8,
     # Mesh.MeshSizeMax 1e22) would merge the points of tiny contacts and cap the elements of
     # huge domains
     scale = parameters["refined_radius"]
-    lengths = ("refined_radius", "domain_radius", "smallest_size", "axis_size")
+    lengths = ("refined_radius", "domain_radius", "smallest_size", "axis_size", *Grading.LENGTHS)
     unit = {key: value / scale if key in lengths else value for key, value in parameters.items()}
     points, triangles, lines = _unit_mesh(unit)
     return _to_skfem(points * scale, triangles, lines)
@@ -328,7 +345,8 @@ def _generate(
 ) -> tuple[np.ndarray, np.ndarray, dict]:
     """Mesh the .geo in a model of its own; return points, triangles and tagged lines."""
     for key, name in names.items():
-        gmsh.onelab.setNumber(name, [parameters[key]])
+        if key in parameters:
+            gmsh.onelab.setNumber(name, [parameters[key]])
     gmsh.model.add("shtaerman_halfspace")
     try:
         gmsh.merge(str(geometry_path(geometry)))
@@ -401,17 +419,17 @@ def estimate_elements(settings: MeshSettings) -> float:
         3.19 / (g s)  +  3.14 ln(1 + g D / s) / g^2  +  3.67 ln(s / s_a) / g_a^2  +  167
 
     (the strip along the refined surface, the graded far field, the grading toward the axis),
-    within about 30 % of gmsh's count (calibration in benchmarks/FEM_NOTES.md).
+    within about 30 % of gmsh's count (calibration in benchmarks/FEM_NOTES.md); with a
+    :class:`Grading` its own first two terms (:meth:`Grading.elements`).
     """
     s, g = settings.size, settings.growth
     axis, axis_growth = min(settings.axis_size, s), settings.axis_growth
     try:
-        return (
-            3.19 / (g * s)
-            + 3.14 * math.log1p(g * settings.domain / s) / g**2
-            + 3.67 * math.log(s / axis) / axis_growth**2
-            + 167.0
-        )
+        if settings.grading is not None:
+            field = settings.grading.elements(s, g, settings.domain)
+        else:
+            field = 3.19 / (g * s) + 3.14 * math.log1p(g * settings.domain / s) / g**2
+        return field + 3.67 * math.log(s / axis) / axis_growth**2 + 167.0
     except (ZeroDivisionError, OverflowError):  # sizes or growths so small that their
         return math.inf  # products underflow (growth 1e-300, refine 1e300): no mesh
 
@@ -484,6 +502,63 @@ def check_thickness_range(thickness: float, refined: float, where: str) -> None:
 
 
 @dataclass(frozen=True)
+class Grading:
+    """The graded size field of ``contact --accuracy``: h = s(r) + g(d) (d the distance from the
+    refined surface segment; lengths in refined radii).
+
+    On the surface s(r) = size * max(r, band_start) / band_start: the size grows in proportion
+    to r across the band of contact radii, so every depth's contact meets about the same size
+    relative to its radius (the contact's error term, about -0.07 (h/a)^2). Below it the size
+    grows by ``near_growth`` up to ``near_depth`` (a few rows of the finest elements), by the
+    mesh's ``growth`` beyond (the far field's error term, +0.024 g^4, is made there) and by
+    ``far_growth`` beyond ``far_start`` (moving the force by about 0.01 far_growth^4 a /
+    far_start). :meth:`MeshSettings.refined` divides both growth rates with the others
+    (benchmarks/FEM_NOTES.md, "Accuracy 1e-6").
+    """
+
+    band_start: float = 1.0
+    near_growth: float = 0.25
+    near_depth: float = 0.0
+    far_growth: float = 0.25
+    far_start: float = 1e300
+
+    LENGTHS = ("band_start", "near_depth", "far_start")
+    GROWTHS = ("near_growth", "far_growth")
+
+    def __post_init__(self) -> None:
+        for name in ("band_start", "near_growth", "far_growth"):
+            value = validate_positive(name, getattr(self, name))
+            if value > 1.0:
+                raise InputError(f"{name} must lie in (0, 1], got {value!r}")
+        if not 0.0 <= self.near_depth < math.inf:
+            raise InputError(f"near_depth must be >= 0 refined radii, got {self.near_depth!r}")
+        validate_positive("far_start", self.far_start)
+
+    def parameters(self, refined_radius: float) -> dict[str, float]:
+        """The .geo's parameters (lengths in m for a refined zone of ``refined_radius`` m)."""
+        return {
+            name: getattr(self, name) * (refined_radius if name in self.LENGTHS else 1.0)
+            for name in ("band_start", "near_growth", "near_depth", "far_growth", "far_start")
+        }
+
+    def elements(self, size: float, growth: float, domain: float) -> float:
+        """Triangles of the size field but the axis grading (:func:`estimate_elements`): the
+        surface strip, the rows below it, the field from ``near_depth`` on and beyond
+        ``far_start``; within 10 % of gmsh's count on the meshes of ``--accuracy``."""
+        band, near = self.band_start, self.near_growth
+        below = size + near * self.near_depth
+        far_start = min(self.far_start, domain)
+        return (
+            3.19 * band * (1.0 - math.log(band)) / (near * size)
+            + 3.19 * max(1.0 / growth - 1.0 / near, 0.0) / below
+            + 3.14 * math.log1p(growth * far_start / below) / growth**2
+            + 3.14
+            * math.log1p(self.far_growth * domain / (below + growth * far_start))
+            / self.far_growth**2
+        )
+
+
+@dataclass(frozen=True)
 class MeshSettings:
     """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
 
@@ -531,6 +606,8 @@ class MeshSettings:
     base: str = "bonded"
     interface: str = "frictionless"
     friction: float | None = None
+    grading: ClassVar[Grading | None] = None
+    """None: ``size`` on the refined zone, ``growth`` everywhere (see :class:`GradedMesh`)."""
 
     def __post_init__(self) -> None:
         names = ("margin", "size", "domain", "growth", "axis_size", "axis_growth", "max_dofs")
@@ -582,13 +659,19 @@ class MeshSettings:
             name: getattr(self, name) / factor
             for name in ("size", "axis_size", "growth", "axis_growth")
         }
-        for name, value in scaled.items():
+        graded = () if self.grading is None else Grading.GROWTHS
+        growths = {name: getattr(self.grading, name) / factor for name in graded}
+        for name, value in (scaled | growths).items():
             if value > 1.0 + 1e-12:  # round-off of refine / sqrt(2)^2 is not a coarsening
                 raise InputError(
                     f"refine {factor!r} scales the mesh {name} to {value:.3g} > 1; use "
                     f"refine >= {factor * value:.3g} with these settings"
                 )
-        return replace(self, **{name: min(value, 1.0) for name, value in scaled.items()})
+        scaled = {name: min(value, 1.0) for name, value in scaled.items()}
+        if self.grading is not None:  # its growth rates refined with the others
+            growths = {name: min(value, 1.0) for name, value in growths.items()}
+            scaled["grading"] = replace(self.grading, **growths)
+        return replace(self, **scaled)
 
     @property
     def estimated_dofs(self) -> int:
@@ -655,6 +738,7 @@ class MeshSettings:
             growth=self.growth,
             axis_size=min(self.axis_size, self.size) * refined_radius,
             axis_growth=self.axis_growth,
+            grading=self.grading,
         )
 
     def _check_layer(self, refined_radius: float) -> float:
@@ -685,6 +769,15 @@ class MeshSettings:
             thickness_size=self.thickness_size(self.thickness),
             bonded=self.base == "bonded",
         )
+
+
+@dataclass(frozen=True)
+class GradedMesh(MeshSettings):
+    """:class:`MeshSettings` with the graded size field of ``contact --accuracy`` (a half-space
+    only; a class of its own so that the plain settings, and what is written of them, keep
+    their fields)."""
+
+    grading: Grading = Grading()
 
 
 DEFAULTS = MeshSettings()

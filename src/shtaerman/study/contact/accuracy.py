@@ -21,7 +21,7 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ...fem.mesh import MAX_DOMAIN, MeshSettings
+from ...fem.mesh import DEFAULTS, MAX_DOMAIN, GradedMesh, Grading, MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.viscoelastic import PronySeries
@@ -383,6 +383,40 @@ def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:
     return replace(mesh, domain=domain)
 
 
+ACCURACY_GRADING = Grading(near_growth=0.27, near_depth=0.05, far_growth=0.3, far_start=1e3)
+"""The size field of :data:`ACCURACY_MESH`: growth 0.27 for the first 0.05 refined radii
+below the surface (the rows of the finest elements: 144k dofs against 293k with one growth,
+the same errors), 0.3 beyond 1e3 refined radii (whose share of the force is a / 1e3); the
+band starts at the smallest geometric contact radius (:func:`accuracy_mesh`)."""
+ACCURACY_MESH = GradedMesh(size=0.0016, growth=0.08, axis_growth=0.18, grading=ACCURACY_GRADING)
+"""The base (refine 1) of ``--accuracy`` TOL < :data:`GRADED_BELOW` on the default
+half-space, graded by :data:`ACCURACY_GRADING`: the surface 4 times finer than the default
+mesh's and the body's growth 3 times slower, so that both error terms are small at once (the
+contact edge's, -0.07 (h/a)^2, and the far field's, +0.024 g^4, of opposite sign: on the
+default family the ladder saw their sum), and the axis grading's growth 1.8 times larger
+(the force does not need it). On the paper's case it meets 1e-6 at refine 2, 214k dofs, where
+the default family needed 1.2-1.8M (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
+GRADED_BELOW = 1e-4
+"""``--accuracy`` TOL below this runs on the graded family. At 1e-4 both families cost the
+same on the paper's case (2.6-2.8 CPU s, to 56k and 55k dofs); below, the graded is cheaper:
+1e-5 in 3.0 CPU s (16k, 30k, 56k dofs) where the default family is refused (its estimate
+2.4e-4 at 31k dofs predicts 4.9e5)."""
+
+
+def accuracy_mesh(
+    mesh: MeshSettings, indenter: PowerLawIndenter, depths: np.ndarray, tolerance: float
+) -> MeshSettings:
+    """The family of ``--accuracy`` TOL: :data:`ACCURACY_MESH` where ``mesh`` is the default
+    half-space mesh (up to the domain and the dofs cap) and TOL < :data:`GRADED_BELOW`, its
+    band from the smallest geometric contact radius to the refined radius; else ``mesh``."""
+    default = replace(mesh, domain=DEFAULTS.domain, max_dofs=DEFAULTS.max_dofs) == DEFAULTS
+    if not default or tolerance >= GRADED_BELOW:
+        return mesh
+    band = float(indenter.radius_at(depths[0])) / refined_radius(indenter, depths, mesh)
+    grading = replace(ACCURACY_GRADING, band_start=min(band, 1.0))
+    return replace(ACCURACY_MESH, domain=mesh.domain, max_dofs=mesh.max_dofs, grading=grading)
+
+
 def _force_error(result: AccuracyResult) -> float:
     return max(result.estimates[key].error for key in FORCE_LIKE if key in result.estimates)
 
@@ -432,8 +466,9 @@ def run_to_accuracy(
     that the far-field truncation, which the ladder does not see, stays below a tenth of the
     tolerance; at that limit it is about 1.5e-7, so below TOL = 1.5e-6 it takes a larger share,
     and a TOL under twice it is refused (on a layer the domain stays: its lateral edge
-    contributes :data:`LAYER_TRUNCATION`, and a TOL under twice that is refused). After the
-    first three
+    contributes :data:`LAYER_TRUNCATION`, and a TOL under twice that is refused). Below
+    :data:`GRADED_BELOW` the default half-space mesh is replaced by the graded family
+    :data:`ACCURACY_MESH` (:func:`accuracy_mesh`). After the first three
     levels the needed refinement is predicted from the observed order; a target that needs
     more than ``max_dofs`` or ``max_time`` is refused at once with an InputError.
 
@@ -461,6 +496,7 @@ def run_to_accuracy(
     mesh = _far_field(MeshSettings() if mesh is None else mesh, tolerance)
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
+    mesh = accuracy_mesh(mesh, indenter, depths, tolerance)
     solve = _linear(indenter, half_space, depths, backend)
     exact, refined = _exact(mesh), refined_radius(indenter, depths, mesh)
     result = run_mesh_ladder(solve, mesh, progress=progress, exact=exact, refined=refined)
