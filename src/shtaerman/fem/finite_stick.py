@@ -21,7 +21,9 @@ and releases stuck nodes in tension; should a contact set repeat, one node chang
 The curve's Newton is a modified Newton (:func:`_newton`): it reuses the last factorization,
 also across load steps and with the nodes stuck since held by a capacitance correction
 (:meth:`_Kept.constrained`), while each correction shrinks by
-:data:`.finite_contact.CONTRACTION` (an impact's time steps keep full Newton).
+:data:`.finite_contact.CONTRACTION`; the Coulomb Newton (:func:`_slide_newton`) likewise, while
+the stuck dofs and slip directions stay those of its factorization, in the curve's load steps
+and in an impact's time steps (:class:`HistoryStepper`).
 
 With a finite Coulomb coefficient mu (``friction``) a stuck node slides once its tangential
 reaction exceeds mu times its normal one, both resolved on the indenter's normal
@@ -464,7 +466,7 @@ def _load_step(
 
 
 def _slide_newton(
-    stepper: NewtonStepper, trial: _Load, depth: float, scale: float, friction: float
+    stepper: BondedStepper, trial: _Load, depth: float, scale: float, friction: float
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
     """Newton at ``depth`` (m) from ``trial`` (its ``lam``: the sliding nodes' starting
     multipliers, N) with its stuck nodes prescribed and its sliding nodes on the indenter.
@@ -483,8 +485,10 @@ def _slide_newton(
     rows = np.flatnonzero(slip != 0)
     sliding = rows[nodes.ur_free[rows]]  # d(drag f')/du_r: the u_z row, the u_r column
     across = pattern.find(stepper.position[nodes.uz[sliding]], stepper.position[nodes.ur[sliding]])
+    key = slaves.tobytes() + slip.tobytes()
     x, lam = trial.x.copy(), np.where(slip != 0, trial.lam, 0.0)
     corrections: list[float] = []
+    fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
     step, halvings = None, 0
     for iteration in range(1, stepper.max_iterations + 1):
         state = system.state(x)
@@ -499,28 +503,53 @@ def _slide_newton(
         residual = system.residual(x, state)
         np.subtract.at(residual, nodes.ur, lam * slope - drag)
         np.add.at(residual, nodes.uz, lam + drag * slope)
-        tangent = system.tangent_data(x, state)[stepper.take]
-        tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
-        tangent[across] += (drag * curvature)[sliding]
+        reuse = _slide_reusable(stepper, key, corrections, fresh)
+        if reuse is None:
+            tangent = system.tangent_data(x, state)[stepper.take]
+            tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
+            tangent[across] += (drag * curvature)[sliding]
+            reduced, again = tangent.copy(), None
+            reduced[moved] = 0.0
+            reduced[pattern.diagonal[slaves]] = 1.0
+        else:
+            tangent, reduced, again = reuse
         shift = np.zeros(pattern.size)
         shift[slaves] = values - x[stepper.free][slaves]
         load = residual[stepper.free] + pattern.matrix(tangent) @ shift
         load[slaves] = -shift[slaves]
-        tangent[moved] = 0.0
-        tangent[pattern.diagonal[slaves]] = 1.0
         try:
-            du, dlam = eliminate_gaps(stepper, tangent, load, rows, slope, gap, slip * friction)
+            du, dlam = eliminate_gaps(
+                stepper, reduced, load, rows, slope, gap, slip * friction, again=again
+            )
         except RuntimeError as error:
             raise NewtonError(f"singular Newton matrix ({error})") from None
+        if reuse is None and stepper.modified:
+            stepper.kept_slide = (system, key, tangent, reduced, stepper.factorization)
+        fresh.append(reuse is None)
         x[stepper.free] += du
         lam[rows] += dlam
         step = np.concatenate([du, dlam])
         corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
         if not np.isfinite(corrections[-1]):
             break
-        if newton_converged(corrections, stepper.tolerance):
+        if _converged(stepper, corrections, fresh):
             return x, lam, iteration, corrections
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+
+
+def _slide_reusable(
+    stepper: BondedStepper, key: bytes, corrections: list[float], fresh: list[bool]
+) -> tuple | None:
+    """The kept tangent, its reduced form and factorization of the Coulomb Newton if the next
+    step may reuse them (a ``modified`` stepper): made for this system and contact set
+    (``key``: stuck dofs and slip directions) and, after a reused step that is not the
+    solve's first, the correction shrank by :data:`.finite_contact.CONTRACTION`."""
+    kept = stepper.kept_slide
+    if not stepper.modified or kept is None or kept[0] is not stepper.system or kept[1] != key:
+        return None
+    if len(fresh) > 1 and not fresh[-1] and not _contracting(corrections):
+        return None
+    return kept[2:]
 
 
 def _resolved(stepper: NewtonStepper, load: _Load, depth: float) -> tuple[np.ndarray, ...]:
@@ -630,6 +659,7 @@ class BondedStepper(NewtonStepper):
     def __init__(self, *args: Any) -> None:
         super().__init__(*args)
         self.kept_stuck: _Kept | None = None
+        self.kept_slide: tuple | None = None  # system, set, tangent, reduced, factorization
 
 
 class HistoryStepper(BondedStepper):
@@ -653,6 +683,7 @@ class HistoryStepper(BondedStepper):
         friction: float,
     ) -> None:
         super().__init__(system, indenter, candidate_radius, *limits)
+        self.modified = True  # the full case: 42.5 -> 28.5 CPU s, results moved by < 3e-11
         self.friction = friction
         m = self.nodes.radius.size
         heights = self.indenter.profile(self.nodes.radius)
