@@ -94,6 +94,8 @@ START_FRACTION = 0.05
 the nodes inside it stick at their reference radii (the history before the first step is
 one step), which moves the force at the smallest depth by ~4e-7 (benchmarks/FEM_NOTES.md,
 "Bonded contact at finite strain")."""
+KEPT_SETS = 4
+"""The Coulomb Newton keeps the factorizations of this many contact sets."""
 MAX_ADDED = 40
 """A modified Newton step reuses a factorization with at most this many stuck dofs added
 since it was made (one solve each, :meth:`_Kept.constrained`)."""
@@ -524,7 +526,11 @@ def _slide_newton(
         except RuntimeError as error:
             raise NewtonError(f"singular Newton matrix ({error})") from None
         if reuse is None and stepper.modified:
-            stepper.kept_slide = (system, key, tangent, reduced, stepper.factorization)
+            kept = stepper.kept_slide
+            kept.pop(key, None)  # a refreshed set is the newest
+            kept[key] = (system, tangent, reduced, stepper.factorization)
+            while len(kept) > KEPT_SETS:
+                del kept[next(iter(kept))]  # the oldest
         fresh.append(reuse is None)
         x[stepper.free] += du
         lam[rows] += dlam
@@ -542,14 +548,15 @@ def _slide_reusable(
 ) -> tuple | None:
     """The kept tangent, its reduced form and factorization of the Coulomb Newton if the next
     step may reuse them (a ``modified`` stepper): made for this system and contact set
-    (``key``: stuck dofs and slip directions) and, after a reused step that is not the
+    (``key``: stuck dofs and slip directions; the last :data:`KEPT_SETS` sets are kept, as
+    a time step's secant solves the same sets again) and, after a reused step that is not the
     solve's first, the correction shrank by :data:`.finite_contact.CONTRACTION`."""
-    kept = stepper.kept_slide
-    if not stepper.modified or kept is None or kept[0] is not stepper.system or kept[1] != key:
+    kept = stepper.kept_slide.get(key)
+    if not stepper.modified or kept is None or kept[0] is not stepper.system:
         return None
     if len(fresh) > 1 and not fresh[-1] and not _contracting(corrections):
         return None
-    return kept[2:]
+    return kept[1:]
 
 
 def _resolved(stepper: NewtonStepper, load: _Load, depth: float) -> tuple[np.ndarray, ...]:
@@ -659,7 +666,8 @@ class BondedStepper(NewtonStepper):
     def __init__(self, *args: Any) -> None:
         super().__init__(*args)
         self.kept_stuck: _Kept | None = None
-        self.kept_slide: tuple | None = None  # system, set, tangent, reduced, factorization
+        # by contact set: system, tangent, reduced tangent, factorization
+        self.kept_slide: dict[bytes, tuple] = {}
 
 
 class HistoryStepper(BondedStepper):
