@@ -90,3 +90,30 @@ def test_a_bonded_step_failure_beyond_the_validated_depth_names_the_limit():
     assert "--interface frictionless" in str(deep) and "--shape-coefficient" in str(deep)
     shallow = _step_failure(stepper, (0.0101, 1.5e-4, 2e-4), folded)
     assert "x/a" not in str(shallow) and "--density2 0" in str(shallow)
+
+
+def test_a_repeated_solve_reuses_the_factorizations_of_its_contact_sets(monkeypatch):
+    """The secant's second solve of a time step goes through the same contact sets as the
+    first: it reuses their kept factorizations (the last KEPT_SETS sets) and factorizes none."""
+    from shtaerman.fem.solver import PatternSolver
+
+    depth = 5.0 * (0.2 / 5.0) ** 3  # d/a = 0.2 on z = 5 r^1.5
+    refined = COARSE.margin * geometric_radius(INDENTER, depth)
+    system = assemble_hyperelastic(COARSE.build(refined), NeoHookean(E2, 0.49))
+    stepper = HistoryStepper(system, INDENTER, refined, (NEWTON_TOLERANCE, 30), 0.5)
+    zero, lam = np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size)
+    calls = {"factorizations": 0}
+    factorized = PatternSolver.factorized
+
+    def counting(self, *args):
+        calls["factorizations"] += 1
+        return factorized(self, *args)
+
+    monkeypatch.setattr(PatternSolver, "factorized", counting)
+    stepper.solve(depth, zero, lam)
+    assert calls["factorizations"] > 1  # measured 7
+    calls["factorizations"] = 0
+    stepper.solve(depth * (1 + 1e-9), zero, lam)
+    sets = len(stepper.kept_slide)
+    assert sets > 1  # the solve went through several contact sets (measured 4)
+    assert calls["factorizations"] == 0  # measured none (with one kept set: 4)
