@@ -148,14 +148,14 @@ def test_the_linear_body_retries_a_failed_level_as_the_rubber_does(monkeypatch):
     import shtaerman.study.dynamic.accuracy as accuracy
     from shtaerman.validation import NumericalFailureError
 
-    run = accuracy.run_dynamic_impact
+    run = accuracy.run_impact
 
     def fail_at_113(*inputs, **options):
         if inputs[5].steps == 113:  # the middle level, once
             raise NumericalFailureError("forced failure at 113 steps")
         return run(*inputs, **options)
 
-    monkeypatch.setattr(accuracy, "run_dynamic_impact", fail_at_113)
+    monkeypatch.setattr(accuracy, "run_impact", fail_at_113)
     retried = run_dynamic_ladder(
         PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE
     )

@@ -1,16 +1,16 @@
 """Dynamic impact of a rigid striker z = A r^n, a sphere or a tabulated z(r), on the elastic
 half-space (elastodynamic FEM).
 
-:func:`run_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
+:func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
 (:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles
 the consistent mass (:mod:`.mass`) with the normal mass taken off the contact candidates
 (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and
 the damping of the optional absorbing layer (:mod:`.absorbing`), factorizes the effective
-matrix once (:func:`.solver.factorize_scaled`) and steps the striker (mass M, X(0) = 0,
-X'(0) = v0) and the body with unilateral contact at the surface nodes, frictionless or
-(``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by
-default; Newmark average acceleration with ``spectral_radius=None``). The time step is set by
-the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
+matrix once (:func:`.solver.factorize_scaled`); :meth:`DynamicImpactSetup.march` steps the
+striker (mass M, X(0) = 0, X'(0) = v0) and the body with unilateral contact at the surface
+nodes, frictionless or (``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha,
+rho_inf = 0.9 by default; Newmark average acceleration with ``spectral_radius=None``). The time
+step is set by the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
 unconditionally stable.
 
 Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
@@ -54,7 +54,14 @@ from .elasticity import (
     deviatoric_stiffness,
     divergence_coupling,
 )
-from .impact_run import ImpactRun, fitted_peak, impact_parameters, mesh_counts, parabola_peak
+from .impact_run import (
+    ImpactRun,
+    finished_run,
+    fitted_peak,
+    impact_parameters,
+    mesh_counts,
+    parabola_peak,
+)
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
 from .mesh_budget import growth_error
@@ -77,7 +84,6 @@ __all__ = [
     "check_dynamic_impact",
     "estimate_dofs",
     "prepare_dynamic_impact",
-    "run_dynamic_impact",
 ]
 
 MAX_DOFS = 400_000
@@ -604,7 +610,7 @@ def check_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> tuple[float, Striker, _Scales, int]:
-    """Check every input of a dynamic impact (arguments of :func:`run_dynamic_impact`) before
+    """Check every input of a dynamic impact (arguments of :func:`.impact.run_impact`) before
     anything is meshed, in well under a second: the density, mass and velocity, the layer's
     thickness against the impact's refined radius, the duration of a viscoelastic impact and
     the estimated mesh size. ``shtaerman dynamic`` and a dynamic sweep's load both refuse
@@ -668,6 +674,20 @@ class DynamicImpactSetup:
     parameters: dict[str, float]
     timings: dict[str, float]
 
+    def march(self, snapshot_times: tuple[float, ...] = ()) -> ImpactHistory:
+        """Step the run (:func:`.stepper.march`), keeping the fields at ``snapshot_times`` (s)."""
+        return march(
+            self.problem,
+            duration=self.duration,
+            tail_time=self.tail_time,
+            force_exponent=self.force_exponent,
+            snapshot_times=snapshot_times,
+        )
+
+    def result(self, history: ImpactHistory, timings: dict[str, float]) -> ImpactRun:
+        """The run of ``history`` (what :meth:`march` returned), ``timings`` its costs (s)."""
+        return _result(self, history, timings)
+
 
 def prepare_dynamic_impact(
     indenter: Indenter,
@@ -679,7 +699,7 @@ def prepare_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> DynamicImpactSetup:
-    """Mesh, assemble and factorize the dynamic impact (arguments of :func:`run_dynamic_impact`).
+    """Mesh, assemble and factorize the dynamic impact (arguments of :func:`.impact.run_impact`).
 
     Step it with :func:`.stepper.advance` from :meth:`.stepper.ImpactState.first_touch`, or
     all at once with :func:`.stepper.march`.
@@ -735,72 +755,6 @@ def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
     )
 
 
-def run_dynamic_impact(
-    indenter: Indenter,
-    half_space: Material,
-    density: float,
-    mass: float,
-    velocity: float,
-    settings: DynamicSettings | None = None,
-    *,
-    snapshot_times: tuple[float, ...] = (),
-    prony: PronySeries | None = None,
-    friction: float | None = None,
-) -> ImpactRun:
-    """Strike the elastic half-space with a rigid striker and follow the waves.
-
-    Parameters
-    ----------
-    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
-        Striker profile: z = A r^n, n > 1, the exact sphere or a tabulated z(r) (the scales
-        of the run from its exact quasi-static impact, :func:`_quasi_static`; a
-        viscoelastic body takes the power law only).
-    half_space : Material
-        E2 in Pa, nu2 in [0, 0.5].
-    density : float
-        Half-space density rho2 in kg/m^3, in ``DENSITY_RANGE``.
-    mass : float
-        Striker mass M in kg.
-    velocity : float
-        Impact velocity v0 in m/s.
-    settings : DynamicSettings, optional
-        Numerical controls (default ``DynamicSettings()``).
-    snapshot_times : tuple of float
-        Times in s at which to keep the solution vectors (nearest step), for field output.
-    prony : PronySeries, optional
-        Shear relaxation of the half-space (E2 and nu2 are then its instantaneous values, the
-        bulk response elastic); None: elastic.
-    friction : float, optional
-        The striker's surface: None frictionless; a point that touches it sticks (bonded)
-        with ``math.inf``, or slides once its shear exceeds ``friction`` >= 0 times its
-        normal force (Coulomb; 0 is frictionless by another path).
-
-    Returns
-    -------
-    ImpactRun
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        For inputs out of range, a mesh above ``MAX_DOFS`` (estimated before meshing), or a
-        contact that outgrows the refined zone during the run.
-    """
-    setup = prepare_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, prony, friction
-    )
-    start = time.perf_counter()
-    history = march(
-        setup.problem,
-        duration=setup.duration,
-        tail_time=setup.tail_time,
-        force_exponent=setup.force_exponent,
-        snapshot_times=snapshot_times,
-    )
-    timings = {**setup.timings, "stepping": time.perf_counter() - start}
-    timings["total"] = sum(timings.values())
-    return _result(setup, history, timings)
-
-
 def _mesh_stats(
     problem: ImpactProblem, estimate: int, scales: _Scales, settings: DynamicSettings
 ) -> dict[str, float]:
@@ -843,18 +797,14 @@ def _result(
 ) -> ImpactRun:
     """Maxima, rebound and energy fractions of a run."""
     problem, parameters = setup.problem, setup.parameters
-    t, dt, v0 = history.t, problem.scheme.dt, problem.striker.velocity
+    t, dt = history.t, problem.scheme.dt
     energy0 = problem.striker.kinetic_energy
     x_max, t_x_max = parabola_peak(t, history.x)
     t_y = parameters["quasi_static_t_y"]
     force = history.force
     p_max = fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
-    v_out = restitution = radiated = reflected = math.nan
+    reflected = math.nan
     if history.separated:
-        # the last velocity: after separation the striker's acceleration decays geometrically
-        v_out = -float(history.v[-1])
-        restitution = v_out / v0
-        radiated = 1.0 - restitution**2
         reflected = _reflected_fraction(
             history,
             energy0,
@@ -864,32 +814,26 @@ def _result(
         )
         if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
             reflected = 0.0
-    return ImpactRun(
-        t=t,
-        x=history.x,
-        v=history.v,
-        force=force,
+    run = finished_run(
+        (t, history.x, history.v, force),
+        history.energies,
+        (x_max, p_max, t_x_max),
+        history.t_contact,
+        energy0,
         contact_radius=history.contact_radius,
         central_pressure=history.central_pressure,
-        energies=history.energies,
-        x_max=x_max,
-        P_max=p_max,
-        t_x_max=t_x_max,
-        t_contact=history.t_contact,
-        v_out=v_out,
-        restitution=restitution,
-        energy_radiated_fraction=radiated,
-        energy_balance_error=float(np.max(np.abs(history.energies["numerical"])) / energy0),
         reflected_energy_fraction=reflected,
         mesh=setup.mesh,
         timings=timings,
         parameters=parameters,
         system=problem.system,
         snapshots=history.snapshots,
-        losses=_losses(problem, history, radiated) if problem.material is not None else {},
         material=problem.material,
         memories=history.memories,
     )
+    if problem.material is None:
+        return run
+    return replace(run, losses=_losses(problem, history, run.energy_radiated_fraction))
 
 
 def _losses(problem: ImpactProblem, history: ImpactHistory, radiated: float) -> dict[str, float]:

@@ -34,10 +34,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Protocol, TypeVar
 
-from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings, run_dynamic_impact
+from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings
 from ...fem.finite_dynamic import MIN_STEPS as FINITE_MIN_STEPS
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.hyperelastic import NewtonError
+from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.rubber import GentLockError
 from ...guards import ValidityWarning
@@ -289,9 +290,8 @@ def run_ladder(
     Parameters
     ----------
     run : callable
-        One run of the impact with given settings (every body: the linear
-        :func:`~shtaerman.fem.dynamic_contact.run_dynamic_impact`, the rubber's
-        :func:`~shtaerman.fem.finite_dynamic.run_finite_impact`).
+        One run of the impact with given settings (every body:
+        :func:`~shtaerman.fem.impact.run_impact`).
     settings : DynamicSettings or FiniteImpactSettings
         The finest level's settings (resolved).
     refine : float
@@ -370,7 +370,7 @@ def run_dynamic_ladder(
     Parameters
     ----------
     indenter, half_space, density, mass, velocity, settings
-        As for :func:`shtaerman.fem.dynamic_contact.run_dynamic_impact` (SI units).
+        As for :func:`shtaerman.fem.impact.run_impact` (SI units).
     refine : float
         Refinement of the finest level (1: ``settings`` as given).
     progress : callable, optional
@@ -387,10 +387,10 @@ def run_dynamic_ladder(
     finest = (DynamicSettings() if settings is None else settings).refined(refine)
     check_ladder(finest)  # every level checked before any run
     inputs = (indenter, half_space, density, mass, velocity)
-    result = run_dynamic_impact(*inputs, finest, **options)
+    result = run_impact(*inputs, finest, **options)
     physics = {key: options.get(key) for key in ("prony", "friction")}
 
     def run(level: DynamicSettings) -> ImpactRun:
-        return run_dynamic_impact(*inputs, level, **physics)
+        return run_impact(*inputs, level, **physics)
 
     return run_ladder(run, finest, refine=refine, finest=result, progress=progress)
