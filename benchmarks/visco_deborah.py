@@ -24,7 +24,7 @@ from scipy.optimize import brentq
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.impact import run_impact
-from shtaerman.study.dynamic.accuracy import run_dynamic_ladder
+from shtaerman.study.dynamic.case import run_case
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -42,7 +42,7 @@ def _run(density, settings, prony, ladder):
     inputs = (INDENTER, RUBBER, density, MASS, VELOCITY, settings)
     if not ladder:
         return run_impact(*inputs, prony=prony), {}
-    levels = run_dynamic_ladder(*inputs, prony=prony)
+    levels = run_case(*inputs, ladder=True, prony=prony).ladder
     return levels.finest, {k: e.absolute_error for k, e in levels.estimates.items()}
 
 

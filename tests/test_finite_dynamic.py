@@ -7,11 +7,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.finite_contact import solve_finite_contact
 from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
 from shtaerman.fem.impact import run_impact
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.rubber import RubberModel
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
@@ -113,6 +115,15 @@ def test_massless_body_restitution_is_one(massless):
 def test_density_out_of_range_is_refused(density):
     with pytest.raises(InputError, match="density2"):
         run_impact(INDENTER, RUBBER, density, MASS, 3.0, SETTINGS)
+
+
+def test_one_driver_chooses_the_body_by_the_settings(massless):
+    """run_impact (fem/impact.py) runs the finite-strain body for FiniteImpactSettings (the
+    Newton iterations it reports; the linear body reports a contact radius history instead)
+    and refuses a rubber with the linear body's settings before meshing anything."""
+    assert massless.newton_iterations > 0 and massless.contact_radius is None
+    with pytest.raises(TypeError, match="a rubber takes FiniteImpactSettings"):
+        run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, DynamicSettings(), RubberModel())
 
 
 @pytest.mark.parametrize("steps", [5, 10.5, 10**6])

@@ -36,13 +36,12 @@ from ..guards import check_reach
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..theory.materials import validate_density as validate_material_density
+from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import solve_profile_impact
 from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact
 from ..theory.viscoelastic import PronySeries
-from ..validation import InputError, bound_text, validate_positive
+from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
 from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
@@ -61,6 +60,8 @@ from .impact_run import (
     impact_parameters,
     mesh_counts,
     parabola_peak,
+    refined_steps,
+    validate_steps,
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
@@ -110,12 +111,6 @@ def validate_friction(friction: object) -> float | None:
             "friction",
         )
     return float(friction)
-
-
-def validate_density(density: object) -> float:
-    """Return the half-space density in kg/m^3 (0: massless), or raise InputError naming
-    ``density2``."""
-    return validate_material_density("density2", density)
 
 
 MAX_SIZE = 0.2
@@ -186,13 +181,7 @@ class DynamicSettings:
     base: str = "bonded"
 
     def __post_init__(self) -> None:
-        if not isinstance(self.steps, (int, np.integer)) or not (
-            MIN_STEPS <= self.steps <= MAX_STEPS
-        ):
-            raise InputError(
-                f"steps (time steps per impact duration) must be an integer in "
-                f"[{MIN_STEPS}, {MAX_STEPS}] (fewer cannot resolve the impact), got {self.steps!r}"
-            )
+        validate_steps(self.steps, (MIN_STEPS, MAX_STEPS))
         for name in ("margin", "size", "axis_size", "growth", "domain", "layer_ramp"):
             validate_positive(f"mesh {name}", getattr(self, name))
         if self.margin <= 1.0:
@@ -232,25 +221,13 @@ class DynamicSettings:
         shtaerman.validation.InputError
             If ``factor`` is not > 0 or the result leaves the settings' valid ranges.
         """
-        factor = validate_positive("refine", factor)
-        steps = self.steps * factor
-        if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:  # round(steps) in range
-            low, high = (
-                bound_text(MIN_STEPS / self.steps, "low"),
-                bound_text(MAX_STEPS / self.steps, "high"),
-            )
-            raise InputError(
-                f"refine must lie in [{low}, {high}]"
-                f" with {self.steps} steps per t_y (it scales the time steps, "
-                f"{MIN_STEPS}-{MAX_STEPS} allowed, and divides the mesh sizes), got {factor!r}",
-                "refine",
-            )
+        steps = refined_steps(self.steps, factor, (MIN_STEPS, MAX_STEPS))
         return replace(
             self,
             size=self.size / factor,
             axis_size=self.axis_size / factor,
             growth=min(self.growth / factor, 1.0),
-            steps=round(steps),
+            steps=steps,
         )
 
 
@@ -626,7 +603,7 @@ def check_dynamic_impact(
     shtaerman.validation.InputError
         For an input out of range, naming it.
     """
-    rho = validate_density(density)
+    rho = validate_density("density2", density)
     validate_friction(friction)
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
@@ -685,8 +662,46 @@ class DynamicImpactSetup:
         )
 
     def result(self, history: ImpactHistory, timings: dict[str, float]) -> ImpactRun:
-        """The run of ``history`` (what :meth:`march` returned), ``timings`` its costs (s)."""
-        return _result(self, history, timings)
+        """The run of ``history`` (what :meth:`march` returned), ``timings`` its costs (s):
+        maxima, rebound, energy fractions."""
+        problem, parameters = self.problem, self.parameters
+        t, dt = history.t, problem.scheme.dt
+        energy0 = problem.striker.kinetic_energy
+        x_max, t_x_max = parabola_peak(t, history.x)
+        t_y = parameters["quasi_static_t_y"]
+        force = history.force
+        p_max = fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
+        reflected = math.nan
+        if history.separated:
+            reflected = _reflected_fraction(
+                history,
+                energy0,
+                self.reflection_measured,
+                layered="thickness" in self.mesh,
+                viscoelastic=problem.material is not None,
+            )
+            if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
+                reflected = 0.0
+        run = finished_run(
+            (t, history.x, history.v, force),
+            history.energies,
+            (x_max, p_max, t_x_max),
+            history.t_contact,
+            energy0,
+            contact_radius=history.contact_radius,
+            central_pressure=history.central_pressure,
+            reflected_energy_fraction=reflected,
+            mesh=self.mesh,
+            timings=timings,
+            parameters=parameters,
+            system=problem.system,
+            snapshots=history.snapshots,
+            material=problem.material,
+            memories=history.memories,
+        )
+        if problem.material is None:
+            return run
+        return replace(run, losses=_losses(problem, history, run.energy_radiated_fraction))
 
 
 def prepare_dynamic_impact(
@@ -790,50 +805,6 @@ def _parameters(
         "beta": qs.beta,
         "solver_backward_error": problem.factorization.backward_error,
     }
-
-
-def _result(
-    setup: DynamicImpactSetup, history: ImpactHistory, timings: dict[str, float]
-) -> ImpactRun:
-    """Maxima, rebound and energy fractions of a run."""
-    problem, parameters = setup.problem, setup.parameters
-    t, dt = history.t, problem.scheme.dt
-    energy0 = problem.striker.kinetic_energy
-    x_max, t_x_max = parabola_peak(t, history.x)
-    t_y = parameters["quasi_static_t_y"]
-    force = history.force
-    p_max = fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
-    reflected = math.nan
-    if history.separated:
-        reflected = _reflected_fraction(
-            history,
-            energy0,
-            setup.reflection_measured,
-            layered="thickness" in setup.mesh,
-            viscoelastic=problem.material is not None,
-        )
-        if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
-            reflected = 0.0
-    run = finished_run(
-        (t, history.x, history.v, force),
-        history.energies,
-        (x_max, p_max, t_x_max),
-        history.t_contact,
-        energy0,
-        contact_radius=history.contact_radius,
-        central_pressure=history.central_pressure,
-        reflected_energy_fraction=reflected,
-        mesh=setup.mesh,
-        timings=timings,
-        parameters=parameters,
-        system=problem.system,
-        snapshots=history.snapshots,
-        material=problem.material,
-        memories=history.memories,
-    )
-    if problem.material is None:
-        return run
-    return replace(run, losses=_losses(problem, history, run.energy_radiated_fraction))
 
 
 def _losses(problem: ImpactProblem, history: ImpactHistory, radiated: float) -> dict[str, float]:

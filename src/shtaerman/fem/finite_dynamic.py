@@ -54,6 +54,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -63,7 +64,7 @@ import scipy.sparse as sp
 from ..guards import MAX_DEPTH_RATIO, check_reach, depth_ratio, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
-from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import solve_profile_impact
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
@@ -89,6 +90,8 @@ from .impact_run import (
     march_steps,
     mesh_counts,
     parabola_peak,
+    refined_steps,
+    validate_steps,
 )
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
@@ -165,15 +168,8 @@ class FiniteImpactSettings:
     spectral_radius: float = 0.9
 
     def __post_init__(self) -> None:
-        if self.steps is not None and (
-            not isinstance(self.steps, (int, np.integer))
-            or not (MIN_STEPS <= self.steps <= MAX_STEPS)
-        ):
-            raise InputError(
-                f"steps (time steps per impact duration) must be an integer in "
-                f"[{MIN_STEPS}, {MAX_STEPS}], got {self.steps!r}",
-                "steps",
-            )
+        if self.steps is not None:
+            validate_steps(self.steps, (MIN_STEPS, MAX_STEPS))
         if not (isinstance(self.margin, (int, float)) and math.isfinite(self.margin)) or (
             self.margin <= 1.0
         ):
@@ -202,16 +198,9 @@ class FiniteImpactSettings:
         """These (resolved) settings with the mesh size field divided and the time steps
         multiplied by ``factor`` (> 1 refines), as
         :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined`."""
-        factor = validate_positive("refine", factor)
         assert self.steps is not None and self.mesh is not None, "resolve the settings first"
-        steps = self.steps * factor
-        if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:
-            raise InputError(
-                f"refine {factor:g} gives {steps:.4g} time steps per t_y from {self.steps}; "
-                f"{MIN_STEPS}-{MAX_STEPS} are allowed",
-                "refine",
-            )
-        return replace(self, steps=round(steps), mesh=self.mesh.refined(factor))
+        steps = refined_steps(self.steps, factor, (MIN_STEPS, MAX_STEPS))
+        return replace(self, steps=steps, mesh=self.mesh.refined(factor))
 
 
 @dataclass
@@ -351,29 +340,46 @@ def _step(
     gradient of the stored energy or the trapezoidal rule's mean force."""
     dt, k = scales
 
-    def residual(trial: _State) -> float:
-        return 2.0 * mass * ((trial.depth - state.depth) / dt - v) / dt + gradient(state, trial)
+    def residual(depth: float) -> tuple[float, _State]:
+        trial = body.at(depth)
+        return 2.0 * mass * ((depth - state.depth) / dt - v) / dt + gradient(state, trial), trial
 
     scale = mass * max(abs(v), 1e-300) / dt
     # the linearized step: 2 M / dt^2 (D - dt v) + P_n + k D / 2 = 0 for D = X_{n+1} - X_n
-    d0 = state.depth + (2.0 * mass * v / dt - state.force) / (2.0 * mass / dt**2 + 0.5 * k)
-    s0 = body.at(d0)
-    r0 = residual(s0)
     slope = 2.0 * mass / dt**2 + 0.5 * k
+    start = state.depth + (2.0 * mass * v / dt - state.force) / slope
+    limits = (SECANT_TOLERANCE * scale, lambda d: DEPTH_RESOLUTION * max(abs(d), abs(state.depth)))
+    depth, new = _secant(residual, (start, slope, mass / dt**2), limits, state.depth)
+    return new, 2.0 * (depth - state.depth) / dt - v
+
+
+def _secant(
+    residual: Callable[[float], tuple[float, Any]],
+    start: tuple[float, float, float],
+    limits: tuple[float, Callable[[float], float]],
+    depth: float,
+) -> tuple[float, Any]:
+    """The striker's depth X_{n+1} (m) at the end of a step, by a secant on the step's
+    equation ``residual``(X) (N, and the body's state there), and that state.
+
+    ``start``: the first X (m), the first slope and the least slope (N/m; the step's own
+    slope is at least the striker's inertia: half of it is kept); ``limits``: the residual's
+    tolerance (N) and, of X, the update (m) at the contact solves' noise floor; ``depth`` X_n.
+    """
+    d0, slope, least = start
+    r0, got = residual(d0)
     for _ in range(MAX_SECANT):
-        if abs(r0) <= SECANT_TOLERANCE * scale:
-            return s0, 2.0 * (s0.depth - state.depth) / dt - v
+        if abs(r0) <= limits[0]:
+            return d0, got
         d1 = d0 - r0 / slope
-        if abs(d1 - d0) <= DEPTH_RESOLUTION * max(abs(d0), abs(state.depth)):
-            return s0, 2.0 * (s0.depth - state.depth) / dt - v  # at the solves' noise floor
-        s1 = body.at(d1)
-        r1 = residual(s1)
-        if d1 != d0:  # the step's own slope is at least 2 M / dt^2: keep half of it
-            slope = max((r1 - r0) / (d1 - d0), mass / dt**2)
-        d0, s0, r0 = d1, s1, r1
+        if abs(d1 - d0) <= limits[1](d0):  # at the solves' noise floor
+            return d0, got
+        r1, got = residual(d1)
+        if d1 != d0:
+            slope = max((r1 - r0) / (d1 - d0), least)
+        d0, r0 = d1, r1
     raise NumericalFailureError(
-        f"the striker's step equation did not converge at depth {state.depth:g} m; "
-        f"raise the time steps"
+        f"the striker's step equation did not converge at depth {depth:g} m; raise the time steps"
     )
 
 
@@ -439,27 +445,6 @@ def _turning_point(
     return float(x[k] + step), float(np.polyval(curve, step))
 
 
-def check_density(density: object) -> float:
-    """Return the half-space density in kg/m^3: 0 (massless body) or within DENSITY_RANGE.
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        Naming ``density2`` and the valid values.
-    """
-    low, high = DENSITY_RANGE
-    if (
-        isinstance(density, bool)
-        or not isinstance(density, (int, float))
-        or not (density == 0 or low <= density <= high)
-    ):
-        raise InputError(
-            f"density2 must be 0 (massless body) or in [{low:g}, {high:g}] kg/m^3, got {density!r}",
-            "density2",
-        )
-    return float(density)
-
-
 @dataclass(frozen=True, eq=False)
 class FiniteImpactSetup:
     """A finite-strain impact ready to step (the body of :func:`.impact.run_impact`; SI).
@@ -492,12 +477,22 @@ class FiniteImpactSetup:
     def march(self, snapshot_times: tuple[float, ...] = ()) -> tuple:
         """Step the run (no fields are kept: ``snapshot_times`` is the linear body's): the
         columns, Newton iterations, separation time (s; None: the massless elastic body) and
-        the far kinetic energy fraction (:func:`_stepped`)."""
+        the kinetic energy beyond half the domain radius at the end / (M v0^2 / 2) (nan:
+        massless)."""
         _, _, rho, mass, velocity, _ = self.inputs
         x_c, t_y, duration, q, _ = self.scales
-        settings = self.settings
-        scales = (t_y / settings.steps, x_c, duration, q)
-        return _stepped(self.stepper, rho, settings.spectral_radius, (mass, velocity), scales)
+        dt, stepper = t_y / self.settings.steps, self.stepper
+        if rho == 0.0:
+            body = _QuasiStaticBody(stepper, dt)
+            columns, separation = _march(body, mass, velocity, dt, (duration, q))
+            return columns, body.iterations, separation, math.nan
+        scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
+        inertial = _inertial(stepper, rho, scheme)
+        columns, iterations, separation, last = _march_inertial(
+            stepper, inertial, (mass, velocity), (x_c, duration, q)
+        )
+        far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
+        return columns, iterations, separation, far
 
     def result(self, marched: tuple, timings: dict[str, float]) -> ImpactRun:
         """The run of ``marched`` (what :meth:`march` returned), ``timings`` its costs (s)."""
@@ -602,36 +597,12 @@ def _relaxed_extent(
     return max(x_c, slow.x_max), 3.0 * max(t_y, slow.t_contact)
 
 
-def _stepped(
-    stepper: NewtonStepper,
-    density: float,
-    spectral_radius: float,
-    striker: tuple[float, float],
-    scales: tuple[float, float, float, float],
-) -> tuple[tuple[np.ndarray, ...], int, float | None, float]:
-    """The run's columns, Newton iterations, separation time (s; None: the massless body)
-    and far kinetic energy fraction (nan: massless). ``striker``: M (kg), v0 (m/s);
-    ``scales``: dt (s), the quasi-static x_c (m), the longest run (s), q of P ~ X^q."""
-    mass, velocity = striker
-    dt, x_c, duration, q = scales
-    if density == 0.0:
-        body = _QuasiStaticBody(stepper, dt)
-        columns, separation = _march(body, mass, velocity, dt, (duration, q))
-        return columns, body.iterations, separation, math.nan
-    inertial = _inertial(stepper, density, TimeScheme.bossak(spectral_radius, dt))
-    columns, iterations, separation, last = _march_inertial(
-        stepper, inertial, striker, (x_c, duration, q)
-    )
-    far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
-    return columns, iterations, separation, far
-
-
 def _checked(
     indenter: Indenter, half_space: Material, density: object, mass: float, velocity: float
 ) -> tuple[float, float, float, PowerLawContact | SneddonContact]:
     """Density (kg/m^3), mass (kg), velocity (m/s) and the exact law (Shtaerman's, or
     Sneddon's for a sphere or a table), every input checked."""
-    rho = check_density(density)
+    rho = validate_density("density2", density)
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
@@ -828,29 +799,17 @@ def _dynamic_step(
     load = mass * alpha_m * state.accel
     iterations, latest = 0, state.predicted(dt)
 
-    def residual(depth: float) -> tuple[float, np.ndarray, np.ndarray]:
+    def residual(depth: float) -> tuple[float, tuple[np.ndarray, np.ndarray]]:
         nonlocal iterations, latest
         x, lam, count = _body_step(stepper, latest, depth, depth_scale)
         iterations, latest = iterations + count, (x, lam, depth)
-        return stiffness * (depth - big_hat) + load + float(lam.sum()), x, lam
+        return stiffness * (depth - big_hat) + load + float(lam.sum()), (x, lam)
 
     slope = stiffness + k  # the linearized force P_n + k (X - X_n)
     d0 = (stiffness * big_hat + k * state.depth - load - float(state.lam.sum())) / slope
-    r0, x, lam = residual(d0)
-    for _ in range(MAX_SECANT):
-        if abs(r0) <= SECANT_TOLERANCE * force_scale:
-            return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
-        d1 = d0 - r0 / slope
-        if abs(d1 - d0) <= DEPTH_RESOLUTION * depth_scale:  # at the solves' noise floor
-            return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
-        r1, x, lam = residual(d1)
-        if d1 != d0:  # the step's own slope is at least the striker's: keep half of it
-            slope = max((r1 - r0) / (d1 - d0), 0.5 * stiffness)
-        d0, r0 = d1, r1
-    raise NumericalFailureError(
-        f"the striker's step equation did not converge at depth {state.depth:g} m; "
-        f"raise the time steps"
-    )
+    limits = (SECANT_TOLERANCE * force_scale, lambda _: DEPTH_RESOLUTION * depth_scale)
+    depth, (x, lam) = _secant(residual, (d0, slope, 0.5 * stiffness), limits, state.depth)
+    return _advanced(stepper, inertial, state, (x, lam, depth, big_hat)), iterations
 
 
 def _cut_step(

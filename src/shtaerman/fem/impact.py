@@ -88,12 +88,16 @@ def run_impact(
 
     Raises
     ------
+    TypeError
+        For a ``rubber`` with the linear body's settings.
     shtaerman.validation.InputError
         For inputs out of range, naming them, or a contact that outgrows the refined zone.
     shtaerman.validation.NumericalFailureError
         When the stepping fails, saying what to change.
     """
     inputs = (indenter, half_space, density, mass, velocity, settings)
+    if rubber is not None and isinstance(settings, DynamicSettings):
+        raise TypeError("run_impact: a rubber takes FiniteImpactSettings, not DynamicSettings")
     if rubber is not None or isinstance(settings, FiniteImpactSettings):
         prepared: PreparedImpact = prepare_finite_impact(*inputs, rubber, prony, friction)
     else:

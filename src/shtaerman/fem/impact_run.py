@@ -18,6 +18,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..validation import InputError, bound_text, validate_positive
+
 if TYPE_CHECKING:
     from .elasticity import ElasticSolution, ElasticSystem
     from .viscoelastic import ShearMemory, ViscoelasticShear
@@ -31,7 +33,9 @@ __all__ = [
     "march_steps",
     "mesh_counts",
     "parabola_peak",
+    "refined_steps",
     "separation_time",
+    "validate_steps",
 ]
 
 SUMMARY_KEYS = (
@@ -304,3 +308,29 @@ def finished_run(
         energy_balance_error=float(np.max(np.abs(energies["numerical"])) / energy0),
         **context,
     )
+
+
+def refined_steps(steps: int, factor: float, limits: tuple[int, int]) -> int:
+    """The time steps per t_y of settings refined by ``factor`` (> 0): ``steps`` x ``factor``
+    rounded, or InputError naming ``refine`` and its range where they leave ``limits``."""
+    factor = validate_positive("refine", factor)
+    low, high = limits
+    if not low - 0.5 <= steps * factor < high + 0.5:  # round(steps) in range
+        raise InputError(
+            f"refine must lie in [{bound_text(low / steps, 'low')}, "
+            f"{bound_text(high / steps, 'high')}] with {steps} steps per t_y (it scales the "
+            f"time steps, {low}-{high} allowed, and divides the mesh sizes), got {factor!r}",
+            "refine",
+        )
+    return round(steps * factor)
+
+
+def validate_steps(steps: object, limits: tuple[int, int]) -> None:
+    """Raise InputError naming ``steps`` unless it is an integer within ``limits``: time steps
+    per quasi-static impact duration (fewer cannot resolve the impact)."""
+    if not isinstance(steps, (int, np.integer)) or not (limits[0] <= steps <= limits[1]):
+        raise InputError(
+            f"steps (time steps per impact duration) must be an integer in [{limits[0]}, "
+            f"{limits[1]}] (fewer cannot resolve the impact), got {steps!r}",
+            "steps",
+        )

@@ -38,12 +38,9 @@ from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings
 from ...fem.finite_dynamic import MIN_STEPS as FINITE_MIN_STEPS
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.hyperelastic import NewtonError
-from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.rubber import GentLockError
 from ...guards import ValidityWarning
-from ...theory.indenter import PowerLawIndenter
-from ...theory.materials import Material
 from ...validation import (
     InputError,
     NumericalFailureError,
@@ -65,7 +62,6 @@ __all__ = [
     "check_ladder",
     "ladder_estimates",
     "over_levels",
-    "run_dynamic_ladder",
     "run_ladder",
 ]
 
@@ -350,47 +346,3 @@ def _missing(
         stacklevel=caller_stacklevel(),
     )
     return missing
-
-
-def run_dynamic_ladder(
-    indenter: PowerLawIndenter,
-    half_space: Material,
-    density: float,
-    mass: float,
-    velocity: float,
-    settings: DynamicSettings | None = None,
-    *,
-    refine: float = 1.0,
-    progress: Callable[[str], None] | None = None,
-    **options: object,
-) -> ImpactLadder:
-    """The linear body's impact at refine / 2, refine / sqrt(2) and refine, with error
-    estimates.
-
-    Parameters
-    ----------
-    indenter, half_space, density, mass, velocity, settings
-        As for :func:`shtaerman.fem.impact.run_impact` (SI units).
-    refine : float
-        Refinement of the finest level (1: ``settings`` as given).
-    progress : callable, optional
-        Receives one line per level.
-    **options
-        Passed to the finest run (e.g. ``snapshot_times``); ``prony`` and ``friction`` to
-        every level.
-
-    Returns
-    -------
-    ImpactLadder
-    """
-    refine = validate_positive("refine", refine)
-    finest = (DynamicSettings() if settings is None else settings).refined(refine)
-    check_ladder(finest)  # every level checked before any run
-    inputs = (indenter, half_space, density, mass, velocity)
-    result = run_impact(*inputs, finest, **options)
-    physics = {key: options.get(key) for key in ("prony", "friction")}
-
-    def run(level: DynamicSettings) -> ImpactRun:
-        return run_impact(*inputs, level, **physics)
-
-    return run_ladder(run, finest, refine=refine, finest=result, progress=progress)
