@@ -290,7 +290,7 @@ def finished_run(
     v_out = restitution = radiated = math.nan
     if not math.isnan(t_contact):  # the last velocity: the striker flies freely then
         v_out = -float(v[-1])
-        restitution = v_out / v[0]
+        restitution = v_out / float(v[0])  # a float, as JSON writes it
         radiated = 1.0 - restitution**2
     return ImpactRun(
         t=t,
