@@ -33,9 +33,11 @@ refined radii away, beyond the waves' reach during the contact; the kinetic ener
 radius at the end is reported. The run stops when the contact force vanishes with the striker
 rebounding (separation time from P^(1/q) extrapolated between steps).
 
-Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_contact`). The
-massless body carries no kinetic energy and radiates nothing; with inertia the energies are the
-striker's and the body's kinetic energy, the stored energy and the numerical rest.
+:func:`prepare_finite_impact` is the finite-strain body of the one driver
+(:func:`.impact.run_impact`): both bodies march in :func:`.impact_run.march_steps` and end in
+one :class:`.impact_run.ImpactRun`. The massless body carries no kinetic energy and radiates
+nothing; with inertia the energies are the striker's and the body's kinetic energy, the stored
+energy and the numerical rest.
 
 A Prony series (``prony``) makes the rubber viscoelastic (:mod:`.finite_viscoelastic`: its
 isochoric stress relaxes); the history is committed when a step (or a cut step's half)
