@@ -35,7 +35,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -68,7 +69,7 @@ def exact(indenter, nu, velocity):
 def section_paper(settings):
     print(f"\n(a) paper's case, default settings, {load()}")
     start = time.perf_counter()
-    run = run_dynamic_impact(PAPER, Material(E2, 0.5), DENSITY, MASS, VELOCITY, settings)
+    run = run_impact(PAPER, Material(E2, 0.5), DENSITY, MASS, VELOCITY, settings)
     wall = time.perf_counter() - start
     qs = exact(PAPER, 0.5, VELOCITY)
     lam = estimate(PAPER, 0.5, VELOCITY)
@@ -91,7 +92,7 @@ def section_paper(settings):
 
 def section_light(settings):
     print(f"\n(b) nearly massless half-space rho2 = 1e-3 kg/m^3, {load()}")
-    run = run_dynamic_impact(PAPER, Material(E2, 0.5), 1e-3, MASS, VELOCITY, settings)
+    run = run_impact(PAPER, Material(E2, 0.5), 1e-3, MASS, VELOCITY, settings)
     qs = exact(PAPER, 0.5, VELOCITY)
     print(f"  x_max/x_c - 1 = {run.x_max / qs.x_c - 1:+.2e}   (acceptance 3e-3)")
     print(f"  P_max/P_c - 1 = {run.P_max / qs.P_c - 1:+.2e}")
@@ -115,7 +116,7 @@ def section_estimate(settings):
         for nu in (0.3, 0.4, 0.5):
             v0 = velocity_for(indenter, nu)
             lam = estimate(indenter, nu, v0).energy_fraction
-            run = run_dynamic_impact(indenter, Material(E2, nu), DENSITY, MASS, v0, settings)
+            run = run_impact(indenter, Material(E2, nu), DENSITY, MASS, v0, settings)
             measured = run.energy_radiated_fraction
             print(
                 f"  {indenter.exponent:<4} {nu:<5} {v0:<8.3f} {lam:.5f}  {measured:.5f}  "
@@ -130,7 +131,7 @@ def section_first_order(settings):
     for indenter, nu in ((PAPER, 0.5), (SPHERE, 0.3)):
         for target in (0.08, 0.04, 0.02, 0.01):
             v0 = velocity_for(indenter, nu, target)
-            run = run_dynamic_impact(indenter, Material(E2, nu), DENSITY, MASS, v0, settings)
+            run = run_impact(indenter, Material(E2, nu), DENSITY, MASS, v0, settings)
             ratio = run.energy_radiated_fraction / target
             print(
                 f"  {indenter.exponent:<4} {nu:<5} {target:<7} {v0:<8.4f}  "
@@ -147,7 +148,7 @@ def convergence(title, settings_list, labels):
     print(f"\n{title}, {load()}")
     table = {key: [] for key in KEYS}
     for settings, label in zip(settings_list, labels, strict=True):
-        run = run_dynamic_impact(PAPER, Material(E2, 0.5), DENSITY, MASS, VELOCITY, settings)
+        run = run_impact(PAPER, Material(E2, 0.5), DENSITY, MASS, VELOCITY, settings)
         for key in KEYS:
             table[key].append(getattr(run, key))
         print(

@@ -67,7 +67,7 @@ import os
 import time
 from dataclasses import replace
 
-from shtaerman.fem.dynamic_contact import run_dynamic_impact
+from shtaerman.fem.impact import run_impact
 from shtaerman.study.dynamic.accuracy import ImpactLadder
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.ladder import LADDER_RATIO
@@ -102,7 +102,7 @@ def effectivity_table(study, direction: str, finest: float, velocity: float = 3.
         elif direction == "mesh":
             settings = replace(settings, steps=base.steps)
         result, wall, cpu = timed(
-            run_dynamic_impact,
+            run_impact,
             study.indenter,
             study.half_space,
             study.density,

@@ -68,7 +68,8 @@ import time
 from dataclasses import replace
 
 from shtaerman.fem.finite_contact import FINITE_MESH
-from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.study.dynamic.accuracy import ladder_estimates, over_levels
 from shtaerman.study.dynamic.case import compare
 from shtaerman.study.ladder import LADDER_RATIO
@@ -137,7 +138,7 @@ def run_case(name: str, refine: float, defaults: bool = False) -> None:
     for factor in factors:
         level = base.refined(factor)
         start, cpu = time.perf_counter(), time.process_time()
-        runs.append(run_finite_impact(*inputs, level))
+        runs.append(run_impact(*inputs, level))
         wall, cpu = time.perf_counter() - start, time.process_time() - cpu
         print(
             f"  refine {factor:.3g}: {runs[-1].mesh['dofs']} dofs, {level.steps} steps, "

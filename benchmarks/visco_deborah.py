@@ -22,8 +22,9 @@ import argparse
 import numpy as np
 from scipy.optimize import brentq
 
-from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
-from shtaerman.study.dynamic.accuracy import run_dynamic_ladder
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.impact import run_impact
+from shtaerman.study.dynamic.case import run_case
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -40,8 +41,8 @@ def _run(density, settings, prony, ladder):
     """(result, {quantity: absolute error}) of one FE run; no errors without the ladder."""
     inputs = (INDENTER, RUBBER, density, MASS, VELOCITY, settings)
     if not ladder:
-        return run_dynamic_impact(*inputs, prony=prony), {}
-    levels = run_dynamic_ladder(*inputs, prony=prony)
+        return run_impact(*inputs, prony=prony), {}
+    levels = run_case(*inputs, ladder=True, prony=prony).ladder
     return levels.finest, {k: e.absolute_error for k, e in levels.estimates.items()}
 
 

@@ -21,7 +21,7 @@ import argparse
 import time
 
 from shtaerman.fem.dynamic_contact import DynamicSettings, prepare_dynamic_impact
-from shtaerman.fem.dynamic_contact import run_dynamic_impact as run
+from shtaerman.fem.impact import run_impact as run
 from shtaerman.fem.stepper import march
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact

@@ -8,7 +8,8 @@ from types import SimpleNamespace
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, ImpactLadder, run_dynamic_ladder
+from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, ImpactLadder
+from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.study.richardson import richardson
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -31,9 +32,9 @@ def test_refined_settings_shrink_h_and_dt_together():
 
 @pytest.fixture(scope="module")
 def ladder():
-    return run_dynamic_ladder(
-        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE
-    )
+    return run_case(
+        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE, ladder=True
+    ).ladder
 
 
 def test_ladder_levels_and_estimates(ladder):
@@ -145,20 +146,20 @@ def test_the_linear_body_retries_a_failed_level_as_the_rubber_does(monkeypatch):
     """One ladder for every body (issue 28): a level of the linear impact that fails
     numerically is run again with doubled time steps and enters the ladder with them; before,
     the linear ladder aborted the whole run."""
-    import shtaerman.study.dynamic.accuracy as accuracy
+    import shtaerman.study.dynamic.case as case
     from shtaerman.validation import NumericalFailureError
 
-    run = accuracy.run_dynamic_impact
+    run = case.run_impact
 
     def fail_at_113(*inputs, **options):
         if inputs[5].steps == 113:  # the middle level, once
             raise NumericalFailureError("forced failure at 113 steps")
         return run(*inputs, **options)
 
-    monkeypatch.setattr(accuracy, "run_dynamic_impact", fail_at_113)
-    retried = run_dynamic_ladder(
-        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE
-    )
+    monkeypatch.setattr(case, "run_impact", fail_at_113)
+    retried = run_case(
+        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE, ladder=True
+    ).ladder
     assert [level.steps for level in retried.settings] == [80, 226, 160]
     assert "passed with 226 steps" in retried.failures[1] and not retried.missing
     assert set(retried.estimates) == set(DYNAMIC_ESTIMATED)

@@ -1,5 +1,5 @@
 """A bonded or Coulomb striker in the linear dynamic impact (``friction`` of
-:func:`shtaerman.fem.dynamic_contact.run_dynamic_impact`; :mod:`shtaerman.fem.stick_slip`).
+:func:`shtaerman.fem.impact.run_impact`; :mod:`shtaerman.fem.stick_slip`).
 
 The paper's striker (0.7 kg at 3 m/s, z = 5 r^1.5) on rubber (7.5 MPa, 1100 kg/m^3), coarse:
 60 steps per t_y and elements of 1/20 of the refined radius (11k dofs, about 2 s a run). The
@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings, prepare_dynamic_impact
-from shtaerman.fem.dynamic_contact import run_dynamic_impact as run_impact
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.stick import solve_bonded_contact
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.theory.contact import PowerLawContact

@@ -18,8 +18,8 @@ from shtaerman.fem.dynamic_contact import (
     DynamicSettings,
     estimate_dofs,
     prepare_dynamic_impact,
-    run_dynamic_impact,
 )
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.stepper import ContactEdgeReachedError, ImpactState, advance
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
@@ -47,13 +47,13 @@ def quasi_static(indenter=PAPER, half_space=RUBBER, mass=0.7, velocity=3.0):
 @pytest.fixture(scope="module")
 def rubber_run():
     """The paper's case, rho2 = 1100 kg/m^3, coarse; with two field snapshots."""
-    return run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, COARSE, snapshot_times=(2e-3, 4e-3))
+    return run_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, COARSE, snapshot_times=(2e-3, 4e-3))
 
 
 @pytest.fixture(scope="module")
 def light_run():
     """rho2 = 1e-3 kg/m^3: lambda ~ rho^(1/2) ~ 1.5e-4, the quasi-static limit."""
-    return run_dynamic_impact(PAPER, RUBBER, 1e-3, 0.7, 3.0, COARSE)
+    return run_impact(PAPER, RUBBER, 1e-3, 0.7, 3.0, COARSE)
 
 
 # --- radiation estimate (pure theory) -------------------------------------------------------
@@ -192,7 +192,7 @@ def test_contact_force_is_smooth(rubber_run):
 
 def test_newmark_ripple_is_what_generalized_alpha_removes():
     """Newmark average acceleration: the exact energy identity, and the ripple it leaves."""
-    run = run_dynamic_impact(
+    run = run_impact(
         PAPER,
         RUBBER,
         1100.0,
@@ -223,7 +223,7 @@ def test_radiated_energy_agrees_with_estimate_at_lambda_0_16(rubber_run):
 
 def test_small_radiation_matches_first_order_estimate():
     """v0 = 0.5 m/s, lambda = 0.041: the measured loss within 20 % (observed -3 %)."""
-    run = run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 0.5, COARSE)
+    run = run_impact(PAPER, RUBBER, 1100.0, 0.7, 0.5, COARSE)
     law = PowerLawContact(PAPER, RIGID_STAR)
     estimate = radiation_estimate(0.7, 0.5, law.beta, 5.0 / 3.0, 1100.0, 2.5e6, 0.5)
     assert run.energy_radiated_fraction == pytest.approx(estimate.energy_fraction, rel=0.2)
@@ -252,7 +252,7 @@ def test_outputs_are_json_and_snapshots_have_fields(rubber_run):
 @pytest.mark.parametrize("bad", [1e-7, -5.0, math.nan, math.inf])  # 0 is valid: massless
 def test_bad_density_is_one_line(bad):
     with pytest.raises(InputError, match="density2") as error:
-        run_dynamic_impact(PAPER, RUBBER, bad, 0.7, 3.0, COARSE)
+        run_impact(PAPER, RUBBER, bad, 0.7, 3.0, COARSE)
     assert "\n" not in str(error.value)
 
 
@@ -265,14 +265,12 @@ def test_runaway_mesh_refused_before_meshing():
     settings = DynamicSettings(size=1e-4)
     assert estimate_dofs(settings) > MAX_DOFS
     with pytest.raises(InputError, match="dofs"):
-        run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
+        run_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
 
 
 def test_contact_outgrowing_refined_zone_is_reported():
     with pytest.raises(InputError, match="refined zone"):
-        run_dynamic_impact(
-            PAPER, RUBBER, 1e-3, 0.7, 3.0, DynamicSettings(steps=60, size=0.05, margin=1.01)
-        )
+        run_impact(PAPER, RUBBER, 1e-3, 0.7, 3.0, DynamicSettings(steps=60, size=0.05, margin=1.01))
 
 
 def test_absorbing_layer_books_its_energy_and_perturbs_little():
@@ -284,7 +282,7 @@ def test_absorbing_layer_books_its_energy_and_perturbs_little():
     (0.2 % without it). Hence the default: no layer, a far (125 m) clamped arc.
     """
     settings = DynamicSettings(steps=200, size=1 / 40, layer_rate=10.0)
-    run = run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
+    run = run_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
     e0 = run.energies["striker_kinetic"][0]
     absorbed = run.energies["absorbed"][-1] / e0
     # most of the radiated 14 % reaches the layer within the tail (observed 0.096)
@@ -301,7 +299,7 @@ def test_a_time_stepping_gone_unstable_stops_as_a_numerical_failure():
     initial. It now stops once the balance is off by ten times the initial energy."""
     settings = DynamicSettings(steps=5000, size=0.1, spectral_radius=None)
     with pytest.raises(NumericalFailureError, match=r"off by .* stepping became unstable"):
-        run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
+        run_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
 
 
 def test_a_refined_zone_too_small_still_asks_for_a_larger_margin():
@@ -312,4 +310,4 @@ def test_a_refined_zone_too_small_still_asks_for_a_larger_margin():
         ContactEdgeReachedError,
         match=r"refined zone .*increase the margin \(mesh_margin, --mesh-margin\)",
     ):
-        run_dynamic_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)
+        run_impact(PAPER, RUBBER, 1100.0, 0.7, 3.0, settings)

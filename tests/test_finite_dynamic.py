@@ -7,10 +7,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.finite_contact import solve_finite_contact
-from shtaerman.fem.finite_dynamic import FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.rubber import RubberModel
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
@@ -24,7 +27,7 @@ SETTINGS = FiniteImpactSettings(steps=30, mesh=COARSE)
 
 @pytest.fixture(scope="module")
 def massless():
-    return run_finite_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, SETTINGS)
+    return run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, SETTINGS)
 
 
 def _static_reference(result, mesh=COARSE):
@@ -60,7 +63,7 @@ PAD = replace(COARSE, thickness=0.02)  # the paper's striker on a 20 mm pad, bon
 
 @pytest.fixture(scope="module")
 def pad():
-    return run_finite_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, replace(SETTINGS, mesh=PAD))
+    return run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, replace(SETTINGS, mesh=PAD))
 
 
 def test_massless_pad_is_the_impact_on_its_own_static_curve(pad, massless):
@@ -76,7 +79,7 @@ def test_massless_pad_is_the_impact_on_its_own_static_curve(pad, massless):
 def test_a_pad_with_inertia_keeps_its_waves_and_closes_its_energy(pad):
     coarse = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-3, axis_growth=0.25)
     runs = [
-        run_finite_impact(
+        run_impact(
             INDENTER,
             RUBBER,
             1100.0,
@@ -111,7 +114,16 @@ def test_massless_body_restitution_is_one(massless):
 @pytest.mark.parametrize("density", [1e7, -1.0, "x", True])
 def test_density_out_of_range_is_refused(density):
     with pytest.raises(InputError, match="density2"):
-        run_finite_impact(INDENTER, RUBBER, density, MASS, 3.0, SETTINGS)
+        run_impact(INDENTER, RUBBER, density, MASS, 3.0, SETTINGS)
+
+
+def test_one_driver_chooses_the_body_by_the_settings(massless):
+    """run_impact (fem/impact.py) runs the finite-strain body for FiniteImpactSettings (the
+    Newton iterations it reports; the linear body reports a contact radius history instead)
+    and refuses a rubber with the linear body's settings before meshing anything."""
+    assert massless.newton_iterations > 0 and massless.contact_radius is None
+    with pytest.raises(TypeError, match="a rubber takes FiniteImpactSettings"):
+        run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, DynamicSettings(), RubberModel())
 
 
 @pytest.mark.parametrize("steps", [5, 10.5, 10**6])

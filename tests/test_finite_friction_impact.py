@@ -17,7 +17,8 @@ import pytest
 import shtaerman as sh
 import shtaerman.fem.finite_dynamic as finite_dynamic
 from shtaerman.cli import main
-from shtaerman.fem.finite_dynamic import FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.problem import Problem
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -34,7 +35,7 @@ SETTINGS = FiniteImpactSettings(steps=30, mesh=COARSE)
 
 
 def _run(friction, density=0.0, settings=SETTINGS):
-    return run_finite_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, friction=friction)
+    return run_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, friction=friction)
 
 
 @pytest.fixture(scope="module")
@@ -148,7 +149,7 @@ def test_a_frictional_impact_on_a_pad_beyond_the_reach_is_refused_before_any_wor
 
     pad = FiniteImpactSettings(mesh=MeshSettings(thickness=0.012))
     with pytest.raises(InputError, match=r"2\.27.*--interface frictionless") as refused:
-        run_finite_impact(
+        run_impact(
             PowerLawIndenter(8.0, 1.3), Material(3e6, 0.49), 1000.0, 0.12, 1.5, pad,
             prony=PronySeries.parse("0.3:1e-3"), friction=friction,
         )  # fmt: skip

@@ -13,9 +13,9 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli.finite_dynamic import finite_dynamic_text
-from shtaerman.fem import finite_dynamic
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.guards import ValidityWarning
+from shtaerman.study.dynamic import case
 from shtaerman.study.dynamic.accuracy import EstimateMissingWarning
 from shtaerman.validation import NumericalFailureError
 
@@ -71,7 +71,7 @@ def test_the_estimate_bounds_the_difference_to_a_finer_run(ladder, coarse_mesh):
 def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
     """Runs with these time steps per t_y fail (a numerical failure); the others run (and
     with ``warn`` give a validity warning each)."""
-    run = finite_dynamic.run_finite_impact
+    run = case.run_impact
 
     def maybe_fail(*inputs):
         settings = inputs[5]
@@ -83,7 +83,7 @@ def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
             )
         return run(*inputs)
 
-    monkeypatch.setattr(finite_dynamic, "run_finite_impact", maybe_fail)
+    monkeypatch.setattr(case, "run_impact", maybe_fail)
 
 
 def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(coarse_mesh, monkeypatch):

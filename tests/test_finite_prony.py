@@ -10,10 +10,11 @@ import pytest
 from scipy.integrate import quad
 from skfem import MeshTri
 
-from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
-from shtaerman.fem.finite_dynamic import FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.finite_viscoelastic import ViscoelasticBody, second_piola
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.rubber import RubberModel
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -182,16 +183,16 @@ def test_relaxed_tangent_is_the_derivative_of_the_residual(poisson, model):
 
 @pytest.fixture(scope="module")
 def elastic_3():
-    return run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
+    return run_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS)
 
 
 @pytest.fixture(scope="module")
 def viscous_3():
-    return run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=SERIES)
+    return run_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=SERIES)
 
 
 def test_zero_weights_are_the_elastic_impact_bit_for_bit(elastic_3):
-    run = run_finite_impact(
+    run = run_impact(
         INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=PronySeries((0.0,), (1e-3,))
     )
     for name in ("t", "x", "v", "force"):
@@ -236,8 +237,8 @@ def test_small_strain_limit_is_the_linear_viscoelastic_impact():
     runs = {}
     for name, series in (("elastic", None), ("viscous", prony)):
         runs[name] = (
-            run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 0.2, SETTINGS, prony=series),
-            run_dynamic_impact(INDENTER, RUBBER, 1100.0, MASS, 0.2, linear_settings, prony=series),
+            run_impact(INDENTER, RUBBER, 1100.0, MASS, 0.2, SETTINGS, prony=series),
+            run_impact(INDENTER, RUBBER, 1100.0, MASS, 0.2, linear_settings, prony=series),
         )
     for key, tolerance in (("x_max", 2e-3), ("P_max", 5e-3), ("restitution", 1e-2)):
         finite = getattr(runs["viscous"][0], key) / getattr(runs["elastic"][0], key)
@@ -248,7 +249,7 @@ def test_small_strain_limit_is_the_linear_viscoelastic_impact():
 
 def test_a_series_relaxing_too_far_is_refused():
     with pytest.raises(InputError, match="prony: the viscoelastic impact lasts more than"):
-        run_finite_impact(
+        run_impact(
             INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=PronySeries((0.999999,), (1e-6,))
         )
 
@@ -295,7 +296,7 @@ def test_api_dynamic_takes_prony_with_a_model(monkeypatch):
 def test_cut_steps_relax_with_their_own_time_step(viscous_3, steps_six_and_seven_fail):
     """The sixth step fails, and so does its first half: quarter, quarter, half steps, each
     committing its history with its own dt (constants of dt/4 and dt/2)."""
-    run = run_finite_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=SERIES)
+    run = run_impact(INDENTER, RUBBER, 1100.0, MASS, 3.0, SETTINGS, prony=SERIES)
     fractions = np.diff(run.t)[:9] / run.parameters["time_step"]
     assert fractions == pytest.approx([1, 1, 1, 1, 1, 0.25, 0.25, 0.5, 1], rel=1e-12)
     assert run.restitution == pytest.approx(viscous_3.restitution, abs=1e-3)

@@ -8,7 +8,8 @@ import json
 import numpy as np
 import pytest
 
-from shtaerman.fem.finite_dynamic import FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
@@ -29,7 +30,7 @@ SERIES = PronySeries((0.5,), (0.0152,))
 
 def _run(steps, prony=None, velocity=SLOW):
     settings = FiniteImpactSettings(steps=steps, mesh=COARSE)
-    return run_finite_impact(INDENTER, RUBBER, 0.0, MASS, velocity, settings, prony=prony)
+    return run_impact(INDENTER, RUBBER, 0.0, MASS, velocity, settings, prony=prony)
 
 
 @pytest.fixture(scope="module")

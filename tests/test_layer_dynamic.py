@@ -20,8 +20,9 @@ import shtaerman as sh
 from shtaerman.api.layer_impact import quasi_static_layer_impact
 from shtaerman.cli import main
 from shtaerman.fem.absorbing import AbsorbingLayer
-from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
+from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.dynamic_layer import LATERAL_RATE, MAX_LATERAL, lateral_absorber
+from shtaerman.fem.impact import run_impact
 from shtaerman.output.text_dynamic import study_findings
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study
@@ -36,7 +37,7 @@ PAD = 0.02
 
 def _run(thickness: float | None, base: str = "bonded", density: float = 1100.0):
     settings = DynamicSettings(thickness=thickness, base=base)
-    return run_dynamic_impact(PAPER, RUBBER, density, 0.7, 3.0, settings)
+    return run_impact(PAPER, RUBBER, density, 0.7, 3.0, settings)
 
 
 @pytest.fixture(scope="module")

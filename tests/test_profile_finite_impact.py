@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 import shtaerman as sh
-from shtaerman.fem.finite_dynamic import FiniteImpactSettings, run_finite_impact
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.mesh import MeshSettings
 
 RUBBER = sh.Material(7.5e6, 0.5)
@@ -24,8 +25,8 @@ def test_a_tabulated_paraboloid_is_the_power_law_n_2_at_finite_strain(density):
     r = np.linspace(0.0, 0.05, 201)
     table = sh.TabulatedIndenter(r, r**2 / (2 * RADIUS))
     hertz = sh.PowerLawIndenter.sphere(RADIUS)
-    power_law = run_finite_impact(hertz, RUBBER, density, 0.7, 1.0, SETTINGS)
-    tabulated = run_finite_impact(table, RUBBER, density, 0.7, 1.0, SETTINGS)
+    power_law = run_impact(hertz, RUBBER, density, 0.7, 1.0, SETTINGS)
+    tabulated = run_impact(table, RUBBER, density, 0.7, 1.0, SETTINGS)
     # the same mesh: the refined radius from the quadrature's x_c differs in the last bit only
     assert tabulated.mesh == pytest.approx(power_law.mesh, rel=1e-15)
     # the gap, its slope and curvature are the power law's to round-off; the time step
@@ -39,7 +40,7 @@ def test_finite_strain_softens_the_sphere_as_the_paraboloid():
     """Massless, at 1 m/s: x = 0.34 R, where Sneddon's sphere is 2 % softer than Hertz."""
     departures = {}
     for indenter in (sh.SphereIndenter(RADIUS), sh.PowerLawIndenter.sphere(RADIUS)):
-        run = run_finite_impact(indenter, RUBBER, 0.0, 0.7, 1.0, SETTINGS)
+        run = run_impact(indenter, RUBBER, 0.0, 0.7, 1.0, SETTINGS)
         exact = sh.impact(indenter, RUBBER, mass=0.7, velocity=1.0)  # each its own reference
         departures[indenter.kind] = (run.x_max / exact.x_c - 1, run.P_max / exact.P_c - 1)
     sphere, paraboloid = departures["sphere"], departures["power-law"]

@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from shtaerman.cli import main
-from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.fem.viscoelastic import prony_input
 from shtaerman.study.schema import find_study, load_study
 from shtaerman.theory.contact import PowerLawContact
@@ -109,7 +110,7 @@ def test_fe_impact_on_the_silicone_is_tings():
     term is lumped or dropped, and the FE meets Ting as closely as with slow terms only."""
     indenter, rubber = PowerLawIndenter(5.0, 1.5), Material(2.912e6, 0.5)
     series = shipped_rubber(NAME).series
-    fe = run_dynamic_impact(
+    fe = run_impact(
         indenter, rubber, 0.0, 0.7, 3.0, DynamicSettings(steps=100, size=0.05), prony=series
     )
     law = PowerLawContact(indenter, effective_modulus(RIGID, rubber))

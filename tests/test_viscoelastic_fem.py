@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from study_texts import DYNAMIC_STUDY
 
-from shtaerman.fem.dynamic_contact import DynamicSettings, run_dynamic_impact
+from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.impact import run_impact
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -30,12 +31,12 @@ ONE_TERM = PronySeries((0.5,), (2e-3,))
 
 
 def visco_run(prony, density=0.0, settings=COARSE):
-    return run_dynamic_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, prony=prony)
+    return run_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, prony=prony)
 
 
 @pytest.fixture(scope="module")
 def massless():
-    return run_dynamic_impact(INDENTER, RUBBER, 0.0, MASS, VELOCITY, COARSE)
+    return run_impact(INDENTER, RUBBER, 0.0, MASS, VELOCITY, COARSE)
 
 
 def test_massless_body_gives_the_quasi_static_impact(massless):
@@ -223,9 +224,7 @@ def test_fields_carry_the_relaxed_shear_stress():
     """Glassy limit: the stresses of the elastic body; g = 0.5 at tau = t_c/2: lower stresses."""
     times = (0.5 * 4.105e-3,)
     runs = [
-        run_dynamic_impact(
-            INDENTER, RUBBER, 0.0, MASS, VELOCITY, COARSE, snapshot_times=times, prony=prony
-        )
+        run_impact(INDENTER, RUBBER, 0.0, MASS, VELOCITY, COARSE, snapshot_times=times, prony=prony)
         for prony in (PronySeries((0.5,), (1e3,)), ONE_TERM)
     ]
     glassy, relaxing = (run.field_solution(times[0])[1] for run in runs)
@@ -273,9 +272,9 @@ def test_the_relaxed_limit_reflects_what_the_relaxed_elastic_body_reflects():
     body at the relaxed modulus, and the case failed its 1e-2 check."""
     settings, density = DynamicSettings(steps=60, size=0.2), 1100.0
     relaxed = Material(0.5 * RUBBER.youngs_modulus, RUBBER.poisson_ratio)
-    elastic = run_dynamic_impact(INDENTER, relaxed, density, MASS, VELOCITY, settings)
+    elastic = run_impact(INDENTER, relaxed, density, MASS, VELOCITY, settings)
     prony = PronySeries((0.5,), (1e-9,))
-    limit = run_dynamic_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, prony=prony)
+    limit = run_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, prony=prony)
     assert limit.restitution == pytest.approx(elastic.restitution, rel=1e-4)  # the same impact
     # the same measure, within the two runs' differences (dt follows the glassy t_y: 0.76 of
     # the elastic run's; the monitored energy is twice the kinetic one, not kinetic + stored):

@@ -49,12 +49,12 @@ def test_the_findings_quote_the_split_with_its_error(laddered):
 
 def test_an_elastic_ladder_has_no_split():
     from shtaerman.fem.dynamic_contact import DynamicSettings
-    from shtaerman.study.dynamic.accuracy import run_dynamic_ladder
+    from shtaerman.study.dynamic.case import run_case
 
-    ladder = run_dynamic_ladder(
+    ladder = run_case(
         PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 0.0, 0.7, 3.0,
-        DynamicSettings(steps=100, size=0.09),
-    )  # fmt: skip
+        DynamicSettings(steps=100, size=0.09), ladder=True,
+    ).ladder  # fmt: skip
     assert not set(LOSSES) & set(ladder.estimates)
 
 

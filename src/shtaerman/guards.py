@@ -12,7 +12,7 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   the finite-strain result is unverified.
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
-:func:`shtaerman.fem.finite_dynamic.run_finite_impact`) and the contact curve (the API, a
+:func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
 contact sweep case, a contact or layer study) call :func:`warn_outside_validity` with what
 they reached.
 """

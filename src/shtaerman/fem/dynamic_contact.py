@@ -1,16 +1,16 @@
 """Dynamic impact of a rigid striker z = A r^n, a sphere or a tabulated z(r), on the elastic
 half-space (elastodynamic FEM).
 
-:func:`run_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
+:func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
 (:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles
 the consistent mass (:mod:`.mass`) with the normal mass taken off the contact candidates
 (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and
 the damping of the optional absorbing layer (:mod:`.absorbing`), factorizes the effective
-matrix once (:func:`.solver.factorize_scaled`) and steps the striker (mass M, X(0) = 0,
-X'(0) = v0) and the body with unilateral contact at the surface nodes, frictionless or
-(``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by
-default; Newmark average acceleration with ``spectral_radius=None``). The time step is set by
-the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
+matrix once (:func:`.solver.factorize_scaled`); :meth:`DynamicImpactSetup.march` steps the
+striker (mass M, X(0) = 0, X'(0) = v0) and the body with unilateral contact at the surface
+nodes, frictionless or (``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha,
+rho_inf = 0.9 by default; Newmark average acceleration with ``spectral_radius=None``). The time
+step is set by the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
 unconditionally stable.
 
 Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
@@ -36,13 +36,12 @@ from ..guards import check_reach
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..theory.materials import validate_density as validate_material_density
+from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import solve_profile_impact
 from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact
 from ..theory.viscoelastic import PronySeries
-from ..validation import InputError, bound_text, validate_positive
+from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
 from .contact import mass_factor
 from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
@@ -54,7 +53,16 @@ from .elasticity import (
     deviatoric_stiffness,
     divergence_coupling,
 )
-from .impact_run import ImpactRun, fitted_peak, impact_parameters, mesh_counts, parabola_peak
+from .impact_run import (
+    ImpactRun,
+    finished_run,
+    fitted_peak,
+    impact_parameters,
+    mesh_counts,
+    parabola_peak,
+    refined_steps,
+    validate_steps,
+)
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import halfspace_mesh
 from .mesh_budget import growth_error
@@ -77,7 +85,6 @@ __all__ = [
     "check_dynamic_impact",
     "estimate_dofs",
     "prepare_dynamic_impact",
-    "run_dynamic_impact",
 ]
 
 MAX_DOFS = 400_000
@@ -104,12 +111,6 @@ def validate_friction(friction: object) -> float | None:
             "friction",
         )
     return float(friction)
-
-
-def validate_density(density: object) -> float:
-    """Return the half-space density in kg/m^3 (0: massless), or raise InputError naming
-    ``density2``."""
-    return validate_material_density("density2", density)
 
 
 MAX_SIZE = 0.2
@@ -180,13 +181,7 @@ class DynamicSettings:
     base: str = "bonded"
 
     def __post_init__(self) -> None:
-        if not isinstance(self.steps, (int, np.integer)) or not (
-            MIN_STEPS <= self.steps <= MAX_STEPS
-        ):
-            raise InputError(
-                f"steps (time steps per impact duration) must be an integer in "
-                f"[{MIN_STEPS}, {MAX_STEPS}] (fewer cannot resolve the impact), got {self.steps!r}"
-            )
+        validate_steps(self.steps, (MIN_STEPS, MAX_STEPS))
         for name in ("margin", "size", "axis_size", "growth", "domain", "layer_ramp"):
             validate_positive(f"mesh {name}", getattr(self, name))
         if self.margin <= 1.0:
@@ -226,25 +221,13 @@ class DynamicSettings:
         shtaerman.validation.InputError
             If ``factor`` is not > 0 or the result leaves the settings' valid ranges.
         """
-        factor = validate_positive("refine", factor)
-        steps = self.steps * factor
-        if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:  # round(steps) in range
-            low, high = (
-                bound_text(MIN_STEPS / self.steps, "low"),
-                bound_text(MAX_STEPS / self.steps, "high"),
-            )
-            raise InputError(
-                f"refine must lie in [{low}, {high}]"
-                f" with {self.steps} steps per t_y (it scales the time steps, "
-                f"{MIN_STEPS}-{MAX_STEPS} allowed, and divides the mesh sizes), got {factor!r}",
-                "refine",
-            )
+        steps = refined_steps(self.steps, factor, (MIN_STEPS, MAX_STEPS))
         return replace(
             self,
             size=self.size / factor,
             axis_size=self.axis_size / factor,
             growth=min(self.growth / factor, 1.0),
-            steps=round(steps),
+            steps=steps,
         )
 
 
@@ -604,7 +587,7 @@ def check_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> tuple[float, Striker, _Scales, int]:
-    """Check every input of a dynamic impact (arguments of :func:`run_dynamic_impact`) before
+    """Check every input of a dynamic impact (arguments of :func:`.impact.run_impact`) before
     anything is meshed, in well under a second: the density, mass and velocity, the layer's
     thickness against the impact's refined radius, the duration of a viscoelastic impact and
     the estimated mesh size. ``shtaerman dynamic`` and a dynamic sweep's load both refuse
@@ -620,7 +603,7 @@ def check_dynamic_impact(
     shtaerman.validation.InputError
         For an input out of range, naming it.
     """
-    rho = validate_density(density)
+    rho = validate_density("density2", density)
     validate_friction(friction)
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
@@ -668,6 +651,58 @@ class DynamicImpactSetup:
     parameters: dict[str, float]
     timings: dict[str, float]
 
+    def march(self, snapshot_times: tuple[float, ...] = ()) -> ImpactHistory:
+        """Step the run (:func:`.stepper.march`), keeping the fields at ``snapshot_times`` (s)."""
+        return march(
+            self.problem,
+            duration=self.duration,
+            tail_time=self.tail_time,
+            force_exponent=self.force_exponent,
+            snapshot_times=snapshot_times,
+        )
+
+    def result(self, history: ImpactHistory, timings: dict[str, float]) -> ImpactRun:
+        """The run of ``history`` (what :meth:`march` returned), ``timings`` its costs (s):
+        maxima, rebound, energy fractions."""
+        problem, parameters = self.problem, self.parameters
+        t, dt = history.t, problem.scheme.dt
+        energy0 = problem.striker.kinetic_energy
+        x_max, t_x_max = parabola_peak(t, history.x)
+        t_y = parameters["quasi_static_t_y"]
+        force = history.force
+        p_max = fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
+        reflected = math.nan
+        if history.separated:
+            reflected = _reflected_fraction(
+                history,
+                energy0,
+                self.reflection_measured,
+                layered="thickness" in self.mesh,
+                viscoelastic=problem.material is not None,
+            )
+            if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
+                reflected = 0.0
+        run = finished_run(
+            (t, history.x, history.v, force),
+            history.energies,
+            (x_max, p_max, t_x_max),
+            history.t_contact,
+            energy0,
+            contact_radius=history.contact_radius,
+            central_pressure=history.central_pressure,
+            reflected_energy_fraction=reflected,
+            mesh=self.mesh,
+            timings=timings,
+            parameters=parameters,
+            system=problem.system,
+            snapshots=history.snapshots,
+            material=problem.material,
+            memories=history.memories,
+        )
+        if problem.material is None:
+            return run
+        return replace(run, losses=_losses(problem, history, run.energy_radiated_fraction))
+
 
 def prepare_dynamic_impact(
     indenter: Indenter,
@@ -679,7 +714,7 @@ def prepare_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
 ) -> DynamicImpactSetup:
-    """Mesh, assemble and factorize the dynamic impact (arguments of :func:`run_dynamic_impact`).
+    """Mesh, assemble and factorize the dynamic impact (arguments of :func:`.impact.run_impact`).
 
     Step it with :func:`.stepper.advance` from :meth:`.stepper.ImpactState.first_touch`, or
     all at once with :func:`.stepper.march`.
@@ -735,72 +770,6 @@ def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
     )
 
 
-def run_dynamic_impact(
-    indenter: Indenter,
-    half_space: Material,
-    density: float,
-    mass: float,
-    velocity: float,
-    settings: DynamicSettings | None = None,
-    *,
-    snapshot_times: tuple[float, ...] = (),
-    prony: PronySeries | None = None,
-    friction: float | None = None,
-) -> ImpactRun:
-    """Strike the elastic half-space with a rigid striker and follow the waves.
-
-    Parameters
-    ----------
-    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
-        Striker profile: z = A r^n, n > 1, the exact sphere or a tabulated z(r) (the scales
-        of the run from its exact quasi-static impact, :func:`_quasi_static`; a
-        viscoelastic body takes the power law only).
-    half_space : Material
-        E2 in Pa, nu2 in [0, 0.5].
-    density : float
-        Half-space density rho2 in kg/m^3, in ``DENSITY_RANGE``.
-    mass : float
-        Striker mass M in kg.
-    velocity : float
-        Impact velocity v0 in m/s.
-    settings : DynamicSettings, optional
-        Numerical controls (default ``DynamicSettings()``).
-    snapshot_times : tuple of float
-        Times in s at which to keep the solution vectors (nearest step), for field output.
-    prony : PronySeries, optional
-        Shear relaxation of the half-space (E2 and nu2 are then its instantaneous values, the
-        bulk response elastic); None: elastic.
-    friction : float, optional
-        The striker's surface: None frictionless; a point that touches it sticks (bonded)
-        with ``math.inf``, or slides once its shear exceeds ``friction`` >= 0 times its
-        normal force (Coulomb; 0 is frictionless by another path).
-
-    Returns
-    -------
-    ImpactRun
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        For inputs out of range, a mesh above ``MAX_DOFS`` (estimated before meshing), or a
-        contact that outgrows the refined zone during the run.
-    """
-    setup = prepare_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, prony, friction
-    )
-    start = time.perf_counter()
-    history = march(
-        setup.problem,
-        duration=setup.duration,
-        tail_time=setup.tail_time,
-        force_exponent=setup.force_exponent,
-        snapshot_times=snapshot_times,
-    )
-    timings = {**setup.timings, "stepping": time.perf_counter() - start}
-    timings["total"] = sum(timings.values())
-    return _result(setup, history, timings)
-
-
 def _mesh_stats(
     problem: ImpactProblem, estimate: int, scales: _Scales, settings: DynamicSettings
 ) -> dict[str, float]:
@@ -836,60 +805,6 @@ def _parameters(
         "beta": qs.beta,
         "solver_backward_error": problem.factorization.backward_error,
     }
-
-
-def _result(
-    setup: DynamicImpactSetup, history: ImpactHistory, timings: dict[str, float]
-) -> ImpactRun:
-    """Maxima, rebound and energy fractions of a run."""
-    problem, parameters = setup.problem, setup.parameters
-    t, dt, v0 = history.t, problem.scheme.dt, problem.striker.velocity
-    energy0 = problem.striker.kinetic_energy
-    x_max, t_x_max = parabola_peak(t, history.x)
-    t_y = parameters["quasi_static_t_y"]
-    force = history.force
-    p_max = fitted_peak(t, force, int(np.argmax(force)), max(2, round(0.05 * t_y / dt)))
-    v_out = restitution = radiated = reflected = math.nan
-    if history.separated:
-        # the last velocity: after separation the striker's acceleration decays geometrically
-        v_out = -float(history.v[-1])
-        restitution = v_out / v0
-        radiated = 1.0 - restitution**2
-        reflected = _reflected_fraction(
-            history,
-            energy0,
-            setup.reflection_measured,
-            layered="thickness" in setup.mesh,
-            viscoelastic=problem.material is not None,
-        )
-        if parameters["density2"] == 0:  # massless: nothing radiates, nothing comes back
-            reflected = 0.0
-    return ImpactRun(
-        t=t,
-        x=history.x,
-        v=history.v,
-        force=force,
-        contact_radius=history.contact_radius,
-        central_pressure=history.central_pressure,
-        energies=history.energies,
-        x_max=x_max,
-        P_max=p_max,
-        t_x_max=t_x_max,
-        t_contact=history.t_contact,
-        v_out=v_out,
-        restitution=restitution,
-        energy_radiated_fraction=radiated,
-        energy_balance_error=float(np.max(np.abs(history.energies["numerical"])) / energy0),
-        reflected_energy_fraction=reflected,
-        mesh=setup.mesh,
-        timings=timings,
-        parameters=parameters,
-        system=problem.system,
-        snapshots=history.snapshots,
-        losses=_losses(problem, history, radiated) if problem.material is not None else {},
-        material=problem.material,
-        memories=history.memories,
-    )
 
 
 def _losses(problem: ImpactProblem, history: ImpactHistory, radiated: float) -> dict[str, float]:

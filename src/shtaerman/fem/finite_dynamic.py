@@ -33,9 +33,11 @@ refined radii away, beyond the waves' reach during the contact; the kinetic ener
 radius at the end is reported. The run stops when the contact force vanishes with the striker
 rebounding (separation time from P^(1/q) extrapolated between steps).
 
-Results: the same summary keys as the linear dynamic impact (:mod:`.dynamic_contact`). The
-massless body carries no kinetic energy and radiates nothing; with inertia the energies are the
-striker's and the body's kinetic energy, the stored energy and the numerical rest.
+:func:`prepare_finite_impact` is the finite-strain body of the one driver
+(:func:`.impact.run_impact`): both bodies march in :func:`.impact_run.march_steps` and end in
+one :class:`.impact_run.ImpactRun`. The massless body carries no kinetic energy and radiates
+nothing; with inertia the energies are the striker's and the body's kinetic energy, the stored
+energy and the numerical rest.
 
 A Prony series (``prony``) makes the rubber viscoelastic (:mod:`.finite_viscoelastic`: its
 isochoric stress relaxes); the history is committed when a step (or a cut step's half)
@@ -54,6 +56,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -63,7 +66,7 @@ import scipy.sparse as sp
 from ..guards import MAX_DEPTH_RATIO, check_reach, depth_ratio, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
-from ..theory.materials import DENSITY_RANGE, Material
+from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import solve_profile_impact
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
@@ -82,16 +85,26 @@ from .finite_contact import (
 from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
-from .impact_run import ImpactRun, impact_parameters, mesh_counts, parabola_peak
+from .impact_run import (
+    ImpactRun,
+    finished_run,
+    impact_parameters,
+    march_steps,
+    mesh_counts,
+    parabola_peak,
+    refined_steps,
+    validate_steps,
+)
 from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import GentLockError, RubberModel, gent_locks
-from .stepper import TimeScheme, separation_time
+from .stepper import TimeScheme
 from .viscoelastic import sizing_impact
 
 __all__ = [
     "FiniteImpactSettings",
-    "run_finite_impact",
+    "FiniteImpactSetup",
+    "prepare_finite_impact",
 ]
 
 MIN_STEPS = 20
@@ -157,15 +170,8 @@ class FiniteImpactSettings:
     spectral_radius: float = 0.9
 
     def __post_init__(self) -> None:
-        if self.steps is not None and (
-            not isinstance(self.steps, (int, np.integer))
-            or not (MIN_STEPS <= self.steps <= MAX_STEPS)
-        ):
-            raise InputError(
-                f"steps (time steps per impact duration) must be an integer in "
-                f"[{MIN_STEPS}, {MAX_STEPS}], got {self.steps!r}",
-                "steps",
-            )
+        if self.steps is not None:
+            validate_steps(self.steps, (MIN_STEPS, MAX_STEPS))
         if not (isinstance(self.margin, (int, float)) and math.isfinite(self.margin)) or (
             self.margin <= 1.0
         ):
@@ -194,16 +200,9 @@ class FiniteImpactSettings:
         """These (resolved) settings with the mesh size field divided and the time steps
         multiplied by ``factor`` (> 1 refines), as
         :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined`."""
-        factor = validate_positive("refine", factor)
         assert self.steps is not None and self.mesh is not None, "resolve the settings first"
-        steps = self.steps * factor
-        if not MIN_STEPS - 0.5 <= steps < MAX_STEPS + 0.5:
-            raise InputError(
-                f"refine {factor:g} gives {steps:.4g} time steps per t_y from {self.steps}; "
-                f"{MIN_STEPS}-{MAX_STEPS} are allowed",
-                "refine",
-            )
-        return replace(self, steps=round(steps), mesh=self.mesh.refined(factor))
+        steps = refined_steps(self.steps, factor, (MIN_STEPS, MAX_STEPS))
+        return replace(self, steps=steps, mesh=self.mesh.refined(factor))
 
 
 @dataclass
@@ -343,29 +342,46 @@ def _step(
     gradient of the stored energy or the trapezoidal rule's mean force."""
     dt, k = scales
 
-    def residual(trial: _State) -> float:
-        return 2.0 * mass * ((trial.depth - state.depth) / dt - v) / dt + gradient(state, trial)
+    def residual(depth: float) -> tuple[float, _State]:
+        trial = body.at(depth)
+        return 2.0 * mass * ((depth - state.depth) / dt - v) / dt + gradient(state, trial), trial
 
     scale = mass * max(abs(v), 1e-300) / dt
     # the linearized step: 2 M / dt^2 (D - dt v) + P_n + k D / 2 = 0 for D = X_{n+1} - X_n
-    d0 = state.depth + (2.0 * mass * v / dt - state.force) / (2.0 * mass / dt**2 + 0.5 * k)
-    s0 = body.at(d0)
-    r0 = residual(s0)
     slope = 2.0 * mass / dt**2 + 0.5 * k
+    start = state.depth + (2.0 * mass * v / dt - state.force) / slope
+    limits = (SECANT_TOLERANCE * scale, lambda d: DEPTH_RESOLUTION * max(abs(d), abs(state.depth)))
+    depth, new = _secant(residual, (start, slope, mass / dt**2), limits, state.depth)
+    return new, 2.0 * (depth - state.depth) / dt - v
+
+
+def _secant(
+    residual: Callable[[float], tuple[float, Any]],
+    start: tuple[float, float, float],
+    limits: tuple[float, Callable[[float], float]],
+    depth: float,
+) -> tuple[float, Any]:
+    """The striker's depth X_{n+1} (m) at the end of a step, by a secant on the step's
+    equation ``residual``(X) (N, and the body's state there), and that state.
+
+    ``start``: the first X (m), the first slope and the least slope (N/m; the step's own
+    slope is at least the striker's inertia: half of it is kept); ``limits``: the residual's
+    tolerance (N) and, of X, the update (m) at the contact solves' noise floor; ``depth`` X_n.
+    """
+    d0, slope, least = start
+    r0, got = residual(d0)
     for _ in range(MAX_SECANT):
-        if abs(r0) <= SECANT_TOLERANCE * scale:
-            return s0, 2.0 * (s0.depth - state.depth) / dt - v
+        if abs(r0) <= limits[0]:
+            return d0, got
         d1 = d0 - r0 / slope
-        if abs(d1 - d0) <= DEPTH_RESOLUTION * max(abs(d0), abs(state.depth)):
-            return s0, 2.0 * (s0.depth - state.depth) / dt - v  # at the solves' noise floor
-        s1 = body.at(d1)
-        r1 = residual(s1)
-        if d1 != d0:  # the step's own slope is at least 2 M / dt^2: keep half of it
-            slope = max((r1 - r0) / (d1 - d0), mass / dt**2)
-        d0, s0, r0 = d1, s1, r1
+        if abs(d1 - d0) <= limits[1](d0):  # at the solves' noise floor
+            return d0, got
+        r1, got = residual(d1)
+        if d1 != d0:
+            slope = max((r1 - r0) / (d1 - d0), least)
+        d0, r0 = d1, r1
     raise NumericalFailureError(
-        f"the striker's step equation did not converge at depth {state.depth:g} m; "
-        f"raise the time steps"
+        f"the striker's step equation did not converge at depth {depth:g} m; raise the time steps"
     )
 
 
@@ -385,29 +401,27 @@ def _march(
     frictionless body, nan if the run ended first).
     """
     duration, exponent = scales
-    state, v = body.zero, velocity
-    dissipative = body.viscous or body.frictional
-    extra = (0.0, 0.0) if dissipative else ()
-    rows = [(0.0, 0.0, v, 0.0, 0.0, *extra)]
+    state, v, t, k = body.zero, velocity, 0.0, 0.0
+    extra = (0.0, 0.0) if body.viscous or body.frictional else ()
     gradient = _mean_force if body.history_dependent else _discrete_gradient
-    k, separation = 0.0, (math.nan if body.history_dependent else None)
-    while rows[-1][0] < duration:
+
+    def step() -> list[tuple[tuple, bool]]:
+        nonlocal state, v, t, k
+        if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
+            return []
         new, v = _step(body, state, v, mass, (dt, k), gradient)
         if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
             k = max((new.force - state.force) / (new.depth - state.depth), 0.0)
-        new = body.commit(new)
-        if new.depth > 0:
-            body.accept(new)
-        state = new
-        extra = (0.0, state.dissipated) if dissipative else ()
-        rows.append((rows[-1][0] + dt, state.depth, v, state.force, state.energy, *extra))
-        if body.history_dependent and ((state.force == 0.0 and v < 0.0) or state.depth <= 0.0):
-            times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
-            separation = separation_time(times, forces, exponent, len(rows) - 1)
-            break
-        if state.depth <= 0.0:
-            break
-    return tuple(np.array(column) for column in zip(*rows, strict=True)), separation
+        state, t = body.commit(new), t + dt
+        if state.depth > 0:
+            body.accept(state)
+        row = (t, state.depth, v, state.force, state.energy)
+        row += (0.0, state.dissipated) if extra else ()
+        ended = (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
+        return [(row, body.history_dependent and ended)]
+
+    table, separation = march_steps(step, (0.0, 0.0, v, 0.0, 0.0, *extra), exponent)
+    return tuple(table.T), (separation if body.history_dependent else None)
 
 
 def _turning_point(
@@ -433,28 +447,76 @@ def _turning_point(
     return float(x[k] + step), float(np.polyval(curve, step))
 
 
-def check_density(density: object) -> float:
-    """Return the half-space density in kg/m^3: 0 (massless body) or within DENSITY_RANGE.
+@dataclass(frozen=True, eq=False)
+class FiniteImpactSetup:
+    """A finite-strain impact ready to step (the body of :func:`.impact.run_impact`; SI).
 
-    Raises
-    ------
-    shtaerman.validation.InputError
-        Naming ``density2`` and the valid values.
+    Attributes
+    ----------
+    stepper : NewtonStepper
+        The rubber's contact Newton (a bonded or Coulomb one with friction).
+    settings : FiniteImpactSettings
+        Resolved for the density.
+    inputs : tuple
+        The striker's profile, the body's small-strain material, its density (kg/m^3), the
+        striker's mass (kg) and velocity (m/s), the friction (None: frictionless).
+    scales : tuple
+        The quasi-static (small-strain) x_c (m) and t_y (s), the longest run (s), q of
+        P ~ X^q and beta (N/m^q) of the exact law.
+    mesh : dict
+        As in :class:`.impact_run.ImpactRun`.
+    timings : dict of str to float
+        Seconds: ``mesh``, ``assembly``.
     """
-    low, high = DENSITY_RANGE
-    if (
-        isinstance(density, bool)
-        or not isinstance(density, (int, float))
-        or not (density == 0 or low <= density <= high)
-    ):
-        raise InputError(
-            f"density2 must be 0 (massless body) or in [{low:g}, {high:g}] kg/m^3, got {density!r}",
-            "density2",
+
+    stepper: NewtonStepper
+    settings: FiniteImpactSettings
+    inputs: tuple[Indenter, Material, float, float, float, float | None]
+    scales: tuple[float, float, float, float, float]
+    mesh: dict[str, Any]
+    timings: dict[str, float]
+
+    def march(self, snapshot_times: tuple[float, ...] = ()) -> tuple:
+        """Step the run (no fields are kept: ``snapshot_times`` is the linear body's): the
+        columns, Newton iterations, separation time (s; None: the massless elastic body) and
+        the kinetic energy beyond half the domain radius at the end / (M v0^2 / 2) (nan:
+        massless)."""
+        _, _, rho, mass, velocity, _ = self.inputs
+        x_c, t_y, duration, q, _ = self.scales
+        dt, stepper = t_y / self.settings.steps, self.stepper
+        if rho == 0.0:
+            body = _QuasiStaticBody(stepper, dt)
+            columns, separation = _march(body, mass, velocity, dt, (duration, q))
+            return columns, body.iterations, separation, math.nan
+        scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
+        inertial = _inertial(stepper, rho, scheme)
+        columns, iterations, separation, last = _march_inertial(
+            stepper, inertial, (mass, velocity), (x_c, duration, q)
         )
-    return float(density)
+        far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
+        return columns, iterations, separation, far
+
+    def result(self, marched: tuple, timings: dict[str, float]) -> ImpactRun:
+        """The run of ``marched`` (what :meth:`march` returned), ``timings`` its costs (s)."""
+        columns, iterations, separation, far = marched
+        indenter, half_space, rho, mass, velocity, friction = self.inputs
+        (x_c, t_y, _, _, beta), settings = self.scales, self.settings
+        striker = (mass, velocity, rho)
+        parameters = impact_parameters(
+            indenter, half_space, striker, t_y / settings.steps, friction or None
+        )
+        parameters.update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=beta)
+        parameters.update(time_steps=settings.steps, mesh_size=settings.mesh.size)
+        if rho > 0:
+            parameters.update(spectral_radius=settings.spectral_radius)
+        context = {"timings": timings, "mesh": self.mesh, "parameters": parameters}
+        context.update(newton_iterations=iterations, reflected_energy_fraction=far)
+        result = _result(columns, mass, context, separation)
+        warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
+        return result
 
 
-def run_finite_impact(
+def prepare_finite_impact(
     indenter: Indenter,
     half_space: Material,
     density: float,
@@ -464,29 +526,15 @@ def run_finite_impact(
     rubber: RubberModel | None = None,
     prony: PronySeries | None = None,
     friction: float | None = None,
-) -> ImpactRun:
-    """Strike a rubber half-space (finite strain) with a rigid striker.
-
-    Parameters: ``indenter`` z = A r^n with n > 1, the exact sphere or a tabulated z(r) (its
-    quasi-static impact Sneddon's, by quadrature; elastic only: a Prony series is sized by
-    the power law's viscoelastic impact); ``half_space`` the small-strain E2 (Pa)
-    and nu2 in [0, 0.5]; ``density`` in kg/m^3, 0 (massless body) or in DENSITY_RANGE (the
-    body with inertia); striker ``mass`` (kg)
-    and impact ``velocity`` (m/s), > 0; ``settings`` (default :class:`FiniteImpactSettings`);
-    ``rubber`` (default neo-Hookean); ``prony`` a shear relaxation of the isochoric stress
-    (:mod:`.finite_viscoelastic`; E2, nu2 the instantaneous values); ``friction`` the
-    indenter's surface: None or 0 frictionless, inf bonded (no slip), else the Coulomb
-    coefficient (:class:`.finite_stick.HistoryStepper`).
+) -> FiniteImpactSetup:
+    """Check, mesh and assemble the impact of a rigid striker on a rubber at finite strain
+    (the arguments of :func:`.impact.run_impact`, the body's ``rubber`` default neo-Hookean,
+    ``friction`` None or 0 frictionless).
 
     Raises
     ------
     shtaerman.validation.InputError
-        Inputs out of range; the contact outgrowing the refined zone.
-    NewtonError
-        A contact solve failed after halving its depth increment.
-    shtaerman.validation.NumericalFailureError
-        With inertia: a time step failed (Newton or the striker's step equation), also when
-        cut MAX_STEP_CUTS times.
+        Inputs out of range.
     """
     rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
     settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho)
@@ -517,35 +565,15 @@ def run_finite_impact(
     clock.append(time.perf_counter())
     stepper = _assembled(mesh, indenter, half_space, (rubber, prony, friction), refined)
     clock.append(time.perf_counter())
-    columns, iterations, separation, far = _stepped(
-        stepper,
-        rho,
-        settings.spectral_radius,
-        (mass, velocity),
-        (t_y / settings.steps, x_c, duration, q),
+    counts = (stepper.system.n_dofs, stepper.nodes.radius.size)
+    return FiniteImpactSetup(
+        stepper=stepper,
+        settings=settings,
+        inputs=(indenter, half_space, rho, mass, velocity, friction),
+        scales=(x_c, t_y, duration, q, law.beta),
+        mesh=mesh_counts(mesh, *counts, refined, settings.mesh),
+        timings={"mesh": clock[1] - clock[0], "assembly": clock[2] - clock[1]},
     )
-    clock.append(time.perf_counter())
-    names = ("mesh", "assembly", "stepping")
-    timings = {name: clock[k + 1] - clock[k] for k, name in enumerate(names)}
-    timings["total"] = clock[-1] - clock[0]
-    context = {
-        "timings": timings,
-        "mesh": mesh_counts(
-            mesh, stepper.system.n_dofs, stepper.nodes.radius.size, refined, settings.mesh
-        ),
-        "parameters": impact_parameters(
-            indenter, half_space, (mass, velocity, rho), t_y / settings.steps, friction or None
-        ),
-        "newton_iterations": iterations,
-        "reflected_energy_fraction": far,
-    }
-    context["parameters"].update(quasi_static_x_c=x_c, quasi_static_t_y=t_y, beta=law.beta)
-    context["parameters"].update(time_steps=settings.steps, mesh_size=settings.mesh.size)
-    if rho > 0:
-        context["parameters"].update(spectral_radius=settings.spectral_radius)
-    result = _result(columns, mass, context, separation)
-    warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
-    return result
 
 
 def _relaxed_extent(
@@ -571,36 +599,12 @@ def _relaxed_extent(
     return max(x_c, slow.x_max), 3.0 * max(t_y, slow.t_contact)
 
 
-def _stepped(
-    stepper: NewtonStepper,
-    density: float,
-    spectral_radius: float,
-    striker: tuple[float, float],
-    scales: tuple[float, float, float, float],
-) -> tuple[tuple[np.ndarray, ...], int, float | None, float]:
-    """The run's columns, Newton iterations, separation time (s; None: the massless body)
-    and far kinetic energy fraction (nan: massless). ``striker``: M (kg), v0 (m/s);
-    ``scales``: dt (s), the quasi-static x_c (m), the longest run (s), q of P ~ X^q."""
-    mass, velocity = striker
-    dt, x_c, duration, q = scales
-    if density == 0.0:
-        body = _QuasiStaticBody(stepper, dt)
-        columns, separation = _march(body, mass, velocity, dt, (duration, q))
-        return columns, body.iterations, separation, math.nan
-    inertial = _inertial(stepper, density, TimeScheme.bossak(spectral_radius, dt))
-    columns, iterations, separation, last = _march_inertial(
-        stepper, inertial, striker, (x_c, duration, q)
-    )
-    far = _far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
-    return columns, iterations, separation, far
-
-
 def _checked(
     indenter: Indenter, half_space: Material, density: object, mass: float, velocity: float
 ) -> tuple[float, float, float, PowerLawContact | SneddonContact]:
     """Density (kg/m^3), mass (kg), velocity (m/s) and the exact law (Shtaerman's, or
     Sneddon's for a sphere or a table), every input checked."""
-    rho = check_density(density)
+    rho = validate_density("density2", density)
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
@@ -645,16 +649,20 @@ def _result(
     ``context`` its timings, mesh, parameters and Newton iterations; ``separation`` the time
     (s) P vanished (None: the massless elastic body, X back to 0)."""
     t, x, v, force, strain = columns[:5]
-    v0 = v[0]
-    energy0 = 0.5 * mass * v0 * v0
+    energy0 = 0.5 * mass * v[0] * v[0]
     kinetic = 0.5 * mass * v * v
     zeros = np.zeros_like(t)
     body = columns[5] if len(columns) > 5 else zeros
     numerical = energy0 - kinetic - strain - body
-    if len(columns) > 6:  # a viscoelastic body: what it dissipated
+    energies = {"striker_kinetic": kinetic, "body_kinetic": body, "strain": strain}
+    energies.update(absorbed=zeros, numerical=numerical)
+    if len(columns) > 6:  # a viscoelastic or frictional body: what it dissipated
         numerical -= columns[6]
+        energies["dissipated"] = columns[6]
+        fraction = float(columns[6][-1]) / energy0
+        context = {**context, "losses": {"energy_dissipated_fraction": fraction}}
     _, t_x_max = parabola_peak(t, x)
-    t_contact = v_out = restitution = radiated = math.nan
+    t_contact = math.nan
     if separation is None:
         x_max, p_max = _turning_point(x, v, force, mass)
         if x[-1] <= 0.0 and x.size > 2:  # X back to 0 between the last two steps
@@ -662,32 +670,8 @@ def _result(
     else:  # P not a function of X: the parabolas through the samples around the largest
         x_max, p_max = parabola_peak(t, x)[0], parabola_peak(t, force)[0]
         t_contact = separation
-    if math.isfinite(t_contact):
-        v_out = -float(v[-1])
-        restitution = v_out / v0
-        radiated = 1.0 - restitution**2
-    energies = {"striker_kinetic": kinetic, "body_kinetic": body, "strain": strain}
-    energies.update(absorbed=zeros, numerical=numerical)
-    if len(columns) > 6:
-        energies["dissipated"] = columns[6]
-        fraction = float(columns[6][-1]) / energy0
-        context = {**context, "losses": {"energy_dissipated_fraction": fraction}}
-    return ImpactRun(
-        t=t,
-        x=x,
-        v=v,
-        force=force,
-        energies=energies,
-        x_max=x_max,
-        P_max=p_max,
-        t_x_max=t_x_max,
-        t_contact=t_contact,
-        v_out=v_out,
-        restitution=restitution,
-        energy_radiated_fraction=radiated,
-        energy_balance_error=float(np.max(np.abs(numerical)) / energy0),
-        **context,
-    )
+    peaks = (x_max, p_max, t_x_max)
+    return finished_run((t, x, v, force), energies, peaks, t_contact, energy0, **context)
 
 
 # --- the body with inertia --------------------------------------------------------------------
@@ -817,29 +801,17 @@ def _dynamic_step(
     load = mass * alpha_m * state.accel
     iterations, latest = 0, state.predicted(dt)
 
-    def residual(depth: float) -> tuple[float, np.ndarray, np.ndarray]:
+    def residual(depth: float) -> tuple[float, tuple[np.ndarray, np.ndarray]]:
         nonlocal iterations, latest
         x, lam, count = _body_step(stepper, latest, depth, depth_scale)
         iterations, latest = iterations + count, (x, lam, depth)
-        return stiffness * (depth - big_hat) + load + float(lam.sum()), x, lam
+        return stiffness * (depth - big_hat) + load + float(lam.sum()), (x, lam)
 
     slope = stiffness + k  # the linearized force P_n + k (X - X_n)
     d0 = (stiffness * big_hat + k * state.depth - load - float(state.lam.sum())) / slope
-    r0, x, lam = residual(d0)
-    for _ in range(MAX_SECANT):
-        if abs(r0) <= SECANT_TOLERANCE * force_scale:
-            return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
-        d1 = d0 - r0 / slope
-        if abs(d1 - d0) <= DEPTH_RESOLUTION * depth_scale:  # at the solves' noise floor
-            return _advanced(stepper, inertial, state, (x, lam, d0, big_hat)), iterations
-        r1, x, lam = residual(d1)
-        if d1 != d0:  # the step's own slope is at least the striker's: keep half of it
-            slope = max((r1 - r0) / (d1 - d0), 0.5 * stiffness)
-        d0, r0 = d1, r1
-    raise NumericalFailureError(
-        f"the striker's step equation did not converge at depth {state.depth:g} m; "
-        f"raise the time steps"
-    )
+    limits = (SECANT_TOLERANCE * force_scale, lambda _: DEPTH_RESOLUTION * depth_scale)
+    depth, (x, lam) = _secant(residual, (d0, slope, 0.5 * stiffness), limits, state.depth)
+    return _advanced(stepper, inertial, state, (x, lam, depth, big_hat)), iterations
 
 
 def _cut_step(
@@ -927,17 +899,18 @@ def _march_inertial(
     """
     mass, velocity = striker
     depth_scale, duration, exponent = scales
-    n = inertial.static.n_dofs
-    zero = np.zeros(n)
-    lam = np.zeros(stepper.nodes.radius.size)
+    zero, lam = np.zeros(inertial.static.n_dofs), np.zeros(stepper.nodes.radius.size)
     state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0), inertial.dt)
     dissipative = isinstance(inertial.static, ViscoelasticBody) or isinstance(
         stepper, HistoryStepper
     )
-    rows = [(0.0, 0.0, velocity, 0.0, 0.0, 0.0, *((0.0,) if dissipative else ()))]
-    total, k, t, separation = 0, 0.0, 0.0, math.nan
+    total, k, t, deepest = 0, 0.0, 0.0, 0.0
     force_scale = mass * velocity / inertial.dt
-    while t < duration and math.isnan(separation):
+
+    def step() -> list[tuple[tuple, bool]]:
+        nonlocal state, total, k, t, deepest
+        if not t < duration:
+            return []
         try:
             states, iterations = _cut_step(
                 stepper, inertial, state, mass, (k, depth_scale, force_scale)
@@ -947,25 +920,24 @@ def _march_inertial(
                 limit = stepper.system.material.gent_limit  # within the step: the depth it
                 reached = state.depth + abs(state.speed) * inertial.dt  # was going to
                 raise GentLockError.locking(limit, reached) from None
-            deepest = max(row[1] for row in rows)
             raise _step_failure(stepper, (t, state.depth, deepest), error) from None
-        total += iterations
+        total, rows = total + iterations, []
         for new in states:
             force, previous = float(new.lam.sum()), float(state.lam.sum())
             if new.depth != state.depth:
                 k = max((force - previous) / (new.depth - state.depth), 0.0)
             _check_candidates(stepper, new.lam, new.depth)
-            state, t = new, t + new.interval
+            state, t, deepest = new, t + new.interval, max(deepest, new.depth)
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))
-            rows.append((t, state.depth, state.speed, force, state.energy, body))
-            if dissipative:
-                rows[-1] = (*rows[-1], state.dissipated)
-            if _separated(state):
-                times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
-                separation = separation_time(times, forces, exponent, len(rows) - 1)
+            row = (t, state.depth, state.speed, force, state.energy, body)
+            rows.append(((*row, state.dissipated) if dissipative else row, _separated(state)))
+            if rows[-1][1]:
                 break
-    columns = tuple(np.array(column) for column in zip(*rows, strict=True))
-    return columns, total, separation, state
+        return rows
+
+    first = (0.0, 0.0, velocity, 0.0, 0.0, 0.0, *((0.0,) if dissipative else ()))
+    table, separation = march_steps(step, first, exponent)
+    return tuple(table.T), total, separation, state
 
 
 def _step_failure(

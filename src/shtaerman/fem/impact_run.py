@@ -1,4 +1,5 @@
-"""One FE impact run, whatever the body: :class:`ImpactRun` and the peaks of its histories.
+"""One FE impact run, whatever the body: :class:`ImpactRun`, the peaks of its histories, the
+separation time and the marching loop every body steps in (:func:`march_steps`).
 
 Every impact of the FEM (the linear body with its one factorization, a rubber at finite
 strain, massless or with inertia, elastic or relaxing, on a half-space or a pad, with any
@@ -11,10 +12,13 @@ fields kept for pictures (the linear body) and the Newton iterations (finite str
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+from ..validation import InputError, bound_text, validate_positive
 
 if TYPE_CHECKING:
     from .elasticity import ElasticSolution, ElasticSystem
@@ -23,10 +27,15 @@ if TYPE_CHECKING:
 __all__ = [
     "SUMMARY_KEYS",
     "ImpactRun",
+    "finished_run",
     "fitted_peak",
     "impact_parameters",
+    "march_steps",
     "mesh_counts",
     "parabola_peak",
+    "refined_steps",
+    "separation_time",
+    "validate_steps",
 ]
 
 SUMMARY_KEYS = (
@@ -144,7 +153,7 @@ class ImpactRun:
         from .elasticity import postprocess
 
         if time_requested not in self.snapshots:
-            raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_dynamic_impact")
+            raise KeyError(f"no snapshot kept for t = {time_requested!r} s; ask run_impact")
         actual, coefficients, velocity = self.snapshots[time_requested]
         memory = self.memories.get(time_requested)
         deviatoric = None
@@ -223,3 +232,105 @@ def mesh_counts(
     if layer.thickness is not None:
         counts.update(thickness=layer.thickness, base=layer.base)
     return counts
+
+
+def separation_time(t: np.ndarray, force: np.ndarray, q: float, k: int) -> float:
+    """Time where P vanishes between steps k - 1 (P > 0) and k (P = 0).
+
+    Near a smooth separation P ~ (t_s - t)^q, so P^(1/q) is linear: extrapolate it from the
+    last two loaded steps (exact to O(dt^2) instead of O(dt)).
+    """
+    if k < 2 or force[k - 2] <= 0:
+        return float(t[k - 1])
+    y1, y2 = force[k - 2] ** (1 / q), force[k - 1] ** (1 / q)
+    if y1 <= y2:
+        return float(t[k - 1])
+    return float(np.clip(t[k - 1] + y2 * (t[k - 1] - t[k - 2]) / (y1 - y2), t[k - 1], t[k]))
+
+
+Step = Callable[[], Sequence[tuple[tuple[float, ...], bool]]]
+"""A body's next time step: its rows (t first, the contact force P fourth, SI), each with
+whether the contact ended there; none once the run is over."""
+
+
+def march_steps(
+    step: Step, first: tuple[float, ...], exponent: float, tail: tuple[float, float] = (0.0, 0.0)
+) -> tuple[np.ndarray, float]:
+    """Step from first touch until ``tail`` = (time s, slack s) after the contact ended, or
+    until ``step`` has no more rows: the rows as a table (one a step, ``first`` included) and
+    the separation time (s; :func:`separation_time` with q = ``exponent`` of P ~ x^q; nan if
+    the contact never ended)."""
+    rows, t_contact, end = [first], math.nan, math.inf
+    while new := step():
+        for row, ended in new:
+            rows.append(row)
+            if ended and math.isnan(t_contact):
+                times, forces = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
+                t_contact = separation_time(times, forces, exponent, len(rows) - 1)
+                end = row[0] + tail[0]
+            if row[0] >= end - tail[1]:
+                return np.array(rows), t_contact
+    return np.array(rows), t_contact
+
+
+def finished_run(
+    histories: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    energies: dict[str, np.ndarray],
+    peaks: tuple[float, float, float],
+    t_contact: float,
+    energy0: float,
+    **context: Any,
+) -> ImpactRun:
+    """The run of ``histories`` t (s), X (m), V (m/s), P (N), its ``energies`` (J, with
+    ``numerical``) and ``peaks`` x_max (m), P_max (N), t_x_max (s): the rebound speed, the
+    restitution and 1 - e^2 where the contact ended (``t_contact`` s, nan: never), the energy
+    balance error over ``energy0`` = M v0^2 / 2 (J); ``context`` the rest of
+    :class:`ImpactRun` (mesh, timings, parameters, ...)."""
+    t, x, v, force = histories
+    v_out = restitution = radiated = math.nan
+    if not math.isnan(t_contact):  # the last velocity: the striker flies freely then
+        v_out = -float(v[-1])
+        restitution = v_out / float(v[0])  # a float, as JSON writes it
+        radiated = 1.0 - restitution**2
+    return ImpactRun(
+        t=t,
+        x=x,
+        v=v,
+        force=force,
+        energies=energies,
+        x_max=peaks[0],
+        P_max=peaks[1],
+        t_x_max=peaks[2],
+        t_contact=t_contact,
+        v_out=v_out,
+        restitution=restitution,
+        energy_radiated_fraction=radiated,
+        energy_balance_error=float(np.max(np.abs(energies["numerical"])) / energy0),
+        **context,
+    )
+
+
+def refined_steps(steps: int, factor: float, limits: tuple[int, int]) -> int:
+    """The time steps per t_y of settings refined by ``factor`` (> 0): ``steps`` x ``factor``
+    rounded, or InputError naming ``refine`` and its range where they leave ``limits``."""
+    factor = validate_positive("refine", factor)
+    low, high = limits
+    if not low - 0.5 <= steps * factor < high + 0.5:  # round(steps) in range
+        raise InputError(
+            f"refine must lie in [{bound_text(low / steps, 'low')}, "
+            f"{bound_text(high / steps, 'high')}] with {steps} steps per t_y (it scales the "
+            f"time steps, {low}-{high} allowed, and divides the mesh sizes), got {factor!r}",
+            "refine",
+        )
+    return round(steps * factor)
+
+
+def validate_steps(steps: object, limits: tuple[int, int]) -> None:
+    """Raise InputError naming ``steps`` unless it is an integer within ``limits``: time steps
+    per quasi-static impact duration (fewer cannot resolve the impact)."""
+    if not isinstance(steps, (int, np.integer)) or not (limits[0] <= steps <= limits[1]):
+        raise InputError(
+            f"steps (time steps per impact duration) must be an integer in [{limits[0]}, "
+            f"{limits[1]}] (fewer cannot resolve the impact), got {steps!r}",
+            "steps",
+        )

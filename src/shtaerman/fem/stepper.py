@@ -60,6 +60,7 @@ from threadpoolctl import threadpool_limits
 from ..validation import InputError, NumericalFailureError
 from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
 from .elasticity import ElasticSystem
+from .impact_run import march_steps
 from .solver import Factorization
 from .stick_slip import CoupledCompliance, StickState, stick_slip_step
 
@@ -76,7 +77,6 @@ __all__ = [
     "TimeScheme",
     "advance",
     "march",
-    "separation_time",
 ]
 
 ENERGY_NAMES = (
@@ -598,48 +598,45 @@ def march(
     shtaerman.validation.NumericalFailureError
         If it gets there after the energy balance drifted (the stepping became unstable).
     """
-    dt = problem.scheme.dt
-    state = ImpactState.first_touch(problem)
-    energy0 = problem.striker.kinetic_energy
-    rows: list[tuple] = [(0.0, 0.0, problem.striker.velocity, 0.0, 0.0, 0.0)]
-    energy_rows: list[tuple] = [(energy0, *[0.0] * (len(ENERGY_NAMES) - 1))]
+    dt, energy0 = problem.scheme.dt, problem.striker.kinetic_energy
+    state, touched, numerical = ImpactState.first_touch(problem), False, 0.0
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = {}
     memories: dict[float, ShearMemory | None] = {}
     wanted = sorted(float(s) for s in snapshot_times)
-    touched, t_contact, end = False, math.nan, math.inf
     max_steps = math.ceil(duration / dt)
+
+    def step() -> list[tuple[tuple, bool]]:
+        nonlocal state, touched, numerical
+        if state.step >= max_steps:
+            return []
+        try:
+            state = advance(problem, state)
+        except ContactEdgeReachedError as edge:
+            _blame_the_stepping(numerical / energy0, state, problem, edge)
+            raise
+        t = state.time(problem.scheme)
+        row, energies = _observe(problem, state)
+        numerical = energies[4]
+        if not abs(numerical) <= RUNAWAY_BALANCE * energy0:  # NaN included
+            raise NumericalFailureError(_runaway(numerical / energy0, state, problem))
+        while wanted and wanted[0] <= t + 0.5 * dt:
+            memories[wanted[0]] = state.memory
+            snapshots[wanted.pop(0)] = (t, state.x.copy(), state.v.copy())
+        touched = touched or bool(np.any(state.forces > 0))
+        return [((*row, *energies), touched and row[3] == 0.0)]
+
+    first = (0.0, 0.0, problem.striker.velocity, 0.0, 0.0, 0.0, energy0)
+    first += (0.0,) * (len(ENERGY_NAMES) - 1)
     with threadpool_limits(limits=1, user_api="blas"):
-        while state.step < max_steps:
-            try:
-                state = advance(problem, state)
-            except ContactEdgeReachedError as edge:
-                _blame_the_stepping(energy_rows[-1][4] / energy0, state, problem, edge)
-                raise
-            t = state.time(problem.scheme)
-            row, energies = _observe(problem, state)
-            if not abs(energies[4]) <= RUNAWAY_BALANCE * energy0:  # NaN included
-                raise NumericalFailureError(_runaway(energies[4] / energy0, state, problem))
-            rows.append(row)
-            energy_rows.append(energies)
-            while wanted and wanted[0] <= t + 0.5 * dt:
-                memories[wanted[0]] = state.memory
-                snapshots[wanted.pop(0)] = (t, state.x.copy(), state.v.copy())
-            touched = touched or bool(np.any(state.forces > 0))
-            if touched and math.isnan(t_contact) and row[3] == 0.0:
-                times, force = np.array([r[0] for r in rows]), np.array([r[3] for r in rows])
-                t_contact = separation_time(times, force, force_exponent, state.step)
-                end = t + tail_time
-            if t >= end - 1e-12 * dt:
-                break
+        table, t_contact = march_steps(step, first, force_exponent, (tail_time, 1e-12 * dt))
     for s in wanted:  # asked beyond the run: the last state
         snapshots[s], memories[s] = (
             (state.time(problem.scheme), state.x.copy(), state.v.copy()),
             state.memory,
         )
-    table, energy = np.array(rows), np.array(energy_rows)
     return ImpactHistory(
         *(table[:, k] for k in range(6)),
-        energies={name: energy[:, k] for k, name in enumerate(ENERGY_NAMES)},
+        energies={name: table[:, 6 + k] for k, name in enumerate(ENERGY_NAMES)},
         snapshots=snapshots,
         t_contact=t_contact,
         memories=memories,
@@ -680,17 +677,3 @@ def _unstable(balance: float, state: ImpactState, problem: ImpactProblem, where:
         f"balance off by {abs(balance):.1e} of M v0^2/2{where}): dt = {problem.scheme.dt:.3g} s "
         f"with this scheme does not keep the contact stable; {SMALL_STEP_CURE}"
     )
-
-
-def separation_time(t: np.ndarray, force: np.ndarray, q: float, k: int) -> float:
-    """Time where P vanishes between steps k - 1 (P > 0) and k (P = 0).
-
-    Near a smooth separation P ~ (t_s - t)^q, so P^(1/q) is linear: extrapolate it from the
-    last two loaded steps (exact to O(dt^2) instead of O(dt)).
-    """
-    if k < 2 or force[k - 2] <= 0:
-        return float(t[k - 1])
-    y1, y2 = force[k - 2] ** (1 / q), force[k - 1] ** (1 / q)
-    if y1 <= y2:
-        return float(t[k - 1])
-    return float(np.clip(t[k - 1] + y2 * (t[k - 1] - t[k - 2]) / (y1 - y2), t[k - 1], t[k]))

@@ -448,7 +448,7 @@ FEM_INPUT_KEYS = {
     "density2": "half_space.density2",
 }
 """The study-file key of each parameter that :func:`validate_fem_inputs` and
-:func:`shtaerman.fem.dynamic_contact.validate_density` check (``InputError.parameter``)."""
+:func:`shtaerman.theory.materials.validate_density` check (``InputError.parameter``)."""
 
 
 def fem_input_error(path: Path, error: InputError) -> StudyError:

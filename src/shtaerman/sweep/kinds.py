@@ -563,15 +563,15 @@ def _finite_impact_check(p: dict[str, Any]) -> None:
     against the finite-strain contact's reach (velocity and mass)."""
     import warnings
 
-    from ..fem.finite_dynamic import FiniteImpactSettings, check_density
+    from ..fem.finite_dynamic import FiniteImpactSettings
     from ..guards import check_reach
     from ..study.dynamic.case import exact_impact
-    from ..theory.materials import RIGID, effective_modulus
+    from ..theory.materials import RIGID, effective_modulus, validate_density
     from ..theory.sneddon import contact_law
 
     problem, numerics = _finite_impact(p)
     FiniteImpactSettings(steps=numerics["time_steps"])  # its range, naming steps
-    check_density(p["density2"])
+    validate_density("density2", p["density2"])
     if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
         law = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
         with warnings.catch_warnings():

@@ -223,14 +223,12 @@ def with_dynamic_impact(
     resolved ``layer`` of ``half_space`` (density ``layer.density``): restitution, x_max (m),
     P_max (N) and its energy balance error; :data:`QUICK_DYNAMIC` settings if ``quick``;
     ``friction`` the striker's surface (None frictionless, inf bonded, else Coulomb's mu)."""
-    from ...fem.dynamic_contact import run_dynamic_impact
+    from ...fem.impact import run_impact
 
     settings = replace(
         QUICK_DYNAMIC if quick else DynamicSettings(), thickness=layer.thickness, base=layer.base
     )
-    result = run_dynamic_impact(
-        indenter, half_space, layer.density, *impact, settings, friction=friction
-    )
+    result = run_impact(indenter, half_space, layer.density, *impact, settings, friction=friction)
     return replace(
         findings,
         restitution=float(result.restitution),

@@ -34,15 +34,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Protocol, TypeVar
 
-from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings, run_dynamic_impact
+from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings
 from ...fem.finite_dynamic import MIN_STEPS as FINITE_MIN_STEPS
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.hyperelastic import NewtonError
 from ...fem.impact_run import ImpactRun
 from ...fem.rubber import GentLockError
 from ...guards import ValidityWarning
-from ...theory.indenter import PowerLawIndenter
-from ...theory.materials import Material
 from ...validation import (
     InputError,
     NumericalFailureError,
@@ -64,7 +62,6 @@ __all__ = [
     "check_ladder",
     "ladder_estimates",
     "over_levels",
-    "run_dynamic_ladder",
     "run_ladder",
 ]
 
@@ -289,9 +286,8 @@ def run_ladder(
     Parameters
     ----------
     run : callable
-        One run of the impact with given settings (every body: the linear
-        :func:`~shtaerman.fem.dynamic_contact.run_dynamic_impact`, the rubber's
-        :func:`~shtaerman.fem.finite_dynamic.run_finite_impact`).
+        One run of the impact with given settings (every body:
+        :func:`~shtaerman.fem.impact.run_impact`).
     settings : DynamicSettings or FiniteImpactSettings
         The finest level's settings (resolved).
     refine : float
@@ -350,47 +346,3 @@ def _missing(
         stacklevel=caller_stacklevel(),
     )
     return missing
-
-
-def run_dynamic_ladder(
-    indenter: PowerLawIndenter,
-    half_space: Material,
-    density: float,
-    mass: float,
-    velocity: float,
-    settings: DynamicSettings | None = None,
-    *,
-    refine: float = 1.0,
-    progress: Callable[[str], None] | None = None,
-    **options: object,
-) -> ImpactLadder:
-    """The linear body's impact at refine / 2, refine / sqrt(2) and refine, with error
-    estimates.
-
-    Parameters
-    ----------
-    indenter, half_space, density, mass, velocity, settings
-        As for :func:`shtaerman.fem.dynamic_contact.run_dynamic_impact` (SI units).
-    refine : float
-        Refinement of the finest level (1: ``settings`` as given).
-    progress : callable, optional
-        Receives one line per level.
-    **options
-        Passed to the finest run (e.g. ``snapshot_times``); ``prony`` and ``friction`` to
-        every level.
-
-    Returns
-    -------
-    ImpactLadder
-    """
-    refine = validate_positive("refine", refine)
-    finest = (DynamicSettings() if settings is None else settings).refined(refine)
-    check_ladder(finest)  # every level checked before any run
-    inputs = (indenter, half_space, density, mass, velocity)
-    result = run_dynamic_impact(*inputs, finest, **options)
-    physics = {key: options.get(key) for key in ("prony", "friction")}
-
-    def run(level: DynamicSettings) -> ImpactRun:
-        return run_dynamic_impact(*inputs, level, **physics)
-
-    return run_ladder(run, finest, refine=refine, finest=result, progress=progress)

@@ -18,10 +18,8 @@ from dataclasses import dataclass, replace
 from functools import partial
 from typing import TYPE_CHECKING
 
-from ...fem.dynamic_contact import (
-    DynamicSettings,
-    run_dynamic_impact,
-)
+from ...fem.dynamic_contact import DynamicSettings
+from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
@@ -193,7 +191,7 @@ def run_case(
     prony : PronySeries, optional
         Shear relaxation of the half-space (E2, nu2 its instantaneous values); None: elastic.
     friction : float, optional
-        The striker's surface (:func:`~shtaerman.fem.dynamic_contact.run_dynamic_impact`):
+        The striker's surface (:func:`~shtaerman.fem.impact.run_impact`):
         None frictionless, ``math.inf`` bonded (no slip), mu >= 0 Coulomb. The quasi-static
         impact and the radiation estimate stay the frictionless theory's.
     """
@@ -204,7 +202,7 @@ def run_case(
         estimate = radiation(mass, velocity, law, density, half_space)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
-    run = partial(run_dynamic_impact, indenter, half_space, density, mass, velocity)
+    run = partial(run_impact, indenter, half_space, density, mass, velocity)
     result = run(settings, snapshot_times=times, prony=prony, friction=friction)
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
@@ -250,7 +248,7 @@ def finite_case(
         estimate, which does not apply to a rubber (reported as such).
     """
     from ...fem.finite_contact import FINITE_MESH
-    from ...fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings, run_finite_impact
+    from ...fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
     from ...vocabulary import entry
 
     striker, body = problem.striker, problem.body.material
@@ -270,7 +268,7 @@ def finite_case(
     inputs = (striker.indenter, body, rho, striker.mass, striker.velocity)
 
     def run(level: FiniteImpactSettings) -> ImpactRun:
-        return run_finite_impact(*inputs, level, *body_model)
+        return run_impact(*inputs, level, *body_model)
 
     ladder = run_ladder(run, settings.refined(refine), refine=refine, estimate=estimate)
     modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)  # the run's, to the bit

@@ -58,12 +58,11 @@ from ...fem.dynamic_contact import (
     MAX_SIZE,
     DynamicSettings,
     estimate_dofs,
-    validate_density,
 )
 from ...fem.mesh_budget import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import RUBBER_OPTIONS, Problem
-from ...theory.materials import RIGID, Material, effective_modulus
+from ...theory.materials import RIGID, Material, effective_modulus, validate_density
 from ...theory.sneddon import Indenter, contact_law
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
@@ -319,7 +318,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     try:
         validate_fem_inputs(indenter, half_space)
-        validate_density(raw.half_space.density2)
+        validate_density("density2", raw.half_space.density2)
     except InputError as error:
         raise fem_input_error(path, error) from None
     try:

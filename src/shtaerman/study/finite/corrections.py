@@ -3,7 +3,7 @@ computed apart and together, at the velocities of a finite-strain study's ``[cor
 
 At each velocity three impacts run through the code of ``shtaerman dynamic``
 (:func:`shtaerman.study.dynamic.case.run_case` and
-:func:`shtaerman.fem.finite_dynamic.run_finite_impact`):
+:func:`shtaerman.fem.impact.run_impact`):
 
 - the linear dynamic impact (elastic waves, small strain; no error estimate);
 - the finite-strain quasi-static impact (the study's rubber, massless body: ``density2 = 0``);
@@ -21,7 +21,7 @@ import time
 from dataclasses import replace
 from typing import Any
 
-from ...fem import finite_contact, finite_dynamic
+from ...fem import finite_contact, finite_dynamic, impact
 from ...fem.dynamic_contact import DynamicSettings
 from ...theory.materials import Material
 from ..dynamic.case import run_case
@@ -64,7 +64,7 @@ def _finite(
     if "mesh_size" in options:
         mesh = replace(mesh, size=options["mesh_size"])
     settings = finite_dynamic.FiniteImpactSettings(steps=options.get("time_steps"), mesh=mesh)
-    run = finite_dynamic.run_finite_impact(
+    run = impact.run_impact(
         study.indenter, study.half_space, density, study.mass, velocity, settings, study.rubber
     )
     return run.summary()

@@ -1,0 +1,109 @@
+"""The FE impact driver: a rigid striker on a body, linear or at finite strain.
+
+:func:`run_impact` takes the problem's parts (the striker's profile, mass and velocity; the
+body's small-strain material, density, rubber model and Prony series; the interface) and the
+numerical settings, whose kind chooses the body:
+
+- :class:`.dynamic_contact.DynamicSettings` (or none): the linear body, its fast path one
+  factorization and the generalized-alpha march with the condensed contact compliance
+  (:mod:`.stepper`);
+- :class:`.finite_dynamic.FiniteImpactSettings`, or a ``rubber`` model: the rubber at finite
+  strain, Newton every step (massless: the discrete-gradient march; with inertia: Bossak).
+
+Either prepares a :class:`PreparedImpact` (checked inputs, mesh, assembled body), which marches
+in the one loop of :func:`.impact_run.march_steps` and ends in one
+:class:`.impact_run.ImpactRun` (:func:`.impact_run.finished_run`).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Protocol
+
+from ..theory.materials import Material
+from ..theory.sneddon import Indenter
+from ..theory.viscoelastic import PronySeries
+from .dynamic_contact import DynamicSettings, prepare_dynamic_impact
+from .finite_dynamic import FiniteImpactSettings, prepare_finite_impact
+from .impact_run import ImpactRun
+from .rubber import RubberModel
+
+__all__ = ["PreparedImpact", "run_impact"]
+
+
+class PreparedImpact(Protocol):
+    """A body ready to be struck: what :func:`run_impact` asks of it."""
+
+    timings: dict[str, float]
+    """Seconds spent preparing it, by phase."""
+
+    def march(self, snapshot_times: tuple[float, ...] = ()) -> Any:
+        """Step from first touch to the end of the run."""
+
+    def result(self, marched: Any, timings: dict[str, float]) -> ImpactRun:
+        """The run of what :meth:`march` returned, with its costs ``timings`` (s)."""
+
+
+def run_impact(
+    indenter: Indenter,
+    half_space: Material,
+    density: float,
+    mass: float,
+    velocity: float,
+    settings: DynamicSettings | FiniteImpactSettings | None = None,
+    rubber: RubberModel | None = None,
+    prony: PronySeries | None = None,
+    friction: float | None = None,
+    *,
+    snapshot_times: tuple[float, ...] = (),
+) -> ImpactRun:
+    """Strike the body with a rigid striker and follow it until the striker leaves.
+
+    Parameters
+    ----------
+    indenter : PowerLawIndenter, SphereIndenter or TabulatedIndenter
+        The striker's profile: z = A r^n (n > 1), the exact sphere or a tabulated z(r).
+    half_space : Material
+        E2 in Pa and nu2 in [0, 0.5] (the small-strain, instantaneous values).
+    density : float
+        The body's density in kg/m^3: 0 (massless) or within ``DENSITY_RANGE``.
+    mass, velocity : float
+        Striker mass M in kg and impact velocity v0 in m/s, > 0.
+    settings : DynamicSettings or FiniteImpactSettings, optional
+        The numerics, and by their kind the body (module docstring); None: the linear body's
+        defaults.
+    rubber : RubberModel, optional
+        The rubber at finite strain (None: neo-Hookean where the settings ask finite strain).
+    prony : PronySeries, optional
+        Shear relaxation of the body; None: elastic.
+    friction : float, optional
+        The striker's surface: None frictionless, ``math.inf`` bonded (no slip), mu >= 0
+        Coulomb (the finite-strain body takes 0 as frictionless).
+    snapshot_times : tuple of float
+        Times in s at which to keep the fields (the linear body; nearest step).
+
+    Returns
+    -------
+    ImpactRun
+
+    Raises
+    ------
+    TypeError
+        For a ``rubber`` with the linear body's settings.
+    shtaerman.validation.InputError
+        For inputs out of range, naming them, or a contact that outgrows the refined zone.
+    shtaerman.validation.NumericalFailureError
+        When the stepping fails, saying what to change.
+    """
+    inputs = (indenter, half_space, density, mass, velocity, settings)
+    if rubber is not None and isinstance(settings, DynamicSettings):
+        raise TypeError("run_impact: a rubber takes FiniteImpactSettings, not DynamicSettings")
+    if rubber is not None or isinstance(settings, FiniteImpactSettings):
+        prepared: PreparedImpact = prepare_finite_impact(*inputs, rubber, prony, friction)
+    else:
+        prepared = prepare_dynamic_impact(*inputs, prony, friction)
+    start = time.perf_counter()
+    marched = prepared.march(snapshot_times)
+    timings = {**prepared.timings, "stepping": time.perf_counter() - start}
+    timings["total"] = sum(timings.values())
+    return prepared.result(marched, timings)
