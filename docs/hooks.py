@@ -103,9 +103,9 @@ def combinations_section() -> list[str]:
     """Which parts of a problem combine, from ``shtaerman.problem.support_table()``: one table
     per loading, rows model x relaxation x geometry, columns the interface; a cell is "runs"
     or the input its refusal names (the reasons follow)."""
-    from shtaerman.problem import PROFILE_SUPPORT, SUPPORT, support_table
+    from shtaerman.problem import SUPPORT, support_table
 
-    verdicts = dict(support_table())  # the power law's
+    verdicts = dict(support_table())  # every striker profile's
     interfaces = ("frictionless", "bonded", "coulomb")
     bodies = sorted({cell[:3] for cell in verdicts}, key=str)
     tables = []
@@ -124,12 +124,11 @@ def combinations_section() -> list[str]:
         f"A problem is a striker, a body, a geometry, an interface and a loading "
         f"(`sh.Problem`). Of the {len(verdicts)} combinations below, {running} run; each other "
         "cell names the input that is refused, for the reason listed after the tables "
-        "(`shtaerman.problem.SUPPORT`, the one place that decides it). The tables are the "
-        "power-law striker's; a sphere or a tabulated profile runs where the `profile` reason "
-        "below says.",
+        "(`shtaerman.problem.SUPPORT`, the one place that decides it). They hold for every "
+        "striker: a power law, a sphere or a tabulated profile.",
         "",
         *tables,
-        *[f"- `{limit.parameter}`: {limit.reason}" for limit in (*SUPPORT, *PROFILE_SUPPORT)],
+        *[f"- `{limit.parameter}`: {limit.reason}" for limit in SUPPORT],
         "",
     ]
 

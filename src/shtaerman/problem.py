@@ -33,7 +33,6 @@ if TYPE_CHECKING:
 __all__ = [
     "MODELS",
     "OPTION_SUPPORT",
-    "PROFILE_SUPPORT",
     "SUPPORT",
     "Body",
     "Cell",
@@ -305,25 +304,10 @@ SUPPORT: tuple[Unsupported, ...] = (
 decides what combines (everything not refused here runs)."""
 
 
-PROFILE_SUPPORT: tuple[Unsupported, ...] = (
-    Unsupported(
-        lambda c: c.relaxing and c.model == "linear" and c.loading != "curve",
-        "profile",
-        "a viscoelastic body (prony) takes the power law only in the linear FE impact, "
-        "which is sized on the power law's closed form; no physical limit: Lee-Radok and "
-        "Ting hold for any profile, and a sphere or a table runs on a viscoelastic body in "
-        "the contact curve (rate) and in a rubber's impact (model)",
-    ),
-)
-"""The combinations refused to a striker profile other than the power law (a sphere, a
-tabulated z(r)), on top of :data:`SUPPORT`."""
-
-
-def refusal(cell: Cell, profile: str = "power-law") -> Unsupported | None:
-    """The first limit that refuses ``cell`` for a striker of ``profile`` (its ``kind``:
-    ``power-law``, ``sphere``, ``tabulated``), or None: it runs."""
-    limits = SUPPORT if profile == "power-law" else (*PROFILE_SUPPORT, *SUPPORT)
-    return next((limit for limit in limits if limit.when(cell)), None)
+def refusal(cell: Cell) -> Unsupported | None:
+    """The first limit that refuses ``cell``, or None: it runs (for every striker profile:
+    a power law, a sphere, a tabulated z(r))."""
+    return next((limit for limit in SUPPORT if limit.when(cell)), None)
 
 
 @dataclass(frozen=True)
@@ -408,12 +392,9 @@ class Problem:
             for name in ("mass", "velocity"):
                 if getattr(self.striker, name) is None:
                     raise InputError(f"{name}: an impact needs the striker's {name}", name)
-        kind = self.striker.indenter.kind
-        limit = refusal(self.cell, kind)
-        if limit is not None:  # a profile's refusal names the sphere's radius if one was given
-            name = "sphere_radius" if (limit.parameter, kind) == ("profile", "sphere") else None
-            name = name or limit.parameter
-            raise InputError(f"{name}: {limit.reason}", name)
+        limit = refusal(self.cell)
+        if limit is not None:
+            raise InputError(f"{limit.parameter}: {limit.reason}", limit.parameter)
         self._check_rate()
 
     def _check_rate(self) -> None:
@@ -537,9 +518,9 @@ def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) ->
                 raise InputError(f"{name}: {reason}", name)
 
 
-def support_table(profile: str = "power-law") -> list[tuple[Cell, str]]:
-    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``)
-    for a striker of ``profile`` (``power-law``, ``sphere``, ``tabulated``)."""
+def support_table() -> list[tuple[Cell, str]]:
+    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``),
+    for every striker profile."""
     from itertools import product
 
     rows = []
@@ -551,7 +532,7 @@ def support_table(profile: str = "power-law") -> list[tuple[Cell, str]]:
         ("curve", "massless", "inertia"),
     ):
         cell = Cell(*cell)
-        limit = refusal(cell, profile)
+        limit = refusal(cell)
         rows.append((cell, "runs" if limit is None else f"{limit.parameter}: {limit.reason}"))
     return rows
 

@@ -39,7 +39,7 @@ from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import solve_profile_impact
 from ..theory.radiation import rayleigh_root
-from ..theory.sneddon import Indenter, SneddonContact
+from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
 from .absorbing import AbsorbingLayer
@@ -287,7 +287,7 @@ def _quasi_static(indenter: Indenter, half_space: Material, striker: Striker) ->
 
 
 def _viscoelastic_extent(
-    indenter: PowerLawIndenter,
+    indenter: Indenter,
     half_space: Material,
     striker: Striker,
     prony: PronySeries,
@@ -302,7 +302,7 @@ def _viscoelastic_extent(
         If the run would need more than ``MAX_STEPS`` time steps, or the contact lasts more
         than :data:`.viscoelastic.MAX_GLASSY_DURATIONS` glassy ones.
     """
-    law = PowerLawContact(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
+    law = contact_law(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
     glassy = _quasi_static(indenter, half_space, striker).t_y
     slow = sizing_impact(striker.mass, striker.velocity, law, prony, glassy)
     steps = 3.0 * slow.t_contact / glassy * settings.steps

@@ -89,7 +89,6 @@ def table_text(table: EffectTable) -> str:
         *(line(label, cells) for label, cells in rows),
         "  interaction = full - sum of the single effects (its bar: the sum of their bars)",
         "  not in the problem: " + (", ".join(table.absent) or "none"),
-        *(f"  dropped: {name}: {why}" for name, why in table.dropped.items()),
         "dominant single effect (largest |change|; resolved: beyond the error bars):",
         *_dominant_lines(table),
     ]

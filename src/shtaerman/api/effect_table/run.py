@@ -18,7 +18,7 @@ from ...validation import (
 )
 from ...vocabulary import entry
 from .table import QUANTITIES, EffectTable, Run
-from .variants import EFFECTS, Parts, Variant, parts_of, variants
+from .variants import Parts, Variant, parts_of, variants
 
 __all__ = ["NUMERICS", "effects"]
 
@@ -146,26 +146,6 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
 
 
-def dropped_effects(parts: Parts, rows: tuple[Variant, ...]) -> dict[str, str]:
-    """The effects the striker's profile leaves out of the table: effect -> why, for each
-    effect whose every variant a sphere or a tabulated profile refuses
-    (:data:`shtaerman.problem.PROFILE_SUPPORT`: a viscoelastic linear body's FE impact takes
-    the power law only). Found before any run: building a :class:`Problem` computes nothing."""
-    refused = {}
-    for variant in rows:
-        try:
-            Problem(**variant.parts)
-        except InputError as error:
-            if error.parameter in ("profile", "sphere_radius"):  # PROFILE_SUPPORT's
-                refused[variant.label] = str(error)
-    dropped = {}
-    for effect in EFFECTS:
-        having = [variant for variant in rows if effect.present(variant.parts)]
-        if having and all(variant.label in refused for variant in having):
-            dropped[effect.name] = refused[having[0].label]
-    return dropped
-
-
 def _numerics(refine: float, estimate: bool, options: Mapping[str, Any]) -> dict[str, Any]:
     """The numerical keywords given (not None, not the default), each checked now."""
     if not isinstance(estimate, bool):
@@ -211,10 +191,7 @@ def effects(
     by FE), each of its effects alone, the full problem and the full problem without each
     effect, and measures each against the paper's exact quasi-static impact
     (:func:`shtaerman.impact`). A variant whose combination, option or validity guard is
-    refused, or whose run fails, shows its one-line reason in its row; the others run. An
-    effect that the striker's profile refuses in every run that has it (a sphere or a
-    tabulated profile on a viscoelastic body) is dropped: one line says so before any run
-    (``progress`` and a warning), the table's ``dropped`` keeps the reason.
+    refused, or whose run fails, shows its one-line reason in its row; the others run.
 
     Parameters
     ----------
@@ -247,11 +224,6 @@ def effects(
     rows, absent = variants(parts)
     check_runs(rows, given)
     report = progress or (lambda _line: None)
-    dropped = dropped_effects(parts, rows)
-    for name, reason in dropped.items():  # one line each, before any run
-        line = f"effects: {name} dropped (every run with it is refused): {reason}"
-        report(line)
-        warnings.warn(line, UserWarning, stacklevel=caller_stacklevel())
     said: Said = {}
     with _recorded(said, "quasi-static (paper)"):
         reference = _reference(parts)
@@ -274,7 +246,7 @@ def effects(
     _say_once(said, 1 + len(rows))
     by_label = {run.label: run for _, run, _ in done}
     runs = tuple(by_label[variant.label] for variant in rows)
-    return EffectTable(reference, runs, absent, _describe(parts), dropped)
+    return EffectTable(reference, runs, absent, _describe(parts))
 
 
 Said = dict[tuple[type[Warning], str], list[tuple[str, str]]]

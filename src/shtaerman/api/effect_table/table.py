@@ -121,15 +121,13 @@ class EffectTable:
     ``reference`` holds the paper's quasi-static x_c, P_c, t_c, t_y (SI); ``runs`` every
     variant (``none``: all effects off, by FE; ``<effect> alone``; ``full``; ``without
     <effect>``); ``absent`` the effects the problem does not have; ``problem`` a description of
-    the full problem's parts; ``dropped`` the effects the striker's profile refuses in every
-    run that has them, each with the reason (their rows say refused).
+    the full problem's parts.
     """
 
     reference: dict[str, float]
     runs: tuple[Run, ...]
     absent: tuple[str, ...]
     problem: dict[str, Any] = field(default_factory=dict)
-    dropped: dict[str, str] = field(default_factory=dict)
 
     def run(self, label: str) -> Run:
         """The run labelled ``label``."""
@@ -170,7 +168,6 @@ class EffectTable:
                 "reference": dict(self.reference),
                 "effects": list(self.effects),
                 "absent": list(self.absent),
-                "dropped": dict(self.dropped),
                 "runs": rows,
                 "interaction": {k: vars(c) for k, c in self.interaction().items()},
                 "dominant": self.dominant(),
