@@ -444,6 +444,27 @@ def test_predicted_contact_edge_saves_factorizations(monkeypatch):
         assert a.contact_radius == pytest.approx(b.contact_radius, rel=1e-8)
 
 
+def test_first_depth_predicts_its_edge_from_the_small_strain_contact(monkeypatch):
+    """With no converged contact before it, the first depth's first active set ends at the
+    small-strain contact radius: the linear predictor's guess (no contact) would put the
+    nodes beyond the edge in contact and cost an active-set change each."""
+    from shtaerman.fem import finite_contact, solver
+
+    indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
+    mesh = replace(COARSE, size=1.0 / 30.0)
+    counted = []
+    original = solver._superlu_in_order
+    monkeypatch.setattr(solver, "_superlu_in_order", lambda m: counted.append(1) or original(m))
+    predicted = run_finite_indentation(indenter, material, [0.4e-3], mesh)
+    with_reach = len(counted)
+    monkeypatch.setattr(finite_contact, "predict_reach", lambda *_: None)
+    counted.clear()
+    plain = run_finite_indentation(indenter, material, [0.4e-3], mesh)
+    assert with_reach < len(counted)  # observed 2 against 6
+    # the same contact to the Newton tolerance (bound ~4e-9 on P, observed 7e-11)
+    assert predicted.steps[0].force == pytest.approx(plain.steps[0].force, rel=1e-8)
+
+
 def test_depths_that_do_not_increase_are_an_input_error():
     # the depth list is checked where it enters (CLI, study file, API); a direct caller of the
     # FEM with depths out of order got an UnboundLocalError from the load stepping
