@@ -11,7 +11,9 @@ across runs; the reference, one SuperLU factorization of a fixed 2-D Laplacian (
 work that dominates the studies), is timed before and after in this process, and the total is
 also printed as a multiple of it. ``--job`` also times the whole ``shtaerman verify`` (both
 workers) as one command: its wall time and the CPU of it and its children.
-Asserts nothing about time.
+``--save FILE`` writes the rows and the reference as JSON; ``--against FILE`` (a run saved so,
+e.g. on the code before a change) prints each study's CPU in references before and now, and
+their ratio, with the load of both runs. Asserts nothing about time.
 """
 
 from __future__ import annotations
@@ -135,6 +137,8 @@ def main() -> None:
     parser.add_argument("names", nargs="*", help="study names (default: the shipped studies)")
     parser.add_argument("--quick", action="store_true", help="coarse meshes, as in CI")
     parser.add_argument("--job", action="store_true", help="also the whole verify command")
+    parser.add_argument("--save", type=Path, help="write this run's rows as JSON")
+    parser.add_argument("--against", type=Path, help="a saved run: print before/now ratios")
     parser.add_argument("--one", help=argparse.SUPPRESS)
     parser.add_argument("--finish", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--stage", type=Path, help=argparse.SUPPRESS)
@@ -169,12 +173,36 @@ def main() -> None:
         f"files and figures {parts['write']:.1f}) = {total / mean:.0f} references; reference "
         f"{first:.3f} -> {last:.3f} s; load {load():.2f}"
     )
+    run = {"reference": mean, "load": load(), "rows": rows}
+    if args.save:
+        args.save.write_text(json.dumps(run, indent=1), encoding="utf-8")
+    if args.against:
+        compare(json.loads(args.against.read_text(encoding="utf-8")), run)
     if args.job:
         wall, used = whole_job(args.quick)
         print(
             f"shtaerman verify: {wall:.1f} s wall, {used:.1f} s CPU (= {used / mean:.0f} "
             f"references); load {load():.2f}"
         )
+
+
+def compare(before: dict, now: dict) -> None:
+    """Per study: CPU in references (SuperLU factorizations of the same run) before and now,
+    and now / before."""
+    print(
+        f"against a saved run (reference {before['reference']:.3f} s, load {before['load']:.2f}; "
+        f"now {now['reference']:.3f} s, load {now['load']:.2f}): CPU in references"
+    )
+    print(f"{'study':<22}{'before':>8}{'now':>8}{'now/before':>12}")
+    totals = [0.0, 0.0]
+    for name, row in now["rows"].items():
+        if name not in before["rows"]:
+            continue
+        old = before["rows"][name]["cpu"] / before["reference"]
+        new = row["cpu"] / now["reference"]
+        totals = [totals[0] + old, totals[1] + new]
+        print(f"{name:<22}{old:>8.0f}{new:>8.0f}{new / old:>12.2f}")
+    print(f"{'total':<22}{totals[0]:>8.0f}{totals[1]:>8.0f}{totals[1] / totals[0]:>12.2f}")
 
 
 def shipped_names() -> list[str]:

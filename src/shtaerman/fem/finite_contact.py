@@ -29,8 +29,9 @@ previous depth) and each correction shrinks by :data:`CONTRACTION`, the step reu
 tangent); a step that reused it converges only with that contraction. Complementarity then
 holds exactly (lambda = 0 off A, g = 0 on A up to the Newton tolerance, lambda > 0 on A,
 g >= 0 off A). Depth stepping: from the last converged state to each requested depth, with a
-linear predictor; a step that fails (no convergence, an inverted element J <= 0) is halved, up
-to ``max_cuts`` times, then a :class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
+linear predictor whose first active set ends at the extrapolated contact edge
+(:func:`predict_reach`); a step that fails (no convergence, an inverted element J <= 0) is
+halved, up to ``max_cuts`` times, then a :class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
 
 Post-processing per depth: the force P = sum lambda; the pressure recovered from the vertical
 nodal forces with the P2 surface matrix of the *current* surface, projected on the r-axis
@@ -318,10 +319,19 @@ class NewtonStepper:
         return r, gap, self.indenter.slope(r), self.indenter.curvature(r)
 
     def solve(
-        self, depth: float, x: np.ndarray, lam: np.ndarray, scale: float | None = None
+        self,
+        depth: float,
+        x: np.ndarray,
+        lam: np.ndarray,
+        scale: float | None = None,
+        *,
+        reach: float | None = None,
     ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
         """Newton from (x, lambda) at ``depth``; raises NewtonError on failure. The corrections
-        are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0)."""
+        are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0).
+        ``reach`` (m): the first iteration's active set leaves out the candidates the guess
+        puts in contact at reference radii beyond it (the predicted contact edge,
+        :func:`predict_reach`)."""
         scale = depth if scale is None else scale
         system, nodes = self.system, self.nodes
         x, lam = x.copy(), lam.copy()
@@ -342,6 +352,8 @@ class NewtonStepper:
             halvings = 0
             _, gap, slope, curvature = self.geometry(x, depth)
             active = lam - self.weight * gap > 0
+            if reach is not None and previous is None:  # the guess overshoots the edge
+                active &= nodes.radius < reach
             lam[~active] = 0.0
             if previous is not None and np.array_equal(active, previous):
                 if self.converged(corrections, fresh):
@@ -579,7 +591,7 @@ def solve_finite_contact(
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
     steps = []
     for target in depths:
-        history, iterations, total, corrections = _reach(stepper, history, target, max_cuts)
+        history, iterations, total, corrections = _reach(stepper, history, target, max_cuts, exact)
         _, x, lam = history[-1]
         steps.append(finite_step(stepper, exact, target, x, lam, iterations, total, corrections))
     timings = {"contact": time.perf_counter() - start}
@@ -587,11 +599,13 @@ def solve_finite_contact(
 
 
 def _reach(
-    stepper: NewtonStepper, history: list, target: float, max_cuts: int
+    stepper: NewtonStepper, history: list, target: float, max_cuts: int, law: Any = None
 ) -> tuple[list, int, int, list[float]]:
     """Sub-step from the last converged state of ``history`` to the depth ``target`` (m).
 
-    A failing sub-step is halved, a converged one doubles the next. Returns the last two
+    A failing sub-step is halved, a converged one doubles the next; the first Newton iteration
+    of each ends at :func:`predict_reach`'s edge (``law``: the small-strain contact). Returns
+    the last two
     converged states (depth, x, lambda), the Newton iterations of the last sub-step and of
     all, and the corrections of the last.
 
@@ -615,8 +629,9 @@ def _reach(
         if target - trial < 1e-9 * target:
             trial = target
         guess_x, guess_lam = _predict(history, trial)
+        reach = predict_reach(stepper.nodes.radius, history, trial, law) if cuts == 0 else None
         try:
-            x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam)
+            x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam, reach=reach)
         except NewtonError as error:
             cuts += 1
             locked = gent_locks(error, stepper.system, history[-1][1], trial, last=cuts > max_cuts)
@@ -666,6 +681,42 @@ def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
         return x1, lam1
     t = (depth - d1) / (d1 - d0)
     return x1 + t * (x1 - x0), np.maximum(lam1 + t * (lam1 - lam0), 0.0)
+
+
+def predict_reach(radius: np.ndarray, history: list, depth: float, law: Any = None) -> float | None:
+    """The reference radius (m) the contact reaches at ``depth`` (m), predicted from the last
+    two converged states of ``history`` (depth, x, lambda) on the candidates' reference radii
+    ``radius`` (m): each contact edge taken midway between its last loaded node and the next,
+    extrapolated by the power law a ~ d^p through the two. With one contact known, ``law``'s
+    (the small-strain contact, ``contact_radius(depth)``) growth from it; with none, ``law``'s
+    radius. None without two contacts and without ``law``.
+
+    Why: the linear predictor of x overshoots the edge (a grows like d^(1/n), concave), and
+    each node it puts in contact wrongly costs the Newton an active-set change, so a fresh
+    factorization (measured on the finest level of fem/finite_strain.toml: 3-4 per depth)."""
+    contacts = [
+        (d, edge)
+        for d, _, lam in history[-2:]
+        if d > 0 and (edge := _edge(radius, lam)) is not None
+    ]
+    if len(contacts) == 2 and contacts[1][0] > contacts[0][0]:
+        (d0, a0), (d1, a1) = contacts
+        return float(a1 * (depth / d1) ** (np.log(a1 / a0) / np.log(d1 / d0)))
+    if law is None:
+        return None
+    if contacts:
+        d1, a1 = contacts[-1]
+        return float(a1 * law.contact_radius(depth) / law.contact_radius(d1))
+    return float(law.contact_radius(depth))
+
+
+def _edge(radius: np.ndarray, lam: np.ndarray) -> float | None:
+    """Midway between the last loaded candidate (``lam`` > 0) and the next (m); None if none
+    is loaded or the last one is."""
+    loaded = np.flatnonzero(lam > 0)
+    if loaded.size == 0 or loaded[-1] + 1 >= radius.size:
+        return None
+    return float(0.5 * (radius[loaded[-1]] + radius[loaded[-1] + 1]))
 
 
 def check_contact_edge(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
