@@ -97,3 +97,13 @@ def test_half_the_largest_dynamic_mesh_size_passes_the_estimate_ladder():
     check_ladder(DynamicSettings(size=0.1, steps=100))
     with pytest.raises(InputError, match=r"mesh_size: .*\(0, 0\.1\].*got 0\.15"):
         check_ladder(DynamicSettings(size=0.15, steps=100))
+
+
+def test_a_growth_refused_after_refinement_says_it_is_the_refined_mesh(capsys):
+    """--growth 0.001 at --refine 50 is refused on the refined mesh's growth (2e-05): the line
+    says so, and that the remedy is a lower --refine, not the growth range printed."""
+    from cli_helpers import error_line
+
+    line = error_line(capsys, "dynamic", "--refine", 50, "--growth", 0.001)
+    assert line.startswith("--growth: must lie in [") and "got 2e-05" in line
+    assert "refined by refine 50 (its growth = growth / refine): lower refine" in line
