@@ -98,9 +98,3 @@ def test_the_help_names_the_profile_a_csv_file_and_its_row_limit(command, capsys
         main([command, "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "--profile FILE.csv" in text and "3 to 2000 rows" in text
-
-
-def test_a_sphere_on_a_relaxing_body_names_the_option_given(capsys):
-    """The refusal said '--profile: ...' to a user who gave --sphere-radius."""
-    line = error_line(capsys, "dynamic", "--sphere-radius", "0.01", "--prony", "0.3:1e-3")
-    assert line.startswith("--sphere-radius: a viscoelastic body (prony) takes the power law")

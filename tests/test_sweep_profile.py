@@ -111,11 +111,6 @@ def test_a_profile_csv_is_read_beside_the_sweep_file(tmp_path, monkeypatch):
         ("", "sphere_radius = [0.01, -1.0]", "axes.sphere_radius[1] must lie in (0, 1e6] m"),
         ("sphere_radius = 2e6", "mass = [0.7]", "parameters.sphere_radius must lie in"),
         ("profile = 3.0", "mass = [0.7]", "parameters.profile must be a file path"),
-        (
-            'sphere_radius = 0.01\nprony = "0.5:1e-3"',
-            "mass = [0.7]",
-            "case 0 (mass = 0.7): sphere_radius: a viscoelastic body (prony) takes the power law",
-        ),
     ],
 )
 def test_a_bad_striker_profile_is_refused_at_load_naming_its_key(parameters, axes, says):
