@@ -221,3 +221,19 @@ def test_the_templates_show_the_sphere_and_it_loads(tmp_path):
         [study] = load_study(path)
         indenter = study.parts["striker"].indenter if kind == "effects" else study.indenter
         assert indenter == sh.SphereIndenter(0.01), kind
+
+
+@pytest.mark.parametrize(("indenter", "says"), BAD_STRIKERS[2:4])
+def test_an_effects_study_names_the_bad_profiles_key_once(tmp_path, capsys, indenter, says):
+    # the effects loader wrapped the indenter's refusal again as 'half_space.<file>'
+    (tmp_path / "unsorted.csv").write_text("r,z\n0,0\n0.002,0.001\n0.001,0.002\n")
+    path = tmp_path / "fx.toml"
+    assert main(["init-study", "--kind", "effects", str(path)]) == 0
+    capsys.readouterr()
+    text = re.sub(
+        r"shape_coefficient = 5.0 .*\nexponent = 1.5 .*\n", indenter + "\n", path.read_text()
+    )
+    path.write_text(text)
+    line = error_line(capsys, "verify", path, "--quick", "--out", tmp_path / "out")
+    assert re.search(f"^{re.escape(str(path))}: key {says}", line), line
+    assert line.count(str(path)) == 1, line
