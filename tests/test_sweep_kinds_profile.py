@@ -147,6 +147,9 @@ def test_the_effects_kind_strikes_a_sphere_on_sneddons_impact():
         ("layer", "thickness_ratio = 3.0", "sphere_radius: 0.7 kg at 3 m/s drive the striker"),
         ("finite-strain", "", "sphere_radius: 0.7 kg at 3 m/s drive the striker"),
         ("impact", "", "must lie in (0, 1e6] m"),
+        # the contact kind ran these (as ok) where `shtaerman contact` and a study refuse them
+        ("contact", "depths = [1e-3, 4e-3]", "depths: depth 0.004 m, beyond the sphere's radius"),
+        ("contact", "", "sphere_radius: 0.7 kg at 3 m/s drive the striker"),
     ],
 )
 def test_a_sphere_beyond_its_radius_or_out_of_range_is_refused_at_load(kind, parameters, says):
