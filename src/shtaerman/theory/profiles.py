@@ -232,8 +232,11 @@ class TabulatedIndenter:
     kind = "tabulated"
 
     def __post_init__(self) -> None:
-        r = np.asarray(self.radii, dtype=float).ravel() + 0.0  # -0.0 is the tip 0
-        z = np.asarray(self.heights, dtype=float).ravel() + 0.0
+        try:
+            r = np.asarray(self.radii, dtype=float).ravel() + 0.0  # -0.0 is the tip 0
+            z = np.asarray(self.heights, dtype=float).ravel() + 0.0
+        except (TypeError, ValueError):  # text, None, ragged lists
+            raise InputError("profile: radii and heights must be numbers in m") from None
         if r.shape != z.shape or not (np.all(np.isfinite(r)) and np.all(np.isfinite(z))):
             raise InputError("profile: radii and heights must be finite, of one length")
         _check_table(r, z)
