@@ -104,3 +104,23 @@ def test_a_sphere_on_a_relaxing_body_names_the_option_given(capsys):
     """The refusal said '--profile: ...' to a user who gave --sphere-radius."""
     line = error_line(capsys, "dynamic", "--sphere-radius", "0.01", "--prony", "0.3:1e-3")
     assert line.startswith("--sphere-radius: a viscoelastic body (prony) takes the power law")
+
+
+CASES = [
+    # M v0^2 / 2 overflowed in Python's float power: an OverflowError traceback, exit 1
+    *(
+        (command, ("--sphere-radius", "0.01", "--velocity", "1e308"))
+        for command in ("impact", "contact", "dynamic", "effects")
+    ),
+    # the power law's impact is finite here, but the FE sizes on v0^2 (a traceback, exit 1)
+    *((command, ("--velocity", "1e200", "--mass", "1e-300")) for command in ("dynamic", "effects")),
+]
+
+
+@pytest.mark.parametrize(("command", "argv"), CASES)
+def test_a_striker_beyond_the_floating_point_range_is_one_line(capsys, command, argv):
+    assert main([command, *argv]) == 2
+    err = capsys.readouterr().err  # the quasi-static validity warning, then the error
+    last = err.strip().splitlines()[-1]
+    assert "Traceback" not in err and last.startswith("shtaerman: error: mass "), err
+    assert "= inf, outside the floating-point range" in last, last
