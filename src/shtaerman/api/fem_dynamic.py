@@ -297,7 +297,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings) -> None:
 
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..study.dynamic.case import exact_impact
-    from ..theory.impact import _representable
+    from ..theory.impact import representable
     from ..theory.materials import effective_modulus
     from ..theory.sneddon import contact_law
 
@@ -307,7 +307,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         # the floating-point range first: the exact impact's, and v0^2 (the FE sizes on it)
-        _representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
+        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
         exact_impact(striker.mass, striker.velocity, law)
         check_dynamic_impact(*inputs, problem.body.prony, problem.interface.coefficient)
 
