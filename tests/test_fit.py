@@ -316,6 +316,15 @@ def test_a_drop_test_without_the_mass_is_refused():
         sh.fit("force-history", drop(), curve)
 
 
+@pytest.mark.parametrize("thickness", [None, 0.005])
+def test_a_sphere_is_refused_in_one_line_naming_the_indenter(thickness):
+    # it raised AttributeError ('SphereIndenter' object has no attribute 'exponent'): the
+    # fit's forward models and its result are the power law's
+    ball = sh.Problem.curve(sh.SphereIndenter(0.01), sh.Material(5e6, NU2), thickness=thickness)
+    with pytest.raises(sh.InputError, match=r"^indenter: the fit takes the power law .* sphere"):
+        sh.fit("indentation", indentation(), ball, unknowns=["E2"])
+
+
 def test_a_drop_faster_than_the_theory_holds_warns_once(tmp_path, capsys):
     data = {"velocity": [2.0, 6.0], "contact_time": [9.6e-3, 8.0e-3]}
     csv = write(tmp_path / "r.csv", "velocity [m/s],contact_time [s]",

@@ -192,3 +192,29 @@ def test_nu2_of_a_bonded_pad_is_identified_and_of_a_lubricated_one_refused():
     lubricated = dataclasses.replace(begin, geometry=sh.Geometry(PAD, "lubricated"))
     with pytest.raises(sh.InputError, match="nu2 is not identifiable from a lubricated pad"):
         sh.fit("indentation", data, lubricated, unknowns="E2,nu2", refine=REFINE)
+
+
+def test_an_fe_curve_failing_where_the_fit_sought_it_is_a_numerical_failure(
+    tmp_path, capsys, monkeypatch
+):
+    """Yeoh's c2 is sought from -0.99 sqrt(3 c3), where dW/dI1 falls to 2 % of C10: with
+    c3 = 0.1 the 4 mm curve's elements invert there (measured: 'an element inverted', exit 2,
+    'refine the mesh or give more depths', a remedy for the user's own input). Stood in for
+    by that refusal at the range's end, without the FE run."""
+    from shtaerman.api import fem_contact
+    from shtaerman.fem.hyperelastic import NewtonError
+
+    def inverts(case, **options):
+        raise NewtonError("depth 0.0037 m: an element inverted (J <= 0); refine the mesh")
+
+    monkeypatch.setattr(fem_contact, "contact", inverts)
+    csv = tmp_path / "curve.csv"
+    csv.write_text("depth [m],force [N]\n0.001,27.8\n0.002,78.5\n0.004,222\n")
+    argv = ["fit", "indentation", str(csv), "--model", "yeoh", "--yeoh", "0.4,0.1",
+            "--fit", "E2,yeoh_c2", "--out", str(tmp_path / "out")]  # fmt: skip
+    assert main(argv) == 1  # a numerical failure, not bad input (2)
+    lines = capsys.readouterr().err.strip().splitlines()  # progress lines, then the error
+    err = lines[-1]
+    assert err.startswith("shtaerman: error: fit: the ") and "Traceback" not in lines[0], err
+    assert "FE contact curve at yeoh_c2 = -0.542245, where the fit sought it" in err, err
+    assert "give yeoh_c2 and fit E2 alone" in err, err

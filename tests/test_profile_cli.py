@@ -77,6 +77,17 @@ def test_a_bad_profile_file_names_its_row_on_the_command_line(capsys, tmp_path):
     assert line == f"--profile: '{path}' row 4, column z: expected a finite number in m, got 'nan'"
 
 
+def test_a_table_too_long_is_refused_without_parsing_the_rest(capsys, tmp_path):
+    # every row was parsed first (an 87 MB file of 3e6 rows: 14 CPU s and 1.6 GB to refuse
+    # it, 1.4 s after): the row past the most a table takes is the last one read, so a bad
+    # value further down is never reached
+    path = tmp_path / "tip.csv"
+    rows = "".join(f"{k * 1e-5!r},{(k * 1e-5) ** 2!r}\n" for k in range(2001))
+    path.write_text("r,z\n" + rows + "0.1,x\n")
+    line = error_line(capsys, "impact", "--profile", str(path))
+    assert line.startswith("--profile: takes at most 2000 rows (r, z), got more than 2000"), line
+
+
 @pytest.mark.parametrize("model", ["linear", "neo-hookean"])
 def test_contact_on_a_sphere_writes_its_outputs(tmp_path, model):
     out = tmp_path / "run"
@@ -98,3 +109,23 @@ def test_the_help_names_the_profile_a_csv_file_and_its_row_limit(command, capsys
         main([command, "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "--profile FILE.csv" in text and "3 to 2000 rows" in text
+
+
+CASES = [
+    # M v0^2 / 2 overflowed in Python's float power: an OverflowError traceback, exit 1
+    *(
+        (command, ("--sphere-radius", "0.01", "--velocity", "1e308"))
+        for command in ("impact", "contact", "dynamic", "effects")
+    ),
+    # the power law's impact is finite here, but the FE sizes on v0^2 (a traceback, exit 1)
+    *((command, ("--velocity", "1e200", "--mass", "1e-300")) for command in ("dynamic", "effects")),
+]
+
+
+@pytest.mark.parametrize(("command", "argv"), CASES)
+def test_a_striker_beyond_the_floating_point_range_is_one_line(capsys, command, argv):
+    assert main([command, *argv]) == 2
+    err = capsys.readouterr().err  # the quasi-static validity warning, then the error
+    last = err.strip().splitlines()[-1]
+    assert "Traceback" not in err and last.startswith("shtaerman: error: mass "), err
+    assert "= inf, outside the floating-point range" in last, last

@@ -14,6 +14,7 @@ from shtaerman.theory.impact_ode import integrate_impact
 from shtaerman.theory.profile_impact import solve_profile_impact
 from shtaerman.theory.profiles import SphereIndenter, TabulatedIndenter
 from shtaerman.theory.sneddon import SneddonContact
+from shtaerman.validation import InputError
 
 MODULUS = 1.0e7  # E* in Pa
 RADIUS = 0.01  # R in m
@@ -136,3 +137,10 @@ def test_a_bad_profile_file_is_refused_in_one_line(tmp_path, text, message):
     with pytest.raises(sh.InputError, match=message) as refused:
         TabulatedIndenter.from_csv(path)
     assert "\n" not in str(refused.value) and refused.value.parameter == "profile"
+
+
+@pytest.mark.parametrize("radii", [["0", "a", "0.02"], [[0.0], [0.01, 0.02]]])
+def test_a_table_of_no_numbers_is_refused_naming_the_profile(radii):
+    # text or ragged lists in the radii raised numpy's bare ValueError ('could not convert ...')
+    with pytest.raises(InputError, match=r"^profile: radii and heights must be numbers in m$"):
+        TabulatedIndenter(radii, [0.0, 0.001, 0.004])

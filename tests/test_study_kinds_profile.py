@@ -221,3 +221,39 @@ def test_the_templates_show_the_sphere_and_it_loads(tmp_path):
         [study] = load_study(path)
         indenter = study.parts["striker"].indenter if kind == "effects" else study.indenter
         assert indenter == sh.SphereIndenter(0.01), kind
+
+
+@pytest.mark.parametrize(("indenter", "says"), BAD_STRIKERS[2:4])
+def test_an_effects_study_names_the_bad_profiles_key_once(tmp_path, capsys, indenter, says):
+    # the effects loader wrapped the indenter's refusal again as 'half_space.<file>'
+    (tmp_path / "unsorted.csv").write_text("r,z\n0,0\n0.002,0.001\n0.001,0.002\n")
+    path = tmp_path / "fx.toml"
+    assert main(["init-study", "--kind", "effects", str(path)]) == 0
+    capsys.readouterr()
+    text = re.sub(
+        r"shape_coefficient = 5.0 .*\nexponent = 1.5 .*\n", indenter + "\n", path.read_text()
+    )
+    path.write_text(text)
+    line = error_line(capsys, "verify", path, "--quick", "--out", tmp_path / "out")
+    assert re.search(f"^{re.escape(str(path))}: key {says}", line), line
+    assert line.count(str(path)) == 1, line
+
+
+def test_a_deep_sphere_study_checks_the_fitted_impact_against_the_exact_curve_fitted_alike(
+    tmp_path,
+):
+    """The FEM-fitted impact is the Ateb impact of beta x^q fitted to the FEM forces; a
+    sphere's force is no power law, so against Sneddon's exact impact it differed by the fit's
+    model error (P_c 1.4e-2 for the template's 10 mm sphere: verify FAILED at 2e-3). It is
+    checked against the same fit of Sneddon's forces at the same depths, its FE error alone."""
+    depths = "[1e-3, 2.5e-3, 4e-3, 6e-3]"  # x/R to 0.6 on a 10 mm sphere
+    [study] = load_study(write(tmp_path, CONTACT, "sphere_radius = 0.01", depths))
+    outcome = run_study(study)
+    checks = {check.name: check for check in outcome.checks}
+    # the FEM forces against Sneddon's: within the contact force check (1e-3 at this mesh)
+    assert checks["contact force"].passed, checks["contact force"]
+    for key in ("x_c", "P_c", "t_c"):
+        check = checks[f"impact fem_fitted {key}"]
+        # the power-law fit's model error is gone: what is left is the FE's (< 1e-3 force)
+        assert abs(check.value) < 1e-3, check
+    assert outcome.passed

@@ -147,6 +147,9 @@ def test_the_effects_kind_strikes_a_sphere_on_sneddons_impact():
         ("layer", "thickness_ratio = 3.0", "sphere_radius: 0.7 kg at 3 m/s drive the striker"),
         ("finite-strain", "", "sphere_radius: 0.7 kg at 3 m/s drive the striker"),
         ("impact", "", "must lie in (0, 1e6] m"),
+        # the contact kind ran these (as ok) where `shtaerman contact` and a study refuse them
+        ("contact", "depths = [1e-3, 4e-3]", "depths: depth 0.004 m, beyond the sphere's radius"),
+        ("contact", "", "sphere_radius: 0.7 kg at 3 m/s drive the striker"),
     ],
 )
 def test_a_sphere_beyond_its_radius_or_out_of_range_is_refused_at_load(kind, parameters, says):
@@ -156,3 +159,14 @@ def test_a_sphere_beyond_its_radius_or_out_of_range_is_refused_at_load(kind, par
             SWEEP.format(kind=kind, parameters=parameters, axes=f"sphere_radius = {radius}")
         )
     assert says in str(error.value)
+
+
+def test_a_contact_past_a_tables_last_row_names_the_depth_once(tmp_path):
+    # it said 'depths: depth 0.05 m: depth 0.05 m reaches beyond the table'
+    table = tmp_path / "tip.csv"
+    table.write_text("r,z\n0,0\n0.005,0.00125\n0.01,0.005\n0.02,0.02\n")
+    text = SWEEP.format(kind="contact", parameters=f'profile = "{table}"\ndepths = [1e-3, 0.05]',
+                        axes="nu2 = [0.3]")  # fmt: skip
+    with pytest.raises(SweepError, match=r"depths: depth 0.05 m reaches beyond the table") as error:
+        parse_sweep(text)
+    assert str(error.value).count("0.05 m") == 1, error.value

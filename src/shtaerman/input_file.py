@@ -80,7 +80,7 @@ def read_input_csv(path: str | Path, option: str, what: str) -> str:
         ``#`` comment) separates its columns by ';' or a tab instead of ','.
     """
     text = read_input_text(path, option, what)
-    lines = (line for line in text.splitlines() if line.strip())
+    lines = (line for line in io.StringIO(text) if line.strip())  # lazily: a huge file
     header = next((line for line in lines if not line.lstrip().startswith("#")), "")
     for separator in _SEPARATORS:
         if separator in header and "," not in header:
@@ -91,14 +91,16 @@ def read_input_csv(path: str | Path, option: str, what: str) -> str:
     return text
 
 
-def csv_rows(text: str) -> tuple[list[list[str]], list[int]]:
+def csv_rows(text: str, limit: int | None = None) -> tuple[list[list[str]], list[int]]:
     """The rows of the CSV ``text`` (the header first) and each one's line number in the file,
     blank lines and lines starting with ``#`` (comments) skipped, so that an error names a
-    row as an editor shows it."""
+    row as an editor shows it; at most ``limit`` rows (None: all), the rest not parsed."""
     reader = csv.reader(io.StringIO(text))
     rows, lines = [], []
     for row in reader:
         if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
             rows.append(row)
             lines.append(reader.line_num)
+            if len(rows) == limit:
+                break
     return rows, lines

@@ -311,11 +311,19 @@ def _check_impact(problem: Problem, settings: DynamicSettings) -> None:
     import warnings
 
     from ..fem.dynamic_contact import check_dynamic_impact
+    from ..study.dynamic.case import exact_impact
+    from ..theory.impact import representable
+    from ..theory.materials import effective_modulus
+    from ..theory.sneddon import contact_law
 
     striker, body = problem.striker, problem.body.material
     inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity, settings)
+    law = contact_law(striker.indenter, effective_modulus(striker.material, body))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
+        # the floating-point range first: the exact impact's, and v0^2 (the FE sizes on it)
+        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
+        exact_impact(striker.mass, striker.velocity, law)
         check_dynamic_impact(*inputs, problem.body.prony, problem.interface.coefficient)
 
 

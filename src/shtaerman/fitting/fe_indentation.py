@@ -27,13 +27,14 @@ import dataclasses
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
 from ..problem import Body, Loading, Problem
 from ..theory.materials import Material
-from ..validation import InputError
+from ..validation import InputError, NumericalFailureError
 from .data import Measurement
 from .engine import Progress, Solution, solve
 from .iteration import widened
@@ -170,10 +171,27 @@ class FECurves:
         if self.progress is not None:
             where = "" if value is None else f", {self.axis.name} {value:.6g}"
             self.progress(f"fit: FE contact curve {len(self.table) + 1} ({fe_parts(case)}{where})")
-        run = contact(case, refine=self.refine, estimate=True)
+        run = self._run(contact, case, value)
         self.table[0.0 if value is None else value] = np.asarray(run.force, float) / E_REF
         error = (run.error_estimate or {}).get("force")
         self.errors.append(float(error) if error is not None else 0.0)
+
+    def _run(self, contact: Callable, case: Problem, value: float | None) -> Any:
+        """The FE curve of ``case``; one that fails at a shape constant the fit chose (not
+        the user's input) is a numerical failure naming it and what to change."""
+        from ..fem.hyperelastic import NewtonError
+
+        try:
+            return contact(case, refine=self.refine, estimate=True)
+        except NewtonError as error:
+            if value is None:
+                raise
+            axis = self.axis
+            raise NumericalFailureError(
+                f"fit: the FE contact curve at {axis.name} = {value:.6g}, where the fit sought "
+                f"it (over [{axis.low:.6g}, {axis.high:.6g}]), failed: {error}; give "
+                f"{axis.name} and fit E2 alone, or fit shallower depths"
+            ) from None
 
     def shape(self, value: float) -> np.ndarray:
         """p(x; s) in N/Pa: the not-a-knot cubic spline (in the axis' coordinate) through

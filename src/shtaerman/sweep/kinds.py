@@ -219,9 +219,18 @@ def _curve_inputs(p: dict[str, Any]):
 
 
 def _contact_inputs(p: dict[str, Any]):
+    """A contact case's inputs; a sphere's or a table's deepest depth (the given ``depths``,
+    else the default ones: the paper's impact's x_c) within its FE profile, as `shtaerman
+    contact` and a contact study refuse it at load."""
     from ..fem.solver import check_backend
+    from ..study.contact.loader import check_profile_reach
+    from ..theory.materials import RIGID, effective_modulus
 
-    return (*_curve_inputs(p), check_backend(p["solver"]))
+    indenter, half_space, depths, mesh = _curve_inputs(p)
+    impact = (vocabulary.entry("mass").default, vocabulary.entry("velocity").default)
+    modulus = effective_modulus(RIGID, half_space)  # default_depths' striker
+    check_profile_reach(indenter, modulus, depths, impact, overshoot=1.0)
+    return indenter, half_space, depths, mesh, check_backend(p["solver"])
 
 
 CONTACT_OUTPUTS = {

@@ -37,6 +37,7 @@ __all__ = [
     "ImpactResult",
     "QuasiStaticValidityWarning",
     "duration_integral",
+    "representable",
     "solve_impact",
 ]
 
@@ -198,7 +199,7 @@ def _exp(exponent: float) -> float:
     return math.exp(exponent) if exponent < 709.8 else math.inf
 
 
-def _representable(name: str, value: float, mass: float, velocity: float) -> float:
+def representable(name: str, value: float, mass: float, velocity: float) -> float:
     """``value`` if it is a normal float (neither 0, subnormal, nor inf), else InputError."""
     if not (math.isfinite(value) and abs(value) >= sys.float_info.min):
         raise InputError(
@@ -234,16 +235,16 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     log_x_c = (
         math.log(q + 1.0) + math.log(mass) + 2.0 * math.log(velocity) - math.log(2.0 * beta)
     ) / (q + 1.0)
-    x_c = _representable("x_c", _exp(log_x_c), mass, velocity)
-    P_c = _representable("P_c", _exp(math.log(beta) + q * log_x_c), mass, velocity)
-    t_c = _representable(
+    x_c = representable("x_c", _exp(log_x_c), mass, velocity)
+    P_c = representable("P_c", _exp(math.log(beta) + q * log_x_c), mass, velocity)
+    t_c = representable(
         "t_c", duration_integral(q) * _exp(log_x_c - math.log(velocity)), mass, velocity
     )
-    a_c = _representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
+    a_c = representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
     p_c = float(law.central_pressure(x_c))
     if not math.isinf(p_c):  # inf is the exact answer for n <= 1
-        p_c = _representable("p_c", p_c, mass, velocity)
-    impulse = _representable("impulse", 2.0 * mass * velocity, mass, velocity)
+        p_c = representable("p_c", p_c, mass, velocity)
+    impulse = representable("impulse", 2.0 * mass * velocity, mass, velocity)
     half_time = ateb_sine(q, 1.0, (q + 1.0) / 4.0 * duration_integral(q))
     return ImpactResult(
         mass=mass,

@@ -31,7 +31,7 @@ from scipy.optimize import brentq
 from scipy.special import roots_legendre
 
 from ..validation import InputError, validate_positive
-from .impact import ImpactHistory, check_velocity
+from .impact import ImpactHistory, check_velocity, representable
 from .sneddon import SneddonContact
 
 __all__ = ["ProfileImpactResult", "solve_profile_impact"]
@@ -98,7 +98,7 @@ def _work(law: SneddonContact, squares: _Cumulative, a: ArrayLike) -> np.ndarray
 def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     """a_c in m from W(a_c) = M v0^2 / 2: a first guess on equal panels over the whole
     profile, then the exact root on the fine panels up to 1.25 times it (or the whole)."""
-    energy = 0.5 * mass * velocity**2
+    energy = representable("M v0^2 / 2", 0.5 * mass * (velocity * velocity), mass, velocity)
     top = law.max_contact_radius
     top = math.nextafter(top, 0.0) if law.sphere else top
     square = lambda s: law.depth(s) ** 2  # noqa: E731

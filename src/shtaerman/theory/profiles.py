@@ -131,7 +131,8 @@ def _read_rows(path: Path) -> tuple[np.ndarray, np.ndarray, list[int]]:
         One line naming the file and the row or column at fault.
     """
     path = Path(path)
-    rows, lines = csv_rows(read_input_csv(path, "profile", "profile"))
+    # the header and one row past the most a table takes: a huge file is refused unparsed
+    rows, lines = csv_rows(read_input_csv(path, "profile", "profile"), MAX_PROFILE_ROWS + 2)
     header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
     if missing:
@@ -179,8 +180,10 @@ def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -
     if r.size < 3:
         raise InputError(f"profile: needs at least 3 rows (r, z), got {r.size}", "profile")
     if r.size > MAX_PROFILE_ROWS:
+        count = f"more than {MAX_PROFILE_ROWS}" if lines is not None else r.size  # a file is
+        # read to one row past the most
         raise InputError(
-            f"profile: takes at most {MAX_PROFILE_ROWS} rows (r, z), got {r.size}; resample "
+            f"profile: takes at most {MAX_PROFILE_ROWS} rows (r, z), got {count}; resample "
             "the tip more coarsely",
             "profile",
         )
@@ -232,8 +235,11 @@ class TabulatedIndenter:
     kind = "tabulated"
 
     def __post_init__(self) -> None:
-        r = np.asarray(self.radii, dtype=float).ravel() + 0.0  # -0.0 is the tip 0
-        z = np.asarray(self.heights, dtype=float).ravel() + 0.0
+        try:
+            r = np.asarray(self.radii, dtype=float).ravel() + 0.0  # -0.0 is the tip 0
+            z = np.asarray(self.heights, dtype=float).ravel() + 0.0
+        except (TypeError, ValueError):  # text, None, ragged lists
+            raise InputError("profile: radii and heights must be numbers in m") from None
         if r.shape != z.shape or not (np.all(np.isfinite(r)) and np.all(np.isfinite(z))):
             raise InputError("profile: radii and heights must be finite, of one length")
         _check_table(r, z)

@@ -152,9 +152,10 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     except InputError as error:
         raise StudyError(f"{path}: key 'name': {error}") from None
     rubber = {k: v for k, v in msgspec.structs.asdict(raw.rubber).items() if v is not None}
+    indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
     try:
         found = parts(
-            indenter_of(path, raw.indenter),
+            indenter,
             Material(raw.half_space.E2, raw.half_space.nu2, raw.half_space.density2),
             mass=raw.impact.mass,
             velocity=raw.impact.velocity,

@@ -429,7 +429,8 @@ def check_profile_reach(
         law.contact_radius(deepest)  # a table's contact within its last row
     except InputError as error:
         text = str(error).removeprefix(f"{error.parameter}: ")
-        raise InputError(f"{parameter}: {drive}: {text}", parameter) from None
+        said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
+        raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
 
 
 PROFILE_KEYS = {
