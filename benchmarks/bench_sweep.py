@@ -3,8 +3,9 @@
 The grid is exponent n in {1.5, 2} x nu2 in {0, 0.25, 0.4, 0.5} on the default mesh (about 29k
 dofs a case); ``--kind dynamic``: the dynamic FE impact, velocity {1, 2} m/s x nu2 {0.3, 0.4,
 0.45, 0.5} at the default mesh and steps, without the ladder (several seconds a case, so
-the cluster's start and stop weigh less). Each sweep runs in a fresh folder with a fresh LocalCluster; the wall time
-includes starting and stopping the cluster (what a user waits for). The load average is
+the cluster's start and stop weigh less). Each sweep runs in a fresh folder with a fresh
+LocalCluster; the wall time includes starting and stopping the cluster (what a user waits
+for). The load average is
 printed before and after: on a machine shared with other work the speed-up reads low.
 
     python benchmarks/bench_sweep.py [--repeat K] [--workers 1,2] [--kind contact|dynamic]
