@@ -14,6 +14,7 @@ from ..validation import InputError
 from ..vocabulary import entry
 from .common import (
     CASE,
+    PROFILES,
     add_figure_format,
     add_inputs,
     given,
@@ -92,7 +93,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.add_argument(
         "data", type=path_text, metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'"
     )
-    inputs = (*CASE, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
+    inputs = (*CASE, *PROFILES, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
               "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
               "resample", "refine", "json", "out", "force")  # fmt: skip
     add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)

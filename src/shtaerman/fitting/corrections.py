@@ -32,11 +32,9 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 from ..problem import Problem
-from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material
-from ..theory.viscoelastic import PronySeries, viscoelastic_impact
+from ..theory.sneddon import Indenter, contact_law
+from ..theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
 
 if TYPE_CHECKING:  # the api package imports the fit's result: a cycle at run time
     from ..api.dynamic_result import DynamicResult
@@ -55,7 +53,7 @@ __all__ = [
 class KnownParts(Protocol):
     """What the corrections read of the fit's known parts (:class:`.models.Known`)."""
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     striker: Material
     nu2: float
     steps: int
@@ -135,9 +133,9 @@ def exact_impact(known: KnownParts, values: Mapping[str, float], prony: PronySer
                  ) -> tuple[Callable[[np.ndarray], np.ndarray], float, float]:  # fmt: skip
     """(force in N at times in s from the touch, peak force in N, contact time in s) of the
     exact quasi-static impact (the Ateb impact, or the viscoelastic one with ``prony``)."""
-    law = PowerLawContact(known.indenter, values["E_star"])
+    law = contact_law(known.indenter, values["E_star"])
     if prony is None:
-        result = solve_impact(values["mass"], values["velocity"], law)
+        result = elastic_impact(values["mass"], values["velocity"], law)
 
         def elastic(t: np.ndarray) -> np.ndarray:
             inside = (t > 0.0) & (t < result.t_y)
@@ -249,9 +247,9 @@ def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
         point = {**values, "velocity": float(velocity)}
         case, at = _point(problem, known, point, prony)
         run = dynamic(case, refine=refine, estimate=True)
-        law = PowerLawContact(known.indenter, values["E_star"])
+        law = contact_law(known.indenter, values["E_star"])
         if prony is None:
-            e, t_c = 1.0, solve_impact(values["mass"], velocity, law).t_y
+            e, t_c = 1.0, elastic_impact(values["mass"], velocity, law).t_y
         else:
             exact = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
             e, t_c = exact.restitution, exact.t_contact

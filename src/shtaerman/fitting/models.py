@@ -1,6 +1,7 @@
 """The exact quasi-static forward models a fit compares a measurement with.
 
-- indentation: P = beta x^q, the power-law (Shtaerman, Hertz) contact law, linear in E*;
+- indentation: P = beta x^q, the power-law (Shtaerman, Hertz) contact law (Sneddon's of a
+  sphere or a table), linear in E*;
 - force history: the Ateb quasi-static impact, or with a Prony series the viscoelastic one
   (Lee-Radok while loading, Ting while unloading), shifted by a time offset and a baseline;
 - rebound and resilience: the restitution e and contact time t_c of the same impacts at each
@@ -21,11 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..theory.contact import PowerLawContact
-from ..theory.impact import solve_impact
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material, effective_modulus
-from ..theory.viscoelastic import PronySeries, viscoelastic_impact
+from ..theory.sneddon import Indenter, contact_law
+from ..theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
 from ..validation import InputError
 from .corrections import Correction, RowCorrection, exact_impact
 from .data import Measurement
@@ -56,7 +55,7 @@ contact time: a faster term has relaxed before the rebound, a slower one has bar
 class Known:
     """The known parts of the problem and the starting values of the unknowns (SI units)."""
 
-    indenter: PowerLawIndenter
+    indenter: Indenter
     striker: Material
     E2: float
     nu2: float
@@ -142,10 +141,10 @@ def prony_at(known: Known, values: Mapping[str, float]) -> PronySeries | None:
 
 def _impact(known: Known, values: Mapping[str, float], velocity: float) -> tuple[float, float]:
     """(restitution, contact time in s) of the impact at ``velocity`` in m/s."""
-    law = PowerLawContact(known.indenter, values["E_star"])
+    law = contact_law(known.indenter, values["E_star"])
     prony = prony_at(known, values)
     if prony is None:
-        return 1.0, solve_impact(values["mass"], velocity, law).t_y
+        return 1.0, elastic_impact(values["mass"], velocity, law).t_y
     result = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
     return result.restitution, result.t_contact
 
@@ -179,10 +178,17 @@ def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarra
     return predict
 
 
+def _contact_words(indenter: Indenter) -> str:
+    """The indentation's forward model in words."""
+    if indenter.kind == "power-law":
+        return "power-law contact P = beta x^q (Shtaerman; Hertz for n = 2), exact"
+    return f"Sneddon's contact of the {indenter.kind} profile, exact (quadrature)"
+
+
 def _modulus_start(known: Known, data: Measurement, kind: str) -> float:
     """A starting E* in Pa from the data: exact for an indentation (P linear in E*), from the
     peak force (P_c ~ E*^(1/(q+1))) or the contact time (t_c ~ E*^(-1/(q+1))) otherwise."""
-    law = PowerLawContact(known.indenter, known.modulus)
+    law = contact_law(known.indenter, known.modulus)
     q = law.force_exponent
     columns = data.columns
     if kind == "indentation":
@@ -190,10 +196,10 @@ def _modulus_start(known: Known, data: Measurement, kind: str) -> float:
         return float(np.sum(columns["force"] * shape) / np.sum(shape * shape))
     if kind == "force-history":
         peak = float(np.max(columns["force"]) - known.baseline)
-        model = solve_impact(known.mass, known.velocity, law).P_c
+        model = elastic_impact(known.mass, known.velocity, law).P_c
         return known.modulus * (max(peak, 1e-300) / model) ** (q + 1.0)
     if "contact_time" in columns:
-        model = [solve_impact(known.mass, v, law).t_y for v in columns["velocity"]]
+        model = [elastic_impact(known.mass, v, law).t_y for v in columns["velocity"]]
         ratio = float(np.median(np.asarray(model) / columns["contact_time"]))
         return known.modulus * ratio ** (q + 1.0)
     return known.modulus
@@ -264,8 +270,8 @@ def time_window(known: Known, data: Measurement) -> tuple[float, float]:
     if "contact_time" in data.columns:
         times = data.columns["contact_time"]
     else:
-        law = PowerLawContact(known.indenter, known.modulus)
-        times = np.array([solve_impact(known.mass, v, law).t_y for v in data.columns["velocity"]])
+        law = contact_law(known.indenter, known.modulus)
+        times = np.array([elastic_impact(known.mass, v, law).t_y for v in data.columns["velocity"]])
     return REBOUND_WINDOW[0] * float(np.min(times)), REBOUND_WINDOW[1] * float(np.max(times))
 
 
@@ -324,11 +330,11 @@ def build_model(
         else "quasi-static impact (Ateb functions)"
     )
     if kind == "indentation":
-        law = PowerLawContact(known.indenter, 1.0)  # P = E* times this law's force
+        law = contact_law(known.indenter, 1.0)  # P = E* times this law's force
         shape = law.force(data.columns["depth"])
         return Model(
             params, data.columns["force"], lambda f: all_values(known, f)["E_star"] * shape,
-            False, "N", "power-law contact P = beta x^q (Shtaerman; Hertz for n = 2), exact",
+            False, "N", _contact_words(known.indenter),
         )  # fmt: skip
     if kind == "force-history":
         time = data.columns["time"]

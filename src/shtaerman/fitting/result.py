@@ -129,8 +129,9 @@ def known_values(known: Known) -> dict[str, Any]:
     striker: Material = known.striker
     prony = known.prony
     return {
-        "shape_coefficient": known.indenter.shape_coefficient,
-        "exponent": known.indenter.exponent,
+        "shape_coefficient": getattr(known.indenter, "shape_coefficient", None),
+        "exponent": getattr(known.indenter, "exponent", None),
+        "profile": {"kind": known.indenter.kind, "parameters": known.indenter.parameters},
         "E1": striker.youngs_modulus,
         "nu1": striker.poisson_ratio,
         "E2": known.E2,

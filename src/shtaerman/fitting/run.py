@@ -52,12 +52,6 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
         )
     if problem.interface.kind != "frictionless":
         raise InputError("interface: the fit takes a frictionless contact only", "interface")
-    if problem.striker.indenter.kind != "power-law":  # its forward models are beta x^q's
-        raise InputError(
-            "indenter: the fit takes the power law z = A r^n (shape_coefficient, exponent) "
-            f"only, not a {problem.striker.indenter.kind} profile",
-            "indenter",
-        )
     striker, body = problem.striker, problem.body.material
     needed = {"mass": kind != "indentation", "velocity": kind == "force-history"}
     for name, needs in needed.items():

@@ -68,6 +68,7 @@ __all__ = [
     "ViscoelasticImpact",
     "constant_rate_contact",
     "constant_rate_pressure",
+    "elastic_impact",
     "elastic_shape",
     "hereditary",
     "indentation_force",
@@ -196,7 +197,7 @@ def elastic_shape(law: Law) -> tuple[float, Callable[[ArrayLike], np.ndarray]]:
     return 1.0, lambda x: np.asarray(law.force(x), dtype=float)
 
 
-def _impact(mass: float, velocity: float, law: Law) -> ImpactResult | ProfileImpactResult:
+def elastic_impact(mass: float, velocity: float, law: Law) -> ImpactResult | ProfileImpactResult:
     """The exact elastic impact on ``law``: Ateb's of the power law, Sneddon's quadrature."""
     if isinstance(law, PowerLawContact):
         return solve_impact(mass, velocity, law)
@@ -806,7 +807,7 @@ def viscoelastic_impact(
     velocity = validate_positive("velocity", velocity, "m/s")
     if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 20:
         raise InputError(f"steps must be an integer >= 20 per t_c, got {steps!r}", "steps")
-    t_c = _impact(mass, velocity, law).t_c
+    t_c = elastic_impact(mass, velocity, law).t_c
     h = t_c / int(steps)
     # in t_c; a profile's at its tip's q (the relaxed impact is shallower: nearer the tip)
     relaxed_duration = 2.0 * prony.g_inf ** (-1.0 / (law.force_exponent + 1.0))
@@ -842,4 +843,4 @@ def limit_impacts(
     """The exact elastic impacts of the two limits: glassy (tau -> inf, modulus E*_0) and
     relaxed (tau -> 0, modulus g_inf E*_0); both rebound with e = 1."""
     relaxed = contact_law(law.indenter, law.modulus * prony.g_inf)
-    return _impact(mass, velocity, law), _impact(mass, velocity, relaxed)
+    return elastic_impact(mass, velocity, law), elastic_impact(mass, velocity, relaxed)
