@@ -2,13 +2,14 @@
 
 The grid is exponent n in {1.5, 2} x nu2 in {0, 0.25, 0.4, 0.5} on the default mesh (about 29k
 dofs a case); ``--kind dynamic``: the dynamic FE impact, velocity {1, 2} m/s x nu2 {0.3, 0.4,
-0.45, 0.5} at the default mesh and steps, without the ladder (several seconds a case, so
-the cluster's start and stop weigh less). Each sweep runs in a fresh folder with a fresh
+0.45, 0.5} at the default mesh and steps, without the ladder (``--estimate``: with it), so
+the cluster's start and stop weigh less. Each sweep runs in a fresh folder with a fresh
 LocalCluster; the wall time includes starting and stopping the cluster (what a user waits
 for). The load average is
 printed before and after: on a machine shared with other work the speed-up reads low.
 
     python benchmarks/bench_sweep.py [--repeat K] [--workers 1,2] [--kind contact|dynamic]
+        [--estimate]
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ GRID_DYNAMIC = """\
 name = "bench-dynamic"
 kind = "dynamic"
 [parameters]
-estimate = false
+estimate = ESTIMATE
 [axes]
 velocity = [1.0, 2.0]
 nu2 = [0.3, 0.4, 0.45, 0.5]
@@ -72,9 +73,11 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=1, help="sweeps per worker count")
     parser.add_argument("--workers", default="1,2", help="worker counts, comma-separated")
     parser.add_argument("--kind", choices=("contact", "dynamic"), default="contact")
+    parser.add_argument("--estimate", action="store_true", help="dynamic: with the ladder")
     args = parser.parse_args()
     counts = [int(w) for w in args.workers.split(",")]
-    grid = GRID if args.kind == "contact" else GRID_DYNAMIC
+    estimate = "true" if args.estimate else "false"
+    grid = GRID if args.kind == "contact" else GRID_DYNAMIC.replace("ESTIMATE", estimate)
     spec = parse_sweep(grid, f"bench-{args.kind}.toml")
     cores = len(os.sched_getaffinity(0))
     print(f"8-case linear {args.kind} sweep; {cores} usable cores; {load()}")
