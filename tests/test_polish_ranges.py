@@ -106,4 +106,5 @@ def test_a_growth_refused_after_refinement_says_it_is_the_refined_mesh(capsys):
 
     line = error_line(capsys, "dynamic", "--refine", 50, "--growth", 0.001)
     assert line.startswith("--growth: must lie in [") and "got 2e-05" in line
-    assert "refined by refine 50 (its growth = growth / refine): lower refine" in line
+    assert "the mesh's, after --refine divides --growth" in line
+    assert line.endswith("raise --growth or lower --refine)")

@@ -286,23 +286,8 @@ def check_dynamic(
     checked = _checked_linear(problem, settings, options, refine, estimate)
     check_figure_format(figure_format)
     if checked is not None:
-        try:
-            _check_impact(problem, checked[1])
-        except InputError as error:
-            raise _in_given_terms(error, checked[0]) from None
+        _check_impact(problem, checked[1])
     return checked
-
-
-def _in_given_terms(error: InputError, refine: float) -> InputError:
-    """``error`` of the refined settings, with the refinement said: a growth range is the
-    refined mesh's (growth / refine), not the ``growth`` given."""
-    if error.parameter != "growth" or refine == 1.0:
-        return error
-    return InputError(
-        f"{error}; that is the mesh refined by refine {refine:g} (its growth = growth / "
-        f"refine): lower refine, or a growth within {refine:g} times that range",
-        "growth",
-    )
 
 
 def _check_impact(problem: Problem, settings: DynamicSettings) -> None:

@@ -56,7 +56,8 @@ def growth_error(
     least = bound_text(math.exp(high), "low")
     return InputError(
         f"growth: must lie in [{least}, 1] for a mesh within {limit:.3g} unknowns at size "
-        f"{settings.size:.3g}, got {settings.growth:.3g} (about {estimate(settings):.3g} "
-        f"unknowns; a coarser --mesh-size cannot make up for it){also}",
+        f"{settings.size:.3g}, got {settings.growth:.3g} (the mesh's, after --refine divides "
+        f"--growth; about {estimate(settings):.3g} unknowns; a coarser --mesh-size cannot "
+        f"make up for it: raise --growth or lower --refine){also}",
         "growth",
     )
