@@ -510,3 +510,27 @@ def test_findings_link_every_validated_result_to_its_row():
     linked = re.findall(r"\(validation\.md#([\w-]+)\)", (ROOT / "docs/findings.md").read_text())
     assert set(linked) <= anchors, set(linked) - anchors
     assert {slugify(h, "-") for h in sections} <= set(linked)
+
+
+def test_every_cross_reference_in_a_docstring_names_what_exists():
+    """A :data:/:func:/:class: reference to shtaerman.X resolves (PROFILE_SUPPORT, deleted,
+    was still named by sh.dynamic's docstring; sneddon.tabulated_integrals by profiles')."""
+    import importlib
+
+    pattern = re.compile(r":(?:data|func|class|meth|attr):`~?(shtaerman(?:\.\w+)+)`")
+    missing = []
+    for path in sorted((ROOT / "src" / "shtaerman").rglob("*.py")):
+        for match in pattern.finditer(path.read_text(encoding="utf-8")):
+            names = match.group(1).split(".")
+            for cut in range(len(names) - 1, 0, -1):  # the longest importable module
+                try:
+                    found = importlib.import_module(".".join(names[:cut]))
+                except ImportError:
+                    continue
+                for name in names[cut:]:  # a dataclass's field is no class attribute
+                    fields = getattr(found, "__dataclass_fields__", {})
+                    found = fields[name] if name in fields else getattr(found, name, None)
+                if found is None:
+                    missing.append(f"{path.relative_to(ROOT)}: {match.group(1)}")
+                break
+    assert missing == []

@@ -218,3 +218,28 @@ def test_an_fe_curve_failing_where_the_fit_sought_it_is_a_numerical_failure(
     assert err.startswith("shtaerman: error: fit: the ") and "Traceback" not in lines[0], err
     assert "FE contact curve at yeoh_c2 = -0.542245, where the fit sought it" in err, err
     assert "give yeoh_c2 and fit E2 alone" in err, err
+
+
+def test_the_fe_curves_spline_is_built_once_per_curve_not_per_evaluation(monkeypatch):
+    """The fit's predict evaluates the shape at every solver step: the spline through the FE
+    curves is built when a curve is added, not at each evaluation (no FE run here: the
+    table is filled by hand)."""
+    from shtaerman.fitting import fe_indentation
+
+    built = []
+    real = fe_indentation.CubicSpline
+    monkeypatch.setattr(
+        fe_indentation, "CubicSpline", lambda *a, **k: built.append(1) or real(*a, **k)
+    )
+    axis = fe_indentation.SHAPE_AXES["mooney-rivlin"](None)
+    curves = fe_indentation.FECurves(start("mooney-rivlin"), DEPTHS, REFINE, axis=axis)
+    for s in axis.nodes:
+        curves.table[s] = (1.0 + s) * DEPTHS**1.5
+    first = [curves.shape(0.3) for _ in range(5)]
+    assert len(built) == 1
+    curves.table[0.6] = 1.6 * DEPTHS**1.5
+    # rebuilt on the 4 curves: the cubic through (1 + s) x^1.5 at 0.6 exactly (round-off)
+    np.testing.assert_allclose(curves.shape(0.6), 1.6 * DEPTHS**1.5, rtol=1e-12)
+    assert len(built) == 2
+    # the shape is the same spline's: (1 + s) x^1.5 is linear in s, so exact (round-off)
+    np.testing.assert_allclose(first[0], 1.3 * DEPTHS**1.5, rtol=1e-12)

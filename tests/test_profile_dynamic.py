@@ -116,3 +116,22 @@ def test_the_command_line_is_the_api(dense):
     for part in (document, api):
         part.pop("timings")
     assert document == api  # one computation: every number equal
+
+
+def test_the_input_check_solves_a_profiles_quasi_static_impact_once(monkeypatch):
+    """check_dynamic_impact (run by sh.dynamic before the run and again by the run) solved a
+    profile's quadrature impact twice, once more for the scales: its t_y alone took 2.8 CPU s
+    of a 2000-row table."""
+    from shtaerman.fem import dynamic_contact
+
+    solved = []
+    real = dynamic_contact.solve_profile_impact
+    monkeypatch.setattr(
+        dynamic_contact, "solve_profile_impact", lambda *a: solved.append(1) or real(*a)
+    )
+    _, striker, scales, _ = dynamic_contact.check_dynamic_impact(
+        BALL, RUBBER, 1100.0, 0.7, 3.0, COARSE
+    )
+    assert len(solved) == 1
+    # the same numbers as the scales solved on their own (one deterministic solve): equal
+    assert scales == dynamic_contact._scales(BALL, RUBBER, 1100.0, striker, COARSE)

@@ -179,9 +179,9 @@ def dynamic(
     Parameters
     ----------
     indenter : PowerLawIndenter, SphereIndenter, TabulatedIndenter or Problem
-        The rigid striker's profile (z = A r^n, n > 1; the exact sphere or a tabulated z(r)
-        but on a viscoelastic linear body, :data:`shtaerman.problem.PROFILE_SUPPORT`); or the whole
-        impact (:class:`shtaerman.Problem`), then only numerical and output keywords follow.
+        The rigid striker's profile (z = A r^n, n > 1; the exact sphere or a tabulated z(r),
+        on every body :data:`shtaerman.problem.SUPPORT` runs); or the whole impact
+        (:class:`shtaerman.Problem`), then only numerical and output keywords follow.
     body : Material
         The half-space: E2 in Pa, nu2 in [0, 0.5] and its density in kg/m^3 (required).
     mass, velocity : float

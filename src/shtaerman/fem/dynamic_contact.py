@@ -353,14 +353,16 @@ def _scales(
     striker: Striker,
     settings: DynamicSettings,
     prony: PronySeries | None = None,
+    qs: _QuasiStatic | None = None,
 ) -> _Scales:
-    """Quasi-static impact, wave speeds, time step, refined and domain radii, layer.
+    """Quasi-static impact (``qs`` when already solved: a profile's quadrature is costly),
+    wave speeds, time step, refined and domain radii, layer.
 
     With ``prony`` (a viscoelastic body) the refined zone, the layer and the run's length are
     sized for the quasi-static viscoelastic impact (Lee-Radok/Ting, its largest contact radius
     and its contact time); dt still follows the glassy impact.
     """
-    qs = _quasi_static(indenter, half_space, striker)
+    qs = qs if qs is not None else _quasi_static(indenter, half_space, striker)
     nu = half_space.poisson_ratio
     shear = half_space.youngs_modulus / (2.0 * (1.0 + nu))
     c_s = math.sqrt(shear / rho) if rho > 0 else math.inf  # massless: no waves
@@ -613,7 +615,7 @@ def check_dynamic_impact(
         check_reach(indenter, qs.x_c, (striker.mass, striker.velocity), qs.force_exponent, False)
     if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
-    scales = _scales(indenter, half_space, rho, striker, settings, prony)
+    scales = _scales(indenter, half_space, rho, striker, settings, prony, qs)
     if settings.thickness is None:
         return rho, striker, scales, estimate_dofs(settings)
     estimate = layer_dofs(settings, scales.refined, scales.domain_radius)

@@ -154,6 +154,8 @@ class FECurves:
     table: dict[float, np.ndarray] = field(default_factory=dict)
     errors: list[float] = field(default_factory=list)
     """Each FE curve's estimated relative force error."""
+    _spline: tuple[int, CubicSpline] | None = field(default=None, repr=False)
+    """The spline of :meth:`shape` and the number of curves it was built on."""
 
     def add(self, value: float | None) -> None:
         """Run the FE curve at shape constant ``value`` (None: the problem's own shape)."""
@@ -198,11 +200,13 @@ class FECurves:
         every FE curve's value at each depth; through three, their quadratic."""
         if self.axis is None:
             return next(iter(self.table.values()))
-        nodes = sorted(self.table, key=self.axis.coordinate)
-        u = np.array([self.axis.coordinate(r) for r in nodes])
-        curves = np.array([self.table[r] for r in nodes])
-        spline = CubicSpline(u, curves, axis=0, bc_type="not-a-knot")
-        return spline(self.axis.coordinate(value))
+        if self._spline is None or self._spline[0] != len(self.table):  # built once per curve
+            nodes = sorted(self.table, key=self.axis.coordinate)
+            u = np.array([self.axis.coordinate(r) for r in nodes])
+            curves = np.array([self.table[r] for r in nodes])
+            spline = CubicSpline(u, curves, axis=0, bc_type="not-a-knot")
+            self._spline = (len(self.table), spline)
+        return self._spline[1](self.axis.coordinate(value))
 
     @property
     def error(self) -> float:
@@ -287,7 +291,8 @@ def finite_indentation_fit(problem: Problem, measured: Measurement, names: Seque
         curves.add(None)
         model = _model(curves, measured, None)
         sol = solve(model, noise)
-        return model, widened(sol, _shifts(sol, curves)), curves, None, _shifts(sol, curves)
+        shifts = _shifts(sol, curves)
+        return model, widened(sol, shifts), curves, None, shifts
     for value in axis.nodes:
         curves.add(value)
     model, sol, wide, shifts, floor, change = _settled(curves, measured, noise, axis)

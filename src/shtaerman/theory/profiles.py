@@ -9,7 +9,8 @@ which the profile reaches a height, which sizes the FEM's contact zone).
 A tabulated profile is interpolated in s = r^2: z = G(r^2) with G the monotone cubic (PCHIP)
 through the points (r_i^2, z_i). So the tip is smooth (f'(0) = 0), a sampled paraboloid is
 reproduced exactly (PCHIP reproduces a linear G), and Sneddon's integrals of the piecewise
-cubic G are closed forms (:func:`shtaerman.theory.sneddon.tabulated_integrals`).
+cubic G are exact Gauss-Legendre sums per piece
+(:class:`shtaerman.theory.sneddon.SneddonContact`).
 """
 
 from __future__ import annotations

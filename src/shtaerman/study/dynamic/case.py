@@ -23,12 +23,12 @@ from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
-from ...theory.impact import ImpactResult, solve_impact
+from ...theory.impact import ImpactResult
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
-from ...theory.viscoelastic import PronySeries
+from ...theory.viscoelastic import PronySeries, elastic_impact
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_finite_ladder, run_ladder
 
@@ -146,10 +146,9 @@ def exact_impact(
 ) -> ImpactResult | ProfileImpactResult:
     """The quasi-static impact of ``mass`` kg at ``velocity`` m/s on the contact ``law``
     (:func:`shtaerman.theory.sneddon.contact_law`): the power law's closed form (Ateb),
-    another profile's quadrature (Sneddon)."""
-    if isinstance(law, PowerLawContact):
-        return solve_impact(mass, velocity, law)
-    return solve_profile_impact(mass, velocity, law)
+    another profile's quadrature (Sneddon), as
+    :func:`shtaerman.theory.viscoelastic.elastic_impact`."""
+    return elastic_impact(mass, velocity, law)
 
 
 def run_case(
