@@ -342,6 +342,16 @@ def test_indentation_of_an_exact_sphere_recovers_e2():
     assert "Sneddon" in result.forward_model
 
 
+def test_depths_far_beyond_a_tiny_sphere_are_one_line(tmp_path, capsys):
+    """Depths of 0.5-4 mm under a 1 um sphere (x/R 500 and more, past the ~18 R that
+    Sneddon's law reaches in doubles as a -> R) were a brentq traceback: now one line naming
+    --sphere-radius, exit 2."""
+    csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(DEPTHS, DEPTHS * 1e4, strict=True))
+    assert main(["fit", "indentation", csv, "--sphere-radius", "1e-6"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("shtaerman: error: --sphere-radius") and err.count("\n") == 1
+
+
 def test_a_drop_test_of_a_sphere_gives_e2_back_from_its_own_impact():
     """The suite's exact sphere impact (Sneddon's law, 0.05 kg at 1 m/s) sampled as a force
     history: the round trip gives E2 back to 1e-6."""

@@ -185,6 +185,22 @@ def _contact_words(indenter: Indenter) -> str:
     return f"Sneddon's contact of the {indenter.kind} profile, exact (quadrature)"
 
 
+def _check_sphere_reach(law: object, deepest: float) -> None:
+    """Refuse a depth ``deepest`` (m) beyond the deepest that Sneddon's sphere law reaches in
+    floating point (about 18 R, as a -> R); a tabulated profile's table refuses its own."""
+    if not getattr(law, "sphere", False):
+        return
+    radius = law.max_contact_radius
+    reach = float(law.depth(math.nextafter(radius, 0.0)))
+    if deepest > reach:
+        raise InputError(
+            f"sphere_radius: the data's depth {deepest:.6g} m is {deepest / radius:.3g} times "
+            f"the sphere's radius {radius:.6g} m, beyond Sneddon's contact of it (at most "
+            f"{reach:.3g} m); give the sphere's radius in m (or the depths in m, --units)",
+            "sphere_radius",
+        )
+
+
 def _modulus_start(known: Known, data: Measurement, kind: str) -> float:
     """A starting E* in Pa from the data: exact for an indentation (P linear in E*), from the
     peak force (P_c ~ E*^(1/(q+1))) or the contact time (t_c ~ E*^(-1/(q+1))) otherwise."""
@@ -192,6 +208,7 @@ def _modulus_start(known: Known, data: Measurement, kind: str) -> float:
     q = law.force_exponent
     columns = data.columns
     if kind == "indentation":
+        _check_sphere_reach(law, float(np.max(columns["depth"])))
         shape = law.force(columns["depth"]) / law.modulus
         return float(np.sum(columns["force"] * shape) / np.sum(shape * shape))
     if kind == "force-history":
