@@ -61,7 +61,6 @@ from ..theory.sneddon import SneddonContact, contact_law
 from ..validation import InputError, NumericalFailureError
 from .contact import MAX_ACTIVE_SET_ITERATIONS
 from .finite_contact import (
-    CONTRACTION,
     MAX_ITERATIONS,
     NEWTON_TOLERANCE,
     FiniteContactCurve,
@@ -72,7 +71,6 @@ from .finite_contact import (
     element_inverted,
     eliminate_gaps,
     finite_step,
-    newton_converged,
     pattern_entries,
     solve_finite_contact,
     tip_exponent,
@@ -213,7 +211,8 @@ def _newton(
     stepper is ``modified`` (a :class:`BondedStepper` of the quasi-static curve), a step
     reuses the last factorization while it was made for the same stuck dofs (also at an
     earlier load step) and, after a step that reused it, the correction shrank by
-    :data:`.finite_contact.CONTRACTION` (:func:`_reusable`, :func:`_converged`).
+    :data:`.finite_contact.CONTRACTION` (:func:`_reusable`,
+    :meth:`.finite_contact.NewtonStepper.converged`).
 
     Raises
     ------
@@ -245,7 +244,7 @@ def _newton(
         corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
         if not np.isfinite(corrections[-1]):
             break
-        if _converged(stepper, corrections, fresh):
+        if stepper.converged(corrections, fresh):
             return x, iteration, corrections
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
 
@@ -338,24 +337,10 @@ def _reusable(
     kept = stepper.kept_stuck
     if kept is None or kept.system is not stepper.system or not stepper.modified:
         return None
-    if len(fresh) > 1 and not fresh[-1] and not _contracting(corrections):
+    if len(fresh) > 1 and not fresh[-1] and not stepper.contracting(corrections):
         return None
     again = kept.constrained(slaves)
     return None if again is None else (kept.tangent, again)
-
-
-def _contracting(corrections: list[float]) -> bool:
-    """Whether the last correction is at most CONTRACTION x the one before."""
-    return len(corrections) > 1 and corrections[-1] <= CONTRACTION * corrections[-2]
-
-
-def _converged(stepper: NewtonStepper, corrections: list[float], fresh: list[bool]) -> bool:
-    """:func:`.finite_contact.newton_converged` after a fresh tangent's step; after a reused
-    one, a correction below the tolerance that shrank by CONTRACTION (the error left is then
-    at most a quarter of it)."""
-    if fresh[-1]:
-        return newton_converged(corrections, stepper.tolerance)
-    return corrections[-1] <= stepper.tolerance and _contracting(corrections)
 
 
 def _invalid(stepper: NewtonStepper, x: np.ndarray, state: Any) -> bool:
@@ -538,7 +523,7 @@ def _slide_newton(
         corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
         if not np.isfinite(corrections[-1]):
             break
-        if _converged(stepper, corrections, fresh):
+        if stepper.converged(corrections, fresh):
             return x, lam, iteration, corrections
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
 
@@ -554,7 +539,7 @@ def _slide_reusable(
     kept = stepper.kept_slide.get(key)
     if not stepper.modified or kept is None or kept[0] is not stepper.system:
         return None
-    if len(fresh) > 1 and not fresh[-1] and not _contracting(corrections):
+    if len(fresh) > 1 and not fresh[-1] and not stepper.contracting(corrections):
         return None
     return kept[1:]
 
