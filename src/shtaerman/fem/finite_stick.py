@@ -317,10 +317,7 @@ def _stuck_step(
     load[slaves] = 0.0
     if again is not None:
         return again(-load) + shift
-    reduced = tangent.copy()
-    reduced[moved] = 0.0
-    reduced[pattern.diagonal[slaves]] = 1.0
-    solution, again = stepper.solver.factorized(reduced, -load)
+    solution, again = stepper.solver.factorized(_reduced(stepper, tangent, slaves, moved), -load)
     if stepper.modified:
         stepper.kept_stuck = _Kept(stepper.system, slaves, tangent, again, pattern.size)
     return solution + shift
@@ -495,9 +492,7 @@ def _slide_newton(
             tangent = system.tangent_data(x, state)[stepper.take]
             tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
             tangent[across] += (drag * curvature)[sliding]
-            reduced, again = tangent.copy(), None
-            reduced[moved] = 0.0
-            reduced[pattern.diagonal[slaves]] = 1.0
+            reduced, again = _reduced(stepper, tangent, slaves, moved), None
         else:
             tangent, reduced, again = reuse
         shift = np.zeros(pattern.size)
@@ -511,11 +506,7 @@ def _slide_newton(
         except RuntimeError as error:
             raise NewtonError(f"singular Newton matrix ({error})") from None
         if reuse is None and stepper.modified:
-            kept = stepper.kept_slide
-            kept.pop(key, None)  # a refreshed set is the newest
-            kept[key] = (system, tangent, reduced, stepper.factorization)
-            while len(kept) > KEPT_SETS:
-                del kept[next(iter(kept))]  # the oldest
+            _keep_slide(stepper, key, (system, tangent, reduced, stepper.factorization))
         fresh.append(reuse is None)
         x[stepper.free] += du
         lam[rows] += dlam
@@ -526,6 +517,28 @@ def _slide_newton(
         if stepper.converged(corrections, fresh):
             return x, lam, iteration, corrections
     raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+
+
+def _reduced(
+    stepper: BondedStepper, tangent: np.ndarray, slaves: np.ndarray, moved: np.ndarray
+) -> np.ndarray:
+    """``tangent``'s data (N/m, the stepper's pattern) with the prescribed dofs ``slaves``
+    eliminated: their rows and columns (``moved``: their pattern entries) zeroed, a unit
+    diagonal."""
+    reduced = tangent.copy()
+    reduced[moved] = 0.0
+    reduced[stepper.pattern.diagonal[slaves]] = 1.0
+    return reduced
+
+
+def _keep_slide(stepper: BondedStepper, key: bytes, kept: tuple) -> None:
+    """Keep the Coulomb Newton's fresh factorization ``kept`` of the contact set ``key`` as
+    the newest, dropping the oldest beyond :data:`KEPT_SETS`."""
+    sets = stepper.kept_slide
+    sets.pop(key, None)
+    sets[key] = kept
+    while len(sets) > KEPT_SETS:
+        del sets[next(iter(sets))]
 
 
 def _slide_reusable(
