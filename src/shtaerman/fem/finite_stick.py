@@ -658,11 +658,13 @@ def _slide_step(
 
 
 class BondedStepper(NewtonStepper):
-    """A :class:`.finite_contact.NewtonStepper` that keeps the bonded Newton's last
-    factorization (:func:`_newton`; reused where ``modified``, the quasi-static curve)."""
+    """A :class:`.finite_contact.NewtonStepper` that keeps the bonded and the Coulomb
+    Newton's factorizations and reuses them (``modified``: :func:`_newton`,
+    :func:`_slide_newton`), in the quasi-static curve and an impact's time steps."""
 
     def __init__(self, *args: Any) -> None:
         super().__init__(*args)
+        self.modified = True  # the full case: 42.5 -> 28.5 CPU s, results moved by < 3e-11
         self.kept_stuck: _Kept | None = None
         # by contact set: system, tangent, reduced tangent, factorization
         self.kept_slide: dict[bytes, tuple] = {}
@@ -689,7 +691,6 @@ class HistoryStepper(BondedStepper):
         friction: float,
     ) -> None:
         super().__init__(system, indenter, candidate_radius, *limits)
-        self.modified = True  # the full case: 42.5 -> 28.5 CPU s, results moved by < 3e-11
         self.friction = friction
         m = self.nodes.radius.size
         heights = self.indenter.profile(self.nodes.radius)
@@ -782,7 +783,6 @@ def solve_finite_bonded_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     begun = time.perf_counter()
     stepper = BondedStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    stepper.modified = True
     check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
     material = system.material
     exact = contact_law(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
