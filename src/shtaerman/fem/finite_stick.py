@@ -334,7 +334,7 @@ def _reusable(
     kept = stepper.kept_stuck
     if kept is None or kept.system is not stepper.system or not stepper.modified:
         return None
-    if len(fresh) > 1 and not fresh[-1] and not stepper.contracting(corrections):
+    if not stepper.still_contracting(corrections, fresh):
         return None
     again = kept.constrained(slaves)
     return None if again is None else (kept.tangent, again)
@@ -552,7 +552,7 @@ def _slide_reusable(
     kept = stepper.kept_slide.get(key)
     if not stepper.modified or kept is None or kept[0] is not stepper.system:
         return None
-    if len(fresh) > 1 and not fresh[-1] and not stepper.contracting(corrections):
+    if not stepper.still_contracting(corrections, fresh):
         return None
     return kept[1:]
 
