@@ -392,6 +392,12 @@ class NewtonStepper:
             or not np.array_equal(kept[1], rows)
         ):
             return False
+        return self.still_contracting(corrections, fresh)
+
+    def still_contracting(self, corrections: list[float], fresh: list[bool]) -> bool:
+        """Whether a kept factorization may serve the next step as far as the corrections
+        say: the last step was fresh or the solve's first, or its correction shrank by
+        :data:`CONTRACTION`."""
         return not (len(fresh) > 1 and not fresh[-1] and not self.contracting(corrections))
 
     def contracting(self, corrections: list[float]) -> bool:

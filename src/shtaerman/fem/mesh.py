@@ -538,7 +538,7 @@ class Grading:
         """The .geo's parameters (lengths in m for a refined zone of ``refined_radius`` m)."""
         return {
             name: getattr(self, name) * (refined_radius if name in self.LENGTHS else 1.0)
-            for name in ("band_start", "near_growth", "near_depth", "far_growth", "far_start")
+            for name in (*self.LENGTHS, *self.GROWTHS)
         }
 
     def elements(self, size: float, growth: float, domain: float) -> float:

@@ -266,17 +266,15 @@ def _confirmed(levels: list[np.ndarray], estimate: Estimate) -> bool:
     return bool(monotone and fast)
 
 
-def _at_most(
-    estimate: Callable[..., Estimate], values: list, order: float | None, **options: str
-) -> Estimate:
-    """``estimate`` (:func:`richardson` or :func:`curve_richardson`, with ``options``) of
+def _at_most(estimate: Callable[..., Estimate], values: list, order: float | None) -> Estimate:
+    """``estimate`` (:func:`richardson` or :func:`curve_richardson`) of
     ``values`` at ``order``; where the observed order is lower, its error is the correction at
     the observed order (the larger), its extrapolated value stays at ``order`` (on the default
     ladders, whose observed orders 2.3-2.5 mix the far field's order 4 with the edge's order 2,
     order 3 extrapolates the force to 2.4e-5 of the exact, the observed order to 7.8e-5)."""
-    known = estimate(values, LADDER_RATIO, order=order, sane=SANE_ORDERS, **options)
+    known = estimate(values, LADDER_RATIO, order=order, sane=SANE_ORDERS)
     if known.method == "richardson" and known.observed_order < known.order:
-        observed = estimate(values, LADDER_RATIO, sane=SANE_ORDERS, **options)
+        observed = estimate(values, LADDER_RATIO, sane=SANE_ORDERS)
         return replace(known, error=observed.error)
     return known
 

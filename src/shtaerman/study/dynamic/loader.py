@@ -257,9 +257,12 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     return settings
 
 
-def _layer(path: Path, raw: _DynamicFile, example: float) -> DynamicSettings:
+def _layer(
+    path: Path, raw: _DynamicFile, example: float, indenter: Indenter, body: Material
+) -> DynamicSettings:
     """The default settings on the file's ``[layer]`` (none: the half-space), H / a_c
-    resolved at the quasi-static impact of ``example`` m/s on the half-space."""
+    resolved at the quasi-static impact of ``example`` m/s of ``indenter`` on the half-space
+    of ``body``."""
     if raw.layer is None:
         return DynamicSettings()
     if raw.layer.dynamic:
@@ -267,8 +270,7 @@ def _layer(path: Path, raw: _DynamicFile, example: float) -> DynamicSettings:
             f"{path}: key 'layer.dynamic': applies to a contact study (a dynamic study is one)"
         )
     spec = layer_spec(path, raw.layer, None)
-    body = Material(raw.half_space.E2, raw.half_space.nu2)
-    half_space = contact_law(indenter_of(path, raw.indenter), effective_modulus(RIGID, body))
+    half_space = contact_law(indenter, effective_modulus(RIGID, body))
     spec = spec.resolved(float(exact_impact(raw.impact.mass, example, half_space).a_c))
     try:
         return DynamicSettings(thickness=spec.thickness, base=spec.base)
@@ -332,7 +334,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
-    settings = _settings(path, "numerics", raw.numerics, _layer(path, raw, example))
+    defaults = _layer(path, raw, example, indenter, half_space)
+    settings = _settings(path, "numerics", raw.numerics, defaults)
     physics = _physics(raw)
     if physics.get("model", "linear") == "linear":
         try:
