@@ -3,6 +3,7 @@
 
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -10,6 +11,7 @@ from figure_helpers import capture
 
 import shtaerman as sh
 from shtaerman.cli import main
+from shtaerman.guards import ValidityWarning
 from shtaerman.plots import fit as fit_plot
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
@@ -340,6 +342,25 @@ def test_indentation_of_an_exact_sphere_recovers_e2():
     assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=1e-8)
     assert result.known["profile"] == {"kind": "sphere", "parameters": {"radius": radius}}
     assert "Sneddon" in result.forward_model
+
+
+def test_data_beyond_the_validated_depth_ratio_warn_as_every_contact_route():
+    """Sneddon's sphere law reaches about 18 R in doubles, so data to 2 R fit (E2 back), but
+    x/a there is 2.0 (a -> R), beyond the x/a 1.2 up to which any route is validated
+    (guards.MAX_DEPTH_RATIO): one ValidityWarning naming the depth, as the FE routes give; the
+    same data to R (x/a 1.1998 < 1.2) warn nothing."""
+    radius = 0.005
+    ball = sh.Problem.curve(sh.SphereIndenter(radius), sh.Material(5e6, NU2), striker=STEEL)
+    for deepest, warned in ((2 * radius, 1), (radius, 0)):
+        depths = np.linspace(0.04, 1.0, 30) * deepest
+        force = np.array([sneddon_sphere(radius, x) for x in depths])
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = sh.fit("indentation", {"depth": depths, "force": force}, ball)
+        found = [w for w in caught if issubclass(w.category, ValidityWarning)]
+        assert len(found) == warned
+        assert all("depth: the data's deepest depth" in str(w.message) for w in found)
+        assert result.fitted["E2"]["value"] == pytest.approx(E2, rel=1e-7)
 
 
 def test_depths_far_beyond_a_tiny_sphere_are_one_line(tmp_path, capsys):

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..guards import warn_outside_validity
 from ..output.files import output_folder
 from ..problem import Problem
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
@@ -193,6 +194,10 @@ def fit(
         known, model, sol, extra = _fitted(problem, known, measured, names, noise, refine,
                                            progress)  # fmt: skip
     _check_velocities(measured, known, model, sol)
+    if kind == "indentation":  # the same depth limits as every contact route
+        deepest = float(np.max(measured.columns["depth"]))  # within the law's reach: checked
+        warn_outside_validity(problem.striker.indenter, deepest, problem.geometry.thickness,
+                              problem.body.finite, "the data's deepest depth")  # fmt: skip
     result = _result(kind, measured, known, model, sol, names)
     reason, shape = extra.pop("reason", None), extra.pop("shape", None)
     if reason is not None:
