@@ -75,7 +75,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
-from .stick_slip import CoupledCompliance, radial_dofs
+from .stick import CoupledCompliance, radial_dofs
 from .viscoelastic import ViscoelasticShear, sizing_impact, viscoelastic_shear
 
 __all__ = [

@@ -221,19 +221,9 @@ def assemble(mesh: MeshTri, youngs_modulus: float, poisson_ratio: float) -> Elas
     pressure_block = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
     matrix = sp.bmat([[stiffness, coupling.T], [coupling, pressure_block]], format="csr")
     fixed = _clamped_dofs(ubasis)
-    surface_dofs, surface_r, surface_mass = _surface(mesh, ubasis, fixed)
-    return ElasticSystem(
-        mesh=mesh,
-        displacement_basis=ubasis,
-        pressure_basis=pbasis,
-        youngs_modulus=e_mod,
-        poisson_ratio=nu,
-        matrix=matrix,
-        fixed_dofs=fixed,
-        surface_dofs=surface_dofs,
-        surface_r=surface_r,
-        surface_mass=surface_mass,
-    )
+    # the fields in order: the bases, the moduli, the matrix, the clamped and the surface dofs
+    surface = _surface(mesh, ubasis, fixed)
+    return ElasticSystem(mesh, ubasis, pbasis, e_mod, nu, matrix, fixed, *surface)
 
 
 def _clamped_dofs(ubasis: Basis) -> np.ndarray:

@@ -76,8 +76,7 @@ from .finite_contact import (
     tip_exponent,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled
-from .stick_slip import worst_only
+from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
 
 __all__ = [
     "RELEASE_BAND",
@@ -162,6 +161,26 @@ def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np
     return slaves, values, moved
 
 
+def _shift(
+    stepper: NewtonStepper, x: np.ndarray, slaves: np.ndarray, values: np.ndarray
+) -> np.ndarray:
+    """The increment (m, free dofs) that puts the prescribed ``slaves`` of ``x`` on their
+    ``values``, zero elsewhere."""
+    shift = np.zeros(stepper.pattern.size)
+    shift[slaves] = values - x[stepper.free][slaves]
+    return shift
+
+
+def _shifted_load(
+    stepper: NewtonStepper, residual: np.ndarray, tangent: np.ndarray, shift: np.ndarray
+) -> np.ndarray:
+    """The free dofs' ``residual`` (N) plus the ``tangent``'s response to ``shift`` (m); no
+    sparse matrix is built for a zero shift (every Newton iteration after the first)."""
+    if not np.any(shift):
+        return residual
+    return residual + stepper.pattern.matrix(tangent) @ shift
+
+
 def _newton_stuck(
     stepper: NewtonStepper, trial: _Load, depth: float, scale: float
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
@@ -233,8 +252,7 @@ def _newton(
             continue
         halvings = 0
         reuse = _reusable(stepper, slaves, corrections, fresh)
-        shift = np.zeros(stepper.pattern.size)
-        shift[slaves] = values - x[stepper.free][slaves]
+        shift = _shift(stepper, x, slaves, values)
         try:
             du = _stuck_step(stepper, x, state, (slaves, moved, shift), reuse)
         except RuntimeError as error:
@@ -313,7 +331,7 @@ def _stuck_step(
         tangent, again = stepper.system.tangent_data(x, state)[stepper.take], None
     else:
         tangent, again = reuse
-    load = residual + pattern.matrix(tangent) @ shift if np.any(shift) else residual
+    load = _shifted_load(stepper, residual, tangent, shift)
     load[slaves] = 0.0
     if again is not None:
         return again(-load) + shift
@@ -495,9 +513,8 @@ def _slide_newton(
             reduced, again = _reduced(stepper, tangent, slaves, moved), None
         else:
             tangent, reduced, again = reuse
-        shift = np.zeros(pattern.size)
-        shift[slaves] = values - x[stepper.free][slaves]
-        load = residual[stepper.free] + pattern.matrix(tangent) @ shift
+        shift = _shift(stepper, x, slaves, values)
+        load = _shifted_load(stepper, residual[stepper.free], tangent, shift)
         load[slaves] = -shift[slaves]
         try:
             du, dlam = eliminate_gaps(

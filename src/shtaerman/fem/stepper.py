@@ -27,7 +27,7 @@ any load; the gap is enforced at n+1.
 
 A bonded (no slip) or Coulomb striker (``friction`` of :class:`ImpactProblem`: inf or mu >= 0)
 adds the candidates' u_r dofs: each step is then the static bonded or Coulomb contact
-(:func:`.stick_slip.stick_slip_step`) against the effective stiffness with the step's load,
+(:func:`.stick.stick_slip_step`) against the effective stiffness with the step's load,
 A = (1 - a_f) (S'^T K_eff^-1 S' + the striker's term on the u_z block), S' injecting u_z and
 u_r, reach the clearance f - X_pred - u_z,pred and radial offset u_r,pred; the stuck radii and
 slip directions are committed at the end of the step. The shear enters the alpha-weighted
@@ -62,7 +62,7 @@ from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius
 from .elasticity import ElasticSystem
 from .impact_run import march_steps
 from .solver import Factorization
-from .stick_slip import CoupledCompliance, StickState, stick_slip_step
+from .stick import CoupledCompliance, StickState, stick_slip_step
 
 if TYPE_CHECKING:
     from .viscoelastic import ShearMemory, ViscoelasticShear
