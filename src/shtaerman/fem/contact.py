@@ -4,9 +4,9 @@ The indenter z = f(r) - d (f(0) = 0 at its tip, depth d > 0) presses the surface
 With nodal contact forces F_i >= 0 (N, pushing down) on the candidate surface u_z dofs, the
 surface moves by u_z = -C F, where C = S^T K^-1 S is the surface compliance (m/N). It comes
 once from the one factorization: with SuperLU the candidates are eliminated last and C is the
-inverse of the trailing Schur block (:mod:`.schur`); otherwise (PARDISO, or a tail the
-factorization pivoted) one multi-RHS solve of unit loads. The contact conditions hold exactly
-at the nodes:
+inverse of the trailing Schur block (:class:`.solver.TailFactorization`); otherwise (PARDISO,
+or a tail the factorization pivoted) one multi-RHS solve of unit loads. The contact
+conditions hold exactly at the nodes:
 
     gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0,
 
@@ -57,8 +57,7 @@ from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, NumericalFailureError
 from ..vocabulary import entry
 from .elasticity import ElasticSolution, ElasticSystem, postprocess
-from .schur import TailFactorization, TailPivotError
-from .solver import Factorization, factorize
+from .solver import Factorization, TailFactorization, TailPivotError, factorize
 from .viscoelastic import ShearMemory, ViscoelasticShear, viscoelastic_shear
 
 __all__ = [
@@ -158,7 +157,7 @@ def _candidates(system: ElasticSystem, free: np.ndarray, radius: float) -> tuple
 def tail_compliance(factorization: Factorization, size: int, position: np.ndarray) -> np.ndarray:
     """(K^-1) on the dofs at ``position`` (of ``size`` free dofs), symmetrised (m/N).
 
-    The inverse of the trailing Schur block for a :class:`.schur.TailFactorization`, else one
+    The inverse of the trailing Schur block for a :class:`.solver.TailFactorization`, else one
     multi-RHS solve of unit loads (any backend).
     """
     if hasattr(factorization, "tail_inverse"):  # a TailFactorization
@@ -194,7 +193,7 @@ def factorize_stiffness(
     """The one sparse factorization of the stiffness (free dofs).
 
     With SuperLU ("auto", "superlu") the candidate dofs r <= ``radius`` are eliminated last
-    (:class:`.schur.TailFactorization`), so their compliance falls out of the factors. Should
+    (:class:`.solver.TailFactorization`), so their compliance falls out of the factors. Should
     that factorization pivot a candidate row away or be inaccurate, the plain SuperLU
     factorization is used instead (the compliance then by unit-load solves: same results,
     slower).
@@ -208,7 +207,7 @@ def surface_compliance(
 ) -> SurfaceCompliance:
     """Compliance of the surface u_z dofs r <= ``radius`` from the factorization.
 
-    The inverse of the trailing Schur block for a :class:`.schur.TailFactorization`, else one
+    The inverse of the trailing Schur block for a :class:`.solver.TailFactorization`, else one
     multi-RHS solve of unit loads.
     """
     candidates, dofs, position = _candidates(system, free, radius)

@@ -3,9 +3,9 @@ half-space (elastodynamic FEM).
 
 :func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
 (:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles
-the consistent mass (:mod:`.mass`) with the normal mass taken off the contact candidates
-(mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and
-the damping of the optional absorbing layer (:mod:`.absorbing`), factorizes the effective
+the consistent mass (:mod:`.mass`) with the normal mass taken off the contact candidates (mass
+redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and the damping
+of the optional absorbing layer (:class:`.dynamic_layer.AbsorbingLayer`), factorizes the effective
 matrix once (:func:`.solver.factorize_scaled`); :meth:`DynamicImpactSetup.march` steps the
 striker (mass M, X(0) = 0, X'(0) = v0) and the body with unilateral contact at the surface
 nodes, frictionless or (``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha,
@@ -42,9 +42,14 @@ from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
-from .absorbing import AbsorbingLayer
 from .contact import mass_factor
-from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
+from .dynamic_layer import (
+    AbsorbingLayer,
+    check_layer,
+    lateral_absorber,
+    layer_dofs,
+    layer_impact_mesh,
+)
 from .elasticity import (
     TWO_PI,
     ElasticSystem,
@@ -64,8 +69,7 @@ from .impact_run import (
     validate_steps,
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
-from .mesh import halfspace_mesh
-from .mesh_budget import growth_error
+from .mesh import growth_error, halfspace_mesh
 from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
@@ -147,7 +151,7 @@ class DynamicSettings:
         Peak damping rate zeta_max times t_y, >= 0. 0: no layer (the clamped far arc lies
         ``domain`` refined radii away, beyond the reach of the waves during the run). At
         nu = 0.5 any viscous layer also damps the quasi-static near field
-        (:mod:`.absorbing`).
+        (:class:`.dynamic_layer.AbsorbingLayer`).
     tail : float
         Stepping after separation, in units of R_a / c_R: the energy left inside R_a then is
         the reflected energy (0 disables the tail and the measurement).

@@ -68,9 +68,8 @@ from .hyperelastic import (
     assemble_hyperelastic,
 )
 from .mesh import MeshSettings
-from .pattern import Pattern
 from .rubber import RubberModel, gent_locks
-from .solver import PatternSolver
+from .solver import Pattern, PatternSolver
 
 __all__ = [
     "FINITE_MESH",

@@ -59,8 +59,7 @@ from skfem import (
 )
 
 from ..validation import InputError, validate_poisson, validate_positive
-from .pattern import Pattern, pattern_of
-from .solver import factorize
+from .solver import Pattern, factorize, pattern_of
 
 __all__ = [
     "HyperelasticSystem",

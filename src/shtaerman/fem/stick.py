@@ -35,8 +35,8 @@ geometric ladder of depths (ratio ``step_ratio``) from the depth at which the in
 candidate node :data:`START_NODE` (the axis grading of the mesh makes it a tiny fraction of the
 first depth) up to the last, the requested depths included. Its A is the surface compliance
 of the candidates' u_z and u_r dofs, from the one sparse factorization with both dofs of every
-candidate eliminated last (:mod:`.schur`); each depth step is :func:`stick_slip_step` with
-reach f(r) - d and no radial offset.
+candidate eliminated last (:class:`.solver.TailFactorization`); each depth step is
+:func:`stick_slip_step` with reach f(r) - d and no radial offset.
 
 The force reported is the sum of the nodal normal forces (the frictionless solver's nodal sum;
 its vertex alignment needs a history-free contact). The tangential nodal forces (N, on the
