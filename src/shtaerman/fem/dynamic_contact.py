@@ -59,6 +59,7 @@ from .elasticity import (
     divergence_coupling,
 )
 from .impact_run import (
+    MAX_STEPS,
     ImpactRun,
     finished_run,
     fitted_peak,
@@ -69,7 +70,7 @@ from .impact_run import (
     validate_steps,
 )
 from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
-from .mesh import growth_error, halfspace_mesh
+from .mesh import MAX_DOFS, growth_error, halfspace_mesh
 from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
@@ -91,8 +92,6 @@ __all__ = [
     "prepare_dynamic_impact",
 ]
 
-MAX_DOFS = 400_000
-"""Largest mesh accepted (estimated before meshing), in dofs."""
 MAX_DENSE_CORRECTION = 400e6
 """Largest dense W = K_eff^-1 S in bytes; a larger one is refused (InputError)."""
 DYNAMIC_ACCURACY_CHECK = 1e-6
@@ -100,7 +99,6 @@ DYNAMIC_ACCURACY_CHECK = 1e-6
 stricter fallbacks of :func:`.solver.factorize_scaled`."""
 MIN_STEPS = 50
 """Fewest time steps per quasi-static impact duration t_y accepted."""
-MAX_STEPS = 100_000
 
 
 def validate_friction(friction: object) -> float | None:

@@ -48,6 +48,7 @@ __all__ = [
     "ElasticSolution",
     "ElasticSystem",
     "assemble",
+    "clamped_dofs",
     "compressibility",
     "deviatoric_stiffness",
     "divergence_coupling",
@@ -55,6 +56,7 @@ __all__ = [
     "normal_surface_mass",
     "postprocess",
     "pressure_load",
+    "scalar_mass",
     "solve",
 ]
 
@@ -220,13 +222,15 @@ def assemble(mesh: MeshTri, youngs_modulus: float, poisson_ratio: float) -> Elas
     inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
     pressure_block = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
     matrix = sp.bmat([[stiffness, coupling.T], [coupling, pressure_block]], format="csr")
-    fixed = _clamped_dofs(ubasis)
+    fixed = clamped_dofs(ubasis)
     # the fields in order: the bases, the moduli, the matrix, the clamped and the surface dofs
     surface = _surface(mesh, ubasis, fixed)
     return ElasticSystem(mesh, ubasis, pbasis, e_mod, nu, matrix, fixed, *surface)
 
 
-def _clamped_dofs(ubasis: Basis) -> np.ndarray:
+def clamped_dofs(ubasis: Basis) -> np.ndarray:
+    """The clamped dofs: u_r on the axis, and every dof of the far boundary or u_z on a
+    layer's lubricated base."""
     axis = ubasis.get_dofs("axis").all("u^1")
     if "base" in ubasis.mesh.boundaries:  # a layer's lubricated base: u_z = 0, free to slide
         return np.union1d(axis, ubasis.get_dofs("base").all("u^2")).astype(np.int64)
@@ -452,7 +456,7 @@ def _projected_stresses(system: ElasticSystem, u: np.ndarray, p: np.ndarray) -> 
         return form
 
     rhs = np.column_stack([asm(component(k), pbasis, u=ufield, p=pfield) for k in range(4)])
-    values = factorize(asm(_mass, pbasis), backend="superlu").solve(rhs)
+    values = factorize(asm(scalar_mass, pbasis), backend="superlu").solve(rhs)
     nodal = pbasis.nodal_dofs[0]
     return {name: values[nodal, k] for k, name in enumerate(names)}
 
@@ -470,14 +474,15 @@ def _projected_given(system: ElasticSystem, p: np.ndarray, deviatoric: np.ndarra
         return form
 
     rhs = np.column_stack([asm(component(k), pbasis, p=pfield, s=deviatoric[k]) for k in range(4)])
-    values = factorize(asm(_mass, pbasis), backend="superlu").solve(rhs)
+    values = factorize(asm(scalar_mass, pbasis), backend="superlu").solve(rhs)
     nodal = pbasis.nodal_dofs[0]
     names = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz")
     return {name: values[nodal, k] for k, name in enumerate(names)}
 
 
 @BilinearForm
-def _mass(u, v, _):
+def scalar_mass(u, v, _):
+    """int u v dA (no 2 pi r weight): the projection's mass of a scalar field."""
     return u * v
 
 

@@ -79,6 +79,7 @@ from .finite_contact import (
     NEWTON_TOLERANCE,
     ContactOutgrowsMeshError,
     NewtonStepper,
+    extrapolate,
     geometric_radius,
     tip_exponent,
 )
@@ -86,6 +87,7 @@ from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, NewtonError, assemble_hyperelastic
 from .impact_run import (
+    MAX_STEPS,
     ImpactRun,
     finished_run,
     impact_parameters,
@@ -108,7 +110,6 @@ __all__ = [
 ]
 
 MIN_STEPS = 20
-MAX_STEPS = 100_000
 SECANT_TOLERANCE = 1e-10
 """The step's scalar equation is solved to |residual| <= this * M v0 / dt."""
 MAX_SECANT = 30
@@ -284,16 +285,9 @@ class _QuasiStaticBody:
             dissipated += system.dissipated
         return replace(state, dissipated=dissipated)
 
-    def _guess(self, depth: float) -> tuple[np.ndarray, np.ndarray]:
-        s1 = self.history[-1]
-        if len(self.history) < 2 or self.history[-2].depth == s1.depth:
-            return s1.x, s1.lam
-        s0 = self.history[-2]
-        w = (depth - s1.depth) / (s1.depth - s0.depth)
-        return s1.x + w * (s1.x - s0.x), np.maximum(s1.lam + w * (s1.lam - s0.lam), 0.0)
-
     def _solve(self, depth: float, halvings: int) -> _State:
-        guess_x, guess_lam = self._guess(depth)
+        states = [(state.depth, state.x, state.lam) for state in self.history]
+        guess_x, guess_lam = extrapolate(states, depth)
         # a relaxing body's corrections measured on the deepest depth (it unloads to X <= 0)
         scale = max(depth, self.deepest) if self.relaxing else None
         try:

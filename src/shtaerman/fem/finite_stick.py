@@ -747,14 +747,6 @@ class HistoryStepper(BondedStepper):
         self.committed, self.normal, self.warm = load, normal, {}
 
 
-def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:
-    """Linear extrapolation of the solution to the next load step (``ratio``: the step's
-    depth increment over the last one)."""
-    if previous is None:
-        return last.x
-    return last.x + ratio * (last.x - previous.x)
-
-
 def solve_finite_bonded_contact(
     system: HyperelasticSystem,
     indenter: PowerLawIndenter,
@@ -826,8 +818,9 @@ def _load_history(
     previous, done, previous_depth = None, 0.0, 0.0
     wanted, steps, taken = set(depths.tolist()), [], 0
     for depth in map(float, ladder):
-        ratio = (depth - done) / (done - previous_depth) if previous is not None else 0.0
-        guess = _predict(previous, last, ratio)
+        guess = last.x  # extrapolated linearly from the last two load steps
+        if previous is not None:
+            guess = last.x + (depth - done) / (done - previous_depth) * (last.x - previous.x)
         try:
             if math.isinf(friction):
                 state = _load_step(stepper, last, guess, (depth, depth))
