@@ -2,16 +2,16 @@
 half-space (elastodynamic FEM).
 
 :func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
-(:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles
-the consistent mass (:mod:`.mass`) with the normal mass taken off the contact candidates (mass
-redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and the damping
-of the optional absorbing layer (:class:`.dynamic_layer.AbsorbingLayer`), factorizes the effective
-matrix once (:func:`.solver.factorize_scaled`); :meth:`DynamicImpactSetup.march` steps the
-striker (mass M, X(0) = 0, X'(0) = v0) and the body with unilateral contact at the surface
-nodes, frictionless or (``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha,
-rho_inf = 0.9 by default; Newmark average acceleration with ``spectral_radius=None``). The time
-step is set by the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
-unconditionally stable.
+(:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles the
+consistent mass (:func:`.elasticity.consistent_mass`) with the normal mass taken off the contact
+candidates (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact
+force) and the damping of the optional absorbing layer (:class:`.dynamic_layer.AbsorbingLayer`),
+factorizes the effective matrix once (:func:`.solver.factorize_scaled`);
+:meth:`DynamicImpactSetup.march` steps the striker (mass M, X(0) = 0, X'(0) = v0) and the body
+with unilateral contact at the surface nodes, frictionless or (``friction``) bonded or Coulomb
+(:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by default; Newmark average acceleration with
+``spectral_radius=None``). The time step is set by the accuracy wanted over the impact, t_y /
+``steps``: both schemes are implicit and unconditionally stable.
 
 Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
 entering or leaving excites; Newmark conserves the discrete energy exactly but leaves them
@@ -55,8 +55,11 @@ from .elasticity import (
     ElasticSystem,
     assemble,
     compressibility,
+    consistent_mass,
     deviatoric_stiffness,
     divergence_coupling,
+    redistribute_normal_mass,
+    weighted_mass,
 )
 from .impact_run import (
     MAX_STEPS,
@@ -69,7 +72,6 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
 from .mesh import MAX_DOFS, growth_error, halfspace_mesh
 from .solver import Factorization, factorize_scaled
 from .stepper import (

@@ -72,6 +72,7 @@ from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, NumericalFailureError, validate_poisson, validate_positive
 from .contact import EDGE_MARGIN
+from .elasticity import consistent_mass, redistribute_normal_mass
 from .finite_contact import (
     FINITE_BASE,
     FINITE_MESH,
@@ -97,7 +98,6 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mass import consistent_mass, redistribute_normal_mass
 from .mesh import MeshSettings
 from .rubber import GentLockError, RubberModel, gent_locks
 from .stepper import TimeScheme
