@@ -78,8 +78,8 @@ def test_a_bonded_step_failure_beyond_the_validated_depth_names_the_limit():
     """The pad struck by z = 8 r^1.3 (x/a 2.29) fails near separation with friction 0.5 (its
     last ring in contact slides back and folds the surface; 2 min on a coarse mesh, not run
     here): the message names x/a beyond 1.2 and the options, not the time steps."""
-    from shtaerman.fem.finite_dynamic import _step_failure
     from shtaerman.fem.hyperelastic import NewtonError
+    from shtaerman.fem.stepper import _step_failure
 
     indenter = PowerLawIndenter(8.0, 1.3)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.49))
