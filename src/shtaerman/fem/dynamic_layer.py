@@ -25,9 +25,9 @@ return to the contact before the striker separates.
 
 The dynamic impact on a layer of thickness H on a rigid base: the layer 0 <= r <= L, -H <= z <= 0
 (``meshes/layer.geo``) is meshed like the dynamic half-space near the contact (the same size field
-from the refined zone and toward the axis), with at least ``THICKNESS_ELEMENTS`` elements through
+from the refined zone and toward the axis), with at least ``LAYER_ELEMENTS`` elements through
 the thickness at the contact (scaled with the mesh size; more than the static layer's, for the waves
-through it) and at most ``LARGEST_THICKNESS_SIZE`` times fewer anywhere. The base reflects every
+through it) and at most ``LAYER_LARGEST_SIZE`` times fewer anywhere. The base reflects every
 wave: bonded, u = 0; lubricated, u_z = 0 (free to slide).
 
 Waves guided along the layer stay resolved out to its edge (the element size is capped by the
@@ -86,9 +86,9 @@ __all__ = [
     "layer_impact_mesh",
 ]
 
-THICKNESS_ELEMENTS = 8.0
+LAYER_ELEMENTS = 8.0
 """Elements through the thickness at the contact at the default size."""
-LARGEST_THICKNESS_SIZE = 4.0
+LAYER_LARGEST_SIZE = 4.0
 """Largest element size over the size through the thickness at the contact."""
 LATERAL_RATE = 10.0
 """Peak damping rate zeta_max t_y of a layer's lateral absorber when ``layer_rate`` is 0."""
@@ -96,9 +96,7 @@ MAX_LATERAL = 3000.0
 """Farthest edge of the lateral absorber, in thicknesses (beyond it: no absorber)."""
 _SIZE = 1.0 / 40.0
 """The dynamic default mesh size (``DynamicSettings.size``), at which the layer has
-``THICKNESS_ELEMENTS`` elements through its thickness at the contact."""
-_TRIANGLES_PER_SQUARE = 2.3
-"""Triangles of gmsh per area h^2 (the calibration of :mod:`.mesh`'s layer estimate)."""
+``LAYER_ELEMENTS`` elements through its thickness at the contact."""
 _AXIS_GROWTH = 0.1
 """Growth of the element size from the axis (as on the dynamic half-space)."""
 
@@ -198,7 +196,7 @@ def _check_thickness(thickness: float, refined: float) -> None:
 
 def _thickness_size(settings: DynamicSettings) -> float:
     """Element size through the thickness at the contact, m."""
-    return settings.thickness / THICKNESS_ELEMENTS * settings.size / _SIZE
+    return settings.thickness / LAYER_ELEMENTS * settings.size / _SIZE
 
 
 def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
@@ -231,6 +229,6 @@ def layer_impact_mesh(settings: DynamicSettings, refined: float, extent: float) 
         axis_size=min(settings.axis_size, settings.size) * refined,
         axis_growth=_AXIS_GROWTH,
         thickness_size=_thickness_size(settings),
-        largest_size=LARGEST_THICKNESS_SIZE * _thickness_size(settings),
+        largest_size=LAYER_LARGEST_SIZE * _thickness_size(settings),
         bonded=settings.base == "bonded",
     )
