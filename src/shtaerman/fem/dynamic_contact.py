@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import BilinearForm, MeshTri, asm
+from skfem import MeshTri
 from threadpoolctl import threadpool_limits
 
 from ..guards import check_reach
@@ -51,13 +51,10 @@ from .dynamic_layer import (
     layer_impact_mesh,
 )
 from .elasticity import (
-    TWO_PI,
     ElasticSystem,
     assemble,
-    compressibility,
     consistent_mass,
-    deviatoric_stiffness,
-    divergence_coupling,
+    mixed_matrix,
     redistribute_normal_mass,
     weighted_mass,
 )
@@ -418,21 +415,8 @@ def _inner_energy_matrices(system: ElasticSystem, radius: float) -> tuple[sp.csr
     inner = np.flatnonzero(np.hypot(centroids[0], centroids[1]) < radius)
     ubasis = system.displacement_basis.with_elements(inner)
     pbasis = system.pressure_basis.with_elements(inner)
-    nu, e_mod = system.poisson_ratio, system.youngs_modulus
-    a = asm(deviatoric_stiffness(system.shear_modulus), ubasis)
-    b = asm(divergence_coupling, ubasis, pbasis)
-    inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
-    c = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
-    stiffness = sp.bmat([[a, b.T], [b, c]], format="csr")
-
-    @BilinearForm
-    def unit_mass(u, v, w):
-        return TWO_PI * w.x[0] * (u[0] * v[0] + u[1] * v[1])
-
-    m = asm(unit_mass, ubasis)
-    n_p = system.n_dofs - system.n_displacement
-    mass = sp.block_diag([m, sp.csr_matrix((n_p, n_p))], format="csr")
-    return stiffness, mass
+    stiffness = mixed_matrix(ubasis, pbasis, system.youngs_modulus, system.poisson_ratio)
+    return stiffness, weighted_mass(system, lambda r, z: np.ones_like(r), ubasis)
 
 
 @dataclass(frozen=True, eq=False)

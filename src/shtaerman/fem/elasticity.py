@@ -68,6 +68,7 @@ __all__ = [
     "deviatoric_stiffness",
     "divergence_coupling",
     "dof_nodes",
+    "mixed_matrix",
     "normal_surface_mass",
     "postprocess",
     "pressure_load",
@@ -233,17 +234,28 @@ def assemble(mesh: MeshTri, youngs_modulus: float, poisson_ratio: float) -> Elas
     nu = validate_poisson("poisson_ratio", poisson_ratio)
     ubasis = Basis(mesh, ElementVector(ElementTriP2()))
     pbasis = ubasis.with_element(ElementTriP1())
-    stiffness = asm(deviatoric_stiffness(e_mod / (2.0 * (1.0 + nu))), ubasis)
+    exterior = None
     if "base" in mesh.boundaries:  # a layer on a lubricated base: the exterior beyond r = L
-        stiffness = stiffness + _exterior_layer(ubasis, e_mod / (2.0 * (1.0 + nu)))
-    coupling = asm(divergence_coupling, ubasis, pbasis)
-    inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
-    pressure_block = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
-    matrix = sp.bmat([[stiffness, coupling.T], [coupling, pressure_block]], format="csr")
+        exterior = _exterior_layer(ubasis, e_mod / (2.0 * (1.0 + nu)))
+    matrix = mixed_matrix(ubasis, pbasis, e_mod, nu, exterior)
     fixed = clamped_dofs(ubasis)
     # the fields in order: the bases, the moduli, the matrix, the clamped and the surface dofs
     surface = _surface(mesh, ubasis, fixed)
     return ElasticSystem(mesh, ubasis, pbasis, e_mod, nu, matrix, fixed, *surface)
+
+
+def mixed_matrix(
+    ubasis: Basis, pbasis: Basis, e_mod: float, nu: float, exterior: sp.spmatrix | None = None
+) -> sp.csr_matrix:
+    """The mixed u-p matrix [[A, B^T], [B, -C]] of E ``e_mod`` (Pa) and ``nu`` on the bases
+    (the whole body's, or some of its elements'), ``exterior`` added to A (N/m)."""
+    stiffness = asm(deviatoric_stiffness(e_mod / (2.0 * (1.0 + nu))), ubasis)
+    if exterior is not None:
+        stiffness = stiffness + exterior
+    coupling = asm(divergence_coupling, ubasis, pbasis)
+    inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
+    pressure_block = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
+    return sp.bmat([[stiffness, coupling.T], [coupling, pressure_block]], format="csr")
 
 
 def clamped_dofs(ubasis: Basis) -> np.ndarray:
@@ -513,7 +525,7 @@ def _von_mises(sigma_rr, sigma_zz, sigma_tt, sigma_rz) -> np.ndarray:
 
 
 def weighted_mass(
-    system: ElasticSystem, weight: Callable[[np.ndarray], np.ndarray]
+    system: ElasticSystem, weight: Callable[[np.ndarray], np.ndarray], ubasis: Basis | None = None
 ) -> sp.csr_matrix:
     """Matrix int w(R) u . v 2 pi r dA on the full [u, p] dofs (zero pressure block).
 
@@ -522,6 +534,8 @@ def weighted_mass(
     system : ElasticSystem
     weight : callable
         w(r, z), vectorised, e.g. the density (kg/m^3) or density times a damping rate (kg/m^3/s).
+    ubasis : skfem.Basis, optional
+        The displacement basis on some of the elements (default: the system's, all of them).
 
     Returns
     -------
@@ -534,7 +548,7 @@ def weighted_mass(
         r = w.x[0]
         return TWO_PI * r * weight(w.x[0], w.x[1]) * (u[0] * v[0] + u[1] * v[1])
 
-    block = asm(form, system.displacement_basis).tocsr()
+    block = asm(form, system.displacement_basis if ubasis is None else ubasis).tocsr()
     n_pressure = system.n_dofs - system.n_displacement
     return sp.block_diag([block, sp.csr_matrix((n_pressure, n_pressure))], format="csr")
 
