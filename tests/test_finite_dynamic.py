@@ -263,7 +263,7 @@ def test_a_step_at_the_turning_point_converges_at_the_solves_noise_floor():
 
     body, k = _NoisyBody(963.56 / 0.0086582 ** (5 / 3), 5 / 3), 1.828e5
     start = body.at(0.0086582)
-    new, v = _step(body, start, 0.10693, 0.7, (1.642e-4, k), _discrete_gradient)
+    new, v = _step(body, start, (0.10693, 0.7), (1.642e-4, k), _discrete_gradient)
     # the step's exact solution, to first order: X moves by dt (v - dt P / 2M) ~ 1.6e-5 m;
     # the accepted depth is that within the noise's resolution (1e-12 of the depth ~ 1e-14 m)
     assert new.depth == pytest.approx(

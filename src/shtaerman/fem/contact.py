@@ -755,33 +755,17 @@ def press_at_rate(
     prony: PronySeries,
     rate: float,
     *,
-    steps: int = CURVE_STEPS,
     backend: str = "auto",
     aligned: bool = True,
+    steps: int = CURVE_STEPS,
 ) -> ContactCurve:
     """Press a rigid frictionless indenter z = f(r) into the viscoelastic body at ``rate``.
 
-    Parameters
-    ----------
-    system : ElasticSystem
-        The assembled body (E2, nu2 its instantaneous moduli).
-    profile : callable
-        f(r) in m of r in m, vectorised, f(0) = 0.
-    depths : numpy.ndarray
-        Depths in m, positive and increasing (checked where they entered), reached at d / V.
-    candidate_radius : float
-        Surface nodes with r <= this radius (m) may touch.
-    prony : PronySeries
-        The body's shear relaxation.
-    rate : float
-        Pressing speed V in m/s (> 0).
-    steps : int
-        Time steps from first touch to the deepest depth (:func:`time_grid`).
-    backend : str
-        Sparse solver, see :func:`shtaerman.fem.solver.factorize`.
-    aligned : bool
-        Forces of the vertex-aligned contacts at the instant's history (as
-        :func:`solve_contact`), or the nodal sums.
+    Parameters as :func:`solve_contact` (``system`` with E2, nu2 the instantaneous moduli;
+    each depth d reached at d / V; ``aligned``: the vertex-aligned forces at the instant's
+    history, or the nodal sums), with ``prony`` the body's shear relaxation, ``rate`` the
+    pressing speed V in m/s (> 0) and ``steps`` the time steps from first touch to the deepest
+    depth (:func:`time_grid`).
 
     Returns
     -------

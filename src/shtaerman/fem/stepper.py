@@ -837,16 +837,16 @@ def _mean_force(a: _State, b: _State) -> float:
 def _step(
     body: QuasiStaticBody,
     state: _State,
-    v: float,
-    mass: float,
+    striker: tuple[float, float],
     scales: tuple[float, float],
     gradient: Any = _discrete_gradient,
 ) -> tuple[_State, float]:
     """One step X_{n+1} - X_n = dt (V_n + V_{n+1}) / 2, M (V_{n+1} - V_n) = -dt G: the new
-    state and velocity. ``scales``: dt (s) and the contact stiffness guess of the secant's
-    first slope k (N/m); ``gradient``: G (N) of the states at the step's ends, the discrete
-    gradient of the stored energy or the trapezoidal rule's mean force."""
-    dt, k = scales
+    state and velocity. ``striker``: V_n (m/s) and M (kg); ``scales``: dt (s) and the contact
+    stiffness guess of the secant's first slope k (N/m); ``gradient``: G (N) of the states at
+    the step's ends, the discrete gradient of the stored energy or the trapezoidal rule's mean
+    force."""
+    (v, mass), (dt, k) = striker, scales
 
     def residual(depth: float) -> tuple[float, _State]:
         trial = body.at(depth)
@@ -915,7 +915,7 @@ def march_massless(
         nonlocal state, v, t, k
         if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
             return []
-        new, v = _step(body, state, v, mass, (dt, k), gradient)
+        new, v = _step(body, state, (v, mass), (dt, k), gradient)
         if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
             k = max((new.force - state.force) / (new.depth - state.depth), 0.0)
         state, t = body.commit(new), t + dt
