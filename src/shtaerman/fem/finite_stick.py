@@ -378,7 +378,7 @@ def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> 
     return np.where(np.isnan(held), 0.0, -forces[stepper.nodes.uz])
 
 
-def _changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
+def _stuck_changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
     """Nodes to release (tensile reaction) and nodes that touch (gap < 0; ``scale`` (m) the
     depth that measures it); when ``cautious``, only the most tensile node, or if none the
     deepest below the indenter."""
@@ -418,7 +418,8 @@ def _touch(
     stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
 ) -> np.ndarray:
     """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
-    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in _changes)."""
+    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in
+    :func:`_stuck_changes`)."""
     radius, gap, _, _ = stepper.geometry(guess, depth)
     enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
     return _held(last, last.held, enter, radius, gap)
@@ -449,7 +450,7 @@ def _load_step(
         forces = stepper.system.residual(x)
         trial = _Load(held, x, radius, gap, _reactions(stepper, forces, held), total, corrections)
         trial.forces = forces
-        release, enter = _changes(stepper, trial, scale, cautious)
+        release, enter = _stuck_changes(stepper, trial, scale, cautious)
         if not (release.any() or enter.any()):
             trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
             trial.lam = np.maximum(trial.lam, 0.0)
@@ -798,11 +799,11 @@ def solve_finite_bonded_contact(
     if start is not None and not 0.0 < start <= depths[0]:
         raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
     ladder = bonded_ladder(stepper, depths, step_ratio, start)
-    steps = _load_history(stepper, exact, depths, ladder, friction)
+    steps = _finite_ladder(stepper, exact, depths, ladder, friction)
     return FiniteContactCurve(steps, system, indenter, {"contact": time.perf_counter() - begun})
 
 
-def _load_history(
+def _finite_ladder(
     stepper: NewtonStepper,
     exact: PowerLawContact | SneddonContact,
     depths: np.ndarray,
