@@ -19,9 +19,9 @@ import time
 import numpy as np
 
 import shtaerman as sh
+from shtaerman.fem.contact import press_at_rate
 from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.viscoelastic_contact import press_at_rate
 from shtaerman.study.contact.indentation import refined_radius
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.viscoelastic import PronySeries

@@ -158,10 +158,10 @@ def browser(tmp_path_factory):
 def steps_six_and_seven_fail(monkeypatch) -> None:
     """The finite-strain impact with inertia fails its 6th and 7th step attempts (an inverted
     element): the 6th step and its first half, so the run cuts it to quarter, quarter, half."""
-    import shtaerman.fem.finite_dynamic as finite_dynamic
+    import shtaerman.fem.stepper as stepper
     from shtaerman.fem.hyperelastic import NewtonError
 
-    calls, step = [], finite_dynamic._dynamic_step
+    calls, step = [], stepper._dynamic_step
 
     def failing(*args):
         calls.append(None)
@@ -169,4 +169,4 @@ def steps_six_and_seven_fail(monkeypatch) -> None:
             raise NewtonError("an element inverted (J <= 0)")
         return step(*args)
 
-    monkeypatch.setattr(finite_dynamic, "_dynamic_step", failing)
+    monkeypatch.setattr(stepper, "_dynamic_step", failing)

@@ -20,8 +20,7 @@ from shtaerman.fem.contact import (
     solve_contact,
 )
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.schur import TailFactorization
-from shtaerman.fem.solver import factorize
+from shtaerman.fem.solver import TailFactorization, factorize
 from shtaerman.study.contact.indentation import default_depths, run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
@@ -292,7 +291,7 @@ def test_the_plain_superlu_path_gives_the_same_contact(monkeypatch, paper_run):
     # the fallback factorizes with SuperLU's own ordering and solves unit loads for the
     # compliance: the same discrete problem, so the same answer to round-off
     import shtaerman.fem.contact as contact
-    from shtaerman.fem.schur import TailPivotError
+    from shtaerman.fem.solver import TailPivotError
 
     def pivoted(*args, **kwargs):
         raise TailPivotError("no Schur complement")
@@ -342,7 +341,7 @@ def test_the_mesh_that_pivoted_now_takes_the_schur_path(pivoting_system):
 
 def test_a_pivoted_tail_falls_back_to_unit_load_solves(monkeypatch, pivoting_system):
     import shtaerman.fem.contact as contact
-    from shtaerman.fem.schur import TailPivotError
+    from shtaerman.fem.solver import TailPivotError
 
     reference = _pivoting_curve(pivoting_system)
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from shtaerman.fem.mass import redistribute_normal_mass
+from shtaerman.fem.elasticity import redistribute_normal_mass
 
 
 def test_the_mass_given_back_is_the_mass_taken_to_its_own_round_off():

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from shtaerman.fem.pattern import pattern_of
+from shtaerman.fem.solver import pattern_of
 
 
 @pytest.fixture(scope="module")

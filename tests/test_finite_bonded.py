@@ -230,20 +230,20 @@ def test_a_tensile_node_is_released_first_and_alone_when_cautious():
     node only, or if none the free node deepest below the indenter."""
     from types import SimpleNamespace
 
-    from shtaerman.fem.finite_stick import _changes, _Load
+    from shtaerman.fem.finite_stick import _Load, _stuck_changes
 
     stepper = SimpleNamespace(tolerance=1e-8)
     held = np.array([0.0, 1.0, 2.0, np.nan, np.nan])
     lam = np.array([5.0, -1.0, -2.0, 0.0, 0.0])
     gap = np.array([0.0, 0.0, 0.0, -0.1, -0.3])
     trial = _Load(held, np.zeros(1), np.arange(5.0), gap, lam)
-    release, enter = _changes(stepper, trial, 1.0, cautious=False)
+    release, enter = _stuck_changes(stepper, trial, 1.0, cautious=False)
     assert release.tolist() == [False, True, True, False, False]
     assert enter.tolist() == [False, False, False, True, True]
-    release, enter = _changes(stepper, trial, 1.0, cautious=True)
+    release, enter = _stuck_changes(stepper, trial, 1.0, cautious=True)
     assert release.tolist() == [False, False, True, False, False] and not enter.any()
     trial.lam = np.abs(lam)
-    release, enter = _changes(stepper, trial, 1.0, cautious=True)
+    release, enter = _stuck_changes(stepper, trial, 1.0, cautious=True)
     assert not release.any() and enter.tolist() == [False, False, False, False, True]
 
 

@@ -203,8 +203,8 @@ def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
 def test_a_contact_newton_failure_mid_run_is_a_numerical_failure_not_bad_input():
     from types import SimpleNamespace
 
-    from shtaerman.fem.finite_dynamic import _QuasiStaticBody
     from shtaerman.fem.hyperelastic import NewtonError
+    from shtaerman.fem.stepper import QuasiStaticBody
     from shtaerman.validation import NumericalFailureError
 
     def fails(*_args):
@@ -217,7 +217,7 @@ def test_a_contact_newton_failure_mid_run_is_a_numerical_failure_not_bad_input()
     # exit 1 with the depth and what to change, not exit 2 as if an input were out of range
     expected = r"failed at depth 0\.002 m .*finer --mesh-size"
     with pytest.raises(NumericalFailureError, match=expected):
-        _QuasiStaticBody(stepper).at(2e-3)
+        QuasiStaticBody(stepper).at(2e-3)
 
 
 def test_dynamic_help_states_the_defaults_the_model_runs_with(capsys):
@@ -247,7 +247,7 @@ class _NoisyBody:
         self.random = np.random.default_rng(7)
 
     def at(self, depth: float):
-        from shtaerman.fem.finite_dynamic import _State
+        from shtaerman.fem.stepper import _State
 
         energy = self.k * depth ** (self.q + 1) / (self.q + 1)
         energy *= 1.0 + 1e-12 * self.random.standard_normal()
@@ -259,11 +259,11 @@ def test_a_step_at_the_turning_point_converges_at_the_solves_noise_floor():
     ("step equation did not converge at depth 0.00866 m"): there the step is 1e-4 of the depth,
     and energy noise of 1e-12 x Pi makes the discrete gradient's residual ~1e-5 N, far above
     the secant tolerance (1e-10 M v / dt ~ 5e-8 N). The state below is that step's."""
-    from shtaerman.fem.finite_dynamic import _discrete_gradient, _step
+    from shtaerman.fem.stepper import _discrete_gradient, _step
 
     body, k = _NoisyBody(963.56 / 0.0086582 ** (5 / 3), 5 / 3), 1.828e5
     start = body.at(0.0086582)
-    new, v = _step(body, start, 0.10693, 0.7, (1.642e-4, k), _discrete_gradient)
+    new, v = _step(body, start, (0.10693, 0.7), (1.642e-4, k), _discrete_gradient)
     # the step's exact solution, to first order: X moves by dt (v - dt P / 2M) ~ 1.6e-5 m;
     # the accepted depth is that within the noise's resolution (1e-12 of the depth ~ 1e-14 m)
     assert new.depth == pytest.approx(

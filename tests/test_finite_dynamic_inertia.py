@@ -160,14 +160,14 @@ def test_bad_spectral_radius_is_refused(rho_inf):
 
 
 def test_a_failing_step_names_the_time_and_the_remedy(monkeypatch):
-    import shtaerman.fem.finite_dynamic as finite_dynamic
+    import shtaerman.fem.stepper as stepper
     from shtaerman.fem.hyperelastic import NewtonError
     from shtaerman.validation import InputError, NumericalFailureError
 
     def fail(*args):
         raise NewtonError("an element inverted (J <= 0)")
 
-    monkeypatch.setattr(finite_dynamic, "_dynamic_step", fail)
+    monkeypatch.setattr(stepper, "_dynamic_step", fail)
     # valid input the solver cannot follow: a numerical failure (CLI exit 1), not bad input (2)
     with pytest.raises(
         NumericalFailureError, match=r"from t = 0 s .*inverted.*cut 4 times.*--density2 0"

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import shtaerman as sh
-import shtaerman.fem.finite_dynamic as finite_dynamic
+import shtaerman.fem.stepper as stepper
 from shtaerman.cli import main
 from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.impact import run_impact
@@ -49,7 +49,7 @@ def frictionless_trapezoidal():
     frictionless body's own discrete gradient differs from it by O(dt^2) ~ 1e-3 here, more
     than the friction's effect)."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(finite_dynamic, "_discrete_gradient", finite_dynamic._mean_force)
+        patch.setattr(stepper, "_discrete_gradient", stepper._mean_force)
         return _run(None)
 
 

@@ -19,9 +19,8 @@ import pytest
 import shtaerman as sh
 from shtaerman.api.layer_impact import quasi_static_layer_impact
 from shtaerman.cli import main
-from shtaerman.fem.absorbing import AbsorbingLayer
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.fem.dynamic_layer import LATERAL_RATE, MAX_LATERAL, lateral_absorber
+from shtaerman.fem.dynamic_layer import LATERAL_RATE, MAX_LATERAL, AbsorbingLayer, lateral_absorber
 from shtaerman.fem.impact import run_impact
 from shtaerman.output.text_dynamic import study_findings
 from shtaerman.study.run import run_study

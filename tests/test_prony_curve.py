@@ -8,10 +8,9 @@ import pytest
 from scipy.integrate import quad
 
 import shtaerman as sh
-from shtaerman.fem.contact import solve_contact
+from shtaerman.fem.contact import press_at_rate, solve_contact, time_grid
 from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.viscoelastic_contact import press_at_rate, time_grid
 from shtaerman.study.contact.indentation import default_depths, refined_radius
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.viscoelastic import (

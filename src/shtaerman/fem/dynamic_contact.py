@@ -2,16 +2,16 @@
 half-space (elastodynamic FEM).
 
 :func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
-(:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles
-the consistent mass (:mod:`.mass`) with the normal mass taken off the contact candidates
-(mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact force) and
-the damping of the optional absorbing layer (:mod:`.absorbing`), factorizes the effective
-matrix once (:func:`.solver.factorize_scaled`); :meth:`DynamicImpactSetup.march` steps the
-striker (mass M, X(0) = 0, X'(0) = v0) and the body with unilateral contact at the surface
-nodes, frictionless or (``friction``) bonded or Coulomb (:mod:`.stepper`: generalized-alpha,
-rho_inf = 0.9 by default; Newmark average acceleration with ``spectral_radius=None``). The time
-step is set by the accuracy wanted over the impact, t_y / ``steps``: both schemes are implicit and
-unconditionally stable.
+(:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles the
+consistent mass (:func:`.elasticity.consistent_mass`) with the normal mass taken off the contact
+candidates (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact
+force) and the damping of the optional absorbing layer (:class:`.dynamic_layer.AbsorbingLayer`),
+factorizes the effective matrix once (:func:`.solver.factorize_scaled`);
+:meth:`DynamicImpactSetup.march` steps the striker (mass M, X(0) = 0, X'(0) = v0) and the body
+with unilateral contact at the surface nodes, frictionless or (``friction``) bonded or Coulomb
+(:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by default; Newmark average acceleration with
+``spectral_radius=None``). The time step is set by the accuracy wanted over the impact, t_y /
+``steps``: both schemes are implicit and unconditionally stable.
 
 Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
 entering or leaving excites; Newmark conserves the discrete energy exactly but leaves them
@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import BilinearForm, MeshTri, asm
+from skfem import MeshTri
 from threadpoolctl import threadpool_limits
 
 from ..guards import check_reach
@@ -42,18 +42,24 @@ from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
-from .absorbing import AbsorbingLayer
 from .contact import mass_factor
-from .dynamic_layer import check_layer, lateral_absorber, layer_dofs, layer_impact_mesh
+from .dynamic_layer import (
+    AbsorbingLayer,
+    check_layer,
+    lateral_absorber,
+    layer_dofs,
+    layer_impact_mesh,
+)
 from .elasticity import (
-    TWO_PI,
     ElasticSystem,
     assemble,
-    compressibility,
-    deviatoric_stiffness,
-    divergence_coupling,
+    consistent_mass,
+    mixed_matrix,
+    redistribute_normal_mass,
+    weighted_mass,
 )
 from .impact_run import (
+    MAX_STEPS,
     ImpactRun,
     finished_run,
     fitted_peak,
@@ -63,9 +69,7 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mass import consistent_mass, redistribute_normal_mass, weighted_mass
-from .mesh import halfspace_mesh
-from .mesh_budget import growth_error
+from .mesh import MAX_DOFS, growth_error, halfspace_mesh
 from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
@@ -75,7 +79,7 @@ from .stepper import (
     TimeScheme,
     march,
 )
-from .stick_slip import CoupledCompliance, radial_dofs
+from .stick import CoupledCompliance, radial_dofs
 from .viscoelastic import ViscoelasticShear, sizing_impact, viscoelastic_shear
 
 __all__ = [
@@ -87,8 +91,6 @@ __all__ = [
     "prepare_dynamic_impact",
 ]
 
-MAX_DOFS = 400_000
-"""Largest mesh accepted (estimated before meshing), in dofs."""
 MAX_DENSE_CORRECTION = 400e6
 """Largest dense W = K_eff^-1 S in bytes; a larger one is refused (InputError)."""
 DYNAMIC_ACCURACY_CHECK = 1e-6
@@ -96,7 +98,6 @@ DYNAMIC_ACCURACY_CHECK = 1e-6
 stricter fallbacks of :func:`.solver.factorize_scaled`."""
 MIN_STEPS = 50
 """Fewest time steps per quasi-static impact duration t_y accepted."""
-MAX_STEPS = 100_000
 
 
 def validate_friction(friction: object) -> float | None:
@@ -147,7 +148,7 @@ class DynamicSettings:
         Peak damping rate zeta_max times t_y, >= 0. 0: no layer (the clamped far arc lies
         ``domain`` refined radii away, beyond the reach of the waves during the run). At
         nu = 0.5 any viscous layer also damps the quasi-static near field
-        (:mod:`.absorbing`).
+        (:class:`.dynamic_layer.AbsorbingLayer`).
     tail : float
         Stepping after separation, in units of R_a / c_R: the energy left inside R_a then is
         the reflected energy (0 disables the tail and the measurement).
@@ -414,21 +415,8 @@ def _inner_energy_matrices(system: ElasticSystem, radius: float) -> tuple[sp.csr
     inner = np.flatnonzero(np.hypot(centroids[0], centroids[1]) < radius)
     ubasis = system.displacement_basis.with_elements(inner)
     pbasis = system.pressure_basis.with_elements(inner)
-    nu, e_mod = system.poisson_ratio, system.youngs_modulus
-    a = asm(deviatoric_stiffness(system.shear_modulus), ubasis)
-    b = asm(divergence_coupling, ubasis, pbasis)
-    inverse_bulk = 3.0 * (1.0 - 2.0 * nu) / e_mod
-    c = asm(compressibility(inverse_bulk), pbasis) if inverse_bulk > 0 else None
-    stiffness = sp.bmat([[a, b.T], [b, c]], format="csr")
-
-    @BilinearForm
-    def unit_mass(u, v, w):
-        return TWO_PI * w.x[0] * (u[0] * v[0] + u[1] * v[1])
-
-    m = asm(unit_mass, ubasis)
-    n_p = system.n_dofs - system.n_displacement
-    mass = sp.block_diag([m, sp.csr_matrix((n_p, n_p))], format="csr")
-    return stiffness, mass
+    stiffness = mixed_matrix(ubasis, pbasis, system.youngs_modulus, system.poisson_ratio)
+    return stiffness, weighted_mass(system, lambda r, z: np.ones_like(r), ubasis)
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,15 +1,38 @@
-"""The dynamic impact on a layer of thickness H on a rigid base: its mesh and lateral absorber.
+"""The edges of the dynamic body: the absorbing layer, and a layer's mesh and lateral absorber.
 
-The layer 0 <= r <= L, -H <= z <= 0 (``meshes/layer.geo``) is meshed like the dynamic
-half-space near the contact (the same size field from the refined zone and toward the axis),
-with at least ``THICKNESS_ELEMENTS`` elements through the thickness at the contact (scaled
-with the mesh size; more than the static layer's, for the waves through it) and at most
-``LARGEST_THICKNESS_SIZE`` times fewer anywhere. The base
-reflects every wave: bonded, u = 0; lubricated, u_z = 0 (free to slide).
+The absorbing layer (:class:`AbsorbingLayer`) is mass-proportional damping growing with
+distance. On the half-space it is optional (off by default, see
+``DynamicSettings.layer_rate``): the graded mesh extends 10^4 refined radii, far enough that
+nothing returns during an impact. When used, the layer follows
+Semblat, Lenti and Gandomzadeh 2011 ("a simple multi-directional absorbing layer method"):
+from the radius R_a outward the body gets a viscous damping force -rho zeta(R) v, either a
+sin^2 bump of finite width (the default shape) or
+
+    zeta(R) = zeta_max min(1, (R - R_a) / L)^2,   R = sqrt(r^2 + z^2),
+
+a quadratic ramp over one shear wavelength L = c_s t_y (smooth, so the ramp itself reflects
+little), then constant. A wave entering the plateau decays by exp(-zeta_max / (2 c)) per metre.
+
+Mass-proportional damping leaves the stiffness untouched: the static response of the
+truncated body is exactly that of the undamped one. But at nu = 0.5 the pressure is
+instantaneous (c_p infinite): the quasi-static near field has a velocity ~ dP/dt / (G R) at
+every distance, and a layer damps it too, whatever its distance; hence no layer by default.
+Lysmer-Kuhlemeyer dashpots carry a normal impedance rho c_p that is infinite at nu = 0.5 (a
+rigid normal constraint): only their tangential part absorbs.
+
+R_a is placed beyond c_s t_y / 2 (times a safety factor), so no wave reflected at the layer can
+return to the contact before the striker separates.
+
+The dynamic impact on a layer of thickness H on a rigid base: the layer 0 <= r <= L, -H <= z <= 0
+(``meshes/layer.geo``) is meshed like the dynamic half-space near the contact (the same size field
+from the refined zone and toward the axis), with at least ``LAYER_ELEMENTS`` elements through
+the thickness at the contact (scaled with the mesh size; more than the static layer's, for the waves
+through it) and at most ``LAYER_LARGEST_SIZE`` times fewer anywhere. The base reflects every
+wave: bonded, u = 0; lubricated, u_z = 0 (free to slide).
 
 Waves guided along the layer stay resolved out to its edge (the element size is capped by the
 thickness), so unlike the half-space's graded fan the mesh absorbs nothing: a layer always
-has the lateral absorber of :mod:`.absorbing` (zeta_max t_y = ``layer_rate``, or
+has the lateral absorber (:class:`AbsorbingLayer`, zeta_max t_y = ``layer_rate``, or
 ``LATERAL_RATE`` when it is 0), a function of r alone from R_a = ``layer_start`` c_s t_y over
 the width ``layer_width`` c_s t_y. The edge r = L lies beyond it and at least
 ``LAYER_EXTENT`` thicknesses out (clamped, or the exterior spring of a lubricated base,
@@ -20,13 +43,15 @@ edge is at ``LAYER_EXTENT`` thicknesses.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Protocol
 
+import numpy as np
 from skfem import MeshTri
 
 from ..theory.layer import BASES
 from ..validation import InputError, validate_positive
-from .absorbing import AbsorbingLayer
 from .mesh import (
     DOFS_PER_ELEMENT,
     LAYER_EXTENT,
@@ -53,6 +78,7 @@ class DynamicSettings(Protocol):
 __all__ = [
     "LATERAL_RATE",
     "MAX_LATERAL",
+    "AbsorbingLayer",
     "check_layer",
     "check_layer_rate",
     "lateral_absorber",
@@ -60,9 +86,9 @@ __all__ = [
     "layer_impact_mesh",
 ]
 
-THICKNESS_ELEMENTS = 8.0
+LAYER_ELEMENTS = 8.0
 """Elements through the thickness at the contact at the default size."""
-LARGEST_THICKNESS_SIZE = 4.0
+LAYER_LARGEST_SIZE = 4.0
 """Largest element size over the size through the thickness at the contact."""
 LATERAL_RATE = 10.0
 """Peak damping rate zeta_max t_y of a layer's lateral absorber when ``layer_rate`` is 0."""
@@ -70,11 +96,51 @@ MAX_LATERAL = 3000.0
 """Farthest edge of the lateral absorber, in thicknesses (beyond it: no absorber)."""
 _SIZE = 1.0 / 40.0
 """The dynamic default mesh size (``DynamicSettings.size``), at which the layer has
-``THICKNESS_ELEMENTS`` elements through its thickness at the contact."""
-_TRIANGLES_PER_SQUARE = 2.3
-"""Triangles of gmsh per area h^2 (the calibration of :mod:`.mesh`'s layer estimate)."""
+``LAYER_ELEMENTS`` elements through its thickness at the contact."""
 _AXIS_GROWTH = 0.1
 """Growth of the element size from the axis (as on the dynamic half-space)."""
+
+
+@dataclass(frozen=True)
+class AbsorbingLayer:
+    """Damping profile of the absorbing layer (SI units).
+
+    Attributes
+    ----------
+    start : float
+        R_a in m: the damping is zero inside R < R_a.
+    ramp : float
+        L in m: zeta rises as ((R - R_a)/L)^2 over R_a <= R <= R_a + L.
+    rate : float
+        zeta_max in 1/s, the plateau (or bump peak) damping rate.
+    width : float or None
+        W in m: a bump zeta = zeta_max sin^2(pi (R - R_a) / W) on R_a < R < R_a + W, zero
+        beyond; None: the ramp-plateau profile.
+    lateral : bool
+        True: R is the radius r alone (the lateral absorber of a layer on a rigid base, whose
+        base reflects); False: R = sqrt(r^2 + z^2).
+    """
+
+    start: float
+    ramp: float
+    rate: float
+    width: float | None = None
+    lateral: bool = False
+
+    def damping_rate(self, r: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """zeta(R) in 1/s at points (r, z) in m."""
+        distance = np.abs(r) if self.lateral else np.hypot(r, z)
+        phase = np.clip((distance - self.start) / self.ramp, 0.0, 1.0)
+        if self.width is None:
+            return self.rate * phase**2
+        inside = (distance > self.start) & (distance < self.start + self.width)
+        return np.where(
+            inside, self.rate * np.sin(np.pi * (distance - self.start) / self.width) ** 2, 0.0
+        )
+
+    def weight(self, density: float) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+        """rho zeta(R) in kg/(m^3 s), the weight of the damping matrix."""
+        return lambda r, z: density * self.damping_rate(r, z)
 
 
 def check_layer(thickness: float | None, base: str) -> None:
@@ -130,7 +196,7 @@ def _check_thickness(thickness: float, refined: float) -> None:
 
 def _thickness_size(settings: DynamicSettings) -> float:
     """Element size through the thickness at the contact, m."""
-    return settings.thickness / THICKNESS_ELEMENTS * settings.size / _SIZE
+    return settings.thickness / LAYER_ELEMENTS * settings.size / _SIZE
 
 
 def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
@@ -163,6 +229,6 @@ def layer_impact_mesh(settings: DynamicSettings, refined: float, extent: float) 
         axis_size=min(settings.axis_size, settings.size) * refined,
         axis_growth=_AXIS_GROWTH,
         thickness_size=_thickness_size(settings),
-        largest_size=LARGEST_THICKNESS_SIZE * _thickness_size(settings),
+        largest_size=LAYER_LARGEST_SIZE * _thickness_size(settings),
         bonded=settings.base == "bonded",
     )

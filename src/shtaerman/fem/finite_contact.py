@@ -60,7 +60,7 @@ from ..theory.materials import Material
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..validation import InputError, NumericalFailureError, validate_poisson
 from .contact import EDGE_MARGIN, central_pressure, edge_radius
-from .elasticity import dof_nodes
+from .elasticity import clamped_dofs, dof_nodes
 from .hyperelastic import (
     HyperelasticSystem,
     NeoHookean,
@@ -68,9 +68,8 @@ from .hyperelastic import (
     assemble_hyperelastic,
 )
 from .mesh import MeshSettings
-from .pattern import Pattern
 from .rubber import RubberModel, gent_locks
-from .solver import PatternSolver
+from .solver import Pattern, PatternSolver
 
 __all__ = [
     "FINITE_MESH",
@@ -78,6 +77,7 @@ __all__ = [
     "FiniteContactCurve",
     "FiniteContactStep",
     "check_finite_depths",
+    "extrapolate",
     "run_finite_indentation",
     "solve_finite_contact",
 ]
@@ -179,32 +179,27 @@ class _Candidates:
     radius: np.ndarray
     ur_free: np.ndarray  # False on the axis (u_r clamped)
 
-
-def _candidates(system: HyperelasticSystem, radius: float, fixed: np.ndarray) -> _Candidates:
-    ubasis = system.displacement_basis
-    partner = np.full(ubasis.N, -1, dtype=np.int64)
-    partner[ubasis.nodal_dofs[1]] = ubasis.nodal_dofs[0]
-    partner[ubasis.facet_dofs[1]] = ubasis.facet_dofs[0]
-    uz = ubasis.get_dofs("surface").all("u^2")
-    uz = np.setdiff1d(uz, ubasis.get_dofs("far").all())
-    r = ubasis.doflocs[0, uz]
-    keep = r <= radius * (1 + 1e-12)
-    uz, r = uz[keep], r[keep]
-    order = np.argsort(r)
-    uz, r = uz[order], r[order]
-    if r.size % 2 == 0 or r[0] != 0.0:
-        raise InputError(
-            "candidate_radius must fall on a surface vertex of the mesh (the refined radius)"
-        )
-    ur = partner[uz]
-    return _Candidates(uz, ur, r, ~np.isin(ur, fixed))
-
-
-def _clamped(system: HyperelasticSystem) -> np.ndarray:
-    ubasis = system.displacement_basis
-    axis = ubasis.get_dofs("axis").all("u^1")
-    far = ubasis.get_dofs("far").all()
-    return np.union1d(axis, far).astype(np.int64)
+    @classmethod
+    def of(cls, system: HyperelasticSystem, radius: float, fixed: np.ndarray) -> _Candidates:
+        """The surface nodes with R <= ``radius`` (m) of ``system`` (``fixed``: its clamped
+        dofs)."""
+        ubasis = system.displacement_basis
+        partner = np.full(ubasis.N, -1, dtype=np.int64)
+        partner[ubasis.nodal_dofs[1]] = ubasis.nodal_dofs[0]
+        partner[ubasis.facet_dofs[1]] = ubasis.facet_dofs[0]
+        uz = ubasis.get_dofs("surface").all("u^2")
+        uz = np.setdiff1d(uz, ubasis.get_dofs("far").all())
+        r = ubasis.doflocs[0, uz]
+        keep = r <= radius * (1 + 1e-12)
+        uz, r = uz[keep], r[keep]
+        order = np.argsort(r)
+        uz, r = uz[order], r[order]
+        if r.size % 2 == 0 or r[0] != 0.0:
+            raise InputError(
+                "candidate_radius must fall on a surface vertex of the mesh (the refined radius)"
+            )
+        ur = partner[uz]
+        return cls(uz, ur, r, ~np.isin(ur, fixed))
 
 
 def _surface_mass(x: np.ndarray) -> np.ndarray:
@@ -284,11 +279,11 @@ class NewtonStepper:
     ) -> None:
         self.system = system
         self.indenter = indenter
-        self.fixed = _clamped(system)
+        self.fixed = clamped_dofs(system.displacement_basis)
         self.free = np.setdiff1d(np.arange(system.n_dofs), self.fixed)
         self.position = np.full(system.n_dofs, -1, dtype=np.int64)
         self.position[self.free] = np.arange(self.free.size)
-        self.nodes = _candidates(system, candidate_radius, self.fixed)
+        self.nodes = _Candidates.of(system, candidate_radius, self.fixed)
         self.n_free_u = int(np.searchsorted(self.free, system.n_displacement))
         self.pattern, self.take = system.pattern.submatrix(self.free)
         self.curvature_at = self.pattern.diagonal[self.position[self.nodes.ur[self.nodes.ur_free]]]
@@ -634,7 +629,7 @@ def _reach(
         trial = min(done + increment, target)
         if target - trial < 1e-9 * target:
             trial = target
-        guess_x, guess_lam = _predict(history, trial)
+        guess_x, guess_lam = extrapolate(history, trial)
         reach = predict_reach(stepper.nodes.radius, history, trial, law) if cuts == 0 else None
         try:
             x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam, reach=reach)
@@ -677,8 +672,9 @@ def check_smallest_depth(
         )
 
 
-def _predict(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
-    """Linear extrapolation in depth from the last two converged states."""
+def extrapolate(history: list, depth: float) -> tuple[np.ndarray, np.ndarray]:
+    """The solution x and the multipliers lambda >= 0 (N) at ``depth`` (m), extrapolated
+    linearly in depth from the last two converged states (depth, x, lambda) of ``history``."""
     d1, x1, lam1 = history[-1]
     if len(history) < 2:
         return x1, lam1

@@ -76,8 +76,7 @@ from .finite_contact import (
     tip_exponent,
 )
 from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled
-from .stick_slip import worst_only
+from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
 
 __all__ = [
     "RELEASE_BAND",
@@ -162,6 +161,26 @@ def _targets(stepper: NewtonStepper, held: np.ndarray, depth: float) -> tuple[np
     return slaves, values, moved
 
 
+def _shift(
+    stepper: NewtonStepper, x: np.ndarray, slaves: np.ndarray, values: np.ndarray
+) -> np.ndarray:
+    """The increment (m, free dofs) that puts the prescribed ``slaves`` of ``x`` on their
+    ``values``, zero elsewhere."""
+    shift = np.zeros(stepper.pattern.size)
+    shift[slaves] = values - x[stepper.free][slaves]
+    return shift
+
+
+def _shifted_load(
+    stepper: NewtonStepper, residual: np.ndarray, tangent: np.ndarray, shift: np.ndarray
+) -> np.ndarray:
+    """The free dofs' ``residual`` (N) plus the ``tangent``'s response to ``shift`` (m); no
+    sparse matrix is built for a zero shift (every Newton iteration after the first)."""
+    if not np.any(shift):
+        return residual
+    return residual + stepper.pattern.matrix(tangent) @ shift
+
+
 def _newton_stuck(
     stepper: NewtonStepper, trial: _Load, depth: float, scale: float
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
@@ -233,8 +252,7 @@ def _newton(
             continue
         halvings = 0
         reuse = _reusable(stepper, slaves, corrections, fresh)
-        shift = np.zeros(stepper.pattern.size)
-        shift[slaves] = values - x[stepper.free][slaves]
+        shift = _shift(stepper, x, slaves, values)
         try:
             du = _stuck_step(stepper, x, state, (slaves, moved, shift), reuse)
         except RuntimeError as error:
@@ -313,7 +331,7 @@ def _stuck_step(
         tangent, again = stepper.system.tangent_data(x, state)[stepper.take], None
     else:
         tangent, again = reuse
-    load = residual + pattern.matrix(tangent) @ shift if np.any(shift) else residual
+    load = _shifted_load(stepper, residual, tangent, shift)
     load[slaves] = 0.0
     if again is not None:
         return again(-load) + shift
@@ -360,7 +378,7 @@ def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> 
     return np.where(np.isnan(held), 0.0, -forces[stepper.nodes.uz])
 
 
-def _changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
+def _stuck_changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
     """Nodes to release (tensile reaction) and nodes that touch (gap < 0; ``scale`` (m) the
     depth that measures it); when ``cautious``, only the most tensile node, or if none the
     deepest below the indenter."""
@@ -400,7 +418,8 @@ def _touch(
     stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
 ) -> np.ndarray:
     """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
-    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in _changes)."""
+    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in
+    :func:`_stuck_changes`)."""
     radius, gap, _, _ = stepper.geometry(guess, depth)
     enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
     return _held(last, last.held, enter, radius, gap)
@@ -431,7 +450,7 @@ def _load_step(
         forces = stepper.system.residual(x)
         trial = _Load(held, x, radius, gap, _reactions(stepper, forces, held), total, corrections)
         trial.forces = forces
-        release, enter = _changes(stepper, trial, scale, cautious)
+        release, enter = _stuck_changes(stepper, trial, scale, cautious)
         if not (release.any() or enter.any()):
             trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
             trial.lam = np.maximum(trial.lam, 0.0)
@@ -495,9 +514,8 @@ def _slide_newton(
             reduced, again = _reduced(stepper, tangent, slaves, moved), None
         else:
             tangent, reduced, again = reuse
-        shift = np.zeros(pattern.size)
-        shift[slaves] = values - x[stepper.free][slaves]
-        load = residual[stepper.free] + pattern.matrix(tangent) @ shift
+        shift = _shift(stepper, x, slaves, values)
+        load = _shifted_load(stepper, residual[stepper.free], tangent, shift)
         load[slaves] = -shift[slaves]
         try:
             du, dlam = eliminate_gaps(
@@ -730,14 +748,6 @@ class HistoryStepper(BondedStepper):
         self.committed, self.normal, self.warm = load, normal, {}
 
 
-def _predict(previous: _Load | None, last: _Load, ratio: float) -> np.ndarray:
-    """Linear extrapolation of the solution to the next load step (``ratio``: the step's
-    depth increment over the last one)."""
-    if previous is None:
-        return last.x
-    return last.x + ratio * (last.x - previous.x)
-
-
 def solve_finite_bonded_contact(
     system: HyperelasticSystem,
     indenter: PowerLawIndenter,
@@ -789,11 +799,11 @@ def solve_finite_bonded_contact(
     if start is not None and not 0.0 < start <= depths[0]:
         raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
     ladder = bonded_ladder(stepper, depths, step_ratio, start)
-    steps = _load_history(stepper, exact, depths, ladder, friction)
+    steps = _finite_ladder(stepper, exact, depths, ladder, friction)
     return FiniteContactCurve(steps, system, indenter, {"contact": time.perf_counter() - begun})
 
 
-def _load_history(
+def _finite_ladder(
     stepper: NewtonStepper,
     exact: PowerLawContact | SneddonContact,
     depths: np.ndarray,
@@ -809,8 +819,9 @@ def _load_history(
     previous, done, previous_depth = None, 0.0, 0.0
     wanted, steps, taken = set(depths.tolist()), [], 0
     for depth in map(float, ladder):
-        ratio = (depth - done) / (done - previous_depth) if previous is not None else 0.0
-        guess = _predict(previous, last, ratio)
+        guess = last.x  # extrapolated linearly from the last two load steps
+        if previous is not None:
+            guess = last.x + (depth - done) / (done - previous_depth) * (last.x - previous.x)
         try:
             if math.isinf(friction):
                 state = _load_step(stepper, last, guess, (depth, depth))

@@ -51,9 +51,9 @@ import numpy as np
 
 from ..theory.viscoelastic import PronySeries
 from .hyperelastic import HESSIAN_TERMS, HyperelasticSystem, Kinematics
+from .viscoelastic import RelaxationStep
 
 __all__ = [
-    "RelaxationStep",
     "ViscoelasticBody",
     "contract",
     "first_piola",
@@ -115,47 +115,6 @@ def _add_volume_hessian(tangent: np.ndarray, kin: Kinematics, scale: np.ndarray,
     if log:  # volume_gradient = dJ/dF / J
         Jg = kin.volume_gradient
         tangent -= (scale[..., None, None]) * np.einsum("k...,m...->...km", Jg, Jg)
-
-
-@dataclass(frozen=True)
-class RelaxationStep:
-    """The per-term constants of a step dt (arrays over the terms).
-
-    Attributes
-    ----------
-    gain, decay, ramp : numpy.ndarray
-        g_i, exp(-dt/tau_i) and r_i = (tau_i/dt)(1 - exp(-dt/tau_i)).
-    scale : float
-        c = g_inf + sum_i g_i r_i: the instantaneous isochoric stress' factor over the step.
-    """
-
-    gain: np.ndarray
-    decay: np.ndarray
-    ramp: np.ndarray
-    scale: float
-
-    @classmethod
-    def of(cls, prony: PronySeries, dt: float) -> RelaxationStep:
-        """The constants of ``prony`` for a step of ``dt`` s."""
-        gain, tau = np.asarray(prony.weights, dtype=float), np.asarray(prony.times, dtype=float)
-        x = dt / tau
-        decay = np.exp(-x)
-        ramp = -np.expm1(-x) / x
-        return cls(gain, decay, ramp, prony.g_inf + float(gain @ ramp))
-
-    def history(self, branches: np.ndarray, iso: np.ndarray) -> np.ndarray:
-        """T^n = sum_i [exp(-dt/tau_i) H_i^n - g_i r_i S0^n] (Pa) from H^n (terms, 4, ...) and
-        S0^n (4, ...)."""
-        return np.tensordot(self.decay, branches, axes=1) - float(self.gain @ self.ramp) * iso
-
-    def advance(self, branches: np.ndarray, iso: np.ndarray, new_iso: np.ndarray) -> np.ndarray:
-        """H^{n+1} (terms, 4, ...) from H^n, S0^n and S0^{n+1} (Pa)."""
-        change = new_iso - iso
-        weights = self.gain * self.ramp
-        return (
-            self.decay.reshape(-1, *[1] * iso.ndim) * branches
-            + weights.reshape(-1, *[1] * iso.ndim) * change
-        )
 
 
 @dataclass

@@ -41,14 +41,12 @@ The Cauchy stress is sigma = P F^T / J with P the 3x3 first Piola-Kirchhoff stre
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 from skfem import (
     Basis,
-    BilinearForm,
     DiscreteField,
     ElementTriP1,
     ElementTriP2,
@@ -59,8 +57,8 @@ from skfem import (
 )
 
 from ..validation import InputError, validate_poisson, validate_positive
-from .pattern import Pattern, pattern_of
-from .solver import factorize
+from .elasticity import TWO_PI, scalar_mass
+from .solver import Pattern, factorize, pattern_of
 
 __all__ = [
     "HyperelasticSystem",
@@ -74,7 +72,6 @@ __all__ = [
     "variation",
 ]
 
-TWO_PI = 2.0 * math.pi
 N_COMPONENTS = 5
 """(F_rR, F_rZ, F_zR, F_zZ, F_tt)."""
 
@@ -442,7 +439,7 @@ class HyperelasticSystem:
         rhs = np.column_stack(
             [asm(_projection, self.pressure_basis, s=value) for value in components.values()]
         )
-        values = factorize(asm(_mass, self.pressure_basis), backend="superlu").solve(rhs)
+        values = factorize(asm(scalar_mass, self.pressure_basis), backend="superlu").solve(rhs)
         nodal = self.pressure_basis.nodal_dofs[0]
         out = {name: values[nodal, k] for k, name in enumerate(components)}
         rr, tt, zz, rz = (out[k] for k in components)
@@ -461,11 +458,6 @@ class HyperelasticSystem:
 @LinearForm
 def _projection(v, w):
     return np.asarray(w.s) * v
-
-
-@BilinearForm
-def _mass(u, v, _):
-    return u * v
 
 
 def assemble_hyperelastic(mesh: MeshTri, material: NeoHookean) -> HyperelasticSystem:

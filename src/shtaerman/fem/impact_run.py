@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from .viscoelastic import ShearMemory, ViscoelasticShear
 
 __all__ = [
+    "MAX_STEPS",
     "SUMMARY_KEYS",
     "ImpactRun",
     "finished_run",
@@ -38,6 +39,8 @@ __all__ = [
     "validate_steps",
 ]
 
+MAX_STEPS = 100_000
+"""Most time steps per quasi-static impact duration t_y of an impact run (either body)."""
 SUMMARY_KEYS = (
     *("x_max", "P_max", "t_x_max", "t_contact", "v_out", "restitution"),
     *("energy_radiated_fraction", "energy_balance_error", "reflected_energy_fraction"),

@@ -6,12 +6,26 @@ Every factorization of :mod:`shtaerman.fem` is made here:
   diagonal pivots, stricter pivoting if needed) or MKL PARDISO through the optional
   ``pypardiso`` package (``pip install shtaerman[pardiso]``).
 - :class:`OrderedLU`: SuperLU in a given symmetric order (natural columns, diagonal pivots),
-  for instance :func:`nested_dissection` of the mesh-node graph; :mod:`.schur` builds on it.
+  for instance :func:`nested_dissection` of the mesh-node graph; :class:`TailFactorization`
+  builds on it.
 - :func:`factorize_scaled`: row-max scaled, nested-dissection ordered, checked against a
   tolerance, with :func:`factorize` as the fallback (the dynamic effective matrix).
 - :class:`PatternSolver`: many matrices of one sparsity pattern, ordered once (Newton).
 - Scalings (:func:`symmetric_scaling`, :func:`row_max_scaling`) that take the units out of
   the pivots, and the componentwise backward error (:func:`backward_error`).
+
+The contact solver needs the surface compliance C = (K^-1)_tt on the candidate contact dofs t.
+:class:`TailFactorization` orders those dofs last in the elimination, so that the trailing
+block of the LU factors is the Schur complement S = K_tt - K_ti K_ii^-1 K_it = L_tt U_tt and
+C = S^-1: the compliance falls out of the factorization at the cost of one small dense
+inversion, instead of one solve per candidate dof (:class:`OrderedLU` in nested-dissection
+order with the tail moved to the end, scaled by :func:`symmetric_scaling`).
+
+Newton's method assembles the same element connectivity at every iteration, and scipy's COO to
+CSR/CSC conversion sorts the element entries every time. A :class:`Pattern` does the sort
+once: :func:`pattern_of` returns it and, for every element entry, its index in ``data``; an
+assembly is then one ``np.bincount``. Submatrices (free dofs), symmetric permutations (a
+fill-reducing ordering) and transposes become fixed gathers of ``data`` too.
 
 Factorize once per matrix and reuse the object for every right-hand side: ``solve`` takes a
 vector or a 2-D array of many right-hand sides (one per column).
@@ -23,16 +37,18 @@ import contextlib
 import importlib.util
 import warnings
 from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar, Protocol
 
 import numpy as np
 import pymetis
+import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..signals import call_trapping
 from ..validation import InputError, caller_stacklevel
-from .pattern import Pattern
 
 __all__ = [
     "ACCURACY_CHECK",
@@ -40,14 +56,18 @@ __all__ = [
     "Factorization",
     "OrderedLU",
     "PardisoFactorization",
+    "Pattern",
     "PatternSolver",
     "ScaledFactorization",
     "SuperLUFactorization",
+    "TailFactorization",
+    "TailPivotError",
     "available_backends",
     "backward_error",
     "factorize",
     "factorize_scaled",
     "nested_dissection",
+    "pattern_of",
     "row_max_scaling",
     "solution_backward_error",
     "symmetric_scaling",
@@ -562,3 +582,170 @@ def _upper_triangle_with_diagonal(matrix: sp.spmatrix) -> sp.csr_matrix:
     )
     result.sort_indices()
     return result
+
+
+class TailPivotError(RuntimeError):
+    """The tail-ordered factorization gives no usable Schur complement (fall back)."""
+
+
+class TailFactorization(OrderedLU):
+    """LU of a square sparse matrix with the ``tail`` unknowns eliminated last.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix
+        Square, nonsingular (symmetric indefinite for the mixed system).
+    tail : numpy.ndarray
+        Indices of the unknowns to eliminate last (the contact candidates).
+    groups : numpy.ndarray
+        Group (mesh node) of each unknown, for the ordering.
+
+    Raises
+    ------
+    TailPivotError
+        If the factorization is inaccurate or pivoted the tail (use :mod:`.solver` instead).
+    """
+
+    backend = "superlu-schur"
+
+    def __init__(self, matrix: sp.spmatrix, tail: np.ndarray, groups: np.ndarray) -> None:
+        n = matrix.shape[0]
+        self.tail = np.asarray(tail, dtype=np.int64)
+        is_tail = np.zeros(n, dtype=bool)
+        is_tail[self.tail] = True
+        order = nested_dissection(matrix, groups)
+        order = np.concatenate([order[~is_tail[order]], self.tail])
+        super().__init__(matrix, order, symmetric_scaling(matrix))
+        start = n - self.tail.size
+        if not np.array_equal(self.lu.perm_r[start:], np.arange(start, n)):
+            raise TailPivotError("the factorization pivoted the tail rows; no Schur complement")
+        if backward_error(matrix, self) > ACCURACY_CHECK:
+            raise TailPivotError("tail-ordered factorization is inaccurate")
+
+    def tail_inverse(self) -> np.ndarray:
+        """(K^-1)_tt = S^-1 = U_tt^-1 L_tt^-1 (dense, in tail order).
+
+        S = K_tt - K_ti K_ii^-1 K_it = L_tt U_tt is the trailing block of the factors.
+        """
+        k = self.tail.size
+        lower = self.lu.L[:, -k:][-k:].toarray()
+        upper = self.lu.U[:, -k:][-k:].toarray()
+        inverse_lower = la.solve_triangular(lower, np.eye(k), lower=True, unit_diagonal=True)
+        d = self.scale[-k:]
+        return d[:, None] * la.solve_triangular(upper, inverse_lower, lower=False) * d[None, :]
+
+
+@dataclass(frozen=True, eq=False)
+class Pattern:
+    """Structure of a square sparse matrix in CSC form, rows sorted within each column.
+
+    Attributes
+    ----------
+    indptr : numpy.ndarray
+        (size + 1,) start of each column in ``data``.
+    indices : numpy.ndarray
+        (nnz,) row of each stored entry.
+    size : int
+        Number of rows and columns.
+    """
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    size: int
+
+    @property
+    def nnz(self) -> int:
+        """Number of stored entries (explicit zeros included)."""
+        return int(self.indices.size)
+
+    @cached_property
+    def columns(self) -> np.ndarray:
+        """(nnz,) column of each stored entry."""
+        return np.repeat(np.arange(self.size), np.diff(self.indptr))
+
+    @cached_property
+    def _keys(self) -> np.ndarray:
+        return self.columns.astype(np.int64) * self.size + self.indices
+
+    @cached_property
+    def diagonal(self) -> np.ndarray:
+        """(size,) index in ``data`` of each diagonal entry (all must be stored)."""
+        return self.find(np.arange(self.size), np.arange(self.size))
+
+    @cached_property
+    def transpose(self) -> np.ndarray:
+        """Gather ``data[transpose]``: the data of A^T in this (symmetric) pattern."""
+        return self.find(self.columns, self.indices)
+
+    def find(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """Index in ``data`` of the entries (rows, cols).
+
+        Raises
+        ------
+        KeyError
+            If an entry is not in the pattern.
+        """
+        keys = np.asarray(cols, dtype=np.int64) * self.size + np.asarray(rows)
+        where = np.minimum(np.searchsorted(self._keys, keys), self.nnz - 1)
+        if not np.array_equal(self._keys[where], keys):
+            raise KeyError("entries outside the sparsity pattern")
+        return where
+
+    def matrix(self, data: np.ndarray) -> sp.csc_matrix:
+        """The CSC matrix with this pattern and values ``data`` (not copied)."""
+        matrix = sp.csc_matrix((data, self.indices, self.indptr), shape=(self.size, self.size))
+        matrix.has_sorted_indices = True
+        return matrix
+
+    def row_max(self, data: np.ndarray) -> np.ndarray:
+        """(size,) max_j data_ij per row (``data`` non-negative; no empty rows).
+
+        A scatter-max over the rows (``np.maximum.at``): 2.1 ms against 5.2 ms for the gather
+        ``data[transpose]`` and a segmented max on a 38,639-dof Newton tangent (1.1e6
+        entries), the same values (a max does not round).
+        """
+        largest = np.zeros(self.size)
+        np.maximum.at(largest, self.indices, data)
+        return largest
+
+    def submatrix(self, keep: np.ndarray) -> tuple[Pattern, np.ndarray]:
+        """The pattern of A[keep][:, keep] and the gather ``take`` with its data = data[take].
+
+        ``keep`` is increasing, so rows stay sorted.
+        """
+        position = np.full(self.size, -1, dtype=np.int64)
+        position[keep] = np.arange(keep.size)
+        inside = (position[self.indices] >= 0) & (position[self.columns] >= 0)
+        take = np.flatnonzero(inside)
+        counts = np.bincount(position[self.columns[take]], minlength=keep.size)
+        indices = position[self.indices[take]].astype(np.int32)
+        return Pattern(_pointers(counts), indices, int(keep.size)), take
+
+    def permuted(self, order: np.ndarray) -> tuple[Pattern, np.ndarray]:
+        """The pattern of A[order][:, order] and the gather ``take`` with its data = data[take]."""
+        inverse = np.empty_like(order)
+        inverse[order] = np.arange(order.size)
+        pattern, where = pattern_of(inverse[self.indices], inverse[self.columns], self.size)
+        take = np.empty_like(where)
+        take[where] = np.arange(where.size)
+        return pattern, take
+
+
+def pattern_of(rows: np.ndarray, cols: np.ndarray, size: int) -> tuple[Pattern, np.ndarray]:
+    """The pattern of the entries (rows, cols) of a size x size matrix, duplicates summed.
+
+    Returns
+    -------
+    pattern : Pattern
+    where : numpy.ndarray
+        Index in ``data`` of each entry: ``np.bincount(where, values, pattern.nnz)`` assembles.
+    """
+    keys = np.asarray(cols, dtype=np.int64).ravel() * size + np.asarray(rows).ravel()
+    unique, where = np.unique(keys, return_inverse=True)
+    counts = np.bincount(unique // size, minlength=size)
+    return Pattern(_pointers(counts), (unique % size).astype(np.int32), size), where
+
+
+def _pointers(counts: np.ndarray) -> np.ndarray:
+    """CSC column pointers (int32, as SuperLU takes them) from the entries per column."""
+    return np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)

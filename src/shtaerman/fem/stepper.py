@@ -27,7 +27,7 @@ any load; the gap is enforced at n+1.
 
 A bonded (no slip) or Coulomb striker (``friction`` of :class:`ImpactProblem`: inf or mu >= 0)
 adds the candidates' u_r dofs: each step is then the static bonded or Coulomb contact
-(:func:`.stick_slip.stick_slip_step`) against the effective stiffness with the step's load,
+(:func:`.stick.stick_slip_step`) against the effective stiffness with the step's load,
 A = (1 - a_f) (S'^T K_eff^-1 S' + the striker's term on the u_z block), S' injecting u_z and
 u_r, reach the clearance f - X_pred - u_z,pred and radial offset u_r,pred; the stuck radii and
 slip directions are committed at the end of the step. The shear enters the alpha-weighted
@@ -44,25 +44,41 @@ at step n+1 over the nodes sliding then, mu F |du_r| >= 0), and the rest as the 
 numerical dissipation, of which the contact
 term -1/2 (F_n + F_{n+1}) . (g_{n+1} - g_n) is computed separately (for Newmark the two agree
 to round-off).
+
+The rubber at finite strain (:mod:`.finite_dynamic`, whose docstring states the schemes) steps
+here too: the massless body by the discrete gradient of its stored energy, or the trapezoidal
+rule on the contact force where the body relaxes or the contact has friction
+(:func:`march_massless`, a static contact of :class:`QuasiStaticBody` per evaluation of the
+striker's step equation); the body with inertia by the Wood-Bossak-Zienkiewicz scheme,
+:meth:`TimeScheme.bossak` (generalized-alpha with alpha_f = 0), each step a contact Newton of
+the body with its inertial terms (:func:`inertial_system`) inside a secant on the striker's
+equation, a failing step cut in halves (:func:`march_inertial`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
+from ..guards import MAX_DEPTH_RATIO, depth_ratio
 from ..validation import InputError, NumericalFailureError
 from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
-from .elasticity import ElasticSystem
+from .elasticity import ElasticSystem, consistent_mass, redistribute_normal_mass
+from .finite_contact import ContactOutgrowsMeshError, NewtonStepper, extrapolate
+from .finite_stick import HistoryStepper
+from .finite_viscoelastic import ViscoelasticBody
+from .hyperelastic import NewtonError
 from .impact_run import march_steps
+from .rubber import GentLockError, gent_locks
 from .solver import Factorization
-from .stick_slip import CoupledCompliance, StickState, stick_slip_step
+from .stick import CoupledCompliance, StickState, stick_slip_step
 
 if TYPE_CHECKING:
     from .viscoelastic import ShearMemory, ViscoelasticShear
@@ -73,10 +89,15 @@ __all__ = [
     "ImpactHistory",
     "ImpactProblem",
     "ImpactState",
+    "QuasiStaticBody",
     "Striker",
     "TimeScheme",
     "advance",
+    "far_kinetic",
+    "inertial_system",
     "march",
+    "march_inertial",
+    "march_massless",
 ]
 
 ENERGY_NAMES = (
@@ -677,3 +698,563 @@ def _unstable(balance: float, state: ImpactState, problem: ImpactProblem, where:
         f"balance off by {abs(balance):.1e} of M v0^2/2{where}): dt = {problem.scheme.dt:.3g} s "
         f"with this scheme does not keep the contact stable; {SMALL_STEP_CURE}"
     )
+
+
+# --- the finite-strain body: massless, and with inertia (Bossak) ----------------------------------
+
+SECANT_TOLERANCE = 1e-10
+"""The step's scalar equation is solved to |residual| <= this * M v0 / dt."""
+MAX_SECANT = 30
+DEPTH_RESOLUTION = 1e-12
+"""A secant update below this x the depth (with inertia: x the quasi-static x_c) is converged:
+the contact solves carry noise of their Newton tolerance, which keeps the step's residual above
+SECANT_TOLERANCE where the step is small (the massless turning point: the discrete gradient over
+a step of ~1e-4 of the depth) or the contact set flips between two converged states (a Coulomb
+edge node near separation)."""
+MAX_HALVINGS = 6
+MAX_STEP_CUTS = 4
+"""Halvings of a time step of the body with inertia whose Newton or secant failed."""
+MAX_BACKTRACKS = 10
+"""Halvings of a Newton update of the body with inertia that inverts an element (damped Newton)."""
+
+
+@dataclass
+class _State:
+    """A converged static contact at depth X (m): solution, multipliers, force (N), stored
+    energy and, for a relaxing body at a committed step, the dissipated energy (J)."""
+
+    depth: float
+    x: np.ndarray
+    lam: np.ndarray
+    force: float
+    energy: float
+    dissipated: float = 0.0
+
+
+class QuasiStaticBody:
+    """The massless body: the static contact state at any depth, warm-started.
+
+    A viscoelastic body (:class:`.finite_viscoelastic.ViscoelasticBody`) is solved with the
+    history of its committed steps, its relaxation over steps of ``dt`` (s; this object is its
+    clock); it is ``relaxing`` when some g_i > 0 (with every g_i = 0 it is elastic).
+    """
+
+    def __init__(self, stepper: NewtonStepper, dt: float | None = None) -> None:
+        self.stepper = stepper
+        n = stepper.system.n_dofs
+        self.zero = _State(0.0, np.zeros(n), np.zeros(stepper.nodes.radius.size), 0.0, 0.0)
+        self.history = [self.zero]
+        self.iterations = 0
+        self.dt = dt
+        self.deepest = 0.0  # the largest committed depth (m)
+        system = stepper.system
+        self.viscous = isinstance(system, ViscoelasticBody)
+        self.relaxing = self.viscous and any(g > 0.0 for g in system.prony.weights)
+        self.frictional = isinstance(stepper, HistoryStepper)
+        self.history_dependent = self.relaxing or self.frictional
+        if self.viscous:
+            system.clock = self
+        if self.relaxing:  # its unloading releases the contact under a history: damped Newton
+            stepper.backtracks = MAX_BACKTRACKS
+
+    def at(self, depth: float) -> _State:
+        """The static state at ``depth`` (m); an elastic body's is 0 without contact (depth
+        <= 0), a relaxing body's is solved at every depth (its history deforms it)."""
+        if depth <= 0.0 and not self.relaxing:  # no contact: the free striker at this depth
+            return _State(depth, self.zero.x, self.zero.lam, 0.0, 0.0)
+        try:
+            return self._solve(depth, MAX_HALVINGS)
+        except GentLockError as error:  # the rubber's limit, an input: --gent-limit
+            if error.parameter == "gent_limit":
+                raise
+            limit = self.stepper.system.material.gent_limit
+            raise GentLockError.locking(limit, depth) from None
+        except NewtonError as error:  # the run's numerics, not its input
+            raise NumericalFailureError(
+                f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
+                "is strained beyond what this mesh resolves: a finer --mesh-size, more "
+                "--time-steps or a lower --velocity (on a pad: a thicker --thickness)"
+            ) from error
+
+    def accept(self, state: _State) -> None:
+        """Keep ``state`` as the newest converged one (the predictor's base)."""
+        self.history = [*self.history[-1:], state]
+
+    def commit(self, state: _State) -> _State:
+        """``state`` as the end of a time step: a relaxing body's and a bonded or Coulomb
+        contact's history committed, and the stored and dissipated energies (J) there; an
+        elastic frictionless body's ``state`` unchanged."""
+        if not self.history_dependent:
+            return state
+        system, stepper = self.stepper.system, self.stepper
+        if self.frictional and (state.depth > 0.0 or self.relaxing):  # else: the run ends
+            stepper.commit(state.x)
+        dissipated = getattr(stepper, "dissipated", 0.0)
+        if self.relaxing:
+            system.commit(state.x)
+            self.deepest = max(self.deepest, state.depth)
+            state = replace(state, energy=system.energy(state.x))
+            dissipated += system.dissipated
+        return replace(state, dissipated=dissipated)
+
+    def _solve(self, depth: float, halvings: int) -> _State:
+        states = [(state.depth, state.x, state.lam) for state in self.history]
+        guess_x, guess_lam = extrapolate(states, depth)
+        # a relaxing body's corrections measured on the deepest depth (it unloads to X <= 0)
+        scale = max(depth, self.deepest) if self.relaxing else None
+        try:
+            x, lam, iterations, _ = self.stepper.solve(depth, guess_x, guess_lam, scale)
+        except NewtonError as error:
+            last = self.history[-1]
+            locked = gent_locks(error, self.stepper.system, last.x, depth, last=halvings == 0)
+            if locked is not None:
+                raise locked from None
+            if halvings == 0:
+                raise
+            middle = 0.5 * (depth + last.depth)
+            if middle <= 0.0 and not self.relaxing:
+                raise
+            self.accept(self._solve(middle, halvings - 1))
+            return self._solve(depth, halvings - 1)
+        self.iterations += iterations
+        energy = self.stepper.system.energy(x)
+        return _State(depth, x, lam, float(lam.sum()), energy)
+
+
+def _discrete_gradient(a: _State, b: _State) -> float:
+    """(Pi_b - Pi_a) / (X_b - X_a) in N; the mean force when the depths nearly coincide."""
+    step = b.depth - a.depth
+    if abs(step) <= 1e-7 * max(abs(a.depth), abs(b.depth), 1e-300):
+        return 0.5 * (a.force + b.force)
+    return (b.energy - a.energy) / step
+
+
+def _mean_force(a: _State, b: _State) -> float:
+    """(P_a + P_b) / 2 in N: the trapezoidal rule's force over a step."""
+    return 0.5 * (a.force + b.force)
+
+
+def _step(
+    body: QuasiStaticBody,
+    state: _State,
+    striker: tuple[float, float],
+    scales: tuple[float, float],
+    gradient: Any = _discrete_gradient,
+) -> tuple[_State, float]:
+    """One step X_{n+1} - X_n = dt (V_n + V_{n+1}) / 2, M (V_{n+1} - V_n) = -dt G: the new
+    state and velocity. ``striker``: V_n (m/s) and M (kg); ``scales``: dt (s) and the contact
+    stiffness guess of the secant's first slope k (N/m); ``gradient``: G (N) of the states at
+    the step's ends, the discrete gradient of the stored energy or the trapezoidal rule's mean
+    force."""
+    (v, mass), (dt, k) = striker, scales
+
+    def residual(depth: float) -> tuple[float, _State]:
+        trial = body.at(depth)
+        return 2.0 * mass * ((depth - state.depth) / dt - v) / dt + gradient(state, trial), trial
+
+    scale = mass * max(abs(v), 1e-300) / dt
+    # the linearized step: 2 M / dt^2 (D - dt v) + P_n + k D / 2 = 0 for D = X_{n+1} - X_n
+    slope = 2.0 * mass / dt**2 + 0.5 * k
+    start = state.depth + (2.0 * mass * v / dt - state.force) / slope
+    limits = (SECANT_TOLERANCE * scale, lambda d: DEPTH_RESOLUTION * max(abs(d), abs(state.depth)))
+    depth, new = _secant(residual, (start, slope, mass / dt**2), limits, state.depth)
+    return new, 2.0 * (depth - state.depth) / dt - v
+
+
+def _secant(
+    residual: Callable[[float], tuple[float, Any]],
+    start: tuple[float, float, float],
+    limits: tuple[float, Callable[[float], float]],
+    depth: float,
+) -> tuple[float, Any]:
+    """The striker's depth X_{n+1} (m) at the end of a step, by a secant on the step's
+    equation ``residual``(X) (N, and the body's state there), and that state.
+
+    ``start``: the first X (m), the first slope and the least slope (N/m; the step's own
+    slope is at least the striker's inertia: half of it is kept); ``limits``: the residual's
+    tolerance (N) and, of X, the update (m) at the contact solves' noise floor; ``depth`` X_n.
+    """
+    d0, slope, least = start
+    r0, got = residual(d0)
+    for _ in range(MAX_SECANT):
+        if abs(r0) <= limits[0]:
+            return d0, got
+        d1 = d0 - r0 / slope
+        if abs(d1 - d0) <= limits[1](d0):  # at the solves' noise floor
+            return d0, got
+        r1, got = residual(d1)
+        if d1 != d0:
+            slope = max((r1 - r0) / (d1 - d0), least)
+        d0, r0 = d1, r1
+    raise NumericalFailureError(
+        f"the striker's step equation did not converge at depth {depth:g} m; raise the time steps"
+    )
+
+
+def march_massless(
+    body: QuasiStaticBody, mass: float, velocity: float, dt: float, scales: tuple[float, float]
+) -> tuple[tuple[np.ndarray, ...], float | None]:
+    """Step from first touch until the striker leaves (or the longest run).
+
+    An elastic frictionless body steps by the discrete gradient of its stored energy, until X
+    is back to 0. A relaxing body, or a bonded or Coulomb contact, has no stored energy
+    function of X: it steps by the trapezoidal rule on the contact force (second order, as
+    Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
+    its history committed at every step, until the force vanishes with the striker
+    rebounding. ``scales``: the longest run (s) and q of P ~ X^q. Returns the columns t, X,
+    V, P, stored energy and, for a viscoelastic body or a contact with friction, the body's
+    kinetic (0) and dissipated energies (SI); and the separation time (s; None for an elastic
+    frictionless body, nan if the run ended first).
+    """
+    duration, exponent = scales
+    state, v, t, k = body.zero, velocity, 0.0, 0.0
+    extra = (0.0, 0.0) if body.viscous or body.frictional else ()
+    gradient = _mean_force if body.history_dependent else _discrete_gradient
+
+    def step() -> list[tuple[tuple, bool]]:
+        nonlocal state, v, t, k
+        if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
+            return []
+        new, v = _step(body, state, (v, mass), (dt, k), gradient)
+        if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
+            k = max((new.force - state.force) / (new.depth - state.depth), 0.0)
+        state, t = body.commit(new), t + dt
+        if state.depth > 0:
+            body.accept(state)
+        row = (t, state.depth, v, state.force, state.energy)
+        row += (0.0, state.dissipated) if extra else ()
+        ended = (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
+        return [(row, body.history_dependent and ended)]
+
+    table, separation = march_steps(step, (0.0, 0.0, v, 0.0, 0.0, *extra), exponent)
+    return tuple(table.T), (separation if body.history_dependent else None)
+
+
+# --- the body with inertia --------------------------------------------------------------------
+
+
+class _InertialSystem:
+    """The hyperelastic system seen by the contact Newton during one Bossak step.
+
+    Residual R(x) + M ((1 - a_m) a(x) + a_m a_n) with a(x) = (x - x_hat) / (beta dt^2) (N),
+    tangent K_T(x) + (1 - a_m) / (beta dt^2) M; everything else is the static system's.
+    """
+
+    def __init__(self, system: Any, mass: sp.csr_matrix, scheme: TimeScheme) -> None:
+        self.static = system
+        self.mass = mass
+        self.alpha_m, self.beta, self.gamma = scheme.alpha_m, scheme.beta, scheme.gamma
+        self.dt = scheme.dt  # halved where a step is cut
+        coo = mass.tocoo()
+        self.mass_data = np.zeros(system.pattern.nnz)
+        np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
+        self.x_hat = np.zeros(system.n_dofs)
+        self.a_n = np.zeros(system.n_dofs)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.static, name)
+
+    def acceleration(self, x: np.ndarray) -> np.ndarray:
+        """a_{n+1} (m/s^2) of the step ending at x."""
+        return (x - self.x_hat) / (self.beta * self.dt**2)
+
+    def residual(self, x: np.ndarray, state: Any = None) -> np.ndarray:
+        """Internal plus inertial forces (N) and the pressure equation (m^3)."""
+        inertia = (1.0 - self.alpha_m) * self.acceleration(x) + self.alpha_m * self.a_n
+        return self.static.residual(x, state) + self.mass @ inertia
+
+    def tangent_data(self, x: np.ndarray, state: Any = None) -> np.ndarray:
+        """The effective tangent's data in the system's pattern (N/m)."""
+        factor = (1.0 - self.alpha_m) / (self.beta * self.dt**2)
+        return self.static.tangent_data(x, state) + factor * self.mass_data
+
+
+@dataclass
+class _Dynamic:
+    """State at a step: body x, v, a; multipliers; striker X (m), V (m/s), A (m/s^2); Pi (J);
+    ``previous`` the body x and striker X (m) of the step before, ``interval`` (s) the time
+    step that led here."""
+
+    x: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    lam: np.ndarray
+    depth: float
+    speed: float
+    accel: float
+    energy: float
+    previous: tuple[np.ndarray, float]
+    interval: float
+    dissipated: float = 0.0
+
+    def predicted(self, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
+        """The start of a step of ``dt`` (s): x and X extrapolated linearly in time, the
+        multipliers."""
+        x_old, depth_old = self.previous
+        if dt == self.interval:
+            return 2.0 * self.x - x_old, self.lam, 2.0 * self.depth - depth_old
+        ratio = dt / self.interval
+        return (
+            self.x + ratio * (self.x - x_old),
+            self.lam,
+            self.depth + ratio * (self.depth - depth_old),
+        )
+
+
+def _body_step(
+    stepper: NewtonStepper, start: tuple[np.ndarray, np.ndarray, float], depth: float, scale: float
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """The body's step against the striker at ``depth`` (m): x, lambda, Newton iterations.
+
+    ``start``: a converged x, lambda of the same step and its depth (m) (the last step's at
+    first). Every Newton starts from the last converged x, the multipliers of its loaded candidates
+    raised by c (d_last - d) where the indenter withdraws, so that the first iterate keeps
+    them on the indenter and lifts the surface with it (a first active set from the gap alone
+    releases the lightly loaded, massless candidates next to the axis and folds their small
+    elements). A failing Newton is continued in depth within the step: halved, up to
+    MAX_HALVINGS times. ``scale`` (m) measures the Newton corrections.
+    """
+    x, lam, done = start
+    total, increment, cuts = 0, depth - done, 0
+    while True:
+        trial = done + increment
+        if abs(depth - trial) <= 1e-9 * scale:
+            trial = depth
+        guess = lam + stepper.weight * max(done - trial, 0.0) * (lam > 0)
+        try:
+            x_new, lam_new, iterations, _ = stepper.solve(trial, x, guess, scale)
+        except NewtonError:
+            cuts += 1
+            if cuts > MAX_HALVINGS:
+                raise
+            increment *= 0.5
+            continue
+        x, lam, done, total = x_new, lam_new, trial, total + iterations
+        if trial == depth:
+            return x, lam, total
+        increment = depth - done if abs(2.0 * increment) > abs(depth - done) else 2 * increment
+
+
+def _dynamic_step(
+    stepper: NewtonStepper,
+    inertial: _InertialSystem,
+    state: _Dynamic,
+    mass: float,
+    scales: tuple[float, float, float],
+) -> tuple[_Dynamic, int]:
+    """One step of body and striker, and its Newton iterations.
+
+    The striker's Bossak equation M ((1 - a_m) A_{n+1} + a_m A_n) + P(X_{n+1}) = 0 is solved
+    for X_{n+1} by a secant, each evaluation a body step. ``scales``: the contact stiffness
+    guess of the first slope (N/m), the depth (m) and the force (N) scales of the tolerances.
+    """
+    alpha_m, beta, dt = inertial.alpha_m, inertial.beta, inertial.dt
+    inertial.x_hat = state.x + dt * state.v + dt**2 * (0.5 - beta) * state.a
+    inertial.a_n = state.a
+    big_hat = state.depth + dt * state.speed + dt**2 * (0.5 - beta) * state.accel
+    stiffness = mass * (1.0 - alpha_m) / (beta * dt**2)
+    k, depth_scale, force_scale = scales
+    load = mass * alpha_m * state.accel
+    iterations, latest = 0, state.predicted(dt)
+
+    def residual(depth: float) -> tuple[float, tuple[np.ndarray, np.ndarray]]:
+        nonlocal iterations, latest
+        x, lam, count = _body_step(stepper, latest, depth, depth_scale)
+        iterations, latest = iterations + count, (x, lam, depth)
+        return stiffness * (depth - big_hat) + load + float(lam.sum()), (x, lam)
+
+    slope = stiffness + k  # the linearized force P_n + k (X - X_n)
+    d0 = (stiffness * big_hat + k * state.depth - load - float(state.lam.sum())) / slope
+    limits = (SECANT_TOLERANCE * force_scale, lambda _: DEPTH_RESOLUTION * depth_scale)
+    depth, (x, lam) = _secant(residual, (d0, slope, 0.5 * stiffness), limits, state.depth)
+    return _advanced(stepper, inertial, state, (x, lam, depth, big_hat)), iterations
+
+
+def _cut_step(
+    stepper: NewtonStepper,
+    inertial: _InertialSystem,
+    state: _Dynamic,
+    mass: float,
+    scales: tuple[float, float, float],
+    cuts: int = 0,
+) -> tuple[list[_Dynamic], int]:
+    """One time step of :func:`_dynamic_step`, or where it fails, the step in two halves.
+
+    Each half is a Bossak step of dt / 2 (same alpha_m, beta, gamma), started like any step
+    from the state before it, and cut again where it fails, at most MAX_STEP_CUTS deep. The
+    halves' states are recorded as steps of their own, so the energy account holds at every
+    recorded state as with uniform steps; the second half is skipped if the first ends the
+    contact. Returns the states reached (in time order) and the converged Newton iterations.
+    A step that needs no cut is the uncut step, bit for bit.
+    """
+    try:
+        new, iterations = _dynamic_step(stepper, inertial, state, mass, scales)
+        return [new], iterations
+    except (NewtonError, NumericalFailureError):
+        if cuts == MAX_STEP_CUTS:
+            raise
+    dt = inertial.dt
+    inertial.dt = 0.5 * dt
+    try:
+        first, iterations = _cut_step(stepper, inertial, state, mass, scales, cuts + 1)
+        if _separated(first[-1]):
+            return first, iterations
+        second, more = _cut_step(stepper, inertial, first[-1], mass, scales, cuts + 1)
+    finally:
+        inertial.dt = dt
+    return first + second, iterations + more
+
+
+def _separated(state: _Dynamic) -> bool:
+    """Whether the contact has ended: no contact force, the striker rebounding."""
+    return float(state.lam.sum()) == 0.0 and state.speed < 0
+
+
+def _advanced(
+    stepper: NewtonStepper, inertial: _InertialSystem, state: _Dynamic, solved: tuple
+) -> _Dynamic:
+    """The Bossak update of velocities and accelerations from ``solved`` = (x, lambda,
+    X_{n+1} (m), the striker's predictor X_hat (m)); the body's and the contact's histories
+    committed."""
+    x, lam, depth, big_hat = solved
+    beta, gamma, dt = inertial.beta, inertial.gamma, inertial.dt
+    a = inertial.acceleration(x)
+    accel = (depth - big_hat) / (beta * dt**2)
+    body = inertial.static
+    if isinstance(body, ViscoelasticBody):
+        body.commit(x)
+    if isinstance(stepper, HistoryStepper):
+        stepper.commit(x)
+    return _Dynamic(
+        x=x,
+        v=state.v + dt * ((1.0 - gamma) * state.a + gamma * a),
+        a=a,
+        lam=lam,
+        depth=depth,
+        speed=state.speed + dt * ((1.0 - gamma) * state.accel + gamma * accel),
+        accel=accel,
+        energy=body.energy(x),
+        previous=(state.x, state.depth),
+        interval=dt,
+        dissipated=getattr(body, "dissipated", 0.0) + getattr(stepper, "dissipated", 0.0),
+    )
+
+
+def march_inertial(
+    stepper: NewtonStepper,
+    inertial: _InertialSystem,
+    striker: tuple[float, float],
+    scales: tuple[float, float, float],
+) -> tuple[tuple[np.ndarray, ...], int, float, _Dynamic]:
+    """Step from first touch until the contact force vanishes with the striker rebounding.
+
+    ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
+    run (s) and q of P ~ X^q (for the separation time between steps). Returns the columns
+    t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
+    (s; nan if the run ended first) and the last state.
+    """
+    mass, velocity = striker
+    depth_scale, duration, exponent = scales
+    zero, lam = np.zeros(inertial.static.n_dofs), np.zeros(stepper.nodes.radius.size)
+    state = _Dynamic(zero, zero, zero, lam, 0.0, velocity, 0.0, 0.0, (zero, 0.0), inertial.dt)
+    dissipative = isinstance(inertial.static, ViscoelasticBody) or isinstance(
+        stepper, HistoryStepper
+    )
+    total, k, t, deepest = 0, 0.0, 0.0, 0.0
+    force_scale = mass * velocity / inertial.dt
+
+    def step() -> list[tuple[tuple, bool]]:
+        nonlocal state, total, k, t, deepest
+        if not t < duration:
+            return []
+        try:
+            states, iterations = _cut_step(
+                stepper, inertial, state, mass, (k, depth_scale, force_scale)
+            )
+        except NewtonError as error:
+            if isinstance(error, GentLockError):  # in every cut step: the rubber locks
+                limit = stepper.system.material.gent_limit  # within the step: the depth it
+                reached = state.depth + abs(state.speed) * inertial.dt  # was going to
+                raise GentLockError.locking(limit, reached) from None
+            raise _step_failure(stepper, (t, state.depth, deepest), error) from None
+        total, rows = total + iterations, []
+        for new in states:
+            force, previous = float(new.lam.sum()), float(state.lam.sum())
+            if new.depth != state.depth:
+                k = max((force - previous) / (new.depth - state.depth), 0.0)
+            _check_candidates(stepper, new.lam, new.depth)
+            state, t, deepest = new, t + new.interval, max(deepest, new.depth)
+            body = 0.5 * float(state.v @ (inertial.mass @ state.v))
+            row = (t, state.depth, state.speed, force, state.energy, body)
+            rows.append(((*row, state.dissipated) if dissipative else row, _separated(state)))
+            if rows[-1][1]:
+                break
+        return rows
+
+    first = (0.0, 0.0, velocity, 0.0, 0.0, 0.0, *((0.0,) if dissipative else ()))
+    table, separation = march_steps(step, first, exponent)
+    return tuple(table.T), total, separation, state
+
+
+def _step_failure(
+    stepper: NewtonStepper, at: tuple[float, float, float], error: Exception
+) -> NumericalFailureError:
+    """The failure of a step from time ``at[0]`` (s) at striker depth ``at[1]`` (m), the run
+    having reached ``at[2]`` (m): with a bonded or Coulomb indenter beyond the validated x/a
+    (:data:`.guards.MAX_DEPTH_RATIO`) that limit is named (near separation the last ring in
+    contact slides back inward down the steep flank and folds the surface: the A = 8 pad,
+    x/a 2.29), else what may help."""
+    where = (
+        f"the step from t = {at[0]:.4g} s (striker depth {at[1]:.4g} m): {error}, also in "
+        f"steps cut {MAX_STEP_CUTS} times; "
+    )
+    ratio = depth_ratio(stepper.indenter, at[2])
+    if isinstance(stepper, HistoryStepper) and ratio > MAX_DEPTH_RATIO:
+        return NumericalFailureError(
+            where + f"the bonded indenter reached x/a = {ratio:.3g}, beyond the "
+            f"finite-strain contact's validated {MAX_DEPTH_RATIO:g}, where its last ring in "
+            "contact slides back along the steep striker as it leaves: a blunter striker "
+            "(a smaller --shape-coefficient or a slower --velocity) or --interface "
+            "frictionless (run beyond x/a 1.2 with a warning)"
+        )
+    return NumericalFailureError(
+        where + "the body with inertia cannot follow this impact at these settings (other "
+        "time steps may help; a striker faster than the shear waves never converges): "
+        "--density2 0 gives the massless finite-strain impact"
+    )
+
+
+def far_kinetic(inertial: _InertialSystem, v: np.ndarray) -> float:
+    """Kinetic energy (J) of the velocities ``v`` (m/s) beyond half the domain radius: what
+    the waves carried to the far arc, from where it could come back."""
+    locations = inertial.static.displacement_basis.doflocs
+    distance = np.hypot(locations[0], locations[1])
+    far = np.zeros_like(v)
+    outer = np.flatnonzero(distance > 0.5 * distance.max())
+    far[outer] = v[outer]
+    return 0.5 * float(far @ (inertial.mass @ far))
+
+
+def _check_candidates(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
+    """Refuse a contact (multipliers ``lam``, N) that reached the edge of the candidates."""
+    loaded = np.flatnonzero(lam > 0)
+    if loaded.size and loaded[-1] + EDGE_MARGIN >= lam.size:
+        r = stepper.nodes.radius
+        raise ContactOutgrowsMeshError(
+            f"depth {depth:g} m: the contact zone reaches R = {r[loaded[-1]]:.4g} m, the edge "
+            f"of the refined region ({r[-1]:.4g} m); raise the margin"
+        )
+
+
+def inertial_system(stepper: NewtonStepper, density: float, scheme: TimeScheme) -> _InertialSystem:
+    """The body's consistent mass (``density`` kg/m^3) without the normal mass of the contact
+    candidates, wrapped with the Bossak ``scheme`` around the stepper's system (which it
+    replaces in the stepper, whose Newton then back-tracks an update that inverts an element)."""
+    system = stepper.system
+    mass = redistribute_normal_mass(consistent_mass(system, density), stepper.nodes.uz)
+    inertial = _InertialSystem(system, mass, scheme)
+    if isinstance(system, ViscoelasticBody):
+        system.clock = inertial  # its step constants follow the (possibly cut) time step
+    stepper.system = inertial
+    stepper.backtracks = MAX_BACKTRACKS
+    return inertial

@@ -1,18 +1,42 @@
-"""Bonded contact (no slip, or Coulomb friction) of a rigid axisymmetric indenter, loaded in steps.
+"""Bonded (no slip) or Coulomb contact of a rigid indenter: the contact-set update of one step
+and the static contact loaded in steps.
 
 Once a surface point touches the rigid indenter it sticks to it. The indenter moves only
 vertically, so a point in contact keeps the radial displacement it had when it touched and its
-vertical one follows the indenter, u_z = f(r) - d. The contact is history dependent: it is
-solved by incremental loading over a geometric ladder of depths (ratio ``step_ratio``) from the
-depth at which the indenter reaches candidate node :data:`START_NODE` (the axis grading of the
-mesh makes it a tiny fraction of the first depth) up to the last, the requested depths
-included.
+vertical one follows the indenter. The contact is history dependent: it is solved step by step
+(load steps of the static contact, :func:`solve_bonded_contact`; time steps of the impact,
+:mod:`.stepper`), each from the contact of the step before.
 
-The surface compliance G (m/N) couples the candidates' u_z and u_r dofs: u = G f for nodal
-forces f on the body (f_z = -F for a downward contact force F >= 0). It comes from the one
-sparse factorization with both dofs of every candidate eliminated last (:mod:`.schur`). Each
-depth step is :func:`.stick_slip.stick_slip_step` with reach f(r) - d and no radial offset
-(the contact-set update the time steps of the impact share).
+In a step the candidates' displacements are affine in the nodal contact forces f on the body
+(f_z = -F for a downward contact force F >= 0 at the m candidates' u_z, f_r the shear along +r
+at their u_r dofs): u = u_step + A f, with A (m/N) symmetric positive definite
+(:class:`CoupledCompliance`): the static surface compliance (u_step = 0), or in a time step
+the compliance of the effective stiffness with the striker's own term on the u_z block.
+:func:`stick_slip_step` takes ``reach``, the u_z response (A f)_z that puts a node on the
+indenter (static: f(r) - d; a time step: the clearance f(r) - X - u_z the step leaves without
+new contact forces), a free node's gap being reach - (A f)_z, and ``offset``, the u_r the step
+gives without new contact forces (static: 0). A primal-dual active-set iteration on the nodes
+in contact:
+
+- a free node whose gap turns negative enters the contact; its radial displacement is frozen at
+  the value interpolated linearly between the last step and the current iterate, at the point
+  where its gap closes;
+- a node in contact whose normal force turns tensile is released and forgets its radial
+  displacement (it would get a new one on re-entry); should it, released in this step,
+  penetrate the indenter once free, it re-enters stuck at its current radial displacement
+  (it lets go and grips again within the step: the receding edge of a bonded contact, whose
+  node can neither stay stuck in tension nor leave);
+- with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu F slides (its shear
+  is then mu F against the direction of its slip), and a sliding node whose slip reverses
+  sticks again at its radial displacement of the last step.
+
+The static contact (:func:`solve_bonded_contact`, u_z = f(r) - d in contact) is loaded over a
+geometric ladder of depths (ratio ``step_ratio``) from the depth at which the indenter reaches
+candidate node :data:`START_NODE` (the axis grading of the mesh makes it a tiny fraction of the
+first depth) up to the last, the requested depths included. Its A is the surface compliance
+of the candidates' u_z and u_r dofs, from the one sparse factorization with both dofs of every
+candidate eliminated last (:class:`.solver.TailFactorization`); each depth step is
+:func:`stick_slip_step` with reach f(r) - d and no radial offset.
 
 The force reported is the sum of the nodal normal forces (the frictionless solver's nodal sum;
 its vertex alignment needs a history-free contact). The tangential nodal forces (N, on the
@@ -26,10 +50,13 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as la
 from threadpoolctl import threadpool_limits
 
 from ..validation import InputError, NumericalFailureError
 from .contact import (
+    MAX_ACTIVE_SET_ITERATIONS,
+    ROUND_OFF,
     ContactCurve,
     ContactStep,
     Profile,
@@ -42,16 +69,195 @@ from .contact import (
     recover_pressure,
     surface_compliance,
     tail_compliance,
+    timed_curve,
 )
 from .elasticity import ElasticSystem
-from .stick_slip import CoupledCompliance, StickState, radial_dofs, stick_slip_step
 
 __all__ = [
     "STEP_RATIO",
+    "CoupledCompliance",
+    "StickState",
     "depth_ladder",
+    "radial_dofs",
     "solve_bonded_contact",
+    "stick_slip_step",
     "unsettled",
+    "worst_only",
 ]
+
+
+@dataclass(frozen=True, eq=False)
+class CoupledCompliance:
+    """A (m/N) on [u_z of the m candidates, u_r of the candidates off the axis]."""
+
+    matrix: np.ndarray
+    radial_node: np.ndarray
+    """Candidate index of every radial dof."""
+    radial_dofs: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class StickState:
+    """The contact after one step, per candidate: ``held`` u_r (m) of the stuck nodes (NaN
+    off the contact), ``radial`` u_r (m; 0 on the axis), ``slip`` 0 (stuck or free) or the
+    direction +-1 of a sliding node; the nodal ``forces`` F and ``shear`` (N, per radial dof)
+    once solved."""
+
+    active: np.ndarray
+    held: np.ndarray
+    radial: np.ndarray
+    gap: np.ndarray
+    slip: np.ndarray
+    forces: np.ndarray | None = None
+    shear: np.ndarray | None = None
+
+    @classmethod
+    def untouched(cls, gap: np.ndarray) -> StickState:
+        """No node in contact, the surface at rest, at the candidates' ``gap`` (m)."""
+        m = gap.size
+        return cls(np.zeros(m, bool), np.full(m, np.nan), np.zeros(m), gap.copy(), np.zeros(m))
+
+
+def radial_dofs(system: ElasticSystem, candidates: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The free surface u_r dofs at the ``candidates`` radii (m, ascending), sorted by r, and
+    the candidate index of each."""
+    ubasis = system.displacement_basis
+    dofs = np.setdiff1d(ubasis.get_dofs("surface").all("u^1"), system.fixed_dofs)
+    radii = ubasis.doflocs[0, dofs]
+    keep = radii <= candidates[-1]
+    dofs, radii = dofs[keep], radii[keep]
+    order = np.argsort(radii)
+    dofs, radii = dofs[order].astype(np.int64), radii[order]
+    node = np.searchsorted(candidates, radii)
+    if not np.array_equal(candidates[np.minimum(node, candidates.size - 1)], radii):
+        raise NumericalFailureError("the surface u_r and u_z dofs do not share their nodes")
+    return dofs, node
+
+
+def _solve_stuck(
+    coupled: CoupledCompliance, steps: tuple[np.ndarray, np.ndarray], state: StickState, mu: float
+) -> tuple[np.ndarray, ...]:
+    """Nodal normal forces F (N), shear (N), the response (A f)_z (m) at the candidates and
+    u_r (m) at the radial dofs with the ``state.active`` nodes on the indenter ((A f)_z =
+    reach), stuck ones at u_r = ``state.held``, sliding ones (``state.slip`` = +-1, the
+    direction of the slip) under the shear -slip ``mu`` F; ``steps``: (reach, offset)."""
+    (reach, offset), node_of = steps, coupled.radial_node
+    m = reach.size
+    nodes = np.flatnonzero(state.active)
+    on = state.active[node_of]
+    stuck = np.flatnonzero(on & (state.slip[node_of] == 0))
+    sliding = np.flatnonzero(on & (state.slip[node_of] != 0))
+    rows = np.concatenate([nodes, m + stuck])
+    target = np.concatenate([reach[nodes], state.held[node_of[stuck]] - offset[stuck]])
+    forces, shear = np.zeros(m), np.zeros(node_of.size)
+    displacement = np.zeros(coupled.matrix.shape[0])
+    if rows.size:
+        block = coupled.matrix[np.ix_(rows, rows)]
+        if sliding.size:  # shear = slip mu f_z: a column of the sliding node's f_z
+            scale = state.slip[node_of[sliding]] * mu
+            column = np.searchsorted(nodes, node_of[sliding])
+            block[:, column] += coupled.matrix[np.ix_(rows, m + sliding)] * scale
+            loads = la.solve(block, target)
+            shear[sliding] = scale * loads[column]
+            displacement = coupled.matrix[:, m + sliding] @ shear[sliding]
+        else:
+            loads = la.cho_solve(la.cho_factor(block), target)
+        forces[nodes] = -loads[: nodes.size]
+        shear[stuck] = loads[nodes.size :]
+        displacement = displacement + coupled.matrix[:, rows] @ loads
+    return forces, shear, displacement[:m], offset + displacement[m:]
+
+
+def worst_only(changes: list[np.ndarray], excess: list[np.ndarray]) -> list[np.ndarray]:
+    """``changes`` (boolean masks, in order of priority) cut to the single node of the first
+    non-empty one with the largest ``excess`` (the cautious update after a cycle)."""
+    cut = [np.zeros_like(change) for change in changes]
+    for change, amount, one in zip(changes, excess, cut, strict=True):
+        if change.any():
+            one[np.flatnonzero(change)[np.argmax(amount[change])]] = True
+            break
+    return cut
+
+
+def _changes(
+    state: StickState, solved: tuple[np.ndarray, ...], gap: np.ndarray, band: float, mu: float
+) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """The violated conditions (release, enter, stick to slip, slip to stick) and their size;
+    ``solved`` holds per candidate F, shear and u_r, ``band`` the gap's round-off (m)."""
+    forces, traction, radial = solved
+    moved = state.slip * (radial - state.radial)
+    release = state.active & (forces < -ROUND_OFF * np.abs(forces).max(initial=0.0))
+    enter = ~state.active & (gap < -band)
+    excess = np.full(forces.size, -np.inf)
+    if np.isfinite(mu):
+        excess = np.abs(traction) - mu * forces
+    to_slip = state.active & (state.slip == 0) & (excess > ROUND_OFF * np.abs(forces).max())
+    to_stick = state.active & (moved < -ROUND_OFF * np.abs(radial).max(initial=0.0))
+    return [release, enter, to_slip, to_stick], [-forces, -gap, excess, -moved]
+
+
+def stick_slip_step(
+    coupled: CoupledCompliance,
+    reach: np.ndarray,
+    offset: np.ndarray,
+    last: StickState,
+    friction: float,
+) -> StickState | None:
+    """The contact of one step from the contact ``last`` of the step before.
+
+    Parameters
+    ----------
+    coupled : CoupledCompliance
+        A (m/N) of the step.
+    reach : numpy.ndarray
+        Per candidate, m: the u_z response (A f)_z that puts a node on the indenter; a free
+        node's gap is reach - (A f)_z.
+    offset : numpy.ndarray
+        Per radial dof, m: its u_r without new contact forces (u_r = offset + (A f)_r).
+    last : StickState
+        The contact of the step before (solved).
+    friction : float
+        Coulomb coefficient mu >= 0 (inf: no slip).
+
+    Returns
+    -------
+    StickState or None
+        The solved contact (F >= 0, gap >= 0), or None if the stick and slip sets keep cycling.
+        All violated conditions change at once; should a contact state repeat, one at a time.
+    """
+    state = StickState(last.active, last.held.copy(), last.radial, last.gap, last.slip.copy())
+    band = ROUND_OFF * np.abs(reach).max()
+    seen: set[bytes] = set()
+    cautious, m = False, reach.size
+    for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * m):
+        forces, shear, response, u_r = _solve_stuck(coupled, (reach, offset), state, friction)
+        gap = np.where(state.active, 0.0, reach - response)
+        traction, radial = np.zeros(m), np.zeros(m)
+        traction[coupled.radial_node], radial[coupled.radial_node] = shear, u_r
+        changes, excess = _changes(state, (forces, traction, radial), gap, band, friction)
+        if not any(change.any() for change in changes):
+            gap, forces = np.maximum(gap, 0.0), np.maximum(forces, 0.0)
+            return StickState(state.active, state.held, radial, gap, state.slip, forces, shear)
+        if cautious:
+            changes = worst_only(changes, excess)
+        release, enter, to_slip, to_stick = changes
+        seen.add(state.active.tobytes() + state.slip.tobytes())
+        closing = last.gap[enter] / (last.gap[enter] - gap[enter])
+        closing[last.active[enter]] = 1.0  # released in this step: where it touches now
+        held, slip = state.held, state.slip
+        held[enter] = last.radial[enter] + closing * (radial[enter] - last.radial[enter])
+        held[release] = np.nan
+        held[to_stick] = last.radial[to_stick]
+        slip[to_slip] = -np.sign(traction[to_slip])
+        slip[release | to_stick] = 0
+        active = (state.active & ~release) | enter
+        state = StickState(active, held, last.radial, last.gap, slip)
+        if active.tobytes() + slip.tobytes() in seen:
+            if cautious:
+                break
+            cautious, seen = True, set()
+    return None
+
 
 STEP_RATIO = 1.02
 """Default depth ratio of consecutive load steps (benchmarks/FEM_NOTES.md, "Interface
@@ -169,14 +375,8 @@ def solve_bonded_contact(
         steps = _load_history(coupled, normal, profile, depths, (step_ratio, friction))
     solutions = field_solutions(system, factorization, free, normal, steps)
     done = time.perf_counter()
-    return ContactCurve(
-        steps=steps,
-        compliance=normal,
-        system=system,
-        solutions=solutions,
-        timings={"factorization": factorized - start, "contact": done - factorized},
-        backend=getattr(factorization, "backend", backend),
-    )
+    seconds = (factorized - start, done - factorized)
+    return timed_curve(system, (normal, steps, solutions), factorization, backend, seconds)
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,7 @@ from .elasticity import TWO_PI, ElasticSystem, deviatoric_stiffness
 __all__ = [
     "MAX_GLASSY_DURATIONS",
     "PRONY_FORM",
+    "RelaxationStep",
     "ShearMemory",
     "ViscoelasticShear",
     "effective_shear_modulus",
@@ -171,8 +172,50 @@ def _excess(x: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class _Step:
-    """Per-term constants of one step dt (arrays over the terms; x = dt / tau_i).
+class RelaxationStep:
+    """The per-term constants of a step dt (arrays over the terms), at small and finite strain.
+
+    Attributes
+    ----------
+    gain, decay, ramp : numpy.ndarray
+        g_i, exp(-dt/tau_i) and r_i = (tau_i/dt)(1 - exp(-dt/tau_i)).
+    scale : float
+        c = g_inf + sum_i g_i r_i: the instantaneous isochoric stress' factor over the step.
+    """
+
+    gain: np.ndarray
+    decay: np.ndarray
+    ramp: np.ndarray
+    scale: float
+
+    @classmethod
+    def of(cls, prony: PronySeries, dt: float) -> RelaxationStep:
+        """The constants of ``prony`` for a step of ``dt`` s."""
+        gain, tau = np.asarray(prony.weights, dtype=float), np.asarray(prony.times, dtype=float)
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # x -> inf or 0
+            x = dt / tau
+            ramp = -np.expm1(-x) / x
+        return cls(gain, np.exp(-x), ramp, prony.g_inf + float(gain @ ramp))
+
+    def history(self, branches: np.ndarray, iso: np.ndarray) -> np.ndarray:
+        """T^n = sum_i [exp(-dt/tau_i) H_i^n - g_i r_i S0^n] (Pa) from H^n (terms, 4, ...) and
+        S0^n (4, ...)."""
+        return np.tensordot(self.decay, branches, axes=1) - float(self.gain @ self.ramp) * iso
+
+    def advance(self, branches: np.ndarray, iso: np.ndarray, new_iso: np.ndarray) -> np.ndarray:
+        """H^{n+1} (terms, 4, ...) from H^n, S0^n and S0^{n+1} (Pa)."""
+        change = new_iso - iso
+        weights = self.gain * self.ramp
+        return (
+            self.decay.reshape(-1, *[1] * iso.ndim) * branches
+            + weights.reshape(-1, *[1] * iso.ndim) * change
+        )
+
+
+@dataclass(frozen=True)
+class _Step(RelaxationStep):
+    """:class:`RelaxationStep` with the dissipation's constants (arrays over the terms; x =
+    dt / tau_i).
 
     Branch i dissipates, over the step, 2 G0 g_i / tau_i Int |A e^{-s/tau_i} + C|^2 ds with
     C = tau_i (d^{n+1} - d^n) / dt and A = h_i^n - C; that is
@@ -180,23 +223,23 @@ class _Step:
     volume), tau_i cancelled so that any tau_i > 0 stays finite.
     """
 
-    gain: np.ndarray  # g_i
-    decay: np.ndarray  # exp(-x)
-    ramp: np.ndarray  # (1 - exp(-x)) / x
-    mix: np.ndarray  # tanh(x/2) / x
-    square: np.ndarray  # G0 g_i (1 - exp(-2x)), Pa
-    steady: np.ndarray  # 2 G0 g_i (x - 2 tanh(x/2)) / x^2, Pa
+    mix: np.ndarray = field(default=None)  # tanh(x/2) / x
+    square: np.ndarray = field(default=None)  # G0 g_i (1 - exp(-2x)), Pa
+    steady: np.ndarray = field(default=None)  # 2 G0 g_i (x - 2 tanh(x/2)) / x^2, Pa
 
     @classmethod
-    def of(cls, prony: PronySeries, shear_modulus: float, dt: float) -> _Step:
-        gain, tau = np.asarray(prony.weights), np.asarray(prony.times)
+    def dissipating(cls, prony: PronySeries, shear_modulus: float, dt: float) -> _Step:
+        """The constants of ``prony`` on the glassy ``shear_modulus`` (Pa) for ``dt`` s."""
+        base = RelaxationStep.of(prony, dt)
+        gain = base.gain
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # x -> inf or 0
-            x = dt / tau
+            x = dt / np.asarray(prony.times, dtype=float)
             excess = np.where(x > 1e3, 1.0 / x - 2.0 / (x * x), _excess(x) / (x * x))
             return cls(
-                gain=gain,
-                decay=np.exp(-x),
-                ramp=-np.expm1(-x) / x,
+                gain,
+                base.decay,
+                base.ramp,
+                base.scale,
                 mix=np.tanh(0.5 * x) / x,
                 square=-shear_modulus * gain * np.expm1(-2.0 * x),
                 steady=2.0 * shear_modulus * gain * np.nan_to_num(excess, nan=0.0),
@@ -239,7 +282,7 @@ class ViscoelasticShear:
     strain_shape: tuple[int, int] = (0, 0)
 
     def __post_init__(self) -> None:
-        step = _Step.of(self.prony, self.shear_modulus, self.time_step)
+        step = _Step.dissipating(self.prony, self.shear_modulus, self.time_step)
         weights = np.tile(self.weights, 4)
         object.__setattr__(self, "_step", step)
         object.__setattr__(self, "_weights", weights)
@@ -314,9 +357,7 @@ class ViscoelasticShear:
 def effective_shear_modulus(prony: PronySeries, shear_modulus: float, time_step: float) -> float:
     """G_eff = G0 [g_inf + sum_i g_i (tau_i/dt)(1 - exp(-dt/tau_i))] in Pa: the shear modulus of
     one step of ``time_step`` s on the glassy ``shear_modulus`` G0 (Pa)."""
-    tau = np.asarray(prony.times)
-    ramp = -np.expm1(-time_step / tau) * tau / time_step
-    return shear_modulus * (prony.g_inf + float(np.asarray(prony.weights) @ ramp))
+    return shear_modulus * RelaxationStep.of(prony, time_step).scale
 
 
 def viscoelastic_shear(

@@ -310,7 +310,7 @@ def run_indentation(
         solve, whose contact it is).
     prony : PronySeries, optional
         A viscoelastic body pressed at ``rate`` m/s
-        (:func:`shtaerman.fem.viscoelastic_contact.press_at_rate`, frictionless, nodal sums:
+        (:func:`shtaerman.fem.contact.press_at_rate`, frictionless, nodal sums:
         the history breaks the vertex-aligned interpolation), compared with Lee and Radok's
         exact curve (:class:`shtaerman.theory.viscoelastic.RateContact`).
 
@@ -328,7 +328,7 @@ def run_indentation(
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
     if prony is not None:
-        from ...fem.viscoelastic_contact import press_at_rate
+        from ...fem.contact import press_at_rate
 
         curve = press_at_rate(
             system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False

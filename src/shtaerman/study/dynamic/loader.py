@@ -59,7 +59,7 @@ from ...fem.dynamic_contact import (
     DynamicSettings,
     estimate_dofs,
 )
-from ...fem.mesh_budget import growth_error
+from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import RUBBER_OPTIONS, Problem
 from ...theory.materials import RIGID, Material, effective_modulus, validate_density
