@@ -1208,7 +1208,7 @@ def _step_failure(
         f"the step from t = {at[0]:.4g} s (striker depth {at[1]:.4g} m): {error}, also in "
         f"steps cut {MAX_STEP_CUTS} times; "
     )
-    ratio = depth_ratio(stepper.indenter, at[2])
+    ratio = depth_ratio(stepper.indenter, at[2]) if at[2] > 0 else 0.0  # failed at once: x 0
     if isinstance(stepper, HistoryStepper) and ratio > MAX_DEPTH_RATIO:
         return NumericalFailureError(
             where + f"the bonded indenter reached x/a = {ratio:.3g}, beyond the "
