@@ -46,6 +46,10 @@ def test_out_history_and_figures_of_the_finite_impact(coarse, tmp_path, capsys):
 
     picture = np.asarray(Image.open(out / "dynamic_history.png").convert("L"))
     assert (picture < 200).mean() > 0.02  # axes, two curves and their labels drawn
+    # one figure set for every body: the rubber's force-depth loop and energy account too,
+    # drawn by the linear impact's functions (the finite route drew x(t), P(t) alone)
+    for stem in ("force_depth_loop", "energy_history"):
+        assert "<svg" in (out / f"{stem}.svg").read_text()
 
 
 def test_one_result_type_for_every_body(coarse):

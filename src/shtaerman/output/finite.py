@@ -6,8 +6,6 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
   stored energy and Newton iterations beside the linear exact and same-mesh linear FEM values;
 - ``history_<variant>.csv``: the impact histories t, x, P, a, p(0) (linear exact, linear FEM,
   finite strain);
-- ``dynamic_history.png`` of a finite-strain impact (``dynamic --model ... --out``,
-  :func:`write_finite_figure`; its other files are every impact's);
 - ``field_at_x_c.vtu``: the deformed-state fields (reference r-z section, displacements in m,
   Cauchy stresses in Pa) at the computed depth nearest the finite-strain x_c, with the depth,
   force, contact radius, material and model as VTK field data.
@@ -15,9 +13,8 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import meshio
 import numpy as np
@@ -28,6 +25,7 @@ from ..plots.finite import (
     plot_finite_ratios,
     plot_finite_section,
 )
+from .case import model_label
 from .export import FIELD_UNITS, indenter_field_data, write_vtu
 from .files import write_csv
 
@@ -35,12 +33,10 @@ if TYPE_CHECKING:
     from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
-    from ..theory.impact import ImpactResult
 
 __all__ = [
     "write_finite_curve",
     "write_finite_field",
-    "write_finite_figure",
     "write_finite_study",
 ]
 
@@ -142,32 +138,14 @@ def write_finite_study(
             outcome.finite.curve, step, outcome.study.half_space, folder / "field_at_x_c.vtu"
         )
     )
-    fmt = {"figure_format": figure_format}
+    fmt, model = {"figure_format": figure_format}, model_label(outcome.study.rubber.name)
+    captions = {key: text.replace("neo-Hookean", model) for key, text in CAPTIONS.items()}
     figures = {
-        CAPTIONS["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png", **fmt),
-        f"{CAPTIONS['finite_section']} ({step.depth * 1e3:.3g} mm)": plot_finite_section(
+        captions["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png", **fmt),
+        f"{captions['finite_section']} ({step.depth * 1e3:.3g} mm)": plot_finite_section(
             outcome, folder / "finite_section.png"
         ),
-        CAPTIONS["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png", **fmt),
+        captions["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png", **fmt),
     }
     files = {path.stem: str(path.relative_to(root)) for path in written}
     return files, {caption: str(path.relative_to(root)) for caption, path in figures.items()}
-
-
-def write_finite_figure(
-    result: Any, quasi: ImpactResult, folder: Path, figure_format: str = "png"
-) -> Path:
-    """A finite-strain impact's dynamic_history.png in ``folder`` (``result``: the API's
-    DynamicResult): x(t), P(t) against the quasi-static impact ``quasi``; also in
-    ``figure_format`` "svg" or "pdf"."""
-    from types import SimpleNamespace
-
-    finite = SimpleNamespace(**result.solution.history_columns())
-    histories = {"linear_exact": quasi.history(points=401), "finite_strain": finite}
-    return plot_finite_impact(
-        SimpleNamespace(histories=histories),
-        folder / "dynamic_history.png",
-        figure_format=figure_format,
-        model=result.model,
-        exact=None if math.isfinite(quasi.beta) else "Sneddon, linear (a sphere or a table)",
-    )

@@ -23,6 +23,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from ..output.case import model_label
 from .sections import plot_field
 from .style import (
     EXACT_COLOUR,
@@ -49,13 +50,6 @@ __all__ = [
 
 FINITE_COLOUR = SECOND_COLOUR
 """Finite strain (red); the linear FEM is blue, the exact linear solution black."""
-MODEL_LABELS = {
-    "neo-hookean": "neo-Hookean",
-    "mooney-rivlin": "Mooney-Rivlin",
-    "yeoh": "Yeoh",
-    "gent": "Gent",
-}
-"""A rubber model's name in a legend (capitalised where it is a person's name)."""
 IMPACT_STYLES = {
     "linear_exact": (EXACT_COLOUR, "-", "Shtaerman, linear (the paper)"),
     "linear_fem": (FEM_COLOUR, ":", "linear FEM, same mesh"),
@@ -121,11 +115,11 @@ def panel_points(outcome: FiniteStudyOutcome, values: tuple, key: str) -> dict[s
 
 
 def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple, key: str) -> None:
-    """The neo-Hookean and linear FEM values of ``key`` over ``x``, unresolved ones open."""
+    """The rubber's and the linear FEM values of ``key`` over ``x``, unresolved ones open."""
     drawn = panel_points(outcome, values, key)
     finite, linear, exact = drawn["finite"], drawn["linear"], drawn["exact"]
     hidden, error, limits = drawn["unresolved"], drawn["error"], drawn["limits"]
-    style = (FINITE_COLOUR, "o", "--", "neo-Hookean FEM")
+    style = (FINITE_COLOUR, "o", "--", f"{model_label(outcome.study.rubber.name)} FEM")
     points(axes, x, finite, style, error=error, hidden=hidden)
     points(axes, x, linear, (FEM_COLOUR, "s", ":", "linear FEM, same mesh"), hidden=hidden)
     handles = [
@@ -219,22 +213,18 @@ def _mark_x_c(outcome: FiniteStudyOutcome, top: Any, bottom: Any) -> None:
 
 @styled
 def plot_finite_impact(
-    outcome: FiniteStudyOutcome,
-    path: Path | str,
-    *,
-    figure_format: str = "png",
-    model: str = "neo-hookean",
-    exact: str | None = None,
+    outcome: FiniteStudyOutcome, path: Path | str, *, figure_format: str = "png"
 ) -> Path:
-    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain (PNG, and
-    ``figure_format`` "svg" or "pdf" beside it); ``model`` names the rubber in the legend,
-    ``exact`` the linear exact impact (None: the paper's, Shtaerman)."""
+    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain, the study's
+    rubber model named in the legend (PNG, and ``figure_format`` "svg" or "pdf" beside it)."""
     figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
+    model = model_label(outcome.study.rubber.name)
     for variant, history in outcome.histories.items():
         colour, line, label = IMPACT_STYLES[variant]
-        label = label.replace("neo-Hookean", MODEL_LABELS.get(model, model))
-        label = label if exact is None or variant != "linear_exact" else exact
+        label = label.replace("neo-Hookean", model)
+        if variant == "linear_exact" and outcome.study.indenter.kind != "power-law":
+            label = f"Sneddon, linear ({outcome.study.indenter.kind} profile)"
         top.plot(history.t * 1e3, history.x * 1e3, line, color=colour, label=label)
         bottom.plot(history.t * 1e3, history.P, line, color=colour, label=label)
     top.set_ylabel("Approach x (mm)")
