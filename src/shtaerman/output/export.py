@@ -13,7 +13,6 @@ from ..study.contact.indentation import IndentationResult
 from .files import write_csv
 
 __all__ = [
-    "FIELD_NAMES",
     "FIELD_UNITS",
     "field_mesh",
     "indenter_field_data",
@@ -34,7 +33,6 @@ FIELD_UNITS = {
 }
 """Point data of the VTU files and their units: displacements in m, stresses in Pa (tension
 positive). In the files each name carries its unit, ``sigma_zz [Pa]``."""
-FIELD_NAMES = tuple(FIELD_UNITS)
 NEAR_FIELD_RADII = 4.0
 """The near-field VTU keeps the triangles within this many contact radii of the first contact
 point (ParaView opens on the contact zone, not on the 1e5-times larger domain)."""

@@ -39,8 +39,6 @@ __all__ = [
     "results_document",
     "study_document",
     "validity_table",
-    "write_html",
-    "write_markdown",
     "write_reports",
 ]
 
@@ -369,15 +367,3 @@ def write_reports(
     markdown.write_text(render_markdown(context), encoding="utf-8")
     page.write_text(render_html(context, folder), encoding="utf-8")
     return markdown, page
-
-
-def write_markdown(results: dict, figures: dict[str, dict[str, str]], path: Path) -> None:
-    """report.md beside the figures (relative image links)."""
-    path.write_text(render_markdown(report_context(results, figures)), encoding="utf-8")
-
-
-def write_html(results: dict, figures: dict[str, dict[str, str]], folder: Path) -> Path:
-    """report.html with every image embedded: it opens from disk anywhere."""
-    path = folder / "report.html"
-    path.write_text(render_html(report_context(results, figures), folder), encoding="utf-8")
-    return path
