@@ -20,7 +20,6 @@ __all__ = [
     "summary_row",
     "tables",
     "timing_text",
-    "validity_rows",
 ]
 
 UNITS = {"beta": "N/m^q", "x_c": "m", "P_c": "N", "a_c": "m", "p_c": "Pa", "t_c": "s", "t_y": "s"}
@@ -268,8 +267,3 @@ def summary_row(name: str, study: Mapping[str, Any]) -> list[str] | None:
         *(number(worst[key], ".1e") for key in IMPACT_COLUMNS),
         seconds(timings.get("fem_curve", study["contact"]["timings"].get("total"))),
     ]
-
-
-def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
-    """No rows: a contact study tests no assumption of the impact model."""
-    return []

@@ -23,23 +23,15 @@ from .case import (
     prony_words,
     rubber_words,
 )
-from .entry import no_summary_row as summary_row
-from .entry import stored_findings as findings
-from .entry import stored_tables as tables
 from .entry import text_entry
 from .wording import plus_minus
-from .wording import times_text as timing_text
 
 __all__ = [
     "RELATIVE_ESTIMATES",
     "assumptions",
     "entry",
-    "findings",
     "study_findings",
     "study_tables",
-    "summary_row",
-    "tables",
-    "timing_text",
     "validity_rows",
 ]
 

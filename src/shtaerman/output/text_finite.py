@@ -18,25 +18,17 @@ from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from ..theory.sneddon import profile_inputs
 from .case import case_words, model_label, rubber_words
-from .entry import no_summary_row as summary_row
-from .entry import stored_findings as findings
-from .entry import stored_tables as tables
 from .entry import text_entry
 from .text_corrections import corrections_finding, corrections_table
 from .wording import number, plus_minus
-from .wording import times_text as timing_text
 
 __all__ = [
     "QUICK_ERROR",
     "VARIANTS",
     "central_pressure_words",
     "entry",
-    "findings",
     "study_findings",
     "study_tables",
-    "summary_row",
-    "tables",
-    "timing_text",
     "validity_rows",
 ]
 
