@@ -78,3 +78,19 @@ def test_the_energy_check_binds_the_finite_impact_too(coarse, monkeypatch, capsy
     monkeypatch.setattr(command, "dynamic", unbalanced)
     assert main(ARGV) == 1
     assert "energy balance error 5.0e-02 of M v0^2/2 exceeds 0.01" in capsys.readouterr().err
+
+
+def test_the_field_file_flags_the_rubber_model_it_holds(tmp_path):
+    """The finite field VTU, now written by the linear body's field_mesh, flagged every rubber
+    "model_neo-hookean"; a Mooney-Rivlin curve's file names Mooney-Rivlin."""
+    from shtaerman.fem.finite_contact import run_finite_indentation
+    from shtaerman.fem.rubber import rubber_model
+    from shtaerman.output.finite import write_finite_field
+
+    material = sh.Material(7.5e6, 0.5)
+    model = rubber_model("mooney-rivlin", 0.3)
+    curve = run_finite_indentation(sh.PowerLawIndenter(5.0, 1.5), material, [1e-4], COARSE, model)
+    path = write_finite_field(curve, curve.steps[-1], material, tmp_path / "field.vtu")
+    text = path.read_text()
+    assert 'Name="model_mooney-rivlin [1]"' in text and "neo-hookean" not in text
+    assert 'Name="von_mises [Pa]"' in text and 'Name="displacement [m]"' in text

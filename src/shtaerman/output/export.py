@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -10,6 +11,7 @@ import numpy as np
 
 from ..fem.elasticity import ElasticSolution
 from ..study.contact.indentation import IndentationResult
+from ..theory.impact import ImpactHistory
 from .files import write_csv
 
 __all__ = [
@@ -17,6 +19,7 @@ __all__ = [
     "field_mesh",
     "indenter_field_data",
     "near_field",
+    "write_histories",
     "write_indentation",
     "write_vtu",
 ]
@@ -104,6 +107,16 @@ def indenter_field_data(indenter: object) -> dict[str, float]:
         "indenter_shape_coefficient [m^(1-n)]": indenter.shape_coefficient,
         "indenter_exponent [1]": indenter.exponent,
     }
+
+
+def write_histories(histories: Mapping[str, ImpactHistory], folder: Path) -> list[Path]:
+    """``history_<variant>.csv`` of each impact history in ``folder`` (t, x, P, a, p0 in SI,
+    :meth:`~shtaerman.theory.impact.ImpactHistory.columns`); the paths written."""
+    written = []
+    for variant, history in histories.items():
+        written.append(folder / f"history_{variant}.csv")
+        write_csv(written[-1], history.columns())
+    return written
 
 
 def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:

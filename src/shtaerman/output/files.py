@@ -670,6 +670,14 @@ CSV_UNITS = {
     "pressure_analytic": "Pa",
     "gap": "m",
     "strain_energy": "J",
+    # finite strain beside the linear solution
+    "depth_to_radius": "1",
+    "force_linear": "N",
+    "force_linear_fem": "N",
+    "force_ratio": "1",
+    "force_ratio_fem": "1",
+    "radius_ratio": "1",
+    "newton_iterations": "1",
 }
 """The unit of every CSV column name, shown in the header as ``name [unit]`` (``[1]``:
 dimensionless): ``t [s],x [m],P [N],a [m],p0 [Pa]`` for an impact history."""

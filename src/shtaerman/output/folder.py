@@ -25,8 +25,8 @@ from ..plots.formats import check_figure_format
 from ..study.kinds import kind_function
 from ..study.run import run_study
 from ..validation import InputError, NumericalFailureError
-from .export import write_indentation
-from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder, write_csv
+from .export import write_histories, write_indentation
+from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder
 from .report import results_document, study_document, write_reports
 
 if TYPE_CHECKING:
@@ -208,11 +208,9 @@ def write_contact_study(
 
 def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
     folder.mkdir()
-    written = write_indentation(outcome.contact, folder)
-    for variant, history in outcome.histories.items():
-        path = folder / f"history_{variant}.csv"
-        write_csv(path, history.columns())
-        written.append(path)
+    written = write_indentation(outcome.contact, folder) + write_histories(
+        outcome.histories, folder
+    )
     return {path.stem: str(path.relative_to(root)) for path in written}
 
 
