@@ -51,8 +51,8 @@ def made(quick_verify):
     """The ten figures of the paper study in the session's verify run, and the Ateb figure of
     the hertz study's exponent (n = 2), by file stem.
 
-    The run draws them with gallery.study_figures, study_field_figures and paper_figures
-    (and the convergence figure); results.json records each one's caption.
+    The run draws them with gallery.study_figures (the convergence figure too) and
+    paper_figures; results.json records each one's caption.
     """
     _, out, results = quick_verify
     figures = dict(results["studies"]["paper"]["figures"])

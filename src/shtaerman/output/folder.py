@@ -202,32 +202,19 @@ def write_contact_study(
 ) -> tuple[dict[str, str], dict[str, str]]:
     """A contact study's files (VTU, CSV curves and histories) and figures, paths from root
     (``figure_format`` "svg" or "pdf": each chart also in that format beside its PNG)."""
-    files = _study_files(outcome, folder, root)
-    return files, _study_figures(outcome, folder, root, figure_format)
-
-
-def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
-    folder.mkdir()
-    written = write_indentation(outcome.contact, folder) + write_histories(
-        outcome.histories, folder
-    )
-    return {path.stem: str(path.relative_to(root)) for path in written}
-
-
-def _study_figures(
-    outcome: StudyOutcome, folder: Path, root: Path, figure_format: str
-) -> dict[str, str]:
     # imported here, not at the top: the process that runs the studies on dask workers
     # draws no study's figures, and matplotlib, pyvista and VTK cost it ~1 s before the
     # workers start (benchmarks/verify_cost.py)
-    from ..plots.gallery import study_convergence_figures, study_field_figures, study_figures
+    from ..plots.gallery import study_figures
 
-    made = {
-        **study_field_figures(outcome, folder),
-        **study_figures(outcome, folder, figure_format),
-        **study_convergence_figures(outcome, folder, figure_format),
-    }
-    return {title: str(path.relative_to(root)) for title, path in made.items()}
+    folder.mkdir()
+    written = write_indentation(outcome.contact, folder)
+    written += write_histories(outcome.histories, folder)
+    made = study_figures(outcome, folder, figure_format)
+    return (
+        {path.stem: str(path.relative_to(root)) for path in written},
+        {title: str(path.relative_to(root)) for title, path in made.items()},
+    )
 
 
 def study_entry(outcome: Any, stage: Path, figure_format: str = "png") -> dict[str, object]:
