@@ -94,3 +94,25 @@ def test_the_field_file_flags_the_rubber_model_it_holds(tmp_path):
     text = path.read_text()
     assert 'Name="model_mooney-rivlin [1]"' in text and "neo-hookean" not in text
     assert 'Name="von_mises [Pa]"' in text and 'Name="displacement [m]"' in text
+
+
+def test_the_finite_study_impact_figure_names_the_study_s_rubber_and_profile(tmp_path):
+    """The finite study's impact legend said "neo-Hookean" for any rubber and "Shtaerman" for
+    any profile; it now labels the variants as the study's tables do (one label function)."""
+    from types import SimpleNamespace
+
+    from shtaerman.fem.rubber import rubber_model
+    from shtaerman.output.text_finite import variant_label
+    from shtaerman.plots.finite import plot_finite_impact
+
+    t = np.linspace(0.0, 1e-3, 5)
+    history = SimpleNamespace(t=t, x=1e-3 * np.sin(np.pi * t / 1e-3), P=np.sin(np.pi * t / 1e-3))
+    study = SimpleNamespace(rubber=rubber_model("mooney-rivlin", 0.3))
+    study.indenter = SimpleNamespace(kind="sphere")
+    variants = ("linear_exact", "linear_fem", "finite_strain")
+    outcome = SimpleNamespace(study=study, histories=dict.fromkeys(variants, history))
+    text = plot_finite_impact(outcome, tmp_path / "impact.svg").read_text()
+    labels = [variant_label(outcome, variant) for variant in variants]
+    assert labels[0] == "Sneddon, linear (sphere profile)"
+    assert labels[2] == "Mooney-Rivlin finite strain"
+    assert all(label in text for label in labels) and "neo-Hookean" not in text
