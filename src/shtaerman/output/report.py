@@ -210,16 +210,12 @@ def validity_table(studies: dict) -> dict[str, object] | None:
 
 
 def _failures(studies: dict) -> list[dict[str, str]]:
+    """The failed checks of every study (:func:`_checks`), each with its study's name."""
     return [
-        {
-            "study": name,
-            "check": check["name"],
-            "value": number(check["value"], ".2e"),
-            "tolerance": number(check["tolerance"], ".1e"),
-        }
+        {"study": name, **check}
         for name, study in studies.items()
-        for check in study["checks"]
-        if not check["passed"]
+        for check in _checks(study)
+        if check["result"] == "FAIL"
     ]
 
 
