@@ -60,33 +60,19 @@ for an elastic body."""
 LOSS_KEYS = ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction")
 
 
-def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
+def _summary(outcome: DynamicStudyOutcome) -> dict[str, np.ndarray]:
+    """summary.csv's columns (:data:`SUMMARY_HEADER`), one value per velocity."""
     rows = []
     for case in outcome.cases:
-        r, q, d = case.result, case.quasi, case.differences()
-        rows.append(
-            (
-                case.velocity,
-                r.x_max,
-                q.x_c,
-                d["x"],
-                r.P_max,
-                q.P_c,
-                d["P"],
-                r.t_x_max,
-                q.t_c,
-                r.t_contact,
-                q.t_y,
-                d["t"],
-                r.v_out,
-                r.restitution,
-                r.energy_radiated_fraction,
-                case.estimate.energy_fraction,
-                r.energy_balance_error,
-                r.reflected_energy_fraction,
-                *(r.losses.get(key, np.nan) for key in LOSS_KEYS),
-            )
-        )
+        q, d = case.quasi, case.differences()
+        values = {
+            **{"v0": case.velocity, "x_c": q.x_c, "P_c": q.P_c, "t_c": q.t_c, "t_y": q.t_y},
+            **{"x_c/x_max-1": d["x"], "P_c/P_max-1": d["P"], "t_y/t_contact-1": d["t"]},
+            "estimate_energy_fraction": case.estimate.energy_fraction,
+            **dict.fromkeys(LOSS_KEYS, np.nan),
+            **case.result.summary(),  # SUMMARY_KEYS and the losses the body has
+        }
+        rows.append([values[name.split(" [")[0]] for name in SUMMARY_HEADER])
     table = np.array(rows, dtype=float)
     return {name: table[:, i] for i, name in enumerate(SUMMARY_HEADER)}
 
