@@ -137,14 +137,11 @@ def write_dynamic_study(
     )
     v0 = f"{example.velocity:g} m/s"
     late = SEPARATION_SNAPSHOT * quasi.t_y
-    separation = "after" if late > result.t_contact else "before"
+    after = "after" if late > result.t_contact else "before"
+    separation = f"at {SEPARATION_SNAPSHOT:g} t_y ({after} separation)"
     for key, words, stem in (
         (quasi.t_c, "at the quasi-static t_c (maximum compression)", "wave_field_tc"),
-        (
-            late,
-            f"at {SEPARATION_SNAPSHOT:g} t_y ({separation} separation)",
-            "wave_field_separation",
-        ),
+        (late, separation, "wave_field_separation"),
     ):
         if key in result.snapshots:  # a rubber's run keeps no fields
             figures[f"Wave field (von Mises) at {v0}, {words}"] = plot_wave_field(

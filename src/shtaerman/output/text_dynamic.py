@@ -139,8 +139,7 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
         "velocity": velocity,
     }
     details = f"M = {study.mass:g} kg, v0 = {velocity:g} m/s, rubber density {study.density:g}"
-    papers = study.prony is None and outcome.settings.thickness is None and not study.physics
-    if papers and is_paper_case(inputs):
+    if not _model_words(outcome) and is_paper_case(inputs):  # the paper's elastic half-space
         return f"At the paper's example ({details} kg/m^3 assumed)"
     return f"In this case ({details} kg/m^3)"
 
