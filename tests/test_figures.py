@@ -51,8 +51,8 @@ def made(quick_verify):
     """The ten figures of the paper study in the session's verify run, and the Ateb figure of
     the hertz study's exponent (n = 2), by file stem.
 
-    The run draws them with gallery.study_figures, study_field_figures and paper_figures
-    (and the convergence figure); results.json records each one's caption.
+    The run draws them with gallery.study_figures (the convergence figure too) and
+    paper_figures; results.json records each one's caption.
     """
     _, out, results = quick_verify
     figures = dict(results["studies"]["paper"]["figures"])
@@ -278,18 +278,6 @@ def test_field_deformed_shows_indenter(outcome, folder, monkeypatch):
     assert_contact_top_left(image, depth=0.5)  # on the deformed surface, pushed down by d
 
 
-def test_field_panel_has_four_pictures(outcome, folder):
-    image = assert_picture(
-        sections.plot_fields(outcome.contact, folder / "panel.png"), sections.WINDOW_SIZE, "pyvista"
-    )
-    height, width = image.shape[:2]
-    for top in (0, height // 2):
-        for left in (0, width // 2):
-            quarter = image[top : top + height // 2, left : left + width // 2]
-            assert colour_mask(quarter, sections.CONTACT_COLOUR).sum() > 100
-            assert_colour_bar(quarter)
-
-
 def test_revolved_view(made):
     image = assert_picture(made["field_revolved"], sections.WINDOW_SIZE, "pyvista")
     height, width = image.shape[:2]
@@ -393,8 +381,6 @@ def test_field_input_errors(outcome, folder):
         sections.plot_field(outcome.contact, folder / "bad.png", "stress")
     with pytest.raises(InputError, match="angle"):
         revolved.plot_revolved(outcome.contact, folder / "bad.png", angle=360.0)
-    with pytest.raises(InputError, match="four"):
-        sections.plot_fields(outcome.contact, folder / "bad.png", ("u_z",))
     with pytest.raises(InputError, match="step"):
         sections.plot_field(outcome.contact, folder / "bad.png", step=99)
     assert not (folder / "bad.png").exists()

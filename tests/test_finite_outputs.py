@@ -46,6 +46,10 @@ def test_out_history_and_figures_of_the_finite_impact(coarse, tmp_path, capsys):
 
     picture = np.asarray(Image.open(out / "dynamic_history.png").convert("L"))
     assert (picture < 200).mean() > 0.02  # axes, two curves and their labels drawn
+    # one figure set for every body: the rubber's force-depth loop and energy account too,
+    # drawn by the linear impact's functions (the finite route drew x(t), P(t) alone)
+    for stem in ("force_depth_loop", "energy_history"):
+        assert "<svg" in (out / f"{stem}.svg").read_text()
 
 
 def test_one_result_type_for_every_body(coarse):
@@ -74,3 +78,41 @@ def test_the_energy_check_binds_the_finite_impact_too(coarse, monkeypatch, capsy
     monkeypatch.setattr(command, "dynamic", unbalanced)
     assert main(ARGV) == 1
     assert "energy balance error 5.0e-02 of M v0^2/2 exceeds 0.01" in capsys.readouterr().err
+
+
+def test_the_field_file_flags_the_rubber_model_it_holds(tmp_path):
+    """The finite field VTU, now written by the linear body's field_mesh, flagged every rubber
+    "model_neo-hookean"; a Mooney-Rivlin curve's file names Mooney-Rivlin."""
+    from shtaerman.fem.finite_contact import run_finite_indentation
+    from shtaerman.fem.rubber import rubber_model
+    from shtaerman.output.finite import write_finite_field
+
+    material = sh.Material(7.5e6, 0.5)
+    model = rubber_model("mooney-rivlin", 0.3)
+    curve = run_finite_indentation(sh.PowerLawIndenter(5.0, 1.5), material, [1e-4], COARSE, model)
+    path = write_finite_field(curve, curve.steps[-1], material, tmp_path / "field.vtu")
+    text = path.read_text()
+    assert 'Name="model_mooney-rivlin [1]"' in text and "neo-hookean" not in text
+    assert 'Name="von_mises [Pa]"' in text and 'Name="displacement [m]"' in text
+
+
+def test_the_finite_study_impact_figure_names_the_study_s_rubber_and_profile(tmp_path):
+    """The finite study's impact legend said "neo-Hookean" for any rubber and "Shtaerman" for
+    any profile; it now labels the variants as the study's tables do (one label function)."""
+    from types import SimpleNamespace
+
+    from shtaerman.fem.rubber import rubber_model
+    from shtaerman.output.text_finite import variant_label
+    from shtaerman.plots.finite import plot_finite_impact
+
+    t = np.linspace(0.0, 1e-3, 5)
+    history = SimpleNamespace(t=t, x=1e-3 * np.sin(np.pi * t / 1e-3), P=np.sin(np.pi * t / 1e-3))
+    study = SimpleNamespace(rubber=rubber_model("mooney-rivlin", 0.3))
+    study.indenter = SimpleNamespace(kind="sphere")
+    variants = ("linear_exact", "linear_fem", "finite_strain")
+    outcome = SimpleNamespace(study=study, histories=dict.fromkeys(variants, history))
+    text = plot_finite_impact(outcome, tmp_path / "impact.svg").read_text()
+    labels = [variant_label(outcome, variant) for variant in variants]
+    assert labels[0] == "Sneddon, linear (sphere profile)"
+    assert labels[2] == "Mooney-Rivlin finite strain"
+    assert all(label in text for label in labels) and "neo-Hookean" not in text

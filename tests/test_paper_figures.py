@@ -271,6 +271,7 @@ def fake_finite(estimated: bool):
         finite=SimpleNamespace(exact=SimpleNamespace(central_to_mean_ratio=2.5)),
         at_maximum=lambda: {"depth_to_radius": 0.8},
         estimates=estimates,
+        study=SimpleNamespace(rubber=SimpleNamespace(name="neo-hookean")),  # the legend's
     )
 
 

@@ -119,7 +119,15 @@ def test_a_rubber_study_names_its_model_and_friction(rubber):
     assert "neo-Hookean rubber at finite strain" in findings
     assert "first-order estimate 1" not in findings  # the linear half-space's: not for a rubber
     files, figures = write_dynamic_study(outcome, folder / "out", folder)
-    assert "summary" in files and len(figures) == 2  # histories and over v0; no wave fields
+    # x(t) and P(t), the force-depth loop, the energy account and the figure over v0, as the
+    # linear body's (the rubber's study drew the first and the last only); no wave fields
+    assert "summary" in files and len(figures) == 4
+    assert {Path(path).stem for path in figures.values()} == {
+        "dynamic_history",
+        "force_depth_loop",
+        "energy_history",
+        "dynamic_over_velocity",
+    }
 
 
 NEO = '[rubber]\nmodel = "neo-hookean"\n'

@@ -102,18 +102,11 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
     )
 
 
-def _write_figures(
-    case: DynamicCase, result: DynamicResult, folder: Path, figure_format: str, finite: bool
-) -> None:
-    """The figures of the case: a rubber's (``finite``) x(t), P(t) against the quasi-static
-    impact; the linear body's histories, losses and wave fields."""
+def _write_figures(case: DynamicCase, folder: Path, figure_format: str) -> None:
+    """The figures of the case (:func:`shtaerman.output.dynamic.write_case_figures`)."""
     from ..output.dynamic import write_case_figures
-    from ..output.finite import write_finite_figure
 
-    if finite:
-        write_finite_figure(result, case.quasi, folder, figure_format)
-    else:
-        write_case_figures(case, folder, figure_format)
+    write_case_figures(case, folder, figure_format)
 
 
 def _write_folder(result: DynamicResult, folder: Path) -> None:
@@ -241,7 +234,7 @@ def dynamic(
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
             _write_folder(result, stage)
-            _write_figures(case, result, stage, figure_format, problem.body.finite)
+            _write_figures(case, stage, figure_format)
     warn_failed_checks(result, problem)
     return result
 

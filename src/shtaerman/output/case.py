@@ -21,6 +21,7 @@ __all__ = [
     "model_label",
     "prefixed",
     "prony_words",
+    "rubber_constants",
     "rubber_words",
 ]
 
@@ -35,17 +36,22 @@ def model_label(model: str) -> str:
     return MODEL_LABELS.get(model, model.capitalize())
 
 
-def rubber_words(rubber: RubberModel, poisson_ratio: float) -> str:
-    """The rubber model and the constants it depends on: "Mooney-Rivlin rubber,
-    r = C01/(C10 + C01) = 0.085"; the volumetric energy where nu2 < 0.5 makes it count."""
-    shape = {
+def rubber_constants(rubber: RubberModel) -> str:
+    """The constants the model's shape depends on, "r = C01/(C10 + C01) = 0.085" ("" for the
+    neo-Hookean: none)."""
+    return {
         "mooney-rivlin": f"r = C01/(C10 + C01) = {rubber.mooney_ratio:g}",
         "yeoh": "c2, c3 = C20/C10, C30/C10 = {:g}, {:g}".format(*rubber.yeoh),
         "gent": f"Jm = {rubber.gent_limit:g}",
-    }
+    }.get(rubber.name, "")
+
+
+def rubber_words(rubber: RubberModel, poisson_ratio: float) -> str:
+    """The rubber model and the constants it depends on: "Mooney-Rivlin rubber,
+    r = C01/(C10 + C01) = 0.085"; the volumetric energy where nu2 < 0.5 makes it count."""
     words = [f"{model_label(rubber.name)} rubber"]
-    if rubber.name in shape:
-        words.append(shape[rubber.name])
+    if rubber_constants(rubber):
+        words.append(rubber_constants(rubber))
     if poisson_ratio < 0.5:
         words.append(f"volumetric energy {VOLUMETRIC[rubber.volumetric]}")
     return ", ".join(words)

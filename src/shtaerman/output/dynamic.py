@@ -60,50 +60,38 @@ for an elastic body."""
 LOSS_KEYS = ("energy_dissipated_fraction", "energy_wave_fraction", "energy_hysteresis_fraction")
 
 
-def _summary(outcome: DynamicStudyOutcome) -> dict[str, list[float]]:
+def _summary(outcome: DynamicStudyOutcome) -> dict[str, np.ndarray]:
+    """summary.csv's columns (:data:`SUMMARY_HEADER`), one value per velocity."""
     rows = []
     for case in outcome.cases:
-        r, q, d = case.result, case.quasi, case.differences()
-        rows.append(
-            (
-                case.velocity,
-                r.x_max,
-                q.x_c,
-                d["x"],
-                r.P_max,
-                q.P_c,
-                d["P"],
-                r.t_x_max,
-                q.t_c,
-                r.t_contact,
-                q.t_y,
-                d["t"],
-                r.v_out,
-                r.restitution,
-                r.energy_radiated_fraction,
-                case.estimate.energy_fraction,
-                r.energy_balance_error,
-                r.reflected_energy_fraction,
-                *(r.losses.get(key, np.nan) for key in LOSS_KEYS),
-            )
-        )
+        q, d = case.quasi, case.differences()
+        values = {
+            **{"v0": case.velocity, "x_c": q.x_c, "P_c": q.P_c, "t_c": q.t_c, "t_y": q.t_y},
+            **{"x_c/x_max-1": d["x"], "P_c/P_max-1": d["P"], "t_y/t_contact-1": d["t"]},
+            "estimate_energy_fraction": case.estimate.energy_fraction,
+            **dict.fromkeys(LOSS_KEYS, np.nan),
+            **case.result.summary(),  # SUMMARY_KEYS and the losses the body has
+        }
+        rows.append([values[name.split(" [")[0]] for name in SUMMARY_HEADER])
     table = np.array(rows, dtype=float)
     return {name: table[:, i] for i, name in enumerate(SUMMARY_HEADER)}
 
 
-def _loss_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict[str, Path]:
-    """The force-depth loop and the energy account of one impact; ``{caption: path}``."""
-    v0 = f"{case.velocity:g} m/s"
+def _impact_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict[str, Path]:
+    """x(t) and P(t) against the quasi-static impact, the force-depth loop and the energy
+    account of one impact, every body's; ``{caption: path}``."""
+    v0, fmt = f"{case.velocity:g} m/s", {"figure_format": figure_format}
     return {
+        f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
+            plot_dynamic_histories(case, folder / "dynamic_history.png", **fmt)
+        ),
         f"Force-depth loop at {v0}: loading and unloading of the dynamic FE impact beside the "
         "quasi-static elastic law (the loop's area is the energy left in the body)": (
-            plot_force_depth_loop(
-                case, folder / "force_depth_loop.png", figure_format=figure_format
-            )
+            plot_force_depth_loop(case, folder / "force_depth_loop.png", **fmt)
         ),
         f"Energy account at {v0} (fractions of M v0^2 / 2): striker, half-space stored, "
         "absorbed (waves), dissipated (hysteresis), numerical residue": (
-            plot_energy_history(case, folder / "energy_history.png", figure_format=figure_format)
+            plot_energy_history(case, folder / "energy_history.png", **fmt)
         ),
     }
 
@@ -143,29 +131,17 @@ def write_dynamic_study(
     written.append(summary)
     example = outcome.example
     quasi, result = example.quasi, example.result
+    figures = _impact_figures(example, folder, figure_format)
+    figures[_over_velocity_caption(outcome)] = plot_dynamic_over_velocity(
+        outcome, folder / "dynamic_over_velocity.png", figure_format=figure_format
+    )
     v0 = f"{example.velocity:g} m/s"
-    figures = {
-        f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
-            plot_dynamic_histories(
-                example, folder / "dynamic_history.png", figure_format=figure_format
-            )
-        ),
-        **({} if outcome.study.finite else _loss_figures(example, folder, figure_format)),
-        _over_velocity_caption(outcome): (
-            plot_dynamic_over_velocity(
-                outcome, folder / "dynamic_over_velocity.png", figure_format=figure_format
-            )
-        ),
-    }
     late = SEPARATION_SNAPSHOT * quasi.t_y
-    separation = "after" if late > result.t_contact else "before"
+    after = "after" if late > result.t_contact else "before"
+    separation = f"at {SEPARATION_SNAPSHOT:g} t_y ({after} separation)"
     for key, words, stem in (
         (quasi.t_c, "at the quasi-static t_c (maximum compression)", "wave_field_tc"),
-        (
-            late,
-            f"at {SEPARATION_SNAPSHOT:g} t_y ({separation} separation)",
-            "wave_field_separation",
-        ),
+        (late, separation, "wave_field_separation"),
     ):
         if key in result.snapshots:  # a rubber's run keeps no fields
             figures[f"Wave field (von Mises) at {v0}, {words}"] = plot_wave_field(
@@ -180,18 +156,11 @@ def write_dynamic_study(
 def write_case_figures(
     case: DynamicCase, folder: Path, figure_format: str = "png"
 ) -> dict[str, Path]:
-    """One impact's figures in ``folder``: ``dynamic_history.png`` (x(t), P(t) against the
-    quasi-static impact; with ``figure_format`` "svg" or "pdf" also in that format beside it)
-    and ``wave_field_<i>.png`` at each time the run kept (PNG only); ``{caption: path}``."""
-    v0 = f"{case.velocity:g} m/s"
-    figures = {
-        f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
-            plot_dynamic_histories(
-                case, folder / "dynamic_history.png", figure_format=figure_format
-            )
-        )
-    }
-    figures.update(_loss_figures(case, folder, figure_format))
+    """One impact's figures in ``folder``, a linear body's or a rubber's: ``dynamic_history``
+    (x(t), P(t) against the quasi-static impact), ``force_depth_loop``, ``energy_history``
+    (with ``figure_format`` "svg" or "pdf" also in that format beside each PNG) and
+    ``wave_field_<i>.png`` at each time the run kept (PNG only); ``{caption: path}``."""
+    v0, figures = f"{case.velocity:g} m/s", _impact_figures(case, folder, figure_format)
     for index, key in enumerate(sorted(case.result.snapshots)):
         figures[f"Wave field (von Mises) at {v0}, t = {key * 1e3:.3g} ms"] = plot_wave_field(
             case, key, folder / f"wave_field_{index}.png"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -10,14 +11,15 @@ import numpy as np
 
 from ..fem.elasticity import ElasticSolution
 from ..study.contact.indentation import IndentationResult
+from ..theory.impact import ImpactHistory
 from .files import write_csv
 
 __all__ = [
-    "FIELD_NAMES",
     "FIELD_UNITS",
     "field_mesh",
     "indenter_field_data",
     "near_field",
+    "write_histories",
     "write_indentation",
     "write_vtu",
 ]
@@ -34,7 +36,6 @@ FIELD_UNITS = {
 }
 """Point data of the VTU files and their units: displacements in m, stresses in Pa (tension
 positive). In the files each name carries its unit, ``sigma_zz [Pa]``."""
-FIELD_NAMES = tuple(FIELD_UNITS)
 NEAR_FIELD_RADII = 4.0
 """The near-field VTU keeps the triangles within this many contact radii of the first contact
 point (ParaView opens on the contact zone, not on the 1e5-times larger domain)."""
@@ -106,6 +107,16 @@ def indenter_field_data(indenter: object) -> dict[str, float]:
         "indenter_shape_coefficient [m^(1-n)]": indenter.shape_coefficient,
         "indenter_exponent [1]": indenter.exponent,
     }
+
+
+def write_histories(histories: Mapping[str, ImpactHistory], folder: Path) -> list[Path]:
+    """``history_<variant>.csv`` of each impact history in ``folder`` (t, x, P, a, p0 in SI,
+    :meth:`~shtaerman.theory.impact.ImpactHistory.columns`); the paths written."""
+    written = []
+    for variant, history in histories.items():
+        written.append(folder / f"history_{variant}.csv")
+        write_csv(written[-1], history.columns())
+    return written
 
 
 def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:

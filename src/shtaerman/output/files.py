@@ -336,10 +336,23 @@ def _refuse_link(path: Path, option: str, kind: str) -> None:
         )
 
 
+@contextlib.contextmanager
+def _path_errors(option: str, path: object) -> Iterator[None]:
+    """An invalid name (a NUL byte) or an OS error on ``path`` as an InputError naming it."""
+    try:
+        yield
+    except InputError:
+        raise
+    except ValueError as error:
+        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
+    except OSError as error:
+        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
+
+
 def check_folder_path(path: Path, option: str = "out") -> Path:
     """``path`` made absolute (symbolic links not resolved), or raise InputError when it names
     no folder, is a symbolic link, or is the current folder or one of its parents."""
-    try:
+    with _path_errors(option, path):
         raw = Path(path).expanduser()
         target = _absolute(raw)
         if not target.name or target == target.parent:
@@ -350,12 +363,6 @@ def check_folder_path(path: Path, option: str = "out") -> Path:
                 f"{option}: {str(path)!r} is the current folder or one of its parents; name a "
                 f"new folder (e.g. {option} results)"
             )
-    except ValueError as error:  # a NUL byte in the name
-        if isinstance(error, InputError):
-            raise
-        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
-    except OSError as error:
-        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
     return target
 
 
@@ -412,7 +419,7 @@ def check_output_folder(
     that another run is writing are refused.
     """
     target = check_folder_path(path, option)
-    try:
+    with _path_errors(option, path):
         if target.exists() and not target.is_dir():
             raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
         if not target.parent.is_dir():
@@ -428,12 +435,6 @@ def check_output_folder(
             if force and (foreign := _foreign_files(target)):
                 raise _not_only_ours(option, path, foreign)
         probe_writable(option, target.parent, _stage_path(target).name)
-    except ValueError as error:  # a NUL byte in the name
-        if isinstance(error, InputError):
-            raise
-        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
-    except OSError as error:
-        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
     return target
 
 
@@ -572,10 +573,10 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
     terminal, also through a link: ``/dev/stdout``) is written into, never replaced; a folder
     and a symbolic link to anything else (a file elsewhere, nothing) are refused.
     """
-    try:
-        if not os.fspath(path):
-            raise InputError(f"{option}: an empty name names no file")
-        path = Path(path).expanduser()
+    if not os.fspath(path):
+        raise InputError(f"{option}: an empty name names no file")
+    path = Path(path).expanduser()
+    with _path_errors(option, path):
         if path.exists():  # follows symbolic links, also /dev/stdout -> /proc/self/fd/1
             mode = path.stat().st_mode
             if stat.S_ISDIR(mode):
@@ -594,12 +595,6 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
         if live:
             raise _busy(option, real, live)
         probe_writable(option, real.parent, _stage_path(real).name)
-    except ValueError as error:
-        if isinstance(error, InputError):
-            raise
-        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
-    except OSError as error:
-        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
     return path
 
 
@@ -675,6 +670,14 @@ CSV_UNITS = {
     "pressure_analytic": "Pa",
     "gap": "m",
     "strain_energy": "J",
+    # finite strain beside the linear solution
+    "depth_to_radius": "1",
+    "force_linear": "N",
+    "force_linear_fem": "N",
+    "force_ratio": "1",
+    "force_ratio_fem": "1",
+    "radius_ratio": "1",
+    "newton_iterations": "1",
 }
 """The unit of every CSV column name, shown in the header as ``name [unit]`` (``[1]``:
 dimensionless): ``t [s],x [m],P [N],a [m],p0 [Pa]`` for an impact history."""

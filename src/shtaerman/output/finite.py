@@ -6,8 +6,6 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
   stored energy and Newton iterations beside the linear exact and same-mesh linear FEM values;
 - ``history_<variant>.csv``: the impact histories t, x, P, a, p(0) (linear exact, linear FEM,
   finite strain);
-- ``dynamic_history.png`` of a finite-strain impact (``dynamic --model ... --out``,
-  :func:`write_finite_figure`; its other files are every impact's);
 - ``field_at_x_c.vtu``: the deformed-state fields (reference r-z section, displacements in m,
   Cauchy stresses in Pa) at the computed depth nearest the finite-strain x_c, with the depth,
   force, contact radius, material and model as VTK field data.
@@ -15,12 +13,9 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
-
-import meshio
-import numpy as np
+from types import SimpleNamespace
+from typing import TYPE_CHECKING
 
 from ..plots.finite import (
     nearest_step,
@@ -28,39 +23,28 @@ from ..plots.finite import (
     plot_finite_ratios,
     plot_finite_section,
 )
-from .export import FIELD_UNITS, indenter_field_data, write_vtu
+from .case import model_label
+from .export import field_mesh, indenter_field_data, write_histories, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
     from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
-    from ..theory.impact import ImpactResult
 
 __all__ = [
     "write_finite_curve",
     "write_finite_field",
-    "write_finite_figure",
     "write_finite_study",
 ]
 
 
-CURVE_UNITS = {
-    "depth": "m",
-    "depth_to_radius": "1",
-    "force": "N",
-    "force_linear": "N",
-    "force_linear_fem": "N",
-    "force_ratio": "1",
-    "force_ratio_fem": "1",
-    "contact_radius": "m",
-    "radius_ratio": "1",
-    "central_pressure": "Pa",
-    "central_to_mean": "1",
-    "strain_energy": "J",
-    "newton_iterations": "1",
-}
-HISTORY_UNITS = {"t": "s", "x": "m", "P": "N", "a": "m", "p0": "Pa"}
+CURVE_KEYS = (
+    *("depth", "depth_to_radius", "force", "force_linear", "force_linear_fem", "force_ratio"),
+    *("force_ratio_fem", "contact_radius", "radius_ratio", "central_pressure", "central_to_mean"),
+    *("strain_energy", "newton_iterations"),
+)
+"""The columns of a study's finite_curve.csv (units: :data:`.files.CSV_UNITS`)."""
 CAPTIONS = {
     "finite_ratios": "Real rubber against Shtaerman: P/(beta x^q) (top) and p(0)/p_avg (bottom) "
     "against depth / linear contact radius, the neo-Hookean FEM (red) beside the linear FEM "
@@ -76,15 +60,9 @@ def write_finite_field(
     curve: FiniteContactCurve, step: FiniteContactStep, material: object, path: Path
 ) -> Path:
     """The deformed-state fields of ``step`` as a VTU of the reference r-z section (x = r,
-    y = z in m; warp by ``displacement [m]`` for the deformed shape)."""
-    fields = curve.fields(step)
-    points = np.column_stack([fields["r"], fields["z"], np.zeros_like(fields["r"])])
-    data = {
-        f"{name} [{unit}]": np.asarray(fields[name], float) for name, unit in FIELD_UNITS.items()
-    }
-    data["displacement [m]"] = np.column_stack(
-        [fields["u_r"], fields["u_z"], np.zeros_like(fields["u_r"])]
-    )
+    y = z in m; warp by ``displacement [m]`` for the deformed shape), as
+    :func:`.export.field_mesh` writes the linear body's, with the rubber model as a flag."""
+    model = getattr(curve.system.material, "model", "neo-hookean")
     scalars = {
         "depth [m]": step.depth,
         "force [N]": step.force,
@@ -93,13 +71,10 @@ def write_finite_field(
         **indenter_field_data(curve.indenter),
         "youngs_modulus [Pa]": material.youngs_modulus,
         "poisson_ratio [1]": material.poisson_ratio,
-        "model_neo-hookean [1]": 1.0,  # the material model as a flag (field data are numbers)
+        f"model_{model} [1]": 1.0,  # the material model as a flag (field data are numbers)
     }
-    fields_data = {key: np.atleast_1d(float(value)) for key, value in scalars.items()}
-    mesh = meshio.Mesh(
-        points, [("triangle", curve.system.mesh.t.T)], point_data=data, field_data=fields_data
-    )
-    write_vtu(path, mesh)
+    solution = SimpleNamespace(system=curve.system, **curve.fields(step))
+    write_vtu(path, field_mesh(solution, scalars))
     return path
 
 
@@ -109,13 +84,7 @@ def write_finite_curve(result: FiniteIndentationResult, folder: Path) -> list[Pa
     folder = Path(folder)
     rows = result.step_table()
     curve_path = folder / "finite_curve.csv"
-    units = {
-        **CURVE_UNITS,
-        "force_analytic": "N",
-        "contact_radius_analytic": "m",
-        "central_pressure_analytic": "Pa",
-    }
-    write_csv(curve_path, {f"{k} [{units[k]}]": [row[k] for row in rows] for k in rows[0]})
+    write_csv(curve_path, {k: [row[k] for row in rows] for k in rows[0]})
     field_path = folder / "field_max_depth.vtu"
     write_finite_field(result.curve, result.steps[-1], result.half_space, field_path)
     return [curve_path, field_path]
@@ -130,44 +99,22 @@ def write_finite_study(
     folder.mkdir()
     rows = outcome.rows()
     written = [folder / "finite_curve.csv"]
-    write_csv(written[0], {f"{k} [{u}]": [row[k] for row in rows] for k, u in CURVE_UNITS.items()})
-    for variant, history in outcome.histories.items():
-        path = folder / f"history_{variant}.csv"
-        columns = history.columns()
-        write_csv(path, {f"{k} [{u}]": columns[k] for k, u in HISTORY_UNITS.items()})
-        written.append(path)
+    write_csv(written[0], {k: [row[k] for row in rows] for k in CURVE_KEYS})
+    written += write_histories(outcome.histories, folder)
     step = outcome.finite.steps[nearest_step(outcome)]
     written.append(
         write_finite_field(
             outcome.finite.curve, step, outcome.study.half_space, folder / "field_at_x_c.vtu"
         )
     )
-    fmt = {"figure_format": figure_format}
+    fmt, model = {"figure_format": figure_format}, model_label(outcome.study.rubber.name)
+    captions = {key: text.replace("neo-Hookean", model) for key, text in CAPTIONS.items()}
     figures = {
-        CAPTIONS["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png", **fmt),
-        f"{CAPTIONS['finite_section']} ({step.depth * 1e3:.3g} mm)": plot_finite_section(
+        captions["finite_ratios"]: plot_finite_ratios(outcome, folder / "finite_ratios.png", **fmt),
+        f"{captions['finite_section']} ({step.depth * 1e3:.3g} mm)": plot_finite_section(
             outcome, folder / "finite_section.png"
         ),
-        CAPTIONS["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png", **fmt),
+        captions["finite_impact"]: plot_finite_impact(outcome, folder / "finite_impact.png", **fmt),
     }
     files = {path.stem: str(path.relative_to(root)) for path in written}
     return files, {caption: str(path.relative_to(root)) for caption, path in figures.items()}
-
-
-def write_finite_figure(
-    result: Any, quasi: ImpactResult, folder: Path, figure_format: str = "png"
-) -> Path:
-    """A finite-strain impact's dynamic_history.png in ``folder`` (``result``: the API's
-    DynamicResult): x(t), P(t) against the quasi-static impact ``quasi``; also in
-    ``figure_format`` "svg" or "pdf"."""
-    from types import SimpleNamespace
-
-    finite = SimpleNamespace(**result.solution.history_columns())
-    histories = {"linear_exact": quasi.history(points=401), "finite_strain": finite}
-    return plot_finite_impact(
-        SimpleNamespace(histories=histories),
-        folder / "dynamic_history.png",
-        figure_format=figure_format,
-        model=result.model,
-        exact=None if math.isfinite(quasi.beta) else "Sneddon, linear (a sphere or a table)",
-    )

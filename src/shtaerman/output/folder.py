@@ -25,8 +25,8 @@ from ..plots.formats import check_figure_format
 from ..study.kinds import kind_function
 from ..study.run import run_study
 from ..validation import InputError, NumericalFailureError
-from .export import write_indentation
-from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder, write_csv
+from .export import write_histories, write_indentation
+from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder
 from .report import results_document, study_document, write_reports
 
 if TYPE_CHECKING:
@@ -202,34 +202,19 @@ def write_contact_study(
 ) -> tuple[dict[str, str], dict[str, str]]:
     """A contact study's files (VTU, CSV curves and histories) and figures, paths from root
     (``figure_format`` "svg" or "pdf": each chart also in that format beside its PNG)."""
-    files = _study_files(outcome, folder, root)
-    return files, _study_figures(outcome, folder, root, figure_format)
-
-
-def _study_files(outcome: StudyOutcome, folder: Path, root: Path) -> dict[str, str]:
-    folder.mkdir()
-    written = write_indentation(outcome.contact, folder)
-    for variant, history in outcome.histories.items():
-        path = folder / f"history_{variant}.csv"
-        write_csv(path, history.columns())
-        written.append(path)
-    return {path.stem: str(path.relative_to(root)) for path in written}
-
-
-def _study_figures(
-    outcome: StudyOutcome, folder: Path, root: Path, figure_format: str
-) -> dict[str, str]:
     # imported here, not at the top: the process that runs the studies on dask workers
     # draws no study's figures, and matplotlib, pyvista and VTK cost it ~1 s before the
     # workers start (benchmarks/verify_cost.py)
-    from ..plots.gallery import study_convergence_figures, study_field_figures, study_figures
+    from ..plots.gallery import study_figures
 
-    made = {
-        **study_field_figures(outcome, folder),
-        **study_figures(outcome, folder, figure_format),
-        **study_convergence_figures(outcome, folder, figure_format),
-    }
-    return {title: str(path.relative_to(root)) for title, path in made.items()}
+    folder.mkdir()
+    written = write_indentation(outcome.contact, folder)
+    written += write_histories(outcome.histories, folder)
+    made = study_figures(outcome, folder, figure_format)
+    return (
+        {path.stem: str(path.relative_to(root)) for path in written},
+        {title: str(path.relative_to(root)) for title, path in made.items()},
+    )
 
 
 def study_entry(outcome: Any, stage: Path, figure_format: str = "png") -> dict[str, object]:

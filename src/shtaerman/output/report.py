@@ -27,8 +27,9 @@ import jinja2
 
 from ..version import __version__
 from . import text_contact, text_dynamic, text_effects, text_finite
+from .entry import no_summary_row, stored_findings, stored_tables
 from .files import json_safe
-from .wording import number, seconds
+from .wording import number, seconds, times_text
 
 __all__ = [
     "TEXTS",
@@ -39,8 +40,6 @@ __all__ = [
     "results_document",
     "study_document",
     "validity_table",
-    "write_html",
-    "write_markdown",
     "write_reports",
 ]
 
@@ -62,8 +61,8 @@ TEXTS: dict[str, ModuleType] = {
     "finite-strain": text_finite,
     "effects": text_effects,
 }
-"""Study kind -> its text module: ``entry``, ``tables``, ``findings``, ``timing_text``,
-``validity_rows`` and ``summary_row``."""
+"""Study kind -> its text module: ``entry``, and where the kind has its own, ``tables``,
+``findings``, ``timing_text``, ``validity_rows`` and ``summary_row`` (:data:`DEFAULTS`)."""
 SUMMARY_LEGEND = (
     "Contact columns: the largest relative error over the depths against Shtaerman's exact "
     "solution. Impact columns: the largest relative difference of the two FEM-fed impacts "
@@ -145,8 +144,20 @@ def results_document(
 # --- the context both reports are rendered from ----------------------------------------------
 
 
-def _study_text(study: Mapping[str, Any]) -> ModuleType:
-    return _text(study.get("kind", "contact"))
+DEFAULTS: dict[str, Callable[..., Any]] = {
+    "tables": stored_tables,
+    "findings": stored_findings,
+    "timing_text": times_text,
+    "summary_row": no_summary_row,
+    "validity_rows": lambda name, study: [],
+}
+"""What a kind's text module that does not define one of these functions shows: the tables
+and findings its entry stores, the common times, no cross-check row, no validity rows."""
+
+
+def _study_text(study: Mapping[str, Any], part: str) -> Callable[..., Any]:
+    """The function ``part`` of the study's kind's text module, else :data:`DEFAULTS`'."""
+    return getattr(_text(study.get("kind", "contact")), part, DEFAULTS[part])
 
 
 def _summary_row(name: str, study: dict) -> list[str]:
@@ -183,7 +194,7 @@ def validity_table(studies: dict) -> dict[str, object] | None:
     rows = [
         row
         for name, study in studies.items()
-        for row in _study_text(study).validity_rows(name, study)
+        for row in _study_text(study, "validity_rows")(name, study)
     ]
     if not rows:
         return None
@@ -199,22 +210,18 @@ def validity_table(studies: dict) -> dict[str, object] | None:
 
 
 def _failures(studies: dict) -> list[dict[str, str]]:
+    """The failed checks of every study (:func:`_checks`), each with its study's name."""
     return [
-        {
-            "study": name,
-            "check": check["name"],
-            "value": number(check["value"], ".2e"),
-            "tolerance": number(check["tolerance"], ".1e"),
-        }
+        {"study": name, **check}
         for name, study in studies.items()
-        for check in study["checks"]
-        if not check["passed"]
+        for check in _checks(study)
+        if check["result"] == "FAIL"
     ]
 
 
 def _summaries(studies: dict) -> dict[str, dict[str, object]]:
     """The summary table of every study, and the contact cross-check of those with a row."""
-    contact = [_study_text(study).summary_row(name, study) for name, study in studies.items()]
+    contact = [_study_text(study, "summary_row")(name, study) for name, study in studies.items()]
     return {
         "summary": {
             "legend": SUMMARY_LEGEND,
@@ -247,15 +254,14 @@ def _figures(captioned: Mapping[str, str]) -> list[dict[str, str]]:
 
 
 def _study_section(name: str, study: dict, figures: Mapping[str, str]) -> dict[str, object]:
-    text = _study_text(study)
     return {
         "name": name,
         "description": study["description"],
         "case": study.get("case", ""),
         "verdict": "PASS" if study["passed"] else "FAIL",
         "checks": _checks(study),
-        "tables": text.tables(study),
-        "timing_text": text.timing_text(study),
+        "tables": _study_text(study, "tables")(study),
+        "timing_text": _study_text(study, "timing_text")(study),
         "figures": _figures(figures),
     }
 
@@ -285,7 +291,7 @@ def report_context(
         "findings": [
             sentence
             for name, study in studies.items()
-            for sentence in _study_text(study).findings(name, study)
+            for sentence in _study_text(study, "findings")(name, study)
         ],
         "validity": validity_table(studies),
         **_summaries(studies),
@@ -369,15 +375,3 @@ def write_reports(
     markdown.write_text(render_markdown(context), encoding="utf-8")
     page.write_text(render_html(context, folder), encoding="utf-8")
     return markdown, page
-
-
-def write_markdown(results: dict, figures: dict[str, dict[str, str]], path: Path) -> None:
-    """report.md beside the figures (relative image links)."""
-    path.write_text(render_markdown(report_context(results, figures)), encoding="utf-8")
-
-
-def write_html(results: dict, figures: dict[str, dict[str, str]], folder: Path) -> Path:
-    """report.html with every image embedded: it opens from disk anywhere."""
-    path = folder / "report.html"
-    path.write_text(render_html(report_context(results, figures), folder), encoding="utf-8")
-    return path

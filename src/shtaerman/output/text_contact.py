@@ -10,7 +10,7 @@ from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
 from ..theory.sneddon import profile_inputs
 from .case import case_words, interface_words, prefixed
 from .entry import kind_entry
-from .wording import number, plus_minus, seconds
+from .wording import number, plus_minus, seconds, times_text
 
 __all__ = [
     "CONTACT_COLUMNS",
@@ -20,7 +20,6 @@ __all__ = [
     "summary_row",
     "tables",
     "timing_text",
-    "validity_rows",
 ]
 
 UNITS = {"beta": "N/m^q", "x_c": "m", "P_c": "N", "a_c": "m", "p_c": "Pa", "t_c": "s", "t_y": "s"}
@@ -242,11 +241,7 @@ def timing_text(study: Mapping[str, Any]) -> str:
     ]
     if timings.get("convergence"):
         parts.append(f"mesh-convergence study {seconds(timings['convergence'])} s")
-    parts.append(f"computation in all {seconds(timings.get('computation', study['seconds']))} s")
-    if timings.get("output") is not None:
-        parts.append(f"files and figures {seconds(timings['output'])} s")
-    parts.append(f"study total {seconds(timings.get('total', study['seconds']))} s")
-    return "; ".join(parts)
+    return "; ".join([*parts, times_text(study, "computation in all")])
 
 
 def summary_row(name: str, study: Mapping[str, Any]) -> list[str] | None:
@@ -268,8 +263,3 @@ def summary_row(name: str, study: Mapping[str, Any]) -> list[str] | None:
         *(number(worst[key], ".1e") for key in IMPACT_COLUMNS),
         seconds(timings.get("fem_curve", study["contact"]["timings"].get("total"))),
     ]
-
-
-def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
-    """No rows: a contact study tests no assumption of the impact model."""
-    return []

@@ -23,23 +23,15 @@ from .case import (
     prony_words,
     rubber_words,
 )
-from .entry import no_summary_row as summary_row
-from .entry import stored_findings as findings
-from .entry import stored_tables as tables
 from .entry import text_entry
 from .wording import plus_minus
-from .wording import times_text as timing_text
 
 __all__ = [
     "RELATIVE_ESTIMATES",
     "assumptions",
     "entry",
-    "findings",
     "study_findings",
     "study_tables",
-    "summary_row",
-    "tables",
-    "timing_text",
     "validity_rows",
 ]
 
@@ -69,13 +61,20 @@ def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
     return pm
 
 
+def _unresolved(limit: Mapping[str, Any]) -> str:
+    """ "not resolved (...)" for a limit its estimate does not resolve, else ""."""
+    if limit.get("resolved"):
+        return ""
+    if limit.get("error") is None:
+        return "not resolved (no error estimate)"
+    return f"not resolved (estimate {100 * limit['error']:.2g} %)"
+
+
 def _limit_text(limit: Mapping[str, Any], smallest: float, *, error: bool = False) -> str:
     """A velocity limit in words; "not resolved (...)" unless its estimate resolves it;
     ``error``: the estimate as ± percentage points after a stated limit."""
-    if not limit["resolved"]:
-        if limit["error"] is None:
-            return "not resolved (no error estimate)"
-        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
+    if _unresolved(limit):
+        return _unresolved(limit)
     suffix = f"difference ± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
     joint = "; " if suffix else ""
     if limit["bound"] == "none":
@@ -140,8 +139,7 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
         "velocity": velocity,
     }
     details = f"M = {study.mass:g} kg, v0 = {velocity:g} m/s, rubber density {study.density:g}"
-    papers = study.prony is None and outcome.settings.thickness is None and not study.physics
-    if papers and is_paper_case(inputs):
+    if not _model_words(outcome) and is_paper_case(inputs):  # the paper's elastic half-space
         return f"At the paper's example ({details} kg/m^3 assumed)"
     return f"In this case ({details} kg/m^3)"
 
@@ -420,10 +418,8 @@ def _velocity(limit: Mapping[str, Any] | None) -> str:
     """A velocity limit: "v0 = 3.12 ± 0.1 m/s" (± in m/s), "the whole range computed (...)",
     "no: ...", or "not resolved (...)" where its estimated error is not below a fifth of the
     level."""
-    if limit and not limit.get("resolved"):
-        if limit.get("error") is None:
-            return "not resolved (no error estimate)"
-        return f"not resolved (estimate {100 * limit['error']:.2g} %)"
+    if limit and _unresolved(limit):
+        return _unresolved(limit)
     if not limit or limit.get("velocity") is None:
         return "no: already off at the slowest v0 computed"
     if limit.get("bound") == "all":

@@ -7,20 +7,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from .entry import kind_entry
-from .entry import no_summary_row as summary_row
-from .entry import stored_findings as findings
-from .entry import stored_tables as tables
-from .wording import times_text as timing_text
 
-__all__ = [
-    "entry",
-    "findings",
-    "study_findings",
-    "summary_row",
-    "tables",
-    "timing_text",
-    "validity_rows",
-]
+__all__ = ["entry", "study_findings"]
 
 NAMES = {"P_max": "P_max", "x_max": "x_max", "t_contact": "t_contact", "restitution": "e"}
 
@@ -65,8 +53,3 @@ def entry(
     case = f"{problem['geometry']}; {problem['model']}; {problem['interface']}"
     text = {"tables": study_tables(document), "findings": study_findings(document)}
     return kind_entry(outcome, {"case": case, **document, **text}, files, output_seconds, figures)
-
-
-def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
-    """None: an effect table states no velocity limit."""
-    return []

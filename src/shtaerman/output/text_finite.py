@@ -17,27 +17,20 @@ from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from ..theory.sneddon import profile_inputs
-from .case import case_words, model_label, rubber_words
-from .entry import no_summary_row as summary_row
-from .entry import stored_findings as findings
-from .entry import stored_tables as tables
+from .case import VOLUMETRIC, case_words, model_label, rubber_constants, rubber_words
 from .entry import text_entry
 from .text_corrections import corrections_finding, corrections_table
 from .wording import number, plus_minus
-from .wording import times_text as timing_text
 
 __all__ = [
     "QUICK_ERROR",
     "VARIANTS",
     "central_pressure_words",
     "entry",
-    "findings",
     "study_findings",
     "study_tables",
-    "summary_row",
-    "tables",
-    "timing_text",
     "validity_rows",
+    "variant_label",
 ]
 
 VARIANTS = {
@@ -91,8 +84,9 @@ def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> st
     return f"{value:{spec}}" + _plain(None if error is None else error * abs(value))
 
 
-def _variant(outcome: FiniteStudyOutcome, variant: str) -> str:
-    """The impact variant's label, the finite-strain one naming the study's rubber model."""
+def variant_label(outcome: FiniteStudyOutcome, variant: str) -> str:
+    """The impact variant's label (in the tables and the impact figure's legend): the linear
+    exact one Sneddon's for another profile, the finite-strain one naming the rubber model."""
     if variant == "linear_exact" and outcome.study.indenter.kind != "power-law":
         return f"Sneddon, linear ({outcome.study.indenter.kind} profile)"
     if variant != "finite_strain":
@@ -104,24 +98,18 @@ def rubber_finding(outcome: FiniteStudyOutcome) -> list[str]:
     """The rubber model's constants (none for the default neo-Hookean), and for nu2 < 0.5 the
     plain flag that the result depends on the volumetric energy."""
     rubber, nu = outcome.study.rubber, outcome.study.half_space.poisson_ratio
-    shape = {
-        "mooney-rivlin": f"r = C01/(C10 + C01) = {rubber.mooney_ratio:g}",
-        "yeoh": "c2, c3 = C20/C10, C30/C10 = {:g}, {:g}".format(*rubber.yeoh),
-        "gent": f"Jm = {rubber.gent_limit:g}",
-    }
     out = []
-    if rubber.name in shape:
+    if rubber_constants(rubber):
         out.append(
-            f"Rubber model: {model_label(rubber.name)} with {shape[rubber.name]}, the "
+            f"Rubber model: {model_label(rubber.name)} with {rubber_constants(rubber)}, the "
             "small-strain modulus kept at E2 (its departures from the neo-Hookean study are "
             "the model's)."
         )
     if nu < 0.5:
-        energy = {"quadratic": "K/2 (J-1)^2", "logarithmic": "K/2 (ln J)^2"}[rubber.volumetric]
         out.append(
             f"Compressible (nu2 = {nu:g}): these numbers depend on the volumetric energy chosen, "
-            f"here {energy}, not only on E2 and nu2; the other choice (--volumetric) moves them "
-            "(docs/findings.md, 'Rubber models')."
+            f"here {VOLUMETRIC[rubber.volumetric]}, not only on E2 and nu2; the other choice "
+            "(--volumetric) moves them (docs/findings.md, 'Rubber models')."
         )
     return out
 
@@ -333,7 +321,7 @@ def _impact_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
     )
     rows = [
         [
-            _variant(outcome, variant),
+            variant_label(outcome, variant),
             *[
                 f"{values[k] * s:.5g}{_pm(outcome, k) if variant == 'finite_strain' else ''}"
                 for k, s, _ in keys

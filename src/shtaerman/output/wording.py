@@ -26,10 +26,11 @@ def plus_minus(error: float | None, spec: str = ".1e", scale: float = 1.0) -> st
     return f" ± {scale * error:{spec}}"
 
 
-def times_text(study: Mapping[str, object]) -> str:
-    """ "computation ... s; files and figures ... s; study total ... s" of a results entry."""
+def times_text(study: Mapping[str, object], computation: str = "computation") -> str:
+    """ "computation ... s; files and figures ... s; study total ... s" of a results entry
+    (``computation``: the words of the first part)."""
     timings = study.get("timings") or {}
-    parts = [f"computation {seconds(timings.get('computation', study['seconds']))} s"]
+    parts = [f"{computation} {seconds(timings.get('computation', study['seconds']))} s"]
     if timings.get("output") is not None:
         parts.append(f"files and figures {seconds(timings['output'])} s")
     parts.append(f"study total {seconds(timings.get('total', study['seconds']))} s")

@@ -88,9 +88,9 @@ def _fem_label(result: IndentationResult) -> str:
     rubber = getattr(result, "rubber", None)
     if rubber is None:
         return "FEM"
-    from .finite import MODEL_LABELS
+    from ..output.case import model_label
 
-    return f"FEM, {MODEL_LABELS.get(rubber.name, rubber.name)}"
+    return f"FEM, {model_label(rubber.name)}"
 
 
 @styled

@@ -14,7 +14,6 @@ Only reads results (:class:`shtaerman.study.finite.runner.FiniteStudyOutcome`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
@@ -23,6 +22,8 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from ..output.case import model_label
+from ..output.text_finite import variant_label
 from .sections import plot_field
 from .style import (
     EXACT_COLOUR,
@@ -49,18 +50,12 @@ __all__ = [
 
 FINITE_COLOUR = SECOND_COLOUR
 """Finite strain (red); the linear FEM is blue, the exact linear solution black."""
-MODEL_LABELS = {
-    "neo-hookean": "neo-Hookean",
-    "mooney-rivlin": "Mooney-Rivlin",
-    "yeoh": "Yeoh",
-    "gent": "Gent",
-}
-"""A rubber model's name in a legend (capitalised where it is a person's name)."""
 IMPACT_STYLES = {
-    "linear_exact": (EXACT_COLOUR, "-", "Shtaerman, linear (the paper)"),
-    "linear_fem": (FEM_COLOUR, ":", "linear FEM, same mesh"),
-    "finite_strain": (FINITE_COLOUR, "--", "neo-Hookean, finite strain"),
+    "linear_exact": (EXACT_COLOUR, "-"),
+    "linear_fem": (FEM_COLOUR, ":"),
+    "finite_strain": (FINITE_COLOUR, "--"),
 }
+"""Impact variant -> (colour, line style); labelled as the tables label it."""
 
 
 def nearest_step(outcome: FiniteStudyOutcome) -> int:
@@ -121,11 +116,11 @@ def panel_points(outcome: FiniteStudyOutcome, values: tuple, key: str) -> dict[s
 
 
 def _panel(axes: Any, outcome: FiniteStudyOutcome, x: np.ndarray, values: tuple, key: str) -> None:
-    """The neo-Hookean and linear FEM values of ``key`` over ``x``, unresolved ones open."""
+    """The rubber's and the linear FEM values of ``key`` over ``x``, unresolved ones open."""
     drawn = panel_points(outcome, values, key)
     finite, linear, exact = drawn["finite"], drawn["linear"], drawn["exact"]
     hidden, error, limits = drawn["unresolved"], drawn["error"], drawn["limits"]
-    style = (FINITE_COLOUR, "o", "--", "neo-Hookean FEM")
+    style = (FINITE_COLOUR, "o", "--", f"{model_label(outcome.study.rubber.name)} FEM")
     points(axes, x, finite, style, error=error, hidden=hidden)
     points(axes, x, linear, (FEM_COLOUR, "s", ":", "linear FEM, same mesh"), hidden=hidden)
     handles = [
@@ -219,22 +214,15 @@ def _mark_x_c(outcome: FiniteStudyOutcome, top: Any, bottom: Any) -> None:
 
 @styled
 def plot_finite_impact(
-    outcome: FiniteStudyOutcome,
-    path: Path | str,
-    *,
-    figure_format: str = "png",
-    model: str = "neo-hookean",
-    exact: str | None = None,
+    outcome: FiniteStudyOutcome, path: Path | str, *, figure_format: str = "png"
 ) -> Path:
-    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain (PNG, and
-    ``figure_format`` "svg" or "pdf" beside it); ``model`` names the rubber in the legend,
-    ``exact`` the linear exact impact (None: the paper's, Shtaerman)."""
+    """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain, the study's
+    rubber model named in the legend (PNG, and ``figure_format`` "svg" or "pdf" beside it)."""
     figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
     for variant, history in outcome.histories.items():
-        colour, line, label = IMPACT_STYLES[variant]
-        label = label.replace("neo-Hookean", MODEL_LABELS.get(model, model))
-        label = label if exact is None or variant != "linear_exact" else exact
+        colour, line = IMPACT_STYLES[variant]
+        label = variant_label(outcome, variant)
         top.plot(history.t * 1e3, history.x * 1e3, line, color=colour, label=label)
         bottom.plot(history.t * 1e3, history.P, line, color=colour, label=label)
     top.set_ylabel("Approach x (mm)")
@@ -247,30 +235,16 @@ def plot_finite_impact(
     return save(figure, path, figure_format)
 
 
-@dataclass(frozen=True)
-class _Deformed:
-    """One finite-strain state shaped as :mod:`.sections` reads a result (read-only view)."""
-
-    outcome: Any
-
-    @property
-    def indenter(self) -> Any:
-        return self.outcome.finite.indenter
-
-    @property
-    def steps(self) -> list[Any]:
-        return self.outcome.finite.steps
-
-    def field(self, step: int) -> SimpleNamespace:
-        curve = self.outcome.finite.curve
-        return SimpleNamespace(system=curve.system, **curve.fields(curve.steps[step]))
-
-
 def plot_finite_section(
     outcome: FiniteStudyOutcome, path: Path | str, field: str = "von_mises", extent: float = 2.5
 ) -> Path:
     """Von Mises (or ``field``) on the deformed r-z section under the indenter, true scale,
     at the computed depth nearest the finite-strain x_c (PNG, 1600 x 1000)."""
-    return plot_field(
-        _Deformed(outcome), path, field, step=nearest_step(outcome), extent=extent, deformed=True
-    )
+    finite, curve = outcome.finite, outcome.finite.curve
+
+    def fields(step: int) -> SimpleNamespace:  # shaped as :mod:`.sections` reads a result
+        return SimpleNamespace(system=curve.system, **curve.fields(curve.steps[step]))
+
+    deformed = SimpleNamespace(indenter=finite.indenter, steps=finite.steps, field=fields)
+    step = nearest_step(outcome)
+    return plot_field(deformed, path, field, step=step, extent=extent, deformed=True)

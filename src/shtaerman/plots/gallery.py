@@ -29,8 +29,6 @@ if TYPE_CHECKING:
 __all__ = [
     "FIELD_FIGURES",
     "contact_figures",
-    "study_convergence_figures",
-    "study_field_figures",
     "study_figures",
 ]
 
@@ -40,10 +38,11 @@ FIELD_FIGURES = {
     "von_mises": "Von Mises stress under the indenter (r-z section, largest depth)",
     "u_z": "Axial displacement uz (r-z section, largest depth)",
 }
-"""Fields of :func:`study_field_figures` and their captions."""
+"""Fields drawn by :func:`study_figures` and their captions."""
 REVOLVED_CAPTION = (
     "Von Mises stress, the r-z section revolved through 270° (contact circle in green)"
 )
+MOTION_CAPTION = "Impact: approach x/x_c and force P/P_c against t/t_c (the paper's Fig. 3)"
 IMPACT_CONTACT_CAPTION = (
     "Impact: contact radius a/a_c and central pressure p(0,t)/p_c (the paper's Fig. 4). The "
     "lower panel's scale is set away from t = 0 and t_y, where a ~ x^(1/n) and p(0) ~ "
@@ -61,20 +60,23 @@ CONVERGENCE_CAPTION = (
 def study_figures(
     outcome: StudyOutcome, folder: Path | str, figure_format: str = "png"
 ) -> dict[str, Path]:
-    """The curve figures of one study, written into ``folder``.
+    """Every figure of one contact study, written into ``folder``.
 
-    ``force_depth.png`` and ``pressure.png`` (:func:`plot_force_depth`, :func:`plot_pressure`),
+    At the largest depth, one picture per field of :data:`FIELD_FIGURES` (``field_<name>.png``)
+    and the revolved von Mises cut-away (``field_revolved.png``), PNG only; on a layer
+    ``layer_map.png``; ``force_depth.png`` and ``pressure.png`` (:func:`contact_figures`);
     ``impact_motion.png`` and ``impact_contact.png`` (the paper's Figs. 3 and 4, every impact
-    variant of the study against its exact impact).
+    variant of the study against its exact impact); ``convergence.png`` where the study has a
+    convergence study.
 
     Parameters
     ----------
     outcome : shtaerman.study.contact.runner.StudyOutcome
-        The study: its ``contact``, ``histories`` and ``exact`` are drawn.
+        The study: its ``contact``, ``histories``, ``exact`` and ``convergence`` are drawn.
     folder : path-like
         Where the PNGs go (created if missing).
     figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes each figure in that format beside its PNG.
+        "svg" or "pdf" also writes each chart in that format beside its PNG.
 
     Returns
     -------
@@ -83,16 +85,19 @@ def study_figures(
     """
     folder, fmt = Path(folder), {"figure_format": figure_format}
     contact, histories, exact = outcome.contact, outcome.histories, outcome.exact
-    return {
-        **_layer_figures(outcome, folder, figure_format),
-        **contact_figures(contact, folder, figure_format),
-        "Impact: approach x/x_c and force P/P_c against t/t_c (the paper's Fig. 3)": (
-            plot_impact_motion(histories, exact, folder / "impact_motion.png", **fmt)
-        ),
-        IMPACT_CONTACT_CAPTION: plot_impact_contact(
-            histories, exact, folder / "impact_contact.png", **fmt
-        ),
-    }
+    paths = {name: folder / f"field_{name}.png" for name in FIELD_FIGURES}
+    made = {FIELD_FIGURES[name]: path for name, path in plot_each_field(contact, paths).items()}
+    made[REVOLVED_CAPTION] = plot_revolved(contact, folder / "field_revolved.png")
+    made |= _layer_figures(outcome, folder, figure_format)
+    made |= contact_figures(contact, folder, figure_format)
+    made[MOTION_CAPTION] = plot_impact_motion(histories, exact, folder / "impact_motion.png", **fmt)
+    made[IMPACT_CONTACT_CAPTION] = plot_impact_contact(
+        histories, exact, folder / "impact_contact.png", **fmt
+    )
+    if outcome.convergence is not None:
+        path = folder / "convergence.png"
+        made[CONVERGENCE_CAPTION] = plot_convergence(outcome.convergence, path, **fmt)
+    return made
 
 
 def _layer_figures(outcome: StudyOutcome, folder: Path, figure_format: str) -> dict[str, Path]:
@@ -147,57 +152,3 @@ def contact_figures(
         FORCE_DEPTH_CAPTION: plot_force_depth(result, folder / "force_depth.png", **fmt),
         PRESSURE_CAPTION: plot_pressure(result, folder / "pressure.png", **fmt),
     }
-
-
-def study_convergence_figures(
-    outcome: StudyOutcome, folder: Path | str, figure_format: str = "png"
-) -> dict[str, Path]:
-    """``convergence.png`` (:func:`plot_convergence`) if the study has a convergence study.
-
-    Parameters
-    ----------
-    outcome : shtaerman.study.contact.runner.StudyOutcome
-        The study; its ``convergence`` is drawn.
-    folder : path-like
-        Where the PNG goes (created if missing).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside its PNG.
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Caption to PNG path; empty when the study has no convergence study.
-    """
-    if outcome.convergence is None:
-        return {}
-    path = Path(folder) / "convergence.png"
-    return {
-        CONVERGENCE_CAPTION: plot_convergence(
-            outcome.convergence, path, figure_format=figure_format
-        )
-    }
-
-
-def study_field_figures(outcome: StudyOutcome, folder: Path | str) -> dict[str, Path]:
-    """The field pictures of one study, written into ``folder``.
-
-    One PNG per field of :data:`FIELD_FIGURES` (``field_<name>.png``) and the revolved
-    von Mises cut-away (``field_revolved.png``), all at the largest depth.
-
-    Parameters
-    ----------
-    outcome : shtaerman.study.contact.runner.StudyOutcome
-        The study; its ``contact`` (IndentationResult) is drawn.
-    folder : path-like
-        Where the PNGs go (created if missing).
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Caption to PNG path.
-    """
-    folder, result = Path(folder), outcome.contact
-    paths = {name: folder / f"field_{name}.png" for name in FIELD_FIGURES}
-    made = {FIELD_FIGURES[name]: path for name, path in plot_each_field(result, paths).items()}
-    made[REVOLVED_CAPTION] = plot_revolved(result, folder / "field_revolved.png")
-    return made

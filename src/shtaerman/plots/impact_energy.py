@@ -97,17 +97,18 @@ def loop_work(result: ImpactRun) -> float:
 def energy_shares(result: ImpactRun) -> dict[str, np.ndarray]:
     """The energy account per step as fractions of E0 (dimensionless), keyed by the labels of
     :data:`ENERGY_STYLES` (on a pad, :data:`PAD_LABELS`); they sum to 1 (the residue closes
-    it). The dissipated share is left out where it is 0 throughout (an elastic body)."""
+    it). The dissipated share is left out where it is 0 throughout or not recorded (an elastic
+    body)."""
     energies = result.energies
     energy0 = 0.5 * result.parameters["mass"] * result.parameters["velocity"] ** 2
     shares = {
         "striker kinetic": energies["striker_kinetic"],
         "half-space stored (kinetic + strain)": energies["body_kinetic"] + energies["strain"],
         "absorbed by the layer (waves)": energies["absorbed"],
-        "dissipated (hysteresis)": energies["dissipated"],
+        "dissipated (hysteresis)": energies.get("dissipated", 0.0),
         "numerical residue": energies["numerical"],
     }
-    if not np.any(energies["dissipated"]):
+    if not np.any(shares["dissipated (hysteresis)"]):  # elastic: no such share (or record)
         del shares["dissipated (hysteresis)"]
     names = PAD_LABELS if on_pad(result) else {}
     return {names.get(k, k): np.asarray(values) / energy0 for k, values in shares.items()}

@@ -15,7 +15,6 @@ from .style import WIDTH, plain_log, save, styled
 
 __all__ = [
     "LAYER_MAP_CAPTION",
-    "LAYER_RESTITUTION_CAPTION",
     "MapSeries",
     "RestitutionSeries",
     "plot_layer_map",
@@ -110,13 +109,6 @@ def plot_layer_map(
     axes.set_ylabel(r"$P\,/\,P_{\mathrm{Shtaerman}} - 1$ at the same depth")
     axes.legend(loc="lower left", ncols=2, fontsize=7)
     return save(figure, path, figure_format)
-
-
-LAYER_RESTITUTION_CAPTION = (
-    "The dynamic FE impact on a layer on a rigid base against the layer thickness H over the "
-    "half-space contact radius a (log): left, the restitution (grey: the half-space's); right, "
-    "the dynamic peak force over Shtaerman's quasi-static P_c on the half-space."
-)
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,6 @@ __all__ = [
     "frame",
     "plot_each_field",
     "plot_field",
-    "plot_fields",
     "section",
     "segments",
 ]
@@ -337,44 +336,6 @@ def plot_field(
     """
     made = plot_each_field(result, {field: path}, step=step, extent=extent, deformed=deformed)
     return made[field]
-
-
-def plot_fields(
-    result: IndentationResult,
-    path: Path | str,
-    fields: Sequence[str] = ("sigma_zz", "sigma_rr", "von_mises", "u_z"),
-    *,
-    step: int = -1,
-    extent: float = 3.0,
-    deformed: bool = False,
-) -> Path:
-    """Write a 2 x 2 PNG of four fields, 800 x 500 pixels each, laid out as :func:`plot_field`.
-
-    Parameters
-    ----------
-    result : IndentationResult
-        The FEM indentation run.
-    path : path-like
-        PNG to write (1600 x 1000 pixels); parent folders are created.
-    fields : sequence of str
-        Four names of :data:`FIELDS`, row by row.
-    step, extent, deformed
-        As for :func:`plot_field`.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-    """
-    if len(fields) != 4:
-        raise InputError(f"fields must name four fields, got {len(fields)}")
-    options = (step, extent, deformed)
-    cut = _shared_section(result, fields, options)
-    with picture((2, 2)) as plotter:
-        for index, name in enumerate(fields):
-            plotter.subplot(*divmod(index, 2))
-            _panel(plotter, result, cut, name, options)
-        return save(plotter, path)
 
 
 def plot_each_field(
