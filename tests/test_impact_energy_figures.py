@@ -170,3 +170,16 @@ def test_the_history_figure_names_the_losses_of_the_run(both, elastic):
 
     assert _losses(both.result) == "waves + hysteresis"
     assert _losses(elastic.result) == "waves"
+
+
+def test_a_lossless_share_is_shown_without_a_minus_sign():
+    """A rubber's loop area of -1e-6 E0 (the trapezoid's round-off) printed "-0.0000" in the
+    loop's title."""
+    from shtaerman.plots.impact_energy import _shown
+
+    assert [_shown(x) for x in (-1e-6, 0.0, 0.28049, -0.5)] == [
+        "0.0000",
+        "0.0000",
+        "0.2805",
+        "-0.5000",
+    ]

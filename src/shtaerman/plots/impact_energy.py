@@ -147,8 +147,8 @@ def plot_force_depth_loop(
     ax.legend(loc="upper left")
     energy0 = 0.5 * quasi.mass * quasi.velocity**2
     ax.set_title(
-        f"v0 = {case.velocity:g} m/s: loop area / E0 = {loop_work(result) / energy0:.4f}, "
-        f"1 {MINUS} e² = {result.energy_radiated_fraction:.4f}",
+        f"v0 = {case.velocity:g} m/s: loop area / E0 = {_shown(loop_work(result) / energy0)}, "
+        f"1 {MINUS} e² = {_shown(result.energy_radiated_fraction)}",
         fontsize=9,
     )
     return save(figure, path, figure_format)
@@ -185,3 +185,8 @@ def plot_energy_history(case: DynamicCase, path: Path | str, *, figure_format: s
         fontsize=9,
     )
     return save(figure, path, figure_format)
+
+
+def _shown(fraction: float) -> str:
+    """``fraction`` to 4 decimals, a lossless run's -1e-6 shown as 0.0000, not -0.0000."""
+    return f"{round(fraction, 4) + 0.0:.4f}"
