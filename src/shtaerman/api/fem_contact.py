@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..guards import check_equator
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..problem import (
@@ -400,18 +401,20 @@ def _problem(indenter: Any, body: Any, options: Mapping[str, Any]) -> Problem:
     return Problem.curve(indenter, body, **physics)
 
 
+def _impact(problem: Problem) -> tuple[float, float]:
+    """The impact (mass kg, velocity m/s; default the vocabulary's) whose x_c the default
+    depths reach."""
+    striker = problem.striker
+    mass = entry("mass").default if striker.mass is None else striker.mass
+    return mass, entry("velocity").default if striker.velocity is None else striker.velocity
+
+
 def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     """The depths (m) within the finite-strain contact's reach; default depths that are not
     name the impact that set them (its mass and velocity)."""
     from ..fem.finite_contact import check_finite_depths
 
-    impact = None
-    if problem.loading.depths is None:
-        mass, velocity = problem.striker.mass, problem.striker.velocity
-        impact = (
-            entry("mass").default if mass is None else mass,
-            entry("velocity").default if velocity is None else velocity,
-        )
+    impact = None if problem.loading.depths is not None else _impact(problem)
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
@@ -421,14 +424,10 @@ def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     from ..fem.contact import check_contact_scale
     from ..study.contact.indentation import default_depths, refined_radius
 
-    striker = problem.striker
-    mass = entry("mass").default if striker.mass is None else striker.mass
-    velocity = entry("velocity").default if striker.velocity is None else striker.velocity
     indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
     paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh)
     check_contact_scale(modulus, paper)  # fails at the paper's impact too: not the mass's fault
-    radius = refined_radius(indenter, depths, mesh)
-    check_contact_scale(modulus, radius, (mass, velocity))
+    check_contact_scale(modulus, refined_radius(indenter, depths, mesh), _impact(problem))
 
 
 def _check_depths(
@@ -446,13 +445,8 @@ def _check_depths(
         _check_scale(problem, depths, mesh)
     else:
         _check_force_range(indenter, body, depths)
-    if indenter.kind == "sphere" and depths[-1] >= indenter.radius:
-        raise InputError(  # the FE profile is flat at z = R beyond the equator: no sphere
-            f"depths: {depths[-1]:.6g} m reaches the sphere's equator height (radius "
-            f"{indenter.radius:.6g} m), beyond which the FE profile is no sphere; give depths "
-            "below the radius or a larger sphere (sphere_radius, --sphere-radius)",
-            "depths",
-        )
+    given = problem.loading.depths is not None
+    check_equator(indenter, depths[-1], None if given else _impact(problem))
     if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
         from ..theory.sneddon import contact_law
 
