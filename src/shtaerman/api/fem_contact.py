@@ -22,7 +22,6 @@ from ..problem import (
     RUBBER_OPTIONS,
     Body,
     Problem,
-    check_bodies,
     check_options,
     check_outputs,
 )
@@ -188,18 +187,13 @@ def contact_depths(
     """
     from ..study.contact.indentation import default_depths
 
-    if depths is not None:
-        for name, value in (("mass", mass), ("velocity", velocity)):
-            if value is not None:
-                raise InputError(
-                    f"{name}: sets the default depths (up to that impact's x_c); give either "
-                    "depths or mass and velocity",
-                    name,
-                )
-        given = depths.tolist() if isinstance(depths, np.ndarray) else depths
-        return np.array(entry("depths").check(given, "contact"))
-    check_bodies(indenter, body, RIGID if striker is None else striker)
-    return default_depths(indenter, body, mass, velocity, RIGID if striker is None else striker)
+    striker = RIGID if striker is None else striker
+    problem = Problem.curve(
+        indenter, body, depths=depths, mass=mass, velocity=velocity, striker=striker
+    )  # the one check of the depths, the bodies and which of them is given
+    if problem.loading.depths is not None:
+        return np.array(problem.loading.depths)
+    return default_depths(indenter, body, mass, velocity, striker)
 
 
 def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
@@ -223,22 +217,14 @@ def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
             )
 
 
-def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[str, Any]:
-    """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the impact
-    whose x_c the default depths reach; unchanged when the depths were given."""
-    if options["depths"] is not None:
-        return dict(report)
-    impact_inputs = {
-        "mass": float(entry("mass").default if options["mass"] is None else options["mass"]),
-        "velocity": float(
-            entry("velocity").default if options["velocity"] is None else options["velocity"]
-        ),
-    }
+def _with_impact(report: Mapping[str, Any], impact: tuple[float, float] | None) -> dict:
+    """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the
+    ``impact`` whose x_c the default depths reach; unchanged when the depths were given."""
     out: dict[str, Any] = {}
     for key, value in report.items():
         out[key] = value
-        if key == "nu2":
-            out.update(impact_inputs)
+        if key == "nu2" and impact is not None:
+            out.update(mass=float(impact[0]), velocity=float(impact[1]))
     return out
 
 
@@ -293,7 +279,6 @@ class _Plan:
     indenter: Indenter
     body: Material
     depths: np.ndarray
-    model: str
     rubber: RubberModel | None
     mesh: MeshSettings
     refine: float
@@ -303,6 +288,7 @@ class _Plan:
     solver: str
     progress: Callable[[str], None] | None
     relaxing: dict[str, Any] = field(default_factory=dict)  # prony and rate, or nothing
+    impact: tuple[float, float] | None = None  # whose x_c the default depths reach
 
     @property
     def finite(self) -> bool:
@@ -316,37 +302,21 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     from ..study.contact.indentation import run_indentation
     from ..study.finite.indentation import run_finite_ladder, run_finite_study
 
-    inputs = (plan.indenter, plan.body)
-    finest = plan.mesh.refined(plan.refine) if not plan.estimate else None
+    inputs = (plan.indenter, plan.body, plan.depths)
+    steps = {"progress": plan.progress, "refine": plan.refine}
+    if not plan.estimate:
+        finest = plan.mesh.refined(plan.refine)
+        if plan.finite:
+            return run_finite_study(*inputs, finest, plan.rubber), None
+        return run_indentation(*inputs, finest, backend=plan.solver, **plan.relaxing), None
     if plan.finite:
-        if finest is not None:
-            return run_finite_study(*inputs, plan.depths, finest, plan.rubber), None
-        ladder = run_finite_ladder(
-            *inputs,
-            plan.depths,
-            plan.mesh,
-            refine=plan.refine,
-            progress=plan.progress,
-            rubber=plan.rubber,
-        )
-    elif finest is not None:
-        solution = run_indentation(
-            *inputs, plan.depths, finest, backend=plan.solver, **plan.relaxing
-        )
-        return solution, None
+        ladder = run_finite_ladder(*inputs, plan.mesh, rubber=plan.rubber, **steps)
     elif plan.tolerance is None:
-        ladder = run_ladder(
-            *inputs,
-            plan.depths,
-            plan.mesh,
-            refine=plan.refine,
-            backend=plan.solver,
-            progress=plan.progress,
-            **plan.relaxing,
-        )
+        ladder = run_ladder(*inputs, plan.mesh, backend=plan.solver, **steps, **plan.relaxing)
     else:
         ladder = run_to_accuracy(
-            *inputs,
+            plan.indenter,
+            plan.body,
             plan.tolerance,
             plan.depths,
             plan.mesh,
@@ -462,12 +432,13 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     from ..fem.contact import validate_fem_inputs
     from ..fem.finite_contact import FINITE_MESH
     from ..fem.mesh import DEFAULTS, MeshSettings
+    from ..study.contact.indentation import default_depths
 
     problem = _problem(indenter, body, options)
     check_options(problem, ["accuracy"] if options["accuracy"] is not None else [])
     outputs = {name: options[name] for name in ("force", "estimate", "figure_format")}
     check_outputs(options["out"], **outputs)
-    indenter, body, model = problem.striker.indenter, problem.body.material, problem.body.model
+    indenter, body = problem.striker.indenter, problem.body.material
     estimate = bool(options["estimate"])
     check_figure_format(options["figure_format"])
     validate_fem_inputs(indenter, body)
@@ -490,14 +461,9 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     _check_options(options, problem.body)
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
+        striker = problem.striker
         depths = (
-            contact_depths(
-                indenter,
-                body,
-                mass=problem.striker.mass,
-                velocity=problem.striker.velocity,
-                striker=problem.striker.material,
-            )
+            default_depths(indenter, body, striker.mass, striker.velocity, striker.material)
             if problem.loading.depths is None
             else np.array(problem.loading.depths)  # checked when the problem was built
         )
@@ -508,7 +474,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     relaxing = {}
     if problem.body.prony is not None:
         relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
-    return _Plan(indenter, body, depths, model, problem.body.rubber(), mesh, *rest, relaxing)
+    impact = None if problem.loading.depths is not None else _impact(problem)
+    return _Plan(indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact)
 
 
 def contact(
@@ -624,7 +591,7 @@ def contact(
         stage = stack.enter_context(staged_folder(folder, force=force)) if folder else None
         solution, ladder = _solve(plan)
         report = {**solution.to_dict(), **(ladder.to_dict() if ladder is not None else {})}
-        result = ContactResult.from_report(_with_impact(report, options), solution, ladder)
+        result = ContactResult.from_report(_with_impact(report, plan.impact), solution, ladder)
         if stage is not None:
             _write(result, stage, options["figure_format"])
     _warn_beyond_the_layer(plan)

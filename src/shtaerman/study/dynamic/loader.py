@@ -189,17 +189,6 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     return settings
 
 
-def _moved_layer(path: Path, data: dict[str, Any]) -> None:
-    """Refuse the layer keys under ``[half_space]``: a layer is the ``[layer]`` table."""
-    body = data.get("half_space")
-    for key in ("thickness", "base"):
-        if isinstance(body, dict) and key in body:
-            raise StudyError(
-                f"{path}: key 'half_space.{key}': the layer is the [layer] table, as in a "
-                "contact study: thickness (m) or thickness_ratio (H / a_c), and base"
-            )
-
-
 def _velocities(
     path: Path, key: str, given: float | list[float], example: float | None
 ) -> tuple[float, ...]:
@@ -221,7 +210,6 @@ def _velocities(
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
-    _moved_layer(path, data)
     raw: _DynamicFile = decode(path, data, _DynamicFile)
     name = study_name(path, raw.name)
     indenter = indenter_of(path, raw.indenter)
