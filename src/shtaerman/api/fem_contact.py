@@ -18,6 +18,7 @@ from ..guards import check_equator
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..problem import (
+    KEYWORDS,
     MODELS,
     RUBBER_OPTIONS,
     Body,
@@ -27,7 +28,7 @@ from ..problem import (
 )
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
-from ..vocabulary import entry, fields
+from ..vocabulary import entry
 from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
@@ -36,7 +37,15 @@ if TYPE_CHECKING:
     from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
 
-__all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
+__all__ = [
+    "MESH_OPTIONS",
+    "MODELS",
+    "RUBBER_OPTIONS",
+    "ContactResult",
+    "contact",
+    "contact_depths",
+    "mesh_settings",
+]
 
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
 """Mesh keywords (``--mesh-size``, ...): each sets the MeshSettings field
@@ -149,22 +158,11 @@ class ContactResult:
 
 
 def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSettings:
-    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None.
+    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None; each value is
+    checked alone first, so that an error names its keyword."""
+    from ..study.schema import replaced
 
-    Each value is checked alone first, so that an error names its keyword.
-    """
-    from ..fem.mesh import MeshSettings
-
-    names = fields(MESH_OPTIONS)
-    chosen = {names[k]: v for k, v in options.items() if v is not None}
-    for name, field_name in names.items():
-        if field_name not in chosen:
-            continue
-        try:
-            MeshSettings(**{field_name: chosen[field_name]})
-        except InputError as error:
-            raise InputError(f"{name}: {error}", name) from None
-    return dataclasses.replace(base, **{k: float(v) for k, v in chosen.items()})  # type: ignore[arg-type]
+    return replaced(base, {name: options.get(name) for name in MESH_OPTIONS})
 
 
 def contact_depths(
@@ -344,8 +342,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
 
 
-PHYSICS = ("mass", "velocity", "depths", "striker", "thickness", "base", "interface")
-PHYSICS = (*PHYSICS, "friction", "model", *RUBBER_OPTIONS, "prony", "rate")
+PHYSICS = tuple(name for name in KEYWORDS if name != "loading")
 """The keywords of :func:`contact` that describe the problem (the rest are numerics)."""
 
 

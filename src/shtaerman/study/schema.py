@@ -17,7 +17,7 @@ import math
 import re
 import sys
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
@@ -48,6 +48,7 @@ __all__ = [
     "load_study",
     "normalized",
     "refused",
+    "replaced",
     "settings_of",
     "shipped_studies",
     "study_name",
@@ -234,22 +235,31 @@ class MeshTable(Table):
     max_dofs: Positive | None = None
 
 
-def settings_of(path: Path, table: str, raw: Table, base: Any) -> Any:
-    """``base`` (MeshSettings or DynamicSettings) with the numerics of ``raw``, the study
-    file's ``[table]``, that it has a field for (``refine`` is the caller's); each value is
-    checked alone first so that a refusal names the file and its key."""
-    keys = {SETTINGS_FIELDS.get(k, k): k for k in raw.__struct_fields__}
-    given = {
-        setting: getattr(raw, key)
-        for setting, key in keys.items()
-        if getattr(raw, key) is not None and setting in base.__dataclass_fields__
+def replaced(base: Any, given: Mapping[str, Any]) -> Any:
+    """``base`` (MeshSettings or DynamicSettings) with the numerics ``given`` (key -> value,
+    None: not given; the key's field per :data:`SETTINGS_FIELDS`) it has a field for, each
+    value checked alone first so that a refusal (InputError) names its key."""
+    chosen = {
+        SETTINGS_FIELDS.get(key, key): (key, value)
+        for key, value in given.items()
+        if value is not None and SETTINGS_FIELDS.get(key, key) in base.__dataclass_fields__
     }
-    for setting, value in given.items():
+    for setting, (key, value) in chosen.items():
         try:
             replace(base, **{setting: value})
         except InputError as error:
-            raise StudyError(f"{path}: key '{table}.{keys[setting]}': {error}") from None
-    return replace(base, **given)
+            raise InputError(f"{key}: {error}", key) from None
+    return replace(base, **{setting: value for setting, (_, value) in chosen.items()})
+
+
+def settings_of(path: Path, table: str, raw: Table, base: Any) -> Any:
+    """:func:`replaced` with the numerics of the study file's ``[table]`` (``refine`` is the
+    caller's); a refusal names the file and the key."""
+    try:
+        return replaced(base, msgspec.structs.asdict(raw))
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        raise StudyError(f"{path}: key '{table}.{error.parameter}': {text}") from None
 
 
 def study_name(path: Path, name: str | None) -> str:
