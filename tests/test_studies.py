@@ -117,7 +117,7 @@ def test_missing_file():
             r"key 'tolerances.force': expected a relative tolerance in",
         ),
         ("[tolerances]\nimpact = 0\n", r"key 'tolerances.impact': expected a relative tolerance"),
-        ("[numerics]\nmesh_margin = 0.5\n", r"key 'numerics.mesh_margin': margin must lie in \(1, 10"),
+        ("[numerics]\nmesh_margin = 0.5\n", r"key 'numerics.mesh_margin': margin must lie in"),
         ("[numerics]\ncolour = 1\n", r"key 'numerics.colour': expected one of \['axis_growth'"),
         ("[sweep]\n", r"key 'sweep': expected exactly one of"),
         ("[convergence]\nsizes = [0.1]\n", r"key 'convergence.sizes': expected a list of at"),
