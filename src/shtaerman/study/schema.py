@@ -551,7 +551,9 @@ def load_study(path: str | Path) -> list[Any]:
 def refused(path: Path, error: InputError, keys: dict[str, str] | None = None) -> StudyError:
     """``error`` (a refusal of the Problem, the FEM's ranges or a guard) as a StudyError naming
     the file and the study key of its parameter: ``keys`` (the kind's own tables) first, then
-    the vocabulary's table (:data:`TABLE_OF`)."""
+    the vocabulary's table (:data:`TABLE_OF`); a StudyError is returned as it is."""
+    if isinstance(error, StudyError):
+        return error
     parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
     key = {**STUDY_KEYS, **(keys or {})}.get(parameter, "half_space")
     return StudyError(f"{path}: key '{key}': {str(error).removeprefix(f'{parameter}: ')}")

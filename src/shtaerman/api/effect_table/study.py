@@ -19,7 +19,7 @@ import msgspec
 
 from ...problem import parts
 from ...study.checks import Check
-from ...study.dynamic.loader import KEYS
+from ...study.dynamic.loader import KEYS, impact_physics
 from ...study.schema import (
     BodyTable,
     ImpactTable,
@@ -109,7 +109,6 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     key."""
     raw: _EffectsFile = decode(path, data, _EffectsFile)
     name = study_name(path, raw.name)
-    rubber = {k: v for k, v in msgspec.structs.asdict(raw.rubber).items() if v is not None}
     indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
     body, impact = raw.half_space, raw.impact
     elastic = Material(body.E2, body.nu2)
@@ -120,10 +119,8 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
             mass=impact.mass,
             velocity=impact.velocity,
             prony=body.prony,
-            interface=impact.interface,
-            friction=impact.friction,
             **layer_geometry(path, raw.layer, indenter, elastic, (impact.mass, impact.velocity)),
-            **rubber,
+            **impact_physics(raw),
         )
     except InputError as error:
         raise refused(path, error, KEYS) from None

@@ -228,10 +228,11 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     try:
         validate_fem_inputs(indenter, half_space)  # the FEM's ranges before the layer's impact
         layer = layer_geometry(path, raw.layer, indenter, half_space, (raw.impact.mass, example))
-        settings = _settings(path, "numerics", raw.numerics, DynamicSettings(**layer))
+        defaults = DynamicSettings(**layer)
     except InputError as error:
         raise refused(path, error, KEYS) from None
-    physics = _physics(raw)
+    settings = _settings(path, "numerics", raw.numerics, defaults)
+    physics = impact_physics(raw)
     if physics.get("model", "linear") == "linear":
         try:
             check_ladder(settings)  # the full study runs the ladder; verify --quick does not
@@ -272,9 +273,10 @@ def _beside(path: Path, prony: str | None) -> str | None:
     return prony if csv.is_absolute() else str(path.parent / csv)
 
 
-def _physics(raw: _DynamicFile) -> dict[str, Any]:
-    """The keywords of :meth:`Problem.impact` the file gives beyond the striker, the body's
-    elasticity, the Prony series and the layer: the model, its rubber options, the interface."""
+def impact_physics(raw: Any) -> dict[str, Any]:
+    """The keywords of :meth:`Problem.impact` an impact's study file (dynamic, effects) gives
+    beyond the striker, the body's elasticity, the Prony series and the layer: the model, its
+    rubber options, the interface."""
     given = {**msgspec.structs.asdict(raw.rubber), "interface": raw.impact.interface}
     given["friction"] = raw.impact.friction
     defaults = {"model": "linear", "interface": "frictionless"}
