@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..guards import check_equator
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..problem import (
@@ -404,7 +403,13 @@ def _check_depths(
     too large a contact zone (naming mass and velocity where the impact set them), forces
     outside the floating-point range, beyond a table's last radius, or a ladder whose
     coarsest level ``mesh`` / ``refine`` cannot hold them."""
+    from ..study.contact.loader import check_profile_reach
+    from ..theory.materials import effective_modulus
+
     indenter, body = problem.striker.indenter, problem.body.material
+    given = tuple(depths) if problem.loading.depths is not None else None
+    modulus = effective_modulus(problem.striker.material, body)  # a sphere, a table: their end
+    check_profile_reach(indenter, modulus, given, _impact(problem), overshoot=1.0)
     if problem.body.finite:
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
@@ -412,12 +417,6 @@ def _check_depths(
         _check_scale(problem, depths, mesh)
     else:
         _check_force_range(indenter, body, depths)
-    given = problem.loading.depths is not None
-    check_equator(indenter, depths[-1], None if given else _impact(problem))
-    if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
-        from ..theory.sneddon import contact_law
-
-        contact_law(indenter, 1.0).contact_radius(depths[-1])
     if estimate:
         from ..study.contact.indentation import refined_radius
 
