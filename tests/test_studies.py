@@ -364,19 +364,7 @@ def test_finite_strain_depth_steps_and_its_old_names(tmp_path):
     assert any("'quick.mesh' is deprecated; write 'quick'" in m for m in messages)
 
 
-EFFECTS = """\
-kind = "effects"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-density2 = {density}
-[impact]
-mass = 0.7
-velocity = 3.0
-"""
+EFFECTS = 'kind = "effects"\n' + PAPER_CASE.replace("nu2 = 0.5", "nu2 = 0.5\ndensity2 = {density}")
 
 
 @pytest.mark.parametrize(
