@@ -156,3 +156,34 @@ def test_a_dynamic_sweep_refuses_layer_rate_0_on_a_layer(tmp_path, layer):
     assert load_sweep(path).cases()[0].params["layer_rate"] == 5.0
     path.write_text(text.replace("layer_rate = [0.0, 5.0]", "base = ['bonded']"))
     assert load_sweep(path).cases()[0].params["layer_rate"] is None  # the layer's own, 10
+
+
+def test_a_sphere_past_its_equator_is_one_check_with_one_message(tmp_path):
+    """The depth past a sphere's radius was refused by three checks in three wordings (the
+    API's contact, the FE impact's guard, the study loader). Now one check
+    (guards.check_equator) says it on every route: the input, the radius and the valid range
+    (the deepest depth below the radius)."""
+    from shtaerman.study.schema import StudyError, load_study
+    from shtaerman.validation import InputError
+
+    sphere, rubber = sh.SphereIndenter(1e-3), sh.Material(7.5e6, 0.5)
+    said = (
+        "depth 0.002 m, beyond the sphere's radius 0.001 m (its equator, past which the FE "
+        "profile is no sphere): the deepest depth must be below the radius; give smaller "
+        "depths or a larger sphere (sphere_radius, --sphere-radius)"
+    )
+    with pytest.raises(InputError) as api:
+        sh.contact(sphere, rubber, depths=[5e-4, 2e-3], estimate=False)
+    assert str(api.value) == f"depths: {said}"
+    study = tmp_path / "sphere.toml"
+    study.write_text(
+        "[indenter]\nsphere_radius = 1e-3\n[half_space]\nE2 = 7.5e6\nnu2 = 0.5\n"
+        "[impact]\nmass = 0.7\nvelocity = 3.0\n[contact]\ndepths = [5e-4, 2e-3]\n"
+    )
+    with pytest.raises(StudyError) as loaded:
+        load_study(study)
+    assert str(loaded.value) == f"{study}: key 'contact.depths': {said}"
+    # the FE impact: 0.7 kg at 3 m/s drive a 5 mm sphere to Sneddon's x_c = 9.88 mm
+    with pytest.raises(InputError, match=r"^sphere_radius: .* about 0\.00988 m, beyond the "):
+        massless = sh.Material(7.5e6, 0.5, 0.0)
+        sh.dynamic(sh.SphereIndenter(5e-3), massless, mass=0.7, velocity=3.0, estimate=False)

@@ -241,7 +241,8 @@ def test_a_sphere_pressed_to_its_equator_names_the_depths(capsys, depth):
     # and 1.1e-3 m ran with a 5 % pressure error
     argv = ["contact", "--sphere-radius", "1e-3", "--depths", depth, "--no-estimate"]
     line = error_line(capsys, *argv, "--mesh-size", "0.2")
-    assert line.startswith(f"--depths: {float(depth):g} m reaches the sphere's equator height")
+    said = f"--depths: depth {float(depth):g} m, beyond the sphere's radius 0.001 m"
+    assert line.startswith(said)
     assert "--sphere-radius" in line
 
 

@@ -58,7 +58,7 @@ def test_dynamic_study_refuses_a_bad_layer_table(tmp_path: Path, layer: str, mes
 def test_dynamic_study_refuses_the_layer_under_half_space(tmp_path: Path):
     path = tmp_path / "old.toml"
     path.write_text(DYNAMIC.format(layer="").replace("density2", "thickness = 0.02\ndensity2"))
-    with pytest.raises(StudyError, match=r"half_space\.thickness'.*\[layer\] table"):
+    with pytest.raises(StudyError, match=r"half_space\.thickness'.*it belongs in \[layer\]"):
         load_study(path)
 
 

@@ -164,3 +164,16 @@ def test_the_api_refuses_wrong_types_in_one_line(call, words):
     depth from the string "3", or read force="False" as true."""
     with pytest.raises(sh.InputError, match=words):
         call()
+
+
+def test_a_contact_curve_problem_reports_its_own_impact():
+    """sh.contact(problem) reported the impact of its keywords, not of the problem: a curve
+    whose default depths reach the x_c of 0.25 kg at 2 m/s said mass 0.7 and velocity 3 (the
+    vocabulary's defaults), and a curve to given depths gained a mass and a velocity it does
+    not have. The result's impact is the problem's (coarse mesh, one FEM run each)."""
+    numerics = dict(estimate=False, mesh_size=0.05, domain_factor=1e3)
+    own = sh.contact(sh.Problem.curve(PAPER, RUBBER, mass=0.25, velocity=2.0), **numerics)
+    assert (own.mass, own.velocity) == (0.25, 2.0)
+    assert own.to_dict()["mass"] == 0.25
+    given = sh.contact(sh.Problem.curve(PAPER, RUBBER, depths=[1e-4, 2e-4]), **numerics)
+    assert given.mass is None and "mass" not in given.to_dict()

@@ -66,7 +66,8 @@ def test_a_contact_beyond_the_table_is_refused_before_the_fem(monkeypatch):
     monkeypatch.setattr(indentation, "run_indentation", no_fem)
     r = np.linspace(0.0, 2e-3, 21)  # to r = 2 mm: in contact from x = 0.4 mm (x = a^2/R)
     table = sh.TabulatedIndenter(r, r**2 / (2 * RADIUS))
-    with pytest.raises(sh.InputError, match=r"^profile: depth 0.001 m reaches beyond the table"):
+    # the given depths are named, as a study file and a sweep case name them
+    with pytest.raises(sh.InputError, match=r"^depths: depth 0.001 m reaches beyond the table"):
         sh.contact(table, RUBBER, depths=[1e-3], estimate=False)
     with pytest.raises(sh.InputError, match=r"^profile: the striker's energy .* beyond the table"):
         sh.impact(table, RUBBER, mass=0.7, velocity=3.0)

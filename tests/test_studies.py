@@ -117,7 +117,7 @@ def test_missing_file():
             r"key 'tolerances.force': expected a relative tolerance in",
         ),
         ("[tolerances]\nimpact = 0\n", r"key 'tolerances.impact': expected a relative tolerance"),
-        ("[numerics]\nmesh_margin = 0.5\n", r"bad.toml: \[numerics\] margin must lie in \(1, 10"),
+        ("[numerics]\nmesh_margin = 0.5\n", r"key 'numerics.mesh_margin': margin must lie in"),
         ("[numerics]\ncolour = 1\n", r"key 'numerics.colour': expected one of \['axis_growth'"),
         ("[sweep]\n", r"key 'sweep': expected exactly one of"),
         ("[convergence]\nsizes = [0.1]\n", r"key 'convergence.sizes': expected a list of at"),
@@ -362,3 +362,29 @@ def test_finite_strain_depth_steps_and_its_old_names(tmp_path):
     assert (new.ladder.steps, new.quick_ladder.steps, new.quick_mesh.size) == (8, 4, 0.05)
     assert any("'quick.steps' is deprecated; write 'quick.depth_steps'" in m for m in messages)
     assert any("'quick.mesh' is deprecated; write 'quick'" in m for m in messages)
+
+
+EFFECTS = 'kind = "effects"\n' + PAPER_CASE.replace("nu2 = 0.5", "nu2 = 0.5\ndensity2 = {density}")
+
+
+@pytest.mark.parametrize(
+    ("text", "says"),
+    [
+        # a contact study took friction = 500 that the Problem (and every other route) refuses
+        (
+            PAPER + '[contact]\ninterface = "bonded"\nfriction = 500.0\n',
+            "key 'contact.friction': friction must lie in [0, 1e2], got 500.0",
+        ),
+        # an effects study named its density 'half_space.density', a key no file has
+        (
+            EFFECTS.format(density=1e300),
+            "key 'half_space.density2': density must lie in [1e-06, 1e+06] kg/m^3",
+        ),
+    ],
+)
+def test_a_study_refuses_what_the_problem_refuses_naming_its_key(tmp_path, text, says):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(StudyError) as error:
+        load_study(path)
+    assert says in str(error.value)

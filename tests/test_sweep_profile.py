@@ -130,7 +130,7 @@ def test_a_sphere_driven_past_its_radius_is_refused_before_any_run():
     the refined zone's edge after the work; now refused at load and before the FE run."""
     from shtaerman.validation import InputError
 
-    says = "sphere_radius: 0.7 kg at 3 m/s drive the sphere to about 9.88 mm, beyond its radius"
+    says = "sphere_radius: 0.7 kg at 3 m/s drive the striker to about 0.00988 m, beyond the"
     with pytest.raises(SweepError, match=re.escape("case 0 (sphere_radius = 0.005): ")) as error:
         _sweep("", "sphere_radius = [0.005, 0.01]")
     assert says in str(error.value)

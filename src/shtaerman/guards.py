@@ -30,6 +30,7 @@ __all__ = [
     "MIN_DEPTH_RATIO",
     "FailedCheckWarning",
     "ValidityWarning",
+    "check_equator",
     "check_reach",
     "depth_ratio",
     "outside_validity",
@@ -142,7 +143,7 @@ def check_reach(
             "shape_coefficient",
         )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
-    _check_equator(indenter, depth, mass, velocity)
+    check_equator(indenter, depth, impact)
     if not ratio >= MIN_DEPTH_RATIO:
         raise InputError(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
@@ -164,22 +165,35 @@ def check_reach(
         )
 
 
-def _check_equator(indenter: Indenter, depth: float, mass: float, velocity: float) -> None:
-    """Refuse an FE impact that drives a sphere to ``depth`` >= its radius R (m): its equator
-    at the surface (x/a 1.2 on Sneddon's law), beyond which the FE's sphere is a flat rim
-    (z = R for r > R) pressed into the body, not a ball (R = 5 mm at 0.7 kg and 3 m/s on the
-    paper's rubber, x_c = 2 R: the contact ran onto the rim and failed at its edge)."""
+def check_equator(
+    indenter: Indenter,
+    deepest: float,
+    impact: tuple[float, float] | None = None,
+    note: str = "",
+) -> None:
+    """Refuse, before any work, a sphere pressed to ``deepest`` >= its radius R (m): its
+    equator at the surface, beyond which the FE's sphere is a flat rim (z = R for r > R)
+    pressed into the body, not a ball (R = 5 mm at 0.7 kg and 3 m/s on the paper's rubber,
+    x_c = 2 R: the contact ran onto the rim and failed at its edge). The one check of every
+    route: the refusal names ``depths`` when they were given, else ``sphere_radius`` and the
+    ``impact`` (mass kg, velocity m/s) that set the depth; ``note`` follows the depth."""
     from .validation import InputError
 
     radius = getattr(indenter, "radius", None)
-    if getattr(indenter, "kind", "") == "sphere" and depth >= radius:
-        raise InputError(
-            f"sphere_radius: {mass:g} kg at {velocity:g} m/s drive the sphere to about "
-            f"{depth * 1e3:.3g} mm, beyond its "
-            f"radius {radius * 1e3:.3g} mm (its equator would pass the surface, where the "
-            "FE's ball ends): take a larger sphere or a lower mass or velocity",
-            "sphere_radius",
-        )
+    if getattr(indenter, "kind", "") != "sphere" or deepest < radius:
+        return
+    if impact is None:
+        parameter, drive, remedy = "depths", f"depth {deepest:.6g} m", "give smaller depths"
+    else:
+        parameter, remedy = "sphere_radius", "take a lower mass or velocity"
+        drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
+        drive += f"{deepest:.3g} m{note}"
+    raise InputError(
+        f"{parameter}: {drive}, beyond the sphere's radius {radius:.6g} m (its equator, past "
+        f"which the FE profile is no sphere): the deepest depth must be below the radius; "
+        f"{remedy} or a larger sphere (sphere_radius, --sphere-radius)",
+        parameter,
+    )
 
 
 def _striker_at_fault(indenter: Indenter, depth: float, q: float, high: float) -> bool:

@@ -17,17 +17,17 @@ from numpy.typing import ArrayLike
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..problem import (
+    KEYWORDS,
     MODELS,
     RUBBER_OPTIONS,
     Body,
     Problem,
-    check_bodies,
     check_options,
     check_outputs,
 )
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
-from ..vocabulary import entry, fields
+from ..vocabulary import entry
 from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
@@ -36,7 +36,15 @@ if TYPE_CHECKING:
     from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
 
-__all__ = ["MESH_OPTIONS", "MODELS", "ContactResult", "contact", "contact_depths", "mesh_settings"]
+__all__ = [
+    "MESH_OPTIONS",
+    "MODELS",
+    "RUBBER_OPTIONS",
+    "ContactResult",
+    "contact",
+    "contact_depths",
+    "mesh_settings",
+]
 
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
 """Mesh keywords (``--mesh-size``, ...): each sets the MeshSettings field
@@ -149,22 +157,11 @@ class ContactResult:
 
 
 def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSettings:
-    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None.
+    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None; each value is
+    checked alone first, so that an error names its keyword."""
+    from ..study.schema import replaced
 
-    Each value is checked alone first, so that an error names its keyword.
-    """
-    from ..fem.mesh import MeshSettings
-
-    names = fields(MESH_OPTIONS)
-    chosen = {names[k]: v for k, v in options.items() if v is not None}
-    for name, field_name in names.items():
-        if field_name not in chosen:
-            continue
-        try:
-            MeshSettings(**{field_name: chosen[field_name]})
-        except InputError as error:
-            raise InputError(f"{name}: {error}", name) from None
-    return dataclasses.replace(base, **{k: float(v) for k, v in chosen.items()})  # type: ignore[arg-type]
+    return replaced(base, {name: options.get(name) for name in MESH_OPTIONS})
 
 
 def contact_depths(
@@ -187,18 +184,13 @@ def contact_depths(
     """
     from ..study.contact.indentation import default_depths
 
-    if depths is not None:
-        for name, value in (("mass", mass), ("velocity", velocity)):
-            if value is not None:
-                raise InputError(
-                    f"{name}: sets the default depths (up to that impact's x_c); give either "
-                    "depths or mass and velocity",
-                    name,
-                )
-        given = depths.tolist() if isinstance(depths, np.ndarray) else depths
-        return np.array(entry("depths").check(given, "contact"))
-    check_bodies(indenter, body, RIGID if striker is None else striker)
-    return default_depths(indenter, body, mass, velocity, RIGID if striker is None else striker)
+    striker = RIGID if striker is None else striker
+    problem = Problem.curve(
+        indenter, body, depths=depths, mass=mass, velocity=velocity, striker=striker
+    )  # the one check of the depths, the bodies and which of them is given
+    if problem.loading.depths is not None:
+        return np.array(problem.loading.depths)
+    return default_depths(indenter, body, mass, velocity, striker)
 
 
 def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
@@ -222,22 +214,14 @@ def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
             )
 
 
-def _with_impact(report: Mapping[str, Any], options: Mapping[str, Any]) -> dict[str, Any]:
-    """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the impact
-    whose x_c the default depths reach; unchanged when the depths were given."""
-    if options["depths"] is not None:
-        return dict(report)
-    impact_inputs = {
-        "mass": float(entry("mass").default if options["mass"] is None else options["mass"]),
-        "velocity": float(
-            entry("velocity").default if options["velocity"] is None else options["velocity"]
-        ),
-    }
+def _with_impact(report: Mapping[str, Any], impact: tuple[float, float] | None) -> dict:
+    """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the
+    ``impact`` whose x_c the default depths reach; unchanged when the depths were given."""
     out: dict[str, Any] = {}
     for key, value in report.items():
         out[key] = value
-        if key == "nu2":
-            out.update(impact_inputs)
+        if key == "nu2" and impact is not None:
+            out.update(mass=float(impact[0]), velocity=float(impact[1]))
     return out
 
 
@@ -292,7 +276,6 @@ class _Plan:
     indenter: Indenter
     body: Material
     depths: np.ndarray
-    model: str
     rubber: RubberModel | None
     mesh: MeshSettings
     refine: float
@@ -302,6 +285,7 @@ class _Plan:
     solver: str
     progress: Callable[[str], None] | None
     relaxing: dict[str, Any] = field(default_factory=dict)  # prony and rate, or nothing
+    impact: tuple[float, float] | None = None  # whose x_c the default depths reach
 
     @property
     def finite(self) -> bool:
@@ -315,37 +299,21 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     from ..study.contact.indentation import run_indentation
     from ..study.finite.indentation import run_finite_ladder, run_finite_study
 
-    inputs = (plan.indenter, plan.body)
-    finest = plan.mesh.refined(plan.refine) if not plan.estimate else None
+    inputs = (plan.indenter, plan.body, plan.depths)
+    steps = {"progress": plan.progress, "refine": plan.refine}
+    if not plan.estimate:
+        finest = plan.mesh.refined(plan.refine)
+        if plan.finite:
+            return run_finite_study(*inputs, finest, plan.rubber), None
+        return run_indentation(*inputs, finest, backend=plan.solver, **plan.relaxing), None
     if plan.finite:
-        if finest is not None:
-            return run_finite_study(*inputs, plan.depths, finest, plan.rubber), None
-        ladder = run_finite_ladder(
-            *inputs,
-            plan.depths,
-            plan.mesh,
-            refine=plan.refine,
-            progress=plan.progress,
-            rubber=plan.rubber,
-        )
-    elif finest is not None:
-        solution = run_indentation(
-            *inputs, plan.depths, finest, backend=plan.solver, **plan.relaxing
-        )
-        return solution, None
+        ladder = run_finite_ladder(*inputs, plan.mesh, rubber=plan.rubber, **steps)
     elif plan.tolerance is None:
-        ladder = run_ladder(
-            *inputs,
-            plan.depths,
-            plan.mesh,
-            refine=plan.refine,
-            backend=plan.solver,
-            progress=plan.progress,
-            **plan.relaxing,
-        )
+        ladder = run_ladder(*inputs, plan.mesh, backend=plan.solver, **steps, **plan.relaxing)
     else:
         ladder = run_to_accuracy(
-            *inputs,
+            plan.indenter,
+            plan.body,
             plan.tolerance,
             plan.depths,
             plan.mesh,
@@ -373,8 +341,7 @@ def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     (folder / "contact.json").write_text(json.dumps(result.to_dict(), indent=2))
 
 
-PHYSICS = ("mass", "velocity", "depths", "striker", "thickness", "base", "interface")
-PHYSICS = (*PHYSICS, "friction", "model", *RUBBER_OPTIONS, "prony", "rate")
+PHYSICS = tuple(name for name in KEYWORDS if name != "loading")
 """The keywords of :func:`contact` that describe the problem (the rest are numerics)."""
 
 
@@ -400,18 +367,20 @@ def _problem(indenter: Any, body: Any, options: Mapping[str, Any]) -> Problem:
     return Problem.curve(indenter, body, **physics)
 
 
+def _impact(problem: Problem) -> tuple[float, float]:
+    """The impact (mass kg, velocity m/s; default the vocabulary's) whose x_c the default
+    depths reach."""
+    striker = problem.striker
+    mass = entry("mass").default if striker.mass is None else striker.mass
+    return mass, entry("velocity").default if striker.velocity is None else striker.velocity
+
+
 def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     """The depths (m) within the finite-strain contact's reach; default depths that are not
     name the impact that set them (its mass and velocity)."""
     from ..fem.finite_contact import check_finite_depths
 
-    impact = None
-    if problem.loading.depths is None:
-        mass, velocity = problem.striker.mass, problem.striker.velocity
-        impact = (
-            entry("mass").default if mass is None else mass,
-            entry("velocity").default if velocity is None else velocity,
-        )
+    impact = None if problem.loading.depths is not None else _impact(problem)
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
@@ -421,14 +390,10 @@ def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     from ..fem.contact import check_contact_scale
     from ..study.contact.indentation import default_depths, refined_radius
 
-    striker = problem.striker
-    mass = entry("mass").default if striker.mass is None else striker.mass
-    velocity = entry("velocity").default if striker.velocity is None else striker.velocity
     indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
     paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh)
     check_contact_scale(modulus, paper)  # fails at the paper's impact too: not the mass's fault
-    radius = refined_radius(indenter, depths, mesh)
-    check_contact_scale(modulus, radius, (mass, velocity))
+    check_contact_scale(modulus, refined_radius(indenter, depths, mesh), _impact(problem))
 
 
 def _check_depths(
@@ -438,7 +403,13 @@ def _check_depths(
     too large a contact zone (naming mass and velocity where the impact set them), forces
     outside the floating-point range, beyond a table's last radius, or a ladder whose
     coarsest level ``mesh`` / ``refine`` cannot hold them."""
+    from ..study.contact.loader import check_profile_reach
+    from ..theory.materials import effective_modulus
+
     indenter, body = problem.striker.indenter, problem.body.material
+    given = tuple(depths) if problem.loading.depths is not None else None
+    modulus = effective_modulus(problem.striker.material, body)  # a sphere, a table: their end
+    check_profile_reach(indenter, modulus, given, _impact(problem), overshoot=1.0)
     if problem.body.finite:
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
@@ -446,17 +417,6 @@ def _check_depths(
         _check_scale(problem, depths, mesh)
     else:
         _check_force_range(indenter, body, depths)
-    if indenter.kind == "sphere" and depths[-1] >= indenter.radius:
-        raise InputError(  # the FE profile is flat at z = R beyond the equator: no sphere
-            f"depths: {depths[-1]:.6g} m reaches the sphere's equator height (radius "
-            f"{indenter.radius:.6g} m), beyond which the FE profile is no sphere; give depths "
-            "below the radius or a larger sphere (sphere_radius, --sphere-radius)",
-            "depths",
-        )
-    if indenter.kind == "tabulated":  # the deepest contact within the table, before any work
-        from ..theory.sneddon import contact_law
-
-        contact_law(indenter, 1.0).contact_radius(depths[-1])
     if estimate:
         from ..study.contact.indentation import refined_radius
 
@@ -468,12 +428,13 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     from ..fem.contact import validate_fem_inputs
     from ..fem.finite_contact import FINITE_MESH
     from ..fem.mesh import DEFAULTS, MeshSettings
+    from ..study.contact.indentation import default_depths
 
     problem = _problem(indenter, body, options)
     check_options(problem, ["accuracy"] if options["accuracy"] is not None else [])
     outputs = {name: options[name] for name in ("force", "estimate", "figure_format")}
     check_outputs(options["out"], **outputs)
-    indenter, body, model = problem.striker.indenter, problem.body.material, problem.body.model
+    indenter, body = problem.striker.indenter, problem.body.material
     estimate = bool(options["estimate"])
     check_figure_format(options["figure_format"])
     validate_fem_inputs(indenter, body)
@@ -496,14 +457,9 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     _check_options(options, problem.body)
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
+        striker = problem.striker
         depths = (
-            contact_depths(
-                indenter,
-                body,
-                mass=problem.striker.mass,
-                velocity=problem.striker.velocity,
-                striker=problem.striker.material,
-            )
+            default_depths(indenter, body, striker.mass, striker.velocity, striker.material)
             if problem.loading.depths is None
             else np.array(problem.loading.depths)  # checked when the problem was built
         )
@@ -514,7 +470,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     relaxing = {}
     if problem.body.prony is not None:
         relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
-    return _Plan(indenter, body, depths, model, problem.body.rubber(), mesh, *rest, relaxing)
+    impact = None if problem.loading.depths is not None else _impact(problem)
+    return _Plan(indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact)
 
 
 def contact(
@@ -630,7 +587,7 @@ def contact(
         stage = stack.enter_context(staged_folder(folder, force=force)) if folder else None
         solution, ladder = _solve(plan)
         report = {**solution.to_dict(), **(ladder.to_dict() if ladder is not None else {})}
-        result = ContactResult.from_report(_with_impact(report, options), solution, ladder)
+        result = ContactResult.from_report(_with_impact(report, plan.impact), solution, ladder)
         if stage is not None:
             _write(result, stage, options["figure_format"])
     _warn_beyond_the_layer(plan)

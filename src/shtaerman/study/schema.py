@@ -17,7 +17,7 @@ import math
 import re
 import sys
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hi
 import msgspec
 
 from ..fem.contact import validate_fem_inputs
-from ..fem.mesh import MeshSettings
+from ..problem import RUBBER_OPTIONS
 from ..validation import InputError, bound_text
 from ..vocabulary import MAX_STUDIES, VOCABULARY, deprecated, fields, suggestion
 from ..vocabulary import entry as vocabulary_entry
@@ -36,14 +36,22 @@ if TYPE_CHECKING:
 
 __all__ = [
     "EXTENDED_STUDIES",
+    "BodyTable",
+    "LayerTable",
+    "RubberTable",
     "StudyError",
     "SweepTable",
-    "fem_input_error",
     "find_study",
     "indenter_of",
+    "layer_geometry",
+    "layer_spec",
     "load_study",
     "normalized",
+    "refused",
+    "replaced",
+    "settings_of",
     "shipped_studies",
+    "study_name",
     "validate_name",
 ]
 
@@ -184,6 +192,32 @@ class ImpactTable(Table):
     velocity: Positive
 
 
+class BodyTable(MaterialTable):
+    """The half-space of an impact study: its density (0: massless) and Prony series."""
+
+    density2: Annotated[float, msgspec.Meta(ge=0)]
+    prony: str | None = None
+
+
+class RubberTable(Table):
+    """``[rubber]``: the body's model (None: the kind's default) and its shape options."""
+
+    model: str | None = None
+    mooney_ratio: float | None = None
+    yeoh: list[float] | None = None
+    gent_limit: float | None = None
+    volumetric: str | None = None
+
+
+class LayerTable(Table):
+    """``[layer]``: a layer on a rigid base instead of the half-space."""
+
+    thickness: Positive | None = None
+    thickness_ratio: ranged("thickness_ratio") | None = None  # type: ignore[valid-type]
+    base: Literal["bonded", "lubricated"] = "bonded"
+    dynamic: bool = False
+
+
 SETTINGS_FIELDS = fields(item.name for item in VOCABULARY if item.setting)
 """Study-file key -> MeshSettings / DynamicSettings field, where the two differ."""
 
@@ -200,19 +234,84 @@ class MeshTable(Table):
     axis_growth: Positive | None = None
     max_dofs: Positive | None = None
 
-    def settings(self, default: MeshSettings, table: str) -> MeshSettings:
-        given = {
-            SETTINGS_FIELDS.get(k, k): v
-            for k, v in msgspec.structs.asdict(self).items()
-            if v is not None and k in MeshTable.__struct_fields__
-        }
-        given.pop("refine", None)
+
+def replaced(base: Any, given: Mapping[str, Any]) -> Any:
+    """``base`` (MeshSettings or DynamicSettings) with the numerics ``given`` (key -> value,
+    None: not given; the key's field per :data:`SETTINGS_FIELDS`) it has a field for, each
+    value checked alone first so that a refusal (InputError) names its key."""
+    chosen = {
+        SETTINGS_FIELDS.get(key, key): (key, value)
+        for key, value in given.items()
+        if value is not None and SETTINGS_FIELDS.get(key, key) in base.__dataclass_fields__
+    }
+    for setting, (key, value) in chosen.items():
         try:
-            settings = replace(default, **given)
-            settings.refined(1.0 if self.refine is None else self.refine).check_size()
-            return settings
+            replace(base, **{setting: value})
         except InputError as error:
-            raise InputError(f"[{table}] {error}") from None
+            raise InputError(f"{key}: {error}", key) from None
+    return replace(base, **{setting: value for setting, (_, value) in chosen.items()})
+
+
+def settings_of(path: Path, table: str, raw: Table, base: Any) -> Any:
+    """:func:`replaced` with the numerics of the study file's ``[table]`` (``refine`` is the
+    caller's); a refusal names the file and the key."""
+    try:
+        return replaced(base, msgspec.structs.asdict(raw))
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        raise StudyError(f"{path}: key '{table}.{error.parameter}': {text}") from None
+
+
+def study_name(path: Path, name: str | None) -> str:
+    """The study's ``name`` (default: the file's stem), a plain name; StudyError else."""
+    try:
+        return validate_name(path.stem if name is None else name, "name")
+    except InputError as error:
+        raise StudyError(f"{path}: key 'name': {error}") from None
+
+
+def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
+    """The layer of a ``[layer]`` table (unresolved, a :class:`.contact.layer.LayerSpec`), its
+    thickness given exactly once: in the table (m or H / a_c) or as the swept key ``swept``;
+    :class:`StudyError` otherwise."""
+    from .contact.layer import LayerSpec
+
+    if layer is None:
+        return LayerSpec()
+    given = [key for key in ("thickness", "thickness_ratio") if getattr(layer, key) is not None]
+    if len(given) > 1 or (given and swept):
+        where = f"sweep.{swept}" if len(given) == 1 else "layer.thickness_ratio"
+        raise StudyError(
+            f"{path}: key '{where}': expected the layer's thickness once: layer.thickness (m), "
+            "layer.thickness_ratio (H / a_c) or one of them in [sweep]"
+        )
+    if not given and not swept:
+        raise StudyError(
+            f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
+            f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
+        )
+    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
+
+
+def layer_geometry(
+    path: Path, layer: LayerTable | None, indenter: Indenter, body: Any, impact: tuple
+) -> dict[str, Any]:
+    """The impact's layer as keywords of :class:`shtaerman.problem.Problem` (thickness in m,
+    base; {} on the half-space): H / a_c resolved at the quasi-static ``impact`` (mass kg,
+    velocity m/s) of the rigid ``indenter`` on the half-space of ``body``."""
+    from ..theory.materials import RIGID, effective_modulus
+    from ..theory.sneddon import contact_law
+    from .dynamic.case import exact_impact
+
+    if layer is None:
+        return {}
+    if layer.dynamic:
+        raise StudyError(
+            f"{path}: key 'layer.dynamic': applies to a contact study (this one is an impact)"
+        )
+    law = contact_law(indenter, effective_modulus(RIGID, body))
+    spec = layer_spec(path, layer, None).resolved(float(exact_impact(*impact, law).a_c))
+    return {"thickness": spec.thickness, "base": spec.base}
 
 
 def validate_name(name: object, what: str = "name") -> str:
@@ -334,6 +433,15 @@ TABLE_OF = {
     **{name: "layer" for name in ("thickness", "thickness_ratio", "base", "dynamic")},
 }
 """A vocabulary key written at the top level of a study file -> the table it belongs to."""
+STUDY_KEYS = {
+    **{name: f"{table}.{name}" for name, table in TABLE_OF.items()},
+    **{name: f"rubber.{name}" for name in ("model", *RUBBER_OPTIONS)},
+    "prony": "half_space.prony",
+    "density": "half_space.density2",
+    "interface": "contact.interface",
+    "friction": "contact.friction",
+}
+"""An input's study-file key, for a refusal (:func:`refused`; a kind's own tables first)."""
 KIND_OF_TABLE = {"corrections": "finite-strain", "rubber": "finite-strain"}
 """A table that only one kind of study file has -> that kind."""
 OLD_TABLES = {"mesh": "numerics", "quick_mesh": "quick"}
@@ -440,21 +548,15 @@ def load_study(path: str | Path) -> list[Any]:
     return kind_function(kind, "load")(path, normalized(path, kind, data))
 
 
-FEM_INPUT_KEYS = {
-    "exponent": "indenter.exponent",
-    "shape_coefficient": "indenter.shape_coefficient",
-    "E2": "half_space.E2",
-    "nu2": "half_space.nu2",
-    "density2": "half_space.density2",
-}
-"""The study-file key of each parameter that :func:`validate_fem_inputs` and
-:func:`shtaerman.theory.materials.validate_density` check (``InputError.parameter``)."""
-
-
-def fem_input_error(path: Path, error: InputError) -> StudyError:
-    """A study file's FEM input refused: the error with the file and the key it is about."""
-    key = FEM_INPUT_KEYS.get(error.parameter, "half_space")
-    return StudyError(f"{path}: key '{key}': {error}")
+def refused(path: Path, error: InputError, keys: dict[str, str] | None = None) -> StudyError:
+    """``error`` (a refusal of the Problem, the FEM's ranges or a guard) as a StudyError naming
+    the file and the study key of its parameter: ``keys`` (the kind's own tables) first, then
+    the vocabulary's table (:data:`TABLE_OF`); a StudyError is returned as it is."""
+    if isinstance(error, StudyError):
+        return error
+    parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
+    key = {**STUDY_KEYS, **(keys or {})}.get(parameter, "half_space")
+    return StudyError(f"{path}: key '{key}': {str(error).removeprefix(f'{parameter}: ')}")
 
 
 def validated(path: Path, studies: list) -> list:
@@ -467,7 +569,7 @@ def validated(path: Path, studies: list) -> list:
         try:
             validate_fem_inputs(study.indenter, study.half_space)
         except InputError as error:
-            raise fem_input_error(path, error) from None
+            raise refused(path, error) from None
     return studies
 
 

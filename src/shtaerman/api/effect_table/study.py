@@ -1,44 +1,38 @@
 """The effects study kind (``kind = "effects"``): the effect table of one impact, written as
-``shtaerman effects --out`` writes it (effects.json, effects.csv, effects.md)::
+``shtaerman effects --out`` writes it (effects.json, effects.csv, effects.md).
 
-    kind = "effects"
-    name = "..."; description = "..."   # optional
-    [indenter]   shape_coefficient (m^(1-n)), exponent; or sphere_radius (m); or profile
-                 (a CSV of r, z in m, relative to the study file)
-    [half_space] E2 (Pa), nu2, density2 (kg/m^3; 0: massless), prony (optional)
-    [impact]     mass (kg), velocity (m/s), interface, friction (as a dynamic study's)
-    [rubber]     optional: model and its options (as a dynamic study's)
-    [layer]      optional: thickness (m) or thickness_ratio (H / a_c), base
-    [numerics]   refine, estimate (default true), time_steps, mesh_size, mesh_margin,
-                 domain_factor, growth, layer_rate (:func:`shtaerman.effects`'s)
-    [quick]      the [numerics] keys for ``verify --quick`` (default: no estimate)
-
-The study's schema reuses the dynamic study's tables; its roles are registered by name in
-:mod:`shtaerman.study.kinds` (the study layer does not import the API).
+Its case is a dynamic study's (the same tables: ``[indenter]``, ``[half_space]``, ``[impact]``
+with one velocity, ``[rubber]``, ``[layer]``; ``shtaerman init-study --kind effects`` writes
+every key, commented); ``[numerics]`` and ``[quick]`` take :func:`shtaerman.effects`'s
+keywords. Its roles are registered by name in :mod:`shtaerman.study.kinds` (the study layer
+does not import the API).
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 import msgspec
 
 from ...problem import parts
 from ...study.checks import Check
-from ...study.contact.loader import LayerTable
-from ...study.dynamic.loader import PHYSICS_KEYS, RubberTable
+from ...study.dynamic.loader import KEYS, impact_physics
 from ...study.schema import (
+    BodyTable,
+    ImpactTable,
     IndenterTable,
-    Poisson,
+    LayerTable,
     Positive,
-    StudyError,
+    RubberTable,
     Table,
     decode,
     indenter_of,
-    validate_name,
+    layer_geometry,
+    refused,
+    study_name,
 )
 from ...theory.materials import Material
 from ...validation import InputError
@@ -60,23 +54,14 @@ class _Numerics(Table):
     layer_rate: float | None = None
 
 
-class _HalfSpace(Table):
-    E2: Positive
-    nu2: Poisson
-    density2: Annotated[float, msgspec.Meta(ge=0)]  # 0: massless
-    prony: str | None = None
-
-
-class _Impact(Table):
-    mass: Positive
-    velocity: Positive
+class _Impact(ImpactTable):
     interface: str = "frictionless"
     friction: float | None = None
 
 
 class _EffectsFile(Table):
     indenter: IndenterTable
-    half_space: _HalfSpace
+    half_space: BodyTable
     impact: _Impact
     name: str | None = None
     description: str = ""
@@ -119,60 +104,30 @@ class EffectsOutcome:
         return {"effects": self.table.to_dict()}
 
 
-def _geometry(path: Path, raw: _EffectsFile) -> dict[str, Any]:
-    """The layer's thickness (m) and base ({} for the half-space); thickness_ratio resolved at
-    the quasi-static impact on the half-space, as a dynamic study does."""
-    from ...study.contact.loader import layer_spec
-    from ...study.dynamic.case import exact_impact
-    from ...theory.materials import RIGID, effective_modulus
-    from ...theory.sneddon import contact_law
-
-    if raw.layer is None:
-        return {}
-    if raw.layer.dynamic:
-        raise StudyError(f"{path}: key 'layer.dynamic': applies to a contact study")
-    body = Material(raw.half_space.E2, raw.half_space.nu2)
-    law = contact_law(indenter_of(path, raw.indenter), effective_modulus(RIGID, body))
-    a_c = float(exact_impact(raw.impact.mass, raw.impact.velocity, law).a_c)
-    spec = layer_spec(path, raw.layer, None).resolved(a_c)
-    return {"thickness": spec.thickness, "base": spec.base}
-
-
-def _numerics(raw: _Numerics, base: dict[str, Any]) -> dict[str, Any]:
-    given = {k: v for k, v in msgspec.structs.asdict(raw).items() if v is not None}
-    return {**base, **given}
-
-
 def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     """The study of a parsed ``kind = "effects"`` file; :class:`StudyError` names file and
     key."""
     raw: _EffectsFile = decode(path, data, _EffectsFile)
-    try:
-        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
-    except InputError as error:
-        raise StudyError(f"{path}: key 'name': {error}") from None
-    rubber = {k: v for k, v in msgspec.structs.asdict(raw.rubber).items() if v is not None}
+    name = study_name(path, raw.name)
     indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
+    body, impact = raw.half_space, raw.impact
+    elastic = Material(body.E2, body.nu2)
     try:
         found = parts(
             indenter,
-            Material(raw.half_space.E2, raw.half_space.nu2, raw.half_space.density2),
-            mass=raw.impact.mass,
-            velocity=raw.impact.velocity,
-            prony=raw.half_space.prony,
-            interface=raw.impact.interface,
-            friction=raw.impact.friction,
-            **_geometry(path, raw),
-            **rubber,
+            replace(elastic, density=body.density2),
+            mass=impact.mass,
+            velocity=impact.velocity,
+            prony=body.prony,
+            **layer_geometry(path, raw.layer, indenter, elastic, (impact.mass, impact.velocity)),
+            **impact_physics(raw),
         )
     except InputError as error:
-        parameter = error.parameter or str(error).partition(":")[0]
-        key = PHYSICS_KEYS.get(parameter, f"half_space.{parameter}")
-        raise StudyError(f"{path}: key '{key}': {error}") from None
-    numerics = _numerics(raw.numerics, {})
-    quick = _numerics(raw.quick, {**numerics, "estimate": False})
-    study = EffectsStudy(name, raw.description, path, found, numerics, quick)
-    return [study]
+        raise refused(path, error, KEYS) from None
+    numerics = {k: v for k, v in msgspec.structs.asdict(raw.numerics).items() if v is not None}
+    quick = {**numerics, "estimate": False}
+    quick |= {k: v for k, v in msgspec.structs.asdict(raw.quick).items() if v is not None}
+    return [EffectsStudy(name, raw.description, path, found, numerics, quick)]
 
 
 def run_effects(study: EffectsStudy, quick: bool = False, progress: Any = None) -> EffectsOutcome:

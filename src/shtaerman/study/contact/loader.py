@@ -1,47 +1,13 @@
 """The contact study file (the default kind): indenter, materials, depths, mesh, impact and the
 tolerances that decide pass or fail.
 
-A study file (``shtaerman init-study`` writes a commented one; see also ``fem/paper.toml``)
-names every input as the vocabulary does (:mod:`shtaerman.vocabulary`: the CLI's words in
-snake_case)::
-
-    name = "paper"                       # optional; default: the file's stem (a plain name)
-    description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (z = A r^n), or
-                 sphere_radius = 0.01 (m; an exact sphere, Sneddon's law), or profile =
-                 "tip.csv" (a tabulated z(r): r, z in m; relative to the study file)
-    [striker]    E1 = 2e11 (Pa, or "inf" for rigid), nu1 = 0.25
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5
-    [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
-    [contact]    depths = "impact" (8 depths up to the impact's x_c) or a list in m;
-                 interface = "frictionless" (default) or "bonded" (no slip at the indenter);
-                 friction = mu (bonded only: Coulomb friction; default none, no slip)
-    [numerics]   refine = K (divides the whole size field; default 1), mesh_size, mesh_margin,
-                 domain_factor, growth, axis_size, axis_growth, max_dofs (optional, for experts)
-    [quick]      the [numerics] keys for ``verify --quick``
-    [tolerances] relative, in (0, 1]: force, beta, exponent, contact_radius, central_pressure,
-                 impact
-    [convergence] optional: sizes = [...] (smallest element / refined radius, decreasing): a
-                 mesh-convergence study refining the whole mesh (``verify --quick``: the
-                 coarsest three)
-    [layer]      optional: a layer on a rigid base instead of the half-space: thickness (m)
-                 or thickness_ratio (H / a_c, a_c the half-space contact radius at the
-                 impact's x_c; in [0.05, 500]), and base = "bonded" (default) or "lubricated"
-                 dynamic = true (optional, about 5 s per study) adds the dynamic FE impact
-                 on the layer (rigid striker, [half_space] density2 = 1100 kg/m^3 by
-                 default): its restitution, x_max and P_max
-    [sweep]      optional: one parameter ("shape_coefficient", "exponent", "sphere_radius",
-                 "mass", "velocity", "thickness", "thickness_ratio") and a list of values;
-                 the study runs once per value (the power law's keys of a power law, the
-                 sphere_radius of a sphere).
-
-A vocabulary key may also be written at the top level (``E2 = 4e6``): it goes to its table.
-The keys of earlier releases (``youngs_modulus``, ``[mesh] size``, ``[quick_mesh]``, ...) still
-work for one release with a one-line :class:`~shtaerman.vocabulary.DeprecatedKeyWarning`
-naming the new key; an unknown key names the likely one.
-
-It is checked by the shared schema helpers (:mod:`shtaerman.study.schema`): every mistake raises
-:class:`~shtaerman.study.schema.StudyError` naming the file, the key and what was expected.
+``shtaerman init-study --kind contact`` writes every key of it, commented (see also
+``fem/paper.toml``); the keys are the vocabulary's (:mod:`shtaerman.vocabulary`: the CLI's
+words in snake_case), read and checked by the shared schema (:mod:`shtaerman.study.schema`):
+every mistake raises :class:`~shtaerman.study.schema.StudyError` naming the file, the key and
+what was expected. A ``[sweep]`` of one key ("shape_coefficient", "exponent",
+"sphere_radius", "mass", "velocity", "thickness", "thickness_ratio") runs the study once per
+value.
 """
 
 from __future__ import annotations
@@ -55,7 +21,9 @@ import msgspec
 import numpy as np
 
 from ...fem.contact import check_contact_scale
-from ...fem.mesh import INTERFACES, MeshSettings
+from ...fem.mesh import MeshSettings
+from ...guards import check_equator
+from ...problem import Interface
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
 from ...theory.sneddon import Indenter, contact_law
@@ -66,6 +34,7 @@ from ..schema import (
     EXPECTED,
     ImpactTable,
     IndenterTable,
+    LayerTable,
     MaterialTable,
     MeshTable,
     Positive,
@@ -76,8 +45,11 @@ from ..schema import (
     Table,
     decode,
     indenter_of,
+    layer_spec,
     ranged,
-    validate_name,
+    refused,
+    settings_of,
+    study_name,
     validated,
 )
 from .indentation import refined_radius
@@ -85,12 +57,10 @@ from .layer import LayerSpec, check_thickness
 
 __all__ = [
     "QUICK_MESH",
-    "LayerTable",
     "Study",
     "Tolerances",
     "check_profile_depths",
     "check_profile_reach",
-    "layer_spec",
     "load_contact",
     "on_layer",
 ]
@@ -120,8 +90,6 @@ class _Contact(Table):
     friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
 
     def __post_init__(self) -> None:
-        if self.interface not in INTERFACES:
-            raise ValueError(f"interface: one of {list(INTERFACES)}")
         if self.depths != "impact" and (
             not 2 <= len(self.depths) <= entry("depths").max_items
             or any(b <= a for a, b in itertools.pairwise(self.depths))
@@ -132,20 +100,14 @@ class _Contact(Table):
 ThicknessRatio = ranged("thickness_ratio")
 
 
-class LayerTable(Table):
-    """``[layer]``: a layer on a rigid base (the contact and the dynamic study files)."""
-
-    thickness: Positive | None = None
-    thickness_ratio: ThicknessRatio | None = None
-    base: Literal["bonded", "lubricated"] = "bonded"
-    dynamic: bool = False
-
-
 class _HalfSpace(MaterialTable):
     density2: Positive | None = None
 
 
-class _Tolerances(Table):
+class Tolerances(Table):
+    """Relative tolerances that decide pass or fail (``impact``: x_c, P_c and t_c of the
+    FEM-fed impacts against the exact one)."""
+
     force: Relative = 1e-3
     beta: Relative = 1e-3
     exponent: Relative = 1e-3
@@ -182,23 +144,10 @@ class _StudyFile(Table):
     contact: _Contact = _Contact()
     numerics: MeshTable = MeshTable()
     quick: MeshTable = MeshTable()
-    tolerances: _Tolerances = _Tolerances()
+    tolerances: Tolerances = Tolerances()
     convergence: _Convergence = _Convergence()
     layer: LayerTable | None = None
     sweep: _Sweep | None = None
-
-
-@dataclass(frozen=True)
-class Tolerances:
-    """Relative tolerances that decide pass or fail."""
-
-    force: float = 1e-3
-    beta: float = 1e-3
-    exponent: float = 1e-3
-    contact_radius: float = 1e-2
-    central_pressure: float = 1e-2
-    impact: float = 2e-3
-    """For x_c, P_c and t_c of the FEM-fed impacts against the exact one."""
 
 
 @dataclass(frozen=True)
@@ -227,9 +176,19 @@ class Study:
     """A layer on a rigid base instead of the half-space (resolved: thickness and H / a_c)."""
 
 
+def _mesh(path: Path, table: str, raw: MeshTable, default: MeshSettings) -> MeshSettings:
+    """The mesh of ``[table]`` over ``default`` (unrefined), its refined size checked now."""
+    settings = settings_of(path, table, raw, default)
+    try:
+        settings.refined(1.0 if raw.refine is None else raw.refine).check_size()
+    except InputError as error:
+        raise StudyError(f"{path}: key '{table}': {error}") from None
+    return settings
+
+
 def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
     """The convergence sizes, each level's mesh checked now (size guard, growth <= 1)."""
-    base = raw.numerics.settings(MeshSettings(), "numerics")
+    base = settings_of(path, "numerics", raw.numerics, MeshSettings())
     for size in raw.convergence.sizes:
         try:
             base.refined(base.size / size).check_size()
@@ -238,30 +197,34 @@ def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
     return tuple(raw.convergence.sizes)
 
 
-def _material(table: StrikerTable) -> Material:
-    if table.E1 == "inf":
-        return RIGID
-    return Material(table.E1, table.nu1)
-
-
 def _build(path: Path, raw: _StudyFile) -> Study:
-    try:
-        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
+    striker, contact = raw.striker, raw.contact
+    rigid = striker is None or striker.E1 == "inf"
+    try:  # the one check of the indenter's surface (the Problem's)
+        surface = Interface(contact.interface, contact.friction)
     except InputError as error:
-        raise StudyError(f"{path}: key 'name': {error}") from None
+        raise refused(path, error) from None
+    mesh, quick = (
+        replace(
+            _mesh(path, key, getattr(raw, key), default),
+            interface=surface.kind,
+            friction=surface.friction,
+        )
+        for key, default in (("numerics", MeshSettings()), ("quick", QUICK_MESH))
+    )
     return Study(
-        name=name,
+        name=study_name(path, raw.name),
         description=raw.description,
         source=path,
         indenter=indenter_of(path, raw.indenter),
-        striker=RIGID if raw.striker is None else _material(raw.striker),
+        striker=RIGID if rigid else Material(striker.E1, striker.nu1),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
-        depths=None if raw.contact.depths == "impact" else tuple(raw.contact.depths),
-        mesh=raw.numerics.settings(MeshSettings(), "numerics"),
-        quick_mesh=raw.quick.settings(QUICK_MESH, "quick"),
-        tolerances=Tolerances(**msgspec.structs.asdict(raw.tolerances)),
+        depths=None if contact.depths == "impact" else tuple(contact.depths),
+        mesh=mesh,
+        quick_mesh=quick,
+        tolerances=raw.tolerances,
         convergence_sizes=_convergence_sizes(path, raw),
         refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
         layer=_layer(path, raw),
@@ -290,26 +253,6 @@ def _layer(path: Path, raw: _StudyFile) -> LayerSpec | None:
     return spec if density is None else replace(spec, density=density)
 
 
-def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> LayerSpec:
-    """The layer of a ``[layer]`` table (unresolved), its thickness given exactly once: in
-    the table (m or H / a_c) or as the swept key ``swept``; :class:`StudyError` otherwise."""
-    if layer is None:
-        return LayerSpec()
-    given = [key for key in ("thickness", "thickness_ratio") if getattr(layer, key) is not None]
-    if len(given) > 1 or (given and swept):
-        where = f"sweep.{swept}" if len(given) == 1 else "layer.thickness_ratio"
-        raise StudyError(
-            f"{path}: key '{where}': expected the layer's thickness once: layer.thickness (m), "
-            "layer.thickness_ratio (H / a_c) or one of them in [sweep]"
-        )
-    if not given and not swept:
-        raise StudyError(
-            f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
-            f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
-        )
-    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
-
-
 def on_layer(study: Study) -> Study:
     """``study`` with its layer resolved (H and H / a_c at its impact's x_c) and meshed.
 
@@ -334,23 +277,16 @@ def on_layer(study: Study) -> Study:
     return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
 
 
-def _with_interface(path: Path, study: Study, raw: _StudyFile) -> Study:
-    """``study`` with the indenter's surface ([contact] interface) in each of its meshes."""
-    if raw.contact.friction is not None and raw.contact.interface != "bonded":
-        raise StudyError(
-            f"{path}: key 'contact.friction': applies to a bonded indenter only; give "
-            'interface = "bonded" too'
-        )
-    surface = {"interface": raw.contact.interface, "friction": raw.contact.friction}
-    return replace(
-        study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
-    )
-
-
-def _expanded(study: Study, sweep: _Sweep | None) -> list[Study]:
+def _expanded(path: Path, study: Study, sweep: _Sweep | None) -> list[Study]:
     if sweep is None:
         return [on_layer(study)]
     key, values = sweep.chosen()
+    if key in SWEPT_PROFILES and study.indenter.kind != SWEPT_PROFILES[key]:
+        raise StudyError(
+            f"{path}: key 'sweep.{key}': varies a {SWEPT_PROFILES[key]} striker, but "
+            f"[indenter] is a {study.indenter.kind} one; sweep a key of its own profile or "
+            "change [indenter]"
+        )
     studies = []
     for value in values:
         if key in ("shape_coefficient", "exponent"):
@@ -374,20 +310,6 @@ SWEPT_PROFILES = {
 """A swept key of the striker's profile -> the [indenter] it varies."""
 
 
-def _check_swept_profile(path: Path, raw: _StudyFile) -> None:
-    """Refuse a [sweep] of a profile key the [indenter] does not have (the power law's keys of
-    a sphere or a table, sphere_radius of another profile), naming the swept key."""
-    key = raw.sweep.chosen()[0] if raw.sweep is not None else None
-    if key not in SWEPT_PROFILES:
-        return
-    kind = indenter_of(path, raw.indenter).kind
-    if kind != SWEPT_PROFILES[key]:
-        raise StudyError(
-            f"{path}: key 'sweep.{key}': varies a {SWEPT_PROFILES[key]} striker, but "
-            f"[indenter] is a {kind} one; sweep a key of its own profile or change [indenter]"
-        )
-
-
 def check_profile_reach(
     indenter: Indenter,
     modulus: float,
@@ -397,8 +319,8 @@ def check_profile_reach(
 ) -> None:
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
-    Pa) beyond what its FE profile is: a sphere's radius (its equator; beyond it the FE
-    profile is flat) or a table's last row.
+    Pa) beyond what its FE profile is: a sphere's radius (:func:`shtaerman.guards.
+    check_equator`) or a table's last row.
 
     Raises
     ------
@@ -418,13 +340,8 @@ def check_profile_reach(
             f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
             f"({overshoot:g} x_c, the deepest depth)"
         )
-    if indenter.kind == "sphere" and deepest >= indenter.radius:
-        raise InputError(
-            f"{parameter}: {drive}, beyond the sphere's radius {indenter.radius:.6g} m (its "
-            "equator, past which the FE profile is no sphere); give depths below the radius, "
-            "a larger sphere, or a lower mass or velocity",
-            parameter,
-        )
+    note = f" ({overshoot:g} x_c, the deepest depth)"
+    check_equator(indenter, deepest, None if depths is not None else impact, note)
     try:
         law.contact_radius(deepest)  # a table's contact within its last row
     except InputError as error:
@@ -433,30 +350,20 @@ def check_profile_reach(
         raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
 
 
-PROFILE_KEYS = {
-    "depths": "contact.depths",
-    "sphere_radius": "indenter.sphere_radius",
-    "profile": "indenter.profile",
-}
-"""A parameter of :func:`check_profile_reach`'s refusal -> its study-file key."""
-
-
 def check_profile_depths(path: Path, indenter: Indenter, *reach: Any) -> None:
     """:func:`check_profile_reach` (its arguments after ``indenter``) in a study file: the
     refusal names the file and the key."""
     try:
         check_profile_reach(indenter, *reach)
     except InputError as error:
-        text = str(error).removeprefix(f"{error.parameter}: ")
-        raise StudyError(f"{path}: key '{PROFILE_KEYS[error.parameter]}': {text}") from None
+        raise refused(path, error) from None
 
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
-    _check_swept_profile(path, raw)
     try:
-        studies = _expanded(_with_interface(path, _build(path, raw), raw), raw.sweep)
+        studies = _expanded(path, _build(path, raw), raw.sweep)
     except StudyError:
         raise
     except InputError as error:

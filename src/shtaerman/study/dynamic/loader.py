@@ -1,45 +1,11 @@
-"""The dynamic study file: one striker and half-space, the impact at several approach velocities.
+"""The dynamic study file: one striker and body, the impact at several approach velocities.
 
-A study (kind ``dynamic``, e.g. ``fem/dynamic.toml``) runs a case (:func:`.case.run_case`) per
-approach velocity (:mod:`.runner`)::
-
-    kind = "dynamic"
-    name = "dynamic"                      # optional; default: the file's stem
-    description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1; the striker is rigid),
-                 or sphere_radius = 0.01 (m), or profile = "tip.csv" (r, z in m; relative to
-                 the study file)
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5]), density2 = 1100 (kg/m^3; 0:
-                 massless), prony = "g1:tau1,g2:tau2,..." (optional: a viscoelastic
-                 half-space, E2 and nu2 its instantaneous values; tau in s; or any form of
-                 :func:`shtaerman.theory.prony_sources.prony_from_text`, e.g. a shipped name)
-    [layer]      optional, as in a contact study: a layer on a rigid base instead of the
-                 half-space: thickness (m) or thickness_ratio (H / a_c, a_c the half-space
-                 contact radius at the quasi-static x_c of figure_velocity), base = "bonded"
-                 (default) or "lubricated"
-    [impact]     mass = 0.7 (kg), velocity = 3.0 or [...] (m/s, increasing),
-                 figure_velocity = 3.0 (optional; m/s, one of the velocities: the figures and
-                 the findings; default: the middle one, the upper of two),
-                 interface = "frictionless" (default) or "bonded" (no slip at the striker),
-                 friction = mu (bonded only: Coulomb friction; default none, no slip)
-    [rubber]     optional: model = "linear" (default) or a rubber at finite strain
-                 ("neo-hookean", "mooney-rivlin", "yeoh", "gent": the impact of
-                 ``shtaerman dynamic --model``), mooney_ratio, yeoh = [c2, c3], gent_limit,
-                 volumetric (:func:`shtaerman.fem.rubber.rubber_model`); a rubber's
-                 [numerics] and [quick] take time_steps, mesh_size and refine only
-    [numerics]   time_steps, mesh_size, mesh_margin, domain_factor, growth, axis_size,
-                 layer_rate and the other DynamicSettings fields, optional; refine = K
-                 divides the mesh sizes and the time step by K after them
-    [quick]      velocity = [...] (must hold figure_velocity; default: the smallest velocity
-                 and figure_velocity) and the numerics of ``verify --quick`` (default:
-                 [numerics])
-    [tolerances] energy_balance = 1e-2 (of M v0^2/2), reflected = 1e-2 (of the radiated),
-                 estimate = 0.2 (measured loss / first-order estimate - 1, checked where the
-                 estimate is below estimate_below = 0.08)
-    [sweep]      optional, with a prony: loss = ["waves", "hysteresis", "both"] (any of them,
-                 in order) splits the study into one per loss, named <name>-<loss>: waves is
-                 the elastic half-space with density2 (no prony), hysteresis the massless one
-                 (density2 = 0) with the prony, both the file as written
+A study of kind ``dynamic`` (e.g. ``fem/dynamic.toml``; ``shtaerman init-study --kind dynamic``
+writes every key, commented) runs a case (:func:`.case.run_case`) per approach velocity
+(:mod:`.runner`). Its physics (``[half_space]`` with density2 and prony, ``[layer]``,
+``[impact]`` interface and friction, ``[rubber]``) builds one
+:class:`shtaerman.problem.Problem`, checked at load; ``[sweep] loss`` (with a prony: any of
+"waves", "hysteresis", "both") splits it into one study per loss.
 """
 
 from __future__ import annotations
@@ -61,38 +27,32 @@ from ...fem.dynamic_contact import (
 )
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
-from ...problem import RUBBER_OPTIONS, Problem
-from ...theory.materials import RIGID, Material, effective_modulus, validate_density
-from ...theory.sneddon import Indenter, contact_law
+from ...problem import Problem
+from ...theory.materials import Material
+from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
-from ..contact.loader import LayerTable, layer_spec
 from ..schema import (
-    SETTINGS_FIELDS,
+    BodyTable,
     IndenterTable,
-    Poisson,
+    LayerTable,
     Positive,
     Relative,
+    RubberTable,
     StudyError,
     Table,
     decode,
-    fem_input_error,
     indenter_of,
+    layer_geometry,
     ranged,
-    validate_name,
+    refused,
+    settings_of,
+    study_name,
 )
 from .accuracy import check_ladder
-from .case import exact_impact
 
 __all__ = ["DynamicStudy", "DynamicTolerances", "dynamic_check_failures", "load_dynamic"]
-
-
-class _DynHalfSpace(Table):
-    E2: Positive
-    nu2: Poisson
-    density2: Annotated[float, msgspec.Meta(ge=0)]  # 0: massless
-    prony: str | None = None
 
 
 class _Numerics(Table):
@@ -116,22 +76,19 @@ class _DynImpact(Table):
     velocity: Positive | list[Positive]
     figure_velocity: Positive | None = None
     interface: str = "frictionless"
-    friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
-
-
-class RubberTable(Table):
-    model: str = "linear"
-    mooney_ratio: float | None = None
-    yeoh: list[float] | None = None
-    gent_limit: float | None = None
-    volumetric: str | None = None
+    friction: float | None = None
 
 
 class _Quick(_Numerics):
     velocity: Positive | list[Positive] | None = None
 
 
-class _DynTolerances(Table):
+class DynamicTolerances(Table):
+    """Pass/fail limits of a dynamic study: the largest energy balance error (of the initial
+    kinetic energy), the largest reflected energy (of the radiated), and the largest |measured
+    loss / first-order estimate - 1|, checked where the estimated fraction is below
+    ``estimate_below`` (first order in it)."""
+
     energy_balance: Relative = 1e-2
     reflected: Relative = 1e-2
     estimate: Relative = 0.2
@@ -148,30 +105,16 @@ class _DynSweep(Table):
 
 class _DynamicFile(Table):
     indenter: IndenterTable
-    half_space: _DynHalfSpace
+    half_space: BodyTable
     impact: _DynImpact
     name: str | None = None
     description: str = ""
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
-    tolerances: _DynTolerances = _DynTolerances()
+    tolerances: DynamicTolerances = DynamicTolerances()
     layer: LayerTable | None = None
     rubber: RubberTable = RubberTable()
     sweep: _DynSweep | None = None
-
-
-@dataclass(frozen=True)
-class DynamicTolerances:
-    """Pass/fail limits of a dynamic study."""
-
-    energy_balance: float = 1e-2
-    """Largest energy balance error, of the initial kinetic energy."""
-    reflected: float = 1e-2
-    """Largest reflected energy, of the radiated energy."""
-    estimate: float = 0.2
-    """Largest |measured loss / first-order estimate - 1| ..."""
-    estimate_below: float = 0.08
-    """... checked where the estimated fraction is below this (first order in it)."""
 
 
 @dataclass(frozen=True)
@@ -228,19 +171,8 @@ class DynamicStudy:
 
 def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> DynamicSettings:
     """``base`` with the table's numerics; an invalid value names its key."""
-    keys = {SETTINGS_FIELDS.get(k, k): k for k in _Numerics.__struct_fields__}
-    given = {
-        setting: getattr(raw, key)
-        for setting, key in keys.items()
-        if getattr(raw, key) is not None and setting in DynamicSettings.__dataclass_fields__
-    }
-    for setting, value in given.items():
-        try:
-            dataclasses.replace(base, **{setting: value})
-        except InputError as error:
-            raise StudyError(f"{path}: key '{table}.{keys[setting]}': {error}") from None
+    settings = settings_of(path, table, raw, base)
     try:
-        settings = dataclasses.replace(base, **given)
         if raw.refine is not None:
             settings = settings.refined(raw.refine)
     except InputError as error:
@@ -255,38 +187,6 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
             f"dofs, above the limit {MAX_DOFS}; coarsen size or growth"
         )
     return settings
-
-
-def _layer(
-    path: Path, raw: _DynamicFile, example: float, indenter: Indenter, body: Material
-) -> DynamicSettings:
-    """The default settings on the file's ``[layer]`` (none: the half-space), H / a_c
-    resolved at the quasi-static impact of ``example`` m/s of ``indenter`` on the half-space
-    of ``body``."""
-    if raw.layer is None:
-        return DynamicSettings()
-    if raw.layer.dynamic:
-        raise StudyError(
-            f"{path}: key 'layer.dynamic': applies to a contact study (a dynamic study is one)"
-        )
-    spec = layer_spec(path, raw.layer, None)
-    half_space = contact_law(indenter, effective_modulus(RIGID, body))
-    spec = spec.resolved(float(exact_impact(raw.impact.mass, example, half_space).a_c))
-    try:
-        return DynamicSettings(thickness=spec.thickness, base=spec.base)
-    except InputError as error:
-        raise StudyError(f"{path}: key 'layer': {error}") from None
-
-
-def _moved_layer(path: Path, data: dict[str, Any]) -> None:
-    """Refuse the layer keys under ``[half_space]``: a layer is the ``[layer]`` table."""
-    body = data.get("half_space")
-    for key in ("thickness", "base"):
-        if isinstance(body, dict) and key in body:
-            raise StudyError(
-                f"{path}: key 'half_space.{key}': the layer is the [layer] table, as in a "
-                "contact study: thickness (m) or thickness_ratio (H / a_c), and base"
-            )
 
 
 def _velocities(
@@ -310,19 +210,10 @@ def _velocities(
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
-    _moved_layer(path, data)
     raw: _DynamicFile = decode(path, data, _DynamicFile)
-    try:
-        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
-    except InputError as error:
-        raise StudyError(f"{path}: key 'name': {error}") from None
+    name = study_name(path, raw.name)
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
-    try:
-        validate_fem_inputs(indenter, half_space)
-        validate_density("density2", raw.half_space.density2)
-    except InputError as error:
-        raise fem_input_error(path, error) from None
     try:
         prony = prony_input(_beside(path, raw.half_space.prony))
     except InputError as error:
@@ -334,9 +225,14 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
-    defaults = _layer(path, raw, example, indenter, half_space)
+    try:
+        validate_fem_inputs(indenter, half_space)  # the FEM's ranges before the layer's impact
+        layer = layer_geometry(path, raw.layer, indenter, half_space, (raw.impact.mass, example))
+        defaults = DynamicSettings(**layer)
+    except InputError as error:
+        raise refused(path, error, KEYS) from None
     settings = _settings(path, "numerics", raw.numerics, defaults)
-    physics = _physics(raw)
+    physics = impact_physics(raw)
     if physics.get("model", "linear") == "linear":
         try:
             check_ladder(settings)  # the full study runs the ladder; verify --quick does not
@@ -355,14 +251,17 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         settings=settings,
         quick_velocities=_velocities(path, "quick.velocity", quick, example),
         quick_settings=_settings(path, "quick", raw.quick, settings),
-        tolerances=DynamicTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        tolerances=raw.tolerances,
         prony=prony,
         prony_text=raw.half_space.prony or "",
         physics=physics,
         finite_numerics=_finite_numerics(path, "numerics", raw.numerics, physics),
         quick_finite_numerics=_finite_numerics(path, "quick", raw.quick, physics, raw.numerics),
     )
-    _check_problem(path, study)
+    try:  # the study's impact once, at its example velocity: its parts and how they combine
+        study.problem(study.example)
+    except InputError as error:
+        raise refused(path, error, KEYS) from None
     return _split_losses(path, study, raw.sweep)
 
 
@@ -374,9 +273,10 @@ def _beside(path: Path, prony: str | None) -> str | None:
     return prony if csv.is_absolute() else str(path.parent / csv)
 
 
-def _physics(raw: _DynamicFile) -> dict[str, Any]:
-    """The keywords of :meth:`Problem.impact` the file gives beyond the striker, the body's
-    elasticity, the Prony series and the layer: the model, its rubber options, the interface."""
+def impact_physics(raw: Any) -> dict[str, Any]:
+    """The keywords of :meth:`Problem.impact` an impact's study file (dynamic, effects) gives
+    beyond the striker, the body's elasticity, the Prony series and the layer: the model, its
+    rubber options, the interface."""
     given = {**msgspec.structs.asdict(raw.rubber), "interface": raw.impact.interface}
     given["friction"] = raw.impact.friction
     defaults = {"model": "linear", "interface": "frictionless"}
@@ -386,15 +286,8 @@ def _physics(raw: _DynamicFile) -> dict[str, Any]:
 FINITE_NUMERICS = ("time_steps", "mesh_size", "refine")
 """The [numerics] keys a rubber's impact takes (the finite-strain impact of
 :func:`shtaerman.dynamic`)."""
-PHYSICS_KEYS = {
-    **{name: f"rubber.{name}" for name in ("model", *RUBBER_OPTIONS)},
-    **{name: f"impact.{name}" for name in ("interface", "friction")},
-    **{name: f"layer.{name}" for name in ("thickness", "base")},
-    "prony": "half_space.prony",
-    "profile": "indenter",
-    "sphere_radius": "indenter",
-}
-"""A problem part's keyword -> its study-file key (for a refusal of :class:`Problem`)."""
+KEYS = {name: f"impact.{name}" for name in ("interface", "friction")}
+"""The study-file keys of the inputs a dynamic study holds elsewhere than a contact study."""
 
 
 def _finite_numerics(
@@ -419,18 +312,6 @@ def _finite_numerics(
     inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, physics)
     given = {key: getattr(raw, key) for key in FINITE_NUMERICS if getattr(raw, key) is not None}
     return {"time_steps": None, "mesh_size": None, "refine": 1.0, **inherited, **given}
-
-
-def _check_problem(path: Path, study: DynamicStudy) -> None:
-    """Build the study's impact once (at its example velocity): a part out of range, or parts
-    that do not combine, is refused naming the file and the key."""
-    try:
-        study.problem(study.example)
-    except InputError as error:
-        parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
-        key = PHYSICS_KEYS.get(parameter, "rubber")
-        text = str(error).removeprefix(f"{parameter}: ")
-        raise StudyError(f"{path}: key '{key}': {text}") from None
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:

@@ -1,43 +1,19 @@
 """The finite-strain study file: how far real (neo-Hookean) rubber departs from Shtaerman.
 
-A study file with ``kind = "finite-strain"`` (see ``fem/finite_strain.toml``; it runs in
-:mod:`.runner`)::
-
-    name = "finite-strain"               # optional; default: the file's stem
-    description = "..."
-    [indenter]   shape_coefficient = 5.0 (m^(1-n)), exponent = 1.5 (> 1), or
-                 sphere_radius = 0.01 (m; an exact sphere, against Sneddon's linear law), or
-                 profile = "tip.csv" (a tabulated z(r): r, z in m; relative to the file)
-    [half_space] E2 = 7.5e6 (Pa), nu2 = 0.5 (in [0, 0.5])
-    [impact]     mass = 0.7 (kg), velocity = 3.0 (m/s)
-    [contact]    reach = 1.1 (deepest depth / the linear impact's x_c), depth_steps = 12
-                 (equal depth steps up to it), small_ratio = 0.01 (x/a of a first, tiny
-                 depth: the small-strain limit), small_steps = 5 (geometric depths from it to
-                 the first equal step)
-    [numerics]   refine = K and the mesh keys (mesh_size, growth, ...; default: FINITE_MESH);
-                 ladder = "independent" (default): K is the finest mesh of the error-estimate
-                 ladder K/2, K/sqrt(2), K (three gmsh meshes); ladder = "nested": K is the
-                 middle mesh of a nested ladder (a gmsh mesh at K/2 refined uniformly once
-                 and twice: K/2, K, 2K)
-    [quick]      depth_steps, small_steps, small_ratio, small_strain and the mesh keys for
-                 ``verify --quick``
-    [tolerances] small_strain, small_strain_fem, conservation, newton, complementarity
-    [rubber]     optional: model = "neo-hookean" (mooney-rivlin, yeoh, gent), mooney_ratio,
-                 yeoh = [c2, c3], gent_limit, volumetric (:func:`shtaerman.fem.rubber.rubber_model`;
-                 a shape key applies to its own model only, also when the model is swept)
-    [sweep]      optional: one of nu2, mass, velocity, model, volumetric with a list of values
-    [corrections] optional: velocities = [1.0, 3.0] (m/s, > 0), density2 = 1100.0 (kg/m^3, in
-                 [1e-6, 1e6]): at each velocity the linear dynamic impact, the massless
-                 finite-strain impact and the nonlinear dynamic one (the study's rubber with
-                 inertia), to see whether the wave and finite-strain corrections add
-                 (:mod:`.corrections`)
+A study file with ``kind = "finite-strain"`` (``fem/finite_strain.toml``; ``shtaerman
+init-study --kind finite-strain`` writes every key, commented) runs in :mod:`.runner`: a depth
+ladder (``[contact]`` reach, depth_steps, small_ratio, small_steps) pressed into the
+``[rubber]`` body on a mesh ladder (``[numerics] ladder`` "independent": three gmsh meshes
+K/2, K/sqrt(2), K; "nested": one gmsh mesh at K/2 refined uniformly once and twice), and the
+impacts of ``[corrections]`` (:mod:`.corrections`). A ``[sweep]`` takes one of nu2, mass,
+velocity, model, volumetric.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import msgspec
 
@@ -58,13 +34,15 @@ from ..schema import (
     Poisson,
     Positive,
     Relative,
+    RubberTable,
     StudyError,
     SweepTable,
     Table,
     decode,
     indenter_of,
     ranged,
-    validate_name,
+    settings_of,
+    study_name,
     validated,
 )
 
@@ -89,12 +67,8 @@ class _Contact(Table):
     small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
 
 
-MESH_LADDERS = ("independent", "nested")
-"""Values of ``[numerics] ladder``: three gmsh meshes, or one refined uniformly twice."""
-
-
 class _Numerics(MeshTable):
-    ladder: str = "independent"
+    ladder: Literal["independent", "nested"] = "independent"
 
 
 class _Quick(MeshTable):
@@ -110,14 +84,6 @@ class _Tolerances(Table):
     conservation: Relative = 2e-3
     newton: Relative = 1e-6
     complementarity: Relative = 1e-6
-
-
-class _Rubber(Table):
-    model: str = "neo-hookean"
-    mooney_ratio: float | None = None
-    yeoh: list[float] | None = None
-    gent_limit: float | None = None
-    volumetric: str | None = None
 
 
 class _Sweep(SweepTable):
@@ -143,7 +109,7 @@ class _FiniteFile(Table):
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
     tolerances: _Tolerances = _Tolerances()
-    rubber: _Rubber = _Rubber()
+    rubber: RubberTable = RubberTable()
     sweep: _Sweep | None = None
     corrections: _Corrections | None = None
 
@@ -159,7 +125,7 @@ class Corrections:
 
 @dataclass(frozen=True)
 class FiniteTolerances:
-    """Tolerances of the checks that need no reference (relative)."""
+    """Tolerances of the checks that need no reference (relative; the runner replaces some)."""
 
     small_strain: float = 5e-3
     """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
@@ -209,17 +175,17 @@ class FiniteStudy:
     rubber: RubberModel = field(default_factory=RubberModel)
     """The rubber model (default neo-Hookean, K/2 (J - 1)^2)."""
     mesh_ladder: str = "independent"
-    """The error-estimate ladder (:data:`MESH_LADDERS`): ``independent``, ``mesh`` the finest
+    """The error-estimate ladder (``[numerics] ladder``): ``independent``, ``mesh`` the finest
     of three gmsh meshes; ``nested``, ``mesh`` the middle of one gmsh mesh refined twice."""
     corrections: Corrections | None = None
     """The dynamic impacts of ``[corrections]``; None: none run."""
 
 
-def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
+def _rubber(table: RubberTable, **chosen: str) -> RubberModel:
     """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place;
     shape keys of another model than the one chosen are left out."""
     given = msgspec.structs.asdict(table) | chosen
-    model = given.pop("model")
+    model = given.pop("model") or "neo-hookean"
     owner = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
     if "model" in chosen:
         given = {k: v for k, v in given.items() if owner.get(k, model) == model}
@@ -230,33 +196,25 @@ def _rubber(table: _Rubber, **chosen: str) -> RubberModel:
 
 
 def _mesh(
-    table: MeshTable, default: MeshSettings, where: str, nested: bool = False
+    path: Path, table: str, raw: MeshTable, default: MeshSettings, nested: bool = False
 ) -> MeshSettings:
-    settings = table.settings(default, where)
-    refine = 1.0 if table.refine is None else table.refine
+    settings = settings_of(path, table, raw, default)
+    refine = 1.0 if raw.refine is None else raw.refine
     try:
-        if where == "numerics":  # the study's mesh is the finest (middle if nested) level
+        settings.refined(refine).check_size()
+        if table == "numerics":  # the study's mesh is the finest (middle if nested) level
             check_ladder(settings, refine)
             if nested:  # the finest level: sizes / (2 refine)
                 nested_ladder(settings.refined(refine))
         return settings.refined(refine)
     except InputError as error:
-        raise InputError(f"[{where}] {error}") from None
+        raise StudyError(f"{path}: key '{table}': {error}") from None
 
 
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
-    try:
-        name = validate_name(raw.name if raw.name is not None else path.stem, "name")
-    except InputError as error:
-        raise StudyError(f"{path}: key 'name': {error}") from None
-    contact, quick = raw.contact, raw.quick
-    if raw.numerics.ladder not in MESH_LADDERS:
-        raise StudyError(
-            f"{path}: key 'numerics.ladder': expected {' or '.join(MESH_LADDERS)}, "
-            f"got {raw.numerics.ladder!r}"
-        )
+    contact, quick, ladder = raw.contact, raw.quick, raw.numerics.ladder
     return FiniteStudy(
-        name=name,
+        name=study_name(path, raw.name),
         description=raw.description,
         source=path,
         indenter=indenter_of(path, raw.indenter),
@@ -265,12 +223,12 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         velocity=raw.impact.velocity,
         ladder=Ladder(contact.reach, contact.depth_steps, contact.small_ratio, contact.small_steps),
         quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
-        mesh=_mesh(raw.numerics, FINITE_MESH, "numerics", raw.numerics.ladder == "nested"),
-        quick_mesh=_mesh(quick, QUICK_FINITE_MESH, "quick"),
+        mesh=_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested"),
+        quick_mesh=_mesh(path, "quick", quick, QUICK_FINITE_MESH),
         tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
         quick_small_strain=quick.small_strain,
         rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
-        mesh_ladder=raw.numerics.ladder,
+        mesh_ladder=ladder,
         corrections=_corrections(path, raw.corrections),
     )
 
