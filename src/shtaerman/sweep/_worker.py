@@ -1,8 +1,11 @@
-"""Dask worker preload of the local cluster: the worker processes ignore SIGINT.
+"""Dask worker preload of the local cluster: the worker processes ignore SIGINT and die on
+SIGTERM.
 
-Ctrl-C in a terminal reaches every process of the foreground group, the spawned dask workers
-too; each would print a KeyboardInterrupt traceback. The sweep's own process handles SIGINT
-(saves, shuts the cluster down, says how to resume), so the workers leave it to it.
+Ctrl-C in a terminal reaches every process of the foreground group, the dask workers too; each
+would print a KeyboardInterrupt traceback. The sweep's own process handles SIGINT (saves, shuts
+the cluster down, says how to resume), so the workers leave it to it. A forked worker inherits
+the sweep's own SIGTERM handler, which only sets a flag there: SIGTERM gets its default back,
+so that the nanny (or the user) can still end the worker.
 """
 
 from __future__ import annotations
@@ -15,3 +18,4 @@ def dask_setup(worker: object) -> None:
     """Called by dask in each worker process as it starts."""
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
