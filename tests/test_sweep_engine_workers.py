@@ -3,7 +3,8 @@
 On Linux the workers fork from the sweep's process: they inherit its imports instead of
 importing numpy, scipy and scikit-fem again (about 1.2 s of CPU a worker, the largest part of
 a sweep's fixed cost), so an unguarded script no longer runs again in them. Dask's own
-monitoring (statistical profiler, system monitor) is off there. Each record carries the CPU
+monitoring (statistical profiler, system monitor) is off there, and a worker keeps freed memory
+for its next arrays instead of faulting them in again. Each record carries the CPU
 seconds of its case, the measure of how much two cases at once slow each other down.
 """
 
@@ -27,11 +28,31 @@ MARKER = "_shtaerman_test_parent_module"
 linux = pytest.mark.skipif(sys.platform != "linux", reason="workers fork on Linux only")
 
 
+def _refaults() -> int:
+    """Page faults of writing a 40 MB block from malloc again once the first one is freed."""
+    import ctypes
+    import resource
+
+    libc = ctypes.CDLL(None)
+    libc.malloc.restype, libc.free.argtypes = ctypes.c_void_p, [ctypes.c_void_p]
+    faults = []
+    for _ in range(2):
+        block = libc.malloc(40_000_000)
+        before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        ctypes.memset(block, 1, 40_000_000)
+        faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before)
+        libc.free(block)
+    return faults[1]
+
+
 def _worker_state() -> dict:
     import dask
 
     return {
         "inherited": MARKER in sys.modules,
+        # a fresh mapping faults each of its 9766 pages in, reused heap memory none of them
+        # (1000: room for Python's own allocations meanwhile, many times over)
+        "memory kept": _refaults() < 1000,
         "profiler": dask.config.get("distributed.worker.profile.enabled"),
         "sigterm": signal.getsignal(signal.SIGTERM) is signal.SIG_DFL,
         "sigint": signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
@@ -42,11 +63,18 @@ def _worker_state() -> dict:
 def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkeypatch):
     """A module only this process imported is there in the worker (a spawned worker starts
     empty); the sweep's SIGTERM handler, inherited by the fork, is the default again there
-    (it only set a flag, so the worker could not be terminated); the profiler is off."""
+    (it only set a flag, so the worker could not be terminated); the profiler is off; a freed
+    array's memory serves the next one (glibc)."""
     monkeypatch.setitem(sys.modules, MARKER, types.ModuleType(MARKER))
     with engine._StopFlag(), engine._quiet_dask(), engine._client(1, None) as client:
         [state] = client.run(_worker_state).values()
-    assert state == {"inherited": True, "profiler": False, "sigterm": True, "sigint": True}
+    assert state == {
+        "inherited": True,
+        "memory kept": True,
+        "profiler": False,
+        "sigterm": True,
+        "sigint": True,
+    }
 
 
 @linux

@@ -629,10 +629,8 @@ def _client(
             with deferred():  # a second Ctrl-C must not break the shutdown
                 client.close()
         return
-    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers, which returns every large
-    # numpy temporary to the OS to be faulted in again; the workers keep glibc's default
+    # (dask's MALLOC_TRIM_THRESHOLD_=65536 there is overridden by the preload: _worker.py)
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
-    environ.pop("MALLOC_TRIM_THRESHOLD_", None)
     # the workers log only what is critical: a task's exception reaches the client with the
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
     # would print a "heartbeat" traceback at shutdown
