@@ -89,8 +89,9 @@ START_METHOD = "fork" if sys.platform == "linux" else "spawn"
 1.2 s of CPU a worker (a cluster of 2 up and one task done: 2.4 s of CPU and 2.4-2.8 s of wall
 spawned, 0.1 s of CPU and 0.15 s of wall forked; benchmarks/bench_sweep.py). A forked worker
 runs no main script again (no ``__main__`` guard needed) and gets its own signal handlers from
-the preload (``_worker.py``); the sweep's process has drawn nothing (no VTK/OpenGL state) when
-the workers start. Spawn elsewhere: macOS system libraries are not safe in a forked child."""
+the preload (``_worker.py``). The CLI's sweep and verify draw nothing before their workers
+start (VTK's OpenGL state must not be inherited; sweep cases draw nothing). Spawn elsewhere:
+macOS system libraries are not safe in a forked child."""
 QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.system-monitor.interval": "60s",
