@@ -18,13 +18,17 @@ mass = 0.25
 [axes]
 velocity = [0.5, 1.0]
 """
+SPAWNED = (  # the workers of a local cluster fork on Linux and run no script: spawn them
+    'from shtaerman.sweep import engine\nengine.START_METHOD = "spawn"\n'
+)
 
 
 def test_an_unguarded_script_fails_in_one_line_naming_the_guard(tmp_path):
     (tmp_path / "g.toml").write_text(SWEEP)
     script = tmp_path / "unguarded.py"
     script.write_text(
-        'import shtaerman as sh\nsh.sweep("g.toml", workers=1, out="run")\nprint("after")\n'
+        SPAWNED
+        + 'import shtaerman as sh\nsh.sweep("g.toml", workers=1, out="run")\nprint("after")\n'
     )
     env = {**os.environ, "PYTHONPATH": str(SRC)}
     done = subprocess.run(
@@ -71,7 +75,9 @@ def test_a_stale_scratch_folder_in_the_environment_does_not_hide_the_guard(tmp_p
     marked the deleted folder, and the run ended in "Nanny failed to start" alone."""
     (tmp_path / "g.toml").write_text(SWEEP)
     script = tmp_path / "unguarded.py"
-    script.write_text('import shtaerman as sh\nsh.sweep("g.toml", workers=1, out="run")\n')
+    script.write_text(
+        SPAWNED + 'import shtaerman as sh\nsh.sweep("g.toml", workers=1, out="run")\n'
+    )
     env = {**os.environ, "PYTHONPATH": str(SRC), "SHTAERMAN_SWEEP_SCRATCH": str(tmp_path / "x")}
     done = subprocess.run(
         [sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True

@@ -81,7 +81,27 @@ RECORD_NAME = re.compile(r"(0|[1-9][0-9]*)\.json|[0-9a-f]{16}\.json")
 MAX_RECORD_BYTES = 1 << 20
 """Largest case record read on ``--resume`` (a record is about 1 kB)."""
 BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-"""Worker environment of the local cluster: one BLAS thread per single-threaded worker."""
+"""Worker environment of the local cluster: one BLAS thread per single-threaded worker (read
+as a spawned worker starts; :func:`execute_case` caps BLAS again, for forked workers)."""
+START_METHOD = "fork" if sys.platform == "linux" else "spawn"
+"""How the local cluster starts its worker processes. A fork inherits this process's imports
+(numpy, scipy, scikit-fem, the sweep's kind): spawned, each worker imported them again, about
+1.2 s of CPU a worker (a cluster of 2 up and one task done: 2.4 s of CPU and 2.4-2.8 s of wall
+spawned, 0.1 s of CPU and 0.15 s of wall forked; benchmarks/bench_sweep.py). A forked worker
+runs no main script again (no ``__main__`` guard needed) and gets its own signal handlers from
+the preload (``_worker.py``). The CLI's sweep and verify draw nothing before their workers
+start (VTK's OpenGL state must not be inherited; sweep cases draw nothing). Spawn elsewhere:
+macOS system libraries are not safe in a forked child."""
+QUIET_CLUSTER = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.system-monitor.interval": "60s",
+    "distributed.admin.tick.interval": "1s",
+}
+"""Dask's own monitoring, off or slowed in the local cluster (it feeds a dashboard and log
+warnings this tool has neither): the statistical profiler samples each worker's stack every
+10 ms, the system monitor polls psutil every 0.5 s and the event-loop tick runs every 20 ms.
+An 8-case contact sweep on 2 workers spent 0.4-0.7 s of CPU in the workers outside its cases and
+0.35 s in this process; 0.15-0.2 s and 0.15 s without them, against 5 s of cases."""
 CONNECT_TIMEOUT = "10s"
 """How long to try reaching an existing scheduler (``scheduler=``)."""
 
@@ -221,11 +241,12 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
     -------
     dict
         ``index``, ``status`` ("ok" or "failed"), ``outputs``, ``error`` (one line or None),
-        ``warnings``, ``seconds``, ``worker``, ``host``, ``pid``.
+        ``warnings``, ``seconds`` (wall, s), ``cpu_seconds`` (CPU time of the thread that ran
+        the case, s), ``worker``, ``host``, ``pid``.
     """
     from threadpoolctl import threadpool_limits
 
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.thread_time()
     outputs: dict[str, float | int] = {}
     error = None
     with threadpool_limits(limits=1), warnings.catch_warnings(record=True) as caught:
@@ -249,6 +270,7 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
         "error": error,
         "warnings": sorted({str(w.message) for w in caught}),
         "seconds": time.perf_counter() - start,
+        "cpu_seconds": time.thread_time() - cpu,
         "worker": _worker_address(),
         "host": socket.gethostname(),
         "pid": os.getpid(),
@@ -610,10 +632,8 @@ def _client(
             with deferred():  # a second Ctrl-C must not break the shutdown
                 client.close()
         return
-    # dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in its workers, which returns every large
-    # numpy temporary to the OS to be faulted in again; the workers keep glibc's default
+    # (dask's MALLOC_TRIM_THRESHOLD_=65536 there is overridden by the preload: _worker.py)
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
-    environ.pop("MALLOC_TRIM_THRESHOLD_", None)
     # the workers log only what is critical: a task's exception reaches the client with the
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
     # would print a "heartbeat" traceback at shutdown
@@ -622,7 +642,12 @@ def _client(
     environ[SCRATCH_ENV] = scratch  # where a worker that re-runs an unguarded script says so
     saved: dict[str, str | None] = dict(os.environ)  # dask's nanny writes into this process's
     try:
-        settings = {"distributed.nanny.pre-spawn-environ": environ, "temporary-directory": scratch}
+        settings = {
+            "distributed.nanny.pre-spawn-environ": environ,
+            "distributed.worker.multiprocessing-method": START_METHOD,
+            "temporary-directory": scratch,
+            **QUIET_CLUSTER,
+        }
         with dask.config.set(settings), _environment({SCRATCH_ENV: scratch}):
             cluster = _local_cluster(workers, scratch)
         try:

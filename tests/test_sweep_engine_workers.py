@@ -1,0 +1,115 @@
+"""The local cluster's worker processes (issue 32: two workers worth two).
+
+On Linux the workers fork from the sweep's process: they inherit its imports instead of
+importing numpy, scipy and scikit-fem again (about 1.2 s of CPU a worker, the largest part of
+a sweep's fixed cost), so an unguarded script no longer runs again in them. Dask's own
+monitoring (statistical profiler, system monitor) is off there, and a worker keeps freed memory
+for its next arrays instead of faulting them in again. Each record carries the CPU
+seconds of its case, the measure of how much two cases at once slow each other down.
+"""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+import types
+from pathlib import Path
+
+import pytest
+
+from shtaerman.sweep import engine
+from shtaerman.sweep.engine import execute_case
+from shtaerman.sweep.kinds import CaseResult
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+MARKER = "_shtaerman_test_parent_module"
+
+linux = pytest.mark.skipif(sys.platform != "linux", reason="workers fork on Linux only")
+
+
+def _refaults() -> int:
+    """Page faults of writing a 40 MB block from malloc again once the first one is freed."""
+    import ctypes
+    import resource
+
+    libc = ctypes.CDLL(None)
+    libc.malloc.restype, libc.free.argtypes = ctypes.c_void_p, [ctypes.c_void_p]
+    faults = []
+    for _ in range(2):
+        block = libc.malloc(40_000_000)
+        before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        ctypes.memset(block, 1, 40_000_000)
+        faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before)
+        libc.free(block)
+    return faults[1]
+
+
+def _worker_state() -> dict:
+    import dask
+
+    return {
+        "inherited": MARKER in sys.modules,
+        # a fresh mapping faults each of its 9766 pages in, reused heap memory none of them
+        # (1000: room for Python's own allocations meanwhile, many times over)
+        "memory kept": _refaults() < 1000,
+        "profiler": dask.config.get("distributed.worker.profile.enabled"),
+        "sigterm": signal.getsignal(signal.SIGTERM) is signal.SIG_DFL,
+        "sigint": signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
+    }
+
+
+@linux
+def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkeypatch):
+    """A module only this process imported is there in the worker (a spawned worker starts
+    empty); the sweep's SIGTERM handler, inherited by the fork, is the default again there
+    (it only set a flag, so the worker could not be terminated); the profiler is off; a freed
+    array's memory serves the next one (glibc)."""
+    monkeypatch.setitem(sys.modules, MARKER, types.ModuleType(MARKER))
+    with engine._StopFlag(), engine._quiet_dask(), engine._client(1, None) as client:
+        [state] = client.run(_worker_state).values()
+    assert state == {
+        "inherited": True,
+        "memory kept": True,
+        "profiler": False,
+        "sigterm": True,
+        "sigint": True,
+    }
+
+
+@linux
+def test_an_unguarded_script_runs_its_sweep_once_on_forked_workers(tmp_path):
+    """Spawned workers ran the main script again (hence the guard's message); forked ones do
+    not, so the script runs to its end."""
+    (tmp_path / "g.toml").write_text('name = "g"\nkind = "impact"\n[axes]\nvelocity = [0.5, 1.0]\n')
+    script = tmp_path / "unguarded.py"
+    script.write_text(
+        'import shtaerman as sh\nsh.sweep("g.toml", workers=2, out="run")\nprint("after")\n'
+    )
+    env = {**os.environ, "PYTHONPATH": str(SRC)}
+    done = subprocess.run(
+        [sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True
+    )
+    assert (done.returncode, done.stdout) == (0, "after\n"), done.stderr
+    assert (tmp_path / "run/cases.csv").read_text().count("\n") == 3  # header + 2 cases
+
+
+def _sleeping(params: dict) -> CaseResult:
+    time.sleep(params["seconds"])
+    return CaseResult({"y": 1.0}, ())
+
+
+def _spinning(params: dict) -> CaseResult:
+    start = time.thread_time()
+    while time.thread_time() - start < params["seconds"]:
+        pass
+    return CaseResult({"y": 1.0}, ())
+
+
+def test_a_record_has_the_cpu_seconds_of_its_case():
+    asleep = execute_case(_sleeping, 0, {"seconds": 0.3})
+    busy = execute_case(_spinning, 1, {"seconds": 0.3})
+    # a sleep costs the thread no CPU; 0.1 s covers the bookkeeping around the case many times
+    assert asleep["seconds"] >= 0.3 and asleep["cpu_seconds"] < 0.1
+    # the spin ends once its thread has had 0.3 s of CPU, whatever else the machine runs
+    assert busy["cpu_seconds"] >= 0.3 and busy["seconds"] >= busy["cpu_seconds"] - 0.01
