@@ -140,12 +140,12 @@ def test_a_rubber_case_is_refused_at_load(parameters, axes, named):
 def test_a_rubber_case_takes_refine_and_estimate_as_the_command_line_does():
     """The finite-strain impact has its error ladder: refine and estimate reach sh.dynamic (they
     were refused at load before it had one)."""
-    from shtaerman.sweep.kinds import _finite_impact
+    from shtaerman.sweep.kinds import _dynamic
 
     spec = _sweep(
         'model = "neo-hookean"\ndensity2 = 0.0\nestimate = true\nrefine = 0.8', "mass = [0.7]"
     )
-    _, numerics = _finite_impact(spec.cases()[0].params)
+    _, numerics = _dynamic(spec.cases()[0].params)
     assert (numerics["estimate"], numerics["refine"]) == (True, 0.8)
 
 

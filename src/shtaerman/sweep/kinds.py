@@ -289,71 +289,6 @@ register_kind(
 
 # --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
 
-_DYNAMIC_NUMERICS = vocabulary.fields(
-    ("time_steps", "mesh_size", "mesh_margin", "domain_factor", "growth", "axis_size", "layer_rate")
-)
-"""Sweep parameter (the CLI option) -> DynamicSettings field."""
-
-
-def _dynamic_inputs(p: dict[str, Any]):
-    from dataclasses import replace
-
-    from ..fem.dynamic_contact import DynamicSettings
-    from ..fem.dynamic_layer import check_layer_rate
-    from ..study.dynamic.accuracy import check_ladder
-
-    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
-    settings = DynamicSettings()
-    for name, field_name in _DYNAMIC_NUMERICS.items():
-        if p[name] is not None:  # None: the default (time_steps, mesh_size; layer_rate:
-            settings = replace(settings, **{field_name: p[name]})  # the geometry's own)
-    settings = _dynamic_layer(p, indenter, half_space, settings)
-    check_layer_rate(p["layer_rate"], settings.thickness)  # 0 on a layer ran as 10
-    refine = p["refine"]
-    if refine != 1.0:
-        settings = settings.refined(refine)
-    if p["estimate"]:
-        check_ladder(settings)
-    return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
-
-
-def _dynamic_check(p: dict[str, Any]) -> None:
-    """Every input of a dynamic case checked at load as ``shtaerman dynamic`` checks them
-    (:func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`: the layer's thickness against
-    the impact, the viscoelastic impact's duration, the mesh size), in well under a second."""
-    import warnings
-
-    from ..fem.dynamic_contact import check_dynamic_impact
-
-    if p["model"] != "linear":
-        _finite_impact_check(p)
-        return
-    inputs = _dynamic_inputs(p)
-    _dynamic_problem(p, inputs[-1])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # a validity warning is the case's to record
-        check_dynamic_impact(*inputs, _prony(p))
-
-
-def _dynamic_problem(p: dict[str, Any], settings: Any) -> None:
-    """The case as a :class:`~shtaerman.problem.Problem`, checked as the command line's is:
-    its parts combine, and it takes its options (a layer_rate on a massless body)."""
-    from ..problem import Problem, check_options
-    from ..theory.materials import Material
-
-    layer = {"thickness": settings.thickness, "base": settings.base}
-    problem = Problem.impact(
-        _indenter(p),
-        Material(p["E2"], p["nu2"], p["density2"]),
-        mass=p["mass"],
-        velocity=p["velocity"],
-        prony=_prony(p),
-        **(layer if settings.thickness is not None else {}),
-        **_surface(p),
-    )
-    check_options(problem, ["layer_rate"] if p["layer_rate"] is not None else [])
-
-
 def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
     """``settings`` on the case's layer (thickness in m or H / a_c at the case's quasi-static
     x_c on the half-space, and base); unchanged without one (the half-space)."""
@@ -449,49 +384,41 @@ empty for an elastic case of a prony axis)."""
 
 
 def dynamic_case(p: dict[str, Any]) -> CaseResult:
-    """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
-    failed when its energy balance or its reflected energy exceed what the studies allow. A
-    rubber ``model``: the finite-strain impact (:func:`finite_impact_case`)."""
-    from ..problem import Interface
-    from ..study.dynamic.case import run_case
-    from ..study.dynamic.loader import dynamic_check_failures
+    """The dynamic FE impact of the case (:func:`shtaerman.dynamic` on its problem, the command
+    line's numbers, every body) beside the quasi-static one and the first-order radiation
+    estimate (a rubber has none: NaN); failed, as ``shtaerman dynamic`` warns, when its energy
+    balance or its reflected energy exceed what the studies allow."""
+    import warnings
 
-    if p["model"] != "linear":
-        return finite_impact_case(p)
+    from ..api.dynamic_result import check_failures
+    from ..api.fem_dynamic import dynamic
+
+    problem, numerics = _dynamic(p)
     start = time.perf_counter()
-    friction = Interface(*_surface(p).values()).coefficient
-    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p), friction=friction)
+    result = dynamic(problem, **numerics)
     seconds = time.perf_counter() - start
-    result, quasi, differences = case.result, case.quasi, case.differences()
-    compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
+    if p["volumetric"] is not None and p["nu2"] == 0.5:  # as the command line warns
+        warnings.warn(
+            "volumetric has no effect at nu2 0.5 (no volumetric energy): ignored", stacklevel=2
+        )
+    dyn, quasi, radiation = result.dynamic, result.quasi_static, result.radiation_estimate
+    differences = {key: float(result.differences[f"{key}_c"]) for key in ("x", "P", "t")}
     outputs = {
-        "restitution": float(result.restitution),
-        "energy_radiated_fraction": float(result.energy_radiated_fraction),
-        "estimate_energy_fraction": float(case.estimate.energy_fraction),
-        "x_max": float(result.x_max),
-        "P_max": float(result.P_max),
-        "t_x_max": float(result.t_x_max),
-        "t_contact": float(result.t_contact),
-        **{key: float(getattr(quasi, key)) for key in ("x_c", "P_c", "t_c", "t_y")},
-        **{key: float(value) for key, value in compared.items()},
-        "difference_worst": float(max(abs(value) for value in compared.values())),
-        "energy_balance_error": float(result.energy_balance_error),
-        "reflected_energy_fraction": float(result.reflected_energy_fraction),
+        **{key: float(dyn[key]) for key in (*DYNAMIC_OUTPUTS, *DYNAMIC_LOSSES) if key in dyn},
+        "estimate_energy_fraction": math.nan if radiation is None else radiation["energy_fraction"],
+        **{key: float(quasi[key]) for key in ("x_c", "P_c", "t_c", "t_y")},
+        **{f"difference_{key}": value for key, value in differences.items()},
+        "difference_worst": max(abs(value) for value in differences.values()),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
-        **{key: float(result.losses[key]) for key in DYNAMIC_LOSSES if result.losses},
-        **_dynamic_errors(case),
+        **_result_errors(result),
     }
-    of = "the radiated" if p.get("thickness") is None else "M v0^2/2"
-    balance, reflected = outputs["energy_balance_error"], outputs["reflected_energy_fraction"]
-    radiated = outputs["energy_radiated_fraction"]
-    failures = dynamic_check_failures(balance, reflected, of, radiated)
-    return CaseResult(outputs, tuple(failures))
+    return CaseResult(outputs, tuple(check_failures(result, problem)))
 
 
 def _result_errors(result: Any) -> dict[str, float]:
-    """:data:`DYNAMIC_ERRORS` of a rubber case's :class:`~shtaerman.DynamicResult` run with
-    its ladder ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a massless
+    """:data:`DYNAMIC_ERRORS` of a case's :class:`~shtaerman.DynamicResult` run with its
+    ladder ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a massless
     elastic body, 0 to round-off)."""
     if result.error_estimate is None:
         return {}
@@ -501,23 +428,6 @@ def _result_errors(result: Any) -> dict[str, float]:
         out[f"error_difference_{key}"] = float(result.differences_error[name])
     out["error_difference_worst"] = max(out[f"error_difference_{key}"] for key in "xPt")
     return out
-
-
-def _dynamic_errors(case: Any) -> dict[str, float]:
-    """:data:`DYNAMIC_ERRORS` of a case run with its ladder ({} without one)."""
-    estimates = case.estimates()
-    if not estimates:
-        return {}
-    relative = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
-    out = {f"error_{key}": float(estimates[key].error) for key in relative}
-    for key in ("x", "P", "t"):
-        out[f"error_difference_{key}"] = float(estimates[f"difference_{key}"].absolute_error)
-    out["error_difference_worst"] = max(out[f"error_difference_{key}"] for key in "xPt")
-    return out
-
-
-_FINITE_IMPACT_OPTIONS = ("time_steps", "mesh_size", "refine", "estimate")
-"""The numerics a finite-strain impact case takes (the others keep their defaults)."""
 
 
 def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
@@ -541,91 +451,39 @@ def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
     return indenter, body, {**keywords, **geometry, **rubber, **_surface(p)}
 
 
-def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
-    """A finite-strain impact case as the command line builds it: its
+def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
+    """A dynamic case as the command line builds it: its
     :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
-    swept model takes them) and the numerical keywords of :func:`shtaerman.dynamic`; a
-    numerical option it does not take, set to other than its default, is refused."""
-    from ..problem import Problem, check_options
+    swept model takes them) and the keywords of :func:`shtaerman.dynamic`: the numerics set to
+    other than the kind's defaults (an ``axis_size`` as the linear body's settings)."""
+    from ..api.fem_dynamic import SETTINGS_OPTIONS
+    from ..fem.dynamic_contact import DynamicSettings
+    from ..problem import Problem
 
     indenter, body, keywords = _struck_case(p)
     problem = Problem.impact(indenter, body, **keywords)
     defaults = KINDS["dynamic"].defaults()
-    changed = [
-        name
-        for name in _DYNAMIC_NUMERICS
-        if name not in _FINITE_IMPACT_OPTIONS and p[name] != defaults[name]
-    ]
-    if "axis_size" in changed:  # the finite-strain impact grades its own axis
-        raise InputError(
-            f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
-            "time_steps and mesh_size)",
-            "axis_size",
-        )
-    check_options(problem, changed)
-    return problem, {name: p[name] for name in _FINITE_IMPACT_OPTIONS}
+    numerics = {name: p[name] for name in SETTINGS_OPTIONS if p[name] != defaults[name]}
+    if p["axis_size"] != defaults["axis_size"]:
+        if problem.body.finite:  # the finite-strain impact grades its own axis
+            raise InputError(
+                f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
+                "time_steps and mesh_size)",
+                "axis_size",
+            )
+        numerics["settings"] = DynamicSettings(axis_size=p["axis_size"])
+    return problem, {**numerics, "refine": p["refine"], "estimate": p["estimate"]}
 
 
-def _finite_impact_check(p: dict[str, Any]) -> None:
-    """A finite-strain impact case checked at load as ``shtaerman dynamic --model`` checks it:
-    the problem's parts and options, the numerics' ranges, and a half-space impact's depth
-    against the finite-strain contact's reach (velocity and mass)."""
-    import warnings
+def _dynamic_check(p: dict[str, Any]) -> None:
+    """Every input of a dynamic case checked at load as ``shtaerman dynamic`` checks them
+    (:func:`shtaerman.api.fem_dynamic.check_dynamic`: the problem's parts and options, the
+    numerics' ranges and ladder, the impact's floating-point range, a layer's thickness and a
+    half-space's depth against the impact), nothing computed."""
+    from ..api.fem_dynamic import check_dynamic
 
-    from ..fem.finite_dynamic import FiniteImpactSettings
-    from ..guards import check_reach
-    from ..study.dynamic.case import exact_impact
-    from ..theory.materials import RIGID, effective_modulus, validate_density
-    from ..theory.sneddon import contact_law
-
-    problem, numerics = _finite_impact(p)
-    FiniteImpactSettings(steps=numerics["time_steps"])  # its range, naming steps
-    validate_density("density2", p["density2"])
-    if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
-        law = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # a validity warning is the case's to record
-            x_c = exact_impact(p["mass"], p["velocity"], law).x_c
-        check_reach(_indenter(p), x_c, (p["mass"], p["velocity"]), law.force_exponent, True)
-
-
-def finite_impact_case(p: dict[str, Any]) -> CaseResult:
-    """The finite-strain impact of a rubber ``model`` (:func:`shtaerman.dynamic` on the
-    case's problem, the command line's numbers): its outputs as the linear case's (no
-    radiation estimate: NaN); failed, as ``shtaerman dynamic --model`` exits 1, when its
-    energy balance or (with inertia) its reflected energy exceed the studies' limits."""
-    import warnings
-
-    from ..api.fem_dynamic import dynamic
-    from ..study.dynamic.loader import dynamic_check_failures
-
-    problem, numerics = _finite_impact(p)
-    start = time.perf_counter()
-    result = dynamic(problem, **numerics)
-    seconds = time.perf_counter() - start
-    if p["volumetric"] is not None and p["nu2"] == 0.5:  # as the command line warns
-        warnings.warn(
-            "volumetric has no effect at nu2 0.5 (no volumetric energy): ignored", stacklevel=2
-        )
-    dyn, quasi = result.dynamic, result.quasi_static
-    differences = {key: float(result.differences[f"{key}_c"]) for key in ("x", "P", "t")}
-    outputs = {
-        **{key: float(dyn[key]) for key in (*DYNAMIC_OUTPUTS, *DYNAMIC_LOSSES) if key in dyn},
-        "estimate_energy_fraction": math.nan,
-        **{key: float(quasi[key]) for key in ("x_c", "P_c", "t_c", "t_y")},
-        **{f"difference_{key}": value for key, value in differences.items()},
-        "difference_worst": max(abs(value) for value in differences.values()),
-        "dofs": int(result.mesh["dofs"]),
-        "seconds": seconds,
-        **_result_errors(result),
-    }
-    of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
-    massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
-    reflected = 0.0 if massless else outputs["reflected_energy_fraction"]
-    failures = dynamic_check_failures(
-        outputs["energy_balance_error"], reflected, of, outputs["energy_radiated_fraction"]
-    )
-    return CaseResult(outputs, tuple(failures))
+    problem, numerics = _dynamic(p)
+    check_dynamic(problem, **numerics)
 
 
 register_kind(
@@ -635,7 +493,7 @@ register_kind(
         parameters=vocabulary_parameters("dynamic"),
         outputs=DYNAMIC_OUTPUTS,
         case=dynamic_case,
-        check=_quasi_static(_dynamic_check),
+        check=_dynamic_check,
         nondeterministic=("seconds",),
         optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
         levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},

@@ -16,7 +16,6 @@ from ...validation import (
     caller_stacklevel,
     validate_positive,
 )
-from ...vocabulary import entry
 from .table import QUANTITIES, EffectTable, Run
 from .variants import Parts, Variant, parts_of, variants
 
@@ -148,9 +147,11 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
 
 def _numerics(refine: float, estimate: bool, options: Mapping[str, Any]) -> dict[str, Any]:
     """The numerical keywords given (not None, not the default), each checked now."""
+    from ..fem_dynamic import checked_options
+
     if not isinstance(estimate, bool):
         raise InputError(f"estimate must be True or False, got {estimate!r}", "estimate")
-    given = {k: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
+    given = checked_options(options)
     if validate_positive("refine", refine) != 1.0:
         given["refine"] = refine
     if not estimate:
