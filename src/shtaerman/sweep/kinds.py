@@ -289,6 +289,7 @@ register_kind(
 
 # --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
 
+
 def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
     """``settings`` on the case's layer (thickness in m or H / a_c at the case's quasi-static
     x_c on the half-space, and base); unchanged without one (the half-space)."""
