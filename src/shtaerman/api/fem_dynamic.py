@@ -18,6 +18,7 @@ from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
+    from ..fem.finite_dynamic import FiniteImpactSettings
     from ..study.dynamic.case import DynamicCase
     from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
@@ -219,7 +220,7 @@ def dynamic(
     model : str
         ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
         ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
-        :func:`shtaerman.study.dynamic.case.finite_case` runs (``refine`` and ``estimate``
+        :func:`shtaerman.study.dynamic.case.finite_settings` (``refine`` and ``estimate``
         as here; the ladder of :mod:`shtaerman.study.dynamic.accuracy`; density 0: the
         massless body; ``time_steps`` default 50, 100 with inertia; ``mesh_size`` the
         finite-strain contact's).
@@ -234,6 +235,7 @@ def dynamic(
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
     from ..output.files import output_folder, staged_folder
+    from ..study.dynamic.case import problem_case
 
     physics = dict(model=model, prony=prony, thickness=thickness, base=base, **rubber)
     problem = _problem(indenter, body, mass, velocity, physics)
@@ -243,7 +245,8 @@ def dynamic(
     # the impact's own checks (seconds on a long table) are the run's first step
     checked = check_dynamic(problem, refine, estimate, settings, **options, **outputs, impact=False)
     folder = output_folder(out, force=force)  # checked before the run
-    case = _case(problem, checked, options, refine, estimate, snapshots=folder is not None)
+    shots = _snapshots if folder is not None else None
+    case = problem_case(problem, checked, snapshots=shots, ladder=estimate, refine=refine)
     check_separated(case.result.summary(), float(case.result.t[-1]))
     result = _result(case, problem)
     if folder is not None:
@@ -265,7 +268,7 @@ def check_dynamic(
     figure_format: str = "png",
     impact: bool = True,
     **options: Any,
-) -> DynamicSettings | None:
+) -> DynamicSettings | FiniteImpactSettings:
     """Every input of ``dynamic(problem, ...)`` (the same keywords; ``options`` the
     ``time_steps`` ... ``layer_rate`` ones) checked, nothing computed: what a run would refuse
     for its inputs alone, it refuses now (:func:`shtaerman.effects` and a sweep's load check
@@ -274,9 +277,8 @@ def check_dynamic(
 
     Returns
     -------
-    DynamicSettings or None
-        The linear body's refined settings (None: a rubber, whose numerics
-        :func:`shtaerman.study.dynamic.case.finite_case` resolves).
+    DynamicSettings or FiniteImpactSettings
+        The settings of the ladder's finest level (of refinement ``refine``).
 
     Raises
     ------
@@ -299,10 +301,9 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
-    chosen = None
     if problem.body.finite:
         numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
-        finite_settings(problem, **numbers, refine=refine, estimate=estimate)
+        chosen = finite_settings(problem, **numbers, refine=refine, estimate=estimate)
     else:
         check_layer_rate(options["layer_rate"], problem.geometry.thickness)
         chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
@@ -312,7 +313,7 @@ def check_dynamic(
         chosen = chosen.refined(validate_positive("refine", refine))
     check_figure_format(figure_format)
     if impact:
-        _check_impact(problem, chosen)
+        _check_impact(problem, None if problem.body.finite else chosen)
     return chosen
 
 
@@ -334,9 +335,9 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     law = contact_law(striker.indenter, effective_modulus(striker.material, body))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        # the floating-point range first: the exact impact's, and v0^2 (the FE sizes on it)
-        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
+        # the floating-point range first, as the run meets it: the exact impact's, and v0^2
         x_c = exact_impact(striker.mass, striker.velocity, law).x_c
+        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
         if settings is not None:
             physics = (problem.body.prony, problem.interface.coefficient)
             check_dynamic_impact(*inputs, settings, *physics)
@@ -344,26 +345,6 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     validate_density("density2", body.density)
     if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
         check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True)
-
-
-def _case(
-    problem: Problem,
-    checked: DynamicSettings | None,
-    options: dict[str, Any],
-    refine: float,
-    estimate: bool,
-    snapshots: bool,
-) -> DynamicCase:
-    """The impact of ``problem`` with its ladder (``estimate``): a rubber's by
-    :func:`.finite_case`, the linear body's by :func:`.problem_case` (``checked``: its
-    settings; ``snapshots``: keep fields for an ``out`` folder)."""
-    from ..study.dynamic.case import finite_case, problem_case
-
-    if checked is None:
-        numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
-        return finite_case(problem, **numbers, refine=refine, estimate=estimate)
-    shots = _snapshots if snapshots else None
-    return problem_case(problem, checked, snapshots=shots, ladder=estimate, refine=refine)
 
 
 def _problem(

@@ -123,7 +123,7 @@ def _tabulated(path: str):
 def _material(p: dict[str, Any], young: str, poisson: str):
     from ..theory.materials import RIGID, Material
 
-    if young == "E1" and math.isinf(p[young]):
+    if young == "E1" and math.isinf(p.get(young, math.inf)):  # the kinds without E1: rigid
         return RIGID
     return Material(p[young], p[poisson])
 
@@ -150,23 +150,19 @@ IMPACT_OUTPUTS = {
 }
 
 
-def _quasi_static(check: Any) -> Any:
-    """``check`` followed by the quasi-static impact of the case's mass and velocity (a closed
-    form, well under a millisecond), so inputs whose x_c, P_c or t_c leave the floating-point
-    range are refused at load rather than as failed cases."""
+def _quasi_static(check: Any = None) -> Any:
+    """The quasi-static impact of the case's mass and velocity (a closed form, well under a
+    millisecond) followed by ``check``, so inputs whose x_c, P_c or t_c leave the
+    floating-point range are refused at load rather than as failed cases."""
     import warnings
 
     from ..study.dynamic.case import exact_impact
-    from ..theory.materials import RIGID, effective_modulus
-    from ..theory.sneddon import contact_law
 
     def checked(p: dict[str, Any]) -> Any:
-        striker = _material(p, "E1", "nu1") if "E1" in p else RIGID
-        law = contact_law(_indenter(p), effective_modulus(striker, _material(p, "E2", "nu2")))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a validity warning is the case's to record
-            exact_impact(p["mass"], p["velocity"], law)  # first: velocity 1e300 overflowed
-        return check(p)  # in the dynamic check's own arithmetic (an OverflowError)
+            exact_impact(*_impact_inputs(p))  # first: velocity 1e300 overflowed
+        return None if check is None else check(p)
 
     return checked
 
@@ -189,7 +185,7 @@ register_kind(
         parameters=vocabulary_parameters("impact"),
         outputs=IMPACT_OUTPUTS,
         case=impact_case,
-        check=_quasi_static(_impact_inputs),
+        check=_quasi_static(),
     )
 )
 
@@ -463,9 +459,8 @@ def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
 
     indenter, body, keywords = _struck_case(p)
     problem = Problem.impact(indenter, body, **keywords)
-    defaults = KINDS["dynamic"].defaults()
-    numerics = {name: p[name] for name in SETTINGS_OPTIONS if p[name] != defaults[name]}
-    if p["axis_size"] != defaults["axis_size"]:
+    numerics = _changed(p, "dynamic", SETTINGS_OPTIONS)
+    if _changed(p, "dynamic", ("axis_size",)):
         if problem.body.finite:  # the finite-strain impact grades its own axis
             raise InputError(
                 f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
@@ -474,6 +469,12 @@ def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
             )
         numerics["settings"] = DynamicSettings(axis_size=p["axis_size"])
     return problem, {**numerics, "refine": p["refine"], "estimate": p["estimate"]}
+
+
+def _changed(p: dict[str, Any], kind: str, names: tuple[str, ...]) -> dict[str, Any]:
+    """The parameters ``names`` of a case of ``kind`` set to other than their defaults."""
+    defaults = KINDS[kind].defaults()
+    return {name: p[name] for name in names if p[name] != defaults[name]}
 
 
 def _dynamic_check(p: dict[str, Any]) -> None:
@@ -508,18 +509,6 @@ EFFECT_NAMES = ("pad", "waves", "finite strain", "viscoelasticity", "friction")
 """The effects of :mod:`shtaerman.api.effect_table.variants`, in its order: an effects case's
 ``dominant_<quantity>`` is the index of the dominant one here (NaN: none ran)."""
 EFFECT_QUANTITIES = ("P_max", "x_max", "t_contact", "restitution")
-EFFECT_NUMERICS = (
-    "time_steps",
-    "mesh_size",
-    "mesh_margin",
-    "domain_factor",
-    "growth",
-    "layer_rate",
-    "refine",
-    "estimate",
-)
-"""The numerics of :func:`shtaerman.effects` an effects case passes where set (others: each
-run's default)."""
 EFFECTS_OUTPUTS = {
     **{f"dominant_{key}": "" for key in EFFECT_QUANTITIES},
     **{f"resolved_{key}": "" for key in EFFECT_QUANTITIES},
@@ -538,18 +527,14 @@ change minus the sum of the single ones (NaN where a run is refused)."""
 def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     """The case's problem as parts (:func:`shtaerman.problem.parts`: they need not combine as
     a whole, the variants that do run) and the numerical keywords of :func:`shtaerman.effects`
-    set to other than the kind's defaults, each checked."""
+    set to other than the kind's defaults (in their ranges since the file was read)."""
+    from ..api.fem_dynamic import SETTINGS_OPTIONS
     from ..problem import parts
 
     indenter, body, keywords = _struck_case(p)
-    found = parts(indenter, body, **keywords)
-    defaults = KINDS["effects"].defaults()
-    numerics = {k: p[k] for k in EFFECT_NUMERICS if p[k] is not None and p[k] != defaults[k]}
-    numerics["estimate"] = p["estimate"]  # the sweep's default (false), not the API's
-    for name, value in numerics.items():
-        if name != "estimate":
-            vocabulary.entry(name).check(value, "dynamic")
-    return found, numerics
+    numerics = _changed(p, "effects", (*SETTINGS_OPTIONS, "refine"))
+    # estimate: the sweep's default (false), not the API's
+    return parts(indenter, body, **keywords), {**numerics, "estimate": p["estimate"]}
 
 
 def effects_case(p: dict[str, Any]) -> CaseResult:
@@ -801,7 +786,9 @@ def _finite_check(p: dict[str, Any]) -> Any:
     """A finite-strain case's inputs, and its depths against the finite-strain contact's
     reach (x/a in [1e-6, 1.2]) as its run checks them: the given ``depths``, or the ladder up
     to ``reach`` x the case's linear x_c (naming mass and velocity); at load, not as a failed
-    case."""
+    case. The quasi-static impact is solved first (its floating-point range), once."""
+    import warnings
+
     import numpy as np
 
     from ..fem.finite_contact import check_finite_depths
@@ -814,11 +801,13 @@ def _finite_check(p: dict[str, Any]) -> Any:
     study = _finite_inputs(p)
     model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
     impact = (study.mass, study.velocity)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a validity warning is the case's to record
+        x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
     check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
     if study.depths is not None:
         check_finite_depths(study.indenter, np.asarray(study.depths), model)
         return study
-    x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
     depths = ladder(study.indenter, modulus, x_c, study.ladder)
     check_finite_depths(study.indenter, depths, model, impact)
     return study
@@ -888,7 +877,7 @@ register_kind(
         parameters=vocabulary_parameters("finite-strain"),
         outputs=FINITE_OUTPUTS,
         case=finite_strain_case,
-        check=_quasi_static(_finite_check),
+        check=_finite_check,
         nondeterministic=("seconds",),
     )
 )

@@ -323,10 +323,13 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
             f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
         )
     parameter = kind.parameters[name]
+    item = _ENTRIES.get(name)
+    if item is not None and item.infinite and value == "inf":
+        value = math.inf  # a rigid striker, as a study file spells it too
     converted = _convert(parameter, value)
     if converted is None:
         raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
-    item, ranges = _ENTRIES.get(name), RANGES_OF.get(kind.name, kind.name)
+    ranges = RANGES_OF.get(kind.name, kind.name)
     if item is not None and ranges in item.kinds:  # the vocabulary's range for this kind
         try:
             converted = item.check(converted, ranges, called=key)

@@ -42,7 +42,6 @@ __all__ = [
     "DynamicCase",
     "compare",
     "exact_impact",
-    "finite_case",
     "finite_settings",
     "problem_case",
     "radiation",
@@ -238,9 +237,11 @@ def finite_settings(
     refine: float = 1.0,
     estimate: bool = True,
 ) -> FiniteImpactSettings:
-    """The finest level's settings of the impact of ``problem`` on a rubber at finite strain
-    (the arguments of :func:`finite_case`), every level of its ladder checked before any
-    run (InputError naming the option)."""
+    """The finest level's settings of the impact of ``problem`` on a rubber at finite strain,
+    as ``shtaerman dynamic --model`` runs it, every level of its ladder (refine / 2 with
+    ``estimate``) checked before any run (InputError naming the option): ``time_steps`` per
+    quasi-static impact duration (default 50; 100 with inertia), ``mesh_size`` the smallest
+    element / refined radius (default the finite-strain contact's)."""
     from ...fem.finite_contact import FINITE_MESH
     from ...fem.finite_dynamic import INERTIA_MESH
     from ...vocabulary import entry
@@ -270,38 +271,3 @@ def problem_case(problem: Problem, settings: Any, **options: Any) -> DynamicCase
     physics = dict(prony=body.prony, friction=problem.interface.coefficient)
     rubber = body.rubber() if body.finite else None
     return run_case(*inputs, settings, **options, **physics, rubber=rubber)
-
-
-def finite_case(
-    problem: Problem,
-    *,
-    time_steps: int | None = None,
-    mesh_size: float | None = None,
-    refine: float = 1.0,
-    estimate: bool = True,
-) -> DynamicCase:
-    """The impact of ``problem`` on a rubber body at finite strain (``problem.body.finite``)
-    beside the quasi-static impact, as ``shtaerman dynamic --model`` runs it: the finest
-    level of its ladder, with ``estimate`` the two coarser levels too (:func:`run_case`).
-
-    Parameters
-    ----------
-    problem : Problem
-        An impact on a rubber body; its density 0: the massless body.
-    time_steps : int, optional
-        Steps per quasi-static impact duration (default 50; 100 with inertia).
-    mesh_size : float, optional
-        Smallest element / refined radius (default the finite-strain contact's).
-    refine : float
-        Refinement of the finest level.
-    estimate : bool
-        Also run the ladder's coarser levels for the error estimates.
-
-    Returns
-    -------
-    DynamicCase
-        As :func:`run_case`; its ``estimate`` is the half-space's first-order radiation
-        estimate, which does not apply to a rubber (reported as such).
-    """
-    settings = finite_settings(problem, time_steps, mesh_size, refine, estimate)
-    return problem_case(problem, settings, ladder=estimate, refine=refine)
