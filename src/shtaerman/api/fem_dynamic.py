@@ -110,26 +110,16 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
     )
 
 
-def _write_figures(
-    case: DynamicCase, result: DynamicResult, folder: Path, figure_format: str, finite: bool
-) -> None:
-    """The figures of the case: a rubber's (``finite``) x(t), P(t) against the quasi-static
-    impact; the linear body's histories, losses and wave fields."""
-    from ..output.dynamic import write_case_figures
-    from ..output.finite import write_finite_figure
-
-    if finite:
-        write_finite_figure(result, case.quasi, folder, figure_format)
-    else:
-        write_case_figures(case, folder, figure_format)
-
-
-def _write_folder(result: DynamicResult, folder: Path) -> None:
-    """dynamic.json, history.csv, energies.csv and one VTU per snapshot time."""
+def _write_folder(case: DynamicCase, result: DynamicResult, folder: Path, form: str) -> None:
+    """dynamic.json, history.csv, energies.csv, one VTU per snapshot time and the figures in
+    ``form`` (a rubber's x(t), P(t) against the quasi-static impact; the linear body's
+    histories, losses and wave fields)."""
     import meshio
 
+    from ..output.dynamic import write_case_figures
     from ..output.export import field_mesh
     from ..output.files import write_csv
+    from ..output.finite import write_finite_figure
 
     solution = result.solution
     (folder / "dynamic.json").write_text(json.dumps(result.to_dict(), indent=2))
@@ -141,6 +131,10 @@ def _write_folder(result: DynamicResult, folder: Path) -> None:
     for index, requested in enumerate(solution.snapshots):
         actual, fields, _ = solution.field_solution(requested)
         meshio.write(folder / f"field_{index}_t{actual:.6e}s.vtu", field_mesh(fields))
+    if result.rubber is not None:
+        write_finite_figure(result, case.quasi, folder, form)
+    else:
+        write_case_figures(case, folder, form)
 
 
 def _snapshots(quasi: Any) -> tuple[float, ...]:
@@ -251,8 +245,7 @@ def dynamic(
     result = _result(case, problem)
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
-            _write_folder(result, stage)
-            _write_figures(case, result, stage, figure_format, problem.body.finite)
+            _write_folder(case, result, stage, figure_format)
     warn_failed_checks(result, problem)
     return result
 

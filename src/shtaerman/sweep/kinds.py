@@ -286,33 +286,38 @@ register_kind(
 # --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
 
 
-def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
-    """``settings`` on the case's layer (thickness in m or H / a_c at the case's quasi-static
-    x_c on the half-space, and base); unchanged without one (the half-space)."""
-    from dataclasses import replace
+def _layer_given(p: dict[str, Any], required: bool) -> bool:
+    """Whether the case has a layer: its thickness in m or as H / a_c, not both (refused;
+    and, where ``required``, neither); a ``base`` only with a layer."""
+    given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
+    if len(given) > 1 or (required and not given):
+        raise InputError(
+            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
+            f"exactly one of them; got {' and '.join(given) or 'neither'}",
+            "thickness",
+        )
+    if not given and p.get("base", "bonded") != "bonded":
+        raise InputError(
+            "base: applies to a layer only; give thickness (m) or thickness_ratio too", "base"
+        )
+    return bool(given)
 
+
+def _layer(p: dict[str, Any]) -> dict[str, Any]:
+    """The case's layer as keywords of :meth:`~shtaerman.problem.Problem.impact`: its
+    ``thickness`` (given in m, or as H / a_c at the case's quasi-static impact on the
+    half-space) and ``base``; {} without one (the half-space)."""
     from ..study.contact.layer import LayerSpec
     from ..study.dynamic.case import exact_impact
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
 
-    given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
-    if not given:
-        if p.get("base", "bonded") != "bonded":
-            raise InputError(
-                "base: applies to a layer only; give thickness (m) or thickness_ratio too", "base"
-            )
-        return settings
-    if len(given) > 1:
-        raise InputError(
-            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
-            "exactly one of them; got thickness and thickness_ratio",
-            "thickness",
-        )
-    contact = contact_law(indenter, effective_modulus(RIGID, half_space))
+    if not _layer_given(p, required=False):
+        return {}
+    contact = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
     a_c = float(exact_impact(p["mass"], p["velocity"], contact).a_c)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
-    return replace(settings, thickness=layer.thickness, base=layer.base)
+    return {"thickness": layer.thickness, "base": layer.base}
 
 
 def _surface(p: dict[str, Any]) -> dict[str, Any]:
@@ -431,13 +436,9 @@ def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
     """The striker, the body and the keywords of a dynamic or effects case's impact, as
     :meth:`shtaerman.problem.Problem.impact` and :func:`shtaerman.problem.parts` take them
     (a rubber option only for the case's own model, as a study file's swept model takes it)."""
-    from ..fem.dynamic_contact import DynamicSettings
     from ..problem import RUBBER_OPTIONS
     from ..theory.materials import Material
 
-    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
-    layer = _dynamic_layer(p, indenter, half_space, DynamicSettings())
-    geometry = {"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}
     rubber = {
         name: p[name]
         for name in RUBBER_OPTIONS
@@ -445,7 +446,7 @@ def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
     }
     body = Material(p["E2"], p["nu2"], p["density2"])
     keywords = dict(mass=p["mass"], velocity=p["velocity"], model=p["model"], prony=_prony(p))
-    return indenter, body, {**keywords, **geometry, **rubber, **_surface(p)}
+    return _indenter(p), body, {**keywords, **_layer(p), **rubber, **_surface(p)}
 
 
 def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
@@ -593,13 +594,7 @@ def _layer_study(p: dict[str, Any]):
     from ..study.contact.loader import Study, check_profile_reach, on_layer
     from ..theory.materials import effective_modulus
 
-    given = [key for key in ("thickness", "thickness_ratio") if p[key] is not None]
-    if len(given) != 1:
-        raise InputError(
-            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
-            f"exactly one of them; got {' and '.join(given) or 'neither'}",
-            "thickness",
-        )
+    _layer_given(p, required=True)
     mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
     if p["refine"] != 1.0:
         mesh.refined(p["refine"])  # an InputError names refine now, not at run time
