@@ -33,19 +33,21 @@ def check_ladder(
     *,
     estimate: bool = True,
     sized: bool = True,
+    advice: str = "",
 ) -> None:
     """Raise InputError unless every level of the ladder ending at ``refine`` (only that level
     without ``estimate``) is a valid mesh: the coarsest, refine / 2, must keep every size and
     growth of ``mesh`` <= 1, and (``sized``) the finest must pass the size guard
     (``max_dofs``) before the coarse levels cost anything (a layer's guard needs the
-    ``refined_radius`` in m, see :meth:`~shtaerman.fem.mesh.MeshSettings.check_size`)."""
+    ``refined_radius`` in m, see :meth:`~shtaerman.fem.mesh.MeshSettings.check_size`);
+    ``advice`` ends the refusal."""
     ratio = LADDER_RATIO**2 if estimate else 1.0
     smallest = ratio * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
     if not refine >= smallest * (1.0 - 1e-12):
         coarsest = "the error-estimate ladder's coarsest mesh, refine / 2," if estimate else "it"
         raise InputError(
             f"refine must be >= {smallest:.3g} with these mesh settings ({coarsest} keeps every "
-            f"size and growth <= 1), got {refine!r}{WITHOUT_ESTIMATE if estimate else ''}",
+            f"size and growth <= 1), got {refine!r}{advice}",
             "refine",
         )
     if sized:

@@ -180,17 +180,17 @@ def check_ladder(
     refine = validate_positive("refine", refine)
     lowest = refine * LEVELS[0] if estimate else refine
     least = FINITE_MIN_STEPS if isinstance(settings, FiniteImpactSettings) else MIN_STEPS
+    advice = WITHOUT_ESTIMATE if estimate else ""
     if settings.steps is not None and settings.steps * lowest < least - 0.5:
         coarsest = "the error-estimate ladder's coarsest level halves" if estimate else "refine"
         raise InputError(
             f"time_steps: {coarsest} the time steps (refine {lowest:g}), so it needs at least "
-            f"{math.ceil((least - 0.5) / lowest)} per t_y, got {settings.steps}"
-            + (WITHOUT_ESTIMATE if estimate else ""),
+            f"{math.ceil((least - 0.5) / lowest)} per t_y, got {settings.steps}{advice}",
             "time_steps",
         )
     if isinstance(settings, FiniteImpactSettings):
         assert settings.mesh is not None, "resolve the settings first"
-        check_mesh_ladder(settings.mesh, refine, estimate=estimate, sized=False)
+        check_mesh_ladder(settings.mesh, refine, estimate=estimate, sized=False, advice=advice)
         return
     if settings.size / lowest > MAX_SIZE * (1.0 + 1e-12):
         raise InputError(
