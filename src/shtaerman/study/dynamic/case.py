@@ -219,10 +219,13 @@ def run_case(
         estimate = radiation(mass, velocity, law, density, half_space, quasi)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
-    run = partial(run_impact, indenter, half_space, density, mass, velocity)
-    physics = partial(run, rubber=rubber, prony=prony, friction=friction)
-    finest = partial(physics, snapshot_times=times)
-    levels = run_ladder(physics, settings, refine=refine, estimate=ladder, first=finest)
+    inputs = (indenter, half_space, density, mass, velocity)
+
+    def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
+        return run_impact(*inputs, level, rubber, prony, friction, **kept)
+
+    finest = partial(run, snapshot_times=times) if times else run  # the fields it keeps
+    levels = run_ladder(run, settings, refine=refine, estimate=ladder, first=finest)
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     if isinstance(settings, DynamicSettings):  # the rubber's run warns itself
