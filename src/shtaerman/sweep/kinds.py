@@ -198,18 +198,22 @@ _MESH = vocabulary.fields(
 """Sweep parameter -> MeshSettings field."""
 
 
+def _mesh(p: dict[str, Any]) -> tuple[Any, Any]:
+    """The case's mesh settings and them refined by ``refine`` (an InputError naming refine
+    now, not at run time)."""
+    from ..fem.mesh import MeshSettings
+
+    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
+    return mesh, mesh if p["refine"] == 1.0 else mesh.refined(p["refine"])
+
+
 def _curve_inputs(p: dict[str, Any]):
     """Indenter, half-space, depths and mesh of a contact curve (linear or finite strain)."""
     import numpy as np
 
-    from ..fem.mesh import MeshSettings
-
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
     depths = None if p["depths"] is None else np.array(p["depths"], dtype=float)
-    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
-    refine = p["refine"]
-    if refine != 1.0:
-        mesh = mesh.refined(refine)
+    _, mesh = _mesh(p)
     mesh.check_size()  # at load, as the contact CLI does: not a failed case at run time
     return indenter, half_space, depths, mesh
 
@@ -589,15 +593,12 @@ register_kind(
 
 def _layer_study(p: dict[str, Any]):
     """The contact study of a layer case (its thickness resolved at the impact's x_c)."""
-    from ..fem.mesh import MeshSettings
     from ..study.contact.layer import LayerSpec
     from ..study.contact.loader import Study, check_profile_reach, on_layer
     from ..theory.materials import effective_modulus
 
     _layer_given(p, required=True)
-    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
-    if p["refine"] != 1.0:
-        mesh.refined(p["refine"])  # an InputError names refine now, not at run time
+    mesh, _ = _mesh(p)
     study = Study(
         name="case",
         description="",
