@@ -69,16 +69,25 @@ def _dynamic_case(**given):
     return {**kind.defaults(), "estimate": False, **given}
 
 
+def _dynamic_settings(**given):
+    """The settings a dynamic sweep case runs with (``sh.dynamic``'s, checked)."""
+    from shtaerman.api.fem_dynamic import check_dynamic
+    from shtaerman.sweep.kinds import _dynamic
+
+    problem, numerics = _dynamic(_dynamic_case(**given))
+    return check_dynamic(problem, **numerics)
+
+
 def test_dynamic_sweep_kind_takes_the_layer():
-    from shtaerman.sweep.kinds import _dynamic_inputs, get_kind
+    from shtaerman.sweep.kinds import get_kind
 
     assert {"thickness", "thickness_ratio", "base"} <= set(get_kind("dynamic").parameters)
-    *_, settings = _dynamic_inputs(_dynamic_case())
+    settings = _dynamic_settings()
     assert settings.thickness is None  # no thickness: the half-space, as before
-    *_, settings = _dynamic_inputs(_dynamic_case(thickness_ratio=2.0, base="lubricated"))
+    settings = _dynamic_settings(thickness_ratio=2.0, base="lubricated")
     assert settings.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
     assert settings.base == "lubricated"
-    *_, settings = _dynamic_inputs(_dynamic_case(thickness=0.02, refine=2.0))
+    settings = _dynamic_settings(thickness=0.02, refine=2.0)
     assert settings.thickness == 0.02 and settings.base == "bonded"
 
 
@@ -92,11 +101,10 @@ def test_dynamic_sweep_kind_takes_the_layer():
     ],
 )
 def test_dynamic_sweep_kind_refuses_a_bad_layer(given, message):
-    from shtaerman.sweep.kinds import _dynamic_inputs
     from shtaerman.validation import InputError
 
     with pytest.raises(InputError, match=message):
-        _dynamic_inputs(_dynamic_case(**given))
+        _dynamic_settings(**given)
 
 
 def test_a_dynamic_sweep_refuses_at_load_what_the_cli_refuses(tmp_path: Path, capsys):

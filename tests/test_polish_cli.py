@@ -81,7 +81,7 @@ def test_a_typed_default_reaches_the_finite_strain_impact(monkeypatch, typed, fi
         seen.update(numerics)
         raise ReachedError
 
-    monkeypatch.setattr("shtaerman.study.dynamic.case.finite_case", route)
+    monkeypatch.setattr("shtaerman.study.dynamic.case.finite_settings", route)
     with pytest.raises(ReachedError):
         main(["dynamic", "--model", "neo-hookean", "--density2", "0", *typed])
     assert seen[field] == value

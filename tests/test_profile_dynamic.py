@@ -135,3 +135,24 @@ def test_the_input_check_solves_a_profiles_quasi_static_impact_once(monkeypatch)
     assert len(solved) == 1
     # the same numbers as the scales solved on their own (one deterministic solve): equal
     assert scales == dynamic_contact._scales(BALL, RUBBER, 1100.0, striker, COARSE)
+
+
+def test_sh_dynamic_solves_the_profiles_quasi_static_impact_once_per_purpose():
+    """The exact impact of a sphere or a table is a quadrature (about 4 s on a 2000-row
+    table): ``sh.dynamic`` solved it five times before one run (its input check, the run's own
+    check, the case's impact and the radiation estimate's); now the run's check and the case's
+    impact, which the radiation estimate reuses."""
+    import cProfile
+    import pstats
+
+    body = sh.Material(3e6, 0.49, 1000.0)
+    profiler = cProfile.Profile()
+    profiler.enable()
+    sh.dynamic(BALL, body, mass=0.12, velocity=1.5, mesh_size=0.2, time_steps=50, estimate=False)
+    profiler.disable()
+    calls = {
+        name: count
+        for (_, _, name), (count, *_) in pstats.Stats(profiler).stats.items()  # type: ignore[attr-defined]
+        if name == "solve_profile_impact"
+    }
+    assert calls == {"solve_profile_impact": 2}

@@ -155,6 +155,11 @@ def test_a_contact_sweep_refuses_rate_it_would_ignore(tmp_path, where):
 def test_a_rigid_striker_is_e1_inf(tmp_path):
     spec = parse_sweep(IMPACT.replace("mass = 0.7", "E1 = inf"), tmp_path / "s.toml")
     assert math.isinf(spec.cases()[0].params["E1"])
+    # a study file's spelling, "inf", too (it was refused: "must be a number in Pa")
+    quoted = parse_sweep(IMPACT.replace("mass = 0.7", 'E1 = "inf"'), tmp_path / "s.toml")
+    assert quoted.cases()[0].params["E1"] == math.inf
+    axis = parse_sweep(IMPACT.replace("[axes]", '[axes]\nE1 = ["inf", 2e11]'), tmp_path / "s")
+    assert [case.params["E1"] for case in axis.cases()][::4] == [math.inf, 2e11]
 
 
 def test_shipped_sweeps_load_by_name():

@@ -144,7 +144,8 @@ def _dynamic_cli_default(*options: str) -> str:
 
 
 def test_dynamic_defaults_agree_through_every_entry_point(tmp_path):
-    from shtaerman.sweep.kinds import _dynamic_inputs
+    from shtaerman.api.fem_dynamic import check_dynamic
+    from shtaerman.sweep.kinds import _dynamic
 
     """200 time steps per t_y at mesh size 1/40: the CLI, DynamicSettings(), a study file that
     sets none, the shipped study, a sweep that sets none and the shipped validity sweep."""
@@ -170,7 +171,8 @@ def test_dynamic_defaults_agree_through_every_entry_point(tmp_path):
     assert study.settings == shipped.settings == settings
     defaults = get_kind("dynamic").defaults()  # None: the model's, the linear one's here
     assert (defaults["time_steps"], defaults["mesh_size"]) == (None, None)
-    linear = _dynamic_inputs(defaults)[-1]
+    problem, numerics = _dynamic(defaults)
+    linear = check_dynamic(problem, **numerics)
     assert (linear.steps, linear.size) == expected
     validity = load_sweep(find_sweep("validity"))
     assert (validity.parameters["time_steps"], validity.parameters["mesh_size"]) == expected

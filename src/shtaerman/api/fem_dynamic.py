@@ -18,6 +18,7 @@ from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
+    from ..fem.finite_dynamic import FiniteImpactSettings
     from ..study.dynamic.case import DynamicCase
     from ..theory.sneddon import Indenter
     from ..theory.viscoelastic import PronySeries
@@ -27,6 +28,7 @@ __all__ = [
     "SETTINGS_OPTIONS",
     "DynamicResult",
     "check_dynamic",
+    "checked_options",
     "dynamic",
     "dynamic_settings",
 ]
@@ -44,6 +46,12 @@ SETTINGS_OPTIONS = (
 names."""
 
 
+def checked_options(options: Mapping[str, object]) -> dict[str, object]:
+    """The numerical ``options`` (of :data:`SETTINGS_OPTIONS`) that are not None, each checked
+    against the dynamic impact's range (InputError naming it)."""
+    return {k: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
+
+
 def dynamic_settings(
     base: DynamicSettings | None, options: Mapping[str, object]
 ) -> DynamicSettings:
@@ -59,7 +67,7 @@ def dynamic_settings(
             "settings",
         )
     names = fields(SETTINGS_OPTIONS)
-    chosen = {names[k]: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
+    chosen = {names[k]: v for k, v in checked_options(options).items()}
     return dataclasses.replace(base, **chosen)  # type: ignore[arg-type]
 
 
@@ -205,7 +213,7 @@ def dynamic(
     model : str
         ``linear`` (default), or a rubber at finite strain (``neo-hookean``,
         ``mooney-rivlin``, ``yeoh``, ``gent``, options ``**rubber``): then
-        :func:`shtaerman.study.dynamic.case.finite_case` runs (``refine`` and ``estimate``
+        :func:`shtaerman.study.dynamic.case.finite_settings` (``refine`` and ``estimate``
         as here; the ladder of :mod:`shtaerman.study.dynamic.accuracy`; density 0: the
         massless body; ``time_steps`` default 50, 100 with inertia; ``mesh_size`` the
         finite-strain contact's).
@@ -220,15 +228,18 @@ def dynamic(
         If an input lies outside its range, or the body has no density (nothing is computed).
     """
     from ..output.files import output_folder, staged_folder
+    from ..study.dynamic.case import problem_case
 
     physics = dict(model=model, prony=prony, thickness=thickness, base=base, **rubber)
     problem = _problem(indenter, body, mass, velocity, physics)
     options = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
     options.update(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
     outputs = dict(out=out, force=force, figure_format=figure_format)
-    checked = check_dynamic(problem, refine, estimate, settings, **options, **outputs)
+    # the impact's own checks (seconds on a long table) are the run's first step
+    checked = check_dynamic(problem, refine, estimate, settings, **options, **outputs, impact=False)
     folder = output_folder(out, force=force)  # checked before the run
-    case = _case(problem, checked, options, refine, estimate, snapshots=folder is not None)
+    shots = _snapshots if folder is not None else None
+    case = problem_case(problem, checked, snapshots=shots, ladder=estimate, refine=refine)
     check_separated(case.result.summary(), float(case.result.t[-1]))
     result = _result(case, problem)
     if folder is not None:
@@ -248,23 +259,30 @@ def check_dynamic(
     out: str | Path | None = None,
     force: bool = False,
     figure_format: str = "png",
+    impact: bool = True,
     **options: Any,
-) -> tuple[float, DynamicSettings] | None:
+) -> DynamicSettings | FiniteImpactSettings:
     """Every input of ``dynamic(problem, ...)`` (the same keywords; ``options`` the
     ``time_steps`` ... ``layer_rate`` ones) checked, nothing computed: what a run would refuse
-    for its inputs alone, it refuses now (:func:`shtaerman.effects` checks all its runs so).
+    for its inputs alone, it refuses now (:func:`shtaerman.effects` and a sweep's load check
+    all their runs so); without ``impact``, the impact's own checks are left to the run,
+    which makes them first.
 
     Returns
     -------
-    tuple or None
-        The linear body's refine and refined settings (None: a rubber, whose numerics
-        :func:`shtaerman.study.dynamic.case.finite_case` checks).
+    DynamicSettings or FiniteImpactSettings
+        The settings of the ladder's finest level (of refinement ``refine``).
 
     Raises
     ------
     shtaerman.validation.InputError
         As :func:`dynamic`.
     """
+    from ..fem.contact import validate_fem_inputs
+    from ..fem.dynamic_layer import check_layer_rate
+    from ..study.dynamic.accuracy import check_ladder
+    from ..study.dynamic.case import finite_settings
+
     unknown = sorted(set(options) - set(SETTINGS_OPTIONS))
     if unknown:
         raise TypeError(f"unexpected keyword arguments {unknown}")
@@ -276,75 +294,50 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
-    checked = _checked_linear(problem, settings, options, refine, estimate)
+    if problem.body.finite:
+        numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
+        chosen = finite_settings(problem, **numbers, refine=refine, estimate=estimate)
+    else:
+        check_layer_rate(options["layer_rate"], problem.geometry.thickness)
+        chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
+        validate_fem_inputs(problem.striker.indenter, problem.body.material)
+        if estimate:
+            check_ladder(chosen, refine)
+        chosen = chosen.refined(validate_positive("refine", refine))
     check_figure_format(figure_format)
-    if checked is not None:
-        _check_impact(problem, checked[1])
-    return checked
+    if impact:
+        _check_impact(problem, None if problem.body.finite else chosen)
+    return chosen
 
 
-def _check_impact(problem: Problem, settings: DynamicSettings) -> None:
-    """The linear impact's own checks (the layer's thickness against it, the mesh's size, a
-    viscoelastic impact's duration), as the run makes them first (its warnings are the run's)."""
+def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
+    """The impact's own checks as the run makes them first (its warnings are the run's): the
+    floating-point range, the exact impact and the depth it reaches; the linear body's layer
+    thickness against it, mesh size and viscoelastic duration (``settings``; None: a rubber)."""
     import warnings
 
     from ..fem.dynamic_contact import check_dynamic_impact
+    from ..guards import check_reach
     from ..study.dynamic.case import exact_impact
     from ..theory.impact import representable
-    from ..theory.materials import effective_modulus
+    from ..theory.materials import effective_modulus, validate_density
     from ..theory.sneddon import contact_law
 
     striker, body = problem.striker, problem.body.material
-    inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity, settings)
+    inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
     law = contact_law(striker.indenter, effective_modulus(striker.material, body))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        # the floating-point range first: the exact impact's, and v0^2 (the FE sizes on it)
+        # the floating-point range first, as the run meets it: the exact impact's, and v0^2
+        x_c = exact_impact(striker.mass, striker.velocity, law).x_c
         representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
-        exact_impact(striker.mass, striker.velocity, law)
-        check_dynamic_impact(*inputs, problem.body.prony, problem.interface.coefficient)
-
-
-def _checked_linear(
-    problem: Problem,
-    settings: DynamicSettings | None,
-    options: dict[str, Any],
-    refine: float,
-    estimate: bool,
-) -> tuple[float, DynamicSettings] | None:
-    """The linear body's refine and settings, every input checked (None: a rubber, whose
-    numerics :func:`shtaerman.study.dynamic.case.finite_case` checks)."""
-    from ..fem.dynamic_layer import check_layer_rate
-
-    if problem.body.finite:
-        return None
-    check_layer_rate(options["layer_rate"], problem.geometry.thickness)
-    chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
-    return _checked(problem, refine, estimate, chosen)
-
-
-def _case(
-    problem: Problem,
-    checked: tuple[float, DynamicSettings] | None,
-    options: dict[str, Any],
-    refine: float,
-    estimate: bool,
-    snapshots: bool,
-) -> DynamicCase:
-    """The impact of ``problem`` with its ladder (``estimate``): a rubber's by
-    :func:`.finite_case`, the linear body's by :func:`.run_case`
-    (``checked``: its refine and settings; ``snapshots``: keep fields for an ``out`` folder)."""
-    from ..study.dynamic.case import finite_case, run_case
-
-    if checked is None:
-        numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
-        return finite_case(problem, **numbers, refine=refine, estimate=estimate)
-    refine, chosen = checked
-    striker, body = problem.striker, problem.body.material
-    inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
-    physics = dict(prony=problem.body.prony, friction=problem.interface.coefficient)
-    shots = _snapshots if snapshots else None
-    return run_case(*inputs, chosen, snapshots=shots, ladder=estimate, refine=refine, **physics)
+        if settings is not None:
+            physics = (problem.body.prony, problem.interface.coefficient)
+            check_dynamic_impact(*inputs, settings, *physics)
+            return
+    validate_density("density2", body.density)
+    if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
+        check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True)
 
 
 def _problem(
@@ -369,26 +362,3 @@ def _problem(
     if density is not None and isinstance(body, Material):
         body = dataclasses.replace(body, density=density)
     return Problem.impact(indenter, body, mass=mass, velocity=velocity, **physics)
-
-
-def _checked(
-    problem: Problem, refine: float, estimate: bool, settings: DynamicSettings
-) -> tuple[float, DynamicSettings]:
-    """Refine and the refined settings, every input checked (the ladder's coarsest level too,
-    with ``estimate``) before anything runs."""
-    from ..fem.contact import validate_fem_inputs
-    from ..study.dynamic.accuracy import check_ladder
-
-    validate_fem_inputs(problem.striker.indenter, problem.body.material)
-    refine = validate_positive("refine", refine)
-    chosen = settings.refined(refine)
-    if estimate:
-        try:
-            check_ladder(chosen)
-        except InputError as error:
-            raise InputError(
-                f"{error}; refine the settings or run without the estimate (estimate=False, "
-                "--no-estimate)",
-                error.parameter,
-            ) from None
-    return refine, chosen

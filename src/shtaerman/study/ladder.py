@@ -27,21 +27,35 @@ LADDER_RATIO = math.sqrt(2.0)
 
 
 def check_ladder(
-    mesh: MeshSettings, refine: float = 1.0, refined_radius: float | None = None
+    mesh: MeshSettings,
+    refine: float = 1.0,
+    refined_radius: float | None = None,
+    *,
+    estimate: bool = True,
+    sized: bool = True,
+    advice: str = "",
 ) -> None:
-    """Raise InputError unless every level of the ladder ending at ``refine`` is a valid
-    mesh: the coarsest, refine / 2, must keep every size and growth of ``mesh`` <= 1, and the
-    finest must pass the size guard (``max_dofs``) before the coarse levels cost anything
-    (a layer's guard needs the ``refined_radius`` in m, see
-    :meth:`~shtaerman.fem.mesh.MeshSettings.check_size`)."""
-    smallest = LADDER_RATIO**2 * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
+    """Raise InputError unless every level of the ladder ending at ``refine`` (only that level
+    without ``estimate``) is a valid mesh: the coarsest, refine / 2, must keep every size and
+    growth of ``mesh`` <= 1, and (``sized``) the finest must pass the size guard
+    (``max_dofs``) before the coarse levels cost anything (a layer's guard needs the
+    ``refined_radius`` in m, see :meth:`~shtaerman.fem.mesh.MeshSettings.check_size`);
+    ``advice`` ends the refusal."""
+    ratio = LADDER_RATIO**2 if estimate else 1.0
+    smallest = ratio * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
     if not refine >= smallest * (1.0 - 1e-12):
+        coarsest = "the error-estimate ladder's coarsest mesh, refine / 2," if estimate else "it"
         raise InputError(
-            f"refine must be >= {smallest:.3g} with these mesh settings (the error-estimate "
-            f"ladder's coarsest mesh, refine / 2, keeps every size and growth <= 1), got "
-            f"{refine!r}"
+            f"refine must be >= {smallest:.3g} with these mesh settings ({coarsest} keeps every "
+            f"size and growth <= 1), got {refine!r}{advice}",
+            "refine",
         )
-    mesh.refined(refine).check_size(refined_radius)
+    if sized:
+        mesh.refined(refine).check_size(refined_radius)
+
+
+WITHOUT_ESTIMATE = "; or run without the estimate (estimate=False, --no-estimate)"
+"""The advice that ends a refusal of the error-estimate ladder."""
 
 
 def ladder_factors(refine: float) -> list[float]:

@@ -123,7 +123,7 @@ def _tabulated(path: str):
 def _material(p: dict[str, Any], young: str, poisson: str):
     from ..theory.materials import RIGID, Material
 
-    if young == "E1" and math.isinf(p[young]):
+    if young == "E1" and math.isinf(p.get(young, math.inf)):  # the kinds without E1: rigid
         return RIGID
     return Material(p[young], p[poisson])
 
@@ -150,23 +150,19 @@ IMPACT_OUTPUTS = {
 }
 
 
-def _quasi_static(check: Any) -> Any:
-    """``check`` followed by the quasi-static impact of the case's mass and velocity (a closed
-    form, well under a millisecond), so inputs whose x_c, P_c or t_c leave the floating-point
-    range are refused at load rather than as failed cases."""
+def _quasi_static(check: Any = None) -> Any:
+    """The quasi-static impact of the case's mass and velocity (a closed form, well under a
+    millisecond) followed by ``check``, so inputs whose x_c, P_c or t_c leave the
+    floating-point range are refused at load rather than as failed cases."""
     import warnings
 
     from ..study.dynamic.case import exact_impact
-    from ..theory.materials import RIGID, effective_modulus
-    from ..theory.sneddon import contact_law
 
     def checked(p: dict[str, Any]) -> Any:
-        striker = _material(p, "E1", "nu1") if "E1" in p else RIGID
-        law = contact_law(_indenter(p), effective_modulus(striker, _material(p, "E2", "nu2")))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a validity warning is the case's to record
-            exact_impact(p["mass"], p["velocity"], law)  # first: velocity 1e300 overflowed
-        return check(p)  # in the dynamic check's own arithmetic (an OverflowError)
+            exact_impact(*_impact_inputs(p))  # first: velocity 1e300 overflowed
+        return None if check is None else check(p)
 
     return checked
 
@@ -189,7 +185,7 @@ register_kind(
         parameters=vocabulary_parameters("impact"),
         outputs=IMPACT_OUTPUTS,
         case=impact_case,
-        check=_quasi_static(_impact_inputs),
+        check=_quasi_static(),
     )
 )
 
@@ -202,18 +198,22 @@ _MESH = vocabulary.fields(
 """Sweep parameter -> MeshSettings field."""
 
 
+def _mesh(p: dict[str, Any]) -> tuple[Any, Any]:
+    """The case's mesh settings and them refined by ``refine`` (an InputError naming refine
+    now, not at run time)."""
+    from ..fem.mesh import MeshSettings
+
+    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
+    return mesh, mesh if p["refine"] == 1.0 else mesh.refined(p["refine"])
+
+
 def _curve_inputs(p: dict[str, Any]):
     """Indenter, half-space, depths and mesh of a contact curve (linear or finite strain)."""
     import numpy as np
 
-    from ..fem.mesh import MeshSettings
-
     indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
     depths = None if p["depths"] is None else np.array(p["depths"], dtype=float)
-    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
-    refine = p["refine"]
-    if refine != 1.0:
-        mesh = mesh.refined(refine)
+    _, mesh = _mesh(p)
     mesh.check_size()  # at load, as the contact CLI does: not a failed case at run time
     return indenter, half_space, depths, mesh
 
@@ -289,98 +289,39 @@ register_kind(
 
 # --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
 
-_DYNAMIC_NUMERICS = vocabulary.fields(
-    ("time_steps", "mesh_size", "mesh_margin", "domain_factor", "growth", "axis_size", "layer_rate")
-)
-"""Sweep parameter (the CLI option) -> DynamicSettings field."""
+
+def _layer_given(p: dict[str, Any], required: bool) -> bool:
+    """Whether the case has a layer: its thickness in m or as H / a_c, not both (refused;
+    and, where ``required``, neither); a ``base`` only with a layer."""
+    given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
+    if len(given) > 1 or (required and not given):
+        raise InputError(
+            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
+            f"exactly one of them; got {' and '.join(given) or 'neither'}",
+            "thickness",
+        )
+    if not given and p.get("base", "bonded") != "bonded":
+        raise InputError(
+            "base: applies to a layer only; give thickness (m) or thickness_ratio too", "base"
+        )
+    return bool(given)
 
 
-def _dynamic_inputs(p: dict[str, Any]):
-    from dataclasses import replace
-
-    from ..fem.dynamic_contact import DynamicSettings
-    from ..fem.dynamic_layer import check_layer_rate
-    from ..study.dynamic.accuracy import check_ladder
-
-    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
-    settings = DynamicSettings()
-    for name, field_name in _DYNAMIC_NUMERICS.items():
-        if p[name] is not None:  # None: the default (time_steps, mesh_size; layer_rate:
-            settings = replace(settings, **{field_name: p[name]})  # the geometry's own)
-    settings = _dynamic_layer(p, indenter, half_space, settings)
-    check_layer_rate(p["layer_rate"], settings.thickness)  # 0 on a layer ran as 10
-    refine = p["refine"]
-    if refine != 1.0:
-        settings = settings.refined(refine)
-    if p["estimate"]:
-        check_ladder(settings)
-    return indenter, half_space, p["density2"], p["mass"], p["velocity"], settings
-
-
-def _dynamic_check(p: dict[str, Any]) -> None:
-    """Every input of a dynamic case checked at load as ``shtaerman dynamic`` checks them
-    (:func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`: the layer's thickness against
-    the impact, the viscoelastic impact's duration, the mesh size), in well under a second."""
-    import warnings
-
-    from ..fem.dynamic_contact import check_dynamic_impact
-
-    if p["model"] != "linear":
-        _finite_impact_check(p)
-        return
-    inputs = _dynamic_inputs(p)
-    _dynamic_problem(p, inputs[-1])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # a validity warning is the case's to record
-        check_dynamic_impact(*inputs, _prony(p))
-
-
-def _dynamic_problem(p: dict[str, Any], settings: Any) -> None:
-    """The case as a :class:`~shtaerman.problem.Problem`, checked as the command line's is:
-    its parts combine, and it takes its options (a layer_rate on a massless body)."""
-    from ..problem import Problem, check_options
-    from ..theory.materials import Material
-
-    layer = {"thickness": settings.thickness, "base": settings.base}
-    problem = Problem.impact(
-        _indenter(p),
-        Material(p["E2"], p["nu2"], p["density2"]),
-        mass=p["mass"],
-        velocity=p["velocity"],
-        prony=_prony(p),
-        **(layer if settings.thickness is not None else {}),
-        **_surface(p),
-    )
-    check_options(problem, ["layer_rate"] if p["layer_rate"] is not None else [])
-
-
-def _dynamic_layer(p: dict[str, Any], indenter: Any, half_space: Any, settings: Any) -> Any:
-    """``settings`` on the case's layer (thickness in m or H / a_c at the case's quasi-static
-    x_c on the half-space, and base); unchanged without one (the half-space)."""
-    from dataclasses import replace
-
+def _layer(p: dict[str, Any]) -> dict[str, Any]:
+    """The case's layer as keywords of :meth:`~shtaerman.problem.Problem.impact`: its
+    ``thickness`` (given in m, or as H / a_c at the case's quasi-static impact on the
+    half-space) and ``base``; {} without one (the half-space)."""
     from ..study.contact.layer import LayerSpec
     from ..study.dynamic.case import exact_impact
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
 
-    given = [key for key in ("thickness", "thickness_ratio") if p.get(key) is not None]
-    if not given:
-        if p.get("base", "bonded") != "bonded":
-            raise InputError(
-                "base: applies to a layer only; give thickness (m) or thickness_ratio too", "base"
-            )
-        return settings
-    if len(given) > 1:
-        raise InputError(
-            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
-            "exactly one of them; got thickness and thickness_ratio",
-            "thickness",
-        )
-    contact = contact_law(indenter, effective_modulus(RIGID, half_space))
+    if not _layer_given(p, required=False):
+        return {}
+    contact = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
     a_c = float(exact_impact(p["mass"], p["velocity"], contact).a_c)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
-    return replace(settings, thickness=layer.thickness, base=layer.base)
+    return {"thickness": layer.thickness, "base": layer.base}
 
 
 def _surface(p: dict[str, Any]) -> dict[str, Any]:
@@ -449,49 +390,41 @@ empty for an elastic case of a prony axis)."""
 
 
 def dynamic_case(p: dict[str, Any]) -> CaseResult:
-    """Dynamic FE impact beside the quasi-static one and the first-order radiation estimate;
-    failed when its energy balance or its reflected energy exceed what the studies allow. A
-    rubber ``model``: the finite-strain impact (:func:`finite_impact_case`)."""
-    from ..problem import Interface
-    from ..study.dynamic.case import run_case
-    from ..study.dynamic.loader import dynamic_check_failures
+    """The dynamic FE impact of the case (:func:`shtaerman.dynamic` on its problem, the command
+    line's numbers, every body) beside the quasi-static one and the first-order radiation
+    estimate (a rubber has none: NaN); failed, as ``shtaerman dynamic`` warns, when its energy
+    balance or its reflected energy exceed what the studies allow."""
+    import warnings
 
-    if p["model"] != "linear":
-        return finite_impact_case(p)
+    from ..api.dynamic_result import check_failures
+    from ..api.fem_dynamic import dynamic
+
+    problem, numerics = _dynamic(p)
     start = time.perf_counter()
-    friction = Interface(*_surface(p).values()).coefficient
-    case = run_case(*_dynamic_inputs(p), ladder=p["estimate"], prony=_prony(p), friction=friction)
+    result = dynamic(problem, **numerics)
     seconds = time.perf_counter() - start
-    result, quasi, differences = case.result, case.quasi, case.differences()
-    compared = {f"difference_{key}": differences[key] for key in ("x", "P", "t")}
+    if p["volumetric"] is not None and p["nu2"] == 0.5:  # as the command line warns
+        warnings.warn(
+            "volumetric has no effect at nu2 0.5 (no volumetric energy): ignored", stacklevel=2
+        )
+    dyn, quasi, radiation = result.dynamic, result.quasi_static, result.radiation_estimate
+    differences = {key: float(result.differences[f"{key}_c"]) for key in ("x", "P", "t")}
     outputs = {
-        "restitution": float(result.restitution),
-        "energy_radiated_fraction": float(result.energy_radiated_fraction),
-        "estimate_energy_fraction": float(case.estimate.energy_fraction),
-        "x_max": float(result.x_max),
-        "P_max": float(result.P_max),
-        "t_x_max": float(result.t_x_max),
-        "t_contact": float(result.t_contact),
-        **{key: float(getattr(quasi, key)) for key in ("x_c", "P_c", "t_c", "t_y")},
-        **{key: float(value) for key, value in compared.items()},
-        "difference_worst": float(max(abs(value) for value in compared.values())),
-        "energy_balance_error": float(result.energy_balance_error),
-        "reflected_energy_fraction": float(result.reflected_energy_fraction),
+        **{key: float(dyn[key]) for key in (*DYNAMIC_OUTPUTS, *DYNAMIC_LOSSES) if key in dyn},
+        "estimate_energy_fraction": math.nan if radiation is None else radiation["energy_fraction"],
+        **{key: float(quasi[key]) for key in ("x_c", "P_c", "t_c", "t_y")},
+        **{f"difference_{key}": value for key, value in differences.items()},
+        "difference_worst": max(abs(value) for value in differences.values()),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
-        **{key: float(result.losses[key]) for key in DYNAMIC_LOSSES if result.losses},
-        **_dynamic_errors(case),
+        **_result_errors(result),
     }
-    of = "the radiated" if p.get("thickness") is None else "M v0^2/2"
-    balance, reflected = outputs["energy_balance_error"], outputs["reflected_energy_fraction"]
-    radiated = outputs["energy_radiated_fraction"]
-    failures = dynamic_check_failures(balance, reflected, of, radiated)
-    return CaseResult(outputs, tuple(failures))
+    return CaseResult(outputs, tuple(check_failures(result, problem)))
 
 
 def _result_errors(result: Any) -> dict[str, float]:
-    """:data:`DYNAMIC_ERRORS` of a rubber case's :class:`~shtaerman.DynamicResult` run with
-    its ladder ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a massless
+    """:data:`DYNAMIC_ERRORS` of a case's :class:`~shtaerman.DynamicResult` run with its
+    ladder ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a massless
     elastic body, 0 to round-off)."""
     if result.error_estimate is None:
         return {}
@@ -503,34 +436,13 @@ def _result_errors(result: Any) -> dict[str, float]:
     return out
 
 
-def _dynamic_errors(case: Any) -> dict[str, float]:
-    """:data:`DYNAMIC_ERRORS` of a case run with its ladder ({} without one)."""
-    estimates = case.estimates()
-    if not estimates:
-        return {}
-    relative = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
-    out = {f"error_{key}": float(estimates[key].error) for key in relative}
-    for key in ("x", "P", "t"):
-        out[f"error_difference_{key}"] = float(estimates[f"difference_{key}"].absolute_error)
-    out["error_difference_worst"] = max(out[f"error_difference_{key}"] for key in "xPt")
-    return out
-
-
-_FINITE_IMPACT_OPTIONS = ("time_steps", "mesh_size", "refine", "estimate")
-"""The numerics a finite-strain impact case takes (the others keep their defaults)."""
-
-
 def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
     """The striker, the body and the keywords of a dynamic or effects case's impact, as
     :meth:`shtaerman.problem.Problem.impact` and :func:`shtaerman.problem.parts` take them
     (a rubber option only for the case's own model, as a study file's swept model takes it)."""
-    from ..fem.dynamic_contact import DynamicSettings
     from ..problem import RUBBER_OPTIONS
     from ..theory.materials import Material
 
-    indenter, half_space = _indenter(p), _material(p, "E2", "nu2")
-    layer = _dynamic_layer(p, indenter, half_space, DynamicSettings())
-    geometry = {"thickness": layer.thickness, "base": layer.base} if layer.thickness else {}
     rubber = {
         name: p[name]
         for name in RUBBER_OPTIONS
@@ -538,94 +450,47 @@ def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
     }
     body = Material(p["E2"], p["nu2"], p["density2"])
     keywords = dict(mass=p["mass"], velocity=p["velocity"], model=p["model"], prony=_prony(p))
-    return indenter, body, {**keywords, **geometry, **rubber, **_surface(p)}
+    return _indenter(p), body, {**keywords, **_layer(p), **rubber, **_surface(p)}
 
 
-def _finite_impact(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
-    """A finite-strain impact case as the command line builds it: its
+def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
+    """A dynamic case as the command line builds it: its
     :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
-    swept model takes them) and the numerical keywords of :func:`shtaerman.dynamic`; a
-    numerical option it does not take, set to other than its default, is refused."""
-    from ..problem import Problem, check_options
+    swept model takes them) and the keywords of :func:`shtaerman.dynamic`: the numerics set to
+    other than the kind's defaults (an ``axis_size`` as the linear body's settings)."""
+    from ..api.fem_dynamic import SETTINGS_OPTIONS
+    from ..fem.dynamic_contact import DynamicSettings
+    from ..problem import Problem
 
     indenter, body, keywords = _struck_case(p)
     problem = Problem.impact(indenter, body, **keywords)
-    defaults = KINDS["dynamic"].defaults()
-    changed = [
-        name
-        for name in _DYNAMIC_NUMERICS
-        if name not in _FINITE_IMPACT_OPTIONS and p[name] != defaults[name]
-    ]
-    if "axis_size" in changed:  # the finite-strain impact grades its own axis
-        raise InputError(
-            f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
-            "time_steps and mesh_size)",
-            "axis_size",
-        )
-    check_options(problem, changed)
-    return problem, {name: p[name] for name in _FINITE_IMPACT_OPTIONS}
+    numerics = _changed(p, "dynamic", SETTINGS_OPTIONS)
+    if _changed(p, "dynamic", ("axis_size",)):
+        if problem.body.finite:  # the finite-strain impact grades its own axis
+            raise InputError(
+                f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
+                "time_steps and mesh_size)",
+                "axis_size",
+            )
+        numerics["settings"] = DynamicSettings(axis_size=p["axis_size"])
+    return problem, {**numerics, "refine": p["refine"], "estimate": p["estimate"]}
 
 
-def _finite_impact_check(p: dict[str, Any]) -> None:
-    """A finite-strain impact case checked at load as ``shtaerman dynamic --model`` checks it:
-    the problem's parts and options, the numerics' ranges, and a half-space impact's depth
-    against the finite-strain contact's reach (velocity and mass)."""
-    import warnings
-
-    from ..fem.finite_dynamic import FiniteImpactSettings
-    from ..guards import check_reach
-    from ..study.dynamic.case import exact_impact
-    from ..theory.materials import RIGID, effective_modulus, validate_density
-    from ..theory.sneddon import contact_law
-
-    problem, numerics = _finite_impact(p)
-    FiniteImpactSettings(steps=numerics["time_steps"])  # its range, naming steps
-    validate_density("density2", p["density2"])
-    if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
-        law = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # a validity warning is the case's to record
-            x_c = exact_impact(p["mass"], p["velocity"], law).x_c
-        check_reach(_indenter(p), x_c, (p["mass"], p["velocity"]), law.force_exponent, True)
+def _changed(p: dict[str, Any], kind: str, names: tuple[str, ...]) -> dict[str, Any]:
+    """The parameters ``names`` of a case of ``kind`` set to other than their defaults."""
+    defaults = KINDS[kind].defaults()
+    return {name: p[name] for name in names if p[name] != defaults[name]}
 
 
-def finite_impact_case(p: dict[str, Any]) -> CaseResult:
-    """The finite-strain impact of a rubber ``model`` (:func:`shtaerman.dynamic` on the
-    case's problem, the command line's numbers): its outputs as the linear case's (no
-    radiation estimate: NaN); failed, as ``shtaerman dynamic --model`` exits 1, when its
-    energy balance or (with inertia) its reflected energy exceed the studies' limits."""
-    import warnings
+def _dynamic_check(p: dict[str, Any]) -> None:
+    """Every input of a dynamic case checked at load as ``shtaerman dynamic`` checks them
+    (:func:`shtaerman.api.fem_dynamic.check_dynamic`: the problem's parts and options, the
+    numerics' ranges and ladder, the impact's floating-point range, a layer's thickness and a
+    half-space's depth against the impact), nothing computed."""
+    from ..api.fem_dynamic import check_dynamic
 
-    from ..api.fem_dynamic import dynamic
-    from ..study.dynamic.loader import dynamic_check_failures
-
-    problem, numerics = _finite_impact(p)
-    start = time.perf_counter()
-    result = dynamic(problem, **numerics)
-    seconds = time.perf_counter() - start
-    if p["volumetric"] is not None and p["nu2"] == 0.5:  # as the command line warns
-        warnings.warn(
-            "volumetric has no effect at nu2 0.5 (no volumetric energy): ignored", stacklevel=2
-        )
-    dyn, quasi = result.dynamic, result.quasi_static
-    differences = {key: float(result.differences[f"{key}_c"]) for key in ("x", "P", "t")}
-    outputs = {
-        **{key: float(dyn[key]) for key in (*DYNAMIC_OUTPUTS, *DYNAMIC_LOSSES) if key in dyn},
-        "estimate_energy_fraction": math.nan,
-        **{key: float(quasi[key]) for key in ("x_c", "P_c", "t_c", "t_y")},
-        **{f"difference_{key}": value for key, value in differences.items()},
-        "difference_worst": max(abs(value) for value in differences.values()),
-        "dofs": int(result.mesh["dofs"]),
-        "seconds": seconds,
-        **_result_errors(result),
-    }
-    of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
-    massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
-    reflected = 0.0 if massless else outputs["reflected_energy_fraction"]
-    failures = dynamic_check_failures(
-        outputs["energy_balance_error"], reflected, of, outputs["energy_radiated_fraction"]
-    )
-    return CaseResult(outputs, tuple(failures))
+    problem, numerics = _dynamic(p)
+    check_dynamic(problem, **numerics)
 
 
 register_kind(
@@ -635,7 +500,7 @@ register_kind(
         parameters=vocabulary_parameters("dynamic"),
         outputs=DYNAMIC_OUTPUTS,
         case=dynamic_case,
-        check=_quasi_static(_dynamic_check),
+        check=_dynamic_check,
         nondeterministic=("seconds",),
         optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
         levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
@@ -649,18 +514,6 @@ EFFECT_NAMES = ("pad", "waves", "finite strain", "viscoelasticity", "friction")
 """The effects of :mod:`shtaerman.api.effect_table.variants`, in its order: an effects case's
 ``dominant_<quantity>`` is the index of the dominant one here (NaN: none ran)."""
 EFFECT_QUANTITIES = ("P_max", "x_max", "t_contact", "restitution")
-EFFECT_NUMERICS = (
-    "time_steps",
-    "mesh_size",
-    "mesh_margin",
-    "domain_factor",
-    "growth",
-    "layer_rate",
-    "refine",
-    "estimate",
-)
-"""The numerics of :func:`shtaerman.effects` an effects case passes where set (others: each
-run's default)."""
 EFFECTS_OUTPUTS = {
     **{f"dominant_{key}": "" for key in EFFECT_QUANTITIES},
     **{f"resolved_{key}": "" for key in EFFECT_QUANTITIES},
@@ -679,18 +532,14 @@ change minus the sum of the single ones (NaN where a run is refused)."""
 def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     """The case's problem as parts (:func:`shtaerman.problem.parts`: they need not combine as
     a whole, the variants that do run) and the numerical keywords of :func:`shtaerman.effects`
-    set to other than the kind's defaults, each checked."""
+    set to other than the kind's defaults (in their ranges since the file was read)."""
+    from ..api.fem_dynamic import SETTINGS_OPTIONS
     from ..problem import parts
 
     indenter, body, keywords = _struck_case(p)
-    found = parts(indenter, body, **keywords)
-    defaults = KINDS["effects"].defaults()
-    numerics = {k: p[k] for k in EFFECT_NUMERICS if p[k] is not None and p[k] != defaults[k]}
-    numerics["estimate"] = p["estimate"]  # the sweep's default (false), not the API's
-    for name, value in numerics.items():
-        if name != "estimate":
-            vocabulary.entry(name).check(value, "dynamic")
-    return found, numerics
+    numerics = _changed(p, "effects", (*SETTINGS_OPTIONS, "refine"))
+    # estimate: the sweep's default (false), not the API's
+    return parts(indenter, body, **keywords), {**numerics, "estimate": p["estimate"]}
 
 
 def effects_case(p: dict[str, Any]) -> CaseResult:
@@ -744,21 +593,12 @@ register_kind(
 
 def _layer_study(p: dict[str, Any]):
     """The contact study of a layer case (its thickness resolved at the impact's x_c)."""
-    from ..fem.mesh import MeshSettings
     from ..study.contact.layer import LayerSpec
     from ..study.contact.loader import Study, check_profile_reach, on_layer
     from ..theory.materials import effective_modulus
 
-    given = [key for key in ("thickness", "thickness_ratio") if p[key] is not None]
-    if len(given) != 1:
-        raise InputError(
-            "thickness: give the layer's thickness (m) or its thickness_ratio (H / a_c), "
-            f"exactly one of them; got {' and '.join(given) or 'neither'}",
-            "thickness",
-        )
-    mesh = MeshSettings(**{field_name: p[name] for name, field_name in _MESH.items()})
-    if p["refine"] != 1.0:
-        mesh.refined(p["refine"])  # an InputError names refine now, not at run time
+    _layer_given(p, required=True)
+    mesh, _ = _mesh(p)
     study = Study(
         name="case",
         description="",
@@ -942,7 +782,9 @@ def _finite_check(p: dict[str, Any]) -> Any:
     """A finite-strain case's inputs, and its depths against the finite-strain contact's
     reach (x/a in [1e-6, 1.2]) as its run checks them: the given ``depths``, or the ladder up
     to ``reach`` x the case's linear x_c (naming mass and velocity); at load, not as a failed
-    case."""
+    case. The quasi-static impact is solved first (its floating-point range), once."""
+    import warnings
+
     import numpy as np
 
     from ..fem.finite_contact import check_finite_depths
@@ -955,11 +797,13 @@ def _finite_check(p: dict[str, Any]) -> Any:
     study = _finite_inputs(p)
     model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
     impact = (study.mass, study.velocity)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a validity warning is the case's to record
+        x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
     check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
     if study.depths is not None:
         check_finite_depths(study.indenter, np.asarray(study.depths), model)
         return study
-    x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
     depths = ladder(study.indenter, modulus, x_c, study.ladder)
     check_finite_depths(study.indenter, depths, model, impact)
     return study
@@ -1029,7 +873,7 @@ register_kind(
         parameters=vocabulary_parameters("finite-strain"),
         outputs=FINITE_OUTPUTS,
         case=finite_strain_case,
-        check=_quasi_static(_finite_check),
+        check=_finite_check,
         nondeterministic=("seconds",),
     )
 )

@@ -315,18 +315,26 @@ def _table(where: str, data: Mapping[str, Any], key: str, *, required: bool) -> 
     return dict(table)
 
 
-def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
-    """``value`` of parameter ``name`` converted to its declared type, or raise."""
+def _parameter(where: str, key: str, kind: Kind, name: str) -> Parameter:
+    """The kind's parameter ``name`` (given at ``key``), or SweepError naming the ones it has."""
     if name not in kind.parameters:
         raise SweepError(
             f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}"
             f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
         )
-    parameter = kind.parameters[name]
+    return kind.parameters[name]
+
+
+def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
+    """``value`` of parameter ``name`` converted to its declared type, or raise."""
+    parameter = _parameter(where, key, kind, name)
+    item = _ENTRIES.get(name)
+    if item is not None and item.infinite and value == "inf":
+        value = math.inf  # a rigid striker, as a study file spells it too
     converted = _convert(parameter, value)
     if converted is None:
         raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
-    item, ranges = _ENTRIES.get(name), RANGES_OF.get(kind.name, kind.name)
+    ranges = RANGES_OF.get(kind.name, kind.name)
     if item is not None and ranges in item.kinds:  # the vocabulary's range for this kind
         try:
             converted = item.check(converted, ranges, called=key)
@@ -377,11 +385,7 @@ def _expected(parameter: Parameter) -> str:
 
 def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
     key = f"axes.{name}"
-    if name not in kind.parameters:
-        raise SweepError(
-            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}"
-            f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
-        )
+    _parameter(where, key, kind, name)
     if not isinstance(values, list):
         raise SweepError(f"{where}: {key} must be a list of values, got {shown(values)}")
     if not values:

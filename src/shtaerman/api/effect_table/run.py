@@ -16,13 +16,13 @@ from ...validation import (
     caller_stacklevel,
     validate_positive,
 )
-from ...vocabulary import entry
+from ..fem_dynamic import SETTINGS_OPTIONS, check_dynamic, checked_options, dynamic
 from .table import QUANTITIES, EffectTable, Run
 from .variants import Parts, Variant, parts_of, variants
 
 __all__ = ["NUMERICS", "effects"]
 
-NUMERICS = ("time_steps", "mesh_size", "mesh_margin", "domain_factor", "growth", "layer_rate")
+NUMERICS = SETTINGS_OPTIONS
 """The numerical keywords passed to every run (:func:`shtaerman.dynamic`'s)."""
 Progress = Callable[[str], None]
 
@@ -63,11 +63,11 @@ def _options(problem: Problem, given: dict[str, Any]) -> tuple[dict[str, Any], t
     return taken, tuple(notes)
 
 
-def _error_note(problem: Problem, estimate: bool) -> str:
-    """Why a run has no error estimate."""
-    if not estimate:
-        return "the estimate was switched off (estimate=False, --no-estimate)"
-    return "the run gave no error estimate (see its estimate_missing)"
+NO_ESTIMATE = (
+    "the run gave no error estimate (see its estimate_missing)",
+    "the estimate was switched off (estimate=False, --no-estimate)",
+)
+"""Why a run has no error estimate: with the estimate asked, without it."""
 
 
 OWN_INPUTS = {
@@ -101,8 +101,6 @@ def check_runs(rows: tuple[Variant, ...], given: dict[str, Any]) -> None:
     """Refuse, before any run, what a run would refuse for the table as a whole
     (:func:`_refuses_the_table`) for its inputs alone (:func:`shtaerman.api.fem_dynamic.
     check_dynamic`, nothing computed), so no progress line comes before the refusal."""
-    from ..fem_dynamic import check_dynamic
-
     for variant in rows:
         try:
             problem = Problem(**variant.parts)
@@ -118,8 +116,6 @@ def check_runs(rows: tuple[Variant, ...], given: dict[str, Any]) -> None:
 
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
-    from ..fem_dynamic import dynamic
-
     start = time.perf_counter()
     try:
         problem = Problem(**variant.parts)
@@ -141,7 +137,7 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     errors = None
     if details is not None:
         errors = {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
-    note = None if errors is not None else _error_note(problem, estimate)
+    note = None if errors is not None else NO_ESTIMATE[not estimate]
     seconds = time.perf_counter() - start
     return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
 
@@ -150,7 +146,7 @@ def _numerics(refine: float, estimate: bool, options: Mapping[str, Any]) -> dict
     """The numerical keywords given (not None, not the default), each checked now."""
     if not isinstance(estimate, bool):
         raise InputError(f"estimate must be True or False, got {estimate!r}", "estimate")
-    given = {k: entry(k).check(v, "dynamic") for k, v in options.items() if v is not None}
+    given = checked_options(options)
     if validate_positive("refine", refine) != 1.0:
         given["refine"] = refine
     if not estimate:

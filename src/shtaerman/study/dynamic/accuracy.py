@@ -47,7 +47,8 @@ from ...validation import (
     caller_stacklevel,
     validate_positive,
 )
-from ..ladder import LADDER_RATIO
+from ..ladder import LADDER_RATIO, WITHOUT_ESTIMATE
+from ..ladder import check_ladder as check_mesh_ladder
 from ..richardson import Estimate, richardson
 
 __all__ = [
@@ -58,7 +59,6 @@ __all__ = [
     "RETRY_STEPS",
     "EstimateMissingWarning",
     "ImpactLadder",
-    "check_finite_ladder",
     "check_ladder",
     "ladder_estimates",
     "over_levels",
@@ -171,59 +171,40 @@ class ImpactLadder:
         return document
 
 
-def check_ladder(settings: DynamicSettings) -> None:
-    """Raise :class:`~shtaerman.validation.InputError` unless the linear body's ladder's
-    coarsest level (``settings.refined(1/2)``: mesh sizes x2, steps / 2) is valid, before
-    anything runs."""
-    fewest = math.ceil((MIN_STEPS - 0.5) * LADDER_RATIO**2)  # its level rounds to MIN_STEPS
-    if settings.steps < fewest:  # the usual cause: name the input the user gave
+def check_ladder(
+    settings: DynamicSettings | FiniteImpactSettings, refine: float = 1.0, estimate: bool = True
+) -> None:
+    """Raise InputError, before any run, unless every level of the ladder ending at ``refine``
+    (only that level without ``estimate``) is valid, every body: ``settings`` (resolved) are
+    of refinement 1; the message names the input to change (time_steps, mesh_size, refine)."""
+    refine = validate_positive("refine", refine)
+    lowest = refine * LEVELS[0] if estimate else refine
+    least = FINITE_MIN_STEPS if isinstance(settings, FiniteImpactSettings) else MIN_STEPS
+    advice = WITHOUT_ESTIMATE if estimate else ""
+    if settings.steps is not None and settings.steps * lowest < least - 0.5:
+        coarsest = "the error-estimate ladder's coarsest level halves" if estimate else "refine"
         raise InputError(
-            f"time_steps: the error-estimate ladder's coarsest level halves the time steps, so "
-            f"it needs at least {fewest} per t_y, got {settings.steps}",
+            f"time_steps: {coarsest} the time steps (refine {lowest:g}), so it needs at least "
+            f"{math.ceil((least - 0.5) / lowest)} per t_y, got {settings.steps}{advice}",
             "time_steps",
         )
-    largest = MAX_SIZE / LADDER_RATIO**2
-    if settings.size > largest * (1.0 + 1e-12):
+    if isinstance(settings, FiniteImpactSettings):
+        assert settings.mesh is not None, "resolve the settings first"
+        check_mesh_ladder(settings.mesh, refine, estimate=estimate, sized=False, advice=advice)
+        return
+    if settings.size / lowest > MAX_SIZE * (1.0 + 1e-12):
         raise InputError(
             f"mesh_size: the error-estimate ladder's coarsest level doubles the mesh size, so it "
-            f"must lie in (0, {largest:g}] with the estimate (or turn the estimate off), got "
-            f"{settings.size!r}",
+            f"must lie in (0, {MAX_SIZE * lowest / refine:g}] with the estimate (or turn the "
+            f"estimate off), got {settings.size / refine!r}",
             "mesh_size",
         )
     try:
-        settings.refined(LEVELS[0])
+        settings.refined(lowest)
     except InputError as error:
         raise InputError(
             f"the error-estimate ladder's coarsest level (mesh x2, steps / 2) is invalid: {error}"
         ) from None
-
-
-def check_finite_ladder(settings: FiniteImpactSettings, refine: float, estimate: bool) -> None:
-    """Raise InputError, before any run, unless every level of the rubber's ladder ending at
-    ``refine`` (only that level without ``estimate``) has valid settings (``settings``
-    resolved, of refine 1)."""
-    refine = validate_positive("refine", refine)
-    lowest = refine / 2.0 if estimate else refine
-    if settings.steps is not None and settings.steps * lowest < FINITE_MIN_STEPS - 0.5:
-        fewest = math.ceil((FINITE_MIN_STEPS - 0.5) / lowest)
-        coarsest = "the error-estimate ladder's coarsest level halves" if estimate else "refine"
-        raise InputError(
-            f"time_steps: {coarsest} the time steps (refine {lowest:g}), so it needs at least "
-            f"{fewest} per t_y, got {settings.steps}; or run without the estimate "
-            "(estimate=False, --no-estimate)",
-            "time_steps",
-        )
-    mesh = settings.mesh
-    assert mesh is not None, "resolve the settings first"
-    smallest = max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth) * refine / lowest
-    if refine < smallest * (1.0 - 1e-12):
-        raise InputError(
-            f"refine must be >= {smallest:.3g} with these mesh settings ("
-            + ("the error-estimate ladder's coarsest mesh, refine / 2," if estimate else "it")
-            + f" keeps every size and growth <= 1), got {refine!r}"
-            + ("; or run without the estimate (estimate=False, --no-estimate)" if estimate else ""),
-            "refine",
-        )
 
 
 def over_levels(results: Sequence[Any], quantity: Callable[[Any], float]) -> Estimate:
@@ -277,7 +258,7 @@ def run_ladder(
     *,
     refine: float = 1.0,
     estimate: bool = True,
-    finest: ImpactRun | None = None,
+    first: Callable[[Settings], ImpactRun] | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> ImpactLadder:
     """The impact at ``settings`` (the finest level, of refinement ``refine``) and, with
@@ -294,8 +275,8 @@ def run_ladder(
         The finest level's refinement, as reported.
     estimate : bool
         Run the two coarser levels and estimate (else one level, no estimates).
-    finest : ImpactRun, optional
-        The finest level's run when already made (with ``settings``).
+    first : callable, optional
+        The finest level's run (e.g. keeping its fields); default ``run``.
     progress : callable, optional
         Receives one line per level run here.
 
@@ -311,7 +292,7 @@ def run_ladder(
     """
     report = progress or (lambda _line: None)
     factors = LEVELS if estimate else LEVELS[-1:]
-    runs = {1.0: (settings, finest, "") if finest is not None else _level(run, settings)}
+    runs = {1.0: _level(first or run, settings)}
     for factor in factors[:-1]:  # the finest first: its refusals come before any other cost
         with warnings.catch_warnings():  # the reported level's validity warnings only
             if isinstance(runs[1.0][1], ImpactRun):

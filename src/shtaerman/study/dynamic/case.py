@@ -16,9 +16,10 @@ import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ...fem.dynamic_contact import DynamicSettings
+from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...guards import warn_outside_validity
@@ -30,9 +31,10 @@ from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, r
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...theory.viscoelastic import PronySeries, elastic_impact
 from ..richardson import Estimate
-from .accuracy import ImpactLadder, check_finite_ladder, run_ladder
+from .accuracy import ImpactLadder, check_ladder, run_ladder
 
 if TYPE_CHECKING:
+    from ...fem.rubber import RubberModel
     from ...problem import Problem
 
 __all__ = [
@@ -40,7 +42,8 @@ __all__ = [
     "DynamicCase",
     "compare",
     "exact_impact",
-    "finite_case",
+    "finite_settings",
+    "problem_case",
     "radiation",
     "run_case",
 ]
@@ -122,14 +125,16 @@ def radiation(
     law: PowerLawContact | SneddonContact,
     density: float,
     half_space: Material,
+    exact: ProfileImpactResult | None = None,
 ) -> RadiationEstimate:
     """The first-order radiation estimate of the quasi-static impact on ``law`` (the power
     law's closed form; a sphere's or a table's Int (dP/dt)^2 dt by quadrature over its exact
-    impact); a massless half-space (density 0) radiates nothing."""
+    impact, ``exact`` when already solved); a massless half-space (density 0) radiates
+    nothing."""
     shear, nu = half_space.shear_modulus, half_space.poisson_ratio
     rho = density if density > 0 else 1.0
     if isinstance(law, SneddonContact):
-        exact = solve_profile_impact(mass, velocity, law)
+        exact = solve_profile_impact(mass, velocity, law) if exact is None else exact
         estimate = profile_radiation_estimate(exact, rho, shear, nu)
     else:
         estimate = radiation_estimate(mass, velocity, law.beta, law.force_exponent, rho, shear, nu)
@@ -157,15 +162,17 @@ def run_case(
     density: float,
     mass: float,
     velocity: float,
-    settings: DynamicSettings | None = None,
+    settings: DynamicSettings | FiniteImpactSettings | None = None,
     *,
     snapshots: Callable[[ImpactResult], Sequence[float]] | None = None,
     ladder: bool = False,
     refine: float = 1.0,
     prony: PronySeries | None = None,
     friction: float | None = None,
+    rubber: RubberModel | None = None,
 ) -> DynamicCase:
-    """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units).
+    """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units),
+    every body (the arguments of :func:`~shtaerman.fem.impact.run_impact`).
 
     Parameters
     ----------
@@ -178,10 +185,12 @@ def run_case(
         Half-space density in kg/m^3.
     mass, velocity : float
         Striker mass in kg and approach velocity in m/s.
-    settings : DynamicSettings, optional
-        Numerical controls of the dynamic impact.
+    settings : DynamicSettings or FiniteImpactSettings, optional
+        Numerical controls of the finest level (resolved); by their kind the body, linear or
+        a rubber at finite strain (default ``DynamicSettings()``).
     snapshots : callable, optional
-        Given the quasi-static impact, the times in s at which to keep the fields.
+        Given the quasi-static impact, the times in s at which the finest level keeps the
+        fields.
     ladder : bool
         Also run the two coarser levels of the error-estimate ladder
         (``settings.refined(1/2)`` must be valid).
@@ -193,66 +202,55 @@ def run_case(
         The striker's surface (:func:`~shtaerman.fem.impact.run_impact`):
         None frictionless, ``math.inf`` bonded (no slip), mu >= 0 Coulomb. The quasi-static
         impact and the radiation estimate stay the frictionless theory's.
+    rubber : RubberModel, optional
+        The rubber of a finite-strain body (with FiniteImpactSettings).
+
+    Returns
+    -------
+    DynamicCase
+        Its ``result`` the finest level that passed (:func:`.accuracy.run_ladder`: a level
+        that fails numerically is retried with more time steps), its ``ladder`` the whole
+        ladder (None without ``ladder``).
     """
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         quasi = exact_impact(mass, velocity, law)
-        estimate = radiation(mass, velocity, law, density, half_space)
+        estimate = radiation(mass, velocity, law, density, half_space, quasi)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
-    run = partial(run_impact, indenter, half_space, density, mass, velocity)
-    result = run(settings, snapshot_times=times, prony=prony, friction=friction)
+    inputs = (indenter, half_space, density, mass, velocity)
+
+    def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
+        return run_impact(*inputs, level, rubber, prony, friction, **kept)
+
+    finest = partial(run, snapshot_times=times) if times else run  # the fields it keeps
+    levels = run_ladder(run, settings, refine=refine, estimate=ladder, first=finest)
     for warning in said:
         warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
-    warn_outside_validity(indenter, result.x_max, settings.thickness, finite=False)
-    levels = None
-    if ladder:
-        physics = partial(run, prony=prony, friction=friction)
-        levels = run_ladder(physics, settings, refine=refine, finest=result)
-    return DynamicCase(velocity, quasi, estimate, result, levels)
+    if isinstance(settings, DynamicSettings):  # the rubber's run warns itself
+        warn_outside_validity(indenter, levels.finest.x_max, settings.thickness, finite=False)
+    return DynamicCase(velocity, quasi, estimate, levels.finest, levels if ladder else None)
 
 
-def finite_case(
+def finite_settings(
     problem: Problem,
-    *,
     time_steps: int | None = None,
     mesh_size: float | None = None,
     refine: float = 1.0,
     estimate: bool = True,
-) -> DynamicCase:
-    """The impact of ``problem`` on a rubber body at finite strain (``problem.body.finite``)
-    beside the quasi-static impact: the finest level of its ladder
-    (:func:`.accuracy.run_ladder`; with ``estimate``, the two coarser levels too), as
-    ``shtaerman dynamic --model`` runs it.
-
-    Parameters
-    ----------
-    problem : Problem
-        An impact on a rubber body; its density 0: the massless body.
-    time_steps : int, optional
-        Steps per quasi-static impact duration (default 50; 100 with inertia).
-    mesh_size : float, optional
-        Smallest element / refined radius (default the finite-strain contact's).
-    refine : float
-        Refinement of the finest level.
-    estimate : bool
-        Also run the ladder's coarser levels for the error estimates.
-
-    Returns
-    -------
-    DynamicCase
-        Its ``result`` the finest level that passed, its ``ladder`` the whole ladder (without
-        ``estimate``: one level); ``estimate`` is the half-space's first-order radiation
-        estimate, which does not apply to a rubber (reported as such).
-    """
+) -> FiniteImpactSettings:
+    """The finest level's settings of the impact of ``problem`` on a rubber at finite strain,
+    as ``shtaerman dynamic --model`` runs it, every level of its ladder (refine / 2 with
+    ``estimate``) checked before any run (InputError naming the option): ``time_steps`` per
+    quasi-static impact duration (default 50; 100 with inertia), ``mesh_size`` the smallest
+    element / refined radius (default the finite-strain contact's)."""
     from ...fem.finite_contact import FINITE_MESH
-    from ...fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+    from ...fem.finite_dynamic import INERTIA_MESH
     from ...vocabulary import entry
 
-    striker, body = problem.striker, problem.body.material
-    rho = body.density
-    assert rho is not None and striker.mass is not None and striker.velocity is not None
+    rho = problem.body.material.density
+    assert rho is not None
     if mesh_size is not None:
         mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
     if time_steps is not None:  # the command line's range: one guard on every route
@@ -262,18 +260,17 @@ def finite_case(
     if problem.geometry.thickness is not None:
         mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)
-    check_finite_ladder(settings, refine, estimate)
-    body_model = (problem.body.rubber(), problem.body.prony, problem.interface.coefficient)
-    inputs = (striker.indenter, body, rho, striker.mass, striker.velocity)
+    check_ladder(settings, refine, estimate)
+    return settings.refined(refine)
 
-    def run(level: FiniteImpactSettings) -> ImpactRun:
-        return run_impact(*inputs, level, *body_model)
 
-    ladder = run_ladder(run, settings.refined(refine), refine=refine, estimate=estimate)
-    modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)  # the run's, to the bit
-    law = contact_law(striker.indenter, modulus)
-    quasi = exact_impact(striker.mass, striker.velocity, law)
-    estimate_ = radiation(striker.mass, striker.velocity, law, rho, body)
-    return DynamicCase(
-        striker.velocity, quasi, estimate_, ladder.finest, ladder if estimate else None
-    )
+def problem_case(problem: Problem, settings: Any, **options: Any) -> DynamicCase:
+    """:func:`run_case` of ``problem`` (an impact) with ``settings`` (of the finest level)
+    and the keywords ``options`` (``snapshots``, ``ladder``, ``refine``)."""
+    striker, body = problem.striker, problem.body
+    material = body.material
+    assert material.density is not None and striker.mass is not None
+    inputs = (striker.indenter, material, material.density, striker.mass, striker.velocity)
+    physics = dict(prony=body.prony, friction=problem.interface.coefficient)
+    rubber = body.rubber() if body.finite else None
+    return run_case(*inputs, settings, **options, **physics, rubber=rubber)

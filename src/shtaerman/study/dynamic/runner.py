@@ -18,14 +18,12 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from ...fem.dynamic_contact import (
-    DynamicSettings,
-)
+from ...fem.dynamic_contact import DynamicSettings
 from ...theory.materials import RIGID, effective_modulus
 from ...theory.sneddon import contact_law, profile_inputs
 from ..checks import Check
 from ..limits import LEVELS, thresholds
-from .case import COMPARED, DynamicCase, finite_case, radiation, run_case
+from .case import COMPARED, DynamicCase, finite_settings, problem_case, radiation
 from .loader import DynamicStudy
 
 __all__ = ["SEPARATION_SNAPSHOT", "DynamicStudyOutcome", "run_dynamic_study"]
@@ -182,27 +180,14 @@ def run_dynamic_study(
             + ("" if quick else " (and 2 coarser levels for the error estimates)")
         )
         problem = study.problem(velocity)
+        numerics = study.quick_finite_numerics if quick else study.finite_numerics
+        level = settings  # a rubber's: resolved from its numerics
         if problem.body.finite:
-            numerics = study.quick_finite_numerics if quick else study.finite_numerics
-            cases.append(finite_case(problem, **numerics, estimate=not quick))
-            continue
-        snapshots = (
-            (lambda q: (q.t_c, SEPARATION_SNAPSHOT * q.t_y)) if velocity == study.example else None
-        )
-        cases.append(
-            run_case(
-                study.indenter,
-                study.half_space,
-                study.density,
-                study.mass,
-                velocity,
-                settings,
-                snapshots=snapshots,
-                ladder=not quick,
-                prony=study.prony,
-                friction=problem.interface.coefficient,
-            )
-        )
+            level = finite_settings(problem, **numerics, estimate=not quick)
+        example = velocity == study.example
+        shots = (lambda q: (q.t_c, SEPARATION_SNAPSHOT * q.t_y)) if example else None
+        refine = numerics.get("refine", 1.0)
+        cases.append(problem_case(problem, level, snapshots=shots, ladder=not quick, refine=refine))
     return DynamicStudyOutcome(
         study=study,
         cases=tuple(cases),
