@@ -75,7 +75,8 @@ def velocity_limit(limit: Mapping[str, Any] | None, level: str, slowest: float) 
     "-" without a limit."""
     if not limit:
         return "-"
-    error, spread = limit.get("error"), plus_minus(limit.get("error"), ".1g", 100)
+    error = limit.get("error")
+    spread = plus_minus(error, ".1g", 100)
     note = f"difference{spread} %" if spread else "no error estimate"
     if not limit.get("resolved"):
         if error is None:
