@@ -4,6 +4,7 @@ word, and a sweep case on a 4 mm pad beyond its thickness reported no warning)."
 
 import math
 
+import numpy as np
 import pytest
 
 import shtaerman as sh
@@ -36,6 +37,19 @@ def test_each_limit_is_named_only_beyond_it():
     assert "unverified" in finite
     assert outside_validity(paper, 1e-4, 1e-4, finite=False)[0].startswith("thickness:")
     assert outside_validity(paper, 1e-4, 1.0001e-4, finite=False) == []
+
+
+def test_the_depth_sentence_names_whose_contact_radius():
+    """x/a of another profile is over Sneddon's contact radius (:func:`depth_ratio`): a cone
+    tabulated as z = 2 r has x = (pi/2) a cot(alpha) (Sneddon 1965), so x/a = pi at any depth.
+    Old code: "(x/a, with Shtaerman's a)" for every profile."""
+    radii = np.linspace(0.0, 0.01, 51)
+    cone = sh.TabulatedIndenter(radii, 2.0 * radii)
+    (sentence,) = outside_validity(cone, 5e-3, None, finite=False)
+    assert "is 3.14 contact radii (x/a, with Sneddon's a)" in sentence
+    paper = sh.PowerLawIndenter(5.0, 1.5)
+    (sentence,) = outside_validity(paper, 0.05, None, finite=False)
+    assert "(x/a, with Shtaerman's a)" in sentence
 
 
 def test_the_linear_impact_far_outside_small_strain_warns():

@@ -4,9 +4,19 @@ which way the departure moves."""
 
 from types import SimpleNamespace
 
+import pytest
+from study_texts import DYNAMIC_STUDY
+
 from shtaerman.output import text_dynamic, text_finite
-from shtaerman.output.report import validity_table
+from shtaerman.output.report import (
+    report_context,
+    results_document,
+    study_document,
+    validity_table,
+)
 from shtaerman.study.limits import thresholds
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import load_study
 
 
 def finite_entry(status, ratio=0.547, level=0.01):
@@ -21,6 +31,11 @@ def finite_entry(status, ratio=0.547, level=0.01):
     }
 
 
+def dynamic_study(limits, velocities):
+    """A dynamic study's results.json entry as the report reads it."""
+    return {"kind": "dynamic", "inputs": {"velocities": velocities}, "limits": limits}
+
+
 def finite_row(entry):
     study = {"kind": "finite-strain", "validity": [entry]}
     return validity_table({"rubber": study})["rows"][0]
@@ -28,26 +43,20 @@ def finite_row(entry):
 
 def test_a_finite_limit_never_crossed_is_the_deepest_depth_not_a_crossing():
     cell = finite_row(finite_entry("beyond"))[1]
-    assert cell.startswith("the whole range computed: to the deepest depth, x/a = 0.547")
-    assert "the limit lies deeper" in cell
-    words = text_finite._crossing_words(finite_entry("beyond"))
-    assert "over the whole range computed" in words and "deepest depth" in words
-    assert "up to x/a" not in words
+    assert cell.startswith("over the whole range computed (to the deepest depth, x/a = 0.547")
+    assert "the limit lies deeper" in cell and "up to x/a" not in cell
 
 
 def test_a_finite_crossing_inside_the_range_reads_up_to():
     cell = finite_row(finite_entry("interpolated", 0.164))[1]
-    assert cell.startswith("x/a = 0.164 ± 0.002") and "whole range" not in cell
-    assert "to 1 % up to x/a = 0.164" in text_finite._crossing_words(
-        finite_entry("interpolated", 0.164)
-    )
+    assert cell.startswith("up to x/a = 0.164 ± 0.002") and "whole range" not in cell
 
 
 def test_a_finite_limit_crossed_before_the_first_depth_is_a_no():
     cell = finite_row(finite_entry("below", 0.01))[1]
-    assert cell == "no: already off at the first depth computed, x/a = 0.01"
-    assert "not even at the first depth computed" in text_finite._crossing_words(
-        finite_entry("below", 0.01)
+    assert cell == (
+        "not even at the first depth computed (x/a = 0.01 ± 0.0001, depth 3.1 ± 0.06 mm, "
+        "reached at v0 = 1.8 ± 0.05 m/s; difference ± 0.01 %)"
     )
 
 
@@ -60,29 +69,32 @@ def test_the_finite_validity_finding_says_which_way_the_force_moves():
     entries = [finite_entry("interpolated", 0.164), finite_entry("beyond", 0.9, 0.05)]
     softer = text_finite._validity_finding(outcome(0.95, entries))
     assert softer.startswith("Real rubber's force falls below the linear beta x^q as the depth")
-    assert "to 5 % over the whole range computed (to the deepest depth, x/a = 0.900" in softer
+    assert "to 5 % over the whole range computed (to the deepest depth, x/a = 0.9 ±" in softer
     assert "rises above" in text_finite._validity_finding(outcome(1.08, entries))
 
 
 def test_the_studys_own_validity_table_gives_plus_minus_in_the_values_unit():
     study = SimpleNamespace(limits=lambda: [finite_entry("interpolated", 0.164)])
     [row] = text_finite._validity_table(study)["rows"]
-    assert row[:4] == ["1 %", "0.164 ± 0.002", "3.1 ± 0.06", "1.8 ± 0.05"]  # relative 1, 2, 3 %
-    assert row[4] == "crossing, interpolated"
+    assert row == [  # relative errors 1, 2, 3 %; the departure's 1e-4 in percentage points
+        "1 %",
+        "up to x/a = 0.164 ± 0.002, depth 3.1 ± 0.06 mm, reached at v0 = 1.8 ± 0.05 m/s "
+        "(difference ± 0.01 %)",
+    ]
     study = SimpleNamespace(limits=lambda: [finite_entry("beyond")])
-    assert text_finite._validity_table(study)["rows"][0][4] == (
-        "not crossed: the deepest depth computed"
+    assert text_finite._validity_table(study)["rows"][0][1].startswith(
+        "over the whole range computed (to the deepest depth,"
     )
 
 
 def test_a_dynamic_limit_never_crossed_is_the_fastest_velocity():
     limit = thresholds([1.0, 3.0, 5.0], [0.001, 0.002, 0.004], 0.01, errors=[1e-4] * 3)
     assert limit["bound"] == "all"
-    words = text_dynamic._limit_text(limit, 1.0)
-    assert words.startswith("over the whole range computed (to 5 m/s, the fastest v0")
+    words = text_dynamic.velocity_limit(limit, "1%", 1.0)
+    assert words.startswith("over the whole range computed (to v0 = 5 m/s, the fastest;")
     assert "up to" not in words
-    cell = validity_table({"d": {"kind": "dynamic", "limits": {"x": {"1%": limit}}}})["rows"][0]
-    assert cell[1].startswith("the whole range computed (to v0 = 5 m/s, the fastest")
+    cell = validity_table({"d": dynamic_study({"x": {"1%": limit}}, [1.0, 3.0, 5.0])})["rows"][0]
+    assert cell[1] == words
 
 
 def case(velocity, x, P, t, lost):
@@ -108,12 +120,11 @@ def test_dynamic_findings_say_which_way_and_how_it_moves_with_velocity():
 
 def test_a_dynamic_limit_inside_the_range_has_the_tables_precision():
     limit = thresholds([0.5, 1.0], [0.0077, 0.013], 0.01, errors=[7e-5, 7e-5])
-    assert text_dynamic._limit_text(limit, 0.5) == "up to 0.717 m/s"
-    # the table: ± in m/s, and the difference's own estimated error named as such
-    with_error = text_dynamic._limit_text(limit, 0.5, error=True)
-    assert with_error == "up to 0.717 ± 0.007 m/s (difference ± 0.007 %)"
-    row = validity_table({"d": {"kind": "dynamic", "limits": {"x": {"1%": limit}}}})["rows"][0]
-    assert row[1].startswith("v0 = 0.717")
+    # ± in m/s, and the difference's own estimated error named as such
+    words = text_dynamic.velocity_limit(limit, "1%", 0.5)
+    assert words == "up to v0 = 0.717 ± 0.007 m/s (difference ± 0.007 %)"
+    row = validity_table({"d": dynamic_study({"x": {"1%": limit}}, [0.5, 1.0])})["rows"][0]
+    assert row[1] == words
 
 
 def estimate(error, absolute, method="richardson"):
@@ -138,3 +149,69 @@ def test_the_dynamic_estimate_finding_names_the_difference_errors_in_percentage_
         sentence
     )
     assert "(absolute)" not in sentence and "closest: t_c at 3 m/s" in sentence
+
+
+# --- one wording per limit: the study's table, its findings and the report's table ----------
+
+COARSE_LADDER = "[numerics]\nmesh_size = 0.1\ntime_steps = 100\n"
+"""The coarsest dynamic study with its error-estimate ladder (the ladder doubles the mesh size
+and halves the time steps): about 5 s of CPU time for the two velocities."""
+REPORT_LABELS = {
+    "x_c": "x_c",
+    "P_c": "P_c",
+    "t_c": "t_c",
+    "all three": "x_c, P_c and t_c",
+}
+"""The dynamic study's quantity (its limits table) -> its name in the report's table."""
+
+
+@pytest.fixture(scope="module")
+def dynamic_report(tmp_path_factory):
+    """The report context of the paper's striker at 1 and 3 m/s with its ladder: its limits
+    resolved (x_c and t_c crossed inside the range, P_c off already at 1 m/s, ...)."""
+    path = tmp_path_factory.mktemp("limits") / "waves.toml"
+    path.write_text(DYNAMIC_STUDY + COARSE_LADDER)
+    (study,) = load_study(path)
+    outcome = run_study(study)
+    assert outcome.estimated
+    document = results_document({"waves": study_document(outcome, {})}, quick=False)
+    return report_context(document, {})
+
+
+def test_a_velocity_limit_reads_the_same_in_table_findings_and_report(dynamic_report):
+    """Old code: "up to 0.715 ± 0.007 m/s (difference ± 0.007 %)" in the study's table,
+    "up to 0.715 m/s" in its findings and "v0 = 0.715 ± 0.007 m/s" in the report's."""
+    (section,) = dynamic_report["studies"]
+    table = next(t for t in section["tables"] if t["header"][0] == "quantity")
+    report = dynamic_report["validity"]["rows"]
+    findings = " ".join(dynamic_report["findings"])
+    for quantity, *cells in table["rows"]:
+        label = f"quasi-static {REPORT_LABELS[quantity]} against"
+        (row,) = [row for row in report if label in row[0]]
+        assert row[1:] == cells
+        for cell in cells:
+            assert f"{quantity} {cell}" in findings, (quantity, cell)
+    assert any(cell.startswith("up to v0 = ") for _, *cells in table["rows"] for cell in cells)
+
+
+@pytest.mark.parametrize(
+    "entry",
+    [
+        finite_entry("interpolated", 0.164),
+        finite_entry("beyond", 0.9, 0.05),
+        finite_entry("below", 0.01),
+        {**finite_entry("interpolated"), "departure_error": 3e-3},  # not resolved at 1 %
+        {k: v for k, v in finite_entry("interpolated").items() if "error" not in k},  # quick
+    ],
+)
+def test_a_depth_limit_reads_the_same_in_table_findings_and_report(entry):
+    """Old code: "to 1 % up to x/a = 0.164 ± 0.002 (depth 3.1 ± 0.06 mm, reached by an
+    impact at 1.8 ± 0.05 m/s)" in the findings, "x/a = 0.164 ± 0.002 (v0 = 1.8 ± 0.05 m/s)"
+    in the report's table and the values in columns of their own in the study's table."""
+    level = f"{100 * entry['level']:g} %"
+    cell = finite_row(entry)[1 if entry["level"] == 0.01 else 2]
+    assert [level, cell] in text_finite._validity_table(outcome(0.95, [entry]))["rows"]
+    assert f"holds to {level} {cell} (P against" in text_finite._validity_finding(
+        outcome(0.95, [entry])
+    )
+    assert cell.startswith(("up to x/a", "over the whole", "not even at the", "not resolved"))

@@ -155,7 +155,10 @@ def test_only_pngs_inside_the_folder_are_embedded(results, quick_verify, file):
         render_html(report_context(other), quick_verify[1])
 
 
-EVERY = "the whole range computed (to v0 = {} m/s, the fastest; the limit lies beyond)"
+EVERY = (
+    "over the whole range computed (to v0 = {} m/s, the fastest; the limit lies beyond; "
+    "difference ± {} %)"
+)
 """A dynamic limit never crossed: the fastest v0 computed, a lower bound."""
 
 
@@ -164,6 +167,7 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
     studies = {
         "dynamic": {
             "kind": "dynamic",
+            "inputs": {"velocities": [0.5, 1.0, 2.0, 3.0, 4.0, 5.0]},
             "limits": {
                 "all": {
                     "1%": {"velocity": None, "bound": "none", "error": 3e-4, "resolved": True},
@@ -198,18 +202,26 @@ def test_validity_table_from_the_dynamic_and_finite_strain_results():
             "kind": "finite-strain",
             "inputs": {"nu2": 0.5},
             "validity": [
-                {"level": 0.01, "depth_to_radius": 0.1648, "velocity": 0.00363},
-                {"level": 0.05, "depth_to_radius": 0.8969, "velocity": 3.125},
+                {"level": 0.01, "status": "interpolated", "depth_to_radius": 0.1648}
+                | {"depth": 5.54e-5, "velocity": 0.00363},
+                {"level": 0.05, "status": "interpolated", "depth_to_radius": 0.8969}
+                | {"depth": 8.89e-3, "velocity": 3.125},
             ],
         },
         "paper": {"kind": "contact"},
     }
     rows = report_validity(studies)["rows"]
     assert [row[1:] for row in rows] == [
-        ["no: already off at the slowest v0 computed", "v0 = 3.12 m/s"],
-        ["v0 = 0.715 m/s", EVERY.format(5)],
-        ["v0 = 2.94 m/s", EVERY.format(5)],  # the t_c row
-        ["x/a = 0.16 (v0 = 0.0036 m/s; not estimated)", "x/a = 0.90 (v0 = 3.1 m/s; not estimated)"],
+        [
+            "not even at v0 = 0.5 m/s (the slowest computed; difference ± 0.03 %)",
+            "up to v0 = 3.12 m/s (difference ± 0.03 %)",
+        ],
+        ["up to v0 = 0.715 m/s (difference ± 0.006 %)", EVERY.format(5, 0.01)],
+        ["up to v0 = 2.94 m/s (difference ± 0.07 %)", EVERY.format(5, 0.07)],  # the t_c row
+        [
+            "up to x/a = 0.165, depth 0.0554 mm, reached at v0 = 0.00363 m/s (no error estimate)",
+            "up to x/a = 0.897, depth 8.89 mm, reached at v0 = 3.12 m/s (no error estimate)",
+        ],
     ]
     assert "t_c" in rows[2][0] and "nu2 = 0.5" in rows[3][0]
     assert report_validity({"paper": {"kind": "contact"}}) is None
@@ -224,18 +236,19 @@ def test_validity_table_states_a_dynamic_limit_only_where_resolved():
     }
     assert limits["1%"]["resolved"] is False and limits["5%"]["resolved"] is True
     unestimated = {f"{level:.0%}": thresholds([0.5, 1.0], [0.005, 0.02], level) for level in LEVELS}
+    inputs = {"velocities": [0.5, 1.0]}
     studies = {
-        "dynamic": {"kind": "dynamic", "limits": {"all": limits}},
-        "quick": {"kind": "dynamic", "limits": {"all": unestimated}},
+        "dynamic": {"kind": "dynamic", "inputs": inputs, "limits": {"all": limits}},
+        "quick": {"kind": "dynamic", "inputs": inputs, "limits": {"all": unestimated}},
     }
     table = report_validity(studies)
     assert [row[1:] for row in table["rows"]] == [
-        ["not resolved (estimate 0.3 %)", EVERY.format(1)],
+        ["not resolved (difference ± 0.3 %, not below a fifth of 1 %)", EVERY.format(1, 0.01)],
         ["not resolved (no error estimate)", "not resolved (no error estimate)"],
     ]
     assert (
-        "stated only where the estimated FEM error of the difference is below a fifth of the level"
-        in (table["title"])
+        "the estimated FEM error of the difference where the limit is decided, in percentage "
+        "points; stated only where it is below a fifth of the level" in table["title"]
     )
 
 
@@ -263,8 +276,12 @@ def test_finite_depth_limits_stated_only_where_the_error_is_below_a_fifth(
     table = report_validity({"rubber": study})
     cell = table["rows"][0][1 if level == 0.01 else 2]
     if resolved:
-        # ± in the value's unit, as the dynamic limits' "v0 = 3.12 ± 0.1 m/s"
-        assert cell == "x/a = 0.164 ± 0.006 (v0 = 0.0036 ± 0.0005 m/s)"
+        # ± in the value's unit, as the dynamic limits' "up to v0 = 3.12 ± 0.1 m/s"
+        assert cell == (
+            "up to x/a = 0.164 ± 0.006, depth 1.23 ± 0.1 mm, reached at v0 = 0.00363 ± 0.0005 "
+            f"m/s (difference ± {100 * departure_error:.1g} %)"
+        )
     else:
-        assert cell == f"not resolved (estimated error of the departure {departure_error:.1e})"
+        fifth = f"not below a fifth of {100 * level:g} %"
+        assert cell == f"not resolved (difference ± {100 * departure_error:.2g} %, {fifth})"
     assert "fifth of the level" in table["title"] and "10-100" not in table["title"]

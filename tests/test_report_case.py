@@ -156,6 +156,7 @@ def test_the_validity_table_names_the_pad_and_the_hysteresis(pad_prony):
     ],
 )
 def test_the_assumption_tested_follows_the_study(settings, inputs, tested):
+    inputs = {**inputs, "velocities": [1.0]}
     study = {"settings": settings, "inputs": inputs, "limits": {"x": {"1%": None, "5%": None}}}
     ((assumption, *_),) = validity_rows("s", study)
     assert assumption.startswith(tested)

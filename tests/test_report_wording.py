@@ -68,19 +68,19 @@ def beyond(errors):
 
 def test_finite_limits_print_no_zero_estimate():
     entry = beyond({"depth_to_radius": 0.0, "depth": 0.0, "velocity": 0.0})
-    words = text_finite._crossing_words(entry)
-    assert "±" not in words and "x/a = 0.520 (depth 4.1 mm" in words
     row = validity_table({"rubber": {"kind": "finite-strain", "validity": [entry]}})["rows"][0]
-    assert row[1] == (
-        "the whole range computed: to the deepest depth, x/a = 0.52 (v0 = 2.8 m/s); the limit "
-        "lies deeper"
+    assert row[1] == (  # the departure's own estimate, 1e-4, is not 0: it is given
+        "over the whole range computed (to the deepest depth, x/a = 0.52, depth 4.1 mm, reached "
+        "at v0 = 2.75 m/s; the limit lies deeper; difference ± 0.01 %)"
     )
+    assert row[1] == text_finite.depth_limit(entry) and "± 0 " not in row[1]
     assert "0.0e+00" not in json.dumps(row)
 
 
 def test_validity_table_uses_one_plus_minus_convention():
     dynamic = {
         "kind": "dynamic",
+        "inputs": {"velocities": [1.0, 3.0, 5.0]},
         "limits": {
             "all": {
                 "1%": {
@@ -95,8 +95,8 @@ def test_validity_table_uses_one_plus_minus_convention():
     }
     finite = {"kind": "finite-strain", "validity": [beyond({"depth_to_radius": 0.038})]}
     table = validity_table({"dynamic": dynamic, "rubber": finite})
-    assert table["rows"][0][1] == "v0 = 3.12 ± 0.1 m/s"
-    assert "x/a = 0.52 ± 0.02 (v0 = 2.8 m/s)" in table["rows"][1][1]  # 0.038 x 0.52, in x/a
+    assert table["rows"][0][1] == "up to v0 = 3.12 ± 0.1 m/s (difference ± 0.03 %)"
+    assert "x/a = 0.52 ± 0.02, depth 4.1 mm" in table["rows"][1][1]  # 0.038 x 0.52, in x/a
     assert "in the value's unit" in table["title"] and "relative" not in table["title"]
 
 

@@ -92,9 +92,10 @@ def outside_validity(
             else "far outside small strain, where the linear model's numbers are qualitative: "
             "the finite-strain models are validated up to"
         )
+        whose = "Shtaerman's" if isinstance(indenter, PowerLawIndenter) else "Sneddon's"
         found.append(
-            f"depth: {what} {deepest:.6g} m is {ratio:.3g} contact radii (x/a, with "
-            f"Shtaerman's a), {words} x/a {MAX_DEPTH_RATIO:g}"
+            f"depth: {what} {deepest:.6g} m is {ratio:.3g} contact radii (x/a, with {whose} "
+            f"a), {words} x/a {MAX_DEPTH_RATIO:g}"
         )
     return found
 

@@ -200,11 +200,12 @@ def validity_table(studies: dict) -> dict[str, object] | None:
         return None
     return {
         "title": "Where the model holds: up to which input its difference from the FEM stays "
-        "within 1 % and 5 % (limits interpolated between computed points; stated only where "
-        "the estimated FEM error of the difference is below a fifth of the level; ± the "
-        "estimated error in the value's unit; 'the whole range computed' where the level is "
+        "within 1 % and 5 % (limits interpolated between computed points; ± the estimated "
+        "error in the value's unit; 'difference ± e': the estimated FEM error of the "
+        "difference where the limit is decided, in percentage points; stated only where it "
+        "is below a fifth of the level; 'over the whole range computed' where the level is "
         "never crossed: the limit lies beyond)",
-        "header": ["assumption tested", "holds to 1 % up to", "holds to 5 % up to"],
+        "header": ["assumption tested", "holds to 1 %", "holds to 5 %"],
         "rows": rows,
     }
 

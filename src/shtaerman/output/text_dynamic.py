@@ -13,6 +13,7 @@ from ..fem.viscoelastic import prony_input
 from ..paper.case import is_paper_case
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
+from ..study.limits import LEVELS as LIMIT_LEVELS
 from ..study.richardson import Estimate
 from ..theory.sneddon import profile_inputs
 from .case import (
@@ -33,6 +34,7 @@ __all__ = [
     "study_findings",
     "study_tables",
     "validity_rows",
+    "velocity_limit",
 ]
 
 RELATIVE_ESTIMATES = {
@@ -45,6 +47,8 @@ RELATIVE_ESTIMATES = {
 """Results whose estimated relative error the study reports -> their names in the text."""
 NAMES = {"x": "x_c", "P": "P_c", "t": "t_c", "all": "all three"}
 """Compared quantity (and "all") -> its name in the text."""
+LEVELS = tuple(f"{100 * level:g}%" for level in LIMIT_LEVELS)
+"""The keys of the levels in :meth:`DynamicStudyOutcome.limits`: "1%", "5%"."""
 
 
 def _ratio(difference: float, error: float) -> float:
@@ -61,31 +65,34 @@ def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
     return pm
 
 
-def _unresolved(limit: Mapping[str, Any]) -> str:
-    """ "not resolved (...)" for a limit its estimate does not resolve, else ""."""
-    if limit.get("resolved"):
-        return ""
-    if limit.get("error") is None:
-        return "not resolved (no error estimate)"
-    return f"not resolved (estimate {100 * limit['error']:.2g} %)"
-
-
-def _limit_text(limit: Mapping[str, Any], smallest: float, *, error: bool = False) -> str:
-    """A velocity limit in words; "not resolved (...)" unless its estimate resolves it;
-    ``error``: the estimate as ± percentage points after a stated limit."""
-    if _unresolved(limit):
-        return _unresolved(limit)
-    suffix = f"difference ± {100 * limit['error']:.1g} %" if error and limit["error"] else ""
-    joint = "; " if suffix else ""
+def velocity_limit(limit: Mapping[str, Any] | None, level: str, slowest: float) -> str:
+    """A velocity limit (:func:`shtaerman.study.limits.thresholds`) to ``level`` ("1%") in
+    words, the one wording of the study's table, its findings and the report's "where the
+    model holds" table: "up to v0 = 0.715 ± 0.007 m/s (difference ± 0.007 %)", "over the whole
+    range computed (to v0 = 5 m/s, the fastest; the limit lies beyond; ...)", "not even at v0 =
+    0.5 m/s (the slowest computed; ...)" (``slowest``, m/s), or "not resolved (...)" where the
+    difference's estimated error (in percentage points) is not below a fifth of the level;
+    "-" without a limit."""
+    if not limit:
+        return "-"
+    error = limit.get("error")
+    spread = plus_minus(error, ".1g", 100)
+    note = f"difference{spread} %" if spread else "no error estimate"
+    if not limit.get("resolved"):
+        if error is None:
+            return f"not resolved ({note})"
+        return (
+            f"not resolved (difference ± {100 * error:.2g} %, not below a fifth of {level[:-1]} %)"
+        )
     if limit["bound"] == "none":
-        return f"not even at {smallest:g} m/s (the smallest v0 computed{joint}{suffix})"
+        return f"not even at v0 = {slowest:.3g} m/s (the slowest computed; {note})"
     if limit["bound"] == "all":
         return (
-            f"over the whole range computed (to {limit['velocity']:g} m/s, the fastest v0; "
-            f"the limit lies beyond{joint}{suffix})"
+            f"over the whole range computed (to v0 = {limit['velocity']:.3g} m/s, the fastest; "
+            f"the limit lies beyond; {note})"
         )
-    spread = plus_minus(limit.get("velocity_error"), ".1g") if error else ""
-    return f"up to {limit['velocity']:.3g}{spread} m/s" + (f" ({suffix})" if suffix else "")
+    speed = f"{limit['velocity']:.3g}{plus_minus(limit.get('velocity_error'), '.1g')}"
+    return f"up to v0 = {speed} m/s ({note})"
 
 
 def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
@@ -245,11 +252,10 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         f"{_loss_words(outcome)}{_loss_trend(outcome)}.",
         _estimate_finding(outcome),
     ]
-    limits = outcome.limits()
-    for level in ("1%", "5%") if outcome.estimated else ():
+    limits, slowest = outcome.limits(), outcome.velocities[0]
+    for level in LEVELS if outcome.estimated else ():
         parts = [
-            f"{NAMES[key]} {_limit_text(limits[key][level], outcome.velocities[0])}"
-            for key in NAMES
+            f"{NAMES[key]} {velocity_limit(limits[key][level], level, slowest)}" for key in NAMES
         ]
         found.append(
             f"The quasi-static values hold to {level[:-1]} % of the dynamic ones: "
@@ -341,15 +347,9 @@ def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
 
 def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     """The report's tables (strings): per velocity, and the velocity limits."""
-    limits = outcome.limits()
+    limits, slowest = outcome.limits(), outcome.velocities[0]
     limit_rows = [
-        [
-            NAMES[key],
-            *(
-                _limit_text(limits[key][level], outcome.velocities[0], error=True)
-                for level in ("1%", "5%")
-            ),
-        ]
+        [NAMES[key], *(velocity_limit(limits[key][level], level, slowest) for level in LEVELS)]
         for key in NAMES
     ]
     errors = (
@@ -414,22 +414,6 @@ def _material_words(study: Any) -> str:
     return rubber_words(rubber, study.half_space.poisson_ratio)
 
 
-def _velocity(limit: Mapping[str, Any] | None) -> str:
-    """A velocity limit: "v0 = 3.12 ± 0.1 m/s" (± in m/s), "the whole range computed (...)",
-    "no: ...", or "not resolved (...)" where its estimated error is not below a fifth of the
-    level."""
-    if limit and _unresolved(limit):
-        return _unresolved(limit)
-    if not limit or limit.get("velocity") is None:
-        return "no: already off at the slowest v0 computed"
-    if limit.get("bound") == "all":
-        return (
-            f"the whole range computed (to v0 = {limit['velocity']:.3g} m/s, the fastest; the "
-            "limit lies beyond)"
-        )
-    return f"v0 = {limit['velocity']:.3g}{plus_minus(limit.get('velocity_error'), '.1g')} m/s"
-
-
 def assumptions(study: Mapping[str, Any]) -> str:
     """The quasi-static model's assumptions a dynamic study's results.json entry tests, by
     what its FE impact has: "half-space, not the 20 mm pad on a bonded rigid base; no elastic
@@ -455,12 +439,11 @@ def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
     tests (:func:`assumptions`) for each compared quantity."""
     limits = study.get("limits", {})
     labels = {"all": "x_c, P_c and t_c", "P": "P_c", "x": "x_c", "t": "t_c"}
-    tested = assumptions(study)
+    tested, velocities = assumptions(study), study.get("inputs", {}).get("velocities")
     return [
         [
             f"{tested} ({name}): quasi-static {label} against the dynamic FE impact",
-            _velocity(limits[key].get("1%")),
-            _velocity(limits[key].get("5%")),
+            *(velocity_limit(limits[key].get(level), level, velocities[0]) for level in LEVELS),
         ]
         for key, label in labels.items()
         if key in limits

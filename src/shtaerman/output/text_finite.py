@@ -1,8 +1,8 @@
 """The finite-strain kind's text: findings, tables and ± strings from its outcome's numbers.
 
 Relative errors throughout (a finite-strain estimate is relative, see
-:class:`shtaerman.study.finite.accuracy.FiniteEstimates`), except in the report's validity
-table, whose ± is in the value's unit like every kind's there.
+:class:`shtaerman.study.finite.accuracy.FiniteEstimates`), except in the depth limits
+(:func:`depth_limit`), whose ± is in the value's unit like every kind's limits.
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
-from ..study.finite.accuracy import CROSSING_KEYS
 from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
@@ -20,12 +19,13 @@ from ..theory.sneddon import profile_inputs
 from .case import VOLUMETRIC, case_words, model_label, rubber_constants, rubber_words
 from .entry import text_entry
 from .text_corrections import corrections_finding, corrections_table
-from .wording import number, plus_minus
+from .wording import plus_minus
 
 __all__ = [
     "QUICK_ERROR",
     "VARIANTS",
     "central_pressure_words",
+    "depth_limit",
     "entry",
     "study_findings",
     "study_tables",
@@ -193,33 +193,40 @@ def _level(entry: Mapping[str, Any]) -> str:
     return f"{100 * entry['level']:g} %"
 
 
-def _crossing_words(entry: Mapping[str, Any]) -> str:
-    level = _level(entry)
-    if "departure_error" in entry and not resolved(entry["departure_error"], entry["level"]):
-        return (
-            f"to {level}: not resolved (the departure's estimated error there, "
-            f"{entry['departure_error']:.1e}, is not below a fifth of {level})"
-        )
-    errors, scale = entry.get("errors", {}), {"depth": 1e3}
-    pm = {
-        k: plus_minus(
-            None if errors.get(k) is None else errors[k] * entry[k] * scale.get(k, 1.0), ".1g"
-        )
-        for k in CROSSING_KEYS
-    }
+def depth_limit(entry: Mapping[str, Any] | None) -> str:
+    """A depth limit (an entry of :meth:`FiniteStudyOutcome.limits`) in words, the one wording
+    of the study's table, its findings and the report's "where the model holds" table: "up to
+    x/a = 0.165 ± 0.002, depth 0.0554 ± 0.003 mm, reached at v0 = 0.00363 ± 0.0002 m/s
+    (difference ± 0.03 %)" (± in the value's unit; the departure's estimated error in
+    percentage points), "over the whole range computed (to the deepest depth, ...; the limit
+    lies deeper; ...)", "not even at the first depth computed (...)", or "not resolved (...)"
+    where the departure's estimated error is not below a fifth of the level
+    (:func:`shtaerman.study.limits.resolved`); "-" without a limit."""
+    if not entry or entry.get("depth_to_radius") is None:
+        return "-"
+    error, errors = entry.get("departure_error"), entry.get("errors") or {}
+    spread = plus_minus(error, ".1g", 100)
+    note = f"difference{spread} %" if spread else "no error estimate"
+    if error is not None and not resolved(error, entry["level"]):
+        fifth = f"not below a fifth of {_level(entry)}"
+        return f"not resolved (difference ± {100 * error:.2g} %, {fifth})"
+
+    def value(key: str, scale: float = 1.0) -> str:
+        relative, shown = errors.get(key), entry[key] * scale
+        return f"{shown:.3g}" + plus_minus(None if relative is None else relative * shown, ".1g")
+
     where = (
-        f"x/a = {entry['depth_to_radius']:.3f}{pm['depth_to_radius']} (depth "
-        f"{entry['depth'] * 1e3:.3g}{pm['depth']} mm, reached by an impact at "
-        f"{entry['velocity']:.2g}{pm['velocity']} m/s)"
+        f"x/a = {value('depth_to_radius')}, depth {value('depth', 1e3)} mm, reached at v0 = "
+        f"{value('velocity')} m/s"
     )
     if entry["status"] == "beyond":
         return (
-            f"to {level} over the whole range computed (to the deepest depth, {where}; the "
-            "limit lies deeper)"
+            f"over the whole range computed (to the deepest depth, {where}; the limit lies "
+            f"deeper; {note})"
         )
     if entry["status"] == "below":
-        return f"to {level} not even at the first depth computed ({where})"
-    return f"to {level} up to {where}"
+        return f"not even at the first depth computed ({where}; {note})"
+    return f"up to {where} ({note})"
 
 
 def _validity_finding(outcome: FiniteStudyOutcome) -> str:
@@ -228,7 +235,7 @@ def _validity_finding(outcome: FiniteStudyOutcome) -> str:
     return (
         f"Real rubber's force {way} the linear beta x^q as the depth grows; the linear force "
         "holds "
-        + "; ".join(_crossing_words(entry) for entry in outcome.limits())
+        + "; ".join(f"to {_level(e)} {depth_limit(e)}" for e in outcome.limits())
         + " (P against the linear FEM on the same mesh; crossings interpolated linearly in x/a "
         "between computed depths; velocities from the stored energy, v = sqrt(2 W / M))."
     )
@@ -349,52 +356,14 @@ def _impact_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
     }
 
 
-def _validity_cell(entry: Mapping[str, Any], key: str, scale: float, fmt: str) -> str:
-    """The value by ``fmt`` ± its estimated error in the value's unit (the entry's errors
-    are relative)."""
-    value, relative = entry[key] * scale, entry.get("errors", {}).get(key)
-    return f"{value:{fmt}}" + plus_minus(None if relative is None else relative * value, ".1g")
-
-
-HOW = {
-    "interpolated": "crossing, interpolated",
-    "beyond": "not crossed: the deepest depth computed",
-    "below": "crossed before the first depth",
-}
-"""A validity entry's status -> how its depth was found, in words."""
-
-
-def _decided(entry: Mapping[str, Any]) -> str:
-    if "departure_error" not in entry:
-        return "not estimated (quick)"
-    verdict = resolved(entry["departure_error"], entry["level"])
-    return f"{entry['departure_error']:.1e} ({'' if verdict else 'not '}resolved)"
-
-
 def _validity_table(outcome: FiniteStudyOutcome) -> dict[str, object]:
     return {
-        "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; ± the estimated "
-        "error in the value's unit; resolved where the departure's estimated error is below a "
-        "fifth of the level)",
-        "header": [
-            "level",
-            "up to x/a",
-            "depth (mm)",
-            "impact velocity (m/s)",
-            "how",
-            "departure error there",
-        ],
-        "rows": [
-            [
-                _level(e),
-                _validity_cell(e, "depth_to_radius", 1.0, ".3f"),
-                _validity_cell(e, "depth", 1e3, ".4g"),
-                _validity_cell(e, "velocity", 1.0, ".3g"),
-                HOW.get(str(e["status"]), str(e["status"])),
-                _decided(e),
-            ]
-            for e in outcome.limits()
-        ],
+        "title": "Where the linear force holds (|P/P_linFEM - 1| <= level; crossings "
+        "interpolated linearly in x/a between computed depths; ± the estimated error in the "
+        "value's unit; 'difference ± e': the estimated error of the departure there, in "
+        "percentage points; stated where it is below a fifth of the level)",
+        "header": ["level", "the linear force holds"],
+        "rows": [[_level(e), depth_limit(e)] for e in outcome.limits()],
     }
 
 
@@ -416,38 +385,6 @@ def entry(
     )
 
 
-def _depth(entry: Mapping[str, Any] | None) -> str:
-    """A depth limit: x/a and the impact velocity reaching it, ± their estimated errors in
-    the value's unit; "the whole range computed: ..." where the level is never crossed (the
-    deepest depth, a lower bound), "no: ..." where it is crossed before the first depth, and
-    "not resolved" where the departure's estimated error there is not below a fifth of the
-    level (:func:`shtaerman.study.limits.resolved`)."""
-    if not entry or entry.get("depth_to_radius") is None:
-        return "-"
-    ratio, velocity = entry["depth_to_radius"], entry["velocity"]
-    estimated = "departure_error" in entry
-    if estimated and not resolved(entry["departure_error"], entry["level"]):
-        error = number(entry["departure_error"], ".1e")
-        return f"not resolved (estimated error of the departure {error})"
-    if entry.get("status") == "below":
-        return f"no: already off at the first depth computed, x/a = {ratio:.2g}"
-    errors = entry.get("errors") or {}
-
-    def absolute(key: str) -> str:
-        relative = errors.get(key)
-        return plus_minus(None if relative is None else relative * entry[key], ".1g")
-
-    where = (
-        f"x/a = {ratio:.2f} (v0 = {velocity:.2g} m/s; not estimated)"
-        if not estimated
-        else f"x/a = {ratio:.3g}{absolute('depth_to_radius')} "
-        f"(v0 = {velocity:.2g}{absolute('velocity')} m/s)"
-    )
-    if entry.get("status") == "beyond":
-        return f"the whole range computed: to the deepest depth, {where}; the limit lies deeper"
-    return where
-
-
 def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
     """The study's row of the report's "where the model holds" table."""
     if "validity" not in study:
@@ -459,7 +396,7 @@ def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
         [
             f"linear elasticity ({name}): beta x^q against {model} rubber"
             + (f", nu2 = {nu:g}" if nu is not None else ""),
-            _depth(levels.get(0.01)),
-            _depth(levels.get(0.05)),
+            depth_limit(levels.get(0.01)),
+            depth_limit(levels.get(0.05)),
         ]
     ]
