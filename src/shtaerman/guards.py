@@ -5,11 +5,11 @@ line): the command line prints it, the API issues it, a sweep records it in the 
 ``warnings``. The limits concern the deepest approach x (m) the run reached:
 
 - on a layer of thickness H: x >= H, a strain beyond 100 %, for every model;
-- the depth ratio x/a (a: Shtaerman's contact radius at x, :func:`depth_ratio`, which
-  measures the strain under the indenter) beyond :data:`MAX_DEPTH_RATIO`, where the
-  finite-strain contact has been validated: the linear model is then far outside small strain
-  (at x/a = 0.88 a neo-Hookean rubber already carries 4.9 % less force, docs/findings.md), and
-  the finite-strain result is unverified.
+- the depth ratio x/a (a: the exact contact radius at x, Shtaerman's or Sneddon's,
+  :func:`depth_ratio`, which measures the strain under the indenter) beyond
+  :data:`MAX_DEPTH_RATIO`, where the finite-strain contact has been validated: the linear
+  model is then far outside small strain (at x/a = 0.88 a neo-Hookean rubber already carries
+  4.9 % less force, docs/findings.md), and the finite-strain result is unverified.
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
