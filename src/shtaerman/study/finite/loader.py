@@ -80,12 +80,20 @@ class _Quick(MeshTable):
     small_strain: Relative = 2e-2
 
 
-class _Tolerances(Table):
+class FiniteTolerances(Table):
+    """``[tolerances]``: the checks that need no reference (relative; the runner widens the
+    small-strain ones on the quick mesh and at a ladder start moved deeper)."""
+
     small_strain: Relative = 5e-3
+    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
     small_strain_fem: Relative = 2e-3
+    """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
     conservation: Relative = 2e-3
+    """|Simpson's Int P dx / stored energy - 1|."""
     newton: Relative = 1e-6
+    """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
     complementarity: Relative = 1e-6
+    """Largest |gap| on contact, or penetration off it, / depth."""
 
 
 class _Sweep(SweepTable):
@@ -110,7 +118,7 @@ class _FiniteFile(Table):
     contact: _Contact = _Contact()
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
-    tolerances: _Tolerances = _Tolerances()
+    tolerances: FiniteTolerances = FiniteTolerances()
     rubber: RubberTable = RubberTable()
     sweep: _Sweep | None = None
     corrections: _Corrections | None = None
@@ -123,22 +131,6 @@ class Corrections:
 
     velocities: tuple[float, ...]
     density: float
-
-
-@dataclass(frozen=True)
-class FiniteTolerances:
-    """Tolerances of the checks that need no reference (relative; the runner replaces some)."""
-
-    small_strain: float = 5e-3
-    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
-    small_strain_fem: float = 2e-3
-    """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
-    conservation: float = 2e-3
-    """|Simpson's Int P dx / stored energy - 1|."""
-    newton: float = 1e-6
-    """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
-    complementarity: float = 1e-6
-    """Largest |gap| on contact, or penetration off it, / depth."""
 
 
 @dataclass(frozen=True)
@@ -233,7 +225,7 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
         mesh=_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested"),
         quick_mesh=_mesh(path, "quick", quick, QUICK_FINITE_MESH),
-        tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        tolerances=raw.tolerances,
         quick_small_strain=quick.small_strain,
         rubber=RubberModel() if _sweeps_model(raw) else _rubber(path, raw),
         mesh_ladder=ladder,
