@@ -12,6 +12,7 @@ import shtaerman as sh
 from shtaerman.cli import main
 from shtaerman.problem import check_options
 from shtaerman.study.schema import StudyError, load_study
+from shtaerman.sweep.spec import SweepError, parse_sweep
 
 PAPER = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
 RUBBER = sh.Material(7.5e6, 0.5)
@@ -96,16 +97,22 @@ def test_option_limits_take_the_values_and_combinations_they_allow():
 @pytest.mark.parametrize(
     ("key", "value"), [("growth", 0.3), ("mesh_margin", 2), ("domain_factor", 1e3)]
 )
-def test_a_rubber_impacts_numerics_are_refused_alike_by_study_file_and_cli(
+def test_a_rubber_impacts_numerics_are_refused_alike_by_study_file_cli_and_sweep(
     capsys, tmp_path, key, value
 ):
     rubber = f'{DYNAMIC}[rubber]\nmodel = "neo-hookean"\n[numerics]\n{key} = {value}\n'
     study = _study(tmp_path, rubber)
     option = f"--{key.replace('_', '-')}"
     cli = _cli(capsys, ["dynamic", "--model", "neo-hookean", option, str(value)])
+    sweep = (
+        f'name = "rub"\nkind = "dynamic"\n[parameters]\nmodel = "neo-hookean"\n{key} = {value}\n'
+    )
+    with pytest.raises(SweepError) as refused:  # a sweep case, refused at load
+        parse_sweep(sweep + "[axes]\nvelocity = [1.0, 2.0]\n")
     reason = _table(RUBBER_IMPACT, [key]).removeprefix(f"{key}: ")
     assert study == f"key 'numerics.{key}': {reason}"
     assert cli == f"{option}: {reason}"
+    assert str(refused.value).endswith(f"(velocity = 1.0): {key}: {reason}")
 
 
 @pytest.mark.parametrize("key", ["axis_size", "spectral_radius", "tail", "layer_width"])
