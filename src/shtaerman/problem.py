@@ -53,6 +53,8 @@ MODELS = ("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent")
 strain (:mod:`shtaerman.fem.rubber`)."""
 RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
 """The rubber models' shape options (:func:`shtaerman.fem.rubber.rubber_model`)."""
+RUBBER_SHAPES = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
+"""A rubber's shape option -> the model it applies to (``volumetric``: every rubber)."""
 
 
 def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
@@ -313,11 +315,13 @@ def refusal(cell: Cell) -> Unsupported | None:
 @dataclass(frozen=True)
 class OptionLimit:
     """Numerical or output options that a set of combinations does not take; ``{model}`` in
-    the reason is the body's model."""
+    the reason is the body's model, ``{value}`` the option's value. ``allows`` (of the value
+    and every option given) exempts what the combinations do take (default: nothing)."""
 
     when: Callable[[Cell], bool]
     options: tuple[str, ...]
     reason: str
+    allows: Callable[[Any, Mapping[str, Any]], bool] = lambda value, given: False
 
 
 OPTION_SUPPORT: tuple[OptionLimit, ...] = (
@@ -328,6 +332,7 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
             "domain_factor",
             "growth",
             "layer_rate",
+            *("axis_size", "layer_start", "layer_ramp", "tail", "layer_width", "spectral_radius"),
         ),
         "not supported with model {model!r} in the impact (it takes mass, velocity, "
         "density2, time_steps, mesh_size, refine, estimate, thickness, base (bonded), "
@@ -350,6 +355,25 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
         ("accuracy",),
         "applies to the linear model only; for a finite-strain model use refine, whose "
         "estimates come with every run",
+    ),
+    OptionLimit(
+        lambda c: c.model == "rubber",
+        ("solver",),
+        "the {model} model uses superlu only, got {value!r}",
+        lambda value, given: value != "pardiso",
+    ),
+    OptionLimit(
+        lambda c: c.loading == "curve",
+        ("accuracy",),
+        "needs the error estimates, which estimate=False (--no-estimate) switches off",
+        lambda value, given: given.get("estimate", True) is not False,
+    ),
+    OptionLimit(
+        lambda c: c.loading == "curve",
+        ("refine",),
+        "accuracy chooses the refinement itself (its ladder starts at refine 1), got refine "
+        "{value:g}; give one of them",
+        lambda value, given: value == 1.0 or given.get("accuracy") is None,
     ),
 )
 """Numerical and output options that some combinations do not take."""
@@ -507,14 +531,15 @@ KEYWORDS = (
 
 def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) -> None:
     """Refuse, in one line naming it, a numerical or output option (its key) that the problem's
-    combination does not take (:data:`OPTION_SUPPORT`); ``given`` holds the options set."""
-    cell = problem.cell
+    combination does not take (:data:`OPTION_SUPPORT`); ``given`` holds the options set (a
+    mapping: with their values, which a limit's ``allows`` reads; else their names alone)."""
+    cell, values = problem.cell, given if isinstance(given, Mapping) else dict.fromkeys(given)
     for limit in OPTION_SUPPORT:
         if not limit.when(cell):
             continue
-        for name in given:
-            if name in limit.options:
-                reason = limit.reason.format(model=problem.body.model)  # a reason may name it
+        for name, value in values.items():
+            if name in limit.options and not limit.allows(value, values):
+                reason = limit.reason.format(model=problem.body.model, value=value)
                 raise InputError(f"{name}: {reason}", name)
 
 

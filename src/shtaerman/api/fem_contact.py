@@ -20,7 +20,6 @@ from ..problem import (
     KEYWORDS,
     MODELS,
     RUBBER_OPTIONS,
-    Body,
     Problem,
     check_options,
     check_outputs,
@@ -225,33 +224,6 @@ def _with_impact(report: Mapping[str, Any], impact: tuple[float, float] | None) 
     return out
 
 
-def _check_options(options: Mapping[str, Any], body: Body) -> None:
-    """Refuse a model, solver or options that exclude each other (the CLI's checks too: its
-    messages name the options, :func:`shtaerman.cli.common.in_option_words`)."""
-    from ..fem.solver import check_backend
-
-    accuracy, refine = options["accuracy"], options["refine"]
-    if body.finite and options["solver"] == "pardiso":
-        raise InputError(
-            f"solver: the {body.model} model uses superlu only, got 'pardiso'", "solver"
-        )
-    check_backend(options["solver"])
-    if accuracy is None:
-        return
-    if not options["estimate"]:
-        raise InputError(
-            "accuracy: needs the error estimates, which estimate=False (--no-estimate) "
-            "switches off",
-            "accuracy",
-        )
-    if refine != 1.0:
-        raise InputError(
-            f"refine: accuracy chooses the refinement itself (its ladder starts at refine 1), "
-            f"got refine {refine:g}; give one of them",
-            "refine",
-        )
-
-
 def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = None) -> None:
     """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh (or
     whose finest is too large; a layer's estimate needs its ``refined`` radius in m)."""
@@ -428,10 +400,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     from ..fem.contact import validate_fem_inputs
     from ..fem.finite_contact import FINITE_MESH
     from ..fem.mesh import DEFAULTS, MeshSettings
+    from ..fem.solver import check_backend
     from ..study.contact.indentation import default_depths
 
     problem = _problem(indenter, body, options)
-    check_options(problem, ["accuracy"] if options["accuracy"] is not None else [])
     outputs = {name: options[name] for name in ("force", "estimate", "figure_format")}
     check_outputs(options["out"], **outputs)
     indenter, body = problem.striker.indenter, problem.body.material
@@ -454,7 +426,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
-    _check_options(options, problem.body)
+    numerics = {"accuracy": accuracy, "refine": refine, "estimate": estimate}
+    numerics["solver"] = options["solver"]
+    check_options(problem, {k: v for k, v in numerics.items() if v is not None})
+    check_backend(options["solver"])
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
         striker = problem.striker

@@ -27,7 +27,7 @@ from ...fem.dynamic_contact import (
 )
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
-from ...problem import Problem
+from ...problem import Problem, check_options
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
@@ -255,14 +255,16 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         prony=prony,
         prony_text=raw.half_space.prony or "",
         physics=physics,
-        finite_numerics=_finite_numerics(path, "numerics", raw.numerics, physics),
-        quick_finite_numerics=_finite_numerics(path, "quick", raw.quick, physics, raw.numerics),
     )
     try:  # the study's impact once, at its example velocity: its parts and how they combine
-        study.problem(study.example)
+        problem = study.problem(study.example)
     except InputError as error:
         raise refused(path, error, KEYS) from None
-    return _split_losses(path, study, raw.sweep)
+    numerics = {
+        "finite_numerics": _finite_numerics(path, "numerics", raw.numerics, problem),
+        "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
+    }
+    return _split_losses(path, dataclasses.replace(study, **numerics), raw.sweep)
 
 
 def _beside(path: Path, prony: str | None) -> str | None:
@@ -283,9 +285,10 @@ def impact_physics(raw: Any) -> dict[str, Any]:
     return {k: v for k, v in given.items() if v is not None and v != defaults.get(k)}
 
 
-FINITE_NUMERICS = ("time_steps", "mesh_size", "refine")
-"""The [numerics] keys a rubber's impact takes (the finite-strain impact of
-:func:`shtaerman.dynamic`)."""
+FINITE_NUMERICS = {"time_steps": None, "mesh_size": None, "refine": 1.0}
+"""The numerical keywords of a rubber's impact (:func:`.case.finite_case`; None: the
+finite-strain impact's default); which [numerics] keys it refuses is the problem's
+(:data:`shtaerman.problem.OPTION_SUPPORT`)."""
 KEYS = {name: f"impact.{name}" for name in ("interface", "friction")}
 """The study-file keys of the inputs a dynamic study holds elsewhere than a contact study."""
 
@@ -294,24 +297,25 @@ def _finite_numerics(
     path: Path,
     table: str,
     raw: _Numerics,
-    physics: dict[str, Any],
+    problem: Problem,
     parent: _Numerics | None = None,
 ) -> dict[str, Any]:
     """A rubber's numerical keywords of :func:`shtaerman.dynamic` from ``raw`` (over those of
-    ``parent``, the [numerics] of a [quick]); a key the finite-strain impact does not take is
-    refused. {} for the linear model."""
-    if physics.get("model", "linear") == "linear":
+    ``parent``, the [numerics] of a [quick]); a key the rubber's impact does not take is
+    refused as the command line refuses its option (:func:`shtaerman.problem.check_options`).
+    {} for the linear model."""
+    if not problem.body.finite:
         return {}
-    for key in _Numerics.__struct_fields__:
-        if key not in FINITE_NUMERICS and getattr(raw, key) is not None:
-            raise StudyError(
-                f"{path}: key '{table}.{key}': not supported with model "
-                f"{physics['model']!r} (the finite-strain impact takes "
-                f"{', '.join(FINITE_NUMERICS)})"
-            )
-    inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, physics)
-    given = {key: getattr(raw, key) for key in FINITE_NUMERICS if getattr(raw, key) is not None}
-    return {"time_steps": None, "mesh_size": None, "refine": 1.0, **inherited, **given}
+    fields = _Numerics.__struct_fields__
+    given = {key: getattr(raw, key) for key in fields if getattr(raw, key) is not None}
+    try:
+        check_options(problem, given)
+    except InputError as error:
+        reason = str(error).removeprefix(f"{error.parameter}: ")
+        raise StudyError(f"{path}: key '{table}.{error.parameter}': {reason}") from None
+    inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, problem)
+    given = {key: value for key, value in given.items() if key in FINITE_NUMERICS}
+    return {**FINITE_NUMERICS, **inherited, **given}
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:

@@ -20,7 +20,8 @@ import msgspec
 from ... import vocabulary
 from ...fem.finite_contact import FINITE_MESH
 from ...fem.mesh import MeshSettings
-from ...fem.rubber import RubberModel, rubber_model
+from ...fem.rubber import RubberModel
+from ...problem import MODELS, RUBBER_SHAPES, Body
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
@@ -41,6 +42,7 @@ from ..schema import (
     decode,
     indenter_of,
     ranged,
+    refused,
     settings_of,
     study_name,
     validated,
@@ -78,12 +80,20 @@ class _Quick(MeshTable):
     small_strain: Relative = 2e-2
 
 
-class _Tolerances(Table):
+class FiniteTolerances(Table):
+    """``[tolerances]``: the checks that need no reference (relative; the runner widens the
+    small-strain ones on the quick mesh and at a ladder start moved deeper)."""
+
     small_strain: Relative = 5e-3
+    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
     small_strain_fem: Relative = 2e-3
+    """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
     conservation: Relative = 2e-3
+    """|Simpson's Int P dx / stored energy - 1|."""
     newton: Relative = 1e-6
+    """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
     complementarity: Relative = 1e-6
+    """Largest |gap| on contact, or penetration off it, / depth."""
 
 
 class _Sweep(SweepTable):
@@ -108,7 +118,7 @@ class _FiniteFile(Table):
     contact: _Contact = _Contact()
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
-    tolerances: _Tolerances = _Tolerances()
+    tolerances: FiniteTolerances = FiniteTolerances()
     rubber: RubberTable = RubberTable()
     sweep: _Sweep | None = None
     corrections: _Corrections | None = None
@@ -121,22 +131,6 @@ class Corrections:
 
     velocities: tuple[float, ...]
     density: float
-
-
-@dataclass(frozen=True)
-class FiniteTolerances:
-    """Tolerances of the checks that need no reference (relative; the runner replaces some)."""
-
-    small_strain: float = 5e-3
-    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
-    small_strain_fem: float = 2e-3
-    """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
-    conservation: float = 2e-3
-    """|Simpson's Int P dx / stored energy - 1|."""
-    newton: float = 1e-6
-    """Last Newton correction max |du| / depth at every depth (round-off floor 1e-6)."""
-    complementarity: float = 1e-6
-    """Largest |gap| on contact, or penetration off it, / depth."""
 
 
 @dataclass(frozen=True)
@@ -181,18 +175,24 @@ class FiniteStudy:
     """The dynamic impacts of ``[corrections]``; None: none run."""
 
 
-def _rubber(table: RubberTable, **chosen: str) -> RubberModel:
-    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place;
-    shape keys of another model than the one chosen are left out."""
-    given = msgspec.structs.asdict(table) | chosen
+def _rubber(path: Path, raw: _FiniteFile, **chosen: str) -> RubberModel:
+    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place,
+    checked as the problem's :class:`~shtaerman.problem.Body` checks it (a refusal names its
+    key); shape keys of another model than the one chosen are left out."""
+    given = msgspec.structs.asdict(raw.rubber) | chosen
     model = given.pop("model") or "neo-hookean"
-    owner = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
     if "model" in chosen:
-        given = {k: v for k, v in given.items() if owner.get(k, model) == model}
+        given = {k: v for k, v in given.items() if RUBBER_SHAPES.get(k, model) == model}
     try:
-        return rubber_model(model, **given)
+        body = Body(Material(raw.half_space.E2, raw.half_space.nu2), model, **given)
     except InputError as error:
-        raise InputError(f"[rubber] {error}") from None
+        raise refused(path, error) from None
+    if not body.finite:
+        raise StudyError(
+            f"{path}: key 'rubber.model': a finite-strain study presses a rubber: pick one of "
+            f"{', '.join(MODELS[1:])}, got {model!r}"
+        )
+    return body.rubber()
 
 
 def _mesh(
@@ -225,9 +225,9 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
         mesh=_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested"),
         quick_mesh=_mesh(path, "quick", quick, QUICK_FINITE_MESH),
-        tolerances=FiniteTolerances(**msgspec.structs.asdict(raw.tolerances)),
+        tolerances=raw.tolerances,
         quick_small_strain=quick.small_strain,
-        rubber=RubberModel() if _sweeps_model(raw) else _rubber(raw.rubber),
+        rubber=RubberModel() if _sweeps_model(raw) else _rubber(path, raw),
         mesh_ladder=ladder,
         corrections=_corrections(path, raw.corrections),
     )
@@ -263,7 +263,7 @@ def _sweeps_model(raw: _FiniteFile) -> bool:
     return raw.sweep is not None and raw.sweep.model is not None
 
 
-def _expanded(study: FiniteStudy, raw: _FiniteFile) -> list[FiniteStudy]:
+def _expanded(path: Path, study: FiniteStudy, raw: _FiniteFile) -> list[FiniteStudy]:
     sweep = raw.sweep
     if sweep is None:
         return [study]
@@ -273,7 +273,7 @@ def _expanded(study: FiniteStudy, raw: _FiniteFile) -> list[FiniteStudy]:
         if key == "nu2":
             changed = replace(study, half_space=replace(study.half_space, poisson_ratio=value))
         elif key in ("model", "volumetric"):
-            changed = replace(study, rubber=_rubber(raw.rubber, **{key: value}))
+            changed = replace(study, rubber=_rubber(path, raw, **{key: value}))
         else:
             changed = replace(study, **{key: value})
         shown = value if isinstance(value, str) else f"{value:g}"
@@ -292,7 +292,7 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
     """
     raw = decode(path, data, _FiniteFile)
     try:
-        studies = _expanded(_build(path, raw), raw)
+        studies = _expanded(path, _build(path, raw), raw)
     except StudyError:
         raise
     except InputError as error:

@@ -29,6 +29,7 @@ import warnings
 from dataclasses import dataclass, replace
 from typing import Any
 
+import msgspec
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
@@ -380,11 +381,11 @@ def _checks(
 ) -> list[Check]:
     tol = study.tolerances
     if quick:
-        tol = replace(tol, small_strain=study.quick_small_strain)
+        tol = msgspec.structs.replace(tol, small_strain=study.quick_small_strain)
     if start is not None:  # the first-order departure at the deeper start
         extra = start.allowance()
         small, fem = tol.small_strain + extra, tol.small_strain_fem + extra
-        tol = replace(tol, small_strain=small, small_strain_fem=fem)
+        tol = msgspec.structs.replace(tol, small_strain=small, small_strain_fem=fem)
     first, first_fem = finite.steps[0], linear.steps[0]
     x = np.concatenate([[0.0], depths])
     p = np.concatenate([[0.0], [s.force for s in finite.steps]])
