@@ -680,6 +680,8 @@ def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     """The case's problem as parts (:func:`shtaerman.problem.parts`: they need not combine as
     a whole, the variants that do run) and the numerical keywords of :func:`shtaerman.effects`
     set to other than the kind's defaults, each checked."""
+    from ..api.effect_table.run import check_runs
+    from ..api.effect_table.variants import parts_of, variants
     from ..problem import parts
 
     indenter, body, keywords = _struck_case(p)
@@ -690,6 +692,7 @@ def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     for name, value in numerics.items():
         if name != "estimate":
             vocabulary.entry(name).check(value, "dynamic")
+    check_runs(variants(parts_of(found))[0], numerics)  # what the table refuses as a whole
     return found, numerics
 
 
