@@ -29,3 +29,22 @@ def test_an_effects_sweep_refuses_a_layer_rate_of_zero_on_a_pad_at_load(tmp_path
     assert code == 2, err
     assert "layer_rate: a layer always has its lateral absorber" in err and err.count("\n") == 1
     assert not (tmp_path / "out").exists()
+
+
+def test_a_dynamic_study_refuses_a_velocity_out_of_the_float_range_at_load(tmp_path, capsys):
+    """Item 11 on a study file: a velocity whose exact impact leaves the floating-point range
+    (P_c = inf) was refused only when its turn came, after the first velocity had run, and the
+    message named the study, not its key."""
+    study = tmp_path / "fast.toml"
+    study.write_text(
+        'name = "fast"\nkind = "dynamic"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n"
+        "[impact]\nmass = 0.7\nvelocity = [1.0, 1e300]\n[quick]\ntime_steps = 60\n"
+    )
+    code = cli.main(
+        ["verify", str(study), "--quick", "--workers", "1", "--out", str(tmp_path / "o")]
+    )
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert err.startswith(f"shtaerman: error: {study}: key 'impact.velocity': "), err
+    assert "v0^2 = inf" in err and err.count("\n") == 1, err

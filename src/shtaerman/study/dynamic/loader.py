@@ -363,6 +363,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         quick_finite_numerics=_finite_numerics(path, "quick", raw.quick, physics, raw.numerics),
     )
     _check_problem(path, study)
+    _check_velocities(path, "impact.velocity", study, study.velocities)
+    _check_velocities(path, "quick.velocity", study, study.quick_velocities)
     return _split_losses(path, study, raw.sweep)
 
 
@@ -431,6 +433,26 @@ def _check_problem(path: Path, study: DynamicStudy) -> None:
         key = PHYSICS_KEYS.get(parameter, "rubber")
         text = str(error).removeprefix(f"{parameter}: ")
         raise StudyError(f"{path}: key '{key}': {text}") from None
+
+
+def _check_velocities(path: Path, key: str, study: DynamicStudy, velocities: Any) -> None:
+    """Refuse, naming ``key``, a velocity whose exact impact leaves the floating-point range
+    (the first check of its run: it came after the velocities before it had run)."""
+    import warnings
+
+    from ...theory.impact import representable
+    from .case import exact_impact
+
+    for velocity in velocities:
+        striker = study.problem(velocity).striker
+        law = contact_law(striker.indenter, effective_modulus(striker.material, study.half_space))
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # the run's warnings are the run's
+                representable("v0^2", velocity * velocity, study.mass, velocity)
+                exact_impact(study.mass, velocity, law)
+        except InputError as error:
+            raise StudyError(f"{path}: key '{key}': {error}") from None
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:
