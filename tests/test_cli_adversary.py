@@ -48,3 +48,20 @@ def test_a_dynamic_study_refuses_a_velocity_out_of_the_float_range_at_load(tmp_p
     assert code == 2, err
     assert err.startswith(f"shtaerman: error: {study}: key 'impact.velocity': "), err
     assert "v0^2 = inf" in err and err.count("\n") == 1, err
+
+
+def test_an_effects_study_out_of_the_float_range_names_its_table(tmp_path, capsys):
+    """Item 10 on an effects study: a velocity of 1e300 m/s was refused as "key 'half_space.
+    mass 0.7 kg and velocity ... (or rescale the units)'", the whole message taken for a key."""
+    study = tmp_path / "fast.toml"
+    study.write_text(
+        'name = "fast"\nkind = "effects"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n"
+        "[impact]\nmass = 0.7\nvelocity = 1e300\n[layer]\nthickness = 0.02\n"
+    )
+    code = cli.main(
+        ["verify", str(study), "--quick", "--workers", "1", "--out", str(tmp_path / "o")]
+    )
+    error = capsys.readouterr().err.splitlines()[-1]
+    assert code == 2, error
+    assert error.startswith(f"shtaerman: error: {study}: key 'impact': mass 0.7 kg and "), error

@@ -167,7 +167,8 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
         )
     except InputError as error:
         parameter = error.parameter or str(error).partition(":")[0]
-        key = PHYSICS_KEYS.get(parameter, f"half_space.{parameter}")
+        known = parameter.isidentifier()  # else a message of mass and velocity together
+        key = PHYSICS_KEYS.get(parameter, f"half_space.{parameter}" if known else "impact")
         raise StudyError(f"{path}: key '{key}': {error}") from None
     numerics = _numerics(raw.numerics, {})
     quick = _numerics(raw.quick, {**numerics, "estimate": False})
