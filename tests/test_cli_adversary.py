@@ -31,37 +31,40 @@ def test_an_effects_sweep_refuses_a_layer_rate_of_zero_on_a_pad_at_load(tmp_path
     assert not (tmp_path / "out").exists()
 
 
+STRIKER = (
+    "[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n"
+    "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n"
+)
+
+
+def _verify_study(tmp_path, capsys, kind, tables):
+    """Run 'verify --quick' on a study 'fast' of ``kind``: the striker and body of the paper
+    and ``tables``; (exit code, study path, the lines on stderr)."""
+    study = tmp_path / "fast.toml"
+    study.write_text(f'name = "fast"\nkind = "{kind}"\n{STRIKER}{tables}')
+    argv = ["verify", str(study), "--quick", "--workers", "1", "--out", str(tmp_path / "o")]
+    code = cli.main(argv)
+    err = capsys.readouterr().err
+    return code, study, err.splitlines()
+
+
 def test_a_dynamic_study_refuses_a_velocity_out_of_the_float_range_at_load(tmp_path, capsys):
     """Item 11 on a study file: a velocity whose exact impact leaves the floating-point range
-    (P_c = inf) was refused only when its turn came, after the first velocity had run, and the
-    message named the study, not its key."""
-    study = tmp_path / "fast.toml"
-    study.write_text(
-        'name = "fast"\nkind = "dynamic"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
-        "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n"
-        "[impact]\nmass = 0.7\nvelocity = [1.0, 1e300]\n[quick]\ntime_steps = 60\n"
-    )
-    code = cli.main(
-        ["verify", str(study), "--quick", "--workers", "1", "--out", str(tmp_path / "o")]
-    )
-    err = capsys.readouterr().err
-    assert code == 2, err
-    assert err.startswith(f"shtaerman: error: {study}: key 'impact.velocity': "), err
-    assert "v0^2 = inf" in err and err.count("\n") == 1, err
+    (v0^2 = inf) was refused only when its turn came, after the first velocity had run, and
+    the message named the study, not its key."""
+    tables = "[impact]\nmass = 0.7\nvelocity = [1.0, 1e300]\n[quick]\ntime_steps = 60\n"
+    code, study, lines = _verify_study(tmp_path, capsys, "dynamic", tables)
+    assert code == 2 and len(lines) == 1, lines  # no progress line of a first run before it
+    error = lines[0]
+    assert error.startswith(f"shtaerman: error: {study}: key 'impact.velocity': "), error
+    assert "v0^2 = inf" in error
 
 
 def test_an_effects_study_out_of_the_float_range_names_its_table(tmp_path, capsys):
     """Item 10 on an effects study: a velocity of 1e300 m/s was refused as "key 'half_space.
     mass 0.7 kg and velocity ... (or rescale the units)'", the whole message taken for a key."""
-    study = tmp_path / "fast.toml"
-    study.write_text(
-        'name = "fast"\nkind = "effects"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
-        "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n"
-        "[impact]\nmass = 0.7\nvelocity = 1e300\n[layer]\nthickness = 0.02\n"
-    )
-    code = cli.main(
-        ["verify", str(study), "--quick", "--workers", "1", "--out", str(tmp_path / "o")]
-    )
-    error = capsys.readouterr().err.splitlines()[-1]
-    assert code == 2, error
+    tables = "[impact]\nmass = 0.7\nvelocity = 1e300\n[layer]\nthickness = 0.02\n"
+    code, study, lines = _verify_study(tmp_path, capsys, "effects", tables)
+    error = lines[-1]
+    assert code == 2, lines
     assert error.startswith(f"shtaerman: error: {study}: key 'impact': mass 0.7 kg and "), error
