@@ -1,7 +1,13 @@
 """Variants of issue 31's attacks (its "hidden battery"): each asserts the outcome the issue
 asks for on a route the first fixes did not cover."""
 
+import os
+import signal
+
+import pytest
+
 import shtaerman.cli as cli
+from shtaerman.output import files
 
 QUICK = ["--mesh-size", "0.2", "--time-steps", "60", "--no-estimate"]
 
@@ -68,3 +74,32 @@ def test_an_effects_study_out_of_the_float_range_names_its_table(tmp_path, capsy
     error = lines[-1]
     assert code == 2, lines
     assert error.startswith(f"shtaerman: error: {study}: key 'impact': mass 0.7 kg and "), error
+
+
+@pytest.mark.parametrize("force", [False, True])
+def test_a_second_interrupt_during_the_clean_up_leaves_nothing_partial(
+    tmp_path, monkeypatch, force
+):
+    """Items 5-6 at another moment: 'dynamic --out o --history h.csv' sent SIGTERM twice 10 ms
+    apart exited 143 ("nothing partial is kept") and left '.o.partial-PID' (2 in 6 tries): the
+    second signal broke off the removal of the stage. With --force the folder replaced must be
+    put back whole."""
+    real = files.shutil.rmtree
+
+    def interrupted(path, *args, **kwargs):
+        os.kill(os.getpid(), signal.SIGINT)  # the second Ctrl-C, as the stage is removed
+        real(path, *args, **kwargs)
+
+    target = tmp_path / "o"
+    if force:  # a result folder of an earlier run, replaced with --force
+        with files.staged_folder(target) as stage:
+            (stage / "old.csv").write_text("1\n")
+    before = sorted(p.name for p in target.iterdir()) if force else None
+    monkeypatch.setattr(files.shutil, "rmtree", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        with files.staged_folder(target, force=force) as stage:
+            (stage / "new.csv").write_text("2\n")
+            raise KeyboardInterrupt  # the first
+    assert sorted(p.name for p in tmp_path.iterdir()) == (["o"] if force else [])
+    if force:
+        assert sorted(p.name for p in target.iterdir()) == before
