@@ -107,8 +107,11 @@ def _write_figures(
 ) -> None:
     """The figures of the case: a rubber's (``finite``) x(t), P(t) against the quasi-static
     impact; the linear body's histories, losses and wave fields."""
-    from ..output.dynamic import write_case_figures
-    from ..output.finite import write_finite_figure
+    from ..signals import deferred
+
+    with deferred():  # VTK's modules: an interrupt in their import was a segfault at times
+        from ..output.dynamic import write_case_figures
+        from ..output.finite import write_finite_figure
 
     if finite:
         write_finite_figure(result, case.quasi, folder, figure_format)
