@@ -107,15 +107,26 @@ def test_a_second_interrupt_during_the_clean_up_leaves_nothing_partial(
         assert sorted(p.name for p in target.iterdir()) == before
 
 
-def test_the_dynamic_figures_import_their_modules_with_signals_held(monkeypatch):
+FIGURES = [
+    ("fem_dynamic", "shtaerman.output.dynamic", (None, None, Path("unused"), "png", False)),
+    ("fem_contact", "shtaerman.plots.gallery", (None, Path("unused"), "png")),
+]
+"""(API module, the plotting module its figures import lazily, the arguments of the function
+that writes them: never used, the signal stops it first)."""
+
+
+@pytest.mark.parametrize(("module", "name", "arguments"), FIGURES)
+def test_the_figures_import_their_modules_with_signals_held(monkeypatch, module, name, arguments):
     """Items 5-6 on 'dynamic --out': SIGTERM 2.4-3.0 s into 'dynamic --out o --history h.csv'
     segfaulted (-11, 2 in 24 tries) in _write_figures' import of the plotting stack (VTK),
-    leaving '.o.partial-PID'. The import is whole before the signal acts."""
-    import shtaerman.output as output
-    from shtaerman.api import fem_dynamic
+    leaving '.o.partial-PID'; 'contact --out' imports it the same way. The import is whole
+    before the signal acts."""
+    import importlib
 
-    name = "shtaerman.output.dynamic"
-    monkeypatch.setattr(output, "dynamic", getattr(output, "dynamic", None), raising=False)
+    api = importlib.import_module(f"shtaerman.api.{module}")
+    parent, _, leaf = name.rpartition(".")
+    package = importlib.import_module(parent)
+    monkeypatch.setattr(package, leaf, getattr(package, leaf, None), raising=False)
     monkeypatch.delitem(sys.modules, name, raising=False)
 
     class SignalInTheImport:
@@ -125,6 +136,7 @@ def test_the_dynamic_figures_import_their_modules_with_signals_held(monkeypatch)
             return None
 
     monkeypatch.setattr(sys, "meta_path", [SignalInTheImport(), *sys.meta_path])
+    write = api._write_figures if module == "fem_dynamic" else api._write
     with pytest.raises(KeyboardInterrupt):
-        fem_dynamic._write_figures(None, None, Path("unused"), "png", False)
+        write(*arguments)
     assert name in sys.modules  # imported whole, then stopped
