@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn, TextIO
 
 from ..plots.formats import check_figure_format
+from ..signals import deferred
 from ..study.kinds import kind_function
 from ..study.run import run_study
 from ..validation import InputError, NumericalFailureError
@@ -221,8 +222,10 @@ def _study_figures(
 ) -> dict[str, str]:
     # imported here, not at the top: the process that runs the studies on dask workers
     # draws no study's figures, and matplotlib, pyvista and VTK cost it ~1 s before the
-    # workers start (benchmarks/verify_cost.py)
-    from ..plots.gallery import study_convergence_figures, study_field_figures, study_figures
+    # workers start (benchmarks/verify_cost.py); signals held: VTK's import, interrupted,
+    # segfaulted at times
+    with deferred():
+        from ..plots.gallery import study_convergence_figures, study_field_figures, study_figures
 
     made = {
         **study_field_figures(outcome, folder),
