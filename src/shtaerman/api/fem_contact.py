@@ -299,10 +299,13 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 def _write(result: ContactResult, folder: Path, figure_format: str) -> None:
     """contact.json, the curve CSVs and VTU fields, and the curve figures (a finite-strain
     model: the force-depth curve against Shtaerman's linear one)."""
-    from ..output import export
-    from ..output.finite import write_finite_curve
-    from ..plots.curves import plot_force_depth
-    from ..plots.gallery import contact_figures
+    from ..signals import deferred
+
+    with deferred():  # VTK's modules: an interrupt in their import was a segfault at times
+        from ..output import export
+        from ..output.finite import write_finite_curve
+        from ..plots.curves import plot_force_depth
+        from ..plots.gallery import contact_figures
 
     if result.finite:
         write_finite_curve(result.solution, folder)

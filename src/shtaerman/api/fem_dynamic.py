@@ -112,7 +112,10 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
 
 def _write_figures(case: DynamicCase, folder: Path, figure_format: str) -> None:
     """The figures of the case (:func:`shtaerman.output.dynamic.write_case_figures`)."""
-    from ..output.dynamic import write_case_figures
+    from ..signals import deferred
+
+    with deferred():  # VTK's modules: an interrupt in their import was a segfault at times
+        from ..output.dynamic import write_case_figures
 
     write_case_figures(case, folder, figure_format)
 

@@ -40,6 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import vocabulary
+from ..signals import deferred
 from ..validation import InputError
 
 __all__ = [
@@ -538,14 +539,16 @@ def staged_folder(
         reserved = False
         _discard(retired)
     except BaseException:
-        if reserved:
-            with contextlib.suppress(OSError):
-                os.rmdir(target)  # only if still our empty reservation
-        if os.path.lexists(retired) and not os.path.lexists(target):
-            os.rename(retired, target)  # put the old folder back
+        with deferred():  # a second Ctrl-C must not break the put-back
+            if reserved:
+                with contextlib.suppress(OSError):
+                    os.rmdir(target)  # only if still our empty reservation
+            if os.path.lexists(retired) and not os.path.lexists(target):
+                os.rename(retired, target)  # put the old folder back
         raise
     finally:
-        shutil.rmtree(stage, ignore_errors=True)
+        with deferred():  # nor the removal of the stage
+            shutil.rmtree(stage, ignore_errors=True)
 
 
 def _discard(retired: Path) -> None:

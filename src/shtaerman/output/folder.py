@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn, TextIO
 
 from ..plots.formats import check_figure_format
+from ..signals import deferred
 from ..study.kinds import kind_function
 from ..study.run import run_study
 from ..validation import InputError, NumericalFailureError
@@ -204,8 +205,10 @@ def write_contact_study(
     (``figure_format`` "svg" or "pdf": each chart also in that format beside its PNG)."""
     # imported here, not at the top: the process that runs the studies on dask workers
     # draws no study's figures, and matplotlib, pyvista and VTK cost it ~1 s before the
-    # workers start (benchmarks/verify_cost.py)
-    from ..plots.gallery import study_figures
+    # workers start (benchmarks/verify_cost.py); signals held: VTK's import, interrupted,
+    # segfaulted at times
+    with deferred():
+        from ..plots.gallery import study_figures
 
     folder.mkdir()
     written = write_indentation(outcome.contact, folder)

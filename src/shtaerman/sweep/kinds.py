@@ -532,14 +532,20 @@ change minus the sum of the single ones (NaN where a run is refused)."""
 def _effects_inputs(p: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     """The case's problem as parts (:func:`shtaerman.problem.parts`: they need not combine as
     a whole, the variants that do run) and the numerical keywords of :func:`shtaerman.effects`
-    set to other than the kind's defaults (in their ranges since the file was read)."""
+    set to other than the kind's defaults (in their ranges since the file was read); what the
+    table refuses as a whole (:func:`shtaerman.api.effect_table.run.check_runs`) is refused
+    here, at load."""
+    from ..api.effect_table.run import check_runs
+    from ..api.effect_table.variants import parts_of, variants
     from ..api.fem_dynamic import SETTINGS_OPTIONS
     from ..problem import parts
 
     indenter, body, keywords = _struck_case(p)
+    found = parts(indenter, body, **keywords)
     numerics = _changed(p, "effects", (*SETTINGS_OPTIONS, "refine"))
-    # estimate: the sweep's default (false), not the API's
-    return parts(indenter, body, **keywords), {**numerics, "estimate": p["estimate"]}
+    numerics["estimate"] = p["estimate"]  # the sweep's default (false), not the API's
+    check_runs(variants(parts_of(found))[0], numerics)
+    return found, numerics
 
 
 def effects_case(p: dict[str, Any]) -> CaseResult:

@@ -76,6 +76,7 @@ OWN_INPUTS = {
     "viscoelasticity": ("prony",),
     "friction": ("friction",),
     "finite strain": ("model", "mooney_ratio", "yeoh", "gent_limit", "volumetric"),
+    "numerics": NUMERICS,  # refused in the full problem (a layer_rate of 0 on a pad)
 }
 """The inputs of an effect: one of them refused where the effect is alone (the paper's problem
 with it) is bad input, as ``shtaerman dynamic`` refuses it, not a row of the table."""
@@ -94,6 +95,8 @@ def _refuses_the_table(variant: Variant, error: Exception) -> bool:
     """Whether a run's ``error`` is bad input of the whole table, not a row's refusal."""
     if variant.role == "none" and isinstance(error, InputError):
         return True  # the paper's own problem: the numerics are bad input for every run
+    if variant.role == "full" and _own_input(error, "numerics"):
+        return True  # the impact the options describe: 'dynamic' refuses the same numbers
     return variant.role == "alone" and _own_input(error, variant.effect)  # no run measures it
 
 

@@ -28,8 +28,8 @@ from ...fem.dynamic_contact import (
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import Problem, check_options
-from ...theory.materials import Material
-from ...theory.sneddon import Indenter
+from ...theory.materials import Material, effective_modulus
+from ...theory.sneddon import Indenter, contact_law
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
@@ -260,6 +260,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         problem = study.problem(study.example)
     except InputError as error:
         raise refused(path, error, KEYS) from None
+    _check_velocities(path, "impact.velocity", study, study.velocities)
+    _check_velocities(path, "quick.velocity", study, study.quick_velocities)
     numerics = {
         "finite_numerics": _finite_numerics(path, "numerics", raw.numerics, problem),
         "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
@@ -316,6 +318,26 @@ def _finite_numerics(
     inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, problem)
     given = {key: value for key, value in given.items() if key in FINITE_NUMERICS}
     return {**FINITE_NUMERICS, **inherited, **given}
+
+
+def _check_velocities(path: Path, key: str, study: DynamicStudy, velocities: Any) -> None:
+    """Refuse, naming ``key``, a velocity whose exact impact leaves the floating-point range
+    (the first check of its run: it came after the velocities before it had run)."""
+    import warnings
+
+    from ...theory.impact import representable
+    from .case import exact_impact
+
+    for velocity in velocities:
+        striker = study.problem(velocity).striker
+        law = contact_law(striker.indenter, effective_modulus(striker.material, study.half_space))
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # the run's warnings are the run's
+                representable("v0^2", velocity * velocity, study.mass, velocity)
+                exact_impact(study.mass, velocity, law)
+        except InputError as error:
+            raise StudyError(f"{path}: key '{key}': {error}") from None
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:
