@@ -15,6 +15,7 @@ runs the tests in the reverse of their collection order. CI's second pass does b
 
 import json
 import os
+import signal
 from pathlib import Path
 
 if os.environ.get("PYTEST_XDIST_WORKER"):  # one BLAS/OpenMP thread per worker (before numpy),
@@ -84,10 +85,15 @@ def pytest_report_header(config) -> list[str]:
 
 
 def pytest_configure(config) -> None:
-    """Refuse an unknown ``SHTAERMAN_TEST_ORDER`` before any test is collected."""
+    """Refuse an unknown ``SHTAERMAN_TEST_ORDER`` before any test is collected, and deliver
+    SIGINT as a terminal does: a shell's background job (``pytest ... &``, nohup) starts with
+    SIGINT ignored, which Python, its xdist workers and every subprocess inherit, and the
+    interrupt tests then see a run that rightly ignores their Ctrl-C (exit 0, not 130)."""
     order = os.environ.get(TEST_ORDER, "")
     if order not in ("", "reversed"):
         raise pytest.UsageError(f"{TEST_ORDER}: 'reversed' or unset, not {order!r}")
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def pytest_collection_modifyitems(config, items) -> None:
