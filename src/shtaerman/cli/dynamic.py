@@ -169,17 +169,12 @@ def run(args: argparse.Namespace) -> int:
 def _differences_text(report: dict) -> str:
     """Quasi-static / dynamic - 1 in per cent, with the estimated error where there is one
     (the paper's elastic impact's; named so where a massless viscoelastic body has its own)."""
-    errors = report.get("differences_error") or {}
-    cells = []
-    for key, value in report["differences"].items():
-        error = errors.get(key)
-        spread = f" ± {100 * error:.2f}" if error is not None else ""
-        cells.append(f"{key} {100 * value:+.2f}{spread} %")
-    from ..output.text_dynamic import massless_viscoelastic
+    from ..output.text_dynamic import difference_cells, massless_viscoelastic
 
+    cells = difference_cells(report["differences"], report.get("differences_error"))
     label = "elastic (paper) / dynamic - 1" if massless_viscoelastic(report) else ""
     return (
-        f"  {label or 'quasi-static / dynamic - 1'}  " + ", ".join(cells) + "\n"
+        f"  {label or 'quasi-static / dynamic - 1'}  " + cells + "\n"
         "                              (x_c against x_max, P_c against P_max, t_c against "
         "t_contact / 2)"
     )

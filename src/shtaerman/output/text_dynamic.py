@@ -478,15 +478,28 @@ def viscoelastic_words(
     )
 
 
-def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
-    """The viscoelastic reference / dynamic - 1 line, ± the estimated error where there is one."""
-    errors = report.get("viscoelastic_differences_error") or {}
+def difference_cells(
+    differences: Mapping[str, float],
+    errors: Mapping[str, float] | None,
+    names: Mapping[str, str] | None = None,
+) -> str:
+    """ "x_c -6.60 ± 0.01 %, ...": ``differences`` (reference / dynamic - 1) in per cent, ±
+    their estimated ``errors`` where there are some, each under its name in ``names`` (default
+    its key)."""
+    errors, names = errors or {}, names or {}
     cells = []
-    for key, value in report["viscoelastic_differences"].items():
+    for key, value in differences.items():
         error = errors.get(key)
         spread = f" ± {100 * error:.2f}" if error is not None else ""
-        cells.append(f"{VISCOELASTIC_NAMES[key]} {100 * value:+.2f}{spread} %")
-    return f"  {label}  " + ", ".join(cells)
+        cells.append(f"{names.get(key, key)} {100 * value:+.2f}{spread} %")
+    return ", ".join(cells)
+
+
+def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
+    """The viscoelastic reference / dynamic - 1 line, ± the estimated error where there is one."""
+    differences = report["viscoelastic_differences"]
+    errors = report.get("viscoelastic_differences_error")
+    return f"  {label}  " + difference_cells(differences, errors, VISCOELASTIC_NAMES)
 
 
 def massless_viscoelastic(report: Mapping[str, Any]) -> bool:
