@@ -58,6 +58,9 @@ class DynamicResult:
     mesh_ladder: tuple[dict[str, Any], ...] | None = None
     estimate_missing: str | None = None
     profile: dict[str, Any] | None = None
+    viscoelastic_quasi_static: dict[str, Any] | None = None
+    viscoelastic_differences: dict[str, float] | None = None
+    viscoelastic_differences_error: dict[str, float] | None = None
     solution: Any = field(default=None, repr=False, compare=False)
     ladder: Any = field(default=None, repr=False, compare=False)
 
@@ -99,13 +102,15 @@ class DynamicResult:
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of ``shtaerman dynamic --json``: non-finite numbers
         are None (the CLI's null)."""
-        document: dict[str, Any] = {
-            "quasi_static": dict(self.quasi_static),
-            "dynamic": dict(self.dynamic),
-            "differences": dict(self.differences),
-        }
+        document: dict[str, Any] = {"quasi_static": dict(self.quasi_static)}
+        if self.viscoelastic_quasi_static is not None:
+            document["viscoelastic_quasi_static"] = dict(self.viscoelastic_quasi_static)
+        document.update(dynamic=dict(self.dynamic), differences=dict(self.differences))
         if self.differences_error is not None:
             document["differences_error"] = dict(self.differences_error)
+        for key in ("viscoelastic_differences", "viscoelastic_differences_error"):
+            if getattr(self, key) is not None:
+                document[key] = dict(getattr(self, key))
         if self.radiation_estimate is not None:
             document["radiation_estimate"] = self.radiation_estimate
         document.update(mesh=self.mesh, timings=self.timings, parameters=self.parameters)

@@ -71,6 +71,29 @@ def dynamic_settings(
     return dataclasses.replace(base, **chosen)  # type: ignore[arg-type]
 
 
+def _viscoelastic(
+    case: DynamicCase, problem: Problem
+) -> tuple[dict[str, Any] | None, dict[str, float] | None, dict[str, float] | None]:
+    """A viscoelastic body's quasi-static reference (once per run, not per ladder level), its
+    differences from the dynamic FE impact and their estimated errors (None where there is no
+    Prony series, no estimate)."""
+    from ..study.dynamic.case import viscoelastic_compare, viscoelastic_reference
+
+    reference = viscoelastic_reference(problem)
+    if reference is None:
+        return None, None, None
+    differences = viscoelastic_compare(reference, case.result)
+    errors = None
+    if case.estimated:
+        errors = {
+            key: case.ladder.estimate(
+                lambda r, key=key: viscoelastic_compare(reference, r)[key]
+            ).absolute_error
+            for key in differences
+        }
+    return reference, differences, errors
+
+
 def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
     """The result of ``problem``'s case, with its ladder's keys where it ran one (the
     differences' errors None where the estimate is missing); a rubber has no radiation
@@ -87,6 +110,7 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
         document.update(ladder.to_dict())
     body, indenter = problem.body, problem.striker.indenter
     series = body.prony
+    viscous, viscous_differences, viscous_errors = _viscoelastic(case, problem)
     return DynamicResult(
         quasi_static=document["quasi_static"],
         dynamic=document["dynamic"],
@@ -105,6 +129,9 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
         mesh_ladder=tuple(document["mesh_ladder"]) if ladder is not None else None,
         estimate_missing=document.get("estimate_missing"),
         profile={"kind": indenter.kind, "parameters": indenter.parameters},
+        viscoelastic_quasi_static=viscous,
+        viscoelastic_differences=viscous_differences,
+        viscoelastic_differences_error=viscous_errors,
         solution=case.result,
         ladder=ladder,
     )

@@ -18,6 +18,8 @@ def profile_rows(report: dict) -> list[str]:
 
 def finite_dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give is nan."""
+    from ..output.text_dynamic import viscoelastic_rows
+
     qs, dyn = (
         {key: math.nan if value is None else value for key, value in report[part].items()}
         for part in ("quasi_static", "dynamic")
@@ -36,6 +38,7 @@ def finite_dynamic_text(report: dict) -> str:
         f"  restitution e           {dyn['restitution']:<14.6f}  1",
         *interface_rows(report["parameters"]),
         *prony_rows(report),
+        *viscoelastic_rows(report, "finite strain"),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),

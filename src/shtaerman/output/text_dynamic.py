@@ -448,3 +448,90 @@ def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
         for key, label in labels.items()
         if key in limits
     ]
+
+
+# --- the viscoelastic quasi-static reference in ``shtaerman dynamic``'s text --------------------
+
+VISCOELASTIC_NAMES = {"x_max": "x", "P_max": "P", "t_contact": "t_contact", "restitution": "e"}
+"""The viscoelastic differences' keys -> their names in the text."""
+
+
+def viscoelastic_words(
+    reference: Mapping[str, Any], massless: bool = True, layer: bool = False
+) -> str:
+    """Which viscoelastic quasi-static impact the reference is, and its own step error:
+    "quasi-static viscoelastic (Lee-Radok/Ting), exact; 2000 steps per t_c, relative step error
+    1.2e-07"; a rubber's "small-strain", a compressible body's "incompressible" reference;
+    with inertia (not ``massless``) it is exact without the waves; on a ``layer`` it is the
+    half-space's."""
+    if layer:
+        kind = "the half-space's, not the layer's"
+    elif reference["small_strain"]:
+        kind = "the small-strain reference of the rubber"
+    elif reference["exact"]:
+        kind = "exact" if massless else "exact without inertia (no waves)"
+    else:
+        kind = "the incompressible reference (nu2 < 0.5, elastic bulk: approximate)"
+    return (
+        f"quasi-static viscoelastic (Lee-Radok/Ting), {kind}; {reference['steps']} steps "
+        f"per t_c, relative step error {reference['step_error']:.1e}"
+    )
+
+
+def difference_cells(
+    differences: Mapping[str, float],
+    errors: Mapping[str, float] | None,
+    names: Mapping[str, str] | None = None,
+) -> str:
+    """ "x_c -6.60 ± 0.01 %, ...": ``differences`` (reference / dynamic - 1) in per cent, ±
+    their estimated ``errors`` where there are some, each under its name in ``names`` (default
+    its key)."""
+    errors, names = errors or {}, names or {}
+    cells = []
+    for key, value in differences.items():
+        error = errors.get(key)
+        spread = f" ± {100 * error:.2f}" if error is not None else ""
+        cells.append(f"{names.get(key, key)} {100 * value:+.2f}{spread} %")
+    return ", ".join(cells)
+
+
+def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
+    """The viscoelastic reference / dynamic - 1 line, ± the estimated error where there is one."""
+    differences = report["viscoelastic_differences"]
+    errors = report.get("viscoelastic_differences_error")
+    return f"  {label}  " + difference_cells(differences, errors, VISCOELASTIC_NAMES)
+
+
+def massless_viscoelastic(report: Mapping[str, Any]) -> bool:
+    """Whether the viscoelastic quasi-static impact is the reference of the run: a massless
+    body with a Prony series (then the paper's elastic impact is only for comparison)."""
+    return "viscoelastic_quasi_static" in report and report["parameters"]["density2"] == 0
+
+
+def viscoelastic_rows(report: Mapping[str, Any], dynamic: str = "dynamic FEM") -> list[str]:
+    """The rows of a viscoelastic body's quasi-static reference beside the FE impact (column
+    ``dynamic``) and their differences; [] for an elastic body. On a massless body, where it is
+    exact, its line is "quasi-static / dynamic - 1" (what the FE impact converges to); else
+    "viscoelastic / dynamic - 1" (with inertia the paper's elastic line stays the quasi-static
+    one)."""
+    reference = report.get("viscoelastic_quasi_static")
+    if reference is None:
+        return []
+    dyn, ref = ({k: math.nan if v is None else v for k, v in part.items()}
+                for part in (report["dynamic"], reference))  # fmt: skip
+    layer = "thickness" in report.get("mesh", {})
+    exact = massless_viscoelastic(report) and reference["exact"] and not layer
+    label = "quasi-static" if exact else "viscoelastic"
+    massless = report["parameters"]["density2"] == 0
+    return [
+        f"  {viscoelastic_words(reference, massless, layer)}:",
+        f"                          {dynamic:<14}  quasi-static viscoelastic",
+        f"  max approach x (m)      {dyn['x_max']:<14.6e}  {ref['x_max']:.6e}",
+        f"  max force P (N)         {dyn['P_max']:<14.6e}  {ref['P_max']:.6e}",
+        f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {ref['t_x_max']:.6e}",
+        f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {ref['t_contact']:.6e}",
+        f"  restitution e           {dyn['restitution']:<14.6f}  {ref['restitution']:.6f}",
+        f"  energy lost 1-e^2       {round(dyn['energy_radiated_fraction'], 6) + 0.0:<14.6f}  "
+        f"{ref['energy_lost_fraction']:.6f}",
+        _viscoelastic_differences(report, f"{label} / dynamic - 1"),
+    ]

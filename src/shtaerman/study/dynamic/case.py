@@ -29,7 +29,7 @@ from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
-from ...theory.viscoelastic import PronySeries, elastic_impact
+from ...theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_ladder, run_ladder
 
@@ -46,6 +46,8 @@ __all__ = [
     "problem_case",
     "radiation",
     "run_case",
+    "viscoelastic_compare",
+    "viscoelastic_reference",
 ]
 
 QUASI_STATIC_KEYS = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y")
@@ -62,6 +64,52 @@ def compare(quasi: ImpactResult | ProfileImpactResult, result: ImpactRun) -> dic
     t_contact / 2, the same as t_y against t_contact), dimensionless."""
     dynamic = {"x_max": result.x_max, "P_max": result.P_max, "t_half": 0.5 * result.t_contact}
     return {key: getattr(quasi, qs) / dynamic[dyn] - 1.0 for key, (qs, dyn, _) in COMPARED.items()}
+
+
+REFERENCE_STEPS = 2000
+"""Time steps per glassy t_c of the viscoelastic quasi-static reference (its error, second
+order in the step, is estimated against half as many: about 1e-7 relative)."""
+VISCOELASTIC_COMPARED = ("x_max", "P_max", "t_contact", "restitution")
+"""The viscoelastic reference's quantities compared with the dynamic FE impact's."""
+
+
+def viscoelastic_reference(problem: Problem) -> dict[str, Any] | None:
+    """The quasi-static impact of ``problem``'s striker on its viscoelastic half-space
+    (Lee-Radok while loading, Ting while unloading:
+    :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`), what its massless FE impact
+    converges to; None without a Prony series.
+
+    Its keys (SI): x_max, P_max, t_x_max, t_contact, v_out, restitution, energy_lost_fraction
+    (1 - e^2); ``steps`` per glassy t_c and ``step_error``, the largest relative change of the
+    compared values from ``steps / 2`` over 3 (Richardson, second order); ``exact`` whether it
+    is the exact solution of the body's equations (an incompressible body at small strain;
+    nu2 < 0.5 with an elastic bulk, or a rubber at finite strain, have it as the small-strain
+    incompressible reference); ``small_strain`` True for a rubber at finite strain. The
+    interface (bonded, Coulomb) and a layer's base are not in it: it is the frictionless
+    half-space's, as ``quasi_static``."""
+    prony = problem.body.prony
+    if prony is None:
+        return None
+    striker, material = problem.striker, problem.body.material
+    assert striker.mass is not None
+    law = contact_law(striker.indenter, effective_modulus(RIGID, material))
+    run = partial(viscoelastic_impact, striker.mass, striker.velocity, law, prony)
+    fine, coarse = run(steps=REFERENCE_STEPS), run(steps=REFERENCE_STEPS // 2)
+    change = max(abs(getattr(coarse, k) / getattr(fine, k) - 1) for k in VISCOELASTIC_COMPARED)
+    keys = ("x_max", "P_max", "t_x_max", "t_contact", "v_out", "restitution")
+    reference: dict[str, Any] = {key: getattr(fine, key) for key in keys}
+    reference["energy_lost_fraction"] = 1.0 - fine.restitution**2
+    incompressible = material.poisson_ratio == 0.5
+    reference.update(steps=REFERENCE_STEPS, step_error=change / 3.0)
+    reference.update(exact=incompressible and not problem.body.finite)
+    reference.update(small_strain=problem.body.finite)
+    return reference
+
+
+def viscoelastic_compare(reference: dict[str, Any], result: ImpactRun) -> dict[str, float]:
+    """The viscoelastic quasi-static reference (:func:`viscoelastic_reference`) / the dynamic
+    FE impact - 1 for :data:`VISCOELASTIC_COMPARED` (its keys), dimensionless."""
+    return {key: reference[key] / getattr(result, key) - 1.0 for key in VISCOELASTIC_COMPARED}
 
 
 @dataclass(frozen=True)
