@@ -148,3 +148,18 @@ def test_the_finite_strain_study_checks_its_rubber_as_the_body_does(tmp_path, ke
 def test_the_finite_strain_study_refuses_the_linear_model_by_its_key(tmp_path):
     refused = _study(tmp_path, f'{FINITE}[rubber]\nmodel = "linear"\n')
     assert refused.startswith("key 'rubber.model': ") and "neo-hookean" in refused, refused
+
+
+def test_a_rubber_impacts_axis_size_is_refused_by_the_sweep_in_the_tables_words(tmp_path):
+    """The sweep once said "(it takes time_steps and mesh_size)" in words of its own."""
+    reason = _table(RUBBER_IMPACT, ["axis_size"]).removeprefix("axis_size: ")
+    study = _study(
+        tmp_path, f'{DYNAMIC}[rubber]\nmodel = "neo-hookean"\n[numerics]\naxis_size = 0.3\n'
+    )
+    sweep = (
+        'name = "rub"\nkind = "dynamic"\n[parameters]\nmodel = "neo-hookean"\naxis_size = 0.003\n'
+    )
+    with pytest.raises(SweepError) as refused:
+        parse_sweep(sweep + "[axes]\nvelocity = [1.0, 2.0]\n")
+    assert study == f"key 'numerics.axis_size': {reason}"
+    assert str(refused.value).endswith(f"(velocity = 1.0): axis_size: {reason}")

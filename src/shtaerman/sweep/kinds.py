@@ -457,22 +457,19 @@ def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
     """A dynamic case as the command line builds it: its
     :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
     swept model takes them) and the keywords of :func:`shtaerman.dynamic`: the numerics set to
-    other than the kind's defaults (an ``axis_size`` as the linear body's settings)."""
+    other than the kind's defaults (an ``axis_size`` as the linear body's settings, refused
+    for a rubber by :data:`shtaerman.problem.OPTION_SUPPORT`)."""
     from ..api.fem_dynamic import SETTINGS_OPTIONS
     from ..fem.dynamic_contact import DynamicSettings
-    from ..problem import Problem
+    from ..problem import Problem, check_options
 
     indenter, body, keywords = _struck_case(p)
     problem = Problem.impact(indenter, body, **keywords)
     numerics = _changed(p, "dynamic", SETTINGS_OPTIONS)
-    if _changed(p, "dynamic", ("axis_size",)):
-        if problem.body.finite:  # the finite-strain impact grades its own axis
-            raise InputError(
-                f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
-                "time_steps and mesh_size)",
-                "axis_size",
-            )
-        numerics["settings"] = DynamicSettings(axis_size=p["axis_size"])
+    axis = _changed(p, "dynamic", ("axis_size",))
+    check_options(problem, axis)  # a study-file key: the table refuses it for a rubber
+    if axis:
+        numerics["settings"] = DynamicSettings(**axis)
     return problem, {**numerics, "refine": p["refine"], "estimate": p["estimate"]}
 
 
