@@ -163,3 +163,20 @@ def test_a_rubber_impacts_axis_size_is_refused_by_the_sweep_in_the_tables_words(
         parse_sweep(sweep + "[axes]\nvelocity = [1.0, 2.0]\n")
     assert study == f"key 'numerics.axis_size': {reason}"
     assert str(refused.value).endswith(f"(velocity = 1.0): axis_size: {reason}")
+
+
+@pytest.mark.parametrize(
+    ("rubber", "key"),
+    [('model = "linear"', "model"), ('model = "gent"', "gent_limit")],
+    ids=["linear", "gent-without-its-limit"],
+)
+def test_a_finite_strain_sweep_refuses_its_rubber_as_the_study_file_does(tmp_path, rubber, key):
+    """The sweep built its rubber with words of its own: the linear model was 'unknown'."""
+    study = _study(tmp_path, f"{FINITE}[rubber]\n{rubber}\n")
+    sweep = (
+        f'name = "f"\nkind = "finite-strain"\n[parameters]\n{rubber}\n[axes]\nvelocity = [1.0]\n'
+    )
+    with pytest.raises(SweepError) as refused:
+        parse_sweep(sweep)
+    reason = study.removeprefix(f"key 'rubber.{key}': ")
+    assert str(refused.value).endswith(f"(velocity = 1.0): {key}: {reason}")

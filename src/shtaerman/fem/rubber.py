@@ -163,11 +163,12 @@ def rubber_model(
             f"model: unknown finite-strain model {model!r}; pick one of {', '.join(MODELS)}",
             "model",
         )
-    owner = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
+    from ..problem import RUBBER_SHAPES  # which model each shape option belongs to
+
     given = {"mooney_ratio": mooney_ratio, "yeoh": yeoh, "gent_limit": gent_limit}
     for name, value in given.items():
-        if value is not None and model != owner[name]:
-            raise InputError(f"{name}: applies to the {owner[name]} model only", name)
+        if value is not None and model != RUBBER_SHAPES[name]:
+            raise InputError(f"{name}: applies to the {RUBBER_SHAPES[name]} model only", name)
     if volumetric is not None and volumetric not in VOLUMETRIC:
         raise InputError(
             f"volumetric must be one of {', '.join(VOLUMETRIC)}, got {volumetric!r}", "volumetric"
