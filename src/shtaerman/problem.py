@@ -375,6 +375,13 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
         "{value:g}; give one of them",
         lambda value, given: value == 1.0 or given.get("accuracy") is None,
     ),
+    OptionLimit(
+        lambda c: c.loading == "curve",
+        ("max_time",),
+        "applies with accuracy (--accuracy) only: it is the time budget of its refinement; "
+        "give accuracy too",
+        lambda value, given: given.get("accuracy") is not None,
+    ),
 )
 """Numerical and output options that some combinations do not take."""
 
