@@ -144,7 +144,10 @@ class Body:
                 if getattr(self, name) is not None:
                     raise InputError(f"{name}: applies to the finite-strain models only", name)
         else:
-            self.rubber()  # checks the shape options now, each naming itself
+            for name, owner in RUBBER_SHAPES.items():
+                if getattr(self, name) is not None and self.model != owner:
+                    raise InputError(f"{name}: applies to the {owner} model only", name)
+            self.rubber()  # checks the shape options' values now, each naming itself
 
     @property
     def finite(self) -> bool:
