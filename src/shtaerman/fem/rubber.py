@@ -150,9 +150,9 @@ def rubber_model(
     """Check the rubber options together and return the :class:`RubberModel`.
 
     A shape option of another model (e.g. ``mooney_ratio`` with ``yeoh``) is refused where
-    the input enters, by :class:`shtaerman.problem.Body` (:data:`shtaerman.problem.
-    RUBBER_SHAPES`). None means "not given" (the defaults: r = 0, (c2, c3) = (0, 0), Jm
-    required for Gent, ``quadratic``).
+    the input enters, by :class:`shtaerman.problem.Body` (its map
+    :data:`shtaerman.problem.RUBBER_SHAPES`). None means "not given" (the defaults: r = 0,
+    (c2, c3) = (0, 0), Jm required for Gent, ``quadratic``).
 
     Raises
     ------
