@@ -92,6 +92,7 @@ def parameters_page() -> str:
         parts.append(vocabulary.parameter_table(parser))
     if hasattr(importlib.import_module("shtaerman.problem"), "support_table"):
         parts += combinations_section()
+        parts += options_section()
     parts += ["## The command line", "", "Every option of every command, and its default.", ""]
     for name, sub in commands.choices.items():
         summary = sub.description.splitlines()[0] if sub.description else ""
@@ -129,6 +130,63 @@ def combinations_section() -> list[str]:
         "",
         *tables,
         *[f"- `{limit.parameter}`: {limit.reason}" for limit in SUPPORT],
+        "",
+    ]
+
+
+def _where(when, cells: list) -> str:
+    """The combinations of ``cells`` (``shtaerman.problem.Cell``) that a limit's predicate
+    ``when`` selects, part by part (``model: rubber; loading: curve``; a part it leaves free is
+    not named). A predicate that selects no such product of parts stops the build: it would
+    need words of its own."""
+    from itertools import product
+
+    every = [sorted({cell[i] for cell in cells}, key=str) for i in range(len(cells[0]))]
+    chosen = [sorted({cell[i] for cell in cells if when(cell)}, key=str) for i in range(len(every))]
+    if sum(map(when, cells)) != len(list(product(*chosen))):
+        raise ValueError(f"an option limit selects no product of parts: {chosen}")
+    words = {False: "elastic", True: "Prony"}  # a Cell's relaxing
+    return "; ".join(
+        f"{name}: {', '.join(str(words.get(value, value)) for value in values)}"
+        for name, values, all_values in zip(cells[0]._fields, chosen, every, strict=True)
+        if values != all_values
+    )
+
+
+class _Placeholder(str):
+    """A reason's ``{model}`` or ``{value}`` shown as ``<model>``, ``<value>``, whatever the
+    format (``!r``, ``:g``)."""
+
+    def __repr__(self) -> str:
+        return str(self)
+
+    def __format__(self, spec: str) -> str:
+        return str(self)
+
+
+def options_section() -> list[str]:
+    """Which numerical and output options each combination takes, from
+    ``shtaerman.problem.OPTION_SUPPORT``: one row per limit, its options, the combinations it
+    limits and its reason."""
+    from shtaerman.problem import OPTION_SUPPORT, support_table
+
+    cells = [cell for cell, _ in support_table()]
+    names = {"model": _Placeholder("<model>"), "value": _Placeholder("<value>")}
+    rows = ["| options | where | reason |", "|---|---|---|"]
+    for limit in OPTION_SUPPORT:
+        options = ", ".join(f"`{option}`" for option in limit.options)
+        reason = limit.reason.format(**names)
+        rows.append(f"| {options} | {_cell(_where(limit.when, cells))} | {_cell(reason)} |")
+    return [
+        "## Which options apply where",
+        "",
+        "The numerical and output options a combination does not take "
+        "(`shtaerman.problem.OPTION_SUPPORT`, the one place that decides it): each row names "
+        "the options, the parts of the combinations it limits (a part not named: any) and the "
+        "reason every route refuses them with (the command line, the API, study files and "
+        "sweeps). Where the reason names a value or another option, that one is taken.",
+        "",
+        *rows,
         "",
     ]
 

@@ -491,6 +491,24 @@ def test_the_parameter_page_shows_which_parts_combine(site):
         assert " ".join(limit.reason.split()) in " ".join(page.split())
 
 
+def test_the_parameter_page_shows_which_options_apply_where(site):
+    """Every limit of shtaerman.problem.OPTION_SUPPORT is a row: its options, the combinations
+    it limits and its reason (the page showed SUPPORT alone)."""
+    from shtaerman.problem import OPTION_SUPPORT
+
+    page = html.unescape(re.sub(r"<[^>]+>", " ", (site / "parameters" / "index.html").read_text()))
+    text = " ".join(page.split())
+    assert "Which options apply where" in text
+    for limit in OPTION_SUPPORT:
+        reason = limit.reason.replace("{model!r}", "<model>").replace("{model}", "<model>")
+        reason = re.sub(r"\{value[^}]*\}", "<value>", reason)
+        assert " ".join(reason.split()) in text, reason
+        assert all(option in text for option in limit.options)
+    # the massless body's limit names its loading and only it (a row: options, where, reason)
+    assert "layer_rate loading: massless applies to a body with mass only" in text
+    assert "max_time loading: curve applies with accuracy" in text
+
+
 def test_the_parameter_page_shows_angle_brackets_as_text(site):
     """The sweep's '--out' help 'sweep-<name>' was read as an HTML tag and vanished."""
     page = (site / "parameters" / "index.html").read_text(encoding="utf-8")

@@ -160,3 +160,28 @@ def test_a_failed_out_keeps_the_printed_table(tmp_path, capsys, monkeypatch):
     printed, err = capsys.readouterr()
     assert json.loads(printed)["runs"]  # the whole table, on stdout
     assert "--out" in err and not (tmp_path / "table").exists()
+
+
+def test_a_run_keeps_an_option_its_combinations_limit_allows(monkeypatch):
+    """The runs' options are tested by shtaerman.problem.check_options, allows included: the
+    table once dropped every option a limit names, whatever its value."""
+    import shtaerman.api.effect_table.run as run
+    import shtaerman.problem as problem
+
+    limit = problem.OptionLimit(
+        lambda cell: cell.loading == "inertia",
+        ("time_steps",),
+        "at most 100 steps here, got {value}",
+        lambda value, given: value <= 100,
+    )
+    for module in (problem, run):  # wherever the table is read from
+        monkeypatch.setattr(module, "OPTION_SUPPORT", (limit,), raising=False)
+    impact = sh.Problem.impact(INDENTER, BODY, **CASE)
+    assert run._options(impact, {"time_steps": 80, "mesh_size": 0.2}) == (
+        {"time_steps": 80, "mesh_size": 0.2},
+        (),
+    )
+    assert run._options(impact, {"time_steps": 200, "mesh_size": 0.2}) == (
+        {"mesh_size": 0.2},
+        ("time_steps not applied: at most 100 steps here, got 200",),
+    )

@@ -76,8 +76,21 @@ def _study(tmp_path: Path, text: str) -> str:
             "refine: accuracy chooses the refinement itself (its ladder starts at refine 1), "
             "got refine 2; give one of them",
         ),
+        (  # the API took max_time without accuracy silently; the command line alone refused
+            LINEAR_CURVE,
+            {"max_time": 30.0},
+            {"max_time": 30.0},
+            ["--max-time", "30"],
+            "max_time: applies with accuracy (--accuracy) only: it is the time budget of its "
+            "refinement; give accuracy too",
+        ),
     ],
-    ids=["pardiso-with-a-rubber", "accuracy-without-estimate", "accuracy-with-refine"],
+    ids=[
+        "pardiso-with-a-rubber",
+        "accuracy-without-estimate",
+        "accuracy-with-refine",
+        "max-time-without-accuracy",
+    ],
 )
 def test_a_contact_option_limit_is_the_tables_on_every_route(
     capsys, problem, given, keywords, argv, words
@@ -90,6 +103,7 @@ def test_a_contact_option_limit_is_the_tables_on_every_route(
 
 def test_option_limits_take_the_values_and_combinations_they_allow():
     check_options(LINEAR_CURVE, {"solver": "pardiso", "accuracy": 1e-3, "refine": 1.0})
+    check_options(LINEAR_CURVE, {"accuracy": 1e-3, "max_time": 30.0})
     check_options(RUBBER_CURVE, {"solver": "superlu", "refine": 2.0, "estimate": False})
     check_options(RUBBER_IMPACT, {"refine": 2.0, "estimate": False})  # the impact's own refine
 
@@ -148,3 +162,50 @@ def test_the_finite_strain_study_checks_its_rubber_as_the_body_does(tmp_path, ke
 def test_the_finite_strain_study_refuses_the_linear_model_by_its_key(tmp_path):
     refused = _study(tmp_path, f'{FINITE}[rubber]\nmodel = "linear"\n')
     assert refused.startswith("key 'rubber.model': ") and "neo-hookean" in refused, refused
+
+
+def test_a_rubber_impacts_axis_size_is_refused_by_the_sweep_in_the_tables_words(tmp_path):
+    """The sweep once said "(it takes time_steps and mesh_size)" in words of its own."""
+    reason = _table(RUBBER_IMPACT, ["axis_size"]).removeprefix("axis_size: ")
+    study = _study(
+        tmp_path, f'{DYNAMIC}[rubber]\nmodel = "neo-hookean"\n[numerics]\naxis_size = 0.3\n'
+    )
+    sweep = (
+        'name = "rub"\nkind = "dynamic"\n[parameters]\nmodel = "neo-hookean"\naxis_size = 0.003\n'
+    )
+    with pytest.raises(SweepError) as refused:
+        parse_sweep(sweep + "[axes]\nvelocity = [1.0, 2.0]\n")
+    assert study == f"key 'numerics.axis_size': {reason}"
+    assert str(refused.value).endswith(f"(velocity = 1.0): axis_size: {reason}")
+
+
+@pytest.mark.parametrize(
+    ("rubber", "key"),
+    [('model = "linear"', "model"), ('model = "gent"', "gent_limit")],
+    ids=["linear", "gent-without-its-limit"],
+)
+def test_a_finite_strain_sweep_refuses_its_rubber_as_the_study_file_does(tmp_path, rubber, key):
+    """The sweep built its rubber with words of its own: the linear model was 'unknown'."""
+    study = _study(tmp_path, f"{FINITE}[rubber]\n{rubber}\n")
+    sweep = (
+        f'name = "f"\nkind = "finite-strain"\n[parameters]\n{rubber}\n[axes]\nvelocity = [1.0]\n'
+    )
+    with pytest.raises(SweepError) as refused:
+        parse_sweep(sweep)
+    reason = study.removeprefix(f"key 'rubber.{key}': ")
+    assert str(refused.value).endswith(f"(velocity = 1.0): {key}: {reason}")
+
+
+def test_accuracy_without_max_time_keeps_its_60_s_budget(monkeypatch):
+    """max_time's default is None (it applies with accuracy only), read as 60 s as before."""
+    budgets = []
+
+    def reached(*args, max_time, **keywords):
+        budgets.append(max_time)
+        raise RuntimeError("reached the ladder")
+
+    monkeypatch.setattr("shtaerman.study.contact.accuracy.run_to_accuracy", reached)
+    for keywords, budget in (({}, 60.0), ({"max_time": 5.0}, 5.0)):
+        with pytest.raises(RuntimeError, match="reached the ladder"):
+            sh.contact(PAPER, RUBBER, accuracy=1e-3, **keywords)
+        assert budgets.pop() == budget

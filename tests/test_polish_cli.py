@@ -27,8 +27,9 @@ def _one_line_error(capsys, argv, words):
 
 
 def test_max_time_without_accuracy_is_refused(capsys, monkeypatch):
-    monkeypatch.setattr("shtaerman.cli.contact.contact", _stop)  # the old code ran the curve
-    _one_line_error(capsys, ["contact", "--max-time", "30"], "--max-time: applies with --accuracy")
+    monkeypatch.setattr("shtaerman.api.fem_contact._solve", _stop)  # the old code ran the curve
+    words = "--max-time: applies with accuracy (--accuracy) only"  # the API's, by the table
+    _one_line_error(capsys, ["contact", "--max-time", "30"], words)
     # with --accuracy it reaches the computation
     with pytest.raises(ReachedError):
         main(["contact", "--max-time", "30", "--accuracy", "1e-3"])

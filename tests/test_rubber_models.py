@@ -199,8 +199,6 @@ def test_yeoh_energy_derivatives():
         (dict(model="yeoh", yeoh=(0.1, math.inf)), "yeoh"),
         (dict(model="gent"), "gent_limit"),
         (dict(model="gent", gent_limit=0.0), "gent_limit"),
-        (dict(model="neo-hookean", mooney_ratio=0.2), "mooney_ratio"),
-        (dict(model="mooney-rivlin", yeoh=(0.1, 0.0)), "yeoh"),
         (dict(model="neo-hookean", volumetric="cubic"), "volumetric"),
         (dict(model="ogden"), "model"),
     ],
@@ -209,6 +207,23 @@ def test_bad_rubber_options_are_one_line_naming_the_option(options, word):
     with pytest.raises(InputError) as error:
         rubber_model(**options)
     assert word in str(error.value) and "\n" not in str(error.value)
+
+
+@pytest.mark.parametrize(
+    ("options", "word"),
+    [
+        (dict(model="neo-hookean", mooney_ratio=0.2), "mooney_ratio"),
+        (dict(model="mooney-rivlin", yeoh=(0.1, 0.0)), "yeoh"),
+    ],
+)
+def test_a_shape_option_of_another_model_is_refused_by_the_body(options, word):
+    """Where the input enters (problem.Body, by problem.RUBBER_SHAPES), not in fem."""
+    from shtaerman.problem import Body
+
+    with pytest.raises(InputError) as error:
+        Body(Material(7.5e6, 0.5), **options)
+    owner = "mooney-rivlin" if word == "mooney_ratio" else "yeoh"
+    assert str(error.value) == f"{word}: applies to the {owner} model only"
 
 
 def test_stable_negative_c2_is_allowed():

@@ -13,8 +13,9 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.problem import RUBBER_SHAPES
 from shtaerman.sweep.engine import execute_case
-from shtaerman.sweep.kinds import KINDS, RUBBER_SHAPES
+from shtaerman.sweep.kinds import KINDS
 from shtaerman.sweep.spec import SweepError, parse_sweep
 
 COARSE = MeshSettings(size=0.15, domain=1e3, growth=0.35, axis_size=1e-3, axis_growth=0.25)

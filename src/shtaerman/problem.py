@@ -144,7 +144,10 @@ class Body:
                 if getattr(self, name) is not None:
                     raise InputError(f"{name}: applies to the finite-strain models only", name)
         else:
-            self.rubber()  # checks the shape options now, each naming itself
+            for name, owner in RUBBER_SHAPES.items():
+                if getattr(self, name) is not None and self.model != owner:
+                    raise InputError(f"{name}: applies to the {owner} model only", name)
+            self.rubber()  # checks the shape options' values now, each naming itself
 
     @property
     def finite(self) -> bool:
@@ -374,6 +377,13 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
         "accuracy chooses the refinement itself (its ladder starts at refine 1), got refine "
         "{value:g}; give one of them",
         lambda value, given: value == 1.0 or given.get("accuracy") is None,
+    ),
+    OptionLimit(
+        lambda c: c.loading == "curve",
+        ("max_time",),
+        "applies with accuracy (--accuracy) only: it is the time budget of its refinement; "
+        "give accuracy too",
+        lambda value, given: given.get("accuracy") is not None,
     ),
 )
 """Numerical and output options that some combinations do not take."""

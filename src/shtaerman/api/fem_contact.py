@@ -413,7 +413,6 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     estimate = bool(options["estimate"])
     check_figure_format(options["figure_format"])
     validate_fem_inputs(indenter, body)
-    max_time = validate_positive("max_time", options["max_time"], "s")
     base = options["mesh"]
     if base is None:
         base = FINITE_MESH if problem.body.finite else DEFAULTS
@@ -430,8 +429,10 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
     numerics = {"accuracy": accuracy, "refine": refine, "estimate": estimate}
-    numerics["solver"] = options["solver"]
+    numerics.update(solver=options["solver"], max_time=options["max_time"])
     check_options(problem, {k: v for k, v in numerics.items() if v is not None})
+    max_time = entry("max_time").default if options["max_time"] is None else options["max_time"]
+    max_time = validate_positive("max_time", max_time, "s")
     check_backend(options["solver"])
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
@@ -474,7 +475,7 @@ def contact(
     refine: float = 1.0,
     estimate: bool = True,
     accuracy: float | None = None,
-    max_time: float = 60.0,
+    max_time: float | None = None,
     mesh: MeshSettings | None = None,
     mesh_size: float | None = None,
     mesh_margin: float | None = None,
@@ -534,6 +535,8 @@ def contact(
     accuracy : float, optional
         Refine until the estimated force and beta errors are <= accuracy (linear model,
         within ``max_time`` s).
+    max_time : float, optional
+        The time budget in s of ``accuracy`` (only with it); None: 60 s.
     mesh : MeshSettings, optional
         The base mesh; ``mesh_size``, ``mesh_margin``, ``domain_factor``, ``growth`` and
         ``max_dofs`` (the ``--mesh-size`` ... options) override its fields.

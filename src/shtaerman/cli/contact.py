@@ -9,7 +9,6 @@ from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
 from ..fem.finite_contact import FINITE_MESH
 from ..fem.mesh import DEFAULTS
 from ..theory.materials import Material
-from ..validation import InputError
 from ..vocabulary import entry, fields
 from .common import (
     PROFILES,
@@ -100,14 +99,11 @@ KEYWORDS = (
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
     refuse_idle_output_options(args, ("out",))
-    if given(args, "max_time") and args.accuracy is None:
-        raise InputError(
-            "--max-time: applies with --accuracy only (the time budget of its refinement); "
-            "give --accuracy too",
-            "max_time",
-        )
+    options = keywords(args, KEYWORDS)
+    if not given(args, "max_time"):  # the API's default: the budget of accuracy, if given
+        options["max_time"] = None
     with in_option_words():
-        result = contact(indenter(args), Material(args.E2, args.nu2), **keywords(args, KEYWORDS))
+        result = contact(indenter(args), Material(args.E2, args.nu2), **options)
     warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if args.json:

@@ -149,9 +149,10 @@ def rubber_model(
 ) -> RubberModel:
     """Check the rubber options together and return the :class:`RubberModel`.
 
-    A shape option of another model (e.g. ``mooney_ratio`` with ``yeoh``) is refused: it would
-    be ignored. None means "not given" (the defaults: r = 0, (c2, c3) = (0, 0), Jm required
-    for Gent, ``quadratic``).
+    A shape option of another model (e.g. ``mooney_ratio`` with ``yeoh``) is refused where
+    the input enters, by :class:`shtaerman.problem.Body` (its map
+    :data:`shtaerman.problem.RUBBER_SHAPES`). None means "not given" (the defaults: r = 0,
+    (c2, c3) = (0, 0), Jm required for Gent, ``quadratic``).
 
     Raises
     ------
@@ -163,11 +164,6 @@ def rubber_model(
             f"model: unknown finite-strain model {model!r}; pick one of {', '.join(MODELS)}",
             "model",
         )
-    owner = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
-    given = {"mooney_ratio": mooney_ratio, "yeoh": yeoh, "gent_limit": gent_limit}
-    for name, value in given.items():
-        if value is not None and model != owner[name]:
-            raise InputError(f"{name}: applies to the {owner[name]} model only", name)
     if volumetric is not None and volumetric not in VOLUMETRIC:
         raise InputError(
             f"volumetric must be one of {', '.join(VOLUMETRIC)}, got {volumetric!r}", "volumetric"

@@ -39,6 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import vocabulary
+from ..problem import RUBBER_SHAPES
 from ..study.kinds import (
     KINDS,
     Kind,
@@ -457,22 +458,19 @@ def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:
     """A dynamic case as the command line builds it: its
     :class:`~shtaerman.problem.Problem` (the rubber options of its model, as a study file's
     swept model takes them) and the keywords of :func:`shtaerman.dynamic`: the numerics set to
-    other than the kind's defaults (an ``axis_size`` as the linear body's settings)."""
+    other than the kind's defaults (an ``axis_size`` as the linear body's settings, refused
+    for a rubber by :data:`shtaerman.problem.OPTION_SUPPORT`)."""
     from ..api.fem_dynamic import SETTINGS_OPTIONS
     from ..fem.dynamic_contact import DynamicSettings
-    from ..problem import Problem
+    from ..problem import Problem, check_options
 
     indenter, body, keywords = _struck_case(p)
     problem = Problem.impact(indenter, body, **keywords)
     numerics = _changed(p, "dynamic", SETTINGS_OPTIONS)
-    if _changed(p, "dynamic", ("axis_size",)):
-        if problem.body.finite:  # the finite-strain impact grades its own axis
-            raise InputError(
-                f"axis_size: not supported with model {p['model']!r} in the impact (it takes "
-                "time_steps and mesh_size)",
-                "axis_size",
-            )
-        numerics["settings"] = DynamicSettings(axis_size=p["axis_size"])
+    axis = _changed(p, "dynamic", ("axis_size",))
+    check_options(problem, axis)  # a study-file key: the table refuses it for a rubber
+    if axis:
+        numerics["settings"] = DynamicSettings(**axis)
     return problem, {**numerics, "refine": p["refine"], "estimate": p["estimate"]}
 
 
@@ -720,11 +718,6 @@ FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)
 """x/a (linear contact radius) at which a finite-strain case reports P / P_linear-FEM."""
 
 
-RUBBER_SHAPES = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
-"""Shape parameter -> the rubber model it belongs to (left out for a case of another model,
-as a study file's swept model does)."""
-
-
 def check_rubber_options(parameters: Mapping[str, Any], axes: Mapping[str, list[Any]]) -> None:
     """Refuse, in one line naming it, a rubber option that no case of the sweep uses: a shape
     option whose model no case has (``mooney_ratio`` with neo-Hookean alone was ignored), or
@@ -753,11 +746,19 @@ def check_rubber_options(parameters: Mapping[str, Any], axes: Mapping[str, list[
 
 
 def _rubber(p: dict[str, Any]):
-    """The case's rubber model: ``model`` with its own shape parameters and ``volumetric``."""
-    from ..fem.rubber import rubber_model
+    """The case's rubber model: ``model`` with its own shape parameters and ``volumetric``,
+    checked as the problem's :class:`~shtaerman.problem.Body` (a study file's words)."""
+    from ..problem import MODELS, Body
 
     shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
-    return rubber_model(p["model"], volumetric=p["volumetric"], **shapes)
+    body = Body(_material(p, "E2", "nu2"), p["model"], volumetric=p["volumetric"], **shapes)
+    if not body.finite:
+        raise InputError(
+            f"model: a finite-strain study presses a rubber: pick one of "
+            f"{', '.join(MODELS[1:])}, got {p['model']!r}",
+            "model",
+        )
+    return body.rubber()
 
 
 def _finite_inputs(p: dict[str, Any]):

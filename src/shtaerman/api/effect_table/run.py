@@ -9,7 +9,7 @@ import warnings
 from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
-from ...problem import OPTION_SUPPORT, Problem
+from ...problem import Problem, check_options
 from ...validation import (
     InputError,
     NumericalFailureError,
@@ -53,14 +53,17 @@ def _describe(parts: Parts) -> dict[str, Any]:
 
 def _options(problem: Problem, given: dict[str, Any]) -> tuple[dict[str, Any], tuple[str, ...]]:
     """The numerical options of ``given`` that ``problem``'s combination takes, and a note for
-    each it does not (:data:`shtaerman.problem.OPTION_SUPPORT`), left out of its run."""
+    each it does not (:func:`shtaerman.problem.check_options`), left out of its run."""
     taken, notes = dict(given), []
-    for limit in OPTION_SUPPORT:
-        if limit.when(problem.cell):
-            for name in [name for name in taken if name in limit.options]:
-                del taken[name]
-                notes.append(f"{name} not applied: {limit.reason.format(model=problem.body.model)}")
-    return taken, tuple(notes)
+    while True:
+        try:
+            check_options(problem, taken)
+        except InputError as refused:  # one option at a time, each named
+            name = refused.parameter
+            del taken[name]
+            notes.append(f"{name} not applied: {str(refused).removeprefix(f'{name}: ')}")
+            continue
+        return taken, tuple(notes)
 
 
 NO_ESTIMATE = (
