@@ -26,7 +26,9 @@ class StudyResults:
     passed : bool
         Every check of every study passed.
     studies : dict of str to dict
-        Per study name: its entry of ``results.json`` (without ``out``: no files, figures).
+        Per study name: its entry of ``results.json`` (without ``out``: no files, figures);
+        its ``warnings``: the validity warnings its runs issued, once each ([] within every
+        limit of :mod:`shtaerman.guards`).
     out : pathlib.Path or None
         The result folder written (results.json, report.md, report.html, files, figures).
     outcomes : tuple
@@ -69,6 +71,12 @@ def run_study(
     ------
     shtaerman.validation.InputError
         A missing or invalid study file (naming the file and the key).
+
+    Warns
+    -----
+    shtaerman.guards.ValidityWarning
+        Each validity limit a study's runs passed, once, naming the study (also recorded in
+        its entry's ``warnings`` and in the reports).
     """
     from ..output.files import json_safe, output_folder, staged_folder
     from ..output.folder import finish_verification, study_entry

@@ -25,6 +25,7 @@ from typing import Any
 
 import jinja2
 
+from ..study.run import recorded_warnings
 from ..version import __version__
 from . import text_contact, text_dynamic, text_effects, text_finite
 from .entry import no_summary_row, stored_findings, stored_tables
@@ -111,10 +112,13 @@ def study_document(
     """One study's entry of results.json, by its kind's text module (:data:`TEXTS`).
 
     ``files``: stem to path and ``figures``: caption to PNG path, both relative to the result
-    folder; ``output_seconds``: the time spent writing them (s), if known.
+    folder; ``output_seconds``: the time spent writing them (s), if known. ``warnings``: the
+    validity warnings the study's runs issued, once each (:func:`~shtaerman.study.run.run_study`
+    records them; [] within every limit).
     """
     kind = getattr(outcome.study, "kind", "contact")
-    return _text(kind).entry(outcome, files, output_seconds, figures)
+    entry = _text(kind).entry(outcome, files, output_seconds, figures)
+    return {**entry, "warnings": recorded_warnings(outcome)}
 
 
 def results_document(
@@ -210,6 +214,16 @@ def validity_table(studies: dict) -> dict[str, object] | None:
     }
 
 
+def _warnings(studies: dict) -> list[dict[str, str]]:
+    """The validity warnings of every study, each with its study's name (an entry of an
+    older results.json has none)."""
+    return [
+        {"study": name, "text": text}
+        for name, study in studies.items()
+        for text in study.get("warnings", [])
+    ]
+
+
 def _failures(studies: dict) -> list[dict[str, str]]:
     """The failed checks of every study (:func:`_checks`), each with its study's name."""
     return [
@@ -264,6 +278,7 @@ def _study_section(name: str, study: dict, figures: Mapping[str, str]) -> dict[s
         "tables": _study_text(study, "tables")(study),
         "timing_text": _study_text(study, "timing_text")(study),
         "figures": _figures(figures),
+        "warnings": list(study.get("warnings", [])),
     }
 
 
@@ -289,6 +304,7 @@ def report_context(
         "verdict": "all studies PASS" if results["passed"] else "at least one study FAILS",
         "quick": results["quick"],
         "failures": _failures(studies),
+        "warnings": _warnings(studies),
         "findings": [
             sentence
             for name, study in studies.items()

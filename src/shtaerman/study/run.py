@@ -1,21 +1,33 @@
-"""Running one study of any kind: the kind registry (:mod:`.kinds`) picks its runner."""
+"""Running one study of any kind: the kind registry (:mod:`.kinds`) picks its runner.
+
+The one place where a study's validity warnings are kept: :func:`run_study` catches the
+:class:`~shtaerman.guards.ValidityWarning` of every run of the study (a limit declared in
+:mod:`shtaerman.guards`), records them once each on the outcome (:func:`recorded_warnings`,
+results.json's ``warnings`` and the reports' warnings) and says each once, naming the study.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+import warnings
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
+from ..guards import ValidityWarning
 from ..validation import InputError
 from .kinds import kind_function
 
-__all__ = ["Progress", "run_study"]
+__all__ = ["Progress", "recorded_warnings", "run_study", "say_warnings"]
 
 Progress = Callable[[str], None]
 """Receives one line of progress."""
+RECORDED = "validity_warnings"
+"""Attribute of a study's outcome that :func:`run_study` sets: its validity warnings."""
 
 
 def run_study(study: Any, *, quick: bool = False, progress: Progress | None = None) -> Any:
-    """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`).
+    """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`); its validity
+    warnings are recorded on the outcome (:func:`recorded_warnings`) and said once each.
 
     Raises
     ------
@@ -24,8 +36,56 @@ def run_study(study: Any, *, quick: bool = False, progress: Progress | None = No
         resolves), prefixed with the study file and the study's name.
     """
     run = kind_function(getattr(study, "kind", "contact"), "run")
+    with _recording(study) as found:
+        try:
+            outcome = run(study, quick, progress)
+        except InputError as error:
+            raise InputError(f"{_where(study)}: {error}", error.parameter) from None
+    # the outcomes are frozen dataclasses of each kind's own; the record is the driver's
+    object.__setattr__(outcome, RECORDED, tuple(found))
+    return outcome
+
+
+def recorded_warnings(outcome: Any) -> list[str]:
+    """The validity warnings :func:`run_study` recorded for ``outcome``, once each in the
+    order issued ([] for an outcome a kind's runner made without it)."""
+    return list(getattr(outcome, RECORDED, ()))
+
+
+def say_warnings(study: Any, texts: Iterable[str]) -> None:
+    """Issue each of a study's recorded warnings ``texts`` as a :class:`ValidityWarning`
+    naming the study (a study run elsewhere, e.g. in a dask worker)."""
+    for text in texts:
+        warnings.warn(f"{_where(study)}: {text}", ValidityWarning, stacklevel=2)
+
+
+def _where(study: Any) -> str:
+    return f"{study.source}: study {study.name!r}"
+
+
+@contextlib.contextmanager
+def _recording(study: Any) -> Iterator[list[str]]:
+    """Catch every warning issued inside; on leaving (an error too), fill the yielded list
+    with the validity warnings' texts, once each, and issue every warning again once: a
+    validity warning naming the study, another as it was (its own place)."""
+    found: list[str] = []
     try:
-        return run(study, quick, progress)
-    except InputError as error:
-        where = f"{study.source}: study {study.name!r}"
-        raise InputError(f"{where}: {error}", error.parameter) from None
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")  # a limit passed again, or by another study, counts
+            yield found
+    finally:
+        said = set()
+        for warning in caught:
+            text, category = str(warning.message), warning.category
+            validity = issubclass(category, ValidityWarning)
+            key = (
+                (category, text) if validity else (category, text, warning.filename, warning.lineno)
+            )
+            if key in said:
+                continue
+            said.add(key)
+            message: Warning | str = warning.message
+            if validity:
+                found.append(text)
+                message = category(f"{_where(study)}: {text}")
+            warnings.warn_explicit(message, category, warning.filename, warning.lineno)

@@ -3,16 +3,21 @@
 Each task runs its study and writes the study's files and figures into the staging folder
 (the workers of the local cluster share this machine's disk) and returns its results.json
 entry; :func:`shtaerman.output.folder.run_verification` collects the entries as they finish,
-with :func:`on_dask` as its executor, and writes results.json and the reports.
+with :func:`on_dask` as its executor, and writes results.json and the reports. A study's
+validity warnings travel in its entry (``warnings``) and are said by this process, as a
+study run here says them.
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from ..guards import ValidityWarning
 from ..output.folder import Executor, Finished, compute_study, run_verification
+from ..study.run import say_warnings
 from ..validation import InputError, NumericalFailureError
 from .engine import dask_client, worker_count
 
@@ -40,10 +45,12 @@ def verify_task(
     study: Any, stage: str, quick: bool, figure_format: str = "png"
 ) -> dict[str, object]:
     """One study, run and written (a dask task): its results.json entry, or
-    {:data:`FAILURE`: (kind, message)} for an input the FEM refused or a failed computation."""
+    {:data:`FAILURE`: (kind, message)} for an input the FEM refused or a failed computation.
+    The study's validity warnings are in the entry, not said here (:func:`on_dask` says them)."""
     from threadpoolctl import threadpool_limits
 
-    with threadpool_limits(limits=1, user_api="blas"):
+    with threadpool_limits(limits=1, user_api="blas"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
         try:
             return compute_study(study, Path(stage), quick, figure_format)
         except InputError as error:
@@ -84,6 +91,7 @@ def on_dask(workers: int | None = None) -> Executor:
                     client.cancel(list(futures))  # the other studies' results are moot
                     kind, message = entry[FAILURE]
                     raise FAILURES[kind](message)
+                say_warnings(futures[future], entry["warnings"])
                 finished(futures[future], entry)
 
     return execute
