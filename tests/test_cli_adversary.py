@@ -109,9 +109,9 @@ def test_a_second_interrupt_during_the_clean_up_leaves_nothing_partial(
 
 UNUSED = Path("unused")
 FIGURES = [
-    ("api.fem_dynamic:_write_figures", "output.dynamic", (None, None, UNUSED, "png", False)),
+    ("api.fem_dynamic:_write_figures", "output.dynamic", (None, UNUSED, "png")),
     ("api.fem_contact:_write", "plots.gallery", (None, UNUSED, "png")),
-    ("output.folder:_study_figures", "plots.gallery", (None, UNUSED, UNUSED, "png")),
+    ("output.folder:write_contact_study", "plots.gallery", (None, UNUSED, UNUSED, "png")),
 ]
 """(the function that writes figures, the plotting module it imports lazily, its arguments:
 never used, the signal stops it first)."""

@@ -12,7 +12,8 @@ from shtaerman.plots import finite
 def outcome(errors):
     """A finite-strain outcome with these relative estimated errors of ``force_ratio``."""
     steps = [{"force_ratio": SimpleNamespace(error=e)} for e in errors]
-    return SimpleNamespace(estimates=SimpleNamespace(steps=steps))
+    study = SimpleNamespace(rubber=SimpleNamespace(name="neo-hookean"))  # the legend's model
+    return SimpleNamespace(estimates=SimpleNamespace(steps=steps), study=study)
 
 
 def bars(axes):

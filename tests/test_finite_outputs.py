@@ -102,8 +102,8 @@ def test_the_finite_study_impact_figure_names_the_study_s_rubber_and_profile(tmp
     from types import SimpleNamespace
 
     from shtaerman.fem.rubber import rubber_model
-    from shtaerman.output.text_finite import variant_label
     from shtaerman.plots.finite import plot_finite_impact
+    from shtaerman.plots.labels import variant_label
 
     t = np.linspace(0.0, 1e-3, 5)
     history = SimpleNamespace(t=t, x=1e-3 * np.sin(np.pi * t / 1e-3), P=np.sin(np.pi * t / 1e-3))

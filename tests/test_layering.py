@@ -46,6 +46,8 @@ ALLOWED = {
     | {"api.fem_dynamic"}
     # and an effects case runs sh.effects (the table of shtaerman effects), the same way
     | {"api.effect_table"}
+    # a dynamic case fails on the command line's own checks (energy balance, reflections)
+    | {"api.dynamic_result"}
     # sweep/cli.py, the sweep command's parser, declares --workers as verify's does (one
     # option builder from the vocabulary, its range in the help and the error)
     | {"cli.common"},

@@ -11,29 +11,21 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..fem.rubber import RubberModel
+from ..plots.labels import model_label
 from ..theory.viscoelastic import PronySeries
 
 __all__ = [
-    "MODEL_LABELS",
     "body_words",
     "case_words",
     "interface_words",
-    "model_label",
     "prefixed",
     "prony_words",
     "rubber_constants",
     "rubber_words",
 ]
 
-MODEL_LABELS = {"neo-hookean": "neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
-"""A rubber model's name in the findings and tables."""
 VOLUMETRIC = {"quadratic": "K/2 (J-1)^2", "logarithmic": "K/2 (ln J)^2"}
 """A compressible rubber's volumetric energy in words."""
-
-
-def model_label(model: str) -> str:
-    """ "neo-Hookean", "Mooney-Rivlin", "Yeoh", "Gent"."""
-    return MODEL_LABELS.get(model, model.capitalize())
 
 
 def rubber_constants(rubber: RubberModel) -> str:

@@ -23,7 +23,7 @@ from ..plots.finite import (
     plot_finite_ratios,
     plot_finite_section,
 )
-from .case import model_label
+from ..plots.labels import model_label
 from .export import field_mesh, indenter_field_data, write_histories, write_vtu
 from .files import write_csv
 

@@ -12,33 +12,26 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..paper.case import is_paper_case
+from ..plots.labels import model_label, variant_label
 from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from ..theory.sneddon import profile_inputs
-from .case import VOLUMETRIC, case_words, model_label, rubber_constants, rubber_words
+from .case import VOLUMETRIC, case_words, rubber_constants, rubber_words
 from .entry import text_entry
 from .text_corrections import corrections_finding, corrections_table
 from .wording import plus_minus
 
 __all__ = [
     "QUICK_ERROR",
-    "VARIANTS",
     "central_pressure_words",
     "depth_limit",
     "entry",
     "study_findings",
     "study_tables",
     "validity_rows",
-    "variant_label",
 ]
 
-VARIANTS = {
-    "linear_exact": "Shtaerman, linear (the paper's)",
-    "linear_fem": "linear FEM, same mesh",
-    "finite_strain": "neo-Hookean finite strain",
-}
-"""Impact variants: key -> label."""
 QUICK_ERROR = (
     "Quick mode: one coarse mesh (about 3.7k dofs), no error estimates: the force is within "
     "~1.5 % of Shtaerman's at small depths, the impact ratios within ~1e-3 of the default run's."
@@ -82,16 +75,6 @@ def _value(outcome: FiniteStudyOutcome, key: str, value: float, spec: str) -> st
     """``value`` by ``spec`` ± its estimated error in the value's own unit."""
     error = _relative(outcome, key)
     return f"{value:{spec}}" + _plain(None if error is None else error * abs(value))
-
-
-def variant_label(outcome: FiniteStudyOutcome, variant: str) -> str:
-    """The impact variant's label (in the tables and the impact figure's legend): the linear
-    exact one Sneddon's for another profile, the finite-strain one naming the rubber model."""
-    if variant == "linear_exact" and outcome.study.indenter.kind != "power-law":
-        return f"Sneddon, linear ({outcome.study.indenter.kind} profile)"
-    if variant != "finite_strain":
-        return VARIANTS[variant]
-    return f"{model_label(outcome.study.rubber.name)} finite strain"
 
 
 def rubber_finding(outcome: FiniteStudyOutcome) -> list[str]:

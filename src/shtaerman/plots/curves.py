@@ -88,7 +88,7 @@ def _fem_label(result: IndentationResult) -> str:
     rubber = getattr(result, "rubber", None)
     if rubber is None:
         return "FEM"
-    from ..output.case import model_label
+    from .labels import model_label
 
     return f"FEM, {model_label(rubber.name)}"
 

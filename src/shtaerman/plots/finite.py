@@ -22,8 +22,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from ..output.case import model_label
-from ..output.text_finite import variant_label
+from .labels import model_label, variant_label
 from .sections import plot_field
 from .style import (
     EXACT_COLOUR,

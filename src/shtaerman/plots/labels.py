@@ -12,11 +12,23 @@ are shown in per cent.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from .. import vocabulary
 from ..validation import InputError
 
-__all__ = ["LABELS", "Label", "axis_label", "describe", "is_percent", "scale"]
+__all__ = [
+    "LABELS",
+    "MODEL_LABELS",
+    "VARIANTS",
+    "Label",
+    "axis_label",
+    "describe",
+    "is_percent",
+    "model_label",
+    "scale",
+    "variant_label",
+]
 
 
 @dataclass(frozen=True)
@@ -135,3 +147,28 @@ def axis_label(key: str, unit: str = "") -> str:
     label = describe(key)
     shown = "%" if label.percent else (label.unit or unit)
     return f"{label.text} ({shown})" if shown else label.text
+
+
+MODEL_LABELS = {"neo-hookean": "neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
+"""A rubber model's name in the findings, tables and legends."""
+VARIANTS = {
+    "linear_exact": "Shtaerman, linear (the paper's)",
+    "linear_fem": "linear FEM, same mesh",
+    "finite_strain": "neo-Hookean finite strain",
+}
+"""The finite-strain study's impact variants: key -> label."""
+
+
+def model_label(model: str) -> str:
+    """ "neo-Hookean", "Mooney-Rivlin", "Yeoh", "Gent"."""
+    return MODEL_LABELS.get(model, model.capitalize())
+
+
+def variant_label(outcome: Any, variant: str) -> str:
+    """The impact variant's label (in the tables and the impact figure's legend): the linear
+    exact one Sneddon's for another profile, the finite-strain one naming the rubber model."""
+    if variant == "linear_exact" and outcome.study.indenter.kind != "power-law":
+        return f"Sneddon, linear ({outcome.study.indenter.kind} profile)"
+    if variant != "finite_strain":
+        return VARIANTS[variant]
+    return f"{model_label(outcome.study.rubber.name)} finite strain"

@@ -555,7 +555,10 @@ def refused(path: Path, error: InputError, keys: dict[str, str] | None = None) -
     if isinstance(error, StudyError):
         return error
     parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
-    key = {**STUDY_KEYS, **(keys or {})}.get(parameter, "half_space")
+    table = {**STUDY_KEYS, **(keys or {})}
+    key = table.get(parameter, "half_space")
+    if not parameter.isidentifier():  # no name: mass and velocity together, their table
+        key = table.get("mass", "impact.mass").partition(".")[0]
     return StudyError(f"{path}: key '{key}': {str(error).removeprefix(f'{parameter}: ')}")
 
 

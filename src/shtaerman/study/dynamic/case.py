@@ -24,7 +24,7 @@ from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
-from ...theory.impact import ImpactResult
+from ...theory.impact import ImpactResult, representable
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
@@ -264,6 +264,7 @@ def run_case(
         warnings.simplefilter("always")  # a refusal is the one line
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         quasi = exact_impact(mass, velocity, law)
+        representable("v0^2", velocity * velocity, mass, velocity)  # before the estimate's
         estimate = radiation(mass, velocity, law, density, half_space, quasi)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
