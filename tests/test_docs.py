@@ -239,8 +239,9 @@ def test_parameter_tables_fit_the_page(site, browser):
     # the study-file table's Meaning column ran 49 px past the text's edge, cut off
     assert max(sticking_out) <= 0.5  # half a pixel: rounding of the layout
     [commands] = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
-    # a table per group, per loading of the combinations (3) and per command
-    assert len(sticking_out) == 3 + 3 + len(commands.choices)
+    # a table per group, per loading of the combinations (3), per command, and the option
+    # limits' ("Which options apply where")
+    assert len(sticking_out) == 3 + 3 + len(commands.choices) + 1
 
 
 def test_api_reference_documents_the_public_api(site):
