@@ -34,7 +34,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from shtaerman.fem.contact import (
+from shtaerman.fem.contact.linear import (
     aligned_force,
     contact_step,
     factorize_stiffness,

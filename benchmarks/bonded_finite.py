@@ -26,8 +26,8 @@ from pathlib import Path
 import numpy as np
 from verify_cost import cpu, load, reference
 
-import shtaerman.fem.finite_stick as finite_stick
-from shtaerman.fem.finite_contact import FINITE_MESH, run_finite_indentation
+import shtaerman.fem.contact.finite_stick as finite_stick
+from shtaerman.fem.contact.finite import FINITE_MESH, run_finite_indentation
 from shtaerman.fem.solver import PatternSolver
 from shtaerman.study.contact.indentation import default_depths
 from shtaerman.theory.indenter import PowerLawIndenter

@@ -67,7 +67,7 @@ import os
 import time
 from dataclasses import replace
 
-from shtaerman.fem.finite_contact import FINITE_MESH
+from shtaerman.fem.contact.finite import FINITE_MESH
 from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
 from shtaerman.fem.impact import run_impact
 from shtaerman.study.dynamic.accuracy import ladder_estimates, over_levels

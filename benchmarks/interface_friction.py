@@ -16,10 +16,10 @@ from __future__ import annotations
 import math
 import sys
 
-from shtaerman.fem.contact import solve_contact
+from shtaerman.fem.contact.linear import solve_contact
+from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.stick import solve_bonded_contact
 from shtaerman.study.contact.indentation import default_depths
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material

@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 import shtaerman as sh
-from shtaerman.fem.contact import press_at_rate
+from shtaerman.fem.contact.rate import press_at_rate
 from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.study.contact.indentation import refined_radius

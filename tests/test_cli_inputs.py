@@ -14,7 +14,7 @@ import pytest
 import shtaerman as sh
 from shtaerman.api.fem_contact import contact_depths
 from shtaerman.cli import build_parser, main
-from shtaerman.fem.contact import validate_fem_inputs
+from shtaerman.fem.contact.linear import validate_fem_inputs
 from shtaerman.study.contact.indentation import default_depths
 from shtaerman.study.schema import load_study
 from shtaerman.sweep import parse_sweep
@@ -303,7 +303,7 @@ def test_the_settings_fields_are_named_once():
 
 
 def test_a_zero_gap_beyond_the_edge_is_refused_by_the_edge_function():
-    from shtaerman.fem.contact import edge_radius
+    from shtaerman.fem.contact.constraints import edge_radius
     from shtaerman.validation import NumericalFailureError
 
     r = np.linspace(0.0, 1e-2, 41)

@@ -16,9 +16,9 @@ import math
 import numpy as np
 import pytest
 
+from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.fem.dynamic_contact import DynamicSettings, prepare_dynamic_impact
 from shtaerman.fem.impact import run_impact
-from shtaerman.fem.stick import solve_bonded_contact
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact

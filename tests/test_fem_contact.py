@@ -13,12 +13,8 @@ import pytest
 
 from shtaerman.api import contact
 from shtaerman.cli import main
-from shtaerman.fem.contact import (
-    _aligned_contact,
-    central_pressure,
-    complementarity,
-    solve_contact,
-)
+from shtaerman.fem.contact.constraints import central_pressure
+from shtaerman.fem.contact.linear import _aligned_contact, complementarity, solve_contact
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.solver import TailFactorization, factorize
 from shtaerman.study.contact.indentation import default_depths, run_indentation
@@ -290,7 +286,7 @@ def test_contact_cli_bad_input(capsys, argv, message):
 def test_the_plain_superlu_path_gives_the_same_contact(monkeypatch, paper_run):
     # the fallback factorizes with SuperLU's own ordering and solves unit loads for the
     # compliance: the same discrete problem, so the same answer to round-off
-    import shtaerman.fem.contact as contact
+    import shtaerman.fem.contact.linear as contact
     from shtaerman.fem.solver import TailPivotError
 
     def pivoted(*args, **kwargs):
@@ -340,7 +336,7 @@ def test_the_mesh_that_pivoted_now_takes_the_schur_path(pivoting_system):
 
 
 def test_a_pivoted_tail_falls_back_to_unit_load_solves(monkeypatch, pivoting_system):
-    import shtaerman.fem.contact as contact
+    import shtaerman.fem.contact.linear as contact
     from shtaerman.fem.solver import TailPivotError
 
     reference = _pivoting_curve(pivoting_system)

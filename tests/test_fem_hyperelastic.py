@@ -14,11 +14,8 @@ from scipy.integrate import simpson
 from scipy.optimize import brentq
 from skfem import MeshTri
 
-from shtaerman.fem.finite_contact import (
-    ContactOutgrowsMeshError,
-    run_finite_indentation,
-    solve_finite_contact,
-)
+from shtaerman.fem.contact.constraints import ContactOutgrowsMeshError
+from shtaerman.fem.contact.finite import run_finite_indentation, solve_finite_contact
 from shtaerman.fem.hyperelastic import (
     NeoHookean,
     NewtonError,
@@ -321,7 +318,7 @@ def test_newton_failure_is_a_clear_error():
 
 
 def test_inverted_element_stops_a_contact_step():
-    from shtaerman.fem.finite_contact import NewtonStepper
+    from shtaerman.fem.contact.finite import NewtonStepper
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
@@ -335,7 +332,7 @@ def test_inverted_element_stops_a_contact_step():
 
 def test_newton_step_solves_the_saddle_system():
     """eliminate_gaps's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
-    from shtaerman.fem.finite_contact import NewtonStepper, eliminate_gaps
+    from shtaerman.fem.contact.finite import NewtonStepper, eliminate_gaps
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
@@ -391,7 +388,7 @@ def test_modified_newton_reuses_factorizations(monkeypatch):
     """The contact Newton reuses its factorization while the active set holds and the
     corrections contract: fewer factorizations, the same contact to the Newton tolerance."""
     from shtaerman.fem import solver
-    from shtaerman.fem.finite_contact import NewtonStepper
+    from shtaerman.fem.contact.finite import NewtonStepper
 
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     depths = np.linspace(1.0, 8.0, 8) * 0.4e-3
@@ -422,7 +419,8 @@ def test_predicted_contact_edge_saves_factorizations(monkeypatch):
     """The first Newton iteration of a depth leaves out the nodes the linear predictor puts in
     contact beyond the extrapolated edge: fewer active-set changes, so fewer factorizations,
     on a mesh whose contact edge crosses several nodes per depth step; the same contact."""
-    from shtaerman.fem import finite_contact, solver
+    from shtaerman.fem import solver
+    from shtaerman.fem.contact import finite as finite_contact
 
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     depths = np.linspace(1.0, 8.0, 8) * 0.4e-3
@@ -448,7 +446,8 @@ def test_first_depth_predicts_its_edge_from_the_small_strain_contact(monkeypatch
     """With no converged contact before it, the first depth's first active set ends at the
     small-strain contact radius: the linear predictor's guess (no contact) would put the
     nodes beyond the edge in contact and cost an active-set change each."""
-    from shtaerman.fem import finite_contact, solver
+    from shtaerman.fem import solver
+    from shtaerman.fem.contact import finite as finite_contact
 
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     mesh = replace(COARSE, size=1.0 / 30.0)

@@ -174,7 +174,7 @@ def test_bad_input_is_one_line(capsys, argv, names):
 def test_depths_the_finite_strain_contact_cannot_resolve_are_refused_at_once(
     capsys, monkeypatch, depths, message
 ):
-    import shtaerman.fem.finite_contact as finite
+    import shtaerman.fem.contact.finite as finite
 
     def never(*args, **kwargs):
         raise AssertionError("the FEM ran")
@@ -188,7 +188,7 @@ def test_depths_the_finite_strain_contact_cannot_resolve_are_refused_at_once(
 def test_the_studies_depths_pass_the_finite_strain_check():
     """Finite-strain study depths (x/a from 0.01 up to 2 x_c of the paper's impact) lie inside
     the range the check allows."""
-    from shtaerman.fem.finite_contact import check_finite_depths
+    from shtaerman.fem.contact.finite import check_finite_depths
 
     x_c = 0.008517340195359727
     depths = [float(PAPER.depth(1e-6)), 2 * x_c]  # d/a 0.009 and 1.11
@@ -203,7 +203,7 @@ def test_a_fold_beyond_the_contact_edge_is_a_failure_not_a_numpy_warning():
 
     import numpy as np
 
-    from shtaerman.fem.finite_contact import finite_step
+    from shtaerman.fem.contact.finite import finite_step
     from shtaerman.validation import NumericalFailureError
 
     radius = np.linspace(0.0, 1e-2, 41)
@@ -222,7 +222,7 @@ def test_a_fold_beyond_the_contact_edge_is_a_failure_not_a_numpy_warning():
 def test_a_smallest_depth_the_mesh_cannot_resolve_is_refused_before_newton():
     """A smallest depth whose contact covers no surface node is refused before any Newton
     step (from Shtaerman's contact radius); it ran and returned the numbers of no contact."""
-    from shtaerman.fem.finite_contact import run_finite_indentation
+    from shtaerman.fem.contact.finite import run_finite_indentation
     from shtaerman.fem.mesh import MeshSettings
     from shtaerman.theory.materials import Material
     from shtaerman.validation import InputError

@@ -21,27 +21,28 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import math
 
 import numpy as np
 import pytest
 from scipy.integrate import simpson
 
 import shtaerman as sh
-import shtaerman.fem.finite_stick as finite_stick
+import shtaerman.fem.contact.finite_stick as finite_stick
 import shtaerman.study.finite.indentation as finite_study
 from shtaerman.cli import main
 from shtaerman.cli.contact import finite_contact_text
-from shtaerman.fem.contact import solve_contact
-from shtaerman.fem.elasticity import assemble
-from shtaerman.fem.finite_contact import (
+from shtaerman.fem.contact.finite import (
     geometric_radius,
     run_finite_indentation,
     solve_finite_contact,
 )
-from shtaerman.fem.finite_stick import solve_finite_bonded_contact
+from shtaerman.fem.contact.finite_stick import solve_finite_bonded_contact
+from shtaerman.fem.contact.linear import solve_contact
+from shtaerman.fem.contact.stick import solve_bonded_contact
+from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.stick import solve_bonded_contact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError
@@ -230,20 +231,27 @@ def test_a_tensile_node_is_released_first_and_alone_when_cautious():
     node only, or if none the free node deepest below the indenter."""
     from types import SimpleNamespace
 
-    from shtaerman.fem.finite_stick import _Load, _stuck_changes
+    from shtaerman.fem.contact.constraints import worst_only
+    from shtaerman.fem.contact.finite_stick import _changes, _Load
 
     stepper = SimpleNamespace(tolerance=1e-8)
     held = np.array([0.0, 1.0, 2.0, np.nan, np.nan])
     lam = np.array([5.0, -1.0, -2.0, 0.0, 0.0])
     gap = np.array([0.0, 0.0, 0.0, -0.1, -0.3])
     trial = _Load(held, np.zeros(1), np.arange(5.0), gap, lam)
-    release, enter = _stuck_changes(stepper, trial, 1.0, cautious=False)
+
+    def changes(cautious: bool) -> tuple[np.ndarray, np.ndarray]:
+        found, excess, _ = _changes(stepper, trial, trial, math.inf, (1.0, 1.0))
+        assert not (found[2].any() or found[3].any())  # bonded: nothing slides
+        return tuple((worst_only(found, excess) if cautious else found)[:2])
+
+    release, enter = changes(cautious=False)
     assert release.tolist() == [False, True, True, False, False]
     assert enter.tolist() == [False, False, False, True, True]
-    release, enter = _stuck_changes(stepper, trial, 1.0, cautious=True)
+    release, enter = changes(cautious=True)
     assert release.tolist() == [False, False, True, False, False] and not enter.any()
     trial.lam = np.abs(lam)
-    release, enter = _stuck_changes(stepper, trial, 1.0, cautious=True)
+    release, enter = changes(cautious=True)
     assert not release.any() and enter.tolist() == [False, False, False, False, True]
 
 
@@ -277,7 +285,7 @@ def test_the_bonded_newton_reuses_its_factorization(monkeypatch):
 def test_added_stuck_dofs_are_held_by_the_capacitance():
     """The kept factorization (its own dofs prescribed) solves with more dofs prescribed:
     the solution of the matrix with those rows and columns replaced by the identity."""
-    from shtaerman.fem.finite_stick import _Kept
+    from shtaerman.fem.contact.finite_stick import _Kept
 
     rng = np.random.default_rng(3)
     size, own, more = 12, np.array([2, 7]), np.array([2, 4, 7, 9])

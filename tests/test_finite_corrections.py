@@ -36,7 +36,7 @@ COARSE = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-3, axis_gr
 
 @pytest.fixture(scope="module")
 def outcome(tmp_path_factory):
-    import shtaerman.fem.finite_contact as finite_contact
+    import shtaerman.fem.contact.finite as finite_contact
     import shtaerman.fem.finite_dynamic as finite_dynamic
 
     path = tmp_path_factory.mktemp("corrections") / "tiny.toml"

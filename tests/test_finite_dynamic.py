@@ -7,8 +7,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from shtaerman.fem.contact.finite import solve_finite_contact
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.fem.finite_contact import solve_finite_contact
 from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
 from shtaerman.fem.impact import run_impact
@@ -173,7 +173,7 @@ def test_cli_model_refusals_are_one_line_exit_2(capsys, argv, message):
 
 def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
     import shtaerman as sh
-    import shtaerman.fem.finite_contact as finite_contact
+    import shtaerman.fem.contact.finite as finite_contact
 
     monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
     result = sh.dynamic(

@@ -24,10 +24,10 @@ from test_finite_bonded import INDENTER, _depth, _quick, _systems
 
 from shtaerman.cli import main
 from shtaerman.cli.contact import finite_contact_text
-from shtaerman.fem.contact import solve_contact
-from shtaerman.fem.finite_contact import solve_finite_contact
-from shtaerman.fem.finite_stick import solve_finite_bonded_contact
-from shtaerman.fem.stick import solve_bonded_contact
+from shtaerman.fem.contact.finite import solve_finite_contact
+from shtaerman.fem.contact.finite_stick import solve_finite_bonded_contact
+from shtaerman.fem.contact.linear import solve_contact
+from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.validation import InputError
 
 RATIO = 1.44
@@ -126,7 +126,7 @@ def test_bad_friction_is_an_input_error():
 def test_the_coulomb_newton_reuses_its_factorization(monkeypatch):
     """The quasi-static Coulomb curve's Newton reuses factorizations (a modified Newton) and
     gives full Newton's force to within the Newton tolerance's effect."""
-    import shtaerman.fem.finite_stick as finite_stick
+    import shtaerman.fem.contact.finite_stick as finite_stick
     from shtaerman.fem.solver import PatternSolver
 
     depths = np.array([_depth(0.3)])

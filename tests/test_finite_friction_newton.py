@@ -12,13 +12,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from shtaerman.fem.finite_contact import (
+from shtaerman.fem.contact.finite import (
     NEWTON_TOLERANCE,
     NewtonStepper,
     eliminate_gaps,
     geometric_radius,
 )
-from shtaerman.fem.finite_stick import HistoryStepper
+from shtaerman.fem.contact.finite_stick import HistoryStepper
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.theory.indenter import PowerLawIndenter

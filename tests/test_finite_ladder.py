@@ -266,7 +266,7 @@ def test_sweep_files_sweep_the_rubber_model(tmp_path):
 
 
 def test_depth_range_message_names_the_model_in_use():
-    from shtaerman.fem.finite_contact import check_finite_depths
+    from shtaerman.fem.contact.finite import check_finite_depths
 
     indenter = load_study(SHIPPED)[0].indenter
     with pytest.raises(InputError, match="beyond the yeoh model's"):

@@ -18,7 +18,7 @@ ARGV += ["--time-steps", "50", "--json"]
 
 @pytest.fixture
 def coarse(monkeypatch):
-    import shtaerman.fem.finite_contact as finite_contact
+    import shtaerman.fem.contact.finite as finite_contact
 
     monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
 
@@ -83,7 +83,7 @@ def test_the_energy_check_binds_the_finite_impact_too(coarse, monkeypatch, capsy
 def test_the_field_file_flags_the_rubber_model_it_holds(tmp_path):
     """The finite field VTU, now written by the linear body's field_mesh, flagged every rubber
     "model_neo-hookean"; a Mooney-Rivlin curve's file names Mooney-Rivlin."""
-    from shtaerman.fem.finite_contact import run_finite_indentation
+    from shtaerman.fem.contact.finite import run_finite_indentation
     from shtaerman.fem.rubber import rubber_model
     from shtaerman.output.finite import write_finite_field
 

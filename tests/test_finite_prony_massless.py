@@ -116,7 +116,7 @@ def test_cli_runs_the_massless_viscoelastic_rubber(capsys, monkeypatch):
     """At 3 m/s on the coarse mesh graded to 1e-6 at the axis as the default mesh: there the
     contact's release near separation inverts an axis element in the first Newton iterate
     unless the Newton back-tracks (the run failed at X = 3.3 mm without it)."""
-    import shtaerman.fem.finite_contact as finite_contact
+    import shtaerman.fem.contact.finite as finite_contact
     from shtaerman.cli import main
     from shtaerman.cli.finite_dynamic import finite_dynamic_text
 

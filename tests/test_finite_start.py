@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from shtaerman.fem.contact import MIN_CONTACT_NODES
+from shtaerman.fem.contact.constraints import MIN_CONTACT_NODES
 from shtaerman.study.finite.runner import (
     SMALL_STRAIN_SLOPE,
     START_NODES,

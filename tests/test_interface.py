@@ -23,10 +23,10 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.fem.contact import solve_contact
+from shtaerman.fem.contact.linear import solve_contact
+from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.mesh import MeshSettings
-from shtaerman.fem.stick import solve_bonded_contact
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material

@@ -13,7 +13,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.fem.finite_contact import FINITE_MESH
+from shtaerman.fem.contact.finite import FINITE_MESH
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

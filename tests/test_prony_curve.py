@@ -8,7 +8,8 @@ import pytest
 from scipy.integrate import quad
 
 import shtaerman as sh
-from shtaerman.fem.contact import press_at_rate, solve_contact, time_grid
+from shtaerman.fem.contact.linear import solve_contact
+from shtaerman.fem.contact.rate import press_at_rate, time_grid
 from shtaerman.fem.elasticity import assemble
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.study.contact.indentation import default_depths, refined_radius

@@ -99,7 +99,7 @@ def test_a_vanishing_relaxation_is_the_elastic_finite_strain_impact():
 def few_rate_steps(monkeypatch):
     """A viscoelastic curve in 20 time steps, not 200: with g = 1e-9 the history is nil, so the
     steps change nothing but the cost."""
-    import shtaerman.fem.contact as module
+    import shtaerman.fem.contact.rate as module
 
     monkeypatch.setattr(module, "press_at_rate", functools.partial(module.press_at_rate, steps=20))
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from shtaerman.fem.finite_contact import run_finite_indentation
+from shtaerman.fem.contact.finite import run_finite_indentation
 from shtaerman.fem.hyperelastic import NeoHookean, NewtonError, kinematics
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.rubber import (

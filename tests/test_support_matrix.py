@@ -51,7 +51,7 @@ def few_rate_steps(monkeypatch):
     """A viscoelastic curve in 20 time steps, not 200: this test asks that it runs."""
     import functools
 
-    import shtaerman.fem.contact as module
+    import shtaerman.fem.contact.rate as module
 
     monkeypatch.setattr(module, "press_at_rate", functools.partial(module.press_at_rate, steps=20))
 

@@ -353,7 +353,7 @@ def _impact(problem: Problem) -> tuple[float, float]:
 def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     """The depths (m) within the finite-strain contact's reach; default depths that are not
     name the impact that set them (its mass and velocity)."""
-    from ..fem.finite_contact import check_finite_depths
+    from ..fem.contact.finite import check_finite_depths
 
     impact = None if problem.loading.depths is not None else _impact(problem)
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
@@ -362,7 +362,7 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
 def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     """Refuse, naming mass and velocity, default depths whose contact zone is too large for
     the body's modulus (:func:`shtaerman.fem.contact.check_contact_scale`)."""
-    from ..fem.contact import check_contact_scale
+    from ..fem.contact.linear import check_contact_scale
     from ..study.contact.indentation import default_depths, refined_radius
 
     indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
@@ -400,8 +400,8 @@ def _check_depths(
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
-    from ..fem.contact import validate_fem_inputs
-    from ..fem.finite_contact import FINITE_MESH
+    from ..fem.contact.finite import FINITE_MESH
+    from ..fem.contact.linear import validate_fem_inputs
     from ..fem.mesh import DEFAULTS, MeshSettings
     from ..fem.solver import check_backend
     from ..study.contact.indentation import default_depths

@@ -308,7 +308,7 @@ def check_dynamic(
     shtaerman.validation.InputError
         As :func:`dynamic`.
     """
-    from ..fem.contact import validate_fem_inputs
+    from ..fem.contact.linear import validate_fem_inputs
     from ..fem.dynamic_layer import check_layer_rate
     from ..study.dynamic.accuracy import check_ladder
     from ..study.dynamic.case import finite_settings

@@ -6,7 +6,7 @@ import argparse
 import math
 
 from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
-from ..fem.finite_contact import FINITE_MESH
+from ..fem.contact.finite import FINITE_MESH
 from ..fem.mesh import DEFAULTS
 from ..theory.materials import Material
 from ..vocabulary import entry, fields

@@ -9,7 +9,7 @@ import warnings
 from ..api.dynamic_result import UNTRUSTED, check_failures
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
-from ..fem.finite_contact import FINITE_MESH
+from ..fem.contact.finite import FINITE_MESH
 from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
 from ..guards import FailedCheckWarning
 from ..output.files import staged_file, write_csv

@@ -42,7 +42,8 @@ from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
-from .contact import mass_factor
+from .contact.linear import mass_factor
+from .contact.stick import CoupledCompliance, radial_dofs
 from .dynamic_layer import (
     AbsorbingLayer,
     check_layer,
@@ -79,7 +80,6 @@ from .stepper import (
     TimeScheme,
     march,
 )
-from .stick import CoupledCompliance, radial_dofs
 from .viscoelastic import ViscoelasticShear, sizing_impact, viscoelastic_shear
 
 __all__ = [

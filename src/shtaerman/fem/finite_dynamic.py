@@ -70,7 +70,7 @@ from ..theory.profile_impact import solve_profile_impact
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_poisson, validate_positive
-from .finite_contact import (
+from .contact.finite import (
     FINITE_BASE,
     FINITE_MESH,
     MAX_ITERATIONS,
@@ -79,7 +79,7 @@ from .finite_contact import (
     geometric_radius,
     tip_exponent,
 )
-from .finite_stick import HistoryStepper
+from .contact.finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, assemble_hyperelastic
 from .impact_run import (

@@ -69,16 +69,22 @@ from threadpoolctl import threadpool_limits
 
 from ..guards import MAX_DEPTH_RATIO, depth_ratio
 from ..validation import InputError, NumericalFailureError
-from .contact import EDGE_MARGIN, central_pressure, complementarity, edge_radius, recover_pressure
+from .contact.constraints import (
+    EDGE_MARGIN,
+    ContactOutgrowsMeshError,
+    central_pressure,
+    edge_radius,
+)
+from .contact.finite import NewtonStepper, extrapolate
+from .contact.finite_stick import HistoryStepper
+from .contact.linear import complementarity, recover_pressure
+from .contact.stick import CoupledCompliance, StickState, stick_slip_step
 from .elasticity import ElasticSystem, consistent_mass, redistribute_normal_mass
-from .finite_contact import ContactOutgrowsMeshError, NewtonStepper, extrapolate
-from .finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NewtonError
 from .impact_run import march_steps
 from .rubber import GentLockError, gent_locks
 from .solver import Factorization
-from .stick import CoupledCompliance, StickState, stick_slip_step
 
 if TYPE_CHECKING:
     from .viscoelastic import ShearMemory, ViscoelasticShear

@@ -28,7 +28,7 @@ from .export import field_mesh, indenter_field_data, write_histories, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
-    from ..fem.finite_contact import FiniteContactCurve, FiniteContactStep
+    from ..fem.contact.finite import FiniteContactCurve, FiniteContactStep
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
 

@@ -21,7 +21,7 @@ import numpy as np
 import pyvista as pv
 from vtkmodules.vtkRenderingCore import vtkBillboardTextActor3D
 
-from ..fem.contact import ContactStep
+from ..fem.contact.linear import ContactStep
 from ..fem.elasticity import ElasticSolution
 from ..study.contact.indentation import IndentationResult
 from ..validation import InputError, validate_positive

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hi
 
 import msgspec
 
-from ..fem.contact import validate_fem_inputs
+from ..fem.contact.linear import validate_fem_inputs
 from ..problem import RUBBER_OPTIONS
 from ..validation import InputError, bound_text
 from ..vocabulary import MAX_STUDIES, VOCABULARY, deprecated, fields, suggestion

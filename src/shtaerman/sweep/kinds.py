@@ -794,7 +794,7 @@ def _finite_check(p: dict[str, Any]) -> Any:
 
     import numpy as np
 
-    from ..fem.finite_contact import check_finite_depths
+    from ..fem.contact.finite import check_finite_depths
     from ..study.contact.loader import check_profile_reach
     from ..study.dynamic.case import exact_impact
     from ..study.finite.runner import ladder

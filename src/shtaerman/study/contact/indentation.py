@@ -17,11 +17,11 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ...fem.contact import ContactCurve, ContactStep, solve_contact
+from ...fem.contact.linear import ContactCurve, ContactStep, solve_contact
+from ...fem.contact.stick import solve_bonded_contact
 from ...fem.elasticity import ElasticSolution, assemble
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
-from ...fem.stick import solve_bonded_contact
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -328,7 +328,7 @@ def run_indentation(
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
     if prony is not None:
-        from ...fem.contact import press_at_rate
+        from ...fem.contact.rate import press_at_rate
 
         curve = press_at_rate(
             system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False

@@ -20,7 +20,7 @@ from typing import Annotated, Any, Literal
 import msgspec
 import numpy as np
 
-from ...fem.contact import check_contact_scale
+from ...fem.contact.linear import check_contact_scale
 from ...fem.mesh import MeshSettings
 from ...guards import check_equator
 from ...problem import Interface

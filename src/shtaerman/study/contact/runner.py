@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import IntegrationWarning
 
-from ...fem.contact import check_contact_scale
+from ...fem.contact.linear import check_contact_scale
 from ...fem.fit import fit_power_law
 from ...guards import warn_outside_validity
 from ...problem import Interface

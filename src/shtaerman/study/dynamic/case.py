@@ -294,7 +294,7 @@ def finite_settings(
     ``estimate``) checked before any run (InputError naming the option): ``time_steps`` per
     quasi-static impact duration (default 50; 100 with inertia), ``mesh_size`` the smallest
     element / refined radius (default the finite-strain contact's)."""
-    from ...fem.finite_contact import FINITE_MESH
+    from ...fem.contact.finite import FINITE_MESH
     from ...fem.finite_dynamic import INERTIA_MESH
     from ...vocabulary import entry
 

@@ -18,7 +18,7 @@ from typing import Annotated, Any
 
 import msgspec
 
-from ...fem.contact import validate_fem_inputs
+from ...fem.contact.linear import validate_fem_inputs
 from ...fem.dynamic_contact import (
     MAX_DOFS,
     MAX_SIZE,

@@ -21,7 +21,8 @@ import time
 from dataclasses import replace
 from typing import Any
 
-from ...fem import finite_contact, finite_dynamic, impact
+from ...fem import finite_dynamic, impact
+from ...fem.contact import finite as finite_contact
 from ...fem.dynamic_contact import DynamicSettings
 from ...theory.materials import Material
 from ..dynamic.case import run_case

@@ -18,13 +18,13 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ...fem.finite_contact import (
+from ...fem.contact.finite import (
     FINITE_MESH,
     FiniteContactCurve,
     FiniteContactStep,
     run_finite_indentation,
 )
-from ...fem.finite_stick import solve_finite_bonded_contact
+from ...fem.contact.finite_stick import solve_finite_bonded_contact
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import MeshSettings
 from ...fem.rubber import RubberModel

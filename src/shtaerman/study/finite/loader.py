@@ -18,7 +18,7 @@ from typing import Any, Literal
 import msgspec
 
 from ... import vocabulary
-from ...fem.finite_contact import FINITE_MESH
+from ...fem.contact.finite import FINITE_MESH
 from ...fem.mesh import MeshSettings
 from ...fem.rubber import RubberModel
 from ...problem import MODELS, RUBBER_SHAPES, Body

@@ -35,8 +35,8 @@ from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, simpson
 from scipy.optimize import brentq
 
-from ...fem.contact import MIN_CONTACT_NODES
-from ...fem.finite_contact import check_finite_depths, geometric_radius, tip_exponent
+from ...fem.contact.constraints import MIN_CONTACT_NODES
+from ...fem.contact.finite import check_finite_depths, geometric_radius, tip_exponent
 from ...fem.mesh import MeshSettings
 from ...theory.impact import ImpactHistory, ImpactResult
 from ...theory.indenter import PowerLawIndenter

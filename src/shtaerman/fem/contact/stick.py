@@ -5,7 +5,7 @@ Once a surface point touches the rigid indenter it sticks to it. The indenter mo
 vertically, so a point in contact keeps the radial displacement it had when it touched and its
 vertical one follows the indenter. The contact is history dependent: it is solved step by step
 (load steps of the static contact, :func:`solve_bonded_contact`; time steps of the impact,
-:mod:`.stepper`), each from the contact of the step before.
+:mod:`shtaerman.fem.stepper`), each from the contact of the step before.
 
 In a step the candidates' displacements are affine in the nodal contact forces f on the body
 (f_z = -F for a downward contact force F >= 0 at the m candidates' u_z, f_r the shear along +r
@@ -16,7 +16,7 @@ the compliance of the effective stiffness with the striker's own term on the u_z
 indenter (static: f(r) - d; a time step: the clearance f(r) - X - u_z the step leaves without
 new contact forces), a free node's gap being reach - (A f)_z, and ``offset``, the u_r the step
 gives without new contact forces (static: 0). A primal-dual active-set iteration on the nodes
-in contact:
+in contact (:func:`.constraints.settle`):
 
 - a free node whose gap turns negative enters the contact; its radial displacement is frozen at
   the value interpolated linearly between the last step and the current iterate, at the point
@@ -32,11 +32,11 @@ in contact:
 
 The static contact (:func:`solve_bonded_contact`, u_z = f(r) - d in contact) is loaded over a
 geometric ladder of depths (ratio ``step_ratio``) from the depth at which the indenter reaches
-candidate node :data:`START_NODE` (the axis grading of the mesh makes it a tiny fraction of the
-first depth) up to the last, the requested depths included. Its A is the surface compliance
-of the candidates' u_z and u_r dofs, from the one sparse factorization with both dofs of every
-candidate eliminated last (:class:`.solver.TailFactorization`); each depth step is
-:func:`stick_slip_step` with reach f(r) - d and no radial offset.
+candidate node :data:`.constraints.START_NODE` (the axis grading of the mesh makes it a tiny
+fraction of the first depth) up to the last, the requested depths included. Its A is the
+surface compliance of the candidates' u_z and u_r dofs, from the one sparse factorization with
+both dofs of every candidate eliminated last (:class:`shtaerman.fem.solver.TailFactorization`);
+each depth step is :func:`stick_slip_step` with reach f(r) - d and no radial offset.
 
 The force reported is the sum of the nodal normal forces (the frictionless solver's nodal sum;
 its vertex alignment needs a history-free contact). The tangential nodal forces (N, on the
@@ -47,43 +47,37 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as la
 from threadpoolctl import threadpool_limits
 
-from ..validation import InputError, NumericalFailureError
-from .contact import (
+from ...validation import NumericalFailureError
+from ..elasticity import ElasticSystem
+from .constraints import (
     MAX_ACTIVE_SET_ITERATIONS,
     ROUND_OFF,
+    START_NODE,
+    STEP_RATIO,
+    check_loading,
+    depth_ladder,
+    settle,
+    unsettled,
+    walk_ladder,
+)
+from .linear import (
     ContactCurve,
     ContactStep,
     Profile,
     SurfaceCompliance,
-    central_pressure,
-    check_resolved,
-    edge_radius,
     factorize_tail,
     field_solutions,
-    recover_pressure,
+    step_from_forces,
     surface_compliance,
     tail_compliance,
     timed_curve,
 )
-from .elasticity import ElasticSystem
-
-__all__ = [
-    "STEP_RATIO",
-    "CoupledCompliance",
-    "StickState",
-    "depth_ladder",
-    "radial_dofs",
-    "solve_bonded_contact",
-    "stick_slip_step",
-    "unsettled",
-    "worst_only",
-]
 
 
 @dataclass(frozen=True, eq=False)
@@ -168,17 +162,6 @@ def _solve_stuck(
     return forces, shear, displacement[:m], offset + displacement[m:]
 
 
-def worst_only(changes: list[np.ndarray], excess: list[np.ndarray]) -> list[np.ndarray]:
-    """``changes`` (boolean masks, in order of priority) cut to the single node of the first
-    non-empty one with the largest ``excess`` (the cautious update after a cycle)."""
-    cut = [np.zeros_like(change) for change in changes]
-    for change, amount, one in zip(changes, excess, cut, strict=True):
-        if change.any():
-            one[np.flatnonzero(change)[np.argmax(amount[change])]] = True
-            break
-    return cut
-
-
 def _changes(
     state: StickState, solved: tuple[np.ndarray, ...], gap: np.ndarray, band: float, mu: float
 ) -> tuple[list[np.ndarray], list[np.ndarray]]:
@@ -225,85 +208,38 @@ def stick_slip_step(
         The solved contact (F >= 0, gap >= 0), or None if the stick and slip sets keep cycling.
         All violated conditions change at once; should a contact state repeat, one at a time.
     """
-    state = StickState(last.active, last.held.copy(), last.radial, last.gap, last.slip.copy())
     band = ROUND_OFF * np.abs(reach).max()
-    seen: set[bytes] = set()
-    cautious, m = False, reach.size
-    for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * m):
+    m = reach.size
+
+    def attempt(state: StickState) -> tuple[tuple, list[np.ndarray], list[np.ndarray]]:
         forces, shear, response, u_r = _solve_stuck(coupled, (reach, offset), state, friction)
         gap = np.where(state.active, 0.0, reach - response)
         traction, radial = np.zeros(m), np.zeros(m)
         traction[coupled.radial_node], radial[coupled.radial_node] = shear, u_r
         changes, excess = _changes(state, (forces, traction, radial), gap, band, friction)
-        if not any(change.any() for change in changes):
-            gap, forces = np.maximum(gap, 0.0), np.maximum(forces, 0.0)
-            return StickState(state.active, state.held, radial, gap, state.slip, forces, shear)
-        if cautious:
-            changes = worst_only(changes, excess)
-        release, enter, to_slip, to_stick = changes
-        seen.add(state.active.tobytes() + state.slip.tobytes())
+        forces, kept = np.maximum(forces, 0.0), np.maximum(gap, 0.0)
+        solved = StickState(state.active, state.held, radial, kept, state.slip, forces, shear)
+        return (solved, gap, traction), changes, excess
+
+    def update(state: StickState, solved: tuple, changes: list[np.ndarray]) -> StickState:
+        (now, gap, traction), (release, enter, to_slip, to_stick) = solved, changes
         closing = last.gap[enter] / (last.gap[enter] - gap[enter])
         closing[last.active[enter]] = 1.0  # released in this step: where it touches now
-        held, slip = state.held, state.slip
+        held, slip, radial = state.held, state.slip, now.radial
         held[enter] = last.radial[enter] + closing * (radial[enter] - last.radial[enter])
         held[release] = np.nan
         held[to_stick] = last.radial[to_stick]
         slip[to_slip] = -np.sign(traction[to_slip])
         slip[release | to_stick] = 0
         active = (state.active & ~release) | enter
-        state = StickState(active, held, last.radial, last.gap, slip)
-        if active.tobytes() + slip.tobytes() in seen:
-            if cautious:
-                break
-            cautious, seen = True, set()
-    return None
+        return StickState(active, held, last.radial, last.gap, slip)
 
-
-STEP_RATIO = 1.02
-"""Default depth ratio of consecutive load steps (benchmarks/FEM_NOTES.md, "Interface
-friction", measures the force's convergence in it)."""
-START_NODE = 4
-"""The first load step is the depth at which the indenter reaches this candidate node (counted
-from the axis): the history before it is taken as one step."""
-
-
-def unsettled(depth: float) -> NumericalFailureError:
-    """The failure of a load step at ``depth`` (m) whose stick and slip sets keep cycling."""
-    return NumericalFailureError(
-        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
-        "the edge or take smaller load steps"
+    start = StickState(last.active, last.held.copy(), last.radial, last.gap, last.slip.copy())
+    limit = MAX_ACTIVE_SET_ITERATIONS + 2 * m
+    solved = settle(
+        start, attempt, update, lambda state: state.active.tobytes() + state.slip.tobytes(), limit
     )
-
-
-def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndarray:
-    """Load steps (m): geometric with ``step_ratio`` from ``start`` (at most depths[0]) to
-    depths[-1], merged with ``depths`` (each requested depth is one of them)."""
-    start = min(start, depths[0])
-    count = int(np.ceil(np.log(depths[-1] / start) / np.log(step_ratio)))
-    ladder = start * step_ratio ** np.arange(count)
-    return np.union1d(ladder[ladder < depths[-1]], depths)
-
-
-def _contact_step(
-    normal: SurfaceCompliance, heights: np.ndarray, depth: float, state: StickState, iterations: int
-) -> ContactStep:
-    """The :class:`.contact.ContactStep` of a requested depth (force: the nodal sum)."""
-    check_resolved(normal.r, state.forces, depth)
-    pressure = recover_pressure(normal.mass_factor, state.forces)
-    radius = edge_radius(normal.r, state.forces, state.gap)
-    total = float(state.forces.sum())
-    return ContactStep(
-        depth=depth,
-        force=total,
-        discrete_force=total,
-        contact_radius=radius,
-        central_pressure=central_pressure(normal.r, pressure, radius),
-        nodal_forces=state.forces,
-        pressure=pressure,
-        gap=state.gap,
-        iterations=iterations,
-        tangential_forces=state.shear,
-    )
+    return None if solved is None else solved[0]
 
 
 def _load_history(
@@ -313,23 +249,27 @@ def _load_history(
     depths: np.ndarray,
     loading: tuple[float, float],
 ) -> list[ContactStep]:
-    """Load through :func:`depth_ladder` (``loading``: step ratio, friction coefficient) and
-    keep the contact at each requested depth."""
+    """Load through :func:`.constraints.depth_ladder` (``loading``: step ratio, friction
+    coefficient) and keep the contact at each requested depth (force: the nodal sum)."""
     ratio, friction = loading
     heights = np.asarray(profile(normal.r), dtype=float)
     state, offset = StickState.untouched(heights), np.zeros(coupled.radial_dofs.size)
-    wanted, steps, taken = set(depths.tolist()), [], 0
     start = float(heights[min(START_NODE, heights.size - 1)])
-    for depth in depth_ladder(start if start > 0 else depths[0], depths, ratio):
+
+    def advance(depth: float) -> int:
+        nonlocal state
         solved = stick_slip_step(coupled, heights - depth, offset, state, friction)
         if solved is None:
-            raise unsettled(float(depth))
+            raise unsettled(depth)
         state = solved
-        taken += 1
-        if float(depth) in wanted:
-            steps.append(_contact_step(normal, heights, float(depth), state, taken))
-            taken = 0
-    return steps
+        return 1
+
+    def record(depth: float, taken: int) -> ContactStep:
+        solved = (state.forces, state.gap, taken)
+        return step_from_forces(normal, heights, depth, solved, aligned=False, shear=state.shear)
+
+    ladder = depth_ladder(start if start > 0 else depths[0], depths, ratio)
+    return walk_ladder(ladder, depths, advance, record)
 
 
 def solve_bonded_contact(
@@ -344,17 +284,14 @@ def solve_bonded_contact(
 ) -> ContactCurve:
     """Press a rigid indenter z = f(r) that the surface sticks to, in load steps.
 
-    Parameters and result as :func:`.contact.solve_contact` (without ``aligned``: the force
+    Parameters and result as :func:`.linear.solve_contact` (without ``aligned``: the force
     is the nodal sum), with ``step_ratio`` > 1 the depth ratio of consecutive load steps and
     ``friction`` >= 0 the Coulomb coefficient (inf: no slip; a node in contact slides once its
     shear exceeds ``friction`` times its normal force). Each step's ``iterations`` counts the
     load steps since the previous depth; its ``tangential_forces`` are the nodal forces (N)
     along +r on the body at the radial dofs ``compliance.radial_dofs``.
     """
-    if not step_ratio > 1.0:
-        raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
-    if not friction >= 0.0:
-        raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
+    check_loading(step_ratio, friction)
     free = system.free_dofs()
     start = time.perf_counter()
     inside = system.surface_r <= candidate_radius * (1 + 1e-12)
@@ -367,9 +304,7 @@ def solve_bonded_contact(
     inverse = tail_compliance(factorization, free.size, position)
     m = normal_dofs.size
     normal = surface_compliance(system, _Known(inverse[:m, :m]), free, candidate_radius)
-    normal = SurfaceCompliance(
-        normal.r, normal.matrix, normal.mass, normal.vertex, normal.dofs, radial
-    )
+    normal = replace(normal, radial_dofs=radial)
     coupled = CoupledCompliance(inverse, radial_node, radial)
     with threadpool_limits(limits=1, user_api="blas"):
         steps = _load_history(coupled, normal, profile, depths, (step_ratio, friction))

@@ -18,34 +18,16 @@ Post-processing per depth: the force P from the two vertex-aligned contacts arou
 (:func:`aligned_force`); the pressure recovered consistently from the
 nodal forces with the surface matrix M (F = M p; the axis node carries no area, so no
 "force / area"); the central pressure extrapolated to the axis from r = 1e-4 a .. 1e-2 a
-(:func:`central_pressure`); the contact radius located between nodes from the gap, which opens
-as (r - a)^(3/2) beyond a smooth contact edge.
-
-A body that relaxes in shear by a Prony series (:mod:`.viscoelastic`) is pressed at a constant
-rate, d = V t (:func:`press_at_rate`), quasi-statically: at each time step t_n, with the step's
-stiffness K (the elastic one at the step's effective shear modulus) and the history force h^n
-of the Prony branches,
-
-    K x = -S F - h^n,   g = f(r) - d_n + C F + (K^-1 h^n)_c >= 0,   F >= 0,   F . g = 0:
-
-the history shifts the indenter's clearance by the surface displacement it alone would cause,
-and the complementarity problem is solved as in the elastic contact. The steps are uniform
-between consecutive requested depths (each such interval has its own dt, its own
-factorization, and the branches' history carried over, :meth:`.ViscoelasticShear.resume`), so
-every requested depth is an instant of the march. With all g_i = 0 every step is the elastic
-contact (the same matrix, the history exactly 0). At nu2 = 1/2 the discrete contact obeys Lee
-and Radok's correspondence exactly while it grows: the force is the hereditary integral of the
-elastic FEM force, with the force linear in time over each step (exact kernels), so the time
-error is second order in dt.
+(:func:`.constraints.central_pressure`); the contact radius located between nodes from the
+gap, which opens as (r - a)^(3/2) beyond a smooth contact edge.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -53,49 +35,25 @@ import scipy.linalg as la
 from scipy.optimize import nnls
 from threadpoolctl import threadpool_limits
 
-from ..theory.viscoelastic import PronySeries
-from ..validation import InputError, NumericalFailureError
-from ..vocabulary import entry
-from .elasticity import ElasticSolution, ElasticSystem, postprocess
-from .solver import Factorization, TailFactorization, TailPivotError, factorize
-from .viscoelastic import ShearMemory, ViscoelasticShear, viscoelastic_shear
-
-__all__ = [
-    "CURVE_STEPS",
-    "ContactCurve",
-    "ContactStep",
-    "SurfaceCompliance",
-    "aligned_force",
-    "check_resolved",
-    "complementarity",
-    "edge_radius",
-    "factorize_stiffness",
-    "factorize_tail",
-    "field_solutions",
-    "press_at_rate",
-    "solve_contact",
-    "step_from_forces",
-    "tail_compliance",
-    "time_grid",
-    "timed_curve",
-    "validate_fem_inputs",
-]
+from ...validation import InputError
+from ...vocabulary import entry
+from ..elasticity import ElasticSolution, ElasticSystem, postprocess
+from ..solver import Factorization, TailFactorization, TailPivotError, factorize
+from .constraints import (
+    MAX_ACTIVE_SET_ITERATIONS,
+    ROUND_OFF,
+    central_pressure,
+    check_resolved,
+    edge_radius,
+)
 
 Profile = Callable[[np.ndarray], np.ndarray]
-MAX_ACTIVE_SET_ITERATIONS = 100
-ROUND_OFF = 1e-10
-"""Relative band within which a force or gap counts as zero in the active-set update."""
 MIN_MODULUS_PER_LENGTH = 0.1
 """Smallest E / (contact zone radius) in Pa/m: the factorization's backward error grows as
 its inverse."""
-EDGE_MARGIN = 3
-"""Candidate nodes that must stay free beyond the contact edge, or the zone is too small."""
 MAX_DEPTHS = entry("depths").max_items
 """Most depths of one contact curve (:mod:`shtaerman.vocabulary`): every depth keeps its full
 solution vector (depths x dofs x 8 bytes)."""
-MIN_CONTACT_NODES = 3
-"""Fewest loaded surface nodes of a contact (the axis node carries none): fewer cannot resolve
-the force and the radius."""
 
 
 FEM_INPUTS = ("exponent", "shape_coefficient", "E2", "nu2")
@@ -325,50 +283,6 @@ def complementarity(
     raise RuntimeError("the contact active set did not settle; refine the mesh near the edge")
 
 
-EDGE_FIT_NODES = slice(3, 15)
-"""Free nodes (counted past the last loaded one) fitted to locate the edge: the first few are
-skipped, the FEM gap there is distorted over about one element."""
-
-
-def edge_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
-    """Edge a from the gap beyond it, g^(2/3) ~ c (r - a)(1 + O(r - a)) at a smooth edge.
-
-    A least-squares quadratic in r through g^(2/3) at free nodes 3..14 past the last loaded
-    one, its root nearest the edge (second order). With too few free nodes, or no real root
-    nearby, the two-node linear extrapolation is used. The discrete contact may
-    carry a small force one node past the true edge, so the result is kept between the
-    last-but-one loaded node and the first free one.
-
-    Raises
-    ------
-    shtaerman.validation.NumericalFailureError
-        If the gap does not open between the first two free nodes (the free surface lies on
-        the indenter there): the edge is undefined.
-    """
-    last = np.flatnonzero(forces > 0)[-1]
-    lowest, first = r[max(last - 1, 0)], r[last + 1]
-    rise = gap[last + 2] ** (2 / 3) - gap[last + 1] ** (2 / 3)
-    if rise == 0.0:
-        raise NumericalFailureError(
-            f"the free surface beyond the contact edge lies on the indenter (zero gap opening "
-            f"at r = {first:.4g} m), so the contact radius is undefined"
-        )
-    linear = first - gap[last + 1] ** (2 / 3) * (r[last + 2] - first) / rise
-    window = np.arange(r.size)[last + 1 :][EDGE_FIT_NODES]
-    estimate = linear
-    if window.size == EDGE_FIT_NODES.stop - EDGE_FIT_NODES.start:
-        roots = np.roots(np.polyfit(r[window], gap[window] ** (2 / 3), 2))
-        roots = roots[np.isreal(roots)].real
-        near = roots[(roots >= lowest) & (roots <= first)]
-        if near.size:
-            estimate = near[np.argmin(np.abs(near - linear))]
-    return float(np.clip(estimate, lowest, first))
-
-
-CENTRE_SAMPLES = (1e-4, 1e-3, 1e-2)
-"""Radii / a where the pressure is sampled to extrapolate it to the axis (ratio 10)."""
-
-
 def mass_factor(mass: np.ndarray) -> tuple[np.ndarray, tuple]:
     """Jacobi-scaled Cholesky factor of the surface matrix (axis rows of M are ~h^2 small)."""
     scale = 1.0 / np.sqrt(np.diag(mass))
@@ -379,23 +293,6 @@ def recover_pressure(factor: tuple[np.ndarray, tuple], forces: np.ndarray) -> np
     """Nodal pressure p (Pa) with M p = F, from :func:`mass_factor`."""
     scale, scaled = factor
     return scale * la.cho_solve(scaled, scale * forces)
-
-
-def central_pressure(r: np.ndarray, pressure: np.ndarray, contact_radius: float) -> float:
-    """p(0) in Pa by Aitken's extrapolation of p at r = 1e-4 a, 1e-3 a, 1e-2 a.
-
-    Near the axis p(r) = p0 + B r^s for a cusp of unknown order s > 0 (s = n - 1 for z = A r^n
-    with n < 3), and on a geometric sequence of radii Aitken's delta-squared is exact for that
-    form whatever s. The axis node's own value is not used: its basis function carries almost
-    no 2 pi r weight, so the recovery there smears the cusp. Where the differences do not
-    shrink geometrically toward the axis (a smooth centre, as for Hertz, or noise) the
-    innermost sample is returned.
-    """
-    p1, p2, p3 = np.interp(contact_radius * np.asarray(CENTRE_SAMPLES), r, pressure)
-    inner, outer = p2 - p1, p3 - p2
-    if inner * outer <= 0 or abs(outer) <= abs(inner):
-        return float(p1)
-    return float(p1 - inner**2 / (outer - inner))
 
 
 def _aligned_contact(
@@ -454,24 +351,6 @@ def aligned_force(
     return low[1] * (depth / low[0]) ** exponent
 
 
-def check_resolved(r: np.ndarray, forces: np.ndarray, depth: float) -> None:
-    """InputError unless the contact at ``depth`` (m) loads at least ``MIN_CONTACT_NODES``
-    surface nodes and stays ``EDGE_MARGIN`` nodes inside the candidates (radii ``r``, m)."""
-    loaded = np.flatnonzero(forces > 0)
-    if loaded.size < MIN_CONTACT_NODES:
-        raise InputError(
-            f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
-            f"{MIN_CONTACT_NODES}: smaller than this mesh resolves; raise the smallest depth or "
-            f"refine the mesh (--mesh-size, --refine)"
-        )
-    if loaded[-1] + EDGE_MARGIN >= r.size:
-        raise InputError(
-            f"depth {depth:g} m: the contact zone reaches r = {r[loaded[-1]]:.4g} m, "
-            f"the edge of the refined region ({r[-1]:.4g} m); mesh a larger region (raise "
-            "--mesh-margin)"
-        )
-
-
 def contact_step(
     compliance: SurfaceCompliance, profile: Profile, depth: float, aligned: bool = True
 ) -> ContactStep:
@@ -494,10 +373,12 @@ def step_from_forces(
     depth: float,
     solved: tuple[np.ndarray, np.ndarray, int],
     aligned: bool = True,
+    shear: np.ndarray | None = None,
 ) -> ContactStep:
     """The contact step at ``depth`` (m) from the complementarity solution ``solved`` (nodal
     forces in N, gaps in m, iterations) against the indenter's ``heights`` (m) at the
-    candidate nodes (a viscoelastic body's shifted by its history)."""
+    candidate nodes (a viscoelastic body's shifted by its history); ``shear``: a bonded
+    contact's tangential nodal forces (N)."""
     forces, gap, iterations = solved
     discrete = float(forces.sum())
     check_resolved(compliance.r, forces, depth)
@@ -513,6 +394,7 @@ def step_from_forces(
         pressure=pressure,
         gap=gap,
         iterations=iterations,
+        tangential_forces=shear,
     )
 
 
@@ -675,124 +557,3 @@ def solve_contact(
     done = time.perf_counter()
     seconds = (factorized - start, done - factorized)
     return timed_curve(system, (compliance, steps, solutions), factorization, backend, seconds)
-
-
-# --- a viscoelastic body pressed at a constant rate ----------------------------------------
-
-
-CURVE_STEPS = 200
-"""Time steps from first touch to the deepest depth, by default. On the paper's case (default
-mesh) the forces change by 2.3e-5 (1 m/s) and 8.7e-5 (0.01 m/s, where the contact's node
-arrivals within V tau dominate) from 200 to 400 steps, below the mesh's error there (1.3e-4);
-the mesh ladder does not estimate this time error (benchmarks/FEM_NOTES.md)."""
-MAX_CURVE_STEPS = 100_000
-"""Most time steps of one curve."""
-
-
-def time_grid(depths: np.ndarray, rate: float, steps: int) -> list[tuple[float, int]]:
-    """The march's intervals between requested depths (m): (dt in s, count) each, uniform
-    steps ending at the depth's instant d / V, ``steps`` over the whole curve (at least one
-    per interval)."""
-    if isinstance(steps, bool) or not isinstance(steps, int | np.integer):
-        raise InputError(f"steps must be an integer >= 1, got {steps!r}", "steps")
-    if not 1 <= steps <= MAX_CURVE_STEPS:
-        raise InputError(f"steps must lie in [1, {MAX_CURVE_STEPS}], got {steps}", "steps")
-    ends = np.concatenate([[0.0], np.asarray(depths, dtype=float) / rate])
-    grid = []
-    for start, end in itertools.pairwise(ends):
-        count = max(1, math.ceil(steps * (end - start) / ends[-1] - 1e-9))
-        grid.append(((end - start) / count, count))
-    return grid
-
-
-@dataclass
-class _Interval:
-    """One dt of the march: its Prony shear, factorization and surface compliance."""
-
-    shear: ViscoelasticShear
-    factorization: Factorization
-    compliance: SurfaceCompliance
-
-
-def _interval(
-    system: ElasticSystem,
-    prony: PronySeries,
-    dt: float,
-    free: np.ndarray,
-    radius: float,
-    backend: str,
-) -> _Interval:
-    """Assemble and factorize the step of ``dt`` s (candidates r <= ``radius`` m last)."""
-    shear = viscoelastic_shear(system, prony, dt, radius)
-    stepped = replace(system, matrix=shear.stiffness)
-    factorization = factorize_stiffness(stepped, free, radius, backend)
-    return _Interval(shear, factorization, surface_compliance(stepped, factorization, free, radius))
-
-
-def _rate_step(
-    part: _Interval, memory: ShearMemory, heights: np.ndarray, depth: float, free: np.ndarray
-) -> tuple[tuple[np.ndarray, np.ndarray, int], np.ndarray, np.ndarray, ShearMemory]:
-    """One time step at ``depth`` m: (forces, gap, active-set iterations), the heights
-    shifted by the history, the full solution and the new memory."""
-    compliance = part.compliance
-    position = np.searchsorted(free, compliance.dofs)
-    history = part.factorization.solve(memory.force[free])  # K^-1 h on the free dofs
-    shifted = heights + history[position]
-    forces, gap, iterations = complementarity(compliance.matrix, shifted - depth)
-    load = -memory.force[free]
-    load[position] -= forces
-    x = np.zeros(memory.force.size)
-    x[free] = part.factorization.solve(load)
-    _, memory = part.shear.advance(memory, x)
-    return (forces, gap, iterations), shifted, x, memory
-
-
-def press_at_rate(
-    system: ElasticSystem,
-    profile: Profile,
-    depths: np.ndarray,
-    candidate_radius: float,
-    prony: PronySeries,
-    rate: float,
-    *,
-    backend: str = "auto",
-    aligned: bool = True,
-    steps: int = CURVE_STEPS,
-) -> ContactCurve:
-    """Press a rigid frictionless indenter z = f(r) into the viscoelastic body at ``rate``.
-
-    Parameters as :func:`solve_contact` (``system`` with E2, nu2 the instantaneous moduli;
-    each depth d reached at d / V; ``aligned``: the vertex-aligned forces at the instant's
-    history, or the nodal sums), with ``prony`` the body's shear relaxation, ``rate`` the
-    pressing speed V in m/s (> 0) and ``steps`` the time steps from first touch to the deepest
-    depth (:func:`time_grid`).
-
-    Returns
-    -------
-    ContactCurve
-        One step per depth; ``timings``: ``factorization`` (all intervals') and ``contact``.
-    """
-    free = system.free_dofs()
-    heights: np.ndarray | None = None
-    memory: ShearMemory | None = None
-    steps_out, solutions, parts, factorized = [], [], {}, 0.0
-    start = time.perf_counter()
-    with threadpool_limits(limits=1, user_api="blas"):
-        for k, (dt, count) in enumerate(time_grid(depths, rate, steps)):
-            clock = time.perf_counter()
-            if dt not in parts:
-                parts[dt] = _interval(system, prony, dt, free, candidate_radius, backend)
-            part = parts[dt]
-            factorized += time.perf_counter() - clock
-            if heights is None:
-                heights = np.asarray(profile(part.compliance.r), dtype=float)
-            memory = part.shear.first_memory() if memory is None else part.shear.resume(memory)
-            begin = 0.0 if k == 0 else float(depths[k - 1]) / rate
-            for j in range(1, count + 1):
-                depth = float(depths[k]) if j == count else rate * (begin + j * dt)
-                solved, shifted, x, memory = _rate_step(part, memory, heights, depth, free)
-            steps_out.append(step_from_forces(part.compliance, shifted, depth, solved, aligned))
-            solutions.append(x)
-    seconds = (factorized, time.perf_counter() - start - factorized)
-    parts = (part.compliance, steps_out, np.array(solutions))
-    return timed_curve(system, parts, part.factorization, backend, seconds)

@@ -11,17 +11,17 @@ depth and the current one at the point where the node's gap closes (as the linea
 forgets its radius (it gets a new one should it touch again).
 
 The contact is history dependent: it is solved by incremental loading over the geometric
-ladder :func:`.stick.depth_ladder` (ratio ``step_ratio``, default :data:`.stick.STEP_RATIO`)
-from the depth at which the indenter reaches candidate node :data:`.stick.START_NODE` up to
-the deepest depth, the requested depths included. At each load step the stuck nodes' two
-displacement dofs are prescribed and Newton solves for the rest (the stepper, pattern and
-solver of :class:`.finite_contact.NewtonStepper`; the prescribed dofs are eliminated from its
-fixed pattern), within an active-set loop that lets free nodes whose gap turned negative touch
-and releases stuck nodes in tension; should a contact set repeat, one node changes at a time.
+ladder :func:`.constraints.depth_ladder` (ratio ``step_ratio``, default
+:data:`.constraints.STEP_RATIO`) from the depth at which the indenter reaches candidate node
+:data:`.constraints.START_NODE` up to the deepest depth, the requested depths included. At each
+load step the stuck nodes' two displacement dofs are prescribed and Newton solves for the rest
+(the stepper, pattern and solver of :class:`.finite.NewtonStepper`; the prescribed dofs are
+eliminated from its fixed pattern), within an active-set loop (:func:`.constraints.settle`)
+that lets free nodes whose gap turned negative touch and releases stuck nodes in tension.
 The curve's Newton is a modified Newton (:func:`_newton`): it reuses the last factorization,
 also across load steps and with the nodes stuck since held by a capacitance correction
 (:meth:`_Kept.constrained`), while each correction shrinks by
-:data:`.finite_contact.CONTRACTION`; the Coulomb Newton (:func:`_slide_newton`) likewise, while
+:data:`.finite.CONTRACTION`; the Coulomb Newton (:func:`_slide_newton`) likewise, while
 the stuck dofs and slip directions stay those of its factorization, in the curve's load steps
 and in an impact's time steps (:class:`HistoryStepper`).
 
@@ -29,7 +29,7 @@ With a finite Coulomb coefficient mu (``friction``) a stuck node slides once its
 reaction exceeds mu times its normal one, both resolved on the indenter's normal
 (f'(x_r), -1)/|.| at its current radius (at finite strain the slope is not small, so the
 vertical/radial split of the linear solver would make mu = 0 differ from the frictionless
-contact). A sliding node keeps its gap closed as in :mod:`.finite_contact` and carries the
+contact). A sliding node keeps its gap closed as in :mod:`.finite` and carries the
 friction mu N along the indenter's tangent against its slip, with N from the previous Newton
 iterate (a fixed point converged with Newton's own tolerance on the corrections); a sliding
 node whose slip reverses sticks again at its radius of the last load step (or where it
@@ -40,7 +40,7 @@ vertical reactions lambda_i = -dPi/du_z,i (N; with friction it includes the fric
 vertical component). Without slip the radial reactions do no work (the stuck nodes do not
 move radially), so dPi/dd = P up to the ladder's interpolation of the touching radii.
 Contact radius, pressure, p(0) and the stored energy are reported as
-:func:`.finite_contact.solve_finite_contact` does, from the vertical reactions.
+:func:`.finite.solve_finite_contact` does, from the vertical reactions.
 """
 
 from __future__ import annotations
@@ -55,18 +55,28 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..theory.contact import PowerLawContact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.sneddon import SneddonContact, contact_law
-from ..validation import InputError, NumericalFailureError
-from .contact import MAX_ACTIVE_SET_ITERATIONS
-from .finite_contact import (
+from ...theory.contact import PowerLawContact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.sneddon import SneddonContact, contact_law
+from ...validation import InputError
+from ..hyperelastic import HyperelasticSystem, NewtonError
+from .constraints import (
+    MAX_ACTIVE_SET_ITERATIONS,
+    START_NODE,
+    STEP_RATIO,
+    check_loading,
+    check_resolved,
+    depth_ladder,
+    settle,
+    unsettled,
+    walk_ladder,
+)
+from .finite import (
     MAX_ITERATIONS,
     NEWTON_TOLERANCE,
     FiniteContactCurve,
     FiniteContactStep,
     NewtonStepper,
-    check_contact_edge,
     check_smallest_depth,
     element_inverted,
     eliminate_gaps,
@@ -75,16 +85,6 @@ from .finite_contact import (
     solve_finite_contact,
     tip_exponent,
 )
-from .hyperelastic import HyperelasticSystem, NewtonError
-from .stick import START_NODE, STEP_RATIO, depth_ladder, unsettled, worst_only
-
-__all__ = [
-    "RELEASE_BAND",
-    "BondedStepper",
-    "HistoryStepper",
-    "bonded_ladder",
-    "solve_finite_bonded_contact",
-]
 
 START_FRACTION = 0.05
 """The load steps start where the contact radius is this fraction of the smallest depth's:
@@ -132,8 +132,8 @@ def bonded_ladder(
     start: float | None = None,
 ) -> np.ndarray:
     """The load steps (m) of the bonded contact up to ``depths`` (m, increasing, included):
-    :func:`.stick.depth_ladder` from ``start`` (m) or by default from the later of the depth
-    that reaches candidate node :data:`.stick.START_NODE` and the depth whose contact radius
+    :func:`.constraints.depth_ladder` from ``start`` (m) or by default from the later of the depth
+    that reaches candidate node :data:`.constraints.START_NODE` and the depth whose contact radius
     is :data:`START_FRACTION` of the smallest depth's (Shtaerman's d ~ a^n)."""
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     if start is not None:
@@ -230,8 +230,8 @@ def _newton(
     stepper is ``modified`` (a :class:`BondedStepper` of the quasi-static curve), a step
     reuses the last factorization while it was made for the same stuck dofs (also at an
     earlier load step) and, after a step that reused it, the correction shrank by
-    :data:`.finite_contact.CONTRACTION` (:func:`_reusable`,
-    :meth:`.finite_contact.NewtonStepper.converged`).
+    :data:`.finite.CONTRACTION` (:func:`_reusable`,
+    :meth:`.finite.NewtonStepper.converged`).
 
     Raises
     ------
@@ -347,7 +347,7 @@ def _reusable(
     """The stepper's kept tangent and its solve with these stuck ``slaves``
     (:meth:`_Kept.constrained`) if the next step may reuse them: made for this system, and,
     after a step that reused them (not the first of the solve: the first correction has none
-    to compare with), the correction shrank by :data:`.finite_contact.CONTRACTION`; else
+    to compare with), the correction shrank by :data:`.finite.CONTRACTION`; else
     None."""
     kept = stepper.kept_stuck
     if kept is None or kept.system is not stepper.system or not stepper.modified:
@@ -378,25 +378,6 @@ def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> 
     return np.where(np.isnan(held), 0.0, -forces[stepper.nodes.uz])
 
 
-def _stuck_changes(stepper: NewtonStepper, trial: _Load, scale: float, cautious: bool) -> tuple:
-    """Nodes to release (tensile reaction) and nodes that touch (gap < 0; ``scale`` (m) the
-    depth that measures it); when ``cautious``, only the most tensile node, or if none the
-    deepest below the indenter."""
-    stuck = ~np.isnan(trial.held)
-    lam, gap = trial.lam, trial.gap
-    release = stuck & (lam < -RELEASE_BAND * np.abs(lam).max(initial=0.0))
-    enter = ~stuck & (gap < -stepper.tolerance * scale)
-    if cautious:
-        one = np.zeros_like(release)
-        if release.any():
-            one[np.flatnonzero(release)[np.argmin(lam[release])]] = True
-            return one, np.zeros_like(enter)
-        if enter.any():
-            one[np.flatnonzero(enter)[np.argmin(gap[enter])]] = True
-        return np.zeros_like(release), one
-    return release, enter
-
-
 def _held(
     last: _Load, held: np.ndarray, enter: np.ndarray, radius: np.ndarray, gap: np.ndarray
 ) -> np.ndarray:
@@ -419,7 +400,7 @@ def _touch(
 ) -> np.ndarray:
     """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
     the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in
-    :func:`_stuck_changes`)."""
+    :func:`_changes`)."""
     radius, gap, _, _ = stepper.geometry(guess, depth)
     enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
     return _held(last, last.held, enter, radius, gap)
@@ -430,42 +411,63 @@ def _load_step(
     last: _Load,
     guess: np.ndarray,
     at: tuple[float, float],
+    friction: float = math.inf,
     warm: dict[bytes, tuple] | None = None,
 ) -> _Load:
-    """The contact at depth ``at[0]`` (m) from the contact ``last`` at the previous load step;
-    ``at[1]`` (m) measures Newton's corrections and the gaps (the depth, or where it may be
-    <= 0 the impact's). ``warm``: the solutions of earlier solves from ``last`` by contact
-    set (:func:`_warm_newton`), updated.
-
-    All violated conditions change at once; should a contact set repeat, one at a time."""
+    """The contact at depth ``at[0]`` (m) from the contact ``last`` at the previous load step,
+    bonded (``friction`` inf) or with Coulomb ``friction``: stuck nodes that slide and sliding
+    ones that stick again; :func:`.constraints.settle` changes the contact set. ``at[1]`` (m)
+    measures Newton's corrections and the gaps (the depth, or where it may be <= 0 the
+    impact's). ``warm``: the solutions of earlier solves from ``last`` by contact set
+    (:func:`_warm_newton`), updated."""
     depth, scale = at
-    held, x = _touch(stepper, last, guess, depth, scale), guess
-    seen: set[bytes] = set()
-    cautious, total = False, 0
-    for _ in range(MAX_ACTIVE_SET_ITERATIONS + stepper.nodes.radius.size):
-        trial = _Load(held, x, last.radius, last.gap, last.lam)
-        x, _, iterations, corrections = _warm_newton(_newton_stuck, stepper, trial, at, warm)
+    bonded, m = math.isinf(friction), last.held.size
+    held = _touch(stepper, last, guess, depth, scale)
+    start = _Load(held, guess, last.radius, last.gap, last.lam)
+    if not bonded:
+        start.slip = np.zeros(m) if last.slip is None else last.slip.copy()
+        start.gripped = np.zeros(m, dtype=bool)
+    newton = _newton_stuck if bonded else functools.partial(_slide_newton, friction=friction)
+    total = 0
+
+    def attempt(trial: _Load) -> tuple[tuple, list[np.ndarray], list[np.ndarray]]:
+        nonlocal total
+        x, lam, iterations, corrections = _warm_newton(newton, stepper, trial, at, warm)
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
         forces = stepper.system.residual(x)
-        trial = _Load(held, x, radius, gap, _reactions(stepper, forces, held), total, corrections)
-        trial.forces = forces
-        release, enter = _stuck_changes(stepper, trial, scale, cautious)
-        if not (release.any() or enter.any()):
-            trial.gap = np.where(np.isnan(held), np.maximum(gap, 0.0), 0.0)
-            trial.lam = np.maximum(trial.lam, 0.0)
-            return trial
-        seen.add(np.isnan(held).tobytes())
-        held = _held(last, held, enter, radius, gap)
+        vertical = _reactions(stepper, forces, trial.held)
+        now = replace(trial, x=x, radius=radius, gap=gap, lam=vertical, forces=forces)
+        now.iterations, now.corrections = total, corrections
+        changes, excess, shear = _changes(stepper, now, last, friction, at)
+        return (now, lam, shear), changes, excess
+
+    def update(trial: _Load, solved: tuple, changes: list[np.ndarray]) -> _Load:
+        (now, lam, shear), (release, enter, to_slip, to_stick) = solved, changes
+        held = _held(last, trial.held, enter, now.radius, now.gap)
         held[release] = np.nan
-        if np.isnan(held).tobytes() in seen:
-            if cautious:
-                break
-            cautious, seen = True, set()
-    raise NumericalFailureError(
-        f"depth {depth:g} m: the bonded contact set did not settle; refine the mesh near the "
-        "edge or take smaller load steps"
-    )
+        following = _Load(held, now.x, now.radius, now.gap, lam, total, now.corrections)
+        if bonded:
+            return following
+        held[to_stick] = _origin(last, now)[to_stick]
+        slip = trial.slip.copy()
+        slip[to_slip] = -np.sign(shear[to_slip])
+        slip[release | to_stick] = 0.0
+        following.lam = np.where(slip != 0, np.where(to_slip, now.lam, lam), 0.0)
+        following.slip, following.gripped = slip, trial.gripped | (enter & ~np.isnan(last.held))
+        return following
+
+    def key(trial: _Load) -> bytes:
+        return np.isnan(trial.held).tobytes() + (b"" if bonded else trial.slip.tobytes())
+
+    limit = MAX_ACTIVE_SET_ITERATIONS + (1 if bonded else 2) * m
+    solved = settle(start, attempt, update, key, limit)
+    if solved is None:
+        raise unsettled(depth)
+    load = solved[0]
+    load.gap = np.where(np.isnan(load.held), np.maximum(load.gap, 0.0), 0.0)
+    load.lam = np.maximum(load.lam, 0.0)
+    return load
 
 
 def _slide_newton(
@@ -477,7 +479,7 @@ def _slide_newton(
     A sliding node keeps its gap closed (the frictionless solver's elimination, multiplier
     lambda along the gap's gradient (f', -1)) and carries the friction force
     -slip ``friction`` lambda (1, f') along the indenter's tangent, linearized in lambda and
-    in the node's radius (:func:`.finite_contact.eliminate_gaps` with ``drag``: Newton's
+    in the node's radius (:func:`.finite.eliminate_gaps` with ``drag``: Newton's
     quadratic rate; lagged one iteration, the friction converged linearly at ratios of
     0.1-0.3 where nodes slide back on unloading). Returns x, the multipliers, the iterations
     and corrections.
@@ -566,7 +568,7 @@ def _slide_reusable(
     step may reuse them (a ``modified`` stepper): made for this system and contact set
     (``key``: stuck dofs and slip directions; the last :data:`KEPT_SETS` sets are kept, as
     a time step's secant solves the same sets again) and, after a reused step that is not the
-    solve's first, the correction shrank by :data:`.finite_contact.CONTRACTION`."""
+    solve's first, the correction shrank by :data:`.finite.CONTRACTION`."""
     kept = stepper.kept_slide.get(key)
     if not stepper.modified or kept is None or kept[0] is not stepper.system:
         return None
@@ -587,28 +589,32 @@ def _resolved(stepper: NewtonStepper, load: _Load, depth: float) -> tuple[np.nda
     return (push - slope * load.lam) / norm, (slope * push + load.lam) / norm
 
 
-def _slide_changes(
+def _changes(
     stepper: NewtonStepper,
     trial: _Load,
     last: _Load,
     friction: float,
     at: tuple[float, float],
-) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
+) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray | None]:
     """The violated conditions (release, enter, stick to slip, slip to stick), their size and
-    the tangential force T (N, on the body along the indenter's tangent (1, f')/|.|).
+    the tangential force T (N, on the body along the indenter's tangent (1, f')/|.|; None
+    where the contact is bonded, ``friction`` inf: nothing slides).
 
     ``trial.lam`` holds the vertical reactions (N) of the nodes in contact; a stuck node
     slides where |T| exceeds ``friction`` x its normal force (:func:`_resolved`). ``at``: the
     depth (m) and the scale (m) that measures gaps and slips."""
     depth, scale = at
-    shear, normal = _resolved(stepper, trial, depth)
     band = RELEASE_BAND * np.abs(trial.lam).max(initial=0.0)
-    contact, sliding = ~np.isnan(trial.held), trial.slip != 0
-    stuck = contact & ~sliding
+    contact = ~np.isnan(trial.held)
     release = contact & (trial.lam < -band)
     enter = ~contact & (trial.gap < -stepper.tolerance * scale)
+    if math.isinf(friction):
+        none = np.zeros_like(release)
+        return [release, enter, none, none], [-trial.lam, -trial.gap, trial.lam, trial.lam], None
+    shear, normal = _resolved(stepper, trial, depth)
+    sliding = trial.slip != 0
     excess = np.abs(shear) - friction * normal
-    to_slip = stuck & stepper.nodes.ur_free & (excess > band)
+    to_slip = contact & ~sliding & stepper.nodes.ur_free & (excess > band)
     moved = trial.slip * (trial.radius - _origin(last, trial))
     to_stick = sliding & ~release & (moved < -stepper.tolerance * scale)
     changes = [release, enter, to_slip, to_stick]
@@ -624,59 +630,8 @@ def _origin(last: _Load, trial: _Load) -> np.ndarray:
     return np.where(fresh, trial.held, last.radius)
 
 
-def _slide_step(
-    stepper: NewtonStepper,
-    last: _Load,
-    guess: np.ndarray,
-    at: tuple[float, float],
-    friction: float,
-    warm: dict[bytes, tuple] | None = None,
-) -> _Load:
-    """The contact with Coulomb ``friction`` at depth ``at[0]`` (m; ``at[1]`` the scale as in
-    :func:`_load_step`) from ``last``: as :func:`_load_step` (``warm`` too), with stuck nodes
-    that slide and sliding ones that stick again."""
-    depth, scale = at
-    slip = np.zeros(last.held.size) if last.slip is None else last.slip.copy()
-    held = _touch(stepper, last, guess, depth, scale)
-    trial = _Load(held, guess, last.radius, last.gap, last.lam)
-    trial.slip, trial.gripped, total = slip, np.zeros(slip.size, dtype=bool), 0
-    seen: set[bytes] = set()
-    cautious = False
-    newton = functools.partial(_slide_newton, friction=friction)
-    for _ in range(MAX_ACTIVE_SET_ITERATIONS + 2 * slip.size):
-        x, lam, iterations, corrections = _warm_newton(newton, stepper, trial, at, warm)
-        total += iterations
-        radius, gap, _, _ = stepper.geometry(x, depth)
-        forces = stepper.system.residual(x)
-        vertical = _reactions(stepper, forces, trial.held)
-        trial = replace(trial, x=x, radius=radius, gap=gap, lam=vertical, forces=forces)
-        trial.iterations, trial.corrections = total, corrections
-        changes, excess, shear = _slide_changes(stepper, trial, last, friction, at)
-        if not any(change.any() for change in changes):
-            trial.gap = np.where(np.isnan(trial.held), np.maximum(gap, 0.0), 0.0)
-            trial.lam = np.maximum(trial.lam, 0.0)
-            return trial
-        if cautious:
-            changes = worst_only(changes, excess)
-        release, enter, to_slip, to_stick = changes
-        seen.add(np.isnan(trial.held).tobytes() + trial.slip.tobytes())
-        held, slip = _held(last, trial.held, enter, radius, gap), trial.slip.copy()
-        held[release] = np.nan
-        held[to_stick] = _origin(last, trial)[to_stick]
-        slip[to_slip] = -np.sign(shear[to_slip])
-        slip[release | to_stick] = 0.0
-        lam = np.where(slip != 0, np.where(to_slip, vertical, lam), 0.0)
-        gripped = trial.gripped | (enter & ~np.isnan(last.held))
-        trial = _Load(held, x, radius, gap, lam, total, corrections, slip, gripped)
-        if np.isnan(held).tobytes() + slip.tobytes() in seen:
-            if cautious:
-                break
-            cautious, seen = True, set()
-    raise unsettled(depth)
-
-
 class BondedStepper(NewtonStepper):
-    """A :class:`.finite_contact.NewtonStepper` that keeps the bonded and the Coulomb
+    """A :class:`.finite.NewtonStepper` that keeps the bonded and the Coulomb
     Newton's factorizations and reuses them (``modified``: :func:`_newton`,
     :func:`_slide_newton`), in the quasi-static curve and an impact's time steps."""
 
@@ -691,7 +646,7 @@ class BondedStepper(NewtonStepper):
 class HistoryStepper(BondedStepper):
     """The bonded (``friction`` inf: no slip) or Coulomb contact of a time-stepped impact.
 
-    Every :meth:`solve` is one load step (:func:`_load_step`, :func:`_slide_step`) from the
+    Every :meth:`solve` is one load step (:func:`_load_step`) from the
     committed contact, the end of the last accepted time step; :meth:`commit` makes the latest
     solve the committed one and adds the work of friction over the step to ``dissipated`` (J):
     friction x the mean normal force x the arc slid along the indenter, for each node sliding
@@ -727,10 +682,7 @@ class HistoryStepper(BondedStepper):
         """The contact at ``depth`` (m) from the committed one, Newton started at ``x``:
         x, the vertical reactions (N), iterations and corrections (relative to ``scale``, m)."""
         scale = depth if scale is None else scale
-        if math.isinf(self.friction):
-            load = _load_step(self, self.committed, x, (depth, scale), self.warm)
-        else:
-            load = _slide_step(self, self.committed, x, (depth, scale), self.friction, self.warm)
+        load = _load_step(self, self.committed, x, (depth, scale), self.friction, self.warm)
         self.latest = (load, _resolved(self, load, depth)[1])
         return load.x, load.lam, load.iterations, load.corrections
 
@@ -762,7 +714,7 @@ def solve_finite_bonded_contact(
 ) -> FiniteContactCurve:
     """Press a rigid power-law indenter that the rubber sticks to, in load steps.
 
-    Parameters and result as :func:`.finite_contact.solve_finite_contact`, with
+    Parameters and result as :func:`.finite.solve_finite_contact`, with
     ``step_ratio`` > 1 the depth ratio of consecutive load steps and ``start`` (m, at most the
     smallest depth) the first (default and ladder: :func:`bonded_ladder`). Each step's
     ``multipliers`` are the vertical reactions (N) of the stuck nodes, its
@@ -779,10 +731,7 @@ def solve_finite_bonded_contact(
     ContactOutgrowsMeshError
         The contact zone reached the edge of the candidate region.
     """
-    if not step_ratio > 1.0:
-        raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
-    if not friction >= 0.0:
-        raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
+    check_loading(step_ratio, friction)
     if indenter.kind == "power-law" and indenter.exponent <= 1.0:
         raise InputError(
             f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
@@ -811,42 +760,32 @@ def _finite_ladder(
     friction: float,
 ) -> list[FiniteContactStep]:
     """Load through the ``ladder`` (m) and keep the contact at each requested depth (Coulomb
-    ``friction``; inf: no slip)."""
+    ``friction``; inf: no slip); each load step starts from the solution extrapolated linearly
+    from the last two."""
     m = stepper.nodes.radius.size
     heights = stepper.indenter.profile(stepper.nodes.radius)
     zero = np.zeros(stepper.system.n_dofs)
     last = _Load(np.full(m, np.nan), zero, stepper.nodes.radius.copy(), heights, np.zeros(m))
     previous, done, previous_depth = None, 0.0, 0.0
-    wanted, steps, taken = set(depths.tolist()), [], 0
-    for depth in map(float, ladder):
-        guess = last.x  # extrapolated linearly from the last two load steps
+
+    def advance(depth: float) -> int:
+        nonlocal last, previous, done, previous_depth
+        guess = last.x
         if previous is not None:
             guess = last.x + (depth - done) / (done - previous_depth) * (last.x - previous.x)
         try:
-            if math.isinf(friction):
-                state = _load_step(stepper, last, guess, (depth, depth))
-            else:
-                state = _slide_step(stepper, last, guess, (depth, depth), friction)
+            state = _load_step(stepper, last, guess, (depth, depth), friction)
         except NewtonError as error:
             raise NewtonError(
                 f"depth {depth:g} m (bonded, from {done:g} m): {error}; take smaller load "
                 "steps, refine the mesh or lower the deepest depth"
             ) from None
-        check_contact_edge(stepper, state.lam, depth)
-        taken += state.iterations
+        check_resolved(stepper.nodes.radius, state.lam, depth, fewest=1)
         previous, previous_depth, last, done = last, done, state, depth
-        if depth in wanted:
-            steps.append(
-                finite_step(
-                    stepper,
-                    exact,
-                    depth,
-                    state.x,
-                    state.lam,
-                    state.iterations,
-                    taken,
-                    state.corrections,
-                )
-            )
-            taken = 0
-    return steps
+        return state.iterations
+
+    def record(depth: float, taken: int) -> FiniteContactStep:
+        solved = (last.x, last.lam, last.iterations, taken, last.corrections)
+        return finite_step(stepper, exact, depth, *solved)
+
+    return walk_ladder(ladder, depths, advance, record)

@@ -37,8 +37,8 @@ Post-processing per depth: the force P = sum lambda; the pressure recovered from
 nodal forces with the P2 surface matrix of the *current* surface, projected on the r-axis
 (for frictionless contact on a graph, vertical force per projected area is exactly the Cauchy
 normal pressure); p(0) extrapolated to the axis as in the linear code
-(:func:`.contact.central_pressure`); the contact radius r = R + u_r located between nodes from
-the gap (:func:`.contact.edge_radius`); the stored energy Pi.
+(:func:`.constraints.central_pressure`); the contact radius r = R + u_r located between nodes from
+the gap (:func:`.constraints.edge_radius`); the stored energy Pi.
 """
 
 from __future__ import annotations
@@ -53,34 +53,27 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
-from ..guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, depth_ratio
-from ..theory.contact import PowerLawContact
-from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material
-from ..theory.sneddon import Indenter, SneddonContact, contact_law
-from ..validation import InputError, NumericalFailureError, validate_poisson
-from .contact import EDGE_MARGIN, central_pressure, edge_radius
-from .elasticity import clamped_dofs, dof_nodes
-from .hyperelastic import (
+from ...guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, depth_ratio
+from ...theory.contact import PowerLawContact
+from ...theory.indenter import PowerLawIndenter
+from ...theory.materials import Material
+from ...theory.sneddon import Indenter, SneddonContact, contact_law
+from ...validation import InputError, NumericalFailureError, validate_poisson
+from ..elasticity import clamped_dofs, dof_nodes
+from ..hyperelastic import (
     HyperelasticSystem,
     NeoHookean,
     NewtonError,
     assemble_hyperelastic,
 )
-from .mesh import MeshSettings
-from .rubber import RubberModel, gent_locks
-from .solver import Pattern, PatternSolver
-
-__all__ = [
-    "FINITE_MESH",
-    "ContactOutgrowsMeshError",
-    "FiniteContactCurve",
-    "FiniteContactStep",
-    "check_finite_depths",
-    "extrapolate",
-    "run_finite_indentation",
-    "solve_finite_contact",
-]
+from ..mesh import MeshSettings
+from ..rubber import RubberModel, gent_locks
+from ..solver import Pattern, PatternSolver
+from .constraints import (
+    central_pressure,
+    check_resolved,
+    edge_radius,
+)
 
 FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
@@ -101,10 +94,6 @@ converges only with that contraction, so the error it leaves is at most
 MAX_ITERATIONS = 30
 MAX_CUTS = 8
 _GAUSS = np.polynomial.legendre.leggauss(4)
-
-
-class ContactOutgrowsMeshError(InputError):
-    """The contact zone reached the edge of the candidate (refined) region."""
 
 
 @dataclass(frozen=True)
@@ -131,7 +120,7 @@ class FiniteContactStep:
     force_linear, contact_radius_linear, central_pressure_linear : float
         Shtaerman's exact linear values at the same depth (N, m, Pa).
     solution : numpy.ndarray
-        Converged x = [u (m), p (Pa)] (see :class:`.hyperelastic.HyperelasticSystem`).
+        Converged x = [u (m), p (Pa)] (see :class:`shtaerman.fem.hyperelastic.HyperelasticSystem`).
     multipliers : numpy.ndarray
         lambda >= 0 (N) on the candidate nodes.
     gap : numpy.ndarray
@@ -650,7 +639,7 @@ def _reach(
         done = trial
         cuts = 0  # count consecutive failures only
         increment *= 2.0
-        check_contact_edge(stepper, lam, trial)
+        check_resolved(stepper.nodes.radius, lam, trial, fewest=1)
     return history, iterations, total, corrections
 
 
@@ -660,7 +649,7 @@ def check_smallest_depth(
     """Refuse, before any Newton step, a smallest ``depth`` (m) whose small-strain contact
     radius covers no surface node besides the axis: its results would be those of no contact.
     (One or two nodes run: a study's coarse ladder levels start there and mark such points
-    unresolved; the linear model asks :data:`shtaerman.fem.contact.MIN_CONTACT_NODES`.)"""
+    unresolved; the linear model asks :data:`.constraints.MIN_CONTACT_NODES`.)"""
     radius = float(law.contact_radius(depth))
     covered = int(np.count_nonzero((stepper.nodes.radius > 0) & (stepper.nodes.radius < radius)))
     if covered == 0:
@@ -719,20 +708,6 @@ def _edge(radius: np.ndarray, lam: np.ndarray) -> float | None:
     if loaded.size == 0 or loaded[-1] + 1 >= radius.size:
         return None
     return float(0.5 * (radius[loaded[-1]] + radius[loaded[-1] + 1]))
-
-
-def check_contact_edge(stepper: NewtonStepper, lam: np.ndarray, depth: float) -> None:
-    """Refuse a contact at ``depth`` (m) with no loaded node (``lam`` (N) > 0), or whose last
-    loaded node is within :data:`.contact.EDGE_MARGIN` of the candidates' edge."""
-    loaded = np.flatnonzero(lam > 0)
-    if loaded.size == 0:
-        raise InputError(f"depth {depth:g} m: the indenter does not touch the surface")
-    if loaded[-1] + EDGE_MARGIN >= lam.size:
-        r = stepper.nodes.radius
-        raise ContactOutgrowsMeshError(
-            f"depth {depth:g} m: the contact zone reaches R = {r[loaded[-1]]:.4g} m, the edge "
-            f"of the refined region ({r[-1]:.4g} m); mesh a larger region"
-        )
 
 
 def finite_step(
@@ -864,7 +839,7 @@ def run_finite_indentation(
         contact radius (d_max / A)^(1/n) (times :meth:`MeshSettings.zone_factor` on a layer,
         whose ``base`` must be bonded: the lubricated base's exterior spring is linear).
     rubber : RubberModel, optional
-        The rubber model (default neo-Hookean, :mod:`.rubber`).
+        The rubber model (default neo-Hookean, :mod:`shtaerman.fem.rubber`).
     solve : callable, optional
         The contact solver (default :func:`solve_finite_contact`); a bonded ``mesh.interface``
         needs :func:`.finite_stick.solve_finite_bonded_contact`.
@@ -885,7 +860,7 @@ def run_finite_indentation(
     if mesh.interface == "bonded" and solve in (None, solve_finite_contact):
         raise InputError(
             "interface: a bonded indenter needs solve=solve_finite_bonded_contact "
-            "(shtaerman.fem.finite_stick)",
+            "(shtaerman.fem.contact.finite_stick)",
             "interface",
         )
     refined = mesh.margin * geometric_radius(indenter, depths[-1])

@@ -1,0 +1,212 @@
+"""The contact constraints of a rigid indenter written once, for any body: the active-set
+loop of a history-dependent contact (bonded or Coulomb) with its stick and slip state, the load
+ladder of the static contact, and what is read off a solved contact (its edge, its central
+pressure, whether the mesh resolves it).
+
+A body supplies the solve of one contact set (the linear body: the surface compliance from its
+one factorization, :mod:`.stick`; the finite-strain body: Newton, :mod:`.finite_stick`) and the
+update of its held positions; :func:`settle` changes the contact set until no condition is
+violated. The conditions, in order of priority: a node in contact in tension is released, a
+free node below the indenter enters, a stuck node whose shear exceeds mu times its normal force
+slides, a sliding node whose slip reverses sticks again. All change at once; should a contact
+set repeat, one node at a time (:func:`worst_only`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import Any
+
+import numpy as np
+
+from ...validation import InputError, NumericalFailureError
+
+MAX_ACTIVE_SET_ITERATIONS = 100
+ROUND_OFF = 1e-10
+"""Relative band within which a force or gap counts as zero in the active-set update."""
+EDGE_MARGIN = 3
+"""Candidate nodes that must stay free beyond the contact edge, or the zone is too small."""
+MIN_CONTACT_NODES = 3
+"""Fewest loaded surface nodes of a contact (the axis node carries none): fewer cannot resolve
+the force and the radius."""
+
+
+EDGE_FIT_NODES = slice(3, 15)
+"""Free nodes (counted past the last loaded one) fitted to locate the edge: the first few are
+skipped, the FEM gap there is distorted over about one element."""
+
+
+def edge_radius(r: np.ndarray, forces: np.ndarray, gap: np.ndarray) -> float:
+    """Edge a from the gap beyond it, g^(2/3) ~ c (r - a)(1 + O(r - a)) at a smooth edge.
+
+    A least-squares quadratic in r through g^(2/3) at free nodes 3..14 past the last loaded
+    one, its root nearest the edge (second order). With too few free nodes, or no real root
+    nearby, the two-node linear extrapolation is used. The discrete contact may
+    carry a small force one node past the true edge, so the result is kept between the
+    last-but-one loaded node and the first free one.
+
+    Raises
+    ------
+    shtaerman.validation.NumericalFailureError
+        If the gap does not open between the first two free nodes (the free surface lies on
+        the indenter there): the edge is undefined.
+    """
+    last = np.flatnonzero(forces > 0)[-1]
+    lowest, first = r[max(last - 1, 0)], r[last + 1]
+    rise = gap[last + 2] ** (2 / 3) - gap[last + 1] ** (2 / 3)
+    if rise == 0.0:
+        raise NumericalFailureError(
+            f"the free surface beyond the contact edge lies on the indenter (zero gap opening "
+            f"at r = {first:.4g} m), so the contact radius is undefined"
+        )
+    linear = first - gap[last + 1] ** (2 / 3) * (r[last + 2] - first) / rise
+    window = np.arange(r.size)[last + 1 :][EDGE_FIT_NODES]
+    estimate = linear
+    if window.size == EDGE_FIT_NODES.stop - EDGE_FIT_NODES.start:
+        roots = np.roots(np.polyfit(r[window], gap[window] ** (2 / 3), 2))
+        roots = roots[np.isreal(roots)].real
+        near = roots[(roots >= lowest) & (roots <= first)]
+        if near.size:
+            estimate = near[np.argmin(np.abs(near - linear))]
+    return float(np.clip(estimate, lowest, first))
+
+
+CENTRE_SAMPLES = (1e-4, 1e-3, 1e-2)
+"""Radii / a where the pressure is sampled to extrapolate it to the axis (ratio 10)."""
+
+
+def central_pressure(r: np.ndarray, pressure: np.ndarray, contact_radius: float) -> float:
+    """p(0) in Pa by Aitken's extrapolation of p at r = 1e-4 a, 1e-3 a, 1e-2 a.
+
+    Near the axis p(r) = p0 + B r^s for a cusp of unknown order s > 0 (s = n - 1 for z = A r^n
+    with n < 3), and on a geometric sequence of radii Aitken's delta-squared is exact for that
+    form whatever s. The axis node's own value is not used: its basis function carries almost
+    no 2 pi r weight, so the recovery there smears the cusp. Where the differences do not
+    shrink geometrically toward the axis (a smooth centre, as for Hertz, or noise) the
+    innermost sample is returned.
+    """
+    p1, p2, p3 = np.interp(contact_radius * np.asarray(CENTRE_SAMPLES), r, pressure)
+    inner, outer = p2 - p1, p3 - p2
+    if inner * outer <= 0 or abs(outer) <= abs(inner):
+        return float(p1)
+    return float(p1 - inner**2 / (outer - inner))
+
+
+class ContactOutgrowsMeshError(InputError):
+    """The contact zone reached the edge of the candidate (refined) region."""
+
+
+def check_resolved(
+    r: np.ndarray, forces: np.ndarray, depth: float, fewest: int = MIN_CONTACT_NODES
+) -> None:
+    """InputError unless the contact at ``depth`` (m) loads at least ``fewest`` surface nodes
+    (nodal ``forces`` > 0, N) and stays ``EDGE_MARGIN`` nodes inside the candidates (radii
+    ``r``, m; :class:`ContactOutgrowsMeshError`)."""
+    loaded = np.flatnonzero(forces > 0)
+    if loaded.size < fewest:
+        raise InputError(
+            f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
+            f"{fewest}: smaller than this mesh resolves; raise the smallest depth or "
+            f"refine the mesh (--mesh-size, --refine)"
+        )
+    if loaded[-1] + EDGE_MARGIN >= r.size:
+        raise ContactOutgrowsMeshError(
+            f"depth {depth:g} m: the contact zone reaches r = {r[loaded[-1]]:.4g} m, "
+            f"the edge of the refined region ({r[-1]:.4g} m); mesh a larger region (raise "
+            "--mesh-margin)"
+        )
+
+
+def worst_only(changes: list[np.ndarray], excess: list[np.ndarray]) -> list[np.ndarray]:
+    """``changes`` (boolean masks, in order of priority) cut to the single node of the first
+    non-empty one with the largest ``excess`` (the cautious update after a cycle)."""
+    cut = [np.zeros_like(change) for change in changes]
+    for change, amount, one in zip(changes, excess, cut, strict=True):
+        if change.any():
+            one[np.flatnonzero(change)[np.argmax(amount[change])]] = True
+            break
+    return cut
+
+
+def settle(
+    state: Any,
+    attempt: Callable[[Any], tuple[Any, list[np.ndarray], list[np.ndarray]]],
+    update: Callable[[Any, Any, list[np.ndarray]], Any],
+    key: Callable[[Any], bytes],
+    limit: int,
+) -> Any:
+    """The active-set loop of a history-dependent contact, from the contact set ``state``.
+
+    ``attempt(state)`` solves the body with that set and returns (solved, changes, excess):
+    the violated conditions (release, enter, stick to slip, slip to stick: boolean masks per
+    candidate) and their size; ``update(state, solved, changes)`` the next set; ``key(state)``
+    identifies a set. All violated conditions change at once; should a set repeat, one node at
+    a time (:func:`worst_only`). Returns the solved contact with no condition violated, or
+    None if the sets keep cycling (or after ``limit`` attempts).
+    """
+    seen: set[bytes] = set()
+    cautious = False
+    for _ in range(limit):
+        solved, changes, excess = attempt(state)
+        if not any(change.any() for change in changes):
+            return solved
+        if cautious:
+            changes = worst_only(changes, excess)
+        seen.add(key(state))
+        state = update(state, solved, changes)
+        if key(state) in seen:
+            if cautious:
+                return None
+            cautious, seen = True, set()
+    return None
+
+
+STEP_RATIO = 1.02
+"""Default depth ratio of consecutive load steps (benchmarks/FEM_NOTES.md, "Interface
+friction", measures the force's convergence in it)."""
+START_NODE = 4
+"""The first load step is the depth at which the indenter reaches this candidate node (counted
+from the axis): the history before it is taken as one step."""
+
+
+def check_loading(step_ratio: float, friction: float) -> None:
+    """InputError unless ``step_ratio`` > 1 and the Coulomb ``friction`` >= 0 (inf: no slip)."""
+    if not step_ratio > 1.0:
+        raise InputError(f"step_ratio: must be > 1, got {step_ratio!r}", "step_ratio")
+    if not friction >= 0.0:
+        raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
+
+
+def unsettled(depth: float) -> NumericalFailureError:
+    """The failure of a load step at ``depth`` (m) whose stick and slip sets keep cycling."""
+    return NumericalFailureError(
+        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
+        "the edge or take smaller load steps"
+    )
+
+
+def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndarray:
+    """Load steps (m): geometric with ``step_ratio`` from ``start`` (at most depths[0]) to
+    depths[-1], merged with ``depths`` (each requested depth is one of them)."""
+    start = min(start, depths[0])
+    count = int(np.ceil(np.log(depths[-1] / start) / np.log(step_ratio)))
+    ladder = start * step_ratio ** np.arange(count)
+    return np.union1d(ladder[ladder < depths[-1]], depths)
+
+
+def walk_ladder(
+    ladder: Iterable[float],
+    depths: np.ndarray,
+    advance: Callable[[float], int],
+    record: Callable[[float, int], Any],
+) -> list:
+    """Load through ``ladder`` (m): ``advance(depth)`` takes one load step and returns its
+    work (load steps, Newton iterations); at each of the requested ``depths`` (m) the result
+    ``record(depth, work since the previous one)`` is kept."""
+    wanted, kept, taken = set(np.asarray(depths).tolist()), [], 0
+    for depth in map(float, ladder):
+        taken += advance(depth)
+        if depth in wanted:
+            kept.append(record(depth, taken))
+            taken = 0
+    return kept
