@@ -317,14 +317,53 @@ class NewtonStepper:
         puts in contact at reference radii beyond it (the predicted contact edge,
         :func:`predict_reach`)."""
         scale = depth if scale is None else scale
-        system, nodes = self.system, self.nodes
-        x, lam = x.copy(), lam.copy()
-        previous = step = None
+        system, nodes, previous = self.system, self.nodes, None
+
+        def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> Any:
+            nonlocal previous
+            _, gap, slope, curvature = self.geometry(x, depth)
+            active = lam - self.weight * gap > 0
+            if reach is not None and previous is None:  # the guess overshoots the edge
+                active &= nodes.radius < reach
+            lam[~active] = 0.0
+            if previous is not None and np.array_equal(active, previous):
+                if self.converged(*history):
+                    return None
+            previous = active
+            residual = system.residual(x, state)
+            np.subtract.at(residual, nodes.ur, lam * slope)
+            np.add.at(residual, nodes.uz, lam)
+            rows = np.flatnonzero(active)
+            reuse = self.reusable(rows, *history)
+            contact = (rows, slope, gap, curvature)
+            du, dlam = self.linear_step(x, lam, state, residual, contact, reuse)
+            return du, rows, dlam, not reuse, False
+
+        return self.iterate((x, lam), scale, increment)
+
+    def iterate(
+        self, start: tuple[np.ndarray, np.ndarray], scale: float, increment: Callable[..., Any]
+    ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+        """Newton's loop from ``start`` = (x, the multipliers lambda (N) of the candidates).
+
+        ``increment(x, lambda, state, corrections, fresh)`` gives (du, the candidates its
+        dlambda acts on, dlambda, whether made with a fresh tangent, whether to test the
+        convergence after it), or None where the iterate before it has converged. An update
+        that inverts an element (or, where the stepper back-tracks, folds the contact surface)
+        is halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
+        corrections (max |du| / ``scale``, m).
+
+        Raises
+        ------
+        NewtonError
+            No convergence in ``max_iterations``, or an element inverted.
+        """
+        x, lam = start[0].copy(), start[1].copy()
         corrections: list[float] = []
         fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
-        halvings = 0
+        step, halvings = None, 0
         for iteration in range(1, self.max_iterations + 1):
-            state = system.state(x)
+            state = self.system.state(x)
             if element_inverted(state) or (self.backtracks and self.folded(x)):
                 if step is None or halvings == self.backtracks:
                     raise NewtonError("an element inverted (J <= 0)")
@@ -334,33 +373,22 @@ class NewtonStepper:
                 lam[step[1]] -= step[2]
                 continue
             halvings = 0
-            _, gap, slope, curvature = self.geometry(x, depth)
-            active = lam - self.weight * gap > 0
-            if reach is not None and previous is None:  # the guess overshoots the edge
-                active &= nodes.radius < reach
-            lam[~active] = 0.0
-            if previous is not None and np.array_equal(active, previous):
-                if self.converged(corrections, fresh):
-                    return x, lam, iteration - 1, corrections
-            previous = active
-            residual = system.residual(x, state)
-            np.subtract.at(residual, nodes.ur, lam * slope)
-            np.add.at(residual, nodes.uz, lam)
-            rows = np.flatnonzero(active)
-            reuse = self.reusable(rows, corrections, fresh)
             try:
-                du, dlam = self.linear_step(
-                    x, lam, state, residual, (rows, slope, gap, curvature), reuse
-                )
+                made = increment(x, lam, state, corrections, fresh)
             except RuntimeError as error:
                 raise NewtonError(f"singular Newton matrix ({error})") from None
-            fresh.append(not reuse)
+            if made is None:
+                return x, lam, iteration - 1, corrections
+            du, rows, dlam, tangent_fresh, test = made
+            fresh.append(tangent_fresh)
             x[self.free] += du
             lam[rows] += dlam
             step = (du, rows, dlam)
             corrections.append(float(np.max(np.abs(du[: self.n_free_u]))) / scale)
             if not np.isfinite(corrections[-1]):
                 break
+            if test and self.converged(corrections, fresh):
+                return x, lam, iteration, corrections
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
 
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
@@ -567,17 +595,10 @@ def solve_finite_contact(
     ContactOutgrowsMeshError
         The contact zone reached the edge of the candidate region.
     """
-    if indenter.kind == "power-law" and indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
-        )
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     start = time.perf_counter()
-    stepper = NewtonStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    stepper.modified = True
-    check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
-    material = system.material
-    exact = contact_law(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
+    limits = (candidate_radius, tolerance, max_iterations)
+    stepper, exact = start_curve(NewtonStepper, system, indenter, depths, limits)
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
     steps = []
     for target in depths:
@@ -586,6 +607,29 @@ def solve_finite_contact(
         steps.append(finite_step(stepper, exact, target, x, lam, iterations, total, corrections))
     timings = {"contact": time.perf_counter() - start}
     return FiniteContactCurve(steps, system, indenter, timings)
+
+
+def start_curve(
+    kind: type[NewtonStepper],
+    system: HyperelasticSystem,
+    indenter: PowerLawIndenter,
+    depths: np.ndarray,
+    limits: tuple[float, float, int],
+) -> tuple[NewtonStepper, PowerLawContact | SneddonContact]:
+    """The ``modified`` stepper ``kind(system, indenter, *limits)`` of a contact curve to the
+    ``depths`` (m; ``limits``: candidate radius in m, Newton tolerance, iterations) and the
+    small-strain contact whose exact values each step reports, after refusing an exponent
+    <= 1 and a smallest depth the mesh cannot resolve (:func:`check_smallest_depth`)."""
+    if indenter.kind == "power-law" and indenter.exponent <= 1.0:
+        raise InputError(
+            f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
+        )
+    stepper = kind(system, indenter, *limits)
+    stepper.modified = True
+    check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
+    material = system.material
+    modulus = material.youngs_modulus / (1.0 - material.poisson_ratio**2)
+    return stepper, contact_law(indenter, modulus)
 
 
 def _reach(

@@ -1,46 +1,32 @@
-"""Bonded contact (no slip, or Coulomb friction) of a rigid power-law indenter with a rubber
-half-space at finite strain.
+"""Bonded (no slip) or Coulomb contact of a rigid power-law indenter with a rubber body at
+finite strain: the rules of :mod:`.constraints` on the finite-strain body.
 
-The rigid indenter z = A r^n - d moves only vertically. A candidate surface node (reference
-radius R, displacement (u_r, u_z)) is free until its vertical gap
-g = A (R + u_r)^n - d - u_z closes. From then on it sticks: its *current* radius
+A candidate surface node (reference radius R, displacement (u_r, u_z)) is free until its
+vertical gap g = A (R + u_r)^n - d - u_z closes. From then on it sticks: its *current* radius
 x_r = R + u_r keeps the value it had when it touched, and its height follows the indenter,
-x_z = A x_r^n - d. The touching radius is interpolated linearly between the last converged
-depth and the current one at the point where the node's gap closes (as the linear solver
-:mod:`.stick` does). A stuck node whose vertical reaction turns tensile is released and
-forgets its radius (it gets a new one should it touch again).
+x_z = A x_r^n - d. The static contact is loaded over :func:`.constraints.depth_ladder`
+(:func:`bonded_ladder`); at each load step the stuck nodes' two displacement dofs are
+prescribed and Newton solves for the rest (the stepper, pattern and solver of
+:class:`.finite.NewtonStepper`, the prescribed dofs eliminated from its fixed pattern). The
+curve's Newton is a modified Newton (:func:`_newton`): it reuses the last factorization, also
+across load steps and with the nodes stuck since held by a capacitance correction
+(:meth:`_Kept.constrained`), while each correction shrinks by :data:`.finite.CONTRACTION`;
+the Coulomb Newton (:func:`_slide_newton`) likewise, while the stuck dofs and slip directions
+stay those of its factorization, in the curve's load steps and in an impact's time steps
+(:class:`HistoryStepper`).
 
-The contact is history dependent: it is solved by incremental loading over the geometric
-ladder :func:`.constraints.depth_ladder` (ratio ``step_ratio``, default
-:data:`.constraints.STEP_RATIO`) from the depth at which the indenter reaches candidate node
-:data:`.constraints.START_NODE` up to the deepest depth, the requested depths included. At each
-load step the stuck nodes' two displacement dofs are prescribed and Newton solves for the rest
-(the stepper, pattern and solver of :class:`.finite.NewtonStepper`; the prescribed dofs are
-eliminated from its fixed pattern), within an active-set loop (:func:`.constraints.settle`)
-that lets free nodes whose gap turned negative touch and releases stuck nodes in tension.
-The curve's Newton is a modified Newton (:func:`_newton`): it reuses the last factorization,
-also across load steps and with the nodes stuck since held by a capacitance correction
-(:meth:`_Kept.constrained`), while each correction shrinks by
-:data:`.finite.CONTRACTION`; the Coulomb Newton (:func:`_slide_newton`) likewise, while
-the stuck dofs and slip directions stay those of its factorization, in the curve's load steps
-and in an impact's time steps (:class:`HistoryStepper`).
-
-With a finite Coulomb coefficient mu (``friction``) a stuck node slides once its tangential
-reaction exceeds mu times its normal one, both resolved on the indenter's normal
-(f'(x_r), -1)/|.| at its current radius (at finite strain the slope is not small, so the
-vertical/radial split of the linear solver would make mu = 0 differ from the frictionless
-contact). A sliding node keeps its gap closed as in :mod:`.finite` and carries the
-friction mu N along the indenter's tangent against its slip, with N from the previous Newton
-iterate (a fixed point converged with Newton's own tolerance on the corrections); a sliding
-node whose slip reverses sticks again at its radius of the last load step (or where it
-touched, should it have touched within the step).
+With Coulomb friction mu the tangential and normal reactions are resolved on the indenter's
+normal (f'(x_r), -1)/|.| at the node's current radius (at finite strain the slope is not
+small: the vertical/radial split of the linear solver would make mu = 0 differ from the
+frictionless contact). A sliding node keeps its gap closed as in :mod:`.finite` and carries
+the friction mu N along the indenter's tangent against its slip, N from the previous Newton
+iterate (a fixed point converged with Newton's own tolerance on the corrections).
 
 The force P is the total vertical reaction on the indenter, the sum of the contact nodes'
 vertical reactions lambda_i = -dPi/du_z,i (N; with friction it includes the friction's
-vertical component). Without slip the radial reactions do no work (the stuck nodes do not
-move radially), so dPi/dd = P up to the ladder's interpolation of the touching radii.
-Contact radius, pressure, p(0) and the stored energy are reported as
-:func:`.finite.solve_finite_contact` does, from the vertical reactions.
+vertical component). Without slip the radial reactions do no work, so dPi/dd = P up to the
+ladder's interpolation of the touching radii. Contact radius, pressure, p(0) and the stored
+energy are reported as :func:`.finite.solve_finite_contact` does.
 """
 
 from __future__ import annotations
@@ -57,7 +43,7 @@ from numpy.typing import ArrayLike
 
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
-from ...theory.sneddon import SneddonContact, contact_law
+from ...theory.sneddon import SneddonContact
 from ...validation import InputError
 from ..hyperelastic import HyperelasticSystem, NewtonError
 from .constraints import (
@@ -77,12 +63,11 @@ from .finite import (
     FiniteContactCurve,
     FiniteContactStep,
     NewtonStepper,
-    check_smallest_depth,
-    element_inverted,
     eliminate_gaps,
     finite_step,
     pattern_entries,
     solve_finite_contact,
+    start_curve,
     tip_exponent,
 )
 
@@ -123,6 +108,13 @@ class _Load:
     """Nodes in contact at the last load step, released and gripped anew within this one."""
     forces: np.ndarray | None = None
     """The body's residual at ``x`` (N; at the contact nodes, minus the contact's forces)."""
+
+    @classmethod
+    def untouched(cls, stepper: NewtonStepper) -> _Load:
+        """No node of ``stepper``'s candidates in contact, the body at rest."""
+        m, radius = stepper.nodes.radius.size, stepper.nodes.radius
+        x, heights = np.zeros(stepper.system.n_dofs), stepper.indenter.profile(radius)
+        return cls(np.full(m, np.nan), x, radius.copy(), heights, np.zeros(m))
 
 
 def bonded_ladder(
@@ -181,14 +173,6 @@ def _shifted_load(
     return residual + stepper.pattern.matrix(tangent) @ shift
 
 
-def _newton_stuck(
-    stepper: NewtonStepper, trial: _Load, depth: float, scale: float
-) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
-    """:func:`_newton` from ``trial.x`` with its ``held`` nodes stuck (and its ``lam``)."""
-    x, iterations, corrections = _newton(stepper, trial.x, trial.held, depth, scale)
-    return x, trial.lam, iterations, corrections
-
-
 def _warm_newton(
     newton: Any,
     stepper: NewtonStepper,
@@ -196,7 +180,7 @@ def _warm_newton(
     at: tuple[float, float],
     warm: dict[bytes, tuple] | None,
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
-    """``newton(stepper, trial, *at)`` (:func:`_newton_stuck`, :func:`_slide_newton`) started
+    """``newton(stepper, trial, *at)`` (:func:`_newton`, :func:`_slide_newton`) started
     from the solution (x, lam) that an earlier solve of the time step found with
     ``trial``'s contact set, if ``warm`` holds one; the solution is recorded in ``warm``.
 
@@ -220,51 +204,28 @@ def _warm_newton(
 
 
 def _newton(
-    stepper: BondedStepper, x: np.ndarray, held: np.ndarray, depth: float, scale: float
-) -> tuple[np.ndarray, int, list[float]]:
-    """Newton at ``depth`` (m) from ``x`` with the stuck nodes (``held`` radii) prescribed; its
-    corrections measured relative to ``scale`` (m).
+    stepper: BondedStepper, trial: _Load, depth: float, scale: float
+) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+    """Newton at ``depth`` (m) from ``trial.x`` with its stuck nodes (``held`` radii)
+    prescribed; its corrections measured relative to ``scale`` (m). Returns x, ``trial.lam``,
+    the iterations and corrections.
 
     The prescribed dofs are eliminated in the stepper's pattern: their rows and columns are
     zeroed with a unit diagonal and their increment moved to the right-hand side. Where the
     stepper is ``modified`` (a :class:`BondedStepper` of the quasi-static curve), a step
     reuses the last factorization while it was made for the same stuck dofs (also at an
     earlier load step) and, after a step that reused it, the correction shrank by
-    :data:`.finite.CONTRACTION` (:func:`_reusable`,
-    :meth:`.finite.NewtonStepper.converged`).
-
-    Raises
-    ------
-    NewtonError
-        No convergence in ``stepper.max_iterations``, or an element inverted.
+    :data:`.finite.CONTRACTION` (:func:`_reusable`, :meth:`.finite.NewtonStepper.converged`).
     """
-    system = stepper.system
-    slaves, values, moved = _targets(stepper, held, depth)
-    x = x.copy()
-    corrections: list[float] = []
-    fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
-    du, halvings = None, 0
-    for iteration in range(1, stepper.max_iterations + 1):
-        state = system.state(x)
-        if _invalid(stepper, x, state):
-            du, halvings = _back_track(stepper, du, halvings)
-            x[stepper.free] -= du
-            continue
-        halvings = 0
-        reuse = _reusable(stepper, slaves, corrections, fresh)
+    slaves, values, moved = _targets(stepper, trial.held, depth)
+
+    def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> tuple:
+        reuse = _reusable(stepper, slaves, *history)
         shift = _shift(stepper, x, slaves, values)
-        try:
-            du = _stuck_step(stepper, x, state, (slaves, moved, shift), reuse)
-        except RuntimeError as error:
-            raise NewtonError(f"singular Newton matrix ({error})") from None
-        fresh.append(reuse is None)
-        x[stepper.free] += du
-        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
-        if not np.isfinite(corrections[-1]):
-            break
-        if stepper.converged(corrections, fresh):
-            return x, iteration, corrections
-    raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+        du = _stuck_step(stepper, x, state, (slaves, moved, shift), reuse)
+        return du, np.zeros(0, np.int64), np.zeros(0), reuse is None, True
+
+    return stepper.iterate((trial.x, trial.lam), scale, increment)
 
 
 @dataclass
@@ -358,20 +319,6 @@ def _reusable(
     return None if again is None else (kept.tangent, again)
 
 
-def _invalid(stepper: NewtonStepper, x: np.ndarray, state: Any) -> bool:
-    """Whether ``x`` inverts an element or, where the stepper back-tracks (a body with inertia
-    or a relaxing one), folds the contact surface."""
-    return element_inverted(state) or bool(stepper.backtracks and stepper.folded(x))
-
-
-def _back_track(stepper: NewtonStepper, step: Any, halvings: int) -> tuple[Any, int]:
-    """Half of the last Newton ``step`` (to take back) and the halvings so far; NewtonError
-    when there is none or ``stepper.backtracks`` halvings are spent (0: a static contact)."""
-    if step is None or halvings >= stepper.backtracks:
-        raise NewtonError("an element inverted (J <= 0)")
-    return 0.5 * step, halvings + 1
-
-
 def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> np.ndarray:
     """Vertical reactions lambda = -dPi/du_z (N, compression positive) of the stuck nodes
     from the body's residual ``forces`` (N)."""
@@ -427,7 +374,7 @@ def _load_step(
     if not bonded:
         start.slip = np.zeros(m) if last.slip is None else last.slip.copy()
         start.gripped = np.zeros(m, dtype=bool)
-    newton = _newton_stuck if bonded else functools.partial(_slide_newton, friction=friction)
+    newton = _newton if bonded else functools.partial(_slide_newton, friction=friction)
     total = 0
 
     def attempt(trial: _Load) -> tuple[tuple, list[np.ndarray], list[np.ndarray]]:
@@ -491,24 +438,14 @@ def _slide_newton(
     sliding = rows[nodes.ur_free[rows]]  # d(drag f')/du_r: the u_z row, the u_r column
     across = pattern.find(stepper.position[nodes.uz[sliding]], stepper.position[nodes.ur[sliding]])
     key = slaves.tobytes() + slip.tobytes()
-    x, lam = trial.x.copy(), np.where(slip != 0, trial.lam, 0.0)
-    corrections: list[float] = []
-    fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
-    step, halvings = None, 0
-    for iteration in range(1, stepper.max_iterations + 1):
-        state = system.state(x)
-        if _invalid(stepper, x, state):
-            step, halvings = _back_track(stepper, step, halvings)
-            x[stepper.free] -= step[: stepper.free.size]
-            lam[rows] -= step[stepper.free.size :]
-            continue
-        halvings = 0
+
+    def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> tuple:
         _, gap, slope, curvature = stepper.geometry(x, depth)
         drag = slip * friction * lam
         residual = system.residual(x, state)
         np.subtract.at(residual, nodes.ur, lam * slope - drag)
         np.add.at(residual, nodes.uz, lam + drag * slope)
-        reuse = _slide_reusable(stepper, key, corrections, fresh)
+        reuse = _slide_reusable(stepper, key, *history)
         if reuse is None:
             tangent = system.tangent_data(x, state)[stepper.take]
             tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
@@ -519,24 +456,14 @@ def _slide_newton(
         shift = _shift(stepper, x, slaves, values)
         load = _shifted_load(stepper, residual[stepper.free], tangent, shift)
         load[slaves] = -shift[slaves]
-        try:
-            du, dlam = eliminate_gaps(
-                stepper, reduced, load, rows, slope, gap, slip * friction, again=again
-            )
-        except RuntimeError as error:
-            raise NewtonError(f"singular Newton matrix ({error})") from None
+        du, dlam = eliminate_gaps(
+            stepper, reduced, load, rows, slope, gap, slip * friction, again=again
+        )
         if reuse is None and stepper.modified:
             _keep_slide(stepper, key, (system, tangent, reduced, stepper.factorization))
-        fresh.append(reuse is None)
-        x[stepper.free] += du
-        lam[rows] += dlam
-        step = np.concatenate([du, dlam])
-        corrections.append(float(np.max(np.abs(du[: stepper.n_free_u]))) / scale)
-        if not np.isfinite(corrections[-1]):
-            break
-        if stepper.converged(corrections, fresh):
-            return x, lam, iteration, corrections
-    raise NewtonError(f"Newton did not converge in {stepper.max_iterations} iterations")
+        return du, rows, dlam, reuse is None, True
+
+    return stepper.iterate((trial.x, np.where(slip != 0, trial.lam, 0.0)), scale, increment)
 
 
 def _reduced(
@@ -665,13 +592,8 @@ class HistoryStepper(BondedStepper):
     ) -> None:
         super().__init__(system, indenter, candidate_radius, *limits)
         self.friction = friction
-        m = self.nodes.radius.size
-        heights = self.indenter.profile(self.nodes.radius)
-        zero = np.zeros(self.system.n_dofs)
-        self.committed = _Load(
-            np.full(m, np.nan), zero, self.nodes.radius.copy(), heights, zero[:m]
-        )
-        self.normal = np.zeros(m)  # the committed normal forces (N)
+        self.committed = _Load.untouched(self)
+        self.normal = np.zeros(self.nodes.radius.size)  # the committed normal forces (N)
         self.latest: tuple[_Load, np.ndarray] | None = None
         self.warm: dict[bytes, tuple] = {}  # the solves from the committed contact, by set
         self.dissipated = 0.0
@@ -732,19 +654,13 @@ def solve_finite_bonded_contact(
         The contact zone reached the edge of the candidate region.
     """
     check_loading(step_ratio, friction)
-    if indenter.kind == "power-law" and indenter.exponent <= 1.0:
-        raise InputError(
-            f"exponent must be > 1 for the finite-strain contact, got {indenter.exponent!r}"
-        )
     if friction == 0.0:  # nothing resists slip: no history, no load steps
         limits = {"tolerance": tolerance, "max_iterations": max_iterations}
         return solve_finite_contact(system, indenter, depths, candidate_radius, **limits)
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     begun = time.perf_counter()
-    stepper = BondedStepper(system, indenter, candidate_radius, tolerance, max_iterations)
-    check_smallest_depth(stepper, contact_law(indenter, 1.0), float(depths[0]))
-    material = system.material
-    exact = contact_law(indenter, material.youngs_modulus / (1.0 - material.poisson_ratio**2))
+    limits = (candidate_radius, tolerance, max_iterations)
+    stepper, exact = start_curve(BondedStepper, system, indenter, depths, limits)
     if start is not None and not 0.0 < start <= depths[0]:
         raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
     ladder = bonded_ladder(stepper, depths, step_ratio, start)
@@ -762,11 +678,7 @@ def _finite_ladder(
     """Load through the ``ladder`` (m) and keep the contact at each requested depth (Coulomb
     ``friction``; inf: no slip); each load step starts from the solution extrapolated linearly
     from the last two."""
-    m = stepper.nodes.radius.size
-    heights = stepper.indenter.profile(stepper.nodes.radius)
-    zero = np.zeros(stepper.system.n_dofs)
-    last = _Load(np.full(m, np.nan), zero, stepper.nodes.radius.copy(), heights, np.zeros(m))
-    previous, done, previous_depth = None, 0.0, 0.0
+    last, previous, done, previous_depth = _Load.untouched(stepper), None, 0.0, 0.0
 
     def advance(depth: float) -> int:
         nonlocal last, previous, done, previous_depth

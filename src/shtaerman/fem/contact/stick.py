@@ -1,46 +1,28 @@
-"""Bonded (no slip) or Coulomb contact of a rigid indenter: the contact-set update of one step
-and the static contact loaded in steps.
+"""Bonded (no slip) or Coulomb contact of a rigid indenter on the linear body: the contact-set
+update of one step (:func:`stick_slip_step`, the rules of :mod:`.constraints`) and the static
+contact loaded in steps (:func:`solve_bonded_contact`; the impact's time steps:
+:mod:`shtaerman.fem.stepper`).
 
-Once a surface point touches the rigid indenter it sticks to it. The indenter moves only
-vertically, so a point in contact keeps the radial displacement it had when it touched and its
-vertical one follows the indenter. The contact is history dependent: it is solved step by step
-(load steps of the static contact, :func:`solve_bonded_contact`; time steps of the impact,
-:mod:`shtaerman.fem.stepper`), each from the contact of the step before.
+A point in contact keeps the radial displacement it had when it touched and its vertical one
+follows the indenter. In a step the candidates' displacements are affine in the nodal contact
+forces f on the body (f_z = -F for a downward contact force F >= 0 at the m candidates' u_z,
+f_r the shear along +r at their u_r dofs): u = u_step + A f, with A (m/N) symmetric positive
+definite (:class:`CoupledCompliance`): the static surface compliance (u_step = 0), or in a
+time step the compliance of the effective stiffness with the striker's own term on the u_z
+block. :func:`stick_slip_step` takes ``reach``, the u_z response (A f)_z that puts a node on
+the indenter (static: f(r) - d; a time step: the clearance f(r) - X - u_z the step leaves
+without new contact forces), a free node's gap being reach - (A f)_z, and ``offset``, the u_r
+the step gives without new contact forces (static: 0).
 
-In a step the candidates' displacements are affine in the nodal contact forces f on the body
-(f_z = -F for a downward contact force F >= 0 at the m candidates' u_z, f_r the shear along +r
-at their u_r dofs): u = u_step + A f, with A (m/N) symmetric positive definite
-(:class:`CoupledCompliance`): the static surface compliance (u_step = 0), or in a time step
-the compliance of the effective stiffness with the striker's own term on the u_z block.
-:func:`stick_slip_step` takes ``reach``, the u_z response (A f)_z that puts a node on the
-indenter (static: f(r) - d; a time step: the clearance f(r) - X - u_z the step leaves without
-new contact forces), a free node's gap being reach - (A f)_z, and ``offset``, the u_r the step
-gives without new contact forces (static: 0). A primal-dual active-set iteration on the nodes
-in contact (:func:`.constraints.settle`):
-
-- a free node whose gap turns negative enters the contact; its radial displacement is frozen at
-  the value interpolated linearly between the last step and the current iterate, at the point
-  where its gap closes;
-- a node in contact whose normal force turns tensile is released and forgets its radial
-  displacement (it would get a new one on re-entry); should it, released in this step,
-  penetrate the indenter once free, it re-enters stuck at its current radial displacement
-  (it lets go and grips again within the step: the receding edge of a bonded contact, whose
-  node can neither stay stuck in tension nor leave);
-- with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu F slides (its shear
-  is then mu F against the direction of its slip), and a sliding node whose slip reverses
-  sticks again at its radial displacement of the last step.
-
-The static contact (:func:`solve_bonded_contact`, u_z = f(r) - d in contact) is loaded over a
-geometric ladder of depths (ratio ``step_ratio``) from the depth at which the indenter reaches
-candidate node :data:`.constraints.START_NODE` (the axis grading of the mesh makes it a tiny
-fraction of the first depth) up to the last, the requested depths included. Its A is the
-surface compliance of the candidates' u_z and u_r dofs, from the one sparse factorization with
-both dofs of every candidate eliminated last (:class:`shtaerman.fem.solver.TailFactorization`);
-each depth step is :func:`stick_slip_step` with reach f(r) - d and no radial offset.
-
-The force reported is the sum of the nodal normal forces (the frictionless solver's nodal sum;
-its vertex alignment needs a history-free contact). The tangential nodal forces (N, on the
-body, along +r) are kept per depth for the fields.
+The static contact (u_z = f(r) - d in contact) is loaded over the geometric ladder
+:func:`.constraints.depth_ladder` (ratio ``step_ratio``) from the depth at which the indenter
+reaches candidate node :data:`.constraints.START_NODE` up to the last, the requested depths
+included. Its A is the surface compliance of the candidates' u_z and u_r dofs, from the one
+sparse factorization with both dofs of every candidate eliminated last
+(:class:`shtaerman.fem.solver.TailFactorization`). The force reported is the sum of the nodal
+normal forces (the vertex alignment of :func:`.linear.aligned_force` needs a history-free
+contact); the tangential nodal forces (N, on the body, along +r) are kept per depth for the
+fields.
 """
 
 from __future__ import annotations
