@@ -27,6 +27,7 @@ All violated conditions change at once; should a contact set repeat, one node at
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -102,6 +103,53 @@ def central_pressure(r: np.ndarray, pressure: np.ndarray, contact_radius: float)
     if inner * outer <= 0 or abs(outer) <= abs(inner):
         return float(p1)
     return float(p1 - inner**2 / (outer - inner))
+
+
+def edge_and_centre(r: np.ndarray, solved: tuple, depth: float) -> tuple[float, float]:
+    """The contact radius (m, :func:`edge_radius`) and the central pressure (Pa,
+    :func:`central_pressure`) of the contact at ``depth`` (m) on the candidates at radii ``r``
+    (m), from ``solved`` = (nodal forces in N, gaps in m, recovered pressure in Pa)."""
+    forces, gap, pressure = solved
+    try:
+        radius = edge_radius(r, forces, gap)
+    except NumericalFailureError as error:
+        raise NumericalFailureError(
+            f"depth {depth:g} m: {error}; lower the deepest depth"
+        ) from None
+    return radius, central_pressure(r, pressure, radius)
+
+
+@dataclass(frozen=True)
+class SolvedContact:
+    """What a contact at one depth reports, on any body (SI units).
+
+    Attributes
+    ----------
+    depth : float
+        Indenter depth d in m.
+    force : float
+        Total indenter force P in N.
+    contact_radius : float
+        Contact radius a in m, located between nodes (:func:`edge_radius`).
+    central_pressure : float
+        Pressure at the axis p(0) in Pa (:func:`central_pressure`).
+    pressure : numpy.ndarray
+        Recovered pressure p (Pa) at the candidate nodes.
+    gap : numpy.ndarray
+        Gap g >= 0 in m at the candidate nodes (0 in contact).
+    """
+
+    depth: float
+    force: float
+    contact_radius: float
+    central_pressure: float
+    pressure: np.ndarray = field(repr=False)
+    gap: np.ndarray = field(repr=False)
+
+    @property
+    def mean_pressure(self) -> float:
+        """P / (pi a^2) in Pa."""
+        return self.force / (np.pi * self.contact_radius**2)
 
 
 class ContactOutgrowsMeshError(InputError):

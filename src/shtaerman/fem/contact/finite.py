@@ -58,7 +58,7 @@ from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
-from ...validation import InputError, NumericalFailureError, validate_poisson
+from ...validation import InputError, validate_poisson
 from ..elasticity import clamped_dofs, dof_nodes
 from ..hyperelastic import (
     HyperelasticSystem,
@@ -69,11 +69,7 @@ from ..hyperelastic import (
 from ..mesh import MeshSettings
 from ..rubber import RubberModel, gent_locks
 from ..solver import Pattern, PatternSolver
-from .constraints import (
-    central_pressure,
-    check_resolved,
-    edge_radius,
-)
+from .constraints import SolvedContact, check_resolved, edge_and_centre
 
 FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
 """Default mesh for the finite-strain contact (coarser than the linear default: every Newton
@@ -97,19 +93,13 @@ _GAUSS = np.polynomial.legendre.leggauss(4)
 
 
 @dataclass(frozen=True)
-class FiniteContactStep:
-    """Converged finite-strain contact at one depth (SI units).
+class FiniteContactStep(SolvedContact):
+    """Converged finite-strain contact at one depth: the :class:`.constraints.SolvedContact`
+    (``force`` P = sum lambda; the contact radius in the current configuration; the Cauchy
+    pressures; ``gap`` vertical) and
 
     Attributes
     ----------
-    depth : float
-        Indenter depth d in m.
-    force : float
-        Total indenter force P = sum lambda in N.
-    contact_radius : float
-        Contact radius in the current configuration in m.
-    central_pressure : float
-        Cauchy contact pressure at the axis in Pa (compression positive).
     strain_energy : float
         Stored strain energy Pi of the whole body in J.
     newton_iterations : int
@@ -123,22 +113,14 @@ class FiniteContactStep:
         Converged x = [u (m), p (Pa)] (see :class:`shtaerman.fem.hyperelastic.HyperelasticSystem`).
     multipliers : numpy.ndarray
         lambda >= 0 (N) on the candidate nodes.
-    gap : numpy.ndarray
-        Vertical gap g >= 0 (m) on the candidate nodes.
     current_radius : numpy.ndarray
         R + u_r (m) of the candidate nodes.
     surface_u_z : numpy.ndarray
         u_z (m) of the candidate nodes: the gap is f(current_radius) - depth - surface_u_z.
-    pressure : numpy.ndarray
-        Recovered contact pressure (Pa) at the candidate nodes.
     corrections : list of float
         max |du| / depth of each Newton iteration of the last sub-step.
     """
 
-    depth: float
-    force: float
-    contact_radius: float
-    central_pressure: float
     strain_energy: float
     newton_iterations: int
     total_iterations: int
@@ -147,16 +129,9 @@ class FiniteContactStep:
     central_pressure_linear: float
     solution: np.ndarray = field(repr=False)
     multipliers: np.ndarray = field(repr=False)
-    gap: np.ndarray = field(repr=False)
     current_radius: np.ndarray = field(repr=False)
     surface_u_z: np.ndarray = field(repr=False)
-    pressure: np.ndarray = field(repr=False)
     corrections: list[float] = field(repr=False)
-
-    @property
-    def mean_pressure(self) -> float:
-        """P / (pi a^2) in Pa (a in the current configuration)."""
-        return self.force / (np.pi * self.contact_radius**2)
 
 
 @dataclass(frozen=True, eq=False)
@@ -397,14 +372,19 @@ class NewtonStepper:
         active set ``rows``, and, after a step that reused it, the correction
         shrank by at least :data:`CONTRACTION`."""
         kept = self.kept
-        if (
-            not self.modified
-            or kept is None
-            or kept[0] is not self.system
-            or not np.array_equal(kept[1], rows)
-        ):
-            return False
-        return self.still_contracting(corrections, fresh)
+        return (
+            kept is not None
+            and np.array_equal(kept[1], rows)
+            and self.may_reuse(kept[0], corrections, fresh)
+        )
+
+    def may_reuse(self, made_for: Any, corrections: list[float], fresh: list[bool]) -> bool:
+        """Whether a kept tangent ``made_for`` a system may serve the next step: the stepper is
+        ``modified``, the system is its own, and the corrections still contract
+        (:meth:`still_contracting`)."""
+        return (
+            self.modified and made_for is self.system and self.still_contracting(corrections, fresh)
+        )
 
     def still_contracting(self, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether a kept factorization may serve the next step as far as the corrections
@@ -769,17 +749,12 @@ def finite_step(
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
     pressure = _recover_pressure(r, lam)
-    try:
-        radius = edge_radius(r, lam, gap)
-    except NumericalFailureError as error:
-        raise NumericalFailureError(
-            f"depth {depth:g} m: {error}; lower the deepest depth"
-        ) from None
+    radius, centre = edge_and_centre(r, (lam, gap, pressure), depth)
     return FiniteContactStep(
         depth=float(depth),
         force=float(lam.sum()),
         contact_radius=radius,
-        central_pressure=central_pressure(r, pressure, radius),
+        central_pressure=centre,
         strain_energy=stepper.system.energy(x),
         newton_iterations=iterations,
         total_iterations=total,

@@ -311,9 +311,7 @@ def _reusable(
     to compare with), the correction shrank by :data:`.finite.CONTRACTION`; else
     None."""
     kept = stepper.kept_stuck
-    if kept is None or kept.system is not stepper.system or not stepper.modified:
-        return None
-    if not stepper.still_contracting(corrections, fresh):
+    if kept is None or not stepper.may_reuse(kept.system, corrections, fresh):
         return None
     again = kept.constrained(slaves)
     return None if again is None else (kept.tangent, again)
@@ -497,9 +495,7 @@ def _slide_reusable(
     a time step's secant solves the same sets again) and, after a reused step that is not the
     solve's first, the correction shrank by :data:`.finite.CONTRACTION`."""
     kept = stepper.kept_slide.get(key)
-    if not stepper.modified or kept is None or kept[0] is not stepper.system:
-        return None
-    if not stepper.still_contracting(corrections, fresh):
+    if kept is None or not stepper.may_reuse(kept[0], corrections, fresh):
         return None
     return kept[1:]
 

@@ -42,9 +42,9 @@ from ..solver import Factorization, TailFactorization, TailPivotError, factorize
 from .constraints import (
     MAX_ACTIVE_SET_ITERATIONS,
     ROUND_OFF,
-    central_pressure,
+    SolvedContact,
     check_resolved,
-    edge_radius,
+    edge_and_centre,
 )
 
 Profile = Callable[[np.ndarray], np.ndarray]
@@ -177,48 +177,26 @@ def surface_compliance(
 
 
 @dataclass(frozen=True)
-class ContactStep:
-    """The contact at one depth (SI units).
+class ContactStep(SolvedContact):
+    """The contact at one depth on the linear body: the :class:`.constraints.SolvedContact`
+    (``force`` from the vertex-aligned contacts, :func:`aligned_force`, or the nodal sum) and
 
     Attributes
     ----------
-    depth : float
-        Indenter depth d in m.
-    force : float
-        Total contact force P in N, from the vertex-aligned contacts (:func:`aligned_force`).
     discrete_force : float
         Sum of the nodal forces at exactly this depth in N (differs from ``force`` by the
         O((h/a)^2) chord error of the piecewise-affine discrete curve).
-    contact_radius : float
-        Contact radius a in m, located between nodes.
-    central_pressure : float
-        Pressure at the axis p(0) in Pa.
     nodal_forces : numpy.ndarray
         F >= 0 in N on the candidate nodes.
-    pressure : numpy.ndarray
-        Recovered pressure p (Pa) at the candidate nodes.
-    gap : numpy.ndarray
-        Gap g >= 0 in m at the candidate nodes (0 in contact).
     iterations : int
         Active-set iterations used.
     """
 
-    depth: float
-    force: float
     discrete_force: float
-    contact_radius: float
-    central_pressure: float
     nodal_forces: np.ndarray = field(repr=False)
-    pressure: np.ndarray = field(repr=False)
-    gap: np.ndarray = field(repr=False)
     iterations: int
     tangential_forces: np.ndarray | None = field(default=None, repr=False)
     """Bonded contact only: nodal forces (N) along +r on the body at ``radial_dofs``."""
-
-    @property
-    def mean_pressure(self) -> float:
-        """P / (pi a^2) in Pa."""
-        return self.force / (np.pi * self.contact_radius**2)
 
 
 def _solve_active(matrix: np.ndarray, rhs: np.ndarray, active: np.ndarray) -> np.ndarray:
@@ -383,13 +361,13 @@ def step_from_forces(
     discrete = float(forces.sum())
     check_resolved(compliance.r, forces, depth)
     pressure = recover_pressure(compliance.mass_factor, forces)
-    radius = edge_radius(compliance.r, forces, gap)
+    radius, centre = edge_and_centre(compliance.r, (forces, gap, pressure), depth)
     return ContactStep(
         depth=depth,
         force=aligned_force(compliance, heights, forces, depth) if aligned else discrete,
         discrete_force=discrete,
         contact_radius=radius,
-        central_pressure=central_pressure(compliance.r, pressure, radius),
+        central_pressure=centre,
         nodal_forces=forces,
         pressure=pressure,
         gap=gap,

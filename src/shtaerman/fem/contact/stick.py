@@ -260,9 +260,9 @@ def solve_bonded_contact(
     depths: np.ndarray,
     candidate_radius: float,
     *,
-    backend: str = "auto",
-    step_ratio: float = STEP_RATIO,
     friction: float = math.inf,
+    step_ratio: float = STEP_RATIO,
+    backend: str = "auto",
 ) -> ContactCurve:
     """Press a rigid indenter z = f(r) that the surface sticks to, in load steps.
 
