@@ -19,7 +19,7 @@ asserted (wall-clock times depend on the machine and on its load, printed beside
 (e) EDGE ALIGNMENT. The force error over many depths around the shallowest default one
     (a = a_c/3), per mesh: the nodal sum at each depth (a polygon in d, oscillating with the
     contact edge), the power-law interpolant between vertex-aligned contacts (the reported
-    force, :func:`shtaerman.fem.contact.aligned_force`) and, for contrast, between contacts
+    force, :func:`shtaerman.fem.contact.linear.aligned_force`) and, for contrast, between contacts
     aligned on P2 edge midpoints.
 """
 

@@ -3,7 +3,8 @@
 Run ``python benchmarks/layer_limits.py`` (a few minutes on 2 idle cores) or with ``--quick``
 (fewer thicknesses). Prints tables; nothing is asserted. A rigid z = A r^n (A = 5, n = 3/2 unless
 ``--exponent``) is pressed to one depth, whose half-space contact radius is a = 10 mm, into a
-layer of thickness H (default mesh, the force of :func:`shtaerman.fem.contact.aligned_force`):
+layer of thickness H (default mesh, the force of
+:func:`shtaerman.fem.contact.linear.aligned_force`):
 
 (a) nu = 0.3, bonded: P_FE / P_oedometric (thin limit) and P_FE / P_Shtaerman (thick limit);
 (b) nu = 0.5, bonded: P_FE / P_thin-film (thin limit) and P_FE / P_Shtaerman;

@@ -1,12 +1,12 @@
 """A bonded or Coulomb striker in the linear dynamic impact (``friction`` of
-:func:`shtaerman.fem.impact.run_impact`; :mod:`shtaerman.fem.stick`).
+:func:`shtaerman.fem.impact.run_impact`; :mod:`shtaerman.fem.contact.stick`).
 
 The paper's striker (0.7 kg at 3 m/s, z = 5 r^1.5) on rubber (7.5 MPa, 1100 kg/m^3), coarse:
 60 steps per t_y and elements of 1/20 of the refined radius (11k dofs, about 2 s a run). The
 references: the frictionless run (mu = 0, and nu = 0.5 where Dundurs' beta = (1 - 2 nu) /
 (2 (1 - nu)) = 0 uncouples the normal and tangential problems, Spence 1975), the bonded run
 (mu large) and, for the massless body, the exact quasi-static impact on the static bonded FE
-law of the same mesh (:func:`shtaerman.fem.stick.solve_bonded_contact`).
+law of the same mesh (:func:`shtaerman.fem.contact.stick.solve_bonded_contact`).
 """
 
 from __future__ import annotations
@@ -145,7 +145,7 @@ def test_a_layer_takes_the_friction():
 def test_a_viscoelastic_body_takes_the_friction():
     """A Prony shear (g1 = 0.3, tau1 = 4 ms, about t_y / 2): its unloading recedes the bonded
     contact's edge node into a state where it can neither stay stuck (tensile) nor leave (it
-    would penetrate); it grips again where it touches (:mod:`shtaerman.fem.stick`)."""
+    would penetrate); it grips again where it touches (:mod:`shtaerman.fem.contact.stick`)."""
     prony = PronySeries.parse("0.3:0.004")
     free, zero, bonded = (
         run_impact(PAPER, COMPRESSIBLE, 1100.0, 0.7, 3.0, COARSE, prony=prony, friction=mu)
