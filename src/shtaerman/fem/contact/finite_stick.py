@@ -109,6 +109,10 @@ class _Load:
     forces: np.ndarray | None = None
     """The body's residual at ``x`` (N; at the contact nodes, minus the contact's forces)."""
 
+    def key(self) -> bytes:
+        """The contact set: the nodes in contact and the slip directions."""
+        return np.isnan(self.held).tobytes() + (b"" if self.slip is None else self.slip.tobytes())
+
     @classmethod
     def untouched(cls, stepper: NewtonStepper) -> _Load:
         """No node of ``stepper``'s candidates in contact, the body at rest."""
@@ -190,7 +194,7 @@ def _warm_newton(
     the warm start fail, Newton starts again from ``trial``."""
     if warm is None:
         return newton(stepper, trial, *at)
-    key = np.isnan(trial.held).tobytes() + (b"" if trial.slip is None else trial.slip.tobytes())
+    key = trial.key()
     solved = None
     if key in warm:
         try:
@@ -402,11 +406,8 @@ def _load_step(
         following.slip, following.gripped = slip, trial.gripped | (enter & ~np.isnan(last.held))
         return following
 
-    def key(trial: _Load) -> bytes:
-        return np.isnan(trial.held).tobytes() + (b"" if bonded else trial.slip.tobytes())
-
     limit = MAX_ACTIVE_SET_ITERATIONS + (1 if bonded else 2) * m
-    solved = settle(start, attempt, update, key, limit)
+    solved = settle(start, attempt, update, _Load.key, limit)
     if solved is None:
         raise unsettled(depth)
     load = solved[0]
