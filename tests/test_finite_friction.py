@@ -1,4 +1,4 @@
-"""Coulomb friction at finite strain (fem/finite_stick.py, ``friction``).
+"""Coulomb friction at finite strain (fem/contact/finite_stick.py, ``friction``).
 
 Checks on the coarse mesh of tests/test_finite_bonded.py (the same mesh and load ladder for
 every pair compared):
@@ -9,8 +9,8 @@ every pair compared):
   friction effect vanishes at nu2 = 0.5; what remains are the vertical component mu f' of the
   friction on the sloped indenter and the radii where nodes that slid stick again);
 - small strain (d/a = 0.01, nu2 = 0.3): the force with friction 0.3 equals the linear solver's
-  (fem/stick.py) with the same coefficient and load steps, up to the finite-strain departure
-  of the bonded pair (6.5e-4 at d/a = 0.01 in tests/test_finite_bonded.py).
+  (fem/contact/stick.py) with the same coefficient and load steps, up to the finite-strain
+  departure of the bonded pair (6.5e-4 at d/a = 0.01 in tests/test_finite_bonded.py).
 """
 
 from __future__ import annotations
