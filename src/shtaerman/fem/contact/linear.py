@@ -98,6 +98,8 @@ class SurfaceCompliance:
     dofs: np.ndarray = field(repr=False)
     radial_dofs: np.ndarray | None = field(default=None, repr=False)
     """Global u_r dofs of the candidates off the axis, where a bonded contact loads them."""
+    coupled: np.ndarray | None = field(default=None, repr=False)
+    """A bonded contact's compliance (m/N) on the u_z and then the ``radial_dofs``."""
 
     @cached_property
     def mass_factor(self) -> tuple[np.ndarray, tuple]:
@@ -161,19 +163,31 @@ def factorize_stiffness(
 
 
 def surface_compliance(
-    system: ElasticSystem, factorization: Factorization, free: np.ndarray, radius: float
+    system: ElasticSystem,
+    factorization: Factorization,
+    free: np.ndarray,
+    radius: float,
+    radial: np.ndarray | None = None,
 ) -> SurfaceCompliance:
-    """Compliance of the surface u_z dofs r <= ``radius`` from the factorization.
+    """Compliance of the surface u_z dofs r <= ``radius`` from the factorization, and with
+    the global u_r dofs ``radial`` (a bonded contact's, eliminated after the u_z ones) the
+    ``coupled`` compliance of both.
 
     The inverse of the trailing Schur block for a :class:`.solver.TailFactorization`, else one
     multi-RHS solve of unit loads.
     """
     candidates, dofs, position = _candidates(system, free, radius)
+    if radial is not None:
+        position = np.concatenate([position, np.searchsorted(free, radial)])
     # a downward force -F e_i moves the surface by -C F: C = (K^-1)_cc, symmetrised
-    compliance = tail_compliance(factorization, free.size, position)
+    inverse = tail_compliance(factorization, free.size, position)
     mass = system.surface_mass[candidates][:, candidates].toarray()
     vertex = system.dof_nodes()[dofs] < system.mesh.p.shape[1]
-    return SurfaceCompliance(system.surface_r[candidates], compliance, mass, vertex, dofs)
+    compliance = inverse[: dofs.size, : dofs.size]
+    coupled = None if radial is None else inverse
+    return SurfaceCompliance(
+        system.surface_r[candidates], compliance, mass, vertex, dofs, radial, coupled
+    )
 
 
 @dataclass(frozen=True)

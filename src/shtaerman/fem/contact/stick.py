@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as la
@@ -57,7 +57,6 @@ from .linear import (
     field_solutions,
     step_from_forces,
     surface_compliance,
-    tail_compliance,
     timed_curve,
 )
 
@@ -277,30 +276,15 @@ def solve_bonded_contact(
     free = system.free_dofs()
     start = time.perf_counter()
     inside = system.surface_r <= candidate_radius * (1 + 1e-12)
-    normal_dofs = system.surface_dofs[inside]
     radial, radial_node = radial_dofs(system, system.surface_r[inside])
-    tail = np.concatenate([normal_dofs, radial])
-    position = np.searchsorted(free, tail)
+    position = np.searchsorted(free, np.concatenate([system.surface_dofs[inside], radial]))
     factorization = factorize_tail(system, free, position, backend)
     factorized = time.perf_counter()
-    inverse = tail_compliance(factorization, free.size, position)
-    m = normal_dofs.size
-    normal = surface_compliance(system, _Known(inverse[:m, :m]), free, candidate_radius)
-    normal = replace(normal, radial_dofs=radial)
-    coupled = CoupledCompliance(inverse, radial_node, radial)
+    normal = surface_compliance(system, factorization, free, candidate_radius, radial)
+    coupled = CoupledCompliance(normal.coupled, radial_node, radial)
     with threadpool_limits(limits=1, user_api="blas"):
         steps = _load_history(coupled, normal, profile, depths, (step_ratio, friction))
     solutions = field_solutions(system, factorization, free, normal, steps)
     done = time.perf_counter()
     seconds = (factorized - start, done - factorized)
     return timed_curve(system, (normal, steps, solutions), factorization, backend, seconds)
-
-
-@dataclass(frozen=True)
-class _Known:
-    """A stand-in factorization whose tail inverse is already known."""
-
-    inverse: np.ndarray
-
-    def tail_inverse(self) -> np.ndarray:
-        return self.inverse
