@@ -12,12 +12,13 @@ the file is loaded, before any computing.
 from __future__ import annotations
 
 import copy
+import functools
 import importlib.resources
 import math
 import re
 import sys
 import tomllib
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
@@ -41,6 +42,7 @@ __all__ = [
     "RubberTable",
     "StudyError",
     "SweepTable",
+    "exact_impacts",
     "find_study",
     "indenter_of",
     "layer_geometry",
@@ -293,24 +295,34 @@ def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
     return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
 
 
-def layer_geometry(
-    path: Path, layer: LayerTable | None, indenter: Indenter, body: Any, impact: tuple
-) -> dict[str, Any]:
-    """The impact's layer as keywords of :class:`shtaerman.problem.Problem` (thickness in m,
-    base; {} on the half-space): H / a_c resolved at the quasi-static ``impact`` (mass kg,
-    velocity m/s) of the rigid ``indenter`` on the half-space of ``body``."""
+def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:
+    """velocity (m/s) -> the quasi-static impact of ``mass`` kg with the rigid ``indenter`` on
+    the half-space of ``body`` (:func:`.dynamic.case.exact_impact`), solved once per velocity
+    however often it is asked (the loader's checks, a layer's H / a_c and the run share it)."""
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
     from .dynamic.case import exact_impact
 
+    @functools.cache
+    def solved(velocity: float) -> Any:
+        return exact_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
+
+    return solved
+
+
+def layer_geometry(
+    path: Path, layer: LayerTable | None, exact: Callable[[], Any]
+) -> dict[str, Any]:
+    """The impact's layer as keywords of :class:`shtaerman.problem.Problem` (thickness in m,
+    base; {} on the half-space): H / a_c resolved at the quasi-static impact ``exact()`` of
+    the rigid striker on the half-space (:func:`exact_impacts`)."""
     if layer is None:
         return {}
     if layer.dynamic:
         raise StudyError(
             f"{path}: key 'layer.dynamic': applies to a contact study (this one is an impact)"
         )
-    law = contact_law(indenter, effective_modulus(RIGID, body))
-    spec = layer_spec(path, layer, None).resolved(float(exact_impact(*impact, law).a_c))
+    spec = layer_spec(path, layer, None).resolved(float(exact().a_c))
     return {"thickness": spec.thickness, "base": spec.base}
 
 

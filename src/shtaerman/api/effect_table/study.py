@@ -18,7 +18,7 @@ from typing import Any
 import msgspec
 
 from ...problem import parts
-from ...study.checks import Check
+from ...study.checks import Check, Outcome
 from ...study.dynamic.loader import KEYS, impact_physics
 from ...study.schema import (
     BodyTable,
@@ -29,6 +29,7 @@ from ...study.schema import (
     RubberTable,
     Table,
     decode,
+    exact_impacts,
     indenter_of,
     layer_geometry,
     refused,
@@ -85,7 +86,7 @@ class EffectsStudy:
 
 
 @dataclass(frozen=True)
-class EffectsOutcome:
+class EffectsOutcome(Outcome):
     """The effect table of a study (no pass/fail checks: a refused variant is a row)."""
 
     study: EffectsStudy
@@ -93,11 +94,6 @@ class EffectsOutcome:
     seconds: float
     checks: list[Check] = field(default_factory=list)
     quick: bool = False
-
-    @property
-    def passed(self) -> bool:
-        """Always true: the table has no tolerances."""
-        return True
 
     def document(self) -> dict[str, object]:
         """The table's JSON (``shtaerman effects --json``) for results.json."""
@@ -112,6 +108,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
     body, impact = raw.half_space, raw.impact
     elastic = Material(body.E2, body.nu2)
+    exact = exact_impacts(impact.mass, indenter, elastic)
     try:
         found = parts(
             indenter,
@@ -119,7 +116,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
             mass=impact.mass,
             velocity=impact.velocity,
             prony=body.prony,
-            **layer_geometry(path, raw.layer, indenter, elastic, (impact.mass, impact.velocity)),
+            **layer_geometry(path, raw.layer, lambda: exact(impact.velocity)),
             **impact_physics(raw),
         )
     except InputError as error:

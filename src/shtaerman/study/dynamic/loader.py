@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any
@@ -28,8 +29,8 @@ from ...fem.dynamic_contact import (
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import Problem, check_options
-from ...theory.materials import Material, effective_modulus
-from ...theory.sneddon import Indenter, contact_law
+from ...theory.materials import Material
+from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
@@ -43,6 +44,7 @@ from ..schema import (
     StudyError,
     Table,
     decode,
+    exact_impacts,
     indenter_of,
     layer_geometry,
     ranged,
@@ -148,6 +150,9 @@ class DynamicStudy:
     refine; None: the finite-strain impact's default), and ``quick`` those of ``verify
     --quick``."""
     quick_finite_numerics: dict[str, Any] = field(default_factory=dict)
+    exact: Mapping[float, Any] = field(default_factory=dict, compare=False, repr=False)
+    """velocity -> the quasi-static impact the loader solved (:func:`..schema.exact_impacts`),
+    the run's (each solved once)."""
 
     def problem(self, velocity: float) -> Problem:
         """The impact at ``velocity`` m/s (:class:`shtaerman.problem.Problem`)."""
@@ -225,9 +230,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
+    exact = exact_impacts(raw.impact.mass, indenter, half_space)
     try:
         validate_fem_inputs(indenter, half_space)  # the FEM's ranges before the layer's impact
-        layer = layer_geometry(path, raw.layer, indenter, half_space, (raw.impact.mass, example))
+        layer = layer_geometry(path, raw.layer, lambda: exact(example))
         defaults = DynamicSettings(**layer)
     except InputError as error:
         raise refused(path, error, KEYS) from None
@@ -260,9 +266,11 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         problem = study.problem(study.example)
     except InputError as error:
         raise refused(path, error, KEYS) from None
-    _check_velocities(path, "impact.velocity", study, study.velocities)
-    _check_velocities(path, "quick.velocity", study, study.quick_velocities)
     numerics = {
+        "exact": {
+            **_check_velocities(path, "impact.velocity", study, study.velocities, exact),
+            **_check_velocities(path, "quick.velocity", study, study.quick_velocities, exact),
+        },
         "finite_numerics": _finite_numerics(path, "numerics", raw.numerics, problem),
         "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
     }
@@ -320,24 +328,28 @@ def _finite_numerics(
     return {**FINITE_NUMERICS, **inherited, **given}
 
 
-def _check_velocities(path: Path, key: str, study: DynamicStudy, velocities: Any) -> None:
-    """Refuse, naming ``key``, a velocity whose exact impact leaves the floating-point range
-    (the first check of its run: it came after the velocities before it had run)."""
+def _check_velocities(
+    path: Path, key: str, study: DynamicStudy, velocities: Any, exact: Callable[[float], Any]
+) -> dict[float, Any]:
+    """The exact impact at each of ``velocities`` (``exact``, solved once per velocity), a
+    velocity whose problem the Problem refuses, or whose exact impact leaves the
+    floating-point range, refused naming ``key`` (the first check of its run: it came after
+    the velocities before it had run)."""
     import warnings
 
     from ...theory.impact import representable
-    from .case import exact_impact
 
+    solved = {}
     for velocity in velocities:
-        striker = study.problem(velocity).striker
-        law = contact_law(striker.indenter, effective_modulus(striker.material, study.half_space))
+        study.problem(velocity)
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # the run's warnings are the run's
                 representable("v0^2", velocity * velocity, study.mass, velocity)
-                exact_impact(study.mass, velocity, law)
+                solved[velocity] = exact(velocity)
         except InputError as error:
             raise StudyError(f"{path}: key '{key}': {error}") from None
+    return solved
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:

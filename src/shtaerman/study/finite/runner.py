@@ -43,7 +43,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.sneddon import Indenter, contact_law, profile_inputs
-from ..checks import Check
+from ..checks import Check, Outcome
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
@@ -181,7 +181,7 @@ def surface_radii(indenter: Indenter, top: float, mesh: MeshSettings) -> np.ndar
 
 
 @dataclass(frozen=True)
-class FiniteStudyOutcome:
+class FiniteStudyOutcome(Outcome):
     """Everything a finite-strain study produced (SI units)."""
 
     study: FiniteStudy
@@ -200,11 +200,6 @@ class FiniteStudyOutcome:
     """The ``[corrections]`` impacts (:func:`.corrections.run_corrections`); None without."""
     start: LadderStart | None = None
     """Where the depth ladder started when the mesh moved it (None: at ``small_ratio``)."""
-
-    @property
-    def passed(self) -> bool:
-        """Whether every check passed."""
-        return all(check.passed for check in self.checks)
 
     @property
     def mesh(self) -> MeshSettings:
