@@ -35,7 +35,6 @@ import math
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from .. import vocabulary
@@ -596,33 +595,24 @@ register_kind(
 
 
 def _layer_study(p: dict[str, Any]):
-    """The contact study of a layer case (its thickness resolved at the impact's x_c)."""
+    """The contact study of a layer case (its thickness resolved at the impact's x_c), on
+    the study file's path (:func:`~shtaerman.study.contact.loader.contact_study`)."""
     from ..study.contact.layer import LayerSpec
-    from ..study.contact.loader import Study, check_profile_reach, on_layer
-    from ..theory.materials import effective_modulus
+    from ..study.contact.loader import contact_study
 
     _layer_given(p, required=True)
     mesh, _ = _mesh(p)
-    study = Study(
-        name="case",
-        description="",
-        source=Path("sweep"),
+    layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"])
+    return contact_study(
         indenter=_indenter(p),
         striker=_material(p, "E1", "nu1"),
         half_space=_material(p, "E2", "nu2"),
-        mass=p["mass"],
-        velocity=p["velocity"],
+        **{name: p[name] for name in ("mass", "velocity", "refine")},
         depths=None,
         mesh=mesh,
         quick_mesh=mesh,
-        refine=p["refine"],
-        layer=LayerSpec(
-            p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"]
-        ),
+        layer=layer,
     )
-    modulus = effective_modulus(study.striker, study.half_space)
-    check_profile_reach(study.indenter, modulus, None, (study.mass, study.velocity))
-    return on_layer(study)
 
 
 LAYER_OUTPUTS = {
@@ -745,33 +735,17 @@ def check_rubber_options(parameters: Mapping[str, Any], axes: Mapping[str, list[
             )
 
 
-def _rubber(p: dict[str, Any]):
-    """The case's rubber model: ``model`` with its own shape parameters and ``volumetric``,
-    checked as the problem's :class:`~shtaerman.problem.Body` (a study file's words)."""
-    from ..problem import MODELS, Body
-
-    shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
-    body = Body(_material(p, "E2", "nu2"), p["model"], volumetric=p["volumetric"], **shapes)
-    if not body.finite:
-        raise InputError(
-            f"model: a finite-strain study presses a rubber: pick one of "
-            f"{', '.join(MODELS[1:])}, got {p['model']!r}",
-            "model",
-        )
-    return body.rubber()
-
-
 def _finite_inputs(p: dict[str, Any]):
-    from ..study.finite.loader import FiniteStudy, Ladder
+    """The finite-strain study of a case, on the study file's path
+    (:func:`~shtaerman.study.finite.loader.finite_study`: its profile's reach checked): the
+    rubber ``model`` with its own shape parameters and ``volumetric``."""
+    from ..study.finite.loader import Ladder, finite_study, rubber_of
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
-    rubber = _rubber(p)
-    names = ("reach", "depth_steps", "small_ratio", "small_steps")
-    ladder = Ladder(*(p[name] for name in names))
-    return FiniteStudy(
-        name="case",
-        description="",
-        source=Path("sweep"),
+    shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
+    rubber = rubber_of(half_space, p["model"], volumetric=p["volumetric"], **shapes)
+    ladder = Ladder(*(p[name] for name in ("reach", "depth_steps", "small_ratio", "small_steps")))
+    return finite_study(
         indenter=indenter,
         half_space=half_space,
         mass=p["mass"],
@@ -795,19 +769,17 @@ def _finite_check(p: dict[str, Any]) -> Any:
     import numpy as np
 
     from ..fem.finite_contact import check_finite_depths
-    from ..study.contact.loader import check_profile_reach
     from ..study.dynamic.case import exact_impact
     from ..study.finite.runner import ladder
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
 
-    study = _finite_inputs(p)
-    model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
-    impact = (study.mass, study.velocity)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a validity warning is the case's to record
+        study = _finite_inputs(p)
+        model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
+        impact = (study.mass, study.velocity)
         x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
-    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
     if study.depths is not None:
         check_finite_depths(study.indenter, np.asarray(study.depths), model)
         return study

@@ -59,8 +59,8 @@ __all__ = [
     "QUICK_MESH",
     "Study",
     "Tolerances",
-    "check_profile_depths",
     "check_profile_reach",
+    "contact_study",
     "load_contact",
     "on_layer",
 ]
@@ -279,7 +279,7 @@ def on_layer(study: Study) -> Study:
 
 def _expanded(path: Path, study: Study, sweep: _Sweep | None) -> list[Study]:
     if sweep is None:
-        return [on_layer(study)]
+        return [study]
     key, values = sweep.chosen()
     if key in SWEPT_PROFILES and study.indenter.kind != SWEPT_PROFILES[key]:
         raise StudyError(
@@ -297,8 +297,7 @@ def _expanded(path: Path, study: Study, sweep: _Sweep | None) -> list[Study]:
             changed = replace(study, layer=replace(study.layer, **{key: value}))
         else:
             changed = replace(study, **{key: value})
-        changed = on_layer(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
-        studies.append(changed)
+        studies.append(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
     return studies
 
 
@@ -350,26 +349,38 @@ def check_profile_reach(
         raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
 
 
-def check_profile_depths(path: Path, indenter: Indenter, *reach: Any) -> None:
-    """:func:`check_profile_reach` (its arguments after ``indenter``) in a study file: the
-    refusal names the file and the key."""
-    try:
-        check_profile_reach(indenter, *reach)
-    except InputError as error:
-        raise refused(path, error) from None
+def contact_study(**values: Any) -> Study:
+    """The contact study of ``values`` (:class:`Study`'s fields; a sweep case's name, no
+    description, source "sweep" by default), as every contact study, a study file's
+    (:func:`load_contact`) or a sweep case's, is checked and resolved: its profile's reach
+    (:func:`check_profile_reach`), then its layer (:func:`on_layer`).
+
+    Raises
+    ------
+    InputError
+        Naming the parameter.
+    """
+    study = Study(**{"name": "case", "description": "", "source": Path("sweep"), **values})
+    modulus = effective_modulus(study.striker, study.half_space)
+    check_profile_reach(study.indenter, modulus, study.depths, (study.mass, study.velocity))
+    return on_layer(study)
+
+
+PROFILE_KEYS = ("depths", "sphere_radius", "profile")
+"""The parameters a refusal of :func:`check_profile_reach` names."""
 
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
+    studies = []
     try:
-        studies = _expanded(path, _build(path, raw), raw.sweep)
+        for study in _expanded(path, _build(path, raw), raw.sweep):
+            studies.append(contact_study(**vars(study)))
     except StudyError:
         raise
     except InputError as error:
+        if error.parameter in PROFILE_KEYS:
+            raise refused(path, error) from None
         raise StudyError(f"{path}: {error}") from None
-    for study in studies:
-        modulus = effective_modulus(study.striker, study.half_space)
-        impact = (study.mass, study.velocity)
-        check_profile_depths(path, study.indenter, modulus, study.depths, impact)
     return validated(path, studies)

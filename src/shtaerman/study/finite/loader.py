@@ -25,7 +25,7 @@ from ...problem import MODELS, RUBBER_SHAPES, Body
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
-from ..contact.loader import check_profile_depths
+from ..contact.loader import check_profile_reach
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     ImpactTable,
@@ -54,7 +54,9 @@ __all__ = [
     "FiniteStudy",
     "FiniteTolerances",
     "Ladder",
+    "finite_study",
     "load_finite",
+    "rubber_of",
 ]
 
 QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_growth=0.35)
@@ -175,24 +177,39 @@ class FiniteStudy:
     """The dynamic impacts of ``[corrections]``; None: none run."""
 
 
+def rubber_of(half_space: Material, model: str | None, **options: Any) -> RubberModel:
+    """The rubber pressed by a finite-strain study: ``model`` (None: neo-Hookean) with its
+    ``options``, checked as the problem's :class:`~shtaerman.problem.Body` checks it.
+
+    Raises
+    ------
+    InputError
+        Naming the option, or ``model`` for the linear model (a finite-strain study presses
+        a rubber).
+    """
+    model = model or "neo-hookean"
+    body = Body(half_space, model, **options)
+    if not body.finite:
+        raise InputError(
+            f"model: a finite-strain study presses a rubber: pick one of "
+            f"{', '.join(MODELS[1:])}, got {model!r}",
+            "model",
+        )
+    return body.rubber()
+
+
 def _rubber(path: Path, raw: _FiniteFile, **chosen: str) -> RubberModel:
-    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place,
-    checked as the problem's :class:`~shtaerman.problem.Body` checks it (a refusal names its
-    key); shape keys of another model than the one chosen are left out."""
+    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place
+    (:func:`rubber_of`; a refusal names its key); shape keys of another model than the one
+    chosen are left out."""
     given = msgspec.structs.asdict(raw.rubber) | chosen
     model = given.pop("model") or "neo-hookean"
     if "model" in chosen:
         given = {k: v for k, v in given.items() if RUBBER_SHAPES.get(k, model) == model}
     try:
-        body = Body(Material(raw.half_space.E2, raw.half_space.nu2), model, **given)
+        return rubber_of(Material(raw.half_space.E2, raw.half_space.nu2), model, **given)
     except InputError as error:
         raise refused(path, error) from None
-    if not body.finite:
-        raise StudyError(
-            f"{path}: key 'rubber.model': a finite-strain study presses a rubber: pick one of "
-            f"{', '.join(MODELS[1:])}, got {model!r}"
-        )
-    return body.rubber()
 
 
 def _mesh(
@@ -281,6 +298,24 @@ def _expanded(path: Path, study: FiniteStudy, raw: _FiniteFile) -> list[FiniteSt
     return studies
 
 
+def finite_study(**values: Any) -> FiniteStudy:
+    """The finite-strain study of ``values`` (:class:`FiniteStudy`'s fields; a sweep case's
+    name, no description, source "sweep" by default), as every finite-strain study, a study
+    file's (:func:`load_finite`) or a sweep case's, is checked: its profile's reach to its
+    depths or ``reach`` x_c (:func:`~shtaerman.study.contact.loader.check_profile_reach`).
+
+    Raises
+    ------
+    InputError
+        Naming the parameter.
+    """
+    defaults = {"name": "case", "description": "", "source": Path("sweep")}
+    study = FiniteStudy(**{**defaults, **values})
+    modulus, impact = effective_modulus(RIGID, study.half_space), (study.mass, study.velocity)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
+    return study
+
+
 def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
     """The studies of a parsed finite-strain study file (``kind`` removed).
 
@@ -297,9 +332,9 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         raise
     except InputError as error:
         raise StudyError(f"{path}: {error}") from None
-    for study in studies:  # the deepest depth: reach x_c
-        modulus = effective_modulus(RIGID, study.half_space)
-        impact = (study.mass, study.velocity)
-        reach = study.ladder.reach
-        check_profile_depths(path, study.indenter, modulus, study.depths, impact, reach)
-    return validated(path, studies)
+    try:  # the deepest depth: reach x_c
+        return validated(path, [finite_study(**vars(study)) for study in studies])
+    except StudyError:
+        raise
+    except InputError as error:
+        raise refused(path, error) from None
