@@ -19,7 +19,7 @@ import re
 import sys
 import tomllib
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
 
@@ -39,21 +39,27 @@ __all__ = [
     "EXTENDED_STUDIES",
     "BodyTable",
     "LayerTable",
+    "Named",
     "RubberTable",
     "StudyError",
+    "StudyFile",
     "SweepTable",
+    "built",
     "exact_impacts",
     "find_study",
+    "in_file",
     "indenter_of",
     "layer_geometry",
     "layer_spec",
     "load_study",
+    "named",
     "normalized",
     "refused",
     "replaced",
     "settings_of",
     "shipped_studies",
     "study_name",
+    "swept",
     "validate_name",
 ]
 
@@ -192,6 +198,69 @@ class ImpactTable(Table):
 
     mass: Positive
     velocity: Positive
+
+
+class StudyFile(Table):
+    """The tables of every kind's study file: ``[indenter]``, ``[half_space]`` and
+    ``[impact]`` (a kind's subclass gives the last two its own types, in this order, and adds
+    its tables), the study's ``name`` (default: the file's stem) and ``description``."""
+
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
+    name: str | None = None
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Named:
+    """The first fields of every kind's study: its name (a plain folder name), its
+    description and the file it was read from (a kind's dataclass adds its own)."""
+
+    name: str
+    description: str
+    source: Path
+
+
+def named(path: Path, raw: StudyFile) -> dict[str, Any]:
+    """The :class:`Named` fields of the study file ``raw`` read from ``path``, as keywords."""
+    return {"name": study_name(path, raw.name), "description": raw.description, "source": path}
+
+
+def built(path: Path, build: Callable[[], Any], refuse: Callable[[InputError], Any]) -> Any:
+    """``build()``, a refusal (InputError) it raises as a StudyError naming the file: a
+    StudyError as it is, another as ``refuse(error)`` (e.g. :func:`refused`)."""
+    try:
+        return build()
+    except StudyError:
+        raise
+    except InputError as error:
+        raise refuse(error) from None
+
+
+def in_file(path: Path) -> Callable[[InputError], StudyError]:
+    """The refusal of :func:`built` that prefixes the file alone: "{path}: {error}"."""
+    return lambda error: StudyError(f"{path}: {error}")
+
+
+def swept(
+    study: Any,
+    sweep: SweepTable | None,
+    change: Callable[[str, Any], Any],
+    symbols: Mapping[str, str],
+) -> list[Any]:
+    """``study``, or one study per value of the ``[sweep]``'s key: ``change(key, value)``
+    named ``{study.name}-{symbols[key]}{value}`` (a number in ``g`` format)."""
+    if sweep is None:
+        return [study]
+    key, values = sweep.chosen()
+    return [
+        replace(
+            change(key, value),
+            name=f"{study.name}-{symbols[key]}{value if isinstance(value, str) else f'{value:g}'}",
+        )
+        for value in values
+    ]
 
 
 class BodyTable(MaterialTable):

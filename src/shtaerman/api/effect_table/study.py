@@ -23,17 +23,18 @@ from ...study.dynamic.loader import KEYS, impact_physics
 from ...study.schema import (
     BodyTable,
     ImpactTable,
-    IndenterTable,
     LayerTable,
+    Named,
     Positive,
     RubberTable,
+    StudyFile,
     Table,
     decode,
     exact_impacts,
     indenter_of,
     layer_geometry,
+    named,
     refused,
-    study_name,
 )
 from ...theory.materials import Material
 from ...validation import InputError
@@ -60,12 +61,9 @@ class _Impact(ImpactTable):
     friction: float | None = None
 
 
-class _EffectsFile(Table):
-    indenter: IndenterTable
+class _EffectsFile(StudyFile):
     half_space: BodyTable
     impact: _Impact
-    name: str | None = None
-    description: str = ""
     rubber: RubberTable = RubberTable()
     layer: LayerTable | None = None
     numerics: _Numerics = _Numerics()
@@ -73,12 +71,9 @@ class _EffectsFile(Table):
 
 
 @dataclass(frozen=True)
-class EffectsStudy:
+class EffectsStudy(Named):
     """An effects study: the full problem's parts and the numerics of :func:`effects`."""
 
-    name: str
-    description: str
-    source: Path
     parts: dict[str, Any]
     numerics: dict[str, Any]
     quick_numerics: dict[str, Any]
@@ -104,7 +99,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     """The study of a parsed ``kind = "effects"`` file; :class:`StudyError` names file and
     key."""
     raw: _EffectsFile = decode(path, data, _EffectsFile)
-    name = study_name(path, raw.name)
+    header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
     body, impact = raw.half_space, raw.impact
     elastic = Material(body.E2, body.nu2)
@@ -124,7 +119,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     numerics = {k: v for k, v in msgspec.structs.asdict(raw.numerics).items() if v is not None}
     quick = {**numerics, "estimate": False}
     quick |= {k: v for k, v in msgspec.structs.asdict(raw.quick).items() if v is not None}
-    return [EffectsStudy(name, raw.description, path, found, numerics, quick)]
+    return [EffectsStudy(**header, parts=found, numerics=numerics, quick_numerics=quick)]
 
 
 def run_effects(study: EffectsStudy, quick: bool = False, progress: Any = None) -> EffectsOutcome:

@@ -32,24 +32,27 @@ from ...vocabulary import entry
 from ..dynamic.case import exact_impact
 from ..schema import (
     EXPECTED,
-    ImpactTable,
-    IndenterTable,
     LayerTable,
     MaterialTable,
     MeshTable,
+    Named,
     Positive,
     Relative,
     StrikerTable,
     StudyError,
+    StudyFile,
     SweepTable,
     Table,
+    built,
     decode,
+    in_file,
     indenter_of,
     layer_spec,
+    named,
     ranged,
     refused,
     settings_of,
-    study_name,
+    swept,
     validated,
 )
 from .indentation import refined_radius
@@ -134,12 +137,8 @@ class _Sweep(SweepTable):
     thickness_ratio: list[ThicknessRatio] | None = None
 
 
-class _StudyFile(Table):
-    indenter: IndenterTable
+class _StudyFile(StudyFile):
     half_space: _HalfSpace
-    impact: ImpactTable
-    name: str | None = None
-    description: str = ""
     striker: StrikerTable | None = None
     contact: _Contact = _Contact()
     numerics: MeshTable = MeshTable()
@@ -151,12 +150,9 @@ class _StudyFile(Table):
 
 
 @dataclass(frozen=True)
-class Study:
+class Study(Named):
     """One cross-check: a contact curve and the impact it implies (SI units)."""
 
-    name: str
-    description: str
-    source: Path
     indenter: Indenter
     """The striker's profile: z = A r^n, an exact sphere or a tabulated z(r)."""
     striker: Material
@@ -213,9 +209,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         for key, default in (("numerics", MeshSettings()), ("quick", QUICK_MESH))
     )
     return Study(
-        name=study_name(path, raw.name),
-        description=raw.description,
-        source=path,
+        **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
         striker=RIGID if rigid else Material(striker.E1, striker.nu1),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
@@ -278,27 +272,24 @@ def on_layer(study: Study) -> Study:
 
 
 def _expanded(path: Path, study: Study, sweep: _Sweep | None) -> list[Study]:
-    if sweep is None:
-        return [study]
-    key, values = sweep.chosen()
+    key = sweep.chosen()[0] if sweep is not None else None
     if key in SWEPT_PROFILES and study.indenter.kind != SWEPT_PROFILES[key]:
         raise StudyError(
             f"{path}: key 'sweep.{key}': varies a {SWEPT_PROFILES[key]} striker, but "
             f"[indenter] is a {study.indenter.kind} one; sweep a key of its own profile or "
             "change [indenter]"
         )
-    studies = []
-    for value in values:
+
+    def change(key: str, value: float) -> Study:
         if key in ("shape_coefficient", "exponent"):
-            changed = replace(study, indenter=replace(study.indenter, **{key: value}))
-        elif key == "sphere_radius":
-            changed = replace(study, indenter=SphereIndenter(value))
-        elif key in ("thickness", "thickness_ratio"):
-            changed = replace(study, layer=replace(study.layer, **{key: value}))
-        else:
-            changed = replace(study, **{key: value})
-        studies.append(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
-    return studies
+            return replace(study, indenter=replace(study.indenter, **{key: value}))
+        if key == "sphere_radius":
+            return replace(study, indenter=SphereIndenter(value))
+        if key in ("thickness", "thickness_ratio"):
+            return replace(study, layer=replace(study.layer, **{key: value}))
+        return replace(study, **{key: value})
+
+    return swept(study, sweep, change, SYMBOLS)
 
 
 SWEPT_PROFILES = {
@@ -373,14 +364,12 @@ PROFILE_KEYS = ("depths", "sphere_radius", "profile")
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
-    studies = []
-    try:
-        for study in _expanded(path, _build(path, raw), raw.sweep):
-            studies.append(contact_study(**vars(study)))
-    except StudyError:
-        raise
-    except InputError as error:
-        if error.parameter in PROFILE_KEYS:
-            raise refused(path, error) from None
-        raise StudyError(f"{path}: {error}") from None
-    return validated(path, studies)
+
+    def refuse(error: InputError) -> StudyError:
+        return refused(path, error) if error.parameter in PROFILE_KEYS else in_file(path)(error)
+
+    def build() -> list[Study]:
+        studies = _expanded(path, _build(path, raw), raw.sweep)
+        return [contact_study(**vars(study)) for study in studies]
+
+    return validated(path, built(path, build, refuse))

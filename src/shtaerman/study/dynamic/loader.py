@@ -36,21 +36,22 @@ from ...validation import InputError, shown
 from ...vocabulary import entry
 from ..schema import (
     BodyTable,
-    IndenterTable,
     LayerTable,
+    Named,
     Positive,
     Relative,
     RubberTable,
     StudyError,
+    StudyFile,
     Table,
     decode,
     exact_impacts,
     indenter_of,
     layer_geometry,
+    named,
     ranged,
     refused,
     settings_of,
-    study_name,
 )
 from .accuracy import check_ladder
 
@@ -105,12 +106,9 @@ class _DynSweep(Table):
     loss: list[str]
 
 
-class _DynamicFile(Table):
-    indenter: IndenterTable
+class _DynamicFile(StudyFile):
     half_space: BodyTable
     impact: _DynImpact
-    name: str | None = None
-    description: str = ""
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
     tolerances: DynamicTolerances = DynamicTolerances()
@@ -120,12 +118,9 @@ class _DynamicFile(Table):
 
 
 @dataclass(frozen=True)
-class DynamicStudy:
+class DynamicStudy(Named):
     """A dynamic study: one striker and half-space, several approach velocities (SI units)."""
 
-    name: str
-    description: str
-    source: Path
     indenter: Indenter
     half_space: Material
     density: float
@@ -216,7 +211,7 @@ def _velocities(
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
     raw: _DynamicFile = decode(path, data, _DynamicFile)
-    name = study_name(path, raw.name)
+    header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     try:
@@ -245,9 +240,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         except InputError as error:
             raise StudyError(f"{path}: key 'numerics': {error}") from None
     study = DynamicStudy(
-        name=name,
-        description=raw.description,
-        source=path,
+        **header,
         indenter=indenter,
         half_space=half_space,
         density=raw.half_space.density2,

@@ -11,6 +11,7 @@ velocity, model, volumetric.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal
@@ -28,23 +29,25 @@ from ...validation import InputError
 from ..contact.loader import check_profile_reach
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
-    ImpactTable,
-    IndenterTable,
-    MaterialTable,
     MeshTable,
+    Named,
     Poisson,
     Positive,
     Relative,
     RubberTable,
     StudyError,
+    StudyFile,
     SweepTable,
     Table,
+    built,
     decode,
+    in_file,
     indenter_of,
+    named,
     ranged,
     refused,
     settings_of,
-    study_name,
+    swept,
     validated,
 )
 
@@ -111,12 +114,7 @@ class _Corrections(Table):  # values checked by _corrections, whose messages nam
     density2: Any = vocabulary.entry("density2").default
 
 
-class _FiniteFile(Table):
-    indenter: IndenterTable
-    half_space: MaterialTable
-    impact: ImpactTable
-    name: str | None = None
-    description: str = ""
+class _FiniteFile(StudyFile):
     contact: _Contact = _Contact()
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
@@ -147,12 +145,9 @@ class Ladder:
 
 
 @dataclass(frozen=True)
-class FiniteStudy:
+class FiniteStudy(Named):
     """One finite-strain study (SI units)."""
 
-    name: str
-    description: str
-    source: Path
     indenter: Indenter
     """The rigid striker's profile: z = A r^n, an exact sphere or a tabulated z(r)."""
     half_space: Material
@@ -231,9 +226,7 @@ def _mesh(
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
     contact, quick, ladder = raw.contact, raw.quick, raw.numerics.ladder
     return FiniteStudy(
-        name=study_name(path, raw.name),
-        description=raw.description,
-        source=path,
+        **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
@@ -281,21 +274,14 @@ def _sweeps_model(raw: _FiniteFile) -> bool:
 
 
 def _expanded(path: Path, study: FiniteStudy, raw: _FiniteFile) -> list[FiniteStudy]:
-    sweep = raw.sweep
-    if sweep is None:
-        return [study]
-    key, values = sweep.chosen()
-    studies = []
-    for value in values:
+    def change(key: str, value: Any) -> FiniteStudy:
         if key == "nu2":
-            changed = replace(study, half_space=replace(study.half_space, poisson_ratio=value))
-        elif key in ("model", "volumetric"):
-            changed = replace(study, rubber=_rubber(path, raw, **{key: value}))
-        else:
-            changed = replace(study, **{key: value})
-        shown = value if isinstance(value, str) else f"{value:g}"
-        studies.append(replace(changed, name=f"{study.name}-{SWEEPABLE[key]}{shown}"))
-    return studies
+            return replace(study, half_space=replace(study.half_space, poisson_ratio=value))
+        if key in ("model", "volumetric"):
+            return replace(study, rubber=_rubber(path, raw, **{key: value}))
+        return replace(study, **{key: value})
+
+    return swept(study, raw.sweep, change, SWEEPABLE)
 
 
 def finite_study(**values: Any) -> FiniteStudy:
@@ -326,15 +312,7 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
     """
     raw = decode(path, data, _FiniteFile)
-    try:
-        studies = _expanded(path, _build(path, raw), raw)
-    except StudyError:
-        raise
-    except InputError as error:
-        raise StudyError(f"{path}: {error}") from None
-    try:  # the deepest depth: reach x_c
-        return validated(path, [finite_study(**vars(study)) for study in studies])
-    except StudyError:
-        raise
-    except InputError as error:
-        raise refused(path, error) from None
+    refuse = functools.partial(refused, path)
+    studies = built(path, lambda: _expanded(path, _build(path, raw), raw), in_file(path))
+    checked = [vars(study) for study in studies]  # the deepest depth: reach x_c
+    return validated(path, built(path, lambda: [finite_study(**s) for s in checked], refuse))
