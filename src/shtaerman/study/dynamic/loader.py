@@ -34,6 +34,7 @@ from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
+from ..checks import Check
 from ..schema import (
     BodyTable,
     LayerTable,
@@ -55,7 +56,13 @@ from ..schema import (
 )
 from .accuracy import check_ladder
 
-__all__ = ["DynamicStudy", "DynamicTolerances", "dynamic_check_failures", "load_dynamic"]
+__all__ = [
+    "DynamicStudy",
+    "DynamicTolerances",
+    "dynamic_check_failures",
+    "energy_checks",
+    "load_dynamic",
+]
 
 
 class _Numerics(Table):
@@ -377,28 +384,50 @@ than 5e-5. An impact that radiates almost nothing (v0 = 1e-3 m/s: 1 - e^2 below 
 balance's own error) has a reflected share of its radiation that is noise, or 0/0."""
 
 
+def energy_checks(
+    balance: float,
+    reflected: float,
+    *,
+    where: str = "",
+    tolerances: DynamicTolerances | None = None,
+    reflects: bool = True,
+    of: str = "the radiated",
+    radiated: float | None = None,
+) -> list[Check]:
+    """The studies' own checks of one impact run (``tolerances``, default
+    :class:`DynamicTolerances`), named "energy balance{where}" and "reflected energy{where}":
+    its energy balance error (of M v0^2/2) and, where the body ``reflects`` (it has waves),
+    the energy reflected back by the far boundary (of the radiated energy; ``of`` names the
+    reference, M v0^2/2 on a layer). With ``radiated`` (1 - e^2, of M v0^2/2) a reflection of
+    the radiated energy below :data:`NEGLIGIBLE_REFLECTION` of M v0^2/2 counts as none."""
+    limits = DynamicTolerances() if tolerances is None else tolerances
+    if radiated is not None and of == "the radiated":  # nothing radiated: noise or 0/0
+        counted = radiated > NEGLIGIBLE_REFLECTION and reflected * radiated > NEGLIGIBLE_REFLECTION
+        reflected = reflected if counted else 0.0
+    checks = [Check(f"energy balance{where}", balance, limits.energy_balance)]
+    if reflects:
+        checks.append(Check(f"reflected energy{where}", reflected, limits.reflected))
+    return checks
+
+
+FAILED = {
+    "energy balance": "energy balance error {value:.1e} of M v0^2/2 exceeds {tolerance:g}: "
+    "the mesh and time steps do not resolve this impact",
+    "reflected energy": "reflected energy {value:.1e} of {of} exceeds {tolerance:g}: the far "
+    "boundary sends the waves back to the contact (domain_factor or layer_rate do not absorb "
+    "them)",
+}
+"""The reason of each failed :func:`energy_checks` check, on the routes that state them."""
+
+
 def dynamic_check_failures(
     balance: float, reflected: float, of: str = "the radiated", radiated: float | None = None
 ) -> list[str]:
-    """What a dynamic run fails of the studies' own checks (:class:`DynamicTolerances`): its
-    energy balance error (of M v0^2/2) and the energy reflected back by the far boundary (of
-    the radiated energy; ``of`` names the reference, M v0^2/2 on a layer), one reason each;
-    [] when both hold (NaN fails). With ``radiated`` (1 - e^2, of M v0^2/2) a reflection of
-    the radiated energy below :data:`NEGLIGIBLE_REFLECTION` of M v0^2/2 passes."""
-    limits, failures = DynamicTolerances(), []
-    if radiated is not None and of == "the radiated" and radiated <= NEGLIGIBLE_REFLECTION:
-        reflected = 0.0  # nothing radiated to reflect: its share is noise or 0/0
-    elif radiated is not None and of == "the radiated":
-        reflected = reflected if reflected * radiated > NEGLIGIBLE_REFLECTION else 0.0
-    if not balance <= limits.energy_balance:
-        failures.append(
-            f"energy balance error {balance:.1e} of M v0^2/2 exceeds {limits.energy_balance:g}: "
-            "the mesh and time steps do not resolve this impact"
-        )
-    if not reflected <= limits.reflected:
-        failures.append(
-            f"reflected energy {reflected:.1e} of {of} exceeds {limits.reflected:g}: "
-            "the far boundary sends the waves back to the contact (domain_factor or layer_rate "
-            "do not absorb them)"
-        )
-    return failures
+    """What a dynamic run fails of the studies' own checks (:func:`energy_checks` with the
+    default tolerances), one reason each; [] when both hold (NaN fails)."""
+    checks = energy_checks(balance, reflected, of=of, radiated=radiated)
+    return [
+        FAILED[check.name].format(value=check.value, tolerance=check.tolerance, of=of)
+        for check in checks
+        if not check.passed
+    ]

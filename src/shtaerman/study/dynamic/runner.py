@@ -25,7 +25,7 @@ from ...theory.sneddon import contact_law, profile_inputs
 from ..checks import Check, Outcome
 from ..limits import LEVELS, thresholds
 from .case import COMPARED, DynamicCase, finite_settings, problem_case, radiation
-from .loader import DynamicStudy
+from .loader import DynamicStudy, energy_checks
 
 __all__ = ["SEPARATION_SNAPSHOT", "DynamicStudyOutcome", "run_dynamic_study"]
 
@@ -136,12 +136,13 @@ class DynamicStudyOutcome(Outcome):
 
 def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
     tol, checks = study.tolerances, []
+    reflects = not (study.finite and study.density == 0)  # a massless rubber has no waves
     for case in cases:
         v, r = f"v0 = {case.velocity:g} m/s", case.result
-        checks.append(Check(f"energy balance {v}", r.energy_balance_error, tol.energy_balance))
-        if not (study.finite and study.density == 0):  # a massless rubber has no waves
-            reflected = r.reflected_energy_fraction
-            checks.append(Check(f"reflected energy {v}", reflected, tol.reflected))
+        balance, reflected = r.energy_balance_error, r.reflected_energy_fraction
+        checks += energy_checks(
+            balance, reflected, where=f" {v}", tolerances=tol, reflects=reflects
+        )
         # the first-order estimate is of the waves of a linear elastic half-space with mass
         # under a frictionless striker (``physics`` empty)
         elastic = study.prony is None and study.settings.thickness is None and not study.physics
