@@ -255,47 +255,19 @@ class FiniteStudyOutcome(Outcome):
         out: list[dict[str, float | str]] = []
         for level in LEVELS:
             beyond = np.flatnonzero(departure > level)
-            if beyond.size == 0:
-                out.append(
-                    {
-                        "level": level,
-                        "status": "beyond",
-                        "depth_to_radius": ratio[-1],
-                        "depth": depth[-1],
-                        "velocity": self._velocity(energy[-1]),
-                    }
-                )
-                continue
-            k = int(beyond[0])
-            if k == 0:
-                out.append(
-                    {
-                        "level": level,
-                        "status": "below",
-                        "depth_to_radius": ratio[0],
-                        "depth": depth[0],
-                        "velocity": self._velocity(energy[0]),
-                    }
-                )
-                continue
-            t = (level - departure[k - 1]) / (departure[k] - departure[k - 1])
-            at = ratio[k - 1] + t * (ratio[k] - ratio[k - 1])
-            d = depth_at_ratio(self.study.indenter, at)
-            slope = math.log(energy[k] / energy[k - 1]) / math.log(depth[k] / depth[k - 1])
-            w = energy[k - 1] * (d / depth[k - 1]) ** slope
-            out.append(
-                {
-                    "level": level,
-                    "status": "interpolated",
-                    "depth_to_radius": at,
-                    "depth": d,
-                    "velocity": self._velocity(w),
-                }
-            )
+            k = int(beyond[0]) if beyond.size else -1  # -1: within the level at every depth
+            if k <= 0:
+                status, at, d, w = "below" if k == 0 else "beyond", ratio[k], depth[k], energy[k]
+            else:
+                t = (level - departure[k - 1]) / (departure[k] - departure[k - 1])
+                at = ratio[k - 1] + t * (ratio[k] - ratio[k - 1])
+                d = depth_at_ratio(self.study.indenter, at)
+                slope = math.log(energy[k] / energy[k - 1]) / math.log(depth[k] / depth[k - 1])
+                status, w = "interpolated", energy[k - 1] * (d / depth[k - 1]) ** slope
+            velocity = math.sqrt(2.0 * w / self.study.mass)
+            row = {"level": level, "status": status, "depth_to_radius": at, "depth": d}
+            out.append({**row, "velocity": velocity})
         return out
-
-    def _velocity(self, energy: float) -> float:
-        return math.sqrt(2.0 * energy / self.study.mass)
 
     def ratios(self) -> dict[str, float]:
         """Finite-strain impact maxima / the paper's linear exact ones."""
