@@ -18,7 +18,7 @@ import math
 import re
 import sys
 import tomllib
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
@@ -47,7 +47,6 @@ __all__ = [
     "built",
     "exact_impacts",
     "find_study",
-    "in_file",
     "indenter_of",
     "layer_geometry",
     "layer_spec",
@@ -227,20 +226,17 @@ def named(path: Path, raw: StudyFile) -> dict[str, Any]:
     return {"name": study_name(path, raw.name), "description": raw.description, "source": path}
 
 
-def built(path: Path, build: Callable[[], Any], refuse: Callable[[InputError], Any]) -> Any:
-    """``build()``, a refusal (InputError) it raises as a StudyError naming the file: a
-    StudyError as it is, another as ``refuse(error)`` (e.g. :func:`refused`)."""
+def built(path: Path, build: Callable[[], Any], keys: Sequence[str] = ()) -> Any:
+    """``build()``, a refusal (InputError) it raises as a StudyError naming the file: one of
+    a parameter in ``keys`` naming its study key too (:func:`refused`), a StudyError as it is."""
     try:
         return build()
     except StudyError:
         raise
     except InputError as error:
-        raise refuse(error) from None
-
-
-def in_file(path: Path) -> Callable[[InputError], StudyError]:
-    """The refusal of :func:`built` that prefixes the file alone: "{path}: {error}"."""
-    return lambda error: StudyError(f"{path}: {error}")
+        if error.parameter in keys:
+            raise refused(path, error) from None
+        raise StudyError(f"{path}: {error}") from None
 
 
 def swept(

@@ -45,7 +45,6 @@ from ..schema import (
     Table,
     built,
     decode,
-    in_file,
     indenter_of,
     layer_spec,
     named,
@@ -364,12 +363,6 @@ PROFILE_KEYS = ("depths", "sphere_radius", "profile")
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
-
-    def refuse(error: InputError) -> StudyError:
-        return refused(path, error) if error.parameter in PROFILE_KEYS else in_file(path)(error)
-
-    def build() -> list[Study]:
-        studies = _expanded(path, _build(path, raw), raw.sweep)
-        return [contact_study(**vars(study)) for study in studies]
-
-    return validated(path, built(path, build, refuse))
+    studies = built(path, lambda: _expanded(path, _build(path, raw), raw.sweep))
+    checked = [vars(study) for study in studies]  # then each checked and resolved
+    return validated(path, built(path, lambda: [contact_study(**s) for s in checked], PROFILE_KEYS))

@@ -11,7 +11,6 @@ velocity, model, volumetric.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal
@@ -26,7 +25,7 @@ from ...problem import MODELS, RUBBER_SHAPES, Body
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
-from ..contact.loader import check_profile_reach
+from ..contact.loader import PROFILE_KEYS, check_profile_reach
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     MeshTable,
@@ -41,7 +40,6 @@ from ..schema import (
     Table,
     built,
     decode,
-    in_file,
     indenter_of,
     named,
     ranged,
@@ -312,7 +310,6 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
     """
     raw = decode(path, data, _FiniteFile)
-    refuse = functools.partial(refused, path)
-    studies = built(path, lambda: _expanded(path, _build(path, raw), raw), in_file(path))
+    studies = built(path, lambda: _expanded(path, _build(path, raw), raw))
     checked = [vars(study) for study in studies]  # the deepest depth: reach x_c
-    return validated(path, built(path, lambda: [finite_study(**s) for s in checked], refuse))
+    return validated(path, built(path, lambda: [finite_study(**s) for s in checked], PROFILE_KEYS))
