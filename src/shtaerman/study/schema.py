@@ -43,6 +43,7 @@ __all__ = [
     "RubberTable",
     "StudyError",
     "StudyFile",
+    "SurfaceImpactTable",
     "SweepTable",
     "built",
     "exact_impacts",
@@ -197,6 +198,14 @@ class ImpactTable(Table):
 
     mass: Positive
     velocity: Positive
+
+
+class SurfaceImpactTable(ImpactTable):
+    """The ``[impact]`` of an impact's study file (dynamic, effects): the striker's surface
+    too, ``interface`` and Coulomb's ``friction`` (:func:`.dynamic.loader.impact_physics`)."""
+
+    interface: str = "frictionless"
+    friction: float | None = None
 
 
 class StudyFile(Table):

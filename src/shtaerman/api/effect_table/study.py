@@ -22,12 +22,12 @@ from ...study.checks import Check, Outcome
 from ...study.dynamic.loader import KEYS, impact_physics
 from ...study.schema import (
     BodyTable,
-    ImpactTable,
     LayerTable,
     Named,
     Positive,
     RubberTable,
     StudyFile,
+    SurfaceImpactTable,
     Table,
     decode,
     exact_impacts,
@@ -56,14 +56,9 @@ class _Numerics(Table):
     layer_rate: float | None = None
 
 
-class _Impact(ImpactTable):
-    interface: str = "frictionless"
-    friction: float | None = None
-
-
 class _EffectsFile(StudyFile):
     half_space: BodyTable
-    impact: _Impact
+    impact: SurfaceImpactTable
     rubber: RubberTable = RubberTable()
     layer: LayerTable | None = None
     numerics: _Numerics = _Numerics()

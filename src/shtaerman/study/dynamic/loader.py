@@ -44,6 +44,7 @@ from ..schema import (
     RubberTable,
     StudyError,
     StudyFile,
+    SurfaceImpactTable,
     Table,
     decode,
     exact_impacts,
@@ -81,12 +82,9 @@ class _Numerics(Table):
     spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
 
 
-class _DynImpact(Table):
-    mass: Positive
+class _DynImpact(SurfaceImpactTable):
     velocity: Positive | list[Positive]
     figure_velocity: Positive | None = None
-    interface: str = "frictionless"
-    friction: float | None = None
 
 
 class _Quick(_Numerics):
