@@ -248,23 +248,16 @@ def built(path: Path, build: Callable[[], Any], keys: Sequence[str] = ()) -> Any
         raise StudyError(f"{path}: {error}") from None
 
 
-def swept(
-    study: Any,
-    sweep: SweepTable | None,
-    change: Callable[[str, Any], Any],
-    symbols: Mapping[str, str],
-) -> list[Any]:
+def swept(study: Any, sweep: SweepTable | None, change: Callable, symbols: Mapping) -> list:
     """``study``, or one study per value of the ``[sweep]``'s key: ``change(key, value)``
     named ``{study.name}-{symbols[key]}{value}`` (a number in ``g`` format)."""
     if sweep is None:
         return [study]
     key, values = sweep.chosen()
+    shown = [value if isinstance(value, str) else f"{value:g}" for value in values]
     return [
-        replace(
-            change(key, value),
-            name=f"{study.name}-{symbols[key]}{value if isinstance(value, str) else f'{value:g}'}",
-        )
-        for value in values
+        replace(change(key, value), name=f"{study.name}-{symbols[key]}{text}")
+        for value, text in zip(values, shown, strict=True)
     ]
 
 
