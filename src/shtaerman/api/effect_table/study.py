@@ -132,7 +132,5 @@ def write_effects(
     --out``); no figures."""
     folder.mkdir()
     write_table(outcome.table, folder)
-    files = {stem: str((folder / f"{stem}.json").relative_to(root)) for stem in ("effects",)}
-    files["effects_csv"] = str((folder / "effects.csv").relative_to(root))
-    files["effects_md"] = str((folder / "effects.md").relative_to(root))
-    return files, {}
+    names = {"effects": "effects.json", "effects_csv": "effects.csv", "effects_md": "effects.md"}
+    return {stem: str((folder / name).relative_to(root)) for stem, name in names.items()}, {}

@@ -209,27 +209,25 @@ class FiniteStudyOutcome(Outcome):
     def rows(self) -> list[dict[str, float]]:
         """Per depth: x/a (linear a), P, the ratios to Shtaerman and to the same-mesh linear
         FEM, a / a_linear, p(0) / p_avg, stored energy, Newton iterations."""
-        out = []
-        for step, linear in zip(self.finite.steps, self.linear_fem.steps, strict=True):
-            out.append(
-                {
-                    "depth": step.depth,
-                    "depth_to_radius": step.depth / step.contact_radius_linear,
-                    "force": step.force,
-                    "force_linear": step.force_linear,
-                    "force_linear_fem": linear.force,
-                    "force_ratio": step.force / step.force_linear,
-                    "force_ratio_fem": step.force / linear.force,
-                    "contact_radius": step.contact_radius,
-                    "radius_ratio": step.contact_radius / step.contact_radius_linear,
-                    "central_pressure": step.central_pressure,
-                    "central_to_mean": step.central_pressure / step.mean_pressure,
-                    "central_pressure_ratio": step.central_pressure / step.central_pressure_linear,
-                    "strain_energy": step.strain_energy,
-                    "newton_iterations": step.total_iterations,
-                }
-            )
-        return out
+        return [
+            {
+                "depth": step.depth,
+                "depth_to_radius": step.depth / step.contact_radius_linear,
+                "force": step.force,
+                "force_linear": step.force_linear,
+                "force_linear_fem": linear.force,
+                "force_ratio": step.force / step.force_linear,
+                "force_ratio_fem": step.force / linear.force,
+                "contact_radius": step.contact_radius,
+                "radius_ratio": step.contact_radius / step.contact_radius_linear,
+                "central_pressure": step.central_pressure,
+                "central_to_mean": step.central_pressure / step.mean_pressure,
+                "central_pressure_ratio": step.central_pressure / step.central_pressure_linear,
+                "strain_energy": step.strain_energy,
+                "newton_iterations": step.total_iterations,
+            }
+            for step, linear in zip(self.finite.steps, self.linear_fem.steps, strict=True)
+        ]
 
     def validity(self, departure_shift: ArrayLike = 0.0) -> list[dict[str, float | str]]:
         """Depths up to which P stays within 1 % and 5 % of the linear force.
