@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from study_texts import PAPER_CASE
 
 from shtaerman.cli import main
 from shtaerman.study.contact.runner import run_contact_study
@@ -251,6 +252,22 @@ def test_the_layer_sweep_takes_a_thickness_in_metres():
     assert [s.mesh.thickness for s in studies] == [0.01, 0.02]
     assert studies[1].layer.thickness_ratio == pytest.approx(0.02 / _half_space_a_c())
     assert studies[0].mesh.base == "lubricated"
+
+
+def test_a_layer_sweep_case_is_the_study_of_the_same_file(tmp_path):
+    """One path: a case's study is checked and resolved as a study file's (contact_study),
+    so the sweep and the file agree on the layer and its mesh."""
+    [case] = parse_sweep(
+        SWEEP.format(parameters="nu2 = 0.5", axes="thickness_ratio = [2.0]")
+    ).cases()
+    swept = get_kind("layer").check(case.params)
+    path = tmp_path / "pad.toml"
+    path.write_text(
+        PAPER_CASE + "[striker]\nE1 = 2e11\nnu1 = 0.25\n[layer]\nthickness_ratio = 2.0\n"
+    )
+    [study] = load_study(path)
+    assert swept.layer == study.layer and swept.mesh == study.mesh
+    assert swept.layer.thickness == pytest.approx(2.0 * _half_space_a_c(nu2=0.5), rel=1e-15)
 
 
 @pytest.mark.parametrize(

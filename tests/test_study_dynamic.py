@@ -185,6 +185,22 @@ def test_quick_study_passes_its_checks(outcome):
     assert outcome.cpu_seconds < 10.0
 
 
+def test_the_exact_impact_is_solved_once_per_velocity_from_load_to_run(monkeypatch, outcome):
+    """Before, the loader solved it at every velocity of impact.velocity and of quick.velocity
+    and the run at each of its velocities again: 6 + 2 + 2 solves of 6 velocities here."""
+    from shtaerman.study.dynamic import case
+
+    solved, solve = [], case.elastic_impact
+    monkeypatch.setattr(case, "elastic_impact", lambda *a: solved.append(a[1]) or solve(*a))
+    [study] = load_study(find_study("dynamic"))
+    ran = run_study(study, quick=True)
+    assert sorted(solved) == sorted({*study.velocities, *study.quick_velocities})
+    assert len(solved) == 6 and study.quick_velocities == (1.0, 3.0)
+    for fresh, kept in zip(ran.cases, outcome.cases, strict=True):
+        assert fresh.quasi.maxima() == kept.quasi.maxima()  # the same bits as solved anew
+        assert fresh.result.summary() == kept.result.summary()
+
+
 ESTIMATED = {
     "x_max",
     "P_max",

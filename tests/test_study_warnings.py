@@ -6,6 +6,7 @@ a model's limits looked clean in its result folder."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import warnings
 from types import SimpleNamespace
@@ -16,6 +17,7 @@ import shtaerman as sh
 import shtaerman.study.run as study_run
 from shtaerman.cli import main
 from shtaerman.guards import FailedCheckWarning, ValidityWarning
+from shtaerman.study.checks import Outcome
 from shtaerman.validation import InputError
 
 DEEP = "is 1.26 contact radii (x/a, with Shtaerman's a), far outside small strain"
@@ -85,6 +87,31 @@ def test_verify_on_dask_workers_carries_the_warnings_to_its_files_and_stderr(tmp
     assert results["studies"]["shallow"]["warnings"] == []
 
 
+@dataclasses.dataclass(frozen=True)
+class _Done(Outcome):
+    """A kind's outcome: frozen, with its own fields."""
+
+    study: object
+    checks: tuple = ()
+
+
+def test_the_warnings_are_a_field_of_the_frozen_outcome(monkeypatch):
+    """Before, the driver set an attribute on the frozen outcome (object.__setattr__): a copy
+    (dataclasses.replace) lost it and an outcome compared equal with and without warnings."""
+
+    def run(study, quick, progress):
+        warnings.warn("depth: b", ValidityWarning, stacklevel=1)
+        return _Done(study)
+
+    study = _fake_kind(monkeypatch, run)
+    with pytest.warns(ValidityWarning):
+        outcome = study_run.run_study(study)
+    assert outcome.warnings == ("depth: b",)
+    assert dataclasses.replace(outcome, checks=()).warnings == ("depth: b",)  # a copy keeps them
+    assert outcome != _Done(study)  # the same numbers without the warnings: another outcome
+    assert "warnings" in {item.name for item in dataclasses.fields(outcome)}
+
+
 def _fake_kind(monkeypatch, run) -> SimpleNamespace:
     monkeypatch.setattr(study_run, "kind_function", lambda kind, role: run)
     return SimpleNamespace(kind="contact", name="s", source="s.toml")
@@ -98,7 +125,7 @@ def test_the_driver_keeps_each_validity_warning_once_in_order_and_passes_others_
             warnings.warn(text, ValidityWarning, stacklevel=1)
         warnings.warn("energy: c", FailedCheckWarning, stacklevel=1)
         warnings.warn("not a limit", UserWarning, stacklevel=1)
-        return SimpleNamespace(study=study)
+        return _Done(study)
 
     study = _fake_kind(monkeypatch, run)
     with warnings.catch_warnings(record=True) as said:

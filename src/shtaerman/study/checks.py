@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
-__all__ = ["Check", "failures"]
+__all__ = ["Check", "Outcome", "failures"]
 
 
 @dataclass(frozen=True)
@@ -38,3 +38,17 @@ def failures(checks: Iterable[Check]) -> tuple[str, ...]:
         for check in checks
         if not check.passed
     )
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What every study kind's run returns (:mod:`shtaerman.study.kinds`): a subclass adds
+    ``study``, ``checks`` and its numbers; ``warnings`` are the validity warnings its runs
+    issued, once each in the order issued, set by :func:`shtaerman.study.run.run_study`."""
+
+    warnings: tuple[str, ...] = field(default=(), kw_only=True)
+
+    @property
+    def passed(self) -> bool:
+        """Whether every check passed."""
+        return all(check.passed for check in self.checks)  # type: ignore[attr-defined]

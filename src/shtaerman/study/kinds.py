@@ -181,7 +181,7 @@ register_kind(
 register_kind(
     Kind(
         "finite-strain",
-        "neo-Hookean finite-strain contact against Shtaerman, and the impact on it",
+        "rubber finite-strain contact against Shtaerman, and the impact on it",
         load="shtaerman.study.finite.loader:load_finite",
         run="shtaerman.study.finite.runner:run_finite_strain_study",
         write="shtaerman.output.finite:write_finite_study",

@@ -2,32 +2,34 @@
 
 The one place where a study's validity warnings are kept: :func:`run_study` catches the
 :class:`~shtaerman.guards.ValidityWarning` of every run of the study (a limit declared in
-:mod:`shtaerman.guards`), records them once each on the outcome (:func:`recorded_warnings`,
-results.json's ``warnings`` and the reports' warnings) and says each once, naming the study.
+:mod:`shtaerman.guards`), records them once each in the outcome's ``warnings``
+(:func:`recorded_warnings`, results.json's ``warnings`` and the reports' warnings) and says
+each once, naming the study.
 """
 
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import warnings
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from ..guards import ValidityWarning
 from ..validation import InputError
+from .checks import Outcome
 from .kinds import kind_function
 
 __all__ = ["Progress", "recorded_warnings", "run_study", "say_warnings"]
 
 Progress = Callable[[str], None]
 """Receives one line of progress."""
-RECORDED = "validity_warnings"
-"""Attribute of a study's outcome that :func:`run_study` sets: its validity warnings."""
 
 
-def run_study(study: Any, *, quick: bool = False, progress: Progress | None = None) -> Any:
+def run_study(study: Any, *, quick: bool = False, progress: Progress | None = None) -> Outcome:
     """Run one study of any kind (its ``kind`` attribute; see :mod:`.kinds`); its validity
-    warnings are recorded on the outcome (:func:`recorded_warnings`) and said once each.
+    warnings are recorded in the outcome's ``warnings`` (:class:`~.checks.Outcome`) and said
+    once each.
 
     Raises
     ------
@@ -41,15 +43,13 @@ def run_study(study: Any, *, quick: bool = False, progress: Progress | None = No
             outcome = run(study, quick, progress)
         except InputError as error:
             raise InputError(f"{_where(study)}: {error}", error.parameter) from None
-    # the outcomes are frozen dataclasses of each kind's own; the record is the driver's
-    object.__setattr__(outcome, RECORDED, tuple(found))
-    return outcome
+    return dataclasses.replace(outcome, warnings=tuple(found))
 
 
-def recorded_warnings(outcome: Any) -> list[str]:
+def recorded_warnings(outcome: Outcome) -> list[str]:
     """The validity warnings :func:`run_study` recorded for ``outcome``, once each in the
     order issued ([] for an outcome a kind's runner made without it)."""
-    return list(getattr(outcome, RECORDED, ()))
+    return list(outcome.warnings)
 
 
 def say_warnings(study: Any, texts: Iterable[str]) -> None:

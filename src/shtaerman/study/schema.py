@@ -12,13 +12,14 @@ the file is loaded, before any computing.
 from __future__ import annotations
 
 import copy
+import functools
 import importlib.resources
 import math
 import re
 import sys
 import tomllib
-from collections.abc import Iterator, Mapping
-from dataclasses import replace
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hints
 
@@ -38,20 +39,27 @@ __all__ = [
     "EXTENDED_STUDIES",
     "BodyTable",
     "LayerTable",
+    "Named",
     "RubberTable",
     "StudyError",
+    "StudyFile",
+    "SurfaceImpactTable",
     "SweepTable",
+    "built",
+    "exact_impacts",
     "find_study",
     "indenter_of",
     "layer_geometry",
     "layer_spec",
     "load_study",
+    "named",
     "normalized",
     "refused",
     "replaced",
     "settings_of",
     "shipped_studies",
     "study_name",
+    "swept",
     "validate_name",
 ]
 
@@ -192,6 +200,67 @@ class ImpactTable(Table):
     velocity: Positive
 
 
+class SurfaceImpactTable(ImpactTable):
+    """The ``[impact]`` of an impact's study file (dynamic, effects): the striker's surface
+    too, ``interface`` and Coulomb's ``friction`` (:func:`.dynamic.loader.impact_physics`)."""
+
+    interface: str = "frictionless"
+    friction: float | None = None
+
+
+class StudyFile(Table):
+    """The tables of every kind's study file: ``[indenter]``, ``[half_space]`` and
+    ``[impact]`` (a kind's subclass gives the last two its own types, in this order, and adds
+    its tables), the study's ``name`` (default: the file's stem) and ``description``."""
+
+    indenter: IndenterTable
+    half_space: MaterialTable
+    impact: ImpactTable
+    name: str | None = None
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Named:
+    """The first fields of every kind's study: its name (a plain folder name), its
+    description and the file it was read from (a kind's dataclass adds its own)."""
+
+    name: str
+    description: str
+    source: Path
+
+
+def named(path: Path, raw: StudyFile) -> dict[str, Any]:
+    """The :class:`Named` fields of the study file ``raw`` read from ``path``, as keywords."""
+    return {"name": study_name(path, raw.name), "description": raw.description, "source": path}
+
+
+def built(path: Path, build: Callable[[], Any], keys: Sequence[str] = ()) -> Any:
+    """``build()``, a refusal (InputError) it raises as a StudyError naming the file: one of
+    a parameter in ``keys`` naming its study key too (:func:`refused`), a StudyError as it is."""
+    try:
+        return build()
+    except StudyError:
+        raise
+    except InputError as error:
+        if error.parameter in keys:
+            raise refused(path, error) from None
+        raise StudyError(f"{path}: {error}") from None
+
+
+def swept(study: Any, sweep: SweepTable | None, change: Callable, symbols: Mapping) -> list:
+    """``study``, or one study per value of the ``[sweep]``'s key: ``change(key, value)``
+    named ``{study.name}-{symbols[key]}{value}`` (a number in ``g`` format)."""
+    if sweep is None:
+        return [study]
+    key, values = sweep.chosen()
+    shown = [value if isinstance(value, str) else f"{value:g}" for value in values]
+    return [
+        replace(change(key, value), name=f"{study.name}-{symbols[key]}{text}")
+        for value, text in zip(values, shown, strict=True)
+    ]
+
+
 class BodyTable(MaterialTable):
     """The half-space of an impact study: its density (0: massless) and Prony series."""
 
@@ -293,24 +362,34 @@ def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
     return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
 
 
-def layer_geometry(
-    path: Path, layer: LayerTable | None, indenter: Indenter, body: Any, impact: tuple
-) -> dict[str, Any]:
-    """The impact's layer as keywords of :class:`shtaerman.problem.Problem` (thickness in m,
-    base; {} on the half-space): H / a_c resolved at the quasi-static ``impact`` (mass kg,
-    velocity m/s) of the rigid ``indenter`` on the half-space of ``body``."""
+def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:
+    """velocity (m/s) -> the quasi-static impact of ``mass`` kg with the rigid ``indenter`` on
+    the half-space of ``body`` (:func:`.dynamic.case.exact_impact`), solved once per velocity
+    however often it is asked (the loader's checks, a layer's H / a_c and the run share it)."""
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
     from .dynamic.case import exact_impact
 
+    @functools.cache
+    def solved(velocity: float) -> Any:
+        return exact_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
+
+    return solved
+
+
+def layer_geometry(
+    path: Path, layer: LayerTable | None, exact: Callable[[], Any]
+) -> dict[str, Any]:
+    """The impact's layer as keywords of :class:`shtaerman.problem.Problem` (thickness in m,
+    base; {} on the half-space): H / a_c resolved at the quasi-static impact ``exact()`` of
+    the rigid striker on the half-space (:func:`exact_impacts`)."""
     if layer is None:
         return {}
     if layer.dynamic:
         raise StudyError(
             f"{path}: key 'layer.dynamic': applies to a contact study (this one is an impact)"
         )
-    law = contact_law(indenter, effective_modulus(RIGID, body))
-    spec = layer_spec(path, layer, None).resolved(float(exact_impact(*impact, law).a_c))
+    spec = layer_spec(path, layer, None).resolved(float(exact().a_c))
     return {"thickness": spec.thickness, "base": spec.base}
 
 

@@ -30,12 +30,12 @@ This is the only module of :mod:`shtaerman.sweep` that imports the computations 
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 from .. import vocabulary
@@ -90,6 +90,17 @@ def unit_suffix(name: str, unit: str) -> str:
     :func:`shtaerman.output.files.csv_header`): ``x_c`` + ``m`` -> ``x_c [m]``; a pure number
     keeps its bare name."""
     return f"{name} [{unit}]" if unit else name
+
+
+def _sweepable(name: str, outputs: Mapping[str, str], case: Any, check: Any, **roles: Any) -> Kind:
+    """Register the sweep roles of kind ``name`` (:func:`register_kind`): its parameters (the
+    vocabulary's, :func:`vocabulary_parameters`, unless ``roles`` give them), its ``outputs``
+    (``seconds``, where one, is a timing: nondeterministic), ``case`` and ``check``, and the
+    other ``roles``; the description its study kind registered unless ``roles`` give one."""
+    roles.setdefault("parameters", vocabulary_parameters(name))
+    timed = ("seconds",) if "seconds" in outputs else ()
+    kind = Kind(name, roles.pop("description", ""), outputs=outputs, case=case, check=check)
+    return register_kind(dataclasses.replace(kind, nondeterministic=timed, **roles))
 
 
 # --- impact: the exact quasi-static model --------------------------------------------------------
@@ -178,16 +189,13 @@ def impact_case(p: dict[str, Any]) -> CaseResult:
     return CaseResult({name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}, ())
 
 
-register_kind(
-    Kind(
-        name="impact",
-        description="exact quasi-static impact M x'' = -P(x) (Ateb functions; Sneddon's "
-        "quadrature for a sphere or a table)",
-        parameters=vocabulary_parameters("impact"),
-        outputs=IMPACT_OUTPUTS,
-        case=impact_case,
-        check=_quasi_static(),
-    )
+_sweepable(
+    "impact",
+    IMPACT_OUTPUTS,
+    impact_case,
+    _quasi_static(),
+    description="exact quasi-static impact M x'' = -P(x) (Ateb functions; Sneddon's "
+    "quadrature for a sphere or a table)",
 )
 
 
@@ -275,17 +283,7 @@ def contact_case(p: dict[str, Any]) -> CaseResult:
     return CaseResult(outputs, ())
 
 
-register_kind(
-    Kind(
-        name="contact",
-        description="linear FEM frictionless contact against Shtaerman's exact solution",
-        parameters=vocabulary_parameters("contact"),
-        outputs=CONTACT_OUTPUTS,
-        case=contact_case,
-        check=_contact_inputs,
-        nondeterministic=("seconds",),
-    )
-)
+_sweepable("contact", CONTACT_OUTPUTS, contact_case, _contact_inputs)
 
 
 # --- dynamic: the elastodynamic FE impact against the quasi-static one ------------------------
@@ -313,15 +311,12 @@ def _layer(p: dict[str, Any]) -> dict[str, Any]:
     ``thickness`` (given in m, or as H / a_c at the case's quasi-static impact on the
     half-space) and ``base``; {} without one (the half-space)."""
     from ..study.contact.layer import LayerSpec
-    from ..study.dynamic.case import exact_impact
-    from ..theory.materials import RIGID, effective_modulus
-    from ..theory.sneddon import contact_law
+    from ..study.schema import exact_impacts
 
     if not _layer_given(p, required=False):
         return {}
-    contact = contact_law(_indenter(p), effective_modulus(RIGID, _material(p, "E2", "nu2")))
-    a_c = float(exact_impact(p["mass"], p["velocity"], contact).a_c)
-    layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(a_c)
+    exact = exact_impacts(p["mass"], _indenter(p), _material(p, "E2", "nu2"))(p["velocity"])
+    layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"]).resolved(float(exact.a_c))
     return {"thickness": layer.thickness, "base": layer.base}
 
 
@@ -491,18 +486,13 @@ def _dynamic_check(p: dict[str, Any]) -> None:
     check_dynamic(problem, **numerics)
 
 
-register_kind(
-    Kind(
-        name="dynamic",
-        description="dynamic FE impact (elastic waves) against the quasi-static impact",
-        parameters=vocabulary_parameters("dynamic"),
-        outputs=DYNAMIC_OUTPUTS,
-        case=dynamic_case,
-        check=_dynamic_check,
-        nondeterministic=("seconds",),
-        optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
-        levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
-    )
+_sweepable(
+    "dynamic",
+    DYNAMIC_OUTPUTS,
+    dynamic_case,
+    _dynamic_check,
+    optional_outputs={"estimate": DYNAMIC_ERRORS, "prony": DYNAMIC_LOSSES},
+    levels={f"difference_{key}": LEVELS for key in ("x", "P", "t", "worst")},
 )
 
 
@@ -574,21 +564,16 @@ def _number(value: float | None) -> float:
     return math.nan if value is None else float(value)
 
 
-register_kind(
-    Kind(
-        name="effects",
-        description="the effect table of an impact: which effect moves P_max, x_max, "
-        "t_contact and e",
-        parameters={
-            name: parameter
-            for name, parameter in vocabulary_parameters("dynamic").items()
-            if name != "axis_size"  # the effect table's runs grade their own axis
-        },
-        outputs=EFFECTS_OUTPUTS,
-        case=effects_case,
-        check=_quasi_static(lambda p: _effects_inputs(p)),
-        nondeterministic=("seconds",),
-    )
+_sweepable(
+    "effects",
+    EFFECTS_OUTPUTS,
+    effects_case,
+    _quasi_static(lambda p: _effects_inputs(p)),
+    parameters={
+        name: parameter
+        for name, parameter in vocabulary_parameters("dynamic").items()
+        if name != "axis_size"  # the effect table's runs grade their own axis
+    },
 )
 
 
@@ -596,33 +581,24 @@ register_kind(
 
 
 def _layer_study(p: dict[str, Any]):
-    """The contact study of a layer case (its thickness resolved at the impact's x_c)."""
+    """The contact study of a layer case (its thickness resolved at the impact's x_c), on
+    the study file's path (:func:`~shtaerman.study.contact.loader.contact_study`)."""
     from ..study.contact.layer import LayerSpec
-    from ..study.contact.loader import Study, check_profile_reach, on_layer
-    from ..theory.materials import effective_modulus
+    from ..study.contact.loader import contact_study
 
     _layer_given(p, required=True)
     mesh, _ = _mesh(p)
-    study = Study(
-        name="case",
-        description="",
-        source=Path("sweep"),
+    layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"])
+    return contact_study(
         indenter=_indenter(p),
         striker=_material(p, "E1", "nu1"),
         half_space=_material(p, "E2", "nu2"),
-        mass=p["mass"],
-        velocity=p["velocity"],
+        **{name: p[name] for name in ("mass", "velocity", "refine")},
         depths=None,
         mesh=mesh,
         quick_mesh=mesh,
-        refine=p["refine"],
-        layer=LayerSpec(
-            p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"]
-        ),
+        layer=layer,
     )
-    modulus = effective_modulus(study.striker, study.half_space)
-    check_profile_reach(study.indenter, modulus, None, (study.mass, study.velocity))
-    return on_layer(study)
 
 
 LAYER_OUTPUTS = {
@@ -697,18 +673,14 @@ def _layer_dynamic(layer: Any) -> dict[str, float]:
     }
 
 
-register_kind(
-    Kind(
-        name="layer",
-        description="FEM contact on a layer on a rigid base against Shtaerman's half-space at "
-        "the impact's x_c, and the quasi-static impact on the layer's FE law",
-        parameters=vocabulary_parameters("layer"),
-        outputs=LAYER_OUTPUTS,
-        case=layer_case,
-        check=_quasi_static(_layer_study),
-        nondeterministic=("seconds",),
-        optional_outputs={"dynamic": LAYER_DYNAMIC_OUTPUTS},
-    )
+_sweepable(
+    "layer",
+    LAYER_OUTPUTS,
+    layer_case,
+    _quasi_static(_layer_study),
+    description="FEM contact on a layer on a rigid base against Shtaerman's half-space at "
+    "the impact's x_c, and the quasi-static impact on the layer's FE law",
+    optional_outputs={"dynamic": LAYER_DYNAMIC_OUTPUTS},
 )
 
 
@@ -745,33 +717,17 @@ def check_rubber_options(parameters: Mapping[str, Any], axes: Mapping[str, list[
             )
 
 
-def _rubber(p: dict[str, Any]):
-    """The case's rubber model: ``model`` with its own shape parameters and ``volumetric``,
-    checked as the problem's :class:`~shtaerman.problem.Body` (a study file's words)."""
-    from ..problem import MODELS, Body
-
-    shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
-    body = Body(_material(p, "E2", "nu2"), p["model"], volumetric=p["volumetric"], **shapes)
-    if not body.finite:
-        raise InputError(
-            f"model: a finite-strain study presses a rubber: pick one of "
-            f"{', '.join(MODELS[1:])}, got {p['model']!r}",
-            "model",
-        )
-    return body.rubber()
-
-
 def _finite_inputs(p: dict[str, Any]):
-    from ..study.finite.loader import FiniteStudy, Ladder
+    """The finite-strain study of a case, on the study file's path
+    (:func:`~shtaerman.study.finite.loader.finite_study`: its profile's reach checked): the
+    rubber ``model`` with its own shape parameters and ``volumetric``."""
+    from ..study.finite.loader import Ladder, finite_study, rubber_of
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
-    rubber = _rubber(p)
-    names = ("reach", "depth_steps", "small_ratio", "small_steps")
-    ladder = Ladder(*(p[name] for name in names))
-    return FiniteStudy(
-        name="case",
-        description="",
-        source=Path("sweep"),
+    shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
+    rubber = rubber_of(half_space, p["model"], volumetric=p["volumetric"], **shapes)
+    ladder = Ladder(*(p[name] for name in ("reach", "depth_steps", "small_ratio", "small_steps")))
+    return finite_study(
         indenter=indenter,
         half_space=half_space,
         mass=p["mass"],
@@ -795,19 +751,16 @@ def _finite_check(p: dict[str, Any]) -> Any:
     import numpy as np
 
     from ..fem.contact.finite import check_finite_depths
-    from ..study.contact.loader import check_profile_reach
-    from ..study.dynamic.case import exact_impact
     from ..study.finite.runner import ladder
+    from ..study.schema import exact_impacts
     from ..theory.materials import RIGID, effective_modulus
-    from ..theory.sneddon import contact_law
 
-    study = _finite_inputs(p)
-    model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
-    impact = (study.mass, study.velocity)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a validity warning is the case's to record
-        x_c = exact_impact(*impact, contact_law(study.indenter, modulus)).x_c
-    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
+        study = _finite_inputs(p)
+        model, modulus = study.rubber.name, effective_modulus(RIGID, study.half_space)
+        impact = (study.mass, study.velocity)
+        x_c = exact_impacts(study.mass, study.indenter, study.half_space)(study.velocity).x_c
     if study.depths is not None:
         check_finite_depths(study.indenter, np.asarray(study.depths), model)
         return study
@@ -873,14 +826,4 @@ def finite_strain_case(p: dict[str, Any]) -> CaseResult:
     return CaseResult(out, failures(outcome.checks))
 
 
-register_kind(
-    Kind(
-        name="finite-strain",
-        description="rubber finite-strain contact against Shtaerman, and the impact on it",
-        parameters=vocabulary_parameters("finite-strain"),
-        outputs=FINITE_OUTPUTS,
-        case=finite_strain_case,
-        check=_finite_check,
-        nondeterministic=("seconds",),
-    )
-)
+_sweepable("finite-strain", FINITE_OUTPUTS, finite_strain_case, _finite_check)

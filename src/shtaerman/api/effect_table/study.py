@@ -18,21 +18,23 @@ from typing import Any
 import msgspec
 
 from ...problem import parts
-from ...study.checks import Check
+from ...study.checks import Check, Outcome
 from ...study.dynamic.loader import KEYS, impact_physics
 from ...study.schema import (
     BodyTable,
-    ImpactTable,
-    IndenterTable,
     LayerTable,
+    Named,
     Positive,
     RubberTable,
+    StudyFile,
+    SurfaceImpactTable,
     Table,
     decode,
+    exact_impacts,
     indenter_of,
     layer_geometry,
+    named,
     refused,
-    study_name,
 )
 from ...theory.materials import Material
 from ...validation import InputError
@@ -54,17 +56,9 @@ class _Numerics(Table):
     layer_rate: float | None = None
 
 
-class _Impact(ImpactTable):
-    interface: str = "frictionless"
-    friction: float | None = None
-
-
-class _EffectsFile(Table):
-    indenter: IndenterTable
+class _EffectsFile(StudyFile):
     half_space: BodyTable
-    impact: _Impact
-    name: str | None = None
-    description: str = ""
+    impact: SurfaceImpactTable
     rubber: RubberTable = RubberTable()
     layer: LayerTable | None = None
     numerics: _Numerics = _Numerics()
@@ -72,12 +66,9 @@ class _EffectsFile(Table):
 
 
 @dataclass(frozen=True)
-class EffectsStudy:
+class EffectsStudy(Named):
     """An effects study: the full problem's parts and the numerics of :func:`effects`."""
 
-    name: str
-    description: str
-    source: Path
     parts: dict[str, Any]
     numerics: dict[str, Any]
     quick_numerics: dict[str, Any]
@@ -85,7 +76,7 @@ class EffectsStudy:
 
 
 @dataclass(frozen=True)
-class EffectsOutcome:
+class EffectsOutcome(Outcome):
     """The effect table of a study (no pass/fail checks: a refused variant is a row)."""
 
     study: EffectsStudy
@@ -93,11 +84,6 @@ class EffectsOutcome:
     seconds: float
     checks: list[Check] = field(default_factory=list)
     quick: bool = False
-
-    @property
-    def passed(self) -> bool:
-        """Always true: the table has no tolerances."""
-        return True
 
     def document(self) -> dict[str, object]:
         """The table's JSON (``shtaerman effects --json``) for results.json."""
@@ -108,10 +94,11 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     """The study of a parsed ``kind = "effects"`` file; :class:`StudyError` names file and
     key."""
     raw: _EffectsFile = decode(path, data, _EffectsFile)
-    name = study_name(path, raw.name)
+    header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
     body, impact = raw.half_space, raw.impact
     elastic = Material(body.E2, body.nu2)
+    exact = exact_impacts(impact.mass, indenter, elastic)
     try:
         found = parts(
             indenter,
@@ -119,7 +106,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
             mass=impact.mass,
             velocity=impact.velocity,
             prony=body.prony,
-            **layer_geometry(path, raw.layer, indenter, elastic, (impact.mass, impact.velocity)),
+            **layer_geometry(path, raw.layer, lambda: exact(impact.velocity)),
             **impact_physics(raw),
         )
     except InputError as error:
@@ -127,7 +114,7 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     numerics = {k: v for k, v in msgspec.structs.asdict(raw.numerics).items() if v is not None}
     quick = {**numerics, "estimate": False}
     quick |= {k: v for k, v in msgspec.structs.asdict(raw.quick).items() if v is not None}
-    return [EffectsStudy(name, raw.description, path, found, numerics, quick)]
+    return [EffectsStudy(**header, parts=found, numerics=numerics, quick_numerics=quick)]
 
 
 def run_effects(study: EffectsStudy, quick: bool = False, progress: Any = None) -> EffectsOutcome:
@@ -145,7 +132,5 @@ def write_effects(
     --out``); no figures."""
     folder.mkdir()
     write_table(outcome.table, folder)
-    files = {stem: str((folder / f"{stem}.json").relative_to(root)) for stem in ("effects",)}
-    files["effects_csv"] = str((folder / "effects.csv").relative_to(root))
-    files["effects_md"] = str((folder / "effects.md").relative_to(root))
-    return files, {}
+    names = {"effects": "effects.json", "effects_csv": "effects.csv", "effects_md": "effects.md"}
+    return {stem: str((folder / name).relative_to(root)) for stem, name in names.items()}, {}

@@ -32,24 +32,26 @@ from ...vocabulary import entry
 from ..dynamic.case import exact_impact
 from ..schema import (
     EXPECTED,
-    ImpactTable,
-    IndenterTable,
     LayerTable,
     MaterialTable,
     MeshTable,
+    Named,
     Positive,
     Relative,
     StrikerTable,
     StudyError,
+    StudyFile,
     SweepTable,
     Table,
+    built,
     decode,
     indenter_of,
     layer_spec,
+    named,
     ranged,
     refused,
     settings_of,
-    study_name,
+    swept,
     validated,
 )
 from .indentation import refined_radius
@@ -59,8 +61,8 @@ __all__ = [
     "QUICK_MESH",
     "Study",
     "Tolerances",
-    "check_profile_depths",
     "check_profile_reach",
+    "contact_study",
     "load_contact",
     "on_layer",
 ]
@@ -134,12 +136,8 @@ class _Sweep(SweepTable):
     thickness_ratio: list[ThicknessRatio] | None = None
 
 
-class _StudyFile(Table):
-    indenter: IndenterTable
+class _StudyFile(StudyFile):
     half_space: _HalfSpace
-    impact: ImpactTable
-    name: str | None = None
-    description: str = ""
     striker: StrikerTable | None = None
     contact: _Contact = _Contact()
     numerics: MeshTable = MeshTable()
@@ -151,12 +149,9 @@ class _StudyFile(Table):
 
 
 @dataclass(frozen=True)
-class Study:
+class Study(Named):
     """One cross-check: a contact curve and the impact it implies (SI units)."""
 
-    name: str
-    description: str
-    source: Path
     indenter: Indenter
     """The striker's profile: z = A r^n, an exact sphere or a tabulated z(r)."""
     striker: Material
@@ -213,9 +208,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         for key, default in (("numerics", MeshSettings()), ("quick", QUICK_MESH))
     )
     return Study(
-        name=study_name(path, raw.name),
-        description=raw.description,
-        source=path,
+        **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
         striker=RIGID if rigid else Material(striker.E1, striker.nu1),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
@@ -278,28 +271,24 @@ def on_layer(study: Study) -> Study:
 
 
 def _expanded(path: Path, study: Study, sweep: _Sweep | None) -> list[Study]:
-    if sweep is None:
-        return [on_layer(study)]
-    key, values = sweep.chosen()
+    key = sweep.chosen()[0] if sweep is not None else None
     if key in SWEPT_PROFILES and study.indenter.kind != SWEPT_PROFILES[key]:
         raise StudyError(
             f"{path}: key 'sweep.{key}': varies a {SWEPT_PROFILES[key]} striker, but "
             f"[indenter] is a {study.indenter.kind} one; sweep a key of its own profile or "
             "change [indenter]"
         )
-    studies = []
-    for value in values:
+
+    def change(key: str, value: float) -> Study:
         if key in ("shape_coefficient", "exponent"):
-            changed = replace(study, indenter=replace(study.indenter, **{key: value}))
-        elif key == "sphere_radius":
-            changed = replace(study, indenter=SphereIndenter(value))
-        elif key in ("thickness", "thickness_ratio"):
-            changed = replace(study, layer=replace(study.layer, **{key: value}))
-        else:
-            changed = replace(study, **{key: value})
-        changed = on_layer(replace(changed, name=f"{study.name}-{SYMBOLS[key]}{value:g}"))
-        studies.append(changed)
-    return studies
+            return replace(study, indenter=replace(study.indenter, **{key: value}))
+        if key == "sphere_radius":
+            return replace(study, indenter=SphereIndenter(value))
+        if key in ("thickness", "thickness_ratio"):
+            return replace(study, layer=replace(study.layer, **{key: value}))
+        return replace(study, **{key: value})
+
+    return swept(study, sweep, change, SYMBOLS)
 
 
 SWEPT_PROFILES = {
@@ -350,26 +339,30 @@ def check_profile_reach(
         raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
 
 
-def check_profile_depths(path: Path, indenter: Indenter, *reach: Any) -> None:
-    """:func:`check_profile_reach` (its arguments after ``indenter``) in a study file: the
-    refusal names the file and the key."""
-    try:
-        check_profile_reach(indenter, *reach)
-    except InputError as error:
-        raise refused(path, error) from None
+def contact_study(**values: Any) -> Study:
+    """The contact study of ``values`` (:class:`Study`'s fields; a sweep case's name, no
+    description, source "sweep" by default), as every contact study, a study file's
+    (:func:`load_contact`) or a sweep case's, is checked and resolved: its profile's reach
+    (:func:`check_profile_reach`), then its layer (:func:`on_layer`).
+
+    Raises
+    ------
+    InputError
+        Naming the parameter.
+    """
+    study = Study(**{"name": "case", "description": "", "source": Path("sweep"), **values})
+    modulus = effective_modulus(study.striker, study.half_space)
+    check_profile_reach(study.indenter, modulus, study.depths, (study.mass, study.velocity))
+    return on_layer(study)
+
+
+PROFILE_KEYS = ("depths", "sphere_radius", "profile")
+"""The parameters a refusal of :func:`check_profile_reach` names."""
 
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
     raw = decode(path, data, _StudyFile)
-    try:
-        studies = _expanded(path, _build(path, raw), raw.sweep)
-    except StudyError:
-        raise
-    except InputError as error:
-        raise StudyError(f"{path}: {error}") from None
-    for study in studies:
-        modulus = effective_modulus(study.striker, study.half_space)
-        impact = (study.mass, study.velocity)
-        check_profile_depths(path, study.indenter, modulus, study.depths, impact)
-    return validated(path, studies)
+    studies = built(path, lambda: _expanded(path, _build(path, raw), raw.sweep))
+    checked = [vars(study) for study in studies]  # then each checked and resolved
+    return validated(path, built(path, lambda: [contact_study(**s) for s in checked], PROFILE_KEYS))

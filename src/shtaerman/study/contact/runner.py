@@ -25,7 +25,7 @@ from ...theory.impact_ode import integrate_impact
 from ...theory.materials import effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.sneddon import SneddonContact, contact_law
-from ..checks import Check
+from ..checks import Check, Outcome
 from ..dynamic.case import exact_impact
 from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
@@ -45,7 +45,7 @@ Progress = Callable[[str], None]
 
 
 @dataclass(frozen=True)
-class StudyOutcome:
+class StudyOutcome(Outcome):
     """Everything a study produced (SI units)."""
 
     study: Study
@@ -64,11 +64,6 @@ class StudyOutcome:
     """The mesh ladder whose finest level is ``contact``, with its error estimates."""
     layer: LayerFindings | None = None
     """On a layer: its force against the half-space's and the impact on it."""
-
-    @property
-    def passed(self) -> bool:
-        """Whether every check passed."""
-        return all(check.passed for check in self.checks)
 
     def differences(self) -> dict[str, dict[str, float]]:
         """Relative differences of the FEM-fed impacts against the analytic one."""

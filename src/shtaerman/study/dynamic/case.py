@@ -218,6 +218,7 @@ def run_case(
     prony: PronySeries | None = None,
     friction: float | None = None,
     rubber: RubberModel | None = None,
+    quasi: ImpactResult | ProfileImpactResult | None = None,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units),
     every body (the arguments of :func:`~shtaerman.fem.impact.run_impact`).
@@ -252,6 +253,8 @@ def run_case(
         impact and the radiation estimate stay the frictionless theory's.
     rubber : RubberModel, optional
         The rubber of a finite-strain body (with FiniteImpactSettings).
+    quasi : ImpactResult or ProfileImpactResult, optional
+        The quasi-static impact when already solved (a study's loader solved it).
 
     Returns
     -------
@@ -263,7 +266,7 @@ def run_case(
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
-        quasi = exact_impact(mass, velocity, law)
+        quasi = exact_impact(mass, velocity, law) if quasi is None else quasi
         representable("v0^2", velocity * velocity, mass, velocity)  # before the estimate's
         estimate = radiation(mass, velocity, law, density, half_space, quasi)
     times = tuple(snapshots(quasi)) if snapshots is not None else ()

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any
@@ -28,31 +29,41 @@ from ...fem.dynamic_contact import (
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
 from ...problem import Problem, check_options
-from ...theory.materials import Material, effective_modulus
-from ...theory.sneddon import Indenter, contact_law
+from ...theory.materials import Material
+from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
+from ..checks import Check
 from ..schema import (
     BodyTable,
-    IndenterTable,
     LayerTable,
+    Named,
     Positive,
     Relative,
     RubberTable,
     StudyError,
+    StudyFile,
+    SurfaceImpactTable,
     Table,
     decode,
+    exact_impacts,
     indenter_of,
     layer_geometry,
+    named,
     ranged,
     refused,
     settings_of,
-    study_name,
 )
 from .accuracy import check_ladder
 
-__all__ = ["DynamicStudy", "DynamicTolerances", "dynamic_check_failures", "load_dynamic"]
+__all__ = [
+    "DynamicStudy",
+    "DynamicTolerances",
+    "dynamic_check_failures",
+    "energy_checks",
+    "load_dynamic",
+]
 
 
 class _Numerics(Table):
@@ -71,12 +82,9 @@ class _Numerics(Table):
     spectral_radius: Annotated[float, msgspec.Meta(ge=0, le=1)] | None = None
 
 
-class _DynImpact(Table):
-    mass: Positive
+class _DynImpact(SurfaceImpactTable):
     velocity: Positive | list[Positive]
     figure_velocity: Positive | None = None
-    interface: str = "frictionless"
-    friction: float | None = None
 
 
 class _Quick(_Numerics):
@@ -103,12 +111,9 @@ class _DynSweep(Table):
     loss: list[str]
 
 
-class _DynamicFile(Table):
-    indenter: IndenterTable
+class _DynamicFile(StudyFile):
     half_space: BodyTable
     impact: _DynImpact
-    name: str | None = None
-    description: str = ""
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
     tolerances: DynamicTolerances = DynamicTolerances()
@@ -118,12 +123,9 @@ class _DynamicFile(Table):
 
 
 @dataclass(frozen=True)
-class DynamicStudy:
+class DynamicStudy(Named):
     """A dynamic study: one striker and half-space, several approach velocities (SI units)."""
 
-    name: str
-    description: str
-    source: Path
     indenter: Indenter
     half_space: Material
     density: float
@@ -148,6 +150,9 @@ class DynamicStudy:
     refine; None: the finite-strain impact's default), and ``quick`` those of ``verify
     --quick``."""
     quick_finite_numerics: dict[str, Any] = field(default_factory=dict)
+    exact: Mapping[float, Any] = field(default_factory=dict, compare=False, repr=False)
+    """velocity -> the quasi-static impact the loader solved (:func:`..schema.exact_impacts`),
+    the run's (each solved once)."""
 
     def problem(self, velocity: float) -> Problem:
         """The impact at ``velocity`` m/s (:class:`shtaerman.problem.Problem`)."""
@@ -211,7 +216,7 @@ def _velocities(
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
     raw: _DynamicFile = decode(path, data, _DynamicFile)
-    name = study_name(path, raw.name)
+    header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     try:
@@ -225,9 +230,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     quick = raw.quick.velocity
     if quick is None:  # the smallest velocity and the example (or the example and the largest)
         quick = sorted({velocities[0], example} if example != velocities[0] else velocities[:2])
+    exact = exact_impacts(raw.impact.mass, indenter, half_space)
     try:
         validate_fem_inputs(indenter, half_space)  # the FEM's ranges before the layer's impact
-        layer = layer_geometry(path, raw.layer, indenter, half_space, (raw.impact.mass, example))
+        layer = layer_geometry(path, raw.layer, lambda: exact(example))
         defaults = DynamicSettings(**layer)
     except InputError as error:
         raise refused(path, error, KEYS) from None
@@ -239,9 +245,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         except InputError as error:
             raise StudyError(f"{path}: key 'numerics': {error}") from None
     study = DynamicStudy(
-        name=name,
-        description=raw.description,
-        source=path,
+        **header,
         indenter=indenter,
         half_space=half_space,
         density=raw.half_space.density2,
@@ -260,9 +264,11 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         problem = study.problem(study.example)
     except InputError as error:
         raise refused(path, error, KEYS) from None
-    _check_velocities(path, "impact.velocity", study, study.velocities)
-    _check_velocities(path, "quick.velocity", study, study.quick_velocities)
     numerics = {
+        "exact": {
+            **_check_velocities(path, "impact.velocity", study, study.velocities, exact),
+            **_check_velocities(path, "quick.velocity", study, study.quick_velocities, exact),
+        },
         "finite_numerics": _finite_numerics(path, "numerics", raw.numerics, problem),
         "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
     }
@@ -320,24 +326,28 @@ def _finite_numerics(
     return {**FINITE_NUMERICS, **inherited, **given}
 
 
-def _check_velocities(path: Path, key: str, study: DynamicStudy, velocities: Any) -> None:
-    """Refuse, naming ``key``, a velocity whose exact impact leaves the floating-point range
-    (the first check of its run: it came after the velocities before it had run)."""
+def _check_velocities(
+    path: Path, key: str, study: DynamicStudy, velocities: Any, exact: Callable[[float], Any]
+) -> dict[float, Any]:
+    """The exact impact at each of ``velocities`` (``exact``, solved once per velocity), a
+    velocity whose problem the Problem refuses, or whose exact impact leaves the
+    floating-point range, refused naming ``key`` (the first check of its run: it came after
+    the velocities before it had run)."""
     import warnings
 
     from ...theory.impact import representable
-    from .case import exact_impact
 
+    solved = {}
     for velocity in velocities:
-        striker = study.problem(velocity).striker
-        law = contact_law(striker.indenter, effective_modulus(striker.material, study.half_space))
+        study.problem(velocity)
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # the run's warnings are the run's
                 representable("v0^2", velocity * velocity, study.mass, velocity)
-                exact_impact(study.mass, velocity, law)
+                solved[velocity] = exact(velocity)
         except InputError as error:
             raise StudyError(f"{path}: key '{key}': {error}") from None
+    return solved
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:
@@ -372,28 +382,50 @@ than 5e-5. An impact that radiates almost nothing (v0 = 1e-3 m/s: 1 - e^2 below 
 balance's own error) has a reflected share of its radiation that is noise, or 0/0."""
 
 
+def energy_checks(
+    balance: float,
+    reflected: float,
+    *,
+    where: str = "",
+    tolerances: DynamicTolerances | None = None,
+    reflects: bool = True,
+    of: str = "the radiated",
+    radiated: float | None = None,
+) -> list[Check]:
+    """The studies' own checks of one impact run (``tolerances``, default
+    :class:`DynamicTolerances`), named "energy balance{where}" and "reflected energy{where}":
+    its energy balance error (of M v0^2/2) and, where the body ``reflects`` (it has waves),
+    the energy reflected back by the far boundary (of the radiated energy; ``of`` names the
+    reference, M v0^2/2 on a layer). With ``radiated`` (1 - e^2, of M v0^2/2) a reflection of
+    the radiated energy below :data:`NEGLIGIBLE_REFLECTION` of M v0^2/2 counts as none."""
+    limits = DynamicTolerances() if tolerances is None else tolerances
+    if radiated is not None and of == "the radiated":  # nothing radiated: noise or 0/0
+        counted = radiated > NEGLIGIBLE_REFLECTION and reflected * radiated > NEGLIGIBLE_REFLECTION
+        reflected = reflected if counted else 0.0
+    checks = [Check(f"energy balance{where}", balance, limits.energy_balance)]
+    if reflects:
+        checks.append(Check(f"reflected energy{where}", reflected, limits.reflected))
+    return checks
+
+
+FAILED = {
+    "energy balance": "energy balance error {value:.1e} of M v0^2/2 exceeds {tolerance:g}: "
+    "the mesh and time steps do not resolve this impact",
+    "reflected energy": "reflected energy {value:.1e} of {of} exceeds {tolerance:g}: the far "
+    "boundary sends the waves back to the contact (domain_factor or layer_rate do not absorb "
+    "them)",
+}
+"""The reason of each failed :func:`energy_checks` check, on the routes that state them."""
+
+
 def dynamic_check_failures(
     balance: float, reflected: float, of: str = "the radiated", radiated: float | None = None
 ) -> list[str]:
-    """What a dynamic run fails of the studies' own checks (:class:`DynamicTolerances`): its
-    energy balance error (of M v0^2/2) and the energy reflected back by the far boundary (of
-    the radiated energy; ``of`` names the reference, M v0^2/2 on a layer), one reason each;
-    [] when both hold (NaN fails). With ``radiated`` (1 - e^2, of M v0^2/2) a reflection of
-    the radiated energy below :data:`NEGLIGIBLE_REFLECTION` of M v0^2/2 passes."""
-    limits, failures = DynamicTolerances(), []
-    if radiated is not None and of == "the radiated" and radiated <= NEGLIGIBLE_REFLECTION:
-        reflected = 0.0  # nothing radiated to reflect: its share is noise or 0/0
-    elif radiated is not None and of == "the radiated":
-        reflected = reflected if reflected * radiated > NEGLIGIBLE_REFLECTION else 0.0
-    if not balance <= limits.energy_balance:
-        failures.append(
-            f"energy balance error {balance:.1e} of M v0^2/2 exceeds {limits.energy_balance:g}: "
-            "the mesh and time steps do not resolve this impact"
-        )
-    if not reflected <= limits.reflected:
-        failures.append(
-            f"reflected energy {reflected:.1e} of {of} exceeds {limits.reflected:g}: "
-            "the far boundary sends the waves back to the contact (domain_factor or layer_rate "
-            "do not absorb them)"
-        )
-    return failures
+    """What a dynamic run fails of the studies' own checks (:func:`energy_checks` with the
+    default tolerances), one reason each; [] when both hold (NaN fails)."""
+    checks = energy_checks(balance, reflected, of=of, radiated=radiated)
+    return [
+        FAILED[check.name].format(value=check.value, tolerance=check.tolerance, of=of)
+        for check in checks
+        if not check.passed
+    ]

@@ -83,23 +83,21 @@ class FiniteIndentationResult:
 
     def step_table(self) -> list[dict[str, float]]:
         """Per depth: force, contact radius, central pressure, energy, and the linear values."""
-        rows = []
-        for s in self.curve.steps:
-            rows.append(
-                {
-                    "depth": s.depth,
-                    "force": s.force,
-                    "contact_radius": s.contact_radius,
-                    "central_pressure": s.central_pressure,
-                    "strain_energy": s.strain_energy,
-                    "force_analytic": s.force_linear,
-                    "contact_radius_analytic": s.contact_radius_linear,
-                    "central_pressure_analytic": s.central_pressure_linear,
-                    "central_to_mean": s.central_pressure / s.mean_pressure,
-                    "newton_iterations": s.newton_iterations,
-                }
-            )
-        return rows
+        return [
+            {
+                "depth": s.depth,
+                "force": s.force,
+                "contact_radius": s.contact_radius,
+                "central_pressure": s.central_pressure,
+                "strain_energy": s.strain_energy,
+                "force_analytic": s.force_linear,
+                "contact_radius_analytic": s.contact_radius_linear,
+                "central_pressure_analytic": s.central_pressure_linear,
+                "central_to_mean": s.central_pressure / s.mean_pressure,
+                "newton_iterations": s.newton_iterations,
+            }
+            for s in self.curve.steps
+        ]
 
     def departures(self) -> dict[str, float]:
         """Largest |finite / linear - 1| over the depths (not errors: the physics differs)."""

@@ -25,26 +25,27 @@ from ...problem import MODELS, RUBBER_SHAPES, Body
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
-from ..contact.loader import check_profile_depths
+from ..contact.loader import PROFILE_KEYS, check_profile_reach
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
-    ImpactTable,
-    IndenterTable,
-    MaterialTable,
     MeshTable,
+    Named,
     Poisson,
     Positive,
     Relative,
     RubberTable,
     StudyError,
+    StudyFile,
     SweepTable,
     Table,
+    built,
     decode,
     indenter_of,
+    named,
     ranged,
     refused,
     settings_of,
-    study_name,
+    swept,
     validated,
 )
 
@@ -54,7 +55,9 @@ __all__ = [
     "FiniteStudy",
     "FiniteTolerances",
     "Ladder",
+    "finite_study",
     "load_finite",
+    "rubber_of",
 ]
 
 QUICK_FINITE_MESH = MeshSettings(size=1 / 24, growth=0.45, axis_size=1e-4, axis_growth=0.35)
@@ -109,12 +112,7 @@ class _Corrections(Table):  # values checked by _corrections, whose messages nam
     density2: Any = vocabulary.entry("density2").default
 
 
-class _FiniteFile(Table):
-    indenter: IndenterTable
-    half_space: MaterialTable
-    impact: ImpactTable
-    name: str | None = None
-    description: str = ""
+class _FiniteFile(StudyFile):
     contact: _Contact = _Contact()
     numerics: _Numerics = _Numerics()
     quick: _Quick = _Quick()
@@ -145,12 +143,9 @@ class Ladder:
 
 
 @dataclass(frozen=True)
-class FiniteStudy:
+class FiniteStudy(Named):
     """One finite-strain study (SI units)."""
 
-    name: str
-    description: str
-    source: Path
     indenter: Indenter
     """The rigid striker's profile: z = A r^n, an exact sphere or a tabulated z(r)."""
     half_space: Material
@@ -175,24 +170,39 @@ class FiniteStudy:
     """The dynamic impacts of ``[corrections]``; None: none run."""
 
 
+def rubber_of(half_space: Material, model: str | None, **options: Any) -> RubberModel:
+    """The rubber pressed by a finite-strain study: ``model`` (None: neo-Hookean) with its
+    ``options``, checked as the problem's :class:`~shtaerman.problem.Body` checks it.
+
+    Raises
+    ------
+    InputError
+        Naming the option, or ``model`` for the linear model (a finite-strain study presses
+        a rubber).
+    """
+    model = model or "neo-hookean"
+    body = Body(half_space, model, **options)
+    if not body.finite:
+        raise InputError(
+            f"model: a finite-strain study presses a rubber: pick one of "
+            f"{', '.join(MODELS[1:])}, got {model!r}",
+            "model",
+        )
+    return body.rubber()
+
+
 def _rubber(path: Path, raw: _FiniteFile, **chosen: str) -> RubberModel:
-    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place,
-    checked as the problem's :class:`~shtaerman.problem.Body` checks it (a refusal names its
-    key); shape keys of another model than the one chosen are left out."""
+    """The ``[rubber]`` table's model with ``chosen`` (a swept model or volumetric) in place
+    (:func:`rubber_of`; a refusal names its key); shape keys of another model than the one
+    chosen are left out."""
     given = msgspec.structs.asdict(raw.rubber) | chosen
     model = given.pop("model") or "neo-hookean"
     if "model" in chosen:
         given = {k: v for k, v in given.items() if RUBBER_SHAPES.get(k, model) == model}
     try:
-        body = Body(Material(raw.half_space.E2, raw.half_space.nu2), model, **given)
+        return rubber_of(Material(raw.half_space.E2, raw.half_space.nu2), model, **given)
     except InputError as error:
         raise refused(path, error) from None
-    if not body.finite:
-        raise StudyError(
-            f"{path}: key 'rubber.model': a finite-strain study presses a rubber: pick one of "
-            f"{', '.join(MODELS[1:])}, got {model!r}"
-        )
-    return body.rubber()
 
 
 def _mesh(
@@ -214,9 +224,7 @@ def _mesh(
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
     contact, quick, ladder = raw.contact, raw.quick, raw.numerics.ladder
     return FiniteStudy(
-        name=study_name(path, raw.name),
-        description=raw.description,
-        source=path,
+        **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
@@ -264,21 +272,32 @@ def _sweeps_model(raw: _FiniteFile) -> bool:
 
 
 def _expanded(path: Path, study: FiniteStudy, raw: _FiniteFile) -> list[FiniteStudy]:
-    sweep = raw.sweep
-    if sweep is None:
-        return [study]
-    key, values = sweep.chosen()
-    studies = []
-    for value in values:
+    def change(key: str, value: Any) -> FiniteStudy:
         if key == "nu2":
-            changed = replace(study, half_space=replace(study.half_space, poisson_ratio=value))
-        elif key in ("model", "volumetric"):
-            changed = replace(study, rubber=_rubber(path, raw, **{key: value}))
-        else:
-            changed = replace(study, **{key: value})
-        shown = value if isinstance(value, str) else f"{value:g}"
-        studies.append(replace(changed, name=f"{study.name}-{SWEEPABLE[key]}{shown}"))
-    return studies
+            return replace(study, half_space=replace(study.half_space, poisson_ratio=value))
+        if key in ("model", "volumetric"):
+            return replace(study, rubber=_rubber(path, raw, **{key: value}))
+        return replace(study, **{key: value})
+
+    return swept(study, raw.sweep, change, SWEEPABLE)
+
+
+def finite_study(**values: Any) -> FiniteStudy:
+    """The finite-strain study of ``values`` (:class:`FiniteStudy`'s fields; a sweep case's
+    name, no description, source "sweep" by default), as every finite-strain study, a study
+    file's (:func:`load_finite`) or a sweep case's, is checked: its profile's reach to its
+    depths or ``reach`` x_c (:func:`~shtaerman.study.contact.loader.check_profile_reach`).
+
+    Raises
+    ------
+    InputError
+        Naming the parameter.
+    """
+    defaults = {"name": "case", "description": "", "source": Path("sweep")}
+    study = FiniteStudy(**{**defaults, **values})
+    modulus, impact = effective_modulus(RIGID, study.half_space), (study.mass, study.velocity)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
+    return study
 
 
 def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
@@ -291,15 +310,6 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
     """
     raw = decode(path, data, _FiniteFile)
-    try:
-        studies = _expanded(path, _build(path, raw), raw)
-    except StudyError:
-        raise
-    except InputError as error:
-        raise StudyError(f"{path}: {error}") from None
-    for study in studies:  # the deepest depth: reach x_c
-        modulus = effective_modulus(RIGID, study.half_space)
-        impact = (study.mass, study.velocity)
-        reach = study.ladder.reach
-        check_profile_depths(path, study.indenter, modulus, study.depths, impact, reach)
-    return validated(path, studies)
+    studies = built(path, lambda: _expanded(path, _build(path, raw), raw))
+    checked = [vars(study) for study in studies]  # the deepest depth: reach x_c
+    return validated(path, built(path, lambda: [finite_study(**s) for s in checked], PROFILE_KEYS))

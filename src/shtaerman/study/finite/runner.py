@@ -43,7 +43,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.sneddon import Indenter, contact_law, profile_inputs
-from ..checks import Check
+from ..checks import Check, Outcome
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
@@ -181,7 +181,7 @@ def surface_radii(indenter: Indenter, top: float, mesh: MeshSettings) -> np.ndar
 
 
 @dataclass(frozen=True)
-class FiniteStudyOutcome:
+class FiniteStudyOutcome(Outcome):
     """Everything a finite-strain study produced (SI units)."""
 
     study: FiniteStudy
@@ -202,11 +202,6 @@ class FiniteStudyOutcome:
     """Where the depth ladder started when the mesh moved it (None: at ``small_ratio``)."""
 
     @property
-    def passed(self) -> bool:
-        """Whether every check passed."""
-        return all(check.passed for check in self.checks)
-
-    @property
     def mesh(self) -> MeshSettings:
         """The mesh settings the study ran with."""
         return self.study.quick_mesh if self.quick else self.study.mesh
@@ -214,27 +209,25 @@ class FiniteStudyOutcome:
     def rows(self) -> list[dict[str, float]]:
         """Per depth: x/a (linear a), P, the ratios to Shtaerman and to the same-mesh linear
         FEM, a / a_linear, p(0) / p_avg, stored energy, Newton iterations."""
-        out = []
-        for step, linear in zip(self.finite.steps, self.linear_fem.steps, strict=True):
-            out.append(
-                {
-                    "depth": step.depth,
-                    "depth_to_radius": step.depth / step.contact_radius_linear,
-                    "force": step.force,
-                    "force_linear": step.force_linear,
-                    "force_linear_fem": linear.force,
-                    "force_ratio": step.force / step.force_linear,
-                    "force_ratio_fem": step.force / linear.force,
-                    "contact_radius": step.contact_radius,
-                    "radius_ratio": step.contact_radius / step.contact_radius_linear,
-                    "central_pressure": step.central_pressure,
-                    "central_to_mean": step.central_pressure / step.mean_pressure,
-                    "central_pressure_ratio": step.central_pressure / step.central_pressure_linear,
-                    "strain_energy": step.strain_energy,
-                    "newton_iterations": step.total_iterations,
-                }
-            )
-        return out
+        return [
+            {
+                "depth": step.depth,
+                "depth_to_radius": step.depth / step.contact_radius_linear,
+                "force": step.force,
+                "force_linear": step.force_linear,
+                "force_linear_fem": linear.force,
+                "force_ratio": step.force / step.force_linear,
+                "force_ratio_fem": step.force / linear.force,
+                "contact_radius": step.contact_radius,
+                "radius_ratio": step.contact_radius / step.contact_radius_linear,
+                "central_pressure": step.central_pressure,
+                "central_to_mean": step.central_pressure / step.mean_pressure,
+                "central_pressure_ratio": step.central_pressure / step.central_pressure_linear,
+                "strain_energy": step.strain_energy,
+                "newton_iterations": step.total_iterations,
+            }
+            for step, linear in zip(self.finite.steps, self.linear_fem.steps, strict=True)
+        ]
 
     def validity(self, departure_shift: ArrayLike = 0.0) -> list[dict[str, float | str]]:
         """Depths up to which P stays within 1 % and 5 % of the linear force.
@@ -260,47 +253,19 @@ class FiniteStudyOutcome:
         out: list[dict[str, float | str]] = []
         for level in LEVELS:
             beyond = np.flatnonzero(departure > level)
-            if beyond.size == 0:
-                out.append(
-                    {
-                        "level": level,
-                        "status": "beyond",
-                        "depth_to_radius": ratio[-1],
-                        "depth": depth[-1],
-                        "velocity": self._velocity(energy[-1]),
-                    }
-                )
-                continue
-            k = int(beyond[0])
-            if k == 0:
-                out.append(
-                    {
-                        "level": level,
-                        "status": "below",
-                        "depth_to_radius": ratio[0],
-                        "depth": depth[0],
-                        "velocity": self._velocity(energy[0]),
-                    }
-                )
-                continue
-            t = (level - departure[k - 1]) / (departure[k] - departure[k - 1])
-            at = ratio[k - 1] + t * (ratio[k] - ratio[k - 1])
-            d = depth_at_ratio(self.study.indenter, at)
-            slope = math.log(energy[k] / energy[k - 1]) / math.log(depth[k] / depth[k - 1])
-            w = energy[k - 1] * (d / depth[k - 1]) ** slope
-            out.append(
-                {
-                    "level": level,
-                    "status": "interpolated",
-                    "depth_to_radius": at,
-                    "depth": d,
-                    "velocity": self._velocity(w),
-                }
-            )
+            k = int(beyond[0]) if beyond.size else -1  # -1: within the level at every depth
+            if k <= 0:
+                status, at, d, w = "below" if k == 0 else "beyond", ratio[k], depth[k], energy[k]
+            else:
+                t = (level - departure[k - 1]) / (departure[k] - departure[k - 1])
+                at = ratio[k - 1] + t * (ratio[k] - ratio[k - 1])
+                d = depth_at_ratio(self.study.indenter, at)
+                slope = math.log(energy[k] / energy[k - 1]) / math.log(depth[k] / depth[k - 1])
+                status, w = "interpolated", energy[k - 1] * (d / depth[k - 1]) ** slope
+            velocity = math.sqrt(2.0 * w / self.study.mass)
+            row = {"level": level, "status": status, "depth_to_radius": at, "depth": d}
+            out.append({**row, "velocity": velocity})
         return out
-
-    def _velocity(self, energy: float) -> float:
-        return math.sqrt(2.0 * energy / self.study.mass)
 
     def ratios(self) -> dict[str, float]:
         """Finite-strain impact maxima / the paper's linear exact ones."""
