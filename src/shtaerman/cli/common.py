@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
+from ..problem import worded
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
@@ -202,25 +203,19 @@ def _metavar(item: Entry) -> str:
 
 @contextlib.contextmanager
 def in_option_words() -> Iterator[None]:
-    """Re-raise an :class:`InputError` of the API whose message begins with the input's key
-    (``mass: ...``, ``solver 'pardiso' ...``) with its command-line option instead
-    (``--mass: ...``): the user of the CLI gave options, not keywords. An error that names no
-    parameter is read as naming the key its message begins with (``out: ...``)."""
+    """Re-raise an :class:`InputError` of the API in the command line's words
+    (:func:`shtaerman.problem.worded`: ``--mass: ...``, ``give --interface bonded too``): the
+    user of the CLI gave options, not keywords. A message that begins with the parameter it
+    names without a colon (``solver 'pardiso' ...``) gets its option too."""
     try:
         yield
     except InputError as error:
-        message = str(error)
-        names = re.match(r"(\w+(?:, \w+)+): ", message)  # "mass, velocity: ..." names both
-        if names and all(name in _KEYS for name in names[1].split(", ")):
-            options = ", ".join(entry(name).cli_option for name in names[1].split(", "))
-            raise type(error)(options + message[len(names[1]) :], error.parameter) from None
-        leading = re.match(r"(\w+): ", message)
-        name = error.parameter or (leading[1] if leading else None)
-        known = name is not None and name in _KEYS
-        if not known or not re.match(rf"{re.escape(name)}\b(?![-=])", message):
+        spoken, name = worded(str(error), "cli"), error.parameter
+        if name in _KEYS and re.match(rf"{re.escape(name)}\b(?![-=:,])", spoken):
+            spoken = entry(name).cli_option + spoken[len(name) :]
+        if spoken == str(error):
             raise
-        option = entry(name).cli_option
-        raise type(error)(option + message[len(name) :], name) from None
+        raise type(error)(spoken, name) from None
 
 
 _KEYS = frozenset(item.name for item in VOCABULARY)
