@@ -152,17 +152,22 @@ def finite_contact_text(report: dict) -> str:
             f"{ratios[2]:.4f}  {step['central_to_mean']:.4f}   {step['strain_energy']:.4e}  "
             f"{step['newton_iterations']}"
         )
-    mesh, timings = report["mesh"], report["timings"]
-    rows += [
+    rows.append(
         f"  beta (q fixed) {report['beta_fem']:.6e} vs linear {report['beta_analytic']:.6e};  "
-        f"{_exponent_text(report, 'linear')}",
+        f"{_exponent_text(report, 'linear')}"
+    )
+    return _closing(report, rows, "")
+
+
+def _closing(report: dict, rows: list[str], solver: str) -> str:
+    """``rows`` and the mesh, timing and estimate rows of a contact report, as one text."""
+    mesh = report["mesh"]
+    rows += [
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
-        f"{mesh['contact_candidates']} contact candidates",
-        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
+        f"{mesh['contact_candidates']} contact candidates{solver}",
+        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in report["timings"].items()),
     ]
-    if "error_estimate" in report:
-        rows += _estimate_text(report)
-    return "\n".join(rows)
+    return "\n".join(rows + (_estimate_text(report) if "error_estimate" in report else []))
 
 
 def _interface_rows(report: dict) -> list[str]:
@@ -254,20 +259,15 @@ def contact_text(report: dict) -> str:
             f"{step['contact_radius']:.4e}  {errors[1]:+.1e}  {step['central_pressure']:.4e} "
             f"{errors[2]:+.1e}  {step['central_to_mean']:.4f}"
         )
-    mesh, timings, errors = report["mesh"], report["timings"], report["errors"]
+    errors = report["errors"]
     against, error = _reference_words(report)
     rows += [
         f"  beta (q fixed) {report['beta_fem']:.6e} vs {against} {report['beta_analytic']:.6e} "
         f"({errors['beta']:.1e});  {_exponent_text(report, '' if against == 'exact' else against)}",
         f"  p0/pavg {against} {_ratio_text(report['central_to_mean_analytic'])};  pressure "
         f"profile L2 {error} <= {errors['pressure_profile']:.1e}",
-        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
-        f"{mesh['contact_candidates']} contact candidates; solver {report['solver']}",
-        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
     ]
-    if "error_estimate" in report:
-        rows += _estimate_text(report)
-    return "\n".join(rows)
+    return _closing(report, rows, f"; solver {report['solver']}")
 
 
 def _layer_rows(report: dict, compared: str) -> list[str]:
