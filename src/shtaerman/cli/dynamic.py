@@ -18,20 +18,7 @@ from ..output.files import staged_file, write_csv
 from ..problem import Problem, check_options
 from ..theory.materials import Material
 from ..vocabulary import entry
-from .common import (
-    CASE,
-    PROFILES,
-    add_figure_format,
-    add_inputs,
-    given,
-    in_option_words,
-    indenter,
-    keywords,
-    print_json,
-    refuse_idle_output_options,
-    warn,
-    warn_volumetric,
-)
+from . import common
 from .finite_dynamic import (
     finite_dynamic_text,
     interface_rows,
@@ -78,17 +65,19 @@ def register(commands: argparse._SubParsersAction) -> None:
             "a lateral absorber; its reflected energy is counted of M v0^2/2."
         ),
     )
-    inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
+    inputs = (*common.CASE, *common.PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
     inputs = (*inputs, "interface", "friction")
     inputs = (*inputs, "json", "history", "out", "force")
-    add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
-    add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
-    add_figure_format(p)
+    common.add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
+    common.add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
+    common.add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "
         "K/2, K/sqrt(2), K)"
     )
-    add_inputs(accuracy, ("refine", "estimate"), "dynamic", notes={"refine": "the time step too"})
+    common.add_inputs(
+        accuracy, ("refine", "estimate"), "dynamic", notes={"refine": "the time step too"}
+    )
     numerics = p.add_argument_group(
         "expert numerical controls (relative to the quasi-static impact; --refine scales the "
         "mesh sizes and steps together)"
@@ -104,7 +93,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         f"it at most {MAX_SIZE / 2:g}; with --model the default is 1/{1 / FINITE_MESH.size:.0f}",
     }
     aliases = {"time_steps": ("--steps",)}
-    add_inputs(
+    common.add_inputs(
         numerics, tuple(SETTINGS_OPTIONS), "dynamic", derived=DERIVED, aliases=aliases, notes=finite
     )
     p.set_defaults(handler=run)
@@ -118,9 +107,9 @@ OPTIONS = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "history")
 
 def problem_of(args: argparse.Namespace) -> Problem:
     """The impact the options describe, checked (:class:`shtaerman.problem.Problem`)."""
-    physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
+    physics = {name: getattr(args, name) for name in PHYSICS if common.given(args, name)}
     return Problem.impact(
-        indenter(args),
+        common.indenter(args),
         Material(args.E2, args.nu2, args.density2),
         mass=args.mass,
         velocity=args.velocity,
@@ -136,39 +125,41 @@ def _format(args: argparse.Namespace) -> list[str]:
 def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
     """The numerical and output keywords of :func:`shtaerman.dynamic` for ``problem``: a
     finite-strain impact's own defaults where an option was not given."""
-    outputs = keywords(args, ("out", "force", "figure_format"))
+    outputs = common.keywords(args, ("out", "force", "figure_format"))
     if problem.body.finite:
         names = ("time_steps", "mesh_size")
-        chosen = {n: getattr(args, n) if given(args, n) else None for n in names}
-        return {**chosen, **keywords(args, ("refine", "estimate")), **outputs}
-    if not given(args, "layer_rate"):  # the API's default: the layer of the case
+        chosen = {n: getattr(args, n) if common.given(args, n) else None for n in names}
+        return {**chosen, **common.keywords(args, ("refine", "estimate")), **outputs}
+    if not common.given(args, "layer_rate"):  # the API's default: the layer of the case
         args.layer_rate = None
-    return {**keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
+    return {**common.keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
-    with in_option_words():
+    with common.in_option_words():
         problem = problem_of(args)
-        check_options(problem, [name for name in OPTIONS if given(args, name)] + _format(args))
-    refuse_idle_output_options(args, ("out", "history"))
+        check_options(
+            problem, [name for name in OPTIONS if common.given(args, name)] + _format(args)
+        )
+    common.refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
-    with in_option_words(), warnings.catch_warnings():
+    with common.in_option_words(), warnings.catch_warnings():
         warnings.simplefilter("ignore", FailedCheckWarning)  # said below, with the exit code
         result = dynamic(problem, **_numerics(args, problem))
-    warn_volumetric(args)  # after the run: a refused input is the one line
+    common.warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:
             write_csv(stage, result.history())
     if args.json:
-        print_json(report)
+        common.print_json(report)
     else:
         print(finite_dynamic_text(report) if problem.body.finite else dynamic_text(report))
     failures = check_failures(result, problem)
     if failures:
-        warn("; ".join(failures) + UNTRUSTED)
+        common.warn("; ".join(failures) + UNTRUSTED)
         return 1
     return 0
 
