@@ -599,18 +599,12 @@ _LEADING = re.compile(r"(\w+(?:, \w+)*)(?=: )")
 
 
 def worded(message: str, route: str, keys: Mapping[str, str] | None = None) -> str:
-    """A refusal ``message`` in the words of the ``route`` its input came by: the one place
-    where an input's name is spelled for a route.
-
-    Refusals are written in the Python API's words: they begin with the keyword at fault
-    (``friction: ...``, ``mass, velocity: ...``) and name another input as ``name=value``
-    (``interface='bonded'``, ``estimate=False``) or, alone, ``name=...``. ``route``
-    ``"python"`` keeps them; ``"cli"`` gives the options (``--friction: ...``, ``--interface
-    bonded``, ``--no-estimate``, ``--thickness``); ``"file"`` gives the keys of a study or
-    sweep file (``[contact] interface = "bonded"``), ``keys`` mapping an input to its
-    ``table.key`` (default: its own name, as a sweep's ``[parameters]`` spell it; the file's
-    route names the key at fault itself).
-    """
+    """``message`` in the words of the ``route`` its input came by: the one place that spells
+    an input per route. A refusal is written in Python's: it begins with the keyword at fault
+    (``friction: ...``) and names another input ``name=value`` or, alone, ``name=...``.
+    ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
+    ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
+    maps an input to its ``table.key``), ``"python"`` keeps it."""
     if route == "python":
         return message
 
@@ -634,8 +628,7 @@ def worded(message: str, route: str, keys: Mapping[str, str] | None = None) -> s
 
 
 def _option(name: str, value: str) -> str:
-    """Input ``name`` set to ``value`` (a Python literal, or ``...``: the input alone) as the
-    command line spells it."""
+    """Input ``name`` set to ``value`` (a Python literal, or ``...``) as an option."""
     item = entry(name)
     option = item.cli_option
     if item.type in ("bool", "flag"):  # --no-estimate is estimate=False, --json json=True

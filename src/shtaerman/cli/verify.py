@@ -118,19 +118,13 @@ def run(args: argparse.Namespace) -> int:
     return 0 if results["passed"] else 1
 
 
-FULL_QUICK = ("dynamic", "effects")
-"""The study kinds whose ``--quick`` takes the full ``[numerics]`` where ``[quick]`` is missing
-(the contact and finite-strain kinds have coarse defaults of their own)."""
-
-
 def _say_full_quick(paths: list[Path]) -> None:
-    """Warn, one line a file, that ``--quick`` keeps the full mesh of a study file of a
-    :data:`FULL_QUICK` kind that has no ``[quick]`` table."""
+    """Say that --quick runs a dynamic or effects study without [quick] on its full mesh."""
     import tomllib
 
     for path in paths:
         data = tomllib.loads(path.read_text())
-        if data.get("kind") in FULL_QUICK and "quick" not in data:
+        if data.get("kind") in ("dynamic", "effects") and "quick" not in data:
             warn(
                 f"{path} has no [quick] table: --quick runs it on its full [numerics] mesh and "
                 "time steps (without the estimate); a [quick] table sets coarse ones"
