@@ -270,7 +270,7 @@ def test_the_help_states_the_estimates_ranges_that_are_enforced(capsys, option, 
         main(["dynamic", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "with it at least 100 (a level needs 50)" in text
-    assert "with it at most 0.1;" in text
+    assert "the linear estimate's coarsest level doubles it, so with it at most 0.1;" in text
     assert "12.5 mm in the paper's example" in text  # what --mesh-size sizes, in metres
     assert main(["dynamic", option, value]) == 2
     err = capsys.readouterr().err

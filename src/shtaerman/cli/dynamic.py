@@ -89,8 +89,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         "mesh_size": "it sizes the surface elements of the refined zone (radius --mesh-margin x "
         "a_c: 12.5 mm in the paper's example, 0.31 mm elements at 0.025); the axis grading and "
         "the far field's growth set most of the mesh (0.025 to 0.2 change its dofs by under "
-        "10 %): --refine refines all of it; the estimate's coarsest level doubles it, so with "
-        f"it at most {MAX_SIZE / 2:g}; with --model the default is 1/{1 / FINITE_MESH.size:.0f}",
+        "10 %): --refine refines all of it; the linear estimate's coarsest level doubles it, so "
+        f"with it at most {MAX_SIZE / 2:g}; with --model the default is "
+        f"1/{1 / FINITE_MESH.size:.0f}",
     }
     aliases = {"time_steps": ("--steps",)}
     common.add_inputs(
