@@ -598,13 +598,17 @@ _REFERENCE = re.compile(r"(?<![\w.=-])([A-Za-z]\w*)=('[^']*'|\.\.\.|[\w+-]+(?:\.
 _LEADING = re.compile(r"(\w+(?:, \w+)*)(?=: )")
 
 
-def worded(message: str, route: str, keys: Mapping[str, str] | None = None) -> str:
+def worded(
+    message: str, route: str, keys: Mapping[str, str] | None = None, parameter: str | None = None
+) -> str:
     """``message`` in the words of the ``route`` its input came by: the one place that spells
     an input per route. A refusal is written in Python's: it begins with the keyword at fault
     (``friction: ...``) and names another input ``name=value`` or, alone, ``name=...``.
     ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
     ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
-    maps an input to its ``table.key``), ``"python"`` keeps it."""
+    maps an input to its ``table.key``), ``"python"`` keeps it. On the command line a message
+    that begins with its ``parameter`` without a colon (``solver 'pardiso' ...``) gets its
+    option too."""
     if route == "python":
         return message
 
@@ -624,6 +628,8 @@ def worded(message: str, route: str, keys: Mapping[str, str] | None = None) -> s
     if leading and all(name in _NAMES for name in leading[1].split(", ")):
         options = ", ".join(entry(name).cli_option for name in leading[1].split(", "))
         message = options + message[leading.end() :]
+    elif route == "cli" and parameter in _NAMES and re.match(rf"{parameter}\b(?![-=:,])", message):
+        message = entry(parameter).cli_option + message[len(parameter) :]
     return message
 
 

@@ -18,7 +18,7 @@ from ..problem import worded
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
-from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, Entry, entry
+from ..vocabulary import DeprecatedKeyWarning, Entry, entry
 
 if TYPE_CHECKING:
     from ..theory.sneddon import Indenter
@@ -205,21 +205,14 @@ def _metavar(item: Entry) -> str:
 def in_option_words() -> Iterator[None]:
     """Re-raise an :class:`InputError` of the API in the command line's words
     (:func:`shtaerman.problem.worded`: ``--mass: ...``, ``give --interface bonded too``): the
-    user of the CLI gave options, not keywords. A message that begins with the parameter it
-    names without a colon (``solver 'pardiso' ...``) gets its option too."""
+    user of the CLI gave options, not keywords."""
     try:
         yield
     except InputError as error:
-        spoken, name = worded(str(error), "cli"), error.parameter
-        if name in _KEYS and re.match(rf"{re.escape(name)}\b(?![-=:,])", spoken):
-            spoken = entry(name).cli_option + spoken[len(name) :]
+        spoken = worded(str(error), "cli", parameter=error.parameter)
         if spoken == str(error):
             raise
-        raise type(error)(spoken, name) from None
-
-
-_KEYS = frozenset(item.name for item in VOCABULARY)
-"""The inputs' keys, as an API message may begin with them."""
+        raise type(error)(spoken, error.parameter) from None
 
 
 def given(args: argparse.Namespace, name: str) -> bool:
