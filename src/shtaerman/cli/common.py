@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
-from ..problem import worded
+from ..problem import check_outputs, worded
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
@@ -228,12 +228,8 @@ def given(args: argparse.Namespace, name: str) -> bool:
 def refuse_idle_output_options(args: argparse.Namespace, targets: tuple[str, ...]) -> None:
     """Refuse, in one line, the options that act on written outputs when nothing is written:
     ``--figure-format`` (not png) without ``--out``, ``--force`` without any of ``targets``."""
-    if args.figure_format != entry("figure_format").default and args.out is None:
-        raise InputError(
-            "--figure-format: applies with --out only (the format of the figures written "
-            "there); give --out too",
-            "figure_format",
-        )
+    with in_option_words():  # the API's refusal (shtaerman.problem.check_outputs)
+        check_outputs(args.out, force=True, estimate=True, figure_format=args.figure_format)
     if given(args, "force") and all(getattr(args, name) is None for name in targets):
         where = " or ".join(entry(name).cli_option for name in targets)
         raise InputError(
