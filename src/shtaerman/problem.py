@@ -594,7 +594,7 @@ def check_outputs(out: Any, *, force: Any, estimate: Any, figure_format: str) ->
 
 
 _NAMES = frozenset(item.name for item in VOCABULARY)
-_REFERENCE = re.compile(r"(?<![\w.=-])([A-Za-z]\w*)=('[^']*'|\.\.\.|[\w+-]+(?:\.\w+)*)")
+_REFERENCE = re.compile(r"(?<![^\s(])([A-Za-z]\w*)=('[^']*'|\.\.\.|[\w+-]+(?:\.\w+)*)")
 _LEADING = re.compile(r"(\w+(?:, \w+)*)(?=: )")
 
 
