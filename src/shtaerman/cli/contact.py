@@ -126,7 +126,7 @@ def finite_contact_text(report: dict) -> str:
         f"{_model_words(report)} contact of {profile_words(report)} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
         f"{exact_owner(report)}'s linear solution)" + _impact_words(report),
-        *_layer_rows(report, "/lin = against the linear half-space, not the layer"),
+        *layer_rows(report, "/lin = against the linear half-space, not the layer"),
         *_interface_rows(report, "/lin = against the frictionless linear solution"),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
         "  energy (J)  Newton",
@@ -223,7 +223,7 @@ def contact_text(report: dict) -> str:
             f"  viscoelastic (Prony {report['prony']}) pressed at {report['rate']:g} m/s: "
             "rel.err against Lee-Radok (exact at nu2 = 0.5); forces are nodal sums"
         )
-    rows += _layer_rows(report, "rel.err = departure from the half-space")
+    rows += layer_rows(report, "rel.err = departure from the half-space")
     rows += _interface_rows(report, "rel.err = departure from the frictionless solution")
     rows.append(
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg"
@@ -249,7 +249,7 @@ def contact_text(report: dict) -> str:
     return _closing(report, rows, f"; solver {report['solver']}")
 
 
-def _layer_rows(report: dict, compared: str) -> list[str]:
+def layer_rows(report: dict, compared: str) -> list[str]:
     """The row naming the layer and what the columns are ``compared`` with; none without one."""
     mesh = report["mesh"]
     if "thickness" not in mesh:

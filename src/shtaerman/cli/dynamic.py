@@ -19,13 +19,8 @@ from ..problem import Problem, check_options
 from ..theory.materials import Material
 from ..vocabulary import entry
 from . import common
-from .finite_dynamic import (
-    finite_dynamic_text,
-    interface_rows,
-    ladder_rows,
-    layer_rows,
-    profile_rows,
-)
+from .contact import layer_rows
+from .finite_dynamic import PAD, finite_dynamic_text, interface_rows, ladder_rows, profile_rows
 from .impact import history_path
 
 NOTES = {
@@ -179,15 +174,6 @@ def _differences_text(report: dict) -> str:
     )
 
 
-def _loss_label(dyn: dict) -> str:
-    """The 1 - e^2 row's name: all of it is waves in an elastic body, not in a viscoelastic one."""
-    return (
-        "energy lost 1-e^2       "
-        if "energy_dissipated_fraction" in dyn
-        else ("energy to waves 1-e^2   ")
-    )
-
-
 def _unsigned_zero(value: float) -> float:
     """``value`` to 6 decimals with no sign on a zero: round-off (a massless run's 1 - e^2 is
     -1e-13) prints 0.000000, not -0.000000."""
@@ -226,10 +212,11 @@ def dynamic_text(report: dict) -> str:
     )
     mesh, timings = report["mesh"], report["timings"]
     of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
+    lost = "lost 1-e^2" if "energy_dissipated_fraction" in dyn else "to waves 1-e^2"  # elastic
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
         *profile_rows(report),
-        *layer_rows(mesh),
+        *layer_rows(report, PAD),
         *interface_rows(report["parameters"]),
         "                          dynamic FEM     quasi-static"
         + (" elastic (the paper's)" if "viscoelastic_quasi_static" in report else ""),
@@ -239,7 +226,7 @@ def dynamic_text(report: dict) -> str:
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  "
         f"1{_estimate(est, mesh, 'restitution')}",
-        f"  {_loss_label(dyn)}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
+        f"  energy {lost:<17}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
         f"0{_estimate(est, mesh, 'energy_fraction')}",
         *_losses_text(dyn),
         _differences_text(report),
