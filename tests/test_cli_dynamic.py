@@ -275,3 +275,5 @@ def test_the_help_states_the_estimates_ranges_that_are_enforced(capsys, option, 
     assert main(["dynamic", option, value]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and f"error: {option}:" in err, err
+    if option == "--time-steps":  # the ladder's advice names the switch once, as an option
+        assert err.endswith("; or run without the estimate (--no-estimate)\n"), err
