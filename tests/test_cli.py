@@ -212,3 +212,28 @@ def test_a_value_starting_with_a_dash_is_explained(capsys, argv, message):
     code, out, err = run(capsys, *argv)
     assert code == 2 and out == "" and err.count("\n") == 1
     assert message in err
+
+
+class _StoppedError(Exception):
+    """Raised in place of a verification run: the test stops before any work."""
+
+
+def _stop(*args, **kwargs):
+    raise _StoppedError
+
+
+@pytest.mark.parametrize(("quick", "said"), [("", True), ("[quick]\ntime_steps = 60\n", False)])
+def test_verify_quick_says_when_a_study_has_no_quick_table(
+    tmp_path, capsys, monkeypatch, quick, said
+):
+    """A dynamic study without [quick] ran --quick on its full mesh in silence (its quick
+    settings are its [numerics]); it is now said in one line, before the run."""
+    from study_texts import DYNAMIC_STUDY
+
+    monkeypatch.setattr("shtaerman.output.folder.run_verification", _stop)
+    path = tmp_path / "dyn.toml"
+    path.write_text(DYNAMIC_STUDY + quick)
+    with pytest.raises(_StoppedError):
+        main(["verify", str(path), "--quick", "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert ("has no [quick] table: --quick runs it on its full [numerics] mesh" in err) is said

@@ -259,3 +259,21 @@ def test_output_options_without_an_output_are_refused_in_one_line(capsys, argv, 
     assert main(list(argv)) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(("option", "value"), [("--time-steps", "99"), ("--mesh-size", "0.11")])
+def test_the_help_states_the_estimates_ranges_that_are_enforced(capsys, option, value):
+    """--help gave [50, 5000] steps and (0, 0.2] for the mesh size, while the estimate's ladder
+    (steps / 2, mesh x 2 on its coarsest level) refuses 99 steps and 0.11: the help now states
+    those bounds, and the bound stated is the bound refused, before any work."""
+    with pytest.raises(SystemExit):
+        main(["dynamic", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "with it at least 100 (a level needs 50)" in text
+    assert "the linear estimate's coarsest level doubles it, so with it at most 0.1;" in text
+    assert "12.5 mm in the paper's example" in text  # what --mesh-size sizes, in metres
+    assert main(["dynamic", option, value]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"error: {option}:" in err, err
+    if option == "--time-steps":  # the ladder's advice names the switch once, as an option
+        assert err.endswith("; or run without the estimate (--no-estimate)\n"), err

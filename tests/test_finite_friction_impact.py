@@ -148,7 +148,7 @@ def test_a_frictional_impact_on_a_pad_beyond_the_reach_is_refused_before_any_wor
     from shtaerman.validation import InputError
 
     pad = FiniteImpactSettings(mesh=MeshSettings(thickness=0.012))
-    with pytest.raises(InputError, match=r"2\.27.*--interface frictionless") as refused:
+    with pytest.raises(InputError, match=r"2\.27.*interface='frictionless'") as refused:
         run_impact(
             PowerLawIndenter(8.0, 1.3), Material(3e6, 0.49), 1000.0, 0.12, 1.5, pad,
             prony=PronySeries.parse("0.3:1e-3"), friction=friction,

@@ -65,8 +65,7 @@ def _study(tmp_path: Path, text: str) -> str:
             {"accuracy": 1e-3, "estimate": False},
             {"accuracy": 1e-3, "estimate": False},
             ["--accuracy", "1e-3", "--no-estimate"],
-            "accuracy: needs the error estimates, which estimate=False (--no-estimate) "
-            "switches off",
+            "accuracy: needs the error estimates, which estimate=False switches off",
         ),
         (
             LINEAR_CURVE,
@@ -81,8 +80,8 @@ def _study(tmp_path: Path, text: str) -> str:
             {"max_time": 30.0},
             {"max_time": 30.0},
             ["--max-time", "30"],
-            "max_time: applies with accuracy (--accuracy) only: it is the time budget of its "
-            "refinement; give accuracy too",
+            "max_time: applies with accuracy=... only: it is the time budget of its "
+            "refinement; give accuracy=... too",
         ),
     ],
     ids=[
@@ -98,7 +97,8 @@ def test_a_contact_option_limit_is_the_tables_on_every_route(
     name, reason = words.split(": ", 1)
     assert _table(problem, given) == words  # declared in OPTION_SUPPORT, not in the API
     assert _api(**keywords) == words
-    assert _cli(capsys, ["contact", *argv]) == f"--{name.replace('_', '-')}: {reason}"
+    cli = reason.replace("estimate=False", "--no-estimate").replace("accuracy=...", "--accuracy")
+    assert _cli(capsys, ["contact", *argv]) == f"--{name.replace('_', '-')}: {cli}"
 
 
 def test_option_limits_take_the_values_and_combinations_they_allow():
@@ -209,3 +209,44 @@ def test_accuracy_without_max_time_keeps_its_60_s_budget(monkeypatch):
         with pytest.raises(RuntimeError, match="reached the ladder"):
             sh.contact(PAPER, RUBBER, accuracy=1e-3, **keywords)
         assert budgets.pop() == budget
+
+
+def _sweep(kind: str, parameters: str) -> str:
+    text = f'name = "s"\nkind = "{kind}"\n[parameters]\n{parameters}\n[axes]\nvelocity = [1.0]\n'
+    with pytest.raises(SweepError) as refused:
+        parse_sweep(text)
+    return str(refused.value).split("(velocity = 1.0): ", 1)[1]
+
+
+def test_a_refusal_names_the_other_inputs_in_the_words_of_its_route(capsys, tmp_path):
+    """One refusal, four routes: each names the input to add as its user spells it (the study
+    file and Python once read "give interface 'bonded' too", the command line "--friction: ...
+    give interface 'bonded' too")."""
+    reason = "applies to a bonded indenter only; give {} too"
+    assert _api(friction=0.5) == "friction: " + reason.format("interface='bonded'")
+    cli = _cli(capsys, ["dynamic", "--friction", "0.5"])
+    assert cli == "--friction: " + reason.format("--interface bonded")
+    study = _study(tmp_path, DYNAMIC.replace("[impact]\n", "[impact]\nfriction = 0.5\n"))
+    assert study == "key 'impact.friction': " + reason.format('[impact] interface = "bonded"')
+    sweep = _sweep("dynamic", "friction = 0.5")
+    assert sweep == "friction: " + reason.format('interface = "bonded"')
+
+
+def test_a_refusals_remedy_names_a_switch_in_the_words_of_its_route(capsys):
+    """estimate=False is --no-estimate on the command line (the API's message named both)."""
+    assert _api(accuracy=1e-3, estimate=False).endswith("which estimate=False switches off")
+    cli = _cli(capsys, ["contact", "--accuracy", "1e-3", "--no-estimate"])
+    assert cli == "--accuracy: needs the error estimates, which --no-estimate switches off"
+
+
+def test_the_pad_reach_of_a_bonded_rubber_impact_names_the_interface_by_route(capsys):
+    """Refused before any work: the remedy once read "--interface frictionless" in Python."""
+    case = dict(mass=0.12, velocity=1.5, model="neo-hookean", thickness=0.012)
+    striker, pad = sh.PowerLawIndenter(8.0, 1.3), sh.Material(3e6, 0.49, 1000.0)
+    with pytest.raises(sh.InputError) as refused:
+        sh.dynamic(striker, pad, interface="bonded", **case)
+    assert str(refused.value).endswith("interface='frictionless' runs beyond it with a warning")
+    argv = "--shape-coefficient 8 --exponent 1.3 --E2 3e6 --nu2 0.49 --density2 1000 --mass 0.12"
+    argv += " --velocity 1.5 --model neo-hookean --thickness 0.012 --interface bonded"
+    cli = _cli(capsys, ["dynamic", *argv.split()])
+    assert cli.endswith("; --interface frictionless runs beyond it with a warning"), cli

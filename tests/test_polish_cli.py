@@ -28,7 +28,7 @@ def _one_line_error(capsys, argv, words):
 
 def test_max_time_without_accuracy_is_refused(capsys, monkeypatch):
     monkeypatch.setattr("shtaerman.api.fem_contact._solve", _stop)  # the old code ran the curve
-    words = "--max-time: applies with accuracy (--accuracy) only"  # the API's, by the table
+    words = "--max-time: applies with --accuracy only"  # the API's, by the table
     _one_line_error(capsys, ["contact", "--max-time", "30"], words)
     # with --accuracy it reaches the computation
     with pytest.raises(ReachedError):

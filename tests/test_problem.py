@@ -177,3 +177,19 @@ def test_a_contact_curve_problem_reports_its_own_impact():
     assert own.to_dict()["mass"] == 0.25
     given = sh.contact(sh.Problem.curve(PAPER, RUBBER, depths=[1e-4, 2e-4]), **numerics)
     assert given.mass is None and "mass" not in given.to_dict()
+
+
+def test_worded_spells_the_inputs_a_refusal_names_for_each_route():
+    """One message, three spellings; a value the user typed (quoted) is left as typed."""
+    from shtaerman.problem import worded
+
+    said = "friction: give interface='bonded' or thickness=... (estimate=False); got 'force=N'"
+    assert worded(said, "python") == said
+    assert worded(said, "cli") == (
+        "--friction: give --interface bonded or --thickness (--no-estimate); got 'force=N'"
+    )
+    keys = {"interface": "impact.interface", "thickness": "layer.thickness"}
+    assert worded(said, "file", keys) == (
+        'friction: give [impact] interface = "bonded" or [layer] thickness (estimate = false); '
+        "got 'force=N'"
+    )

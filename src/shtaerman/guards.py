@@ -192,7 +192,7 @@ def check_equator(
     raise InputError(
         f"{parameter}: {drive}, beyond the sphere's radius {radius:.6g} m (its equator, past "
         f"which the FE profile is no sphere): the deepest depth must be below the radius; "
-        f"{remedy} or a larger sphere (sphere_radius, --sphere-radius)",
+        f"{remedy} or a larger sphere (sphere_radius=...)",
         parameter,
     )
 

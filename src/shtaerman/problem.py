@@ -17,13 +17,14 @@ inertia, the quasi-static impact; ``inertia``: the impact with waves).
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from .theory.materials import RIGID, Material
 from .validation import InputError, validate_positive
-from .vocabulary import entry
+from .vocabulary import VOCABULARY, entry
 
 if TYPE_CHECKING:
     from .fem.rubber import RubberModel
@@ -46,6 +47,7 @@ __all__ = [
     "check_outputs",
     "parts",
     "support_table",
+    "worded",
 ]
 
 MODELS = ("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent")
@@ -174,7 +176,9 @@ class Geometry:
     def __post_init__(self) -> None:
         if self.thickness is None:
             if self.base is not None:
-                raise InputError("base: applies to a layer only; give its thickness too", "base")
+                raise InputError(
+                    "base: applies to a layer only; give its thickness=... too", "base"
+                )
             return
         base = entry("base").default if self.base is None else self.base
         object.__setattr__(self, "base", entry("base").check(base))
@@ -201,7 +205,7 @@ class Interface:
             return
         if self.kind != "bonded":
             raise InputError(
-                "friction: applies to a bonded indenter only; give interface 'bonded' too",
+                "friction: applies to a bonded indenter only; give interface='bonded' too",
                 "friction",
             )
         object.__setattr__(self, "friction", float(entry("friction").check(self.friction)))
@@ -289,14 +293,15 @@ SUPPORT: tuple[Unsupported, ...] = (
         lambda c: c.model == "rubber" and c.geometry == "layer lubricated",
         "base",
         "a layer at finite strain is bonded only (the lubricated base's exterior stiffness "
-        "beyond the lateral edge is linear): take a bonded base or the linear model",
+        "beyond the lateral edge is linear): take base='bonded' or model='linear'",
     ),
     Unsupported(
         lambda c: c.relaxing and c.loading == "curve" and c.model == "rubber",
         "prony",
         "a contact curve at finite strain is elastic (the finite-strain contact solver has no "
-        "time): a viscoelastic rubber is pressed by an impact (give mass and velocity to the "
-        "dynamic impact, with density 0 for the quasi-static one), or take the linear model",
+        "time): a viscoelastic rubber is pressed by an impact (give mass=... and velocity=... "
+        "to the dynamic impact, with density 0 for the quasi-static one), or take "
+        "model='linear'",
     ),
     Unsupported(
         lambda c: c.relaxing and c.loading == "curve" and c.interface != "frictionless",
@@ -368,7 +373,7 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
     OptionLimit(
         lambda c: c.loading == "curve",
         ("accuracy",),
-        "needs the error estimates, which estimate=False (--no-estimate) switches off",
+        "needs the error estimates, which estimate=False switches off",
         lambda value, given: given.get("estimate", True) is not False,
     ),
     OptionLimit(
@@ -381,8 +386,8 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
     OptionLimit(
         lambda c: c.loading == "curve",
         ("max_time",),
-        "applies with accuracy (--accuracy) only: it is the time budget of its refinement; "
-        "give accuracy too",
+        "applies with accuracy=... only: it is the time budget of its refinement; "
+        "give accuracy=... too",
         lambda value, given: given.get("accuracy") is not None,
     ),
 )
@@ -419,7 +424,7 @@ class Problem:
                 if getattr(self.striker, name) is not None:
                     raise InputError(
                         f"{name}: sets the default depths (up to that impact's x_c); give "
-                        "either depths or mass and velocity",
+                        "either depths=... or mass=... and velocity=...",
                         name,
                     )
         if self.loading.kind == "impact":
@@ -443,7 +448,7 @@ class Problem:
         if rate is not None and not relaxing:
             raise InputError(
                 "rate: applies to a viscoelastic body only (an elastic curve does not depend "
-                "on it); give prony too",
+                "on it); give prony=... too",
                 "rate",
             )
 
@@ -582,7 +587,57 @@ def check_outputs(out: Any, *, force: Any, estimate: Any, figure_format: str) ->
             raise InputError(f"{name} must be True or False, got {value!r}", name)
     if out is None and figure_format != entry("figure_format").default:
         raise InputError(
-            "figure_format: applies with out only (the format of the figures written there); "
-            "give out too",
+            "figure_format: applies with out=... only (the format of the figures written "
+            "there); give out=... too",
             "figure_format",
         )
+
+
+_NAMES = frozenset(item.name for item in VOCABULARY)
+_REFERENCE = re.compile(r"(?<![^\s(])([A-Za-z]\w*)=('[^']*'|\.\.\.|[\w+-]+(?:\.\w+)*)")
+_LEADING = re.compile(r"(\w+(?:, \w+)*)(?=: )")
+
+
+def worded(
+    message: str, route: str, keys: Mapping[str, str] | None = None, parameter: str | None = None
+) -> str:
+    """``message`` in the words of the ``route`` its input came by: the one place that spells
+    an input per route. A refusal is written in Python's: it begins with the keyword at fault
+    (``friction: ...``) and names another input ``name=value`` or, alone, ``name=...``.
+    ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
+    ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
+    maps an input to its ``table.key``), ``"python"`` keeps it. On the command line a message
+    that begins with its ``parameter`` without a colon (``solver 'pardiso' ...``) gets its
+    option too."""
+    if route == "python":
+        return message
+
+    def spoken(match: re.Match) -> str:
+        name, value = match[1], match[2]
+        if name not in _NAMES:
+            return match[0]
+        if route == "cli":
+            return _option(name, value)
+        table, _, key = (keys or {}).get(name, name).rpartition(".")
+        place = f"[{table}] {key}" if table else key
+        value = {"True": "true", "False": "false"}.get(value, value).replace("'", '"')
+        return place if value == "..." else f"{place} = {value}"
+
+    message = _REFERENCE.sub(spoken, message)
+    leading = _LEADING.match(message) if route == "cli" else None
+    if leading and all(name in _NAMES for name in leading[1].split(", ")):
+        options = ", ".join(entry(name).cli_option for name in leading[1].split(", "))
+        message = options + message[leading.end() :]
+    elif route == "cli" and parameter in _NAMES and re.match(rf"{parameter}\b(?![-=:,])", message):
+        message = entry(parameter).cli_option + message[len(parameter) :]
+    return message
+
+
+def _option(name: str, value: str) -> str:
+    """Input ``name`` set to ``value`` (a Python literal, or ``...``) as an option."""
+    item = entry(name)
+    option = item.cli_option
+    if item.type in ("bool", "flag"):  # --no-estimate is estimate=False, --json json=True
+        on = value == ("False" if option.startswith("--no-") else "True")
+        return option if on or value == "..." else f"without {option}"
+    return option if value == "..." else f"{option} {value.strip(chr(39))}"

@@ -236,7 +236,7 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
         if error.parameter == "thickness":  # a layer the mesh cannot resolve, estimate or not
             raise
         raise InputError(
-            f"{error}; or run without the estimate (estimate=False, --no-estimate)",
+            f"{error}; or run without the estimate (estimate=False)",
             error.parameter,
         ) from None
 

@@ -14,10 +14,11 @@ from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
+from ..problem import check_outputs, worded
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError
-from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, Entry, entry
+from ..vocabulary import DeprecatedKeyWarning, Entry, entry
 
 if TYPE_CHECKING:
     from ..theory.sneddon import Indenter
@@ -202,29 +203,16 @@ def _metavar(item: Entry) -> str:
 
 @contextlib.contextmanager
 def in_option_words() -> Iterator[None]:
-    """Re-raise an :class:`InputError` of the API whose message begins with the input's key
-    (``mass: ...``, ``solver 'pardiso' ...``) with its command-line option instead
-    (``--mass: ...``): the user of the CLI gave options, not keywords. An error that names no
-    parameter is read as naming the key its message begins with (``out: ...``)."""
+    """Re-raise an :class:`InputError` of the API in the command line's words
+    (:func:`shtaerman.problem.worded`: ``--mass: ...``, ``give --interface bonded too``): the
+    user of the CLI gave options, not keywords."""
     try:
         yield
     except InputError as error:
-        message = str(error)
-        names = re.match(r"(\w+(?:, \w+)+): ", message)  # "mass, velocity: ..." names both
-        if names and all(name in _KEYS for name in names[1].split(", ")):
-            options = ", ".join(entry(name).cli_option for name in names[1].split(", "))
-            raise type(error)(options + message[len(names[1]) :], error.parameter) from None
-        leading = re.match(r"(\w+): ", message)
-        name = error.parameter or (leading[1] if leading else None)
-        known = name is not None and name in _KEYS
-        if not known or not re.match(rf"{re.escape(name)}\b(?![-=])", message):
+        spoken = worded(str(error), "cli", parameter=error.parameter)
+        if spoken == str(error):
             raise
-        option = entry(name).cli_option
-        raise type(error)(option + message[len(name) :], name) from None
-
-
-_KEYS = frozenset(item.name for item in VOCABULARY)
-"""The inputs' keys, as an API message may begin with them."""
+        raise type(error)(spoken, error.parameter) from None
 
 
 def given(args: argparse.Namespace, name: str) -> bool:
@@ -240,12 +228,8 @@ def given(args: argparse.Namespace, name: str) -> bool:
 def refuse_idle_output_options(args: argparse.Namespace, targets: tuple[str, ...]) -> None:
     """Refuse, in one line, the options that act on written outputs when nothing is written:
     ``--figure-format`` (not png) without ``--out``, ``--force`` without any of ``targets``."""
-    if args.figure_format != entry("figure_format").default and args.out is None:
-        raise InputError(
-            "--figure-format: applies with --out only (the format of the figures written "
-            "there); give --out too",
-            "figure_format",
-        )
+    with in_option_words():  # the API's refusal (shtaerman.problem.check_outputs)
+        check_outputs(args.out, force=True, estimate=True, figure_format=args.figure_format)
     if given(args, "force") and all(getattr(args, name) is None for name in targets):
         where = " or ".join(entry(name).cli_option for name in targets)
         raise InputError(

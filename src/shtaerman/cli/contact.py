@@ -10,18 +10,7 @@ from ..fem.contact.finite import FINITE_MESH
 from ..fem.mesh import DEFAULTS
 from ..theory.materials import Material
 from ..vocabulary import entry, fields
-from .common import (
-    PROFILES,
-    add_figure_format,
-    add_inputs,
-    given,
-    in_option_words,
-    indenter,
-    keywords,
-    print_json,
-    refuse_idle_output_options,
-    warn_volumetric,
-)
+from . import common
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -39,21 +28,21 @@ def register(commands: argparse._SubParsersAction) -> None:
             "writes contact.json, CSV curves, VTU fields and the figures. SI units."
         ),
     )
-    inputs = ("shape_coefficient", "exponent", *PROFILES, "E2", "nu2", "thickness", "base")
+    inputs = ("shape_coefficient", "exponent", *common.PROFILES, "E2", "nu2", "thickness", "base")
     inputs = (*inputs, "interface")
     inputs = (*inputs, "friction", "model", *RUBBER_OPTIONS, "prony", "rate", "mass", "velocity")
     outputs = ("depths", "json", "out", "force")
-    add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
-    add_figure_format(p)
+    common.add_inputs(p, (*inputs, *outputs), "contact", derived=DERIVED, notes=NOTES)
+    common.add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (every FEM number with an error estimate from a 3-mesh ladder: K/2, K/sqrt(2), K)"
     )
-    add_inputs(accuracy, ("refine", "estimate", "accuracy", "max_time"), "contact")
+    common.add_inputs(accuracy, ("refine", "estimate", "accuracy", "max_time"), "contact")
     mesh = p.add_argument_group(
         "expert mesh controls (relative to the largest contact; --mesh-size alone does not "
         "refine the far field, the axis grading or the growth: use --refine)"
     )
-    add_inputs(mesh, (*MESH_OPTIONS, "solver"), "contact", derived=DERIVED)
+    common.add_inputs(mesh, (*MESH_OPTIONS, "solver"), "contact", derived=DERIVED)
     p.set_defaults(handler=run)
 
 
@@ -98,16 +87,16 @@ KEYWORDS = (
 
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
-    refuse_idle_output_options(args, ("out",))
-    options = keywords(args, KEYWORDS)
-    if not given(args, "max_time"):  # the API's default: the budget of accuracy, if given
+    common.refuse_idle_output_options(args, ("out",))
+    options = common.keywords(args, KEYWORDS)
+    if not common.given(args, "max_time"):  # the API's default: the budget of accuracy, if given
         options["max_time"] = None
-    with in_option_words():
-        result = contact(indenter(args), Material(args.E2, args.nu2), **options)
-    warn_volumetric(args)  # after the run: a refused input is the one line
+    with common.in_option_words():
+        result = contact(common.indenter(args), Material(args.E2, args.nu2), **options)
+    common.warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if args.json:
-        print_json(report)
+        common.print_json(report)
     elif result.finite:
         print(finite_contact_text(report))
     else:
@@ -137,8 +126,8 @@ def finite_contact_text(report: dict) -> str:
         f"{_model_words(report)} contact of {profile_words(report)} "
         f"on E2 = {report['E2']:g} Pa, nu2 = {report['nu2']:g} (finite strain; 'lin' = "
         f"{exact_owner(report)}'s linear solution)" + _impact_words(report),
-        *_layer_rows(report, "/lin = against the linear half-space, not the layer"),
-        *_interface_rows(report),
+        *layer_rows(report, "/lin = against the linear half-space, not the layer"),
+        *_interface_rows(report, "/lin = against the frictionless linear solution"),
         "  depth (m)    force (N)   /lin     radius (m)  /lin     p(0) (Pa)   /lin    p0/pavg"
         "  energy (J)  Newton",
     ]
@@ -152,32 +141,36 @@ def finite_contact_text(report: dict) -> str:
             f"{ratios[2]:.4f}  {step['central_to_mean']:.4f}   {step['strain_energy']:.4e}  "
             f"{step['newton_iterations']}"
         )
-    mesh, timings = report["mesh"], report["timings"]
-    rows += [
+    rows.append(
         f"  beta (q fixed) {report['beta_fem']:.6e} vs linear {report['beta_analytic']:.6e};  "
-        f"{_exponent_text(report, 'linear')}",
-        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
-        f"{mesh['contact_candidates']} contact candidates",
-        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
-    ]
-    if "error_estimate" in report:
-        rows += _estimate_text(report)
-    return "\n".join(rows)
+        f"{_exponent_text(report, 'linear')}"
+    )
+    return _closing(report, rows, "")
 
 
-def _interface_rows(report: dict) -> list[str]:
-    """The row naming a bonded indenter of the finite-strain contact; none when frictionless."""
-    if "interface" not in report["mesh"]:
-        return []
+def _closing(report: dict, rows: list[str], solver: str) -> str:
+    """``rows`` and the mesh, timing and estimate rows of a contact report, as one text."""
     mesh = report["mesh"]
+    rows += [
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
+        f"{mesh['contact_candidates']} contact candidates{solver}",
+        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in report["timings"].items()),
+    ]
+    return "\n".join(rows + (_estimate_text(report) if "error_estimate" in report else []))
+
+
+def _interface_rows(report: dict, compared: str) -> list[str]:
+    """The row naming a bonded indenter and what the columns are ``compared`` with; none when
+    frictionless."""
+    mesh = report["mesh"]
+    if "interface" not in mesh:
+        return []
     slip = (
         f"Coulomb friction {mesh['friction']:g}"
         if "friction" in mesh
         else "no slip once in contact"
     )
-    return [
-        f"  {mesh['interface']} indenter ({slip}): /lin = against the frictionless linear solution"
-    ]
+    return [f"  {mesh['interface']} indenter ({slip}): {compared}"]
 
 
 MODEL_NAMES = {"neo-hookean": "Neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
@@ -230,17 +223,8 @@ def contact_text(report: dict) -> str:
             f"  viscoelastic (Prony {report['prony']}) pressed at {report['rate']:g} m/s: "
             "rel.err against Lee-Radok (exact at nu2 = 0.5); forces are nodal sums"
         )
-    rows += _layer_rows(report, "rel.err = departure from the half-space")
-    if "interface" in report["mesh"]:
-        rows.append(
-            f"  {report['mesh']['interface']} indenter ("
-            + (
-                f"Coulomb friction {report['mesh']['friction']:g}"
-                if "friction" in report["mesh"]
-                else "no slip once in contact"
-            )
-            + "): rel.err = departure from the frictionless solution"
-        )
+    rows += layer_rows(report, "rel.err = departure from the half-space")
+    rows += _interface_rows(report, "rel.err = departure from the frictionless solution")
     rows.append(
         "  depth (m)    force (N)   rel.err   radius (m)  rel.err   p(0) (Pa)   rel.err  p0/pavg"
     )
@@ -254,23 +238,18 @@ def contact_text(report: dict) -> str:
             f"{step['contact_radius']:.4e}  {errors[1]:+.1e}  {step['central_pressure']:.4e} "
             f"{errors[2]:+.1e}  {step['central_to_mean']:.4f}"
         )
-    mesh, timings, errors = report["mesh"], report["timings"], report["errors"]
+    errors = report["errors"]
     against, error = _reference_words(report)
     rows += [
         f"  beta (q fixed) {report['beta_fem']:.6e} vs {against} {report['beta_analytic']:.6e} "
         f"({errors['beta']:.1e});  {_exponent_text(report, '' if against == 'exact' else against)}",
         f"  p0/pavg {against} {_ratio_text(report['central_to_mean_analytic'])};  pressure "
         f"profile L2 {error} <= {errors['pressure_profile']:.1e}",
-        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
-        f"{mesh['contact_candidates']} contact candidates; solver {report['solver']}",
-        "  time (s): " + ", ".join(f"{k} {v:.3f}" for k, v in timings.items()),
     ]
-    if "error_estimate" in report:
-        rows += _estimate_text(report)
-    return "\n".join(rows)
+    return _closing(report, rows, f"; solver {report['solver']}")
 
 
-def _layer_rows(report: dict, compared: str) -> list[str]:
+def layer_rows(report: dict, compared: str) -> list[str]:
     """The row naming the layer and what the columns are ``compared`` with; none without one."""
     mesh = report["mesh"]
     if "thickness" not in mesh:

@@ -10,33 +10,17 @@ from ..api.dynamic_result import UNTRUSTED, check_failures
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
 from ..fem.contact.finite import FINITE_MESH
+from ..fem.dynamic_contact import MAX_SIZE, MIN_STEPS
 from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
+from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
 from ..guards import FailedCheckWarning
 from ..output.files import staged_file, write_csv
 from ..problem import Problem, check_options
 from ..theory.materials import Material
 from ..vocabulary import entry
-from .common import (
-    CASE,
-    PROFILES,
-    add_figure_format,
-    add_inputs,
-    given,
-    in_option_words,
-    indenter,
-    keywords,
-    print_json,
-    refuse_idle_output_options,
-    warn,
-    warn_volumetric,
-)
-from .finite_dynamic import (
-    finite_dynamic_text,
-    interface_rows,
-    ladder_rows,
-    layer_rows,
-    profile_rows,
-)
+from . import common
+from .contact import layer_rows
+from .finite_dynamic import PAD, finite_dynamic_text, interface_rows, ladder_rows, profile_rows
 from .impact import history_path
 
 NOTES = {
@@ -76,28 +60,36 @@ def register(commands: argparse._SubParsersAction) -> None:
             "a lateral absorber; its reflected energy is counted of M v0^2/2."
         ),
     )
-    inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
+    inputs = (*common.CASE, *common.PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
     inputs = (*inputs, "interface", "friction")
     inputs = (*inputs, "json", "history", "out", "force")
-    add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
-    add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
-    add_figure_format(p)
+    common.add_inputs(p, inputs, "dynamic", derived=DERIVED, notes=NOTES)
+    common.add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
+    common.add_figure_format(p)
     accuracy = p.add_argument_group(
         "accuracy (error estimates of x_max, P_max, t_contact, e from a 3-level ladder: "
         "K/2, K/sqrt(2), K)"
     )
-    add_inputs(accuracy, ("refine", "estimate"), "dynamic", notes={"refine": "the time step too"})
+    common.add_inputs(
+        accuracy, ("refine", "estimate"), "dynamic", notes={"refine": "the time step too"}
+    )
     numerics = p.add_argument_group(
         "expert numerical controls (relative to the quasi-static impact; --refine scales the "
         "mesh sizes and steps together)"
     )
     finite = {
-        "time_steps": f"with --model the default is {INERTIA_STEPS} ({MASSLESS_STEPS} with "
-        "--density2 0)",
-        "mesh_size": f"with --model the default is 1/{1 / FINITE_MESH.size:.0f}",
+        "time_steps": f"the estimate's coarsest level halves them, so with it at least "
+        f"{2 * MIN_STEPS} (a level needs {MIN_STEPS}); with --model the default is "
+        f"{INERTIA_STEPS} ({MASSLESS_STEPS} with --density2 0) and a level needs {FINITE_STEPS}",
+        "mesh_size": "it sizes the surface elements of the refined zone (radius --mesh-margin x "
+        "a_c: 12.5 mm in the paper's example, 0.31 mm elements at 0.025); the axis grading and "
+        "the far field's growth set most of the mesh (0.025 to 0.2 change its dofs by under "
+        "10 %): --refine refines all of it; the linear estimate's coarsest level doubles it, so "
+        f"with it at most {MAX_SIZE / 2:g}; with --model the default is "
+        f"1/{1 / FINITE_MESH.size:.0f}",
     }
     aliases = {"time_steps": ("--steps",)}
-    add_inputs(
+    common.add_inputs(
         numerics, tuple(SETTINGS_OPTIONS), "dynamic", derived=DERIVED, aliases=aliases, notes=finite
     )
     p.set_defaults(handler=run)
@@ -111,9 +103,9 @@ OPTIONS = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "history")
 
 def problem_of(args: argparse.Namespace) -> Problem:
     """The impact the options describe, checked (:class:`shtaerman.problem.Problem`)."""
-    physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
+    physics = {name: getattr(args, name) for name in PHYSICS if common.given(args, name)}
     return Problem.impact(
-        indenter(args),
+        common.indenter(args),
         Material(args.E2, args.nu2, args.density2),
         mass=args.mass,
         velocity=args.velocity,
@@ -129,39 +121,41 @@ def _format(args: argparse.Namespace) -> list[str]:
 def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
     """The numerical and output keywords of :func:`shtaerman.dynamic` for ``problem``: a
     finite-strain impact's own defaults where an option was not given."""
-    outputs = keywords(args, ("out", "force", "figure_format"))
+    outputs = common.keywords(args, ("out", "force", "figure_format"))
     if problem.body.finite:
         names = ("time_steps", "mesh_size")
-        chosen = {n: getattr(args, n) if given(args, n) else None for n in names}
-        return {**chosen, **keywords(args, ("refine", "estimate")), **outputs}
-    if not given(args, "layer_rate"):  # the API's default: the layer of the case
+        chosen = {n: getattr(args, n) if common.given(args, n) else None for n in names}
+        return {**chosen, **common.keywords(args, ("refine", "estimate")), **outputs}
+    if not common.given(args, "layer_rate"):  # the API's default: the layer of the case
         args.layer_rate = None
-    return {**keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
+    return {**common.keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
-    with in_option_words():
+    with common.in_option_words():
         problem = problem_of(args)
-        check_options(problem, [name for name in OPTIONS if given(args, name)] + _format(args))
-    refuse_idle_output_options(args, ("out", "history"))
+        check_options(
+            problem, [name for name in OPTIONS if common.given(args, name)] + _format(args)
+        )
+    common.refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
-    with in_option_words(), warnings.catch_warnings():
+    with common.in_option_words(), warnings.catch_warnings():
         warnings.simplefilter("ignore", FailedCheckWarning)  # said below, with the exit code
         result = dynamic(problem, **_numerics(args, problem))
-    warn_volumetric(args)  # after the run: a refused input is the one line
+    common.warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if history is not None:
         with staged_file(history, force=args.force) as stage:
             write_csv(stage, result.history())
     if args.json:
-        print_json(report)
+        common.print_json(report)
     else:
         print(finite_dynamic_text(report) if problem.body.finite else dynamic_text(report))
     failures = check_failures(result, problem)
     if failures:
-        warn("; ".join(failures) + UNTRUSTED)
+        common.warn("; ".join(failures) + UNTRUSTED)
         return 1
     return 0
 
@@ -177,15 +171,6 @@ def _differences_text(report: dict) -> str:
         f"  {label or 'quasi-static / dynamic - 1'}  " + cells + "\n"
         "                              (x_c against x_max, P_c against P_max, t_c against "
         "t_contact / 2)"
-    )
-
-
-def _loss_label(dyn: dict) -> str:
-    """The 1 - e^2 row's name: all of it is waves in an elastic body, not in a viscoelastic one."""
-    return (
-        "energy lost 1-e^2       "
-        if "energy_dissipated_fraction" in dyn
-        else ("energy to waves 1-e^2   ")
     )
 
 
@@ -227,10 +212,11 @@ def dynamic_text(report: dict) -> str:
     )
     mesh, timings = report["mesh"], report["timings"]
     of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
+    lost = "lost 1-e^2" if "energy_dissipated_fraction" in dyn else "to waves 1-e^2"  # elastic
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
         *profile_rows(report),
-        *layer_rows(mesh),
+        *layer_rows(report, PAD),
         *interface_rows(report["parameters"]),
         "                          dynamic FEM     quasi-static"
         + (" elastic (the paper's)" if "viscoelastic_quasi_static" in report else ""),
@@ -240,7 +226,7 @@ def dynamic_text(report: dict) -> str:
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  "
         f"1{_estimate(est, mesh, 'restitution')}",
-        f"  {_loss_label(dyn)}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
+        f"  energy {lost:<17}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
         f"0{_estimate(est, mesh, 'energy_fraction')}",
         *_losses_text(dyn),
         _differences_text(report),

@@ -5,7 +5,10 @@ from __future__ import annotations
 import math
 
 from ..output.case import interface_words
-from .contact import exact_owner, profile_words
+from .contact import exact_owner, layer_rows, profile_words
+
+PAD = "the quasi-static column is the half-space's"
+"""What a pad's text compares with."""
 
 
 def profile_rows(report: dict) -> list[str]:
@@ -29,7 +32,7 @@ def finite_dynamic_text(report: dict) -> str:
         f"Finite-strain impact ({report['model']}, density2 "
         f"{report['parameters']['density2']:g} kg/m^3) against the quasi-static theory (SI)",
         *profile_rows(report),
-        *layer_rows(mesh),
+        *layer_rows(report, PAD),
         f"                          finite strain   quasi-static ({exact_owner(report)})",
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
@@ -86,13 +89,3 @@ def prony_rows(report: dict) -> list[str]:
             f"(1 - e^2 = {report['dynamic']['energy_radiated_fraction']:.6f})"
         )
     return rows
-
-
-def layer_rows(mesh: dict) -> list[str]:
-    """The line naming a layer (none on the half-space)."""
-    if "thickness" not in mesh:
-        return []
-    return [
-        f"  layer H = {mesh['thickness']:g} m on a {mesh['base']} rigid base (quasi-static: "
-        "the half-space's)"
-    ]

@@ -12,19 +12,7 @@ from ..problem import RUBBER_OPTIONS, Problem
 from ..theory.materials import Material
 from ..validation import InputError
 from ..vocabulary import entry
-from .common import (
-    CASE,
-    PROFILES,
-    add_figure_format,
-    add_inputs,
-    given,
-    in_option_words,
-    indenter,
-    path_text,
-    print_json,
-    refuse_idle_output_options,
-    striker,
-)
+from . import common
 
 __all__ = ["fit_text", "problem_of", "register", "run"]
 
@@ -91,27 +79,30 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     p.add_argument("kind", choices=KINDS, metavar="KIND", help=f"one of {', '.join(KINDS)}")
     p.add_argument(
-        "data", type=path_text, metavar="DATA.csv", help="the measurement, a CSV 'name [unit]'"
+        "data",
+        type=common.path_text,
+        metavar="DATA.csv",
+        help="the measurement, a CSV 'name [unit]'",
     )
-    inputs = (*CASE, *PROFILES, "E1", "nu1", "E2", "nu2", "prony", "density2", "thickness", "base",
-              "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset", "baseline", "units",
-              "resample", "refine", "json", "out", "force")  # fmt: skip
-    add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
+    inputs = (*common.CASE, *common.PROFILES, "E1", "nu1", "E2", "nu2", "prony", "density2",
+              "thickness", "base", "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset",
+              "baseline", "units", "resample", "refine", "json", "out", "force")  # fmt: skip
+    common.add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
     prony = next(a for a in p._actions if "--prony" in a.option_strings)
     prony.help = PRONY_HELP  # the series' own help speaks of --model, which fit does not take
-    add_figure_format(p)
+    common.add_figure_format(p)
     p.set_defaults(handler=run)
 
 
 def problem_of(args: argparse.Namespace) -> Problem:
     """The problem the options describe: its known parts and the unknowns' starts."""
-    physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
+    physics = {name: getattr(args, name) for name in PHYSICS if common.given(args, name)}
     return Problem.impact(
-        indenter(args),
-        Material(args.E2, args.nu2, args.density2 if given(args, "density2") else None),
+        common.indenter(args),
+        Material(args.E2, args.nu2, args.density2 if common.given(args, "density2") else None),
         mass=args.mass,
         velocity=args.velocity,
-        striker=striker(args),
+        striker=common.striker(args),
         **physics,
     )
 
@@ -129,7 +120,7 @@ def refuse_unused(args: argparse.Namespace) -> None:
     """InputError naming an option the kind of data does not use, or a --units column it
     does not read."""
     for name, kinds in USED_BY.items():
-        if given(args, name) and args.kind not in kinds:
+        if common.given(args, name) and args.kind not in kinds:
             raise InputError(
                 f"{entry(name).cli_option}: applies to {' or '.join(kinds)} data, not to "
                 f"{article(args.kind)}"
@@ -145,8 +136,8 @@ def refuse_unused(args: argparse.Namespace) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Fit (:func:`shtaerman.fit`) and print the fitted values or the JSON."""
-    refuse_idle_output_options(args, ("out",))
-    with in_option_words():
+    common.refuse_idle_output_options(args, ("out",))
+    with common.in_option_words():
         refuse_unused(args)
         result = fit(
             args.kind,
@@ -165,7 +156,7 @@ def run(args: argparse.Namespace) -> int:
             progress=lambda line: print(line, file=sys.stderr, flush=True),
         )
     if args.json:
-        print_json(result.to_dict())
+        common.print_json(result.to_dict())
     else:
         print(fit_text(result))
     return 0

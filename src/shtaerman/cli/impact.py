@@ -12,16 +12,7 @@ from ..theory.impact import ImpactResult
 from ..theory.materials import Material
 from ..theory.sneddon import Indenter
 from ..validation import InputError
-from .common import (
-    CASE,
-    PROFILES,
-    add_inputs,
-    given,
-    in_option_words,
-    indenter,
-    print_json,
-    striker,
-)
+from . import common
 
 NOTES = {
     "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
@@ -39,8 +30,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         "z = A r^n, Sneddon's integrals and quadrature for a sphere or a tabulated profile.",
     )
     inputs = (
-        *CASE,
-        *PROFILES,
+        *common.CASE,
+        *common.PROFILES,
         "E1",
         "nu1",
         "E2",
@@ -51,7 +42,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "force",
         "check",
     )
-    add_inputs(p, inputs, "impact", notes=NOTES)
+    common.add_inputs(p, inputs, "impact", notes=NOTES)
     p.set_defaults(handler=run)
 
 
@@ -60,7 +51,7 @@ def history_path(value: str | None, *, force: bool) -> Path | None:
     names the option (``--history: ...``), as the other options' do."""
     if value is None:
         return None
-    with in_option_words():
+    with common.in_option_words():
         return check_output_file(value, force=force, option="history")
 
 
@@ -71,7 +62,7 @@ IDLE = {"points": "the rows of the history file", "force": "it lets the run repl
 def refuse_idle_options(args: argparse.Namespace) -> None:
     """Refuse, in one line, --points or --force given without --history (they did nothing)."""
     for name, what in IDLE.items():
-        if given(args, name) and args.history is None:
+        if common.given(args, name) and args.history is None:
             raise InputError(
                 f"--{name}: applies with --history only ({what}); give --history too", name
             )
@@ -81,13 +72,13 @@ def run(args: argparse.Namespace) -> int:
     """Solve the impact (:func:`shtaerman.impact`) and print it; write the history if asked."""
     refuse_idle_options(args)
     history = history_path(args.history, force=args.force)
-    with in_option_words():
+    with common.in_option_words():
         result = impact(
-            indenter(args),
+            common.indenter(args),
             Material(args.E2, args.nu2),
             mass=args.mass,
             velocity=args.velocity,
-            striker=striker(args),
+            striker=common.striker(args),
             check=args.check,
         )
     report = result.to_dict()
@@ -95,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
         with staged_file(history, force=args.force) as stage:
             write_csv(stage, result.history(args.points).columns())
     if args.json:
-        print_json(report)
+        common.print_json(report)
     else:
         print(_impact_text(result.solution, report))
     return 0

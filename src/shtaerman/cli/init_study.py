@@ -12,6 +12,15 @@ from .common import add_inputs, path_text
 
 __all__ = ["STUDY_TEMPLATE", "TEMPLATES", "register", "run", "write_template"]
 
+INDENTER = """\
+[indenter]                  # the (rigid) striker's surface: z = A r^n
+shape_coefficient = 5.0     # A, m^(1-n)
+exponent = 1.5              # n > 1
+#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
+#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+"""
+"""The [indenter] table of a rigid striker, shared by the templates but the contact one."""
+
 STUDY_TEMPLATE = """\
 # A shtaerman cross-check study (TOML): the FEM contact against Shtaerman's exact solution, and
 # the impact it implies. Run it with
@@ -107,11 +116,7 @@ kind = "dynamic"
 # name = "{name}"           # the study's name in reports and folders; default: the file name
 description = "z = 5 r^(3/2) rigid striker, 0.7 kg, on rubber, over v0 (edit me)"
 
-[indenter]                  # the (rigid) striker's surface: z = A r^n
-shape_coefficient = 5.0     # A, m^(1-n)
-exponent = 1.5              # n > 1
-#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
-#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+{indenter}
                             # this file (not with prony: the viscoelastic body is the power
                             # law's)
 
@@ -194,11 +199,7 @@ kind = "finite-strain"
 # name = "{name}"           # the study's name in reports and folders; default: the file name
 description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on neo-Hookean rubber (edit me)"
 
-[indenter]                  # the (rigid) striker's surface: z = A r^n
-shape_coefficient = 5.0     # A, m^(1-n)
-exponent = 1.5              # n > 1
-#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
-#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+{indenter}
                             # this file
 
 [half_space]                # the small-strain constants of the neo-Hookean solid
@@ -271,11 +272,7 @@ kind = "effects"
 # name = "{name}"           # the study's name in reports and folders; default: the file name
 description = "z = 5 r^(3/2) rigid striker, 0.7 kg at 3 m/s, on a rubber pad (edit me)"
 
-[indenter]                  # the (rigid) striker's surface: z = A r^n
-shape_coefficient = 5.0     # A, m^(1-n)
-exponent = 1.5              # n > 1
-#   sphere_radius = 0.01    # instead of the two above: an exact sphere of radius R (m), or
-#   profile = "tip.csv"     # a tabulated tip z(r): a CSV with columns r, z (m), relative to
+{indenter}
                             # this file (a prony series is then dropped: its
                             # theory is the power law's)
 
@@ -322,12 +319,15 @@ time_steps = 50
 """The effects study template."""
 
 TEMPLATES = {
-    "contact": STUDY_TEMPLATE,
-    "dynamic": DYNAMIC_TEMPLATE,
-    "finite-strain": FINITE_TEMPLATE,
-    "effects": EFFECTS_TEMPLATE,
+    kind: template.format(indenter=INDENTER.rstrip(), file="{file}", name="{name}")
+    for kind, template in (
+        ("contact", STUDY_TEMPLATE),
+        ("dynamic", DYNAMIC_TEMPLATE),
+        ("finite-strain", FINITE_TEMPLATE),
+        ("effects", EFFECTS_TEMPLATE),
+    )
 }
-"""Study kind -> its commented template."""
+"""Study kind -> its commented template (the rigid striker's [indenter] written once)."""
 
 
 def register(commands: argparse._SubParsersAction) -> None:

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from ..validation import InputError
-from .common import add_figure_format, add_inputs, in_option_words, path_text
+from .common import add_figure_format, add_inputs, in_option_words, path_text, warn
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -83,6 +83,8 @@ def run(args: argparse.Namespace) -> int:
     paths = [find_study(name) for name in args.studies] or shipped_studies(extended=args.extended)
     studies = [study for path in paths for study in load_study(path)]
     _check_unique_names(studies)
+    if args.quick:
+        _say_full_quick(paths)
     marker = PROGRESS_FILE if args.resume else None
     if args.out is None:
         adopt_killed_runs(Path.cwd(), DEFAULT_OUT_PREFIX)
@@ -114,6 +116,19 @@ def run(args: argparse.Namespace) -> int:
         return _stopped_code(stop.cause)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
+
+
+def _say_full_quick(paths: list[Path]) -> None:
+    """Say that --quick runs a dynamic or effects study without [quick] on its full mesh."""
+    import tomllib
+
+    for path in paths:
+        data = tomllib.loads(path.read_text())
+        if data.get("kind") in ("dynamic", "effects") and "quick" not in data:
+            warn(
+                f"{path} has no [quick] table: --quick runs it on its full [numerics] mesh and "
+                "time steps (without the estimate); a [quick] table sets coarse ones"
+            )
 
 
 def _check_unique_names(studies: list) -> None:

@@ -126,7 +126,7 @@ is wider by a few per cent)."""
 PAD_FRICTION_REACH = (
     "; on a pad the depth is that of the half-space (an upper bound: the pad stops the "
     "striker a little sooner), which a bonded or Coulomb indenter cannot pass; "
-    "--interface frictionless runs beyond it with a warning"
+    "interface='frictionless' runs beyond it with a warning"
 )
 """The end of the refusal of a frictional finite-strain impact on a pad beyond the reach."""
 

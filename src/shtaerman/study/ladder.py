@@ -54,7 +54,7 @@ def check_ladder(
         mesh.refined(refine).check_size(refined_radius)
 
 
-WITHOUT_ESTIMATE = "; or run without the estimate (estimate=False, --no-estimate)"
+WITHOUT_ESTIMATE = "; or run without the estimate (estimate=False)"
 """The advice that ends a refusal of the error-estimate ladder."""
 
 

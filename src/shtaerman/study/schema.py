@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal, get_args, get_type_hi
 import msgspec
 
 from ..fem.contact.linear import validate_fem_inputs
-from ..problem import RUBBER_OPTIONS
+from ..problem import RUBBER_OPTIONS, worded
 from ..validation import InputError, bound_text
 from ..vocabulary import MAX_STUDIES, VOCABULARY, deprecated, fields, suggestion
 from ..vocabulary import entry as vocabulary_entry
@@ -638,7 +638,8 @@ def refused(path: Path, error: InputError, keys: dict[str, str] | None = None) -
     key = table.get(parameter, "half_space")
     if not parameter.isidentifier():  # no name: mass and velocity together, their table
         key = table.get("mass", "impact.mass").partition(".")[0]
-    return StudyError(f"{path}: key '{key}': {str(error).removeprefix(f'{parameter}: ')}")
+    reason = worded(str(error).removeprefix(f"{parameter}: "), "file", table)
+    return StudyError(f"{path}: key '{key}': {reason}")
 
 
 def validated(path: Path, studies: list) -> list:

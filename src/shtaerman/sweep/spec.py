@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..problem import worded
 from ..validation import InputError, shown
 from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, deprecated, suggestion
 from .kinds import KINDS, Kind, Parameter, check_rubber_options, get_kind
@@ -416,7 +417,8 @@ def _check_cases(where: str, spec: SweepSpec) -> None:
             check(case.params)
         except (InputError, ValueError) as error:
             at = ", ".join(f"{k} = {v!r}" for k, v in case.axis_values.items())
-            raise SweepError(f"{where}: case {case.index} ({at}): {error}") from None
+            reason = worded(str(error), "file")
+            raise SweepError(f"{where}: case {case.index} ({at}): {reason}") from None
 
 
 def sweeps_folder() -> Path:
