@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -69,10 +69,7 @@ class FitResult:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON of ``shtaerman fit --json``."""
-        names = ("kind", "fitted", "correlation", "residual", "noise", "forward_model",
-                 "corrections", "data", "known", "evaluations", "fe_runs",
-                 "forward_error")  # fmt: skip
-        return {name: getattr(self, name) for name in names}
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "curves"}
 
 
 def _entry(value: float, low: float, high: float, ident: bool, unit: str) -> dict[str, Any]:

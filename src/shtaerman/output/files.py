@@ -327,6 +327,22 @@ def _not_empty(option: str, path: object, marker: str | None, target: Path) -> I
     return InputError(f"{option}: folder {str(path)!r} {state}; {advice}")
 
 
+def _check_replaceable(
+    option: str, path: object, target: Path, force: bool, marker: str | None
+) -> None:
+    """Raise unless the folder ``target`` (``path`` as given) may be written: empty, holding
+    ``marker`` (a run to complete), or with ``force`` a folder this tool wrote holding only
+    the files its marker lists."""
+    if not any(target.iterdir()):
+        return
+    if not force and not resumable(target, marker):
+        raise _not_empty(option, path, marker, target)
+    if force and not ours(target):
+        raise _not_ours(option, path)
+    if force and (foreign := _foreign_files(target)):
+        raise _not_only_ours(option, path, foreign)
+
+
 def _refuse_link(path: Path, option: str, kind: str) -> None:
     """Raise InputError when ``path`` itself is a symbolic link (also a broken one): a write
     there would land in whatever it points to, not in the ``kind`` ("folder", "file") named."""
@@ -428,13 +444,8 @@ def check_output_folder(
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
-        if target.is_dir() and any(target.iterdir()):
-            if not force and not resumable(target, resume_marker):
-                raise _not_empty(option, path, resume_marker, target)
-            if force and not ours(target):
-                raise _not_ours(option, path)
-            if force and (foreign := _foreign_files(target)):
-                raise _not_only_ours(option, path, foreign)
+        if target.is_dir():
+            _check_replaceable(option, path, target, force, resume_marker)
         probe_writable(option, target.parent, _stage_path(target).name)
     return target
 
@@ -499,14 +510,8 @@ def staged_folder(
     reserved = False
     try:
         resumed = resumable(target, resume_marker)
-        if os.path.lexists(target):
-            if any(target.iterdir()):
-                if not force and not resumed:
-                    raise _not_empty(option, target, resume_marker, target)
-                if not resumed and not ours(target):
-                    raise _not_ours(option, target)
-                if not resumed and (foreign := _foreign_files(target)):
-                    raise _not_only_ours(option, target, foreign)
+        if os.path.lexists(target):  # checked again: another program may have written it
+            _check_replaceable(option, target, target, force, resume_marker)
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it

@@ -24,14 +24,13 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
     """One function: exact curve, printed table, approximation; its relative error below."""
     integral = duration_integral(5.0 / 3.0)
     s = np.linspace(0.0, integral, 2001)
-    if kind == "sine":
-        exact = ateb_sine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_sine_approximation(s), printed_table("table1"), "eta"
-        symbol, label, number = r"\eta", r"$Sa(5/3, 1, 4\eta/3)$", "Table 1"
-    else:
-        exact = ateb_cosine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_cosine_approximation(s), printed_table("table2"), "zeta"
-        symbol, label, number = r"\zeta", r"$Ca(5/3, 1, 4\zeta/3)$", "Table 2"
+    function, paper, name, number = {
+        "sine": (ateb_sine, paper_sine_approximation, "eta", "1"),
+        "cosine": (ateb_cosine, paper_cosine_approximation, "zeta", "2"),
+    }[kind]
+    exact, approximation = function(5.0 / 3.0, 1.0, 4.0 / 3.0 * s), paper(s)
+    table, symbol = printed_table(f"table{number}"), f"\\{name}"
+    label = rf"${kind[0].upper()}a(5/3, 1, 4{symbol}/3)$"
     top.plot(s, exact, color=EXACT_COLOUR, label="exact")
     top.plot(s, approximation, "--", color=APPROXIMATION_COLOUR, label="paper's approximation")
     top.plot(
@@ -41,7 +40,7 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
         color=PAPER_COLOUR,
         markersize=4,
         markerfacecolor="none",
-        label=f"paper's {number}",
+        label=f"paper's Table {number}",
     )
     top.set_ylabel(label)
     top.set_ylim(0.0, 1.05)

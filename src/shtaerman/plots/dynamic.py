@@ -100,8 +100,8 @@ def plot_dynamic_histories(
         )
         ax.set_ylabel(label)
         ax.set_ylim(bottom=min(0.0, float(np.min(dynamic_values[shown]))))
-    axes[0].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
-    axes[1].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
+    for ax in axes:
+        ax.axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
     axes[0].legend(loc="lower left" if on_pad(result) else "upper right")  # a pad: longer
     axes[1].set_xlabel(f"Time t ({t_unit}); dotted: quasi-static t_c")
     axes[1].set_xlim(0.0, 1.05 * end * t_scale)

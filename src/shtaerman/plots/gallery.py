@@ -26,11 +26,7 @@ if TYPE_CHECKING:
     from ..study.contact.indentation import IndentationResult
     from ..study.contact.runner import StudyOutcome
 
-__all__ = [
-    "FIELD_FIGURES",
-    "contact_figures",
-    "study_figures",
-]
+__all__ = ["FIELD_FIGURES", "contact_figures", "study_figures"]
 
 FIELD_FIGURES = {
     "sigma_zz": f"Axial stress {SIGMA}zz under the indenter (r-z section, largest depth)",
