@@ -49,6 +49,7 @@ __all__ = [
     "fe_rows",
     "needs_fe",
     "relative_error",
+    "youngs_modulus",
 ]
 
 
@@ -170,8 +171,7 @@ def exact_rebound(known: KnownParts, values: Mapping[str, float], velocity: floa
 def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
-    rest = 1.0 / values["E_star"] - known.striker.compliance
-    e2 = (1.0 - known.nu2**2) / rest
+    e2 = youngs_modulus(known, values["E_star"], known.nu2)
     body = problem.body
     material = Material(e2, known.nu2, body.material.density)
     striker = dataclasses.replace(problem.striker, mass=values["mass"],
@@ -181,6 +181,13 @@ def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
     if prony is not None:
         at.update({f"g{i}": g for i, g in enumerate(prony.weights, start=1)})
     return dataclasses.replace(problem, striker=striker, body=body), at
+
+
+def youngs_modulus(known: KnownParts, modulus: float, nu2: float) -> float:
+    """E2 in Pa giving the combined modulus ``modulus`` (Pa) with the striker and ``nu2``
+    (inf where the striker alone is softer)."""
+    rest = 1.0 / modulus - known.striker.compliance
+    return (1.0 - nu2 * nu2) / rest if rest > 0 else float("inf")
 
 
 def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, float],

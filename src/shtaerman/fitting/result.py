@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from ..theory.materials import Material
+from .corrections import youngs_modulus as _young
 from .engine import Solution
 from .models import Known
 
@@ -75,12 +76,6 @@ class FitResult:
 def _entry(value: float, low: float, high: float, ident: bool, unit: str) -> dict[str, Any]:
     return {"value": float(value), "low": float(low), "high": float(high),
             "identifiable": bool(ident), "unit": unit}  # fmt: skip
-
-
-def _young(known: Known, modulus: float, nu2: float) -> float:
-    """E2 in Pa giving the combined modulus ``modulus`` with the striker and ``nu2``."""
-    rest = 1.0 / modulus - known.striker.compliance
-    return (1.0 - nu2 * nu2) / rest if rest > 0 else float("inf")
 
 
 def _poisson(known: Known, modulus: float) -> float:

@@ -303,30 +303,6 @@ def _foreign_files(folder: Path) -> list[str]:
     return sorted(_files_in(folder) - set(listed) - {FOLDER_MARKER})
 
 
-def _not_ours(option: str, path: object) -> InputError:
-    return InputError(
-        f"{option}: folder {str(path)!r} was not written by shtaerman (no {FOLDER_MARKER}); "
-        f"--force replaces only result folders of this tool: name a new folder with --{option}"
-    )
-
-
-def _not_only_ours(option: str, path: object, foreign: list[str]) -> InputError:
-    more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
-    return InputError(
-        f"{option}: folder {str(path)!r} holds {foreign[0]!r}{more}, not written by shtaerman; "
-        f"--force replaces only what this tool wrote: move it or name a new folder with --{option}"
-    )
-
-
-def _not_empty(option: str, path: object, marker: str | None, target: Path) -> InputError:
-    state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
-    if not ours(target):  # --force would refuse it too
-        advice = f"it was not written by shtaerman: name a new folder with --{option}"
-    else:
-        advice = "use --force to replace it"
-    return InputError(f"{option}: folder {str(path)!r} {state}; {advice}")
-
-
 def _check_replaceable(
     option: str, path: object, target: Path, force: bool, marker: str | None
 ) -> None:
@@ -335,12 +311,24 @@ def _check_replaceable(
     the files its marker lists."""
     if not any(target.iterdir()):
         return
+    folder, new = f"{option}: folder {str(path)!r}", f"name a new folder with --{option}"
     if not force and not resumable(target, marker):
-        raise _not_empty(option, path, marker, target)
+        state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
+        advice = "use --force to replace it"
+        if not ours(target):  # --force would refuse it too
+            advice = f"it was not written by shtaerman: {new}"
+        raise InputError(f"{folder} {state}; {advice}")
     if force and not ours(target):
-        raise _not_ours(option, path)
+        raise InputError(
+            f"{folder} was not written by shtaerman (no {FOLDER_MARKER}); --force replaces only "
+            f"result folders of this tool: {new}"
+        )
     if force and (foreign := _foreign_files(target)):
-        raise _not_only_ours(option, path, foreign)
+        more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
+        raise InputError(
+            f"{folder} holds {foreign[0]!r}{more}, not written by shtaerman; --force replaces "
+            f"only what this tool wrote: move it or {new}"
+        )
 
 
 def _refuse_link(path: Path, option: str, kind: str) -> None:
