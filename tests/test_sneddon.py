@@ -2,6 +2,7 @@
 the quasi-static impact on it (theory/profile_impact.py), issue 29 item 1."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -144,3 +145,16 @@ def test_a_table_of_no_numbers_is_refused_naming_the_profile(radii):
     # text or ragged lists in the radii raised numpy's bare ValueError ('could not convert ...')
     with pytest.raises(InputError, match=r"^profile: radii and heights must be numbers in m$"):
         TabulatedIndenter(radii, [0.0, 0.001, 0.004])
+
+
+def test_a_profile_impact_prints_its_last_time_rounded_inward():
+    """The profile impact's refusal of a time beyond t_y printed t_y to 6 digits rounded to
+    nearest (0.00523856 s here, above t_y = 0.005238555924... s), so the printed end was
+    itself refused; it prints it rounded inward, as the power law's impact does."""
+    result = solve_profile_impact(0.1, 0.5, SneddonContact(SphereIndenter(RADIUS), MODULUS))
+    with pytest.raises(InputError, match=r"times must lie within \[0, t_y\]") as refused:
+        result.history(times=[2.0 * result.t_y])
+    printed = float(re.search(r"\[0, ([0-9.e+-]+)\] s", str(refused.value))[1])
+    # the printed end is t_y to 6 digits, at or below it: a time typed as printed is accepted
+    assert printed <= result.t_y and printed == pytest.approx(result.t_y, rel=1e-5)
+    assert result.history(times=[printed]).t[0] == printed

@@ -43,10 +43,13 @@ __all__ = [
     "Correction",
     "RowCorrection",
     "exact_impact",
+    "exact_rebound",
     "fe_correction",
+    "fe_parts",
     "fe_rows",
     "needs_fe",
     "relative_error",
+    "youngs_modulus",
 ]
 
 
@@ -101,7 +104,7 @@ class Correction:
     def entry(self, problem: Problem) -> dict[str, object]:
         """The correction as the result's JSON (``corrections``)."""
         return {
-            "name": _name(problem),
+            "name": f"FE impact: {fe_parts(problem)}",
             "force_scale": self.force_scale,
             "time_scale": self.time_scale,
             "shape_max": float(np.max(np.abs(self.shape))),
@@ -117,8 +120,9 @@ def needs_fe(problem: Problem) -> bool:
             or problem.body.model != "linear")  # fmt: skip
 
 
-def _name(problem: Problem) -> str:
-    """The parts the FE correction stands for, in words."""
+def fe_parts(problem: Problem) -> str:
+    """What an FE run of ``problem`` stands for beyond the exact models, in words: a pad,
+    waves, finite strain (:func:`needs_fe`)."""
     parts = []
     if problem.geometry.thickness is not None:
         parts.append(f"pad {problem.geometry.thickness:g} m ({problem.geometry.base} base)")
@@ -126,7 +130,7 @@ def _name(problem: Problem) -> str:
         parts.append(f"waves (density2 {problem.body.material.density:g} kg/m^3)")
     if problem.body.model != "linear":
         parts.append(f"finite strain ({problem.body.model})")
-    return "FE impact: " + ", ".join(parts)
+    return ", ".join(parts)
 
 
 def exact_impact(known: KnownParts, values: Mapping[str, float], prony: PronySeries | None,
@@ -153,11 +157,21 @@ def exact_impact(known: KnownParts, values: Mapping[str, float], prony: PronySer
     return relaxing, float(run.P_max), float(run.t_contact)
 
 
+def exact_rebound(known: KnownParts, values: Mapping[str, float], velocity: float,
+                  prony: PronySeries | None) -> tuple[float, float]:  # fmt: skip
+    """(restitution, contact time in s) of the exact quasi-static impact at ``velocity`` m/s:
+    the elastic one (e = 1), or the viscoelastic one with ``prony``."""
+    law = contact_law(known.indenter, values["E_star"])
+    if prony is None:
+        return 1.0, elastic_impact(values["mass"], velocity, law).t_y
+    result = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
+    return result.restitution, result.t_contact
+
+
 def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
-    rest = 1.0 / values["E_star"] - known.striker.compliance
-    e2 = (1.0 - known.nu2**2) / rest
+    e2 = youngs_modulus(known, values["E_star"], known.nu2)
     body = problem.body
     material = Material(e2, known.nu2, body.material.density)
     striker = dataclasses.replace(problem.striker, mass=values["mass"],
@@ -167,6 +181,13 @@ def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
     if prony is not None:
         at.update({f"g{i}": g for i, g in enumerate(prony.weights, start=1)})
     return dataclasses.replace(problem, striker=striker, body=body), at
+
+
+def youngs_modulus(known: KnownParts, modulus: float, nu2: float) -> float:
+    """E2 in Pa giving the combined modulus ``modulus`` (Pa) with the striker and ``nu2``
+    (inf where the striker alone is softer)."""
+    rest = 1.0 / modulus - known.striker.compliance
+    return (1.0 - nu2 * nu2) / rest if rest > 0 else float("inf")
 
 
 def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, float],
@@ -227,7 +248,7 @@ class RowCorrection:
     def entry(self, problem: Problem) -> dict[str, object]:
         """The correction as the result's JSON (``corrections``)."""
         return {
-            "name": _name(problem),
+            "name": f"FE impact: {fe_parts(problem)}",
             "restitution_scale": self.restitution.tolist(),
             "time_scale": self.contact_time.tolist(),
             "fe_error": dict(self.errors),
@@ -247,12 +268,7 @@ def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
         point = {**values, "velocity": float(velocity)}
         case, at = _point(problem, known, point, prony)
         run = dynamic(case, refine=refine, estimate=True)
-        law = contact_law(known.indenter, values["E_star"])
-        if prony is None:
-            e, t_c = 1.0, elastic_impact(values["mass"], velocity, law).t_y
-        else:
-            exact = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
-            e, t_c = exact.restitution, exact.t_contact
+        e, t_c = exact_rebound(known, values, velocity, prony)
         ratios.append((run.restitution / e, run.t_contact / t_c))
         for key, known_error in errors.items():  # NaN if any run has none
             error = relative_error(run, key)

@@ -163,17 +163,12 @@ def _column(
     for number, row in enumerate(rows):
         text = row[index].strip() if index < len(row) else ""
         try:
-            values[number] = plain_float(text)
+            values[number], what = plain_float(text), "a finite number"
         except ValueError:
-            raise InputError(
-                f"{where}: row {lines[number]}: column {name!r} holds {text!r}, not a number",
-                "data",
-            ) from None
+            values[number], what = math.nan, "a number"
         if not math.isfinite(values[number]):
             raise InputError(
-                f"{where}: row {lines[number]}: column {name!r} holds {text!r}, not a finite "
-                "number",
-                "data",
+                f"{where}: row {lines[number]}: column {name!r} holds {text!r}, not {what}", "data"
             )
     return values
 

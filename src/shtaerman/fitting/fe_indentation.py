@@ -35,6 +35,7 @@ from scipy.interpolate import CubicSpline
 from ..problem import Body, Loading, Problem
 from ..theory.materials import Material
 from ..validation import InputError, NumericalFailureError
+from .corrections import fe_parts
 from .data import Measurement
 from .engine import Progress, Solution, solve
 from .iteration import widened
@@ -45,7 +46,6 @@ __all__ = [
     "SHAPE_AXES",
     "FECurves",
     "ShapeAxis",
-    "fe_parts",
     "finite_indentation_fit",
     "shape_axes",
     "shape_axis",
@@ -231,16 +231,6 @@ def _model(curves: FECurves, measured: Measurement, value: float | None) -> Mode
     return Model(tuple(params), force, predict, False, "N",
                  f"FE contact curves: {fe_parts(curves.problem)}; E2 scaled out "
                  "exactly")  # fmt: skip
-
-
-def fe_parts(problem: Problem) -> str:
-    """What the FE curves of ``problem`` stand for, in words: a pad, finite strain."""
-    parts = []
-    if problem.geometry.thickness is not None:
-        parts.append(f"pad {problem.geometry.thickness:g} m ({problem.geometry.base} base)")
-    if problem.body.finite:
-        parts.append(f"finite strain ({problem.body.model})")
-    return ", ".join(parts)
 
 
 def _check(problem: Problem, names: Sequence[str]) -> ShapeAxis | None:

@@ -24,9 +24,9 @@ import numpy as np
 
 from ..theory.materials import Material, effective_modulus
 from ..theory.sneddon import Indenter, contact_law
-from ..theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
+from ..theory.viscoelastic import PronySeries, elastic_impact
 from ..validation import InputError
-from .corrections import Correction, RowCorrection, exact_impact
+from .corrections import Correction, RowCorrection, exact_impact, exact_rebound
 from .data import Measurement
 
 __all__ = ["UNKNOWNS", "Known", "Model", "Parameter", "all_values", "build_model", "prony_at"]
@@ -139,16 +139,6 @@ def prony_at(known: Known, values: Mapping[str, float]) -> PronySeries | None:
     return PronySeries(tuple(weights), tuple(times))
 
 
-def _impact(known: Known, values: Mapping[str, float], velocity: float) -> tuple[float, float]:
-    """(restitution, contact time in s) of the impact at ``velocity`` in m/s."""
-    law = contact_law(known.indenter, values["E_star"])
-    prony = prony_at(known, values)
-    if prony is None:
-        return 1.0, elastic_impact(values["mass"], velocity, law).t_y
-    result = viscoelastic_impact(values["mass"], velocity, law, prony, steps=known.steps)
-    return result.restitution, result.t_contact
-
-
 def force_history(known: Known, values: Mapping[str, float], time: np.ndarray) -> np.ndarray:
     """The force in N at ``time`` (s, the data's clock): the impact shifted by the time
     offset, with the known FE correction if any, plus the baseline."""
@@ -165,7 +155,8 @@ def _rebound_predict(known: Known, data: Measurement) -> Callable[..., np.ndarra
 
     def predict(fitted: Mapping[str, float]) -> np.ndarray:
         values = all_values(known, fitted)
-        rows = [_impact(known, values, v) for v in data.columns["velocity"]]
+        prony = prony_at(known, values)
+        rows = [exact_rebound(known, values, v, prony) for v in data.columns["velocity"]]
         if isinstance(known.correction, RowCorrection):
             rows = known.correction.apply(rows)
         out = {

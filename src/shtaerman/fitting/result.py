@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from ..theory.materials import Material
+from .corrections import youngs_modulus as _young
 from .engine import Solution
 from .models import Known
 
@@ -69,21 +70,12 @@ class FitResult:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON of ``shtaerman fit --json``."""
-        names = ("kind", "fitted", "correlation", "residual", "noise", "forward_model",
-                 "corrections", "data", "known", "evaluations", "fe_runs",
-                 "forward_error")  # fmt: skip
-        return {name: getattr(self, name) for name in names}
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "curves"}
 
 
 def _entry(value: float, low: float, high: float, ident: bool, unit: str) -> dict[str, Any]:
     return {"value": float(value), "low": float(low), "high": float(high),
             "identifiable": bool(ident), "unit": unit}  # fmt: skip
-
-
-def _young(known: Known, modulus: float, nu2: float) -> float:
-    """E2 in Pa giving the combined modulus ``modulus`` with the striker and ``nu2``."""
-    rest = 1.0 / modulus - known.striker.compliance
-    return (1.0 - nu2 * nu2) / rest if rest > 0 else float("inf")
 
 
 def _poisson(known: Known, modulus: float) -> float:

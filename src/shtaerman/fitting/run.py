@@ -16,16 +16,10 @@ from ..problem import Problem
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry
-from .corrections import needs_fe
-from .data import (
-    Measurement,
-    check_history_options,
-    measured_unit,
-    measurement,
-    resampled,
-)
+from .corrections import fe_parts, needs_fe
+from .data import Measurement, check_history_options, measured_unit, measurement, resampled
 from .engine import Progress, Solution, solve
-from .fe_indentation import fe_parts, finite_indentation_fit
+from .fe_indentation import finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 from xml.sax.saxutils import quoteattr
 
 import meshio
@@ -19,6 +20,7 @@ __all__ = [
     "field_mesh",
     "indenter_field_data",
     "near_field",
+    "step_field_data",
     "write_histories",
     "write_indentation",
     "write_vtu",
@@ -109,6 +111,21 @@ def indenter_field_data(indenter: object) -> dict[str, float]:
     }
 
 
+def step_field_data(step: Any, indenter: object, body: Any, model: str) -> dict[str, float]:
+    """The VTK field data of a contact step's fields: its depth, contact radius and force
+    (SI), the striker's profile (:func:`indenter_field_data`), the ``body``'s E and nu, and its
+    material model as a flag (field data are numbers)."""
+    return {
+        "depth [m]": step.depth,
+        "contact_radius [m]": step.contact_radius,
+        "force [N]": step.force,
+        **indenter_field_data(indenter),
+        "youngs_modulus [Pa]": body.youngs_modulus,
+        "poisson_ratio [1]": body.poisson_ratio,
+        f"model_{model} [1]": 1.0,
+    }
+
+
 def write_histories(histories: Mapping[str, ImpactHistory], folder: Path) -> list[Path]:
     """``history_<variant>.csv`` of each impact history in ``folder`` (t, x, P, a, p0 in SI,
     :meth:`~shtaerman.theory.impact.ImpactHistory.columns`); the paths written."""
@@ -147,17 +164,9 @@ def write_indentation(result: IndentationResult, folder: Path) -> list[Path]:
     field_path = folder / "field_max_depth.vtu"
     near_path = folder / "field_max_depth_near.vtu"
     step = result.steps[-1]
-    field_data = {
-        "depth [m]": step.depth,
-        "contact_radius [m]": step.contact_radius,
-        "force [N]": step.force,
-        **indenter_field_data(result.indenter),
-        "youngs_modulus [Pa]": result.half_space.youngs_modulus,
-        "poisson_ratio [1]": result.half_space.poisson_ratio,
-        # the material model, as a flag (VTK field data are numbers)
-        f"model_{getattr(result, 'model', 'linear')} [1]": 1.0,
-    }
-    full = field_mesh(result.deepest_field, field_data)
+    model = getattr(result, "model", "linear")
+    data = step_field_data(step, result.indenter, result.half_space, model)
+    full = field_mesh(result.deepest_field, data)
     write_vtu(field_path, full)
     write_vtu(near_path, near_field(full, NEAR_FIELD_RADII * step.contact_radius))
     return [curve_path, profiles_path, field_path, near_path]

@@ -303,28 +303,32 @@ def _foreign_files(folder: Path) -> list[str]:
     return sorted(_files_in(folder) - set(listed) - {FOLDER_MARKER})
 
 
-def _not_ours(option: str, path: object) -> InputError:
-    return InputError(
-        f"{option}: folder {str(path)!r} was not written by shtaerman (no {FOLDER_MARKER}); "
-        f"--force replaces only result folders of this tool: name a new folder with --{option}"
-    )
-
-
-def _not_only_ours(option: str, path: object, foreign: list[str]) -> InputError:
-    more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
-    return InputError(
-        f"{option}: folder {str(path)!r} holds {foreign[0]!r}{more}, not written by shtaerman; "
-        f"--force replaces only what this tool wrote: move it or name a new folder with --{option}"
-    )
-
-
-def _not_empty(option: str, path: object, marker: str | None, target: Path) -> InputError:
-    state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
-    if not ours(target):  # --force would refuse it too
-        advice = f"it was not written by shtaerman: name a new folder with --{option}"
-    else:
+def _check_replaceable(
+    option: str, path: object, target: Path, force: bool, marker: str | None
+) -> None:
+    """Raise unless the folder ``target`` (``path`` as given) may be written: empty, holding
+    ``marker`` (a run to complete), or with ``force`` a folder this tool wrote holding only
+    the files its marker lists."""
+    if not any(target.iterdir()):
+        return
+    folder, new = f"{option}: folder {str(path)!r}", f"name a new folder with --{option}"
+    if not force and not resumable(target, marker):
+        state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
         advice = "use --force to replace it"
-    return InputError(f"{option}: folder {str(path)!r} {state}; {advice}")
+        if not ours(target):  # --force would refuse it too
+            advice = f"it was not written by shtaerman: {new}"
+        raise InputError(f"{folder} {state}; {advice}")
+    if force and not ours(target):
+        raise InputError(
+            f"{folder} was not written by shtaerman (no {FOLDER_MARKER}); --force replaces only "
+            f"result folders of this tool: {new}"
+        )
+    if force and (foreign := _foreign_files(target)):
+        more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
+        raise InputError(
+            f"{folder} holds {foreign[0]!r}{more}, not written by shtaerman; --force replaces "
+            f"only what this tool wrote: move it or {new}"
+        )
 
 
 def _refuse_link(path: Path, option: str, kind: str) -> None:
@@ -428,13 +432,8 @@ def check_output_folder(
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
-        if target.is_dir() and any(target.iterdir()):
-            if not force and not resumable(target, resume_marker):
-                raise _not_empty(option, path, resume_marker, target)
-            if force and not ours(target):
-                raise _not_ours(option, path)
-            if force and (foreign := _foreign_files(target)):
-                raise _not_only_ours(option, path, foreign)
+        if target.is_dir():
+            _check_replaceable(option, path, target, force, resume_marker)
         probe_writable(option, target.parent, _stage_path(target).name)
     return target
 
@@ -499,14 +498,8 @@ def staged_folder(
     reserved = False
     try:
         resumed = resumable(target, resume_marker)
-        if os.path.lexists(target):
-            if any(target.iterdir()):
-                if not force and not resumed:
-                    raise _not_empty(option, target, resume_marker, target)
-                if not resumed and not ours(target):
-                    raise _not_ours(option, target)
-                if not resumed and (foreign := _foreign_files(target)):
-                    raise _not_only_ours(option, target, foreign)
+        if os.path.lexists(target):  # checked again: another program may have written it
+            _check_replaceable(option, target, target, force, resume_marker)
             os.rename(target, retired)  # atomic: only one run can take it
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it

@@ -24,7 +24,7 @@ from ..plots.finite import (
     plot_finite_section,
 )
 from ..plots.labels import model_label
-from .export import field_mesh, indenter_field_data, write_histories, write_vtu
+from .export import field_mesh, step_field_data, write_histories, write_vtu
 from .files import write_csv
 
 if TYPE_CHECKING:
@@ -32,11 +32,7 @@ if TYPE_CHECKING:
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
 
-__all__ = [
-    "write_finite_curve",
-    "write_finite_field",
-    "write_finite_study",
-]
+__all__ = ["write_finite_curve", "write_finite_field", "write_finite_study"]
 
 
 CURVE_KEYS = (
@@ -63,16 +59,8 @@ def write_finite_field(
     y = z in m; warp by ``displacement [m]`` for the deformed shape), as
     :func:`.export.field_mesh` writes the linear body's, with the rubber model as a flag."""
     model = getattr(curve.system.material, "model", "neo-hookean")
-    scalars = {
-        "depth [m]": step.depth,
-        "force [N]": step.force,
-        "contact_radius [m]": step.contact_radius,
-        "strain_energy [J]": step.strain_energy,
-        **indenter_field_data(curve.indenter),
-        "youngs_modulus [Pa]": material.youngs_modulus,
-        "poisson_ratio [1]": material.poisson_ratio,
-        f"model_{model} [1]": 1.0,  # the material model as a flag (field data are numbers)
-    }
+    scalars = step_field_data(step, curve.indenter, material, model)
+    scalars["strain_energy [J]"] = step.strain_energy
     solution = SimpleNamespace(system=curve.system, **curve.fields(step))
     write_vtu(path, field_mesh(solution, scalars))
     return path

@@ -38,13 +38,8 @@ CONTACT_COLUMNS = {
 """Contact error -> its column in the cross-check summary."""
 IMPACT_COLUMNS = ("x_c", "P_c", "t_c")
 """Impact maxima in the cross-check summary."""
-ESTIMATED = {
-    "force": "force",
-    "beta": "beta",
-    "exponent": "exponent",
-    "contact_radius": "contact radius",
-    "central_pressure": "p(0)",
-}
+ESTIMATED = CONTACT_COLUMNS | {"contact_radius": "contact radius"}
+"""Estimated quantity -> its row in the error estimates table."""
 
 
 def _timings(outcome: StudyOutcome, output: float | None) -> dict[str, float | None]:

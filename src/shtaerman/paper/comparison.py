@@ -8,7 +8,7 @@ they differ by more than the paper's own accuracy: half a unit of the last print
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 from scipy.special import gamma
@@ -48,15 +48,9 @@ class Comparison:
         return abs(self.printed - self.exact) > self.tolerance * (1 + 1e-9)
 
     def to_dict(self) -> dict[str, object]:
-        """Plain data for JSON."""
-        return {
-            "column": self.column,
-            "printed": self.printed,
-            "exact": self.exact,
-            "relative_difference": self.relative_difference,
-            "tolerance": self.tolerance,
-            "flagged": self.flagged,
-        }
+        """Plain data for JSON: the fields, the relative difference and whether flagged."""
+        extra = {"relative_difference": self.relative_difference, "flagged": self.flagged}
+        return {**asdict(self), **extra}
 
 
 @dataclass(frozen=True)
@@ -134,6 +128,14 @@ def _compare_rows(
     return rows
 
 
+def _compared(name: str, table: dict, key: str, summary: list[str],
+              exact: Callable[[dict[str, float]], dict[str, float]]) -> ComparedTable:  # fmt: skip
+    """The printed ``table`` against ``exact`` (:func:`_compare_rows`), its rows keyed by the
+    column ``key``, with the ``summary`` of what was measured."""
+    rows = _compare_rows(table, exact)
+    return ComparedTable(name, table["caption"], key, rows, summary, table.get("notes", []))
+
+
 def _approximation_error(approximation: Callable, exact: Callable) -> tuple[float, float]:
     grid = np.linspace(0.0, duration_integral(Q), 20001)[1:-1]
     error = np.abs(approximation(grid) / exact(grid) - 1.0)
@@ -146,13 +148,6 @@ def _ateb_table(name: str, table: dict, variable: str, column: str) -> ComparedT
         "cosine": lambda s: ateb_cosine(Q, 1.0, 4.0 / 3.0 * s),
     }[column]
     approximation = {"sine": paper_sine_approximation, "cosine": paper_cosine_approximation}[column]
-    rows = _compare_rows(
-        table,
-        lambda row: {
-            column: float(exact_fn(row[variable])),
-            f"{column}_approximation": float(approximation(row[variable])),
-        },
-    )
     worst, where = _approximation_error(approximation, exact_fn)
     verdict = "holds" if worst < APPROXIMATION_BOUND else "FAILS"
     summary = [
@@ -160,7 +155,10 @@ def _ateb_table(name: str, table: dict, variable: str, column: str) -> ComparedT
         f"its error against the exact Ateb-{column}: max {100 * worst:.3f} % at {variable} = "
         f"{where:.3f} over (0, I); the paper's claim '< 1 %' {verdict}",
     ]
-    return ComparedTable(name, table["caption"], variable, rows, summary, table.get("notes", []))
+    return _compared(name, table, variable, summary, lambda row: {
+        column: float(exact_fn(row[variable])),
+        f"{column}_approximation": float(approximation(row[variable])),
+    })  # fmt: skip
 
 
 def _table3(table: dict) -> ComparedTable:
@@ -172,14 +170,7 @@ def _table3(table: dict) -> ComparedTable:
         return {"eta": eta, "x_over_xc_formulae": x, "x_over_xc_numerical": x}
 
     summary = ["exact x/x_c = Sa(5/3, 1, 4/3 eta) with eta = I t/t_c for both printed columns"]
-    return ComparedTable(
-        "table3",
-        table["caption"],
-        "t_over_tc",
-        _compare_rows(table, exact),
-        summary,
-        table["notes"],
-    )
+    return _compared("table3", table, "t_over_tc", summary, exact)
 
 
 def _impact_table(name: str, table: dict, key: str, defaults: dict[str, float]) -> ComparedTable:
@@ -197,9 +188,7 @@ def _impact_table(name: str, table: dict, key: str, defaults: dict[str, float]) 
         ]
     else:
         summary = ["exact: beta from E* with both compliances Q1 + Q2 (E1, nu1, E2, nu2)"]
-    return ComparedTable(
-        name, table["caption"], key, _compare_rows(table, exact), summary, table.get("notes", [])
-    )
+    return _compared(name, table, key, summary, exact)
 
 
 def _printed_tolerance(printed: str) -> float:

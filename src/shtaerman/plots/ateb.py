@@ -8,12 +8,11 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
 from ..paper.printed import paper_cosine_approximation, paper_sine_approximation, printed_table
 from ..theory.ateb import ateb_cosine, ateb_sine
 from ..theory.impact import duration_integral
-from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, PAPER_COLOUR, save, styled
+from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, PAPER_COLOUR, chart, save, styled
 
 __all__ = ["paper_figures", "plot_ateb"]
 
@@ -25,14 +24,13 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
     """One function: exact curve, printed table, approximation; its relative error below."""
     integral = duration_integral(5.0 / 3.0)
     s = np.linspace(0.0, integral, 2001)
-    if kind == "sine":
-        exact = ateb_sine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_sine_approximation(s), printed_table("table1"), "eta"
-        symbol, label, number = r"\eta", r"$Sa(5/3, 1, 4\eta/3)$", "Table 1"
-    else:
-        exact = ateb_cosine(5.0 / 3.0, 1.0, 4.0 / 3.0 * s)
-        approximation, table, name = paper_cosine_approximation(s), printed_table("table2"), "zeta"
-        symbol, label, number = r"\zeta", r"$Ca(5/3, 1, 4\zeta/3)$", "Table 2"
+    function, paper, name, number = {
+        "sine": (ateb_sine, paper_sine_approximation, "eta", "1"),
+        "cosine": (ateb_cosine, paper_cosine_approximation, "zeta", "2"),
+    }[kind]
+    exact, approximation = function(5.0 / 3.0, 1.0, 4.0 / 3.0 * s), paper(s)
+    table, symbol = printed_table(f"table{number}"), f"\\{name}"
+    label = rf"${kind[0].upper()}a(5/3, 1, 4{symbol}/3)$"
     top.plot(s, exact, color=EXACT_COLOUR, label="exact")
     top.plot(s, approximation, "--", color=APPROXIMATION_COLOUR, label="paper's approximation")
     top.plot(
@@ -42,7 +40,7 @@ def _ateb_column(top: Axes, bottom: Axes, kind: str) -> None:
         color=PAPER_COLOUR,
         markersize=4,
         markerfacecolor="none",
-        label=f"paper's {number}",
+        label=f"paper's Table {number}",
     )
     top.set_ylabel(label)
     top.set_ylim(0.0, 1.05)
@@ -110,27 +108,20 @@ def plot_ateb(
 
     Parameters
     ----------
-    path : path-like
-        PNG to write (1480 x 1000 pixels for n = 3/2, 1480 x 600 otherwise).
+    path, figure_format
+        The PNG (1480 x 1000 pixels for n = 3/2, 1480 x 600 otherwise) and the formats, as
+        every chart (:mod:`.style`).
     exponent : float
         The indenter's exponent n (> 1).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     if exponent != PAPER_EXPONENT:
         q = (exponent + 1.0) / exponent
-        figure = Figure(figsize=(7.4, 3.0), layout="constrained")
-        for axes, kind in zip(figure.subplots(1, 2), ("sine", "cosine"), strict=True):
+        figure, panels = chart(3.0, 1, 2, width=7.4)
+        for axes, kind in zip(panels, ("sine", "cosine"), strict=True):
             _exact_column(axes, kind, q)
         figure.suptitle(f"n = {exponent:g}, q = (n+1)/n = {q:.4g}")
         return save(figure, path, figure_format)
-    figure = Figure(figsize=(7.4, 5.0), layout="constrained")
-    axes = figure.subplots(2, 2, sharex=True, height_ratios=(2.2, 1))
+    figure, axes = chart(5.0, 2, 2, width=7.4, sharex=True, height_ratios=(2.2, 1))
     _ateb_column(axes[0, 0], axes[1, 0], "sine")
     _ateb_column(axes[0, 1], axes[1, 1], "cosine")
     axes[1, 0].set_ylabel("Approximation\nerror (%)")
@@ -146,17 +137,10 @@ def paper_figures(
 
     Parameters
     ----------
-    folder : path-like
-        Where the PNGs go (created if missing).
+    folder, figure_format
+        As every figure set of a run (:mod:`.gallery`): returns caption -> PNG path.
     exponents : iterable of float
         The studies' indenter exponents n (repeats ignored).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes each figure in that format beside its PNG.
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Caption to PNG path.
     """
     made, fmt = {}, {"figure_format": figure_format}
     for exponent in sorted(set(exponents)):

@@ -12,7 +12,6 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
 from ..study.contact.convergence import ConvergenceStudy
@@ -23,7 +22,7 @@ from .style import (
     DEPTH_STYLES,
     EXACT_COLOUR,
     FEM_COLOUR,
-    WIDTH,
+    chart,
     fraction,
     percent,
     plain_log,
@@ -108,22 +107,14 @@ def plot_force_depth(
     ----------
     result : IndentationResult
         The FEM indentation run (depths in m, forces in N).
-    path : path-like
-        PNG to write (1280 x 960 pixels).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
+    path, figure_format
+        The PNG (1280 x 960 pixels) and the formats, as every chart (:mod:`.style`).
     """
     depths = np.array([step.depth for step in result.steps])
     forces = np.array([step.force for step in result.steps])
     x_scale, x_unit = si_prefix(math.sqrt(depths.min() * depths.max()), "m")
     p_scale, p_unit = si_prefix(math.sqrt(forces.min() * forces.max()), "N")
-    figure = Figure(figsize=(WIDTH, 4.8), layout="constrained")
-    top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=(3, 1))
+    figure, (top, bottom) = chart(4.8, 2, 1, sharex=True, height_ratios=(3, 1))
     line = np.geomspace(depths.min() / 1.25, depths.max() * 1.25, 200)
     q = fraction(result.exact.force_exponent)
     top.loglog(
@@ -233,21 +224,13 @@ def plot_pressure(
     ----------
     result : IndentationResult
         The FEM indentation run (pressure recovered at the surface nodes, Pa).
-    path : path-like
-        PNG to write (1280 x 840 pixels).
+    path, figure_format
+        The PNG (1280 x 840 pixels) and the formats, as every chart (:mod:`.style`).
     steps : sequence of int, optional
         Indices of ``result.steps`` to show (up to three); default the largest, a middle and
         the smallest depth.
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
-    figure = Figure(figsize=(WIDTH, 4.2), layout="constrained")
-    axes = figure.subplots()
+    figure, axes = chart(4.2)
     rho = np.linspace(0.0, 1.3, 521)
     deepest = result.steps[-1].depth
     label = "paper's eq. (5)" if getattr(result.indenter, "exponent", None) == 1.5 else "exact"
@@ -298,23 +281,15 @@ def plot_convergence(
         Its levels ``{"size": h, "dofs": int, "errors": {"force": .., ...}}`` (h the
         smallest element size / the refined zone's radius; relative errors, dimensionless;
         non-positive ones are not drawn) and fitted orders.
-    path : path-like
-        PNG to write (1280 x 960 pixels).
+    path, figure_format
+        The PNG (1280 x 960 pixels) and the formats, as every chart (:mod:`.style`).
     keys : sequence of str
         The errors to draw (those missing from the levels are skipped). The legend gives each
         one's observed order p, error ~ h^p, fitted over all meshes against the element size
         of the horizontal axis; each mesh's number of unknowns is marked on the top axis.
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     rows = study.levels
-    figure = Figure(figsize=(WIDTH, 4.8), layout="constrained")
-    axes = figure.subplots()
+    figure, axes = chart(4.8)
     size = np.array([row["size"] for row in rows], dtype=float)
     present = [key for key in keys if all(key in row["errors"] for row in rows)]
     for index, key in enumerate(present):

@@ -20,7 +20,6 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
 from ..fem.impact_run import ImpactRun
 from ..study.dynamic.case import DynamicCase
@@ -46,7 +45,8 @@ from .style import (
     EXACT_COLOUR,
     FEM_COLOUR,
     SECOND_COLOUR,
-    WIDTH,
+    chart,
+    note,
     points,
     save,
     si_prefix,
@@ -82,8 +82,7 @@ def plot_dynamic_histories(
     shown = result.t <= 1.05 * end
     t_scale, t_unit = si_prefix(quasi.t_y, "s")
     x_scale, x_unit = si_prefix(quasi.x_c, "m")
-    figure = Figure(figsize=(WIDTH, 5.6), layout="constrained")
-    axes = figure.subplots(2, 1, sharex=True)
+    figure, axes = chart(5.6, 2, 1, sharex=True)
     rows = (
         (axes[0], history.x * x_scale, result.x * x_scale, f"Approach x ({x_unit})"),
         (axes[1], history.P, result.force, "Contact force P (N)"),
@@ -101,8 +100,8 @@ def plot_dynamic_histories(
         )
         ax.set_ylabel(label)
         ax.set_ylim(bottom=min(0.0, float(np.min(dynamic_values[shown]))))
-    axes[0].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
-    axes[1].axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
+    for ax in axes:
+        ax.axvline(quasi.t_c * t_scale, color="0.6", linewidth=0.8, linestyle=":")
     axes[0].legend(loc="lower left" if on_pad(result) else "upper right")  # a pad: longer
     axes[1].set_xlabel(f"Time t ({t_unit}); dotted: quasi-static t_c")
     axes[1].set_xlim(0.0, 1.05 * end * t_scale)
@@ -160,8 +159,7 @@ def _pad_account(ax: Axes, v: np.ndarray, results: list[ImpactRun]) -> None:
         label = f"{label}, % of $E_0$"
         ax.plot(v, [100 * getattr(r, key) for r in results], marker, color=colour, label=label)
     ax.set_yscale("log")
-    ax.text(0.98, 0.02, "a pad: no half-space radiation estimate", transform=ax.transAxes,
-            ha="right", va="bottom", fontsize=7.5, color="0.3")  # fmt: skip
+    note(ax, "a pad: no half-space radiation estimate")
 
 
 @styled
@@ -176,8 +174,7 @@ def plot_dynamic_over_velocity(
     is not below its own size is unresolved: an open marker, not joined to the curve.
     """
     v = np.array(outcome.velocities)
-    figure = Figure(figsize=(WIDTH, 6.4), layout="constrained")
-    (ax_e, ax_loss), (ax_ratio, ax_time) = figure.subplots(2, 2, sharex=True)
+    figure, ((ax_e, ax_loss), (ax_ratio, ax_time)) = chart(6.4, 2, 2, sharex=True)
     _restitution(ax_e, ax_loss, outcome)
     differences = [case.differences() for case in outcome.cases]
     errors = outcome.difference_errors()
@@ -198,8 +195,7 @@ def plot_dynamic_over_velocity(
         ax.legend(loc="upper left" if ax is ax_ratio else "lower left", fontsize=7.5)
         ax.set_xlabel(axis_label("velocity"))
     if errors is None:
-        ax_ratio.text(0.98, 0.02, "no error estimates (quick run)", transform=ax_ratio.transAxes,
-                      ha="right", va="bottom", fontsize=7.5, color="0.3")  # fmt: skip
+        note(ax_ratio, "no error estimates (quick run)")
     ax_ratio.set_ylabel("Quasi-static / dynamic $-$ 1 (%)")
     ax_time.set_ylabel("Quasi-static / dynamic $-$ 1 (%)\n(dotted: ±1 %, ±5 %)")
     return save(figure, path, figure_format)

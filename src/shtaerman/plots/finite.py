@@ -19,7 +19,6 @@ from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from .labels import model_label, variant_label
@@ -28,7 +27,8 @@ from .style import (
     EXACT_COLOUR,
     FEM_COLOUR,
     SECOND_COLOUR,
-    WIDTH,
+    chart,
+    note,
     points,
     save,
     styled,
@@ -157,10 +157,7 @@ def _scale_to_resolved(
     axes.set_ylim(low, high)
     off = int(np.sum(hidden & ((values < low) | (values > high))))
     if off:
-        axes.text(
-            0.99, 0.02, f"{off} unresolved points off scale", transform=axes.transAxes,
-            ha="right", va="bottom", fontsize=7.5, color="0.3",
-        )  # fmt: skip
+        note(axes, f"{off} unresolved points off scale", 0.99)
 
 
 @styled
@@ -175,8 +172,7 @@ def plot_finite_ratios(
     """
     rows = outcome.rows()
     ratio = np.array([row["depth_to_radius"] for row in rows])
-    figure = Figure(figsize=(WIDTH, 5.6), layout="constrained")
-    top, bottom = figure.subplots(2, 1, sharex=True)
+    figure, (top, bottom) = chart(5.6, 2, 1, sharex=True)
     top.axhline(1.0, color=EXACT_COLOUR, linewidth=1.0, label="Shtaerman (linear, exact)")
     for level in (0.01, 0.05):
         top.axhspan(1 - level, 1 + level, color="0.5", alpha=0.08, linewidth=0)
@@ -217,8 +213,7 @@ def plot_finite_impact(
 ) -> Path:
     """x(t) (top) and P(t) (bottom) in mm, N and ms: linear against finite strain, the study's
     rubber model named in the legend (PNG, and ``figure_format`` "svg" or "pdf" beside it)."""
-    figure = Figure(figsize=(WIDTH, 5.2), layout="constrained")
-    top, bottom = figure.subplots(2, 1, sharex=True)
+    figure, (top, bottom) = chart(5.2, 2, 1, sharex=True)
     for variant, history in outcome.histories.items():
         colour, line = IMPACT_STYLES[variant]
         label = variant_label(outcome, variant)

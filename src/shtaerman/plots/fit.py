@@ -6,9 +6,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from matplotlib.figure import Figure
 
-from .style import EXACT_COLOUR, FEM_COLOUR, WIDTH, save, styled
+from .style import EXACT_COLOUR, FEM_COLOUR, chart, save, styled
 
 __all__ = ["plot_fit"]
 
@@ -41,9 +40,9 @@ def plot_fit(result: Any, path: Path | str, figure_format: str = "png") -> Path:
     order = np.argsort(x, kind="stable")
     observed = [name for name in QUANTITIES if name in curves]
     panels = [*observed, *(["residual [N]"] if "residual [N]" in curves else [])]
-    figure = Figure(figsize=(WIDTH, 5.0), layout="constrained")
     ratios = [3.0] * len(observed) + [1.3] * (len(panels) - len(observed))
-    axes = np.atleast_1d(figure.subplots(len(panels), 1, sharex=True, height_ratios=ratios))
+    figure, axes = chart(5.0, len(panels), 1, sharex=True, height_ratios=ratios)
+    axes = np.atleast_1d(axes)
     for ax, name in zip(axes, observed, strict=False):
         fit = curves[name.replace(" [", "_fit [")]
         ax.plot(x, curves[name], "o", color=FEM_COLOUR, markersize=5, label="data")

@@ -1,10 +1,10 @@
 """The figures of a verification run: which files each study gets, and their captions.
 
-Every function writes PNGs into a folder and returns ``{caption: path}``; the report shows the
-captions under the pictures, so a caption says everything a reader needs to read its figure.
-``figure_format="svg"`` or ``"pdf"`` also writes each chart in that format beside its PNG (same
-stem). The field pictures (pyvista renders) are PNG only: VTK's vector export embeds the
-rendered bitmap anyway and re-sets the text in another font.
+Every function writes PNGs into a folder (created if missing) and returns ``{caption: path}``;
+the report shows the captions under the pictures, so a caption says everything a reader needs
+to read its figure. ``figure_format="svg"`` or ``"pdf"`` also writes each chart in that format
+beside its PNG (same stem). The field pictures (pyvista renders) are PNG only: VTK's vector
+export embeds the rendered bitmap anyway and re-sets the text in another font.
 """
 
 from __future__ import annotations
@@ -26,11 +26,7 @@ if TYPE_CHECKING:
     from ..study.contact.indentation import IndentationResult
     from ..study.contact.runner import StudyOutcome
 
-__all__ = [
-    "FIELD_FIGURES",
-    "contact_figures",
-    "study_figures",
-]
+__all__ = ["FIELD_FIGURES", "contact_figures", "study_figures"]
 
 FIELD_FIGURES = {
     "sigma_zz": f"Axial stress {SIGMA}zz under the indenter (r-z section, largest depth)",
@@ -73,15 +69,8 @@ def study_figures(
     ----------
     outcome : shtaerman.study.contact.runner.StudyOutcome
         The study: its ``contact``, ``histories``, ``exact`` and ``convergence`` are drawn.
-    folder : path-like
-        Where the PNGs go (created if missing).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes each chart in that format beside its PNG.
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Caption to PNG path.
+    folder, figure_format
+        As every function here (the module's docstring).
     """
     folder, fmt = Path(folder), {"figure_format": figure_format}
     contact, histories, exact = outcome.contact, outcome.histories, outcome.exact
@@ -139,13 +128,7 @@ def contact_figures(
 ) -> dict[str, Path]:
     """The curve figures of one FEM contact curve (``contact --out``), written into ``folder``.
 
-    ``force_depth.png`` and ``pressure.png`` (:func:`plot_force_depth`, :func:`plot_pressure`),
-    and with ``figure_format`` "svg" or "pdf" each also in that format beside its PNG.
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Caption to PNG path.
+    ``force_depth.png`` and ``pressure.png`` (:func:`plot_force_depth`, :func:`plot_pressure`).
     """
     folder, fmt = Path(folder), {"figure_format": figure_format}
     return {

@@ -12,11 +12,10 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..theory.impact import ImpactHistory, ImpactResult
-from .style import EXACT_COLOUR, FEM_COLOUR, SECOND_COLOUR, WIDTH, save, styled
+from .style import EXACT_COLOUR, FEM_COLOUR, SECOND_COLOUR, chart, save, styled
 
 __all__ = ["VARIANT_LABELS", "VARIANT_STYLES", "plot_impact_contact", "plot_impact_motion"]
 
@@ -70,8 +69,7 @@ def _impact_figure(
     """Two normalised histories per variant, and their difference from the exact solution."""
     if not 0 < len(histories) <= len(VARIANT_STYLES):
         raise ValueError(f"histories must hold 1 to {len(VARIANT_STYLES)} ImpactHistory objects")
-    figure = Figure(figsize=(WIDTH, 5.0), layout="constrained")
-    top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=(3, 1.3))
+    figure, (top, bottom) = chart(5.0, 2, 1, sharex=True, height_ratios=(3, 1.3))
     colours = (FEM_COLOUR, SECOND_COLOUR)
     for history, style in zip(histories.values(), VARIANT_STYLES, strict=False):
         exact = reference.history(times=np.clip(history.t, 0.0, reference.t_y))
@@ -175,15 +173,8 @@ def plot_impact_motion(
     reference : ImpactResult
         The exact impact: normalises by its x_c (m), P_c (N), t_c (s); the lower panel is each
         history minus this exact solution at the same instants (% of the maximum).
-    path : path-like
-        PNG to write (1280 x 1000 pixels).
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
+    path, figure_format
+        The PNG (1280 x 1000 pixels) and the formats, as every chart (:mod:`.style`).
     """
     return _impact_figure(histories, reference, path, _MOTION, figure_format)
 
@@ -205,10 +196,5 @@ def plot_impact_contact(
     duration), where a ~ x^(1/n) and p(0) ~ x^(1-1/n) are infinitely steep; a difference
     beyond it is marked by a triangle on the panel's edge and its extreme written in the panel
     (as in either figure).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     return _impact_figure(histories, reference, path, _CONTACT, figure_format)

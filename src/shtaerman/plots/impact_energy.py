@@ -16,7 +16,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from ..fem.impact_run import ImpactRun
 from ..study.dynamic.case import DynamicCase
@@ -26,7 +25,7 @@ from .style import (
     EXACT_COLOUR,
     FEM_COLOUR,
     SECOND_COLOUR,
-    WIDTH,
+    chart,
     save,
     si_prefix,
     styled,
@@ -126,8 +125,7 @@ def plot_force_depth_loop(
     x_scale, x_unit = si_prefix(max(quasi.x_c, result.x_max), "m")
     reach = max(quasi.x_c, result.x_max)
     x = np.linspace(0.0, reach, 301)
-    figure = Figure(figsize=(WIDTH, 4.4), layout="constrained")
-    ax = figure.subplots()
+    figure, ax = chart(4.4)
     ax.plot(x * x_scale, quasi.beta * x**quasi.force_exponent, color=EXACT_COLOUR,
             label=QUASI_STATIC_LAW + (PAD_NOTE if on_pad(result) else ""))  # fmt: skip
     ax.plot(loop["x_load"] * x_scale, loop["P_load"], color=FEM_COLOUR, label="FEM loading")
@@ -160,8 +158,7 @@ def plot_energy_history(case: DynamicCase, path: Path | str, *, figure_format: s
     ``figure_format`` "svg" or "pdf" beside it); the dotted line marks separation."""
     result = case.result
     t_scale, t_unit = si_prefix(float(result.t[-1]), "s")
-    figure = Figure(figsize=(WIDTH, 4.4), layout="constrained")
-    ax = figure.subplots()
+    figure, ax = chart(4.4)
     styles = ENERGY_STYLES | {pad: ENERGY_STYLES[label] for label, pad in PAD_LABELS.items()}
     for label, values in energy_shares(result).items():
         colour, style = styles[label]

@@ -8,10 +8,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from ..study.contact.layer import LEVELS
-from .style import WIDTH, plain_log, save, styled
+from .style import chart, plain_log, save, styled
 
 __all__ = [
     "LAYER_MAP_CAPTION",
@@ -56,13 +55,10 @@ def plot_layer_map(
     ----------
     series : mapping of str to MapSeries
         Legend label -> the series (ratios >= 1; a ratio at or below 1 is not drawn).
-    path : path-like
-        PNG to write.
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
+    path, figure_format
+        The PNG and the formats, as every chart (:mod:`.style`).
     """
-    figure = Figure(figsize=(WIDTH, 4.6), layout="constrained")
-    axes = figure.subplots()
+    figure, axes = chart(4.6)
     for level, shade in sorted(zip(LEVELS, ("#cfcfcf", "#ececec"), strict=True), reverse=True):
         axes.axhspan(1e-6, level, color=shade, zorder=0, lw=0)
         axes.axhline(level, color="#808080", lw=0.8, zorder=1)
@@ -136,15 +132,12 @@ def plot_layer_restitution(
     ----------
     series : mapping of str to RestitutionSeries
         Legend label -> the series.
-    path : path-like
-        PNG to write.
+    path, figure_format
+        The PNG and the formats, as every chart (:mod:`.style`).
     half_space : float, optional
         The half-space's dynamic restitution, drawn as a grey reference line.
-    figure_format : {"png", "svg", "pdf"}
-        "svg" or "pdf" also writes the figure in that format beside the PNG.
     """
-    figure = Figure(figsize=(WIDTH, 3.6), layout="constrained")
-    left, right = figure.subplots(1, 2)
+    figure, (left, right) = chart(3.6, 1, 2)
     if half_space is not None:
         left.axhline(half_space, color="#808080", lw=1.0, zorder=1)
         left.text(

@@ -12,10 +12,9 @@ import math
 from pathlib import Path
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from ..theory.viscoelastic import PronySeries
-from .style import EXACT_COLOUR, FEM_COLOUR, SECOND_COLOUR, save, styled
+from .style import EXACT_COLOUR, FEM_COLOUR, SECOND_COLOUR, chart, save, styled
 
 __all__ = ["POINTS_PER_DECADE", "prony_curves", "prony_figure"]
 
@@ -51,8 +50,7 @@ def prony_figure(
     data = prony_curves(series, modulus)
     unit = "E / E0" if modulus is None else "MPa"
     factor = 1.0 if modulus is None else 1e-6
-    figure = Figure(figsize=(9.0, 3.6), layout="constrained")
-    left, right = figure.subplots(1, 2)
+    figure, (left, right) = chart(3.6, 1, 2, width=9.0)
     left.semilogx(data["time"], factor * data["relaxation"], color=EXACT_COLOUR)
     left.set(xlabel="t (s)", ylabel=f"E(t) ({unit})")
     for tau in series.times:

@@ -79,25 +79,13 @@ def plot_revolved(
 
     Parameters
     ----------
-    result : IndentationResult
-        The FEM indentation run.
-    path : path-like
-        PNG to write (1600 x 1000 pixels); parent folders are created.
-    field : str
-        One of :data:`shtaerman.plots.fields.FIELDS` (stresses in Pa, displacements in m;
-        prefixed unit in the bar).
-    step : int
-        Index of the depth in ``result.steps``; default the largest.
+    result, path, field, step
+        As for :func:`.sections.plot_field`; returns ``path``.
     extent : float
         Radius of the cylinder shown in contact radii a (rounded up to a whole tick); its
         depth is 2/3 of it.
     angle : float
         Sweep in degrees, in (0, 360); the rest is left open to show the section.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     if not 0.0 < angle < 360.0:
         raise InputError(f"angle must lie in (0, 360) degrees, got {angle!r}")

@@ -353,17 +353,10 @@ def plot_each_field(
 
     Parameters
     ----------
-    result : IndentationResult
-        The FEM indentation run.
-    paths : mapping of str to path-like
-        Field name (one of :data:`FIELDS`) to the PNG to write (1600 x 1000 pixels).
-    step, extent, deformed
+    result, step, extent, deformed
         As for :func:`plot_field`.
-
-    Returns
-    -------
-    dict of str to pathlib.Path
-        Field name to PNG path.
+    paths : mapping of str to path-like
+        Field name (one of :data:`FIELDS`) to the PNG to write; returned as field -> Path.
     """
     options = (step, extent, deformed)
     cut = _shared_section(result, list(paths), options)

@@ -43,8 +43,10 @@ __all__ = [
     "SECOND_COLOUR",
     "STYLE",
     "WIDTH",
+    "chart",
     "check_figure_format",
     "fraction",
+    "note",
     "percent",
     "plain_log",
     "points",
@@ -124,6 +126,20 @@ def styled(function: Callable[..., Path]) -> Callable[..., Path]:
             return function(*args, **kwargs)
 
     return wrapper
+
+
+def chart(height: float, *grid: int, width: float = WIDTH, **options: Any) -> tuple[Figure, Any]:
+    """A new figure ``width`` x ``height`` inches (constrained layout) and its axes:
+    ``figure.subplots(*grid, **options)``."""
+    figure = Figure(figsize=(width, height), layout="constrained")
+    return figure, figure.subplots(*grid, **options)
+
+
+def note(axes: Axes, text: str, x: float = 0.98) -> None:
+    """A small grey remark in the lower right corner of ``axes`` (``x``: its right edge, in
+    axes fractions)."""
+    axes.text(x, 0.02, text, transform=axes.transAxes, ha="right", va="bottom", fontsize=7.5,
+              color="0.3")  # fmt: skip
 
 
 def save(figure: Figure, path: Path | str, figure_format: str = "png") -> Path:

@@ -79,11 +79,14 @@ def _validate_exponent(name: str, value: float) -> float:
     return validate_positive(f"{name} (Ateb exponent)", value)
 
 
-def _validate_phase(phi: ArrayLike) -> NDArray[np.float64]:
+def _inputs(phi: ArrayLike, **exponents: float) -> tuple[float, float, NDArray, float]:
+    """m, n (validated in the order given), the phase as floats and the quarter period."""
+    values = {name: _validate_exponent(name, value) for name, value in exponents.items()}
     array = np.asarray(phi)
     if array.dtype.kind not in "biuf":
         raise InputError(f"phi must be real numbers, got an array of dtype {array.dtype}")
-    return array.astype(np.float64, copy=False)
+    m, n = values["m"], values["n"]
+    return m, n, array.astype(np.float64, copy=False), quarter_period(m, n)
 
 
 def ateb_half_period(m: float, n: float) -> float:
@@ -181,10 +184,7 @@ def ateb_sine(m: float, n: float, phi: ArrayLike) -> np.ndarray | float:
     >>> round(float(ateb_sine(5 / 3, 1, 4 / 3 * 0.5)), 6)
     0.489372
     """
-    m = _validate_exponent("m", m)
-    n = _validate_exponent("n", n)
-    phase = _validate_phase(phi)
-    quarter = quarter_period(m, n)
+    m, n, phase, quarter = _inputs(phi, m=m, n=n)
     distance, _, sign, _ = _reduce(phase, quarter)
     value = np.copysign(1.0, phase) * sign * _quarter_wave(distance, quarter, m, n)
     return value[()]
@@ -220,10 +220,7 @@ def ateb_cosine(n: float, m: float, phi: ArrayLike) -> np.ndarray | float:
     >>> round(float(ateb_cosine(5 / 3, 1, 4 / 3 * 0.5)), 6)
     0.840745
     """
-    n = _validate_exponent("n", n)
-    m = _validate_exponent("m", m)
-    phase = _validate_phase(phi)
-    quarter = quarter_period(m, n)
+    m, n, phase, quarter = _inputs(phi, n=n, m=m)
     _, distance, _, sign = _reduce(phase, quarter)
     value = sign * _quarter_wave(distance, quarter, n, m)
     return value[()]
@@ -248,10 +245,7 @@ def ateb_pair(m: float, n: float, phi: ArrayLike) -> tuple[np.ndarray, np.ndarra
     tuple of numpy.ndarray
         ``(Sa(m, n, phi), Ca(n, m, phi))``, each shaped like ``phi``.
     """
-    m = _validate_exponent("m", m)
-    n = _validate_exponent("n", n)
-    phase = _validate_phase(phi)
-    quarter = quarter_period(m, n)
+    m, n, phase, quarter = _inputs(phi, m=m, n=n)
     sine_distance, cosine_distance, sine_sign, cosine_sign = _reduce(phase, quarter)
     a, b = 1.0 / (m + 1.0), 1.0 / (n + 1.0)
     sine_side = sine_distance / quarter <= betainc(a, b, 0.5)

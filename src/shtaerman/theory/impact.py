@@ -37,6 +37,7 @@ __all__ = [
     "ImpactResult",
     "QuasiStaticValidityWarning",
     "duration_integral",
+    "history_times",
     "representable",
     "solve_impact",
 ]
@@ -142,7 +143,7 @@ class ImpactResult:
         times : array_like, optional
             Instants in s, each within [0, t_y].
         """
-        t = self._times(points, times)
+        t = history_times(self.t_y, points, times)
         if times is None:  # equally spaced over [0, t_y]: restitution mirrors compression
             half = (t.size + 1) // 2
             x_half, v_half = self._state(t[:half])
@@ -160,17 +161,6 @@ class ImpactResult:
         x[t >= self.t_y] = 0.0
         return x, self.velocity * cosine
 
-    def _times(self, points: int, times: ArrayLike | None) -> np.ndarray:
-        if times is not None:
-            t = np.atleast_1d(np.asarray(times, dtype=float))
-            if np.any((t < 0) | (t > self.t_y)):
-                end = bound_text(float(self.t_y), "high", 6)
-                raise InputError(f"times must lie within [0, t_y] = [0, {end}] s")
-            return t
-        if int(points) < 2:
-            raise InputError(f"points must be >= 2, got {points!r}")
-        return np.linspace(0.0, self.t_y, int(points))
-
     def _geometry(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         with np.errstate(divide="ignore", invalid="ignore"):
             a = np.asarray(self.law.contact_radius(x), dtype=float)
@@ -181,6 +171,20 @@ class ImpactResult:
         """The SI keys of ``shtaerman impact --json``."""
         names = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
         return {name: float(getattr(self, name)) for name in names}
+
+
+def history_times(t_y: float, points: int, times: ArrayLike | None) -> np.ndarray:
+    """The instants of an impact's history in s: ``points`` (>= 2) equally spaced over
+    [0, t_y], both ends included, or the given ``times``, each within [0, t_y]."""
+    if times is not None:
+        t = np.atleast_1d(np.asarray(times, dtype=float))
+        if np.any((t < 0) | (t > t_y)):
+            end = bound_text(float(t_y), "high", 6)
+            raise InputError(f"times must lie within [0, t_y] = [0, {end}] s")
+        return t
+    if int(points) < 2:
+        raise InputError(f"points must be >= 2, got {points!r}")
+    return np.linspace(0.0, t_y, int(points))
 
 
 def check_velocity(velocity: float) -> None:

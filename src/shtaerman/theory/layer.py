@@ -42,6 +42,7 @@ __all__ = [
     "BASES",
     "FoundationLayer",
     "IncompressibleThinLayer",
+    "check_base",
     "half_space_limit",
     "oedometric_stiffness",
     "sliding_stiffness",
@@ -50,6 +51,13 @@ __all__ = [
 
 BASES = ("bonded", "lubricated")
 """Conditions at the rigid base z = -H: bonded u = 0; lubricated u_z = 0, free to slide."""
+
+
+def check_base(base: str) -> str:
+    """``base`` if it is one of :data:`BASES`, else :class:`InputError` naming them."""
+    if base not in BASES:
+        raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
+    return base
 
 
 def half_space_limit(indenter: PowerLawIndenter, body: Material) -> PowerLawContact:
@@ -192,9 +200,7 @@ def thin_layer_limit(
     shtaerman.validation.InputError
         If ``base`` is unknown or a value is out of range.
     """
-    if base not in BASES:
-        raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
-    if base == "lubricated":
+    if check_base(base) == "lubricated":
         return FoundationLayer(indenter, sliding_stiffness(body, thickness))
     if body.poisson_ratio == 0.5:
         return IncompressibleThinLayer(indenter, body.shear_modulus, thickness)

@@ -40,7 +40,7 @@ from scipy.special import gamma
 
 from ..validation import InputError, validate_poisson, validate_positive
 from .indenter import PowerLawIndenter
-from .layer import BASES
+from .layer import check_base
 from .materials import Material
 
 __all__ = [
@@ -60,12 +60,6 @@ MIN_RATIO = 0.01
 :mod:`shtaerman.theory.layer` are within about 1e-5 of the force)."""
 FREQUENCY_CUTOFF = 24.0
 """Upper limit of u = xi H: 1 - K(u) < 1e-16 beyond it (it decays as u^2 exp(-2u))."""
-
-
-def _check_base(base: str) -> str:
-    if base not in BASES:
-        raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
-    return base
 
 
 def _decay(u: np.ndarray, nu: float, base: str) -> np.ndarray:
@@ -88,7 +82,7 @@ def compliance_factor(t: ArrayLike, poisson_ratio: float, base: str = "bonded") 
         If ``base`` is unknown, nu is not in [0, 0.5] or a t is negative or not finite.
     """
     nu = validate_poisson("nu2", poisson_ratio, low=0.0)
-    _check_base(base)
+    check_base(base)
     t = np.asarray(t, dtype=float)
     if not np.all(np.isfinite(t) & (t >= 0.0)):
         raise InputError(f"t must be finite numbers >= 0, got {t!r}", "t")
@@ -185,7 +179,7 @@ def layer_contact(
     nu = validate_poisson("nu2", poisson_ratio, low=0.0)
     h, n = validate_positive("h", h), validate_positive("exponent", exponent)
     resolution = validate_positive("resolution", resolution)
-    _check_base(base)
+    check_base(base)
     if h < MIN_RATIO:
         raise InputError(
             f"h: H / a must be >= {MIN_RATIO:g} for the layer reference (use the thin limits "
@@ -231,7 +225,7 @@ class LayerReference:
     def __post_init__(self) -> None:
         validate_positive("thickness", self.thickness, "m")
         validate_poisson("nu2", self.body.poisson_ratio, low=0.0)
-        _check_base(self.base)
+        check_base(self.base)
         if self.indenter.exponent <= 1.0:
             raise InputError(
                 f"exponent must be > 1 for the layer reference, got {self.indenter.exponent!r}",
@@ -289,6 +283,6 @@ def thick_layer_coefficient(poisson_ratio: float, base: str = "bonded") -> float
     given depth by that factor (0.877 bonded, nu = 0.3; 0.743 lubricated, any nu).
     """
     nu = validate_poisson("nu2", poisson_ratio, low=0.0)
-    _check_base(base)
+    check_base(base)
     u, weights = _panels(np.linspace(0.0, 2.0 * FREQUENCY_CUTOFF, 49), 2 * FREQUENCY_NODES)
     return float(2.0 / math.pi * (weights @ _decay(u, nu, base)))

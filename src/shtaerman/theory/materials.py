@@ -47,7 +47,7 @@ class Material:
             validate_positive("youngs_modulus", self.youngs_modulus, "Pa (or math.inf: rigid)")
         validate_poisson("poisson_ratio", self.poisson_ratio)
         if self.density is not None:
-            object.__setattr__(self, "density", _validate_density(self.density))
+            object.__setattr__(self, "density", validate_density("density", self.density))
 
     @property
     def compliance(self) -> float:
@@ -58,10 +58,6 @@ class Material:
     def shear_modulus(self) -> float:
         """Shear modulus mu = E / (2 (1 + nu)) in Pa."""
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
-
-
-def _validate_density(density: object) -> float:
-    return validate_density("density", density)
 
 
 def validate_density(name: str, density: object) -> float:

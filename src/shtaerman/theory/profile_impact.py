@@ -31,7 +31,7 @@ from scipy.optimize import brentq
 from scipy.special import roots_legendre
 
 from ..validation import InputError, validate_positive
-from .impact import ImpactHistory, check_velocity, representable
+from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
 from .sneddon import SneddonContact
 
 __all__ = ["ProfileImpactResult", "solve_profile_impact"]
@@ -88,11 +88,12 @@ def _panels(law: SneddonContact, top: float, to_the_equator: bool = False) -> np
     return ends
 
 
-def _work(law: SneddonContact, squares: _Cumulative, a: ArrayLike) -> np.ndarray:
-    """W(a) = P delta - E* (a delta^2 - Int_0^a delta^2) in J at contact radii a (m)."""
+def _work(law: SneddonContact, a: ArrayLike, below: ArrayLike) -> np.ndarray:
+    """W(a) = P delta - E* (a delta^2 - Int_0^a delta^2) in J at contact radii a (m), with
+    ``below`` = Int_0^a delta^2 (m^3)."""
     a = np.asarray(a, dtype=float)
     delta, force = law.depth(a), law.force_at_radius(a)
-    return force * delta - law.modulus * (a * delta**2 - squares(a))
+    return force * delta - law.modulus * (a * delta**2 - below)
 
 
 def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
@@ -108,13 +109,13 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     ends = np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 100))
     rough = _Cumulative.of(ends, square)
     guess = top
-    if float(_work(law, rough, top)) >= energy:
-        guess = brentq(lambda a: float(_work(law, rough, a)) - energy, 0.0, top, rtol=1e-6)
+    if float(_work(law, top, rough(top))) >= energy:
+        guess = brentq(lambda a: float(_work(law, a, rough(a))) - energy, 0.0, top, rtol=1e-6)
     for reach in (min(top, 1.25 * guess), top):
         squares = _Cumulative.of(_panels(law, reach, law.sphere), square)
-        if float(_work(law, squares, reach)) >= energy:
+        if float(_work(law, reach, squares(reach))) >= energy:
             return brentq(
-                lambda a, squares=squares: float(_work(law, squares, a)) - energy,
+                lambda a, squares=squares: float(_work(law, a, squares(a))) - energy,
                 0.0,
                 reach,
                 xtol=1e-300,
@@ -173,11 +174,7 @@ class ProfileImpactResult:
 
         def rate(u: np.ndarray) -> np.ndarray:  # dt/du = 2 a_c u delta'(a) / v(a), finite at 0
             a = a_c * (1.0 - u**2)
-            work = law.force_at_radius(a) * law.depth(a) - law.modulus * (
-                a * law.depth(a) ** 2 - (whole - squares(u))
-            )
-            speed = np.sqrt(np.clip(self.velocity**2 - 2.0 * work / self.mass, 0.0, None))
-            return 2.0 * a_c * u * law.depth_slope(a) / speed
+            return 2.0 * a_c * u * law.depth_slope(a) / self._speed(a, whole - squares(u))
 
         return _Cumulative.of(self._u_ends, rate), squares
 
@@ -186,9 +183,11 @@ class ProfileImpactResult:
         a = np.asarray(a, dtype=float)
         _, squares = self._clock
         below = float(squares(1.0)) - squares(np.sqrt(np.clip(1.0 - a / self.a_c, 0.0, 1.0)))
-        work = self.law.force_at_radius(a) * self.law.depth(a) - self.law.modulus * (
-            a * self.law.depth(a) ** 2 - below
-        )
+        return self._speed(a, below)
+
+    def _speed(self, a: np.ndarray, below: ArrayLike) -> np.ndarray:
+        """|dx/dt| in m/s at contact radii a (m) where Int_0^a delta^2 = ``below`` (m^3)."""
+        work = _work(self.law, a, below)
         return np.sqrt(np.clip(self.velocity**2 - 2.0 * work / self.mass, 0.0, None))
 
     @property
@@ -244,14 +243,7 @@ class ProfileImpactResult:
     def history(self, points: int = 201, times: ArrayLike | None = None) -> ImpactHistory:
         """The histories t, x, v, P, a, p0 over [0, t_y] (``points`` instants, or ``times``
         in s), each exact to the quadrature's round-off."""
-        if times is None:
-            if int(points) < 2:
-                raise InputError(f"points must be >= 2, got {points!r}")
-            t = np.linspace(0.0, self.t_y, int(points))
-        else:
-            t = np.atleast_1d(np.asarray(times, dtype=float))
-            if np.any((t < 0) | (t > self.t_y)):
-                raise InputError(f"times must lie within [0, t_y] = [0, {self.t_y:.6g}] s")
+        t = history_times(self.t_y, points, times)
         mirrored = np.minimum(t, self.t_y - t)  # restitution mirrors compression
         a = self.a_c * (1.0 - self._u_at(np.clip(self.t_c - mirrored, 0.0, None)) ** 2)
         a[mirrored <= 0.0] = 0.0  # first touch and separation
@@ -260,10 +252,8 @@ class ProfileImpactResult:
             p0 = np.where(a > 0, self.law.central_pressure_at_radius(a), 0.0)
         return ImpactHistory(t, self.law.depth(a), v, self.law.force_at_radius(a), a, p0)
 
-    def maxima(self) -> dict[str, float]:
-        """The SI keys of ``shtaerman impact --json``."""
-        names = ("beta", "x_c", "P_c", "a_c", "p_c", "t_c", "t_y", "impulse", "impulse_simpson")
-        return {name: float(getattr(self, name)) for name in names}
+    maxima = ImpactResult.maxima
+    """The SI keys of ``shtaerman impact --json``."""
 
 
 def solve_profile_impact(mass: float, velocity: float, law: SneddonContact) -> ProfileImpactResult:

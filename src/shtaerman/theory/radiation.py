@@ -249,8 +249,6 @@ def radiation_estimate(
     p = validate_positive("force_exponent", force_exponent)
     if p <= 0.5:
         raise InputError(f"force_exponent must be > 0.5 (finite df/dt energy), got {p!r}")
-    rho = validate_positive("density", density, "kg/m^3")
-    g = validate_positive("shear_modulus", shear_modulus, "Pa")
     x_m = ((p + 1.0) * m * v0**2 / (2.0 * b)) ** (1.0 / (p + 1.0))
     shape = 2.0 * p**2 * v0 * beta_function((2.0 * p - 1.0) / (p + 1.0), 1.5) / (p + 1.0)
     try:
@@ -259,7 +257,7 @@ def radiation_estimate(
         rate = math.exp(
             min(math.log(shape) + 2.0 * math.log(b) + (2.0 * p - 1.0) * math.log(x_m), 709.0)
         )
-    return _estimate(m, v0, x_m, rate, rho, g, poisson_ratio)
+    return _estimate(m, v0, x_m, rate, density, shear_modulus, poisson_ratio)
 
 
 def profile_radiation_estimate(
@@ -269,22 +267,22 @@ def profile_radiation_estimate(
     tabulated profile (:mod:`shtaerman.theory.profile_impact`), whose Int (dP/dt)^2 dt is a
     quadrature (the power law's closed form in :func:`radiation_estimate`); density in
     kg/m^3, shear modulus in Pa."""
-    rho = validate_positive("density", density, "kg/m^3")
-    g = validate_positive("shear_modulus", shear_modulus, "Pa")
     rate = quasi.force_rate_squared_integral
-    return _estimate(quasi.mass, quasi.velocity, quasi.x_c, rate, rho, g, poisson_ratio)
+    return _estimate(quasi.mass, quasi.velocity, quasi.x_c, rate, density, shear_modulus,
+                     poisson_ratio)  # fmt: skip
 
 
 def _estimate(
     m: float, v0: float, x_m: float, rate: float, rho: float, g: float, poisson_ratio: float
 ) -> RadiationEstimate:
     """The estimate of an impact of ``m`` kg at ``v0`` m/s reaching ``x_m`` m with
-    Int (dP/dt)^2 dt = ``rate`` N^2/s, on a body of density ``rho``, shear modulus ``g``."""
+    Int (dP/dt)^2 dt = ``rate`` N^2/s, on a body of density ``rho``, shear modulus ``g``
+    (both checked here, by :func:`radiated_energy`)."""
     energy = radiated_energy(rate, rho, g, poisson_ratio)
     fraction = energy / (0.5 * m * v0**2)
     return RadiationEstimate(
         radiation_integral=radiation_integral(poisson_ratio),
-        shear_wave_speed=math.sqrt(g / rho),
+        shear_wave_speed=math.sqrt(float(g) / float(rho)),
         max_depth=x_m,
         force_rate_squared_integral=rate,
         radiated_energy=energy,
