@@ -1,4 +1,4 @@
-"""The bonded contact at finite strain (fem/finite_stick.py) on the paper's case, its cost.
+"""The bonded contact at finite strain (fem/contact/finite_stick.py) on the paper's case, its cost.
 
 The paper's case (A = 5, n = 1.5, E2 = 7.5 MPa, nu2 = 0.5 neo-Hookean, the eight default
 depths up to the x_c of 0.7 kg at 3 m/s) with a bonded indenter on the default finite-strain

@@ -9,7 +9,7 @@ e 0.8199 (2.4e-4), 57 s; frictionless 18 s (ratio 3.1). The researcher's n = 1.3
 the CLI with its error bar: 50.6 s (load 0.6-1.6), frictionless 24.5 s (load 1.6-2.0).
 Measured 2026-11-29 in CPU seconds (the API, n = 1.3, A = 2 with its error bar): 42.5 CPU s
 (wall 379 s at load 9-13: the "300+ s" seen at load 8 was the wall, not the cost); with the
-Coulomb Newton's reused factorizations (fem/finite_stick.py) 28.7 CPU s (wall 245 s at load
+Coulomb Newton's reused factorizations (fem/contact/finite_stick.py) 28.7 CPU s (wall 245 s at load
 9-14; this script, A = 2.011: friction 26.9 CPU s, frictionless 18.6 CPU s, ratio 1.44),
 21.4 CPU s with those of the last four contact sets kept. Where it goes (cProfile, 28.7 s):
 the finest of the three levels (4960 dofs, 100 time steps) about 2/3; SuperLU factorizations

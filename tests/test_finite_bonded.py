@@ -1,9 +1,9 @@
-"""The bonded (no-slip) indenter at finite strain (fem/finite_stick.py).
+"""The bonded (no-slip) indenter at finite strain (fem/contact/finite_stick.py).
 
 Checks, on coarse meshes (the same mesh for every pair compared, so that most of the FE error
 cancels in the ratios):
 - small strain (d/a = 0.01, nu2 = 0.3, where bonded differs from frictionless in linear
-  theory, Spence): the finite-strain bonded force equals the linear bonded one (fem/stick.py)
+  theory, Spence): the finite-strain bonded force equals the linear bonded one (fem/contact/stick.py)
   up to the finite-strain departure, which grows like d/a (the frictionless pair departs by
   1.2e-3 at d/a = 0.01, 2.4e-3 at 0.02 on this mesh; the bonded pair by 0.6e-3, 1.1e-3), and
   the bonded / frictionless ratio reproduces the linear one to the same order;

@@ -1,4 +1,4 @@
-"""The Newton of the Coulomb contact at finite strain (fem/finite_stick.py), its cost.
+"""The Newton of the Coulomb contact at finite strain (fem/contact/finite_stick.py), its cost.
 
 - the sliding nodes' friction is linearized in the multiplier: the eliminated step solves the
   unsymmetric saddle system [[K, -W_A^T], [-G_A, 0]], W_i = (f' - s mu, -(1 + s mu f'));

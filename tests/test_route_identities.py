@@ -165,7 +165,7 @@ def test_friction_limits_of_the_finite_strain_impact():
     assert impact(1100.0, 0.3, **physics, interface="bonded", friction=0.0) == frictionless
     coulomb = impact(1100.0, 0.3, **physics, interface="bonded", friction=100.0)
     # the same contact, solved by two Newtons that reuse their factorizations differently
-    # (fem/finite_stick.py): measured 1.4e-9 apart, within the Newton tolerance (1e-8)
+    # (fem/contact/finite_stick.py): measured 1.4e-9 apart, within the Newton tolerance (1e-8)
     assert largest_difference(coulomb, bonded) < 1e-8
     # and the interface matters: bonded is 2.6 % stiffer (P_max) than frictionless here
     assert largest_difference(bonded, frictionless) > 0.01

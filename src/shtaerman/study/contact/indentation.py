@@ -305,7 +305,7 @@ def run_indentation(
     aligned : bool
         Forces of the vertex-aligned contacts (default) or nodal sums, see
         :func:`shtaerman.fem.contact.solve_contact`. ``mesh.interface`` "bonded" presses an
-        indenter the surface sticks to (:func:`shtaerman.fem.stick.solve_bonded_contact`,
+        indenter the surface sticks to (:func:`shtaerman.fem.contact.stick.solve_bonded_contact`,
         nodal sums), or slides on past Coulomb's ``mesh.friction`` (0: the frictionless
         solve, whose contact it is).
     prony : PronySeries, optional

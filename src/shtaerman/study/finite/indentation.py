@@ -1,6 +1,6 @@
 """The finite-strain (neo-Hookean) indentation test: run it and report it like the linear one.
 
-:func:`shtaerman.fem.finite_contact.run_finite_indentation` does the computing; this module
+:func:`shtaerman.fem.contact.finite.run_finite_indentation` does the computing; this module
 adds the power-law fit and the JSON of ``shtaerman contact --model neo-hookean``: the linear
 report's keys, with ``model``, per-step ``strain_energy`` (J) and ``newton_iterations``, and the
 departures from Shtaerman's linear solution in place of errors. :func:`run_finite_ladder` runs it
@@ -140,9 +140,9 @@ def run_finite_study(
         Any increasing depths in m (load stepping is internal); default the linear test's
         eight depths up to the paper's impact x_c.
     mesh : MeshSettings, optional
-        Default :data:`shtaerman.fem.finite_contact.FINITE_MESH`; its ``interface`` "bonded"
+        Default :data:`shtaerman.fem.contact.finite.FINITE_MESH`; its ``interface`` "bonded"
         presses an indenter the rubber sticks to
-        (:func:`shtaerman.fem.finite_stick.solve_finite_bonded_contact`).
+        (:func:`shtaerman.fem.contact.finite_stick.solve_finite_bonded_contact`).
     rubber : RubberModel, optional
         Default neo-Hookean with the quadratic volumetric energy.
 

@@ -171,7 +171,7 @@ class LadderStart:
 def surface_radii(indenter: Indenter, top: float, mesh: MeshSettings) -> np.ndarray:
     """Radii in m of the surface nodes besides the axis (vertices and mid-sides), increasing,
     of ``mesh`` meshed for the deepest depth ``top`` (m) as
-    :func:`shtaerman.fem.finite_contact.run_finite_indentation` meshes it (about 0.1 s)."""
+    :func:`shtaerman.fem.contact.finite.run_finite_indentation` meshes it (about 0.1 s)."""
     zone = mesh.zone_factor(tip_exponent(indenter))
     refined = mesh.margin * geometric_radius(indenter, top) * zone
     built = mesh.build(refined)
