@@ -2,11 +2,11 @@
 
 Checks, on coarse meshes (the same mesh for every pair compared, so that most of the FE error
 cancels in the ratios):
-- small strain (d/a = 0.01, nu2 = 0.3, where bonded differs from frictionless in linear
-  theory, Spence): the finite-strain bonded force equals the linear bonded one (fem/contact/stick.py)
-  up to the finite-strain departure, which grows like d/a (the frictionless pair departs by
-  1.2e-3 at d/a = 0.01, 2.4e-3 at 0.02 on this mesh; the bonded pair by 0.6e-3, 1.1e-3), and
-  the bonded / frictionless ratio reproduces the linear one to the same order;
+- small strain (d/a = 0.01, nu2 = 0.3, where bonded differs from frictionless in linear theory,
+  Spence): the finite-strain bonded force equals the linear bonded one (fem/contact/stick.py) up
+  to the finite-strain departure, which grows like d/a (the frictionless pair departs by 1.2e-3 at
+  d/a = 0.01, 2.4e-3 at 0.02 on this mesh; the bonded pair by 0.6e-3, 1.1e-3), and the bonded /
+  frictionless ratio reproduces the linear one to the same order;
 - nu2 = 0.5: the linear bonded and frictionless forces coincide (Dundurs beta = 0), the
   finite-strain ones do not: the bonded force is higher, by 2.6e-3 at d/a = 0.3;
 - energy: the stuck nodes do not move radially, so the radial reactions do no work and

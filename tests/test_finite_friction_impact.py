@@ -1,5 +1,6 @@
 """Friction in the finite-strain impact (fem/finite_dynamic.py with
-fem/contact/finite_stick.HistoryStepper): a bonded (no slip) or Coulomb indenter strikes a rubber body.
+fem/contact/finite_stick.HistoryStepper): a bonded (no slip) or Coulomb indenter strikes a
+rubber body.
 
 Each time step is one load step of the bonded or Coulomb contact from the contact committed at
 the end of the last step, so the slip history is the impact's own. The striker then steps by
