@@ -26,6 +26,7 @@ import io
 import json
 import logging
 import os
+import queue
 import re
 import shutil
 import signal
@@ -39,7 +40,7 @@ import tomllib
 import uuid
 import warnings
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -102,6 +103,8 @@ warnings this tool has neither): the statistical profiler samples each worker's 
 10 ms, the system monitor polls psutil every 0.5 s and the event-loop tick runs every 20 ms.
 An 8-case contact sweep on 2 workers spent 0.4-0.7 s of CPU in the workers outside its cases and
 0.35 s in this process; 0.15-0.2 s and 0.15 s without them, against 5 s of cases."""
+SIGNAL_LATENCY = 0.1
+"""Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 CONNECT_TIMEOUT = "10s"
 """How long to try reaching an existing scheduler (``scheduler=``)."""
 
@@ -139,6 +142,8 @@ class SweepOutcome:
         Why the first lost case could not run.
     warned : int
         Cases whose computation issued warnings (listed in ``results.json``).
+    figures : tuple of Path
+        The figures this call drew (none over 3 or more axes, nor when not asked or failed).
     """
 
     out: Path
@@ -152,6 +157,7 @@ class SweepOutcome:
     workers: int
     lost_reason: str | None = None
     warned: int = 0
+    figures: tuple[Path, ...] = ()
 
     @property
     def exit_code(self) -> int:
@@ -895,7 +901,10 @@ class _Run:
         if outcome.lost == 0:  # every case is saved: a signal stops the summary, kept for resume
             try:
                 with stop.raising():
-                    _write_results(self.spec, self.out, self.cases, self.records, outcome, figures)
+                    drawn = _write_results(
+                        self.spec, self.out, self.cases, self.records, outcome, figures
+                    )
+                outcome = replace(outcome, figures=tuple(drawn))
             except SweepInterrupted as interrupted:
                 interrupted.saved, interrupted.total = len(self.records), len(self.cases)
                 raise
@@ -932,8 +941,6 @@ def _compute(
     stop: _StopFlag,
 ) -> int:
     """Run ``pending`` cases; each record is written as it arrives. Returns the worker count."""
-    from distributed import as_completed
-
     case_function = spec.kind_spec.case
     token = uuid.uuid4().hex[:8]
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
@@ -955,16 +962,23 @@ def _compute(
                 retries=retries,
                 pure=False,
             )
-            finished = as_completed(futures)
-            while not finished.is_empty():
-                stop.check()
-                batch = finished.next_batch(block=False)
-                if not batch:
-                    time.sleep(0.05)
-                for future in batch:
-                    _collect(out, future, by_key[future.key], records, lost)
-                    bar.update(1)
+            finished: queue.SimpleQueue = queue.SimpleQueue()
+            for future in futures:
+                future.add_done_callback(finished.put)
+            for _ in futures:
+                future = _next_finished(finished, stop)
+                _collect(out, future, by_key[future.key], records, lost)
+                bar.update(1)
             return nthreads
+
+
+def _next_finished(finished: queue.SimpleQueue, stop: _StopFlag) -> Any:
+    """The next future to finish, taken as it finishes (the last one ends the run), with
+    SIGINT/SIGTERM (``stop``) seen within :data:`SIGNAL_LATENCY`."""
+    while True:
+        stop.check()
+        with contextlib.suppress(queue.Empty):
+            return finished.get(timeout=SIGNAL_LATENCY)
 
 
 def _lost_reason(error: Exception) -> str:
@@ -1042,8 +1056,9 @@ def _write_results(
     records: Mapping[int, dict],
     outcome: SweepOutcome,
     figures: str | bool,
-) -> None:
-    """cases.csv, results.json and (``figures``: False or the figure format) the figures."""
+) -> list[Path]:
+    """cases.csv, results.json and (``figures``: False or the figure format) the figures;
+    returns the figures drawn."""
     from ..version import __version__
 
     kind = spec.kind_spec
@@ -1079,13 +1094,15 @@ def _write_results(
         },
     }
     _atomic_write(out / "results.json", json.dumps(json_safe(results), indent=2))
-    if figures:
-        from .figures import sweep_figures
+    if not figures:
+        return []
+    from .figures import sweep_figures
 
-        try:
-            _unlink_links(out / "figures")
-            sweep_figures(out / "results.json", out / "figures", figures)
-        except SweepInterrupted:
-            raise
-        except Exception as error:  # the results are safe; say what went wrong with the figures
-            warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)
+    try:
+        _unlink_links(out / "figures")
+        return sweep_figures(out / "results.json", out / "figures", figures)
+    except SweepInterrupted:
+        raise
+    except Exception as error:  # the results are safe; say what went wrong with the figures
+        warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)
+        return []
