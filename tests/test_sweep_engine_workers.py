@@ -54,6 +54,7 @@ def _worker_state() -> dict:
         # (1000: room for Python's own allocations meanwhile, many times over)
         "memory kept": _refaults() < 1000,
         "profiler": dask.config.get("distributed.worker.profile.enabled"),
+        "memory monitor": dask.config.get("distributed.worker.memory.monitor-interval"),
         "sigterm": signal.getsignal(signal.SIGTERM) is signal.SIG_DFL,
         "sigint": signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
     }
@@ -72,6 +73,7 @@ def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkey
         "inherited": True,
         "memory kept": True,
         "profiler": False,
+        "memory monitor": "500ms",
         "sigterm": True,
         "sigint": True,
     }
