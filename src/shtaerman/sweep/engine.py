@@ -380,24 +380,28 @@ def _record_files(out: Path) -> list[Path]:
     return files
 
 
-def read_records(out: str | Path, cases: list[Case]) -> tuple[dict[int, dict], list[Path]]:
+def read_records(out: str | Path, cases: list[Case]) -> dict[int, dict]:
     """The saved records of ``cases`` in ``out``, matched by their inputs (so a grid whose
     axes were reordered or extended keeps them), each relabelled with its case's index and
-    axis values; and the files that hold no valid record (edited, damaged or not a file)."""
+    axis values. A file that holds no valid record (edited, damaged or not a file) is said in a
+    warning, and its case is computed again."""
     wanted = {_case_key(case.params): case for case in cases}
     records: dict[int, dict] = {}
-    invalid = []
     for path in _record_files(Path(out)):
         record = _load_record(path)
         if record is None:
-            invalid.append(path)
+            warnings.warn(
+                f"{path} is not a case record this tool wrote (edited or damaged); its case is "
+                "computed again",
+                stacklevel=3,
+            )
             continue
         case = wanted.get(_case_key(record["inputs"]))
         if case is None or case.index in records:
             continue
         record = {**record, "index": case.index, "axis_values": case.axis_values}
         records[case.index] = _sealed(record)
-    return records, invalid
+    return records
 
 
 def _settle_records(out: Path, records: Mapping[int, dict]) -> None:
@@ -852,25 +856,13 @@ def run_sweep(
         ready = _check_folder(spec, out, backup, resume=resume, force=force)
         records: dict[int, dict] = {}
         if resume and is_sweep_folder(out):
-            records = _saved_records(out, cases)
+            records = read_records(out, cases)
             ready = _settled(ready, out, dict(records))
         run = _Run(spec, out, cases, records, len(records), start)
         with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
             return run.execute(
                 ready, workers, scheduler, retries, progress, figures and figure_format, stop
             )
-
-
-def _saved_records(out: Path, cases: list[Case]) -> dict[int, dict]:
-    """:func:`read_records`, with a warning for each file that holds no valid record."""
-    records, invalid = read_records(out, cases)
-    for path in invalid:
-        warnings.warn(
-            f"{path} is not a case record this tool wrote (edited or damaged); its case is "
-            "computed again",
-            stacklevel=3,
-        )
-    return records
 
 
 def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
@@ -898,29 +890,25 @@ class _Run:
         pending = [case for case in self.cases if case.index not in self.records]
         lost: dict[int, str] = {}
         used_workers = 0
-        if not pending:
-            ready()
-        else:
-            bar = _progress(len(self.cases), self.reused, self.spec.name, progress)
-            try:
+        try:
+            if not pending:
+                ready()
+            else:
+                bar = _progress(len(self.cases), self.reused, self.spec.name, progress)
                 used_workers = _compute(
                     self.spec, self.out, ready, pending, self.records, lost, workers,
                     scheduler, retries, bar, stop,
                 )  # fmt: skip
-            except SweepInterrupted as interrupted:
-                interrupted.saved, interrupted.total = len(self.records), len(self.cases)
-                raise
-        outcome = self._outcome(lost, used_workers)
-        if outcome.lost == 0:  # every case is saved: a signal stops the summary, kept for resume
-            try:
+            outcome = self._outcome(lost, used_workers)
+            if outcome.lost == 0:  # all saved: a signal stops the summary, kept for resume
                 with stop.raising():
                     drawn = _write_results(
                         self.spec, self.out, self.cases, self.records, outcome, figures
                     )
                 outcome = replace(outcome, figures=tuple(drawn))
-            except SweepInterrupted as interrupted:
-                interrupted.saved, interrupted.total = len(self.records), len(self.cases)
-                raise
+        except SweepInterrupted as interrupted:
+            interrupted.saved, interrupted.total = len(self.records), len(self.cases)
+            raise
         return outcome
 
     def _outcome(self, lost: dict[int, str], used_workers: int) -> SweepOutcome:
