@@ -104,15 +104,11 @@ warnings this tool has neither): the statistical profiler samples each worker's 
 10 ms, the system monitor polls psutil every 0.5 s and the event-loop tick runs every 20 ms.
 An 8-case contact sweep on 2 workers spent 0.4-0.7 s of CPU in the workers outside its cases and
 0.35 s in this process; 0.15-0.2 s and 0.15 s without them, against 5 s of cases. The memory
-monitor of each worker and of its nanny (in this process) reads the worker's size every 0.1 s:
-every 0.5 s, a worker past its memory limit is still stopped, and a cluster of 2 running cases
-costs 0.014 s of CPU per second beside them instead of 0.025 (this process 0.007 instead of
-0.014), 10 s of sleeping tasks at load 8."""
+monitors (each worker's, and its nanny's here) look every 0.5 s, not 0.1 s: 0.014 s of CPU per s
+of a 2-worker run instead of 0.025; a worker past its memory limit is still stopped."""
 NANNY_POLL = 0.005
-"""s: how often a nanny of the local cluster looks whether its worker has started. Dask's 0.05 s
-made each start wait 25 ms on average for nothing, 33 ms with 2 workers (the later of two): the
-cluster of 2 came up in a median 230 ms against 202 ms with 0.005 s, means 242 and 209 ms (12
-starts each, alternated, load 9; benchmarks/bench_sweep.py: the fixed cost idle was 0.21 s)."""
+"""s: how often a nanny of the local cluster looks whether its worker has started (dask's 0.05 s
+made a start wait 25 ms on average for nothing, 33 ms with 2 workers: the later of two)."""
 SIGNAL_LATENCY = 0.1
 """Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 CONNECT_TIMEOUT = "10s"
@@ -484,21 +480,14 @@ def _foreign_entries(out: Path) -> list[str]:
     for folder in (cases, cases / UNUSED_DIR):
         if folder.is_dir():
             where = folder.relative_to(out).as_posix()
+            ours = {UNUSED_DIR} if folder == cases else set()
             names = sorted(os.listdir(folder))
-            found += [f"{where}/{n}" for n in names if not _written(folder == cases, n)]
+            found += [f"{where}/{n}" for n in names if not (RECORD_NAME.fullmatch(n) or n in ours)]
     figures = out / "figures"
     if figures.is_dir():
-        found += [f"figures/{n}" for n in sorted(os.listdir(figures)) if not _figure(n)]
+        names = sorted(os.listdir(figures))
+        found += [f"figures/{n}" for n in names if not n.endswith((".png", ".svg", ".pdf"))]
     return found
-
-
-def _written(in_cases: bool, name: str) -> bool:
-    """Whether ``name`` in ``cases`` (or ``cases/unused``) is a sweep's: a record, ``unused``."""
-    return bool(RECORD_NAME.fullmatch(name)) or (in_cases and name == UNUSED_DIR)
-
-
-def _figure(name: str) -> bool:
-    return name.endswith((".png", ".svg", ".pdf"))
 
 
 def _check_folder(
@@ -1036,17 +1025,13 @@ def cases_csv(spec: SweepSpec, cases: list[Case], records: Mapping[int, dict]) -
     writer.writerow([header for header, _, _ in columns])
     for case in cases:
         record = records[case.index]
-        row = []
-        for _, source, key in columns:
-            if source == "index":
-                row.append(case.index)
-            elif source == "axis":
-                row.append(_cell(case.axis_values[key]))
-            elif source == "output":
-                row.append(_cell(record["outputs"].get(key)))
-            else:
-                row.append(_cell(record.get(key)))
-        writer.writerow(row)
+        where = {"axis": case.axis_values, "output": record["outputs"]}
+        writer.writerow(
+            [
+                case.index if source == "index" else _cell(where.get(source, record).get(key))
+                for _, source, key in columns
+            ]
+        )
     return stream.getvalue()
 
 
