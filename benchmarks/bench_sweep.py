@@ -4,8 +4,10 @@ that decide it measured in CPU seconds (which a loaded machine disturbs far less
 The grid is exponent n in {1.5, 2} x nu2 in {0, 0.25, 0.4, 0.5} on the default mesh (about 29k
 dofs a case); ``--kind dynamic``: the dynamic FE impact, velocity {1, 2} m/s x nu2 {0.3, 0.4,
 0.45, 0.5} at the default mesh and steps, without the ladder (``--estimate``: with it). Each
-sweep runs in a fresh folder with a fresh local cluster, as ``shtaerman sweep`` does. Printed,
-with the load average beside each wall time:
+sweep runs in a fresh folder with a fresh local cluster, as ``shtaerman sweep`` does but without
+its figures (this process draws them after the cases, on 1 worker as on 2: the contact grid's 10
+heat maps cost 1.4-1.5 s of CPU at load 7.5, which would bring a predicted 1.75x down to about
+1.45x). Printed, with the load average beside each wall time:
 
 1. the fixed overhead: the wall time of a 2-case analytic impact sweep (cases of a
    millisecond), i.e. starting and stopping the cluster, and its CPU seconds F (this process
