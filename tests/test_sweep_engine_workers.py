@@ -54,6 +54,7 @@ def _worker_state() -> dict:
         # (1000: room for Python's own allocations meanwhile, many times over)
         "memory kept": _refaults() < 1000,
         "profiler": dask.config.get("distributed.worker.profile.enabled"),
+        "memory monitor": dask.config.get("distributed.worker.memory.monitor-interval"),
         "sigterm": signal.getsignal(signal.SIGTERM) is signal.SIG_DFL,
         "sigint": signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
     }
@@ -72,6 +73,7 @@ def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkey
         "inherited": True,
         "memory kept": True,
         "profiler": False,
+        "memory monitor": "500ms",
         "sigterm": True,
         "sigint": True,
     }
@@ -113,3 +115,15 @@ def test_a_record_has_the_cpu_seconds_of_its_case():
     assert asleep["seconds"] >= 0.3 and asleep["cpu_seconds"] < 0.1
     # the spin ends once its thread has had 0.3 s of CPU, whatever else the machine runs
     assert busy["cpu_seconds"] >= 0.3 and busy["seconds"] >= busy["cpu_seconds"] - 0.01
+
+
+def test_the_nanny_start_poll_set_by_the_local_cluster_is_one_dask_reads():
+    """engine.NANNY_POLL is written into dask's WorkerProcess._init_msg_interval (private): if
+    dask renamed it, the assignment would do nothing and each start would wait 25-33 ms again."""
+    import inspect
+
+    from distributed.nanny import WorkerProcess
+
+    assert "await asyncio.sleep(self._init_msg_interval)" in inspect.getsource(WorkerProcess)
+    with engine._quiet_dask(), engine._client(1, None):
+        assert WorkerProcess._init_msg_interval == engine.NANNY_POLL

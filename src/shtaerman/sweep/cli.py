@@ -169,5 +169,6 @@ def _report(args: argparse.Namespace, spec: Any, out: Path, outcome: Any) -> Non
             f"them with: {_resume_command(args, out)}",
             file=sys.stderr,
         )
-    else:
-        print(f"results: {out / 'cases.csv'}  {out / 'results.json'}  {out / 'figures'}")
+    else:  # figures over 1 or 2 axes only, and not when they failed (a warning says why)
+        figures = f"  {out / 'figures'}" if outcome.figures else ""
+        print(f"results: {out / 'cases.csv'}  {out / 'results.json'}{figures}")

@@ -26,6 +26,7 @@ import io
 import json
 import logging
 import os
+import queue
 import re
 import shutil
 import signal
@@ -39,7 +40,7 @@ import tomllib
 import uuid
 import warnings
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -96,12 +97,20 @@ QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.system-monitor.interval": "60s",
     "distributed.admin.tick.interval": "1s",
+    "distributed.worker.memory.monitor-interval": "500ms",
 }
 """Dask's own monitoring, off or slowed in the local cluster (it feeds a dashboard and log
 warnings this tool has neither): the statistical profiler samples each worker's stack every
 10 ms, the system monitor polls psutil every 0.5 s and the event-loop tick runs every 20 ms.
 An 8-case contact sweep on 2 workers spent 0.4-0.7 s of CPU in the workers outside its cases and
-0.35 s in this process; 0.15-0.2 s and 0.15 s without them, against 5 s of cases."""
+0.35 s in this process; 0.15-0.2 s and 0.15 s without them, against 5 s of cases. The memory
+monitors (each worker's, and its nanny's here) look every 0.5 s, not 0.1 s: 0.014 s of CPU per s
+of a 2-worker run instead of 0.025; a worker past its memory limit is still stopped."""
+NANNY_POLL = 0.005
+"""s: how often a nanny of the local cluster looks whether its worker has started (dask's 0.05 s
+made a start wait 25 ms on average for nothing, 33 ms with 2 workers: the later of two)."""
+SIGNAL_LATENCY = 0.1
+"""Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 CONNECT_TIMEOUT = "10s"
 """How long to try reaching an existing scheduler (``scheduler=``)."""
 
@@ -139,6 +148,8 @@ class SweepOutcome:
         Why the first lost case could not run.
     warned : int
         Cases whose computation issued warnings (listed in ``results.json``).
+    figures : tuple of Path
+        The figures this call drew (none over 3 or more axes, nor when not asked or failed).
     """
 
     out: Path
@@ -152,6 +163,7 @@ class SweepOutcome:
     workers: int
     lost_reason: str | None = None
     warned: int = 0
+    figures: tuple[Path, ...] = ()
 
     @property
     def exit_code(self) -> int:
@@ -364,24 +376,28 @@ def _record_files(out: Path) -> list[Path]:
     return files
 
 
-def read_records(out: str | Path, cases: list[Case]) -> tuple[dict[int, dict], list[Path]]:
+def read_records(out: str | Path, cases: list[Case]) -> dict[int, dict]:
     """The saved records of ``cases`` in ``out``, matched by their inputs (so a grid whose
     axes were reordered or extended keeps them), each relabelled with its case's index and
-    axis values; and the files that hold no valid record (edited, damaged or not a file)."""
+    axis values. A file that holds no valid record (edited, damaged or not a file) is said in a
+    warning, and its case is computed again."""
     wanted = {_case_key(case.params): case for case in cases}
     records: dict[int, dict] = {}
-    invalid = []
     for path in _record_files(Path(out)):
         record = _load_record(path)
         if record is None:
-            invalid.append(path)
+            warnings.warn(
+                f"{path} is not a case record this tool wrote (edited or damaged); its case is "
+                "computed again",
+                stacklevel=3,
+            )
             continue
         case = wanted.get(_case_key(record["inputs"]))
         if case is None or case.index in records:
             continue
         record = {**record, "index": case.index, "axis_values": case.axis_values}
         records[case.index] = _sealed(record)
-    return records, invalid
+    return records
 
 
 def _settle_records(out: Path, records: Mapping[int, dict]) -> None:
@@ -464,21 +480,14 @@ def _foreign_entries(out: Path) -> list[str]:
     for folder in (cases, cases / UNUSED_DIR):
         if folder.is_dir():
             where = folder.relative_to(out).as_posix()
+            ours = {UNUSED_DIR} if folder == cases else set()
             names = sorted(os.listdir(folder))
-            found += [f"{where}/{n}" for n in names if not _written(folder == cases, n)]
+            found += [f"{where}/{n}" for n in names if not (RECORD_NAME.fullmatch(n) or n in ours)]
     figures = out / "figures"
     if figures.is_dir():
-        found += [f"figures/{n}" for n in sorted(os.listdir(figures)) if not _figure(n)]
+        names = sorted(os.listdir(figures))
+        found += [f"figures/{n}" for n in names if not n.endswith((".png", ".svg", ".pdf"))]
     return found
-
-
-def _written(in_cases: bool, name: str) -> bool:
-    """Whether ``name`` in ``cases`` (or ``cases/unused``) is a sweep's: a record, ``unused``."""
-    return bool(RECORD_NAME.fullmatch(name)) or (in_cases and name == UNUSED_DIR)
-
-
-def _figure(name: str) -> bool:
-    return name.endswith((".png", ".svg", ".pdf"))
 
 
 def _check_folder(
@@ -692,6 +701,9 @@ def _restore_environment(saved: dict[str, str | None], *, drop_new: bool = False
 
 def _local_cluster(workers: int | None, scratch: str) -> Any:
     from distributed import LocalCluster
+    from distributed.nanny import WorkerProcess
+
+    WorkerProcess._init_msg_interval = NANNY_POLL  # dask's own (private) knob
 
     try:
         return LocalCluster(
@@ -833,25 +845,13 @@ def run_sweep(
         ready = _check_folder(spec, out, backup, resume=resume, force=force)
         records: dict[int, dict] = {}
         if resume and is_sweep_folder(out):
-            records = _saved_records(out, cases)
+            records = read_records(out, cases)
             ready = _settled(ready, out, dict(records))
         run = _Run(spec, out, cases, records, len(records), start)
         with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
             return run.execute(
                 ready, workers, scheduler, retries, progress, figures and figure_format, stop
             )
-
-
-def _saved_records(out: Path, cases: list[Case]) -> dict[int, dict]:
-    """:func:`read_records`, with a warning for each file that holds no valid record."""
-    records, invalid = read_records(out, cases)
-    for path in invalid:
-        warnings.warn(
-            f"{path} is not a case record this tool wrote (edited or damaged); its case is "
-            "computed again",
-            stacklevel=3,
-        )
-    return records
 
 
 def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
@@ -879,26 +879,25 @@ class _Run:
         pending = [case for case in self.cases if case.index not in self.records]
         lost: dict[int, str] = {}
         used_workers = 0
-        if not pending:
-            ready()
-        else:
-            bar = _progress(len(self.cases), self.reused, self.spec.name, progress)
-            try:
+        try:
+            if not pending:
+                ready()
+            else:
+                bar = _progress(len(self.cases), self.reused, self.spec.name, progress)
                 used_workers = _compute(
                     self.spec, self.out, ready, pending, self.records, lost, workers,
                     scheduler, retries, bar, stop,
                 )  # fmt: skip
-            except SweepInterrupted as interrupted:
-                interrupted.saved, interrupted.total = len(self.records), len(self.cases)
-                raise
-        outcome = self._outcome(lost, used_workers)
-        if outcome.lost == 0:  # every case is saved: a signal stops the summary, kept for resume
-            try:
+            outcome = self._outcome(lost, used_workers)
+            if outcome.lost == 0:  # all saved: a signal stops the summary, kept for resume
                 with stop.raising():
-                    _write_results(self.spec, self.out, self.cases, self.records, outcome, figures)
-            except SweepInterrupted as interrupted:
-                interrupted.saved, interrupted.total = len(self.records), len(self.cases)
-                raise
+                    drawn = _write_results(
+                        self.spec, self.out, self.cases, self.records, outcome, figures
+                    )
+                outcome = replace(outcome, figures=tuple(drawn))
+        except SweepInterrupted as interrupted:
+            interrupted.saved, interrupted.total = len(self.records), len(self.cases)
+            raise
         return outcome
 
     def _outcome(self, lost: dict[int, str], used_workers: int) -> SweepOutcome:
@@ -932,8 +931,6 @@ def _compute(
     stop: _StopFlag,
 ) -> int:
     """Run ``pending`` cases; each record is written as it arrives. Returns the worker count."""
-    from distributed import as_completed
-
     case_function = spec.kind_spec.case
     token = uuid.uuid4().hex[:8]
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
@@ -955,16 +952,23 @@ def _compute(
                 retries=retries,
                 pure=False,
             )
-            finished = as_completed(futures)
-            while not finished.is_empty():
-                stop.check()
-                batch = finished.next_batch(block=False)
-                if not batch:
-                    time.sleep(0.05)
-                for future in batch:
-                    _collect(out, future, by_key[future.key], records, lost)
-                    bar.update(1)
+            finished: queue.SimpleQueue = queue.SimpleQueue()
+            for future in futures:
+                future.add_done_callback(finished.put)
+            for _ in futures:
+                future = _next_finished(finished, stop)
+                _collect(out, future, by_key[future.key], records, lost)
+                bar.update(1)
             return nthreads
+
+
+def _next_finished(finished: queue.SimpleQueue, stop: _StopFlag) -> Any:
+    """The next future to finish, taken as it finishes (the last one ends the run), with
+    SIGINT/SIGTERM (``stop``) seen within :data:`SIGNAL_LATENCY`."""
+    while True:
+        stop.check()
+        with contextlib.suppress(queue.Empty):
+            return finished.get(timeout=SIGNAL_LATENCY)
 
 
 def _lost_reason(error: Exception) -> str:
@@ -1021,17 +1025,13 @@ def cases_csv(spec: SweepSpec, cases: list[Case], records: Mapping[int, dict]) -
     writer.writerow([header for header, _, _ in columns])
     for case in cases:
         record = records[case.index]
-        row = []
-        for _, source, key in columns:
-            if source == "index":
-                row.append(case.index)
-            elif source == "axis":
-                row.append(_cell(case.axis_values[key]))
-            elif source == "output":
-                row.append(_cell(record["outputs"].get(key)))
-            else:
-                row.append(_cell(record.get(key)))
-        writer.writerow(row)
+        where = {"axis": case.axis_values, "output": record["outputs"]}
+        writer.writerow(
+            [
+                case.index if source == "index" else _cell(where.get(source, record).get(key))
+                for _, source, key in columns
+            ]
+        )
     return stream.getvalue()
 
 
@@ -1042,8 +1042,9 @@ def _write_results(
     records: Mapping[int, dict],
     outcome: SweepOutcome,
     figures: str | bool,
-) -> None:
-    """cases.csv, results.json and (``figures``: False or the figure format) the figures."""
+) -> list[Path]:
+    """cases.csv, results.json and (``figures``: False or the figure format) the figures;
+    returns the figures drawn."""
     from ..version import __version__
 
     kind = spec.kind_spec
@@ -1079,13 +1080,15 @@ def _write_results(
         },
     }
     _atomic_write(out / "results.json", json.dumps(json_safe(results), indent=2))
-    if figures:
-        from .figures import sweep_figures
+    if not figures:
+        return []
+    from .figures import sweep_figures
 
-        try:
-            _unlink_links(out / "figures")
-            sweep_figures(out / "results.json", out / "figures", figures)
-        except SweepInterrupted:
-            raise
-        except Exception as error:  # the results are safe; say what went wrong with the figures
-            warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)
+    try:
+        _unlink_links(out / "figures")
+        return sweep_figures(out / "results.json", out / "figures", figures)
+    except SweepInterrupted:
+        raise
+    except Exception as error:  # the results are safe; say what went wrong with the figures
+        warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)
+        return []
