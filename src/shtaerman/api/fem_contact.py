@@ -361,7 +361,7 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
 
 def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     """Refuse, naming mass and velocity, default depths whose contact zone is too large for
-    the body's modulus (:func:`shtaerman.fem.contact.check_contact_scale`)."""
+    the body's modulus (:func:`shtaerman.fem.contact.linear.check_contact_scale`)."""
     from ..fem.contact.linear import check_contact_scale
     from ..study.contact.indentation import default_depths, refined_radius
 

@@ -304,13 +304,13 @@ def run_indentation(
         Sparse solver ("auto", "superlu", "pardiso").
     aligned : bool
         Forces of the vertex-aligned contacts (default) or nodal sums, see
-        :func:`shtaerman.fem.contact.solve_contact`. ``mesh.interface`` "bonded" presses an
+        :func:`shtaerman.fem.contact.linear.solve_contact`. ``mesh.interface`` "bonded" presses an
         indenter the surface sticks to (:func:`shtaerman.fem.contact.stick.solve_bonded_contact`,
         nodal sums), or slides on past Coulomb's ``mesh.friction`` (0: the frictionless
         solve, whose contact it is).
     prony : PronySeries, optional
         A viscoelastic body pressed at ``rate`` m/s
-        (:func:`shtaerman.fem.contact.press_at_rate`, frictionless, nodal sums:
+        (:func:`shtaerman.fem.contact.rate.press_at_rate`, frictionless, nodal sums:
         the history breaks the vertex-aligned interpolation), compared with Lee and Radok's
         exact curve (:class:`shtaerman.theory.viscoelastic.RateContact`).
 

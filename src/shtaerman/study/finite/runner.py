@@ -116,12 +116,12 @@ def ladder(
 
 
 START_NODES = 6
-"""Surface nodes besides the axis (three P2 elements) that the first depth's contact covers on
-the coarsest mesh when the ladder's ``small_ratio`` depth covers fewer than
-:data:`~shtaerman.fem.contact.MIN_CONTACT_NODES` (the linear FEM on the same mesh asks as many
-loaded nodes). The quick mesh's force error is set by the nodes covered, not by n (measured
-with the linear FEM for n = 1.1 to 2): just past the 2nd to 5th node 1 to 1.8 % (2 nodes,
-n = 1.3, between them: -4.1 %, the small-strain check's failure), just past the 6th 0.05 %."""
+"""Surface nodes besides the axis (three P2 elements) that the first depth's contact covers on the
+coarsest mesh when the ladder's ``small_ratio`` depth covers fewer than
+:data:`~shtaerman.fem.contact.constraints.MIN_CONTACT_NODES` (the linear FEM on the same mesh asks
+as many loaded nodes). The quick mesh's force error is set by the nodes covered, not by n (measured
+with the linear FEM for n = 1.1 to 2): just past the 2nd to 5th node 1 to 1.8 % (2 nodes, n = 1.3,
+between them: -4.1 %, the small-strain check's failure), just past the 6th 0.05 %."""
 SMALL_STRAIN_SLOPE = 0.1
 """Bound on |P / P_linear - 1| / (x/a) at small x/a: the finite-strain departure is first order
 in x/a, measured 0.04 to 0.09 x/a for n = 1.2 to 2 and nu2 = 0.3 to 0.5 (the quick studies
