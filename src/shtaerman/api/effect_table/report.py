@@ -7,7 +7,7 @@ import io
 import json
 from pathlib import Path
 
-from .table import QUANTITIES, UNITS, Cell, EffectTable
+from .table import QUANTITIES, UNITS, Cell, EffectTable, refusal_words
 
 __all__ = ["FILES", "table_csv", "table_markdown", "table_text", "write_table"]
 
@@ -31,10 +31,10 @@ def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
     a refused run's single cell is its reason."""
     ref = table.reference
     paper = [f"{ref[QUANTITIES[k]]:.5g} {UNITS[k]}" if QUANTITIES[k] else "1" for k in QUANTITIES]
-    rows = [("quasi-static (paper)", paper)]
+    rows, first = [("quasi-static (paper)", paper)], {}
     for run in table.runs:
         if run.refused is not None:
-            rows.append((run.label, [run.refused]))
+            rows.append((run.label, [refusal_words(run.refused, run.label, first)]))
             continue
         cells = table.cells(run.label)
         rows.append((run.label, [_cell(cells[key], key) for key in QUANTITIES]))
