@@ -212,3 +212,26 @@ def test_a_run_keeps_an_option_its_combinations_limit_allows(monkeypatch):
         {"mesh_size": 0.2},
         ("time_steps not applied: at most 100 steps here, got 200",),
     )
+
+
+def test_the_study_reports_headline_table_carries_every_error_bar():
+    """Old code: the effects study's table printed the changes without their bars (issue 28
+    point 6: each entry carries its error bar), and e - 1 as per cent."""
+    from shtaerman.api.effect_table.table import EffectTable, Run
+    from shtaerman.output.text_effects import study_tables
+
+    errors = dict.fromkeys(QUANTITIES, 1e-3)
+    runs = [
+        Run(label, role, None, "-", values=dict.fromkeys(QUANTITIES, 1.1), errors=errors)
+        for label, role in (("none", "none"), ("pad alone", "alone"), ("full", "full"))
+    ]
+    runs[1] = Run(**{**vars(runs[1]), "effect": "pad"})
+    reference = {"P_c": 1.0, "x_c": 1.0, "t_c": 0.5, "t_y": 1.0}
+    document = {"effects": EffectTable(reference, tuple(runs), ()).to_dict()}
+    [table] = study_tables(document)
+    for row in table["rows"]:
+        assert all(" ± " in cell for cell in row[1:]), row
+    full = next(row for row in table["rows"] if row[0] == "full")
+    # +10 % ± 0.1 points of P_c; e - 1 = +0.1 ± 0.001 as is, not in per cent
+    assert full[1:] == ["+10.00 ± 0.10"] * 3 + ["+0.1000 ± 0.0010"]
+    assert table["rows"][-1][0] == "interaction"

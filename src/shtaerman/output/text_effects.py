@@ -30,15 +30,21 @@ def study_findings(document: Mapping[str, Any]) -> list[str]:
 
 
 def study_tables(document: Mapping[str, Any]) -> list[dict[str, object]]:
-    """The change of each run against the paper's quasi-static values (%; e - 1 for e)."""
+    """The change of each run against the paper's quasi-static values, each with its error bar
+    (``shtaerman effects``' cells: %, e - 1 for e; "± n/a" without a bar), and the
+    interaction."""
+    from ..api.effect_table.report import cell_text
+    from ..api.effect_table.table import Cell
+
     table = document["effects"]
 
-    def cell(change: Mapping[str, Any]) -> str:
-        value = change.get("change")
-        return "-" if value is None else f"{100 * value:+.2f} %"
+    def row(label: str, changes: Mapping[str, Any]) -> list[str]:
+        return [label, *(cell_text(Cell(**changes[key]), key) or "-" for key in NAMES)]
 
-    rows = [[run["label"], *(cell(run["changes"][key]) for key in NAMES)] for run in table["runs"]]
-    return [{"title": "Effect table", "header": ["run", *NAMES.values()], "rows": rows}]
+    rows = [row(run["label"], run["changes"]) for run in table["runs"]]
+    rows.append(row("interaction", table["interaction"]))
+    header = ["run", "P_max (%)", "x_max (%)", "t_contact (%)", "e - 1"]
+    return [{"title": "Effect table (± the estimated error)", "header": header, "rows": rows}]
 
 
 def entry(

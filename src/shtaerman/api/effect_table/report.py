@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .table import QUANTITIES, UNITS, Cell, EffectTable, refusal_words
 
-__all__ = ["FILES", "table_csv", "table_markdown", "table_text", "write_table"]
+__all__ = ["FILES", "cell_text", "table_csv", "table_markdown", "table_text", "write_table"]
 
 FILES = ("effects.json", "effects.csv", "effects.md")
 """What ``--out`` writes."""
@@ -17,7 +17,7 @@ HEADERS = {"P_max": "P_max (%)", "x_max": "x_max (%)", "t_contact": "t_contact (
 HEADERS["restitution"] = "e - 1"
 
 
-def _cell(cell: Cell, key: str) -> str:
+def cell_text(cell: Cell, key: str) -> str:
     """``+1.49 ± 0.05`` (per cent; e - 1 as is), ``± n/a`` without a bar."""
     if cell.change is None:
         return ""
@@ -37,13 +37,13 @@ def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
             rows.append((run.label, [refusal_words(run.refused, run.label, first)]))
             continue
         cells = table.cells(run.label)
-        rows.append((run.label, [_cell(cells[key], key) for key in QUANTITIES]))
+        rows.append((run.label, [cell_text(cells[key], key) for key in QUANTITIES]))
     interaction = table.interaction()
     missing = [run.label for run in table.runs if run.role in ("alone", "full") and run.refused]
     if missing:
         rows.append(("interaction", [f"n/a: {', '.join(missing)} did not run"]))
     else:
-        rows.append(("interaction", [_cell(interaction[key], key) for key in QUANTITIES]))
+        rows.append(("interaction", [cell_text(interaction[key], key) for key in QUANTITIES]))
     return rows
 
 
