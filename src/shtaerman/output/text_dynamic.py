@@ -59,19 +59,49 @@ def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
     return pm
 
 
-def velocity_limit(limit: Mapping[str, Any] | None, level: str, slowest: float) -> str:
+def slowest_difference(differences: Mapping[str, float] | None, key: str) -> float | None:
+    """The difference ``key`` ("x", "P", "t"; "all": the largest in magnitude of the three)
+    of the slowest velocity's ``differences`` (None: not known)."""
+    if not differences:
+        return None
+    if key != "all":
+        return differences.get(key)
+    return max((differences[k] for k in COMPARED), key=abs)
+
+
+def _outside(limit: Mapping[str, Any], level: str, difference: float | None) -> bool:
+    """Whether the slowest velocity's ``difference`` lies beyond ``level`` ("1%") by more than
+    its estimated error: the limit is resolved below the range, whatever that error."""
+    error = limit.get("error")
+    if limit["bound"] != "none" or error is None or difference is None:
+        return False
+    return abs(difference) - error > float(level[:-1]) / 100.0
+
+
+def velocity_limit(
+    limit: Mapping[str, Any] | None, level: str, slowest: float, difference: float | None = None
+) -> str:
     """A velocity limit (:func:`shtaerman.study.limits.thresholds`) to ``level`` ("1%") in
     words, the one wording of the study's table, its findings and the report's "where the
     model holds" table: "up to v0 = 0.715 ± 0.007 m/s (difference ± 0.007 %)", "over the whole
     range computed (to v0 = 5 m/s, the fastest; the limit lies beyond; ...)", "not even at v0 =
     0.5 m/s (the slowest computed; ...)" (``slowest``, m/s), or "not resolved (...)" where the
-    difference's estimated error (in percentage points) is not below a fifth of the level;
+    difference's estimated error (in percentage points) is not below a fifth of the level,
+    unless the slowest velocity's ``difference`` lies beyond the level by more than that
+    error (then the limit is below the range: "not even at ..., outside the 1 % limit");
     "-" without a limit."""
     if not limit:
         return "-"
     error = limit.get("error")
     spread = plus_minus(error, ".1g", 100)
     note = f"difference{spread} %" if spread else "no error estimate"
+    if _outside(limit, level, difference):
+        assert difference is not None  # for the type checker: _outside checked it
+        return (
+            f"not even at v0 = {slowest:.3g} m/s (the slowest computed: difference "
+            f"{100 * difference:+.3g} ± {100 * error:.2g} %, outside the {level[:-1]} % limit "
+            "beyond its error)"
+        )
     if not limit.get("resolved"):
         if error is None:
             return f"not resolved ({note})"
@@ -247,9 +277,12 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         _estimate_finding(outcome),
     ]
     limits, slowest = outcome.limits(), outcome.velocities[0]
+    first = outcome.cases[0].differences()
     for level in LEVELS if outcome.estimated else ():
         parts = [
-            f"{NAMES[key]} {velocity_limit(limits[key][level], level, slowest)}" for key in NAMES
+            f"{NAMES[key]} "
+            + velocity_limit(limits[key][level], level, slowest, slowest_difference(first, key))
+            for key in NAMES
         ]
         found.append(
             f"The quasi-static values hold to {level[:-1]} % of the dynamic ones: "
@@ -342,8 +375,15 @@ def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
 def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     """The report's tables (strings): per velocity, and the velocity limits."""
     limits, slowest = outcome.limits(), outcome.velocities[0]
+    first = outcome.cases[0].differences()
     limit_rows = [
-        [NAMES[key], *(velocity_limit(limits[key][level], level, slowest) for level in LEVELS)]
+        [
+            NAMES[key],
+            *(
+                velocity_limit(limits[key][level], level, slowest, slowest_difference(first, key))
+                for level in LEVELS
+            ),
+        ]
         for key in NAMES
     ]
     errors = (
@@ -434,10 +474,16 @@ def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
     limits = study.get("limits", {})
     labels = {"all": "x_c, P_c and t_c", "P": "P_c", "x": "x_c", "t": "t_c"}
     tested, velocities = assumptions(study), study.get("inputs", {}).get("velocities")
+    first = (study.get("cases") or [{}])[0].get("differences")
     return [
         [
             f"{tested} ({name}): quasi-static {label} against the dynamic FE impact",
-            *(velocity_limit(limits[key].get(level), level, velocities[0]) for level in LEVELS),
+            *(
+                velocity_limit(
+                    limits[key].get(level), level, velocities[0], slowest_difference(first, key)
+                )
+                for level in LEVELS
+            ),
         ]
         for key, label in labels.items()
         if key in limits
