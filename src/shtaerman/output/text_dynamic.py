@@ -535,6 +535,29 @@ def difference_cells(
     return ", ".join(cells)
 
 
+def fe_words(report: Mapping[str, Any]) -> str:
+    """The FE impact a difference is taken against: "massless FE" (a body without inertia:
+    no waves) or "FE with inertia" (waves)."""
+    return "massless FE" if report["parameters"]["density2"] == 0 else "FE with inertia"
+
+
+def differences_text(report: Mapping[str, Any]) -> str:
+    """The paper's elastic quasi-static impact / the FE impact - 1, in per cent with the
+    estimated errors, saying what the FE impact is and so what the difference measures: with
+    inertia the waves and the body's other effects; massless, the body's effects alone (a
+    massless elastic half-space: only the FE's own error)."""
+    cells = difference_cells(report["differences"], report.get("differences_error"))
+    measures = (
+        "no waves: the body's other effects, if any"
+        if report["parameters"]["density2"] == 0
+        else "the waves and the body's other effects, if any"
+    )
+    return (
+        f"  paper (elastic quasi-static) / {fe_words(report)} - 1:  {cells}\n"
+        f"      (x_c against x_max, P_c against P_max, t_c against t_contact / 2; {measures})"
+    )
+
+
 def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
     """The viscoelastic reference / dynamic - 1 line, ± the estimated error where there is one."""
     differences = report["viscoelastic_differences"]
@@ -542,26 +565,17 @@ def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
     return f"  {label}  " + difference_cells(differences, errors, VISCOELASTIC_NAMES)
 
 
-def massless_viscoelastic(report: Mapping[str, Any]) -> bool:
-    """Whether the viscoelastic quasi-static impact is the reference of the run: a massless
-    body with a Prony series (then the paper's elastic impact is only for comparison)."""
-    return "viscoelastic_quasi_static" in report and report["parameters"]["density2"] == 0
-
-
 def viscoelastic_rows(report: Mapping[str, Any], dynamic: str = "dynamic FEM") -> list[str]:
     """The rows of a viscoelastic body's quasi-static reference beside the FE impact (column
-    ``dynamic``) and their differences; [] for an elastic body. On a massless body, where it is
-    exact, its line is "quasi-static / dynamic - 1" (what the FE impact converges to); else
-    "viscoelastic / dynamic - 1" (with inertia the paper's elastic line stays the quasi-static
-    one)."""
+    ``dynamic``) and their differences, "viscoelastic quasi-static / massless FE - 1" (on a
+    massless half-space it is exact: what the FE impact converges to) or "... / FE with inertia
+    - 1"; [] for an elastic body."""
     reference = report.get("viscoelastic_quasi_static")
     if reference is None:
         return []
     dyn, ref = ({k: math.nan if v is None else v for k, v in part.items()}
                 for part in (report["dynamic"], reference))  # fmt: skip
     layer = "thickness" in report.get("mesh", {})
-    exact = massless_viscoelastic(report) and reference["exact"] and not layer
-    label = "quasi-static" if exact else "viscoelastic"
     massless = report["parameters"]["density2"] == 0
     return [
         f"  {viscoelastic_words(reference, massless, layer)}:",
@@ -573,5 +587,5 @@ def viscoelastic_rows(report: Mapping[str, Any], dynamic: str = "dynamic FEM") -
         f"  restitution e           {dyn['restitution']:<14.6f}  {ref['restitution']:.6f}",
         f"  energy lost 1-e^2       {round(dyn['energy_radiated_fraction'], 6) + 0.0:<14.6f}  "
         f"{ref['energy_lost_fraction']:.6f}",
-        _viscoelastic_differences(report, f"{label} / dynamic - 1"),
+        _viscoelastic_differences(report, f"viscoelastic quasi-static / {fe_words(report)} - 1:"),
     ]
