@@ -7,6 +7,7 @@ import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from ..fem.impact_run import SUMMARY_KEYS
 from ..output.files import json_safe
 
 if TYPE_CHECKING:
@@ -17,21 +18,8 @@ __all__ = ["DIFFERENCES", "DYNAMIC_KEYS", "DynamicResult", "check_separated"]
 DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
 """The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
 P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
-DYNAMIC_KEYS = (
-    "x_max",
-    "P_max",
-    "t_x_max",
-    "t_contact",
-    "v_out",
-    "restitution",
-    "energy_radiated_fraction",
-    "energy_balance_error",
-    "reflected_energy_fraction",
-    "energy_dissipated_fraction",
-    "energy_wave_fraction",
-    "energy_hysteresis_fraction",
-    "energy_slip_fraction",
-)
+DYNAMIC_KEYS = (*SUMMARY_KEYS, "energy_dissipated_fraction", "energy_wave_fraction")
+DYNAMIC_KEYS += ("energy_hysteresis_fraction", "energy_slip_fraction")
 """The keys of ``dynamic`` on every route (null where the body has no such quantity)."""
 SECTIONS = (
     "viscoelastic_quasi_static",
