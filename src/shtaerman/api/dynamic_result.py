@@ -21,26 +21,14 @@ P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
 DYNAMIC_KEYS = (*SUMMARY_KEYS, "energy_dissipated_fraction", "energy_wave_fraction")
 DYNAMIC_KEYS += ("energy_hysteresis_fraction", "energy_slip_fraction")
 """The keys of ``dynamic`` on every route (null where the body has no such quantity)."""
-SECTIONS = (
-    "viscoelastic_quasi_static",
-    "differences_error",
-    "viscoelastic_differences",
-    "viscoelastic_differences_error",
-    "radiation_estimate",
-    "rubber",
-    "prony",
-    "error_estimate",
-    "extrapolated",
-    "estimate_details",
-    "mesh_ladder",
-)
+SECTIONS = ("viscoelastic_quasi_static", "differences_error", "viscoelastic_differences")
+SECTIONS += ("viscoelastic_differences_error", "radiation_estimate", "rubber", "prony")
+SECTIONS += ("error_estimate", "extrapolated", "estimate_details", "mesh_ladder")
 """The optional parts of the JSON: present on every route, null where the case has none."""
-LADDER = ("differences_error", "viscoelastic_differences_error", "error_estimate")
-LADDER += ("extrapolated", "estimate_details", "mesh_ladder")
 
 
 def _dynamic_key(name: str, doc: str) -> Any:
-    return property(lambda self: self.dynamic[name], doc=doc)
+    return property(lambda self: self.dynamic.get(name, math.nan), doc=doc)
 
 
 @dataclass(frozen=True)
@@ -92,7 +80,7 @@ class DynamicResult:
     v_out = _dynamic_key("v_out", "Rebound velocity, m/s.")
     restitution = _dynamic_key("restitution", "Coefficient of restitution e = v_out / v0.")
     energy_radiated_fraction = _dynamic_key(
-        "energy_radiated_fraction", "Energy carried away by waves, 1 - e^2 of M v0^2 / 2."
+        "energy_radiated_fraction", "Energy left in the body, 1 - e^2 of M v0^2 / 2."
     )
     energy_balance_error = _dynamic_key(
         "energy_balance_error", "Energy account error, of M v0^2 / 2."
@@ -100,21 +88,15 @@ class DynamicResult:
     reflected_energy_fraction = _dynamic_key(
         "reflected_energy_fraction", "Energy reflected by the far boundary, of the radiated."
     )
-
-    @property
-    def energy_dissipated_fraction(self) -> float:
-        """Energy dissipated by a viscoelastic half-space (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_dissipated_fraction", math.nan)
-
-    @property
-    def energy_hysteresis_fraction(self) -> float:
-        """The part of 1 - e^2 lost to hysteresis (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_hysteresis_fraction", math.nan)
-
-    @property
-    def energy_wave_fraction(self) -> float:
-        """The part of 1 - e^2 carried away by waves (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_wave_fraction", math.nan)
+    energy_dissipated_fraction = _dynamic_key(
+        "energy_dissipated_fraction", "Energy dissipated (of M v0^2 / 2; nan if elastic)."
+    )
+    energy_hysteresis_fraction = _dynamic_key(
+        "energy_hysteresis_fraction", "Part of 1 - e^2 lost to hysteresis (nan if elastic)."
+    )
+    energy_wave_fraction = _dynamic_key(
+        "energy_wave_fraction", "Part of 1 - e^2 carried away by waves (nan if elastic)."
+    )
 
     def history(self) -> dict[str, Any]:
         """The histories t, x, v, P, a, p0 at every time step (arrays, SI units)."""
@@ -145,52 +127,36 @@ class DynamicResult:
     def not_given(self) -> dict[str, str]:
         """Why each null of :meth:`to_dict` is null (key -> reason; ``dynamic.<key>`` for a
         key of ``dynamic`` the run did not record)."""
-        elastic = self.prony is None and self.viscoelastic_quasi_static is None
-        massless = self.parameters.get("density2") == 0
-        frictional = "interface" in self.parameters
-        ladder = self.estimate_missing or "the error estimate was switched off (--no-estimate)"
-        split = (
-            "an elastic body has no hysteresis: 1 - e^2 (energy_radiated_fraction) is all "
-            + ("numerical residue (a massless body radiates no waves)" if massless else "waves")
-            if elastic
-            else "the finite-strain impact records the dissipated energy only, not the split"
-        )
+        elastic, massless = self.prony is None, self.parameters.get("density2") == 0
+        frictional, pad = "interface" in self.parameters, "thickness" in self.mesh
+        unrecorded, no_waves = "not recorded by this model", "a massless body radiates no waves"
+        residue = "numerical residue (no waves)" if massless else "waves"
+        split = [f"an elastic body has no hysteresis: 1 - e^2 is all {residue}"]
+        split.append("the finite-strain impact records the dissipated energy only")
+        heat = [unrecorded, "an elastic body on a frictionless indenter dissipates nothing"]
         reasons = {
-            "energy_dissipated_fraction": "an elastic body on a frictionless indenter "
-            "dissipates nothing"
-            if elastic and not frictional
-            else "not recorded by this model",
-            "energy_wave_fraction": split,
-            "energy_hysteresis_fraction": split,
-            "energy_slip_fraction": "not recorded by this model"
-            if frictional
-            else "a frictionless indenter: nothing slips",
+            "energy_dissipated_fraction": heat[elastic and not frictional],
+            "energy_wave_fraction": split[not elastic],
+            "energy_hysteresis_fraction": split[not elastic],
+            "energy_slip_fraction": unrecorded if frictional else "a frictionless indenter",
+            "reflected_energy_fraction": no_waves + " to reflect" if massless else unrecorded,
         }
-        if massless:
-            reasons["reflected_energy_fraction"] = "a massless body radiates no waves to reflect"
-        out = {f"dynamic.{key}": reasons.get(key, "not recorded by this model")
+        out = {f"dynamic.{key}": reasons.get(key, unrecorded)
                for key in DYNAMIC_KEYS if not _finite(self.dynamic.get(key))}  # fmt: skip
-        viscous = (
+        viscous = ["no viscoelastic quasi-static reference for this case"]
+        viscous.append(
             "an elastic body: the paper's elastic impact (quasi_static) is the reference"
-            if elastic
-            else "no viscoelastic quasi-static reference for this case"
         )
-        pad = "thickness" in self.mesh
+        waves = "the first-order estimate is of the linear elastic half-space's waves"
         sections = {
-            "viscoelastic_quasi_static": viscous,
-            "viscoelastic_differences": viscous,
-            "viscoelastic_differences_error": viscous,
-            "radiation_estimate": "a massless body radiates no waves"
-            if massless
-            else "the first-order estimate is of the waves of the linear elastic half-space"
-            + ("; a pad's base reflects what the half-space radiates" if pad else ""),
+            "radiation_estimate": no_waves if massless else waves + "; not a pad's" * pad,
             "rubber": "a linear body has no rubber constants",
             "prony": "an elastic body (no Prony series)",
         }
-        for key in SECTIONS:
-            if getattr(self, key) is None:
-                ladder_key = key in LADDER and not (key.startswith("visco") and viscous == "")
-                out[key] = ladder if ladder_key and key not in out else sections.get(key, ladder)
+        ladder = self.estimate_missing or "the error estimate was switched off (--no-estimate)"
+        for key in (key for key in SECTIONS if getattr(self, key) is None):
+            reference = key.startswith("viscoelastic") and self.viscoelastic_quasi_static is None
+            out[key] = viscous[elastic] if reference else sections.get(key, ladder)
         return out
 
 

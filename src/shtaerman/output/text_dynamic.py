@@ -62,20 +62,9 @@ def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
 def slowest_difference(differences: Mapping[str, float] | None, key: str) -> float | None:
     """The difference ``key`` ("x", "P", "t"; "all": the largest in magnitude of the three)
     of the slowest velocity's ``differences`` (None: not known)."""
-    if not differences:
-        return None
-    if key != "all":
-        return differences.get(key)
+    if not differences or key != "all":
+        return (differences or {}).get(key)
     return max((differences[k] for k in COMPARED), key=abs)
-
-
-def _outside(limit: Mapping[str, Any], level: str, difference: float | None) -> bool:
-    """Whether the slowest velocity's ``difference`` lies beyond ``level`` ("1%") by more than
-    its estimated error: the limit is resolved below the range, whatever that error."""
-    error = limit.get("error")
-    if limit["bound"] != "none" or error is None or difference is None:
-        return False
-    return abs(difference) - error > float(level[:-1]) / 100.0
 
 
 def velocity_limit(
@@ -95,8 +84,13 @@ def velocity_limit(
     error = limit.get("error")
     spread = plus_minus(error, ".1g", 100)
     note = f"difference{spread} %" if spread else "no error estimate"
-    if _outside(limit, level, difference):
-        assert difference is not None  # for the type checker: _outside checked it
+    if (
+        limit["bound"] == "none"
+        and None not in (error, difference)
+        and (
+            abs(difference) - error > float(level[:-1]) / 100.0  # type: ignore[operator,arg-type]
+        )
+    ):  # beyond the level by more than its error: resolved, outside
         return (
             f"not even at v0 = {slowest:.3g} m/s (the slowest computed: difference "
             f"{100 * difference:+.3g} ± {100 * error:.2g} %, outside the {level[:-1]} % limit "
@@ -203,8 +197,10 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
     if outcome.study.finite:
         return _rubber_loss_words(outcome)
     losses, pm = case.result.losses, _plus_minus(case.estimates())
+    if not losses and outcome.study.density == 0:
+        return "(a massless elastic body: no waves, no hysteresis; 1 - e^2 is numerical residue)"
     if not losses:
-        if pad and outcome.study.density > 0:
+        if pad:
             return (
                 f"as waves along the pad ({_reflection_words(outcome)}; the half-space's "
                 "first-order radiation estimate does not apply to a pad)"

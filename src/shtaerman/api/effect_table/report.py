@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+from itertools import chain
 from pathlib import Path
 
 from .table import QUANTITIES, UNITS, Cell, EffectTable, refusal_words
@@ -114,32 +115,20 @@ def _blank(value: float | None) -> str:
 
 def table_csv(table: EffectTable) -> str:
     """One row per run: values (SI), their errors, changes and their bars; empty: n/a."""
-    keys = list(QUANTITIES)
-    head = ["variant", "role", "effect", "refused"]
-    for key in keys:
-        head += [key, f"{key}_error", f"{key}_change", f"{key}_change_error"]
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(head)
+    keys, head = list(QUANTITIES), ["variant", "role", "effect", "refused"]
+    head += [f"{key}{end}" for key in keys for end in ("", "_error", "_change", "_change_error")]
+    rows, interaction = [head], table.interaction()
     for run in table.runs:
-        row = [run.label, run.role, run.effect or "", run.refused or ""]
-        cells = table.cells(run.label)
-        for key in keys:
-            value = None if run.values is None else run.values[key]
-            error = None if run.errors is None else run.errors[key]
-            row += [
-                _blank(value),
-                _blank(error),
-                _blank(cells[key].change),
-                _blank(cells[key].error),
-            ]
-        writer.writerow(row)
-    interaction = table.interaction()
-    row = ["interaction", "interaction", "", ""]
-    for key in keys:
-        row += ["", "", _blank(interaction[key].change), _blank(interaction[key].error)]
-    writer.writerow(row)
-    return buffer.getvalue()
+        cells, values, errors = table.cells(run.label), run.values or {}, run.errors or {}
+        numbers = [(values.get(k), errors.get(k), cells[k].change, cells[k].error) for k in keys]
+        rows.append([run.label, run.role, run.effect or "", run.refused or "", *chain(*numbers)])
+    numbers = [(None, None, interaction[k].change, interaction[k].error) for k in keys]
+    rows.append(["interaction", "interaction", "", "", *chain(*numbers)])
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="\n").writerows(
+        [row[:4] + [_blank(value) for value in row[4:]] for row in rows[1:]]
+    )
+    return ",".join(head) + "\n" + buffer.getvalue()
 
 
 def write_table(table: EffectTable, folder: Path) -> None:

@@ -138,12 +138,9 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
         seconds = time.perf_counter() - start
         return Run(**head, refused=f"{kind}: {error}", seconds=seconds, notes=notes)
     values = {key: float(getattr(result, key)) for key in QUANTITIES}
-    details = result.estimate_details
-    errors = None
-    if details is not None:
-        errors = {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
-    note = None if errors is not None else NO_ESTIMATE[not estimate]
-    seconds = time.perf_counter() - start
+    details, seconds = result.estimate_details, time.perf_counter() - start
+    errors = details and {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
+    note = None if errors else NO_ESTIMATE[not estimate]
     return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
 
 
