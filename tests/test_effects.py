@@ -235,3 +235,19 @@ def test_the_study_reports_headline_table_carries_every_error_bar():
     # +10 % ± 0.1 points of P_c; e - 1 = +0.1 ± 0.001 as is, not in per cent
     assert full[1:] == ["+10.00 ± 0.10"] * 3 + ["+0.1000 ± 0.0010"]
     assert table["rows"][-1][0] == "interaction"
+
+
+def test_the_study_names_every_part_of_its_case():
+    """Old code: the effects study's case read "layer bonded; neo-hookean; coulomb", without
+    the Prony series or the friction coefficient (issue 28 point 8)."""
+    from shtaerman.output.text_effects import case_of
+
+    problem = dict(model="neo-hookean", prony=[(0.3, 1e-3)], geometry="layer bonded")
+    problem.update(thickness=0.012, interface="coulomb", friction=0.5)
+    assert case_of(problem) == (
+        "12 mm pad on a bonded rigid base; neo-Hookean rubber, Prony series g:tau = 0.3:0.001 "
+        "s; bonded indenter with Coulomb friction mu = 0.5"
+    )
+    paper = dict(model="linear", prony=None, geometry="half-space", thickness=None)
+    paper.update(interface="frictionless", friction=None)
+    assert case_of(paper) == "half-space; linear elastic; frictionless indenter"
