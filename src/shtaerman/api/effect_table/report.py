@@ -88,6 +88,8 @@ def table_text(table: EffectTable) -> str:
         "per cent of P_c, x_c, t_y; e as e - 1), with their estimated errors",
         line("", heads),
         *(line(label, cells) for label, cells in rows),
+        "  ±: the run's estimated absolute error (its ladder, as 'shtaerman dynamic' gives it) "
+        "over the paper's value: 'dynamic' prints the same error over its own value",
         "  interaction = full - sum of the single effects (its bar: the sum of their bars)",
         "  not in the problem: " + (", ".join(table.absent) or "none"),
         "dominant single effect (largest |change|; resolved: beyond the error bars):",
