@@ -93,7 +93,7 @@ def velocity_limit(
     ):  # beyond the level by more than its error: resolved, outside
         return (
             f"not even at v0 = {slowest:.3g} m/s (the slowest computed: difference "
-            f"{100 * difference:+.3g} ± {100 * error:.2g} %, outside the {level[:-1]} % limit "
+            f"{100 * difference:+.3g}{spread} %, outside the {level[:-1]} % limit "
             "beyond its error)"
         )
     if not limit.get("resolved"):
