@@ -84,14 +84,9 @@ def velocity_limit(
     error = limit.get("error")
     spread = plus_minus(error, ".1g", 100)
     note = f"difference{spread} %" if spread else "no error estimate"
-    if (
-        limit["bound"] == "none"
-        and None not in (error, difference)
-        and (
-            abs(difference) - error > float(level[:-1]) / 100.0  # type: ignore[operator,arg-type]
-        )
-    ):  # beyond the level by more than its error: resolved, outside
-        return (
+    beyond = None not in (error, difference) and limit["bound"] == "none"
+    if beyond and abs(difference) - error > float(level[:-1]) / 100:  # type: ignore[operator]
+        return (  # beyond the level by more than its error: resolved, outside
             f"not even at v0 = {slowest:.3g} m/s (the slowest computed: difference "
             f"{100 * difference:+.3g}{spread} %, outside the {level[:-1]} % limit "
             "beyond its error)"
@@ -273,11 +268,10 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         _estimate_finding(outcome),
     ]
     limits, slowest = outcome.limits(), outcome.velocities[0]
-    first = outcome.cases[0].differences()
+    first = {key: slowest_difference(outcome.cases[0].differences(), key) for key in NAMES}
     for level in LEVELS if outcome.estimated else ():
         parts = [
-            f"{NAMES[key]} "
-            + velocity_limit(limits[key][level], level, slowest, slowest_difference(first, key))
+            f"{NAMES[key]} {velocity_limit(limits[key][level], level, slowest, first[key])}"
             for key in NAMES
         ]
         found.append(
@@ -371,15 +365,9 @@ def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
 def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     """The report's tables (strings): per velocity, and the velocity limits."""
     limits, slowest = outcome.limits(), outcome.velocities[0]
-    first = outcome.cases[0].differences()
+    first = {key: slowest_difference(outcome.cases[0].differences(), key) for key in NAMES}
     limit_rows = [
-        [
-            NAMES[key],
-            *(
-                velocity_limit(limits[key][level], level, slowest, slowest_difference(first, key))
-                for level in LEVELS
-            ),
-        ]
+        [NAMES[key], *(velocity_limit(limits[key][lv], lv, slowest, first[key]) for lv in LEVELS)]
         for key in NAMES
     ]
     errors = (
@@ -532,16 +520,13 @@ def difference_cells(
 
 
 def fe_words(report: Mapping[str, Any]) -> str:
-    """The FE impact a difference is taken against: "massless FE" (a body without inertia:
-    no waves) or "FE with inertia" (waves)."""
+    """The FE impact a difference is taken against: "massless FE" or "FE with inertia"."""
     return "massless FE" if report["parameters"]["density2"] == 0 else "FE with inertia"
 
 
 def differences_text(report: Mapping[str, Any]) -> str:
-    """The paper's elastic quasi-static impact / the FE impact - 1, in per cent with the
-    estimated errors, saying what the FE impact is and so what the difference measures: with
-    inertia the waves and the body's other effects; massless, the body's effects alone (a
-    massless elastic half-space: only the FE's own error)."""
+    """The paper's elastic quasi-static impact / the FE impact - 1 (%, ± the estimated errors),
+    naming the FE impact and so what the difference measures."""
     cells = difference_cells(report["differences"], report.get("differences_error"))
     measures = (
         "no waves: the body's other effects, if any"
