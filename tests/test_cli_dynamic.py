@@ -53,7 +53,7 @@ def test_json_has_the_contract_keys(coarse_json):
     assert code == 0
     assert set(report) >= {"quasi_static", "dynamic", "radiation_estimate", "mesh", "timings"}
     assert set(report["quasi_static"]) == QUASI_STATIC_KEYS
-    assert set(report["dynamic"]) == DYNAMIC_KEYS
+    assert set(report["dynamic"]) >= DYNAMIC_KEYS  # the contract's; more keys welcome
     # the paper's example with a rigid striker: x_c of E* = 1e7 Pa (mpmath, 1e-12)
     assert report["quasi_static"]["x_c"] == pytest.approx(0.008517340195359727, rel=1e-12)
     # the paper's case radiates ~14 % (coarse: within a few per cent of the default run)

@@ -34,16 +34,9 @@ def pad_table():
     return sh.effects(problem, **COARSE)
 
 
-REFUSED = dict(thickness=0.012, base="lubricated", model="neo-hookean")
-REFUSED.update(interface="bonded", friction=0.5)
-
-
-@pytest.fixture(scope="module")
-def refused_table():
-    """A rubber on a lubricated pad, with friction: the parts, not a Problem (a lubricated base
-    at finite strain is refused). Every rubber variant is refused before any work (the base,
-    or x/a = 2.3 beyond the finite-strain reach 1.2); the linear ones run."""
-    return sh.effects(parts(INDENTER, BODY, **CASE, **REFUSED), **COARSE)
+RUBBER = dict(thickness=0.012, model="neo-hookean", interface="bonded", friction=0.5)
+"""The researcher's full case (issue 28) at 1.5 m/s: its rubber reaches x/a = 2.3, beyond the
+finite-strain reach 1.2, which ``shtaerman dynamic`` refuses before any work."""
 
 
 def test_interaction_closes_the_sum_on_the_real_table(pad_table):
@@ -82,18 +75,51 @@ def test_without_the_error_estimate_every_bar_is_na_and_says_why(pad_table):
     assert pad_table.dominant()["P_max"]["effect"] == "viscoelasticity"
 
 
-def test_a_refused_variant_shows_its_reason_and_the_others_run(refused_table):
-    from shtaerman.api.effect_table.report import table_text
+@pytest.mark.parametrize(
+    ("full", "says"),
+    [
+        (RUBBER, "mass, velocity: 0.12 kg at 1.5 m/s drive the striker"),  # x/a beyond 1.2
+        ({**RUBBER, "base": "lubricated"}, "base: a layer at finite strain is bonded only"),
+    ],
+)
+def test_a_refused_full_problem_refuses_the_table_before_any_run(full, says):
+    """Old code: the linear variants ran (six runs, 17 s on the coarse mesh) before the full
+    model was refused, and the table came back with the full row refused."""
+    said = []
+    with pytest.raises(sh.InputError, match=says):
+        sh.effects(parts(INDENTER, BODY, **CASE, **full), **COARSE, progress=said.append)
+    assert said == []  # not one run started
 
-    full = refused_table.run("full")
-    assert full.values is None and full.refused.startswith("refused: base:")
-    assert refused_table.run("finite strain alone").refused.startswith("refused:")
-    for label in ("pad alone", "waves alone", "friction alone", "without finite strain"):
-        assert refused_table.run(label).values is not None, label
-    assert refused_table.interaction()["P_max"].change is None
-    lines = {line.split("  ")[0]: line for line in table_text(refused_table).splitlines()}
-    assert "refused: base: a layer at finite strain is bonded only" in lines["full"]
-    assert "did not run" in lines["interaction"]
+
+def test_the_command_line_refuses_a_refused_full_problem_in_one_line(capsys):
+    argv = ["effects", *ARGV, "--thickness", "0.012", "--model", "neo-hookean"]
+    argv += ["--interface", "bonded", "--friction", "0.5"]
+    assert main(argv) == 2
+    printed, err = capsys.readouterr()
+    assert printed == "" and len(err.strip().splitlines()) == 1
+    assert "--mass, --velocity" in err and "effects: run" not in err
+
+
+def test_each_distinct_refusal_is_said_once():
+    """Old code: the same long refusal was printed in every row it applied to."""
+    from shtaerman.api.effect_table.report import table_markdown, table_text
+    from shtaerman.api.effect_table.table import EffectTable, Run
+
+    why = "refused: mass, velocity: a reason long enough to fill a line " + "x" * 80
+    other = "failed: Newton did not converge"
+    values = dict.fromkeys(QUANTITIES, 1.0)
+    runs = (
+        Run("none", "none", None, "-", values=values),
+        Run("finite strain alone", "alone", "finite strain", "-", refused=why),
+        Run("full", "full", None, "-", values=values),
+        Run("without pad", "without", "pad", "-", refused=why),
+        Run("without waves", "without", "waves", "-", refused=other),
+    )
+    reference = {"P_c": 1.0, "x_c": 1.0, "t_c": 0.5, "t_y": 1.0}
+    table = EffectTable(reference, runs, ())
+    for text in (table_text(table), table_markdown(table)):
+        assert text.count(why) == 1 and text.count(other) == 1
+        assert "refused: as finite strain alone" in text
 
 
 def test_dominance_is_resolved_only_beyond_the_error_bars():
@@ -111,20 +137,21 @@ def test_dominance_is_resolved_only_beyond_the_error_bars():
 
 def test_cli_writes_the_table_as_json_csv_and_markdown(tmp_path, capsys):
     out = tmp_path / "table"
-    argv = ("effects", *ARGV, "--thickness", "0.012", "--base", "lubricated")
-    argv += ("--model", "neo-hookean", "--interface", "bonded", "--friction", "0.5", "--json")
+    argv = ("effects", *ARGV, "--thickness", "0.012")
+    argv += ("--interface", "bonded", "--friction", "0.5", "--json")
     assert main([*argv, "--out", str(out)]) == 0
     printed, err = capsys.readouterr()
     document = json.loads(printed)
     assert json.loads((out / "effects.json").read_text()) == document
-    assert "effects: run 1/10: none: done in" in err  # a progress line per run
+    assert "effects: run 1/8: none: done in" in err  # a progress line per run
     rows = {
         row["variant"]: row
         for row in csv.DictReader(io.StringIO((out / "effects.csv").read_text()))
     }
     waves = next(run for run in document["runs"] if run["label"] == "waves alone")
     assert float(rows["waves alone"]["P_max"]) == waves["values"]["P_max"]
-    assert rows["full"]["refused"].startswith("refused: base:")
+    full = next(run for run in document["runs"] if run["label"] == "full")
+    assert float(rows["full"]["x_max_change"]) == full["changes"]["x_max"]["change"]
     markdown = (out / "effects.md").read_text()
     assert "| waves alone | -1.57 ± n/a |" in markdown  # the coarse run's P_max change
 
@@ -185,3 +212,42 @@ def test_a_run_keeps_an_option_its_combinations_limit_allows(monkeypatch):
         {"mesh_size": 0.2},
         ("time_steps not applied: at most 100 steps here, got 200",),
     )
+
+
+def test_the_study_reports_headline_table_carries_every_error_bar():
+    """Old code: the effects study's table printed the changes without their bars (issue 28
+    point 6: each entry carries its error bar), and e - 1 as per cent."""
+    from shtaerman.api.effect_table.table import EffectTable, Run
+    from shtaerman.output.text_effects import study_tables
+
+    errors = dict.fromkeys(QUANTITIES, 1e-3)
+    runs = [
+        Run(label, role, None, "-", values=dict.fromkeys(QUANTITIES, 1.1), errors=errors)
+        for label, role in (("none", "none"), ("pad alone", "alone"), ("full", "full"))
+    ]
+    runs[1] = Run(**{**vars(runs[1]), "effect": "pad"})
+    reference = {"P_c": 1.0, "x_c": 1.0, "t_c": 0.5, "t_y": 1.0}
+    document = {"effects": EffectTable(reference, tuple(runs), ()).to_dict()}
+    [table] = study_tables(document)
+    for row in table["rows"]:
+        assert all(" ± " in cell for cell in row[1:]), row
+    full = next(row for row in table["rows"] if row[0] == "full")
+    # +10 % ± 0.1 points of P_c; e - 1 = +0.1 ± 0.001 as is, not in per cent
+    assert full[1:] == ["+10.00 ± 0.10"] * 3 + ["+0.1000 ± 0.0010"]
+    assert table["rows"][-1][0] == "interaction"
+
+
+def test_the_study_names_every_part_of_its_case():
+    """Old code: the effects study's case read "layer bonded; neo-hookean; coulomb", without
+    the Prony series or the friction coefficient (issue 28 point 8)."""
+    from shtaerman.output.text_effects import case_of
+
+    problem = dict(model="neo-hookean", prony=[(0.3, 1e-3)], geometry="layer bonded")
+    problem.update(thickness=0.012, interface="coulomb", friction=0.5)
+    assert case_of(problem) == (
+        "12 mm pad on a bonded rigid base; neo-Hookean rubber, Prony series g:tau = 0.3:0.001 "
+        "s; bonded indenter with Coulomb friction mu = 0.5"
+    )
+    paper = dict(model="linear", prony=None, geometry="half-space", thickness=None)
+    paper.update(interface="frictionless", friction=None)
+    assert case_of(paper) == "half-space; linear elastic; frictionless indenter"

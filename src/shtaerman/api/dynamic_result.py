@@ -7,20 +7,28 @@ import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from ..fem.impact_run import SUMMARY_KEYS
 from ..output.files import json_safe
 
 if TYPE_CHECKING:
     from ..problem import Problem
 
-__all__ = ["DIFFERENCES", "DynamicResult", "check_separated"]
+__all__ = ["DIFFERENCES", "DYNAMIC_KEYS", "DynamicResult", "check_separated"]
 
 DIFFERENCES = {"x": "x_c", "P": "P_c", "t": "t_c"}
 """The compared quantities and their keys in ``differences``: quasi-static x_c / x_max - 1,
 P_c / P_max - 1 and t_c / (t_contact / 2) - 1."""
+DYNAMIC_KEYS = (*SUMMARY_KEYS, "energy_dissipated_fraction", "energy_wave_fraction")
+DYNAMIC_KEYS += ("energy_hysteresis_fraction", "energy_slip_fraction")
+"""The keys of ``dynamic`` on every route (null where the body has no such quantity)."""
+SECTIONS = ("viscoelastic_quasi_static", "differences_error", "viscoelastic_differences")
+SECTIONS += ("viscoelastic_differences_error", "radiation_estimate", "rubber", "prony")
+SECTIONS += ("error_estimate", "extrapolated", "estimate_details", "mesh_ladder")
+"""The optional parts of the JSON: present on every route, null where the case has none."""
 
 
 def _dynamic_key(name: str, doc: str) -> Any:
-    return property(lambda self: self.dynamic[name], doc=doc)
+    return property(lambda self: self.dynamic.get(name, math.nan), doc=doc)
 
 
 @dataclass(frozen=True)
@@ -34,11 +42,12 @@ class DynamicResult:
     without its levels all passing (``estimate_missing`` then says why; ``mesh_ladder`` shows
     the levels).
     ``solution`` is the finest FE run (histories, fields), ``ladder`` the error-estimate
-    ladder; neither is part of :meth:`to_dict`. One type for every body: ``model`` names the
-    material model; a rubber at finite strain adds ``rubber`` (its constants) and ``prony``
-    (its series, as given) and has no ``radiation_estimate`` (the first-order estimate is the
-    linear half-space's). ``profile`` names the striker's profile (``kind`` and
-    ``parameters``, as ``impact --json``).
+    ladder; neither is part of :meth:`to_dict`. One type and one JSON schema for every body
+    (:meth:`to_dict`): ``model`` names the material model, ``rubber`` its constants at finite
+    strain, ``prony`` the series as given; ``radiation_estimate`` is the linear elastic
+    half-space's first-order estimate of its waves (None for a rubber, on a pad and for a
+    massless body). ``profile`` names the
+    striker's profile (``kind`` and ``parameters``, as ``impact --json``).
     """
 
     quasi_static: dict[str, float]
@@ -71,7 +80,7 @@ class DynamicResult:
     v_out = _dynamic_key("v_out", "Rebound velocity, m/s.")
     restitution = _dynamic_key("restitution", "Coefficient of restitution e = v_out / v0.")
     energy_radiated_fraction = _dynamic_key(
-        "energy_radiated_fraction", "Energy carried away by waves, 1 - e^2 of M v0^2 / 2."
+        "energy_radiated_fraction", "Energy left in the body, 1 - e^2 of M v0^2 / 2."
     )
     energy_balance_error = _dynamic_key(
         "energy_balance_error", "Energy account error, of M v0^2 / 2."
@@ -79,58 +88,81 @@ class DynamicResult:
     reflected_energy_fraction = _dynamic_key(
         "reflected_energy_fraction", "Energy reflected by the far boundary, of the radiated."
     )
-
-    @property
-    def energy_dissipated_fraction(self) -> float:
-        """Energy dissipated by a viscoelastic half-space (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_dissipated_fraction", math.nan)
-
-    @property
-    def energy_hysteresis_fraction(self) -> float:
-        """The part of 1 - e^2 lost to hysteresis (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_hysteresis_fraction", math.nan)
-
-    @property
-    def energy_wave_fraction(self) -> float:
-        """The part of 1 - e^2 carried away by waves (of M v0^2 / 2; nan if elastic)."""
-        return self.dynamic.get("energy_wave_fraction", math.nan)
+    energy_dissipated_fraction = _dynamic_key(
+        "energy_dissipated_fraction", "Energy dissipated (of M v0^2 / 2; nan if elastic)."
+    )
+    energy_hysteresis_fraction = _dynamic_key(
+        "energy_hysteresis_fraction", "Part of 1 - e^2 lost to hysteresis (nan if elastic)."
+    )
+    energy_wave_fraction = _dynamic_key(
+        "energy_wave_fraction", "Part of 1 - e^2 carried away by waves (nan if elastic)."
+    )
 
     def history(self) -> dict[str, Any]:
         """The histories t, x, v, P, a, p0 at every time step (arrays, SI units)."""
         return self.solution.history_columns()
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON object of ``shtaerman dynamic --json``: non-finite numbers
-        are None (the CLI's null)."""
-        document: dict[str, Any] = {"quasi_static": dict(self.quasi_static)}
-        if self.viscoelastic_quasi_static is not None:
-            document["viscoelastic_quasi_static"] = dict(self.viscoelastic_quasi_static)
-        document.update(dynamic=dict(self.dynamic), differences=dict(self.differences))
-        if self.differences_error is not None:
-            document["differences_error"] = dict(self.differences_error)
-        for key in ("viscoelastic_differences", "viscoelastic_differences_error"):
-            if getattr(self, key) is not None:
-                document[key] = dict(getattr(self, key))
-        if self.radiation_estimate is not None:
-            document["radiation_estimate"] = self.radiation_estimate
+        """The JSON object of ``shtaerman dynamic --json``, one schema for every body: every
+        key of :data:`DYNAMIC_KEYS` and :data:`SECTIONS` is there, null where the case has no
+        such quantity, and ``not_given`` says why for each null (``dynamic.<key>`` for a key of
+        ``dynamic``); other non-finite numbers are null too (the CLI's null);
+        ``estimate_missing`` is null unless the estimate is missing."""
+        dynamic = {key: self.dynamic.get(key) for key in DYNAMIC_KEYS} | dict(self.dynamic)
+        document: dict[str, Any] = {
+            "quasi_static": dict(self.quasi_static),
+            "viscoelastic_quasi_static": self.viscoelastic_quasi_static,
+            "dynamic": dynamic,
+            "differences": dict(self.differences),
+        }
+        document.update({key: getattr(self, key) for key in SECTIONS[1:]})
         document.update(mesh=self.mesh, timings=self.timings, parameters=self.parameters)
-        if self.profile is not None:
-            document["profile"] = dict(self.profile)
-        document["model"] = self.model
-        if self.rubber is not None:
-            document["rubber"] = dict(self.rubber)
-        if self.prony is not None:
-            document["prony"] = self.prony
+        document.update(profile=self.profile, model=self.model)
         if self.mesh_ladder is not None:
-            document.update(
-                error_estimate=self.error_estimate,
-                extrapolated=self.extrapolated,
-                estimate_details=self.estimate_details,
-                mesh_ladder=[dict(level) for level in self.mesh_ladder],
-            )
-        if self.estimate_missing is not None:
-            document["estimate_missing"] = self.estimate_missing
+            document["mesh_ladder"] = [dict(level) for level in self.mesh_ladder]
+        document["estimate_missing"] = self.estimate_missing
+        document["not_given"] = self.not_given()
         return json_safe(document)
+
+    def not_given(self) -> dict[str, str]:
+        """Why each null of :meth:`to_dict` is null (key -> reason; ``dynamic.<key>`` for a
+        key of ``dynamic`` the run did not record)."""
+        elastic, massless = self.prony is None, self.parameters.get("density2") == 0
+        frictional, pad = "interface" in self.parameters, "thickness" in self.mesh
+        unrecorded, no_waves = "not recorded by this model", "a massless body radiates no waves"
+        residue = "numerical residue (no waves)" if massless else "waves"
+        split = [f"an elastic body has no hysteresis: 1 - e^2 is all {residue}"]
+        split.append("the finite-strain impact records the dissipated energy only")
+        heat = [unrecorded, "an elastic body on a frictionless indenter dissipates nothing"]
+        reasons = {
+            "energy_dissipated_fraction": heat[elastic and not frictional],
+            "energy_wave_fraction": split[not elastic],
+            "energy_hysteresis_fraction": split[not elastic],
+            "energy_slip_fraction": unrecorded if frictional else "a frictionless indenter",
+            "reflected_energy_fraction": no_waves + " to reflect" if massless else unrecorded,
+        }
+        out = {f"dynamic.{key}": reasons.get(key, unrecorded)
+               for key in DYNAMIC_KEYS if not _finite(self.dynamic.get(key))}  # fmt: skip
+        viscous = ["no viscoelastic quasi-static reference for this case"]
+        viscous.append(
+            "an elastic body: the paper's elastic impact (quasi_static) is the reference"
+        )
+        waves = "the first-order estimate is of the linear elastic half-space's waves"
+        sections = {
+            "radiation_estimate": no_waves if massless else waves + "; not a pad's" * pad,
+            "rubber": "a linear body has no rubber constants",
+            "prony": "an elastic body (no Prony series)",
+        }
+        ladder = self.estimate_missing or "the error estimate was switched off (--no-estimate)"
+        for key in (key for key in SECTIONS if getattr(self, key) is None):
+            reference = key.startswith("viscoelastic") and self.viscoelastic_quasi_static is None
+            out[key] = viscous[elastic] if reference else sections.get(key, ladder)
+        return out
+
+
+def _finite(value: Any) -> bool:
+    """Whether ``value`` is a finite number (not None, nan or inf: the JSON's null)."""
+    return isinstance(value, (int, float)) and math.isfinite(value)
 
 
 def check_separated(dynamic: dict[str, float], run_time: float) -> None:

@@ -96,8 +96,9 @@ def _viscoelastic(
 
 def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
     """The result of ``problem``'s case, with its ladder's keys where it ran one (the
-    differences' errors None where the estimate is missing); a rubber has no radiation
-    estimate (the first-order estimate is the linear half-space's)."""
+    differences' errors None where the estimate is missing); a rubber, a pad and a massless
+    body have no radiation estimate (the first-order estimate is of the waves of the linear
+    elastic half-space)."""
     from ..study.dynamic.case import compare
 
     document = dataclasses.replace(case, ladder=None).document()
@@ -109,19 +110,20 @@ def _result(case: DynamicCase, problem: Problem) -> DynamicResult:
     if ladder is not None:
         document.update(ladder.to_dict())
     body, indenter = problem.body, problem.striker.indenter
-    series = body.prony
+    series, pad = body.prony, problem.geometry.thickness is not None
+    waveless = body.finite or pad or body.material.density == 0  # no half-space waves
     viscous, viscous_differences, viscous_errors = _viscoelastic(case, problem)
     return DynamicResult(
         quasi_static=document["quasi_static"],
         dynamic=document["dynamic"],
         differences={DIFFERENCES[k]: value for k, value in differences.items()},
-        radiation_estimate=None if body.finite else document["radiation_estimate"],
+        radiation_estimate=None if waveless else document["radiation_estimate"],
         mesh=document["mesh"],
         timings=document["timings"],
         parameters=document["parameters"],
         model=body.model,
         rubber=body.rubber().to_dict() if body.finite else None,
-        prony=None if series is None or not body.finite else series.text(),
+        prony=None if series is None else series.text(),
         differences_error=errors,
         error_estimate=document.get("error_estimate"),
         extrapolated=document.get("extrapolated"),
@@ -347,6 +349,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     import warnings
 
     from ..fem.dynamic_contact import check_dynamic_impact
+    from ..fem.finite_dynamic import PAD_FRICTION_REACH
     from ..guards import check_reach
     from ..study.dynamic.case import exact_impact
     from ..theory.impact import representable
@@ -366,8 +369,10 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
             check_dynamic_impact(*inputs, settings, *physics)
             return
     validate_density("density2", body.density)
-    if problem.geometry.thickness is None:  # a pad stops the striker short of x_c
-        check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True)
+    unbounded = problem.geometry.thickness is None  # a pad stops the striker short of x_c,
+    if unbounded or problem.interface.coefficient:  # which a frictional one cannot pass
+        note = "" if unbounded else PAD_FRICTION_REACH
+        check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True, note)
 
 
 def _problem(

@@ -160,18 +160,11 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _differences_text(report: dict) -> str:
-    """Quasi-static / dynamic - 1 in per cent, with the estimated error where there is one
-    (the paper's elastic impact's; named so where a massless viscoelastic body has its own)."""
-    from ..output.text_dynamic import difference_cells, massless_viscoelastic
-
-    cells = difference_cells(report["differences"], report.get("differences_error"))
-    label = "elastic (paper) / dynamic - 1" if massless_viscoelastic(report) else ""
-    return (
-        f"  {label or 'quasi-static / dynamic - 1'}  " + cells + "\n"
-        "                              (x_c against x_max, P_c against P_max, t_c against "
-        "t_contact / 2)"
-    )
+def _loss_label(dyn: dict, massless: bool) -> str:
+    """The 1 - e^2 row's name: all of it is waves in an elastic body with inertia, not in a
+    viscoelastic or massless one."""
+    lost = massless or not math.isnan(dyn["energy_dissipated_fraction"])
+    return "energy lost 1-e^2       " if lost else "energy to waves 1-e^2   "
 
 
 def _unsigned_zero(value: float) -> float:
@@ -180,14 +173,16 @@ def _unsigned_zero(value: float) -> float:
     return round(value, 6) + 0.0
 
 
-def _losses_text(dyn: dict) -> list[str]:
-    """A viscoelastic run's 1 - e^2 split into waves and hysteresis ([] for an elastic one)."""
-    if "energy_dissipated_fraction" not in dyn:
+def _losses_text(dyn: dict, massless: bool) -> list[str]:
+    """A viscoelastic run's 1 - e^2 split into waves and hysteresis, all hysteresis in a
+    massless body (no waves); [] for an elastic one."""
+    if math.isnan(dyn["energy_dissipated_fraction"]):
         return []
+    waves = f"    of which waves        {_unsigned_zero(dyn['energy_wave_fraction']):<14.6f}  "
     return [
-        f"    of which waves        {_unsigned_zero(dyn['energy_wave_fraction']):<14.6f}  "
-        "(beyond R_a, absorbed)",
-        f"    of which hysteresis   {_unsigned_zero(dyn['energy_hysteresis_fraction']):<14.6f}  "
+        *([] if massless else [waves + "(beyond R_a, absorbed)"]),
+        f"    {'all of it' if massless else 'of which'} hysteresis   "
+        f"{_unsigned_zero(dyn['energy_hysteresis_fraction']):<14.6f}  "
         f"(dissipated {_unsigned_zero(dyn['energy_dissipated_fraction']):.6f}, the rest to be "
         "dissipated near the contact)",
     ]
@@ -195,7 +190,10 @@ def _losses_text(dyn: dict) -> list[str]:
 
 def _estimate(estimate: dict, mesh: dict, key: str) -> str:
     """The first-order half-space estimate of ``key`` beside the FE value, in words; on a pad
-    it does not apply (the base reflects what the half-space radiates), and says so once."""
+    it does not apply (the base reflects what the half-space radiates), and says so once;
+    a massless body has none (no waves)."""
+    if not estimate and "thickness" not in mesh:
+        return ""
     if "thickness" in mesh:
         return " (the half-space estimate does not apply to a pad)" if key == "restitution" else ""
     words = "first-order estimate" + (" of the waves" if key == "energy_fraction" else "")
@@ -204,35 +202,35 @@ def _estimate(estimate: dict, mesh: dict, key: str) -> str:
 
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
-    from ..output.text_dynamic import viscoelastic_rows
+    from ..output.text_dynamic import differences_text, viscoelastic_rows
 
     qs, dyn, est = (
-        {key: math.nan if value is None else value for key, value in report[part].items()}
+        {key: math.nan if value is None else value for key, value in (report[part] or {}).items()}
         for part in ("quasi_static", "dynamic", "radiation_estimate")
     )
     mesh, timings = report["mesh"], report["timings"]
     of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
-    lost = "lost 1-e^2" if "energy_dissipated_fraction" in dyn else "to waves 1-e^2"  # elastic
+    massless = report["parameters"]["density2"] == 0
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",
         *profile_rows(report),
         *layer_rows(report, PAD),
         *interface_rows(report["parameters"]),
         "                          dynamic FEM     quasi-static"
-        + (" elastic (the paper's)" if "viscoelastic_quasi_static" in report else ""),
+        + (" elastic (the paper's)" if report.get("viscoelastic_quasi_static") else ""),
         f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
         f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
         f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
         f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
         f"  restitution e           {dyn['restitution']:<14.6f}  "
         f"1{_estimate(est, mesh, 'restitution')}",
-        f"  energy {lost:<17}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
+        f"  {_loss_label(dyn, massless)}{_unsigned_zero(dyn['energy_radiated_fraction']):<14.6f}  "
         f"0{_estimate(est, mesh, 'energy_fraction')}",
-        *_losses_text(dyn),
-        _differences_text(report),
+        *_losses_text(dyn, massless),
+        differences_text(report),
         *viscoelastic_rows(report),
-        f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2;  reflected "
-        f"{dyn['reflected_energy_fraction']:.1e} of {of}",
+        f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2"
+        + ("" if massless else f";  reflected {dyn['reflected_energy_fraction']:.1e} of {of}"),
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
         f"{mesh['contact_candidates']} contact candidates",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),

@@ -41,11 +41,10 @@ def register(commands: argparse._SubParsersAction) -> None:
             "interaction (full - sum of the single changes) and the dominant effect. The "
             "effects: the pad (--thickness), the waves (--density2 > 0), finite strain "
             "(--model), viscoelasticity (--prony), friction (--interface bonded, --friction). "
-            "A sphere (--sphere-radius) or a tabulated tip (--profile) drops viscoelasticity "
-            "on a linear body (its FE impact takes the power law only), said in one line "
-            "before the runs. "
-            "A variant that is refused (its combination, an option, a validity limit) or "
-            "fails shows its reason in its row; the others run. Progress on stderr, SI units."
+            "The full problem is checked first, as 'shtaerman dynamic' checks it: refused, the "
+            "table is refused in one line before any run. A variant that is refused or fails "
+            "shows its reason in its row (each reason once); the others run. Progress on "
+            "stderr, SI units."
         ),
     )
     inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")

@@ -52,7 +52,7 @@ def finite_dynamic_text(report: dict) -> str:
 def ladder_rows(report: dict) -> list[str]:
     """The error-estimate ladder's levels and estimated relative errors, or why the estimate
     is missing ([] without the estimate)."""
-    if "mesh_ladder" not in report:
+    if report.get("mesh_ladder") is None:
         return []
     levels = ", ".join(
         f"{lv['dofs']} dofs/{lv['steps']} steps" if lv["dofs"] is not None else "failed"
@@ -80,7 +80,7 @@ def prony_rows(report: dict) -> list[str]:
     """The Prony series and the energy dissipated by it and by friction (none for an elastic
     body on a frictionless indenter)."""
     rows = []
-    if "prony" in report:
+    if report.get("prony") is not None:
         rows.append(f"  Prony series g:tau      {report['prony']} (isochoric stress relaxes)")
     share = report["dynamic"].get("energy_dissipated_fraction")
     if share is not None:

@@ -59,19 +59,38 @@ def _plus_minus(estimates: dict[str, Estimate]) -> Callable[..., str]:
     return pm
 
 
-def velocity_limit(limit: Mapping[str, Any] | None, level: str, slowest: float) -> str:
+def slowest_difference(differences: Mapping[str, float] | None, key: str) -> float | None:
+    """The difference ``key`` ("x", "P", "t"; "all": the largest in magnitude of the three)
+    of the slowest velocity's ``differences`` (None: not known)."""
+    if not differences or key != "all":
+        return (differences or {}).get(key)
+    return max((differences[k] for k in COMPARED), key=abs)
+
+
+def velocity_limit(
+    limit: Mapping[str, Any] | None, level: str, slowest: float, difference: float | None = None
+) -> str:
     """A velocity limit (:func:`shtaerman.study.limits.thresholds`) to ``level`` ("1%") in
     words, the one wording of the study's table, its findings and the report's "where the
     model holds" table: "up to v0 = 0.715 ± 0.007 m/s (difference ± 0.007 %)", "over the whole
     range computed (to v0 = 5 m/s, the fastest; the limit lies beyond; ...)", "not even at v0 =
     0.5 m/s (the slowest computed; ...)" (``slowest``, m/s), or "not resolved (...)" where the
-    difference's estimated error (in percentage points) is not below a fifth of the level;
+    difference's estimated error (in percentage points) is not below a fifth of the level,
+    unless the slowest velocity's ``difference`` lies beyond the level by more than that
+    error (then the limit is below the range: "not even at ..., outside the 1 % limit");
     "-" without a limit."""
     if not limit:
         return "-"
     error = limit.get("error")
     spread = plus_minus(error, ".1g", 100)
     note = f"difference{spread} %" if spread else "no error estimate"
+    beyond = None not in (error, difference) and limit["bound"] == "none"
+    if beyond and abs(difference) - error > float(level[:-1]) / 100:  # type: ignore[operator]
+        return (  # beyond the level by more than its error: resolved, outside
+            f"not even at v0 = {slowest:.3g} m/s (the slowest computed: difference "
+            f"{100 * difference:+.3g}{spread} %, outside the {level[:-1]} % limit "
+            "beyond its error)"
+        )
     if not limit.get("resolved"):
         if error is None:
             return f"not resolved ({note})"
@@ -173,8 +192,10 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
     if outcome.study.finite:
         return _rubber_loss_words(outcome)
     losses, pm = case.result.losses, _plus_minus(case.estimates())
+    if not losses and outcome.study.density == 0:
+        return "(a massless elastic body: no waves, no hysteresis; 1 - e^2 is numerical residue)"
     if not losses:
-        if pad and outcome.study.density > 0:
+        if pad:
             return (
                 f"as waves along the pad ({_reflection_words(outcome)}; the half-space's "
                 "first-order radiation estimate does not apply to a pad)"
@@ -247,9 +268,11 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         _estimate_finding(outcome),
     ]
     limits, slowest = outcome.limits(), outcome.velocities[0]
+    first = {key: slowest_difference(outcome.cases[0].differences(), key) for key in NAMES}
     for level in LEVELS if outcome.estimated else ():
         parts = [
-            f"{NAMES[key]} {velocity_limit(limits[key][level], level, slowest)}" for key in NAMES
+            f"{NAMES[key]} {velocity_limit(limits[key][level], level, slowest, first[key])}"
+            for key in NAMES
         ]
         found.append(
             f"The quasi-static values hold to {level[:-1]} % of the dynamic ones: "
@@ -342,8 +365,9 @@ def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
 def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     """The report's tables (strings): per velocity, and the velocity limits."""
     limits, slowest = outcome.limits(), outcome.velocities[0]
+    first = {key: slowest_difference(outcome.cases[0].differences(), key) for key in NAMES}
     limit_rows = [
-        [NAMES[key], *(velocity_limit(limits[key][level], level, slowest) for level in LEVELS)]
+        [NAMES[key], *(velocity_limit(limits[key][lv], lv, slowest, first[key]) for lv in LEVELS)]
         for key in NAMES
     ]
     errors = (
@@ -434,10 +458,16 @@ def validity_rows(name: str, study: Mapping[str, Any]) -> list[list[str]]:
     limits = study.get("limits", {})
     labels = {"all": "x_c, P_c and t_c", "P": "P_c", "x": "x_c", "t": "t_c"}
     tested, velocities = assumptions(study), study.get("inputs", {}).get("velocities")
+    first = (study.get("cases") or [{}])[0].get("differences")
     return [
         [
             f"{tested} ({name}): quasi-static {label} against the dynamic FE impact",
-            *(velocity_limit(limits[key].get(level), level, velocities[0]) for level in LEVELS),
+            *(
+                velocity_limit(
+                    limits[key].get(level), level, velocities[0], slowest_difference(first, key)
+                )
+                for level in LEVELS
+            ),
         ]
         for key, label in labels.items()
         if key in limits
@@ -489,6 +519,26 @@ def difference_cells(
     return ", ".join(cells)
 
 
+def fe_words(report: Mapping[str, Any]) -> str:
+    """The FE impact a difference is taken against: "massless FE" or "FE with inertia"."""
+    return "massless FE" if report["parameters"]["density2"] == 0 else "FE with inertia"
+
+
+def differences_text(report: Mapping[str, Any]) -> str:
+    """The paper's elastic quasi-static impact / the FE impact - 1 (%, ± the estimated errors),
+    naming the FE impact and so what the difference measures."""
+    cells = difference_cells(report["differences"], report.get("differences_error"))
+    measures = (
+        "no waves: the body's other effects, if any"
+        if report["parameters"]["density2"] == 0
+        else "the waves and the body's other effects, if any"
+    )
+    return (
+        f"  paper (elastic quasi-static) / {fe_words(report)} - 1:  {cells}\n"
+        f"      (x_c against x_max, P_c against P_max, t_c against t_contact / 2; {measures})"
+    )
+
+
 def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
     """The viscoelastic reference / dynamic - 1 line, ± the estimated error where there is one."""
     differences = report["viscoelastic_differences"]
@@ -496,26 +546,17 @@ def _viscoelastic_differences(report: Mapping[str, Any], label: str) -> str:
     return f"  {label}  " + difference_cells(differences, errors, VISCOELASTIC_NAMES)
 
 
-def massless_viscoelastic(report: Mapping[str, Any]) -> bool:
-    """Whether the viscoelastic quasi-static impact is the reference of the run: a massless
-    body with a Prony series (then the paper's elastic impact is only for comparison)."""
-    return "viscoelastic_quasi_static" in report and report["parameters"]["density2"] == 0
-
-
 def viscoelastic_rows(report: Mapping[str, Any], dynamic: str = "dynamic FEM") -> list[str]:
     """The rows of a viscoelastic body's quasi-static reference beside the FE impact (column
-    ``dynamic``) and their differences; [] for an elastic body. On a massless body, where it is
-    exact, its line is "quasi-static / dynamic - 1" (what the FE impact converges to); else
-    "viscoelastic / dynamic - 1" (with inertia the paper's elastic line stays the quasi-static
-    one)."""
+    ``dynamic``) and their differences, "viscoelastic quasi-static / massless FE - 1" (on a
+    massless half-space it is exact: what the FE impact converges to) or "... / FE with inertia
+    - 1"; [] for an elastic body."""
     reference = report.get("viscoelastic_quasi_static")
     if reference is None:
         return []
     dyn, ref = ({k: math.nan if v is None else v for k, v in part.items()}
                 for part in (report["dynamic"], reference))  # fmt: skip
     layer = "thickness" in report.get("mesh", {})
-    exact = massless_viscoelastic(report) and reference["exact"] and not layer
-    label = "quasi-static" if exact else "viscoelastic"
     massless = report["parameters"]["density2"] == 0
     return [
         f"  {viscoelastic_words(reference, massless, layer)}:",
@@ -527,5 +568,5 @@ def viscoelastic_rows(report: Mapping[str, Any], dynamic: str = "dynamic FEM") -
         f"  restitution e           {dyn['restitution']:<14.6f}  {ref['restitution']:.6f}",
         f"  energy lost 1-e^2       {round(dyn['energy_radiated_fraction'], 6) + 0.0:<14.6f}  "
         f"{ref['energy_lost_fraction']:.6f}",
-        _viscoelastic_differences(report, f"{label} / dynamic - 1"),
+        _viscoelastic_differences(report, f"viscoelastic quasi-static / {fe_words(report)} - 1:"),
     ]

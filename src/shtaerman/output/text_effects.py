@@ -8,9 +8,29 @@ from typing import Any
 
 from .entry import kind_entry
 
-__all__ = ["entry", "study_findings"]
+__all__ = ["case_of", "entry", "study_findings"]
 
 NAMES = {"P_max": "P_max", "x_max": "x_max", "t_contact": "t_contact", "restitution": "e"}
+
+
+def case_of(problem: Mapping[str, Any]) -> str:
+    """The full problem of a table (its ``problem``) in words, every part set: "12 mm pad on
+    a bonded rigid base; neo-Hookean rubber, Prony series g:tau = 0.3:0.001 s; bonded
+    indenter with Coulomb friction mu = 0.5"."""
+    from ..plots.labels import model_label
+    from ..theory.viscoelastic import PronySeries
+    from .case import case_words
+
+    model, geometry = problem["model"], problem["geometry"]
+    prony = problem["prony"] and PronySeries(*zip(*problem["prony"], strict=True))
+    return case_words(
+        material="linear elastic" if model == "linear" else f"{model_label(model)} rubber",
+        prony=prony or None,
+        thickness=problem["thickness"],
+        base=geometry.split()[-1] if problem["thickness"] is not None else None,
+        interface="frictionless" if problem["interface"] == "frictionless" else "bonded",
+        friction=problem["friction"],
+    )
 
 
 def study_findings(document: Mapping[str, Any]) -> list[str]:
@@ -30,15 +50,21 @@ def study_findings(document: Mapping[str, Any]) -> list[str]:
 
 
 def study_tables(document: Mapping[str, Any]) -> list[dict[str, object]]:
-    """The change of each run against the paper's quasi-static values (%; e - 1 for e)."""
+    """The change of each run against the paper's quasi-static values, each with its error bar
+    (``shtaerman effects``' cells: %, e - 1 for e; "± n/a" without a bar), and the
+    interaction."""
+    from ..api.effect_table.report import cell_text
+    from ..api.effect_table.table import Cell
+
     table = document["effects"]
 
-    def cell(change: Mapping[str, Any]) -> str:
-        value = change.get("change")
-        return "-" if value is None else f"{100 * value:+.2f} %"
+    def row(label: str, changes: Mapping[str, Any]) -> list[str]:
+        return [label, *(cell_text(Cell(**changes[key]), key) or "-" for key in NAMES)]
 
-    rows = [[run["label"], *(cell(run["changes"][key]) for key in NAMES)] for run in table["runs"]]
-    return [{"title": "Effect table", "header": ["run", *NAMES.values()], "rows": rows}]
+    rows = [row(run["label"], run["changes"]) for run in table["runs"]]
+    rows.append(row("interaction", table["interaction"]))
+    header = ["run", "P_max (%)", "x_max (%)", "t_contact (%)", "e - 1"]
+    return [{"title": "Effect table (± the estimated error)", "header": header, "rows": rows}]
 
 
 def entry(
@@ -49,7 +75,6 @@ def entry(
 ) -> dict[str, object]:
     """The study's results.json entry: the table, its display table and its findings."""
     document = outcome.document()
-    problem = document["effects"]["problem"]
-    case = f"{problem['geometry']}; {problem['model']}; {problem['interface']}"
+    case = case_of(document["effects"]["problem"])
     text = {"tables": study_tables(document), "findings": study_findings(document)}
     return kind_entry(outcome, {"case": case, **document, **text}, files, output_seconds, figures)

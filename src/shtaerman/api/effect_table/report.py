@@ -5,11 +5,12 @@ from __future__ import annotations
 import csv
 import io
 import json
+from itertools import chain
 from pathlib import Path
 
-from .table import QUANTITIES, UNITS, Cell, EffectTable
+from .table import QUANTITIES, UNITS, Cell, EffectTable, refusal_words
 
-__all__ = ["FILES", "table_csv", "table_markdown", "table_text", "write_table"]
+__all__ = ["FILES", "cell_text", "table_csv", "table_markdown", "table_text", "write_table"]
 
 FILES = ("effects.json", "effects.csv", "effects.md")
 """What ``--out`` writes."""
@@ -17,7 +18,7 @@ HEADERS = {"P_max": "P_max (%)", "x_max": "x_max (%)", "t_contact": "t_contact (
 HEADERS["restitution"] = "e - 1"
 
 
-def _cell(cell: Cell, key: str) -> str:
+def cell_text(cell: Cell, key: str) -> str:
     """``+1.49 ± 0.05`` (per cent; e - 1 as is), ``± n/a`` without a bar."""
     if cell.change is None:
         return ""
@@ -31,19 +32,19 @@ def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
     a refused run's single cell is its reason."""
     ref = table.reference
     paper = [f"{ref[QUANTITIES[k]]:.5g} {UNITS[k]}" if QUANTITIES[k] else "1" for k in QUANTITIES]
-    rows = [("quasi-static (paper)", paper)]
+    rows, first = [("quasi-static (paper)", paper)], {}
     for run in table.runs:
         if run.refused is not None:
-            rows.append((run.label, [run.refused]))
+            rows.append((run.label, [refusal_words(run.refused, run.label, first)]))
             continue
         cells = table.cells(run.label)
-        rows.append((run.label, [_cell(cells[key], key) for key in QUANTITIES]))
+        rows.append((run.label, [cell_text(cells[key], key) for key in QUANTITIES]))
     interaction = table.interaction()
     missing = [run.label for run in table.runs if run.role in ("alone", "full") and run.refused]
     if missing:
         rows.append(("interaction", [f"n/a: {', '.join(missing)} did not run"]))
     else:
-        rows.append(("interaction", [_cell(interaction[key], key) for key in QUANTITIES]))
+        rows.append(("interaction", [cell_text(interaction[key], key) for key in QUANTITIES]))
     return rows
 
 
@@ -87,6 +88,8 @@ def table_text(table: EffectTable) -> str:
         "per cent of P_c, x_c, t_y; e as e - 1), with their estimated errors",
         line("", heads),
         *(line(label, cells) for label, cells in rows),
+        "  ±: the run's estimated absolute error (its ladder, as 'shtaerman dynamic' gives it) "
+        "over the paper's value: 'dynamic' prints the same error over its own value",
         "  interaction = full - sum of the single effects (its bar: the sum of their bars)",
         "  not in the problem: " + (", ".join(table.absent) or "none"),
         "dominant single effect (largest |change|; resolved: beyond the error bars):",
@@ -114,32 +117,20 @@ def _blank(value: float | None) -> str:
 
 def table_csv(table: EffectTable) -> str:
     """One row per run: values (SI), their errors, changes and their bars; empty: n/a."""
-    keys = list(QUANTITIES)
-    head = ["variant", "role", "effect", "refused"]
-    for key in keys:
-        head += [key, f"{key}_error", f"{key}_change", f"{key}_change_error"]
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(head)
+    keys, head = list(QUANTITIES), ["variant", "role", "effect", "refused"]
+    head += [f"{key}{end}" for key in keys for end in ("", "_error", "_change", "_change_error")]
+    rows, interaction = [head], table.interaction()
     for run in table.runs:
-        row = [run.label, run.role, run.effect or "", run.refused or ""]
-        cells = table.cells(run.label)
-        for key in keys:
-            value = None if run.values is None else run.values[key]
-            error = None if run.errors is None else run.errors[key]
-            row += [
-                _blank(value),
-                _blank(error),
-                _blank(cells[key].change),
-                _blank(cells[key].error),
-            ]
-        writer.writerow(row)
-    interaction = table.interaction()
-    row = ["interaction", "interaction", "", ""]
-    for key in keys:
-        row += ["", "", _blank(interaction[key].change), _blank(interaction[key].error)]
-    writer.writerow(row)
-    return buffer.getvalue()
+        cells, values, errors = table.cells(run.label), run.values or {}, run.errors or {}
+        numbers = [(values.get(k), errors.get(k), cells[k].change, cells[k].error) for k in keys]
+        rows.append([run.label, run.role, run.effect or "", run.refused or "", *chain(*numbers)])
+    numbers = [(None, None, interaction[k].change, interaction[k].error) for k in keys]
+    rows.append(["interaction", "interaction", "", "", *chain(*numbers)])
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="\n").writerows(
+        [row[:4] + [_blank(value) for value in row[4:]] for row in rows[1:]]
+    )
+    return ",".join(head) + "\n" + buffer.getvalue()
 
 
 def write_table(table: EffectTable, folder: Path) -> None:

@@ -16,14 +16,12 @@ from ...validation import (
     caller_stacklevel,
     validate_positive,
 )
-from ..fem_dynamic import SETTINGS_OPTIONS, check_dynamic, checked_options, dynamic
-from .table import QUANTITIES, EffectTable, Run
+from ..fem_dynamic import check_dynamic, checked_options, dynamic
+from .table import QUANTITIES, EffectTable, Run, refusal_words
 from .variants import Parts, Variant, parts_of, variants
 
-__all__ = ["NUMERICS", "effects"]
+__all__ = ["effects"]
 
-NUMERICS = SETTINGS_OPTIONS
-"""The numerical keywords passed to every run (:func:`shtaerman.dynamic`'s)."""
 Progress = Callable[[str], None]
 
 
@@ -79,7 +77,6 @@ OWN_INPUTS = {
     "viscoelasticity": ("prony",),
     "friction": ("friction",),
     "finite strain": ("model", "mooney_ratio", "yeoh", "gent_limit", "volumetric"),
-    "numerics": NUMERICS,  # refused in the full problem (a layer_rate of 0 on a pad)
 }
 """The inputs of an effect: one of them refused where the effect is alone (the paper's problem
 with it) is bad input, as ``shtaerman dynamic`` refuses it, not a row of the table."""
@@ -96,21 +93,23 @@ def _own_input(error: Exception, effect: str | None) -> bool:
 
 def _refuses_the_table(variant: Variant, error: Exception) -> bool:
     """Whether a run's ``error`` is bad input of the whole table, not a row's refusal."""
-    if variant.role == "none" and isinstance(error, InputError):
-        return True  # the paper's own problem: the numerics are bad input for every run
-    if variant.role == "full" and _own_input(error, "numerics"):
-        return True  # the impact the options describe: 'dynamic' refuses the same numbers
+    if variant.role in ("none", "full") and isinstance(error, InputError):
+        return True  # the paper's problem, or the impact the options describe (as 'dynamic')
     return variant.role == "alone" and _own_input(error, variant.effect)  # no run measures it
 
 
 def check_runs(rows: tuple[Variant, ...], given: dict[str, Any]) -> None:
-    """Refuse, before any run, what a run would refuse for the table as a whole
-    (:func:`_refuses_the_table`) for its inputs alone (:func:`shtaerman.api.fem_dynamic.
-    check_dynamic`, nothing computed), so no progress line comes before the refusal."""
-    for variant in rows:
+    """Refuse, before any run and in one line, what a run would refuse for the table as a
+    whole (:func:`_refuses_the_table`) for its inputs alone (:func:`shtaerman.api.fem_dynamic.
+    check_dynamic`, nothing computed): the full problem first, as ``shtaerman dynamic``
+    refuses it (its combination, an option, a validity limit), so no progress line comes
+    before the refusal."""
+    for variant in sorted(rows, key=lambda row: row.role != "full"):
         try:
             problem = Problem(**variant.parts)
         except InputError:
+            if variant.role == "full":
+                raise  # parts that do not combine: no table of their effects
             continue  # its combination: the row says so
         options, _ = _options(problem, given)
         try:
@@ -139,12 +138,9 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
         seconds = time.perf_counter() - start
         return Run(**head, refused=f"{kind}: {error}", seconds=seconds, notes=notes)
     values = {key: float(getattr(result, key)) for key in QUANTITIES}
-    details = result.estimate_details
-    errors = None
-    if details is not None:
-        errors = {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
-    note = None if errors is not None else NO_ESTIMATE[not estimate]
-    seconds = time.perf_counter() - start
+    details, seconds = result.estimate_details, time.perf_counter() - start
+    errors = details and {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
+    note = None if errors else NO_ESTIMATE[not estimate]
     return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
 
 
@@ -199,8 +195,8 @@ def effects(
     ----------
     problem : Problem or mapping
         The full impact (:meth:`shtaerman.Problem.impact`), or its parts as a mapping
-        (:func:`shtaerman.problem.parts`) when they do not combine as a whole (e.g. friction in
-        an impact, today): the variants that do combine run.
+        (:func:`shtaerman.problem.parts`); they must combine and run as ``shtaerman dynamic``
+        runs them (the table measures the effects against the full problem).
     refine, estimate, time_steps, mesh_size, mesh_margin, domain_factor, growth, layer_rate
         The numerics of :func:`shtaerman.dynamic`, for every run (a run whose combination does
         not take one runs without it, and its row says so). None: each run's default.
@@ -214,10 +210,11 @@ def effects(
     Raises
     ------
     shtaerman.validation.InputError
-        If a part or a numerical option is out of range, or the paper's problem itself (every
-        effect off) is refused with these numerics: before the effects are run; or an effect
-        alone is refused for its own input (:data:`OWN_INPUTS`: a pad's thickness outside its
-        range for this impact).
+        Before any run: if a part or a numerical option is out of range, the full problem is
+        refused (its combination, an option or a validity limit, in ``shtaerman dynamic``'s
+        words) or the paper's problem itself (every effect off) is refused with these
+        numerics; or an effect alone is refused for its own input (:data:`OWN_INPUTS`: a pad's
+        thickness outside its range for this impact).
     """
     given = _numerics(refine, estimate, dict(time_steps=time_steps, mesh_size=mesh_size))
     more = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
@@ -230,13 +227,15 @@ def effects(
     with _recorded(said, "quasi-static (paper)"):
         reference = _reference(parts)
     done: list[tuple[dict[str, Any], Run, list[Any]]] = []
+    first: dict[str, str] = {}  # each refusal's first run: its reason is said once
     for index, variant in enumerate(sorted(rows, key=_order), start=1):
         shared = next(((run, keys) for p, run, keys in done if p == variant.parts), None)
         if shared is None:
             report(f"effects: run {index}/{len(rows)}: {variant.label} ...")
             with _recorded(said, variant.label) as keys:
                 run = _run(variant, given, estimate)
-            outcome = run.refused or f"done in {run.seconds:.1f} s"
+            refused = refusal_words(run.refused, variant.label, first)
+            outcome = refused or f"done in {run.seconds:.1f} s"
             report(f"effects: run {index}/{len(rows)}: {variant.label}: {outcome}")
         else:
             run, keys = shared

@@ -19,7 +19,15 @@ from typing import Any
 
 from ...output.files import json_safe
 
-__all__ = ["QUANTITIES", "EffectTable", "Run", "change", "dominance", "interaction"]
+__all__ = [
+    "QUANTITIES",
+    "EffectTable",
+    "Run",
+    "change",
+    "dominance",
+    "interaction",
+    "refusal_words",
+]
 
 QUANTITIES = {"P_max": "P_c", "x_max": "x_c", "t_contact": "t_y", "restitution": None}
 """Each impact quantity -> the paper's quasi-static value it is measured against (None: the
@@ -47,6 +55,16 @@ class Run:
     refused: str | None = None
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
+
+
+def refusal_words(refused: str | None, label: str, first: dict[str, str]) -> str | None:
+    """The refusal of the run ``label`` as a table says it: in full at the first run that
+    gave it (recorded in ``first``), else "refused: as <that run>" (a long reason once, not
+    once per variant); None: it ran."""
+    if refused is None:
+        return None
+    origin = first.setdefault(refused, label)
+    return refused if origin == label else f"{refused.split(':', 1)[0]}: as {origin}"
 
 
 def change(value: float, key: str, reference: dict[str, float]) -> float:

@@ -36,26 +36,6 @@ def _body(parts: Parts, **changes: Any) -> dict[str, Any]:
     return {**parts, "body": replace(parts["body"], **changes)}
 
 
-def _no_pad(parts: Parts) -> dict[str, Any]:
-    return {**parts, "geometry": Geometry()}
-
-
-def _no_waves(parts: Parts) -> dict[str, Any]:
-    return _body(parts, material=replace(parts["body"].material, density=0.0))
-
-
-def _linear(parts: Parts) -> dict[str, Any]:
-    return _body(parts, model="linear", **dict.fromkeys(RUBBER_OPTIONS))
-
-
-def _elastic(parts: Parts) -> dict[str, Any]:
-    return _body(parts, prony=None)
-
-
-def _frictionless(parts: Parts) -> dict[str, Any]:
-    return {**parts, "interface": Interface()}
-
-
 @dataclass(frozen=True)
 class Effect:
     """One effect: its ``name``, and ``off``, which returns the parts with it switched off
@@ -70,11 +50,11 @@ class Effect:
 
 
 EFFECTS = (
-    Effect("pad", _no_pad),
-    Effect("waves", _no_waves),
-    Effect("finite strain", _linear),
-    Effect("viscoelasticity", _elastic),
-    Effect("friction", _frictionless),
+    Effect("pad", lambda parts: {**parts, "geometry": Geometry()}),
+    Effect("waves", lambda p: _body(p, material=replace(p["body"].material, density=0.0))),
+    Effect("finite strain", lambda p: _body(p, model="linear", **dict.fromkeys(RUBBER_OPTIONS))),
+    Effect("viscoelasticity", lambda parts: _body(parts, prony=None)),
+    Effect("friction", lambda parts: {**parts, "interface": Interface()}),
 )
 """The effects, in the table's order."""
 
