@@ -111,3 +111,33 @@ def test_a_three_axis_sweep_lists_only_files_it_wrote(tmp_path, capsys):
     listed = line.removeprefix("results:").split()
     missing = [path for path in listed if not Path(path).exists()]
     assert not missing, line
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="'effects' interrupted after some of its runs loses them all: exit 130 with "
+    "'every output is complete or absent', no 'kept' or '--resume' line (cli/effects.py "
+    "computes the whole table before --out is staged; verify and sweep keep finished work). "
+    "Seen: SIGTERM after 5 of 8 runs (25 s) of the guide's pad example left nothing",
+)
+def test_an_interrupted_effects_run_keeps_its_finished_runs(monkeypatch, tmp_path, capsys):
+    """The first variant runs (the paper's case by FE on the coarse mesh, seconds); Ctrl-C
+    arrives as the second starts."""
+    import shtaerman.api.effect_table.run as effect_run
+
+    real, calls = effect_run._run, []
+
+    def first_then_interrupt(*args, **kwargs):
+        calls.append(1)
+        if len(calls) > 1:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(effect_run, "_run", first_then_interrupt)
+    argv = ["effects", "--mesh-size", "0.2", "--time-steps", "60", "--no-estimate"]
+    code = cli.main([*argv, "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert code == 130, err
+    # "nothing partial is kept" is said today; the finished run must survive: a '--resume'
+    # command (as verify and sweep print) or the --out folder holding it
+    assert "--resume" in err or (tmp_path / "o").exists(), err
