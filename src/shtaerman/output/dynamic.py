@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ..plots.dynamic import plot_dynamic_histories, plot_dynamic_over_velocity, plot_wave_field
-from ..plots.impact_energy import plot_energy_history, plot_force_depth_loop
+from ..plots.impact_energy import on_pad, plot_energy_history, plot_force_depth_loop
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import SEPARATION_SNAPSHOT, DynamicStudyOutcome
 from .files import write_csv
@@ -81,6 +81,7 @@ def _impact_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict
     """x(t) and P(t) against the quasi-static impact, the force-depth loop and the energy
     account of one impact, every body's; ``{caption: path}``."""
     v0, fmt = f"{case.velocity:g} m/s", {"figure_format": figure_format}
+    body = "pad" if on_pad(case.result) else "half-space"
     return {
         f"Dynamic FE impact against the quasi-static one at {v0}: x(t) and P(t)": (
             plot_dynamic_histories(case, folder / "dynamic_history.png", **fmt)
@@ -89,7 +90,7 @@ def _impact_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict
         "quasi-static elastic law (the loop's area is the energy left in the body)": (
             plot_force_depth_loop(case, folder / "force_depth_loop.png", **fmt)
         ),
-        f"Energy account at {v0} (fractions of M v0^2 / 2): striker, half-space stored, "
+        f"Energy account at {v0} (fractions of M v0^2 / 2): striker, {body} stored, "
         "absorbed (waves), dissipated (hysteresis), numerical residue": (
             plot_energy_history(case, folder / "energy_history.png", **fmt)
         ),

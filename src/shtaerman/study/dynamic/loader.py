@@ -410,12 +410,14 @@ def energy_checks(
 
 FAILED = {
     "energy balance": "energy balance error {value:.1e} of M v0^2/2 exceeds {tolerance:g}: "
-    "the mesh and time steps do not resolve this impact",
+    "the mesh and time steps do not resolve this impact: refine them (mesh_size=...,"
+    " time_steps=... or refine=...)",
     "reflected energy": "reflected energy {value:.1e} of {of} exceeds {tolerance:g}: the far "
-    "boundary sends the waves back to the contact (domain_factor or layer_rate do not absorb "
-    "them)",
+    "boundary sends the waves back to the contact: absorb them further out (domain_factor=..."
+    " or layer_rate=...)",
 }
-"""The reason of each failed :func:`energy_checks` check, on the routes that state them."""
+"""The reason of each failed :func:`energy_checks` check, on the routes that state them, with the
+inputs that cure it in Python's words (:func:`shtaerman.problem.worded` spells them per route)."""
 
 
 def dynamic_check_failures(
