@@ -318,7 +318,7 @@ def prepare_finite_impact(
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
     unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
-    if unbounded or friction:  # before the viscoelastic sizing, which warns of fast impacts
+    if unbounded or friction:  # before the viscoelastic sizing's work
         # on a pad x_c bounds the depth from above (the pad is stiffer; z = 8 r^1.3 on a 12 mm
         # pad reached x/a 2.26 against 2.27): a frictional contact does not converge beyond
         # the reach (that case failed at separation after 15 min), a frictionless one warns
