@@ -177,3 +177,18 @@ def test_the_massless_relaxing_pad_with_friction_runs_with_its_error_bar(frictio
     assert all(1e-5 < errors[key] < 3e-2 for key in ("x_max", "P_max", "t_contact"))
     # the relaxing pad rebounds slower than the elastic one (e ~ 1): measured 0.821
     assert 0.75 < dynamic["restitution"] < 0.9
+
+
+def test_a_fast_impact_that_fails_says_its_warning_once(capsys):
+    """Issue 28: the full case with inertia at 30 m/s (x/a 1.19 on the half-space: inside the
+    reach, so not refused before work; near the shear wave speed, 31.7 m/s, its first step
+    fails) printed "exceeds 5 m/s" six times before its error: once per sizing of every run.
+    Now once, beside the failure's one line."""
+    argv = ["dynamic", "--exponent", "1.3", "--shape-coefficient", "2.011", "--E2", "3e6"]
+    argv += ["--nu2", "0.49", "--mass", "0.12", "--velocity", "30", "--density2", "1000"]
+    argv += ["--model", "neo-hookean", "--thickness", "0.012", "--prony", "0.3:1e-3"]
+    argv += ["--interface", "bonded", "--friction", "0.5", "--mesh-size", "0.1"]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert err.count("velocity 30 m/s exceeds 5 m/s") == 1, err
+    assert err.count("error:") == 1 and "--density2 0" in err

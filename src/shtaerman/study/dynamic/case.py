@@ -30,6 +30,7 @@ from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
+from ...validation import NumericalFailureError
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_ladder, run_ladder
 
@@ -273,10 +274,18 @@ def run_case(
     def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
         return run_impact(*inputs, level, rubber, prony, friction, **kept)
 
+    def say() -> None:
+        for said_once in said:
+            message, category = said_once.message, said_once.category
+            warnings.warn_explicit(message, category, said_once.filename, said_once.lineno)
+
     finest = partial(run, snapshot_times=times) if times else run  # the fields it keeps
-    levels = run_ladder(run, settings, refine=refine, estimate=ladder, first=finest)
-    for warning in said:
-        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    try:
+        levels = run_ladder(run, settings, refine=refine, estimate=ladder, first=finest)
+    except NumericalFailureError:  # it ran: the warnings beside the failure's one line
+        say()
+        raise
+    say()
     if isinstance(settings, DynamicSettings):  # the rubber's run warns itself
         warn_outside_validity(indenter, levels.finest.x_max, settings.thickness, finite=False)
     return DynamicCase(velocity, quasi, estimate, levels.finest, levels if ladder else None)
