@@ -67,8 +67,7 @@ import os
 import time
 from dataclasses import replace
 
-from shtaerman.fem.contact.finite import FINITE_MESH
-from shtaerman.fem.finite_dynamic import INERTIA_MESH, FiniteImpactSettings
+from shtaerman.fem.finite_dynamic import IMPACT_MESH, FiniteImpactSettings
 from shtaerman.fem.impact import run_impact
 from shtaerman.study.dynamic.accuracy import ladder_estimates, over_levels
 from shtaerman.study.dynamic.case import compare
@@ -99,8 +98,7 @@ HEADLINE = ("x_max", "P_max", "t_contact", "restitution")
 def settings_of(case: dict, defaults: bool = False) -> FiniteImpactSettings:
     """The case's settings at refine 1 (``defaults``: the API's, else the modest base)."""
     rho = case["body"].density
-    default = FINITE_MESH if rho == 0 else INERTIA_MESH
-    mesh = default if defaults else replace(default, size=BASE_SIZE, growth=BASE_GROWTH)
+    mesh = IMPACT_MESH if defaults else replace(IMPACT_MESH, size=BASE_SIZE, growth=BASE_GROWTH)
     if case.get("thickness") is not None:
         mesh = replace(mesh, thickness=case["thickness"], base="bonded")
     steps = None if defaults else BASE_STEPS["massless" if rho == 0 else "inertia"]

@@ -36,15 +36,13 @@ COARSE = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-3, axis_gr
 
 @pytest.fixture(scope="module")
 def outcome(tmp_path_factory):
-    import shtaerman.fem.contact.finite as finite_contact
     import shtaerman.fem.finite_dynamic as finite_dynamic
 
     path = tmp_path_factory.mktemp("corrections") / "tiny.toml"
     path.write_text(MINIMAL + CORRECTIONS)
     study = load_study(path)[0]
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(finite_contact, "FINITE_MESH", COARSE)
-        patch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+        patch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
         lines: list[str] = []
         result = run_study(study, quick=True, progress=lines.append)
     return result, lines

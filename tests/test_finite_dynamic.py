@@ -173,9 +173,9 @@ def test_cli_model_refusals_are_one_line_exit_2(capsys, argv, message):
 
 def test_api_dynamic_with_model_runs_the_finite_strain_impact(monkeypatch):
     import shtaerman as sh
-    import shtaerman.fem.contact.finite as finite_contact
+    import shtaerman.fem.finite_dynamic as finite_dynamic
 
-    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
+    monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
     result = sh.dynamic(
         INDENTER,
         RUBBER,

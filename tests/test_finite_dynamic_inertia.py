@@ -186,7 +186,7 @@ def test_api_dynamic_with_model_and_density_runs_the_body_with_inertia(monkeypat
     import shtaerman as sh
     import shtaerman.fem.finite_dynamic as finite_dynamic
 
-    monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+    monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
     result = sh.dynamic(
         INDENTER,
         RUBBER,

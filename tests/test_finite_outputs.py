@@ -18,9 +18,9 @@ ARGV += ["--time-steps", "50", "--json"]
 
 @pytest.fixture
 def coarse(monkeypatch):
-    import shtaerman.fem.contact.finite as finite_contact
+    import shtaerman.fem.finite_dynamic as finite_dynamic
 
-    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
+    monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
 
 
 def test_out_history_and_figures_of_the_finite_impact(coarse, tmp_path, capsys):

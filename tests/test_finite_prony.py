@@ -261,7 +261,7 @@ def test_cli_runs_the_viscoelastic_rubber_and_reports_the_dissipation(capsys, mo
     from shtaerman.cli import main
     from shtaerman.cli.finite_dynamic import finite_dynamic_text
 
-    monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+    monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
     argv = ["dynamic", "--model", "mooney-rivlin", "--mooney-ratio", "0.2", "--prony"]
     assert main([*argv, "0.5:2.0526e-3", "--time-steps", "50", "--no-estimate", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)

@@ -113,15 +113,15 @@ def test_restitution_returns_to_one_for_a_glassy_or_a_relaxed_series(factor, mea
 
 
 def test_cli_runs_the_massless_viscoelastic_rubber(capsys, monkeypatch):
-    """At 3 m/s on the coarse mesh graded to 1e-6 at the axis as the default mesh: there the
+    """At 3 m/s on a coarse mesh graded to 1e-6 at the axis (the static contact's grading): the
     contact's release near separation inverts an axis element in the first Newton iterate
     unless the Newton back-tracks (the run failed at X = 3.3 mm without it)."""
-    import shtaerman.fem.contact.finite as finite_contact
+    import shtaerman.fem.finite_dynamic as finite_dynamic
     from shtaerman.cli import main
     from shtaerman.cli.finite_dynamic import finite_dynamic_text
 
     graded = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-6, axis_growth=0.25)
-    monkeypatch.setattr(finite_contact, "FINITE_MESH", graded)
+    monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", graded)
     argv = ["dynamic", "--model", "neo-hookean", "--density2", "0", "--prony", "0.5:2.0526e-3"]
     assert main([*argv, "--time-steps", "50", "--no-estimate", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)

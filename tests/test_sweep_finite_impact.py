@@ -35,11 +35,9 @@ def _sweep(parameters: str, axes: str = "mass = [0.7]"):
 @pytest.fixture
 def coarse(monkeypatch):
     """The coarse mesh as the finite-strain impact's default (massless and with inertia)."""
-    import shtaerman.fem.contact.finite as finite_contact
     import shtaerman.fem.finite_dynamic as finite_dynamic
 
-    monkeypatch.setattr(finite_contact, "FINITE_MESH", COARSE)
-    monkeypatch.setattr(finite_dynamic, "INERTIA_MESH", COARSE)
+    monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
 
 
 def _row(spec):

@@ -286,3 +286,21 @@ def test_the_relaxed_limit_reflects_what_the_relaxed_elastic_body_reflects():
     # waves: hysteresis 3.4e-3 of it (the numerical dissipation and the near field), against
     # 3.0e-2 when the slow waves still inside the glassy-sized monitor counted as hysteresis
     assert limit.losses["energy_hysteresis_fraction"] < 1e-2 * (1 - limit.restitution**2)
+
+
+def test_the_sizing_impact_leaves_the_fast_impact_warning_to_the_run():
+    """Issue 28: the full case at 30 m/s printed "velocity 30 m/s exceeds 5 m/s" twice per
+    ladder level (six times), once per sizing of each run's refined zone; the run's caller
+    (study.dynamic.case.run_case) says it once beside the results."""
+    import warnings
+
+    from shtaerman.fem.viscoelastic import sizing_impact
+    from shtaerman.theory.impact import QuasiStaticValidityWarning
+
+    with pytest.warns(QuasiStaticValidityWarning, match="exceeds 5 m/s"):
+        fast = solve_impact(MASS, 30.0, LAW)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        slow = sizing_impact(MASS, 30.0, LAW, ONE_TERM, fast.t_y)
+    assert slow.x_max > fast.x_c  # it relaxes: deeper than the glassy impact
+    assert [str(w.message) for w in said] == []

@@ -2,7 +2,7 @@
 
 The massless body (density 0): the striker (mass M, depth X, X(0) = 0, X'(0) = v0) obeys
 M X'' = -P(X), where P(X) is the force of the static finite-strain contact at depth X
-(:mod:`.finite_contact`: Newton with frictionless contact against the indenter in the current
+(:mod:`.contact.finite`: Newton with frictionless contact against the indenter in the current
 configuration, mixed u-p, any rubber model of :mod:`.rubber`), solved at every step.
 
 Time stepping (:func:`.stepper.march_massless`): the energy-conserving midpoint discrete
@@ -113,11 +113,16 @@ __all__ = [
 MIN_STEPS = 20
 MASSLESS_STEPS = 50
 INERTIA_STEPS = 100
-INERTIA_MESH = replace(FINITE_MESH, axis_size=1e-3)
-"""The body with inertia's default mesh: FINITE_MESH graded to 1e-3 of the refined radius at
-the axis, not 1e-6 (the impact reports no central pressure; on the 1e-6 grading the first
-Newton iterates of a step move the u_r of the axis elements by more than their width, and the
-damped Newton stalls)."""
+IMPACT_MESH = replace(FINITE_MESH, axis_size=1e-3)
+"""The impact's default mesh, massless or with inertia: FINITE_MESH graded to 1e-3 of the
+refined radius at the axis, not 1e-6 (the impact reports no central pressure, and x_max and
+P_max move by < 1e-5: benchmarks/FEM_NOTES.md). On the 1e-6 grading a Newton whose contact
+set changes at the axis stalls: the first iterates move the u_r of the axis elements by more
+than their width and the damped Newton halves its updates to nothing. That happened with
+inertia after the turning point, and to the massless relaxing body with a bonded or Coulomb
+indenter near separation, where the lagging surface lets the stuck nodes at the axis go at
+once (the researcher's pad failed at 0.5 mm of a 3.5 mm approach, with 8 times the steps
+too)."""
 IMPACT_MARGIN = 1.3
 """Refined radius / geometric contact radius at the small-strain x_c (the finite-strain contact
 is wider by a few per cent)."""
@@ -142,8 +147,7 @@ class FiniteImpactSettings:
         the massless body, 100 with inertia (its energy balance is second order in dt).
     mesh : MeshSettings or None
         Mesh of the half-space; its ``margin`` is replaced by ``margin`` below. None:
-        :data:`.finite_contact.FINITE_MESH` for the massless body, :data:`INERTIA_MESH` with
-        inertia.
+        :data:`IMPACT_MESH`.
     margin : float
         Refined (candidate) radius / geometric contact radius (x_c / A)^(1/n) at the
         small-strain x_c, > 1.
@@ -175,14 +179,10 @@ class FiniteImpactSettings:
     def resolved(self, density: float) -> FiniteImpactSettings:
         """These settings with the defaults of the massless body (``density`` 0) or of the
         body with inertia filled in."""
-        massless = density == 0
         steps = self.steps
         if steps is None:
-            steps = MASSLESS_STEPS if massless else INERTIA_STEPS
-        mesh = self.mesh
-        if mesh is None:
-            mesh = FINITE_MESH if massless else INERTIA_MESH
-        return replace(self, steps=steps, mesh=mesh)
+            steps = MASSLESS_STEPS if density == 0 else INERTIA_STEPS
+        return replace(self, steps=steps, mesh=IMPACT_MESH if self.mesh is None else self.mesh)
 
     def refined(self, factor: float) -> FiniteImpactSettings:
         """These (resolved) settings with the mesh size field divided and the time steps
@@ -318,7 +318,7 @@ def prepare_finite_impact(
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
     unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
-    if unbounded or friction:  # before the viscoelastic sizing, which warns of fast impacts
+    if unbounded or friction:  # before the viscoelastic sizing's work
         # on a pad x_c bounds the depth from above (the pad is stiffer; z = 8 r^1.3 on a 12 mm
         # pad reached x/a 2.26 against 2.27): a frictional contact does not converge beyond
         # the reach (that case failed at separation after 15 min), a frictionless one warns

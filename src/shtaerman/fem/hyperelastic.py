@@ -65,10 +65,8 @@ __all__ = [
     "Kinematics",
     "NeoHookean",
     "NewtonError",
-    "NewtonResult",
     "assemble_hyperelastic",
     "kinematics",
-    "solve_dirichlet",
     "variation",
 ]
 
@@ -489,79 +487,6 @@ def assemble_hyperelastic(mesh: MeshTri, material: NeoHookean) -> HyperelasticSy
     )
     return HyperelasticSystem(
         mesh, material, ubasis, pbasis, pattern, quadrature, where, compliance
-    )
-
-
-@dataclass(frozen=True)
-class NewtonResult:
-    """A converged Newton solve.
-
-    Attributes
-    ----------
-    x : numpy.ndarray
-        Solution [u (m), p (Pa)].
-    residuals : list of float
-        Norm of the free residual before each iteration, then at convergence (N and m^3 rows
-        mixed: use its decay, not its value).
-    """
-
-    x: np.ndarray
-    residuals: list[float]
-
-
-def solve_dirichlet(
-    system: HyperelasticSystem,
-    dofs: np.ndarray,
-    values: np.ndarray | float,
-    *,
-    x0: np.ndarray | None = None,
-    tolerance: float = 1e-11,
-    max_iterations: int = 25,
-) -> NewtonResult:
-    """Newton's method for Pi stationary with prescribed displacement dofs (no contact).
-
-    Parameters
-    ----------
-    system : HyperelasticSystem
-    dofs : numpy.ndarray
-        Prescribed displacement dofs.
-    values : numpy.ndarray or float
-        Their values in m.
-    x0 : numpy.ndarray, optional
-        Start (default zero).
-    tolerance : float
-        Converged when the free residual falls below ``tolerance`` times its first nonzero
-        value.
-    max_iterations : int
-
-    Returns
-    -------
-    NewtonResult
-
-    Raises
-    ------
-    NewtonError
-        If Newton does not converge or an element inverts.
-    """
-    x = np.zeros(system.n_dofs) if x0 is None else np.array(x0, dtype=float)
-    x[dofs] = values
-    free = np.setdiff1d(np.arange(system.n_dofs), dofs)
-    history: list[float] = []
-    reference = 0.0
-    for _ in range(max_iterations + 1):
-        state = system.state(x)
-        if np.min(state.J) <= 0 or not np.all(np.isfinite(state.J)):
-            raise NewtonError("an element inverted (J <= 0); reduce the load step")
-        rhs = system.residual(x, state)[free]
-        norm = float(np.linalg.norm(rhs))
-        history.append(norm)
-        reference = reference or norm
-        if norm <= tolerance * reference or norm == 0.0:
-            return NewtonResult(x, history)
-        matrix = system.tangent(x, state)[free][:, free]
-        x[free] -= factorize(matrix).solve(rhs)
-    raise NewtonError(
-        f"Newton did not converge in {max_iterations} iterations (residual {history[-1]:.3g})"
     )
 
 

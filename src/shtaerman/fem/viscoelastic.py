@@ -25,6 +25,7 @@ for the same linear strain history (>= 0 by construction).
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,6 +33,7 @@ import scipy.sparse as sp
 from skfem import asm
 
 from ..theory.contact import PowerLawContact
+from ..theory.impact import QuasiStaticValidityWarning
 from ..theory.prony_sources import SHIPPED, prony_from_text
 from ..theory.viscoelastic import PronySeries, ViscoelasticImpact, viscoelastic_impact
 from ..validation import InputError, NumericalFailureError
@@ -400,7 +402,9 @@ def sizing_impact(
     """
     longest = MAX_GLASSY_DURATIONS * glassy
     try:
-        return viscoelastic_impact(mass, velocity, law, prony, steps=100, longest=longest)
+        with warnings.catch_warnings():  # of a fast impact: its run's caller warns, once
+            warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+            return viscoelastic_impact(mass, velocity, law, prony, steps=100, longest=longest)
     except NumericalFailureError:
         pass
     smallest = MAX_GLASSY_DURATIONS ** -(law.force_exponent + 1.0)  # the relaxed impact's g_inf

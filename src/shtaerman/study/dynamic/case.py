@@ -30,6 +30,7 @@ from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
+from ...validation import NumericalFailureError
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_ladder, run_ladder
 
@@ -276,10 +277,18 @@ def run_case(
     def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
         return run_impact(*inputs, level, rubber, prony, friction, **kept)
 
+    def say() -> None:
+        for said_once in said:
+            message, category = said_once.message, said_once.category
+            warnings.warn_explicit(message, category, said_once.filename, said_once.lineno)
+
     finest = partial(run, snapshot_times=times) if times else run  # the fields it keeps
-    levels = run_ladder(run, settings, refine=refine, estimate=ladder, first=finest)
-    for warning in said:
-        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    try:
+        levels = run_ladder(run, settings, refine=refine, estimate=ladder, first=finest)
+    except NumericalFailureError:  # it ran: the warnings beside the failure's one line
+        say()
+        raise
+    say()
     if isinstance(settings, DynamicSettings):  # the rubber's run warns itself
         warn_outside_validity(indenter, levels.finest.x_max, settings.thickness, finite=False)
     return DynamicCase(velocity, quasi, estimate, levels.finest, levels if ladder else None)
@@ -297,8 +306,7 @@ def finite_settings(
     ``estimate``) checked before any run (InputError naming the option): ``time_steps`` per
     quasi-static impact duration (default 50; 100 with inertia), ``mesh_size`` the smallest
     element / refined radius (default the finite-strain contact's)."""
-    from ...fem.contact.finite import FINITE_MESH
-    from ...fem.finite_dynamic import INERTIA_MESH
+    from ...fem.finite_dynamic import IMPACT_MESH
     from ...vocabulary import entry
 
     rho = problem.body.material.density
@@ -307,8 +315,7 @@ def finite_settings(
         mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
     if time_steps is not None:  # the command line's range: one guard on every route
         time_steps = entry("time_steps").check(time_steps, "dynamic")
-    mesh = FINITE_MESH if rho == 0 else INERTIA_MESH
-    mesh = mesh if mesh_size is None else replace(mesh, size=mesh_size)
+    mesh = IMPACT_MESH if mesh_size is None else replace(IMPACT_MESH, size=mesh_size)
     if problem.geometry.thickness is not None:
         mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)

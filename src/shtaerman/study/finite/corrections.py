@@ -22,7 +22,6 @@ from dataclasses import replace
 from typing import Any
 
 from ...fem import finite_dynamic, impact
-from ...fem.contact import finite as finite_contact
 from ...fem.dynamic_contact import DynamicSettings
 from ...theory.materials import Material
 from ..dynamic.case import run_case
@@ -61,7 +60,7 @@ def _finite(
 ) -> dict[str, float]:
     """The study's rubber struck at ``velocity`` (m/s), massless (``density`` 0) or not."""
     # the defaults read at call time, as ``shtaerman dynamic`` does (tests swap in coarse ones)
-    mesh = finite_contact.FINITE_MESH if density == 0 else finite_dynamic.INERTIA_MESH
+    mesh = finite_dynamic.IMPACT_MESH
     if "mesh_size" in options:
         mesh = replace(mesh, size=options["mesh_size"])
     settings = finite_dynamic.FiniteImpactSettings(steps=options.get("time_steps"), mesh=mesh)
