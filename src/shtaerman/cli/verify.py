@@ -157,7 +157,10 @@ def _stopped_code(cause: BaseException) -> int:
 
 
 def _interrupted_text(args: argparse.Namespace, stop: Any, out: Path) -> str:
-    """What a stopped run kept, and the command that completes it."""
+    """What a stopped run kept, and the command that completes it (a --force run's: beside
+    the old folder, which stays whole)."""
+    kept = "" if stop.kept_in is None else f" ({str(out)!r} unchanged: --force keeps it whole)"
+    out = out if stop.kept_in is None else stop.kept_in
     command = ["shtaerman", "verify", *args.studies, "--out", str(out)]
     if args.quick:
         command.append("--quick")
@@ -171,11 +174,11 @@ def _interrupted_text(args: argparse.Namespace, stop: Any, out: Path) -> str:
     if stop.kept == stop.total:  # stopped while writing results.json, the reports
         return (
             f"shtaerman: {reason} all {stop.total} studies finished and kept in {str(out)!r}, "
-            f"the summary and reports not written; write them with: {shlex.join(command)}"
+            f"the summary and reports not written{kept}; write them with: {shlex.join(command)}"
         )
     return (
         f"shtaerman: {reason} {stop.kept} of {stop.total} studies finished and kept in "
-        f"{str(out)!r}; complete them with: {shlex.join(command)}"
+        f"{str(out)!r}{kept}; complete them with: {shlex.join(command)}"
     )
 
 
