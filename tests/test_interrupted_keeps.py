@@ -127,35 +127,39 @@ def test_an_interrupted_forced_verify_leaves_the_old_folder_whole(
     """verify --force stopped after its first study: the old complete folder is unchanged
     (old code: it was gone, only the new run's one study left in its place); the finished
     study is beside it, and the printed command completes it there."""
-    from test_verify import FIRST, SECOND, STUDIES, _interrupting
-
     from shtaerman.cli import Terminated
+    from shtaerman.study.schema import shipped_studies
+
+    studies = [str(p) for p in shipped_studies() if p.stem in ("paper", "hertz")]
+    served: list = []
+    stop = Terminated() if stop == "terminated" else stop
+
+    def first_then_stop(study, *, quick=False, progress=None):
+        served.append(study.name)  # the session's quick outcome; the second study: stopped
+        if len(served) > 1 and stop is not None:
+            raise stop
+        return quick_outcomes[study.name]
 
     out = tmp_path / "run"
     shutil.copytree(quick_verify[1], out)
     before = snapshot(out)
-    served: list = []
-    stop = Terminated() if stop == "terminated" else stop
-    patched = _interrupting(quick_outcomes, [SECOND, stop], served)
-    monkeypatch.setattr(shtaerman.output.folder, "run_study", patched)
-    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), "--force", *STUDIES]
+    monkeypatch.setattr(shtaerman.output.folder, "run_study", first_then_stop)
+    argv = ["verify", "--quick", "--workers", "1", "--out", str(out), "--force", *studies]
     assert cli.main(argv) == code
     err = capsys.readouterr().err
-    assert served == [FIRST, SECOND]
+    first, second = served
     assert snapshot(out) == before
     beside = tmp_path / f"run.incomplete-{os.getpid()}"
     assert sorted(p.name for p in beside.iterdir()) == sorted(
-        [".shtaerman-folder.json", "incomplete.json", FIRST]
+        [".shtaerman-folder.json", "incomplete.json", first]
     )
     assert "1 of 2 studies finished and kept in" in err and str(beside) in err, err
     command = err.split("complete them with: ")[1].strip()
     assert f"--out {beside}" in command and command.endswith("--resume")
     served.clear()
-    monkeypatch.setattr(
-        shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
-    )
+    stop = None
     assert cli.main(command.split()[1:]) == 0
-    assert served == [SECOND]
+    assert served == [second]
     assert (beside / "results.json").is_file() and not (beside / "incomplete.json").exists()
 
 

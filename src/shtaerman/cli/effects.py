@@ -84,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
     """Run the effect table (:func:`shtaerman.effects`); print text or JSON; write --out."""
     from ..output.files import check_output_folder, output_path
     from ..output.folder import PROGRESS_FILE, VerifyInterrupted
-    from .verify import _stopped_code
+    from .verify import stopped_code
 
     if (given(args, "force") or args.resume) and args.out is None:
         option = "resume" if args.resume else "force"
@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> int:
             _table_into(folder, full, options, args)
         except VerifyInterrupted as stop:
             print(_interrupted_text(stop, folder), file=sys.stderr)
-            return _stopped_code(stop.cause)
+            return stopped_code(stop.cause)
     return 0
 
 

@@ -113,7 +113,7 @@ def run(args: argparse.Namespace) -> int:
             results = run_verification(studies, out, **options)
     except VerifyInterrupted as stop:
         print(_interrupted_text(args, stop, out), file=sys.stderr)
-        return _stopped_code(stop.cause)
+        return stopped_code(stop.cause)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
 
@@ -146,7 +146,7 @@ def _check_unique_names(studies: list) -> None:
     raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
 
 
-def _stopped_code(cause: BaseException) -> int:
+def stopped_code(cause: BaseException) -> int:
     """The exit code of a run stopped by ``cause``: 130 Ctrl-C, 2 a refused input, 1 another
     error, 143 SIGTERM."""
     if isinstance(cause, KeyboardInterrupt):
