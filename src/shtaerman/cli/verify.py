@@ -38,7 +38,12 @@ def register(commands: argparse._SubParsersAction) -> None:
         action="store_true",
         help="also the extended shipped studies (rubber models and other minutes-long ones)",
     )
-    add_inputs(p, ("out", "force"), None, derived={"out": "a new shtaerman-results-* folder"})
+    force = (
+        "once the run completes; interrupted, the old folder stays whole and the finished "
+        "studies are kept beside it, in OUT.incomplete-PID (the 'complete them with' line)"
+    )
+    derived = {"out": "a new shtaerman-results-* folder"}
+    add_inputs(p, ("out", "force"), None, derived=derived, notes={"force": force})
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
     add_figure_format(p)
     p.add_argument(
