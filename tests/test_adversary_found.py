@@ -83,13 +83,6 @@ def test_a_three_axis_sweep_lists_only_files_it_wrote(tmp_path, capsys):
     assert not missing, line
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="'effects' interrupted after some of its runs loses them all: exit 130 with "
-    "'every output is complete or absent', no 'kept' or '--resume' line (cli/effects.py "
-    "computes the whole table before --out is staged; verify and sweep keep finished work). "
-    "Seen: SIGTERM after 5 of 8 runs (25 s) of the guide's pad example left nothing",
-)
 def test_an_interrupted_effects_run_keeps_its_finished_runs(monkeypatch, tmp_path, capsys):
     """The first variant runs (the paper's case by FE on the coarse mesh, seconds); Ctrl-C
     arrives as the second starts."""

@@ -147,3 +147,34 @@ class _Run:
         while self.child.poll() is None:
             self.child.send_signal(self.number)
             time.sleep(0.05)
+
+
+def test_a_sigterm_during_an_effects_table_keeps_its_finished_run(tmp_path):
+    """SIGTERM as the table's second FE run starts (the paper's case with waves, coarse):
+    exit 143, the first run kept in --out with the line naming it and --resume. Old code:
+    exit 143, no folder, 'nothing partial is kept' (an adversary's SIGTERM after 5 of 8
+    runs, 25 s, of the researcher's pad case lost them all)."""
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1] / "src")}
+    argv = ["effects", "--mesh-size", "0.2", "--time-steps", "50", "--no-estimate"]
+    child = subprocess.Popen(
+        [sys.executable, "-m", "shtaerman", *argv, "--out", "o"],
+        cwd=tmp_path,
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    lines = []
+    for line in child.stderr:
+        lines.append(line)
+        if line.startswith("effects: run 2/4: waves alone ..."):
+            child.send_signal(signal.SIGTERM)
+    code, err = child.wait(), "".join(lines)
+    if code == 0:
+        pytest.skip("the second run finished before the signal")
+    assert code == 143, err
+    assert err.splitlines()[-1].startswith("shtaerman: terminated: 1 finished run(s) kept in")
+    assert "--resume" in err.splitlines()[-1] and "Traceback" not in err, err
+    kept = (tmp_path / "o" / "incomplete.json").read_text()
+    assert '"none"' in kept and not (tmp_path / "o" / "effects.json").exists()
+    assert [p.name for p in tmp_path.iterdir()] == ["o"]  # no staging debris

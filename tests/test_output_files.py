@@ -2,6 +2,7 @@
 
 import json
 import os
+import shutil
 import signal
 import stat
 import subprocess
@@ -377,6 +378,7 @@ def test_a_killed_run_that_had_filled_its_folder_keeps_the_one_it_replaced(tmp_p
     stale = tmp_path / f".run.partial-{pid}"
     (stale / "replaced").mkdir(parents=True)
     (stale / "replaced" / "old.txt").write_text("old")
+    (stale / "replaced" / FOLDER_MARKER).write_text('{"format": "shtaerman-folder-1"}')
     target.mkdir()
     (target / "new.txt").write_text("new")  # a sweep writes in place
     with warnings.catch_warnings(record=True) as caught:
@@ -447,18 +449,33 @@ def test_force_replaces_no_folder_this_tool_did_not_write(tmp_path, capsys, mark
 def test_a_killed_run_that_kept_a_resumable_part_has_it_moved_into_place(tmp_path):
     """After a SIGKILL, a stage whose content holds its ``keep_marker`` file (a verify's
     progress) is moved into place by the next run writing the folder, with a warning saying
-    where; without that file it is removed as before."""
+    where; without that file it is removed as before. A forced run's: the folder it was
+    replacing is put back whole, its finished part beside it (as on SIGTERM)."""
     target = tmp_path / "run"
-    stale = tmp_path / f".run.partial-{dead_pid()}"
+    pid = dead_pid()
+    stale = tmp_path / f".run.partial-{pid}"
     (stale / "content" / "done").mkdir(parents=True)
     (stale / "content" / "progress.json").write_text("{}")
     (stale / "keep").write_text("progress.json")
-    (stale / "replaced").mkdir()  # a forced run: the folder it replaced goes, as on SIGTERM
     target.mkdir()  # its reservation
     with pytest.warns(UserWarning, match=f"left its finished part in '{target}'"):
         check_output_folder(target, force=False, resume_marker="progress.json")
     assert sorted(p.name for p in target.iterdir()) == ["done", "progress.json"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    shutil.rmtree(target)
+    (stale / "content" / "done").mkdir(parents=True)
+    (stale / "content" / "progress.json").write_text("{}")
+    (stale / "keep").write_text("progress.json")
+    (stale / "replaced").mkdir()  # a forced run: the folder it was replacing
+    (stale / "replaced" / "old.txt").write_text("old")
+    (stale / "replaced" / FOLDER_MARKER).write_text('{"format": "shtaerman-folder-1"}')
+    target.mkdir()
+    beside = tmp_path / f"run.incomplete-{pid}"
+    with pytest.warns(UserWarning, match=f"left its finished part in '{beside}'"):
+        check_output_folder(target, force=True)
+    assert names(target) == ["old.txt"] and (target / "old.txt").read_text() == "old"
+    assert sorted(p.name for p in beside.iterdir()) == ["done", "progress.json"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run", beside.name]
     # the stage is recorded as keepable only for a run that asks for it
     with staged_folder(tmp_path / "other", keep_marker="progress.json") as stage:
         assert (stage.parent / "keep").read_text() == "progress.json"

@@ -498,6 +498,8 @@ def test_resume_recomputes_hand_edited_or_damaged_records(tmp_path, capsys):
 
 
 def test_a_forced_run_that_fails_at_the_end_keeps_its_cases(tmp_path, capsys, monkeypatch):
+    """The old sweep stays whole (the new one did not finish); the new run's cases are kept
+    beside it, and the printed command completes them there without computing them again."""
     import errno
 
     from shtaerman.sweep import engine
@@ -506,6 +508,7 @@ def test_a_forced_run_that_fails_at_the_end_keeps_its_cases(tmp_path, capsys, mo
     out = tmp_path / "out"
     assert main(["sweep", str(path), "--out", str(out), "--workers", "1"]) == 0
     capsys.readouterr()
+    old_csv = (out / "cases.csv").read_text()
 
     def full(*args, **kwargs):
         raise OSError(errno.ENOSPC, "No space left on device", str(out / "cases.csv"))
@@ -513,12 +516,14 @@ def test_a_forced_run_that_fails_at_the_end_keeps_its_cases(tmp_path, capsys, mo
     monkeypatch.setattr(engine, "_write_results", full)
     assert main(["sweep", str(path), "--out", str(out), "--workers", "1", "--force"]) == 1
     err = capsys.readouterr().err
+    beside = tmp_path / f"out.incomplete-{os.getpid()}"
     assert err.count("\n") == 1 and "No space left on device" in err
-    assert f"complete the sweep with: shtaerman sweep {path} --out {out} --resume" in err
-    assert case_files(out) == [0, 1] and not (out / "cases.csv").exists()
+    assert f"complete them with: shtaerman sweep {path} --out {beside} --resume" in err
+    assert (out / "cases.csv").read_text() == old_csv
+    assert case_files(beside) == [0, 1] and not (beside / "cases.csv").exists()
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
     monkeypatch.undo()
-    assert main(["sweep", str(path), "--out", str(out), "--resume"]) == 0
+    assert main(["sweep", str(path), "--out", str(beside), "--resume"]) == 0
     assert sweep_probe.computations(markers) == {1.0: 2, 2.0: 2}
 
 

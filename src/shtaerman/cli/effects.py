@@ -3,10 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import shlex
 import sys
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
 
 from ..api.effect_table import effects
 from ..api.effect_table.report import FILES, table_text, write_table
+from ..api.effect_table.table import EffectTable, Run
+from ..api.effect_table.variants import parts_of, variants
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS
 from ..problem import parts
@@ -24,7 +30,12 @@ from .common import (
 )
 from .dynamic import DERIVED, MODEL_NOTES, PHYSICS
 
-NOTES = {"out": ", ".join(FILES), "force": "an existing --out folder"}
+NOTES = {
+    "out": f"{', '.join(FILES)}; each finished run is kept at once (an interrupted table "
+    "keeps them there, --resume completes it)",
+    "force": "an existing --out folder, once the table is done (interrupted, the old folder "
+    "stays whole and the finished runs are kept beside it, in OUT.incomplete-PID)",
+}
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -56,6 +67,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_inputs(accuracy, ("refine", "estimate"), "dynamic")
     numerics = p.add_argument_group("numerical controls (every run; see 'shtaerman dynamic')")
     add_inputs(numerics, tuple(SETTINGS_OPTIONS), "dynamic", aliases={"time_steps": ("--steps",)})
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="complete the table an interrupted run left in --out: run only the variants it "
+        "lacks (the same options)",
+    )
     p.set_defaults(handler=run)
 
 
@@ -65,23 +82,98 @@ def _progress(line: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the effect table (:func:`shtaerman.effects`); print text or JSON; write --out."""
-    from ..output.files import output_folder, staged_folder
+    from ..output.files import check_output_folder, output_path
+    from ..output.folder import PROGRESS_FILE, VerifyInterrupted
+    from .verify import stopped_code
 
-    if given(args, "force") and args.out is None:
-        raise InputError("--force: applies with --out only (it lets the run replace what is there)")
+    if (given(args, "force") or args.resume) and args.out is None:
+        option = "resume" if args.resume else "force"
+        raise InputError(f"--{option}: applies with --out only (it names the folder to write)")
+    if args.resume and args.force:
+        raise InputError("resume and force exclude each other: resume keeps the folder")
     with in_option_words():
         physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
         body = Material(args.E2, args.nu2, args.density2)
         full = parts(indenter(args), body, mass=args.mass, velocity=args.velocity, **physics)
-        folder = output_folder(args.out, force=args.force)
+        folder = None
+        if args.out is not None:
+            marker = PROGRESS_FILE if args.resume else None
+            folder = output_path(args.out)
+            folder = check_output_folder(folder, force=args.force, resume_marker=marker)
         names = ("refine", "estimate", *(n for n in SETTINGS_OPTIONS if given(args, n)))
-        table = effects(full, **keywords(args, names), progress=_progress)
-    if args.json:  # printed first: a failed --out (a full disk) does not lose the table
+        options = keywords(args, names)
+        if folder is None:
+            _print(effects(full, **options, progress=_progress), args.json)
+            return 0
+        try:
+            _table_into(folder, full, options, args)
+        except VerifyInterrupted as stop:
+            print(_interrupted_text(stop, folder), file=sys.stderr)
+            return stopped_code(stop.cause)
+    return 0
+
+
+def _print(table: EffectTable, as_json: bool) -> None:
+    if as_json:
         print_json(table.to_dict())
     else:
         print(table_text(table))
-    if folder is not None:
+
+
+@dataclass(frozen=True)
+class _Key:
+    """What a kept run is matched by on --resume (as verify matches a study): the variant's
+    label (``name``) and the digest of its parts and the numerics (``inputs``)."""
+
+    name: str
+    inputs: str
+
+
+def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespace) -> None:
+    """Run the table into ``folder`` (staged; each finished run saved in :data:`PROGRESS_FILE`
+    at once, as verify saves its studies: an interrupted table keeps them, --resume reuses
+    them); print it, then write its files."""
+    from ..output.files import json_safe, staged_folder
+    from ..output.folder import PROGRESS_FILE, keep_finished, kept_entries, save_progress
+
+    rows, _ = variants(parts_of(full))
+    keys = [_Key(row.label, repr((row.parts, sorted(options.items())))) for row in rows]
+    with staged_folder(
+        folder, force=args.force, resume_marker=PROGRESS_FILE if args.resume else None,
+        keep_marker=PROGRESS_FILE,
+    ) as stage:  # fmt: skip
+        entries = kept_entries(stage, keys, quick=False)
+        kept = {label: _stored_run(entry) for label, entry in entries.items()}
+
+        def finished(run: Run) -> None:
+            entries[run.label] = json_safe(asdict(run))
+            save_progress(stage, keys, entries, quick=False)
+
+        try:
+            table = effects(full, **options, progress=_progress, kept=kept, finished=finished)
+        except BaseException as error:
+            keep_finished(stage, keys, entries, error, quick=False)
+        _print(table, args.json)  # first: a failed --out (a full disk) does not lose it
         sys.stdout.flush()
-        with staged_folder(folder, force=args.force) as stage:
-            write_table(table, stage)
-    return 0
+        write_table(table, stage)
+        (stage / PROGRESS_FILE).unlink(missing_ok=True)
+
+
+def _stored_run(entry: dict) -> Run:
+    """A run from its saved entry (JSON: its notes a list, a non-finite value None)."""
+    return Run(**{**entry, "notes": tuple(entry.get("notes", ()))})
+
+
+def _interrupted_text(stop: Any, out: Path) -> str:
+    """What an interrupted table kept, and how to complete it."""
+    if isinstance(stop.cause, Exception):
+        reason = f"error: {' '.join(str(stop.cause).split()) or type(stop.cause).__name__};"
+    else:
+        reason = "interrupted:" if isinstance(stop.cause, KeyboardInterrupt) else "terminated:"
+    kept = "" if stop.kept_in is None else f" ({str(out)!r} unchanged: --force keeps it whole)"
+    place = out if stop.kept_in is None else stop.kept_in
+    return (
+        f"shtaerman: {reason} {stop.kept} finished run(s) kept in {str(place)!r}{kept}, the "
+        "table not written; complete it with the same options and "
+        f"--out {shlex.quote(str(place))} --resume"
+    )

@@ -38,7 +38,12 @@ def register(commands: argparse._SubParsersAction) -> None:
         action="store_true",
         help="also the extended shipped studies (rubber models and other minutes-long ones)",
     )
-    add_inputs(p, ("out", "force"), None, derived={"out": "a new shtaerman-results-* folder"})
+    force = (
+        "once the run completes; interrupted, the old folder stays whole and the finished "
+        "studies are kept beside it, in OUT.incomplete-PID (the 'complete them with' line)"
+    )
+    derived = {"out": "a new shtaerman-results-* folder"}
+    add_inputs(p, ("out", "force"), None, derived=derived, notes={"force": force})
     p.add_argument("--quick", action="store_true", help="coarse meshes (seconds; for CI)")
     add_figure_format(p)
     p.add_argument(
@@ -113,7 +118,7 @@ def run(args: argparse.Namespace) -> int:
             results = run_verification(studies, out, **options)
     except VerifyInterrupted as stop:
         print(_interrupted_text(args, stop, out), file=sys.stderr)
-        return _stopped_code(stop.cause)
+        return stopped_code(stop.cause)
     print(verify_text(results, out))
     return 0 if results["passed"] else 1
 
@@ -146,7 +151,7 @@ def _check_unique_names(studies: list) -> None:
     raise InputError(f"studies: two studies are named {duplicates[0]!r}; rename one")
 
 
-def _stopped_code(cause: BaseException) -> int:
+def stopped_code(cause: BaseException) -> int:
     """The exit code of a run stopped by ``cause``: 130 Ctrl-C, 2 a refused input, 1 another
     error, 143 SIGTERM."""
     if isinstance(cause, KeyboardInterrupt):
@@ -157,7 +162,10 @@ def _stopped_code(cause: BaseException) -> int:
 
 
 def _interrupted_text(args: argparse.Namespace, stop: Any, out: Path) -> str:
-    """What a stopped run kept, and the command that completes it."""
+    """What a stopped run kept, and the command that completes it (a --force run's: beside
+    the old folder, which stays whole)."""
+    kept = "" if stop.kept_in is None else f" ({str(out)!r} unchanged: --force keeps it whole)"
+    out = out if stop.kept_in is None else stop.kept_in
     command = ["shtaerman", "verify", *args.studies, "--out", str(out)]
     if args.quick:
         command.append("--quick")
@@ -171,11 +179,11 @@ def _interrupted_text(args: argparse.Namespace, stop: Any, out: Path) -> str:
     if stop.kept == stop.total:  # stopped while writing results.json, the reports
         return (
             f"shtaerman: {reason} all {stop.total} studies finished and kept in {str(out)!r}, "
-            f"the summary and reports not written; write them with: {shlex.join(command)}"
+            f"the summary and reports not written{kept}; write them with: {shlex.join(command)}"
         )
     return (
         f"shtaerman: {reason} {stop.kept} of {stop.total} studies finished and kept in "
-        f"{str(out)!r}; complete them with: {shlex.join(command)}"
+        f"{str(out)!r}{kept}; complete them with: {shlex.join(command)}"
     )
 
 

@@ -162,12 +162,14 @@ def _worth_keeping(stage: Path) -> bool:
 
 def _keep_stale(target: Path, stage: Path) -> None:
     """Move a killed run's resumable content into place as ``target`` (as an interrupted run
-    would have; the folder it was replacing is dropped, as then), or beside it when
-    ``target`` holds something else; a warning says where."""
+    would have), or beside it when ``target`` holds something else (the folder a --force run
+    was replacing, put back as then); a warning says where."""
     pid = stage.name.rsplit("-", 1)[-1]
     with contextlib.suppress(OSError):
         if target.is_dir() and not target.is_symlink() and not any(target.iterdir()):
             os.rmdir(target)  # its empty reservation
+        if (stage / "replaced").is_dir():  # --force: the folder it was replacing stays whole
+            os.rename(stage / "replaced", target)
     place = target
     try:
         os.rename(stage / "content", target)  # fails if target holds anything
@@ -483,9 +485,11 @@ def staged_folder(
     folder holding the file ``resume_marker`` is replaced too, and the yielded folder starts
     with its content (hard links) for the run to complete. On any failure (an exception,
     Ctrl-C, SIGTERM raised as an exception) everything written is removed and ``target`` is
-    left exactly as it was; :class:`KeepStaged` instead moves what is staged into place
-    (replacing the old folder) and raises its reason. After a SIGKILL, the next run writing
-    ``target`` moves the staged folder into place when it holds the file ``keep_marker``.
+    left exactly as it was; :class:`KeepStaged` instead moves what is staged into place and
+    raises its reason, or with ``force`` keeps the old folder whole and moves what is staged
+    beside it (:func:`incomplete_path`, set as the reason's ``kept_in``). After a SIGKILL,
+    the next run writing ``target`` moves the staged folder into place when it holds the file
+    ``keep_marker`` (a replaced folder is put back, the staged one beside it).
 
     Raises
     ------
@@ -518,6 +522,10 @@ def staged_folder(
             yield content
         except KeepStaged as keep:
             _mark(content, sealed=True)
+            if os.path.lexists(retired) and not resumed:  # --force: the old folder stays whole
+                keep.reason.kept_in = _keep_beside(content, retired, target)
+                reserved = False
+                raise keep.reason from None
             _publish(content, target, option)
             reserved = False
             _discard(retired)
@@ -542,6 +550,23 @@ def staged_folder(
     finally:
         with deferred():  # nor the removal of the stage
             shutil.rmtree(stage, ignore_errors=True)
+
+
+def incomplete_path(target: Path) -> Path:
+    """Where the finished part of an interrupted run that was replacing ``target`` is kept:
+    ``NAME.incomplete-PID`` beside it (``target`` keeps the folder it replaced)."""
+    return target.with_name(f"{target.name}.incomplete-{os.getpid()}")
+
+
+def _keep_beside(content: Path, retired: Path, target: Path) -> Path:
+    """Put the replaced folder ``retired`` back as ``target`` (its reservation removed) and the
+    interrupted run's ``content`` beside it (:func:`incomplete_path`); returns where."""
+    with deferred():  # a second Ctrl-C must not break the put-back
+        os.rmdir(target)  # our empty reservation
+        os.rename(retired, target)
+        place = incomplete_path(target)
+        os.rename(content, place)
+    return place
 
 
 def _discard(retired: Path) -> None:

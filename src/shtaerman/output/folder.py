@@ -58,11 +58,12 @@ PROGRESS_FORMAT = "shtaerman-verify-progress-1"
 class VerifyInterrupted(BaseException):
     """A verify run stopped by ``cause`` (Ctrl-C, SIGTERM, an error) after ``kept`` of
     ``total`` studies finished; those are in the result folder, which ``resume=True``
-    completes."""
+    completes, or with ``force`` in ``kept_in`` beside the old folder, left whole."""
 
     def __init__(self, cause: BaseException, kept: int, total: int) -> None:
         super().__init__(type(cause).__name__)
         self.cause, self.kept, self.total = cause, kept, total
+        self.kept_in: Path | None = None
 
 
 def study_fingerprint(study: Any) -> str:
@@ -318,12 +319,14 @@ def run_verification(
     folder, or with ``force`` as a result folder of this tool (replaced), or with ``resume``
     as a folder a stopped run left (its finished studies are kept). Each finished study is
     recorded in :data:`PROGRESS_FILE` at once: a run stopped by a signal or an error keeps
-    them in ``out``, and after a SIGKILL the next run writing ``out`` moves them there.
+    them in ``out`` (with ``force``: beside it, ``out`` left whole; the exception's
+    ``kept_in`` says where), and after a SIGKILL the next run writing ``out`` moves them there.
 
     Raises
     ------
     VerifyInterrupted
-        Ctrl-C, SIGTERM or an error after some studies finished: they are in ``out``.
+        Ctrl-C, SIGTERM or an error after some studies finished: they are in ``out``, or in
+        its ``kept_in`` (``force``).
     """
     check_figure_format(figure_format)
     bar = progress or ProgressBar(len(studies))

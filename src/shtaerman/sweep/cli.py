@@ -52,7 +52,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument(
         "--force",
         action="store_true",
-        help="replace a sweep folder this tool wrote (never files you added)",
+        help="replace a sweep folder this tool wrote (never files you added) once this run "
+        "completes; interrupted, the old folder stays whole and this run's saved cases are kept "
+        "beside it in DIR.incomplete-PID (the 'resume with' line completes them there)",
     )
     add_figure_format(p)
     p.set_defaults(handler=run)
@@ -112,9 +114,13 @@ def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any)
     from .engine import is_sweep_folder
 
     if stop.restored:
+        kept = f"--force kept the previous sweep in {out}, unchanged"
+        if stop.kept_in is None:
+            return f"shtaerman: sweep {name!r} interrupted ({stop}); {kept}"
         return (
-            f"shtaerman: sweep {name!r} interrupted ({stop}); --force kept the previous sweep in "
-            f"{out}, unchanged"
+            f"shtaerman: sweep {name!r} interrupted ({stop}); {kept}; {stop.saved} of "
+            f"{stop.total} cases of this run saved in {stop.kept_in}; resume with: "
+            f"{_resume_command(args, stop.kept_in)}"
         )
     if not stop.saved and not is_sweep_folder(out):
         return f"shtaerman: sweep {name!r} interrupted ({stop}) before any case was saved"
@@ -136,6 +142,13 @@ def _failed_text(args: argparse.Namespace, out: Path, error: OSError) -> str:
 
     what = error.strerror or str(error)
     where = f" ({error.filename})" if error.filename else ""
+    kept = getattr(error, "kept_in", None)  # --force: the old folder is back, whole
+    if kept is not None:
+        return (
+            f"shtaerman: error: {what}{where}; {out} unchanged (--force keeps it whole), this "
+            f"run's finished cases saved in {kept}: complete them with: "
+            f"{_resume_command(args, kept)}"
+        )
     if not is_sweep_folder(out):
         return f"shtaerman: error: {what}{where}; nothing was saved"
     return (

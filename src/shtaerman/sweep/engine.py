@@ -48,6 +48,7 @@ from ..output.files import (
     check_folder_path,
     file_mode,
     folder_lock,
+    incomplete_path,
     json_safe,
     missing_folder,
     probe_writable,
@@ -123,6 +124,8 @@ class SweepInterrupted(Exception):  # noqa: N818 (a signal, like KeyboardInterru
         self.signum, self.saved, self.total = signum, saved, total
         self.restored = False
         """True when a --force run was stopped and the sweep it replaced was put back."""
+        self.kept_in: Path | None = None
+        """Where such a run's saved cases are (None: it saved none)."""
 
 
 @dataclass(frozen=True)
@@ -542,19 +545,24 @@ def _check_folder(
 @contextlib.contextmanager
 def _replaced(out: Path, backup: Path, saved_new: Callable[[], bool]) -> Iterator[None]:
     """Drop the sweep ``--force`` replaces (``backup``) when the block ends normally. If it
-    raises: put it back when the new sweep saved no case, else keep the new one (for
-    ``--resume``) and drop the old."""
+    raises, put it back whole; the cases the new sweep saved go beside it
+    (:func:`shtaerman.output.files.incomplete_path`, the error's ``kept_in``), for
+    ``--resume`` there."""
     try:
         yield
     except BaseException as error:
         if backup.is_dir():
-            if not saved_new():
-                shutil.rmtree(out, ignore_errors=True)
+            with deferred():  # a second Ctrl-C must not break the put-back
+                kept = incomplete_path(out) if saved_new() else None
+                if kept is None:
+                    shutil.rmtree(out, ignore_errors=True)
+                else:
+                    os.replace(out, kept)
                 os.replace(backup, out)
-                if isinstance(error, SweepInterrupted):
-                    error.restored = True
-            else:
-                shutil.rmtree(backup, ignore_errors=True)
+            with contextlib.suppress(AttributeError):  # an OSError's line names it too
+                error.kept_in = kept
+            if isinstance(error, SweepInterrupted):
+                error.restored = True
         raise
     if backup.is_dir():
         shutil.rmtree(backup)

@@ -182,6 +182,8 @@ def effects(
     growth: float | None = None,
     layer_rate: float | None = None,
     progress: Progress | None = None,
+    kept: Mapping[str, Run] | None = None,
+    finished: Callable[[Run], None] | None = None,
 ) -> EffectTable:
     """The effect table of an impact: which of its effects moves P_max, x_max, t_contact and e.
 
@@ -202,6 +204,11 @@ def effects(
         not take one runs without it, and its row says so). None: each run's default.
     progress : callable, optional
         Receives one line per run (its label, combination and time).
+    kept : mapping, optional
+        Runs made before with these inputs (an interrupted table's), by variant label: not
+        run again (their warnings are not said again).
+    finished : callable, optional
+        Receives each run this call makes as soon as it is made (to keep it on disk).
 
     Returns
     -------
@@ -228,12 +235,17 @@ def effects(
         reference = _reference(parts)
     done: list[tuple[dict[str, Any], Run, list[Any]]] = []
     first: dict[str, str] = {}  # each refusal's first run: its reason is said once
+    kept, told = kept or {}, finished or (lambda _run: None)
     for index, variant in enumerate(sorted(rows, key=_order), start=1):
         shared = next(((run, keys) for p, run, keys in done if p == variant.parts), None)
-        if shared is None:
+        if shared is None and variant.label in kept:
+            run, keys = kept[variant.label], []
+            report(f"effects: run {index}/{len(rows)}: {variant.label}: kept from an earlier run")
+        elif shared is None:
             report(f"effects: run {index}/{len(rows)}: {variant.label} ...")
             with _recorded(said, variant.label) as keys:
                 run = _run(variant, given, estimate)
+            told(run)
             refused = refusal_words(run.refused, variant.label, first)
             outcome = refused or f"done in {run.seconds:.1f} s"
             report(f"effects: run {index}/{len(rows)}: {variant.label}: {outcome}")
