@@ -228,7 +228,7 @@ def test_dynamic_reports_the_quasi_static_differences(dynamic_pair):
 def test_dynamic_text_prints_the_differences(capsys):
     argv = ["dynamic", *CASE, *IMPACT, *DYNAMIC_COARSE, "--no-estimate"]
     assert main(argv) == 0
-    line = next(r for r in capsys.readouterr().out.splitlines() if "quasi-static / dyn" in r)
+    line = next(r for r in capsys.readouterr().out.splitlines() if "quasi-static) / FE" in r)
     assert "x_c" in line and "P_c" in line and "t_c" in line and "%" in line
 
 

@@ -28,11 +28,11 @@ ROUTES = {
 @pytest.fixture(scope="module")
 def documents():
     """Each route's JSON, on coarse meshes (about 16 s in all)."""
-    import shtaerman.fem.finite_contact as finite_contact
+    import shtaerman.fem.finite_dynamic as finite_dynamic
 
     coarse = MeshSettings(size=0.15, domain=1e3, growth=0.35, axis_size=1e-3, axis_growth=0.25)
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(finite_contact, "FINITE_MESH", coarse)
+        patch.setattr(finite_dynamic, "IMPACT_MESH", coarse)
         return {
             name: sh.dynamic(
                 STRIKER, sh.Material(7.5e6, 0.5, density), **NUMERICS, **physics

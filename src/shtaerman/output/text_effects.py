@@ -49,17 +49,25 @@ def study_findings(document: Mapping[str, Any]) -> list[str]:
     return out
 
 
+def cell_text(change: float | None, error: float | None, key: str) -> str:
+    """One entry of an effect table: ``+1.49 ± 0.05`` (per cent; e - 1 of the ``restitution``
+    as is), ``± n/a`` without a bar, "" without a change."""
+    if change is None:
+        return ""
+    scale, digits = (1.0, 4) if key == "restitution" else (100.0, 2)
+    bar = "n/a" if error is None else f"{scale * error:.{digits}f}"
+    return f"{scale * change:+.{digits}f} ± {bar}"
+
+
 def study_tables(document: Mapping[str, Any]) -> list[dict[str, object]]:
     """The change of each run against the paper's quasi-static values, each with its error bar
     (``shtaerman effects``' cells: %, e - 1 for e; "± n/a" without a bar), and the
     interaction."""
-    from ..api.effect_table.report import cell_text
-    from ..api.effect_table.table import Cell
-
     table = document["effects"]
 
     def row(label: str, changes: Mapping[str, Any]) -> list[str]:
-        return [label, *(cell_text(Cell(**changes[key]), key) or "-" for key in NAMES)]
+        cells = {key: changes[key] for key in NAMES}
+        return [label, *(cell_text(c["change"], c["error"], k) or "-" for k, c in cells.items())]
 
     rows = [row(run["label"], run["changes"]) for run in table["runs"]]
     rows.append(row("interaction", table["interaction"]))

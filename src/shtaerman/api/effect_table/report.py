@@ -8,9 +8,10 @@ import json
 from itertools import chain
 from pathlib import Path
 
+from ...output.text_effects import cell_text
 from .table import QUANTITIES, UNITS, Cell, EffectTable, refusal_words
 
-__all__ = ["FILES", "cell_text", "table_csv", "table_markdown", "table_text", "write_table"]
+__all__ = ["FILES", "table_csv", "table_markdown", "table_text", "write_table"]
 
 FILES = ("effects.json", "effects.csv", "effects.md")
 """What ``--out`` writes."""
@@ -18,13 +19,9 @@ HEADERS = {"P_max": "P_max (%)", "x_max": "x_max (%)", "t_contact": "t_contact (
 HEADERS["restitution"] = "e - 1"
 
 
-def cell_text(cell: Cell, key: str) -> str:
-    """``+1.49 ± 0.05`` (per cent; e - 1 as is), ``± n/a`` without a bar."""
-    if cell.change is None:
-        return ""
-    scale, digits = (1.0, 4) if QUANTITIES[key] is None else (100.0, 2)
-    bar = "n/a" if cell.error is None else f"{scale * cell.error:.{digits}f}"
-    return f"{scale * cell.change:+.{digits}f} ± {bar}"
+def _text(cell: Cell, key: str) -> str:
+    """:func:`shtaerman.output.text_effects.cell_text` of one cell."""
+    return cell_text(cell.change, cell.error, key)
 
 
 def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
@@ -38,13 +35,13 @@ def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
             rows.append((run.label, [refusal_words(run.refused, run.label, first)]))
             continue
         cells = table.cells(run.label)
-        rows.append((run.label, [cell_text(cells[key], key) for key in QUANTITIES]))
+        rows.append((run.label, [_text(cells[key], key) for key in QUANTITIES]))
     interaction = table.interaction()
     missing = [run.label for run in table.runs if run.role in ("alone", "full") and run.refused]
     if missing:
         rows.append(("interaction", [f"n/a: {', '.join(missing)} did not run"]))
     else:
-        rows.append(("interaction", [cell_text(interaction[key], key) for key in QUANTITIES]))
+        rows.append(("interaction", [_text(interaction[key], key) for key in QUANTITIES]))
     return rows
 
 
