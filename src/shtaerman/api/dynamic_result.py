@@ -129,36 +129,53 @@ class DynamicResult:
         """Why each null of :meth:`to_dict` is null (key -> reason; ``dynamic.<key>`` for a
         key of ``dynamic`` the run did not record)."""
         elastic, massless = self.prony is None, self.parameters.get("density2") == 0
-        frictional, pad = "interface" in self.parameters, "thickness" in self.mesh
-        unrecorded, no_waves = "not recorded by this model", "a massless body radiates no waves"
-        residue = "numerical residue (no waves)" if massless else "waves"
-        split = [f"an elastic body has no hysteresis: 1 - e^2 is all {residue}"]
-        split.append("the finite-strain impact records the dissipated energy only")
-        heat = [unrecorded, "an elastic body on a frictionless indenter dissipates nothing"]
-        reasons = {
-            "energy_dissipated_fraction": heat[elastic and not frictional],
-            "energy_wave_fraction": split[not elastic],
-            "energy_hysteresis_fraction": split[not elastic],
-            "energy_slip_fraction": unrecorded if frictional else "a frictionless indenter",
-            "reflected_energy_fraction": no_waves + " to reflect" if massless else unrecorded,
+        out = {
+            f"dynamic.{key}": _unrecorded_reason(key, elastic, massless, self.parameters)
+            for key in DYNAMIC_KEYS
+            if not _finite(self.dynamic.get(key))
         }
-        out = {f"dynamic.{key}": reasons.get(key, unrecorded)
-               for key in DYNAMIC_KEYS if not _finite(self.dynamic.get(key))}  # fmt: skip
-        viscous = ["no viscoelastic quasi-static reference for this case"]
-        viscous.append(
-            "an elastic body: the paper's elastic impact (quasi_static) is the reference"
-        )
-        waves = "the first-order estimate is of the linear elastic half-space's waves"
-        sections = {
-            "radiation_estimate": no_waves if massless else waves + "; not a pad's" * pad,
-            "rubber": "a linear body has no rubber constants",
-            "prony": "an elastic body (no Prony series)",
-        }
-        ladder = self.estimate_missing or "the error estimate was switched off (--no-estimate)"
         for key in (key for key in SECTIONS if getattr(self, key) is None):
-            reference = key.startswith("viscoelastic") and self.viscoelastic_quasi_static is None
-            out[key] = viscous[elastic] if reference else sections.get(key, ladder)
+            out[key] = self._section_reason(key, elastic, massless)
         return out
+
+    def _section_reason(self, key: str, elastic: bool, massless: bool) -> str:
+        """Why the optional part ``key`` of the JSON is null."""
+        if key.startswith("viscoelastic") and self.viscoelastic_quasi_static is None:
+            if elastic:
+                return "an elastic body: the paper's elastic impact (quasi_static) is the reference"
+            return "no viscoelastic quasi-static reference for this case"
+        if key == "radiation_estimate":
+            if massless:
+                return NO_WAVES
+            pad = "; not a pad's" if "thickness" in self.mesh else ""
+            return "the first-order estimate is of the linear elastic half-space's waves" + pad
+        if key == "rubber":
+            return "a linear body has no rubber constants"
+        if key == "prony":
+            return "an elastic body (no Prony series)"
+        return self.estimate_missing or "the error estimate was switched off (--no-estimate)"
+
+
+NO_WAVES = "a massless body radiates no waves"
+UNRECORDED = "not recorded by this model"
+
+
+def _unrecorded_reason(key: str, elastic: bool, massless: bool, parameters: dict) -> str:
+    """Why ``dynamic.<key>`` is null: the body has no such quantity, or the model does not
+    record it."""
+    frictional = "interface" in parameters
+    if key == "energy_dissipated_fraction" and elastic and not frictional:
+        return "an elastic body on a frictionless indenter dissipates nothing"
+    if key in ("energy_wave_fraction", "energy_hysteresis_fraction"):
+        if not elastic:
+            return "the finite-strain impact records the dissipated energy only"
+        residue = "numerical residue (no waves)" if massless else "waves"
+        return f"an elastic body has no hysteresis: 1 - e^2 is all {residue}"
+    if key == "energy_slip_fraction" and not frictional:
+        return "a frictionless indenter"
+    if key == "reflected_energy_fraction" and massless:
+        return NO_WAVES + " to reflect"
+    return UNRECORDED
 
 
 def _finite(value: Any) -> bool:
