@@ -8,7 +8,7 @@ from types import SimpleNamespace
 import pytest
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, ImpactLadder
+from shtaerman.study.dynamic.accuracy import DYNAMIC_ESTIMATED, ImpactLadder, RetriedWarning
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.ladder import LADDER_RATIO
 from shtaerman.study.richardson import richardson
@@ -159,9 +159,10 @@ def test_the_linear_body_retries_a_failed_level_as_the_rubber_does(monkeypatch):
         return run(*inputs, **options)
 
     monkeypatch.setattr(case, "run_impact", fail_at_113)
-    retried = run_case(
-        PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE, ladder=True
-    ).ladder
+    with pytest.warns(RetriedWarning, match="refine 0.707: 113 steps failed"):
+        retried = run_case(
+            PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), 1100.0, 0.7, 3.0, COARSE, ladder=True
+        ).ladder
     assert [level.steps for level in retried.settings] == [80, 226, 160]
     assert "passed with 226 steps" in retried.failures[1] and not retried.missing
     assert set(retried.estimates) == set(DYNAMIC_ESTIMATED)

@@ -16,7 +16,7 @@ from shtaerman.cli.finite_dynamic import finite_dynamic_text
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.guards import ValidityWarning
 from shtaerman.study.dynamic import case
-from shtaerman.study.dynamic.accuracy import EstimateMissingWarning
+from shtaerman.study.dynamic.accuracy import EstimateMissingWarning, RetriedWarning
 from shtaerman.validation import NumericalFailureError
 
 COARSE = MeshSettings(size=0.15, domain=1e3, growth=0.35, axis_size=1e-3, axis_growth=0.25)
@@ -116,12 +116,24 @@ def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = sh.dynamic(INDENTER, MASSLESS, **CASE)
-    # the reported (finest) level's validity warning, not one per level
-    assert [str(w.message) for w in caught] == ["outside validity at 50 steps"]
+    # the reported (finest) level's validity warning, not one per level; the retry said once
+    said = [str(w.message) for w in caught if not issubclass(w.category, RetriedWarning)]
+    assert said == ["outside validity at 50 steps"]
+    (retry,) = [str(w.message) for w in caught if issubclass(w.category, RetriedWarning)]
+    assert "refine 0.707: 35 steps failed" in retry and "passed with 70 steps" in retry
     assert [level["steps"] for level in result.mesh_ladder] == [25, 70, 50]
     assert "passed with 70 steps" in result.mesh_ladder[1]["failure"]
     assert result.estimate_missing is None and set(result.error_estimate) >= set(HEADLINE)
     assert result.dynamic == ladder.dynamic  # the finest run is the same
+
+
+def test_a_single_run_that_passed_on_its_retry_says_so(coarse_mesh, monkeypatch):
+    """Without the estimate the one level is retried too; it said nothing, so the user who asked
+    for 50 steps got 100 in silence (seen on the researcher's massless pad)."""
+    _failing(monkeypatch, {50})
+    with pytest.warns(RetriedWarning, match="50 steps failed .* passed with 100 steps"):
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE, estimate=False)
+    assert result.parameters["time_steps"] == 100
 
 
 def test_no_level_passing_is_the_finest_levels_failure(coarse_mesh, monkeypatch):

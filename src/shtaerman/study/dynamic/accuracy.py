@@ -59,6 +59,7 @@ __all__ = [
     "RETRY_STEPS",
     "EstimateMissingWarning",
     "ImpactLadder",
+    "RetriedWarning",
     "check_ladder",
     "ladder_estimates",
     "over_levels",
@@ -93,6 +94,11 @@ FAILURES = (NewtonError, NumericalFailureError)
 class EstimateMissingWarning(UserWarning):
     """A ladder level failed twice: the finest level that passed is reported, with no
     error estimate."""
+
+
+class RetriedWarning(UserWarning):
+    """A level failed at its time steps and passed with :data:`RETRY_STEPS` times as many:
+    its result is of the steps it passed with, not of those asked for."""
 
 
 class ImpactSettings(Protocol):
@@ -305,9 +311,29 @@ def run_ladder(
     if all(result is None for result in results):
         raise outcomes[-1]
     refines = tuple(refine * factor for factor in factors)
+    _say_retries(refines, notes, results)
     missing = _missing(refines, notes, results)
     estimates = ladder_estimates(results) if estimate and not missing else {}
     return ImpactLadder(refines, used, results, estimates, notes, missing)
+
+
+def _say_retries(
+    refines: tuple[float, ...], notes: tuple[str, ...], results: tuple[ImpactRun | None, ...]
+) -> None:
+    """Say once the levels that passed only on their retry (their steps are not the asked)."""
+    retried = [
+        f"refine {f:.3g}: {n}"
+        for f, n, r in zip(refines, notes, results, strict=True)
+        if n and r is not None
+    ]
+    if retried:
+        warnings.warn(
+            "a level passed only with more time steps, "
+            + "; ".join(retried)
+            + " (the result is of the steps it passed with)",
+            RetriedWarning,
+            stacklevel=caller_stacklevel(),
+        )
 
 
 def _missing(
