@@ -43,6 +43,7 @@ __all__ = [
     "Problem",
     "Striker",
     "Unsupported",
+    "check_keywords",
     "check_options",
     "check_outputs",
     "parts",
@@ -502,13 +503,20 @@ class Problem:
         return cls(**parts(indenter, body, **keywords))
 
 
+def check_keywords(keywords: Mapping[str, Any], caller: str = "", extra: tuple = ()) -> None:
+    """TypeError naming the ``keywords`` that are neither a part's (:data:`KEYWORDS`) nor in
+    ``extra``, as Python names an unexpected keyword (``caller``: "dynamic()")."""
+    unknown = sorted(set(keywords) - {*KEYWORDS, *extra})
+    if unknown:
+        said = f"{caller} got unexpected" if caller else "unexpected"
+        raise TypeError(f"{said} keyword arguments {unknown}")
+
+
 def parts(indenter: Indenter, body: Material, **keywords: Any) -> dict[str, Any]:
     """The parts of a problem (``striker``, ``body``, ``geometry``, ``interface``,
     ``loading``) from the API's flat keywords (None: not given), each checked on its own but
     not whether they combine: ``Problem(**parts(...))`` checks that (:data:`SUPPORT`)."""
-    unknown = sorted(set(keywords) - set(KEYWORDS))
-    if unknown:
-        raise TypeError(f"unexpected keyword arguments {unknown}")
+    check_keywords(keywords)
     given = {key: value for key, value in keywords.items() if value is not None}
     return dict(
         striker=Striker(
