@@ -109,3 +109,14 @@ def test_a_massless_dynamic_study_refuses_layer_rate(tmp_path):
     )  # fmt: skip
     assert done.returncode == 2, done.stderr
     assert "layer_rate" in done.stderr, done.stderr
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="api/effect_table: a mapping of parts is read by key (KeyError 'body') before "
+    "it is checked: a missing part or an unknown key gets no line naming it",
+)
+def test_effects_of_a_mapping_names_what_is_wrong_with_it():
+    with pytest.raises((TypeError, sh.InputError)) as caught:  # refused before any run
+        sh.effects({"colour": 3})
+    assert "colour" in str(caught.value) or "indenter" in str(caught.value), caught.value
