@@ -120,3 +120,16 @@ def test_effects_of_a_mapping_names_what_is_wrong_with_it():
     with pytest.raises((TypeError, sh.InputError)) as caught:  # refused before any run
         sh.effects({"colour": 3})
     assert "colour" in str(caught.value) or "indenter" in str(caught.value), caught.value
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="cli/effects.py (as cli/verify.py and sweep/engine.py) says 'resume and force "
+    "exclude each other' on the command line, where the options are --resume and --force",
+)
+@pytest.mark.parametrize("command", [["effects"], ["verify", "hertz"]])
+def test_resume_with_force_is_refused_in_option_words(command, tmp_path, capsys):
+    code = cli.main([*command, "--out", str(tmp_path / "out"), "--resume", "--force"])  # no run
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "--resume" in err and "--force" in err, err
