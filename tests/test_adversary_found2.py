@@ -133,3 +133,26 @@ def test_resume_with_force_is_refused_in_option_words(command, tmp_path, capsys)
     err = capsys.readouterr().err
     assert code == 2, err
     assert "--resume" in err and "--force" in err, err
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="output/folder.py's resume refusals (verify's words) tell an effects table to "
+    "'resume with the same studies (the command it printed)'; effects has variants and printed "
+    "'complete it with the same options'; and they name 'resume', not --resume",
+)
+def test_an_effects_resume_of_other_variants_is_refused_in_its_own_words(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()  # an interrupted table's folder as effects leaves it (verify's progress file)
+    (out / "incomplete.json").write_text(
+        '{"format": "shtaerman-verify-progress-1", "quick": false, '
+        '"requested": ["none", "pad alone"], "studies": {}}',
+        encoding="utf-8",
+    )
+    (out / ".shtaerman-folder.json").write_text(
+        '{"format": "shtaerman-folder-1", "files": ["incomplete.json"]}', encoding="utf-8"
+    )
+    code = cli.main(["effects", "--out", str(out), "--resume"])  # refused before any run
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "studies" not in err and "--resume" in err, err
