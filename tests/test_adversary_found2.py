@@ -20,12 +20,6 @@ class _StoppedError(Exception):
     kept_in = None
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="output/files.py _keep_beside renames the stage onto NAME.incomplete-PID; when a "
-    "folder of that name already holds something (PIDs wrap: a container's runs reuse them) "
-    "the rename fails with ENOTEMPTY and the finished part is deleted with the stage",
-)
 def test_a_forced_run_stopped_keeps_its_part_when_incomplete_pid_exists(tmp_path):
     target = tmp_path / "out"
     with files.staged_folder(target) as first:
@@ -43,11 +37,6 @@ def test_a_forced_run_stopped_keeps_its_part_when_incomplete_pid_exists(tmp_path
     assert kept is not None and (kept / "finished.json").is_file(), kept
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="api/fem_dynamic.py _problem passes loading= on to Problem.impact, which builds a "
-    "curve problem that dynamic() then runs as an impact: the keyword is silently ignored",
-)
 def test_dynamic_refuses_a_loading_keyword():
     striker = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
     rubber = sh.Material(youngs_modulus=7.5e6, poisson_ratio=0.5, density=1100.0)
@@ -122,11 +111,6 @@ def test_effects_of_a_mapping_names_what_is_wrong_with_it():
     assert "colour" in str(caught.value) or "indenter" in str(caught.value), caught.value
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="cli/effects.py (as cli/verify.py and sweep/engine.py) says 'resume and force "
-    "exclude each other' on the command line, where the options are --resume and --force",
-)
 @pytest.mark.parametrize("command", [["effects"], ["verify", "hertz"]])
 def test_resume_with_force_is_refused_in_option_words(command, tmp_path, capsys):
     code = cli.main([*command, "--out", str(tmp_path / "out"), "--resume", "--force"])  # no run
@@ -158,13 +142,6 @@ def test_an_effects_resume_of_other_variants_is_refused_in_its_own_words(tmp_pat
     assert "studies" not in err and "--resume" in err, err
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="sweep/engine.py _replaced: os.replace(out, incomplete_path(out)) fails when that "
-    "folder holds something (PIDs wrap), so the old sweep is never put back: it is deleted "
-    "with the lock folder and DIR keeps the new partial run (seen: sweep layer-quick --force "
-    "stopped with sw_lq.incomplete-PID present: 16-case sweep gone, 6 cases in sw_lq)",
-)
 def test_a_forced_sweep_stopped_puts_the_old_sweep_back_when_incomplete_pid_exists(tmp_path):
     from shtaerman.sweep import engine
 

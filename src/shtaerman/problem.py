@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from .theory.viscoelastic import PronySeries
 
 __all__ = [
+    "LOADING_KEYWORDS",
     "MODELS",
     "OPTION_SUPPORT",
     "SUPPORT",
@@ -482,6 +483,7 @@ class Problem:
         ``parts`` are the keywords of :func:`parts` (model, rubber options, prony, thickness,
         base, interface, friction, striker material).
         """
+        check_keywords(parts, "Problem.impact()", without=LOADING_KEYWORDS)
         return cls.from_keywords(indenter, body, mass=mass, velocity=velocity, **parts)
 
     @classmethod
@@ -503,10 +505,17 @@ class Problem:
         return cls(**parts(indenter, body, **keywords))
 
 
-def check_keywords(keywords: Mapping[str, Any], caller: str = "", extra: tuple = ()) -> None:
-    """TypeError naming the ``keywords`` that are neither a part's (:data:`KEYWORDS`) nor in
-    ``extra``, as Python names an unexpected keyword (``caller``: "dynamic()")."""
-    unknown = sorted(set(keywords) - {*KEYWORDS, *extra})
+LOADING_KEYWORDS = ("loading", "depths", "rate")
+"""The keywords that make a contact curve: an impact (mass and velocity) takes none."""
+
+
+def check_keywords(
+    keywords: Mapping[str, Any], caller: str = "", extra: tuple = (), without: tuple = ()
+) -> None:
+    """TypeError naming the ``keywords`` that are neither a part's (:data:`KEYWORDS`, less
+    ``without``) nor in ``extra``, as Python names an unexpected keyword (``caller``:
+    "dynamic()")."""
+    unknown = sorted(set(keywords) - ({*KEYWORDS, *extra} - set(without)))
     if unknown:
         said = f"{caller} got unexpected" if caller else "unexpected"
         raise TypeError(f"{said} keyword arguments {unknown}")

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..plots.formats import check_figure_format
-from ..problem import Problem, check_keywords, check_options, check_outputs
+from ..problem import LOADING_KEYWORDS, Problem, check_keywords, check_options, check_outputs
 from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
@@ -385,7 +385,7 @@ def _problem(
     """The impact of :func:`dynamic`: ``indenter`` itself when it is a :class:`Problem` (then
     no other part may be given), else built from the keywords (``density`` in kg/m^3, of a
     finite-strain impact, replaces the body's)."""
-    check_keywords(physics, "dynamic()", extra=("density",))
+    check_keywords(physics, "dynamic()", extra=("density",), without=LOADING_KEYWORDS)
     if isinstance(indenter, Problem):
         extra = [k for k, v in physics.items() if v not in (None, "linear")]
         extra += [k for k, v in (("body", body), ("mass", mass), ("velocity", velocity)) if v]

@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
         option = "resume" if args.resume else "force"
         raise InputError(f"--{option}: applies with --out only (it names the folder to write)")
     if args.resume and args.force:
-        raise InputError("resume and force exclude each other: resume keeps the folder")
+        raise InputError("--resume and --force exclude each other: --resume keeps the folder")
     with in_option_words():
         physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
         body = Material(args.E2, args.nu2, args.density2)

@@ -77,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
         from ..sweep.engine import default_workers
 
     if args.resume and args.force:
-        raise InputError("resume and force exclude each other: resume keeps the folder")
+        raise InputError("--resume and --force exclude each other: --resume keeps the folder")
     if args.resume and args.out is None:
         raise InputError("resume: name the folder to complete with --out DIR")
     if args.extended and args.studies:

@@ -26,6 +26,7 @@ from __future__ import annotations
 import contextlib
 import csv
 import errno
+import itertools
 import json
 import math
 import os
@@ -554,8 +555,15 @@ def staged_folder(
 
 def incomplete_path(target: Path) -> Path:
     """Where the finished part of an interrupted run that was replacing ``target`` is kept:
-    ``NAME.incomplete-PID`` beside it (``target`` keeps the folder it replaced)."""
-    return target.with_name(f"{target.name}.incomplete-{os.getpid()}")
+    ``NAME.incomplete-PID`` beside it (``target`` keeps the folder it replaced), or
+    ``NAME.incomplete-PID-2``, ``-3``, ... when that name is taken (process ids come back: an
+    earlier run's kept part must not be overwritten, nor block the put-back)."""
+    first = target.with_name(f"{target.name}.incomplete-{os.getpid()}")
+    taken = itertools.count(2)
+    place = first
+    while os.path.lexists(place):
+        place = first.with_name(f"{first.name}-{next(taken)}")
+    return place
 
 
 def _keep_beside(content: Path, retired: Path, target: Path) -> Path:
