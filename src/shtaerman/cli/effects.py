@@ -38,6 +38,11 @@ NOTES = {
 }
 
 
+INPUTS = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
+INPUTS += ("friction",)
+"""The physics options of the table (besides the model and its rubber options)."""
+
+
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``effects`` subcommand."""
     p = commands.add_parser(
@@ -58,10 +63,7 @@ def register(commands: argparse._SubParsersAction) -> None:
             "stderr, SI units."
         ),
     )
-    inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
-    add_inputs(
-        p, (*inputs, "friction", "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES
-    )
+    add_inputs(p, (*INPUTS, "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES)
     add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
     accuracy = p.add_argument_group("accuracy (each run's error-estimate ladder)")
     add_inputs(accuracy, ("refine", "estimate"), "dynamic")
@@ -134,25 +136,34 @@ def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespac
     at once, as verify saves its studies: an interrupted table keeps them, --resume reuses
     them); print it, then write its files."""
     from ..output.files import json_safe, staged_folder
-    from ..output.folder import PROGRESS_FILE, keep_finished, kept_entries, save_progress
+    from ..output.folder import (
+        PROGRESS_FILE,
+        Resuming,
+        keep_finished,
+        kept_entries,
+        save_progress,
+    )
 
     rows, _ = variants(parts_of(full))
     keys = [_Key(row.label, repr((row.parts, sorted(options.items())))) for row in rows]
+    names = (*INPUTS, "model", *RUBBER_OPTIONS, "refine", "estimate", *SETTINGS_OPTIONS)
+    inputs = {name: getattr(args, name) for name in names}  # a resume gives them again
+    words = Resuming("--resume", "table", "variants", "complete it with the same options")
     with staged_folder(
         folder, force=args.force, resume_marker=PROGRESS_FILE if args.resume else None,
         keep_marker=PROGRESS_FILE,
     ) as stage:  # fmt: skip
-        entries = kept_entries(stage, keys, quick=False)
+        entries = kept_entries(stage, keys, quick=False, inputs=inputs, words=words)
         kept = {label: _stored_run(entry) for label, entry in entries.items()}
 
         def finished(run: Run) -> None:
             entries[run.label] = json_safe(asdict(run))
-            save_progress(stage, keys, entries, quick=False)
+            save_progress(stage, keys, entries, False, inputs)
 
         try:
             table = effects(full, **options, progress=_progress, kept=kept, finished=finished)
         except BaseException as error:
-            keep_finished(stage, keys, entries, error, quick=False)
+            keep_finished(stage, keys, entries, error, quick=False, inputs=inputs)
         _print(table, args.json)  # first: a failed --out (a full disk) does not lose it
         sys.stdout.flush()
         write_table(table, stage)

@@ -28,14 +28,16 @@ from ...fem.dynamic_contact import (
 )
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
-from ...problem import Problem, check_options
+from ...problem import Problem, check_options, worded
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
 from ..checks import Check
+from ..ladder import WITHOUT_ESTIMATE
 from ..schema import (
+    STUDY_KEYS,
     BodyTable,
     LayerTable,
     Named,
@@ -243,7 +245,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         try:
             check_ladder(settings)  # the full study runs the ladder; verify --quick does not
         except InputError as error:
-            raise StudyError(f"{path}: key 'numerics': {error}") from None
+            key = ".".join(filter(None, ("numerics", error.parameter)))
+            reason = str(error).removeprefix(f"{error.parameter}: ")
+            reason = reason.replace(WITHOUT_ESTIMATE, f"; {QUICK_INSTEAD}")
+            raise StudyError(f"{path}: key '{key}': {reason}") from None
     study = DynamicStudy(
         **header,
         indenter=indenter,
@@ -299,6 +304,9 @@ finite-strain impact's default); which [numerics] keys it refuses is the problem
 (:data:`shtaerman.problem.OPTION_SUPPORT`)."""
 KEYS = {name: f"impact.{name}" for name in ("interface", "friction")}
 """The study-file keys of the inputs a dynamic study holds elsewhere than a contact study."""
+QUICK_INSTEAD = "or give it in [quick], which verify --quick runs without the estimate"
+"""A dynamic study file's way to run without the error estimate (it has no estimate key:
+estimate=False elsewhere)."""
 
 
 def _finite_numerics(
@@ -309,18 +317,19 @@ def _finite_numerics(
     parent: _Numerics | None = None,
 ) -> dict[str, Any]:
     """A rubber's numerical keywords of :func:`shtaerman.dynamic` from ``raw`` (over those of
-    ``parent``, the [numerics] of a [quick]); a key the rubber's impact does not take is
-    refused as the command line refuses its option (:func:`shtaerman.problem.check_options`).
-    {} for the linear model."""
-    if not problem.body.finite:
-        return {}
+    ``parent``, the [numerics] of a [quick]); {} for the linear model. A key the problem does
+    not take, every model, is refused as the command line refuses its option
+    (:func:`shtaerman.problem.check_options`: ``layer_rate`` on a massless body)."""
     fields = _Numerics.__struct_fields__
     given = {key: getattr(raw, key) for key in fields if getattr(raw, key) is not None}
     try:
         check_options(problem, given)
     except InputError as error:
-        reason = str(error).removeprefix(f"{error.parameter}: ")
+        keys = {**STUDY_KEYS, **KEYS, "estimate": "verify --quick"}  # no estimate key
+        reason = worded(str(error).removeprefix(f"{error.parameter}: "), "file", keys)
         raise StudyError(f"{path}: key '{table}.{error.parameter}': {reason}") from None
+    if not problem.body.finite:
+        return {}
     inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, problem)
     given = {key: value for key, value in given.items() if key in FINITE_NUMERICS}
     return {**FINITE_NUMERICS, **inherited, **given}

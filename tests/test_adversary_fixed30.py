@@ -1,0 +1,87 @@
+"""Defects of the adversary's pass fixed on branch adv30 (issue 28: every combination runs or is
+refused in one line, the same guards and words on every route; issue 31: bad input gets one
+line naming the option and its range, exit 2). Each test failed on the code before its fix."""
+
+import pytest
+
+import shtaerman.cli as cli
+from shtaerman.api.effect_table.table import Run
+from shtaerman.study.schema import StudyError, load_study
+
+DYNAMIC_STUDY = (
+    'kind = "dynamic"\ndescription = "x"\n'
+    "[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n"
+    "[impact]\nmass = 0.7\nvelocity = 3.0\n"
+    "[half_space]\nE2 = 7.5e6\nnu2 = 0.5\ndensity2 = 1100.0\n"
+)
+
+
+def _refusal(tmp_path, text):
+    """The one-line refusal of a study file holding ``text`` (nothing is run)."""
+    study = tmp_path / "study.toml"
+    study.write_text(text, encoding="utf-8")
+    with pytest.raises(StudyError) as caught:
+        load_study(study)
+    return str(caught.value)
+
+
+def test_a_dynamic_study_too_coarse_for_its_ladder_names_its_key_not_estimate_false(tmp_path):
+    """Old code: "key 'numerics': time_steps: ...; or run without the estimate
+    (estimate=False)", a keyword a study file does not have: its way is [quick]."""
+    said = _refusal(tmp_path, DYNAMIC_STUDY + "[numerics]\ntime_steps = 60\n")
+    assert "key 'numerics.time_steps'" in said, said
+    assert "estimate=" not in said and "[quick]" in said and "\n" not in said, said
+
+
+def test_a_rubber_dynamic_studys_option_refusal_speaks_the_files_keys(tmp_path):
+    """Old code: the rubber's refusal listed Python names, "(it takes mass, velocity, ...)"."""
+    text = DYNAMIC_STUDY + '[numerics]\nlayer_rate = 5.0\n[rubber]\nmodel = "neo-hookean"\n'
+    said = _refusal(tmp_path, text)
+    assert "key 'numerics.layer_rate'" in said, said
+    # the dynamic study's interface is [impact] interface (a contact study's is [contact])
+    assert "[numerics] time_steps" in said and "[impact] interface" in said, said
+    assert "=..." not in said and "[numerics] estimate" not in said, said
+
+
+def _interrupted_table(tmp_path, monkeypatch):
+    """An effects folder that a stopped table left with one finished run (no run is made:
+    the table is a stand-in that finishes one run, then is interrupted); the calls it got."""
+    import shtaerman.cli.effects as command
+
+    calls = []
+
+    def stopped(full, *, finished, **options):
+        calls.append(options)
+        finished(Run("none", "none", None, "-", refused="refused: a stand-in"))
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(command, "effects", stopped)
+    out = tmp_path / "out"
+    assert cli.main(["effects", "--out", str(out)]) == 130
+    assert (out / "incomplete.json").is_file()
+    return out, calls
+
+
+def test_an_effects_resume_with_another_physics_option_is_refused(tmp_path, monkeypatch, capsys):
+    """Old code: --resume with another --E2 reran every variant silently (their fingerprints
+    differ), or with an option that leaves some variants alone reused those: a table of two
+    problems. The kept runs are of the options they were made with: refused in one line."""
+    out, calls = _interrupted_table(tmp_path, monkeypatch)
+    capsys.readouterr()
+    code = cli.main(["effects", "--out", str(out), "--resume", "--E2", "8e6"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2, err
+    assert len(calls) == 1, calls  # nothing run again
+    assert "--E2 (7500000.0 there, 8000000.0 now)" in err and "--force" in err, err
+    assert "E2=" not in err and "\n" not in err, err
+    assert (out / "incomplete.json").is_file()  # the kept run stays for a resume
+
+
+def test_an_effects_resume_with_the_same_options_reuses_the_kept_run(
+    tmp_path, monkeypatch, capsys
+):
+    """The check above refuses other options only: the same ones reach the table with the
+    kept run (the second stand-in call, interrupted again)."""
+    out, calls = _interrupted_table(tmp_path, monkeypatch)
+    assert cli.main(["effects", "--out", str(out), "--resume"]) == 130, capsys.readouterr().err
+    assert len(calls) == 2
