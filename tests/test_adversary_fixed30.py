@@ -77,9 +77,7 @@ def test_an_effects_resume_with_another_physics_option_is_refused(tmp_path, monk
     assert (out / "incomplete.json").is_file()  # the kept run stays for a resume
 
 
-def test_an_effects_resume_with_the_same_options_reuses_the_kept_run(
-    tmp_path, monkeypatch, capsys
-):
+def test_an_effects_resume_with_the_same_options_reuses_the_kept_run(tmp_path, monkeypatch, capsys):
     """The check above refuses other options only: the same ones reach the table with the
     kept run (the second stand-in call, interrupted again)."""
     out, calls = _interrupted_table(tmp_path, monkeypatch)
