@@ -83,3 +83,36 @@ def test_an_effects_resume_with_the_same_options_reuses_the_kept_run(tmp_path, m
     out, calls = _interrupted_table(tmp_path, monkeypatch)
     assert cli.main(["effects", "--out", str(out), "--resume"]) == 130, capsys.readouterr().err
     assert len(calls) == 2
+
+
+def test_the_effects_tables_rows_speak_options_on_the_command_line(monkeypatch, capsys):
+    """Old code: the table's notes and reasons on the command line were the API's words
+    ("layer_rate not applied", "(estimate=False, --no-estimate)"). A stand-in table (no run)
+    with a note, a refusal and a bar switched off, as sh.effects words them."""
+    import shtaerman.cli.effects as command
+    from shtaerman.api.effect_table.run import NO_ESTIMATE
+    from shtaerman.api.effect_table.table import EffectTable
+
+    note = "layer_rate not applied: a massless body (density2=0) has no waves"
+    refused = "refused: friction: applies to a bonded indenter only; give interface='bonded' too"
+    values = {"P_max": 1.0, "x_max": 1.0, "t_contact": 1.0, "restitution": 1.0}
+    runs = (
+        Run("none", "none", None, "-", values=values, error_note=NO_ESTIMATE[1], notes=(note,)),
+        Run("full", "full", None, "-", refused=refused),
+    )
+    table = EffectTable({"P_c": 1.0, "x_c": 1.0, "t_c": 0.5, "t_y": 1.0}, runs, ())
+
+    def stand_in(full, *, progress, **options):
+        progress(f"effects: run 2/2: full: {refused}")
+        return table
+
+    monkeypatch.setattr(command, "effects", stand_in)
+    assert cli.main(["effects", "--density2", "0"]) == 0
+    said = capsys.readouterr()
+    text = said.out + said.err
+    assert "--layer-rate not applied" in text and "(--density2 0)" in text, text
+    assert "refused: --friction: " in text and "give --interface bonded too" in text, text
+    assert "(--no-estimate)" in text, text
+    for python in ("layer_rate", "density2=", "estimate=", "interface=", " friction:"):
+        assert python not in text, (python, text)
+    assert "estimate=False" in NO_ESTIMATE[1] and "--" not in NO_ESTIMATE[1]  # sh.effects'

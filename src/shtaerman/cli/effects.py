@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ..api.effect_table import effects
-from ..api.effect_table.report import FILES, table_text, write_table
+from ..api.effect_table.report import FILES, said, table_text, write_table
 from ..api.effect_table.table import EffectTable, Run
 from ..api.effect_table.variants import parts_of, variants
 from ..api.fem_contact import RUBBER_OPTIONS
@@ -79,7 +79,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 def _progress(line: str) -> None:
-    print(line, file=sys.stderr, flush=True)
+    print(said(line, "cli"), file=sys.stderr, flush=True)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -119,7 +119,7 @@ def _print(table: EffectTable, as_json: bool) -> None:
     if as_json:
         print_json(table.to_dict())
     else:
-        print(table_text(table))
+        print(table_text(table, "cli"))
 
 
 @dataclass(frozen=True)
@@ -178,7 +178,8 @@ def _stored_run(entry: dict) -> Run:
 def _interrupted_text(stop: Any, out: Path) -> str:
     """What an interrupted table kept, and how to complete it."""
     if isinstance(stop.cause, Exception):
-        reason = f"error: {' '.join(str(stop.cause).split()) or type(stop.cause).__name__};"
+        reason = " ".join(said(str(stop.cause), "cli").split()) or type(stop.cause).__name__
+        reason = f"error: {reason};"
     else:
         reason = "interrupted:" if isinstance(stop.cause, KeyboardInterrupt) else "terminated:"
     kept = "" if stop.kept_in is None else f" ({str(out)!r} unchanged: --force keeps it whole)"
