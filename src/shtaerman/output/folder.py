@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn, TextIO
 
 from ..plots.formats import check_figure_format
+from ..problem import worded
 from ..signals import deferred
 from ..study.kinds import kind_function
 from ..study.run import run_study
@@ -316,13 +317,19 @@ def compute_study(
     Raises
     ------
     InputError, NumericalFailureError
-        An input the FEM refuses, a computation that failed: the message starts with the
+        An input the FEM refuses, a computation that failed (what to change in the study
+        file's words: :func:`shtaerman.problem.worded`); a failure's message starts with the
         study file and the study's name.
     """
     try:
         outcome = run_study(study, quick=quick, progress=progress)
-    except NumericalFailureError as error:
-        raise NumericalFailureError(f"{study.source}: study {study.name!r}: {error}") from None
+    except (InputError, NumericalFailureError) as error:
+        said = worded(str(error), "file")
+        if isinstance(error, NumericalFailureError):
+            raise NumericalFailureError(f"{study.source}: study {study.name!r}: {said}") from None
+        if said == str(error):
+            raise
+        raise type(error)(said, error.parameter) from None
     if progress is not None:
         progress(f"{study.name}: files and figures")
     return study_entry(outcome, stage, figure_format)

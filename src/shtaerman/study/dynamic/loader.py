@@ -187,7 +187,8 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     dofs = estimate_dofs(settings)
     blamed = growth_error(settings, estimate_dofs, MAX_DOFS, MAX_SIZE) if dofs > MAX_DOFS else None
     if blamed is not None:
-        raise StudyError(f"{path}: key '{table}.growth': {str(blamed).removeprefix('growth: ')}")
+        reason = worded(str(blamed).removeprefix("growth: "), "file")
+        raise StudyError(f"{path}: key '{table}.growth': {reason}")
     if dofs > MAX_DOFS:
         raise StudyError(
             f"{path}: key '{table}.mesh_size': the mesh would have about {dofs:.3g} "
