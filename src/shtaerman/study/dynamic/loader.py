@@ -37,7 +37,6 @@ from ...vocabulary import entry
 from ..checks import Check
 from ..ladder import WITHOUT_ESTIMATE
 from ..schema import (
-    STUDY_KEYS,
     BodyTable,
     LayerTable,
     Named,
@@ -243,13 +242,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     settings = _settings(path, "numerics", raw.numerics, defaults)
     physics = impact_physics(raw)
     if physics.get("model", "linear") == "linear":
-        try:
-            check_ladder(settings)  # the full study runs the ladder; verify --quick does not
-        except InputError as error:
-            key = ".".join(filter(None, ("numerics", error.parameter)))
-            reason = str(error).removeprefix(f"{error.parameter}: ")
-            reason = reason.replace(WITHOUT_ESTIMATE, f"; {QUICK_INSTEAD}")
-            raise StudyError(f"{path}: key '{key}': {reason}") from None
+        _check_ladder(path, settings)
     study = DynamicStudy(
         **header,
         indenter=indenter,
@@ -279,6 +272,18 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
     }
     return _split_losses(path, dataclasses.replace(study, **numerics), raw.sweep)
+
+
+def _check_ladder(path: Path, settings: DynamicSettings) -> None:
+    """The full study's ladder (:func:`.accuracy.check_ladder`; verify --quick runs none),
+    refused naming its key; its remedy without the estimate is [quick] (:data:`QUICK_INSTEAD`)."""
+    try:
+        check_ladder(settings)
+    except InputError as error:
+        key = ".".join(filter(None, ("numerics", error.parameter)))
+        reason = str(error).removeprefix(f"{error.parameter}: ")
+        reason = reason.replace(WITHOUT_ESTIMATE, f"; {QUICK_INSTEAD}")
+        raise StudyError(f"{path}: key '{key}': {reason}") from None
 
 
 def _beside(path: Path, prony: str | None) -> str | None:
@@ -326,8 +331,7 @@ def _finite_numerics(
     try:
         check_options(problem, given)
     except InputError as error:
-        keys = {**STUDY_KEYS, **KEYS, "estimate": "verify --quick"}  # no estimate key
-        reason = worded(str(error).removeprefix(f"{error.parameter}: "), "file", keys)
+        reason = worded(str(error).removeprefix(f"{error.parameter}: "), "file")  # its keys
         raise StudyError(f"{path}: key '{table}.{error.parameter}': {reason}") from None
     if not problem.body.finite:
         return {}
