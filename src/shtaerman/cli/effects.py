@@ -5,8 +5,9 @@ from __future__ import annotations
 import argparse
 import shlex
 import sys
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 from ..api.effect_table import effects
@@ -122,15 +123,6 @@ def _print(table: EffectTable, as_json: bool) -> None:
         print(table_text(table, "cli"))
 
 
-@dataclass(frozen=True)
-class _Key:
-    """What a kept run is matched by on --resume (as verify matches a study): the variant's
-    label (``name``) and the digest of its parts and the numerics (``inputs``)."""
-
-    name: str
-    inputs: str
-
-
 def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespace) -> None:
     """Run the table into ``folder`` (staged; each finished run saved in :data:`PROGRESS_FILE`
     at once, as verify saves its studies: an interrupted table keeps them, --resume reuses
@@ -145,7 +137,8 @@ def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespac
     )
 
     rows, _ = variants(parts_of(full))
-    keys = [_Key(row.label, repr((row.parts, sorted(options.items())))) for row in rows]
+    # a kept run is matched on --resume as verify matches a study: by name and fingerprint
+    keys = [SimpleNamespace(name=row.label, parts=row.parts) for row in rows]
     names = (*INPUTS, "model", *RUBBER_OPTIONS, "refine", "estimate", *SETTINGS_OPTIONS)
     inputs = {name: getattr(args, name) for name in names}  # a resume gives them again
     words = Resuming("--resume", "table", "variants", "complete it with the same options")

@@ -152,17 +152,17 @@ def kept_entries(
         raise InputError(f"{option}: the interrupted {run} was {mode}; resume it the same way")
     _check_inputs(document.get("inputs"), inputs, words)
     wanted = {study.name: study_fingerprint(study) for study in studies}
-    requested = document.get("requested")  # absent from the files of earlier versions
-    if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
-        raise InputError(
-            f"{option}: the interrupted {run} was of the {words.items} "
-            f"{', '.join(map(str, requested))}; {words.same}, or start again with --force"
-        )
     dropped = sorted(name for name in stored if name not in wanted)
     if dropped:
         raise InputError(
             f"{option}: the interrupted {run} also finished {', '.join(map(repr, dropped))}, "
             f"which this command does not name; {words.same}"
+        )
+    requested = document.get("requested")  # absent from the files of earlier versions
+    if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
+        raise InputError(
+            f"{option}: the interrupted {run} was of the {words.items} "
+            f"{', '.join(map(str, requested))}; {words.same}, or start again with --force"
         )
     kept = {
         name: item["entry"]

@@ -276,13 +276,14 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
 
 def _check_ladder(path: Path, settings: DynamicSettings) -> None:
     """The full study's ladder (:func:`.accuracy.check_ladder`; verify --quick runs none),
-    refused naming its key; its remedy without the estimate is [quick] (:data:`QUICK_INSTEAD`)."""
+    refused naming its key (no estimate key: a study runs without it as [quick])."""
     try:
         check_ladder(settings)
     except InputError as error:
         key = ".".join(filter(None, ("numerics", error.parameter)))
         reason = str(error).removeprefix(f"{error.parameter}: ")
-        reason = reason.replace(WITHOUT_ESTIMATE, f"; {QUICK_INSTEAD}")
+        quick = "; or give it in [quick], which verify --quick runs without the estimate"
+        reason = reason.replace(WITHOUT_ESTIMATE, quick)
         raise StudyError(f"{path}: key '{key}': {reason}") from None
 
 
@@ -310,9 +311,6 @@ finite-strain impact's default); which [numerics] keys it refuses is the problem
 (:data:`shtaerman.problem.OPTION_SUPPORT`)."""
 KEYS = {name: f"impact.{name}" for name in ("interface", "friction")}
 """The study-file keys of the inputs a dynamic study holds elsewhere than a contact study."""
-QUICK_INSTEAD = "or give it in [quick], which verify --quick runs without the estimate"
-"""A dynamic study file's way to run without the error estimate (it has no estimate key:
-estimate=False elsewhere)."""
 
 
 def _finite_numerics(
