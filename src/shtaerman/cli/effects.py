@@ -39,8 +39,8 @@ NOTES = {
 }
 
 
-INPUTS = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
-INPUTS += ("friction",)
+INPUTS = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
+INPUTS += ("interface", "friction")
 """The physics options of the table (besides the model and its rubber options)."""
 
 

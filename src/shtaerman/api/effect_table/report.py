@@ -39,7 +39,7 @@ def _text(cell: Cell, key: str) -> str:
     return cell_text(cell.change, cell.error, key)
 
 
-def _rows(table: EffectTable, route: str) -> list[tuple[str, list[str]]]:
+def _rows(table: EffectTable, route: str = "python") -> list[tuple[str, list[str]]]:
     """(label, cells) per row of the table, the paper's values first, the interaction last;
     a refused run's single cell is its reason (in the words of ``route``)."""
     ref = table.reference
@@ -72,7 +72,7 @@ def _dominant_lines(table: EffectTable) -> list[str]:
     return lines
 
 
-def _notes(table: EffectTable, route: str) -> list[str]:
+def _notes(table: EffectTable, route: str = "python") -> list[str]:
     """Why a bar is n/a, and which options a run did not take (in the words of ``route``)."""
     lines = [
         f"  {run.label}: error bar n/a: {said(run.error_note, route)}"
@@ -117,11 +117,11 @@ def table_markdown(table: EffectTable) -> str:
     """The table in markdown (a refused run's reason fills its row)."""
     heads = [HEADERS[k] for k in QUANTITIES]
     out = ["| variant | " + " | ".join(heads) + " |", "|---" * (len(heads) + 1) + "|"]
-    for label, cells in _rows(table, "python"):
+    for label, cells in _rows(table):
         cells = cells if len(cells) > 1 else [cells[0], "", "", ""]
         out.append(f"| {label} | " + " | ".join(c.replace("|", "/") for c in cells) + " |")
     out += ["", "Dominant single effect:", "", *(f"-{line[1:]}" for line in _dominant_lines(table))]
-    notes = _notes(table, "python")
+    notes = _notes(table)
     return "\n".join(out + (["", "Notes:", "", *(f"-{n[1:]}" for n in notes)] if notes else []))
 
 
