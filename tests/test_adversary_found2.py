@@ -49,11 +49,6 @@ def test_dynamic_refuses_a_loading_keyword():
     assert "loading" in str(caught.value)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="problem.py OPTION_SUPPORT's rubber-impact reason lists Python names (time_steps, "
-    "mesh_size, estimate, density2 ...) and problem.worded does not turn them into options",
-)
 def test_the_rubber_impacts_option_refusal_speaks_command_line(capsys):
     code = cli.main(["dynamic", "--model", "neo-hookean", "--layer-rate", "5"])  # refused: no run
     err = capsys.readouterr().err
@@ -61,11 +56,6 @@ def test_the_rubber_impacts_option_refusal_speaks_command_line(capsys):
     assert "--layer-rate" in err and "time_steps" not in err and "mesh_size" not in err, err
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="problem.py SUPPORT's rubber-curve-prony reason says 'density 0' where the command "
-    "line's option is --density2 0 (its mass=... and model='linear' are translated)",
-)
 def test_the_rubber_curves_prony_refusal_names_density2_on_the_command_line(capsys):
     code = cli.main(["contact", "--model", "neo-hookean", "--prony", "0.3:1e-3"])  # refused
     err = capsys.readouterr().err
@@ -73,12 +63,6 @@ def test_the_rubber_curves_prony_refusal_names_density2_on_the_command_line(caps
     assert "--density2 0" in err, err
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the dynamic study's loader takes [numerics] layer_rate on a massless body "
-    "(density2 = 0) and runs without it (results.json: layer_rate 5.0 given, 0.0 used); "
-    "'dynamic --density2 0 --layer-rate 5' and sh.dynamic refuse it (OPTION_SUPPORT)",
-)
 def test_a_massless_dynamic_study_refuses_layer_rate(tmp_path):
     study = tmp_path / "massless.toml"
     study.write_text(
@@ -100,11 +84,6 @@ def test_a_massless_dynamic_study_refuses_layer_rate(tmp_path):
     assert "layer_rate" in done.stderr, done.stderr
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="api/effect_table: a mapping of parts is read by key (KeyError 'body') before "
-    "it is checked: a missing part or an unknown key gets no line naming it",
-)
 def test_effects_of_a_mapping_names_what_is_wrong_with_it():
     with pytest.raises((TypeError, sh.InputError)) as caught:  # refused before any run
         sh.effects({"colour": 3})
@@ -119,12 +98,6 @@ def test_resume_with_force_is_refused_in_option_words(command, tmp_path, capsys)
     assert "--resume" in err and "--force" in err, err
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="output/folder.py's resume refusals (verify's words) tell an effects table to "
-    "'resume with the same studies (the command it printed)'; effects has variants and printed "
-    "'complete it with the same options'; and they name 'resume', not --resume",
-)
 def test_an_effects_resume_of_other_variants_is_refused_in_its_own_words(tmp_path, capsys):
     out = tmp_path / "out"
     out.mkdir()  # an interrupted table's folder as effects leaves it (verify's progress file)

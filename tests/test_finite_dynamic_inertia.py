@@ -174,7 +174,7 @@ def test_a_failing_step_names_the_time_and_the_remedy(monkeypatch):
     with (
         warnings.catch_warnings(),
         pytest.raises(
-            NumericalFailureError, match=r"from t = 0 s .*inverted.*cut 4 times.*--density2 0"
+            NumericalFailureError, match=r"from t = 0 s .*inverted.*cut 4 times.*density2=0"
         ),
     ):
         warnings.simplefilter("error", RuntimeWarning)

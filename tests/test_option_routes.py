@@ -10,7 +10,7 @@ from study_texts import FINITE_STUDY as FINITE
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.problem import check_options
+from shtaerman.problem import check_options, worded
 from shtaerman.study.schema import StudyError, load_study
 from shtaerman.sweep.spec import SweepError, parse_sweep
 
@@ -124,9 +124,10 @@ def test_a_rubber_impacts_numerics_are_refused_alike_by_study_file_cli_and_sweep
     with pytest.raises(SweepError) as refused:  # a sweep case, refused at load
         parse_sweep(sweep + "[axes]\nvelocity = [1.0, 2.0]\n")
     reason = _table(RUBBER_IMPACT, [key]).removeprefix(f"{key}: ")
-    assert study == f"key 'numerics.{key}': {reason}"
-    assert cli == f"{option}: {reason}"
-    assert str(refused.value).endswith(f"(velocity = 1.0): {key}: {reason}")
+    # one reason, its inputs spelled per route (problem.worded): keys, options
+    assert study == f"key 'numerics.{key}': {worded(reason, 'file')}"
+    assert cli == f"{option}: {worded(reason, 'cli')}"
+    assert str(refused.value).endswith(f"(velocity = 1.0): {key}: {worded(reason, 'file')}")
 
 
 @pytest.mark.parametrize("key", ["axis_size", "spectral_radius", "tail", "layer_width"])
@@ -134,7 +135,7 @@ def test_a_rubber_impact_refuses_the_study_only_numerics_by_the_table(tmp_path, 
     """Keys a study file has and the command line has not: the table declares them too."""
     reason = _table(RUBBER_IMPACT, [key]).removeprefix(f"{key}: ")
     study = _study(tmp_path, f'{DYNAMIC}[rubber]\nmodel = "neo-hookean"\n[numerics]\n{key} = 0.3\n')
-    assert study == f"key 'numerics.{key}': {reason}"
+    assert study == f"key 'numerics.{key}': {worded(reason, 'file')}"
 
 
 @pytest.mark.parametrize(
@@ -175,6 +176,7 @@ def test_a_rubber_impacts_axis_size_is_refused_by_the_sweep_in_the_tables_words(
     )
     with pytest.raises(SweepError) as refused:
         parse_sweep(sweep + "[axes]\nvelocity = [1.0, 2.0]\n")
+    reason = worded(reason, "file")  # the keys of both files
     assert study == f"key 'numerics.axis_size': {reason}"
     assert str(refused.value).endswith(f"(velocity = 1.0): axis_size: {reason}")
 

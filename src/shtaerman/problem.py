@@ -245,7 +245,7 @@ class Loading:
             object.__setattr__(self, "rate", float(entry("rate").check(self.rate, "contact")))
         if self.depths is not None:
             if self.kind != "curve":
-                raise InputError("depths: apply to a contact curve only", "depths")
+                raise InputError("depths: applies to a contact curve only", "depths")
             object.__setattr__(self, "depths", _depths(self.depths))
 
 
@@ -302,7 +302,7 @@ SUPPORT: tuple[Unsupported, ...] = (
         "prony",
         "a contact curve at finite strain is elastic (the finite-strain contact solver has no "
         "time): a viscoelastic rubber is pressed by an impact (give mass=... and velocity=... "
-        "to the dynamic impact, with density 0 for the quasi-static one), or take "
+        "to the dynamic impact, with density2=0 for the quasi-static one), or take "
         "model='linear'",
     ),
     Unsupported(
@@ -344,14 +344,15 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
             "layer_rate",
             *("axis_size", "layer_start", "layer_ramp", "tail", "layer_width", "spectral_radius"),
         ),
-        "not supported with model {model!r} in the impact (it takes mass, velocity, "
-        "density2, time_steps, mesh_size, refine, estimate, thickness, base (bonded), "
-        "interface, friction, prony, the rubber options and the outputs)",
+        "not supported with model {model!r} in the impact (it takes mass=..., velocity=..., "
+        "density2=..., time_steps=..., mesh_size=..., refine=..., estimate=..., thickness=..., "
+        "base='bonded', interface=..., friction=..., prony=..., the rubber options and the "
+        "outputs)",
     ),
     OptionLimit(
         lambda c: c.loading == "massless",
         ("layer_rate",),
-        "applies to a body with mass only: a massless body (density 0) radiates no waves for "
+        "applies to a body with mass only: a massless body (density2=0) radiates no waves for "
         "the absorbing layer to damp",
     ),
     OptionLimit(

@@ -17,7 +17,7 @@ from ..plots.formats import add_figure_format
 from ..problem import check_outputs, worded
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
-from ..validation import InputError
+from ..validation import InputError, NumericalFailureError
 from ..vocabulary import DeprecatedKeyWarning, Entry, entry
 
 if TYPE_CHECKING:
@@ -203,9 +203,9 @@ def _metavar(item: Entry) -> str:
 
 @contextlib.contextmanager
 def in_option_words() -> Iterator[None]:
-    """Re-raise an :class:`InputError` of the API in the command line's words
-    (:func:`shtaerman.problem.worded`: ``--mass: ...``, ``give --interface bonded too``): the
-    user of the CLI gave options, not keywords."""
+    """Re-raise an :class:`InputError` (or a numerical failure) of the API in the command
+    line's words (:func:`shtaerman.problem.worded`: ``--mass: ...``, ``give --interface
+    bonded too``): the user of the CLI gave options, not keywords."""
     try:
         yield
     except InputError as error:
@@ -213,6 +213,8 @@ def in_option_words() -> Iterator[None]:
         if spoken == str(error):
             raise
         raise type(error)(spoken, error.parameter) from None
+    except NumericalFailureError as error:  # what to change: the options to give
+        raise NumericalFailureError(worded(str(error), "cli")) from None
 
 
 def given(args: argparse.Namespace, name: str) -> bool:

@@ -5,12 +5,13 @@ from __future__ import annotations
 import argparse
 import shlex
 import sys
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 from ..api.effect_table import effects
-from ..api.effect_table.report import FILES, table_text, write_table
+from ..api.effect_table.report import FILES, said, table_text, write_table
 from ..api.effect_table.table import EffectTable, Run
 from ..api.effect_table.variants import parts_of, variants
 from ..api.fem_contact import RUBBER_OPTIONS
@@ -38,6 +39,11 @@ NOTES = {
 }
 
 
+INPUTS = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")
+INPUTS += ("interface", "friction")
+"""The physics options of the table (besides the model and its rubber options)."""
+
+
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``effects`` subcommand."""
     p = commands.add_parser(
@@ -58,10 +64,7 @@ def register(commands: argparse._SubParsersAction) -> None:
             "stderr, SI units."
         ),
     )
-    inputs = (*CASE, *PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base", "interface")
-    add_inputs(
-        p, (*inputs, "friction", "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES
-    )
+    add_inputs(p, (*INPUTS, "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES)
     add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
     accuracy = p.add_argument_group("accuracy (each run's error-estimate ladder)")
     add_inputs(accuracy, ("refine", "estimate"), "dynamic")
@@ -77,7 +80,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 def _progress(line: str) -> None:
-    print(line, file=sys.stderr, flush=True)
+    print(said(line, "cli"), file=sys.stderr, flush=True)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -117,16 +120,7 @@ def _print(table: EffectTable, as_json: bool) -> None:
     if as_json:
         print_json(table.to_dict())
     else:
-        print(table_text(table))
-
-
-@dataclass(frozen=True)
-class _Key:
-    """What a kept run is matched by on --resume (as verify matches a study): the variant's
-    label (``name``) and the digest of its parts and the numerics (``inputs``)."""
-
-    name: str
-    inputs: str
+        print(table_text(table, "cli"))
 
 
 def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespace) -> None:
@@ -134,25 +128,35 @@ def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespac
     at once, as verify saves its studies: an interrupted table keeps them, --resume reuses
     them); print it, then write its files."""
     from ..output.files import json_safe, staged_folder
-    from ..output.folder import PROGRESS_FILE, keep_finished, kept_entries, save_progress
+    from ..output.folder import (
+        PROGRESS_FILE,
+        Resuming,
+        keep_finished,
+        kept_entries,
+        save_progress,
+    )
 
     rows, _ = variants(parts_of(full))
-    keys = [_Key(row.label, repr((row.parts, sorted(options.items())))) for row in rows]
+    # a kept run is matched on --resume as verify matches a study: by name and fingerprint
+    keys = [SimpleNamespace(name=row.label, parts=row.parts) for row in rows]
+    names = (*INPUTS, "model", *RUBBER_OPTIONS, "refine", "estimate", *SETTINGS_OPTIONS)
+    inputs = {name: getattr(args, name) for name in names}  # a resume gives them again
+    words = Resuming("--resume", "table", "variants", "complete it with the same options")
     with staged_folder(
         folder, force=args.force, resume_marker=PROGRESS_FILE if args.resume else None,
         keep_marker=PROGRESS_FILE,
     ) as stage:  # fmt: skip
-        entries = kept_entries(stage, keys, quick=False)
+        entries = kept_entries(stage, keys, quick=False, inputs=inputs, words=words)
         kept = {label: _stored_run(entry) for label, entry in entries.items()}
 
         def finished(run: Run) -> None:
             entries[run.label] = json_safe(asdict(run))
-            save_progress(stage, keys, entries, quick=False)
+            save_progress(stage, keys, entries, False, inputs)
 
         try:
             table = effects(full, **options, progress=_progress, kept=kept, finished=finished)
         except BaseException as error:
-            keep_finished(stage, keys, entries, error, quick=False)
+            keep_finished(stage, keys, entries, error, quick=False, inputs=inputs)
         _print(table, args.json)  # first: a failed --out (a full disk) does not lose it
         sys.stdout.flush()
         write_table(table, stage)
@@ -167,7 +171,8 @@ def _stored_run(entry: dict) -> Run:
 def _interrupted_text(stop: Any, out: Path) -> str:
     """What an interrupted table kept, and how to complete it."""
     if isinstance(stop.cause, Exception):
-        reason = f"error: {' '.join(str(stop.cause).split()) or type(stop.cause).__name__};"
+        reason = " ".join(said(str(stop.cause), "cli").split()) or type(stop.cause).__name__
+        reason = f"error: {reason};"
     else:
         reason = "interrupted:" if isinstance(stop.cause, KeyboardInterrupt) else "terminated:"
     kept = "" if stop.kept_in is None else f" ({str(out)!r} unchanged: --force keeps it whole)"

@@ -710,7 +710,7 @@ class MeshSettings:
             self._check_layer(refined_radius)
             return
         if self.estimated_dofs > self.max_dofs:
-            also = "; or raise --max-dofs"
+            also = "; or raise max_dofs=..."
             blamed = growth_error(self, lambda mesh: mesh.estimated_dofs, self.max_dofs, 1.0, also)
             if blamed is not None:
                 raise blamed
@@ -719,8 +719,8 @@ class MeshSettings:
                 f"(size {self.size:.3g}, growth {self.growth:.3g}, domain {self.domain:.3g}, "
                 f"axis_size {min(self.axis_size, self.size):.3g}, axis_growth "
                 f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it "
-                f"(--mesh-size, --growth, a lower --refine) or, in a contact curve, raise "
-                "--max-dofs"
+                "(mesh_size=..., growth=..., a lower refine=...) or, in a contact curve, raise "
+                "max_dofs=..."
             )
 
     def build(self, refined_radius: float) -> MeshTri:
@@ -750,8 +750,8 @@ class MeshSettings:
         if dofs > self.max_dofs:
             raise InputError(
                 f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
-                f"max_dofs = {self.max_dofs:.3g}; coarsen it (--mesh-size, a lower --refine) or, "
-                "in a contact curve, raise --max-dofs"
+                f"max_dofs = {self.max_dofs:.3g}; coarsen it (mesh_size=..., a lower refine=...) "
+                "or, in a contact curve, raise max_dofs=..."
             )
         return ratio
 
@@ -810,7 +810,9 @@ def growth_error(
     setting is at fault).
 
     ``estimate`` maps settings to their estimated unknowns (non-increasing in the growth);
-    ``also`` ends the message with another remedy (``"; or raise --max-dofs"``).
+    ``also`` ends the message with another remedy (``"; or raise max_dofs=..."``); the
+    inputs are named in Python's words (:func:`shtaerman.problem.worded` spells them per
+    route).
     """
 
     def fits(**changed: float) -> bool:
@@ -828,8 +830,8 @@ def growth_error(
     least = bound_text(math.exp(high), "low")
     return InputError(
         f"growth: must lie in [{least}, 1] for a mesh within {limit:.3g} unknowns at size "
-        f"{settings.size:.3g}, got {settings.growth:.3g} (the mesh's, after --refine divides "
-        f"--growth; about {estimate(settings):.3g} unknowns; a coarser --mesh-size cannot "
-        f"make up for it: raise --growth or lower --refine){also}",
+        f"{settings.size:.3g}, got {settings.growth:.3g} (the mesh's, after refine=... divides "
+        f"growth=...; about {estimate(settings):.3g} unknowns; a coarser mesh_size=... cannot "
+        f"make up for it: raise growth=... or lower refine=...){also}",
         "growth",
     )

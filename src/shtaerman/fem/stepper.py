@@ -414,8 +414,7 @@ def _check_edge(problem: ImpactProblem, state: ImpactState, last: int) -> None:
         t = (state.step + 1) * problem.scheme.dt
         raise ContactEdgeReachedError(
             f"the contact reached r = {r_c[last]:.4g} m at t = {t:.4g} s, the "
-            f"edge of the refined zone ({r_c[-1]:.4g} m); increase the margin (mesh_margin, "
-            "--mesh-margin)"
+            f"edge of the refined zone ({r_c[-1]:.4g} m); increase the margin (mesh_margin=...)"
         )
 
 
@@ -439,7 +438,7 @@ def _stick_contact(
         t = (state.step + 1) * problem.scheme.dt
         raise NumericalFailureError(
             f"the contact's stick and slip did not settle at t = {t:.4g} s; take more time "
-            "steps (time_steps, --time-steps) or a finer mesh (mesh_size, --mesh-size)"
+            "steps (time_steps=...) or a finer mesh (mesh_size=...)"
         )
     active = np.flatnonzero(contact.active)
     if active.size:
@@ -681,8 +680,8 @@ def _blame_the_stepping(
 
 
 SMALL_STEP_CURE = (
-    "use fewer time steps (time_steps, --time-steps) or a finer mesh with them (mesh_size, "
-    "--mesh-size): the contact stepping needs c_s dt not far below the surface element size"
+    "use fewer time steps (time_steps=...) or a finer mesh with them (mesh_size=...): the "
+    "contact stepping needs c_s dt not far below the surface element size"
 )
 """What a message of an unstable contact stepping tells the user to change."""
 
@@ -778,8 +777,8 @@ class QuasiStaticBody:
         except NewtonError as error:  # the run's numerics, not its input
             raise NumericalFailureError(
                 f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
-                "is strained beyond what this mesh resolves: a finer --mesh-size, more "
-                "--time-steps or a lower --velocity (on a pad: a thicker --thickness)"
+                "is strained beyond what this mesh resolves: a finer mesh_size=..., more "
+                "time_steps=... or a lower velocity=... (on a pad: a thicker thickness=...)"
             ) from error
 
     def accept(self, state: _State) -> None:
@@ -1220,13 +1219,13 @@ def _step_failure(
             where + f"the bonded indenter reached x/a = {ratio:.3g}, beyond the "
             f"finite-strain contact's validated {MAX_DEPTH_RATIO:g}, where its last ring in "
             "contact slides back along the steep striker as it leaves: a blunter striker "
-            "(a smaller --shape-coefficient or a slower --velocity) or --interface "
-            "frictionless (run beyond x/a 1.2 with a warning)"
+            "(a smaller shape_coefficient=... or a slower velocity=...) or "
+            "interface='frictionless' (run beyond x/a 1.2 with a warning)"
         )
     return NumericalFailureError(
         where + "the body with inertia cannot follow this impact at these settings (other "
         "time steps may help; a striker faster than the shear waves never converges): "
-        "--density2 0 gives the massless finite-strain impact"
+        "density2=0 gives the massless finite-strain impact"
     )
 
 

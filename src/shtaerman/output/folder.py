@@ -18,10 +18,12 @@ import shutil
 import sys
 import time
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn, TextIO
 
 from ..plots.formats import check_figure_format
+from ..problem import worded
 from ..signals import deferred
 from ..study.kinds import kind_function
 from ..study.run import run_study
@@ -37,6 +39,7 @@ __all__ = [
     "PROGRESS_FILE",
     "Executor",
     "ProgressBar",
+    "Resuming",
     "VerifyInterrupted",
     "compute_study",
     "finish_verification",
@@ -77,9 +80,14 @@ def study_fingerprint(study: Any) -> str:
 
 
 def save_progress(
-    stage: Path, studies: list[Any], entries: Mapping[str, dict], quick: bool
+    stage: Path,
+    studies: list[Any],
+    entries: Mapping[str, dict],
+    quick: bool,
+    inputs: Mapping[str, Any] | None = None,
 ) -> None:
-    """Write :data:`PROGRESS_FILE` in ``stage``: the finished studies' entries (atomic)."""
+    """Write :data:`PROGRESS_FILE` in ``stage``: the finished studies' entries, and the
+    ``inputs`` a resume must give again (JSON values; atomic)."""
     fingerprints = {study.name: study_fingerprint(study) for study in studies}
     document = {
         "format": PROGRESS_FORMAT,
@@ -89,26 +97,47 @@ def save_progress(
             name: {"fingerprint": fingerprints[name], "entry": entry}
             for name, entry in entries.items()
         },
+        **({} if inputs is None else {"inputs": json_safe(dict(inputs))}),
     }
     temporary = stage / f".{PROGRESS_FILE}.tmp"
     temporary.write_text(json.dumps(document), encoding="utf-8")
     os.replace(temporary, stage / PROGRESS_FILE)
 
 
-def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, dict]:
+@dataclass(frozen=True)
+class Resuming:
+    """How a command words its refusals of a resume: its option, what it makes (``run``) of
+    what (``items``), and how to resume it the same way (``same``)."""
+
+    option: str = "resume"
+    run: str = "run"
+    items: str = "studies"
+    same: str = "resume it with the same studies (the command it printed)"
+
+
+def kept_entries(
+    stage: Path,
+    studies: list[Any],
+    *,
+    quick: bool,
+    inputs: Mapping[str, Any] | None = None,
+    words: Resuming = Resuming(),
+) -> dict[str, dict]:
     """The entries of the finished studies a resumed folder holds (``stage`` starts with its
     content) whose inputs are the same as now; everything else in ``stage`` is removed.
 
     Raises
     ------
     InputError
-        When the folder was run with another ``quick`` or other studies than ``studies`` (one
-        it finished would be lost, one it did not finish silently dropped), or its progress
-        file is unreadable.
+        When the folder was run with another ``quick``, other ``inputs`` (as
+        :func:`save_progress` saved them) or other studies than ``studies`` (one it finished
+        would be lost, one it did not finish silently dropped), or its progress file is
+        unreadable; worded by ``words``.
     """
     marker = stage / PROGRESS_FILE
     if not marker.is_file():
         return {}
+    option, run = words.option, words.run
     try:
         document = json.loads(marker.read_text(encoding="utf-8"))
         stored = document["studies"] if document["format"] == PROGRESS_FORMAT else None
@@ -116,23 +145,24 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
             raise ValueError("not a progress file")
     except (OSError, ValueError, KeyError, TypeError):
         raise InputError(
-            f"resume: {PROGRESS_FILE} is not one this tool wrote; use --force to start again"
+            f"{option}: {PROGRESS_FILE} is not one this tool wrote; use --force to start again"
         ) from None
     if document["quick"] != quick:
         mode = "with --quick" if document["quick"] else "without --quick"
-        raise InputError(f"resume: the interrupted run was {mode}; resume it the same way")
+        raise InputError(f"{option}: the interrupted {run} was {mode}; resume it the same way")
+    _check_inputs(document.get("inputs"), inputs, words)
     wanted = {study.name: study_fingerprint(study) for study in studies}
     dropped = sorted(name for name in stored if name not in wanted)
     if dropped:
         raise InputError(
-            f"resume: the interrupted run also finished {', '.join(map(repr, dropped))}, which "
-            "this command does not name; resume with the same studies (the command it printed)"
+            f"{option}: the interrupted {run} also finished {', '.join(map(repr, dropped))}, "
+            f"which this command does not name; {words.same}"
         )
     requested = document.get("requested")  # absent from the files of earlier versions
     if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
         raise InputError(
-            f"resume: the interrupted run was of {', '.join(map(str, requested))}; resume it "
-            "with the same studies (the command it printed), or start again with --force"
+            f"{option}: the interrupted {run} was of the {words.items} "
+            f"{', '.join(map(str, requested))}; {words.same}, or start again with --force"
         )
     kept = {
         name: item["entry"]
@@ -149,6 +179,22 @@ def kept_entries(stage: Path, studies: list[Any], *, quick: bool) -> dict[str, d
     return kept
 
 
+def _check_inputs(stored: Any, inputs: Mapping[str, Any] | None, words: Resuming) -> None:
+    """Refuse a resume whose ``inputs`` differ from those ``stored`` with the kept runs (none
+    stored: an earlier version's file, not checked), naming each that differs as ``name=...``
+    (:func:`shtaerman.problem.worded` spells it per route)."""
+    if inputs is None or not isinstance(stored, dict):
+        return
+    now = json.loads(json.dumps(json_safe(dict(inputs))))
+    differ = [name for name in sorted({*stored, *now}) if stored.get(name) != now.get(name)]
+    if differ:
+        changes = ", ".join(f"{n}=... ({stored.get(n)} there, {now.get(n)} now)" for n in differ)
+        raise InputError(
+            f"{words.option}: the interrupted {words.run}'s kept runs were made with another "
+            f"{changes}; {words.same}, or start again with --force"
+        )
+
+
 def _remove_entry(path: Path) -> None:
     if path.is_dir() and not path.is_symlink():
         shutil.rmtree(path)
@@ -163,16 +209,18 @@ def keep_finished(
     error: BaseException,
     *,
     quick: bool,
+    inputs: Mapping[str, Any] | None = None,
 ) -> NoReturn:
     """Re-raise ``error``; after some studies finished, as :class:`KeepStaged` that moves them
-    (with :data:`PROGRESS_FILE`) into place, for an interruption and an error alike."""
+    (with :data:`PROGRESS_FILE`, ``inputs`` as :func:`save_progress`) into place, for an
+    interruption and an error alike."""
     if not entries:
         raise error
     for path in stage.iterdir():
         if path.name not in entries and path.name not in (PROGRESS_FILE, FOLDER_MARKER):
             _remove_entry(path)
     with contextlib.suppress(OSError):  # a full disk: the file of the last study stands
-        save_progress(stage, studies, entries, quick)
+        save_progress(stage, studies, entries, quick, inputs)
     raise KeepStaged(VerifyInterrupted(error, len(entries), len(studies))) from None
 
 
@@ -269,13 +317,19 @@ def compute_study(
     Raises
     ------
     InputError, NumericalFailureError
-        An input the FEM refuses, a computation that failed: the message starts with the
+        An input the FEM refuses, a computation that failed (what to change in the study
+        file's words: :func:`shtaerman.problem.worded`); a failure's message starts with the
         study file and the study's name.
     """
     try:
         outcome = run_study(study, quick=quick, progress=progress)
-    except NumericalFailureError as error:
-        raise NumericalFailureError(f"{study.source}: study {study.name!r}: {error}") from None
+    except (InputError, NumericalFailureError) as error:
+        said = worded(str(error), "file")
+        if isinstance(error, NumericalFailureError):
+            raise NumericalFailureError(f"{study.source}: study {study.name!r}: {said}") from None
+        if said == str(error):
+            raise
+        raise type(error)(said, error.parameter) from None
     if progress is not None:
         progress(f"{study.name}: files and figures")
     return study_entry(outcome, stage, figure_format)

@@ -5,13 +5,15 @@ from __future__ import annotations
 import csv
 import io
 import json
+import re
 from itertools import chain
 from pathlib import Path
 
 from ...output.text_effects import cell_text
+from ...problem import worded
 from .table import QUANTITIES, UNITS, Cell, EffectTable, refusal_words
 
-__all__ = ["FILES", "table_csv", "table_markdown", "table_text", "write_table"]
+__all__ = ["FILES", "said", "table_csv", "table_markdown", "table_text", "write_table"]
 
 FILES = ("effects.json", "effects.csv", "effects.md")
 """What ``--out`` writes."""
@@ -19,20 +21,34 @@ HEADERS = {"P_max": "P_max (%)", "x_max": "x_max (%)", "t_contact": "t_contact (
 HEADERS["restitution"] = "e - 1"
 
 
+_REASON = re.compile(r"(?:refused|failed): ")
+
+
+def said(text: str, route: str) -> str:
+    """A run's reason or note (``layer_rate not applied: ...``), or a progress line ending
+    with a reason (``... full: refused: friction: ...``), written in Python's words, in those
+    of ``route`` (:func:`shtaerman.problem.worded`: ``--layer-rate``, ``--friction``)."""
+    found = _REASON.search(text)
+    start = found.end() if found else 0
+    reason = text[start:]
+    return text[:start] + worded(reason, route, parameter=reason.split(" ", 1)[0])
+
+
 def _text(cell: Cell, key: str) -> str:
     """:func:`shtaerman.output.text_effects.cell_text` of one cell."""
     return cell_text(cell.change, cell.error, key)
 
 
-def _rows(table: EffectTable) -> list[tuple[str, list[str]]]:
+def _rows(table: EffectTable, route: str = "python") -> list[tuple[str, list[str]]]:
     """(label, cells) per row of the table, the paper's values first, the interaction last;
-    a refused run's single cell is its reason."""
+    a refused run's single cell is its reason (in the words of ``route``)."""
     ref = table.reference
     paper = [f"{ref[QUANTITIES[k]]:.5g} {UNITS[k]}" if QUANTITIES[k] else "1" for k in QUANTITIES]
     rows, first = [("quasi-static (paper)", paper)], {}
     for run in table.runs:
         if run.refused is not None:
-            rows.append((run.label, [refusal_words(run.refused, run.label, first)]))
+            reason = refusal_words(run.refused, run.label, first)
+            rows.append((run.label, [said(reason, route)]))  # type: ignore[arg-type]
             continue
         cells = table.cells(run.label)
         rows.append((run.label, [_text(cells[key], key) for key in QUANTITIES]))
@@ -56,20 +72,21 @@ def _dominant_lines(table: EffectTable) -> list[str]:
     return lines
 
 
-def _notes(table: EffectTable) -> list[str]:
-    """Why a bar is n/a, and which options a run did not take."""
+def _notes(table: EffectTable, route: str = "python") -> list[str]:
+    """Why a bar is n/a, and which options a run did not take (in the words of ``route``)."""
     lines = [
-        f"  {run.label}: error bar n/a: {run.error_note}"
+        f"  {run.label}: error bar n/a: {said(run.error_note, route)}"
         for run in table.runs
         if run.values is not None and run.error_note
     ]
-    lines += [f"  {run.label}: {note}" for run in table.runs for note in run.notes]
+    lines += [f"  {run.label}: {said(note, route)}" for run in table.runs for note in run.notes]
     return lines
 
 
-def table_text(table: EffectTable) -> str:
-    """The table as printed: changes from the paper's quasi-static values with error bars."""
-    rows = _rows(table)
+def table_text(table: EffectTable, route: str = "python") -> str:
+    """The table as printed: changes from the paper's quasi-static values with error bars;
+    its reasons and notes in the words of ``route`` (``"cli"``: ``shtaerman effects``)."""
+    rows = _rows(table, route)
     width = max(len(label) for label, _ in rows) + 2
     heads = [HEADERS[k] for k in QUANTITIES]
     columns = [
@@ -92,7 +109,7 @@ def table_text(table: EffectTable) -> str:
         "dominant single effect (largest |change|; resolved: beyond the error bars):",
         *_dominant_lines(table),
     ]
-    notes = _notes(table)
+    notes = _notes(table, route)
     return "\n".join(out + (["notes:", *notes] if notes else []))
 
 
@@ -131,7 +148,8 @@ def table_csv(table: EffectTable) -> str:
 
 
 def write_table(table: EffectTable, folder: Path) -> None:
-    """effects.json, effects.csv and effects.md in ``folder``."""
+    """effects.json, effects.csv and effects.md in ``folder`` (data: reasons and notes in
+    Python's words, as :meth:`EffectTable.to_dict`)."""
     (folder / "effects.json").write_text(json.dumps(table.to_dict(), indent=2) + "\n")
     (folder / "effects.csv").write_text(table_csv(table))
     (folder / "effects.md").write_text(table_markdown(table) + "\n")

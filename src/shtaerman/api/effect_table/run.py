@@ -66,7 +66,7 @@ def _options(problem: Problem, given: dict[str, Any]) -> tuple[dict[str, Any], t
 
 NO_ESTIMATE = (
     "the run gave no error estimate (see its estimate_missing)",
-    "the estimate was switched off (estimate=False, --no-estimate)",
+    "the estimate was switched off (estimate=False)",
 )
 """Why a run has no error estimate: with the estimate asked, without it."""
 

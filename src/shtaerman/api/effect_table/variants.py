@@ -72,10 +72,10 @@ class Variant:
 
 
 def parts_of(problem: Problem | Parts) -> dict[str, Any]:
-    """The parts of ``problem`` (a :class:`Problem`, or its parts as a mapping)."""
-    if isinstance(problem, Problem):
-        return {part.name: getattr(problem, part.name) for part in fields(problem)}
-    return dict(problem)
+    """The parts of ``problem`` (a :class:`Problem`, or its parts as a mapping: checked first,
+    a missing part or an unknown key named as Python names a keyword, a part refused)."""
+    problem = problem if isinstance(problem, Problem) else Problem(**problem)
+    return {part.name: getattr(problem, part.name) for part in fields(problem)}
 
 
 def _without(parts: Parts, effects: tuple[Effect, ...]) -> dict[str, Any]:

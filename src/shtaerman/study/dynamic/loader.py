@@ -28,13 +28,14 @@ from ...fem.dynamic_contact import (
 )
 from ...fem.mesh import growth_error
 from ...fem.viscoelastic import prony_input
-from ...problem import Problem, check_options
+from ...problem import Problem, check_options, worded
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, shown
 from ...vocabulary import entry
 from ..checks import Check
+from ..ladder import WITHOUT_ESTIMATE
 from ..schema import (
     BodyTable,
     LayerTable,
@@ -185,7 +186,8 @@ def _settings(path: Path, table: str, raw: _Numerics, base: DynamicSettings) -> 
     dofs = estimate_dofs(settings)
     blamed = growth_error(settings, estimate_dofs, MAX_DOFS, MAX_SIZE) if dofs > MAX_DOFS else None
     if blamed is not None:
-        raise StudyError(f"{path}: key '{table}.growth': {str(blamed).removeprefix('growth: ')}")
+        reason = worded(str(blamed).removeprefix("growth: "), "file")
+        raise StudyError(f"{path}: key '{table}.growth': {reason}")
     if dofs > MAX_DOFS:
         raise StudyError(
             f"{path}: key '{table}.mesh_size': the mesh would have about {dofs:.3g} "
@@ -240,10 +242,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     settings = _settings(path, "numerics", raw.numerics, defaults)
     physics = impact_physics(raw)
     if physics.get("model", "linear") == "linear":
-        try:
-            check_ladder(settings)  # the full study runs the ladder; verify --quick does not
-        except InputError as error:
-            raise StudyError(f"{path}: key 'numerics': {error}") from None
+        _check_ladder(path, settings)
     study = DynamicStudy(
         **header,
         indenter=indenter,
@@ -273,6 +272,19 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
     }
     return _split_losses(path, dataclasses.replace(study, **numerics), raw.sweep)
+
+
+def _check_ladder(path: Path, settings: DynamicSettings) -> None:
+    """The full study's ladder (:func:`.accuracy.check_ladder`; verify --quick runs none),
+    refused naming its key (no estimate key: a study runs without it as [quick])."""
+    try:
+        check_ladder(settings)
+    except InputError as error:
+        key = ".".join(filter(None, ("numerics", error.parameter)))
+        reason = str(error).removeprefix(f"{error.parameter}: ")
+        quick = "; or give it in [quick], which verify --quick runs without the estimate"
+        reason = reason.replace(WITHOUT_ESTIMATE, quick)
+        raise StudyError(f"{path}: key '{key}': {reason}") from None
 
 
 def _beside(path: Path, prony: str | None) -> str | None:
@@ -309,18 +321,18 @@ def _finite_numerics(
     parent: _Numerics | None = None,
 ) -> dict[str, Any]:
     """A rubber's numerical keywords of :func:`shtaerman.dynamic` from ``raw`` (over those of
-    ``parent``, the [numerics] of a [quick]); a key the rubber's impact does not take is
-    refused as the command line refuses its option (:func:`shtaerman.problem.check_options`).
-    {} for the linear model."""
-    if not problem.body.finite:
-        return {}
+    ``parent``, the [numerics] of a [quick]); {} for the linear model. A key the problem does
+    not take, every model, is refused as the command line refuses its option
+    (:func:`shtaerman.problem.check_options`: ``layer_rate`` on a massless body)."""
     fields = _Numerics.__struct_fields__
     given = {key: getattr(raw, key) for key in fields if getattr(raw, key) is not None}
     try:
         check_options(problem, given)
     except InputError as error:
-        reason = str(error).removeprefix(f"{error.parameter}: ")
+        reason = worded(str(error).removeprefix(f"{error.parameter}: "), "file")  # its keys
         raise StudyError(f"{path}: key '{table}.{error.parameter}': {reason}") from None
+    if not problem.body.finite:
+        return {}
     inherited = {} if parent is None else _finite_numerics(path, "numerics", parent, problem)
     given = {key: value for key, value in given.items() if key in FINITE_NUMERICS}
     return {**FINITE_NUMERICS, **inherited, **given}
