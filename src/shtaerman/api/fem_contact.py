@@ -267,9 +267,9 @@ class _Plan:
 
 def _solve(plan: _Plan) -> tuple[Any, Any]:
     """The finest FEM run and the ladder (None without the estimate)."""
-    from ..study.contact.accuracy import run_ladder, run_to_accuracy
+    from ..study.contact.accuracy import run_ladder, run_mesh_ladder, run_to_accuracy
     from ..study.contact.indentation import run_indentation
-    from ..study.finite.indentation import run_finite_ladder, run_finite_study
+    from ..study.finite.indentation import run_finite_study
 
     inputs = (plan.indenter, plan.body, plan.depths)
     steps = {"progress": plan.progress, "refine": plan.refine}
@@ -278,8 +278,9 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
         if plan.finite:
             return run_finite_study(*inputs, finest, plan.rubber), None
         return run_indentation(*inputs, finest, backend=plan.solver, **plan.relaxing), None
-    if plan.finite:
-        ladder = run_finite_ladder(*inputs, plan.mesh, rubber=plan.rubber, **steps)
+    if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
+        solve = lambda level: run_finite_study(*inputs, level, plan.rubber)  # noqa: E731
+        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, **steps)
     elif plan.tolerance is None:
         ladder = run_ladder(*inputs, plan.mesh, backend=plan.solver, **steps, **plan.relaxing)
     else:
