@@ -42,7 +42,6 @@ __all__ = [
     "ContactResult",
     "contact",
     "contact_depths",
-    "mesh_settings",
 ]
 
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
@@ -153,14 +152,6 @@ class ContactResult:
                 value = [dict(row) for row in value]
             document[key] = value
         return json_safe(document)
-
-
-def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSettings:
-    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None; each value is
-    checked alone first, so that an error names its keyword."""
-    from ..study.schema import replaced
-
-    return replaced(base, {name: options.get(name) for name in MESH_OPTIONS})
 
 
 def contact_depths(
@@ -406,6 +397,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     from ..fem.mesh import DEFAULTS, MeshSettings
     from ..fem.solver import check_backend
     from ..study.contact.indentation import default_depths
+    from ..study.schema import replaced
 
     problem = _problem(indenter, body, options)
     outputs = {name: options[name] for name in ("force", "estimate", "figure_format")}
@@ -423,7 +415,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             "keywords mesh_size, mesh_margin, ... set single fields",
             "mesh",
         )
-    mesh = layer_mesh(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), problem.geometry)
+    mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
+    mesh = layer_mesh(mesh, problem.geometry)
     interface = problem.interface
     mesh = dataclasses.replace(mesh, interface=interface.kind, friction=interface.friction)
     refine = validate_positive("refine", options["refine"])
