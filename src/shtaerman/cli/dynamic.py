@@ -16,9 +16,8 @@ from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
 from ..guards import FailedCheckWarning
 from ..output.case import interface_words
 from ..output.files import staged_file, write_csv
-from ..problem import Problem, check_options, worded
+from ..problem import Problem, worded
 from ..theory.materials import Material
-from ..vocabulary import entry
 from . import common
 from .contact import exact_owner, layer_rows, profile_words
 from .impact import history_path
@@ -97,8 +96,6 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 PHYSICS = ("model", *RUBBER_OPTIONS, "prony", "thickness", "base", "interface", "friction")
 """The problem's parts besides the striker and the body's elasticity: passed when given."""
-OPTIONS = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "history")
-"""Numerical and output options (:func:`shtaerman.problem.check_options`)."""
 
 
 def problem_of(args: argparse.Namespace) -> Problem:
@@ -113,18 +110,13 @@ def problem_of(args: argparse.Namespace) -> Problem:
     )
 
 
-def _format(args: argparse.Namespace) -> list[str]:
-    """``["figure_format"]`` when a format other than the default was asked for."""
-    return ["figure_format"] if args.figure_format != entry("figure_format").default else []
-
-
 def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
     """The numerical and output keywords of :func:`shtaerman.dynamic` for ``problem``: a
-    finite-strain impact's own defaults where an option was not given."""
+    finite-strain impact's own defaults where an option was not given (one given that it does
+    not take, :func:`shtaerman.dynamic` refuses)."""
     outputs = common.keywords(args, ("out", "force", "figure_format"))
     if problem.body.finite:
-        names = ("time_steps", "mesh_size")
-        chosen = {n: getattr(args, n) if common.given(args, n) else None for n in names}
+        chosen = {n: getattr(args, n) if common.given(args, n) else None for n in SETTINGS_OPTIONS}
         return {**chosen, **common.keywords(args, ("refine", "estimate")), **outputs}
     if not common.given(args, "layer_rate"):  # the API's default: the layer of the case
         args.layer_rate = None
@@ -136,9 +128,6 @@ def run(args: argparse.Namespace) -> int:
     history and folder if asked."""
     with common.in_option_words():
         problem = problem_of(args)
-        check_options(
-            problem, [name for name in OPTIONS if common.given(args, name)] + _format(args)
-        )
     common.refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
     with common.in_option_words(), warnings.catch_warnings():
