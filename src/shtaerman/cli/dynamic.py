@@ -110,17 +110,13 @@ def problem_of(args: argparse.Namespace) -> Problem:
     )
 
 
-def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
-    """The numerical and output keywords of :func:`shtaerman.dynamic` for ``problem``: a
-    finite-strain impact's own defaults where an option was not given (one given that it does
-    not take, :func:`shtaerman.dynamic` refuses)."""
-    outputs = common.keywords(args, ("out", "force", "figure_format"))
-    if problem.body.finite:
-        chosen = {n: getattr(args, n) if common.given(args, n) else None for n in SETTINGS_OPTIONS}
-        return {**chosen, **common.keywords(args, ("refine", "estimate")), **outputs}
-    if not common.given(args, "layer_rate"):  # the API's default: the layer of the case
-        args.layer_rate = None
-    return {**common.keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
+def _numerics(args: argparse.Namespace) -> dict[str, object]:
+    """The numerical and output keywords of :func:`shtaerman.dynamic`: the numerics given (the
+    others None: the model's own defaults, and the layer's rate where it has one; one the
+    problem does not take, :func:`shtaerman.dynamic` refuses)."""
+    chosen = {n: getattr(args, n) if common.given(args, n) else None for n in SETTINGS_OPTIONS}
+    outputs = common.keywords(args, ("refine", "estimate", "out", "force", "figure_format"))
+    return {**chosen, **outputs}
 
 
 def run(args: argparse.Namespace) -> int:
@@ -132,7 +128,7 @@ def run(args: argparse.Namespace) -> int:
     history = history_path(args.history, force=args.force)
     with common.in_option_words(), warnings.catch_warnings():
         warnings.simplefilter("ignore", FailedCheckWarning)  # said below, with the exit code
-        result = dynamic(problem, **_numerics(args, problem))
+        result = dynamic(problem, **_numerics(args))
     common.warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if history is not None:
