@@ -16,7 +16,7 @@ from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
 from ..guards import FailedCheckWarning
 from ..output.case import interface_words
 from ..output.files import staged_file, write_csv
-from ..problem import Problem, worded
+from ..problem import worded
 from ..theory.materials import Material
 from . import common
 from .contact import exact_owner, layer_rows, profile_words
@@ -95,19 +95,8 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 PHYSICS = ("model", *RUBBER_OPTIONS, "prony", "thickness", "base", "interface", "friction")
-"""The problem's parts besides the striker and the body's elasticity: passed when given."""
-
-
-def problem_of(args: argparse.Namespace) -> Problem:
-    """The impact the options describe, checked (:class:`shtaerman.problem.Problem`)."""
-    physics = {name: getattr(args, name) for name in PHYSICS if common.given(args, name)}
-    return Problem.impact(
-        common.indenter(args),
-        Material(args.E2, args.nu2, args.density2),
-        mass=args.mass,
-        velocity=args.velocity,
-        **physics,
-    )
+"""The problem's parts besides the striker and the body's elasticity (``effects`` passes them
+when given; :func:`.common.impact_problem` every part the command takes)."""
 
 
 def _numerics(args: argparse.Namespace) -> dict[str, object]:
@@ -123,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     with common.in_option_words():
-        problem = problem_of(args)
+        problem = common.impact_problem(args, Material(args.E2, args.nu2, args.density2))
     common.refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
     with common.in_option_words(), warnings.catch_warnings():
