@@ -12,7 +12,7 @@ import warnings
 import pytest
 
 import shtaerman as sh
-from shtaerman.cli.finite_dynamic import finite_dynamic_text
+from shtaerman.cli.dynamic import finite_dynamic_text
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.guards import ValidityWarning
 from shtaerman.study.dynamic import case

@@ -259,7 +259,7 @@ def test_cli_runs_the_viscoelastic_rubber_and_reports_the_dissipation(capsys, mo
 
     import shtaerman.fem.finite_dynamic as finite_dynamic
     from shtaerman.cli import main
-    from shtaerman.cli.finite_dynamic import finite_dynamic_text
+    from shtaerman.cli.dynamic import finite_dynamic_text
 
     monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
     argv = ["dynamic", "--model", "mooney-rivlin", "--mooney-ratio", "0.2", "--prony"]

@@ -118,7 +118,7 @@ def test_cli_runs_the_massless_viscoelastic_rubber(capsys, monkeypatch):
     unless the Newton back-tracks (the run failed at X = 3.3 mm without it)."""
     import shtaerman.fem.finite_dynamic as finite_dynamic
     from shtaerman.cli import main
-    from shtaerman.cli.finite_dynamic import finite_dynamic_text
+    from shtaerman.cli.dynamic import finite_dynamic_text
 
     graded = MeshSettings(size=0.25, domain=1e3, growth=0.5, axis_size=1e-6, axis_growth=0.25)
     monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", graded)

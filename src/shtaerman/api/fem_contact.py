@@ -42,7 +42,6 @@ __all__ = [
     "ContactResult",
     "contact",
     "contact_depths",
-    "mesh_settings",
 ]
 
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
@@ -155,14 +154,6 @@ class ContactResult:
         return json_safe(document)
 
 
-def mesh_settings(base: MeshSettings, options: Mapping[str, object]) -> MeshSettings:
-    """``base`` with the mesh options of :data:`MESH_OPTIONS` that are not None; each value is
-    checked alone first, so that an error names its keyword."""
-    from ..study.schema import replaced
-
-    return replaced(base, {name: options.get(name) for name in MESH_OPTIONS})
-
-
 def contact_depths(
     indenter: Indenter,
     body: Material,
@@ -267,9 +258,9 @@ class _Plan:
 
 def _solve(plan: _Plan) -> tuple[Any, Any]:
     """The finest FEM run and the ladder (None without the estimate)."""
-    from ..study.contact.accuracy import run_ladder, run_to_accuracy
+    from ..study.contact.accuracy import run_ladder, run_mesh_ladder, run_to_accuracy
     from ..study.contact.indentation import run_indentation
-    from ..study.finite.indentation import run_finite_ladder, run_finite_study
+    from ..study.finite.indentation import run_finite_study
 
     inputs = (plan.indenter, plan.body, plan.depths)
     steps = {"progress": plan.progress, "refine": plan.refine}
@@ -278,8 +269,9 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
         if plan.finite:
             return run_finite_study(*inputs, finest, plan.rubber), None
         return run_indentation(*inputs, finest, backend=plan.solver, **plan.relaxing), None
-    if plan.finite:
-        ladder = run_finite_ladder(*inputs, plan.mesh, rubber=plan.rubber, **steps)
+    if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
+        solve = lambda level: run_finite_study(*inputs, level, plan.rubber)  # noqa: E731
+        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, **steps)
     elif plan.tolerance is None:
         ladder = run_ladder(*inputs, plan.mesh, backend=plan.solver, **steps, **plan.relaxing)
     else:
@@ -405,6 +397,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     from ..fem.mesh import DEFAULTS, MeshSettings
     from ..fem.solver import check_backend
     from ..study.contact.indentation import default_depths
+    from ..study.schema import replaced
 
     problem = _problem(indenter, body, options)
     outputs = {name: options[name] for name in ("force", "estimate", "figure_format")}
@@ -422,7 +415,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             "keywords mesh_size, mesh_margin, ... set single fields",
             "mesh",
         )
-    mesh = layer_mesh(mesh_settings(base, {k: options[k] for k in MESH_OPTIONS}), problem.geometry)
+    mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
+    mesh = layer_mesh(mesh, problem.geometry)
     interface = problem.interface
     mesh = dataclasses.replace(mesh, interface=interface.kind, friction=interface.friction)
     refine = validate_positive("refine", options["refine"])

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
-from ..problem import check_outputs, worded
+from ..problem import KEYWORDS, Problem, check_outputs, worded
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, NumericalFailureError
@@ -29,6 +29,7 @@ __all__ = [
     "add_figure_format",
     "add_inputs",
     "given",
+    "impact_problem",
     "in_option_words",
     "indenter",
     "keywords",
@@ -244,6 +245,16 @@ def refuse_idle_output_options(args: argparse.Namespace, targets: tuple[str, ...
 def keywords(args: argparse.Namespace, names: Iterable[str]) -> dict[str, Any]:
     """The parsed options ``names`` as the API's keywords (an option's dest is its keyword)."""
     return {name: getattr(args, name) for name in names}
+
+
+def impact_problem(args: argparse.Namespace, body: Material, **parts: Any) -> Problem:
+    """The impact the options describe (:meth:`shtaerman.problem.Problem.impact`): the
+    striker's profile, ``body``, --mass, --velocity, ``parts`` and every other part of the
+    problem that the command takes and was given."""
+    names = [name for name in KEYWORDS if name not in ("mass", "velocity") and name in vars(args)]
+    chosen = {name: getattr(args, name) for name in names if given(args, name)}
+    mass, velocity = args.mass, args.velocity
+    return Problem.impact(indenter(args), body, mass=mass, velocity=velocity, **chosen, **parts)
 
 
 def striker(args: argparse.Namespace) -> Material:

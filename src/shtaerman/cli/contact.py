@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from inspect import signature
 
 from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
 from ..fem.contact.finite import FINITE_MESH
@@ -74,21 +75,10 @@ NOTES = {
 """What ``contact`` does with its output options."""
 
 
-KEYWORDS = (
-    *("mass", "velocity", "depths", "thickness", "base", "interface", "friction", "model"),
-    *RUBBER_OPTIONS,
-    *("prony", "rate"),
-    *("refine", "estimate"),
-    *("accuracy", "max_time"),
-    *(*MESH_OPTIONS, "solver", "out", "force", "figure_format"),
-)
-"""The options passed to :func:`shtaerman.contact` as its keywords."""
-
-
 def run(args: argparse.Namespace) -> int:
     """Run the contact curve (:func:`shtaerman.contact`) and print it (text or JSON)."""
     common.refuse_idle_output_options(args, ("out",))
-    options = common.keywords(args, KEYWORDS)
+    options = common.keywords(args, set(vars(args)) & set(signature(contact).parameters))
     if not common.given(args, "max_time"):  # the API's default: the budget of accuracy, if given
         options["max_time"] = None
     with common.in_option_words():

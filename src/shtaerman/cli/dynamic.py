@@ -14,13 +14,12 @@ from ..fem.dynamic_contact import MAX_SIZE, MIN_STEPS
 from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
 from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
 from ..guards import FailedCheckWarning
+from ..output.case import interface_words
 from ..output.files import staged_file, write_csv
-from ..problem import Problem, check_options, worded
+from ..problem import worded
 from ..theory.materials import Material
-from ..vocabulary import entry
 from . import common
-from .contact import layer_rows
-from .finite_dynamic import PAD, finite_dynamic_text, interface_rows, ladder_rows, profile_rows
+from .contact import exact_owner, layer_rows, profile_words
 from .impact import history_path
 
 NOTES = {
@@ -96,54 +95,29 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 PHYSICS = ("model", *RUBBER_OPTIONS, "prony", "thickness", "base", "interface", "friction")
-"""The problem's parts besides the striker and the body's elasticity: passed when given."""
-OPTIONS = ("refine", "estimate", *SETTINGS_OPTIONS, "out", "force", "history")
-"""Numerical and output options (:func:`shtaerman.problem.check_options`)."""
+"""The problem's parts besides the striker and the body's elasticity (``effects`` passes them
+when given; :func:`.common.impact_problem` every part the command takes)."""
 
 
-def problem_of(args: argparse.Namespace) -> Problem:
-    """The impact the options describe, checked (:class:`shtaerman.problem.Problem`)."""
-    physics = {name: getattr(args, name) for name in PHYSICS if common.given(args, name)}
-    return Problem.impact(
-        common.indenter(args),
-        Material(args.E2, args.nu2, args.density2),
-        mass=args.mass,
-        velocity=args.velocity,
-        **physics,
-    )
-
-
-def _format(args: argparse.Namespace) -> list[str]:
-    """``["figure_format"]`` when a format other than the default was asked for."""
-    return ["figure_format"] if args.figure_format != entry("figure_format").default else []
-
-
-def _numerics(args: argparse.Namespace, problem: Problem) -> dict[str, object]:
-    """The numerical and output keywords of :func:`shtaerman.dynamic` for ``problem``: a
-    finite-strain impact's own defaults where an option was not given."""
-    outputs = common.keywords(args, ("out", "force", "figure_format"))
-    if problem.body.finite:
-        names = ("time_steps", "mesh_size")
-        chosen = {n: getattr(args, n) if common.given(args, n) else None for n in names}
-        return {**chosen, **common.keywords(args, ("refine", "estimate")), **outputs}
-    if not common.given(args, "layer_rate"):  # the API's default: the layer of the case
-        args.layer_rate = None
-    return {**common.keywords(args, ("refine", "estimate", *SETTINGS_OPTIONS)), **outputs}
+def _numerics(args: argparse.Namespace) -> dict[str, object]:
+    """The numerical and output keywords of :func:`shtaerman.dynamic`: the numerics given (the
+    others None: the model's own defaults, and the layer's rate where it has one; one the
+    problem does not take, :func:`shtaerman.dynamic` refuses)."""
+    chosen = {n: getattr(args, n) if common.given(args, n) else None for n in SETTINGS_OPTIONS}
+    outputs = common.keywords(args, ("refine", "estimate", "out", "force", "figure_format"))
+    return {**chosen, **outputs}
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
     with common.in_option_words():
-        problem = problem_of(args)
-        check_options(
-            problem, [name for name in OPTIONS if common.given(args, name)] + _format(args)
-        )
+        problem = common.impact_problem(args, Material(args.E2, args.nu2, args.density2))
     common.refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
     with common.in_option_words(), warnings.catch_warnings():
         warnings.simplefilter("ignore", FailedCheckWarning)  # said below, with the exit code
-        result = dynamic(problem, **_numerics(args, problem))
+        result = dynamic(problem, **_numerics(args))
     common.warn_volumetric(args)  # after the run: a refused input is the one line
     report = result.to_dict()
     if history is not None:
@@ -236,3 +210,88 @@ def dynamic_text(report: dict) -> str:
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),
     ]
     return "\n".join(rows + ladder_rows(report))
+
+
+PAD = "the quasi-static column is the half-space's"
+"""What a pad's text compares with."""
+
+
+def profile_rows(report: dict) -> list[str]:
+    """The striker's profile when it is not the power law (the quasi-static column is then
+    Sneddon's, by quadrature); [] for the power law."""
+    if report.get("profile", {"kind": "power-law"})["kind"] == "power-law":
+        return []
+    return [f"  striker: {profile_words(report)} (quasi-static: Sneddon's contact law)"]
+
+
+def finite_dynamic_text(report: dict) -> str:
+    """The finite-strain impact's summary (``--model``, SI units); a quantity the run could not
+    give is nan."""
+    from ..output.text_dynamic import viscoelastic_rows
+
+    qs, dyn = (
+        {key: math.nan if value is None else value for key, value in report[part].items()}
+        for part in ("quasi_static", "dynamic")
+    )
+    mesh = report["mesh"]
+    rows = [
+        f"Finite-strain impact ({report['model']}, density2 "
+        f"{report['parameters']['density2']:g} kg/m^3) against the quasi-static theory (SI)",
+        *profile_rows(report),
+        *layer_rows(report, PAD),
+        f"                          finite strain   quasi-static ({exact_owner(report)})",
+        f"  max approach x (m)      {dyn['x_max']:<14.6e}  {qs['x_c']:.6e}",
+        f"  max force P (N)         {dyn['P_max']:<14.6e}  {qs['P_c']:.6e}",
+        f"  time of max x (s)       {dyn['t_x_max']:<14.6e}  {qs['t_c']:.6e}",
+        f"  contact duration (s)    {dyn['t_contact']:<14.6e}  {qs['t_y']:.6e}",
+        f"  restitution e           {dyn['restitution']:<14.6f}  1",
+        *interface_rows(report["parameters"]),
+        *prony_rows(report),
+        *viscoelastic_rows(report, "finite strain"),
+        f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
+        f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs",
+        "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
+    ]
+    return "\n".join(rows + ladder_rows(report))
+
+
+def ladder_rows(report: dict) -> list[str]:
+    """The error-estimate ladder's levels and estimated relative errors, or why the estimate
+    is missing ([] without the estimate)."""
+    if report.get("mesh_ladder") is None:
+        return []
+    levels = ", ".join(
+        f"{lv['dofs']} dofs/{lv['steps']} steps" if lv["dofs"] is not None else "failed"
+        for lv in report["mesh_ladder"]
+    )
+    if report.get("estimate_missing"):
+        return [f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
+    errors = report["error_estimate"].items()
+    return [
+        f"  estimated relative errors (ladder {levels}): "
+        + ", ".join(
+            f"{key} {'n/a' if value is None else format(value, '.1e')}" for key, value in errors
+        )
+    ]
+
+
+def interface_rows(parameters: dict) -> list[str]:
+    """The line naming a bonded or Coulomb indenter (none when frictionless)."""
+    if "interface" not in parameters:
+        return []
+    return [f"  {interface_words(parameters['interface'], parameters.get('friction'))}"]
+
+
+def prony_rows(report: dict) -> list[str]:
+    """The Prony series and the energy dissipated by it and by friction (none for an elastic
+    body on a frictionless indenter)."""
+    rows = []
+    if report.get("prony") is not None:
+        rows.append(f"  Prony series g:tau      {report['prony']} (isochoric stress relaxes)")
+    share = report["dynamic"].get("energy_dissipated_fraction")
+    if share is not None:
+        rows.append(
+            f"  energy dissipated       {share:.6f} of M v0^2/2 by separation "
+            f"(1 - e^2 = {report['dynamic']['energy_radiated_fraction']:.6f})"
+        )
+    return rows

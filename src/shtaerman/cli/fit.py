@@ -14,10 +14,7 @@ from ..validation import InputError
 from ..vocabulary import entry
 from . import common
 
-__all__ = ["fit_text", "problem_of", "register", "run"]
-
-PHYSICS = ("prony", "thickness", "base", "model", *RUBBER_OPTIONS)
-"""The problem's parts besides the striker and the body's elasticity: passed when given."""
+__all__ = ["fit_text", "register", "run"]
 
 DESCRIPTION = """\
 Fit the unknowns of a problem to a measurement by the exact quasi-static models: the power-law
@@ -94,19 +91,6 @@ def register(commands: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=run)
 
 
-def problem_of(args: argparse.Namespace) -> Problem:
-    """The problem the options describe: its known parts and the unknowns' starts."""
-    physics = {name: getattr(args, name) for name in PHYSICS if common.given(args, name)}
-    return Problem.impact(
-        common.indenter(args),
-        Material(args.E2, args.nu2, args.density2 if common.given(args, "density2") else None),
-        mass=args.mass,
-        velocity=args.velocity,
-        striker=common.striker(args),
-        **physics,
-    )
-
-
 USED_BY = {
     "mass": ("force-history", "rebound", "resilience"),
     "velocity": ("force-history",),  # rebound data give one per row
@@ -134,6 +118,13 @@ def refuse_unused(args: argparse.Namespace) -> None:
             )
 
 
+def _problem(args: argparse.Namespace) -> Problem:
+    """The problem the options describe: its known parts and the unknowns' starts."""
+    density = args.density2 if common.given(args, "density2") else None
+    body = Material(args.E2, args.nu2, density)
+    return common.impact_problem(args, body, striker=common.striker(args))
+
+
 def run(args: argparse.Namespace) -> int:
     """Fit (:func:`shtaerman.fit`) and print the fitted values or the JSON."""
     common.refuse_idle_output_options(args, ("out",))
@@ -142,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
         result = fit(
             args.kind,
             args.data,
-            problem_of(args),
+            _problem(args),
             unknowns=args.fit,
             noise=args.noise,
             time_offset=args.time_offset,

@@ -320,19 +320,6 @@ def _layer(p: dict[str, Any]) -> dict[str, Any]:
     return {"thickness": layer.thickness, "base": layer.base}
 
 
-def _surface(p: dict[str, Any]) -> dict[str, Any]:
-    """The striker's surface of a case: ``interface`` and ``friction`` (Coulomb's mu of a
-    bonded striker; None: no slip), as keywords of :meth:`~shtaerman.problem.Problem.impact`."""
-    return {"interface": p.get("interface", "frictionless"), "friction": p.get("friction")}
-
-
-def _prony(p: dict[str, Any]):
-    """The case's Prony series (None: elastic)."""
-    from ..fem.viscoelastic import prony_input
-
-    return prony_input(p.get("prony"))
-
-
 DYNAMIC_OUTPUTS = {
     "restitution": "",
     "energy_radiated_fraction": "",
@@ -445,8 +432,9 @@ def _struck_case(p: dict[str, Any]) -> tuple[Any, ...]:
         if p[name] is not None and RUBBER_SHAPES.get(name, p["model"]) == p["model"]
     }
     body = Material(p["E2"], p["nu2"], p["density2"])
-    keywords = dict(mass=p["mass"], velocity=p["velocity"], model=p["model"], prony=_prony(p))
-    return _indenter(p), body, {**keywords, **_layer(p), **rubber, **_surface(p)}
+    names = ("mass", "velocity", "model", "prony", "interface", "friction")  # prony: its text
+    keywords = {name: p.get(name) for name in names}  # checked by the problem's parts
+    return _indenter(p), body, {**keywords, **_layer(p), **rubber}
 
 
 def _dynamic(p: dict[str, Any]) -> tuple[Any, dict[str, Any]]:

@@ -3,7 +3,7 @@
 :func:`shtaerman.fem.contact.finite.run_finite_indentation` does the computing; this module
 adds the power-law fit and the JSON of ``shtaerman contact --model neo-hookean``: the linear
 report's keys, with ``model``, per-step ``strain_energy`` (J) and ``newton_iterations``, and the
-departures from Shtaerman's linear solution in place of errors. :func:`run_finite_ladder` runs it
+departures from Shtaerman's linear solution in place of errors; :func:`shtaerman.contact` runs it
 on the three meshes of :func:`shtaerman.study.contact.accuracy.run_mesh_ladder` for Richardson
 error estimates.
 """
@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,7 +31,6 @@ from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
-from ..contact.accuracy import AccuracyResult, run_mesh_ladder
 from ..contact.indentation import (
     AnalyticFit,
     curve_document,
@@ -41,7 +39,7 @@ from ..contact.indentation import (
     worst_against_analytic,
 )
 
-__all__ = ["FiniteIndentationResult", "run_finite_ladder", "run_finite_study"]
+__all__ = ["FiniteIndentationResult", "run_finite_study"]
 
 
 @dataclass(frozen=True)
@@ -162,41 +160,3 @@ def run_finite_study(
     forces = [s.force for s in curve.steps]
     fit = fit_power_law([s.depth for s in curve.steps], forces, exact.force_exponent)
     return FiniteIndentationResult(indenter, half_space, exact, curve, fit, rubber)
-
-
-def run_finite_ladder(
-    indenter: PowerLawIndenter,
-    half_space: Material,
-    depths: ArrayLike | None = None,
-    mesh: MeshSettings | None = None,
-    *,
-    refine: float = 1.0,
-    progress: Callable[[str], None] | None = None,
-    rubber: RubberModel | None = None,
-) -> AccuracyResult:
-    """:func:`run_finite_study` on the meshes refined by refine / 2, refine / sqrt(2) and
-    refine, with Richardson estimates of the finest level's force, contact radius, central
-    pressure (worst depth), beta and exponent
-    (:func:`shtaerman.study.contact.accuracy.estimate_errors`).
-
-    Parameters
-    ----------
-    indenter, half_space, depths, mesh, rubber
-        As for :func:`run_finite_study`.
-    refine : float
-        Refinement factor of the finest level (element sizes divided by it everywhere).
-    progress : callable, optional
-        Receives one line per level.
-
-    Returns
-    -------
-    AccuracyResult
-        With ``exact = False``: there is no exact finite-strain solution to compare with.
-    """
-    depths = default_depths(indenter, half_space) if depths is None else depths
-
-    def solve(level: MeshSettings) -> FiniteIndentationResult:
-        return run_finite_study(indenter, half_space, depths, level, rubber)
-
-    base = mesh or FINITE_MESH
-    return run_mesh_ladder(solve, base, refine=refine, progress=progress, exact=False)
