@@ -171,9 +171,9 @@ BLUNT = sh.PowerLawIndenter(shape_coefficient=8.0, exponent=1.3)
 
 @pytest.mark.xfail(
     strict=True,
-    reason="api/quasi_static.py:impact, cli/impact.py, sweep/kinds.py:impact_case: the exact "
-    "quasi-static impact (the linear model) at x/a = 2.27 gives its numbers without the 'far "
-    "outside small strain' warning that sh.dynamic and sh.contact give at the same depth",
+    reason="api/quasi_static.py:impact, cli/impact.py:run, sweep/kinds.py:impact_case: the "
+    "exact quasi-static impact (the linear model) at x/a = 2.27 gives its numbers without "
+    "the 'far outside small strain' warning that sh.dynamic and sh.contact give there",
 )
 def test_the_exact_impact_far_outside_small_strain_warns(capsys):
     with pytest.warns(ValidityWarning, match="far outside small strain"):
