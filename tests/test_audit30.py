@@ -11,6 +11,7 @@ API, and the command line and a study file give the same numbers to the last dig
 A = 8, n = 1.3 case is one line before any work.
 """
 
+import json
 import re
 import subprocess
 import sys
@@ -224,3 +225,30 @@ def test_a_mesh_size_refused_with_refine_names_the_value_given_and_its_range(cap
     # 0.08 = MAX_SIZE 0.2 x the coarsest level's refine 0.4 (0.8 / 2): accepted on this
     # commit (it ran), and 0.1 is refused; the sentence says so in the option's own numbers
     assert "(0, 0.08]" in err and "got 0.1" in err and "0.125" not in err, err
+
+
+# --- a failing ladder level does not abort the finished ones (issue 28 items 3 and 5) ---------
+
+PAD_FRICTION = ["--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6", "--nu2", "0.49"]
+PAD_FRICTION += ["--mass", "0.12", "--velocity", "1.5", "--thickness", "0.012"]
+PAD_FRICTION += ["--interface", "bonded", "--friction", "0.5"]
+"""The issue's own failing command: contact $C --thickness 0.012 --interface bonded
+--friction 0.5 (x/a 2.27: it warns, far outside small strain)."""
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="study/contact/accuracy.py:run_mesh_ladder (_level): one ladder mesh's 'stick and "
+    "slip did not settle' (fem/contact/constraints.py:unsettled, whose advice names no option) "
+    "aborts the whole run, exit 1, though the finest level alone (--no-estimate) runs: no "
+    "retry with smaller load steps, no finest-level-with-estimate-missing (issue 28's case)",
+)
+def test_the_issues_coulomb_pad_curve_runs_with_its_estimate_or_says_it_is_missing(capsys):
+    code = main(["contact", *PAD_FRICTION, "--json"])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    document = json.loads(out)
+    # the finest level ran (--no-estimate gives its curve on this commit, in 2 s): its
+    # deepest force is finite and positive; the estimate is there or said missing, with why
+    assert document["steps"][-1]["force"] > 0.0
+    assert document.get("error_estimate") or document.get("estimate_missing")
