@@ -6,9 +6,7 @@ dofs a case); ``--kind dynamic``: the dynamic FE impact, velocity {1, 2} m/s x n
 0.45, 0.5} at the default mesh and steps, without the ladder (``--estimate``: with it). Each
 sweep runs in a fresh folder with a fresh local cluster, as ``shtaerman sweep`` does, with its
 figures (``--no-figures``: without; the workers draw them, one task per figure: the contact
-grid's 10 heat maps cost G = 1.4 s of CPU, taken here as the CPU of the single worker outside
-its cases, O1, which its event loop's timers hardly add to). Printed, with the load average
-beside each wall time:
+grid's 10 heat maps cost 1.4 s of CPU). Printed, with the load average beside each wall time:
 
 1. the fixed overhead: the wall time of a 2-case analytic impact sweep (cases of a
    millisecond), i.e. starting and stopping the cluster, and its CPU seconds F (this process
@@ -18,8 +16,7 @@ beside each wall time:
    contention: 1.00 when two cases at once do not slow each other down; each worker's first
    case also meshes, so 2 workers mesh twice), and B, the case CPU of the busiest worker;
 3. the CPU outside the cases during the run, beyond the trivial sweep's: this process's, P
-   (scheduler, client, records), and the workers', O (their event loops; the figures' G
-   taken out);
+   (scheduler, client, records), and the workers', O (their event loops and the figures);
 4. the wall-time speed-up of 2 workers over 1 (the issue's target: 1.8x on an idle machine);
 5. each worker's warm-up W: its first case's CPU beyond the median of its others (the mesh,
    made once per process, and first calls): paid once in C1 and once in B2, in parallel on 2
@@ -28,10 +25,11 @@ beside each wall time:
 
 Then the speed-up these predict on an idle machine::
 
-    (F1 + C1 + G) / ((F2 + B2 + G2) / (1 - r2 / 2)),  r2 = (P2 + O2) / wall2
+    (F1 + C1 + G1) / ((F2 + B2 + G2) / (1 - r2 / 2)),  r2 = (P2 + O2) / wall2
 
-with G2 the figures' CPU on the busier of 2 workers (G ceil(k / 2) / k for k figures of about
-equal cost).
+without figures (G1 = G2 = 0). With k figures, the workers' CPU outside their cases is mostly
+the figures': G1 = O1, G2 = O2 ceil(k / 2) / k (the busier worker's share; each worker's
+first figure warms its own caches, so O2 exceeds O1) and r2 = P2 / wall2.
 
 With 1 worker the case thread has a core to itself (this process and the worker's event loop
 use the other); with 2 workers the busiest one's cases set the wall, and what runs beside them
@@ -171,11 +169,10 @@ def measure(spec, trivial, counts: list[int], repeat: int, tmp: Path, figures: b
         )
         for key, value in {"F": fixed["F"], "Fcpu": fixed["Fcpu"], **run}.items():
             best[workers][key] = min(value, best[workers].get(key, float("inf")))
-    drawn, count = best[1]["O"] if figures else 0.0, best[1]["k"]  # 1 worker: G is most of O1
     for workers in counts:
-        best[workers]["G"] = drawn * math.ceil(count / workers) / max(count, 1)
-        best[workers]["O"] = max(0.0, best[workers]["O"] - drawn)
-        best[workers]["r"] = (best[workers]["P"] + best[workers]["O"]) / best[workers]["wall"]
+        run, count = best[workers], best[workers]["k"]
+        run["G"] = run["O"] * math.ceil(count / workers) / count if figures else 0.0
+        run["r"] = (run["P"] + (0.0 if figures else run["O"])) / run["wall"]
     return best
 
 
@@ -196,7 +193,7 @@ def report(best: dict[int, dict[str, float]], repeat: int) -> None:
     print(
         f"  (3) CPU outside the cases during the run: this process P1 = {one['P']:.2f} s, "
         f"P2 = {two['P']:.2f} s; workers O1 = {one['O']:.2f} s, O2 = {two['O']:.2f} s; "
-        f"figures G = {one['G']:.2f} s, G2 = {two['G']:.2f} s on the busier worker"
+        f"figures G1 = {one['G']:.2f} s, G2 = {two['G']:.2f} s on the busier worker"
     )
     ratio = one["wall"] / two["wall"]
     print(f"  (4) wall: {one['wall']:.2f} s / {two['wall']:.2f} s = {ratio:.2f}x  ({load()})")
@@ -208,12 +205,13 @@ def report(best: dict[int, dict[str, float]], repeat: int) -> None:
     rate = two["r"]
     parallel = (two["Fcpu"] + two["B"] + two["G"]) / (1 - rate / 2)
     print(
-        f"predicted idle: (F1 + C1 + G) / ((F2 + B2 + G2) / (1 - r2 / 2)), r2 = (P2 + O2) / "
-        f"wall2 = {rate:.4f}: {serial:.2f} / {parallel:.2f} = {serial / parallel:.2f}x (issue "
-        "32: at least 1.8x)"
+        f"predicted idle: (F1 + C1 + G1) / ((F2 + B2 + G2) / (1 - r2 / 2)), r2 = "
+        f"{rate:.4f}: {serial:.2f} / {parallel:.2f} = {serial / parallel:.2f}x (issue 32: at "
+        "least 1.8x)"
     )
-    before = (two["Fcpu"] + two["B"] + one["G"]) / (1 - rate / 2)
-    print(f"  with G2 = G (the figures drawn in this process): {serial / before:.2f}x")
+    if one["G"]:
+        before = (two["Fcpu"] + two["B"] + one["G"]) / (1 - rate / 2)
+        print(f"  with G2 = G1 (the figures drawn in this process): {serial / before:.2f}x")
 
 
 def main() -> None:
