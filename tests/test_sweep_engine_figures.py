@@ -9,16 +9,9 @@ import os
 import sys
 
 import pytest
+from test_sweep_cluster import AB  # a 2 x 2 analytic impact grid: cases of a millisecond
 
 from shtaerman.sweep import figures, parse_sweep, run_sweep
-
-GRID = """\
-name = "drawn"
-kind = "impact"
-[axes]
-velocity = [1.0, 2.0]
-mass = [0.5, 0.7]
-"""
 
 
 @pytest.mark.skipif(sys.platform != "linux", reason="the workers inherit the patch by fork")
@@ -33,7 +26,7 @@ def test_the_figures_are_drawn_by_both_workers_as_this_process_draws_them(tmp_pa
 
     monkeypatch.setattr(figures, "_heat_map", recorded)
     out = tmp_path / "out"
-    outcome = run_sweep(parse_sweep(GRID, "drawn.toml"), out, workers=2, progress=False)
+    outcome = run_sweep(parse_sweep(AB, "ab.toml"), out, workers=2, progress=False)
     assert outcome.exit_code == 0 and len(outcome.figures) > 1
     pids = {int(path.name.split("-")[0]) for path in drawers.iterdir()}
     # the outputs' figures are tasks given to whichever of the 2 idle workers is free: each
