@@ -9,24 +9,26 @@ import os
 import sys
 
 import pytest
-from test_sweep_cluster import AB  # a 2 x 2 analytic impact grid: cases of a millisecond
 
 from shtaerman.sweep import figures, parse_sweep, run_sweep
+
+CURVES = 'name = "drawn"\nkind = "impact"\n[axes]\nvelocity = [1.0, 2.0, 3.0]\n'
+"""Three analytic impact cases (a millisecond each): a curve per output."""
 
 
 @pytest.mark.skipif(sys.platform != "linux", reason="the workers inherit the patch by fork")
 def test_the_figures_are_drawn_by_both_workers_as_this_process_draws_them(tmp_path, monkeypatch):
     drawers = tmp_path / "drawers"
     drawers.mkdir()
-    heat_map = figures._heat_map
+    curve = figures._curve
 
     def recorded(results, name, *args):
         (drawers / f"{os.getpid()}-{name}").touch()
-        return heat_map(results, name, *args)
+        return curve(results, name, *args)
 
-    monkeypatch.setattr(figures, "_heat_map", recorded)
+    monkeypatch.setattr(figures, "_curve", recorded)
     out = tmp_path / "out"
-    outcome = run_sweep(parse_sweep(AB, "ab.toml"), out, workers=2, progress=False)
+    outcome = run_sweep(parse_sweep(CURVES, "drawn.toml"), out, workers=2, progress=False)
     assert outcome.exit_code == 0 and len(outcome.figures) > 1
     pids = {int(path.name.split("-")[0]) for path in drawers.iterdir()}
     # the outputs' figures are tasks given to whichever of the 2 idle workers is free: each
@@ -37,3 +39,18 @@ def test_the_figures_are_drawn_by_both_workers_as_this_process_draws_them(tmp_pa
     assert [path.name for path in here] == [path.name for path in outcome.figures]
     for path in here:  # the same figure, byte for byte (the Agg canvas is deterministic)
         assert path.read_bytes() == (out / "figures" / path.name).read_bytes()
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="the workers inherit the patch by fork")
+def test_a_figure_that_fails_on_a_worker_is_one_warning_and_the_results_are_written(
+    tmp_path, monkeypatch
+):
+    def broken(*args):
+        raise ValueError("no ink")
+
+    monkeypatch.setattr(figures, "_curve", broken)
+    out = tmp_path / "out"
+    with pytest.warns(UserWarning, match="^figures not drawn: ValueError: no ink$"):
+        outcome = run_sweep(parse_sweep(CURVES, "drawn.toml"), out, workers=1, progress=False)
+    assert outcome.exit_code == 0 and outcome.figures == ()
+    assert (out / "results.json").is_file() and not list(out.glob("figures/*"))

@@ -935,13 +935,7 @@ class _Run:
         if outcome.lost:
             return None
         results = _results(self.spec, self.cases, self.records, outcome)
-        try:
-            return draw_figures(results, figure_format, _mapper(client, stop))
-        except SweepInterrupted:
-            raise
-        except Exception as error:  # the cases are safe; say what went wrong with the figures
-            warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)
-            return []
+        return _or_warn(lambda: draw_figures(results, figure_format, _mapper(client, stop)))
 
     def _outcome(self, lost: dict[int, str], used_workers: int) -> SweepOutcome:
         records = self.records
@@ -1164,11 +1158,19 @@ def _write_results(
         return []
     from .figures import sweep_figures
 
-    try:
+    def write() -> list[Path]:
         _unlink_links(out / "figures")
         return sweep_figures(out / "results.json", out / "figures", figures, drawn)
+
+    return _or_warn(write)
+
+
+def _or_warn(draw: Callable[[], list]) -> list:
+    """What ``draw`` returns; [] when it fails, said in a warning (the results are safe)."""
+    try:
+        return draw()
     except SweepInterrupted:
         raise
-    except Exception as error:  # the results are safe; say what went wrong with the figures
-        warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=2)
+    except Exception as error:
+        warnings.warn(f"figures not drawn: {_one_line(error)}", stacklevel=3)
         return []
