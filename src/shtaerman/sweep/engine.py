@@ -92,8 +92,9 @@ START_METHOD = "fork" if sys.platform == "linux" else "spawn"
 spawned, 0.1 s of CPU and 0.15 s of wall forked; benchmarks/bench_sweep.py). A forked worker
 runs no main script again (no ``__main__`` guard needed) and gets its own signal handlers from
 the preload (``_worker.py``). The CLI's sweep and verify draw nothing before their workers
-start (VTK's OpenGL state must not be inherited; sweep cases draw nothing). Spawn elsewhere:
-macOS system libraries are not safe in a forked child."""
+start (VTK's OpenGL state must not be inherited; a sweep's workers draw its figures with
+matplotlib's Agg canvas only, after its cases). Spawn elsewhere: macOS system libraries are
+not safe in a forked child."""
 QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.system-monitor.interval": "60s",
