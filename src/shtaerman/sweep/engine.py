@@ -832,7 +832,9 @@ def run_sweep(
         Result folder, created once the cluster is up. An existing one is refused unless
         ``resume`` (complete it: saved records are reused by their inputs, so the sweep may
         add or change axis values but not its fixed parameters) or ``force`` (replace it;
-        only a folder a sweep wrote is ever removed).
+        only a folder a sweep wrote is ever removed). A completed ``resume`` of the
+        ``NAME.incomplete-PID`` an interrupted ``force`` left replaces ``NAME``, and a completed
+        ``resume`` or ``force`` removes the ``out.replaced-PID`` a killed ``force`` left.
     workers : int, optional
         Single-threaded local worker processes (default: the usable cores; at most the cases).
     scheduler : str, optional
@@ -873,9 +875,56 @@ def run_sweep(
             ready = _settled(ready, out, dict(records))
         run = _Run(spec, out, cases, records, len(records), start)
         with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
-            return run.execute(
+            outcome = run.execute(
                 ready, workers, scheduler, retries, progress, figures and figure_format, stop
             )
+        if outcome.lost == 0 and (resume or force):  # complete: a replacement is finished
+            _drop_replaced(out)
+            outcome = _finish_force(outcome) if resume else outcome
+        return outcome
+
+
+INCOMPLETE_NAME = re.compile(r"(.+)\.incomplete-[0-9]+(?:-[0-9]+)?")
+"""Where an interrupted ``--force`` run keeps its saved cases (output.files.incomplete_path)."""
+
+
+def _finish_force(outcome: SweepOutcome) -> SweepOutcome:
+    """A completed ``NAME.incomplete-PID`` (the saved part of an interrupted ``--force`` run,
+    completed there by ``--resume``) replaces the sweep folder ``NAME`` beside it, as that
+    run would have; one line on stderr. Returns ``outcome`` with the folder's new place."""
+    out = outcome.out
+    match = INCOMPLETE_NAME.fullmatch(out.name)
+    target = out.with_name(match.group(1)) if match else out
+    if target == out or target.is_symlink() or not is_sweep_folder(target):
+        return outcome
+    if _foreign_entries(target):  # --force replaces only what a sweep wrote
+        return outcome
+    try:
+        with folder_lock(target, "out") as lock, deferred():
+            os.replace(target, lock / "replaced")  # removed with the lock's folder
+            os.replace(out, target)
+    except InputError as busy:  # another run writes it: this one stays complete where it is
+        print(f"shtaerman: {out} is complete and stays there ({busy})", file=sys.stderr)
+        return outcome
+    print(f"shtaerman: the --force run completed in {out} now replaces {target}", file=sys.stderr)
+    figures = tuple(target / path.relative_to(out) for path in outcome.figures)
+    return replace(outcome, out=target, figures=figures)
+
+
+def _drop_replaced(out: Path) -> None:
+    """Remove the sweeps a killed ``--force`` run was replacing with ``out``, now complete: the
+    next run on ``out`` kept each as ``NAME.replaced-PID`` (:mod:`shtaerman.output.files`),
+    and ``--resume`` completed the replacement. One line on stderr for each."""
+    pattern = re.compile(re.escape(f"{out.name}.replaced-") + r"[0-9]+")
+    for old in sorted(out.parent.iterdir()):
+        if pattern.fullmatch(old.name) and not old.is_symlink() and is_sweep_folder(old):
+            if not _foreign_entries(old):  # only what a sweep wrote, as --force removes
+                shutil.rmtree(old)
+                print(
+                    f"shtaerman: removed {old}, the sweep a killed --force run was replacing "
+                    f"with {out}, now complete",
+                    file=sys.stderr,
+                )
 
 
 def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
