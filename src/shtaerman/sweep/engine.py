@@ -1034,7 +1034,7 @@ def _compute(
             memory = WORKER_MEMORY.get(spec.kind, max(WORKER_MEMORY.values()))
             workers = worker_count(workers, len(pending), memory)
             if draw is not None:
-                from . import figures as _  # imported once: the forked workers inherit it
+                from . import figures  # noqa: F401 (imported once: the forked workers inherit it)
         with _client(workers, scheduler, stop) as client:
             stop.check()
             ready()
@@ -1048,43 +1048,38 @@ def _compute(
                 retries=retries,
                 pure=False,
             )
-            finished: queue.SimpleQueue = queue.SimpleQueue()
-            for future in futures:
-                future.add_done_callback(finished.put)
-            for _ in futures:
-                future = _next_finished(finished, stop)
+            for future in _as_finished(futures, stop):
                 _collect(out, future, by_key[future.key], records, lost)
                 bar.update(1)
             return nthreads, None if draw is None else draw(client, nthreads)
 
 
-def _mapper(client: Any, stop: _StopFlag) -> Callable[..., Iterator[Any]]:
+def _mapper(client: Any, stop: _StopFlag) -> Callable[..., list[Any]]:
     """``map`` on the cluster of ``client``: each call a task, the results in order, with
     SIGINT/SIGTERM (``stop``) seen within :data:`SIGNAL_LATENCY`."""
 
-    def mapped(function: Callable[..., Any], *arguments: list[Any]) -> Iterator[Any]:
-        for future in client.map(function, *arguments, pure=False):
-            yield _result(future, stop)
+    def mapped(function: Callable[..., Any], *arguments: list[Any]) -> list[Any]:
+        futures = client.map(function, *arguments, pure=False)
+        for _ in _as_finished(futures, stop):
+            pass
+        return [future.result() for future in futures]
 
     return mapped
 
 
-def _result(future: Any, stop: _StopFlag) -> Any:
-    """The result of ``future`` once it is done, with SIGINT/SIGTERM (``stop``) seen within
-    :data:`SIGNAL_LATENCY`."""
-    while True:
-        stop.check()
-        with contextlib.suppress(TimeoutError):
-            return future.result(timeout=SIGNAL_LATENCY)
-
-
-def _next_finished(finished: queue.SimpleQueue, stop: _StopFlag) -> Any:
-    """The next future to finish, taken as it finishes (the last one ends the run), with
-    SIGINT/SIGTERM (``stop``) seen within :data:`SIGNAL_LATENCY`."""
-    while True:
-        stop.check()
-        with contextlib.suppress(queue.Empty):
-            return finished.get(timeout=SIGNAL_LATENCY)
+def _as_finished(futures: list[Any], stop: _StopFlag) -> Iterator[Any]:
+    """``futures``, each as it finishes (the last one ends the run), with SIGINT/SIGTERM
+    (``stop``) seen within :data:`SIGNAL_LATENCY`."""
+    finished: queue.SimpleQueue = queue.SimpleQueue()
+    for future in futures:
+        future.add_done_callback(finished.put)
+    for _ in futures:
+        future = None
+        while future is None:
+            stop.check()
+            with contextlib.suppress(queue.Empty):
+                future = finished.get(timeout=SIGNAL_LATENCY)
+        yield future
 
 
 def _lost_reason(error: Exception) -> str:
