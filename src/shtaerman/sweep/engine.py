@@ -660,7 +660,7 @@ def _client(
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
     scratch = tempfile.mkdtemp(prefix="shtaerman-dask-")  # private (0700), never a planted link
     environ[SCRATCH_ENV] = scratch  # where a worker that re-runs an unguarded script says so
-    saved: dict[str, str | None] = dict(os.environ)  # dask's nanny writes into this process's
+    saved = dict(os.environ)  # dask's nanny writes into this process's
     try:
         settings = {
             "distributed.nanny.pre-spawn-environ": environ,
@@ -668,7 +668,10 @@ def _client(
             "temporary-directory": scratch,
             **QUIET_CLUSTER,
         }
-        with dask.config.set(settings), _environment({SCRATCH_ENV: scratch}):
+        # the workers inherit it, whatever an earlier run left here (a stale scratch folder
+        # made the unguarded-script guard look in a deleted folder); restored below
+        os.environ[SCRATCH_ENV] = scratch
+        with dask.config.set(settings):
             cluster = _local_cluster(workers, scratch)
         try:
             client = Client(cluster)
@@ -682,31 +685,16 @@ def _client(
                 cluster.close()
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
-        _restore_environment(saved, drop_new=True)
-
-
-@contextlib.contextmanager
-def _environment(values: dict[str, str]) -> Iterator[None]:
-    """``values`` in this process's environment while the cluster starts: its workers inherit
-    them whatever an earlier run left there (a stale scratch folder made the unguarded-script
-    guard look in a deleted folder)."""
-    saved = {key: os.environ.get(key) for key in values}
-    os.environ.update(values)
-    try:
-        yield
-    finally:
         _restore_environment(saved)
 
 
-def _restore_environment(saved: dict[str, str | None], *, drop_new: bool = False) -> None:
-    """This process's environment as ``saved`` (None: absent); ``drop_new``: ``saved`` is the
-    whole environment, and a key added since goes (dask's nanny adds its own)."""
-    for key in set(os.environ) - set(saved) if drop_new else ():
+def _restore_environment(saved: dict[str, str]) -> None:
+    """This process's environment as ``saved`` (the whole of it): a key added since goes
+    (dask's nanny adds its own), a changed one gets its value back."""
+    for key in set(os.environ) - set(saved):
         os.environ.pop(key, None)
     for key, value in saved.items():
-        if value is None:
-            os.environ.pop(key, None)
-        elif os.environ.get(key) != value:
+        if os.environ.get(key) != value:
             os.environ[key] = value
 
 
