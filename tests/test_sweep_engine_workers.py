@@ -117,13 +117,27 @@ def test_a_record_has_the_cpu_seconds_of_its_case():
     assert busy["cpu_seconds"] >= 0.3 and busy["seconds"] >= busy["cpu_seconds"] - 0.01
 
 
-def test_the_nanny_start_poll_set_by_the_local_cluster_is_one_dask_reads():
+def test_the_nanny_start_poll_is_set_while_the_cluster_starts_and_dask_s_again_after():
     """engine.NANNY_POLL is written into dask's WorkerProcess._init_msg_interval (private): if
-    dask renamed it, the assignment would do nothing and each start would wait 25-33 ms again."""
+    dask renamed it, the assignment would do nothing and each start would wait 25-33 ms again.
+    It was left set for the whole process, a user's own clusters too; now dask's value is back
+    once the local cluster has started."""
     import inspect
 
     from distributed.nanny import WorkerProcess
 
     assert "await asyncio.sleep(self._init_msg_interval)" in inspect.getsource(WorkerProcess)
-    with engine._quiet_dask(), engine._client(1, None):
-        assert WorkerProcess._init_msg_interval == engine.NANNY_POLL
+    dask_own = WorkerProcess._init_msg_interval
+    assert dask_own != engine.NANNY_POLL
+    seen = []
+    start = WorkerProcess.start
+
+    async def starting(self):
+        seen.append(self._init_msg_interval)
+        return await start(self)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(WorkerProcess, "start", starting)
+        with engine._quiet_dask(), engine._client(1, None):
+            assert WorkerProcess._init_msg_interval == dask_own
+    assert seen == [engine.NANNY_POLL]

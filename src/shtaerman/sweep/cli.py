@@ -54,7 +54,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParse
         action="store_true",
         help="replace a sweep folder this tool wrote (never files you added) once this run "
         "completes; interrupted, the old folder stays whole and this run's saved cases are kept "
-        "beside it in DIR.incomplete-PID (the 'resume with' line completes them there)",
+        "beside it in DIR.incomplete-PID (the 'resume with' line completes them there and "
+        "moves them to DIR)",
     )
     add_figure_format(p)
     p.set_defaults(handler=run)
@@ -101,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
         if key is None:
             raise
         raise InputError(f"--{error}", key) from None
-    _report(args, spec, out, outcome)
+    _report(args, spec, out.with_name(outcome.out.name), outcome)  # moved: a --force completed
     return outcome.exit_code
 
 

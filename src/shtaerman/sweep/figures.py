@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import json
 import math
+import tempfile
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +35,7 @@ from ..plots.labels import scale as shown_scale
 from ..plots.style import points, save, si_prefix, unresolved
 from ..study.limits import RESOLUTION, resolved
 
-__all__ = ["sweep_figures"]
+__all__ = ["draw_figures", "figure_files", "sweep_figures"]
 
 
 def _numeric(values: list[Any]) -> bool:
@@ -214,7 +216,10 @@ def _levels_note(results: dict, name: str, errors: np.ndarray | None) -> str:
 
 
 def sweep_figures(
-    results_file: str | Path, folder: str | Path, figure_format: str = "png"
+    results_file: str | Path,
+    folder: str | Path,
+    figure_format: str = "png",
+    drawn: list[tuple[str, dict[str, bytes]]] | None = None,
 ) -> list[Path]:
     """Draw one figure per output of the sweep in ``results_file`` into ``folder``.
 
@@ -226,6 +231,8 @@ def sweep_figures(
         Created if needed.
     figure_format : {"png", "svg", "pdf"}
         "svg" or "pdf" also writes each figure in that format beside its PNG.
+    drawn : list, optional
+        The figures already drawn (:func:`draw_figures`), written as they are.
 
     Returns
     -------
@@ -233,12 +240,37 @@ def sweep_figures(
         The PNG files written (none for a sweep over 3 or more axes).
     """
     check_figure_format(figure_format)
-    results = json.loads(Path(results_file).read_text())
-    axes = results["spec"]["axes"]
-    if len(axes) not in (1, 2):
-        return []
-    draw = _curve if len(axes) == 1 else _heat_map
+    if drawn is None:
+        drawn = draw_figures(json.loads(Path(results_file).read_text()), figure_format)
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    outputs = results["kind"]["outputs"].items()
-    return [draw(results, name, unit, folder, figure_format) for name, unit in outputs]
+    if drawn:
+        folder.mkdir(parents=True, exist_ok=True)
+    for _, files in drawn:
+        for name, data in files.items():
+            (folder / name).write_bytes(data)
+    return [folder / f"{name}.png" for name, _ in drawn]
+
+
+def draw_figures(
+    results: dict, figure_format: str = "png", mapper: Callable[..., Iterable[Any]] = map
+) -> list[tuple[str, dict[str, bytes]]]:
+    """(output, files of its figure) per output of a sweep's ``results`` (its results.json,
+    read); none over 3 or more axes. ``mapper`` draws them, called as ``map(figure_files,
+    ...)`` is: the sweep engine passes one that runs each figure as a task on its cluster (a
+    2-axis contact sweep's 10 heat maps cost 1.4 s of CPU)."""
+    if len(results["spec"]["axes"]) not in (1, 2):
+        return []
+    names = list(results["kind"]["outputs"])
+    units = [results["kind"]["outputs"][name] for name in names]
+    count = len(names)
+    drawn = mapper(figure_files, [results] * count, names, units, [figure_format] * count)
+    return list(zip(names, drawn, strict=True))
+
+
+def figure_files(results: dict, name: str, unit: str, figure_format: str) -> dict[str, bytes]:
+    """The files of output ``name``'s figure, {file name: content}, drawn in a temporary
+    folder (a worker that draws it need not share the result folder's disk)."""
+    draw = _curve if len(results["spec"]["axes"]) == 1 else _heat_map
+    with tempfile.TemporaryDirectory(prefix="shtaerman-figure-") as folder:
+        draw(results, name, unit, Path(folder), figure_format)
+        return {path.name: path.read_bytes() for path in sorted(Path(folder).iterdir())}
