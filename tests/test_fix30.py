@@ -67,3 +67,39 @@ def test_a_contact_study_warns_of_its_exact_impact_beyond_its_given_depths(tmp_p
     err = capsys.readouterr().err
     assert "the exact impact's x_c" in err and "2.27 contact radii" in err, err
     assert "the deepest depth" not in err, err  # 2e-4 m is within the limit
+
+
+# --- a Newton failure with inertia is a numerical failure unless the rubber locks (item 3) -----
+
+
+def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking():
+    """From tests/test_audit30.py (auditor's): the researcher's pad (n = 1.2, A = 1; 0.12 kg at
+    1.0 m/s) on a Gent rubber, Jm = 30, with Coulomb friction 0.5 was refused as "locks at
+    depth 0.000172 m": its 50-step run fails near separation (striker depth 1.1e-5 m) from a
+    state at 0.0023 of the limit, a step the Newton could not take, which the ladder retries
+    with twice the steps once it is a numerical failure (about 20 s of CPU)."""
+    from shtaerman.study.dynamic.accuracy import RetriedWarning
+    from shtaerman.validation import InputError
+
+    body = sh.Material(3e6, 0.49, 1000.0)
+    striker = sh.PowerLawIndenter(shape_coefficient=1.0, exponent=1.2)
+    case = sh.Problem.impact(
+        striker,
+        body,
+        mass=0.12,
+        velocity=1.0,
+        thickness=0.012,
+        model="gent",
+        gent_limit=30.0,
+        interface="bonded",
+        friction=0.5,
+    )
+    try:
+        with pytest.warns(RetriedWarning, match="50 steps failed .*passed with 100 steps"):
+            result = sh.dynamic(case, time_steps=50, mesh_size=0.2, estimate=False)
+    except InputError as error:  # a Gent lock is an InputError: the input named, exit 2
+        pytest.fail(f"refused as bad input: {error}")
+    # a result, not a refusal: 80.0 N measured (100 steps); the bound only checks a finite,
+    # positive peak of the order of the quasi-static P_c (sh.impact: 63 N at 1 m/s on the
+    # half-space; the 12 mm pad stiffens it)
+    assert 30.0 < result.P_max < 300.0
