@@ -6,6 +6,7 @@ import warnings
 import pytest
 
 import shtaerman as sh
+from shtaerman.api.effect_table.table import QUANTITIES
 from shtaerman.cli import main
 from shtaerman.guards import ValidityWarning
 from shtaerman.sweep.engine import execute_case
@@ -103,3 +104,32 @@ def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking(
     # positive peak of the order of the quasi-static P_c (sh.impact: 63 N at 1 m/s on the
     # half-space; the 12 mm pad stiffens it)
     assert 30.0 < result.P_max < 300.0
+
+
+# --- the effect table says each note once, naming its runs (audit30) ---------------------------
+
+
+def test_the_effect_table_says_each_note_once_with_the_runs_it_applies_to():
+    """Old code: one line per run, e.g. four identical '--layer-rate not applied' lines."""
+    from shtaerman.api.effect_table.report import table_markdown, table_text
+    from shtaerman.api.effect_table.table import EffectTable, Run
+
+    skipped = "layer_rate not applied: on the half-space only (the pad always has its layer)"
+    bare = "the estimate was switched off (estimate=False)"
+    values = dict.fromkeys(QUANTITIES, 1.0)
+    labels = ("none", "pad alone", "full", "without waves")
+    runs = tuple(
+        Run(label, "none", None, "-", values=values, error_note=bare, notes=(skipped,))
+        for label in labels
+    )
+    runs += (Run("without pad", "without", "pad", "-", values=values, notes=(skipped,)),)
+    reference = {"P_c": 1.0, "x_c": 1.0, "t_c": 0.5, "t_y": 1.0}
+    table = EffectTable(reference, runs, ())
+    named = ", ".join(labels)
+    cli = table_text(table, "cli")
+    assert cli.count("not applied") == 1 and cli.count("error bar n/a") == 1, cli
+    assert f"  {named}, without pad: --layer-rate not applied: " in cli, cli
+    assert f"  {named}: error bar n/a: " in cli, cli
+    markdown = table_markdown(table)
+    assert markdown.count("layer_rate not applied") == 1, markdown
+    assert f"- {named}, without pad: layer_rate not applied" in markdown, markdown
