@@ -84,17 +84,8 @@ def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking(
 
     body = sh.Material(3e6, 0.49, 1000.0)
     striker = sh.PowerLawIndenter(shape_coefficient=1.0, exponent=1.2)
-    case = sh.Problem.impact(
-        striker,
-        body,
-        mass=0.12,
-        velocity=1.0,
-        thickness=0.012,
-        model="gent",
-        gent_limit=30.0,
-        interface="bonded",
-        friction=0.5,
-    )
+    pad = dict(thickness=0.012, model="gent", gent_limit=30.0, interface="bonded", friction=0.5)
+    case = sh.Problem.impact(striker, body, mass=0.12, velocity=1.0, **pad)
     try:
         with pytest.warns(RetriedWarning, match="50 steps failed .*passed with 100 steps"):
             result = sh.dynamic(case, time_steps=50, mesh_size=0.2, estimate=False)
