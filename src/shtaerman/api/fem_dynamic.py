@@ -238,8 +238,10 @@ def dynamic(
         ``body`` then gives the instantaneous E2 and nu2 and the bulk stays elastic (with a
         finite-strain ``model``: the isochoric stress relaxes). None: elastic.
     out : path, optional
-        A new folder for dynamic.json, history.csv, energies.csv, three VTU snapshots and
-        the figures; an existing one is replaced only with ``force``.
+        A new folder for dynamic.json, history.csv, energies.csv and the figures, and for
+        the linear body its fields at 0.5, 1 and 1.5 t_c (three VTU files and their
+        pictures; a rubber's run keeps no fields); an existing one is replaced only with
+        ``force``.
     figure_format : {"png", "svg", "pdf"}
         "svg" or "pdf" also writes each chart in that format beside its PNG.
     model : str

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..guards import warn_outside_validity
 from ..output.files import json_safe
 from ..problem import check_bodies
 from ..theory import impact as theory
@@ -132,6 +133,12 @@ def impact(
     ------
     shtaerman.validation.InputError
         If an input lies outside its range.
+
+    Warns
+    -----
+    shtaerman.guards.ValidityWarning
+        If x_c lies beyond a validity limit of linear elasticity
+        (:func:`shtaerman.guards.outside_validity`, as every route warns).
     """
     striker = RIGID if striker is None else striker
     check_bodies(indenter, body, striker)
@@ -140,6 +147,7 @@ def impact(
         result = theory.solve_impact(mass, velocity, PowerLawContact(indenter, modulus))
     else:
         result = solve_profile_impact(mass, velocity, SneddonContact(indenter, modulus))
+    warn_outside_validity(indenter, result.x_c, None, finite=False)
     return ImpactResult(result, _ode_check(result) if check else None)
 
 

@@ -24,7 +24,9 @@ from .impact import history_path
 
 NOTES = {
     "history": "t, x, v, P at every time step (the linear body also a, p0)",
-    "out": "dynamic.json, history.csv, energies.csv and VTU fields",
+    "out": "dynamic.json, history.csv, energies.csv and the figures; the linear body also "
+    "its fields at 0.5, 1 and 1.5 t_c (field_*.vtu, wave_field_*.png), a rubber none: its "
+    "run keeps no fields",
     "force": "an existing --history file or --out folder",
 }
 """What ``dynamic`` does with its output options."""

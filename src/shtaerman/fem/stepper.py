@@ -1177,10 +1177,14 @@ def march_inertial(
                 stepper, inertial, state, mass, (k, depth_scale, force_scale)
             )
         except NewtonError as error:
-            if isinstance(error, GentLockError):  # in every cut step: the rubber locks
-                limit = stepper.system.material.gent_limit  # within the step: the depth it
-                reached = state.depth + abs(state.speed) * inertial.dt  # was going to
-                raise GentLockError.locking(limit, reached) from None
+            # the rubber locks when the state before the step is near its limit, as in the
+            # static marcher, or the step from first touch fails on the limit at every cut
+            # (no strained state to measure); else the Newton failed: a numerical failure
+            reached = state.depth + abs(state.speed) * inertial.dt  # the depth it went for
+            first = state.depth <= 0.0
+            locked = gent_locks(error, stepper.system, state.x, reached, last=first)
+            if locked is not None:
+                raise locked from None
             raise _step_failure(stepper, (t, state.depth, deepest), error) from None
         total, rows = total + iterations, []
         for new in states:

@@ -182,10 +182,14 @@ def _quasi_static(check: Any = None) -> Any:
 def impact_case(p: dict[str, Any]) -> CaseResult:
     """Maxima and durations of the exact quasi-static impact (``shtaerman impact --json``): a
     closed form (Ateb) for the power law, Sneddon's quadrature for a sphere or a table (beta
-    NaN: no power law); without checks of its own."""
-    from ..study.dynamic.case import exact_impact
+    NaN: no power law); without checks of its own. It is :func:`shtaerman.impact`'s, whose
+    validity warnings the row records."""
+    from ..api.quasi_static import impact
 
-    result = exact_impact(*_impact_inputs(p))
+    half_space, striker = _material(p, "E2", "nu2"), _material(p, "E1", "nu1")
+    result = impact(
+        _indenter(p), half_space, mass=p["mass"], velocity=p["velocity"], striker=striker
+    )
     return CaseResult({name: float(getattr(result, name)) for name in IMPACT_OUTPUTS}, ())
 
 

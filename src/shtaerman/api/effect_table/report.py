@@ -73,14 +73,21 @@ def _dominant_lines(table: EffectTable) -> list[str]:
 
 
 def _notes(table: EffectTable, route: str = "python") -> list[str]:
-    """Why a bar is n/a, and which options a run did not take (in the words of ``route``)."""
-    lines = [
-        f"  {run.label}: error bar n/a: {said(run.error_note, route)}"
-        for run in table.runs
+    """Why a bar is n/a, and which options a run did not take (in the words of ``route``):
+    each note once, after the runs it applies to."""
+    runs = table.runs
+    notes = [
+        (run.label, ("error bar n/a: ", run.error_note))
+        for run in runs
         if run.values is not None and run.error_note
     ]
-    lines += [f"  {run.label}: {said(note, route)}" for run in table.runs for note in run.notes]
-    return lines
+    notes += [(run.label, ("", note)) for run in runs for note in run.notes]
+    labels: dict[tuple[str, str], list[str]] = {}
+    for label, note in notes:
+        labels.setdefault(note, []).append(label)
+    return [
+        f"  {', '.join(names)}: {head}{said(note, route)}" for (head, note), names in labels.items()
+    ]
 
 
 def table_text(table: EffectTable, route: str = "python") -> str:

@@ -188,6 +188,8 @@ def run_contact_study(
     contact = accuracy.finest
     deepest, thickness = contact.steps[-1].depth, contact.mesh_stats.get("thickness")
     warn_outside_validity(study.indenter, deepest, thickness, False, "the deepest depth")
+    if exact.x_c > deepest:  # the analytic impact goes deeper than the curve (depths given)
+        warn_outside_validity(study.indenter, exact.x_c, None, False, "the exact impact's x_c")
     report(f"{study.name}: impact (analytic, FEM-fitted, FEM-tabulated)")
     law = fem_contact_law(contact, modulus)
     fitted = solve_impact(study.mass, study.velocity, law)
