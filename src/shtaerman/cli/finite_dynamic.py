@@ -51,21 +51,23 @@ def finite_dynamic_text(report: dict) -> str:
 
 def ladder_rows(report: dict) -> list[str]:
     """The error-estimate ladder's levels and estimated relative errors, or why the estimate
-    is missing ([] without the estimate)."""
+    is missing ([] without the estimate); first what was retried, if anything."""
+    retried = [f"  retried: {report['retried']}"] if report.get("retried") else []
     if report.get("mesh_ladder") is None:
-        return []
+        return retried
     levels = ", ".join(
         f"{lv['dofs']} dofs/{lv['steps']} steps" if lv["dofs"] is not None else "failed"
         for lv in report["mesh_ladder"]
     )
     if report.get("estimate_missing"):
-        return [f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
+        return [*retried, f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
     errors = report["error_estimate"].items()
     return [
+        *retried,
         f"  estimated relative errors (ladder {levels}): "
         + ", ".join(
             f"{key} {'n/a' if value is None else format(value, '.1e')}" for key, value in errors
-        )
+        ),
     ]
 
 

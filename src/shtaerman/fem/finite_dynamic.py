@@ -256,18 +256,18 @@ class FiniteImpactSetup:
         if rho == 0.0:
             body = QuasiStaticBody(stepper, dt)
             columns, separation = march_massless(body, mass, velocity, dt, (duration, q))
-            return columns, body.iterations, separation, math.nan
+            return columns, body.iterations, separation, 0.0, body.cuts
         scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
         inertial = inertial_system(stepper, rho, scheme)
         columns, iterations, separation, last = march_inertial(
             stepper, inertial, (mass, velocity), (x_c, duration, q)
         )
         far = far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
-        return columns, iterations, separation, far
+        return columns, iterations, separation, far, inertial.cuts
 
     def result(self, marched: tuple, timings: dict[str, float]) -> ImpactRun:
         """The run of ``marched`` (what :meth:`march` returned), ``timings`` its costs (s)."""
-        columns, iterations, separation, far = marched
+        columns, iterations, separation, far, cuts = marched
         indenter, half_space, rho, mass, velocity, friction = self.inputs
         (x_c, t_y, _, _, beta), settings = self.scales, self.settings
         striker = (mass, velocity, rho)
@@ -280,9 +280,16 @@ class FiniteImpactSetup:
             parameters.update(spectral_radius=settings.spectral_radius)
         context = {"timings": timings, "mesh": self.mesh, "parameters": parameters}
         context.update(newton_iterations=iterations, reflected_energy_fraction=far)
+        if cuts:
+            context["retried"] = cut_note(cuts, settings.steps)
         result = _result(columns, mass, context, separation)
         warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
         return result
+
+
+def cut_note(cuts: int, steps: int) -> str:
+    """What a run whose ``cuts`` time steps (of ``steps`` per t_y) were cut in halves says."""
+    return f"{cuts} of the {steps} time steps per t_y cut in halves where the contact failed"
 
 
 def prepare_finite_impact(

@@ -719,7 +719,7 @@ a step of ~1e-4 of the depth) or the contact set flips between two converged sta
 edge node near separation)."""
 MAX_HALVINGS = 6
 MAX_STEP_CUTS = 4
-"""Halvings of a time step of the body with inertia whose Newton or secant failed."""
+"""Halvings of a time step of the finite-strain body whose Newton or secant failed."""
 MAX_BACKTRACKS = 10
 """Halvings of a Newton update of the body with inertia that inverts an element (damped Newton)."""
 
@@ -752,6 +752,7 @@ class QuasiStaticBody:
         self.history = [self.zero]
         self.iterations = 0
         self.dt = dt
+        self.cuts = 0  # time steps cut in halves (:func:`march_massless`)
         self.deepest = 0.0  # the largest committed depth (m)
         system = stepper.system
         self.viscous = isinstance(system, ViscoelasticBody)
@@ -897,6 +898,68 @@ def _secant(
     )
 
 
+def _stiffness(a: _State, b: _State, k: float) -> float:
+    """The contact stiffness guess (N/m) of the next step's secant after the step a -> b
+    (``k`` kept where a depth is 0 or the depths coincide)."""
+    if b.depth > 0 and a.depth > 0 and b.depth != a.depth:
+        return max((b.force - a.force) / (b.depth - a.depth), 0.0)
+    return k
+
+
+def _ended(state: _State, v: float) -> bool:
+    """Whether the massless impact is over: no force with the striker rebounding, or X back
+    to 0."""
+    return (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
+
+
+def _massless_steps(
+    body: QuasiStaticBody,
+    start: tuple[_State, float, float],
+    mass: float,
+    dt: float,
+    gradient: Any,
+    cuts: int = 0,
+) -> list[tuple[_State, float, float]]:
+    """One time step of :func:`_step` from ``start`` = (state, V_n (m/s), k (N/m)), committed;
+    where its contact fails (a Newton or the secant), the step in two halves of dt / 2, cut
+    again where they fail, at most :data:`MAX_STEP_CUTS` deep.
+
+    Each half is a step of its own (the body's clock, a relaxing body's dt, set to it),
+    committed before the next, so a history (the stuck nodes of a bonded or Coulomb contact,
+    the Prony branches) moves in the smaller steps; the second half is skipped if the first
+    ends the impact. Near separation a relaxing body with friction lets many stuck nodes go in
+    one step, and the Newton after that jump in the contact set stalls (the surface folds at the
+    axis); the smaller step lets them go fewer at a time. Returns (state, V, dt) per step
+    reached; a step that needs no cut is the uncut step, bit for bit.
+    """
+    state, v, k = start
+    kept = body.history
+    try:
+        new, speed = _step(body, state, (v, mass), (dt, k), gradient)
+    except NumericalFailureError:  # a GentLockError (the rubber's limit) is not cut
+        if cuts == MAX_STEP_CUTS:
+            raise
+    else:
+        new = body.commit(new)
+        if new.depth > 0:
+            body.accept(new)
+        return [(new, speed, dt)]
+    body.history = kept  # drop the failed step's intermediate states
+    if body.frictional:
+        body.stepper.warm = {}  # solved at the other dt
+    body.dt = 0.5 * dt
+    try:
+        first = _massless_steps(body, start, mass, 0.5 * dt, gradient, cuts + 1)
+        state, v, _ = first[-1]
+        if _ended(state, v):
+            return first
+        k = _stiffness(start[0], state, k)
+        second = _massless_steps(body, (state, v, k), mass, 0.5 * dt, gradient, cuts + 1)
+    finally:
+        body.dt = dt
+    return first + second
+
+
 def march_massless(
     body: QuasiStaticBody, mass: float, velocity: float, dt: float, scales: tuple[float, float]
 ) -> tuple[tuple[np.ndarray, ...], float | None]:
@@ -907,10 +970,11 @@ def march_massless(
     function of X: it steps by the trapezoidal rule on the contact force (second order, as
     Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
     its history committed at every step, until the force vanishes with the striker
-    rebounding. ``scales``: the longest run (s) and q of P ~ X^q. Returns the columns t, X,
-    V, P, stored energy and, for a viscoelastic body or a contact with friction, the body's
-    kinetic (0) and dissipated energies (SI); and the separation time (s; None for an elastic
-    frictionless body, nan if the run ended first).
+    rebounding. A step whose contact fails is cut in halves (:func:`_massless_steps`; the
+    steps cut are counted in ``body.cuts``). ``scales``: the longest run (s) and q of P ~ X^q.
+    Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or a contact
+    with friction, the body's kinetic (0) and dissipated energies (SI); and the separation
+    time (s; None for an elastic frictionless body, nan if the run ended first).
     """
     duration, exponent = scales
     state, v, t, k = body.zero, velocity, 0.0, 0.0
@@ -921,16 +985,14 @@ def march_massless(
         nonlocal state, v, t, k
         if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
             return []
-        new, v = _step(body, state, (v, mass), (dt, k), gradient)
-        if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
-            k = max((new.force - state.force) / (new.depth - state.depth), 0.0)
-        state, t = body.commit(new), t + dt
-        if state.depth > 0:
-            body.accept(state)
-        row = (t, state.depth, v, state.force, state.energy)
-        row += (0.0, state.dissipated) if extra else ()
-        ended = (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
-        return [(row, body.history_dependent and ended)]
+        rows, pieces = [], _massless_steps(body, (state, v, k), mass, dt, gradient)
+        body.cuts += len(pieces) > 1
+        for new, v, interval in pieces:
+            k, state, t = _stiffness(state, new, k), new, t + interval
+            row = (t, state.depth, v, state.force, state.energy)
+            row += (0.0, state.dissipated) if extra else ()
+            rows.append((row, body.history_dependent and _ended(state, v)))
+        return rows
 
     table, separation = march_steps(step, (0.0, 0.0, v, 0.0, 0.0, *extra), exponent)
     return tuple(table.T), (separation if body.history_dependent else None)
@@ -951,6 +1013,7 @@ class _InertialSystem:
         self.mass = mass
         self.alpha_m, self.beta, self.gamma = scheme.alpha_m, scheme.beta, scheme.gamma
         self.dt = scheme.dt  # halved where a step is cut
+        self.cuts = 0  # the time steps cut in halves (:func:`march_inertial`)
         coo = mass.tocoo()
         self.mass_data = np.zeros(system.pattern.nnz)
         np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
@@ -1157,7 +1220,8 @@ def march_inertial(
     ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
     run (s) and q of P ~ X^q (for the separation time between steps). Returns the columns
     t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
-    (s; nan if the run ended first) and the last state.
+    (s; nan if the run ended first) and the last state; the steps cut in halves are counted
+    in ``inertial.cuts``.
     """
     mass, velocity = striker
     depth_scale, duration, exponent = scales
@@ -1184,6 +1248,7 @@ def march_inertial(
                 raise GentLockError.locking(limit, reached) from None
             raise _step_failure(stepper, (t, state.depth, deepest), error) from None
         total, rows = total + iterations, []
+        inertial.cuts += len(states) > 1
         for new in states:
             force, previous = float(new.lam.sum()), float(state.lam.sum())
             if new.depth != state.depth:
