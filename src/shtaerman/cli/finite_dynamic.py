@@ -44,7 +44,8 @@ def finite_dynamic_text(report: dict) -> str:
         *viscoelastic_rows(report, "finite strain"),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs",
-        "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
+        "  time (s): "
+        + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items() if v is not None),
     ]
     return "\n".join(rows + ladder_rows(report))
 
