@@ -76,6 +76,7 @@ from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
+from shtaerman.theory.viscoelastic import PronySeries
 
 BASE_SIZE = 1.0 / 20.0
 """Smallest element / refined radius at refine 1 (the default is 1/60)."""
@@ -86,8 +87,11 @@ BASE_STEPS = {"massless": 40, "inertia": 60}
 
 PAD = dict(indenter=PowerLawIndenter(2.0, 1.3), mass=0.12, velocity=1.5, thickness=0.012)
 PAPER = dict(indenter=PowerLawIndenter(5.0, 1.5), mass=0.7, velocity=1.0)
+FULL = dict(PAD, prony=PronySeries((0.3,), (1e-3,)))
 CASES = {
     "pad-massless": dict(PAD, body=Material(3e6, 0.49, 0.0)),
+    "full-massless": dict(FULL, body=Material(3e6, 0.49, 0.0), friction=0.5),
+    "full-massless-bonded": dict(FULL, body=Material(3e6, 0.49, 0.0), friction=math.inf),
     "pad-inertia": dict(PAD, body=Material(3e6, 0.49, 1000.0)),
     "paper-massless": dict(PAPER, body=Material(7.5e6, 0.5, 0.0)),
     "paper-inertia": dict(PAPER, body=Material(7.5e6, 0.5, 1100.0)),
@@ -124,6 +128,7 @@ def run_case(name: str, refine: float, defaults: bool = False) -> None:
     case = CASES[name]
     body = case["body"]
     inputs = (case["indenter"], body, body.density, case["mass"], case["velocity"])
+    physics = dict(prony=case.get("prony"), friction=case.get("friction"))
     base = settings_of(case, defaults)
     modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)
     quasi = solve_impact(case["mass"], case["velocity"], PowerLawContact(case["indenter"], modulus))
@@ -136,11 +141,11 @@ def run_case(name: str, refine: float, defaults: bool = False) -> None:
     for factor in factors:
         level = base.refined(factor)
         start, cpu = time.perf_counter(), time.process_time()
-        runs.append(run_impact(*inputs, level))
+        runs.append(run_impact(*inputs, level, **physics))
         wall, cpu = time.perf_counter() - start, time.process_time() - cpu
         print(
             f"  refine {factor:.3g}: {runs[-1].mesh['dofs']} dofs, {level.steps} steps, "
-            f"{wall:.1f} s wall, {cpu:.1f} s CPU"
+            f"{wall:.1f} s wall, {cpu:.1f} s CPU{'; retried: ' + runs[-1].retried if runs[-1].retried else ''}"
         )
     values = [quantities(run, quasi) for run in runs]
     reference = values[-1]
