@@ -143,9 +143,10 @@ def run_case(name: str, refine: float, defaults: bool = False) -> None:
         start, cpu = time.perf_counter(), time.process_time()
         runs.append(run_impact(*inputs, level, **physics))
         wall, cpu = time.perf_counter() - start, time.process_time() - cpu
+        retried = f"; retried: {runs[-1].retried}" if runs[-1].retried else ""
         print(
             f"  refine {factor:.3g}: {runs[-1].mesh['dofs']} dofs, {level.steps} steps, "
-            f"{wall:.1f} s wall, {cpu:.1f} s CPU{'; retried: ' + runs[-1].retried if runs[-1].retried else ''}"
+            f"{wall:.1f} s wall, {cpu:.1f} s CPU{retried}"
         )
     values = [quantities(run, quasi) for run in runs]
     reference = values[-1]

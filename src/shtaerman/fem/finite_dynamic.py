@@ -15,7 +15,12 @@ with Pi(X) the stored energy of the static contact at depth X (Pi = 0 without co
 conserves M V^2 / 2 + Pi(X) exactly at every step, so the restitution is 1 up to the Newton
 tolerances, and it is second order. Each step solves the scalar equation in X_{n+1} by a
 secant iteration, every evaluation being a static contact solve warm-started from the last
-converged state. After the striker leaves (X_{n+1} <= 0) its speed is final.
+converged state. After the striker leaves (X_{n+1} <= 0) its speed is final. A step whose
+contact fails (its Newton, or the secant) is cut in two halves of dt / 2, recursively up to
+:data:`.stepper.MAX_STEP_CUTS` times, each half a step of its own with its history committed
+(near separation a relaxing body with friction let many stuck nodes go in one step, and the
+Newton after that jump stalled at 0.5 mm of the researcher's pad at 50 steps); the run's
+``retried`` says how many steps were cut.
 
 The body with inertia (density > 0, :func:`.stepper.march_inertial`): Wood-Bossak-Zienkiewicz
 time stepping (rho_inf 0.9 by default; second order) of the body, with its consistent mass less

@@ -52,7 +52,7 @@ rule on the contact force where the body relaxes or the contact has friction
 striker's step equation); the body with inertia by the Wood-Bossak-Zienkiewicz scheme,
 :meth:`TimeScheme.bossak` (generalized-alpha with alpha_f = 0), each step a contact Newton of
 the body with its inertial terms (:func:`inertial_system`) inside a secant on the striker's
-equation, a failing step cut in halves (:func:`march_inertial`).
+equation (:func:`march_inertial`). Either cuts a failing step in halves.
 """
 
 from __future__ import annotations

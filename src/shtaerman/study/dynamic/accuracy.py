@@ -17,7 +17,10 @@ ladder with those steps (its time error is smaller than its place in the ladder 
 enlarges the last difference: the estimate stays on the safe side). If the retry fails too, the
 ladder keeps the levels that passed, reports the finest of them and marks the estimate as
 missing, with the reason (:attr:`ImpactLadder.missing`) and a warning; it fails only when no
-level passed.
+level passed. A finite-strain run first cuts a failing time step in halves within the run
+(:mod:`shtaerman.fem.finite_dynamic`), so its level keeps its steps and the ladder its ratio.
+Whatever was retried or cut is said once, in one line (:class:`RetriedWarning`), and carried by
+the reported run (``retried``).
 
 The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``): x_max
 converges regularly, while P_max, t_contact and e scatter from level to level (the graded
