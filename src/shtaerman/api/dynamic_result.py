@@ -211,36 +211,31 @@ def _filled(given: dict[str, Any], part: str) -> dict[str, Any]:
     return {key: given.get(key) for key in PARTS[part]} | dict(given)
 
 
+FACTORIZES = "the finite-strain impact factorizes in each Newton step (in stepping)"
 PART_REASONS = {
-    "time_steps": (UNRECORDED + ": the linear impact gives its time_step (s)", None),
-    "mesh_size": (UNRECORDED + ": the linear mesh gives its smallest_size (m)", None),
-    "quasi_static_a_c": (None, UNRECORDED),
-    "solver_backward_error": (None, "the finite-strain impact factorizes in every Newton step"),
-    "estimated_dofs": (None, UNRECORDED),
-    "domain_radius": (None, UNRECORDED),
-    "smallest_size": (None, "the finite-strain mesh gives its mesh_size (of the refined radius)"),
-    "factorization": (None, "the finite-strain impact factorizes in every Newton step (stepping)"),
+    "time_steps": "the linear impact gives its time_step (s)",
+    "mesh_size": "the linear mesh gives its smallest_size (m)",
+    "solver_backward_error": FACTORIZES,
+    "factorization": FACTORIZES,
+    "smallest_size": "the finite-strain mesh gives its mesh_size (of the refined radius)",
 }
-"""Why a key of :data:`PARTS` is null, by body (linear, finite strain); None: a value is
-always given."""
-
-
+"""Why a key of :data:`PARTS` is null where it is null for one kind of body only (else
+:data:`UNRECORDED`)."""
 WAVE_KEYS = ("shear_wave_speed", "rayleigh_wave_speed", "layer_start", "layer_ramp", "layer_rate")
 """The parameters of the waves and of the absorbing layer that takes them."""
 
 
 def _part_reason(key: str, finite: bool, massless: bool) -> str:
     """Why ``key`` of a part of :data:`PARTS` is null for this body."""
-    if key in WAVE_KEYS:
-        if massless:
-            return NO_WAVES
-        if finite:
-            return "the finite-strain impact has no absorbing layer and reports no wave speeds"
-        return "no absorbing layer: the far boundary lies beyond the waves' reach (or layer_rate 0)"
     if key == "spectral_radius" and massless:
         return "a massless body has no time integration of its own (a static contact each step)"
-    linear, rubber = PART_REASONS.get(key, (None, None))
-    return (rubber if finite else linear) or UNRECORDED
+    if key not in WAVE_KEYS:
+        return PART_REASONS.get(key, UNRECORDED)
+    if massless:
+        return NO_WAVES
+    if finite:
+        return "the finite-strain impact has no absorbing layer and reports no wave speeds"
+    return "no absorbing layer: the far boundary lies beyond the waves' reach (or layer_rate 0)"
 
 
 def _finite(value: Any) -> bool:

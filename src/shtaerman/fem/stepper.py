@@ -60,7 +60,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, partial
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -906,58 +906,66 @@ def _stiffness(a: _State, b: _State, k: float) -> float:
     return k
 
 
-def _ended(state: _State, v: float) -> bool:
-    """Whether the massless impact is over: no force with the striker rebounding, or X back
-    to 0."""
+def _ended(piece: tuple) -> bool:
+    """Whether the massless impact is over at ``piece`` = (state, V (m/s), ...): no force with
+    the striker rebounding, or X back to 0."""
+    state, v = piece[:2]
     return (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
 
 
-def _massless_steps(
-    body: QuasiStaticBody,
-    start: tuple[_State, float, float],
-    mass: float,
-    dt: float,
-    gradient: Any,
-    cuts: int = 0,
-) -> list[tuple[_State, float, float]]:
-    """One time step of :func:`_step` from ``start`` = (state, V_n (m/s), k (N/m)), committed;
-    where its contact fails (a Newton or the secant), the step in two halves of dt / 2, cut
-    again where they fail, at most :data:`MAX_STEP_CUTS` deep.
-
-    Each half is a step of its own (the body's clock, a relaxing body's dt, set to it),
-    committed before the next, so a history (the stuck nodes of a bonded or Coulomb contact,
-    the Prony branches) moves in the smaller steps; the second half is skipped if the first
-    ends the impact. Near separation a relaxing body with friction lets many stuck nodes go in
-    one step, and the Newton after that jump in the contact set stalls (the surface folds at the
-    axis); the smaller step lets them go fewer at a time. Returns (state, V, dt) per step
-    reached; a step that needs no cut is the uncut step, bit for bit.
-    """
-    state, v, k = start
-    kept = body.history
+def _massless_step(
+    body: QuasiStaticBody, mass: float, gradient: Any, start: tuple
+) -> list[tuple[_State, float, float, float]]:
+    """One time step of :func:`_step` of ``body.dt`` (s) from ``start`` = (state, V_n (m/s),
+    k (N/m), ...), committed: [(state, V, k, dt)]. A failed step leaves the body as it was."""
+    state, v, k = start[:3]
+    kept, dt = body.history, body.dt
     try:
         new, speed = _step(body, state, (v, mass), (dt, k), gradient)
-    except NumericalFailureError:  # a GentLockError (the rubber's limit) is not cut
+    except NumericalFailureError:
+        body.history = kept  # without the failed step's intermediate states
+        if body.frictional:
+            body.stepper.warm = {}  # solved for a step of another length
+        raise
+    new = body.commit(new)
+    if new.depth > 0:
+        body.accept(new)
+    return [(new, speed, _stiffness(state, new, k), dt)]
+
+
+def _in_halves(
+    step: Callable[[Any], list],
+    start: Any,
+    clock: Any,
+    ended: Callable[[Any], bool],
+    failures: tuple[type[Exception], ...],
+    cuts: int = 0,
+) -> list:
+    """``step(start)``: the states one time step of ``clock.dt`` (s) reaches; where it fails
+    (``failures``: a Newton, the secant), the step in two halves of dt / 2 (``clock.dt`` set to
+    it), cut again where they fail, at most :data:`MAX_STEP_CUTS` deep.
+
+    Each half is a step of its own, its history committed before the next, so the energy
+    account holds at every recorded state as with uniform steps; the second half is skipped
+    where the first ``ended`` the contact. Near separation a relaxing massless body with
+    friction lets many stuck nodes go in one step, and the Newton after that jump stalls (the
+    surface folds at the axis); the smaller step lets them go fewer at a time. A step that
+    needs no cut is the uncut step, bit for bit.
+    """
+    try:
+        return step(start)
+    except failures:
         if cuts == MAX_STEP_CUTS:
             raise
-    else:
-        new = body.commit(new)
-        if new.depth > 0:
-            body.accept(new)
-        return [(new, speed, dt)]
-    body.history = kept  # drop the failed step's intermediate states
-    if body.frictional:
-        body.stepper.warm = {}  # solved at the other dt
-    body.dt = 0.5 * dt
+    dt = clock.dt
+    clock.dt = 0.5 * dt
     try:
-        first = _massless_steps(body, start, mass, 0.5 * dt, gradient, cuts + 1)
-        state, v, _ = first[-1]
-        if _ended(state, v):
+        first = _in_halves(step, start, clock, ended, failures, cuts + 1)
+        if ended(first[-1]):
             return first
-        k = _stiffness(start[0], state, k)
-        second = _massless_steps(body, (state, v, k), mass, 0.5 * dt, gradient, cuts + 1)
+        return first + _in_halves(step, first[-1], clock, ended, failures, cuts + 1)
     finally:
-        body.dt = dt
-    return first + second
+        clock.dt = dt
 
 
 def march_massless(
@@ -970,8 +978,8 @@ def march_massless(
     function of X: it steps by the trapezoidal rule on the contact force (second order, as
     Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
     its history committed at every step, until the force vanishes with the striker
-    rebounding. A step whose contact fails is cut in halves (:func:`_massless_steps`; the
-    steps cut are counted in ``body.cuts``). ``scales``: the longest run (s) and q of P ~ X^q.
+    rebounding. A step whose contact fails is cut in halves (:func:`_in_halves`; the steps
+    cut are counted in ``body.cuts``). ``scales``: the longest run (s) and q of P ~ X^q.
     Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or a contact
     with friction, the body's kinetic (0) and dissipated energies (SI); and the separation
     time (s; None for an elastic frictionless body, nan if the run ended first).
@@ -980,18 +988,21 @@ def march_massless(
     state, v, t, k = body.zero, velocity, 0.0, 0.0
     extra = (0.0, 0.0) if body.viscous or body.frictional else ()
     gradient = _mean_force if body.history_dependent else _discrete_gradient
+    one = partial(_massless_step, body, mass, gradient)
+    body.dt = dt
 
     def step() -> list[tuple[tuple, bool]]:
         nonlocal state, v, t, k
         if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
             return []
-        rows, pieces = [], _massless_steps(body, (state, v, k), mass, dt, gradient)
-        body.cuts += len(pieces) > 1
-        for new, v, interval in pieces:
-            k, state, t = _stiffness(state, new, k), new, t + interval
+        pieces = _in_halves(one, (state, v, k), body, _ended, (NumericalFailureError,))
+        rows, body.cuts = [], body.cuts + (len(pieces) > 1)
+        for piece in pieces:
+            state, v, k, interval = piece
+            t += interval
             row = (t, state.depth, v, state.force, state.energy)
             row += (0.0, state.dissipated) if extra else ()
-            rows.append((row, body.history_dependent and _ended(state, v)))
+            rows.append((row, body.history_dependent and _ended(piece)))
         return rows
 
     table, separation = march_steps(step, (0.0, 0.0, v, 0.0, 0.0, *extra), exponent)
@@ -1145,33 +1156,21 @@ def _cut_step(
     state: _Dynamic,
     mass: float,
     scales: tuple[float, float, float],
-    cuts: int = 0,
 ) -> tuple[list[_Dynamic], int]:
-    """One time step of :func:`_dynamic_step`, or where it fails, the step in two halves.
+    """One time step of :func:`_dynamic_step`, or where it fails, in halves (:func:`_in_halves`:
+    each half a Bossak step of dt / 2, same alpha_m, beta, gamma, started like any step from
+    the state before it): the states reached (in time order) and the converged Newton
+    iterations."""
+    iterations = 0
 
-    Each half is a Bossak step of dt / 2 (same alpha_m, beta, gamma), started like any step
-    from the state before it, and cut again where it fails, at most MAX_STEP_CUTS deep. The
-    halves' states are recorded as steps of their own, so the energy account holds at every
-    recorded state as with uniform steps; the second half is skipped if the first ends the
-    contact. Returns the states reached (in time order) and the converged Newton iterations.
-    A step that needs no cut is the uncut step, bit for bit.
-    """
-    try:
-        new, iterations = _dynamic_step(stepper, inertial, state, mass, scales)
-        return [new], iterations
-    except (NewtonError, NumericalFailureError):
-        if cuts == MAX_STEP_CUTS:
-            raise
-    dt = inertial.dt
-    inertial.dt = 0.5 * dt
-    try:
-        first, iterations = _cut_step(stepper, inertial, state, mass, scales, cuts + 1)
-        if _separated(first[-1]):
-            return first, iterations
-        second, more = _cut_step(stepper, inertial, first[-1], mass, scales, cuts + 1)
-    finally:
-        inertial.dt = dt
-    return first + second, iterations + more
+    def step(start: _Dynamic) -> list[_Dynamic]:
+        nonlocal iterations
+        new, count = _dynamic_step(stepper, inertial, start, mass, scales)
+        iterations += count
+        return [new]
+
+    failures = (NewtonError, NumericalFailureError)
+    return _in_halves(step, state, inertial, _separated, failures), iterations
 
 
 def _separated(state: _Dynamic) -> bool:
