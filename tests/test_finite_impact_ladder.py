@@ -166,8 +166,6 @@ def test_the_cli_takes_refine_and_no_estimate_with_a_model(coarse_mesh, capsys):
 def test_the_ladder_runs_on_a_viscoelastic_pad_massless_and_with_inertia(density, monkeypatch):
     """The researcher's case (z = 2 r^1.3 onto a 12 mm pad, Prony 0.3:1e-3) on the coarse mesh:
     every headline number and the dissipated fraction carry an estimate."""
-    import shtaerman.fem.finite_dynamic as finite_dynamic
-
     monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", COARSE)
     result = sh.dynamic(
         sh.PowerLawIndenter(2.0, 1.3),
