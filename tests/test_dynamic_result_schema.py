@@ -90,3 +90,32 @@ def test_the_massless_text_speaks_of_no_waves_and_names_what_is_compared(documen
     assert "of which waves" in inertia and "reflected" in inertia
     assert "does not apply to a pad" in dynamic_text(documents["pad"])
     assert not math.isnan(documents["pad"]["dynamic"]["restitution"])
+
+
+CASE_KEYS = {"interface", "friction", "thickness", "base"}
+"""Keys of the nested parts that only a case with a pad or a bonded indenter has."""
+
+
+def test_parameters_mesh_and_timings_have_one_schema_on_every_body(documents):
+    """Old code: the linear body had wave speeds, layer, a_c and a factorization the rubber
+    lacked, the rubber time_steps, mesh_size and spectral_radius the linear body lacked; the
+    linear body's layer_start and layer_ramp were null with no reason."""
+    from shtaerman.api.dynamic_result import PARTS
+
+    for part, keys in PARTS.items():
+        for name, document in documents.items():
+            assert set(document[part]) - CASE_KEYS == set(keys), (name, part)
+            reasons = document["not_given"]
+            for key, value in document[part].items():
+                assert (value is None) == (f"{part}.{key}" in reasons), (name, part, key)
+    linear = documents["linear"]["not_given"]
+    assert "no absorbing layer" in linear["parameters.layer_start"]
+    assert "no waves" in documents["massless prony"]["not_given"]["parameters.shear_wave_speed"]
+
+
+def test_a_massless_body_reflects_nothing_whatever_its_model(documents):
+    """One rule: 0.0 (nothing radiated, nothing reflected); old code: 0.0 for the linear body,
+    null for the rubber."""
+    for name in ("massless prony", "massless neo-hookean", "neo-hookean prony"):
+        assert documents[name]["dynamic"]["reflected_energy_fraction"] == 0.0, name
+    assert documents["linear"]["dynamic"]["reflected_energy_fraction"] > 0.0

@@ -25,6 +25,22 @@ SECTIONS = ("viscoelastic_quasi_static", "differences_error", "viscoelastic_diff
 SECTIONS += ("viscoelastic_differences_error", "radiation_estimate", "rubber", "prony")
 SECTIONS += ("error_estimate", "extrapolated", "estimate_details", "mesh_ladder")
 """The optional parts of the JSON: present on every route, null where the case has none."""
+PARTS = {
+    "parameters": (
+        *("mass", "velocity", "density2", "shape_coefficient", "exponent", "E2", "nu2"),
+        *("time_step", "time_steps", "mesh_size", "spectral_radius", "shear_wave_speed"),
+        *("rayleigh_wave_speed", "layer_start", "layer_ramp", "layer_rate", "quasi_static_x_c"),
+        *("quasi_static_t_y", "quasi_static_a_c", "beta", "solver_backward_error"),
+    ),
+    "mesh": (
+        *("nodes", "elements", "dofs", "contact_candidates", "refined_radius"),
+        *("estimated_dofs", "domain_radius", "smallest_size"),
+    ),
+    "timings": ("mesh", "assembly", "factorization", "stepping", "total"),
+}
+"""The keys of the nested parts on every route, every body (null where the body has none, the
+reason in ``not_given`` as ``part.key``); beside them, where the case has them, ``interface``
+and ``friction`` (parameters), ``thickness`` and ``base`` (mesh)."""
 
 
 def _dynamic_key(name: str, doc: str) -> Any:
@@ -98,6 +114,12 @@ class DynamicResult:
         "energy_wave_fraction", "Part of 1 - e^2 carried away by waves (nan if elastic)."
     )
 
+    @property
+    def retried(self) -> str | None:
+        """What the runs retried, in one line (a ladder level run again with more time steps,
+        time steps cut in halves, and with which steps); None for nothing."""
+        return getattr(self.solution, "retried", "") or None
+
     def history(self) -> dict[str, Any]:
         """The histories t, x, v, P at every time step and, of the linear body, a and p0
         (arrays, SI units; a rubber's impact records no contact radius)."""
@@ -108,7 +130,8 @@ class DynamicResult:
         key of :data:`DYNAMIC_KEYS` and :data:`SECTIONS` is there, null where the case has no
         such quantity, and ``not_given`` says why for each null (``dynamic.<key>`` for a key of
         ``dynamic``); other non-finite numbers are null too (the CLI's null);
-        ``estimate_missing`` is null unless the estimate is missing."""
+        ``estimate_missing`` is null unless the estimate is missing, ``retried`` unless a run
+        was retried or cut time steps (:attr:`retried`)."""
         dynamic = {key: self.dynamic.get(key) for key in DYNAMIC_KEYS} | dict(self.dynamic)
         document: dict[str, Any] = {
             "quasi_static": dict(self.quasi_static),
@@ -117,11 +140,12 @@ class DynamicResult:
             "differences": dict(self.differences),
         }
         document.update({key: getattr(self, key) for key in SECTIONS[1:]})
-        document.update(mesh=self.mesh, timings=self.timings, parameters=self.parameters)
+        document.update({part: _filled(getattr(self, part), part) for part in PARTS})
         document.update(profile=self.profile, model=self.model)
         if self.mesh_ladder is not None:
             document["mesh_ladder"] = [dict(level) for level in self.mesh_ladder]
         document["estimate_missing"] = self.estimate_missing
+        document["retried"] = self.retried
         document["not_given"] = self.not_given()
         return json_safe(document)
 
@@ -136,6 +160,11 @@ class DynamicResult:
         }
         for key in (key for key in SECTIONS if getattr(self, key) is None):
             out[key] = self._section_reason(key, elastic, massless)
+        finite = self.model != "linear"
+        for part, keys in PARTS.items():
+            given = getattr(self, part)
+            for key in (key for key in keys if not _finite(given.get(key))):
+                out[f"{part}.{key}"] = _part_reason(key, finite, massless)
         return out
 
     def _section_reason(self, key: str, elastic: bool, massless: bool) -> str:
@@ -173,9 +202,40 @@ def _unrecorded_reason(key: str, elastic: bool, massless: bool, parameters: dict
         return f"an elastic body has no hysteresis: 1 - e^2 is all {residue}"
     if key == "energy_slip_fraction" and not frictional:
         return "a frictionless indenter"
-    if key == "reflected_energy_fraction" and massless:
-        return NO_WAVES + " to reflect"
     return UNRECORDED
+
+
+def _filled(given: dict[str, Any], part: str) -> dict[str, Any]:
+    """The part ``given`` with every key of :data:`PARTS` (None where absent), in that order,
+    then the case's own keys."""
+    return {key: given.get(key) for key in PARTS[part]} | dict(given)
+
+
+FACTORIZES = "the finite-strain impact factorizes in each Newton step (in stepping)"
+PART_REASONS = {
+    "time_steps": "the linear impact gives its time_step (s)",
+    "mesh_size": "the linear mesh gives its smallest_size (m)",
+    "solver_backward_error": FACTORIZES,
+    "factorization": FACTORIZES,
+    "smallest_size": "the finite-strain mesh gives its mesh_size (of the refined radius)",
+}
+"""Why a key of :data:`PARTS` is null where it is null for one kind of body only (else
+:data:`UNRECORDED`)."""
+WAVE_KEYS = ("shear_wave_speed", "rayleigh_wave_speed", "layer_start", "layer_ramp", "layer_rate")
+"""The parameters of the waves and of the absorbing layer that takes them."""
+
+
+def _part_reason(key: str, finite: bool, massless: bool) -> str:
+    """Why ``key`` of a part of :data:`PARTS` is null for this body."""
+    if key == "spectral_radius" and massless:
+        return "a massless body has no time integration of its own (a static contact each step)"
+    if key not in WAVE_KEYS:
+        return PART_REASONS.get(key, UNRECORDED)
+    if massless:
+        return NO_WAVES
+    if finite:
+        return "the finite-strain impact has no absorbing layer and reports no wave speeds"
+    return "no absorbing layer: the far boundary lies beyond the waves' reach (or layer_rate 0)"
 
 
 def _finite(value: Any) -> bool:

@@ -252,28 +252,31 @@ def finite_dynamic_text(report: dict) -> str:
         *viscoelastic_rows(report, "finite strain"),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2",
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs",
-        "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items()),
+        "  time (s): "
+        + ", ".join(f"{k} {v:.2f}" for k, v in report["timings"].items() if v is not None),
     ]
     return "\n".join(rows + ladder_rows(report))
 
 
 def ladder_rows(report: dict) -> list[str]:
     """The error-estimate ladder's levels and estimated relative errors, or why the estimate
-    is missing ([] without the estimate)."""
+    is missing ([] without the estimate); first what was retried, if anything."""
+    retried = [f"  retried: {report['retried']}"] if report.get("retried") else []
     if report.get("mesh_ladder") is None:
-        return []
+        return retried
     levels = ", ".join(
         f"{lv['dofs']} dofs/{lv['steps']} steps" if lv["dofs"] is not None else "failed"
         for lv in report["mesh_ladder"]
     )
     if report.get("estimate_missing"):
-        return [f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
+        return [*retried, f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
     errors = report["error_estimate"].items()
     return [
+        *retried,
         f"  estimated relative errors (ladder {levels}): "
         + ", ".join(
             f"{key} {'n/a' if value is None else format(value, '.1e')}" for key, value in errors
-        )
+        ),
     ]
 
 

@@ -15,7 +15,12 @@ with Pi(X) the stored energy of the static contact at depth X (Pi = 0 without co
 conserves M V^2 / 2 + Pi(X) exactly at every step, so the restitution is 1 up to the Newton
 tolerances, and it is second order. Each step solves the scalar equation in X_{n+1} by a
 secant iteration, every evaluation being a static contact solve warm-started from the last
-converged state. After the striker leaves (X_{n+1} <= 0) its speed is final.
+converged state. After the striker leaves (X_{n+1} <= 0) its speed is final. A step whose
+contact fails (its Newton, or the secant) is cut in two halves of dt / 2, recursively up to
+:data:`.stepper.MAX_STEP_CUTS` times, each half a step of its own with its history committed
+(near separation a relaxing body with friction let many stuck nodes go in one step, and the
+Newton after that jump stalled at 0.5 mm of the researcher's pad at 50 steps); the run's
+``retried`` says how many steps were cut.
 
 The body with inertia (density > 0, :func:`.stepper.march_inertial`): Wood-Bossak-Zienkiewicz
 time stepping (rho_inf 0.9 by default; second order) of the body, with its consistent mass less
@@ -256,18 +261,18 @@ class FiniteImpactSetup:
         if rho == 0.0:
             body = QuasiStaticBody(stepper, dt)
             columns, separation = march_massless(body, mass, velocity, dt, (duration, q))
-            return columns, body.iterations, separation, math.nan
+            return columns, body.iterations, separation, 0.0, body.cuts
         scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
         inertial = inertial_system(stepper, rho, scheme)
         columns, iterations, separation, last = march_inertial(
             stepper, inertial, (mass, velocity), (x_c, duration, q)
         )
         far = far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
-        return columns, iterations, separation, far
+        return columns, iterations, separation, far, inertial.cuts
 
     def result(self, marched: tuple, timings: dict[str, float]) -> ImpactRun:
         """The run of ``marched`` (what :meth:`march` returned), ``timings`` its costs (s)."""
-        columns, iterations, separation, far = marched
+        columns, iterations, separation, far, cuts = marched
         indenter, half_space, rho, mass, velocity, friction = self.inputs
         (x_c, t_y, _, _, beta), settings = self.scales, self.settings
         striker = (mass, velocity, rho)
@@ -280,9 +285,16 @@ class FiniteImpactSetup:
             parameters.update(spectral_radius=settings.spectral_radius)
         context = {"timings": timings, "mesh": self.mesh, "parameters": parameters}
         context.update(newton_iterations=iterations, reflected_energy_fraction=far)
+        if cuts:
+            context["retried"] = cut_note(cuts, settings.steps)
         result = _result(columns, mass, context, separation)
         warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
         return result
+
+
+def cut_note(cuts: int, steps: int) -> str:
+    """What a run whose ``cuts`` time steps (of ``steps`` per t_y) were cut in halves says."""
+    return f"{cuts} of the {steps} time steps per t_y cut in halves where the contact failed"
 
 
 def prepare_finite_impact(

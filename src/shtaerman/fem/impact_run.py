@@ -84,6 +84,9 @@ class ImpactRun:
         ``energy_hysteresis_fraction``; {} for an elastic frictionless body.
     newton_iterations : int or None
         Newton iterations over the run (finite strain).
+    retried : str
+        What of the run was retried, in one line ("" for nothing): time steps cut in halves
+        (finite strain), a level run again with more time steps (the error-estimate ladder).
     system, snapshots, material, memories
         The fields kept for pictures (the linear body): its system, the state at requested
         times, its relaxing shear and its memories there (see :meth:`field_solution`).
@@ -110,6 +113,7 @@ class ImpactRun:
     central_pressure: np.ndarray | None = field(default=None, repr=False)
     losses: dict[str, float] = field(default_factory=dict)
     newton_iterations: int | None = None
+    retried: str = ""
     system: ElasticSystem | None = field(default=None, repr=False)
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(
         default_factory=dict, repr=False

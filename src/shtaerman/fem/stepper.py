@@ -52,7 +52,7 @@ rule on the contact force where the body relaxes or the contact has friction
 striker's step equation); the body with inertia by the Wood-Bossak-Zienkiewicz scheme,
 :meth:`TimeScheme.bossak` (generalized-alpha with alpha_f = 0), each step a contact Newton of
 the body with its inertial terms (:func:`inertial_system`) inside a secant on the striker's
-equation, a failing step cut in halves (:func:`march_inertial`).
+equation (:func:`march_inertial`). Either cuts a failing step in halves.
 """
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, partial
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -718,7 +718,7 @@ a step of ~1e-4 of the depth) or the contact set flips between two converged sta
 edge node near separation)."""
 MAX_HALVINGS = 6
 MAX_STEP_CUTS = 4
-"""Halvings of a time step of the body with inertia whose Newton or secant failed."""
+"""Halvings of a time step of the finite-strain body whose Newton or secant failed."""
 MAX_BACKTRACKS = 10
 """Halvings of a Newton update of the body with inertia that inverts an element (damped Newton)."""
 
@@ -751,6 +751,7 @@ class QuasiStaticBody:
         self.history = [self.zero]
         self.iterations = 0
         self.dt = dt
+        self.cuts = 0  # time steps cut in halves (:func:`march_massless`)
         self.deepest = 0.0  # the largest committed depth (m)
         system = stepper.system
         self.viscous = isinstance(system, ViscoelasticBody)
@@ -896,6 +897,76 @@ def _secant(
     )
 
 
+def _stiffness(a: _State, b: _State, k: float) -> float:
+    """The contact stiffness guess (N/m) of the next step's secant after the step a -> b
+    (``k`` kept where a depth is 0 or the depths coincide)."""
+    if b.depth > 0 and a.depth > 0 and b.depth != a.depth:
+        return max((b.force - a.force) / (b.depth - a.depth), 0.0)
+    return k
+
+
+def _ended(piece: tuple) -> bool:
+    """Whether the massless impact is over at ``piece`` = (state, V (m/s), ...): no force with
+    the striker rebounding, or X back to 0."""
+    state, v = piece[:2]
+    return (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
+
+
+def _massless_step(
+    body: QuasiStaticBody, mass: float, gradient: Any, start: tuple
+) -> list[tuple[_State, float, float, float]]:
+    """One time step of :func:`_step` of ``body.dt`` (s) from ``start`` = (state, V_n (m/s),
+    k (N/m), ...), committed: [(state, V, k, dt)]. A failed step leaves the body as it was."""
+    state, v, k = start[:3]
+    kept, dt = body.history, body.dt
+    try:
+        new, speed = _step(body, state, (v, mass), (dt, k), gradient)
+    except NumericalFailureError:
+        body.history = kept  # without the failed step's intermediate states
+        if body.frictional:
+            body.stepper.warm = {}  # solved for a step of another length
+        raise
+    new = body.commit(new)
+    if new.depth > 0:
+        body.accept(new)
+    return [(new, speed, _stiffness(state, new, k), dt)]
+
+
+def _in_halves(
+    step: Callable[[Any], list],
+    start: Any,
+    clock: Any,
+    ended: Callable[[Any], bool],
+    failures: tuple[type[Exception], ...],
+    cuts: int = 0,
+) -> list:
+    """``step(start)``: the states one time step of ``clock.dt`` (s) reaches; where it fails
+    (``failures``: a Newton, the secant), the step in two halves of dt / 2 (``clock.dt`` set to
+    it), cut again where they fail, at most :data:`MAX_STEP_CUTS` deep.
+
+    Each half is a step of its own, its history committed before the next, so the energy
+    account holds at every recorded state as with uniform steps; the second half is skipped
+    where the first ``ended`` the contact. Near separation a relaxing massless body with
+    friction lets many stuck nodes go in one step, and the Newton after that jump stalls (the
+    surface folds at the axis); the smaller step lets them go fewer at a time. A step that
+    needs no cut is the uncut step, bit for bit.
+    """
+    try:
+        return step(start)
+    except failures:
+        if cuts == MAX_STEP_CUTS:
+            raise
+    dt = clock.dt
+    clock.dt = 0.5 * dt
+    try:
+        first = _in_halves(step, start, clock, ended, failures, cuts + 1)
+        if ended(first[-1]):
+            return first
+        return first + _in_halves(step, first[-1], clock, ended, failures, cuts + 1)
+    finally:
+        clock.dt = dt
+
+
 def march_massless(
     body: QuasiStaticBody, mass: float, velocity: float, dt: float, scales: tuple[float, float]
 ) -> tuple[tuple[np.ndarray, ...], float | None]:
@@ -906,30 +977,32 @@ def march_massless(
     function of X: it steps by the trapezoidal rule on the contact force (second order, as
     Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
     its history committed at every step, until the force vanishes with the striker
-    rebounding. ``scales``: the longest run (s) and q of P ~ X^q. Returns the columns t, X,
-    V, P, stored energy and, for a viscoelastic body or a contact with friction, the body's
-    kinetic (0) and dissipated energies (SI); and the separation time (s; None for an elastic
-    frictionless body, nan if the run ended first).
+    rebounding. A step whose contact fails is cut in halves (:func:`_in_halves`; the steps
+    cut are counted in ``body.cuts``). ``scales``: the longest run (s) and q of P ~ X^q.
+    Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or a contact
+    with friction, the body's kinetic (0) and dissipated energies (SI); and the separation
+    time (s; None for an elastic frictionless body, nan if the run ended first).
     """
     duration, exponent = scales
     state, v, t, k = body.zero, velocity, 0.0, 0.0
     extra = (0.0, 0.0) if body.viscous or body.frictional else ()
     gradient = _mean_force if body.history_dependent else _discrete_gradient
+    one = partial(_massless_step, body, mass, gradient)
+    body.dt = dt
 
     def step() -> list[tuple[tuple, bool]]:
         nonlocal state, v, t, k
         if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
             return []
-        new, v = _step(body, state, (v, mass), (dt, k), gradient)
-        if new.depth > 0 and state.depth > 0 and new.depth != state.depth:
-            k = max((new.force - state.force) / (new.depth - state.depth), 0.0)
-        state, t = body.commit(new), t + dt
-        if state.depth > 0:
-            body.accept(state)
-        row = (t, state.depth, v, state.force, state.energy)
-        row += (0.0, state.dissipated) if extra else ()
-        ended = (state.force == 0.0 and v < 0.0) or state.depth <= 0.0
-        return [(row, body.history_dependent and ended)]
+        pieces = _in_halves(one, (state, v, k), body, _ended, (NumericalFailureError,))
+        rows, body.cuts = [], body.cuts + (len(pieces) > 1)
+        for piece in pieces:
+            state, v, k, interval = piece
+            t += interval
+            row = (t, state.depth, v, state.force, state.energy)
+            row += (0.0, state.dissipated) if extra else ()
+            rows.append((row, body.history_dependent and _ended(piece)))
+        return rows
 
     table, separation = march_steps(step, (0.0, 0.0, v, 0.0, 0.0, *extra), exponent)
     return tuple(table.T), (separation if body.history_dependent else None)
@@ -950,6 +1023,7 @@ class _InertialSystem:
         self.mass = mass
         self.alpha_m, self.beta, self.gamma = scheme.alpha_m, scheme.beta, scheme.gamma
         self.dt = scheme.dt  # halved where a step is cut
+        self.cuts = 0  # the time steps cut in halves (:func:`march_inertial`)
         coo = mass.tocoo()
         self.mass_data = np.zeros(system.pattern.nnz)
         np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
@@ -1081,33 +1155,21 @@ def _cut_step(
     state: _Dynamic,
     mass: float,
     scales: tuple[float, float, float],
-    cuts: int = 0,
 ) -> tuple[list[_Dynamic], int]:
-    """One time step of :func:`_dynamic_step`, or where it fails, the step in two halves.
+    """One time step of :func:`_dynamic_step`, or where it fails, in halves (:func:`_in_halves`:
+    each half a Bossak step of dt / 2, same alpha_m, beta, gamma, started like any step from
+    the state before it): the states reached (in time order) and the converged Newton
+    iterations."""
+    iterations = 0
 
-    Each half is a Bossak step of dt / 2 (same alpha_m, beta, gamma), started like any step
-    from the state before it, and cut again where it fails, at most MAX_STEP_CUTS deep. The
-    halves' states are recorded as steps of their own, so the energy account holds at every
-    recorded state as with uniform steps; the second half is skipped if the first ends the
-    contact. Returns the states reached (in time order) and the converged Newton iterations.
-    A step that needs no cut is the uncut step, bit for bit.
-    """
-    try:
-        new, iterations = _dynamic_step(stepper, inertial, state, mass, scales)
-        return [new], iterations
-    except (NewtonError, NumericalFailureError):
-        if cuts == MAX_STEP_CUTS:
-            raise
-    dt = inertial.dt
-    inertial.dt = 0.5 * dt
-    try:
-        first, iterations = _cut_step(stepper, inertial, state, mass, scales, cuts + 1)
-        if _separated(first[-1]):
-            return first, iterations
-        second, more = _cut_step(stepper, inertial, first[-1], mass, scales, cuts + 1)
-    finally:
-        inertial.dt = dt
-    return first + second, iterations + more
+    def step(start: _Dynamic) -> list[_Dynamic]:
+        nonlocal iterations
+        new, count = _dynamic_step(stepper, inertial, start, mass, scales)
+        iterations += count
+        return [new]
+
+    failures = (NewtonError, NumericalFailureError)
+    return _in_halves(step, state, inertial, _separated, failures), iterations
 
 
 def _separated(state: _Dynamic) -> bool:
@@ -1156,7 +1218,8 @@ def march_inertial(
     ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
     run (s) and q of P ~ X^q (for the separation time between steps). Returns the columns
     t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
-    (s; nan if the run ended first) and the last state.
+    (s; nan if the run ended first) and the last state; the steps cut in halves are counted
+    in ``inertial.cuts``.
     """
     mass, velocity = striker
     depth_scale, duration, exponent = scales
@@ -1187,6 +1250,7 @@ def march_inertial(
                 raise locked from None
             raise _step_failure(stepper, (t, state.depth, deepest), error) from None
         total, rows = total + iterations, []
+        inertial.cuts += len(states) > 1
         for new in states:
             force, previous = float(new.lam.sum()), float(state.lam.sum())
             if new.depth != state.depth:

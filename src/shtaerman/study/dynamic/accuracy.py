@@ -17,7 +17,10 @@ ladder with those steps (its time error is smaller than its place in the ladder 
 enlarges the last difference: the estimate stays on the safe side). If the retry fails too, the
 ladder keeps the levels that passed, reports the finest of them and marks the estimate as
 missing, with the reason (:attr:`ImpactLadder.missing`) and a warning; it fails only when no
-level passed.
+level passed. A finite-strain run first cuts a failing time step in halves within the run
+(:mod:`shtaerman.fem.finite_dynamic`), so its level keeps its steps and the ladder its ratio.
+Whatever was retried or cut is said once, in one line (:class:`RetriedWarning`), and carried by
+the reported run (``retried``).
 
 The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``): x_max
 converges regularly, while P_max, t_contact and e scatter from level to level (the graded
@@ -97,8 +100,9 @@ class EstimateMissingWarning(UserWarning):
 
 
 class RetriedWarning(UserWarning):
-    """A level failed at its time steps and passed with :data:`RETRY_STEPS` times as many:
-    its result is of the steps it passed with, not of those asked for."""
+    """A level failed at its time steps and passed with :data:`RETRY_STEPS` times as many, or
+    cut some time steps in halves: its result is of the steps it passed with, not of those
+    asked for."""
 
 
 class ImpactSettings(Protocol):
@@ -241,7 +245,8 @@ def _level(
     run: Callable[[Settings], ImpactRun], settings: Settings
 ) -> tuple[Settings, ImpactRun | Exception, str]:
     """One level run; on a numerical failure run again with :data:`RETRY_STEPS` x its time
-    steps. Returns the settings last used, the result (or the last error) and a note."""
+    steps. Returns the settings last used, the result (or the last error) and a note (a
+    retried run's ``retried`` says it too)."""
     try:
         return settings, run(settings), ""
     except GentLockError:  # the rubber's limit, not the numerics: no retry cures it
@@ -253,9 +258,11 @@ def _level(
     except InputError:  # already at the most time steps: a retry would fail the same way
         return settings, failed, f"{first}; no retry beyond the most time steps"
     try:
-        return retry, run(retry), f"{first}; passed with {retry.steps} steps"
+        result = run(retry)
     except FAILURES as error:
         return retry, error, f"{first}; the retry with {retry.steps} steps failed too ({error})"
+    note = f"{first}; passed with {retry.steps} steps"
+    return retry, replace(result, retried="; ".join(filter(None, (note, result.retried)))), note
 
 
 def run_ladder(
@@ -311,29 +318,29 @@ def run_ladder(
     if all(result is None for result in results):
         raise outcomes[-1]
     refines = tuple(refine * factor for factor in factors)
-    _say_retries(refines, notes, results)
+    said = _say_retries(refines, results)
+    if said:  # the reported run carries the ladder's one line
+        last = max(i for i, result in enumerate(results) if result is not None)
+        results = (*results[:last], replace(results[last], retried=said), *results[last + 1 :])
     missing = _missing(refines, notes, results)
     estimates = ladder_estimates(results) if estimate and not missing else {}
     return ImpactLadder(refines, used, results, estimates, notes, missing)
 
 
-def _say_retries(
-    refines: tuple[float, ...], notes: tuple[str, ...], results: tuple[ImpactRun | None, ...]
-) -> None:
-    """Say once the levels that passed only on their retry (their steps are not the asked)."""
+def _say_retries(refines: tuple[float, ...], results: tuple[ImpactRun | None, ...]) -> str:
+    """Say once, in one line, what the levels that passed retried (a level run again with
+    more time steps, time steps cut in halves: their steps are not the asked); returns the
+    line ("" for none)."""
     retried = [
-        f"refine {f:.3g}: {n}"
-        for f, n, r in zip(refines, notes, results, strict=True)
-        if n and r is not None
+        f"refine {f:.3g}: {r.retried}"
+        for f, r in zip(refines, results, strict=True)
+        if r is not None and r.retried
     ]
-    if retried:
-        warnings.warn(
-            "a level passed only with more time steps, "
-            + "; ".join(retried)
-            + " (the result is of the steps it passed with)",
-            RetriedWarning,
-            stacklevel=caller_stacklevel(),
-        )
+    if not retried:
+        return ""
+    line = "; ".join(retried) + " (the result is of the steps it passed with)"
+    warnings.warn(f"retried: {line}", RetriedWarning, stacklevel=caller_stacklevel())
+    return line
 
 
 def _missing(
