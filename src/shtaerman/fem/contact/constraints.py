@@ -18,7 +18,8 @@ factorization, :mod:`.stick`; the finite-strain body: Newton, :mod:`.finite_stic
   nor leave);
 - with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu times its normal
   force slides (its shear is then mu times the normal force, against its slip), and a sliding
-  node whose slip reverses sticks again where it was at the last step.
+  node whose slip reverses sticks again where it was at the last step (where it touched, if
+  it touched in this step: its slip is measured from there).
 
 All violated conditions change at once; should a contact set repeat, one node at a time
 (:func:`worst_only`).

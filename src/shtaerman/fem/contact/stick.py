@@ -209,11 +209,13 @@ def stick_slip_step(
         held, slip, radial = state.held, state.slip, now.radial
         held[enter] = last.radial[enter] + closing * (radial[enter] - last.radial[enter])
         held[release] = np.nan
-        held[to_stick] = last.radial[to_stick]
+        origin = state.radial.copy()  # a node touching in this step slides from its touch
+        origin[enter] = held[enter]
+        held[to_stick] = origin[to_stick]
         slip[to_slip] = -np.sign(traction[to_slip])
         slip[release | to_stick] = 0
         active = (state.active & ~release) | enter
-        return StickState(active, held, last.radial, last.gap, slip)
+        return StickState(active, held, origin, last.gap, slip)
 
     start = StickState(last.active, last.held.copy(), last.radial, last.gap, last.slip.copy())
     limit = MAX_ACTIVE_SET_ITERATIONS + 2 * m
