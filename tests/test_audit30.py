@@ -211,12 +211,6 @@ def test_the_finite_impact_out_folder_holds_the_vtu_fields_its_help_promises(tmp
 # --- a refusal names the value given and the option's own range --------------------------------
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="study/dynamic/accuracy.py:check_ladder: with --refine 0.8, --mesh-size 0.1 is "
-    "refused as 'must lie in (0, 0.1] ..., got 0.125': both divided by refine, so the value "
-    "given is said to be outside the range it lies in; the option's range is (0, 0.08]",
-)
 def test_a_mesh_size_refused_with_refine_names_the_value_given_and_its_range(capsys):
     argv = ["dynamic", "--mesh-size", "0.1", "--refine", "0.8", "--time-steps", "200"]
     assert main(argv) == 2
