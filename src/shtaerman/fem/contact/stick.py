@@ -17,8 +17,9 @@ the step gives without new contact forces (static: 0).
 The static contact (u_z = f(r) - d in contact) is loaded over the geometric ladder
 :func:`.constraints.depth_ladder` (ratio ``step_ratio``) from the depth at which the indenter
 reaches candidate node :data:`.constraints.START_NODE` up to the last, the requested depths
-included. Its A is the surface compliance of the candidates' u_z and u_r dofs, from the one
-sparse factorization with both dofs of every candidate eliminated last
+included; a step whose stick and slip sets cycle is cut in smaller ones
+(:func:`.constraints.cut_step`). Its A is the surface compliance of the candidates' u_z and
+u_r dofs, from the one sparse factorization with both dofs of every candidate eliminated last
 (:class:`shtaerman.fem.solver.TailFactorization`). The force reported is the sum of the nodal
 normal forces (the vertex alignment of :func:`.linear.aligned_force` needs a history-free
 contact); the tangential nodal forces (N, on the body, along +r) are kept per depth for the
@@ -38,11 +39,13 @@ from threadpoolctl import threadpool_limits
 from ...validation import NumericalFailureError
 from ..elasticity import ElasticSystem
 from .constraints import (
+    CUTS,
     MAX_ACTIVE_SET_ITERATIONS,
     ROUND_OFF,
     START_NODE,
     STEP_RATIO,
     check_loading,
+    cut_step,
     depth_ladder,
     settle,
     unsettled,
@@ -238,14 +241,18 @@ def _load_history(
     heights = np.asarray(profile(normal.r), dtype=float)
     state, offset = StickState.untouched(heights), np.zeros(coupled.radial_dofs.size)
     start = float(heights[min(START_NODE, heights.size - 1)])
+    previous = 0.0
+
+    def step(depth: float, last: StickState) -> StickState | None:
+        return stick_slip_step(coupled, heights - depth, offset, last, friction)
 
     def advance(depth: float) -> int:
-        nonlocal state
-        solved = stick_slip_step(coupled, heights - depth, offset, state, friction)
+        nonlocal state, previous
+        solved, taken = cut_step(step, state, (previous, depth), CUTS)
         if solved is None:
             raise unsettled(depth)
-        state = solved
-        return 1
+        state, previous = solved, depth
+        return taken
 
     def record(depth: float, taken: int) -> ContactStep:
         solved = (state.forces, state.gap, taken)
