@@ -246,13 +246,13 @@ CUTS = 2
 """... and each sub-step that cycles again likewise, down to 1 / SUB_STEPS**CUTS of the step."""
 
 
-def unsettled(depth: float) -> NumericalFailureError:
+def unsettled(depth: float, cut: int = 1) -> NumericalFailureError:
     """The failure of a load step at ``depth`` (m) whose stick and slip sets keep cycling,
-    even cut in :data:`SUB_STEPS` ** :data:`CUTS` sub-steps."""
+    even in load steps ``cut`` times smaller (:func:`cut_step`)."""
+    smaller = f", even in load steps {cut} times smaller" if cut > 1 else ""
     return NumericalFailureError(
-        f"depth {depth:g} m: the contact's stick and slip did not settle, even in load steps "
-        f"{SUB_STEPS**CUTS} times smaller; refine the mesh (refine=...) or take another mesh "
-        "size (mesh_size=...)"
+        f"depth {depth:g} m: the contact's stick and slip did not settle{smaller}; refine the "
+        "mesh (refine=...) or take another mesh size (mesh_size=...)"
     )
 
 

@@ -44,6 +44,7 @@ from .constraints import (
     ROUND_OFF,
     START_NODE,
     STEP_RATIO,
+    SUB_STEPS,
     check_loading,
     cut_step,
     depth_ladder,
@@ -250,7 +251,7 @@ def _load_history(
         nonlocal state, previous
         solved, taken = cut_step(step, state, (previous, depth), CUTS)
         if solved is None:
-            raise unsettled(depth)
+            raise unsettled(depth, SUB_STEPS**CUTS)
         state, previous = solved, depth
         return taken
 
