@@ -1,6 +1,9 @@
 """The contact ladder's Coulomb pad (issue 28's case), its failed levels and its advice."""
 
+import json
+
 import shtaerman as sh
+from shtaerman.cli import main
 
 PAD = sh.PowerLawIndenter(8.0, 1.3)
 RUBBER = sh.Material(3e6, 0.49)
@@ -41,3 +44,66 @@ def test_a_load_step_whose_sets_cycle_is_cut_in_smaller_ones(monkeypatch):
     # deepest force by the load step's own error, far below the ladder's spread (3e-4;
     # measured: 0 on this step)
     assert abs(cut.force[-1] / uncut.force[-1] - 1.0) < 1e-4, cut.force[-1] / uncut.force[-1] - 1
+
+
+PAD_CLI = ["contact", "--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6"]
+PAD_CLI += ["--nu2", "0.49", "--mass", "0.12", "--velocity", "1.5", "--thickness", "0.012"]
+PAD_CLI += ["--interface", "bonded", "--friction", "0.5", "--json"]
+"""Issue 28's Coulomb pad curve on the command line (its ladder: 6807, 12795, 24350 dofs)."""
+
+
+def failing_level(monkeypatch, failing: int) -> None:
+    """Make the ``failing``-th level run (1 = the coarsest) of the contact ladder fail as an
+    unsettled load step does."""
+    from shtaerman.fem.contact.constraints import unsettled
+    from shtaerman.study.contact import accuracy
+
+    real, calls = accuracy.run_indentation, []
+
+    def run(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == failing:
+            raise unsettled(0.005, 16)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(accuracy, "run_indentation", run)
+
+
+def test_a_failed_middle_level_leaves_the_finest_with_its_estimate_said_missing(
+    monkeypatch, capsys
+):
+    failing_level(monkeypatch, 2)
+    code = main(PAD_CLI)
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    document = json.loads(out)
+    assert document["mesh"]["dofs"] == 24350  # the finest level answers
+    assert document["error_estimate"] is None and document["estimate_details"] is None
+    assert "refine 0.707: depth 0.005 m: the contact's stick" in document["estimate_missing"]
+    dofs = [level["dofs"] for level in document["mesh_ladder"]]
+    assert dofs == [6807, None, 24350], dofs
+    # the JSON is the API's to_dict (its words); the warning names the option too
+    assert "(refine=...)" in document["mesh_ladder"][1]["failure"]
+    assert "no error estimate" in err and "the finest level that passed (refine 1)" in err
+    assert "--refine" in err, err
+
+
+def test_a_failed_finest_level_reports_the_finest_that_passed(monkeypatch, capsys):
+    failing_level(monkeypatch, 3)
+    code = main(PAD_CLI[:-1])  # the text report
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    assert "12795 dofs" in out and "no error estimate (ladder 6807, 12795, failed)" in out, out
+    assert "(--refine)" in out and "refine=" not in out, out  # in the option's words
+    assert "the finest level that passed (refine 0.707)" in err, err
+
+
+def test_a_ladder_whose_every_level_fails_names_the_option_to_change(monkeypatch, capsys):
+    from shtaerman.fem.contact import stick
+
+    monkeypatch.setattr(stick, "stick_slip_step", lambda *args: None)
+    assert main(PAD_CLI) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1, err
+    assert "did not settle, even in load steps 16 times smaller" in err, err
+    assert "(--refine)" in err and "(--mesh-size)" in err, err
