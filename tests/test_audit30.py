@@ -230,13 +230,6 @@ PAD_FRICTION += ["--interface", "bonded", "--friction", "0.5"]
 --friction 0.5 (x/a 2.27: it warns, far outside small strain)."""
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="study/contact/accuracy.py:run_mesh_ladder (_level): one ladder mesh's 'stick and "
-    "slip did not settle' (fem/contact/constraints.py:unsettled, whose advice names no option) "
-    "aborts the whole run, exit 1, though the finest level alone (--no-estimate) runs: no "
-    "retry with smaller load steps, no finest-level-with-estimate-missing (issue 28's case)",
-)
 def test_the_issues_coulomb_pad_curve_runs_with_its_estimate_or_says_it_is_missing(capsys):
     code = main(["contact", *PAD_FRICTION, "--json"])
     out, err = capsys.readouterr()
