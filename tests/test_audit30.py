@@ -244,13 +244,6 @@ def test_the_issues_coulomb_pad_curve_runs_with_its_estimate_or_says_it_is_missi
 # --- every combination runs or is refused before any work (issue 28 item 3) -------------------
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="fem/finite_dynamic.py:prepare_finite_impact: beyond the finite-strain reach (x/a "
-    "2.27 > 1.2) a bonded or Coulomb pad is refused before any work, naming 'interface="
-    "frictionless runs beyond it with a warning'; the frictionless massless pad then fails "
-    "after 10 s of Newton ('failed at depth 0.0026 m', exit 1; 3.3 mm on the default mesh)",
-)
 def test_the_massless_frictionless_pad_beyond_the_reach_runs_or_is_refused_first(capsys):
     """The issue's 'massless neo-Hookean on the pad: Newton failed at 0.66 mm', now further
     down (its inertial twin runs to x_max 5.9 mm with the depth warning)."""

@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 import shtaerman as sh
 from shtaerman.cli import main
 
@@ -107,3 +109,21 @@ def test_a_ladder_whose_every_level_fails_names_the_option_to_change(monkeypatch
     assert err.count("\n") == 1, err
     assert "did not settle, even in load steps 16 times smaller" in err, err
     assert "(--refine)" in err and "(--mesh-size)" in err, err
+
+
+def test_the_massless_pad_beyond_the_reach_is_refused_on_every_route():
+    """The study and sweep routes call prepare_finite_impact without the API's check: the
+    massless frictionless pad beyond the reach (x/a 2.27 > 1.2) is refused there too, before
+    any mesh (on the old code it was meshed and then failed in Newton at 2.6 mm)."""
+    from dataclasses import replace
+
+    from shtaerman.fem.finite_dynamic import IMPACT_MESH, prepare_finite_impact
+    from shtaerman.fem.finite_dynamic import FiniteImpactSettings as Settings
+    from shtaerman.validation import InputError
+
+    settings = Settings(mesh=replace(IMPACT_MESH, thickness=0.012))
+    with pytest.raises(InputError, match=r"a massless body \(density2=0\) cannot pass") as error:
+        prepare_finite_impact(PAD, RUBBER, 0.0, 0.12, 1.5, settings)
+    assert "mass, velocity" in str(error.value) and "\n" not in str(error.value)
+    # with inertia the frictionless pad is not refused here: it runs with a warning
+    assert prepare_finite_impact(PAD, RUBBER, 1000.0, 0.12, 1.5, settings).mesh["dofs"] > 0
