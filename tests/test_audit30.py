@@ -211,12 +211,6 @@ def test_the_finite_impact_out_folder_holds_the_vtu_fields_its_help_promises(tmp
 # --- a refusal names the value given and the option's own range --------------------------------
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="study/dynamic/accuracy.py:check_ladder: with --refine 0.8, --mesh-size 0.1 is "
-    "refused as 'must lie in (0, 0.1] ..., got 0.125': both divided by refine, so the value "
-    "given is said to be outside the range it lies in; the option's range is (0, 0.08]",
-)
 def test_a_mesh_size_refused_with_refine_names_the_value_given_and_its_range(capsys):
     argv = ["dynamic", "--mesh-size", "0.1", "--refine", "0.8", "--time-steps", "200"]
     assert main(argv) == 2
@@ -236,13 +230,6 @@ PAD_FRICTION += ["--interface", "bonded", "--friction", "0.5"]
 --friction 0.5 (x/a 2.27: it warns, far outside small strain)."""
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="study/contact/accuracy.py:run_mesh_ladder (_level): one ladder mesh's 'stick and "
-    "slip did not settle' (fem/contact/constraints.py:unsettled, whose advice names no option) "
-    "aborts the whole run, exit 1, though the finest level alone (--no-estimate) runs: no "
-    "retry with smaller load steps, no finest-level-with-estimate-missing (issue 28's case)",
-)
 def test_the_issues_coulomb_pad_curve_runs_with_its_estimate_or_says_it_is_missing(capsys):
     code = main(["contact", *PAD_FRICTION, "--json"])
     out, err = capsys.readouterr()
@@ -257,13 +244,6 @@ def test_the_issues_coulomb_pad_curve_runs_with_its_estimate_or_says_it_is_missi
 # --- every combination runs or is refused before any work (issue 28 item 3) -------------------
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="fem/finite_dynamic.py:prepare_finite_impact: beyond the finite-strain reach (x/a "
-    "2.27 > 1.2) a bonded or Coulomb pad is refused before any work, naming 'interface="
-    "frictionless runs beyond it with a warning'; the frictionless massless pad then fails "
-    "after 10 s of Newton ('failed at depth 0.0026 m', exit 1; 3.3 mm on the default mesh)",
-)
 def test_the_massless_frictionless_pad_beyond_the_reach_runs_or_is_refused_first(capsys):
     """The issue's 'massless neo-Hookean on the pad: Newton failed at 0.66 mm', now further
     down (its inertial twin runs to x_max 5.9 mm with the depth warning)."""

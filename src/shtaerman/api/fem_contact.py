@@ -263,7 +263,7 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     from ..study.finite.indentation import run_finite_study
 
     inputs = (plan.indenter, plan.body, plan.depths)
-    steps = {"progress": plan.progress, "refine": plan.refine}
+    steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
     if not plan.estimate:
         finest = plan.mesh.refined(plan.refine)
         if plan.finite:

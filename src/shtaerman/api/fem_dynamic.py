@@ -351,7 +351,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     import warnings
 
     from ..fem.dynamic_contact import check_dynamic_impact
-    from ..fem.finite_dynamic import PAD_FRICTION_REACH
+    from ..fem.finite_dynamic import pad_reach_note
     from ..guards import check_reach
     from ..study.dynamic.case import exact_impact
     from ..theory.impact import representable
@@ -371,9 +371,9 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
             check_dynamic_impact(*inputs, settings, *physics)
             return
     validate_density("density2", body.density)
-    unbounded = problem.geometry.thickness is None  # a pad stops the striker short of x_c,
-    if unbounded or problem.interface.coefficient:  # which a frictional one cannot pass
-        note = "" if unbounded else PAD_FRICTION_REACH
+    pad = problem.geometry.thickness is not None  # it stops the striker short of x_c
+    note = pad_reach_note(pad, problem.interface.coefficient, inputs[2])
+    if note is not None:
         check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True, note)
 
 

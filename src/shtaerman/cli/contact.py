@@ -9,6 +9,7 @@ from inspect import signature
 from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
 from ..fem.contact.finite import FINITE_MESH
 from ..fem.mesh import DEFAULTS
+from ..problem import worded
 from ..theory.materials import Material
 from ..vocabulary import entry, fields
 from . import common
@@ -267,6 +268,9 @@ def _impact_words(report: dict) -> str:
 
 def _estimate_text(report: dict) -> list[str]:
     ladder = report["mesh_ladder"]
+    if report.get("estimate_missing"):  # a level failed: the finest that passed is reported
+        dofs = ", ".join("failed" if lv["dofs"] is None else str(lv["dofs"]) for lv in ladder)
+        return [f"  no error estimate (ladder {dofs}): {worded(report['estimate_missing'], 'cli')}"]
     estimate, true = report["error_estimate"], report.get("true_error")
     head = (
         f"  estimated errors (ladder {', '.join(str(level['dofs']) for level in ladder)} dofs, "

@@ -18,7 +18,8 @@ factorization, :mod:`.stick`; the finite-strain body: Newton, :mod:`.finite_stic
   nor leave);
 - with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu times its normal
   force slides (its shear is then mu times the normal force, against its slip), and a sliding
-  node whose slip reverses sticks again where it was at the last step.
+  node whose slip reverses sticks again where it was at the last step (where it touched, if
+  it touched in this step: its slip is measured from there).
 
 All violated conditions change at once; should a contact set repeat, one node at a time
 (:func:`worst_only`).
@@ -26,6 +27,7 @@ All violated conditions change at once; should a contact set repeat, one node at
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -237,12 +239,40 @@ def check_loading(step_ratio: float, friction: float) -> None:
         raise InputError(f"friction: must be >= 0 (inf: no slip), got {friction!r}", "friction")
 
 
-def unsettled(depth: float) -> NumericalFailureError:
-    """The failure of a load step at ``depth`` (m) whose stick and slip sets keep cycling."""
+SUB_STEPS = 4
+"""A load step whose stick and slip sets cycle is taken again as this many geometric
+sub-steps (:func:`cut_step`)..."""
+CUTS = 2
+"""... and each sub-step that cycles again likewise, down to 1 / SUB_STEPS**CUTS of the step."""
+
+
+def unsettled(depth: float, cut: int = 1) -> NumericalFailureError:
+    """The failure of a load step at ``depth`` (m) whose stick and slip sets keep cycling,
+    even in load steps ``cut`` times smaller (:func:`cut_step`)."""
+    smaller = f", even in load steps {cut} times smaller" if cut > 1 else ""
     return NumericalFailureError(
-        f"depth {depth:g} m: the contact's stick and slip did not settle; refine the mesh near "
-        "the edge or take smaller load steps"
+        f"depth {depth:g} m: the contact's stick and slip did not settle{smaller}; refine the "
+        "mesh (refine=...) or take another mesh size (mesh_size=...)"
     )
+
+
+def cut_step(
+    step: Callable[[float, Any], Any | None], state: Any, depths: tuple[float, float], cuts: int
+) -> tuple[Any | None, int]:
+    """The contact at ``depths[1]`` (m) from ``state``, the contact at ``depths[0]``:
+    ``step(depth, state)`` (None when its sets cycle) or, should it cycle, :data:`SUB_STEPS`
+    geometric sub-steps, each cut again the same way up to ``cuts`` times. Returns the
+    contact (None if a sub-step still cycles) and the steps taken."""
+    solved = step(depths[1], state)
+    if solved is not None or cuts == 0 or not depths[0] > 0.0:
+        return solved, 1
+    taken = 1
+    for start, end in itertools.pairwise(np.geomspace(*depths, SUB_STEPS + 1)):
+        state, count = cut_step(step, state, (float(start), float(end)), cuts - 1)
+        taken += count
+        if state is None:
+            break
+    return state, taken
 
 
 def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndarray:

@@ -17,8 +17,9 @@ the step gives without new contact forces (static: 0).
 The static contact (u_z = f(r) - d in contact) is loaded over the geometric ladder
 :func:`.constraints.depth_ladder` (ratio ``step_ratio``) from the depth at which the indenter
 reaches candidate node :data:`.constraints.START_NODE` up to the last, the requested depths
-included. Its A is the surface compliance of the candidates' u_z and u_r dofs, from the one
-sparse factorization with both dofs of every candidate eliminated last
+included; a step whose stick and slip sets cycle is cut in smaller ones
+(:func:`.constraints.cut_step`). Its A is the surface compliance of the candidates' u_z and
+u_r dofs, from the one sparse factorization with both dofs of every candidate eliminated last
 (:class:`shtaerman.fem.solver.TailFactorization`). The force reported is the sum of the nodal
 normal forces (the vertex alignment of :func:`.linear.aligned_force` needs a history-free
 contact); the tangential nodal forces (N, on the body, along +r) are kept per depth for the
@@ -38,11 +39,14 @@ from threadpoolctl import threadpool_limits
 from ...validation import NumericalFailureError
 from ..elasticity import ElasticSystem
 from .constraints import (
+    CUTS,
     MAX_ACTIVE_SET_ITERATIONS,
     ROUND_OFF,
     START_NODE,
     STEP_RATIO,
+    SUB_STEPS,
     check_loading,
+    cut_step,
     depth_ladder,
     settle,
     unsettled,
@@ -209,11 +213,13 @@ def stick_slip_step(
         held, slip, radial = state.held, state.slip, now.radial
         held[enter] = last.radial[enter] + closing * (radial[enter] - last.radial[enter])
         held[release] = np.nan
-        held[to_stick] = last.radial[to_stick]
+        origin = state.radial.copy()  # a node touching in this step slides from its touch
+        origin[enter] = held[enter]
+        held[to_stick] = origin[to_stick]
         slip[to_slip] = -np.sign(traction[to_slip])
         slip[release | to_stick] = 0
         active = (state.active & ~release) | enter
-        return StickState(active, held, last.radial, last.gap, slip)
+        return StickState(active, held, origin, last.gap, slip)
 
     start = StickState(last.active, last.held.copy(), last.radial, last.gap, last.slip.copy())
     limit = MAX_ACTIVE_SET_ITERATIONS + 2 * m
@@ -236,14 +242,18 @@ def _load_history(
     heights = np.asarray(profile(normal.r), dtype=float)
     state, offset = StickState.untouched(heights), np.zeros(coupled.radial_dofs.size)
     start = float(heights[min(START_NODE, heights.size - 1)])
+    previous = 0.0
+
+    def step(depth: float, last: StickState) -> StickState | None:
+        return stick_slip_step(coupled, heights - depth, offset, last, friction)
 
     def advance(depth: float) -> int:
-        nonlocal state
-        solved = stick_slip_step(coupled, heights - depth, offset, state, friction)
+        nonlocal state, previous
+        solved, taken = cut_step(step, state, (previous, depth), CUTS)
         if solved is None:
-            raise unsettled(depth)
-        state = solved
-        return 1
+            raise unsettled(depth, SUB_STEPS**CUTS)
+        state, previous = solved, depth
+        return taken
 
     def record(depth: float, taken: int) -> ContactStep:
         solved = (state.forces, state.gap, taken)

@@ -8,12 +8,20 @@ every depth (the worst depth is reported, and named: ``extrapolated_depth``), be
 fitted exponent. Where the exact
 solution is known (the linear power-law contact) the true error stands beside the estimate:
 their ratio, the effectivity index, verifies the estimator itself in every run.
+
+A level whose run fails numerically (stick and slip that do not settle even in cut load steps,
+a Newton that does not converge: :data:`FAILURES`) does not abort the others when the ladder is
+run ``partial`` (the API's contact curve): the finest level that passed is reported, its
+estimate marked missing with the reason (:attr:`AccuracyResult.missing`) and a warning, as the
+impact's ladder does (:mod:`shtaerman.study.dynamic.accuracy`); it fails only when no level
+passed. The retry with finer load steps is the run's own (:func:`.constraints.cut_step`).
 """
 
 from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any, Protocol
@@ -25,7 +33,8 @@ from ...fem.mesh import DEFAULTS, MAX_DOMAIN, GradedMesh, Grading, MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.viscoelastic import PronySeries
-from ...validation import InputError, bound_text, validate_positive
+from ...validation import InputError, bound_text, caller_stacklevel, validate_positive
+from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
 from ..richardson import Estimate, curve_richardson, richardson, worst_point
 from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
@@ -130,12 +139,22 @@ class AccuracyResult:
     exact : bool
         Whether the levels' ``errors()`` are true errors against an exact solution (the
         linear contact); False for the finite-strain contact, which has none.
+    failures : tuple of (float, str)
+        The levels that failed: refinement factor and what failed; then ``estimates`` is
+        empty and :attr:`missing` says why.
     """
 
     levels: tuple[LadderLevel, ...]
     estimates: dict[str, Estimate]
     tolerance: float | None = None
     exact: bool = True
+    failures: tuple[tuple[float, str], ...] = ()
+
+    @property
+    def missing(self) -> str:
+        """Why the estimate is missing ("" when every level passed)."""
+        failed = "; ".join(f"refine {refine:.3g}: {why}" for refine, why in self.failures)
+        return f"a ladder level failed, {failed}" if failed else ""
 
     @property
     def finest(self) -> LadderCurve:
@@ -169,6 +188,8 @@ class AccuracyResult:
         """The JSON keys ``error_estimate``, ``extrapolated``, ``extrapolated_depth`` (the depth
         of each per-depth quantity's estimate, m: :meth:`worst_depths`), ``mesh_ladder`` and
         details (``true_error`` and ``effectivity`` only where the exact solution is known)."""
+        if self.failures:
+            return self._without_estimate()
         truth = {}
         if self.exact:
             truth = {
@@ -185,6 +206,25 @@ class AccuracyResult:
                 {"refine": level.refine, "dofs": level.dofs, "seconds": level.seconds}
                 for level in self.levels
             ],
+            "accuracy_target": self.tolerance,
+        }
+
+    def _without_estimate(self) -> dict[str, object]:
+        """:meth:`to_dict` of a ladder with a failed level: the estimate keys None,
+        ``estimate_missing`` why, the failed levels' dofs and seconds None."""
+        rows = [
+            {"refine": level.refine, "dofs": level.dofs, "seconds": level.seconds}
+            for level in self.levels
+        ]
+        rows += [
+            {"refine": refine, "dofs": None, "seconds": None, "failure": why}
+            for refine, why in self.failures
+        ]
+        return {
+            **dict.fromkeys(("error_estimate", "extrapolated", "extrapolated_depth")),
+            "estimate_details": None,
+            "estimate_missing": self.missing,
+            "mesh_ladder": sorted(rows, key=lambda row: row["refine"]),
             "accuracy_target": self.tolerance,
         }
 
@@ -293,6 +333,7 @@ def run_mesh_ladder(
     progress: Progress | None = None,
     exact: bool = True,
     refined: float | None = None,
+    partial: bool = False,
 ) -> AccuracyResult:
     """Any contact curve on three meshes, ``mesh`` refined by refine / 2, refine / sqrt(2)
     and refine, with the estimates of :func:`estimate_errors` for the finest.
@@ -311,13 +352,39 @@ def run_mesh_ladder(
         Whether the results' ``errors()`` are true errors (see :class:`AccuracyResult`).
     refined : float, optional
         Refined-zone radius in m of the curve, for a layer's size guard before any level.
+    partial : bool
+        Keep the levels that passed when another fails numerically (:data:`FAILURES`): the
+        finest that passed answers, without estimate (an :class:`EstimateMissingWarning`);
+        else the first failure is raised.
+
+    Raises
+    ------
+    NewtonError, shtaerman.validation.NumericalFailureError
+        A level's failure (``partial``: the finest level's, when no level passed).
     """
     refine = validate_positive("refine", refine)
     check_ladder(mesh, refine, refined)  # every level checked before the first is computed
-    factors = ladder_factors(refine)
     report = progress or (lambda _line: None)
-    levels = tuple(_level(solve, mesh, factor, report) for factor in factors)
-    return AccuracyResult(levels, estimate_errors(levels), exact=exact)
+    levels, failures = [], []
+    for factor in ladder_factors(refine):
+        try:
+            levels.append(_level(solve, mesh, factor, report))
+        except FAILURES as error:
+            if not partial or (factor == refine and not levels):
+                raise
+            failures.append((factor, str(error)))
+            report(f"mesh x{factor:.3g}: failed ({error})")
+    if not failures:
+        return AccuracyResult(tuple(levels), estimate_errors(tuple(levels)), exact=exact)
+    result = AccuracyResult(tuple(levels), {}, exact=exact, failures=tuple(failures))
+    warnings.warn(
+        f"no error estimate: {result.missing}; the finest level that passed (refine "
+        f"{levels[-1].refine:.3g}) is reported. Another mesh (refine, --refine; mesh_size, "
+        "--mesh-size) may pass",
+        EstimateMissingWarning,
+        stacklevel=caller_stacklevel(),
+    )
+    return result
 
 
 def _linear(
@@ -339,6 +406,7 @@ def run_ladder(
     progress: Progress | None = None,
     prony: PronySeries | None = None,
     rate: float | None = None,
+    partial: bool = False,
 ) -> AccuracyResult:
     """The contact on three meshes, refine / 2, refine / sqrt(2), refine: the finest answers.
 
@@ -352,6 +420,8 @@ def run_ladder(
         Refinement factor of the finest level: element sizes divided by it everywhere.
     progress : callable, optional
         Receives one line per level.
+    partial : bool
+        As for :func:`run_mesh_ladder`.
 
     Returns
     -------
@@ -361,8 +431,9 @@ def run_ladder(
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     solve = _linear(indenter, half_space, depths, backend, prony=prony, rate=rate)
     refined = refined_radius(indenter, depths, mesh)
+    exact = _exact(mesh)
     return run_mesh_ladder(
-        solve, mesh, refine=refine, progress=progress, exact=_exact(mesh), refined=refined
+        solve, mesh, refine=refine, progress=progress, exact=exact, refined=refined, partial=partial
     )
 
 

@@ -205,8 +205,8 @@ def check_ladder(
     if settings.size / lowest > MAX_SIZE * (1.0 + 1e-12):
         raise InputError(
             f"mesh_size: the error-estimate ladder's coarsest level doubles the mesh size, so it "
-            f"must lie in (0, {MAX_SIZE * lowest / refine:g}] with the estimate (or turn the "
-            f"estimate off), got {settings.size / refine!r}",
+            f"must lie in (0, {MAX_SIZE * lowest:g}] with the estimate at refine {refine:g} (or "
+            f"turn the estimate off), got {settings.size!r}",
             "mesh_size",
         )
     try:
