@@ -146,12 +146,6 @@ def test_a_finite_strain_study_takes_the_interface_and_the_layer_of_the_command_
     assert study.kind == "finite-strain"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="sweep/kinds.py (contact, finite-strain kinds): the contact curve's interface, "
-    "friction, prony and rate, and the finite-strain curve's interface, friction and "
-    "thickness are no sweep parameters: a Coulomb or viscoelastic curve cannot be swept",
-)
 @pytest.mark.parametrize(
     ("kind", "options"),
     [
