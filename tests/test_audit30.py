@@ -131,12 +131,6 @@ def test_a_contact_study_takes_the_viscoelastic_curve_of_the_command_line(tmp_pa
     assert study.kind == "contact"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="study/finite/loader.py (finite-strain study kind): refuses interface and [layer], "
-    "which contact --model takes (issue 28: 'It also refuses [layer], prony and interface'); "
-    "init-study --kind finite-strain shows neither",
-)
 def test_a_finite_strain_study_takes_the_interface_and_the_layer_of_the_command_line(tmp_path):
     text = _template(tmp_path, "finite-strain")
     text = _uncommented(text.replace("# [layer]", "[layer]", 1), ("interface", "thickness"))

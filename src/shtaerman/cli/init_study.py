@@ -215,6 +215,13 @@ reach = 1.1                 # deepest depth / the linear impact's x_c, in [1, 3]
 depth_steps = 12            # equal depth steps up to it
 small_ratio = 0.01          # x/a of the first, tiny depth (the small-strain limit)
 small_steps = 5             # geometric depths from it to the first equal step
+# interface = "bonded"      # the rubber sticks to the striker (default "frictionless"); the
+                            # same-mesh linear FEM takes it too
+#   friction = 0.5          # with "bonded": Coulomb's mu >= 0 (default none: no slip)
+
+# [layer]                   # a pad of thickness H on a bonded rigid base instead of the
+# thickness = 0.02          # half-space: m, or instead
+#   thickness_ratio = 5.0   # H / a_c (a_c: the linear contact radius at the impact's x_c)
 
 # [numerics]                # the finest mesh of the error-estimate ladder (defaults shown)
 # refine = 1.0              # divide the whole mesh size field by K
