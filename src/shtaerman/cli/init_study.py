@@ -50,6 +50,10 @@ nu1 = 0.25
 E2 = 7.5e6                  # Pa
 nu2 = 0.5                   # in [0, 0.5]; 0.5 (incompressible) is exact: mixed u-p elements
 #   density2 = 1100.0       # kg/m^3: only with [layer] dynamic = true (default 1100)
+#   prony = "0.3:1e-3"      # a viscoelastic body (g1:tau1,...; with [contact] rate) is refused:
+                            # its force depends on the pressing's history, so no impact follows
+                            # from its curve; run shtaerman contact --prony --rate, or kind =
+                            # "dynamic" with [half_space] prony for the impact
 
 [impact]                    # quasi-static theory, stated valid below about 4-5 m/s
 mass = 0.7                  # kg
@@ -62,6 +66,7 @@ depths = "impact"           # 8 depths up to the impact's x_c (contact radii a_c
                             # force then departs from Shtaerman's by physics (nu2 < 0.5)
 #   friction = 0.5          # with "bonded": Coulomb's mu >= 0, a point slides where its shear
                             # exceeds mu x its pressure (default none: no slip)
+#   rate = 0.1              # pressing speed (m/s) of a viscoelastic body: only with prony
 
 [tolerances]                # relative errors that decide PASS or FAIL (these are the defaults)
 force = 1e-3                # FEM force against Shtaerman's P(x), worst over the depths

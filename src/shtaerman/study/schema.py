@@ -54,6 +54,7 @@ __all__ = [
     "load_study",
     "named",
     "normalized",
+    "prony_of",
     "refused",
     "replaced",
     "settings_of",
@@ -362,6 +363,20 @@ def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
     return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
 
 
+def prony_of(path: Path, prony: str | None) -> Any:
+    """The Prony series of ``[half_space] prony`` (None: unset), a relative .csv path taken
+    from the study file's folder; :class:`StudyError` naming the key."""
+    from ..fem.viscoelastic import prony_input
+
+    if prony is not None and prony.strip().lower().endswith(".csv"):
+        csv = Path(prony.strip())
+        prony = prony if csv.is_absolute() else str(path.parent / csv)
+    try:
+        return prony_input(prony)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
+
+
 def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:
     """velocity (m/s) -> the quasi-static impact of ``mass`` kg with the rigid ``indenter`` on
     the half-space of ``body`` (:func:`.dynamic.case.exact_impact`), solved once per velocity
@@ -519,6 +534,7 @@ STUDY_KEYS = {
     "density": "half_space.density2",
     "interface": "contact.interface",
     "friction": "contact.friction",
+    "rate": "contact.rate",
 }
 """An input's study-file key, for a refusal (:func:`refused`; a kind's own tables first)."""
 KIND_OF_TABLE = {"corrections": "finite-strain", "rubber": "finite-strain"}
