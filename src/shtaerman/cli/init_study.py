@@ -227,6 +227,7 @@ small_steps = 5             # geometric depths from it to the first equal step
 # [layer]                   # a pad of thickness H on a bonded rigid base instead of the
 # thickness = 0.02          # half-space: m, or instead
 #   thickness_ratio = 5.0   # H / a_c (a_c: the linear contact radius at the impact's x_c)
+#   base = "bonded"         # the only base at finite strain (u = 0 at z = -H)
 
 # [numerics]                # the finest mesh of the error-estimate ladder (defaults shown)
 # refine = 1.0              # divide the whole mesh size field by K

@@ -340,9 +340,10 @@ def study_name(path: Path, name: str | None) -> str:
         raise StudyError(f"{path}: key 'name': {error}") from None
 
 
-def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
-    """The layer of a ``[layer]`` table (unresolved, a :class:`.contact.layer.LayerSpec`), its
-    thickness given exactly once: in the table (m or H / a_c) or as the swept key ``swept``;
+def layer_spec(path: Path, layer: Any, swept: str | None) -> Any:
+    """The layer of a ``[layer]`` table (a :class:`LayerTable` or a kind's own, without
+    ``dynamic``; unresolved, a :class:`.contact.layer.LayerSpec`), its thickness given
+    exactly once: in the table (m or H / a_c) or as the swept key ``swept``;
     :class:`StudyError` otherwise."""
     from .contact.layer import LayerSpec
 
@@ -360,7 +361,8 @@ def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
             f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
             f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
         )
-    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
+    dynamic = getattr(layer, "dynamic", False)
+    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, dynamic)
 
 
 def prony_of(path: Path, prony: str | None) -> Any:

@@ -28,7 +28,6 @@ from ...validation import InputError
 from ..contact.loader import PROFILE_KEYS, check_profile_reach
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
-    LayerTable,
     MeshTable,
     Named,
     Poisson,
@@ -75,6 +74,15 @@ class _Contact(Table):
     small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
     interface: str = vocabulary.entry("interface").default  # checked by the Problem's parts
     friction: Any = None
+
+
+class _Layer(Table):
+    """``[layer]``: a pad on a bonded rigid base (a finite-strain study runs no dynamic impact
+    on it: its [corrections] do)."""
+
+    thickness: Positive | None = None
+    thickness_ratio: ranged("thickness_ratio") | None = None  # type: ignore[valid-type]
+    base: str = vocabulary.entry("base").default  # checked by the Problem's parts
 
 
 class _Numerics(MeshTable):
@@ -125,7 +133,7 @@ class _FiniteFile(StudyFile):
     rubber: RubberTable = RubberTable()
     sweep: _Sweep | None = None
     corrections: _Corrections | None = None
-    layer: LayerTable | None = None
+    layer: _Layer | None = None
 
 
 @dataclass(frozen=True)
@@ -247,11 +255,6 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
     rubber layer refused, in the file's words); a layer's ``thickness_ratio`` resolved at
     the linear impact's a_c."""
     layer, contact = raw.layer, raw.contact
-    if layer is not None and layer.dynamic:
-        raise StudyError(
-            f"{path}: key 'layer.dynamic': a finite-strain study has no dynamic impact on its "
-            "layer; its [corrections] table runs the impacts"
-        )
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
     parts = {"interface": contact.interface, "friction": contact.friction}
