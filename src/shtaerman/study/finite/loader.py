@@ -5,8 +5,10 @@ init-study --kind finite-strain`` writes every key, commented) runs in :mod:`.ru
 ladder (``[contact]`` reach, depth_steps, small_ratio, small_steps) pressed into the
 ``[rubber]`` body on a mesh ladder (``[numerics] ladder`` "independent": three gmsh meshes
 K/2, K/sqrt(2), K; "nested": one gmsh mesh at K/2 refined uniformly once and twice), and the
-impacts of ``[corrections]`` (:mod:`.corrections`). A ``[sweep]`` takes one of nu2, mass,
-velocity, model, volumetric.
+impacts of ``[corrections]`` (:mod:`.corrections`). ``[contact]`` interface and friction
+and a ``[layer]`` (a pad on a bonded base) are the command line's (``contact --model ...
+--interface --friction --thickness``), checked as the problem's curve. A ``[sweep]`` takes one
+of nu2, mass, velocity, model, volumetric.
 """
 
 from __future__ import annotations
