@@ -91,7 +91,7 @@ class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
     interface: str = "frictionless"
     friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
-    rate: Positive | None = None
+    rate: ranged("rate") | None = None  # type: ignore[valid-type]
 
     def __post_init__(self) -> None:
         if self.depths != "impact" and (

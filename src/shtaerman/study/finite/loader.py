@@ -75,7 +75,7 @@ class _Contact(Table):
     small_ratio: ranged("small_ratio") = vocabulary.entry("small_ratio").default
     small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
     interface: str = vocabulary.entry("interface").default  # checked by the Problem's parts
-    friction: Any = None
+    friction: ranged("friction") | None = None  # type: ignore[valid-type]
 
 
 class _Layer(Table):
