@@ -477,7 +477,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "model); unset: elastic",
         "Prony series (g_i:tau_i)",
         None,
-        ("dynamic",),
+        ("contact", "dynamic"),
         valid=None,
         type="str",
     ),
@@ -551,7 +551,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "pressing speed of a contact curve on a viscoelastic body",
         "Pressing speed V",
         None,
-        (),  # the command line's and the API's: no study or sweep takes a prony series
+        ("contact",),
     ),
     Entry(
         "depths",
@@ -623,7 +623,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "thickness H of a layer on a rigid base (a study's [layer] table too)",
         "Layer thickness H",
         None,
-        ("layer", "dynamic"),
+        ("layer", "dynamic", "finite-strain"),
     ),
     Entry(
         "thickness_ratio",
@@ -641,7 +641,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "the layer's rigid base: bonded (u = 0) or lubricated (u_z = 0, free to slide)",
         "Layer base",
         "bonded",
-        ("layer", "dynamic"),
+        ("layer", "dynamic", "finite-strain"),
         valid=None,
         type="str",
         choices=("bonded", "lubricated"),
@@ -664,7 +664,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "the indenter's surface: frictionless, or bonded (no slip once in contact)",
         "Interface",
         "frictionless",
-        ("dynamic",),
+        ("contact", "finite-strain", "dynamic"),
         valid=None,
         type="str",
         choices=("frictionless", "bonded"),
@@ -676,7 +676,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "shear exceeds friction x its pressure (no slip at all: leave it out)",
         "Friction coefficient",
         None,
-        ("dynamic",),
+        ("contact", "finite-strain", "dynamic"),
         valid=Range(0.0, 100.0, low_open=False),  # rubber on steel: up to ~3; 100 never slides
     ),
     # --- the numerics -----------------------------------------------------------------------

@@ -50,6 +50,10 @@ nu1 = 0.25
 E2 = 7.5e6                  # Pa
 nu2 = 0.5                   # in [0, 0.5]; 0.5 (incompressible) is exact: mixed u-p elements
 #   density2 = 1100.0       # kg/m^3: only with [layer] dynamic = true (default 1100)
+#   prony = "0.3:1e-3"      # a viscoelastic body (g1:tau1,...; with [contact] rate) is refused:
+                            # its force depends on the pressing's history, so no impact follows
+                            # from its curve; run shtaerman contact --prony --rate, or kind =
+                            # "dynamic" with [half_space] prony for the impact
 
 [impact]                    # quasi-static theory, stated valid below about 4-5 m/s
 mass = 0.7                  # kg
@@ -62,6 +66,7 @@ depths = "impact"           # 8 depths up to the impact's x_c (contact radii a_c
                             # force then departs from Shtaerman's by physics (nu2 < 0.5)
 #   friction = 0.5          # with "bonded": Coulomb's mu >= 0, a point slides where its shear
                             # exceeds mu x its pressure (default none: no slip)
+#   rate = 0.1              # pressing speed (m/s) of a viscoelastic body: only with prony
 
 [tolerances]                # relative errors that decide PASS or FAIL (these are the defaults)
 force = 1e-3                # FEM force against Shtaerman's P(x), worst over the depths
@@ -215,6 +220,14 @@ reach = 1.1                 # deepest depth / the linear impact's x_c, in [1, 3]
 depth_steps = 12            # equal depth steps up to it
 small_ratio = 0.01          # x/a of the first, tiny depth (the small-strain limit)
 small_steps = 5             # geometric depths from it to the first equal step
+# interface = "bonded"      # the rubber sticks to the striker (default "frictionless"); the
+                            # same-mesh linear FEM takes it too
+#   friction = 0.5          # with "bonded": Coulomb's mu >= 0 (default none: no slip)
+
+# [layer]                   # a pad of thickness H on a bonded rigid base instead of the
+# thickness = 0.02          # half-space: m, or instead
+#   thickness_ratio = 5.0   # H / a_c (a_c: the linear contact radius at the impact's x_c)
+#   base = "bonded"         # the only base at finite strain (u = 0 at z = -H)
 
 # [numerics]                # the finest mesh of the error-estimate ladder (defaults shown)
 # refine = 1.0              # divide the whole mesh size field by K

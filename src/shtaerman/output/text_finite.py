@@ -108,6 +108,27 @@ def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
     }
 
 
+def curve_finding(outcome: FiniteStudyOutcome) -> list[str]:
+    """The study's indenter surface and layer where they are not the paper's (a frictionless
+    half-space): one sentence saying what both FE curves solve and what the ratios hold."""
+    mesh = outcome.study.mesh
+    parts = []
+    if mesh.interface == "bonded":
+        slip = "no slip" if mesh.friction is None else f"Coulomb friction {mesh.friction:g}"
+        parts.append(f"the rubber is bonded to the striker ({slip})")
+    if mesh.thickness is not None:
+        parts.append(
+            f"the body is a pad H = {mesh.thickness * 1e3:.4g} mm on a {mesh.base} rigid base"
+        )
+    if not parts:
+        return []
+    return [
+        f"Beyond the paper's frictionless half-space: {' and '.join(parts)}. The finite-strain "
+        "and the same-mesh linear FEM both solve it, so P/P_linear-FEM isolates finite strain; "
+        "the comparisons with the exact half-space hold these effects too."
+    ]
+
+
 def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
     """Sentences for the report's opening section, with the measured numbers and, after a
     ladder, their estimated errors in each value's unit (± ...)."""
@@ -144,6 +165,7 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         _validity_finding(outcome),
         *([] if outcome.start is None else [outcome.start.words()]),
         *rubber_finding(outcome),
+        *curve_finding(outcome),
         QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
         *_corrections(outcome, corrections_finding),
     ]

@@ -54,6 +54,7 @@ __all__ = [
     "load_study",
     "named",
     "normalized",
+    "prony_of",
     "refused",
     "replaced",
     "settings_of",
@@ -339,9 +340,10 @@ def study_name(path: Path, name: str | None) -> str:
         raise StudyError(f"{path}: key 'name': {error}") from None
 
 
-def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
-    """The layer of a ``[layer]`` table (unresolved, a :class:`.contact.layer.LayerSpec`), its
-    thickness given exactly once: in the table (m or H / a_c) or as the swept key ``swept``;
+def layer_spec(path: Path, layer: Any, swept: str | None) -> Any:
+    """The layer of a ``[layer]`` table (a :class:`LayerTable` or a kind's own, without
+    ``dynamic``; unresolved, a :class:`.contact.layer.LayerSpec`), its thickness given
+    exactly once: in the table (m or H / a_c) or as the swept key ``swept``;
     :class:`StudyError` otherwise."""
     from .contact.layer import LayerSpec
 
@@ -359,7 +361,22 @@ def layer_spec(path: Path, layer: LayerTable | None, swept: str | None) -> Any:
             f"{path}: key 'layer': expected thickness (a number > 0, m) or thickness_ratio "
             f"({EXPECTED['thickness_ratio']}, H / a_c) (required)"
         )
-    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, layer.dynamic)
+    dynamic = getattr(layer, "dynamic", False)
+    return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, dynamic)
+
+
+def prony_of(path: Path, prony: str | None) -> Any:
+    """The Prony series of ``[half_space] prony`` (None: unset), a relative .csv path taken
+    from the study file's folder; :class:`StudyError` naming the key."""
+    from ..fem.viscoelastic import prony_input
+
+    if prony is not None and prony.strip().lower().endswith(".csv"):
+        csv = Path(prony.strip())
+        prony = prony if csv.is_absolute() else str(path.parent / csv)
+    try:
+        return prony_input(prony)
+    except InputError as error:
+        raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
 
 
 def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:
@@ -519,6 +536,7 @@ STUDY_KEYS = {
     "density": "half_space.density2",
     "interface": "contact.interface",
     "friction": "contact.friction",
+    "rate": "contact.rate",
 }
 """An input's study-file key, for a refusal (:func:`refused`; a kind's own tables first)."""
 KIND_OF_TABLE = {"corrections": "finite-strain", "rubber": "finite-strain"}

@@ -231,19 +231,55 @@ def _curve_inputs(p: dict[str, Any]):
     return indenter, half_space, depths, mesh
 
 
+CURVE_PARTS = ("model", "prony", "rate", "interface", "friction", "thickness", "base")
+"""The parts of a contact curve a contact or finite-strain case may set (as ``shtaerman
+contact`` takes them), checked by :meth:`~shtaerman.problem.Problem.curve`."""
+
+
+def _curve_problem(p: dict[str, Any], indenter: Any, half_space: Any, mesh: Any) -> tuple:
+    """The case's contact curve as :meth:`shtaerman.problem.Problem.curve` builds and checks
+    it (its parts: a Prony text, an interface, a friction, a layer; :data:`~shtaerman.problem.
+    SUPPORT` refuses what does not combine, one line naming the key), and ``mesh`` carrying
+    its interface and layer."""
+    import dataclasses
+
+    from ..problem import RUBBER_OPTIONS, Problem
+
+    model = p.get("model") or "linear"
+    given = {name: p.get(name) for name in CURVE_PARTS}
+    given |= {
+        name: p.get(name)
+        for name in RUBBER_OPTIONS
+        if RUBBER_SHAPES.get(name, model) == model and model != "linear"
+    }
+    if given["thickness"] is None:
+        given["base"] = None  # the half-space: base's default is a layer's
+    problem = Problem.curve(indenter, half_space, **given)
+    surface, geometry = problem.interface, problem.geometry
+    mesh = dataclasses.replace(mesh, interface=surface.kind, friction=surface.friction)
+    if geometry.thickness is not None:
+        mesh = dataclasses.replace(mesh, thickness=geometry.thickness, base=geometry.base)
+    return problem, mesh
+
+
 def _contact_inputs(p: dict[str, Any]):
-    """A contact case's inputs; a sphere's or a table's deepest depth (the given ``depths``,
-    else the default ones: the paper's impact's x_c) within its FE profile, as `shtaerman
-    contact` and a contact study refuse it at load."""
+    """A contact case's inputs (its curve checked as a problem, :func:`_curve_problem`); a
+    sphere's or a table's deepest depth (the given ``depths``, else the default ones: the
+    paper's impact's x_c) within its FE profile, as `shtaerman contact` and a contact study
+    refuse it at load."""
     from ..fem.solver import check_backend
     from ..study.contact.loader import check_profile_reach
     from ..theory.materials import RIGID, effective_modulus
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
+    problem, mesh = _curve_problem(p, indenter, half_space, mesh)
     impact = (vocabulary.entry("mass").default, vocabulary.entry("velocity").default)
     modulus = effective_modulus(RIGID, half_space)  # default_depths' striker
     check_profile_reach(indenter, modulus, depths, impact, overshoot=1.0)
-    return indenter, half_space, depths, mesh, check_backend(p["solver"])
+    relaxing = {}
+    if problem.body.prony is not None:
+        relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
+    return indenter, half_space, depths, mesh, check_backend(p["solver"]), relaxing
 
 
 CONTACT_OUTPUTS = {
@@ -266,9 +302,9 @@ def contact_case(p: dict[str, Any]) -> CaseResult:
     from ..guards import warn_outside_validity
     from ..study.contact.indentation import run_indentation
 
-    indenter, half_space, depths, mesh, solver = _contact_inputs(p)
+    indenter, half_space, depths, mesh, solver, relaxing = _contact_inputs(p)
     start = time.perf_counter()
-    result = run_indentation(indenter, half_space, depths, mesh, backend=solver)
+    result = run_indentation(indenter, half_space, depths, mesh, backend=solver, **relaxing)
     seconds = time.perf_counter() - start
     deepest = result.steps[-1].depth  # recorded in the case's warnings, as the API warns
     warn_outside_validity(indenter, deepest, None, False, "the deepest depth")
@@ -716,6 +752,7 @@ def _finite_inputs(p: dict[str, Any]):
     from ..study.finite.loader import Ladder, finite_study, rubber_of
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
+    _, mesh = _curve_problem(p, indenter, half_space, mesh)
     shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
     rubber = rubber_of(half_space, p["model"], volumetric=p["volumetric"], **shapes)
     ladder = Ladder(*(p[name] for name in ("reach", "depth_steps", "small_ratio", "small_steps")))

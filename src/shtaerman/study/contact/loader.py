@@ -23,7 +23,7 @@ import numpy as np
 from ...fem.contact.linear import check_contact_scale
 from ...fem.mesh import MeshSettings
 from ...guards import check_equator
-from ...problem import Interface
+from ...problem import Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
 from ...theory.sneddon import Indenter, contact_law
@@ -48,6 +48,7 @@ from ..schema import (
     indenter_of,
     layer_spec,
     named,
+    prony_of,
     ranged,
     refused,
     settings_of,
@@ -90,6 +91,7 @@ class _Contact(Table):
     depths: list[Positive] | Literal["impact"] = "impact"
     interface: str = "frictionless"
     friction: Annotated[float, msgspec.Meta(ge=0)] | None = None
+    rate: ranged("rate") | None = None  # type: ignore[valid-type]
 
     def __post_init__(self) -> None:
         if self.depths != "impact" and (
@@ -104,6 +106,7 @@ ThicknessRatio = ranged("thickness_ratio")
 
 class _HalfSpace(MaterialTable):
     density2: Positive | None = None
+    prony: str | None = None
 
 
 class Tolerances(Table):
@@ -192,13 +195,36 @@ def _convergence_sizes(path: Path, raw: _StudyFile) -> tuple[float, ...]:
     return tuple(raw.convergence.sizes)
 
 
+VISCOELASTIC = (
+    "a contact study feeds its curve to the quasi-static impact M x'' = -P(x), and a "
+    "viscoelastic body's force depends on the history of the pressing, not on the depth "
+    "alone: run shtaerman contact --prony ... --rate ... for the curve (against Lee-Radok), "
+    'or a study of kind = "dynamic" with [half_space] prony for the impact'
+)
+"""Why a contact study refuses ``[half_space] prony`` (the command line's curve takes it)."""
+
+
+def _surface(path: Path, raw: _StudyFile) -> Interface:
+    """The indenter's surface of the study, its curve's parts (interface, friction, prony,
+    rate) checked as the problem's contact curve (:meth:`~shtaerman.problem.Problem.curve`,
+    refusals in the file's words); a viscoelastic body refused (:data:`VISCOELASTIC`)."""
+    contact, half_space = raw.contact, raw.half_space
+    parts = {"interface": contact.interface, "friction": contact.friction}
+    parts |= {"prony": prony_of(path, half_space.prony), "rate": contact.rate}
+    try:
+        body = Material(half_space.E2, half_space.nu2)
+        problem = Problem.curve(indenter_of(path, raw.indenter), body, **parts)
+    except InputError as error:
+        raise refused(path, error) from None
+    if problem.body.prony is not None:
+        raise StudyError(f"{path}: key 'half_space.prony': {VISCOELASTIC}")
+    return problem.interface
+
+
 def _build(path: Path, raw: _StudyFile) -> Study:
     striker, contact = raw.striker, raw.contact
     rigid = striker is None or striker.E1 == "inf"
-    try:  # the one check of the indenter's surface (the Problem's)
-        surface = Interface(contact.interface, contact.friction)
-    except InputError as error:
-        raise refused(path, error) from None
+    surface = _surface(path, raw)
     mesh, quick = (
         replace(
             _mesh(path, key, getattr(raw, key), default),

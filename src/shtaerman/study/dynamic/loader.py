@@ -27,7 +27,6 @@ from ...fem.dynamic_contact import (
     estimate_dofs,
 )
 from ...fem.mesh import growth_error
-from ...fem.viscoelastic import prony_input
 from ...problem import Problem, check_options, worded
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
@@ -52,6 +51,7 @@ from ..schema import (
     indenter_of,
     layer_geometry,
     named,
+    prony_of,
     ranged,
     refused,
     settings_of,
@@ -221,10 +221,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
-    try:
-        prony = prony_input(_beside(path, raw.half_space.prony))
-    except InputError as error:
-        raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
+    prony = prony_of(path, raw.half_space.prony)
     example = raw.impact.figure_velocity
     velocities = _velocities(path, "impact.velocity", raw.impact.velocity, example)
     if example is None:  # the middle velocity (of two, the upper)
@@ -285,14 +282,6 @@ def _check_ladder(path: Path, settings: DynamicSettings) -> None:
         quick = "; or give it in [quick], which verify --quick runs without the estimate"
         reason = reason.replace(WITHOUT_ESTIMATE, quick)
         raise StudyError(f"{path}: key '{key}': {reason}") from None
-
-
-def _beside(path: Path, prony: str | None) -> str | None:
-    """``prony`` with a relative .csv path taken from the study file's folder."""
-    if prony is None or not prony.strip().lower().endswith(".csv"):
-        return prony
-    csv = Path(prony.strip())
-    return prony if csv.is_absolute() else str(path.parent / csv)
 
 
 def impact_physics(raw: Any) -> dict[str, Any]:

@@ -5,8 +5,10 @@ init-study --kind finite-strain`` writes every key, commented) runs in :mod:`.ru
 ladder (``[contact]`` reach, depth_steps, small_ratio, small_steps) pressed into the
 ``[rubber]`` body on a mesh ladder (``[numerics] ladder`` "independent": three gmsh meshes
 K/2, K/sqrt(2), K; "nested": one gmsh mesh at K/2 refined uniformly once and twice), and the
-impacts of ``[corrections]`` (:mod:`.corrections`). A ``[sweep]`` takes one of nu2, mass,
-velocity, model, volumetric.
+impacts of ``[corrections]`` (:mod:`.corrections`). ``[contact]`` interface and friction
+and a ``[layer]`` (a pad on a bonded base) are the command line's (``contact --model ...
+--interface --friction --thickness``), checked as the problem's curve. A ``[sweep]`` takes one
+of nu2, mass, velocity, model, volumetric.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from ... import vocabulary
 from ...fem.contact.finite import FINITE_MESH
 from ...fem.mesh import MeshSettings
 from ...fem.rubber import RubberModel
-from ...problem import MODELS, RUBBER_SHAPES, Body
+from ...problem import MODELS, RUBBER_SHAPES, Body, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
@@ -40,7 +42,9 @@ from ..schema import (
     Table,
     built,
     decode,
+    exact_impacts,
     indenter_of,
+    layer_spec,
     named,
     ranged,
     refused,
@@ -70,6 +74,17 @@ class _Contact(Table):
     depth_steps: ranged("depth_steps") = vocabulary.entry("depth_steps").default
     small_ratio: ranged("small_ratio") = vocabulary.entry("small_ratio").default
     small_steps: ranged("small_steps") = vocabulary.entry("small_steps").default
+    interface: str = vocabulary.entry("interface").default  # checked by the Problem's parts
+    friction: ranged("friction") | None = None  # type: ignore[valid-type]
+
+
+class _Layer(Table):
+    """``[layer]``: a pad on a bonded rigid base (a finite-strain study runs no dynamic impact
+    on it: its [corrections] do)."""
+
+    thickness: Positive | None = None
+    thickness_ratio: ranged("thickness_ratio") | None = None  # type: ignore[valid-type]
+    base: str = vocabulary.entry("base").default  # checked by the Problem's parts
 
 
 class _Numerics(MeshTable):
@@ -120,6 +135,7 @@ class _FiniteFile(StudyFile):
     rubber: RubberTable = RubberTable()
     sweep: _Sweep | None = None
     corrections: _Corrections | None = None
+    layer: _Layer | None = None
 
 
 @dataclass(frozen=True)
@@ -221,8 +237,45 @@ def _mesh(
         raise StudyError(f"{path}: key '{table}': {error}") from None
 
 
+@dataclass(frozen=True)
+class _Curve:
+    """The study's interface and layer, as its mesh settings carry them."""
+
+    interface: str = "frictionless"
+    friction: float | None = None
+    thickness: float | None = None
+    base: str = "bonded"
+
+    def on(self, mesh: MeshSettings) -> MeshSettings:
+        """``mesh`` with this interface and layer."""
+        return replace(mesh, **vars(self))
+
+
+def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
+    """The ``[contact]`` interface and friction and the ``[layer]`` of the study, checked as
+    the problem's contact curve (:meth:`~shtaerman.problem.Problem.curve`: a lubricated
+    rubber layer refused, in the file's words); a layer's ``thickness_ratio`` resolved at
+    the linear impact's a_c."""
+    layer, contact = raw.layer, raw.contact
+    indenter = indenter_of(path, raw.indenter)
+    half_space = Material(raw.half_space.E2, raw.half_space.nu2)
+    parts = {"interface": contact.interface, "friction": contact.friction}
+    if layer is not None:
+        exact = exact_impacts(raw.impact.mass, indenter, half_space)(raw.impact.velocity)
+        spec = layer_spec(path, layer, None).resolved(float(exact.a_c))
+        parts |= {"thickness": spec.thickness, "base": layer.base}
+    try:
+        problem = Problem.curve(indenter, half_space, model=rubber.name, **parts)
+    except InputError as error:
+        raise refused(path, error) from None
+    surface, geometry = problem.interface, problem.geometry
+    return _Curve(surface.kind, surface.friction, geometry.thickness, geometry.base or "bonded")
+
+
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
     contact, quick, ladder = raw.contact, raw.quick, raw.numerics.ladder
+    rubber = RubberModel() if _sweeps_model(raw) else _rubber(path, raw)
+    curve = _curve(path, raw, rubber)
     return FiniteStudy(
         **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
@@ -231,11 +284,11 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         velocity=raw.impact.velocity,
         ladder=Ladder(contact.reach, contact.depth_steps, contact.small_ratio, contact.small_steps),
         quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
-        mesh=_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested"),
-        quick_mesh=_mesh(path, "quick", quick, QUICK_FINITE_MESH),
+        mesh=curve.on(_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested")),
+        quick_mesh=curve.on(_mesh(path, "quick", quick, QUICK_FINITE_MESH)),
         tolerances=raw.tolerances,
         quick_small_strain=quick.small_strain,
-        rubber=RubberModel() if _sweeps_model(raw) else _rubber(path, raw),
+        rubber=rubber,
         mesh_ladder=ladder,
         corrections=_corrections(path, raw.corrections),
     )
