@@ -274,7 +274,7 @@ def test_quick_run_skips_the_ladder_and_says_so(outcome):
 
 def test_a_study_whose_ladder_cannot_run_is_refused_at_load(tmp_path):
     message = error_of(tmp_path, MINIMAL + "[numerics]\ntime_steps = 60\n")
-    assert "key 'numerics'" in message and "ladder's coarsest level" in message
+    assert "key 'numerics.time_steps'" in message and "ladder's coarsest level" in message
 
 
 def test_paper_example_against_the_quasi_static_impact(outcome):

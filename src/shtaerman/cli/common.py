@@ -215,7 +215,9 @@ def in_option_words() -> Iterator[None]:
             raise
         raise type(error)(spoken, error.parameter) from None
     except NumericalFailureError as error:  # what to change: the options to give
-        raise NumericalFailureError(worded(str(error), "cli")) from None
+        label, colon, advice = str(error).partition(": ")  # 'fit: ...' names a step, no option
+        spoken = f"{label}{colon}{worded(advice, 'cli')}" if colon else worded(label, "cli")
+        raise NumericalFailureError(spoken) from None
 
 
 def given(args: argparse.Namespace, name: str) -> bool:
