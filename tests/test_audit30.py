@@ -21,57 +21,12 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.guards import ValidityWarning
 from shtaerman.problem import support_table
 from shtaerman.study.schema import StudyError, load_study
-from shtaerman.sweep.engine import execute_case
 from shtaerman.sweep.kinds import get_kind
-from shtaerman.validation import InputError
 
 TESTS = Path(__file__).parent
 RUBBER_MODELS = ("neo-hookean", "mooney-rivlin", "yeoh", "gent")
-
-
-# --- a numerical failure must not read as bad input (issue 28 item 3, the ladder's retry) -----
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="fem/stepper.py:march_inertial.step: every GentLockError after the last step cut "
-    "is worded 'the Gent rubber locks ... give a larger limit' (an InputError, exit 2) without "
-    "the gent_locks test the static marcher makes, so study/dynamic/accuracy.py:_level does not "
-    "retry it; the same case runs with --time-steps 100 or --mesh-size 0.1",
-)
-def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking():
-    """The researcher's pad (n = 1.2, A = 1; 0.12 kg at 1.0 m/s) on a Gent rubber, Jm = 30,
-    with Coulomb friction 0.5: "locks at depth 0.000172 m", x/a about 0.36, where I1bar - 3
-    is of order 0.1, not 30. The same run passes bonded (P_max 148.5 N at 1.5 m/s), massless,
-    with 100 time steps (147.6 N) or mesh size 0.1 (147.3 N): a step the Newton could not take,
-    which the ladder retries with twice the steps once it is called a numerical failure."""
-    body = sh.Material(3e6, 0.49, 1000.0)
-    striker = sh.PowerLawIndenter(shape_coefficient=1.0, exponent=1.2)
-    case = sh.Problem.impact(
-        striker,
-        body,
-        mass=0.12,
-        velocity=1.0,
-        thickness=0.012,
-        model="gent",
-        gent_limit=30.0,
-        interface="bonded",
-        friction=0.5,
-    )
-    try:
-        result = sh.dynamic(case, time_steps=50, mesh_size=0.2, estimate=False)
-    except InputError as error:  # a Gent lock is an InputError: the input named, exit 2
-        pytest.fail(f"refused as bad input: {error}")
-    # a result, not a refusal: the neo-Hookean body of the same case peaks at a similar force;
-    # the bound only checks a finite, positive peak of the order of the quasi-static P_c
-    # (sh.impact: 63 N at 1 m/s on the half-space; the pad stiffens it)
-    assert 30.0 < result.P_max < 300.0
-
-
-# --- the matrix test walks every cell of the matrix (issue 28, item 3 and "Done when") --------
 
 
 @pytest.mark.xfail(
@@ -159,47 +114,6 @@ def test_a_contact_sweep_takes_every_option_of_the_command_lines_curve(kind, opt
 
 BLUNT = sh.PowerLawIndenter(shape_coefficient=8.0, exponent=1.3)
 """The issue's striker: 0.12 kg at 1.5 m/s on 3 MPa drive it to x/a = 2.27."""
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="api/quasi_static.py:impact, cli/impact.py:run, sweep/kinds.py:impact_case: the "
-    "exact quasi-static impact (the linear model) at x/a = 2.27 gives its numbers without "
-    "the 'far outside small strain' warning that sh.dynamic and sh.contact give there",
-)
-def test_the_exact_impact_far_outside_small_strain_warns(capsys):
-    with pytest.warns(ValidityWarning, match="far outside small strain"):
-        sh.impact(BLUNT, sh.Material(3e6, 0.49), mass=0.12, velocity=1.5)
-    argv = ["impact", "--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6"]
-    assert main([*argv, "--nu2", "0.49", "--mass", "0.12", "--velocity", "1.5", "--json"]) == 0
-    assert "2.27 contact radii" in capsys.readouterr().err
-    params = get_kind("impact").defaults()  # an impact sweep's case records it in its row
-    params.update(exponent=1.3, shape_coefficient=8.0, E2=3e6, nu2=0.49, mass=0.12, velocity=1.5)
-    row = execute_case(get_kind("impact").case, 0, params)
-    assert any("far outside small strain" in w for w in row["warnings"]), row["warnings"]
-
-
-# --- the outputs of every impact body (item 5) ------------------------------------------------
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="fem/finite_dynamic.py:march keeps no fields ('snapshot_times is the linear "
-    "body's'), so api/fem_dynamic.py:_write_folder writes no VTU for a rubber, while dynamic "
-    "--help promises 'dynamic.json, history.csv, energies.csv and VTU fields' for --out",
-)
-def test_the_finite_impact_out_folder_holds_the_vtu_fields_its_help_promises(tmp_path, capsys):
-    """The paper's striker at 0.3 m/s on a 6 mm neo-Hookean pad with inertia (6 s of CPU)."""
-    out = tmp_path / "run"
-    argv = ["dynamic", "--model", "neo-hookean", "--thickness", "0.006", "--velocity", "0.3"]
-    argv += ["--time-steps", "50", "--mesh-size", "0.2", "--no-estimate", "--out", str(out)]
-    assert main(argv) == 0
-    fields = sorted(out.glob("field_*.vtu"))
-    assert len(fields) == 3, sorted(p.name for p in out.iterdir())  # 0.5, 1 and 1.5 x t_c
-    assert 'Name="displacement [m]"' in fields[1].read_text()
-
-
-# --- a refusal names the value given and the option's own range --------------------------------
 
 
 def test_a_mesh_size_refused_with_refine_names_the_value_given_and_its_range(capsys):
