@@ -196,7 +196,7 @@ def test_api_and_study_file_take_prony(tmp_path):
     [study] = load_study(path)
     assert study.prony == ONE_TERM
     path.write_text(STUDY.replace("density2 = 1100.0", 'density2 = 0\nprony = "1.5:2e-3"'))
-    with pytest.raises(StudyError, match=r"key 'half_space.prony': prony: weight g1"):
+    with pytest.raises(StudyError, match=r"key 'half_space.prony': weight g1"):
         load_study(path)
 
 

@@ -376,7 +376,8 @@ def prony_of(path: Path, prony: str | None) -> Any:
     try:
         return prony_input(prony)
     except InputError as error:
-        raise StudyError(f"{path}: key 'half_space.prony': {error}") from None
+        reason = str(error).removeprefix("prony: ")  # the key names it once
+        raise StudyError(f"{path}: key 'half_space.prony': {reason}") from None
 
 
 def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:

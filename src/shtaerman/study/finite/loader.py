@@ -254,8 +254,8 @@ class _Curve:
 def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
     """The ``[contact]`` interface and friction and the ``[layer]`` of the study, checked as
     the problem's contact curve (:meth:`~shtaerman.problem.Problem.curve`: a lubricated
-    rubber layer refused, in the file's words); a layer's ``thickness_ratio`` resolved at
-    the linear impact's a_c."""
+    rubber layer refused, in the file's words with this kind's way out); a layer's
+    ``thickness_ratio`` resolved at the linear impact's a_c."""
     layer, contact = raw.layer, raw.contact
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
@@ -267,6 +267,12 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
     try:
         problem = Problem.curve(indenter, half_space, model=rubber.name, **parts)
     except InputError as error:
+        if error.parameter == "base":  # the Problem's other way out, a linear model, is not ours
+            why = str(error).removeprefix("base: ").partition(": take ")[0]
+            raise StudyError(
+                f"{path}: key 'layer.base': {why}: take [layer] base = \"bonded\", or a study "
+                f'of kind "contact" for a linear lubricated pad'
+            ) from None
         raise refused(path, error) from None
     surface, geometry = problem.interface, problem.geometry
     return _Curve(surface.kind, surface.friction, geometry.thickness, geometry.base or "bonded")
