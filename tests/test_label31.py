@@ -52,7 +52,12 @@ def _run(density: float, friction: float | None, *, linear: bool, prony: bool) -
     )
     material = object() if linear and prony else None
     return SimpleNamespace(
-        parameters=parameters, energies=energies, losses=losses, material=material, mesh={}
+        parameters=parameters,
+        energies=energies,
+        losses=losses,
+        material=material,
+        relaxes=prony and not linear,  # the finite-strain run's record of its Prony series
+        mesh={},
     )
 
 
@@ -72,6 +77,10 @@ def test_a_finite_elastic_body_with_friction_loses_energy_to_slip():
         (1100.0, None, False, True, "waves + hysteresis", ["hysteresis"]),  # a Prony series
         (0.0, None, False, True, "hysteresis", ["hysteresis"]),  # massless: no waves
         (0.0, 0.5, False, False, "slip", ["slip"]),
+        # the researcher's full case: a relaxing rubber with Coulomb friction, one dissipated
+        # energy that is both
+        (1100.0, 0.5, False, True, "waves + hysteresis + slip", ["hysteresis + slip"]),
+        (0.0, 0.5, False, True, "hysteresis + slip", ["hysteresis + slip"]),
         (1100.0, None, False, False, "waves", []),  # an elastic frictionless rubber
         (0.0, None, False, False, "no loss", []),
         (1100.0, 0.5, True, True, "waves + hysteresis + slip", ["hysteresis", "slip"]),

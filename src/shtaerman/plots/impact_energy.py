@@ -103,15 +103,11 @@ def loss_kinds(result: ImpactRun) -> dict[str, bool]:
     ``hysteresis`` (a Prony series) and ``slip`` (Coulomb friction at the striker's surface;
     a bonded striker does not slip).
 
-    The linear body records its relaxing shear (``material``); the finite-strain run records
-    no Prony series, only one dissipated energy: hysteresis where the striker has no friction,
-    else slip.
+    The linear body records its relaxing shear (``material``), the finite-strain run whether
+    its body ``relaxes``.
     """
     slip = bool(result.parameters.get("friction"))
-    if "slip" in result.energies:  # the linear body: its slip apart from its hysteresis
-        hysteresis = result.material is not None
-    else:
-        hysteresis = not slip and bool(result.losses.get("energy_dissipated_fraction"))
+    hysteresis = result.material is not None or result.relaxes
     return {"waves": result.parameters["density2"] > 0, "hysteresis": hysteresis, "slip": slip}
 
 
