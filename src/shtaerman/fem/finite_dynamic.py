@@ -308,6 +308,7 @@ class FiniteImpactSetup:
             parameters.update(spectral_radius=settings.spectral_radius)
         context = {"timings": timings, "mesh": self.mesh, "parameters": parameters}
         context.update(newton_iterations=iterations, reflected_energy_fraction=far)
+        context.update(relaxes=isinstance(self.stepper.system, ViscoelasticBody))
         if cuts:
             context["retried"] = cut_note(cuts, settings.steps)
         result = _result(columns, mass, context, separation)

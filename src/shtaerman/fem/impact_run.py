@@ -87,6 +87,9 @@ class ImpactRun:
     retried : str
         What of the run was retried, in one line ("" for nothing): time steps cut in halves
         (finite strain), a level run again with more time steps (the error-estimate ladder).
+    relaxes : bool
+        Whether the body relaxes (a finite-strain body with a Prony series; the linear body
+        keeps its relaxing shear as ``material``); not written to JSON.
     system, snapshots, material, memories
         The fields kept for pictures (the linear body): its system, the state at requested
         times, its relaxing shear and its memories there (see :meth:`field_solution`).
@@ -114,6 +117,7 @@ class ImpactRun:
     losses: dict[str, float] = field(default_factory=dict)
     newton_iterations: int | None = None
     retried: str = ""
+    relaxes: bool = False
     system: ElasticSystem | None = field(default=None, repr=False)
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = field(
         default_factory=dict, repr=False

@@ -25,7 +25,7 @@ from ..fem.impact_run import ImpactRun
 from ..study.dynamic.case import DynamicCase
 from ..study.dynamic.runner import DynamicStudyOutcome
 from .fields import MAGNITUDE, SIGMA, FieldColours, add_coloured, isolines
-from .impact_energy import PAD_NOTE, on_pad
+from .impact_energy import PAD_NOTE, loss_kinds, on_pad
 from .labels import MINUS, axis_label
 from .render import picture
 from .render import save as save_picture
@@ -63,11 +63,10 @@ concentration (MPa) and would be invisible on a linear scale."""
 
 
 def _losses(result: ImpactRun) -> str:
-    """What the run loses energy to: "waves", "hysteresis" or "waves + hysteresis"."""
-    waves = result.parameters["density2"] > 0
-    if result.material is None and not result.losses:  # elastic (a rubber: no material)
-        return "waves" if waves else "no loss"
-    return "waves + hysteresis" if waves else "hysteresis"
+    """What the run loses energy to (:func:`.impact_energy.loss_kinds`), "waves + hysteresis +
+    slip" or a part of it, "no loss" for none."""
+    kinds = loss_kinds(result)
+    return " + ".join(kind for kind, has in kinds.items() if has) or "no loss"
 
 
 @styled

@@ -5,8 +5,10 @@
   P = beta x^q; the loop's area is the energy the striker left in the body, E0 (1 - e^2);
 - :func:`energy_shares`, :func:`plot_energy_history`: the energy account over time as
   fractions of E0 = M v0^2 / 2: the striker's kinetic energy, the body's stored (kinetic +
-  strain) energy, the energy absorbed by the layer (waves), the energy dissipated by a
-  viscoelastic body (hysteresis; left out of an elastic run) and the numerical residue.
+  strain) energy, the energy absorbed by the layer (waves; left out of a massless body), the
+  energy dissipated by a viscoelastic body (hysteresis) and by Coulomb friction at the
+  striker's surface (slip), each left out of a body without it, and the numerical residue;
+- :func:`loss_kinds`: what the body loses energy to (waves, hysteresis, slip).
 
 Colours as everywhere (:mod:`.style`): the quasi-static theory black, the FEM blue.
 """
@@ -36,6 +38,7 @@ __all__ = [
     "energy_shares",
     "force_depth_loop",
     "loop_work",
+    "loss_kinds",
     "on_pad",
     "plot_energy_history",
     "plot_force_depth_loop",
@@ -46,6 +49,8 @@ ENERGY_STYLES = {
     "half-space stored (kinetic + strain)": (SECOND_COLOUR, "-"),
     "absorbed by the layer (waves)": ("#2ca02c", "-"),
     "dissipated (hysteresis)": (APPROXIMATION_COLOUR, "-"),
+    "dissipated (slip)": ("#9467bd", "-"),
+    "dissipated (hysteresis + slip)": ("#8c564b", "-"),
     "numerical residue": ("0.45", ":"),
 }
 """Legend label -> (colour, line style) of :func:`plot_energy_history`, in drawing order (on a
@@ -93,22 +98,42 @@ def loop_work(result: ImpactRun) -> float:
     return float(np.trapezoid(result.force, result.x))
 
 
+def loss_kinds(result: ImpactRun) -> dict[str, bool]:
+    """What the body of ``result`` loses energy to: ``waves`` (a body with mass),
+    ``hysteresis`` (a Prony series) and ``slip`` (Coulomb friction at the striker's surface;
+    a bonded striker does not slip).
+
+    The linear body records its relaxing shear (``material``), the finite-strain run whether
+    its body ``relaxes``.
+    """
+    slip = bool(result.parameters.get("friction"))
+    hysteresis = result.material is not None or result.relaxes
+    return {"waves": result.parameters["density2"] > 0, "hysteresis": hysteresis, "slip": slip}
+
+
 def energy_shares(result: ImpactRun) -> dict[str, np.ndarray]:
     """The energy account per step as fractions of E0 (dimensionless), keyed by the labels of
     :data:`ENERGY_STYLES` (on a pad, :data:`PAD_LABELS`); they sum to 1 (the residue closes
-    it). The dissipated share is left out where it is 0 throughout or not recorded (an elastic
-    body)."""
-    energies = result.energies
+    it). The waves' share is left out of a massless body, a dissipated share where it is 0
+    throughout or not recorded; the finite-strain run's one dissipated energy is named by
+    :func:`loss_kinds`."""
+    energies, kinds = result.energies, loss_kinds(result)
     energy0 = 0.5 * result.parameters["mass"] * result.parameters["velocity"] ** 2
     shares = {
         "striker kinetic": energies["striker_kinetic"],
         "half-space stored (kinetic + strain)": energies["body_kinetic"] + energies["strain"],
-        "absorbed by the layer (waves)": energies["absorbed"],
-        "dissipated (hysteresis)": energies.get("dissipated", 0.0),
-        "numerical residue": energies["numerical"],
     }
-    if not np.any(shares["dissipated (hysteresis)"]):  # elastic: no such share (or record)
-        del shares["dissipated (hysteresis)"]
+    if kinds["waves"]:
+        shares["absorbed by the layer (waves)"] = energies["absorbed"]
+    if "slip" in energies:  # the linear body
+        dissipated = {"hysteresis": energies["dissipated"], "slip": energies["slip"]}
+    else:
+        named = " + ".join(kind for kind in ("hysteresis", "slip") if kinds[kind])
+        dissipated = {named or "hysteresis": energies.get("dissipated", 0.0)}
+    for kind, values in dissipated.items():
+        if np.any(values):  # else no such share (or record)
+            shares[f"dissipated ({kind})"] = values
+    shares["numerical residue"] = energies["numerical"]
     names = PAD_LABELS if on_pad(result) else {}
     return {names.get(k, k): np.asarray(values) / energy0 for k, values in shares.items()}
 
