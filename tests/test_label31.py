@@ -98,3 +98,22 @@ def test_each_share_is_named_by_what_the_case_has(
     assert ("absorbed by the layer (waves)" in shares) == (density > 0)
     # the shares close the account: five of size <= 1 summed, round-off a few eps
     assert np.max(np.abs(sum(shares.values()) - 1.0)) < 1e-12
+
+
+@pytest.mark.parametrize(
+    ("density", "friction", "prony", "said"),
+    [
+        (1100.0, 0.5, False, "as waves and slip ("),  # said 'as waves': the slip left out
+        (1100.0, 0.5, True, "as waves, hysteresis and slip ("),
+        (0.0, 0.5, True, "as hysteresis and slip (massless body: no waves)"),
+        (1100.0, None, True, "as waves and hysteresis ("),
+        (0.0, None, False, "(massless body) ("),
+    ],
+)
+def test_a_rubber_studys_text_names_its_losses_as_the_figures_do(density, friction, prony, said):
+    from shtaerman.output.text_dynamic import _rubber_loss_words
+
+    run = _run(density, friction, linear=False, prony=prony)
+    study = SimpleNamespace(density=density, physics={"model": "neo-hookean"}, prony=prony)
+    outcome = SimpleNamespace(study=study, example=SimpleNamespace(result=run))
+    assert _rubber_loss_words(outcome).startswith(said)

@@ -11,6 +11,7 @@ from typing import Any
 
 from ..fem.viscoelastic import prony_input
 from ..paper.case import is_paper_case
+from ..plots.impact_energy import loss_kinds
 from ..plots.labels import model_label
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
@@ -220,14 +221,16 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
 
 
 def _rubber_loss_words(outcome: DynamicStudyOutcome) -> str:
-    """What 1 - e^2 of a rubber's impact went to: waves (and a Prony series' hysteresis, its
-    dissipated share), no first-order estimate (it is the linear half-space's)."""
+    """What 1 - e^2 of a rubber's impact went to (:func:`~shtaerman.plots.impact_energy.
+    loss_kinds`: waves, a Prony series' hysteresis, Coulomb slip; their dissipated share), no
+    first-order estimate (it is the linear half-space's)."""
     study, result = outcome.study, outcome.example.result
     model = model_label(study.physics["model"])
+    kinds = [kind for kind, has in loss_kinds(result).items() if has]
+    listed = f"{', '.join(kinds[:-1])} and {kinds[-1]}" if len(kinds) > 1 else "".join(kinds)
+    what = f"as {listed}"
     if study.density == 0:
-        what = "as hysteresis (massless body: no waves)" if study.prony else "(massless body)"
-    else:
-        what = "as waves and hysteresis" if study.prony else "as waves"
+        what = f"{what} (massless body: no waves)" if kinds else "(massless body)"
     dissipated = result.losses.get("energy_dissipated_fraction")
     heat = "" if dissipated is None else f"; {100 * dissipated:.2f} % of M v0^2/2 dissipated"
     return (
