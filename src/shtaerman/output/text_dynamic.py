@@ -11,7 +11,6 @@ from typing import Any
 
 from ..fem.viscoelastic import prony_input
 from ..paper.case import is_paper_case
-from ..plots.impact_energy import loss_kinds
 from ..plots.labels import model_label
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
@@ -224,6 +223,8 @@ def _rubber_loss_words(outcome: DynamicStudyOutcome) -> str:
     """What 1 - e^2 of a rubber's impact went to (:func:`~shtaerman.plots.impact_energy.
     loss_kinds`: waves, a Prony series' hysteresis, Coulomb slip; their dissipated share), no
     first-order estimate (it is the linear half-space's)."""
+    from ..plots.impact_energy import loss_kinds  # here: verify imports no renderer early
+
     study, result = outcome.study, outcome.example.result
     model = model_label(study.physics["model"])
     kinds = [kind for kind, has in loss_kinds(result).items() if has]
