@@ -16,6 +16,8 @@ from __future__ import annotations
 import signal
 import sys
 
+from .allocator import keep_freed_memory
+
 __all__ = ["main"]
 
 _STOPPING = (signal.SIGINT, signal.SIGTERM)
@@ -41,6 +43,7 @@ def _held_run() -> int:
     for number in _STOPPING:
         if signal.getsignal(number) is not signal.SIG_IGN:  # a '&' job keeps ignoring them
             signal.signal(number, lambda signum, frame: held.append(signum))
+    keep_freed_memory()
     from .cli import Terminated, stopped
     from .cli import main as run
 
