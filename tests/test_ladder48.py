@@ -205,3 +205,164 @@ def test_a_layer_case_whose_ladder_loses_a_level_is_an_ok_row_without_estimate(m
     rows = list(csv.DictReader(io.StringIO(cases_csv(spec, [case], {0: cut}))))
     assert rows[0]["status"] == "ok" and rows[0]["error"] == ""
     assert WHY in rows[0]["estimate_missing"] and rows[0]["error_force_ratio"] == "nan"
+
+
+# --- the finite-strain study --------------------------------------------------------------------
+
+FINITE_STUDY = """
+kind = "finite-strain"
+name = "fs"
+[indenter]
+shape_coefficient = 5.0
+exponent = 1.5
+[half_space]
+E2 = 7.5e6
+nu2 = 0.5
+[impact]
+mass = 0.7
+velocity = 3.0
+[contact]
+reach = 1.1
+depth_steps = 6
+small_steps = 2
+small_ratio = 0.02
+[numerics]
+mesh_size = 0.05
+growth = 0.45
+axis_size = 1e-4
+axis_growth = 0.35
+"""
+"""The paper's rubber at finite strain on three coarse independent meshes (about 1.4k, 1.9k
+and 2.4k dofs, 8 depths)."""
+
+
+def test_a_finite_strain_study_whose_finest_level_fails_reports_the_one_below(
+    tmp_path, monkeypatch
+):
+    from shtaerman.fem.hyperelastic import NewtonError
+    from shtaerman.output.text_finite import study_findings
+    from shtaerman.study.finite import runner
+    from shtaerman.study.schema import load_study
+
+    path = tmp_path / "fs.toml"
+    path.write_text(FINITE_STUDY, encoding="utf-8")
+    [study] = load_study(path)
+    real, levels = runner._run_level, []
+
+    def recorded(*args, **kwargs):
+        levels.append(real(*args, **kwargs))
+        return levels[-1]
+
+    monkeypatch.setattr(runner, "_run_level", recorded)
+    full = runner.run_finite_strain_study(study)
+    assert full.estimates is not None and not full.estimate_missing and len(levels) == 3
+    calls = []
+
+    def failing(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 3:  # the finest level, as its Newton fails
+            raise NewtonError("depth 9 mm: Newton did not converge in 25 iterations")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(runner, "_run_level", failing)
+    with pytest.warns(EstimateMissingWarning, match="the finest level that passed"):
+        cut = runner.run_finite_strain_study(study)
+    middle = levels[1]  # the full ladder's middle level: the same mesh, to the last bit
+    assert [s.force for s in cut.finite.steps] == [s.force for s in middle.finite.steps]
+    assert cut.impacts == middle.impacts and cut.checks == middle.checks
+    assert cut.estimates is None and "refine 1: depth 9 mm: Newton" in cut.estimate_missing
+    document = json.loads(json.dumps(cut.document()))
+    assert document["accuracy"]["estimate_missing"] == cut.estimate_missing
+    assert document["accuracy"]["error_estimate"] is None
+    dofs = [level["dofs"] for level in document["accuracy"]["mesh_ladder"]]
+    assert dofs == [*(lv.finite.curve.mesh_stats["dofs"] for lv in levels[:2]), None]
+    said = [text for text in study_findings(cut) if "No error estimate" in text]
+    assert len(said) == 1 and "Newton did not converge" in said[0], said
+    assert "Quick mode" not in " ".join(study_findings(cut))  # not a quick run's words
+
+
+# --- the dynamic study --------------------------------------------------------------------------
+
+
+def test_a_dynamic_study_whose_finest_level_fails_twice_reports_the_one_below(
+    tmp_path, monkeypatch
+):
+    from study_texts import DYNAMIC_STUDY
+
+    from shtaerman.output.text_dynamic import study_findings, study_tables
+    from shtaerman.study.dynamic import case as dynamic_case
+    from shtaerman.study.run import run_study
+    from shtaerman.study.schema import load_study
+    from shtaerman.validation import NumericalFailureError
+
+    path = tmp_path / "coarse.toml"
+    path.write_text(DYNAMIC_STUDY + "[numerics]\ntime_steps = 100\nmesh_size = 0.05\n")
+    [study] = load_study(path)  # levels: size 0.1, 0.0707, 0.05; 50, 71, 100 steps
+    full = run_study(study)
+    real = dynamic_case.run_impact
+
+    def failing(*args, **kwargs):  # the finest level at 3 m/s, and its retry (200 steps)
+        if args[4] == 3.0 and args[5].size == 0.05:
+            raise NumericalFailureError("the step equation did not converge at t = 1 ms")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(dynamic_case, "run_impact", failing)
+    with pytest.warns(EstimateMissingWarning, match="failed twice"):
+        cut = run_study(study)
+    slow, fast = cut.cases
+    assert slow.estimated and not fast.estimated  # the other case keeps its estimate
+    assert slow.result.summary() == full.cases[0].result.summary()
+    # the finest level that passed at 3 m/s: the full ladder's middle level, to the last bit
+    assert fast.result.summary() == full.cases[1].ladder.results[1].summary()
+    assert "the retry with 200 steps failed too" in fast.ladder.missing
+    document = json.loads(json.dumps(fast.document(), default=str))
+    assert "step equation did not converge" in document["estimate_missing"]
+    assert [level["dofs"] is None for level in document["mesh_ladder"]] == [False, False, True]
+    finding = " ".join(study_findings(cut))
+    assert "No error estimates: at v0 = 3 m/s a ladder level failed twice" in finding, finding
+    assert "quick run" not in finding
+    captions = json.dumps(study_tables(cut))
+    assert "at v0 = 3 m/s" in captions and "quick run" not in captions
+
+
+DYNAMIC_SWEEP = """
+name = "tiny"
+kind = "dynamic"
+[parameters]
+time_steps = 100
+mesh_size = 0.05
+estimate = true
+[axes]
+velocity = [3.0]
+density2 = [1100.0]
+"""
+
+
+def test_a_dynamic_case_whose_ladder_loses_a_level_is_an_ok_row_without_estimate(monkeypatch):
+    from shtaerman.study.dynamic import case as dynamic_case
+    from shtaerman.sweep.engine import cases_csv, execute_case
+    from shtaerman.sweep.kinds import DYNAMIC_ERRORS
+    from shtaerman.sweep.spec import parse_sweep
+    from shtaerman.validation import NumericalFailureError
+
+    spec = parse_sweep(DYNAMIC_SWEEP)
+    [case] = spec.cases()
+    full = execute_case(spec.kind_spec.case, 0, case.params)
+    real = dynamic_case.run_impact
+
+    def failing(*args, **kwargs):  # the coarsest level (size 0.1), and its retry
+        if args[5].size > 0.09:  # 0.05 / (1 / sqrt 2)^2, to round-off
+            raise NumericalFailureError("the step equation did not converge at t = 1 ms")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(dynamic_case, "run_impact", failing)
+    cut = execute_case(spec.kind_spec.case, 0, case.params)
+    assert cut["status"] == full["status"] == "ok", cut["error"]
+    assert "step equation did not converge" in cut["estimate_missing"]
+    # the finest level passed: every number as without the failure but the estimates (NaN)
+    same = set(full["outputs"]) - set(DYNAMIC_ERRORS) - {"seconds"}
+    assert {k: cut["outputs"][k] for k in same} == {k: full["outputs"][k] for k in same}
+    assert all(np.isnan(cut["outputs"][name]) for name in DYNAMIC_ERRORS)
+    rows = list(csv.DictReader(io.StringIO(cases_csv(spec, [case], {0: cut}))))
+    assert "step equation did not converge" in rows[0]["estimate_missing"]
+    assert rows[0]["error_x_max"] == "nan" and rows[0]["status"] == "ok"
