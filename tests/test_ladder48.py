@@ -13,9 +13,11 @@ import json
 
 import numpy as np
 import pytest
+import study_texts
+from study_texts import PAPER_CASE
+from test_ladder30 import failing_level
 
 from shtaerman.cli import main
-from shtaerman.fem.contact.constraints import unsettled
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.study.contact import accuracy
 from shtaerman.study.contact.accuracy import (
@@ -29,39 +31,10 @@ from shtaerman.theory.materials import Material
 
 COARSE = {"mesh_size": 0.025, "growth": 0.5, "axis_size": 1e-3, "axis_growth": 0.3}
 """The paper's example on a coarse ladder: 1832, 2517, 3543 dofs (about 0.5 s in all)."""
-STUDY = """
-name = "pad"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[striker]
-E1 = 2e11
-nu1 = 0.25
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-[impact]
-mass = 0.7
-velocity = 3.0
-[numerics]
-""" + "".join(f"{key} = {value}\n" for key, value in COARSE.items())
+STUDY = 'name = "pad"\n' + PAPER_CASE + "[numerics]\n"
+STUDY += "".join(f"{key} = {value}\n" for key, value in COARSE.items())
 WHY = "depth 0.005 m: the contact's stick and slip did not settle"
 """The forced failure's words (:func:`shtaerman.fem.contact.constraints.unsettled`)."""
-
-
-def failing_contact(monkeypatch, failing: int) -> list[int]:
-    """Make the ``failing``-th contact-curve run (1 = the first) of the linear contact
-    ladders fail as an unsettled load step does; returns the list of runs, one entry each."""
-    real, calls = accuracy.run_indentation, []
-
-    def run(*args, **kwargs):
-        calls.append(1)
-        if len(calls) == failing:
-            raise unsettled(0.005, 16)
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(accuracy, "run_indentation", run)
-    return calls
 
 
 def forces(curve) -> list[float]:
@@ -79,7 +52,7 @@ def test_a_contact_study_whose_finest_level_fails_reports_the_one_below(tmp_path
     path.write_text(STUDY, encoding="utf-8")
     [study] = load_study(path)
     full = run_contact_study(study)
-    failing_contact(monkeypatch, 3)
+    failing_level(monkeypatch, 3)
     with pytest.warns(EstimateMissingWarning, match="the finest level that passed"):
         cut = run_contact_study(study)
     # the middle level of the full ladder, to the last bit: the same mesh and solve
@@ -89,7 +62,7 @@ def test_a_contact_study_whose_finest_level_fails_reports_the_one_below(tmp_path
     assert cut.impacts["fem_tabulated"]["x_c"] > 0 and cut.checks
 
     out = tmp_path / "out"
-    failing_contact(monkeypatch, 3)
+    failing_level(monkeypatch, 3)
     code = main(["verify", str(path), "--out", str(out)])  # the whole run, files and reports
     assert code in (0, 1)  # 1: the coarse mesh fails the paper's tolerances, as without it
     entry = json.loads((out / "results.json").read_text())["studies"]["pad"]
@@ -112,7 +85,7 @@ def test_a_failure_beyond_the_first_three_levels_ends_the_refinement_unreached(m
     # 5e-4 needs five levels on this mesh (refine 0.5 .. 2: 1832 .. 10791 dofs)
     full = run_to_accuracy(INDENTER, RUBBER, 5e-4, mesh=ACCURACY_MESH)
     assert len(full.levels) == 5 and not full.unreached
-    failing_contact(monkeypatch, 5)
+    failing_level(monkeypatch, 5)
     with pytest.warns(AccuracyNotReachedWarning, match="accuracy 0.0005 not reached"):
         cut = run_to_accuracy(INDENTER, RUBBER, 5e-4, mesh=ACCURACY_MESH)
     assert [level.refine for level in cut.levels] == [level.refine for level in full.levels[:4]]
@@ -130,7 +103,7 @@ def test_a_failure_beyond_the_first_three_levels_ends_the_refinement_unreached(m
 
 def test_a_failure_within_the_first_three_levels_leaves_the_estimate_missing(monkeypatch):
     full = run_to_accuracy(INDENTER, RUBBER, 5e-4, mesh=ACCURACY_MESH)
-    failing_contact(monkeypatch, 2)
+    failing_level(monkeypatch, 2)
     with pytest.warns(EstimateMissingWarning, match="refine 0.707"):
         cut = run_to_accuracy(INDENTER, RUBBER, 5e-4, mesh=ACCURACY_MESH)
     assert [level.dofs for level in cut.levels] == [full.levels[0].dofs, full.levels[2].dofs]
@@ -143,14 +116,14 @@ ACCURACY_CLI = ["contact", "--accuracy", "5e-4", "--mesh-size", "0.025", "--grow
 
 
 def test_the_command_line_says_the_accuracy_was_not_reached_and_why(monkeypatch, capsys):
-    failing_contact(monkeypatch, 4)
+    failing_level(monkeypatch, 4)
     assert main(ACCURACY_CLI) == 0
     out, err = capsys.readouterr()
     assert "accuracy 0.0005 not reached: the level of refine 1.41 failed" in out, out
     assert "(--refine)" in out and "accuracy target" not in out, out  # in its words; not "met"
     assert "21608 dofs" in out and "ladder 6572, 11660, 21608 dofs" in out, out
     assert "not reached" in err  # the warning
-    failing_contact(monkeypatch, 4)
+    failing_level(monkeypatch, 4)
     assert main([*ACCURACY_CLI, "--json"]) == 0
     document = json.loads(capsys.readouterr().out)
     assert "refine 1.41 failed" in document["accuracy_unreached"]
@@ -191,7 +164,7 @@ def test_a_layer_case_whose_ladder_loses_a_level_is_an_ok_row_without_estimate(m
     # its outputs kept; on this coarse mesh it fails its estimate's check alone (3e-3 > 1e-3)
     assert below["error"].startswith("check failed: layer force ratio error estimate: ")
     assert ";" not in below["error"] and below["estimate_missing"] is None
-    failing_contact(monkeypatch, 3)
+    failing_level(monkeypatch, 3)
     cut = execute_case(spec.kind_spec.case, 0, case.params)
     assert cut["status"] == "ok", cut["error"]  # not a failed case
     assert WHY in cut["estimate_missing"] and "refine 1:" in cut["estimate_missing"]
@@ -209,19 +182,10 @@ def test_a_layer_case_whose_ladder_loses_a_level_is_an_ok_row_without_estimate(m
 
 # --- the finite-strain study --------------------------------------------------------------------
 
-FINITE_STUDY = """
-kind = "finite-strain"
-name = "fs"
-[indenter]
-shape_coefficient = 5.0
-exponent = 1.5
-[half_space]
-E2 = 7.5e6
-nu2 = 0.5
-[impact]
-mass = 0.7
-velocity = 3.0
-[contact]
+FINITE_STUDY = (
+    'name = "fs"\n'
+    + study_texts.FINITE_STUDY
+    + """[contact]
 reach = 1.1
 depth_steps = 6
 small_steps = 2
@@ -232,6 +196,7 @@ growth = 0.45
 axis_size = 1e-4
 axis_growth = 0.35
 """
+)
 """The paper's rubber at finite strain on three coarse independent meshes (about 1.4k, 1.9k
 and 2.4k dofs, 8 depths)."""
 
@@ -287,8 +252,6 @@ def test_a_finite_strain_study_whose_finest_level_fails_reports_the_one_below(
 def test_a_dynamic_study_whose_finest_level_fails_twice_reports_the_one_below(
     tmp_path, monkeypatch
 ):
-    from study_texts import DYNAMIC_STUDY
-
     from shtaerman.output.text_dynamic import study_findings, study_tables
     from shtaerman.study.dynamic import case as dynamic_case
     from shtaerman.study.run import run_study
@@ -296,7 +259,7 @@ def test_a_dynamic_study_whose_finest_level_fails_twice_reports_the_one_below(
     from shtaerman.validation import NumericalFailureError
 
     path = tmp_path / "coarse.toml"
-    path.write_text(DYNAMIC_STUDY + "[numerics]\ntime_steps = 100\nmesh_size = 0.05\n")
+    path.write_text(study_texts.DYNAMIC_STUDY + "[numerics]\ntime_steps = 100\nmesh_size = 0.05\n")
     [study] = load_study(path)  # levels: size 0.1, 0.0707, 0.05; 50, 71, 100 steps
     full = run_study(study)
     real = dynamic_case.run_impact
