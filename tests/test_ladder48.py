@@ -329,3 +329,50 @@ def test_a_dynamic_case_whose_ladder_loses_a_level_is_an_ok_row_without_estimate
     rows = list(csv.DictReader(io.StringIO(cases_csv(spec, [case], {0: cut}))))
     assert "step equation did not converge" in rows[0]["estimate_missing"]
     assert rows[0]["error_x_max"] == "nan" and rows[0]["status"] == "ok"
+
+
+EFFECTS_SWEEP = """
+name = "effects"
+kind = "effects"
+[parameters]
+mesh_size = 0.1
+time_steps = 100
+density2 = 0.0
+thickness = 0.02
+estimate = true
+[axes]
+velocity = [3.0]
+"""
+"""One effect (a massless pad) on the coarsest ladder the impact allows: the half-space run,
+and the pad's (alone = full)."""
+
+
+def test_an_effects_case_whose_pad_runs_lose_a_level_says_which_and_why(monkeypatch):
+    from shtaerman.study.dynamic import case as dynamic_case
+    from shtaerman.sweep.engine import execute_case
+    from shtaerman.sweep.kinds import EFFECT_QUANTITIES
+    from shtaerman.sweep.spec import parse_sweep
+    from shtaerman.validation import NumericalFailureError
+
+    spec = parse_sweep(EFFECTS_SWEEP)
+    [case] = spec.cases()
+    full = execute_case(spec.kind_spec.case, 0, case.params)
+    assert full["status"] == "ok" and full["estimate_missing"] is None, full["error"]
+    real = dynamic_case.run_impact
+
+    def failing(*args, **kwargs):  # the pad's coarsest level (size 0.2), and its retry
+        if args[5].size > 0.19 and args[5].thickness is not None:
+            raise NumericalFailureError("the step equation did not converge at t = 1 ms")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(dynamic_case, "run_impact", failing)
+    cut = execute_case(spec.kind_spec.case, 0, case.params)
+    assert cut["status"] == "ok", cut["error"]
+    missing = cut["estimate_missing"]
+    assert missing.startswith("pad alone: no error estimate: a ladder level failed twice")
+    assert "; full: no error estimate" in missing and "none:" not in missing  # the pad's only
+    assert "step equation did not converge" in missing
+    for key in EFFECT_QUANTITIES:  # the finest levels passed: the same changes, no bars
+        assert cut["outputs"][f"change_{key}"] == full["outputs"][f"change_{key}"]
+        assert cut["outputs"][f"dominant_{key}"] == full["outputs"][f"dominant_{key}"]
+        assert np.isnan(cut["outputs"][f"resolved_{key}"])

@@ -575,7 +575,8 @@ def effects_case(p: dict[str, Any]) -> CaseResult:
     """The effect table of the case's impact (:func:`shtaerman.effects`, the command line's
     ``shtaerman effects``): per quantity its dominant effect, whether resolved, the full
     change and the interaction; without checks of its own (a refused variant is a row of the
-    table, not a failure)."""
+    table, not a failure); with ``estimate``, the runs whose ladder lost a level, and why, in
+    its ``estimate_missing``."""
     from ..api.effect_table import effects
 
     found, numerics = _effects_inputs(p)
@@ -591,7 +592,8 @@ def effects_case(p: dict[str, Any]) -> CaseResult:
         outputs[f"resolved_{key}"] = math.nan if resolved is None else float(resolved)
         outputs[f"change_{key}"] = _number(full[key]["change"])
         outputs[f"interaction_{key}"] = _number(table["interaction"][key]["change"])
-    return CaseResult(outputs, ())
+    missing = [f"{run['label']}: {run['error_note']}" for run in table["runs"] if run["error_note"]]
+    return CaseResult(outputs, (), "; ".join(missing) if p["estimate"] else "")
 
 
 def _number(value: float | None) -> float:
