@@ -472,6 +472,7 @@ def test_cli_runs_a_shipped_sweep_in_a_fresh_folder(tmp_path, capsys, monkeypatc
         "succeeded": 6,
         "failed": 0,
         "failed_cases": [],
+        "estimate_missing": {},
         "warnings": {},
     }
     # the paper's example is case 3 (v0 = 3 m/s): x_c exact (test_impact.py's mpmath literal)

@@ -285,7 +285,9 @@ def _estimate_text(report: dict) -> list[str]:
     depths = ", ".join(f"{k} {v:.4e}" for k, v in report.get("extrapolated_depth", {}).items())
     lines += [f"    at the worst depth (m): {depths}"] if depths else []
     target = report.get("accuracy_target")
-    if target is not None:
+    if report.get("accuracy_unreached"):  # a level beyond the first three failed
+        lines.append(f"  {worded(report['accuracy_unreached'], 'cli')}")
+    elif target is not None:
         reached = max(estimate[key] for key in ("force", "beta") if key in estimate)
         lines.append(f"  accuracy target {target:g}: met (force and beta estimate {reached:.1e})")
     return lines

@@ -3,9 +3,11 @@ the finding, the times and the cross-check summary row, from the entry's numbers
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
+from ..problem import worded
 from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
 from ..theory.sneddon import profile_inputs
 from .case import case_words, interface_words, prefixed
@@ -140,7 +142,7 @@ def _impact_table(study: Mapping[str, Any]) -> dict[str, object]:
 def _estimate_table(study: Mapping[str, Any]) -> dict[str, object] | None:
     """FEM value ± its Richardson estimate, the true error and their ratio (effectivity)."""
     accuracy = study.get("accuracy")
-    if not accuracy:
+    if not accuracy or accuracy.get("estimate_missing"):  # a level failed: the findings say
         return None
     ladder = ", ".join(str(level["dofs"]) for level in accuracy["mesh_ladder"])
     rows = []
@@ -178,14 +180,17 @@ def _layer_findings(
     """What the layer does to the contact and the impact (whose striker has the curve's
     ``interface``), with the FE error estimate; ``law`` names the half-space's exact law."""
     striker = interface_words(interface.get("kind", "frictionless"), interface.get("friction"))
-    excess = layer["force_ratio"] - 1.0
-    error = layer["force_ratio_error"] * layer["force_ratio"]
+    excess, error = layer["force_ratio"] - 1.0, layer["force_ratio_error"]
+    bar, note = "", "no error estimate: a ladder level failed"
+    if error is not None and math.isfinite(error):  # None: NaN in results.json
+        bar = f" ± {100 * error * layer['force_ratio']:.1g} %"
+        note = "FE estimate and interpolation to x_c"
     return (
         f"a {1e3 * layer['thickness']:.3g} mm layer on a {layer['base']} rigid base "
         f"(H / a_c = {layer['thickness_ratio']:.3g}, a_c = {1e3 * layer['contact_radius']:.3g} "
-        f"mm the half-space contact radius at x_c) carries {100 * excess:.3g} % ± "
-        f"{100 * error:.1g} % more force than {law} half-space at the same depth x_c "
-        "(FE estimate and interpolation to x_c). The quasi-static impact on its FE force-depth "
+        f"mm the half-space contact radius at x_c) carries {100 * excess:.3g} %{bar} more "
+        f"force than {law} half-space at the same depth x_c ({note}). The quasi-static "
+        "impact on its FE force-depth "
         f"law reaches x_max = {number(layer['x_max'], '.4g')} m "
         f"({100 * (layer['x_max_ratio'] - 1.0):+.3g} % of x_c) and P_max = "
         f"{number(layer['P_max'], '.4g')} N ({100 * (layer['P_max_ratio'] - 1.0):+.3g} % of "
@@ -206,7 +211,8 @@ def findings(name: str, study: Mapping[str, Any]) -> list[str]:
     layer, what the layer does to the contact and the impact."""
     if study.get("layer"):
         layer, interface = study["layer"], study.get("interface", {})
-        return [prefixed(name, study, _layer_findings(layer, interface, exact_law(study)[0]))]
+        text = _layer_findings(layer, interface, exact_law(study)[0])
+        return [prefixed(name, study, text), *_missing_finding(name, study)]
     errors = study["contact"]["errors"]
     text = (
         f"the FEM reproduces {exact_law(study)[0]} contact law within a relative "
@@ -215,13 +221,31 @@ def findings(name: str, study: Mapping[str, Any]) -> list[str]:
         "over the depths, on the study's mesh)"
     )
     accuracy = study.get("accuracy")
-    if accuracy:
+    if accuracy and not accuracy.get("estimate_missing"):
         text += (
             "; its own error estimate, which needs no exact solution, says "
             f"{number(accuracy['error_estimate']['force'], '.1e')} (force) and "
             f"{number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
         )
-    return [prefixed(name, study, text + ".")]
+    return [prefixed(name, study, text + "."), *_missing_finding(name, study)]
+
+
+def _missing_finding(name: str, study: Mapping[str, Any]) -> list[str]:
+    """ "no error estimate: <why>" when a level of the study's ladder failed ([] else): the
+    numbers are the finest level's that passed."""
+    accuracy = study.get("accuracy") or {}
+    if not accuracy.get("estimate_missing"):
+        return []
+    ladder = ", ".join(
+        "failed" if level["dofs"] is None else str(level["dofs"])
+        for level in accuracy["mesh_ladder"]
+    )
+    text = (
+        f"no error estimate: {worded(accuracy['estimate_missing'], 'file')}; the numbers are "
+        "the finest level "
+        f"that passed (ladder {ladder} dofs)."
+    )
+    return [prefixed(name, study, text)]
 
 
 def timing_text(study: Mapping[str, Any]) -> str:

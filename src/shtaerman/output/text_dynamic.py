@@ -12,6 +12,7 @@ from typing import Any
 from ..fem.viscoelastic import prony_input
 from ..paper.case import is_paper_case
 from ..plots.labels import model_label
+from ..problem import worded
 from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.limits import LEVELS as LIMIT_LEVELS
@@ -111,10 +112,11 @@ def velocity_limit(
 def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
     """One sentence: the largest estimated errors over the velocities, or why none."""
     if not outcome.estimated:
-        return (
-            "No error estimates: a quick run skips the 3-level ladder (mesh x2 and x sqrt 2, "
-            "time steps / 2 and / sqrt 2), so the study states no 1 % / 5 % velocity limits."
+        why = _missing(outcome) or (
+            "a quick run skips the 3-level ladder (mesh x2 and x sqrt 2, time steps / 2 and / "
+            "sqrt 2)"
         )
+        return f"No error estimates: {why}, so the study states no 1 % / 5 % velocity limits."
     estimates = [case.estimates() for case in outcome.cases]
     worst = {  # a massless rubber's 1 - e^2 is 0 by construction: not estimated
         key: max(e[key].error for e in estimates)
@@ -145,6 +147,17 @@ def _estimate_finding(outcome: DynamicStudyOutcome) -> str:
         f"{sum(map(len, estimates))} estimates are the largest difference between "
         "consecutive levels instead (no clean observed order: the levels scatter)."
     )
+
+
+def _missing(outcome: DynamicStudyOutcome) -> str:
+    """Why the ladder of a case lost a level, per such case ("" for none): that run reports
+    its finest level that passed."""
+    missing = [
+        f"at v0 = {case.velocity:g} m/s {worded(case.ladder.missing, 'file')}"
+        for case in outcome.cases
+        if case.ladder is not None and case.ladder.missing
+    ]
+    return "; ".join(missing) + " (the finest level that passed reported)" if missing else ""
 
 
 def _case_words(outcome: DynamicStudyOutcome) -> str:
@@ -377,7 +390,7 @@ def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     errors = (
         "± the estimated error (Richardson, 3-level ladder) in the value's unit"
         if outcome.estimated
-        else "no error estimates: a quick run skips the ladder"
+        else f"no error estimates: {_missing(outcome) or 'a quick run skips the ladder'}"
     )
     estimate = "first-order radiated fraction"
     reflected = "reflected: of the radiated energy"

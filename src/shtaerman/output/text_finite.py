@@ -13,6 +13,7 @@ from typing import Any
 
 from ..paper.case import is_paper_case
 from ..plots.labels import model_label, variant_label
+from ..problem import worded
 from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
@@ -166,9 +167,23 @@ def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
         *([] if outcome.start is None else [outcome.start.words()]),
         *rubber_finding(outcome),
         *curve_finding(outcome),
-        QUICK_ERROR if outcome.estimates is None else _estimate_finding(outcome),
+        _estimate_finding(outcome) if outcome.estimates is not None else _no_estimate(outcome),
         *_corrections(outcome, corrections_finding),
     ]
+
+
+def _no_estimate(outcome: FiniteStudyOutcome) -> str:
+    """Why the study has no error estimate: a quick run, or a level of its ladder failed
+    (then the finest level that passed is reported)."""
+    if not outcome.estimate_missing:
+        return QUICK_ERROR
+    ladder = ", ".join(
+        "failed" if level["dofs"] is None else str(level["dofs"]) for level in outcome.mesh_ladder
+    )
+    return (
+        f"No error estimate: {worded(outcome.estimate_missing, 'file')}; the numbers are the "
+        f"finest level that passed (ladder {ladder} dofs)."
+    )
 
 
 def _corrections(outcome: FiniteStudyOutcome, text: Any) -> list[Any]:

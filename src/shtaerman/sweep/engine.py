@@ -253,20 +253,22 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
     This is the one place a case's checks become its status, for every kind: the
     :class:`~shtaerman.sweep.kinds.CaseResult` a case returns is "ok" without failures, else
     "failed" with its reasons and its outputs kept; a case that returns no ``CaseResult`` (no
-    verdict) or raises is "failed" without outputs.
+    verdict) or raises is "failed" without outputs. A case whose ladder lost a level is "ok"
+    with its ``estimate_missing`` (its finest level that passed; its error outputs NaN).
 
     Returns
     -------
     dict
         ``index``, ``status`` ("ok" or "failed"), ``outputs``, ``error`` (one line or None),
-        ``warnings``, ``seconds`` (wall, s), ``cpu_seconds`` (CPU time of the thread that ran
-        the case, s), ``worker``, ``host``, ``pid``.
+        ``estimate_missing`` (one line or None), ``warnings``, ``seconds`` (wall, s),
+        ``cpu_seconds`` (CPU time of the thread that ran the case, s), ``worker``, ``host``,
+        ``pid``.
     """
     from threadpoolctl import threadpool_limits
 
     start, cpu = time.perf_counter(), time.thread_time()
     outputs: dict[str, float | int] = {}
-    error = None
+    error = missing = None
     with threadpool_limits(limits=1), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -277,6 +279,7 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
                     "(outputs and the failures of its checks)"
                 )
             outputs = {str(name): _scalar(name, value) for name, value in result.outputs.items()}
+            missing = " ".join(result.estimate_missing.split()) or None
             if result.failures:  # it ran, but its own checks fail: kept, as failed
                 error = "check failed: " + " ".join("; ".join(result.failures).split())
         except Exception as exc:
@@ -286,6 +289,7 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
         "status": "ok" if error is None else "failed",
         "outputs": outputs,
         "error": error,
+        "estimate_missing": missing,
         "warnings": sorted({str(w.message) for w in caught}),
         "seconds": time.perf_counter() - start,
         "cpu_seconds": time.thread_time() - cpu,
@@ -1105,7 +1109,8 @@ def _cell(value: Any) -> str:
 
 
 def csv_columns(spec: SweepSpec) -> list[tuple[str, str, str]]:
-    """(header, source, key) of every column of ``cases.csv``: case, axes, outputs, status."""
+    """(header, source, key) of every column of ``cases.csv``: case, axes, outputs, status,
+    error, and why the case's error estimate is missing (empty when it is not)."""
     kind = spec.kind_spec
     columns = [("case", "index", "index")]
     for name in spec.axes:
@@ -1113,7 +1118,7 @@ def csv_columns(spec: SweepSpec) -> list[tuple[str, str, str]]:
     for name, unit in spec.outputs.items():
         columns.append((unit_suffix(name, unit), "output", name))
     columns += [("status", "status", "status"), ("error", "error", "error")]
-    return columns
+    return [*columns, ("estimate_missing", "estimate_missing", "estimate_missing")]
 
 
 def cases_csv(spec: SweepSpec, cases: list[Case], records: Mapping[int, dict]) -> str:
@@ -1160,6 +1165,9 @@ def _results(
             "succeeded": outcome.succeeded,
             "failed": outcome.failed,
             "failed_cases": [r["index"] for r in ordered if r["status"] == "failed"],
+            "estimate_missing": {
+                str(r["index"]): r["estimate_missing"] for r in ordered if r.get("estimate_missing")
+            },
             "warnings": {str(r["index"]): r["warnings"] for r in ordered if r.get("warnings")},
         },
         "timings": {

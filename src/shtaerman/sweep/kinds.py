@@ -79,10 +79,15 @@ class CaseResult:
         The case's scalar outputs (units as the kind's ``outputs`` declare).
     failures : tuple of str
         One line per failed check of the case's own (those ``verify`` applies to a study).
+    estimate_missing : str
+        Why the case's error estimate is missing ("" when it has one or none was asked): a
+        level of its ladder failed, the outputs are the finest level's that passed and its
+        error outputs NaN. The case stays "ok"; its record and row say why.
     """
 
     outputs: Mapping[str, float]
     failures: tuple[str, ...]
+    estimate_missing: str = ""
 
 
 def unit_suffix(name: str, unit: str) -> str:
@@ -440,17 +445,19 @@ def dynamic_case(p: dict[str, Any]) -> CaseResult:
         "difference_worst": max(abs(value) for value in differences.values()),
         "dofs": int(result.mesh["dofs"]),
         "seconds": seconds,
-        **_result_errors(result),
+        **_result_errors(result, p["estimate"]),
     }
-    return CaseResult(outputs, tuple(check_failures(result, problem)))
+    missing = result.estimate_missing or ""
+    return CaseResult(outputs, tuple(check_failures(result, problem)), missing)
 
 
-def _result_errors(result: Any) -> dict[str, float]:
+def _result_errors(result: Any, estimate: bool) -> dict[str, float]:
     """:data:`DYNAMIC_ERRORS` of a case's :class:`~shtaerman.DynamicResult` run with its
-    ladder ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a massless
-    elastic body, 0 to round-off)."""
+    ladder, ``estimate`` ({} without one; NaN where the ladder gave none, e.g. 1 - e^2 of a
+    massless elastic body, 0 to round-off, and all NaN when a level failed: the result's
+    ``estimate_missing``)."""
     if result.error_estimate is None:
-        return {}
+        return dict.fromkeys(DYNAMIC_ERRORS, math.nan) if estimate else {}
     relative = ("x_max", "P_max", "t_contact", "restitution", "energy_radiated_fraction")
     out = {f"error_{key}": float(result.error_estimate.get(key, math.nan)) for key in relative}
     for key, name in (("x", "x_c"), ("P", "P_c"), ("t", "t_c")):
@@ -568,7 +575,8 @@ def effects_case(p: dict[str, Any]) -> CaseResult:
     """The effect table of the case's impact (:func:`shtaerman.effects`, the command line's
     ``shtaerman effects``): per quantity its dominant effect, whether resolved, the full
     change and the interaction; without checks of its own (a refused variant is a row of the
-    table, not a failure)."""
+    table, not a failure); with ``estimate``, the runs whose ladder lost a level, and why, in
+    its ``estimate_missing``."""
     from ..api.effect_table import effects
 
     found, numerics = _effects_inputs(p)
@@ -584,7 +592,8 @@ def effects_case(p: dict[str, Any]) -> CaseResult:
         outputs[f"resolved_{key}"] = math.nan if resolved is None else float(resolved)
         outputs[f"change_{key}"] = _number(full[key]["change"])
         outputs[f"interaction_{key}"] = _number(table["interaction"][key]["change"])
-    return CaseResult(outputs, ())
+    missing = [f"{run['label']}: {run['error_note']}" for run in table["runs"] if run["error_note"]]
+    return CaseResult(outputs, (), "; ".join(missing) if p["estimate"] else "")
 
 
 def _number(value: float | None) -> float:
@@ -686,7 +695,7 @@ def layer_case(p: dict[str, Any]) -> CaseResult:
         "seconds": outcome.seconds,
         **_layer_dynamic(layer),
     }
-    return CaseResult(outputs, failures(outcome.checks))
+    return CaseResult(outputs, failures(outcome.checks), outcome.accuracy.missing)
 
 
 def _layer_dynamic(layer: Any) -> dict[str, float]:

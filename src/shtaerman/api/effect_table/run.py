@@ -140,7 +140,8 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     values = {key: float(getattr(result, key)) for key in QUANTITIES}
     details, seconds = result.estimate_details, time.perf_counter() - start
     errors = details and {key: float(details[key]["absolute_error"]) for key in QUANTITIES}
-    note = None if errors else NO_ESTIMATE[not estimate]
+    missing = result.estimate_missing and f"no error estimate: {result.estimate_missing}"
+    note = None if errors else missing or NO_ESTIMATE[not estimate]
     return Run(**head, values=values, errors=errors, error_note=note, seconds=seconds, notes=notes)
 
 

@@ -15,6 +15,10 @@ run ``partial`` (the API's contact curve): the finest level that passed is repor
 estimate marked missing with the reason (:attr:`AccuracyResult.missing`) and a warning, as the
 impact's ladder does (:mod:`shtaerman.study.dynamic.accuracy`); it fails only when no level
 passed. The retry with finer load steps is the run's own (:func:`.constraints.cut_step`).
+:func:`run_to_accuracy` does the same within its first three levels; a level beyond them that
+fails ends the refinement: the last three levels that passed answer with their estimate, and
+the result says that the tolerance was not reached and why (:attr:`AccuracyResult.unreached`,
+an :class:`AccuracyNotReachedWarning`).
 """
 
 from __future__ import annotations
@@ -40,6 +44,7 @@ from ..richardson import Estimate, curve_richardson, richardson, worst_point
 from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
 
 __all__ = [
+    "AccuracyNotReachedWarning",
     "AccuracyResult",
     "LadderLevel",
     "run_ladder",
@@ -89,6 +94,11 @@ the default mesh, mostly by re-meshing, and by 1e-7 at refine 2, benchmarks/FEM_
 half-space."""
 
 Progress = Callable[[str], None]
+
+
+class AccuracyNotReachedWarning(UserWarning):
+    """A level of :func:`run_to_accuracy` beyond its first three failed: the estimate of the
+    last three that passed is reported, above the tolerance asked."""
 
 
 class LadderCurve(Protocol):
@@ -142,6 +152,10 @@ class AccuracyResult:
     failures : tuple of (float, str)
         The levels that failed: refinement factor and what failed; then ``estimates`` is
         empty and :attr:`missing` says why.
+    unreached : str
+        Why ``tolerance`` was not reached ("" when it was, or none was set): a level of
+        :func:`run_to_accuracy` beyond the first three failed, ``estimates`` are those of the
+        last three levels that passed.
     """
 
     levels: tuple[LadderLevel, ...]
@@ -149,6 +163,7 @@ class AccuracyResult:
     tolerance: float | None = None
     exact: bool = True
     failures: tuple[tuple[float, str], ...] = ()
+    unreached: str = ""
 
     @property
     def missing(self) -> str:
@@ -187,7 +202,8 @@ class AccuracyResult:
     def to_dict(self) -> dict[str, object]:
         """The JSON keys ``error_estimate``, ``extrapolated``, ``extrapolated_depth`` (the depth
         of each per-depth quantity's estimate, m: :meth:`worst_depths`), ``mesh_ladder`` and
-        details (``true_error`` and ``effectivity`` only where the exact solution is known)."""
+        details (``true_error`` and ``effectivity`` only where the exact solution is known;
+        ``accuracy_unreached`` only where :attr:`unreached` says why)."""
         if self.failures:
             return self._without_estimate()
         truth = {}
@@ -207,6 +223,7 @@ class AccuracyResult:
                 for level in self.levels
             ],
             "accuracy_target": self.tolerance,
+            **({"accuracy_unreached": self.unreached} if self.unreached else {}),
         }
 
     def _without_estimate(self) -> dict[str, object]:
@@ -569,7 +586,10 @@ def run_to_accuracy(
     Returns
     -------
     AccuracyResult
-        With ``tolerance`` set; its finest level meets it.
+        With ``tolerance`` set; its finest level meets it, unless a level failed
+        numerically: within the first three the estimate is missing (as
+        :func:`run_mesh_ladder` ``partial``), beyond them :attr:`AccuracyResult.unreached`
+        says why the tolerance was not reached.
     """
     tolerance = validate_positive("accuracy", tolerance)
     if tolerance > 0.1:
@@ -582,12 +602,29 @@ def run_to_accuracy(
     mesh = accuracy_mesh(mesh, indenter, depths, tolerance)
     solve = _linear(indenter, half_space, depths, backend)
     exact, refined = _exact(mesh), refined_radius(indenter, depths, mesh)
-    result = run_mesh_ladder(solve, mesh, progress=progress, exact=exact, refined=refined)
+    steps = {"progress": progress, "exact": exact, "refined": refined, "partial": True}
+    result = replace(run_mesh_ladder(solve, mesh, **steps), tolerance=tolerance)
     report = progress or (lambda _line: None)
-    while _force_error(result) > tolerance:
+    while not result.failures and _force_error(result) > tolerance:
         _check_reachable(result, tolerance, max_dofs, max_time - (time.perf_counter() - start))
         refine = result.levels[-1].refine * LADDER_RATIO
-        level = _level(solve, mesh, refine, report)
+        try:
+            level = _level(solve, mesh, refine, report)
+        except FAILURES as error:
+            report(f"mesh x{refine:.3g}: failed ({error})")
+            return _unreached(result, refine, str(error))
         levels = (*result.levels, level)
-        result = AccuracyResult(levels, estimate_errors(levels[-3:]), exact=exact)
-    return replace(result, tolerance=tolerance)
+        result = AccuracyResult(levels, estimate_errors(levels[-3:]), tolerance, exact)
+    return result
+
+
+def _unreached(result: AccuracyResult, refine: float, why: str) -> AccuracyResult:
+    """``result`` (the last three levels that passed answer) with the level of ``refine``
+    failed for ``why``: :attr:`AccuracyResult.unreached` says so, and a warning."""
+    unreached = (
+        f"accuracy {result.tolerance:g} not reached: the level of refine {refine:.3g} failed "
+        f"({why}); the estimate {_force_error(result):.2g} (force and beta) is that of the last "
+        f"three levels that passed (refine {result.levels[-1].refine:.3g} answers)"
+    )
+    warnings.warn(unreached, AccuracyNotReachedWarning, stacklevel=caller_stacklevel())
+    return replace(result, unreached=unreached)

@@ -114,7 +114,8 @@ class LayerFindings:
     force_ratio : float
         P_layer / P_Shtaerman at the half-space impact's x_c.
     force_ratio_error : float
-        Estimated relative error of ``force_ratio`` (FE estimate + interpolation).
+        Estimated relative error of ``force_ratio`` (FE estimate + interpolation); NaN when
+        the ladder's estimate is missing.
     x_max, P_max : float
         Maxima of the quasi-static impact on the layer's tabulated FE law (m, N).
     x_max_ratio, P_max_ratio : float
@@ -166,6 +167,12 @@ def _interpolation_error(law: FemContactLaw, depth: float) -> float:
     return abs(math.expm1(float(quadratic) - math.log(float(law.force(depth)))))
 
 
+def _force_error(accuracy: AccuracyResult) -> float:
+    """The ladder's estimated relative error of the force (NaN: its estimate is missing)."""
+    estimate = accuracy.estimates.get("force")
+    return math.nan if estimate is None else estimate.error
+
+
 def layer_findings(
     layer: LayerSpec,
     accuracy: AccuracyResult,
@@ -201,7 +208,7 @@ def layer_findings(
         base=layer.base,
         contact_radius=a_c,
         force_ratio=float(law.force(x_c)) / p_c,
-        force_ratio_error=accuracy.estimates["force"].error + _interpolation_error(law, x_c),
+        force_ratio_error=_force_error(accuracy) + _interpolation_error(law, x_c),
         x_max=layer_impact["x_c"],
         P_max=layer_impact["P_c"],
         x_max_ratio=layer_impact["x_c"] / x_c,
@@ -241,11 +248,14 @@ def with_dynamic_impact(
 def layer_checks(findings: LayerFindings, force: float, impact: float) -> list[Check]:
     """Pass or fail of a layer study: the FE error estimate of the force ratio within ``force``;
     the layer no softer than the half-space (within its error and ``force``); the impact on it
-    no deeper and no softer than on the half-space (within ``impact``)."""
+    no deeper and no softer than on the half-space (within ``impact``). Without the estimate
+    (NaN: a ladder level failed, the report says why) its check is left out, not failed."""
     error = findings.force_ratio_error
-    checks = [
-        Check("layer force ratio error estimate", error, force),
-        Check("layer P / P_Shtaerman >= 1", min(0.0, findings.force_ratio - 1.0 + error), force),
+    known = math.isfinite(error)
+    checks = [Check("layer force ratio error estimate", error, force)] if known else []
+    margin = error if known else 0.0
+    checks += [
+        Check("layer P / P_Shtaerman >= 1", min(0.0, findings.force_ratio - 1.0 + margin), force),
         Check("layer impact x_max <= x_c", max(0.0, findings.x_max_ratio - 1.0), impact),
         Check("layer impact P_max >= P_c", min(0.0, findings.P_max_ratio - 1.0), impact),
     ]

@@ -61,7 +61,8 @@ class StudyOutcome(Outcome):
     convergence: ConvergenceStudy | None = None
     """The study's mesh-convergence study, if it asks for one."""
     accuracy: AccuracyResult | None = None
-    """The mesh ladder whose finest level is ``contact``, with its error estimates."""
+    """The mesh ladder whose finest level (that passed) is ``contact``, with its error
+    estimates (none when a level failed: :attr:`AccuracyResult.missing` says why)."""
     layer: LayerFindings | None = None
     """On a layer: its force against the half-space's and the impact on it."""
 
@@ -184,7 +185,9 @@ def run_contact_study(
         radius = refined_radius(study.indenter, depths, mesh)
         check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
-    accuracy = run_ladder(study.indenter, study.half_space, depths, mesh, refine=study.refine)
+    accuracy = run_ladder(  # partial: a failed level leaves the finest that passed, unestimated
+        study.indenter, study.half_space, depths, mesh, refine=study.refine, partial=True
+    )
     contact = accuracy.finest
     deepest, thickness = contact.steps[-1].depth, contact.mesh_stats.get("thickness")
     warn_outside_validity(study.indenter, deepest, thickness, False, "the deepest depth")

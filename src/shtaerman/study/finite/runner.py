@@ -14,7 +14,11 @@ changes E* by 5e-5 for the paper's rubber). A study runs:
    doubled and its two uniform refinements (``"nested"``,
    :func:`shtaerman.study.ladder.nested_ladder`, the finest level twice as fine as the study's
    mesh): Richardson estimates of every reported number (:mod:`.accuracy`). ``verify
-   --quick`` runs one coarse mesh and estimates nothing.
+   --quick`` runs one coarse mesh and estimates nothing. A level that fails numerically
+   (Newton, unsettled contact sets: :data:`~shtaerman.study.dynamic.accuracy.FAILURES`)
+   does not abort the others: the finest level that passed answers, its estimate missing
+   (:attr:`FiniteStudyOutcome.estimate_missing` says why, and a warning), as on the contact
+   curve's ladder; the study fails only when no level passed.
 
 Checks that need no reference: the small-strain limit at the tiny first depth, conservation
 (Simpson's Int P dx against the stored energy), Newton's final correction and complementarity
@@ -38,15 +42,18 @@ from scipy.optimize import brentq
 from ...fem.contact.constraints import MIN_CONTACT_NODES
 from ...fem.contact.finite import check_finite_depths, geometric_radius, tip_exponent
 from ...fem.mesh import MeshSettings
+from ...fem.rubber import GentLockError
 from ...theory.impact import ImpactHistory, ImpactResult
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.sneddon import Indenter, contact_law, profile_inputs
+from ...validation import caller_stacklevel
 from ..checks import Check, Outcome
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
+from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
 from ..dynamic.case import exact_impact
 from ..ladder import (
     LADDER_RATIO,
@@ -200,6 +207,11 @@ class FiniteStudyOutcome(Outcome):
     """The ``[corrections]`` impacts (:func:`.corrections.run_corrections`); None without."""
     start: LadderStart | None = None
     """Where the depth ladder started when the mesh moved it (None: at ``small_ratio``)."""
+    estimate_missing: str = ""
+    """Why ``estimates`` is None after a mesh ladder ("" when it is not): a level failed."""
+    mesh_ladder: tuple[dict[str, object], ...] = ()
+    """With ``estimate_missing``: per level its ``refine``, ``dofs`` and ``seconds`` (None
+    where it failed, its ``failure`` named)."""
 
     @property
     def mesh(self) -> MeshSettings:
@@ -309,6 +321,11 @@ class FiniteStudyOutcome(Outcome):
         impacts under ``corrections``."""
         mesh = self.mesh
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
+        if self.estimate_missing:  # the contact ladder's keys (AccuracyResult.to_dict)
+            missing = dict.fromkeys(("error_estimate", "extrapolated", "estimate_details"))
+            ladder = [dict(level) for level in self.mesh_ladder]
+            missing |= {"estimate_missing": self.estimate_missing, "mesh_ladder": ladder}
+            accuracy = {"accuracy": missing}
         corrections = {} if self.corrections is None else {"corrections": self.corrections}
         start = {} if self.start is None else {"ladder_start": self.start.to_dict()}
         return {
@@ -530,14 +547,14 @@ def run_finite_strain_study(
         check_finite_depths(study.indenter, depths, model, (study.mass, study.velocity))
         if first is not None:
             report(f"{study.name}: {first.words()}")
-    outcomes = []
-    for factor, level in zip(factors, meshes, strict=True):
-        report(
-            f"{study.name}: mesh x{factor:.3g}: finite-strain curve ({depths.size} depths), "
-            "linear FEM on the same mesh, impacts"
-        )
-        outcomes.append(_run_level(study, depths, level, exact, quick, first))
-    estimates = estimate_ladder(outcomes, factors, nested) if len(outcomes) > 1 else None
+    levels = _run_levels(
+        study, depths, list(zip(factors, meshes, strict=True)), report, exact, quick, first
+    )
+    outcomes = [outcome for _, outcome in levels if not isinstance(outcome, str)]
+    missing = {} if len(outcomes) == len(levels) else _missing(study, levels)
+    estimates = None
+    if len(outcomes) > 1 and not missing:
+        estimates = estimate_ladder(outcomes, factors, nested)
     return replace(
         outcomes[-1],
         estimates=estimates,
@@ -545,4 +562,60 @@ def run_finite_strain_study(
         start=first,
         seconds=time.perf_counter() - start,
         cpu_seconds=time.process_time() - cpu,
+        **missing,
     )
+
+
+Level = tuple[float, "FiniteStudyOutcome | str"]
+"""A ladder level's refinement factor and its outcome, or what failed."""
+
+
+def _run_levels(
+    study: FiniteStudy,
+    depths: np.ndarray,
+    meshes: list[tuple[float, MeshSettings]],
+    report: Progress,
+    *level: Any,
+) -> list[Level]:
+    """:func:`_run_level` on each (factor, mesh) of ``meshes``, coarse to fine (``level``:
+    the exact impact, ``quick`` and the ladder's start); a level that fails numerically
+    (:data:`FAILURES`) is kept as what failed, unless it is the finest and none passed (then
+    raised, as a Gent rubber's lock at once: its limit, which no mesh cures)."""
+    levels: list[Level] = []
+    for factor, mesh in meshes:
+        report(
+            f"{study.name}: mesh x{factor:.3g}: finite-strain curve ({depths.size} depths), "
+            "linear FEM on the same mesh, impacts"
+        )
+        try:
+            levels.append((factor, _run_level(study, depths, mesh, *level)))
+        except GentLockError:
+            raise
+        except FAILURES as error:
+            if factor == meshes[-1][0] and all(isinstance(o, str) for _, o in levels):
+                raise
+            levels.append((factor, str(error)))
+            report(f"{study.name}: mesh x{factor:.3g}: failed ({error})")
+    return levels
+
+
+def _missing(study: FiniteStudy, levels: list[Level]) -> dict[str, Any]:
+    """``estimate_missing`` and ``mesh_ladder`` of a ladder whose ``levels`` lost one or
+    more, said once as an :class:`EstimateMissingWarning`."""
+    failed = "; ".join(f"refine {f:.3g}: {o}" for f, o in levels if isinstance(o, str))
+    missing = f"a ladder level failed, {failed}"
+    rows: list[dict[str, object]] = []
+    for factor, outcome in levels:
+        if isinstance(outcome, str):
+            rows.append({"refine": factor, "dofs": None, "seconds": None, "failure": outcome})
+        else:
+            dofs = int(outcome.finite.curve.mesh_stats["dofs"])
+            rows.append({"refine": factor, "dofs": dofs, "seconds": outcome.seconds})
+    finest = next(f for f, o in reversed(levels) if not isinstance(o, str))
+    warnings.warn(
+        f"study {study.name!r}: no error estimate: {missing}; the finest level that passed "
+        f"(mesh x{finest:.3g}) is reported. Another mesh (refine, mesh_size) may pass",
+        EstimateMissingWarning,
+        stacklevel=caller_stacklevel(),
+    )
+    return {"estimate_missing": missing, "mesh_ladder": tuple(rows)}
