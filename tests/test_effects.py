@@ -214,6 +214,33 @@ def test_a_run_keeps_an_option_its_combinations_limit_allows(monkeypatch):
     )
 
 
+def test_a_run_drops_each_refused_option_once_and_checks_what_is_left(monkeypatch):
+    """Two options refused one after the other, then none left: every given option checked,
+    each refused one dropped with its note in order, and the empty set checked last (the
+    behaviour of the while True loop that the bounded one replaced)."""
+    import shtaerman.api.effect_table.run as run
+    import shtaerman.problem as problem
+
+    seen = []
+    limit = problem.OptionLimit(
+        lambda cell: seen.append(None) is None,  # counts the checks of each option
+        ("time_steps", "mesh_size"),
+        "not here, got {value}",
+        lambda value, given: False,
+    )
+    for module in (problem, run):
+        monkeypatch.setattr(module, "OPTION_SUPPORT", (limit,), raising=False)
+    impact = sh.Problem.impact(INDENTER, BODY, **CASE)
+    assert run._options(impact, {"time_steps": 200, "mesh_size": 0.2}) == (
+        {},
+        ("time_steps not applied: not here, got 200", "mesh_size not applied: not here, got 0.2"),
+    )
+    assert len(seen) == 3  # {both}, {mesh_size}, {} : one check per dropped option, one last
+    seen.clear()
+    assert run._options(impact, {}) == ({}, ())
+    assert len(seen) == 1
+
+
 def test_the_study_reports_headline_table_carries_every_error_bar():
     """Old code: the effects study's table printed the changes without their bars (issue 28
     point 6: each entry carries its error bar), and e - 1 as per cent."""

@@ -185,7 +185,7 @@ def test_worded_spells_the_inputs_a_refusal_names_for_each_route():
 
     said = "friction: give interface='bonded' or thickness=... (estimate=False); got 'force=N'"
     assert worded(said, "python") == said
-    assert worded(said, "cli") == (
+    assert worded(said, "cli", parameter="friction") == (  # the keyword it declares
         "--friction: give --interface bonded or --thickness (--no-estimate); got 'force=N'"
     )
     keys = {"interface": "impact.interface", "thickness": "layer.thickness"}
@@ -193,3 +193,37 @@ def test_worded_spells_the_inputs_a_refusal_names_for_each_route():
         'friction: give [impact] interface = "bonded" or [layer] thickness (estimate = false); '
         "got 'force=N'"
     )
+
+
+def test_only_the_declared_keyword_at_the_head_becomes_an_option():
+    """The head of a message is spelled as options only when it names the refusal's declared
+    parameter, a keyword of the vocabulary; a numerical failure declares none, so its step
+    label stays as written even where it is also a keyword (``fit``), and its advice is still
+    spelled. Old code: a special case in cli.common split the failure at its first colon."""
+    from shtaerman.problem import worded
+
+    advice = "fit: the curve failed; give mesh_size=... or estimate=False"
+    assert worded(advice, "cli") == "fit: the curve failed; give --mesh-size or --no-estimate"
+    assert worded("fit: unknown name 'E3'", "cli", parameter="fit") == "--fit: unknown name 'E3'"
+    assert worded("level 2: Newton failed", "cli") == "level 2: Newton failed"
+    assert worded("mass, velocity: too fast", "cli", parameter="mass") == (
+        "--mass, --velocity: too fast"
+    )
+    # a head the refusal does not declare, or no keyword of the vocabulary, is left alone
+    assert worded("mass: too fast", "cli", parameter="velocity") == "mass: too fast"
+    assert worded("level: too deep", "cli", parameter="level") == "level: too deep"
+
+
+def test_in_option_words_tells_a_refusal_from_a_failure():
+    """Through cli.common.in_option_words: an InputError's declared keyword becomes its option,
+    a NumericalFailureError keeps its step label and gets its advice in options."""
+    from shtaerman.cli.common import in_option_words
+    from shtaerman.validation import InputError, NumericalFailureError
+
+    with pytest.raises(InputError) as refused, in_option_words():
+        raise InputError("fit: unknown name 'E3'; pick E2 or nu2", "fit")
+    assert str(refused.value) == "--fit: unknown name 'E3'; pick E2 or nu2"
+    assert refused.value.parameter == "fit"
+    with pytest.raises(NumericalFailureError) as failed, in_option_words():
+        raise NumericalFailureError("fit: the FE curve failed; give E2 and a smaller refine=...")
+    assert str(failed.value) == "fit: the FE curve failed; give E2 and a smaller --refine"

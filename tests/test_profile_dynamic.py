@@ -137,6 +137,30 @@ def test_the_input_check_solves_a_profiles_quasi_static_impact_once(monkeypatch)
     assert scales == dynamic_contact._scales(BALL, RUBBER, 1100.0, striker, COARSE)
 
 
+def test_a_ladder_sizes_its_runs_by_one_solve_of_the_profiles_impact(monkeypatch):
+    """The FE sizing impact of a sphere (a quadrature, seconds on a long table) was solved by
+    every level of the error-estimate ladder, twice with a Prony series (the input check and
+    the viscoelastic extent): 6 solves for 3 levels (measured on the old code). The case now
+    solves it once and passes it down; the scales it gives are those of a run's own solve,
+    exactly (one deterministic function of the same inputs)."""
+    from shtaerman.fem import dynamic_contact
+
+    solved = []
+    real = dynamic_contact.solve_profile_impact
+    monkeypatch.setattr(
+        dynamic_contact, "solve_profile_impact", lambda *a: solved.append(1) or real(*a)
+    )
+    body = sh.Material(3e6, 0.49, 1000.0)
+    numerics = dict(mesh_size=0.1, time_steps=100, estimate=True)
+    result = sh.dynamic(BALL, body, mass=0.12, velocity=1.5, prony="0.3:1e-3", **numerics)
+    assert len(result.mesh_ladder) == 3 and len(solved) == 1
+    striker = dynamic_contact.Striker(0.12, 1.5)
+    given = dynamic_contact.profile_sizing_impact(BALL, body, 0.12, 1.5)
+    assert dynamic_contact._quasi_static(BALL, body, striker, given) == (
+        dynamic_contact._quasi_static(BALL, body, striker)
+    )
+
+
 def test_sh_dynamic_solves_the_profiles_quasi_static_impact_once_per_purpose():
     """The exact impact of a sphere or a table is a quadrature (about 4 s on a 2000-row
     table): ``sh.dynamic`` solved it five times before one run (its input check, the run's own

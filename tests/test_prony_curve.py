@@ -16,6 +16,7 @@ from shtaerman.study.contact.indentation import default_depths, refined_radius
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.viscoelastic import (
     PronySeries,
+    RateContact,
     constant_rate_contact,
     hereditary,
     indentation_force,
@@ -98,6 +99,30 @@ def test_the_piecewise_linear_lee_radok_converges_to_it_at_second_order():
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert errors[-1] < 1e-5  # 200 steps: measured 1.3e-6
     assert orders == pytest.approx(2.0, abs=0.1)  # measured 2.00, 2.00
+
+
+# Lee-Radok's force ratios P / (beta0 x^q) = R_q(x / V) at x = 2, 4 mm, V = 1 m/s, g = 0.5,
+# tau = 2 ms, and their geometric mean, by mpmath (30 digits):
+#   q = mp.mpf(5) / 3; g, tau = mp.mpf("0.5"), mp.mpf("2e-3")
+#   R = [1 - g + g * mp.hyp1f1(1, q + 1, -x / tau) for x in (mp.mpf("2e-3"), mp.mpf("4e-3"))]
+#   mp.exp(sum(mp.log(r) for r in R) / 2)
+RATIOS = (0.85435612125159636509, 0.76550059540248937939)
+BETA_RATIO = 0.80870892137026559897
+
+
+def test_the_exact_beta_holds_the_elastic_exponent():
+    """RateContact's beta is fitted with q held at the elastic 5/3, so beta / beta0 is the
+    geometric mean of the force ratios, between the smallest and the largest. The old beta,
+    held at the curve's free exponent (1.508 here), was in N m^-1.508 and its ratio to beta0
+    fell outside them (session 48: 0.670 against ratios >= 0.703). scipy's hyp1f1 is good
+    to ~5e-14 against mpmath, hence 1e-12."""
+    depths = (2e-3, 4e-3)
+    exact = RateContact(GLASSY, SERIES, 1.0, depths)
+    ratios = exact.force(np.array(depths)) / GLASSY.force(np.array(depths))
+    np.testing.assert_allclose(ratios, RATIOS, rtol=1e-12)
+    assert exact.force_exponent == GLASSY.force_exponent
+    assert exact.beta / GLASSY.beta == pytest.approx(BETA_RATIO, rel=1e-12)
+    assert min(RATIOS) < exact.beta / GLASSY.beta < max(RATIOS)
 
 
 # --- the FEM curve ---------------------------------------------------------------------------
@@ -226,6 +251,11 @@ def test_the_api_and_the_cli_give_the_lee_radok_columns(capsys):
     assert np.all(np.abs(result.force / exact - 1.0) < 3e-3)  # refine 0.35: measured 1.1e-3
     report = result.to_dict()
     assert (report["prony"], report["rate"]) == ("0.5:0.002", 1.0)
+    # beta holds the elastic q on both sides: the exact one is the literal mean ratio times
+    # beta0 (1e-12: hyp1f1's accuracy), the FEM one lies between its own force ratios
+    assert report["beta_analytic"] / GLASSY.beta == pytest.approx(BETA_RATIO, rel=1e-12)
+    fem_ratios = result.force / GLASSY.force(np.array(depths))
+    assert min(fem_ratios) <= report["beta_fem"] / GLASSY.beta <= max(fem_ratios)
     from shtaerman.cli import main
 
     argv = ["contact", "--prony", "0.5:2e-3", "--rate", "1", "--depths", "2e-3,4e-3"]

@@ -237,8 +237,28 @@ def test_resume_refuses_other_studies_than_the_interrupted_runs(
     argv = ["verify", "--quick", "--workers", "1", "--out", str(out), *other, "--resume"]
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
-    assert "resume: the interrupted run was of" in err and SECOND in err and "\n" not in err
+    # the command line's option, as every refusal there (it said 'resume: ...')
+    assert err.startswith("shtaerman: error: --resume: the interrupted run was of"), err
+    assert SECOND in err and "\n" not in err
     assert sorted(p.name for p in out.iterdir()) == before  # nothing dropped
+
+
+def test_a_resume_refusal_names_the_option_on_the_command_line_and_the_keyword_in_python(
+    tmp_path, capsys
+):
+    """verify --resume's refusals say --resume (old code: 'resume: ...', the API's keyword);
+    the library raises them with the keyword and declares it (the Python route's words)."""
+    from shtaerman.output.folder import PROGRESS_FILE, kept_entries
+
+    assert main(["verify", "--resume"]) == 2
+    assert capsys.readouterr().err == (
+        "shtaerman: error: --resume: name the folder to complete with --out DIR\n"
+    )
+    (tmp_path / PROGRESS_FILE).write_text("not json", encoding="utf-8")
+    with pytest.raises(shtaerman.InputError) as refused:
+        kept_entries(tmp_path, [], quick=True)
+    assert str(refused.value).startswith(f"resume: {PROGRESS_FILE} is not one this tool wrote")
+    assert refused.value.parameter == "resume"
 
 
 def test_a_verify_stopped_after_every_study_says_the_summary_is_missing_and_resume_writes_it(

@@ -141,7 +141,9 @@ class Body:
         from .fem.viscoelastic import prony_input
 
         if self.model not in MODELS:
-            raise InputError(f"model: unknown model {self.model!r}. Pick one of {list(MODELS)}")
+            raise InputError(
+                f"model: unknown model {self.model!r}. Pick one of {list(MODELS)}", "model"
+            )
         object.__setattr__(self, "prony", prony_input(self.prony))
         if not self.finite:
             for name in RUBBER_OPTIONS:
@@ -624,9 +626,11 @@ def worded(
     (``friction: ...``) and names another input ``name=value`` or, alone, ``name=...``.
     ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
     ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
-    maps an input to its ``table.key``), ``"python"`` keeps it. On the command line a message
-    that begins with its ``parameter`` without a colon (``solver 'pardiso' ...``) gets its
-    option too."""
+    maps an input to its ``table.key``), ``"python"`` keeps it. On the command line the
+    message's head becomes options only when it names the refusal's declared ``parameter``, a
+    keyword of the vocabulary (``friction: ...``, ``mass, velocity: ...``, ``solver 'pardiso'
+    ...``): a head that names none (a numerical failure's step, ``fit: ...``, ``level 2: ...``)
+    is left as written."""
     if route == "python":
         return message
 
@@ -642,12 +646,15 @@ def worded(
         return place if value == "..." else f"{place} = {value}"
 
     message = _REFERENCE.sub(spoken, message)
-    leading = _LEADING.match(message) if route == "cli" else None
-    if leading and all(name in _NAMES for name in leading[1].split(", ")):
-        options = ", ".join(entry(name).cli_option for name in leading[1].split(", "))
-        message = options + message[leading.end() :]
-    elif route == "cli" and parameter in _NAMES and re.match(rf"{parameter}\b(?![-=:,])", message):
-        message = entry(parameter).cli_option + message[len(parameter) :]
+    if route != "cli" or parameter not in _NAMES:
+        return message
+    leading = _LEADING.match(message)
+    names = leading[1].split(", ") if leading else []
+    if parameter in names and all(name in _NAMES for name in names):
+        options = ", ".join(entry(name).cli_option for name in names)
+        return options + message[leading.end() :]
+    if re.match(rf"{parameter}\b(?![-=:,])", message):
+        return entry(parameter).cli_option + message[len(parameter) :]
     return message
 
 

@@ -861,6 +861,15 @@ VOCABULARY: tuple[Entry, ...] = (
                 None,
                 "flag",
             ),
+            (
+                "resume",
+                "",
+                "complete the folder an interrupted run left in --out, keeping what it finished",
+                "resume",
+                False,
+                None,
+                "flag",
+            ),
             ("history", "", "write the time history as CSV", "history", None, None, "path"),
             (
                 "points",

@@ -215,8 +215,9 @@ def in_option_words() -> Iterator[None]:
             raise
         raise type(error)(spoken, error.parameter) from None
     except NumericalFailureError as error:  # what to change: the options to give
-        label, colon, advice = str(error).partition(": ")  # 'fit: ...' names a step, no option
-        spoken = f"{label}{colon}{worded(advice, 'cli')}" if colon else worded(label, "cli")
+        spoken = worded(str(error), "cli")  # no parameter at fault: its head is left as is
+        if spoken == str(error):
+            raise
         raise NumericalFailureError(spoken) from None
 
 

@@ -212,7 +212,8 @@ def contact_text(report: dict) -> str:
     if "prony" in report:
         rows.append(
             f"  viscoelastic (Prony {report['prony']}) pressed at {report['rate']:g} m/s: "
-            "rel.err against Lee-Radok (exact at nu2 = 0.5); forces are nodal sums"
+            "rel.err against Lee-Radok (exact at nu2 = 0.5); forces are nodal sums; beta "
+            "holds the elastic q (beta / beta0 = the mean force ratio), the exponent is free"
         )
     rows += layer_rows(report, "rel.err = departure from the half-space")
     rows += _interface_rows(report, "rel.err = departure from the frictionless solution")

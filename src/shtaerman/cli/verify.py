@@ -79,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
     if args.resume and args.force:
         raise InputError("--resume and --force exclude each other: --resume keeps the folder")
     if args.resume and args.out is None:
-        raise InputError("resume: name the folder to complete with --out DIR")
+        raise InputError("--resume: name the folder to complete with --out DIR", "resume")
     if args.extended and args.studies:
         raise InputError(
             "--extended: applies to the shipped studies only (run without study names); a "
@@ -107,15 +107,16 @@ def run(args: argparse.Namespace) -> int:
         "figure_format": args.figure_format,
     }
     try:
-        if workers > 1 and len(studies) > 1:
-            from ..sweep.verify import run_verification_on_dask
+        with in_option_words():  # a resume's refusals: "--resume: ...", not the API's keyword
+            if workers > 1 and len(studies) > 1:
+                from ..sweep.verify import run_verification_on_dask
 
-            bar = ProgressBar(len(studies))
-            results = run_verification_on_dask(
-                studies, out, workers=args.workers, progress=bar, **options
-            )
-        else:
-            results = run_verification(studies, out, **options)
+                bar = ProgressBar(len(studies))
+                results = run_verification_on_dask(
+                    studies, out, workers=args.workers, progress=bar, **options
+                )
+            else:
+                results = run_verification(studies, out, **options)
     except VerifyInterrupted as stop:
         print(_interrupted_text(args, stop, out), file=sys.stderr)
         return stopped_code(stop.cause)

@@ -37,7 +37,7 @@ from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material, validate_density
-from ..theory.profile_impact import solve_profile_impact
+from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
@@ -260,21 +260,38 @@ class _QuasiStatic:
     a_c: float
 
 
-def _quasi_static(indenter: Indenter, half_space: Material, striker: Striker) -> _QuasiStatic:
+def profile_sizing_impact(
+    indenter: Indenter, half_space: Material, mass: float, velocity: float
+) -> ProfileImpactResult | None:
+    """The quasi-static impact that sizes the FE runs of a sphere or a table (mass in kg,
+    velocity in m/s): Sneddon's law at E2/(1 - nu2^2), by quadrature (seconds on a long table:
+    a case solves it once and passes it to every run of its ladder as ``exact``); None for
+    the power law, whose closed form costs nothing."""
+    if isinstance(indenter, PowerLawIndenter):
+        return None
+    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
+    return solve_profile_impact(mass, velocity, SneddonContact(indenter, modulus))
+
+
+def _quasi_static(
+    indenter: Indenter,
+    half_space: Material,
+    striker: Striker,
+    exact: ProfileImpactResult | None = None,
+) -> _QuasiStatic:
     """x_c from the energy balance M v0^2 / 2 = beta x_c^(q+1) / (q+1), t_y = 2 I x_c / v0;
-    another profile's by quadrature (:func:`shtaerman.theory.profile_impact.solve_profile_impact`,
+    another profile's from its :func:`profile_sizing_impact` (``exact`` when solved already;
     beta NaN, q its smooth tip's 3/2).
 
     The power law's x_c is taken in this power form rather than from
     :func:`shtaerman.theory.impact.solve_impact` (logarithms, another last bit): the refined
     radius follows from it, and gmsh's mesh depends on the last bit of its inputs.
     """
-    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
     if not isinstance(indenter, PowerLawIndenter):
-        exact = solve_profile_impact(
-            striker.mass, striker.velocity, SneddonContact(indenter, modulus)
-        )
+        if exact is None:
+            exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
         return _QuasiStatic(math.nan, exact.force_exponent, exact.x_c, exact.t_y, exact.a_c)
+    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
     law = PowerLawContact(indenter, modulus)
     q, mass, velocity = law.force_exponent, striker.mass, striker.velocity
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
@@ -293,9 +310,11 @@ def _viscoelastic_extent(
     striker: Striker,
     prony: PronySeries,
     settings: DynamicSettings,
+    glassy: float,
 ) -> tuple[float, float]:
     """Contact time (s) and largest contact radius (m) of the quasi-static viscoelastic impact
-    (:func:`shtaerman.theory.viscoelastic.viscoelastic_impact`, coarse: for sizing only).
+    (:func:`shtaerman.theory.viscoelastic.viscoelastic_impact`, coarse: for sizing only);
+    ``glassy`` the elastic impact's t_y in s at the instantaneous modulus.
 
     Raises
     ------
@@ -304,7 +323,6 @@ def _viscoelastic_extent(
         than :data:`.viscoelastic.MAX_GLASSY_DURATIONS` glassy ones.
     """
     law = contact_law(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
-    glassy = _quasi_static(indenter, half_space, striker).t_y
     slow = sizing_impact(striker.mass, striker.velocity, law, prony, glassy)
     steps = 3.0 * slow.t_contact / glassy * settings.steps
     if steps > MAX_STEPS:
@@ -369,7 +387,7 @@ def _scales(
     c_s = math.sqrt(shear / rho) if rho > 0 else math.inf  # massless: no waves
     t_y, widest = qs.t_y, qs.a_c
     if prony is not None:
-        t_y, widest = _viscoelastic_extent(indenter, half_space, striker, prony, settings)
+        t_y, widest = _viscoelastic_extent(indenter, half_space, striker, prony, settings, t_y)
     refined = settings.margin * widest
     domain_radius = settings.domain * refined
     layer = AbsorbingLayer(
@@ -576,6 +594,7 @@ def check_dynamic_impact(
     settings: DynamicSettings,
     prony: PronySeries | None = None,
     friction: float | None = None,
+    exact: ProfileImpactResult | None = None,
 ) -> tuple[float, Striker, _Scales, int]:
     """Check every input of a dynamic impact (arguments of :func:`.impact.run_impact`) before
     anything is meshed, in well under a second: the density, mass and velocity, the layer's
@@ -598,7 +617,7 @@ def check_dynamic_impact(
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
-    qs = _quasi_static(indenter, half_space, striker)
+    qs = _quasi_static(indenter, half_space, striker, exact)
     if settings.thickness is None:  # a pad stops the striker short of x_c
         check_reach(indenter, qs.x_c, (striker.mass, striker.velocity), qs.force_exponent, False)
     if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
@@ -705,6 +724,7 @@ def prepare_dynamic_impact(
     settings: DynamicSettings | None = None,
     prony: PronySeries | None = None,
     friction: float | None = None,
+    exact: ProfileImpactResult | None = None,
 ) -> DynamicImpactSetup:
     """Mesh, assemble and factorize the dynamic impact (arguments of :func:`.impact.run_impact`).
 
@@ -718,7 +738,7 @@ def prepare_dynamic_impact(
     """
     settings = DynamicSettings() if settings is None else settings
     rho, striker, scales, estimate = check_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, prony, friction
+        indenter, half_space, density, mass, velocity, settings, prony, friction, exact
     )
     clock = [time.perf_counter()]
     mesh = _mesh(settings, scales)

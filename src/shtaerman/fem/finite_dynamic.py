@@ -71,7 +71,7 @@ from ..guards import check_reach, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.materials import Material, validate_density
-from ..theory.profile_impact import solve_profile_impact
+from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_poisson, validate_positive
@@ -331,10 +331,12 @@ def prepare_finite_impact(
     rubber: RubberModel | None = None,
     prony: PronySeries | None = None,
     friction: float | None = None,
+    exact: ProfileImpactResult | None = None,
 ) -> FiniteImpactSetup:
     """Check, mesh and assemble the impact of a rigid striker on a rubber at finite strain
     (the arguments of :func:`.impact.run_impact`, the body's ``rubber`` default neo-Hookean,
-    ``friction`` None or 0 frictionless).
+    ``friction`` None or 0 frictionless, ``exact`` a profile's sizing impact when solved
+    already).
 
     Raises
     ------
@@ -348,8 +350,10 @@ def prepare_finite_impact(
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
         if isinstance(law, PowerLawContact):
             quasi = solve_impact(mass, velocity, law)
-        else:  # a sphere, a table: Sneddon's law, the impact by quadrature
+        elif exact is None:  # a sphere, a table: Sneddon's law, the impact by quadrature
             quasi = solve_profile_impact(mass, velocity, law)
+        else:
+            quasi = exact
     x_c, t_y = quasi.x_c, quasi.t_y
     if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")

@@ -21,6 +21,7 @@ import time
 from typing import Any, Protocol
 
 from ..theory.materials import Material
+from ..theory.profile_impact import ProfileImpactResult
 from ..theory.sneddon import Indenter
 from ..theory.viscoelastic import PronySeries
 from .dynamic_contact import DynamicSettings, prepare_dynamic_impact
@@ -56,6 +57,7 @@ def run_impact(
     friction: float | None = None,
     *,
     snapshot_times: tuple[float, ...] = (),
+    exact: ProfileImpactResult | None = None,
 ) -> ImpactRun:
     """Strike the body with a rigid striker and follow it until the striker leaves.
 
@@ -81,6 +83,10 @@ def run_impact(
         Coulomb (the finite-strain body takes 0 as frictionless).
     snapshot_times : tuple of float
         Times in s at which to keep the fields (the linear body; nearest step).
+    exact : ProfileImpactResult, optional
+        A sphere's or a table's quasi-static impact that sizes the run, when solved already
+        (:func:`.dynamic_contact.profile_sizing_impact`, the same for every level of a
+        ladder); None: solved here (a power law's needs none).
 
     Returns
     -------
@@ -99,9 +105,9 @@ def run_impact(
     if rubber is not None and isinstance(settings, DynamicSettings):
         raise TypeError("run_impact: a rubber takes FiniteImpactSettings, not DynamicSettings")
     if rubber is not None or isinstance(settings, FiniteImpactSettings):
-        prepared: PreparedImpact = prepare_finite_impact(*inputs, rubber, prony, friction)
+        prepared: PreparedImpact = prepare_finite_impact(*inputs, rubber, prony, friction, exact)
     else:
-        prepared = prepare_dynamic_impact(*inputs, prony, friction)
+        prepared = prepare_dynamic_impact(*inputs, prony, friction, exact)
     start = time.perf_counter()
     marched = prepared.march(snapshot_times)
     timings = {**prepared.timings, "stepping": time.perf_counter() - start}

@@ -618,13 +618,16 @@ class MeshSettings:
                 self, "thickness", validate_positive("thickness", self.thickness, "m")
             )
         if self.base not in BASES:
-            raise InputError(f"base: unknown base {self.base!r}. Pick one of {list(BASES)}")
+            raise InputError(f"base: unknown base {self.base!r}. Pick one of {list(BASES)}", "base")
         if self.interface not in INTERFACES:
             raise InputError(
-                f"interface: unknown interface {self.interface!r}. Pick one of {list(INTERFACES)}"
+                f"interface: unknown interface {self.interface!r}. Pick one of {list(INTERFACES)}",
+                "interface",
             )
         if self.friction is not None and not 0.0 <= self.friction < math.inf:
-            raise InputError(f"friction: must be >= 0 (None: no slip), got {self.friction!r}")
+            raise InputError(
+                f"friction: must be >= 0 (None: no slip), got {self.friction!r}", "friction"
+            )
         if not 1.0 < self.margin <= MAX_MARGIN:
             raise InputError(
                 f"margin must lie in (1, {MAX_MARGIN:g}] (the refined zone / contact radius; "
@@ -720,7 +723,8 @@ class MeshSettings:
                 f"axis_size {min(self.axis_size, self.size):.3g}, axis_growth "
                 f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it "
                 "(mesh_size=..., growth=..., a lower refine=...) or, in a contact curve, raise "
-                "max_dofs=..."
+                "max_dofs=...",
+                "max_dofs",
             )
 
     def build(self, refined_radius: float) -> MeshTri:
@@ -751,7 +755,8 @@ class MeshSettings:
             raise InputError(
                 f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
                 f"max_dofs = {self.max_dofs:.3g}; coarsen it (mesh_size=..., a lower refine=...) "
-                "or, in a contact curve, raise max_dofs=..."
+                "or, in a contact curve, raise max_dofs=...",
+                "max_dofs",
             )
         return ratio
 

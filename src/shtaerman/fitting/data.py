@@ -291,7 +291,9 @@ def measurement(
         raise InputError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}", "kind")
     for name in units or {}:
         if name not in QUANTITY:
-            raise InputError(f"units: unknown column {name!r}; one of {', '.join(QUANTITY)}")
+            raise InputError(
+                f"units: unknown column {name!r}; one of {', '.join(QUANTITY)}", "units"
+            )
     if isinstance(data, str | Path):
         return _check_values(_from_file(kind, Path(data), units or {}))
     names = list(data)

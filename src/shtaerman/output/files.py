@@ -214,7 +214,8 @@ def _other_writers(target: Path) -> list[int]:
 def _busy(option: str, target: Path, pids: list[int]) -> InputError:
     return InputError(
         f"{option}: another shtaerman run (pid {pids[0]}) is writing {str(target)!r}; wait for "
-        f"it, or remove {str(_stage_path(target, pids[0]))!r} if no such run exists"
+        f"it, or remove {str(_stage_path(target, pids[0]))!r} if no such run exists",
+        option,
     )
 
 
@@ -243,7 +244,7 @@ def probe_writable(option: str, folder: Path, name: str) -> None:
         reason = error.strerror or str(error)
         if error.errno == errno.ENOENT and folder.is_dir():  # /proc: the folder is there
             reason = "its file system takes no new files"
-        raise InputError(f"{option}: cannot write in {str(folder)!r} ({reason})") from None
+        raise InputError(f"{option}: cannot write in {str(folder)!r} ({reason})", option) from None
     os.rmdir(probe)
 
 
@@ -340,7 +341,8 @@ def _refuse_link(path: Path, option: str, kind: str) -> None:
     if path.is_symlink():
         raise InputError(
             f"{option}: {str(path)!r} is a symbolic link; name the {kind} itself "
-            f"({os.path.realpath(path)!r})"
+            f"({os.path.realpath(path)!r})",
+            option,
         )
 
 
@@ -352,9 +354,9 @@ def _path_errors(option: str, path: object) -> Iterator[None]:
     except InputError:
         raise
     except ValueError as error:
-        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})") from None
+        raise InputError(f"{option}: {str(path)!r} is not a valid path ({error})", option) from None
     except OSError as error:
-        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}") from None
+        raise InputError(f"{option}: {str(path)!r}: {error.strerror or error}", option) from None
 
 
 def check_folder_path(path: Path, option: str = "out") -> Path:
@@ -364,12 +366,13 @@ def check_folder_path(path: Path, option: str = "out") -> Path:
         raw = Path(path).expanduser()
         target = _absolute(raw)
         if not target.name or target == target.parent:
-            raise InputError(f"{option}: {str(path)!r} names no folder to create")
+            raise InputError(f"{option}: {str(path)!r} names no folder to create", option)
         _refuse_link(raw, option, "folder")
         if _is_cwd_or_parent(target):
             raise InputError(
                 f"{option}: {str(path)!r} is the current folder or one of its parents; name a "
-                f"new folder (e.g. {option} results)"
+                f"new folder (e.g. {option} results)",
+                option,
             )
     return target
 
@@ -403,12 +406,12 @@ def folder_lock(target: Path, option: str = "out") -> Iterator[Path]:
     try:
         stage = _claim(target, option)
     except FileNotFoundError:
-        raise InputError(f"{option}: {missing_folder(target.parent)}") from None
+        raise InputError(f"{option}: {missing_folder(target.parent)}", option) from None
     except OSError as error:
         if isinstance(error, InputError):
             raise
         raise InputError(
-            f"{option}: cannot write in {str(target.parent)!r} ({error.strerror or error})"
+            f"{option}: cannot write in {str(target.parent)!r} ({error.strerror or error})", option
         ) from None
     try:
         yield stage
@@ -429,9 +432,9 @@ def check_output_folder(
     target = check_folder_path(path, option)
     with _path_errors(option, path):
         if target.exists() and not target.is_dir():
-            raise InputError(f"{option}: {str(path)!r} exists and is not a folder")
+            raise InputError(f"{option}: {str(path)!r} exists and is not a folder", option)
         if not target.parent.is_dir():
-            raise InputError(f"{option}: {missing_folder(target.parent)}")
+            raise InputError(f"{option}: {missing_folder(target.parent)}", option)
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
@@ -510,7 +513,7 @@ def staged_folder(
             os.mkdir(target)  # the reservation, atomic: only one run gets it
         except FileExistsError:
             raise InputError(
-                f"{option}: {str(target)!r} was created by another program meanwhile"
+                f"{option}: {str(target)!r} was created by another program meanwhile", option
             ) from None
         reserved = True
         os.mkdir(content)
@@ -591,7 +594,8 @@ def _publish(content: Path, target: Path, option: str) -> None:
     except OSError as error:  # someone wrote into the reservation meanwhile
         raise InputError(
             f"{option}: {str(target)!r} was changed by another program during the run "
-            f"({error.strerror}); it was left alone and this run's results discarded"
+            f"({error.strerror}); it was left alone and this run's results discarded",
+            option,
         ) from None
 
 
@@ -603,23 +607,23 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
     and a symbolic link to anything else (a file elsewhere, nothing) are refused.
     """
     if not os.fspath(path):
-        raise InputError(f"{option}: an empty name names no file")
+        raise InputError(f"{option}: an empty name names no file", option)
     path = Path(path).expanduser()
     with _path_errors(option, path):
         if path.exists():  # follows symbolic links, also /dev/stdout -> /proc/self/fd/1
             mode = path.stat().st_mode
             if stat.S_ISDIR(mode):
-                raise InputError(f"{option}: {str(path)!r} is a folder")
+                raise InputError(f"{option}: {str(path)!r} is a folder", option)
             if not stat.S_ISREG(mode):  # a device, a FIFO, a terminal: written into
                 if not os.access(path, os.W_OK):
-                    raise InputError(f"{option}: cannot write {str(path)!r}")
+                    raise InputError(f"{option}: cannot write {str(path)!r}", option)
                 return path
         _refuse_link(path, option, "file")
         if path.exists() and not force:
-            raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)")
+            raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)", option)
         real = Path(os.path.realpath(path))
         if not real.parent.is_dir():
-            raise InputError(f"{option}: {missing_folder(path.parent)}")
+            raise InputError(f"{option}: {missing_folder(path.parent)}", option)
         live = _other_writers(real)
         if live:
             raise _busy(option, real, live)
@@ -655,7 +659,8 @@ def staged_file(path: Path, *, force: bool = False, option: str = "history") -> 
             except FileExistsError:
                 raise InputError(
                     f"{option}: {str(path)!r} was created by another program meanwhile; "
-                    f"use --force to replace it"
+                    f"use --force to replace it",
+                    option,
                 ) from None
     finally:
         _remove(stage)

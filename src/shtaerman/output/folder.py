@@ -145,24 +145,29 @@ def kept_entries(
             raise ValueError("not a progress file")
     except (OSError, ValueError, KeyError, TypeError):
         raise InputError(
-            f"{option}: {PROGRESS_FILE} is not one this tool wrote; use --force to start again"
+            f"{option}: {PROGRESS_FILE} is not one this tool wrote; use --force to start again",
+            option,
         ) from None
     if document["quick"] != quick:
         mode = "with --quick" if document["quick"] else "without --quick"
-        raise InputError(f"{option}: the interrupted {run} was {mode}; resume it the same way")
+        raise InputError(
+            f"{option}: the interrupted {run} was {mode}; resume it the same way", option
+        )
     _check_inputs(document.get("inputs"), inputs, words)
     wanted = {study.name: study_fingerprint(study) for study in studies}
     dropped = sorted(name for name in stored if name not in wanted)
     if dropped:
         raise InputError(
             f"{option}: the interrupted {run} also finished {', '.join(map(repr, dropped))}, "
-            f"which this command does not name; {words.same}"
+            f"which this command does not name; {words.same}",
+            option,
         )
     requested = document.get("requested")  # absent from the files of earlier versions
     if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
         raise InputError(
             f"{option}: the interrupted {run} was of the {words.items} "
-            f"{', '.join(map(str, requested))}; {words.same}, or start again with --force"
+            f"{', '.join(map(str, requested))}; {words.same}, or start again with --force",
+            option,
         )
     kept = {
         name: item["entry"]
@@ -191,7 +196,8 @@ def _check_inputs(stored: Any, inputs: Mapping[str, Any] | None, words: Resuming
         changes = ", ".join(f"{n}=... ({stored.get(n)} there, {now.get(n)} now)" for n in differ)
         raise InputError(
             f"{words.option}: the interrupted {words.run}'s kept runs were made with another "
-            f"{changes}; {words.same}, or start again with --force"
+            f"{changes}; {words.same}, or start again with --force",
+            words.option,
         )
 
 

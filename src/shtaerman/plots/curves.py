@@ -17,6 +17,7 @@ from matplotlib.ticker import NullLocator
 from ..study.contact.convergence import ConvergenceStudy
 from ..study.contact.indentation import IndentationResult
 from ..theory.contact import paper_pressure_eq5
+from ..theory.viscoelastic import RateContact
 from .labels import LABELS, describe
 from .style import (
     DEPTH_STYLES,
@@ -56,7 +57,10 @@ CONVERGENCE_KEYS = ("force", "beta", "contact_radius", "central_pressure")
 
 
 def _exact_name(result: IndentationResult) -> str:
-    """Whose exact solution: Shtaerman's (the power law) or Sneddon's (another profile)."""
+    """Whose exact solution: Shtaerman's (the power law), Sneddon's (another profile) or Lee
+    and Radok's (a viscoelastic body pressed at a rate)."""
+    if isinstance(result.exact, RateContact):
+        return "Lee-Radok"
     return "Shtaerman" if result.indenter.kind == "power-law" else "Sneddon"
 
 
@@ -64,7 +68,7 @@ def _fit_note(result: IndentationResult) -> str:
     fit, analytic = result.fit, result.analytic
     q_exact, beta_exact = analytic.exponent, analytic.beta
     q_text = fraction(result.exact.force_exponent)
-    power_law = result.indenter.kind == "power-law"  # else: the exact curve fitted alike
+    power_law = _exact_name(result) == "Shtaerman"  # else: the exact curve fitted alike
     exact_words = f"exact {q_text}" if power_law else "exact curve's fit"
     free = (
         rf"FEM, free fit: $q$ = {fit.exponent:.5f} ({exact_words} = {q_exact:.5f}, "
@@ -123,7 +127,7 @@ def plot_force_depth(
         color=EXACT_COLOUR,
         label=rf"Shtaerman: $P = \beta x^{{{q}}}$"
         if _exact_name(result) == "Shtaerman"
-        else "Sneddon",
+        else _exact_name(result),
     )
     top.loglog(depths * x_scale, forces * p_scale, "o", color=FEM_COLOUR, label=_fem_label(result))
     top.set_ylabel(f"Force $P$ ({p_unit})")
@@ -152,11 +156,17 @@ def plot_force_depth(
 # --- pressure profile ---------------------------------------------------------------------------
 
 
+def _paper_profile(result: IndentationResult) -> bool:
+    """Whether the exact pressure is Shtaerman's for n = 3/2, the paper's eq. (5)."""
+    return _exact_name(result) == "Shtaerman" and result.indenter.exponent == 1.5
+
+
 def _exact_profile(result: IndentationResult, depth: float, rho: np.ndarray) -> np.ndarray:
-    """p/p_avg at r/a = rho: the paper's eq. (5) for n = 3/2, else the hypergeometric form."""
+    """p/p_avg at r/a = rho: the paper's eq. (5) for Shtaerman's n = 3/2, else the exact
+    solution's own profile."""
     exact, a = result.exact, float(result.exact.contact_radius(depth))
     mean = float(exact.mean_pressure(depth))
-    if getattr(result.indenter, "exponent", None) != 1.5:
+    if not _paper_profile(result):
         return exact.pressure(rho * a, depth) / mean
     inside = rho <= 1.0
     p = np.zeros_like(rho)
@@ -233,8 +243,8 @@ def plot_pressure(
     figure, axes = chart(4.2)
     rho = np.linspace(0.0, 1.3, 521)
     deepest = result.steps[-1].depth
-    label = "paper's eq. (5)" if getattr(result.indenter, "exponent", None) == 1.5 else "exact"
-    if result.indenter.kind != "power-law":  # p/p_avg depends on depth: the deepest's
+    label = "paper's eq. (5)" if _paper_profile(result) else "exact"
+    if _exact_name(result) != "Shtaerman":  # p/p_avg depends on depth: the deepest's
         label = f"exact at x = {deepest * 1e3:.3g} mm"
     profile = _exact_profile(result, deepest, rho)
     axes.plot(rho, profile, color=EXACT_COLOUR, label=f"{_exact_name(result)}, {label}")

@@ -380,7 +380,9 @@ def _record_files(out: Path) -> list[Path]:
     files = []
     for folder in folders:
         if folder.is_symlink() or (os.path.lexists(folder) and not folder.is_dir()):
-            raise InputError(f"resume: {str(folder)!r} is not a folder (a symbolic link?)")
+            raise InputError(
+                f"resume: {str(folder)!r} is not a folder (a symbolic link?)", "resume"
+            )
         if folder.is_dir():
             files += [p for p in sorted(folder.iterdir()) if RECORD_NAME.fullmatch(p.name)]
     return files
@@ -475,7 +477,8 @@ def _check_same_sweep(spec: SweepSpec, out: Path) -> None:
         raise InputError(
             f"resume: {str(out)!r} holds a different sweep ({key} differs from {spec.path}); a "
             "resume may add or change axis values only: use another --out, or --force to start "
-            "again"
+            "again",
+            "resume",
         )
 
 
@@ -508,33 +511,38 @@ def _check_folder(
     if resume and force:
         raise InputError("resume and force exclude each other: resume keeps the folder")
     if out.exists() and not out.is_dir():
-        raise InputError(f"out: {str(out)!r} exists and is not a folder")
+        raise InputError(f"out: {str(out)!r} exists and is not a folder", "out")
     if not out.parent.is_dir():
-        raise InputError(f"out: {missing_folder(out.parent)}")
+        raise InputError(f"out: {missing_folder(out.parent)}", "out")
     probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
     full = out.is_dir() and any(out.iterdir())
     if full and resume:
         if not is_sweep_folder(out):
             raise InputError(
                 f"resume: {str(out)!r} is not a sweep folder (no {MARKER_FILE} written by "
-                "shtaerman sweep); pick another --out"
+                "shtaerman sweep); pick another --out",
+                "resume",
             )
         _check_same_sweep(spec, out)
         return lambda: _atomic_write(out / SPEC_FILE, spec.text)
     if full and not force:
         raise InputError(
-            f"out: folder {str(out)!r} exists; use --resume to complete it or --force to replace it"
+            f"out: folder {str(out)!r} exists; use --resume to complete it or --force to "
+            "replace it",
+            "out",
         )
     if full and not is_sweep_folder(out):
         raise InputError(
             f"out: --force replaces only a sweep folder, and {str(out)!r} has no {MARKER_FILE} "
-            "written by shtaerman sweep; remove it yourself or pick another --out"
+            "written by shtaerman sweep; remove it yourself or pick another --out",
+            "out",
         )
     foreign = _foreign_entries(out) if full else []
     if foreign:
         raise InputError(
             f"out: folder {str(out)!r} holds {foreign[0]!r}, not written by shtaerman sweep; "
-            "--force replaces only what this tool wrote: move it or name a new folder with --out"
+            "--force replaces only what this tool wrote: move it or name a new folder with --out",
+            "out",
         )
 
     def create() -> None:
@@ -851,7 +859,9 @@ def run_sweep(
     """
     check_not_bootstrapping()  # a worker of this very sweep, running an unguarded script
     if workers is not None and scheduler is not None:
-        raise InputError("workers: applies to the local cluster only, not to --scheduler")
+        raise InputError(
+            "workers: applies to the local cluster only, not to --scheduler", "workers"
+        )
     if workers is not None and workers < 1:
         raise InputError(f"workers must be an integer >= 1, got {workers!r}")
     check_figure_format(figure_format)

@@ -240,9 +240,9 @@ class TabulatedIndenter:
             r = np.asarray(self.radii, dtype=float).ravel() + 0.0  # -0.0 is the tip 0
             z = np.asarray(self.heights, dtype=float).ravel() + 0.0
         except (TypeError, ValueError):  # text, None, ragged lists
-            raise InputError("profile: radii and heights must be numbers in m") from None
+            raise InputError("profile: radii and heights must be numbers in m", "profile") from None
         if r.shape != z.shape or not (np.all(np.isfinite(r)) and np.all(np.isfinite(z))):
-            raise InputError("profile: radii and heights must be finite, of one length")
+            raise InputError("profile: radii and heights must be finite, of one length", "profile")
         _check_table(r, z)
         object.__setattr__(self, "radii", r)
         object.__setattr__(self, "heights", z)

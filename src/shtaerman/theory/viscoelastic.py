@@ -523,9 +523,10 @@ class RateContact:
     """Lee-Radok's contact curve pressed at a constant rate, in the form of
     :class:`~shtaerman.theory.contact.PowerLawContact` (the FEM contact curve's reference).
 
-    Its :attr:`beta` and :attr:`force_exponent` are those of the power law fitted to its force
-    at ``depths`` (the curve's depths, as the FEM curve is fitted), so that the fitted FEM
-    values compare like with like; the force, radius and pressures are exact.
+    Its :attr:`force_exponent` is the elastic law's q, and its :attr:`beta` (N m^-q) the power
+    law with that q fitted to its force at ``depths`` (the curve's depths), as the FEM curve
+    is fitted: beta / beta0 is then the geometric mean of the force ratios P / (beta0 x^q),
+    between the smallest and the largest. The force, radius and pressures are exact.
 
     Parameters
     ----------
@@ -555,15 +556,14 @@ class RateContact:
 
     @property
     def force_exponent(self) -> float:
-        """Exponent of the power law fitted to the force at the depths (q with one depth)."""
-        x = np.asarray(self.depths)
-        if x.size < 2:
-            return self.law.force_exponent
-        return float(np.polyfit(np.log(x), np.log(self.force(x)), 1)[0])
+        """q of the elastic law at E*_0 ((n + 1)/n; a profile's at its tip), which :attr:`beta`
+        holds: the curve itself is no power law (its free fit is the study's)."""
+        return self.law.force_exponent
 
     @property
     def beta(self) -> float:
-        """beta in N m^-q of that power law, its exponent held (the FEM fit's convention)."""
+        """beta in N m^-q, q = :attr:`force_exponent`: the exact forces at the depths fitted
+        as the FEM's (least squares of log P - q log x)."""
         x = np.asarray(self.depths)
         return float(np.exp(np.mean(np.log(self.force(x)) - self.force_exponent * np.log(x))))
 

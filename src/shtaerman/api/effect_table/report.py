@@ -31,7 +31,9 @@ def said(text: str, route: str) -> str:
     found = _REASON.search(text)
     start = found.end() if found else 0
     reason = text[start:]
-    return text[:start] + worded(reason, route, parameter=reason.split(" ", 1)[0])
+    failed = found is not None and found[0] == "failed: "  # a failure's head names no input
+    head = None if failed else re.match(r"\w*", reason)[0]  # a refusal's: its keyword
+    return text[:start] + worded(reason, route, parameter=head)
 
 
 def _text(cell: Cell, key: str) -> str:

@@ -53,15 +53,18 @@ def _options(problem: Problem, given: dict[str, Any]) -> tuple[dict[str, Any], t
     """The numerical options of ``given`` that ``problem``'s combination takes, and a note for
     each it does not (:func:`shtaerman.problem.check_options`), left out of its run."""
     taken, notes = dict(given), []
-    while True:
+    for _ in given:  # a refusal names one option (of taken), dropped: at most each once
         try:
             check_options(problem, taken)
-        except InputError as refused:  # one option at a time, each named
+        except InputError as refused:
             name = refused.parameter
             del taken[name]
             notes.append(f"{name} not applied: {str(refused).removeprefix(f'{name}: ')}")
-            continue
-        return taken, tuple(notes)
+        else:
+            break
+    else:
+        check_options(problem, taken)  # every option dropped: nothing left to refuse
+    return taken, tuple(notes)
 
 
 NO_ESTIMATE = (

@@ -97,8 +97,9 @@ class IndentationResult:
 
     @property
     def analytic(self) -> AnalyticFit:
-        """The power law's exact beta and q; another profile's exact forces at the curve's
-        depths fitted as the FEM's are (its force law is no power law)."""
+        """The power law's exact beta and q; another profile's, or Lee-Radok's, exact forces
+        at the curve's depths fitted as the FEM's are (beta at the elastic q held, the
+        exponent free: that force law is no power law)."""
         return exact_fit(self.exact, self.depths)
 
     @property
@@ -230,7 +231,7 @@ class AnalyticFit(NamedTuple):
 def exact_fit(exact: object, depths: np.ndarray) -> AnalyticFit:
     """The exact beta and exponent of ``exact`` at ``depths`` (m): see
     :attr:`IndentationResult.analytic`."""
-    if not isinstance(exact, SneddonContact):
+    if isinstance(exact, PowerLawContact):
         return AnalyticFit(exact.beta, exact.force_exponent)
     fit = fit_power_law(depths, exact.force(depths), exact.force_exponent)
     exponent = fit.exponent if np.size(depths) > 1 else exact.force_exponent
@@ -240,7 +241,7 @@ def exact_fit(exact: object, depths: np.ndarray) -> AnalyticFit:
 def curve_document(
     indenter: Indenter,
     half_space: Material,
-    exact: PowerLawContact | SneddonContact,
+    exact: PowerLawContact | SneddonContact | RateContact,
     fit: PowerLawFit,
     depths: np.ndarray | None = None,
 ) -> dict[str, object]:

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 from functools import partial
 from typing import TYPE_CHECKING, Any
 
-from ...fem.dynamic_contact import DynamicSettings
+from ...fem.dynamic_contact import DynamicSettings, profile_sizing_impact
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
@@ -270,12 +270,13 @@ def run_case(
         quasi = exact_impact(mass, velocity, law) if quasi is None else quasi
         representable("v0^2", velocity * velocity, mass, velocity)  # before the estimate's
         estimate = radiation(mass, velocity, law, density, half_space, quasi)
+        sizing = profile_sizing_impact(indenter, half_space, mass, velocity)  # once, not per run
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)
 
     def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
-        return run_impact(*inputs, level, rubber, prony, friction, **kept)
+        return run_impact(*inputs, level, rubber, prony, friction, exact=sizing, **kept)
 
     def say() -> None:
         for said_once in said:
