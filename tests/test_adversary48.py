@@ -133,3 +133,28 @@ def test_a_fit_of_one_measurement_repeated_asks_for_the_noise(tmp_path, capsys):
     data.write_text("depth [m],force [N]\n0.001,10\n0.001,11\n0.001,9\n")
     assert main(["fit", "indentation", str(data)]) == 0
     assert "noise 1 N (estimated from the residual)" in capsys.readouterr().out
+
+
+def test_a_forced_output_that_cannot_be_moved_is_refused_before_the_run(tmp_path, monkeypatch):
+    # a read-only (or immutable) --out folder under --force: was "[Errno 1] Operation not
+    # permitted: 'o' -> 'o/../.o.partial-PID/replaced'", exit code 1
+    from shtaerman.output import files
+
+    out = tmp_path / "o"
+    with files.staged_folder(out) as stage:
+        (stage / "table.csv").write_text("old\n")
+    rename = files.os.rename
+
+    def refuse(source, destination):
+        if Path(source) == out:
+            raise PermissionError(1, "Operation not permitted", str(source))
+        return rename(source, destination)
+
+    monkeypatch.setattr(files.os, "rename", refuse)
+    with pytest.raises(InputError) as refused:
+        with files.staged_folder(out, force=True, option="--out"):
+            pytest.fail("the run started on a folder it cannot replace")
+    said = str(refused.value)
+    assert said.startswith(f"--out: cannot replace '{out}' (Operation not permitted)"), said
+    assert (out / "table.csv").read_text() == "old\n"  # the old folder is whole
+    assert [path.name for path in tmp_path.iterdir()] == ["o"]  # and no stage is left
