@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import shlex
 import sys
 from dataclasses import asdict
@@ -164,8 +165,24 @@ def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespac
 
 
 def _stored_run(entry: dict) -> Run:
-    """A run from its saved entry (JSON: its notes a list, a non-finite value None)."""
-    return Run(**{**entry, "notes": tuple(entry.get("notes", ()))})
+    """A run from its saved entry (JSON: its notes a list, a non-finite value None), checked
+    as the :class:`Run` it was: an edited or damaged entry is refused as a damaged
+    :data:`~shtaerman.output.folder.PROGRESS_FILE` is, in one line (no traceback)."""
+    import msgspec
+
+    from ..output.folder import PROGRESS_FILE
+
+    numbers = {
+        key: {name: math.nan if value is None else value for name, value in entry[key].items()}
+        for key in ("values", "errors")
+        if isinstance(entry.get(key), dict)
+    }
+    try:
+        return msgspec.convert({**entry, **numbers}, Run)
+    except msgspec.ValidationError:
+        raise InputError(
+            f"--resume: {PROGRESS_FILE} is not one this tool wrote; use --force to start again"
+        ) from None
 
 
 def _interrupted_text(stop: Any, out: Path) -> str:

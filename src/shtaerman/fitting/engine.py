@@ -98,15 +98,21 @@ def _covariance(jac: np.ndarray, noise: float) -> np.ndarray:
     return cov
 
 
-def _noise(residual: np.ndarray, count: int, noise: float | None) -> tuple[float, float, bool]:
-    """(s, quantile of the 95 % interval, whether s was estimated)."""
+def _noise(
+    residual: np.ndarray, count: int, noise: float | None, distinct: int
+) -> tuple[float, float, bool]:
+    """(s, quantile of the 95 % interval, whether s was estimated); ``distinct``: how many
+    data values differ in value or in sensitivity (a row repeated verbatim tells the noise
+    nothing: its residual is the first copy's)."""
     if noise is not None:
         return float(noise), float(norm.ppf(0.5 + CONFIDENCE / 2)), False
     dof = residual.size - count
-    if dof < 1:
+    if min(dof, distinct - count) < 1:
+        repeated = f", {distinct} distinct," if distinct < residual.size else ""
         raise InputError(
-            f"noise: {residual.size} data value(s) for {count} unknown(s) leave no residual to "
-            "estimate the noise from; give noise (the measurement's standard deviation)",
+            f"noise: {residual.size} data value(s){repeated} for {count} unknown(s) leave no "
+            "residual to estimate the noise from; give noise (the measurement's standard "
+            "deviation)",
             "noise",
         )
     s = float(np.sqrt(np.sum(residual**2) / dof))
@@ -147,8 +153,10 @@ def _optimum(model: Model, noise: float | None, fixed: dict[str, float],
     outside = _outside(params, natural(found.x))
     if found.status < 0 or (found.status == 0 and not np.any(outside)):  # 0: evaluations
         raise NumericalFailureError(f"the fit did not converge: {found.message}")
-    s, quantile, estimated = _noise(residual(found.x), start.size, noise)
     jac = _jacobian(residual, found.x, low, high)
+    left = residual(found.x)
+    distinct = len(np.unique(np.column_stack([jac, left]), axis=0))
+    s, quantile, estimated = _noise(left, start.size, noise, distinct)
     cov = _covariance(jac, s)
     half = quantile * np.sqrt(np.diag(cov))
     lo, hi = found.x - half, found.x + half

@@ -508,7 +508,13 @@ def staged_folder(
         resumed = resumable(target, resume_marker)
         if os.path.lexists(target):  # checked again: another program may have written it
             _check_replaceable(option, target, target, force, resume_marker)
-            os.rename(target, retired)  # atomic: only one run can take it
+            try:
+                os.rename(target, retired)  # atomic: only one run can take it
+            except OSError as error:  # a read-only or immutable folder: before any run
+                raise InputError(
+                    f"{option}: cannot replace {str(target)!r} ({error.strerror or error}); "
+                    "make it writable, or write the results to another folder"
+                ) from None
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it
         except FileExistsError:

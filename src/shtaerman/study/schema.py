@@ -84,6 +84,7 @@ EXPECTED = {
     "base": 'one of "bonded", "lubricated"',
     "loss": 'a list of distinct values of "waves", "hysteresis", "both"',
     "layer": "a [layer] table: thickness (m) or thickness_ratio (H / a_c), and base",
+    "estimate": "true or false (each run's error bar)",
 }
 """What each leaf key expects, for the error messages (tolerances: a number in (0, 1])."""
 NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]{0,99}")
@@ -496,9 +497,10 @@ def decode(path: Path, data: dict[str, Any], root: type) -> Any:
         raise StudyError(f"{path}: key '{'.'.join(keys)}': expected {expected}") from None
     for keys, value in _numbers(data):
         if not math.isfinite(value) and keys not in INFINITE_ALLOWED:
-            raise StudyError(
-                f"{path}: key '{'.'.join(keys)}': expected a finite number, got {value!r}"
-            )
+            declared = EXPECTED.get(keys[-1], "")  # its range, where declared
+            bound = declared.removeprefix("a number ") if declared.startswith("a number ") else ""
+            expected = f"a finite number {bound}".rstrip()
+            raise StudyError(f"{path}: key '{'.'.join(keys)}': expected {expected}, got {value!r}")
     return decoded
 
 

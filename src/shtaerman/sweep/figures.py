@@ -260,11 +260,19 @@ def draw_figures(
     2-axis contact sweep's 10 heat maps cost 1.4 s of CPU)."""
     if len(results["spec"]["axes"]) not in (1, 2):
         return []
-    names = list(results["kind"]["outputs"])
+    names = [name for name in results["kind"]["outputs"] if _drawable(results["cases"], name)]
     units = [results["kind"]["outputs"][name] for name in names]
     count = len(names)
     drawn = mapper(figure_files, [results] * count, names, units, [figure_format] * count)
     return list(zip(names, drawn, strict=True))
+
+
+def _drawable(cases: list[dict], name: str) -> bool:
+    """Whether output ``name`` has a figure: a value in some case, or no case ran (the figure
+    marks the failures); an output that no case which ran gave (an effects sweep's
+    ``resolved_*`` without estimates) would draw an empty chart whose every case looks failed."""
+    ran = any(case.get("status") == "ok" for case in cases)
+    return not ran or bool(np.isfinite(_output_values(cases, name)).any())
 
 
 def figure_files(results: dict, name: str, unit: str, figure_format: str) -> dict[str, bytes]:
