@@ -58,13 +58,6 @@ def test_an_infinite_number_in_a_study_is_refused_with_its_range(tmp_path):
     assert "key 'numerics.refine': expected a finite number > 0, got inf" in said, said
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="api/effect_table/study.py load_effects types [numerics] (msgspec) but checks its "
-    "ranges only when the table runs: 'verify --quick' runs [quick] and never sees an "
-    "out-of-range [numerics] (time_steps = 1e9 passes); check both tables at load as the "
-    "dynamic kind does ('key numerics.time_steps: expected an integer in [50, 5000]')",
-)
 def test_an_effects_study_refuses_numerics_out_of_range_at_load(tmp_path):
     said = _refusal(_template(tmp_path, "effects", "numerics", "time_steps = 1000000000"))
     assert "numerics.time_steps" in said and "[50, 5000]" in said, said

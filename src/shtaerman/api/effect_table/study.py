@@ -34,6 +34,7 @@ from ...study.schema import (
     indenter_of,
     layer_geometry,
     named,
+    ranged,
     refused,
 )
 from ...theory.materials import Material
@@ -48,12 +49,12 @@ __all__ = ["EffectsOutcome", "EffectsStudy", "load_effects", "run_effects", "wri
 class _Numerics(Table):
     refine: Positive | None = None
     estimate: bool | None = None
-    time_steps: int | None = None
+    time_steps: ranged("time_steps", "dynamic") | None = None
     mesh_size: Positive | None = None
     mesh_margin: Positive | None = None
     domain_factor: Positive | None = None
     growth: Positive | None = None
-    layer_rate: float | None = None
+    layer_rate: ranged("layer_rate", "dynamic") | None = None
 
 
 class _EffectsFile(StudyFile):
