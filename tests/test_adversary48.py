@@ -5,6 +5,7 @@ is one line naming the key and its valid range (exit code 2), nothing is drawn o
 that the data do not hold."""
 
 import math
+import os
 from dataclasses import asdict
 from pathlib import Path
 
@@ -151,3 +152,32 @@ def test_a_forced_output_that_cannot_be_moved_is_refused_before_the_run(tmp_path
     assert said.startswith(f"--out: cannot replace '{out}' (Operation not permitted)"), said
     assert (out / "table.csv").read_text() == "old\n"  # the old folder is whole
     assert [path.name for path in tmp_path.iterdir()] == ["o"]  # and no stage is left
+
+
+def test_a_forced_sweep_onto_a_folder_it_cannot_move_is_refused_before_its_cluster(
+    tmp_path, monkeypatch, capsys
+):
+    # an immutable (chattr +i) sweep folder under --force: the run started, then said
+    # "Operation not permitted ...; the finished cases are saved in ...: complete the sweep
+    # with --resume", advice that does not apply to a folder nothing can be written in
+    import sweep_probe  # noqa: F401  (registers the kind "probe")
+
+    sweep = tmp_path / "p.toml"
+    sweep.write_text('name = "p"\nkind = "probe"\n[axes]\nx = [1.0]\n')
+    out = tmp_path / "out"
+    assert main(["sweep", str(sweep), "--out", str(out), "--workers", "1"]) == 0
+    before = sorted(path.name for path in out.iterdir())
+    make = os.mkdir
+
+    def immutable(path, *args, **kwargs):
+        if Path(path).parent == out:
+            raise PermissionError(1, "Operation not permitted", str(path))
+        return make(path, *args, **kwargs)
+
+    monkeypatch.setattr(os, "mkdir", immutable)
+    capsys.readouterr()
+    assert main(["sweep", str(sweep), "--out", str(out), "--force", "--workers", "1"]) == 2
+    said = capsys.readouterr().err.strip()
+    assert said.endswith(f"--out: cannot write in '{out}' (Operation not permitted)"), said
+    assert "\n" not in said  # one line
+    assert sorted(path.name for path in out.iterdir()) == before  # the old sweep is whole

@@ -513,7 +513,8 @@ def staged_folder(
             except OSError as error:  # a read-only or immutable folder: before any run
                 raise InputError(
                     f"{option}: cannot replace {str(target)!r} ({error.strerror or error}); "
-                    "make it writable, or write the results to another folder"
+                    "make it writable, or write the results to another folder",
+                    option,
                 ) from None
         try:
             os.mkdir(target)  # the reservation, atomic: only one run gets it

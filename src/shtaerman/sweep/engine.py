@@ -537,6 +537,8 @@ def _check_folder(
             "written by shtaerman sweep; remove it yourself or pick another --out",
             "out",
         )
+    if full:  # moved aside until the new sweep completes: a read-only folder cannot be
+        probe_writable("out", out, f".{out.name}.probe")
     foreign = _foreign_entries(out) if full else []
     if foreign:
         raise InputError(
