@@ -124,16 +124,12 @@ def test_a_sweep_refuses_at_load_what_dynamic_refuses(tmp_path, capsys):
     assert not out.exists()
 
 
-def test_a_rubber_impacts_history_has_the_columns_its_help_promises(tmp_path):
+def test_the_history_help_promises_a_and_p0_of_the_linear_body_only():
     """A rubber's impact records no contact radius: the help promises a and p0 of the linear
-    body only (it promised them of every body). The massless neo-Hookean impact on the
-    coarsest mesh (a few CPU seconds); seen on issue 28's full case too."""
-    history = tmp_path / "h.csv"
-    argv = ["dynamic", "--model", "neo-hookean", "--density2", "0", "--mesh-size", "0.2"]
-    argv += ["--time-steps", "50", "--no-estimate", "--history", str(history)]
-    assert cli.main(argv) == 0
-    header = [cell.split(" ")[0] for cell in history.read_text().splitlines()[0].split(",")]
-    assert header == ["t", "x", "v", "P"], header  # the help's columns of every body
+    body only (it promised them of every body); seen on issue 28's full case too. The rubber's
+    columns themselves are asserted on the massless neo-Hookean history that
+    test_finite_outputs.py writes (the same ``dynamic --history``; this test ran one of its
+    own, 24 CPU s on mesh 0.2 at 3 m/s, for the header alone)."""
     from shtaerman.cli.dynamic import NOTES
 
     promised = NOTES["history"]

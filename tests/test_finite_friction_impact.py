@@ -115,13 +115,15 @@ def test_the_problem_with_friction_runs_from_the_api_and_the_cli(capsys):
         interface="bonded",
         friction=0.3,
     )
-    result = sh.dynamic(problem, mesh_size=0.2, time_steps=50)
+    # one run a route, no error-estimate ladder (the bar of a frictional rubber impact:
+    # test_the_massless_relaxing_pad_with_friction_runs_with_its_error_bar)
+    result = sh.dynamic(problem, mesh_size=0.2, time_steps=50, estimate=False)
     assert result.parameters["interface"] == "bonded"
     assert result.parameters["friction"] == 0.3
     assert result.energy_dissipated_fraction > 0.0
     argv = ["dynamic", "--model", "neo-hookean", "--density2", "0", "--velocity", "1"]
     argv += ["--interface", "bonded", "--friction", "0.3", "--mesh-size", "0.2"]
-    argv += ["--time-steps", "50", "--json"]
+    argv += ["--time-steps", "50", "--no-estimate", "--json"]
     assert main(argv) == 0
     report = json.loads(capsys.readouterr().out)
     assert report["dynamic"]["x_max"] == result.dynamic["x_max"]

@@ -32,6 +32,9 @@ def test_out_history_and_figures_of_the_finite_impact(coarse, tmp_path, capsys):
     assert written == printed and written["model"] == "neo-hookean"
     with history.open() as stream:
         rows = list(csv.DictReader(stream))
+    # a rubber records no contact radius: the columns the help promises of every body, no
+    # a or p0 (the linear body's alone; test_adversary_found.py checks the help's words)
+    assert [name.split(" ")[0] for name in rows[0]] == ["t", "x", "v", "P"], list(rows[0])
     force = np.array([float(row["P [N]"]) for row in rows])
     # the same run's history: P_max is its peak located between steps, above the sampled
     # maximum by less than P ~ x^(5/3) drops over half a step of a near half-sine approach
