@@ -1,9 +1,9 @@
 """Every cell of the support matrix (shtaerman.problem.support_table) run on a coarse mesh: the
 runnable ones through sh.contact / sh.dynamic, timed, with their force; the refused ones as
 refused. A runnable rubber cell runs with each of the four rubber models (their shapes:
-tests/test_support_matrix.py RUBBER_MODELS). The rubber cells take Newton iterations, 7-25 s
-of CPU each, half an hour in all: the test suite runs one model per cell and only the cheapest
-cells (tests/test_support_matrix.py SLOW names the others).
+tests/test_support_matrix.py RUBBER_MODELS). The rubber cells take Newton iterations, 1-50 s
+of CPU each, about 40 minutes for the four models: the test suite runs one model per cell and
+only the cheapest cells (tests/test_support_matrix.py SLOW names the others).
 
 Run: python benchmarks/support_matrix.py [--rubber-only] [--impacts] [--model NAME]. Prints one
 row per cell and model, the CPU seconds of each run and the load.
