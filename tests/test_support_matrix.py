@@ -3,7 +3,7 @@ runs through sh.contact / sh.dynamic on a coarse mesh and gives a finite result;
 cell is refused before any work. The 54 linear cells all run here. Each of the 54 rubber cells
 is walked once, the four rubber models taking the cells in turn (:func:`rubber_cells`): the
 refused ones are refused, the :data:`QUICK` runnable ones run, and the :data:`SLOW` ones (a
-Newton per time or load step, 15-50 s of CPU each) are built here and run by
+Newton per time or load step, 12-50 s of CPU each) are built here and run by
 benchmarks/support_matrix.py, which runs every rubber cell with every model."""
 
 import math
@@ -84,9 +84,9 @@ QUICK = frozenset(
 )
 """The runnable rubber cells run here: each model, geometry, interface and loading at least
 once (Prony in :func:`test_the_mooney_rivlin_pad_with_prony_and_coulomb_runs`). The others
-cost 15-50 s each (their Newton per time or load step; the relaxing cells and the bonded
-curves the most; 9 measured with their model, the rest with neo-Hookean), about 600 s in
-all: :data:`SLOW`."""
+cost 12-48 s each with their model (their Newton per time or load step; the relaxing cells
+and the bonded curves the most), 600 s in all, all running (one inertial step cut in halves,
+Mooney-Rivlin with Prony on the bonded half-space): :data:`SLOW`."""
 SLOW = (
     frozenset(
         cell for cell, verdict in support_table() if cell.model == "rubber" and verdict == "runs"
