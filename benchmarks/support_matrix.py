@@ -1,9 +1,12 @@
 """Every cell of the support matrix (shtaerman.problem.support_table) run on a coarse mesh: the
 runnable ones through sh.contact / sh.dynamic, timed, with their force; the refused ones as
-refused. The rubber cells take Newton iterations, minutes in all: this is why the test suite
-walks only the linear cells (tests/test_support_matrix.py).
+refused. A runnable rubber cell runs with each of the four rubber models (their shapes:
+tests/test_support_matrix.py RUBBER_MODELS). The rubber cells take Newton iterations, 1-50 s
+of CPU each, about 40 minutes for the four models: the test suite runs one model per cell and
+only the cheapest cells (tests/test_support_matrix.py SLOW names the others).
 
-Run: python benchmarks/support_matrix.py [--rubber-only]. Prints one row per cell and the load.
+Run: python benchmarks/support_matrix.py [--rubber-only] [--impacts] [--model NAME]. Prints one
+row per cell and model, the CPU seconds of each run and the load.
 """
 
 import argparse
@@ -15,36 +18,47 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from test_support_matrix import problem_of, solve
+from test_support_matrix import RUBBER_MODELS, SLOW, problem_of, solve
 
 import shtaerman as sh
 from shtaerman.problem import support_table
 
 
+def run(cell, model: str) -> str:
+    """The cell's force, or its failure, in a few words, after its CPU time (s)."""
+    start = time.process_time()
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            force = solve(problem_of(cell, model))
+        outcome = f"force {force:.5g} N"
+        retried = [str(w.message) for w in caught if "retried" in str(w.message)]
+        outcome += f"  ({retried[0][:90]})" if retried else ""
+    except (sh.InputError, RuntimeError, ValueError) as error:
+        outcome = f"FAILED {type(error).__name__}: {str(error)[:90]}"
+    return f"{time.process_time() - start:7.1f} s  {outcome}"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rubber-only", action="store_true")
-    parser.add_argument("--impacts", action="store_true", help="with --rubber-only: no curves")
+    parser.add_argument("--impacts", action="store_true", help="no curves")
+    parser.add_argument("--model", choices=list(RUBBER_MODELS), help="this rubber model only")
     args = parser.parse_args()
+    models = [args.model] if args.model else list(RUBBER_MODELS)
     print(f"load at start {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     for cell, verdict in support_table():
-        if args.rubber_only and (
-            cell.model != "rubber" or (args.impacts and cell.loading == "curve")
+        if (args.rubber_only and cell.model != "rubber") or (
+            args.impacts and cell.loading == "curve"
         ):
             continue
         name = " ".join(str(part) for part in cell)
         if verdict != "runs":
             print(f"{name:62s} refused   {verdict.split(':')[0]}")
             continue
-        start = time.perf_counter()
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                force = solve(problem_of(cell))
-            outcome = f"force {force:.5g} N"
-        except (sh.InputError, RuntimeError, ValueError) as error:
-            outcome = f"FAILED {type(error).__name__}: {str(error)[:90]}"
-        print(f"{name:62s} {time.perf_counter() - start:7.1f} s  {outcome}", flush=True)
+        for model in models if cell.model == "rubber" else ["linear"]:
+            mark = " (slow: benchmark only)" if cell in SLOW else ""
+            print(f"{name:62s} {model:13s} {run(cell, model)}{mark}", flush=True)
     print(f"load at end {os.getloadavg()[0]:.2f}")
 
 

@@ -29,13 +29,6 @@ TESTS = Path(__file__).parent
 RUBBER_MODELS = ("neo-hookean", "mooney-rivlin", "yeoh", "gent")
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="tests/test_support_matrix.py:test_each_linear_cell_runs_or_is_refused_as_declared "
-    "walks the 54 linear cells only; the 54 rubber cells are in benchmarks/support_matrix.py "
-    "(neo-Hookean only) and Mooney-Rivlin, Yeoh and Gent in no cell (Mooney-Rivlin 0.2, massless, "
-    "Prony + bonded pad + Coulomb: element inverted at 0.555 mm)",
-)
 def test_the_matrix_test_walks_every_cell_and_every_rubber_model():
     """Collected, not run: the matrix test files' items name each rubber model and number at
     least the cells of the support table (2 x 2 x 3 x 3 x 3 = 108, the rubber ones standing

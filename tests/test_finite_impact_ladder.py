@@ -235,7 +235,8 @@ def test_a_run_that_cut_nothing_says_nothing(plain):
 def test_the_researchers_pad_passes_at_its_50_steps(monkeypatch):
     """The full massless case of issue 28 (about 12 s of CPU) on the default mesh: old code
     failed at 0.496 mm (Newton did not converge in 30 iterations) and ran again with 100
-    steps."""
+    steps; then one of its 50 steps was cut in halves; now the Newton that fails from the
+    extrapolated start is solved from the last state (QuasiStaticBody._newton), no cut."""
     monkeypatch.setattr(finite_dynamic, "IMPACT_MESH", DEFAULT_MESH)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -255,8 +256,7 @@ def test_the_researchers_pad_passes_at_its_50_steps(monkeypatch):
         )
     assert result.parameters["time_steps"] == 50
     retried = [str(w.message) for w in caught if issubclass(w.category, RetriedWarning)]
-    assert retried == [f"retried: {result.retried}"] and "50 steps failed" not in result.retried
-    assert "1 of the 50 time steps per t_y cut in halves" in result.retried
+    assert retried == [] and result.retried is None
     # against the run at 100 steps (x_max 3.451586e-3 m, P_max 118.7544 N, e 0.820957):
     # second order in dt, the differences of 50 steps are 2e-5, 7e-4 and 5e-4 relative
     assert result.x_max == pytest.approx(3.451586e-3, rel=1e-4)

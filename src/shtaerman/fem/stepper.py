@@ -803,13 +803,25 @@ class QuasiStaticBody:
             dissipated += system.dissipated
         return replace(state, dissipated=dissipated)
 
-    def _solve(self, depth: float, halvings: int) -> _State:
+    def _newton(self, depth: float) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
+        """The stepper's solve at ``depth`` (m) from x and lambda extrapolated from the last two
+        states; where it fails, from the last state itself. Near separation a relaxing body
+        with friction turns, and the extrapolation past the turn can start the Newton from a
+        folded surface (the audit30 Mooney-Rivlin pad at 100 steps: every cut of the step
+        failed, 'an element inverted', until this start)."""
         states = [(state.depth, state.x, state.lam) for state in self.history]
-        guess_x, guess_lam = extrapolate(states, depth)
         # a relaxing body's corrections measured on the deepest depth (it unloads to X <= 0)
         scale = max(depth, self.deepest) if self.relaxing else None
         try:
-            x, lam, iterations, _ = self.stepper.solve(depth, guess_x, guess_lam, scale)
+            return self.stepper.solve(depth, *extrapolate(states, depth), scale)
+        except NewtonError:
+            if len(states) < 2:  # its guess was the last state
+                raise
+        return self.stepper.solve(depth, states[-1][1], states[-1][2], scale)
+
+    def _solve(self, depth: float, halvings: int) -> _State:
+        try:
+            x, lam, iterations, _ = self._newton(depth)
         except NewtonError as error:
             last = self.history[-1]
             locked = gent_locks(error, self.stepper.system, last.x, depth, last=halvings == 0)
