@@ -82,7 +82,7 @@ def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
     with ``warn`` give a validity warning each)."""
     run = case.run_impact
 
-    def maybe_fail(*inputs):
+    def maybe_fail(*inputs, **keywords):
         settings = inputs[5]
         if settings.steps in steps:
             raise NumericalFailureError(f"forced failure at {settings.steps} steps")
@@ -90,7 +90,7 @@ def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
             warnings.warn(
                 f"outside validity at {settings.steps} steps", ValidityWarning, stacklevel=2
             )
-        return run(*inputs)
+        return run(*inputs, **keywords)
 
     monkeypatch.setattr(case, "run_impact", maybe_fail)
 

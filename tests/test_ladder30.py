@@ -3,6 +3,7 @@
 import json
 
 import pytest
+from ladder_helpers import failing_level
 
 import shtaerman as sh
 from shtaerman.cli import main
@@ -52,23 +53,6 @@ PAD_CLI = ["contact", "--exponent", "1.3", "--shape-coefficient", "8", "--E2", "
 PAD_CLI += ["--nu2", "0.49", "--mass", "0.12", "--velocity", "1.5", "--thickness", "0.012"]
 PAD_CLI += ["--interface", "bonded", "--friction", "0.5", "--json"]
 """Issue 28's Coulomb pad curve on the command line (its ladder: 6807, 12795, 24350 dofs)."""
-
-
-def failing_level(monkeypatch, failing: int) -> None:
-    """Make the ``failing``-th level run (1 = the coarsest) of the contact ladder fail as an
-    unsettled load step does."""
-    from shtaerman.fem.contact.constraints import unsettled
-    from shtaerman.study.contact import accuracy
-
-    real, calls = accuracy.run_indentation, []
-
-    def run(*args, **kwargs):
-        calls.append(1)
-        if len(calls) == failing:
-            raise unsettled(0.005, 16)
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(accuracy, "run_indentation", run)
 
 
 def test_a_failed_middle_level_leaves_the_finest_with_its_estimate_said_missing(

@@ -14,8 +14,8 @@ import json
 import numpy as np
 import pytest
 import study_texts
+from ladder_helpers import failing_level
 from study_texts import PAPER_CASE
-from test_ladder30 import failing_level
 
 from shtaerman.cli import main
 from shtaerman.fem.mesh import MeshSettings

@@ -472,6 +472,28 @@ def _link_tree(source: Path, destination: Path) -> None:
     shutil.copytree(source, destination, symlinks=True, copy_function=link, dirs_exist_ok=True)
 
 
+def _retire(target: Path, retired: Path, option: str) -> None:
+    """Move the folder a run replaces aside (atomic: only one run can take it)."""
+    try:
+        os.rename(target, retired)
+    except OSError as error:  # a read-only or immutable folder: before any run
+        raise InputError(
+            f"{option}: cannot replace {str(target)!r} ({error.strerror or error}); "
+            "make it writable, or write the results to another folder",
+            option,
+        ) from None
+
+
+def _reserve(target: Path, option: str) -> None:
+    """Create ``target``, the reservation (atomic: only one run gets it)."""
+    try:
+        os.mkdir(target)
+    except FileExistsError:
+        raise InputError(
+            f"{option}: {str(target)!r} was created by another program meanwhile", option
+        ) from None
+
+
 @contextlib.contextmanager
 def staged_folder(
     target: Path,
@@ -508,20 +530,8 @@ def staged_folder(
         resumed = resumable(target, resume_marker)
         if os.path.lexists(target):  # checked again: another program may have written it
             _check_replaceable(option, target, target, force, resume_marker)
-            try:
-                os.rename(target, retired)  # atomic: only one run can take it
-            except OSError as error:  # a read-only or immutable folder: before any run
-                raise InputError(
-                    f"{option}: cannot replace {str(target)!r} ({error.strerror or error}); "
-                    "make it writable, or write the results to another folder",
-                    option,
-                ) from None
-        try:
-            os.mkdir(target)  # the reservation, atomic: only one run gets it
-        except FileExistsError:
-            raise InputError(
-                f"{option}: {str(target)!r} was created by another program meanwhile", option
-            ) from None
+            _retire(target, retired, option)
+        _reserve(target, option)
         reserved = True
         os.mkdir(content)
         if resumed:
