@@ -2,9 +2,8 @@
 
 By default glibc maps each block above its threshold (128 kB, raised to the largest block freed,
 at most 32 MB) afresh and returns it to the system when it is freed, so every solve faults its
-matrices and factors in again, page by page, and two processes faulting at once contend for the
-memory bus. Called by the command line's process and by each sweep worker as it starts; a
-library import changes nothing in the user's process.
+matrices and factors in again, page by page. Called by the command line's process and by each
+sweep worker as it starts; a library import changes nothing in the user's process.
 """
 
 from __future__ import annotations
@@ -19,12 +18,9 @@ _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # glibc's mallopt parameters (mal
 
 
 def keep_freed_memory() -> bool:
-    """Let glibc's allocator reuse freed memory for the next arrays; False without glibc.
-
-    8 contact cases in one process: 220k page faults and 0.6-0.85 s of system CPU against
-    4.1-4.5 s of user CPU; with :data:`HEAP_KEPT`, 45k faults and 0.15-0.2 s. At most
-    :data:`HEAP_KEPT` of free memory stays on top of the process's heap.
-    """
+    """Let glibc's allocator reuse freed memory for the next arrays; False without glibc or
+    where glibc refuses a threshold. At most :data:`HEAP_KEPT` of free memory stays on top of
+    the process's heap (the page faults it saves: the commits that introduced it)."""
     try:
         if not (os.confstr("CS_GNU_LIBC_VERSION") or "").startswith("glibc"):
             return False
