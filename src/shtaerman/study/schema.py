@@ -2,9 +2,8 @@
 name the file and the key, old keys renamed, and finding and loading a study file of any kind.
 
 A study file is decoded into typed structures by msgspec (``forbid_unknown_fields``, numeric
-constraints), chosen over a hand-written reader (200 lines before) and over pydantic (a larger
-dependency for the same checks): it rejects unknown keys, wrong types and out-of-range values
-and reports where. Every mistake raises :class:`StudyError` naming the file, the key and what
+constraints): it rejects unknown keys, wrong types and out-of-range values and reports where.
+Every mistake raises :class:`StudyError` naming the file, the key and what
 was expected, and everything (including what the FEM needs: n > 1, nu2 >= 0) is checked when
 the file is loaded, before any computing.
 """

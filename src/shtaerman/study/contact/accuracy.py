@@ -62,21 +62,13 @@ ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 
 """Orders of the extrapolation, and the largest orders of the error estimates: a ladder that
 observes a lower order (in :data:`SANE_ORDERS`) reports the correction at its own order as the
 error, the larger one (the exponent always uses its observed order). The force's error has two
-terms of opposite sign: the far field's (order 4 in the growth rate, dominant on the default
-ladders, whose observed orders are 2.3-2.5) and the contact edge's (order 2 in the surface
-size, dominant on fine or slowly graded meshes: toward 1e-6 it stays while the other vanishes);
-at order 3 the fine ladders' estimates were 0.37-0.55 of the true error
-(``benchmarks/accuracy_1e6.py``)."""
+terms of opposite sign: the far field's (order 4 in the growth rate) and the contact edge's
+(order 2 in the surface size; benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 EDGE_ORDER = 2.0
-"""The slowest order of the force's error: the contact edge's, in the surface size (the paper's
-case on the default family at domain 1e7, worst depth: 7.3e-6, 5.1e-6, 2.6e-6, 1.4e-6 from
-116k to 887k dofs, i.e. order 1.9-2.0 once the far field's term has gone)."""
+"""The slowest order of the force's error: the contact edge's, in the surface size."""
 FORCE_SAFETY = 1.25
 """Factor on the force and beta estimates (Roache's factor of safety of a three-mesh study
-at its observed order): with the observed order the effectivity on ladders where the edge term
-dominates is 0.94-1.01 (the paper's case from 116k to 447k dofs, and size 1/80, growth 0.1,
-up to 62k dofs; the far-field term, of the other sign, shrinks faster than the ladder's order
-assumes); with the factor 1.17-1.26 (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
+at its observed order; benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 SANE_ORDERS = (1.0, 5.0)
 """Observed orders (of the largest difference over the depths) taken as asymptotic."""
 TIME_GROWTH = 2.4
@@ -87,11 +79,8 @@ contact radius; :class:`shtaerman.fem.mesh.MeshSettings`, ``benchmarks/bench_con
 (c)); a bias common to every level, unseen by the ladder, so added to the estimate."""
 LAYER_TRUNCATION = 1e-5
 """Bound on the relative change of force and beta by a layer's lateral edge r = L, the same
-on every level (L is ``LAYER_EXTENT`` thicknesses beyond the refined zone, where the layer's
-field has decayed; doubling L changes the force by at most 1e-5 from H/a = 0.05 to 100 on
-the default mesh, mostly by re-meshing, and by 1e-7 at refine 2, benchmarks/FEM_NOTES.md,
-"Layer reference"); added to the force and beta estimates as :data:`TRUNCATION` is on the
-half-space."""
+on every level (benchmarks/FEM_NOTES.md, "Layer reference"); added to the force and beta
+estimates as :data:`TRUNCATION` is on the half-space."""
 
 Progress = Callable[[str], None]
 
@@ -296,16 +285,13 @@ def _edge_floor(values: list, estimate: Estimate) -> float:
     D1 (the largest over the depths) shrunk by one level at the edge's order
     :data:`EDGE_ORDER`, then corrected as ``estimate`` is (at the lower of its order and the
     observed one; a fall-back at the edge's order). The last difference D2 can be far below
-    D1 / s^2 where the far field's faster term, of the other sign, still shrinks in it: on the
-    paper's ladder to 228k dofs D2 was 3.3e-6 at the deep end while the shallow end's true
-    error was 5.1e-6 (D1 / 2 = 8.5e-6); where the edge term dominates D2 = D1 / s^2 and the
-    floor changes nothing.
+    D1 / s^2 where the far field's faster term, of the other sign, still shrinks in it; where
+    the edge term dominates D2 = D1 / s^2 and the floor changes nothing.
 
     No floor where the ladder shows no order-2 term: Richardson's observed order at least
     ``estimate``'s order and every depth's two differences of one sign (two terms of opposite
-    sign make a depth's differences change sign, as the shallow end's did there). On layers
-    and finite-strain curves whose ladders observe order 3-4.6 the floor made the estimate
-    2.6-3.4 times the true error, without it 1.5-1.8 (``benchmarks/bench_accuracy.py`` (c))."""
+    sign make a depth's differences change sign). Measurements: benchmarks/FEM_NOTES.md,
+    "Accuracy 1e-6"."""
     levels = [np.atleast_1d(np.asarray(v, dtype=float)) for v in values[-3:]]
     if len(levels) < 3 or _confirmed(levels, estimate):
         return 0.0
@@ -485,22 +471,19 @@ def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:
 
 ACCURACY_GRADING = Grading(near_growth=0.27, near_depth=0.05, far_growth=0.3, far_start=1e3)
 """The size field of :data:`ACCURACY_MESH`: growth 0.27 for the first 0.05 refined radii
-below the surface (the rows of the finest elements: 144k dofs against 293k with one growth,
-the same errors), 0.3 beyond 1e3 refined radii (whose share of the force is a / 1e3); the
-band starts at the smallest geometric contact radius (:func:`accuracy_mesh`)."""
+below the surface (the rows of the finest elements), 0.3 beyond 1e3 refined radii (whose share
+of the force is a / 1e3); the band starts at the smallest geometric contact radius
+(:func:`accuracy_mesh`)."""
 ACCURACY_MESH = GradedMesh(size=0.0016, growth=0.08, axis_growth=0.18, grading=ACCURACY_GRADING)
 """The base (refine 1) of ``--accuracy`` TOL < :data:`GRADED_BELOW` on the default
 half-space, graded by :data:`ACCURACY_GRADING`: the surface 4 times finer than the default
 mesh's and the body's growth 3 times slower, so that both error terms are small at once (the
 contact edge's, -0.07 (h/a)^2, and the far field's, +0.024 g^4, of opposite sign: on the
 default family the ladder saw their sum), and the axis grading's growth 1.8 times larger
-(the force does not need it). On the paper's case it meets 1e-6 at refine 2, 214k dofs, where
-the default family needed 1.2-1.8M (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
+(the force does not need it); benchmarks/FEM_NOTES.md, "Accuracy 1e-6"."""
 GRADED_BELOW = 1e-4
-"""``--accuracy`` TOL below this runs on the graded family. At 1e-4 both families cost the
-same on the paper's case (2.6-2.8 CPU s, to 56k and 55k dofs); below, the graded is cheaper:
-1e-5 in 3.0 CPU s (16k, 30k, 56k dofs) where the default family is refused (its estimate
-2.4e-4 at 31k dofs predicts 4.9e5)."""
+"""``--accuracy`` TOL below this runs on the graded family, the cheaper one there
+(benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 
 
 def accuracy_mesh(

@@ -126,15 +126,13 @@ START_NODES = 6
 """Surface nodes besides the axis (three P2 elements) that the first depth's contact covers on the
 coarsest mesh when the ladder's ``small_ratio`` depth covers fewer than
 :data:`~shtaerman.fem.contact.constraints.MIN_CONTACT_NODES` (the linear FEM on the same mesh asks
-as many loaded nodes). The quick mesh's force error is set by the nodes covered, not by n (measured
-with the linear FEM for n = 1.1 to 2): just past the 2nd to 5th node 1 to 1.8 % (2 nodes, n = 1.3,
-between them: -4.1 %, the small-strain check's failure), just past the 6th 0.05 %."""
+as many loaded nodes); the first force's error is set by the nodes covered (benchmarks/FEM_NOTES.md,
+"Finite strain")."""
 SMALL_STRAIN_SLOPE = 0.1
 """Bound on |P / P_linear - 1| / (x/a) at small x/a: the finite-strain departure is first order
-in x/a, measured 0.04 to 0.09 x/a for n = 1.2 to 2 and nu2 = 0.3 to 0.5 (the quick studies
-of tests/test_finite_start.py). A ladder started deeper than ``small_ratio`` (n near 1, where
-x/a grows slowly with the contact radius) adds this slope times the x/a it moved to the
-small-strain tolerances."""
+in x/a (benchmarks/FEM_NOTES.md, "Finite strain"). A ladder started deeper than ``small_ratio``
+(n near 1, where x/a grows slowly with the contact radius) adds this slope times the x/a it moved
+to the small-strain tolerances."""
 
 
 @dataclass(frozen=True)
@@ -178,7 +176,7 @@ class LadderStart:
 def surface_radii(indenter: Indenter, top: float, mesh: MeshSettings) -> np.ndarray:
     """Radii in m of the surface nodes besides the axis (vertices and mid-sides), increasing,
     of ``mesh`` meshed for the deepest depth ``top`` (m) as
-    :func:`shtaerman.fem.contact.finite.run_finite_indentation` meshes it (about 0.1 s)."""
+    :func:`shtaerman.fem.contact.finite.run_finite_indentation` meshes it."""
     zone = mesh.zone_factor(tip_exponent(indenter))
     refined = mesh.margin * geometric_radius(indenter, top) * zone
     built = mesh.build(refined)
