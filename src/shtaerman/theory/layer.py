@@ -1,26 +1,16 @@
 """Analytic limits of a rigid power-law indenter pressed into an elastic layer on a rigid base.
 
 A striker z = A r^n (n > 1), frictionless, pressed to depth d into a layer of thickness H,
-shear modulus mu and Poisson's ratio nu, lying on a rigid base. Four limits are known in closed
-form (derivations in ``docs/theory.md``, section "Layer on a rigid base"):
+shear modulus mu and Poisson's ratio nu on a rigid base. The limits known in closed form
+(derivations in ``docs/theory.md``, section "Layer on a rigid base"):
 
-- thick layer, H >> a: Shtaerman's half-space, :class:`shtaerman.theory.contact.PowerLawContact`
-  with E* = E / (1 - nu^2) (:func:`half_space_limit`);
-- thin compressible layer bonded to the base, H << a, nu not near 1/2: every column of the layer
-  is compressed oedometrically (no lateral strain), a foundation p = k w with
-  k = 2 mu (1 - nu) / ((1 - 2 nu) H) (:func:`oedometric_stiffness`);
-- thin layer on a lubricated base (any nu <= 1/2): both faces are free of shear, the in-plane
-  stresses are those of a plate restraining the Poisson expansion, sigma_rr + sigma_tt = -nu p,
-  and the layer is a foundation with k = E / ((1 - nu^2) H) = E* / H
-  (:func:`sliding_stiffness`);
-- on a foundation the contact edge is where the profile meets the depth, A a^n = d, and
-  P = pi k d a^2 n / (n + 2) (:class:`FoundationLayer`);
-- thin incompressible layer bonded to the base: the layer squeezes out like a thin film,
-  (1/r)(r p')' = -(3 mu / H^3)(d - A r^n) in the contact with p(a) = p'(a) = 0, so
-  d = 2 A a^n / (n + 2) and P = 3 pi mu A n a^(n+4) / (4 H^3 (n + 2)(n + 4))
-  (:class:`IncompressibleThinLayer`); for a paraboloid (n = 2, A = 1/(2R)) this is the
-  classic P = 2 pi mu R^2 d^3 / H^3 (Jaffar, Int. J. Mech. Sci. 31, 1989; Chadwick, SIAM
-  J. Appl. Math. 62, 2002).
+- thick layer, H >> a: Shtaerman's half-space with E* = E / (1 - nu^2) (:func:`half_space_limit`);
+- thin layer bonded to the base, nu not near 1/2: an oedometric foundation
+  (:func:`oedometric_stiffness`); on a lubricated base, any nu: a plate-restrained foundation
+  (:func:`sliding_stiffness`); either contact is a :class:`FoundationLayer`;
+- thin incompressible layer bonded to the base: a squeezed film (:class:`IncompressibleThinLayer`;
+  for a paraboloid the classic P = 2 pi mu R^2 d^3 / H^3 of Jaffar, Int. J. Mech. Sci. 31, 1989;
+  Chadwick, SIAM J. Appl. Math. 62, 2002).
 
 :func:`thin_layer_limit` picks the limit of a base and a Poisson's ratio.
 """
