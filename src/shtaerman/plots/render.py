@@ -10,9 +10,8 @@ it falls back to an off-screen context). :func:`quiet_vtk` silences VTK's warnin
 duration of one picture; it is the only place VTK's global state is touched, and it restores it.
 Text uses matplotlib's DejaVu Sans: Greek letters, and the same face as the curve figures.
 Edges are smoothed by FXAA, a post-pass over the finished image (:func:`smooth_edges`), not
-by pyvista's default multisampling: with a software OpenGL (Mesa llvmpipe, the off-screen
-case) multisampling costs several times the render itself, and FXAA also smooths the thin
-isolines, which multisampling leaves stepped.
+by pyvista's default multisampling, which is dearer on a software OpenGL (benchmarks/FEM_NOTES.md,
+"Figures") and leaves the thin isolines stepped.
 """
 
 from __future__ import annotations

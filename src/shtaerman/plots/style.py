@@ -59,8 +59,7 @@ __all__ = [
 
 DPI = 200
 PNG_COMPRESSION = 3
-"""zlib level of the PNGs (lossless at any level): 3 encodes in about 0.7 of the time of the
-default 6, for files about 10 % larger."""
+"""zlib level of the PNGs (lossless at any level; its cost: benchmarks/FEM_NOTES.md, "Figures")."""
 WIDTH = 6.4
 """Figure width in inches (1280 pixels at :data:`DPI`)."""
 EXACT_COLOUR = "#000000"
