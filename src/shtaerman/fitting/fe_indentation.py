@@ -3,9 +3,8 @@ shape constant.
 
 E2 scales out of the FE contact curve of a rigid indenter exactly: at a fixed nu2, a fixed
 geometry and a fixed shape of the strain energy (Mooney ratio r, Yeoh c2 and c3, Gent Jm)
-every constant of the body is proportional to E2, so P(x; E2, s) = E2 p(x; s) (measured:
-4e-12 between E2 and 2 E2). One FE curve at the data's depths then gives p for a known shape,
-and E2 is fitted exactly (P is linear in it).
+every constant of the body is proportional to E2, so P(x; E2, s) = E2 p(x; s) (docs/fit.md).
+One FE curve at the data's depths then gives p for a known shape, and E2 is fitted exactly.
 
 One shape constant s (:func:`shape_axes`: the Mooney ratio, Yeoh's c2 with c3 held, Gent's Jm,
 or on a pad nu2, which the half-space's curve hides in E*) changes p: it is fitted on p

@@ -152,8 +152,8 @@ def fit(
     refine : float
         The mesh and time-step refinement of the FE runs that correct a force history for a
         pad (thickness), waves (density2 > 0) or finite strain (model); each FE run comes
-        with its error estimate (0.6, the default: a coarse mesh, seconds a run for the linear
-        body; 0.6 is the least the finite-strain ladder takes).
+        with its error estimate (0.6, the default, is the least the finite-strain ladder
+        takes).
     out : str or Path, optional
         Folder to write fit.json, fit.csv and the figure fit.png into.
     force : bool
