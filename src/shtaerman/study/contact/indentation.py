@@ -78,8 +78,24 @@ def default_depths(
     return depths_up_to(overshoot * x_c, indenter.exponent)
 
 
+class CurveResult:
+    """What a contact curve result (its ``steps`` and its ``exact`` law) gives at its depths."""
+
+    @property
+    def analytic(self) -> AnalyticFit:
+        """The power law's exact beta and q; another profile's, or Lee-Radok's, exact forces
+        at the curve's depths fitted as the FEM's are (beta at the elastic q held, the
+        exponent free: that force law is no power law)."""
+        return exact_fit(self.exact, self.depths)
+
+    @property
+    def depths(self) -> np.ndarray:
+        """The depths in m."""
+        return np.array([step.depth for step in self.steps])
+
+
 @dataclass(frozen=True)
-class IndentationResult:
+class IndentationResult(CurveResult):
     """FEM contact curve of an indenter against the exact solution (SI units)."""
 
     indenter: Indenter
@@ -94,18 +110,6 @@ class IndentationResult:
     def steps(self) -> list[ContactStep]:
         """The contact at each depth."""
         return self.curve.steps
-
-    @property
-    def analytic(self) -> AnalyticFit:
-        """The power law's exact beta and q; another profile's, or Lee-Radok's, exact forces
-        at the curve's depths fitted as the FEM's are (beta at the elastic q held, the
-        exponent free: that force law is no power law)."""
-        return exact_fit(self.exact, self.depths)
-
-    @property
-    def depths(self) -> np.ndarray:
-        """The depths in m."""
-        return np.array([step.depth for step in self.steps])
 
     def field(self, index: int = -1) -> ElasticSolution:
         """Displacements and stresses at step ``index`` (the deepest, computed once, by default).

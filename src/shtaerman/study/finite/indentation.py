@@ -14,7 +14,6 @@ import functools
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from ...fem.contact.finite import (
@@ -32,10 +31,9 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ..contact.indentation import (
-    AnalyticFit,
+    CurveResult,
     curve_document,
     default_depths,
-    exact_fit,
     worst_against_analytic,
 )
 
@@ -43,7 +41,7 @@ __all__ = ["FiniteIndentationResult", "run_finite_study"]
 
 
 @dataclass(frozen=True)
-class FiniteIndentationResult:
+class FiniteIndentationResult(CurveResult):
     """Finite-strain contact curve of a power-law indenter beside the linear exact solution."""
 
     indenter: Indenter
@@ -57,17 +55,6 @@ class FiniteIndentationResult:
     def steps(self) -> list[FiniteContactStep]:
         """The converged contact at each depth (as :attr:`.IndentationResult.steps`)."""
         return self.curve.steps
-
-    @property
-    def analytic(self) -> AnalyticFit:
-        """The linear exact beta and q (another profile's: its exact forces fitted as the
-        FEM's are; :func:`shtaerman.study.contact.indentation.exact_fit`)."""
-        return exact_fit(self.exact, self.depths)
-
-    @property
-    def depths(self) -> np.ndarray:
-        """The depths in m."""
-        return np.array([step.depth for step in self.steps])
 
     @property
     def mesh_stats(self) -> dict[str, float]:
