@@ -227,22 +227,29 @@ class _Memory:
         step = np.diff(self.t)
         self.x_rate, self.F_rate = np.diff(self.x) / step, np.diff(self.F) / step
         self.last = len(self.t) - 1
+        # plain floats for evaluate(), called ~10 times a step on a few terms: numpy's
+        # per-call overhead on arrays this small was 95 % of its cost
+        self._terms = list(zip(self.g.tolist(), self.tau.tolist(), strict=True))
+        self._nodes = list(zip(self.t.tolist(), self.x.tolist(), self.F.tolist(),
+                               self.H.tolist(), self.K.tolist(), strict=True))  # fmt: skip
+        self._rates = list(zip(self.x_rate.tolist(), self.F_rate.tolist(), strict=True))
 
     def evaluate(self, u: float, t: float, piece: int) -> tuple[float, float, float]:
         """x(u) in m, E(u) = sum_i g_i e^{-(t-u)/tau_i} H_i(u) in m and the unloading force
         P(u) = beta0 [g_inf F(u) + sum_i g_i e^{-(t-u)/tau_i} K_i(u)] in N, for u in piece
         [t_k, t_k+1] (k = ``piece``) and a later time t in s."""
         k = min(max(piece, 0), self.last - 1)
-        lag = u - self.t[k]
-        decay_node = np.exp(-(t - self.t[k]) / self.tau)
-        ramp = np.exp(-(t - u) / self.tau) * -np.expm1(-lag / self.tau) * self.tau
-        x_u = self.x[k] + self.x_rate[k] * lag
-        E_u = float(self.g @ (decay_node * self.H[k] + self.x_rate[k] * ramp))
-        F_u = self.F[k] + self.F_rate[k] * lag
-        force = self.beta * (
-            self.g_inf * F_u + float(self.g @ (decay_node * self.K[k] + self.F_rate[k] * ramp))
-        )
-        return float(x_u), E_u, float(force)
+        t_k, x_k, F_k, H_k, K_k = self._nodes[k]
+        x_rate, F_rate = self._rates[k]
+        lag = u - t_k
+        E_u = held = 0.0
+        for (g, tau), H, K in zip(self._terms, H_k, K_k, strict=True):
+            decay_node = math.exp(-(t - t_k) / tau)
+            ramp = math.exp(-(t - u) / tau) * -math.expm1(-lag / tau) * tau
+            E_u += g * (decay_node * H + x_rate * ramp)
+            held += g * (decay_node * K + F_rate * ramp)
+        force = self.beta * (self.g_inf * (F_k + F_rate * lag) + held)
+        return x_k + x_rate * lag, E_u, force
 
     def edge_time(
         self, residual: Callable[[float, float, float], float], t: float, start: int
