@@ -220,19 +220,17 @@ class _Memory:
         self.nodes.append((t, x, F, H, K))
 
     def freeze(self) -> None:
-        """End of loading: the nodes become arrays and the pieces' slopes are set."""
-        t, x, F, H, K = zip(*self.nodes, strict=True)
-        self.t, self.x, self.F = np.array(t), np.array(x), np.array(F)
-        self.H, self.K = np.array(H).reshape(len(t), -1), np.array(K).reshape(len(t), -1)
-        step = np.diff(self.t)
-        self.x_rate, self.F_rate = np.diff(self.x) / step, np.diff(self.F) / step
-        self.last = len(self.t) - 1
-        # plain floats for evaluate(), called ~10 times a step on a few terms: numpy's
-        # per-call overhead on arrays this small was 95 % of its cost
+        """End of loading: the nodes and the pieces' slopes, in plain floats (evaluate() runs
+        ~10 times a step on a few terms: numpy's per-call overhead on arrays this small was
+        95 % of its cost)."""
+        t, x, F, H, K = (np.array(column) for column in zip(*self.nodes, strict=True))
+        step = np.diff(t)
+        self.t, self.last = t.tolist(), len(t) - 1
         self._terms = list(zip(self.g.tolist(), self.tau.tolist(), strict=True))
-        self._nodes = list(zip(self.t.tolist(), self.x.tolist(), self.F.tolist(),
-                               self.H.tolist(), self.K.tolist(), strict=True))  # fmt: skip
-        self._rates = list(zip(self.x_rate.tolist(), self.F_rate.tolist(), strict=True))
+        H, K = H.reshape(len(t), -1).tolist(), K.reshape(len(t), -1).tolist()
+        self._nodes = list(zip(self.t, x.tolist(), F.tolist(), H, K, strict=True))
+        self._rates = list(zip((np.diff(x) / step).tolist(), (np.diff(F) / step).tolist(),
+                               strict=True))  # fmt: skip
 
     def evaluate(self, u: float, t: float, piece: int) -> tuple[float, float, float]:
         """x(u) in m, E(u) = sum_i g_i e^{-(t-u)/tau_i} H_i(u) in m and the unloading force
