@@ -578,17 +578,29 @@ class RateContact:
         deepest = self.depths[-1]
         return float(self.central_pressure(deepest) / self.mean_pressure(deepest))
 
+    def _at(self, depth: ArrayLike, key: str) -> np.ndarray:
+        """:func:`constant_rate_contact`'s ``key`` at ``depth``, the last depths' kept: a row
+        of a step table asks for the force, the radius and the central pressure in turn, each
+        a hereditary integral on a profile's 2000 steps (the same numbers, once)."""
+        x = np.asarray(depth, dtype=float)
+        asked = (x.shape, x.tobytes())
+        kept = self.__dict__.get("_last")
+        if kept is None or kept[0] != asked:
+            kept = (asked, constant_rate_contact(x, self.rate, self.law, self.prony))
+            self.__dict__["_last"] = kept  # frozen: not a field, not compared
+        return kept[1][key].copy()
+
     def contact_radius(self, depth: ArrayLike) -> np.ndarray:
         """a(x) in m: the elastic geometry's."""
-        return constant_rate_contact(depth, self.rate, self.law, self.prony)["contact_radius"]
+        return self._at(depth, "contact_radius")
 
     def force(self, depth: ArrayLike) -> np.ndarray:
         """P in N at depth x (m), reached at t = x / V."""
-        return constant_rate_contact(depth, self.rate, self.law, self.prony)["force"]
+        return self._at(depth, "force")
 
     def central_pressure(self, depth: ArrayLike) -> np.ndarray:
         """p(0) in Pa at depth x (m)."""
-        return constant_rate_contact(depth, self.rate, self.law, self.prony)["central_pressure"]
+        return self._at(depth, "central_pressure")
 
     def mean_pressure(self, depth: ArrayLike) -> np.ndarray:
         """P / (pi a^2) in Pa at depth x (m)."""
