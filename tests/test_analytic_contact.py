@@ -26,6 +26,7 @@ from shtaerman.theory.contact import (
     paper_J2,
     paper_pressure_eq5,
     paper_radius_constant,
+    pressure_shape,
 )
 from shtaerman.theory.indenter import PowerLawIndenter, shape_factor
 from shtaerman.theory.materials import RIGID, Material, effective_modulus
@@ -116,6 +117,25 @@ def test_pressure_matches_quadrature_and_eq5():
     eq5 = paper_pressure_eq5(r, a, float(contact.force(X_C)))
     # the paper's eq. (5) (elliptic integrals) and our 2F1 closed form: two independent routes
     np.testing.assert_allclose(contact.pressure(r, X_C), eq5, rtol=1e-12, atol=1e-9 * eq5[0])
+
+
+@pytest.mark.parametrize(
+    ("exponent", "rho", "expected"),
+    [  # mpmath, 40 digits: Int_rho^1 t^(n-1)/sqrt(t^2 - rho^2) dt / sqrt(1 - rho^2), by quad
+        # (rho a power of 2 or a short binary fraction: z = 1 - rho^2 is exact in binary)
+        (0.8, 2**-7, 9.9411923519512888252),
+        (1.2, 2**-10, 3.932621750513562897),
+        (1.5, 2**-14, 1.990639531882219823),
+        (1.5, 0.625, 1.1550458526956852465),
+        (2.5, 2**-4, 0.6777396789885455926),
+        (4.5, 0.3125, 0.33859979636484261521),
+    ],
+)
+def test_pressure_shape_near_the_axis_matches_mpmath(exponent, rho, expected):
+    """The connection to 1 - z the pressure takes near the axis (z > 1/2): 3.3e-16 measured
+    against mpmath; 1e-13 leaves room for the Gamma functions' rounding on other machines."""
+    z = np.array([1.0 - rho**2])
+    assert pressure_shape(exponent, z)[0] == pytest.approx(expected, rel=1e-13)
 
 
 @pytest.mark.parametrize("exponent", [1.2, 1.5, 2.0, 3.0])

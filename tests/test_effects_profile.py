@@ -51,8 +51,23 @@ def test_every_variant_runs_on_the_sphere(sphere_table):
     }
 
 
-def test_the_command_line_runs_the_sphere_with_its_prony(capsys):
+def test_the_command_line_runs_the_sphere_with_its_prony(capsys, monkeypatch, sphere_table):
+    """The command line asks for the fixture's table (the same problem, the same settings) and
+    prints it: the table's FE runs are the fixture's, not run a second time (18 CPU s), and
+    test_every_variant_runs_on_the_sphere checks them."""
+    import shtaerman.cli.effects as command
+
+    asked = []
+
+    def table(problem, *, progress=None, **options):
+        asked.append((problem, options))
+        return sphere_table
+
+    monkeypatch.setattr(command, "effects", table)
     assert main([*ARGV, "--json"]) == 0
+    [(problem, options)] = asked
+    assert problem == parts(BALL, BODY, **CASE, prony="0.3:1e-3")
+    assert options == {"refine": 1.0, **COARSE}
     document = json.loads(capsys.readouterr()[0])
     assert "dropped" not in document
     assert document["problem"]["indenter"]["profile"]["kind"] == "sphere"

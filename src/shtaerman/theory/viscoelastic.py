@@ -220,29 +220,34 @@ class _Memory:
         self.nodes.append((t, x, F, H, K))
 
     def freeze(self) -> None:
-        """End of loading: the nodes become arrays and the pieces' slopes are set."""
-        t, x, F, H, K = zip(*self.nodes, strict=True)
-        self.t, self.x, self.F = np.array(t), np.array(x), np.array(F)
-        self.H, self.K = np.array(H).reshape(len(t), -1), np.array(K).reshape(len(t), -1)
-        step = np.diff(self.t)
-        self.x_rate, self.F_rate = np.diff(self.x) / step, np.diff(self.F) / step
-        self.last = len(self.t) - 1
+        """End of loading: the nodes and the pieces' slopes, in plain floats (evaluate() runs
+        ~10 times a step on a few terms: numpy's per-call overhead on arrays this small was
+        95 % of its cost)."""
+        t, x, F, H, K = (np.array(column) for column in zip(*self.nodes, strict=True))
+        step = np.diff(t)
+        self.t, self.last = t.tolist(), len(t) - 1
+        self._terms = list(zip(self.g.tolist(), self.tau.tolist(), strict=True))
+        H, K = H.reshape(len(t), -1).tolist(), K.reshape(len(t), -1).tolist()
+        self._nodes = list(zip(self.t, x.tolist(), F.tolist(), H, K, strict=True))
+        self._rates = list(zip((np.diff(x) / step).tolist(), (np.diff(F) / step).tolist(),
+                               strict=True))  # fmt: skip
 
     def evaluate(self, u: float, t: float, piece: int) -> tuple[float, float, float]:
         """x(u) in m, E(u) = sum_i g_i e^{-(t-u)/tau_i} H_i(u) in m and the unloading force
         P(u) = beta0 [g_inf F(u) + sum_i g_i e^{-(t-u)/tau_i} K_i(u)] in N, for u in piece
         [t_k, t_k+1] (k = ``piece``) and a later time t in s."""
         k = min(max(piece, 0), self.last - 1)
-        lag = u - self.t[k]
-        decay_node = np.exp(-(t - self.t[k]) / self.tau)
-        ramp = np.exp(-(t - u) / self.tau) * -np.expm1(-lag / self.tau) * self.tau
-        x_u = self.x[k] + self.x_rate[k] * lag
-        E_u = float(self.g @ (decay_node * self.H[k] + self.x_rate[k] * ramp))
-        F_u = self.F[k] + self.F_rate[k] * lag
-        force = self.beta * (
-            self.g_inf * F_u + float(self.g @ (decay_node * self.K[k] + self.F_rate[k] * ramp))
-        )
-        return float(x_u), E_u, float(force)
+        t_k, x_k, F_k, H_k, K_k = self._nodes[k]
+        x_rate, F_rate = self._rates[k]
+        lag = u - t_k
+        E_u = held = 0.0
+        for (g, tau), H, K in zip(self._terms, H_k, K_k, strict=True):
+            decay_node = math.exp(-(t - t_k) / tau)
+            ramp = math.exp(-(t - u) / tau) * -math.expm1(-lag / tau) * tau
+            E_u += g * (decay_node * H + x_rate * ramp)
+            held += g * (decay_node * K + F_rate * ramp)
+        force = self.beta * (self.g_inf * (F_k + F_rate * lag) + held)
+        return x_k + x_rate * lag, E_u, force
 
     def edge_time(
         self, residual: Callable[[float, float, float], float], t: float, start: int
@@ -573,17 +578,29 @@ class RateContact:
         deepest = self.depths[-1]
         return float(self.central_pressure(deepest) / self.mean_pressure(deepest))
 
+    def _at(self, depth: ArrayLike, key: str) -> np.ndarray:
+        """:func:`constant_rate_contact`'s ``key`` at ``depth``, the last depths' kept: a row
+        of a step table asks for the force, the radius and the central pressure in turn, each
+        a hereditary integral on a profile's 2000 steps (the same numbers, once)."""
+        x = np.asarray(depth, dtype=float)
+        asked = (x.shape, x.tobytes())
+        kept = self.__dict__.get("_last")
+        if kept is None or kept[0] != asked:
+            kept = (asked, constant_rate_contact(x, self.rate, self.law, self.prony))
+            self.__dict__["_last"] = kept  # frozen: not a field, not compared
+        return kept[1][key].copy()
+
     def contact_radius(self, depth: ArrayLike) -> np.ndarray:
         """a(x) in m: the elastic geometry's."""
-        return constant_rate_contact(depth, self.rate, self.law, self.prony)["contact_radius"]
+        return self._at(depth, "contact_radius")
 
     def force(self, depth: ArrayLike) -> np.ndarray:
         """P in N at depth x (m), reached at t = x / V."""
-        return constant_rate_contact(depth, self.rate, self.law, self.prony)["force"]
+        return self._at(depth, "force")
 
     def central_pressure(self, depth: ArrayLike) -> np.ndarray:
         """p(0) in Pa at depth x (m)."""
-        return constant_rate_contact(depth, self.rate, self.law, self.prony)["central_pressure"]
+        return self._at(depth, "central_pressure")
 
     def mean_pressure(self, depth: ArrayLike) -> np.ndarray:
         """P / (pi a^2) in Pa at depth x (m)."""
