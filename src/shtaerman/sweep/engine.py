@@ -54,6 +54,7 @@ from ..output.files import (
     probe_writable,
 )
 from ..plots.formats import check_figure_format
+from ..problem import worded
 from ..signals import deferred
 from ..validation import InputError
 from .guard import SCRATCH_ENV, check_not_bootstrapping, raise_if_unguarded
@@ -290,7 +291,7 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
         "outputs": outputs,
         "error": error,
         "estimate_missing": missing,
-        "warnings": sorted({str(w.message) for w in caught}),
+        "warnings": sorted({worded(str(w.message), "file") for w in caught}),  # its keys
         "seconds": time.perf_counter() - start,
         "cpu_seconds": time.thread_time() - cpu,
         "worker": _worker_address(),
