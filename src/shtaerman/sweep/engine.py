@@ -51,6 +51,7 @@ from ..output.files import (
     incomplete_path,
     json_safe,
     missing_folder,
+    probe_removable,
     probe_writable,
 )
 from ..plots.formats import check_figure_format
@@ -540,6 +541,7 @@ def _check_folder(
         )
     if full:  # moved aside until the new sweep completes: a read-only folder cannot be
         probe_writable("out", out, f".{out.name}.probe")
+        probe_removable("out", out)  # then removed: what cannot be would stay in the lock
     foreign = _foreign_entries(out) if full else []
     if foreign:
         raise InputError(
