@@ -39,12 +39,9 @@ def immutable():
 def test_a_forced_sweep_onto_a_folder_holding_an_immutable_file_is_refused_before_it_runs(
     tmp_path, immutable, capsys
 ):
-    import sweep_probe  # noqa: F401  (registers the kind "probe")
+    from sweep_probe import finished_sweep  # registers the kind "probe"
 
-    sweep = tmp_path / "p.toml"
-    sweep.write_text('name = "p"\nkind = "probe"\n[axes]\nx = [1.0, 2.0]\n')
-    out = tmp_path / "i1"
-    assert main(["sweep", str(sweep), "--out", str(out), "--workers", "1"]) == 0
+    sweep, out = finished_sweep(tmp_path, "1.0, 2.0", "i1")
     before = sorted(path.name for path in out.rglob("*"))
     immutable(out / "results.json")
     capsys.readouterr()
