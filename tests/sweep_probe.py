@@ -60,3 +60,15 @@ def computations(folder: Path, suffix: str = "done") -> dict[float, int]:
         x = float(path.name.split("-pid=")[0].removeprefix("x="))
         counts[x] = counts.get(x, 0) + 1
     return counts
+
+
+def finished_sweep(folder: Path, xs: str = "1.0", name: str = "out") -> tuple[Path, Path]:
+    """A probe sweep over x = ``xs`` (TOML list items) run into ``folder / name``: (its
+    file, its result folder)."""
+    from shtaerman.cli import main
+
+    sweep = Path(folder) / "p.toml"
+    sweep.write_text(f'name = "p"\nkind = "probe"\n[axes]\nx = [{xs}]\n')
+    out = Path(folder) / name
+    assert main(["sweep", str(sweep), "--out", str(out), "--workers", "1"]) == 0
+    return sweep, out

@@ -131,17 +131,21 @@ def test_the_effect_table_says_each_note_once_with_the_runs_it_applies_to():
 
 def test_dynamic_out_help_says_what_a_rubbers_folder_holds(tmp_path, capsys):
     """Old help: 'dynamic.json, history.csv, energies.csv and VTU fields' for every model,
-    while a rubber's run keeps no fields (fem/finite_dynamic.py) and writes no VTU. The
+    while a rubber's run kept no fields and wrote no VTU; since polish49 an elastic rubber
+    writes its three (tests/test_finite_fields.py), one with a Prony series none. The
     paper's striker at 0.3 m/s on a 6 mm neo-Hookean pad with inertia (7 s of CPU)."""
     with pytest.raises(SystemExit):
         main(["dynamic", "--help"])
     said = " ".join(capsys.readouterr().out.split())
     promise = said.split("--out DIR write", 1)[1].split("--force", 1)[0]
-    assert "a rubber none" in promise and "field_*.vtu" in promise, promise
+    assert "a rubber with --prony none" in promise and "field_*.vtu" in promise, promise
     out = tmp_path / "run"
     argv = ["dynamic", "--model", "neo-hookean", "--thickness", "0.006", "--velocity", "0.3"]
     argv += ["--time-steps", "50", "--mesh-size", "0.2", "--no-estimate", "--out", str(out)]
     assert main(argv) == 0
     files = sorted(path.name for path in out.iterdir() if not path.name.startswith("."))
+    fields = [name for name in files if name.endswith(".vtu")]
+    assert [name[:8] for name in fields] == ["field_0_", "field_1_", "field_2_"], files
     figures = ["dynamic_history.png", "energy_history.png", "force_depth_loop.png"]
-    assert files == sorted(["dynamic.json", "energies.csv", "history.csv", *figures]), files
+    expected = ["dynamic.json", "energies.csv", "history.csv", *figures, *fields]
+    assert files == sorted(expected), files

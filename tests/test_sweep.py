@@ -81,7 +81,7 @@ def test_a_valid_file_gives_the_grid_last_axis_fastest(tmp_path):
         (IMPACT + "colour = [1]\n", "axes.colour: unknown parameter 'colour' for kind 'impact'"),
         (IMPACT.replace("mass = 0.7", "masss = 0.7"), "parameters.masss: unknown parameter"),
         (IMPACT.replace("nu2 = [0.3, 0.5]", "poisson = [0.3]"), "axes.poisson: unknown"),
-        (IMPACT.replace("mass = 0.7", 'mass = "heavy"'), "parameters.mass must be a number in kg"),
+        (IMPACT.replace("mass = 0.7", 'mass = "heavy"'), "parameters.mass must be a number > 0 kg"),
         (IMPACT.replace("mass = 0.7", "mass = true"), "parameters.mass must be a number"),
         (IMPACT.replace("[1.0, 2.0]", '[1.0, "fast"]'), "axes.velocity[1] must be a number"),
         (IMPACT.replace("[1.0, 2.0]", "3.0"), "axes.velocity must be a list"),

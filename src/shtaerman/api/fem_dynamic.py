@@ -149,12 +149,14 @@ def _write_figures(case: DynamicCase, folder: Path, figure_format: str) -> None:
     write_case_figures(case, folder, figure_format)
 
 
-def _write_folder(result: DynamicResult, folder: Path) -> None:
-    """dynamic.json, history.csv, energies.csv and one VTU per snapshot time."""
+def _write_folder(result: DynamicResult, problem: Problem, folder: Path) -> None:
+    """dynamic.json, history.csv, energies.csv and one VTU per snapshot time (a rubber's:
+    :func:`shtaerman.output.finite.write_impact_fields`)."""
     import meshio
 
     from ..output.export import field_mesh
     from ..output.files import write_csv
+    from ..output.finite import write_impact_fields
 
     solution = result.solution
     (folder / "dynamic.json").write_text(json.dumps(result.to_dict(), indent=2))
@@ -166,6 +168,9 @@ def _write_folder(result: DynamicResult, folder: Path) -> None:
     for index, requested in enumerate(solution.snapshots):
         actual, fields, _ = solution.field_solution(requested)
         meshio.write(folder / f"field_{index}_t{actual:.6e}s.vtu", field_mesh(fields))
+    if solution.kept is not None:
+        striker, body = problem.striker.indenter, problem.body
+        write_impact_fields(solution, striker, body.material, body.model, folder)
 
 
 def _snapshots(quasi: Any) -> tuple[float, ...]:
@@ -238,10 +243,10 @@ def dynamic(
         ``body`` then gives the instantaneous E2 and nu2 and the bulk stays elastic (with a
         finite-strain ``model``: the isochoric stress relaxes). None: elastic.
     out : path, optional
-        A new folder for dynamic.json, history.csv, energies.csv and the figures, and for
-        the linear body its fields at 0.5, 1 and 1.5 t_c (three VTU files and their
-        pictures; a rubber's run keeps no fields); an existing one is replaced only with
-        ``force``.
+        A new folder for dynamic.json, history.csv, energies.csv and the figures, and the
+        fields at the steps nearest 0.5, 1 and 1.5 t_c (three VTU files; the linear body's
+        with their pictures; a rubber with a Prony series none); an existing one is replaced
+        only with ``force``.
     figure_format : {"png", "svg", "pdf"}
         "svg" or "pdf" also writes each chart in that format beside its PNG.
     model : str
@@ -278,7 +283,7 @@ def dynamic(
     result = _result(case, problem)
     if folder is not None:
         with staged_folder(folder, force=force) as stage:
-            _write_folder(result, stage)
+            _write_folder(result, problem, stage)
             _write_figures(case, stage, figure_format)
     warn_failed_checks(result, problem)
     return result

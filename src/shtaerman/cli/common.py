@@ -204,9 +204,24 @@ def _metavar(item: Entry) -> str:
 
 @contextlib.contextmanager
 def in_option_words() -> Iterator[None]:
-    """Re-raise an :class:`InputError` (or a numerical failure) of the API in the command
-    line's words (:func:`shtaerman.problem.worded`: ``--mass: ...``, ``give --interface
-    bonded too``): the user of the CLI gave options, not keywords."""
+    """Re-raise an :class:`InputError` (or a numerical failure) of the API, and say again each
+    warning it issued, in the command line's words (:func:`shtaerman.problem.worded`:
+    ``--mass: ...``, ``give --interface bonded too``, ``(--refine, --mesh-size)``): the user of
+    the CLI gave options, not keywords."""
+    caught: list[warnings.WarningMessage] = []
+    try:
+        with warnings.catch_warnings(record=True) as caught, _spoken_errors():
+            warnings.simplefilter("always")  # each said again below, as the caller filters it
+            yield
+    finally:
+        for said in caught:
+            text = worded(str(said.message), "cli")
+            warnings.warn_explicit(text, said.category, said.filename, said.lineno)
+
+
+@contextlib.contextmanager
+def _spoken_errors() -> Iterator[None]:
+    """The errors of :func:`in_option_words`."""
     try:
         yield
     except InputError as error:

@@ -24,9 +24,9 @@ from .impact import history_path
 
 NOTES = {
     "history": "t, x, v, P at every time step (the linear body also a, p0)",
-    "out": "dynamic.json, history.csv, energies.csv and the figures; the linear body also "
-    "its fields at 0.5, 1 and 1.5 t_c (field_*.vtu, wave_field_*.png), a rubber none: its "
-    "run keeps no fields",
+    "out": "dynamic.json, history.csv, energies.csv and the figures; the fields at the "
+    "steps nearest 0.5, 1 and 1.5 t_c (field_*.vtu; the linear body also wave_field_*.png; "
+    "a rubber with --prony none: its relaxed stress is not recovered)",
     "force": "an existing --history file or --out folder",
 }
 """What ``dynamic`` does with its output options."""

@@ -63,6 +63,7 @@ import math
 import time
 import warnings
 from dataclasses import dataclass, replace
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -112,6 +113,7 @@ from .viscoelastic import sizing_impact
 __all__ = [
     "FiniteImpactSettings",
     "FiniteImpactSetup",
+    "KeptStates",
     "pad_reach_note",
     "prepare_finite_impact",
 ]
@@ -274,28 +276,32 @@ class FiniteImpactSetup:
     timings: dict[str, float]
 
     def march(self, snapshot_times: tuple[float, ...] = ()) -> tuple:
-        """Step the run (no fields are kept: ``snapshot_times`` is the linear body's): the
-        columns, Newton iterations, separation time (s; None: the massless elastic body) and
-        the kinetic energy beyond half the domain radius at the end / (M v0^2 / 2) (nan:
-        massless)."""
+        """Step the run, keeping the solution of the step nearest each of ``snapshot_times``
+        (s; none with a Prony series, :class:`KeptStates`): the columns, Newton iterations,
+        separation time (s; None: the massless elastic body), the kinetic energy beyond half
+        the domain radius at the end / (M v0^2 / 2) (nan: massless), the steps cut and the
+        kept states (None: no times)."""
         _, _, rho, mass, velocity, _ = self.inputs
         x_c, t_y, duration, q, _ = self.scales
         dt, stepper = t_y / self.settings.steps, self.stepper
+        kept = KeptStates.of(stepper.system, snapshot_times)
         if rho == 0.0:
-            body = QuasiStaticBody(stepper, dt)
+            body = _KeepingBody(stepper, dt, kept)
             columns, separation = march_massless(body, mass, velocity, dt, (duration, q))
-            return columns, body.iterations, separation, 0.0, body.cuts
+            return columns, body.iterations, separation, 0.0, body.cuts, kept
         scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
         inertial = inertial_system(stepper, rho, scheme)
+        if kept is not None:
+            inertial.static = _EnergyWatch(inertial.static, kept, inertial)
         columns, iterations, separation, last = march_inertial(
             stepper, inertial, (mass, velocity), (x_c, duration, q)
         )
         far = far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
-        return columns, iterations, separation, far, inertial.cuts
+        return columns, iterations, separation, far, inertial.cuts, kept
 
     def result(self, marched: tuple, timings: dict[str, float]) -> ImpactRun:
         """The run of ``marched`` (what :meth:`march` returned), ``timings`` its costs (s)."""
-        columns, iterations, separation, far, cuts = marched
+        columns, iterations, separation, far, cuts, kept = marched
         indenter, half_space, rho, mass, velocity, friction = self.inputs
         (x_c, t_y, _, _, beta), settings = self.scales, self.settings
         striker = (mass, velocity, rho)
@@ -308,12 +314,76 @@ class FiniteImpactSetup:
             parameters.update(spectral_radius=settings.spectral_radius)
         context = {"timings": timings, "mesh": self.mesh, "parameters": parameters}
         context.update(newton_iterations=iterations, reflected_energy_fraction=far)
-        context.update(relaxes=isinstance(self.stepper.system, ViscoelasticBody))
+        context.update(relaxes=isinstance(self.stepper.system, ViscoelasticBody), kept=kept)
         if cuts:
             context["retried"] = cut_note(cuts, settings.steps)
         result = _result(columns, mass, context, separation)
         warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
         return result
+
+
+class KeptStates:
+    """The rubber's solution x = [u (m), p (Pa)] at the step nearest each requested time (s):
+    one vector a time, replaced while the steps come nearer (:meth:`offer`, told every
+    accepted step)."""
+
+    def __init__(self, system: Any, times: tuple[float, ...]) -> None:
+        self.system, self.times, self.t = system, tuple(times), 0.0
+        self.states: dict[float, tuple[float, np.ndarray]] = {}
+        """Requested time -> (the step's time (s), its solution)."""
+
+    @classmethod
+    def of(cls, system: Any, times: tuple[float, ...]) -> KeptStates | None:
+        """The keeper of ``system``'s states at ``times``; None without times, or for a body
+        with a Prony series (its relaxed stress is not recovered at the vertices)."""
+        return None if not times or isinstance(system, ViscoelasticBody) else cls(system, times)
+
+    def offer(self, dt: float, x: np.ndarray) -> None:
+        """The step of ``dt`` (s) accepted at ``x``: kept where nearer a requested time."""
+        self.t += dt
+        for wanted in self.times:
+            kept = self.states.get(wanted)
+            if kept is None or abs(self.t - wanted) < abs(kept[0] - wanted):
+                self.states[wanted] = (self.t, x.copy())
+
+    def fields(self, wanted: float) -> tuple[float, dict[str, np.ndarray]]:
+        """The step's time (s) and its vertex fields, as
+        :meth:`.contact.finite.FiniteContactCurve.fields` names them."""
+        from .contact.finite import FiniteContactCurve
+
+        actual, x = self.states[wanted]
+        curve = FiniteContactCurve([], self.system, None, {})  # type: ignore[arg-type]
+        return actual, curve.fields(SimpleNamespace(solution=x))  # type: ignore[arg-type]
+
+
+class _KeepingBody(QuasiStaticBody):
+    """The massless body telling ``kept`` each committed step."""
+
+    def __init__(self, stepper: NewtonStepper, dt: float, kept: KeptStates | None) -> None:
+        super().__init__(stepper, dt)
+        self.kept = kept
+
+    def commit(self, state: Any) -> Any:
+        state = super().commit(state)
+        if self.kept is not None:
+            self.kept.offer(self.dt, state.x)
+        return state
+
+
+class _EnergyWatch:
+    """The elastic body as the march with inertia sees it, telling ``kept`` each accepted
+    state: that march evaluates the stored energy once per accepted step (its energy column),
+    its Newton never (the kept axis u_z equals -X of that step: tests/test_finite_fields.py)."""
+
+    def __init__(self, body: Any, kept: KeptStates, clock: Any) -> None:
+        self.body, self.kept, self.clock = body, kept, clock
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.body, name)
+
+    def energy(self, x: np.ndarray) -> float:
+        self.kept.offer(self.clock.dt, x)
+        return self.body.energy(x)
 
 
 def cut_note(cuts: int, steps: int) -> str:

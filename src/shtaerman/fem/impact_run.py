@@ -6,7 +6,8 @@ strain, massless or with inertia, elastic or relaxing, on a half-space or a pad,
 interface) ends in the same record: the striker's histories, the maxima, the energy account and
 the costs. What only some runs have is optional: the contact radius and central pressure
 histories (the linear body), the split of the losses (a relaxing or frictional body), the
-fields kept for pictures (the linear body) and the Newton iterations (finite strain).
+fields kept (the linear body's for pictures, an elastic rubber's solution) and the Newton
+iterations (finite strain).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from ..validation import InputError, bound_text, validate_positive
 
 if TYPE_CHECKING:
     from .elasticity import ElasticSolution, ElasticSystem
+    from .finite_dynamic import KeptStates
     from .viscoelastic import ShearMemory, ViscoelasticShear
 
 __all__ = [
@@ -93,6 +95,9 @@ class ImpactRun:
     system, snapshots, material, memories
         The fields kept for pictures (the linear body): its system, the state at requested
         times, its relaxing shear and its memories there (see :meth:`field_solution`).
+    kept : KeptStates or None
+        A rubber's solution at the steps nearest the requested times (an elastic rubber;
+        :class:`.finite_dynamic.KeptStates`); None otherwise.
     """
 
     t: np.ndarray = field(repr=False)
@@ -124,6 +129,7 @@ class ImpactRun:
     )
     material: ViscoelasticShear | None = field(default=None, repr=False)
     memories: dict[float, ShearMemory | None] = field(default_factory=dict, repr=False)
+    kept: KeptStates | None = field(default=None, repr=False)
 
     def summary(self) -> dict[str, float]:
         """The scalar results: :data:`SUMMARY_KEYS`, the losses and, with friction at the

@@ -144,7 +144,7 @@ def write_dynamic_study(
         (quasi.t_c, "at the quasi-static t_c (maximum compression)", "wave_field_tc"),
         (late, separation, "wave_field_separation"),
     ):
-        if key in result.snapshots:  # a rubber's run keeps no fields
+        if key in result.snapshots:  # a rubber keeps no linear wave fields
             figures[f"Wave field (von Mises) at {v0}, {words}"] = plot_wave_field(
                 example, key, folder / f"{stem}.png"
             )

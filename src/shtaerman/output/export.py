@@ -112,12 +112,13 @@ def indenter_field_data(indenter: object) -> dict[str, float]:
 
 
 def step_field_data(step: Any, indenter: object, body: Any, model: str) -> dict[str, float]:
-    """The VTK field data of a contact step's fields: its depth, contact radius and force
-    (SI), the striker's profile (:func:`indenter_field_data`), the ``body``'s E and nu, and its
-    material model as a flag (field data are numbers)."""
+    """The VTK field data of a contact step's fields: its depth, contact radius (where it has
+    one) and force (SI), the striker's profile (:func:`indenter_field_data`), the ``body``'s E
+    and nu, and its material model as a flag (field data are numbers)."""
+    radius = getattr(step, "contact_radius", None)
     return {
         "depth [m]": step.depth,
-        "contact_radius [m]": step.contact_radius,
+        **({} if radius is None else {"contact_radius [m]": radius}),
         "force [N]": step.force,
         **indenter_field_data(indenter),
         "youngs_modulus [Pa]": body.youngs_modulus,

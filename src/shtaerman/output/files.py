@@ -33,6 +33,7 @@ import os
 import re
 import shutil
 import stat
+import sys
 import warnings
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
@@ -57,6 +58,7 @@ __all__ = [
     "json_safe",
     "missing_folder",
     "output_folder",
+    "probe_removable",
     "resumable",
     "staged_file",
     "staged_folder",
@@ -246,6 +248,49 @@ def probe_writable(option: str, folder: Path, name: str) -> None:
             reason = "its file system takes no new files"
         raise InputError(f"{option}: cannot write in {str(folder)!r} ({reason})", option) from None
     os.rmdir(probe)
+
+
+FS_IOC_GETFLAGS = 0x80086601
+"""Linux's ioctl that reads an inode's attribute flags (``lsattr``)."""
+UNREMOVABLE_FLAGS = 0x10 | 0x20
+"""FS_IMMUTABLE_FL (``chattr +i``) and FS_APPEND_FL (``chattr +a``): not even root removes
+such a file, or anything from such a folder."""
+
+
+def _unremovable(path: str) -> bool:
+    """Whether ``path`` (not followed) is immutable or append-only; False where the file
+    system keeps no such flags."""
+    import fcntl  # POSIX only, as the flags are Linux's
+
+    try:
+        handle = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:  # a symbolic link, a socket: removed as a name, whatever it points to
+        return False
+    try:
+        flags = int.from_bytes(fcntl.ioctl(handle, FS_IOC_GETFLAGS, bytes(4)), sys.byteorder)
+    except OSError:  # no such flags here (ENOTTY, EOPNOTSUPP)
+        return False
+    finally:
+        os.close(handle)
+    return bool(flags & UNREMOVABLE_FLAGS)
+
+
+def probe_removable(option: str, folder: Path) -> None:
+    """Raise InputError, before any run, if the folder a run would replace holds an entry that
+    cannot be removed (immutable or append-only: ``chattr +i`` / ``+a``, the folder included):
+    moved into the run's staging folder, it would stay there as a stray ``.NAME.partial-PID``."""
+    for root, folders, files in os.walk(folder):
+        for name in [".", *folders, *files]:
+            path = os.path.normpath(os.path.join(root, name))
+            if _unremovable(path):
+                where = os.path.relpath(path, folder)
+                what = f"{str(folder)!r}" if where == "." else f"{where!r} in {str(folder)!r}"
+                raise InputError(
+                    f"{option}: cannot replace {str(folder)!r}: {what} is immutable or "
+                    "append-only (lsattr shows it); make it removable (chattr -i -a) or write "
+                    "the results to another folder",
+                    option,
+                )
 
 
 class KeepStaged(BaseException):
@@ -440,6 +485,8 @@ def check_output_folder(
             raise _busy(option, target, live)
         if target.is_dir():
             _check_replaceable(option, path, target, force, resume_marker)
+            if any(target.iterdir()):  # replaced (force) or completed (resume): removed
+                probe_removable(option, target)
         probe_writable(option, target.parent, _stage_path(target).name)
     return target
 

@@ -8,14 +8,18 @@ Files, every column and field named with its unit (``name [unit]``, ``[1]``: dim
   finite strain);
 - ``field_at_x_c.vtu``: the deformed-state fields (reference r-z section, displacements in m,
   Cauchy stresses in Pa) at the computed depth nearest the finite-strain x_c, with the depth,
-  force, contact radius, material and model as VTK field data.
+  force, contact radius, material and model as VTK field data;
+- ``field_<i>_t<t>s.vtu`` of ``dynamic --model ... --out``: the same fields of the impact at the
+  steps nearest 0.5, 1 and 1.5 t_c, with the time, depth and force (no contact radius).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 from types import SimpleNamespace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from ..plots.finite import (
     nearest_step,
@@ -29,10 +33,11 @@ from .files import write_csv
 
 if TYPE_CHECKING:
     from ..fem.contact.finite import FiniteContactCurve, FiniteContactStep
+    from ..fem.impact_run import ImpactRun
     from ..study.finite.indentation import FiniteIndentationResult
     from ..study.finite.runner import FiniteStudyOutcome
 
-__all__ = ["write_finite_curve", "write_finite_field", "write_finite_study"]
+__all__ = ["write_finite_curve", "write_finite_field", "write_finite_study", "write_impact_fields"]
 
 
 CURVE_KEYS = (
@@ -64,6 +69,23 @@ def write_finite_field(
     solution = SimpleNamespace(system=curve.system, **curve.fields(step))
     write_vtu(path, field_mesh(solution, scalars))
     return path
+
+
+def write_impact_fields(
+    run: ImpactRun, indenter: object, material: Any, model: str, folder: Path
+) -> None:
+    """``field_<i>_t<t>s.vtu`` of a rubber's impact at each time its run kept (the step
+    nearest it, :class:`~shtaerman.fem.finite_dynamic.KeptStates`): the fields of
+    :func:`write_finite_field`, with that step's time, depth and force as field data."""
+    kept = run.kept
+    assert kept is not None
+    for index, wanted in enumerate(sorted(kept.states)):
+        actual, fields = kept.fields(wanted)
+        k = int(np.argmin(np.abs(run.t - actual)))
+        step = SimpleNamespace(depth=float(run.x[k]), force=float(run.force[k]))
+        scalars = {"time [s]": actual, **step_field_data(step, indenter, material, model)}
+        solution = SimpleNamespace(system=kept.system, **fields)
+        write_vtu(folder / f"field_{index}_t{actual:.6e}s.vtu", field_mesh(solution, scalars))
 
 
 def write_finite_curve(result: FiniteIndentationResult, folder: Path) -> list[Path]:

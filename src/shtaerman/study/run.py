@@ -16,6 +16,7 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from ..guards import ValidityWarning
+from ..problem import worded
 from ..validation import InputError
 from .checks import Outcome
 from .kinds import kind_function
@@ -76,7 +77,8 @@ def _recording(study: Any) -> Iterator[list[str]]:
     finally:
         said = set()
         for warning in caught:
-            text, category = str(warning.message), warning.category
+            category = warning.category
+            text = worded(str(warning.message), "file")  # its inputs are the file's keys
             validity = issubclass(category, ValidityWarning)
             key = (
                 (category, text) if validity else (category, text, warning.filename, warning.lineno)
@@ -85,6 +87,8 @@ def _recording(study: Any) -> Iterator[list[str]]:
                 continue
             said.add(key)
             message: Warning | str = warning.message
+            if text != str(message):
+                message = category(text)
             if validity:
                 found.append(text)
                 message = category(f"{_where(study)}: {text}")

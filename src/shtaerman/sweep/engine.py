@@ -51,9 +51,11 @@ from ..output.files import (
     incomplete_path,
     json_safe,
     missing_folder,
+    probe_removable,
     probe_writable,
 )
 from ..plots.formats import check_figure_format
+from ..problem import worded
 from ..signals import deferred
 from ..validation import InputError
 from .guard import SCRATCH_ENV, check_not_bootstrapping, raise_if_unguarded
@@ -290,7 +292,7 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
         "outputs": outputs,
         "error": error,
         "estimate_missing": missing,
-        "warnings": sorted({str(w.message) for w in caught}),
+        "warnings": sorted({worded(str(w.message), "file") for w in caught}),  # its keys
         "seconds": time.perf_counter() - start,
         "cpu_seconds": time.thread_time() - cpu,
         "worker": _worker_address(),
@@ -539,6 +541,7 @@ def _check_folder(
         )
     if full:  # moved aside until the new sweep completes: a read-only folder cannot be
         probe_writable("out", out, f".{out.name}.probe")
+        probe_removable("out", out)  # then removed: what cannot be would stay in the lock
     foreign = _foreign_entries(out) if full else []
     if foreign:
         raise InputError(

@@ -333,12 +333,15 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
     if item is not None and item.infinite and value == "inf":
         value = math.inf  # a rigid striker, as a study file spells it too
     converted = _convert(parameter, value)
-    if converted is None:
-        raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
     ranges = RANGES_OF.get(kind.name, kind.name)
-    if item is not None and ranges in item.kinds:  # the vocabulary's range for this kind
+    ranged = item is not None and ranges in item.kinds  # the vocabulary's range for this kind
+    numeric = ranged and parameter.type in ("float", "int")  # a non-number: named with it
+    if converted is None and not numeric:
+        raise SweepError(f"{where}: {key} must be {_expected(parameter)}, got {shown(value)}")
+    if ranged:
+        assert item is not None
         try:
-            converted = item.check(converted, ranges, called=key)
+            converted = item.check(value if converted is None else converted, ranges, called=key)
         except InputError as error:
             raise SweepError(f"{where}: {error}") from None
     return converted

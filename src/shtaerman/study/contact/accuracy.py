@@ -382,8 +382,8 @@ def run_mesh_ladder(
     result = AccuracyResult(tuple(levels), {}, exact=exact, failures=tuple(failures))
     warnings.warn(
         f"no error estimate: {result.missing}; the finest level that passed (refine "
-        f"{levels[-1].refine:.3g}) is reported. Another mesh (refine, --refine; mesh_size, "
-        "--mesh-size) may pass",
+        f"{levels[-1].refine:.3g}) is reported. Another mesh (refine=..., mesh_size=...) may "
+        "pass",  # in Python's words: each route words it (shtaerman.problem.worded)
         EstimateMissingWarning,
         stacklevel=caller_stacklevel(),
     )
