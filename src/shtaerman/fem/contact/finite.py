@@ -45,7 +45,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -202,6 +202,10 @@ class FiniteContactCurve:
         also ``mesh``, ``assembly`` and ``total``.
     mesh_stats : dict
         ``nodes``, ``elements``, ``dofs``, ``contact_candidates`` ...
+    cuts : int or None
+        The bonded or Coulomb curve's load steps cut in halves where they failed
+        (:func:`.finite_stick.solve_finite_bonded_contact`); None for the frictionless
+        curve, whose sub-steps adapt by design.
     """
 
     steps: list[FiniteContactStep]
@@ -209,6 +213,7 @@ class FiniteContactCurve:
     indenter: PowerLawIndenter
     timings: dict[str, float]
     mesh_stats: dict[str, float] = field(default_factory=dict)
+    cuts: int | None = None
 
     def fields(self, step: FiniteContactStep) -> dict[str, np.ndarray]:
         """Vertex fields of the deformed state of ``step`` for export (SI).
@@ -910,4 +915,4 @@ def run_finite_indentation(
         **curve.timings,
         "total": time.perf_counter() - start,
     }
-    return FiniteContactCurve(curve.steps, system, indenter, timings, stats)
+    return replace(curve, timings=timings, mesh_stats=stats)

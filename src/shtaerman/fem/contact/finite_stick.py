@@ -5,15 +5,15 @@ A candidate surface node (reference radius R, displacement (u_r, u_z)) is free u
 vertical gap g = A (R + u_r)^n - d - u_z closes. From then on it sticks: its *current* radius
 x_r = R + u_r keeps the value it had when it touched, and its height follows the indenter,
 x_z = A x_r^n - d. The static contact is loaded over :func:`.constraints.depth_ladder`
-(:func:`bonded_ladder`); at each load step the stuck nodes' two displacement dofs are
-prescribed and Newton solves for the rest (the stepper, pattern and solver of
-:class:`.finite.NewtonStepper`, the prescribed dofs eliminated from its fixed pattern). The
-curve's Newton is a modified Newton (:func:`_newton`): it reuses the last factorization, also
-across load steps and with the nodes stuck since held by a capacitance correction
-(:meth:`_Kept.constrained`), while each correction shrinks by :data:`.finite.CONTRACTION`;
-the Coulomb Newton (:func:`_slide_newton`) likewise, while the stuck dofs and slip directions
-stay those of its factorization, in the curve's load steps and in an impact's time steps
-(:class:`HistoryStepper`).
+(:func:`bonded_ladder`; a load step that fails is taken in halves, :func:`_in_halves`); at each
+load step the stuck nodes' two displacement dofs are prescribed and Newton solves for the rest
+(the stepper, pattern and solver of :class:`.finite.NewtonStepper`, the prescribed dofs
+eliminated from its fixed pattern). The curve's Newton is a modified Newton (:func:`_newton`):
+it reuses the last factorization, also across load steps and with the nodes stuck since held by
+a capacitance correction (:meth:`_Kept.constrained`), while each correction shrinks by
+:data:`.finite.CONTRACTION`; the Coulomb Newton (:func:`_slide_newton`) likewise, while the
+stuck dofs and slip directions stay those of its factorization, in the curve's load steps and in
+an impact's time steps (:class:`HistoryStepper`).
 
 With Coulomb friction mu the tangential and normal reactions are resolved on the indenter's
 normal (f'(x_r), -1)/|.| at the node's current radius (at finite strain the slope is not
@@ -44,8 +44,9 @@ from numpy.typing import ArrayLike
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.sneddon import SneddonContact
-from ...validation import InputError
+from ...validation import InputError, NumericalFailureError
 from ..hyperelastic import HyperelasticSystem, NewtonError
+from ..rubber import gent_locks
 from .constraints import (
     MAX_ACTIVE_SET_ITERATIONS,
     START_NODE,
@@ -81,6 +82,9 @@ KEPT_SETS = 4
 MAX_ADDED = 40
 """A modified Newton step reuses a factorization with at most this many stuck dofs added
 since it was made (one solve each, :meth:`_Kept.constrained`)."""
+MAX_LOAD_CUTS = 4
+"""Halvings (in ln depth) of a load step of the curve whose Newton or stick and slip failed:
+down to 1/16 of its ln(step_ratio) (:func:`_in_halves`)."""
 RELEASE_BAND = 1e-6
 """A stuck node is released when its vertical reaction is below -this x the largest one (N):
 Newton stops at corrections of ``NEWTON_TOLERANCE`` x depth, which leaves noise in the
@@ -641,12 +645,16 @@ def solve_finite_bonded_contact(
     ``total_iterations`` those since the previous requested depth. ``friction`` >= 0 is
     the Coulomb coefficient (inf: no slip): a stuck node slides once its shear exceeds
     ``friction`` times its normal force, both resolved on the indenter's normal at its
-    current radius; 0 is the frictionless contact, solved as such (no load steps).
+    current radius; 0 is the frictionless contact, solved as such (no load steps). A load
+    step that fails is taken in halves (:func:`_in_halves`), counted in the curve's ``cuts``.
 
     Raises
     ------
-    NewtonError
-        A load step did not converge or inverted an element.
+    NumericalFailureError
+        A load step cut :data:`MAX_LOAD_CUTS` times did not converge, inverted an element or
+        its stick and slip did not settle.
+    GentLockError
+        The Gent rubber reached its limit.
     ContactOutgrowsMeshError
         The contact zone reached the edge of the candidate region.
     """
@@ -661,8 +669,9 @@ def solve_finite_bonded_contact(
     if start is not None and not 0.0 < start <= depths[0]:
         raise InputError(f"start: must be in (0, {depths[0]:g}] m, got {start!r}", "start")
     ladder = bonded_ladder(stepper, depths, step_ratio, start)
-    steps = _finite_ladder(stepper, exact, depths, ladder, friction)
-    return FiniteContactCurve(steps, system, indenter, {"contact": time.perf_counter() - begun})
+    steps, cuts = _finite_ladder(stepper, exact, depths, ladder, friction)
+    timings = {"contact": time.perf_counter() - begun}
+    return FiniteContactCurve(steps, system, indenter, timings, cuts=cuts)
 
 
 def _finite_ladder(
@@ -671,30 +680,84 @@ def _finite_ladder(
     depths: np.ndarray,
     ladder: np.ndarray,
     friction: float,
-) -> list[FiniteContactStep]:
+) -> tuple[list[FiniteContactStep], int]:
     """Load through the ``ladder`` (m) and keep the contact at each requested depth (Coulomb
     ``friction``; inf: no slip); each load step starts from the solution extrapolated linearly
-    from the last two."""
+    from the last two, and one that fails is taken in halves (:func:`_in_halves`). Returns the
+    steps and how many load steps of the ladder were cut."""
     last, previous, done, previous_depth = _Load.untouched(stepper), None, 0.0, 0.0
+    committed, cuts = 0, 0
 
-    def advance(depth: float) -> int:
-        nonlocal last, previous, done, previous_depth
+    def step(depth: float) -> int:
+        nonlocal last, previous, done, previous_depth, committed
         guess = last.x
         if previous is not None:
             guess = last.x + (depth - done) / (done - previous_depth) * (last.x - previous.x)
-        try:
-            state = _load_step(stepper, last, guess, (depth, depth), friction)
-        except NewtonError as error:
-            raise NewtonError(
-                f"depth {depth:g} m (bonded, from {done:g} m): {error}; take smaller load "
-                "steps, refine the mesh or lower the deepest depth"
-            ) from None
+        state = _load_step(stepper, last, guess, (depth, depth), friction)
         check_resolved(stepper.nodes.radius, state.lam, depth, fewest=1)
         previous, previous_depth, last, done = last, done, state, depth
+        committed += 1
         return state.iterations
+
+    def advance(depth: float) -> int:
+        nonlocal cuts
+        before = committed
+        taken = _in_halves(step, lambda: (done, last.x), depth, stepper.system)
+        cuts += committed - before > 1
+        return taken
 
     def record(depth: float, taken: int) -> FiniteContactStep:
         solved = (last.x, last.lam, last.iterations, taken, last.corrections)
         return finite_step(stepper, exact, depth, *solved)
 
-    return walk_ladder(ladder, depths, advance, record)
+    return walk_ladder(ladder, depths, advance, record), cuts
+
+
+def _in_halves(
+    step: Callable[[float], int],
+    reached: Callable[[], tuple[float, np.ndarray]],
+    depth: float,
+    system: HyperelasticSystem,
+    cut: int = 0,
+) -> int:
+    """``step(depth)``: one load step to ``depth`` (m) from the last one committed
+    (``reached()``: its depth, m, and solution), committed, its Newton iterations returned;
+    where its Newton or its stick and slip fail, the step in two halves, cut again where they
+    fail, at most :data:`MAX_LOAD_CUTS` deep. A step that needs no cut is the uncut step.
+
+    The middle is geometric, sqrt(from x to), as the ladder is: each half is a load step of
+    the ladder with step_ratio sqrt(ratio), committed (the stuck nodes' held radii) before
+    the next, so the cut curve is locally the finer ladder's (an arithmetic middle would leave
+    the first half the larger ratio, (1 + r) / 2 > sqrt(r)). The first step, from depth 0,
+    is cut at depth / 2.
+
+    Raises
+    ------
+    GentLockError
+        The Gent rubber locks (:func:`.rubber.gent_locks`): its limit, an input.
+    NumericalFailureError
+        A step cut :data:`MAX_LOAD_CUTS` times still fails.
+    """
+    try:
+        return step(depth)
+    except (NewtonError, NumericalFailureError) as error:
+        done, x = reached()
+        locked = gent_locks(error, system, x, depth, last=cut == MAX_LOAD_CUTS)
+        if locked is not None:
+            raise locked from None
+        if cut == MAX_LOAD_CUTS:
+            raise _exhausted(error, done, depth) from None
+    middle = math.sqrt(done * depth) if done > 0.0 else 0.5 * depth
+    taken = _in_halves(step, reached, middle, system, cut + 1)
+    return taken + _in_halves(step, reached, depth, system, cut + 1)
+
+
+def _exhausted(error: Exception, done: float, depth: float) -> NumericalFailureError:
+    """The failure of the load step from ``done`` to ``depth`` (m), cut
+    :data:`MAX_LOAD_CUTS` times, with ``error``: what failed and the options that help."""
+    failed = str(error) if isinstance(error, NewtonError) else "the stick and slip did not settle"
+    return NumericalFailureError(
+        f"depth {depth:g} m (bonded, from {done:g} m): {failed}, in a load step cut in halves "
+        f"{MAX_LOAD_CUTS} times; refine the mesh (mesh_size=... or refine=...) or lower the "
+        "deepest depth (depths=...)"
+    )

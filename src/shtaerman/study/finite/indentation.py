@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from dataclasses import dataclass, field
 
 from numpy.typing import ArrayLike
@@ -30,12 +31,14 @@ from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
+from ...validation import caller_stacklevel
 from ..contact.indentation import (
     CurveResult,
     curve_document,
     default_depths,
     worst_against_analytic,
 )
+from ..dynamic.accuracy import RetriedWarning
 
 __all__ = ["FiniteIndentationResult", "run_finite_study"]
 
@@ -94,13 +97,16 @@ class FiniteIndentationResult(CurveResult):
 
     def to_dict(self) -> dict[str, object]:
         """The JSON of ``shtaerman contact --model neo-hookean --json`` (SI units): ``model``,
-        then the other rubber keys (:meth:`RubberModel.to_dict`) unless it is the default."""
+        then the other rubber keys (:meth:`RubberModel.to_dict`) unless it is the default;
+        a bonded or Coulomb curve's ``load_steps_cut`` (in halves, where they failed)."""
+        cuts = self.curve.cuts
         return {
             **self.to_dict_model(),
             **curve_document(self.indenter, self.half_space, self.exact, self.fit, self.depths),
             "steps": self.step_table(),
             "departures_from_linear": self.departures(),
             "mesh": self.curve.mesh_stats,
+            **({} if cuts is None else {"load_steps_cut": cuts}),
             "solver": "superlu",
             "timings": self.curve.timings,
         }
@@ -134,6 +140,12 @@ def run_finite_study(
     Returns
     -------
     FiniteIndentationResult
+
+    Warns
+    -----
+    RetriedWarning
+        Some load steps of a bonded or Coulomb curve were cut in halves where they failed
+        (:func:`shtaerman.fem.contact.finite_stick.solve_finite_bonded_contact`).
     """
     depths = default_depths(indenter, half_space) if depths is None else depths
     rubber = RubberModel() if rubber is None else rubber
@@ -143,6 +155,14 @@ def run_finite_study(
         friction = math.inf if mesh.friction is None else mesh.friction
         bonded = functools.partial(solve_finite_bonded_contact, friction=friction)
     curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded)
+    if curve.cuts:
+        dofs = curve.mesh_stats["dofs"]
+        warnings.warn(
+            f"retried: {curve.cuts} of the load steps cut in halves where the contact "
+            f"failed (mesh of {dofs} dofs; the result is of the steps it passed with)",
+            RetriedWarning,
+            stacklevel=caller_stacklevel(),
+        )
     exact = contact_law(indenter, effective_modulus(RIGID, half_space))
     forces = [s.force for s in curve.steps]
     fit = fit_power_law([s.depth for s in curve.steps], forces, exact.force_exponent)
