@@ -56,7 +56,7 @@ from skfem import (
     asm,
 )
 
-from ..validation import InputError, validate_poisson, validate_positive
+from ..validation import NumericalFailureError, validate_poisson, validate_positive
 from .elasticity import TWO_PI, scalar_mass
 from .solver import Pattern, factorize, pattern_of
 
@@ -490,8 +490,8 @@ def assemble_hyperelastic(mesh: MeshTri, material: NeoHookean) -> HyperelasticSy
     )
 
 
-class NewtonError(InputError):
+class NewtonError(NumericalFailureError):
     """Newton's method failed (no convergence, inverted element): a one-line message.
 
-    An :class:`~shtaerman.validation.InputError`, so the CLI reports it as one line (exit 2).
+    A numerical failure on valid input, not bad input: the CLI reports it as one line (exit 1).
     """

@@ -264,9 +264,13 @@ times mu and grows without bound within the last tenth of the stretch, which no 
 shorter step lets it pass."""
 
 
-class GentLockError(NewtonError):
+class GentLockError(NewtonError, InputError):
     """A Gent rubber reached its stretch limit I1bar - 3 = Jm (a Newton iterate beyond it, or the
-    rubber locking); :func:`gent_locks` tells which and words the remedy."""
+    rubber locking); :func:`gent_locks` tells which and words the remedy. Unlike other Newton
+    failures it is also an InputError: the limit is the user's gent_limit (the CLI: exit 2)."""
+
+    def __init__(self, message: str, parameter: str | None = None) -> None:
+        InputError.__init__(self, message, parameter)
 
     @staticmethod
     def locking(limit: float, depth: float) -> GentLockError:
