@@ -566,6 +566,11 @@ class BondedStepper(NewtonStepper):
         # by contact set: system, tangent, reduced tangent, factorization
         self.kept_slide: dict[bytes, tuple] = {}
 
+    def refresh(self) -> bool:
+        """False: a reused factorization's update that inverts an element is halved, as a
+        fresh one's (its factorizations are kept by contact set)."""
+        return False
+
 
 class HistoryStepper(BondedStepper):
     """The bonded (``friction`` inf: no slip) or Coulomb contact of a time-stepped impact.
