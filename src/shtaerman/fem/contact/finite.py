@@ -336,8 +336,8 @@ class NewtonStepper:
         dlambda acts on, dlambda, whether made with a fresh tangent, whether to test the
         convergence after it), or None where the iterate before it has converged. An update
         that inverts an element (or, where the stepper back-tracks, folds the contact surface)
-        is undone and made again with a fresh tangent where it reused one, else halved, up to
-        ``backtracks`` times. Returns x, lambda, the iterations and the
+        fails the solve where it reused a factorization (:meth:`redone_in_full`), else is
+        halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
         corrections (max |du| / ``scale``, m).
 
         Raises
@@ -352,12 +352,8 @@ class NewtonStepper:
         for iteration in range(1, self.max_iterations + 1):
             state = self.system.state(x)
             if element_inverted(state) or (self.backtracks and self.folded(x)):
-                if step is not None and not fresh[-1] and self.refresh():  # undo, take fresh
-                    x[self.free] -= step[0]
-                    lam[step[1]] -= step[2]
-                    step = None
-                    del corrections[-1], fresh[-1]
-                    continue
+                if step is not None and not fresh[-1] and self.redone_in_full():
+                    raise NewtonError("an update of a reused factorization inverted an element")
                 if step is None or halvings == self.backtracks:
                     raise NewtonError("an element inverted (J <= 0)")
                 halvings += 1  # back-track: halve the last update
@@ -384,9 +380,9 @@ class NewtonStepper:
                 return x, lam, iteration, corrections
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
 
-    def refresh(self) -> bool:
-        """Drop the kept factorization, so that the next step takes a fresh tangent: True."""
-        self.kept = None
+    def redone_in_full(self) -> bool:
+        """True: a solve whose reused factorization's update inverts an element fails, and
+        :meth:`solve` redoes it as a full Newton."""
         return True
 
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:

@@ -566,9 +566,9 @@ class BondedStepper(NewtonStepper):
         # by contact set: system, tangent, reduced tangent, factorization
         self.kept_slide: dict[bytes, tuple] = {}
 
-    def refresh(self) -> bool:
+    def redone_in_full(self) -> bool:
         """False: a reused factorization's update that inverts an element is halved, as a
-        fresh one's (its factorizations are kept by contact set)."""
+        fresh one's (its solves are not redone in full)."""
         return False
 
 
