@@ -3,8 +3,8 @@ runs through sh.contact / sh.dynamic on a coarse mesh and gives a finite result;
 cell is refused before any work. The 54 linear cells all run here. Each of the 54 rubber cells
 is walked once, the four rubber models taking the cells in turn (:func:`rubber_cells`): the
 refused ones are refused, the :data:`QUICK` runnable ones run, and the :data:`SLOW` ones (a
-Newton per time or load step, 12-50 s of CPU each) are built here and run by
-benchmarks/support_matrix.py, which runs every rubber cell with every model."""
+Newton per time or load step; their costs: benchmarks/support_matrix.py's output) are built
+here and run by benchmarks/support_matrix.py, which runs every rubber cell with every model."""
 
 import math
 import warnings
@@ -72,21 +72,21 @@ def _cell(relaxing: int, geometry: str, interface: str, loading: str) -> Cell:
 
 
 QUICK = frozenset(
-    {  # CPU s of their run here (load 8 on 2 cores), 60 s together
-        _cell(0, "half-space", "frictionless", "curve"),  # neo-Hookean, 1.0 s
-        _cell(0, "half-space", "bonded", "massless"),  # neo-Hookean, 10.6 s
-        _cell(0, "layer bonded", "frictionless", "curve"),  # Mooney-Rivlin, 0.9 s
-        _cell(0, "layer bonded", "frictionless", "massless"),  # Yeoh, 16.5 s
-        _cell(0, "layer bonded", "frictionless", "inertia"),  # Gent, 12.9 s
-        _cell(0, "layer bonded", "bonded", "massless"),  # Mooney-Rivlin, 11.8 s
-        _cell(0, "layer bonded", "coulomb", "massless"),  # neo-Hookean, 7.4 s
+    {  # with their model and cost class (the CPU seconds: the commits that set them)
+        _cell(0, "half-space", "frictionless", "curve"),  # neo-Hookean, cheap
+        _cell(0, "half-space", "bonded", "massless"),  # neo-Hookean, moderate
+        _cell(0, "layer bonded", "frictionless", "curve"),  # Mooney-Rivlin, cheap
+        _cell(0, "layer bonded", "frictionless", "massless"),  # Yeoh, moderate
+        _cell(0, "layer bonded", "frictionless", "inertia"),  # Gent, moderate
+        _cell(0, "layer bonded", "bonded", "massless"),  # Mooney-Rivlin, moderate
+        _cell(0, "layer bonded", "coulomb", "massless"),  # neo-Hookean, moderate
     }
 )
 """The runnable rubber cells run here: each model, geometry, interface and loading at least
 once (Prony in :func:`test_the_mooney_rivlin_pad_with_prony_and_coulomb_runs`). The others
-cost 12-48 s each with their model (their Newton per time or load step; the relaxing cells
-and the bonded curves the most), 600 s in all, all running (one inertial step cut in halves,
-Mooney-Rivlin with Prony on the bonded half-space): :data:`SLOW`."""
+cost more with their model (their Newton per time or load step; the relaxing cells and the
+bonded curves the most), all running (one inertial step cut in halves, Mooney-Rivlin with
+Prony on the bonded half-space): :data:`SLOW`."""
 SLOW = (
     frozenset(
         cell for cell, verdict in support_table() if cell.model == "rubber" and verdict == "runs"
@@ -148,7 +148,7 @@ def test_the_mooney_rivlin_pad_with_prony_and_coulomb_runs():
     0.64 mm; 200 steps passed): the start extrapolated past the turn of the relaxing surface
     was at fault. The Newton now falls back to the last state
     (:meth:`shtaerman.fem.stepper.QuasiStaticBody._newton`) and no step is cut or retried.
-    20 s of CPU: it stands for the neo-Hookean cell of its parts here."""
+    It stands for the neo-Hookean cell of its parts here."""
     problem = problem_of(_cell(1, "layer bonded", "coulomb", "massless"), "mooney-rivlin")
     with warnings.catch_warnings():
         warnings.simplefilter("error", RetriedWarning)  # no retry, no cut step

@@ -512,6 +512,7 @@ def _assembled(
         stepper = HistoryStepper(system, indenter, refined, limits, friction)
     else:
         stepper = NewtonStepper(system, indenter, refined, *limits)
+        stepper.modified = True  # its factorizations reused across evaluations and steps
     if prony is not None:
         stepper.system = ViscoelasticBody(system, prony)
     return stepper

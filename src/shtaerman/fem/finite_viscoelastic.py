@@ -185,10 +185,14 @@ class ViscoelasticBody:
         c = step.scale
         stress = c * kin.stress + (c - 1.0) * p * kin.volume_gradient
         stress += first_piola(kin.F, history)
-        tangent = c * kin.tangent
-        _add_volume_hessian(tangent, kin, (c - 1.0) * p, self.logarithmic)
-        _add_geometric(tangent, history)
-        return replace(kin, stress=stress, tangent=tangent)
+
+        def tangent() -> np.ndarray:
+            D = c * kin.tangent
+            _add_volume_hessian(D, kin, (c - 1.0) * p, self.logarithmic)
+            _add_geometric(D, history)
+            return D
+
+        return replace(kin, stress=stress, make_tangent=tangent)
 
     def residual(self, x: np.ndarray, state: Kinematics | None = None) -> np.ndarray:
         """Internal forces (N) with the relaxed stress, and the pressure equation (m^3)."""

@@ -41,7 +41,9 @@ The Cauchy stress is sigma = P F^T / J with P the 3x3 first Piola-Kirchhoff stre
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cached_property, partial
 
 import numpy as np
 import scipy.sparse as sp
@@ -123,7 +125,8 @@ class Kinematics:
         (5, ...) first Piola-Kirchhoff entries S_k = dPsi/dF_k in Pa.
     tangent : numpy.ndarray
         (..., 5, 5) D_kl = d2Psi/dF_k dF_l in Pa (components last: the element matrices are
-        batched matrix products over the points).
+        batched matrix products over the points); made by ``make_tangent`` when first asked
+        (a modified Newton step, a residual or an energy needs none).
     volume_gradient : numpy.ndarray
         (5, ...) Jg_k = dJ/dF_k.
     constraint : numpy.ndarray
@@ -135,10 +138,15 @@ class Kinematics:
     F: np.ndarray
     J: np.ndarray
     stress: np.ndarray
-    tangent: np.ndarray
+    make_tangent: Callable[[], np.ndarray] = field(repr=False)
     volume_gradient: np.ndarray
     constraint: np.ndarray
     energy_density: np.ndarray
+
+    @cached_property
+    def tangent(self) -> np.ndarray:
+        """D (Pa, (..., 5, 5)), made once."""
+        return self.make_tangent()
 
 
 def kinematics(
@@ -186,21 +194,19 @@ def kinematics(
     stress = 0.5 * mu * (2.0 * j23 * F - (2.0 / 3.0) * j53 * I1 * Jg) - p * Jg
     # D = mu/2 (10/9 J^(-8/3) I1 Jg Jg^T - 2/3 J^(-5/3) (I1 H + 2 (Jg F^T + F Jg^T))
     #     + 2 J^(-2/3) 1) - p H, collected by term
-    tangent = _tangent(
-        F,
-        Jg,
-        outer=(5.0 / 9.0) * mu * j83 * I1,
-        mixed=-(2.0 / 3.0) * mu * j53,
-        identity=mu * j23,
-        hessian=-(1.0 / 3.0) * mu * j53 * I1 - p,
-    )
+    terms = {
+        "outer": (5.0 / 9.0) * mu * j83 * I1,
+        "mixed": -(2.0 / 3.0) * mu * j53,
+        "identity": mu * j23,
+        "hessian": -(1.0 / 3.0) * mu * j53 * I1 - p,
+    }
     isochoric = j23_m1 * I1 + I1_m3  # J^(-2/3) I1 - 3
     energy = 0.5 * mu * isochoric - p * J_m1 - 0.5 * inverse_bulk * p**2
     return Kinematics(
         F=F,
         J=J,
         stress=stress,
-        tangent=tangent,
+        make_tangent=partial(_tangent, F, Jg, **terms),
         volume_gradient=Jg,
         constraint=J_m1 + inverse_bulk * p,
         energy_density=energy,

@@ -359,7 +359,8 @@ def _hessian_I2(F: np.ndarray, planar: np.ndarray, dP: np.ndarray, q4: np.ndarra
 def invariant_kinematics(
     material: Rubber, grad: np.ndarray, u_r: np.ndarray, radius: np.ndarray, p: np.ndarray
 ) -> Kinematics:
-    """F, J, the stress and the consistent tangent of any :class:`Rubber`, pointwise.
+    """F, J, the stress and the consistent tangent (made when asked) of any :class:`Rubber`,
+    pointwise.
 
     Same arguments and result as :func:`.hyperelastic.kinematics` (grad dimensionless, u_r and
     radius in m, p in Pa; stress and tangent in Pa); ``volume_gradient`` is g'(J) dJ/dF and
@@ -394,19 +395,23 @@ def invariant_kinematics(
     with np.errstate(divide="ignore", invalid="ignore"):
         g, dg, ddg = _volumetric(material.volumetric, J_m1, J)
     stress = psi1 * d_bar1 + psi2 * d_bar2 - p * dg * Jg
-    tangent = _invariant_tangent(
-        F, Jg, (bar1, bar2, J, j23, j43), (psi1, psi2, psi11, psi12, psi22), (d_bar1, d_bar2)
-    )
-    tangent += (-p * ddg)[..., None, None] * _outer(Jg, Jg) if not _zero(ddg) else 0.0
-    tangent += (-p * dg)[..., None, None] * _hessian_J(F)
-    if not _zero(psi2):
-        tangent += (psi2 * j43)[..., None, None] * _hessian_I2(F, planar, dP, q4)
-        tangent += (-(4.0 / 3.0) * psi2 * j43 / J)[..., None, None] * _symmetric(dI2, Jg)
+
+    def tangent() -> np.ndarray:
+        D = _invariant_tangent(
+            F, Jg, (bar1, bar2, J, j23, j43), (psi1, psi2, psi11, psi12, psi22), (d_bar1, d_bar2)
+        )
+        D += (-p * ddg)[..., None, None] * _outer(Jg, Jg) if not _zero(ddg) else 0.0
+        D += (-p * dg)[..., None, None] * _hessian_J(F)
+        if not _zero(psi2):
+            D += (psi2 * j43)[..., None, None] * _hessian_I2(F, planar, dP, q4)
+            D += (-(4.0 / 3.0) * psi2 * j43 / J)[..., None, None] * _symmetric(dI2, Jg)
+        return D
+
     return Kinematics(
         F=F,
         J=J,
         stress=stress,
-        tangent=tangent,
+        make_tangent=tangent,
         volume_gradient=dg * Jg,
         constraint=g + material.inverse_bulk * p,
         energy_density=energy - p * g - 0.5 * material.inverse_bulk * p**2,

@@ -23,10 +23,11 @@ with the consistent tangent d2Pi/dx2 - sum lambda_i d2g_i/du_r^2 (f'' at the cur
 and, on the active set A, the linearized constraints -G_A dx = g_A, solved together as one
 sparse symmetric saddle-point system [[K, -G_A^T], [-G_A, 0]]. Converged when the active set
 repeats and the displacement correction is below ``tolerance * depth``. A modified Newton
-saves factorizations on the depth ladder (:func:`solve_finite_contact`; an impact's steps use
-full Newton): while the active set stays that of the last factorization (also from the
-previous depth) and each correction shrinks by :data:`CONTRACTION`, the step reuses it (and its
-tangent); a step that reused it converges only with that contraction. Complementarity then
+saves factorizations on the depth ladder (:func:`solve_finite_contact`) and in an impact's
+time steps (every evaluation of the striker's step equation): while the active set stays that
+of the last factorization (also from the previous depth or step) and each correction shrinks by
+:data:`CONTRACTION`, the step reuses it (and its tangent); a step that reused it converges only
+with that contraction. Complementarity then
 holds exactly (lambda = 0 off A, g = 0 on A up to the Newton tolerance, lambda > 0 on A,
 g >= 0 off A). Depth stepping: from the last converged state to each requested depth, with a
 linear predictor whose first active set ends at the extrapolated contact edge
@@ -263,7 +264,7 @@ class NewtonStepper:
         self.backtracks = 0  # halvings of an update that inverts an element (0: raise)
         self.factorization: Callable[[np.ndarray], np.ndarray] | None = None  # the last one
         self.kept: tuple | None = None  # system, rows, tangent, factorization of a fresh step
-        self.modified = False  # reuse factorizations (the quasi-static curve's Newton)
+        self.modified = False  # reuse factorizations (curves and impacts set it)
         material = system.material
         # complementarity weight c (N/m): lambda_i and c g_i of comparable size
         self.weight = material.shear_modulus * candidate_radius / self.nodes.radius.size
@@ -295,7 +296,7 @@ class NewtonStepper:
         are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0).
         ``reach`` (m): the first iteration's active set leaves out the candidates the guess
         puts in contact at reference radii beyond it (the predicted contact edge,
-        :func:`predict_reach`)."""
+        :func:`predict_reach`). A ``modified`` Newton that fails is redone as a full one."""
         scale = depth if scale is None else scale
         system, nodes, previous = self.system, self.nodes, None
 
@@ -319,7 +320,17 @@ class NewtonStepper:
             du, dlam = self.linear_step(x, lam, state, residual, contact, reuse)
             return du, rows, dlam, not reuse, False
 
-        return self.iterate((x, lam), scale, increment)
+        try:
+            return self.iterate((x, lam), scale, increment)
+        except NewtonError:
+            if not self.modified:
+                raise
+        # a modified Newton that failed is redone in full: it fails only where full Newton does
+        self.modified, self.kept, previous = False, None, None
+        try:
+            return self.iterate((x, lam), scale, increment)
+        finally:
+            self.modified = True
 
     def iterate(
         self, start: tuple[np.ndarray, np.ndarray], scale: float, increment: Callable[..., Any]
@@ -330,7 +341,8 @@ class NewtonStepper:
         dlambda acts on, dlambda, whether made with a fresh tangent, whether to test the
         convergence after it), or None where the iterate before it has converged. An update
         that inverts an element (or, where the stepper back-tracks, folds the contact surface)
-        is halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
+        fails the solve where it reused a factorization (:meth:`redone_in_full`), else is
+        halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
         corrections (max |du| / ``scale``, m).
 
         Raises
@@ -345,6 +357,8 @@ class NewtonStepper:
         for iteration in range(1, self.max_iterations + 1):
             state = self.system.state(x)
             if element_inverted(state) or (self.backtracks and self.folded(x)):
+                if step is not None and not fresh[-1] and self.redone_in_full():
+                    raise NewtonError("an update of a reused factorization inverted an element")
                 if step is None or halvings == self.backtracks:
                     raise NewtonError("an element inverted (J <= 0)")
                 halvings += 1  # back-track: halve the last update
@@ -371,9 +385,14 @@ class NewtonStepper:
                 return x, lam, iteration, corrections
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
 
+    def redone_in_full(self) -> bool:
+        """True: a solve whose reused factorization's update inverts an element fails, and
+        :meth:`solve` redoes it as a full Newton."""
+        return True
+
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether the next step may reuse the last factorization (modified Newton, if
-        ``modified``; the impacts' time steps keep full Newton): made for this system and
+        ``modified``): made for this system and
         active set ``rows``, and, after a step that reused it, the correction
         shrank by at least :data:`CONTRACTION`."""
         kept = self.kept

@@ -570,6 +570,11 @@ class BondedStepper(NewtonStepper):
         # by contact set: system, tangent, reduced tangent, factorization
         self.kept_slide: dict[bytes, tuple] = {}
 
+    def redone_in_full(self) -> bool:
+        """False: a reused factorization's update that inverts an element is halved, as a
+        fresh one's (its solves are not redone in full)."""
+        return False
+
 
 class HistoryStepper(BondedStepper):
     """The bonded (``friction`` inf: no slip) or Coulomb contact of a time-stepped impact.
