@@ -291,10 +291,9 @@ class FiniteImpactSetup:
             return columns, body.iterations, separation, 0.0, body.cuts, kept
         scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
         inertial = inertial_system(stepper, rho, scheme)
-        if kept is not None:
-            inertial.static = _EnergyWatch(inertial.static, kept, inertial)
+        observe = None if kept is None else kept.offer
         columns, iterations, separation, last = march_inertial(
-            stepper, inertial, (mass, velocity), (x_c, duration, q)
+            stepper, inertial, (mass, velocity), (x_c, duration, q), observe
         )
         far = far_kinetic(inertial, last.v) / (0.5 * mass * velocity**2)
         return columns, iterations, separation, far, inertial.cuts, kept
@@ -368,22 +367,6 @@ class _KeepingBody(QuasiStaticBody):
         if self.kept is not None:
             self.kept.offer(self.dt, state.x)
         return state
-
-
-class _EnergyWatch:
-    """The elastic body as the march with inertia sees it, telling ``kept`` each accepted
-    state: that march evaluates the stored energy once per accepted step (its energy column),
-    its Newton never (the kept axis u_z equals -X of that step: tests/test_finite_fields.py)."""
-
-    def __init__(self, body: Any, kept: KeptStates, clock: Any) -> None:
-        self.body, self.kept, self.clock = body, kept, clock
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self.body, name)
-
-    def energy(self, x: np.ndarray) -> float:
-        self.kept.offer(self.clock.dt, x)
-        return self.body.energy(x)
 
 
 def cut_note(cuts: int, steps: int) -> str:

@@ -23,7 +23,6 @@ from ..validation import InputError, bound_text, validate_positive
 
 if TYPE_CHECKING:
     from .elasticity import ElasticSolution, ElasticSystem
-    from .finite_dynamic import KeptStates
     from .viscoelastic import ShearMemory, ViscoelasticShear
 
 __all__ = [
@@ -129,7 +128,7 @@ class ImpactRun:
     )
     material: ViscoelasticShear | None = field(default=None, repr=False)
     memories: dict[float, ShearMemory | None] = field(default_factory=dict, repr=False)
-    kept: KeptStates | None = field(default=None, repr=False)
+    kept: Any = field(default=None, repr=False)  # KeptStates: finite_dynamic imports this module
 
     def summary(self) -> dict[str, float]:
         """The scalar results: :data:`SUMMARY_KEYS`, the losses and, with friction at the

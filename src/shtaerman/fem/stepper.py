@@ -1224,11 +1224,13 @@ def march_inertial(
     inertial: _InertialSystem,
     striker: tuple[float, float],
     scales: tuple[float, float, float],
+    observe: Callable[[float, np.ndarray], None] | None = None,
 ) -> tuple[tuple[np.ndarray, ...], int, float, _Dynamic]:
     """Step from first touch until the contact force vanishes with the striker rebounding.
 
     ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
-    run (s) and q of P ~ X^q (for the separation time between steps). Returns the columns
+    run (s) and q of P ~ X^q (for the separation time between steps); ``observe(dt, x)`` is
+    told each accepted step's length (s) and solution. Returns the columns
     t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
     (s; nan if the run ended first) and the last state; the steps cut in halves are counted
     in ``inertial.cuts``.
@@ -1269,6 +1271,8 @@ def march_inertial(
                 k = max((force - previous) / (new.depth - state.depth), 0.0)
             _check_candidates(stepper, new.lam, new.depth)
             state, t, deepest = new, t + new.interval, max(deepest, new.depth)
+            if observe is not None:
+                observe(new.interval, new.x)
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))
             row = (t, state.depth, state.speed, force, state.energy, body)
             rows.append(((*row, state.dissipated) if dissipative else row, _separated(state)))
