@@ -69,3 +69,22 @@ def test_a_resumed_folder_whose_marker_is_immutable_is_refused_before_it_runs(tm
         with staged_folder(out, resume_marker="incomplete.json"):
             pytest.fail("the run started on a folder it cannot remove")
     assert [path.name for path in tmp_path.iterdir()] == ["i1"]  # no stage left
+
+
+def test_a_forced_history_onto_an_immutable_file_is_refused_before_it_runs(
+    tmp_path, immutable, capsys
+):
+    """adv49: ``--history h.csv --force`` onto a chattr +i h.csv computed the whole impact, then
+    failed renaming its stage over the file ('[Errno 1] Operation not permitted', exit 1)."""
+    history = tmp_path / "h.csv"
+    history.write_text("t [s]\n0.0\n")
+    immutable(history)
+    code = main(["impact", "--history", str(history), "--force"])
+    said = capsys.readouterr().err.strip()
+    assert code == 2 and "\n" not in said, said  # bad input: one line, before the run
+    assert said.endswith(
+        f"--history: cannot replace '{history}': it or its folder is immutable or append-only "
+        "(lsattr shows it); make it removable (chattr -i -a) or write another file"
+    ), said
+    assert history.read_text() == "t [s]\n0.0\n"  # untouched
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["h.csv"]  # no stage left

@@ -666,7 +666,8 @@ def _publish(content: Path, target: Path, option: str) -> None:
 def check_output_file(path: str | Path, *, force: bool, option: str = "history") -> Path:
     """Return ``path`` if a run may write that file, or raise before any work is done.
 
-    A regular file is replaced only with ``force``; a special file (``/dev/null``, a FIFO, a
+    A regular file is replaced only with ``force``, and never when it (or its folder) is
+    immutable or append-only; a special file (``/dev/null``, a FIFO, a
     terminal, also through a link: ``/dev/stdout``) is written into, never replaced; a folder
     and a symbolic link to anything else (a file elsewhere, nothing) are refused.
     """
@@ -686,6 +687,13 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
         if path.exists() and not force:
             raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)", option)
         real = Path(os.path.realpath(path))
+        if real.exists() and (_unremovable(str(real)) or _unremovable(str(real.parent))):
+            raise InputError(
+                f"{option}: cannot replace {str(path)!r}: it or its folder is immutable or "
+                "append-only (lsattr shows it); make it removable (chattr -i -a) or write "
+                "another file",
+                option,
+            )
         if not real.parent.is_dir():
             raise InputError(f"{option}: {missing_folder(path.parent)}", option)
         live = _other_writers(real)
