@@ -130,6 +130,16 @@ def test_material_density_is_optional_and_checked_like_density2():
         sh.Material(4e6, 0.49, density=2e6)
 
 
+@pytest.mark.parametrize("density", [-3.0, math.inf, "heavy"])
+def test_a_density_below_zero_or_no_number_names_the_whole_range(density):
+    """adv49: -3 read 'density must be > 0 kg/m^3 (or 0: massless)', hiding the range the
+    command line's --density2 names."""
+    with pytest.raises(
+        sh.InputError, match=r"^density must (lie|be a number) in \[1e-06, 1e\+06\] "
+    ):
+        sh.Material(4e6, 0.49, density=density)
+
+
 # --- contact -----------------------------------------------------------------------------------
 
 

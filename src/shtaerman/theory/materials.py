@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from numbers import Real
 
 from .. import vocabulary
-from ..validation import InputError, validate_poisson, validate_positive
+from ..validation import InputError, shown, validate_poisson, validate_positive
 
 __all__ = ["DENSITY_RANGE", "RIGID", "Material", "effective_modulus", "validate_density"]
 
@@ -63,16 +63,14 @@ class Material:
 def validate_density(name: str, density: object) -> float:
     """``density`` in kg/m^3 as a float: 0 (massless) or within :data:`DENSITY_RANGE`;
     InputError naming ``name`` otherwise."""
-    if isinstance(density, Real) and not isinstance(density, bool) and density == 0:
+    valid = f"in [{DENSITY_RANGE[0]:g}, {DENSITY_RANGE[1]:g}] kg/m^3 or be 0 (massless)"
+    if not isinstance(density, Real) or isinstance(density, bool):
+        raise InputError(f"{name} must be a number {valid}, got {shown(density)}", name)
+    if density == 0:
         return 0.0
-    rho = validate_positive(name, density, "kg/m^3 (or 0: massless)")
-    low, high = DENSITY_RANGE
-    if not low <= rho <= high:
-        raise InputError(
-            f"{name} must lie in [{low:g}, {high:g}] kg/m^3 or be 0 (massless), got {density!r}",
-            name,
-        )
-    return rho
+    if not DENSITY_RANGE[0] <= density <= DENSITY_RANGE[1]:  # also a negative, nan or inf
+        raise InputError(f"{name} must lie {valid}, got {shown(density)}", name)
+    return float(density)
 
 
 RIGID = Material(math.inf, 0.0)
