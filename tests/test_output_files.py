@@ -439,11 +439,28 @@ def test_force_replaces_no_folder_this_tool_did_not_write(tmp_path, capsys, mark
     ):
         code, out, err = run(capsys, *argv, "--out", str(project), "--force")
         assert code == 2 and out == "" and err.count("\n") == 1, (argv, err)
-        assert f"out: folder '{project}' was not written by shtaerman" in err
+        assert f"error: --out: folder '{project}' was not written by shtaerman" in err  # adv49
         assert "name a new folder with --out" in err
     assert names(project) == ["notes.txt"] and (project / "notes.txt").read_text() == "mine"
     expected = ["m.json", "project"] if marker == "link" else ["project"]
     assert sorted(p.name for p in tmp_path.iterdir()) == expected
+
+
+@pytest.mark.parametrize("state", ["not empty", "not ours", "an added file"])
+def test_a_folder_refused_for_what_it_holds_names_the_option(tmp_path, state):
+    """adv49: these refusals carried no parameter, so the command line said 'out: folder ...'
+    where every other --out refusal says '--out: ...'."""
+    folder = tmp_path / "r"
+    with staged_folder(folder) as stage:
+        (stage / "a.csv").write_text("1\n")
+    if state == "not ours":
+        (folder / FOLDER_MARKER).unlink()
+    if state != "not empty":
+        (folder / "note.txt").write_text("mine")
+    with pytest.raises(InputError) as refused:
+        with staged_folder(folder, force=state != "not empty"):
+            pytest.fail("the run started")
+    assert refused.value.parameter == "out", refused.value
 
 
 def test_a_killed_run_that_kept_a_resumable_part_has_it_moved_into_place(tmp_path):

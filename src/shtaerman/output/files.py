@@ -366,17 +366,19 @@ def _check_replaceable(
         advice = "use --force to replace it"
         if not ours(target):  # --force would refuse it too
             advice = f"it was not written by shtaerman: {new}"
-        raise InputError(f"{folder} {state}; {advice}")
+        raise InputError(f"{folder} {state}; {advice}", option)
     if force and not ours(target):
         raise InputError(
             f"{folder} was not written by shtaerman (no {FOLDER_MARKER}); --force replaces only "
-            f"result folders of this tool: {new}"
+            f"result folders of this tool: {new}",
+            option,
         )
     if force and (foreign := _foreign_files(target)):
         more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
         raise InputError(
             f"{folder} holds {foreign[0]!r}{more}, not written by shtaerman; --force replaces "
-            f"only what this tool wrote: move it or {new}"
+            f"only what this tool wrote: move it or {new}",
+            option,
         )
 
 
