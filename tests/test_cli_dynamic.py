@@ -277,3 +277,15 @@ def test_the_help_states_the_estimates_ranges_that_are_enforced(capsys, option, 
     assert err.count("\n") == 1 and f"error: {option}:" in err, err
     if option == "--time-steps":  # the ladder's advice names the switch once, as an option
         assert err.endswith("; or run without the estimate (--no-estimate)\n"), err
+
+
+def test_a_history_file_inside_the_out_folder_is_refused_before_the_run(tmp_path, capsys):
+    """It was written there unlisted, and every later --out --force onto the folder was refused
+    ('holds h.csv, not written by shtaerman'); now one line before any run, exit 2."""
+    folder = tmp_path / "r1"
+    folder.mkdir()
+    code = main(["dynamic", "--out", str(folder), "--history", str(folder / "h.csv")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "--history:" in err[0] and "inside the --out folder" in err[0]
+    assert list(folder.iterdir()) == []

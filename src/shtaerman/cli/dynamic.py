@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import warnings
+from pathlib import Path
 
 from ..api.dynamic_result import UNTRUSTED, check_failures
 from ..api.fem_contact import RUBBER_OPTIONS
@@ -18,6 +19,7 @@ from ..output.case import interface_words
 from ..output.files import staged_file, write_csv
 from ..problem import worded
 from ..theory.materials import Material
+from ..validation import InputError
 from . import common
 from .contact import exact_owner, layer_rows, profile_words
 from .impact import history_path
@@ -117,6 +119,7 @@ def run(args: argparse.Namespace) -> int:
         problem = common.impact_problem(args, Material(args.E2, args.nu2, args.density2))
     common.refuse_idle_output_options(args, ("out", "history"))
     history = history_path(args.history, force=args.force)
+    _refuse_history_in_out(history, args.out)
     with common.in_option_words(), warnings.catch_warnings():
         warnings.simplefilter("ignore", FailedCheckWarning)  # said below, with the exit code
         result = dynamic(problem, **_numerics(args))
@@ -134,6 +137,20 @@ def run(args: argparse.Namespace) -> int:
         common.warn(worded("; ".join(failures), "cli") + UNTRUSTED)
         return 1
     return 0
+
+
+def _refuse_history_in_out(history: Path | None, out: str | None) -> None:
+    """Refuse a --history file inside the --out folder: the folder holds history.csv already,
+    and a file it did not list would block every later --out --force onto it."""
+    if history is None or out is None:
+        return
+    folder = Path(out).resolve()
+    if folder in history.resolve().parents:
+        raise InputError(
+            f"--history: {str(history)!r} is inside the --out folder {out!r}, which holds "
+            "history.csv already; give a file outside it, or leave --history out",
+            "history",
+        )
 
 
 def _loss_label(dyn: dict, massless: bool) -> str:
