@@ -369,6 +369,8 @@ class NewtonStepper:
             halvings = 0
             try:
                 made = increment(x, lam, state, corrections, fresh)
+            except NewtonError:  # a RuntimeError too: its own message (a folded surface)
+                raise
             except RuntimeError as error:
                 raise NewtonError(f"singular Newton matrix ({error})") from None
             if made is None:
