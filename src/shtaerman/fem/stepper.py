@@ -965,8 +965,8 @@ def _in_halves(
     """
     try:
         return step(start)
-    except failures:
-        if cuts == MAX_STEP_CUTS:
+    except failures as error:
+        if cuts == MAX_STEP_CUTS or isinstance(error, InputError):  # a Gent lock: no cut cures it
             raise
     dt = clock.dt
     clock.dt = 0.5 * dt
@@ -1180,8 +1180,7 @@ def _cut_step(
         iterations += count
         return [new]
 
-    failures = (NewtonError, NumericalFailureError)
-    return _in_halves(step, state, inertial, _separated, failures), iterations
+    return _in_halves(step, state, inertial, _separated, (NumericalFailureError,)), iterations
 
 
 def _separated(state: _Dynamic) -> bool:

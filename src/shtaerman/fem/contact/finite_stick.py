@@ -745,7 +745,7 @@ def _in_halves(
     """
     try:
         return step(depth)
-    except (NewtonError, NumericalFailureError) as error:
+    except NumericalFailureError as error:  # a NewtonError too
         done, x = reached()
         locked = gent_locks(error, system, x, depth, last=cut == MAX_LOAD_CUTS)
         if locked is not None:

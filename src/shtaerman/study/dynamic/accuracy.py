@@ -40,7 +40,6 @@ from typing import Any, Protocol, TypeVar
 from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings
 from ...fem.finite_dynamic import MIN_STEPS as FINITE_MIN_STEPS
 from ...fem.finite_dynamic import FiniteImpactSettings
-from ...fem.hyperelastic import NewtonError
 from ...fem.impact_run import ImpactRun
 from ...fem.rubber import GentLockError
 from ...guards import ValidityWarning
@@ -90,8 +89,9 @@ LEVELS = (1.0 / LADDER_RATIO**2, 1.0 / LADDER_RATIO, 1.0)
 """Refinement of each level relative to the finest, coarse to fine."""
 RETRY_STEPS = 2
 """A failed level is run once more with this many times its time steps."""
-FAILURES = (NewtonError, NumericalFailureError)
-"""The numerical failures of a run that a retry may cure (bad input is not retried)."""
+FAILURES = (NumericalFailureError,)
+"""The numerical failures of a run (a NewtonError among them) that a retry may cure (bad input
+is not retried)."""
 
 
 class EstimateMissingWarning(UserWarning):
