@@ -239,6 +239,10 @@ class FiniteContactCurve:
 class NewtonStepper:
     """Newton with active set for one depth increment; state kept between increments."""
 
+    redone_in_full = True
+    """A solve whose reused factorization's update inverts an element fails, and :meth:`solve`
+    redoes it as a full Newton (False: the update is halved, as a fresh one's)."""
+
     def __init__(
         self,
         system: HyperelasticSystem,
@@ -341,7 +345,7 @@ class NewtonStepper:
         dlambda acts on, dlambda, whether made with a fresh tangent, whether to test the
         convergence after it), or None where the iterate before it has converged. An update
         that inverts an element (or, where the stepper back-tracks, folds the contact surface)
-        fails the solve where it reused a factorization (:meth:`redone_in_full`), else is
+        fails the solve where it reused a factorization (``redone_in_full``), else is
         halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
         corrections (max |du| / ``scale``, m).
 
@@ -357,7 +361,7 @@ class NewtonStepper:
         for iteration in range(1, self.max_iterations + 1):
             state = self.system.state(x)
             if element_inverted(state) or (self.backtracks and self.folded(x)):
-                if step is not None and not fresh[-1] and self.redone_in_full():
+                if step is not None and not fresh[-1] and self.redone_in_full:
                     raise NewtonError("an update of a reused factorization inverted an element")
                 if step is None or halvings == self.backtracks:
                     raise NewtonError("an element inverted (J <= 0)")
@@ -386,11 +390,6 @@ class NewtonStepper:
             if test and self.converged(corrections, fresh):
                 return x, lam, iteration, corrections
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
-
-    def redone_in_full(self) -> bool:
-        """True: a solve whose reused factorization's update inverts an element fails, and
-        :meth:`solve` redoes it as a full Newton."""
-        return True
 
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether the next step may reuse the last factorization (modified Newton, if
