@@ -966,7 +966,7 @@ def _in_halves(
     try:
         return step(start)
     except failures as error:
-        if cuts == MAX_STEP_CUTS or isinstance(error, InputError):  # a Gent lock: no cut cures it
+        if cuts == MAX_STEP_CUTS or getattr(error, "parameter", None):  # a diagnosed Gent lock
             raise
     dt = clock.dt
     clock.dt = 0.5 * dt
