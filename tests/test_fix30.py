@@ -78,8 +78,9 @@ def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking(
     1.0 m/s) on a Gent rubber, Jm = 30, with Coulomb friction 0.5 was refused as "locks at
     depth 0.000172 m": its 50-step run fails near separation (striker depth 1.1e-5 m) from a
     state at 0.0023 of the limit, a step the Newton could not take, which the ladder retries
-    with twice the steps once it is a numerical failure (about 20 s of CPU)."""
-    from shtaerman.study.dynamic.accuracy import RetriedWarning
+    with twice the steps once it is a numerical failure (about 20 s of CPU). Since a Newton
+    iterate past the Gent limit is halved (GENT_BACKTRACKS), the 50-step run passes: P_max
+    80.17 N (100 steps: 79.98 N), no retry."""
     from shtaerman.validation import InputError
 
     body = sh.Material(3e6, 0.49, 1000.0)
@@ -87,11 +88,10 @@ def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking(
     pad = dict(thickness=0.012, model="gent", gent_limit=30.0, interface="bonded", friction=0.5)
     case = sh.Problem.impact(striker, body, mass=0.12, velocity=1.0, **pad)
     try:
-        with pytest.warns(RetriedWarning, match="50 steps failed .*passed with 100 steps"):
-            result = sh.dynamic(case, time_steps=50, mesh_size=0.2, estimate=False)
+        result = sh.dynamic(case, time_steps=50, mesh_size=0.2, estimate=False)
     except InputError as error:  # a Gent lock is an InputError: the input named, exit 2
         pytest.fail(f"refused as bad input: {error}")
-    # a result, not a refusal: 80.0 N measured (100 steps); the bound only checks a finite,
+    # a result, not a refusal: 80.2 N measured (50 steps); the bound only checks a finite,
     # positive peak of the order of the quasi-static P_c (sh.impact: 63 N at 1 m/s on the
     # half-space; the 12 mm pad stiffens it)
     assert 30.0 < result.P_max < 300.0

@@ -50,6 +50,7 @@ __all__ = [
     "LOCKED",
     "MODELS",
     "VOLUMETRIC",
+    "GentLimitError",
     "GentLockError",
     "Rubber",
     "RubberModel",
@@ -233,8 +234,8 @@ def energy_derivatives(material: Rubber, x1: np.ndarray, x2: np.ndarray) -> tupl
 
     Raises
     ------
-    NewtonError
-        Where a Gent solid reaches its limit x1 >= Jm (the load step is then cut).
+    GentLimitError
+        Where a Gent solid reaches its limit x1 >= Jm (the update is then halved).
     """
     half = 0.5 * material.shear_modulus
     model = material.model
@@ -251,23 +252,28 @@ def energy_derivatives(material: Rubber, x1: np.ndarray, x2: np.ndarray) -> tupl
     limit = material.gent_limit
     slack = 1.0 - x1 / limit
     if np.any(slack <= 0):  # NaN (an inverted element) passes to the caller's J check
-        raise GentLockError(f"the gent limit I1bar - 3 < Jm = {limit:g} was reached")
+        raise GentLimitError(f"an iterate passed the gent limit I1bar - 3 = Jm = {limit:g}")
     with np.errstate(invalid="ignore"):
         energy = -half * limit * np.log1p(-x1 / limit)
     return energy, half / slack, 0.0, half / (limit * slack**2), 0.0, 0.0
 
 
-LOCKED = 0.9
-"""(I1bar - 3) / Jm of a converged Gent state from which a load step failing on the limit is the
-rubber locking, not a step too long: its shear stiffness mu / (1 - (I1bar - 3) / Jm) is ten
-times mu and grows without bound within the last tenth of the stretch, which no finer mesh or
-shorter step lets it pass."""
+LOCKED = 0.999
+"""(I1bar - 3) / Jm of a converged Gent state from which a failed load step is the rubber
+locking, not a step too long: its tangent shear stiffness mu / (1 - (I1bar - 3) / Jm) is a
+thousand times mu there (benchmarks/FEM_NOTES.md, "Gent locking")."""
+
+
+class GentLimitError(NewtonError):
+    """A Newton iterate passed a Gent rubber's limit I1bar - 3 = Jm: outside the rubber's
+    states, so the update is halved or the step cut (a numerical failure where they run out,
+    unless :func:`gent_locks` finds the rubber locking)."""
 
 
 class GentLockError(NewtonError, InputError):
-    """A Gent rubber reached its stretch limit I1bar - 3 = Jm (a Newton iterate beyond it, or the
-    rubber locking); :func:`gent_locks` tells which and words the remedy. Unlike other Newton
-    failures it is also an InputError: the limit is the user's gent_limit (the CLI: exit 2)."""
+    """A Gent rubber locks: its stretch reached its limit I1bar - 3 = Jm where a route gave up
+    (:func:`gent_locks`). Unlike other Newton failures it is an InputError: the limit is the
+    user's gent_limit (the CLI: exit 2)."""
 
     def __init__(self, message: str, parameter: str | None = None) -> None:
         InputError.__init__(self, message, parameter)
@@ -296,15 +302,16 @@ def gent_stretch(material: Rubber, state: Kinematics) -> float:
 def gent_locks(
     error: Exception, system: Any, x: np.ndarray, depth: float, *, last: bool
 ) -> GentLockError | None:
-    """The diagnosis of a load step to ``depth`` (m) that failed with ``error``: the Gent rubber
-    locking when the step failed on the Gent limit and either the converged state ``x`` of
-    ``system`` (a hyperelastic system of the rubber) is already at :data:`LOCKED` of its limit
-    (so at the first such failure, not after every halving), or ``last`` (no cut is left);
-    None when it is a step to cut (or no Gent limit at all)."""
-    if not isinstance(error, GentLockError):
-        return None
+    """The diagnosis of a load step to ``depth`` (m) that failed with ``error``: the Gent
+    rubber locking where the last converged state ``x`` of ``system`` (a hyperelastic system of
+    the rubber) is at :data:`LOCKED` of its limit, or where, ``last`` (no cut left), ``x`` is
+    undeformed and ``error`` is the limit (the first step passes it at every cut); None
+    otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
     material = system.material
-    if last or gent_stretch(material, system.state(x)) >= LOCKED:
+    if material.model != "gent":
+        return None
+    undeformed = last and isinstance(error, GentLimitError) and not np.any(x)
+    if undeformed or gent_stretch(material, system.state(x)) >= LOCKED:
         return GentLockError.locking(material.gent_limit, depth)
     return None
 

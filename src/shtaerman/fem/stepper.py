@@ -770,11 +770,8 @@ class QuasiStaticBody:
             return _State(depth, self.zero.x, self.zero.lam, 0.0, 0.0)
         try:
             return self._solve(depth, MAX_HALVINGS)
-        except GentLockError as error:  # the rubber's limit, an input: --gent-limit
-            if error.parameter == "gent_limit":
-                raise
-            limit = self.stepper.system.material.gent_limit
-            raise GentLockError.locking(limit, depth) from None
+        except GentLockError:  # the rubber's limit, an input: --gent-limit
+            raise
         except NewtonError as error:  # the run's numerics, not its input
             raise NumericalFailureError(
                 f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
@@ -825,10 +822,8 @@ class QuasiStaticBody:
         except NewtonError as error:
             last = self.history[-1]
             locked = gent_locks(error, self.stepper.system, last.x, depth, last=halvings == 0)
-            if locked is not None:
-                raise locked from None
-            if halvings == 0:
-                raise
+            if locked is not None or halvings == 0:
+                raise (locked or error) from None
             middle = 0.5 * (depth + last.depth)
             if middle <= 0.0 and not self.relaxing:
                 raise
@@ -966,7 +961,7 @@ def _in_halves(
     try:
         return step(start)
     except failures as error:
-        if cuts == MAX_STEP_CUTS or getattr(error, "parameter", None):  # a diagnosed Gent lock
+        if cuts == MAX_STEP_CUTS or isinstance(error, GentLockError):  # the rubber locks
             raise
     dt = clock.dt
     clock.dt = 0.5 * dt
@@ -1253,15 +1248,10 @@ def march_inertial(
                 stepper, inertial, state, mass, (k, depth_scale, force_scale)
             )
         except NewtonError as error:
-            # the rubber locks when the state before the step is near its limit, as in the
-            # static marcher, or the step from first touch fails on the limit at every cut
-            # (no strained state to measure); else the Newton failed: a numerical failure
+            # a Gent rubber at its limit locks (rubber.gent_locks); else a numerical failure
             reached = state.depth + abs(state.speed) * inertial.dt  # the depth it went for
-            first = state.depth <= 0.0
-            locked = gent_locks(error, stepper.system, state.x, reached, last=first)
-            if locked is not None:
-                raise locked from None
-            raise _step_failure(stepper, (t, state.depth, deepest), error) from None
+            locked = gent_locks(error, stepper.system, state.x, reached, last=True)
+            raise (locked or _step_failure(stepper, (t, state.depth, deepest), error)) from None
         total, rows = total + iterations, []
         inertial.cuts += len(states) > 1
         for new in states:

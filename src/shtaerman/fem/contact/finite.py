@@ -68,7 +68,7 @@ from ..hyperelastic import (
     assemble_hyperelastic,
 )
 from ..mesh import MeshSettings
-from ..rubber import RubberModel, gent_locks
+from ..rubber import GentLimitError, RubberModel, gent_locks
 from ..solver import Pattern, PatternSolver
 from .constraints import SolvedContact, check_resolved, edge_and_centre
 
@@ -90,6 +90,12 @@ converges only with that contraction, so the error it leaves is at most
 0.2 / (1 - 0.2) = 1/4 of the last correction (<= ``NEWTON_TOLERANCE`` * depth)."""
 MAX_ITERATIONS = 30
 MAX_CUTS = 8
+GENT_BACKTRACKS = 2
+"""Halvings of a Newton update whose iterate passes a Gent rubber's limit, in every stepper
+(other updates only where ``backtracks`` is set): the limit bounds the rubber's states as
+J > 0 does, and from a state near it Newton overshoots where the solution lies within it. A
+converging step needed at most 2; steps needing more crawled and failed after thirty
+iterations (benchmarks/FEM_NOTES.md, "Gent locking")."""
 _GAUSS = np.polynomial.legendre.leggauss(4)
 
 
@@ -359,12 +365,14 @@ class NewtonStepper:
         fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
         step, halvings = None, 0
         for iteration in range(1, self.max_iterations + 1):
-            state = self.system.state(x)
-            if element_inverted(state) or (self.backtracks and self.folded(x)):
+            state, outside = self.admit(x)
+            if outside is not None:
                 if step is not None and not fresh[-1] and self.redone_in_full:
-                    raise NewtonError("an update of a reused factorization inverted an element")
-                if step is None or halvings == self.backtracks:
-                    raise NewtonError("an element inverted (J <= 0)")
+                    raise NewtonError(f"an update of a reused factorization: {outside}")
+                gent = isinstance(outside, GentLimitError)
+                most = max(self.backtracks, GENT_BACKTRACKS) if gent else self.backtracks
+                if step is None or halvings == most:
+                    raise outside
                 halvings += 1  # back-track: halve the last update
                 step = (0.5 * step[0], step[1], 0.5 * step[2])
                 x[self.free] -= step[0]
@@ -390,6 +398,19 @@ class NewtonStepper:
             if test and self.converged(corrections, fresh):
                 return x, lam, iteration, corrections
         raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
+
+    def admit(self, x: np.ndarray) -> tuple[Any, NewtonError | None]:
+        """The kinematics of the iterate x, and why it is no state of the body (None where it
+        is one): an element inverted, a Gent rubber past its limit I1bar - 3 = Jm (a
+        GentLimitError, whose overshoot is always back-tracked: :data:`GENT_BACKTRACKS`), or,
+        where the stepper back-tracks, a folded contact surface."""
+        try:
+            state = self.system.state(x)
+        except GentLimitError as error:
+            return None, error
+        if element_inverted(state) or (self.backtracks and self.folded(x)):
+            return state, NewtonError("an element inverted (J <= 0)")
+        return state, None
 
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether the next step may reuse the last factorization (modified Newton, if
@@ -654,6 +675,8 @@ def _reach(
         If ``target`` is not beyond the last converged depth.
     NewtonError
         After ``max_cuts`` consecutive halvings.
+    GentLockError
+        A Gent rubber that locks (:func:`.rubber.gent_locks`).
     ContactOutgrowsMeshError
         The contact zone reached the edge of the candidate region.
     """
@@ -668,6 +691,8 @@ def _reach(
         if target - trial < 1e-9 * target:
             trial = target
         guess_x, guess_lam = extrapolate(history, trial)
+        if stepper.admit(guess_x)[1] is not None:  # the predictor passed a limit: no guess
+            guess_x, guess_lam = history[-1][1], history[-1][2]
         reach = predict_reach(stepper.nodes.radius, history, trial, law) if cuts == 0 else None
         try:
             x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam, reach=reach)

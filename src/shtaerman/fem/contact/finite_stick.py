@@ -745,10 +745,8 @@ def _in_halves(
     except NumericalFailureError as error:  # a NewtonError too
         done, x = reached()
         locked = gent_locks(error, system, x, depth, last=cut == MAX_LOAD_CUTS)
-        if locked is not None:
-            raise locked from None
-        if cut == MAX_LOAD_CUTS:
-            raise _exhausted(error, done, depth) from None
+        if locked is not None or cut == MAX_LOAD_CUTS:
+            raise (locked or _exhausted(error, done, depth)) from None
     middle = math.sqrt(done * depth) if done > 0.0 else 0.5 * depth
     taken = _in_halves(step, reached, middle, system, cut + 1)
     return taken + _in_halves(step, reached, depth, system, cut + 1)
