@@ -63,7 +63,7 @@ def write_finite_field(
     """The deformed-state fields of ``step`` as a VTU of the reference r-z section (x = r,
     y = z in m; warp by ``displacement [m]`` for the deformed shape), as
     :func:`.export.field_mesh` writes the linear body's, with the rubber model as a flag."""
-    model = getattr(curve.system.material, "model", "neo-hookean")
+    model = curve.system.material.model
     scalars = step_field_data(step, curve.indenter, material, model)
     scalars["strain_energy [J]"] = step.strain_energy
     solution = SimpleNamespace(system=curve.system, **curve.fields(step))
