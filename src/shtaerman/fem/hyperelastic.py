@@ -44,6 +44,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property, partial
+from typing import ClassVar
 
 import numpy as np
 import scipy.sparse as sp
@@ -90,6 +91,7 @@ class NeoHookean:
 
     youngs_modulus: float
     poisson_ratio: float
+    model: ClassVar[str] = "neo-hookean"  # as a rubber model names itself (rubber.gent_locks)
 
     def __post_init__(self) -> None:
         validate_positive("youngs_modulus", self.youngs_modulus, "Pa")
