@@ -966,7 +966,11 @@ def _in_halves(clock: Any, one: Callable[[Any], list], start: Any, ended: Callab
 
 
 def march_massless(
-    body: QuasiStaticBody, mass: float, velocity: float, dt: float, scales: tuple[float, float]
+    body: QuasiStaticBody,
+    mass: float,
+    velocity: float,
+    scales: tuple[float, float],
+    observe: Callable[[float, np.ndarray], None] | None = None,
 ) -> tuple[tuple[np.ndarray, ...], float | None]:
     """Step from first touch until the striker leaves (or the longest run).
 
@@ -976,17 +980,17 @@ def march_massless(
     Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
     its history committed at every step, until the force vanishes with the striker
     rebounding. A step whose contact fails is cut in halves (:func:`_in_halves`; the steps
-    cut are counted in ``body.cuts``). ``scales``: the longest run (s) and q of P ~ X^q.
-    Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or a contact
-    with friction, the body's kinetic (0) and dissipated energies (SI); and the separation
-    time (s; None for an elastic frictionless body, nan if the run ended first).
+    cut are counted in ``body.cuts``). The steps are of ``body.dt`` (s); ``scales``: the
+    longest run (s) and q of P ~ X^q; ``observe(t, x)`` is told each committed step's time (s)
+    and solution. Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or
+    a contact with friction, the body's kinetic (0) and dissipated energies (SI); and the
+    separation time (s; None for an elastic frictionless body, nan if the run ended first).
     """
     duration, exponent = scales
     state, v, t, k = body.zero, velocity, 0.0, 0.0
     extra = (0.0, 0.0) if body.viscous or body.frictional else ()
     gradient = _mean_force if body.history_dependent else _discrete_gradient
     one = partial(_massless_step, body, mass, gradient)
-    body.dt = dt
 
     def step() -> list[tuple[tuple, bool]]:
         nonlocal state, v, t, k
@@ -997,6 +1001,8 @@ def march_massless(
         for piece in pieces:
             state, v, k, interval = piece
             t += interval
+            if observe is not None:
+                observe(t, state.x)
             row = (t, state.depth, v, state.force, state.energy)
             row += (0.0, state.dissipated) if extra else ()
             rows.append((row, body.history_dependent and _ended(piece)))
@@ -1214,8 +1220,8 @@ def march_inertial(
     """Step from first touch until the contact force vanishes with the striker rebounding.
 
     ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
-    run (s) and q of P ~ X^q (for the separation time between steps); ``observe(dt, x)`` is
-    told each accepted step's length (s) and solution. Returns the columns
+    run (s) and q of P ~ X^q (for the separation time between steps); ``observe(t, x)`` is
+    told each accepted step's time (s) and solution. Returns the columns
     t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
     (s; nan if the run ended first) and the last state; the steps cut in halves are counted
     in ``inertial.cuts``.
@@ -1252,7 +1258,7 @@ def march_inertial(
             _check_candidates(stepper, new.lam, new.depth)
             state, t, deepest = new, t + new.interval, max(deepest, new.depth)
             if observe is not None:
-                observe(new.interval, new.x)
+                observe(t, new.x)
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))
             row = (t, state.depth, state.speed, force, state.energy, body)
             rows.append(((*row, state.dissipated) if dissipative else row, _separated(state)))
