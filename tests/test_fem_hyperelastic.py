@@ -308,7 +308,7 @@ def test_outputs_and_fields(paper_like):
     step = paper_like.steps[-1]
     assert step.newton_iterations <= 8  # observed 4-6 with the linear predictor
     assert 2.0 < step.central_pressure / step.mean_pressure < 3.0  # linear 2.5
-    fields = paper_like.fields(step)
+    fields = paper_like.system.fields(step.solution)
     n = paper_like.system.mesh.p.shape[1]
     assert all(value.shape == (n,) for value in fields.values())
     assert np.all(fields["von_mises"] >= 0)

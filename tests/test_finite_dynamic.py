@@ -210,9 +210,8 @@ def test_a_contact_newton_failure_mid_run_is_a_numerical_failure_not_bad_input()
     def fails(*_args):
         raise NewtonError("Newton did not converge in 30 iterations")
 
-    stepper = SimpleNamespace(
-        system=SimpleNamespace(n_dofs=4), nodes=SimpleNamespace(radius=np.zeros(2)), solve=fails
-    )
+    system = SimpleNamespace(n_dofs=4, material=SimpleNamespace(model="neo-hookean"))
+    stepper = SimpleNamespace(system=system, nodes=SimpleNamespace(radius=np.zeros(2)), solve=fails)
     # a thin pad strained beyond what its mesh resolves (3 mm at 3 m/s fails at 1.9 mm):
     # exit 1 with the depth and what to change, not exit 2 as if an input were out of range
     expected = r"failed at depth 0\.002 m .*finer mesh_size=\.\.\."  # the API's words

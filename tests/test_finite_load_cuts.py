@@ -1,5 +1,5 @@
 """A failing load step of the finite-strain bonded / Coulomb curve is taken in halves
-(fem/contact/finite_stick.py, ``_in_halves``), as the impacts cut a failing time step.
+(fem/contact/constraints.py, ``in_halves``), as the impacts cut a failing time step.
 
 The case: z = 5 r^1.5 pressed to d/a = 0.6 into nu2 = 0.49 neo-Hookean rubber on the wiring
 tests' rough mesh (3093 dofs), in load steps of ratio 4. On main's code path (no cut) the step

@@ -457,6 +457,25 @@ class Problem:
                 "rate",
             )
 
+    def alone(self, caller: str, loading: str, **beside: Any) -> Problem:
+        """This problem as ``caller`` ("contact") takes it: a TypeError naming the parts
+        ``beside`` it that are given (other than None and :data:`DEFAULTS`), an InputError
+        unless its loading is ``loading`` ("curve" or "impact")."""
+        given = [
+            key
+            for key, value in beside.items()
+            if value is not None and not (isinstance(value, str) and value == DEFAULTS.get(key))
+        ]
+        if given:
+            raise TypeError(f"{caller}(problem) takes numerics only; the problem holds {given}")
+        if self.loading.kind != loading:
+            does = {
+                "curve": "presses a contact curve (Problem.curve)",
+                "impact": "runs an impact (Problem.impact), not a curve",
+            }[loading]
+            raise InputError(f"problem: {caller}() {does}")
+        return self
+
     @property
     def cell(self) -> Cell:
         """This problem's combination of parts."""
@@ -529,20 +548,20 @@ def parts(indenter: Indenter, body: Material, **keywords: Any) -> dict[str, Any]
     ``loading``) from the API's flat keywords (None: not given), each checked on its own but
     not whether they combine: ``Problem(**parts(...))`` checks that (:data:`SUPPORT`)."""
     check_keywords(keywords)
-    given = {key: value for key, value in keywords.items() if value is not None}
+    given = DEFAULTS | {key: value for key, value in keywords.items() if value is not None}
     return dict(
         striker=Striker(
             indenter, given.get("mass"), given.get("velocity"), given.get("striker", RIGID)
         ),
         body=Body(
             body,
-            given.get("model", "linear"),
+            given["model"],
             *(given.get(name) for name in RUBBER_OPTIONS),
             prony=given.get("prony"),
         ),
         geometry=Geometry(given.get("thickness"), given.get("base")),
-        interface=Interface(given.get("interface", "frictionless"), given.get("friction")),
-        loading=Loading(given.get("loading", "impact"), given.get("depths"), given.get("rate")),
+        interface=Interface(given["interface"], given.get("friction")),
+        loading=Loading(given["loading"], given.get("depths"), given.get("rate")),
     )
 
 
@@ -562,6 +581,8 @@ KEYWORDS = (
     "rate",
 )
 """The flat keywords of :meth:`Problem.from_keywords`."""
+DEFAULTS = {"model": "linear", "interface": "frictionless", "loading": "impact"}
+"""The flat keywords' defaults other than None (not given)."""
 
 
 def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) -> None:

@@ -160,11 +160,10 @@ class DynamicResult:
         }
         for key in (key for key in SECTIONS if getattr(self, key) is None):
             out[key] = self._section_reason(key, elastic, massless)
-        finite = self.model != "linear"
         for part, keys in PARTS.items():
             given = getattr(self, part)
             for key in (key for key in keys if not _finite(given.get(key))):
-                out[f"{part}.{key}"] = _part_reason(key, finite, massless)
+                out[f"{part}.{key}"] = _part_reason(key, self.rubber is not None, massless)
         return out
 
     def _section_reason(self, key: str, elastic: bool, massless: bool) -> str:

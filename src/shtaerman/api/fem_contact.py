@@ -312,23 +312,12 @@ PHYSICS = tuple(name for name in KEYWORDS if name != "loading")
 """The keywords of :func:`contact` that describe the problem (the rest are numerics)."""
 
 
-def _default(value: object) -> bool:
-    """Whether a physics keyword of :func:`contact` was left at its default (a NumPy array of
-    depths is a given value, not an ambiguous truth)."""
-    return value is None or (isinstance(value, str) and value in ("linear", "frictionless"))
-
-
 def _problem(indenter: Any, body: Any, options: Mapping[str, Any]) -> Problem:
     """The contact curve of :func:`contact`: ``indenter`` itself when it is a
     :class:`Problem` (then no other part may be given), else built from the keywords."""
     physics = {name: options[name] for name in PHYSICS}
     if isinstance(indenter, Problem):
-        given = [k for k, v in physics.items() if not _default(v)]
-        if body is not None or given:
-            raise TypeError(f"contact(problem) takes numerics only; the problem holds {given}")
-        if indenter.loading.kind != "curve":
-            raise InputError("problem: contact() presses a contact curve (Problem.curve)")
-        return indenter
+        return indenter.alone("contact", "curve", body=body, **physics)
     if physics["striker"] is None:
         physics["striker"] = RIGID
     return Problem.curve(indenter, body, **physics)

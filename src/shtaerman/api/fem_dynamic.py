@@ -394,13 +394,8 @@ def _problem(
     finite-strain impact, replaces the body's)."""
     check_keywords(physics, "dynamic()", extra=("density",), without=LOADING_KEYWORDS)
     if isinstance(indenter, Problem):
-        extra = [k for k, v in physics.items() if v not in (None, "linear")]
-        extra += [k for k, v in (("body", body), ("mass", mass), ("velocity", velocity)) if v]
-        if extra:
-            raise TypeError(f"dynamic(problem) takes numerics only; the problem holds {extra}")
-        if indenter.loading.kind != "impact":
-            raise InputError("problem: dynamic() runs an impact (Problem.impact), not a curve")
-        return indenter
+        parts = dict(body=body, mass=mass, velocity=velocity, **physics)
+        return indenter.alone("dynamic", "impact", **parts)
     density = physics.pop("density", None)
     if density is not None and isinstance(body, Material):
         body = dataclasses.replace(body, density=density)

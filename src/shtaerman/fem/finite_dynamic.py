@@ -63,7 +63,6 @@ import math
 import time
 import warnings
 from dataclasses import dataclass, replace
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -285,13 +284,13 @@ class FiniteImpactSetup:
         x_c, t_y, duration, q, _ = self.scales
         dt, stepper = t_y / self.settings.steps, self.stepper
         kept = KeptStates.of(stepper.system, snapshot_times)
+        observe = None if kept is None else kept.offer
         if rho == 0.0:
-            body = _KeepingBody(stepper, dt, kept)
-            columns, separation = march_massless(body, mass, velocity, dt, (duration, q))
+            body = QuasiStaticBody(stepper, dt)
+            columns, separation = march_massless(body, mass, velocity, (duration, q), observe)
             return columns, body.iterations, separation, 0.0, body.cuts, kept
         scheme = TimeScheme.bossak(self.settings.spectral_radius, dt)
         inertial = inertial_system(stepper, rho, scheme)
-        observe = None if kept is None else kept.offer
         columns, iterations, separation, last = march_inertial(
             stepper, inertial, (mass, velocity), (x_c, duration, q), observe
         )
@@ -327,7 +326,7 @@ class KeptStates:
     accepted step)."""
 
     def __init__(self, system: Any, times: tuple[float, ...]) -> None:
-        self.system, self.times, self.t = system, tuple(times), 0.0
+        self.system, self.times = system, tuple(times)
         self.states: dict[float, tuple[float, np.ndarray]] = {}
         """Requested time -> (the step's time (s), its solution)."""
 
@@ -337,36 +336,19 @@ class KeptStates:
         with a Prony series (its relaxed stress is not recovered at the vertices)."""
         return None if not times or isinstance(system, ViscoelasticBody) else cls(system, times)
 
-    def offer(self, dt: float, x: np.ndarray) -> None:
-        """The step of ``dt`` (s) accepted at ``x``: kept where nearer a requested time."""
-        self.t += dt
+    def offer(self, t: float, x: np.ndarray) -> None:
+        """The step accepted at time ``t`` (s) with solution ``x``: kept where nearer a
+        requested time."""
         for wanted in self.times:
             kept = self.states.get(wanted)
-            if kept is None or abs(self.t - wanted) < abs(kept[0] - wanted):
-                self.states[wanted] = (self.t, x.copy())
+            if kept is None or abs(t - wanted) < abs(kept[0] - wanted):
+                self.states[wanted] = (t, x.copy())
 
     def fields(self, wanted: float) -> tuple[float, dict[str, np.ndarray]]:
-        """The step's time (s) and its vertex fields, as
-        :meth:`.contact.finite.FiniteContactCurve.fields` names them."""
-        from .contact.finite import FiniteContactCurve
-
+        """The time (s) of the step kept for ``wanted`` and its vertex fields
+        (:meth:`.hyperelastic.HyperelasticSystem.fields`)."""
         actual, x = self.states[wanted]
-        curve = FiniteContactCurve([], self.system, None, {})  # type: ignore[arg-type]
-        return actual, curve.fields(SimpleNamespace(solution=x))  # type: ignore[arg-type]
-
-
-class _KeepingBody(QuasiStaticBody):
-    """The massless body telling ``kept`` each committed step."""
-
-    def __init__(self, stepper: NewtonStepper, dt: float, kept: KeptStates | None) -> None:
-        super().__init__(stepper, dt)
-        self.kept = kept
-
-    def commit(self, state: Any) -> Any:
-        state = super().commit(state)
-        if self.kept is not None:
-            self.kept.offer(self.dt, state.x)
-        return state
+        return actual, self.system.fields(x)
 
 
 def cut_note(cuts: int, steps: int) -> str:

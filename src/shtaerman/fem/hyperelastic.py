@@ -454,6 +454,21 @@ class HyperelasticSystem:
         )
         return out
 
+    def fields(self, x: np.ndarray) -> dict[str, np.ndarray]:
+        """Vertex fields of the deformed state ``x`` for export (SI): ``r``, ``z`` (reference
+        vertex coordinates, m), ``u_r``, ``u_z`` (m), ``mean_pressure`` (the P1 pressure
+        unknown, Pa) and those of :meth:`cauchy_stress` (Pa)."""
+        u_r, u_z = self.vertex_displacement(x)
+        _, p = self.split(x)
+        return {
+            "r": self.mesh.p[0],
+            "z": self.mesh.p[1],
+            "u_r": u_r,
+            "u_z": u_z,
+            "mean_pressure": p[self.pressure_basis.nodal_dofs[0]],
+            **self.cauchy_stress(x),
+        }
+
     def vertex_displacement(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(u_r, u_z) in m at the mesh vertices."""
         u, _ = self.split(x)

@@ -74,6 +74,7 @@ from .contact.constraints import (
     ContactOutgrowsMeshError,
     central_pressure,
     edge_radius,
+    in_halves,
 )
 from .contact.finite import NewtonStepper, extrapolate
 from .contact.finite_stick import HistoryStepper
@@ -939,43 +940,37 @@ def _massless_step(
     return [(new, speed, _stiffness(state, new, k), dt)]
 
 
-def _in_halves(
-    step: Callable[[Any], list],
-    start: Any,
-    clock: Any,
-    ended: Callable[[Any], bool],
-    failures: tuple[type[Exception], ...],
-    cuts: int = 0,
-) -> list:
-    """``step(start)``: the states one time step of ``clock.dt`` (s) reaches; where it fails
-    (``failures``: a Newton, the secant), the step in two halves of dt / 2 (``clock.dt`` set to
-    it), cut again where they fail, at most :data:`MAX_STEP_CUTS` deep.
+def _in_halves(clock: Any, one: Callable[[Any], list], start: Any, ended: Callable) -> list:
+    """``one(start)``: the states one time step of ``clock.dt`` (s) reaches, committed, or where
+    it fails, in halves of dt / 2 (``clock.dt`` while they step; :func:`.constraints.in_halves`,
+    at most :data:`MAX_STEP_CUTS` deep, the second skipped where the first ``ended`` the
+    contact; a Gent rubber that locks is not cut). Each half is recorded as a step of its own,
+    so the energy account holds at every recorded state. Near separation a relaxing massless
+    body with friction lets many stuck nodes go in one step, and the Newton after that jump
+    stalls (the surface folds at the axis): the smaller step lets them go fewer at a time."""
 
-    Each half is a step of its own, its history committed before the next, so the energy
-    account holds at every recorded state as with uniform steps; the second half is skipped
-    where the first ``ended`` the contact. Near separation a relaxing massless body with
-    friction lets many stuck nodes go in one step, and the Newton after that jump stalls (the
-    surface folds at the axis); the smaller step lets them go fewer at a time. A step that
-    needs no cut is the uncut step, bit for bit.
-    """
-    try:
-        return step(start)
-    except failures as error:
-        if cuts == MAX_STEP_CUTS or isinstance(error, GentLockError):  # the rubber locks
-            raise
-    dt = clock.dt
-    clock.dt = 0.5 * dt
-    try:
-        first = _in_halves(step, start, clock, ended, failures, cuts + 1)
-        if ended(first[-1]):
-            return first
-        return first + _in_halves(step, first[-1], clock, ended, failures, cuts + 1)
-    finally:
-        clock.dt = dt
+    def step(begin: Any, dt: float) -> list:
+        kept, clock.dt = clock.dt, dt
+        try:
+            return one(begin)
+        finally:
+            clock.dt = kept
+
+    def halves(_: Any, dt: float) -> tuple[float, float]:
+        return 0.5 * dt, 0.5 * dt
+
+    def locks(error: Exception, *_: Any) -> Exception | None:
+        return error if isinstance(error, GentLockError) else None
+
+    return in_halves(step, start, clock.dt, halves, locks, MAX_STEP_CUTS, ended)
 
 
 def march_massless(
-    body: QuasiStaticBody, mass: float, velocity: float, dt: float, scales: tuple[float, float]
+    body: QuasiStaticBody,
+    mass: float,
+    velocity: float,
+    scales: tuple[float, float],
+    observe: Callable[[float, np.ndarray], None] | None = None,
 ) -> tuple[tuple[np.ndarray, ...], float | None]:
     """Step from first touch until the striker leaves (or the longest run).
 
@@ -985,27 +980,29 @@ def march_massless(
     Ting's quasi-static impact in :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`),
     its history committed at every step, until the force vanishes with the striker
     rebounding. A step whose contact fails is cut in halves (:func:`_in_halves`; the steps
-    cut are counted in ``body.cuts``). ``scales``: the longest run (s) and q of P ~ X^q.
-    Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or a contact
-    with friction, the body's kinetic (0) and dissipated energies (SI); and the separation
-    time (s; None for an elastic frictionless body, nan if the run ended first).
+    cut are counted in ``body.cuts``). The steps are of ``body.dt`` (s); ``scales``: the
+    longest run (s) and q of P ~ X^q; ``observe(t, x)`` is told each committed step's time (s)
+    and solution. Returns the columns t, X, V, P, stored energy and, for a viscoelastic body or
+    a contact with friction, the body's kinetic (0) and dissipated energies (SI); and the
+    separation time (s; None for an elastic frictionless body, nan if the run ended first).
     """
     duration, exponent = scales
     state, v, t, k = body.zero, velocity, 0.0, 0.0
     extra = (0.0, 0.0) if body.viscous or body.frictional else ()
     gradient = _mean_force if body.history_dependent else _discrete_gradient
     one = partial(_massless_step, body, mass, gradient)
-    body.dt = dt
 
     def step() -> list[tuple[tuple, bool]]:
         nonlocal state, v, t, k
         if not t < duration or (t > 0.0 and state.depth <= 0.0):  # the longest run; X back
             return []
-        pieces = _in_halves(one, (state, v, k), body, _ended, (NumericalFailureError,))
+        pieces = _in_halves(body, one, (state, v, k), _ended)
         rows, body.cuts = [], body.cuts + (len(pieces) > 1)
         for piece in pieces:
             state, v, k, interval = piece
             t += interval
+            if observe is not None:
+                observe(t, state.x)
             row = (t, state.depth, v, state.force, state.energy)
             row += (0.0, state.dissipated) if extra else ()
             rows.append((row, body.history_dependent and _ended(piece)))
@@ -1175,7 +1172,7 @@ def _cut_step(
         iterations += count
         return [new]
 
-    return _in_halves(step, state, inertial, _separated, (NumericalFailureError,)), iterations
+    return _in_halves(inertial, step, state, _separated), iterations
 
 
 def _separated(state: _Dynamic) -> bool:
@@ -1223,8 +1220,8 @@ def march_inertial(
     """Step from first touch until the contact force vanishes with the striker rebounding.
 
     ``striker``: mass M (kg) and v0 (m/s); ``scales``: the depth scale (m), the longest
-    run (s) and q of P ~ X^q (for the separation time between steps); ``observe(dt, x)`` is
-    told each accepted step's length (s) and solution. Returns the columns
+    run (s) and q of P ~ X^q (for the separation time between steps); ``observe(t, x)`` is
+    told each accepted step's time (s) and solution. Returns the columns
     t, X, V, P, Pi, body kinetic energy (SI), the Newton iterations and the separation time
     (s; nan if the run ended first) and the last state; the steps cut in halves are counted
     in ``inertial.cuts``.
@@ -1261,7 +1258,7 @@ def march_inertial(
             _check_candidates(stepper, new.lam, new.depth)
             state, t, deepest = new, t + new.interval, max(deepest, new.depth)
             if observe is not None:
-                observe(new.interval, new.x)
+                observe(t, new.x)
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))
             row = (t, state.depth, state.speed, force, state.energy, body)
             rows.append(((*row, state.dissipated) if dissipative else row, _separated(state)))

@@ -66,7 +66,7 @@ def write_finite_field(
     model = curve.system.material.model
     scalars = step_field_data(step, curve.indenter, material, model)
     scalars["strain_energy [J]"] = step.strain_energy
-    solution = SimpleNamespace(system=curve.system, **curve.fields(step))
+    solution = SimpleNamespace(system=curve.system, **curve.system.fields(step.solution))
     write_vtu(path, field_mesh(solution, scalars))
     return path
 

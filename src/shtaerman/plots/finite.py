@@ -237,7 +237,8 @@ def plot_finite_section(
     finite, curve = outcome.finite, outcome.finite.curve
 
     def fields(step: int) -> SimpleNamespace:  # shaped as :mod:`.sections` reads a result
-        return SimpleNamespace(system=curve.system, **curve.fields(curve.steps[step]))
+        system = curve.system
+        return SimpleNamespace(system=system, **system.fields(curve.steps[step].solution))
 
     deformed = SimpleNamespace(indenter=finite.indenter, steps=finite.steps, field=fields)
     step = nearest_step(outcome)

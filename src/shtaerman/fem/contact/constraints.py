@@ -1,7 +1,7 @@
 """The contact constraints of a rigid indenter written once, for any body: the active-set
 loop of a history-dependent contact (bonded or Coulomb), the load ladder of the static
-contact, and what is read off a solved contact (its edge, its central pressure, whether the
-mesh resolves it).
+contact, the halving of a failing load or time step (:func:`in_halves`), and what is read
+off a solved contact (its edge, its central pressure, whether the mesh resolves it).
 
 Once a surface point touches the rigid indenter it sticks to it; the indenter moves only
 vertically. The contact is history dependent: it is solved step by step (load steps of the
@@ -273,6 +273,38 @@ def cut_step(
         if state is None:
             break
     return state, taken
+
+
+def in_halves(
+    step: Callable[[Any, Any], list],
+    start: Any,
+    span: Any,
+    halve: Callable[[Any, Any], tuple[Any, Any]],
+    give_up: Callable[[NumericalFailureError, Any, Any, bool], Exception | None],
+    limit: int,
+    ended: Callable[[Any], bool] = lambda reached: False,
+) -> list:
+    """``step(start, span)``: what one step over ``span`` (a load step's target depth, a time
+    step's dt) reaches from ``start``, committed (a list; its last is the next start); where it
+    fails (a NumericalFailureError), two halves (``halve(start, span)``: their spans), each
+    committed before the next and cut again where it fails, at most ``limit`` deep; the second
+    is skipped where the first ``ended`` the contact. ``give_up(error, start, span, last)``: the
+    error to raise instead of a cut, or None to cut (``last``: no cut left; None re-raises)."""
+
+    def taken(start: Any, span: Any, cut: int) -> list:
+        try:
+            return step(start, span)
+        except NumericalFailureError as error:
+            refusal = give_up(error, start, span, cut == limit)
+            if refusal is error or (refusal is None and cut == limit):
+                raise
+            if refusal is not None:
+                raise refusal from None
+        first, second = halve(start, span)
+        done = taken(start, first, cut + 1)
+        return done if ended(done[-1]) else done + taken(done[-1], second, cut + 1)
+
+    return taken(start, span, 0)
 
 
 def depth_ladder(start: float, depths: np.ndarray, step_ratio: float) -> np.ndarray:

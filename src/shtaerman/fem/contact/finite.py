@@ -222,25 +222,6 @@ class FiniteContactCurve:
     mesh_stats: dict[str, float] = field(default_factory=dict)
     cuts: int | None = None
 
-    def fields(self, step: FiniteContactStep) -> dict[str, np.ndarray]:
-        """Vertex fields of the deformed state of ``step`` for export (SI).
-
-        Keys ``r``, ``z`` (reference vertex coordinates, m), ``u_r``, ``u_z`` (m),
-        ``mean_pressure`` (the P1 pressure unknown, Pa), ``sigma_rr``, ``sigma_tt``,
-        ``sigma_zz``, ``sigma_rz``, ``von_mises`` (Cauchy, Pa, tension positive).
-        """
-        system = self.system
-        u_r, u_z = system.vertex_displacement(step.solution)
-        _, p = system.split(step.solution)
-        return {
-            "r": system.mesh.p[0],
-            "z": system.mesh.p[1],
-            "u_r": u_r,
-            "u_z": u_z,
-            "mean_pressure": p[system.pressure_basis.nodal_dofs[0]],
-            **system.cauchy_stress(step.solution),
-        }
-
 
 class NewtonStepper:
     """Newton with active set for one depth increment; state kept between increments."""

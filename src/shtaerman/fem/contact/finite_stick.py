@@ -5,7 +5,7 @@ A candidate surface node (reference radius R, displacement (u_r, u_z)) is free u
 vertical gap g = A (R + u_r)^n - d - u_z closes. From then on it sticks: its *current* radius
 x_r = R + u_r keeps the value it had when it touched, and its height follows the indenter,
 x_z = A x_r^n - d. The static contact is loaded over :func:`.constraints.depth_ladder`
-(:func:`bonded_ladder`; a load step that fails is taken in halves, :func:`_in_halves`); at each
+(:func:`bonded_ladder`; a load step that fails is taken in halves, :func:`_halves`); at each
 load step the stuck nodes' two displacement dofs are prescribed and Newton solves for the rest
 (the stepper, pattern and solver of :class:`.finite.NewtonStepper`, the prescribed dofs
 eliminated from its fixed pattern). The curve's Newton is a modified Newton (:func:`_newton`):
@@ -54,6 +54,7 @@ from .constraints import (
     check_loading,
     check_resolved,
     depth_ladder,
+    in_halves,
     settle,
     unsettled,
     walk_ladder,
@@ -84,7 +85,7 @@ MAX_ADDED = 40
 since it was made (one solve each, :meth:`_Kept.constrained`)."""
 MAX_LOAD_CUTS = 4
 """Halvings (in ln depth) of a load step of the curve whose Newton or stick and slip failed:
-down to 1/16 of its ln(step_ratio) (:func:`_in_halves`)."""
+down to 1/16 of its ln(step_ratio) (:func:`_halves`)."""
 RELEASE_BAND = 1e-6
 """A stuck node is released when its vertical reaction is below -this x the largest one (N):
 Newton stops at corrections of ``NEWTON_TOLERANCE`` x depth, which leaves noise in the
@@ -648,7 +649,7 @@ def solve_finite_bonded_contact(
     the Coulomb coefficient (inf: no slip): a stuck node slides once its shear exceeds
     ``friction`` times its normal force, both resolved on the indenter's normal at its
     current radius; 0 is the frictionless contact, solved as such (no load steps). A load
-    step that fails is taken in halves (:func:`_in_halves`), counted in the curve's ``cuts``.
+    step that fails is taken in halves (:func:`_halves`), counted in the curve's ``cuts``.
 
     Raises
     ------
@@ -685,28 +686,32 @@ def _finite_ladder(
 ) -> tuple[list[FiniteContactStep], int]:
     """Load through the ``ladder`` (m) and keep the contact at each requested depth (Coulomb
     ``friction``; inf: no slip); each load step starts from the solution extrapolated linearly
-    from the last two, and one that fails is taken in halves (:func:`_in_halves`). Returns the
+    from the last two, and one that fails is taken in halves (:func:`_halves`; a Gent rubber
+    that locks, :func:`.rubber.gent_locks`, is not cut: its limit is an input). Returns the
     steps and how many load steps of the ladder were cut."""
     last, previous, done, previous_depth = _Load.untouched(stepper), None, 0.0, 0.0
-    committed, cuts = 0, 0
+    cuts, iterations = 0, 0
 
-    def step(depth: float) -> int:
-        nonlocal last, previous, done, previous_depth, committed
+    def step(start: float, depth: float) -> list[float]:
+        nonlocal last, previous, done, previous_depth, iterations
         guess = last.x
         if previous is not None:
-            guess = last.x + (depth - done) / (done - previous_depth) * (last.x - previous.x)
+            guess = last.x + (depth - start) / (start - previous_depth) * (last.x - previous.x)
         state = _load_step(stepper, last, guess, (depth, depth), friction)
         check_resolved(stepper.nodes.radius, state.lam, depth, fewest=1)
-        previous, previous_depth, last, done = last, done, state, depth
-        committed += 1
-        return state.iterations
+        previous, previous_depth, last, done = last, start, state, depth
+        iterations += state.iterations
+        return [depth]
+
+    def give_up(error: Exception, start: float, depth: float, exhausted: bool) -> Any:
+        locked = gent_locks(error, stepper.system, last.x, depth, last=exhausted)
+        return locked or (_exhausted(error, start, depth) if exhausted else None)
 
     def advance(depth: float) -> int:
-        nonlocal cuts
-        before = committed
-        taken = _in_halves(step, lambda: (done, last.x), depth, stepper.system)
-        cuts += committed - before > 1
-        return taken
+        nonlocal cuts, iterations
+        iterations = 0
+        cuts += len(in_halves(step, done, depth, _halves, give_up, MAX_LOAD_CUTS)) > 1
+        return iterations
 
     def record(depth: float, taken: int) -> FiniteContactStep:
         solved = (last.x, last.lam, last.iterations, taken, last.corrections)
@@ -715,41 +720,14 @@ def _finite_ladder(
     return walk_ladder(ladder, depths, advance, record), cuts
 
 
-def _in_halves(
-    step: Callable[[float], int],
-    reached: Callable[[], tuple[float, np.ndarray]],
-    depth: float,
-    system: HyperelasticSystem,
-    cut: int = 0,
-) -> int:
-    """``step(depth)``: one load step to ``depth`` (m) from the last one committed
-    (``reached()``: its depth, m, and solution), committed, its Newton iterations returned;
-    where its Newton or its stick and slip fail, the step in two halves, cut again where they
-    fail, at most :data:`MAX_LOAD_CUTS` deep. A step that needs no cut is the uncut step.
-
-    The middle is geometric, sqrt(from x to), as the ladder is: each half is a load step of
-    the ladder with step_ratio sqrt(ratio), committed (the stuck nodes' held radii) before
-    the next, so the cut curve is locally the finer ladder's (an arithmetic middle would leave
-    the first half the larger ratio, (1 + r) / 2 > sqrt(r)). The first step, from depth 0,
-    is cut at depth / 2.
-
-    Raises
-    ------
-    GentLockError
-        The Gent rubber locks (:func:`.rubber.gent_locks`): its limit, an input.
-    NumericalFailureError
-        A step cut :data:`MAX_LOAD_CUTS` times still fails.
-    """
-    try:
-        return step(depth)
-    except NumericalFailureError as error:  # a NewtonError too
-        done, x = reached()
-        locked = gent_locks(error, system, x, depth, last=cut == MAX_LOAD_CUTS)
-        if locked is not None or cut == MAX_LOAD_CUTS:
-            raise (locked or _exhausted(error, done, depth)) from None
-    middle = math.sqrt(done * depth) if done > 0.0 else 0.5 * depth
-    taken = _in_halves(step, reached, middle, system, cut + 1)
-    return taken + _in_halves(step, reached, depth, system, cut + 1)
+def _halves(done: float, depth: float) -> tuple[float, float]:
+    """The halves of the load step from ``done`` to ``depth`` (m) whose Newton or stick and
+    slip failed (:func:`.constraints.in_halves`): to the geometric middle sqrt(done depth),
+    as the ladder is, then to ``depth``. Each half is a load step of the ladder with
+    step_ratio sqrt(ratio), committed (the stuck nodes' held radii) before the next, so the
+    cut curve is locally the finer ladder's (an arithmetic middle would leave the first half
+    the larger ratio, (1 + r) / 2 > sqrt(r)). The first step, from depth 0, is cut at depth / 2."""
+    return (math.sqrt(done * depth) if done > 0.0 else 0.5 * depth), depth
 
 
 def _exhausted(error: Exception, done: float, depth: float) -> NumericalFailureError:
