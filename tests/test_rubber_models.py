@@ -499,6 +499,30 @@ def test_a_failed_gent_step_is_a_lock_only_near_the_limit_or_at_once():
     assert 0.99 < LOCKED < 1.0  # the stiffness mu / (1 - LOCKED) is over 100 mu
 
 
+def test_a_gent_rubber_locking_at_once_with_inertia_is_refused_as_on_the_other_routes():
+    """adv50: Jm 1e-6 with inertia failed as a numerical failure (exit 1, 132 s: 'Newton did
+    not converge in 30 iterations, also in steps cut 4 times'), where the contact curve and
+    the massless impact of the same rubber are refused as locking at 6.4e-6 and 7.7e-6 m
+    (exit 2). Every Newton of the first step had its iterates past the limit (1,208 of them
+    halved): that non-convergence is the limit's, so the first step is the lock."""
+    import shtaerman as sh
+    from shtaerman.fem.rubber import GentLockError
+
+    with pytest.raises(GentLockError, match="locks at depth") as caught:
+        sh.dynamic(
+            PAPER,
+            Material(E2, 0.5, 1100.0),
+            mass=0.7,
+            velocity=3.0,
+            model="gent",
+            gent_limit=1e-6,
+            estimate=False,
+            time_steps=50,
+            mesh_size=0.2,
+        )
+    assert caught.value.parameter == "gent_limit"
+
+
 def test_a_gent_lock_in_the_first_step_with_inertia_names_a_depth_reached(capsys):
     """It said 'locks at depth 0 m': the depth before the step, not the one it went for."""
     import re
