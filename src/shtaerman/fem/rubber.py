@@ -279,11 +279,23 @@ class GentLockError(NewtonError, InputError):
         InputError.__init__(self, message, parameter)
 
     @staticmethod
-    def locking(limit: float, depth: float) -> GentLockError:
-        """The one-line diagnosis of a rubber that locks at ``depth`` (m), naming gent_limit."""
+    def locking(limit: float, step: tuple[float, float], stretch: float) -> GentLockError:
+        """The one-line diagnosis of a rubber that locks in the failed load ``step`` (from,
+        to: m) from a converged state at ``stretch`` (I1bar - 3) / Jm, naming gent_limit; a
+        first step (from the undeformed body, ``stretch`` 0) bounds the depth from above."""
+        done, depth = step
+        if stretch > 0.0:
+            where = (
+                f"at depth {done:.6g} m: its stretch I1bar - 3 is {stretch:.6f} of its limit "
+                f"Jm = {limit:g} there, and the load step on to {depth:.6g} m fails"
+            )
+        else:
+            where = (
+                f"before depth {depth:.6g} m: its first load step, from the undeformed body, "
+                f"passes its limit I1bar - 3 = Jm = {limit:g}"
+            )
         return GentLockError(
-            f"gent_limit: the Gent rubber locks at depth {depth:.6g} m: its stretch I1bar - 3 "
-            f"reaches its limit Jm = {limit:g} there; give a larger limit (a finer mesh, "
+            f"gent_limit: the Gent rubber locks {where}; give a larger limit (a finer mesh, "
             "more depths or shorter steps do not pass the limit)",
             "gent_limit",
         )
@@ -300,19 +312,20 @@ def gent_stretch(material: Rubber, state: Kinematics) -> float:
 
 
 def gent_locks(
-    error: Exception, system: Any, x: np.ndarray, depth: float, *, last: bool
+    error: Exception, system: Any, x: np.ndarray, step: tuple[float, float], *, last: bool
 ) -> GentLockError | None:
-    """The diagnosis of a load step to ``depth`` (m) that failed with ``error``: the Gent
-    rubber locking where the last converged state ``x`` of ``system`` (a hyperelastic system of
-    the rubber) is at :data:`LOCKED` of its limit, or where, ``last`` (no cut left), ``x`` is
-    undeformed and ``error`` is the limit (the first step passes it at every cut); None
-    otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
+    """The diagnosis of a load ``step`` (from the depth of ``x`` to a depth, m) that failed
+    with ``error``: the Gent rubber locking where the last converged state ``x`` of ``system``
+    (a hyperelastic system of the rubber) is at :data:`LOCKED` of its limit, or where, ``last``
+    (no cut left), ``x`` is undeformed and ``error`` is the limit (the first step passes it at
+    every cut); None otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
     material = system.material
     if material.model != "gent":
         return None
     undeformed = last and isinstance(error, GentLimitError) and not np.any(x)
-    if undeformed or gent_stretch(material, system.state(x)) >= LOCKED:
-        return GentLockError.locking(material.gent_limit, depth)
+    stretch = gent_stretch(material, system.state(x))
+    if undeformed or stretch >= LOCKED:
+        return GentLockError.locking(material.gent_limit, step, stretch)
     return None
 
 

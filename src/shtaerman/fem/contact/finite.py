@@ -705,7 +705,8 @@ def _reach(
             x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam, reach=reach)
         except NewtonError as error:
             cuts += 1
-            locked = gent_locks(error, stepper.system, history[-1][1], trial, last=cuts > max_cuts)
+            step = (done, trial)
+            locked = gent_locks(error, stepper.system, history[-1][1], step, last=cuts > max_cuts)
             if locked is not None:
                 raise locked from None
             if cuts > max_cuts:

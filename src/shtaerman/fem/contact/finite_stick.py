@@ -744,7 +744,7 @@ def _in_halves(
         return step(depth)
     except NumericalFailureError as error:  # a NewtonError too
         done, x = reached()
-        locked = gent_locks(error, system, x, depth, last=cut == MAX_LOAD_CUTS)
+        locked = gent_locks(error, system, x, (done, depth), last=cut == MAX_LOAD_CUTS)
         if locked is not None or cut == MAX_LOAD_CUTS:
             raise (locked or _exhausted(error, done, depth)) from None
     middle = math.sqrt(done * depth) if done > 0.0 else 0.5 * depth
