@@ -209,6 +209,19 @@ def test_bad_rubber_options_are_one_line_naming_the_option(options, word):
     assert word in str(error.value) and "\n" not in str(error.value)
 
 
+def test_numpy_scalars_are_rubber_constants_as_they_are_masses():
+    """adv50: np.float32(0.2) as gent_limit was refused as 'gent_limit must be a finite
+    number > 0, got np.float32(0.2)' (np.int64 and mooney_ratio alike) where mass=np.float32
+    is taken; a NumPy bool stays refused."""
+    gent = rubber_model("gent", gent_limit=np.float32(0.2))
+    assert gent.gent_limit == float(np.float32(0.2)) and type(gent.gent_limit) is float
+    assert rubber_model("gent", gent_limit=np.int64(30)).gent_limit == 30.0
+    assert rubber_model("mooney-rivlin", mooney_ratio=np.float32(0.25)).mooney_ratio == 0.25
+    for bad in (np.bool_(True), np.float64(np.nan), np.float32(-1.0)):
+        with pytest.raises(InputError, match="gent_limit must be a finite number > 0"):
+            rubber_model("gent", gent_limit=bad)
+
+
 @pytest.mark.parametrize(
     ("options", "word"),
     [

@@ -38,6 +38,7 @@ I2bar = J^(-4/3) I2.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -170,20 +171,25 @@ def rubber_model(
             f"volumetric must be one of {', '.join(VOLUMETRIC)}, got {volumetric!r}", "volumetric"
         )
     ratio = 0.0 if mooney_ratio is None else mooney_ratio
-    if isinstance(ratio, bool) or not isinstance(ratio, int | float) or not 0.0 <= ratio < 1.0:
+    if not _real(ratio) or not 0.0 <= ratio < 1.0:
         raise InputError(f"mooney_ratio must lie in [0, 1), got {mooney_ratio!r}", "mooney_ratio")
     limit = math.inf
     if model == "gent":
         if gent_limit is None:
             raise InputError("gent_limit: the gent model needs Jm > 0 (e.g. 97.2)", "gent_limit")
-        ok = isinstance(gent_limit, int | float) and not isinstance(gent_limit, bool)
-        if not ok or not 0.0 < gent_limit < math.inf:
+        if not _real(gent_limit) or not 0.0 < gent_limit < math.inf:
             raise InputError(
                 f"gent_limit must be a finite number > 0, got {gent_limit!r}", "gent_limit"
             )
         limit = float(gent_limit)
     pair = (0.0, 0.0) if yeoh is None else _yeoh_pair(yeoh)
     return RubberModel(model, float(ratio), pair, limit, volumetric or "quadratic")
+
+
+def _real(value: Any) -> bool:
+    """Whether ``value`` is a real number (a NumPy scalar too, as the vocabulary takes them
+    for mass=...), not a bool: np.float32(0.2) was refused as 'must be a finite number > 0'."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
 
 
 @dataclass(frozen=True)
