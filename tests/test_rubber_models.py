@@ -402,6 +402,16 @@ def test_study_file_sweeps_the_model_with_each_models_shape(tmp_path):
     assert study.rubber.volumetric == "logarithmic"
 
 
+def test_a_gent_study_file_loads_with_its_limit(tmp_path):
+    """adv50: every finite-strain study file of model "gent" (not swept) was refused as "key
+    'rubber.gent_limit': the gent model needs Jm > 0", its gent_limit given: the check of its
+    contact curve built the problem's body from the model's name alone."""
+    from shtaerman.study.schema import load_study
+
+    [study] = load_study(_study_file(tmp_path, 'model = "gent"\ngent_limit = 0.01'))
+    assert study.rubber == rubber_model("gent", gent_limit=0.01)
+
+
 @pytest.mark.parametrize(
     "rubber",
     [
