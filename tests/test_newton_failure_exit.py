@@ -12,7 +12,7 @@ from shtaerman.validation import InputError, NumericalFailureError
 def test_a_newton_failure_is_numerical_and_a_gent_lock_is_input():
     assert issubclass(NewtonError, NumericalFailureError)
     assert not issubclass(NewtonError, InputError)
-    locked = GentLockError.locking(30.0, 1e-3)
+    locked = GentLockError.locking(30.0, (5e-4, 1e-3), 0.9995)
     assert isinstance(locked, InputError) and isinstance(locked, NewtonError)
     assert locked.parameter == "gent_limit"
 

@@ -209,6 +209,19 @@ def test_bad_rubber_options_are_one_line_naming_the_option(options, word):
     assert word in str(error.value) and "\n" not in str(error.value)
 
 
+def test_numpy_scalars_are_rubber_constants_as_they_are_masses():
+    """adv50: np.float32(0.2) as gent_limit was refused as 'gent_limit must be a finite
+    number > 0, got np.float32(0.2)' (np.int64 and mooney_ratio alike) where mass=np.float32
+    is taken; a NumPy bool stays refused."""
+    gent = rubber_model("gent", gent_limit=np.float32(0.2))
+    assert gent.gent_limit == float(np.float32(0.2)) and type(gent.gent_limit) is float
+    assert rubber_model("gent", gent_limit=np.int64(30)).gent_limit == 30.0
+    assert rubber_model("mooney-rivlin", mooney_ratio=np.float32(0.25)).mooney_ratio == 0.25
+    for bad in (np.bool_(True), np.float64(np.nan), np.float32(-1.0)):
+        with pytest.raises(InputError, match="gent_limit must be a finite number > 0"):
+            rubber_model("gent", gent_limit=bad)
+
+
 @pytest.mark.parametrize(
     ("options", "word"),
     [
@@ -389,6 +402,16 @@ def test_study_file_sweeps_the_model_with_each_models_shape(tmp_path):
     assert study.rubber.volumetric == "logarithmic"
 
 
+def test_a_gent_study_file_loads_with_its_limit(tmp_path):
+    """adv50: every finite-strain study file of model "gent" (not swept) was refused as "key
+    'rubber.gent_limit': the gent model needs Jm > 0", its gent_limit given: the check of its
+    contact curve built the problem's body from the model's name alone."""
+    from shtaerman.study.schema import load_study
+
+    [study] = load_study(_study_file(tmp_path, 'model = "gent"\ngent_limit = 0.01'))
+    assert study.rubber == rubber_model("gent", gent_limit=0.01)
+
+
 @pytest.mark.parametrize(
     "rubber",
     [
@@ -434,13 +457,14 @@ def test_findings_name_the_model_and_flag_the_volumetric_energy():
 
 # --- a Gent rubber that locks is told so (issue 31 items 13-14), and one that does not runs ---
 
-LOCKS = "--gent-limit: the Gent rubber locks at depth "
+LOCKS = "--gent-limit: the Gent rubber locks "
 
 
 def _locking_depth(err: str) -> float:
     assert err.startswith(f"shtaerman: error: {LOCKS}") and err.count("\n") == 1, err
     assert "refine the mesh" not in err and "finer --mesh-size" not in err
-    return float(err.removeprefix(f"shtaerman: error: {LOCKS}").split(" m:")[0])
+    # "at depth D m" (a state near the limit) or "before depth D m" (the first step)
+    return float(err.removeprefix(f"shtaerman: error: {LOCKS}").split(" m:")[0].split()[-1])
 
 
 @pytest.mark.parametrize("limit", ["1e-6", "0.01"])
@@ -492,11 +516,40 @@ def test_a_failed_gent_step_is_a_lock_only_near_the_limit_or_at_once():
     rest = np.zeros(system.n_dofs)
     assert gent_stretch(system.material, system.state(rest)) == 0.0
     overshoot = GentLimitError("an iterate passed the gent limit I1bar - 3 = Jm = 0.01")
-    assert gent_locks(overshoot, system, rest, 1e-4, last=False) is None  # 0 < LOCKED: cut
-    assert gent_locks(NewtonError("no convergence"), system, rest, 1e-4, last=True) is None
-    locked = gent_locks(overshoot, system, rest, 1e-4, last=True)  # the first step, no cut left
-    assert locked.parameter == "gent_limit" and "locks at depth 0.0001 m" in str(locked)
+    step = (0.0, 1e-4)  # from the undeformed body to 0.1 mm
+    assert gent_locks(overshoot, system, rest, step, last=False) is None  # 0 < LOCKED: cut
+    assert gent_locks(NewtonError("no convergence"), system, rest, step, last=True) is None
+    locked = gent_locks(overshoot, system, rest, step, last=True)  # the first step, no cut left
+    # adv50: it said "locks at depth 0.0001 m", the step's end, where the first step locks
+    # anywhere before it: the contact curve said 6.4e-6 m, the massless impact 7.7e-6 m, the
+    # impact with inertia 4.9e-4 m and the finite-strain study 6.0e-10 m for Jm 1e-6
+    said = "locks before depth 0.0001 m: its first load step, from the undeformed body"
+    assert locked.parameter == "gent_limit" and said in str(locked)
     assert 0.99 < LOCKED < 1.0  # the stiffness mu / (1 - LOCKED) is over 100 mu
+
+
+def test_a_gent_rubber_locking_at_once_with_inertia_is_refused_as_on_the_other_routes():
+    """adv50: Jm 1e-6 with inertia failed as a numerical failure (exit 1, 132 s: 'Newton did
+    not converge in 30 iterations, also in steps cut 4 times'), where the contact curve and
+    the massless impact of the same rubber are refused as locking at 6.4e-6 and 7.7e-6 m
+    (exit 2). Every Newton of the first step had its iterates past the limit (1,208 of them
+    halved): that non-convergence is the limit's, so the first step is the lock."""
+    import shtaerman as sh
+    from shtaerman.fem.rubber import GentLockError
+
+    with pytest.raises(GentLockError, match="locks before depth") as caught:
+        sh.dynamic(
+            PAPER,
+            Material(E2, 0.5, 1100.0),
+            mass=0.7,
+            velocity=3.0,
+            model="gent",
+            gent_limit=1e-6,
+            estimate=False,
+            time_steps=50,
+            mesh_size=0.2,
+        )
+    assert caught.value.parameter == "gent_limit"
 
 
 def test_a_gent_lock_in_the_first_step_with_inertia_names_a_depth_reached(capsys):
@@ -508,5 +561,5 @@ def test_a_gent_lock_in_the_first_step_with_inertia_names_a_depth_reached(capsys
     argv = ["dynamic", "--model", "gent", "--gent-limit", "0.01", "--mesh-size", "0.2"]
     assert main([*argv, "--time-steps", "50"]) == 2
     err = capsys.readouterr().err
-    depth = float(re.search(r"locks at depth (\S+) m", err)[1])
+    depth = float(re.search(r"locks before depth (\S+) m", err)[1])
     assert 0.0 < depth < 1e-3 and err.count("\n") == 1, err  # within the first steps of 8.5 mm

@@ -38,6 +38,7 @@ I2bar = J^(-4/3) I2.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -170,20 +171,24 @@ def rubber_model(
             f"volumetric must be one of {', '.join(VOLUMETRIC)}, got {volumetric!r}", "volumetric"
         )
     ratio = 0.0 if mooney_ratio is None else mooney_ratio
-    if isinstance(ratio, bool) or not isinstance(ratio, int | float) or not 0.0 <= ratio < 1.0:
+    if not _real(ratio) or not 0.0 <= ratio < 1.0:
         raise InputError(f"mooney_ratio must lie in [0, 1), got {mooney_ratio!r}", "mooney_ratio")
     limit = math.inf
     if model == "gent":
         if gent_limit is None:
             raise InputError("gent_limit: the gent model needs Jm > 0 (e.g. 97.2)", "gent_limit")
-        ok = isinstance(gent_limit, int | float) and not isinstance(gent_limit, bool)
-        if not ok or not 0.0 < gent_limit < math.inf:
+        if not _real(gent_limit) or not 0.0 < gent_limit < math.inf:
             raise InputError(
                 f"gent_limit must be a finite number > 0, got {gent_limit!r}", "gent_limit"
             )
         limit = float(gent_limit)
     pair = (0.0, 0.0) if yeoh is None else _yeoh_pair(yeoh)
     return RubberModel(model, float(ratio), pair, limit, volumetric or "quadratic")
+
+
+def _real(value: Any) -> bool:
+    """Whether ``value`` is a real number (a NumPy scalar too, as for mass=...), not a bool."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
 
 
 @dataclass(frozen=True)
@@ -279,11 +284,23 @@ class GentLockError(NewtonError, InputError):
         InputError.__init__(self, message, parameter)
 
     @staticmethod
-    def locking(limit: float, depth: float) -> GentLockError:
-        """The one-line diagnosis of a rubber that locks at ``depth`` (m), naming gent_limit."""
+    def locking(limit: float, step: tuple[float, float], stretch: float) -> GentLockError:
+        """The one-line diagnosis of a rubber that locks in the failed load ``step`` (from,
+        to: m) from a converged state at ``stretch`` (I1bar - 3) / Jm, naming gent_limit; a
+        first step (from the undeformed body, ``stretch`` 0) bounds the depth from above."""
+        done, depth = step
+        if stretch > 0.0:
+            where = (
+                f"at depth {done:.6g} m: its stretch I1bar - 3 is {stretch:.6f} of its limit "
+                f"Jm = {limit:g} there, and the load step on to {depth:.6g} m fails"
+            )
+        else:
+            where = (
+                f"before depth {depth:.6g} m: its first load step, from the undeformed body, "
+                f"passes its limit I1bar - 3 = Jm = {limit:g}"
+            )
         return GentLockError(
-            f"gent_limit: the Gent rubber locks at depth {depth:.6g} m: its stretch I1bar - 3 "
-            f"reaches its limit Jm = {limit:g} there; give a larger limit (a finer mesh, "
+            f"gent_limit: the Gent rubber locks {where}; give a larger limit (a finer mesh, "
             "more depths or shorter steps do not pass the limit)",
             "gent_limit",
         )
@@ -300,19 +317,20 @@ def gent_stretch(material: Rubber, state: Kinematics) -> float:
 
 
 def gent_locks(
-    error: Exception, system: Any, x: np.ndarray, depth: float, *, last: bool
+    error: Exception, system: Any, x: np.ndarray, step: tuple[float, float], *, last: bool
 ) -> GentLockError | None:
-    """The diagnosis of a load step to ``depth`` (m) that failed with ``error``: the Gent
-    rubber locking where the last converged state ``x`` of ``system`` (a hyperelastic system of
-    the rubber) is at :data:`LOCKED` of its limit, or where, ``last`` (no cut left), ``x`` is
-    undeformed and ``error`` is the limit (the first step passes it at every cut); None
-    otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
+    """The diagnosis of a load ``step`` (from the depth of ``x`` to a depth, m) that failed
+    with ``error``: the Gent rubber locking where the last converged state ``x`` of ``system``
+    (a hyperelastic system of the rubber) is at :data:`LOCKED` of its limit, or where, ``last``
+    (no cut left), ``x`` is undeformed and ``error`` is the limit (the first step passes it at
+    every cut); None otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
     material = system.material
     if material.model != "gent":
         return None
     undeformed = last and isinstance(error, GentLimitError) and not np.any(x)
-    if undeformed or gent_stretch(material, system.state(x)) >= LOCKED:
-        return GentLockError.locking(material.gent_limit, depth)
+    stretch = gent_stretch(material, system.state(x))
+    if undeformed or stretch >= LOCKED:
+        return GentLockError.locking(material.gent_limit, step, stretch)
     return None
 
 

@@ -822,7 +822,8 @@ class QuasiStaticBody:
             x, lam, iterations, _ = self._newton(depth)
         except NewtonError as error:
             last = self.history[-1]
-            locked = gent_locks(error, self.stepper.system, last.x, depth, last=halvings == 0)
+            step = (last.depth, depth)
+            locked = gent_locks(error, self.stepper.system, last.x, step, last=halvings == 0)
             if locked is not None or halvings == 0:
                 raise (locked or error) from None
             middle = 0.5 * (depth + last.depth)
@@ -1247,7 +1248,8 @@ def march_inertial(
         except NewtonError as error:
             # a Gent rubber at its limit locks (rubber.gent_locks); else a numerical failure
             reached = state.depth + abs(state.speed) * inertial.dt  # the depth it went for
-            locked = gent_locks(error, stepper.system, state.x, reached, last=True)
+            step = (state.depth, reached)
+            locked = gent_locks(error, stepper.system, state.x, step, last=True)
             raise (locked or _step_failure(stepper, (t, state.depth, deepest), error)) from None
         total, rows = total + iterations, []
         inertial.cuts += len(states) > 1

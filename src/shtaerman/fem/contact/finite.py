@@ -340,17 +340,21 @@ class NewtonStepper:
         ------
         NewtonError
             No convergence in ``max_iterations``, or an element inverted.
+        GentLimitError
+            An iterate past a Gent rubber's limit after its halvings, or no convergence where
+            iterates passed it (:func:`.rubber.gent_locks`).
         """
         x, lam = start[0].copy(), start[1].copy()
         corrections: list[float] = []
         fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
-        step, halvings = None, 0
+        step, halvings, limited = None, 0, False
         for iteration in range(1, self.max_iterations + 1):
             state, outside = self.admit(x)
             if outside is not None:
                 if step is not None and not fresh[-1] and self.redone_in_full:
                     raise NewtonError(f"an update of a reused factorization: {outside}")
                 gent = isinstance(outside, GentLimitError)
+                limited |= gent
                 most = max(self.backtracks, GENT_BACKTRACKS) if gent else self.backtracks
                 if step is None or halvings == most:
                     raise outside
@@ -378,7 +382,10 @@ class NewtonStepper:
                 break
             if test and self.converged(corrections, fresh):
                 return x, lam, iteration, corrections
-        raise NewtonError(f"Newton did not converge in {self.max_iterations} iterations")
+        failed = f"Newton did not converge in {self.max_iterations} iterations"
+        if limited:  # the rubber's limit in the way: a lock where the step starts undeformed
+            raise GentLimitError(f"{failed}, its iterates passing the gent limit")
+        raise NewtonError(failed)
 
     def admit(self, x: np.ndarray) -> tuple[Any, NewtonError | None]:
         """The kinematics of the iterate x, and why it is no state of the body (None where it
@@ -679,7 +686,8 @@ def _reach(
             x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam, reach=reach)
         except NewtonError as error:
             cuts += 1
-            locked = gent_locks(error, stepper.system, history[-1][1], trial, last=cuts > max_cuts)
+            step = (done, trial)
+            locked = gent_locks(error, stepper.system, history[-1][1], step, last=cuts > max_cuts)
             if locked is not None:
                 raise locked from None
             if cuts > max_cuts:

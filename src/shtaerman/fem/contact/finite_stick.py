@@ -704,7 +704,7 @@ def _finite_ladder(
         return [depth]
 
     def give_up(error: Exception, start: float, depth: float, exhausted: bool) -> Any:
-        locked = gent_locks(error, stepper.system, last.x, depth, last=exhausted)
+        locked = gent_locks(error, stepper.system, last.x, (start, depth), last=exhausted)
         return locked or (_exhausted(error, start, depth) if exhausted else None)
 
     def advance(depth: float) -> int:

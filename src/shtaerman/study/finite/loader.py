@@ -265,7 +265,7 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
         spec = layer_spec(path, layer, None).resolved(float(exact.a_c))
         parts |= {"thickness": spec.thickness, "base": layer.base}
     try:
-        problem = Problem.curve(indenter, half_space, model=rubber.name, **parts)
+        problem = Problem.curve(indenter, half_space, **_body_keywords(rubber), **parts)
     except InputError as error:
         if error.parameter == "base":  # the Problem's other way out, a linear model, is not ours
             why = str(error).removeprefix("base: ").partition(": take ")[0]
@@ -276,6 +276,13 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
         raise refused(path, error) from None
     surface, geometry = problem.interface, problem.geometry
     return _Curve(surface.kind, surface.friction, geometry.thickness, geometry.base or "bonded")
+
+
+def _body_keywords(rubber: RubberModel) -> dict[str, Any]:
+    """The :class:`~shtaerman.problem.Body` keywords of ``rubber``: its model, its own shape
+    option and its volumetric energy (a Gent rubber without its gent_limit was refused)."""
+    shapes = {k: getattr(rubber, k) for k, owner in RUBBER_SHAPES.items() if owner == rubber.name}
+    return {"model": rubber.name, "volumetric": rubber.volumetric, **shapes}
 
 
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
