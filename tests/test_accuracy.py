@@ -218,21 +218,22 @@ def test_the_graded_field_sizes_the_surface_in_proportion_to_r():
     assert np.median(length[r < 0.2]) == pytest.approx(0.01, rel=0.2)
 
 
-def test_accuracy_1e6_is_met_at_the_default_caps():
-    """Issue 32: ``contact --accuracy 1e-6`` on the paper's case was refused at the default caps
-    (the default family needed about 1.02e6 dofs; with the caps raised, 887k dofs gave a true
-    error of 1.41e-6). The graded family of ``--accuracy`` meets it near 214k dofs."""
-    result = run_to_accuracy(*PAPER, 1e-6, max_time=1e4)  # no wall-clock limit in a test
+def test_accuracy_below_1e4_is_met_on_the_graded_family_with_an_honest_estimate():
+    """Issue 32: ``--accuracy`` below 1e-4 runs the graded family (ACCURACY_GRADING), whose
+    estimate does not understate. 1e-5 here (16k, 30k, 56k dofs; about 6 CPU s); its 1e-6 at
+    the default caps (214k dofs, force true 5.3e-7, estimate 5.9e-7, about 20 CPU s and 2 GB)
+    is benchmarks/accuracy_1e6.py's, an accuracy study kept out of the suite."""
+    result = run_to_accuracy(*PAPER, 1e-5, max_time=1e4)  # no wall-clock limit in a test
     true, estimate = result.finest.errors(), result.error_estimate()
     assert result.levels[-1].dofs <= MeshSettings().max_dofs
-    # the promise: the true error within the target (measured 5.3e-7 force, 2.4e-7 beta) and
-    # an estimate that does not understate it (effectivity measured 1.11 and 2.40)
+    # the promise: the true error within the target (measured 9.5e-7 force, 2.6e-7 beta) and
+    # an estimate that does not understate it (measured 2.7e-6 for both: effectivity 2.9, 10.5)
     for key in ("force", "beta"):
-        assert true[key] <= estimate[key] <= 1e-6
+        assert true[key] <= estimate[key] <= 1e-5
     # the caps are checked on estimates made before meshing: within 15 % here (measured 2-10 %)
     stats = result.finest.mesh_stats
     mesh = replace(MeshSettings(), domain=stats["domain_radius"] / stats["refined_radius"])
-    family = accuracy_mesh(mesh, PAPER[0], default_depths(*PAPER), 1e-6)
+    family = accuracy_mesh(mesh, PAPER[0], default_depths(*PAPER), 1e-5)
     assert family.grading is not None
     for level in result.levels:
         assert family.refined(level.refine).estimated_dofs == pytest.approx(level.dofs, rel=0.15)
