@@ -282,8 +282,10 @@ class NewtonStepper:
         scale: float | None = None,
         *,
         reach: float | None = None,
+        base: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
-        """Newton from (x, lambda) at ``depth``; raises NewtonError on failure. The corrections
+        """Newton from (x, lambda) at ``depth`` (from ``base``, the last converged (x, lambda),
+        where that guess is no state of the body); raises NewtonError on failure. The corrections
         are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0).
         ``reach`` (m): the first iteration's active set leaves out the candidates the guess
         puts in contact at reference radii beyond it (the predicted contact edge,
@@ -312,21 +314,26 @@ class NewtonStepper:
             return du, rows, dlam, not reuse, False
 
         try:
-            return self.iterate((x, lam), scale, increment)
+            return self.iterate((x, lam), scale, increment, base)
         except NewtonError:
             if not self.modified:
                 raise
         # a modified Newton that failed is redone in full: it fails only where full Newton does
         self.modified, self.kept, previous = False, None, None
         try:
-            return self.iterate((x, lam), scale, increment)
+            return self.iterate((x, lam), scale, increment, base)
         finally:
             self.modified = True
 
     def iterate(
-        self, start: tuple[np.ndarray, np.ndarray], scale: float, increment: Callable[..., Any]
+        self,
+        start: tuple[np.ndarray, np.ndarray],
+        scale: float,
+        increment: Callable[..., Any],
+        base: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
-        """Newton's loop from ``start`` = (x, the multipliers lambda (N) of the candidates).
+        """Newton's loop from ``start`` = (x, the multipliers lambda (N) of the candidates), or
+        from ``base`` where ``start`` is no state of the body (an extrapolation past a limit).
 
         ``increment(x, lambda, state, corrections, fresh)`` gives (du, the candidates its
         dlambda acts on, dlambda, whether made with a fresh tangent, whether to test the
@@ -344,12 +351,15 @@ class NewtonStepper:
             An iterate past a Gent rubber's limit after its halvings, or no convergence where
             iterates passed it (:func:`.rubber.gent_locks`).
         """
+        admitted = self.admit(start[0])
+        if admitted[1] is not None and base is not None:
+            start, admitted = base, self.admit(base[0])
         x, lam = start[0].copy(), start[1].copy()
         corrections: list[float] = []
         fresh: list[bool] = []  # per correction: made with a fresh tangent (else reused)
         step, halvings, limited = None, 0, False
         for iteration in range(1, self.max_iterations + 1):
-            state, outside = self.admit(x)
+            state, outside = admitted if iteration == 1 else self.admit(x)
             if outside is not None:
                 if step is not None and not fresh[-1] and self.redone_in_full:
                     raise NewtonError(f"an update of a reused factorization: {outside}")
@@ -679,11 +689,12 @@ def _reach(
         if target - trial < 1e-9 * target:
             trial = target
         guess_x, guess_lam = extrapolate(history, trial)
-        if stepper.admit(guess_x)[1] is not None:  # the predictor passed a limit: no guess
-            guess_x, guess_lam = history[-1][1], history[-1][2]
         reach = predict_reach(stepper.nodes.radius, history, trial, law) if cuts == 0 else None
+        last = (history[-1][1], history[-1][2])
         try:
-            x, lam, iterations, corrections = stepper.solve(trial, guess_x, guess_lam, reach=reach)
+            x, lam, iterations, corrections = stepper.solve(
+                trial, guess_x, guess_lam, reach=reach, base=last
+            )
         except NewtonError as error:
             cuts += 1
             step = (done, trial)
