@@ -289,17 +289,18 @@ def in_halves(
     fails (a NumericalFailureError), two halves (``halve(start, span)``: their spans), each
     committed before the next and cut again where it fails, at most ``limit`` deep; the second
     is skipped where the first ``ended`` the contact. ``give_up(error, start, span, last)``: the
-    error to raise instead of a cut, or None to cut (``last``: no cut left; None re-raises)."""
+    error to raise instead of a cut (``error`` itself too), or None to cut (``last``: no cut
+    left, where None raises ``error``)."""
 
     def taken(start: Any, span: Any, cut: int) -> list:
         try:
             return step(start, span)
         except NumericalFailureError as error:
             refusal = give_up(error, start, span, cut == limit)
-            if refusal is error or (refusal is None and cut == limit):
-                raise
             if refusal is not None:
                 raise refusal from None
+            if cut == limit:
+                raise
         first, second = halve(start, span)
         done = taken(start, first, cut + 1)
         return done if ended(done[-1]) else done + taken(done[-1], second, cut + 1)
