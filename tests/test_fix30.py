@@ -95,6 +95,7 @@ def test_a_gent_pad_with_coulomb_friction_and_inertia_is_not_refused_as_locking(
     # positive peak of the order of the quasi-static P_c (sh.impact: 63 N at 1 m/s on the
     # half-space; the 12 mm pad stiffens it)
     assert 30.0 < result.P_max < 300.0
+    assert result.retried is None  # the 50 steps pass: iterates past the limit are halved
 
 
 # --- the effect table says each note once, naming its runs (audit30) ---------------------------

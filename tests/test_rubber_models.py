@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -475,6 +476,11 @@ def test_a_gent_rubber_that_locks_names_the_gent_limit(capsys, limit):
     # from there to 1.54e-4 m fails: the run stops there (a state at LOCKED = 0.999). Before
     # issue 31 it crawled on in halved steps to 3.9e-3 m and blamed the mesh (85 s)
     assert _locking_depth(err) < 2e-4
+    if limit == "0.01":  # a lock from a converged state: its stretch is past LOCKED
+        from shtaerman.fem.rubber import LOCKED
+
+        stretch = float(re.search(r"its stretch I1bar - 3 is (\S+) of its limit", err)[1])
+        assert LOCKED <= stretch < 1.0, err
 
 
 def test_a_gent_rubber_near_its_limit_is_not_refused_while_its_steps_converge(capsys):
