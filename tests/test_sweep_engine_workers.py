@@ -60,6 +60,19 @@ def _worker_state() -> dict:
     }
 
 
+def _worker_diagnosis() -> dict:
+    """What the preload did and what the signals are, for the assertion's message."""
+    import threading
+
+    worker = sys.modules.get("shtaerman.sweep._worker")
+    return {
+        "preload": getattr(worker, "SET_UP", "module not imported"),
+        "thread": threading.current_thread().name,
+        "main": threading.current_thread() is threading.main_thread(),
+        "handlers": [repr(signal.getsignal(s)) for s in (signal.SIGINT, signal.SIGTERM)],
+    }
+
+
 @linux
 def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkeypatch):
     """A module only this process imported is there in the worker (a spawned worker starts
@@ -69,6 +82,7 @@ def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkey
     monkeypatch.setitem(sys.modules, MARKER, types.ModuleType(MARKER))
     with engine._StopFlag(), engine._quiet_dask(), engine._client(1, None) as client:
         [state] = client.run(_worker_state).values()
+        [diagnosis] = client.run(_worker_diagnosis).values()
     assert state == {
         "inherited": True,
         "memory kept": True,
@@ -76,7 +90,7 @@ def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkey
         "memory monitor": "500ms",
         "sigterm": True,
         "sigint": True,
-    }
+    }, diagnosis
 
 
 @linux

@@ -15,10 +15,19 @@ import threading
 
 from ..allocator import keep_freed_memory
 
+SET_UP: list[str] = []
+"""What :func:`dask_setup` did in this process, for a diagnosis (a CI pass once found a forked
+worker with the sweep's handlers still in place)."""
+
 
 def dask_setup(worker: object) -> None:
     """Called by dask in each worker process as it starts."""
-    if threading.current_thread() is threading.main_thread():
+    thread = threading.current_thread()
+    if thread is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        SET_UP.append("signals")
+    else:
+        SET_UP.append(f"signals left: {thread.name} is not the main thread")
     keep_freed_memory()
+    SET_UP.append("memory")
