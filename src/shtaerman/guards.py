@@ -94,13 +94,14 @@ class LockingWatch:
         self.last = (depth, stretch)
 
     def sentence(self, depth: float, stretch: float) -> str:
-        """The warning of a crossing state at ``depth`` (m) with ``stretch``."""
+        """The warning of the crossing state at ``depth`` (m) with ``stretch``."""
+        before, below = self.last
         return (
-            f"the Gent rubber locks from depth {self.crossed:.4g} m on, where its "
-            f"stretch I1bar - 3 reaches {LOCKED:g} of its limit gent_limit={self.limit:g} "
-            f"(interpolated: {stretch:.6f} at {depth:.6g} m) and its shear stiffness "
-            f"{1.0 / (1.0 - LOCKED):.0f} times the small-strain one: the results beyond "
-            "depend on the load or time steps; a larger limit stays clear of it"
+            f"the Gent rubber locks from depth {self.crossed:.4g} m on: its stretch I1bar - 3 "
+            f"reaches {LOCKED:g} of its limit gent_limit={self.limit:g} there (interpolated "
+            f"between {below:.6f} at {before:.6g} m and {stretch:.6f} at {depth:.6g} m), where "
+            f"its shear stiffness is {1.0 / (1.0 - LOCKED):.0f} times the small-strain one: "
+            "the results beyond depend on the load or time steps; a larger limit stays clear"
         )
 
 
