@@ -112,7 +112,8 @@ def test_every_route_names_the_crossing_within_its_steps():
         [found[name]] = _crossings(run)  # once per run
         crossing, before, after = found[name]
         assert before < crossing <= after, name
-    for pair in (("frictionless curve", "massless impact"), ("bonded curve", "bonded massless impact")):
+    pairs = (("frictionless curve", "massless impact"), ("bonded curve", "bonded massless impact"))
+    for pair in pairs:
         (a, a0, a1), (b, b0, b1) = (found[name] for name in pair)
         assert abs(a - b) <= max(a1 - a0, b1 - b0), (pair, found)
     assert found["bonded curve"][0] > 2.0 * found["frictionless curve"][0]  # the bonded locks later
@@ -122,7 +123,11 @@ def test_a_rubber_far_from_its_limit_does_not_warn():
     rubber = rubber_model("gent", gent_limit=30.0)
     depths = np.geomspace(1e-3, 8.5e-3, 4)
     mesh = MeshSettings(size=0.3)
-    assert _crossings(lambda: run_finite_indentation(PAPER, Material(E2, 0.5), depths, mesh, rubber)) == []
+
+    def curve():
+        run_finite_indentation(PAPER, Material(E2, 0.5), depths, mesh, rubber)
+
+    assert _crossings(curve) == []
 
 
 def test_a_curve_to_x_c_past_the_limit_warns_and_runs():

@@ -315,9 +315,10 @@ def gent_locks(
 ) -> GentLockError | None:
     """The diagnosis of a load ``step`` (from the depth of ``x`` to a depth, m) that failed
     with ``error``: the Gent rubber locking where the last converged state ``x`` of ``system``
-    (a hyperelastic system of the rubber) is at :data:`~shtaerman.guards.LOCKED` of its limit, or where, ``last``
-    (no cut left), ``x`` is undeformed and ``error`` is the limit (the first step passes it at
-    every cut); None otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
+    (a hyperelastic system of the rubber) is at :data:`~shtaerman.guards.LOCKED` of its
+    limit, or where, ``last`` (no cut left), ``x`` is undeformed and ``error`` is the limit
+    (the first step passes it at every cut); None otherwise (no Gent rubber, or a step to cut
+    or a numerical failure)."""
     material = system.material
     if material.model != "gent":
         return None
