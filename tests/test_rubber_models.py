@@ -462,10 +462,14 @@ LOCKS = "--gent-limit: the Gent rubber locks "
 
 
 def _locking_depth(err: str) -> float:
-    assert err.startswith(f"shtaerman: error: {LOCKS}") and err.count("\n") == 1, err
+    """The depth of the refusal, the last line of ``err`` (after the warning of the first
+    state at LOCKED, where one was accepted: tests/test_gent_locking_warning.py)."""
+    *warned, refused = err.splitlines()
+    assert refused.startswith(f"shtaerman: error: {LOCKS}") and len(warned) <= 1, err
+    assert all(line.startswith("shtaerman: warning: the Gent rubber locks from") for line in warned)
     assert "refine the mesh" not in err and "finer --mesh-size" not in err
     # "at depth D m" (a state near the limit) or "before depth D m" (the first step)
-    return float(err.removeprefix(f"shtaerman: error: {LOCKS}").split(" m:")[0].split()[-1])
+    return float(refused.removeprefix(f"shtaerman: error: {LOCKS}").split(" m:")[0].split()[-1])
 
 
 @pytest.mark.parametrize("limit", ["1e-6", "0.01"])
@@ -477,10 +481,16 @@ def test_a_gent_rubber_that_locks_names_the_gent_limit(capsys, limit):
     # issue 31 it crawled on in halved steps to 3.9e-3 m and blamed the mesh (85 s)
     assert _locking_depth(err) < 2e-4
     if limit == "0.01":  # a lock from a converged state: its stretch is past LOCKED
-        from shtaerman.fem.rubber import LOCKED
+        from shtaerman.guards import LOCKED
 
         stretch = float(re.search(r"its stretch I1bar - 3 is (\S+) of its limit", err)[1])
         assert LOCKED <= stretch < 1.0, err
+        # that state warned first, with the depth where the stretch crossed LOCKED: 8.6e-5 m,
+        # between 7.7e-5 m (0.9985) and that state's 1.02e-4 m
+        crossed = float(re.search(r"locks from depth (\S+) m on", err)[1])
+        assert 7.6e-5 < crossed < _locking_depth(err), err
+    else:  # the first step locks: no state accepted near the limit, no warning
+        assert "warning" not in err, err
 
 
 def test_a_gent_rubber_near_its_limit_is_not_refused_while_its_steps_converge(capsys):
@@ -500,7 +510,9 @@ def test_a_gent_rubber_near_its_limit_is_not_refused_while_its_steps_converge(ca
         "--no-estimate",
         "--json",
     )
-    assert code == 0 and "locks" not in err, err
+    # not refused; warned once, from 5.33 mm on (0.99899 at 5.32 mm, 0.99967 at 6.73 mm)
+    assert code == 0 and err.count("\n") == 1 and "error" not in err, err
+    assert err.startswith("shtaerman: warning: the Gent rubber locks from depth 0.005"), err
     assert json.loads(out)["steps"][-1]["depth"] == pytest.approx(8.517e-3, rel=1e-3)
 
 
@@ -515,7 +527,8 @@ def test_a_massless_gent_impact_that_locks_names_the_gent_limit(capsys):
 
 def test_a_failed_gent_step_is_a_lock_only_near_the_limit_or_at_once():
     from shtaerman.fem.hyperelastic import assemble_hyperelastic
-    from shtaerman.fem.rubber import LOCKED, GentLimitError, gent_locks, gent_stretch
+    from shtaerman.fem.rubber import GentLimitError, gent_locks, gent_stretch
+    from shtaerman.guards import LOCKED
 
     mesh = MeshSettings(size=0.2).build(1e-2)
     system = assemble_hyperelastic(mesh, Rubber(E2, 0.5, model="gent", gent_limit=0.01))

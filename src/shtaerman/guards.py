@@ -9,7 +9,10 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   :func:`depth_ratio`, which measures the strain under the indenter) beyond
   :data:`MAX_DEPTH_RATIO`, where the finite-strain contact has been validated: the linear
   model is then far outside small strain (at x/a = 0.88 a neo-Hookean rubber already carries
-  4.9 % less force, docs/findings.md), and the finite-strain result is unverified.
+  4.9 % less force, docs/findings.md), and the finite-strain result is unverified;
+- a Gent rubber's stretch (I1bar - 3) / Jm at :data:`LOCKED`, where it locks: each route
+  tells its :class:`LockingWatch` every state it accepts, and the first at or beyond it warns
+  with the depth the stretch crossed it, wherever the route's steps fall.
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
@@ -26,9 +29,11 @@ from .theory.sneddon import Indenter, contact_law
 
 __all__ = [
     "LINEAR_REACH",
+    "LOCKED",
     "MAX_DEPTH_RATIO",
     "MIN_DEPTH_RATIO",
     "FailedCheckWarning",
+    "LockingWatch",
     "ValidityWarning",
     "check_equator",
     "check_reach",
@@ -45,6 +50,12 @@ MIN_DEPTH_RATIO = 1e-6
 grad u keeps ~1e-16 / (x/a) of them, too few for Newton), and the linear FE's scales reach
 the floating-point range below it (mass 1e-300 gave a singular matrix); the exact quasi-static
 impact is the answer there."""
+LOCKED = 0.999
+"""(I1bar - 3) / Jm of a Gent rubber that locks: its tangent shear stiffness
+mu / (1 - (I1bar - 3) / Jm) is a thousand times mu. A run's first state there warns
+(:class:`LockingWatch`), and a failed load step from a state there is the rubber locking, not a
+step too long (:func:`shtaerman.fem.rubber.gent_locks`; benchmarks/FEM_NOTES.md, "Gent
+locking")."""
 LINEAR_REACH = 100.0
 """Largest x/a a linear FE impact is run at: a depth of a hundred contact radii is no
 model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular matrix)."""
@@ -58,6 +69,40 @@ class FailedCheckWarning(ValidityWarning):
     """A dynamic run that fails the studies' own checks (its energy balance, the energy
     reflected back to the contact): the API warns, the command line exits 1, a study fails
     the check, a sweep records the case as failed."""
+
+
+class LockingWatch:
+    """The Gent stretch (I1bar - 3) / Jm of a run's accepted states, in order (:meth:`accept`):
+    the first at or beyond :data:`LOCKED` issues one :class:`ValidityWarning` naming the depth
+    where the stretch crossed :data:`LOCKED`, linear in the stretch between that state and the
+    one accepted before it (the undeformed body at first), so that every route names about the
+    same depth whatever its steps. ``limit``: Jm (inf for another rubber: never warns)."""
+
+    def __init__(self, limit: float) -> None:
+        self.limit = limit
+        self.last = (0.0, 0.0)  # depth (m) and stretch of the last accepted state
+        self.crossed: float | None = None  # the crossing depth (m), once warned
+
+    def accept(self, depth: float, stretch: float) -> None:
+        """An accepted (converged, committed) state at ``depth`` (m) with ``stretch``."""
+        if self.crossed is None and stretch >= LOCKED:
+            (before, below), span = self.last, stretch - self.last[1]
+            self.crossed = before + (depth - before) * (LOCKED - below) / span
+            from .validation import caller_stacklevel
+
+            warnings.warn(self.sentence(depth, stretch), ValidityWarning, caller_stacklevel())
+        self.last = (depth, stretch)
+
+    def sentence(self, depth: float, stretch: float) -> str:
+        """The warning of the crossing state at ``depth`` (m) with ``stretch``."""
+        before, below = self.last
+        return (
+            f"the Gent rubber locks from depth {self.crossed:.4g} m on: its stretch I1bar - 3 "
+            f"reaches {LOCKED:g} of its limit gent_limit={self.limit:g} there (interpolated "
+            f"between {below:.6f} at {before:.6g} m and {stretch:.6f} at {depth:.6g} m), where "
+            f"its shear stiffness is {1.0 / (1.0 - LOCKED):.0f} times the small-strain one: "
+            "the results beyond depend on the load or time steps; a larger limit stays clear"
+        )
 
 
 def depth_ratio(indenter: Indenter, depth: float) -> float:

@@ -44,11 +44,11 @@ from typing import Any
 
 import numpy as np
 
+from ..guards import LOCKED
 from ..validation import InputError, plain_float
 from .hyperelastic import HESSIAN_TERMS, N_COMPONENTS, Kinematics, NeoHookean, NewtonError
 
 __all__ = [
-    "LOCKED",
     "MODELS",
     "VOLUMETRIC",
     "GentLimitError",
@@ -263,12 +263,6 @@ def energy_derivatives(material: Rubber, x1: np.ndarray, x2: np.ndarray) -> tupl
     return energy, half / slack, 0.0, half / (limit * slack**2), 0.0, 0.0
 
 
-LOCKED = 0.999
-"""(I1bar - 3) / Jm of a converged Gent state from which a failed load step is the rubber
-locking, not a step too long: its tangent shear stiffness mu / (1 - (I1bar - 3) / Jm) is a
-thousand times mu there (benchmarks/FEM_NOTES.md, "Gent locking")."""
-
-
 class GentLimitError(NewtonError):
     """A Newton iterate passed a Gent rubber's limit I1bar - 3 = Jm: outside the rubber's
     states, so the update is halved or the step cut (a numerical failure where they run out,
@@ -321,9 +315,10 @@ def gent_locks(
 ) -> GentLockError | None:
     """The diagnosis of a load ``step`` (from the depth of ``x`` to a depth, m) that failed
     with ``error``: the Gent rubber locking where the last converged state ``x`` of ``system``
-    (a hyperelastic system of the rubber) is at :data:`LOCKED` of its limit, or where, ``last``
-    (no cut left), ``x`` is undeformed and ``error`` is the limit (the first step passes it at
-    every cut); None otherwise (no Gent rubber, or a step to cut or a numerical failure)."""
+    (a hyperelastic system of the rubber) is at :data:`~shtaerman.guards.LOCKED` of its
+    limit, or where, ``last`` (no cut left), ``x`` is undeformed and ``error`` is the limit
+    (the first step passes it at every cut); None otherwise (no Gent rubber, or a step to cut
+    or a numerical failure)."""
     material = system.material
     if material.model != "gent":
         return None

@@ -727,7 +727,8 @@ MAX_BACKTRACKS = 10
 @dataclass
 class _State:
     """A converged static contact at depth X (m): solution, multipliers, force (N), stored
-    energy and, for a relaxing body at a committed step, the dissipated energy (J)."""
+    energy and, for a relaxing body at a committed step, the dissipated energy (J); a Gent
+    rubber's stretch (I1bar - 3) / Jm."""
 
     depth: float
     x: np.ndarray
@@ -735,6 +736,7 @@ class _State:
     force: float
     energy: float
     dissipated: float = 0.0
+    stretch: float = 0.0
 
 
 class QuasiStaticBody:
@@ -833,7 +835,7 @@ class QuasiStaticBody:
             return self._solve(depth, halvings - 1)
         self.iterations += iterations
         energy = self.stepper.system.energy(x)
-        return _State(depth, x, lam, float(lam.sum()), energy)
+        return _State(depth, x, lam, float(lam.sum()), energy, stretch=self.stepper.stretch)
 
 
 def _discrete_gradient(a: _State, b: _State) -> float:
@@ -1002,6 +1004,7 @@ def march_massless(
         for piece in pieces:
             state, v, k, interval = piece
             t += interval
+            body.stepper.watch.accept(state.depth, state.stretch)
             if observe is not None:
                 observe(t, state.x)
             row = (t, state.depth, v, state.force, state.energy)
@@ -1057,7 +1060,7 @@ class _InertialSystem:
 class _Dynamic:
     """State at a step: body x, v, a; multipliers; striker X (m), V (m/s), A (m/s^2); Pi (J);
     ``previous`` the body x and striker X (m) of the step before, ``interval`` (s) the time
-    step that led here."""
+    step that led here; a Gent rubber's stretch (I1bar - 3) / Jm."""
 
     x: np.ndarray
     v: np.ndarray
@@ -1070,6 +1073,7 @@ class _Dynamic:
     previous: tuple[np.ndarray, float]
     interval: float
     dissipated: float = 0.0
+    stretch: float = 0.0
 
     def predicted(self, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
         """The start of a step of ``dt`` (s): x and X extrapolated linearly in time, the
@@ -1208,6 +1212,7 @@ def _advanced(
         previous=(state.x, state.depth),
         interval=dt,
         dissipated=getattr(body, "dissipated", 0.0) + getattr(stepper, "dissipated", 0.0),
+        stretch=stepper.stretch,  # of the secant's last solve, at x
     )
 
 
@@ -1259,6 +1264,7 @@ def march_inertial(
                 k = max((force - previous) / (new.depth - state.depth), 0.0)
             _check_candidates(stepper, new.lam, new.depth)
             state, t, deepest = new, t + new.interval, max(deepest, new.depth)
+            stepper.watch.accept(new.depth, new.stretch)
             if observe is not None:
                 observe(t, new.x)
             body = 0.5 * float(state.v @ (inertial.mass @ state.v))

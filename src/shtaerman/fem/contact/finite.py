@@ -54,7 +54,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
-from ...guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, depth_ratio
+from ...guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, LockingWatch, depth_ratio
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
@@ -68,7 +68,7 @@ from ..hyperelastic import (
     assemble_hyperelastic,
 )
 from ..mesh import MeshSettings
-from ..rubber import GentLimitError, RubberModel, gent_locks
+from ..rubber import GentLimitError, RubberModel, gent_locks, gent_stretch
 from ..solver import Pattern, PatternSolver
 from .constraints import SolvedContact, check_resolved, edge_and_centre
 
@@ -259,6 +259,8 @@ class NewtonStepper:
         material = system.material
         # complementarity weight c (N/m): lambda_i and c g_i of comparable size
         self.weight = material.shear_modulus * candidate_radius / self.nodes.radius.size
+        self.stretch = 0.0  # a Gent rubber's, of the last solve whose converged state it has
+        self.watch = LockingWatch(getattr(material, "gent_limit", np.inf))  # the run's states
 
     def folded(self, x: np.ndarray) -> bool:
         """Whether the candidates' current radii (m) have crossed (or the axis)."""
@@ -341,7 +343,8 @@ class NewtonStepper:
         that inverts an element (or, where the stepper back-tracks, folds the contact surface)
         fails the solve where it reused a factorization (``redone_in_full``), else is
         halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
-        corrections (max |du| / ``scale``, m).
+        corrections (max |du| / ``scale``, m); where it converged on the state of x (the
+        increment's None), x's Gent stretch is left in ``stretch``.
 
         Raises
         ------
@@ -380,7 +383,8 @@ class NewtonStepper:
                 raise
             except RuntimeError as error:
                 raise NewtonError(f"singular Newton matrix ({error})") from None
-            if made is None:
+            if made is None:  # x's state is at hand: its Gent stretch costs no evaluation
+                self.stretch = gent_stretch(self.system.material, state)
                 return x, lam, iteration - 1, corrections
             du, rows, dlam, tangent_fresh, test = made
             fresh.append(tangent_fresh)
@@ -710,6 +714,7 @@ def _reach(
             continue
         total += iterations
         history = [*history[-1:], (trial, x, lam)]
+        stepper.watch.accept(trial, stepper.stretch)
         done = trial
         cuts = 0  # count consecutive failures only
         increment *= 2.0

@@ -46,7 +46,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.sneddon import SneddonContact
 from ...validation import InputError, NumericalFailureError
 from ..hyperelastic import HyperelasticSystem, NewtonError
-from ..rubber import gent_locks
+from ..rubber import gent_locks, gent_stretch
 from .constraints import (
     MAX_ACTIVE_SET_ITERATIONS,
     START_NODE,
@@ -113,6 +113,8 @@ class _Load:
     """Nodes in contact at the last load step, released and gripped anew within this one."""
     forces: np.ndarray | None = None
     """The body's residual at ``x`` (N; at the contact nodes, minus the contact's forces)."""
+    stretch: float = 0.0
+    """A Gent rubber's (I1bar - 3) / Jm at ``x`` (:func:`.rubber.gent_stretch`)."""
 
     def key(self) -> bytes:
         """The contact set: the nodes in contact and the slip directions."""
@@ -389,9 +391,11 @@ def _load_step(
         x, lam, iterations, corrections = _warm_newton(newton, stepper, trial, at, warm)
         total += iterations
         radius, gap, _, _ = stepper.geometry(x, depth)
-        forces = stepper.system.residual(x)
+        state = stepper.system.state(x)
+        forces = stepper.system.residual(x, state)
         vertical = _reactions(stepper, forces, trial.held)
         now = replace(trial, x=x, radius=radius, gap=gap, lam=vertical, forces=forces)
+        now.stretch = gent_stretch(stepper.system.material, state)
         now.iterations, now.corrections = total, corrections
         changes, excess, shear = _changes(stepper, now, last, friction, at)
         return (now, lam, shear), changes, excess
@@ -609,7 +613,7 @@ class HistoryStepper(BondedStepper):
         x, the vertical reactions (N), iterations and corrections (relative to ``scale``, m)."""
         scale = depth if scale is None else scale
         load = _load_step(self, self.committed, x, (depth, scale), self.friction, self.warm)
-        self.latest = (load, _resolved(self, load, depth)[1])
+        self.latest, self.stretch = (load, _resolved(self, load, depth)[1]), load.stretch
         return load.x, load.lam, load.iterations, load.corrections
 
     def commit(self, x: np.ndarray) -> None:
@@ -699,6 +703,7 @@ def _finite_ladder(
             guess = last.x + (depth - start) / (start - previous_depth) * (last.x - previous.x)
         state = _load_step(stepper, last, guess, (depth, depth), friction)
         check_resolved(stepper.nodes.radius, state.lam, depth, fewest=1)
+        stepper.watch.accept(depth, state.stretch)
         previous, previous_depth, last, done = last, start, state, depth
         iterations += state.iterations
         return [depth]

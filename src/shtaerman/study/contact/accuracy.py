@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ...fem.mesh import DEFAULTS, MAX_DOMAIN, GradedMesh, Grading, MeshSettings
+from ...guards import ValidityWarning
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.viscoelastic import PronySeries
@@ -371,7 +372,10 @@ def run_mesh_ladder(
     levels, failures = [], []
     for factor in ladder_factors(refine):
         try:
-            levels.append(_level(solve, mesh, factor, report))
+            with warnings.catch_warnings():  # the reported (finest) level's validity warnings
+                if factor != refine:  # only: a Gent rubber locks at each level's own depth
+                    warnings.simplefilter("ignore", ValidityWarning)
+                levels.append(_level(solve, mesh, factor, report))
         except FAILURES as error:
             if not partial or (factor == refine and not levels):
                 raise
