@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import re
 import warnings
+from contextlib import nullcontext
 from dataclasses import replace
 
 import numpy as np
@@ -28,7 +29,7 @@ from shtaerman.fem.finite_dynamic import (
 )
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.fem.rubber import GentLockError, rubber_model
-from shtaerman.guards import LOCKED, LockingWatch, ValidityWarning
+from shtaerman.guards import LOCKED, LadderWarnings, LockingWatch, ValidityWarning
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 
@@ -177,3 +178,25 @@ def test_a_sweep_case_records_the_warning(monkeypatch):
     assert row["status"] == "ok", row["error"]
     [said] = [text for text in row["warnings"] if "Gent rubber locks from depth" in text]
     assert "of its limit gent_limit = 0.01 there" in said, said  # in the file's words
+
+
+def test_a_ladder_says_its_reported_levels_validity_warnings_and_every_levels_others():
+    """The levels of a mesh ladder cross LOCKED at their own depths: only the reported level
+    (the last that passed; a level that raised keeps nothing) says its validity warnings, and
+    every passed level its other warnings (a retried step, say)."""
+    said = LadderWarnings()
+    for level in ("coarse", "middle", "fine"):
+        with pytest.raises(ArithmeticError) if level == "fine" else nullcontext():
+            with said.level():
+                warnings.warn(f"locks at the {level} level's depth", ValidityWarning, stacklevel=1)
+                warnings.warn(f"a step of the {level} level retried", UserWarning, stacklevel=1)
+                if level == "fine":
+                    raise ArithmeticError("the finest level fails")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        said.say(1)
+    assert [(w.category, str(w.message)) for w in caught] == [
+        (UserWarning, "a step of the coarse level retried"),
+        (ValidityWarning, "locks at the middle level's depth"),
+        (UserWarning, "a step of the middle level retried"),
+    ]

@@ -23,6 +23,8 @@ they reached.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from .theory.indenter import PowerLawIndenter
 from .theory.sneddon import Indenter, contact_law
@@ -33,6 +35,7 @@ __all__ = [
     "MAX_DEPTH_RATIO",
     "MIN_DEPTH_RATIO",
     "FailedCheckWarning",
+    "LadderWarnings",
     "LockingWatch",
     "ValidityWarning",
     "check_equator",
@@ -103,6 +106,31 @@ class LockingWatch:
             f"its shear stiffness is {1.0 / (1.0 - LOCKED):.0f} times the small-strain one: "
             "the results beyond depend on the load or time steps; a larger limit stays clear"
         )
+
+
+class LadderWarnings:
+    """The warnings of a mesh ladder's levels, said once the ladder has run (:meth:`say`):
+    the validity warnings of the level it reports only (a Gent rubber crosses
+    :data:`LOCKED` at each mesh's own depth), the others of every level that passed."""
+
+    def __init__(self) -> None:
+        self.said: list[list[warnings.WarningMessage]] = []
+
+    @contextmanager
+    def level(self) -> Iterator[None]:
+        """Hold the warnings of one level's run; a level that raises keeps none."""
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            yield
+        self.said.append(caught)
+
+    def say(self, stacklevel: int) -> None:
+        """Issue what the levels held: the last (reported) level's all, the others' but the
+        validity warnings (``stacklevel`` as :func:`warnings.warn`'s, plus this frame)."""
+        for number, caught in enumerate(self.said, start=1 - len(self.said)):
+            for said in caught:
+                if number == 0 or not issubclass(said.category, ValidityWarning):
+                    warnings.warn(said.message, stacklevel=stacklevel + 1)
 
 
 def depth_ratio(indenter: Indenter, depth: float) -> float:

@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ...fem.mesh import DEFAULTS, MAX_DOMAIN, GradedMesh, Grading, MeshSettings
-from ...guards import ValidityWarning
+from ...guards import LadderWarnings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.viscoelastic import PronySeries
@@ -369,18 +369,19 @@ def run_mesh_ladder(
     refine = validate_positive("refine", refine)
     check_ladder(mesh, refine, refined)  # every level checked before the first is computed
     report = progress or (lambda _line: None)
-    levels, failures = [], []
-    for factor in ladder_factors(refine):
-        try:
-            with warnings.catch_warnings():  # the reported (finest) level's validity warnings
-                if factor != refine:  # only: a Gent rubber locks at each level's own depth
-                    warnings.simplefilter("ignore", ValidityWarning)
-                levels.append(_level(solve, mesh, factor, report))
-        except FAILURES as error:
-            if not partial or (factor == refine and not levels):
-                raise
-            failures.append((factor, str(error)))
-            report(f"mesh x{factor:.3g}: failed ({error})")
+    levels, failures, said = [], [], LadderWarnings()
+    try:
+        for factor in ladder_factors(refine):
+            try:
+                with said.level():
+                    levels.append(_level(solve, mesh, factor, report))
+            except FAILURES as error:
+                if not partial or (factor == refine and not levels):
+                    raise
+                failures.append((factor, str(error)))
+                report(f"mesh x{factor:.3g}: failed ({error})")
+    finally:
+        said.say(caller_stacklevel())
     if not failures:
         return AccuracyResult(tuple(levels), estimate_errors(tuple(levels)), exact=exact)
     result = AccuracyResult(tuple(levels), {}, exact=exact, failures=tuple(failures))

@@ -43,7 +43,7 @@ from ...fem.contact.constraints import MIN_CONTACT_NODES
 from ...fem.contact.finite import check_finite_depths, geometric_radius, tip_exponent
 from ...fem.mesh import MeshSettings
 from ...fem.rubber import GentLockError
-from ...guards import ValidityWarning
+from ...guards import LadderWarnings
 from ...theory.impact import ImpactHistory, ImpactResult
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, effective_modulus
@@ -581,23 +581,25 @@ def _run_levels(
     (:data:`FAILURES`) is kept as what failed, unless it is the finest and none passed (then
     raised, as a Gent rubber's lock at once: its limit, which no mesh cures)."""
     levels: list[Level] = []
-    for factor, mesh in meshes:
-        report(
-            f"{study.name}: mesh x{factor:.3g}: finite-strain curve ({depths.size} depths), "
-            "linear FEM on the same mesh, impacts"
-        )
-        try:
-            with warnings.catch_warnings():  # the reported (finest) level's validity warnings
-                if factor != meshes[-1][0]:  # only: a Gent rubber locks at each mesh's depth
-                    warnings.simplefilter("ignore", ValidityWarning)
-                levels.append((factor, _run_level(study, depths, mesh, *level)))
-        except GentLockError:
-            raise
-        except FAILURES as error:
-            if factor == meshes[-1][0] and all(isinstance(o, str) for _, o in levels):
+    said = LadderWarnings()
+    try:
+        for factor, mesh in meshes:
+            report(
+                f"{study.name}: mesh x{factor:.3g}: finite-strain curve ({depths.size} "
+                "depths), linear FEM on the same mesh, impacts"
+            )
+            try:
+                with said.level():
+                    levels.append((factor, _run_level(study, depths, mesh, *level)))
+            except GentLockError:
                 raise
-            levels.append((factor, str(error)))
-            report(f"{study.name}: mesh x{factor:.3g}: failed ({error})")
+            except FAILURES as error:
+                if factor == meshes[-1][0] and all(isinstance(o, str) for _, o in levels):
+                    raise
+                levels.append((factor, str(error)))
+                report(f"{study.name}: mesh x{factor:.3g}: failed ({error})")
+    finally:
+        said.say(caller_stacklevel())
     return levels
 
 
