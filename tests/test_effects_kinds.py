@@ -33,12 +33,17 @@ def _spec(tmp_path, text=SWEEP):
     return load_sweep(path)
 
 
-def test_an_effects_case_is_the_effect_table(tmp_path):
+@pytest.fixture(scope="module")
+def table() -> dict:
+    """``sh.effects`` of the sweep's case and the study's problem (one table for both tests:
+    its four runs are deterministic, so the case and the study must give it bit for bit)."""
+    return sh.effects(_problem(), mesh_size=0.2, time_steps=50, estimate=False).to_dict()
+
+
+def test_an_effects_case_is_the_effect_table(tmp_path, table):
     [case] = _spec(tmp_path).cases()
     outputs = KINDS["effects"].case(case.params).outputs
     assert set(outputs) == set(KINDS["effects"].outputs)
-    problem = _problem()
-    table = sh.effects(problem, mesh_size=0.2, time_steps=50, estimate=False).to_dict()
     assert table["effects"] == ["pad", "friction"]
     full = next(run for run in table["runs"] if run["label"] == "full")["changes"]
     for key in EFFECT_QUANTITIES:
@@ -78,7 +83,7 @@ estimate = false
 """
 
 
-def test_an_effects_study_writes_the_table_of_sh_effects(tmp_path):
+def test_an_effects_study_writes_the_table_of_sh_effects(tmp_path, table):
     """Old code: ``kind = "effects"`` was no study kind. The study's files are those of
     ``shtaerman effects --out``, their table that of ``sh.effects`` on the same problem."""
     import json
@@ -93,7 +98,6 @@ def test_an_effects_study_writes_the_table_of_sh_effects(tmp_path):
     outcome = run_study(study)
     entry = study_entry(outcome, tmp_path)
     written = json.loads((tmp_path / "pad" / "effects.json").read_text())
-    table = sh.effects(_problem(), mesh_size=0.2, time_steps=50, estimate=False).to_dict()
     assert written["dominant"] == table["dominant"] == entry["effects"]["dominant"]
     for mine, theirs in zip(written["runs"], table["runs"], strict=True):
         assert mine["changes"] == theirs["changes"], mine["label"]  # the same runs

@@ -69,12 +69,18 @@ def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder)
 
 
 def test_the_estimate_bounds_the_difference_to_a_finer_run(ladder, coarse_mesh):
-    finer = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=2.0, estimate=False)
+    """Against the run one level finer (refine sqrt 2: 5.4k dofs, 8 CPU s; two levels finer,
+    refine 2, is 10.2k dofs and 22 CPU s: benchmarks/finite_impact_effectivity.py compares
+    the estimate against it, paper-massless case)."""
+    finer = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=2**0.5, estimate=False)
     for key in HEADLINE:
         true = abs(ladder.dynamic[key] / finer.dynamic[key] - 1)
-        # the issue's band: an estimate at least half the difference to a run two levels
-        # finer (which itself understates the true error by 1 - 2^-p, 3/4 at order 2)
-        assert true <= 2.0 * ladder.error_estimate[key], key
+        # the issue's band, an estimate at least half the difference to a run two levels
+        # finer, moved one level: at order 2 the difference to refine 2 is 1 - 2^-2 = 3/4 of
+        # the error and to refine sqrt 2 is 1 - 2^-1 = 1/2, so 2 x 1/2 / (3/4) = 4/3 bounds
+        # it. Measured difference / estimate: x 0.28, P 0.25, t 0.28 (against refine 2: 0.23,
+        # 0.093, 0.092)
+        assert true <= 4 / 3 * ladder.error_estimate[key], key
 
 
 def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
