@@ -1,0 +1,51 @@
+"""One refusal in one wording on every entry point (session 50's adversary): the finite-strain
+reach of an impact's depth, said by `contact` and `dynamic`, the API and the file routes."""
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.cli import main
+
+RUBBER = ["--model", "neo-hookean"]
+
+
+def _refusal(capsys, argv):
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1, err
+    return err.removeprefix("shtaerman: error: ").rstrip("\n")
+
+
+@pytest.mark.parametrize(
+    "striker, head",
+    [
+        # z = 50 r^1.5 at the paper's 0.7 kg, 3 m/s: x/a 4.96; the paper's A = 5 reaches 0.88
+        (["--shape-coefficient", "50"], "--shape-coefficient: the striker z = 50 r^1.5"),
+        # the paper's striker at 30 m/s: x/a 1.57, as its A = 5 would too: the impact's fault
+        (["--velocity", "30"], "--mass, --velocity: 0.7 kg at 30 m/s drive the striker"),
+    ],
+)
+def test_the_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsys, striker, head):
+    """`contact` named --mass/--velocity ('the depths reach the x_c ...') where `dynamic`
+    named --shape-coefficient for the same x_c; now the one rule (guards.check_reach), the
+    curve adding its own remedy, its --depths."""
+    dynamic = _refusal(capsys, ["dynamic", *RUBBER, *striker])
+    contact = _refusal(capsys, ["contact", *RUBBER, *striker, "--no-estimate"])
+    assert dynamic.startswith(head), dynamic
+    assert contact == dynamic + ", or give --depths"
+
+
+def test_the_reach_refusal_names_keywords_in_the_api():
+    """The API's words: the parameter at fault heads the line, the others as name=..."""
+    with pytest.raises(sh.InputError, match=r"^shape_coefficient: the striker z = 50") as caught:
+        sh.contact(sh.PowerLawIndenter(50.0, 1.5), sh.Material(7.5e6, 0.5), model="neo-hookean")
+    assert caught.value.parameter == "shape_coefficient"
+    assert "(shape_coefficient=5)" in str(caught.value) and "give depths=..." in str(caught.value)
+    with pytest.raises(sh.InputError, match=r"^mass, velocity: 0.7 kg at 30 m/s") as caught:
+        sh.contact(
+            sh.PowerLawIndenter(5.0, 1.5),
+            sh.Material(7.5e6, 0.5),
+            model="neo-hookean",
+            velocity=30.0,
+        )
+    assert "lower velocity=... to at most about 10.2 m/s" in str(caught.value)
