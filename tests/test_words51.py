@@ -49,3 +49,21 @@ def test_the_reach_refusal_names_keywords_in_the_api():
             velocity=30.0,
         )
     assert "lower velocity=... to at most about 10.2 m/s" in str(caught.value)
+
+
+def test_an_unreachable_accuracy_names_each_routes_options(capsys):
+    """`--accuracy` said '--max-time', '--accuracy' to the API and 'refine' to the command line;
+    each route now reads its own spelling. 1e-4 on the coarsest mesh (0.2) needs ~100 s more
+    than the 1 s left after its first three levels (estimated error 3.7e-4 at 27k dofs)."""
+    coarse = ["--mesh-size", "0.2", "--max-time", "1"]
+    said = _refusal(capsys, ["contact", "--accuracy", "1e-4", *coarse])
+    assert said.startswith("--accuracy 0.0001 needs about"), said
+    assert said.endswith("above what --max-time leaves; raise it or loosen --accuracy"), said
+    with pytest.raises(sh.InputError, match=r"max_time=\.\.\. leaves; raise it or loosen accur"):
+        sh.contact(
+            sh.PowerLawIndenter(5.0, 1.5),
+            sh.Material(7.5e6, 0.5),
+            accuracy=1e-4,
+            mesh_size=0.2,
+            max_time=1.0,
+        )
