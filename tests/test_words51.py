@@ -67,3 +67,44 @@ def test_an_unreachable_accuracy_names_each_routes_options(capsys):
             mesh_size=0.2,
             max_time=1.0,
         )
+
+
+@pytest.mark.parametrize(
+    "key, table, value, option",
+    [
+        ("mass", "impact", "-1.0", "-1"),
+        ("mass", "impact", "inf", "inf"),
+        ("E2", "half_space", "-3.0", "-3"),
+        ("velocity", "impact", "0.0", "0"),
+    ],
+)
+def test_a_study_file_refuses_a_number_in_the_command_lines_words(
+    tmp_path, capsys, key, table, value, option
+):
+    """A study file said "expected a number > 0 (kg)" (E2: "> 0") where the command line said
+    "--mass must be > 0 kg" (E2: "must lie in [1e-3, 1e100] Pa"): both are the vocabulary's
+    Entry.check now, the file naming its key, the command line its option."""
+    study = tmp_path / "s.toml"
+    assert main(["init-study", str(study)]) == 0
+    lines = study.read_text().splitlines()
+    study.write_text(
+        "\n".join(f"{key} = {value}" if line.startswith(f"{key} =") else line for line in lines)
+    )
+    capsys.readouterr()
+    filed = _refusal(capsys, ["verify", str(study), "--quick", "--out", str(tmp_path / "o")])
+    typed = _refusal(capsys, ["contact", f"--{key}", option])
+    verdict = typed.split(" must", 1)[1].rsplit(", got ", 1)[0]  # the range and unit
+    assert filed == f"{study}: key '{table}.{key}': {key} must{verdict}, got {float(value)!r}"
+    assert typed == f"--{key} must{verdict}, got '{option}'"
+
+
+def test_a_tolerance_named_like_an_input_is_a_tolerance(tmp_path, capsys):
+    """tolerances.exponent = 2 was refused as "a number in [0.25, 20]", the striker's n."""
+    study = tmp_path / "s.toml"
+    assert main(["init-study", str(study)]) == 0
+    study.write_text(study.read_text().replace("exponent = 1e-3", "exponent = 2.0"))
+    capsys.readouterr()
+    said = _refusal(capsys, ["verify", str(study), "--quick", "--out", str(tmp_path / "o")])
+    assert said.endswith(
+        "key 'tolerances.exponent': expected a relative tolerance in (0, 1], got 2.0"
+    )
