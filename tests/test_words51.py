@@ -108,3 +108,20 @@ def test_a_tolerance_named_like_an_input_is_a_tolerance(tmp_path, capsys):
     assert said.endswith(
         "key 'tolerances.exponent': expected a relative tolerance in (0, 1], got 2.0"
     )
+
+
+def test_a_finite_strain_sweep_refuses_prony_for_its_physical_reason(tmp_path, capsys):
+    """`prony` was "unknown parameter 'prony' for kind 'finite-strain'"; a Prony curve at
+    finite strain is refused by the problem's support table, in the command line's words."""
+    sweep = tmp_path / "s.toml"
+    sweep.write_text(
+        'name = "s"\nkind = "finite-strain"\n[parameters]\nmesh_size = 0.2\n'
+        'prony = "0.3:1e-3"\nrate = 0.1\n[axes]\nvelocity = [1.0, 2.0]\n'
+    )
+    filed = _refusal(capsys, ["sweep", str(sweep), "--out", str(tmp_path / "o")])
+    typed = _refusal(capsys, ["contact", *RUBBER, "--prony", "0.3:1e-3", "--rate", "0.1"])
+    reason = "a contact curve at finite strain is elastic (the finite-strain contact solver "
+    assert filed.startswith(f"{sweep}: parameters.prony: {reason}"), filed
+    assert typed.startswith(f"--prony: {reason}"), typed
+    assert filed.endswith('or take model = "linear"') and typed.endswith("or take --model linear")
+    assert not (tmp_path / "o").exists()  # refused at load, before any case
