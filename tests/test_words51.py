@@ -125,3 +125,39 @@ def test_a_finite_strain_sweep_refuses_prony_for_its_physical_reason(tmp_path, c
     assert typed.startswith(f"--prony: {reason}"), typed
     assert filed.endswith('or take model = "linear"') and typed.endswith("or take --model linear")
     assert not (tmp_path / "o").exists()  # refused at load, before any case
+
+
+def test_a_contact_curves_failed_load_step_names_its_options(capsys, monkeypatch):
+    """The static curve on a 4 mm Gent pad (session 50's failing impact, as a curve) ended in
+    'depth 0.00228344 m (from 0.00228344 m): ... refine the mesh or give more depths': the
+    same depth twice (the step, 1/256 of the first, below :g's digits) and no option named.
+    A stepper whose Newton always fails stands in for the 11-minute run."""
+    import types
+
+    import numpy as np
+
+    from shtaerman.fem.contact import finite
+    from shtaerman.fem.hyperelastic import NewtonError
+
+    class Failing:
+        system = types.SimpleNamespace(material=types.SimpleNamespace(model="gent"))
+        nodes = types.SimpleNamespace(radius=np.array([0.0, 1e-3]))
+
+        def solve(self, *args, **kwargs):
+            raise NewtonError("Newton did not converge in 30 iterations")
+
+    monkeypatch.setattr(finite, "gent_locks", lambda *args, **kwargs: None)  # not locked
+    history = [(0.0022, np.zeros(2), np.zeros(2))]
+    with pytest.raises(NewtonError) as caught:
+        finite._reach(Failing(), history, 0.0024, max_cuts=8)
+    said = str(caught.value)
+    # 2e-4 m halved 8 times: 7.8125e-7 m, the step from 0.0022 m that failed last
+    assert said.startswith("depth 0.00220078 m (a load step of 7.81e-07 m from 0.0022 m"), said
+    assert "mesh_size=..." in said and "depths=..." in said
+    from shtaerman.cli import common
+    from shtaerman.validation import NumericalFailureError
+
+    with pytest.raises(NumericalFailureError) as caught, common.in_option_words():  # the CLI's
+        finite._reach(Failing(), history, 0.0024, max_cuts=8)
+    assert "a finer mesh (--mesh-size or --refine)" in str(caught.value)
+    assert "lower the deepest of --depths" in str(caught.value)

@@ -703,8 +703,9 @@ def _reach(
                 raise locked from None
             if cuts > max_cuts:
                 raise NewtonError(
-                    f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
-                    f"halved {max_cuts} times: refine the mesh or give more depths"
+                    f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} "
+                    f"m, halved {max_cuts} times): {error}; a finer mesh (mesh_size=... or "
+                    "refine=...) may converge there, or lower the deepest of depths=..."
                 ) from None
             increment *= 0.5
             continue
