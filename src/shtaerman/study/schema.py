@@ -475,7 +475,8 @@ def _vocabulary_says(keys: list[str], value: Any, kind: str | None) -> str | Non
 def _located(
     message: str, data: dict[str, Any], root: type, kind: str | None = None
 ) -> tuple[list[str], str]:
-    """Split a msgspec message into the key path and the expectation, with the value given."""
+    """Split a msgspec message into the key path and what it says: the vocabulary's refusal
+    of a number (:func:`_vocabulary_says`), else what was expected, with the value given."""
     text, _, where = message.partition(" - at `$")
     keys = [k for k in re.split(r"\.|\[\d+\]", where.rstrip("`")) if k]
     unknown = re.fullmatch(r"Object contains unknown field `(\w+)`", text)
@@ -488,11 +489,11 @@ def _located(
             hint = f" (it belongs in [{home}])"
         if not keys and unknown[1] in KIND_OF_TABLE:
             hint = f": [{unknown[1]}] belongs in a study of kind = {KIND_OF_TABLE[unknown[1]]!r}"
-        return [*keys, unknown[1]], f"one of {allowed} (unknown key{hint})"
+        return [*keys, unknown[1]], f"expected one of {allowed} (unknown key{hint})"
     if missing:
         leaf = missing[1]
         expected = EXPECTED.get(leaf, f"a [{leaf}] table" if leaf in _TABLES else "a value")
-        return [*keys, leaf], f"{expected} (required)"
+        return [*keys, leaf], f"expected {expected} (required)"
     field_error = re.fullmatch(r"(\w+): (.*)", text)
     if field_error:
         keys = [*keys, field_error[1]]
@@ -504,7 +505,7 @@ def _located(
     shown = "" if given is msgspec.UNSET else f", got {given!r}"
     if isinstance(given, float) and 0 < given < SMALLEST:
         shown = f" and at least {bound_text(SMALLEST, 'low', 4)} (the smallest normal float){shown}"
-    return keys, f"{expectation}{shown}"
+    return keys, f"expected {expectation}{shown}"
 
 
 def decode(path: Path, data: dict[str, Any], root: type, kind: str | None = None) -> Any:
@@ -514,8 +515,7 @@ def decode(path: Path, data: dict[str, Any], root: type, kind: str | None = None
     try:
         decoded = msgspec.convert(data, root)
     except msgspec.ValidationError as error:
-        keys, expected = _located(str(error), data, root, kind)
-        said = expected if expected.startswith(keys[-1] + " ") else f"expected {expected}"
+        keys, said = _located(str(error), data, root, kind)
         raise StudyError(f"{path}: key '{'.'.join(keys)}': {said}") from None
     for keys, value in _numbers(data):
         if not math.isfinite(value) and keys not in INFINITE_ALLOWED:
