@@ -159,5 +159,6 @@ def test_a_contact_curves_failed_load_step_names_its_options(capsys, monkeypatch
 
     with pytest.raises(NumericalFailureError) as caught, common.in_option_words():  # the CLI's
         finite._reach(Failing(), history, 0.0024, max_cuts=8)
-    assert "a finer mesh (--mesh-size or --refine)" in str(caught.value)
-    assert "lower the deepest of --depths" in str(caught.value)
+    assert "lower the deepest of --depths (a finer --mesh-size or --refine helps" in str(
+        caught.value
+    )

@@ -704,8 +704,9 @@ def _reach(
             if cuts > max_cuts:
                 raise NewtonError(
                     f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} "
-                    f"m, halved {max_cuts} times): {error}; a finer mesh (mesh_size=... or "
-                    "refine=...) may converge there, or lower the deepest of depths=..."
+                    f"m, halved {max_cuts} times): {error}; lower the deepest of depths=... "
+                    "(a finer mesh_size=... or refine=... helps only where the mesh is the "
+                    "cause)"
                 ) from None
             increment *= 0.5
             continue
