@@ -145,7 +145,7 @@ def test_contact_json_carries_the_estimates(capsys):
         (["--accuracy", "1e-5", "--max-time", "-1"], "max-time must be > 0 s"),
         # the truncation at the largest domain, 1.886 / (1e7 x 1.25) = 1.5e-7, is left alone
         (["--accuracy", "3e-7"], r"accuracy must be >= 3.1e-07: the clamped far boundary"),
-        (["--accuracy", "1e-5", "--refine", "2"], "--refine: accuracy chooses the refinement"),
+        (["--accuracy", "1e-5", "--refine", "2"], "--refine: --accuracy chooses the refinement"),
     ],
 )
 def test_bad_accuracy_options(capsys, argv, message):

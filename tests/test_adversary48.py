@@ -54,9 +54,9 @@ def test_an_infinite_number_in_a_study_is_refused_with_its_range(tmp_path):
     # was: "expected a finite number, got inf", without the range [0, 1e2] of a friction
     path = _template(tmp_path, "contact", "contact", 'interface = "bonded"\nfriction = inf')
     said = _refusal(path)
-    assert "key 'contact.friction': expected a finite number in [0, 1e2], got inf" in said, said
+    assert "key 'contact.friction': friction must be a finite number in [0, 1e2], got inf" in said
     said = _refusal(_template(tmp_path, "effects", "numerics", "refine = inf"))
-    assert "key 'numerics.refine': expected a finite number > 0, got inf" in said, said
+    assert "key 'numerics.refine': refine must be a finite number > 0, got inf" in said, said
 
 
 def test_an_effects_study_refuses_numerics_out_of_range_at_load(tmp_path):

@@ -125,7 +125,7 @@ def test_estimate_default_is_declared_per_surface():
     [
         (["--mass", "0.5", "--depths", "1e-3,2e-3"], "--mass: sets the default depths"),
         (["--accuracy", "1e-3", "--no-estimate"], "--accuracy: needs the error estimates"),
-        (["--accuracy", "1e-3", "--refine", "2"], "--refine: accuracy chooses the refinement"),
+        (["--accuracy", "1e-3", "--refine", "2"], "--refine: --accuracy chooses the refinement"),
         (["--accuracy", "1e-3", "--model", "neo-hookean"], "--accuracy: applies to the linear"),
         (["--model", "neo-hookean", "--solver", "pardiso"], "--solver: the neo-hookean model"),
     ],
@@ -186,7 +186,9 @@ def test_time_steps_are_limited_to_what_the_fem_keeps_stable(tmp_path, capsys):
     assert entry("time_steps").range_for("dynamic").high == 5000
     path = tmp_path / "dyn.toml"
     path.write_text(DYNAMIC_STUDY + "velocity = 3.0\n[numerics]\ntime_steps = 100000\n")
-    with pytest.raises(InputError, match=r"'numerics.time_steps': expected an integer in \[50, "):
+    with pytest.raises(
+        InputError, match=r"'numerics.time_steps': time_steps must be an integer in \[50, "
+    ):
         load_study(path)
     line = error_line(capsys, "dynamic", "--time-steps", "20000")
     assert line == "--time-steps must be an integer in [50, 5000], got '20000'"

@@ -133,7 +133,7 @@ def test_a_finite_strain_study_beyond_the_reach_names_its_impact(tmp_path, capsy
     capsys.readouterr()
     assert main(["verify", str(study), "--quick", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
-    assert "mass, velocity: the depths reach the x_c of 0.7 kg at 11 m/s" in err
+    assert "mass, velocity: 0.7 kg at 11 m/s drive the striker to about" in err
     assert "lower the deepest depth" not in err
 
 

@@ -110,10 +110,10 @@ def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
     [
         (
             "[layer]\nthickness_ratio = 0.01\n",
-            r"key 'layer\.thickness_ratio': expected a number in \[0\.05, 500\], got 0\.01$",
+            r"key 'layer\.thickness_ratio': thickness_ratio must lie in \[0\.05, 500\], got 0\.01$",
         ),
-        ("[layer]\nthickness = -0.02\n", r"key 'layer\.thickness': expected a number > 0"),
-        ("[layer]\nthickness = 0.0\n", r"key 'layer\.thickness': expected a number > 0"),
+        ("[layer]\nthickness = -0.02\n", r"key 'layer\.thickness': thickness must be > 0"),
+        ("[layer]\nthickness = 0.0\n", r"key 'layer\.thickness': thickness must be > 0"),
         (
             '[layer]\nthickness = 0.02\nbase = "glued"\n',
             r"key 'layer\.base': expected one of \"bonded\", \"lubricated\", got 'glued'$",

@@ -72,8 +72,8 @@ def _study(tmp_path: Path, text: str) -> str:
             {"accuracy": 1e-3, "refine": 2.0},
             {"accuracy": 1e-3, "refine": 2.0},
             ["--accuracy", "1e-3", "--refine", "2"],
-            "refine: accuracy chooses the refinement itself (its ladder starts at refine 1), "
-            "got refine 2; give one of them",
+            "refine: accuracy=... chooses the refinement itself (its ladder starts at "
+            "refine=1), got refine=2; give one of them",
         ),
         (  # the API took max_time without accuracy silently; the command line alone refused
             LINEAR_CURVE,
@@ -98,6 +98,7 @@ def test_a_contact_option_limit_is_the_tables_on_every_route(
     assert _table(problem, given) == words  # declared in OPTION_SUPPORT, not in the API
     assert _api(**keywords) == words
     cli = reason.replace("estimate=False", "--no-estimate").replace("accuracy=...", "--accuracy")
+    cli = cli.replace("refine=", "--refine ")  # the option's value, as typed
     assert _cli(capsys, ["contact", *argv]) == f"--{name.replace('_', '-')}: {cli}"
 
 

@@ -66,10 +66,10 @@ def test_minimal_user_study(tmp_path):
     [
         (
             ("exponent = 1.5", "exponent = -1.5"),
-            r"key 'indenter.exponent': expected a number in \[0.25, 20\]",
+            r"key 'indenter.exponent': exponent must lie in \(1, 20\], got -1.5$",
         ),
-        (("mass = 0.7", "mass = 'heavy'"), r"key 'impact.mass': expected a number > 0 \(kg\)"),
-        (("nu2 = 0.5", "nu2 = 0.6"), r"half_space.nu2': expected a"),
+        (("mass = 0.7", "mass = 'heavy'"), r"key 'impact.mass': mass must be a number > 0 kg"),
+        (("nu2 = 0.5", "nu2 = 0.6"), r"half_space.nu2': nu2 must lie in \[0, 0.5\], got 0.6$"),
         (("[impact]", "[impakt]"), r"key 'impakt': expected one of"),
         (("velocity = 3.0", "velocity = 3.0\ncolour = 1"), r"key 'impact.colour': expected one of"),
         (("[indenter]", "indenter = ["), r"not valid TOML"),
@@ -148,7 +148,8 @@ def test_an_infinite_number_is_refused_at_load_with_its_key(tmp_path, edit, key)
     # TOML spells inf; only the striker may be rigid (E1 = inf or "inf")
     path = tmp_path / "bad.toml"
     path.write_text(PAPER.replace(*edit))
-    with pytest.raises(StudyError, match=rf"bad.toml: key '{re.escape(key)}': expected a fin"):
+    said = rf"bad.toml: key '{re.escape(key)}': (expected|\w+ must be) a fin"  # a list: expected
+    with pytest.raises(StudyError, match=said):
         load_study(path)
 
 

@@ -182,9 +182,9 @@ def test_a_finite_strain_study_of_a_sphere_starts_on_sneddon_and_is_sh_contacts(
 BAD_STRIKERS = [
     (
         "sphere_radius = 0.0",
-        r"'indenter.sphere_radius': expected a number in \(0, 1e6\] \(m\), got 0",
+        r"'indenter.sphere_radius': sphere_radius must lie in \(0, 1e6\] m, got 0",
     ),
-    ("sphere_radius = -0.01", r"'indenter.sphere_radius': expected a number in \(0, 1e6\]"),
+    ("sphere_radius = -0.01", r"'indenter.sphere_radius': sphere_radius must lie in \(0, 1e6\]"),
     ('profile = "none.csv"', r"'indenter.profile': profile: cannot read"),
     ('profile = "unsorted.csv"', r"'indenter.profile': profile: column r must increase"),
     # 0.7 kg at 1 m/s drive a 3 mm sphere to 4.5 mm, past its equator

@@ -127,7 +127,7 @@ def test_malformed_study_is_exit_2(tmp_path, capsys):
     study.write_text("[indenter]\nexponent = 'x'\n")
     assert main(["verify", "--out", str(tmp_path / "run"), str(study)]) == 2
     err = capsys.readouterr().err
-    assert "bad.toml: key 'indenter.exponent': expected a number in [0.25, 20], got 'x'" in err
+    assert "bad.toml: key 'indenter.exponent': exponent must be a number in (1, 20], got 'x'" in err
     assert not (tmp_path / "run").exists()
 
 

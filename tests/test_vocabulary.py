@@ -253,15 +253,30 @@ def test_sweep_and_study_keys_that_were_renamed_warn_once(tmp_path):
 @pytest.mark.parametrize(
     ("kind", "table", "line", "expected"),
     [
-        ("finite-strain", "contact", "reach = 3.5", "expected a number in [1, 3], got 3.5"),
-        ("finite-strain", "quick", "depth_steps = 2", "expected an integer in [4, 200], got 2"),
-        ("dynamic", "numerics", "time_steps = 10", "expected an integer in [50, 5000], got 10"),
-        ("dynamic", "numerics", "layer_rate = -1.0", "expected a number in [0, 1e4], got -1.0"),
+        ("finite-strain", "contact", "reach = 3.5", "reach must lie in [1, 3], got 3.5"),
+        (
+            "finite-strain",
+            "quick",
+            "depth_steps = 2",
+            "depth_steps must be an integer in [4, 200], got 2",
+        ),
+        (
+            "dynamic",
+            "numerics",
+            "time_steps = 10",
+            "time_steps must be an integer in [50, 5000], got 10",
+        ),
+        (
+            "dynamic",
+            "numerics",
+            "layer_rate = -1.0",
+            "layer_rate must lie in [0, 1e4], got -1.0",
+        ),
         (
             "dynamic",
             "numerics",
             "layer_rate = 1e9",
-            "expected a number in [0, 1e4], got 1000000000.0",
+            "layer_rate must lie in [0, 1e4], got 1000000000.0",
         ),
     ],
 )

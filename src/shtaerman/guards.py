@@ -199,21 +199,29 @@ def check_reach(
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
     (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
     message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)), x/a ~ x^(1-1/n)).
-    Both inputs set the depth: the message names both; ``note`` ends it (the case's remedy)."""
+    Both inputs set the depth: the message names both (or the shape coefficient, where the
+    paper's striker would be within reach); ``note`` ends it (the route's other remedy). The
+    one refusal of an impact's depth beyond the reach, on every route: the contact curve whose
+    depths an impact's x_c sets (:func:`shtaerman.fem.contact.finite.check_finite_depths`)
+    says it in these words too."""
     from .validation import InputError
+    from .vocabulary import entry
 
     mass, velocity = impact
     if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
         return
     ratio = depth_ratio(indenter, depth)
     high = MAX_DEPTH_RATIO if finite else LINEAR_REACH
+    reach = "the finite-strain contact converges" if finite else "an FE impact is run"
     if not MIN_DEPTH_RATIO <= ratio <= high and _striker_at_fault(indenter, depth, q, high):
+        paper = entry("shape_coefficient").default
         raise InputError(
             f"shape_coefficient: the striker z = {indenter.shape_coefficient:g} "
             f"r^{indenter.exponent:g} at {mass:g} kg and {velocity:g} m/s reaches depth / "
-            f"contact radius {ratio:.2g}, outside the [{MIN_DEPTH_RATIO:g}, {high:g}] an FE "
-            "impact resolves, where the paper's striker would not: a striker of a physical "
-            "size (the exact quasi-static impact, shtaerman impact, takes any)",
+            f"contact radius {ratio:.3g}, outside the [{MIN_DEPTH_RATIO:g}, {high:g}] within "
+            f"which {reach}, where the paper's striker (shape_coefficient={paper:g}) would not: "
+            "a striker of a physical size (the exact quasi-static impact, shtaerman impact, "
+            f"takes any){note}",
             "shape_coefficient",
         )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
@@ -222,19 +230,18 @@ def check_reach(
         raise InputError(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
-            "quasi-static impact (shtaerman impact) is the answer there; raise the mass or "
-            "the velocity",
+            "quasi-static impact (shtaerman impact) is the answer there; raise mass=... or "
+            "velocity=...",
             "mass",
         )
     if not ratio <= high:
         n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
         deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / n))
         fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
-        reach = "the finite-strain contact converges" if finite else "an FE impact is run"
         raise InputError(
             f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
-            f"beyond the {high:g} up to which {reach}: at most about {fastest:.3g} m/s with "
-            f"this striker, mass and body (or a smaller mass){note}",
+            f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
+            f"{fastest:.3g} m/s with this striker, mass and body, or mass=...{note}",
             "velocity",
         )
 

@@ -384,8 +384,8 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
     OptionLimit(
         lambda c: c.loading == "curve",
         ("refine",),
-        "accuracy chooses the refinement itself (its ladder starts at refine 1), got refine "
-        "{value:g}; give one of them",
+        "accuracy=... chooses the refinement itself (its ladder starts at refine=1), got "
+        "refine={value:g}; give one of them",
         lambda value, given: value == 1.0 or given.get("accuracy") is None,
     ),
     OptionLimit(

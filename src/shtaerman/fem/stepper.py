@@ -777,9 +777,11 @@ class QuasiStaticBody:
             raise
         except NewtonError as error:  # the run's numerics, not its input
             raise NumericalFailureError(
-                f"the finite-strain contact failed at depth {depth:g} m ({error}); the body "
-                "is strained beyond what this mesh resolves: a finer mesh_size=..., more "
-                "time_steps=... or a lower velocity=... (on a pad: a thicker thickness=...)"
+                f"the finite-strain contact failed at depth {depth:g} m ({error}); the "
+                "massless body follows the static contact curve, which does not converge "
+                "beyond it at these settings (more time_steps=... do not move it): a lower "
+                "velocity=... (on a pad: a thicker thickness=...), or a finer mesh_size=... "
+                "where the mesh is the cause"
             ) from error
 
     def accept(self, state: _State) -> None:

@@ -447,17 +447,36 @@ def _value(data: Any, keys: list[str]) -> Any:
 def _expectation(keys: list[str], text: str) -> str:
     """A readable expectation for a leaf key (msgspec's own words as a fallback)."""
     leaf = keys[-1] if keys else ""
+    if keys and keys[0] in ("tolerances",):  # before EXPECTED: tolerances.exponent is no n
+        return "a relative tolerance in (0, 1]"
     if leaf in EXPECTED:
         return EXPECTED[leaf]
-    if keys and keys[0] in ("tolerances",):
-        return "a relative tolerance in (0, 1]"
     if len(keys) > 1 and keys[0] in ("numerics", "quick", "sweep"):
         return "a number > 0" if keys[0] != "sweep" else "a non-empty list of numbers > 0"
     return text.replace("`", "").removeprefix("Expected ").removeprefix("expected ")
 
 
-def _located(message: str, data: dict[str, Any], root: type) -> tuple[list[str], str]:
-    """Split a msgspec message into the key path and the expectation, with the value given."""
+def _vocabulary_says(keys: list[str], value: Any, kind: str | None) -> str | None:
+    """The refusal of a number ``value`` at key path ``keys`` (``[table] key``) in the words
+    the command line and the sweep files use for that input
+    (:meth:`shtaerman.vocabulary.Entry.check`, in ``kind``'s range), or None where the key is
+    no vocabulary number of its table or the check passes."""
+    names = {item.name for item in VOCABULARY if item.type in ("float", "int")}
+    own = len(keys) == 2 and keys[0] not in ("tolerances", "sweep", "corrections")
+    if not own or keys[-1] not in names or isinstance(value, list | dict | type(msgspec.UNSET)):
+        return None  # a tolerance, a swept list: the schema's own words
+    try:
+        vocabulary_entry(keys[-1]).check(value, kind)
+    except InputError as error:
+        return str(error)
+    return None
+
+
+def _located(
+    message: str, data: dict[str, Any], root: type, kind: str | None = None
+) -> tuple[list[str], str]:
+    """Split a msgspec message into the key path and what it says: the vocabulary's refusal
+    of a number (:func:`_vocabulary_says`), else what was expected, with the value given."""
     text, _, where = message.partition(" - at `$")
     keys = [k for k in re.split(r"\.|\[\d+\]", where.rstrip("`")) if k]
     unknown = re.fullmatch(r"Object contains unknown field `(\w+)`", text)
@@ -470,32 +489,39 @@ def _located(message: str, data: dict[str, Any], root: type) -> tuple[list[str],
             hint = f" (it belongs in [{home}])"
         if not keys and unknown[1] in KIND_OF_TABLE:
             hint = f": [{unknown[1]}] belongs in a study of kind = {KIND_OF_TABLE[unknown[1]]!r}"
-        return [*keys, unknown[1]], f"one of {allowed} (unknown key{hint})"
+        return [*keys, unknown[1]], f"expected one of {allowed} (unknown key{hint})"
     if missing:
         leaf = missing[1]
         expected = EXPECTED.get(leaf, f"a [{leaf}] table" if leaf in _TABLES else "a value")
-        return [*keys, leaf], f"{expected} (required)"
+        return [*keys, leaf], f"expected {expected} (required)"
     field_error = re.fullmatch(r"(\w+): (.*)", text)
     if field_error:
         keys = [*keys, field_error[1]]
     given = _value(data, keys)
+    said = _vocabulary_says(keys, given, kind)
+    if said is not None:
+        return keys, said
     expectation = _expectation(keys, text).split(", got ")[0]  # msgspec may say "got" itself
     shown = "" if given is msgspec.UNSET else f", got {given!r}"
     if isinstance(given, float) and 0 < given < SMALLEST:
         shown = f" and at least {bound_text(SMALLEST, 'low', 4)} (the smallest normal float){shown}"
-    return keys, f"{expectation}{shown}"
+    return keys, f"expected {expectation}{shown}"
 
 
-def decode(path: Path, data: dict[str, Any], root: type) -> Any:
-    """``data`` as the schema ``root`` (a :class:`Table`), or
-    :class:`StudyError` naming the file, the key and what was expected."""
+def decode(path: Path, data: dict[str, Any], root: type, kind: str | None = None) -> Any:
+    """``data`` as the schema ``root`` (a :class:`Table`) of a study of ``kind``, or
+    :class:`StudyError` naming the file, the key and what was expected (a vocabulary number
+    in the command line's words: ``mass must be > 0 kg, got -1.0``)."""
     try:
         decoded = msgspec.convert(data, root)
     except msgspec.ValidationError as error:
-        keys, expected = _located(str(error), data, root)
-        raise StudyError(f"{path}: key '{'.'.join(keys)}': expected {expected}") from None
+        keys, said = _located(str(error), data, root, kind)
+        raise StudyError(f"{path}: key '{'.'.join(keys)}': {said}") from None
     for keys, value in _numbers(data):
         if not math.isfinite(value) and keys not in INFINITE_ALLOWED:
+            said = _vocabulary_says(list(keys), value, kind)
+            if said is not None:
+                raise StudyError(f"{path}: key '{'.'.join(keys)}': {said}")
             declared = EXPECTED.get(keys[-1], "")  # its range, where declared
             bound = declared.removeprefix("a number ") if declared.startswith("a number ") else ""
             expected = f"a finite number {bound}".rstrip()

@@ -317,13 +317,34 @@ def _table(where: str, data: Mapping[str, Any], key: str, *, required: bool) -> 
 
 
 def _parameter(where: str, key: str, kind: Kind, name: str) -> Parameter:
-    """The kind's parameter ``name`` (given at ``key``), or SweepError naming the ones it has."""
+    """The kind's parameter ``name`` (given at ``key``), or SweepError naming the ones it has
+    (or, for a part its case does not combine with, why: :func:`_unsupported`)."""
+    unsupported = _unsupported(kind, name)
+    if unsupported is not None:
+        raise SweepError(f"{where}: {key}: {worded(unsupported, 'file')}")
     if name not in kind.parameters:
         raise SweepError(
             f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}"
             f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
         )
     return kind.parameters[name]
+
+
+RELAXING = ("prony", "rate")
+"""The inputs of a viscoelastic contact curve (a Prony series and its pressing speed)."""
+
+
+def _unsupported(kind: Kind, name: str) -> str | None:
+    """The support table's refusal (:func:`shtaerman.problem.refusal`) of a viscoelastic
+    input ``name`` in a finite-strain case, a rubber's contact curve, which does not combine
+    with one (``shtaerman contact --model ... --prony`` is refused in the same words); None
+    for any other kind or name."""
+    from ..problem import Cell, refusal
+
+    if kind.name != "finite-strain" or name not in RELAXING:
+        return None
+    limit = refusal(Cell("rubber", True, "half-space", "frictionless", "curve"))
+    return None if limit is None else limit.reason
 
 
 def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:

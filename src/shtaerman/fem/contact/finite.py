@@ -54,7 +54,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
-from ...guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, LockingWatch, depth_ratio
+from ...guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, LockingWatch, check_reach, depth_ratio
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
@@ -707,8 +707,10 @@ def _reach(
                 raise locked from None
             if cuts > max_cuts:
                 raise NewtonError(
-                    f"depth {trial:g} m (from {done:g} m): {error}; the load step was "
-                    f"halved {max_cuts} times: refine the mesh or give more depths"
+                    f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} "
+                    f"m, halved {max_cuts} times): {error}; lower the deepest of depths=... "
+                    "(a finer mesh_size=... or refine=... helps only where the mesh is the "
+                    "cause)"
                 ) from None
             increment *= 0.5
             continue
@@ -835,7 +837,9 @@ def check_finite_depths(
     """Refuse, before any work, depths (m) the finite-strain contact cannot resolve: d/a
     (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
     ``model`` names the rubber model in the message; ``impact`` (mass in kg, velocity in m/s):
-    the depths were set by that impact's x_c, and the message names those inputs instead.
+    the depths were set by that impact's x_c, and the message names those inputs instead:
+    beyond the reach, :func:`shtaerman.guards.check_reach`'s refusal of that impact, the
+    one every route says (and the curve's own remedy, its depths).
 
     Raises
     ------
@@ -852,6 +856,9 @@ def check_finite_depths(
             f"{valid}: strains this small lose their digits in F = I + grad u"
         )
         _refuse_depths(reason, "raise the smallest depth (the linear model is exact there)", impact)
+    if high > MAX_DEPTH_RATIO and impact is not None:  # the impact's refusal, in its words
+        q = contact_law(indenter, 1.0).force_exponent
+        check_reach(indenter, deep, impact, q, finite=True, note=", or give depths=...")
     if high > MAX_DEPTH_RATIO:
         reason = (
             f"{deep:g} m gives depth / contact radius {high:.3g}, beyond the {model} model's "
@@ -866,7 +873,7 @@ def _refuse_depths(reason: str, remedy: str, impact: tuple[float, float] | None)
         raise InputError(f"depths: {reason}; {remedy}", "depths")
     raise InputError(
         f"mass, velocity: the depths reach the x_c of {impact[0]:g} kg at {impact[1]:g} m/s, "
-        f"and {reason}; change the mass or the velocity, or give the depths",
+        f"and {reason}; change mass=... or velocity=..., or give depths=...",
         "velocity",
     )
 

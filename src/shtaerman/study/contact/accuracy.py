@@ -525,14 +525,16 @@ def _check_reachable(
     if dofs > max_dofs:
         raise InputError(
             f"accuracy {tolerance:g} needs about {dofs:.3g} dofs (estimated error {error:.2g} "
-            f"at {result.levels[-1].dofs} dofs, order {order:.2f}), above max-dofs "
-            f"{max_dofs:.0f}; raise --max-dofs or loosen --accuracy"
+            f"at {result.levels[-1].dofs} dofs, order {order:.2f}), above max_dofs="
+            f"{max_dofs:.0f}; raise max_dofs=... or loosen accuracy=...",
+            "accuracy",
         )
     if seconds > time_left:
         raise InputError(
             f"accuracy {tolerance:g} needs about {seconds:.0f} s more (estimated error "
-            f"{error:.2g} at {result.levels[-1].dofs} dofs), above --max-time; raise it or "
-            f"loosen --accuracy"
+            f"{error:.2g} at {result.levels[-1].dofs} dofs), above what max_time=... leaves; "
+            "raise it or loosen accuracy=...",
+            "accuracy",
         )
 
 

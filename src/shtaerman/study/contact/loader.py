@@ -388,7 +388,7 @@ PROFILE_KEYS = ("depths", "sphere_radius", "profile")
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
     """The studies of a parsed contact study file (the default kind)."""
-    raw = decode(path, data, _StudyFile)
+    raw = decode(path, data, _StudyFile, "contact")
     studies = built(path, lambda: _expanded(path, _build(path, raw), raw.sweep))
     checked = [vars(study) for study in studies]  # then each checked and resolved
     return validated(path, built(path, lambda: [contact_study(**s) for s in checked], PROFILE_KEYS))

@@ -217,7 +217,7 @@ def _velocities(
 
 def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     """The study of a parsed ``kind = "dynamic"`` file; :class:`StudyError` names file and key."""
-    raw: _DynamicFile = decode(path, data, _DynamicFile)
+    raw: _DynamicFile = decode(path, data, _DynamicFile, "dynamic")
     header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)

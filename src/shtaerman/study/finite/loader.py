@@ -375,7 +375,7 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
         Naming the file and the key, for any unknown key, wrong type or value out of range,
         or inputs the finite-strain FEM cannot run (n <= 1, nu2 < 0).
     """
-    raw = decode(path, data, _FiniteFile)
+    raw = decode(path, data, _FiniteFile, "finite-strain")
     studies = built(path, lambda: _expanded(path, _build(path, raw), raw))
     checked = [vars(study) for study in studies]  # the deepest depth: reach x_c
     return validated(path, built(path, lambda: [finite_study(**s) for s in checked], PROFILE_KEYS))
