@@ -191,3 +191,14 @@ def test_a_massless_impacts_failed_depth_does_not_ask_for_more_time_steps():
     assert said.startswith("the finite-strain contact failed at depth 0.00232 m (Newton"), said
     assert "(more time_steps=... do not move it): a lower velocity=..." in said, said
     assert "a thicker thickness=..." in said
+
+
+def test_a_rubber_curve_at_a_rate_is_refused_for_its_reason_not_sent_to_prony(capsys):
+    """A rate without prony said 'give --prony too', which a rubber's curve then refuses
+    ('a contact curve at finite strain is elastic'): the refusal gives that reason at once;
+    the linear curve still asks for prony."""
+    rubber = _refusal(capsys, ["contact", *RUBBER, "--rate", "0.1"])
+    assert rubber.startswith("--rate: applies to a viscoelastic body only"), rubber
+    assert "a contact curve at finite strain is elastic" in rubber and "--prony" not in rubber
+    linear = _refusal(capsys, ["contact", "--rate", "0.1"])
+    assert linear.endswith("give --prony too"), linear

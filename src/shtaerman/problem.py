@@ -451,9 +451,11 @@ class Problem:
                 "rate",
             )
         if rate is not None and not relaxing:
+            viscoelastic = refusal(self.cell._replace(relaxing=True))
+            remedy = "give prony=... too" if viscoelastic is None else viscoelastic.reason
             raise InputError(
                 "rate: applies to a viscoelastic body only (an elastic curve does not depend "
-                "on it); give prony=... too",
+                f"on it); {remedy}",
                 "rate",
             )
 
