@@ -182,8 +182,9 @@ def test_a_sweep_case_records_the_warning(monkeypatch):
 
 def test_a_ladder_says_its_reported_levels_validity_warnings_and_every_levels_others():
     """The levels of a mesh ladder cross LOCKED at their own depths: only the reported level
-    (the last that passed; a level that raised keeps nothing) says its validity warnings, and
-    every passed level its other warnings (a retried step, say)."""
+    says its validity warnings (the last that passed; or the one whose error ends the ladder,
+    as a Gent lock's refusal, whose warning of the crossing comes first), and every passed
+    level its other warnings (a retried step, say)."""
     said = LadderWarnings()
     for level in ("coarse", "middle", "fine"):
         with pytest.raises(ArithmeticError) if level == "fine" else nullcontext():
@@ -192,11 +193,14 @@ def test_a_ladder_says_its_reported_levels_validity_warnings_and_every_levels_ot
                 warnings.warn(f"a step of the {level} level retried", UserWarning, stacklevel=1)
                 if level == "fine":
                     raise ArithmeticError("the finest level fails")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        said.say(1)
-    assert [(w.category, str(w.message)) for w in caught] == [
-        (UserWarning, "a step of the coarse level retried"),
-        (ValidityWarning, "locks at the middle level's depth"),
-        (UserWarning, "a step of the middle level retried"),
-    ]
+    for raised in (False, True):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            said.say(1, raised=raised)
+        assert [(w.category, str(w.message)) for w in caught] == [
+            (UserWarning, "a step of the coarse level retried"),
+            *([(ValidityWarning, "locks at the middle level's depth")] * (not raised)),
+            (UserWarning, "a step of the middle level retried"),
+            *([(ValidityWarning, "locks at the fine level's depth")] * raised),
+            *([(UserWarning, "a step of the fine level retried")] * raised),
+        ]

@@ -114,22 +114,31 @@ class LadderWarnings:
     :data:`LOCKED` at each mesh's own depth), the others of every level that passed."""
 
     def __init__(self) -> None:
-        self.said: list[list[warnings.WarningMessage]] = []
+        self.said: list[tuple[list[warnings.WarningMessage], bool]] = []
 
     @contextmanager
     def level(self) -> Iterator[None]:
-        """Hold the warnings of one level's run; a level that raises keeps none."""
+        """Hold the warnings of one level's run, and whether it passed."""
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            yield
-        self.said.append(caught)
+            try:
+                yield
+            except BaseException:
+                self.said.append((caught, False))
+                raise
+        self.said.append((caught, True))
 
-    def say(self, stacklevel: int) -> None:
-        """Issue what the levels held: the last (reported) level's all, the others' but the
-        validity warnings (``stacklevel`` as :func:`warnings.warn`'s, plus this frame)."""
-        for number, caught in enumerate(self.said, start=1 - len(self.said)):
+    def say(self, stacklevel: int, raised: bool = False) -> None:
+        """Issue what the levels held: all of the reported level's (the last that passed;
+        ``raised``: the ladder ends on the last level's error, which it reports), the other
+        passed levels' but their validity warnings (``stacklevel`` as :func:`warnings.warn`'s,
+        plus this frame)."""
+        passed = [number for number, (_, ok) in enumerate(self.said) if ok]
+        reported = len(self.said) - 1 if raised else (passed or [None])[-1]
+        for number, (caught, ok) in enumerate(self.said):
             for said in caught:
-                if number == 0 or not issubclass(said.category, ValidityWarning):
+                validity = issubclass(said.category, ValidityWarning)
+                if number == reported or (ok and not validity):
                     warnings.warn(said.message, stacklevel=stacklevel + 1)
 
 

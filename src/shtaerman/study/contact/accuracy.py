@@ -380,8 +380,10 @@ def run_mesh_ladder(
                     raise
                 failures.append((factor, str(error)))
                 report(f"mesh x{factor:.3g}: failed ({error})")
-    finally:
-        said.say(caller_stacklevel())
+    except BaseException:
+        said.say(caller_stacklevel(), raised=True)
+        raise
+    said.say(caller_stacklevel())
     if not failures:
         return AccuracyResult(tuple(levels), estimate_errors(tuple(levels)), exact=exact)
     result = AccuracyResult(tuple(levels), {}, exact=exact, failures=tuple(failures))

@@ -598,8 +598,10 @@ def _run_levels(
                     raise
                 levels.append((factor, str(error)))
                 report(f"{study.name}: mesh x{factor:.3g}: failed ({error})")
-    finally:
-        said.say(caller_stacklevel())
+    except BaseException:
+        said.say(caller_stacklevel(), raised=True)
+        raise
+    said.say(caller_stacklevel())
     return levels
 
 
