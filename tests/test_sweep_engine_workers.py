@@ -93,6 +93,34 @@ def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkey
     }, diagnosis
 
 
+_CONFUSED = """
+import signal, threading
+from shtaerman.sweep import _worker
+main = threading._main_thread
+threading._main_thread = threading.Thread(name="the parent's main thread")
+try:
+    assert threading.current_thread() is not threading.main_thread()
+    signal.signal(signal.SIGTERM, lambda *_: None)
+    _worker.dask_setup(None)
+finally:  # the interpreter's shutdown waits on the real one
+    threading._main_thread = main
+assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN, _worker.SET_UP
+assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL, _worker.SET_UP
+"""
+
+
+def test_the_preload_sets_the_signals_where_threading_misnames_the_main_thread():
+    """CI (pass 2: two BLAS threads, reversed order) once forked a worker whose threading
+    module still held the parent's main thread: ``current_thread() is main_thread()`` was
+    False in the child's only thread, and the preload left the sweep's handlers (the SET_UP
+    it recorded: 'MainThread is not the main thread'). Python's own check decides now."""
+    env = {**os.environ, "PYTHONPATH": str(SRC)}
+    child = subprocess.run(
+        [sys.executable, "-c", _CONFUSED], env=env, capture_output=True, timeout=60
+    )
+    assert child.returncode == 0, child.stderr.decode()
+
+
 @linux
 def test_an_unguarded_script_runs_its_sweep_once_on_forked_workers(tmp_path):
     """Spawned workers ran the main script again (hence the guard's message); forked ones do

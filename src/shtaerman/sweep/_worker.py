@@ -11,23 +11,27 @@ so that the nanny (or the user) can still end the worker.
 from __future__ import annotations
 
 import signal
-import threading
 
 from ..allocator import keep_freed_memory
 
 SET_UP: list[str] = []
-"""What :func:`dask_setup` did in this process, for a diagnosis (a CI pass once found a forked
-worker with the sweep's handlers still in place)."""
+"""What :func:`dask_setup` did in this process, for a diagnosis."""
 
 
 def dask_setup(worker: object) -> None:
-    """Called by dask in each worker process as it starts."""
-    thread = threading.current_thread()
-    if thread is threading.main_thread():
+    """Called by dask in each worker process as it starts.
+
+    Python's own check decides whether this is the main thread (``signal.signal`` raises
+    ValueError elsewhere), not the threading module's: in a worker forked from the nanny's
+    watch thread, ``threading.main_thread()`` was once still the parent's main thread (CI,
+    two BLAS threads, reversed test order), though the forked thread is the process's only
+    one and the interpreter's main thread, so the sweep's handlers stayed.
+    """
+    try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         SET_UP.append("signals")
-    else:
-        SET_UP.append(f"signals left: {thread.name} is not the main thread")
+    except ValueError as error:  # not the interpreter's main thread
+        SET_UP.append(f"signals left: {error}")
     keep_freed_memory()
     SET_UP.append("memory")
