@@ -180,23 +180,33 @@ def test_a_sweep_case_records_the_warning(monkeypatch):
     assert "of its limit gent_limit = 0.01 there" in said, said  # in the file's words
 
 
+def _three_level_ladder(finest_fails: bool) -> None:
+    """A ladder whose levels each warn of a lock and of a retried step; the finest raises."""
+    with LadderWarnings() as said:
+        for level in ("coarse", "middle", "fine"):
+            try:
+                with said.level():
+                    warnings.warn(
+                        f"locks at the {level} level's depth", ValidityWarning, stacklevel=1
+                    )
+                    warnings.warn(f"a step of the {level} level retried", UserWarning, stacklevel=1)
+                    if level == "fine":
+                        raise ArithmeticError("the finest level fails")
+            except ArithmeticError:
+                if finest_fails:
+                    raise
+
+
 def test_a_ladder_says_its_reported_levels_validity_warnings_and_every_levels_others():
     """The levels of a mesh ladder cross LOCKED at their own depths: only the reported level
     says its validity warnings (the last that passed; or the one whose error ends the ladder,
     as a Gent lock's refusal, whose warning of the crossing comes first), and every passed
-    level its other warnings (a retried step, say)."""
-    said = LadderWarnings()
-    for level in ("coarse", "middle", "fine"):
-        with pytest.raises(ArithmeticError) if level == "fine" else nullcontext():
-            with said.level():
-                warnings.warn(f"locks at the {level} level's depth", ValidityWarning, stacklevel=1)
-                warnings.warn(f"a step of the {level} level retried", UserWarning, stacklevel=1)
-                if level == "fine":
-                    raise ArithmeticError("the finest level fails")
+    level its other warnings (a retried step, say), each naming the caller's line."""
     for raised in (False, True):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            said.say(1, raised=raised)
+            with pytest.raises(ArithmeticError) if raised else nullcontext():
+                _three_level_ladder(finest_fails=raised)
         assert [(w.category, str(w.message)) for w in caught] == [
             (UserWarning, "a step of the coarse level retried"),
             *([(ValidityWarning, "locks at the middle level's depth")] * (not raised)),
@@ -204,3 +214,4 @@ def test_a_ladder_says_its_reported_levels_validity_warnings_and_every_levels_ot
             *([(ValidityWarning, "locks at the fine level's depth")] * raised),
             *([(UserWarning, "a step of the fine level retried")] * raised),
         ]
+        assert {w.filename for w in caught} == {__file__}

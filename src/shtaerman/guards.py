@@ -28,6 +28,7 @@ from contextlib import contextmanager
 
 from .theory.indenter import PowerLawIndenter
 from .theory.sneddon import Indenter, contact_law
+from .validation import caller_stacklevel
 
 __all__ = [
     "LINEAR_REACH",
@@ -109,12 +110,20 @@ class LockingWatch:
 
 
 class LadderWarnings:
-    """The warnings of a mesh ladder's levels, said once the ladder has run (:meth:`say`):
-    the validity warnings of the level it reports only (a Gent rubber crosses
-    :data:`LOCKED` at each mesh's own depth), the others of every level that passed."""
+    """The warnings of a mesh ladder's levels, said when the ladder ends (``with
+    LadderWarnings() as said:`` around it, ``with said.level():`` around each level): the
+    validity warnings of the level it reports only (a Gent rubber crosses :data:`LOCKED` at
+    each mesh's own depth), the others of every level that passed. Each names the first
+    line outside shtaerman that called the ladder."""
 
     def __init__(self) -> None:
         self.said: list[tuple[list[warnings.WarningMessage], bool]] = []
+
+    def __enter__(self) -> LadderWarnings:
+        return self
+
+    def __exit__(self, kind: type[BaseException] | None, *_: object) -> None:
+        self.say(raised=kind is not None)
 
     @contextmanager
     def level(self) -> Iterator[None]:
@@ -128,18 +137,18 @@ class LadderWarnings:
                 raise
         self.said.append((caught, True))
 
-    def say(self, stacklevel: int, raised: bool = False) -> None:
+    def say(self, raised: bool = False) -> None:
         """Issue what the levels held: all of the reported level's (the last that passed;
         ``raised``: the ladder ends on the last level's error, which it reports), the other
-        passed levels' but their validity warnings (``stacklevel`` as :func:`warnings.warn`'s,
-        plus this frame)."""
+        passed levels' but their validity warnings."""
+        stacklevel = caller_stacklevel()
         passed = [number for number, (_, ok) in enumerate(self.said) if ok]
         reported = len(self.said) - 1 if raised else (passed or [None])[-1]
         for number, (caught, ok) in enumerate(self.said):
             for said in caught:
                 validity = issubclass(said.category, ValidityWarning)
                 if number == reported or (ok and not validity):
-                    warnings.warn(said.message, stacklevel=stacklevel + 1)
+                    warnings.warn(said.message, stacklevel=stacklevel)
 
 
 def depth_ratio(indenter: Indenter, depth: float) -> float:

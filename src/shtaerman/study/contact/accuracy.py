@@ -369,8 +369,8 @@ def run_mesh_ladder(
     refine = validate_positive("refine", refine)
     check_ladder(mesh, refine, refined)  # every level checked before the first is computed
     report = progress or (lambda _line: None)
-    levels, failures, said = [], [], LadderWarnings()
-    try:
+    levels, failures = [], []
+    with LadderWarnings() as said:
         for factor in ladder_factors(refine):
             try:
                 with said.level():
@@ -380,10 +380,6 @@ def run_mesh_ladder(
                     raise
                 failures.append((factor, str(error)))
                 report(f"mesh x{factor:.3g}: failed ({error})")
-    except BaseException:
-        said.say(caller_stacklevel(), raised=True)
-        raise
-    said.say(caller_stacklevel())
     if not failures:
         return AccuracyResult(tuple(levels), estimate_errors(tuple(levels)), exact=exact)
     result = AccuracyResult(tuple(levels), {}, exact=exact, failures=tuple(failures))

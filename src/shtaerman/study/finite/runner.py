@@ -581,8 +581,7 @@ def _run_levels(
     (:data:`FAILURES`) is kept as what failed, unless it is the finest and none passed (then
     raised, as a Gent rubber's lock at once: its limit, which no mesh cures)."""
     levels: list[Level] = []
-    said = LadderWarnings()
-    try:
+    with LadderWarnings() as said:
         for factor, mesh in meshes:
             report(
                 f"{study.name}: mesh x{factor:.3g}: finite-strain curve ({depths.size} "
@@ -598,10 +597,6 @@ def _run_levels(
                     raise
                 levels.append((factor, str(error)))
                 report(f"{study.name}: mesh x{factor:.3g}: failed ({error})")
-    except BaseException:
-        said.say(caller_stacklevel(), raised=True)
-        raise
-    said.say(caller_stacklevel())
     return levels
 
 
