@@ -11,7 +11,9 @@ import io
 import json
 import math
 
+import numpy as np
 import pytest
+from matplotlib.colors import to_rgb
 
 import shtaerman as sh
 from shtaerman.api.effect_table.table import QUANTITIES, Cell, dominance
@@ -155,6 +157,7 @@ def test_cli_writes_the_table_as_json_csv_and_markdown(tmp_path, capsys):
     assert float(rows["full"]["x_max_change"]) == full["changes"]["x_max"]["change"]
     markdown = (out / "effects.md").read_text()
     assert "| waves alone | -1.57 ± n/a |" in markdown  # the coarse run's P_max change
+    assert (out / "effects.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"  # and the figure
 
 
 @pytest.mark.parametrize(
@@ -279,3 +282,36 @@ def test_the_study_names_every_part_of_its_case():
     paper = dict(model="linear", prony=None, geometry="half-space", thickness=None)
     paper.update(interface="frictionless", friction=None)
     assert case_of(paper) == "half-space; linear elastic; frictionless indenter"
+
+
+def test_the_figure_draws_each_run_and_names_a_run_that_did_not_run(pad_table, tmp_path):
+    """effects.png: one bar per run and panel in the role's colour, whiskers where a bar is
+    known; a refused run reads "not run" (checked in the SVG twin, whose text is text)."""
+    from dataclasses import replace
+
+    from matplotlib.image import imread
+
+    from shtaerman.api.effect_table.table import EffectTable
+    from shtaerman.plots.effects import COLOURS
+
+    runs = tuple(
+        replace(run, values=None, errors=None, refused="friction: refused here")
+        if run.label == "without pad"
+        else run
+        for run in pad_table.runs
+    )
+    table = EffectTable(pad_table.reference, runs, pad_table.absent, pad_table.problem)
+    path = table.plot(tmp_path / "effects.png", "svg")
+    image = (imread(path)[..., :3] * 255).round()
+    for role in ("alone", "full", "without", "interaction"):
+        rgb = np.array(to_rgb(COLOURS[role])) * 255
+        assert np.all(np.abs(image - rgb) <= 2, axis=-1).sum() > 500, role  # a bar's pixels
+    svg = (tmp_path / "effects.svg").read_text()
+    assert svg.count("not run") == 4  # the refused run, in each of the four panels
+    assert "pad alone" in svg and "interaction" in svg
+
+
+def test_a_vector_figure_without_out_is_refused(capsys):
+    assert main(["effects", *ARGV, "--figure-format", "svg"]) == 2
+    _, err = capsys.readouterr()
+    assert err.count("\n") == 1 and "--figure-format" in err and "--out" in err

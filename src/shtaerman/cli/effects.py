@@ -23,18 +23,20 @@ from ..validation import InputError
 from .common import (
     CASE,
     PROFILES,
+    add_figure_format,
     add_inputs,
     given,
     in_option_words,
     indenter,
     keywords,
     print_json,
+    refuse_idle_output_options,
 )
 from .dynamic import DERIVED, MODEL_NOTES, PHYSICS
 
 NOTES = {
-    "out": f"{', '.join(FILES)}; each finished run is kept at once (an interrupted table "
-    "keeps them there, --resume completes it)",
+    "out": f"{', '.join(FILES)} and the figure effects.png; each finished run is kept at "
+    "once (an interrupted table keeps them there, --resume completes it)",
     "force": "an existing --out folder, once the table is done (interrupted, the old folder "
     "stays whole and the finished runs are kept beside it, in OUT.incomplete-PID)",
 }
@@ -66,6 +68,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         ),
     )
     add_inputs(p, (*INPUTS, "json", "out", "force"), "dynamic", derived=DERIVED, notes=NOTES)
+    add_figure_format(p)
     add_inputs(p, ("model", *RUBBER_OPTIONS), "dynamic", notes=MODEL_NOTES)
     accuracy = p.add_argument_group("accuracy (each run's error-estimate ladder)")
     add_inputs(accuracy, ("refine", "estimate"), "dynamic")
@@ -95,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--{option}: applies with --out only (it names the folder to write)")
     if args.resume and args.force:
         raise InputError("--resume and --force exclude each other: --resume keeps the folder")
+    refuse_idle_output_options(args, ("out",))
     with in_option_words():
         physics = {name: getattr(args, name) for name in PHYSICS if given(args, name)}
         body = Material(args.E2, args.nu2, args.density2)
@@ -161,6 +165,7 @@ def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespac
         _print(table, args.json)  # first: a failed --out (a full disk) does not lose it
         sys.stdout.flush()
         write_table(table, stage)
+        table.plot(stage / "effects.png", args.figure_format)
         (stage / PROGRESS_FILE).unlink(missing_ok=True)
 
 

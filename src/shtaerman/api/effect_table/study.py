@@ -129,9 +129,16 @@ def run_effects(study: EffectsStudy, quick: bool = False, progress: Any = None) 
 def write_effects(
     outcome: EffectsOutcome, folder: Path, root: Path, figure_format: str = "png"
 ) -> tuple[dict[str, str], dict[str, str]]:
-    """effects.json, effects.csv and effects.md in ``folder`` (as ``shtaerman effects
-    --out``); no figures."""
+    """effects.json, effects.csv, effects.md and the figure effects.png in ``folder`` (as
+    ``shtaerman effects --out``; ``figure_format`` "svg" or "pdf": the figure also in that
+    format beside its PNG)."""
+    from ...plots.effects import EFFECTS_CAPTION
+
     folder.mkdir()
     write_table(outcome.table, folder)
     names = {"effects": "effects.json", "effects_csv": "effects.csv", "effects_md": "effects.md"}
-    return {stem: str((folder / name).relative_to(root)) for stem, name in names.items()}, {}
+    figure = outcome.table.plot(folder / "effects.png", figure_format)
+    return (
+        {stem: str((folder / name).relative_to(root)) for stem, name in names.items()},
+        {EFFECTS_CAPTION: str(figure.relative_to(root))},
+    )

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from ...output.files import json_safe
@@ -170,6 +171,14 @@ class EffectTable:
         """Per quantity: the dominant single effect and whether it is resolved."""
         singles = {name: self.cells(f"{name} alone") for name in self.effects}
         return {key: dominance({n: c[key] for n, c in singles.items()}) for key in QUANTITIES}
+
+    def plot(self, path: Path | str, figure_format: str = "png") -> Path:
+        """Draw the table into the PNG ``path`` (or .svg/.pdf; ``figure_format`` "svg" or
+        "pdf" adds that format beside the PNG), one panel per quantity, each variant's change
+        with its error bar (:func:`shtaerman.plots.effects.plot_effect_table`); the path."""
+        from ...plots.effects import plot_effect_table
+
+        return plot_effect_table(self, path, figure_format)
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON of ``shtaerman effects --json`` (SI; changes as fractions, e as e - 1;

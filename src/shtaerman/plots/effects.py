@@ -1,0 +1,71 @@
+"""The effect table as a figure: each effect's change of P_max, x_max, t_contact and e.
+
+One panel per quantity (:data:`shtaerman.api.effect_table.table.QUANTITIES`), one horizontal
+bar per variant, measured from the paper's quasi-static impact as the table measures it: P_max,
+x_max and t_contact in per cent of P_c, x_c and t_y, the restitution as e - 1 in per cent.
+Each effect alone is blue, the full problem black, the full problem without one effect orange
+and the interaction (full - sum of the single effects) grey; the whiskers are the table's error
+bars (none where a run has no estimate). A variant that was refused or failed has no bar: its
+row reads "not run" (its reason is the table's).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .labels import MINUS
+from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, FEM_COLOUR, chart, save, styled
+
+if TYPE_CHECKING:
+    from ..api.effect_table.table import Cell, EffectTable
+
+__all__ = ["EFFECTS_CAPTION", "plot_effect_table"]
+
+EFFECTS_CAPTION = (
+    "Effect table: the change of P_max, x_max and t_contact (per cent of the paper's P_c, x_c, "
+    f"t_y) and of e (e {MINUS} 1, per cent) from the paper's quasi-static impact, for each "
+    "effect alone (blue), the full problem (black), the full problem without each effect "
+    "(orange) and their interaction (grey: full minus the sum of the single effects); "
+    "whiskers: the estimated errors"
+)
+COLOURS = {"none": "0.6", "alone": FEM_COLOUR, "full": EXACT_COLOUR}
+COLOURS |= {"without": APPROXIMATION_COLOUR, "interaction": "0.45"}
+TITLES = {"P_max": "P_max", "x_max": "x_max", "t_contact": "t_contact"}
+TITLES["restitution"] = f"e {MINUS} 1"
+
+
+def _rows(table: EffectTable) -> list[tuple[str, str, dict[str, Cell] | None]]:
+    """(label, role, cells per quantity; None: not run) from the top of the figure down."""
+    rows = []
+    for run in table.runs:
+        cells = None if run.values is None else table.cells(run.label)
+        rows.append((run.label, run.role, cells))
+    ran = all(run.values is not None for run in table.runs if run.role in ("alone", "full"))
+    rows.append(("interaction", "interaction", table.interaction() if ran else None))
+    return rows
+
+
+@styled
+def plot_effect_table(table: EffectTable, path: Path | str, figure_format: str = "png") -> Path:
+    """Draw ``table`` (:func:`shtaerman.effects`) into ``path`` (:data:`EFFECTS_CAPTION`)."""
+    rows = _rows(table)
+    keys = list(TITLES)
+    figure, axes = chart(0.9 + 0.24 * len(rows), 1, len(keys), width=9.0, sharey=True)
+    place = np.arange(len(rows))[::-1]
+    for panel, key in zip(axes, keys, strict=True):
+        for y, (_, role, cells) in zip(place, rows, strict=True):
+            cell = None if cells is None else cells[key]
+            if cell is None or cell.change is None:
+                panel.text(0.0, y, " not run", va="center", fontsize=7, color="0.4")
+                continue
+            error = None if cell.error is None else 100.0 * cell.error
+            panel.barh(y, 100.0 * cell.change, height=0.7, xerr=error, color=COLOURS[role],
+                       error_kw={"elinewidth": 0.8, "capsize": 2})  # fmt: skip
+        panel.axvline(0.0, color="0.2", linewidth=0.6)
+        panel.set_title(f"{TITLES[key]} (%)", fontsize=9)
+        panel.grid(axis="y", visible=False)
+    axes[0].set_yticks(place, [label for label, _, _ in rows])
+    return save(figure, path, figure_format)
