@@ -118,3 +118,44 @@ def _problem():
         interface="bonded",
         friction=0.5,
     )
+
+
+def _swept(axes: dict, dominant: list[float]) -> dict:
+    """A finished effects sweep's results.json over ``axes`` whose cases found ``dominant``
+    (indices into EFFECT_NAMES; NaN: a failed case) for P_max."""
+    kind = KINDS["effects"]
+    cases = [
+        {"status": "ok", "outputs": {"dominant_P_max": value}}
+        if math.isfinite(value)
+        else {"status": "failed", "outputs": {}}
+        for value in dominant
+    ]
+    return {
+        "spec": {"name": "map", "kind": "effects", "axes": axes},
+        "kind": {
+            "outputs": {"dominant_P_max": ""},
+            "levels": {},
+            "categories": {"dominant_P_max": list(kind.categories["dominant_P_max"])},
+            "parameter_units": {name: p.unit for name, p in kind.parameters.items()},
+        },
+        "cases": cases,
+    }
+
+
+@pytest.mark.parametrize(
+    "axes", [{"velocity": [0.5, 1.0, 2.0]}, {"thickness": [0.01, 0.03], "velocity": [1.0, 2.0]}]
+)
+def test_a_sweeps_dominant_effect_is_drawn_by_name(axes):
+    """The dominant effect is an index into EFFECT_NAMES in cases.csv; its figure names it
+    (a curve's ticks, a heat map's cells), where it drew the index as a number (3.0, 0.0)."""
+    from shtaerman.sweep.figures import figure_files
+
+    count = math.prod(len(values) for values in axes.values())
+    dominant = [3.0, 0.0, 0.0, math.nan][:count]
+    files = figure_files(_swept(axes, dominant), "dominant_P_max", "", "svg")
+    svg = files["dominant_P_max.svg"].decode()
+    assert "viscoelasticity" in svg and "Dominant single effect on P_max" in svg
+    if len(axes) == 2:  # each cell says its effect, a failed one says so; no colour bar
+        assert svg.count(">pad<") == 2 and "failed" in svg and "finite strain" not in svg
+    else:  # every name is a tick, none of the index's numbers is
+        assert all(name in svg for name in EFFECT_NAMES) and ">3.0<" not in svg

@@ -46,6 +46,13 @@ class Label:
 MINUS = "\N{MINUS SIGN}"
 NU = "\N{GREEK SMALL LETTER NU}"
 _DIFFERENCE = f"quasi-static / dynamic {MINUS} 1"
+_EFFECT_HEADS = {
+    "dominant": "Dominant single effect on {}",
+    "resolved": "Dominant effect on {} resolved (1 yes, 0 no)",
+    "change": "Change of {} from the paper's, full problem",
+    "interaction": "Interaction on {}: full minus the single effects",
+}
+_EFFECT_SHOWN = {"P_max": "P_max", "x_max": "x_max", "t_contact": "t_contact", "restitution": "e"}
 LABELS: dict[str, Label] = {
     # the quasi-static impact
     "beta": Label("Contact law coefficient β", "N/m^q"),
@@ -101,6 +108,12 @@ LABELS: dict[str, Label] = {
     "P_max_dynamic": Label("Dynamic maximum force on the layer", "N"),
     "model": Label("Rubber model"),
     "error_exponent": Label("Error of the FEM force exponent q", percent=True),
+    # the effect table (its sweep kind)
+    **{
+        f"{head}_{key}": Label(words.format(shown), percent=head in ("change", "interaction"))
+        for head, words in _EFFECT_HEADS.items()
+        for key, shown in _EFFECT_SHOWN.items()
+    },
     # cost
     "dofs": Label("Unknowns (degrees of freedom)"),
     "seconds": Label("Wall time", "s"),

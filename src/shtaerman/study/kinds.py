@@ -85,6 +85,9 @@ class Kind:
     levels: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     """Relative differences (output -> levels of its magnitude) whose heat maps draw the levels
     as contours where the output's estimated error ``error_<name>`` resolves them."""
+    categories: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    """Outputs that are an index into a list of names (output -> the names): the figures show
+    the names, results.json lists them."""
     load: str | None = None
     """``"module:function"`` reading a study file of this kind (``None``: no study files)."""
     run: str | None = None

@@ -1170,6 +1170,7 @@ def _results(
             "description": kind.description,
             "outputs": spec.outputs,
             "levels": {k: list(v) for k, v in kind.levels.items() if k in spec.outputs},
+            "categories": {k: list(v) for k, v in kind.categories.items() if k in spec.outputs},
             "nondeterministic_outputs": list(kind.nondeterministic),
             "parameter_units": {name: p.unit for name, p in kind.parameters.items()},
         },

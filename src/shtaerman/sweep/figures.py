@@ -26,6 +26,7 @@ from typing import Any
 
 import matplotlib as mpl
 import numpy as np
+from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
@@ -122,7 +123,9 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
     figure = Figure(figsize=(6.0, 4.0), layout="constrained")
     ax = figure.add_subplot()
     bars = None if errors is None else factor * errors
-    points(ax, x, y, ("C0", "o", "-", "_nolegend_"), error=bars, hidden=open_)
+    names = results["kind"].get("categories", {}).get(name)
+    line = "-" if names is None else "none"  # no line between categories
+    points(ax, x, y, ("C0", "o", line, "_nolegend_"), error=bars, hidden=open_)
     if open_.any():
         ax.lines[-1].set_label("unresolved: estimated error ≥ |value|")
         ax.legend(loc="best", fontsize=8)
@@ -134,7 +137,10 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
         ax.set_xscale("log")
     if ticks is not None:
         ax.set_xticks(x, ticks)
-    if np.all(y[np.isfinite(y)] > 0) and np.isfinite(y).sum() > 1:
+    if names is not None:
+        ax.set_yticks(range(len(names)), names)
+        ax.set_ylim(-0.5, len(names) - 0.5)
+    elif np.all(y[np.isfinite(y)] > 0) and np.isfinite(y).sum() > 1:
         finite = y[np.isfinite(y)]
         if finite.max() / finite.min() >= 100.0:
             ax.set_yscale("log")
@@ -157,9 +163,15 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     ax = figure.add_subplot()
     factor, label = _display(name, unit, grid)
     masked = np.ma.masked_where(~np.isfinite(grid) | open_, factor * grid)
-    cmap = mpl.colormaps["viridis"].with_extremes(bad="0.8")
-    image = ax.imshow(masked, cmap=cmap, aspect="auto", origin="lower")
-    figure.colorbar(image, ax=ax, label=label)
+    names = results["kind"].get("categories", {}).get(name)
+    if names is None:
+        cmap = mpl.colormaps["viridis"].with_extremes(bad="0.8")
+        image = ax.imshow(masked, cmap=cmap, aspect="auto", origin="lower")
+        figure.colorbar(image, ax=ax, label=label)
+    else:  # a colour per name, the name in its cells
+        cmap = ListedColormap(mpl.colormaps["tab10"].colors[: len(names)], "categories")
+        ax.imshow(masked, cmap=cmap.with_extremes(bad="0.8"), aspect="auto", origin="lower",
+                  vmin=-0.5, vmax=len(names) - 0.5)  # fmt: skip
     for axis, values, set_ticks, set_label in (
         (col_axis, cols, ax.set_xticks, ax.set_xlabel),
         (row_axis, rows, ax.set_yticks, ax.set_ylabel),
@@ -168,7 +180,7 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
         ticks = [f"{scale * v:g}" if _numeric([v]) else str(v) for v in values]
         set_ticks(range(len(values)), ticks)
         set_label(text)
-    _cell_texts(ax, masked, (grid, errors, factor), name)
+    _cell_texts(ax, masked, (grid, errors, factor), name, names)
     for i, j in zip(*np.nonzero(open_), strict=True):
         ax.add_patch(
             Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.55", hatch="///")
@@ -180,15 +192,21 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     return save(figure, folder / f"{name}.png", figure_format)
 
 
-def _cell_texts(ax: Any, masked: np.ma.MaskedArray, stored: tuple, name: str) -> None:
-    """Each cell's value (± its estimated error), "failed", or "unresolved" and its error;
-    ``stored`` = (values, errors or None, factor to the shown unit)."""
+def _cell_texts(
+    ax: Any, masked: np.ma.MaskedArray, stored: tuple, name: str, names: list | None = None
+) -> None:
+    """Each cell's value (± its estimated error), or the name it indexes in ``names``,
+    "failed", or "unresolved" and its error; ``stored`` = (values, errors or None, factor to
+    the shown unit)."""
     grid, errors, factor = stored
     finite = masked.compressed()
     middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
+    middle = math.inf if names else middle  # names: white on every colour
     hidden = np.ma.getmaskarray(masked)
     for (i, j), value in np.ndenumerate(grid):
         text = "failed" if not math.isfinite(value) else _value_text(value, name, factor)
+        if names and math.isfinite(value):
+            text = names[int(value)]
         if errors is not None and math.isfinite(value):
             error = f"± {factor * errors[i, j]:.1g}" + (" %" if factor != 1.0 else "")
             text = f"unresolved\n{error}" if hidden[i, j] else f"{text}\n{error}"

@@ -606,6 +606,7 @@ _sweepable(
     EFFECTS_OUTPUTS,
     effects_case,
     _quasi_static(lambda p: _effects_inputs(p)),
+    categories={f"dominant_{key}": EFFECT_NAMES for key in EFFECT_QUANTITIES},
     parameters={
         name: parameter
         for name, parameter in vocabulary_parameters("dynamic").items()
