@@ -1,0 +1,27 @@
+"""Session 52's new-user and adversary pass over main (e585a17): what it found, fixed."""
+
+import types
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.fem.stepper import _step_failure
+from shtaerman.guards import MAX_DEPTH_RATIO, depth_ratio
+
+PAD_STRIKER = sh.PowerLawIndenter(shape_coefficient=8.0, exponent=1.3)  # issue 28's A = 8
+
+
+@pytest.mark.parametrize("reached", [2.518e-3, 1e-4])
+def test_an_inertial_step_failure_offers_the_massless_impact_only_within_its_reach(reached):
+    """Issue 28's case on the 12 mm pad (neo-Hookean, density2 1000, mesh-size 0.2) failed at
+    t = 1.7 ms, x = 2.518 mm (x/a 1.88) with 'other time steps may help ... density2=0 gives
+    the massless finite-strain impact': no option named, and the massless impact refuses
+    this striker beyond x/a 1.2 (guards.check_reach), so the remedy sent to a refusal."""
+    stepper = types.SimpleNamespace(indenter=PAD_STRIKER)  # an inertial frictionless stepper
+    said = str(_step_failure(stepper, (1.7e-3, reached, reached), RuntimeError("Newton")))
+    assert "time_steps=..." in said, said
+    beyond = depth_ratio(PAD_STRIKER, reached) > MAX_DEPTH_RATIO  # x/a 1.88 and 0.89
+    assert ("density2=0 gives the massless" in said) is not beyond, said
+    if beyond:
+        assert "x/a = 1.88, beyond the 1.2 of the massless impact" in said, said
+        assert "velocity=..." in said and "shape_coefficient=..." in said, said
