@@ -25,3 +25,16 @@ def test_an_inertial_step_failure_offers_the_massless_impact_only_within_its_rea
     if beyond:
         assert "x/a = 1.88, beyond the 1.2 of the massless impact" in said, said
         assert "velocity=..." in said and "shape_coefficient=..." in said, said
+
+
+def test_a_material_of_an_array_modulus_is_refused_in_one_line():
+    """``sh.Material(youngs_modulus=np.array([3e6, 1e6]), ...)`` raised NumPy's 'truth value
+    of an array ... is ambiguous' ValueError (the rigid test compared the array with inf);
+    poisson_ratio and density as arrays were already refused by name."""
+    import numpy as np
+
+    from shtaerman.validation import InputError
+
+    with pytest.raises(InputError, match=r"^youngs_modulus must be a finite number > 0 Pa"):
+        sh.Material(youngs_modulus=np.array([3e6, 1e6]), poisson_ratio=0.49)
+    assert sh.Material(youngs_modulus=np.float64(np.inf), poisson_ratio=0.3).compliance == 0.0
