@@ -38,3 +38,24 @@ def test_a_material_of_an_array_modulus_is_refused_in_one_line():
     with pytest.raises(InputError, match=r"^youngs_modulus must be a finite number > 0 Pa"):
         sh.Material(youngs_modulus=np.array([3e6, 1e6]), poisson_ratio=0.49)
     assert sh.Material(youngs_modulus=np.float64(np.inf), poisson_ratio=0.3).compliance == 0.0
+
+
+def test_the_low_side_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsys):
+    """z = 5 r^3 at 0.7 kg and 1e-13 m/s: x_c 7.9e-15 m, x/a 9e-10, below the 1e-6 the
+    finite-strain models resolve. `dynamic` said guards.check_reach's sentence ('0.7 kg at
+    1e-13 m/s drive the striker to 7.89e-15 m only ...'), `contact` its own ('the depths
+    reach the x_c of ... and 2.92174e-16 m gives depth / contact radius 1e-10'): the brief's
+    known wording item; now the one sentence, the curve adding its remedy, its depths."""
+    from shtaerman.cli import main
+
+    striker = ["--model", "neo-hookean", "--exponent", "3", "--velocity", "1e-13"]
+    said = []
+    for command in (["dynamic", "--density2", "0"], ["contact", "--no-estimate"]):
+        assert main([*command, *striker]) == 2
+        out, err = capsys.readouterr()
+        assert out == "" and err.count("\n") == 1, err  # one line, no traceback
+        said.append(err.removeprefix("shtaerman: error: ").rstrip("\n"))
+    dynamic, contact = said
+    head = "--mass, --velocity: 0.7 kg at 1e-13 m/s drive the striker to 7.89e-15 m only"
+    assert dynamic.startswith(head), dynamic
+    assert contact.startswith(dynamic), contact  # the curve may add its remedy, its depths
