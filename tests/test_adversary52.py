@@ -59,3 +59,49 @@ def test_the_low_side_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsy
     head = "--mass, --velocity: 0.7 kg at 1e-13 m/s drive the striker to 7.89e-15 m only"
     assert dynamic.startswith(head), dynamic
     assert contact.startswith(dynamic), contact  # the curve may add its remedy, its depths
+
+
+def test_a_force_history_fit_on_a_pad_without_density2_runs_massless_fe_impacts(
+    tmp_path, monkeypatch
+):
+    """`fit force-history DATA --thickness 0.012` (no --density2, whose help says 'unset: no
+    waves') stopped at its first FE correction with the Python API's 'density: the dynamic
+    impact needs the body's density ... e.g. Material(youngs_modulus, poisson_ratio,
+    density=1100.0)', which names no option of `fit`; the FE impact is now the massless one.
+    The FE run is replaced by a recorder: what it is given is what is asserted."""
+    from shtaerman.api import fem_dynamic
+    from shtaerman.cli import main
+
+    class ReachedError(Exception):
+        pass
+
+    given = []
+
+    def recorder(problem, **options):
+        given.append(problem.body.material.density)
+        raise ReachedError
+
+    monkeypatch.setattr(fem_dynamic, "dynamic", recorder)
+    data = tmp_path / "fh.csv"
+    data.write_text("time [s],force [N]\n0,0\n1e-3,10\n2e-3,0\n")
+    striker = ["--exponent", "1.3", "--shape-coefficient", "8", "--mass", "0.12"]
+    with pytest.raises(ReachedError):
+        main(["fit", "force-history", str(data), *striker, "--velocity", "1.5",
+              "--E2", "3e6", "--nu2", "0.49", "--thickness", "0.012"])  # fmt: skip
+    assert given == [0.0]  # massless: no waves, as --density2's help says of it unset
+
+
+def test_a_fits_fe_refine_refusal_offers_no_option_fit_lacks(tmp_path, capsys):
+    """`fit indentation DATA --model neo-hookean --refine 0.3` ended '...; or run without the
+    estimate (--no-estimate)', an option `fit` does not have (its FE runs always estimate):
+    now the refusal ends at the refine it needs (0.6 on the finite-strain contact's mesh)."""
+    from shtaerman.cli import main
+
+    data = tmp_path / "ok.csv"
+    data.write_text("depth [m],force [N]\n1e-4,0.5\n2e-4,1.5\n3e-4,3\n")
+    striker = ["--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6", "--nu2", "0.49"]
+    argv = ["fit", "indentation", str(data), *striker, "--model", "neo-hookean"]
+    assert main([*argv, "--fit", "E2", "--refine", "0.3"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith("shtaerman: error: --refine must be >= 0.6"), err
+    assert "estimate" not in err.split("), got")[-1], err  # nothing after the value it got
