@@ -105,3 +105,25 @@ def test_a_fits_fe_refine_refusal_offers_no_option_fit_lacks(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert err.startswith("shtaerman: error: --refine must be >= 0.6"), err
     assert "estimate" not in err.split("), got")[-1], err  # nothing after the value it got
+
+
+def test_a_sweeps_existing_folder_is_refused_in_each_routes_words(tmp_path, capsys):
+    """Running docs/tutorials/sweep.py twice in one folder stopped on 'out: folder ...
+    exists; use --resume to complete it or --force to replace it': options, in Python
+    (sh.sweep takes resume=True, force=True). Each route now reads its own spelling; the
+    folder is refused before any cluster starts."""
+    from shtaerman.cli import main
+
+    spec = tmp_path / "s.toml"
+    spec.write_text('name = "s"\nkind = "impact"\n[axes]\nvelocity = [1.0, 2.0]\n')
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "cases").mkdir()  # a folder with something in it: not empty
+    with pytest.raises(sh.InputError) as caught:
+        sh.sweep(str(spec), out=str(out), workers=1)
+    said = str(caught.value)
+    assert said.endswith("use resume=True to complete it or force=True to replace it"), said
+    assert main(["sweep", str(spec), "--out", str(out), "--workers", "1"]) == 2
+    err = capsys.readouterr().err
+    assert err.endswith("use --resume to complete it or --force to replace it\n"), err
+    assert err.startswith("shtaerman: error: --out: folder") and err.count("\n") == 1, err
