@@ -127,3 +127,21 @@ def test_a_sweeps_existing_folder_is_refused_in_each_routes_words(tmp_path, caps
     err = capsys.readouterr().err
     assert err.endswith("use --resume to complete it or --force to replace it\n"), err
     assert err.startswith("shtaerman: error: --out: folder") and err.count("\n") == 1, err
+
+
+def test_a_study_key_of_any_characters_is_refused_as_an_unknown_key(tmp_path, capsys):
+    """A quoted TOML key of non-word characters ('"[half_space]" = 1' under [indenter]) fell
+    through to msgspec's own words: "expected Object contains unknown field [half_space],
+    got {...}"; now the unknown-key refusal every other key gets."""
+    from shtaerman.cli import main
+
+    study = tmp_path / "s.toml"
+    study.write_text(
+        'kind = "contact"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        '"[half_space]" = 1\n'
+    )
+    assert main(["verify", str(study), "--quick", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    head = f"shtaerman: error: {study}: key 'indenter.[half_space]': expected one of ["
+    assert err.startswith(head) and err.endswith("(unknown key)\n"), err
+    assert "Object contains" not in err and err.count("\n") == 1, err
