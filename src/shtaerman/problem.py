@@ -292,6 +292,10 @@ class Unsupported:
     reason: str
 
 
+LINEAR_BODY = ", or take model='linear'"
+"""The end of a refusal that the linear body lifts, on the routes that choose the model (a
+finite-strain study or sweep, always a rubber, words its own: :mod:`shtaerman.sweep.spec`)."""
+
 SUPPORT: tuple[Unsupported, ...] = (
     Unsupported(
         lambda c: c.model == "rubber" and c.geometry == "layer lubricated",
@@ -304,8 +308,7 @@ SUPPORT: tuple[Unsupported, ...] = (
         "prony",
         "a contact curve at finite strain is elastic (the finite-strain contact solver has no "
         "time): a viscoelastic rubber is pressed by an impact (give mass=... and velocity=... "
-        "to the dynamic impact, with density2=0 for the quasi-static one), or take "
-        "model='linear'",
+        f"to the dynamic impact, with density2=0 for the quasi-static one){LINEAR_BODY}",
     ),
     Unsupported(
         lambda c: c.relaxing and c.loading == "curve" and c.interface != "frictionless",

@@ -218,7 +218,7 @@ def _with_impact(report: Mapping[str, Any], impact: tuple[float, float] | None) 
 def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = None) -> None:
     """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh (or
     whose finest is too large; a layer's estimate needs its ``refined`` radius in m)."""
-    from ..study.ladder import check_ladder
+    from ..study.ladder import WITHOUT_ESTIMATE, check_ladder
 
     mesh.refined(refine).check_size(refined)  # the run's own mesh: no estimate makes it smaller
     try:
@@ -226,10 +226,7 @@ def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = N
     except InputError as error:
         if error.parameter == "thickness":  # a layer the mesh cannot resolve, estimate or not
             raise
-        raise InputError(
-            f"{error}; or run without the estimate (estimate=False)",
-            error.parameter,
-        ) from None
+        raise InputError(f"{error}{WITHOUT_ESTIMATE}", error.parameter) from None
 
 
 @dataclass(frozen=True)

@@ -1288,7 +1288,8 @@ def _step_failure(
     having reached ``at[2]`` (m): with a bonded or Coulomb indenter beyond the validated x/a
     (:data:`.guards.MAX_DEPTH_RATIO`) that limit is named (near separation the last ring in
     contact slides back inward down the steep flank and folds the surface: the A = 8 pad,
-    x/a 2.29), else what may help."""
+    x/a 2.29), else what may help: the massless impact (density2=0) only within that x/a,
+    which it cannot pass."""
     where = (
         f"the step from t = {at[0]:.4g} s (striker depth {at[1]:.4g} m): {error}, also in "
         f"steps cut {MAX_STEP_CUTS} times; "
@@ -1302,10 +1303,16 @@ def _step_failure(
             "(a smaller shape_coefficient=... or a slower velocity=...) or "
             "interface='frictionless' (run beyond x/a 1.2 with a warning)"
         )
+    massless = (  # the massless impact stops at x/a 1.2 (guards.check_reach): not beyond it
+        "density2=0 gives the massless finite-strain impact"
+        if ratio <= MAX_DEPTH_RATIO
+        else f"it had reached x/a = {ratio:.3g}, beyond the {MAX_DEPTH_RATIO:g} of the massless "
+        "impact (density2=0): a slower velocity=... or a smaller shape_coefficient=..."
+    )
     return NumericalFailureError(
         where + "the body with inertia cannot follow this impact at these settings (other "
-        "time steps may help; a striker faster than the shear waves never converges): "
-        "density2=0 gives the massless finite-strain impact"
+        "time_steps=... may help; a striker faster than the shear waves never converges): "
+        + massless
     )
 
 

@@ -170,10 +170,12 @@ def exact_rebound(known: KnownParts, values: Mapping[str, float], velocity: floa
 
 def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
-    """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point."""
+    """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point; a
+    density left unset is no waves, the massless FE impact (density 0)."""
     e2 = youngs_modulus(known, values["E_star"], known.nu2)
     body = problem.body
-    material = Material(e2, known.nu2, body.material.density)
+    density = body.material.density
+    material = Material(e2, known.nu2, 0.0 if density is None else density)
     striker = dataclasses.replace(problem.striker, mass=values["mass"],
                                   velocity=values["velocity"])  # fmt: skip
     body = dataclasses.replace(body, material=material, prony=prony)

@@ -185,8 +185,14 @@ def fit(
         noise = validate_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-        known, model, sol, extra = _fitted(problem, known, measured, names, noise, refine,
-                                           progress)  # fmt: skip
+        try:
+            known, model, sol, extra = _fitted(problem, known, measured, names, noise, refine,
+                                               progress)  # fmt: skip
+        except InputError as error:  # its FE runs always estimate: no estimate=False here
+            from ..study.ladder import WITHOUT_ESTIMATE
+
+            said = str(error).removesuffix(WITHOUT_ESTIMATE)
+            raise InputError(said, error.parameter) from None
     _check_velocities(measured, known, model, sol)
     if kind == "indentation":  # the same depth limits as every contact route
         deepest = float(np.max(measured.columns["depth"]))  # within the law's reach: checked

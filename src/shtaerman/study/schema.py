@@ -479,7 +479,7 @@ def _located(
     of a number (:func:`_vocabulary_says`), else what was expected, with the value given."""
     text, _, where = message.partition(" - at `$")
     keys = [k for k in re.split(r"\.|\[\d+\]", where.rstrip("`")) if k]
-    unknown = re.fullmatch(r"Object contains unknown field `(\w+)`", text)
+    unknown = re.fullmatch(r"Object contains unknown field `([^`]+)`", text)  # any TOML key
     missing = re.fullmatch(r"Object missing required field `(\w+)`", text)
     if unknown:
         allowed = _allowed_keys(keys, root)

@@ -16,6 +16,7 @@ from typing import Any
 
 from ..cli.common import add_inputs, path_text
 from ..plots.formats import add_figure_format
+from ..problem import worded
 from ..validation import InputError
 
 __all__ = ["add_parser", "register", "run"]
@@ -103,7 +104,7 @@ def run(args: argparse.Namespace) -> int:
         key = next((k for k in keys if str(error).startswith(f"{k}: ")), None)
         if key is None:
             raise
-        raise InputError(f"--{error}", key) from None
+        raise InputError(f"--{worded(str(error), 'cli')}", key) from None
     _report(args, spec, out.with_name(outcome.out.name), outcome)  # moved: a --force completed
     return outcome.exit_code
 

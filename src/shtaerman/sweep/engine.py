@@ -522,21 +522,21 @@ def _check_folder(
         if not is_sweep_folder(out):
             raise InputError(
                 f"resume: {str(out)!r} is not a sweep folder (no {MARKER_FILE} written by "
-                "shtaerman sweep); pick another --out",
+                "shtaerman sweep); pick another out=...",
                 "resume",
             )
         _check_same_sweep(spec, out)
         return lambda: _atomic_write(out / SPEC_FILE, spec.text)
     if full and not force:
         raise InputError(
-            f"out: folder {str(out)!r} exists; use --resume to complete it or --force to "
+            f"out: folder {str(out)!r} exists; use resume=True to complete it or force=True to "
             "replace it",
             "out",
         )
     if full and not is_sweep_folder(out):
         raise InputError(
-            f"out: --force replaces only a sweep folder, and {str(out)!r} has no {MARKER_FILE} "
-            "written by shtaerman sweep; remove it yourself or pick another --out",
+            f"out: force=True replaces only a sweep folder, and {str(out)!r} has no "
+            f"{MARKER_FILE} written by shtaerman sweep; remove it yourself or pick another out=...",
             "out",
         )
     if full:  # moved aside until the new sweep completes: a read-only folder cannot be

@@ -337,14 +337,17 @@ RELAXING = ("prony", "rate")
 def _unsupported(kind: Kind, name: str) -> str | None:
     """The support table's refusal (:func:`shtaerman.problem.refusal`) of a viscoelastic
     input ``name`` in a finite-strain case, a rubber's contact curve, which does not combine
-    with one (``shtaerman contact --model ... --prony`` is refused in the same words); None
-    for any other kind or name."""
-    from ..problem import Cell, refusal
+    with one (``shtaerman contact --model ... --prony`` is refused in the same words, but
+    for its remedy: a finite-strain case has no linear model, the contact kind is the linear
+    curve, which takes a Prony series); None for any other kind or name."""
+    from ..problem import LINEAR_BODY, Cell, refusal
 
     if kind.name != "finite-strain" or name not in RELAXING:
         return None
     limit = refusal(Cell("rubber", True, "half-space", "frictionless", "curve"))
-    return None if limit is None else limit.reason
+    if limit is None:
+        return None
+    return limit.reason.removesuffix(LINEAR_BODY) + ', or sweep kind = "contact" (linear)'
 
 
 def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:

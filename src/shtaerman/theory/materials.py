@@ -42,7 +42,8 @@ class Material:
     density: float | None = None
 
     def __post_init__(self) -> None:
-        rigid = not isinstance(self.youngs_modulus, bool) and self.youngs_modulus == math.inf
+        young = self.youngs_modulus  # an array's == is an array: no truth value, Real only
+        rigid = isinstance(young, Real) and not isinstance(young, bool) and young == math.inf
         if not rigid:
             validate_positive("youngs_modulus", self.youngs_modulus, "Pa (or math.inf: rigid)")
         validate_poisson("poisson_ratio", self.poisson_ratio)

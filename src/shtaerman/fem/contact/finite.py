@@ -838,8 +838,9 @@ def check_finite_depths(
     (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
     ``model`` names the rubber model in the message; ``impact`` (mass in kg, velocity in m/s):
     the depths were set by that impact's x_c, and the message names those inputs instead:
-    beyond the reach, :func:`shtaerman.guards.check_reach`'s refusal of that impact, the
-    one every route says (and the curve's own remedy, its depths).
+    an x_c out of reach (on either side) is :func:`shtaerman.guards.check_reach`'s refusal of
+    that impact, the one every route says (and the curve's own remedy, its depths); only the
+    curve's first depths below the reach, its x_c within, are refused in the curve's words.
 
     Raises
     ------
@@ -850,15 +851,15 @@ def check_finite_depths(
     ratios = [(float(d), depth_ratio(indenter, float(d))) for d in (depths[0], depths[-1])]
     (small, low), (deep, high) = ratios
     valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
+    if impact is not None and not MIN_DEPTH_RATIO <= high <= MAX_DEPTH_RATIO:  # its words
+        q = contact_law(indenter, 1.0).force_exponent
+        check_reach(indenter, deep, impact, q, finite=True, note=", or give depths=...")
     if low < MIN_DEPTH_RATIO:
         reason = (
             f"{small:g} m gives depth / contact radius {low:.2g}, below the {model} model's "
             f"{valid}: strains this small lose their digits in F = I + grad u"
         )
         _refuse_depths(reason, "raise the smallest depth (the linear model is exact there)", impact)
-    if high > MAX_DEPTH_RATIO and impact is not None:  # the impact's refusal, in its words
-        q = contact_law(indenter, 1.0).force_exponent
-        check_reach(indenter, deep, impact, q, finite=True, note=", or give depths=...")
     if high > MAX_DEPTH_RATIO:
         reason = (
             f"{deep:g} m gives depth / contact radius {high:.3g}, beyond the {model} model's "
