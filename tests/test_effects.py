@@ -291,8 +291,8 @@ def test_the_figure_draws_each_run_and_names_a_run_that_did_not_run(pad_table, t
 
     from matplotlib.image import imread
 
+    from shtaerman.api.effect_table.figure import COLOURS
     from shtaerman.api.effect_table.table import EffectTable
-    from shtaerman.plots.effects import COLOURS
 
     runs = tuple(
         replace(run, values=None, errors=None, refused="friction: refused here")

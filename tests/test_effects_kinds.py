@@ -102,7 +102,7 @@ def test_an_effects_study_writes_the_table_of_sh_effects(tmp_path, table):
     for mine, theirs in zip(written["runs"], table["runs"], strict=True):
         assert mine["changes"] == theirs["changes"], mine["label"]  # the same runs
     assert {"effects.csv", "effects.md"} <= {p.name for p in (tmp_path / "pad").iterdir()}
-    from shtaerman.plots.effects import EFFECTS_CAPTION  # the report shows the figure
+    from shtaerman.api.effect_table.figure import EFFECTS_CAPTION  # the report shows the figure
 
     assert entry["figures"] == {EFFECTS_CAPTION: "pad/effects.png"}
     assert entry["findings"][0].startswith("P_max moves most with pad alone")

@@ -132,7 +132,7 @@ def write_effects(
     """effects.json, effects.csv, effects.md and the figure effects.png in ``folder`` (as
     ``shtaerman effects --out``; ``figure_format`` "svg" or "pdf": the figure also in that
     format beside its PNG)."""
-    from ...plots.effects import EFFECTS_CAPTION
+    from .figure import EFFECTS_CAPTION
 
     folder.mkdir()
     write_table(outcome.table, folder)

@@ -175,8 +175,8 @@ class EffectTable:
     def plot(self, path: Path | str, figure_format: str = "png") -> Path:
         """Draw the table into the PNG ``path`` (or .svg/.pdf; ``figure_format`` "svg" or
         "pdf" adds that format beside the PNG), one panel per quantity, each variant's change
-        with its error bar (:func:`shtaerman.plots.effects.plot_effect_table`); the path."""
-        from ...plots.effects import plot_effect_table
+        with its error bar (:func:`.figure.plot_effect_table`); the path."""
+        from .figure import plot_effect_table
 
         return plot_effect_table(self, path, figure_format)
 

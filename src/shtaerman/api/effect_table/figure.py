@@ -1,6 +1,6 @@
 """The effect table as a figure: each effect's change of P_max, x_max, t_contact and e.
 
-One panel per quantity (:data:`shtaerman.api.effect_table.table.QUANTITIES`), one horizontal
+One panel per quantity (:data:`.table.QUANTITIES`), one horizontal
 bar per variant, measured from the paper's quasi-static impact as the table measures it: P_max,
 x_max and t_contact in per cent of P_c, x_c and t_y, the restitution as e - 1 in per cent.
 Each effect alone is blue, the full problem black, the full problem without one effect orange
@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .labels import MINUS
-from .style import APPROXIMATION_COLOUR, EXACT_COLOUR, FEM_COLOUR, chart, save, styled
+from ...plots.labels import MINUS
+from ...plots.style import APPROXIMATION_COLOUR, EXACT_COLOUR, FEM_COLOUR, chart, save, styled
 
 if TYPE_CHECKING:
-    from ..api.effect_table.table import Cell, EffectTable
+    from .table import Cell, EffectTable
 
 __all__ = ["EFFECTS_CAPTION", "plot_effect_table"]
 
