@@ -10,10 +10,9 @@ from pathlib import Path
 from ..api.dynamic_result import UNTRUSTED, check_failures
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
-from ..fem.contact.finite import FINITE_MESH
-from ..fem.dynamic_contact import MAX_SIZE, MIN_STEPS
-from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
-from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
+from ..fem.impact_limits import FINITE_MIN_STEPS as FINITE_STEPS
+from ..fem.impact_limits import INERTIA_STEPS, MASSLESS_STEPS, MAX_SIZE, MIN_STEPS
+from ..fem.mesh import FINITE_MESH
 from ..guards import FailedCheckWarning
 from ..output.case import interface_words
 from ..output.files import staged_file, write_csv

@@ -17,9 +17,18 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from .engine import SweepInterrupted, SweepOutcome, run_sweep
-    from .kinds import KINDS, Kind, Parameter, register_kind
-    from .spec import SweepError, SweepSpec, find_sweep, load_sweep, parse_sweep
+    from .engine import SweepInterrupted as SweepInterrupted
+    from .engine import SweepOutcome as SweepOutcome
+    from .engine import run_sweep as run_sweep
+    from .kinds import KINDS as KINDS
+    from .kinds import Kind as Kind
+    from .kinds import Parameter as Parameter
+    from .kinds import register_kind as register_kind
+    from .spec import SweepError as SweepError
+    from .spec import SweepSpec as SweepSpec
+    from .spec import find_sweep as find_sweep
+    from .spec import load_sweep as load_sweep
+    from .spec import parse_sweep as parse_sweep
 
 _HOMES = {
     "engine": ("SweepInterrupted", "SweepOutcome", "run_sweep"),

@@ -27,14 +27,17 @@ from pathlib import Path
 
 from ..input_file import read_input_csv
 from ..validation import InputError, plain_float
+from ..vocabulary import MAX_PRONY_TERMS
 from .viscoelastic import PronySeries
 
 __all__ = [
+    "PRONY_FORM",
     "SHIPPED",
     "ShippedRubber",
     "prony_from_csv",
     "prony_from_moduli",
     "prony_from_text",
+    "prony_input",
     "prony_moduli",
     "prony_with_modulus",
     "shipped_rubber",
@@ -218,3 +221,34 @@ def prony_with_modulus(text: str) -> tuple[PronySeries, float | None]:
 def prony_from_text(text: str) -> PronySeries:
     """The series ``text`` in any of the module's forms (see there)."""
     return prony_with_modulus(text)[0]
+
+
+PRONY_FORM = (
+    f"write g1:tau1,g2:tau2,... with each g_i >= 0, sum g_i < 1, tau_i > 0 s, at most "
+    f"{MAX_PRONY_TERMS} terms; or Einf;E1:tau1,... in Pa; or a .csv file; or a shipped rubber "
+    f"{', '.join(SHIPPED)}"
+)
+"""The valid Prony input, in words."""
+
+
+def prony_input(value: object, name: str = "prony") -> PronySeries | None:
+    """``value`` as a Prony series: None (elastic), a :class:`PronySeries` or its text
+    (:func:`shtaerman.theory.prony_sources.prony_from_text`: ``g1:tau1,...``, ``Einf;E1:tau1,...``,
+    a CSV file or a shipped rubber's name); InputError naming ``name`` and the valid form."""
+    if value is None:
+        return None
+    try:
+        if isinstance(value, PronySeries):
+            series = value
+        elif isinstance(value, str):
+            series = prony_from_text(value)
+        else:
+            raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
+    except InputError as error:
+        raise InputError(
+            f"{name}: {str(error).removeprefix('prony: ').removeprefix('prony ')} ({PRONY_FORM})",
+            name,
+        ) from None
+    if len(series.weights) > MAX_PRONY_TERMS:
+        raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)
+    return series
