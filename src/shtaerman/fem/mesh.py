@@ -28,8 +28,8 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from ..signals import deferred
-from ..theory.layer import BASES
 from ..validation import InputError, bound_text, validate_positive
+from ..vocabulary import BASES
 
 if TYPE_CHECKING:
     from skfem import MeshTri

@@ -11,10 +11,10 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from ..plots.labels import model_label
-from ..theory.viscoelastic import PronySeries
 
 if TYPE_CHECKING:
     from ..fem.rubber import RubberModel
+    from ..theory.viscoelastic import PronySeries
 
 __all__ = [
     "body_words",
