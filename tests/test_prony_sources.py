@@ -12,7 +12,6 @@ import pytest
 from shtaerman.cli import main
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.impact import run_impact
-from shtaerman.fem.viscoelastic import prony_input
 from shtaerman.study.schema import find_study, load_study
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.indenter import PowerLawIndenter
@@ -20,6 +19,7 @@ from shtaerman.theory.materials import RIGID, Material, effective_modulus
 from shtaerman.theory.prony_sources import (
     prony_from_csv,
     prony_from_moduli,
+    prony_input,
     prony_moduli,
     shipped_rubber,
 )

@@ -138,7 +138,7 @@ class Body:
     prony: PronySeries | None = None
 
     def __post_init__(self) -> None:
-        from .fem.viscoelastic import prony_input
+        from .theory.prony_sources import prony_input
 
         if self.model not in MODELS:
             raise InputError(

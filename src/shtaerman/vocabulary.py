@@ -124,6 +124,8 @@ MAX_STUDIES = 100
 study."""
 MAX_VELOCITIES = 100
 """Most approach velocities of a dynamic study: each is a dynamic FE run."""
+BASES = ("bonded", "lubricated")
+"""Conditions at a layer's rigid base z = -H: bonded u = 0; lubricated u_z = 0, free to slide."""
 MAX_PRONY_TERMS = 20
 """Most terms of a Prony series: each adds internal variables at every quadrature point."""
 MAX_LAYER_RATE = 1e4
@@ -644,7 +646,7 @@ VOCABULARY: tuple[Entry, ...] = (
         ("layer", "dynamic", "finite-strain"),
         valid=None,
         type="str",
-        choices=("bonded", "lubricated"),
+        choices=BASES,
     ),
     Entry(
         "dynamic",

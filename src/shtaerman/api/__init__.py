@@ -9,36 +9,72 @@
 
 Every result is a frozen dataclass whose attributes are the keys of the matching CLI
 command's ``--json`` object, and whose ``to_dict()`` is that object. The public names are
-listed once, in :data:`shtaerman.__all__`.
+listed once, in :data:`shtaerman.__all__`. Names are imported on first use, so that
+``shtaerman.api.quasi_static`` (the command line's ``impact``) loads neither the FEM nor
+scipy.stats.
 """
 
-import sys
+from __future__ import annotations
 
-from ..fitting.result import FitResult as FitResult
-from ..fitting.run import fit as fit
-from ..problem import Body as Body
-from ..problem import Geometry as Geometry
-from ..problem import Interface as Interface
-from ..problem import Loading as Loading
-from ..problem import Problem as Problem
-from ..problem import Striker as Striker
-from ..theory.indenter import PowerLawIndenter as PowerLawIndenter
-from ..theory.materials import RIGID as RIGID
-from ..theory.materials import Material as Material
-from ..theory.profiles import SphereIndenter as SphereIndenter
-from ..theory.profiles import TabulatedIndenter as TabulatedIndenter
-from ..validation import InputError as InputError
-from .dynamic_result import DynamicResult as DynamicResult
-from .effect_table import EffectTable as EffectTable
-from .effect_table import effects as effects
-from .fem_contact import ContactResult as ContactResult
-from .fem_contact import contact as contact
-from .fem_dynamic import dynamic as dynamic
-from .quasi_static import ImpactResult as ImpactResult
-from .quasi_static import impact as impact
-from .studies import StudyResults as StudyResults
-from .studies import run_study as run_study
-from .studies import sweep as sweep
+import importlib
+import sys
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ..fitting.result import FitResult as FitResult
+    from ..fitting.run import fit as fit
+    from ..problem import Body as Body
+    from ..problem import Geometry as Geometry
+    from ..problem import Interface as Interface
+    from ..problem import Loading as Loading
+    from ..problem import Problem as Problem
+    from ..problem import Striker as Striker
+    from ..theory.indenter import PowerLawIndenter as PowerLawIndenter
+    from ..theory.materials import RIGID as RIGID
+    from ..theory.materials import Material as Material
+    from ..theory.profiles import SphereIndenter as SphereIndenter
+    from ..theory.profiles import TabulatedIndenter as TabulatedIndenter
+    from ..validation import InputError as InputError
+    from .dynamic_result import DynamicResult as DynamicResult
+    from .effect_table import EffectTable as EffectTable
+    from .effect_table import effects as effects
+    from .fem_contact import ContactResult as ContactResult
+    from .fem_contact import contact as contact
+    from .fem_dynamic import dynamic as dynamic
+    from .quasi_static import ImpactResult as ImpactResult
+    from .quasi_static import impact as impact
+    from .studies import StudyResults as StudyResults
+    from .studies import run_study as run_study
+    from .studies import sweep as sweep
+
+_HOMES = {
+    "..fitting.result": ("FitResult",),
+    "..fitting.run": ("fit",),
+    "..problem": ("Body", "Geometry", "Interface", "Loading", "Problem", "Striker"),
+    "..theory.indenter": ("PowerLawIndenter",),
+    "..theory.materials": ("RIGID", "Material"),
+    "..theory.profiles": ("SphereIndenter", "TabulatedIndenter"),
+    "..validation": ("InputError",),
+    ".dynamic_result": ("DynamicResult",),
+    ".effect_table": ("EffectTable", "effects"),
+    ".fem_contact": ("ContactResult", "contact"),
+    ".fem_dynamic": ("dynamic",),
+    ".quasi_static": ("ImpactResult", "impact"),
+    ".studies": ("StudyResults", "run_study", "sweep"),
+}
+"""The module of each public name (relative to this package)."""
 
 _PACKAGE = sys.modules[__name__.rpartition(".")[0]]  # shtaerman, loaded before its subpackages
-__all__ = [name for name in _PACKAGE.__all__ if name in globals()]  # not __version__, sweep types
+__all__ = [  # not __version__, sweep types
+    name for name in _PACKAGE.__all__ if any(name in names for names in _HOMES.values())
+]
+
+
+def __getattr__(name: str) -> Any:
+    """A public name, imported from its module on first use."""
+    for home, names in _HOMES.items():
+        if name in names:
+            value = getattr(importlib.import_module(home, __name__), name)
+            globals()[name] = value
+            return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -12,7 +12,6 @@ from ..output.files import json_safe
 from ..problem import check_bodies
 from ..theory import impact as theory
 from ..theory.contact import PowerLawContact
-from ..theory.impact_ode import integrate_impact
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material, effective_modulus
 from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
@@ -153,6 +152,8 @@ def impact(
 
 def _ode_check(result: theory.ImpactResult | ProfileImpactResult) -> dict[str, float]:
     """The numerical ODE's maxima and its largest history difference from the exact one."""
+    from ..theory.impact_ode import integrate_impact  # scipy.integrate: only for check=True
+
     numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
     exact = result.history(2001)
     x, _ = numerical.sample(exact.t[:-1])

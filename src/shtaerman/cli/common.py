@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING, Any
 from ..output.files import json_safe
 from ..plots.formats import add_figure_format
 from ..problem import KEYWORDS, Problem, check_outputs, worded
-from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, NumericalFailureError
 from ..vocabulary import DeprecatedKeyWarning, Entry, entry
@@ -283,6 +282,7 @@ def striker(args: argparse.Namespace) -> Material:
 def indenter(args: argparse.Namespace) -> Indenter:
     """The striker's profile: z = A r^n from --shape-coefficient and --exponent, or the
     sphere of --sphere-radius, or the table of --profile (one of the three)."""
+    from ..theory.indenter import PowerLawIndenter  # here, not at load: it loads scipy.special
     from ..theory.profiles import SphereIndenter, TabulatedIndenter
 
     chosen = [name for name in PROFILES if getattr(args, name, None) is not None]

@@ -7,8 +7,7 @@ import math
 from inspect import signature
 
 from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
-from ..fem.contact.finite import FINITE_MESH
-from ..fem.mesh import DEFAULTS
+from ..fem.mesh import DEFAULTS, FINITE_MESH
 from ..problem import worded
 from ..theory.materials import Material
 from ..vocabulary import entry, fields

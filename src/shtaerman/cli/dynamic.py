@@ -10,12 +10,9 @@ from pathlib import Path
 from ..api.dynamic_result import UNTRUSTED, check_failures
 from ..api.fem_contact import RUBBER_OPTIONS
 from ..api.fem_dynamic import SETTINGS_OPTIONS, dynamic
-from ..fem.contact.finite import FINITE_MESH
-from ..fem.dynamic_contact import MAX_SIZE, MIN_STEPS
-from ..fem.finite_dynamic import INERTIA_STEPS, MASSLESS_STEPS
-from ..fem.finite_dynamic import MIN_STEPS as FINITE_STEPS
-from ..guards import FailedCheckWarning
-from ..output.case import interface_words
+from ..fem.impact_limits import FINITE_MIN_STEPS as FINITE_STEPS
+from ..fem.impact_limits import INERTIA_STEPS, MASSLESS_STEPS, MAX_SIZE, MIN_STEPS
+from ..fem.mesh import FINITE_MESH
 from ..output.files import staged_file, write_csv
 from ..problem import worded
 from ..theory.materials import Material
@@ -115,6 +112,8 @@ def _numerics(args: argparse.Namespace) -> dict[str, object]:
 def run(args: argparse.Namespace) -> int:
     """Run the dynamic impact (:func:`shtaerman.dynamic`); print text or JSON; write the
     history and folder if asked."""
+    from ..guards import FailedCheckWarning  # here, not at load: the guards load scipy
+
     with common.in_option_words():
         problem = common.impact_problem(args, Material(args.E2, args.nu2, args.density2))
     common.refuse_idle_output_options(args, ("out", "history"))
@@ -299,6 +298,8 @@ def ladder_rows(report: dict) -> list[str]:
 
 def interface_rows(parameters: dict) -> list[str]:
     """The line naming a bonded or Coulomb indenter (none when frictionless)."""
+    from ..output.case import interface_words  # here, not at load: it loads the theory
+
     if "interface" not in parameters:
         return []
     return [f"  {interface_words(parameters['interface'], parameters.get('friction'))}"]

@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import TYPE_CHECKING
 
-from ..fitting.data import KIND_COLUMNS, KINDS, article, parse_units
-from ..fitting.result import FitResult
-from ..fitting.run import FE_REFINE, fit
+from ..fitting.data import FE_REFINE, KIND_COLUMNS, KINDS, article, parse_units
 from ..problem import RUBBER_OPTIONS, Problem
 from ..theory.materials import Material
 from ..validation import InputError
 from ..vocabulary import entry
 from . import common
+
+if TYPE_CHECKING:
+    from ..fitting.result import FitResult
 
 __all__ = ["fit_text", "register", "run"]
 
@@ -127,6 +129,8 @@ def _problem(args: argparse.Namespace) -> Problem:
 
 def run(args: argparse.Namespace) -> int:
     """Fit (:func:`shtaerman.fit`) and print the fitted values or the JSON."""
+    from ..fitting.run import fit  # here, not at load: the fit loads the theory and scipy
+
     common.refuse_idle_output_options(args, ("out",))
     with common.in_option_words():
         refuse_unused(args)

@@ -5,14 +5,16 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from ..api.quasi_static import impact
 from ..output.files import check_output_file, staged_file, write_csv
-from ..theory.impact import ImpactResult
 from ..theory.materials import Material
-from ..theory.sneddon import Indenter
 from ..validation import InputError
 from . import common
+
+if TYPE_CHECKING:
+    from ..theory.impact import ImpactResult
+    from ..theory.sneddon import Indenter
 
 NOTES = {
     "history": "columns t [s], x [m], P [N], a [m], p0 [Pa] over [0, t_y]",
@@ -70,6 +72,8 @@ def refuse_idle_options(args: argparse.Namespace) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Solve the impact (:func:`shtaerman.impact`) and print it; write the history if asked."""
+    from ..api.quasi_static import impact  # here, not at load: the theory loads scipy
+
     refuse_idle_options(args)
     history = history_path(args.history, force=args.force)
     with common.in_option_words():

@@ -7,9 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fem.viscoelastic import PRONY_FORM, prony_input
 from ..output.files import check_output_file
-from ..theory.prony_sources import prony_with_modulus
+from ..theory.prony_sources import PRONY_FORM, prony_input, prony_with_modulus
 from ..validation import InputError
 from ..vocabulary import Entry
 from .common import Input, path_text

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 
-from ..paper.comparison import compare_tables, tables_text
 from .common import print_json
 
 
@@ -21,6 +20,8 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the compared tables."""
+    from ..paper.comparison import compare_tables, tables_text  # here: they load scipy.special
+
     tables = compare_tables()
     if args.json:
         print_json({"tables": [table.to_dict() for table in tables]})

@@ -59,6 +59,7 @@ from .elasticity import (
     redistribute_normal_mass,
     weighted_mass,
 )
+from .impact_limits import MAX_SIZE, MIN_STEPS
 from .impact_run import (
     MAX_STEPS,
     ImpactRun,
@@ -96,8 +97,6 @@ MAX_DENSE_CORRECTION = 400e6
 DYNAMIC_ACCURACY_CHECK = 1e-6
 """Largest accepted componentwise backward error of the scaled effective matrix before the
 stricter fallbacks of :func:`.solver.factorize_scaled`."""
-MIN_STEPS = 50
-"""Fewest time steps per quasi-static impact duration t_y accepted."""
 
 
 def validate_friction(friction: object) -> float | None:
@@ -112,10 +111,6 @@ def validate_friction(friction: object) -> float | None:
             "friction",
         )
     return float(friction)
-
-
-MAX_SIZE = 0.2
-"""Largest smallest-element size of the dynamic mesh, in refined radii."""
 
 
 @dataclass(frozen=True)

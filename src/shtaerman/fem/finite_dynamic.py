@@ -87,6 +87,7 @@ from .contact.finite import (
 from .contact.finite_stick import HistoryStepper
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NeoHookean, assemble_hyperelastic
+from .impact_limits import FINITE_MIN_STEPS, INERTIA_STEPS, MASSLESS_STEPS
 from .impact_run import (
     MAX_STEPS,
     ImpactRun,
@@ -117,9 +118,6 @@ __all__ = [
     "prepare_finite_impact",
 ]
 
-MIN_STEPS = 20
-MASSLESS_STEPS = 50
-INERTIA_STEPS = 100
 IMPACT_MESH = replace(FINITE_MESH, axis_size=1e-3)
 """The impact's default mesh, massless or with inertia: FINITE_MESH graded to 1e-3 of the
 refined radius at the axis, not 1e-6 (the impact reports no central pressure, and x_max and
@@ -192,7 +190,7 @@ class FiniteImpactSettings:
 
     def __post_init__(self) -> None:
         if self.steps is not None:
-            validate_steps(self.steps, (MIN_STEPS, MAX_STEPS))
+            validate_steps(self.steps, (FINITE_MIN_STEPS, MAX_STEPS))
         if not (isinstance(self.margin, (int, float)) and math.isfinite(self.margin)) or (
             self.margin <= 1.0
         ):
@@ -218,7 +216,7 @@ class FiniteImpactSettings:
         multiplied by ``factor`` (> 1 refines), as
         :meth:`shtaerman.fem.dynamic_contact.DynamicSettings.refined`."""
         assert self.steps is not None and self.mesh is not None, "resolve the settings first"
-        steps = refined_steps(self.steps, factor, (MIN_STEPS, MAX_STEPS))
+        steps = refined_steps(self.steps, factor, (FINITE_MIN_STEPS, MAX_STEPS))
         return replace(self, steps=steps, mesh=self.mesh.refined(factor))
 
 

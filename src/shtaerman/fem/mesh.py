@@ -23,17 +23,16 @@ import sys
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import gmsh
-import meshio
 import numpy as np
-from skfem import MeshTri
-from skfem.io.meshio import from_meshio
 
 from ..signals import deferred
-from ..theory.layer import BASES
 from ..validation import InputError, bound_text, validate_positive
+from ..vocabulary import BASES
+
+if TYPE_CHECKING:
+    from skfem import MeshTri
 
 __all__ = [
     "BOUNDARIES",
@@ -273,6 +272,8 @@ def _axis_parameters(
 def _gmsh_session() -> Iterator[None]:
     """Run gmsh silently; finalize it only if this call initialized it."""
     with deferred():
+        import gmsh  # here, not at load: the command line's parsers read this module
+
         owned = not gmsh.isInitialized()
         if owned:
             with _petsc_leaving_signals_alone():
@@ -344,6 +345,8 @@ def _generate(
     parameters: dict[str, float], names: dict[str, str] = _PARAMETERS, geometry: str = _GEOMETRY
 ) -> tuple[np.ndarray, np.ndarray, dict]:
     """Mesh the .geo in a model of its own; return points, triangles and tagged lines."""
+    import gmsh
+
     for key, name in names.items():
         if key in parameters:
             gmsh.onelab.setNumber(name, [parameters[key]])
@@ -359,6 +362,8 @@ def _generate(
 
 
 def _read_back() -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    import gmsh
+
     tags, coords, _ = gmsh.model.mesh.getNodes()
     index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
     index[tags.astype(np.int64)] = np.arange(tags.size)
@@ -378,6 +383,9 @@ def _read_back() -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
 
 def _to_skfem(points: np.ndarray, triangles: np.ndarray, lines: dict) -> MeshTri:
     """Build a meshio mesh (one triangle block, one line block, a cell set per group)."""
+    import meshio
+    from skfem.io.meshio import from_meshio
+
     used = np.unique(triangles)
     renumber = np.full(points.shape[0], -1, dtype=np.int64)
     renumber[used] = np.arange(used.size)
@@ -787,6 +795,9 @@ class GradedMesh(MeshSettings):
 
 DEFAULTS = MeshSettings()
 """The default mesh: the one place the mesh defaults live."""
+FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
+"""Default mesh for the finite-strain contact (coarser than the linear default: every Newton
+iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
 
 
 # --- the setting to blame when an estimated mesh exceeds its limit of unknowns --------------

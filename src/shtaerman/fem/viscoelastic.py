@@ -34,55 +34,23 @@ from skfem import asm
 
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning
-from ..theory.prony_sources import SHIPPED, prony_from_text
 from ..theory.viscoelastic import PronySeries, ViscoelasticImpact, viscoelastic_impact
 from ..validation import InputError, NumericalFailureError
-from ..vocabulary import MAX_GLASSY_DURATIONS, MAX_PRONY_TERMS
+from ..vocabulary import MAX_GLASSY_DURATIONS
 from .elasticity import TWO_PI, ElasticSystem, deviatoric_stiffness
 
 __all__ = [
     "MAX_GLASSY_DURATIONS",
-    "PRONY_FORM",
     "RelaxationStep",
     "ShearMemory",
     "ViscoelasticShear",
     "effective_shear_modulus",
-    "prony_input",
     "sizing_impact",
     "strain_operator",
     "viscoelastic_shear",
 ]
 
 ROOT2 = np.sqrt(2.0)
-PRONY_FORM = (
-    f"write g1:tau1,g2:tau2,... with each g_i >= 0, sum g_i < 1, tau_i > 0 s, at most "
-    f"{MAX_PRONY_TERMS} terms; or Einf;E1:tau1,... in Pa; or a .csv file; or a shipped rubber "
-    f"{', '.join(SHIPPED)}"
-)
-"""The valid Prony input, in words."""
-
-
-def prony_input(value: object, name: str = "prony") -> PronySeries | None:
-    """``value`` as a Prony series: None (elastic), a :class:`PronySeries` or its text
-    (:func:`shtaerman.theory.prony_sources.prony_from_text`: ``g1:tau1,...``, ``Einf;E1:tau1,...``,
-    a CSV file or a shipped rubber's name); InputError naming ``name`` and the valid form."""
-    if value is None:
-        return None
-    try:
-        if isinstance(value, PronySeries):
-            series = value
-        elif isinstance(value, str):
-            series = prony_from_text(value)
-        else:
-            raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
-    except InputError as error:
-        raise InputError(
-            f"{name}: {str(error).removeprefix('prony: ').removeprefix('prony ')} ({PRONY_FORM})",
-            name,
-        ) from None
-    if len(series.weights) > MAX_PRONY_TERMS:
-        raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)
-    return series
 
 
 @dataclass(frozen=True, eq=False)

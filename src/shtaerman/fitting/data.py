@@ -338,6 +338,11 @@ def resampled(data: Measurement, points: int) -> Measurement:
     return Measurement(data.kind, columns, data.source, data.units)
 
 
+FE_REFINE = 0.6
+"""The default refinement of the FE runs that correct a force history (a coarse mesh with its
+error estimate: seconds a run)."""
+
+
 def check_history_options(data: Measurement, time_offset: float | None, baseline: float) -> None:
     """Refuse a force history's time offset outside [first time - span, last time] (None: not
     checked, a fitted one) and a baseline outside (-largest |force|, largest force): no

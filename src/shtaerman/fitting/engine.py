@@ -29,8 +29,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.stats import norm
-from scipy.stats import t as student
 
 from ..validation import InputError, NumericalFailureError
 from .models import Model, Parameter
@@ -104,6 +102,9 @@ def _noise(
     """(s, quantile of the 95 % interval, whether s was estimated); ``distinct``: how many
     data values differ in value or in sensitivity (a row repeated verbatim tells the noise
     nothing: its residual is the first copy's)."""
+    from scipy.stats import norm  # here, not at load: 0.6 s the command line's parser skips
+    from scipy.stats import t as student
+
     if noise is not None:
         return float(noise), float(norm.ppf(0.5 + CONFIDENCE / 2)), False
     dof = residual.size - count

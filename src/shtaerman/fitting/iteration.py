@@ -23,7 +23,6 @@ import dataclasses
 from collections.abc import Mapping, Sequence
 
 import numpy as np
-from scipy.stats import norm
 
 from ..problem import Problem
 from ..validation import NumericalFailureError
@@ -132,6 +131,8 @@ def widened(sol: Solution, shifts: Mapping[str, np.ndarray]) -> Solution:
     """``sol`` with the shifts, each taken as one standard deviation of the forward model's
     error (times the normal quantile of the interval's confidence), added in quadrature to
     each identifiable half-interval."""
+    from scipy.stats import norm  # here, not at load (see engine._noise)
+
     if not shifts:
         return sol
     quantile = norm.ppf(0.5 + CONFIDENCE / 2)

@@ -17,7 +17,14 @@ from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarn
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry
 from .corrections import fe_parts, needs_fe
-from .data import Measurement, check_history_options, measured_unit, measurement, resampled
+from .data import (
+    FE_REFINE,
+    Measurement,
+    check_history_options,
+    measured_unit,
+    measurement,
+    resampled,
+)
 from .engine import Progress, Solution, solve
 from .fe_indentation import finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
@@ -25,9 +32,6 @@ from .models import Known, Model, build_model
 from .result import FitResult, fitted_entries, known_values
 
 __all__ = ["FE_REFINE", "fit", "known_of"]
-
-FE_REFINE = 0.6
-"""The default refinement of the FE runs that correct a force history."""
 
 ABSCISSA = {"indentation": "depth", "force-history": "time"}
 """The data column each kind's figure and fit.csv run along (rebound data: the velocity)."""

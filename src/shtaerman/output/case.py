@@ -8,11 +8,13 @@ finding never reads as the paper's elastic, frictionless half-space when the stu
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..fem.rubber import RubberModel
 from ..plots.labels import model_label
-from ..theory.viscoelastic import PronySeries
+
+if TYPE_CHECKING:
+    from ..fem.rubber import RubberModel
+    from ..theory.viscoelastic import PronySeries
 
 __all__ = [
     "body_words",

@@ -9,7 +9,6 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from ..fem.viscoelastic import prony_input
 from ..paper.case import is_paper_case
 from ..plots.labels import model_label
 from ..problem import worded
@@ -17,6 +16,7 @@ from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.limits import LEVELS as LIMIT_LEVELS
 from ..study.richardson import Estimate
+from ..theory.prony_sources import prony_input
 from ..theory.sneddon import profile_inputs
 from .case import body_words, case_words, interface_words, prony_words, rubber_words
 from .entry import text_entry

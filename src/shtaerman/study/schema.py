@@ -368,7 +368,7 @@ def layer_spec(path: Path, layer: Any, swept: str | None) -> Any:
 def prony_of(path: Path, prony: str | None) -> Any:
     """The Prony series of ``[half_space] prony`` (None: unset), a relative .csv path taken
     from the study file's folder; :class:`StudyError` naming the key."""
-    from ..fem.viscoelastic import prony_input
+    from ..theory.prony_sources import prony_input
 
     if prony is not None and prony.strip().lower().endswith(".csv"):
         csv = Path(prony.strip())

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..validation import InputError, validate_poisson, validate_positive
+from ..vocabulary import BASES
 from .contact import PowerLawContact
 from .indenter import PowerLawIndenter
 from .materials import Material
@@ -38,9 +39,6 @@ __all__ = [
     "sliding_stiffness",
     "thin_layer_limit",
 ]
-
-BASES = ("bonded", "lubricated")
-"""Conditions at the rigid base z = -H: bonded u = 0; lubricated u_z = 0, free to slide."""
 
 
 def check_base(base: str) -> str:

@@ -24,17 +24,23 @@ import re
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..input_file import read_input_csv
 from ..validation import InputError, plain_float
-from .viscoelastic import PronySeries
+from ..vocabulary import MAX_PRONY_TERMS
+
+if TYPE_CHECKING:
+    from .viscoelastic import PronySeries
 
 __all__ = [
+    "PRONY_FORM",
     "SHIPPED",
     "ShippedRubber",
     "prony_from_csv",
     "prony_from_moduli",
     "prony_from_text",
+    "prony_input",
     "prony_moduli",
     "prony_with_modulus",
     "shipped_rubber",
@@ -89,6 +95,8 @@ def prony_from_moduli(
     ``relaxed`` is E_inf > 0 and ``moduli`` the E_i >= 0, in Pa (any one unit: only the ratios
     enter g_i); ``times`` the tau_i in s.
     """
+    from .viscoelastic import PronySeries  # here, not at load: PRONY_FORM serves the parsers
+
     if not (math.isfinite(relaxed) and relaxed > 0.0):
         raise InputError(f"prony: E_inf must be a finite number > 0 Pa, got {relaxed!r}", "prony")
     for i, modulus in enumerate(moduli, start=1):
@@ -158,6 +166,8 @@ def _rows(text: str, where: str) -> tuple[str, list[tuple[int, float, float]]]:
 
 
 def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: str) -> tuple:
+    from .viscoelastic import PronySeries
+
     relaxed = [value for _, tau, value in rows if tau == math.inf]
     terms = [(k, tau, value) for k, tau, value in rows if tau != math.inf]
     for k, tau, _ in terms:
@@ -202,6 +212,8 @@ def shipped_rubber(name: str) -> ShippedRubber:
 def prony_with_modulus(text: str) -> tuple[PronySeries, float | None]:
     """The series ``text`` in any of the module's forms (see there), and its instantaneous
     modulus E0 in Pa where the form gives one (moduli, a CSV of E, a shipped rubber)."""
+    from .viscoelastic import PronySeries
+
     text = str(text).strip()
     if text in SHIPPED:
         rubber = shipped_rubber(text)
@@ -218,3 +230,36 @@ def prony_with_modulus(text: str) -> tuple[PronySeries, float | None]:
 def prony_from_text(text: str) -> PronySeries:
     """The series ``text`` in any of the module's forms (see there)."""
     return prony_with_modulus(text)[0]
+
+
+PRONY_FORM = (
+    f"write g1:tau1,g2:tau2,... with each g_i >= 0, sum g_i < 1, tau_i > 0 s, at most "
+    f"{MAX_PRONY_TERMS} terms; or Einf;E1:tau1,... in Pa; or a .csv file; or a shipped rubber "
+    f"{', '.join(SHIPPED)}"
+)
+"""The valid Prony input, in words."""
+
+
+def prony_input(value: object, name: str = "prony") -> PronySeries | None:
+    """``value`` as a Prony series: None (elastic), a :class:`PronySeries` or its text
+    (:func:`shtaerman.theory.prony_sources.prony_from_text`: ``g1:tau1,...``, ``Einf;E1:tau1,...``,
+    a CSV file or a shipped rubber's name); InputError naming ``name`` and the valid form."""
+    from .viscoelastic import PronySeries
+
+    if value is None:
+        return None
+    try:
+        if isinstance(value, PronySeries):
+            series = value
+        elif isinstance(value, str):
+            series = prony_from_text(value)
+        else:
+            raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
+    except InputError as error:
+        raise InputError(
+            f"{name}: {str(error).removeprefix('prony: ').removeprefix('prony ')} ({PRONY_FORM})",
+            name,
+        ) from None
+    if len(series.weights) > MAX_PRONY_TERMS:
+        raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)
+    return series

@@ -11,9 +11,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from .hunter import hunter_rows
-from .layer import layer_rows, slope_rows
-from .long2011 import long_rows
 from .row import Row
 
 __all__ = ["Row", "run_suite", "suite_text"]
@@ -30,6 +27,10 @@ def run_suite(quick: bool = False, progress: Callable[[str], None] | None = None
     progress : callable, optional
         Called with the name of each case as it starts.
     """
+    from .hunter import hunter_rows  # here, not at load: they load the FEM's API and scipy
+    from .layer import layer_rows, slope_rows
+    from .long2011 import long_rows
+
     refine = 0.5 if quick else 1.0
     cases = (
         ("layer (Dimitriadis 2002, Garcia 2018)", lambda: layer_rows(refine)),

@@ -67,15 +67,10 @@ from ..hyperelastic import (
     NewtonError,
     assemble_hyperelastic,
 )
-from ..mesh import MeshSettings
+from ..mesh import FINITE_MESH, MeshSettings
 from ..rubber import GentLimitError, RubberModel, gent_locks, gent_stretch
 from ..solver import Pattern, PatternSolver
 from .constraints import SolvedContact, check_resolved, edge_and_centre
-
-FINITE_MESH = MeshSettings(size=1.0 / 60.0, growth=0.3, axis_size=1e-6, axis_growth=0.15)
-"""Default mesh for the finite-strain contact (coarser than the linear default: every Newton
-iteration assembles and factorizes; its accuracy is in benchmarks/FEM_NOTES.md)."""
-
 
 NEWTON_TOLERANCE = 1e-8
 """Converged when the active set repeats and the last correction max |du| <= this * depth:

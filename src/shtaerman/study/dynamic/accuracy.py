@@ -37,9 +37,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Protocol, TypeVar
 
-from ...fem.dynamic_contact import MAX_SIZE, MIN_STEPS, DynamicSettings
-from ...fem.finite_dynamic import MIN_STEPS as FINITE_MIN_STEPS
+from ...fem.dynamic_contact import DynamicSettings
 from ...fem.finite_dynamic import FiniteImpactSettings
+from ...fem.impact_limits import FINITE_MIN_STEPS, MAX_SIZE, MIN_STEPS
 from ...fem.impact_run import ImpactRun
 from ...fem.rubber import GentLockError
 from ...guards import ValidityWarning
