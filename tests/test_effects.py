@@ -147,6 +147,8 @@ def test_cli_writes_the_table_as_json_csv_and_markdown(tmp_path, capsys):
     document = json.loads(printed)
     assert json.loads((out / "effects.json").read_text()) == document
     assert "effects: run 1/6: none: done in" in err  # a progress line per run
+    # two effects: "without waves" is "friction alone" and the other way round, run once each
+    assert err.count(": the same problem as ") == 2, err
     rows = {
         row["variant"]: row
         for row in csv.DictReader(io.StringIO((out / "effects.csv").read_text()))

@@ -241,20 +241,21 @@ def effects(
     first: dict[str, str] = {}  # each refusal's first run: its reason is said once
     kept, told = kept or {}, finished or (lambda _run: None)
     for index, variant in enumerate(sorted(rows, key=_order), start=1):
+        head = f"effects: run {index}/{len(rows)}: {variant.label}"
         shared = next(((run, keys) for p, run, keys in done if p == variant.parts), None)
         if shared is None and variant.label in kept:
             run, keys = kept[variant.label], []
-            report(f"effects: run {index}/{len(rows)}: {variant.label}: kept from an earlier run")
+            report(f"{head}: kept from an earlier run")
         elif shared is None:
-            report(f"effects: run {index}/{len(rows)}: {variant.label} ...")
+            report(f"{head} ...")
             with _recorded(said, variant.label) as keys:
                 run = _run(variant, given, estimate)
             told(run)
             refused = refusal_words(run.refused, variant.label, first)
-            outcome = refused or f"done in {run.seconds:.1f} s"
-            report(f"effects: run {index}/{len(rows)}: {variant.label}: {outcome}")
+            report(f"{head}: {refused or f'done in {run.seconds:.1f} s'}")
         else:
             run, keys = shared
+            report(f"{head}: the same problem as {run.label}")
             for key, text in keys:  # the same run: its warnings apply to this row too
                 said[key].append((variant.label, text))
             run = Run(**{**vars(run), "label": variant.label, "role": variant.role})
