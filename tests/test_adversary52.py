@@ -145,3 +145,12 @@ def test_a_study_key_of_any_characters_is_refused_as_an_unknown_key(tmp_path, ca
     head = f"shtaerman: error: {study}: key 'indenter.[half_space]': expected one of ["
     assert err.startswith(head) and err.endswith("(unknown key)\n"), err
     assert "Object contains" not in err and err.count("\n") == 1, err
+
+
+def test_a_folder_given_as_a_sweep_file_is_named_a_folder(tmp_path, capsys):
+    """``shtaerman sweep /tmp`` said "no file '/tmp'" of a folder that exists."""
+    from shtaerman.cli import main
+
+    assert main(["sweep", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{str(tmp_path)!r} is a folder" in err, err

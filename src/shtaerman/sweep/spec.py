@@ -475,4 +475,6 @@ def find_sweep(argument: str | Path) -> Path:
             f"sweep: no file {text!r} and no shipped sweep of that name. "
             f"Pick a file or one of {shipped_sweeps()}"
         )
+    if path.is_dir():
+        raise SweepError(f"sweep: {text!r} is a folder; give a sweep file (.toml) or its name")
     raise SweepError(f"sweep: no file {text!r}")
