@@ -83,12 +83,6 @@ CONTRACTION = 0.2
 must shrink the correction by this factor, else the next step takes a fresh tangent; it
 converges only with that contraction, so the error it leaves is at most
 0.2 / (1 - 0.2) = 1/4 of the last correction (<= ``NEWTON_TOLERANCE`` * depth)."""
-HELD_PULL = 1e-6
-"""Largest pull (-lambda, a fraction of the force P) of a candidate held in contact after its
-active set cycled (:meth:`NewtonStepper.release`): three orders below the mesh's error on P.
-Measured on the 4 mm pad, neo-Hookean, axis grading 1e-3: the axis node, held, pulls 1.1e-8
-P at 2.19 mm and 1.2e-8 P at 2.27 mm (just beyond the Newton tolerance's 1e-8, where the
-runs stopped); free, it penetrates by 1e-6 of the depth."""
 MAX_ITERATIONS = 30
 MAX_CUTS = 8
 GENT_BACKTRACKS = 2
@@ -294,23 +288,19 @@ class NewtonStepper:
         puts in contact at reference radii beyond it (the predicted contact edge,
         :func:`predict_reach`). A ``modified`` Newton that fails is redone as a full one."""
         scale = depth if scale is None else scale
-        system, nodes, previous, before = self.system, self.nodes, None, None
-        held = np.zeros(nodes.radius.size, dtype=bool)  # candidates of a cycle, kept in contact
+        system, nodes, previous = self.system, self.nodes, None
 
         def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> Any:
-            nonlocal previous, before, held
+            nonlocal previous
             _, gap, slope, curvature = self.geometry(x, depth)
-            active = (lam - self.weight * gap > 0) | held
+            active = lam - self.weight * gap > 0
             if reach is not None and previous is None:  # the guess overshoots the edge
                 active &= nodes.radius < reach
             lam[~active] = 0.0
             if previous is not None and self.settled(active, previous, lam, gap, scale):
                 if self.converged(*history):
-                    return self.release(lam, held)
-            if previous is not None and before is not None and cycles(active, previous, before):
-                held = held | (active ^ previous)
-                active |= held
-            before, previous = previous, active
+                    return None
+            previous = active
             residual = system.residual(x, state)
             np.subtract.at(residual, nodes.ur, lam * slope)
             np.add.at(residual, nodes.uz, lam)
@@ -326,8 +316,7 @@ class NewtonStepper:
             if not self.modified:
                 raise
         # a modified Newton that failed is redone in full: it fails only where full Newton does
-        self.modified, self.kept, previous, before = False, None, None, None
-        held[:] = False
+        self.modified, self.kept, previous = False, None, None
         try:
             return self.iterate((x, lam), scale, increment, base)
         finally:
@@ -445,25 +434,6 @@ class NewtonStepper:
             and np.all(np.abs(gap[changed]) <= self.tolerance * scale)
         )
 
-    def release(self, lam: np.ndarray, held: np.ndarray) -> None:
-        """Check the converged multipliers ``lam`` (N) of the candidates ``held`` in contact
-        after their active set cycled (:func:`cycles`): each may pull by at most
-        :data:`HELD_PULL` * P (its lambda is then clipped to 0), else NewtonError. Why held:
-        the axis node of the 4 mm pad on the impact's axis grading (1e-3) went in and out on
-        alternate iterations, its correction 1e-6 of the depth each, in the set lambda_0 < 0,
-        out of it g_0 < 0 (benchmarks/FEM_NOTES.md, "Axis node cycling")."""
-        if not held.any():
-            return None
-        pull = -float(lam[held].min())
-        if pull > HELD_PULL * float(np.abs(lam).sum()):
-            radius = self.nodes.radius[held]
-            raise NewtonError(
-                f"the candidates at R = {radius.min():.3g} to {radius.max():.3g} m cycle in and "
-                f"out of contact; held in it, they pull the indenter with {pull:.3g} N"
-            )
-        lam[held] = np.maximum(lam[held], 0.0)
-        return None
-
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether the next step may reuse the last factorization (modified Newton, if
         ``modified``): made for this system and
@@ -522,12 +492,6 @@ class NewtonStepper:
         step = eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap)
         self.kept = (self.system, rows, tangent, self.factorization)
         return step
-
-
-def cycles(active: np.ndarray, previous: np.ndarray, before: np.ndarray) -> bool:
-    """Whether three iterations' active sets alternate: ``active`` is ``before`` and not
-    ``previous``."""
-    return np.array_equal(active, before) and not np.array_equal(active, previous)
 
 
 def element_inverted(state: Any) -> bool:
