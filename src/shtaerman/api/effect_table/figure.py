@@ -12,15 +12,12 @@ row reads "not run" (its reason is the table's).
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any
 
 import numpy as np
 
 from ...plots.labels import MINUS
 from ...plots.style import APPROXIMATION_COLOUR, EXACT_COLOUR, FEM_COLOUR, chart, save, styled
-
-if TYPE_CHECKING:
-    from .table import Cell, EffectTable
 
 __all__ = ["EFFECTS_CAPTION", "plot_effect_table"]
 
@@ -37,8 +34,10 @@ TITLES = {"P_max": "P_max", "x_max": "x_max", "t_contact": "t_contact"}
 TITLES["restitution"] = f"e {MINUS} 1"
 
 
-def _rows(table: EffectTable) -> list[tuple[str, str, dict[str, Cell] | None]]:
-    """(label, role, cells per quantity; None: not run) from the top of the figure down."""
+def _rows(table: Any) -> list[tuple[str, str, dict[str, Any] | None]]:
+    """(label, role, its :class:`.table.Cell` per quantity; None: not run) of an
+    :class:`.table.EffectTable`, from the top of the figure down (the table's module imports
+    this one: its types are not imported here)."""
     rows = []
     for run in table.runs:
         cells = None if run.values is None else table.cells(run.label)
@@ -49,7 +48,7 @@ def _rows(table: EffectTable) -> list[tuple[str, str, dict[str, Cell] | None]]:
 
 
 @styled
-def plot_effect_table(table: EffectTable, path: Path | str, figure_format: str = "png") -> Path:
+def plot_effect_table(table: Any, path: Path | str, figure_format: str = "png") -> Path:
     """Draw ``table`` (:func:`shtaerman.effects`) into ``path`` (:data:`EFFECTS_CAPTION`)."""
     rows = _rows(table)
     keys = list(TITLES)
