@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "shtaerman"
-BASE = {"validation", "vocabulary", "version", "signals", "input_file", "allocator"}
+BASE = {"validation", "vocabulary", "version", "signals", "input_file", "allocator", "lazy"}
 ALLOWED = {
     "theory": {"theory"},
     # the validity limits of a computed depth: measured with the exact theory's contact radius

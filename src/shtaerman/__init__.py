@@ -58,6 +58,7 @@ if TYPE_CHECKING:
     from .sweep.engine import SweepOutcome
     from .sweep.spec import SweepSpec
 
+from .lazy import lazy_names
 from .version import __version__
 
 __all__ = [
@@ -95,18 +96,21 @@ __all__ = [
 _FROM_SWEEP = ("SweepOutcome", "SweepSpec")
 """What :func:`sweep` takes and returns, from :mod:`shtaerman.sweep`."""
 
+_api_name = lazy_names(
+    __name__,
+    {
+        ".sweep": _FROM_SWEEP,
+        ".api": tuple(set(__all__) - {*_FROM_SWEEP, "__version__", "sweep"}),
+    },
+)
+
 
 def __getattr__(name: str) -> Any:
     """The API's names, imported from :mod:`shtaerman.api` (or :mod:`shtaerman.sweep`) on
-    first use."""
+    first use; ``sweep`` is the :mod:`shtaerman.sweep` package."""
     if name == "sweep":
         return importlib.import_module(".sweep", __name__)
-    if name in __all__:
-        home = ".sweep" if name in _FROM_SWEEP else ".api"
-        value = getattr(importlib.import_module(home, __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return _api_name(name)
 
 
 def __dir__() -> list[str]:

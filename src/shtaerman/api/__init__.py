@@ -16,9 +16,10 @@ scipy.stats.
 
 from __future__ import annotations
 
-import importlib
 import sys
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from ..lazy import lazy_names
 
 if TYPE_CHECKING:
     from ..fitting.result import FitResult as FitResult
@@ -70,11 +71,4 @@ __all__ = [  # not __version__, sweep types
 ]
 
 
-def __getattr__(name: str) -> Any:
-    """A public name, imported from its module on first use."""
-    for home, names in _HOMES.items():
-        if name in names:
-            value = getattr(importlib.import_module(home, __name__), name)
-            globals()[name] = value
-            return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__ = lazy_names(__name__, _HOMES)

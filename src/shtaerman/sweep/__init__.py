@@ -13,8 +13,9 @@ worker runs its preload, ``_worker.py``) without loading the engine, the kinds o
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from ..lazy import lazy_names
 
 if TYPE_CHECKING:
     from .engine import SweepInterrupted as SweepInterrupted
@@ -31,9 +32,9 @@ if TYPE_CHECKING:
     from .spec import parse_sweep as parse_sweep
 
 _HOMES = {
-    "engine": ("SweepInterrupted", "SweepOutcome", "run_sweep"),
-    "kinds": ("KINDS", "Kind", "Parameter", "register_kind"),
-    "spec": ("SweepError", "SweepSpec", "find_sweep", "load_sweep", "parse_sweep"),
+    ".engine": ("SweepInterrupted", "SweepOutcome", "run_sweep"),
+    ".kinds": ("KINDS", "Kind", "Parameter", "register_kind"),
+    ".spec": ("SweepError", "SweepSpec", "find_sweep", "load_sweep", "parse_sweep"),
 }
 """The module of each public name."""
 
@@ -43,11 +44,4 @@ __all__ = sorted(  # constants, classes, functions
 )
 
 
-def __getattr__(name: str) -> Any:
-    """A public name, imported from its module on first use."""
-    for home, names in _HOMES.items():
-        if name in names:
-            value = getattr(importlib.import_module(f".{home}", __name__), name)
-            globals()[name] = value
-            return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__ = lazy_names(__name__, _HOMES)
