@@ -28,8 +28,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from shtaerman.fem.contact.finite import FINITE_MESH
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import FINITE_MESH, MeshSettings
 from shtaerman.fem.rubber import RubberModel
 from shtaerman.study.contact import accuracy
 from shtaerman.study.contact.accuracy import (

@@ -40,8 +40,9 @@ import scipy.sparse.linalg as spla
 from scipy.integrate import simpson
 from scipy.interpolate import PchipInterpolator
 
-from shtaerman.fem.contact.finite import FINITE_MESH, NewtonStepper, run_finite_indentation
+from shtaerman.fem.contact.finite import NewtonStepper, run_finite_indentation
 from shtaerman.fem.hyperelastic import HyperelasticSystem
+from shtaerman.fem.mesh import FINITE_MESH
 from shtaerman.study.contact.convergence import refined_settings
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.study.finite.accuracy import reported_values

@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from shtaerman.fem.contact.finite import FINITE_MESH
+from shtaerman.fem.mesh import FINITE_MESH
 from shtaerman.fem.rubber import RubberModel, rubber_model
 from shtaerman.study.contact.indentation import default_depths
 from shtaerman.study.finite.indentation import run_finite_study

@@ -27,7 +27,8 @@ import numpy as np
 from verify_cost import cpu, load, reference
 
 import shtaerman.fem.contact.finite_stick as finite_stick
-from shtaerman.fem.contact.finite import FINITE_MESH, run_finite_indentation
+from shtaerman.fem.contact.finite import run_finite_indentation
+from shtaerman.fem.mesh import FINITE_MESH
 from shtaerman.fem.solver import PatternSolver
 from shtaerman.study.contact.indentation import default_depths
 from shtaerman.theory.indenter import PowerLawIndenter

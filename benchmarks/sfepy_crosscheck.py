@@ -224,7 +224,8 @@ def run_ours(profile: str, refine: float) -> list[float]:
     """shtaerman's force P / (E R^2) at DEPTHS on the default mesh refined by ``refine``."""
     from unittest import mock
 
-    from shtaerman.fem.contact.finite import FINITE_MESH, NewtonStepper, run_finite_indentation
+    from shtaerman.fem.contact.finite import NewtonStepper, run_finite_indentation
+    from shtaerman.fem.mesh import FINITE_MESH
     from shtaerman.study.contact.convergence import refined_settings
     from shtaerman.theory.indenter import PowerLawIndenter
     from shtaerman.theory.materials import Material

@@ -1,7 +1,7 @@
 """The neo-Hookean contact on a bonded layer (``contact --model neo-hookean --thickness H``).
 
 At small depth the finite-strain solid is the linear one: the force on the same layer and
-mesh (:data:`shtaerman.fem.contact.finite.FINITE_MESH`) must agree to the FE error, and the
+mesh (:data:`shtaerman.fem.mesh.FINITE_MESH`) must agree to the FE error, and the
 departure must grow in proportion to the strain. The striker is z = 5 r^1.5 pressed until the
 geometric contact radius is a = 10 um (strain x/a = 1.6 %).
 """
@@ -13,7 +13,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.fem.contact.finite import FINITE_MESH
+from shtaerman.fem.mesh import FINITE_MESH
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import InputError

@@ -9,9 +9,8 @@ import warnings
 import pytest
 
 from shtaerman.cli import build_parser
-from shtaerman.fem.contact.finite import FINITE_MESH
 from shtaerman.fem.dynamic_contact import DynamicSettings
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import FINITE_MESH, MeshSettings
 from shtaerman.study.schema import find_study, load_study
 from shtaerman.sweep import load_sweep
 from shtaerman.sweep.kinds import get_kind

@@ -378,9 +378,8 @@ def _check_depths(
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     """Check every option of :func:`contact` before anything runs."""
-    from ..fem.contact.finite import FINITE_MESH
     from ..fem.contact.linear import validate_fem_inputs
-    from ..fem.mesh import DEFAULTS, MeshSettings
+    from ..fem.mesh import DEFAULTS, FINITE_MESH, MeshSettings
     from ..fem.solver import check_backend
     from ..study.contact.indentation import default_depths
     from ..study.schema import replaced

@@ -50,8 +50,8 @@ from typing import Protocol
 import numpy as np
 from skfem import MeshTri
 
-from ..theory.layer import BASES
 from ..validation import InputError, validate_positive
+from ..vocabulary import BASES
 from .mesh import (
     DOFS_PER_ELEMENT,
     LAYER_EXTENT,

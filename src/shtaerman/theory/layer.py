@@ -30,7 +30,6 @@ from .indenter import PowerLawIndenter
 from .materials import Material
 
 __all__ = [
-    "BASES",
     "FoundationLayer",
     "IncompressibleThinLayer",
     "check_base",

@@ -131,7 +131,7 @@ def run_finite_study(
         Any increasing depths in m (load stepping is internal); default the linear test's
         eight depths up to the paper's impact x_c.
     mesh : MeshSettings, optional
-        Default :data:`shtaerman.fem.contact.finite.FINITE_MESH`; its ``interface`` "bonded"
+        Default :data:`shtaerman.fem.mesh.FINITE_MESH`; its ``interface`` "bonded"
         presses an indenter the rubber sticks to
         (:func:`shtaerman.fem.contact.finite_stick.solve_finite_bonded_contact`).
     rubber : RubberModel, optional

@@ -20,8 +20,7 @@ from typing import Any, Literal
 import msgspec
 
 from ... import vocabulary
-from ...fem.contact.finite import FINITE_MESH
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import FINITE_MESH, MeshSettings
 from ...fem.rubber import RubberModel
 from ...problem import MODELS, RUBBER_SHAPES, Body, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
