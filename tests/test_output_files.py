@@ -124,7 +124,7 @@ def test_a_full_folder_advises_force_only_when_force_would_replace_it(tmp_path):
     assert "--force" not in str(error.value)  # --force refuses a folder this tool did not write
     with staged_folder(target / "ours") as stage:
         (stage / "new.txt").write_text("new")
-    with pytest.raises(InputError, match="not empty; use --force to replace it"):
+    with pytest.raises(InputError, match="not empty; use force=True to replace it"):
         check_output_folder(target / "ours", force=False)
     assert check_output_folder(target / "ours", force=True) == target / "ours"
 
@@ -511,7 +511,7 @@ def test_force_keeps_the_files_a_user_added_to_a_result_folder(tmp_path):
     (target / "sub" / "notes.txt").write_text("mine")
     with pytest.raises(InputError, match=r"holds 'sub/notes.txt', not written by shtaerman"):
         check_output_folder(target, force=True)
-    with pytest.raises(InputError, match="move it or name a new folder with --out"):
+    with pytest.raises(InputError, match=r"move it or name a new folder with out=\.\.\."):
         with staged_folder(target, force=True):
             pass
     assert (target / "sub" / "notes.txt").read_text() == "mine"
@@ -534,3 +534,23 @@ def test_a_full_disk_names_the_output_it_was_writing(tmp_path):
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
     assert e.value.errno == errno.ENOSPC
     assert not target.exists() and sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_an_existing_folder_is_refused_in_the_words_of_its_route(tmp_path, capsys):
+    """adv52: ``sh.run_study(out=existing)`` (and ``sh.dynamic``, ``sh.contact``: one
+    output_folder) answered Python with 'use --force', an option it does not take. The
+    refusal is written with keywords (``force=True``, ``out=...``) and the command line
+    spells them as its options."""
+    import shtaerman as sh
+
+    done, foreign = ours(tmp_path / "done"), tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "note.txt").write_text("mine")
+    with pytest.raises(InputError, match=r"use force=True to replace it$"):
+        sh.run_study("paper", out=done, quick=True)
+    with pytest.raises(InputError, match=r"name a new folder with out=\.\.\.$"):
+        sh.run_study("paper", out=foreign, quick=True)
+    code, _, err = run(capsys, "verify", "--out", str(done))
+    assert code == 2 and err.endswith("not empty; use --force to replace it\n"), err
+    code, _, err = run(capsys, "verify", "--out", str(foreign))
+    assert code == 2 and err.endswith("name a new folder with --out\n"), err

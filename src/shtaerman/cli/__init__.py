@@ -128,6 +128,14 @@ def _report(caught: list[warnings.WarningMessage]) -> None:
             warn(str(warning.message))
 
 
+def _spoken(error: Exception) -> str:
+    """``error``'s message with the inputs it names as keywords (``force=True``, ``out=...``)
+    spelled as options (``--force``, ``--out``): what a command did not already reword."""
+    from ..problem import worded
+
+    return worded(str(error), "cli")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; returns the exit code (0 success, 1 failed check, 2 bad input, 130 Ctrl-C,
     143 SIGTERM)."""
@@ -146,7 +154,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 code = EXIT_INPUT if isinstance(error, InputError) else EXIT_FAILED
                 _report(caught)
                 caught.clear()
-                print(f"shtaerman: error: {error}", file=sys.stderr)
+                print(f"shtaerman: error: {_spoken(error)}", file=sys.stderr)
             _report(caught)
         if _SIGNALLED and code not in (EXIT_INTERRUPTED, EXIT_TERMINATED):
             return stopped(_SIGNALLED[0])  # a library swallowed it; the outputs are whole

@@ -360,26 +360,32 @@ def _check_replaceable(
     the files its marker lists."""
     if not any(target.iterdir()):
         return
-    folder, new = f"{option}: folder {str(path)!r}", f"name a new folder with --{option}"
+    folder, new = f"{option}: folder {str(path)!r}", f"name a new folder with {_named(option)}"
     if not force and not resumable(target, marker):
         state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
-        advice = "use --force to replace it"
-        if not ours(target):  # --force would refuse it too
+        advice = "use force=True to replace it"
+        if not ours(target):  # force would refuse it too
             advice = f"it was not written by shtaerman: {new}"
         raise InputError(f"{folder} {state}; {advice}", option)
     if force and not ours(target):
         raise InputError(
-            f"{folder} was not written by shtaerman (no {FOLDER_MARKER}); --force replaces only "
+            f"{folder} was not written by shtaerman (no {FOLDER_MARKER}); force=True replaces only "
             f"result folders of this tool: {new}",
             option,
         )
     if force and (foreign := _foreign_files(target)):
         more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
         raise InputError(
-            f"{folder} holds {foreign[0]!r}{more}, not written by shtaerman; --force replaces "
+            f"{folder} holds {foreign[0]!r}{more}, not written by shtaerman; force=True replaces "
             f"only what this tool wrote: move it or {new}",
             option,
         )
+
+
+def _named(option: str) -> str:
+    """Option ``option`` as a keyword to give (``out=...``, which the command line spells
+    ``--out``), or as written when it is no keyword (``FILE``, ``--out``)."""
+    return f"{option}=..." if option.isidentifier() else option
 
 
 def _refuse_link(path: Path, option: str, kind: str) -> None:
@@ -687,7 +693,9 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
                 return path
         _refuse_link(path, option, "file")
         if path.exists() and not force:
-            raise InputError(f"{option}: {str(path)!r} exists (use --force to replace it)", option)
+            raise InputError(
+                f"{option}: {str(path)!r} exists (use force=True to replace it)", option
+            )
         real = Path(os.path.realpath(path))
         if real.exists() and (_unremovable(str(real)) or _unremovable(str(real.parent))):
             raise InputError(
@@ -733,7 +741,7 @@ def staged_file(path: Path, *, force: bool = False, option: str = "history") -> 
             except FileExistsError:
                 raise InputError(
                     f"{option}: {str(path)!r} was created by another program meanwhile; "
-                    f"use --force to replace it",
+                    f"use force=True to replace it",
                     option,
                 ) from None
     finally:

@@ -145,7 +145,7 @@ def kept_entries(
             raise ValueError("not a progress file")
     except (OSError, ValueError, KeyError, TypeError):
         raise InputError(
-            f"{option}: {PROGRESS_FILE} is not one this tool wrote; use --force to start again",
+            f"{option}: {PROGRESS_FILE} is not one this tool wrote; use force=True to start again",
             option,
         ) from None
     if document["quick"] != quick:
@@ -166,7 +166,7 @@ def kept_entries(
     if isinstance(requested, list) and sorted(map(str, requested)) != sorted(wanted):
         raise InputError(
             f"{option}: the interrupted {run} was of the {words.items} "
-            f"{', '.join(map(str, requested))}; {words.same}, or start again with --force",
+            f"{', '.join(map(str, requested))}; {words.same}, or start again with force=True",
             option,
         )
     kept = {
@@ -196,7 +196,7 @@ def _check_inputs(stored: Any, inputs: Mapping[str, Any] | None, words: Resuming
         changes = ", ".join(f"{n}=... ({stored.get(n)} there, {now.get(n)} now)" for n in differ)
         raise InputError(
             f"{words.option}: the interrupted {words.run}'s kept runs were made with another "
-            f"{changes}; {words.same}, or start again with --force",
+            f"{changes}; {words.same}, or start again with force=True",
             words.option,
         )
 
