@@ -312,6 +312,23 @@ def test_an_unknown_the_kind_cannot_fit_is_refused(tmp_path, capsys):
     assert "--fit: indentation data cannot fit 'velocity'" in capsys.readouterr().err
 
 
+def test_an_unknown_named_twice_is_refused(tmp_path, capsys):
+    """adv52: ``--fit E2,E2`` fitted E2 once, silently: likely a slip for another name."""
+    data = indentation()
+    csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(*data.values(), strict=True))
+    assert main(["fit", "indentation", csv, "--fit", "E2,E2"]) == 2
+    assert capsys.readouterr().err == (
+        "shtaerman: error: --fit: E2 named twice; name each unknown once\n"
+    )
+    with pytest.raises(sh.InputError, match=r"^fit: E2 named twice"):
+        sh.fit(
+            "indentation",
+            csv,
+            sh.Problem.curve(INDENTER, sh.Material(5e6, NU2)),
+            unknowns=["E2", "E2"],
+        )
+
+
 def test_a_drop_test_without_the_mass_is_refused():
     curve = sh.Problem.curve(INDENTER, sh.Material(5e6, NU2), striker=STEEL)
     with pytest.raises(sh.InputError, match="mass: a force-history fit needs the striker's mass"):

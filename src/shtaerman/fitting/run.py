@@ -98,7 +98,10 @@ def _check_loss(measured: Measurement, problem: Problem) -> None:
 def _names(unknowns: Sequence[str] | str) -> list[str]:
     names = [unknowns] if isinstance(unknowns, str) else list(unknowns)
     names = [n.strip() for part in names for n in str(part).split(",") if n.strip()]
-    return list(dict.fromkeys(names))
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:  # a slip for another name (E2,E2 for E2,nu2): not silently one unknown
+        raise InputError(f"fit: {', '.join(twice)} named twice; name each unknown once", "fit")
+    return names
 
 
 def fit(
