@@ -87,7 +87,13 @@ def test_impact_refuses_history_options_without_history(capsys, argv, line):
         (["--nu2", "0.51"], r"nu2 must lie in \(-1, 0.5\]"),
         (["--points", "1"], r"points must be an integer in \[2, 1e7\]"),
         (["--points", "1000000000"], r"points must be an integer in \[2, 1e7\]"),
-        (["--unknown"], "unrecognized arguments: --unknown"),
+        (["--unknown"], "unrecognized arguments: --unknown$"),
+        # adv52: an option another command takes is named as such (was argparse's alone)
+        (
+            ["--friction", "0.5"],
+            r"unrecognized arguments: --friction 0.5 \(--friction is an option of contact, "
+            r"dynamic, effects; not of this command\)$",
+        ),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(capsys, argv, message):

@@ -80,7 +80,25 @@ class Parser(argparse.ArgumentParser):
             message += (
                 f" (a value that starts with '-' reads as an option: attach it, {option}=-VALUE)"
             )
+        unknown = re.fullmatch(r"unrecognized arguments: (.*)", message)
+        if unknown:
+            message += self._taken_elsewhere(unknown[1].split())
         raise InputError(re.sub(r"^argument ([^/:\s]+)(/\S+)?: ", r"\1: ", message))
+
+    def _taken_elsewhere(self, tokens: list[str]) -> str:
+        """Which other commands take the unrecognized options ``tokens`` (``--friction`` given
+        to ``fit``), in words to append; empty if none does."""
+        commands = next(
+            (a.choices for a in self._actions if isinstance(a, argparse._SubParsersAction)), {}
+        )
+        said = []
+        for option in dict.fromkeys(token.partition("=")[0] for token in tokens):
+            takers = [
+                name for name, sub in commands.items() if option in sub._option_string_actions
+            ]
+            if option.startswith("--") and takers:
+                said.append(f"{option} is an option of {', '.join(takers)}")
+        return f" ({'; '.join(said)}; not of this command)" if said else ""
 
 
 def path_text(text: str) -> str:
