@@ -9,8 +9,13 @@ figures of no study and the reports (``finish_verification``), and the totals.
 Other jobs share the machine, so the wall time is unreliable and the CPU time is what compares
 across runs; the reference, one SuperLU factorization of a fixed 2-D Laplacian (the kind of
 work that dominates the studies), is timed before and after in this process, and the total is
-also printed as a multiple of it. ``--job`` also times the whole ``shtaerman verify`` (both
-workers) as one command: its wall time and the CPU of it and its children.
+also printed as a multiple of it. Beside each study: its files and figures over its compute
+(``write/comp``) and in references (``write ref``). ``--warm`` writes each study's files and
+figures a second time in its process and prints that CPU (``warm``): the cost without the
+process's one-off imports, fonts and OpenGL context, which a dask worker pays once for all its
+studies (``write`` pays them in every study, one process each). ``--job`` also times the whole
+``shtaerman verify`` (both workers) as one command: its wall time and the CPU of it and its
+children.
 ``--save FILE`` writes the rows and the reference as JSON; ``--against FILE`` (a run saved so,
 e.g. on the code before a change) prints each study's CPU in references before and now, and
 their ratio, with the load of both runs. Asserts nothing about time.
@@ -67,8 +72,9 @@ def reference(size: int = 250, repeat: int = 3) -> float:
     return best
 
 
-def one_study(name: str, stage: Path, quick: bool) -> dict[str, object]:
-    """Run the study ``name`` in this (fresh) process and write it into ``stage``."""
+def one_study(name: str, stage: Path, quick: bool, warm: bool = False) -> dict[str, object]:
+    """Run the study ``name`` in this (fresh) process and write it into ``stage``; with
+    ``warm``, write it again into a temporary folder and time that too."""
     start, wall = cpu(), time.perf_counter()
     from threadpoolctl import threadpool_limits
 
@@ -84,12 +90,17 @@ def one_study(name: str, stage: Path, quick: bool) -> dict[str, object]:
         entry = study_entry(outcome, stage)
     written = cpu()
     (stage / f"{name}.entry.json").write_text(json.dumps(entry), encoding="utf-8")
-    return {
+    row = {
         "import": imported - start,
         "compute": computed - imported,
         "write": written - computed,
         "wall": time.perf_counter() - wall,
     }
+    if warm:
+        with tempfile.TemporaryDirectory() as again, threadpool_limits(limits=1, user_api="blas"):
+            study_entry(outcome, Path(again))
+        row["warm"] = cpu() - written
+    return row
 
 
 def finish(stage: Path, names: list[str], quick: bool) -> dict[str, object]:
@@ -137,6 +148,7 @@ def main() -> None:
     parser.add_argument("names", nargs="*", help="study names (default: the shipped studies)")
     parser.add_argument("--quick", action="store_true", help="coarse meshes, as in CI")
     parser.add_argument("--job", action="store_true", help="also the whole verify command")
+    parser.add_argument("--warm", action="store_true", help="also each study's files again")
     parser.add_argument("--save", type=Path, help="write this run's rows as JSON")
     parser.add_argument("--against", type=Path, help="a saved run: print before/now ratios")
     parser.add_argument("--one", help=argparse.SUPPRESS)
@@ -144,34 +156,36 @@ def main() -> None:
     parser.add_argument("--stage", type=Path, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.one or args.finish:
-        run = one_study(args.one, args.stage, args.quick) if args.one else None
+        run = one_study(args.one, args.stage, args.quick, args.warm) if args.one else None
         print(json.dumps(run or finish(args.stage, args.names, args.quick)))
         return
     names = args.names or shipped_names()
     flag = ["--quick"] if args.quick else []
     first = reference()
     print(f"reference (SuperLU, 62.5k-unknown Laplacian): {first:.3f} s CPU; load {load():.2f}")
-    print(f"{'study':<22}{'import':>8}{'compute':>9}{'write':>8}{'CPU s':>8}{'wall s':>8}  load")
+    print(
+        f"{'study':<22}{'import':>8}{'compute':>9}{'write':>8}{'CPU s':>8}{'wall s':>8}"
+        f"{'write/comp':>11}{'write ref':>10}{'warm' if args.warm else '':>7}  load"
+    )
     rows = {}
     with tempfile.TemporaryDirectory() as folder:
         for name in [*names, "(finish)"]:
             before = load()
             extra = ["--finish", *names] if name == "(finish)" else ["--one", name]
-            rows[name] = row = in_child([*extra, "--stage", folder, *flag])
+            rows[name] = row = in_child([*extra, "--stage", folder, *flag, *warm_flag(args)])
             row["cpu"] = row["import"] + row["compute"] + row["write"]
-            print(
-                f"{name:<22}{row['import']:>8.1f}{row['compute']:>9.1f}{row['write']:>8.1f}"
-                f"{row['cpu']:>8.1f}{row['wall']:>8.1f}  {before:.2f}",
-                flush=True,
-            )
+            print(f"{name:<22}{row_text(row, first)}  {before:.2f}", flush=True)
     last = reference()
     total = sum(row["cpu"] for row in rows.values())
     parts = {key: sum(row[key] for row in rows.values()) for key in ("import", "compute", "write")}
     mean = 0.5 * (first + last)
+    warm = sum(row.get("warm", 0.0) for row in rows.values())
     print(
         f"total CPU {total:.1f} s (imports {parts['import']:.1f}, compute {parts['compute']:.1f}, "
-        f"files and figures {parts['write']:.1f}) = {total / mean:.0f} references; reference "
-        f"{first:.3f} -> {last:.3f} s; load {load():.2f}"
+        f"files and figures {parts['write']:.1f} = {parts['write'] / mean:.0f} references"
+        + (f", warm {warm:.1f}" if args.warm else "")
+        + f") = {total / mean:.0f} references; reference {first:.3f} -> {last:.3f} s; "
+        f"load {load():.2f}"
     )
     run = {"reference": mean, "load": load(), "rows": rows}
     if args.save:
@@ -184,6 +198,22 @@ def main() -> None:
             f"shtaerman verify: {wall:.1f} s wall, {used:.1f} s CPU (= {used / mean:.0f} "
             f"references); load {load():.2f}"
         )
+
+
+def warm_flag(args: argparse.Namespace) -> list[str]:
+    return ["--warm"] if args.warm else []
+
+
+def row_text(row: dict[str, float], reference_cpu: float) -> str:
+    """A study's CPU parts (s), wall time (s), its files and figures over its compute and in
+    references, and with ``--warm`` their CPU the second time."""
+    compute = row["compute"]
+    ratio = f"{row['write'] / compute:>11.2f}" if compute > 0 else f"{'-':>11}"
+    warm = f"{row['warm']:>7.1f}" if "warm" in row else f"{'':>7}"
+    return (
+        f"{row['import']:>8.1f}{compute:>9.1f}{row['write']:>8.1f}{row['cpu']:>8.1f}"
+        f"{row['wall']:>8.1f}{ratio}{row['write'] / reference_cpu:>10.1f}{warm}"
+    )
 
 
 def compare(before: dict, now: dict) -> None:

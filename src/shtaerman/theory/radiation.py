@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from functools import cache
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -91,8 +92,11 @@ def rayleigh_root(poisson_ratio: float) -> float:
     return brentq(_rayleigh, 1.0 + 1e-14, 2.0, args=(g2,), xtol=1e-15, rtol=1e-15)
 
 
+@cache
 def _pieces(nu: float) -> tuple[float, float, float]:
-    """Compressional-branch, shear-branch and Rayleigh-pole parts of I(nu)."""
+    """Compressional-branch, shear-branch and Rayleigh-pole parts of I(nu), once per nu of
+    the process (two quadratures and a root: the dynamic study's estimate curve asked for
+    them 120 times at one nu)."""
     g2 = _squared_speed_ratio(nu)
     g = math.sqrt(g2)
 
