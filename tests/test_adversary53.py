@@ -29,3 +29,13 @@ def test_an_overflowing_central_pressure_is_refused_not_printed_as_unbounded(cap
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and "p_c = inf" in err, err
 
+
+def test_a_viscoelastic_curve_without_a_rate_names_the_option_on_the_command_line(capsys):
+    """`contact --prony 0.3:1e-3` said '--rate: ... give rate > 0 m/s': the remedy named the
+    keyword, not the option; Python keeps its keyword."""
+    assert main(["contact", "--prony", "0.3:1e-3", "--no-estimate"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1, err
+    assert err.rstrip().endswith("is pressed at a speed: give --rate > 0 m/s"), err
+    with pytest.raises(InputError, match=r"pressed at a speed: give rate=\.\.\. > 0 m/s$"):
+        sh.Problem.curve(PAD_STRIKER, RUBBER, depths=[1e-3], prony="0.3:1e-3")
