@@ -39,3 +39,36 @@ def test_a_viscoelastic_curve_without_a_rate_names_the_option_on_the_command_lin
     assert err.rstrip().endswith("is pressed at a speed: give --rate > 0 m/s"), err
     with pytest.raises(InputError, match=r"pressed at a speed: give rate=\.\.\. > 0 m/s$"):
         sh.Problem.curve(PAD_STRIKER, RUBBER, depths=[1e-3], prony="0.3:1e-3")
+
+
+@pytest.mark.parametrize(
+    ("edit", "key"),
+    [
+        ("[numerics]\nmesh_size = 0.5", "numerics.mesh_size"),  # overridden by [quick]'s 0.2
+        ("[numerics]\nmesh_size = 0.1\n[quick]\nmesh_size = 0.3", "quick.mesh_size"),
+        ("[quick]\ndomain_factor = 0.001", "quick.domain_factor"),
+    ],
+)
+def test_an_effects_study_checks_its_numerics_and_quick_at_load(tmp_path, capsys, edit, key):
+    """An effects study's [numerics] and [quick] were checked only when the table ran: under
+    `verify --quick`, a [numerics] mesh_size = 0.5 that [quick] overrides was never refused
+    (the full `verify` refused it at run, as "study 'x': mesh_size must lie ...", naming no
+    key), and a bad [quick] key passed `verify` without --quick. Both are refused at load
+    now, naming the file's key, with or without --quick (nothing runs: exit 2 at once)."""
+    from shtaerman.study.schema import load_study
+
+    study = tmp_path / "x.toml"
+    assert main(["init-study", str(study), "--kind", "effects"]) == 0
+    text = study.read_text()
+    head = text[: text.index("[numerics]")] if "[numerics]" in text else text
+    study.write_text(head + edit + "\n")
+    capsys.readouterr()
+    with pytest.raises(InputError, match=rf"^{study}: key '{key}': "):
+        load_study(study)
+    for quick in ([], ["--quick"]):
+        assert main(["verify", str(study), *quick, "--out", str(tmp_path / "out")]) == 2
+        out, err = capsys.readouterr()
+        assert out == "", out
+        assert err.count("\n") == 1 and f"key '{key}'" in err, err
+        assert not (tmp_path / "out").exists()
+
