@@ -72,3 +72,13 @@ def test_an_effects_study_checks_its_numerics_and_quick_at_load(tmp_path, capsys
         assert err.count("\n") == 1 and f"key '{key}'" in err, err
         assert not (tmp_path / "out").exists()
 
+
+def test_sweep_workers_with_a_scheduler_is_refused_with_one_option_head(capsys):
+    """`sweep NAME --scheduler ADDRESS --workers 1` said 'workers: --workers sizes the local
+    cluster; ...': the keyword's head before the option's (the sweep's command line does not
+    pass its refusals through shtaerman.problem.worded)."""
+    args = ["sweep", "impact-velocity", "--scheduler", "tcp://nowhere:1", "--workers", "1"]
+    assert main(args) == 2
+    out, err = capsys.readouterr()
+    said = "shtaerman: error: --workers: sizes the local cluster; drop it with --scheduler\n"
+    assert out == "" and err == said, err
