@@ -82,3 +82,18 @@ def test_sweep_workers_with_a_scheduler_is_refused_with_one_option_head(capsys):
     out, err = capsys.readouterr()
     said = "shtaerman: error: --workers: sizes the local cluster; drop it with --scheduler\n"
     assert out == "" and err == said, err
+
+
+@pytest.mark.parametrize("given", [None, PAD_STRIKER, "curve"])
+def test_sh_effects_of_no_impact_is_refused_by_name(given):
+    """`sh.effects(None)` and `sh.effects(indenter)` raised the internal "Problem() argument
+    after ** must be a mapping, not NoneType", and `sh.effects(Problem.curve(...))` "mass must
+    be a finite number > 0 kg, got None" (a curve has none): `sh.dynamic` names the problem
+    in both cases, and so does `sh.effects` now."""
+    if given == "curve":
+        given = sh.Problem.curve(PAD_STRIKER, RUBBER, depths=[1e-3])
+        said = r"^problem: effects\(\) runs an impact \(Problem.impact\), not a curve$"
+    else:
+        said = rf"^problem must be a Problem .* got {type(given).__name__}$"
+    with pytest.raises(InputError, match=said):
+        sh.effects(given)
