@@ -97,3 +97,20 @@ def test_sh_effects_of_no_impact_is_refused_by_name(given):
         said = rf"^problem must be a Problem .* got {type(given).__name__}$"
     with pytest.raises(InputError, match=said):
         sh.effects(given)
+
+
+def test_effects_out_says_where_the_table_is(tmp_path, capsys):
+    """`effects --out DIR` printed the table and no word of the folder (verify and sweep end
+    with a 'results:' line): after an interrupted `--force` run, the printed `--resume`
+    completes the table in DIR.incomplete-PID, and nothing said that it lands there, not in
+    DIR. One line on stderr names the folder and its files (stdout stays the table or JSON).
+    The massless half-space with Prony (one effect: two runs, the coarsest numerics)."""
+    out = tmp_path / "t"
+    argv = ["effects", "--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6"]
+    argv += ["--nu2", "0.49", "--mass", "0.12", "--velocity", "1.5", "--density2", "0"]
+    argv += ["--prony", "0.3:1e-3", "--mesh-size", "0.2", "--time-steps", "50"]
+    assert main([*argv, "--no-estimate", "--json", "--out", str(out)]) == 0
+    printed, err = capsys.readouterr()
+    assert printed.lstrip().startswith("{") and printed.rstrip().endswith("}")
+    said = f"shtaerman: the table is in {out}: effects.csv, effects.json, effects.md, effects.png"
+    assert said in err.splitlines(), err

@@ -118,6 +118,8 @@ def run(args: argparse.Namespace) -> int:
         except VerifyInterrupted as stop:
             print(_interrupted_text(stop, folder), file=sys.stderr)
             return stopped_code(stop.cause)
+    written = ", ".join(path.name for path in sorted(folder.glob("effects.*")))
+    print(f"shtaerman: the table is in {folder}: {written}", file=sys.stderr)
     return 0
 
 
