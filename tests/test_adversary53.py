@@ -114,3 +114,33 @@ def test_effects_out_says_where_the_table_is(tmp_path, capsys):
     assert printed.lstrip().startswith("{") and printed.rstrip().endswith("}")
     said = f"shtaerman: the table is in {out}: effects.csv, effects.json, effects.md, effects.png"
     assert said in err.splitlines(), err
+
+
+def test_effects_out_stopped_while_writing_keeps_its_runs(tmp_path, capsys, monkeypatch):
+    """SIGTERM (or Ctrl-C) after the last run, while `effects --out` wrote its files, said
+    'terminated; every output is complete or absent (nothing partial is kept)' and removed
+    the folder with every finished run (8 runs of issue 28's pad, 26 s here): the runs were
+    kept on disk only until the table was computed. Now they stay, as for a stop between
+    runs, and --resume writes the table without running any again."""
+    import shtaerman.cli.effects as cli_effects
+
+    out = tmp_path / "t"
+    argv = ["effects", "--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6"]
+    argv += ["--nu2", "0.49", "--mass", "0.12", "--velocity", "1.5", "--density2", "0"]
+    argv += ["--prony", "0.3:1e-3", "--mesh-size", "0.2", "--time-steps", "50"]
+    argv += ["--no-estimate", "--out", str(out)]
+
+    def stopped(*_args, **_kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli_effects, "write_table", stopped)
+    assert main(argv) == 130
+    err = capsys.readouterr().err
+    said = next(line for line in err.splitlines() if line.startswith("shtaerman: interrupted"))
+    assert "2 finished run(s) kept in" in said and said.endswith(f"--out {out} --resume"), err
+    assert sorted(p.name for p in out.iterdir()) == [".shtaerman-folder.json", "incomplete.json"]
+    monkeypatch.undo()
+    assert main([*argv, "--resume"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("kept from an earlier run") == 2 and " done in " not in err, err
+    assert (out / "effects.json").is_file() and not (out / "incomplete.json").exists()
