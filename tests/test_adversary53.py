@@ -144,3 +144,17 @@ def test_effects_out_stopped_while_writing_keeps_its_runs(tmp_path, capsys, monk
     err = capsys.readouterr().err
     assert err.count("kept from an earlier run") == 2 and " done in " not in err, err
     assert (out / "effects.json").is_file() and not (out / "incomplete.json").exists()
+
+
+def test_the_guides_sweep_file_lists_every_sweep_kind():
+    """The guide's sweep file comment `kind = "contact"  # contact | impact | dynamic |
+    finite-strain | layer` left out `effects`, a registered sweep kind (a new user
+    reading it could not know an effects sweep exists)."""
+    import re
+    from pathlib import Path
+
+    from shtaerman.sweep import KINDS
+
+    guide = (Path(__file__).parents[1] / "docs" / "guide.md").read_text(encoding="utf-8")
+    listed = re.search(r'^kind = "contact" +# (.+)$', guide, re.M)[1].split(" | ")
+    assert sorted(listed) == sorted(KINDS), listed
