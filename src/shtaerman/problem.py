@@ -450,7 +450,7 @@ class Problem:
         if relaxing and self.loading.kind == "curve" and rate is None:
             raise InputError(
                 "rate: a contact curve on a viscoelastic body (prony) is pressed at a speed: "
-                f"give rate {entry('rate').range_text('contact')} m/s",
+                f"give rate=... {entry('rate').range_text('contact')} m/s",
                 "rate",
             )
         if rate is not None and not relaxing:

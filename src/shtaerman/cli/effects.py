@@ -118,6 +118,8 @@ def run(args: argparse.Namespace) -> int:
         except VerifyInterrupted as stop:
             print(_interrupted_text(stop, folder), file=sys.stderr)
             return stopped_code(stop.cause)
+    written = ", ".join(path.name for path in sorted(folder.glob("effects.*")))
+    print(f"shtaerman: the table is in {folder}: {written}", file=sys.stderr)
     return 0
 
 
@@ -158,14 +160,14 @@ def _table_into(folder: Path, full: dict, options: dict, args: argparse.Namespac
             entries[run.label] = json_safe(asdict(run))
             save_progress(stage, keys, entries, False, inputs)
 
-        try:
+        try:  # stopped or failed while its files are written, the runs are kept too
             table = effects(full, **options, progress=_progress, kept=kept, finished=finished)
+            _print(table, args.json)  # first: a failed --out (a full disk) does not lose it
+            sys.stdout.flush()
+            write_table(table, stage)
+            table.plot(stage / "effects.png", args.figure_format)
         except BaseException as error:
             keep_finished(stage, keys, entries, error, quick=False, inputs=inputs)
-        _print(table, args.json)  # first: a failed --out (a full disk) does not lose it
-        sys.stdout.flush()
-        write_table(table, stage)
-        table.plot(stage / "effects.png", args.figure_format)
         (stage / PROGRESS_FILE).unlink(missing_ok=True)
 
 

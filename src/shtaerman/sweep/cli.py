@@ -75,9 +75,7 @@ def run(args: argparse.Namespace) -> int:
 
     workers = args.workers
     if workers is not None and args.scheduler:
-        raise InputError(
-            "workers: --workers sizes the local cluster; drop it with --scheduler", "workers"
-        )
+        raise InputError("--workers: sizes the local cluster; drop it with --scheduler", "workers")
     spec = load_sweep(find_sweep(args.sweep))
     out = Path(args.out) if args.out else Path(f"sweep-{spec.name}")
     try:

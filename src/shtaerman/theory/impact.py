@@ -245,8 +245,9 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
         "t_c", duration_integral(q) * _exp(log_x_c - math.log(velocity)), mass, velocity
     )
     a_c = representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
-    p_c = float(law.central_pressure(x_c))
-    if not math.isinf(p_c):  # inf is the exact answer for n <= 1
+    with np.errstate(all="ignore"):  # a_c^2 may underflow: representable() says so
+        p_c = float(law.central_pressure(x_c))
+    if not math.isinf(getattr(law, "central_to_mean_ratio", 0.0)):  # inf: exact for n <= 1
         p_c = representable("p_c", p_c, mass, velocity)
     impulse = representable("impulse", 2.0 * mass * velocity, mass, velocity)
     half_time = ateb_sine(q, 1.0, (q + 1.0) / 4.0 * duration_integral(q))

@@ -122,6 +122,23 @@ def check_runs(rows: tuple[Variant, ...], given: dict[str, Any]) -> None:
                 raise
 
 
+def checked_table(
+    problem: Problem | Mapping[str, Any], refine: float, estimate: bool, numerics: dict
+) -> tuple[Parts, tuple[Variant, ...], tuple[str, ...], dict[str, Any]]:
+    """The parts, variants, absent effects and numerical options of the table of
+    :func:`effects` with these numerics (None: a run's default), refused as :func:`effects`
+    refuses them before any run (:func:`check_runs`); nothing computed beyond the exact
+    impacts. An effects study checks its ``[numerics]`` and ``[quick]`` with it at load."""
+    sizes = {name: numerics.get(name) for name in ("time_steps", "mesh_size")}
+    given = _numerics(refine, estimate, sizes)
+    more = {name: value for name, value in numerics.items() if name not in sizes}
+    given.update(_numerics(1.0, True, more))
+    parts = parts_of(problem)
+    rows, absent = variants(parts)
+    check_runs(rows, given)
+    return parts, rows, absent, given
+
+
 def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
     """One variant: refused (its combination, an option or a guard), failed, or its numbers."""
     start = time.perf_counter()
@@ -227,12 +244,9 @@ def effects(
         numerics; or an effect alone is refused for its own input (:data:`OWN_INPUTS`: a pad's
         thickness outside its range for this impact).
     """
-    given = _numerics(refine, estimate, dict(time_steps=time_steps, mesh_size=mesh_size))
-    more = dict(mesh_margin=mesh_margin, domain_factor=domain_factor, growth=growth)
-    given.update(_numerics(1.0, True, {**more, "layer_rate": layer_rate}))
-    parts = parts_of(problem)
-    rows, absent = variants(parts)
-    check_runs(rows, given)
+    numerics = dict(time_steps=time_steps, mesh_size=mesh_size, mesh_margin=mesh_margin)
+    numerics |= dict(domain_factor=domain_factor, growth=growth, layer_rate=layer_rate)
+    parts, rows, absent, given = checked_table(problem, refine, estimate, numerics)
     report = progress or (lambda _line: None)
     said: Said = {}
     with _recorded(said, "quasi-static (paper)"):

@@ -26,6 +26,7 @@ from ...study.schema import (
     Named,
     Positive,
     RubberTable,
+    StudyError,
     StudyFile,
     SurfaceImpactTable,
     Table,
@@ -40,7 +41,7 @@ from ...study.schema import (
 from ...theory.materials import Material
 from ...validation import InputError
 from .report import write_table
-from .run import effects
+from .run import checked_table, effects
 from .table import EffectTable
 
 __all__ = ["EffectsOutcome", "EffectsStudy", "load_effects", "run_effects", "write_effects"]
@@ -113,9 +114,29 @@ def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     except InputError as error:
         raise refused(path, error, KEYS) from None
     numerics = {k: v for k, v in msgspec.structs.asdict(raw.numerics).items() if v is not None}
-    quick = {**numerics, "estimate": False}
-    quick |= {k: v for k, v in msgspec.structs.asdict(raw.quick).items() if v is not None}
+    own = {k: v for k, v in msgspec.structs.asdict(raw.quick).items() if v is not None}
+    quick = {**numerics, "estimate": False, **own}
+    _check_numerics(path, found, numerics, "numerics")
+    _check_numerics(path, found, quick, "quick", own)
     return [EffectsStudy(**header, parts=found, numerics=numerics, quick_numerics=quick)]
+
+
+def _check_numerics(
+    path: Path, found: dict, numerics: dict, table: str, own: dict | None = None
+) -> None:
+    """Refuse at load, naming its key, what :func:`effects` would refuse of the table with
+    these numerics before any run (``verify --quick`` never runs ``[numerics]``' overridden
+    keys, ``verify`` never ``[quick]``'s): ``[quick]`` inherits the keys it does not give
+    (``own``) from ``[numerics]``."""
+    options = {k: v for k, v in numerics.items() if k not in ("refine", "estimate")}
+    try:
+        checked_table(found, numerics.get("refine", 1.0), numerics.get("estimate", True), options)
+    except InputError as error:
+        if error.parameter not in _Numerics.__struct_fields__:
+            raise refused(path, error, KEYS) from None
+        key = f"{table if own is None or error.parameter in own else 'numerics'}.{error.parameter}"
+        reason = str(error).removeprefix(f"{error.parameter}: ")
+        raise StudyError(f"{path}: key '{key}': {reason}") from None
 
 
 def run_effects(study: EffectsStudy, quick: bool = False, progress: Any = None) -> EffectsOutcome:

@@ -24,6 +24,7 @@ from dataclasses import dataclass, fields, replace
 from typing import Any
 
 from ...problem import RUBBER_OPTIONS, Geometry, Interface, Problem
+from ...validation import InputError
 
 __all__ = ["EFFECTS", "Effect", "Variant", "parts_of", "variants"]
 
@@ -73,8 +74,16 @@ class Variant:
 
 def parts_of(problem: Problem | Parts) -> dict[str, Any]:
     """The parts of ``problem`` (a :class:`Problem`, or its parts as a mapping: checked first,
-    a missing part or an unknown key named as Python names a keyword, a part refused)."""
+    a missing part or an unknown key named as Python names a keyword, a part refused); an
+    impact's only (InputError, as :func:`shtaerman.dynamic` refuses a curve or no problem)."""
+    if not isinstance(problem, Problem | Mapping):
+        raise InputError(
+            "problem must be a Problem (Problem.impact) or its parts (a mapping), got "
+            f"{type(problem).__name__}",
+            "problem",
+        )
     problem = problem if isinstance(problem, Problem) else Problem(**problem)
+    problem.alone("effects", "impact")
     return {part.name: getattr(problem, part.name) for part in fields(problem)}
 
 
