@@ -208,8 +208,9 @@ def representable(name: str, value: float, mass: float, velocity: float) -> floa
     if not (math.isfinite(value) and abs(value) >= sys.float_info.min):
         raise InputError(
             f"mass {mass!r} kg and velocity {velocity!r} m/s give {name} = {value:g}, outside "
-            f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]; "
-            f"choose values of a physical size (or rescale the units)"
+            f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}] "
+            "with this striker's shape and these moduli; choose a shape coefficient, moduli, "
+            "mass and velocity of a physical size (or rescale the units)"
         )
     return value
 
