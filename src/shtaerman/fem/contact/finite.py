@@ -22,15 +22,17 @@ Newton: a semi-smooth (primal-dual active-set) Newton on the KKT system
 with the consistent tangent d2Pi/dx2 - sum lambda_i d2g_i/du_r^2 (f'' at the current radius)
 and, on the active set A, the linearized constraints -G_A dx = g_A, solved together as one
 sparse symmetric saddle-point system [[K, -G_A^T], [-G_A, 0]]. Converged when the active set
-repeats and the displacement correction is below ``tolerance * depth``. A modified Newton
-saves factorizations on the depth ladder (:func:`solve_finite_contact`) and in an impact's
-time steps (every evaluation of the striker's step equation): while the active set stays that
+repeats and the displacement correction is below ``tolerance * depth`` (the axis candidate,
+to which a quadratic edge gives no area, follows its ring once it cycles: :class:`_Sets`). A
+modified Newton saves factorizations on the depth ladder (:func:`solve_finite_contact`) and in
+an impact's time steps (every evaluation of the striker's step equation): while the set stays that
 of the last factorization (also from the previous depth or step) and each correction shrinks by
 :data:`CONTRACTION`, the step reuses it (and its tangent); a step that reused it converges only
-with that contraction. Complementarity then
-holds exactly (lambda = 0 off A, g = 0 on A up to the Newton tolerance, lambda > 0 on A,
-g >= 0 off A). Depth stepping: from the last converged state to each requested depth, with a
-linear predictor whose first active set ends at the extrapolated contact edge
+with that contraction. Complementarity then holds exactly (lambda = 0 off A, g = 0 on A up
+to the Newton tolerance, lambda > 0 on A but at a tied axis candidate, which pulls by less than
+its ring pushes, g >= 0 off A). Depth stepping: from the last converged state to each
+requested depth, with a linear predictor whose first active set ends at the extrapolated
+contact edge
 (:func:`predict_reach`); a step that fails (no convergence, an inverted element J <= 0) is
 halved, up to ``max_cuts`` times, then a :class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
 
@@ -168,6 +170,36 @@ class _Candidates:
         return cls(uz, ur, r, ~np.isin(ur, fixed))
 
 
+@dataclass
+class _Sets:
+    """The active sets of one Newton solve (:meth:`NewtonStepper.solve`): the last two
+    iterations' and whether the axis candidate (index 0) is tied to its ring.
+
+    Why the tie: a quadratic surface edge on the axis gives its axis vertex no area
+    (int N_0 2 pi r dr = 0 over [0, h]), so that node's multiplier is no sample of the
+    pressure but a remainder of higher order in h, of either sign. Under the 4 mm pad's tip
+    (z = 5 r^1.5, the impact's axis grading 1e-3) it flipped on alternate iterations, in the
+    set pulling, out of it penetrating by 1.6e-9 m (7e-7 of the depth): the set never
+    repeated (benchmarks/FEM_NOTES.md, "Axis node cycling"). Once it has flipped twice while
+    the first edge's midside candidate (index 1) is in contact, it is in contact wherever
+    that one is, re-decided at every iteration: a ring that lets go frees it too."""
+
+    previous: np.ndarray | None = None
+    before: np.ndarray | None = None
+    tied: bool = False
+
+    def next(self, active: np.ndarray) -> np.ndarray | None:
+        """Record this iteration's ``active`` set (the axis candidate tied in place); return
+        the previous iteration's (None on the first)."""
+        previous, before = self.previous, self.before
+        if not self.tied and before is not None and active.size > 1:
+            self.tied = bool(active[1] and active[0] == before[0] != previous[0])
+        if self.tied and active[1]:
+            active[0] = True
+        self.before, self.previous = previous, active
+        return previous
+
+
 def _surface_mass(x: np.ndarray) -> np.ndarray:
     """P2 matrix int N_i N_j 2 pi r dr on the current radii x (edges = consecutive triples)."""
     points, weights = _GAUSS
@@ -288,19 +320,18 @@ class NewtonStepper:
         puts in contact at reference radii beyond it (the predicted contact edge,
         :func:`predict_reach`). A ``modified`` Newton that fails is redone as a full one."""
         scale = depth if scale is None else scale
-        system, nodes, previous = self.system, self.nodes, None
+        system, nodes, sets = self.system, self.nodes, _Sets()
 
         def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> Any:
-            nonlocal previous
             _, gap, slope, curvature = self.geometry(x, depth)
             active = lam - self.weight * gap > 0
-            if reach is not None and previous is None:  # the guess overshoots the edge
+            if reach is not None and sets.previous is None:  # the guess overshoots the edge
                 active &= nodes.radius < reach
+            previous = sets.next(active)
             lam[~active] = 0.0
             if previous is not None and self.settled(active, previous, lam, gap, scale):
                 if self.converged(*history):
-                    return None
-            previous = active
+                    return check_axis_ring(lam, sets.tied)
             residual = system.residual(x, state)
             np.subtract.at(residual, nodes.ur, lam * slope)
             np.add.at(residual, nodes.uz, lam)
@@ -316,7 +347,7 @@ class NewtonStepper:
             if not self.modified:
                 raise
         # a modified Newton that failed is redone in full: it fails only where full Newton does
-        self.modified, self.kept, previous = False, None, None
+        self.modified, self.kept, sets = False, None, _Sets()
         try:
             return self.iterate((x, lam), scale, increment, base)
         finally:
@@ -497,6 +528,19 @@ class NewtonStepper:
 def element_inverted(state: Any) -> bool:
     """Whether some element of the kinematics ``state`` has J <= 0 (or not finite)."""
     return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
+
+
+def check_axis_ring(lam: np.ndarray, tied: bool) -> None:
+    """Accept a converged solve whose axis candidate was tied to its ring (:class:`_Sets`,
+    ``tied``): its pull -lambda_0 (N, ``lam[0]`` < 0) may not exceed the push lambda_1 of the
+    first edge's midside candidate, else the ring about the axis pulls the indenter: the
+    surface would lift off the tip, which the tie cannot represent (NewtonError)."""
+    if tied and lam[0] + lam[1] < 0:
+        raise NewtonError(
+            f"the axis node pulls the indenter by {-lam[0]:.3g} N where the ring about it "
+            f"pushes {lam[1]:.3g} N: the surface lifts off the indenter's tip"
+        )
+    return None
 
 
 def newton_converged(corrections: list[float], tolerance: float) -> bool:
