@@ -16,7 +16,6 @@ import matplotlib as mpl
 import numpy as np
 import pytest
 import pyvista as pv
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
@@ -227,23 +226,6 @@ def test_pngs_are_compressed_fast_and_losslessly(outcome, folder):
         style.save(figure, folder / "level3.png")
     assert zlib_level_class(default) == 2
     assert (pixels(default) == pixels(folder / "level3.png")).all()
-
-
-def test_charts_share_one_mathtext_parser(folder):
-    """A label parsed for one chart is not parsed again for the next (one parser, one cache,
-    for every chart's renderer), and the pixels are those of matplotlib's own Agg canvas."""
-    label = r"$P_c/P_{max} - 1$ ($\mu$m)"
-    paths = []
-    for name, own_canvas in (("shared", False), ("plain", True)):
-        figure, axes = style.chart(1.5, width=2.0)
-        if own_canvas:
-            FigureCanvasAgg(figure)
-        axes.set_xlabel(label)
-        paths.append(style.save(figure, folder / f"{name}.png"))
-    assert (pixels(paths[0]) == pixels(paths[1])).all()
-    renderers = [style.chart(1.0)[0].canvas.get_renderer() for _ in range(2)]
-    assert renderers[0] is not renderers[1]
-    assert renderers[0].mathtext_parser is renderers[1].mathtext_parser
 
 
 def test_si_prefix():

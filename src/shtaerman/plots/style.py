@@ -25,9 +25,7 @@ import matplotlib as mpl
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.axis import Axis
-from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
 from matplotlib.figure import Figure
-from matplotlib.mathtext import MathTextParser
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..validation import InputError
@@ -129,30 +127,10 @@ def styled(function: Callable[..., Path]) -> Callable[..., Path]:
     return wrapper
 
 
-_MATHTEXT = MathTextParser("path")
-"""The mathtext parser of every figure's Agg renderer (:class:`SharedMathtextCanvas`)."""
-
-
-class SharedMathtextCanvas(FigureCanvasAgg):
-    """The Agg canvas, its renderer parsing mathtext with one parser for the whole process.
-
-    Matplotlib gives each renderer its own parser, whose cache of parsed labels dies with
-    it: one renderer per figure, so every figure parsed its labels ($1-e^2$, $P_c/P_{max}$,
-    the SI exponents) again, 10-14 % of a warm figure's CPU (benchmarks/FEM_NOTES.md,
-    "Figures"). The parse depends only on the text, font, size and dpi, which key the cache.
-    """
-
-    def get_renderer(self) -> RendererAgg:
-        renderer = super().get_renderer()
-        renderer.mathtext_parser = _MATHTEXT
-        return renderer
-
-
 def chart(height: float, *grid: int, width: float = WIDTH, **options: Any) -> tuple[Figure, Any]:
-    """A new figure ``width`` x ``height`` inches (constrained layout, on a
-    :class:`SharedMathtextCanvas`) and its axes: ``figure.subplots(*grid, **options)``."""
+    """A new figure ``width`` x ``height`` inches (constrained layout) and its axes:
+    ``figure.subplots(*grid, **options)``."""
     figure = Figure(figsize=(width, height), layout="constrained")
-    SharedMathtextCanvas(figure)
     return figure, figure.subplots(*grid, **options)
 
 
