@@ -6,6 +6,8 @@ import numpy as np
 import pytest
 
 from shtaerman.study.contact.contact_law import FemContactLaw
+from shtaerman.theory.contact import PowerLawContact
+from shtaerman.theory.indenter import PowerLawIndenter
 
 
 @pytest.fixture
@@ -33,3 +35,15 @@ def test_one_depth_and_an_array_agree_to_the_bit(law):
     assert np.array_equal([float(law.force(np.asarray(v))) for v in x], together)
     assert np.array_equal(law.contact_radius(x[5]), law.contact_radius(x)[5])
     assert np.shape(law.central_pressure(x[5])) == ()
+
+
+def test_central_to_mean_ratio_is_hertz_on_hertz_tables():
+    """The ratio solve_impact reads (ContactLaw) is the FEM table's p(0) pi a^2 / P at its
+    deepest step: on Hertz's exact table it is Hertz's 3/2, to round-off (1e-14)."""
+    hertz = PowerLawContact(PowerLawIndenter.sphere(0.01), 1.0e7)
+    depths = np.geomspace(1e-6, 1e-4, 5)  # m
+    forces, radii = hertz.force(depths), hertz.contact_radius(depths)
+    law = FemContactLaw(depths, forces, radii, hertz.central_pressure(depths), hertz.beta, 1.5)
+    assert law.central_to_mean_ratio == pytest.approx(1.5, rel=1e-14)
+    kinked = FemContactLaw(depths, forces, radii, 2.0 * forces / (np.pi * radii**2), 1.0, 1.5)
+    assert kinked.central_to_mean_ratio == pytest.approx(2.0, rel=1e-14)  # not a constant

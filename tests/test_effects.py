@@ -320,3 +320,28 @@ def test_a_vector_figure_without_out_is_refused(capsys):
     assert main(["effects", *ARGV, "--figure-format", "svg"]) == 2
     _, err = capsys.readouterr()
     assert err.count("\n") == 1 and "--figure-format" in err and "--out" in err
+
+
+def test_the_figure_names_its_case_its_quantities_and_what_each_colour_is(pad_table, monkeypatch):
+    """effects.png says what it shows: a title naming the striker's mass and velocity and
+    every part of the case, a panel title per quantity as a change from the paper's value, and
+    a legend naming each role drawn in that role's colour and the whiskers (session 53's
+    figure had neither title nor legend)."""
+    from figure_helpers import capture
+    from matplotlib.colors import to_rgba
+
+    from shtaerman.api.effect_table import figure as module
+
+    drawn = capture(monkeypatch, module, lambda: pad_table.plot("effects.png"))
+    title = drawn.get_suptitle()
+    assert "0.12 kg at 1.5 m/s" in title and "12 mm pad on a bonded rigid base" in title
+    assert "Prony series g:tau = 0.3:0.001 s" in title and "frictionless indenter" in title
+    assert [panel.get_title() for panel in drawn.axes] == list(module.TITLES.values())
+    assert module.TITLES["P_max"] == "P_max / P_c \N{MINUS SIGN} 1 (%)"
+    [legend] = drawn.legends
+    roles = ("none", "alone", "full", "without", "interaction")
+    texts = [text.get_text() for text in legend.get_texts()]
+    assert texts == [*(module.LEGEND[role] for role in roles), "estimated error"]
+    patches = legend.get_patches()
+    assert [p.get_facecolor() for p in patches] == [to_rgba(module.COLOURS[r]) for r in roles]
+    assert "whiskers: each run's estimated absolute error" in module.EFFECTS_CAPTION

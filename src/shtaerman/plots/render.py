@@ -17,7 +17,7 @@ by pyvista's default multisampling, which is dearer on a software OpenGL (benchm
 from __future__ import annotations
 
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from functools import cache
 from pathlib import Path
 
@@ -28,6 +28,7 @@ from vtkmodules.vtkRenderingCore import vtkTextProperty
 
 from ..signals import deferred
 from ..validation import InputError
+from .shared import SharedContext
 
 __all__ = ["FONT_SIZE", "WINDOW_SIZE", "picture", "quiet_vtk", "save", "smooth_edges", "use_font"]
 
@@ -51,14 +52,22 @@ def use_font(prop: vtkTextProperty) -> None:
 
 
 @contextmanager
-def quiet_vtk() -> Iterator[None]:
-    """Silence VTK warnings (the off-screen "bad X server connection") for one picture."""
+def _silenced() -> Iterator[None]:
     previous = vtkObject.GetGlobalWarningDisplay()
     vtkObject.GlobalWarningDisplayOff()
     try:
         yield
     finally:
         vtkObject.SetGlobalWarningDisplay(previous)
+
+
+_QUIET = SharedContext(_silenced)
+
+
+def quiet_vtk() -> AbstractContextManager[None]:
+    """Silence VTK warnings (the off-screen "bad X server connection") for one picture,
+    restored when the last picture drawn at once, in any thread, is done."""
+    return _QUIET()
 
 
 def smooth_edges(plotter: pv.Plotter) -> None:

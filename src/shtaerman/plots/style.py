@@ -30,6 +30,7 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..validation import InputError
 from .formats import FIGURE_FORMATS, check_figure_format
+from .shared import SharedContext
 
 __all__ = [
     "APPROXIMATION_COLOUR",
@@ -116,12 +117,17 @@ def si_prefix(magnitude: float, unit: str) -> tuple[float, str]:
     return 10.0**-power, f"{_PREFIXES[power]}{unit}"
 
 
+_STYLED = SharedContext(lambda: mpl.rc_context(STYLE))
+""":data:`STYLE` in rcParams while any thread draws; the caller's back after the last."""
+
+
 def styled(function: Callable[..., Path]) -> Callable[..., Path]:
-    """Run a figure function inside :data:`STYLE` (no global state changes)."""
+    """Run a figure function inside :data:`STYLE` (no global state changes once every
+    figure drawn at once, in any thread, is done: :data:`_STYLED`)."""
 
     @wraps(function)
     def wrapper(*args: Any, **kwargs: Any) -> Path:
-        with mpl.rc_context(STYLE):
+        with _STYLED():
             return function(*args, **kwargs)
 
     return wrapper
@@ -153,7 +159,7 @@ def save(figure: Figure, path: Path | str, figure_format: str = "png") -> Path:
     if suffix not in FIGURE_FORMATS:
         raise InputError(f"figure path must end in .png, .svg or .pdf, got {str(path)!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
-    with mpl.rc_context(STYLE):
+    with _STYLED():
         figure.savefig(path, dpi=DPI, **_options(suffix))
         if figure_format not in ("png", suffix):
             twin = path.with_suffix(f".{figure_format}")

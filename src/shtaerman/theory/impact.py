@@ -63,6 +63,9 @@ class ContactLaw(Protocol):
 
     def central_pressure(self, depth: ArrayLike) -> np.ndarray: ...  # Pa
 
+    @property
+    def central_to_mean_ratio(self) -> float: ...  # p(0)/p_avg; inf: unbounded (n <= 1)
+
 
 def duration_integral(force_exponent: float) -> float:
     """I = Int_0^1 d xi / sqrt(1 - xi^(q+1)) = B(1/(q+1), 1/2)/(q+1); t_c = I x_c / v0.
@@ -248,7 +251,7 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     a_c = representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
     with np.errstate(all="ignore"):  # a_c^2 may underflow: representable() says so
         p_c = float(law.central_pressure(x_c))
-    if not math.isinf(getattr(law, "central_to_mean_ratio", 0.0)):  # inf: exact for n <= 1
+    if not math.isinf(law.central_to_mean_ratio):  # inf: exact for n <= 1
         p_c = representable("p_c", p_c, mass, velocity)
     impulse = representable("impulse", 2.0 * mass * velocity, mass, velocity)
     half_time = ateb_sine(q, 1.0, (q + 1.0) / 4.0 * duration_integral(q))

@@ -19,9 +19,11 @@ from pathlib import Path
 from typing import Any
 
 from ...output.files import json_safe
+from .types import Cell, Run  # in .types, which the figure imports too (no cycle)
 
 __all__ = [
     "QUANTITIES",
+    "Cell",
     "EffectTable",
     "Run",
     "change",
@@ -34,28 +36,6 @@ QUANTITIES = {"P_max": "P_c", "x_max": "x_c", "t_contact": "t_y", "restitution":
 """Each impact quantity -> the paper's quasi-static value it is measured against (None: the
 restitution, 1 in the paper, whose change is the difference e - 1)."""
 UNITS = {"P_max": "N", "x_max": "m", "t_contact": "s", "restitution": ""}
-
-
-@dataclass(frozen=True)
-class Run:
-    """One variant's outcome.
-
-    ``values`` (SI) and ``errors`` (their estimated absolute errors) are None when the variant
-    was refused or failed; then ``refused`` is its one-line reason. ``errors`` is None with
-    ``error_note`` saying why when the run had no error estimate. ``notes`` list the numerical
-    options the variant's combination does not take (left out of its run).
-    """
-
-    label: str
-    role: str
-    effect: str | None
-    cell: str
-    values: dict[str, float] | None = None
-    errors: dict[str, float] | None = None
-    error_note: str | None = None
-    refused: str | None = None
-    seconds: float = 0.0
-    notes: tuple[str, ...] = ()
 
 
 def refusal_words(refused: str | None, label: str, first: dict[str, str]) -> str | None:
@@ -77,14 +57,6 @@ def change(value: float, key: str, reference: dict[str, float]) -> float:
 def _change_error(error: float, key: str, reference: dict[str, float]) -> float:
     ref = QUANTITIES[key]
     return error if ref is None else error / reference[ref]
-
-
-@dataclass(frozen=True)
-class Cell:
-    """One entry: the change from the paper and its error bar (None: n/a)."""
-
-    change: float | None
-    error: float | None
 
 
 def cells(run: Run, reference: dict[str, float]) -> dict[str, Cell]:

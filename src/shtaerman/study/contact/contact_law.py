@@ -12,6 +12,7 @@ little past the deepest step), with no assumption about the exponent.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -88,6 +89,12 @@ class FemContactLaw:
     def central_pressure(self, depth: ArrayLike) -> np.ndarray:
         """FEM central pressure in Pa at depth x in m."""
         return self._pressure(depth)
+
+    @property
+    def central_to_mean_ratio(self) -> float:
+        """p(0)/p_avg = p(0) pi a^2 / P at the deepest FEM step: finite (the FEM's central
+        pressure is a nodal value), depth dependent unlike the power law's."""
+        return float(self.central_pressures[-1] * math.pi * self.radii[-1] ** 2 / self.forces[-1])
 
     @cached_property
     def _force(self) -> _LogLog:
