@@ -17,7 +17,6 @@ Run: python benchmarks/bonded_finite.py [--friction MU] [--save FILE] [--compare
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import math
 import time
@@ -74,12 +73,11 @@ def main() -> None:
     args = parser.parse_args()
     unit = reference()
     depths = default_depths(INDENTER, HALF_SPACE)
-    mesh = dataclasses.replace(FINITE_MESH, interface="bonded")
+    mesh = FINITE_MESH
     counts = counted()
     before, wall, average = cpu(), time.perf_counter(), load()
     solve = finite_stick.solve_finite_bonded_contact
     if math.isfinite(args.friction):
-        mesh = dataclasses.replace(mesh, friction=args.friction)
         solve = lambda *a, **k: finite_stick.solve_finite_bonded_contact(  # noqa: E731
             *a, friction=args.friction, **k
         )

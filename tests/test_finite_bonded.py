@@ -18,7 +18,6 @@ cancels in the ratios):
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import json
 import math
@@ -34,7 +33,6 @@ from shtaerman.cli import main
 from shtaerman.cli.contact import finite_contact_text
 from shtaerman.fem.contact.finite import (
     geometric_radius,
-    run_finite_indentation,
     solve_finite_contact,
 )
 from shtaerman.fem.contact.finite_stick import solve_finite_bonded_contact
@@ -200,12 +198,6 @@ def test_bad_bonded_options_are_one_line_and_exit_2(argv, words, capsys):
     assert main(["contact", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
-
-
-def test_a_bonded_mesh_needs_the_bonded_solver():
-    mesh = dataclasses.replace(COARSE, interface="bonded")
-    with pytest.raises(InputError, match="interface"):
-        run_finite_indentation(INDENTER, Material(E2, 0.5), [_depth(0.05)], mesh)
 
 
 def test_bad_ladder_is_an_input_error():

@@ -10,7 +10,6 @@ reference.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import json
 import math
@@ -104,9 +103,9 @@ def test_the_cuts_are_in_the_json_and_a_warning(monkeypatch, capsys):
     assert code == 0
     assert json.loads(out)["load_steps_cut"] == 1
     assert "warning: retried: 1 of the load steps cut in halves" in err
-    mesh = dataclasses.replace(ROUGH, interface="bonded", friction=0.5)  # _cli's ratio LARGE
     with pytest.warns(RetriedWarning, match="1 of the load steps cut in halves"):
-        result = finite_study.run_finite_study(INDENTER, RUBBER, [DEEPEST], mesh)
+        # Coulomb 0.5 at _cli's ratio LARGE
+        result = finite_study.run_finite_study(INDENTER, RUBBER, [DEEPEST], ROUGH, friction=0.5)
     assert result.to_dict()["load_steps_cut"] == 1
 
 

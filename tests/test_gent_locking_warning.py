@@ -99,12 +99,11 @@ def test_every_route_names_the_crossing_within_its_steps():
     x_c = prepare_finite_impact(PAPER, massless, 0.0, 0.7, 0.05, settings, rubber).scales[0]
     depths = x_c * np.linspace(0.05, 1.0, 20)
     body = Material(E2, 0.5)
-    bonded = replace(mesh, interface="bonded")
     routes = {
         "frictionless curve": lambda: run_finite_indentation(PAPER, body, depths, mesh, rubber),
         "massless impact": impact(None),
         "bonded curve": lambda: run_finite_indentation(
-            PAPER, body, depths, bonded, rubber, solve=solve_finite_bonded_contact
+            PAPER, body, depths, mesh, rubber, solve=solve_finite_bonded_contact
         ),
         "bonded massless impact": impact(math.inf),
     }

@@ -18,6 +18,8 @@ error (nodal sums on both sides).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -158,7 +160,7 @@ def test_bad_interface_in_python():
     with pytest.raises(InputError, match="interface"):
         sh.contact(indenter, Material(E2, 0.3), interface="sticky")
     with pytest.raises(InputError, match="interface"):
-        MeshSettings(interface="Bonded")
+        sh.Interface("Bonded")
     with pytest.raises(InputError, match="step_ratio"):
         _pair(0.3, 1.5, step_ratio=1.0)
 
@@ -169,14 +171,10 @@ def test_bonded_indenter_on_a_layer():
     indenter = PowerLawIndenter(5.0, 1.5)
     depth = np.array([5.0 * RADIUS**1.5])
     body = Material(E2, 0.5)
+    mesh = MeshSettings(size=1 / 20, thickness=0.5 * RADIUS)
     forces = [
-        run_indentation(
-            indenter,
-            body,
-            depth,
-            MeshSettings(size=1 / 20, thickness=0.5 * RADIUS, interface=interface),
-        ).steps[-1]
-        for interface in ("frictionless", "bonded")
+        run_indentation(indenter, body, depth, mesh, friction=friction).steps[-1]
+        for friction in (None, math.inf)  # frictionless, bonded
     ]
     assert forces[1].force > 1.05 * forces[0].force
 
@@ -202,14 +200,14 @@ def test_study_file_contact_interface(tmp_path):
     path = tmp_path / "stuck.toml"
     path.write_text(STUDY + 'interface = "bonded"\n')
     [study] = load_study(path)
-    assert study.mesh.interface == "bonded" and study.quick_mesh.interface == "bonded"
+    assert study.interface == sh.Interface("bonded")  # both meshes solve it (the runner's)
     path.write_text(STUDY)
-    assert load_study(path)[0].mesh.interface == "frictionless"
+    assert load_study(path)[0].interface.kind == "frictionless"
     path.write_text(STUDY + 'interface = "glued"\n')
     with pytest.raises(StudyError, match=r"contact\.interface.*frictionless"):
         load_study(path)
     path.write_text(STUDY + 'interface = "bonded"\nfriction = 0.4\n')
-    assert load_study(path)[0].mesh.friction == 0.4
+    assert load_study(path)[0].interface.coefficient == 0.4
     path.write_text(STUDY + "friction = 0.4\n")  # said "expected a number >= 0, got 0.4"
     with pytest.raises(StudyError, match=r"contact\.friction': applies to a bonded indenter"):
         load_study(path)

@@ -3,11 +3,13 @@ kinds30): the contact and finite-strain curves' interface, friction, Prony serie
 layer, each checked as the problem's curve (:meth:`shtaerman.problem.Problem.curve`), refused
 in the file's words where the parts do not combine, and stated in the findings where set."""
 
+import math
 from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
 
+import shtaerman as sh
 from shtaerman.cli import main
 from shtaerman.fem.mesh import MeshSettings
 from shtaerman.output.text_finite import curve_finding
@@ -28,8 +30,9 @@ def _finite_file(tmp_path: Path, extra: str, layer: str = "") -> Path:
 def test_a_finite_strain_study_carries_its_interface_and_pad_into_both_meshes(tmp_path):
     path = _finite_file(tmp_path, 'interface = "bonded"\nfriction = 0.5', "thickness_ratio = 5.0")
     (study,) = load_study(path)
-    for mesh in (study.mesh, study.quick_mesh):  # the finite and the same-mesh linear FEM
-        assert (mesh.interface, mesh.friction, mesh.base) == ("bonded", 0.5, "bonded")
+    assert study.interface.coefficient == 0.5  # the finite and the same-mesh linear FEM's
+    for mesh in (study.mesh, study.quick_mesh):
+        assert mesh.base == "bonded"
     # H = 5 a_c of the paper's impact with a rigid striker (`shtaerman impact --E1 inf --json`:
     # a_c = 0.00964917209229948 m); the same closed form, so 1e-12 is round-off
     assert study.mesh.thickness == pytest.approx(5 * 0.00964917209229948, rel=1e-12)
@@ -52,25 +55,26 @@ def test_a_finite_strain_study_refuses_a_curve_that_does_not_combine(tmp_path, e
 
 
 def test_the_finite_strain_findings_state_the_interface_and_the_pad():
-    mesh = MeshSettings(interface="bonded", friction=0.5, thickness=0.02, base="bonded")
-    (said,) = curve_finding(SimpleNamespace(study=SimpleNamespace(mesh=mesh)))
+    mesh, surface = MeshSettings(thickness=0.02, base="bonded"), sh.Interface("bonded", 0.5)
+    (said,) = curve_finding(SimpleNamespace(study=SimpleNamespace(mesh=mesh, interface=surface)))
     assert "Coulomb friction 0.5" in said and "pad H = 20 mm on a bonded rigid base" in said
-    assert curve_finding(SimpleNamespace(study=SimpleNamespace(mesh=MeshSettings()))) == []
+    paper = SimpleNamespace(mesh=MeshSettings(), interface=sh.Interface())
+    assert curve_finding(SimpleNamespace(study=paper)) == []
 
 
 def test_a_contact_sweep_case_solves_its_interface_and_its_viscoelastic_curve():
     p = get_kind("contact").defaults() | {"interface": "bonded", "friction": 0.5}
-    mesh = _contact_inputs(p)[3]
-    assert (mesh.interface, mesh.friction) == ("bonded", 0.5)
+    assert _contact_inputs(p)[5]["friction"] == 0.5
     p = get_kind("contact").defaults() | {"prony": "0.3:1e-3", "rate": 0.1}
-    relaxing = _contact_inputs(p)[5]
-    assert relaxing["rate"] == 0.1 and relaxing["prony"].weights == (0.3,)
+    physics = _contact_inputs(p)[5]
+    assert physics["rate"] == 0.1 and physics["prony"].weights == (0.3,)
 
 
 def test_a_finite_strain_sweep_case_meshes_its_pad():
     p = get_kind("finite-strain").defaults() | {"thickness": 0.02, "interface": "bonded"}
-    mesh = _finite_check(p).mesh
-    assert (mesh.thickness, mesh.base, mesh.interface) == (0.02, "bonded", "bonded")
+    study = _finite_check(p)
+    assert (study.mesh.thickness, study.mesh.base) == (0.02, "bonded")
+    assert study.interface.coefficient == math.inf  # bonded, no slip
 
 
 @pytest.mark.parametrize(

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 from study_texts import DYNAMIC_STUDY
 
+import shtaerman as sh
 from shtaerman.study.contact.layer import LayerSpec
 from shtaerman.study.schema import StudyError, load_study
 from shtaerman.theory.contact import PowerLawContact
@@ -222,10 +223,7 @@ def test_a_layer_studys_dynamic_impact_takes_its_interface(tmp_path: Path, bonde
     from shtaerman.study.contact.runner import run_contact_study
 
     study = _contact_study(tmp_path, "dynamic = true")
-    surface = {"interface": "bonded"}  # as [contact] interface = "bonded" sets both meshes
-    study = replace(
-        study, mesh=replace(study.mesh, **surface), quick_mesh=replace(study.quick_mesh, **surface)
-    )
+    study = replace(study, interface=sh.Interface("bonded"))  # [contact] interface = "bonded"
     no_slip = run_contact_study(study, quick=True).layer
     # a no-slip striker stiffens the pad's contact: shallower than the frictionless impact. At
     # nu = 0.5 friction does nothing on the half-space (the incompressible no-slip and

@@ -246,6 +246,7 @@ class _Plan:
     progress: Callable[[str], None] | None
     relaxing: dict[str, Any] = field(default_factory=dict)  # prony and rate, or nothing
     impact: tuple[float, float] | None = None  # whose x_c the default depths reach
+    friction: float | None = None  # the indenter's surface (Interface.coefficient)
 
     @property
     def finite(self) -> bool:
@@ -261,16 +262,17 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 
     inputs = (plan.indenter, plan.body, plan.depths)
     steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
+    linear = {"backend": plan.solver, "friction": plan.friction, **plan.relaxing}
     if not plan.estimate:
         finest = plan.mesh.refined(plan.refine)
         if plan.finite:
-            return run_finite_study(*inputs, finest, plan.rubber), None
-        return run_indentation(*inputs, finest, backend=plan.solver, **plan.relaxing), None
+            return run_finite_study(*inputs, finest, plan.rubber, plan.friction), None
+        return run_indentation(*inputs, finest, **linear), None
     if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
-        solve = lambda level: run_finite_study(*inputs, level, plan.rubber)  # noqa: E731
+        solve = lambda level: run_finite_study(*inputs, level, plan.rubber, plan.friction)  # noqa: E731
         ladder = run_mesh_ladder(solve, plan.mesh, exact=False, **steps)
     elif plan.tolerance is None:
-        ladder = run_ladder(*inputs, plan.mesh, backend=plan.solver, **steps, **plan.relaxing)
+        ladder = run_ladder(*inputs, plan.mesh, **steps, **linear)
     else:
         ladder = run_to_accuracy(
             plan.indenter,
@@ -281,6 +283,7 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
             max_time=plan.max_time,
             backend=plan.solver,
             progress=plan.progress,
+            friction=plan.friction,
         )
     return ladder.finest, ladder
 
@@ -402,8 +405,6 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
         )
     mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
     mesh = layer_mesh(mesh, problem.geometry)
-    interface = problem.interface
-    mesh = dataclasses.replace(mesh, interface=interface.kind, friction=interface.friction)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
@@ -429,7 +430,9 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     if problem.body.prony is not None:
         relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
     impact = None if problem.loading.depths is not None else _impact(problem)
-    return _Plan(indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact)
+    friction = problem.interface.coefficient
+    plan = (indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact)
+    return _Plan(*plan, friction)
 
 
 def contact(

@@ -453,8 +453,6 @@ candidates on a thin layer than the half-space has, and costs more (benchmarks/F
 "Layer reference")."""
 LARGEST_THICKNESS_SIZE = 2.5
 """Largest element size of a layer / its size through the thickness at the contact."""
-INTERFACES = ("frictionless", "bonded")
-"""Indenter surfaces of ``interface`` (``--interface``): the first is the default."""
 MIN_THICKNESS = 0.01
 """Thinnest layer the mesh resolves, in refined radii."""
 MAX_THICKNESS = 1000.0
@@ -596,11 +594,6 @@ class MeshSettings:
         above); None: the half-space.
     base : {"bonded", "lubricated"}
         The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
-    interface : {"frictionless", "bonded"}
-        The indenter's surface (not a mesh control; carried here so that every mesh of a
-        ladder solves the same contact): frictionless, or bonded (no slip once in contact).
-    friction : float or None
-        Coulomb coefficient >= 0 of a bonded indenter; None: no slip.
     """
 
     margin: float = 1.25
@@ -612,8 +605,6 @@ class MeshSettings:
     max_dofs: float = MAX_DOFS
     thickness: float | None = None
     base: str = "bonded"
-    interface: str = "frictionless"
-    friction: float | None = None
     grading: ClassVar[Grading | None] = None
     """None: ``size`` on the refined zone, ``growth`` everywhere (see :class:`GradedMesh`)."""
 
@@ -627,15 +618,6 @@ class MeshSettings:
             )
         if self.base not in BASES:
             raise InputError(f"base: unknown base {self.base!r}. Pick one of {list(BASES)}", "base")
-        if self.interface not in INTERFACES:
-            raise InputError(
-                f"interface: unknown interface {self.interface!r}. Pick one of {list(INTERFACES)}",
-                "interface",
-            )
-        if self.friction is not None and not 0.0 <= self.friction < math.inf:
-            raise InputError(
-                f"friction: must be >= 0 (None: no slip), got {self.friction!r}", "friction"
-            )
         if not 1.0 < self.margin <= MAX_MARGIN:
             raise InputError(
                 f"margin must lie in (1, {MAX_MARGIN:g}] (the refined zone / contact radius; "

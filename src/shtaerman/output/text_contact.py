@@ -75,10 +75,10 @@ def entry(
         "case": case_words(
             thickness=None if layer is None else layer.thickness,
             base=None if layer is None else layer.base,
-            interface=study.mesh.interface,
-            friction=study.mesh.friction,
+            interface=study.interface.kind,
+            friction=study.interface.friction,
         ),
-        "interface": {"kind": study.mesh.interface, "friction": study.mesh.friction},
+        "interface": {"kind": study.interface.kind, "friction": study.interface.friction},
         "inputs": {
             **profile_inputs(study.indenter),
             "E1": study.striker.youngs_modulus,

@@ -112,10 +112,10 @@ def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
 def curve_finding(outcome: FiniteStudyOutcome) -> list[str]:
     """The study's indenter surface and layer where they are not the paper's (a frictionless
     half-space): one sentence saying what both FE curves solve and what the ratios hold."""
-    mesh = outcome.study.mesh
+    mesh, surface = outcome.study.mesh, outcome.study.interface
     parts = []
-    if mesh.interface == "bonded":
-        slip = "no slip" if mesh.friction is None else f"Coulomb friction {mesh.friction:g}"
+    if surface.kind == "bonded":
+        slip = "no slip" if surface.friction is None else f"Coulomb friction {surface.friction:g}"
         parts.append(f"the rubber is bonded to the striker ({slip})")
     if mesh.thickness is not None:
         parts.append(

@@ -1,12 +1,14 @@
 """The look shared by every matplotlib figure: colours, rc style, SI prefixes, saving.
 
 Every figure function takes result objects and a path, writes one PNG (200 dpi, no title: the
-caption is the reader's) and returns the path. With ``figure_format="svg"`` or ``"pdf"`` it also
-writes the same figure as vector graphics beside the PNG (same stem; text kept as text, so a
-paper's editor can restyle it); the PNG stays, as the reports embed it. A path ending in .svg or
-.pdf writes that format alone. Figures use :class:`matplotlib.figure.Figure`
-directly with the Agg canvas and take their style from :func:`styled` (a
-:func:`matplotlib.rc_context`): nothing global (pyplot, the backend, rcParams) is touched.
+caption is the reader's; the effect table's figure, which `effects --out` writes without a
+report around it, names its case in a title) and returns the path. With
+``figure_format="svg"`` or ``"pdf"`` it also writes the same figure as vector graphics beside
+the PNG (same stem; text kept as text, so a paper's editor can restyle it); the PNG stays, as
+the reports embed it. A path ending in .svg or .pdf writes that format alone. Figures use
+:class:`matplotlib.figure.Figure` directly with the Agg canvas and take their style from
+:func:`styled` (a :func:`matplotlib.rc_context`): nothing global (pyplot, the backend,
+rcParams) is touched.
 
 Colours are fixed across figures: the exact theory is black, the FEM blue (:data:`FEM_COLOUR`),
 the paper's printed numbers red and its approximations orange (dashed).

@@ -245,7 +245,7 @@ def _curve_problem(p: dict[str, Any], indenter: Any, half_space: Any, mesh: Any)
     """The case's contact curve as :meth:`shtaerman.problem.Problem.curve` builds and checks
     it (its parts: a Prony text, an interface, a friction, a layer; :data:`~shtaerman.problem.
     SUPPORT` refuses what does not combine, one line naming the key), and ``mesh`` carrying
-    its interface and layer."""
+    its layer."""
     import dataclasses
 
     from ..problem import RUBBER_OPTIONS, Problem
@@ -260,8 +260,7 @@ def _curve_problem(p: dict[str, Any], indenter: Any, half_space: Any, mesh: Any)
     if given["thickness"] is None:
         given["base"] = None  # the half-space: base's default is a layer's
     problem = Problem.curve(indenter, half_space, **given)
-    surface, geometry = problem.interface, problem.geometry
-    mesh = dataclasses.replace(mesh, interface=surface.kind, friction=surface.friction)
+    geometry = problem.geometry
     if geometry.thickness is not None:
         mesh = dataclasses.replace(mesh, thickness=geometry.thickness, base=geometry.base)
     return problem, mesh
@@ -281,10 +280,10 @@ def _contact_inputs(p: dict[str, Any]):
     impact = (vocabulary.entry("mass").default, vocabulary.entry("velocity").default)
     modulus = effective_modulus(RIGID, half_space)  # default_depths' striker
     check_profile_reach(indenter, modulus, depths, impact, overshoot=1.0)
-    relaxing = {}
+    physics = {"friction": problem.interface.coefficient}  # the curve's, beside its mesh
     if problem.body.prony is not None:
-        relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
-    return indenter, half_space, depths, mesh, check_backend(p["solver"]), relaxing
+        physics |= {"prony": problem.body.prony, "rate": problem.loading.rate}
+    return indenter, half_space, depths, mesh, check_backend(p["solver"]), physics
 
 
 CONTACT_OUTPUTS = {
@@ -307,9 +306,9 @@ def contact_case(p: dict[str, Any]) -> CaseResult:
     from ..guards import warn_outside_validity
     from ..study.contact.indentation import run_indentation
 
-    indenter, half_space, depths, mesh, solver, relaxing = _contact_inputs(p)
+    indenter, half_space, depths, mesh, solver, physics = _contact_inputs(p)
     start = time.perf_counter()
-    result = run_indentation(indenter, half_space, depths, mesh, backend=solver, **relaxing)
+    result = run_indentation(indenter, half_space, depths, mesh, backend=solver, **physics)
     seconds = time.perf_counter() - start
     deepest = result.steps[-1].depth  # recorded in the case's warnings, as the API warns
     warn_outside_validity(indenter, deepest, None, False, "the deepest depth")
@@ -762,7 +761,7 @@ def _finite_inputs(p: dict[str, Any]):
     from ..study.finite.loader import Ladder, finite_study, rubber_of
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
-    _, mesh = _curve_problem(p, indenter, half_space, mesh)
+    problem, mesh = _curve_problem(p, indenter, half_space, mesh)
     shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
     rubber = rubber_of(half_space, p["model"], volumetric=p["volumetric"], **shapes)
     ladder = Ladder(*(p[name] for name in ("reach", "depth_steps", "small_ratio", "small_steps")))
@@ -777,6 +776,7 @@ def _finite_inputs(p: dict[str, Any]):
         quick_mesh=mesh,
         depths=None if depths is None else tuple(float(d) for d in depths),
         rubber=rubber,
+        interface=problem.interface,
     )
 
 

@@ -987,8 +987,8 @@ def run_finite_indentation(
     rubber : RubberModel, optional
         The rubber model (default neo-Hookean, :mod:`shtaerman.fem.rubber`).
     solve : callable, optional
-        The contact solver (default :func:`solve_finite_contact`); a bonded ``mesh.interface``
-        needs :func:`.finite_stick.solve_finite_bonded_contact`.
+        The contact solver (default :func:`solve_finite_contact`, frictionless; a bonded or
+        Coulomb indenter: :func:`.finite_stick.solve_finite_bonded_contact`).
     **options
         Passed to ``solve`` (``tolerance``, ``max_iterations``, ``max_cuts`` of
         :func:`solve_finite_contact`).
@@ -1003,12 +1003,6 @@ def run_finite_indentation(
     mesh = FINITE_MESH if mesh is None else mesh
     if mesh.thickness is not None and mesh.base != "bonded":
         raise InputError(FINITE_BASE, "base")
-    if mesh.interface == "bonded" and solve in (None, solve_finite_contact):
-        raise InputError(
-            "interface: a bonded indenter needs solve=solve_finite_bonded_contact "
-            "(shtaerman.fem.contact.finite_stick)",
-            "interface",
-        )
     refined = mesh.margin * geometric_radius(indenter, depths[-1])
     refined *= mesh.zone_factor(tip_exponent(indenter))  # 1 on the half-space, more on a layer
     start = time.perf_counter()
@@ -1028,8 +1022,6 @@ def run_finite_indentation(
         "domain_radius": float(skfem_mesh.p[0].max()) if mesh.thickness else mesh.domain * refined,
         "smallest_size": mesh.size * refined,
         **({"thickness": mesh.thickness, "base": mesh.base} if mesh.thickness else {}),
-        **({"interface": mesh.interface} if mesh.interface != "frictionless" else {}),
-        **({"friction": mesh.friction} if mesh.friction is not None else {}),
     }
     timings = {
         "mesh": meshed - start,

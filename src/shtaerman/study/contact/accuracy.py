@@ -412,13 +412,14 @@ def run_ladder(
     progress: Progress | None = None,
     prony: PronySeries | None = None,
     rate: float | None = None,
+    friction: float | None = None,
     partial: bool = False,
 ) -> AccuracyResult:
     """The contact on three meshes, refine / 2, refine / sqrt(2), refine: the finest answers.
 
     Parameters
     ----------
-    indenter, half_space, depths, backend, prony, rate
+    indenter, half_space, depths, backend, prony, rate, friction
         As for :func:`.indentation.run_indentation`.
     mesh : MeshSettings, optional
         The base mesh (refine = 1); default ``MeshSettings()``.
@@ -435,19 +436,20 @@ def run_ladder(
     """
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
-    solve = _linear(indenter, half_space, depths, backend, prony=prony, rate=rate)
+    physics = {"prony": prony, "rate": rate, "friction": friction}
+    solve = _linear(indenter, half_space, depths, backend, **physics)
     refined = refined_radius(indenter, depths, mesh)
-    exact = _exact(mesh)
+    exact = _exact(mesh, friction)
     return run_mesh_ladder(
         solve, mesh, refine=refine, progress=progress, exact=exact, refined=refined, partial=partial
     )
 
 
-def _exact(mesh: MeshSettings) -> bool:
+def _exact(mesh: MeshSettings, friction: float | None) -> bool:
     """Whether the curve's ``errors()`` are true errors: on a layer or under a bonded indenter
     they are departures from Shtaerman's solution (a layer's reference is
     :mod:`shtaerman.theory.layer_reference`)."""
-    return mesh.thickness is None and mesh.interface == "frictionless"
+    return mesh.thickness is None and friction is None
 
 
 def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:
@@ -547,6 +549,7 @@ def run_to_accuracy(
     max_dofs: float | None = None,
     backend: str = "auto",
     progress: Progress | None = None,
+    friction: float | None = None,
 ) -> AccuracyResult:
     """Refine until the estimated force and beta errors are at most ``tolerance``.
 
@@ -568,7 +571,7 @@ def run_to_accuracy(
         Time budget in s for the whole ladder.
     max_dofs : float, optional
         Largest finest level allowed (default: the mesh's ``max_dofs``).
-    indenter, half_space, depths, mesh, backend, progress
+    indenter, half_space, depths, mesh, backend, progress, friction
         As for :func:`run_ladder`.
 
     Returns
@@ -588,8 +591,8 @@ def run_to_accuracy(
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     mesh = accuracy_mesh(mesh, indenter, depths, tolerance)
-    solve = _linear(indenter, half_space, depths, backend)
-    exact, refined = _exact(mesh), refined_radius(indenter, depths, mesh)
+    solve = _linear(indenter, half_space, depths, backend, friction=friction)
+    exact, refined = _exact(mesh, friction), refined_radius(indenter, depths, mesh)
     steps = {"progress": progress, "exact": exact, "refined": refined, "partial": True}
     result = replace(run_mesh_ladder(solve, mesh, **steps), tolerance=tolerance)
     report = progress or (lambda _line: None)

@@ -120,6 +120,7 @@ def convergence_study(
     *,
     depths: ArrayLike | None = None,
     base: MeshSettings | None = None,
+    friction: float | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> ConvergenceStudy:
     """Run the indentation test on meshes refined uniformly, one per element size.
@@ -141,6 +142,8 @@ def convergence_study(
     base : MeshSettings, optional
         The mesh being refined (default ``MeshSettings()``); its ``domain`` and ``margin`` are
         used as is at every level.
+    friction : float, optional
+        The indenter's surface, as for :func:`.indentation.run_indentation`.
     progress : callable, optional
         Called with one line of text (str) after each level, e.g. ``print``.
 
@@ -167,7 +170,7 @@ def convergence_study(
     levels = [refined_settings(base, float(size)) for size in sizes]  # validate all up front
     study = []
     for settings in levels:
-        result = run_indentation(indenter, half_space, depths, settings)
+        result = run_indentation(indenter, half_space, depths, settings, friction=friction)
         errors = result.errors()
         row = {
             "size": settings.size,

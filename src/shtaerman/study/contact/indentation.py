@@ -36,6 +36,7 @@ __all__ = [
     "IndentationResult",
     "default_depths",
     "depths_up_to",
+    "interface_stats",
     "refined_radius",
     "run_indentation",
 ]
@@ -280,6 +281,14 @@ def refined_radius(indenter: Indenter, depths: np.ndarray, mesh: MeshSettings) -
     return mesh.margin * float(indenter.radius_at(depths[-1])) * zone
 
 
+def interface_stats(friction: float | None) -> dict[str, object]:
+    """The mesh statistics' ``interface`` and ``friction`` of a curve pressed with the
+    solvers' ``friction`` (None: none, the frictionless surface; ``math.inf``: bonded)."""
+    if friction is None:
+        return {}
+    return {"interface": "bonded"} | ({} if math.isinf(friction) else {"friction": friction})
+
+
 def run_indentation(
     indenter: Indenter,
     half_space: Material,
@@ -290,6 +299,7 @@ def run_indentation(
     aligned: bool = True,
     prony: PronySeries | None = None,
     rate: float | None = None,
+    friction: float | None = None,
 ) -> IndentationResult:
     """Press a rigid indenter into the FEM half-space and compare with the theory.
 
@@ -309,15 +319,17 @@ def run_indentation(
         Sparse solver ("auto", "superlu", "pardiso").
     aligned : bool
         Forces of the vertex-aligned contacts (default) or nodal sums, see
-        :func:`shtaerman.fem.contact.linear.solve_contact`. ``mesh.interface`` "bonded" presses an
-        indenter the surface sticks to (:func:`shtaerman.fem.contact.stick.solve_bonded_contact`,
-        nodal sums), or slides on past Coulomb's ``mesh.friction`` (0: the frictionless
-        solve, whose contact it is).
+        :func:`shtaerman.fem.contact.linear.solve_contact`.
     prony : PronySeries, optional
         A viscoelastic body pressed at ``rate`` m/s
         (:func:`shtaerman.fem.contact.rate.press_at_rate`, frictionless, nodal sums:
         the history breaks the vertex-aligned interpolation), compared with Lee and Radok's
         exact curve (:class:`shtaerman.theory.viscoelastic.RateContact`).
+    friction : float, optional
+        The indenter's surface (:attr:`shtaerman.problem.Interface.coefficient`): None
+        frictionless; ``math.inf`` bonded, the surface sticks where it touches
+        (:func:`shtaerman.fem.contact.stick.solve_bonded_contact`, nodal sums); else Coulomb's
+        mu >= 0, sliding past it (0: the frictionless solve, whose contact it is).
 
     Returns
     -------
@@ -338,8 +350,7 @@ def run_indentation(
         curve = press_at_rate(
             system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False
         )
-    elif mesh.interface == "bonded" and mesh.friction != 0.0:  # mu = 0 is frictionless
-        friction = math.inf if mesh.friction is None else mesh.friction
+    elif friction not in (None, 0.0):  # mu = 0 is frictionless
         curve = solve_bonded_contact(
             system, indenter.profile, depths, refined, backend=backend, friction=friction
         )
@@ -370,8 +381,5 @@ def run_indentation(
     if mesh.thickness is not None:  # a layer: force_analytic stays the half-space's
         stats |= {"thickness": mesh.thickness, "base": mesh.base}
         stats["domain_radius"] = mesh.lateral_extent(mesh.thickness / refined) * refined
-    if mesh.interface != "frictionless":  # the *_analytic values stay the frictionless ones
-        stats["interface"] = mesh.interface
-        if mesh.friction is not None:
-            stats["friction"] = mesh.friction
+    stats |= interface_stats(friction)  # the *_analytic values stay the frictionless ones
     return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)

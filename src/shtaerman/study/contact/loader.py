@@ -172,6 +172,8 @@ class Study(Named):
     kind: str = "contact"
     layer: LayerSpec | None = None
     """A layer on a rigid base instead of the half-space (resolved: thickness and H / a_c)."""
+    interface: Interface = field(default_factory=Interface)
+    """The indenter's surface: frictionless, bonded, or Coulomb's friction."""
 
 
 def _mesh(path: Path, table: str, raw: MeshTable, default: MeshSettings) -> MeshSettings:
@@ -226,11 +228,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
     rigid = striker is None or striker.E1 == "inf"
     surface = _surface(path, raw)
     mesh, quick = (
-        replace(
-            _mesh(path, key, getattr(raw, key), default),
-            interface=surface.kind,
-            friction=surface.friction,
-        )
+        _mesh(path, key, getattr(raw, key), default)
         for key, default in (("numerics", MeshSettings()), ("quick", QUICK_MESH))
     )
     return Study(
@@ -247,6 +245,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
         convergence_sizes=_convergence_sizes(path, raw),
         refine=1.0 if raw.numerics.refine is None else raw.numerics.refine,
         layer=_layer(path, raw),
+        interface=surface,
     )
 
 

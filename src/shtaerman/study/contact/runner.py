@@ -19,7 +19,6 @@ from scipy.integrate import IntegrationWarning
 from ...fem.contact.linear import check_contact_scale
 from ...fem.fit import fit_power_law
 from ...guards import warn_outside_validity
-from ...problem import Interface
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
 from ...theory.impact_ode import integrate_impact
 from ...theory.materials import effective_modulus
@@ -186,7 +185,13 @@ def run_contact_study(
         check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
     accuracy = run_ladder(  # partial: a failed level leaves the finest that passed, unestimated
-        study.indenter, study.half_space, depths, mesh, refine=study.refine, partial=True
+        study.indenter,
+        study.half_space,
+        depths,
+        mesh,
+        refine=study.refine,
+        friction=study.interface.coefficient,
+        partial=True,
     )
     contact = accuracy.finest
     deepest, thickness = contact.steps[-1].depth, contact.mesh_stats.get("thickness")
@@ -237,7 +242,7 @@ def _dynamic_layer(
         return layer
     report(f"{study.name}: dynamic FE impact on the layer (restitution)")
     impact = (study.mass, study.velocity)
-    friction = Interface(study.mesh.interface, study.mesh.friction).coefficient
+    friction = study.interface.coefficient
     return with_dynamic_impact(
         layer, study.layer, study.indenter, study.half_space, impact, quick, friction
     )
@@ -253,5 +258,10 @@ def _convergence(
     report(f"{study.name}: mesh convergence, {len(sizes)} meshes")
     depths = [step.depth for step in contact.steps]
     return convergence_study(
-        study.indenter, study.half_space, sizes, depths=depths, base=study.mesh
+        study.indenter,
+        study.half_space,
+        sizes,
+        depths=depths,
+        base=study.mesh,
+        friction=study.interface.coefficient,
     )

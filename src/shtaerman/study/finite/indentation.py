@@ -11,9 +11,8 @@ error estimates.
 from __future__ import annotations
 
 import functools
-import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from numpy.typing import ArrayLike
 
@@ -36,6 +35,7 @@ from ..contact.indentation import (
     CurveResult,
     curve_document,
     default_depths,
+    interface_stats,
     worst_against_analytic,
 )
 from ..dynamic.accuracy import RetriedWarning
@@ -118,6 +118,7 @@ def run_finite_study(
     depths: ArrayLike | None = None,
     mesh: MeshSettings | None = None,
     rubber: RubberModel | None = None,
+    friction: float | None = None,
 ) -> FiniteIndentationResult:
     """Press a rigid power-law indenter into a rubber half-space; compare with linear.
 
@@ -131,11 +132,14 @@ def run_finite_study(
         Any increasing depths in m (load stepping is internal); default the linear test's
         eight depths up to the paper's impact x_c.
     mesh : MeshSettings, optional
-        Default :data:`shtaerman.fem.mesh.FINITE_MESH`; its ``interface`` "bonded"
-        presses an indenter the rubber sticks to
-        (:func:`shtaerman.fem.contact.finite_stick.solve_finite_bonded_contact`).
+        Default :data:`shtaerman.fem.mesh.FINITE_MESH`.
     rubber : RubberModel, optional
         Default neo-Hookean with the quadratic volumetric energy.
+    friction : float, optional
+        The indenter's surface (:attr:`shtaerman.problem.Interface.coefficient`): None
+        frictionless; else the rubber sticks where it touches, ``math.inf`` for good, mu >= 0
+        until Coulomb's limit
+        (:func:`shtaerman.fem.contact.finite_stick.solve_finite_bonded_contact`).
 
     Returns
     -------
@@ -151,10 +155,10 @@ def run_finite_study(
     rubber = RubberModel() if rubber is None else rubber
     mesh = mesh or FINITE_MESH
     bonded = None
-    if mesh.interface == "bonded":
-        friction = math.inf if mesh.friction is None else mesh.friction
+    if friction is not None:
         bonded = functools.partial(solve_finite_bonded_contact, friction=friction)
     curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded)
+    curve = replace(curve, mesh_stats=curve.mesh_stats | interface_stats(friction))
     if curve.cuts:
         dofs = curve.mesh_stats["dofs"]
         warnings.warn(

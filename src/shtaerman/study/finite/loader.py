@@ -22,7 +22,7 @@ import msgspec
 from ... import vocabulary
 from ...fem.mesh import FINITE_MESH, MeshSettings
 from ...fem.rubber import RubberModel
-from ...problem import MODELS, RUBBER_SHAPES, Body, Problem
+from ...problem import MODELS, RUBBER_SHAPES, Body, Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
@@ -183,6 +183,8 @@ class FiniteStudy(Named):
     of three gmsh meshes; ``nested``, ``mesh`` the middle of one gmsh mesh refined twice."""
     corrections: Corrections | None = None
     """The dynamic impacts of ``[corrections]``; None: none run."""
+    interface: Interface = field(default_factory=Interface)
+    """The indenter's surface: frictionless, bonded, or Coulomb's friction."""
 
 
 def rubber_of(half_space: Material, model: str | None, **options: Any) -> RubberModel:
@@ -238,16 +240,15 @@ def _mesh(
 
 @dataclass(frozen=True)
 class _Curve:
-    """The study's interface and layer, as its mesh settings carry them."""
+    """The study's interface, and its layer as its mesh settings carry it."""
 
-    interface: str = "frictionless"
-    friction: float | None = None
+    interface: Interface
     thickness: float | None = None
     base: str = "bonded"
 
     def on(self, mesh: MeshSettings) -> MeshSettings:
-        """``mesh`` with this interface and layer."""
-        return replace(mesh, **vars(self))
+        """``mesh`` with this layer."""
+        return replace(mesh, thickness=self.thickness, base=self.base)
 
 
 def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
@@ -274,7 +275,7 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
             ) from None
         raise refused(path, error) from None
     surface, geometry = problem.interface, problem.geometry
-    return _Curve(surface.kind, surface.friction, geometry.thickness, geometry.base or "bonded")
+    return _Curve(surface, geometry.thickness, geometry.base or "bonded")
 
 
 def _body_keywords(rubber: RubberModel) -> dict[str, Any]:
@@ -303,6 +304,7 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         rubber=rubber,
         mesh_ladder=ladder,
         corrections=_corrections(path, raw.corrections),
+        interface=curve.interface,
     )
 
 

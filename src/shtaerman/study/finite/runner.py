@@ -318,7 +318,7 @@ class FiniteStudyOutcome(Outcome):
         ``accuracy``
         (:meth:`.finite_accuracy.FiniteEstimates.to_dict`), after ``[corrections]`` its
         impacts under ``corrections``."""
-        mesh = self.mesh
+        mesh, surface = self.mesh, self.study.interface
         accuracy = {} if self.estimates is None else {"accuracy": self.estimates.to_dict()}
         if self.estimate_missing:  # the contact ladder's keys (AccuracyResult.to_dict)
             missing = dict.fromkeys(("error_estimate", "extrapolated", "estimate_details"))
@@ -338,6 +338,7 @@ class FiniteStudyOutcome(Outcome):
                 "velocity": self.study.velocity,
                 "striker": "rigid",
             },
+            "interface": {"kind": surface.kind, "friction": surface.friction},
             "mesh": {**self.finite.curve.mesh_stats, "settings": mesh.__dict__},
             "contact": self.finite.to_dict(),
             "steps": self.rows(),
@@ -423,9 +424,10 @@ def _run_level(
     ``first``: where the ladder started when the mesh moved it."""
     start, cpu = time.perf_counter(), time.process_time()
     modulus = effective_modulus(RIGID, study.half_space)
-    finite = run_finite_study(study.indenter, study.half_space, depths, mesh, study.rubber)
+    parts, friction = (study.indenter, study.half_space, depths, mesh), study.interface.coefficient
+    finite = run_finite_study(*parts, study.rubber, friction)
     # nodal-sum forces, the finite-strain solver's own discretization: the ratio cancels it
-    linear = run_indentation(study.indenter, study.half_space, depths, mesh, aligned=False)
+    linear = run_indentation(*parts, aligned=False, friction=friction)
     impacts = {"linear_exact": {k: v for k, v in impact_maxima(exact).items() if k != "beta"}}
     histories = {"linear_exact": exact.history(HISTORY_POINTS)}
     for variant, result in (("linear_fem", linear), ("finite_strain", finite)):
