@@ -43,7 +43,9 @@ class Run:
     ``values`` (SI) and ``errors`` (their estimated absolute errors) are None when the variant
     was refused or failed; then ``refused`` is its one-line reason. ``errors`` is None with
     ``error_note`` saying why when the run had no error estimate. ``notes`` list the numerical
-    options the variant's combination does not take (left out of its run).
+    options the variant's combination does not take (left out of its run). ``warned`` holds
+    the warnings its run gave, (category as ``module.qualname``, text) each: a resumed table
+    says them again for a run it keeps (not in :meth:`EffectTable.to_dict`).
     """
 
     label: str
@@ -56,6 +58,7 @@ class Run:
     refused: str | None = None
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
+    warned: tuple[tuple[str, str], ...] = ()
 
 
 def refusal_words(refused: str | None, label: str, first: dict[str, str]) -> str | None:
@@ -185,7 +188,7 @@ class EffectTable:
         null: n/a)."""
         rows = []
         for run in self.runs:
-            row = {key: value for key, value in vars(run).items() if key != "notes"}
+            row = {k: v for k, v in vars(run).items() if k not in ("notes", "warned")}
             row["notes"] = list(run.notes)
             row["changes"] = {k: vars(c) for k, c in cells(run, self.reference).items()}
             rows.append(row)
