@@ -31,6 +31,11 @@ COMMANDS = {"impact": "impact", "contact": "contact", "dynamic": "dynamic", "fit
 """CLI subcommand -> the kind whose defaults and ranges it uses."""
 
 
+RENAMED = {"estimate": "--no-estimate", "unknowns": "--fit"}
+"""The inputs whose option is not their keyword's kebab case: the CLI switches the estimate off,
+and sh.fit's unknowns are the contract's ``fit ... --fit NAME,...``."""
+
+
 def test_names_are_unique_snake_case_and_options_their_kebab_case():
     names = [item.name for item in VOCABULARY]
     assert len(names) == len(set(names))
@@ -38,7 +43,9 @@ def test_names_are_unique_snake_case_and_options_their_kebab_case():
         assert item.name == item.name.strip() and " " not in item.name and "-" not in item.name
         if item.cli_option in CONTRACT:
             assert item.cli_option == "--" + item.name
-        elif item.name != "estimate":  # the CLI switches it off: --no-estimate
+        elif item.name in RENAMED:
+            assert item.cli_option == RENAMED[item.name]
+        else:
             assert item.cli_option == "--" + item.name.replace("_", "-")
         assert item.meaning and item.label and item.group in ("case", "numerics", "output")
         assert set(item.kinds) <= set(KIND_NAMES)

@@ -485,7 +485,7 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     # --- a fit (shtaerman fit: command line and sh.fit only) ------------------------------
     Entry(
-        "fit",
+        "unknowns",
         "",
         "the unknowns NAME[,NAME...] to fit: E2, nu2 (nu2 alone needs E2 known), mass, "
         "velocity, time_offset, baseline, prony (the weights g_i of --prony), tau (its relaxation "
@@ -496,6 +496,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "E2",
         valid=None,
         type="str",
+        option="--fit",
     ),
     Entry(
         "noise",
