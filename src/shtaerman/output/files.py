@@ -733,7 +733,7 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
         _refuse_link(path, option, "file")
         if path.exists() and not force:
             raise InputError(
-                f"{option}: {str(path)!r} exists (use force=True to replace it)", option
+                f"{option}: {str(path)!r} exists; use force=True to replace it", option
             )
         real = Path(os.path.realpath(path))
         if real.exists() and (_unremovable(str(real)) or _unremovable(str(real.parent))):
