@@ -440,7 +440,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Half-space Young's modulus E2",
         7.5e6,
         KIND_NAMES,
-        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1e-3, 1e100, low_open=False)),
+        valid=Range(1e-3, 1e100, low_open=False),  # the FEM's, and of a physical size
         old_names=("youngs_modulus",),
     ),
     Entry(

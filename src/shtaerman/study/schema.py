@@ -681,6 +681,11 @@ def refused(path: Path, error: InputError, keys: dict[str, str] | None = None) -
         return error
     parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
     table = {**STUDY_KEYS, **(keys or {})}
+    head, _, rest = str(error).partition(": ")
+    names = head.split(", ")
+    if len(names) > 1 and parameter in names:  # inputs together ("mass, velocity: ..."): each
+        found = ", ".join(repr(table.get(name, f"half_space.{name}")) for name in names)
+        return StudyError(f"{path}: keys {found}: {worded(rest, 'file', table)}")
     key = table.get(parameter, "half_space")
     if not parameter.isidentifier():  # no name: mass and velocity together, their table
         key = table.get("mass", "impact.mass").partition(".")[0]
