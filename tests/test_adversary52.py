@@ -1,5 +1,6 @@
 """Session 52's new-user and adversary pass over main (e585a17): what it found, fixed."""
 
+import json
 import types
 
 import pytest
@@ -116,10 +117,13 @@ def test_a_sweeps_existing_folder_is_refused_in_each_routes_words(tmp_path, caps
 
     spec = tmp_path / "s.toml"
     spec.write_text('name = "s"\nkind = "impact"\n[axes]\nvelocity = [1.0, 2.0]\n')
+    from shtaerman.sweep.engine import MARKER_FILE, MARKER_FORMAT
+
     out = tmp_path / "run"
     out.mkdir()
-    (out / "cases").mkdir()  # a folder with something in it: not empty
-    with pytest.raises(sh.InputError) as caught:
+    (out / "cases").mkdir()  # a sweep's folder, as the first run left it (adv53: a folder
+    (out / MARKER_FILE).write_text(json.dumps({"format": MARKER_FORMAT}))  # no sweep wrote
+    with pytest.raises(sh.InputError) as caught:  # is refused naming --out, see test_sweep)
         sh.sweep(str(spec), out=str(out), workers=1)
     said = str(caught.value)
     assert said.endswith("use resume=True to complete it or force=True to replace it"), said

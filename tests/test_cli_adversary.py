@@ -75,7 +75,9 @@ def test_an_effects_study_out_of_the_float_range_names_its_table(tmp_path, capsy
     code, study, lines = _verify_study(tmp_path, capsys, "effects", tables)
     error = lines[-1]
     assert code == 2, lines
-    assert error.startswith(f"shtaerman: error: {study}: key 'impact': mass 0.7 kg and "), error
+    # adv53: the inputs that set the impact's scale, each by its key, none blamed alone
+    keys = "'indenter.shape_coefficient', 'half_space.E2', 'impact.mass', 'impact.velocity'"
+    assert error.startswith(f"shtaerman: error: {study}: keys {keys}: the exact impact"), error
 
 
 @pytest.mark.parametrize("force", [False, True])

@@ -345,3 +345,49 @@ def test_the_figure_names_its_case_its_quantities_and_what_each_colour_is(pad_ta
     patches = legend.get_patches()
     assert [p.get_facecolor() for p in patches] == [to_rgba(module.COLOURS[r]) for r in roles]
     assert "whiskers: each run's estimated absolute error" in module.EFFECTS_CAPTION
+
+
+PAD_ARGV = (*ARGV, "--density2", "0", "--thickness", "0.012")
+"""The pad alone (a massless body, the last --density2 counts): two runs, 'full' and 'without
+pad' the same problems as 'pad alone' and 'none'."""
+
+
+def _interrupted(monkeypatch, at: int) -> None:
+    """Make the table's run number ``at`` (1-based) a Ctrl-C."""
+    import shtaerman.api.effect_table.run as table_run
+
+    real, calls = table_run._run, []
+
+    def run(*args, **kwargs):
+        calls.append(None)
+        if len(calls) == at:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(table_run, "_run", run)
+
+
+def _warning_lines(err: str) -> list[str]:
+    return [line for line in err.splitlines() if line.startswith("shtaerman: warning:")]
+
+
+def test_a_resumed_table_says_the_kept_runs_warnings_with_their_runs(tmp_path, capsys, monkeypatch):
+    """Adversary 53: incomplete.json kept no run's warnings, so a --resume said the x/a
+    warning of every run 'for the runs: quasi-static (paper), pad alone, full' only, the
+    kept run 'none' (and 'without pad', its same problem) left out. A resumed table says its
+    warnings as the table run in one go says them."""
+    assert main(["effects", *PAD_ARGV]) == 0
+    whole = _warning_lines(capsys.readouterr().err)
+    assert len(whole) == 1 and "(runs:" not in whole[0]  # every run passes x/a 2.27
+    out = str(tmp_path / "table")
+    with monkeypatch.context() as patched:
+        _interrupted(patched, at=2)  # 'none' finished, 'pad alone' stopped
+        assert main(["effects", *PAD_ARGV, "--out", out]) == 130
+    capsys.readouterr()
+    saved = json.loads((tmp_path / "table" / "incomplete.json").read_text())
+    entry = saved["studies"]["none"]["entry"]
+    assert [name for name, _ in entry["warned"]] == ["shtaerman.guards.ValidityWarning"]
+    assert main(["effects", *PAD_ARGV, "--out", out, "--resume"]) == 0
+    err = capsys.readouterr().err
+    assert "run 1/4: none: kept from an earlier run" in err
+    assert _warning_lines(err) == whole

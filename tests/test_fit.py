@@ -313,14 +313,15 @@ def test_an_unknown_the_kind_cannot_fit_is_refused(tmp_path, capsys):
 
 
 def test_an_unknown_named_twice_is_refused(tmp_path, capsys):
-    """adv52: ``--fit E2,E2`` fitted E2 once, silently: likely a slip for another name."""
+    """adv52: ``--fit E2,E2`` fitted E2 once, silently: likely a slip for another name. adv53:
+    in Python the refusal headed 'fit:', a keyword sh.fit does not take: it names unknowns."""
     data = indentation()
     csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(*data.values(), strict=True))
     assert main(["fit", "indentation", csv, "--fit", "E2,E2"]) == 2
     assert capsys.readouterr().err == (
         "shtaerman: error: --fit: E2 named twice; name each unknown once\n"
     )
-    with pytest.raises(sh.InputError, match=r"^fit: E2 named twice"):
+    with pytest.raises(sh.InputError, match=r"^unknowns: E2 named twice"):
         sh.fit(
             "indentation",
             csv,
@@ -545,3 +546,23 @@ def test_cli_rebound_text_fits_the_mass_and_says_relative_once(tmp_path, capsys)
     # the rubber's shape options state their defaults, as contact's do (--mooney-ratio gave none)
     assert "[0, 1) (default: 0, the start of --fit mooney_ratio; only with --model" in help_text
     assert "(default: none: required with --model gent; the start of --fit gent_limit)" in help_text
+
+
+@pytest.mark.parametrize(
+    ("unknowns", "said"),
+    [
+        (["velocity"], "unknowns: indentation data cannot fit 'velocity'"),
+        ([], "unknowns: name at least one of"),
+        (["E2", "E2"], "unknowns: E2 named twice"),
+    ],
+)
+def test_python_refusals_of_the_unknowns_name_the_keyword(tmp_path, unknowns, said):
+    """adv53: sh.fit(unknowns=[...]) refusals headed 'fit:' (the command line's option, no
+    keyword of sh.fit); the refusal names its parameter, and the command line says --fit."""
+    data = indentation()
+    csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(*data.values(), strict=True))
+    with pytest.raises(sh.InputError) as refused:
+        sh.fit(
+            "indentation", csv, sh.Problem.curve(INDENTER, sh.Material(5e6, NU2)), unknowns=unknowns
+        )
+    assert str(refused.value).startswith(said) and refused.value.parameter == "unknowns"

@@ -166,7 +166,7 @@ def test_cli_passes_the_pad_the_density_and_refine_but_no_default_density(tmp_pa
 
     def record(kind, data, problem, **options):
         seen.append((problem, options["refine"]))
-        raise sh.InputError("fit: recorded", "fit")
+        raise sh.InputError("unknowns: recorded", "unknowns")
 
     monkeypatch.setattr(fitting_run, "fit", record)  # the fit command imports it when it runs
     csv = tmp_path / "f.csv"
@@ -263,6 +263,6 @@ def test_a_missing_fe_error_estimate_is_nan_not_zero():
 
 
 def test_nu2_is_refused_with_the_fe_corrections():
-    with pytest.raises(sh.InputError, match="fit: nu2 cannot be fitted with the FE corr"):
+    with pytest.raises(sh.InputError, match="unknowns: nu2 cannot be fitted with the FE corr"):
         sh.fit("force-history", {"time": [0.0, 1e-3, 2e-3], "force": [0.0, 5.0, 0.0]},
                pad(), unknowns="nu2")  # fmt: skip

@@ -202,3 +202,34 @@ def test_a_sphere_past_its_equator_is_one_check_with_one_message(tmp_path):
     with pytest.raises(InputError, match=r"^sphere_radius: .* about 0\.00988 m, beyond the "):
         massless = sh.Material(7.5e6, 0.5, 0.0)
         sh.dynamic(sh.SphereIndenter(5e-3), massless, mass=0.7, velocity=3.0, estimate=False)
+
+
+@pytest.mark.parametrize("command", ["impact", "contact", "dynamic"])
+@pytest.mark.parametrize("E2", ["1e-300", "1e101"])
+def test_the_modulus_range_is_every_routes(capsys, command, E2):
+    """adv53: 'impact --E2 1e-300' printed x_c = 1e113 m where contact and dynamic refused
+    E2 outside [1e-3, 1e100] Pa: the vocabulary's range is every kind's, and the Python
+    impact checks it too (problem.check_bodies)."""
+    quick = [] if command == "impact" else ["--no-estimate"]  # refused before any run anyway
+    assert main([command, "--E2", E2, *quick]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err == f"shtaerman: error: --E2 must lie in [1e-3, 1e100] Pa, got '{E2}'\n"
+    with pytest.raises(sh.InputError, match=r"^E2 must lie in \[1e-3, 1e100\] Pa") as refused:
+        sh.impact(sh.PowerLawIndenter(5.0, 1.5), sh.Material(float(E2), 0.5), mass=0.7, velocity=3)
+    assert refused.value.parameter == "E2"
+
+
+def test_the_exact_impacts_float_range_names_the_options_that_set_it(capsys):
+    """adv53: the refusal opened with 'mass 1e-300 kg and velocity 1e-300 m/s give x_c = 0'
+    and named no option: it heads the inputs that set the impact's scale (none blamed alone,
+    the striker's shape first), spelled as options on the command line."""
+    assert main(["impact", "--mass", "1e-300", "--velocity", "1e-300"]) == 2
+    out, err = capsys.readouterr()
+    head = "shtaerman: error: --shape-coefficient, --E2, --mass, --velocity: the exact impact of"
+    assert out == "" and err.count("\n") == 1 and err.startswith(head), err
+    assert "would give x_c = 0, outside the floating-point range" in err
+    with pytest.raises(sh.InputError) as refused:
+        sh.impact(sh.PowerLawIndenter(5.0, 1.5), sh.Material(7.5e6, 0.5), mass=1e-300,
+                  velocity=1e-300)  # fmt: skip
+    assert str(refused.value).startswith("shape_coefficient, E2, mass, velocity: ")
+    assert refused.value.parameter == "shape_coefficient"

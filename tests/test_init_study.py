@@ -49,12 +49,16 @@ def test_commented_keys_are_valid_when_uncommented(tmp_path):
 
 
 def test_refuses_to_overwrite_without_force(tmp_path, capsys):
+    """adv53: init-study said "'F' exists; use --force to replace it" and impact --history
+    "--history: 'F' exists (use --force to replace it)": one wording, output.files's, naming
+    the parameter (FILE here)."""
     path = tmp_path / "mine.toml"
     path.write_text("precious\n")
     assert main(["init-study", str(path)]) == 2
-    assert (
-        capsys.readouterr().err == f"shtaerman: error: '{path}' exists; use --force to replace it\n"
-    )
+    said = f"'{path}' exists; use --force to replace it\n"
+    assert capsys.readouterr().err == f"shtaerman: error: FILE: {said}"
+    assert main(["impact", "--history", str(path)]) == 2
+    assert capsys.readouterr().err == f"shtaerman: error: --history: {said}"
     assert path.read_text() == "precious\n"
     assert main(["init-study", str(path), "--force"]) == 0
     assert load_study(path)[0].name == "mine"

@@ -139,7 +139,7 @@ def test_effects_refuses_a_pad_no_run_can_take(capsys):
     ("kind", "line", "named"),
     [
         # an OverflowError traceback in the dynamic check's arithmetic
-        ("dynamic", "velocity = 1e300", "velocity 1e+300 m/s give P_c = inf"),
+        ("dynamic", "velocity = 1e300", "0.7 kg at 1e+300 m/s would give P_c = inf"),
         # the effects kind took no vocabulary range: the Material's keyword was named
         ("effects", "E2 = 0", "parameters.E2 must lie in [1e-3, 1e100] Pa"),
         ("effects", "density2 = 1e300", "parameters.density2 must lie in"),

@@ -554,3 +554,46 @@ def test_an_existing_folder_is_refused_in_the_words_of_its_route(tmp_path, capsy
     assert code == 2 and err.endswith("not empty; use --force to replace it\n"), err
     code, _, err = run(capsys, "verify", "--out", str(foreign))
     assert code == 2 and err.endswith("name a new folder with --out\n"), err
+
+
+def test_a_refused_folder_names_what_works_for_an_interrupted_run(tmp_path):
+    """Adversary 53: after an interrupted force=True run the finished part is in
+    NAME.incomplete-PID, but a resume of NAME said 'use force=True' and did not point there;
+    and writing an interrupted folder without resume also said force=True, where resume=True
+    completes it. The refusal names what works (files.py, every command that resumes)."""
+    from shtaerman.output.files import KeepStaged
+
+    target = ours(tmp_path / "run")
+    (target / "old.txt").write_text("old")
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        with staged_folder(target, force=True, keep_marker="marker") as stage:
+            (stage / "marker").write_text("{}")
+            raise KeepStaged(KeyboardInterrupt())
+    kept = stopped.value.kept_in
+    assert kept.name.startswith("run.incomplete-") and (kept / "marker").is_file()
+    with pytest.raises(InputError) as refused:
+        check_output_folder(target, force=False, resume_marker="marker", keep_marker="marker")
+    said = str(refused.value)
+    assert said.startswith(f"out: folder '{target}' holds no interrupted run to complete")
+    assert f"complete that with out='{kept}' resume=True" in said
+    with pytest.raises(InputError) as refused:
+        check_output_folder(kept, force=False, keep_marker="marker")
+    said = str(refused.value)
+    assert "holds an interrupted run (marker); complete it with resume=True" in said
+    assert check_output_folder(kept, force=False, resume_marker="marker") == kept  # it does
+    # a folder another program wrote: neither resume nor force touches it
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("mine")
+    for resume in (None, "marker"):
+        with pytest.raises(InputError, match=r"not written by shtaerman: name a new folder"):
+            check_output_folder(foreign, force=False, resume_marker=resume, keep_marker="marker")
+
+
+def test_effects_names_the_resume_on_the_command_line(tmp_path, capsys):
+    """The same refusal in the command line's words (cli.effects passes its marker)."""
+    folder = ours(tmp_path / "table")
+    (folder / "incomplete.json").write_text("{}")
+    code, out, err = run(capsys, "effects", "--out", str(folder))
+    assert code == 2 and out == "" and err.count("\n") == 1, err
+    assert "holds an interrupted run (incomplete.json); complete it with --resume" in err, err

@@ -205,7 +205,8 @@ def test_only_the_declared_keyword_at_the_head_becomes_an_option():
 
     advice = "fit: the curve failed; give mesh_size=... or estimate=False"
     assert worded(advice, "cli") == "fit: the curve failed; give --mesh-size or --no-estimate"
-    assert worded("fit: unknown name 'E3'", "cli", parameter="fit") == "--fit: unknown name 'E3'"
+    said = worded("unknowns: unknown name 'E3'", "cli", parameter="unknowns")
+    assert said == "--fit: unknown name 'E3'"  # the keyword of sh.fit, the option --fit
     assert worded("level 2: Newton failed", "cli") == "level 2: Newton failed"
     assert worded("mass, velocity: too fast", "cli", parameter="mass") == (
         "--mass, --velocity: too fast"
@@ -222,9 +223,9 @@ def test_in_option_words_tells_a_refusal_from_a_failure():
     from shtaerman.validation import InputError, NumericalFailureError
 
     with pytest.raises(InputError) as refused, in_option_words():
-        raise InputError("fit: unknown name 'E3'; pick E2 or nu2", "fit")
+        raise InputError("unknowns: unknown name 'E3'; pick E2 or nu2", "unknowns")
     assert str(refused.value) == "--fit: unknown name 'E3'; pick E2 or nu2"
-    assert refused.value.parameter == "fit"
+    assert refused.value.parameter == "unknowns"
     with pytest.raises(NumericalFailureError) as failed, in_option_words():
         raise NumericalFailureError("fit: the FE curve failed; give E2 and a smaller refine=...")
     assert str(failed.value) == "fit: the FE curve failed; give E2 and a smaller --refine"

@@ -225,14 +225,28 @@ def snapshot(folder):
 
 
 def test_cli_refuses_an_existing_folder_without_resume_or_force(tmp_path, capsys):
+    out = sweep_folder(tmp_path / "out")
+    before = snapshot(out)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out)
+    assert code == 2
+    assert_one_line_error(err, "exists; use --resume to complete it or --force to replace it")
+    assert snapshot(out) == before
+
+
+@pytest.mark.parametrize("flag", [(), ("--resume",), ("--force",)])
+def test_cli_names_what_works_for_a_folder_no_sweep_wrote(tmp_path, capsys, flag):
+    """Adversary 53: on a folder no sweep wrote (a sweep.toml and a note of the user's),
+    'sweep --out F' suggested --resume or --force, and both refuse it: the one line says
+    that, and names --out."""
     out = tmp_path / "out"
     out.mkdir()
     (out / "sweep.toml").write_text(IMPACT)
     (out / "keep.txt").write_text("mine")
     before = snapshot(out)
-    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out)
+    code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, *flag)
     assert code == 2
-    assert_one_line_error(err, "exists; use --resume to complete it or --force to replace it")
+    assert_one_line_error(err, "is not a sweep folder", "name a new folder with --out")
+    assert "use --resume" not in err and "use --force" not in err, err
     assert snapshot(out) == before
 
 
@@ -278,7 +292,7 @@ def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):
     (out / "thesis.tex").write_text("precious")
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--force")
     assert code == 2
-    assert_one_line_error(err, "--force replaces only a sweep folder")
+    assert_one_line_error(err, "is not a sweep folder", "act on sweep folders only")
     assert (out / "thesis.tex").read_text() == "precious"
 
 
@@ -761,7 +775,8 @@ def test_study_file_names_were_never_sweep_keys(tmp_path):
         (
             'name = "t"\nkind = "impact"\n[parameters]\nvelocity = 1e-300\n[axes]\n'
             "mass = [1e-300, 1.0]\n",
-            "case 0 (mass = 1e-300): mass 1e-300 kg and velocity 1e-300 m/s give x_c = 0",
+            "case 0 (mass = 1e-300): shape_coefficient, E2, mass, velocity: the exact impact of "
+            "1e-300 kg at 1e-300 m/s would give x_c = 0",
         ),
         (
             'name = "t"\nkind = "dynamic"\n[parameters]\nmass = 1e-300\n[axes]\n'

@@ -137,6 +137,20 @@ class _CallableSweep(types.ModuleType):
 
         return inspect.signature(sweep)
 
+    def _doc(self) -> str:
+        """``help(sh.sweep)``: the call's docstring (what ``sh.sweep(...)`` does), then the
+        package's (its modules), where help showed the package's alone."""
+        from .api.studies import sweep
+
+        call = f"{inspect.cleandoc(sweep.__doc__ or '')}\n\nsh.sweep{inspect.signature(sweep)}"
+        package = inspect.cleandoc(self.__dict__.get("__doc__") or "")
+        return f"{call}\n\nThe package {self.__name__}: {package}"
+
+    def _set_doc(self, value: str | None) -> None:
+        self.__dict__["__doc__"] = value  # a reload sets the package's
+
+    __doc__ = property(_doc, _set_doc)  # type: ignore[assignment]
+
 
 class _Package(types.ModuleType):
     """This package: its ``sweep`` subpackage, once imported, becomes callable (``sh.sweep``

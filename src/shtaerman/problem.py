@@ -81,6 +81,8 @@ def check_bodies(indenter: object, body: object, striker: object = RIGID) -> Non
             )
     if math.isinf(body.youngs_modulus) and math.isinf(striker.youngs_modulus):
         raise InputError("body: a rigid body under a rigid striker has no contact law", "body")
+    if math.isfinite(body.youngs_modulus):  # every route's range (a rigid body: its own)
+        entry("E2").check(body.youngs_modulus)
 
 
 @dataclass(frozen=True)

@@ -440,7 +440,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Half-space Young's modulus E2",
         7.5e6,
         KIND_NAMES,
-        valid_by_kind=dict.fromkeys(FEM_KINDS, Range(1e-3, 1e100, low_open=False)),
+        valid=Range(1e-3, 1e100, low_open=False),  # the FEM's, and of a physical size
         old_names=("youngs_modulus",),
     ),
     Entry(
@@ -485,7 +485,7 @@ VOCABULARY: tuple[Entry, ...] = (
     ),
     # --- a fit (shtaerman fit: command line and sh.fit only) ------------------------------
     Entry(
-        "fit",
+        "unknowns",
         "",
         "the unknowns NAME[,NAME...] to fit: E2, nu2 (nu2 alone needs E2 known), mass, "
         "velocity, time_offset, baseline, prony (the weights g_i of --prony), tau (its relaxation "
@@ -496,6 +496,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "E2",
         valid=None,
         type="str",
+        option="--fit",
     ),
     Entry(
         "noise",

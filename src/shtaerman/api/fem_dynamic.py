@@ -370,7 +370,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
         warnings.simplefilter("ignore")
         # the floating-point range first, as the run meets it: the exact impact's, and v0^2
         x_c = exact_impact(striker.mass, striker.velocity, law).x_c
-        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5])
+        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5], ("velocity",))
         if settings is not None:
             physics = (problem.body.prony, problem.interface.coefficient)
             check_dynamic_impact(*inputs, settings, *physics)

@@ -124,7 +124,7 @@ METAVARS = {
     "mooney_ratio": "R",
     "yeoh": "C2,C3",
     "gent_limit": "JM",
-    "fit": "NAME,...",
+    "unknowns": "NAME,...",
     "units": "COLUMN=UNIT,...",
 }
 """The placeholder of an option's value in the help, where its unit does not make one."""
@@ -204,6 +204,7 @@ def add_inputs(
                 action=Input if item.type != "path" else "store",
                 **({"type": path_text} if item.type == "path" else {}),
                 default=default,
+                dest=name,  # the keyword, also where the option is named otherwise (--fit)
                 metavar=METAVARS.get(name) or _metavar(item),
                 help=_help(item, kind, shown, note),
                 choices=item.choices or None,

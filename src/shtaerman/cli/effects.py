@@ -107,7 +107,9 @@ def run(args: argparse.Namespace) -> int:
         if args.out is not None:
             marker = PROGRESS_FILE if args.resume else None
             folder = output_path(args.out)
-            folder = check_output_folder(folder, force=args.force, resume_marker=marker)
+            folder = check_output_folder(
+                folder, force=args.force, resume_marker=marker, keep_marker=PROGRESS_FILE
+            )
         names = ("refine", "estimate", *(n for n in SETTINGS_OPTIONS if given(args, n)))
         options = keywords(args, names)
         if folder is None:

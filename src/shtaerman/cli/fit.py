@@ -84,7 +84,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="the measurement, a CSV 'name [unit]'",
     )
     inputs = (*common.CASE, *common.PROFILES, "E1", "nu1", "E2", "nu2", "prony", "density2",
-              "thickness", "base", "model", *RUBBER_OPTIONS, "fit", "noise", "time_offset",
+              "thickness", "base", "model", *RUBBER_OPTIONS, "unknowns", "noise", "time_offset",
               "baseline", "units", "resample", "refine", "json", "out", "force")  # fmt: skip
     common.add_inputs(p, inputs, None, notes=NOTES, derived=DERIVED)
     prony = next(a for a in p._actions if "--prony" in a.option_strings)
@@ -138,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
             args.kind,
             args.data,
             _problem(args),
-            unknowns=args.fit,
+            unknowns=args.unknowns,
             noise=args.noise,
             time_offset=args.time_offset,
             baseline=args.baseline,

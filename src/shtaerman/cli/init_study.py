@@ -385,8 +385,6 @@ def write_template(path: Path, *, force: bool = False, kind: str = "contact") ->
         raise InputError(f"FILE must end in .toml, got '{shown}'")
     if path.is_symlink() or (path.exists() and not path.is_file()):
         raise InputError(f"'{shown}' exists and is not a regular file; pick another FILE")
-    if path.exists() and not force:
-        raise InputError(f"'{shown}' exists; use --force to replace it")
     text = TEMPLATES[kind].format(file=shown, name=display_path(Path(path.stem)))
     try:
         with staged_file(path, force=force, option="FILE") as stage:

@@ -98,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
             Path(args.out) if args.out is not None else default_out(),
             force=args.force,
             resume_marker=marker,
+            keep_marker=PROGRESS_FILE,
         )
     workers = args.workers or default_workers()
     options = {

@@ -241,20 +241,21 @@ def _check(problem: Problem, names: Sequence[str]) -> ShapeAxis | None:
     axes = shape_axes(problem)
     allowed = ("E2", *axes)
     if "nu2" in names and "nu2" not in axes and problem.geometry.thickness is not None:
-        raise InputError("fit: nu2 is not identifiable from a lubricated pad's curve: like a "
+        raise InputError("unknowns: nu2 is not identifiable from a lubricated pad's curve: like a "
                          "half-space's it depends on E2 / (1 - nu2^2) alone; give nu2 and fit "
-                         "E2", "fit")  # fmt: skip
+                         "E2", "unknowns")  # fmt: skip
     for name in names:
         if name not in allowed:
             raise InputError(
-                f"fit: an indentation with {fe_parts(problem)} cannot fit "
+                f"unknowns: an indentation with {fe_parts(problem)} cannot fit "
                 f"{name!r}; choose from {', '.join(allowed)}",
-                "fit",
+                "unknowns",
             )
     sought = [axes[name] for name in names if name in axes]
     if len(sought) > 1:
-        raise InputError(f"fit: one shape constant per fit, got {', '.join(a.name for a in sought)}"
-                         "; give the others", "fit")  # fmt: skip
+        got = ", ".join(axis.name for axis in sought)
+        raise InputError(f"unknowns: one shape constant per fit, got {got}; give the others",
+                         "unknowns")  # fmt: skip
     return sought[0] if sought else None
 
 

@@ -301,18 +301,19 @@ def _check_unknowns(kind: str, unknowns: Sequence[str], known: Known) -> None:
     for name in unknowns:
         if name not in UNKNOWNS[kind]:
             raise InputError(
-                f"fit: {kind} data cannot fit {name!r}; choose from {', '.join(UNKNOWNS[kind])}",
-                "fit",
+                f"unknowns: {kind} data cannot fit {name!r}; choose from "
+                f"{', '.join(UNKNOWNS[kind])}",
+                "unknowns",
             )
     for name, what in (("prony", "the weights g_i"), ("tau", "the relaxation times tau_i")):
         if name in unknowns and known.prony is None:
             raise InputError(
-                f"fit: {name!r} fits {what} of a given series (its number of terms); give "
+                f"unknowns: {name!r} fits {what} of a given series (its number of terms); give "
                 "prony (g1:tau1,...: the starting values)",
-                "fit",
+                "unknowns",
             )
     if not unknowns:
-        raise InputError(f"fit: name at least one of {', '.join(UNKNOWNS[kind])}", "fit")
+        raise InputError(f"unknowns: name at least one of {', '.join(UNKNOWNS[kind])}", "unknowns")
 
 
 def build_model(

@@ -100,7 +100,9 @@ def _names(unknowns: Sequence[str] | str) -> list[str]:
     names = [n.strip() for part in names for n in str(part).split(",") if n.strip()]
     twice = sorted({name for name in names if names.count(name) > 1})
     if twice:  # a slip for another name (E2,E2 for E2,nu2): not silently one unknown
-        raise InputError(f"fit: {', '.join(twice)} named twice; name each unknown once", "fit")
+        raise InputError(
+            f"unknowns: {', '.join(twice)} named twice; name each unknown once", "unknowns"
+        )
     return names
 
 
@@ -184,9 +186,9 @@ def fit(
     refine = validate_positive("refine", refine)
     if needs_fe(problem) and "nu2" in names and kind != "indentation":
         raise InputError(
-            "fit: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
+            "unknowns: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
             "acts beyond the combined modulus the exact model sees); give nu2 and fit E2",
-            "fit",
+            "unknowns",
         )
     if noise is not None:
         noise = validate_positive("noise", noise)

@@ -26,6 +26,7 @@ from __future__ import annotations
 import contextlib
 import csv
 import errno
+import glob
 import itertools
 import json
 import math
@@ -353,20 +354,22 @@ def _foreign_files(folder: Path) -> list[str]:
 
 
 def _check_replaceable(
-    option: str, path: object, target: Path, force: bool, marker: str | None
+    option: str,
+    path: object,
+    target: Path,
+    force: bool,
+    marker: str | None,
+    keep_marker: str | None = None,
 ) -> None:
     """Raise unless the folder ``target`` (``path`` as given) may be written: empty, holding
     ``marker`` (a run to complete), or with ``force`` a folder this tool wrote holding only
-    the files its marker lists."""
+    the files its marker lists. Refused, the message says what works: ``keep_marker`` is the
+    file an interrupted run of this command leaves (it can be completed with resume=True)."""
     if not any(target.iterdir()):
         return
     folder, new = f"{option}: folder {str(path)!r}", f"name a new folder with {_named(option)}"
     if not force and not resumable(target, marker):
-        state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
-        advice = "use force=True to replace it"
-        if not ours(target):  # force would refuse it too
-            advice = f"it was not written by shtaerman: {new}"
-        raise InputError(f"{folder} {state}; {advice}", option)
+        raise InputError(f"{folder} {_occupied(option, target, marker, keep_marker)}", option)
     if force and not ours(target):
         raise InputError(
             f"{folder} was not written by shtaerman (no {FOLDER_MARKER}); force=True replaces only "
@@ -380,6 +383,34 @@ def _check_replaceable(
             f"only what this tool wrote: move it or {new}",
             option,
         )
+
+
+def _occupied(option: str, target: Path, marker: str | None, keep_marker: str | None) -> str:
+    """What the non-empty folder ``target`` holds and what works instead of writing it as
+    asked (no force; ``marker``: a resume asked): resume=True for an interrupted run, the
+    folder an interrupted force=True run kept beside it, force=True for a result folder of
+    this tool, a new folder for another program's."""
+    new = f"name a new folder with {_named(option)}"
+    if marker is None and resumable(target, keep_marker):
+        return (
+            f"holds an interrupted run ({keep_marker}); complete it with resume=True and the "
+            "same inputs, or start again with force=True"
+        )
+    state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
+    if not ours(target):  # force would refuse it too
+        return f"{state}; it was not written by shtaerman: {new}"
+    beside = sorted(
+        (place for place in target.parent.glob(f"{glob.escape(target.name)}.incomplete-*")
+         if place.is_dir() and resumable(place, marker or keep_marker)),
+        key=lambda place: place.stat().st_mtime,
+    )  # fmt: skip
+    if beside:
+        return (
+            f"{state}; an interrupted force=True run that was replacing it kept its finished "
+            f"part in {str(beside[-1])!r}: complete that with out={str(beside[-1])!r} "
+            "resume=True, or replace this folder with force=True"
+        )
+    return f"{state}; use force=True to replace it"
 
 
 def _named(option: str) -> str:
@@ -473,14 +504,20 @@ def folder_lock(target: Path, option: str = "out") -> Iterator[Path]:
 
 
 def check_output_folder(
-    path: Path, *, force: bool, option: str = "out", resume_marker: str | None = None
+    path: Path,
+    *,
+    force: bool,
+    option: str = "out",
+    resume_marker: str | None = None,
+    keep_marker: str | None = None,
 ) -> Path:
     """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
 
     A folder that exists and is not empty is refused unless ``force`` is set, or unless it
     holds the file ``resume_marker`` (a run left it incomplete, to be completed); its parent
     must exist and be writable; the current folder, its parents, symbolic links and a folder
-    that another run is writing are refused.
+    that another run is writing are refused. ``keep_marker``: the file an interrupted run of
+    the caller leaves (a refusal then names resume=True where it works).
     """
     target = check_folder_path(path, option)
     with _path_errors(option, path):
@@ -492,7 +529,7 @@ def check_output_folder(
         if live:
             raise _busy(option, target, live)
         if target.is_dir():
-            _check_replaceable(option, path, target, force, resume_marker)
+            _check_replaceable(option, path, target, force, resume_marker, keep_marker)
             if any(target.iterdir()):  # replaced (force) or completed (resume): removed
                 probe_removable(option, target)
         probe_writable(option, target.parent, _stage_path(target).name)
@@ -577,14 +614,16 @@ def staged_folder(
     InputError
         If another run is writing ``target``, or ``target`` is not ours to replace.
     """
-    target = check_output_folder(target, force=force, option=option, resume_marker=resume_marker)
+    target = check_output_folder(
+        target, force=force, option=option, resume_marker=resume_marker, keep_marker=keep_marker
+    )
     stage = _claim(target, option)
     content, retired = stage / "content", stage / "replaced"
     reserved = False
     try:
         resumed = resumable(target, resume_marker)
         if os.path.lexists(target):  # checked again: another program may have written it
-            _check_replaceable(option, target, target, force, resume_marker)
+            _check_replaceable(option, target, target, force, resume_marker, keep_marker)
             _retire(target, retired, option)
         _reserve(target, option)
         reserved = True
@@ -694,7 +733,7 @@ def check_output_file(path: str | Path, *, force: bool, option: str = "history")
         _refuse_link(path, option, "file")
         if path.exists() and not force:
             raise InputError(
-                f"{option}: {str(path)!r} exists (use force=True to replace it)", option
+                f"{option}: {str(path)!r} exists; use force=True to replace it", option
             )
         real = Path(os.path.realpath(path))
         if real.exists() and (_unremovable(str(real)) or _unremovable(str(real.parent))):

@@ -10,6 +10,7 @@ the file is loaded, before any computing.
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import functools
 import importlib.resources
@@ -431,6 +432,20 @@ def _allowed_keys(path: list[str], root: type) -> list[str]:
     return sorted(struct.__struct_fields__)
 
 
+def _homes(name: str, root: type) -> list[str]:
+    """The tables of the schema ``root`` that take the key ``name`` (a study kind's own: the
+    friction of a contact study is [contact]'s, of a dynamic one [impact]'s), before any
+    look-alike name (adv53: a [friction] table was asked 'did you mean description?')."""
+    found = []
+    for table in root.__struct_fields__:
+        if table in ("sweep", "quick"):  # a swept list, the quick run's numerics: not a home
+            continue
+        with contextlib.suppress(StopIteration):  # not a table (name, description)
+            if name in _allowed_keys([table], root):
+                found.append(table)
+    return found
+
+
 _TABLES = ("indenter", "half_space", "impact", "striker", "dynamic", "material")
 """Required keys that are tables, for the "missing" message."""
 
@@ -483,10 +498,8 @@ def _located(
     missing = re.fullmatch(r"Object missing required field `(\w+)`", text)
     if unknown:
         allowed = _allowed_keys(keys, root)
-        hint = suggestion(unknown[1], allowed)
-        home = TABLE_OF.get(unknown[1])
-        if not hint and home and home not in keys and home in root.__struct_fields__:
-            hint = f" (it belongs in [{home}])"
+        homes = [table for table in _homes(unknown[1], root) if table not in keys]
+        hint = f" (it belongs in [{homes[0]}])" if homes else suggestion(unknown[1], allowed)
         if not keys and unknown[1] in KIND_OF_TABLE:
             hint = f": [{unknown[1]}] belongs in a study of kind = {KIND_OF_TABLE[unknown[1]]!r}"
         return [*keys, unknown[1]], f"expected one of {allowed} (unknown key{hint})"
@@ -681,6 +694,11 @@ def refused(path: Path, error: InputError, keys: dict[str, str] | None = None) -
         return error
     parameter = error.parameter or str(error).partition(":")[0]  # "model: unknown ..."
     table = {**STUDY_KEYS, **(keys or {})}
+    head, _, rest = str(error).partition(": ")
+    names = head.split(", ")
+    if len(names) > 1 and parameter in names:  # inputs together ("mass, velocity: ..."): each
+        found = ", ".join(repr(table.get(name, f"half_space.{name}")) for name in names)
+        return StudyError(f"{path}: keys {found}: {worded(rest, 'file', table)}")
     key = table.get(parameter, "half_space")
     if not parameter.isidentifier():  # no name: mass and velocity together, their table
         key = table.get("mass", "impact.mass").partition(".")[0]

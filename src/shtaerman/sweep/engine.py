@@ -518,25 +518,20 @@ def _check_folder(
         raise InputError(f"out: {missing_folder(out.parent)}", "out")
     probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
     full = out.is_dir() and any(out.iterdir())
+    if full and not is_sweep_folder(out):  # what resume or force would refuse: neither said
+        raise InputError(
+            f"out: folder {str(out)!r} is not a sweep folder (no {MARKER_FILE} written by "
+            "shtaerman sweep), and resume=True and force=True act on sweep folders only: name "
+            "a new folder with out=...",
+            "out",
+        )
     if full and resume:
-        if not is_sweep_folder(out):
-            raise InputError(
-                f"resume: {str(out)!r} is not a sweep folder (no {MARKER_FILE} written by "
-                "shtaerman sweep); pick another out=...",
-                "resume",
-            )
         _check_same_sweep(spec, out)
         return lambda: _atomic_write(out / SPEC_FILE, spec.text)
     if full and not force:
         raise InputError(
             f"out: folder {str(out)!r} exists; use resume=True to complete it or force=True to "
             "replace it",
-            "out",
-        )
-    if full and not is_sweep_folder(out):
-        raise InputError(
-            f"out: force=True replaces only a sweep folder, and {str(out)!r} has no "
-            f"{MARKER_FILE} written by shtaerman sweep; remove it yourself or pick another out=...",
             "out",
         )
     if full:  # moved aside until the new sweep completes: a read-only folder cannot be

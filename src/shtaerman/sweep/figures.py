@@ -60,6 +60,20 @@ def _output_values(cases: list[dict], name: str) -> np.ndarray:
     return np.asarray(values, dtype=float)
 
 
+def _categorical(results: dict, name: str, values: np.ndarray) -> tuple[list | None, np.ndarray]:
+    """The names of a categorical output that its cases take (an effects sweep's
+    ``dominant_<q>``: the effects of the case that dominate somewhere, not the five an effect
+    table knows), and ``values`` as positions among them (NaN kept); (None, ``values``): not
+    categorical; every name when no case ran)."""
+    names = results["kind"].get("categories", {}).get(name)
+    taken = sorted({int(value) for value in values[np.isfinite(values)]})
+    if names is None or not taken:
+        return names, values
+    position = {index: place for place, index in enumerate(taken)}
+    at = [position[int(value)] if math.isfinite(value) else math.nan for value in values]
+    return [names[index] for index in taken], np.asarray(at, dtype=float)
+
+
 def _errors(results: dict, name: str) -> np.ndarray | None:
     """The estimated absolute errors of a difference with levels, if the sweep has them."""
     key = f"error_{name}"
@@ -117,13 +131,13 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
     x, ticks, log = _positions(values)
     x_factor, x_label = _display(axis, axis_unit, x if ticks is None else [])
     x = x_factor * x
-    raw, errors = _output_values(results["cases"], name), _errors(results, name)
+    names, raw = _categorical(results, name, _output_values(results["cases"], name))
+    errors = _errors(results, name)
     factor, y_label = _display(name, unit, raw)
     y, open_ = factor * raw, np.isfinite(raw) & unresolved(raw, errors)
     figure = Figure(figsize=(6.0, 4.0), layout="constrained")
     ax = figure.add_subplot()
     bars = None if errors is None else factor * errors
-    names = results["kind"].get("categories", {}).get(name)
     line = "-" if names is None else "none"  # no line between categories
     points(ax, x, y, ("C0", "o", line, "_nolegend_"), error=bars, hidden=open_)
     if open_.any():
@@ -155,7 +169,8 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     spec = results["spec"]
     (row_axis, rows), (col_axis, cols) = spec["axes"].items()
     units = results["kind"]["parameter_units"]
-    grid = _output_values(results["cases"], name).reshape(len(rows), len(cols))
+    names, values = _categorical(results, name, _output_values(results["cases"], name))
+    grid = values.reshape(len(rows), len(cols))
     errors = _errors(results, name)
     errors = None if errors is None else errors.reshape(grid.shape)
     open_ = np.isfinite(grid) & unresolved(grid, errors)
@@ -163,7 +178,6 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
     ax = figure.add_subplot()
     factor, label = _display(name, unit, grid)
     masked = np.ma.masked_where(~np.isfinite(grid) | open_, factor * grid)
-    names = results["kind"].get("categories", {}).get(name)
     if names is None:
         cmap = mpl.colormaps["viridis"].with_extremes(bad="0.8")
         image = ax.imshow(masked, cmap=cmap, aspect="auto", origin="lower")

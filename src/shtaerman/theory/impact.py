@@ -206,14 +206,24 @@ def _exp(exponent: float) -> float:
     return math.exp(exponent) if exponent < 709.8 else math.inf
 
 
-def representable(name: str, value: float, mass: float, velocity: float) -> float:
-    """``value`` if it is a normal float (neither 0, subnormal, nor inf), else InputError."""
+SCALES = ("shape_coefficient", "E2", "mass", "velocity")
+"""The inputs that set the exact power-law impact's scales (x_c, P_c, t_c, a_c, p_c)."""
+
+
+def representable(
+    name: str, value: float, mass: float, velocity: float, inputs: tuple[str, ...] = SCALES
+) -> float:
+    """``value`` if it is a normal float (neither 0, subnormal, nor inf), else InputError
+    naming the ``inputs`` that set it (none singled out: any of them may be the one of no
+    physical size) at its head (on the command line, their options)."""
     if not (math.isfinite(value) and abs(value) >= sys.float_info.min):
         raise InputError(
-            f"mass {mass!r} kg and velocity {velocity!r} m/s give {name} = {value:g}, outside "
-            f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}] "
-            "with this striker's shape and these moduli; choose a shape coefficient, moduli, "
-            "mass and velocity of a physical size (or rescale the units)"
+            f"{', '.join(inputs)}: the exact impact of {mass:g} kg at {velocity:g} m/s would "
+            f"give {name} = {value:g}, outside the floating-point range "
+            f"[{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]; give "
+            f"{'these' if len(inputs) > 1 else 'it'} a value of a physical size (or rescale "
+            "the units)",
+            inputs[0],
         )
     return value
 

@@ -98,7 +98,9 @@ def _work(law: SneddonContact, a: ArrayLike, below: ArrayLike) -> np.ndarray:
 def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     """a_c in m from W(a_c) = M v0^2 / 2: a first guess on equal panels over the whole
     profile, then the exact root on the fine panels up to 1.25 times it (or the whole)."""
-    energy = representable("M v0^2 / 2", 0.5 * mass * (velocity * velocity), mass, velocity)
+    energy = representable(
+        "M v0^2 / 2", 0.5 * mass * (velocity * velocity), mass, velocity, ("mass", "velocity")
+    )
     top = law.max_contact_radius
     top = math.nextafter(top, 0.0) if law.sphere else top
     square = lambda s: law.depth(s) ** 2  # noqa: E731

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import re
 import time
 import warnings
@@ -258,12 +259,14 @@ def effects(
         head = f"effects: run {index}/{len(rows)}: {variant.label}"
         shared = next(((run, keys) for p, run, keys in done if p == variant.parts), None)
         if shared is None and variant.label in kept:
-            run, keys = kept[variant.label], []
+            run = kept[variant.label]
+            keys = [_record(said, variant.label, *_warning(*pair)) for pair in run.warned]
             report(f"{head}: kept from an earlier run")
         elif shared is None:
             report(f"{head} ...")
             with _recorded(said, variant.label) as keys:
                 run = _run(variant, given, estimate)
+            run = dataclasses.replace(run, warned=tuple(_named(key, text) for key, text in keys))
             told(run)
             refused = refusal_words(run.refused, variant.label, first)
             report(f"{head}: {refused or f'done in {run.seconds:.1f} s'}")
@@ -295,10 +298,36 @@ def _recorded(said: Said, label: str) -> Iterator[list]:
         yield keys
     for warning in caught:
         text = str(warning.message)
-        key = (warning.category, _NUMBER.sub("#", text))
-        if key not in [known for known, _ in keys]:
-            keys.append((key, text))
-            said.setdefault(key, []).append((label, text))
+        if _key(warning.category, text) not in [known for known, _ in keys]:
+            keys.append(_record(said, label, warning.category, text))
+
+
+def _key(category: type[Warning], text: str) -> tuple[type[Warning], str]:
+    return category, _NUMBER.sub("#", text)
+
+
+def _record(said: Said, label: str, category: type[Warning], text: str) -> tuple[tuple, str]:
+    """Record the warning ``text`` of the run ``label`` into ``said``; its key and text."""
+    key = _key(category, text)
+    said.setdefault(key, []).append((label, text))
+    return key, text
+
+
+def _named(key: tuple, text: str) -> tuple[str, str]:
+    """A recorded warning as :attr:`Run.warned` keeps it: (``module.qualname``, text)."""
+    return f"{key[0].__module__}.{key[0].__qualname__}", text
+
+
+def _warning(name: str, text: str) -> tuple[type[Warning], str]:
+    """A kept run's warning (:func:`_named`) as its category and text: the loaded warning
+    class of that name (UserWarning if none is: an edited file's names import nothing)."""
+    todo: list[type[Warning]] = [Warning]
+    while todo:
+        category = todo.pop()
+        if f"{category.__module__}.{category.__qualname__}" == name:
+            return category, text
+        todo.extend(category.__subclasses__())
+    return UserWarning, text
 
 
 def _say_once(said: Said, total: int) -> None:

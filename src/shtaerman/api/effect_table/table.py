@@ -157,7 +157,7 @@ class EffectTable:
         null: n/a)."""
         rows = []
         for run in self.runs:
-            row = {key: value for key, value in vars(run).items() if key != "notes"}
+            row = {k: v for k, v in vars(run).items() if k not in ("notes", "warned")}
             row["notes"] = list(run.notes)
             row["changes"] = {k: vars(c) for k, c in cells(run, self.reference).items()}
             rows.append(row)

@@ -20,7 +20,9 @@ class Run:
     ``values`` (SI) and ``errors`` (their estimated absolute errors) are None when the variant
     was refused or failed; then ``refused`` is its one-line reason. ``errors`` is None with
     ``error_note`` saying why when the run had no error estimate. ``notes`` list the numerical
-    options the variant's combination does not take (left out of its run).
+    options the variant's combination does not take (left out of its run). ``warned`` holds
+    the warnings its run gave, (category as ``module.qualname``, text) each: a resumed table
+    says them again for a run it keeps (not in :meth:`.table.EffectTable.to_dict`).
     """
 
     label: str
@@ -33,6 +35,7 @@ class Run:
     refused: str | None = None
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
+    warned: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)

@@ -344,7 +344,7 @@ def _check_velocities(
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # the run's warnings are the run's
-                representable("v0^2", velocity * velocity, study.mass, velocity)
+                representable("v0^2", velocity * velocity, study.mass, velocity, ("velocity",))
                 solved[velocity] = exact(velocity)
         except InputError as error:
             raise StudyError(f"{path}: key '{key}': {error}") from None
