@@ -10,6 +10,8 @@ instability (smallest in-plane stretch 0.87 beside the contact, Biot's 0.544).
 
 from __future__ import annotations
 
+import re
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -18,16 +20,21 @@ import pytest
 import shtaerman as sh
 from shtaerman.fem.contact.finite import (
     NEWTON_TOLERANCE,
+    SQUEEZED_J,
     NewtonStepper,
     _Sets,
     _surface_mass,
     check_axis_ring,
     run_finite_indentation,
+    squeeze_note,
 )
+from shtaerman.fem.finite_dynamic import IMPACT_MESH, FiniteImpactSettings, prepare_finite_impact
 from shtaerman.fem.hyperelastic import NewtonError
 from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.stepper import QuasiStaticBody
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
+from shtaerman.validation import NumericalFailureError
 
 DEPTHS = [4e-4, 8e-4, 1.2e-3, 1.6e-3, 2.0e-3, 2.4e-3]  # m: x/H up to 0.6 on the 4 mm pad
 
@@ -167,3 +174,32 @@ def test_the_massless_impact_on_the_pad_reaches_x_over_h_093():
     # M v^2 / 2 = 2.55 J at 3.72 mm (0.05 mm trapezoids): 3.6 mm is past the old grading's
     # failure (3.573 mm), 3.85 mm short of where the squeezed elements stop the static curve
     assert 3.6e-3 < result.dynamic["x_max"] < 3.85e-3
+
+
+def test_a_pad_squeezed_past_its_elements_says_so_and_not_finer_mesh():
+    """The massless body's static states on the impact's mesh, 0.1 mm apart, on to 3.95 mm:
+    Newton fails near 3.85 mm (x/H 0.96) with the elements beside the tip squeezed to J
+    ~0.3 (hoop stretch ~6, axial ~0.05); a finer mesh_size (0.1) or axis grading (1e-5) fails
+    there too, so the message names the squeeze, not a finer mesh."""
+    setup = prepare_finite_impact(
+        PowerLawIndenter(5.0, 1.5),
+        Material(7.5e6, 0.5),
+        0.0,
+        0.7,
+        3.0,
+        FiniteImpactSettings(mesh=replace(IMPACT_MESH, size=0.2, thickness=4e-3)),
+    )
+    system = setup.stepper.system
+    assert squeeze_note(system, np.zeros(system.n_dofs)) is None  # J = 1 undeformed
+    body = QuasiStaticBody(setup.stepper)
+    with pytest.raises(NumericalFailureError) as failed:
+        for depth in np.arange(1, 40) * 1e-4:
+            body.accept(body.at(depth))
+    message = str(failed.value)
+    assert "neither a finer mesh_size=... nor more steps move" in message
+    assert "a lower velocity=..." in message and "where the mesh is the cause" not in message
+    squeezed = float(re.search(r"to J = ([0-9.e-]+) ", message).group(1))
+    # measured J 0.26 at the last state converged; SQUEEZED_J = 0.5 is the note's threshold
+    assert 0.0 < squeezed < SQUEEZED_J
+    # measured: the last converged depth 3.84 mm; the 1e-3 grading inverted at 3.4 mm
+    assert body.history[-1].depth > 3.8e-3
