@@ -203,3 +203,18 @@ def test_a_pad_squeezed_past_its_elements_says_so_and_not_finer_mesh():
     assert 0.0 < squeezed < SQUEEZED_J
     # measured: the last converged depth 3.84 mm; the 1e-3 grading inverted at 3.4 mm
     assert body.history[-1].depth > 3.8e-3
+
+
+def test_the_pad_curve_squeezed_past_its_elements_says_so_too():
+    """The contact curve on to 3.9 mm (its own mesh, axis grading 1e-4): its last load step
+    fails after 8 halvings with the axis element squeezed; it names that limit, not a finer
+    mesh."""
+    depths = list(np.arange(1, 40) * 1e-4)
+    mesh = MeshSettings(size=0.2, thickness=4e-3, axis_size=1e-4)
+    with pytest.raises(NewtonError) as failed:
+        run_finite_indentation(PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), depths, mesh)
+    message = str(failed.value)
+    # measured: fails at 3.8876 mm, the last converged state's J 0.19 at R 0.94 um (13 CPU s)
+    assert "neither a finer mesh_size=... nor more steps move" in message
+    assert "helps only where the mesh is the cause" not in message
+    assert float(re.search(r"to J = ([0-9.e-]+) ", message).group(1)) < SQUEEZED_J
