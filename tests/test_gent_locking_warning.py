@@ -22,6 +22,7 @@ import pytest
 from shtaerman.fem.contact.finite import run_finite_indentation
 from shtaerman.fem.contact.finite_stick import solve_finite_bonded_contact
 from shtaerman.fem.finite_dynamic import (
+    FRICTION_AXIS,
     IMPACT_MARGIN,
     IMPACT_MESH,
     FiniteImpactSettings,
@@ -85,7 +86,9 @@ def test_every_route_names_the_crossing_within_its_steps():
     this mesh's rubber lies within each route's bracket; two routes' crossings differ by at
     most the wider bracket (the interpolation's resolution), whatever their steps."""
     rubber = rubber_model("gent", gent_limit=0.01)
-    mesh = replace(IMPACT_MESH, size=0.3, margin=IMPACT_MARGIN)
+    # the bonded impact's axis grading (1e-3) for all four routes; on the frictionless
+    # impact's 1e-4 the bonded massless impact refused the lock without warning first
+    mesh = replace(IMPACT_MESH, size=0.3, margin=IMPACT_MARGIN, axis_size=FRICTION_AXIS)
     settings = FiniteImpactSettings(50, mesh)
     massless = Material(E2, 0.5, 0.0)
 

@@ -114,20 +114,30 @@ __all__ = [
     "FiniteImpactSettings",
     "FiniteImpactSetup",
     "KeptStates",
+    "impact_mesh",
     "pad_reach_note",
     "prepare_finite_impact",
 ]
 
-IMPACT_MESH = replace(FINITE_MESH, axis_size=1e-3)
-"""The impact's default mesh, massless or with inertia: FINITE_MESH graded to 1e-3 of the
+IMPACT_MESH = replace(FINITE_MESH, axis_size=1e-4)
+"""The impact's default mesh, massless or with inertia: FINITE_MESH graded to 1e-4 of the
 refined radius at the axis, not 1e-6 (the impact reports no central pressure, and x_max and
 P_max move by < 1e-5: benchmarks/FEM_NOTES.md). On the 1e-6 grading a Newton whose contact
 set changes at the axis stalls: the first iterates move the u_r of the axis elements by more
 than their width and the damped Newton halves its updates to nothing. That happened with
-inertia after the turning point, and to the massless relaxing body with a bonded or Coulomb
-indenter near separation, where the lagging surface lets the stuck nodes at the axis go at
-once (the researcher's pad failed at 0.5 mm of a 3.5 mm approach, with 8 times the steps
-too)."""
+inertia after the turning point. Not 1e-3 (before session 54): a thin pad pressed to x/H ~
+0.9 squeezes the elements beside the tip, and the 1e-3 grading's axis element inverts first
+(4 mm pad, z = 5 r^1.5, mesh 0.2: the static curve at 3.4 mm, where 1e-4 runs to 3.85 mm;
+benchmarks/FEM_NOTES.md, "Axis node cycling"). A bonded or Coulomb indenter's mesh is graded
+no finer than :data:`FRICTION_AXIS`."""
+FRICTION_AXIS = 1e-3
+"""The finest axis grading (of the refined radius) of a bonded or Coulomb impact's default
+mesh (:func:`impact_mesh`). Near separation the relaxing surface lags the leaving striker and
+the active set lets the stuck nodes at the axis go at once; the finer the axis elements, the
+further the first Newton iterates overshoot them: on 1e-6 the researcher's pad failed at 0.5
+mm of a 3.5 mm approach, with 8 times the steps too; on 1e-4 a step of it is cut in halves
+and it costs 3.3 times the CPU of 1e-3 (z = 2.011 r^1.3 on a 12 mm pad, Prony 0.3:1e-3,
+mesh 0.2: 39.6 s against 12.2 s bonded, 37.5 s against 11.5 s Coulomb 0.5, load 5-7)."""
 IMPACT_MARGIN = 1.3
 """Refined radius / geometric contact radius at the small-strain x_c (the finite-strain contact
 is wider by a few per cent)."""
@@ -146,6 +156,15 @@ PAD_MASSLESS_REACH = (
     "runs beyond it with a warning"
 )
 """The end of the refusal of a massless finite-strain impact on a pad beyond the reach."""
+
+
+def impact_mesh(friction: float | None) -> MeshSettings:
+    """The default mesh of an impact with Coulomb ``friction`` (None, 0: frictionless; inf:
+    bonded): :data:`IMPACT_MESH` (read at call time: tests swap in coarse ones), graded at
+    the axis no finer than :data:`FRICTION_AXIS` where the indenter holds the surface."""
+    if not friction:
+        return IMPACT_MESH
+    return replace(IMPACT_MESH, axis_size=max(IMPACT_MESH.axis_size, FRICTION_AXIS))
 
 
 def pad_reach_note(pad: bool, friction: float | None, density: float) -> str | None:
@@ -203,13 +222,14 @@ class FiniteImpactSettings:
                 f"spectral_radius must lie in [0, 1], got {rho_inf!r}", "spectral_radius"
             )
 
-    def resolved(self, density: float) -> FiniteImpactSettings:
+    def resolved(self, density: float, friction: float | None = None) -> FiniteImpactSettings:
         """These settings with the defaults of the massless body (``density`` 0) or of the
-        body with inertia filled in."""
+        body with inertia filled in, the mesh :func:`impact_mesh` of ``friction``."""
         steps = self.steps
         if steps is None:
             steps = MASSLESS_STEPS if density == 0 else INERTIA_STEPS
-        return replace(self, steps=steps, mesh=IMPACT_MESH if self.mesh is None else self.mesh)
+        mesh = impact_mesh(friction) if self.mesh is None else self.mesh
+        return replace(self, steps=steps, mesh=mesh)
 
     def refined(self, factor: float) -> FiniteImpactSettings:
         """These (resolved) settings with the mesh size field divided and the time steps
@@ -377,7 +397,7 @@ def prepare_finite_impact(
         Inputs out of range.
     """
     rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
-    settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho)
+    settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho, friction)
     q = law.force_exponent
     with warnings.catch_warnings():  # the caller warns of a fast impact beside its results
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)

@@ -76,7 +76,7 @@ from .contact.constraints import (
     edge_radius,
     in_halves,
 )
-from .contact.finite import NewtonStepper, extrapolate
+from .contact.finite import NewtonStepper, extrapolate, squeeze_note
 from .contact.finite_stick import HistoryStepper
 from .contact.linear import complementarity, recover_pressure
 from .contact.stick import CoupledCompliance, StickState, stick_slip_step
@@ -776,12 +776,18 @@ class QuasiStaticBody:
         except GentLockError:  # the rubber's limit, an input: --gent-limit
             raise
         except NewtonError as error:  # the run's numerics, not its input
+            last = self.history[-1]  # the undeformed start squeezes nothing
+            squeezed = None if last is self.zero else squeeze_note(self.stepper.system, last.x)
+            remedy = "a lower velocity=... (on a pad: a thicker thickness=...)"
             raise NumericalFailureError(
-                f"the finite-strain contact failed at depth {depth:g} m ({error}); the "
-                "massless body follows the static contact curve, which does not converge "
-                "beyond it at these settings (more time_steps=... do not move it): a lower "
-                "velocity=... (on a pad: a thicker thickness=...), or a finer mesh_size=... "
-                "where the mesh is the cause"
+                f"the finite-strain contact failed at depth {depth:g} m ({error}); "
+                + (
+                    f"{squeezed}: {remedy}"
+                    if squeezed
+                    else "the massless body follows the static contact curve, which does not "
+                    "converge beyond it at these settings (more time_steps=... do not move "
+                    f"it): {remedy}, or a finer mesh_size=... where the mesh is the cause"
+                )
             ) from error
 
     def accept(self, state: _State) -> None:

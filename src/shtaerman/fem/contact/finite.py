@@ -93,6 +93,13 @@ GENT_BACKTRACKS = 2
 J > 0 does, and from a state near it Newton overshoots where the solution lies within it. A
 converging step needed at most 2; steps needing more crawled and failed after thirty
 iterations (benchmarks/FEM_NOTES.md, "Gent locking")."""
+SQUEEZED_J = 0.5
+"""Pointwise det F below which a failed contact is put down to the elements about the tip,
+not to the mesh size (:func:`squeeze_note`). The 4 mm incompressible pad (z = 5 r^1.5, mesh
+0.2) at x/H 0.85-0.97: its smallest J falls from ~0.9 to 0.1-0.47 in the last 0.1-0.3 mm
+before each failure, in the elements beside the tip (hoop stretch 3-6, axial 0.03-0.07), on
+every axis grading (1e-3 to 1e-5) and at mesh_size 0.1 as at 0.2; the runs that converge
+keep J >= 0.86 until then."""
 _GAUSS = np.polynomial.legendre.leggauss(4)
 
 
@@ -530,6 +537,24 @@ def element_inverted(state: Any) -> bool:
     return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
 
 
+def squeeze_note(system: Any, x: np.ndarray) -> str | None:
+    """What a failed contact's message says where its last converged state x (of ``system``)
+    squeezes some element below J = :data:`SQUEEZED_J` (None where none): where, how far,
+    and that neither a finer mesh size nor more steps moves that limit."""
+    J = system.state(x).J
+    if np.min(J) >= SQUEEZED_J:
+        return None
+    element = np.unravel_index(np.argmin(J), J.shape)[0]
+    mesh = system.displacement_basis.mesh
+    r, z = mesh.p[:, mesh.t[:3, element]].mean(axis=1)
+    return (
+        f"the last converged state squeezes the element at R {r:.2g} m, {-z:.2g} m below the "
+        f"surface, to J = {np.min(J):.2g} (det F, pointwise; 1 in an undeformed body): the "
+        "elements beside the indenter's tip no longer follow the deformation, a limit that "
+        "neither a finer mesh_size=... nor more steps move"
+    )
+
+
 def check_axis_ring(lam: np.ndarray, tied: bool) -> None:
     """Accept a converged solve whose axis candidate was tied to its ring (:class:`_Sets`,
     ``tied``): its pull -lambda_0 (N, ``lam[0]`` < 0) may not exceed the push lambda_1 of the
@@ -770,11 +795,13 @@ def _reach(
             if locked is not None:
                 raise locked from None
             if cuts > max_cuts:
+                note = squeeze_note(stepper.system, history[-1][1]) or (
+                    "a finer mesh_size=... or refine=... helps only where the mesh is the cause"
+                )
                 raise NewtonError(
                     f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} "
                     f"m, halved {max_cuts} times): {error}; lower the deepest of depths=... "
-                    "(a finer mesh_size=... or refine=... helps only where the mesh is the "
-                    "cause)"
+                    f"({note})"
                 ) from None
             increment *= 0.5
             continue

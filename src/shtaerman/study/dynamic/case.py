@@ -308,7 +308,7 @@ def finite_settings(
     ``estimate``) checked before any run (InputError naming the option): ``time_steps`` per
     quasi-static impact duration (default 50; 100 with inertia), ``mesh_size`` the smallest
     element / refined radius (default the finite-strain contact's)."""
-    from ...fem.finite_dynamic import IMPACT_MESH
+    from ...fem.finite_dynamic import impact_mesh
     from ...vocabulary import entry
 
     rho = problem.body.material.density
@@ -317,7 +317,9 @@ def finite_settings(
         mesh_size = entry("mesh_size").check(mesh_size, "dynamic")
     if time_steps is not None:  # the command line's range: one guard on every route
         time_steps = entry("time_steps").check(time_steps, "dynamic")
-    mesh = IMPACT_MESH if mesh_size is None else replace(IMPACT_MESH, size=mesh_size)
+    mesh = impact_mesh(problem.interface.coefficient)
+    if mesh_size is not None:
+        mesh = replace(mesh, size=mesh_size)
     if problem.geometry.thickness is not None:
         mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)
