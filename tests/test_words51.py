@@ -143,7 +143,10 @@ def test_a_contact_curves_failed_load_step_names_its_options(capsys, monkeypatch
     from shtaerman.fem.hyperelastic import NewtonError
 
     class Failing:
-        system = types.SimpleNamespace(material=types.SimpleNamespace(model="gent"))
+        system = types.SimpleNamespace(
+            material=types.SimpleNamespace(model="gent"),
+            state=lambda x: types.SimpleNamespace(J=np.ones(4)),  # nothing squeezed
+        )
         nodes = types.SimpleNamespace(radius=np.array([0.0, 1e-3]))
 
         def solve(self, *args, **kwargs):

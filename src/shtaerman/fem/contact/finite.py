@@ -540,7 +540,7 @@ def element_inverted(state: Any) -> bool:
 def squeeze_note(system: Any, x: np.ndarray) -> str | None:
     """What a failed contact's message says where its last converged state x (of ``system``)
     squeezes some element below J = :data:`SQUEEZED_J` (None where none): where, how far,
-    and that neither a finer mesh size nor more steps moves that limit."""
+    and that neither a finer mesh size nor smaller load or time steps move that limit."""
     J = system.state(x).J
     if np.min(J) >= SQUEEZED_J:
         return None
@@ -551,7 +551,7 @@ def squeeze_note(system: Any, x: np.ndarray) -> str | None:
         f"the last converged state squeezes the element at R {r:.2g} m, {-z:.2g} m below the "
         f"surface, to J = {np.min(J):.2g} (det F, pointwise; 1 in an undeformed body): the "
         "elements beside the indenter's tip no longer follow the deformation, a limit that "
-        "neither a finer mesh_size=... nor more steps move"
+        "neither a finer mesh_size=... nor smaller steps (time_steps=..., depths=...) move"
     )
 
 
