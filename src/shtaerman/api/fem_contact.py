@@ -431,8 +431,9 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
         relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
     impact = None if problem.loading.depths is not None else _impact(problem)
     friction = problem.interface.coefficient
-    plan = (indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact)
-    return _Plan(*plan, friction)
+    return _Plan(
+        indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact, friction
+    )
 
 
 def contact(

@@ -320,7 +320,8 @@ def _named(key: tuple, text: str) -> tuple[str, str]:
 
 def _warning(name: str, text: str) -> tuple[type[Warning], str]:
     """A kept run's warning (:func:`_named`) as its category and text: the loaded warning
-    class of that name (UserWarning if none is: an edited file's names import nothing)."""
+    class of that name (UserWarning if none is). Looked up among the loaded subclasses of
+    Warning, not imported: a name in an edited incomplete.json must not import a module."""
     todo: list[type[Warning]] = [Warning]
     while todo:
         category = todo.pop()

@@ -268,8 +268,7 @@ def run_case(
         warnings.simplefilter("always")  # a refusal is the one line
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         quasi = exact_impact(mass, velocity, law) if quasi is None else quasi
-        # before the estimate's
-        representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))
+        representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))  # first
         estimate = radiation(mass, velocity, law, density, half_space, quasi)
         sizing = profile_sizing_impact(indenter, half_space, mass, velocity)  # once, not per run
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
