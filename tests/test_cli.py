@@ -170,7 +170,6 @@ def test_a_depth_list_is_checked_once_by_the_cli_and_once_by_the_api(capsys):
 
     codes = {
         vocabulary.Entry.check.__code__: "entry",
-        validation.validate_increasing.__code__: "increasing",
         validation.validate_positive.__code__: "positive",
     }
     calls = []

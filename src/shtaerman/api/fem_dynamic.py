@@ -358,10 +358,10 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..fem.finite_dynamic import pad_reach_note
     from ..guards import check_reach
-    from ..study.dynamic.case import exact_impact
     from ..theory.impact import representable
     from ..theory.materials import effective_modulus, validate_density
     from ..theory.sneddon import contact_law
+    from ..theory.viscoelastic import elastic_impact
 
     striker, body = problem.striker, problem.body.material
     inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
@@ -369,7 +369,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         # the floating-point range first, as the run meets it: the exact impact's, and v0^2
-        x_c = exact_impact(striker.mass, striker.velocity, law).x_c
+        x_c = elastic_impact(striker.mass, striker.velocity, law).x_c
         representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5], ("velocity",))
         if settings is not None:
             physics = (problem.body.prony, problem.interface.coefficient)

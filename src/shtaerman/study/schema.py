@@ -383,15 +383,16 @@ def prony_of(path: Path, prony: str | None) -> Any:
 
 def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:
     """velocity (m/s) -> the quasi-static impact of ``mass`` kg with the rigid ``indenter`` on
-    the half-space of ``body`` (:func:`.dynamic.case.exact_impact`), solved once per velocity
-    however often it is asked (the loader's checks, a layer's H / a_c and the run share it)."""
+    the half-space of ``body`` (:func:`..theory.viscoelastic.elastic_impact`), solved once per
+    velocity however often it is asked (the loader's checks, a layer's H / a_c and the run
+    share it)."""
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
-    from .dynamic.case import exact_impact
+    from ..theory.viscoelastic import elastic_impact
 
     @functools.cache
     def solved(velocity: float) -> Any:
-        return exact_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
+        return elastic_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
 
     return solved
 

@@ -27,9 +27,9 @@ from ...problem import Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
 from ...theory.sneddon import Indenter, contact_law
+from ...theory.viscoelastic import elastic_impact
 from ...validation import InputError
 from ...vocabulary import entry
-from ..dynamic.case import exact_impact
 from ..schema import (
     EXPECTED,
     LayerTable,
@@ -283,7 +283,7 @@ def on_layer(study: Study) -> Study:
         return study
 
     modulus = effective_modulus(study.striker, study.half_space)
-    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
+    exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     layer = study.layer.resolved(float(exact.a_c))
     deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
     mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
@@ -349,7 +349,7 @@ def check_profile_reach(
         drive = f"depth {deepest:.6g} m"
     else:
         parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
-        deepest = overshoot * exact_impact(*impact, law).x_c  # a table's names profile
+        deepest = overshoot * elastic_impact(*impact, law).x_c  # a table's names profile
         drive = (
             f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
             f"({overshoot:g} x_c, the deepest depth)"
