@@ -10,6 +10,7 @@ import pytest
 import shtaerman as sh
 from shtaerman.cli import main
 from shtaerman.guards import MAX_DEPTH_RATIO, ValidityWarning, depth_ratio, outside_validity
+from shtaerman.study.schema import StudyError, load_study
 from shtaerman.sweep.engine import execute_case
 from shtaerman.sweep.kinds import dynamic_case, get_kind
 
@@ -217,6 +218,38 @@ def test_the_modulus_range_is_every_routes(capsys, command, E2):
     with pytest.raises(sh.InputError, match=r"^E2 must lie in \[1e-3, 1e100\] Pa") as refused:
         sh.impact(sh.PowerLawIndenter(5.0, 1.5), sh.Material(float(E2), 0.5), mass=0.7, velocity=3)
     assert refused.value.parameter == "E2"
+
+
+@pytest.mark.parametrize("E1", ["1e-300", "1e101"])
+def test_the_strikers_modulus_range_is_every_routes(capsys, tmp_path, E1):
+    """guards55: 'impact --E1=1e-300' printed x_c = 4.7e117 m, a contact study's refusal
+    blamed mass and velocity: E1 takes E2's range [1e-3, 1e100] Pa, or inf (rigid), on the
+    command line, in the API (problem.check_bodies), a study file and a sweep."""
+    said = f"E1 must lie in [1e-3, 1e100] Pa, or inf (rigid), got {E1!r}"
+    assert main(["impact", f"--E1={E1}"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err == f"shtaerman: error: --{said}\n"
+    striker, body = sh.Material(float(E1), 0.3), sh.Material(3e6, 0.49, 1000.0)
+    for run in (sh.impact, sh.contact, sh.dynamic):  # refused before any work
+        keywords = {} if run is sh.contact else dict(mass=0.7, velocity=3.0)
+        with pytest.raises(sh.InputError, match=r"^E1 must lie in \[1e-3, 1e100\] Pa") as no:
+            run(BLUNT, body, striker=striker, **keywords)
+        assert no.value.parameter == "E1"
+
+    study = tmp_path / "soft.toml"
+    study.write_text(
+        "[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n[striker]\n"
+        f"E1 = {float(E1)!r}\nnu1 = 0.3\n[half_space]\nE2 = 7.5e6\nnu2 = 0.5\n"
+        "[impact]\nmass = 0.7\nvelocity = 3.0\n"
+    )
+    with pytest.raises(StudyError) as loaded:  # was: 'mass, velocity: ... set the depths'
+        load_study(study)
+    said = said.replace(repr(E1), repr(float(E1)))  # TOML's float
+    assert str(loaded.value) == f"{study}: key 'striker.E1': {said}"
+    sweep = tmp_path / "soft-sweep.toml"
+    sweep.write_text(f'name = "soft"\nkind = "impact"\n[axes]\nE1 = [{float(E1)!r}, 2e11]\n')
+    assert main(["sweep", str(sweep), "--out", str(tmp_path / "out")]) == 2
+    assert "axes.E1[0] must lie in [1e-3, 1e100] Pa, or inf (rigid)" in capsys.readouterr().err
 
 
 def test_the_exact_impacts_float_range_names_the_options_that_set_it(capsys):
