@@ -252,6 +252,26 @@ def test_the_strikers_modulus_range_is_every_routes(capsys, tmp_path, E1):
     assert "axes.E1[0] must lie in [1e-3, 1e100] Pa, or inf (rigid)" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("geometry", [[], ["--thickness", "10"], ["--prony", "0.3:1e-3"]])
+def test_the_impacts_contact_zone_scale_is_the_curves(capsys, geometry):
+    """guards55: 'dynamic --E2 1e-3' ran to restitution 1.69 (energy balance 3.6 of M v0^2/2)
+    where the contact curve refuses E2 / contact zone radius below 0.1 Pa/m: the linear
+    impact's refined zone (3.69 m here) is checked by the same function, before any mesh, on
+    the command line, in the API and in a dynamic sweep's load."""
+    assert main(["dynamic", "--E2", "1e-3", "--no-estimate", *geometry]) == 2
+    out, err = capsys.readouterr()
+    head = "shtaerman: error: --E2, --mass, --velocity: 0.7 kg at 3 m/s on E2 = 0.001 Pa make "
+    assert out == "" and err.count("\n") == 1 and err.startswith(head), err
+    assert "E2 / contact zone radius = " in err and "is below 0.1" in err
+    soft = sh.Material(1e-3, 0.5, 1000.0)
+    with pytest.raises(sh.InputError, match=r"^E2, mass, velocity: 0\.7 kg at 3 m/s") as no:
+        sh.dynamic(sh.PowerLawIndenter(5.0, 1.5), soft, mass=0.7, velocity=3.0, estimate=False)
+    assert no.value.parameter == "E2"
+    kind = get_kind("dynamic")
+    with pytest.raises(sh.InputError, match=r"^E2, mass, velocity: "):
+        kind.check({**kind.defaults(), "E2": 1e-3})
+
+
 def test_the_exact_impacts_float_range_names_the_options_that_set_it(capsys):
     """adv53: the refusal opened with 'mass 1e-300 kg and velocity 1e-300 m/s give x_c = 0'
     and named no option: it heads the inputs that set the impact's scale (none blamed alone,
