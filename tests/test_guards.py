@@ -272,6 +272,23 @@ def test_the_impacts_contact_zone_scale_is_the_curves(capsys, geometry):
         kind.check({**kind.defaults(), "E2": 1e-3})
 
 
+def test_a_dynamic_study_refuses_its_impacts_checks_at_load(tmp_path):
+    """guards55: a dynamic study ran its velocities in order and met the impact's own checks
+    at each run's start (after the velocities before it had run), in the API's words: they
+    are made at load, naming the file's keys. E2 = 0.1 Pa: at 0.01 m/s the zone's scale
+    passes (0.067 m, 1.5 Pa/m), at 3 m/s it does not (1.17 m, 0.086 Pa/m)."""
+    study = tmp_path / "soft.toml"
+    study.write_text(
+        'kind = "dynamic"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 0.1\nnu2 = 0.5\ndensity2 = 1100.0\n"
+        "[impact]\nmass = 0.7\nvelocity = [0.01, 3.0]\n"
+    )
+    with pytest.raises(StudyError) as loaded:
+        load_study(study)
+    keys = "keys 'half_space.E2', 'impact.mass', 'impact.velocity'"
+    assert str(loaded.value).startswith(f"{study}: {keys}: 0.7 kg at 3 m/s on E2 = 0.1 Pa make")
+
+
 def test_the_exact_impacts_float_range_names_the_options_that_set_it(capsys):
     """adv53: the refusal opened with 'mass 1e-300 kg and velocity 1e-300 m/s give x_c = 0'
     and named no option: it heads the inputs that set the impact's scale (none blamed alone,
