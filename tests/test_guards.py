@@ -272,6 +272,18 @@ def test_the_impacts_contact_zone_scale_is_the_curves(capsys, geometry):
         kind.check({**kind.defaults(), "E2": 1e-3})
 
 
+def test_the_fe_impact_refuses_an_elastic_striker_it_would_ignore():
+    """guards55: sh.dynamic(striker=Material(E1, nu1)) ran a rigid striker: x_max 8.269017e-3
+    m at E1 = 1e-3 and at 1e6 Pa alike (mesh_size 0.1, 60 steps); the exact impact takes E1."""
+    body = sh.Material(7.5e6, 0.5, 1100.0)
+    steel = dict(mass=0.7, velocity=3.0, striker=sh.Material(2e11, 0.3))
+    with pytest.raises(sh.InputError, match=r"^striker: the FE impact's striker is rigid") as no:
+        sh.dynamic(sh.PowerLawIndenter(5.0, 1.5), body, **steel, estimate=False)
+    assert no.value.parameter == "striker"
+    with pytest.raises(sh.InputError, match=r"^striker: the FE impact's striker is rigid"):
+        sh.effects(sh.Problem.impact(sh.PowerLawIndenter(5.0, 1.5), body, **steel))
+
+
 def test_a_dynamic_study_refuses_its_impacts_checks_at_load(tmp_path):
     """guards55: a dynamic study ran its velocities in order and met the impact's own checks
     at each run's start (after the velocities before it had run), in the API's words: they
