@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -333,6 +334,13 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
+    if problem.striker.material.youngs_modulus != math.inf:
+        raise InputError(
+            "striker: the FE impact's striker is rigid (its elasticity is not modelled, E1 "
+            "would be ignored): drop striker=..., or take the exact quasi-static impact "
+            "(shtaerman.impact), which takes it",
+            "striker",
+        )
     if problem.body.finite:
         numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
         chosen = finite_settings(problem, **numbers, refine=refine, estimate=estimate)

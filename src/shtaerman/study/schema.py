@@ -73,7 +73,8 @@ EXPECTED = {
         for item in VOCABULARY
         if item.type in ("float", "int") and item.group != "output"
     },
-    "E1": 'a number > 0 (Pa), or "inf" for a rigid striker',
+    "E1": f'a number in {vocabulary_entry("E1").range_for().text()} (Pa), or "inf" for a rigid '
+    "striker",
     "velocity": "a number > 0 (m/s), or (a dynamic study) a list of increasing ones",
     "depths": f"a list of 2 to {vocabulary_entry('depths').max_items} increasing depths > 0 (m), "
     'or "impact"',

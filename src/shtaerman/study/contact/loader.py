@@ -214,6 +214,7 @@ def _surface(path: Path, raw: _StudyFile) -> Interface:
     parts = {"interface": contact.interface, "friction": contact.friction}
     parts |= {"prony": prony_of(path, half_space.prony), "rate": contact.rate}
     try:
+        parts["striker"] = _striker(raw)
         body = Material(half_space.E2, half_space.nu2)
         problem = Problem.curve(indenter_of(path, raw.indenter), body, **parts)
     except InputError as error:
@@ -223,9 +224,15 @@ def _surface(path: Path, raw: _StudyFile) -> Interface:
     return problem.interface
 
 
-def _build(path: Path, raw: _StudyFile) -> Study:
-    striker, contact = raw.striker, raw.contact
+def _striker(raw: _StudyFile) -> Material:
+    """The striker's elasticity of ``[striker]`` (rigid without it, or with E1 = "inf")."""
+    striker = raw.striker
     rigid = striker is None or striker.E1 == "inf"
+    return RIGID if rigid else Material(striker.E1, striker.nu1)
+
+
+def _build(path: Path, raw: _StudyFile) -> Study:
+    contact = raw.contact
     surface = _surface(path, raw)
     mesh, quick = (
         _mesh(path, key, getattr(raw, key), default)
@@ -234,7 +241,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
     return Study(
         **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
-        striker=RIGID if rigid else Material(striker.E1, striker.nu1),
+        striker=_striker(raw),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
