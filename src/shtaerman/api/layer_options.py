@@ -8,7 +8,7 @@ from typing import TypeVar
 from ..problem import Geometry
 
 Settings = TypeVar("Settings")
-"""Numerics with ``thickness`` and ``base`` fields (MeshSettings, DynamicSettings)."""
+"""Numerics with ``thickness`` and ``base`` fields (MeshSettings)."""
 
 __all__ = ["layer_mesh"]
 

@@ -98,7 +98,7 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mesh import MeshSettings
+from .mesh import HALF_SPACE, Geometry, MeshSettings
 from .rubber import RubberModel
 from .stepper import (
     QuasiStaticBody,
@@ -385,11 +385,12 @@ def prepare_finite_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
     exact: ProfileImpactResult | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> FiniteImpactSetup:
     """Check, mesh and assemble the impact of a rigid striker on a rubber at finite strain
     (the arguments of :func:`.impact.run_impact`, the body's ``rubber`` default neo-Hookean,
     ``friction`` None or 0 frictionless, ``exact`` a profile's sizing impact when solved
-    already).
+    already, ``geometry`` the body's: its mesh settings build that layer).
 
     Raises
     ------
@@ -398,6 +399,9 @@ def prepare_finite_impact(
     """
     rho, mass, velocity, law = _checked(indenter, half_space, density, mass, velocity)
     settings = (FiniteImpactSettings() if settings is None else settings).resolved(rho, friction)
+    if geometry.thickness is not None:
+        layer = replace(settings.mesh, thickness=geometry.thickness, base=geometry.base)
+        settings = replace(settings, mesh=layer)
     q = law.force_exponent
     with warnings.catch_warnings():  # the caller warns of a fast impact beside its results
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)

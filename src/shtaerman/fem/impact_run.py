@@ -242,7 +242,7 @@ def mesh_counts(
     mesh: Any, dofs: int, candidates: int, refined: float, layer: Any
 ) -> dict[str, Any]:
     """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run; a
-    layer's thickness (m) and base (``layer``: settings with ``thickness`` and ``base``)."""
+    layer's thickness (m) and base (``layer``: a Geometry, or MeshSettings with those fields)."""
     counts = {"nodes": int(mesh.p.shape[1]), "elements": int(mesh.t.shape[1])}
     counts.update(dofs=int(dofs), contact_candidates=int(candidates), refined_radius=refined)
     if layer.thickness is not None:

@@ -29,13 +29,15 @@ import numpy as np
 
 from ..signals import deferred
 from ..validation import InputError, bound_text, validate_positive
-from ..vocabulary import BASES
+from ..vocabulary import BASES, entry
 
 if TYPE_CHECKING:
     from skfem import MeshTri
 
 __all__ = [
     "BOUNDARIES",
+    "HALF_SPACE",
+    "Geometry",
     "GradedMesh",
     "Grading",
     "MeshSettings",
@@ -562,6 +564,35 @@ class Grading:
             * math.log1p(self.far_growth * domain / (below + growth * far_start))
             / self.far_growth**2
         )
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """The body's shape: a half-space (``thickness`` None), or a layer of ``thickness`` m on a
+    rigid ``base`` (``bonded``: u = 0, the default; ``lubricated``: u_z = 0)."""
+
+    thickness: float | None = None
+    base: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.thickness is None:
+            if self.base is not None:
+                raise InputError(
+                    "base: applies to a layer only; give its thickness=... too", "base"
+                )
+            return
+        base = entry("base").default if self.base is None else self.base
+        object.__setattr__(self, "base", entry("base").check(base))
+        object.__setattr__(self, "thickness", float(entry("thickness").check(self.thickness)))
+
+    @property
+    def name(self) -> str:
+        """``half-space``, ``layer bonded`` or ``layer lubricated``."""
+        return "half-space" if self.thickness is None else f"layer {self.base}"
+
+
+HALF_SPACE = Geometry()
+"""The half-space: the geometry a run takes by default."""
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...fem.dynamic_contact import DynamicSettings
-from ...fem.mesh import MeshSettings, check_thickness_range
+from ...fem.mesh import Geometry, MeshSettings, check_thickness_range
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ..checks import Check
@@ -232,10 +232,9 @@ def with_dynamic_impact(
     ``friction`` the striker's surface (None frictionless, inf bonded, else Coulomb's mu)."""
     from ...fem.impact import run_impact
 
-    settings = replace(
-        QUICK_DYNAMIC if quick else DynamicSettings(), thickness=layer.thickness, base=layer.base
-    )
-    result = run_impact(indenter, half_space, layer.density, *impact, settings, friction=friction)
+    settings = QUICK_DYNAMIC if quick else DynamicSettings()
+    physics = {"friction": friction, "geometry": Geometry(layer.thickness, layer.base)}
+    result = run_impact(indenter, half_space, layer.density, *impact, settings, **physics)
     return replace(
         findings,
         restitution=float(result.restitution),
