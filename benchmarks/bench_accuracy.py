@@ -28,7 +28,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from shtaerman.fem.mesh import FINITE_MESH, MeshSettings
+from shtaerman.fem.mesh import FINITE_MESH, Geometry, MeshSettings
 from shtaerman.fem.rubber import RubberModel
 from shtaerman.study.contact import accuracy
 from shtaerman.study.contact.accuracy import (
@@ -174,9 +174,9 @@ def layer_effectivity() -> None:
         depths = np.array([float(half_space_limit(indenter, body).depth(a)) for a in radii])
         reference = LayerReference(indenter, body, h_over_a * 1e-2, base)
         exact = np.array([reference.force(d) for d in depths])
-        mesh = MeshSettings(thickness=h_over_a * 1e-2, base=base)
+        mesh, layer = MeshSettings(), {"geometry": Geometry(h_over_a * 1e-2, base)}
         levels = [
-            LadderLevel(k, run_indentation(indenter, body, depths, mesh.refined(k)))
+            LadderLevel(k, run_indentation(indenter, body, depths, mesh.refined(k), **layer))
             for k in LADDER_RATIO ** np.arange(-2, 3)
         ]
         forces = [np.array([s.force for s in lv.result.steps]) for lv in levels]

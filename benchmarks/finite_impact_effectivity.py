@@ -90,6 +90,7 @@ from dataclasses import replace
 
 from shtaerman.fem.finite_dynamic import IMPACT_MESH, FiniteImpactSettings
 from shtaerman.fem.impact import run_impact
+from shtaerman.fem.mesh import Geometry
 from shtaerman.study.dynamic.accuracy import ladder_estimates, over_levels
 from shtaerman.study.dynamic.case import compare
 from shtaerman.study.ladder import LADDER_RATIO
@@ -125,8 +126,6 @@ def settings_of(case: dict, defaults: bool = False) -> FiniteImpactSettings:
     """The case's settings at refine 1 (``defaults``: the API's, else the modest base)."""
     rho = case["body"].density
     mesh = IMPACT_MESH if defaults else replace(IMPACT_MESH, size=BASE_SIZE, growth=BASE_GROWTH)
-    if case.get("thickness") is not None:
-        mesh = replace(mesh, thickness=case["thickness"], base="bonded")
     steps = None if defaults else BASE_STEPS["massless" if rho == 0 else "inertia"]
     return FiniteImpactSettings(steps=steps, mesh=mesh).resolved(rho)
 
@@ -151,6 +150,8 @@ def run_case(name: str, refine: float, defaults: bool = False) -> None:
     body = case["body"]
     inputs = (case["indenter"], body, body.density, case["mass"], case["velocity"])
     physics = dict(prony=case.get("prony"), friction=case.get("friction"))
+    if case.get("thickness") is not None:
+        physics["geometry"] = Geometry(case["thickness"], "bonded")
     base = settings_of(case, defaults)
     modulus = body.youngs_modulus / (1.0 - body.poisson_ratio**2)
     quasi = solve_impact(case["mass"], case["velocity"], PowerLawContact(case["indenter"], modulus))

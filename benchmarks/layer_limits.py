@@ -23,7 +23,7 @@ import argparse
 import numpy as np
 
 import shtaerman.fem.mesh as fem_mesh
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.layer import half_space_limit, thin_layer_limit
@@ -39,8 +39,7 @@ def layer_force(
     indenter: PowerLawIndenter, body: Material, depth: float, thickness: float, base: str
 ) -> tuple[float, float]:
     """FEM force (N) and contact radius (m) at ``depth`` on the layer, default mesh."""
-    mesh = MeshSettings(thickness=thickness, base=base)
-    result = run_indentation(indenter, body, np.array([depth]), mesh)
+    result = run_indentation(indenter, body, np.array([depth]), geometry=Geometry(thickness, base))
     step = result.steps[-1]
     return step.force, step.contact_radius
 

@@ -18,7 +18,7 @@ import argparse
 
 import numpy as np
 
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.layer import half_space_limit, thin_layer_limit
@@ -56,8 +56,7 @@ def fe_force(
     indenter: PowerLawIndenter, body: Material, depth: float, thickness: float, base: str
 ) -> tuple[float, int]:
     """FE force (N) and dofs at ``depth`` on the default layer mesh."""
-    settings = MeshSettings(thickness=thickness, base=base)
-    result = run_indentation(indenter, body, np.array([depth]), settings)
+    result = run_indentation(indenter, body, np.array([depth]), geometry=Geometry(thickness, base))
     return result.steps[-1].force, int(result.mesh_stats["dofs"])
 
 

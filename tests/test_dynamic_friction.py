@@ -19,6 +19,7 @@ import pytest
 from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.fem.dynamic_contact import DynamicSettings, prepare_dynamic_impact
 from shtaerman.fem.impact import run_impact
+from shtaerman.fem.mesh import HALF_SPACE, Geometry
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
@@ -31,11 +32,12 @@ PAPER = PowerLawIndenter(5.0, 1.5)
 COARSE = DynamicSettings(steps=60, size=0.05)
 RUBBER = Material(7.5e6, 0.5)
 COMPRESSIBLE = Material(7.5e6, 0.3)
-PAD = DynamicSettings(steps=60, size=0.05, thickness=0.02)
+PAD = Geometry(0.02)
 
 
-def _run(material: Material, friction: float | None, density: float = 1100.0, settings=COARSE):
-    return run_impact(PAPER, material, density, 0.7, 3.0, settings, friction=friction)
+def _run(material: Material, friction: float | None, density: float = 1100.0, geometry=HALF_SPACE):
+    physics = {"friction": friction, "geometry": geometry}
+    return run_impact(PAPER, material, density, 0.7, 3.0, COARSE, **physics)
 
 
 @pytest.fixture(scope="module")
@@ -134,7 +136,7 @@ def test_massless_coulomb_impact_loses_its_slip_work():
 
 
 def test_a_layer_takes_the_friction():
-    free, zero, bonded = (_run(RUBBER, mu, settings=PAD) for mu in (None, 0.0, math.inf))
+    free, zero, bonded = (_run(RUBBER, mu, geometry=PAD) for mu in (None, 0.0, math.inf))
     _same_history(zero, free)
     # on a thin layer the base couples the normal and tangential problems even at nu = 0.5:
     # the bonded pad is stiffer, observed P_max +0.45 %, x_max -0.11 %

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 import pytest
 
@@ -12,7 +10,7 @@ from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.hyperelastic import NeoHookean, assemble_hyperelastic
 from shtaerman.fem.impact import run_impact
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from shtaerman.fem.rubber import RubberModel
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
@@ -30,10 +28,10 @@ def massless():
     return run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, SETTINGS)
 
 
-def _static_reference(result, mesh=COARSE):
+def _static_reference(result, mesh=COARSE, geometry=HALF_SPACE):
     """x_max, P_max of the impact integrated on the same mesh's static curve (energy root)."""
     refined = result.mesh["refined_radius"]
-    system = assemble_hyperelastic(mesh.build(refined), NeoHookean(7.5e6, 0.5))
+    system = assemble_hyperelastic(mesh.build(refined, geometry), NeoHookean(7.5e6, 0.5))
     depths = result.x_max * np.linspace(0.97, 1.03, 7)
     curve = solve_finite_contact(system, INDENTER, depths, refined)
     energy = np.array([s.strain_energy for s in curve.steps])
@@ -58,16 +56,16 @@ def test_massless_body_is_the_impact_on_the_static_curve(massless):
     assert massless.x_max > massless.parameters["quasi_static_x_c"]
 
 
-PAD = replace(COARSE, thickness=0.02)  # the paper's striker on a 20 mm pad, bonded base
+PAD = Geometry(0.02)  # the paper's striker on a 20 mm pad, bonded base
 
 
 @pytest.fixture(scope="module")
 def pad():
-    return run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, replace(SETTINGS, mesh=PAD))
+    return run_impact(INDENTER, RUBBER, 0.0, MASS, 3.0, SETTINGS, geometry=PAD)
 
 
 def test_massless_pad_is_the_impact_on_its_own_static_curve(pad, massless):
-    x_ref, p_ref = _static_reference(pad, PAD)
+    x_ref, p_ref = _static_reference(pad, COARSE, PAD)
     assert pad.x_max == pytest.approx(x_ref, rel=3e-3)
     assert pad.P_max == pytest.approx(p_ref, rel=3e-3)
     assert pad.restitution == pytest.approx(1.0, abs=5e-4)
@@ -85,7 +83,8 @@ def test_a_pad_with_inertia_keeps_its_waves_and_closes_its_energy(pad):
             1100.0,
             MASS,
             3.0,
-            FiniteImpactSettings(steps, replace(coarse, thickness=0.02)),
+            FiniteImpactSettings(steps, coarse),
+            geometry=PAD,
         )
         for steps in (30, 60)
     ]

@@ -20,7 +20,7 @@ import shtaerman.fem.stepper as stepper
 from shtaerman.cli import main
 from shtaerman.fem.finite_dynamic import FiniteImpactSettings
 from shtaerman.fem.impact import run_impact
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry, MeshSettings
 from shtaerman.problem import Problem
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
@@ -152,11 +152,11 @@ def test_a_frictional_impact_on_a_pad_beyond_the_reach_is_refused_before_any_wor
     alternative; the same striker without friction still runs on the pad (with a warning)."""
     from shtaerman.validation import InputError
 
-    pad = FiniteImpactSettings(mesh=MeshSettings(thickness=0.012))
+    settings = FiniteImpactSettings(mesh=MeshSettings())
     with pytest.raises(InputError, match=r"2\.27.*interface='frictionless'") as refused:
         run_impact(
-            PowerLawIndenter(8.0, 1.3), Material(3e6, 0.49), 1000.0, 0.12, 1.5, pad,
-            prony=PronySeries.parse("0.3:1e-3"), friction=friction,
+            PowerLawIndenter(8.0, 1.3), Material(3e6, 0.49), 1000.0, 0.12, 1.5, settings,
+            prony=PronySeries.parse("0.3:1e-3"), friction=friction, geometry=Geometry(0.012),
         )  # fmt: skip
     assert refused.value.parameter == "velocity"
 

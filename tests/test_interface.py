@@ -28,7 +28,7 @@ from shtaerman.cli import main
 from shtaerman.fem.contact.linear import solve_contact
 from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.fem.elasticity import assemble
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry, MeshSettings
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
@@ -171,9 +171,9 @@ def test_bonded_indenter_on_a_layer():
     indenter = PowerLawIndenter(5.0, 1.5)
     depth = np.array([5.0 * RADIUS**1.5])
     body = Material(E2, 0.5)
-    mesh = MeshSettings(size=1 / 20, thickness=0.5 * RADIUS)
+    mesh, layer = MeshSettings(size=1 / 20), Geometry(0.5 * RADIUS)
     forces = [
-        run_indentation(indenter, body, depth, mesh, friction=friction).steps[-1]
+        run_indentation(indenter, body, depth, mesh, friction=friction, geometry=layer).steps[-1]
         for friction in (None, math.inf)  # frictionless, bonded
     ]
     assert forces[1].force > 1.05 * forces[0].force

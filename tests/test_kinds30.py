@@ -11,7 +11,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import HALF_SPACE, Geometry
 from shtaerman.output.text_finite import curve_finding
 from shtaerman.study.schema import StudyError, load_study
 from shtaerman.sweep import SweepError, parse_sweep
@@ -27,15 +27,14 @@ def _finite_file(tmp_path: Path, extra: str, layer: str = "") -> Path:
     return path
 
 
-def test_a_finite_strain_study_carries_its_interface_and_pad_into_both_meshes(tmp_path):
+def test_a_finite_strain_study_carries_its_interface_and_pad(tmp_path):
     path = _finite_file(tmp_path, 'interface = "bonded"\nfriction = 0.5', "thickness_ratio = 5.0")
     (study,) = load_study(path)
     assert study.interface.coefficient == 0.5  # the finite and the same-mesh linear FEM's
-    for mesh in (study.mesh, study.quick_mesh):
-        assert mesh.base == "bonded"
+    assert study.geometry.base == "bonded"  # both meshes' (the full and the quick one)
     # H = 5 a_c of the paper's impact with a rigid striker (`shtaerman impact --E1 inf --json`:
     # a_c = 0.00964917209229948 m); the same closed form, so 1e-12 is round-off
-    assert study.mesh.thickness == pytest.approx(5 * 0.00964917209229948, rel=1e-12)
+    assert study.geometry.thickness == pytest.approx(5 * 0.00964917209229948, rel=1e-12)
 
 
 @pytest.mark.parametrize(
@@ -55,10 +54,10 @@ def test_a_finite_strain_study_refuses_a_curve_that_does_not_combine(tmp_path, e
 
 
 def test_the_finite_strain_findings_state_the_interface_and_the_pad():
-    mesh, surface = MeshSettings(thickness=0.02, base="bonded"), sh.Interface("bonded", 0.5)
-    (said,) = curve_finding(SimpleNamespace(study=SimpleNamespace(mesh=mesh, interface=surface)))
+    pad, surface = Geometry(0.02, "bonded"), sh.Interface("bonded", 0.5)
+    (said,) = curve_finding(SimpleNamespace(study=SimpleNamespace(geometry=pad, interface=surface)))
     assert "Coulomb friction 0.5" in said and "pad H = 20 mm on a bonded rigid base" in said
-    paper = SimpleNamespace(mesh=MeshSettings(), interface=sh.Interface())
+    paper = SimpleNamespace(geometry=HALF_SPACE, interface=sh.Interface())
     assert curve_finding(SimpleNamespace(study=paper)) == []
 
 
@@ -73,7 +72,7 @@ def test_a_contact_sweep_case_solves_its_interface_and_its_viscoelastic_curve():
 def test_a_finite_strain_sweep_case_meshes_its_pad():
     p = get_kind("finite-strain").defaults() | {"thickness": 0.02, "interface": "bonded"}
     study = _finite_check(p)
-    assert (study.mesh.thickness, study.mesh.base) == (0.02, "bonded")
+    assert (study.geometry.thickness, study.geometry.base) == (0.02, "bonded")
     assert study.interface.coefficient == math.inf  # bonded, no slip
 
 

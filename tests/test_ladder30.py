@@ -99,15 +99,14 @@ def test_the_massless_pad_beyond_the_reach_is_refused_on_every_route():
     """The study and sweep routes call prepare_finite_impact without the API's check: the
     massless frictionless pad beyond the reach (x/a 2.27 > 1.2) is refused there too, before
     any mesh (on the old code it was meshed and then failed in Newton at 2.6 mm)."""
-    from dataclasses import replace
-
     from shtaerman.fem.finite_dynamic import IMPACT_MESH, prepare_finite_impact
     from shtaerman.fem.finite_dynamic import FiniteImpactSettings as Settings
+    from shtaerman.fem.mesh import Geometry
     from shtaerman.validation import InputError
 
-    settings = Settings(mesh=replace(IMPACT_MESH, thickness=0.012))
+    settings, layer = Settings(mesh=IMPACT_MESH), {"geometry": Geometry(0.012)}
     with pytest.raises(InputError, match=r"a massless body \(density2=0\) cannot pass") as error:
-        prepare_finite_impact(PAD, RUBBER, 0.0, 0.12, 1.5, settings)
+        prepare_finite_impact(PAD, RUBBER, 0.0, 0.12, 1.5, settings, **layer)
     assert "mass, velocity" in str(error.value) and "\n" not in str(error.value)
     # with inertia the frictionless pad is not refused here: it runs with a warning
-    assert prepare_finite_impact(PAD, RUBBER, 1000.0, 0.12, 1.5, settings).mesh["dofs"] > 0
+    assert prepare_finite_impact(PAD, RUBBER, 1000.0, 0.12, 1.5, settings, **layer).mesh["dofs"]

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import shtaerman as sh
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry, MeshSettings
 from shtaerman.study.contact.accuracy import LAYER_TRUNCATION, run_ladder
 from shtaerman.study.contact.indentation import refined_radius
 from shtaerman.study.ladder import check_ladder
@@ -30,8 +30,8 @@ DEPTH = float(half_space_limit(INDENTER, BODY).depth(RADIUS))
 
 def test_layer_force_estimate_brackets_the_reference_error():
     depths = np.array([0.4 * DEPTH, DEPTH])
-    settings = MeshSettings(size=COARSE, thickness=RADIUS, base="bonded")
-    result = run_ladder(INDENTER, BODY, depths, settings)
+    settings = MeshSettings(size=COARSE)
+    result = run_ladder(INDENTER, BODY, depths, settings, geometry=Geometry(RADIUS, "bonded"))
     reference = LayerReference(INDENTER, BODY, RADIUS, "bonded")
     true = max(
         abs(step.force / reference.force(depth) - 1.0)
@@ -68,15 +68,15 @@ def test_accuracy_below_the_layer_edge_is_refused():
 
 
 def test_layer_size_guard_uses_the_layer_estimate_before_the_ladder():
-    settings = MeshSettings(thickness=1.5 * RADIUS)
-    refined = refined_radius(INDENTER, np.array([DEPTH]), settings)
-    layer = settings.layer_dofs(settings.thickness / refined)
+    settings, geometry = MeshSettings(), Geometry(1.5 * RADIUS)
+    refined = refined_radius(INDENTER, np.array([DEPTH]), settings, geometry)
+    layer = settings.layer_dofs(1.5 * RADIUS / refined)
     assert layer < settings.estimated_dofs  # the half-space estimate was checked before
-    between = MeshSettings(thickness=1.5 * RADIUS, max_dofs=0.5 * (layer + settings.estimated_dofs))
-    check_ladder(between, 1.0, refined)  # the layer fits
-    below = MeshSettings(thickness=1.5 * RADIUS, max_dofs=0.8 * layer)
+    between = MeshSettings(max_dofs=0.5 * (layer + settings.estimated_dofs))
+    check_ladder(between, 1.0, refined, geometry)  # the layer fits
+    below = MeshSettings(max_dofs=0.8 * layer)
     with pytest.raises(InputError, match="this layer mesh would have about"):
-        check_ladder(below, 1.0, refined)
+        check_ladder(below, 1.0, refined, geometry)
 
 
 def test_api_refuses_a_too_large_layer_before_any_level():

@@ -22,6 +22,7 @@ from shtaerman.cli import main
 from shtaerman.fem.dynamic_contact import DynamicSettings
 from shtaerman.fem.dynamic_layer import LATERAL_RATE, MAX_LATERAL, AbsorbingLayer, lateral_absorber
 from shtaerman.fem.impact import run_impact
+from shtaerman.fem.mesh import Geometry
 from shtaerman.output.text_dynamic import study_findings
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import StudyError, load_study
@@ -35,8 +36,8 @@ PAD = 0.02
 
 
 def _run(thickness: float | None, base: str = "bonded", density: float = 1100.0):
-    settings = DynamicSettings(thickness=thickness, base=base)
-    return run_impact(PAPER, RUBBER, density, 0.7, 3.0, settings)
+    geometry = Geometry(thickness, None if thickness is None else base)
+    return run_impact(PAPER, RUBBER, density, 0.7, 3.0, DynamicSettings(), geometry=geometry)
 
 
 @pytest.fixture(scope="module")
@@ -118,17 +119,17 @@ def test_a_massless_layer_is_the_quasi_static_impact_on_its_static_law(base):
 
 def test_the_lateral_edge_lies_beyond_the_absorber_unless_it_is_too_far():
     c_s, t_y, refined = 47.7, 8.2e-3, 0.0125  # the paper's rubber and impact
-    settings = DynamicSettings(thickness=PAD)
-    layer, edge, on = lateral_absorber(settings, c_s, t_y, refined)
+    settings = DynamicSettings()
+    layer, edge, on = lateral_absorber(settings, PAD, c_s, t_y, refined)
     # the sin^2 bump from 0.75 to 3.75 c_s t_y, in r only; the edge at its end
     assert on and layer.lateral and layer.rate == pytest.approx(LATERAL_RATE / t_y)
     assert edge == pytest.approx(3.75 * c_s * t_y) and edge > refined + 10 * PAD
     # a nearly massless layer (c_s x 1000): no absorber, the edge at 10 thicknesses
-    layer, edge, on = lateral_absorber(settings, 1000 * c_s, t_y, refined)
+    layer, edge, on = lateral_absorber(settings, PAD, 1000 * c_s, t_y, refined)
     assert not on and edge == pytest.approx(refined + 10 * PAD)
     # an explicit layer_rate is the absorber's
     rated = dataclasses.replace(settings, layer_rate=3.0)
-    assert lateral_absorber(rated, c_s, t_y, refined)[0].rate == pytest.approx(3.0 / t_y)
+    assert lateral_absorber(rated, PAD, c_s, t_y, refined)[0].rate == pytest.approx(3.0 / t_y)
     assert 3.75 * c_s * t_y < MAX_LATERAL * 0.001  # a 1 mm pad still has one
 
 
@@ -227,11 +228,10 @@ def test_study_file_takes_the_layer(tmp_path: Path):
     path = tmp_path / "pad.toml"
     path.write_text(STUDY.format(layer='[layer]\nthickness = 0.02\nbase = "lubricated"'))
     (study,) = load_study(path)
-    assert study.settings.thickness == 0.02 and study.settings.base == "lubricated"
-    assert study.quick_settings.thickness == 0.02
+    assert study.geometry.thickness == 0.02 and study.geometry.base == "lubricated"
     path.write_text(STUDY.format(layer=""))
     (study,) = load_study(path)
-    assert study.settings.thickness is None
+    assert study.geometry.thickness is None
 
 
 def test_a_layer_study_runs_and_its_findings_name_the_layer(tmp_path: Path):

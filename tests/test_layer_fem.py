@@ -13,7 +13,7 @@ import pytest
 import shtaerman as sh
 import shtaerman.fem.mesh as fem_mesh
 from shtaerman.cli import main
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.layer import (
@@ -34,17 +34,16 @@ def _depth(body: Material) -> float:
 
 
 def _force(body: Material, h_over_a: float, base: str = "bonded", size: float | None = None):
-    settings = MeshSettings(thickness=h_over_a * RADIUS, base=base)
-    if size is not None:
-        settings = MeshSettings(size=size, thickness=h_over_a * RADIUS, base=base)
-    result = run_indentation(INDENTER, body, np.array([_depth(body)]), settings)
+    settings = MeshSettings() if size is None else MeshSettings(size=size)
+    layer = Geometry(h_over_a * RADIUS, base)
+    result = run_indentation(INDENTER, body, np.array([_depth(body)]), settings, geometry=layer)
     return result.steps[-1].force
 
 
 @pytest.mark.parametrize("base", ["bonded", "lubricated"])
 def test_layer_mesh_resolves_the_thickness_and_names_the_base(base):
-    settings = MeshSettings(thickness=0.05, base=base)
-    mesh = settings.build(1.0)
+    settings = MeshSettings()
+    mesh = settings.build(1.0, Geometry(0.05, base))
     assert mesh.p[1].min() == pytest.approx(-0.05, abs=1e-12)
     assert mesh.p[0].max() == pytest.approx(settings.lateral_extent(0.05), rel=1e-12)
     # a bonded base is clamped with the far edge; a lubricated one is a boundary of its own
@@ -61,9 +60,8 @@ def test_layer_mesh_resolves_the_thickness_and_names_the_base(base):
 
 
 def test_half_space_settings_are_unchanged():
-    settings = MeshSettings()
-    assert settings.thickness is None and settings.base == "bonded"
-    assert settings.zone_factor(1.5) == 1.0  # the refined zone of the half-space as before
+    assert HALF_SPACE.thickness is None and HALF_SPACE.base is None
+    assert HALF_SPACE.zone_factor(1.5) == 1.0  # the refined zone of the half-space as before
 
 
 def test_thin_compressible_bonded_layer_tends_to_the_oedometric_foundation():

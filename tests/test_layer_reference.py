@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry, MeshSettings
 from shtaerman.study.contact.indentation import run_indentation
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.layer import half_space_limit, thin_layer_limit
@@ -134,7 +134,8 @@ def test_reference_refuses_bad_input():
 def test_fe_force_agrees_with_the_reference(n, nu, base, h_over_a, tolerance):
     indenter, body, depth = _case(n, nu)
     thickness = h_over_a * RADIUS
-    settings = MeshSettings(size=COARSE, thickness=thickness, base=base)
-    force = run_indentation(indenter, body, np.array([depth]), settings).steps[-1].force
+    settings, layer = MeshSettings(size=COARSE), Geometry(thickness, base)
+    force = run_indentation(indenter, body, np.array([depth]), settings, geometry=layer)
+    force = force.steps[-1].force
     reference = LayerReference(indenter, body, thickness, base).force(depth)
     assert force == pytest.approx(reference, rel=tolerance)

@@ -64,8 +64,7 @@ def _half_space_a_c(E1: float = 2e11, nu2: float = 0.5) -> float:
 
 def test_thickness_in_metres_reaches_the_mesh(tmp_path):
     (study,) = load_study(_write(tmp_path, '[layer]\nthickness = 0.02\nbase = "lubricated"\n'))
-    assert study.mesh.thickness == study.quick_mesh.thickness == 0.02
-    assert study.mesh.base == study.quick_mesh.base == "lubricated"
+    assert study.geometry.thickness == 0.02 and study.geometry.base == "lubricated"
     assert study.layer.thickness_ratio == pytest.approx(0.02 / _half_space_a_c(), rel=1e-12)
 
 
@@ -73,13 +72,13 @@ def test_thickness_ratio_is_h_over_the_half_space_contact_radius_at_x_c(tmp_path
     (study,) = load_study(_write(tmp_path, "[layer]\nthickness_ratio = 3.0\n"))
     a_c = _half_space_a_c()
     assert 9e-3 < a_c < 1.1e-2  # the paper's a_c, about 10 mm
-    assert study.mesh.thickness == pytest.approx(3.0 * a_c, rel=1e-12)
-    assert study.mesh.base == "bonded"  # the default base
+    assert study.geometry.thickness == pytest.approx(3.0 * a_c, rel=1e-12)
+    assert study.geometry.base == "bonded"  # the default base
 
 
 def test_a_half_space_study_has_no_layer(tmp_path):
     (study,) = load_study(_write(tmp_path, ""))
-    assert study.layer is None and study.mesh.thickness is None
+    assert study.layer is None and study.geometry.thickness is None
 
 
 def test_a_layer_that_is_no_table_is_refused_naming_the_table(tmp_path):
@@ -93,7 +92,7 @@ def test_a_top_level_thickness_goes_to_the_layer_table(tmp_path):
     path = tmp_path / "top.toml"
     path.write_text("thickness_ratio = 2.0\n" + STUDY.format(E1="2e11", nu2=0.5), "utf-8")
     (study,) = load_study(path)
-    assert study.mesh.thickness == pytest.approx(2.0 * _half_space_a_c(), rel=1e-12)
+    assert study.geometry.thickness == pytest.approx(2.0 * _half_space_a_c(), rel=1e-12)
 
 
 def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
@@ -101,8 +100,8 @@ def test_sweeping_the_thickness_ratio_makes_one_study_per_thickness(tmp_path):
     studies = load_study(_write(tmp_path, extra))
     assert [s.name for s in studies] == ["pad-Ha0.5", "pad-Ha5"]
     a_c = _half_space_a_c()
-    assert [s.mesh.thickness for s in studies] == pytest.approx([0.5 * a_c, 5.0 * a_c])
-    assert {s.mesh.base for s in studies} == {"lubricated"}
+    assert [s.geometry.thickness for s in studies] == pytest.approx([0.5 * a_c, 5.0 * a_c])
+    assert {s.geometry.base for s in studies} == {"lubricated"}
 
 
 @pytest.mark.parametrize(
@@ -162,17 +161,16 @@ def test_a_thickness_the_mesh_cannot_take_is_refused_at_load(tmp_path, thickness
 
 
 def test_the_load_time_bounds_are_the_mesh_s(tmp_path):
-    from dataclasses import replace
-
+    from shtaerman.fem.mesh import Geometry
     from shtaerman.study.contact.indentation import run_indentation
 
     extra = "[contact]\ndepths = [1e-3, 4e-3]\n[layer]\nthickness = 1e-6\n"
     with pytest.raises(StudyError) as at_load:
         load_study(_write(tmp_path, extra))
     (study,) = load_study(_write(tmp_path, extra.replace("1e-6", "0.01")))
-    mesh = replace(study.mesh, thickness=1e-6)
+    thin = Geometry(1e-6)
     with pytest.raises(InputError) as at_run:  # refused before meshing
-        run_indentation(study.indenter, study.half_space, [1e-3, 4e-3], mesh)
+        run_indentation(study.indenter, study.half_space, [1e-3, 4e-3], study.mesh, geometry=thin)
     bounds = str(at_run.value).split(" m at ")[0].removeprefix("thickness: must lie in ")
     assert f"thickness: must lie in {bounds} m at this study's depths" in str(at_load.value)
 
@@ -241,17 +239,17 @@ def test_the_layer_sweep_resolves_thickness_ratio_to_h():
     kind = get_kind("layer")
     studies = [kind.check(case.params) for case in spec.cases()]
     a_c = _half_space_a_c(nu2=0.3)
-    assert [s.mesh.thickness for s in studies] == pytest.approx([0.5 * a_c, 20 * a_c])
+    assert [s.geometry.thickness for s in studies] == pytest.approx([0.5 * a_c, 20 * a_c])
     assert [s.layer.thickness_ratio for s in studies] == [0.5, 20.0]
-    assert {s.mesh.base for s in studies} == {"bonded"}
+    assert {s.geometry.base for s in studies} == {"bonded"}
 
 
 def test_the_layer_sweep_takes_a_thickness_in_metres():
     text = SWEEP.format(parameters="", axes='thickness = [0.01, 0.02]\nbase = ["lubricated"]')
     studies = [get_kind("layer").check(case.params) for case in parse_sweep(text).cases()]
-    assert [s.mesh.thickness for s in studies] == [0.01, 0.02]
+    assert [s.geometry.thickness for s in studies] == [0.01, 0.02]
     assert studies[1].layer.thickness_ratio == pytest.approx(0.02 / _half_space_a_c())
-    assert studies[0].mesh.base == "lubricated"
+    assert studies[0].geometry.base == "lubricated"
 
 
 def test_a_layer_sweep_case_is_the_study_of_the_same_file(tmp_path):
@@ -350,8 +348,8 @@ def test_the_template_s_layer_block_loads_once_uncommented(tmp_path):
     block = [line.removeprefix("# ") for line in lines[start : start + 5]]  # comments stay
     path.write_text("\n".join(lines + block) + "\n", encoding="utf-8")
     (study,) = load_study(path)
-    assert study.layer.thickness_ratio == 5.0 and study.mesh.base == "bonded"
-    assert study.mesh.thickness == pytest.approx(5.0 * _half_space_a_c(), rel=1e-12)
+    assert study.layer.thickness_ratio == 5.0 and study.geometry.base == "bonded"
+    assert study.geometry.thickness == pytest.approx(5.0 * _half_space_a_c(), rel=1e-12)
 
 
 def test_the_reference_map_is_what_the_layer_study_computes(bonded_pair):

@@ -32,12 +32,11 @@ def test_dynamic_study_takes_the_contact_studys_layer_table(tmp_path: Path):
     path.write_text(DYNAMIC.format(layer='[layer]\nthickness_ratio = 2.0\nbase = "lubricated"'))
     (study,) = load_study(path)
     # H / a_c resolved at the figure velocity's half-space contact radius (3 m/s here)
-    assert study.settings.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
-    assert study.settings.base == "lubricated"
-    assert study.quick_settings.thickness == study.settings.thickness
+    assert study.geometry.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
+    assert study.geometry.base == "lubricated"
     path.write_text("thickness = 0.02\n" + DYNAMIC.format(layer=""))  # top level: to [layer]
     (study,) = load_study(path)
-    assert study.settings.thickness == 0.02 and study.settings.base == "bonded"
+    assert study.geometry.thickness == 0.02 and study.geometry.base == "bonded"
 
 
 @pytest.mark.parametrize(
@@ -70,26 +69,28 @@ def _dynamic_case(**given):
     return {**kind.defaults(), "estimate": False, **given}
 
 
-def _dynamic_settings(**given):
-    """The settings a dynamic sweep case runs with (``sh.dynamic``'s, checked)."""
+def _dynamic_geometry(**given):
+    """The geometry a dynamic sweep case runs on (its problem's, its numerics checked as
+    ``sh.dynamic`` checks them)."""
     from shtaerman.api.fem_dynamic import check_dynamic
     from shtaerman.sweep.kinds import _dynamic
 
     problem, numerics = _dynamic(_dynamic_case(**given))
-    return check_dynamic(problem, **numerics)
+    check_dynamic(problem, **numerics)
+    return problem.geometry
 
 
 def test_dynamic_sweep_kind_takes_the_layer():
     from shtaerman.sweep.kinds import get_kind
 
     assert {"thickness", "thickness_ratio", "base"} <= set(get_kind("dynamic").parameters)
-    settings = _dynamic_settings()
-    assert settings.thickness is None  # no thickness: the half-space, as before
-    settings = _dynamic_settings(thickness_ratio=2.0, base="lubricated")
-    assert settings.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
-    assert settings.base == "lubricated"
-    settings = _dynamic_settings(thickness=0.02, refine=2.0)
-    assert settings.thickness == 0.02 and settings.base == "bonded"
+    geometry = _dynamic_geometry()
+    assert geometry.thickness is None  # no thickness: the half-space, as before
+    geometry = _dynamic_geometry(thickness_ratio=2.0, base="lubricated")
+    assert geometry.thickness == pytest.approx(2.0 * _half_space_contact_radius(3.0))
+    assert geometry.base == "lubricated"
+    geometry = _dynamic_geometry(thickness=0.02, refine=2.0)
+    assert geometry.thickness == 0.02 and geometry.base == "bonded"
 
 
 @pytest.mark.parametrize(
@@ -105,7 +106,7 @@ def test_dynamic_sweep_kind_refuses_a_bad_layer(given, message):
     from shtaerman.validation import InputError
 
     with pytest.raises(InputError, match=message):
-        _dynamic_settings(**given)
+        _dynamic_geometry(**given)
 
 
 def test_a_dynamic_sweep_refuses_at_load_what_the_cli_refuses(tmp_path: Path, capsys):

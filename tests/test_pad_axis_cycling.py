@@ -30,13 +30,14 @@ from shtaerman.fem.contact.finite import (
 )
 from shtaerman.fem.finite_dynamic import IMPACT_MESH, FiniteImpactSettings, prepare_finite_impact
 from shtaerman.fem.hyperelastic import NewtonError
-from shtaerman.fem.mesh import MeshSettings
+from shtaerman.fem.mesh import Geometry, MeshSettings
 from shtaerman.fem.stepper import QuasiStaticBody
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.validation import NumericalFailureError
 
 DEPTHS = [4e-4, 8e-4, 1.2e-3, 1.6e-3, 2.0e-3, 2.4e-3]  # m: x/H up to 0.6 on the 4 mm pad
+PAD = Geometry(4e-3)  # the 4 mm pad on its bonded base
 
 SQUEEZE_LIMIT = "neither a finer mesh_size=... nor {} move"
 """What the squeeze note says no option of the run moves: each route names its own steps
@@ -64,8 +65,9 @@ def test_the_pad_on_the_impacts_axis_grading_ties_its_axis_node_to_the_ring():
     """On the impact's axis grading (1e-3) the axis node's multiplier crosses zero near 2.16
     mm: in the set it pulled, out of it it penetrated by 7e-7 of the depth, on alternate
     iterations; the curve failed at 2.164 mm (every halving) before the tie."""
-    mesh = MeshSettings(size=0.2, thickness=4e-3, axis_size=1e-3)
-    curve = run_finite_indentation(PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), DEPTHS, mesh)
+    mesh = MeshSettings(size=0.2, axis_size=1e-3)
+    inputs = (PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), DEPTHS, mesh)
+    curve = run_finite_indentation(*inputs, geometry=PAD)
     force = np.array([step.force for step in curve.steps])
     assert [step.depth for step in curve.steps] == DEPTHS and np.all(np.diff(force) > 0)
     last = curve.steps[-1]
@@ -191,7 +193,8 @@ def test_a_pad_squeezed_past_its_elements_says_so_and_not_finer_mesh():
         0.0,
         0.7,
         3.0,
-        FiniteImpactSettings(mesh=replace(IMPACT_MESH, size=0.2, thickness=4e-3)),
+        FiniteImpactSettings(mesh=replace(IMPACT_MESH, size=0.2)),
+        geometry=PAD,
     )
     system = setup.stepper.system
     assert squeeze_note(system, np.zeros(system.n_dofs), "") is None  # J = 1 undeformed
@@ -214,9 +217,10 @@ def test_the_pad_curve_squeezed_past_its_elements_says_so_too():
     fails after 8 halvings with the axis element squeezed; it names that limit, not a finer
     mesh."""
     depths = list(np.arange(1, 40) * 1e-4)
-    mesh = MeshSettings(size=0.2, thickness=4e-3, axis_size=1e-4)
+    mesh = MeshSettings(size=0.2, axis_size=1e-4)
     with pytest.raises(NewtonError) as failed:
-        run_finite_indentation(PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), depths, mesh)
+        inputs = (PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), depths, mesh)
+        run_finite_indentation(*inputs, geometry=PAD)
     message = str(failed.value)
     # measured: fails at 3.8876 mm, the last converged state's J 0.19 at R 0.94 um (13 CPU s)
     assert SQUEEZE_LIMIT.format("smaller load steps") in message  # a curve has no time steps

@@ -14,6 +14,7 @@ from figure_helpers import capture
 from study_texts import DYNAMIC_STUDY
 
 from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.mesh import Geometry
 from shtaerman.plots import dynamic, impact_energy
 from shtaerman.study.dynamic.case import run_case
 from shtaerman.study.run import run_study
@@ -23,7 +24,7 @@ from shtaerman.theory.materials import Material
 
 INDENTER = PowerLawIndenter(5.0, 1.5)
 RUBBER = Material(7.5e6, 0.5)
-PAD = DynamicSettings(steps=60, size=0.2, thickness=0.02)
+PAD = DynamicSettings(steps=60, size=0.2)
 HALF_SPACE = DynamicSettings(steps=60, size=0.1)
 STUDY = (
     DYNAMIC_STUDY
@@ -42,7 +43,7 @@ def _legend(ax) -> list[str]:
 
 @pytest.fixture(scope="module")
 def pad_case():
-    return run_case(INDENTER, RUBBER, 1100.0, 0.7, 3.0, PAD)
+    return run_case(INDENTER, RUBBER, 1100.0, 0.7, 3.0, PAD, geometry=Geometry(0.02))
 
 
 @pytest.fixture(scope="module")

@@ -17,6 +17,7 @@ from figure_helpers import capture, svg_text
 from PIL import Image
 
 from shtaerman.cli import main
+from shtaerman.fem.mesh import HALF_SPACE
 from shtaerman.plots import curves, dynamic, finite, labels, style
 from shtaerman.study.contact.convergence import ConvergenceStudy
 from shtaerman.sweep import figures as sweep_figures_module
@@ -308,7 +309,7 @@ def fake_dynamic(errors):
     return SimpleNamespace(
         velocities=[1.0, 2.0, 3.0],
         cases=cases,
-        settings=SimpleNamespace(thickness=None),  # the half-space: its estimate is drawn
+        study=SimpleNamespace(geometry=HALF_SPACE),  # the half-space: its estimate is drawn
         estimate_curve=lambda: {
             "velocity": [1.0, 3.0],
             "restitution": [0.97, 0.9],

@@ -16,6 +16,7 @@ import pytest
 import shtaerman as sh
 from shtaerman.cli import main
 from shtaerman.fem.dynamic_contact import DynamicSettings
+from shtaerman.fem.mesh import HALF_SPACE
 from shtaerman.study.dynamic.case import compare, run_case
 
 RUBBER = sh.Material(7.5e6, 0.5)
@@ -134,7 +135,7 @@ def test_the_input_check_solves_a_profiles_quasi_static_impact_once(monkeypatch)
     )
     assert len(solved) == 1
     # the same numbers as the scales solved on their own (one deterministic solve): equal
-    assert scales == dynamic_contact._scales(BALL, RUBBER, 1100.0, striker, COARSE)
+    assert scales == dynamic_contact._scales(BALL, RUBBER, 1100.0, striker, COARSE, HALF_SPACE)
 
 
 def test_a_ladder_sizes_its_runs_by_one_solve_of_the_profiles_impact(monkeypatch):

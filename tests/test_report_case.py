@@ -144,23 +144,22 @@ def test_the_validity_table_names_the_pad_and_the_hysteresis(pad_prony):
 
 
 @pytest.mark.parametrize(
-    ("settings", "inputs", "tested"),
+    ("inputs", "tested"),
     [
-        ({}, {"density2": 1100.0}, "no elastic waves"),
-        ({}, {"density2": 0.0, "prony": "0.5:2e-3"}, "no hysteresis (Prony series"),
+        ({"density2": 1100.0}, "no elastic waves"),
+        ({"density2": 0.0, "prony": "0.5:2e-3"}, "no hysteresis (Prony series"),
         (
-            {"thickness": 0.012, "base": "lubricated"},
-            {"density2": 1100.0},
+            {"thickness": 0.012, "base": "lubricated", "density2": 1100.0},
             "half-space, not the 12 mm pad on a lubricated rigid base; no elastic waves",
         ),
     ],
 )
-def test_the_assumption_tested_follows_the_study(settings, inputs, tested):
+def test_the_assumption_tested_follows_the_study(inputs, tested):
     inputs = {**inputs, "velocities": [1.0]}
-    study = {"settings": settings, "inputs": inputs, "limits": {"x": {"1%": None, "5%": None}}}
+    study = {"inputs": inputs, "limits": {"x": {"1%": None, "5%": None}}}
     ((assumption, *_),) = validity_rows("s", study)
     assert assumption.startswith(tested)
-    assert ("pad" in assumption) == ("thickness" in settings)
+    assert ("pad" in assumption) == ("thickness" in inputs)
     assert ("waves" in assumption) == (inputs["density2"] > 0)
 
 

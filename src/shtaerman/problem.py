@@ -22,6 +22,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple
 
+from .fem.mesh import Geometry
 from .theory.materials import RIGID, Material
 from .validation import InputError, validate_positive
 from .vocabulary import VOCABULARY, entry
@@ -170,31 +171,6 @@ class Body:
         if not self.finite:
             return None
         return rubber_model(self.model, *(getattr(self, name) for name in RUBBER_OPTIONS))
-
-
-@dataclass(frozen=True)
-class Geometry:
-    """The body's shape: a half-space (``thickness`` None), or a layer of ``thickness`` m on a
-    rigid ``base`` (``bonded``: u = 0, the default; ``lubricated``: u_z = 0)."""
-
-    thickness: float | None = None
-    base: str | None = None
-
-    def __post_init__(self) -> None:
-        if self.thickness is None:
-            if self.base is not None:
-                raise InputError(
-                    "base: applies to a layer only; give its thickness=... too", "base"
-                )
-            return
-        base = entry("base").default if self.base is None else self.base
-        object.__setattr__(self, "base", entry("base").check(base))
-        object.__setattr__(self, "thickness", float(entry("thickness").check(self.thickness)))
-
-    @property
-    def name(self) -> str:
-        """``half-space``, ``layer bonded`` or ``layer lubricated``."""
-        return "half-space" if self.thickness is None else f"layer {self.base}"
 
 
 @dataclass(frozen=True)

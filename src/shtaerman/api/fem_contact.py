@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..fem.mesh import HALF_SPACE, Geometry
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
 from ..problem import (
@@ -26,7 +27,6 @@ from ..problem import (
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry
-from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
@@ -184,14 +184,15 @@ def _with_impact(report: Mapping[str, Any], impact: tuple[float, float] | None) 
     return out
 
 
-def _check_coarsest(mesh: MeshSettings, refine: float, refined: float | None = None) -> None:
+def _check_coarsest(mesh: MeshSettings, refine: float, refined: float, geometry: Geometry) -> None:
     """Refuse at once a ladder whose coarsest level (refine / 2) is not a valid mesh (or
-    whose finest is too large; a layer's estimate needs its ``refined`` radius in m)."""
+    whose finest is too large; the estimate of the layer of ``geometry`` needs its
+    ``refined`` radius in m)."""
     from ..study.ladder import WITHOUT_ESTIMATE, check_ladder
 
-    mesh.refined(refine).check_size(refined)  # the run's own mesh: no estimate makes it smaller
+    mesh.refined(refine).check_size(refined, geometry)  # no estimate makes the run's smaller
     try:
-        check_ladder(mesh, refine, refined)
+        check_ladder(mesh, refine, refined, geometry)
     except InputError as error:
         if error.parameter == "thickness":  # a layer the mesh cannot resolve, estimate or not
             raise
@@ -216,6 +217,7 @@ class _Plan:
     relaxing: dict[str, Any] = field(default_factory=dict)  # prony and rate, or nothing
     impact: tuple[float, float] | None = None  # whose x_c the default depths reach
     friction: float | None = None  # the indenter's surface (Interface.coefficient)
+    geometry: Geometry = HALF_SPACE  # the body's shape
 
     @property
     def finite(self) -> bool:
@@ -232,14 +234,15 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     inputs = (plan.indenter, plan.body, plan.depths)
     steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
     linear = {"backend": plan.solver, "friction": plan.friction, **plan.relaxing}
+    linear["geometry"] = finite = plan.geometry
     if not plan.estimate:
         finest = plan.mesh.refined(plan.refine)
         if plan.finite:
-            return run_finite_study(*inputs, finest, plan.rubber, plan.friction), None
+            return run_finite_study(*inputs, finest, plan.rubber, plan.friction, finite), None
         return run_indentation(*inputs, finest, **linear), None
     if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
-        solve = lambda level: run_finite_study(*inputs, level, plan.rubber, plan.friction)  # noqa: E731
-        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, **steps)
+        solve = lambda level: run_finite_study(*inputs, level, plan.rubber, plan.friction, finite)  # noqa: E731
+        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, geometry=finite, **steps)
     elif plan.tolerance is None:
         ladder = run_ladder(*inputs, plan.mesh, **steps, **linear)
     else:
@@ -253,6 +256,7 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
             backend=plan.solver,
             progress=plan.progress,
             friction=plan.friction,
+            geometry=plan.geometry,
         )
     return ladder.finest, ladder
 
@@ -316,9 +320,10 @@ def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
     from ..study.contact.indentation import default_depths, refined_radius
 
     indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
-    paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh)
+    layer = problem.geometry
+    paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh, layer)
     check_contact_scale(modulus, paper)  # fails at the paper's impact too: not the mass's fault
-    check_contact_scale(modulus, refined_radius(indenter, depths, mesh), _impact(problem))
+    check_contact_scale(modulus, refined_radius(indenter, depths, mesh, layer), _impact(problem))
 
 
 def _check_depths(
@@ -345,7 +350,8 @@ def _check_depths(
     if estimate:
         from ..study.contact.indentation import refined_radius
 
-        _check_coarsest(mesh, refine, refined_radius(indenter, depths, mesh))
+        refined = refined_radius(indenter, depths, mesh, problem.geometry)
+        _check_coarsest(mesh, refine, refined, problem.geometry)
 
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
@@ -373,7 +379,6 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             "mesh",
         )
     mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
-    mesh = layer_mesh(mesh, problem.geometry)
     refine = validate_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
@@ -399,10 +404,8 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     if problem.body.prony is not None:
         relaxing = {"prony": problem.body.prony, "rate": problem.loading.rate}
     impact = None if problem.loading.depths is not None else _impact(problem)
-    friction = problem.interface.coefficient
-    return _Plan(
-        indenter, body, depths, problem.body.rubber(), mesh, *rest, relaxing, impact, friction
-    )
+    physics = (relaxing, impact, problem.interface.coefficient, problem.geometry)
+    return _Plan(indenter, body, depths, problem.body.rubber(), mesh, *rest, *physics)
 
 
 def contact(
@@ -533,4 +536,4 @@ def _warn_beyond_the_layer(plan: _Plan) -> None:
 
     deepest = float(plan.depths[-1])
     where = "the deepest depth"
-    warn_outside_validity(plan.indenter, deepest, plan.mesh.thickness, plan.finite, where)
+    warn_outside_validity(plan.indenter, deepest, plan.geometry.thickness, plan.finite, where)

@@ -15,7 +15,6 @@ from ..theory.materials import Material
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry, fields
 from .dynamic_result import DIFFERENCES, DynamicResult, check_separated, warn_failed_checks
-from .layer_options import layer_mesh
 
 if TYPE_CHECKING:
     from ..fem.dynamic_contact import DynamicSettings
@@ -346,7 +345,7 @@ def check_dynamic(
         chosen = finite_settings(problem, **numbers, refine=refine, estimate=estimate)
     else:
         check_layer_rate(options["layer_rate"], problem.geometry.thickness)
-        chosen = layer_mesh(dynamic_settings(settings, options), problem.geometry)
+        chosen = dynamic_settings(settings, options)
         validate_fem_inputs(problem.striker.indenter, problem.body.material)
         if estimate:
             check_ladder(chosen, refine)
@@ -381,7 +380,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
         representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5], ("velocity",))
         if settings is not None:
             physics = (problem.body.prony, problem.interface.coefficient)
-            check_dynamic_impact(*inputs, settings, *physics)
+            check_dynamic_impact(*inputs, settings, *physics, geometry=problem.geometry)
             return
     validate_density("density2", body.density)
     pad = problem.geometry.thickness is not None  # it stops the striker short of x_c

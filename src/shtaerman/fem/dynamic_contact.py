@@ -46,7 +46,6 @@ from .contact.linear import check_contact_scale, mass_factor
 from .contact.stick import CoupledCompliance, radial_dofs
 from .dynamic_layer import (
     AbsorbingLayer,
-    check_layer,
     lateral_absorber,
     layer_dofs,
     layer_impact_mesh,
@@ -71,7 +70,7 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mesh import MAX_DOFS, growth_error, halfspace_mesh
+from .mesh import HALF_SPACE, MAX_DOFS, Geometry, growth_error, halfspace_mesh
 from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
@@ -154,11 +153,9 @@ class DynamicSettings:
     spectral_radius : float or None
         rho_inf of generalized-alpha in [0, 1] (0.9: stiff modes damped, resolved ones not);
         None: Newmark average acceleration (exact energy identity, undamped ripple).
-    thickness : float or None
-        Thickness H in m of a layer on a rigid base (an absolute length, unlike the fields
-        above; :mod:`.dynamic_layer`); None: the half-space.
-    base : {"bonded", "lubricated"}
-        The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
+
+    The body's geometry (a half-space or a layer, :class:`.mesh.Geometry`) is no numerical
+    control: the runs take it beside these settings.
     """
 
     steps: int = 200
@@ -173,8 +170,6 @@ class DynamicSettings:
     tail: float = 1.25
     layer_width: float | None = 3.0
     spectral_radius: float | None = 0.9
-    thickness: float | None = None
-    base: str = "bonded"
 
     def __post_init__(self) -> None:
         validate_steps(self.steps, (MIN_STEPS, MAX_STEPS))
@@ -205,7 +200,6 @@ class DynamicSettings:
             )
         if not (math.isfinite(self.tail) and self.tail >= 0):
             raise InputError(f"tail must be >= 0, got {self.tail!r}")
-        check_layer(self.thickness, self.base)
 
     def refined(self, factor: float) -> DynamicSettings:
         """These settings with the mesh size field divided and the time steps multiplied by
@@ -366,6 +360,7 @@ def _scales(
     rho: float,
     striker: Striker,
     settings: DynamicSettings,
+    geometry: Geometry,
     prony: PronySeries | None = None,
     qs: _QuasiStatic | None = None,
 ) -> _Scales:
@@ -392,8 +387,10 @@ def _scales(
         width=None if settings.layer_width is None else settings.layer_width * c_s * t_y,
     )
     has_layer = layer.start + layer.ramp < 0.5 * domain_radius and settings.layer_rate > 0
-    if settings.thickness is not None:  # a layer: its lateral edge and absorber
-        layer, domain_radius, has_layer = lateral_absorber(settings, c_s, t_y, refined)
+    if geometry.thickness is not None:  # a layer: its lateral edge and absorber
+        layer, domain_radius, has_layer = lateral_absorber(
+            settings, geometry.thickness, c_s, t_y, refined
+        )
     return _Scales(
         quasi_static=qs,
         shear_wave_speed=c_s,
@@ -565,13 +562,14 @@ def _stick_compliance(
     return {"coupled": coupled, "radial_correction": radial_correction}
 
 
-def _checked_estimate(estimate: int, settings: DynamicSettings) -> int:
-    """The estimated dofs of the mesh of ``settings``, or InputError above ``MAX_DOFS``."""
+def _checked_estimate(estimate: int, settings: DynamicSettings, layered: bool = False) -> int:
+    """The estimated dofs of the mesh of ``settings`` (``layered``: a layer's), or InputError
+    above ``MAX_DOFS``."""
     if estimate > MAX_DOFS:
         blamed = growth_error(settings, estimate_dofs, MAX_DOFS, MAX_SIZE)
         if blamed is not None:
             raise blamed
-        mesh = "mesh" if settings.thickness is None else "layer mesh"
+        mesh = "layer mesh" if layered else "mesh"
         raise InputError(
             f"the {mesh} would have about {estimate:.3g} dofs, above the limit {MAX_DOFS}; "
             f"lower --refine, or coarsen --mesh-size (now {settings.size!r}) or --growth (now "
@@ -590,6 +588,7 @@ def check_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
     exact: ProfileImpactResult | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> tuple[float, Striker, _Scales, int]:
     """Check every input of a dynamic impact (arguments of :func:`.impact.run_impact`) before
     anything is meshed, in well under a second: the density, mass and velocity, the body's
@@ -613,17 +612,18 @@ def check_dynamic_impact(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
     qs = _quasi_static(indenter, half_space, striker, exact)
-    if settings.thickness is None:  # a pad stops the striker short of x_c
+    thickness = geometry.thickness
+    if thickness is None:  # a pad stops the striker short of x_c
         check_reach(indenter, qs.x_c, (striker.mass, striker.velocity), qs.force_exponent, False)
-    if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
+        # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
-    scales = _scales(indenter, half_space, rho, striker, settings, prony, qs)
+    scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     impact = (striker.mass, striker.velocity)
     check_contact_scale(half_space.youngs_modulus, scales.refined, impact, curve=False)
-    if settings.thickness is None:
+    if thickness is None:
         return rho, striker, scales, estimate_dofs(settings)
-    estimate = layer_dofs(settings, scales.refined, scales.domain_radius)
-    return rho, striker, scales, _checked_estimate(estimate, settings)
+    estimate = layer_dofs(settings, thickness, scales.refined, scales.domain_radius)
+    return rho, striker, scales, _checked_estimate(estimate, settings, layered=True)
 
 
 @dataclass(frozen=True, eq=False)
@@ -722,6 +722,7 @@ def prepare_dynamic_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
     exact: ProfileImpactResult | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> DynamicImpactSetup:
     """Mesh, assemble and factorize the dynamic impact (arguments of :func:`.impact.run_impact`).
 
@@ -735,10 +736,10 @@ def prepare_dynamic_impact(
     """
     settings = DynamicSettings() if settings is None else settings
     rho, striker, scales, estimate = check_dynamic_impact(
-        indenter, half_space, density, mass, velocity, settings, prony, friction, exact
+        indenter, half_space, density, mass, velocity, settings, prony, friction, exact, geometry
     )
     clock = [time.perf_counter()]
-    mesh = _mesh(settings, scales)
+    mesh = _mesh(settings, geometry, scales)
     clock.append(time.perf_counter())
     system = assemble(mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     body = _assemble_body(system, indenter, rho, scales)
@@ -755,8 +756,8 @@ def prepare_dynamic_impact(
         tail_time=settings.tail * scales.inner_radius / scales.slowest_rayleigh_speed,
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0
-        and (settings.thickness is not None or scales.layer.start < 0.5 * scales.domain_radius),
-        mesh=_mesh_stats(problem, estimate, scales, settings),
+        and (geometry.thickness is not None or scales.layer.start < 0.5 * scales.domain_radius),
+        mesh=_mesh_stats(problem, estimate, scales, settings, geometry),
         parameters=_parameters(indenter, half_space, rho, problem, scales),
         timings={
             name: clock[k + 1] - clock[k]
@@ -765,10 +766,10 @@ def prepare_dynamic_impact(
     )
 
 
-def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
-    """The half-space mesh, or the layer's (:mod:`.dynamic_layer`) with a thickness."""
-    if settings.thickness is not None:
-        return layer_impact_mesh(settings, scales.refined, scales.domain_radius)
+def _mesh(settings: DynamicSettings, geometry: Geometry, scales: _Scales) -> MeshTri:
+    """The half-space mesh, or the layer's (:mod:`.dynamic_layer`) of ``geometry``."""
+    if geometry.thickness is not None:
+        return layer_impact_mesh(settings, geometry, scales.refined, scales.domain_radius)
     return halfspace_mesh(
         scales.refined,
         domain_radius=scales.domain_radius,
@@ -780,11 +781,15 @@ def _mesh(settings: DynamicSettings, scales: _Scales) -> MeshTri:
 
 
 def _mesh_stats(
-    problem: ImpactProblem, estimate: int, scales: _Scales, settings: DynamicSettings
+    problem: ImpactProblem,
+    estimate: int,
+    scales: _Scales,
+    settings: DynamicSettings,
+    geometry: Geometry,
 ) -> dict[str, float]:
     """Mesh sizes (counts) and geometry (m); a layer's thickness (m) and base."""
     system, candidates = problem.system, problem.candidates.dofs.size
-    counts = mesh_counts(system.mesh, system.n_dofs, candidates, scales.refined, settings)
+    counts = mesh_counts(system.mesh, system.n_dofs, candidates, scales.refined, geometry)
     extent = {"domain_radius": float(scales.domain_radius)}
     extent["smallest_size"] = settings.size * scales.refined
     return {**counts, "estimated_dofs": estimate, **extent}

@@ -50,11 +50,11 @@ from typing import Protocol
 import numpy as np
 from skfem import MeshTri
 
-from ..validation import InputError, validate_positive
-from ..vocabulary import BASES
+from ..validation import InputError
 from .mesh import (
     DOFS_PER_ELEMENT,
     LAYER_EXTENT,
+    Geometry,
     check_thickness_range,
     layer_mesh,
     layer_triangles,
@@ -64,8 +64,6 @@ from .mesh import (
 class DynamicSettings(Protocol):
     """The fields of :class:`.dynamic_contact.DynamicSettings` a layer reads."""
 
-    thickness: float
-    base: str
     size: float
     growth: float
     axis_size: float
@@ -79,7 +77,6 @@ __all__ = [
     "LATERAL_RATE",
     "MAX_LATERAL",
     "AbsorbingLayer",
-    "check_layer",
     "check_layer_rate",
     "lateral_absorber",
     "layer_dofs",
@@ -143,14 +140,6 @@ class AbsorbingLayer:
         return lambda r, z: density * self.damping_rate(r, z)
 
 
-def check_layer(thickness: float | None, base: str) -> None:
-    """Raise InputError unless ``thickness`` is None or > 0 (m) and ``base`` a known base."""
-    if thickness is not None:
-        validate_positive("thickness", thickness, "m")
-    if base not in BASES:
-        raise InputError(f"base: unknown base {base!r}. Pick one of {list(BASES)}", "base")
-
-
 def check_layer_rate(layer_rate: float | None, thickness: float | None) -> None:
     """Raise InputError for ``layer_rate`` 0 on a layer (``thickness`` in m, None: the
     half-space), where it cannot mean "no absorber": None is the geometry's own rate."""
@@ -164,12 +153,15 @@ def check_layer_rate(layer_rate: float | None, thickness: float | None) -> None:
 
 
 def lateral_absorber(
-    settings: DynamicSettings, shear_wave_speed: float, t_y: float, refined: float
+    settings: DynamicSettings,
+    thickness: float,
+    shear_wave_speed: float,
+    t_y: float,
+    refined: float,
 ) -> tuple[AbsorbingLayer, float, bool]:
-    """The lateral absorber of a layer, its edge radius L in m and whether it is on.
-
-    ``settings`` is a ``DynamicSettings`` with a thickness; ``shear_wave_speed`` in m/s,
-    ``t_y`` the quasi-static impact duration in s, ``refined`` the refined radius in m.
+    """The lateral absorber of a layer of ``thickness`` m, its edge radius L in m and whether
+    it is on; ``shear_wave_speed`` in m/s, ``t_y`` the quasi-static impact duration in s,
+    ``refined`` the refined radius in m.
     """
     scale = shear_wave_speed * t_y
     rate = settings.layer_rate if settings.layer_rate > 0 else LATERAL_RATE
@@ -182,7 +174,6 @@ def lateral_absorber(
         lateral=True,
     )
     end = layer.start + (2.0 * layer.ramp if width is None else width)
-    thickness = settings.thickness
     static = refined + LAYER_EXTENT * thickness
     if end > MAX_LATERAL * thickness:
         return layer, static, False
@@ -194,12 +185,12 @@ def _check_thickness(thickness: float, refined: float) -> None:
     check_thickness_range(thickness, refined, "for this impact")
 
 
-def _thickness_size(settings: DynamicSettings) -> float:
-    """Element size through the thickness at the contact, m."""
-    return settings.thickness / LAYER_ELEMENTS * settings.size / _SIZE
+def _thickness_size(settings: DynamicSettings, thickness: float) -> float:
+    """Element size through ``thickness`` m at the contact, m."""
+    return thickness / LAYER_ELEMENTS * settings.size / _SIZE
 
 
-def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
+def layer_dofs(settings: DynamicSettings, thickness: float, refined: float, extent: float) -> int:
     """Unknowns of the layer mesh estimated before meshing: a quadrature of Int dA / h^2 over
     the rectangle, as :func:`.mesh.estimate_elements` (within about 30 %).
 
@@ -208,18 +199,20 @@ def layer_dofs(settings: DynamicSettings, refined: float, extent: float) -> int:
     shtaerman.validation.InputError
         If the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS`` refined radii.
     """
-    _check_thickness(settings.thickness, refined)
-    thickness = settings.thickness / refined
-    cap = _thickness_size(settings) / refined
-    elements = layer_triangles(thickness, extent / refined, cap, settings, _AXIS_GROWTH)
+    _check_thickness(thickness, refined)
+    cap = _thickness_size(settings, thickness) / refined
+    elements = layer_triangles(thickness / refined, extent / refined, cap, settings, _AXIS_GROWTH)
     return round(DOFS_PER_ELEMENT * float(elements))
 
 
-def layer_impact_mesh(settings: DynamicSettings, refined: float, extent: float) -> MeshTri:
-    """The layer mesh of a dynamic impact (``settings`` a ``DynamicSettings`` with a
-    thickness; ``refined`` and ``extent`` in m), its thickness and size checked before
+def layer_impact_mesh(
+    settings: DynamicSettings, layer: Geometry, refined: float, extent: float
+) -> MeshTri:
+    """The mesh of the dynamic impact on ``layer`` (a Geometry with a thickness; ``refined``
+    and ``extent`` in m), its thickness and size checked before
     (:func:`.dynamic_contact.check_dynamic_impact`)."""
-    thickness = settings.thickness
+    thickness = layer.thickness
+    assert thickness is not None
     return layer_mesh(
         refined,
         thickness,
@@ -228,7 +221,7 @@ def layer_impact_mesh(settings: DynamicSettings, refined: float, extent: float) 
         growth=settings.growth,
         axis_size=min(settings.axis_size, settings.size) * refined,
         axis_growth=_AXIS_GROWTH,
-        thickness_size=_thickness_size(settings),
-        largest_size=LAYER_LARGEST_SIZE * _thickness_size(settings),
-        bonded=settings.base == "bonded",
+        thickness_size=_thickness_size(settings, thickness),
+        largest_size=LAYER_LARGEST_SIZE * _thickness_size(settings, thickness),
+        bonded=layer.base == "bonded",
     )

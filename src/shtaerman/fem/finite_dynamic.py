@@ -98,7 +98,7 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mesh import MeshSettings
+from .mesh import HALF_SPACE, Geometry, MeshSettings
 from .rubber import RubberModel
 from .stepper import (
     QuasiStaticBody,
@@ -334,7 +334,7 @@ class FiniteImpactSetup:
         if cuts:
             context["retried"] = cut_note(cuts, settings.steps)
         result = _result(columns, mass, context, separation)
-        warn_outside_validity(indenter, result.x_max, settings.mesh.thickness, finite=True)
+        warn_outside_validity(indenter, result.x_max, self.mesh.get("thickness"), finite=True)
         return result
 
 
@@ -385,11 +385,12 @@ def prepare_finite_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
     exact: ProfileImpactResult | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> FiniteImpactSetup:
     """Check, mesh and assemble the impact of a rigid striker on a rubber at finite strain
     (the arguments of :func:`.impact.run_impact`, the body's ``rubber`` default neo-Hookean,
     ``friction`` None or 0 frictionless, ``exact`` a profile's sizing impact when solved
-    already).
+    already, ``geometry`` the body's shape).
 
     Raises
     ------
@@ -408,9 +409,9 @@ def prepare_finite_impact(
         else:
             quasi = exact
     x_c, t_y = quasi.x_c, quasi.t_y
-    if settings.mesh.thickness is not None and settings.mesh.base != "bonded":
+    if geometry.thickness is not None and geometry.base != "bonded":
         raise InputError(FINITE_BASE, "base")
-    unbounded = settings.mesh.thickness is None  # a pad stops the striker short of x_c
+    unbounded = geometry.thickness is None  # a pad stops the striker short of x_c
     # on a pad x_c bounds the depth from above (the pad is stiffer; z = 8 r^1.3 on a 12 mm
     # pad reached x/a 2.26 against 2.27): a frictional contact does not converge beyond the
     # reach (that case failed at separation after 15 min), a frictionless one warns
@@ -421,9 +422,9 @@ def prepare_finite_impact(
     if unbounded and x_size > x_c:
         check_reach(indenter, x_size, (mass, velocity), q, finite=True)
     refined = settings.margin * geometric_radius(indenter, x_size)
-    refined *= settings.mesh.zone_factor(tip_exponent(indenter))  # 1 on the half-space
+    refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
     clock = [time.perf_counter()]
-    mesh = settings.mesh.build(refined)
+    mesh = settings.mesh.build(refined, geometry)
     clock.append(time.perf_counter())
     stepper = _assembled(mesh, indenter, half_space, (rubber, prony, friction), refined)
     clock.append(time.perf_counter())
@@ -433,7 +434,7 @@ def prepare_finite_impact(
         settings=settings,
         inputs=(indenter, half_space, rho, mass, velocity, friction),
         scales=(x_c, t_y, duration, q, law.beta),
-        mesh=mesh_counts(mesh, *counts, refined, settings.mesh),
+        mesh=mesh_counts(mesh, *counts, refined, geometry),
         timings={"mesh": clock[1] - clock[0], "assembly": clock[2] - clock[1]},
     )
 

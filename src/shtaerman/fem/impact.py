@@ -1,8 +1,8 @@
 """The FE impact driver: a rigid striker on a body, linear or at finite strain.
 
 :func:`run_impact` takes the problem's parts (the striker's profile, mass and velocity; the
-body's small-strain material, density, rubber model and Prony series; the interface) and the
-numerical settings, whose kind chooses the body:
+body's small-strain material, density, rubber model and Prony series; its geometry; the
+interface) and the numerical settings, whose kind chooses the body:
 
 - :class:`.dynamic_contact.DynamicSettings` (or none): the linear body, its fast path one
   factorization and the generalized-alpha march with the condensed contact compliance
@@ -27,6 +27,7 @@ from ..theory.viscoelastic import PronySeries
 from .dynamic_contact import DynamicSettings, prepare_dynamic_impact
 from .finite_dynamic import FiniteImpactSettings, prepare_finite_impact
 from .impact_run import ImpactRun
+from .mesh import HALF_SPACE, Geometry
 from .rubber import RubberModel
 
 __all__ = ["PreparedImpact", "run_impact"]
@@ -56,6 +57,7 @@ def run_impact(
     prony: PronySeries | None = None,
     friction: float | None = None,
     *,
+    geometry: Geometry = HALF_SPACE,
     snapshot_times: tuple[float, ...] = (),
     exact: ProfileImpactResult | None = None,
 ) -> ImpactRun:
@@ -81,6 +83,8 @@ def run_impact(
     friction : float, optional
         The striker's surface: None frictionless, ``math.inf`` bonded (no slip), mu >= 0
         Coulomb (the finite-strain body takes 0 as frictionless).
+    geometry : Geometry
+        The body's shape: the half-space (default) or a layer of a thickness on its base.
     snapshot_times : tuple of float
         Times in s at which to keep the fields (the linear body; nearest step).
     exact : ProfileImpactResult, optional
@@ -105,9 +109,10 @@ def run_impact(
     if rubber is not None and isinstance(settings, DynamicSettings):
         raise TypeError("run_impact: a rubber takes FiniteImpactSettings, not DynamicSettings")
     if rubber is not None or isinstance(settings, FiniteImpactSettings):
-        prepared: PreparedImpact = prepare_finite_impact(*inputs, rubber, prony, friction, exact)
+        physics = (rubber, prony, friction, exact, geometry)
+        prepared: PreparedImpact = prepare_finite_impact(*inputs, *physics)
     else:
-        prepared = prepare_dynamic_impact(*inputs, prony, friction, exact)
+        prepared = prepare_dynamic_impact(*inputs, prony, friction, exact, geometry)
     start = time.perf_counter()
     marched = prepared.march(snapshot_times)
     timings = {**prepared.timings, "stepping": time.perf_counter() - start}

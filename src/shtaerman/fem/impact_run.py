@@ -23,6 +23,7 @@ from ..validation import InputError, bound_text, validate_positive
 
 if TYPE_CHECKING:
     from .elasticity import ElasticSolution, ElasticSystem
+    from .mesh import Geometry
     from .viscoelastic import ShearMemory, ViscoelasticShear
 
 __all__ = [
@@ -239,10 +240,10 @@ def impact_parameters(
 
 
 def mesh_counts(
-    mesh: Any, dofs: int, candidates: int, refined: float, layer: Any
+    mesh: Any, dofs: int, candidates: int, refined: float, layer: Geometry
 ) -> dict[str, Any]:
     """Nodes, elements, dofs, contact candidates and the refined radius (m) of a run; a
-    layer's thickness (m) and base (``layer``: settings with ``thickness`` and ``base``)."""
+    layer's thickness (m) and base (``layer``: the body's Geometry)."""
     counts = {"nodes": int(mesh.p.shape[1]), "elements": int(mesh.t.shape[1])}
     counts.update(dofs=int(dofs), contact_candidates=int(candidates), refined_radius=refined)
     if layer.thickness is not None:

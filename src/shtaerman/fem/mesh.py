@@ -29,13 +29,15 @@ import numpy as np
 
 from ..signals import deferred
 from ..validation import InputError, bound_text, validate_positive
-from ..vocabulary import BASES
+from ..vocabulary import entry
 
 if TYPE_CHECKING:
     from skfem import MeshTri
 
 __all__ = [
     "BOUNDARIES",
+    "HALF_SPACE",
+    "Geometry",
     "GradedMesh",
     "Grading",
     "MeshSettings",
@@ -565,6 +567,41 @@ class Grading:
 
 
 @dataclass(frozen=True)
+class Geometry:
+    """The body's shape: a half-space (``thickness`` None), or a layer of ``thickness`` m on a
+    rigid ``base`` (``bonded``: u = 0, the default; ``lubricated``: u_z = 0)."""
+
+    thickness: float | None = None
+    base: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.thickness is None:
+            if self.base is not None:
+                raise InputError(
+                    "base: applies to a layer only; give its thickness=... too", "base"
+                )
+            return
+        base = entry("base").default if self.base is None else self.base
+        object.__setattr__(self, "base", entry("base").check(base))
+        object.__setattr__(self, "thickness", float(entry("thickness").check(self.thickness)))
+
+    @property
+    def name(self) -> str:
+        """``half-space``, ``layer bonded`` or ``layer lubricated``."""
+        return "half-space" if self.thickness is None else f"layer {self.base}"
+
+    def zone_factor(self, exponent: float) -> float:
+        """Contact radius bound / geometric radius (A a^n = d): 1 on the half-space;
+        ((n + 2)/2)^(1/n) on a layer, whose thin incompressible limit bulges the contact to
+        d = 2 A a^n/(n + 2) (see :mod:`shtaerman.theory.layer`)."""
+        return 1.0 if self.thickness is None else ((exponent + 2.0) / 2.0) ** (1.0 / exponent)
+
+
+HALF_SPACE = Geometry()
+"""The half-space: the geometry a run takes by default."""
+
+
+@dataclass(frozen=True)
 class MeshSettings:
     """Mesh controls, relative to the largest geometric contact radius a_g = (d_max/A)^(1/n).
 
@@ -589,11 +626,8 @@ class MeshSettings:
     max_dofs : float
         Refuse (InputError, before meshing) a mesh whose estimated number of unknowns exceeds
         this (default :data:`MAX_DOFS`); a guard against runaway work, not a mesh control.
-    thickness : float or None
-        Thickness H in m of a layer on a rigid base (an absolute length, unlike the fields
-        above); None: the half-space.
-    base : {"bonded", "lubricated"}
-        The layer's base: bonded (u = 0) or lubricated (u_z = 0, free to slide).
+
+    The body's shape is no mesh control: :meth:`build` takes its :class:`Geometry`.
     """
 
     margin: float = 1.25
@@ -603,8 +637,6 @@ class MeshSettings:
     axis_size: float = 1.0e-6
     axis_growth: float = 0.1
     max_dofs: float = MAX_DOFS
-    thickness: float | None = None
-    base: str = "bonded"
     grading: ClassVar[Grading | None] = None
     """None: ``size`` on the refined zone, ``growth`` everywhere (see :class:`GradedMesh`)."""
 
@@ -612,12 +644,6 @@ class MeshSettings:
         names = ("margin", "size", "domain", "growth", "axis_size", "axis_growth", "max_dofs")
         for name in names:
             object.__setattr__(self, name, validate_positive(name, getattr(self, name)))
-        if self.thickness is not None:
-            object.__setattr__(
-                self, "thickness", validate_positive("thickness", self.thickness, "m")
-            )
-        if self.base not in BASES:
-            raise InputError(f"base: unknown base {self.base!r}. Pick one of {list(BASES)}", "base")
         if not 1.0 < self.margin <= MAX_MARGIN:
             raise InputError(
                 f"margin must lie in (1, {MAX_MARGIN:g}] (the refined zone / contact radius; "
@@ -687,20 +713,16 @@ class MeshSettings:
         1 + LAYER_EXTENT * thickness, at most ``domain``."""
         return min(1.0 + LAYER_EXTENT * thickness, self.domain)
 
-    def zone_factor(self, exponent: float) -> float:
-        """Contact radius bound / geometric radius (A a^n = d): 1 on the half-space;
-        ((n + 2)/2)^(1/n) on a layer, whose thin incompressible limit bulges the contact to
-        d = 2 A a^n/(n + 2) (see :mod:`shtaerman.theory.layer`)."""
-        return 1.0 if self.thickness is None else ((exponent + 2.0) / 2.0) ** (1.0 / exponent)
-
-    def check_size(self, refined_radius: float | None = None) -> None:
+    def check_size(
+        self, refined_radius: float | None = None, geometry: Geometry = HALF_SPACE
+    ) -> None:
         """Raise InputError if the estimated mesh exceeds ``max_dofs`` (before any work).
 
         A layer's estimate needs its ``refined_radius`` in m (:meth:`layer_dofs`; its thickness
         is checked too); without it a layer is checked as the half-space of these settings.
         """
-        if self.thickness is not None and refined_radius is not None:
-            self._check_layer(refined_radius)
+        if geometry.thickness is not None and refined_radius is not None:
+            self._check_layer(geometry.thickness, refined_radius)
             return
         if self.estimated_dofs > self.max_dofs:
             also = "; or raise max_dofs=..."
@@ -717,13 +739,14 @@ class MeshSettings:
                 "max_dofs",
             )
 
-    def build(self, refined_radius: float) -> MeshTri:
-        """The gmsh half-space mesh for a refined (candidate) zone of ``refined_radius`` m.
+    def build(self, refined_radius: float, geometry: Geometry = HALF_SPACE) -> MeshTri:
+        """The gmsh mesh of ``geometry`` (the half-space, or a layer) for a refined (candidate)
+        zone of ``refined_radius`` m.
 
         Raises InputError before meshing if the estimated size exceeds ``max_dofs``.
         """
-        if self.thickness is not None:
-            return self._build_layer(refined_radius)
+        if geometry.thickness is not None:
+            return self._build_layer(refined_radius, geometry)
         self.check_size()
         return halfspace_mesh(
             refined_radius,
@@ -735,11 +758,11 @@ class MeshSettings:
             grading=self.grading,
         )
 
-    def _check_layer(self, refined_radius: float) -> float:
-        """The thickness in refined radii, checked against the range the mesh resolves and
+    def _check_layer(self, thickness: float, refined_radius: float) -> float:
+        """``thickness`` (m) in refined radii, checked against the range the mesh resolves and
         the layer mesh's estimated size against ``max_dofs`` (InputError)."""
-        check_thickness_range(self.thickness, refined_radius, "at these depths")
-        ratio = self.thickness / refined_radius
+        check_thickness_range(thickness, refined_radius, "at these depths")
+        ratio = thickness / refined_radius
         dofs = self.layer_dofs(ratio)
         if dofs > self.max_dofs:
             raise InputError(
@@ -750,19 +773,21 @@ class MeshSettings:
             )
         return ratio
 
-    def _build_layer(self, refined_radius: float) -> MeshTri:
+    def _build_layer(self, refined_radius: float, layer: Geometry) -> MeshTri:
         """The layer mesh of :meth:`build` (checks the thickness against the refined zone)."""
-        ratio = self._check_layer(refined_radius)
+        thickness = layer.thickness
+        assert thickness is not None
+        ratio = self._check_layer(thickness, refined_radius)
         return layer_mesh(
             refined_radius,
-            self.thickness,
+            thickness,
             lateral_extent=self.lateral_extent(ratio) * refined_radius,
             smallest_size=self.size * refined_radius,
             growth=self.growth,
             axis_size=min(self.axis_size, self.size) * refined_radius,
             axis_growth=self.axis_growth,
-            thickness_size=self.thickness_size(self.thickness),
-            bonded=self.base == "bonded",
+            thickness_size=self.thickness_size(thickness),
+            bonded=layer.base == "bonded",
         )
 
 

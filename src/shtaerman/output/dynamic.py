@@ -100,12 +100,12 @@ def _impact_figures(case: DynamicCase, folder: Path, figure_format: str) -> dict
 def _over_velocity_caption(outcome: DynamicStudyOutcome) -> str:
     """The caption of the figure over v0: on a pad, what the pad run measured in place of the
     half-space's first-order estimate."""
-    settings = outcome.settings
-    if settings.thickness is None:
+    layer = outcome.study.geometry
+    if layer.thickness is None:
         loss = "energy left in the half-space (%) over v0 (first-order estimate dashed)"
     else:
         loss = (
-            f"energy left in the {1e3 * settings.thickness:.3g} mm pad on its {settings.base} "
+            f"energy left in the {1e3 * layer.thickness:.3g} mm pad on its {layer.base} "
             "base (%) over v0, with what the pad run measured: the energy its base reflects "
             "back near the contact and the energy balance error, % of M v0^2 / 2 on a log "
             "scale (the half-space's first-order radiation estimate does not apply to a pad)"

@@ -181,7 +181,7 @@ def _model_words(outcome: DynamicStudyOutcome) -> str:
     """ " (Shtaerman's elastic half-space)" where the study's body is not: on a pad, with a
     Prony series, a rubber or a bonded striker; "" otherwise."""
     study = outcome.study
-    if study.prony is None and outcome.settings.thickness is None and not study.physics:
+    if study.prony is None and outcome.study.geometry.thickness is None and not study.physics:
         return ""
     return " (Shtaerman's elastic half-space)"
 
@@ -201,7 +201,7 @@ def _loss_words(outcome: DynamicStudyOutcome) -> str:
     the half-space, the measured reflection on a pad), or a viscoelastic body's hysteresis
     (and waves, with the single-run split; ± its estimated error in percentage points where
     the study ran its ladder)."""
-    case, pad = outcome.example, outcome.settings.thickness is not None
+    case, pad = outcome.example, outcome.study.geometry.thickness is not None
     if outcome.study.finite:
         return _rubber_loss_words(outcome)
     losses, pm = case.result.losses, _plus_minus(case.estimates())
@@ -280,7 +280,7 @@ def study_findings(outcome: DynamicStudyOutcome) -> list[str]:
         f"The striker rebounds with e = {dyn.restitution:.4f}{pm('restitution')} "
         f"(quasi-static: 1): {100 * dyn.energy_radiated_fraction:.2f}"
         f"{pm('energy_radiated_fraction', 100)} % of its kinetic energy stays in the "
-        f"{body_words(outcome.settings.thickness, outcome.settings.base)} "
+        f"{body_words(outcome.study.geometry.thickness, outcome.study.geometry.base)} "
         f"{_loss_words(outcome)}{_loss_trend(outcome)}.",
         _estimate_finding(outcome),
     ]
@@ -357,7 +357,7 @@ HEADER = [
 
 def _case_rows(outcome: DynamicStudyOutcome) -> list[list[str]]:
     """One row per velocity (the half-space's first-order estimate "-" on a pad, a rubber)."""
-    rows, pad = [], outcome.settings.thickness is not None or outcome.study.finite
+    rows, pad = [], outcome.study.geometry.thickness is not None or outcome.study.finite
     for case in outcome.cases:
         r, d, pm = case.result, case.differences(), _plus_minus(case.estimates())
         rows.append(
@@ -394,7 +394,7 @@ def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     )
     estimate = "first-order radiated fraction"
     reflected = "reflected: of the radiated energy"
-    if outcome.settings.thickness is not None:
+    if outcome.study.geometry.thickness is not None:
         estimate = "the half-space's first-order radiated fraction, not given on a pad"
         reflected = "reflected: energy back near the contact after the tail, of M v0^2/2"
     return [
@@ -431,8 +431,8 @@ def entry(
     case = case_words(
         material=_material_words(study),
         prony=study.prony,
-        thickness=study.settings.thickness,
-        base=study.settings.base,
+        thickness=study.geometry.thickness,
+        base=study.geometry.base,
         interface=study.physics.get("interface", "frictionless"),
         friction=study.physics.get("friction"),
     )
@@ -453,10 +453,9 @@ def assumptions(study: Mapping[str, Any]) -> str:
     """The quasi-static model's assumptions a dynamic study's results.json entry tests, by
     what its FE impact has: "half-space, not the 20 mm pad on a bonded rigid base; no elastic
     waves; no hysteresis (Prony series g:tau = 0.5:2e-3 s)"."""
-    settings, inputs = study.get("settings", {}), study.get("inputs", {})
-    tested = []
-    if settings.get("thickness") is not None:
-        tested.append(f"half-space, not the {body_words(settings['thickness'], settings['base'])}")
+    inputs, tested = study.get("inputs", {}), []
+    if inputs.get("thickness") is not None:
+        tested.append(f"half-space, not the {body_words(inputs['thickness'], inputs['base'])}")
     if inputs.get("density2", 1.0) > 0:
         tested.append("no elastic waves")
     if inputs.get("prony"):

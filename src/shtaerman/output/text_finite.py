@@ -112,14 +112,14 @@ def _inputs(outcome: FiniteStudyOutcome) -> dict[str, float]:
 def curve_finding(outcome: FiniteStudyOutcome) -> list[str]:
     """The study's indenter surface and layer where they are not the paper's (a frictionless
     half-space): one sentence saying what both FE curves solve and what the ratios hold."""
-    mesh, surface = outcome.study.mesh, outcome.study.interface
+    layer, surface = outcome.study.geometry, outcome.study.interface
     parts = []
     if surface.kind == "bonded":
         slip = "no slip" if surface.friction is None else f"Coulomb friction {surface.friction:g}"
         parts.append(f"the rubber is bonded to the striker ({slip})")
-    if mesh.thickness is not None:
+    if layer.thickness is not None:
         parts.append(
-            f"the body is a pad H = {mesh.thickness * 1e3:.4g} mm on a {mesh.base} rigid base"
+            f"the body is a pad H = {layer.thickness * 1e3:.4g} mm on a {layer.base} rigid base"
         )
     if not parts:
         return []

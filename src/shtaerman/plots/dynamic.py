@@ -121,7 +121,7 @@ def _restitution(ax_e: Axes, ax_loss: Axes, outcome: DynamicStudyOutcome) -> Non
     pad: what the pad run measured instead, :func:`_pad_account`)."""
     v = np.array(outcome.velocities)
     results = [case.result for case in outcome.cases]
-    pad = outcome.settings.thickness is not None
+    pad = outcome.study.geometry.thickness is not None
     ax_e.plot(v, [r.restitution for r in results], "o", color=FEM_COLOUR, label="dynamic FEM")
     loss = [100 * r.energy_radiated_fraction for r in results]
     ax_loss.plot(v, loss, "o", color=FEM_COLOUR, label="dynamic FEM $1-e^2$")

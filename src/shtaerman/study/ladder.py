@@ -8,7 +8,7 @@ from dataclasses import dataclass, fields
 
 from skfem import MeshTri
 
-from ..fem.mesh import MeshSettings
+from ..fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ..validation import InputError
 
 __all__ = [
@@ -30,6 +30,7 @@ def check_ladder(
     mesh: MeshSettings,
     refine: float = 1.0,
     refined_radius: float | None = None,
+    geometry: Geometry = HALF_SPACE,
     *,
     estimate: bool = True,
     sized: bool = True,
@@ -38,8 +39,9 @@ def check_ladder(
     """Raise InputError unless every level of the ladder ending at ``refine`` (only that level
     without ``estimate``) is a valid mesh: the coarsest, refine / 2, must keep every size and
     growth of ``mesh`` <= 1, and (``sized``) the finest must pass the size guard
-    (``max_dofs``) before the coarse levels cost anything (a layer's guard needs the
-    ``refined_radius`` in m, see :meth:`~shtaerman.fem.mesh.MeshSettings.check_size`);
+    (``max_dofs``) before the coarse levels cost anything (the guard of the layer of
+    ``geometry`` needs the ``refined_radius`` in m, see
+    :meth:`~shtaerman.fem.mesh.MeshSettings.check_size`);
     ``advice`` ends the refusal."""
     ratio = LADDER_RATIO**2 if estimate else 1.0
     smallest = ratio * max(mesh.size, mesh.axis_size, mesh.growth, mesh.axis_growth)
@@ -51,7 +53,7 @@ def check_ladder(
             "refine",
         )
     if sized:
-        mesh.refined(refine).check_size(refined_radius)
+        mesh.refined(refine).check_size(refined_radius, geometry)
 
 
 WITHOUT_ESTIMATE = "; or run without the estimate (estimate=False)"
@@ -97,10 +99,10 @@ class NestedMeshSettings(MeshSettings):
         """Unknowns estimated before meshing: the gmsh mesh's times 4 per refinement."""
         return round(MeshSettings(**_fields(self)).estimated_dofs * 4**self.nested)
 
-    def build(self, refined_radius: float) -> MeshTri:
+    def build(self, refined_radius: float, geometry: Geometry = HALF_SPACE) -> MeshTri:
         """The gmsh mesh of :meth:`MeshSettings.build`, refined uniformly ``nested`` times
         (the size guard counts the refined mesh)."""
-        mesh = super().build(refined_radius)
+        mesh = super().build(refined_radius, geometry)
         for _ in range(self.nested):
             mesh = mesh.refined()
         return mesh

@@ -241,13 +241,10 @@ CURVE_PARTS = ("model", "prony", "rate", "interface", "friction", "thickness", "
 contact`` takes them), checked by :meth:`~shtaerman.problem.Problem.curve`."""
 
 
-def _curve_problem(p: dict[str, Any], indenter: Any, half_space: Any, mesh: Any) -> tuple:
+def _curve_problem(p: dict[str, Any], indenter: Any, half_space: Any) -> Any:
     """The case's contact curve as :meth:`shtaerman.problem.Problem.curve` builds and checks
     it (its parts: a Prony text, an interface, a friction, a layer; :data:`~shtaerman.problem.
-    SUPPORT` refuses what does not combine, one line naming the key), and ``mesh`` carrying
-    its layer."""
-    import dataclasses
-
+    SUPPORT` refuses what does not combine, one line naming the key)."""
     from ..problem import RUBBER_OPTIONS, Problem
 
     model = p.get("model") or "linear"
@@ -259,11 +256,7 @@ def _curve_problem(p: dict[str, Any], indenter: Any, half_space: Any, mesh: Any)
     }
     if given["thickness"] is None:
         given["base"] = None  # the half-space: base's default is a layer's
-    problem = Problem.curve(indenter, half_space, **given)
-    geometry = problem.geometry
-    if geometry.thickness is not None:
-        mesh = dataclasses.replace(mesh, thickness=geometry.thickness, base=geometry.base)
-    return problem, mesh
+    return Problem.curve(indenter, half_space, **given)
 
 
 def _contact_inputs(p: dict[str, Any]):
@@ -276,11 +269,11 @@ def _contact_inputs(p: dict[str, Any]):
     from ..theory.materials import RIGID, effective_modulus
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
-    problem, mesh = _curve_problem(p, indenter, half_space, mesh)
+    problem = _curve_problem(p, indenter, half_space)
     impact = (vocabulary.entry("mass").default, vocabulary.entry("velocity").default)
     modulus = effective_modulus(RIGID, half_space)  # default_depths' striker
     check_profile_reach(indenter, modulus, depths, impact, overshoot=1.0)
-    physics = {"friction": problem.interface.coefficient}  # the curve's, beside its mesh
+    physics = {"friction": problem.interface.coefficient, "geometry": problem.geometry}
     if problem.body.prony is not None:
         physics |= {"prony": problem.body.prony, "rate": problem.loading.rate}
     return indenter, half_space, depths, mesh, check_backend(p["solver"]), physics
@@ -761,7 +754,7 @@ def _finite_inputs(p: dict[str, Any]):
     from ..study.finite.loader import Ladder, finite_study, rubber_of
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
-    problem, mesh = _curve_problem(p, indenter, half_space, mesh)
+    problem = _curve_problem(p, indenter, half_space)
     shapes = {k: p[k] for k, owner in RUBBER_SHAPES.items() if owner == p["model"]}
     rubber = rubber_of(half_space, p["model"], volumetric=p["volumetric"], **shapes)
     ladder = Ladder(*(p[name] for name in ("reach", "depth_steps", "small_ratio", "small_steps")))
@@ -777,6 +770,7 @@ def _finite_inputs(p: dict[str, Any]):
         depths=None if depths is None else tuple(float(d) for d in depths),
         rubber=rubber,
         interface=problem.interface,
+        geometry=problem.geometry,
     )
 
 

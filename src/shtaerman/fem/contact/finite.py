@@ -69,7 +69,7 @@ from ..hyperelastic import (
     NewtonError,
     assemble_hyperelastic,
 )
-from ..mesh import FINITE_MESH, MeshSettings
+from ..mesh import FINITE_MESH, HALF_SPACE, Geometry, MeshSettings
 from ..rubber import GentLimitError, RubberModel, gent_locks, gent_stretch
 from ..solver import Pattern, PatternSolver
 from .constraints import SolvedContact, check_resolved, edge_and_centre
@@ -997,9 +997,12 @@ def run_finite_indentation(
     mesh: MeshSettings | None = None,
     rubber: RubberModel | None = None,
     solve: Callable[..., FiniteContactCurve] | None = None,
+    geometry: Geometry = HALF_SPACE,
     **options: float,
 ) -> FiniteContactCurve:
-    """Mesh, assemble and press a rigid power-law indenter into a rubber half-space.
+    """Mesh, assemble and press a rigid power-law indenter into a rubber half-space (or the
+    layer of ``geometry``, whose ``base`` must be bonded: the lubricated base's exterior
+    spring is linear).
 
     Parameters
     ----------
@@ -1011,8 +1014,7 @@ def run_finite_indentation(
         Depths in m, positive, increasing (the entry points check them).
     mesh : MeshSettings, optional
         Default :data:`FINITE_MESH`; the refined zone is ``margin`` times the geometric
-        contact radius (d_max / A)^(1/n) (times :meth:`MeshSettings.zone_factor` on a layer,
-        whose ``base`` must be bonded: the lubricated base's exterior spring is linear).
+        contact radius (d_max / A)^(1/n) (times :meth:`Geometry.zone_factor` on a layer).
     rubber : RubberModel, optional
         The rubber model (default neo-Hookean, :mod:`shtaerman.fem.rubber`).
     solve : callable, optional
@@ -1030,12 +1032,13 @@ def run_finite_indentation(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     check_finite_depths(indenter, depths, "neo-hookean" if rubber is None else rubber.name)
     mesh = FINITE_MESH if mesh is None else mesh
-    if mesh.thickness is not None and mesh.base != "bonded":
+    thickness = geometry.thickness
+    if thickness is not None and geometry.base != "bonded":
         raise InputError(FINITE_BASE, "base")
     refined = mesh.margin * geometric_radius(indenter, depths[-1])
-    refined *= mesh.zone_factor(tip_exponent(indenter))  # 1 on the half-space, more on a layer
+    refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
     start = time.perf_counter()
-    skfem_mesh = mesh.build(refined)
+    skfem_mesh = mesh.build(refined, geometry)
     meshed = time.perf_counter()
     constants = (half_space.youngs_modulus, half_space.poisson_ratio)
     material = NeoHookean(*constants) if rubber is None else rubber.material(*constants)
@@ -1048,9 +1051,9 @@ def run_finite_indentation(
         "dofs": int(system.n_dofs),
         "contact_candidates": int(curve.steps[0].multipliers.size),
         "refined_radius": refined,
-        "domain_radius": float(skfem_mesh.p[0].max()) if mesh.thickness else mesh.domain * refined,
+        "domain_radius": float(skfem_mesh.p[0].max()) if thickness else mesh.domain * refined,
         "smallest_size": mesh.size * refined,
-        **({"thickness": mesh.thickness, "base": mesh.base} if mesh.thickness else {}),
+        **({"thickness": thickness, "base": geometry.base} if thickness else {}),
     }
     timings = {
         "mesh": meshed - start,

@@ -33,7 +33,15 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ...fem.mesh import DEFAULTS, MAX_DOMAIN, GradedMesh, Grading, MeshSettings
+from ...fem.mesh import (
+    DEFAULTS,
+    HALF_SPACE,
+    MAX_DOMAIN,
+    Geometry,
+    GradedMesh,
+    Grading,
+    MeshSettings,
+)
 from ...guards import LadderWarnings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
@@ -338,6 +346,7 @@ def run_mesh_ladder(
     exact: bool = True,
     refined: float | None = None,
     partial: bool = False,
+    geometry: Geometry = HALF_SPACE,
 ) -> AccuracyResult:
     """Any contact curve on three meshes, ``mesh`` refined by refine / 2, refine / sqrt(2)
     and refine, with the estimates of :func:`estimate_errors` for the finest.
@@ -356,6 +365,8 @@ def run_mesh_ladder(
         Whether the results' ``errors()`` are true errors (see :class:`AccuracyResult`).
     refined : float, optional
         Refined-zone radius in m of the curve, for a layer's size guard before any level.
+    geometry : Geometry
+        The body's shape (its layer's size guard).
     partial : bool
         Keep the levels that passed when another fails numerically (:data:`FAILURES`): the
         finest that passed answers, without estimate (an :class:`EstimateMissingWarning`);
@@ -367,7 +378,7 @@ def run_mesh_ladder(
         A level's failure (``partial``: the finest level's, when no level passed).
     """
     refine = validate_positive("refine", refine)
-    check_ladder(mesh, refine, refined)  # every level checked before the first is computed
+    check_ladder(mesh, refine, refined, geometry)  # every level, before the first is computed
     report = progress or (lambda _line: None)
     levels, failures = [], []
     with LadderWarnings() as said:
@@ -414,12 +425,13 @@ def run_ladder(
     rate: float | None = None,
     friction: float | None = None,
     partial: bool = False,
+    geometry: Geometry = HALF_SPACE,
 ) -> AccuracyResult:
     """The contact on three meshes, refine / 2, refine / sqrt(2), refine: the finest answers.
 
     Parameters
     ----------
-    indenter, half_space, depths, backend, prony, rate, friction
+    indenter, half_space, depths, backend, prony, rate, friction, geometry
         As for :func:`.indentation.run_indentation`.
     mesh : MeshSettings, optional
         The base mesh (refine = 1); default ``MeshSettings()``.
@@ -436,26 +448,25 @@ def run_ladder(
     """
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
-    physics = {"prony": prony, "rate": rate, "friction": friction}
+    physics = {"prony": prony, "rate": rate, "friction": friction, "geometry": geometry}
     solve = _linear(indenter, half_space, depths, backend, **physics)
-    refined = refined_radius(indenter, depths, mesh)
-    exact = _exact(mesh, friction)
-    return run_mesh_ladder(
-        solve, mesh, refine=refine, progress=progress, exact=exact, refined=refined, partial=partial
-    )
+    refined = refined_radius(indenter, depths, mesh, geometry)
+    steps = {"progress": progress, "exact": _exact(geometry, friction), "refined": refined}
+    return run_mesh_ladder(solve, mesh, refine=refine, partial=partial, geometry=geometry, **steps)
 
 
-def _exact(mesh: MeshSettings, friction: float | None) -> bool:
+def _exact(geometry: Geometry, friction: float | None) -> bool:
     """Whether the curve's ``errors()`` are true errors: on a layer or under a bonded indenter
     they are departures from Shtaerman's solution (a layer's reference is
     :mod:`shtaerman.theory.layer_reference`)."""
-    return mesh.thickness is None and friction is None
+    return geometry.thickness is None and friction is None
 
 
-def _far_field(mesh: MeshSettings, tolerance: float) -> MeshSettings:
+def _far_field(mesh: MeshSettings, tolerance: float, geometry: Geometry) -> MeshSettings:
     """``mesh`` with the domain enlarged until the half-space's far-boundary truncation is a
-    tenth of ``tolerance``; InputError if the truncation alone exceeds half of it."""
-    if mesh.thickness is not None:
+    tenth of ``tolerance``; InputError if the truncation alone exceeds half of it (on the
+    layer of ``geometry``: if its lateral edge's does)."""
+    if geometry.thickness is not None:
         if tolerance < 2.0 * LAYER_TRUNCATION:
             raise InputError(
                 f"accuracy must be >= {bound_text(2.0 * LAYER_TRUNCATION, 'low', 2)} on a layer: "
@@ -492,13 +503,18 @@ GRADED_BELOW = 1e-4
 
 
 def accuracy_mesh(
-    mesh: MeshSettings, indenter: PowerLawIndenter, depths: np.ndarray, tolerance: float
+    mesh: MeshSettings,
+    indenter: PowerLawIndenter,
+    depths: np.ndarray,
+    tolerance: float,
+    geometry: Geometry = HALF_SPACE,
 ) -> MeshSettings:
     """The family of ``--accuracy`` TOL: :data:`ACCURACY_MESH` where ``mesh`` is the default
-    half-space mesh (up to the domain and the dofs cap) and TOL < :data:`GRADED_BELOW`, its
-    band from the smallest geometric contact radius to the refined radius; else ``mesh``."""
+    mesh (up to the domain and the dofs cap) of the half-space ``geometry`` and TOL <
+    :data:`GRADED_BELOW`, its band from the smallest geometric contact radius to the refined
+    radius; else ``mesh``."""
     default = replace(mesh, domain=DEFAULTS.domain, max_dofs=DEFAULTS.max_dofs) == DEFAULTS
-    if not default or tolerance >= GRADED_BELOW:
+    if not default or geometry.thickness is not None or tolerance >= GRADED_BELOW:
         return mesh
     band = float(indenter.radius_at(depths[0])) / refined_radius(indenter, depths, mesh)
     grading = replace(ACCURACY_GRADING, band_start=min(band, 1.0))
@@ -550,6 +566,7 @@ def run_to_accuracy(
     backend: str = "auto",
     progress: Progress | None = None,
     friction: float | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> AccuracyResult:
     """Refine until the estimated force and beta errors are at most ``tolerance``.
 
@@ -571,7 +588,7 @@ def run_to_accuracy(
         Time budget in s for the whole ladder.
     max_dofs : float, optional
         Largest finest level allowed (default: the mesh's ``max_dofs``).
-    indenter, half_space, depths, mesh, backend, progress, friction
+    indenter, half_space, depths, mesh, backend, progress, friction, geometry
         As for :func:`run_ladder`.
 
     Returns
@@ -587,13 +604,14 @@ def run_to_accuracy(
         raise InputError(f"accuracy must lie in (0, 0.1], got {tolerance!r}")
     max_time = validate_positive("max-time", max_time, "s")
     start = time.perf_counter()
-    mesh = _far_field(MeshSettings() if mesh is None else mesh, tolerance)
+    mesh = _far_field(MeshSettings() if mesh is None else mesh, tolerance, geometry)
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
-    mesh = accuracy_mesh(mesh, indenter, depths, tolerance)
-    solve = _linear(indenter, half_space, depths, backend, friction=friction)
-    exact, refined = _exact(mesh, friction), refined_radius(indenter, depths, mesh)
+    mesh = accuracy_mesh(mesh, indenter, depths, tolerance, geometry)
+    solve = _linear(indenter, half_space, depths, backend, friction=friction, geometry=geometry)
+    exact, refined = _exact(geometry, friction), refined_radius(indenter, depths, mesh, geometry)
     steps = {"progress": progress, "exact": exact, "refined": refined, "partial": True}
+    steps["geometry"] = geometry
     result = replace(run_mesh_ladder(solve, mesh, **steps), tolerance=tolerance)
     report = progress or (lambda _line: None)
     while not result.failures and _force_error(result) > tolerance:

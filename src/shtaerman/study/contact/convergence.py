@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...validation import InputError, validate_positive
@@ -122,6 +122,7 @@ def convergence_study(
     base: MeshSettings | None = None,
     friction: float | None = None,
     progress: Callable[[str], None] | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> ConvergenceStudy:
     """Run the indentation test on meshes refined uniformly, one per element size.
 
@@ -146,6 +147,8 @@ def convergence_study(
         The indenter's surface, as for :func:`.indentation.run_indentation`.
     progress : callable, optional
         Called with one line of text (str) after each level, e.g. ``print``.
+    geometry : Geometry
+        The body's shape (default the half-space).
 
     Returns
     -------
@@ -170,7 +173,8 @@ def convergence_study(
     levels = [refined_settings(base, float(size)) for size in sizes]  # validate all up front
     study = []
     for settings in levels:
-        result = run_indentation(indenter, half_space, depths, settings, friction=friction)
+        physics = {"friction": friction, "geometry": geometry}
+        result = run_indentation(indenter, half_space, depths, settings, **physics)
         errors = result.errors()
         row = {
             "size": settings.size,

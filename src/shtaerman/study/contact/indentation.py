@@ -21,7 +21,7 @@ from ...fem.contact.linear import ContactCurve, ContactStep, solve_contact
 from ...fem.contact.stick import solve_bonded_contact
 from ...fem.elasticity import ElasticSolution, assemble
 from ...fem.fit import PowerLawFit, fit_power_law
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...theory.contact import PowerLawContact
 from ...theory.impact import solve_impact
 from ...theory.indenter import PowerLawIndenter
@@ -272,12 +272,15 @@ def curve_document(
     }
 
 
-def refined_radius(indenter: Indenter, depths: np.ndarray, mesh: MeshSettings) -> float:
+def refined_radius(
+    indenter: Indenter, depths: np.ndarray, mesh: MeshSettings, geometry: Geometry = HALF_SPACE
+) -> float:
     """Radius in m of the refined (contact candidate) zone of a curve to ``depths`` (m): the
-    margin times the radius where the profile reaches the deepest depth (on a layer, times
-    its bulge, that of the smooth tip n = 2 for another profile than the power law)."""
+    margin times the radius where the profile reaches the deepest depth (on the layer of
+    ``geometry``, times its bulge, that of the smooth tip n = 2 for another profile than the
+    power law)."""
     exponent = indenter.exponent if isinstance(indenter, PowerLawIndenter) else 2.0
-    zone = mesh.zone_factor(exponent)  # 1 on the half-space
+    zone = geometry.zone_factor(exponent)  # 1 on the half-space
     return mesh.margin * float(indenter.radius_at(depths[-1])) * zone
 
 
@@ -300,8 +303,10 @@ def run_indentation(
     prony: PronySeries | None = None,
     rate: float | None = None,
     friction: float | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> IndentationResult:
-    """Press a rigid indenter into the FEM half-space and compare with the theory.
+    """Press a rigid indenter into the FEM half-space (or the layer of ``geometry``) and
+    compare with the theory.
 
     Parameters
     ----------
@@ -338,9 +343,9 @@ def run_indentation(
     depths = default_depths(indenter, half_space) if depths is None else depths
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     mesh = MeshSettings() if mesh is None else mesh
-    refined = refined_radius(indenter, depths, mesh)
+    refined = refined_radius(indenter, depths, mesh, geometry)
     start = time.perf_counter()
-    skfem_mesh = mesh.build(refined)
+    skfem_mesh = mesh.build(refined, geometry)
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
@@ -378,8 +383,9 @@ def run_indentation(
         "domain_radius": mesh.domain * refined,
         "smallest_size": mesh.size * refined,
     }
-    if mesh.thickness is not None:  # a layer: force_analytic stays the half-space's
-        stats |= {"thickness": mesh.thickness, "base": mesh.base}
-        stats["domain_radius"] = mesh.lateral_extent(mesh.thickness / refined) * refined
+    thickness = geometry.thickness
+    if thickness is not None:  # a layer: force_analytic stays the half-space's
+        stats |= {"thickness": thickness, "base": geometry.base}
+        stats["domain_radius"] = mesh.lateral_extent(thickness / refined) * refined
     stats |= interface_stats(friction)  # the *_analytic values stay the frictionless ones
     return IndentationResult(indenter, half_space, exact, curve, fit, stats, timings)

@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...fem.dynamic_contact import DynamicSettings
-from ...fem.mesh import MeshSettings, check_thickness_range
+from ...fem.mesh import Geometry, MeshSettings, check_thickness_range
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ..checks import Check
@@ -91,18 +91,21 @@ class LayerSpec:
             raise ValueError("a layer needs its thickness or its thickness_ratio")
         return replace(self, thickness=self.thickness_ratio * contact_radius)
 
-    def on(self, mesh: MeshSettings) -> MeshSettings:
-        """``mesh`` on this (resolved) layer."""
-        return replace(mesh, thickness=self.thickness, base=self.base)
+    @property
+    def geometry(self) -> Geometry:
+        """The body's shape: this (resolved) layer."""
+        return Geometry(self.thickness, self.base)
 
 
-def check_thickness(mesh: MeshSettings, indenter: Indenter, deepest: float) -> None:
-    """Refuse (InputError naming the thickness) the layer of ``mesh`` (``mesh.thickness`` m)
-    if its mesh does not take it at the deepest depth ``deepest`` m: the mesh's own bounds,
+def check_thickness(
+    mesh: MeshSettings, layer: Geometry, indenter: Indenter, deepest: float
+) -> None:
+    """Refuse (InputError naming the thickness) the ``layer`` if ``mesh`` does not take it at
+    the deepest depth ``deepest`` m: the mesh's own bounds,
     :data:`~shtaerman.fem.mesh.MIN_THICKNESS` .. ``MAX_THICKNESS`` refined radii (of any
     profile: :func:`.indentation.refined_radius`)."""
-    refined = refined_radius(indenter, np.array([deepest]), mesh)
-    check_thickness_range(mesh.thickness, refined, "at this study's depths")
+    refined = refined_radius(indenter, np.array([deepest]), mesh, layer)
+    check_thickness_range(layer.thickness, refined, "at this study's depths")
 
 
 @dataclass(frozen=True)
@@ -232,10 +235,9 @@ def with_dynamic_impact(
     ``friction`` the striker's surface (None frictionless, inf bonded, else Coulomb's mu)."""
     from ...fem.impact import run_impact
 
-    settings = replace(
-        QUICK_DYNAMIC if quick else DynamicSettings(), thickness=layer.thickness, base=layer.base
-    )
-    result = run_impact(indenter, half_space, layer.density, *impact, settings, friction=friction)
+    settings = QUICK_DYNAMIC if quick else DynamicSettings()
+    physics = {"friction": friction, "geometry": layer.geometry}
+    result = run_impact(indenter, half_space, layer.density, *impact, settings, **physics)
     return replace(
         findings,
         restitution=float(result.restitution),

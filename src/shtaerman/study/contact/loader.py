@@ -21,7 +21,7 @@ import msgspec
 import numpy as np
 
 from ...fem.contact.linear import check_contact_scale
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...guards import check_equator
 from ...problem import Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
@@ -175,6 +175,11 @@ class Study(Named):
     interface: Interface = field(default_factory=Interface)
     """The indenter's surface: frictionless, bonded, or Coulomb's friction."""
 
+    @property
+    def geometry(self) -> Geometry:
+        """The body's shape: the half-space, or the (resolved) layer."""
+        return HALF_SPACE if self.layer is None else self.layer.geometry
+
 
 def _mesh(path: Path, table: str, raw: MeshTable, default: MeshSettings) -> MeshSettings:
     """The mesh of ``[table]`` over ``default`` (unrefined), its refined size checked now."""
@@ -293,13 +298,12 @@ def on_layer(study: Study) -> Study:
     exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     layer = study.layer.resolved(float(exact.a_c))
     deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
-    mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
     if not study.depths:  # the impact's x_c set them: a huge one names mass and velocity
-        radius = refined_radius(study.indenter, np.array([deepest]), mesh)
+        radius = refined_radius(study.indenter, np.array([deepest]), study.mesh, layer.geometry)
         check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
-    for settings in (mesh, quick):
-        check_thickness(settings, study.indenter, deepest)
-    return replace(study, layer=layer, mesh=mesh, quick_mesh=quick)
+    for settings in (study.mesh, study.quick_mesh):
+        check_thickness(settings, layer.geometry, study.indenter, deepest)
+    return replace(study, layer=layer)
 
 
 def _expanded(path: Path, study: Study, sweep: _Sweep | None) -> list[Study]:

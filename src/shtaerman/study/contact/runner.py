@@ -181,7 +181,7 @@ def run_contact_study(
     exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     mesh, depths = study.quick_mesh if quick else study.mesh, _study_depths(study)
     if study.depths is None:  # the impact's x_c set them: a huge one names mass and velocity
-        radius = refined_radius(study.indenter, depths, mesh)
+        radius = refined_radius(study.indenter, depths, mesh, study.geometry)
         check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
     accuracy = run_ladder(  # partial: a failed level leaves the finest that passed, unestimated
@@ -192,6 +192,7 @@ def run_contact_study(
         refine=study.refine,
         friction=study.interface.coefficient,
         partial=True,
+        geometry=study.geometry,
     )
     contact = accuracy.finest
     deepest, thickness = contact.steps[-1].depth, contact.mesh_stats.get("thickness")
@@ -264,4 +265,5 @@ def _convergence(
         depths=depths,
         base=study.mesh,
         friction=study.interface.coefficient,
+        geometry=study.geometry,
     )

@@ -22,6 +22,7 @@ from ...fem.dynamic_contact import DynamicSettings, profile_sizing_impact
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
+from ...fem.mesh import HALF_SPACE, Geometry
 from ...guards import warn_outside_validity
 from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactResult, representable
@@ -209,6 +210,7 @@ def run_case(
     friction: float | None = None,
     rubber: RubberModel | None = None,
     quasi: ImpactResult | ProfileImpactResult | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units),
     every body (the arguments of :func:`~shtaerman.fem.impact.run_impact`).
@@ -245,6 +247,9 @@ def run_case(
         The rubber of a finite-strain body (with FiniteImpactSettings).
     quasi : ImpactResult or ProfileImpactResult, optional
         The quasi-static impact when already solved (a study's loader solved it).
+    geometry : Geometry
+        The body's shape (default the half-space); the quasi-static impact and the radiation
+        estimate stay the half-space's.
 
     Returns
     -------
@@ -265,7 +270,8 @@ def run_case(
     inputs = (indenter, half_space, density, mass, velocity)
 
     def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
-        return run_impact(*inputs, level, rubber, prony, friction, exact=sizing, **kept)
+        physics = {"geometry": geometry, "exact": sizing}
+        return run_impact(*inputs, level, rubber, prony, friction, **physics, **kept)
 
     def say() -> None:
         for said_once in said:
@@ -280,7 +286,7 @@ def run_case(
         raise
     say()
     if isinstance(settings, DynamicSettings):  # the rubber's run warns itself
-        warn_outside_validity(indenter, levels.finest.x_max, settings.thickness, finite=False)
+        warn_outside_validity(indenter, levels.finest.x_max, geometry.thickness, finite=False)
     return DynamicCase(velocity, quasi, estimate, levels.finest, levels if ladder else None)
 
 
@@ -308,8 +314,6 @@ def finite_settings(
     mesh = impact_mesh(problem.interface.coefficient)
     if mesh_size is not None:
         mesh = replace(mesh, size=mesh_size)
-    if problem.geometry.thickness is not None:
-        mesh = replace(mesh, thickness=problem.geometry.thickness, base=problem.geometry.base)
     settings = FiniteImpactSettings(steps=time_steps, mesh=mesh).resolved(rho)
     check_ladder(settings, refine, estimate)
     return settings.refined(refine)
@@ -323,5 +327,6 @@ def problem_case(problem: Problem, settings: Any, **options: Any) -> DynamicCase
     assert material.density is not None and striker.mass is not None
     inputs = (striker.indenter, material, material.density, striker.mass, striker.velocity)
     physics = dict(prony=body.prony, friction=problem.interface.coefficient)
+    physics["geometry"] = problem.geometry
     rubber = body.rubber() if body.finite else None
     return run_case(*inputs, settings, **options, **physics, rubber=rubber)

@@ -27,7 +27,7 @@ from ...fem.dynamic_contact import (
     check_dynamic_impact,
     estimate_dofs,
 )
-from ...fem.mesh import growth_error
+from ...fem.mesh import HALF_SPACE, Geometry, growth_error
 from ...problem import Problem, check_options, worded
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
@@ -138,6 +138,8 @@ class DynamicStudy(Named):
     settings: DynamicSettings
     quick_velocities: tuple[float, ...]
     quick_settings: DynamicSettings
+    geometry: Geometry = HALF_SPACE
+    """The body's shape: the half-space, or the ``[layer]`` (thickness resolved in m)."""
     tolerances: DynamicTolerances = field(default_factory=DynamicTolerances)
     kind: str = "dynamic"
     prony: PronySeries | None = None
@@ -158,8 +160,8 @@ class DynamicStudy(Named):
 
     def problem(self, velocity: float) -> Problem:
         """The impact at ``velocity`` m/s (:class:`shtaerman.problem.Problem`)."""
-        layer = self.settings.thickness
-        geometry = {} if layer is None else {"thickness": layer, "base": self.settings.base}
+        layer = self.geometry
+        geometry = {} if layer.thickness is None else dataclasses.asdict(layer)
         return Problem.impact(
             self.indenter,
             Material(self.half_space.youngs_modulus, self.half_space.poisson_ratio, self.density),
@@ -233,11 +235,10 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     exact = exact_impacts(raw.impact.mass, indenter, half_space)
     try:
         validate_fem_inputs(indenter, half_space)  # the FEM's ranges before the layer's impact
-        layer = layer_geometry(path, raw.layer, lambda: exact(example))
-        defaults = DynamicSettings(**layer)
+        geometry = Geometry(**layer_geometry(path, raw.layer, lambda: exact(example)))
     except InputError as error:
         raise refused(path, error, KEYS) from None
-    settings = _settings(path, "numerics", raw.numerics, defaults)
+    settings = _settings(path, "numerics", raw.numerics, DynamicSettings())
     physics = impact_physics(raw)
     if physics.get("model", "linear") == "linear":
         _check_ladder(path, settings)
@@ -250,6 +251,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         velocities=velocities,
         example=example,
         settings=settings,
+        geometry=geometry,
         quick_velocities=_velocities(path, "quick.velocity", quick, example),
         quick_settings=_settings(path, "quick", raw.quick, settings),
         tolerances=raw.tolerances,

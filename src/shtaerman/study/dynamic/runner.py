@@ -12,11 +12,10 @@ level (:mod:`shtaerman.study.limits`).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 from ...fem.dynamic_contact import DynamicSettings
 from ...theory.impact import check_velocity
@@ -114,12 +113,13 @@ class DynamicStudyOutcome(Outcome):
                 "nu2": study.half_space.poisson_ratio,
                 "density2": study.density,
                 **({"prony": study.prony_text} if study.prony is not None else {}),
+                **({} if study.geometry.thickness is None else asdict(study.geometry)),
                 **study.physics,
                 "mass": study.mass,
                 "velocities": self.velocities,
                 "example": study.example,
             },
-            "settings": {k: v for k, v in dataclasses.asdict(settings).items()},
+            "settings": asdict(settings),
             "cases": [
                 {"velocity": case.velocity, **case.document(), "differences": case.differences()}
                 for case in self.cases
@@ -145,7 +145,7 @@ def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
         )
         # the first-order estimate is of the waves of a linear elastic half-space with mass
         # under a frictionless striker (``physics`` empty)
-        elastic = study.prony is None and study.settings.thickness is None and not study.physics
+        elastic = study.prony is None and study.geometry.thickness is None and not study.physics
         if elastic and 0 < case.estimate.energy_fraction < tol.estimate_below:
             checks.append(
                 Check(

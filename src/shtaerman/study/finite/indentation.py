@@ -24,7 +24,7 @@ from ...fem.contact.finite import (
 )
 from ...fem.contact.finite_stick import solve_finite_bonded_contact
 from ...fem.fit import PowerLawFit, fit_power_law
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import RubberModel
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
@@ -119,8 +119,10 @@ def run_finite_study(
     mesh: MeshSettings | None = None,
     rubber: RubberModel | None = None,
     friction: float | None = None,
+    geometry: Geometry = HALF_SPACE,
 ) -> FiniteIndentationResult:
-    """Press a rigid power-law indenter into a rubber half-space; compare with linear.
+    """Press a rigid power-law indenter into a rubber half-space (or the layer of
+    ``geometry``); compare with linear.
 
     Parameters
     ----------
@@ -157,7 +159,7 @@ def run_finite_study(
     bonded = None
     if friction is not None:
         bonded = functools.partial(solve_finite_bonded_contact, friction=friction)
-    curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded)
+    curve = run_finite_indentation(indenter, half_space, depths, mesh, rubber, bonded, geometry)
     curve = replace(curve, mesh_stats=curve.mesh_stats | interface_stats(friction))
     if curve.cuts:
         dofs = curve.mesh_stats["dofs"]

@@ -20,7 +20,7 @@ from typing import Any, Literal
 import msgspec
 
 from ... import vocabulary
-from ...fem.mesh import FINITE_MESH, MeshSettings
+from ...fem.mesh import FINITE_MESH, HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import RubberModel
 from ...problem import MODELS, RUBBER_SHAPES, Body, Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
@@ -185,6 +185,8 @@ class FiniteStudy(Named):
     """The dynamic impacts of ``[corrections]``; None: none run."""
     interface: Interface = field(default_factory=Interface)
     """The indenter's surface: frictionless, bonded, or Coulomb's friction."""
+    geometry: Geometry = HALF_SPACE
+    """The body's shape: the half-space, or the ``[layer]`` (thickness resolved in m)."""
 
 
 def rubber_of(half_space: Material, model: str | None, **options: Any) -> RubberModel:
@@ -238,20 +240,7 @@ def _mesh(
         raise StudyError(f"{path}: key '{table}': {error}") from None
 
 
-@dataclass(frozen=True)
-class _Curve:
-    """The study's interface, and its layer as its mesh settings carry it."""
-
-    interface: Interface
-    thickness: float | None = None
-    base: str = "bonded"
-
-    def on(self, mesh: MeshSettings) -> MeshSettings:
-        """``mesh`` with this layer."""
-        return replace(mesh, thickness=self.thickness, base=self.base)
-
-
-def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
+def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> tuple[Interface, Geometry]:
     """The ``[contact]`` interface and friction and the ``[layer]`` of the study, checked as
     the problem's contact curve (:meth:`~shtaerman.problem.Problem.curve`: a lubricated
     rubber layer refused, in the file's words with this kind's way out); a layer's
@@ -274,8 +263,7 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> _Curve:
                 f'of kind "contact" for a linear lubricated pad'
             ) from None
         raise refused(path, error) from None
-    surface, geometry = problem.interface, problem.geometry
-    return _Curve(surface, geometry.thickness, geometry.base or "bonded")
+    return problem.interface, problem.geometry
 
 
 def _body_keywords(rubber: RubberModel) -> dict[str, Any]:
@@ -288,7 +276,7 @@ def _body_keywords(rubber: RubberModel) -> dict[str, Any]:
 def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
     contact, quick, ladder = raw.contact, raw.quick, raw.numerics.ladder
     rubber = RubberModel() if _sweeps_model(raw) else _rubber(path, raw)
-    curve = _curve(path, raw, rubber)
+    interface, geometry = _curve(path, raw, rubber)
     return FiniteStudy(
         **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
@@ -297,14 +285,15 @@ def _build(path: Path, raw: _FiniteFile) -> FiniteStudy:
         velocity=raw.impact.velocity,
         ladder=Ladder(contact.reach, contact.depth_steps, contact.small_ratio, contact.small_steps),
         quick_ladder=Ladder(contact.reach, quick.depth_steps, quick.small_ratio, quick.small_steps),
-        mesh=curve.on(_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested")),
-        quick_mesh=curve.on(_mesh(path, "quick", quick, QUICK_FINITE_MESH)),
+        mesh=_mesh(path, "numerics", raw.numerics, FINITE_MESH, ladder == "nested"),
+        quick_mesh=_mesh(path, "quick", quick, QUICK_FINITE_MESH),
         tolerances=raw.tolerances,
         quick_small_strain=quick.small_strain,
         rubber=rubber,
         mesh_ladder=ladder,
         corrections=_corrections(path, raw.corrections),
-        interface=curve.interface,
+        interface=interface,
+        geometry=geometry,
     )
 
 

@@ -41,7 +41,7 @@ from scipy.optimize import brentq
 
 from ...fem.contact.constraints import MIN_CONTACT_NODES
 from ...fem.contact.finite import check_finite_depths, geometric_radius, tip_exponent
-from ...fem.mesh import MeshSettings
+from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import GentLockError
 from ...guards import LadderWarnings
 from ...theory.impact import ImpactHistory, ImpactResult
@@ -174,13 +174,15 @@ class LadderStart:
         }
 
 
-def surface_radii(indenter: Indenter, top: float, mesh: MeshSettings) -> np.ndarray:
+def surface_radii(
+    indenter: Indenter, top: float, mesh: MeshSettings, geometry: Geometry = HALF_SPACE
+) -> np.ndarray:
     """Radii in m of the surface nodes besides the axis (vertices and mid-sides), increasing,
-    of ``mesh`` meshed for the deepest depth ``top`` (m) as
+    of ``mesh`` on ``geometry`` meshed for the deepest depth ``top`` (m) as
     :func:`shtaerman.fem.contact.finite.run_finite_indentation` meshes it."""
-    zone = mesh.zone_factor(tip_exponent(indenter))
+    zone = geometry.zone_factor(tip_exponent(indenter))
     refined = mesh.margin * geometric_radius(indenter, top) * zone
-    built = mesh.build(refined)
+    built = mesh.build(refined, geometry)
     ends = built.p[0, built.facets[:, built.boundaries["surface"]]]
     radii = np.unique(np.concatenate([ends.ravel(), 0.5 * (ends[0] + ends[1])]))
     return radii[radii > 0]
@@ -425,9 +427,9 @@ def _run_level(
     start, cpu = time.perf_counter(), time.process_time()
     modulus = effective_modulus(RIGID, study.half_space)
     parts, friction = (study.indenter, study.half_space, depths, mesh), study.interface.coefficient
-    finite = run_finite_study(*parts, study.rubber, friction)
+    finite = run_finite_study(*parts, study.rubber, friction, study.geometry)
     # nodal-sum forces, the finite-strain solver's own discretization: the ratio cancels it
-    linear = run_indentation(*parts, aligned=False, friction=friction)
+    linear = run_indentation(*parts, aligned=False, friction=friction, geometry=study.geometry)
     impacts = {"linear_exact": {k: v for k, v in impact_maxima(exact).items() if k != "beta"}}
     histories = {"linear_exact": exact.history(HISTORY_POINTS)}
     for variant, result in (("linear_fem", linear), ("finite_strain", finite)):
@@ -488,7 +490,7 @@ def _depths(
     """The study's depth ladder, and where it started when the ``coarsest`` mesh moved it
     (else None): a ``small_ratio`` depth whose contact covers fewer than MIN_CONTACT_NODES
     surface nodes moves to the smallest depth covering :data:`START_NODES`."""
-    radii = surface_radii(study.indenter, spec.reach * x_c, coarsest)
+    radii = surface_radii(study.indenter, spec.reach * x_c, coarsest, study.geometry)
     law = contact_law(study.indenter, modulus)
     requested = depth_at_ratio(study.indenter, spec.small_ratio)
     covered = np.count_nonzero(radii < law.contact_radius(requested))
