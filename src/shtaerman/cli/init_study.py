@@ -253,6 +253,8 @@ small_steps = 5             # geometric depths from it to the first equal step
 # [tolerances]              # pass or fail (these are the defaults)
 # small_strain = 5e-3       # |P / P_Shtaerman - 1| at the first, tiny depth
 # small_strain_fem = 2e-3   # |P / P_linear-FEM - 1| there, on the same mesh
+# identity = 3e-3           # bonded on nu2 < 0.5 (Shtaerman's is no reference there): the
+                            # linear FEM's P (n+1)/(2 E* a d n) / chi(nu2) - 1, deepest depth
 # conservation = 2e-3       # |integral of P dx / stored energy - 1|
 # newton = 1e-6             # Newton's relative residual
 # complementarity = 1e-6    # contact complementarity

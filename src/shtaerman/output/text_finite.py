@@ -14,6 +14,7 @@ from typing import Any
 from ..paper.case import is_paper_case
 from ..plots.labels import model_label, variant_label
 from ..problem import worded
+from ..study.contact.interface import shtaerman_applies
 from ..study.finite.runner import FiniteStudyOutcome
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
@@ -123,11 +124,23 @@ def curve_finding(outcome: FiniteStudyOutcome) -> list[str]:
         )
     if not parts:
         return []
-    return [
+    text = (
         f"Beyond the paper's frictionless half-space: {' and '.join(parts)}. The finite-strain "
         "and the same-mesh linear FEM both solve it, so P/P_linear-FEM isolates finite strain; "
         "the comparisons with the exact half-space hold these effects too."
-    ]
+    )
+    if not shtaerman_applies(surface, outcome.study.half_space.poisson_ratio):
+        text += (
+            " Shtaerman's frictionless solution is no small-strain limit of this interface on "
+            "nu2 < 0.5, so the small-strain limit is checked against the same-mesh linear FEM "
+            "alone"
+            + (
+                ", and that FEM against the no-slip identity P(n+1)/(2E* a d n) = chi(nu2)."
+                if surface.friction is None and outcome.study.indenter.kind == "power-law"
+                else " (no exact law of the Coulomb or non-power-law indenter to check it by)."
+            )
+        )
+    return [text]
 
 
 def study_findings(outcome: FiniteStudyOutcome) -> list[str]:

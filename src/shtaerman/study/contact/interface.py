@@ -28,13 +28,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...problem import Interface
 from ...theory.bonded import bonded_punch_factor, no_slip_ratio
 from ..checks import Check
 from .accuracy import AccuracyResult
 from .indentation import IndentationResult
 from .loader import Study
 
-__all__ = ["InterfaceEffect", "interface_checks", "interface_effect", "shtaerman_applies"]
+__all__ = [
+    "InterfaceEffect",
+    "interface_checks",
+    "interface_effect",
+    "no_slip_departures",
+    "shtaerman_applies",
+]
 
 IMPACT_KEYS = ("x_c", "P_c", "t_c")
 """The impact maxima checked (tabulated against fitted) and reported (against the analytic)."""
@@ -45,11 +52,10 @@ NOT_CHECKED = (
 """What a bonded or Coulomb study does not check, in the findings' words."""
 
 
-def shtaerman_applies(study: Study) -> bool:
-    """Whether Shtaerman's frictionless solution is the study's exact reference: a
-    frictionless indenter, Coulomb's mu = 0, or any indenter on nu2 = 0.5."""
-    friction = study.interface.coefficient
-    return friction in (None, 0.0) or study.half_space.poisson_ratio == 0.5
+def shtaerman_applies(interface: Interface, poisson_ratio: float) -> bool:
+    """Whether Shtaerman's frictionless solution is the exact reference of a half-space of
+    ``poisson_ratio`` under ``interface``: frictionless, Coulomb's mu = 0, or nu2 = 0.5."""
+    return interface.coefficient in (None, 0.0) or poisson_ratio == 0.5
 
 
 def _ratios(contact: IndentationResult) -> np.ndarray:
@@ -64,11 +70,17 @@ def _ratios(contact: IndentationResult) -> np.ndarray:
     )
 
 
+def no_slip_departures(contact: IndentationResult) -> np.ndarray:
+    """P (n + 1) / (2 E* a d n) / chi(nu2) - 1 per depth of a linear power-law curve: 0 for
+    the exact no-slip contact (:mod:`shtaerman.theory.bonded`)."""
+    return _ratios(contact) / bonded_punch_factor(contact.half_space.poisson_ratio) - 1.0
+
+
 def _identity(study: Study, contact: IndentationResult, accuracy: AccuracyResult) -> Check:
     """The no-slip identity's worst relative departure over the depths, within
     ``tolerances.identity`` plus the estimated errors of the force and the contact radius."""
     chi = bonded_punch_factor(study.half_space.poisson_ratio)
-    departures = _ratios(contact) / chi - 1.0
+    departures = no_slip_departures(contact)
     worst = float(departures[np.argmax(np.abs(departures))])
     estimate = accuracy.error_estimate() if accuracy.estimates else {}
     bar = estimate.get("force", 0.0) + estimate.get("contact_radius", 0.0)

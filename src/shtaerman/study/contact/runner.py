@@ -174,7 +174,9 @@ def _reference_checks(
     else (a bonded or Coulomb indenter on nu2 < 0.5) the interface's checks and its effect
     (:mod:`.interface`)."""
     contact = accuracy.finest
-    if study.layer is None and not shtaerman_applies(study):
+    if study.layer is None and not shtaerman_applies(
+        study.interface, study.half_space.poisson_ratio
+    ):
         effect = interface_effect(study, contact, impacts, accuracy)
         return interface_checks(study, contact, impacts, accuracy), effect
     return _checks(study, contact, impacts, _exact_fitted(study, contact, modulus)), None

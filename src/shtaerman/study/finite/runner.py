@@ -53,6 +53,7 @@ from ...validation import caller_stacklevel
 from ..checks import Check, Outcome
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
+from ..contact.interface import no_slip_departures, shtaerman_applies
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
 from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
 from ..dynamic.case import exact_impact
@@ -67,7 +68,7 @@ from ..run import Progress
 from .accuracy import FiniteEstimates, estimate_study
 from .corrections import run_corrections
 from .indentation import FiniteIndentationResult, run_finite_study
-from .loader import FiniteStudy, Ladder
+from .loader import FiniteStudy, FiniteTolerances, Ladder
 
 __all__ = [
     "FiniteStudyOutcome",
@@ -374,11 +375,7 @@ def _checks(
     energy = finite.steps[-1].strain_energy
     ratio = first.depth / first.contact_radius_linear
     return [
-        Check(
-            f"small-strain limit, P/P_Shtaerman - 1 at x/a = {ratio:.3g}",
-            first.force / first.force_linear - 1.0,
-            tol.small_strain,
-        ),
+        *_linear_reference(study, first, linear, tol, ratio),
         Check(
             f"small-strain limit, P/P_linear-FEM - 1 at x/a = {ratio:.3g} (same mesh)",
             first.force / first_fem.force - 1.0,
@@ -400,6 +397,28 @@ def _checks(
             tol.complementarity,
         ),
     ]
+
+
+def _linear_reference(
+    study: FiniteStudy,
+    first: Any,
+    linear: IndentationResult,
+    tol: FiniteTolerances,
+    ratio: float,
+) -> list[Check]:
+    """The small-strain limit's exact reference: Shtaerman's where it is the interface's
+    (:func:`~shtaerman.study.contact.interface.shtaerman_applies`); for a bonded power law on
+    nu2 < 0.5, the no-slip identity of the same-mesh linear FEM (the reference of
+    P/P_linear-FEM) at the deepest depth, where its contact covers most nodes; for Coulomb
+    mu > 0, or another profile, none (no exact law: P/P_linear-FEM alone)."""
+    surface = study.interface
+    if shtaerman_applies(surface, study.half_space.poisson_ratio):
+        name = f"small-strain limit, P/P_Shtaerman - 1 at x/a = {ratio:.3g}"
+        return [Check(name, first.force / first.force_linear - 1.0, tol.small_strain)]
+    if surface.friction is not None or study.indenter.kind != "power-law":
+        return []
+    name = "linear no-slip identity P(n+1)/(2E* a d n) / chi - 1 at the deepest depth (same mesh)"
+    return [Check(name, float(no_slip_departures(linear)[-1]), tol.identity)]
 
 
 def _complementarity(finite: FiniteIndentationResult, step: Any) -> float:
