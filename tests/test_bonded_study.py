@@ -120,13 +120,20 @@ def test_shtaerman_is_the_reference_where_it_is_exact(tmp_path, contact, nu2, ap
     assert shtaerman_applies(study.interface, study.half_space.poisson_ratio) is applies
 
 
-def test_a_bonded_sphere_on_a_compressible_body_is_refused(tmp_path):
+def test_a_bonded_sphere_or_convergence_study_on_a_compressible_body_is_refused(tmp_path):
     path = tmp_path / "sphere.toml"
     text = (FEM / "compressible.toml").read_text()
-    text = text.replace("shape_coefficient = 5.0\nexponent = 1.5", "sphere_radius = 0.05")
-    path.write_text(text + '\n[contact]\ninterface = "bonded"\n')
+    sphere = text.replace("shape_coefficient = 5.0\nexponent = 1.5", "sphere_radius = 0.05")
+    path.write_text(sphere + '\n[contact]\ninterface = "bonded"\n')
     with pytest.raises(StudyError, match=r"contact\.interface.*power-law"):
         load_study(path)
+    path.write_text(
+        text + '\n[contact]\ninterface = "bonded"\n[convergence]\nsizes = [0.02, 0.01]\n'
+    )
+    with pytest.raises(StudyError, match=r"'convergence'.*Coulomb indenter on nu2 < 0.5"):
+        load_study(path)
+    path.write_text(text.replace("0.3", "0.5") + '\n[contact]\ninterface = "bonded"\n')
+    assert load_study(path)[0].interface.kind == "bonded"  # Shtaerman's is exact there
 
 
 def test_a_bonded_finite_strain_study_at_nu_03_checks_its_own_linear_reference(tmp_path):

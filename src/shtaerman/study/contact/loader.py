@@ -230,17 +230,25 @@ def _surface(path: Path, raw: _StudyFile) -> Interface:
 
 
 def _check_checkable(path: Path, raw: _StudyFile, surface: Interface) -> None:
-    """Refuse a bonded or Coulomb indenter of another profile than z = A r^n on nu2 < 0.5:
-    its checks (the exponent, the no-slip identity) are the self-similar power law's, and
-    Shtaerman's (Sneddon's) frictionless law is not its solution (:mod:`.interface`)."""
-    frictionless = surface.coefficient in (None, 0.0) or raw.half_space.nu2 == 0.5
-    if frictionless or raw.indenter.sphere_radius is raw.indenter.profile is None:
+    """Refuse, for a bonded or Coulomb indenter on nu2 < 0.5 (whose solution Shtaerman's, or
+    Sneddon's, frictionless law is not: :mod:`.interface`), another profile than z = A r^n
+    (its checks, the exponent and the no-slip identity, are the self-similar power law's) and
+    a mesh-convergence study (it measures errors against the frictionless law)."""
+    if surface.coefficient in (None, 0.0) or raw.half_space.nu2 == 0.5:
         return
-    raise StudyError(
-        f"{path}: key 'contact.interface': a bonded or Coulomb indenter on nu2 < 0.5 takes a "
-        "power-law [indenter] (its checks are the self-similar z = A r^n's); give "
-        'interface = "frictionless" or nu2 = 0.5'
-    )
+    if raw.convergence.sizes:
+        raise StudyError(
+            f"{path}: key 'convergence': expected no mesh-convergence study of a bonded or "
+            "Coulomb indenter on nu2 < 0.5 (it measures errors against Shtaerman's "
+            "frictionless solution, from which the interface departs; the 3-mesh ladder gives "
+            "its error estimates)"
+        )
+    if raw.indenter.sphere_radius is not None or raw.indenter.profile is not None:
+        raise StudyError(
+            f"{path}: key 'contact.interface': a bonded or Coulomb indenter on nu2 < 0.5 takes "
+            "a power-law [indenter] (its checks are the self-similar z = A r^n's); give "
+            'interface = "frictionless" or nu2 = 0.5'
+        )
 
 
 def _build(path: Path, raw: _StudyFile) -> Study:
