@@ -72,7 +72,7 @@ def test_a_bonded_quick_study_at_nu_03_passes_its_own_checks(bonded):
 
 
 def test_the_bonded_effect_is_reported_with_its_sign(bonded):
-    effect = bonded.interface
+    effect = bonded.interface_effect
     # FEM_NOTES: P_b / P_f = 1.01535 at n 1.5, nu 0.3 (default mesh); a_b / a_f = 0.9875
     assert effect.departures["force"] == pytest.approx(0.01535, abs=1e-3)
     assert effect.departures["contact_radius"] == pytest.approx(-0.0125, abs=1.5e-3)
@@ -100,7 +100,7 @@ def test_a_coulomb_study_passes_and_says_what_it_does_not_check(tmp_path):
     assert not any("identity" in check.name for check in outcome.checks)  # the annulus slips
     # FEM_NOTES: mu 0.3 at nu 0.3 carries 1.01359 / 1.01535 of the no-slip excess: 0.88; the
     # quick mesh measured 0.84
-    assert 0.7 < outcome.interface.share < 1.0
+    assert 0.7 < outcome.interface_effect.share < 1.0
     [text] = findings("mu", contact_entry(outcome, {}))
     assert "Coulomb (mu = 0.3)" in text and "neither is checked" in text
 

@@ -94,8 +94,8 @@ def entry(
     }
     if outcome.layer is not None:
         document["layer"] = outcome.layer.to_dict()
-    if outcome.interface is not None:
-        document["interface_effect"] = outcome.interface.to_dict()
+    if outcome.interface_effect is not None:
+        document["interface_effect"] = outcome.interface_effect.to_dict()
     result = kind_entry(outcome, document, files, output_seconds, figures)
     result["timings"] = _timings(outcome, output_seconds)
     if outcome.convergence:

@@ -65,7 +65,7 @@ class StudyOutcome(Outcome):
     estimates (none when a level failed: :attr:`AccuracyResult.missing` says why)."""
     layer: LayerFindings | None = None
     """On a layer: its force against the half-space's and the impact on it."""
-    interface: InterfaceEffect | None = None
+    interface_effect: InterfaceEffect | None = None
     """A bonded or Coulomb indenter's departures from Shtaerman's solution, where that is not
     its reference (:func:`.interface.shtaerman_applies`; its checks are then
     :func:`.interface.interface_checks`)."""
@@ -251,7 +251,7 @@ def run_contact_study(
         convergence=convergence,
         accuracy=accuracy,
         layer=layer,
-        interface=effect,
+        interface_effect=effect,
     )
 
 
