@@ -134,6 +134,9 @@ def test_a_bonded_sphere_or_convergence_study_on_a_compressible_body_is_refused(
         load_study(path)
     path.write_text(text.replace("0.3", "0.5") + '\n[contact]\ninterface = "bonded"\n')
     assert load_study(path)[0].interface.kind == "bonded"  # Shtaerman's is exact there
+    pad = '\n[contact]\ninterface = "bonded"\n[layer]\nthickness = 0.02\n'
+    path.write_text(sphere + pad)  # a layer's checks are its own, for every interface
+    assert load_study(path)[0].layer is not None
 
 
 def test_a_bonded_finite_strain_study_at_nu_03_checks_its_own_linear_reference(tmp_path):

@@ -233,7 +233,11 @@ def _check_checkable(path: Path, raw: _StudyFile, surface: Interface) -> None:
     """Refuse, for a bonded or Coulomb indenter on nu2 < 0.5 (whose solution Shtaerman's, or
     Sneddon's, frictionless law is not: :mod:`.interface`), another profile than z = A r^n
     (its checks, the exponent and the no-slip identity, are the self-similar power law's) and
-    a mesh-convergence study (it measures errors against the frictionless law)."""
+    a mesh-convergence study (it measures errors against the frictionless law). A layer's
+    checks are its own (:func:`.layer.layer_checks`), for every interface."""
+    swept = raw.sweep.chosen()[0] if raw.sweep is not None else None
+    if raw.layer is not None or swept in ("thickness", "thickness_ratio"):
+        return
     if surface.coefficient in (None, 0.0) or raw.half_space.nu2 == 0.5:
         return
     if raw.convergence.sizes:
