@@ -19,6 +19,7 @@ from study_texts import FINITE_STUDY
 from shtaerman.output.text_contact import entry as contact_entry
 from shtaerman.output.text_contact import findings, summary_row
 from shtaerman.output.text_finite import curve_finding
+from shtaerman.output.text_finite import entry as finite_entry
 from shtaerman.problem import Interface
 from shtaerman.study.contact.interface import interface_checks, shtaerman_applies
 from shtaerman.study.finite.loader import FiniteTolerances
@@ -154,14 +155,15 @@ def test_a_bonded_finite_strain_study_at_nu_03_checks_its_own_linear_reference(t
     assert outcome.passed, [c for c in outcome.checks if not c.passed]
     [text] = curve_finding(outcome)
     assert "no small-strain limit" in text and "no-slip identity" in text
+    # the case in words named a frictionless indenter on every finite-strain study
+    assert finite_entry(outcome, {}, None, None)["case"].endswith("; bonded indenter (no slip)")
 
 
-def _finite(interface: Interface, nu2: float = 0.3) -> SimpleNamespace:
+def _finite(interface: Interface, nu2: float = 0.3, thickness=None) -> SimpleNamespace:
     """A stand-in finite-strain study: what :func:`_linear_reference` reads."""
-    half_space = SimpleNamespace(poisson_ratio=nu2)
-    return SimpleNamespace(
-        interface=interface, half_space=half_space, indenter=SimpleNamespace(kind="power-law")
-    )
+    half_space, mesh = SimpleNamespace(poisson_ratio=nu2), SimpleNamespace(thickness=thickness)
+    indenter = SimpleNamespace(kind="power-law")
+    return SimpleNamespace(interface=interface, half_space=half_space, indenter=indenter, mesh=mesh)
 
 
 def test_the_finite_study_reference_per_interface(bonded, free):
@@ -171,6 +173,8 @@ def test_the_finite_study_reference_per_interface(bonded, free):
     # the frictionless linear FEM passed off as the bonded reference: 1 / chi - 1 = -2.8e-2
     [wrong] = _linear_reference(_finite(Interface("bonded")), first, free.contact, tol, 0.02)
     assert not wrong.passed
+    pad = _finite(Interface("bonded"), thickness=0.02)  # a pad stiffens the deep contact
+    assert _linear_reference(pad, first, bonded.contact, tol, 0.02) == []
     assert (
         _linear_reference(_finite(Interface("bonded", 0.3)), first, free.contact, tol, 0.02) == []
     )

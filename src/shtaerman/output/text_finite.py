@@ -15,7 +15,7 @@ from ..paper.case import is_paper_case
 from ..plots.labels import model_label, variant_label
 from ..problem import worded
 from ..study.contact.interface import shtaerman_applies
-from ..study.finite.runner import FiniteStudyOutcome
+from ..study.finite.runner import FiniteStudyOutcome, no_slip_checked
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from ..theory.sneddon import profile_inputs
@@ -129,18 +129,22 @@ def curve_finding(outcome: FiniteStudyOutcome) -> list[str]:
         "and the same-mesh linear FEM both solve it, so P/P_linear-FEM isolates finite strain; "
         "the comparisons with the exact half-space hold these effects too."
     )
-    if not shtaerman_applies(surface, outcome.study.half_space.poisson_ratio):
-        text += (
-            " Shtaerman's frictionless solution is no small-strain limit of this interface on "
-            "nu2 < 0.5, so the small-strain limit is checked against the same-mesh linear FEM "
-            "alone"
-            + (
-                ", and that FEM against the no-slip identity P(n+1)/(2E* a d n) = chi(nu2)."
-                if surface.friction is None and outcome.study.indenter.kind == "power-law"
-                else " (no exact law of the Coulomb or non-power-law indenter to check it by)."
-            )
-        )
-    return [text]
+    return [text + _reference_words(outcome.study)]
+
+
+def _reference_words(study: Any) -> str:
+    """What the small-strain limit is checked against where Shtaerman's is not the
+    reference (a bonded or Coulomb indenter on nu2 < 0.5; "" where it is)."""
+    if shtaerman_applies(study.interface, study.half_space.poisson_ratio):
+        return ""
+    if no_slip_checked(study):
+        how = ", and that FEM against the no-slip identity P(n+1)/(2E* a d n) = chi(nu2)."
+    else:  # Coulomb's slipping annulus, another profile, a pad's stiffening
+        how = " (no exact law of this contact to check that FEM by)."
+    return (
+        " Shtaerman's frictionless solution is no small-strain limit of this interface on "
+        f"nu2 < 0.5, so the small-strain limit is checked against the same-mesh linear FEM{how}"
+    )
 
 
 def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
@@ -410,9 +414,15 @@ def entry(
     figures: Mapping[str, str] | None,
 ) -> dict[str, object]:
     """The study's results.json entry (:func:`.entry.text_entry`) with its ``case`` in words:
-    the rubber model with its constants on the frictionless half-space."""
-    study = outcome.study
-    case = case_words(material=rubber_words(study.rubber, study.half_space.poisson_ratio))
+    the body (half-space or pad), the rubber model with its constants and the interface."""
+    study, mesh, surface = outcome.study, outcome.mesh, outcome.study.interface
+    case = case_words(
+        material=rubber_words(study.rubber, study.half_space.poisson_ratio),
+        thickness=mesh.thickness,
+        base=mesh.base if mesh.thickness is not None else None,
+        interface=surface.kind,
+        friction=surface.friction,
+    )
     return text_entry(
         outcome, (study_tables, study_findings), files, output_seconds, figures, case=case
     )

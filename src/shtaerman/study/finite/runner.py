@@ -76,6 +76,7 @@ __all__ = [
     "estimate_ladder",
     "ladder",
     "ladder_meshes",
+    "no_slip_checked",
     "run_finite_strain_study",
 ]
 
@@ -399,6 +400,14 @@ def _checks(
     ]
 
 
+def no_slip_checked(study: FiniteStudy) -> bool:
+    """Whether a study whose reference Shtaerman's is not checks the no-slip identity of its
+    same-mesh linear FEM: no slip, z = A r^n, on the half-space (Coulomb's annulus slips, and
+    a pad stiffens the deep contact: :mod:`shtaerman.study.contact.interface`)."""
+    no_slip, half_space = study.interface.friction is None, study.mesh.thickness is None
+    return no_slip and half_space and study.indenter.kind == "power-law"
+
+
 def _linear_reference(
     study: FiniteStudy,
     first: Any,
@@ -408,14 +417,13 @@ def _linear_reference(
 ) -> list[Check]:
     """The small-strain limit's exact reference: Shtaerman's where it is the interface's
     (:func:`~shtaerman.study.contact.interface.shtaerman_applies`); for a bonded power law on
-    nu2 < 0.5, the no-slip identity of the same-mesh linear FEM (the reference of
-    P/P_linear-FEM) at the deepest depth, where its contact covers most nodes; for Coulomb
-    mu > 0, or another profile, none (no exact law: P/P_linear-FEM alone)."""
-    surface = study.interface
-    if shtaerman_applies(surface, study.half_space.poisson_ratio):
+    nu2 < 0.5 on the half-space (:func:`no_slip_checked`), the no-slip identity of the
+    same-mesh linear FEM (the reference of P/P_linear-FEM) at the deepest depth, where its
+    contact covers most nodes; else none (no exact law: P/P_linear-FEM alone)."""
+    if shtaerman_applies(study.interface, study.half_space.poisson_ratio):
         name = f"small-strain limit, P/P_Shtaerman - 1 at x/a = {ratio:.3g}"
         return [Check(name, first.force / first.force_linear - 1.0, tol.small_strain)]
-    if surface.friction is not None or study.indenter.kind != "power-law":
+    if not no_slip_checked(study):
         return []
     name = "linear no-slip identity P(n+1)/(2E* a d n) / chi - 1 at the deepest depth (same mesh)"
     return [Check(name, float(no_slip_departures(linear)[-1]), tol.identity)]
