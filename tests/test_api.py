@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 
 import shtaerman as sh
-from shtaerman.api.fem_contact import contact_depths
 from shtaerman.cli import main
 
 CASE = ["--exponent", "1.8", "--shape-coefficient", "12", "--E2", "4e6", "--nu2", "0.49"]
@@ -179,14 +178,6 @@ def test_one_depth_figure_states_that_the_exponent_needs_two(tmp_path):
     assert math.isnan(c.exponent_fem)
     note = _fit_note(c.solution)  # the text of force_depth.png
     assert "nan" not in note and "fitted only from" in note
-
-
-def test_contact_defaults_are_the_papers_impact():
-    paper = sh.PowerLawIndenter(5.0, 1.5)
-    depths = contact_depths(paper, sh.Material(7.5e6, 0.5))
-    from shtaerman.study.contact.indentation import default_depths
-
-    assert np.array_equal(depths, default_depths(paper, sh.Material(7.5e6, 0.5)))
 
 
 def test_contact_mass_with_depths_is_refused(capsys):

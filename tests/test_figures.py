@@ -20,7 +20,7 @@ from matplotlib.figure import Figure
 from PIL import Image
 from vtkmodules.vtkCommonCore import vtkObject
 
-from shtaerman.plots import curves, gallery, impact, render, revolved, sections, style
+from shtaerman.plots import curves, gallery, impact, render, sections, style
 from shtaerman.study.contact.convergence import ConvergenceStudy
 from shtaerman.validation import InputError
 
@@ -379,8 +379,6 @@ def test_off_screen_rendering_prints_nothing(tmp_path):
 def test_field_input_errors(outcome, folder):
     with pytest.raises(InputError, match="Unknown field 'stress'"):
         sections.plot_field(outcome.contact, folder / "bad.png", "stress")
-    with pytest.raises(InputError, match="angle"):
-        revolved.plot_revolved(outcome.contact, folder / "bad.png", angle=360.0)
     with pytest.raises(InputError, match="step"):
         sections.plot_field(outcome.contact, folder / "bad.png", step=99)
     assert not (folder / "bad.png").exists()

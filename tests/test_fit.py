@@ -321,6 +321,10 @@ def test_an_unknown_named_twice_is_refused(tmp_path, capsys):
     assert capsys.readouterr().err == (
         "shtaerman: error: --fit: E2 named twice; name each unknown once\n"
     )
+    assert main(["fit", "indentation", csv, "--fit", "E2,,nu2"]) == 2  # guards55: was E2,nu2
+    assert capsys.readouterr().err == (
+        "shtaerman: error: --fit: an empty name in 'E2,,nu2'; separate the names by single commas\n"
+    )
     with pytest.raises(sh.InputError, match=r"^unknowns: E2 named twice"):
         sh.fit(
             "indentation",
@@ -554,6 +558,11 @@ def test_cli_rebound_text_fits_the_mass_and_says_relative_once(tmp_path, capsys)
         (["velocity"], "unknowns: indentation data cannot fit 'velocity'"),
         ([], "unknowns: name at least one of"),
         (["E2", "E2"], "unknowns: E2 named twice"),
+        # guards55: a raw TypeError ('int' object is not iterable), and an empty item dropped
+        (5, "unknowns: give names, as 'E2,nu2' or ['E2', 'nu2'], got 5"),
+        (["E2", None], "unknowns: give names, as 'E2,nu2' or ['E2', 'nu2'], got ['E2', None]"),
+        ("E2,,nu2", "unknowns: an empty name in 'E2,,nu2'; separate the names by single commas"),
+        (["E2", ""], "unknowns: an empty name in ['E2', '']"),
     ],
 )
 def test_python_refusals_of_the_unknowns_name_the_keyword(tmp_path, unknowns, said):

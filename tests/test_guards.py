@@ -10,6 +10,7 @@ import pytest
 import shtaerman as sh
 from shtaerman.cli import main
 from shtaerman.guards import MAX_DEPTH_RATIO, ValidityWarning, depth_ratio, outside_validity
+from shtaerman.study.schema import StudyError, load_study
 from shtaerman.sweep.engine import execute_case
 from shtaerman.sweep.kinds import dynamic_case, get_kind
 
@@ -217,6 +218,87 @@ def test_the_modulus_range_is_every_routes(capsys, command, E2):
     with pytest.raises(sh.InputError, match=r"^E2 must lie in \[1e-3, 1e100\] Pa") as refused:
         sh.impact(sh.PowerLawIndenter(5.0, 1.5), sh.Material(float(E2), 0.5), mass=0.7, velocity=3)
     assert refused.value.parameter == "E2"
+
+
+@pytest.mark.parametrize("E1", ["1e-300", "1e101"])
+def test_the_strikers_modulus_range_is_every_routes(capsys, tmp_path, E1):
+    """guards55: 'impact --E1=1e-300' printed x_c = 4.7e117 m, a contact study's refusal
+    blamed mass and velocity: E1 takes E2's range [1e-3, 1e100] Pa, or inf (rigid), on the
+    command line, in the API (problem.check_bodies), a study file and a sweep."""
+    said = f"E1 must lie in [1e-3, 1e100] Pa, or inf (rigid), got {E1!r}"
+    assert main(["impact", f"--E1={E1}"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err == f"shtaerman: error: --{said}\n"
+    striker, body = sh.Material(float(E1), 0.3), sh.Material(3e6, 0.49, 1000.0)
+    for run in (sh.impact, sh.contact, sh.dynamic):  # refused before any work
+        keywords = {} if run is sh.contact else dict(mass=0.7, velocity=3.0)
+        with pytest.raises(sh.InputError, match=r"^E1 must lie in \[1e-3, 1e100\] Pa") as no:
+            run(BLUNT, body, striker=striker, **keywords)
+        assert no.value.parameter == "E1"
+
+    study = tmp_path / "soft.toml"
+    study.write_text(
+        "[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n[striker]\n"
+        f"E1 = {float(E1)!r}\nnu1 = 0.3\n[half_space]\nE2 = 7.5e6\nnu2 = 0.5\n"
+        "[impact]\nmass = 0.7\nvelocity = 3.0\n"
+    )
+    with pytest.raises(StudyError) as loaded:  # was: 'mass, velocity: ... set the depths'
+        load_study(study)
+    said = said.replace(repr(E1), repr(float(E1)))  # TOML's float
+    assert str(loaded.value) == f"{study}: key 'striker.E1': {said}"
+    sweep = tmp_path / "soft-sweep.toml"
+    sweep.write_text(f'name = "soft"\nkind = "impact"\n[axes]\nE1 = [{float(E1)!r}, 2e11]\n')
+    assert main(["sweep", str(sweep), "--out", str(tmp_path / "out")]) == 2
+    assert "axes.E1[0] must lie in [1e-3, 1e100] Pa, or inf (rigid)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("geometry", [[], ["--thickness", "10"], ["--prony", "0.3:1e-3"]])
+def test_the_impacts_contact_zone_scale_is_the_curves(capsys, geometry):
+    """guards55: 'dynamic --E2 1e-3' ran to restitution 1.69 (energy balance 3.6 of M v0^2/2)
+    where the contact curve refuses E2 / contact zone radius below 0.1 Pa/m: the linear
+    impact's refined zone (3.69 m here) is checked by the same function, before any mesh, on
+    the command line, in the API and in a dynamic sweep's load."""
+    assert main(["dynamic", "--E2", "1e-3", "--no-estimate", *geometry]) == 2
+    out, err = capsys.readouterr()
+    head = "shtaerman: error: --E2, --mass, --velocity: 0.7 kg at 3 m/s on E2 = 0.001 Pa make "
+    assert out == "" and err.count("\n") == 1 and err.startswith(head), err
+    assert "E2 / contact zone radius = " in err and "is below 0.1" in err
+    soft = sh.Material(1e-3, 0.5, 1000.0)
+    with pytest.raises(sh.InputError, match=r"^E2, mass, velocity: 0\.7 kg at 3 m/s") as no:
+        sh.dynamic(sh.PowerLawIndenter(5.0, 1.5), soft, mass=0.7, velocity=3.0, estimate=False)
+    assert no.value.parameter == "E2"
+    kind = get_kind("dynamic")
+    with pytest.raises(sh.InputError, match=r"^E2, mass, velocity: "):
+        kind.check({**kind.defaults(), "E2": 1e-3})
+
+
+def test_the_fe_impact_refuses_an_elastic_striker_it_would_ignore():
+    """guards55: sh.dynamic(striker=Material(E1, nu1)) ran a rigid striker: x_max 8.269017e-3
+    m at E1 = 1e-3 and at 1e6 Pa alike (mesh_size 0.1, 60 steps); the exact impact takes E1."""
+    body = sh.Material(7.5e6, 0.5, 1100.0)
+    steel = dict(mass=0.7, velocity=3.0, striker=sh.Material(2e11, 0.3))
+    with pytest.raises(sh.InputError, match=r"^striker: the FE impact's striker is rigid") as no:
+        sh.dynamic(sh.PowerLawIndenter(5.0, 1.5), body, **steel, estimate=False)
+    assert no.value.parameter == "striker"
+    with pytest.raises(sh.InputError, match=r"^striker: the FE impact's striker is rigid"):
+        sh.effects(sh.Problem.impact(sh.PowerLawIndenter(5.0, 1.5), body, **steel))
+
+
+def test_a_dynamic_study_refuses_its_impacts_checks_at_load(tmp_path):
+    """guards55: a dynamic study ran its velocities in order and met the impact's own checks
+    at each run's start (after the velocities before it had run), in the API's words: they
+    are made at load, naming the file's keys. E2 = 0.1 Pa: at 0.01 m/s the zone's scale
+    passes (0.067 m, 1.5 Pa/m), at 3 m/s it does not (1.17 m, 0.086 Pa/m)."""
+    study = tmp_path / "soft.toml"
+    study.write_text(
+        'kind = "dynamic"\n[indenter]\nshape_coefficient = 5.0\nexponent = 1.5\n'
+        "[half_space]\nE2 = 0.1\nnu2 = 0.5\ndensity2 = 1100.0\n"
+        "[impact]\nmass = 0.7\nvelocity = [0.01, 3.0]\n"
+    )
+    with pytest.raises(StudyError) as loaded:
+        load_study(study)
+    keys = "keys 'half_space.E2', 'impact.mass', 'impact.velocity'"
+    assert str(loaded.value).startswith(f"{study}: {keys}: 0.7 kg at 3 m/s on E2 = 0.1 Pa make")
 
 
 def test_the_exact_impacts_float_range_names_the_options_that_set_it(capsys):

@@ -503,16 +503,16 @@ def test_fit_takes_a_resilience_with_a_prony_series(capsys, tmp_path):
 def test_a_profile_csv_takes_comments_and_names_the_file_line(tmp_path):
     # the profile's reader took a '#' line for its header, and counted rows without the
     # blank lines: the same reader as fit's now (input_file.csv_rows)
-    from shtaerman.theory.profiles import read_profile_csv
+    from shtaerman.theory.profiles import TabulatedIndenter
     from shtaerman.validation import InputError
 
     path = tmp_path / "tip.csv"
     path.write_text("# a measured tip\nr [m],z [m]\n0,0\n\n1e-3,1e-5\n2e-3,x\n")
     with pytest.raises(InputError, match="row 6, column z"):
-        read_profile_csv(path)
+        TabulatedIndenter.from_csv(path)
     path.write_text("# a measured tip\nr [m],z [m]\n0,0\n# mid\n1e-3,1e-5\n2e-3,4e-5\n")
-    r, z = read_profile_csv(path)
-    assert r.tolist() == [0.0, 1e-3, 2e-3] and z.tolist() == [0.0, 1e-5, 4e-5]
+    tip = TabulatedIndenter.from_csv(path)
+    assert tip.radii.tolist() == [0.0, 1e-3, 2e-3] and tip.heights.tolist() == [0.0, 1e-5, 4e-5]
 
 
 def test_a_profile_table_error_names_the_file_line(tmp_path):

@@ -1,7 +1,10 @@
 """What ``sh.sweep`` takes and returns is public too: ``sh.SweepSpec``, ``sh.SweepOutcome``."""
 
+import inspect
 import subprocess
 import sys
+
+import pytest
 
 import shtaerman as sh
 import shtaerman.sweep.engine as engine
@@ -34,3 +37,26 @@ def test_help_of_sh_sweep_is_the_calls_then_the_packages():
     assert call in text and "path_or_spec : str, path or SweepSpec" in text
     assert f"sh.sweep{inspect.signature(sweep)}" in text
     assert text.index(call) < text.index("Parameter sweeps: a TOML grid")  # the package's after
+
+
+def test_sh_sweep_takes_what_the_command_line_takes(tmp_path):
+    """guards55: 'sweep --figure-format svg' had no keyword in sh.sweep (TypeError), and
+    force='False' was taken as true."""
+    from shtaerman.api.studies import sweep
+    from shtaerman.cli import build_parser
+
+    (command,) = (
+        choices["sweep"]
+        for action in build_parser()._actions
+        if isinstance(choices := getattr(action, "choices", None), dict) and "sweep" in choices
+    )
+    options = {action.dest for action in command._actions} - {"help", "sweep"}
+    assert options and options <= set(inspect.signature(sweep).parameters) - {"path_or_spec"}
+    out = tmp_path / "out"
+    with pytest.raises(sh.InputError, match=r"^figure_format must be one of png, svg, pdf, got"):
+        sh.sweep("impact-velocity", out=out, figure_format="bmp")  # refused before a cluster
+    with pytest.raises(sh.InputError, match=r"^force must be True or False, got 'False'"):
+        sh.sweep("impact-velocity", out=out, force="False")
+    with pytest.raises(sh.InputError, match=r"^progress must be True, False or None, got 'no'"):
+        sh.sweep("impact-velocity", out=out, progress="no")  # ran with a progress bar
+    assert not out.exists()

@@ -247,6 +247,9 @@ def test_cli_names_what_works_for_a_folder_no_sweep_wrote(tmp_path, capsys, flag
     assert code == 2
     assert_one_line_error(err, "is not a sweep folder", "name a new folder with --out")
     assert "use --resume" not in err and "use --force" not in err, err
+    # guards55: the flags are named only where given (it named both with neither)
+    assert err.count("sweep folders only") == bool(flag), err
+    assert not flag or f", and {flag[0]} acts on sweep folders only: name a new " in err, err
     assert snapshot(out) == before
 
 
@@ -292,7 +295,7 @@ def test_cli_force_removes_only_a_sweep_folder(tmp_path, capsys):
     (out / "thesis.tex").write_text("precious")
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--force")
     assert code == 2
-    assert_one_line_error(err, "is not a sweep folder", "act on sweep folders only")
+    assert_one_line_error(err, "is not a sweep folder", "--force acts on sweep folders only")
     assert (out / "thesis.tex").read_text() == "precious"
 
 

@@ -63,7 +63,7 @@ RUBBER_SHAPES = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": 
 
 def check_bodies(indenter: object, body: object, striker: object = RIGID) -> None:
     """Raise InputError unless the arguments are an indenter (PowerLawIndenter, SphereIndenter
-    or TabulatedIndenter) and two Materials."""
+    or TabulatedIndenter) and two Materials whose finite moduli lie in E2's and E1's range."""
     from .theory.sneddon import INDENTERS
 
     if not isinstance(indenter, INDENTERS):
@@ -81,8 +81,9 @@ def check_bodies(indenter: object, body: object, striker: object = RIGID) -> Non
             )
     if math.isinf(body.youngs_modulus) and math.isinf(striker.youngs_modulus):
         raise InputError("body: a rigid body under a rigid striker has no contact law", "body")
-    if math.isfinite(body.youngs_modulus):  # every route's range (a rigid body: its own)
-        entry("E2").check(body.youngs_modulus)
+    for name, material in (("E2", body), ("E1", striker)):  # every route's range (inf: rigid)
+        if math.isfinite(material.youngs_modulus):
+            entry(name).check(material.youngs_modulus)
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,6 @@ import math
 import os
 import re
 import sys
-from collections.abc import Sequence
 from decimal import ROUND_HALF_EVEN, Decimal
 
 import numpy as np
@@ -22,7 +21,6 @@ __all__ = [
     "caller_stacklevel",
     "plain_float",
     "shown",
-    "validate_increasing",
     "validate_poisson",
     "validate_positive",
 ]
@@ -175,13 +173,3 @@ def validate_poisson(name: str, value: object, low: float = -1.0) -> float:
     if not inside:
         raise InputError(f"{name} (Poisson's ratio) must lie in {valid}, got {shown(value)}", name)
     return number
-
-
-def validate_increasing(name: str, values: Sequence[object], unit: str = "") -> np.ndarray:
-    """Return positive, strictly increasing numbers as an array, or raise."""
-    numbers = np.array([validate_positive(name, v, unit) for v in values], dtype=float)
-    if numbers.size == 0:
-        raise InputError(f"{name} must list at least one value", name)
-    if np.any(np.diff(numbers) <= 0):
-        raise InputError(f"{name} must be strictly increasing, got {shown(list(values))}", name)
-    return numbers

@@ -119,6 +119,9 @@ def _shown(number: float, side: str) -> str:
 POSITIVE = Range()
 POISSON = Range(-1.0, 0.5)
 FRACTION = Range(0.0, 1.0)
+MODULUS = Range(1e-3, 1e100, low_open=False)
+"""Young's moduli E1 and E2 in Pa: of a physical size, and the FEM's (its scaled
+factorization); E1 may also be inf, a rigid striker."""
 MAX_STUDIES = 100
 """Most studies one study file expands into (the values of its ``[sweep]``): each is a full
 study."""
@@ -420,6 +423,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Striker Young's modulus E1",
         2e11,
         ("impact", "layer"),
+        valid=MODULUS,
         infinite=True,
         old_names=("youngs_modulus",),
     ),
@@ -440,7 +444,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "Half-space Young's modulus E2",
         7.5e6,
         KIND_NAMES,
-        valid=Range(1e-3, 1e100, low_open=False),  # the FEM's, and of a physical size
+        valid=MODULUS,
         old_names=("youngs_modulus",),
     ),
     Entry(

@@ -12,7 +12,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from ..output.files import json_safe
 from ..plots.formats import check_figure_format
@@ -41,7 +40,6 @@ __all__ = [
     "RUBBER_OPTIONS",
     "ContactResult",
     "contact",
-    "contact_depths",
 ]
 
 MESH_OPTIONS = ("mesh_size", "mesh_margin", "domain_factor", "growth", "max_dofs")
@@ -152,35 +150,6 @@ class ContactResult:
                 value = [dict(row) for row in value]
             document[key] = value
         return json_safe(document)
-
-
-def contact_depths(
-    indenter: Indenter,
-    body: Material,
-    depths: ArrayLike | None = None,
-    *,
-    mass: float | None = None,
-    velocity: float | None = None,
-    striker: Material | None = None,
-) -> np.ndarray:
-    """The depths of a contact curve, m: ``depths`` checked, or by default eight up to the
-    x_c of this impact (``mass`` in kg at ``velocity`` in m/s, defaults the vocabulary's),
-    geometric, contact radii a_c/3 .. a_c (:func:`.indentation.default_depths`).
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        If depths are not positive and increasing, or are given with mass or velocity.
-    """
-    from ..study.contact.indentation import default_depths
-
-    striker = RIGID if striker is None else striker
-    problem = Problem.curve(
-        indenter, body, depths=depths, mass=mass, velocity=velocity, striker=striker
-    )  # the one check of the depths, the bodies and which of them is given
-    if problem.loading.depths is not None:
-        return np.array(problem.loading.depths)
-    return default_depths(indenter, body, mass, velocity, striker)
 
 
 def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -333,6 +334,13 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
+    if problem.striker.material.youngs_modulus != math.inf:
+        raise InputError(
+            "striker: the FE impact's striker is rigid (its elasticity is not modelled, E1 "
+            "would be ignored): drop striker=..., or take the exact quasi-static impact "
+            "(shtaerman.impact), which takes it",
+            "striker",
+        )
     if problem.body.finite:
         numbers = dict(time_steps=options["time_steps"], mesh_size=options["mesh_size"])
         chosen = finite_settings(problem, **numbers, refine=refine, estimate=estimate)
@@ -358,10 +366,10 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..fem.finite_dynamic import pad_reach_note
     from ..guards import check_reach
-    from ..study.dynamic.case import exact_impact
     from ..theory.impact import representable
     from ..theory.materials import effective_modulus, validate_density
     from ..theory.sneddon import contact_law
+    from ..theory.viscoelastic import elastic_impact
 
     striker, body = problem.striker, problem.body.material
     inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
@@ -369,7 +377,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         # the floating-point range first, as the run meets it: the exact impact's, and v0^2
-        x_c = exact_impact(striker.mass, striker.velocity, law).x_c
+        x_c = elastic_impact(striker.mass, striker.velocity, law).x_c
         representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5], ("velocity",))
         if settings is not None:
             physics = (problem.body.prony, problem.interface.coefficient)

@@ -110,6 +110,7 @@ def sweep(
     *,
     force: bool = False,
     progress: bool | None = False,
+    figure_format: str = "png",
 ) -> SweepOutcome:
     """Run a sweep (a file, a shipped sweep's name, or a spec) on dask.distributed.
 
@@ -127,9 +128,15 @@ def sweep(
     resume : bool
         Complete the sweep in ``out``: compute only the cases without a saved result.
     force : bool
-        Replace an existing result folder.
+        Replace a result folder a sweep wrote (never files you added) once this run
+        completes; interrupted, the old folder stays whole and this run's saved cases are kept
+        beside it in ``out.incomplete-PID`` (``resume=True`` there completes them and moves
+        them to ``out``). Not with ``resume``.
     progress : bool, optional
         Progress bar on stderr (None: when stderr is a terminal).
+    figure_format : {"png", "svg", "pdf"}
+        The figures' files: png (200 dpi), or svg / pdf (vector, text kept as text) written
+        beside each chart's PNG (``shtaerman sweep --figure-format``).
 
     Returns
     -------
@@ -154,6 +161,11 @@ def sweep(
         raise InputError("workers: sizes the local cluster; drop it with scheduler", "workers")
     if workers is not None:
         workers = vocabulary.entry("workers").check(workers)
+    flags = {"resume": resume, "force": force, "progress": progress}  # "False" is true
+    for name, value in flags.items():
+        if not isinstance(value, bool) and not (name == "progress" and value is None):
+            either = "True, False or None" if name == "progress" else "True or False"
+            raise InputError(f"{name} must be {either}, got {value!r}", name)
     folder = Path(f"sweep-{spec.name}") if out is None else output_path(out)
     return run_sweep(
         spec,
@@ -163,4 +175,5 @@ def sweep(
         resume=resume,
         force=force,
         progress=progress,
+        figure_format=figure_format,
     )

@@ -42,7 +42,7 @@ from ..theory.radiation import rayleigh_root
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
-from .contact.linear import mass_factor
+from .contact.linear import check_contact_scale, mass_factor
 from .contact.stick import CoupledCompliance, radial_dofs
 from .dynamic_layer import (
     AbsorbingLayer,
@@ -592,10 +592,10 @@ def check_dynamic_impact(
     exact: ProfileImpactResult | None = None,
 ) -> tuple[float, Striker, _Scales, int]:
     """Check every input of a dynamic impact (arguments of :func:`.impact.run_impact`) before
-    anything is meshed, in well under a second: the density, mass and velocity, the layer's
-    thickness against the impact's refined radius, the duration of a viscoelastic impact and
-    the estimated mesh size. ``shtaerman dynamic`` and a dynamic sweep's load both refuse
-    their inputs here.
+    anything is meshed, in well under a second: the density, mass and velocity, the body's
+    modulus against the refined radius (as the contact curve's), the layer's thickness
+    against it, the duration of a viscoelastic impact and the estimated mesh size.
+    ``shtaerman dynamic`` and a dynamic sweep's load both refuse their inputs here.
 
     Returns
     -------
@@ -618,6 +618,8 @@ def check_dynamic_impact(
     if settings.thickness is None:  # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
     scales = _scales(indenter, half_space, rho, striker, settings, prony, qs)
+    impact = (striker.mass, striker.velocity)
+    check_contact_scale(half_space.youngs_modulus, scales.refined, impact, curve=False)
     if settings.thickness is None:
         return rho, striker, scales, estimate_dofs(settings)
     estimate = layer_dofs(settings, scales.refined, scales.domain_radius)

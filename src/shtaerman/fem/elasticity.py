@@ -75,7 +75,6 @@ __all__ = [
     "redistribute_normal_mass",
     "scalar_mass",
     "solve",
-    "total_vertical_mass",
     "weighted_mass",
 ]
 
@@ -384,11 +383,6 @@ class ElasticSolution:
         """u_z in m at ``surface_r`` (negative: into the body)."""
         return self.coefficients[self.system.surface_dofs]
 
-    @property
-    def surface_reactions(self) -> np.ndarray:
-        """z reactions in N at ``surface_r`` (nonzero where u_z was prescribed)."""
-        return self.reactions[self.system.surface_dofs]
-
 
 def solve(
     system: ElasticSystem,
@@ -597,10 +591,3 @@ def redistribute_normal_mass(mass: sp.csr_matrix, dofs: np.ndarray) -> sp.csr_ma
     if lost > 0 and diagonal.sum() > 0:
         kept = kept + sp.diags(lost * diagonal / diagonal.sum())
     return sp.csr_matrix(kept)
-
-
-def total_vertical_mass(mass: sp.csr_matrix, uz_dofs: np.ndarray) -> float:
-    """1^T M 1 over the u_z dofs, in kg: the mass of a rigid vertical translation."""
-    ones = np.zeros(mass.shape[0])
-    ones[uz_dofs] = 1.0
-    return float(ones @ (mass @ ones))

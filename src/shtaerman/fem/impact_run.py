@@ -186,10 +186,10 @@ def _clean(value: Any) -> Any:
     return value
 
 
-def parabola_peak(t: np.ndarray, y: np.ndarray, k: int | None = None) -> tuple[float, float]:
-    """Peak value and time of the parabola through samples k - 1, k, k + 1 (``k`` default:
-    the largest sample); the sample itself at an end or where y is not concave there."""
-    k = int(np.argmax(y)) if k is None else k
+def parabola_peak(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """Peak value and time of the parabola through the largest sample k and its neighbours;
+    the sample itself at an end or where y is not concave there."""
+    k = int(np.argmax(y))
     if k == 0 or k == y.size - 1:
         return float(y[k]), float(t[k])
     y0, y1, y2 = y[k - 1], y[k], y[k + 1]

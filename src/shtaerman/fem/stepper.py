@@ -777,7 +777,9 @@ class QuasiStaticBody:
             raise
         except NewtonError as error:  # the run's numerics, not its input
             last = self.history[-1]  # the undeformed start squeezes nothing
-            squeezed = None if last is self.zero else squeeze_note(self.stepper.system, last.x)
+            squeezed = None
+            if last is not self.zero:
+                squeezed = squeeze_note(self.stepper.system, last.x, "more time_steps=...")
             remedy = "a lower velocity=... (on a pad: a thicker thickness=...)"
             raise NumericalFailureError(
                 f"the finite-strain contact failed at depth {depth:g} m ({error}); "

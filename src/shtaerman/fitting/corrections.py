@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 from ..problem import Problem
-from ..theory.materials import Material
+from ..theory.materials import RIGID, Material
 from ..theory.sneddon import Indenter, contact_law
 from ..theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
 
@@ -171,12 +171,13 @@ def exact_rebound(known: KnownParts, values: Mapping[str, float], velocity: floa
 def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
            prony: PronySeries | None) -> tuple[Problem, dict[str, float]]:  # fmt: skip
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point; a
-    density left unset is no waves, the massless FE impact (density 0)."""
+    density left unset is no waves, the massless FE impact (density 0); the striker rigid, as
+    the FE impact's is."""
     e2 = youngs_modulus(known, values["E_star"], known.nu2)
     body = problem.body
     density = body.material.density
     material = Material(e2, known.nu2, 0.0 if density is None else density)
-    striker = dataclasses.replace(problem.striker, mass=values["mass"],
+    striker = dataclasses.replace(problem.striker, mass=values["mass"], material=RIGID,
                                   velocity=values["velocity"])  # fmt: skip
     body = dataclasses.replace(body, material=material, prony=prony)
     at = {"E2": e2, "nu2": known.nu2, "mass": values["mass"], "velocity": values["velocity"]}

@@ -96,8 +96,20 @@ def _check_loss(measured: Measurement, problem: Problem) -> None:
 
 
 def _names(unknowns: Sequence[str] | str) -> list[str]:
-    names = [unknowns] if isinstance(unknowns, str) else list(unknowns)
-    names = [n.strip() for part in names for n in str(part).split(",") if n.strip()]
+    """The names of ``unknowns`` ("E2,nu2" or ["E2", "nu2"]); an empty item ("E2,,nu2", a
+    slip) and anything but strings are refused, naming the keyword (the CLI: --fit)."""
+    parts = [unknowns] if isinstance(unknowns, str) else unknowns
+    if not isinstance(parts, list | tuple) or not all(isinstance(p, str) for p in parts):
+        raise InputError(
+            f"unknowns: give names, as 'E2,nu2' or ['E2', 'nu2'], got {unknowns!r}", "unknowns"
+        )
+    names = [name.strip() for part in parts for name in part.split(",")]
+    if "" in names and names != [""]:  # "" names none: refused with the choices
+        raise InputError(
+            f"unknowns: an empty name in {unknowns!r}; separate the names by single commas",
+            "unknowns",
+        )
+    names = [name for name in names if name]
     twice = sorted({name for name in names if names.count(name) > 1})
     if twice:  # a slip for another name (E2,E2 for E2,nu2): not silently one unknown
         raise InputError(

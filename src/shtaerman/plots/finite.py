@@ -229,11 +229,9 @@ def plot_finite_impact(
     return save(figure, path, figure_format)
 
 
-def plot_finite_section(
-    outcome: FiniteStudyOutcome, path: Path | str, field: str = "von_mises", extent: float = 2.5
-) -> Path:
-    """Von Mises (or ``field``) on the deformed r-z section under the indenter, true scale,
-    at the computed depth nearest the finite-strain x_c (PNG, 1600 x 1000)."""
+def plot_finite_section(outcome: FiniteStudyOutcome, path: Path | str) -> Path:
+    """Von Mises on the deformed r-z section under the indenter, true scale, 2.5 contact radii
+    wide, at the computed depth nearest the finite-strain x_c (PNG, 1600 x 1000)."""
     finite, curve = outcome.finite, outcome.finite.curve
 
     def fields(step: int) -> SimpleNamespace:  # shaped as :mod:`.sections` reads a result
@@ -242,4 +240,4 @@ def plot_finite_section(
 
     deformed = SimpleNamespace(indenter=finite.indenter, steps=finite.steps, field=fields)
     step = nearest_step(outcome)
-    return plot_field(deformed, path, field, step=step, extent=extent, deformed=True)
+    return plot_field(deformed, path, "von_mises", step=step, extent=2.5, deformed=True)

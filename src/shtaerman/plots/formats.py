@@ -27,7 +27,8 @@ def check_figure_format(figure_format: str) -> str:
     """``figure_format`` if it is one of :data:`FIGURE_FORMATS`, else :class:`InputError`."""
     if figure_format not in FIGURE_FORMATS:
         raise InputError(
-            f"figure-format must be one of {', '.join(FIGURE_FORMATS)}, got {figure_format!r}"
+            f"figure_format must be one of {', '.join(FIGURE_FORMATS)}, got {figure_format!r}",
+            "figure_format",
         )
     return figure_format
 

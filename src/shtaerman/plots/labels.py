@@ -44,7 +44,6 @@ class Label:
 
 
 MINUS = "\N{MINUS SIGN}"
-NU = "\N{GREEK SMALL LETTER NU}"
 _DIFFERENCE = f"quasi-static / dynamic {MINUS} 1"
 _EFFECT_HEADS = {
     "dominant": "Dominant single effect on {}",

@@ -1,6 +1,6 @@
 """Off-screen pyvista picture of a 3D cut-away: the r-z section revolved about the axis (PNG).
 
-The section of :mod:`.sections`, swept through ``angle`` degrees and coloured by one field
+The section of :mod:`.sections`, swept through :data:`ANGLE` degrees and coloured by von Mises
 (:mod:`.fields`), seen from above into the open sector, with the contact circle r = a in green.
 """
 
@@ -13,12 +13,17 @@ import numpy as np
 import pyvista as pv
 
 from ..study.contact.indentation import IndentationResult
-from ..validation import InputError
 from .fields import add_coloured, isolines, shown
 from .render import picture, save
 from .sections import CONTACT_COLOUR, contact_step, field_solution, frame, section
 
 __all__ = ["plot_revolved"]
+
+
+ANGLE = 270.0
+"""Sweep of the cut-away in degrees; the rest of the turn is left open to show the section."""
+EXTENT = 2.5
+"""Radius of the cylinder shown, in contact radii."""
 
 
 def _revolve(cut: pv.PolyData, angle: float) -> pv.PolyData:
@@ -66,42 +71,26 @@ def _camera_3d(plotter: pv.Plotter, angle: float, elevation: float = 28.0) -> No
     plotter.camera.SetWindowCenter(0.13, 0.0)
 
 
-def plot_revolved(
-    result: IndentationResult,
-    path: Path | str,
-    field: str = "von_mises",
-    *,
-    step: int = -1,
-    extent: float = 2.5,
-    angle: float = 270.0,
-) -> Path:
-    """Write a PNG of a 3D cut-away: the r-z section revolved about the axis, coloured by a field.
+def plot_revolved(result: IndentationResult, path: Path | str) -> Path:
+    """Write a PNG of a 3D cut-away: the r-z section at the largest depth revolved through
+    :data:`ANGLE` degrees about the axis, coloured by von Mises; returns ``path``.
 
-    Parameters
-    ----------
-    result, path, field, step
-        As for :func:`.sections.plot_field`; returns ``path``.
-    extent : float
-        Radius of the cylinder shown in contact radii a (rounded up to a whole tick); its
-        depth is 2/3 of it.
-    angle : float
-        Sweep in degrees, in (0, 360); the rest is left open to show the section.
+    The cylinder shown has a radius of :data:`EXTENT` contact radii (rounded up to a whole
+    tick) and 2/3 of it in depth.
     """
-    if not 0.0 < angle < 360.0:
-        raise InputError(f"angle must lie in (0, 360) degrees, got {angle!r}")
-    solution = field_solution(result, [field], step, extent)
-    contact = contact_step(result, step)
-    window = frame(contact.contact_radius, extent)
+    solution = field_solution(result, ["von_mises"], -1, EXTENT)
+    contact = contact_step(result, -1)
+    window = frame(contact.contact_radius, EXTENT)
     cut = section(solution, window, deformed=False)
-    colours = shown(cut, field)
+    colours = shown(cut, "von_mises")
     with picture() as plotter:
         shading = {"ambient": 0.45, "diffuse": 0.6, "specular": 0.0}
-        add_coloured(plotter, _revolve(cut, angle), colours, 0.84, **shading)
+        add_coloured(plotter, _revolve(cut, ANGLE), colours, 0.84, **shading)
         lift = 2e-3 * window.depth  # lines just off the faces they lie on
         lines = isolines(cut, colours)
-        for face, outward in ((0.0, -lift), (angle, lift)) if lines is not None else ():
+        for face, outward in ((0.0, -lift), (ANGLE, lift)) if lines is not None else ():
             moved = _rotated(lines, face, outward)
             plotter.add_mesh(moved, color="black", line_width=1.2, opacity=0.5)
-        _draw_contact(plotter, contact.contact_radius * window.scale, angle, lift)
-        _camera_3d(plotter, angle)
+        _draw_contact(plotter, contact.contact_radius * window.scale, ANGLE, lift)
+        _camera_3d(plotter, ANGLE)
         return save(plotter, path)

@@ -73,7 +73,8 @@ EXPECTED = {
         for item in VOCABULARY
         if item.type in ("float", "int") and item.group != "output"
     },
-    "E1": 'a number > 0 (Pa), or "inf" for a rigid striker',
+    "E1": f'a number in {vocabulary_entry("E1").range_for().text()} (Pa), or "inf" for a rigid '
+    "striker",
     "velocity": "a number > 0 (m/s), or (a dynamic study) a list of increasing ones",
     "depths": f"a list of 2 to {vocabulary_entry('depths').max_items} increasing depths > 0 (m), "
     'or "impact"',
@@ -383,15 +384,16 @@ def prony_of(path: Path, prony: str | None) -> Any:
 
 def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float], Any]:
     """velocity (m/s) -> the quasi-static impact of ``mass`` kg with the rigid ``indenter`` on
-    the half-space of ``body`` (:func:`.dynamic.case.exact_impact`), solved once per velocity
-    however often it is asked (the loader's checks, a layer's H / a_c and the run share it)."""
+    the half-space of ``body`` (:func:`..theory.viscoelastic.elastic_impact`), solved once per
+    velocity however often it is asked (the loader's checks, a layer's H / a_c and the run
+    share it)."""
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
-    from .dynamic.case import exact_impact
+    from ..theory.viscoelastic import elastic_impact
 
     @functools.cache
     def solved(velocity: float) -> Any:
-        return exact_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
+        return elastic_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
 
     return solved
 

@@ -518,11 +518,12 @@ def _check_folder(
         raise InputError(f"out: {missing_folder(out.parent)}", "out")
     probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
     full = out.is_dir() and any(out.iterdir())
-    if full and not is_sweep_folder(out):  # what resume or force would refuse: neither said
+    if full and not is_sweep_folder(out):  # resume or force would refuse it: not suggested
+        flag = "resume" if resume else "force" if force else None  # at most one (above)
+        acts = f", and {flag}=True acts on sweep folders only" if flag else ""
         raise InputError(
             f"out: folder {str(out)!r} is not a sweep folder (no {MARKER_FILE} written by "
-            "shtaerman sweep), and resume=True and force=True act on sweep folders only: name "
-            "a new folder with out=...",
+            f"shtaerman sweep){acts}: name a new folder with out=...",
             "out",
         )
     if full and resume:

@@ -33,7 +33,6 @@ __all__ = [
     "MAX_SPHERE_RADIUS",
     "SphereIndenter",
     "TabulatedIndenter",
-    "read_profile_csv",
 ]
 
 
@@ -107,18 +106,6 @@ def _float(text: str, row: int, column: str, path: Path) -> float:
             "profile",
         )
     return value
-
-
-def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """The columns r and z (m) of a profile CSV (:func:`_read_rows`).
-
-    Raises
-    ------
-    shtaerman.validation.InputError
-        One line naming the file and the row (its line in the file) or column at fault.
-    """
-    r, z, _ = _read_rows(Path(path))
-    return r, z
 
 
 def _read_rows(path: Path) -> tuple[np.ndarray, np.ndarray, list[int]]:

@@ -41,7 +41,6 @@ __all__ = [
     "prony_from_moduli",
     "prony_from_text",
     "prony_input",
-    "prony_moduli",
     "prony_with_modulus",
     "shipped_rubber",
 ]
@@ -104,11 +103,6 @@ def prony_from_moduli(
             raise InputError(f"prony: E{i} must be a finite number >= 0 Pa, got {modulus}", "prony")
     instantaneous = math.fsum((relaxed, *moduli))
     return PronySeries(tuple(m / instantaneous for m in moduli), tuple(times)), instantaneous
-
-
-def prony_moduli(series: PronySeries, instantaneous: float) -> tuple[float, tuple[float, ...]]:
-    """(E_inf, E_i) in Pa of ``series`` on the instantaneous modulus E0 = ``instantaneous``."""
-    return series.g_inf * instantaneous, tuple(g * instantaneous for g in series.weights)
 
 
 def _number(text: str, where: str) -> float:

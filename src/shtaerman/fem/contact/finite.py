@@ -537,10 +537,11 @@ def element_inverted(state: Any) -> bool:
     return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
 
 
-def squeeze_note(system: Any, x: np.ndarray) -> str | None:
+def squeeze_note(system: Any, x: np.ndarray, steps: str) -> str | None:
     """What a failed contact's message says where its last converged state x (of ``system``)
     squeezes some element below J = :data:`SQUEEZED_J` (None where none): where, how far,
-    and that neither a finer mesh size nor smaller load or time steps move that limit."""
+    and that neither a finer mesh size nor ``steps`` (the caller's own steps, in its options'
+    words: "more time_steps=...") move that limit."""
     J = system.state(x).J
     if np.min(J) >= SQUEEZED_J:
         return None
@@ -551,7 +552,7 @@ def squeeze_note(system: Any, x: np.ndarray) -> str | None:
         f"the last converged state squeezes the element at R {r:.2g} m, {-z:.2g} m below the "
         f"surface, to J = {np.min(J):.2g} (det F, pointwise; 1 in an undeformed body): the "
         "elements beside the indenter's tip no longer follow the deformation, a limit that "
-        "neither a finer mesh_size=... nor smaller steps (time_steps=..., depths=...) move"
+        f"neither a finer mesh_size=... nor {steps} move"
     )
 
 
@@ -795,7 +796,8 @@ def _reach(
             if locked is not None:
                 raise locked from None
             if cuts > max_cuts:
-                note = squeeze_note(stepper.system, history[-1][1]) or (
+                steps = "smaller load steps"  # halved max_cuts times already
+                note = squeeze_note(stepper.system, history[-1][1], steps) or (
                     "a finer mesh_size=... or refine=... helps only where the mesh is the cause"
                 )
                 raise NewtonError(

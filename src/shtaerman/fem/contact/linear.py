@@ -479,12 +479,17 @@ def field_solutions(
 
 
 def check_contact_scale(
-    youngs_modulus: float, radius: float, impact: tuple[float, float] | None = None
+    youngs_modulus: float,
+    radius: float,
+    impact: tuple[float, float] | None = None,
+    curve: bool = True,
 ) -> None:
     """Refuse a contact zone of ``radius`` m on a body of ``youngs_modulus`` Pa whose ratio is
-    below :data:`MIN_MODULUS_PER_LENGTH` Pa/m (the mixed u-p system loses digits there).
-    ``impact``: the mass (kg) and velocity (m/s) whose x_c set the depths, named as the cause
-    (None: the depths were given, E2 and the depths are named)."""
+    below :data:`MIN_MODULUS_PER_LENGTH` Pa/m (the mixed u-p system loses digits there): the
+    one check of the linear FE's contact curve and impact. ``impact``: the mass (kg) and
+    velocity (m/s) whose x_c set the depths, named as the cause (None: the depths were given,
+    E2 and the depths are named); ``curve`` False: the impact itself, whose zone E2, mass and
+    velocity set together."""
     ratio = youngs_modulus / radius
     if ratio >= MIN_MODULUS_PER_LENGTH:
         return
@@ -494,6 +499,13 @@ def check_contact_scale(
     )
     if impact is None:
         raise InputError(f"E2, shape_coefficient: {where}; check them and the depths", "E2")
+    if not curve:
+        raise InputError(
+            f"E2, mass, velocity: {impact[0]:g} kg at {impact[1]:g} m/s on E2 = "
+            f"{youngs_modulus:g} Pa make a contact zone of {radius:.3g} m: {where}; raise E2 "
+            "or lower the mass or the velocity",
+            "E2",
+        )
     raise InputError(
         f"mass, velocity: {impact[0]:g} kg at {impact[1]:g} m/s set the depths (up to the "
         f"impact's x_c), a contact zone of {radius:.3g} m: {where}; lower the mass or the "

@@ -27,9 +27,9 @@ from ...problem import Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
 from ...theory.sneddon import Indenter, contact_law
+from ...theory.viscoelastic import elastic_impact
 from ...validation import InputError
 from ...vocabulary import entry
-from ..dynamic.case import exact_impact
 from ..schema import (
     EXPECTED,
     LayerTable,
@@ -220,6 +220,7 @@ def _surface(path: Path, raw: _StudyFile) -> Interface:
     parts = {"interface": contact.interface, "friction": contact.friction}
     parts |= {"prony": prony_of(path, half_space.prony), "rate": contact.rate}
     try:
+        parts["striker"] = _striker(raw)
         body = Material(half_space.E2, half_space.nu2)
         problem = Problem.curve(indenter_of(path, raw.indenter), body, **parts)
     except InputError as error:
@@ -255,9 +256,15 @@ def _check_checkable(path: Path, raw: _StudyFile, surface: Interface) -> None:
         )
 
 
-def _build(path: Path, raw: _StudyFile) -> Study:
-    striker, contact = raw.striker, raw.contact
+def _striker(raw: _StudyFile) -> Material:
+    """The striker's elasticity of ``[striker]`` (rigid without it, or with E1 = "inf")."""
+    striker = raw.striker
     rigid = striker is None or striker.E1 == "inf"
+    return RIGID if rigid else Material(striker.E1, striker.nu1)
+
+
+def _build(path: Path, raw: _StudyFile) -> Study:
+    contact = raw.contact
     surface = _surface(path, raw)
     _check_checkable(path, raw, surface)
     mesh, quick = (
@@ -267,7 +274,7 @@ def _build(path: Path, raw: _StudyFile) -> Study:
     return Study(
         **named(path, raw),
         indenter=indenter_of(path, raw.indenter),
-        striker=RIGID if rigid else Material(striker.E1, striker.nu1),
+        striker=_striker(raw),
         half_space=Material(raw.half_space.E2, raw.half_space.nu2),
         mass=raw.impact.mass,
         velocity=raw.impact.velocity,
@@ -316,7 +323,7 @@ def on_layer(study: Study) -> Study:
         return study
 
     modulus = effective_modulus(study.striker, study.half_space)
-    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
+    exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     layer = study.layer.resolved(float(exact.a_c))
     deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
     mesh, quick = layer.on(study.mesh), layer.on(study.quick_mesh)
@@ -382,7 +389,7 @@ def check_profile_reach(
         drive = f"depth {deepest:.6g} m"
     else:
         parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
-        deepest = overshoot * exact_impact(*impact, law).x_c  # a table's names profile
+        deepest = overshoot * elastic_impact(*impact, law).x_c  # a table's names profile
         drive = (
             f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
             f"({overshoot:g} x_c, the deepest depth)"

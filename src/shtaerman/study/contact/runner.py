@@ -24,8 +24,8 @@ from ...theory.impact_ode import integrate_impact
 from ...theory.materials import effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.sneddon import SneddonContact, contact_law
+from ...theory.viscoelastic import elastic_impact
 from ..checks import Check, Outcome
-from ..dynamic.case import exact_impact
 from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
@@ -198,7 +198,7 @@ def run_contact_study(
     report = progress or (lambda _line: None)
     start = time.perf_counter()
     modulus = effective_modulus(study.striker, study.half_space)
-    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
+    exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     mesh, depths = study.quick_mesh if quick else study.mesh, _study_depths(study)
     if study.depths is None:  # the impact's x_c set them: a huge one names mass and velocity
         radius = refined_radius(study.indenter, depths, mesh)

@@ -42,7 +42,6 @@ __all__ = [
     "COMPARED",
     "DynamicCase",
     "compare",
-    "exact_impact",
     "finite_settings",
     "problem_case",
     "radiation",
@@ -195,16 +194,6 @@ def radiation(
     )  # fmt: skip
 
 
-def exact_impact(
-    mass: float, velocity: float, law: PowerLawContact | SneddonContact
-) -> ImpactResult | ProfileImpactResult:
-    """The quasi-static impact of ``mass`` kg at ``velocity`` m/s on the contact ``law``
-    (:func:`shtaerman.theory.sneddon.contact_law`): the power law's closed form (Ateb),
-    another profile's quadrature (Sneddon), as
-    :func:`shtaerman.theory.viscoelastic.elastic_impact`."""
-    return elastic_impact(mass, velocity, law)
-
-
 def run_case(
     indenter: Indenter,
     half_space: Material,
@@ -267,7 +256,7 @@ def run_case(
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
-        quasi = exact_impact(mass, velocity, law) if quasi is None else quasi
+        quasi = elastic_impact(mass, velocity, law) if quasi is None else quasi
         representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))  # first
         estimate = radiation(mass, velocity, law, density, half_space, quasi)
         sizing = profile_sizing_impact(indenter, half_space, mass, velocity)  # once, not per run

@@ -24,6 +24,7 @@ from ...fem.dynamic_contact import (
     MAX_DOFS,
     MAX_SIZE,
     DynamicSettings,
+    check_dynamic_impact,
     estimate_dofs,
 )
 from ...fem.mesh import growth_error
@@ -262,8 +263,8 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
         raise refused(path, error, KEYS) from None
     numerics = {
         "exact": {
-            **_check_velocities(path, "impact.velocity", study, study.velocities, exact),
-            **_check_velocities(path, "quick.velocity", study, study.quick_velocities, exact),
+            **_check_velocities(path, "impact.velocity", study, exact),
+            **_check_velocities(path, "quick.velocity", study, exact, quick=True),
         },
         "finite_numerics": _finite_numerics(path, "numerics", raw.numerics, problem),
         "quick_finite_numerics": _finite_numerics(path, "quick", raw.quick, problem, raw.numerics),
@@ -328,19 +329,23 @@ def _finite_numerics(
 
 
 def _check_velocities(
-    path: Path, key: str, study: DynamicStudy, velocities: Any, exact: Callable[[float], Any]
+    path: Path, key: str, study: DynamicStudy, exact: Callable, quick: bool = False
 ) -> dict[float, Any]:
-    """The exact impact at each of ``velocities`` (``exact``, solved once per velocity), a
-    velocity whose problem the Problem refuses, or whose exact impact leaves the
-    floating-point range, refused naming ``key`` (the first check of its run: it came after
-    the velocities before it had run)."""
+    """The exact impact at each velocity of the study (``quick``: of its quick run; ``exact``,
+    solved once per velocity), a velocity whose problem the Problem refuses or whose exact
+    impact leaves the floating-point range, refused naming ``key``, or (the linear body)
+    whose run with the study's settings the impact's own checks refuse (depth reach, contact
+    zone scale: :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
+    keys at fault: at load, not as the first check of its run, after the velocities before
+    it had run."""
     import warnings
 
     from ...theory.impact import representable
 
     solved = {}
-    for velocity in velocities:
-        study.problem(velocity)
+    settings = study.quick_settings if quick else study.settings
+    for velocity in study.quick_velocities if quick else study.velocities:
+        problem = study.problem(velocity)
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # the run's warnings are the run's
@@ -348,6 +353,16 @@ def _check_velocities(
                 solved[velocity] = exact(velocity)
         except InputError as error:
             raise StudyError(f"{path}: key '{key}': {error}") from None
+        if study.finite:  # its reach: checked as the finite-strain impact starts
+            continue
+        inputs = (study.indenter, study.half_space, study.density, study.mass, velocity)
+        physics = (problem.body.prony, problem.interface.coefficient)
+        try:  # a profile's sizing impact: the exact one here
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                check_dynamic_impact(*inputs, settings, *physics, solved[velocity])
+        except InputError as error:
+            raise refused(path, error, {**KEYS, "velocity": key}) from None
     return solved
 
 

@@ -49,6 +49,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.sneddon import Indenter, contact_law, profile_inputs
+from ...theory.viscoelastic import elastic_impact
 from ...validation import caller_stacklevel
 from ..checks import Check, Outcome
 from ..contact.contact_law import fem_contact_law
@@ -56,7 +57,6 @@ from ..contact.indentation import IndentationResult, run_indentation
 from ..contact.interface import no_slip_departures, shtaerman_applies
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
 from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
-from ..dynamic.case import exact_impact
 from ..ladder import (
     LADDER_RATIO,
     NESTED_RATIO,
@@ -558,7 +558,7 @@ def run_finite_strain_study(
     report = progress or (lambda _line: None)
     start, cpu = time.perf_counter(), time.process_time()
     modulus = effective_modulus(RIGID, study.half_space)
-    exact = exact_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
+    exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     spec = study.quick_ladder if quick else study.ladder
     mesh = study.quick_mesh if quick else study.mesh
     nested = study.mesh_ladder == "nested"
