@@ -54,10 +54,16 @@ def test_a_finite_strain_study_refuses_a_curve_that_does_not_combine(tmp_path, e
 
 
 def test_the_finite_strain_findings_state_the_interface_and_the_pad():
-    pad, surface = Geometry(0.02, "bonded"), sh.Interface("bonded", 0.5)
-    (said,) = curve_finding(SimpleNamespace(study=SimpleNamespace(geometry=pad, interface=surface)))
+    layer, surface = Geometry(0.02, "bonded"), sh.Interface("bonded", 0.5)
+    rubber = SimpleNamespace(poisson_ratio=0.5)  # Shtaerman's the small-strain limit
+    pad = SimpleNamespace(geometry=layer, interface=surface, half_space=rubber)
+    (said,) = curve_finding(SimpleNamespace(study=pad))
     assert "Coulomb friction 0.5" in said and "pad H = 20 mm on a bonded rigid base" in said
-    paper = SimpleNamespace(geometry=HALF_SPACE, interface=sh.Interface())
+    assert "no small-strain limit" not in said
+    pad.half_space = SimpleNamespace(poisson_ratio=0.3)  # Shtaerman's no limit of it
+    (said,) = curve_finding(SimpleNamespace(study=pad))
+    assert "against the same-mesh linear FEM (no exact law" in said
+    paper = SimpleNamespace(geometry=HALF_SPACE, interface=sh.Interface(), half_space=rubber)
     assert curve_finding(SimpleNamespace(study=paper)) == []
 
 

@@ -63,7 +63,9 @@ velocity = 3.0              # m/s
 depths = "impact"           # 8 depths up to the impact's x_c (contact radii a_c/3 .. a_c),
                             # or a list of at least 2 increasing depths in m, e.g. [1e-3, 2e-3]
 # interface = "bonded"      # the rubber sticks to the indenter (default "frictionless"); the
-                            # force then departs from Shtaerman's by physics (nu2 < 0.5)
+                            # force then departs from Shtaerman's by physics (nu2 < 0.5): the
+                            # departures are reported, the checks are the exponent, the no-slip
+                            # identity and the tabulated impact against the fitted one
 #   friction = 0.5          # with "bonded": Coulomb's mu >= 0, a point slides where its shear
                             # exceeds mu x its pressure (default none: no slip)
 #   rate = 0.1              # pressing speed (m/s) of a viscoelastic body: only with prony
@@ -75,6 +77,8 @@ exponent = 1e-3             # freely fitted exponent q = (n+1)/n
 contact_radius = 1e-2
 central_pressure = 1e-2
 impact = 2e-3               # x_c, P_c, t_c of the two FEM-fed impacts against the exact one
+identity = 3e-3             # bonded on nu2 < 0.5: P (n+1)/(2 E* a d n) against Mossakovskii's
+                            # chi(nu2), plus the ladder's force and contact-radius estimates
 
 # [numerics]                # mesh controls relative to the contact zone (defaults shown)
 # refine = 1.0              # divide the whole mesh size field by K (dofs ~ K^2)
@@ -249,6 +253,8 @@ small_steps = 5             # geometric depths from it to the first equal step
 # [tolerances]              # pass or fail (these are the defaults)
 # small_strain = 5e-3       # |P / P_Shtaerman - 1| at the first, tiny depth
 # small_strain_fem = 2e-3   # |P / P_linear-FEM - 1| there, on the same mesh
+# identity = 3e-3           # bonded on nu2 < 0.5 (Shtaerman's is no reference there): the
+                            # linear FEM's P (n+1)/(2 E* a d n) / chi(nu2) - 1, deepest depth
 # conservation = 2e-3       # |integral of P dx / stored energy - 1|
 # newton = 1e-6             # Newton's relative residual
 # complementarity = 1e-6    # contact complementarity

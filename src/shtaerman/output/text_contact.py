@@ -94,6 +94,8 @@ def entry(
     }
     if outcome.layer is not None:
         document["layer"] = outcome.layer.to_dict()
+    if outcome.interface_effect is not None:
+        document["interface_effect"] = outcome.interface_effect.to_dict()
     result = kind_entry(outcome, document, files, output_seconds, figures)
     result["timings"] = _timings(outcome, output_seconds)
     if outcome.convergence:
@@ -208,11 +210,15 @@ def _layer_findings(
 
 def findings(name: str, study: Mapping[str, Any]) -> list[str]:
     """How closely the FEM reproduces the contact law, and its own estimate of that; on a
-    layer, what the layer does to the contact and the impact."""
+    layer, what the layer does to the contact and the impact; for a bonded or Coulomb
+    indenter on nu2 < 0.5, what it changes against Shtaerman (:func:`effect_words`)."""
     if study.get("layer"):
         layer, interface = study["layer"], study.get("interface", {})
         text = _layer_findings(layer, interface, exact_law(study)[0])
         return [prefixed(name, study, text), *_missing_finding(name, study)]
+    if study.get("interface_effect"):  # no errors to quote: Shtaerman's is not its solution
+        text = effect_words(study["interface_effect"])
+        return [prefixed(name, study, text + "."), *_missing_finding(name, study)]
     errors = study["contact"]["errors"]
     text = (
         f"the FEM reproduces {exact_law(study)[0]} contact law within a relative "
@@ -228,6 +234,32 @@ def findings(name: str, study: Mapping[str, Any]) -> list[str]:
             f"{number(accuracy['error_estimate']['beta'], '.1e')} (beta)"
         )
     return [prefixed(name, study, text + "."), *_missing_finding(name, study)]
+
+
+def effect_words(effect: Mapping[str, Any]) -> str:
+    """One finding from :meth:`InterfaceEffect.to_dict`: the effect with its sign."""
+    signed, errors = effect["departures"], effect["error_estimate"]
+
+    def percent(key: str) -> str:
+        bar = f" ± {100 * errors[key]:.1g}" if math.isfinite(errors.get(key, math.nan)) else ""
+        return f"{100 * signed[key]:+.3g}{bar} %"
+
+    surface = "no-slip" if effect["friction"] is None else f"Coulomb (mu = {effect['friction']:g})"
+    text = (
+        f"the {surface} indenter against Shtaerman's frictionless solution (the reference; "
+        f"the interface's effect, not an error): force {percent('force')}, contact radius "
+        f"{percent('contact_radius')}, p(0) {percent('central_pressure')} at the deepest depth, "
+        f"beta {percent('beta')}; the impact on the FEM curve x_c {percent('x_c')}, P_c "
+        f"{percent('P_c')}, t_c {percent('t_c')}. P(n+1)/(2E* a d n) = "
+        f"{effect['no_slip_ratio']:.5f} against Mossakovskii's chi = {effect['chi']:.5f}"
+    )
+    if effect["friction"] is not None:
+        text += (
+            f" ({100 * effect['no_slip_share']:.3g} % of the no-slip effect; the identity holds "
+            "for no slip only and the bounds frictionless <= Coulomb <= no slip are not "
+            "guaranteed on a coarse mesh, so neither is checked)"
+        )
+    return f"{text}. Not checked: {effect['not_checked']}"
 
 
 def _missing_finding(name: str, study: Mapping[str, Any]) -> list[str]:
@@ -265,8 +297,9 @@ def timing_text(study: Mapping[str, Any]) -> str:
 
 def summary_row(name: str, study: Mapping[str, Any]) -> list[str] | None:
     """The study's row of the contact cross-check: worst contact errors and impact differences
-    (None on a layer: its departures from Shtaerman are its findings, not errors)."""
-    if study.get("layer"):
+    (None on a layer, or for a bonded or Coulomb indenter on nu2 < 0.5: its departures from
+    Shtaerman are its findings, not errors)."""
+    if study.get("layer") or study.get("interface_effect"):
         return None
     errors = study["contact"]["errors"]
     differences = [study["differences"][v] for v in ("fem_fitted", "fem_tabulated")]

@@ -14,7 +14,8 @@ from typing import Any
 from ..paper.case import is_paper_case
 from ..plots.labels import model_label, variant_label
 from ..problem import worded
-from ..study.finite.runner import FiniteStudyOutcome
+from ..study.contact.interface import shtaerman_applies
+from ..study.finite.runner import FiniteStudyOutcome, no_slip_checked
 from ..study.ladder import LADDER_RATIO
 from ..study.limits import resolved
 from ..theory.sneddon import profile_inputs
@@ -123,11 +124,27 @@ def curve_finding(outcome: FiniteStudyOutcome) -> list[str]:
         )
     if not parts:
         return []
-    return [
+    text = (
         f"Beyond the paper's frictionless half-space: {' and '.join(parts)}. The finite-strain "
         "and the same-mesh linear FEM both solve it, so P/P_linear-FEM isolates finite strain; "
         "the comparisons with the exact half-space hold these effects too."
-    ]
+    )
+    return [text + _reference_words(outcome.study)]
+
+
+def _reference_words(study: Any) -> str:
+    """What the small-strain limit is checked against where Shtaerman's is not the
+    reference (a bonded or Coulomb indenter on nu2 < 0.5; "" where it is)."""
+    if shtaerman_applies(study.interface, study.half_space.poisson_ratio):
+        return ""
+    if no_slip_checked(study):
+        how = ", and that FEM against the no-slip identity P(n+1)/(2E* a d n) = chi(nu2)."
+    else:  # Coulomb's slipping annulus, another profile, a pad's stiffening
+        how = " (no exact law of this contact to check that FEM by)."
+    return (
+        " Shtaerman's frictionless solution is no small-strain limit of this interface on "
+        f"nu2 < 0.5, so the small-strain limit is checked against the same-mesh linear FEM{how}"
+    )
 
 
 def study_findings(outcome: FiniteStudyOutcome) -> list[str]:
@@ -397,9 +414,15 @@ def entry(
     figures: Mapping[str, str] | None,
 ) -> dict[str, object]:
     """The study's results.json entry (:func:`.entry.text_entry`) with its ``case`` in words:
-    the rubber model with its constants on the frictionless half-space."""
-    study = outcome.study
-    case = case_words(material=rubber_words(study.rubber, study.half_space.poisson_ratio))
+    the body (half-space or pad), the rubber model with its constants and the interface."""
+    study, surface = outcome.study, outcome.study.interface
+    case = case_words(
+        material=rubber_words(study.rubber, study.half_space.poisson_ratio),
+        thickness=study.geometry.thickness,
+        base=study.geometry.base,
+        interface=surface.kind,
+        friction=surface.friction,
+    )
     return text_entry(
         outcome, (study_tables, study_findings), files, output_seconds, figures, case=case
     )

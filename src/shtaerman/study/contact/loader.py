@@ -119,6 +119,12 @@ class Tolerances(Table):
     contact_radius: Relative = 1e-2
     central_pressure: Relative = 1e-2
     impact: Relative = 2e-3
+    identity: Relative = 3e-3
+    """A bonded indenter's no-slip identity P (n+1) / (2 E* a d n) = chi(nu2), beside the
+    ladder's estimates of the force and the contact radius (:mod:`.interface`): at n 1.5,
+    nu2 0.3 its worst depth departs 1.5e-3 on the quick mesh and 1.6e-3 on the default one (a
+    at the small depths, between nodes), 2.1e-3 at n 2; a wrong curve departs by percents (the
+    frictionless one by 1 / chi - 1 = -2.8e-2)."""
 
 
 class _Convergence(Table):
@@ -229,6 +235,32 @@ def _surface(path: Path, raw: _StudyFile) -> Interface:
     return problem.interface
 
 
+def _check_checkable(path: Path, raw: _StudyFile, surface: Interface) -> None:
+    """Refuse, for a bonded or Coulomb indenter on nu2 < 0.5 (whose solution Shtaerman's, or
+    Sneddon's, frictionless law is not: :mod:`.interface`), another profile than z = A r^n
+    (its checks, the exponent and the no-slip identity, are the self-similar power law's) and
+    a mesh-convergence study (it measures errors against the frictionless law). A layer's
+    checks are its own (:func:`.layer.layer_checks`), for every interface."""
+    swept = raw.sweep.chosen()[0] if raw.sweep is not None else None
+    if raw.layer is not None or swept in ("thickness", "thickness_ratio"):
+        return
+    if surface.coefficient in (None, 0.0) or raw.half_space.nu2 == 0.5:
+        return
+    if raw.convergence.sizes:
+        raise StudyError(
+            f"{path}: key 'convergence': expected no mesh-convergence study of a bonded or "
+            "Coulomb indenter on nu2 < 0.5 (it measures errors against Shtaerman's "
+            "frictionless solution, from which the interface departs; the 3-mesh ladder gives "
+            "its error estimates)"
+        )
+    if raw.indenter.sphere_radius is not None or raw.indenter.profile is not None:
+        raise StudyError(
+            f"{path}: key 'contact.interface': a bonded or Coulomb indenter on nu2 < 0.5 takes "
+            "a power-law [indenter] (its checks are the self-similar z = A r^n's); give "
+            'interface = "frictionless" or nu2 = 0.5'
+        )
+
+
 def _striker(raw: _StudyFile) -> Material:
     """The striker's elasticity of ``[striker]`` (rigid without it, or with E1 = "inf")."""
     striker = raw.striker
@@ -239,6 +271,7 @@ def _striker(raw: _StudyFile) -> Material:
 def _build(path: Path, raw: _StudyFile) -> Study:
     contact = raw.contact
     surface = _surface(path, raw)
+    _check_checkable(path, raw, surface)
     mesh, quick = (
         _mesh(path, key, getattr(raw, key), default)
         for key, default in (("numerics", MeshSettings()), ("quick", QUICK_MESH))

@@ -30,6 +30,7 @@ from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
 from .indentation import IndentationResult, default_depths, refined_radius
+from .interface import InterfaceEffect, interface_checks, interface_effect, shtaerman_applies
 from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
 from .loader import DEPTH_OVERSHOOT, Study
 
@@ -64,6 +65,10 @@ class StudyOutcome(Outcome):
     estimates (none when a level failed: :attr:`AccuracyResult.missing` says why)."""
     layer: LayerFindings | None = None
     """On a layer: its force against the half-space's and the impact on it."""
+    interface_effect: InterfaceEffect | None = None
+    """A bonded or Coulomb indenter's departures from Shtaerman's solution, where that is not
+    its reference (:func:`.interface.shtaerman_applies`; its checks are then
+    :func:`.interface.interface_checks`)."""
 
     def differences(self) -> dict[str, dict[str, float]]:
         """Relative differences of the FEM-fed impacts against the analytic one."""
@@ -162,6 +167,21 @@ def _checks(
     return checks
 
 
+def _reference_checks(
+    study: Study, accuracy: AccuracyResult, impacts: dict, modulus: float
+) -> tuple[list[Check], InterfaceEffect | None]:
+    """The checks against Shtaerman's (Sneddon's) solution where it is the study's reference,
+    else (a bonded or Coulomb indenter on nu2 < 0.5) the interface's checks and its effect
+    (:mod:`.interface`)."""
+    contact = accuracy.finest
+    if study.layer is None and not shtaerman_applies(
+        study.interface, study.half_space.poisson_ratio
+    ):
+        effect = interface_effect(study, contact, impacts, accuracy)
+        return interface_checks(study, contact, impacts, accuracy), effect
+    return _checks(study, contact, impacts, _exact_fitted(study, contact, modulus)), None
+
+
 def run_contact_study(
     study: Study, quick: bool = False, progress: Progress | None = None
 ) -> StudyOutcome:
@@ -215,7 +235,7 @@ def run_contact_study(
     }
     convergence = _convergence(study, contact, quick, report)
     layer = None
-    checks = _checks(study, contact, impacts, _exact_fitted(study, contact, modulus))
+    checks, effect = _reference_checks(study, accuracy, impacts, modulus)
     if study.layer is not None:
         layer = layer_findings(study.layer, accuracy, law, impacts["analytic"], tabulated)
         layer = _dynamic_layer(study, layer, quick, report)
@@ -232,6 +252,7 @@ def run_contact_study(
         convergence=convergence,
         accuracy=accuracy,
         layer=layer,
+        interface_effect=effect,
     )
 
 

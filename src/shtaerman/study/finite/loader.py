@@ -102,9 +102,14 @@ class FiniteTolerances(Table):
     small-strain ones on the quick mesh and at a ladder start moved deeper)."""
 
     small_strain: Relative = 5e-3
-    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh."""
+    """|P / P_Shtaerman - 1| at the first (tiny) depth: physics (~0.06 x/a) plus the mesh
+    (where Shtaerman's is the reference: not for a bonded or Coulomb indenter on nu2 < 0.5)."""
     small_strain_fem: Relative = 2e-3
     """|P / P_linear-FEM - 1| there, same mesh: the finite-strain effect alone."""
+    identity: Relative = 3e-3
+    """A bonded indenter on nu2 < 0.5: the same-mesh linear FEM's no-slip identity
+    P (n+1) / (2 E* a d n) = chi(nu2) at the deepest depth
+    (:mod:`shtaerman.study.contact.interface`)."""
     conservation: Relative = 2e-3
     """|Simpson's Int P dx / stored energy - 1|."""
     newton: Relative = 1e-6

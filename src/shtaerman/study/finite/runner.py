@@ -54,6 +54,7 @@ from ...validation import caller_stacklevel
 from ..checks import Check, Outcome
 from ..contact.contact_law import fem_contact_law
 from ..contact.indentation import IndentationResult, run_indentation
+from ..contact.interface import no_slip_departures, shtaerman_applies
 from ..contact.runner import HISTORY_POINTS, impact_maxima, tabulated_impact
 from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
 from ..ladder import (
@@ -67,7 +68,7 @@ from ..run import Progress
 from .accuracy import FiniteEstimates, estimate_study
 from .corrections import run_corrections
 from .indentation import FiniteIndentationResult, run_finite_study
-from .loader import FiniteStudy, Ladder
+from .loader import FiniteStudy, FiniteTolerances, Ladder
 
 __all__ = [
     "FiniteStudyOutcome",
@@ -75,6 +76,7 @@ __all__ = [
     "estimate_ladder",
     "ladder",
     "ladder_meshes",
+    "no_slip_checked",
     "run_finite_strain_study",
 ]
 
@@ -376,11 +378,7 @@ def _checks(
     energy = finite.steps[-1].strain_energy
     ratio = first.depth / first.contact_radius_linear
     return [
-        Check(
-            f"small-strain limit, P/P_Shtaerman - 1 at x/a = {ratio:.3g}",
-            first.force / first.force_linear - 1.0,
-            tol.small_strain,
-        ),
+        *_linear_reference(study, first, linear, tol, ratio),
         Check(
             f"small-strain limit, P/P_linear-FEM - 1 at x/a = {ratio:.3g} (same mesh)",
             first.force / first_fem.force - 1.0,
@@ -402,6 +400,35 @@ def _checks(
             tol.complementarity,
         ),
     ]
+
+
+def no_slip_checked(study: FiniteStudy) -> bool:
+    """Whether a study whose reference Shtaerman's is not checks the no-slip identity of its
+    same-mesh linear FEM: no slip, z = A r^n, on the half-space (Coulomb's annulus slips, and
+    a pad stiffens the deep contact: :mod:`shtaerman.study.contact.interface`)."""
+    no_slip, half_space = study.interface.friction is None, study.geometry.thickness is None
+    return no_slip and half_space and study.indenter.kind == "power-law"
+
+
+def _linear_reference(
+    study: FiniteStudy,
+    first: Any,
+    linear: IndentationResult,
+    tol: FiniteTolerances,
+    ratio: float,
+) -> list[Check]:
+    """The small-strain limit's exact reference: Shtaerman's where it is the interface's
+    (:func:`~shtaerman.study.contact.interface.shtaerman_applies`); for a bonded power law on
+    nu2 < 0.5 on the half-space (:func:`no_slip_checked`), the no-slip identity of the
+    same-mesh linear FEM (the reference of P/P_linear-FEM) at the deepest depth, where its
+    contact covers most nodes; else none (no exact law: P/P_linear-FEM alone)."""
+    if shtaerman_applies(study.interface, study.half_space.poisson_ratio):
+        name = f"small-strain limit, P/P_Shtaerman - 1 at x/a = {ratio:.3g}"
+        return [Check(name, first.force / first.force_linear - 1.0, tol.small_strain)]
+    if not no_slip_checked(study):
+        return []
+    name = "linear no-slip identity P(n+1)/(2E* a d n) / chi - 1 at the deepest depth (same mesh)"
+    return [Check(name, float(no_slip_departures(linear)[-1]), tol.identity)]
 
 
 def _complementarity(finite: FiniteIndentationResult, step: Any) -> float:
