@@ -13,6 +13,7 @@ little past the deepest step), with no assumption about the exponent.
 from __future__ import annotations
 
 import math
+from bisect import bisect_left
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -28,7 +29,8 @@ __all__ = ["FemContactLaw", "fem_contact_law"]
 class _LogLog:
     """Piecewise power-law interpolation through (nodes, values), end slopes extrapolated.
 
-    The logarithms and slopes are taken once: the impact ODE evaluates the law ~2e4 times.
+    The logarithms and slopes are taken once: the impact ODE and its energy quadrature
+    evaluate the law ~2e4 times an impact, one depth a call (266k calls in `verify`).
     """
 
     log_nodes: np.ndarray
@@ -45,17 +47,27 @@ class _LogLog:
         """Values at x (nodes' units), 0 where x <= 0; an array of x's shape."""
         x = np.asarray(x, dtype=float)
         if x.ndim == 0:  # the ODE's right-hand side: one depth per call
-            if not x > 0:
-                return np.zeros_like(x)
-            log_x = np.log(x)
-            index = int(np.searchsorted(self.log_nodes, log_x)) - 1
-            return self._power(log_x, min(max(index, 0), self.slopes.size - 1))
+            depth = float(x)
+            return self._at(depth) if depth > 0 else np.zeros_like(x)
         out = np.zeros_like(x)
         positive = x > 0
         log_x = np.log(x[positive])
         index = np.clip(np.searchsorted(self.log_nodes, log_x) - 1, 0, self.slopes.size - 1)
         out[positive] = self._power(log_x, index)
         return out
+
+    @cached_property
+    def _floats(self) -> tuple[list[float], list[float], list[float]]:
+        """The nodes' logarithms, the values' and the slopes as Python floats."""
+        return self.log_nodes.tolist(), self.log_values.tolist(), self.slopes.tolist()
+
+    def _at(self, x: float) -> np.float64:
+        """The value at one depth x > 0, in plain floats (4.3 -> 1.3 us a call) with the
+        array path's numpy log and exp: the same rounding, bit for bit."""
+        log_nodes, log_values, slopes = self._floats
+        log_x = float(np.log(x))
+        index = min(max(bisect_left(log_nodes, log_x) - 1, 0), len(slopes) - 1)
+        return np.exp(log_values[index] + slopes[index] * (log_x - log_nodes[index]))
 
     def _power(self, log_x: np.ndarray, index: np.ndarray | int) -> np.ndarray:
         return np.exp(self.log_values[index] + self.slopes[index] * (log_x - self.log_nodes[index]))
