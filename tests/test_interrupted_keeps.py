@@ -200,3 +200,30 @@ def test_an_interrupted_forced_sweep_leaves_the_old_sweep_whole(tmp_path, capsys
     assert "1 computed on 1 worker, 1 from an earlier run" in out_text, out_text
     # completed, it replaces the old sweep, as the --force run would have (sweep32c)
     assert not beside.exists() and (out / "cases.csv").read_bytes() == before[Path("cases.csv")][1]
+
+
+def test_the_resume_command_keeps_the_figure_format(tmp_path, capsys, monkeypatch):
+    """sweep --figure-format svg stopped after a case: the printed resume command completes
+    the sweep with its SVG figures (old code: the command dropped --figure-format, and the
+    completed sweep had PNG figures only)."""
+    from shtaerman.sweep import engine
+
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text(IMPACT)
+    out = tmp_path / "out"
+    real = engine._compute
+
+    def interrupted(spec, out, ready, pending, records, *args):
+        real(spec, out, ready, pending[:1], records, *args)  # case 0 saved ...
+        raise engine.SweepInterrupted(signal.SIGTERM)  # ... and the run is stopped
+
+    monkeypatch.setattr(engine, "_compute", interrupted)
+    argv = ["sweep", str(sweep), "--out", str(out), "--workers", "1", "--figure-format", "svg"]
+    assert cli.main(argv) == 128 + signal.SIGTERM
+    command = capsys.readouterr().err.split("resume with: ")[1].split()
+    assert command[-2:] == ["--figure-format", "svg"], command
+    monkeypatch.undo()
+    assert cli.main([*command[1:], "--workers", "1"]) == 0
+    figures = sorted(p.name for p in (out / "figures").iterdir())
+    pngs = [name for name in figures if name.endswith(".png")]
+    assert pngs and [n[:-4] + ".svg" for n in pngs] == [n for n in figures if n.endswith(".svg")]

@@ -108,7 +108,12 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _resume_command(args: argparse.Namespace, out: Path) -> str:
-    return shlex.join(["shtaerman", "sweep", str(args.sweep), "--out", str(out), "--resume"])
+    """The command that completes the sweep in ``out`` as ``args`` asked it (its figure
+    format too: without it the completed sweep's figures would be PNG only)."""
+    command = ["shtaerman", "sweep", str(args.sweep), "--out", str(out), "--resume"]
+    if args.figure_format != "png":
+        command += ["--figure-format", args.figure_format]
+    return shlex.join(command)
 
 
 def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any) -> str:
