@@ -290,6 +290,15 @@ def test_a_modulus_beyond_the_striker_is_refused_naming_e1(tmp_path, capsys, e1)
         assert err.endswith("raise --E1 or fit E2 with a rigid striker (--E1 inf)\n")
 
 
+def test_a_corrected_fit_beyond_the_striker_is_refused_before_its_fe_run():
+    """fitguard55: on a pad the FE correction's point took E2 = inf and failed with 'body: a
+    rigid body under a rigid striker has no contact law' (exit 2), naming no option."""
+    soft = sh.Problem.impact(INDENTER, sh.Material(5e6, NU2), mass=MASS, velocity=VELOCITY,
+                             striker=sh.Material(1e-3, 0.25), thickness=0.02)  # fmt: skip
+    with pytest.raises(NumericalFailureError, match=r"^E1=0.001: the data's E\* = "):
+        sh.fit("force-history", drop(), soft, unknowns="E2,time_offset,baseline")
+
+
 def test_correlation_names_the_unknowns():
     """adv55: correlation.names was ["E_star"] where the unknown shown is E2 (or nu2)."""
     for unknowns in ("E2", "nu2", "E2,nu2"):

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..theory.materials import Material
 from ..validation import NumericalFailureError
+from .corrections import check_striker_reach
 from .corrections import youngs_modulus as _young
 from .engine import Solution
 from .models import Known
@@ -101,16 +102,9 @@ def _reach(known: Known, unknowns: list[str]) -> tuple[float, float]:
     return least, most
 
 
-def _unreachable(known: Known, modulus: float, reach: tuple[float, float], fitted: str) -> str:
-    """The message of a fitted E* (Pa) past the ``reach`` of the unknowns: what the data need
-    of the fixed options."""
-    striker = known.striker
-    if fitted == "E2":
-        return (
-            f"E1={striker.youngs_modulus:g}: the data's E* = {modulus:.4g} Pa exceeds what this "
-            f"striker allows at any E2 (E* < E1 / (1 - nu1^2) = {reach[1]:.4g} Pa): raise "
-            "E1=... or fit E2 with a rigid striker (E1=inf)"
-        )
+def _unreachable(known: Known, modulus: float, reach: tuple[float, float]) -> str:
+    """The message of a fitted E* (Pa) past the ``reach`` of nu2 with the known E2: what the
+    data need of it."""
     above = modulus > reach[1]
     return (
         f"nu2: no nu2 in [0, 0.5] gives the data's E* = {modulus:.6g} Pa with E2={known.E2:g} "
@@ -125,15 +119,15 @@ def _within_reach(known: Known, sol: Solution, j: int, unknowns: list[str]) -> f
     at its bound. Past that, NumericalFailureError naming the fixed option: no value of the
     unknowns in their range reproduces the data."""
     value, low, high = (float(v[j]) for v in (sol.values, sol.low, sol.high))
+    check_striker_reach(known, value)  # E2 never clips: its bound is E2 = inf
     reach = _reach(known, unknowns)
-    fitted = "E2" if "E2" in unknowns else "nu2"
     if reach[0] <= value <= reach[1]:
         return value
     slack = ROUND_OFF * value
     near = reach[1] if value > reach[1] else reach[0]
-    if fitted == "nu2" and low - slack <= near <= high + slack:
+    if low - slack <= near <= high + slack:
         return near
-    raise NumericalFailureError(_unreachable(known, value, reach, fitted))
+    raise NumericalFailureError(_unreachable(known, value, reach))
 
 
 def _moduli(known: Known, sol: Solution, j: int, unknowns: list[str]) -> dict[str, dict]:
