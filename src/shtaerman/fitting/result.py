@@ -41,7 +41,7 @@ class FitResult:
     """indentation, force-history, rebound or resilience."""
     fitted: dict[str, dict[str, Any]]
     """Name -> value, low, high (the 95 % interval), identifiable, unit (and reason, why
-    the Mooney ratio of an indentation is not identifiable)."""
+    the Mooney ratio of an indentation is not identifiable, or why nu2 is at its bound)."""
     correlation: dict[str, Any]
     """names (the fitted parameters, by the unknowns' names: E2 or nu2 for the combined
     modulus they are fitted as) and matrix (null where a variance is unbounded)."""
