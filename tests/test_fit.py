@@ -16,6 +16,7 @@ from shtaerman.plots import fit as fit_plot
 from shtaerman.theory.contact import PowerLawContact
 from shtaerman.theory.impact import solve_impact
 from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
+from shtaerman.validation import NumericalFailureError
 
 INDENTER = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
 STEEL = sh.Material(2e11, 0.25)
@@ -236,6 +237,73 @@ def test_nu2_is_not_identifiable_beside_e2_from_a_force_curve():
 def test_nu2_alone_is_identifiable_with_e2_known():
     result = sh.fit("indentation", indentation(), problem(E2=E2, nu2=0.45), unknowns="nu2")
     assert result.fitted["nu2"]["value"] == pytest.approx(0.5, abs=1e-8)
+
+
+def test_nu2_at_its_bound_stays_in_range_and_in_its_interval():
+    """adv55 (fitguard55): exact data made at nu2 = 0.5 gave nu2 0.500035 with the interval
+    [0.5, 0.5]: a value above its range and outside its own interval. Round-off past the
+    bound is put on it, and so is an excess that lies within the 95 % interval."""
+    item = sh.fit("indentation", indentation(), problem(E2=E2, nu2=0.45), unknowns="nu2").fitted
+    nu2 = item["nu2"]
+    assert nu2["low"] <= nu2["value"] <= nu2["high"] <= 0.5  # exact: no tolerance needed
+    # Exact data of a rigid striker fitted with the steel one: E* lies 4.7e-5 (E* Q1) past
+    # what nu2 = 0.5 allows; a given noise of 1 N on ~400 N makes an interval (~1e-3 relative
+    # in E*) that covers it
+    rigid = {"depth": DEPTHS, "force": PowerLawContact(INDENTER, E2 / 0.75).force(DEPTHS)}
+    nu2 = sh.fit("indentation", rigid, problem(E2=E2), unknowns="nu2", noise=1.0).fitted["nu2"]
+    assert nu2["value"] == 0.5 and nu2["high"] == 0.5 and nu2["low"] < 0.5
+    assert nu2["reason"].startswith("at its bound 0.5: the data's E* lies 4.")
+
+
+@pytest.mark.parametrize(
+    ("start", "words"),
+    [
+        (5e6, "E* = 1e+07 Pa with E2=5e+06 (E* at most 6.66646e+06 Pa, at nu2 = 0.5): give "
+         "unknowns='E2' or raise E2=..."),
+        (1.2e7, "(E* at least 1.19993e+07 Pa, at nu2 = 0): give unknowns='E2' or lower E2=..."),
+        # exact data 4.6e-5 past the bound, far outside an interval of ~1e-14: refused
+        (E2, "(E* at most 9.99953e+06 Pa, at nu2 = 0.5)"),
+    ],
+)  # fmt: skip
+def test_nu2_that_cannot_reach_the_data_is_refused(start, words):
+    """adv55: --E2 5e6 --fit nu2 gave 0.707123 [0.5, 0.5], --E2 1.2e7 nan [0, 0] (exit 0)."""
+    rigid = {"depth": DEPTHS, "force": PowerLawContact(INDENTER, 1e7).force(DEPTHS)}
+    with pytest.raises(NumericalFailureError, match=r"^nu2: no nu2 in \[0, 0.5\] gives") as info:
+        sh.fit("indentation", rigid, problem(E2=start), unknowns="nu2")
+    assert words in str(info.value)
+
+
+@pytest.mark.parametrize("e1", ["1e-3", "1e6"])
+def test_a_modulus_beyond_the_striker_is_refused_naming_e1(tmp_path, capsys, e1):
+    """adv55: --E1 1e-3 --fit E2 printed E2 inf [inf, inf] (JSON null, identifiable) with
+    exit 0. No E2 gives an E* above the striker's own E1 / (1 - nu1^2): a fit that cannot
+    fit, exit 1 as a non-converged fit does (the input is in range; the data need more)."""
+    data = {"depth": DEPTHS, "force": PowerLawContact(INDENTER, 1e7).force(DEPTHS)}
+    csv = write(tmp_path / "c.csv", "depth [m],force [N]", zip(*data.values(), strict=True))
+    for fitted in ("E2", "E2,nu2"):
+        assert main(["fit", "indentation", csv, "--E1", e1, "--fit", fitted, "--json"]) == 1
+        out, err = capsys.readouterr()
+        assert out == "" and err.startswith(
+            f"shtaerman: error: --E1 {float(e1):g}: the data's E* = 1e+07 Pa exceeds what this "
+            "striker allows at any E2"
+        )
+        assert err.endswith("raise --E1 or fit E2 with a rigid striker (--E1 inf)\n")
+
+
+def test_a_corrected_fit_beyond_the_striker_is_refused_before_its_fe_run():
+    """fitguard55: on a pad the FE correction's point took E2 = inf and failed with 'body: a
+    rigid body under a rigid striker has no contact law' (exit 2), naming no option."""
+    soft = sh.Problem.impact(INDENTER, sh.Material(5e6, NU2), mass=MASS, velocity=VELOCITY,
+                             striker=sh.Material(1e-3, 0.25), thickness=0.02)  # fmt: skip
+    with pytest.raises(NumericalFailureError, match=r"^E1=0.001: the data's E\* = "):
+        sh.fit("force-history", drop(), soft, unknowns="E2,time_offset,baseline")
+
+
+def test_correlation_names_the_unknowns():
+    """adv55: correlation.names was ["E_star"] where the unknown shown is E2 (or nu2)."""
+    for unknowns in ("E2", "nu2", "E2,nu2"):
+        result = sh.fit("indentation", indentation(1.0), problem(E2=E2), unknowns=unknowns)
+        assert result.correlation["names"] == [unknowns.split(",")[0]]
 
 
 def test_mass_velocity_and_modulus_together_are_not_identifiable():

@@ -35,6 +35,7 @@ from ..problem import Problem
 from ..theory.materials import RIGID, Material
 from ..theory.sneddon import Indenter, contact_law
 from ..theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
+from ..validation import NumericalFailureError
 
 if TYPE_CHECKING:  # the api package imports the fit's result: a cycle at run time
     from ..api.dynamic_result import DynamicResult
@@ -42,6 +43,7 @@ if TYPE_CHECKING:  # the api package imports the fit's result: a cycle at run ti
 __all__ = [
     "Correction",
     "RowCorrection",
+    "check_striker_reach",
     "exact_impact",
     "exact_rebound",
     "fe_correction",
@@ -173,6 +175,7 @@ def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
     """The problem at the fitted ``values`` (E2 from E* at the known nu2) and that point; a
     density left unset is no waves, the massless FE impact (density 0); the striker rigid, as
     the FE impact's is."""
+    check_striker_reach(known, values["E_star"])
     e2 = youngs_modulus(known, values["E_star"], known.nu2)
     body = problem.body
     density = body.material.density
@@ -184,6 +187,18 @@ def _point(problem: Problem, known: KnownParts, values: Mapping[str, float],
     if prony is not None:
         at.update({f"g{i}": g for i, g in enumerate(prony.weights, start=1)})
     return dataclasses.replace(problem, striker=striker, body=body), at
+
+
+def check_striker_reach(known: KnownParts, modulus: float) -> None:
+    """NumericalFailureError naming E1 when the combined modulus ``modulus`` (Pa) the data
+    need is at or above the striker's own E1 / (1 - nu1^2): no E2 gives it."""
+    limit = 1.0 / known.striker.compliance if known.striker.compliance > 0 else math.inf
+    if modulus >= limit:
+        raise NumericalFailureError(
+            f"E1={known.striker.youngs_modulus:g}: the data's E* = {modulus:.4g} Pa exceeds what "
+            f"this striker allows at any E2 (E* < E1 / (1 - nu1^2) = {limit:.4g} Pa): raise "
+            "E1=... or fit E2 with a rigid striker (E1=inf)"
+        )
 
 
 def youngs_modulus(known: KnownParts, modulus: float, nu2: float) -> float:

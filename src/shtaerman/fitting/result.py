@@ -2,17 +2,20 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from ..theory.materials import Material
+from ..validation import NumericalFailureError
+from .corrections import check_striker_reach
 from .corrections import youngs_modulus as _young
 from .engine import Solution
 from .models import Known
 
-__all__ = ["UNITS", "FitResult", "fitted_entries"]
+__all__ = ["UNITS", "FitResult", "fitted_entries", "shown_names"]
 
 UNITS = {
     "E2": "Pa",
@@ -25,6 +28,9 @@ UNITS = {
 """The unit of each fitted name (the Prony weights g_i: 1; the times tau_i: s)."""
 NU2_RANGE = (0.0, 0.5)
 """The Poisson's ratios a fit considers (nu2 enters only as nu2^2: its sign is not seen)."""
+ROUND_OFF = 1e-9
+"""Relative slack of a fitted E* past the end of its reach: exact data fitted back land a few
+ulps beyond a bound they were made at (nu2 = 0.5); any real excess is far larger."""
 
 
 @dataclass(frozen=True)
@@ -35,9 +41,10 @@ class FitResult:
     """indentation, force-history, rebound or resilience."""
     fitted: dict[str, dict[str, Any]]
     """Name -> value, low, high (the 95 % interval), identifiable, unit (and reason, why
-    the Mooney ratio of an indentation is not identifiable)."""
+    the Mooney ratio of an indentation is not identifiable, or why nu2 is at its bound)."""
     correlation: dict[str, Any]
-    """names (the fitted parameters) and matrix (null where a variance is unbounded)."""
+    """names (the fitted parameters, by the unknowns' names: E2 or nu2 for the combined
+    modulus they are fitted as) and matrix (null where a variance is unbounded)."""
     residual: dict[str, Any]
     """rms and max of model - data, their unit, and the number of values."""
     noise: dict[str, Any]
@@ -84,9 +91,49 @@ def _poisson(known: Known, modulus: float) -> float:
     return float(np.sqrt(square)) if square >= 0 else float("nan")
 
 
+def _reach(known: Known, unknowns: list[str]) -> tuple[float, float]:
+    """The combined moduli E* in Pa that the unknowns can give with the known parts: any E2
+    gives less than the striker's own 1/Q1 (inf for a rigid one); nu2 alone in [0, 0.5], with
+    E2 known, gives E* from its value at nu2 = 0 to that at nu2 = 0.5."""
+    q1 = known.striker.compliance
+    if "E2" in unknowns:
+        return 0.0, 1.0 / q1 if q1 > 0 else math.inf
+    least, most = (1.0 / (q1 + (1.0 - nu * nu) / known.E2) for nu in NU2_RANGE)
+    return least, most
+
+
+def _unreachable(known: Known, modulus: float, reach: tuple[float, float]) -> str:
+    """The message of a fitted E* (Pa) past the ``reach`` of nu2 with the known E2: what the
+    data need of it."""
+    above = modulus > reach[1]
+    return (
+        f"nu2: no nu2 in [0, 0.5] gives the data's E* = {modulus:.6g} Pa with E2={known.E2:g} "
+        f"(E* {'at most' if above else 'at least'} {reach[int(above)]:.6g} Pa, at nu2 = "
+        f"{NU2_RANGE[int(above)]:g}): give unknowns='E2' or {'raise' if above else 'lower'} E2=..."
+    )
+
+
+def _within_reach(known: Known, sol: Solution, j: int, unknowns: list[str]) -> float:
+    """The fitted E* in Pa (parameter ``j``), on the end of its reach (:func:`_reach`) where
+    it lies past it by no more than its 95 % interval or round-off: there the fitted nu2 is
+    at its bound. Past that, NumericalFailureError naming the fixed option: no value of the
+    unknowns in their range reproduces the data."""
+    value, low, high = (float(v[j]) for v in (sol.values, sol.low, sol.high))
+    check_striker_reach(known, value)  # E2 never clips: its bound is E2 = inf
+    reach = _reach(known, unknowns)
+    if reach[0] <= value <= reach[1]:
+        return value
+    slack = ROUND_OFF * value
+    near = reach[1] if value > reach[1] else reach[0]
+    if low - slack <= near <= high + slack:
+        return near
+    raise NumericalFailureError(_unreachable(known, value, reach))
+
+
 def _moduli(known: Known, sol: Solution, j: int, unknowns: list[str]) -> dict[str, dict]:
     """E2 and/or nu2 from the fitted combined modulus E* (parameter ``j``)."""
     value, low, high, ident = sol.values[j], sol.low[j], sol.high[j], sol.identifiable[j]
+    fitted = _within_reach(known, sol, j, unknowns)
     out = {}
     if "E2" in unknowns and "nu2" in unknowns:  # only E* is seen: E2 over every nu2
         out["E2"] = _entry(_young(known, value, known.nu2), _young(known, low, NU2_RANGE[1]),
@@ -100,8 +147,24 @@ def _moduli(known: Known, sol: Solution, j: int, unknowns: list[str]) -> dict[st
         ends = [_poisson(known, low), _poisson(known, high)]
         ends = [NU2_RANGE[0] if np.isnan(e) else min(e, NU2_RANGE[1]) for e in ends]
         spans = ends[0] <= NU2_RANGE[0] and ends[1] >= NU2_RANGE[1]
-        out["nu2"] = _entry(_poisson(known, value), *ends, ident and not spans, "1")
+        at = NU2_RANGE[int(fitted < value)] if fitted != value else None
+        nu2 = _poisson(known, value) if at is None else at
+        ends = [min(ends[0], nu2), max(ends[1], nu2)]  # at a bound, past an end by round-off
+        out["nu2"] = _entry(nu2, *ends, ident and not spans, "1")
+        if at is not None:
+            out["nu2"]["reason"] = (
+                f"at its bound {at:g}: the data's E* lies {abs(value / fitted - 1):.2g} (relative) "
+                f"past what nu2 = {at:g} gives with E2 = {known.E2:g}, within its 95 % interval "
+                "or round-off"
+            )
     return out
+
+
+def shown_names(names: list[str], unknowns: list[str]) -> list[str]:
+    """The fitted parameters ``names`` by the unknowns' names: the combined modulus E_star is
+    E2 (or nu2 when only nu2 is fitted)."""
+    modulus = "E2" if "E2" in unknowns else "nu2"
+    return [modulus if name == "E_star" else name for name in names]
 
 
 def fitted_entries(known: Known, names: list[str], sol: Solution, unknowns: list[str]) -> dict:

@@ -29,7 +29,7 @@ from .engine import Progress, Solution, solve
 from .fe_indentation import finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
 from .models import Known, Model, build_model
-from .result import FitResult, fitted_entries, known_values
+from .result import FitResult, fitted_entries, known_values, shown_names
 
 __all__ = ["FE_REFINE", "fit", "known_of"]
 
@@ -323,7 +323,7 @@ def _result(
     return FitResult(
         kind=kind,
         fitted=fitted_entries(known, params, sol, names),
-        correlation={"names": params, "matrix": sol.correlation.tolist()},
+        correlation={"names": shown_names(params, names), "matrix": sol.correlation.tolist()},
         residual={
             "rms": float(np.sqrt(np.mean(relative**2))) if model.relative else rms,
             "max": float(np.max(np.abs(relative))),
