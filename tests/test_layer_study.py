@@ -153,7 +153,9 @@ def test_verify_refuses_a_bad_layer_with_exit_code_2(tmp_path, capsys):
 def test_a_thickness_the_mesh_cannot_take_is_refused_at_load(tmp_path, thickness):
     path = _write(tmp_path, f"[layer]\nthickness = {thickness}\n")
     # the ends are 0.00026064 and 26.064 m, printed rounded inward (26.1 would be refused)
-    with pytest.raises(StudyError, match=r"pad\.toml: thickness: must lie in \[0\.000261, 26\] m"):
+    with pytest.raises(
+        StudyError, match=r"pad\.toml: key 'layer\.thickness': must lie in \[0\.000261, 26\] m"
+    ):
         load_study(path)
     text = "thickness = [1e-6]"
     with pytest.raises(InputError, match=r"case 0 \(thickness = 1e-06\): thickness: must lie in"):
@@ -172,7 +174,8 @@ def test_the_load_time_bounds_are_the_mesh_s(tmp_path):
     with pytest.raises(InputError) as at_run:  # refused before meshing
         run_indentation(study.indenter, study.half_space, [1e-3, 4e-3], study.mesh, geometry=thin)
     bounds = str(at_run.value).split(" m at ")[0].removeprefix("thickness: must lie in ")
-    assert f"thickness: must lie in {bounds} m at this study's depths" in str(at_load.value)
+    said = f"key 'layer.thickness': must lie in {bounds} m at this study's depths"
+    assert said in str(at_load.value), at_load.value
 
 
 # --- what a layer does ------------------------------------------------------------------------

@@ -402,8 +402,9 @@ class Problem:
             expected = {"striker": Striker, "body": Body, "geometry": Geometry}.get(part.name)
             expected = expected or {"interface": Interface, "loading": Loading}[part.name]
             if not isinstance(getattr(self, part.name), expected):
+                got = type(getattr(self, part.name)).__name__
                 raise InputError(
-                    f"{part.name} must be a shtaerman.problem.{expected.__name__}", part.name
+                    f"{part.name} must be a shtaerman.{expected.__name__}, got {got}", part.name
                 )
         check_bodies(self.striker.indenter, self.body.material, self.striker.material)
         if self.loading.depths is not None:
@@ -414,6 +415,12 @@ class Problem:
                         "either depths=... or mass=... and velocity=...",
                         name,
                     )
+            if math.isfinite(self.striker.material.youngs_modulus):  # the FE striker is rigid
+                raise InputError(
+                    "striker: its E1 enters only the impact whose x_c sets the default depths "
+                    "(the FE striker is rigid); give either depths=... or striker=...",
+                    "striker",
+                )
         if self.loading.kind == "impact":
             for name in ("mass", "velocity"):
                 if getattr(self.striker, name) is None:
@@ -502,7 +509,8 @@ class Problem:
         **parts: Any,
     ) -> Problem:
         """The contact curve of ``indenter`` pressed into ``body`` to ``depths`` (m; None:
-        eight up to the x_c of the impact of ``mass`` at ``velocity``)."""
+        eight up to the x_c of the impact of ``mass`` at ``velocity`` by an elastic ``striker``,
+        which given depths do not take: the FE striker is rigid)."""
         return cls.from_keywords(indenter, body, loading="curve", depths=depths, **parts)
 
     @classmethod

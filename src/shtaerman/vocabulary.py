@@ -328,10 +328,12 @@ def _number(item: Entry, value: Any, kind: str | None, says: _Says) -> float | i
         unit = f" (in {unit.lstrip()})"  # not "a number s"
     if not is_number or math.isnan(value):
         raise says.error(item, f"must be a number{bounded}{unit}", value)
-    if math.isinf(value) and not (item.infinite and value > 0):
+    verb = "lie in" if expected[0] in "([" else "be"
+    if math.isinf(value) and item.infinite and value < 0:  # not "finite ..., or inf"
+        raise says.error(item, f"must {verb} {expected}{unit}", value)
+    if math.isinf(value) and not item.infinite:
         raise says.error(item, f"must be a finite number{bounded}{unit}", value)
     valid = item.range_for(kind)
-    verb = "lie in" if expected[0] in "([" else "be"
     if not math.isinf(value) and valid is not None and not valid.contains(float(value)):
         raise says.error(item, f"must {verb} {expected}{unit}", value)
     if valid is not None and valid.low == 0 and valid.low_open and value < sys.float_info.min:

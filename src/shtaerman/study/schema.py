@@ -513,6 +513,12 @@ def _located(
     if field_error:
         keys = [*keys, field_error[1]]
     given = _value(data, keys)
+    if keys == ["striker", "E1"] and isinstance(given, str):  # "inf": the one string it takes
+        valid = vocabulary_entry("E1").range_for().text()
+        return keys, (
+            f'expected a number in {valid} (Pa), unquoted, or inf or "inf" (the one string '
+            f"it takes) for a rigid striker, got {given!r}"
+        )
     said = _vocabulary_says(keys, given, kind)
     if said is not None:
         return keys, said

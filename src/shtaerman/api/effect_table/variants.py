@@ -74,7 +74,7 @@ class Variant:
 
 def parts_of(problem: Problem | Parts) -> dict[str, Any]:
     """The parts of ``problem`` (a :class:`Problem`, or its parts as a mapping: checked first,
-    a missing part or an unknown key named as Python names a keyword, a part refused); an
+    a missing part or an unknown key refused naming ``problem``, a part refused); an
     impact's only (InputError, as :func:`shtaerman.dynamic` refuses a curve or no problem)."""
     if not isinstance(problem, Problem | Mapping):
         raise InputError(
@@ -82,9 +82,25 @@ def parts_of(problem: Problem | Parts) -> dict[str, Any]:
             f"{type(problem).__name__}",
             "problem",
         )
-    problem = problem if isinstance(problem, Problem) else Problem(**problem)
+    problem = problem if isinstance(problem, Problem) else Problem(**_parts(problem))
     problem.alone("effects", "impact")
     return {part.name: getattr(problem, part.name) for part in fields(problem)}
+
+
+def _parts(given: Mapping[str, Any]) -> Mapping[str, Any]:
+    """``given`` if its keys are a problem's parts (striker and body at least), else an
+    InputError naming ``problem`` (a mapping of flat keywords is no problem's parts)."""
+    names = [part.name for part in fields(Problem)]
+    unknown = sorted(str(key) for key in given if key not in names)
+    missing = [name for name in names[:2] if name not in given]
+    if unknown or missing:
+        wrong = f"unknown keys {unknown}" if unknown else f"no {' and no '.join(missing)}"
+        raise InputError(
+            f"problem: a mapping holds a problem's parts {names} ({wrong}); build the impact "
+            "with sh.Problem.impact(indenter, body, mass=..., velocity=..., ...)",
+            "problem",
+        )
+    return given
 
 
 def _without(parts: Parts, effects: tuple[Effect, ...]) -> dict[str, Any]:

@@ -425,8 +425,9 @@ def contact_study(**values: Any) -> Study:
     return on_layer(study)
 
 
-PROFILE_KEYS = ("depths", "sphere_radius", "profile")
-"""The parameters a refusal of :func:`check_profile_reach` names."""
+PROFILE_KEYS = ("depths", "sphere_radius", "profile", "thickness")
+"""The parameters a refusal of :func:`contact_study` names (its profile's reach, its layer's
+thickness: :func:`on_layer`)."""
 
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:

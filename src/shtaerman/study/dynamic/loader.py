@@ -337,7 +337,8 @@ def _check_velocities(
     solved once per velocity), a velocity whose problem the Problem refuses or whose exact
     impact leaves the floating-point range, refused naming ``key``, or (the linear body)
     whose run with the study's settings the impact's own checks refuse (depth reach, contact
-    zone scale: :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
+    zone scale, the layer's thickness:
+    :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
     keys at fault: at load, not as the first check of its run, after the velocities before
     it had run."""
     import warnings
@@ -362,7 +363,9 @@ def _check_velocities(
         try:  # a profile's sizing impact: the exact one here
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                check_dynamic_impact(*inputs, settings, *physics, solved[velocity])
+                check_dynamic_impact(
+                    *inputs, settings, *physics, solved[velocity], geometry=study.geometry
+                )
         except InputError as error:
             raise refused(path, error, {**KEYS, "velocity": key}) from None
     return solved
