@@ -32,7 +32,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from ..problem import Body, Loading, Problem
-from ..theory.materials import Material
+from ..theory.materials import RIGID, Material
 from ..validation import InputError, NumericalFailureError
 from .corrections import fe_parts
 from .data import Measurement
@@ -165,7 +165,9 @@ class FECurves:
         fields |= {} if value is None else self.axis.fields(value, body)
         case = dataclasses.replace(
             self.problem,
-            striker=dataclasses.replace(self.problem.striker, mass=None, velocity=None),
+            striker=dataclasses.replace(  # the FE striker is rigid (so are its numbers)
+                self.problem.striker, mass=None, velocity=None, material=RIGID
+            ),
             body=dataclasses.replace(body, **fields),
             loading=Loading("curve", tuple(float(x) for x in self.depths)),
         )
