@@ -76,13 +76,18 @@ def no_slip_departures(contact: IndentationResult) -> np.ndarray:
     return _ratios(contact) / bonded_punch_factor(contact.half_space.poisson_ratio) - 1.0
 
 
+def _estimate(accuracy: AccuracyResult) -> dict[str, float]:
+    """The ladder's estimated relative errors by quantity ({} without a ladder)."""
+    return accuracy.error_estimate() if accuracy.estimates else {}
+
+
 def _identity(study: Study, contact: IndentationResult, accuracy: AccuracyResult) -> Check:
     """The no-slip identity's worst relative departure over the depths, within
     ``tolerances.identity`` plus the estimated errors of the force and the contact radius."""
     chi = bonded_punch_factor(study.half_space.poisson_ratio)
     departures = no_slip_departures(contact)
     worst = float(departures[np.argmax(np.abs(departures))])
-    estimate = accuracy.error_estimate() if accuracy.estimates else {}
+    estimate = _estimate(accuracy)
     bar = estimate.get("force", 0.0) + estimate.get("contact_radius", 0.0)
     return Check(
         f"contact no-slip identity P(n+1)/(2E* a d n) / chi - 1 (chi(nu) = {chi:.5g})",
@@ -179,7 +184,7 @@ def interface_effect(
     departures["beta"] = contact.fit.beta_fixed_exponent / contact.analytic.beta - 1.0
     exact, tabulated = impacts["analytic"], impacts["fem_tabulated"]
     departures |= {key: tabulated[key] / exact[key] - 1.0 for key in IMPACT_KEYS}
-    estimate = accuracy.error_estimate() if accuracy.estimates else {}
+    estimate = _estimate(accuracy)
     errors = {key: estimate[key] for key in departures if key in estimate}
     return InterfaceEffect(
         kind=study.interface.name,
