@@ -233,16 +233,18 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
 
     inputs = (plan.indenter, plan.body, plan.depths)
     steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
-    linear = {"backend": plan.solver, "friction": plan.friction, **plan.relaxing}
-    linear["geometry"] = finite = plan.geometry
+    shape = plan.geometry
+    linear = {"backend": plan.solver, "friction": plan.friction, "geometry": shape}
+    linear |= plan.relaxing
+    rubber = (plan.rubber, plan.friction, shape)  # run_finite_study's after the mesh
     if not plan.estimate:
         finest = plan.mesh.refined(plan.refine)
         if plan.finite:
-            return run_finite_study(*inputs, finest, plan.rubber, plan.friction, finite), None
+            return run_finite_study(*inputs, finest, *rubber), None
         return run_indentation(*inputs, finest, **linear), None
     if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
-        solve = lambda level: run_finite_study(*inputs, level, plan.rubber, plan.friction, finite)  # noqa: E731
-        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, geometry=finite, **steps)
+        solve = lambda level: run_finite_study(*inputs, level, *rubber)  # noqa: E731
+        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, geometry=shape, **steps)
     elif plan.tolerance is None:
         ladder = run_ladder(*inputs, plan.mesh, **steps, **linear)
     else:
