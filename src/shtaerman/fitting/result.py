@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, fields
 from typing import Any
 
@@ -91,13 +90,11 @@ def _poisson(known: Known, modulus: float) -> float:
     return float(np.sqrt(square)) if square >= 0 else float("nan")
 
 
-def _reach(known: Known, unknowns: list[str]) -> tuple[float, float]:
-    """The combined moduli E* in Pa that the unknowns can give with the known parts: any E2
-    gives less than the striker's own 1/Q1 (inf for a rigid one); nu2 alone in [0, 0.5], with
-    E2 known, gives E* from its value at nu2 = 0 to that at nu2 = 0.5."""
+def _nu2_reach(known: Known) -> tuple[float, float]:
+    """The combined moduli E* in Pa that nu2 in [0, 0.5] gives with the known E2 and striker:
+    from its value at nu2 = 0 to that at nu2 = 0.5 (any E2 gives less than the striker's own
+    1/Q1: :func:`.corrections.check_striker_reach`)."""
     q1 = known.striker.compliance
-    if "E2" in unknowns:
-        return 0.0, 1.0 / q1 if q1 > 0 else math.inf
     least, most = (1.0 / (q1 + (1.0 - nu * nu) / known.E2) for nu in NU2_RANGE)
     return least, most
 
@@ -114,13 +111,15 @@ def _unreachable(known: Known, modulus: float, reach: tuple[float, float]) -> st
 
 
 def _within_reach(known: Known, sol: Solution, j: int, unknowns: list[str]) -> float:
-    """The fitted E* in Pa (parameter ``j``), on the end of its reach (:func:`_reach`) where
-    it lies past it by no more than its 95 % interval or round-off: there the fitted nu2 is
-    at its bound. Past that, NumericalFailureError naming the fixed option: no value of the
-    unknowns in their range reproduces the data."""
+    """The fitted E* in Pa (parameter ``j``); with nu2 the one unknown, on the end of its
+    reach (:func:`_nu2_reach`) where it lies past it by no more than its 95 % interval or
+    round-off: there the fitted nu2 is at its bound. Past that, NumericalFailureError naming
+    the fixed option: no value of the unknowns in their range reproduces the data."""
     value, low, high = (float(v[j]) for v in (sol.values, sol.low, sol.high))
     check_striker_reach(known, value)  # E2 never clips: its bound is E2 = inf
-    reach = _reach(known, unknowns)
+    if "E2" in unknowns:
+        return value
+    reach = _nu2_reach(known)
     if reach[0] <= value <= reach[1]:
         return value
     slack = ROUND_OFF * value
