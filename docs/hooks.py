@@ -248,17 +248,28 @@ def tutorial_page(script: Path, execute: bool = False) -> str:
 API_MARKER = "<!-- public-api -->"
 API_GROUPS = {
     "Inputs": lambda name, obj: (
-        inspect.isclass(obj) and name in ("PowerLawIndenter", "Material", "SweepSpec")
+        inspect.isclass(obj)
+        and not name.endswith(("Result", "Results", "Outcome", "Table"))
+        and not issubclass(obj, Exception)
     ),
     "Computations": lambda name, obj: inspect.isfunction(obj),
     "Results": lambda name, obj: (
-        inspect.isclass(obj) and name.endswith(("Result", "Results", "Outcome"))
+        inspect.isclass(obj) and name.endswith(("Result", "Results", "Outcome", "Table"))
     ),
     "Errors": lambda name, obj: inspect.isclass(obj) and issubclass(obj, Exception),
 }
 
 
-API_ORDER = ["PowerLawIndenter", "Material", "impact", "contact", "dynamic", "run_study", "sweep"]
+API_ORDER = [
+    "Problem",
+    "PowerLawIndenter",
+    "Material",
+    "impact",
+    "contact",
+    "dynamic",
+    "run_study",
+    "sweep",
+]
 
 
 def _rank(name: str) -> tuple[int, str]:

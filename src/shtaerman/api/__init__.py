@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING
 from ..lazy import lazy_names
 
 if TYPE_CHECKING:
+    from ..fem.dynamic_contact import DynamicSettings as DynamicSettings
+    from ..fem.mesh import MeshSettings as MeshSettings
     from ..fitting.result import FitResult as FitResult
     from ..fitting.run import fit as fit
     from ..problem import Body as Body
@@ -49,6 +51,8 @@ if TYPE_CHECKING:
     from .studies import sweep as sweep
 
 _HOMES = {
+    "..fem.dynamic_contact": ("DynamicSettings",),
+    "..fem.mesh": ("MeshSettings",),
     "..fitting.result": ("FitResult",),
     "..fitting.run": ("fit",),
     "..problem": ("Body", "Geometry", "Interface", "Loading", "Problem", "Striker"),
