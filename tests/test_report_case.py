@@ -167,3 +167,37 @@ def test_every_rubber_finding_names_the_model_and_its_constant(tmp_path):
     context = _report(tmp_path, "mooney", MOONEY)
     _every_finding_says(context, "half-space; Mooney-Rivlin rubber, r = C01/(C10 + C01) = 0.085")
     assert "Case: half-space; Mooney-Rivlin rubber" in render_html(context, tmp_path)
+
+
+def _grip_case(nu2: float, interface: str = "bonded", friction=None, thickness=None, finite=False):
+    from types import SimpleNamespace
+
+    study = SimpleNamespace(
+        half_space=SimpleNamespace(poisson_ratio=nu2),
+        physics={"interface": interface, "friction": friction},
+        geometry=SimpleNamespace(thickness=thickness),
+        finite=finite,
+        prony=None,
+    )
+    return SimpleNamespace(study=study)
+
+
+def test_a_dynamic_finding_says_the_grip_stiffens_the_static_contact_below_nu_half():
+    """A bonded striker on nu2 = 0.3 is compared with Shtaerman's frictionless model: the
+    finding says the grip's static part is in the differences, with Mossakovskii's
+    chi(0.3) = 0.7 ln 1.8 / 0.4 = 1.02863 (rounded to 4 decimals: 1.0286)."""
+    from shtaerman.output.text_dynamic import _grip_words, _model_words
+
+    bonded = _model_words(_grip_case(0.3))
+    assert "Shtaerman's frictionless elastic half-space; the no-slip grip" in bonded
+    assert "= 1.0286 against 1 (Mossakovskii)" in bonded
+    assert "by at most the no-slip grip's" in _grip_words(_grip_case(0.3, friction=0.5))
+    # no static part: incompressible (chi = 1), frictionless, a pad or finite strain (chi is
+    # the linear half-space's)
+    for case in (
+        _grip_case(0.5),
+        _grip_case(0.3, interface="frictionless"),
+        _grip_case(0.3, thickness=0.012),
+        _grip_case(0.3, finite=True),
+    ):
+        assert _grip_words(case) == ""

@@ -16,6 +16,7 @@ from ..study.dynamic.case import COMPARED, compare
 from ..study.dynamic.runner import DynamicStudyOutcome
 from ..study.limits import LEVELS as LIMIT_LEVELS
 from ..study.richardson import Estimate
+from ..theory.bonded import bonded_punch_factor
 from ..theory.prony_sources import prony_input
 from ..theory.sneddon import profile_inputs
 from .case import body_words, case_words, interface_words, prony_words, rubber_words
@@ -179,11 +180,33 @@ def _case_words(outcome: DynamicStudyOutcome) -> str:
 
 def _model_words(outcome: DynamicStudyOutcome) -> str:
     """ " (Shtaerman's elastic half-space)" where the study's body is not: on a pad, with a
-    Prony series, a rubber or a bonded striker; "" otherwise."""
+    Prony series, a rubber or a bonded striker (with what the grip adds, :func:`_grip_words`);
+    "" otherwise."""
     study = outcome.study
     if study.prony is None and outcome.study.geometry.thickness is None and not study.physics:
         return ""
-    return " (Shtaerman's elastic half-space)"
+    grip = _grip_words(outcome)
+    return f" (Shtaerman's {'frictionless ' if grip else ''}elastic half-space{grip})"
+
+
+def _grip_words(outcome: DynamicStudyOutcome) -> str:
+    """For a bonded or Coulomb striker on a linear half-space of nu2 < 0.5: that the
+    frictionless model omits the static stiffening of the grip (Mossakovskii's chi, exact for
+    no slip), so the differences include it; "" elsewhere."""
+    study = outcome.study
+    nu2 = study.half_space.poisson_ratio
+    exact = study.geometry.thickness is None and not study.finite  # chi: the linear half-space's
+    if study.physics.get("interface") != "bonded" or nu2 >= 0.5 or not exact:
+        return ""
+    chi = f"P (n + 1)/(2 E* a d n) = {bonded_punch_factor(nu2):.4f} against 1"
+    if study.physics.get("friction") is None:
+        grip = f"the no-slip grip on nu2 = {nu2:g} stiffens the static contact, {chi}"
+    else:
+        grip = (
+            f"Coulomb friction on nu2 = {nu2:g} stiffens the static contact, by at most the "
+            f"no-slip grip's {chi}"
+        )
+    return f"; {grip} (Mossakovskii), so these differences include a static part"
 
 
 def _reflection_words(outcome: DynamicStudyOutcome) -> str:
