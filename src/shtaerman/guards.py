@@ -14,6 +14,10 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   tells its :class:`LockingWatch` every state it accepts, and the first at or beyond it warns
   with the depth the stretch crossed it, wherever the route's steps fall.
 
+Refused before any work instead: an FE impact whose depth lies beyond the model's reach
+(:func:`check_reach`), a sphere pressed past its equator (:func:`check_equator`), and a linear
+FE impact with inertia whose striker is too fast for the body's waves (:func:`check_wave_speed`).
+
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
 contact sweep case, a contact or layer study) call :func:`warn_outside_validity` with what
@@ -34,6 +38,7 @@ __all__ = [
     "LINEAR_REACH",
     "LOCKED",
     "MAX_DEPTH_RATIO",
+    "MAX_RADIATED_ESTIMATE",
     "MIN_DEPTH_RATIO",
     "FailedCheckWarning",
     "LadderWarnings",
@@ -41,6 +46,7 @@ __all__ = [
     "ValidityWarning",
     "check_equator",
     "check_reach",
+    "check_wave_speed",
     "depth_ratio",
     "outside_validity",
     "warn_outside_validity",
@@ -63,6 +69,16 @@ locking")."""
 LINEAR_REACH = 100.0
 """Largest x/a a linear FE impact is run at: a depth of a hundred contact radii is no
 model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular matrix)."""
+MAX_RADIATED_ESTIMATE = 0.8
+"""Largest first-order radiated energy fraction lambda of the quasi-static impact
+(:func:`shtaerman.theory.radiation.radiation_estimate`, ~ v0 / c_s: the striker's speed over
+the body's shear wave speed c_s = sqrt(G / rho), times its mass and shape) at which a linear FE
+impact with inertia is run. The FE's restitution and radiated fraction follow lambda alone (the
+paper's striker raised in velocity, in density, or 10x lighter: e = 0.686 at lambda = 0.86 in
+all three); its energy balance stays within 1.2e-3 of M v0^2/2 up to lambda = 0.86 to 0.887
+and is off by 2.0 to 2.3 at lambda = 0.885, 0.904 and 0.935 (v0 / c_s = 0.355, 0.65, 0.28;
+at 0.355 with a 2x finer mesh or 2x the time steps too); its reflected-energy check fails
+from lambda ~ 0.86 (benchmarks/FEM_NOTES.md)."""
 
 
 class ValidityWarning(UserWarning):
@@ -262,6 +278,41 @@ def check_reach(
             f"{fastest:.3g} m/s with this striker, mass and body, or mass=...{note}",
             "velocity",
         )
+
+
+def check_wave_speed(
+    impact: tuple[float, float],
+    estimate: object,
+    density: float,
+    force_exponent: float | None,
+) -> None:
+    """Refuse, before any work, a linear FE impact with inertia (mass in kg, velocity in m/s)
+    whose first-order radiated fraction ``estimate`` (a
+    :class:`~shtaerman.theory.radiation.RadiationEstimate` on the body of ``density`` kg/m^3)
+    exceeds :data:`MAX_RADIATED_ESTIMATE`, naming the velocity and the density that pass: lambda
+    goes as sqrt(density) and, for a power-law force P ~ x^q (``force_exponent`` q; None: a
+    sphere's or a table's, whose q varies with depth, gives a velocity of about 3/2's),
+    as v0^((3q - 3)/(q + 1))."""
+    from .validation import InputError
+
+    fraction = estimate.energy_fraction
+    if not fraction > MAX_RADIATED_ESTIMATE:
+        return
+    mass, velocity = impact
+    c_s, share = estimate.shear_wave_speed, MAX_RADIATED_ESTIMATE / fraction
+    q = 1.5 if force_exponent is None else force_exponent
+    slower = velocity * share ** ((q + 1.0) / (3.0 * q - 3.0))
+    about = "" if force_exponent is not None else "about "
+    raise InputError(
+        f"velocity, density2: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the "
+        f"body's shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
+        f"estimated {fraction:.3g} of its energy as waves (first order), above "
+        f"{MAX_RADIATED_ESTIMATE:g}, where the linear FE impact breaks down (its energy balance "
+        f"off by about 2 of M v0^2/2): density2 {0.99 * density * share**2:.3g} kg/m^3 or "
+        f"velocity {about}{0.99 * slower:.3g} m/s would pass (density2 0: the quasi-static "
+        "impact without waves)",
+        "velocity",
+    )
 
 
 def check_equator(

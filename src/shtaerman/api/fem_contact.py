@@ -315,19 +315,6 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
-def _check_scale(problem: Any, depths: np.ndarray, mesh: Any) -> None:
-    """Refuse, naming mass and velocity, default depths whose contact zone is too large for
-    the body's modulus (:func:`shtaerman.fem.contact.linear.check_contact_scale`)."""
-    from ..fem.contact.linear import check_contact_scale
-    from ..study.contact.indentation import default_depths, refined_radius
-
-    indenter, modulus = problem.striker.indenter, problem.body.material.youngs_modulus
-    layer = problem.geometry
-    paper = refined_radius(indenter, default_depths(indenter, problem.body.material), mesh, layer)
-    check_contact_scale(modulus, paper)  # fails at the paper's impact too: not the mass's fault
-    check_contact_scale(modulus, refined_radius(indenter, depths, mesh, layer), _impact(problem))
-
-
 def _check_depths(
     problem: Problem, depths: np.ndarray, mesh: Any, refine: float, estimate: bool
 ) -> None:
@@ -345,9 +332,7 @@ def _check_depths(
     if problem.body.finite:
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
-    elif problem.loading.depths is None:  # the impact's x_c set them: mass, velocity named
-        _check_scale(problem, depths, mesh)
-    else:
+    elif problem.loading.depths is not None:
         _check_force_range(indenter, body, depths)
     if estimate:
         from ..study.contact.indentation import refined_radius

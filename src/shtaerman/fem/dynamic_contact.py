@@ -32,17 +32,22 @@ import scipy.sparse as sp
 from skfem import MeshTri
 from threadpoolctl import threadpool_limits
 
-from ..guards import check_reach
+from ..guards import check_reach, check_wave_speed
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
 from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
-from ..theory.radiation import rayleigh_root
+from ..theory.radiation import (
+    RadiationEstimate,
+    profile_radiation_estimate,
+    radiation_estimate,
+    rayleigh_root,
+)
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
 from ..validation import InputError, validate_positive
-from .contact.linear import check_contact_scale, mass_factor
+from .contact.linear import mass_factor
 from .contact.stick import CoupledCompliance, radial_dofs
 from .dynamic_layer import (
     AbsorbingLayer,
@@ -578,6 +583,23 @@ def _checked_estimate(estimate: int, settings: DynamicSettings, layered: bool = 
     return estimate
 
 
+def _waves(
+    half_space: Material,
+    rho: float,
+    striker: Striker,
+    qs: _QuasiStatic,
+    exact: ProfileImpactResult | None,
+) -> RadiationEstimate:
+    """The first-order radiation estimate of the quasi-static impact ``qs`` (of the power law:
+    its beta is finite; else ``exact``, a sphere's or a table's) on the body of density
+    ``rho`` kg/m^3."""
+    shear, nu = half_space.shear_modulus, half_space.poisson_ratio
+    if math.isnan(qs.beta):
+        return profile_radiation_estimate(exact, rho, shear, nu)
+    impact = (striker.mass, striker.velocity, qs.beta, qs.force_exponent)
+    return radiation_estimate(*impact, rho, shear, nu)
+
+
 def check_dynamic_impact(
     indenter: Indenter,
     half_space: Material,
@@ -591,9 +613,10 @@ def check_dynamic_impact(
     geometry: Geometry = HALF_SPACE,
 ) -> tuple[float, Striker, _Scales, int]:
     """Check every input of a dynamic impact (arguments of :func:`.impact.run_impact`) before
-    anything is meshed, in well under a second: the density, mass and velocity, the body's
-    modulus against the refined radius (as the contact curve's), the layer's thickness
-    against it, the duration of a viscoelastic impact and the estimated mesh size.
+    anything is meshed, in well under a second: the density, mass and velocity, with inertia
+    the striker's speed against the waves' (:func:`shtaerman.guards.check_wave_speed`), the
+    depth's reach (x/a), the layer's thickness against the refined radius, the duration of a
+    viscoelastic impact and the estimated mesh size.
     ``shtaerman dynamic`` and a dynamic sweep's load both refuse their inputs here.
 
     Returns
@@ -611,15 +634,19 @@ def check_dynamic_impact(
     striker = Striker(
         validate_positive("mass", mass, "kg"), validate_positive("velocity", velocity, "m/s")
     )
+    if exact is None:  # a sphere's or a table's, solved once for the sizing and the waves
+        exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
     qs = _quasi_static(indenter, half_space, striker, exact)
-    thickness = geometry.thickness
+    thickness, impact = geometry.thickness, (striker.mass, striker.velocity)
     if thickness is None:  # a pad stops the striker short of x_c
-        check_reach(indenter, qs.x_c, (striker.mass, striker.velocity), qs.force_exponent, False)
+        check_reach(indenter, qs.x_c, impact, qs.force_exponent, False)
         # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
+    if rho > 0:
+        waves = _waves(half_space, rho, striker, qs, exact)
+        exponent = None if math.isnan(qs.beta) else qs.force_exponent
+        check_wave_speed(impact, waves, rho, exponent)
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
-    impact = (striker.mass, striker.velocity)
-    check_contact_scale(half_space.youngs_modulus, scales.refined, impact, curve=False)
     if thickness is None:
         return rho, striker, scales, estimate_dofs(settings)
     estimate = layer_dofs(settings, thickness, scales.refined, scales.domain_radius)

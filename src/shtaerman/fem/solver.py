@@ -168,7 +168,7 @@ def _checked_pardiso(matrix: sp.spmatrix, explicit: bool) -> PardisoFactorizatio
             f"PARDISO unavailable ({error}); using SuperLU", stacklevel=caller_stacklevel()
         )
         return None
-    if backward_error(matrix, factorization) <= ACCURACY_CHECK:
+    if backward_error(matrix, factorization, symmetric_scaling(matrix)) <= ACCURACY_CHECK:
         return factorization
     warnings.warn(
         "PARDISO factorization inaccurate; falling back to SuperLU", stacklevel=caller_stacklevel()
@@ -183,7 +183,7 @@ def _checked_superlu(matrix: sp.spmatrix) -> SuperLUFactorization:
             factorization = SuperLUFactorization(matrix, pivot_threshold=threshold)
         except RuntimeError:  # an exactly zero pivot
             continue
-        if backward_error(matrix, factorization) <= ACCURACY_CHECK:
+        if backward_error(matrix, factorization, factorization.scale) <= ACCURACY_CHECK:
             return factorization
     raise RuntimeError("matrix is singular to working precision (check the constraints)")
 
@@ -262,12 +262,20 @@ def solution_backward_error(matrix: sp.spmatrix, x: np.ndarray, rhs: np.ndarray)
     return float(np.max(abs(matrix @ x - rhs) / np.where(scale > 0, scale, 1.0)))
 
 
-def backward_error(matrix: sp.spmatrix, factorization: Factorization) -> float:
+def backward_error(
+    matrix: sp.spmatrix, factorization: Factorization, scale: np.ndarray | None = None
+) -> float:
     """Componentwise backward error of a test solve with ``factorization`` of ``matrix``.
 
-    The right-hand side is A x for a fixed random x (seed 0), so the value is reproducible.
+    The right-hand side is A x for x = D z, z a fixed random vector (seed 0, reproducible)
+    and D = diag ``scale`` (None: D = I). With the :func:`symmetric_scaling` of a mixed u-p
+    matrix, x has the displacement-to-pressure ratio of a solution (L / E), so the value is
+    unit-free; with D = I the pressures of x are off theirs by E / L in SI units and the
+    value grew as (E / L)^-1 below 1 Pa/m (benchmarks/bench_units.py).
     """
     exact = np.random.default_rng(0).standard_normal(matrix.shape[0])
+    if scale is not None:
+        exact = scale * exact
     rhs = matrix @ exact
     return solution_backward_error(matrix, factorization.solve(rhs), rhs)
 
@@ -298,6 +306,11 @@ class SuperLUFactorization:
         SuperLU ``permc_spec``.
     pivot_threshold : float
         SuperLU ``diag_pivot_thresh`` in [0, 1].
+
+    Attributes
+    ----------
+    scale : numpy.ndarray
+        d of D.
     """
 
     backend = "superlu"
@@ -309,8 +322,8 @@ class SuperLUFactorization:
         pivot_threshold: float = SUPERLU_PIVOT_THRESHOLD,
     ) -> None:
         self.shape = matrix.shape
-        self._scale = symmetric_scaling(matrix)
-        scale = sp.diags(self._scale)
+        self.scale = symmetric_scaling(matrix)
+        scale = sp.diags(self.scale)
         self._lu = spla.splu(
             sp.csc_matrix(scale @ matrix @ scale),
             permc_spec=ordering,
@@ -327,7 +340,7 @@ class SuperLUFactorization:
         """Solve for a vector (n,) or many right-hand sides (n, k), one column at a time
         (faster than SuperLU's own multi-column solve)."""
         rhs = np.asarray(rhs, dtype=float)
-        d = self._scale
+        d = self.scale
         if rhs.ndim == 2:
             solution = np.empty_like(rhs)
             for column in range(rhs.shape[1]):
@@ -615,11 +628,12 @@ class TailFactorization(OrderedLU):
         is_tail[self.tail] = True
         order = nested_dissection(matrix, groups)
         order = np.concatenate([order[~is_tail[order]], self.tail])
-        super().__init__(matrix, order, symmetric_scaling(matrix))
+        scale = symmetric_scaling(matrix)
+        super().__init__(matrix, order, scale)
         start = n - self.tail.size
         if not np.array_equal(self.lu.perm_r[start:], np.arange(start, n)):
             raise TailPivotError("the factorization pivoted the tail rows; no Schur complement")
-        if backward_error(matrix, self) > ACCURACY_CHECK:
+        if backward_error(matrix, self, scale) > ACCURACY_CHECK:
             raise TailPivotError("tail-ordered factorization is inaccurate")
 
     def tail_inverse(self) -> np.ndarray:

@@ -48,9 +48,6 @@ from .constraints import (
 )
 
 Profile = Callable[[np.ndarray], np.ndarray]
-MIN_MODULUS_PER_LENGTH = 0.1
-"""Smallest E / (contact zone radius) in Pa/m: the factorization's backward error grows as
-its inverse."""
 MAX_DEPTHS = entry("depths").max_items
 """Most depths of one contact curve (:mod:`shtaerman.vocabulary`): every depth keeps its full
 solution vector (depths x dofs x 8 bytes)."""
@@ -478,42 +475,6 @@ def field_solutions(
     return solutions
 
 
-def check_contact_scale(
-    youngs_modulus: float,
-    radius: float,
-    impact: tuple[float, float] | None = None,
-    curve: bool = True,
-) -> None:
-    """Refuse a contact zone of ``radius`` m on a body of ``youngs_modulus`` Pa whose ratio is
-    below :data:`MIN_MODULUS_PER_LENGTH` Pa/m (the mixed u-p system loses digits there): the
-    one check of the linear FE's contact curve and impact. ``impact``: the mass (kg) and
-    velocity (m/s) whose x_c set the depths, named as the cause (None: the depths were given,
-    E2 and the depths are named); ``curve`` False: the impact itself, whose zone E2, mass and
-    velocity set together."""
-    ratio = youngs_modulus / radius
-    if ratio >= MIN_MODULUS_PER_LENGTH:
-        return
-    where = (
-        f"E2 / contact zone radius = {ratio:.3g} Pa/m is below {MIN_MODULUS_PER_LENGTH:g}: "
-        "the mixed u-p system then loses digits (a soft body under a huge contact)"
-    )
-    if impact is None:
-        raise InputError(f"E2, shape_coefficient: {where}; check them and the depths", "E2")
-    if not curve:
-        raise InputError(
-            f"E2, mass, velocity: {impact[0]:g} kg at {impact[1]:g} m/s on E2 = "
-            f"{youngs_modulus:g} Pa make a contact zone of {radius:.3g} m: {where}; raise E2 "
-            "or lower the mass or the velocity",
-            "E2",
-        )
-    raise InputError(
-        f"mass, velocity: {impact[0]:g} kg at {impact[1]:g} m/s set the depths (up to the "
-        f"impact's x_c), a contact zone of {radius:.3g} m: {where}; lower the mass or the "
-        "velocity, or give the depths",
-        "mass",
-    )
-
-
 def solve_contact(
     system: ElasticSystem,
     profile: Profile,
@@ -549,7 +510,6 @@ def solve_contact(
     depths = np.atleast_1d(np.asarray(depths, dtype=float))  # checked where they entered
     if depths.size > MAX_DEPTHS:
         raise InputError(f"depths: at most {MAX_DEPTHS} per curve, got {depths.size}", "depths")
-    check_contact_scale(system.youngs_modulus, candidate_radius)
     free = system.free_dofs()
     start = time.perf_counter()
     factorization = factorize_stiffness(system, free, candidate_radius, backend)

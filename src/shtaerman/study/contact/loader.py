@@ -18,9 +18,7 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import msgspec
-import numpy as np
 
-from ...fem.contact.linear import check_contact_scale
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...guards import check_equator
 from ...problem import Interface, Problem
@@ -55,7 +53,6 @@ from ..schema import (
     swept,
     validated,
 )
-from .indentation import refined_radius
 from .layer import LayerSpec, check_thickness
 
 __all__ = [
@@ -331,9 +328,6 @@ def on_layer(study: Study) -> Study:
     exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     layer = study.layer.resolved(float(exact.a_c))
     deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
-    if not study.depths:  # the impact's x_c set them: a huge one names mass and velocity
-        radius = refined_radius(study.indenter, np.array([deepest]), study.mesh, layer.geometry)
-        check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     for settings in (study.mesh, study.quick_mesh):
         check_thickness(settings, layer.geometry, study.indenter, deepest)
     return replace(study, layer=layer)

@@ -16,7 +16,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import IntegrationWarning
 
-from ...fem.contact.linear import check_contact_scale
 from ...fem.fit import fit_power_law
 from ...guards import warn_outside_validity
 from ...theory.impact import ImpactHistory, ImpactResult, solve_impact
@@ -29,7 +28,7 @@ from ..checks import Check, Outcome
 from .accuracy import AccuracyResult, run_ladder
 from .contact_law import FemContactLaw, fem_contact_law
 from .convergence import ConvergenceStudy, convergence_study
-from .indentation import IndentationResult, default_depths, refined_radius
+from .indentation import IndentationResult, default_depths
 from .interface import InterfaceEffect, interface_checks, interface_effect, shtaerman_applies
 from .layer import LayerFindings, layer_checks, layer_findings, with_dynamic_impact
 from .loader import DEPTH_OVERSHOOT, Study
@@ -200,9 +199,6 @@ def run_contact_study(
     modulus = effective_modulus(study.striker, study.half_space)
     exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
     mesh, depths = study.quick_mesh if quick else study.mesh, _study_depths(study)
-    if study.depths is None:  # the impact's x_c set them: a huge one names mass and velocity
-        radius = refined_radius(study.indenter, depths, mesh, study.geometry)
-        check_contact_scale(study.half_space.youngs_modulus, radius, (study.mass, study.velocity))
     report(f"{study.name}: FEM contact curve on a 3-mesh ladder (error estimates)")
     accuracy = run_ladder(  # partial: a failed level leaves the finest that passed, unestimated
         study.indenter,

@@ -336,8 +336,8 @@ def _check_velocities(
     """The exact impact at each velocity of the study (``quick``: of its quick run; ``exact``,
     solved once per velocity), a velocity whose problem the Problem refuses or whose exact
     impact leaves the floating-point range, refused naming ``key``, or (the linear body)
-    whose run with the study's settings the impact's own checks refuse (depth reach, contact
-    zone scale, the layer's thickness:
+    whose run with the study's settings the impact's own checks refuse (depth reach, speed
+    against the waves', the layer's thickness:
     :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
     keys at fault: at load, not as the first check of its run, after the velocities before
     it had run."""
