@@ -85,7 +85,10 @@ def smooth_edges(plotter: pv.Plotter) -> None:
 @contextmanager
 def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
     """An off-screen plotter on white, edges smoothed (:func:`smooth_edges`), VTK warnings
-    silenced, closed whatever happens.
+    silenced, closed whatever happens. It renders in :func:`save` only, so it can draw several
+    pictures one after another (``plotter.clear()`` between): a shown pyvista plotter renders
+    again on every ``add_mesh``, and a new plotter costs ~0.06 s CPU (benchmarks/FEM_NOTES.md,
+    "Figures").
 
     SIGINT and SIGTERM are held until the picture is done (:func:`~shtaerman.signals.
     deferred`): the first plotter makes VTK import its OpenGL modules, and an interrupt raised
@@ -96,6 +99,7 @@ def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
         try:
             smooth_edges(plotter)
             plotter.set_background("white")
+            plotter.suppress_rendering = True  # rendered once per picture, by save
             yield plotter
         finally:
             plotter.close()
@@ -111,5 +115,10 @@ def save(plotter: pv.Plotter, path: Path | str) -> Path:
     if path.suffix.lower() != ".png":
         raise InputError(f"field pictures are PNG only: path must end in .png, got {str(path)!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
-    plotter.screenshot(str(path))
+    plotter.suppress_rendering = False
+    try:
+        plotter.render()  # a plotter already shown: the new scene (a new one renders below)
+        plotter.screenshot(str(path))
+    finally:
+        plotter.suppress_rendering = True
     return path
