@@ -365,6 +365,8 @@ def plot_each_field(
     with picture() as plotter:
         for name, path in paths.items():
             plotter.clear()
+            plotter.suppress_rendering = True  # shown: it renders on every add_mesh
             _panel(plotter, result, cut, name, options)
+            plotter.suppress_rendering = False
             made[name] = save(plotter, path)
     return made
