@@ -10,11 +10,15 @@ this process and its threads, which VTK's software renderer uses; wall time is l
 jobs share the machine). The figures that depend on no study (the Ateb functions, one per
 indenter exponent) are timed once per exponent.
 ``--profile KIND`` prints a cProfile of one more drawing of that figure kind (first study).
-Asserts nothing about time.
+Beside each least time is its ratio to a reference measured in the same run (the least of
+``--repeat``, at least 3, savefigs of one empty axes at the figures' size and dpi: matplotlib
+alone), which compares runs at different loads better than seconds; the load average is
+printed at the start and the end. Asserts nothing about time.
 """
 
 import argparse
 import cProfile
+import os
 import pstats
 import tempfile
 import time
@@ -22,8 +26,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from matplotlib.figure import Figure
+
 from shtaerman.output.dynamic import SEPARATION_SNAPSHOT
 from shtaerman.plots import ateb, curves, dynamic, finite, gallery, impact, revolved, sections
+from shtaerman.plots.style import DPI, WIDTH
 from shtaerman.study.run import run_study
 from shtaerman.study.schema import load_study, shipped_studies
 
@@ -96,6 +103,23 @@ def cpu_seconds(draw: Callable[[Path], Any], repeat: int) -> tuple[float, float]
     return seconds[0], min(seconds)
 
 
+def empty_savefig(out: Path) -> None:
+    """The reference: one empty axes saved as PNG by matplotlib's savefig (two draws)."""
+    figure = Figure(figsize=(WIDTH, 4.0), layout="constrained")
+    figure.add_subplot()
+    figure.savefig(out / "reference.png", dpi=DPI)
+
+
+def load() -> str:
+    return "load average " + " ".join(f"{value:.2f}" for value in os.getloadavg())
+
+
+def row(study: str, name: str, seconds: Any, reference: float) -> None:
+    """One line: first and least CPU s, and the least over the reference."""
+    ratio = seconds[1] / reference
+    print(f"{study:<20} {name:<24} {seconds[0]:7.2f} {seconds[1]:7.2f} {ratio:6.1f}")
+
+
 def added(total: list[float], seconds: tuple[float, float]) -> list[float]:
     return [total[0] + seconds[0], total[1] + seconds[1]]
 
@@ -117,7 +141,10 @@ def main() -> None:
     studies = [study for path in shipped_studies() for study in load_study(path)]
     totals: dict[str, list[float]] = {}
     exponents = set()
-    print(f"{'study':<20} {'figure':<24} {'first s':>7} {'least s':>7}")
+    print(load())
+    reference = cpu_seconds(empty_savefig, max(args.repeat, 3))[1]
+    print(f"reference (empty savefig): {reference:.4f} CPU s")
+    print(f"{'study':<20} {'figure':<24} {'first s':>7} {'least s':>7} {'/ ref':>6}")
     for study in studies:
         kind = getattr(study, "kind", "contact")
         if kind not in args.kinds:
@@ -130,21 +157,21 @@ def main() -> None:
         study_total = [0.0, 0.0]
         for name, draw in figures.items():
             seconds = cpu_seconds(draw, args.repeat)
-            print(f"{study.name:<20} {name:<24} {seconds[0]:7.2f} {seconds[1]:7.2f}")
+            row(study.name, name, seconds, reference)
             totals[name] = added(totals.get(name, [0.0, 0.0]), seconds)
             study_total = added(study_total, seconds)
             if args.profile == name:
                 profile(draw)
                 args.profile = None
-        print(f"{study.name:<20} {'all':<24} {study_total[0]:7.2f} {study_total[1]:7.2f}")
+        row(study.name, "all", study_total, reference)
     for exponent in sorted(exponents):
         draw = lambda out, n=exponent: ateb.paper_figures(out, [n])  # noqa: E731
         totals[f"ateb (n = {exponent:g})"] = list(cpu_seconds(draw, args.repeat))
     print("\nper figure kind, summed over the studies:")
-    for name, seconds in totals.items():
-        print(f"  {name:<42} {seconds[0]:7.2f} {seconds[1]:7.2f}")
     everything = [sum(seconds[i] for seconds in totals.values()) for i in (0, 1)]
-    print(f"  {'all figures':<42} {everything[0]:7.2f} {everything[1]:7.2f}")
+    for name, seconds in [*totals.items(), ("all figures", everything)]:
+        print(f"  {name:<42} {seconds[0]:7.2f} {seconds[1]:7.2f} {seconds[1] / reference:6.1f}")
+    print(load())
 
 
 if __name__ == "__main__":

@@ -228,6 +228,21 @@ def test_pngs_are_compressed_fast_and_losslessly(outcome, folder):
     assert (pixels(default) == pixels(folder / "level3.png")).all()
 
 
+def test_png_drawn_once_is_the_savefig_png(folder):
+    """save draws a PNG once (savefig draws twice: once for the layout); same bytes, dpi kept."""
+    with mpl.rc_context(style.STYLE):
+        figure, axes = style.chart(2.0, 1, 2)
+        axes[0].plot([0, 1], [1, 0], label=r"$p/p_{avg}$")
+        axes[0].legend()
+        axes[1].set_xlabel(r"$x/a$ (mm)")
+        reference = folder / "savefig.png"
+        figure.savefig(reference, dpi=style.DPI, pil_kwargs={"compress_level": 3})
+        once = style.save(figure, folder / "once.png")
+    assert figure.dpi == mpl.rcParams["figure.dpi"]
+    assert once.read_bytes() == reference.read_bytes()
+    assert Image.open(once).size == (round(style.WIDTH * style.DPI), 2 * style.DPI)
+
+
 def test_si_prefix():
     assert style.si_prefix(8.5e-3, "m") == (1e3, "mm")
     assert style.si_prefix(8.4e6, "Pa") == (1e-6, "MPa")

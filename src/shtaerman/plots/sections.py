@@ -348,8 +348,9 @@ def plot_each_field(
 ) -> dict[str, Path]:
     """Write one PNG per field, as :func:`plot_field` would, from one shared section.
 
-    The section and its fields are cut once for all pictures, so the pictures are those of
-    :func:`plot_field` called field by field, at a fraction of the cost.
+    The section and its fields are cut once for all pictures, and one plotter draws them one
+    after another, so the pictures are those of :func:`plot_field` called field by field, at a
+    fraction of the cost.
 
     Parameters
     ----------
@@ -361,8 +362,11 @@ def plot_each_field(
     options = (step, extent, deformed)
     cut = _shared_section(result, list(paths), options)
     made = {}
-    for name, path in paths.items():
-        with picture() as plotter:
+    with picture() as plotter:
+        for name, path in paths.items():
+            plotter.clear()
+            plotter.suppress_rendering = True  # shown: it renders on every add_mesh
             _panel(plotter, result, cut, name, options)
+            plotter.suppress_rendering = False
             made[name] = save(plotter, path)
     return made

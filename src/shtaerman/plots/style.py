@@ -27,7 +27,9 @@ import matplotlib as mpl
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.axis import Axis
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.image import imsave
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..validation import InputError
@@ -162,19 +164,30 @@ def save(figure: Figure, path: Path | str, figure_format: str = "png") -> Path:
         raise InputError(f"figure path must end in .png, .svg or .pdf, got {str(path)!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
     with _STYLED():
-        figure.savefig(path, dpi=DPI, **_options(suffix))
+        if suffix == "png":
+            _png(figure, path)
+        else:
+            figure.savefig(path, dpi=DPI, metadata={"Date": None})
         if figure_format not in ("png", suffix):
             twin = path.with_suffix(f".{figure_format}")
-            figure.savefig(twin, dpi=DPI, **_options(figure_format))
+            figure.savefig(twin, dpi=DPI, metadata={"Date": None})
     return path
 
 
-def _options(figure_format: str) -> dict[str, object]:
-    """No creation date in vector files (the same figure gives the same bytes); PNGs at
-    :data:`PNG_COMPRESSION`."""
-    if figure_format == "png":
-        return {"pil_kwargs": {"compress_level": PNG_COMPRESSION}}
-    return {"metadata": {"Date": None}}
+def _png(figure: Figure, path: Path) -> None:
+    """``figure`` drawn once on an Agg canvas at :data:`DPI` (its layout engine runs inside the
+    draw) and written at :data:`PNG_COMPRESSION`: the bytes ``savefig`` writes, which draws
+    twice (the first draw, with drawing disabled, only for the layout). The vector formats keep
+    ``savefig``; no creation date in them (the same figure gives the same bytes)."""
+    dpi = figure.dpi
+    figure.set_dpi(DPI)
+    try:
+        canvas = FigureCanvasAgg(figure)
+        canvas.draw()
+        imsave(path, canvas.buffer_rgba(), format="png", origin="upper", dpi=DPI,
+               pil_kwargs={"compress_level": PNG_COMPRESSION})  # fmt: skip
+    finally:
+        figure.set_dpi(dpi)
 
 
 def plain_log(axis: Axis) -> None:
