@@ -511,6 +511,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "e.g. 0.01, for rebound data); unset: estimated from the residual",
         "noise level",
         None,
+        valid=Range(0.0, 1e100),  # squared in the covariance: 1e200 overflowed (traceback)
     ),
     Entry(
         "time_offset",

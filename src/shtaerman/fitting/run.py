@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from ..guards import warn_outside_validity
 from ..output.files import output_folder
-from ..problem import Problem
+from ..problem import Problem, check_outputs
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry
@@ -189,6 +189,7 @@ def fit(
     -------
     FitResult
     """
+    check_outputs(out, force=force, estimate=True, figure_format=figure_format)
     folder = output_folder(out, force=force)
     names = _names(unknowns)
     offset = None if "time_offset" in names else time_offset  # fitted: read off the data
@@ -203,7 +204,7 @@ def fit(
             "unknowns",
         )
     if noise is not None:
-        noise = validate_positive("noise", noise)
+        noise = entry("noise").check(noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
         try:
