@@ -50,3 +50,34 @@ def test_sh_fit_refuses_output_keywords_as_the_other_routes(tmp_path, keywords, 
     with pytest.raises(InputError, match=rf"^{parameter}") as e:
         sh.fit("indentation", DATA, CASE, **keywords)
     assert e.value.parameter == parameter and not (tmp_path / "fit").exists()
+
+
+def test_units_beside_a_mapping_are_refused_not_dropped():
+    """`sh.fit(..., {"depth": x_mm, ...}, units={"depth": "mm"})` fitted the millimetres as
+    metres: a mapping's columns are SI and the units were silently ignored."""
+    with pytest.raises(InputError, match=r"^units: applies to a CSV file's header") as e:
+        sh.fit("indentation", DATA, CASE, units={"depth": "mm"})
+    assert e.value.parameter == "units"
+
+
+@pytest.mark.parametrize(
+    ("column", "said"),
+    [
+        (["a"] * DEPTHS.size, "of <U1"),  # was a bare ValueError from numpy
+        ([True] * DEPTHS.size, "of bool"),  # was read as depths of 1 m: E2 = 1.7 kPa
+        (DEPTHS.reshape(4, 5), "shape (4, 5)"),  # was "the columns must have equal lengths"
+    ],
+)
+def test_a_mapping_column_of_no_numbers_is_one_line_naming_it(column, said):
+    with pytest.raises(InputError, match=r"^data: column 'depth' must be a one-dimensional") as e:
+        sh.fit("indentation", {**DATA, "depth": column}, CASE)
+    assert said in str(e.value) and e.value.parameter == "data"
+
+
+@pytest.mark.parametrize(("data", "problem"), [(5, CASE), (DATA, {"E2": 7.5e6}), (DATA, None)])
+def test_sh_fit_refuses_what_is_no_data_or_no_problem(data, problem):
+    """An int as data ended in TypeError from list(); a dict or None as the problem in
+    AttributeError on problem.body."""
+    with pytest.raises(InputError, match=r"^(data|problem)( must be|: give) ") as e:
+        sh.fit("indentation", data, problem)
+    assert e.value.parameter == ("data" if data == 5 else "problem")

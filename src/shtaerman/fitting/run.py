@@ -163,7 +163,8 @@ def fit(
         The force history's time of first touch in s and its zero force in N, when not
         fitted.
     units : mapping, optional
-        Column -> unit for CSV header cells that give none.
+        Column -> unit for CSV header cells that give none (a CSV only: a mapping's columns
+        are SI, and units beside them are refused).
     resample : int, optional
         Points to resample a force history (uniform in time) or an indentation (uniform in
         depth) onto before the fit, by linear interpolation, in [3, 1e7]; None: the rows as
@@ -189,6 +190,12 @@ def fit(
     -------
     FitResult
     """
+    if not isinstance(problem, Problem):  # a dict or None failed on problem.body
+        raise InputError(
+            "problem must be a Problem (Problem.impact or Problem.curve), got "
+            f"{type(problem).__name__}",
+            "problem",
+        )
     check_outputs(out, force=force, estimate=True, figure_format=figure_format)
     folder = output_folder(out, force=force)
     names = _names(unknowns)
