@@ -17,7 +17,7 @@ DATA = {"depth": DEPTHS, "force": PowerLawContact(INDENTER, 1e7).force(DEPTHS)}
 
 def _csv(tmp_path):
     path = tmp_path / "ind.csv"
-    rows = "\n".join(f"{x!r},{p!r}" for x, p in zip(*DATA.values(), strict=True))
+    rows = "\n".join(f"{x:.17g},{p:.17g}" for x, p in zip(*DATA.values(), strict=True))
     path.write_text(f"depth [m],force [N]\n{rows}\n")
     return str(path)
 
@@ -81,3 +81,14 @@ def test_sh_fit_refuses_what_is_no_data_or_no_problem(data, problem):
     with pytest.raises(InputError, match=r"^(data|problem)( must be|: give) ") as e:
         sh.fit("indentation", data, problem)
     assert e.value.parameter == ("data" if data == 5 else "problem")
+
+
+@pytest.mark.parametrize("unknowns", ["E2", "E2,nu2"])
+def test_a_fitted_e2_outside_its_range_is_refused(tmp_path, capsys, unknowns):
+    """`fit indentation ind.csv --shape-coefficient 1e-100` printed E2 = 5.5e-61 Pa with exit
+    0 (a force history at A = 1e-30: 2.6e-14 Pa): no E2 in [1e-3, 1e100] Pa, the range every
+    route takes, reproduces the data under that profile."""
+    argv = ["fit", "indentation", _csv(tmp_path), "--shape-coefficient", "1e-100"]
+    assert main([*argv, "--fit", unknowns]) == 1
+    err = capsys.readouterr().err
+    assert "needs E2 = 5.526e-61 Pa, outside [1e-3, 1e100] Pa" in err and err.count("\n") == 1
