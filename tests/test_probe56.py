@@ -92,3 +92,14 @@ def test_a_fitted_e2_outside_its_range_is_refused(tmp_path, capsys, unknowns):
     assert main([*argv, "--fit", unknowns]) == 1
     err = capsys.readouterr().err
     assert "needs E2 = 5.526e-61 Pa, outside [1e-3, 1e100] Pa" in err and err.count("\n") == 1
+
+
+def test_a_soft_striker_beside_fe_curves_is_refused_not_dropped(tmp_path, capsys):
+    """`fit indentation ind.csv --thickness 0.02 --E1 1e9` (or 1e-3) gave E2 = 5.24 MPa, the
+    rigid striker's value to every digit: the FE curves press a rigid striker and dropped the
+    given one. Its compliance, 0.0066 of the rubber's, is 5 times the curves' force error."""
+    argv = ["fit", "indentation", _csv(tmp_path), "--thickness", "0.02", "--E1", "1e9"]
+    assert main(argv) == 1
+    err = capsys.readouterr().err.splitlines()[-1]
+    assert err.startswith("shtaerman: error: --E1 1e+09: the FE contact curves press a rigid")
+    assert main([*argv[:-1], "inf"]) == 0  # the same curve with a rigid striker runs

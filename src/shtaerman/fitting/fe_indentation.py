@@ -261,6 +261,24 @@ def _check(problem: Problem, names: Sequence[str]) -> ShapeAxis | None:
     return sought[0] if sought else None
 
 
+def _check_striker(curves: FECurves, measured: Measurement) -> None:
+    """NumericalFailureError naming E1 when the striker's compliance (1 - nu1^2) / E1 is more
+    than the FE force error of the body's at the E2 the first FE curve gives: the FE striker
+    is rigid, so a softer one would be silently dropped (a steel ball on rubber: 5e-5)."""
+    striker, body = curves.problem.striker.material, curves.problem.body.material
+    shape = next(iter(curves.table.values()))
+    force = measured.columns["force"]
+    young = float(np.sum(force * shape) / np.sum(shape**2))
+    ratio = striker.compliance * young / (1.0 - body.poisson_ratio**2)
+    if ratio > curves.error:
+        raise NumericalFailureError(
+            f"E1={striker.youngs_modulus:g}: the FE contact curves press a rigid striker, and "
+            f"this one's compliance is {ratio:.2g} of the body's at E2 near {young:.3g} Pa, "
+            f"more than their force error {curves.error:.2g}: give E1=inf, or fit a "
+            "half-space's curve (the exact contact takes E1)"
+        )
+
+
 def finite_indentation_fit(problem: Problem, measured: Measurement, names: Sequence[str],
                            noise: float | None, refine: float,
                            progress: Progress | None = None,
@@ -281,12 +299,14 @@ def finite_indentation_fit(problem: Problem, measured: Measurement, names: Seque
     curves = FECurves(problem, depths, refine, progress, axis)
     if axis is None:
         curves.add(None)
+        _check_striker(curves, measured)
         model = _model(curves, measured, None)
         sol = solve(model, noise)
         shifts = _shifts(sol, curves)
         return model, widened(sol, shifts), curves, None, shifts
     for value in axis.nodes:
         curves.add(value)
+    _check_striker(curves, measured)
     model, sol, wide, shifts, floor, change = _settled(curves, measured, noise, axis)
     seen = _seen(wide, axis)
     reason = None
