@@ -103,3 +103,21 @@ def test_a_soft_striker_beside_fe_curves_is_refused_not_dropped(tmp_path, capsys
     err = capsys.readouterr().err.splitlines()[-1]
     assert err.startswith("shtaerman: error: --E1 1e+09: the FE contact curves press a rigid")
     assert main([*argv[:-1], "inf"]) == 0  # the same curve with a rigid striker runs
+
+
+def test_a_soft_striker_beside_fe_impacts_is_refused_not_dropped():
+    """A force history on a 20 mm pad gave E2 = 2.405 MPa with E1 = 3e7 and 2.406 MPa with a
+    rigid striker (the FE impacts press a rigid one), where its compliance is 0.45 of the
+    rubber's: refused after the first FE impact, naming E1."""
+    from shtaerman.theory.impact import solve_impact
+    from shtaerman.validation import NumericalFailureError
+
+    impact = solve_impact(0.7, 3.0, PowerLawContact(INDENTER, 1e7))
+    t = np.linspace(0.0, 1.2 * impact.t_y, 120)
+    force = np.zeros_like(t)
+    inside = (t > 0) & (t < impact.t_y)
+    force[inside] = impact.history(times=t[inside]).P
+    soft = sh.Problem.impact(INDENTER, sh.Material(7.5e6, 0.5), mass=0.7, velocity=3.0,
+                             striker=sh.Material(3e7, 0.25), thickness=0.02)  # fmt: skip
+    with pytest.raises(NumericalFailureError, match=r"^E1=3e\+07: the FE impacts press a rigid"):
+        sh.fit("force-history", {"time": t, "force": force}, soft, unknowns="E2")

@@ -34,7 +34,7 @@ from scipy.interpolate import CubicSpline
 from ..problem import Body, Loading, Problem
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, NumericalFailureError
-from .corrections import fe_parts
+from .corrections import check_rigid_striker, fe_parts
 from .data import Measurement
 from .engine import Progress, Solution, solve
 from .iteration import widened
@@ -262,21 +262,13 @@ def _check(problem: Problem, names: Sequence[str]) -> ShapeAxis | None:
 
 
 def _check_striker(curves: FECurves, measured: Measurement) -> None:
-    """NumericalFailureError naming E1 when the striker's compliance (1 - nu1^2) / E1 is more
-    than the FE force error of the body's at the E2 the first FE curve gives: the FE striker
-    is rigid, so a softer one would be silently dropped (a steel ball on rubber: 5e-5)."""
-    striker, body = curves.problem.striker.material, curves.problem.body.material
+    """:func:`.corrections.check_rigid_striker` at the E2 the first FE curve gives."""
     shape = next(iter(curves.table.values()))
     force = measured.columns["force"]
     young = float(np.sum(force * shape) / np.sum(shape**2))
-    ratio = striker.compliance * young / (1.0 - body.poisson_ratio**2)
-    if ratio > curves.error:
-        raise NumericalFailureError(
-            f"E1={striker.youngs_modulus:g}: the FE contact curves press a rigid striker, and "
-            f"this one's compliance is {ratio:.2g} of the body's at E2 near {young:.3g} Pa, "
-            f"more than their force error {curves.error:.2g}: give E1=inf, or fit a "
-            "half-space's curve (the exact contact takes E1)"
-        )
+    problem = curves.problem
+    check_rigid_striker(problem.striker.material, problem.body.material.poisson_ratio, young,
+                        curves.error, "contact curves")  # fmt: skip
 
 
 def finite_indentation_fit(problem: Problem, measured: Measurement, names: Sequence[str],
