@@ -121,3 +121,19 @@ def test_a_soft_striker_beside_fe_impacts_is_refused_not_dropped():
                              striker=sh.Material(3e7, 0.25), thickness=0.02)  # fmt: skip
     with pytest.raises(NumericalFailureError, match=r"^E1=3e\+07: the FE impacts press a rigid"):
         sh.fit("force-history", {"time": t, "force": force}, soft, unknowns="E2")
+
+
+@pytest.mark.parametrize("command", [["contact", "--depths", "1e-3,2e-3"], ["dynamic"]])
+def test_a_huge_refine_is_refused_by_its_option(capsys, command):
+    """`contact --refine 1e308` said "size must be > 0 and at least 2.226e-308 ..., got
+    6.67e-311", naming a mesh size the user never gave; `dynamic` named refine but half of it
+    (its ladder's coarsest level). refine now has a range, (0, 1e6], far past any max_dofs."""
+    assert main([*command, "--refine", "1e308"]) == 2
+    err = capsys.readouterr().err
+    assert err == "shtaerman: error: --refine must lie in (0, 1e6], got '1e308'\n"
+
+
+def test_python_refuses_a_huge_refine_by_its_keyword():
+    with pytest.raises(InputError, match=r"^refine must lie in \(0, 1e6\], got 1e\+308$") as e:
+        sh.contact(INDENTER, sh.Material(7.5e6, 0.5), depths=[1e-3, 2e-3], refine=1e308)
+    assert e.value.parameter == "refine"

@@ -695,6 +695,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "divide the whole mesh size field by K",
         "Mesh refinement factor K",
         1.0,
+        valid=Range(0.0, 1e6),  # far past any max_dofs; 1e308 underflowed the mesh size
     ),
     _numeric(
         "mesh_size",
