@@ -133,7 +133,32 @@ def test_a_huge_refine_is_refused_by_its_option(capsys, command):
     assert err == "shtaerman: error: --refine must lie in (0, 1e6], got '1e308'\n"
 
 
-def test_python_refuses_a_huge_refine_by_its_keyword():
+@pytest.mark.parametrize("route", ["contact", "dynamic"])
+def test_python_refuses_a_huge_refine_by_its_keyword(route):
+    """sh.dynamic(refine=1e308) said "the error-estimate ladder's coarsest level ... got
+    4.999999999999999e+307", with no parameter; sh.contact named an internal 'size'."""
+    rubber = sh.Material(7.5e6, 0.5, density=1100.0)
     with pytest.raises(InputError, match=r"^refine must lie in \(0, 1e6\], got 1e\+308$") as e:
-        sh.contact(INDENTER, sh.Material(7.5e6, 0.5), depths=[1e-3, 2e-3], refine=1e308)
+        if route == "contact":
+            sh.contact(INDENTER, rubber, depths=[1e-3, 2e-3], refine=1e308)
+        else:
+            sh.dynamic(sh.Problem.impact(INDENTER, rubber, mass=0.7, velocity=3.0), refine=1e308)
     assert e.value.parameter == "refine"
+
+
+def test_convergence_sizes_keep_their_own_refusal_not_refines_range():
+    """The refine range is the input's: a [convergence] size of 1e-10 (a refinement 6.7e7 of
+    the base mesh) is still refused by its unknowns, naming the size, not by refine's range."""
+    from shtaerman.fem.mesh import MeshSettings
+
+    finer = MeshSettings().refined(6.7e7)  # no range here: the mesh's own checks follow
+    assert finer.size == pytest.approx(MeshSettings().size / 6.7e7, rel=1e-12)
+
+
+def test_dynamic_names_the_refine_given_not_its_ladders_half(capsys):
+    """`dynamic --refine 1e5` said "the error-estimate ladder's coarsest level ... refine must
+    lie in [0.25, 500] ..., got 49999.999999999985": the finest level is checked first now."""
+    assert main(["dynamic", "--refine", "1e5"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("shtaerman: error: --refine must lie in [0.25, 500] with 200 steps")
+    assert err.endswith("got 100000.0\n") and "coarsest" not in err

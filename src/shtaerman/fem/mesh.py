@@ -673,7 +673,7 @@ class MeshSettings:
         shtaerman.validation.InputError
             If ``factor`` is not > 0, or it coarsens a growth rate beyond 1.
         """
-        factor = entry("refine").check(factor)
+        factor = validate_positive("refine", factor)
         scaled = {
             name: getattr(self, name) / factor
             for name in ("size", "axis_size", "growth", "axis_growth")
