@@ -139,7 +139,7 @@ def test_contact_json_carries_the_estimates(capsys):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["--refine", "0"], "refine must be > 0"),
+        (["--refine", "0"], r"--refine must lie in \(0, 1e6\], got .0."),
         (["--refine", "0.3"], r"refine must be >= 0.5 with these mesh settings .* got 0.3"),
         (["--accuracy", "nan"], r"--accuracy must be a number in \(0, 0.1\], got 'nan'"),
         (["--accuracy", "1e-5", "--max-time", "-1"], "max-time must be > 0 s"),

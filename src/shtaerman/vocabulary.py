@@ -511,6 +511,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "e.g. 0.01, for rebound data); unset: estimated from the residual",
         "noise level",
         None,
+        valid=Range(0.0, 1e100),  # squared in the covariance: 1e200 overflowed (traceback)
     ),
     Entry(
         "time_offset",
@@ -694,6 +695,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "divide the whole mesh size field by K",
         "Mesh refinement factor K",
         1.0,
+        valid=Range(0.0, 1e6),  # far past any max_dofs; 1e308 underflowed the mesh size
     ),
     _numeric(
         "mesh_size",

@@ -366,7 +366,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             "mesh",
         )
     mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
-    refine = validate_positive("refine", options["refine"])
+    refine = entry("refine").check(validate_positive("refine", options["refine"]))
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
     numerics = {"accuracy": accuracy, "refine": refine, "estimate": estimate}

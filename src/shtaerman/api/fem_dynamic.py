@@ -333,6 +333,7 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
+    refine = entry("refine").check(validate_positive("refine", refine))  # before the ladder
     if problem.striker.material.youngs_modulus != math.inf:
         raise InputError(
             "striker: the FE impact's striker is rigid (its elasticity is not modelled, E1 "
@@ -347,9 +348,10 @@ def check_dynamic(
         check_layer_rate(options["layer_rate"], problem.geometry.thickness)
         chosen = dynamic_settings(settings, options)
         validate_fem_inputs(problem.striker.indenter, problem.body.material)
+        finest = chosen.refined(refine)  # first: its refusal names the refine given
         if estimate:
             check_ladder(chosen, refine)
-        chosen = chosen.refined(validate_positive("refine", refine))
+        chosen = finest
     check_figure_format(figure_format)
     if impact:
         _check_impact(problem, None if problem.body.finite else chosen)

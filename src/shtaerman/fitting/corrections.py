@@ -201,6 +201,22 @@ def check_striker_reach(known: KnownParts, modulus: float) -> None:
         )
 
 
+def check_rigid_striker(striker: Material, nu2: float, young: float, error: float,
+                        runs: str) -> None:  # fmt: skip
+    """NumericalFailureError naming E1 when the striker's compliance (1 - nu1^2) / E1 is more
+    than ``error``, the FE ``runs``' estimated relative error, of the body's at E2 ``young``
+    (Pa): the FE striker is rigid, so a softer one would be silently dropped (a steel ball on
+    rubber: 5e-5). An unknown error (NaN) checks nothing."""
+    ratio = striker.compliance * young / (1.0 - nu2 * nu2)
+    if ratio > error:
+        raise NumericalFailureError(
+            f"E1={striker.youngs_modulus:g}: the FE {runs} press a rigid striker, and this "
+            f"one's compliance is {ratio:.2g} of the body's at E2 near {young:.3g} Pa, more "
+            f"than their error {error:.2g}: give E1=inf, or leave out the pad, waves and finite "
+            "strain (the exact models take E1)"
+        )
+
+
 def youngs_modulus(known: KnownParts, modulus: float, nu2: float) -> float:
     """E2 in Pa giving the combined modulus ``modulus`` (Pa) with the striker and ``nu2``
     (inf where the striker alone is softer)."""
@@ -216,6 +232,7 @@ def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, floa
 
     case, at = _point(problem, known, values, prony)
     run = dynamic(case, refine=refine, estimate=True)
+    check_rigid_striker(known.striker, known.nu2, at["E2"], relative_error(run, "P_max"), "impacts")
     exact, peak, duration = exact_impact(known, values, prony)
     history = run.history()
     c_p, c_t = run.P_max / peak, run.t_contact / duration
@@ -286,6 +303,8 @@ def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
         point = {**values, "velocity": float(velocity)}
         case, at = _point(problem, known, point, prony)
         run = dynamic(case, refine=refine, estimate=True)
+        error = relative_error(run, "t_contact")
+        check_rigid_striker(known.striker, known.nu2, at["E2"], error, "impacts")
         e, t_c = exact_rebound(known, values, velocity, prony)
         ratios.append((run.restitution / e, run.t_contact / t_c))
         for key, known_error in errors.items():  # NaN if any run has none

@@ -296,15 +296,37 @@ def measurement(
             )
     if isinstance(data, str | Path):
         return _check_values(_from_file(kind, Path(data), units or {}))
+    if not isinstance(data, Mapping):
+        raise InputError(
+            "data: give a CSV file's path or a mapping column -> values, got "
+            f"{type(data).__name__}",
+            "data",
+        )
+    if units:  # a mapping's columns are SI: a unit given beside them was silently dropped
+        raise InputError(
+            "units: applies to a CSV file's header; the columns of a mapping are in SI units "
+            "(convert them, or leave units unset)",
+            "units",
+        )
     names = list(data)
     header = [(name, None) for name in names]
-    columns = {
-        name: np.atleast_1d(np.asarray(data[name], dtype=float))
-        for name in _wanted(kind, names, "data", header)
-    }
+    columns = {name: _numbers(name, data[name]) for name in _wanted(kind, names, "data", header)}
     if len({len(values) for values in columns.values()}) != 1:
         raise InputError("data: the columns must have equal lengths", "data")
     return _check_values(Measurement(kind, columns, "data", {n: measured_unit(n) for n in columns}))
+
+
+def _numbers(name: str, values: ArrayLike) -> np.ndarray:
+    """Column ``name`` of a mapping as floats, or one line naming it: strings and booleans
+    (``True`` read as 1) are no measurement, and a table is no column."""
+    array = np.atleast_1d(np.asarray(values))
+    if array.dtype.kind not in "iuf" or array.ndim != 1:
+        raise InputError(
+            f"data: column {name!r} must be a one-dimensional array of numbers, got shape "
+            f"{array.shape} of {array.dtype}",
+            "data",
+        )
+    return array.astype(float)
 
 
 def resampled(data: Measurement, points: int) -> Measurement:

@@ -34,7 +34,7 @@ from scipy.interpolate import CubicSpline
 from ..problem import Body, Loading, Problem
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, NumericalFailureError
-from .corrections import fe_parts
+from .corrections import check_rigid_striker, fe_parts
 from .data import Measurement
 from .engine import Progress, Solution, solve
 from .iteration import widened
@@ -261,6 +261,16 @@ def _check(problem: Problem, names: Sequence[str]) -> ShapeAxis | None:
     return sought[0] if sought else None
 
 
+def _check_striker(curves: FECurves, measured: Measurement) -> None:
+    """:func:`.corrections.check_rigid_striker` at the E2 the first FE curve gives."""
+    shape = next(iter(curves.table.values()))
+    force = measured.columns["force"]
+    young = float(np.sum(force * shape) / np.sum(shape**2))
+    problem = curves.problem
+    check_rigid_striker(problem.striker.material, problem.body.material.poisson_ratio, young,
+                        curves.error, "contact curves")  # fmt: skip
+
+
 def finite_indentation_fit(problem: Problem, measured: Measurement, names: Sequence[str],
                            noise: float | None, refine: float,
                            progress: Progress | None = None,
@@ -281,12 +291,14 @@ def finite_indentation_fit(problem: Problem, measured: Measurement, names: Seque
     curves = FECurves(problem, depths, refine, progress, axis)
     if axis is None:
         curves.add(None)
+        _check_striker(curves, measured)
         model = _model(curves, measured, None)
         sol = solve(model, noise)
         shifts = _shifts(sol, curves)
         return model, widened(sol, shifts), curves, None, shifts
     for value in axis.nodes:
         curves.add(value)
+    _check_striker(curves, measured)
     model, sol, wide, shifts, floor, change = _settled(curves, measured, noise, axis)
     seen = _seen(wide, axis)
     reason = None

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..theory.materials import Material
 from ..validation import NumericalFailureError
+from ..vocabulary import MODULUS
 from .corrections import check_striker_reach
 from .corrections import youngs_modulus as _young
 from .engine import Solution
@@ -129,19 +130,32 @@ def _within_reach(known: Known, sol: Solution, j: int, unknowns: list[str]) -> f
     raise NumericalFailureError(_unreachable(known, value, reach))
 
 
+def _check_young(modulus: float, young: float) -> float:
+    """The fitted E2 ``young`` (Pa, from the data's E* ``modulus``), or NumericalFailureError
+    when it lies outside the range E2 takes on every route (:data:`MODULUS`): no E2 the suite
+    takes reproduces the data under the fixed options."""
+    if not MODULUS.contains(young):
+        raise NumericalFailureError(
+            f"E2: the data's E* = {modulus:.4g} Pa needs E2 = {young:.4g} Pa, outside "
+            f"{MODULUS.text()} Pa, E2's range: check the striker's profile and the data's units"
+        )
+    return young
+
+
 def _moduli(known: Known, sol: Solution, j: int, unknowns: list[str]) -> dict[str, dict]:
     """E2 and/or nu2 from the fitted combined modulus E* (parameter ``j``)."""
     value, low, high, ident = sol.values[j], sol.low[j], sol.high[j], sol.identifiable[j]
     fitted = _within_reach(known, sol, j, unknowns)
     out = {}
+    if "E2" in unknowns:
+        young = _check_young(value, _young(known, value, known.nu2))
     if "E2" in unknowns and "nu2" in unknowns:  # only E* is seen: E2 over every nu2
-        out["E2"] = _entry(_young(known, value, known.nu2), _young(known, low, NU2_RANGE[1]),
+        out["E2"] = _entry(young, _young(known, low, NU2_RANGE[1]),
                            _young(known, high, NU2_RANGE[0]), ident, "Pa")  # fmt: skip
         out["nu2"] = _entry(known.nu2, *NU2_RANGE, False, "1")
     elif "E2" in unknowns:
         nu2 = known.nu2
-        out["E2"] = _entry(_young(known, value, nu2), _young(known, low, nu2),
-                           _young(known, high, nu2), ident, "Pa")  # fmt: skip
+        out["E2"] = _entry(young, _young(known, low, nu2), _young(known, high, nu2), ident, "Pa")
     else:
         ends = [_poisson(known, low), _poisson(known, high)]
         ends = [NU2_RANGE[0] if np.isnan(e) else min(e, NU2_RANGE[1]) for e in ends]

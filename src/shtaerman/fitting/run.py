@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from ..guards import warn_outside_validity
 from ..output.files import output_folder
-from ..problem import Problem
+from ..problem import Problem, check_outputs
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
 from ..vocabulary import entry
@@ -163,7 +163,8 @@ def fit(
         The force history's time of first touch in s and its zero force in N, when not
         fitted.
     units : mapping, optional
-        Column -> unit for CSV header cells that give none.
+        Column -> unit for CSV header cells that give none (a CSV only: a mapping's columns
+        are SI, and units beside them are refused).
     resample : int, optional
         Points to resample a force history (uniform in time) or an indentation (uniform in
         depth) onto before the fit, by linear interpolation, in [3, 1e7]; None: the rows as
@@ -189,13 +190,20 @@ def fit(
     -------
     FitResult
     """
+    if not isinstance(problem, Problem):  # a dict or None failed on problem.body
+        raise InputError(
+            "problem must be a Problem (Problem.impact or Problem.curve), got "
+            f"{type(problem).__name__}",
+            "problem",
+        )
+    check_outputs(out, force=force, estimate=True, figure_format=figure_format)
     folder = output_folder(out, force=force)
     names = _names(unknowns)
     offset = None if "time_offset" in names else time_offset  # fitted: read off the data
     measured, rows_read = _read(kind, data, units, resample, offset, baseline)
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     _check_loss(measured, problem)
-    refine = validate_positive("refine", refine)
+    refine = entry("refine").check(validate_positive("refine", refine))
     if needs_fe(problem) and "nu2" in names and kind != "indentation":
         raise InputError(
             "unknowns: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
@@ -203,7 +211,7 @@ def fit(
             "unknowns",
         )
     if noise is not None:
-        noise = validate_positive("noise", noise)
+        noise = entry("noise").check(validate_positive("noise", noise))  # "not a string"
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
         try:

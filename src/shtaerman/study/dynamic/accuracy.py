@@ -213,7 +213,8 @@ def check_ladder(
         settings.refined(lowest)
     except InputError as error:
         raise InputError(
-            f"the error-estimate ladder's coarsest level (mesh x2, steps / 2) is invalid: {error}"
+            f"the error-estimate ladder's coarsest level (mesh x2, steps / 2) is invalid: {error}",
+            error.parameter,
         ) from None
 
 
