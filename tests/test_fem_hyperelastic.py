@@ -351,25 +351,36 @@ def test_inverted_element_stops_a_contact_step():
         stepper.solve(1e-4, x, np.zeros(stepper.nodes.radius.size))
 
 
-def test_newton_step_solves_the_saddle_system():
-    """eliminate_gaps's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
-    from shtaerman.fem.contact.finite import NewtonStepper, eliminate_gaps
+def _contact_step_inputs():
+    """A stepper on the coarse mesh and its tangent data (free dofs), residual (all dofs),
+    slopes and gaps at a curved state with the first 7 candidates loaded (N; node 0 is on
+    the axis: u_r clamped, no master)."""
+    from shtaerman.fem.contact.finite import NewtonStepper
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
     stepper = NewtonStepper(system, indenter, 5e-3, 1e-8, 5)
-    nodes, free = stepper.nodes, stepper.free
+    nodes = stepper.nodes
     x = np.zeros(system.n_dofs)
     x[stepper.nodes.ur] = 1e-6 * stepper.nodes.radius  # curved candidates: f'' enters
     lam = np.zeros(nodes.radius.size)
-    lam[:7] = np.linspace(2.0, 0.5, 7)  # N; node 0 is on the axis (u_r clamped: no master)
-    rows = np.flatnonzero(lam > 0)
+    lam[:7] = np.linspace(2.0, 0.5, 7)
     _, gap, slope, curvature = stepper.geometry(x, 1e-4)
     residual = system.residual(x)
     np.subtract.at(residual, nodes.ur, lam * slope)
     np.add.at(residual, nodes.uz, lam)
     tangent = system.tangent_data(x)[stepper.take]
     tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
+    return stepper, tangent, residual, slope, gap
+
+
+def test_newton_step_solves_the_saddle_system():
+    """eliminate_gaps's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
+    from shtaerman.fem.contact.finite import eliminate_gaps
+
+    stepper, tangent, residual, slope, gap = _contact_step_inputs()
+    nodes, free = stepper.nodes, stepper.free
+    rows = np.arange(7)
     du, dlam = eliminate_gaps(stepper, tangent, residual[free], rows, slope, gap)
 
     matrix = stepper.pattern.matrix(tangent)
@@ -385,6 +396,25 @@ def test_newton_step_solves_the_saddle_system():
     assert np.max(abs(forces) / scale) <= 1e-10
     gaps = -constraint @ du - gap[rows]
     assert np.max(abs(gaps)) <= 1e-14 * np.max(abs(gap[rows]))  # observed 0: du_z is set
+
+
+def test_bordered_step_is_the_step_of_its_own_active_set():
+    """bordered_step with a factorization kept for another active set (candidates released
+    and added, the axis one among them) gives eliminate_gaps's step for its own set with the
+    same tangent and slopes."""
+    from shtaerman.fem.contact.finite import bordered_step, eliminate_gaps
+
+    stepper, tangent, residual, slope, gap = _contact_step_inputs()
+    free = stepper.free
+    kept, rows = np.arange(1, 6), np.array([0, 1, 2, 3, 6, 7])  # released 4, 5; added 0, 6, 7
+    eliminate_gaps(stepper, tangent, residual[free], kept, slope, gap)
+    stepper.kept = (stepper.system, kept, tangent, stepper.factorization)
+    du, dlam = bordered_step(stepper, tangent, residual[free], (kept, rows), slope, gap)
+    expected_du, expected_dlam = eliminate_gaps(stepper, tangent, residual[free], rows, slope, gap)
+    # the same step by two routes through SuperLU: round-off only (observed 4e-15 on du,
+    # 2e-16 on dlambda); a wrong border column or sign moves it by O(1)
+    assert np.max(abs(du - expected_du)) <= 1e-10 * np.max(abs(expected_du))
+    assert np.max(abs(dlam - expected_dlam)) <= 1e-10 * np.max(abs(expected_dlam))
 
 
 def test_the_fallback_factorization_gives_the_same_contact(monkeypatch):
