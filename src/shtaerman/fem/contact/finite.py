@@ -335,9 +335,11 @@ class NewtonStepper:
         are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0).
         ``reach`` (m): the first iteration's active set leaves out the candidates the guess
         puts in contact at reference radii beyond it (the predicted contact edge,
-        :func:`predict_reach`). A ``modified`` Newton that fails is redone as a full one."""
+        :func:`predict_reach`). A ``modified`` Newton that fails after reusing a
+        factorization is redone as a full one."""
         scale = depth if scale is None else scale
         system, nodes, sets = self.system, self.nodes, _Sets()
+        reused: list[bool] = []  # per step: whether it reused a factorization
 
         def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> Any:
             _, gap, slope, curvature = self.geometry(x, depth)
@@ -354,6 +356,7 @@ class NewtonStepper:
             np.add.at(residual, nodes.uz, lam)
             rows = np.flatnonzero(active)
             reuse = self.reusable(rows, *history)
+            reused.append(reuse)
             contact = (rows, slope, gap, curvature)
             du, dlam = self.linear_step(x, lam, state, residual, contact, reuse)
             return du, rows, dlam, not reuse, False
@@ -362,6 +365,9 @@ class NewtonStepper:
             return self.iterate((x, lam), scale, increment, base)
         except NewtonError:
             if not self.modified:
+                raise
+            if not any(reused):  # a full Newton already: the redo would repeat it exactly
+                self.kept = self.kept if reused else None  # as the redo would leave it
                 raise
         # a modified Newton that failed is redone in full: it fails only where full Newton does
         self.modified, self.kept, sets = False, None, _Sets()
