@@ -435,35 +435,58 @@ def test_the_fallback_factorization_gives_the_same_contact(monkeypatch):
         assert a.contact_radius == pytest.approx(b.contact_radius, rel=1e-9)
 
 
-def test_modified_newton_reuses_factorizations(monkeypatch):
-    """The contact Newton reuses its factorization while the active set holds and the
-    corrections contract: fewer factorizations, the same contact to the Newton tolerance."""
+def _curves_before_and_after(monkeypatch, change):
+    """The coarse 8-depth curve, then again after ``change()``: (curve, factorizations) of
+    each. Both contacts agree to the Newton tolerance: both stop within 1e-8 depth of the
+    solution (a modified step's error at most 1/4 of its last correction); P ~ d^(5/3): 1e-8
+    of the displacement moves P by ~2e-8 (observed 1.6e-10 on P, 9e-10 on a, 8e-13 on the
+    energy); 1e-7 leaves a factor 5."""
     from shtaerman.fem import solver
-    from shtaerman.fem.contact.finite import NewtonStepper
 
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     depths = np.linspace(1.0, 8.0, 8) * 0.4e-3
     counted = []
     original = solver._superlu_in_order
     monkeypatch.setattr(solver, "_superlu_in_order", lambda m: counted.append(1) or original(m))
-    modified = run_finite_indentation(indenter, material, depths, COARSE)
-    reused = len(counted)
-    iterations = sum(step.total_iterations for step in modified.steps)
-    # observed 15 factorizations for 57 iterations (37 for 37 with fresh tangents): the
-    # iterations after the active set settles reuse the last factorization
-    assert reused <= 0.8 * iterations
-    monkeypatch.setattr(NewtonStepper, "reusable", lambda *_: False)  # a fresh tangent always
+    before = run_finite_indentation(indenter, material, depths, COARSE)
+    factorized = len(counted)
+    change()
     counted.clear()
-    full = run_finite_indentation(indenter, material, depths, COARSE)
-    assert len(counted) >= sum(step.total_iterations for step in full.steps)  # one per step
-    assert reused < len(counted)
-    for a, b in zip(modified.steps, full.steps, strict=True):
-        # both stop within 1e-8 depth of the solution (the modified one's error at most 1/4 of
-        # its last correction); P ~ d^(5/3): 1e-8 of the displacement moves P by ~2e-8
-        # (observed 1.6e-10 on P, 9e-10 on a, 8e-13 on the energy); 1e-7 leaves a factor 5
+    after = run_finite_indentation(indenter, material, depths, COARSE)
+    for a, b in zip(before.steps, after.steps, strict=True):
         assert a.force == pytest.approx(b.force, rel=1e-7)
         assert a.contact_radius == pytest.approx(b.contact_radius, rel=1e-7)
         assert a.strain_energy == pytest.approx(b.strain_energy, rel=1e-7)
+    return (before, factorized), (after, len(counted))
+
+
+def test_modified_newton_reuses_factorizations(monkeypatch):
+    """The contact Newton reuses its factorization while the active set holds and the
+    corrections contract: fewer factorizations, the same contact to the Newton tolerance."""
+    from shtaerman.fem.contact.finite import NewtonStepper
+
+    def fresh() -> None:  # a fresh tangent always
+        monkeypatch.setattr(NewtonStepper, "reusable", lambda *_: False)
+
+    (modified, reused), (full, factorized) = _curves_before_and_after(monkeypatch, fresh)
+    iterations = sum(step.total_iterations for step in modified.steps)
+    # observed 9 factorizations for 52 iterations (36 for 36 with fresh tangents): the
+    # iterations after the active set settles reuse the last factorization
+    assert reused <= 0.8 * iterations
+    assert factorized >= sum(step.total_iterations for step in full.steps)  # one per step
+    assert reused < factorized
+
+
+def test_bordered_first_steps_save_factorizations(monkeypatch):
+    """A depth's first step reuses the depth before's factorization across a changed active
+    set (bordered): fewer factorizations, the same contact to the Newton tolerance."""
+    from shtaerman.fem.contact import finite as finite_contact
+
+    def unbordered() -> None:
+        monkeypatch.setattr(finite_contact, "BORDER", 0)
+
+    (_, bordered), (_, plain) = _curves_before_and_after(monkeypatch, unbordered)
+    assert bordered < plain  # observed 9 against 14
 
 
 def test_predicted_contact_edge_saves_factorizations(monkeypatch):
