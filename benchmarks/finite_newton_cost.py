@@ -6,10 +6,18 @@ fem/finite_strain.toml (nu2 = 0.5 and 0.3; the three levels of the nested mesh l
 linear FEM and the impacts: the work ``verify finite_strain --workers 1`` does for them) and
 counts, per study, the factorizations of the finite-strain Newton
 (:meth:`shtaerman.fem.solver.PatternSolver.factorized`), the solves with a kept factorization
-(a modified Newton step) and the Newton iterations. It then times one factorization of the
-finest level's reduced tangent (the undeformed state, no contact) in the same process and
-prints the study's CPU seconds as a multiple of it. CPU times come from
-``time.process_time``; the load average is printed beside them (the machine is shared).
+(a modified Newton step's, and a bordered step's one per changed candidate) and the Newton
+iterations. It then times one factorization of the first reduced tangent the finest level
+factorized (its first depth's) in the same process and prints the study's CPU seconds as a
+multiple of it. CPU times come from ``time.process_time``; the load average is printed
+beside them (the machine is shared).
+
+Measured (session 56, load average 3-9 on 2 cores): main c2e2086 125 and 125 factorizations
+(finest level 44 and 42), 111 and 107 finest factorizations' worth of CPU (one: ~0.2 CPU s);
+with the bordered first step of a depth and no redo of a failed solve that reused nothing,
+102 and 99 (finest 37 and 34), 98 and 93 worth. Of a study's CPU, SuperLU's factorizations
+are ~45 %; the rest is the tangent and state assembly, the back-solves, the linear FEM and
+the impacts.
 
 Run: PYTHONPATH=src python benchmarks/finite_newton_cost.py [--members 0 1]
 """
