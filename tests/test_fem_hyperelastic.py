@@ -351,25 +351,36 @@ def test_inverted_element_stops_a_contact_step():
         stepper.solve(1e-4, x, np.zeros(stepper.nodes.radius.size))
 
 
-def test_newton_step_solves_the_saddle_system():
-    """eliminate_gaps's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
-    from shtaerman.fem.contact.finite import NewtonStepper, eliminate_gaps
+def _contact_step_inputs():
+    """A stepper on the coarse mesh and its tangent data (free dofs), residual (all dofs),
+    slopes and gaps at a curved state with the first 7 candidates loaded (N; node 0 is on
+    the axis: u_r clamped, no master)."""
+    from shtaerman.fem.contact.finite import NewtonStepper
 
     indenter = PowerLawIndenter(5.0, 1.5)
     system = assemble_hyperelastic(COARSE.build(5e-3), NeoHookean(E2, 0.5))
     stepper = NewtonStepper(system, indenter, 5e-3, 1e-8, 5)
-    nodes, free = stepper.nodes, stepper.free
+    nodes = stepper.nodes
     x = np.zeros(system.n_dofs)
     x[stepper.nodes.ur] = 1e-6 * stepper.nodes.radius  # curved candidates: f'' enters
     lam = np.zeros(nodes.radius.size)
-    lam[:7] = np.linspace(2.0, 0.5, 7)  # N; node 0 is on the axis (u_r clamped: no master)
-    rows = np.flatnonzero(lam > 0)
+    lam[:7] = np.linspace(2.0, 0.5, 7)
     _, gap, slope, curvature = stepper.geometry(x, 1e-4)
     residual = system.residual(x)
     np.subtract.at(residual, nodes.ur, lam * slope)
     np.add.at(residual, nodes.uz, lam)
     tangent = system.tangent_data(x)[stepper.take]
     tangent[stepper.curvature_at] -= (lam * curvature)[nodes.ur_free]
+    return stepper, tangent, residual, slope, gap
+
+
+def test_newton_step_solves_the_saddle_system():
+    """eliminate_gaps's step satisfies [[K, -G_A^T], [-G_A, 0]] [du, dlam] = [-R, g_A]."""
+    from shtaerman.fem.contact.finite import eliminate_gaps
+
+    stepper, tangent, residual, slope, gap = _contact_step_inputs()
+    nodes, free = stepper.nodes, stepper.free
+    rows = np.arange(7)
     du, dlam = eliminate_gaps(stepper, tangent, residual[free], rows, slope, gap)
 
     matrix = stepper.pattern.matrix(tangent)
@@ -385,6 +396,25 @@ def test_newton_step_solves_the_saddle_system():
     assert np.max(abs(forces) / scale) <= 1e-10
     gaps = -constraint @ du - gap[rows]
     assert np.max(abs(gaps)) <= 1e-14 * np.max(abs(gap[rows]))  # observed 0: du_z is set
+
+
+def test_bordered_step_is_the_step_of_its_own_active_set():
+    """bordered_step with a factorization kept for another active set (candidates released
+    and added, the axis one among them) gives eliminate_gaps's step for its own set with the
+    same tangent and slopes."""
+    from shtaerman.fem.contact.finite import bordered_step, eliminate_gaps
+
+    stepper, tangent, residual, slope, gap = _contact_step_inputs()
+    free = stepper.free
+    kept, rows = np.arange(1, 6), np.array([0, 1, 2, 3, 6, 7])  # released 4, 5; added 0, 6, 7
+    eliminate_gaps(stepper, tangent, residual[free], kept, slope, gap)
+    stepper.kept = (stepper.system, kept, tangent, stepper.factorization)
+    du, dlam = bordered_step(stepper, tangent, residual[free], (kept, rows), slope, gap)
+    expected_du, expected_dlam = eliminate_gaps(stepper, tangent, residual[free], rows, slope, gap)
+    # the same step by two routes through SuperLU: round-off only (observed 4e-15 on du,
+    # 2e-16 on dlambda); a wrong border column or sign moves it by O(1)
+    assert np.max(abs(du - expected_du)) <= 1e-10 * np.max(abs(expected_du))
+    assert np.max(abs(dlam - expected_dlam)) <= 1e-10 * np.max(abs(expected_dlam))
 
 
 def test_the_fallback_factorization_gives_the_same_contact(monkeypatch):
@@ -405,35 +435,58 @@ def test_the_fallback_factorization_gives_the_same_contact(monkeypatch):
         assert a.contact_radius == pytest.approx(b.contact_radius, rel=1e-9)
 
 
-def test_modified_newton_reuses_factorizations(monkeypatch):
-    """The contact Newton reuses its factorization while the active set holds and the
-    corrections contract: fewer factorizations, the same contact to the Newton tolerance."""
+def _curves_before_and_after(monkeypatch, change):
+    """The coarse 8-depth curve, then again after ``change()``: (curve, factorizations) of
+    each. Both contacts agree to the Newton tolerance: both stop within 1e-8 depth of the
+    solution (a modified step's error at most 1/4 of its last correction); P ~ d^(5/3): 1e-8
+    of the displacement moves P by ~2e-8 (observed 1.6e-10 on P, 9e-10 on a, 8e-13 on the
+    energy); 1e-7 leaves a factor 5."""
     from shtaerman.fem import solver
-    from shtaerman.fem.contact.finite import NewtonStepper
 
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     depths = np.linspace(1.0, 8.0, 8) * 0.4e-3
     counted = []
     original = solver._superlu_in_order
     monkeypatch.setattr(solver, "_superlu_in_order", lambda m: counted.append(1) or original(m))
-    modified = run_finite_indentation(indenter, material, depths, COARSE)
-    reused = len(counted)
-    iterations = sum(step.total_iterations for step in modified.steps)
-    # observed 15 factorizations for 57 iterations (37 for 37 with fresh tangents): the
-    # iterations after the active set settles reuse the last factorization
-    assert reused <= 0.8 * iterations
-    monkeypatch.setattr(NewtonStepper, "reusable", lambda *_: False)  # a fresh tangent always
+    before = run_finite_indentation(indenter, material, depths, COARSE)
+    factorized = len(counted)
+    change()
     counted.clear()
-    full = run_finite_indentation(indenter, material, depths, COARSE)
-    assert len(counted) >= sum(step.total_iterations for step in full.steps)  # one per step
-    assert reused < len(counted)
-    for a, b in zip(modified.steps, full.steps, strict=True):
-        # both stop within 1e-8 depth of the solution (the modified one's error at most 1/4 of
-        # its last correction); P ~ d^(5/3): 1e-8 of the displacement moves P by ~2e-8
-        # (observed 1.6e-10 on P, 9e-10 on a, 8e-13 on the energy); 1e-7 leaves a factor 5
+    after = run_finite_indentation(indenter, material, depths, COARSE)
+    for a, b in zip(before.steps, after.steps, strict=True):
         assert a.force == pytest.approx(b.force, rel=1e-7)
         assert a.contact_radius == pytest.approx(b.contact_radius, rel=1e-7)
         assert a.strain_energy == pytest.approx(b.strain_energy, rel=1e-7)
+    return (before, factorized), (after, len(counted))
+
+
+def test_modified_newton_reuses_factorizations(monkeypatch):
+    """The contact Newton reuses its factorization while the active set holds and the
+    corrections contract: fewer factorizations, the same contact to the Newton tolerance."""
+    from shtaerman.fem.contact.finite import NewtonStepper
+
+    def fresh() -> None:  # a fresh tangent always
+        monkeypatch.setattr(NewtonStepper, "reusable", lambda *_: False)
+
+    (modified, reused), (full, factorized) = _curves_before_and_after(monkeypatch, fresh)
+    iterations = sum(step.total_iterations for step in modified.steps)
+    # observed 9 factorizations for 52 iterations (36 for 36 with fresh tangents): the
+    # iterations after the active set settles reuse the last factorization
+    assert reused <= 0.8 * iterations
+    assert factorized >= sum(step.total_iterations for step in full.steps)  # one per step
+    assert reused < factorized
+
+
+def test_bordered_first_steps_save_factorizations(monkeypatch):
+    """A depth's first step reuses the depth before's factorization across a changed active
+    set (bordered): fewer factorizations, the same contact to the Newton tolerance."""
+    from shtaerman.fem.contact import finite as finite_contact
+
+    def unbordered() -> None:
+        monkeypatch.setattr(finite_contact, "BORDER", 0)
+
+    (_, bordered), (_, plain) = _curves_before_and_after(monkeypatch, unbordered)
+    assert bordered < plain  # observed 9 against 14
 
 
 def test_predicted_contact_edge_saves_factorizations(monkeypatch):

@@ -28,13 +28,18 @@ modified Newton saves factorizations on the depth ladder (:func:`solve_finite_co
 an impact's time steps (every evaluation of the striker's step equation): while the set stays that
 of the last factorization (also from the previous depth or step) and each correction shrinks by
 :data:`CONTRACTION`, the step reuses it (and its tangent); a step that reused it converges only
-with that contraction. Complementarity then holds exactly (lambda = 0 off A, g = 0 on A up
-to the Newton tolerance, lambda > 0 on A but at a tied axis candidate, which pulls by less than
-its ring pushes, g >= 0 off A). Depth stepping: from the last converged state to each
-requested depth, with a linear predictor whose first active set ends at the extrapolated
-contact edge
-(:func:`predict_reach`); a step that fails (no convergence, an inverted element J <= 0) is
-halved, up to ``max_cuts`` times, then a :class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
+with that contraction. On a curve, a depth's first step reuses the depth before's factorization
+also where its active set differs at up to :data:`BORDER` candidates, bordered by them
+(:func:`bordered_step`): the contact grows by a few nodes a depth, and in most depths a fresh
+tangent at the predictor was followed by another one step later (the finest level of
+fem/finite_strain.toml, nu2 = 0.5: 44 factorizations for 17 depths, 38 with the border;
+benchmarks/finite_newton_cost.py). Complementarity then holds exactly (lambda = 0 off A,
+g = 0 on A up to the Newton tolerance, lambda > 0 on A but at a tied axis candidate, which
+pulls by less than its ring pushes, g >= 0 off A). Depth stepping: from the last converged
+state to each requested depth, with a linear predictor whose first active set ends at the
+extrapolated contact edge (:func:`predict_reach`); a step that fails (no convergence, an
+inverted element J <= 0) is halved, up to ``max_cuts`` times, then a
+:class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
 
 Post-processing per depth: the force P = sum lambda; the pressure recovered from the vertical
 nodal forces with the P2 surface matrix of the *current* surface, projected on the r-axis
@@ -85,6 +90,10 @@ CONTRACTION = 0.2
 must shrink the correction by this factor, else the next step takes a fresh tangent; it
 converges only with that contraction, so the error it leaves is at most
 0.2 / (1 - 0.2) = 1/4 of the last correction (<= ``NEWTON_TOLERANCE`` * depth)."""
+BORDER = 8
+"""Candidates at which the active set of a curve's first Newton step at a depth may differ
+from that of the factorization kept from the depth before, for the step to reuse it
+(:func:`bordered_step`: one back-solve more per candidate, against a factorization)."""
 MAX_ITERATIONS = 30
 MAX_CUTS = 8
 GENT_BACKTRACKS = 2
@@ -290,6 +299,7 @@ class NewtonStepper:
         self.factorization: Callable[[np.ndarray], np.ndarray] | None = None  # the last one
         self.kept: tuple | None = None  # system, rows, tangent, factorization of a fresh step
         self.modified = False  # reuse factorizations (curves and impacts set it)
+        self.border = 0  # candidates a reused factorization's set may differ at (a curve's)
         material = system.material
         # complementarity weight c (N/m): lambda_i and c g_i of comparable size
         self.weight = material.shear_modulus * candidate_radius / self.nodes.radius.size
@@ -325,9 +335,11 @@ class NewtonStepper:
         are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0).
         ``reach`` (m): the first iteration's active set leaves out the candidates the guess
         puts in contact at reference radii beyond it (the predicted contact edge,
-        :func:`predict_reach`). A ``modified`` Newton that fails is redone as a full one."""
+        :func:`predict_reach`). A ``modified`` Newton that fails after reusing a
+        factorization is redone as a full one."""
         scale = depth if scale is None else scale
         system, nodes, sets = self.system, self.nodes, _Sets()
+        reused: list[bool] = []  # per step: whether it reused a factorization
 
         def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> Any:
             _, gap, slope, curvature = self.geometry(x, depth)
@@ -344,6 +356,7 @@ class NewtonStepper:
             np.add.at(residual, nodes.uz, lam)
             rows = np.flatnonzero(active)
             reuse = self.reusable(rows, *history)
+            reused.append(reuse)
             contact = (rows, slope, gap, curvature)
             du, dlam = self.linear_step(x, lam, state, residual, contact, reuse)
             return du, rows, dlam, not reuse, False
@@ -352,6 +365,9 @@ class NewtonStepper:
             return self.iterate((x, lam), scale, increment, base)
         except NewtonError:
             if not self.modified:
+                raise
+            if not any(reused):  # a full Newton already: the redo would repeat it exactly
+                self.kept = self.kept if reused else None  # as the redo would leave it
                 raise
         # a modified Newton that failed is redone in full: it fails only where full Newton does
         self.modified, self.kept, sets = False, None, _Sets()
@@ -474,15 +490,16 @@ class NewtonStepper:
 
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether the next step may reuse the last factorization (modified Newton, if
-        ``modified``): made for this system and
-        active set ``rows``, and, after a step that reused it, the correction
-        shrank by at least :data:`CONTRACTION`."""
+        ``modified``): made for this system and active set ``rows`` (on a solve's first
+        step, for a set that differs from ``rows`` at no more than ``border`` candidates:
+        :func:`bordered_step`), and, after a step that reused it, the correction shrank by
+        at least :data:`CONTRACTION`."""
         kept = self.kept
-        return (
-            kept is not None
-            and np.array_equal(kept[1], rows)
-            and self.may_reuse(kept[0], corrections, fresh)
-        )
+        if kept is None or not self.may_reuse(kept[0], corrections, fresh):
+            return False
+        if np.array_equal(kept[1], rows):
+            return True
+        return not fresh and np.setxor1d(kept[1], rows).size <= self.border
 
     def may_reuse(self, made_for: Any, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether a kept tangent ``made_for`` a system may serve the next step: the stepper is
@@ -524,6 +541,9 @@ class NewtonStepper:
         rows, slope, gap, curvature = contact
         if reuse:
             tangent, again = self.kept[2], self.kept[3]
+            if not np.array_equal(self.kept[1], rows):
+                sets = (self.kept[1], rows)
+                return bordered_step(self, tangent, residual[self.free], sets, slope, gap)
             return eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap, again=again)
         tangent = self.system.tangent_data(x, state)[self.take]  # free dofs
         tangent[self.curvature_at] -= (lam * curvature)[self.nodes.ur_free]  # -lam d2g/du_r^2
@@ -611,14 +631,8 @@ def eliminate_gaps(
     ``tangent`` is that K) instead of factorizing; else the new factorization is left in
     ``stepper.factorization``.
     """
-    nodes, position, pattern = stepper.nodes, stepper.position, stepper.pattern
-    slaves = position[nodes.uz[rows]]
-    ok = nodes.ur_free[rows]
-    target = np.arange(pattern.size)
-    target[slaves[ok]] = position[nodes.ur[rows][ok]]
-    coefficient = np.ones(pattern.size)
-    coefficient[slaves] = 0.0
-    coefficient[slaves[ok]] = slope[rows][ok]
+    pattern = stepper.pattern
+    slaves, ok, target, coefficient = elimination(stepper, rows, slope)
     left, normal = coefficient, 1.0
     if drag is not None:
         normal = 1.0 + drag[rows] * slope[rows]
@@ -636,6 +650,78 @@ def eliminate_gaps(
         solution = again(rhs)
     du = coefficient * solution[target] + shift
     dlam = -(residual + matrix @ du)[slaves] / normal
+    return du, dlam
+
+
+def elimination(
+    stepper: NewtonStepper, rows: np.ndarray, slope: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """T of :func:`eliminate_gaps` for the active ``rows`` (``slope``: f'(r) at the
+    candidates): the slaves (u_z of ``rows``, positions among the free dofs), which of them
+    have a free u_r, each dof's ``target`` (the slave's u_r, else itself) and its
+    ``coefficient`` (f'(r) for a slave with a free u_r, 0 for the axis slave, else 1)."""
+    nodes, position, size = stepper.nodes, stepper.position, stepper.pattern.size
+    slaves = position[nodes.uz[rows]]
+    ok = nodes.ur_free[rows]
+    target = np.arange(size)
+    target[slaves[ok]] = position[nodes.ur[rows][ok]]
+    coefficient = np.ones(size)
+    coefficient[slaves] = 0.0
+    coefficient[slaves[ok]] = slope[rows][ok]
+    return slaves, ok, target, coefficient
+
+
+def bordered_step(
+    stepper: NewtonStepper,
+    tangent: np.ndarray,
+    residual: np.ndarray,
+    sets: tuple[np.ndarray, np.ndarray],
+    slope: np.ndarray,
+    gap: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A modified Newton step (du, dlambda) for the active ``rows`` with the kept tangent K
+    (``tangent``) and the kept factorization of its reduced matrix A for another active set
+    ``kept`` (``sets`` = (kept, rows)): the two differ at a few candidates, and the step is
+    that of :func:`eliminate_gaps` for ``rows`` with K, solved by bordering A.
+
+    In ``kept``'s coordinates y (du = T y + c, c the gaps of the candidates in both sets),
+    a candidate released (in ``kept`` only) gets its u_z back as an unknown e_i, du += e_i
+    at its u_z (columns P = T^T K E, block Z = E^T K E); one put in contact (in ``rows``
+    only) adds its linearized constraint g_j . y = gap_j with the multiplier's column g_j
+    (1 at its u_z, -f'(r_j) at its u_r): [[A, B], [B^T, H0]] [y; w] = [b; h], B = [P, G],
+    H0 = [[Z, 0], [0, 0]], solved with W = A^-1 B (one solve per changed candidate) and the
+    small Schur complement H0 - B^T W. The multipliers follow from the u_z rows as in
+    :func:`eliminate_gaps`.
+    """
+    kept, rows = sets
+    nodes, position, size = stepper.nodes, stepper.position, stepper.pattern.size
+    again = stepper.kept[3]
+    _, _, target, coefficient = elimination(stepper, kept, slope)
+    matrix = stepper.pattern.matrix(tangent)
+    common = np.intersect1d(kept, rows)
+    shift = np.zeros(size)
+    shift[position[nodes.uz[common]]] = gap[common]
+    load = residual + matrix @ shift
+    released = position[nodes.uz[np.setdiff1d(kept, rows)]]
+    added = np.setdiff1d(rows, kept)
+    border = np.zeros((size, released.size + added.size))
+    for k, z in enumerate(released):  # P = T^T K E
+        weights = coefficient * matrix[:, [z]].toarray()[:, 0]
+        border[:, k] = np.bincount(target, weights=weights, minlength=size)
+    for k, j in enumerate(added, start=released.size):  # the constraint's gradient g_j
+        border[position[nodes.uz[j]], k] = 1.0
+        if nodes.ur_free[j]:
+            border[position[nodes.ur[j]], k] = -slope[j]
+    solved = np.column_stack([again(column) for column in border.T])
+    first = again(-np.bincount(target, weights=coefficient * load, minlength=size))
+    schur = -border.T @ solved
+    schur[: released.size, : released.size] += matrix[released][:, released].toarray()
+    rhs = np.concatenate([-load[released], gap[added]]) - border.T @ first
+    w = np.linalg.solve(schur, rhs)
+    y = first - solved @ w
+    du = coefficient * y[target] + shift
+    du[released] += w[: released.size]
+    dlam = -(residual + matrix @ du)[position[nodes.uz[rows]]]
     return du, dlam
 
 
@@ -717,6 +803,7 @@ def solve_finite_contact(
     start = time.perf_counter()
     limits = (candidate_radius, tolerance, max_iterations)
     stepper, exact = start_curve(NewtonStepper, system, indenter, depths, limits)
+    stepper.border = BORDER
     history = [(0.0, np.zeros(system.n_dofs), np.zeros(stepper.nodes.radius.size))]
     steps = []
     for target in depths:
