@@ -684,7 +684,7 @@ class MeshSettings:
             if value > 1.0 + 1e-12:  # round-off of refine / sqrt(2)^2 is not a coarsening
                 raise InputError(
                     f"refine {factor!r} scales the mesh {name} to {value:.3g} > 1; use "
-                    f"refine >= {factor * value:.3g} with these settings",
+                    f"refine={factor * value:.3g} or more with these settings",
                     "refine",
                 )
         scaled = {name: min(value, 1.0) for name, value in scaled.items()}
