@@ -734,7 +734,7 @@ class MeshSettings:
                 f"max_dofs: this mesh would have about {self.estimated_dofs:.3g} unknowns "
                 f"(size {self.size:.3g}, growth {self.growth:.3g}, domain {self.domain:.3g}, "
                 f"axis_size {min(self.axis_size, self.size):.3g}, axis_growth "
-                f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it "
+                f"{self.axis_growth:.3g}), above max_dofs={self.max_dofs:.3g}; coarsen it "
                 "(mesh_size=..., growth=..., a lower refine=...) or, in a contact curve, raise "
                 "max_dofs=...",
                 "max_dofs",
@@ -768,7 +768,7 @@ class MeshSettings:
         if dofs > self.max_dofs:
             raise InputError(
                 f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
-                f"max_dofs = {self.max_dofs:.3g}; coarsen it (mesh_size=..., a lower refine=...) "
+                f"max_dofs={self.max_dofs:.3g}; coarsen it (mesh_size=..., a lower refine=...) "
                 "or, in a contact curve, raise max_dofs=...",
                 "max_dofs",
             )
