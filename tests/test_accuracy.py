@@ -166,7 +166,7 @@ def test_the_size_guard_refuses_a_ladder_before_its_first_level(capsys, monkeypa
     monkeypatch.setattr(accuracy, "run_ladder", no_level)
     assert main(["contact", "--refine", "4"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "above max_dofs" in err
+    assert err.count("\n") == 1 and "above --max-dofs 4e+05" in err
 
 
 # the paper's case at domain 1e7, refine sqrt(2), 2, 2sqrt(2) (60k, 116k, 228k dofs): force / exact

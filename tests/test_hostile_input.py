@@ -108,7 +108,7 @@ def test_energy_depth_bracketing_is_bounded():
     [
         (["--mesh-size", "1e-6"], "--max-dofs: this mesh would have about"),
         (["--growth", "0.01"], "--max-dofs: this mesh would have about"),
-        (["--mesh-size", "0.002", "--max-dofs", "1e4"], "above max_dofs = 1e\\+04"),
+        (["--mesh-size", "0.002", "--max-dofs", "1e4"], "above --max-dofs 1e\\+04"),
         (["--mesh-margin", "1e6"], r"mesh-margin must lie in \(1, 10\]"),
         (["--E2", "1e-100"], r"E2 must lie in \[1e-3, 1e100\] Pa"),
     ],

@@ -335,7 +335,7 @@ def check_equator(
     if impact is None:
         parameter, drive, remedy = "depths", f"depth {deepest:.6g} m", "give smaller depths"
     else:
-        parameter, remedy = "sphere_radius", "take a lower mass or velocity"
+        parameter, remedy = "sphere_radius", "take a lower mass=... or velocity=..."
         drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
         drive += f"{deepest:.3g} m{note}"
     raise InputError(

@@ -342,13 +342,13 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
     OptionLimit(
         lambda c: c.relaxing and c.loading == "curve",
         ("accuracy",),
-        "applies to the elastic contact curve only; on a viscoelastic body use refine, whose "
+        "applies to the elastic contact curve only; on a viscoelastic body use refine=..., whose "
         "estimates come with every run",
     ),
     OptionLimit(
         lambda c: c.model == "rubber" and c.loading == "curve",
         ("accuracy",),
-        "applies to the linear model only; for a finite-strain model use refine, whose "
+        "applies to the linear model only; for a finite-strain model use refine=..., whose "
         "estimates come with every run",
     ),
     OptionLimit(

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
+from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from ..fitting.data import FE_REFINE, KIND_COLUMNS, KINDS, article, parse_units
 from ..problem import RUBBER_OPTIONS, Problem
-from ..theory.materials import Material
+from ..theory.materials import RIGID, Material
 from ..validation import InputError
 from ..vocabulary import entry
 from . import common
@@ -38,7 +40,8 @@ KIND and the CSV columns it reads (header 'name [unit]'):
                                                                mass or velocity, prony, tau
   rebound         velocity [m/s] with restitution [1] and/or contact_time [s] -> E2, prony, tau,
                                                                mass
-  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony, tau
+  resilience      velocity [m/s], resilience [1] (ISO 4662, e^2)             -> prony, tau;
+                                                               or E2 or mass, tau known
 
 The result gives each unknown's value and 95 % interval, and identifiable false (with its
 bounds as the interval) for what the data cannot determine."""
@@ -53,6 +56,8 @@ NOTES = {
 }
 """What ``fit`` does with some of its options."""
 DERIVED = {
+    "E1": "2e+11; rigid, the FE runs' striker, in a fit they correct (--thickness, --density2, "
+    "--model)",
     "density2": "unset: no waves",
     "refine": f"{FE_REFINE:g}: a coarse mesh with its error estimate, seconds a run",
     "mooney_ratio": "0, the start of --fit mooney_ratio; only with --model mooney-rivlin",
@@ -122,9 +127,16 @@ def refuse_unused(args: argparse.Namespace) -> None:
 
 def _problem(args: argparse.Namespace) -> Problem:
     """The problem the options describe: its known parts and the unknowns' starts."""
+    from ..fitting.corrections import needs_fe  # here, not at load (see run)
+
     density = args.density2 if common.given(args, "density2") else None
     body = Material(args.E2, args.nu2, density)
-    return common.impact_problem(args, body, striker=common.striker(args))
+    if args.E1 is not None:  # given: the FE fits refuse it where their rigid striker drops it
+        return common.impact_problem(args, body, striker=common.striker(args))
+    steel = Material(entry("E1").default_for(None), args.nu1)
+    problem = common.impact_problem(args, body, striker=steel)
+    # unset: the FE runs' rigid striker where they correct the fit, as dynamic's and contact's
+    return common.impact_problem(args, body, striker=RIGID) if needs_fe(problem) else problem
 
 
 def run(args: argparse.Namespace) -> int:
@@ -132,7 +144,7 @@ def run(args: argparse.Namespace) -> int:
     from ..fitting.run import fit  # here, not at load: the fit loads the theory and scipy
 
     common.refuse_idle_output_options(args, ("out",))
-    with common.in_option_words():
+    with common.in_option_words(), _data_as_argument():
         refuse_unused(args)
         result = fit(
             args.kind,
@@ -155,6 +167,18 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(fit_text(result))
     return 0
+
+
+@contextlib.contextmanager
+def _data_as_argument() -> Iterator[None]:
+    """Re-raise sh.fit's refusal of its keyword data (``data: cannot read ...``) naming the
+    argument the command line took, DATA."""
+    try:
+        yield
+    except InputError as error:
+        if error.parameter != "data" or not str(error).startswith("data: "):
+            raise
+        raise InputError("DATA" + str(error)[len("data") :], "data") from None
 
 
 def _corrections_text(result: FitResult) -> list[str]:

@@ -684,7 +684,7 @@ class MeshSettings:
             if value > 1.0 + 1e-12:  # round-off of refine / sqrt(2)^2 is not a coarsening
                 raise InputError(
                     f"refine {factor!r} scales the mesh {name} to {value:.3g} > 1; use "
-                    f"refine >= {factor * value:.3g} with these settings",
+                    f"refine={factor * value:.3g} or more with these settings",
                     "refine",
                 )
         scaled = {name: min(value, 1.0) for name, value in scaled.items()}
@@ -734,7 +734,7 @@ class MeshSettings:
                 f"max_dofs: this mesh would have about {self.estimated_dofs:.3g} unknowns "
                 f"(size {self.size:.3g}, growth {self.growth:.3g}, domain {self.domain:.3g}, "
                 f"axis_size {min(self.axis_size, self.size):.3g}, axis_growth "
-                f"{self.axis_growth:.3g}), above max_dofs = {self.max_dofs:.3g}; coarsen it "
+                f"{self.axis_growth:.3g}), above max_dofs={self.max_dofs:.3g}; coarsen it "
                 "(mesh_size=..., growth=..., a lower refine=...) or, in a contact curve, raise "
                 "max_dofs=...",
                 "max_dofs",
@@ -768,7 +768,7 @@ class MeshSettings:
         if dofs > self.max_dofs:
             raise InputError(
                 f"max_dofs: this layer mesh would have about {dofs:.3g} unknowns, above "
-                f"max_dofs = {self.max_dofs:.3g}; coarsen it (mesh_size=..., a lower refine=...) "
+                f"max_dofs={self.max_dofs:.3g}; coarsen it (mesh_size=..., a lower refine=...) "
                 "or, in a contact curve, raise max_dofs=...",
                 "max_dofs",
             )

@@ -84,16 +84,17 @@ class Measurement:
     """Column name -> the unit it was written in."""
     lines: tuple[int, ...] | None = None
     """The file's line number of each data row (blank and ``#`` comment lines counted), or
-    None for values given in Python (then row k is called row k + 2, as under a header)."""
+    None for values given in Python (then row k is called index k)."""
 
     @property
     def rows(self) -> int:
         """Number of data rows."""
         return len(next(iter(self.columns.values())))
 
-    def line(self, index: int) -> int:
-        """The number by which an error names data row ``index`` (0-based): its file line."""
-        return int(self.lines[index]) if self.lines is not None else int(index) + 2
+    def row(self, index: int) -> str:
+        """How an error names data row ``index`` (0-based): ``row 7``, its file line, or
+        ``index 0`` for values given in Python."""
+        return f"row {self.lines[index]}" if self.lines is not None else f"index {index}"
 
 
 def parse_units(text: str | None) -> dict[str, str]:
@@ -142,7 +143,7 @@ def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]
     """The header's (name, unit) cells, the data rows of ``path`` and their line numbers
     (blank lines and lines starting with ``#``, comments, skipped)."""
     where = str(path)
-    rows, lines = csv_rows(read_input_csv(path, "data", "DATA"))
+    rows, lines = csv_rows(read_input_csv(path, "data", "data"))
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
     return _header(where, rows[0]), rows[1:], lines[1:]
@@ -240,15 +241,15 @@ def _check_values(data: Measurement) -> Measurement:
             valid = "in (0, 1]" if name in ("restitution", "resilience") else "> 0"
             valid = "finite" if name in ("force", "time") else valid
             raise InputError(
-                f"{data.source}: row {data.line(bad[0])}: column {name!r} must be {valid}, got "
+                f"{data.source}: {data.row(bad[0])}: column {name!r} must be {valid}, got "
                 f"{values[bad[0]]:g}",
                 "data",
             )
     if data.kind == "force-history":
         _check_history(data)
     if "time" in data.columns and np.any(np.diff(data.columns["time"]) <= 0):
-        row = data.line(int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 1)
-        raise InputError(f"{data.source}: row {row}: column 'time' must increase", "data")
+        row = data.row(int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 1)
+        raise InputError(f"{data.source}: {row}: column 'time' must increase", "data")
     return data
 
 
@@ -348,9 +349,9 @@ def resampled(data: Measurement, points: int) -> Measurement:
     x = data.columns[axis]
     steps = np.diff(x)
     if np.any(steps <= 0):
-        row = data.line(int(np.flatnonzero(steps <= 0)[0]) + 1)
+        row = data.row(int(np.flatnonzero(steps <= 0)[0]) + 1)
         raise InputError(
-            f"resample: {data.source}: row {row}: column {axis!r} must increase to be resampled "
+            f"resample: {data.source}: {row}: column {axis!r} must increase to be resampled "
             "(fit the loading part only), or leave it unset",
             "resample",
         )

@@ -93,7 +93,9 @@ def corrected_fit(
 def _refit(known: Known, measured: Measurement, names: Sequence[str], noise: float | None,
            sol: Solution, starts: Mapping[str, float]) -> np.ndarray:  # fmt: skip
     """The fitted values of the model of ``known``, started from ``starts``, with the
-    parameters ``sol`` found not identifiable held there."""
+    parameters ``sol`` found not identifiable held there (none moves when all are held)."""
+    if not np.any(sol.identifiable):
+        return sol.values
     hold = {n: v for (n, v), ok in zip(starts.items(), sol.identifiable, strict=True) if not ok}
     return solve(build_model(known, measured, names, starts), noise, hold).values
 
