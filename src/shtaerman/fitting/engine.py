@@ -11,6 +11,8 @@ A parameter is not identifiable when the data cannot determine it:
 
 - it has a component along a direction of J that is null (singular value below
   :data:`RANK_TOLERANCE` of the largest): a combination of parameters the data do not see;
+  or it moves along an exact null direction the model declares (:attr:`Model.trades`: the
+  mass with E* in rebound data), with another parameter fitted;
 - its interval reaches past both of its bounds;
 - moving it across its whole range changes the residual by less than the noise
   (|J_j| (high - low) < s): e.g. a relaxation time far outside the measured times;
@@ -82,14 +84,15 @@ def _jacobian(function, x: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.
     return np.column_stack(columns)
 
 
-def _covariance(jac: np.ndarray, noise: float) -> np.ndarray:
-    """s^2 (J^T J)^-1 by the SVD; infinite variance along the null directions."""
+def _covariance(jac: np.ndarray, noise: float, traded: np.ndarray) -> np.ndarray:
+    """s^2 (J^T J)^-1 by the SVD; infinite variance along the null directions and for the
+    ``traded`` parameters (on a model's exact null direction, :func:`_traded`)."""
     _, sing, vt = np.linalg.svd(jac, full_matrices=False)
     kept = sing > RANK_TOLERANCE * sing[0] if sing.size and sing[0] > 0 else sing > np.inf
     cov = (vt[kept].T / sing[kept] ** 2) @ vt[kept] * noise**2
-    null = np.zeros(jac.shape[1], dtype=bool)
+    null = traded.copy()
     if np.any(~kept):
-        null = np.max(np.abs(vt[~kept]), axis=0) > NULL_COMPONENT
+        null |= np.max(np.abs(vt[~kept]), axis=0) > NULL_COMPONENT
     cov[null, :] = np.nan
     cov[:, null] = np.nan
     cov[null, null] = np.inf
@@ -158,7 +161,7 @@ def _optimum(model: Model, noise: float | None, fixed: dict[str, float],
     left = residual(found.x)
     distinct = len(np.unique(np.column_stack([jac, left]), axis=0))
     s, quantile, estimated = _noise(left, start.size, noise, distinct)
-    cov = _covariance(jac, s)
+    cov = _covariance(jac, s, _traded(model, params))
     half = quantile * np.sqrt(np.diag(cov))
     lo, hi = found.x - half, found.x + half
     reach = np.linalg.norm(jac, axis=0) * (high - low)
@@ -170,6 +173,20 @@ def _optimum(model: Model, noise: float | None, fixed: dict[str, float],
         "identifiable": np.isfinite(half) & ~((lo <= low) & (hi >= high)) & seen & ~outside,
         "outside": outside, "evaluations": next(count) - 1,
     }  # fmt: skip
+
+
+def _traded(model: Model, params: list[Parameter]) -> np.ndarray:
+    """Which of the fitted ``params`` move along an exact null direction of ``model``
+    (:attr:`Model.trades`) together with another fitted one: the data cannot tell them apart
+    however exact they are (a Jacobian's rank test may see their singular value at 1e-8, above
+    round-off, and give noise-free data a tight, wrong interval)."""
+    names = [p.name for p in params]
+    traded = np.zeros(len(names), dtype=bool)
+    for direction in model.trades:
+        moved = [j for j, name in enumerate(names) if direction.get(name, 0.0) != 0.0]
+        if len(moved) >= 2:
+            traded[moved] = True
+    return traded
 
 
 def _outside(params: list[Parameter], values: dict[str, float]) -> np.ndarray:
