@@ -293,7 +293,10 @@ def test_sweep_runs_a_file(tmp_path):
 @pytest.mark.parametrize(
     ("call", "message"),
     [
-        (lambda: sh.contact(INDENTER, RUBBER, mesh=0.01), "mesh must be a shtaerman.fem.mesh"),
+        (
+            lambda: sh.contact(INDENTER, RUBBER, mesh=0.01),
+            "mesh must be a shtaerman.MeshSettings, got float",
+        ),
         (lambda: sh.contact(INDENTER, RUBBER, out=5), "out must be a string, got 5"),
         (lambda: sh.sweep("nu-grid", workers=1.5), "workers must be an integer in [1, 256]"),
     ],

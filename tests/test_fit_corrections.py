@@ -4,6 +4,7 @@ impact, the viscoelastic impact's step error in the intervals, and independent c
 (Hertz and Lee-Radok impacts integrated by solve_ivp here, not by the suite's code)."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -266,3 +267,24 @@ def test_nu2_is_refused_with_the_fe_corrections():
     with pytest.raises(sh.InputError, match="unknowns: nu2 cannot be fitted with the FE corr"):
         sh.fit("force-history", {"time": [0.0, 1e-3, 2e-3], "force": [0.0, 5.0, 0.0]},
                pad(), unknowns="nu2")  # fmt: skip
+
+
+def test_a_refused_fe_correction_names_the_fitted_e2_it_was_checked_at(tmp_path, capsys):
+    """user56: a force history fitted at 60 m/s with waves was refused by the wave speed guard
+    with c_s = 8.44 m/s where E2 = 3e6 given is c_s = 31.7 m/s: the guard saw the fitted E2
+    (2.1e5 Pa), which the refusal did not say, and its passing density2 72.7 was refused in
+    the round after. Refused before any mesh (a second of CPU)."""
+    csv = tmp_path / "f.csv"
+    t = np.linspace(0.0, 1.5e-3, 200)
+    force = 2e3 * np.clip(np.sin(np.pi * t / 1e-3), 0.0, None) ** 1.2 * (t < 1e-3)
+    csv.write_text(
+        "time [s],force [N]\n" + "".join(f"{a},{b}\n" for a, b in zip(t, force, strict=True))
+    )
+    case = ["--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6", "--nu2", "0.49"]
+    args = [*case, "--mass", "0.12", "--E1", "inf", "--velocity", "60", "--density2", "1000"]
+    assert main(["fit", "force-history", str(csv), *args]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("shtaerman: error: --velocity, --density2: ") and err.count("\n") == 1
+    c_s = float(re.search(r"c_s = sqrt\(G / density2\) = (\S+) m/s", err).group(1))
+    e2 = float(re.search(r"at the fitted E2 = (\S+) Pa", err).group(1))
+    assert math.isclose(math.sqrt(e2 / (2 * 1.49) / 1000.0), c_s, rel_tol=1e-3)  # 3 digits shown

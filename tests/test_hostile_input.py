@@ -189,3 +189,12 @@ def test_shown_values_are_short():
     assert shown(np.arange(6.0)).endswith(", ... (6 values)]")
     assert shown(np.float64(2.5)) == repr(np.float64(2.5)) and shown(np.array(1.0))
     assert shown("x" * 10**6).endswith("... (1000002 characters)")
+
+
+def test_apostrophes_of_prose_are_not_cut_as_a_quoted_value():
+    """user56: a refusal with "the body's" and, 250 characters later, "the fit's" was cut as
+    if the text between were a pasted value: "...' (479 characters)s next rounds move"."""
+    prose = "velocity: the body's shear wave speed " + "is slow " * 30 + "for the fit's rounds"
+    assert str(InputError(prose)) == prose
+    pasted = f"SERIES: got '{'x' * 300}'"  # a pasted value is still cut
+    assert str(InputError(pasted)).endswith("...' (300 characters)")

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import shtaerman as sh
+from shtaerman.api.fem_dynamic import check_dynamic
 from shtaerman.cli import main
 from shtaerman.problem import SUPPORT, Cell, check_options, support_table
 
@@ -229,3 +230,17 @@ def test_in_option_words_tells_a_refusal_from_a_failure():
     with pytest.raises(NumericalFailureError) as failed, in_option_words():
         raise NumericalFailureError("fit: the FE curve failed; give E2 and a smaller refine=...")
     assert str(failed.value) == "fit: the FE curve failed; give E2 and a smaller --refine"
+
+
+def test_a_rubber_impact_refuses_the_linear_bodys_settings():
+    """user56: sh.dynamic(model="neo-hookean", settings=sh.DynamicSettings(steps=90000)) ran
+    on the finite-strain impact's own 100 steps and mesh, the settings dropped without a word
+    (a MeshSettings too); the linear body takes them, and names the public type."""
+    rubber = sh.Problem.impact(PAPER, RUBBER, mass=0.7, velocity=3.0, model="neo-hookean")
+    with pytest.raises(sh.InputError, match=r"^settings: not supported with model") as no:
+        check_dynamic(rubber, settings=sh.DynamicSettings(steps=90000), impact=False)
+    assert no.value.parameter == "settings" and "time_steps=..., mesh_size=..." in str(no.value)
+    linear = sh.Problem.impact(PAPER, RUBBER, mass=0.7, velocity=3.0)
+    assert check_dynamic(linear, settings=sh.DynamicSettings(steps=240), impact=False).steps == 240
+    with pytest.raises(sh.InputError, match=r"^settings must be a shtaerman\.DynamicSettings, "):
+        check_dynamic(linear, settings=sh.MeshSettings(), impact=False)

@@ -327,6 +327,7 @@ OPTION_SUPPORT: tuple[OptionLimit, ...] = (
             "growth",
             "layer_rate",
             *("axis_size", "layer_start", "layer_ramp", "tail", "layer_width", "spectral_radius"),
+            "settings",  # a DynamicSettings: the linear body's (it was ignored)
         ),
         "not supported with model {model!r} in the impact (it takes mass=..., velocity=..., "
         "density2=..., time_steps=..., mesh_size=..., refine=..., estimate=..., thickness=..., "

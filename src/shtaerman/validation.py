@@ -45,7 +45,9 @@ SHOWN_ITEMS = 4
 SHOWN_CHARACTERS = 200
 """A message shows at most this many characters of a value."""
 _FLAT_LIST = re.compile(r"\[([^\[\]'\"]*)\]")
-_LONG_QUOTED = re.compile(rf"'[^'\n]{{{SHOWN_CHARACTERS + 1},}}'")
+_LONG_QUOTED = re.compile(rf"(?<!\w)'[^'\n]{{{SHOWN_CHARACTERS + 1},}}'(?!\w)")
+"""A quoted text too long to show whole; its quotes not within a word, so that two
+apostrophes of prose ("the body's ... the fit's") are no quoted text."""
 
 
 def shown(value: object) -> str:

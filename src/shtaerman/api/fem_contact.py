@@ -361,7 +361,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
         base = FINITE_MESH if problem.body.finite else DEFAULTS
     elif not isinstance(base, MeshSettings):
         raise InputError(
-            f"mesh must be a shtaerman.fem.mesh.MeshSettings, got {type(base).__name__}; the "
+            f"mesh must be a shtaerman.MeshSettings, got {type(base).__name__}; the "
             "keywords mesh_size, mesh_margin, ... set single fields",
             "mesh",
         )

@@ -62,7 +62,7 @@ def dynamic_settings(
     base = DynamicSettings() if base is None else base
     if not isinstance(base, DynamicSettings):
         raise InputError(
-            f"settings must be a shtaerman.fem.dynamic_contact.DynamicSettings, got "
+            f"settings must be a shtaerman.DynamicSettings, got "
             f"{type(base).__name__}; the keywords time_steps, mesh_size, ... set single fields",
             "settings",
         )

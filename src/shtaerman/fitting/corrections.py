@@ -35,7 +35,7 @@ from ..problem import Problem
 from ..theory.materials import RIGID, Material
 from ..theory.sneddon import Indenter, contact_law
 from ..theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
-from ..validation import NumericalFailureError
+from ..validation import InputError, NumericalFailureError
 
 if TYPE_CHECKING:  # the api package imports the fit's result: a cycle at run time
     from ..api.dynamic_result import DynamicResult
@@ -224,14 +224,33 @@ def youngs_modulus(known: KnownParts, modulus: float, nu2: float) -> float:
     return (1.0 - nu2 * nu2) / rest if rest > 0 else float("inf")
 
 
+def _fe_impact(case: Problem, at: Mapping[str, float], refine: float) -> DynamicResult:
+    """The FE impact of ``case`` at the fitted point ``at`` (with its error-estimate ladder at
+    ``refine``). Its refusal (InputError) says the point: the E2 it was checked at is the
+    fit's, not the starting value given, and the values it names hold at that E2, which the
+    next rounds of the fit move (user56: a refusal named c_s = 8.44 m/s, from E2 = 2.1e5 Pa against
+    E2 3e6 given, and its passing density2 was refused in the round after)."""
+    from ..api.fem_dynamic import dynamic
+    from ..study.ladder import WITHOUT_ESTIMATE
+
+    try:
+        return dynamic(case, refine=refine, estimate=True)
+    except InputError as error:
+        said = str(error).removesuffix(WITHOUT_ESTIMATE)
+        raise InputError(
+            f"{said}; this is the FE impact that corrects the fit, at the fitted E2 = "
+            f"{at['E2']:.4g} Pa (not the starting value): the values named hold at this E2, "
+            "which the next rounds of the fit move",
+            error.parameter,
+        ) from None
+
+
 def fe_correction(problem: Problem, known: KnownParts, values: Mapping[str, float],
                   prony: PronySeries | None, refine: float) -> Correction:  # fmt: skip
     """The :class:`Correction` measured by one FE impact of ``problem`` at ``values`` (with
     its error-estimate ladder at ``refine``)."""
-    from ..api.fem_dynamic import dynamic
-
     case, at = _point(problem, known, values, prony)
-    run = dynamic(case, refine=refine, estimate=True)
+    run = _fe_impact(case, at, refine)
     check_rigid_striker(known.striker, known.nu2, at["E2"], relative_error(run, "P_max"), "impacts")
     exact, peak, duration = exact_impact(known, values, prony)
     history = run.history()
@@ -296,13 +315,11 @@ def fe_rows(problem: Problem, known: KnownParts, values: Mapping[str, float],
             ) -> RowCorrection:  # fmt: skip
     """The :class:`RowCorrection` measured by one FE impact of ``problem`` at ``values`` per
     drop velocity (each with its error-estimate ladder at ``refine``)."""
-    from ..api.fem_dynamic import dynamic
-
     ratios, errors = [], {"restitution": 0.0, "t_contact": 0.0}
     for velocity in velocities:
         point = {**values, "velocity": float(velocity)}
         case, at = _point(problem, known, point, prony)
-        run = dynamic(case, refine=refine, estimate=True)
+        run = _fe_impact(case, at, refine)
         error = relative_error(run, "t_contact")
         check_rigid_striker(known.striker, known.nu2, at["E2"], error, "impacts")
         e, t_c = exact_rebound(known, values, velocity, prony)
