@@ -17,7 +17,10 @@ Measured (session 56, load average 3-9 on 2 cores): main c2e2086 125 and 125 fac
 with the bordered first step of a depth and no redo of a failed solve that reused nothing,
 102 and 99 (finest 37 and 34), 98 and 93 worth. Of a study's CPU, SuperLU's factorizations
 are ~45 %; the rest is the tangent and state assembly, the back-solves, the linear FEM and
-the impacts.
+the impacts. The hyperelastic state, residual and tangent_data calls (outermost, CPU s):
+main b6f132c 5.2 and 4.9 (nu2 0.5: state 2.0, residual 0.7, tangent 2.4); with a state and
+residual as one sparse product and D built in contiguous runs (branch asm56) 3.9 and 3.8
+(1.4, 0.55, 1.8), load average 2.5-4.5.
 
 Run: PYTHONPATH=src python benchmarks/finite_newton_cost.py [--members 0 1]
 """
