@@ -17,7 +17,10 @@ Measured (session 56, load average 3-9 on 2 cores): main c2e2086 125 and 125 fac
 with the bordered first step of a depth and no redo of a failed solve that reused nothing,
 102 and 99 (finest 37 and 34), 98 and 93 worth. Of a study's CPU, SuperLU's factorizations
 are ~45 %; the rest is the tangent and state assembly, the back-solves, the linear FEM and
-the impacts.
+the impacts. The hyperelastic state, residual and tangent_data calls (outermost, CPU s):
+main b6f132c 5.2 and 4.9 (nu2 0.5: state 2.0, residual 0.7, tangent 2.4); with a state and
+residual as one sparse product and D built in contiguous runs (branch asm56) 3.9 and 3.8
+(1.4, 0.55, 1.8), load average 2.5-4.5.
 
 Run: PYTHONPATH=src python benchmarks/finite_newton_cost.py [--members 0 1]
 """
@@ -32,6 +35,7 @@ from unittest import mock
 import numpy as np
 
 from shtaerman.fem.contact.finite import NewtonStepper
+from shtaerman.fem.hyperelastic import HyperelasticSystem
 from shtaerman.fem.solver import PatternSolver
 from shtaerman.study.finite.runner import run_finite_strain_study
 from shtaerman.study.schema import load_study, shipped_studies
@@ -52,6 +56,22 @@ class Counter:
         self.iterations = 0
         self.finest: tuple[PatternSolver, np.ndarray] | None = None
         self.sizes: dict[int, int] = {}
+        self.assembly_cpu: dict[str, float] = {}
+        self.assembling = False
+
+    def assembly(self, method, system: HyperelasticSystem, *args, **kwargs):
+        """Time an outermost state, residual or tangent_data call (not the nested state)."""
+        if self.assembling:
+            return method(system, *args, **kwargs)
+        self.assembling, start = True, time.process_time()
+        try:
+            return method(system, *args, **kwargs)
+        finally:
+            name = method.__name__
+            self.assembly_cpu[name] = self.assembly_cpu.get(name, 0.0) + (
+                time.process_time() - start
+            )
+            self.assembling = False
 
     def factorized(self, solver: PatternSolver, data: np.ndarray, rhs: np.ndarray):
         start = time.process_time()
@@ -77,6 +97,15 @@ class Counter:
 
 ORIGINAL_FACTORIZED = PatternSolver.factorized
 ORIGINAL_ITERATE = NewtonStepper.iterate
+
+
+def timing(counter: Counter, name: str) -> mock._patch:
+    """A patch of HyperelasticSystem.``name`` that adds its CPU to ``counter.assembly_cpu``
+    (an outermost call's: a residual's or a tangent's own state call is theirs)."""
+    method = getattr(HyperelasticSystem, name)
+    return mock.patch.object(
+        HyperelasticSystem, name, lambda s, *a, **k: counter.assembly(method, s, *a, **k)
+    )
 
 
 def one_factorization(counter: Counter, repeat: int = 3) -> float:
@@ -108,8 +137,9 @@ def main() -> None:
                 NewtonStepper, "iterate", lambda s, *a, c=counter, **k: c.iterate(s, *a, **k)
             ),
         )
+        timed = [timing(counter, name) for name in ("state", "residual", "tangent_data")]
         start = time.process_time()
-        with patches[0], patches[1]:
+        with patches[0], patches[1], timed[0], timed[1], timed[2]:
             outcome = run_finite_strain_study(study)
         cpu = time.process_time() - start
         unit = one_factorization(counter)
@@ -118,7 +148,10 @@ def main() -> None:
             f"{study.name}: CPU {cpu:.1f} s ({load()}); factorizations {counter.factorizations} "
             f"(by size {dict(sorted(counter.sizes.items()))}, {counter.factor_cpu:.1f} CPU s), "
             f"kept-factorization solves {counter.reused}, Newton iterations "
-            f"{counter.iterations}; one finest factorization {unit:.3f} CPU s: the study costs "
+            f"{counter.iterations}; hyperelastic CPU s "
+            f"{ {k: round(v, 2) for k, v in counter.assembly_cpu.items()} }; one finest "
+            f"factorization {unit:.3f} CPU s: "
+            "the study costs "
             f"{cpu / unit:.0f} of them",
             flush=True,
         )
