@@ -20,7 +20,7 @@ from typing import Annotated, Any, Literal
 import msgspec
 
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
-from ...guards import check_equator
+from ...guards import check_equator, check_reach
 from ...problem import Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
@@ -372,14 +372,20 @@ def check_profile_reach(
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
     Pa) beyond what its FE profile is: a sphere's radius (:func:`shtaerman.guards.
-    check_equator`) or a table's last row.
+    check_equator`) or a table's last row; a power law's depths set by the impact, outside
+    the x/a an FE impact is run at (:func:`shtaerman.guards.check_reach`).
 
     Raises
     ------
     InputError
-        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``.
+        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
+        power law the mass and velocity, or the shape coefficient.
     """
     if indenter.kind == "power-law":
+        if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
+            deepest = overshoot * elastic_impact(*impact, contact_law(indenter, modulus)).x_c
+            q = 1.0 + 1.0 / indenter.exponent
+            check_reach(indenter, deepest, impact, q, False, ", or give depths=...")
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
