@@ -183,7 +183,7 @@ def _traded(model: Model, params: list[Parameter]) -> np.ndarray:
     names = [p.name for p in params]
     traded = np.zeros(len(names), dtype=bool)
     for direction in model.trades:
-        moved = [j for j, name in enumerate(names) if direction.get(name, 0.0) != 0.0]
+        moved = [j for j, name in enumerate(names) if name in direction]
         if len(moved) >= 2:
             traded[moved] = True
     return traded

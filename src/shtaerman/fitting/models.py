@@ -112,10 +112,10 @@ class Model:
     unit: str
     """The residual's unit."""
     description: str
-    trades: tuple[Mapping[str, float], ...] = ()
-    """Exact null directions of the model in the fitting space (parameter name -> component):
-    moving along one leaves every prediction unchanged, so no data determine the parameters
-    it moves, whatever the numerical rank of the Jacobian (:func:`trades`)."""
+    trades: tuple[frozenset[str], ...] = ()
+    """The parameters of each exact null direction of the model: moving them together along it
+    leaves every prediction unchanged, so no data determine them, whatever the numerical rank
+    of the Jacobian (:func:`trades`)."""
 
 
 def all_values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
@@ -365,16 +365,14 @@ def build_model(
     )  # fmt: skip
 
 
-def trades(known: Known, data: Measurement) -> tuple[dict[str, float], ...]:
-    """The exact null directions of rebound or resilience data (log space): the impact sees
-    the mass and E* only as M / E* (M x'' = -E* f(x)); without measured contact times, a
+def trades(known: Known, data: Measurement) -> tuple[frozenset[str], ...]:
+    """The parameters on each exact null direction of rebound or resilience data: the impact
+    sees the mass and E* only as M / E* (M x'' = -E* f(x)); without measured contact times, a
     power law's relaxation times only as t_c / tau_i, t_c ~ (M / E*)^(n/(2n+1)), so E* (or
-    the mass) and every tau_i trade too."""
-    found: list[dict[str, float]] = [{"E_star": 1.0, "mass": 1.0}]
-    exponent = getattr(known.indenter, "exponent", None)
-    if "contact_time" not in data.columns and exponent is not None and known.prony is not None:
-        power = exponent / (2.0 * exponent + 1.0)  # d ln t_c / d ln (M / E*)
-        times = [f"tau{i}" for i in range(1, len(known.prony.times) + 1)]
-        found.append({"E_star": 1.0, **{name: -power for name in times}})
-        found.append({"mass": 1.0, **{name: power for name in times}})
+    the mass) and all the tau_i trade too (ln tau_i -= n/(2n+1) per unit of ln E*)."""
+    found = [frozenset({"E_star", "mass"})]
+    power_law = getattr(known.indenter, "exponent", None) is not None
+    if "contact_time" not in data.columns and power_law and known.prony is not None:
+        times = {f"tau{i}" for i in range(1, len(known.prony.times) + 1)}
+        found += [frozenset({"E_star", *times}), frozenset({"mass", *times})]
     return tuple(found)
