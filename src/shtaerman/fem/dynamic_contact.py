@@ -42,8 +42,8 @@ from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.radiation import (
     RadiationEstimate,
+    impact_radiation,
     profile_radiation_estimate,
-    radiation_estimate,
     rayleigh_root,
 )
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
@@ -586,20 +586,14 @@ def _checked_estimate(estimate: int, settings: DynamicSettings, layered: bool = 
 
 
 def _waves(
-    half_space: Material,
-    rho: float,
-    striker: Striker,
-    qs: _QuasiStatic,
+    indenter: Indenter, half_space: Material, rho: float, striker: Striker,
     exact: ProfileImpactResult | None,
-) -> RadiationEstimate:
-    """The first-order radiation estimate of the quasi-static impact ``qs`` (of the power law:
-    its beta is finite; else ``exact``, a sphere's or a table's) on the body of density
-    ``rho`` kg/m^3."""
-    shear, nu = half_space.shear_modulus, half_space.poisson_ratio
-    if math.isnan(qs.beta):
-        return profile_radiation_estimate(exact, rho, shear, nu)
-    impact = (striker.mass, striker.velocity, qs.beta, qs.force_exponent)
-    return radiation_estimate(*impact, rho, shear, nu)
+) -> RadiationEstimate:  # fmt: skip
+    """The first-order radiation estimate of the rigid striker's quasi-static impact (a
+    sphere's or a table's ``exact``) on the body of density ``rho`` kg/m^3."""
+    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
+    law = contact_law(indenter, modulus)
+    return impact_radiation(striker.mass, striker.velocity, law, rho, half_space, exact)
 
 
 def _fraction_at(
@@ -661,7 +655,7 @@ def check_dynamic_impact(
         # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
     if rho > 0:
-        waves = _waves(half_space, rho, striker, qs, exact)
+        waves = _waves(indenter, half_space, rho, striker, exact)
         exponent = None if math.isnan(qs.beta) else qs.force_exponent
         at = None if exponent is not None else _fraction_at(indenter, half_space, rho, striker.mass)
         check_wave_speed(impact, waves, rho, exponent, at)

@@ -40,7 +40,7 @@ the lossless impact; trust it to a few per cent below lambda ~ 0.05).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from functools import cache
 from typing import TYPE_CHECKING
 
@@ -52,10 +52,14 @@ from scipy.special import beta as beta_function
 from ..validation import InputError, validate_poisson, validate_positive
 
 if TYPE_CHECKING:
+    from .contact import PowerLawContact
+    from .materials import Material
     from .profile_impact import ProfileImpactResult
+    from .sneddon import SneddonContact
 
 __all__ = [
     "RadiationEstimate",
+    "impact_radiation",
     "profile_radiation_estimate",
     "radiated_energy",
     "radiation_estimate",
@@ -274,6 +278,36 @@ def profile_radiation_estimate(
     rate = quasi.force_rate_squared_integral
     return _estimate(quasi.mass, quasi.velocity, quasi.x_c, rate, density, shear_modulus,
                      poisson_ratio)  # fmt: skip
+
+
+def impact_radiation(
+    mass: float,
+    velocity: float,
+    law: PowerLawContact | SneddonContact,
+    density: float,
+    half_space: Material,
+    exact: ProfileImpactResult | None = None,
+) -> RadiationEstimate:
+    """The first-order radiation estimate of the quasi-static impact of ``mass`` kg at
+    ``velocity`` m/s on ``law`` (the power law's closed form; a sphere's or a table's Int
+    (dP/dt)^2 dt by quadrature over its exact impact, ``exact`` when already solved) on
+    ``half_space`` of ``density`` kg/m^3; a massless half-space (density 0) radiates nothing."""
+    from .profile_impact import solve_profile_impact  # here: the power law's needs none
+    from .sneddon import SneddonContact
+
+    shear, nu = half_space.shear_modulus, half_space.poisson_ratio
+    rho = density if density > 0 else 1.0
+    if isinstance(law, SneddonContact):
+        exact = solve_profile_impact(mass, velocity, law) if exact is None else exact
+        estimate = profile_radiation_estimate(exact, rho, shear, nu)
+    else:
+        estimate = radiation_estimate(mass, velocity, law.beta, law.force_exponent, rho, shear, nu)
+    if density > 0:
+        return estimate
+    return replace(
+        estimate, shear_wave_speed=math.inf, radiated_energy=0.0, energy_fraction=0.0,
+        restitution=1.0,
+    )  # fmt: skip
 
 
 def _estimate(

@@ -10,7 +10,6 @@ how far the quasi-static x_c, P_c and t_c are from the dynamic x_max, P_max and 
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import warnings
 from collections.abc import Callable, Sequence
@@ -24,12 +23,11 @@ from ...fem.impact import run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.mesh import HALF_SPACE, Geometry
 from ...guards import warn_outside_validity
-from ...theory.contact import PowerLawContact
 from ...theory.impact import ImpactResult, representable
 from ...theory.materials import RIGID, Material, effective_modulus
-from ...theory.profile_impact import ProfileImpactResult, solve_profile_impact
-from ...theory.radiation import RadiationEstimate, profile_radiation_estimate, radiation_estimate
-from ...theory.sneddon import Indenter, SneddonContact, contact_law
+from ...theory.profile_impact import ProfileImpactResult
+from ...theory.radiation import RadiationEstimate, impact_radiation
+from ...theory.sneddon import Indenter, contact_law
 from ...theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
 from ...validation import NumericalFailureError
 from ..richardson import Estimate
@@ -45,7 +43,6 @@ __all__ = [
     "compare",
     "finite_settings",
     "problem_case",
-    "radiation",
     "run_case",
     "viscoelastic_compare",
     "viscoelastic_reference",
@@ -168,33 +165,6 @@ class DynamicCase:
         }
 
 
-def radiation(
-    mass: float,
-    velocity: float,
-    law: PowerLawContact | SneddonContact,
-    density: float,
-    half_space: Material,
-    exact: ProfileImpactResult | None = None,
-) -> RadiationEstimate:
-    """The first-order radiation estimate of the quasi-static impact on ``law`` (the power
-    law's closed form; a sphere's or a table's Int (dP/dt)^2 dt by quadrature over its exact
-    impact, ``exact`` when already solved); a massless half-space (density 0) radiates
-    nothing."""
-    shear, nu = half_space.shear_modulus, half_space.poisson_ratio
-    rho = density if density > 0 else 1.0
-    if isinstance(law, SneddonContact):
-        exact = solve_profile_impact(mass, velocity, law) if exact is None else exact
-        estimate = profile_radiation_estimate(exact, rho, shear, nu)
-    else:
-        estimate = radiation_estimate(mass, velocity, law.beta, law.force_exponent, rho, shear, nu)
-    if density > 0:
-        return estimate
-    return dataclasses.replace(
-        estimate, shear_wave_speed=math.inf, radiated_energy=0.0, energy_fraction=0.0,
-        restitution=1.0,
-    )  # fmt: skip
-
-
 def run_case(
     indenter: Indenter,
     half_space: Material,
@@ -263,7 +233,7 @@ def run_case(
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         quasi = elastic_impact(mass, velocity, law) if quasi is None else quasi
         representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))  # first
-        estimate = radiation(mass, velocity, law, density, half_space, quasi)
+        estimate = impact_radiation(mass, velocity, law, density, half_space, quasi)
         sizing = profile_sizing_impact(indenter, half_space, mass, velocity)  # once, not per run
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings

@@ -20,10 +20,11 @@ from dataclasses import asdict, dataclass
 from ...fem.dynamic_contact import DynamicSettings
 from ...theory.impact import check_velocity
 from ...theory.materials import RIGID, effective_modulus
+from ...theory.radiation import impact_radiation
 from ...theory.sneddon import contact_law, profile_inputs
 from ..checks import Check, Outcome
 from ..limits import LEVELS, thresholds
-from .case import COMPARED, DynamicCase, finite_settings, problem_case, radiation
+from .case import COMPARED, DynamicCase, finite_settings, problem_case
 from .loader import DynamicStudy, energy_checks
 
 __all__ = ["SEPARATION_SNAPSHOT", "DynamicStudyOutcome", "run_dynamic_study"]
@@ -62,7 +63,7 @@ class DynamicStudyOutcome(Outcome):
         curve: dict[str, list[float]] = {"velocity": [], "energy_fraction": [], "restitution": []}
         for i in range(points):
             v = low + (high - low) * i / (points - 1)
-            estimate = radiation(study.mass, v, law, study.density, study.half_space)
+            estimate = impact_radiation(study.mass, v, law, study.density, study.half_space)
             curve["velocity"].append(v)
             curve["energy_fraction"].append(estimate.energy_fraction)
             curve["restitution"].append(estimate.restitution)
