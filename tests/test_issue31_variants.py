@@ -168,3 +168,11 @@ def test_contact_with_a_flat_striker_names_the_striker(capsys):
     code, _, err = run(capsys, "contact", "--no-estimate", "--shape-coefficient", "1e-300")
     # x/a 2.6e-226: the striker alone is at fault (the paper's would be within reach)
     assert code == 2 and err.startswith("shtaerman: error: --shape-coefficient: ")
+
+
+def test_a_rubber_curve_far_beyond_reach_names_the_finite_strain_limit(capsys):
+    # x/a 2.9e37 on a neo-Hookean body: its limit is the finite-strain contact's 1.2, not the
+    # linear FE's 100 (the linear reach check ran first and named 100)
+    code, _, err = run(capsys, "contact", "--model", "neo-hookean", "--mass", "1e300")
+    assert code == 2 and err.count("\n") == 1
+    assert "beyond the 1.2 up to which the finite-strain contact converges" in err

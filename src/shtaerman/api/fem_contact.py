@@ -328,7 +328,8 @@ def _check_depths(
     indenter, body = problem.striker.indenter, problem.body.material
     given = tuple(depths) if problem.loading.depths is not None else None
     modulus = effective_modulus(problem.striker.material, body)  # a sphere, a table: their end
-    check_profile_reach(indenter, modulus, given, _impact(problem), overshoot=1.0)
+    finite = problem.body.finite  # its reach refused here, in the finite contact's words
+    check_profile_reach(indenter, modulus, given, _impact(problem), overshoot=1.0, finite=finite)
     if problem.body.finite:
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value

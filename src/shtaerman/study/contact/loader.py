@@ -370,12 +370,14 @@ def check_profile_reach(
     depths: tuple[float, ...] | None,
     impact: tuple[float, float],
     overshoot: float = DEPTH_OVERSHOOT,
+    finite: bool = False,
 ) -> None:
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
     Pa) beyond what its FE profile is: a sphere's radius (:func:`shtaerman.guards.
     check_equator`) or a table's last row; a power law's depths set by the impact, outside
-    the x/a an FE impact is run at (:func:`shtaerman.guards.check_reach`).
+    the x/a an FE impact is run at (:func:`shtaerman.guards.check_reach`; ``finite``: the
+    finite-strain contact's).
 
     Raises
     ------
@@ -390,7 +392,7 @@ def check_profile_reach(
                 law = contact_law(indenter, modulus)
                 deepest = overshoot * elastic_impact(*impact, law).x_c
             q = 1.0 + 1.0 / indenter.exponent
-            check_reach(indenter, deepest, impact, q, False, ", or give depths=...")
+            check_reach(indenter, deepest, impact, q, finite, ", or give depths=...")
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
