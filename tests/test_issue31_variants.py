@@ -43,7 +43,10 @@ def test_a_study_with_a_huge_mass_names_the_mass(capsys, tmp_path, shipped, wron
     )
     assert code == 2
     last = err.strip().splitlines()[-1]
-    assert "mass, velocity: 1e+300 kg" in last and wrongly_blamed not in last
+    assert "keys 'impact.mass', 'impact.velocity': 1e+300 kg" in last
+    assert wrongly_blamed not in last
+    # a study file has keys, no options: the remedy said "lower --velocity ... or give --depths"
+    assert "--" not in last and "[impact] velocity" in last and "[contact] depths" in last
 
 
 def _paper_problem(velocity: float, **keywords):

@@ -432,9 +432,18 @@ def contact_study(**values: Any) -> Study:
     return on_layer(study)
 
 
-PROFILE_KEYS = ("depths", "sphere_radius", "profile", "thickness")
-"""The parameters a refusal of :func:`contact_study` names (its profile's reach, its layer's
-thickness: :func:`on_layer`)."""
+PROFILE_KEYS = (
+    "depths",
+    "sphere_radius",
+    "profile",
+    "thickness",
+    "mass",
+    "velocity",
+    "shape_coefficient",
+)
+"""The parameters a refusal of :func:`contact_study` names (its profile's reach, a power
+law's impact beyond it: :func:`shtaerman.guards.check_reach`; its layer's thickness:
+:func:`on_layer`)."""
 
 
 def load_contact(path: Path, data: dict[str, Any]) -> list[Study]:
