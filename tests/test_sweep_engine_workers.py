@@ -8,6 +8,7 @@ for its next arrays instead of faulting them in again. Each record carries the C
 seconds of its case, the measure of how much two cases at once slow each other down.
 """
 
+import logging
 import os
 import signal
 import subprocess
@@ -57,6 +58,9 @@ def _worker_state() -> dict:
         "memory monitor": dask.config.get("distributed.worker.memory.monitor-interval"),
         "sigterm": signal.getsignal(signal.SIGTERM) is signal.SIG_DFL,
         "sigint": signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
+        "heartbeat errors logged": logging.getLogger("distributed.worker").isEnabledFor(
+            logging.ERROR
+        ),
     }
 
 
@@ -90,6 +94,7 @@ def test_local_workers_fork_with_this_process_state_but_their_own_signals(monkey
         "memory monitor": "500ms",
         "sigterm": True,
         "sigint": True,
+        "heartbeat errors logged": False,
     }, diagnosis
 
 

@@ -669,7 +669,8 @@ def _client(
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
     # the workers log only what is critical: a task's exception reaches the client with the
     # future anyway, and a worker busy in the FEM when the run ends (an input refused, Ctrl-C)
-    # would print a "heartbeat" traceback at shutdown
+    # would print a "heartbeat" traceback at shutdown (a spawned worker reads this; a forked
+    # one imported dask before it was set, so the preload quiets it: _worker.py)
     environ["DASK_LOGGING__DISTRIBUTED"] = "critical"
     scratch = tempfile.mkdtemp(prefix="shtaerman-dask-")  # private (0700), never a planted link
     environ[SCRATCH_ENV] = scratch  # where a worker that re-runs an unguarded script says so
