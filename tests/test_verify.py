@@ -143,6 +143,27 @@ def test_studies_run_as_dask_tasks_give_the_same_results(quick_verify, tmp_path,
     for name, study in in_process["studies"].items():
         assert on_dask["studies"][name]["checks"] == study["checks"]
     assert (out / "report.html").is_file() and not list(tmp_path.glob(".*partial*"))
+    # the Ateb figures, a task of their own on a worker there, drawn in this process here:
+    # the same captions and the same bytes
+    assert on_dask["figures"] == in_process["figures"] and len(on_dask["figures"]) == 2
+    for path in on_dask["figures"].values():
+        assert (out / path).read_bytes() == (quick_verify[1] / path).read_bytes()
+
+
+def test_the_shared_figures_are_drawn_for_the_exponents_the_entries_have(quick_verify):
+    # run_verification draws the Ateb figures of the studies' exponents as the studies run;
+    # finish_verification keeps them only if its entries (what results.json records) have the
+    # same exponents, else draws them again: they must agree for the shipped studies
+    from shtaerman.output.folder import study_exponents
+    from shtaerman.study.schema import load_study
+
+    studies = [study for path in STUDIES for study in load_study(path)]
+    entries = quick_verify[2]["studies"].values()
+    assert (
+        sorted(set(study_exponents(studies)))
+        == sorted({entry["inputs"]["exponent"] for entry in entries})
+        == [1.5, 2.0]
+    )
 
 
 @pytest.mark.parametrize("workers", ["1", "2"])
@@ -666,5 +687,7 @@ def test_in_process_runs_the_studies_on_one_blas_thread(tmp_path, monkeypatch):
 
     monkeypatch.setattr(folder, "compute_study", record)
     with threadpool_limits(limits=2, user_api="blas"):
-        folder.in_process([object()], tmp_path, True, "png", print, lambda study, entry: None)
-    assert seen == [{1}]
+        drawn = folder.in_process(
+            [object()], tmp_path, True, "png", print, lambda study, entry: None, lambda: "drawn"
+        )
+    assert seen == [{1}] and drawn == "drawn"

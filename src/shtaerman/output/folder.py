@@ -17,8 +17,9 @@ import os
 import shutil
 import sys
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn, TextIO
 
@@ -27,6 +28,7 @@ from ..problem import worded
 from ..signals import deferred
 from ..study.kinds import kind_function
 from ..study.run import run_study
+from ..theory.indenter import PowerLawIndenter
 from ..validation import InputError, NumericalFailureError
 from .export import write_histories, write_indentation
 from .files import FOLDER_MARKER, KeepStaged, json_safe, staged_folder
@@ -48,6 +50,7 @@ __all__ = [
     "kept_entries",
     "run_verification",
     "save_progress",
+    "shared_figures",
     "study_entry",
     "write_contact_study",
 ]
@@ -285,30 +288,62 @@ def study_entry(outcome: Any, stage: Path, figure_format: str = "png") -> dict[s
 
 
 def finish_verification(
-    stage: Path, entries: Mapping[str, dict], *, quick: bool, figure_format: str = "png"
+    stage: Path,
+    entries: Mapping[str, dict],
+    *,
+    quick: bool,
+    figure_format: str = "png",
+    drawn: SharedFigures | None = None,
 ) -> dict[str, object]:
-    """The figures of no study (the Ateb functions for each power-law exponent of the
-    studies; a sphere or a tabulated profile has none), results.json and both reports, from
-    the studies' entries."""
-    # not from plots.gallery: this process (on dask, the one that runs no study) draws no
-    # field, and gallery's pyvista and VTK cost it ~0.25 s CPU (benchmarks/verify_cost.py)
-    from ..plots.ateb import paper_figures
-
+    """The figures of no study (:func:`shared_figures`: unless ``drawn`` holds those of the
+    studies' exponents), results.json and both reports, from the studies' entries."""
     inputs = [entry["inputs"] for entry in entries.values() if "inputs" in entry]
     exponents = [given["exponent"] for given in inputs if given["exponent"] is not None]
-    made = paper_figures(stage, exponents, figure_format)
-    shared = {title: str(path.relative_to(stage)) for title, path in made.items()}
-    results = results_document(entries, quick=quick, figures=shared)
+    if drawn is None or drawn[0] != tuple(sorted(set(exponents))):
+        drawn = shared_figures(str(stage), exponents, figure_format)
+    results = results_document(entries, quick=quick, figures=drawn[1])
     (stage / "results.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
     write_reports(results, stage)
     return results
 
 
+SharedFigures = tuple[tuple[float, ...], dict[str, str]]
+"""The figures of no study: the exponents they are drawn for (sorted, once each), and caption
+-> path relative to the result folder."""
+
+
+def shared_figures(stage: str, exponents: Iterable[float], figure_format: str) -> SharedFigures:
+    """The figures of no study (the Ateb functions for each power-law exponent; a sphere or a
+    tabulated profile has none), drawn into ``stage``: a task of its own, which a worker done
+    with its studies draws while another finishes (:func:`run_verification`)."""
+    # not from plots.gallery: this process (on dask, the one that runs no study) draws no
+    # field, and gallery's pyvista and VTK cost it ~0.25 s CPU (benchmarks/verify_cost.py)
+    from ..plots.ateb import paper_figures
+
+    made = paper_figures(stage, exponents, figure_format)
+    relative = {title: str(path.relative_to(stage)) for title, path in made.items()}
+    return tuple(sorted(set(exponents))), relative
+
+
+def study_exponents(studies: list[Any]) -> list[float]:
+    """The power-law exponents of ``studies``' strikers (a profile of another kind has none)."""
+    return [
+        study.indenter.exponent
+        for study in studies
+        if isinstance(getattr(study, "indenter", None), PowerLawIndenter)
+    ]
+
+
 Finished = Callable[[Any, dict], None]
 """Told each study with its results.json entry as soon as its files are written."""
-Executor = Callable[[list[Any], Path, bool, str, Callable[[str], None], Finished], None]
-"""Runs ``(todo, stage, quick, figure_format, progress, finished)``: computes each study of
-``todo``, writes its files into ``stage`` (:func:`compute_study`) and calls ``finished``."""
+Executor = Callable[
+    [list[Any], Path, bool, str, Callable[[str], None], Finished, Callable[[], SharedFigures]],
+    SharedFigures,
+]
+"""Runs ``(todo, stage, quick, figure_format, progress, finished, shared)``: computes each
+study of ``todo``, writes its files into ``stage`` (:func:`compute_study`) and calls
+``finished``; runs ``shared`` (a picklable task, :func:`shared_figures`) and returns what it
+drew."""
 
 
 def compute_study(
@@ -348,7 +383,8 @@ def in_process(
     figure_format: str,
     progress: Callable[[str], None],
     finished: Finished,
-) -> None:
+    shared: Callable[[], SharedFigures],
+) -> SharedFigures:
     """The :data:`Executor` that runs the studies one after another in this process, on one
     BLAS thread as a dask task runs them (:func:`shtaerman.sweep.verify.verify_task`), so that
     ``--workers 1`` prints the default run's numbers."""
@@ -357,6 +393,7 @@ def in_process(
     with threadpool_limits(limits=1, user_api="blas"):
         for study in todo:
             finished(study, compute_study(study, stage, quick, figure_format, progress))
+    return shared()
 
 
 def run_verification(
@@ -405,11 +442,13 @@ def run_verification(
 
         try:
             todo = [study for study in studies if study.name not in entries]
+            drawn, exponents = None, study_exponents(studies)
             if todo:
-                executor(todo, stage, quick, figure_format, bar, finished)
+                shared = partial(shared_figures, str(stage), exponents, figure_format)
+                drawn = executor(todo, stage, quick, figure_format, bar, finished, shared)
             in_file_order = {study.name: entries[study.name] for study in studies}
             results = finish_verification(
-                stage, in_file_order, quick=quick, figure_format=figure_format
+                stage, in_file_order, quick=quick, figure_format=figure_format, drawn=drawn
             )
         except BaseException as error:
             keep_finished(stage, studies, entries, error, quick=quick)

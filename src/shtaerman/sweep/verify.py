@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..guards import ValidityWarning
-from ..output.folder import Executor, Finished, compute_study, run_verification
+from ..output.folder import Executor, Finished, SharedFigures, compute_study, run_verification
 from ..study.run import say_warnings
 from ..validation import InputError, NumericalFailureError
 from .engine import dask_client, worker_count
@@ -71,7 +71,8 @@ def on_dask(workers: int | None = None) -> Executor:
         figure_format: str,
         progress: Callable[[str], None],
         finished: Finished,
-    ) -> None:
+        shared: Callable[[], SharedFigures],
+    ) -> SharedFigures:
         from distributed import as_completed
 
         kinds = {getattr(study, "kind", "contact") for study in todo}
@@ -85,6 +86,8 @@ def on_dask(workers: int | None = None) -> Executor:
                 )
                 for study in submission_order(todo)
             }
+            # last in the queue: the first worker done with its studies draws them
+            drawing = client.submit(shared, pure=False)
             for future in as_completed(futures):
                 entry = future.result()
                 if FAILURE in entry:
@@ -93,6 +96,7 @@ def on_dask(workers: int | None = None) -> Executor:
                     raise FAILURES[kind](message)
                 say_warnings(futures[future], entry["warnings"])
                 finished(futures[future], entry)
+            return drawing.result()
 
     return execute
 
