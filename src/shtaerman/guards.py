@@ -15,8 +15,10 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   with the depth the stretch crossed it, wherever the route's steps fall.
 
 Refused before any work instead: an FE impact whose depth lies beyond the model's reach
-(:func:`check_reach`), a sphere pressed past its equator (:func:`check_equator`), and a linear
-FE impact with inertia whose striker is too fast for the body's waves (:func:`check_wave_speed`).
+(:func:`check_reach`; a contact curve whose depths an impact sets, on every route:
+:func:`check_profile_reach`), a sphere pressed past its equator (:func:`check_equator`), and a
+linear FE impact with inertia whose striker is too fast for the body's waves
+(:func:`check_wave_speed`).
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
@@ -45,6 +47,7 @@ __all__ = [
     "LockingWatch",
     "ValidityWarning",
     "check_equator",
+    "check_profile_reach",
     "check_reach",
     "check_wave_speed",
     "depth_ratio",
@@ -278,6 +281,61 @@ def check_reach(
             f"{fastest:.3g} m/s with this striker, mass and body, or mass=...{note}",
             "velocity",
         )
+
+
+def check_profile_reach(
+    indenter: Indenter,
+    modulus: float,
+    depths: tuple[float, ...] | None,
+    impact: tuple[float, float],
+    overshoot: float = 1.0,
+    finite: bool = False,
+) -> None:
+    """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
+    m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
+    Pa) beyond what its FE profile is: a sphere's radius (:func:`check_equator`) or a table's
+    last row; a power law's depths set by the impact, outside the x/a an FE impact is run at
+    (:func:`check_reach`; ``finite``: the finite-strain contact's). The one check of every
+    contact curve's route: the API, a contact or finite-strain study or sweep case.
+
+    Raises
+    ------
+    InputError
+        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
+        power law the mass and velocity, or the shape coefficient.
+    """
+    from .theory.impact import QuasiStaticValidityWarning
+    from .theory.viscoelastic import elastic_impact
+    from .validation import InputError
+
+    if indenter.kind == "power-law":
+        if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
+            with warnings.catch_warnings():  # the run warns of it; a refusal is one line
+                warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+                law = contact_law(indenter, modulus)
+                deepest = overshoot * elastic_impact(*impact, law).x_c
+            q = 1.0 + 1.0 / indenter.exponent
+            check_reach(indenter, deepest, impact, q, finite, ", or give depths=...")
+        return
+    law = contact_law(indenter, modulus)
+    if depths is not None:
+        deepest, parameter = depths[-1], "depths"
+        drive = f"depth {deepest:.6g} m"
+    else:
+        parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
+        deepest = overshoot * elastic_impact(*impact, law).x_c  # a table's names profile
+        drive = (
+            f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
+            f"({overshoot:g} x_c, the deepest depth)"
+        )
+    note = f" ({overshoot:g} x_c, the deepest depth)"
+    check_equator(indenter, deepest, None if depths is not None else impact, note)
+    try:
+        law.contact_radius(deepest)  # a table's contact within its last row
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
+        raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
 
 
 def check_wave_speed(

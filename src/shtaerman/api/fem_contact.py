@@ -322,7 +322,7 @@ def _check_depths(
     too large a contact zone (naming mass and velocity where the impact set them), forces
     outside the floating-point range, beyond a table's last radius, or a ladder whose
     coarsest level ``mesh`` / ``refine`` cannot hold them."""
-    from ..study.contact.loader import check_profile_reach
+    from ..guards import check_profile_reach
     from ..theory.materials import effective_modulus
 
     indenter, body = problem.striker.indenter, problem.body.material

@@ -265,7 +265,7 @@ def _contact_inputs(p: dict[str, Any]):
     paper's impact's x_c) within its FE profile, as `shtaerman contact` and a contact study
     refuse it at load."""
     from ..fem.solver import check_backend
-    from ..study.contact.loader import check_profile_reach
+    from ..guards import check_profile_reach
     from ..theory.materials import RIGID, effective_modulus
 
     indenter, half_space, depths, mesh = _curve_inputs(p)

@@ -22,11 +22,12 @@ import msgspec
 from ... import vocabulary
 from ...fem.mesh import FINITE_MESH, HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import RubberModel
+from ...guards import check_profile_reach
 from ...problem import MODELS, RUBBER_SHAPES, Body, Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
-from ..contact.loader import PROFILE_KEYS, check_profile_reach
+from ..contact.loader import PROFILE_KEYS
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     MeshTable,
@@ -347,7 +348,7 @@ def finite_study(**values: Any) -> FiniteStudy:
     """The finite-strain study of ``values`` (:class:`FiniteStudy`'s fields; a sweep case's
     name, no description, source "sweep" by default), as every finite-strain study, a study
     file's (:func:`load_finite`) or a sweep case's, is checked: its profile's reach to its
-    depths or ``reach`` x_c (:func:`~shtaerman.study.contact.loader.check_profile_reach`).
+    depths or ``reach`` x_c (:func:`~shtaerman.guards.check_profile_reach`).
 
     Raises
     ------
