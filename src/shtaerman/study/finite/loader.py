@@ -348,7 +348,8 @@ def finite_study(**values: Any) -> FiniteStudy:
     """The finite-strain study of ``values`` (:class:`FiniteStudy`'s fields; a sweep case's
     name, no description, source "sweep" by default), as every finite-strain study, a study
     file's (:func:`load_finite`) or a sweep case's, is checked: its profile's reach to its
-    depths or ``reach`` x_c (:func:`~shtaerman.guards.check_profile_reach`).
+    depths or ``reach`` x_c (:func:`~shtaerman.guards.check_profile_reach`), the finite-strain
+    contact's (a study presses a rubber), as the API checks it.
 
     Raises
     ------
@@ -358,7 +359,8 @@ def finite_study(**values: Any) -> FiniteStudy:
     defaults = {"name": "case", "description": "", "source": Path("sweep")}
     study = FiniteStudy(**{**defaults, **values})
     modulus, impact = effective_modulus(RIGID, study.half_space), (study.mass, study.velocity)
-    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
+    reach = study.ladder.reach
+    check_profile_reach(study.indenter, modulus, study.depths, impact, reach, finite=True)
     return study
 
 
