@@ -48,3 +48,40 @@ def test_a_finite_strain_study_far_out_of_reach_names_the_finite_strain_limit(tm
     said = str(caught.value)
     assert "beyond the 1.2 up to which the finite-strain contact converges" in said, said
     assert "the 100 " not in said, said
+
+
+def _refusal(capsys, *argv):
+    """The one line of a refused command (exit 2), without its 'shtaerman: error: '."""
+    from shtaerman.cli import main
+
+    assert main([str(arg) for arg in argv]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1, err
+    return err.removeprefix("shtaerman: error: ").rstrip("\n")
+
+
+def test_depths_are_offered_instead_of_the_impact_in_each_routes_words(capsys, tmp_path):
+    """'..., or --mass, or give --depths' was read as 'as well', and `--velocity 1e30 --depths
+    ...` is then refused 'give either --depths or --mass and --velocity': the remedy says
+    'instead'. A finite-strain study file has no depths (its impact sets them), nor a layer
+    sweep case: they are offered none."""
+    import pytest
+
+    from shtaerman.study.schema import StudyError, load_study
+    from shtaerman.sweep.spec import SweepError, parse_sweep
+
+    said = _refusal(capsys, "contact", "--mass", "1e30", "--no-estimate")
+    assert said.endswith(", or --mass, or, instead of --mass and --velocity, give --depths"), said
+    contact = _study(tmp_path, "hertz.toml", ("mass =", "mass = 1e30"))
+    with pytest.raises(StudyError) as caught:
+        load_study(contact)
+    instead = "or, instead of [impact] mass and [impact] velocity, give [contact] depths"
+    assert str(caught.value).endswith(instead), caught.value
+    finite = _study(tmp_path, "finite_strain.toml", ("mass =", "mass = 1e30"))
+    with pytest.raises(StudyError) as caught:
+        load_study(finite)
+    assert str(caught.value).endswith("with this striker, mass and body, or [impact] mass")
+    layer = """name = "l"\nkind = "layer"\n[parameters]\nthickness_ratio = 1.0\n[axes]\n"""
+    with pytest.raises(SweepError) as caught:
+        parse_sweep(layer + "mass = [1e30]\n")
+    assert str(caught.value).endswith("with this striker, mass and body, or mass"), caught.value

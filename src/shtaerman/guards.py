@@ -37,6 +37,7 @@ from .theory.sneddon import Indenter, contact_law
 from .validation import caller_stacklevel
 
 __all__ = [
+    "DEPTHS_INSTEAD",
     "LINEAR_REACH",
     "LOCKED",
     "MAX_DEPTH_RATIO",
@@ -69,6 +70,10 @@ mu / (1 - (I1bar - 3) / Jm) is a thousand times mu. A run's first state there wa
 (:class:`LockingWatch`), and a failed load step from a state there is the rubber locking, not a
 step too long (:func:`shtaerman.fem.rubber.gent_locks`; benchmarks/FEM_NOTES.md, "Gent
 locking")."""
+DEPTHS_INSTEAD = ", or, instead of mass=... and velocity=..., give depths=..."
+"""The end of a reach refusal of a contact curve whose route takes depths: they replace the
+impact that set the default ones ("or give depths" was read as "as well", and depths given
+with a mass and velocity are refused)."""
 LINEAR_REACH = 100.0
 """Largest x/a a linear FE impact is run at: a depth of a hundred contact radii is no
 model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular matrix)."""
@@ -290,13 +295,15 @@ def check_profile_reach(
     impact: tuple[float, float],
     overshoot: float = 1.0,
     finite: bool = False,
+    note: str = DEPTHS_INSTEAD,
 ) -> None:
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
     Pa) beyond what its FE profile is: a sphere's radius (:func:`check_equator`) or a table's
     last row; a power law's depths set by the impact, outside the x/a an FE impact is run at
-    (:func:`check_reach`; ``finite``: the finite-strain contact's). The one check of every
-    contact curve's route: the API, a contact or finite-strain study or sweep case.
+    (:func:`check_reach`; ``finite``: the finite-strain contact's; ``note`` ends its refusal:
+    the route's other remedy, "" where it takes no depths). The one check of every contact
+    curve's route: the API, a contact or finite-strain study or sweep case.
 
     Raises
     ------
@@ -315,7 +322,7 @@ def check_profile_reach(
                 law = contact_law(indenter, modulus)
                 deepest = overshoot * elastic_impact(*impact, law).x_c
             q = 1.0 + 1.0 / indenter.exponent
-            check_reach(indenter, deepest, impact, q, finite, ", or give depths=...")
+            check_reach(indenter, deepest, impact, q, finite, note)
         return
     law = contact_law(indenter, modulus)
     if depths is not None:

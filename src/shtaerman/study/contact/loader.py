@@ -20,7 +20,7 @@ from typing import Annotated, Any, Literal
 import msgspec
 
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
-from ...guards import check_profile_reach
+from ...guards import DEPTHS_INSTEAD, check_profile_reach
 from ...problem import Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
@@ -361,11 +361,13 @@ SWEPT_PROFILES = {
 """A swept key of the striker's profile -> the [indenter] it varies."""
 
 
-def contact_study(**values: Any) -> Study:
+def contact_study(*, takes_depths: bool = True, **values: Any) -> Study:
     """The contact study of ``values`` (:class:`Study`'s fields; a sweep case's name, no
     description, source "sweep" by default), as every contact study, a study file's
     (:func:`load_contact`) or a sweep case's, is checked and resolved: its profile's reach
-    (:func:`check_profile_reach`), then its layer (:func:`on_layer`).
+    (:func:`check_profile_reach`, its refusal offering depths where the route
+    ``takes_depths``: a study file does, a layer sweep does not), then its layer
+    (:func:`on_layer`).
 
     Raises
     ------
@@ -375,7 +377,8 @@ def contact_study(**values: Any) -> Study:
     study = Study(**{"name": "case", "description": "", "source": Path("sweep"), **values})
     modulus = effective_modulus(study.striker, study.half_space)
     impact = (study.mass, study.velocity)
-    check_profile_reach(study.indenter, modulus, study.depths, impact, DEPTH_OVERSHOOT)
+    note = DEPTHS_INSTEAD if takes_depths else ""
+    check_profile_reach(study.indenter, modulus, study.depths, impact, DEPTH_OVERSHOOT, note=note)
     return on_layer(study)
 
 

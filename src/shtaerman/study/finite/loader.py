@@ -22,7 +22,7 @@ import msgspec
 from ... import vocabulary
 from ...fem.mesh import FINITE_MESH, HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import RubberModel
-from ...guards import check_profile_reach
+from ...guards import DEPTHS_INSTEAD, check_profile_reach
 from ...problem import MODELS, RUBBER_SHAPES, Body, Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
@@ -344,12 +344,13 @@ def _expanded(path: Path, study: FiniteStudy, raw: _FiniteFile) -> list[FiniteSt
     return swept(study, raw.sweep, change, SWEEPABLE)
 
 
-def finite_study(**values: Any) -> FiniteStudy:
+def finite_study(*, takes_depths: bool = True, **values: Any) -> FiniteStudy:
     """The finite-strain study of ``values`` (:class:`FiniteStudy`'s fields; a sweep case's
     name, no description, source "sweep" by default), as every finite-strain study, a study
     file's (:func:`load_finite`) or a sweep case's, is checked: its profile's reach to its
     depths or ``reach`` x_c (:func:`~shtaerman.guards.check_profile_reach`), the finite-strain
-    contact's (a study presses a rubber), as the API checks it.
+    contact's (a study presses a rubber), as the API checks it; its refusal offers depths
+    where the route ``takes_depths`` (a sweep does, a study file does not).
 
     Raises
     ------
@@ -360,7 +361,8 @@ def finite_study(**values: Any) -> FiniteStudy:
     study = FiniteStudy(**{**defaults, **values})
     modulus, impact = effective_modulus(RIGID, study.half_space), (study.mass, study.velocity)
     reach = study.ladder.reach
-    check_profile_reach(study.indenter, modulus, study.depths, impact, reach, finite=True)
+    note = DEPTHS_INSTEAD if takes_depths else ""
+    check_profile_reach(study.indenter, modulus, study.depths, impact, reach, True, note)
     return study
 
 
@@ -376,4 +378,8 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
     raw = decode(path, data, _FiniteFile, "finite-strain")
     studies = built(path, lambda: _expanded(path, _build(path, raw), raw))
     checked = [vars(study) for study in studies]  # the deepest depth: reach x_c
-    return validated(path, built(path, lambda: [finite_study(**s) for s in checked], PROFILE_KEYS))
+
+    def each() -> list[FiniteStudy]:  # a study file has no depths: its impact sets them
+        return [finite_study(takes_depths=False, **s) for s in checked]
+
+    return validated(path, built(path, each, PROFILE_KEYS))
