@@ -85,3 +85,11 @@ def test_depths_are_offered_instead_of_the_impact_in_each_routes_words(capsys, t
     with pytest.raises(SweepError) as caught:
         parse_sweep(layer + "mass = [1e30]\n")
     assert str(caught.value).endswith("with this striker, mass and body, or mass"), caught.value
+
+
+def test_the_reach_refusal_says_its_depths_in_metres(capsys):
+    """'to about 1.73e+12 mm' and then '4.13e-07 m/s': one unit, SI metres, as the options and
+    the rest of the refusals (the equator's, the low side's) are."""
+    said = _refusal(capsys, "contact", "--mass", "1e30", "--no-estimate")
+    assert "drive the striker to about 1.73e+09 m, depth / contact radius 5.19e+03" in said, said
+    assert " mm" not in said, said

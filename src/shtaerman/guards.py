@@ -281,7 +281,7 @@ def check_reach(
         deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / n))
         fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
         raise InputError(
-            f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
+            f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
             f"{fastest:.3g} m/s with this striker, mass and body, or mass=...{note}",
             "velocity",
