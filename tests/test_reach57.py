@@ -93,3 +93,30 @@ def test_the_reach_refusal_says_its_depths_in_metres(capsys):
     said = _refusal(capsys, "contact", "--mass", "1e30", "--no-estimate")
     assert "drive the striker to about 1.73e+09 m, depth / contact radius 5.19e+03" in said, said
     assert " mm" not in said, said
+
+
+def test_a_too_slow_striker_is_told_the_velocity_and_mass_that_pass(capsys):
+    """`contact --velocity 1e-300` blamed four options (the exact impact's P_c underflows, 'give
+    these a value of a physical size'), and below x/a 1e-6 the refusal said 'raise mass=... or
+    velocity=...' with no value: it names the velocity that passes (and the mass, where it is a
+    float), each rounded up, and each passes when tried."""
+    import re
+
+    import pytest
+
+    from shtaerman.guards import check_profile_reach
+    from shtaerman.theory.indenter import PowerLawIndenter
+    from shtaerman.validation import InputError
+
+    paper, modulus = PowerLawIndenter(5.0, 1.5), 7.5e6 / (1 - 0.5**2)  # the CLI's E*
+    said = _refusal(capsys, "contact", "--velocity", "1e-300", "--no-estimate")
+    assert said.startswith("--mass, --velocity: 0.7 kg at 1e-300 m/s drive the striker"), said
+    assert "--E2" not in said and "--shape-coefficient" not in said, said
+    velocity = float(re.search(r"raise --velocity to at least about (\S+) m/s", said)[1])
+    assert "--mass to" not in said, said  # 1e+153 kg x 1e200: no float
+    check_profile_reach(paper, modulus, None, (0.7, velocity))  # passes
+    with pytest.raises(InputError, match="below the 1e-06"):  # by 1 %: the bound is tight
+        check_profile_reach(paper, modulus, None, (0.7, 0.99 * velocity))
+    said = _refusal(capsys, "contact", "--velocity", "1e-100", "--no-estimate")
+    mass = float(re.search(r"or --mass to at least about (\S+) kg", said)[1])
+    check_profile_reach(paper, modulus, None, (mass, 1e-100))

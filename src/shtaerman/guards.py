@@ -28,6 +28,7 @@ they reached.
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -240,7 +241,8 @@ def check_reach(
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
     (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
-    message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)), x/a ~ x^(1-1/n)).
+    message gives the velocity that reaches the limit, below it the velocity and the mass
+    (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
     paper's striker would be within reach); ``note`` ends it (the route's other remedy). The
     one refusal of an impact's depth beyond the reach, on every route: the contact curve whose
@@ -268,24 +270,43 @@ def check_reach(
         )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     check_equator(indenter, depth, impact)
-    if not ratio >= MIN_DEPTH_RATIO:
+    if MIN_DEPTH_RATIO <= ratio <= high:  # within reach (a cone's x/a takes no remedy: n = 1)
+        return
+    n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
+    scale = math.log(min(max(ratio, MIN_DEPTH_RATIO), high) / ratio) / (1.0 - 1.0 / n)
+    if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
+        slowest = _shown(velocity, scale * (q + 1.0) / 2.0, up=True)
+        heaviest = _shown(mass, scale * (q + 1.0), up=True)
         raise InputError(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
-            "quasi-static impact (shtaerman impact) is the answer there; raise mass=... or "
-            "velocity=...",
+            "quasi-static impact (shtaerman impact) is the answer there; raise velocity=... "
+            f"to at least about {slowest} m/s with this striker, mass and body"
+            + (f", or mass=... to at least about {heaviest} kg" if heaviest else ""),
             "mass",
         )
     if not ratio <= high:
-        n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
-        deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / n))
-        fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
+        fastest = _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
         raise InputError(
             f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
-            f"{fastest:.3g} m/s with this striker, mass and body, or mass=...{note}",
+            f"{fastest} m/s with this striker, mass and body, or mass=...{note}",
             "velocity",
         )
+
+
+def _shown(value: float, log_factor: float, up: bool) -> str:
+    """``value`` times e^``log_factor`` to three digits, rounded ``up`` (else down): a bound
+    the message names that passes when tried ("" beyond the floating-point range)."""
+    log_value = math.log(value) + log_factor
+    if not -700.0 < log_value < 700.0:
+        return ""
+    value = math.exp(log_value)
+    shown = float(f"{value:.2e}")
+    if (shown < value) if up else (shown > value):
+        mantissa, exponent = f"{value:.2e}".split("e")
+        shown = float(f"{float(mantissa) + (0.01 if up else -0.01):.2f}e{exponent}")
+    return f"{shown:.3g}"
 
 
 def check_profile_reach(
@@ -311,18 +332,13 @@ def check_profile_reach(
         Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
         power law the mass and velocity, or the shape coefficient.
     """
-    from .theory.impact import QuasiStaticValidityWarning
     from .theory.viscoelastic import elastic_impact
     from .validation import InputError
 
     if indenter.kind == "power-law":
         if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
-            with warnings.catch_warnings():  # the run warns of it; a refusal is one line
-                warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-                law = contact_law(indenter, modulus)
-                deepest = overshoot * elastic_impact(*impact, law).x_c
-            q = 1.0 + 1.0 / indenter.exponent
-            check_reach(indenter, deepest, impact, q, finite, note)
+            deepest = overshoot * _approach(indenter, modulus, impact)
+            check_reach(indenter, deepest, impact, 1.0 + 1.0 / indenter.exponent, finite, note)
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
@@ -343,6 +359,23 @@ def check_profile_reach(
         text = str(error).removeprefix(f"{error.parameter}: ")
         said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
         raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
+
+
+def _approach(indenter: PowerLawIndenter, modulus: float, impact: tuple[float, float]) -> float:
+    """x_c (m) of the exact ``impact`` (mass kg, velocity m/s) on E* = ``modulus`` Pa alone,
+    in logarithms (0.7 kg at 1e-300 m/s, x_c 1.5e-240 m, was refused for its P_c = 0, naming
+    four inputs); beyond the floating-point range, the exact impact's refusal."""
+    from .theory.impact import QuasiStaticValidityWarning, log_approach
+    from .theory.viscoelastic import elastic_impact
+
+    law, (mass, velocity) = contact_law(indenter, modulus), impact
+    if mass > 0 and velocity > 0:
+        log_x_c = log_approach(mass, velocity, law.beta, law.force_exponent)
+        if abs(log_x_c) < 700.0:  # a normal float
+            return math.exp(log_x_c)
+    with warnings.catch_warnings():  # the run warns of it; a refusal is one line
+        warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+        return elastic_impact(mass, velocity, law).x_c
 
 
 def check_wave_speed(
