@@ -120,3 +120,23 @@ def test_a_too_slow_striker_is_told_the_velocity_and_mass_that_pass(capsys):
     said = _refusal(capsys, "contact", "--velocity", "1e-100", "--no-estimate")
     mass = float(re.search(r"or --mass to at least about (\S+) kg", said)[1])
     check_profile_reach(paper, modulus, None, (mass, 1e-100))
+
+
+def test_on_a_layer_the_reach_refusal_names_a_velocity_the_layer_takes(capsys):
+    """`contact --mass 1e30 --thickness 0.02` named 4.13e-7 m/s (x/a 100 on the half-space),
+    which the thickness range then refused (the layer must lie within 0.01 to 1000 refined
+    radii: [3.33, 3.32e5] m at those depths). The velocity named now keeps the depths within
+    what the 0.02 m layer's mesh resolves: it runs (coarse mesh), 1 % faster is refused."""
+    import re
+
+    said = _refusal(capsys, "contact", "--mass", "1e30", "--thickness", "0.02", "--no-estimate")
+    assert "mass and body on this 0.02 m layer (the depths its mesh resolves)" in said, said
+    velocity = float(re.search(r"lower --velocity to at most about (\S+) m/s", said)[1])
+    run = ["contact", "--mass", "1e30", "--thickness", "0.02", "--no-estimate"]
+    run += ["--mesh-size", "0.3", "--json"]
+    from shtaerman.cli import main
+
+    assert main([*run, "--velocity", str(velocity)]) == 0  # with the strain warnings: x > H
+    capsys.readouterr()
+    faster = _refusal(capsys, *run, "--velocity", str(1.01 * velocity))
+    assert faster.startswith("--thickness: must lie in [0.0201, "), faster

@@ -237,6 +237,7 @@ def check_reach(
     q: float,
     finite: bool,
     note: str = "",
+    layer: tuple[float, float, float] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
@@ -244,10 +245,11 @@ def check_reach(
     message gives the velocity that reaches the limit, below it the velocity and the mass
     (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
-    paper's striker would be within reach); ``note`` ends it (the route's other remedy). The
-    one refusal of an impact's depth beyond the reach, on every route: the contact curve whose
-    depths an impact's x_c sets (:func:`shtaerman.fem.contact.finite.check_finite_depths`)
-    says it in these words too."""
+    paper's striker would be within reach); ``note`` ends it (the route's other remedy);
+    ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
+    which bound the remedy too (None: the half-space). The one refusal of an impact's depth
+    beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
+    (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
     from .validation import InputError
     from .vocabulary import entry
 
@@ -274,6 +276,7 @@ def check_reach(
         return
     n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
     scale = math.log(min(max(ratio, MIN_DEPTH_RATIO), high) / ratio) / (1.0 - 1.0 / n)
+    scale, on = _layer_bound(depth, scale, layer)
     if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
         slowest = _shown(velocity, scale * (q + 1.0) / 2.0, up=True)
         heaviest = _shown(mass, scale * (q + 1.0), up=True)
@@ -281,7 +284,7 @@ def check_reach(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
             "quasi-static impact (shtaerman impact) is the answer there; raise velocity=... "
-            f"to at least about {slowest} m/s with this striker, mass and body"
+            f"to at least about {slowest} m/s with this striker, mass and body{on}"
             + (f", or mass=... to at least about {heaviest} kg" if heaviest else ""),
             "mass",
         )
@@ -290,9 +293,25 @@ def check_reach(
         raise InputError(
             f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
-            f"{fastest} m/s with this striker, mass and body, or mass=...{note}",
+            f"{fastest} m/s with this striker, mass and body{on}, or mass=...{note}",
             "velocity",
         )
+
+
+def _layer_bound(
+    depth: float, scale: float, layer: tuple[float, float, float] | None
+) -> tuple[float, str]:
+    """``scale`` (ln of the depth a remedy aims at over ``depth``, m) moved within the depths
+    ``layer`` = (a layer's thickness, the shallowest and the deepest depth its mesh resolves,
+    all m; a velocity beyond them was refused by the thickness range in turn), and the words
+    that say so ("" where they do not bind, or on the half-space, None)."""
+    if layer is None:
+        return scale, ""
+    thickness, shallowest, deepest = layer
+    bound = min(max(scale, math.log(shallowest / depth)), math.log(deepest / depth))
+    if bound == scale:
+        return scale, ""
+    return bound, f" on this {thickness:.6g} m layer (the depths its mesh resolves)"
 
 
 def _shown(value: float, log_factor: float, up: bool) -> str:
@@ -317,14 +336,16 @@ def check_profile_reach(
     overshoot: float = 1.0,
     finite: bool = False,
     note: str = DEPTHS_INSTEAD,
+    layer: tuple[float, float, float] | None = None,
 ) -> None:
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
     Pa) beyond what its FE profile is: a sphere's radius (:func:`check_equator`) or a table's
     last row; a power law's depths set by the impact, outside the x/a an FE impact is run at
     (:func:`check_reach`; ``finite``: the finite-strain contact's; ``note`` ends its refusal:
-    the route's other remedy, "" where it takes no depths). The one check of every contact
-    curve's route: the API, a contact or finite-strain study or sweep case.
+    the route's other remedy, "" where it takes no depths; ``layer``: a layer's thickness and
+    the depths, m, its mesh resolves, which its remedy keeps within). The one check of every
+    contact curve's route: the API, a contact or finite-strain study or sweep case.
 
     Raises
     ------
@@ -338,7 +359,8 @@ def check_profile_reach(
     if indenter.kind == "power-law":
         if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
             deepest = overshoot * _approach(indenter, modulus, impact)
-            check_reach(indenter, deepest, impact, 1.0 + 1.0 / indenter.exponent, finite, note)
+            q = 1.0 + 1.0 / indenter.exponent
+            check_reach(indenter, deepest, impact, q, finite, note, layer)
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
@@ -363,7 +385,7 @@ def check_profile_reach(
 
 def _approach(indenter: PowerLawIndenter, modulus: float, impact: tuple[float, float]) -> float:
     """x_c (m) of the exact ``impact`` (mass kg, velocity m/s) on E* = ``modulus`` Pa alone,
-    in logarithms (0.7 kg at 1e-300 m/s, x_c 1.5e-240 m, was refused for its P_c = 0, naming
+    in logarithms (0.7 kg at 1e-300 m/s, x_c 3.7e-228 m, was refused for its P_c = 0, naming
     four inputs); beyond the floating-point range, the exact impact's refusal."""
     from .theory.impact import QuasiStaticValidityWarning, log_approach
     from .theory.viscoelastic import elastic_impact

@@ -53,7 +53,7 @@ from ..schema import (
     swept,
     validated,
 )
-from .layer import LayerSpec, check_thickness
+from .layer import LayerSpec, check_thickness, layer_depths
 
 __all__ = [
     "QUICK_MESH",
@@ -378,7 +378,11 @@ def contact_study(*, takes_depths: bool = True, **values: Any) -> Study:
     modulus = effective_modulus(study.striker, study.half_space)
     impact = (study.mass, study.velocity)
     note = DEPTHS_INSTEAD if takes_depths else ""
-    check_profile_reach(study.indenter, modulus, study.depths, impact, DEPTH_OVERSHOOT, note=note)
+    absolute = study.layer is not None and study.layer.thickness is not None  # not H / a_c
+    meshes = (study.mesh, study.quick_mesh)
+    layer = layer_depths(study.layer.geometry, study.indenter, *meshes) if absolute else None
+    reach = (DEPTH_OVERSHOOT, False, note, layer)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, *reach)
     return on_layer(study)
 
 

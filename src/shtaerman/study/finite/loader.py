@@ -27,6 +27,7 @@ from ...problem import MODELS, RUBBER_SHAPES, Body, Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
+from ..contact.layer import layer_depths
 from ..contact.loader import PROFILE_KEYS
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
@@ -362,7 +363,8 @@ def finite_study(*, takes_depths: bool = True, **values: Any) -> FiniteStudy:
     modulus, impact = effective_modulus(RIGID, study.half_space), (study.mass, study.velocity)
     reach = study.ladder.reach
     note = DEPTHS_INSTEAD if takes_depths else ""
-    check_profile_reach(study.indenter, modulus, study.depths, impact, reach, True, note)
+    layer = layer_depths(study.geometry, study.indenter, study.mesh, study.quick_mesh)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, reach, True, note, layer)
     return study
 
 
