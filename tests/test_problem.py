@@ -123,10 +123,12 @@ def test_the_cli_refuses_in_one_line_naming_the_options(capsys, argv, words):
 
 def test_default_depths_beyond_the_finite_reach_name_the_impact_not_the_depths(capsys):
     """Issue 31, item 9: no --depths was given, so the message must not ask to lower them
-    (giving them is a remedy: the impact's refusal, words51, ends 'or give --depths')."""
+    (giving them is a remedy: the impact's refusal, words51, ends 'or, instead of --mass and
+    --velocity, give --depths')."""
     argv = ["contact", "--model", "neo-hookean", "--velocity", "11"]
     err = _one_line_error(capsys, argv, "--mass, --velocity: 0.7 kg at 11 m/s drive the")
-    assert "lower the deepest" not in err and err.rstrip().endswith("or give --depths")
+    assert "lower the deepest" not in err
+    assert err.rstrip().endswith("or, instead of --mass and --velocity, give --depths")
 
 
 def test_a_problem_runs_as_its_keywords_do():

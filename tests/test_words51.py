@@ -32,7 +32,7 @@ def test_the_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsys, strike
     dynamic = _refusal(capsys, ["dynamic", *RUBBER, *striker])
     contact = _refusal(capsys, ["contact", *RUBBER, *striker, "--no-estimate"])
     assert dynamic.startswith(head), dynamic
-    assert contact == dynamic + ", or give --depths"
+    assert contact == dynamic + ", or, instead of --mass and --velocity, give --depths"
 
 
 def test_the_reach_refusal_names_keywords_in_the_api():

@@ -15,8 +15,10 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   with the depth the stretch crossed it, wherever the route's steps fall.
 
 Refused before any work instead: an FE impact whose depth lies beyond the model's reach
-(:func:`check_reach`), a sphere pressed past its equator (:func:`check_equator`), and a linear
-FE impact with inertia whose striker is too fast for the body's waves (:func:`check_wave_speed`).
+(:func:`check_reach`; a contact curve whose depths an impact sets, on every route:
+:func:`check_profile_reach`), a sphere pressed past its equator (:func:`check_equator`), and a
+linear FE impact with inertia whose striker is too fast for the body's waves
+(:func:`check_wave_speed`).
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
@@ -26,6 +28,7 @@ they reached.
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -35,6 +38,7 @@ from .theory.sneddon import Indenter, contact_law
 from .validation import caller_stacklevel
 
 __all__ = [
+    "DEPTHS_INSTEAD",
     "LINEAR_REACH",
     "LOCKED",
     "MAX_DEPTH_RATIO",
@@ -45,6 +49,7 @@ __all__ = [
     "LockingWatch",
     "ValidityWarning",
     "check_equator",
+    "check_profile_reach",
     "check_reach",
     "check_wave_speed",
     "depth_ratio",
@@ -66,6 +71,10 @@ mu / (1 - (I1bar - 3) / Jm) is a thousand times mu. A run's first state there wa
 (:class:`LockingWatch`), and a failed load step from a state there is the rubber locking, not a
 step too long (:func:`shtaerman.fem.rubber.gent_locks`; benchmarks/FEM_NOTES.md, "Gent
 locking")."""
+DEPTHS_INSTEAD = ", or, instead of mass=... and velocity=..., give depths=..."
+"""The end of a reach refusal of a contact curve whose route takes depths: they replace the
+impact that set the default ones ("or give depths" was read as "as well", and depths given
+with a mass and velocity are refused)."""
 LINEAR_REACH = 100.0
 """Largest x/a a linear FE impact is run at: a depth of a hundred contact radii is no
 model's, and beyond it the mesh's scales overflow (mass 1e300 gave a singular matrix)."""
@@ -228,16 +237,19 @@ def check_reach(
     q: float,
     finite: bool,
     note: str = "",
+    layer: tuple[float, float, float] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
     (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
-    message gives the velocity that reaches the limit (depth ~ v^(2/(q+1)), x/a ~ x^(1-1/n)).
+    message gives the velocity that reaches the limit, below it the velocity and the mass
+    (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
-    paper's striker would be within reach); ``note`` ends it (the route's other remedy). The
-    one refusal of an impact's depth beyond the reach, on every route: the contact curve whose
-    depths an impact's x_c sets (:func:`shtaerman.fem.contact.finite.check_finite_depths`)
-    says it in these words too."""
+    paper's striker would be within reach); ``note`` ends it (the route's other remedy);
+    ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
+    which bound the remedy too (None: the half-space). The one refusal of an impact's depth
+    beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
+    (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
     from .validation import InputError
     from .vocabulary import entry
 
@@ -260,24 +272,132 @@ def check_reach(
         )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     check_equator(indenter, depth, impact)
-    if not ratio >= MIN_DEPTH_RATIO:
+    if MIN_DEPTH_RATIO <= ratio <= high:  # within reach (a cone's x/a takes no remedy: n = 1)
+        return
+    n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
+    scale = math.log(min(max(ratio, MIN_DEPTH_RATIO), high) / ratio) / (1.0 - 1.0 / n)
+    scale, on = _layer_bound(depth, scale, layer)
+    if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
+        slowest = _shown(velocity, scale * (q + 1.0) / 2.0, up=True)
+        heaviest = _shown(mass, scale * (q + 1.0), up=True)
         raise InputError(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
-            "quasi-static impact (shtaerman impact) is the answer there; raise mass=... or "
-            "velocity=...",
+            "quasi-static impact (shtaerman impact) is the answer there; raise velocity=... "
+            f"to at least about {slowest} m/s with this striker, mass and body{on}"
+            + (f", or mass=... to at least about {heaviest} kg" if heaviest else ""),
             "mass",
         )
     if not ratio <= high:
-        n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
-        deepest = depth * (high / ratio) ** (1.0 / (1.0 - 1.0 / n))
-        fastest = velocity * (deepest / depth) ** ((q + 1.0) / 2.0)
+        fastest = _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
         raise InputError(
-            f"{drive} to about {depth * 1e3:.3g} mm, depth / contact radius {ratio:.3g}, "
+            f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
-            f"{fastest:.3g} m/s with this striker, mass and body, or mass=...{note}",
+            f"{fastest} m/s with this striker, mass and body{on}, or mass=...{note}",
             "velocity",
         )
+
+
+def _layer_bound(
+    depth: float, scale: float, layer: tuple[float, float, float] | None
+) -> tuple[float, str]:
+    """``scale`` (ln of the depth a remedy aims at over ``depth``, m) moved within the depths
+    ``layer`` = (a layer's thickness, the shallowest and the deepest depth its mesh resolves,
+    all m; a velocity beyond them was refused by the thickness range in turn), and the words
+    that say so ("" where they do not bind, or on the half-space, None)."""
+    if layer is None:
+        return scale, ""
+    thickness, shallowest, deepest = layer
+    bound = min(max(scale, math.log(shallowest / depth)), math.log(deepest / depth))
+    if bound == scale:
+        return scale, ""
+    return bound, f" on this {thickness:.6g} m layer (the depths its mesh resolves)"
+
+
+def _shown(value: float, log_factor: float, up: bool) -> str:
+    """``value`` times e^``log_factor`` to three digits, rounded ``up`` (else down): a bound
+    the message names that passes when tried ("" beyond the floating-point range)."""
+    log_value = math.log(value) + log_factor
+    if not -700.0 < log_value < 700.0:
+        return ""
+    value = math.exp(log_value)
+    shown = float(f"{value:.2e}")
+    if (shown < value) if up else (shown > value):
+        mantissa, exponent = f"{value:.2e}".split("e")
+        shown = float(f"{float(mantissa) + (0.01 if up else -0.01):.2f}e{exponent}")
+    return f"{shown:.3g}"
+
+
+def check_profile_reach(
+    indenter: Indenter,
+    modulus: float,
+    depths: tuple[float, ...] | None,
+    impact: tuple[float, float],
+    overshoot: float = 1.0,
+    finite: bool = False,
+    note: str = DEPTHS_INSTEAD,
+    layer: tuple[float, float, float] | None = None,
+) -> None:
+    """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
+    m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
+    Pa) beyond what its FE profile is: a sphere's radius (:func:`check_equator`) or a table's
+    last row; a power law's depths set by the impact, outside the x/a an FE impact is run at
+    (:func:`check_reach`; ``finite``: the finite-strain contact's; ``note`` ends its refusal:
+    the route's other remedy, "" where it takes no depths; ``layer``: a layer's thickness and
+    the depths, m, its mesh resolves, which its remedy keeps within). The one check of every
+    contact curve's route: the API, a contact or finite-strain study or sweep case.
+
+    Raises
+    ------
+    InputError
+        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
+        power law the mass and velocity, or the shape coefficient.
+    """
+    from .theory.viscoelastic import elastic_impact
+    from .validation import InputError
+
+    if indenter.kind == "power-law":
+        if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
+            deepest = overshoot * _approach(indenter, modulus, impact)
+            q = 1.0 + 1.0 / indenter.exponent
+            check_reach(indenter, deepest, impact, q, finite, note, layer)
+        return
+    law = contact_law(indenter, modulus)
+    if depths is not None:
+        deepest, parameter = depths[-1], "depths"
+        drive = f"depth {deepest:.6g} m"
+    else:
+        parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
+        deepest = overshoot * elastic_impact(*impact, law).x_c  # a table's names profile
+        drive = (
+            f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
+            f"({overshoot:g} x_c, the deepest depth)"
+        )
+    note = f" ({overshoot:g} x_c, the deepest depth)"
+    check_equator(indenter, deepest, None if depths is not None else impact, note)
+    try:
+        law.contact_radius(deepest)  # a table's contact within its last row
+    except InputError as error:
+        text = str(error).removeprefix(f"{error.parameter}: ")
+        said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
+        raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
+
+
+def _approach(indenter: PowerLawIndenter, modulus: float, impact: tuple[float, float]) -> float:
+    """x_c (m) of the exact ``impact`` (mass kg, velocity m/s) on E* = ``modulus`` Pa alone,
+    in logarithms (0.7 kg at 1e-300 m/s, x_c 3.7e-228 m, was refused for its P_c = 0, naming
+    four inputs); beyond the floating-point range, the exact impact's refusal."""
+    from .theory.impact import QuasiStaticValidityWarning, log_approach
+    from .theory.viscoelastic import elastic_impact
+
+    law, (mass, velocity) = contact_law(indenter, modulus), impact
+    if mass > 0 and velocity > 0:
+        log_x_c = log_approach(mass, velocity, law.beta, law.force_exponent)
+        if abs(log_x_c) < 700.0:  # a normal float
+            return math.exp(log_x_c)
+    with warnings.catch_warnings():  # the run warns of it; a refusal is one line
+        warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+        return elastic_impact(mass, velocity, law).x_c
 
 
 def check_wave_speed(

@@ -315,21 +315,30 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
     check_finite_depths(problem.striker.indenter, depths, problem.body.model, impact)
 
 
-def _check_depths(
-    problem: Problem, depths: np.ndarray, mesh: Any, refine: float, estimate: bool
-) -> None:
-    """Refuse, before any work, depths the FEM cannot take: beyond the finite-strain reach,
-    too large a contact zone (naming mass and velocity where the impact set them), forces
-    outside the floating-point range, beyond a table's last radius, or a ladder whose
-    coarsest level ``mesh`` / ``refine`` cannot hold them."""
-    from ..study.contact.loader import check_profile_reach
+def _check_reach(problem: Problem, mesh: MeshSettings) -> None:
+    """Refuse, before any work (the default depths too: 1e-300 m/s was refused for its
+    impact's P_c = 0, naming four inputs), depths beyond the FE model's reach (the finite-strain
+    contact's in its words), a sphere's equator or a table's last radius (naming mass and
+    velocity where the impact sets them; on a layer, a remedy that ``mesh`` resolves)."""
+    from ..guards import check_profile_reach
+    from ..study.contact.layer import layer_depths
     from ..theory.materials import effective_modulus
 
     indenter, body = problem.striker.indenter, problem.body.material
-    given = tuple(depths) if problem.loading.depths is not None else None
+    given = problem.loading.depths
     modulus = effective_modulus(problem.striker.material, body)  # a sphere, a table: their end
-    finite = problem.body.finite  # its reach refused here, in the finite contact's words
-    check_profile_reach(indenter, modulus, given, _impact(problem), overshoot=1.0, finite=finite)
+    layer = layer_depths(problem.geometry, indenter, mesh)
+    impact, finite = _impact(problem), problem.body.finite
+    check_profile_reach(indenter, modulus, given, impact, finite=finite, layer=layer)
+
+
+def _check_depths(
+    problem: Problem, depths: np.ndarray, mesh: Any, refine: float, estimate: bool
+) -> None:
+    """Refuse, before any work, depths the FEM cannot take: beyond the finite-strain reach
+    (its first ones), too large a contact zone, forces outside the floating-point range, or a
+    ladder whose coarsest level ``mesh`` / ``refine`` cannot hold them."""
+    indenter, body = problem.striker.indenter, problem.body.material
     if problem.body.finite:
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
@@ -376,6 +385,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     max_time = entry("max_time").default if options["max_time"] is None else options["max_time"]
     max_time = validate_positive("max_time", max_time, "s")
     check_backend(options["solver"])
+    _check_reach(problem, mesh)
     with warnings.catch_warnings(record=True) as said:  # said after the checks: a refusal
         warnings.simplefilter("always")  # is the one line
         striker = problem.striker

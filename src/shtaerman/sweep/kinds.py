@@ -265,14 +265,15 @@ def _contact_inputs(p: dict[str, Any]):
     paper's impact's x_c) within its FE profile, as `shtaerman contact` and a contact study
     refuse it at load."""
     from ..fem.solver import check_backend
-    from ..study.contact.loader import check_profile_reach
+    from ..guards import check_profile_reach
     from ..theory.materials import RIGID, effective_modulus
 
     indenter, half_space, depths, mesh = _curve_inputs(p)
     problem = _curve_problem(p, indenter, half_space)
     impact = (vocabulary.entry("mass").default, vocabulary.entry("velocity").default)
     modulus = effective_modulus(RIGID, half_space)  # default_depths' striker
-    check_profile_reach(indenter, modulus, depths, impact, overshoot=1.0)
+    # the default depths are the paper's impact's (a contact case has no mass or velocity)
+    check_profile_reach(indenter, modulus, depths, impact, note=", or give depths=...")
     physics = {"friction": problem.interface.coefficient, "geometry": problem.geometry}
     if problem.body.prony is not None:
         physics |= {"prony": problem.body.prony, "rate": problem.loading.rate}
@@ -620,6 +621,7 @@ def _layer_study(p: dict[str, Any]):
     mesh, _ = _mesh(p)
     layer = LayerSpec(p["thickness"], p["thickness_ratio"], p["base"], p["dynamic"], p["density2"])
     return contact_study(
+        takes_depths=False,  # a layer case's depths are its impact's
         indenter=_indenter(p),
         striker=_material(p, "E1", "nu1"),
         half_space=_material(p, "E2", "nu2"),

@@ -38,6 +38,7 @@ __all__ = [
     "QuasiStaticValidityWarning",
     "duration_integral",
     "history_times",
+    "log_approach",
     "representable",
     "solve_impact",
 ]
@@ -228,6 +229,14 @@ def representable(
     return value
 
 
+def log_approach(mass: float, velocity: float, beta: float, q: float) -> float:
+    """ln x_c of the impact M x'' = -beta x^q (mass kg, velocity m/s, beta N/m^q, all > 0),
+    x_c = ((q + 1) M v0^2 / (2 beta))^(1/(q + 1)) in m, in logarithms: M v0^2 alone under-
+    or overflows for extreme but representable inputs."""
+    log_x = math.log(q + 1.0) + math.log(mass) + 2.0 * math.log(velocity) - math.log(2.0 * beta)
+    return log_x / (q + 1.0)
+
+
 def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     """Maxima and durations of the impact M x'' = -beta x^q, exact (closed form).
 
@@ -249,10 +258,7 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     velocity = validate_positive("velocity", velocity, "m/s")
     check_velocity(velocity)
     beta, q = validate_positive("beta", law.beta), law.force_exponent
-    # in logarithms: M v0^2 alone under- or overflows for extreme but representable inputs
-    log_x_c = (
-        math.log(q + 1.0) + math.log(mass) + 2.0 * math.log(velocity) - math.log(2.0 * beta)
-    ) / (q + 1.0)
+    log_x_c = log_approach(mass, velocity, beta, q)
     x_c = representable("x_c", _exp(log_x_c), mass, velocity)
     P_c = representable("P_c", _exp(math.log(beta) + q * log_x_c), mass, velocity)
     t_c = representable(

@@ -61,7 +61,14 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
 
-from ...guards import MAX_DEPTH_RATIO, MIN_DEPTH_RATIO, LockingWatch, check_reach, depth_ratio
+from ...guards import (
+    DEPTHS_INSTEAD,
+    MAX_DEPTH_RATIO,
+    MIN_DEPTH_RATIO,
+    LockingWatch,
+    check_reach,
+    depth_ratio,
+)
 from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
@@ -1033,7 +1040,7 @@ def check_finite_depths(
     valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
     if impact is not None and not MIN_DEPTH_RATIO <= high <= MAX_DEPTH_RATIO:  # its words
         q = contact_law(indenter, 1.0).force_exponent
-        check_reach(indenter, deep, impact, q, finite=True, note=", or give depths=...")
+        check_reach(indenter, deep, impact, q, finite=True, note=DEPTHS_INSTEAD)
     if low < MIN_DEPTH_RATIO:
         reason = (
             f"{small:g} m gives depth / contact radius {low:.2g}, below the {model} model's "
@@ -1054,7 +1061,7 @@ def _refuse_depths(reason: str, remedy: str, impact: tuple[float, float] | None)
         raise InputError(f"depths: {reason}; {remedy}", "depths")
     raise InputError(
         f"mass, velocity: the depths reach the x_c of {impact[0]:g} kg at {impact[1]:g} m/s, "
-        f"and {reason}; change mass=... or velocity=..., or give depths=...",
+        f"and {reason}; change mass=... or velocity=...{DEPTHS_INSTEAD}",
         "velocity",
     )
 

@@ -24,7 +24,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...fem.dynamic_contact import DynamicSettings
-from ...fem.mesh import Geometry, MeshSettings, check_thickness_range
+from ...fem.mesh import MAX_THICKNESS, MIN_THICKNESS, Geometry, MeshSettings, check_thickness_range
+from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ..checks import Check
@@ -39,6 +40,7 @@ __all__ = [
     "LayerSpec",
     "check_thickness",
     "layer_checks",
+    "layer_depths",
     "layer_findings",
 ]
 
@@ -106,6 +108,23 @@ def check_thickness(
     profile: :func:`.indentation.refined_radius`)."""
     refined = refined_radius(indenter, np.array([deepest]), mesh, layer)
     check_thickness_range(layer.thickness, refined, "at this study's depths")
+
+
+def layer_depths(
+    layer: Geometry, indenter: Indenter, *meshes: MeshSettings
+) -> tuple[float, float, float] | None:
+    """The thickness of ``layer`` and the shallowest and deepest depths of a power-law
+    ``indenter`` at which each of ``meshes`` resolves it (all m): its thickness within
+    MIN_THICKNESS .. MAX_THICKNESS refined radii (:func:`check_thickness`); None on the
+    half-space or for another profile (whose reach is not refused:
+    :func:`shtaerman.guards.check_profile_reach`)."""
+    if layer.thickness is None or not isinstance(indenter, PowerLawIndenter):
+        return None
+    radius = layer.thickness / layer.zone_factor(indenter.exponent)  # refined radius * margin
+    margins = [mesh.margin for mesh in meshes]
+    shallowest = indenter.profile(radius / (MAX_THICKNESS * min(margins)))
+    deepest = indenter.profile(radius / (MIN_THICKNESS * max(margins)))
+    return layer.thickness, float(shallowest), float(deepest)
 
 
 @dataclass(frozen=True)

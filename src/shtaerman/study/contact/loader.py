@@ -13,7 +13,6 @@ value.
 from __future__ import annotations
 
 import itertools
-import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -21,9 +20,8 @@ from typing import Annotated, Any, Literal
 import msgspec
 
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
-from ...guards import check_equator, check_reach
+from ...guards import DEPTHS_INSTEAD, check_profile_reach
 from ...problem import Interface, Problem
-from ...theory.impact import QuasiStaticValidityWarning
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
 from ...theory.sneddon import Indenter, contact_law
@@ -55,13 +53,12 @@ from ..schema import (
     swept,
     validated,
 )
-from .layer import LayerSpec, check_thickness
+from .layer import LayerSpec, check_thickness, layer_depths
 
 __all__ = [
     "QUICK_MESH",
     "Study",
     "Tolerances",
-    "check_profile_reach",
     "contact_study",
     "load_contact",
     "on_layer",
@@ -364,62 +361,13 @@ SWEPT_PROFILES = {
 """A swept key of the striker's profile -> the [indenter] it varies."""
 
 
-def check_profile_reach(
-    indenter: Indenter,
-    modulus: float,
-    depths: tuple[float, ...] | None,
-    impact: tuple[float, float],
-    overshoot: float = DEPTH_OVERSHOOT,
-    finite: bool = False,
-) -> None:
-    """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
-    m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
-    Pa) beyond what its FE profile is: a sphere's radius (:func:`shtaerman.guards.
-    check_equator`) or a table's last row; a power law's depths set by the impact, outside
-    the x/a an FE impact is run at (:func:`shtaerman.guards.check_reach`; ``finite``: the
-    finite-strain contact's).
-
-    Raises
-    ------
-    InputError
-        Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
-        power law the mass and velocity, or the shape coefficient.
-    """
-    if indenter.kind == "power-law":
-        if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
-            with warnings.catch_warnings():  # the run warns of it; a refusal is one line
-                warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-                law = contact_law(indenter, modulus)
-                deepest = overshoot * elastic_impact(*impact, law).x_c
-            q = 1.0 + 1.0 / indenter.exponent
-            check_reach(indenter, deepest, impact, q, finite, ", or give depths=...")
-        return
-    law = contact_law(indenter, modulus)
-    if depths is not None:
-        deepest, parameter = depths[-1], "depths"
-        drive = f"depth {deepest:.6g} m"
-    else:
-        parameter = "sphere_radius" if indenter.kind == "sphere" else "profile"
-        deepest = overshoot * elastic_impact(*impact, law).x_c  # a table's names profile
-        drive = (
-            f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about {deepest:.3g} m "
-            f"({overshoot:g} x_c, the deepest depth)"
-        )
-    note = f" ({overshoot:g} x_c, the deepest depth)"
-    check_equator(indenter, deepest, None if depths is not None else impact, note)
-    try:
-        law.contact_radius(deepest)  # a table's contact within its last row
-    except InputError as error:
-        text = str(error).removeprefix(f"{error.parameter}: ")
-        said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
-        raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
-
-
-def contact_study(**values: Any) -> Study:
+def contact_study(*, takes_depths: bool = True, **values: Any) -> Study:
     """The contact study of ``values`` (:class:`Study`'s fields; a sweep case's name, no
     description, source "sweep" by default), as every contact study, a study file's
     (:func:`load_contact`) or a sweep case's, is checked and resolved: its profile's reach
-    (:func:`check_profile_reach`), then its layer (:func:`on_layer`).
+    (:func:`check_profile_reach`, its refusal offering depths where the route
+    ``takes_depths``: a study file does, a layer sweep does not), then its layer
+    (:func:`on_layer`).
 
     Raises
     ------
@@ -428,7 +376,13 @@ def contact_study(**values: Any) -> Study:
     """
     study = Study(**{"name": "case", "description": "", "source": Path("sweep"), **values})
     modulus = effective_modulus(study.striker, study.half_space)
-    check_profile_reach(study.indenter, modulus, study.depths, (study.mass, study.velocity))
+    impact = (study.mass, study.velocity)
+    note = DEPTHS_INSTEAD if takes_depths else ""
+    absolute = study.layer is not None and study.layer.thickness is not None  # not H / a_c
+    meshes = (study.mesh, study.quick_mesh)
+    layer = layer_depths(study.layer.geometry, study.indenter, *meshes) if absolute else None
+    reach = (DEPTH_OVERSHOOT, False, note, layer)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, *reach)
     return on_layer(study)
 
 

@@ -22,11 +22,13 @@ import msgspec
 from ... import vocabulary
 from ...fem.mesh import FINITE_MESH, HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import RubberModel
+from ...guards import DEPTHS_INSTEAD, check_profile_reach
 from ...problem import MODELS, RUBBER_SHAPES, Body, Interface, Problem
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter
 from ...validation import InputError
-from ..contact.loader import PROFILE_KEYS, check_profile_reach
+from ..contact.layer import layer_depths
+from ..contact.loader import PROFILE_KEYS
 from ..ladder import check_ladder, nested_ladder
 from ..schema import (
     MeshTable,
@@ -343,11 +345,13 @@ def _expanded(path: Path, study: FiniteStudy, raw: _FiniteFile) -> list[FiniteSt
     return swept(study, raw.sweep, change, SWEEPABLE)
 
 
-def finite_study(**values: Any) -> FiniteStudy:
+def finite_study(*, takes_depths: bool = True, **values: Any) -> FiniteStudy:
     """The finite-strain study of ``values`` (:class:`FiniteStudy`'s fields; a sweep case's
     name, no description, source "sweep" by default), as every finite-strain study, a study
     file's (:func:`load_finite`) or a sweep case's, is checked: its profile's reach to its
-    depths or ``reach`` x_c (:func:`~shtaerman.study.contact.loader.check_profile_reach`).
+    depths or ``reach`` x_c (:func:`~shtaerman.guards.check_profile_reach`), the finite-strain
+    contact's (a study presses a rubber), as the API checks it; its refusal offers depths
+    where the route ``takes_depths`` (a sweep does, a study file does not).
 
     Raises
     ------
@@ -357,7 +361,10 @@ def finite_study(**values: Any) -> FiniteStudy:
     defaults = {"name": "case", "description": "", "source": Path("sweep")}
     study = FiniteStudy(**{**defaults, **values})
     modulus, impact = effective_modulus(RIGID, study.half_space), (study.mass, study.velocity)
-    check_profile_reach(study.indenter, modulus, study.depths, impact, study.ladder.reach)
+    reach = study.ladder.reach
+    note = DEPTHS_INSTEAD if takes_depths else ""
+    layer = layer_depths(study.geometry, study.indenter, study.mesh, study.quick_mesh)
+    check_profile_reach(study.indenter, modulus, study.depths, impact, reach, True, note, layer)
     return study
 
 
@@ -373,4 +380,8 @@ def load_finite(path: Path, data: dict[str, Any]) -> list[FiniteStudy]:
     raw = decode(path, data, _FiniteFile, "finite-strain")
     studies = built(path, lambda: _expanded(path, _build(path, raw), raw))
     checked = [vars(study) for study in studies]  # the deepest depth: reach x_c
-    return validated(path, built(path, lambda: [finite_study(**s) for s in checked], PROFILE_KEYS))
+
+    def each() -> list[FiniteStudy]:  # a study file has no depths: its impact sets them
+        return [finite_study(takes_depths=False, **s) for s in checked]
+
+    return validated(path, built(path, each, PROFILE_KEYS))
