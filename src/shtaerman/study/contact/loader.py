@@ -28,7 +28,7 @@ from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profiles import SphereIndenter
 from ...theory.sneddon import Indenter, contact_law
 from ...theory.viscoelastic import elastic_impact
-from ...validation import InputError
+from ...validation import InputError, LimitError
 from ...vocabulary import entry
 from ..schema import (
     EXPECTED,
@@ -381,7 +381,7 @@ def check_profile_reach(
 
     Raises
     ------
-    InputError
+    LimitError
         Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
         power law the mass and velocity, or the shape coefficient.
     """
@@ -412,7 +412,8 @@ def check_profile_reach(
     except InputError as error:
         text = str(error).removeprefix(f"{error.parameter}: ")
         said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
-        raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
+        refusal = f"{parameter}: {'' if said else drive + ': '}{text}"
+        raise LimitError(refusal, parameter) from None  # beyond the table: its case's limit
 
 
 def contact_study(**values: Any) -> Study:
