@@ -112,6 +112,7 @@ def test_a_saved_refused_case_within_the_limits_at_load_runs_on_resume(tmp_path)
     again = run_sweep(spec, out, workers=1, resume=True, progress=False, figures=False)
     assert (again.succeeded, again.refused, again.computed) == (1, 0, 1)
     assert json.loads((out / "cases" / "0.json").read_text())["status"] == "ok"
+    assert sorted(p.name for p in (out / "cases").iterdir()) == ["0.json"]  # none kept unused
 
 
 def test_a_finite_strain_case_beyond_the_reach_is_a_refused_row():

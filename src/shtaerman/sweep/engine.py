@@ -883,12 +883,13 @@ def run_sweep(
         ready = _check_folder(spec, out, backup, resume=resume, force=force)
         saved = read_records(out, cases) if resume and is_sweep_folder(out) else None
         # a refused case is judged again at each load: recorded anew, or run if now within
+        # (its old record kept in its file until the run's replaces it)
         records = {i: r for i, r in (saved or {}).items() if r["status"] != "refused"}
         refused = refused_records(spec, cases, records)
         if saved is None:
             ready = _writing(ready, out, refused)
         else:
-            ready = _settled(ready, out, {**records, **refused})
+            ready = _settled(ready, out, {**saved, **refused})
         run = _Run(spec, out, cases, {**records, **refused}, len(records), start, len(refused))
         with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
             outcome = run.execute(
