@@ -489,6 +489,8 @@ def test_cli_runs_a_shipped_sweep_in_a_fresh_folder(tmp_path, capsys, monkeypatc
         "succeeded": 6,
         "failed": 0,
         "failed_cases": [],
+        "refused": 0,
+        "refused_cases": [],
         "estimate_missing": {},
         "warnings": {},
     }

@@ -160,10 +160,11 @@ def test_a_shape_option_applies_to_the_cases_of_its_model_when_the_model_is_swep
     ("parameters", "axes", "named"),
     [
         # the ladder to 1.1 x_c of z = 8 r^1.3 at 0.1 m/s reaches x/a = 1.5 > 1.2: it ran and
-        # failed at run time
+        # failed at run time (beside a case within, it is a refused row since session 57:
+        # tests/test_sweeprow57.py; alone, the sweep is refused)
         (
             "shape_coefficient = 8.0\nexponent = 1.3\nE2 = 3e6\nnu2 = 0.49\nmass = 0.12",
-            "velocity = [0.01, 0.1]",
+            "velocity = [0.1]",
             "velocity",
         ),
         ("depths = [1e-3, 0.05]", "E2 = [7.5e6]", "depths"),  # x/a 1.8 at 5 cm

@@ -14,11 +14,12 @@ line): the command line prints it, the API issues it, a sweep records it in the 
   tells its :class:`LockingWatch` every state it accepts, and the first at or beyond it warns
   with the depth the stretch crossed it, wherever the route's steps fall.
 
-Refused before any work instead: an FE impact whose depth lies beyond the model's reach
-(:func:`check_reach`; a contact curve whose depths an impact sets, on every route:
-:func:`check_profile_reach`), a sphere pressed past its equator (:func:`check_equator`), and a
-linear FE impact with inertia whose striker is too fast for the body's waves
-(:func:`check_wave_speed`).
+Refused before any work instead (:class:`~shtaerman.validation.LimitError`, an
+:class:`~shtaerman.validation.InputError` a sweep records as its case's "refused" row): an FE
+impact whose depth lies beyond the model's reach (:func:`check_reach`; a contact curve whose
+depths an impact sets, on every route: :func:`check_profile_reach`), a sphere pressed past
+its equator (:func:`check_equator`), and a linear FE impact with inertia whose striker is too
+fast for the body's waves (:func:`check_wave_speed`).
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
@@ -250,7 +251,7 @@ def check_reach(
     which bound the remedy too (None: the half-space). The one refusal of an impact's depth
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
     (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
-    from .validation import InputError
+    from .validation import LimitError
     from .vocabulary import entry
 
     mass, velocity = impact
@@ -261,7 +262,7 @@ def check_reach(
     reach = "the finite-strain contact converges" if finite else "an FE impact is run"
     if not MIN_DEPTH_RATIO <= ratio <= high and _striker_at_fault(indenter, depth, q, high):
         paper = entry("shape_coefficient").default
-        raise InputError(
+        raise LimitError(
             f"shape_coefficient: the striker z = {indenter.shape_coefficient:g} "
             f"r^{indenter.exponent:g} at {mass:g} kg and {velocity:g} m/s reaches depth / "
             f"contact radius {ratio:.3g}, outside the [{MIN_DEPTH_RATIO:g}, {high:g}] within "
@@ -280,7 +281,7 @@ def check_reach(
     if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
         slowest = _shown(velocity, scale * (q + 1.0) / 2.0, up=True)
         heaviest = _shown(mass, scale * (q + 1.0), up=True)
-        raise InputError(
+        raise LimitError(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
             "quasi-static impact (shtaerman impact) is the answer there; raise velocity=... "
@@ -290,7 +291,7 @@ def check_reach(
         )
     if not ratio <= high:
         fastest = _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
-        raise InputError(
+        raise LimitError(
             f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
             f"{fastest} m/s with this striker, mass and body{on}, or mass=...{note}",
@@ -349,12 +350,12 @@ def check_profile_reach(
 
     Raises
     ------
-    InputError
+    LimitError
         Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
         power law the mass and velocity, or the shape coefficient.
     """
     from .theory.viscoelastic import elastic_impact
-    from .validation import InputError
+    from .validation import InputError, LimitError
 
     if indenter.kind == "power-law":
         if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
@@ -380,7 +381,8 @@ def check_profile_reach(
     except InputError as error:
         text = str(error).removeprefix(f"{error.parameter}: ")
         said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
-        raise InputError(f"{parameter}: {'' if said else drive + ': '}{text}", parameter) from None
+        refusal = f"{parameter}: {'' if said else drive + ': '}{text}"
+        raise LimitError(refusal, parameter) from None  # beyond the table: its case's limit
 
 
 def _approach(indenter: PowerLawIndenter, modulus: float, impact: tuple[float, float]) -> float:
@@ -416,7 +418,7 @@ def check_wave_speed(
     velocity is found from q = 3/2 and checked by ``fraction_at`` (lambda at a velocity in
     m/s), which a few rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q =
     3/2 named 1.82 m/s, at lambda 0.837)."""
-    from .validation import InputError
+    from .validation import LimitError
 
     fraction = estimate.energy_fraction
     if not fraction > MAX_RADIATED_ESTIMATE:
@@ -428,7 +430,7 @@ def check_wave_speed(
     about = ""
     if force_exponent is None:
         slower, about = _passing_velocity(slower, (q + 1.0) / (3.0 * q - 3.0), fraction_at)
-    raise InputError(
+    raise LimitError(
         f"velocity, density2: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the "
         f"body's shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {fraction:.3g} of its energy as waves (first order), above "
@@ -473,7 +475,7 @@ def check_equator(
     x_c = 2 R: the contact ran onto the rim and failed at its edge). The one check of every
     route: the refusal names ``depths`` when they were given, else ``sphere_radius`` and the
     ``impact`` (mass kg, velocity m/s) that set the depth; ``note`` follows the depth."""
-    from .validation import InputError
+    from .validation import LimitError
 
     radius = getattr(indenter, "radius", None)
     if getattr(indenter, "kind", "") != "sphere" or deepest < radius:
@@ -484,7 +486,7 @@ def check_equator(
         parameter, remedy = "sphere_radius", "take a lower mass=... or velocity=..."
         drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
         drive += f"{deepest:.3g} m{note}"
-    raise InputError(
+    raise LimitError(
         f"{parameter}: {drive}, beyond the sphere's radius {radius:.6g} m (its equator, past "
         f"which the FE profile is no sphere): the deepest depth must be below the radius; "
         f"{remedy} or a larger sphere (sphere_radius=...)",

@@ -16,6 +16,7 @@ import numpy as np
 
 __all__ = [
     "InputError",
+    "LimitError",
     "NumericalFailureError",
     "bound_text",
     "caller_stacklevel",
@@ -38,6 +39,14 @@ class InputError(ValueError):
     def __init__(self, message: str, parameter: str | None = None) -> None:
         super().__init__(_abbreviated(message))
         self.parameter = parameter
+
+
+class LimitError(InputError):
+    """Valid inputs whose case lies beyond a validity limit of the model (the depth's reach
+    x/a, the striker's speed against the body's waves, a sphere's equator, a table's last
+    row): the physics of this case, not a typo. A single run refuses it as any
+    :class:`InputError` (the CLI exits 2, in the same words); a sweep records its case as
+    "refused" and runs the others (:mod:`shtaerman.sweep.spec`)."""
 
 
 SHOWN_ITEMS = 4

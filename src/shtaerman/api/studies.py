@@ -141,7 +141,8 @@ def sweep(
     Returns
     -------
     shtaerman.sweep.SweepOutcome
-        Counts of cases computed, reused, failed; ``exit_code``.
+        Counts of cases computed, reused, failed, refused (beyond a validity limit of the
+        model: recorded, not run); ``exit_code``.
     """
     from ..output.files import output_path
     from ..sweep.engine import run_sweep

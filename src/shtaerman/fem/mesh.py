@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from ..signals import deferred
-from ..validation import InputError, bound_text, validate_positive
+from ..validation import InputError, LimitError, bound_text, validate_positive
 from ..vocabulary import entry
 
 if TYPE_CHECKING:
@@ -496,11 +496,13 @@ def layer_triangles(
 
 
 def check_thickness_range(thickness: float, refined: float, where: str) -> None:
-    """InputError unless ``thickness`` (m) lies within MIN_THICKNESS to MAX_THICKNESS
-    ``refined`` radii (m); ``where`` names the case in the message ("at these depths")."""
+    """:class:`~shtaerman.validation.LimitError` unless ``thickness`` (m) lies within
+    MIN_THICKNESS to MAX_THICKNESS ``refined`` radii (m), the case's contact scale: a limit of
+    the layer model for this case, not of the input alone; ``where`` names the case in the
+    message ("at these depths")."""
     low, high = MIN_THICKNESS * refined, MAX_THICKNESS * refined
     if not low <= thickness <= high:
-        raise InputError(
+        raise LimitError(
             f"thickness: must lie in [{bound_text(low, 'low')}, "
             f"{bound_text(high, 'high')}] m {where} ({MIN_THICKNESS:g} to "
             f"{MAX_THICKNESS:g} refined radii: thinner is not resolved, thicker is the "

@@ -1,8 +1,10 @@
 """``shtaerman sweep FILE.toml|NAME [--workers N] [--scheduler ADDRESS] [--out DIR] [--resume]
 [--force]``: the subcommand, kept apart so that it plugs into any argparse tree.
 
-Exit codes: 0 every case succeeded, 1 a case failed or could not run (or the sweep was
-interrupted: 128 + the signal number), 2 bad input (one line on stderr, nothing computed).
+Exit codes: 0 every case succeeded or was refused (beyond a validity limit of the model: its
+row says why, the summary line counts it), 1 a case failed or could not run (or the sweep was
+interrupted: 128 + the signal number), 2 bad input, or every case refused (one line on stderr,
+nothing computed).
 """
 
 from __future__ import annotations
@@ -173,9 +175,10 @@ def _report(args: argparse.Namespace, spec: Any, out: Path, outcome: Any) -> Non
         done = f"none of {outcome.lost} could run" if outcome.lost else "nothing to compute"
     if outcome.reused:
         done += f", {outcome.reused} from an earlier run"
+    refused = f", {outcome.refused} refused (outside the model's validity)" * bool(outcome.refused)
     print(
         f"sweep {spec.name} ({spec.kind}): {outcome.total} cases, {outcome.succeeded} ok, "
-        f"{outcome.failed} failed ({done}) in {outcome.seconds:.1f} s"
+        f"{outcome.failed} failed{refused} ({done}) in {outcome.seconds:.1f} s"
     )
     if outcome.warned:
         print(

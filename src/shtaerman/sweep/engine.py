@@ -12,6 +12,8 @@ The result folder::
     DIR/figures/*.png       per output: curves over a 1-axis sweep, heat maps over 2 axes
 
 Nothing is lost: a case that raises is recorded with its error (one line) and the others go on;
+a case beyond a validity limit of the model (:attr:`~shtaerman.sweep.spec.SweepSpec.refused`)
+is recorded "refused" with its reason, not run;
 a worker that dies mid-case has its case rerun by dask on another worker (the scheduler
 reschedules tasks of lost workers); an interrupted sweep (SIGINT, SIGTERM) keeps every finished
 case, and ``resume=True`` computes only the cases without a valid record, matched by inputs.
@@ -158,6 +160,9 @@ class SweepOutcome:
         Cases whose computation issued warnings (listed in ``results.json``).
     figures : tuple of Path
         The figures this call drew (none over 3 or more axes, nor when not asked or failed).
+    refused : int
+        Cases recorded "refused": beyond a validity limit of the model, not run (neither
+        computed nor reused).
     """
 
     out: Path
@@ -172,11 +177,13 @@ class SweepOutcome:
     lost_reason: str | None = None
     warned: int = 0
     figures: tuple[Path, ...] = ()
+    refused: int = 0
 
     @property
     def exit_code(self) -> int:
-        """0 when every case succeeded, 1 when any failed or is missing."""
-        return 0 if self.succeeded == self.total else 1
+        """0 when every case succeeded or was refused (outside the model's validity, its
+        reason in its row), 1 when any failed or is missing."""
+        return 0 if self.succeeded + self.refused == self.total else 1
 
 
 def default_workers() -> int:
@@ -261,7 +268,8 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
     Returns
     -------
     dict
-        ``index``, ``status`` ("ok" or "failed"), ``outputs``, ``error`` (one line or None),
+        ``index``, ``status`` ("ok" or "failed"; "refused" is the client's,
+        :func:`refused_records`), ``outputs``, ``error`` (one line or None),
         ``estimate_missing`` (one line or None), ``warnings``, ``seconds`` (wall, s),
         ``cpu_seconds`` (CPU time of the thread that ran the case, s), ``worker``, ``host``,
         ``pid``.
@@ -363,7 +371,7 @@ def _load_record(path: Path) -> dict | None:
         isinstance(record, dict)
         and record.get("digest") == _digest(record)
         and isinstance(record.get("index"), int)
-        and record.get("status") in {"ok", "failed"}
+        and record.get("status") in {"ok", "failed", "refused"}
         and isinstance(record.get("inputs"), dict)
         and isinstance(record.get("outputs"), dict)
         and isinstance(record.get("seconds"), int | float)
@@ -873,11 +881,16 @@ def run_sweep(
     with folder_lock(out, "out") as lock:
         backup = lock / "replaced"
         ready = _check_folder(spec, out, backup, resume=resume, force=force)
-        records: dict[int, dict] = {}
-        if resume and is_sweep_folder(out):
-            records = read_records(out, cases)
-            ready = _settled(ready, out, dict(records))
-        run = _Run(spec, out, cases, records, len(records), start)
+        saved = read_records(out, cases) if resume and is_sweep_folder(out) else None
+        # a refused case is judged again at each load: recorded anew, or run if now within
+        # (its old record kept in its file until the run's replaces it)
+        records = {i: r for i, r in (saved or {}).items() if r["status"] != "refused"}
+        refused = refused_records(spec, cases, records)
+        if saved is None:
+            ready = _writing(ready, out, refused)
+        else:
+            ready = _settled(ready, out, {**saved, **refused})
+        run = _Run(spec, out, cases, {**records, **refused}, len(records), start, len(refused))
         with _replaced(out, backup, run.saved_new), _StopFlag() as stop:
             outcome = run.execute(
                 ready, workers, scheduler, retries, progress, figures and figure_format, stop
@@ -931,6 +944,44 @@ def _drop_replaced(out: Path) -> None:
                 )
 
 
+def refused_records(spec: SweepSpec, cases: list[Case], saved: Mapping[int, dict]) -> dict:
+    """The records of the cases ``spec`` refuses (beyond a validity limit of the model),
+    made in the client without running them: status "refused", the reason in ``error``, no
+    outputs; but for those ``saved`` holds computed (kept, as any case's saved record)."""
+    return {
+        case.index: _sealed(
+            {
+                "index": case.index,
+                "status": "refused",
+                "outputs": {},
+                "error": spec.refused[case.index],
+                "estimate_missing": None,
+                "warnings": [],
+                "seconds": 0.0,
+                "cpu_seconds": 0.0,
+                "worker": None,
+                "host": None,
+                "pid": None,
+                "inputs": case.params,
+                "axis_values": case.axis_values,
+            }
+        )
+        for case in cases
+        if case.index in spec.refused and case.index not in saved
+    }
+
+
+def _writing(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
+    """``ready``, then ``records`` (the refused cases') written in the ready folder."""
+
+    def write() -> None:
+        ready()
+        for record in records.values():
+            _write_record(out, record)
+
+    return write
+
+
 def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[], None]:
     def settle() -> None:
         (out / CASES_DIR).mkdir(exist_ok=True)
@@ -943,13 +994,14 @@ def _settled(ready: Callable[[], None], out: Path, records: dict) -> Callable[[]
 class _Run:
     """One call of :func:`run_sweep` once its folder is checked: what is saved, what is not."""
 
-    def __init__(self, spec, out, cases, records, reused, start) -> None:
+    def __init__(self, spec, out, cases, records, reused, start, fresh=0) -> None:
         self.spec, self.out, self.cases, self.records = spec, out, cases, records
         self.reused, self.start = reused, start
+        self.fresh = fresh  # records of refused cases made by this run, not computed
 
     def saved_new(self) -> bool:
-        """True once this run has saved a case."""
-        return len(self.records) > self.reused
+        """True once this run has saved a computed case."""
+        return len(self.records) > self.reused + self.fresh
 
     def execute(self, ready, workers, scheduler, retries, progress, figures, stop) -> SweepOutcome:
         """Compute the cases without a record, then write the summary if none is missing."""
@@ -960,7 +1012,8 @@ class _Run:
             if not pending:
                 ready()
             else:
-                bar = _progress(len(self.cases), self.reused, self.spec.name, progress)
+                done = self.reused + self.fresh
+                bar = _progress(len(self.cases), done, self.spec.name, progress)
 
                 def draw(client: Any, workers: int) -> list | None:
                     return self._draw(self._outcome(lost, workers), figures, client, stop)
@@ -998,8 +1051,9 @@ class _Run:
             total=len(self.cases),
             succeeded=sum(r["status"] == "ok" for r in records.values()),
             failed=sum(r["status"] == "failed" for r in records.values()),
+            refused=sum(r["status"] == "refused" for r in records.values()),
             lost=len(self.cases) - len(records),
-            computed=len(records) - self.reused,
+            computed=len(records) - self.reused - self.fresh,
             reused=self.reused,
             seconds=time.perf_counter() - self.start,
             workers=used_workers,
@@ -1178,6 +1232,8 @@ def _results(
             "succeeded": outcome.succeeded,
             "failed": outcome.failed,
             "failed_cases": [r["index"] for r in ordered if r["status"] == "failed"],
+            "refused": outcome.refused,
+            "refused_cases": [r["index"] for r in ordered if r["status"] == "refused"],
             "estimate_missing": {
                 str(r["index"]): r["estimate_missing"] for r in ordered if r.get("estimate_missing")
             },

@@ -60,6 +60,11 @@ def _output_values(cases: list[dict], name: str) -> np.ndarray:
     return np.asarray(values, dtype=float)
 
 
+def _refused(cases: list[dict]) -> np.ndarray:
+    """Which cases were refused (beyond a validity limit of the model, not run)."""
+    return np.array([case.get("status") == "refused" for case in cases], dtype=bool)
+
+
 def _categorical(results: dict, name: str, values: np.ndarray) -> tuple[list | None, np.ndarray]:
     """The names of a categorical output that its cases take (an effects sweep's
     ``dominant_<q>``: the effects of the case that dominate somewhere, not the five an effect
@@ -143,10 +148,14 @@ def _curve(results: dict, name: str, unit: str, folder: Path, figure_format: str
     if open_.any():
         ax.lines[-1].set_label("unresolved: estimated error ≥ |value|")
         ax.legend(loc="best", fontsize=8)
-    failed = ~np.isfinite(y)
-    if failed.any():
-        for position in x[failed]:
-            ax.axvline(position, color="0.6", linestyle=":", linewidth=1.0)
+    refused = _refused(results["cases"])
+    for position in x[~np.isfinite(y) & ~refused]:  # failed
+        ax.axvline(position, color="0.6", linestyle=":", linewidth=1.0)
+    for number, position in enumerate(x[refused]):
+        label = "refused: outside the model's validity" if number == 0 else "_nolegend_"
+        ax.axvline(position, color="0.6", linestyle="--", linewidth=1.0, label=label)
+    if refused.any():
+        ax.legend(loc="best", fontsize=8)
     if log:
         ax.set_xscale("log")
     if ticks is not None:
@@ -194,7 +203,8 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
         ticks = [f"{scale * v:g}" if _numeric([v]) else str(v) for v in values]
         set_ticks(range(len(values)), ticks)
         set_label(text)
-    _cell_texts(ax, masked, (grid, errors, factor), name, names)
+    refused = _refused(results["cases"]).reshape(grid.shape)
+    _cell_texts(ax, masked, (grid, errors, factor), name, names, refused)
     for i, j in zip(*np.nonzero(open_), strict=True):
         ax.add_patch(
             Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white", edgecolor="0.55", hatch="///")
@@ -207,11 +217,17 @@ def _heat_map(results: dict, name: str, unit: str, folder: Path, figure_format: 
 
 
 def _cell_texts(
-    ax: Any, masked: np.ma.MaskedArray, stored: tuple, name: str, names: list | None = None
+    ax: Any,
+    masked: np.ma.MaskedArray,
+    stored: tuple,
+    name: str,
+    names: list | None = None,
+    refused: np.ndarray | None = None,
 ) -> None:
     """Each cell's value (± its estimated error), or the name it indexes in ``names``,
-    "failed", or "unresolved" and its error; ``stored`` = (values, errors or None, factor to
-    the shown unit)."""
+    "failed", "refused" (where ``refused``: beyond a validity limit, not run), or
+    "unresolved" and its error; ``stored`` = (values, errors or None, factor to the shown
+    unit)."""
     grid, errors, factor = stored
     finite = masked.compressed()
     middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
@@ -219,6 +235,8 @@ def _cell_texts(
     hidden = np.ma.getmaskarray(masked)
     for (i, j), value in np.ndenumerate(grid):
         text = "failed" if not math.isfinite(value) else _value_text(value, name, factor)
+        if refused is not None and refused[i, j]:
+            text = "refused"
         if names and math.isfinite(value):
             text = names[int(value)]
         if errors is not None and math.isfinite(value):

@@ -12,7 +12,11 @@
 
 Cases are numbered 0, 1, ... in the order of :func:`itertools.product` over the axes as written
 (the last axis varies fastest). Every mistake raises :class:`SweepError`, one line naming the
-file, the key and what was expected.
+file, the key and what was expected. A case beyond a validity limit of the model
+(:class:`~shtaerman.validation.LimitError`: the depth's reach, the wave speed, a sphere's
+equator, a layer's thickness against the contact) is no mistake: it is kept, with its reason,
+in :attr:`SweepSpec.refused`, and the sweep records it as a "refused" row; a sweep whose every
+case is refused is refused whole.
 """
 
 from __future__ import annotations
@@ -25,12 +29,12 @@ import re
 import stat
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from ..problem import worded
-from ..validation import InputError, shown
+from ..validation import InputError, LimitError, shown
 from ..vocabulary import VOCABULARY, DeprecatedKeyWarning, deprecated, suggestion
 from .kinds import KINDS, Kind, Parameter, check_rubber_options, get_kind
 
@@ -118,6 +122,9 @@ class SweepSpec:
         The whole parsed file (compared on ``--resume``).
     text : str
         The file as written (copied into the result folder).
+    refused : dict of int to str
+        The cases beyond a validity limit of the model, by index: the one-line reason, in
+        the file's key words (they are recorded "refused", not run).
     """
 
     path: Path
@@ -128,6 +135,7 @@ class SweepSpec:
     axes: dict[str, list[Any]]
     data: dict[str, Any]
     text: str = ""
+    refused: dict[int, str] = field(default_factory=dict)
 
     @property
     def kind_spec(self) -> Kind:
@@ -236,8 +244,7 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
     if count > MAX_CASES:
         raise SweepError(f"{where}: [axes] makes {count} cases; at most {MAX_CASES} are allowed")
     spec = SweepSpec(path, name, kind.name, description, parameters, axes, data, text)
-    _check_cases(where, spec)
-    return spec
+    return replace(spec, refused=_check_cases(where, spec))
 
 
 STRIKER_KEYS = ("shape_coefficient", "exponent", "sphere_radius", "profile")
@@ -428,8 +435,10 @@ def _axis(where: str, kind: Kind, name: str, values: Any) -> list[Any]:
     return converted
 
 
-def _check_cases(where: str, spec: SweepSpec) -> None:
-    """Build every case's inputs (cheap) so a value out of its physical range fails now."""
+def _check_cases(where: str, spec: SweepSpec) -> dict[int, str]:
+    """Build every case's inputs (cheap) so a value out of its physical range fails now;
+    returns the cases beyond a validity limit (:class:`~shtaerman.validation.LimitError`) by
+    index, each with its reason, unless every case is (then the sweep is refused)."""
     check = spec.kind_spec.check
     if "model" in spec.kind_spec.parameters:
         defaults = {**spec.kind_spec.defaults(), **spec.parameters}
@@ -438,14 +447,22 @@ def _check_cases(where: str, spec: SweepSpec) -> None:
         except InputError as error:
             raise SweepError(f"{where}: {error}") from None
     if check is None:
-        return
-    for case in spec.cases():
+        return {}
+    cases, refused, first = spec.cases(), {}, ""
+    for case in cases:
         try:
             check(case.params)
         except (InputError, ValueError) as error:
             at = ", ".join(f"{k} = {v!r}" for k, v in case.axis_values.items())
             reason = worded(str(error), "file")
-            raise SweepError(f"{where}: case {case.index} ({at}): {reason}") from None
+            said = f"{where}: case {case.index} ({at}): {reason}"
+            if not isinstance(error, LimitError):
+                raise SweepError(said) from None
+            refused[case.index], first = reason, first or said
+    if len(refused) == len(cases):  # nothing to run: refused whole, as a bad input
+        every = f" (all {len(cases)} cases are outside the model's validity)"
+        raise SweepError(first + (every if len(cases) > 1 else ""))
+    return refused
 
 
 def sweeps_folder() -> Path:

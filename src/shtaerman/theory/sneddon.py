@@ -40,7 +40,7 @@ from scipy.interpolate import PPoly
 from scipy.optimize import brentq
 from scipy.special import roots_legendre, spence
 
-from ..validation import InputError, validate_positive
+from ..validation import InputError, LimitError, validate_positive
 from .contact import PowerLawContact
 from .indenter import PowerLawIndenter
 from .profiles import SphereIndenter, TabulatedIndenter
@@ -208,7 +208,7 @@ class SneddonContact:
 
         Raises
         ------
-        shtaerman.validation.InputError
+        shtaerman.validation.LimitError
             If a tabulated profile's contact would reach beyond its last radius.
         """
         x = np.asarray(depth, dtype=float)
@@ -230,7 +230,7 @@ class SneddonContact:
         top = self.max_contact_radius
         deepest = float(self.depth(top))
         if depth > deepest:
-            raise InputError(
+            raise LimitError(
                 f"profile: depth {depth:.6g} m reaches beyond the table (its last radius "
                 f"{top:.6g} m is in contact from depth {deepest:.6g} m); extend the table",
                 "profile",

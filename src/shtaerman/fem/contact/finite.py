@@ -73,7 +73,7 @@ from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
-from ...validation import InputError, validate_poisson
+from ...validation import InputError, LimitError, validate_poisson
 from ..elasticity import clamped_dofs, dof_nodes
 from ..hyperelastic import (
     HyperelasticSystem,
@@ -1031,7 +1031,7 @@ def check_finite_depths(
 
     Raises
     ------
-    shtaerman.validation.InputError
+    shtaerman.validation.LimitError
         Naming the depth, its d/a and the range.
     """
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
@@ -1058,8 +1058,8 @@ def check_finite_depths(
 def _refuse_depths(reason: str, remedy: str, impact: tuple[float, float] | None) -> None:
     """The refusal of depths out of reach, naming the depths, or the impact that set them."""
     if impact is None:
-        raise InputError(f"depths: {reason}; {remedy}", "depths")
-    raise InputError(
+        raise LimitError(f"depths: {reason}; {remedy}", "depths")
+    raise LimitError(
         f"mass, velocity: the depths reach the x_c of {impact[0]:g} kg at {impact[1]:g} m/s, "
         f"and {reason}; change mass=... or velocity=...{DEPTHS_INSTEAD}",
         "velocity",
