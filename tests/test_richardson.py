@@ -171,5 +171,3 @@ def test_envelope_keeps_a_larger_own_estimate_and_a_fallback_without_a_clean_env
     noisy = [[1.0, 1.0, 1.0], [1.001, 0.999, 1.0], [1.0, 1.002, 1.0]]  # largest 1e-3 then 2e-3
     own = richardson([level[1] for level in noisy], 2.0)
     assert envelope(own, noisy, 1, 2.0) is own and own.method == "two-level"
-    with pytest.raises(InputError, match="half_width must be >= 1"):
-        envelope(own, noisy, 1, 2.0, half_width=0)

@@ -950,7 +950,7 @@ def _value_text(item: Entry, value: Any) -> str:
         return _UNSET[item.group]
     if isinstance(value, bool):
         return str(value).lower()
-    return f"{value:.6g}" if _is_real(value) else str(value)
+    return f"{value:.6g}" if isinstance(value, int | float) else str(value)
 
 
 def _default_text(item: Entry) -> str:
@@ -969,10 +969,6 @@ def _default_text(item: Entry) -> str:
 
 
 _UNSET = {"case": "derived", "numerics": "-", "output": "-"}
-
-
-def _is_real(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def parameter_table(cli: argparse.ArgumentParser) -> str:

@@ -303,7 +303,6 @@ def envelope(
     index: int,
     ratio: float,
     *,
-    half_width: int = 1,
     order: float | None = None,
     sane: tuple[float, float] = ORDER_RANGE,
 ) -> Estimate:
@@ -318,10 +317,7 @@ def envelope(
     index : int
         The point.
     ratio, order, sane
-        As for :func:`curve_richardson` over points ``index - half_width`` to
-        ``index + half_width``.
-    half_width : int
-        Neighbours on each side (>= 1).
+        As for :func:`curve_richardson` over points ``index - 1`` to ``index + 1``.
 
     Returns
     -------
@@ -330,10 +326,7 @@ def envelope(
         neighbourhood's, or where neither is one; else method ``"envelope"`` with the
         neighbourhood's error and order, and the point's own value (not extrapolated).
     """
-    if half_width < 1:
-        raise InputError(f"half_width must be >= 1, got {half_width!r}")
-    start = max(0, index - half_width)
-    near = [np.asarray(c, dtype=float)[start : index + half_width + 1] for c in curves]
+    near = [np.asarray(c, dtype=float)[max(0, index - 1) : index + 2] for c in curves]
     widest = curve_richardson(near, ratio, order=order, sane=sane)
     if widest.method not in ESTIMATED:
         return own

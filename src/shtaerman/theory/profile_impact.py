@@ -104,7 +104,7 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     top = law.max_contact_radius
     top = math.nextafter(top, 0.0) if law.sphere else top
     square = lambda s: law.depth(s) ** 2  # noqa: E731
-    ends = _panels(law, top, law.sphere) if law.sphere else _even(top)
+    ends = _panels(law, top, law.sphere) if law.sphere else np.linspace(0.0, top, PANELS + 1)
     # halving towards the tip too: a contact far smaller than the profile (a huge sphere)
     # is then integrated on panels of its own size, not lost in a big panel's round-off
     ends = np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 100))
@@ -134,11 +134,6 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
         f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",
         "profile",
     )
-
-
-def _even(top: float) -> np.ndarray:
-    """Equal panel ends over [0, top] m."""
-    return np.linspace(0.0, top, PANELS + 1)
 
 
 @dataclass(frozen=True)

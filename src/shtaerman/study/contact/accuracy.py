@@ -244,10 +244,6 @@ class AccuracyResult:
         }
 
 
-def _curve_value(result: IndentationResult, key: str) -> float:
-    return result.fit.beta_fixed_exponent if key == "beta" else result.fit.exponent
-
-
 def _truncation(result: IndentationResult, key: str) -> float:
     """The far-boundary stiffening of ``key`` (relative) on this mesh."""
     if key not in TRUNCATION:
@@ -274,7 +270,8 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
         ladders[key] = [[getattr(step, key) for step in result.steps] for result in results]
         estimates[key] = _at_most(curve_richardson, ladders[key], ORDERS[key])
     for key in CURVE_QUANTITIES:
-        values = [_curve_value(result, key) for result in results]
+        fits = [result.fit for result in results]
+        values = [f.beta_fixed_exponent if key == "beta" else f.exponent for f in fits]
         if all(math.isfinite(v) for v in values):
             ladders[key] = values
             estimates[key] = _at_most(richardson, values, ORDERS.get(key))
