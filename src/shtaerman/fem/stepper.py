@@ -1324,7 +1324,7 @@ def _step_failure(
     if squeezed is not None:  # the elastic z = 8 r^1.3 pad: J 0.03 at the axis, x/a 1.45
         deep = ratio > MAX_DEPTH_RATIO  # else a thin pad's squeeze (x/H 0.9)
         return SqueezedTipError(
-            f"{where}{squeezed}; it had reached x/a = {ratio:.3g}"
+            f"{where}{squeezed}; it had reached x/a = {ratio:.3g} (depth {at[2]:.4g} m)"
             + (f", beyond the {MAX_DEPTH_RATIO:g} up to which it is validated" if deep else "")
             + ": a slower velocity=... or a smaller shape_coefficient=..."
             + ("" if deep else " (on a pad: a thicker thickness=...)")
