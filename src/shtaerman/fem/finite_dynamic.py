@@ -34,10 +34,14 @@ update that inverts an element (damped Newton). A step whose Newton or secant st
 separation the extrapolated start lifts the surface with the leaving striker) is cut in two
 halves of dt / 2, recursively up to :data:`.stepper.MAX_STEP_CUTS` times, each half a Bossak
 step recorded as a step of its own (the energy account is that of the smaller steps); a step
-that converges is unchanged. No absorbing layer: the far arc lies ``mesh.domain`` refined radii
-away, beyond the waves' reach during the contact; the kinetic energy beyond half its radius at
-the end is reported. The run stops when the contact force vanishes with the striker rebounding
-(separation time from P^(1/q) extrapolated between steps).
+that converges is unchanged. A step that fails in every cut from a state squeezing an element
+beside the striker's tip (J < :data:`.contact.finite.SQUEEZED_J`) raises
+:class:`.contact.finite.SqueezedTipError`, which names the element and no time steps (the
+elastic z = 8 r^1.3 pad failed so at x/a 1.4-1.6 at every step and mesh tried). No absorbing
+layer: the far arc lies ``mesh.domain`` refined radii away, beyond the waves' reach during the
+contact; the kinetic energy beyond half its radius at the end is reported. The run stops when
+the contact force vanishes with the striker rebounding (separation time from P^(1/q)
+extrapolated between steps).
 
 :func:`prepare_finite_impact` is the finite-strain body of the one driver
 (:func:`.impact.run_impact`): both bodies march in :func:`.impact_run.march_steps` and end in

@@ -76,7 +76,7 @@ from .contact.constraints import (
     edge_radius,
     in_halves,
 )
-from .contact.finite import NewtonStepper, extrapolate, squeeze_note
+from .contact.finite import NewtonStepper, SqueezedTipError, extrapolate, squeeze_note
 from .contact.finite_stick import HistoryStepper
 from .contact.linear import complementarity, recover_pressure
 from .contact.stick import CoupledCompliance, StickState, stick_slip_step
@@ -1042,6 +1042,7 @@ class _InertialSystem:
         self.alpha_m, self.beta, self.gamma = scheme.alpha_m, scheme.beta, scheme.gamma
         self.dt = scheme.dt  # halved where a step is cut
         self.cuts = 0  # the time steps cut in halves (:func:`march_inertial`)
+        self.reached: _Dynamic | None = None  # the last state a step (or a cut half) reached
         coo = mass.tocoo()
         self.mass_data = np.zeros(system.pattern.nnz)
         np.add.at(self.mass_data, system.pattern.find(coo.row, coo.col), coo.data)
@@ -1185,6 +1186,7 @@ def _cut_step(
         nonlocal iterations
         new, count = _dynamic_step(stepper, inertial, start, mass, scales)
         iterations += count
+        inertial.reached = new  # where a later cut half fails, its squeeze is read here
         return [new]
 
     return _in_halves(inertial, step, state, _separated), iterations
@@ -1265,7 +1267,9 @@ def march_inertial(
             reached = state.depth + abs(state.speed) * inertial.dt  # the depth it went for
             step = (state.depth, reached)
             locked = gent_locks(error, stepper.system, state.x, step, last=True)
-            raise (locked or _step_failure(stepper, (t, state.depth, deepest), error)) from None
+            reached = inertial.reached or state  # the halves that passed went deeper
+            at = (t, state.depth, max(deepest, reached.depth))
+            raise (locked or _step_failure(stepper, at, error, reached.x)) from None
         total, rows = total + iterations, []
         inertial.cuts += len(states) > 1
         for new in states:
@@ -1290,14 +1294,19 @@ def march_inertial(
 
 
 def _step_failure(
-    stepper: NewtonStepper, at: tuple[float, float, float], error: Exception
+    stepper: NewtonStepper,
+    at: tuple[float, float, float],
+    error: Exception,
+    x: np.ndarray | None = None,
 ) -> NumericalFailureError:
     """The failure of a step from time ``at[0]`` (s) at striker depth ``at[1]`` (m), the run
-    having reached ``at[2]`` (m): with a bonded or Coulomb indenter beyond the validated x/a
-    (:data:`.guards.MAX_DEPTH_RATIO`) that limit is named (near separation the last ring in
-    contact slides back inward down the steep flank and folds the surface: the A = 8 pad,
-    x/a 2.29), else what may help: the massless impact (density2=0) only within that x/a,
-    which it cannot pass."""
+    having reached ``at[2]`` (m), its last converged solution ``x`` (None: not read): with a
+    bonded or Coulomb indenter beyond the validated x/a (:data:`.guards.MAX_DEPTH_RATIO`) that
+    limit is named (near separation the last ring in contact slides back inward down the steep
+    flank and folds the surface: the A = 8 pad, x/a 2.29); where ``x`` squeezes an element
+    beside the tip (:func:`.contact.finite.squeeze_note`) a
+    :class:`.contact.finite.SqueezedTipError` that names it and no time steps; else what may
+    help: the massless impact (density2=0) only within that x/a, which it cannot pass."""
     where = (
         f"the step from t = {at[0]:.4g} s (striker depth {at[1]:.4g} m): {error}, also in "
         f"steps cut {MAX_STEP_CUTS} times; "
@@ -1310,6 +1319,15 @@ def _step_failure(
             "contact slides back along the steep striker as it leaves: a blunter striker "
             "(a smaller shape_coefficient=... or a slower velocity=...) or "
             "interface='frictionless' (run beyond x/a 1.2 with a warning)"
+        )
+    squeezed = None if x is None else squeeze_note(stepper.system, x, "more time_steps=...")
+    if squeezed is not None:  # the elastic z = 8 r^1.3 pad: J 0.03 at the axis, x/a 1.45
+        deep = ratio > MAX_DEPTH_RATIO  # else a thin pad's squeeze (x/H 0.9)
+        return SqueezedTipError(
+            f"{where}{squeezed}; it had reached x/a = {ratio:.3g} (depth {at[2]:.4g} m)"
+            + (f", beyond the {MAX_DEPTH_RATIO:g} up to which it is validated" if deep else "")
+            + ": a slower velocity=... or a smaller shape_coefficient=..."
+            + ("" if deep else " (on a pad: a thicker thickness=...)")
         )
     massless = (  # the massless impact stops at x/a 1.2 (guards.check_reach): not beyond it
         "density2=0 gives the massless finite-strain impact"

@@ -73,7 +73,7 @@ from ...theory.contact import PowerLawContact
 from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
-from ...validation import InputError, LimitError, validate_poisson
+from ...validation import InputError, LimitError, NumericalFailureError, validate_poisson
 from ..elasticity import clamped_dofs, dof_nodes
 from ..hyperelastic import (
     HyperelasticSystem,
@@ -581,6 +581,13 @@ def squeeze_note(system: Any, x: np.ndarray, steps: str) -> str | None:
         "elements beside the indenter's tip no longer follow the deformation, a limit that "
         f"neither a finer mesh_size=... nor {steps} move"
     )
+
+
+class SqueezedTipError(NumericalFailureError):
+    """A time step of the body with inertia failed, in every cut, from a state that squeezes
+    an element beside the striker's tip below :data:`SQUEEZED_J` (:func:`squeeze_note`): a
+    limit of the contact's elements there, which neither smaller time steps nor a retry with
+    more of them move (benchmarks/FEM_NOTES.md, "The sharp striker's pad with inertia")."""
 
 
 def check_axis_ring(lam: np.ndarray, tied: bool) -> None:

@@ -17,8 +17,13 @@ ladder with those steps (its time error is smaller than its place in the ladder 
 enlarges the last difference: the estimate stays on the safe side). If the retry fails too, the
 ladder keeps the levels that passed, reports the finest of them and marks the estimate as
 missing, with the reason (:attr:`ImpactLadder.missing`) and a warning; it fails only when no
-level passed. A finite-strain run first cuts a failing time step in halves within the run
-(:mod:`shtaerman.fem.finite_dynamic`), so its level keeps its steps and the ladder its ratio.
+level passed. A Gent rubber that locks fails the ladder at once. A finite-strain run whose
+step failed from a state squeezing the elements beside the striker's tip
+(:class:`~shtaerman.fem.contact.finite.SqueezedTipError`) is not retried (more time steps do
+not move it), and on the finest level fails the ladder at once, before the coarser levels'
+cost: the impact is what to change. A finite-strain run first cuts a failing time step in
+halves within the run (:mod:`shtaerman.fem.finite_dynamic`), so its level keeps its steps and
+the ladder its ratio.
 Whatever was retried or cut is said once, in one line (:class:`RetriedWarning`), and carried by
 the reported run (``retried``).
 
@@ -37,6 +42,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Protocol, TypeVar
 
+from ...fem.contact.finite import SqueezedTipError
 from ...fem.dynamic_contact import DynamicSettings
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact_limits import FINITE_MIN_STEPS, MAX_SIZE, MIN_STEPS
@@ -252,6 +258,8 @@ def _level(
         return settings, run(settings), ""
     except GentLockError:  # the rubber's limit, not the numerics: no retry cures it
         raise
+    except SqueezedTipError as error:  # nor the tip's (failed alike at 50, 100, 200 steps)
+        return settings, error, f"{settings.steps} steps failed ({error}); not retried"
     except FAILURES as error:
         first, failed = f"{settings.steps} steps failed ({error})", error
     try:
@@ -302,11 +310,15 @@ def run_ladder(
     ------
     NewtonError, shtaerman.validation.NumericalFailureError
         When no level passed (the finest level's last error); a Gent rubber's lock
-        (:class:`shtaerman.fem.rubber.GentLockError`) at once, without retry.
+        (:class:`shtaerman.fem.rubber.GentLockError`) at once, without retry, and so a
+        squeezed tip (:class:`shtaerman.fem.contact.finite.SqueezedTipError`) on the finest
+        level.
     """
     report = progress or (lambda _line: None)
     factors = LEVELS if estimate else LEVELS[-1:]
     runs = {1.0: _level(first or run, settings)}
+    if isinstance(runs[1.0][1], SqueezedTipError):  # the impact to change: before more cost
+        raise runs[1.0][1]
     for factor in factors[:-1]:  # the finest first: its refusals come before any other cost
         with warnings.catch_warnings():  # the reported level's validity warnings only
             if isinstance(runs[1.0][1], ImpactRun):
