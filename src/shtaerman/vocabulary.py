@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .validation import InputError, bound_text, plain_float, shown
+from .validation import InputError, bound_text, plain_float, shown, validate_positive
 
 __all__ = [
     "KIND_NAMES",
@@ -31,6 +31,7 @@ __all__ = [
     "DeprecatedKeyWarning",
     "Entry",
     "Range",
+    "checked_positive",
     "deprecated",
     "entry",
     "fields",
@@ -924,6 +925,14 @@ def entry(name: str) -> Entry:
     if name not in _BY_NAME:
         raise InputError(f"unknown input {name!r}{suggestion(name, _BY_NAME)}", name)
     return _BY_NAME[name]
+
+
+def checked_positive(name: str, value: object) -> float:
+    """The API's value of input ``name``, a positive number (``refine``, ``noise``), as a
+    float, or :class:`InputError` naming it: a non-number in
+    :func:`~shtaerman.validation.validate_positive`'s words ("not a string: got '2'"), a
+    number outside the entry's range (refine: (0, 1e6]) in the vocabulary's."""
+    return entry(name).check(validate_positive(name, value))
 
 
 def inputs_of(kind: str) -> dict[str, Entry]:

@@ -26,7 +26,7 @@ from ..problem import (
 )
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
-from ..vocabulary import entry
+from ..vocabulary import checked_positive, entry
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
@@ -367,7 +367,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             "mesh",
         )
     mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
-    refine = entry("refine").check(validate_positive("refine", options["refine"]))
+    refine = checked_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
     numerics = {"accuracy": accuracy, "refine": refine, "estimate": estimate}

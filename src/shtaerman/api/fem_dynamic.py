@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, Any
 from ..plots.formats import check_figure_format
 from ..problem import LOADING_KEYWORDS, Problem, check_keywords, check_options, check_outputs
 from ..theory.materials import Material
-from ..validation import InputError, validate_positive
-from ..vocabulary import entry, fields
+from ..validation import InputError
+from ..vocabulary import checked_positive, entry, fields
 from .dynamic_result import DIFFERENCES, DynamicResult, check_separated, warn_failed_checks
 
 if TYPE_CHECKING:
@@ -333,7 +333,7 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
-    refine = entry("refine").check(validate_positive("refine", refine))  # before the ladder
+    refine = checked_positive("refine", refine)  # before the ladder
     if problem.striker.material.youngs_modulus != math.inf:
         raise InputError(
             "striker: the FE impact's striker is rigid (its elasticity is not modelled, E1 "

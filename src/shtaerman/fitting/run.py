@@ -15,7 +15,7 @@ from ..output.files import output_folder
 from ..problem import Problem, check_outputs
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
 from ..validation import InputError, validate_positive
-from ..vocabulary import entry
+from ..vocabulary import checked_positive, entry
 from .corrections import fe_parts, needs_fe
 from .data import (
     FE_REFINE,
@@ -203,7 +203,7 @@ def fit(
     measured, rows_read = _read(kind, data, units, resample, offset, baseline)
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     _check_loss(measured, problem)
-    refine = entry("refine").check(validate_positive("refine", refine))
+    refine = checked_positive("refine", refine)
     if needs_fe(problem) and "nu2" in names and kind != "indentation":
         raise InputError(
             "unknowns: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
@@ -211,7 +211,7 @@ def fit(
             "unknowns",
         )
     if noise is not None:
-        noise = entry("noise").check(validate_positive("noise", noise))  # "not a string"
+        noise = checked_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
         try:
