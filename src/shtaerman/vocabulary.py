@@ -148,7 +148,7 @@ class Entry:
     Attributes
     ----------
     name : str
-        Study-file and sweep key, Python keyword.
+        Study-file and sweep key, Python keyword (unless ``keyword`` says otherwise).
     unit : str
         SI unit ("" for a pure number).
     meaning : str
@@ -185,6 +185,9 @@ class Entry:
     sweep_default : mapping
         Kind -> default in a sweep where it differs from the command line's, the API's and
         the study file's (:meth:`default_for`).
+    keyword : str
+        The Python API's name of it where that differs from ``name`` ("": the name):
+        density2 is the body's ``Material(density=...)``.
     """
 
     name: str
@@ -205,6 +208,7 @@ class Entry:
     setting: str = ""
     max_items: int | None = None
     sweep_default: Mapping[str, Any] = field(default_factory=dict)
+    keyword: str = ""
 
     @property
     def cli_option(self) -> str:
@@ -471,6 +475,7 @@ VOCABULARY: tuple[Entry, ...] = (
         ("dynamic", "layer"),
         valid=Range(1e-6, 1e6, low_open=False, zero=True),
         old_names=("density",),
+        keyword="density",
     ),
     Entry(
         "prony",

@@ -23,6 +23,7 @@ from ..problem import (
     Problem,
     check_options,
     check_outputs,
+    in_python_words,
 )
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
@@ -396,6 +397,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     return _Plan(indenter, body, depths, problem.body.rubber(), mesh, *rest, *physics)
 
 
+@in_python_words
 def contact(
     indenter: Indenter | Problem,
     body: Material | None = None,

@@ -10,7 +10,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..plots.formats import check_figure_format
-from ..problem import LOADING_KEYWORDS, Problem, check_keywords, check_options, check_outputs
+from ..problem import (
+    LOADING_KEYWORDS,
+    Problem,
+    check_keywords,
+    check_options,
+    check_outputs,
+    in_python_words,
+)
 from ..theory.materials import Material
 from ..validation import InputError
 from ..vocabulary import checked_positive, entry, fields
@@ -188,6 +195,7 @@ def _density(body: Material) -> float:
     return body.density
 
 
+@in_python_words
 def dynamic(
     indenter: Indenter | Problem,
     body: Material | None = None,

@@ -12,9 +12,9 @@ from numpy.typing import ArrayLike
 
 from ..guards import warn_outside_validity
 from ..output.files import output_folder
-from ..problem import Problem, check_outputs
+from ..problem import Problem, check_outputs, in_python_words
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
-from ..validation import InputError, validate_positive
+from ..validation import InputError, caller_stacklevel, validate_positive
 from ..vocabulary import checked_positive, entry
 from .corrections import fe_parts, needs_fe
 from .data import (
@@ -118,6 +118,7 @@ def _names(unknowns: Sequence[str] | str) -> list[str]:
     return names
 
 
+@in_python_words
 def fit(
     kind: str,
     data: str | Path | Mapping[str, ArrayLike],
@@ -316,7 +317,7 @@ def _check_velocities(measured: Measurement, known: Known, model: Model, sol: So
             f"velocity {fastest:.4g} m/s exceeds {QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
             "validity of the quasi-static impact theory the fit uses",
             QuasiStaticValidityWarning,
-            stacklevel=3,
+            stacklevel=caller_stacklevel(),
         )
 
 
