@@ -119,7 +119,7 @@ def test_the_effects_tables_rows_speak_options_on_the_command_line(monkeypatch, 
 
 RUBBER_STUDY = DYNAMIC_STUDY + '[rubber]\nmodel = "neo-hookean"\n'
 # the remedy of a rubber with inertia whose step fails (fem/stepper.py), in each route's words
-CURE = {"python": "density2=0 gives", "cli": "--density2 0 gives", "file": "density2 = 0 gives"}
+CURE = {"python": "density=0 gives", "cli": "--density2 0 gives", "file": "density2 = 0 gives"}
 
 
 @pytest.fixture

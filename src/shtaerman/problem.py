@@ -16,15 +16,16 @@ inertia, the quasi-static impact; ``inertia``: the impact with waves).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar, cast
 
 from .fem.mesh import Geometry
 from .theory.materials import RIGID, Material
-from .validation import InputError, validate_positive
+from .validation import InputError, NumericalFailureError, caller_stacklevel, validate_positive
 from .vocabulary import VOCABULARY, entry
 
 if TYPE_CHECKING:
@@ -48,6 +49,7 @@ __all__ = [
     "check_keywords",
     "check_options",
     "check_outputs",
+    "in_python_words",
     "parts",
     "support_table",
     "worded",
@@ -56,6 +58,7 @@ __all__ = [
 MODELS = ("linear", "neo-hookean", "mooney-rivlin", "yeoh", "gent")
 """The body's material models: linear elasticity (the default), then the rubbers at finite
 strain (:mod:`shtaerman.fem.rubber`)."""
+_Function = TypeVar("_Function", bound=Callable[..., Any])
 RUBBER_OPTIONS = ("mooney_ratio", "yeoh", "gent_limit", "volumetric")
 """The rubber models' shape options (:func:`shtaerman.fem.rubber.rubber_model`)."""
 RUBBER_SHAPES = {"mooney_ratio": "mooney-rivlin", "yeoh": "yeoh", "gent_limit": "gent"}
@@ -271,6 +274,28 @@ class Unsupported:
     reason: str
 
 
+def in_python_words(function: _Function) -> _Function:
+    """The API's entry point ``function`` with its refusal or numerical failure, raised to a
+    caller outside the package, in Python's words (:func:`worded`: ``density``, not the
+    study key ``density2``): the one place that words them for the API. The package's own
+    callers (the command line, study files, sweeps, the effect table) get the message as
+    written, for their routes word it theirs."""
+
+    @functools.wraps(function)
+    def entry_point(*args: Any, **kwargs: Any) -> Any:
+        inside = caller_stacklevel() > 2  # 2: this frame's caller is outside the package
+        try:
+            return function(*args, **kwargs)
+        except (InputError, NumericalFailureError) as error:
+            if not inside:
+                error.args = (worded(str(error), "python"), *error.args[1:])
+                if isinstance(error, InputError) and error.parameter in _KEYWORDS:
+                    error.parameter = _KEYWORDS[error.parameter]
+            raise
+
+    return cast("_Function", entry_point)
+
+
 LINEAR_BODY = ", or take model='linear'"
 """The end of a refusal that the linear body lifts, on the routes that choose the model (a
 finite-strain study or sweep, always a rubber, words its own: :mod:`shtaerman.sweep.spec`)."""
@@ -483,6 +508,7 @@ class Problem:
         )
 
     @classmethod
+    @in_python_words
     def impact(
         cls,
         indenter: Indenter,
@@ -501,6 +527,7 @@ class Problem:
         return cls.from_keywords(indenter, body, mass=mass, velocity=velocity, **parts)
 
     @classmethod
+    @in_python_words
     def curve(
         cls,
         indenter: Indenter,
@@ -515,6 +542,7 @@ class Problem:
         return cls.from_keywords(indenter, body, loading="curve", depths=depths, **parts)
 
     @classmethod
+    @in_python_words
     def from_keywords(cls, indenter: Indenter, body: Material, **keywords: Any) -> Problem:
         """A problem from the API's flat keywords (None: not given), each checked."""
         return cls(**parts(indenter, body, **keywords))
@@ -593,8 +621,8 @@ def check_options(problem: Problem, given: Mapping[str, Any] | Iterable[str]) ->
 
 
 def support_table() -> list[tuple[Cell, str]]:
-    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``),
-    for every striker profile."""
+    """Every cell of the support matrix with ``runs`` or its refusal (``parameter: reason``,
+    in the API's words as :class:`Problem` refuses it), for every striker profile."""
     from itertools import product
 
     rows = []
@@ -607,7 +635,8 @@ def support_table() -> list[tuple[Cell, str]]:
     ):
         cell = Cell(*cell)
         limit = refusal(cell)
-        rows.append((cell, "runs" if limit is None else f"{limit.parameter}: {limit.reason}"))
+        said = "runs" if limit is None else f"{limit.parameter}: {worded(limit.reason, 'python')}"
+        rows.append((cell, said))
     return rows
 
 
@@ -628,6 +657,9 @@ def check_outputs(out: Any, *, force: Any, estimate: Any, figure_format: str) ->
 
 
 _NAMES = frozenset(item.name for item in VOCABULARY)
+_KEYWORDS = {item.name: item.keyword for item in VOCABULARY if item.keyword}
+"""Input -> the API's name of it, where that differs (density2: ``Material(density=...)``)."""
+_NAMED = re.compile(rf"(?<![\w-])({'|'.join(_KEYWORDS)})(?!\w)")
 _REFERENCE = re.compile(r"(?<![^\s(])([A-Za-z]\w*)=('[^']*'|\.\.\.|[\w+-]+(?:\.\w+)*)")
 _LEADING = re.compile(r"(\w+(?:, \w+)*)(?=: )")
 
@@ -640,13 +672,14 @@ def worded(
     (``friction: ...``) and names another input ``name=value`` or, alone, ``name=...``.
     ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
     ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
-    maps an input to its ``table.key``), ``"python"`` keeps it. On the command line the
+    maps an input to its ``table.key``), ``"python"`` keeps it but for the inputs the API
+    names otherwise (``density2`` is the body's ``density``). On the command line the
     message's head becomes options only when it names the refusal's declared ``parameter``, a
     keyword of the vocabulary (``friction: ...``, ``mass, velocity: ...``, ``solver 'pardiso'
     ...``): a head that names none (a numerical failure's step, ``fit: ...``, ``level 2: ...``)
     is left as written."""
     if route == "python":
-        return message
+        return _NAMED.sub(lambda match: _KEYWORDS[match[1]], message)
 
     def spoken(match: re.Match) -> str:
         name, value = match[1], match[2]

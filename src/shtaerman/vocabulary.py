@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .validation import InputError, bound_text, plain_float, shown
+from .validation import InputError, bound_text, plain_float, shown, validate_positive
 
 __all__ = [
     "KIND_NAMES",
@@ -31,6 +31,7 @@ __all__ = [
     "DeprecatedKeyWarning",
     "Entry",
     "Range",
+    "checked_positive",
     "deprecated",
     "entry",
     "fields",
@@ -147,7 +148,7 @@ class Entry:
     Attributes
     ----------
     name : str
-        Study-file and sweep key, Python keyword.
+        Study-file and sweep key, Python keyword (unless ``keyword`` says otherwise).
     unit : str
         SI unit ("" for a pure number).
     meaning : str
@@ -184,6 +185,9 @@ class Entry:
     sweep_default : mapping
         Kind -> default in a sweep where it differs from the command line's, the API's and
         the study file's (:meth:`default_for`).
+    keyword : str
+        The Python API's name of it where that differs from ``name`` ("": the name):
+        density2 is the body's ``Material(density=...)``.
     """
 
     name: str
@@ -204,6 +208,7 @@ class Entry:
     setting: str = ""
     max_items: int | None = None
     sweep_default: Mapping[str, Any] = field(default_factory=dict)
+    keyword: str = ""
 
     @property
     def cli_option(self) -> str:
@@ -470,6 +475,7 @@ VOCABULARY: tuple[Entry, ...] = (
         ("dynamic", "layer"),
         valid=Range(1e-6, 1e6, low_open=False, zero=True),
         old_names=("density",),
+        keyword="density",
     ),
     Entry(
         "prony",
@@ -924,6 +930,14 @@ def entry(name: str) -> Entry:
     if name not in _BY_NAME:
         raise InputError(f"unknown input {name!r}{suggestion(name, _BY_NAME)}", name)
     return _BY_NAME[name]
+
+
+def checked_positive(name: str, value: object) -> float:
+    """The API's value of input ``name``, a positive number (``refine``, ``noise``), as a
+    float, or :class:`InputError` naming it: a non-number in
+    :func:`~shtaerman.validation.validate_positive`'s words ("not a string: got '2'"), a
+    number outside the entry's range (refine: (0, 1e6]) in the vocabulary's."""
+    return entry(name).check(validate_positive(name, value))
 
 
 def inputs_of(kind: str) -> dict[str, Entry]:

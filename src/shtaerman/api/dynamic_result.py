@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..fem.impact_run import SUMMARY_KEYS
 from ..output.files import json_safe
+from ..validation import caller_stacklevel
 
 if TYPE_CHECKING:
     from ..problem import Problem
@@ -280,4 +281,6 @@ def warn_failed_checks(result: DynamicResult, problem: Problem) -> None:
 
     failures = check_failures(result, problem)
     if failures:
-        warnings.warn("; ".join(failures) + UNTRUSTED, FailedCheckWarning, stacklevel=3)
+        warnings.warn(
+            "; ".join(failures) + UNTRUSTED, FailedCheckWarning, stacklevel=caller_stacklevel()
+        )

@@ -23,10 +23,11 @@ from ..problem import (
     Problem,
     check_options,
     check_outputs,
+    in_python_words,
 )
 from ..theory.materials import RIGID, Material
 from ..validation import InputError, validate_positive
-from ..vocabulary import entry
+from ..vocabulary import checked_positive, entry
 
 if TYPE_CHECKING:
     from ..fem.mesh import MeshSettings
@@ -376,7 +377,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
             "mesh",
         )
     mesh = replaced(base, {k: options[k] for k in MESH_OPTIONS})  # each named if refused
-    refine = entry("refine").check(validate_positive("refine", options["refine"]))
+    refine = checked_positive("refine", options["refine"])
     accuracy = options["accuracy"]
     tolerance = None if accuracy is None else validate_positive("accuracy", accuracy)
     numerics = {"accuracy": accuracy, "refine": refine, "estimate": estimate}
@@ -406,6 +407,7 @@ def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:
     return _Plan(indenter, body, depths, problem.body.rubber(), mesh, *rest, *physics)
 
 
+@in_python_words
 def contact(
     indenter: Indenter | Problem,
     body: Material | None = None,

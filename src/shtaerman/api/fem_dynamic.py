@@ -10,10 +10,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..plots.formats import check_figure_format
-from ..problem import LOADING_KEYWORDS, Problem, check_keywords, check_options, check_outputs
+from ..problem import (
+    LOADING_KEYWORDS,
+    Problem,
+    check_keywords,
+    check_options,
+    check_outputs,
+    in_python_words,
+)
 from ..theory.materials import Material
-from ..validation import InputError, validate_positive
-from ..vocabulary import entry, fields
+from ..validation import InputError
+from ..vocabulary import checked_positive, entry, fields
 from .dynamic_result import DIFFERENCES, DynamicResult, check_separated, warn_failed_checks
 
 if TYPE_CHECKING:
@@ -188,6 +195,7 @@ def _density(body: Material) -> float:
     return body.density
 
 
+@in_python_words
 def dynamic(
     indenter: Indenter | Problem,
     body: Material | None = None,
@@ -333,7 +341,7 @@ def check_dynamic(
     numerics.update(estimate=not estimate or None, figure_format=figure_format != "png" or None)
     check_options(problem, [name for name, value in numerics.items() if value is not None])
     _density(problem.body.material)
-    refine = entry("refine").check(validate_positive("refine", refine))  # before the ladder
+    refine = checked_positive("refine", refine)  # before the ladder
     if problem.striker.material.youngs_modulus != math.inf:
         raise InputError(
             "striker: the FE impact's striker is rigid (its elasticity is not modelled, E1 "

@@ -9,7 +9,7 @@ from numpy.typing import ArrayLike
 
 from ..guards import warn_outside_validity
 from ..output.files import json_safe
-from ..problem import check_bodies
+from ..problem import check_bodies, in_python_words
 from ..theory import impact as theory
 from ..theory.contact import PowerLawContact
 from ..theory.indenter import PowerLawIndenter
@@ -98,6 +98,7 @@ class ImpactResult:
         return json_safe(document)
 
 
+@in_python_words
 def impact(
     indenter: Indenter,
     body: Material,

@@ -212,15 +212,20 @@ def solve(model: Model, noise: float | None = None, hold: dict[str, float] | Non
     there) and the others fitted again: their intervals are those of the data's information
     alone, not of a search that wandered along an unseen direction (a weight of a relaxation
     time outside the measured times, free to reach the bound sum g_i < 1 and so to take
-    another weight with it).
+    another weight with it). When none is identifiable, each is so held and reported there,
+    with the model at those values, not where the search stopped.
     """
     fixed: dict[str, float] = dict(hold or {})
     found = _optimum(model, noise, fixed, progress)
     evaluations = found["evaluations"]
-    while 0 < np.count_nonzero(~found["identifiable"]) < len(found["params"]):
+    while np.any(~found["identifiable"]):
         rows = zip(found["params"], found["identifiable"], found["outside"], strict=True)
-        fixed.update({p.name: found["values"][p.name] if out else p.start
-                      for p, ok, out in rows if not ok})  # fmt: skip
+        held = {p.name: found["values"][p.name] if out else p.start
+                for p, ok, out in rows if not ok}  # fmt: skip
+        fixed.update(held)
+        if len(held) == len(found["params"]):  # none left to fit: the model at the held values
+            found = {**found, "values": {**found["values"], **held}}
+            break
         found = _optimum(model, noise, fixed, progress)
         evaluations += found["evaluations"]
     return _solution(model, found, fixed, evaluations)

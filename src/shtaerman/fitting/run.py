@@ -12,10 +12,10 @@ from numpy.typing import ArrayLike
 
 from ..guards import warn_outside_validity
 from ..output.files import output_folder
-from ..problem import Problem, check_outputs
+from ..problem import Problem, check_outputs, in_python_words
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
-from ..validation import InputError, validate_positive
-from ..vocabulary import entry
+from ..validation import InputError, caller_stacklevel, validate_positive
+from ..vocabulary import checked_positive, entry
 from .corrections import fe_parts, needs_fe
 from .data import (
     FE_REFINE,
@@ -118,6 +118,7 @@ def _names(unknowns: Sequence[str] | str) -> list[str]:
     return names
 
 
+@in_python_words
 def fit(
     kind: str,
     data: str | Path | Mapping[str, ArrayLike],
@@ -203,7 +204,7 @@ def fit(
     measured, rows_read = _read(kind, data, units, resample, offset, baseline)
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     _check_loss(measured, problem)
-    refine = entry("refine").check(validate_positive("refine", refine))
+    refine = checked_positive("refine", refine)
     if needs_fe(problem) and "nu2" in names and kind != "indentation":
         raise InputError(
             "unknowns: nu2 cannot be fitted with the FE corrections (on a pad and in the waves it "
@@ -211,7 +212,7 @@ def fit(
             "unknowns",
         )
     if noise is not None:
-        noise = entry("noise").check(validate_positive("noise", noise))  # "not a string"
+        noise = checked_positive("noise", noise)
     with warnings.catch_warnings():  # the search may try any velocity: warned once below
         warnings.simplefilter("ignore", QuasiStaticValidityWarning)
         try:
@@ -316,7 +317,7 @@ def _check_velocities(measured: Measurement, known: Known, model: Model, sol: So
             f"velocity {fastest:.4g} m/s exceeds {QUASI_STATIC_VELOCITY_LIMIT:g} m/s, the stated "
             "validity of the quasi-static impact theory the fit uses",
             QuasiStaticValidityWarning,
-            stacklevel=3,
+            stacklevel=caller_stacklevel(),
         )
 
 

@@ -10,7 +10,7 @@ import warnings
 from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
-from ...problem import Problem, check_options
+from ...problem import Problem, check_options, in_python_words
 from ...validation import (
     InputError,
     NumericalFailureError,
@@ -192,6 +192,7 @@ def _reference(parts: Parts) -> dict[str, float]:
     return {key: float(getattr(quasi, key)) for key in ("x_c", "P_c", "t_c", "t_y")}
 
 
+@in_python_words
 def effects(
     problem: Problem | Mapping[str, Any],
     *,
