@@ -30,9 +30,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 from scipy.special import roots_legendre
 
-from ..validation import InputError, validate_positive
+from ..validation import LimitError, validate_positive
 from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
-from .sneddon import SneddonContact
+from .sneddon import ROOT_ITERATIONS, SneddonContact
 
 __all__ = ["ProfileImpactResult", "solve_profile_impact"]
 
@@ -111,7 +111,14 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     rough = _Cumulative.of(ends, square)
     guess = top
     if float(_work(law, top, rough(top))) >= energy:
-        guess = brentq(lambda a: float(_work(law, a, rough(a))) - energy, 0.0, top, rtol=1e-6)
+        guess = brentq(
+            lambda a: float(_work(law, a, rough(a))) - energy,
+            0.0,
+            top,
+            xtol=1e-300,
+            rtol=1e-6,
+            maxiter=ROOT_ITERATIONS,
+        )
     for reach in (min(top, 1.25 * guess), top):
         squares = _Cumulative.of(_panels(law, reach, law.sphere), square)
         if float(_work(law, reach, squares(reach))) >= energy:
@@ -121,19 +128,43 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
                 reach,
                 xtol=1e-300,
                 rtol=1e-15,
+                maxiter=ROOT_ITERATIONS,
             )
+    _refuse_the_end(law, top, energy, float(_work(law, top, squares(top))), mass, velocity)
+
+
+def _refuse_the_end(
+    law: SneddonContact, top: float, energy: float, most: float, mass: float, velocity: float
+) -> None:
+    """Refuse the impact (mass kg, velocity m/s) whose energy (J) exceeds ``most`` (J), the
+    work that brings the contact to the profile's end ``top`` (m): a sphere's equator, a
+    table's last radius, a limit of the model (a sweep case's refused row), naming the
+    velocity and the mass that pass (three digits, rounded down)."""
+    log_share = math.log(most) - math.log(energy)  # M v0^2 / 2 scaled down to ``most``
+    slower, lighter = _down(velocity * math.exp(log_share / 2.0)), _down(mass * math.exp(log_share))
+    remedy = f"lower velocity=... to at most {slower} m/s" + (
+        f" or mass=... to at most {lighter} kg" if lighter else ""
+    )
     if law.sphere:
-        raise InputError(
+        raise LimitError(
             f"sphere_radius: the striker's energy {energy:.6g} J drives the contact to the "
-            f"sphere's equator (radius {top:.6g} m); take a larger sphere or a lower mass "
-            "or velocity",
+            f"sphere's equator (radius {top:.6g} m); take a larger sphere or {remedy}",
             "sphere_radius",
         )
-    raise InputError(
+    raise LimitError(
         f"profile: the striker's energy {energy:.6g} J drives the contact beyond the "
-        f"table's last radius {top:.6g} m; extend the table or lower mass or velocity",
+        f"table's last radius {top:.6g} m; extend the table or {remedy}",
         "profile",
     )
+
+
+def _down(value: float) -> str:
+    """``value`` > 0 rounded down to three digits: a bound that passes when tried ("" where
+    it underflows: 1 kg at 1e154 m/s on a 1 nm sphere, whose mass would be 1e-328 kg)."""
+    if not value > 0.0:
+        return ""
+    unit = 10.0 ** (math.floor(math.log10(value)) - 2)
+    return f"{math.floor(value / unit) * unit:.3g}"
 
 
 @dataclass(frozen=True)
@@ -258,8 +289,8 @@ def solve_profile_impact(mass: float, velocity: float, law: SneddonContact) -> P
     Raises
     ------
     shtaerman.validation.InputError
-        If an input lies outside its range, or a tabulated profile's contact would outgrow
-        the table.
+        If an input lies outside its range; a LimitError if the contact would outgrow a
+        table or reach a sphere's equator.
     """
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")

@@ -64,6 +64,10 @@ PRESSURE_NODES, PRESSURE_WEIGHTS = roots_legendre(48)
 """For p(r) and p(0) of a tabulated profile: smooth integrands, converged to ~1e-12."""
 SERIES_BELOW = 0.3
 """t = a/R below which the sphere's force is summed as a series (the closed form cancels)."""
+ROOT_ITERATIONS = 2200
+"""brentq's iterations for a contact radius from [0, the profile's end]: bisecting, a root
+2^-k below the end takes about k of them (1e-60 kg at 1 mm/s on a 1 m sphere, a_c 1e-15 R,
+took more than brentq's default 100); 2200 reach any float."""
 
 
 def legendre_chi2(t: ArrayLike) -> np.ndarray:
@@ -226,6 +230,7 @@ class SneddonContact:
                 args=(depth,),
                 xtol=1e-300,
                 rtol=1e-15,
+                maxiter=ROOT_ITERATIONS,
             )
         top = self.max_contact_radius
         deepest = float(self.depth(top))
@@ -235,7 +240,13 @@ class SneddonContact:
                 f"{top:.6g} m is in contact from depth {deepest:.6g} m); extend the table",
                 "profile",
             )
-        return brentq(lambda a: float(self.depth(a)) - depth, 0.0, top, xtol=1e-300, rtol=1e-15)
+        return brentq(
+            lambda a: float(self.depth(a)) - depth,
+            *(0.0, top),
+            xtol=1e-300,
+            rtol=1e-15,
+            maxiter=ROOT_ITERATIONS,
+        )
 
     def _sphere_gap(self, contact_radius: float, depth: float) -> float:
         """:meth:`depth` of the sphere minus ``depth``, in m, on floats: the root solve's
