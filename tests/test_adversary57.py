@@ -84,3 +84,25 @@ def test_a_contact_far_smaller_than_the_sphere_is_found_as_hertz_s(mass):
     result = solve_profile_impact(mass, 1e-3, SneddonContact(SphereIndenter(1.0), 1e7))
     hertz = (15.0 * mass * 1e-6 / (16.0 * 1e7)) ** 0.4
     assert result.x_c == pytest.approx(hertz, rel=1e-12)
+
+
+def test_a_striker_beyond_the_reach_is_told_the_mass_that_passes(capsys):
+    """Beyond the reach the refusal named the velocity that passes but 'or --mass' with no
+    value (below it, both had one): the mass it names now runs, 1 % heavier is refused."""
+    from shtaerman.guards import check_profile_reach
+    from shtaerman.theory.indenter import PowerLawIndenter
+
+    paper, modulus = PowerLawIndenter(5.0, 1.5), 7.5e6 / (1 - 0.5**2)  # the CLI's E*
+    code, said = _said(capsys, "contact", "--mass", "1e30", "--no-estimate")
+    assert code == 2 and said.count("\n") == 1 and "Traceback" not in said, said
+    found = re.search(r"or --mass to at most about (\S+) kg, or, instead of --mass", said)
+    assert found, said
+    mass = float(found[1])
+    check_profile_reach(paper, modulus, None, (mass, 3.0))  # passes
+    with pytest.raises(LimitError, match="beyond the 100"):  # by 1 %: the bound is tight
+        check_profile_reach(paper, modulus, None, (1.01 * mass, 3.0))
+    for finite in (False, True):  # the finite-strain reach, 1.2, names its own
+        with pytest.raises(LimitError) as caught:
+            check_profile_reach(paper, modulus, None, (1e30, 3.0), finite=finite)
+        mass = float(re.search(r"or mass=\.\.\. to at most about (\S+) kg", str(caught.value))[1])
+        check_profile_reach(paper, modulus, None, (mass, 3.0), finite=finite)

@@ -71,7 +71,8 @@ def test_depths_are_offered_instead_of_the_impact_in_each_routes_words(capsys, t
     from shtaerman.sweep.spec import SweepError, parse_sweep
 
     said = _refusal(capsys, "contact", "--mass", "1e30", "--no-estimate")
-    assert said.endswith(", or --mass, or, instead of --mass and --velocity, give --depths"), said
+    instead = ", or, instead of --mass and --velocity, give --depths"
+    assert said.endswith(" kg" + instead), said
     contact = _study(tmp_path, "hertz.toml", ("mass =", "mass = 1e30"))
     with pytest.raises(StudyError) as caught:
         load_study(contact)
@@ -80,11 +81,13 @@ def test_depths_are_offered_instead_of_the_impact_in_each_routes_words(capsys, t
     finite = _study(tmp_path, "finite_strain.toml", ("mass =", "mass = 1e30"))
     with pytest.raises(StudyError) as caught:
         load_study(finite)
-    assert str(caught.value).endswith("with this striker, mass and body, or [impact] mass")
+    assert str(caught.value).endswith(" kg") and "[impact] mass to at most" in str(caught.value)
+    assert "depths" not in str(caught.value).rpartition("beyond")[2], caught.value
     layer = """name = "l"\nkind = "layer"\n[parameters]\nthickness_ratio = 1.0\n[axes]\n"""
     with pytest.raises(SweepError) as caught:
         parse_sweep(layer + "mass = [1e30]\n")
-    assert str(caught.value).endswith("with this striker, mass and body, or mass"), caught.value
+    assert str(caught.value).endswith(" kg"), caught.value  # 'or mass to at most about ...'
+    assert "depths" not in str(caught.value), caught.value
 
 
 def test_the_reach_refusal_says_its_depths_in_metres(capsys):

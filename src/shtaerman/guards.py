@@ -243,7 +243,7 @@ def check_reach(
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
     (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
-    message gives the velocity that reaches the limit, below it the velocity and the mass
+    message gives the velocity and the mass that reach the limit, below it likewise
     (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
     paper's striker would be within reach); ``note`` ends it (the route's other remedy);
@@ -291,10 +291,13 @@ def check_reach(
         )
     if not ratio <= high:
         fastest = _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
+        lightest = _shown(mass, scale * (q + 1.0), up=False)
         raise LimitError(
             f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
             f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
-            f"{fastest} m/s with this striker, mass and body{on}, or mass=...{note}",
+            f"{fastest} m/s with this striker, mass and body{on}, or mass=..."
+            + (f" to at most about {lightest} kg" if lightest else "")
+            + note,
             "velocity",
         )
 
