@@ -106,3 +106,26 @@ def test_a_striker_beyond_the_reach_is_told_the_mass_that_passes(capsys):
             check_profile_reach(paper, modulus, None, (1e30, 3.0), finite=finite)
         mass = float(re.search(r"or mass=\.\.\. to at most about (\S+) kg", str(caught.value))[1])
         check_profile_reach(paper, modulus, None, (mass, 3.0), finite=finite)
+
+
+@pytest.mark.parametrize("overshoot", [1.0, 1.1])
+def test_an_fe_impact_past_the_sphere_s_equator_names_the_velocity_and_mass_that_pass(overshoot):
+    """The FE routes' equator refusal said 'take a lower mass=... or velocity=... or a larger
+    sphere': it names each value (0.118 m/s and 0.00108 kg for 0.7 kg at 3 m/s on a 1 mm
+    sphere, measured to run on the CLI), which passes; 1 % faster is refused."""
+    from shtaerman.guards import check_profile_reach
+    from shtaerman.theory.profiles import SphereIndenter
+
+    sphere, modulus = SphereIndenter(1e-3), 1e7
+    with pytest.raises(LimitError) as caught:
+        check_profile_reach(sphere, modulus, None, (0.7, 3.0), overshoot=overshoot)
+    said = str(caught.value)
+    found = re.search(
+        r"lower velocity=\.\.\. to at most (\S+) m/s or mass=\.\.\. to at most (\S+) kg", said
+    )
+    assert found and said.startswith("sphere_radius: "), said
+    velocity, mass = float(found[1]), float(found[2])
+    check_profile_reach(sphere, modulus, None, (0.7, velocity), overshoot=overshoot)
+    check_profile_reach(sphere, modulus, None, (mass, 3.0), overshoot=overshoot)
+    with pytest.raises(LimitError, match="equator"):
+        check_profile_reach(sphere, modulus, None, (0.7, 1.01 * velocity), overshoot=overshoot)

@@ -378,7 +378,7 @@ def check_profile_reach(
             f"({overshoot:g} x_c, the deepest depth)"
         )
     note = f" ({overshoot:g} x_c, the deepest depth)"
-    check_equator(indenter, deepest, None if depths is not None else impact, note)
+    check_equator(indenter, deepest, None if depths is not None else impact, note, overshoot)
     try:
         law.contact_radius(deepest)  # a table's contact within its last row
     except InputError as error:
@@ -471,13 +471,15 @@ def check_equator(
     deepest: float,
     impact: tuple[float, float] | None = None,
     note: str = "",
+    overshoot: float = 1.0,
 ) -> None:
     """Refuse, before any work, a sphere pressed to ``deepest`` >= its radius R (m): its
     equator at the surface, beyond which the FE's sphere is a flat rim (z = R for r > R)
     pressed into the body, not a ball (R = 5 mm at 0.7 kg and 3 m/s on the paper's rubber,
     x_c = 2 R: the contact ran onto the rim and failed at its edge). The one check of every
     route: the refusal names ``depths`` when they were given, else ``sphere_radius`` and the
-    ``impact`` (mass kg, velocity m/s) that set the depth; ``note`` follows the depth."""
+    ``impact`` (mass kg, velocity m/s) that set the depth (``overshoot`` times its x_c) and
+    the velocity and mass that pass; ``note`` follows the depth."""
     from .validation import LimitError
 
     radius = getattr(indenter, "radius", None)
@@ -486,7 +488,7 @@ def check_equator(
     if impact is None:
         parameter, drive, remedy = "depths", f"depth {deepest:.6g} m", "give smaller depths"
     else:
-        parameter, remedy = "sphere_radius", "take a lower mass=... or velocity=..."
+        parameter, remedy = "sphere_radius", _within_equator(indenter, deepest, impact, overshoot)
         drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
         drive += f"{deepest:.3g} m{note}"
     raise LimitError(
@@ -495,6 +497,20 @@ def check_equator(
         f"{remedy} or a larger sphere (sphere_radius=...)",
         parameter,
     )
+
+
+def _within_equator(
+    indenter: Indenter, deepest: float, impact: tuple[float, float], overshoot: float
+) -> str:
+    """The lower velocity and mass (kg, m/s) that bring ``overshoot`` times x_c, now
+    ``deepest`` m, just below the sphere's radius: the quasi-static work to a contact radius
+    is E* times the sphere's, so their ratio needs no modulus."""
+    from .theory.profile_impact import lower_impact, work_to
+
+    law = contact_law(indenter, 1.0)
+    below = law.contact_radius(math.nextafter(indenter.radius, 0.0) / overshoot)
+    now = law.contact_radius(deepest / overshoot)
+    return lower_impact(*impact, math.log(work_to(law, below)) - math.log(work_to(law, now)))
 
 
 def _striker_at_fault(indenter: Indenter, depth: float, q: float, high: float) -> bool:

@@ -34,7 +34,7 @@ from ..validation import LimitError, validate_positive
 from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
-__all__ = ["ProfileImpactResult", "solve_profile_impact"]
+__all__ = ["ProfileImpactResult", "lower_impact", "solve_profile_impact", "work_to"]
 
 NODES = roots_legendre(16)[0]
 PANELS = 16
@@ -140,11 +140,7 @@ def _refuse_the_end(
     work that brings the contact to the profile's end ``top`` (m): a sphere's equator, a
     table's last radius, a limit of the model (a sweep case's refused row), naming the
     velocity and the mass that pass (three digits, rounded down)."""
-    log_share = math.log(most) - math.log(energy)  # M v0^2 / 2 scaled down to ``most``
-    slower, lighter = _down(velocity * math.exp(log_share / 2.0)), _down(mass * math.exp(log_share))
-    remedy = f"lower velocity=... to at most {slower} m/s" + (
-        f" or mass=... to at most {lighter} kg" if lighter else ""
-    )
+    remedy = lower_impact(mass, velocity, math.log(most) - math.log(energy))
     if law.sphere:
         raise LimitError(
             f"sphere_radius: the striker's energy {energy:.6g} J drives the contact to the "
@@ -156,6 +152,24 @@ def _refuse_the_end(
         f"table's last radius {top:.6g} m; extend the table or {remedy}",
         "profile",
     )
+
+
+def lower_impact(mass: float, velocity: float, log_share: float) -> str:
+    """ "lower velocity=... to at most V m/s or mass=... to at most M kg": the impact of
+    ``mass`` kg at ``velocity`` m/s whose energy, scaled by e^``log_share`` (< 1), passes a
+    limit, either input alone (three digits, rounded down; the mass left out where it
+    underflows)."""
+    slower, lighter = _down(velocity * math.exp(log_share / 2.0)), _down(mass * math.exp(log_share))
+    return f"lower velocity=... to at most {slower} m/s" + (
+        f" or mass=... to at most {lighter} kg" if lighter else ""
+    )
+
+
+def work_to(law: SneddonContact, radius: float) -> float:
+    """The work (J) that presses the profile of ``law`` to the contact radius ``radius`` m:
+    the energy M v0^2 / 2 of a quasi-static impact whose a_c it is."""
+    squares = _Cumulative.of(_panels(law, radius, law.sphere), lambda s: law.depth(s) ** 2)
+    return float(_work(law, radius, squares(radius)))
 
 
 def _down(value: float) -> str:
