@@ -55,6 +55,7 @@ __all__ = [
     "check_wave_speed",
     "depth_ratio",
     "outside_validity",
+    "reach_velocity",
     "warn_outside_validity",
 ]
 
@@ -275,9 +276,7 @@ def check_reach(
     check_equator(indenter, depth, impact)
     if MIN_DEPTH_RATIO <= ratio <= high:  # within reach (a cone's x/a takes no remedy: n = 1)
         return
-    n = getattr(indenter, "exponent", 2.0)  # x/a ~ x^(1 - 1/n); a smooth tip's n = 2
-    scale = math.log(min(max(ratio, MIN_DEPTH_RATIO), high) / ratio) / (1.0 - 1.0 / n)
-    scale, on = _layer_bound(depth, scale, layer)
+    scale, on = _layer_bound(depth, _reach_scale(indenter, ratio, high), layer)
     if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
         slowest = _shown(velocity, scale * (q + 1.0) / 2.0, up=True)
         heaviest = _shown(mass, scale * (q + 1.0), up=True)
@@ -300,6 +299,25 @@ def check_reach(
             + note,
             "velocity",
         )
+
+
+def _reach_scale(indenter: Indenter, ratio: float, high: float) -> float:
+    """ln of the depth that brings x/a, now ``ratio``, to the nearer end of
+    [:data:`MIN_DEPTH_RATIO`, ``high``] over the depth now (x/a ~ x^(1 - 1/n))."""
+    n = getattr(indenter, "exponent", 2.0)  # a smooth tip's n = 2
+    return math.log(min(max(ratio, MIN_DEPTH_RATIO), high) / ratio) / (1.0 - 1.0 / n)
+
+
+def reach_velocity(indenter: Indenter, depth: float, velocity: float, q: float) -> str:
+    """The velocity (m/s, three digits, rounded down) at which an impact now at ``velocity``
+    reaching ``depth`` (m, its quasi-static x_c on the half-space; force exponent ``q``)
+    reaches :data:`MAX_DEPTH_RATIO`, the finite-strain reach: :func:`check_reach`'s remedy,
+    for a run that failed beyond it ("" within it, or beyond the floats)."""
+    ratio = depth_ratio(indenter, depth) if depth > 0 else 0.0
+    if not ratio > MAX_DEPTH_RATIO:
+        return ""
+    scale = _reach_scale(indenter, ratio, MAX_DEPTH_RATIO)
+    return _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
 
 
 def _layer_bound(

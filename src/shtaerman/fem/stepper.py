@@ -67,7 +67,7 @@ import numpy as np
 import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
-from ..guards import MAX_DEPTH_RATIO, depth_ratio
+from ..guards import MAX_DEPTH_RATIO, depth_ratio, reach_velocity
 from ..validation import InputError, NumericalFailureError
 from .contact.constraints import (
     EDGE_MARGIN,
@@ -1269,7 +1269,8 @@ def march_inertial(
             locked = gent_locks(error, stepper.system, state.x, step, last=True)
             reached = inertial.reached or state  # the halves that passed went deeper
             at = (t, state.depth, max(deepest, reached.depth))
-            raise (locked or _step_failure(stepper, at, error, reached.x)) from None
+            impact = (depth_scale, velocity, exponent)
+            raise (locked or _step_failure(stepper, at, error, reached.x, impact)) from None
         total, rows = total + iterations, []
         inertial.cuts += len(states) > 1
         for new in states:
@@ -1298,9 +1299,12 @@ def _step_failure(
     at: tuple[float, float, float],
     error: Exception,
     x: np.ndarray | None = None,
+    impact: tuple[float, float, float] | None = None,
 ) -> NumericalFailureError:
     """The failure of a step from time ``at[0]`` (s) at striker depth ``at[1]`` (m), the run
-    having reached ``at[2]`` (m), its last converged solution ``x`` (None: not read): with a
+    having reached ``at[2]`` (m), its last converged solution ``x`` (None: not read), of the
+    ``impact`` (its quasi-static x_c m, velocity m/s and force exponent q; None: no velocity
+    named) whose squeezed tip names the velocity that the reach limit names: with a
     bonded or Coulomb indenter beyond the validated x/a (:data:`.guards.MAX_DEPTH_RATIO`) that
     limit is named (near separation the last ring in contact slides back inward down the steep
     flank and folds the surface: the A = 8 pad, x/a 2.29); where ``x`` squeezes an element
@@ -1323,10 +1327,17 @@ def _step_failure(
     squeezed = None if x is None else squeeze_note(stepper.system, x, "more time_steps=...")
     if squeezed is not None:  # the elastic z = 8 r^1.3 pad: J 0.03 at the axis, x/a 1.45
         deep = ratio > MAX_DEPTH_RATIO  # else a thin pad's squeeze (x/H 0.9)
+        slower = "" if impact is None else reach_velocity(stepper.indenter, *impact)
         return SqueezedTipError(
             f"{where}{squeezed}; it had reached x/a = {ratio:.3g} (depth {at[2]:.4g} m)"
             + (f", beyond the {MAX_DEPTH_RATIO:g} up to which it is validated" if deep else "")
-            + ": a slower velocity=... or a smaller shape_coefficient=..."
+            + ": a slower velocity=..."
+            + (
+                f" (at most about {slower} m/s brings x_c within x/a {MAX_DEPTH_RATIO:g})"
+                if slower
+                else ""
+            )
+            + " or a smaller shape_coefficient=..."
             + ("" if deep else " (on a pad: a thicker thickness=...)")
         )
     massless = (  # the massless impact stops at x/a 1.2 (guards.check_reach): not beyond it

@@ -1,0 +1,36 @@
+"""Session 57's limits, finished: each refusal or failure names a value that passes, checked
+here by running it (tests/test_adversary57.py's style)."""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.fem.contact.finite import SqueezedTipError
+from shtaerman.fem.finite_dynamic import FiniteImpactSettings
+from shtaerman.fem.impact import run_impact
+from shtaerman.fem.mesh import Geometry, MeshSettings
+
+SHARP = sh.PowerLawIndenter(8.0, 1.3)
+RUBBER = sh.Material(3e6, 0.49)
+PAD = Geometry(thickness=0.012, base="bonded")
+COARSE = MeshSettings(size=0.4, domain=1e2, growth=0.8, axis_size=1e-4, axis_growth=0.4)
+"""tests/test_padinertia57.py's coarse field: the squeezed tip at 25 steps in about 2 CPU s."""
+
+
+def test_the_squeezed_tip_names_the_reach_velocity_which_runs():
+    """Main said 'a slower velocity=...' with no value; the reach limit's (x_c at x/a 1.2,
+    x/a ~ x^(1 - 1/n), x_c ~ v^(2/(q + 1)): 1.5 * (1.2 / 2.27)^(1.385 / 0.231) = 0.0323 m/s)
+    is named, and runs on the same mesh and steps."""
+    settings = FiniteImpactSettings(steps=25, mesh=COARSE)
+    with pytest.raises(SqueezedTipError) as failed:
+        run_impact(SHARP, RUBBER, 1000.0, 0.12, 1.5, settings, geometry=PAD)
+    named = str(failed.value).split("velocity=... (at most about ")[1]
+    velocity = float(named.split(" m/s")[0])
+    assert velocity == 0.0323  # three digits, rounded down
+    with warnings.catch_warnings(record=True):
+        warnings.simplefilter("always")
+        run = run_impact(SHARP, RUBBER, 1000.0, 0.12, velocity, settings, geometry=PAD)
+    assert run.restitution > 0  # it ran to separation
