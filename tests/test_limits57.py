@@ -34,3 +34,19 @@ def test_the_squeezed_tip_names_the_reach_velocity_which_runs():
         warnings.simplefilter("always")
         run = run_impact(SHARP, RUBBER, 1000.0, 0.12, velocity, settings, geometry=PAD)
     assert run.restitution > 0  # it ran to separation
+
+
+def test_a_sphere_impact_far_below_the_panels_round_off_computes():
+    """``impact --sphere-radius 1 --mass 1e-200 --velocity 1e-3`` (M v0^2 / 2 = 5e-207 J)
+    ended in brentq's "f(a) and f(b) must have different signs": the first guess's panels,
+    halved 99 times towards the tip, keep W = 6.5e-166 J of round-off at a = 0. Its a_c =
+    2.5e-43 m is Hertz's: the power law z = r^2 / (2 R) within 1e-9 (the sphere departs from
+    its parabola by (a/R)^2 ~ 1e-86; the quadrature's round-off on the tip's panels measured
+    3e-12 at 1e-250 kg)."""
+    rubber = sh.Material(7.5e6, 0.5)
+    with warnings.catch_warnings():  # the quasi-static validity warnings of a tiny impact
+        warnings.simplefilter("ignore")
+        ball = sh.impact(sh.SphereIndenter(1.0), rubber, mass=1e-200, velocity=1e-3)
+        parabola = sh.impact(sh.PowerLawIndenter(0.5, 2.0), rubber, mass=1e-200, velocity=1e-3)
+    for key in ("x_c", "P_c", "t_y"):
+        assert getattr(ball, key) == pytest.approx(getattr(parabola, key), rel=1e-9), key

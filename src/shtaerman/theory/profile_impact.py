@@ -106,9 +106,11 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     square = lambda s: law.depth(s) ** 2  # noqa: E731
     ends = _panels(law, top, law.sphere) if law.sphere else np.linspace(0.0, top, PANELS + 1)
     # halving towards the tip too: a contact far smaller than the profile (a huge sphere)
-    # is then integrated on panels of its own size, not lost in a big panel's round-off
-    ends = np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 100))
-    rough = _Cumulative.of(ends, square)
+    # is then integrated on panels of its own size, not lost in a big panel's round-off;
+    # below 100 halvings' round-off (R = 1 m: W 6.5e-166 J at a = 0), down to the floats'
+    rough = _Cumulative.of(np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 100)), square)
+    if not float(_work(law, 0.0, rough(0.0))) < energy:  # 1e-200 kg at 1e-3 m/s, R = 1 m
+        rough = _Cumulative.of(np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 1100)), square)
     guess = top
     if float(_work(law, top, rough(top))) >= energy:
         guess = brentq(
