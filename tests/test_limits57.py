@@ -3,6 +3,7 @@ here by running it (tests/test_adversary57.py's style)."""
 
 from __future__ import annotations
 
+import re
 import warnings
 
 import pytest
@@ -50,3 +51,35 @@ def test_a_sphere_impact_far_below_the_panels_round_off_computes():
         parabola = sh.impact(sh.PowerLawIndenter(0.5, 2.0), rubber, mass=1e-200, velocity=1e-3)
     for key in ("x_c", "P_c", "t_y"):
         assert getattr(ball, key) == pytest.approx(getattr(parabola, key), rel=1e-9), key
+
+
+COARSE_RUN = ("--mesh-size", "0.2", "--time-steps", "50", "--no-estimate")
+
+
+def _said(capsys, *args):
+    from shtaerman.cli import main
+
+    code = main(list(args))
+    return code, capsys.readouterr().err
+
+
+def test_the_wave_speed_velocity_the_reach_refuses_is_said_and_the_mass_named(capsys):
+    """``dynamic --mass 1e-40 --velocity 3`` was told velocity 5.96e-06 m/s, which the reach
+    then refused (x/a below 1e-6, 'raise velocity to at least 0.000414 m/s'): the refusal says
+    so and names the heavier mass that passes (lambda ~ M^(-1/8) for q = 5/3), which runs, as
+    the density does."""
+    dynamic = ("dynamic", "--mass", "1e-40", "--velocity", "3", *COARSE_RUN)
+    code, said = _said(capsys, *dynamic)
+    assert code == 2 and said.count("\n") == 1, said
+    assert "shallower than an FE impact resolves" in said, said
+    assert said.startswith("shtaerman: error: --mass, --density2: "), said
+    found = re.search(r"density2 (\S+) kg/m\^3 or mass (\S+) kg at 3 m/s would pass", said)
+    assert found, said
+    density, mass = found.groups()
+    slower = re.search(r"velocity (\S+) m/s, which would pass the waves", said).group(1)
+    assert _said(capsys, *dynamic[:4], slower, *COARSE_RUN)[0] == 2  # the reach's refusal
+    # each named value runs; exit 1, not 2: at lambda ~ 0.8 on mesh 0.2 the reflected energy
+    # is 1.3e-2 of the radiated, above its check's 0.01, as for main's named velocity (0.7 kg
+    # at 26.1 m/s, the paper's 300 m/s refused)
+    assert _said(capsys, "dynamic", "--mass", mass, "--velocity", "3", *COARSE_RUN)[0] != 2
+    assert _said(capsys, *dynamic, "--density2", density)[0] != 2

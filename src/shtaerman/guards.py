@@ -429,6 +429,7 @@ def check_wave_speed(
     density: float,
     force_exponent: float | None,
     fraction_at: Callable[[float], float] | None = None,
+    reaches: Callable[[float, float], bool] | None = None,
 ) -> None:
     """Refuse, before any work, a linear FE impact with inertia (mass in kg, velocity in m/s)
     whose first-order radiated fraction ``estimate`` (a
@@ -438,7 +439,9 @@ def check_wave_speed(
     q), as v0^((3q - 3)/(q + 1)). A sphere's or a table's q (None) varies with depth: its
     velocity is found from q = 3/2 and checked by ``fraction_at`` (lambda at a velocity in
     m/s), which a few rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q =
-    3/2 named 1.82 m/s, at lambda 0.837)."""
+    3/2 named 1.82 m/s, at lambda 0.837). Where ``reaches`` (whether an impact, mass kg and
+    velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
+    velocity, the refusal says so and names the density and the mass that pass instead."""
     from .validation import LimitError
 
     fraction = estimate.energy_fraction
@@ -451,16 +454,46 @@ def check_wave_speed(
     about = ""
     if force_exponent is None:
         slower, about = _passing_velocity(slower, (q + 1.0) / (3.0 * q - 3.0), fraction_at)
+    remedy, named = f" or velocity {about}{slower:.3g} m/s would pass", "velocity"
+    if reaches is not None and not reaches(mass, float(f"{slower:.3g}")):
+        remedy = _heavier_instead(impact, slower, q, share, reaches)
+        named = "mass" if remedy.startswith(" or mass") else "density2"
+    prefix = named if named == "density2" else f"{named}, density2"
     raise LimitError(
-        f"velocity, density2: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the "
-        f"body's shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
+        f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
+        f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {fraction:.3g} of its energy as waves (first order), above "
         f"{MAX_RADIATED_ESTIMATE:g}, where the linear FE impact breaks down (its energy balance "
-        f"off by about 2 of M v0^2/2): density2 {0.99 * density * share**2:.3g} kg/m^3 or "
-        f"velocity {about}{slower:.3g} m/s would pass (density2 0: the quasi-static "
-        "impact without waves)",
-        "velocity",
+        f"off by about 2 of M v0^2/2): density2 {0.99 * density * share**2:.3g} kg/m^3"
+        f"{remedy} (density2 0: the quasi-static impact without waves)",
+        named,
     )
+
+
+def _heavier_instead(
+    impact: tuple[float, float],
+    slower: float,
+    q: float,
+    share: float,
+    reaches: Callable[[float, float], bool],
+) -> str:
+    """The end of the wave-speed refusal of ``impact`` (mass kg, velocity m/s) whose passing
+    velocity ``slower`` (m/s) ``reaches`` refuses (too shallow for an FE impact: 1e-40 kg at 3
+    m/s named 5.96e-06 m/s, below the reach's 4.14e-04): the heavier mass that passes the waves
+    at the same velocity (lambda ~ M^((q - 2)/(q + 1)) of a force P ~ x^``q`` < 2, exact for a
+    power law; the limit over its lambda ``share``), where ``reaches`` takes it; the words
+    after the density's remedy."""
+    mass, velocity = impact
+    said = (
+        f"; velocity {slower:.3g} m/s, which would pass the waves, drives the striker "
+        "shallower than an FE impact resolves"
+    )
+    heavier = ""
+    if q < 2.0:
+        heavier = _shown(mass, math.log(0.99 * share) * (q + 1.0) / (q - 2.0), up=True)
+    if heavier and reaches(float(heavier), velocity):
+        return f" or mass {heavier} kg at {velocity:g} m/s would pass{said}"
+    return f" would pass, no velocity with this mass{said}"
 
 
 def _passing_velocity(

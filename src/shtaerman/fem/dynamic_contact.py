@@ -612,6 +612,23 @@ def _fraction_at(
     return fraction
 
 
+def _reaches(indenter: Indenter, half_space: Material) -> Callable[[float, float], bool]:
+    """Whether a power law's impact (mass kg, velocity m/s) on the half-space ``half_space``
+    lies within the linear FE impact's reach (:func:`shtaerman.guards.check_reach`)."""
+
+    def reaches(mass: float, velocity: float) -> bool:
+        try:
+            with warnings.catch_warnings():  # a slower or heavier impact, only checked
+                warnings.simplefilter("ignore")
+                qs = _quasi_static(indenter, half_space, Striker(mass, velocity))
+                check_reach(indenter, qs.x_c, (mass, velocity), qs.force_exponent, False)
+        except InputError:  # the reach's LimitError, or a depth beyond the floats
+            return False
+        return True
+
+    return reaches
+
+
 def check_dynamic_impact(
     indenter: Indenter,
     half_space: Material,
@@ -658,7 +675,10 @@ def check_dynamic_impact(
         waves = _waves(indenter, half_space, rho, striker, exact)
         exponent = None if math.isnan(qs.beta) else qs.force_exponent
         at = None if exponent is not None else _fraction_at(indenter, half_space, rho, striker.mass)
-        check_wave_speed(impact, waves, rho, exponent, at)
+        reach = (
+            None if thickness is not None or exponent is None else _reaches(indenter, half_space)
+        )
+        check_wave_speed(impact, waves, rho, exponent, at, reach)
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     if thickness is None:
         return rho, striker, scales, estimate_dofs(settings)
