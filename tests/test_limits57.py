@@ -83,3 +83,36 @@ def test_the_wave_speed_velocity_the_reach_refuses_is_said_and_the_mass_named(ca
     # at 26.1 m/s, the paper's 300 m/s refused)
     assert _said(capsys, "dynamic", "--mass", mass, "--velocity", "3", *COARSE_RUN)[0] != 2
     assert _said(capsys, *dynamic, "--density2", density)[0] != 2
+
+
+def test_a_table_s_end_past_an_overshoot_names_the_velocity_and_mass_that_pass():
+    """A contact study sizes its depths to 1.01 x_c (DEPTH_OVERSHOOT): an impact whose x_c is
+    0.995 of a table's end was refused with 'extend the table' alone; it names the velocity
+    and the mass that bring 1.01 x_c within the table, each passing, 1 % faster refused (the
+    velocity is rounded down to three digits, 0.137 against 0.1381)."""
+    import numpy as np
+
+    from shtaerman.guards import check_profile_reach
+    from shtaerman.theory.profile_impact import work_to
+    from shtaerman.theory.sneddon import contact_law
+    from shtaerman.validation import LimitError
+
+    radii = np.linspace(0.0, 2e-3, 21)
+    table, modulus = sh.TabulatedIndenter(radii, 100.0 * radii**2), 1e7
+    law = contact_law(table, modulus)
+    end = float(law.depth(law.max_contact_radius))
+    fast = (2.0 * work_to(law, float(law.contact_radius(0.995 * end))) / 0.7) ** 0.5
+    with pytest.raises(LimitError) as caught:
+        check_profile_reach(table, modulus, None, (0.7, fast), overshoot=1.01)
+    said = str(caught.value)
+    found = re.search(
+        r"extend the table or lower velocity=\.\.\. to at most (\S+) m/s or mass=\.\.\. to at "
+        r"most (\S+) kg",
+        said,
+    )
+    assert found and said.startswith("profile: "), said
+    velocity, mass = float(found[1]), float(found[2])
+    check_profile_reach(table, modulus, None, (0.7, velocity), overshoot=1.01)
+    check_profile_reach(table, modulus, None, (mass, fast), overshoot=1.01)
+    with pytest.raises(LimitError, match="beyond the table"):
+        check_profile_reach(table, modulus, None, (0.7, 1.01 * velocity), overshoot=1.01)

@@ -403,6 +403,9 @@ def check_profile_reach(
         text = str(error).removeprefix(f"{error.parameter}: ")
         said = depths is not None and text.startswith(f"depth {deepest:.6g} m ")  # the table's
         refusal = f"{parameter}: {'' if said else drive + ': '}{text}"
+        if depths is None:  # overshoot x_c past the table's end, x_c within it
+            end = float(law.depth(law.max_contact_radius))
+            refusal += " or " + _within_end(indenter, end, deepest, impact, overshoot)
         raise LimitError(refusal, parameter) from None  # beyond the table: its case's limit
 
 
@@ -539,7 +542,11 @@ def check_equator(
     if impact is None:
         parameter, drive, remedy = "depths", f"depth {deepest:.6g} m", "give smaller depths"
     else:
-        parameter, remedy = "sphere_radius", _within_equator(indenter, deepest, impact, overshoot)
+        below = math.nextafter(radius, 0.0)
+        parameter, remedy = (
+            "sphere_radius",
+            _within_end(indenter, below, deepest, impact, overshoot),
+        )
         drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
         drive += f"{deepest:.3g} m{note}"
     raise LimitError(
@@ -550,16 +557,21 @@ def check_equator(
     )
 
 
-def _within_equator(
-    indenter: Indenter, deepest: float, impact: tuple[float, float], overshoot: float
+def _within_end(
+    indenter: Indenter,
+    end: float,
+    deepest: float,
+    impact: tuple[float, float],
+    overshoot: float,
 ) -> str:
     """The lower velocity and mass (kg, m/s) that bring ``overshoot`` times x_c, now
-    ``deepest`` m, just below the sphere's radius: the quasi-static work to a contact radius
-    is E* times the sphere's, so their ratio needs no modulus."""
+    ``deepest`` m, to the depth ``end`` (m) of the profile: just below a sphere's radius, a
+    table's last row. The quasi-static work to a contact radius is E* times the profile's,
+    so their ratio needs no modulus."""
     from .theory.profile_impact import lower_impact, work_to
 
     law = contact_law(indenter, 1.0)
-    below = law.contact_radius(math.nextafter(indenter.radius, 0.0) / overshoot)
+    below = law.contact_radius(end / overshoot)
     now = law.contact_radius(deepest / overshoot)
     return lower_impact(*impact, math.log(work_to(law, below)) - math.log(work_to(law, now)))
 
