@@ -120,6 +120,7 @@ def test_a_dynamic_sweep_refuses_at_load_what_the_cli_refuses(tmp_path: Path, ca
 
     assert main(["dynamic", "--thickness", "1e-9", "--no-estimate"]) == 2
     refused = capsys.readouterr().err.strip().removeprefix("shtaerman: error: --")
+    refused = refused.replace("--velocity", "velocity")  # its remedy in a sweep file's words
     path = tmp_path / "thin.toml"
     path.write_text('name = "thin"\nkind = "dynamic"\n[axes]\nthickness = [0.02, 1e-9]\n')
     assert load_sweep(path).refused == {1: refused}

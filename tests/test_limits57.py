@@ -116,3 +116,16 @@ def test_a_table_s_end_past_an_overshoot_names_the_velocity_and_mass_that_pass()
     check_profile_reach(table, modulus, None, (mass, fast), overshoot=1.01)
     with pytest.raises(LimitError, match="beyond the table"):
         check_profile_reach(table, modulus, None, (0.7, 1.01 * velocity), overshoot=1.01)
+
+
+def test_a_layer_s_thickness_range_names_the_velocity_that_fits_it(capsys):
+    """``dynamic --thickness 0.012 --velocity 1e-6``: the thickness range ([7.25e-08,
+    0.00724] m for this impact) was the only remedy; the velocity whose contact (refined
+    radius ~ v^(2/(2n + 1))) takes the 12 mm layer is named, and runs (coarse); 1 % slower is
+    refused (rounded up to three digits)."""
+    layer = ("dynamic", "--thickness", "0.012", *COARSE_RUN)
+    code, said = _said(capsys, *layer, "--velocity", "1e-6")
+    assert code == 2 and said.startswith("shtaerman: error: --thickness: must lie in "), said
+    velocity = float(re.search(r"or --velocity at least (\S+) m/s on this thickness", said)[1])
+    assert _said(capsys, *layer, "--velocity", str(velocity))[0] == 0
+    assert _said(capsys, *layer, "--velocity", f"{0.99 * velocity:.4g}")[0] == 2

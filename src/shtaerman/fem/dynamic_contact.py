@@ -48,7 +48,7 @@ from ..theory.radiation import (
 )
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
-from ..validation import InputError, validate_positive
+from ..validation import InputError, LimitError, bound_text, validate_positive
 from .contact.linear import mass_factor
 from .contact.stick import CoupledCompliance, radial_dofs
 from .dynamic_layer import (
@@ -77,7 +77,16 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mesh import HALF_SPACE, MAX_DOFS, Geometry, growth_error, halfspace_mesh
+from .mesh import (
+    HALF_SPACE,
+    MAX_DOFS,
+    MAX_THICKNESS,
+    MIN_THICKNESS,
+    Geometry,
+    check_thickness_range,
+    growth_error,
+    halfspace_mesh,
+)
 from .solver import Factorization, factorize_scaled
 from .stepper import (
     ContactCandidates,
@@ -682,8 +691,40 @@ def check_dynamic_impact(
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     if thickness is None:
         return rho, striker, scales, estimate_dofs(settings)
-    estimate = layer_dofs(settings, thickness, scales.refined, scales.domain_radius)
+    try:
+        estimate = layer_dofs(settings, thickness, scales.refined, scales.domain_radius)
+    except LimitError as error:  # the thickness range: the velocity that fits it too
+        sized = (indenter, half_space, rho, settings, geometry, prony)
+        remedy = _layer_velocity(sized, striker, scales)
+        raise LimitError(str(error) + remedy, "thickness") from None
     return rho, striker, scales, _checked_estimate(estimate, settings, layered=True)
+
+
+def _layer_velocity(sized: tuple, striker: Striker, scales: _Scales) -> str:
+    """The end of the thickness range's refusal of an impact (``striker``, its ``scales``) on
+    a layer of ``sized`` = (indenter, half-space, density kg/m^3, settings, geometry, Prony
+    series: :func:`_scales`'s): the velocity (m/s, three digits, rounded inward) whose refined
+    radius, ~ (M v0^2)^(1/(2n + 1)) for z = A r^n (a smooth tip's n = 2), brings the range to
+    the thickness, checked by sizing it ("" where it is not brought)."""
+    indenter, half_space, rho, settings, geometry, prony = sized
+    thickness, refined = geometry.thickness, scales.refined
+    low = thickness < MIN_THICKNESS * refined  # too thin for this contact: a slower impact
+    target = thickness / (MIN_THICKNESS if low else MAX_THICKNESS)
+    power = (2.0 * getattr(indenter, "exponent", 2.0) + 1.0) / 2.0
+    log_moved = math.log(striker.velocity) + power * math.log(target / refined)
+    if not abs(log_moved) < 700.0:  # thickness 1e300: beyond the floats
+        return ""
+    velocity = float(bound_text(math.exp(log_moved), "high" if low else "low"))
+    try:
+        with warnings.catch_warnings():  # a slower or faster impact, only sized
+            warnings.simplefilter("ignore")
+            moved = Striker(striker.mass, velocity)
+            fits = _scales(indenter, half_space, rho, moved, settings, geometry, prony).refined
+        check_thickness_range(thickness, fits, "")
+    except InputError:  # beyond the floats, or not brought within by the power law
+        return ""
+    side = "at most" if low else "at least"
+    return f"; or velocity=... {side} {velocity:g} m/s on this thickness"
 
 
 @dataclass(frozen=True, eq=False)
