@@ -129,3 +129,23 @@ def test_a_layer_s_thickness_range_names_the_velocity_that_fits_it(capsys):
     velocity = float(re.search(r"or --velocity at least (\S+) m/s on this thickness", said)[1])
     assert _said(capsys, *layer, "--velocity", str(velocity))[0] == 0
     assert _said(capsys, *layer, "--velocity", f"{0.99 * velocity:.4g}")[0] == 2
+
+
+@pytest.mark.parametrize(("velocity", "side"), [("1e-9", "at least"), ("1.0", "at most")])
+def test_a_contact_curve_s_layer_outside_the_range_names_the_velocity_that_fits(
+    capsys, velocity, side
+):
+    """``contact --thickness 0.012 --velocity 1e-9`` (and a 10 nm layer at 1 m/s) was refused
+    by the thickness range 'at these depths' alone; the velocity whose default depths take the
+    layer is named too, and runs (coarse); 1 % beyond it is refused (rounded inward)."""
+    thickness = "0.012" if side == "at least" else "1e-8"
+    layer = ("contact", "--thickness", thickness, "--mesh-size", "0.2", "--no-estimate")
+    code, said = _said(capsys, *layer, "--velocity", velocity)
+    assert code == 2 and said.startswith("shtaerman: error: --thickness: must lie in "), said
+    assert "at these depths" in said, said
+    found = re.search(rf"or --velocity {side} (\S+) m/s on this thickness", said)
+    assert found, said
+    fits = float(found[1])
+    assert _said(capsys, *layer, "--velocity", str(fits))[0] == 0
+    beyond = 0.99 * fits if side == "at least" else 1.01 * fits
+    assert _said(capsys, *layer, "--velocity", f"{beyond:.4g}")[0] == 2

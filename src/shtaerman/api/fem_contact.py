@@ -345,11 +345,47 @@ def _check_depths(
         mesh.refined(refine)  # the finest level first: its message names refine's value
     elif problem.loading.depths is not None:
         _check_force_range(indenter, body, depths)
+    if problem.geometry.thickness is not None and problem.loading.depths is None:
+        _check_layer_depths(problem, depths, mesh)
     if estimate:
         from ..study.contact.indentation import refined_radius
 
         refined = refined_radius(indenter, depths, mesh, problem.geometry)
         _check_coarsest(mesh, refine, refined, problem.geometry)
+
+
+def _check_layer_depths(problem: Problem, depths: np.ndarray, mesh: Any) -> None:
+    """Refuse, before any work, a layer outside the thickness range at the impact's depths
+    (:func:`shtaerman.fem.mesh.check_thickness_range`, which the mesh applies), naming the
+    velocity that fits it too (:func:`shtaerman.fem.mesh.fitting_velocity`, checked at the
+    depths it sets)."""
+    from ..fem.mesh import check_thickness_range, fitting_velocity
+    from ..study.contact.indentation import default_depths, refined_radius
+    from ..validation import LimitError
+
+    indenter, geometry, (mass, velocity) = (
+        problem.striker.indenter,
+        problem.geometry,
+        _impact(problem),
+    )
+    refined = refined_radius(indenter, depths, mesh, geometry)
+    try:
+        check_thickness_range(geometry.thickness, refined, "at these depths")
+    except LimitError as error:
+        exponent = getattr(indenter, "exponent", 2.0)
+        fits = fitting_velocity(geometry.thickness, refined, velocity, exponent)
+        try:
+            with warnings.catch_warnings():  # a slower or faster impact, only sized
+                warnings.simplefilter("ignore")
+                moved = (problem.body.material, mass, float(fits.split()[-1]))
+                at = default_depths(indenter, *moved, problem.striker.material)
+            check_thickness_range(
+                geometry.thickness, refined_radius(indenter, at, mesh, geometry), ""
+            )
+        except (InputError, IndexError):  # "" beyond the floats, or not brought within
+            raise error from None
+        remedy = f"; or velocity=... {fits} m/s on this thickness"
+        raise LimitError(str(error) + remedy, "thickness") from None
 
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:

@@ -48,7 +48,7 @@ from ..theory.radiation import (
 )
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries
-from ..validation import InputError, LimitError, bound_text, validate_positive
+from ..validation import InputError, LimitError, validate_positive
 from .contact.linear import mass_factor
 from .contact.stick import CoupledCompliance, radial_dofs
 from .dynamic_layer import (
@@ -80,10 +80,9 @@ from .impact_run import (
 from .mesh import (
     HALF_SPACE,
     MAX_DOFS,
-    MAX_THICKNESS,
-    MIN_THICKNESS,
     Geometry,
     check_thickness_range,
+    fitting_velocity,
     growth_error,
     halfspace_mesh,
 )
@@ -703,28 +702,20 @@ def check_dynamic_impact(
 def _layer_velocity(sized: tuple, striker: Striker, scales: _Scales) -> str:
     """The end of the thickness range's refusal of an impact (``striker``, its ``scales``) on
     a layer of ``sized`` = (indenter, half-space, density kg/m^3, settings, geometry, Prony
-    series: :func:`_scales`'s): the velocity (m/s, three digits, rounded inward) whose refined
-    radius, ~ (M v0^2)^(1/(2n + 1)) for z = A r^n (a smooth tip's n = 2), brings the range to
-    the thickness, checked by sizing it ("" where it is not brought)."""
+    series: :func:`_scales`'s): the velocity that fits it (:func:`.mesh.fitting_velocity`),
+    checked by sizing it ("" where it does not)."""
     indenter, half_space, rho, settings, geometry, prony = sized
-    thickness, refined = geometry.thickness, scales.refined
-    low = thickness < MIN_THICKNESS * refined  # too thin for this contact: a slower impact
-    target = thickness / (MIN_THICKNESS if low else MAX_THICKNESS)
-    power = (2.0 * getattr(indenter, "exponent", 2.0) + 1.0) / 2.0
-    log_moved = math.log(striker.velocity) + power * math.log(target / refined)
-    if not abs(log_moved) < 700.0:  # thickness 1e300: beyond the floats
-        return ""
-    velocity = float(bound_text(math.exp(log_moved), "high" if low else "low"))
+    exponent = getattr(indenter, "exponent", 2.0)
+    fits = fitting_velocity(geometry.thickness, scales.refined, striker.velocity, exponent)
     try:
         with warnings.catch_warnings():  # a slower or faster impact, only sized
             warnings.simplefilter("ignore")
-            moved = Striker(striker.mass, velocity)
-            fits = _scales(indenter, half_space, rho, moved, settings, geometry, prony).refined
-        check_thickness_range(thickness, fits, "")
-    except InputError:  # beyond the floats, or not brought within by the power law
+            moved = Striker(striker.mass, float(fits.split()[-1]))
+            refined = _scales(indenter, half_space, rho, moved, settings, geometry, prony).refined
+        check_thickness_range(geometry.thickness, refined, "")
+    except (InputError, IndexError):  # "" beyond the floats, or not brought within
         return ""
-    side = "at most" if low else "at least"
-    return f"; or velocity=... {side} {velocity:g} m/s on this thickness"
+    return f"; or velocity=... {fits} m/s on this thickness"
 
 
 @dataclass(frozen=True, eq=False)
