@@ -149,3 +149,16 @@ def test_a_contact_curve_s_layer_outside_the_range_names_the_velocity_that_fits(
     assert _said(capsys, *layer, "--velocity", str(fits))[0] == 0
     beyond = 0.99 * fits if side == "at least" else 1.01 * fits
     assert _said(capsys, *layer, "--velocity", f"{beyond:.4g}")[0] == 2
+
+
+def test_a_cone_gets_no_reach_remedy_and_no_crash():
+    """A cone's x/a is the same at every depth, so no mass or velocity moves it: the reach
+    check leaves it to the FE's own n > 1 refusal (validate_fem_inputs). The finite-strain
+    study loader's reach (finite=True, 1.2) divided by 1 - 1/n = 0 on z = 5 r (CI, session
+    57: tests/test_study_finite.py's exponent = 1.0 case, ZeroDivisionError)."""
+    from shtaerman.guards import check_reach, reach_velocity
+
+    cone = sh.PowerLawIndenter(5.0, 1.0)  # x/a = 7.85 at every depth, beyond 1.2
+    for finite in (True, False):
+        assert check_reach(cone, 0.0215, (0.7, 3.0), 2.0, finite) is None
+    assert reach_velocity(cone, 0.0215, 3.0, 2.0) == ""

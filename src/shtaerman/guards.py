@@ -258,6 +258,8 @@ def check_reach(
     mass, velocity = impact
     if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
         return
+    if getattr(indenter, "exponent", 2.0) <= 1.0:  # a cone's x/a is the same at every depth:
+        return  # no impact's remedy; every FE route refuses n <= 1 (validate_fem_inputs)
     ratio = depth_ratio(indenter, depth)
     high = MAX_DEPTH_RATIO if finite else LINEAR_REACH
     reach = "the finite-strain contact converges" if finite else "an FE impact is run"
@@ -274,7 +276,7 @@ def check_reach(
         )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     check_equator(indenter, depth, impact)
-    if MIN_DEPTH_RATIO <= ratio <= high:  # within reach (a cone's x/a takes no remedy: n = 1)
+    if MIN_DEPTH_RATIO <= ratio <= high:  # within reach
         return
     scale, on = _layer_bound(depth, _reach_scale(indenter, ratio, high), layer)
     if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
@@ -314,8 +316,8 @@ def reach_velocity(indenter: Indenter, depth: float, velocity: float, q: float) 
     reaches :data:`MAX_DEPTH_RATIO`, the finite-strain reach: :func:`check_reach`'s remedy,
     for a run that failed beyond it ("" within it, or beyond the floats)."""
     ratio = depth_ratio(indenter, depth) if depth > 0 else 0.0
-    if not ratio > MAX_DEPTH_RATIO:
-        return ""
+    if not ratio > MAX_DEPTH_RATIO or getattr(indenter, "exponent", 2.0) <= 1.0:
+        return ""  # within reach, or a cone (its x/a moves with no depth)
     scale = _reach_scale(indenter, ratio, MAX_DEPTH_RATIO)
     return _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
 
