@@ -41,11 +41,7 @@ def counted() -> dict[str, int]:
     """Count the load steps, their Newton iterations and the factorizations (patches the
     solver's functions for this process)."""
     counts = {"load steps": 0, "Newton iterations": 0, "factorizations": 0}
-    step, slide, factorized = (
-        finite_stick._load_step,
-        finite_stick._slide_step,
-        PatternSolver.factorized,
-    )
+    step, factorized = finite_stick._load_step, PatternSolver.factorized  # bonded and Coulomb
 
     def counting(original):
         def wrapped(*args, **kwargs):
@@ -60,7 +56,7 @@ def counted() -> dict[str, int]:
         counts["factorizations"] += 1
         return factorized(self, *args, **kwargs)
 
-    finite_stick._load_step, finite_stick._slide_step = counting(step), counting(slide)
+    finite_stick._load_step = counting(step)
     PatternSolver.factorized = factorizing
     return counts
 
