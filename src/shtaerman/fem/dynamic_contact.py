@@ -749,14 +749,18 @@ class DynamicImpactSetup:
     parameters: dict[str, float]
     timings: dict[str, float]
 
-    def march(self, snapshot_times: tuple[float, ...] = ()) -> ImpactHistory:
-        """Step the run (:func:`.stepper.march`), keeping the fields at ``snapshot_times`` (s)."""
+    def march(
+        self, snapshot_times: tuple[float, ...] = (), energy_series: bool = True
+    ) -> ImpactHistory:
+        """Step the run (:func:`.stepper.march`), keeping the fields at ``snapshot_times`` (s);
+        ``energy_series``: the energies inside R_a at every step, else at the last one."""
         return march(
             self.problem,
             duration=self.duration,
             tail_time=self.tail_time,
             force_exponent=self.force_exponent,
             snapshot_times=snapshot_times,
+            energy_series=energy_series,
         )
 
     def result(self, history: ImpactHistory, timings: dict[str, float]) -> ImpactRun:

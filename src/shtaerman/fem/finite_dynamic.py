@@ -296,12 +296,13 @@ class FiniteImpactSetup:
     mesh: dict[str, Any]
     timings: dict[str, float]
 
-    def march(self, snapshot_times: tuple[float, ...] = ()) -> tuple:
+    def march(self, snapshot_times: tuple[float, ...] = (), energy_series: bool = True) -> tuple:
         """Step the run, keeping the solution of the step nearest each of ``snapshot_times``
         (s; none with a Prony series, :class:`KeptStates`): the columns, Newton iterations,
         separation time (s; None: the massless elastic body), the kinetic energy beyond half
         the domain radius at the end / (M v0^2 / 2) (nan: massless), the steps cut and the
-        kept states (None: no times)."""
+        kept states (None: no times). ``energy_series``: the linear body's (its energies
+        inside R_a); the rubber keeps every step's energies."""
         _, _, rho, mass, velocity, _ = self.inputs
         x_c, t_y, duration, q, _ = self.scales
         dt, stepper = t_y / self.settings.steps, self.stepper

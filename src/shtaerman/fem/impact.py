@@ -39,7 +39,7 @@ class PreparedImpact(Protocol):
     timings: dict[str, float]
     """Seconds spent preparing it, by phase."""
 
-    def march(self, snapshot_times: tuple[float, ...] = ()) -> Any:
+    def march(self, snapshot_times: tuple[float, ...] = (), energy_series: bool = True) -> Any:
         """Step from first touch to the end of the run."""
 
     def result(self, marched: Any, timings: dict[str, float]) -> ImpactRun:
@@ -60,6 +60,7 @@ def run_impact(
     geometry: Geometry = HALF_SPACE,
     snapshot_times: tuple[float, ...] = (),
     exact: ProfileImpactResult | None = None,
+    energy_series: bool = True,
 ) -> ImpactRun:
     """Strike the body with a rigid striker and follow it until the striker leaves.
 
@@ -91,6 +92,9 @@ def run_impact(
         A sphere's or a table's quasi-static impact that sizes the run, when solved already
         (:func:`.dynamic_contact.profile_sizing_impact`, the same for every level of a
         ladder); None: solved here (a power law's needs none).
+    energy_series : bool
+        The linear body's energies inside R_a at every step (the run's energies, as a
+        history writes them), else at the last step only (nan before it: a study's run).
 
     Returns
     -------
@@ -114,7 +118,7 @@ def run_impact(
     else:
         prepared = prepare_dynamic_impact(*inputs, prony, friction, exact, geometry)
     start = time.perf_counter()
-    marched = prepared.march(snapshot_times)
+    marched = prepared.march(snapshot_times, energy_series)
     timings = {**prepared.timings, "stepping": time.perf_counter() - start}
     timings["total"] = sum(timings.values())
     return prepared.result(marched, timings)

@@ -181,6 +181,7 @@ def run_case(
     rubber: RubberModel | None = None,
     quasi: ImpactResult | ProfileImpactResult | None = None,
     geometry: Geometry = HALF_SPACE,
+    energy_series: bool = True,
 ) -> DynamicCase:
     """Quasi-static impact, first-order radiation estimate and dynamic FE impact (SI units),
     every body (the arguments of :func:`~shtaerman.fem.impact.run_impact`).
@@ -220,6 +221,8 @@ def run_case(
     geometry : Geometry
         The body's shape (default the half-space); the quasi-static impact and the radiation
         estimate stay the half-space's.
+    energy_series : bool
+        The energies inside R_a at every step (:func:`~shtaerman.fem.impact.run_impact`).
 
     Returns
     -------
@@ -240,7 +243,7 @@ def run_case(
     inputs = (indenter, half_space, density, mass, velocity)
 
     def run(level: Any, **kept: tuple[float, ...]) -> ImpactRun:
-        physics = {"geometry": geometry, "exact": sizing}
+        physics = {"geometry": geometry, "exact": sizing, "energy_series": energy_series}
         return run_impact(*inputs, level, rubber, prony, friction, **physics, **kept)
 
     def say() -> None:

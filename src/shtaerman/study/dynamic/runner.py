@@ -199,6 +199,7 @@ def run_dynamic_study(
         if quasi is not None:
             check_velocity(velocity)  # the solve's warning, when the run skips it
         options = dict(snapshots=shots, ladder=not quick, refine=refine, quasi=quasi)
+        options["energy_series"] = False  # a study writes no energies.csv: R_a's at the end
         cases.append(problem_case(problem, level, **options))
     return DynamicStudyOutcome(
         study=study,
