@@ -374,18 +374,19 @@ def _check_layer_depths(problem: Problem, depths: np.ndarray, mesh: Any) -> None
     except LimitError as error:
         exponent = getattr(indenter, "exponent", 2.0)
         fits = fitting_velocity(geometry.thickness, refined, velocity, exponent)
+        if fits is None:  # beyond the floats
+            raise
         try:
             with warnings.catch_warnings():  # a slower or faster impact, only sized
                 warnings.simplefilter("ignore")
-                moved = (problem.body.material, mass, float(fits.split()[-1]))
+                moved = (problem.body.material, mass, fits[0])
                 at = default_depths(indenter, *moved, problem.striker.material)
             check_thickness_range(
                 geometry.thickness, refined_radius(indenter, at, mesh, geometry), ""
             )
-        except (InputError, IndexError):  # "" beyond the floats, or not brought within
+        except InputError:  # not brought within
             raise error from None
-        remedy = f"; or velocity=... {fits} m/s on this thickness"
-        raise LimitError(str(error) + remedy, "thickness") from None
+        raise LimitError(str(error) + fits[1], "thickness") from None
 
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:

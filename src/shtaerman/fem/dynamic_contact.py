@@ -38,7 +38,7 @@ from ..guards import check_reach, check_wave_speed
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
-from ..theory.materials import Material, validate_density
+from ..theory.materials import RIGID, Material, effective_modulus, validate_density
 from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.radiation import (
     RadiationEstimate,
@@ -594,13 +594,15 @@ def _checked_estimate(estimate: int, settings: DynamicSettings, layered: bool = 
 
 
 def _waves(
-    indenter: Indenter, half_space: Material, rho: float, striker: Striker,
+    indenter: Indenter,
+    half_space: Material,
+    rho: float,
+    striker: Striker,
     exact: ProfileImpactResult | None,
-) -> RadiationEstimate:  # fmt: skip
+) -> RadiationEstimate:
     """The first-order radiation estimate of the rigid striker's quasi-static impact (a
     sphere's or a table's ``exact``) on the body of density ``rho`` kg/m^3."""
-    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
-    law = contact_law(indenter, modulus)
+    law = contact_law(indenter, effective_modulus(RIGID, half_space))
     return impact_radiation(striker.mass, striker.velocity, law, rho, half_space, exact)
 
 
@@ -707,15 +709,17 @@ def _layer_velocity(sized: tuple, striker: Striker, scales: _Scales) -> str:
     indenter, half_space, rho, settings, geometry, prony = sized
     exponent = getattr(indenter, "exponent", 2.0)
     fits = fitting_velocity(geometry.thickness, scales.refined, striker.velocity, exponent)
+    if fits is None:  # beyond the floats
+        return ""
     try:
         with warnings.catch_warnings():  # a slower or faster impact, only sized
             warnings.simplefilter("ignore")
-            moved = Striker(striker.mass, float(fits.split()[-1]))
+            moved = Striker(striker.mass, fits[0])
             refined = _scales(indenter, half_space, rho, moved, settings, geometry, prony).refined
         check_thickness_range(geometry.thickness, refined, "")
-    except (InputError, IndexError):  # "" beyond the floats, or not brought within
+    except InputError:  # not brought within
         return ""
-    return f"; or velocity=... {fits} m/s on this thickness"
+    return fits[1]
 
 
 @dataclass(frozen=True, eq=False)

@@ -512,19 +512,24 @@ def check_thickness_range(thickness: float, refined: float, where: str) -> None:
         )
 
 
-def fitting_velocity(thickness: float, refined: float, velocity: float, exponent: float) -> str:
+def fitting_velocity(
+    thickness: float, refined: float, velocity: float, exponent: float
+) -> tuple[float, str] | None:
     """The velocity (m/s, three digits, rounded inward) that brings :func:`check_thickness_range`
     of ``thickness`` (m) within its range, now refused at the ``refined`` radius (m) of an
     impact at ``velocity`` (m/s) by z = A r^``exponent`` (2 for a smooth tip): the refined
-    radius goes as the contact's, (M v0^2)^(1/(2n + 1)); "at most V" or "at least V" ("" beyond
-    the floats). Each route checks it by sizing its impact at V."""
+    radius goes as the contact's, (M v0^2)^(1/(2n + 1)); with the end of the refusal that
+    names it ("; or velocity=... at most V m/s on this thickness"; None beyond the floats).
+    Each route checks it by sizing its impact at V."""
     low = thickness < MIN_THICKNESS * refined  # too thin for this contact: a slower impact
     target = thickness / (MIN_THICKNESS if low else MAX_THICKNESS)
     log_moved = math.log(velocity) + (exponent + 0.5) * math.log(target / refined)
     if not abs(log_moved) < 700.0:  # thickness 1e300: beyond the floats
-        return ""
+        return None
     bound = bound_text(math.exp(log_moved), "high" if low else "low")
-    return f"at most {bound}" if low else f"at least {bound}"
+    return float(
+        bound
+    ), f"; or velocity=... {'at most' if low else 'at least'} {bound} m/s on this thickness"
 
 
 @dataclass(frozen=True)
