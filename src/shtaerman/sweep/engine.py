@@ -948,23 +948,14 @@ def refused_records(spec: SweepSpec, cases: list[Case], saved: Mapping[int, dict
     """The records of the cases ``spec`` refuses (beyond a validity limit of the model),
     made in the client without running them: status "refused", the reason in ``error``, no
     outputs; but for those ``saved`` holds computed (kept, as any case's saved record)."""
+    nothing = {"outputs": {}, "estimate_missing": None, "warnings": [], "seconds": 0.0}
+    nobody = {"cpu_seconds": 0.0, "worker": None, "host": None, "pid": None}
     return {
-        case.index: _sealed(
-            {
-                "index": case.index,
-                "status": "refused",
-                "outputs": {},
-                "error": spec.refused[case.index],
-                "estimate_missing": None,
-                "warnings": [],
-                "seconds": 0.0,
-                "cpu_seconds": 0.0,
-                "worker": None,
-                "host": None,
-                "pid": None,
-                "inputs": case.params,
-                "axis_values": case.axis_values,
-            }
+        case.index: _case_record(
+            case,
+            {"index": case.index, "status": "refused", "error": spec.refused[case.index]}
+            | nothing
+            | nobody,
         )
         for case in cases
         if case.index in spec.refused and case.index not in saved
@@ -1156,9 +1147,15 @@ def _collect(out: Path, future: Any, case: Case, records: dict, lost: dict) -> N
         return
     finally:
         future.release()
-    record = _sealed({**result, "inputs": case.params, "axis_values": case.axis_values})
+    record = _case_record(case, result)
     _write_record(out, record)
     records[case.index] = record
+
+
+def _case_record(case: Case, result: dict) -> dict:
+    """The saved record of ``case``: what :func:`execute_case` returned (or a refused case's
+    like it) with the case's inputs and axis values, sealed by its digest."""
+    return _sealed({**result, "inputs": case.params, "axis_values": case.axis_values})
 
 
 # --- aggregate outputs --------------------------------------------------------------------------
