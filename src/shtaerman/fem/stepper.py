@@ -1285,10 +1285,10 @@ def march_inertial(
             reached = state.depth + abs(state.speed) * inertial.dt  # the depth it went for
             step = (state.depth, reached)
             locked = gent_locks(error, stepper.system, state.x, step, last=True)
-            reached = inertial.reached or state  # the halves that passed went deeper
-            at = (t, state.depth, max(deepest, reached.depth))
+            last = inertial.reached or state  # the halves that passed went deeper
+            at = (t, state.depth, max(deepest, last.depth))
             impact = (depth_scale, velocity, exponent)
-            raise (locked or _step_failure(stepper, at, error, reached.x, impact)) from None
+            raise (locked or _step_failure(stepper, at, error, last.x, impact)) from None
         total, rows = total + iterations, []
         inertial.cuts += len(states) > 1
         for new in states:
