@@ -341,15 +341,12 @@ def _layer_bound(
 def _shown(value: float, log_factor: float, up: bool) -> str:
     """``value`` times e^``log_factor`` to three digits, rounded ``up`` (else down): a bound
     the message names that passes when tried ("" beyond the floating-point range)."""
+    from .validation import bound_text
+
     log_value = math.log(value) + log_factor
     if not -700.0 < log_value < 700.0:
         return ""
-    value = math.exp(log_value)
-    shown = float(f"{value:.2e}")
-    if (shown < value) if up else (shown > value):
-        mantissa, exponent = f"{value:.2e}".split("e")
-        shown = float(f"{float(mantissa) + (0.01 if up else -0.01):.2f}e{exponent}")
-    return f"{shown:.3g}"
+    return bound_text(math.exp(log_value), "low" if up else "high")
 
 
 def check_profile_reach(

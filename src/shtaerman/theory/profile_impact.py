@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 from scipy.special import roots_legendre
 
-from ..validation import LimitError, validate_positive
+from ..validation import LimitError, bound_text, validate_positive
 from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
@@ -177,10 +177,7 @@ def work_to(law: SneddonContact, radius: float) -> float:
 def _down(value: float) -> str:
     """``value`` > 0 rounded down to three digits: a bound that passes when tried ("" where
     it underflows: 1 kg at 1e154 m/s on a 1 nm sphere, whose mass would be 1e-328 kg)."""
-    if not value > 0.0:
-        return ""
-    unit = 10.0 ** (math.floor(math.log10(value)) - 2)
-    return f"{math.floor(value / unit) * unit:.3g}"
+    return bound_text(value, "high") if value > 0.0 else ""
 
 
 @dataclass(frozen=True)
