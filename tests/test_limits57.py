@@ -162,3 +162,11 @@ def test_a_cone_gets_no_reach_remedy_and_no_crash():
     for finite in (True, False):
         assert check_reach(cone, 0.0215, (0.7, 3.0), 2.0, finite) is None
     assert reach_velocity(cone, 0.0215, 3.0, 2.0) == ""
+
+
+def test_a_sphere_whose_equator_takes_no_representable_work_is_refused_in_one_line():
+    """user57: `impact --sphere-radius 1e-300 --mass 0.7 --velocity 3` ended in a traceback
+    (math domain error): the work to the equator underflows to 0, and its log was taken for
+    the remedy. Refused now naming the sphere, with the inputs to lower."""
+    with pytest.raises(sh.InputError, match=r"^sphere_radius: .*equator.*lower mass=\.\.\. or"):
+        sh.impact(sh.SphereIndenter(1e-300), sh.Material(4e6, 0.49), mass=0.7, velocity=3.0)

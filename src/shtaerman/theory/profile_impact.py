@@ -142,7 +142,9 @@ def _refuse_the_end(
     work that brings the contact to the profile's end ``top`` (m): a sphere's equator, a
     table's last radius, a limit of the model (a sweep case's refused row), naming the
     velocity and the mass that pass (three digits, rounded down)."""
-    remedy = lower_impact(mass, velocity, math.log(most) - math.log(energy))
+    remedy = "lower mass=... or velocity=..."  # the work to the end underflows (R = 1e-300 m)
+    if most > 0.0:
+        remedy = lower_impact(mass, velocity, math.log(most) - math.log(energy))
     if law.sphere:
         raise LimitError(
             f"sphere_radius: the striker's energy {energy:.6g} J drives the contact to the "
