@@ -4,15 +4,15 @@ The paper's case (A = 5, n = 1.5, E2 = 7.5 MPa, nu2 = 0.5, the default eight dep
 mesh family of ``contact --accuracy 1e-6`` (``ACCURACY_MESH`` graded by ``ACCURACY_GRADING``
 of :mod:`shtaerman.study.contact.accuracy`, with ``--default-family`` the default mesh, at the
 domain that the far-field rule of ``run_to_accuracy`` takes for 1e-6, 1e7 refined radii) at
-refine sqrt(2)^k. Per level: dofs; the true relative error of the force (worst
-depth, against Shtaerman) and of beta; from the level and the two before it, the estimate
-``--accuracy`` stops on (:func:`~shtaerman.study.contact.accuracy.estimate_errors`) and the
-effectivity estimate / true; the level's CPU seconds (``time.process_time``, all threads) and
-their ratio to one SuperLU factorization of a fixed 2-D Laplacian timed in the same run
-(``verify_cost.reference``); the peak RSS of the process so far; the one-minute load average.
-The machine is shared, so compare CPU seconds and ratios, not wall time. ``--accuracy`` also
-runs ``run_to_accuracy(1e-6)`` at the default caps (or ``--max-dofs``) and prints what it
-reached, or its refusal. Asserts nothing.
+refine sqrt(2)^k. Per level: dofs; the true relative error of the force (worst depth,
+against Shtaerman), of beta and of the fitted exponent; from the level and the two before it,
+their estimates (:func:`~shtaerman.study.contact.accuracy.estimate_errors`; force and beta
+are what ``--accuracy`` stops on) and the effectivity estimate / true; the level's CPU
+seconds (``time.process_time``, all threads) and their ratio to one SuperLU factorization of
+a fixed 2-D Laplacian timed in the same run (``verify_cost.reference``); the peak RSS of the
+process so far; the one-minute load average. The machine is shared, so compare CPU seconds
+and ratios, not wall time. ``--accuracy`` also runs ``run_to_accuracy(1e-6)`` at the default
+caps (or ``--max-dofs``) and prints what it reached, or its refusal. Asserts nothing.
 
 Run: python benchmarks/accuracy_1e6.py [--levels K0,K1,...] [--default-family] [--accuracy]
 [--max-dofs N]
@@ -44,7 +44,7 @@ from shtaerman.validation import InputError
 INDENTER, HALF_SPACE = PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5)
 DOMAIN = 1e7
 """Domain / refined radius that ``--accuracy 1e-6`` takes (the largest, MAX_DOMAIN)."""
-KEYS = ("force", "beta")
+KEYS = ("force", "beta", "exponent")
 
 
 def rss_gb() -> float:
@@ -57,10 +57,9 @@ def ladder_table(levels: list[int], unit: float, graded: bool = True) -> None:
     depths = default_depths(INDENTER, HALF_SPACE)
     mesh = replace(MeshSettings(), domain=DOMAIN, max_dofs=5e6)
     mesh = accuracy_mesh(mesh, INDENTER, depths, 1e-6) if graded else mesh
+    heads = " | ".join(f"{key[:5] + ' true':>10} {'est':>8} {'eff':>5}" for key in KEYS)
     print(
-        f"{'refine':>6} {'dofs':>7} | {'force true':>10} {'est':>8} {'eff':>5} | "
-        f"{'beta true':>9} {'est':>8} {'eff':>5} | {'CPU s':>6} {'ratio':>6} {'RSS GB':>6} "
-        f"{'load':>5}"
+        f"{'refine':>6} {'dofs':>7} | {heads} | {'CPU s':>6} {'ratio':>6} {'RSS GB':>6} {'load':>5}"
     )
     done: list[LadderLevel] = []
     for k in levels:
@@ -81,7 +80,7 @@ def ladder_table(levels: list[int], unit: float, graded: bool = True) -> None:
         else:
             cells = [f"{true[key]:10.3e} {'-':>8} {'-':>5}" for key in KEYS]
         print(
-            f"{refine:6.3g} {result.mesh_stats['dofs']:7d} | {cells[0]} | {cells[1]} | "
+            f"{refine:6.3g} {result.mesh_stats['dofs']:7d} | {' | '.join(cells)} | "
             f"{seconds:6.1f} {seconds / unit:6.0f} {rss_gb():6.2f} {load():5.1f}",
             flush=True,
         )

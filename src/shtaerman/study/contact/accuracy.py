@@ -33,6 +33,7 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ...fem.fit import exponent_sensitivity
 from ...fem.mesh import (
     DEFAULTS,
     HALF_SPACE,
@@ -262,7 +263,16 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     the orders :data:`ORDERS` (the error at the observed order where that is lower), where
     the observed order lies in :data:`SANE_ORDERS` (else the two-level difference); for force
     and beta at least :func:`_edge_floor`, times :data:`FORCE_SAFETY`, plus the known
-    far-field truncation (:data:`TRUNCATION`); beta's at least the force's.
+    far-field truncation (:data:`TRUNCATION`).
+
+    The fits take at least the bound the force's estimate eps implies (every depth's force
+    within eps, relative): beta's relative error at least eps (its log is the mean of the
+    depths' log P_i), the exponent's at least S eps / |q| (relative, as every estimate;
+    absolute S eps), S the fit's :func:`~shtaerman.fem.fit.exponent_sensitivity`. The
+    exponent's own Richardson estimate sees only how the fit moves between levels, whose
+    order the force's two error terms of opposite sign blur: it understated (0.18 of the true
+    error on ``--accuracy 1e-6``, observed order 3.5; benchmarks/FEM_NOTES.md, "Accuracy
+    1e-6").
     """
     results = [level.result for level in levels]
     estimates, ladders = {}, {}
@@ -279,10 +289,14 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
         error = max(estimates[key].error, _edge_floor(ladders[key], estimates[key]))
         error = FORCE_SAFETY * error + _truncation(results[-1], key)
         estimates[key] = replace(estimates[key], error=error)
-    if "beta" in estimates:  # exp(mean(ln P_i - q ln x_i)): errs as the mean of the depths'
-        # force errors, at most as the worst depth's, which the force's estimate bounds
-        error = max(estimates["beta"].error, estimates["force"].error)
-        estimates["beta"] = replace(estimates["beta"], error=error)
+    bounds = {"beta": 1.0}  # per unit force error; beta's log weighs every depth by 1/N
+    if "exponent" in estimates:
+        depths = [step.depth for step in results[-1].steps]
+        bounds["exponent"] = exponent_sensitivity(depths) / abs(estimates["exponent"].extrapolated)
+    for key, bound in bounds.items():
+        if key in estimates:
+            error = max(estimates[key].error, bound * estimates["force"].error)
+            estimates[key] = replace(estimates[key], error=error)
     return estimates
 
 
