@@ -97,3 +97,48 @@ def test_a_resume_of_an_empty_folder_still_runs(tmp_path, capsys):
     out.mkdir()
     assert main(["sweep", str(sweep), "--out", str(out), "--resume", "--workers", "1"]) == 0
     assert "1 cases, 1 ok" in capsys.readouterr().out
+
+
+# --- a sweep with a refused row, interrupted and resumed, says what the whole run says ----------
+
+DYNAMIC = """name = "fast"
+kind = "dynamic"
+[parameters]
+time_steps = 60
+mesh_size = 0.05
+[axes]
+velocity = [2.0, 3.0, 50.0]
+"""
+"""tests/test_sweeprow57.py's coarse dynamic sweep (1-3 s a case): 50 m/s is refused by the
+wave-speed limit."""
+
+
+def test_an_interrupted_sweep_counts_its_refused_row_as_its_resume_does(
+    tmp_path, capfd, monkeypatch
+):
+    """The interruption said "all 3 cases saved" (the refused row's record among them), its
+    resume "2 from an earlier run" (a refused row is judged again, never reused). The resumed
+    summary counts what the uninterrupted run's does (tests/test_sweeprow57.py: "1 ok, 0
+    failed, 1 refused" on two of these cases)."""
+    import os
+    import signal
+
+    from shtaerman.sweep import figures
+
+    path, out = tmp_path / "fast.toml", tmp_path / "out"
+    path.write_text(DYNAMIC)
+    draw = figures.sweep_figures
+
+    def signalled(*args, **kwargs):
+        os.kill(os.getpid(), signal.SIGTERM)
+        return draw(*args, **kwargs)
+
+    monkeypatch.setattr(figures, "sweep_figures", signalled)
+    assert main(["sweep", str(path), "--out", str(out), "--workers", "1"]) == 143
+    said = capfd.readouterr().err
+    assert f"all 2 cases saved in {out} (1 more refused, outside the model's validity), " in said
+    monkeypatch.undo()
+    assert main(["sweep", str(path), "--out", str(out), "--resume"]) == 0
+    resumed = capfd.readouterr().out.splitlines()[0]
+    counts = "3 cases, 2 ok, 0 failed, 1 refused (outside the model's validity)"
+    assert f"{counts} (nothing to compute, 2 from an earlier run)" in resumed

@@ -123,11 +123,13 @@ CONNECT_TIMEOUT = "10s"
 
 
 class SweepInterrupted(Exception):  # noqa: N818 (a signal, like KeyboardInterrupt)
-    """SIGINT or SIGTERM during a sweep; finished cases are on disk."""
+    """SIGINT or SIGTERM during a sweep; finished cases are on disk: ``saved`` of the ``total``
+    cases to compute (as a resume counts them: "from an earlier run"), beside the ``refused``
+    ones (recorded, never computed; judged again by the resume)."""
 
-    def __init__(self, signum: int, saved: int = 0, total: int = 0) -> None:
+    def __init__(self, signum: int, saved: int = 0, total: int = 0, refused: int = 0) -> None:
         super().__init__(signal.Signals(signum).name)
-        self.signum, self.saved, self.total = signum, saved, total
+        self.signum, self.saved, self.total, self.refused = signum, saved, total, refused
         self.restored = False
         """True when a --force run was stopped and the sweep it replaced was put back."""
         self.kept_in: Path | None = None
@@ -1018,7 +1020,8 @@ class _Run:
                     )
                 outcome = replace(outcome, figures=tuple(files))
         except SweepInterrupted as interrupted:
-            interrupted.saved, interrupted.total = len(self.records), len(self.cases)
+            interrupted.saved = len(self.records) - self.fresh  # the refused: all fresh
+            interrupted.total, interrupted.refused = len(self.cases) - self.fresh, self.fresh
             raise
         return outcome
 
