@@ -102,9 +102,10 @@ def run(args: argparse.Namespace) -> int:
     except InputError as error:  # the API's keywords out, resume, scheduler are options here
         keys = ("out", "resume", "scheduler")
         key = next((k for k in keys if str(error).startswith(f"{k}: ")), None)
-        if key is None:
+        spoken = ("--" if key else "") + worded(str(error), "cli")  # resume=True: --resume
+        if spoken == str(error):
             raise
-        raise InputError(f"--{worded(str(error), 'cli')}", key) from None
+        raise InputError(spoken, key or error.parameter) from None
     _report(args, spec, out.with_name(outcome.out.name), outcome)  # moved: a --force completed
     return outcome.exit_code
 

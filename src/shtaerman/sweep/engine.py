@@ -873,7 +873,9 @@ def run_sweep(
         raise InputError(f"workers must be an integer >= 1, got {workers!r}")
     check_figure_format(figure_format)
     if resume and force:
-        raise InputError("resume and force exclude each other: resume keeps the folder")
+        raise InputError(
+            "resume=True and force=True exclude each other: resume=True keeps the folder"
+        )
     start = time.perf_counter()
     out = check_folder_place(Path(out), "out", resume=resume)
     cases = spec.cases()
