@@ -380,7 +380,8 @@ def test_cli_resume_and_force_exclude_each_other(tmp_path, capsys):
     out = sweep_folder(tmp_path / "out")
     code, _, err = run_cli(capsys, write(tmp_path, IMPACT), "--out", out, "--resume", "--force")
     assert code == 2
-    assert_one_line_error(err, "resume and force exclude each other")
+    said = "--resume and --force exclude each other: --resume keeps the folder"  # as verify's
+    assert_one_line_error(err, said)
 
 
 def test_cli_unreachable_scheduler_is_exit_2(tmp_path, capsys, monkeypatch):

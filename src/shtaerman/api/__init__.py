@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     from ..theory.profiles import SphereIndenter as SphereIndenter
     from ..theory.profiles import TabulatedIndenter as TabulatedIndenter
     from ..validation import InputError as InputError
+    from ..validation import LimitError as LimitError
     from .dynamic_result import DynamicResult as DynamicResult
     from .effect_table import EffectTable as EffectTable
     from .effect_table import effects as effects
@@ -59,7 +60,7 @@ _HOMES = {
     "..theory.indenter": ("PowerLawIndenter",),
     "..theory.materials": ("RIGID", "Material"),
     "..theory.profiles": ("SphereIndenter", "TabulatedIndenter"),
-    "..validation": ("InputError",),
+    "..validation": ("InputError", "LimitError"),
     ".dynamic_result": ("DynamicResult",),
     ".effect_table": ("EffectTable", "effects"),
     ".fem_contact": ("ContactResult", "contact"),

@@ -51,6 +51,7 @@ __all__ = [
     "FOLDER_MARKER",
     "KeepStaged",
     "check_folder_path",
+    "check_folder_place",
     "check_output_file",
     "check_output_folder",
     "csv_header",
@@ -244,11 +245,18 @@ def probe_writable(option: str, folder: Path, name: str) -> None:
     except FileExistsError:
         return
     except OSError as error:
-        reason = error.strerror or str(error)
-        if error.errno == errno.ENOENT and folder.is_dir():  # /proc: the folder is there
-            reason = "its file system takes no new files"
-        raise InputError(f"{option}: cannot write in {str(folder)!r} ({reason})", option) from None
+        raise _unwritable(option, folder, error) from None
     os.rmdir(probe)
+
+
+def _unwritable(option: str, folder: Path, error: OSError) -> InputError:
+    """Why no entry could be made in ``folder``, as the refusal of ``option``."""
+    if error.errno == errno.ENOENT and not folder.is_dir():
+        return InputError(f"{option}: {missing_folder(folder)}", option)
+    reason = error.strerror or str(error)
+    if error.errno == errno.ENOENT:  # /proc: the folder is there
+        reason = "its file system takes no new files"
+    return InputError(f"{option}: cannot write in {str(folder)!r} ({reason})", option)
 
 
 FS_IOC_GETFLAGS = 0x80086601
@@ -489,14 +497,8 @@ def folder_lock(target: Path, option: str = "out") -> Iterator[Path]:
         raise _busy(option, target, live)
     try:
         stage = _claim(target, option)
-    except FileNotFoundError:
-        raise InputError(f"{option}: {missing_folder(target.parent)}", option) from None
     except OSError as error:
-        if isinstance(error, InputError):
-            raise
-        raise InputError(
-            f"{option}: cannot write in {str(target.parent)!r} ({error.strerror or error})", option
-        ) from None
+        raise _unwritable(option, target.parent, error) from None
     try:
         yield stage
     finally:
@@ -513,12 +515,29 @@ def check_output_folder(
 ) -> Path:
     """Return ``path`` (absolute) if a run may write there, or raise before any work is done.
 
-    A folder that exists and is not empty is refused unless ``force`` is set, or unless it
-    holds the file ``resume_marker`` (a run left it incomplete, to be completed); its parent
-    must exist and be writable; the current folder, its parents, symbolic links and a folder
-    that another run is writing are refused. ``keep_marker``: the file an interrupted run of
-    the caller leaves (a refusal then names resume=True where it works).
+    Its place is :func:`check_folder_place`'s (``resume_marker`` given: a resume, refused on a
+    folder that does not exist). A folder that exists and is not empty is refused unless
+    ``force`` is set, or unless it holds the file ``resume_marker`` (a run left it incomplete,
+    to be completed). ``keep_marker``: the file an interrupted run of the caller leaves (a
+    refusal then names resume=True where it works).
     """
+    target = check_folder_place(path, option, resume=resume_marker is not None)
+    with _path_errors(option, path):
+        if target.is_dir():
+            _check_replaceable(option, path, target, force, resume_marker, keep_marker)
+            if any(target.iterdir()):  # replaced (force) or completed (resume): removed
+                probe_removable(option, target)
+    return target
+
+
+def check_folder_place(path: Path, option: str = "out", *, resume: bool = False) -> Path:
+    """Return ``path`` (absolute) if a result folder may be made or completed there, or raise
+    InputError before any work: the refusals of :func:`check_folder_path`, an existing entry
+    that is no folder, a parent that is missing or no folder, another live run writing it (a
+    killed run's leftovers are cleaned first, which may put its folder back), with ``resume``
+    a folder that does not exist (nothing to complete), and a parent that takes no new entry.
+    The one check of the place of every result folder (:func:`check_output_folder`, a sweep's);
+    what the folder may hold is each caller's."""
     target = check_folder_path(path, option)
     with _path_errors(option, path):
         if target.exists() and not target.is_dir():
@@ -528,10 +547,12 @@ def check_output_folder(
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
-        if target.is_dir():
-            _check_replaceable(option, path, target, force, resume_marker, keep_marker)
-            if any(target.iterdir()):  # replaced (force) or completed (resume): removed
-                probe_removable(option, target)
+        if resume and not target.is_dir():
+            raise InputError(
+                f"resume: the folder {str(path)!r} ({_named(option)}) does not exist, so there "
+                "is nothing to complete; drop resume=True to start a new run",
+                "resume",
+            )
         probe_writable(option, target.parent, _stage_path(target).name)
     return target
 

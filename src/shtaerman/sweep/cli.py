@@ -102,9 +102,10 @@ def run(args: argparse.Namespace) -> int:
     except InputError as error:  # the API's keywords out, resume, scheduler are options here
         keys = ("out", "resume", "scheduler")
         key = next((k for k in keys if str(error).startswith(f"{k}: ")), None)
-        if key is None:
+        spoken = ("--" if key else "") + worded(str(error), "cli")  # resume=True: --resume
+        if spoken == str(error):
             raise
-        raise InputError(f"--{worded(str(error), 'cli')}", key) from None
+        raise InputError(spoken, key or error.parameter) from None
     _report(args, spec, out.with_name(outcome.out.name), outcome)  # moved: a --force completed
     return outcome.exit_code
 
@@ -122,13 +123,14 @@ def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any)
     """One line: what an interrupted sweep kept, and how to complete it."""
     from .engine import is_sweep_folder
 
+    refused = f" ({stop.refused} more refused, outside the model's validity)" * bool(stop.refused)
     if stop.restored:
         kept = f"--force kept the previous sweep in {out}, unchanged"
         if stop.kept_in is None:
             return f"shtaerman: sweep {name!r} interrupted ({stop}); {kept}"
         return (
             f"shtaerman: sweep {name!r} interrupted ({stop}); {kept}; {stop.saved} of "
-            f"{stop.total} cases of this run saved in {stop.kept_in}; resume with: "
+            f"{stop.total} cases of this run saved in {stop.kept_in}{refused}; resume with: "
             f"{_resume_command(args, stop.kept_in)}"
         )
     if not stop.saved and not is_sweep_folder(out):
@@ -136,12 +138,12 @@ def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any)
     if stop.total and stop.saved == stop.total:  # stopped while writing the summary
         return (
             f"shtaerman: sweep {name!r} interrupted ({stop}): all {stop.total} cases saved in "
-            f"{out}, its summary and figures not all written; write them with: "
+            f"{out}{refused}, its summary and figures not all written; write them with: "
             f"{_resume_command(args, out)}"
         )
     return (
         f"shtaerman: sweep {name!r} interrupted ({stop}): {stop.saved} of {stop.total} cases "
-        f"saved in {out}; resume with: {_resume_command(args, out)}"
+        f"saved in {out}{refused}; resume with: {_resume_command(args, out)}"
     )
 
 

@@ -47,12 +47,11 @@ from pathlib import Path
 from typing import Any
 
 from ..output.files import (
-    check_folder_path,
+    check_folder_place,
     file_mode,
     folder_lock,
     incomplete_path,
     json_safe,
-    missing_folder,
     probe_removable,
     probe_writable,
 )
@@ -124,11 +123,13 @@ CONNECT_TIMEOUT = "10s"
 
 
 class SweepInterrupted(Exception):  # noqa: N818 (a signal, like KeyboardInterrupt)
-    """SIGINT or SIGTERM during a sweep; finished cases are on disk."""
+    """SIGINT or SIGTERM during a sweep; finished cases are on disk: ``saved`` of the ``total``
+    cases to compute (as a resume counts them: "from an earlier run"), beside the ``refused``
+    ones (recorded, never computed; judged again by the resume)."""
 
-    def __init__(self, signum: int, saved: int = 0, total: int = 0) -> None:
+    def __init__(self, signum: int, saved: int = 0, total: int = 0, refused: int = 0) -> None:
         super().__init__(signal.Signals(signum).name)
-        self.signum, self.saved, self.total = signum, saved, total
+        self.signum, self.saved, self.total, self.refused = signum, saved, total, refused
         self.restored = False
         """True when a --force run was stopped and the sweep it replaced was put back."""
         self.kept_in: Path | None = None
@@ -516,15 +517,11 @@ def _foreign_entries(out: Path) -> list[str]:
 def _check_folder(
     spec: SweepSpec, out: Path, backup: Path, *, resume: bool, force: bool
 ) -> Callable[[], None]:
-    """Check the result folder, touching nothing; returns what makes it ready (called once the
-    cluster is up, so that an unreachable scheduler leaves no folder behind)."""
-    if resume and force:
-        raise InputError("resume and force exclude each other: resume keeps the folder")
-    if out.exists() and not out.is_dir():
-        raise InputError(f"out: {str(out)!r} exists and is not a folder", "out")
-    if not out.parent.is_dir():
-        raise InputError(f"out: {missing_folder(out.parent)}", "out")
-    probe_writable("out", out if resume and out.is_dir() else out.parent, f".{out.name}.probe")
+    """Check what the result folder holds (its place: :func:`check_folder_place`), touching
+    nothing; returns what makes it ready (called once the cluster is up, so that an
+    unreachable scheduler leaves no folder behind)."""
+    if resume and out.is_dir():  # completed in place
+        probe_writable("out", out, f".{out.name}.probe")
     full = out.is_dir() and any(out.iterdir())
     if full and not is_sweep_folder(out):  # resume or force would refuse it: not suggested
         flag = "resume" if resume else "force" if force else None  # at most one (above)
@@ -875,8 +872,12 @@ def run_sweep(
     if workers is not None and workers < 1:
         raise InputError(f"workers must be an integer >= 1, got {workers!r}")
     check_figure_format(figure_format)
+    if resume and force:
+        raise InputError(
+            "resume=True and force=True exclude each other: resume=True keeps the folder"
+        )
     start = time.perf_counter()
-    out = check_folder_path(Path(out), "out")
+    out = check_folder_place(Path(out), "out", resume=resume)
     cases = spec.cases()
     with folder_lock(out, "out") as lock:
         backup = lock / "replaced"
@@ -1021,7 +1022,8 @@ class _Run:
                     )
                 outcome = replace(outcome, figures=tuple(files))
         except SweepInterrupted as interrupted:
-            interrupted.saved, interrupted.total = len(self.records), len(self.cases)
+            interrupted.saved = len(self.records) - self.fresh  # the refused: all fresh
+            interrupted.total, interrupted.refused = len(self.cases) - self.fresh, self.fresh
             raise
         return outcome
 
