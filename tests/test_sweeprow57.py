@@ -107,7 +107,7 @@ def test_a_saved_refused_case_within_the_limits_at_load_runs_on_resume(tmp_path)
     narrower = replace(spec, refused={0: "velocity: beyond an older limit"})
     out = tmp_path / "out"
     first = run_sweep(narrower, out, workers=1, progress=False, figures=False)
-    assert (first.refused, first.computed, first.exit_code) == (1, 0, 0)
+    assert (first.refused, first.computed, first.exit_code) == (1, 0, 2)  # all refused: 2
     assert json.loads((out / "cases" / "0.json").read_text())["status"] == "refused"
     again = run_sweep(spec, out, workers=1, resume=True, progress=False, figures=False)
     assert (again.succeeded, again.refused, again.computed) == (1, 0, 1)

@@ -58,7 +58,7 @@ from ..output.files import (
 from ..plots.formats import check_figure_format
 from ..problem import worded
 from ..signals import deferred
-from ..validation import InputError
+from ..validation import InputError, LimitError
 from .guard import SCRATCH_ENV, check_not_bootstrapping, raise_if_unguarded
 from .kinds import CaseResult, unit_suffix
 from .spec import Case, SweepSpec
@@ -162,8 +162,8 @@ class SweepOutcome:
     figures : tuple of Path
         The figures this call drew (none over 3 or more axes, nor when not asked or failed).
     refused : int
-        Cases recorded "refused": beyond a validity limit of the model, not run (neither
-        computed nor reused).
+        Cases recorded "refused": beyond a validity limit of the model, at the file's load
+        (not run: neither computed nor reused) or met while the case ran (computed).
     """
 
     out: Path
@@ -183,7 +183,10 @@ class SweepOutcome:
     @property
     def exit_code(self) -> int:
         """0 when every case succeeded or was refused (outside the model's validity, its
-        reason in its row), 1 when any failed or is missing."""
+        reason in its row), 1 when any failed or is missing, 2 when every case was refused
+        (as a sweep refused whole at its load is)."""
+        if self.total and self.refused == self.total:
+            return 2
         return 0 if self.succeeded + self.refused == self.total else 1
 
 
@@ -263,14 +266,16 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
     This is the one place a case's checks become its status, for every kind: the
     :class:`~shtaerman.sweep.kinds.CaseResult` a case returns is "ok" without failures, else
     "failed" with its reasons and its outputs kept; a case that returns no ``CaseResult`` (no
-    verdict) or raises is "failed" without outputs. A case whose ladder lost a level is "ok"
+    verdict) or raises is "failed" without outputs, but "refused" (its reason in the file's
+    words) where it meets a validity limit (:class:`~shtaerman.validation.LimitError`) that
+    the file's load could not foresee. A case whose ladder lost a level is "ok"
     with its ``estimate_missing`` (its finest level that passed; its error outputs NaN).
 
     Returns
     -------
     dict
-        ``index``, ``status`` ("ok" or "failed"; "refused" is the client's,
-        :func:`refused_records`), ``outputs``, ``error`` (one line or None),
+        ``index``, ``status`` ("ok", "failed" or "refused"; a refusal at the file's load is
+        the client's, :func:`refused_records`), ``outputs``, ``error`` (one line or None),
         ``estimate_missing`` (one line or None), ``warnings``, ``seconds`` (wall, s),
         ``cpu_seconds`` (CPU time of the thread that ran the case, s), ``worker``, ``host``,
         ``pid``.
@@ -280,6 +285,7 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
     start, cpu = time.perf_counter(), time.thread_time()
     outputs: dict[str, float | int] = {}
     error = missing = None
+    status = "ok"
     with threadpool_limits(limits=1), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -293,11 +299,14 @@ def execute_case(case: Callable[[dict], CaseResult], index: int, params: dict) -
             missing = " ".join(result.estimate_missing.split()) or None
             if result.failures:  # it ran, but its own checks fail: kept, as failed
                 error = "check failed: " + " ".join("; ".join(result.failures).split())
+                status = "failed"
+        except LimitError as exc:  # a validity limit met in the run, not at the file's load
+            outputs, error, status = {}, worded(" ".join(str(exc).split()), "file"), "refused"
         except Exception as exc:
-            outputs, error = {}, _one_line(exc)
+            outputs, error, status = {}, _one_line(exc), "failed"
     return {
         "index": index,
-        "status": "ok" if error is None else "failed",
+        "status": status,
         "outputs": outputs,
         "error": error,
         "estimate_missing": missing,
