@@ -691,3 +691,41 @@ def test_in_process_runs_the_studies_on_one_blas_thread(tmp_path, monkeypatch):
             [object()], tmp_path, True, "png", print, lambda study, entry: None, lambda: "drawn"
         )
     assert seen == [{1}] and drawn == "drawn"
+
+
+_LAYER_AFTER_HERTZ = """
+from shtaerman.fem import mesh
+from shtaerman.study.run import run_study
+from shtaerman.study.schema import find_study, load_study
+
+def run(name):
+    mesh._unit_meshes.clear()  # the study's meshes are not yet made in this process
+    (study,) = load_study(find_study(name))
+    return run_study(study, quick=True)
+
+def numbers():
+    outcome = run("layer")
+    contact = {k: v for k, v in outcome.contact.to_dict().items() if k != "timings"}
+    return repr(outcome.accuracy.estimates), repr(contact)
+
+first = numbers()
+run("hertz")
+print(numbers() == first)
+"""
+
+
+def test_a_study_computes_the_same_numbers_after_another_in_its_process():
+    """A resumed verify ran the layer study in a fresh process, the full run after other studies
+    on the same worker: its central-pressure estimate differed by 1.35e-7 (user57), through a
+    mesh gmsh made after a wider model (tests/test_fem_mesh.py). Bitwise equal: a fresh
+    interpreter runs the layer first, then Hertz, then the layer again."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[1] / "src")}
+    done = subprocess.run(
+        [sys.executable, "-c", _LAYER_AFTER_HERTZ], env=env, capture_output=True, text=True
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines()[-1] == "True"

@@ -347,7 +347,14 @@ def _unit_mesh(
 def _generate(
     parameters: dict[str, float], names: dict[str, str] = _PARAMETERS, geometry: str = _GEOMETRY
 ) -> tuple[np.ndarray, np.ndarray, dict]:
-    """Mesh the .geo in a model of its own; return points, triangles and tagged lines."""
+    """Mesh the .geo in a model of its own; return points, triangles and tagged lines.
+
+    ``gmsh.open``, not ``gmsh.merge``: only opening resets the parser's bounding box, whose
+    size sets gmsh's geometric tolerance while the file is read. Merged, a file read after a
+    wider model (a half-space of radius >= 3e3 before a layer of 8.7) gave a mesh with nodes
+    swapped and coordinates 1e-15 off, so a study's numbers depended on the studies run before
+    it in the process. Opening also clears the parser's variables (a caller's session too).
+    """
     import gmsh
 
     for key, name in names.items():
@@ -355,7 +362,7 @@ def _generate(
             gmsh.onelab.setNumber(name, [parameters[key]])
     gmsh.model.add("shtaerman_halfspace")
     try:
-        gmsh.merge(str(geometry_path(geometry)))
+        gmsh.open(str(geometry_path(geometry)))
         gmsh.model.mesh.generate(2)
         return _read_back()
     finally:
