@@ -225,6 +225,7 @@ def test_the_exponent_estimate_bounds_what_the_forces_errors_do_to_the_fit():
     # times the extrapolated exponent; and at least the true error it bounds
     assert estimates["exponent"].absolute_error == pytest.approx(bound, rel=1e-12)
     assert estimates["exponent"].error >= true
+    assert estimates["exponent"].method == "propagated"  # the report says what set it
 
 
 def test_the_exponent_estimate_does_not_understate_on_a_coarse_hertz_ladder():

@@ -268,7 +268,8 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     The fits take at least the bound the force's estimate eps implies (every depth's force
     within eps, relative): beta's relative error at least eps (its log is the mean of the
     depths' log P_i), the exponent's at least S eps / |q| (relative, as every estimate;
-    absolute S eps), S the fit's :func:`~shtaerman.fem.fit.exponent_sensitivity`. The
+    absolute S eps), S the fit's :func:`~shtaerman.fem.fit.exponent_sensitivity`; where
+    that bound is the larger, the estimate's method is ``"propagated"``. The
     exponent's own Richardson estimate sees only how the fit moves between levels, whose
     order the force's two error terms of opposite sign blur: it understated (0.18 of the true
     error on ``--accuracy 1e-6``, observed order 3.5; benchmarks/FEM_NOTES.md, "Accuracy
@@ -294,9 +295,9 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
         depths = [step.depth for step in results[-1].steps]
         bounds["exponent"] = exponent_sensitivity(depths) / abs(estimates["exponent"].extrapolated)
     for key, bound in bounds.items():
-        if key in estimates:
-            error = max(estimates[key].error, bound * estimates["force"].error)
-            estimates[key] = replace(estimates[key], error=error)
+        if key in estimates and bound * estimates["force"].error > estimates[key].error:
+            error = bound * estimates["force"].error  # the bound sets it: said so
+            estimates[key] = replace(estimates[key], error=error, method="propagated", reason="")
     return estimates
 
 
