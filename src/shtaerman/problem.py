@@ -259,6 +259,11 @@ class Cell(NamedTuple):
     interface: str  # "frictionless" | "bonded" | "coulomb"
     loading: str  # "curve" | "massless" | "inertia"
 
+    def __str__(self) -> str:
+        """The parts in words: ``linear, Prony, layer bonded, coulomb, inertia``."""
+        relaxing = "Prony" if self.relaxing else "elastic"
+        return ", ".join((self.model, relaxing, self.geometry, self.interface, self.loading))
+
 
 @dataclass(frozen=True)
 class Unsupported:

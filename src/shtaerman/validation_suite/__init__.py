@@ -50,18 +50,24 @@ def run_suite(quick: bool = False, progress: Callable[[str], None] | None = None
 
 
 def suite_text(rows: list[Row]) -> str:
-    """The rows as a plain-text table, one line per row, grouped by case."""
-    lines = []
-    case = None
+    """The rows as plain text, grouped by case and source as docs/validation.md's tables are:
+    a group's head names the case and the whole reference, the quantity and why the tolerance
+    is that wide (a refuted source's argument); a row, its whole inputs and numbers; the last
+    line counts the verdicts (a source refuted is expected: it does not fail the run)."""
+    lines, group = [], None
     for row in rows:
-        if row.case != case:
-            case = row.case
-            lines.append(f"\n{case}")
+        if (row.case, row.source) != group:
+            group = (row.case, row.source)
+            lines += ["", f"{row.case}: {row.source}", f"  {row.quantity}. Tolerance: {row.why}"]
         lines.append(
-            f"  {row.source[:44]:44s} {row.inputs[:34]:34s} published {row.published:9.4f}  "
-            f"suite {row.value:9.4f} +- {row.error_bar:.1e}  diff {row.difference:+.4f}  "
-            f"tol {row.tolerance:.4f}  {row.verdict}"
+            f"  {row.inputs}: published {row.published:.4f}, suite {row.value:.4f} "
+            f"+- {row.error_bar:.1e}, difference {row.difference:+.4f}, tolerance "
+            f"{row.tolerance:.4f}: {row.verdict}"
         )
-    failed = sum(row.verdict == "DISAGREES" for row in rows)
-    lines.append(f"\n{len(rows)} rows, {failed} disagreeing beyond tolerance")
+    counts = {v: sum(row.verdict == v for row in rows) for v in ("agrees", "refuted", "DISAGREES")}
+    lines.append(
+        f"\n{len(rows)} rows: {counts['agrees']} agree, {counts['refuted']} refute their source "
+        f"(expected, the argument in docs/validation.md), {counts['DISAGREES']} disagree "
+        "beyond tolerance"
+    )
     return "\n".join(lines).lstrip("\n")

@@ -148,7 +148,7 @@ def slope_rows(bases: tuple[str, ...] = ("lubricated", "bonded")) -> list[Row]:
 
 def _slope_references(base: str) -> tuple[tuple[float, str, bool], ...]:
     """(published C, source, expected to agree) of a base's first-order coefficient."""
-    derived = (thick_layer_coefficient(0.5, base), "this page, eq. (L3)", True)
+    derived = (thick_layer_coefficient(0.5, base), "docs/validation.md, eq. (L3)", True)
     if base == "bonded":
         return ((1.133, DIMITRIADIS + ", eq. 12 (-2 alpha0 / pi)", True), derived)
     return ((0.884, DIMITRIADIS + ", eq. 11 (-2 alpha0 / pi)", False), derived)

@@ -147,7 +147,7 @@ def _run(variant: Variant, given: dict[str, Any], estimate: bool) -> Run:
         problem = Problem(**variant.parts)
     except InputError as error:
         return Run(variant.label, variant.role, variant.effect, "-", refused=f"refused: {error}")
-    cell = ", ".join(str(part) for part in problem.cell)
+    cell = str(problem.cell)
     options, notes = _options(problem, given)
     head = dict(label=variant.label, role=variant.role, effect=variant.effect, cell=cell)
     try:
