@@ -152,3 +152,26 @@ def test_a_dynamic_study_far_too_slow_names_the_velocity_that_passes(tmp_path):
     )
     path.write_text(re.sub(r"(?m)^velocity = .*$", "velocity = 4.95e-24", text))
     load_study(path)  # the remedy loads (`verify --quick` runs it: the report)
+
+
+def test_verify_prints_an_undefined_check_value_as_nan(tmp_path):
+    """A dynamic study at 4.95e-24 m/s (the reach's remedy) radiates no energy: its reflected
+    fraction is 0/0, null in results.json, and `verify` printed a TypeError traceback."""
+    from shtaerman.cli.verify import verify_text
+
+    checks = [
+        {"name": "energy balance", "value": 1e-3, "tolerance": 1e-2, "passed": True},
+        {"name": "reflected energy", "value": None, "tolerance": 1e-2, "passed": False},
+    ]
+    results = {"studies": {"d": {"checks": checks, "passed": False}}}
+    lines = verify_text(results, tmp_path).splitlines()
+    assert lines[1].split() == ["d", "FAIL", "reflected", "energy:", "nan", "/", "1e-02"]
+    assert lines[2].split() == [
+        "failed",
+        "reflected",
+        "energy:",
+        "nan",
+        ">",
+        "tolerance",
+        "1.0e-02",
+    ]
