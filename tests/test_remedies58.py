@@ -175,3 +175,19 @@ def test_verify_prints_an_undefined_check_value_as_nan(tmp_path):
         "tolerance",
         "1.0e-02",
     ]
+
+
+def test_a_reach_remedy_no_wave_passes_is_named_on_the_massless_body(capsys):
+    """1e-300 kg at 1e100 m/s: every velocity or mass the reach names radiates above the
+    waves' limit at this density; both are named on the massless body, where each runs."""
+    said = _refusal(capsys, "dynamic", "--mass", "1e-300", "--velocity", "1e100")
+    assert said.endswith(
+        "raise --velocity to at least about 4.14e+126 m/s with this striker, mass and body, "
+        "or --mass to at least about 1.71e-247 kg, on the massless body, --density2 0 (at "
+        "this density2 either radiates above 0.8 of its energy as waves, where the linear FE "
+        "impact breaks down)"
+    ), said
+    check_dynamic(_problem(1e-300, 4.14e126, 0.0))
+    check_dynamic(_problem(1.71e-247, 1e100, 0.0))
+    with pytest.raises(LimitError, match="shear wave speed"):
+        check_dynamic(_problem(1.71e-247, 1e100))  # at the body's density: the waves refuse

@@ -348,10 +348,11 @@ def _remedies(
     """The reach refusal's remedies, each (parameter, value that passes the waves' limit too,
     value that passes the reach, unit: values as shown, "" beyond the floats): ``first``, then
     ``second`` after "or", with this striker and body (``on``: a layer's words). One the
-    waves' limit refuses ("") is left out; both: the reach's, with the massless body."""
+    waves' limit refuses ("") is left out; both: the reach's, on the massless body."""
     (name, value, bare, unit), (other, other_value, other_bare, other_unit) = first, second
-    if not value and not other_value:  # every remedy radiates too much: no waves, then
-        value, other_value, on = bare, other_bare, on + _MASSLESS
+    if not value and not other_value and (bare or other_bare):  # each radiates too much
+        first, second = (name, bare, bare, unit), (other, other_bare, other_bare, other_unit)
+        return _remedies(first, second, on, bound) + _MASSLESS
     if not value:
         said = f"{other}=... to at {bound} about {other_value} {other_unit}"
         return f"{said} with this striker, {name} and body{on}"
@@ -362,7 +363,7 @@ def _remedies(
 
 
 _MASSLESS = (
-    f" and density2=0 (the massless body: at this density2 it radiates above "
+    f", on the massless body, density2=0 (at this density2 either radiates above "
     f"{MAX_RADIATED_ESTIMATE:g} of its energy as waves, where the linear FE impact breaks down)"
 )
 """The end of a reach remedy that the wave-speed limit refuses whichever is taken."""
