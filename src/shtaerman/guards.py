@@ -240,6 +240,7 @@ def check_reach(
     finite: bool,
     note: str = "",
     layer: tuple[float, float, float] | None = None,
+    waves: Callable[[float, float], float] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
@@ -249,7 +250,11 @@ def check_reach(
     Both inputs set the depth: the message names both (or the shape coefficient, where the
     paper's striker would be within reach); ``note`` ends it (the route's other remedy);
     ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
-    which bound the remedy too (None: the half-space). The one refusal of an impact's depth
+    which bound the remedy too (None: the half-space); ``waves``: the first-order radiated
+    fraction of an impact (mass kg, velocity m/s) on the body of a linear FE impact with
+    inertia (None: no waves), a remedy above :data:`MAX_RADIATED_ESTIMATE` is not named (1e-50
+    kg at 3 m/s named 41.4 m/s and 1.9e-48 kg, both refused by :func:`check_wave_speed`): a
+    heavier mass that passes both is named instead. The one refusal of an impact's depth
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
     (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
     from .validation import LimitError
@@ -279,28 +284,116 @@ def check_reach(
     if MIN_DEPTH_RATIO <= ratio <= high:  # within reach
         return
     scale, on = _layer_bound(depth, _reach_scale(indenter, ratio, high), layer)
-    if not ratio >= MIN_DEPTH_RATIO:  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
-        slowest = _shown(velocity, scale * (q + 1.0) / 2.0, up=True)
-        heaviest = _shown(mass, scale * (q + 1.0), up=True)
+    up = not ratio >= MIN_DEPTH_RATIO  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
+    shown = (
+        _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
+        _shown(mass, scale * (q + 1.0), up=up),
+    )
+    passing = _within_waves(indenter, depth, impact, q, shown, waves, high)
+    remedies = _remedies(
+        ("velocity", passing[0], shown[0], "m/s"),
+        ("mass", passing[1], shown[1], "kg"),
+        on,
+        "least" if up else "most",
+    )
+    if up:
         raise LimitError(
             f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
-            "quasi-static impact (shtaerman impact) is the answer there; raise velocity=... "
-            f"to at least about {slowest} m/s with this striker, mass and body{on}"
-            + (f", or mass=... to at least about {heaviest} kg" if heaviest else ""),
+            f"quasi-static impact (shtaerman impact) is the answer there; raise {remedies}"
+            + (_WAVES_TOO if shown[0] and passing[1] and not passing[0] else ""),
             "mass",
         )
-    if not ratio <= high:
-        fastest = _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
-        lightest = _shown(mass, scale * (q + 1.0), up=False)
-        raise LimitError(
-            f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, "
-            f"beyond the {high:g} up to which {reach}: lower velocity=... to at most about "
-            f"{fastest} m/s with this striker, mass and body{on}, or mass=..."
-            + (f" to at most about {lightest} kg" if lightest else "")
-            + note,
-            "velocity",
-        )
+    raise LimitError(
+        f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, beyond the "
+        f"{high:g} up to which {reach}: lower {remedies}{note}",
+        "velocity",
+    )
+
+
+def _within_waves(
+    indenter: Indenter,
+    depth: float,
+    impact: tuple[float, float],
+    q: float,
+    shown: tuple[str, str],
+    waves: Callable[[float, float], float] | None,
+    high: float,
+) -> tuple[str, str]:
+    """The velocity and the mass (m/s, kg, as shown) that bring ``impact`` (mass kg, velocity
+    m/s; force exponent ``q``), now reaching ``depth`` m outside the reach [MIN_DEPTH_RATIO,
+    ``high``], within it (``shown``: the reach's, each "" beyond the floats) and within the
+    waves' limit (``waves``, :func:`check_reach`'s; None: ``shown``): a shallow impact's mass
+    heavier where the waves ask it, a deep one's velocity lower; "" where none passes both."""
+    if waves is None:
+        return shown
+    (mass, velocity), (speed, weight) = impact, shown
+    if depth_ratio(indenter, depth) < MIN_DEPTH_RATIO:  # faster radiates more, heavier less
+        speed = _calm(speed, waves, mass, None)
+        weight = _calm(_wave_mass(weight, velocity, q, waves), waves, None, velocity)
+        moved = depth * (float(weight or mass) / mass) ** (1.0 / (q + 1.0))
+        return speed, weight if depth_ratio(indenter, moved) <= high else ""
+    speed = _calm(_wave_velocity(speed, mass, q, waves), waves, mass, None)
+    moved = depth * (float(speed or velocity) / velocity) ** (2.0 / (q + 1.0))
+    speed = speed if depth_ratio(indenter, moved) >= MIN_DEPTH_RATIO else ""
+    return speed, _calm(weight, waves, None, velocity)
+
+
+def _remedies(
+    first: tuple[str, str, str, str],
+    second: tuple[str, str, str, str],
+    on: str,
+    bound: str = "least",
+) -> str:
+    """The reach refusal's remedies, each (parameter, value that passes the waves' limit too,
+    value that passes the reach, unit: values as shown, "" beyond the floats): ``first``, then
+    ``second`` after "or", with this striker and body (``on``: a layer's words). One the
+    waves' limit refuses ("") is left out; both: the reach's, on the massless body."""
+    (name, value, bare, unit), (other, other_value, other_bare, other_unit) = first, second
+    if not value and not other_value and (bare or other_bare):  # each radiates too much
+        first, second = (name, bare, bare, unit), (other, other_bare, other_bare, other_unit)
+        return _remedies(first, second, on, bound) + _MASSLESS
+    if not value:
+        said = f"{other}=... to at {bound} about {other_value} {other_unit}"
+        return f"{said} with this striker, {name} and body{on}"
+    said = f"{name}=... to at {bound} about {value} {unit} with this striker, {other} and body{on}"
+    if not other_value:  # beyond the floats, or refused by the waves' limit
+        return said
+    return said + f", or {other}=... to at {bound} about {other_value} {other_unit}"
+
+
+_MASSLESS = (
+    f", on the massless body, density2=0 (at this density2 either radiates above "
+    f"{MAX_RADIATED_ESTIMATE:g} of its energy as waves, where the linear FE impact breaks down)"
+)
+"""The end of a reach remedy that the wave-speed limit refuses whichever is taken."""
+
+
+_WAVES_TOO = (
+    f" (a faster striker radiates above {MAX_RADIATED_ESTIMATE:g} of its energy as waves, "
+    "where the linear FE impact breaks down)"
+)
+"""The end of a shallow impact's reach refusal whose velocity :func:`check_wave_speed`
+would refuse."""
+
+
+def _calm(
+    shown: str,
+    waves: Callable[[float, float], float] | None,
+    mass: float | None,
+    velocity: float | None,
+) -> str:
+    """``shown``, a remedy's mass (kg; ``mass`` None) or velocity (m/s; ``velocity`` None) as
+    the message shows it, "" where ``waves`` puts its impact's first-order radiated fraction
+    above :data:`MAX_RADIATED_ESTIMATE` (or cannot give it)."""
+    if not shown or waves is None:
+        return shown
+    impact = (float(shown), velocity) if mass is None else (mass, float(shown))
+    try:
+        fraction = waves(*impact)
+    except (ValueError, ArithmeticError):  # the validation's InputError is a ValueError
+        return ""
+    return shown if fraction <= MAX_RADIATED_ESTIMATE else ""
 
 
 def _reach_scale(indenter: Indenter, ratio: float, high: float) -> float:
@@ -358,6 +451,7 @@ def check_profile_reach(
     finite: bool = False,
     note: str = DEPTHS_INSTEAD,
     layer: tuple[float, float, float] | None = None,
+    waves: Callable[[float, float], float] | None = None,
 ) -> None:
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
@@ -365,8 +459,10 @@ def check_profile_reach(
     last row; a power law's depths set by the impact, outside the x/a an FE impact is run at
     (:func:`check_reach`; ``finite``: the finite-strain contact's; ``note`` ends its refusal:
     the route's other remedy, "" where it takes no depths; ``layer``: a layer's thickness and
-    the depths, m, its mesh resolves, which its remedy keeps within). The one check of every
-    contact curve's route: the API, a contact or finite-strain study or sweep case.
+    the depths, m, its mesh resolves, which its remedy keeps within; ``waves``: as
+    :func:`check_reach`'s). The one check of every contact curve's route (the API, a contact or
+    finite-strain study or sweep case) and of an FE impact's before its exact impact is solved
+    (:func:`shtaerman.fem.impact.check_impact_reach`).
 
     Raises
     ------
@@ -381,7 +477,7 @@ def check_profile_reach(
         if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
             deepest = overshoot * _approach(indenter, modulus, impact)
             q = 1.0 + 1.0 / indenter.exponent
-            check_reach(indenter, deepest, impact, q, finite, note, layer)
+            check_reach(indenter, deepest, impact, q, finite, note, layer, waves)
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
@@ -452,7 +548,7 @@ def check_wave_speed(
     mass, velocity = impact
     c_s, share = estimate.shear_wave_speed, MAX_RADIATED_ESTIMATE / fraction
     q = 1.5 if force_exponent is None else force_exponent
-    slower = 0.99 * velocity * share ** ((q + 1.0) / (3.0 * q - 3.0))
+    slower = _slower(velocity, share, q)
     about = ""
     if force_exponent is None:
         slower, about = _passing_velocity(slower, (q + 1.0) / (3.0 * q - 3.0), fraction_at)
@@ -490,12 +586,61 @@ def _heavier_instead(
         f"; velocity {slower:.3g} m/s, which would pass the waves, drives the striker "
         "shallower than an FE impact resolves"
     )
-    heavier = ""
-    if q < 2.0:
-        heavier = _shown(mass, math.log(0.99 * share) * (q + 1.0) / (q - 2.0), up=True)
+    heavier = _heavier(mass, share, q)
     if heavier and reaches(float(heavier), velocity):
         return f" or mass {heavier} kg at {velocity:g} m/s would pass{said}"
     return f" would pass, no velocity with this mass{said}"
+
+
+def _heavier(mass: float, share: float, q: float) -> str:
+    """The mass (kg, three digits, rounded up) that brings the first-order radiated fraction of
+    an impact of ``mass`` to 0.99 ``share`` of it (lambda ~ M^((q - 2)/(q + 1)) of a force P
+    ~ x^``q``, exact for a power law; "" for q >= 2, where a heavier mass radiates no less)."""
+    if q >= 2.0:
+        return ""
+    return _shown(mass, math.log(0.99 * share) * (q + 1.0) / (q - 2.0), up=True)
+
+
+def _wave_mass(
+    shown: str, velocity: float, q: float, waves: Callable[[float, float], float]
+) -> str:
+    """``shown`` (a mass in kg as the message shows it), or the heavier one :func:`_heavier`
+    names where ``waves`` puts its impact at ``velocity`` (m/s) above
+    :data:`MAX_RADIATED_ESTIMATE` ("" where it cannot say)."""
+    try:
+        fraction = waves(float(shown), velocity) if shown else math.nan
+    except (ValueError, ArithmeticError):
+        return ""
+    if not fraction > MAX_RADIATED_ESTIMATE:
+        return shown if fraction == fraction else ""
+    return _heavier(float(shown), MAX_RADIATED_ESTIMATE / fraction, q)
+
+
+def _wave_velocity(
+    shown: str, mass: float, q: float, waves: Callable[[float, float], float] | None
+) -> str:
+    """``shown`` (a velocity in m/s as the message shows it), or the lower one that brings
+    the first-order radiated fraction ``waves`` gives of an impact of ``mass`` (kg) there
+    below :data:`MAX_RADIATED_ESTIMATE` (:func:`_passing_velocity`; "" unsettled)."""
+    if not shown or waves is None:
+        return shown
+    try:
+        fraction = waves(mass, float(shown))
+    except (ValueError, ArithmeticError):
+        return ""
+    if not fraction > MAX_RADIATED_ESTIMATE:
+        return shown
+    power = (q + 1.0) / (3.0 * q - 3.0)
+    lower = _slower(float(shown), MAX_RADIATED_ESTIMATE / fraction, q)
+    lower, about = _passing_velocity(lower, power, lambda velocity: waves(mass, velocity))
+    return "" if about else f"{lower:.3g}"
+
+
+def _slower(velocity: float, share: float, q: float) -> float:
+    """The velocity (m/s) that brings an impact's first-order radiated fraction to 0.99
+    ``share`` of its own at ``velocity`` (lambda ~ v0^((3q - 3)/(q + 1)) of a force P ~
+    x^``q``, exact for a power law)."""
+    return 0.99 * velocity * share ** ((q + 1.0) / (3.0 * q - 3.0))
 
 
 def _passing_velocity(

@@ -356,37 +356,28 @@ def _check_depths(
 
 def _check_layer_depths(problem: Problem, depths: np.ndarray, mesh: Any) -> None:
     """Refuse, before any work, a layer outside the thickness range at the impact's depths
-    (:func:`shtaerman.fem.mesh.check_thickness_range`, which the mesh applies), naming the
-    velocity that fits it too (:func:`shtaerman.fem.mesh.fitting_velocity`, checked at the
-    depths it sets)."""
-    from ..fem.mesh import check_thickness_range, fitting_velocity
+    (:func:`shtaerman.study.contact.layer.check_thickness`, which names the velocity that fits
+    it too, as a contact study's)."""
     from ..study.contact.indentation import default_depths, refined_radius
-    from ..validation import LimitError
+    from ..study.contact.layer import check_thickness
 
     indenter, geometry, (mass, velocity) = (
         problem.striker.indenter,
         problem.geometry,
         _impact(problem),
     )
-    refined = refined_radius(indenter, depths, mesh, geometry)
-    try:
-        check_thickness_range(geometry.thickness, refined, "at these depths")
-    except LimitError as error:
-        exponent = getattr(indenter, "exponent", 2.0)
-        fits = fitting_velocity(geometry.thickness, refined, velocity, exponent)
-        if fits is None:  # beyond the floats
-            raise
-        try:
-            with warnings.catch_warnings():  # a slower or faster impact, only sized
-                warnings.simplefilter("ignore")
-                moved = (problem.body.material, mass, fits[0])
-                at = default_depths(indenter, *moved, problem.striker.material)
-            check_thickness_range(
-                geometry.thickness, refined_radius(indenter, at, mesh, geometry), ""
+
+    def refined_at(moved: float | None) -> list[float]:
+        """The refined radius (m) at these depths (None), or at the impact's at ``moved``."""
+        at = depths
+        if moved not in (None, velocity):
+            at = default_depths(
+                indenter, problem.body.material, mass, moved, problem.striker.material
             )
-        except InputError:  # not brought within
-            raise error from None
-        raise LimitError(str(error) + fits[1], "thickness") from None
+        return [refined_radius(indenter, at, mesh, geometry)]
+
+    exponent = getattr(indenter, "exponent", 2.0)
+    check_thickness(geometry.thickness, refined_at, velocity, exponent, "at these depths")
 
 
 def _plan(indenter: Any, body: Any, options: dict[str, Any]) -> _Plan:

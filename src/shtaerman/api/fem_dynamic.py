@@ -367,13 +367,15 @@ def check_dynamic(
 
 
 def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
-    """The impact's own checks as the run makes them first (its warnings are the run's): the
-    floating-point range, the exact impact and the depth it reaches; the linear body's layer
-    thickness against it, mesh size and viscoelastic duration (``settings``; None: a rubber)."""
+    """The impact's own checks as the run makes them first (its warnings are the run's): a
+    power law's reach (:func:`shtaerman.fem.impact.check_impact_reach`), the floating-point
+    range, the exact impact and the depth it reaches; the linear body's layer thickness
+    against it, mesh size and viscoelastic duration (``settings``; None: a rubber)."""
     import warnings
 
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..fem.finite_dynamic import pad_reach_note
+    from ..fem.impact import check_impact_reach
     from ..guards import check_reach
     from ..theory.impact import representable
     from ..theory.materials import effective_modulus, validate_density
@@ -383,18 +385,19 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     striker, body = problem.striker, problem.body.material
     inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
     law = contact_law(striker.indenter, effective_modulus(striker.material, body))
+    friction, geometry = problem.interface.coefficient, problem.geometry
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
+        check_impact_reach(*inputs[:3], inputs[3:5], settings is None, friction, geometry)
         # the floating-point range first, as the run meets it: the exact impact's, and v0^2
         x_c = elastic_impact(striker.mass, striker.velocity, law).x_c
         representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5], ("velocity",))
         if settings is not None:
-            physics = (problem.body.prony, problem.interface.coefficient)
-            check_dynamic_impact(*inputs, settings, *physics, geometry=problem.geometry)
+            check_dynamic_impact(*inputs, settings, problem.body.prony, friction, geometry=geometry)
             return
     validate_density("density2", body.density)
-    pad = problem.geometry.thickness is not None  # it stops the striker short of x_c
-    note = pad_reach_note(pad, problem.interface.coefficient, inputs[2])
+    pad = geometry.thickness is not None  # it stops the striker short of x_c
+    note = pad_reach_note(pad, friction, inputs[2])
     if note is not None:
         check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True, note)
 

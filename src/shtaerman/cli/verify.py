@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import shlex
 import sys
@@ -197,6 +198,12 @@ def _one_line(error: Exception) -> str:
     return " ".join(str(error).split()) or type(error).__name__
 
 
+def _size(value: float | None, undefined: float = math.inf) -> float:
+    """|value| of a check in results.json, ``undefined`` where it holds null: a NaN (a
+    reflected energy of 0 radiated at 4.95e-24 m/s was a TypeError traceback), the worst."""
+    return undefined if value is None else abs(value)
+
+
 def verify_text(results: dict, out: Path) -> str:
     """Verdict per study, the worst check, and each failing check with value and tolerance."""
     lines = [f"{'study':<24} verdict  {'worst check (value / tolerance)':<48}"]
@@ -206,13 +213,14 @@ def verify_text(results: dict, out: Path) -> str:
         if not checks:  # an effect table has no tolerances
             lines.append(f"{name:<24} {verdict:<8} (no checks: a table of effects)")
             continue
-        worst = max(checks, key=lambda c: abs(c["value"]) / c["tolerance"])
+        worst = max(checks, key=lambda c: _size(c["value"]) / c["tolerance"])
         lines.append(
-            f"{name:<24} {verdict:<8} {worst['name']}: {abs(worst['value']):.1e} / "
+            f"{name:<24} {verdict:<8} {worst['name']}: {_size(worst['value'], math.nan):.1e} / "
             f"{worst['tolerance']:.0e}"
         )
         lines += [
-            f"{'':<24}   failed {c['name']}: {abs(c['value']):.2e} > tolerance {c['tolerance']:.1e}"
+            f"{'':<24}   failed {c['name']}: {_size(c['value'], math.nan):.2e} > tolerance "
+            f"{c['tolerance']:.1e}"
             for c in checks
             if not c["passed"]
         ]

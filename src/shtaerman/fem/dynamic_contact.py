@@ -22,6 +22,7 @@ the rest as numerical dissipation.
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
 import time
@@ -43,7 +44,6 @@ from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.radiation import (
     RadiationEstimate,
     impact_radiation,
-    profile_radiation_estimate,
     rayleigh_root,
 )
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
@@ -104,6 +104,7 @@ __all__ = [
     "check_dynamic_impact",
     "estimate_dofs",
     "prepare_dynamic_impact",
+    "radiated_fraction",
 ]
 
 MAX_DENSE_CORRECTION = 400e6
@@ -606,18 +607,19 @@ def _waves(
     return impact_radiation(striker.mass, striker.velocity, law, rho, half_space, exact)
 
 
-def _fraction_at(
-    indenter: Indenter, half_space: Material, rho: float, mass: float
-) -> Callable[[float], float]:
-    """The first-order radiated fraction of a sphere's or a table's quasi-static impact of
-    ``mass`` kg at a velocity (m/s) on ``half_space`` of density ``rho`` kg/m^3 (ms each)."""
+def radiated_fraction(
+    indenter: Indenter, half_space: Material, rho: float
+) -> Callable[[float, float], float]:
+    """The first-order radiated fraction of the quasi-static impact of a mass (kg) at a
+    velocity (m/s) on ``half_space`` of density ``rho`` kg/m^3 (a sphere's or a table's: ms
+    each): what :func:`shtaerman.guards.check_wave_speed` bounds, for the remedies of the
+    limits it follows and precedes."""
 
-    def fraction(velocity: float) -> float:
-        with warnings.catch_warnings():  # a lower velocity than the input's, only sized
+    def fraction(mass: float, velocity: float) -> float:
+        with warnings.catch_warnings():  # another impact than the input's, only sized
             warnings.simplefilter("ignore")
             exact = profile_sizing_impact(indenter, half_space, mass, velocity)
-        shear, nu = half_space.shear_modulus, half_space.poisson_ratio
-        return profile_radiation_estimate(exact, rho, shear, nu).energy_fraction
+            return _waves(indenter, half_space, rho, Striker(mass, velocity), exact).energy_fraction
 
     return fraction
 
@@ -677,14 +679,15 @@ def check_dynamic_impact(
         exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
     qs = _quasi_static(indenter, half_space, striker, exact)
     thickness, impact = geometry.thickness, (striker.mass, striker.velocity)
+    fraction = radiated_fraction(indenter, half_space, rho) if rho > 0 else None
     if thickness is None:  # a pad stops the striker short of x_c
-        check_reach(indenter, qs.x_c, impact, qs.force_exponent, False)
+        check_reach(indenter, qs.x_c, impact, qs.force_exponent, False, waves=fraction)
         # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
     if rho > 0:
         waves = _waves(indenter, half_space, rho, striker, exact)
         exponent = None if math.isnan(qs.beta) else qs.force_exponent
-        at = None if exponent is not None else _fraction_at(indenter, half_space, rho, striker.mass)
+        at = None if exponent is not None else functools.partial(fraction, striker.mass)
         reach = (
             None if thickness is not None or exponent is None else _reaches(indenter, half_space)
         )

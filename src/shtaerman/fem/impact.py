@@ -17,6 +17,7 @@ in the one loop of :func:`.impact_run.march_steps` and ends in one
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Any, Protocol
 
@@ -30,7 +31,7 @@ from .impact_run import ImpactRun
 from .mesh import HALF_SPACE, Geometry
 from .rubber import RubberModel
 
-__all__ = ["PreparedImpact", "run_impact"]
+__all__ = ["PreparedImpact", "check_impact_reach", "run_impact"]
 
 
 class PreparedImpact(Protocol):
@@ -44,6 +45,40 @@ class PreparedImpact(Protocol):
 
     def result(self, marched: Any, timings: dict[str, float]) -> ImpactRun:
         """The run of what :meth:`march` returned, with its costs ``timings`` (s)."""
+
+
+def check_impact_reach(
+    indenter: Indenter,
+    half_space: Material,
+    density: float,
+    impact: tuple[float, float],
+    finite: bool,
+    friction: float | None = None,
+    geometry: Geometry = HALF_SPACE,
+) -> None:
+    """Refuse, before its exact impact is solved, a power law's FE impact (mass kg, velocity
+    m/s) on ``half_space`` (density kg/m^3; ``finite``: a rubber at finite strain) whose depth
+    lies beyond its model's reach where its run checks it (the linear body on the half-space,
+    its remedies within the waves' limit; a rubber where :func:`.finite_dynamic.pad_reach_note`
+    has a note): x_c in logarithms, :func:`shtaerman.guards.check_profile_reach`, the contact
+    curve's check (0.7 kg at 1e-300 m/s was refused for the exact impact's P_c = 0, naming
+    four inputs and no value). A sphere's or a table's reach is checked by its run, and so is
+    a v0^2 beyond the largest float: its refusal (a velocity of a physical size) passes where
+    the reach's might not (1e-300 kg at 1e200 m/s: 4.13e158 m/s, whose v0^2 overflows too)."""
+    from ..guards import check_profile_reach
+    from ..theory.materials import RIGID, effective_modulus
+    from .dynamic_contact import radiated_fraction
+    from .finite_dynamic import pad_reach_note
+
+    if indenter.kind != "power-law" or math.isinf(impact[1] * impact[1]):
+        return
+    pad = geometry.thickness is not None  # a pad stops the striker short of x_c
+    note = pad_reach_note(pad, friction, density) if finite else (None if pad else "")
+    if note is None:
+        return
+    waves = None if finite or not density > 0 else radiated_fraction(indenter, half_space, density)
+    modulus = effective_modulus(RIGID, half_space)
+    check_profile_reach(indenter, modulus, None, impact, finite=finite, note=note, waves=waves)
 
 
 def run_impact(

@@ -19,6 +19,8 @@ half-space density ``density2``): its restitution, x_max and P_max; ``None`` wit
 from __future__ import annotations
 
 import math
+import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -31,7 +33,6 @@ from ...theory.sneddon import Indenter
 from ..checks import Check
 from .accuracy import AccuracyResult
 from .contact_law import FemContactLaw
-from .indentation import refined_radius
 
 __all__ = [
     "LEVELS",
@@ -100,14 +101,44 @@ class LayerSpec:
 
 
 def check_thickness(
-    mesh: MeshSettings, layer: Geometry, indenter: Indenter, deepest: float
+    thickness: float,
+    refined_at: Callable[[float | None], list[float]],
+    velocity: float | None,
+    exponent: float,
+    where: str,
 ) -> None:
-    """Refuse (InputError naming the thickness) the ``layer`` if ``mesh`` does not take it at
-    the deepest depth ``deepest`` m: the mesh's own bounds,
-    :data:`~shtaerman.fem.mesh.MIN_THICKNESS` .. ``MAX_THICKNESS`` refined radii (of any
-    profile: :func:`.indentation.refined_radius`)."""
-    refined = refined_radius(indenter, np.array([deepest]), mesh, layer)
-    check_thickness_range(layer.thickness, refined, "at this study's depths")
+    """Refuse (:class:`~shtaerman.validation.LimitError` naming the thickness) a layer of
+    ``thickness`` m that a mesh does not take at its refined radius, ``refined_at(velocity)``
+    (m, one per mesh, of any profile: :func:`.indentation.refined_radius`, at the depths the
+    impact at ``velocity`` m/s sets; None: depths given): the mesh's own bounds,
+    :data:`~shtaerman.fem.mesh.MIN_THICKNESS` .. ``MAX_THICKNESS`` refined radii
+    (``where`` names the depths), naming the velocity that fits it too
+    (:func:`shtaerman.fem.mesh.fitting_velocity` of a tip z ~ r^``exponent``), checked at the
+    radii it sets (none named where it does not). The one check of a contact curve's layer:
+    the API's and a contact study's or sweep case's."""
+    from ...fem.mesh import fitting_velocity
+    from ...validation import InputError, LimitError
+
+    for refined in refined_at(velocity):
+        try:
+            check_thickness_range(thickness, refined, where)
+        except LimitError as error:
+            fits = (
+                None
+                if velocity is None
+                else fitting_velocity(thickness, refined, velocity, exponent)
+            )
+            if fits is None:  # depths given, or beyond the floats
+                raise
+            try:
+                with warnings.catch_warnings():  # a slower or faster impact, only sized
+                    warnings.simplefilter("ignore")
+                    moved = refined_at(fits[0])
+                for radius in moved:
+                    check_thickness_range(thickness, radius, "")
+            except InputError:  # not brought within
+                raise error from None
+            raise LimitError(str(error) + fits[1], "thickness") from None
 
 
 def layer_depths(

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import msgspec
+import numpy as np
 
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...guards import DEPTHS_INSTEAD, check_profile_reach
@@ -53,6 +54,7 @@ from ..schema import (
     swept,
     validated,
 )
+from .indentation import refined_radius
 from .layer import LayerSpec, check_thickness, layer_depths
 
 __all__ = [
@@ -323,12 +325,24 @@ def on_layer(study: Study) -> Study:
     if study.layer is None:
         return study
 
-    modulus = effective_modulus(study.striker, study.half_space)
-    exact = elastic_impact(study.mass, study.velocity, contact_law(study.indenter, modulus))
+    law = contact_law(study.indenter, effective_modulus(study.striker, study.half_space))
+    exact = elastic_impact(study.mass, study.velocity, law)
     layer = study.layer.resolved(float(exact.a_c))
-    deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
-    for settings in (study.mesh, study.quick_mesh):
-        check_thickness(settings, layer.geometry, study.indenter, deepest)
+
+    def refined_at(velocity: float | None) -> list[float]:
+        """The refined radius (m) of each mesh at the deepest depth: the study's (None), or
+        its impact's at ``velocity`` m/s."""
+        deepest = study.depths[-1] if study.depths else DEPTH_OVERSHOOT * exact.x_c
+        if velocity not in (None, study.velocity):
+            deepest = DEPTH_OVERSHOOT * elastic_impact(study.mass, velocity, law).x_c
+        meshes, at = (study.mesh, study.quick_mesh), np.array([deepest])
+        return [refined_radius(study.indenter, at, mesh, layer.geometry) for mesh in meshes]
+
+    # a velocity fits a thickness given in m, not one given as H / a_c (that moves with it)
+    moves = study.layer.thickness is not None and not study.depths
+    exponent = getattr(study.indenter, "exponent", 2.0)
+    velocity = study.velocity if moves else None
+    check_thickness(layer.thickness, refined_at, velocity, exponent, "at this study's depths")
     return replace(study, layer=layer)
 
 

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 from ...fem.dynamic_contact import DynamicSettings, profile_sizing_impact
 from ...fem.finite_dynamic import FiniteImpactSettings
-from ...fem.impact import run_impact
+from ...fem.impact import check_impact_reach, run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.mesh import HALF_SPACE, Geometry
 from ...guards import warn_outside_validity
@@ -233,6 +233,8 @@ def run_case(
     """
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
+        impact, finite = (mass, velocity), isinstance(settings, FiniteImpactSettings)
+        check_impact_reach(indenter, half_space, density, impact, finite, friction, geometry)
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         quasi = elastic_impact(mass, velocity, law) if quasi is None else quasi
         representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))  # first

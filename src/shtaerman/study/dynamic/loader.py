@@ -334,8 +334,10 @@ def _check_velocities(
     path: Path, key: str, study: DynamicStudy, exact: Callable, quick: bool = False
 ) -> dict[float, Any]:
     """The exact impact at each velocity of the study (``quick``: of its quick run; ``exact``,
-    solved once per velocity), a velocity whose problem the Problem refuses or whose exact
-    impact leaves the floating-point range, refused naming ``key``, or (the linear body)
+    solved once per velocity), a velocity whose problem the Problem refuses, whose depth lies
+    beyond the reach (checked first, as its run does:
+    :func:`~shtaerman.fem.impact.check_impact_reach`) or whose exact impact leaves the
+    floating-point range, refused naming ``key``, or (the linear body)
     whose run with the study's settings the impact's own checks refuse (depth reach, speed
     against the waves', the layer's thickness:
     :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
@@ -343,12 +345,21 @@ def _check_velocities(
     it had run."""
     import warnings
 
+    from ...fem.impact import check_impact_reach
     from ...theory.impact import representable
 
     solved = {}
     settings = study.quick_settings if quick else study.settings
+    inputs = (study.indenter, study.half_space, study.density)
     for velocity in study.quick_velocities if quick else study.velocities:
         problem = study.problem(velocity)
+        impact, friction = (study.mass, velocity), problem.interface.coefficient
+        try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                check_impact_reach(*inputs[:3], impact, study.finite, friction, study.geometry)
+        except InputError as error:
+            raise refused(path, error, {**KEYS, "velocity": key}) from None
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # the run's warnings are the run's
@@ -358,13 +369,12 @@ def _check_velocities(
             raise StudyError(f"{path}: key '{key}': {error}") from None
         if study.finite:  # its reach: checked as the finite-strain impact starts
             continue
-        inputs = (study.indenter, study.half_space, study.density, study.mass, velocity)
-        physics = (problem.body.prony, problem.interface.coefficient)
+        physics = (problem.body.prony, friction)
         try:  # a profile's sizing impact: the exact one here
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 check_dynamic_impact(
-                    *inputs, settings, *physics, solved[velocity], geometry=study.geometry
+                    *inputs, *impact, settings, *physics, solved[velocity], geometry=study.geometry
                 )
         except InputError as error:
             raise refused(path, error, {**KEYS, "velocity": key}) from None
