@@ -130,3 +130,19 @@ def test_an_indentation_whose_start_is_negative_names_the_sign(capsys, tmp_path)
     line = error_line(capsys, "fit", "indentation", path)
     assert line.startswith(f"{path}: the data give a starting modulus E* = -"), line
     assert line.endswith("a push is positive; check the force's sign"), line
+
+
+@pytest.mark.parametrize(("unit", "warned"), [("s", True), ("ms", False)])
+def test_a_record_far_longer_than_the_contact_is_warned_of(capsys, tmp_path, unit, warned):
+    # 20 ms written under 'time [s]': "not identifiable", exit 0 and no hint on main. The
+    # model's contact lasts ~9 ms: 19.9 s is ~2200 of it (warned, > SPAN_FACTOR = 100), 20 ms
+    # ~2 (not warned)
+    from shtaerman.cli import main
+
+    path = tmp_path / "d.csv"
+    path.write_text(pulse().replace("time [ms]", f"time [{unit}]"))
+    argv = ["fit", "force-history", str(path), "--E1", "inf", "--E2", "5e6"]
+    assert main([*argv, "--fit", "E2,time_offset,baseline"]) == 0
+    err = capsys.readouterr().err
+    said = f"{path}: the record spans 19.9 s, "
+    assert (said in err and "check the unit of the time column's header" in err) == warned, err

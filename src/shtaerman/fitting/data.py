@@ -277,7 +277,7 @@ def _check_sign(data: Measurement) -> None:
     its noise (standard deviation s) dips to about -4 s, so a true record is refused only if
     its noise reaches a quarter of its peak (a record no fit can read) or if its baseline
     offset is below -(P - 4 s) / 2 (subtract that offset first); a record whose sign is flipped
-    peaks at -P and passes only if its noise reaches P.
+    peaks at -P and passes only if its noise reaches it (4 s > P).
     """
     force = data.columns["force"]
     lowest, largest = int(np.argmin(force)), float(np.max(force)) + 0.0  # -0.0 is 0
