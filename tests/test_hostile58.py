@@ -145,4 +145,4 @@ def test_a_record_far_longer_than_the_contact_is_warned_of(capsys, tmp_path, uni
     assert main([*argv, "--fit", "E2,time_offset,baseline"]) == 0
     err = capsys.readouterr().err
     said = f"{path}: the record spans 19.9 s, "
-    assert (said in err and "check the unit of the time column's header" in err) == warned, err
+    assert (said in err and "check the units in the header" in err) == warned, err

@@ -332,7 +332,8 @@ a record of 20 ms labelled ``time [s]``, a factor 1000)."""
 
 def _check_span(measured: Measurement, known: Known, model: Model, sol: Solution) -> None:
     """One warning if a force history's time span is a factor :data:`SPAN_FACTOR` or more
-    from the fitted model's contact time (its elastic impact's t_y): no refusal, a hint."""
+    from the fitted model's contact time (its elastic impact's t_y): no refusal, a hint. A
+    wrong force unit moves the fitted contact time too (1000x the force: 1e-3 of the time)."""
     if measured.kind != "force-history":
         return
     values = all_values(
@@ -346,8 +347,8 @@ def _check_span(measured: Measurement, known: Known, model: Model, sol: Solution
         return
     warnings.warn(
         f"{measured.source}: the record spans {span:.3g} s, {span / contact:.3g} times the "
-        f"fitted model's contact time {contact:.3g} s; check the unit of the time column's "
-        "header (e.g. 'time [ms]')",
+        f"fitted model's contact time {contact:.3g} s; check the units in the header (e.g. "
+        "'time [ms]', 'force [kN]')",
         UserWarning,
         stacklevel=caller_stacklevel(),
     )
