@@ -188,7 +188,8 @@ def test_shown_values_are_short():
     assert shown(list(range(10**5))) == "[0, 1, 2, 3, ... (100000 values)]"
     assert shown(np.arange(6.0)).endswith(", ... (6 values)]")
     assert shown(np.float64(2.5)) == repr(np.float64(2.5)) and shown(np.array(1.0))
-    assert shown("x" * 10**6).endswith("... (1000002 characters)")
+    assert shown("x" * 10**6).endswith("... (1000000 characters)")  # the text's, not its repr's
+    assert shown("\x00" * 10**6).endswith("... (1000000 characters)")  # a NUL's repr is 4
 
 
 def test_apostrophes_of_prose_are_not_cut_as_a_quoted_value():

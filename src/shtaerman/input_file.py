@@ -59,10 +59,24 @@ def read_input_text(path: str | Path, option: str, what: str) -> str:
                 option,
             )
         try:
-            return stream.read(MAX_INPUT_BYTES + 1).decode("utf-8-sig")
-        except (OSError, UnicodeDecodeError) as error:
-            reason = getattr(error, "strerror", None) or str(error)
-            raise InputError(f"{what}: cannot read {where!r}: {reason}", option) from None
+            data = stream.read(MAX_INPUT_BYTES + 1)
+        except OSError as error:
+            raise InputError(f"{what}: cannot read {where!r}: {error.strerror}", option) from None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise InputError(f"{what}: {where!r}: {_not_utf8(data, error.start)}", option) from None
+
+
+def _not_utf8(data: bytes, start: int) -> str:
+    """Where the byte ``data[start]``, not UTF-8, stands (line, column) and what to do."""
+    line_start = data.rfind(b"\n", 0, start) + 1
+    column = len(data[line_start:start].decode("utf-8-sig", "replace")) + 1
+    line = data.count(b"\n", 0, start) + 1
+    return (
+        f"line {line}, column {column}: byte 0x{data[start]:02x} "
+        "is not UTF-8 (a Latin-1 or Windows file?); save the file as UTF-8 text"
+    )
 
 
 _SEPARATORS = (";", "\t")
@@ -91,16 +105,36 @@ def read_input_csv(path: str | Path, option: str, what: str) -> str:
     return text
 
 
-def csv_rows(text: str, limit: int | None = None) -> tuple[list[list[str]], list[int]]:
+def csv_rows(
+    text: str, where: str, option: str, limit: int | None = None
+) -> tuple[list[list[str]], list[int]]:
     """The rows of the CSV ``text`` (the header first) and each one's line number in the file,
     blank lines and lines starting with ``#`` (comments) skipped, so that an error names a
-    row as an editor shows it; at most ``limit`` rows (None: all), the rest not parsed."""
+    row as an editor shows it; at most ``limit`` rows (None: all), the rest not parsed.
+
+    Raises
+    ------
+    InputError
+        ``"{where}: line N: ..."`` (parameter ``option``) if the row starting on line N is not
+        CSV: a cell longer than the csv module's field limit (131072 characters: an unclosed
+        quote runs to the end of the file, or binary data without line ends).
+    """
     reader = csv.reader(io.StringIO(text))
-    rows, lines = [], []
-    for row in reader:
-        if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
-            rows.append(row)
-            lines.append(reader.line_num)
-            if len(rows) == limit:
-                break
+    rows, lines, start = [], [], 1
+    try:
+        for row in reader:
+            if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
+                rows.append(row)
+                lines.append(reader.line_num)
+                if len(rows) == limit:
+                    break
+            start = reader.line_num + 1
+    except csv.Error as error:
+        reason = f"not CSV ({error})"
+        if "field larger than field limit" in str(error):
+            reason = (
+                f"a cell of more than {csv.field_size_limit()} characters (an unclosed quote, "
+                "or not a text CSV); close the quote, or give the data as a text CSV"
+            )
+        raise InputError(f"{where}: line {start}: {reason}", option) from None
     return rows, lines

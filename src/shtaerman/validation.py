@@ -68,8 +68,9 @@ def shown(value: object) -> str:
         head = ", ".join(shown(item) for item in list(value[:SHOWN_ITEMS]))
         return f"[{head}, ... ({len(value)} values)]"
     text = repr(value)
-    if len(text) > SHOWN_CHARACTERS:
-        return f"{text[:SHOWN_CHARACTERS]}... ({len(text)} characters)"
+    if len(text) > SHOWN_CHARACTERS:  # a text's own length, not its repr's (4 for a NUL)
+        count = len(value) if isinstance(value, str) else len(text)
+        return f"{text[:SHOWN_CHARACTERS]}... ({count} characters)"
     return text
 
 
@@ -105,10 +106,14 @@ def _abbreviated(message: str) -> str:
 
     def cut(match: re.Match[str]) -> str:  # a long quoted text: a pasted file, a typo'd list
         inside = match[0][1:-1]  # cut to SHOWN_CHARACTERS with "...": not cut again
-        return f"'{inside[: SHOWN_CHARACTERS - 3]}...' ({len(inside)} characters)"
+        count = len(_ESCAPE.sub("_", inside))  # an escape of a repr (\x00) is 1 character
+        return f"'{inside[: SHOWN_CHARACTERS - 3]}...' ({count} characters)"
 
     return _LONG_QUOTED.sub(cut, _FLAT_LIST.sub(short, message))
 
+
+_ESCAPE = re.compile(r"\\(?:x[0-9a-f]{2}|u[0-9a-f]{4}|U[0-9a-f]{8}|.)")
+"""One escape sequence of a ``repr``: the one character it stands for."""
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
 

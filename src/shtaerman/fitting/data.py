@@ -143,7 +143,7 @@ def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]
     """The header's (name, unit) cells, the data rows of ``path`` and their line numbers
     (blank lines and lines starting with ``#``, comments, skipped)."""
     where = str(path)
-    rows, lines = csv_rows(read_input_csv(path, "data", "data"))
+    rows, lines = csv_rows(read_input_csv(path, "data", "data"), where, "data")
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
     return _header(where, rows[0]), rows[1:], lines[1:]
@@ -247,6 +247,8 @@ def _check_values(data: Measurement) -> Measurement:
             )
     if data.kind == "force-history":
         _check_history(data)
+    if "force" in data.columns:
+        _check_sign(data)
     if "time" in data.columns and np.any(np.diff(data.columns["time"]) <= 0):
         row = data.row(int(np.flatnonzero(np.diff(data.columns["time"]) <= 0)[0]) + 1)
         raise InputError(f"{data.source}: {row}: column 'time' must increase", "data")
@@ -264,6 +266,25 @@ def _check_history(data: Measurement) -> None:
         raise InputError(
             f"{data.source}: column 'force' must rise above 0 N (the striker's push), its "
             f"largest value is {largest:g} N",
+            "data",
+        )
+
+
+def _check_sign(data: Measurement) -> None:
+    """A push is positive: refuse a force column that swings further below 0 N than above it.
+
+    The rule: refuse if ``-min(force) > max(force)``. A record of a push peaks at P > 0 while
+    its noise (standard deviation s) dips to about -4 s, so a true record is refused only if
+    its noise reaches a quarter of its peak (a record no fit can read) or if its baseline
+    offset is below -(P - 4 s) / 2 (subtract that offset first); a record whose sign is flipped
+    peaks at -P and passes only if its noise reaches it (4 s > P).
+    """
+    force = data.columns["force"]
+    lowest, largest = int(np.argmin(force)), float(np.max(force)) + 0.0  # -0.0 is 0
+    if -force[lowest] > largest:
+        raise InputError(
+            f"{data.source}: {data.row(lowest)}: column 'force' swings to {force[lowest]:.4g} N "
+            f"but rises only to {largest:.4g} N: a push is positive; flip the record's sign",
             "data",
         )
 

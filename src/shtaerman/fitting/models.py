@@ -222,6 +222,13 @@ def _checked_start(start: float, data: Measurement) -> float:
     MODULUS_SPAN to start * MODULUS_SPAN, is not one of positive normal floats (a force that
     does not rise above 0, values near the float range's ends: wrong signs or units)."""
     low, high = start / MODULUS_SPAN, start * MODULUS_SPAN
+    if start < 0.0 and "force" in data.columns:  # they pull: the sign is wrong, not the size
+        raise InputError(
+            f"{data.source}: the data give a starting modulus E* = {start:.3g} Pa < 0 "
+            f"(from the columns {', '.join(data.columns)}): a push is positive; check the "
+            "force's sign",
+            "data",
+        )
     if not (low >= sys.float_info.min and math.isfinite(high)):
         raise InputError(
             f"{data.source}: the data give no usable starting modulus (E* = {start:.3g} Pa from "

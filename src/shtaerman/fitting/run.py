@@ -14,6 +14,8 @@ from ..guards import warn_outside_validity
 from ..output.files import output_folder
 from ..problem import Problem, check_outputs, in_python_words
 from ..theory.impact import QUASI_STATIC_VELOCITY_LIMIT, QuasiStaticValidityWarning
+from ..theory.sneddon import contact_law
+from ..theory.viscoelastic import elastic_impact
 from ..validation import InputError, caller_stacklevel, validate_positive
 from ..vocabulary import checked_positive, entry
 from .corrections import fe_parts, needs_fe
@@ -28,7 +30,7 @@ from .data import (
 from .engine import Progress, Solution, solve
 from .fe_indentation import finite_indentation_fit
 from .iteration import corrected_fit, forward_error, widened
-from .models import Known, Model, build_model
+from .models import Known, Model, all_values, build_model
 from .result import FitResult, fitted_entries, known_values, shown_names
 
 __all__ = ["FE_REFINE", "fit", "known_of"]
@@ -224,6 +226,7 @@ def fit(
             said = str(error).removesuffix(WITHOUT_ESTIMATE)
             raise InputError(said, error.parameter) from None
     _check_velocities(measured, known, model, sol)
+    _check_span(measured, known, model, sol)
     if kind == "indentation":  # the same depth limits as every contact route
         deepest = float(np.max(measured.columns["depth"]))  # within the law's reach: checked
         warn_outside_validity(problem.striker.indenter, deepest, problem.geometry.thickness,
@@ -319,6 +322,36 @@ def _check_velocities(measured: Measurement, known: Known, model: Model, sol: So
             QuasiStaticValidityWarning,
             stacklevel=caller_stacklevel(),
         )
+
+
+SPAN_FACTOR = 100.0
+"""A force history spanning more than this many contact times of the fitted model, or less
+than one such fraction of one, is warned of: its time column's unit is likely wrong (20 s of
+a record of 20 ms labelled ``time [s]``, a factor 1000)."""
+
+
+def _check_span(measured: Measurement, known: Known, model: Model, sol: Solution) -> None:
+    """One warning if a force history's time span is a factor :data:`SPAN_FACTOR` or more
+    from the fitted model's contact time (its elastic impact's t_y): no refusal, a hint. A
+    wrong force unit moves the fitted contact time too (1000x the force: 1e-3 of the time)."""
+    if measured.kind != "force-history":
+        return
+    values = all_values(
+        known, dict(zip([p.name for p in model.parameters], sol.values, strict=True))
+    )
+    law = contact_law(known.indenter, values["E_star"])
+    contact = elastic_impact(values["mass"], values["velocity"], law).t_y
+    time = measured.columns["time"]
+    span = float(time[-1] - time[0])
+    if contact / SPAN_FACTOR < span < contact * SPAN_FACTOR:
+        return
+    warnings.warn(
+        f"{measured.source}: the record spans {span:.3g} s, {span / contact:.3g} times the "
+        f"fitted model's contact time {contact:.3g} s; check the units in the header (e.g. "
+        "'time [ms]', 'force [kN]')",
+        UserWarning,
+        stacklevel=caller_stacklevel(),
+    )
 
 
 def _result(

@@ -120,7 +120,12 @@ def _read_rows(path: Path) -> tuple[np.ndarray, np.ndarray, list[int]]:
     """
     path = Path(path)
     # the header and one row past the most a table takes: a huge file is refused unparsed
-    rows, lines = csv_rows(read_input_csv(path, "profile", "profile"), MAX_PROFILE_ROWS + 2)
+    rows, lines = csv_rows(
+        read_input_csv(path, "profile", "profile"),
+        f"profile: {str(path)!r}",
+        "profile",
+        MAX_PROFILE_ROWS + 2,
+    )
     header = [_header_name(cell, path) for cell in rows[0]] if rows else []
     missing = [name for name in ("r", "z") if name not in header]
     if missing:

@@ -250,10 +250,13 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
         else:
             raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
     except InputError as error:
-        raise InputError(
-            f"{name}: {str(error).removeprefix('prony: ').removeprefix('prony ')} ({PRONY_FORM})",
-            name,
-        ) from None
+        reason = str(error).removeprefix("prony: ").removeprefix("prony ")
+        if reason.startswith("must be written"):  # the form said once, whole
+            got = reason.rpartition(", got ")[2]
+            raise InputError(
+                f"{name}: must be written {PRONY_FORM.removeprefix('write ')}; got {got}", name
+            ) from None
+        raise InputError(f"{name}: {reason} ({PRONY_FORM})", name) from None
     if len(series.weights) > MAX_PRONY_TERMS:
         raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)
     return series
