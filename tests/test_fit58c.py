@@ -112,3 +112,12 @@ def test_nothing_identifiable_reports_the_noise_of_the_residual_shown(capsys, tm
     assert main(argv) == 0
     last = capsys.readouterr().out.splitlines()[-1]
     assert " at the values above (none fitted); noise " in last, last
+
+
+def test_a_trailing_comma_on_every_line_names_the_header_line(capsys, tmp_path):
+    # main refused it without a line: "header cell '' is not 'name [unit]'"
+    path = pulse(tmp_path / "trail.csv", "time [ms],force [N],", ",")
+    line = error_line(capsys, "fit", "force-history", path, *FIT)
+    assert line == (
+        f"{path}: line 1: header cell '' is not 'name [unit]' (a trailing or doubled comma?)"
+    )

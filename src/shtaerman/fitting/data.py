@@ -128,13 +128,16 @@ def _factor(where: str, name: str, unit: str) -> float:
     return known[unit]
 
 
-def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
-    """(name, unit or None) of each header cell."""
+def _header(where: str, row: list[str], line: int) -> list[tuple[str, str | None]]:
+    """(name, unit or None) of each header cell; the header is on line ``line``."""
     cells = []
     for text in row:
         match = _HEADER.match(text)
         if match is None or not match[1]:
-            raise InputError(f"{where}: header cell {text!r} is not 'name [unit]'", "data")
+            empty = " (a trailing or doubled comma?)" if not text.strip() else ""
+            raise InputError(
+                f"{where}: line {line}: header cell {text!r} is not 'name [unit]'{empty}", "data"
+            )
         cells.append((match[1].strip().lower().replace(" ", "_"), match[2]))
     return cells
 
@@ -146,7 +149,7 @@ def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]]
     rows, lines = csv_rows(read_input_csv(path, "data", "data"), where, "data")
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
-    return _header(where, rows[0]), rows[1:], lines[1:], lines[0]
+    return _header(where, rows[0], lines[0]), rows[1:], lines[1:], lines[0]
 
 
 def _column(
