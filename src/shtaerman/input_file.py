@@ -117,13 +117,21 @@ def csv_rows(
     InputError
         ``"{where}: line N: ..."`` (parameter ``option``) if the row starting on line N is not
         CSV: a cell longer than the csv module's field limit (131072 characters: an unclosed
-        quote runs to the end of the file, or binary data without line ends).
+        quote runs to the end of the file, or binary data without line ends); or if it holds
+        more or fewer cells than the header (a stray or missing comma: which column is which?).
     """
     reader = csv.reader(io.StringIO(text))
     rows, lines, start = [], [], 1
     try:
         for row in reader:
             if any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#"):
+                if rows and len(row) != len(rows[0]):
+                    cells = f"{len(row)} cell{'s' * (len(row) != 1)}"
+                    raise InputError(
+                        f"{where}: line {reader.line_num}: {cells} where the header has "
+                        f"{len(rows[0])}; give every row the header's columns",
+                        option,
+                    )
                 rows.append(row)
                 lines.append(reader.line_num)
                 if len(rows) == limit:

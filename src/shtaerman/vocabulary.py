@@ -522,11 +522,11 @@ VOCABULARY: tuple[Entry, ...] = (
     Entry(
         "time_offset",
         "s",
-        "the force history's time of first touch on the data's clock, unless fitted (the "
-        "starting value is then read off the data); from the record's first time less its "
-        "span to its last time",
+        "the force history's time of first touch on the data's clock, unless fitted (then "
+        "its starting value; unset: 0, or read off the data when fitted); from the record's "
+        "first time less its span to its last time",
         "time offset",
-        0.0,
+        None,
         valid=None,
     ),
     Entry(
@@ -555,7 +555,7 @@ VOCABULARY: tuple[Entry, ...] = (
         "units",
         "",
         "units of the data columns whose header gives none, COLUMN=UNIT,... (e.g. "
-        "depth=mm,force=kN); a header 'depth [mm]' gives its own",
+        "depth=mm,force=kN); a header 'depth [mm]' gives its own (a different one is refused)",
         "data units",
         None,
         valid=None,

@@ -221,8 +221,10 @@ def fit_text(result: FitResult) -> str:
     noise = result.noise
     how = "estimated from the residual" if noise["estimated"] else "given"
     units = [item["unit"].removeprefix("1 ") for item in (result.residual, noise)]  # relative
+    fitted = any(item["identifiable"] for item in result.fitted.values())
+    where = "" if fitted else " at the values above (none fitted)"  # the noise's residual too
     rows.append(
-        f"  residual rms {result.residual['rms']:.4g} {units[0]}; noise "
-        f"{noise['value']:.4g} {units[1]} ({how})"
+        f"  residual rms {result.residual['rms']:.4g} {units[0]}{where}; "
+        f"noise {noise['value']:.4g} {units[1]} ({how})"
     )
     return "\n".join(rows)

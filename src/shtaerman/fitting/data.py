@@ -128,25 +128,28 @@ def _factor(where: str, name: str, unit: str) -> float:
     return known[unit]
 
 
-def _header(where: str, row: list[str]) -> list[tuple[str, str | None]]:
-    """(name, unit or None) of each header cell."""
+def _header(where: str, row: list[str], line: int) -> list[tuple[str, str | None]]:
+    """(name, unit or None) of each header cell; the header is on line ``line``."""
     cells = []
     for text in row:
         match = _HEADER.match(text)
         if match is None or not match[1]:
-            raise InputError(f"{where}: header cell {text!r} is not 'name [unit]'", "data")
+            empty = " (a trailing or doubled comma?)" if not text.strip() else ""
+            raise InputError(
+                f"{where}: line {line}: header cell {text!r} is not 'name [unit]'{empty}", "data"
+            )
         cells.append((match[1].strip().lower().replace(" ", "_"), match[2]))
     return cells
 
 
-def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]], list[int]]:
-    """The header's (name, unit) cells, the data rows of ``path`` and their line numbers
-    (blank lines and lines starting with ``#``, comments, skipped)."""
+def _read_csv(path: Path) -> tuple[list[tuple[str, str | None]], list[list[str]], list[int], int]:
+    """The header's (name, unit) cells, the data rows of ``path``, their line numbers (blank
+    lines and lines starting with ``#``, comments, skipped) and the header's line number."""
     where = str(path)
     rows, lines = csv_rows(read_input_csv(path, "data", "data"), where, "data")
     if not rows:
         raise InputError(f"{where}: the file is empty (expected a header 'name [unit]')", "data")
-    return _header(where, rows[0]), rows[1:], lines[1:]
+    return _header(where, rows[0], lines[0]), rows[1:], lines[1:], lines[0]
 
 
 def _column(
@@ -177,7 +180,7 @@ def _column(
 def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
     """The columns of ``kind`` read from the CSV at ``path``."""
     where = str(path)
-    header, rows, lines = _read_csv(path)
+    header, rows, lines, header_line = _read_csv(path)
     names = [ALIASES.get(name, name) for name, _ in header]
     columns, written = {}, {}
     for name in _wanted(kind, names, where, header):
@@ -190,6 +193,13 @@ def _from_file(kind: str, path: Path, units: Mapping[str, str]) -> Measurement:
                 "data",
             )
         unit = header[index][1]
+        if unit is not None and units.get(name, unit) != unit:  # which one is meant?
+            raise InputError(
+                f"{where}: line {header_line}: the header gives column {name!r} in [{unit}], "
+                f"--units in {units[name]}; drop --units {name}= (it serves a header cell "
+                "without a unit) or correct the header",
+                "units",
+            )
         unit = unit if unit is not None else units.get(name, measured_unit(name))
         written[name] = unit
         columns[name] = _column(where, name, index, rows, lines) * _factor(where, name, unit)

@@ -224,11 +224,22 @@ def solve(model: Model, noise: float | None = None, hold: dict[str, float] | Non
                 for p, ok, out in rows if not ok}  # fmt: skip
         fixed.update(held)
         if len(held) == len(found["params"]):  # none left to fit: the model at the held values
-            found = {**found, "values": {**found["values"], **held}}
+            found = _held_everywhere(model, noise, found, held)
             break
         found = _optimum(model, noise, fixed, progress)
         evaluations += found["evaluations"]
     return _solution(model, found, fixed, evaluations)
+
+
+def _held_everywhere(model: Model, noise: float | None, found: dict, held: dict) -> dict:
+    """``found`` with every parameter at its ``held`` value and, unless ``noise`` is given,
+    the noise estimated from the residual there (the residual reported), not from the
+    search's: nothing is fitted, so all the residual's degrees of freedom are left."""
+    values = {**found["values"], **held}
+    scale = np.abs(model.observed) if model.relative else 1.0
+    left = (model.predict(values) - model.observed) / scale
+    s, _, estimated = _noise(left, 0, noise, left.size)
+    return {**found, "values": values, "noise": s, "estimated": estimated}
 
 
 def _solution(model: Model, found: dict, fixed: dict[str, float], evaluations: int) -> Solution:

@@ -62,7 +62,9 @@ class Known:
     mass: float
     velocity: float
     prony: PronySeries | None = None
-    time_offset: float = 0.0
+    time_offset: float | None = None
+    """The time of first touch in s (a fitted one's start); None: 0, or read off the data
+    when fitted."""
     baseline: float = 0.0
     steps: int = 200
     correction: Correction | RowCorrection | None = None
@@ -124,7 +126,7 @@ def all_values(known: Known, fitted: Mapping[str, float]) -> dict[str, float]:
         "E_star": known.modulus,
         "mass": known.mass,
         "velocity": known.velocity,
-        "time_offset": known.time_offset,
+        "time_offset": 0.0 if known.time_offset is None else known.time_offset,
         "baseline": known.baseline,
     }
     values.update(fitted)
@@ -266,7 +268,7 @@ def _parameters(known: Known, data: Measurement, unknowns: Sequence[str]) -> tup
     if "time_offset" in unknowns:
         time = data.columns["time"]
         span = float(time[-1] - time[0])
-        start = _time_offset_start(known, data)
+        start = _time_offset_start(known, data) if known.time_offset is None else known.time_offset
         params.append(Parameter("time_offset", start, float(time[0]) - span, float(time[-1])))
     if "baseline" in unknowns:
         size = float(np.max(np.abs(data.columns["force"])))

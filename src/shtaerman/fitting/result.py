@@ -208,7 +208,7 @@ def known_values(known: Known) -> dict[str, Any]:
         "velocity": known.velocity,
         "prony": None if prony is None else
         [{"g": g, "tau": tau} for g, tau in zip(prony.weights, prony.times, strict=True)],
-        "time_offset": known.time_offset,
+        "time_offset": known.time_offset or 0.0,
         "baseline": known.baseline,
         "steps": known.steps,
     }  # fmt: skip

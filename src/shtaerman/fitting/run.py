@@ -39,8 +39,8 @@ ABSCISSA = {"indentation": "depth", "force-history": "time"}
 """The data column each kind's figure and fit.csv run along (rebound data: the velocity)."""
 
 
-def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline: float = 0.0,
-             steps: int = 200) -> Known:  # fmt: skip
+def known_of(problem: Problem, kind: str, *, time_offset: float | None = None,
+             baseline: float = 0.0, steps: int = 200) -> Known:  # fmt: skip
     """The known parts of ``problem`` (its E2 and nu2 are the starting values), refusing the
     parts whose corrections the fit does not have (friction; waves in an indentation) and an
     impact's measurement without the striker's mass (and a
@@ -70,7 +70,7 @@ def known_of(problem: Problem, kind: str, *, time_offset: float = 0.0, baseline:
         mass=validate_positive("mass", 1.0 if striker.mass is None else striker.mass, "kg"),
         velocity=1.0 if striker.velocity is None else striker.velocity,
         prony=problem.body.prony,
-        time_offset=float(time_offset),
+        time_offset=None if time_offset is None else float(time_offset),
         baseline=float(baseline),
         steps=int(steps),
     )
@@ -128,7 +128,7 @@ def fit(
     *,
     unknowns: Sequence[str] | str = ("E2",),
     noise: float | None = None,
-    time_offset: float = 0.0,
+    time_offset: float | None = None,
     baseline: float = 0.0,
     units: Mapping[str, str] | None = None,
     resample: int | None = None,
@@ -163,8 +163,10 @@ def fit(
         Standard deviation of the data in the residual's unit (N for a force; relative for
         rebound data); None: estimated from the residual.
     time_offset, baseline : float
-        The force history's time of first touch in s and its zero force in N, when not
-        fitted.
+        The force history's time of first touch in s and its zero force in N, or the
+        starting values of fitted ones, both refused outside the record (see
+        :func:`~shtaerman.fitting.data.check_history_options`). time_offset None: 0, or read
+        off the data when fitted.
     units : mapping, optional
         Column -> unit for CSV header cells that give none (a CSV only: a mapping's columns
         are SI, and units beside them are refused).
@@ -202,8 +204,9 @@ def fit(
     check_outputs(out, force=force, estimate=True, figure_format=figure_format)
     folder = output_folder(out, force=force)
     names = _names(unknowns)
-    offset = None if "time_offset" in names else time_offset  # fitted: read off the data
-    measured, rows_read = _read(kind, data, units, resample, offset, baseline)
+    if time_offset is None and "time_offset" not in names:
+        time_offset = 0.0  # known: 0; fitted: the start read off the data
+    measured, rows_read = _read(kind, data, units, resample, time_offset, baseline)
     known = known_of(problem, kind, time_offset=time_offset, baseline=baseline, steps=steps)
     _check_loss(measured, problem)
     refine = checked_positive("refine", refine)
@@ -287,8 +290,9 @@ def _fitted(problem: Problem, known: Known, measured: Measurement, names: list[s
 def _read(kind: str, data: str | Path | Mapping[str, ArrayLike], units: Mapping[str, str] | None,
           resample: int | None, time_offset: float | None, baseline: float,
           ) -> tuple[Measurement, int]:  # fmt: skip
-    """The measurement, resampled if asked, with the force history's offset (None: fitted,
-    not checked) and baseline checked against it, and the number of rows read."""
+    """The measurement, resampled if asked, with the force history's offset (None: fitted from
+    a start read off the data, not checked) and baseline checked against it, and the number of
+    rows read."""
     measured = measurement(kind, data, units)  # the kind checked first
     rows = measured.rows
     if resample is not None:

@@ -26,7 +26,7 @@ from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..input_file import read_input_csv
+from ..input_file import csv_rows, read_input_csv
 from ..validation import InputError, plain_float
 from ..vocabulary import MAX_PRONY_TERMS
 
@@ -126,33 +126,28 @@ def _moduli_text(text: str) -> tuple[PronySeries, float]:
     return prony_from_moduli(_number(relaxed, "E_inf"), moduli, times)
 
 
-def _header(line: str, where: str) -> str:
+def _header(cells: list[str], where: str) -> str:
     names = []
-    for cell in line.split(","):
+    for cell in cells:
         match = _COLUMN.match(cell)
         names.append(match[1] if match else cell.strip())
     if names not in (["tau", "E"], ["tau", "g"]):  # case kept: G would be a shear modulus
         raise InputError(
             f"prony: {where}: the header must be 'tau [s],E [Pa]' or 'tau [s],g [1]', got "
-            f"{line.strip()!r}",
+            f"{','.join(cells).strip()!r}",
             "prony",
         )
     return names[1].lower()
 
 
 def _rows(text: str, where: str) -> tuple[str, list[tuple[int, float, float]]]:
-    """The value column's name ('e' or 'g') and the rows (line number, tau, value)."""
-    lines = [(k, line) for k, line in enumerate(text.splitlines(), start=1)]
-    body = [(k, line) for k, line in lines if line.strip() and not line.lstrip().startswith("#")]
+    """The value column's name ('e' or 'g') and the rows (line number, tau, value); a row of
+    other than the header's 2 cells is refused (:func:`~shtaerman.input_file.csv_rows`)."""
+    body, lines = csv_rows(text, f"prony: {where}", "prony")
     if not body:
         raise InputError(f"prony: {where} holds no header and no rows", "prony")
-    column, rows = _header(body[0][1], where), []
-    for k, line in body[1:]:
-        cells = line.split(",")
-        if len(cells) != 2:
-            raise InputError(
-                f"prony: {where} row {k}: expected 2 columns, got {len(cells)}", "prony"
-            )
+    column, rows = _header(body[0], where), []
+    for k, cells in zip(lines[1:], body[1:], strict=True):
         tau = _number(cells[0], f"{where} row {k} column tau")
         value = _number(cells[1], f"{where} row {k} column {'E' if column == 'e' else 'g'}")
         rows.append((k, tau, value))
