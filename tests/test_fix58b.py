@@ -55,11 +55,11 @@ def test_a_force_beyond_the_floats_is_refused_by_the_clis_check(tmp_path, capsys
 def test_depths_one_mesh_cannot_span_name_the_deepest_in_the_files_words(tmp_path, capsys):
     path = template(tmp_path, "contact", "depths", "[1e-3, 1e10]")
     line = refusal(capsys, "verify", str(path), "--quick", "--out", str(tmp_path / "out"))
-    assert "key 'contact.depths': the deepest, 1e+10 m, sizes the mesh" in line
-    assert "the smallest, 0.001 m, loads" in line
+    assert "key 'contact.depths': the smallest, 0.001 m, loads 1 surface node(s)" in line
+    assert "on the mesh that the deepest, 1e+10 m, sizes (refined to r = " in line
     assert line.rstrip().endswith("([quick] mesh_size, [quick] refine)")  # not --mesh-size
     line = refusal(capsys, "contact", "--depths", "1e-3,1e10")
-    assert "--depths: the deepest, 1e+10 m" in line and "(--mesh-size, --refine)" in line
+    assert "--depths: the smallest, 0.001 m" in line and "(--mesh-size, --refine)" in line
 
 
 def said_of(tmp_path, kind, line, value):

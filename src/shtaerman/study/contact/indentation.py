@@ -404,10 +404,10 @@ def run_indentation(
         if len(depths) < 2 or error.depth >= depths[-1]:
             raise
         raise InputError(
-            f"depths: the deepest, {depths[-1]:g} m, sizes the mesh (refined to r = "
-            f"{refined:.3g} m), on which the smallest, {error.depth:g} m, loads {error.loaded} "
-            f"surface node(s), fewer than {error.fewest}: lower the deepest depth, raise the "
-            "smallest, or refine the mesh (mesh_size=..., refine=...)",
+            f"depths: the smallest, {error.depth:g} m, loads {error.loaded} surface node(s), "
+            f"fewer than {error.fewest}, on the mesh that the deepest, {depths[-1]:g} m, sizes "
+            f"(refined to r = {refined:.3g} m): raise the smallest depth, lower the deepest, "
+            "or refine the mesh (mesh_size=..., refine=...)",
             "depths",
         ) from None
     exact = contact_law(indenter, effective_modulus(RIGID, half_space))
