@@ -75,7 +75,10 @@ def test_a_profile_csv_is_read_beside_the_study_file(tmp_path):
         ("sphere_radius = 0.01\nexponent = 2.0", "expected one striker profile"),
         ("shape_coefficient = 5.0", "expected one striker profile"),
         ('profile = "no.csv"', "key 'indenter.profile': profile: cannot read"),
-        ("sphere_radius = 2e6", "key 'indenter.sphere_radius': radius must be in"),
+        (
+            "sphere_radius = 2e6",
+            "key 'indenter.sphere_radius': sphere_radius must lie in (0, 1e6] m",
+        ),
     ],
 )
 def test_a_bad_indenter_table_names_its_key(tmp_path, indenter, says):

@@ -148,5 +148,7 @@ def test_the_warnings_before_a_refusal_are_still_said(monkeypatch):
 
     study = _fake_kind(monkeypatch, run)
     with pytest.warns(ValidityWarning, match="study 's': depth: b"):
-        with pytest.raises(InputError, match=r"^s\.toml: study 's': depths: too small$"):
+        with pytest.raises(
+            InputError, match=r"^s\.toml: study 's': key 'contact.depths': too small$"
+        ):
             study_run.run_study(study)

@@ -180,7 +180,11 @@ def test_a_study_the_fem_refuses_at_run_time_names_its_file(tmp_path, capfd, wor
     argv = ["verify", *map(str, studies), "--quick", "--workers", workers, "--out", str(out)]
     assert main(argv) == 2
     err = capfd.readouterr().err
-    assert re.search(r"shtaerman: error: .*tiny2?\.toml: study '(paper|tiny2)': depth 1e-15 m", err)
+    assert re.search(
+        r"shtaerman: error: .*tiny2?\.toml: study '(paper|tiny2)': "
+        r"key 'contact.depths': the smallest, 1e-15 m",
+        err,
+    )
     assert "Traceback" not in err and "Compute Failed" not in err
     assert not out.exists()
 

@@ -153,27 +153,6 @@ class ContactResult:
         return json_safe(document)
 
 
-def _check_force_range(indenter: Any, body: Any, depths: np.ndarray) -> None:
-    """Refuse given depths whose exact force (Shtaerman's or Sneddon's, on the rigid striker)
-    leaves the normal floating-point range: the FE system's numbers underflow there (depth
-    1e-200 m left the active set unsettled, 1e-300 m a singular matrix)."""
-    import sys
-
-    from ..theory.materials import effective_modulus
-    from ..theory.sneddon import contact_law
-
-    law = contact_law(indenter, effective_modulus(RIGID, body))
-    for depth in (depths[0], depths[-1]):
-        force = float(law.force(depth))
-        if not sys.float_info.min <= force <= sys.float_info.max:
-            raise InputError(
-                f"depths: {depth:g} m gives a contact force of {force:.3g} N, outside the "
-                f"floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}] "
-                "the FEM computes in; give depths of a physical size",
-                "depths",
-            )
-
-
 def _with_impact(report: Mapping[str, Any], impact: tuple[float, float] | None) -> dict:
     """``report`` with, after ``nu2``, the ``mass`` (kg) and ``velocity`` (m/s) of the
     ``impact`` whose x_c the default depths reach; unchanged when the depths were given."""
@@ -344,7 +323,9 @@ def _check_depths(
         _check_finite_depths(problem, depths)
         mesh.refined(refine)  # the finest level first: its message names refine's value
     elif problem.loading.depths is not None:
-        _check_force_range(indenter, body, depths)
+        from ..study.contact.indentation import check_force_range
+
+        check_force_range(indenter, body, depths)
     if problem.geometry.thickness is not None and problem.loading.depths is None:
         _check_layer_depths(problem, depths, mesh)
     if estimate:

@@ -43,7 +43,8 @@ def run_study(study: Any, *, quick: bool = False, progress: Progress | None = No
         try:
             outcome = run(study, quick, progress)
         except InputError as error:
-            raise InputError(f"{_where(study)}: {error}", error.parameter) from None
+            said = _in_file_words(error, quick)
+            raise InputError(f"{_where(study)}: {said}", error.parameter) from None
     return dataclasses.replace(outcome, warnings=tuple(found))
 
 
@@ -58,6 +59,21 @@ def say_warnings(study: Any, texts: Iterable[str]) -> None:
     naming the study (a study run elsewhere, e.g. in a dask worker)."""
     for text in texts:
         warnings.warn(f"{_where(study)}: {text}", ValidityWarning, stacklevel=2)
+
+
+def _in_file_words(error: InputError, quick: bool) -> str:
+    """A run's refusal in the study file's words: a head naming its parameter becomes its key
+    (``key 'contact.depths': ...``), an input named in Python's (``mesh_size=...``) the key of
+    the table that ran (``[quick] mesh_size`` when ``quick``)."""
+    from .schema import STUDY_KEYS, TABLE_OF
+
+    table = "quick" if quick else "numerics"
+    numerics = {name: f"{table}.{name}" for name, of in TABLE_OF.items() if of == "numerics"}
+    keys = {**STUDY_KEYS, **numerics}
+    text, head = worded(str(error), "file", keys), f"{error.parameter}: "
+    if error.parameter in keys and text.startswith(head):
+        return f"key '{keys[error.parameter]}': {text.removeprefix(head)}"
+    return text
 
 
 def _where(study: Any) -> str:

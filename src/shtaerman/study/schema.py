@@ -538,6 +538,7 @@ def decode(path: Path, data: dict[str, Any], root: type, kind: str | None = None
     except msgspec.ValidationError as error:
         keys, said = _located(str(error), data, root, kind)
         raise StudyError(f"{path}: key '{'.'.join(keys)}': {said}") from None
+    _check_ranges(path, data, kind)
     for keys, value in _numbers(data):
         if not math.isfinite(value) and keys not in INFINITE_ALLOWED:
             said = _vocabulary_says(list(keys), value, kind)
@@ -548,6 +549,20 @@ def decode(path: Path, data: dict[str, Any], root: type, kind: str | None = None
             expected = f"a finite number {bound}".rstrip()
             raise StudyError(f"{path}: key '{'.'.join(keys)}': expected {expected}, got {value!r}")
     return decoded
+
+
+def _check_ranges(path: Path, data: dict[str, Any], kind: str | None) -> None:
+    """Refuse a finite number of a table's own key outside ``kind``'s valid range for that
+    input, in the command line's words (``exponent must lie in (1, 20]``): before the theory
+    objects are built, whose own ranges (the exact theory's n in [0.25, 20]) are wider."""
+    if kind is None:
+        return
+    for table, values in data.items():
+        for key, value in values.items() if isinstance(values, dict) else ():
+            number = isinstance(value, int | float) and not isinstance(value, bool)
+            said = _vocabulary_says([table, key], value, kind) if number else None
+            if said is not None and math.isfinite(value):
+                raise StudyError(f"{path}: key '{table}.{key}': {said}")
 
 
 INFINITE_ALLOWED = (("striker", "E1"),)

@@ -95,7 +95,7 @@ class EffectsOutcome(Outcome):
 def load_effects(path: Path, data: dict[str, Any]) -> list[EffectsStudy]:
     """The study of a parsed ``kind = "effects"`` file; :class:`StudyError` names file and
     key."""
-    raw: _EffectsFile = decode(path, data, _EffectsFile)
+    raw: _EffectsFile = decode(path, data, _EffectsFile, "dynamic")  # its FE impact's ranges
     header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)  # its refusal names file and key already
     body, impact = raw.half_space, raw.impact

@@ -158,19 +158,30 @@ class ContactOutgrowsMeshError(InputError):
     """The contact zone reached the edge of the candidate (refined) region."""
 
 
+class UnresolvedContactError(InputError):
+    """A contact on fewer surface nodes than resolve it: its ``depth`` (m), the nodes it
+    ``loaded`` and the ``fewest`` it needs (attributes set by :func:`check_resolved`)."""
+
+    depth: float
+    loaded: int
+    fewest: int
+
+
 def check_resolved(
     r: np.ndarray, forces: np.ndarray, depth: float, fewest: int = MIN_CONTACT_NODES
 ) -> None:
     """InputError unless the contact at ``depth`` (m) loads at least ``fewest`` surface nodes
-    (nodal ``forces`` > 0, N) and stays ``EDGE_MARGIN`` nodes inside the candidates (radii
-    ``r``, m; :class:`ContactOutgrowsMeshError`)."""
+    (nodal ``forces`` > 0, N; :class:`UnresolvedContactError`) and stays ``EDGE_MARGIN``
+    nodes inside the candidates (radii ``r``, m; :class:`ContactOutgrowsMeshError`)."""
     loaded = np.flatnonzero(forces > 0)
     if loaded.size < fewest:
-        raise InputError(
+        error = UnresolvedContactError(
             f"depth {depth:g} m: the contact loads {loaded.size} surface node(s), fewer than "
             f"{fewest}: smaller than this mesh resolves; raise the smallest depth or "
-            f"refine the mesh (--mesh-size, --refine)"
+            "refine the mesh (mesh_size=..., refine=...)"  # each route words it
         )
+        error.depth, error.loaded, error.fewest = depth, int(loaded.size), fewest
+        raise error
     if loaded[-1] + EDGE_MARGIN >= r.size:
         raise ContactOutgrowsMeshError(
             f"depth {depth:g} m: the contact zone reaches r = {r[loaded[-1]]:.4g} m, "

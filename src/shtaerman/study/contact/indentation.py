@@ -9,6 +9,7 @@ curve P(x) is fitted by a power law.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -17,9 +18,10 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ...fem.contact.constraints import UnresolvedContactError
 from ...fem.contact.linear import ContactCurve, ContactStep, solve_contact
 from ...fem.contact.stick import solve_bonded_contact
-from ...fem.elasticity import ElasticSolution, assemble
+from ...fem.elasticity import ElasticSolution, ElasticSystem, assemble
 from ...fem.fit import PowerLawFit, fit_power_law
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...theory.contact import PowerLawContact
@@ -272,6 +274,25 @@ def curve_document(
     }
 
 
+def check_force_range(indenter: Indenter, body: Material, depths: ArrayLike) -> None:
+    """Refuse given ``depths`` (m, increasing) whose exact force (Shtaerman's or Sneddon's, on
+    the rigid striker pressed into ``body``) leaves the normal floating-point range: the FE
+    system's numbers underflow or overflow there (depth 1e-200 m left the active set unsettled,
+    1e-300 m and 1e300 m a singular matrix); the command line's and the study file's check."""
+    law = contact_law(indenter, effective_modulus(RIGID, body))
+    depths = np.atleast_1d(np.asarray(depths, dtype=float))
+    for depth in (depths[0], depths[-1]):
+        with np.errstate(all="ignore"):  # an overflow is the refusal's, not a warning
+            force = float(law.force(depth))
+        if not sys.float_info.min <= force <= sys.float_info.max:
+            raise InputError(
+                f"depths: {depth:g} m gives a contact force of {force:.3g} N, outside the "
+                f"floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}] "
+                "the FEM computes in; give depths of a physical size",
+                "depths",
+            )
+
+
 def refined_radius(
     indenter: Indenter, depths: np.ndarray, mesh: MeshSettings, geometry: Geometry = HALF_SPACE
 ) -> float:
@@ -290,6 +311,34 @@ def interface_stats(friction: float | None) -> dict[str, object]:
     if friction is None:
         return {}
     return {"interface": "bonded"} | ({} if math.isinf(friction) else {"friction": friction})
+
+
+def _pressed(
+    system: ElasticSystem,
+    indenter: Indenter,
+    depths: np.ndarray,
+    refined: float,
+    backend: str,
+    aligned: bool,
+    prony: PronySeries | None,
+    rate: float | None,
+    friction: float | None,
+) -> ContactCurve:
+    """The FEM contact curve of :func:`run_indentation` (its arguments; ``refined``: the
+    radius in m of the contact candidates)."""
+    if prony is not None:
+        from ...fem.contact.rate import press_at_rate
+
+        return press_at_rate(
+            system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False
+        )
+    if friction not in (None, 0.0):  # mu = 0 is frictionless
+        return solve_bonded_contact(
+            system, indenter.profile, depths, refined, backend=backend, friction=friction
+        )
+    return solve_contact(
+        system, indenter.profile, depths, refined, backend=backend, aligned=aligned
+    )
 
 
 def run_indentation(
@@ -349,20 +398,18 @@ def run_indentation(
     meshed = time.perf_counter()
     system = assemble(skfem_mesh, half_space.youngs_modulus, half_space.poisson_ratio)
     assembled = time.perf_counter()
-    if prony is not None:
-        from ...fem.contact.rate import press_at_rate
-
-        curve = press_at_rate(
-            system, indenter.profile, depths, refined, prony, rate, backend=backend, aligned=False
-        )
-    elif friction not in (None, 0.0):  # mu = 0 is frictionless
-        curve = solve_bonded_contact(
-            system, indenter.profile, depths, refined, backend=backend, friction=friction
-        )
-    else:
-        curve = solve_contact(
-            system, indenter.profile, depths, refined, backend=backend, aligned=aligned
-        )
+    try:
+        curve = _pressed(system, indenter, depths, refined, backend, aligned, prony, rate, friction)
+    except UnresolvedContactError as error:
+        if len(depths) < 2 or error.depth >= depths[-1]:
+            raise
+        raise InputError(
+            f"depths: the smallest, {error.depth:g} m, loads {error.loaded} surface node(s), "
+            f"fewer than {error.fewest}, on the mesh that the deepest, {depths[-1]:g} m, sizes "
+            f"(refined to r = {refined:.3g} m): raise the smallest depth, lower the deepest, "
+            "or refine the mesh (mesh_size=..., refine=...)",
+            "depths",
+        ) from None
     exact = contact_law(indenter, effective_modulus(RIGID, half_space))
     if prony is not None:
         exact = RateContact(exact, prony, rate, tuple(float(d) for d in depths))

@@ -54,7 +54,7 @@ from ..schema import (
     swept,
     validated,
 )
-from .indentation import refined_radius
+from .indentation import check_force_range, refined_radius
 from .layer import LayerSpec, check_thickness, layer_depths
 
 __all__ = [
@@ -397,6 +397,8 @@ def contact_study(*, takes_depths: bool = True, **values: Any) -> Study:
     layer = layer_depths(study.layer.geometry, study.indenter, *meshes) if absolute else None
     reach = (DEPTH_OVERSHOOT, False, note, layer)
     check_profile_reach(study.indenter, modulus, study.depths, impact, *reach)
+    if study.depths is not None:  # the command line's check of given depths
+        check_force_range(study.indenter, study.half_space, study.depths)
     return on_layer(study)
 
 
