@@ -61,9 +61,10 @@ def test_the_ladder_stops_at_the_finest_levels_squeezed_tip(monkeypatch):
         raise SqueezedTipError(f"squeezed at {inputs[5].steps} steps")
 
     monkeypatch.setattr(case, "run_impact", squeezed)
-    problem = sh.Problem.impact(
-        SHARP, sh.Material(3e6, 0.49, 1000.0), mass=0.12, velocity=1.5, model="neo-hookean"
-    )
+    problem = sh.Problem.impact(  # the 12 mm pad: on the half-space x/a 2.27 is refused first
+        SHARP, sh.Material(3e6, 0.49, 1000.0), mass=0.12, velocity=1.5, model="neo-hookean",
+        thickness=0.012,
+    )  # fmt: skip
     with pytest.raises(SqueezedTipError, match="squeezed at 50 steps"):
         sh.dynamic(problem, time_steps=50, mesh_size=0.2)
     assert runs == [50]
