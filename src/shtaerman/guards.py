@@ -389,11 +389,16 @@ def _calm(
     if not shown or waves is None:
         return shown
     impact = (float(shown), velocity) if mass is None else (mass, float(shown))
+    return shown if _fraction(waves, *impact) <= MAX_RADIATED_ESTIMATE else ""
+
+
+def _fraction(waves: Callable[[float, float], float], mass: float, velocity: float) -> float:
+    """``waves``' first-order radiated fraction of an impact (mass kg, velocity m/s), NaN
+    where it cannot give one (a refused input: the validation's InputError is a ValueError)."""
     try:
-        fraction = waves(*impact)
-    except (ValueError, ArithmeticError):  # the validation's InputError is a ValueError
-        return ""
-    return shown if fraction <= MAX_RADIATED_ESTIMATE else ""
+        return waves(mass, velocity)
+    except (ValueError, ArithmeticError):
+        return math.nan
 
 
 def _reach_scale(indenter: Indenter, ratio: float, high: float) -> float:
@@ -607,10 +612,7 @@ def _wave_mass(
     """``shown`` (a mass in kg as the message shows it), or the heavier one :func:`_heavier`
     names where ``waves`` puts its impact at ``velocity`` (m/s) above
     :data:`MAX_RADIATED_ESTIMATE` ("" where it cannot say)."""
-    try:
-        fraction = waves(float(shown), velocity) if shown else math.nan
-    except (ValueError, ArithmeticError):
-        return ""
+    fraction = _fraction(waves, float(shown), velocity) if shown else math.nan
     if not fraction > MAX_RADIATED_ESTIMATE:
         return shown if fraction == fraction else ""
     return _heavier(float(shown), MAX_RADIATED_ESTIMATE / fraction, q)
@@ -624,12 +626,9 @@ def _wave_velocity(
     below :data:`MAX_RADIATED_ESTIMATE` (:func:`_passing_velocity`; "" unsettled)."""
     if not shown or waves is None:
         return shown
-    try:
-        fraction = waves(mass, float(shown))
-    except (ValueError, ArithmeticError):
-        return ""
+    fraction = _fraction(waves, mass, float(shown))
     if not fraction > MAX_RADIATED_ESTIMATE:
-        return shown
+        return shown if fraction == fraction else ""
     power = (q + 1.0) / (3.0 * q - 3.0)
     lower = _slower(float(shown), MAX_RADIATED_ESTIMATE / fraction, q)
     lower, about = _passing_velocity(lower, power, lambda velocity: waves(mass, velocity))
