@@ -113,13 +113,15 @@ def _number(text: str, where: str) -> float:
 
 
 def _moduli_text(text: str) -> tuple[PronySeries, float]:
+    from .viscoelastic import PronyFormError
+
     relaxed, _, terms = text.partition(";")
     pairs = [term.split(":") for term in terms.split(",")]
     if any(len(pair) != 2 for pair in pairs):
-        raise InputError(
+        raise PronyFormError(
             f"prony must be written g1:tau1,g2:tau2,... or, in moduli, Einf;E1:tau1,E2:tau2,... "
             f"(Pa, s), got {text!r}",
-            "prony",
+            text,
         )
     moduli = tuple(_number(m, f"E{i}") for i, (m, _) in enumerate(pairs, start=1))
     times = tuple(_number(t, f"tau{i}") for i, (_, t) in enumerate(pairs, start=1))
@@ -233,7 +235,7 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
     """``value`` as a Prony series: None (elastic), a :class:`PronySeries` or its text
     (:func:`shtaerman.theory.prony_sources.prony_from_text`: ``g1:tau1,...``, ``Einf;E1:tau1,...``,
     a CSV file or a shipped rubber's name); InputError naming ``name`` and the valid form."""
-    from .viscoelastic import PronySeries
+    from .viscoelastic import PronyFormError, PronySeries
 
     if value is None:
         return None
@@ -244,13 +246,11 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
             series = prony_from_text(value)
         else:
             raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
+    except PronyFormError as error:  # the forms said once, whole
+        form = PRONY_FORM.removeprefix("write ")
+        raise InputError(f"{name}: must be written {form}; got {error.got!r}", name) from None
     except InputError as error:
         reason = str(error).removeprefix("prony: ").removeprefix("prony ")
-        if reason.startswith("must be written"):  # the form said once, whole
-            got = reason.rpartition(", got ")[2]
-            raise InputError(
-                f"{name}: must be written {PRONY_FORM.removeprefix('write ')}; got {got}", name
-            ) from None
         raise InputError(f"{name}: {reason} ({PRONY_FORM})", name) from None
     if len(series.weights) > MAX_PRONY_TERMS:
         raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)

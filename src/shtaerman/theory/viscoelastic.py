@@ -63,6 +63,7 @@ Law = PowerLawContact | SneddonContact
 """An elastic contact law at the instantaneous modulus: the power law's or Sneddon's."""
 
 __all__ = [
+    "PronyFormError",
     "PronySeries",
     "RateContact",
     "ViscoelasticImpact",
@@ -100,6 +101,15 @@ def _check_term(i: int, g: object, tau: object, typed: tuple[str, str] | None = 
         raise InputError(
             f"prony time tau{i} must be a finite number > 0 s, got {shown_tau}", "prony"
         )
+
+
+class PronyFormError(InputError):
+    """A Prony series' text not written in any of its forms: ``got`` is that text (the
+    caller says the forms it takes, once)."""
+
+    def __init__(self, message: str, got: str) -> None:
+        super().__init__(message, "prony")
+        self.got = got
 
 
 @dataclass(frozen=True)
@@ -150,8 +160,8 @@ class PronySeries:
         """The series written ``g1:tau1,g2:tau2,...`` (tau in s), e.g. ``0.5:1e-3``."""
         pairs = [_TERM.match(term) for term in str(text).split(",")]
         if any(pair is None for pair in pairs):
-            raise InputError(
-                f"prony must be written g1:tau1,g2:tau2,... (tau in s), got {text!r}", "prony"
+            raise PronyFormError(
+                f"prony must be written g1:tau1,g2:tau2,... (tau in s), got {text!r}", str(text)
             )
         weights = tuple(_number(f"weight g{i}", p[1]) for i, p in enumerate(pairs, 1))  # type: ignore[index]
         times = tuple(_number(f"time tau{i}", p[2]) for i, p in enumerate(pairs, 1))  # type: ignore[index]
