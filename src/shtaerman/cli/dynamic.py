@@ -159,6 +159,12 @@ def _loss_label(dyn: dict, massless: bool) -> str:
     return "energy lost 1-e^2       " if lost else "energy to waves 1-e^2   "
 
 
+def _reflected(fraction: float, of: str) -> str:
+    """The reflected energy ``fraction`` of ``of`` as printed; n/a where nothing radiated
+    (0/0: a striker far slower than the waves, as --json's null says)."""
+    return f"{fraction:.1e} of {of}" if fraction == fraction else "n/a (nothing radiated)"
+
+
 def _unsigned_zero(value: float) -> float:
     """``value`` to 6 decimals with no sign on a zero: round-off (a massless run's 1 - e^2 is
     -1e-13) prints 0.000000, not -0.000000."""
@@ -222,7 +228,7 @@ def dynamic_text(report: dict) -> str:
         differences_text(report),
         *viscoelastic_rows(report),
         f"  energy balance error    {dyn['energy_balance_error']:.1e} of M v0^2/2"
-        + ("" if massless else f";  reflected {dyn['reflected_energy_fraction']:.1e} of {of}"),
+        + ("" if massless else f";  reflected {_reflected(dyn['reflected_energy_fraction'], of)}"),
         f"  mesh: {mesh['nodes']} nodes, {mesh['elements']} P2 triangles, {mesh['dofs']} dofs, "
         f"{mesh['contact_candidates']} contact candidates",
         "  time (s): " + ", ".join(f"{k} {v:.2f}" for k, v in timings.items()),
