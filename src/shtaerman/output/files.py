@@ -49,6 +49,7 @@ from ..validation import InputError
 __all__ = [
     "CSV_UNITS",
     "FOLDER_MARKER",
+    "SWEEP_MARKER",
     "KeepStaged",
     "check_folder_path",
     "check_folder_place",
@@ -73,6 +74,9 @@ FOLDER_MARKER = ".shtaerman-folder.json"
 """Written into every result folder :func:`staged_folder` makes: ``force`` replaces only a
 folder that holds it (a folder this tool wrote), never a user's own folder."""
 FOLDER_FORMAT = "shtaerman-folder-1"
+SWEEP_MARKER = ".shtaerman-sweep.json"
+"""What makes a folder a sweep folder (:mod:`shtaerman.sweep.engine`: its ``--resume`` and
+``--force`` touch no other; the other routes name it as a sweep's, not a foreign folder)."""
 KEEP_FILE = "keep"
 """In a staging folder: the name of the file whose presence in ``content`` makes what a killed
 run staged worth keeping (:func:`staged_folder`'s ``keep_marker``)."""
@@ -405,6 +409,8 @@ def _occupied(option: str, target: Path, marker: str | None, keep_marker: str | 
             "same inputs, or start again with force=True"
         )
     state = f"holds no interrupted run to complete (no {marker})" if marker else "is not empty"
+    if (target / SWEEP_MARKER).is_file():  # shtaerman sweep's: completed by that command
+        return f"{state}; it is the result of shtaerman sweep (completed by its --resume): {new}"
     if not ours(target):  # force would refuse it too
         return f"{state}; it was not written by shtaerman: {new}"
     beside = sorted(

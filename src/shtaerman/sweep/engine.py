@@ -47,6 +47,7 @@ from pathlib import Path
 from typing import Any
 
 from ..output.files import (
+    SWEEP_MARKER,
     check_folder_place,
     file_mode,
     folder_lock,
@@ -79,7 +80,7 @@ SPEC_FILE = "sweep.toml"
 CASES_DIR = "cases"
 UNUSED_DIR = "unused"
 """Inside ``cases``: the records of cases a resumed grid no longer holds (reused if it does)."""
-MARKER_FILE = ".shtaerman-sweep.json"
+MARKER_FILE = SWEEP_MARKER
 """What makes a folder a sweep folder (``--resume`` and ``--force`` touch no other)."""
 MARKER_FORMAT = "shtaerman-sweep-1"
 RECORD_NAME = re.compile(r"(0|[1-9][0-9]*)\.json|[0-9a-f]{16}\.json")
