@@ -60,3 +60,37 @@ def test_entries_outside_the_pattern_are_refused(triplets):
     i, j = np.argwhere(dense == 0)[0]
     with pytest.raises(KeyError, match="outside the sparsity pattern"):
         pattern.find(np.array([i]), np.array([j]))
+
+
+def _saddle_point(seed: int) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray]:
+    """A mixed u-p matrix [[K, B^T], [B, -C]] (K SPD, C = 1e-3 I: nu < 0.5, quasi-definite, so
+    LDL^T needs no pivoting in any order) as COO, and its rows and columns."""
+    rng = np.random.default_rng(seed)
+    n, m = 40, 10
+    stiffness = sp.random(n, n, density=0.1, random_state=rng)
+    stiffness = stiffness @ stiffness.T + 10.0 * sp.eye(n)
+    coupling = sp.random(m, n, density=0.2, random_state=rng) + sp.eye(m, n)
+    matrix = sp.bmat([[stiffness, coupling.T], [coupling, -1e-3 * sp.eye(m)]]).tocoo()
+    return matrix, matrix.row, matrix.col
+
+
+def test_pattern_solver_factors_stay_valid_while_their_solve_is_held():
+    """A modified Newton keeps the solve of an older matrix while the next is factorized: the
+    older solve must still solve its own matrix (QDLDL refactorizes in place; the solver
+    keeps one set of factors per solve in use)."""
+    from shtaerman.fem.solver import PatternSolver
+
+    first, rows, cols = _saddle_point(0)
+    pattern, where = pattern_of(rows, cols, first.shape[0])
+    solver = PatternSolver(pattern)
+    data = [np.bincount(where, first.data, pattern.nnz)]
+    data.append(data[0] * (1.0 + 0.5 * np.random.default_rng(1).random(pattern.nnz)))
+    data[1] = 0.5 * (data[1] + data[1][pattern.transpose])  # symmetric again
+    rhs = np.arange(1.0, first.shape[0] + 1.0)
+    _, kept = solver.factorized(data[0], rhs)
+    _, latest = solver.factorized(data[1], rhs)
+    for values, solve in zip(data, (kept, latest), strict=True):
+        matrix = pattern.matrix(values)
+        # a direct solve of a well-conditioned 50 x 50 system: ~1e-14 (a solve with the other
+        # matrix's factors is off by O(1))
+        assert np.max(abs(matrix @ solve(rhs) - rhs)) <= 1e-10 * np.max(abs(rhs))

@@ -10,7 +10,8 @@ Every factorization of :mod:`shtaerman.fem` is made here:
   builds on it.
 - :func:`factorize_scaled`: row-max scaled, nested-dissection ordered, checked against a
   tolerance, with :func:`factorize` as the fallback (the dynamic effective matrix).
-- :class:`PatternSolver`: many matrices of one sparsity pattern, ordered once (Newton).
+- :class:`PatternSolver`: many matrices of one sparsity pattern, analysed once (Newton),
+  by QDLDL's LDL^T (the ``qdldl`` package).
 - Scalings (:func:`symmetric_scaling`, :func:`row_max_scaling`) that take the units out of
   the pivots, and the componentwise backward error (:func:`backward_error`).
 
@@ -36,6 +37,7 @@ from __future__ import annotations
 import contextlib
 import importlib.util
 import warnings
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
@@ -43,6 +45,7 @@ from typing import ClassVar, Protocol
 
 import numpy as np
 import pymetis
+import qdldl
 import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
@@ -462,25 +465,32 @@ def factorize_scaled(
 
 
 class PatternSolver:
-    """Solve with many matrices of one fixed sparsity pattern (Newton's), ordered once.
+    """Solve with many matrices of one fixed sparsity pattern (Newton's), analysed once.
 
-    Each matrix is row-max scaled (:func:`row_max_scaling`) and factorized by SuperLU in the
-    :func:`nested_dissection` order of the pattern, computed once. A solve whose
-    componentwise backward error exceeds ``ACCURACY_CHECK`` is redone by :func:`factorize`
-    (its own ordering, stricter pivoting if needed).
+    Each matrix is row-max scaled (:func:`row_max_scaling`) and factorized by QDLDL (LDL^T
+    with diagonal pivots, of the upper triangle) in the approximate-minimum-degree order of
+    the pattern's first factorization; later matrices reuse that analysis (one set of factors
+    per solve still in use). A solve whose componentwise backward error exceeds
+    ``ACCURACY_CHECK`` is redone by :func:`factorize` (its own ordering, stricter pivoting if
+    needed).
 
     Parameters
     ----------
     pattern : Pattern
-        The sparsity pattern of every matrix.
-    groups : numpy.ndarray
-        Group (mesh node) of each unknown, for the ordering.
+        The sparsity pattern of every matrix (symmetric, every diagonal entry stored).
     """
 
-    def __init__(self, pattern: Pattern, groups: np.ndarray) -> None:
+    def __init__(self, pattern: Pattern) -> None:
         self.pattern = pattern
-        self.order = nested_dissection(pattern.matrix(np.ones(pattern.nnz)), groups)
-        self.ordered, self.take = pattern.permuted(self.order)
+        self._upper_take = np.flatnonzero(pattern.indices <= pattern.columns)
+        per_column = np.bincount(pattern.columns[self._upper_take], minlength=pattern.size)
+        self._upper = sp.csc_matrix(
+            (np.zeros(self._upper_take.size), pattern.indices[self._upper_take],
+             _pointers(per_column)),
+            shape=(pattern.size, pattern.size),
+        )  # fmt: skip
+        self._analysed: list[list] = []
+        """[QDLDL solver, weak reference to the solve that uses its factors], one per factors."""
 
     def solve(self, data: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """Solve A x = rhs, A with ``data`` in the pattern.
@@ -507,39 +517,45 @@ class PatternSolver:
         scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
         scaled = data * scale[pattern.indices]
         scaled *= np.repeat(scale, np.diff(pattern.indptr))  # the columns' scale, in order
-        ordered = self._ordered_solve(scaled, (scale * rhs)[self.order])
-        if ordered is not None:
-            lu = ordered[1]
+        factors = self._ldl_factors(scaled)
+        solve = None if factors is None else _ScaledSolve(scale, factors[0].solve)
+        solution = None if solve is None else solve(rhs)
+        if solution is None or not (
+            solution_backward_error(pattern.matrix(scaled), solution / scale, scale * rhs)
+            <= ACCURACY_CHECK
+        ):
+            solve = _ScaledSolve(scale, factorize(pattern.matrix(scaled)).solve)
+            return solve(rhs), solve
+        factors[1] = weakref.ref(solve)  # these factors stay while the solve is in use
+        return solution, solve
 
-            def again(b: np.ndarray) -> np.ndarray:
-                out = np.empty_like(b)
-                out[self.order] = lu.solve((scale * b)[self.order])
-                return scale * out
-
-            out = np.empty_like(ordered[0])
-            out[self.order] = ordered[0]
-            return scale * out, again
-        fallback = factorize(pattern.matrix(scaled))
-
-        def again_fallback(b: np.ndarray) -> np.ndarray:
-            return scale * fallback.solve(scale * b)
-
-        return again_fallback(rhs), again_fallback
-
-    def _ordered_solve(
-        self, scaled: np.ndarray, rhs: np.ndarray
-    ) -> tuple[np.ndarray, spla.SuperLU] | None:
-        """The solution in the nested-dissection order and its SuperLU, or None if SuperLU
-        fails the check."""
-        matrix = self.ordered.matrix(scaled[self.take])
+    def _ldl_factors(self, scaled: np.ndarray) -> list | None:
+        """The entry of :attr:`_analysed` now holding the scaled matrix's factors, or None on
+        a zero pivot."""
+        self._upper.data = scaled[self._upper_take]
+        free = [entry for entry in self._analysed if entry[1]() is None]
         try:
-            lu = _superlu_in_order(matrix)
-        except RuntimeError:  # an exactly zero pivot
+            if free:
+                free[0][0].update(self._upper, upper=True)
+                return free[0]
+            self._analysed.append([qdldl.Solver(self._upper, upper=True), _unused])
+            return self._analysed[-1]
+        except RuntimeError:  # a zero pivot in this matrix
             return None
-        solution = lu.solve(rhs)
-        if solution_backward_error(matrix, solution, rhs) <= ACCURACY_CHECK:
-            return solution, lu
-        return None
+
+
+def _unused() -> None:
+    """The weak reference of factors no solve uses."""
+
+
+class _ScaledSolve:
+    """x = D inner(D b): a solve of A x = b from a solve of the scaled D A D."""
+
+    def __init__(self, scale: np.ndarray, inner: Callable[[np.ndarray], np.ndarray]) -> None:
+        self.scale, self.inner = scale, inner
+
+    def __call__(self, rhs: np.ndarray) -> np.ndarray:
+        return self.scale * self.inner(self.scale * rhs)
 
 
 class PardisoFactorization:
