@@ -418,14 +418,16 @@ def test_bordered_step_is_the_step_of_its_own_active_set():
 
 
 def test_the_fallback_factorization_gives_the_same_contact(monkeypatch):
-    """SuperLU's own ordering per matrix instead of QDLDL's one analysis: round-off only."""
+    """SuperLU's own ordering per matrix instead of QDLDL's one analysis (or SuperLU in
+    nested-dissection order): round-off only."""
     from shtaerman.fem.solver import PatternSolver
 
     indenter, depth = _blunt(1.5, 2e-3)
     material = Material(E2, 0.5)
     ordered = run_finite_indentation(indenter, material, [0.5 * depth, depth], COARSE)
     # every ordered solve "fails" its backward-error check: the fallback solves them all
-    monkeypatch.setattr(PatternSolver, "_ldl_factors", lambda self, scaled: None)
+    monkeypatch.setattr(PatternSolver, "_ldl_solve", lambda self, scaled: None)
+    monkeypatch.setattr(PatternSolver, "_ordered_solve", lambda self, scaled: None)
     plain = run_finite_indentation(indenter, material, [0.5 * depth, depth], COARSE)
     for a, b in zip(ordered.steps, plain.steps, strict=True):
         assert a.newton_iterations == b.newton_iterations
@@ -446,9 +448,9 @@ def _curves_before_and_after(monkeypatch, change):
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     depths = np.linspace(1.0, 8.0, 8) * 0.4e-3
     counted = []
-    original = solver.PatternSolver._ldl_factors
+    original = solver.PatternSolver._ldl_solve
     monkeypatch.setattr(
-        solver.PatternSolver, "_ldl_factors", lambda *a: counted.append(1) or original(*a)
+        solver.PatternSolver, "_ldl_solve", lambda *a: counted.append(1) or original(*a)
     )
     before = run_finite_indentation(indenter, material, depths, COARSE)
     factorized = len(counted)
@@ -502,9 +504,9 @@ def test_predicted_contact_edge_saves_factorizations(monkeypatch):
     depths = np.linspace(1.0, 8.0, 8) * 0.4e-3
     mesh = replace(COARSE, size=1.0 / 30.0)  # the edge crosses ~3 surface nodes per step
     counted = []
-    original = solver.PatternSolver._ldl_factors
+    original = solver.PatternSolver._ldl_solve
     monkeypatch.setattr(
-        solver.PatternSolver, "_ldl_factors", lambda *a: counted.append(1) or original(*a)
+        solver.PatternSolver, "_ldl_solve", lambda *a: counted.append(1) or original(*a)
     )
     predicted = run_finite_indentation(indenter, material, depths, mesh)
     with_reach = len(counted)
@@ -530,9 +532,9 @@ def test_first_depth_predicts_its_edge_from_the_small_strain_contact(monkeypatch
     indenter, material = PowerLawIndenter(5.0, 1.5), Material(E2, 0.5)
     mesh = replace(COARSE, size=1.0 / 30.0)
     counted = []
-    original = solver.PatternSolver._ldl_factors
+    original = solver.PatternSolver._ldl_solve
     monkeypatch.setattr(
-        solver.PatternSolver, "_ldl_factors", lambda *a: counted.append(1) or original(*a)
+        solver.PatternSolver, "_ldl_solve", lambda *a: counted.append(1) or original(*a)
     )
     predicted = run_finite_indentation(indenter, material, [0.4e-3], mesh)
     with_reach = len(counted)

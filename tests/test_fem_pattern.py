@@ -62,15 +62,19 @@ def test_entries_outside_the_pattern_are_refused(triplets):
         pattern.find(np.array([i]), np.array([j]))
 
 
-def _saddle_point(seed: int) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray]:
-    """A mixed u-p matrix [[K, B^T], [B, -C]] (K SPD, C = 1e-3 I: nu < 0.5, quasi-definite, so
-    LDL^T needs no pivoting in any order) as COO, and its rows and columns."""
+def _saddle_point(
+    seed: int, pressure: float = -1e-3
+) -> tuple[sp.coo_matrix, np.ndarray, np.ndarray]:
+    """A mixed u-p matrix [[K, B^T], [B, pressure I]] (K SPD; pressure < 0: nu < 0.5,
+    quasi-definite, LDL^T needs no pivoting in any order; 0: nu = 0.5, stored zeros) as COO,
+    and its rows and columns."""
     rng = np.random.default_rng(seed)
     n, m = 40, 10
     stiffness = sp.random(n, n, density=0.1, random_state=rng)
     stiffness = stiffness @ stiffness.T + 10.0 * sp.eye(n)
     coupling = sp.random(m, n, density=0.2, random_state=rng) + sp.eye(m, n)
-    matrix = sp.bmat([[stiffness, coupling.T], [coupling, -1e-3 * sp.eye(m)]]).tocoo()
+    block = sp.coo_matrix((np.full(m, pressure), (np.arange(m), np.arange(m))), shape=(m, m))
+    matrix = sp.bmat([[stiffness, coupling.T], [coupling, block]]).tocoo()
     return matrix, matrix.row, matrix.col
 
 
@@ -82,7 +86,7 @@ def test_pattern_solver_factors_stay_valid_while_their_solve_is_held():
 
     first, rows, cols = _saddle_point(0)
     pattern, where = pattern_of(rows, cols, first.shape[0])
-    solver = PatternSolver(pattern)
+    solver = PatternSolver(pattern, np.arange(pattern.size))
     data = [np.bincount(where, first.data, pattern.nnz)]
     data.append(data[0] * (1.0 + 0.5 * np.random.default_rng(1).random(pattern.nnz)))
     data[1] = 0.5 * (data[1] + data[1][pattern.transpose])  # symmetric again
@@ -94,3 +98,28 @@ def test_pattern_solver_factors_stay_valid_while_their_solve_is_held():
         # a direct solve of a well-conditioned 50 x 50 system: ~1e-14 (a solve with the other
         # matrix's factors is off by O(1))
         assert np.max(abs(matrix @ solve(rhs) - rhs)) <= 1e-10 * np.max(abs(rhs))
+
+
+def test_pattern_solver_after_a_zero_pivot_is_superlu_in_nested_dissection_order(monkeypatch):
+    """A zero pressure block whose pressures have the lowest degree: QDLDL's order eliminates a
+    pressure first, a zero pivot; SuperLU in nested-dissection order solves it, for this and
+    every later matrix (QDLDL is not tried again)."""
+    from shtaerman.fem import solver
+
+    matrix, rows, cols = _saddle_point(0, pressure=0.0)
+    pattern, where = pattern_of(rows, cols, matrix.shape[0])
+    groups = np.arange(pattern.size)  # one unknown per node: pressures stay after their rows
+    tried = []
+    original = solver.PatternSolver._ldl_solve
+    monkeypatch.setattr(
+        solver.PatternSolver, "_ldl_solve", lambda *a: tried.append(1) or original(*a)
+    )
+    monkeypatch.setattr(solver, "factorize", lambda m: pytest.fail("fell back to factorize"))
+    pattern_solver = solver.PatternSolver(pattern, groups)
+    data = np.bincount(where, matrix.data, pattern.nnz)
+    rhs = np.arange(1.0, pattern.size + 1.0)
+    for _ in range(2):
+        solution = pattern_solver.solve(data, rhs)
+        # a direct solve of a 50 x 50 system: ~1e-14
+        assert np.max(abs(pattern.matrix(data) @ solution - rhs)) <= 1e-10 * np.max(abs(rhs))
+    assert tried == [1]

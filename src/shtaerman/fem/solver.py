@@ -470,18 +470,21 @@ class PatternSolver:
     Each matrix is row-max scaled (:func:`row_max_scaling`) and factorized by QDLDL (LDL^T
     with diagonal pivots, of the upper triangle) in the approximate-minimum-degree order of
     the pattern's first factorization; later matrices reuse that analysis (one set of factors
-    per solve still in use). A solve whose componentwise backward error exceeds
-    ``ACCURACY_CHECK`` is redone by :func:`factorize` (its own ordering, stricter pivoting if
-    needed).
+    per solve still in use). After a zero pivot in that order (QDLDL does not pivot), SuperLU
+    in the :func:`nested_dissection` order of ``groups`` takes over. A solve whose
+    componentwise backward error exceeds ``ACCURACY_CHECK`` is redone by :func:`factorize`
+    (its own ordering, stricter pivoting if needed).
 
     Parameters
     ----------
     pattern : Pattern
         The sparsity pattern of every matrix (symmetric, every diagonal entry stored).
+    groups : numpy.ndarray
+        Group (mesh node) of each unknown, for the nested-dissection order.
     """
 
-    def __init__(self, pattern: Pattern) -> None:
-        self.pattern = pattern
+    def __init__(self, pattern: Pattern, groups: np.ndarray) -> None:
+        self.pattern, self.groups = pattern, groups
         self._upper_take = np.flatnonzero(pattern.indices <= pattern.columns)
         per_column = np.bincount(pattern.columns[self._upper_take], minlength=pattern.size)
         self._upper = sp.csc_matrix(
@@ -489,8 +492,9 @@ class PatternSolver:
              _pointers(per_column)),
             shape=(pattern.size, pattern.size),
         )  # fmt: skip
-        self._analysed: list[list] = []
-        """[QDLDL solver, weak reference to the solve that uses its factors], one per factors."""
+        self._analysed: list[list] | None = []
+        """[QDLDL solver, weak reference to the solve using its factors] per set of factors;
+        None after a zero pivot."""
 
     def solve(self, data: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """Solve A x = rhs, A with ``data`` in the pattern.
@@ -517,31 +521,57 @@ class PatternSolver:
         scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
         scaled = data * scale[pattern.indices]
         scaled *= np.repeat(scale, np.diff(pattern.indptr))  # the columns' scale, in order
-        factors = self._ldl_factors(scaled)
-        solve = None if factors is None else _ScaledSolve(scale, factors[0].solve)
-        solution = None if solve is None else solve(rhs)
-        if solution is None or not (
-            solution_backward_error(pattern.matrix(scaled), solution / scale, scale * rhs)
-            <= ACCURACY_CHECK
-        ):
-            solve = _ScaledSolve(scale, factorize(pattern.matrix(scaled)).solve)
-            return solve(rhs), solve
-        factors[1] = weakref.ref(solve)  # these factors stay while the solve is in use
-        return solution, solve
+        inner = self._ldl_solve(scaled) if self._analysed is not None else None
+        inner = inner or self._ordered_solve(scaled)
+        if inner is not None:
+            solution = inner(scale * rhs)
+            error = solution_backward_error(pattern.matrix(scaled), solution, scale * rhs)
+            if error <= ACCURACY_CHECK:
+                solve = _ScaledSolve(scale, inner)
+                return scale * solution, solve
+        solve = _ScaledSolve(scale, factorize(pattern.matrix(scaled)).solve)
+        return solve(rhs), solve
 
-    def _ldl_factors(self, scaled: np.ndarray) -> list | None:
-        """The entry of :attr:`_analysed` now holding the scaled matrix's factors, or None on
-        a zero pivot."""
+    def _ldl_solve(self, scaled: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
+        """QDLDL's solve of the scaled matrix, in factors no held solve uses; None (and QDLDL
+        no more for this pattern) on a zero pivot."""
         self._upper.data = scaled[self._upper_take]
         free = [entry for entry in self._analysed if entry[1]() is None]
         try:
             if free:
                 free[0][0].update(self._upper, upper=True)
-                return free[0]
-            self._analysed.append([qdldl.Solver(self._upper, upper=True), _unused])
-            return self._analysed[-1]
-        except RuntimeError:  # a zero pivot in this matrix
+            else:
+                free = [[qdldl.Solver(self._upper, upper=True), _unused]]
+                self._analysed.append(free[0])
+        except RuntimeError:  # a zero pivot in this order
+            self._analysed = None
             return None
+        inner = _FactorsSolve(free[0][0].solve)
+        free[0][1] = weakref.ref(inner)  # these factors stay while the solve is held
+        return inner
+
+    def _ordered_solve(self, scaled: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
+        """SuperLU's solve of the scaled matrix in nested-dissection order, or None on a zero
+        pivot."""
+        order, ordered, take = self._nested_dissection
+        try:
+            lu = _superlu_in_order(ordered.matrix(scaled[take]))
+        except RuntimeError:  # an exactly zero pivot
+            return None
+
+        def inner(rhs: np.ndarray) -> np.ndarray:
+            out = np.empty_like(rhs)
+            out[order] = lu.solve(rhs[order])
+            return out
+
+        return inner
+
+    @cached_property
+    def _nested_dissection(self) -> tuple[np.ndarray, Pattern, np.ndarray]:
+        """The order of ``groups``, the ordered pattern and its gather."""
+        pattern = self.pattern
+        order = nested_dissection(pattern.matrix(np.ones(pattern.nnz)), self.groups)
+        return order, *pattern.permuted(order)
 
 
 def _unused() -> None:
@@ -556,6 +586,16 @@ class _ScaledSolve:
 
     def __call__(self, rhs: np.ndarray) -> np.ndarray:
         return self.scale * self.inner(self.scale * rhs)
+
+
+class _FactorsSolve:
+    """A solve with one set of QDLDL factors: while it is referenced, they are not updated."""
+
+    def __init__(self, solve: Callable[[np.ndarray], np.ndarray]) -> None:
+        self.solve = solve
+
+    def __call__(self, rhs: np.ndarray) -> np.ndarray:
+        return self.solve(rhs)
 
 
 class PardisoFactorization:

@@ -74,7 +74,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...validation import InputError, LimitError, NumericalFailureError, validate_poisson
-from ..elasticity import clamped_dofs
+from ..elasticity import clamped_dofs, dof_nodes
 from ..hyperelastic import (
     HyperelasticSystem,
     NeoHookean,
@@ -298,7 +298,8 @@ class NewtonStepper:
         self.n_free_u = int(np.searchsorted(self.free, system.n_displacement))
         self.pattern, self.take = system.pattern.submatrix(self.free)
         self.curvature_at = self.pattern.diagonal[self.position[self.nodes.ur[self.nodes.ur_free]]]
-        self.solver = PatternSolver(self.pattern)
+        nodes = dof_nodes(system.displacement_basis, system.pressure_basis)[self.free]
+        self.solver = PatternSolver(self.pattern, nodes)
         self.tolerance = tolerance
         self.max_iterations = max_iterations
         self.backtracks = 0  # halvings of an update that inverts an element (0: raise)
