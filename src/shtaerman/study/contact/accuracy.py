@@ -1,24 +1,12 @@
 """Every FEM contact number with its error bar: a mesh ladder, Richardson estimates, a target.
 
-The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.refined`) by
-:data:`~shtaerman.study.ladder.LADDER_RATIO` = sqrt(2) per level, so each level has about twice
-the dofs of the one before. Every quantity of the finest level gets a Richardson estimate
-(:mod:`shtaerman.study.richardson`): the force, the contact radius and the central pressure at
-every depth (the worst depth is reported, and named: ``extrapolated_depth``), beta and the
-fitted exponent. Where the exact
-solution is known (the linear power-law contact) the true error stands beside the estimate:
-their ratio, the effectivity index, verifies the estimator itself in every run.
-
-A level whose run fails numerically (stick and slip that do not settle even in cut load steps,
-a Newton that does not converge: :data:`FAILURES`) does not abort the others when the ladder is
-run ``partial`` (the API's contact curve): the finest level that passed is reported, its
-estimate marked missing with the reason (:attr:`AccuracyResult.missing`) and a warning, as the
-impact's ladder does (:mod:`shtaerman.study.dynamic.accuracy`); it fails only when no level
-passed. The retry with finer load steps is the run's own (:func:`.constraints.cut_step`).
-:func:`run_to_accuracy` does the same within its first three levels; a level beyond them that
-fails ends the refinement: the last three levels that passed answer with their estimate, and
-the result says that the tolerance was not reached and why (:attr:`AccuracyResult.unreached`,
-an :class:`AccuracyNotReachedWarning`).
+The ladder refines the whole size field by :data:`~shtaerman.study.ladder.LADDER_RATIO` per
+level; the finest level's force, contact radius and central pressure (worst depth), beta and
+exponent get Richardson estimates (:mod:`shtaerman.study.richardson`), beside the true error
+where the exact solution is known. A level that fails numerically (:data:`FAILURES`) leaves,
+``partial``, the finest that passed without estimate (:attr:`AccuracyResult.missing`);
+:func:`run_to_accuracy` refines until a tolerance (:attr:`AccuracyResult.unreached`). More:
+benchmarks/FEM_NOTES.md, "Study error estimates".
 """
 
 from __future__ import annotations
