@@ -59,9 +59,7 @@ FORCE_LIKE = ("force", "beta")
 ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 2.5}
 """Orders of the extrapolation, and the largest orders of the error estimates: a ladder that
 observes a lower order (in :data:`SANE_ORDERS`) reports the correction at its own order as the
-error, the larger one (the exponent always uses its observed order). The force's error has two
-terms of opposite sign: the far field's (order 4 in the growth rate) and the contact edge's
-(order 2 in the surface size; benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
+error (the exponent always uses its observed order; benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 EDGE_ORDER = 2.0
 """The slowest order of the force's error: the contact edge's, in the surface size."""
 FORCE_SAFETY = 1.25
@@ -257,11 +255,8 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     within eps, relative): beta's relative error at least eps (its log is the mean of the
     depths' log P_i), the exponent's at least S eps / |q| (relative, as every estimate;
     absolute S eps), S the fit's :func:`~shtaerman.fem.fit.exponent_sensitivity`; where
-    that bound is the larger, the estimate's method is ``"propagated"``. The
-    exponent's own Richardson estimate sees only how the fit moves between levels, whose
-    order the force's two error terms of opposite sign blur: it understated (0.18 of the true
-    error on ``--accuracy 1e-6``, observed order 3.5; benchmarks/FEM_NOTES.md, "Accuracy
-    1e-6").
+    that bound is the larger, the estimate's method is ``"propagated"`` (why:
+    benchmarks/FEM_NOTES.md, "Accuracy 1e-6").
     """
     results = [level.result for level in levels]
     estimates, ladders = {}, {}
@@ -321,9 +316,8 @@ def _confirmed(levels: list[np.ndarray], estimate: Estimate) -> bool:
 def _at_most(estimate: Callable[..., Estimate], values: list, order: float | None) -> Estimate:
     """``estimate`` (:func:`richardson` or :func:`curve_richardson`) of
     ``values`` at ``order``; where the observed order is lower, its error is the correction at
-    the observed order (the larger), its extrapolated value stays at ``order`` (on the default
-    ladders, whose observed orders 2.3-2.5 mix the far field's order 4 with the edge's order 2,
-    order 3 extrapolates the force to 2.4e-5 of the exact, the observed order to 7.8e-5)."""
+    the observed order (the larger), its extrapolated value stays at ``order``
+    (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
     known = estimate(values, LADDER_RATIO, order=order, sane=SANE_ORDERS)
     if known.method == "richardson" and known.observed_order < known.order:
         observed = estimate(values, LADDER_RATIO, sane=SANE_ORDERS)
@@ -492,11 +486,8 @@ of the force is a / 1e3); the band starts at the smallest geometric contact radi
 (:func:`accuracy_mesh`)."""
 ACCURACY_MESH = GradedMesh(size=0.0016, growth=0.08, axis_growth=0.18, grading=ACCURACY_GRADING)
 """The base (refine 1) of ``--accuracy`` TOL < :data:`GRADED_BELOW` on the default
-half-space, graded by :data:`ACCURACY_GRADING`: the surface 4 times finer than the default
-mesh's and the body's growth 3 times slower, so that both error terms are small at once (the
-contact edge's, -0.07 (h/a)^2, and the far field's, +0.024 g^4, of opposite sign: on the
-default family the ladder saw their sum), and the axis grading's growth 1.8 times larger
-(the force does not need it); benchmarks/FEM_NOTES.md, "Accuracy 1e-6"."""
+half-space, graded by :data:`ACCURACY_GRADING` (why these sizes: benchmarks/FEM_NOTES.md,
+"Accuracy 1e-6")."""
 GRADED_BELOW = 1e-4
 """``--accuracy`` TOL below this runs on the graded family, the cheaper one there
 (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""

@@ -59,10 +59,8 @@ LOSS_ESTIMATED = (
 """A viscoelastic body's split of 1 - e^2 (:attr:`ImpactRun.losses`), estimated too where the
 runs have it (a rubber at finite strain records the dissipated fraction only)."""
 DYNAMIC_ORDER = 2.0
-"""Asymptotic order used for the correction: generalized-alpha is second order in dt, and the
-graded P2 mesh converges at 2.2-2.7 here (x_max refining only the mesh); the smaller order
-gives the larger, conservative correction. With each ladder's observed order (x_max: 1.8-3.7,
-the time and mesh parts mixing), the estimate fell to 0.51 of the difference to the finest run."""
+"""Asymptotic order used for the correction: generalized-alpha's second order in dt, the
+smaller of the time and mesh orders (benchmarks/FEM_NOTES.md, "Study error estimates")."""
 DYNAMIC_SANE = (1.0, 5.0)
 """Observed orders taken as asymptotic (as :data:`.accuracy.SANE_ORDERS`); otherwise, and for
 differences that do not shrink monotonically, the largest of the two differences."""
