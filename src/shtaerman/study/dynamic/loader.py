@@ -354,30 +354,24 @@ def _check_velocities(
     for velocity in study.quick_velocities if quick else study.velocities:
         problem = study.problem(velocity)
         impact, friction = (study.mass, velocity), problem.interface.coefficient
-        try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the run's warnings are the run's
+            try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
                 check_impact_reach(*inputs[:3], impact, study.finite, friction, study.geometry)
-        except InputError as error:
-            raise refused(path, error, {**KEYS, "velocity": key}) from None
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # the run's warnings are the run's
+            except InputError as error:
+                raise refused(path, error, {**KEYS, "velocity": key}) from None
+            try:
                 representable("v0^2", velocity * velocity, study.mass, velocity, ("velocity",))
                 solved[velocity] = exact(velocity)
-        except InputError as error:
-            raise StudyError(f"{path}: key '{key}': {error}") from None
-        if study.finite:  # its reach: checked as the finite-strain impact starts
-            continue
-        physics = (problem.body.prony, friction)
-        try:  # a profile's sizing impact: the exact one here
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                check_dynamic_impact(
-                    *inputs, *impact, settings, *physics, solved[velocity], geometry=study.geometry
-                )
-        except InputError as error:
-            raise refused(path, error, {**KEYS, "velocity": key}) from None
+            except InputError as error:
+                raise StudyError(f"{path}: key '{key}': {error}") from None
+            if study.finite:  # its reach: checked as the finite-strain impact starts
+                continue
+            physics = (problem.body.prony, friction, solved[velocity])
+            try:  # a profile's sizing impact: the exact one here
+                check_dynamic_impact(*inputs, *impact, settings, *physics, geometry=study.geometry)
+            except InputError as error:
+                raise refused(path, error, {**KEYS, "velocity": key}) from None
     return solved
 
 

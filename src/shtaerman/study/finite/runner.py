@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import msgspec
@@ -151,13 +151,7 @@ class LadderStart:
 
     def to_dict(self) -> dict[str, float]:
         """JSON-ready."""
-        return {
-            "requested_ratio": self.requested_ratio,
-            "ratio": self.ratio,
-            "depth": self.depth,
-            "nodes": self.nodes,
-            "allowance": self.allowance(),
-        }
+        return {**asdict(self), "allowance": self.allowance()}
 
 
 def surface_radii(
@@ -280,15 +274,10 @@ class FiniteStudyOutcome(Outcome):
         def at(key: str) -> float:
             return float(np.interp(math.log(x_c), depth, [row[key] for row in rows]))
 
-        return {
-            "force_ratio": at("force_ratio"),
-            "force_ratio_fem": at("force_ratio_fem"),
-            "central_to_mean": at("central_to_mean"),
-            "radius_ratio": at("radius_ratio"),
-            "central_pressure_ratio": at("central_pressure_ratio"),
-            "depth_to_radius": at("depth_to_radius"),
-            "beyond_last_depth": x_c / rows[-1]["depth"] - 1.0,
-        }
+        keys = ("force_ratio", "force_ratio_fem", "central_to_mean", "radius_ratio")
+        keys += ("central_pressure_ratio", "depth_to_radius")
+        beyond = x_c / rows[-1]["depth"] - 1.0
+        return {**{key: at(key) for key in keys}, "beyond_last_depth": beyond}
 
     def limits(self) -> list[dict[str, object]]:
         """:meth:`validity`, with (after a mesh ladder) each crossing's estimated relative
