@@ -84,16 +84,8 @@ class Estimate:
 
     def to_dict(self) -> dict[str, object]:
         """Plain data for JSON."""
-        return {
-            "value": self.value,
-            "extrapolated": self.extrapolated,
-            "error": self.error,
-            "absolute_error": self.absolute_error,
-            "order": self.order,
-            "method": self.method,
-            "reason": self.reason,
-            "observed_order": self.observed_order,
-        }
+        keys = ("value", "extrapolated", "error", "absolute_error", "order", "method", "reason")
+        return {key: getattr(self, key) for key in (*keys, "observed_order")}
 
 
 def _two_level(coarse: float, fine: float, reason: str) -> Estimate:

@@ -11,6 +11,7 @@ benchmarks/FEM_NOTES.md, "Study error estimates".
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 import warnings
@@ -398,14 +399,6 @@ def run_mesh_ladder(
     return result
 
 
-def _linear(
-    indenter: PowerLawIndenter, half_space: Material, depths: np.ndarray, backend: str, **relaxing
-) -> Solve:
-    return lambda mesh: run_indentation(
-        indenter, half_space, depths, mesh, backend=backend, **relaxing
-    )
-
-
 def run_ladder(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -443,7 +436,8 @@ def run_ladder(
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     physics = {"prony": prony, "rate": rate, "friction": friction, "geometry": geometry}
-    solve = _linear(indenter, half_space, depths, backend, **physics)
+    physics["backend"] = backend
+    solve = functools.partial(run_indentation, indenter, half_space, depths, **physics)
     refined = refined_radius(indenter, depths, mesh, geometry)
     steps = {"progress": progress, "exact": _exact(geometry, friction), "refined": refined}
     return run_mesh_ladder(solve, mesh, refine=refine, partial=partial, geometry=geometry, **steps)
@@ -599,7 +593,8 @@ def run_to_accuracy(
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     mesh = accuracy_mesh(mesh, indenter, depths, tolerance, geometry)
-    solve = _linear(indenter, half_space, depths, backend, friction=friction, geometry=geometry)
+    physics = {"backend": backend, "friction": friction, "geometry": geometry}
+    solve = functools.partial(run_indentation, indenter, half_space, depths, **physics)
     exact, refined = _exact(geometry, friction), refined_radius(indenter, depths, mesh, geometry)
     steps = {"progress": progress, "exact": exact, "refined": refined, "partial": True}
     steps["geometry"] = geometry
