@@ -333,16 +333,13 @@ def _finite_numerics(
 def _check_velocities(
     path: Path, key: str, study: DynamicStudy, exact: Callable, quick: bool = False
 ) -> dict[float, Any]:
-    """The exact impact at each velocity of the study (``quick``: of its quick run; ``exact``,
-    solved once per velocity), a velocity whose problem the Problem refuses, whose depth lies
-    beyond the reach (checked first, as its run does:
-    :func:`~shtaerman.fem.impact.check_impact_reach`) or whose exact impact leaves the
-    floating-point range, refused naming ``key``, or (the linear body)
-    whose run with the study's settings the impact's own checks refuse (depth reach, speed
-    against the waves', the layer's thickness:
-    :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
-    keys at fault: at load, not as the first check of its run, after the velocities before
-    it had run."""
+    """velocity -> the exact impact (``exact``, solved once each) of each velocity of the study
+    (``quick``: of its quick run), refused at load, not after the velocities before it ran,
+    where its run would refuse it: the Problem, the depth's reach first
+    (:func:`~shtaerman.fem.impact.check_impact_reach`), the floating-point range, and for the
+    linear body the impact's own checks with the study's settings (depth reach, speed against
+    the waves', the layer's thickness: :func:`~shtaerman.fem.dynamic_contact.
+    check_dynamic_impact`); a refusal names ``key`` or the keys at fault."""
     import warnings
 
     from ...fem.impact import check_impact_reach
