@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 __all__ = ["Check", "Outcome", "failures"]
 
@@ -23,12 +23,7 @@ class Check:
 
     def to_dict(self) -> dict[str, object]:
         """Plain data for JSON."""
-        return {
-            "name": self.name,
-            "value": self.value,
-            "tolerance": self.tolerance,
-            "passed": self.passed,
-        }
+        return {**asdict(self), "passed": self.passed}
 
 
 def failures(checks: Iterable[Check]) -> tuple[str, ...]:

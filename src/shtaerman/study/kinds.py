@@ -163,34 +163,28 @@ def vocabulary_parameters(kind: str) -> dict[str, Parameter]:
     }
 
 
-register_kind(
+for kind in (
     Kind(
         "contact",
         "linear FEM frictionless contact against Shtaerman's exact solution",
         load="shtaerman.study.contact.loader:load_contact",
         run="shtaerman.study.contact.runner:run_contact_study",
         write="shtaerman.output.folder:write_contact_study",
-    )
-)
-register_kind(
+    ),
     Kind(
         "dynamic",
         "dynamic FE impact (elastic waves) against the quasi-static impact",
         load="shtaerman.study.dynamic.loader:load_dynamic",
         run="shtaerman.study.dynamic.runner:run_dynamic_study",
         write="shtaerman.output.dynamic:write_dynamic_study",
-    )
-)
-register_kind(
+    ),
     Kind(
         "finite-strain",
         "rubber finite-strain contact against Shtaerman, and the impact on it",
         load="shtaerman.study.finite.loader:load_finite",
         run="shtaerman.study.finite.runner:run_finite_strain_study",
         write="shtaerman.output.finite:write_finite_study",
-    )
-)
-register_kind(
+    ),
     Kind(
         "effects",
         "the effect table of an impact: which effect moves P_max, x_max, t_contact and e",
@@ -198,5 +192,6 @@ register_kind(
         load="shtaerman.api.effect_table.study:load_effects",
         run="shtaerman.api.effect_table.study:run_effects",
         write="shtaerman.api.effect_table.study:write_effects",
-    )
-)
+    ),
+):
+    register_kind(kind)

@@ -1,38 +1,9 @@
 """Error estimates from a mesh ladder: Richardson extrapolation with the observed order.
 
-A quantity computed on meshes whose size field is divided by a constant ratio s > 1 from one
-level to the next converges as Q(h) = Q* + C h^p + o(h^p). From three levels Q1 (coarsest),
-Q2, Q3 (finest), with d1 = Q1 - Q2 and d2 = Q2 - Q3:
-
-    p  = ln(d1 / d2) / ln(s)                  (the observed order)
-    Q* = Q3 - d2 / (s^p - 1)                  (the extrapolated value)
-    e  = |d2 / (s^p - 1)| / |Q*|              (the estimated relative error of Q3)
-
-The estimate is trusted only when the differences shrink monotonically and p lies in a sane
-range (:data:`ORDER_RANGE`); otherwise (noise, a quantity at its floor, two levels only) the
-two-level difference |d2| / |Q3| is reported instead, and the estimate says so. Where the
-quantity is known to carry a non-smooth part that does not shrink with the levels (the
-dynamic impact's P_max, t_contact and e: a ripple or the mesh's topology, +-1e-4 at every
-level), ``fallback="largest"`` reports max(|d1|, |d2|) / |Q3| instead: the scatter's amplitude
-as the ladder shows it; the last difference alone vanishes whenever two levels agree by chance.
-
-Where the asymptotic order q is known better than one ladder can observe it (the contact
-force, whose coarse ladders still mix error terms of opposite sign), the observed p only guards
-the asymptotic regime and the correction uses q: e = |d2| / (s^q - 1) / |Q3|.
-
-:func:`curve_richardson` does the same for a curve (a quantity at several depths), with the
-largest relative difference over the depths in place of |d1| and |d2|: the estimate of the
-curve's worst point. Per point, the differences change sign where the error passes through
-zero; their largest value converges regularly.
-
-:func:`propagated` bounds a product of powers of separately estimated factors (a ratio of two
-quantities whose own errors cancel in it) by the sum of the factors' relative estimates.
-
-:func:`envelope` estimates one point of a curve whose per-point differences oscillate (a
-discrete contact edge crossing the element nodes: the error's sign and size follow the edge's
-place between nodes, which changes from level to level) by the larger of its own estimate and
-:func:`curve_richardson` over the point and its neighbours, whose largest difference samples
-the oscillation's envelope at other places of the edge between the nodes.
+From three levels Q1 (coarsest), Q2, Q3 whose sizes shrink by s > 1 per level, with
+d1 = Q1 - Q2 and d2 = Q2 - Q3: p = ln(d1 / d2) / ln(s), Q* = Q3 - d2 / (s^p - 1), relative
+error |d2 / (s^p - 1)| / |Q*|. The fall-backs, the known order, curves, propagation and
+envelopes: benchmarks/FEM_NOTES.md, "Study error estimates".
 """
 
 from __future__ import annotations
@@ -113,16 +84,8 @@ class Estimate:
 
     def to_dict(self) -> dict[str, object]:
         """Plain data for JSON."""
-        return {
-            "value": self.value,
-            "extrapolated": self.extrapolated,
-            "error": self.error,
-            "absolute_error": self.absolute_error,
-            "order": self.order,
-            "method": self.method,
-            "reason": self.reason,
-            "observed_order": self.observed_order,
-        }
+        keys = ("value", "extrapolated", "error", "absolute_error", "order", "method", "reason")
+        return {key: getattr(self, key) for key in (*keys, "observed_order")}
 
 
 def _two_level(coarse: float, fine: float, reason: str) -> Estimate:

@@ -90,15 +90,10 @@ BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREAD
 """Worker environment of the local cluster: one BLAS thread per single-threaded worker (read
 as a spawned worker starts; :func:`execute_case` caps BLAS again, for forked workers)."""
 START_METHOD = "fork" if sys.platform == "linux" else "spawn"
-"""How the local cluster starts its worker processes. A fork inherits this process's imports
-(numpy, scipy, scikit-fem, the sweep's kind): spawned, each worker imported them again, about
-1.2 s of CPU a worker (a cluster of 2 up and one task done: 2.4 s of CPU and 2.4-2.8 s of wall
-spawned, 0.1 s of CPU and 0.15 s of wall forked; benchmarks/bench_sweep.py). A forked worker
-runs no main script again (no ``__main__`` guard needed) and gets its own signal handlers from
-the preload (``_worker.py``). The CLI's sweep and verify draw nothing before their workers
-start (VTK's OpenGL state must not be inherited; a sweep's workers draw its figures with
-matplotlib's Agg canvas only, after its cases). Spawn elsewhere: macOS system libraries are
-not safe in a forked child."""
+"""How the local cluster starts its worker processes: a fork inherits this process's imports
+and its workers get their signal handlers from the preload (``_worker.py``); nothing may be
+drawn before they start (VTK's OpenGL state). Spawn elsewhere: macOS system libraries are not
+safe in a forked child. Measurements: benchmarks/FEM_NOTES.md, "Sweep cluster"."""
 QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.system-monitor.interval": "60s",
@@ -106,17 +101,12 @@ QUIET_CLUSTER = {
     "distributed.worker.memory.monitor-interval": "500ms",
 }
 """Dask's own monitoring, off or slowed in the local cluster (it feeds a dashboard and log
-warnings this tool has neither): the statistical profiler samples each worker's stack every
-10 ms, the system monitor polls psutil every 0.5 s and the event-loop tick runs every 20 ms.
-An 8-case contact sweep on 2 workers spent 0.4-0.7 s of CPU in the workers outside its cases and
-0.35 s in this process; 0.15-0.2 s and 0.15 s without them, against 5 s of cases. The memory
-monitors (each worker's, and its nanny's here) look every 0.5 s, not 0.1 s: 0.014 s of CPU per s
-of a 2-worker run instead of 0.025; a worker past its memory limit is still stopped."""
+warnings this tool has neither; a worker past its memory limit is still stopped; what it cost:
+benchmarks/FEM_NOTES.md, "Sweep cluster")."""
 NANNY_POLL = 0.005
 """s: how often a nanny of the local cluster looks whether its worker has started, while the
-cluster starts (:func:`_nanny_poll`). dask's 0.05 s made a start wait 25 ms on average for
-nothing, 33 ms with 2 workers (the later of two): a cluster of 2 started in 0.097 s of wall
-(median of 6) against 0.071 s (load 3.9)."""
+cluster starts (:func:`_nanny_poll`; against dask's 0.05 s: benchmarks/FEM_NOTES.md, "Sweep
+cluster")."""
 SIGNAL_LATENCY = 0.1
 """Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 CONNECT_TIMEOUT = "10s"

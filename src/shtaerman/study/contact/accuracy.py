@@ -1,28 +1,17 @@
 """Every FEM contact number with its error bar: a mesh ladder, Richardson estimates, a target.
 
-The ladder refines the whole size field (:meth:`shtaerman.fem.mesh.MeshSettings.refined`) by
-:data:`~shtaerman.study.ladder.LADDER_RATIO` = sqrt(2) per level, so each level has about twice
-the dofs of the one before. Every quantity of the finest level gets a Richardson estimate
-(:mod:`shtaerman.study.richardson`): the force, the contact radius and the central pressure at
-every depth (the worst depth is reported, and named: ``extrapolated_depth``), beta and the
-fitted exponent. Where the exact
-solution is known (the linear power-law contact) the true error stands beside the estimate:
-their ratio, the effectivity index, verifies the estimator itself in every run.
-
-A level whose run fails numerically (stick and slip that do not settle even in cut load steps,
-a Newton that does not converge: :data:`FAILURES`) does not abort the others when the ladder is
-run ``partial`` (the API's contact curve): the finest level that passed is reported, its
-estimate marked missing with the reason (:attr:`AccuracyResult.missing`) and a warning, as the
-impact's ladder does (:mod:`shtaerman.study.dynamic.accuracy`); it fails only when no level
-passed. The retry with finer load steps is the run's own (:func:`.constraints.cut_step`).
-:func:`run_to_accuracy` does the same within its first three levels; a level beyond them that
-fails ends the refinement: the last three levels that passed answer with their estimate, and
-the result says that the tolerance was not reached and why (:attr:`AccuracyResult.unreached`,
-an :class:`AccuracyNotReachedWarning`).
+The ladder refines the whole size field by :data:`~shtaerman.study.ladder.LADDER_RATIO` per
+level; the finest level's force, contact radius and central pressure (worst depth), beta and
+exponent get Richardson estimates (:mod:`shtaerman.study.richardson`), beside the true error
+where the exact solution is known. A level that fails numerically (:data:`FAILURES`) leaves,
+``partial``, the finest that passed without estimate (:attr:`AccuracyResult.missing`);
+:func:`run_to_accuracy` refines until a tolerance (:attr:`AccuracyResult.unreached`). More:
+benchmarks/FEM_NOTES.md, "Study error estimates".
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 import warnings
@@ -71,9 +60,7 @@ FORCE_LIKE = ("force", "beta")
 ORDERS = {"force": 3.0, "beta": 3.0, "central_pressure": 3.0, "contact_radius": 2.5}
 """Orders of the extrapolation, and the largest orders of the error estimates: a ladder that
 observes a lower order (in :data:`SANE_ORDERS`) reports the correction at its own order as the
-error, the larger one (the exponent always uses its observed order). The force's error has two
-terms of opposite sign: the far field's (order 4 in the growth rate) and the contact edge's
-(order 2 in the surface size; benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
+error (the exponent always uses its observed order; benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 EDGE_ORDER = 2.0
 """The slowest order of the force's error: the contact edge's, in the surface size."""
 FORCE_SAFETY = 1.25
@@ -269,11 +256,8 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     within eps, relative): beta's relative error at least eps (its log is the mean of the
     depths' log P_i), the exponent's at least S eps / |q| (relative, as every estimate;
     absolute S eps), S the fit's :func:`~shtaerman.fem.fit.exponent_sensitivity`; where
-    that bound is the larger, the estimate's method is ``"propagated"``. The
-    exponent's own Richardson estimate sees only how the fit moves between levels, whose
-    order the force's two error terms of opposite sign blur: it understated (0.18 of the true
-    error on ``--accuracy 1e-6``, observed order 3.5; benchmarks/FEM_NOTES.md, "Accuracy
-    1e-6").
+    that bound is the larger, the estimate's method is ``"propagated"`` (why:
+    benchmarks/FEM_NOTES.md, "Accuracy 1e-6").
     """
     results = [level.result for level in levels]
     estimates, ladders = {}, {}
@@ -333,9 +317,8 @@ def _confirmed(levels: list[np.ndarray], estimate: Estimate) -> bool:
 def _at_most(estimate: Callable[..., Estimate], values: list, order: float | None) -> Estimate:
     """``estimate`` (:func:`richardson` or :func:`curve_richardson`) of
     ``values`` at ``order``; where the observed order is lower, its error is the correction at
-    the observed order (the larger), its extrapolated value stays at ``order`` (on the default
-    ladders, whose observed orders 2.3-2.5 mix the far field's order 4 with the edge's order 2,
-    order 3 extrapolates the force to 2.4e-5 of the exact, the observed order to 7.8e-5)."""
+    the observed order (the larger), its extrapolated value stays at ``order``
+    (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
     known = estimate(values, LADDER_RATIO, order=order, sane=SANE_ORDERS)
     if known.method == "richardson" and known.observed_order < known.order:
         observed = estimate(values, LADDER_RATIO, sane=SANE_ORDERS)
@@ -416,14 +399,6 @@ def run_mesh_ladder(
     return result
 
 
-def _linear(
-    indenter: PowerLawIndenter, half_space: Material, depths: np.ndarray, backend: str, **relaxing
-) -> Solve:
-    return lambda mesh: run_indentation(
-        indenter, half_space, depths, mesh, backend=backend, **relaxing
-    )
-
-
 def run_ladder(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -461,7 +436,8 @@ def run_ladder(
     mesh = MeshSettings() if mesh is None else mesh
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     physics = {"prony": prony, "rate": rate, "friction": friction, "geometry": geometry}
-    solve = _linear(indenter, half_space, depths, backend, **physics)
+    physics["backend"] = backend
+    solve = functools.partial(run_indentation, indenter, half_space, depths, **physics)
     refined = refined_radius(indenter, depths, mesh, geometry)
     steps = {"progress": progress, "exact": _exact(geometry, friction), "refined": refined}
     return run_mesh_ladder(solve, mesh, refine=refine, partial=partial, geometry=geometry, **steps)
@@ -504,11 +480,8 @@ of the force is a / 1e3); the band starts at the smallest geometric contact radi
 (:func:`accuracy_mesh`)."""
 ACCURACY_MESH = GradedMesh(size=0.0016, growth=0.08, axis_growth=0.18, grading=ACCURACY_GRADING)
 """The base (refine 1) of ``--accuracy`` TOL < :data:`GRADED_BELOW` on the default
-half-space, graded by :data:`ACCURACY_GRADING`: the surface 4 times finer than the default
-mesh's and the body's growth 3 times slower, so that both error terms are small at once (the
-contact edge's, -0.07 (h/a)^2, and the far field's, +0.024 g^4, of opposite sign: on the
-default family the ladder saw their sum), and the axis grading's growth 1.8 times larger
-(the force does not need it); benchmarks/FEM_NOTES.md, "Accuracy 1e-6"."""
+half-space, graded by :data:`ACCURACY_GRADING` (why these sizes: benchmarks/FEM_NOTES.md,
+"Accuracy 1e-6")."""
 GRADED_BELOW = 1e-4
 """``--accuracy`` TOL below this runs on the graded family, the cheaper one there
 (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
@@ -620,7 +593,8 @@ def run_to_accuracy(
     max_dofs = mesh.max_dofs if max_dofs is None else max_dofs
     depths = default_depths(indenter, half_space) if depths is None else np.asarray(depths)
     mesh = accuracy_mesh(mesh, indenter, depths, tolerance, geometry)
-    solve = _linear(indenter, half_space, depths, backend, friction=friction, geometry=geometry)
+    physics = {"backend": backend, "friction": friction, "geometry": geometry}
+    solve = functools.partial(run_indentation, indenter, half_space, depths, **physics)
     exact, refined = _exact(geometry, friction), refined_radius(indenter, depths, mesh, geometry)
     steps = {"progress": progress, "exact": exact, "refined": refined, "partial": True}
     steps["geometry"] = geometry

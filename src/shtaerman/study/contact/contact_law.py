@@ -1,13 +1,9 @@
 """Contact laws made from FEM results, for the impact model.
 
-The FEM presses a rigid indenter into the half-space (E*_rigid = E2/(1 - nu2^2)). For an
-elastic striker the frictionless contact depends on the two materials only through E*
-(1/E* = Q1 + Q2): at a given depth the contact radius is unchanged and the force and pressures
-scale by E*/E*_rigid. That factor (1 - 4.7e-5 for steel on the paper's rubber) is applied here.
-
-Between the computed depths the curves are interpolated linearly in log-log coordinates (exact
-for a power law), and extrapolated with the slope of the nearest interval (toward x = 0 and a
-little past the deepest step), with no assumption about the exponent.
+The FEM presses a rigid indenter; for an elastic striker the force and pressures scale by
+E*/E*_rigid at the same contact radius (applied here). Between the computed depths the curves
+are interpolated linearly in log-log coordinates and extrapolated with the nearest interval's
+slope (benchmarks/FEM_NOTES.md, "Study error estimates").
 """
 
 from __future__ import annotations

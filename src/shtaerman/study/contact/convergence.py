@@ -1,19 +1,11 @@
 """Mesh convergence of the FEM indentation test against Shtaerman's exact solution.
 
-:func:`convergence_study` reruns :func:`.indentation.run_indentation` on a sequence of meshes
-that refine the *whole* discretisation: every length of the mesh size field is scaled by the same
-factor t = size / base.size. The field is h(x) = min(h0 + g d_zone, h_axis + g_axis d_axis) in
-units of the refined radius (see ``meshes/halfspace.geo``), so scaling h0 = ``size``, h_axis =
-``axis_size`` and both growth rates g = ``growth``, g_axis = ``axis_growth`` by t gives t h(x) at
-every point x: the mesh is a uniform refinement of the base mesh in the sense of its size field,
-the number of dofs grows as t^-2, and the element size h is proportional to ``size`` everywhere
-(the surface, the contact edges, the axis cusp and the far field alike). The domain radius and
-the margin are kept, so the truncation error (force about 1.9 a/R, see ``MeshSettings.domain``) is a
-floor that the study does not refine; raise ``base.domain`` to push it below the error of the
-finest mesh.
-
-:func:`observed_orders` turns a study into observed orders of convergence p, error ~ h^p, between
-consecutive levels; :func:`fitted_order` is the least-squares slope over all levels.
+:func:`convergence_study` reruns :func:`.indentation.run_indentation` on meshes whose whole
+size field is scaled by t = size / base.size (:func:`refined_settings`: h ~ size everywhere,
+dofs ~ t^-2; domain and margin kept, so the far-boundary truncation is a floor; why this is a
+uniform refinement: benchmarks/FEM_NOTES.md, "Study error estimates").
+:func:`observed_orders` gives the orders p, error ~ h^p, between consecutive levels;
+:func:`fitted_order` the least-squares slope over all levels.
 """
 
 from __future__ import annotations

@@ -1,25 +1,11 @@
 """The checks of a contact study whose indenter is bonded or Coulomb's, and its findings.
 
-Shtaerman's solution is the frictionless indenter's. It stays the reference, exactly, where the
-interface cannot change the contact: Coulomb's mu = 0 (the frictionless solve itself) and
-nu2 = 0.5 (Dundurs' beta = 0: a normal load moves no surface point sideways). Elsewhere a bonded
-or Coulomb indenter carries more force (benchmarks/FEM_NOTES.md, "Interface friction": 1.5 % at
-nu2 0.3, 5 % at 0), so its departures from Shtaerman are the interface's effect, reported with
-their sign (:class:`InterfaceEffect`), and the study checks what is exact for it
-(:func:`interface_checks`):
-
-- the force exponent (n + 1)/n: the bonded and Coulomb contacts of z = A r^n are self-similar
-  (Spence 1968, 1975);
-- bonded: the no-slip identity P (n + 1) / (2 E* a d n) = chi(nu) at every depth
-  (:mod:`shtaerman.theory.bonded`), within ``tolerances.identity`` plus the ladder's estimates
-  of the force and the contact radius;
-- the FEM-tabulated impact against the FEM-fitted one (Ateb on the fitted power law, exact for a
-  self-similar curve), at ``tolerances.impact``.
-
-Not checked: the force, beta, contact radius and central pressure against Shtaerman's, and the
-impacts against the analytic one (the effect); for Coulomb mu > 0 the identity (the annulus
-slips) and the bounds 1 <= ratio <= chi(nu), not guaranteed on a coarse mesh (FEM_NOTES), whose
-share of the no-slip effect is reported instead.
+Shtaerman's (frictionless) solution stays the reference where the interface cannot change the
+contact (:func:`shtaerman_applies`: mu = 0, or nu2 = 0.5). Elsewhere the departures from it are
+the interface's effect (:class:`InterfaceEffect`), and :func:`interface_checks` checks what is
+exact for it: the force exponent (n + 1)/n, a bonded indenter's no-slip identity
+P (n + 1) / (2 E* a d n) = chi(nu), the FEM-tabulated impact against the FEM-fitted one. What
+is not checked, and why: benchmarks/FEM_NOTES.md, "Study error estimates".
 """
 
 from __future__ import annotations

@@ -1,19 +1,11 @@
 """A contact study on a layer of thickness H on a rigid base: its force against Shtaerman's
 half-space at the impact's maximum depth, and the impact on the layer's FE force-depth law.
 
-The layer is given by its thickness H in m or by ``thickness_ratio`` = H / a_c, where a_c is the
-half-space (Shtaerman) contact radius at the maximum depth x_c of the study's quasi-static impact
-on the half-space: "how many contact radii thick is my pad". The findings are
-
-- the force ratio P / P_Shtaerman at x_c (the FE curve interpolated log-log at x_c) with its
-  error: the ladder's Richardson estimate of the FE force (worst depth) plus the interpolation
-  error (linear against quadratic log-log interpolation through the nearest depths);
-- the quasi-static impact integrated on the layer's tabulated FE law (M x'' = -P(x)): x_max and
-  P_max, and their ratios to the half-space impact's x_c and P_c.
-
-With ``dynamic = true`` in the ``[layer]`` table (or the layer sweep's ``dynamic``) the
-findings add the dynamic FE impact on the same layer (elastic waves, the striker rigid, the
-half-space density ``density2``): its restitution, x_max and P_max; ``None`` without it.
+The layer is given by H in m or by ``thickness_ratio`` = H / a_c (a_c the half-space contact
+radius at the half-space impact's x_c). Its findings (:class:`LayerFindings`): the force ratio
+P / P_Shtaerman at x_c with its error, the quasi-static impact on the layer's tabulated FE law,
+and with ``dynamic = true`` the dynamic FE impact on it (benchmarks/FEM_NOTES.md, "Study error
+estimates").
 """
 
 from __future__ import annotations

@@ -119,10 +119,8 @@ class Tolerances(Table):
     impact: Relative = 2e-3
     identity: Relative = 3e-3
     """A bonded indenter's no-slip identity P (n+1) / (2 E* a d n) = chi(nu2), beside the
-    ladder's estimates of the force and the contact radius (:mod:`.interface`): at n 1.5,
-    nu2 0.3 its worst depth departs 1.5e-3 on the quick mesh and 1.6e-3 on the default one (a
-    at the small depths, between nodes), 2.1e-3 at n 2; a wrong curve departs by percents (the
-    frictionless one by 1 / chi - 1 = -2.8e-2)."""
+    ladder's estimates of the force and the contact radius (:mod:`.interface`; measured
+    departures: benchmarks/FEM_NOTES.md, "Study error estimates")."""
 
 
 class _Convergence(Table):

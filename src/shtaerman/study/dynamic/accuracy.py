@@ -1,37 +1,12 @@
 """Error bars for the impact, every body: one ladder refining mesh and time step together.
 
-Three runs of the impact at refinement K/2, K/sqrt(2) and K (each level's settings
-``settings.refined(factor)``: element sizes / factor, time steps x factor, so h and dt shrink
-together) and Richardson estimates (:mod:`shtaerman.study.richardson`) of the finest run's x_max,
-P_max, t_contact, restitution and radiated fraction 1 - e^2 (and a viscoelastic body's split of it,
-:data:`LOSS_ESTIMATED`). The linear body (:class:`~shtaerman.fem.dynamic_contact.DynamicSettings`)
-and the rubber at finite strain (:class:`~shtaerman.fem.finite_dynamic.FiniteImpactSettings`) climb
-the same ladder: only the run differs. There is no exact solution to compare with here: the estimate
-is what the number carries. A quantity derived from a run (a ratio to the quasi-static value) is
-estimated by Richardson on its own values over the levels (:meth:`ImpactLadder.estimate`), not by
-propagating the estimates above.
-
-A level whose run fails numerically (a Newton or a step equation that does not converge, a
-runaway energy) is run again with :data:`RETRY_STEPS` times its time steps; it then enters the
-ladder with those steps (its time error is smaller than its place in the ladder assumes, which
-enlarges the last difference: the estimate stays on the safe side). If the retry fails too, the
-ladder keeps the levels that passed, reports the finest of them and marks the estimate as
-missing, with the reason (:attr:`ImpactLadder.missing`) and a warning; it fails only when no
-level passed. A Gent rubber that locks fails the ladder at once. A finite-strain run whose
-step failed from a state squeezing the elements beside the striker's tip
-(:class:`~shtaerman.fem.contact.finite.SqueezedTipError`) is not retried (more time steps do
-not move it), and on the finest level fails the ladder at once, before the coarser levels'
-cost: the impact is what to change. A finite-strain run first cuts a failing time step in
-halves within the run (:mod:`shtaerman.fem.finite_dynamic`), so its level keeps its steps and
-the ladder its ratio.
-Whatever was retried or cut is said once, in one line (:class:`RetriedWarning`), and carried by
-the reported run (``retried``).
-
-The estimator (:data:`DYNAMIC_ORDER`, :data:`DYNAMIC_SANE`, ``fallback="largest"``): x_max
-converges regularly, while P_max, t_contact and e scatter from level to level (the graded
-meshes are not nested), so the larger of the two differences between consecutive levels is
-reported where no clean order is observed. Its effectivity is measured in
-``benchmarks/bench_dynamic_study.py`` (c) and ``benchmarks/finite_impact_effectivity.py``.
+Three runs at refinement K/2, K/sqrt(2) and K (``settings.refined(factor)``: sizes / factor,
+time steps x factor) and Richardson estimates (:mod:`shtaerman.study.richardson`) of the finest
+run's x_max, P_max, t_contact, restitution and 1 - e^2 (and :data:`LOSS_ESTIMATED`); the linear
+body and the rubber at finite strain climb the same ladder. A level that fails numerically is
+run again with :data:`RETRY_STEPS` times its time steps; if that fails too, the finest level
+that passed answers without estimate (:attr:`ImpactLadder.missing`, a warning). Retries,
+failures and the estimator's choices: benchmarks/FEM_NOTES.md, "Study error estimates".
 """
 
 from __future__ import annotations
@@ -84,10 +59,8 @@ LOSS_ESTIMATED = (
 """A viscoelastic body's split of 1 - e^2 (:attr:`ImpactRun.losses`), estimated too where the
 runs have it (a rubber at finite strain records the dissipated fraction only)."""
 DYNAMIC_ORDER = 2.0
-"""Asymptotic order used for the correction: generalized-alpha is second order in dt, and the
-graded P2 mesh converges at 2.2-2.7 here (x_max refining only the mesh); the smaller order
-gives the larger, conservative correction. With each ladder's observed order (x_max: 1.8-3.7,
-the time and mesh parts mixing), the estimate fell to 0.51 of the difference to the finest run."""
+"""Asymptotic order used for the correction: generalized-alpha's second order in dt, the
+smaller of the time and mesh orders (benchmarks/FEM_NOTES.md, "Study error estimates")."""
 DYNAMIC_SANE = (1.0, 5.0)
 """Observed orders taken as asymptotic (as :data:`.accuracy.SANE_ORDERS`); otherwise, and for
 differences that do not shrink monotonically, the largest of the two differences."""

@@ -333,16 +333,13 @@ def _finite_numerics(
 def _check_velocities(
     path: Path, key: str, study: DynamicStudy, exact: Callable, quick: bool = False
 ) -> dict[float, Any]:
-    """The exact impact at each velocity of the study (``quick``: of its quick run; ``exact``,
-    solved once per velocity), a velocity whose problem the Problem refuses, whose depth lies
-    beyond the reach (checked first, as its run does:
-    :func:`~shtaerman.fem.impact.check_impact_reach`) or whose exact impact leaves the
-    floating-point range, refused naming ``key``, or (the linear body)
-    whose run with the study's settings the impact's own checks refuse (depth reach, speed
-    against the waves', the layer's thickness:
-    :func:`~shtaerman.fem.dynamic_contact.check_dynamic_impact`), naming the
-    keys at fault: at load, not as the first check of its run, after the velocities before
-    it had run."""
+    """velocity -> the exact impact (``exact``, solved once each) of each velocity of the study
+    (``quick``: of its quick run), refused at load, not after the velocities before it ran,
+    where its run would refuse it: the Problem, the depth's reach first
+    (:func:`~shtaerman.fem.impact.check_impact_reach`), the floating-point range, and for the
+    linear body the impact's own checks with the study's settings (depth reach, speed against
+    the waves', the layer's thickness: :func:`~shtaerman.fem.dynamic_contact.
+    check_dynamic_impact`); a refusal names ``key`` or the keys at fault."""
     import warnings
 
     from ...fem.impact import check_impact_reach
@@ -354,30 +351,24 @@ def _check_velocities(
     for velocity in study.quick_velocities if quick else study.velocities:
         problem = study.problem(velocity)
         impact, friction = (study.mass, velocity), problem.interface.coefficient
-        try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the run's warnings are the run's
+            try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
                 check_impact_reach(*inputs[:3], impact, study.finite, friction, study.geometry)
-        except InputError as error:
-            raise refused(path, error, {**KEYS, "velocity": key}) from None
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # the run's warnings are the run's
+            except InputError as error:
+                raise refused(path, error, {**KEYS, "velocity": key}) from None
+            try:
                 representable("v0^2", velocity * velocity, study.mass, velocity, ("velocity",))
                 solved[velocity] = exact(velocity)
-        except InputError as error:
-            raise StudyError(f"{path}: key '{key}': {error}") from None
-        if study.finite:  # its reach: checked as the finite-strain impact starts
-            continue
-        physics = (problem.body.prony, friction)
-        try:  # a profile's sizing impact: the exact one here
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                check_dynamic_impact(
-                    *inputs, *impact, settings, *physics, solved[velocity], geometry=study.geometry
-                )
-        except InputError as error:
-            raise refused(path, error, {**KEYS, "velocity": key}) from None
+            except InputError as error:
+                raise StudyError(f"{path}: key '{key}': {error}") from None
+            if study.finite:  # its reach: checked as the finite-strain impact starts
+                continue
+            physics = (problem.body.prony, friction, solved[velocity])
+            try:  # a profile's sizing impact: the exact one here
+                check_dynamic_impact(*inputs, *impact, settings, *physics, geometry=study.geometry)
+            except InputError as error:
+                raise refused(path, error, {**KEYS, "velocity": key}) from None
     return solved
 
 

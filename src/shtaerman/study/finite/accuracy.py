@@ -1,33 +1,10 @@
 """Error bars for the finite-strain study: its numbers on three meshes, Richardson estimates.
 
-The study (:mod:`.runner`) runs on its mesh refined by 1/2, 1/sqrt(2) and 1 (the finest
-answers), and every number it reports gets a Richardson estimate
-(:mod:`shtaerman.study.richardson`) from
-the three values: per depth P/(beta x^q), P/P_linear-FEM, a/a_linear, p(0)/p_avg and the
-stored energy; the four ratios at the finite-strain x_c (log-log interpolated); the
-finite-strain impact's maxima (whose relative errors are also those of their ratios to
-Shtaerman's exact impact) and their ratios to the linear-FEM impact on the same mesh.
-
-The depths where the departure |P/P_linear-FEM - 1| reaches 1 % and 5 % get the larger of two
-estimates: Richardson's over the three levels' crossings, and how far the finest crossing moves
-when every departure moves by its own estimated error (two neighbouring depths decide a
-crossing, and the three levels' crossings may agree by chance). A crossing is *resolved* when
-the estimated error of the departure there is below a fifth of its level
-(:func:`shtaerman.study.limits.resolved`).
-
-On a nested ladder three rules replace Richardson on the value itself (``estimate_study``'s
-``propagate``, ``edge_order`` and ``envelopes``): a ratio of two separately computed
-quantities (P/P_linear-FEM, the impact maxima against the linear-FEM impact's) gets the sum of
-its factors' relative estimates where both are Richardson's; the numbers the contact edge
-sets (a/a_linear, p(0)/p_avg, a_c) are extrapolated at the edge's first order where their
-differences shrink; and every per-depth number carries at least its neighbourhood's estimate
-(:func:`~shtaerman.study.richardson.envelope`): the contact edge's error oscillates with the
-edge's place between the nodes, from depth to depth and level to level, so a depth's own
-differences may change sign or nearly vanish by chance while the largest difference over its
-neighbours shrinks regularly.
-
-There is no exact solution here: what the estimator is worth is measured against finer meshes
-in ``benchmarks/bench_finite_strain.py`` (f).
+Every number the study (:mod:`.runner`) reports on its finest mesh gets an estimate
+(:mod:`shtaerman.study.richardson`) from the three levels: per depth (:data:`STEP_KEYS`), at
+the finite-strain x_c (:data:`AT_X_C`), the impact maxima (:data:`IMPACT_KEYS`) and the 1 % /
+5 % crossings. The rules of a nested ladder and the crossings': benchmarks/FEM_NOTES.md,
+"Study error estimates".
 """
 
 from __future__ import annotations

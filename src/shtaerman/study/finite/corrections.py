@@ -1,18 +1,10 @@
 """Whether the corrections add: the wave and finite-strain corrections of the paper's impact,
 computed apart and together, at the velocities of a finite-strain study's ``[corrections]``.
 
-At each velocity three impacts run through the code of ``shtaerman dynamic``
-(:func:`shtaerman.study.dynamic.case.run_case` and
-:func:`shtaerman.fem.impact.run_impact`):
-
-- the linear dynamic impact (elastic waves, small strain; no error estimate);
-- the finite-strain quasi-static impact (the study's rubber, massless body: ``density2 = 0``);
-- the nonlinear dynamic impact (the study's rubber with inertia: both at once).
-
-Each is reported against the paper's quasi-static x_c, P_c and t_y as the shifts
-x_max / x_c - 1, P_max / P_c - 1 and t_contact / t_y - 1 (and the restitution e); the two
-corrections taken as independent add their shifts (and their losses of e), and the nonlinear
-impact's departure from that sum, in percentage points, says how well they add.
+At each velocity the linear dynamic impact, the finite-strain quasi-static impact and the
+nonlinear dynamic impact run through the code of ``shtaerman dynamic``; each is reported as its
+shifts against the paper's x_c, P_c and t_y, and the nonlinear impact's departure from the sum of
+the two corrections says how well they add (benchmarks/FEM_NOTES.md, "Study error estimates").
 """
 
 from __future__ import annotations

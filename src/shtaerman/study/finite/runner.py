@@ -1,28 +1,12 @@
 """Running a finite-strain study: how far real (neo-Hookean) rubber departs from Shtaerman.
 
-The striker is rigid (the finite-strain FEM has a rigid indenter; a steel striker's compliance
-changes E* by 5e-5 for the paper's rubber). A study runs:
-
-1. the finite-strain curve (:func:`.indentation.run_finite_study`) over the ladder;
-2. the linear FEM on the same mesh and depths: P_finite / P_linear-FEM isolates the
-   finite-strain effect from the discretization error (which cancels to leading order);
-3. three impacts M x'' = -P(x): Shtaerman's exact (the paper's), and the tabulated linear-FEM
-   and finite-strain curves (:mod:`shtaerman.study.contact.contact_law`,
-   :func:`shtaerman.study.contact.runner.tabulated_impact`);
-4. all of it again on the study's mesh refined by 1/2 and 1/sqrt(2) (``[numerics] ladder =
-   "independent"``, the default), or on a nested ladder: one gmsh mesh with the study's sizes
-   doubled and its two uniform refinements (``"nested"``,
-   :func:`shtaerman.study.ladder.nested_ladder`, the finest level twice as fine as the study's
-   mesh): Richardson estimates of every reported number (:mod:`.accuracy`). ``verify
-   --quick`` runs one coarse mesh and estimates nothing. A level that fails numerically
-   (Newton, unsettled contact sets: :data:`~shtaerman.study.dynamic.accuracy.FAILURES`)
-   does not abort the others: the finest level that passed answers, its estimate missing
-   (:attr:`FiniteStudyOutcome.estimate_missing` says why, and a warning), as on the contact
-   curve's ladder; the study fails only when no level passed.
-
-Checks that need no reference: the small-strain limit at the tiny first depth, conservation
-(Simpson's Int P dx against the stored energy), Newton's final correction and complementarity
-at every converged depth.
+The striker is rigid. On each level of the error-estimate ladder (:func:`ladder_meshes`) the
+study runs the finite-strain curve, the linear FEM on the same mesh and depths (P_finite /
+P_linear-FEM isolates the finite-strain effect) and three impacts M x'' = -P(x) (Shtaerman's
+exact, the tabulated linear-FEM and finite-strain curves); the finest level that passed
+answers. Its checks need no reference: the small-strain limit, conservation, Newton's final
+correction, complementarity. The steps in full: benchmarks/FEM_NOTES.md, "Study error
+estimates".
 """
 
 from __future__ import annotations
@@ -30,7 +14,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import msgspec
@@ -167,13 +151,7 @@ class LadderStart:
 
     def to_dict(self) -> dict[str, float]:
         """JSON-ready."""
-        return {
-            "requested_ratio": self.requested_ratio,
-            "ratio": self.ratio,
-            "depth": self.depth,
-            "nodes": self.nodes,
-            "allowance": self.allowance(),
-        }
+        return {**asdict(self), "allowance": self.allowance()}
 
 
 def surface_radii(
@@ -296,15 +274,10 @@ class FiniteStudyOutcome(Outcome):
         def at(key: str) -> float:
             return float(np.interp(math.log(x_c), depth, [row[key] for row in rows]))
 
-        return {
-            "force_ratio": at("force_ratio"),
-            "force_ratio_fem": at("force_ratio_fem"),
-            "central_to_mean": at("central_to_mean"),
-            "radius_ratio": at("radius_ratio"),
-            "central_pressure_ratio": at("central_pressure_ratio"),
-            "depth_to_radius": at("depth_to_radius"),
-            "beyond_last_depth": x_c / rows[-1]["depth"] - 1.0,
-        }
+        keys = ("force_ratio", "force_ratio_fem", "central_to_mean", "radius_ratio")
+        keys += ("central_pressure_ratio", "depth_to_radius")
+        beyond = x_c / rows[-1]["depth"] - 1.0
+        return {**{key: at(key) for key in keys}, "beyond_last_depth": beyond}
 
     def limits(self) -> list[dict[str, object]]:
         """:meth:`validity`, with (after a mesh ladder) each crossing's estimated relative
