@@ -195,3 +195,4 @@ for kind in (
     ),
 ):
     register_kind(kind)
+del kind  # the loop variable: not a name of this module
