@@ -215,31 +215,20 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
     shape = plan.geometry
     linear = {"backend": plan.solver, "friction": plan.friction, "geometry": shape}
-    linear |= plan.relaxing
     rubber = (plan.rubber, plan.friction, shape)  # run_finite_study's after the mesh
     if not plan.estimate:
         finest = plan.mesh.refined(plan.refine)
         if plan.finite:
             return run_finite_study(*inputs, finest, *rubber), None
-        return run_indentation(*inputs, finest, **linear), None
+        return run_indentation(*inputs, finest, **linear, **plan.relaxing), None
     if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
         solve = lambda level: run_finite_study(*inputs, level, *rubber)  # noqa: E731
         ladder = run_mesh_ladder(solve, plan.mesh, exact=False, geometry=shape, **steps)
     elif plan.tolerance is None:
-        ladder = run_ladder(*inputs, plan.mesh, **steps, **linear)
+        ladder = run_ladder(*inputs, plan.mesh, **steps, **linear, **plan.relaxing)
     else:
-        ladder = run_to_accuracy(
-            plan.indenter,
-            plan.body,
-            plan.tolerance,
-            plan.depths,
-            plan.mesh,
-            max_time=plan.max_time,
-            backend=plan.solver,
-            progress=plan.progress,
-            friction=plan.friction,
-            geometry=plan.geometry,
-        )
+        at = (plan.indenter, plan.body, plan.tolerance, plan.depths, plan.mesh)
+        ladder = run_to_accuracy(*at, max_time=plan.max_time, progress=plan.progress, **linear)
     return ladder.finest, ladder
 
 
