@@ -602,9 +602,7 @@ KEYWORDS = (
     "base",
     "interface",
     "friction",
-    "loading",
-    "depths",
-    "rate",
+    *LOADING_KEYWORDS,
 )
 """The flat keywords of :meth:`Problem.from_keywords`."""
 DEFAULTS = {"model": "linear", "interface": "frictionless", "loading": "impact"}

@@ -50,6 +50,11 @@ NOT_IN_JSON = ("extra", "solution", "ladder", "key_order")
 """ContactResult fields that are not keys of the JSON."""
 
 
+def _column(key: str, doc: str) -> Any:
+    """A property: the array (float) of ``key`` over the steps."""
+    return property(lambda self: np.array([step[key] for step in self.steps], dtype=float), doc=doc)
+
+
 @dataclass(frozen=True)
 class ContactResult:
     """The FEM contact curve: the keys of ``shtaerman contact --json`` (SI units).
@@ -113,28 +118,12 @@ class ContactResult:
         extra = {key: value for key, value in report.items() if key not in names}
         return cls(**values, extra=extra, solution=solution, ladder=ladder, key_order=tuple(report))
 
-    def _column(self, key: str) -> np.ndarray:
-        return np.array([step[key] for step in self.steps], dtype=float)
-
-    @property
-    def depth(self) -> np.ndarray:
-        """Depths in m."""
-        return self._column("depth")
-
-    @property
-    def force(self) -> np.ndarray:
-        """FEM force at each depth, N."""
-        return self._column("force")
-
-    @property
-    def contact_radius(self) -> np.ndarray:
-        """FEM contact radius at each depth, m."""
-        return self._column("contact_radius")
-
-    @property
-    def central_pressure(self) -> np.ndarray:
-        """FEM pressure at the centre of the contact at each depth, Pa."""
-        return self._column("central_pressure")
+    depth = _column("depth", "Depths in m.")
+    force = _column("force", "FEM force at each depth, N.")
+    contact_radius = _column("contact_radius", "FEM contact radius at each depth, m.")
+    central_pressure = _column(
+        "central_pressure", "FEM pressure at the centre of the contact at each depth, Pa."
+    )
 
     @property
     def finite(self) -> bool:
@@ -215,31 +204,20 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
     shape = plan.geometry
     linear = {"backend": plan.solver, "friction": plan.friction, "geometry": shape}
-    linear |= plan.relaxing
     rubber = (plan.rubber, plan.friction, shape)  # run_finite_study's after the mesh
     if not plan.estimate:
         finest = plan.mesh.refined(plan.refine)
         if plan.finite:
             return run_finite_study(*inputs, finest, *rubber), None
-        return run_indentation(*inputs, finest, **linear), None
+        return run_indentation(*inputs, finest, **linear, **plan.relaxing), None
     if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
         solve = lambda level: run_finite_study(*inputs, level, *rubber)  # noqa: E731
         ladder = run_mesh_ladder(solve, plan.mesh, exact=False, geometry=shape, **steps)
     elif plan.tolerance is None:
-        ladder = run_ladder(*inputs, plan.mesh, **steps, **linear)
+        ladder = run_ladder(*inputs, plan.mesh, **steps, **linear, **plan.relaxing)
     else:
-        ladder = run_to_accuracy(
-            plan.indenter,
-            plan.body,
-            plan.tolerance,
-            plan.depths,
-            plan.mesh,
-            max_time=plan.max_time,
-            backend=plan.solver,
-            progress=plan.progress,
-            friction=plan.friction,
-            geometry=plan.geometry,
-        )
+        at = (plan.indenter, plan.body, plan.tolerance, plan.depths, plan.mesh)
+        ladder = run_to_accuracy(*at, max_time=plan.max_time, progress=plan.progress, **linear)
     return ladder.finest, ladder
 
 

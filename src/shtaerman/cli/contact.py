@@ -8,6 +8,7 @@ from inspect import signature
 
 from ..api.fem_contact import MESH_OPTIONS, RUBBER_OPTIONS, contact
 from ..fem.mesh import DEFAULTS, FINITE_MESH
+from ..plots.labels import model_label
 from ..problem import worded
 from ..theory.materials import Material
 from ..vocabulary import entry, fields
@@ -163,15 +164,11 @@ def _interface_rows(report: dict, compared: str) -> list[str]:
     return [f"  {mesh['interface']} indenter ({slip}): {compared}"]
 
 
-MODEL_NAMES = {"neo-hookean": "Neo-Hookean", "mooney-rivlin": "Mooney-Rivlin", "yeoh": "Yeoh"}
-"""A finite-strain model's name in the text's title."""
-
-
 def _model_words(report: dict) -> str:
     """ "Neo-Hookean", "Mooney-Rivlin (r = 0.3)", ... with the volumetric energy if not the
     default."""
-    model = report["model"]
-    words = MODEL_NAMES.get(model, model.capitalize())
+    model, label = report["model"], model_label(report["model"])
+    words = label[0].upper() + label[1:]  # the title's first word: "Neo-Hookean"
     shape = {
         "mooney-rivlin": lambda: f"r = {report['mooney_ratio']:g}",
         "yeoh": lambda: "c2, c3 = {:g}, {:g}".format(*report["yeoh"]),

@@ -105,6 +105,8 @@ USED_BY = {
     "baseline": ("force-history",),
 }
 """The kinds of data an option of the impact applies to (it was ignored for the others)."""
+PASSED = ("unknowns", "noise", "time_offset", "baseline", "resample", "out", "force")
+"""Options :func:`shtaerman.fit` takes as they are parsed."""
 
 
 def refuse_unused(args: argparse.Namespace) -> None:
@@ -150,15 +152,9 @@ def run(args: argparse.Namespace) -> int:
             args.kind,
             args.data,
             _problem(args),
-            unknowns=args.unknowns,
-            noise=args.noise,
-            time_offset=args.time_offset,
-            baseline=args.baseline,
+            **common.keywords(args, PASSED),
             units=parse_units(args.units),
-            resample=args.resample,
             refine=FE_REFINE if args.refine is None else args.refine,
-            out=args.out,
-            force=args.force,
             figure_format=args.figure_format,
             progress=lambda line: print(line, file=sys.stderr, flush=True),
         )

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from ..validation import InputError
-from .common import add_figure_format, add_inputs, in_option_words, path_text, warn
+from .common import add_figure_format, add_inputs, in_option_words, keywords, path_text, warn
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -102,12 +102,7 @@ def run(args: argparse.Namespace) -> int:
             keep_marker=PROGRESS_FILE,
         )
     workers = args.workers or default_workers()
-    options = {
-        "quick": args.quick,
-        "force": args.force,
-        "resume": args.resume,
-        "figure_format": args.figure_format,
-    }
+    options = keywords(args, ("quick", "force", "resume", "figure_format"))
     try:
         with in_option_words():  # a resume's refusals: "--resume: ...", not the API's keyword
             if workers > 1 and len(studies) > 1:

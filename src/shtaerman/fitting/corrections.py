@@ -1,24 +1,8 @@
 """The FE correction of a force history: a pad, waves and finite strain at the fitted point.
 
-The exact quasi-static impact knows neither a pad (a layer on a rigid base), nor the body's
-inertia (waves), nor finite strain. Their effect is measured by the FE impact
-(:func:`shtaerman.dynamic`) of the problem at the fitted point and applied to the exact model
-as a correction that is held fixed while the exact model is fitted again:
-
-    F(t) = c_P [F_ex(t / c_t) + P_ex delta(t / (c_t T_ex))]
-
-with F_ex the exact force history at the trial parameters (peak P_ex, contact time T_ex), c_P
-and c_t the FE / exact ratios of the peak force and of the contact time at the point of the
-FE run, and delta(tau) the remaining difference of the two shapes (each normalised by its
-peak, against the time in units of its contact time). At the point of the FE run the
-corrected model is the FE force history itself; away from it, the scales follow the exact
-model. :func:`shtaerman.fitting.run.fit` repeats fit, FE run, fit until the fitted values
-move by less than a tenth of their intervals (typically two or three FE runs).
-
-E2 does not scale out of the FE impact: E2, density2 and the striker's mass multiplied
-together by lambda give the same motion with the forces times lambda, but at a fixed density
-and mass a new E2 changes the ratio of the wave transit time to the contact time (and of
-the depth to the pad), so each new point needs its FE run.
+The FE impact (:func:`shtaerman.dynamic`) at the fitted point corrects the exact model,
+F(t) = c_P [F_ex(t / c_t) + P_ex delta(t / (c_t T_ex))], held fixed while it is fitted again
+(docs/fit.md, "A pad, waves and finite strain: the FE corrections").
 """
 
 from __future__ import annotations

@@ -1,26 +1,8 @@
 """Least squares on a forward model, with intervals from the Jacobian at the optimum.
 
-The residual r = (model - data) (divided by the data for relative residuals) is minimised by
-:func:`scipy.optimize.least_squares` within the parameters' bounds, in the fitting space of
-each parameter (logarithms of positive scales). At the optimum the covariance is
-s^2 (J^T J)^-1 by the SVD of the central-difference Jacobian J, with s the given noise or the
-residual's s^2 = |r|^2/(m - p); the 95 % interval is the estimate +- t s_j (Student's t with
-m - p degrees of freedom when s is estimated, the normal quantile when it is given).
-
-A parameter is not identifiable when the data cannot determine it:
-
-- it has a component along a direction of J that is null (singular value below
-  :data:`RANK_TOLERANCE` of the largest): a combination of parameters the data do not see;
-  or it moves along an exact null direction the model declares (:attr:`Model.trades`: the
-  mass with E* in rebound data), with another parameter fitted;
-- its interval reaches past both of its bounds;
-- moving it across its whole range changes the residual by less than the noise
-  (|J_j| (high - low) < s): e.g. a relaxation time far outside the measured times;
-- its value lies outside its window (:attr:`Parameter.window`: a relaxation time outside the
-  measured time range), or that of a parameter it is tied to (a weight to its time). This
-  holds without noise too, where the Jacobian alone would give a small error bar.
-
-It is then reported with its bounds as its interval, never with a small error bar.
+:func:`scipy.optimize.least_squares` within the parameters' bounds, the covariance
+s^2 (J^T J)^-1 at the optimum, and a parameter the data cannot determine reported with its
+bounds as its interval, never with a small error bar: docs/fit.md, "How the fit decides".
 """
 
 from __future__ import annotations

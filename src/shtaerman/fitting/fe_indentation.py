@@ -1,23 +1,10 @@
 """The indentation fit by FE contact curves (a rubber at finite strain, a pad): E2 and one
 shape constant.
 
-E2 scales out of the FE contact curve of a rigid indenter exactly: at a fixed nu2, a fixed
-geometry and a fixed shape of the strain energy (Mooney ratio r, Yeoh c2 and c3, Gent Jm)
-every constant of the body is proportional to E2, so P(x; E2, s) = E2 p(x; s) (docs/fit.md).
-One FE curve at the data's depths then gives p for a known shape, and E2 is fitted exactly.
-
-One shape constant s (:func:`shape_axes`: the Mooney ratio, Yeoh's c2 with c3 held, Gent's Jm,
-or on a pad nu2, which the half-space's curve hides in E*) changes p: it is fitted on p
-tabulated at three values of s and interpolated (in 1/Jm for Gent) by the not-a-knot cubic
-spline through every FE curve run (through three, their quadratic), with one FE curve added
-at each fitted s until s settles (the fitted s is then a node: the model there is the FE curve
-itself). A fit so costs a handful of FE runs.
-
-The FE curves' own force error estimate e enters the intervals: E2's by e (P = E2 p), s's
-by e / c of s's range, c the largest change of the curve's shape (E2 refitted: a change of s
-mostly rescales the curve like E2) that s makes over its range. s is not identifiable when
-its interval so widened spans that whole range. E2 moves with s, so E2's interval spans its
-fits with s held at each end of s's interval (the whole range when s is not identifiable).
+E2 scales out of the FE curve exactly, P(x; E2, s) = E2 p(x; s); the shape constant s
+(:func:`shape_axes`) is fitted on p interpolated between FE curves (:meth:`FECurves.shape`),
+and the FE curves' error widens both intervals (docs/fit.md, "A rubber at finite strain or a
+pad: an indentation curve by FE curves").
 """
 
 from __future__ import annotations

@@ -1,20 +1,9 @@
 """The outer iteration of a fit with FE corrections, and the forward model's own error.
 
-A force history on a pad, with waves or at finite strain is fitted by the exact model first;
-then, in turn, one FE impact at the fitted point measures the correction
-(:mod:`.corrections`) and the corrected exact model is fitted again, until every
-identifiable value moves by less than :data:`TOLERANCE` of its interval. A fit so costs a
-handful of FE runs (each with its error-estimate ladder), not one per trial of the search.
-
-The forward model's own error enters each interval: each estimate below is taken as one
-standard deviation of a model error, and 1.96 of it (the interval's normal quantile) is added
-in quadrature to the interval's half-widths:
-
-- the FE run's error estimate: the fit is repeated with the peak-force and the contact-time
-  correction each moved by its estimated relative error, and the shifts taken;
-- the viscoelastic impact's time steps: the fit is repeated with half the steps (twice, below
-  2 :data:`MIN_STEPS`); the error falls as steps^-2, so the error of the fit's steps is a
-  third of that shift (4/3 with twice the steps).
+Exact fit, one FE impact at the fitted point (:mod:`.corrections`), corrected fit, until every
+identifiable value moves by less than :data:`TOLERANCE` of its interval; the FE run's and the
+time steps' errors join each interval in quadrature (docs/fit.md, "The forward model's own
+error").
 """
 
 from __future__ import annotations

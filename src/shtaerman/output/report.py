@@ -82,10 +82,6 @@ CONTACT_TIMING_LEGEND = (
 """Legends of the summary (every kind) and of the contact cross-check (contact studies only)."""
 
 
-def _text(kind: str) -> ModuleType:
-    return TEXTS[kind]
-
-
 def environment() -> dict[str, object]:
     """Versions and the machine, for the record."""
     versions = {}
@@ -117,7 +113,7 @@ def study_document(
     records them; [] within every limit).
     """
     kind = getattr(outcome.study, "kind", "contact")
-    entry = _text(kind).entry(outcome, files, output_seconds, figures)
+    entry = TEXTS[kind].entry(outcome, files, output_seconds, figures)
     return {**entry, "warnings": recorded_warnings(outcome)}
 
 
@@ -161,7 +157,7 @@ and findings its entry stores, the common times, no cross-check row, no validity
 
 def _study_text(study: Mapping[str, Any], part: str) -> Callable[..., Any]:
     """The function ``part`` of the study's kind's text module, else :data:`DEFAULTS`'."""
-    return getattr(_text(study.get("kind", "contact")), part, DEFAULTS[part])
+    return getattr(TEXTS[study.get("kind", "contact")], part, DEFAULTS[part])
 
 
 def _summary_row(name: str, study: dict) -> list[str]:

@@ -7,12 +7,11 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from ..problem import worded
 from ..study.contact.runner import IMPACT_KEYS, StudyOutcome
 from ..theory.sneddon import profile_inputs
 from .case import case_words, interface_words, prefixed
 from .entry import kind_entry
-from .wording import number, plus_minus, seconds, times_text
+from .wording import finest_passed, number, plus_minus, seconds, times_text
 
 __all__ = [
     "CONTACT_COLUMNS",
@@ -268,16 +267,8 @@ def _missing_finding(name: str, study: Mapping[str, Any]) -> list[str]:
     accuracy = study.get("accuracy") or {}
     if not accuracy.get("estimate_missing"):
         return []
-    ladder = ", ".join(
-        "failed" if level["dofs"] is None else str(level["dofs"])
-        for level in accuracy["mesh_ladder"]
-    )
-    text = (
-        f"no error estimate: {worded(accuracy['estimate_missing'], 'file')}; the numbers are "
-        "the finest level "
-        f"that passed (ladder {ladder} dofs)."
-    )
-    return [prefixed(name, study, text)]
+    text = finest_passed(accuracy["estimate_missing"], accuracy["mesh_ladder"])
+    return [prefixed(name, study, f"no error estimate: {text}.")]
 
 
 def timing_text(study: Mapping[str, Any]) -> str:

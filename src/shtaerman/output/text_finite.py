@@ -13,7 +13,6 @@ from typing import Any
 
 from ..paper.case import is_paper_case
 from ..plots.labels import model_label, variant_label
-from ..problem import worded
 from ..study.contact.interface import shtaerman_applies
 from ..study.finite.runner import FiniteStudyOutcome, no_slip_checked
 from ..study.ladder import LADDER_RATIO
@@ -22,7 +21,7 @@ from ..theory.sneddon import profile_inputs
 from .case import VOLUMETRIC, case_words, rubber_constants, rubber_words
 from .entry import text_entry
 from .text_corrections import corrections_finding, corrections_table
-from .wording import plus_minus
+from .wording import finest_passed, plus_minus
 
 __all__ = [
     "QUICK_ERROR",
@@ -194,13 +193,7 @@ def _no_estimate(outcome: FiniteStudyOutcome) -> str:
     (then the finest level that passed is reported)."""
     if not outcome.estimate_missing:
         return QUICK_ERROR
-    ladder = ", ".join(
-        "failed" if level["dofs"] is None else str(level["dofs"]) for level in outcome.mesh_ladder
-    )
-    return (
-        f"No error estimate: {worded(outcome.estimate_missing, 'file')}; the numbers are the "
-        f"finest level that passed (ladder {ladder} dofs)."
-    )
+    return f"No error estimate: {finest_passed(outcome.estimate_missing, outcome.mesh_ladder)}."
 
 
 def _corrections(outcome: FiniteStudyOutcome, text: Any) -> list[Any]:

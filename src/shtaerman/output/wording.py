@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
+from typing import Any
 
-__all__ = ["number", "plus_minus", "seconds", "times_text"]
+from ..problem import worded
+
+__all__ = ["finest_passed", "number", "plus_minus", "seconds", "times_text"]
 
 
 def number(value: float | None, spec: str) -> str:
@@ -24,6 +27,18 @@ def plus_minus(error: float | None, spec: str = ".1e", scale: float = 1.0) -> st
     if error is None or not math.isfinite(error) or error == 0:
         return ""
     return f" ± {scale * error:{spec}}"
+
+
+def finest_passed(missing: str, levels: Iterable[Mapping[str, Any]]) -> str:
+    """Why a ladder has no error estimate (``missing``, in a study file's words) and that the
+    numbers are its finest level that passed, naming each level's dofs or "failed"."""
+    ladder = ", ".join(
+        "failed" if level["dofs"] is None else str(level["dofs"]) for level in levels
+    )
+    return (
+        f"{worded(missing, 'file')}; the numbers are the finest level that passed (ladder "
+        f"{ladder} dofs)"
+    )
 
 
 def times_text(study: Mapping[str, object], computation: str = "computation") -> str:

@@ -276,8 +276,8 @@ def effects(
             report(f"{head}: the same problem as {run.label}")
             for key, text in keys:  # the same run: its warnings apply to this row too
                 said[key].append((variant.label, text))
-            run = Run(**{**vars(run), "label": variant.label, "role": variant.role})
-            run = Run(**{**vars(run), "effect": variant.effect, "seconds": 0.0})
+            row = dict(label=variant.label, role=variant.role, effect=variant.effect)
+            run = dataclasses.replace(run, **row, seconds=0.0)
         done.append((variant.parts, run, keys))
     _say_once(said, 1 + len(rows))
     by_label = {run.label: run for _, run, _ in done}
