@@ -25,6 +25,11 @@ SHIPPED = [
     "shtaerman/data/prony/zhermack-elite-double-32.csv",
     "shtaerman/sweeps/nu-grid.toml",
     "shtaerman/sweeps/impact-velocity.toml",
+    "shtaerman/cli/templates/contact.toml.in",
+    "shtaerman/cli/templates/dynamic.toml.in",
+    "shtaerman/cli/templates/effects.toml.in",
+    "shtaerman/cli/templates/finite-strain.toml.in",
+    "shtaerman/cli/templates/indenter.toml.in",
 ]
 
 
