@@ -1,24 +1,13 @@
 """Dynamic impact of a rigid striker z = A r^n, a sphere or a tabulated z(r), on the elastic
 half-space (elastodynamic FEM).
 
-:func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
-(:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles the
-consistent mass (:func:`.elasticity.consistent_mass`) with the normal mass taken off the contact
-candidates (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact
-force) and the damping of the optional absorbing layer (:class:`.dynamic_layer.AbsorbingLayer`),
-factorizes the effective matrix once (:func:`.solver.factorize_scaled`);
-:meth:`DynamicImpactSetup.march` steps the striker (mass M, X(0) = 0, X'(0) = v0) and the body
-with unilateral contact at the surface nodes, frictionless or (``friction``) bonded or Coulomb
-(:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by default; Newmark average acceleration with
-``spectral_radius=None``). The time step is set by the accuracy wanted over the impact, t_y /
-``steps``: both schemes are implicit and unconditionally stable.
-
-Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
-entering or leaving excites; Newmark conserves the discrete energy exactly but leaves them
-undamped, a period-2 ripple on the contact force (the striker, which sees step averages, is
-hardly affected). The energy bookkeeping reports everything: the layer's absorbed work, and
-the rest as numerical dissipation.
-"""
+:func:`prepare_dynamic_impact` meshes, assembles (the normal mass taken off the contact
+candidates, :func:`.elasticity.redistribute_normal_mass`; the optional absorbing layer,
+:class:`.dynamic_layer.AbsorbingLayer`) and factorizes the effective matrix once;
+:meth:`DynamicImpactSetup.march` steps the striker and the body with unilateral contact,
+frictionless, bonded or Coulomb (:mod:`.stepper`: generalized-alpha, or Newmark with
+``spectral_radius=None``), dt = t_y / ``steps``. The choice of scheme:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/dynamic_contact.py."""
 
 from __future__ import annotations
 
@@ -141,37 +130,27 @@ class DynamicSettings:
     size : float
         Smallest element size / refined radius.
     axis_size : float
-        Element size at the axis / refined radius (grading toward the axis for p(0, t)).
+        Element size at the axis / refined radius.
     growth : float
         Element size growth per unit distance from the refined zone, in (0, 1].
     domain : float
-        Domain radius / refined radius: the clamped far arc stiffens the static contact by
-        about 1.5 / domain (:mod:`.mesh`).
+        Domain radius / refined radius, in [1e2, 1e7].
     layer_start : float
         R_a / (c_s t_y), > 1/2: where the absorbing layer starts, and the monitor radius of
-        the reflected energy (of a viscoelastic body: c_s the glassy speed, the monitor radius
-        R_a c_s,relaxed / c_s, that of its slowest waves). For nu < 0.5 a layer should start
-        beyond c_p t_y / 2 (P waves reflected earlier reach the contact before separation).
+        the reflected energy.
     layer_ramp : float
         Ramp length of the layer damping / (c_s t_y) (used when ``layer_width`` is None).
     layer_rate : float
-        Peak damping rate zeta_max times t_y, >= 0. 0: no layer (the clamped far arc lies
-        ``domain`` refined radii away, beyond the reach of the waves during the run). At
-        nu = 0.5 any viscous layer also damps the quasi-static near field
-        (:class:`.dynamic_layer.AbsorbingLayer`).
+        Peak damping rate zeta_max times t_y, >= 0. 0: no layer.
     tail : float
-        Stepping after separation, in units of R_a / c_R: the energy left inside R_a then is
-        the reflected energy (0 disables the tail and the measurement).
+        Stepping after separation, in units of R_a / c_R, >= 0 (0: no reflection measured).
     layer_width : float or None
-        Width of a sin^2 damping bump / (c_s t_y) (zero damping again beyond it, so that the
-        quasi-static near field is damped over a finite volume only); None: a quadratic ramp
-        over ``layer_ramp`` to a plateau out to the far arc.
+        Width of a sin^2 damping bump / (c_s t_y); None: a quadratic ramp over ``layer_ramp``
+        to a plateau out to the far arc.
     spectral_radius : float or None
-        rho_inf of generalized-alpha in [0, 1] (0.9: stiff modes damped, resolved ones not);
-        None: Newmark average acceleration (exact energy identity, undamped ripple).
+        rho_inf of generalized-alpha in [0, 1]; None: Newmark average acceleration.
 
-    The body's geometry (a half-space or a layer, :class:`.mesh.Geometry`) is no numerical
-    control: the runs take it beside these settings.
+    The body's geometry (:class:`.mesh.Geometry`) is taken beside these settings.
     """
 
     steps: int = 200

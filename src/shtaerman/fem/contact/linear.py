@@ -1,26 +1,15 @@
 """Frictionless unilateral contact of a rigid axisymmetric indenter with the FEM half-space.
 
-The indenter z = f(r) - d (f(0) = 0 at its tip, depth d > 0) presses the surface z = 0 down.
 With nodal contact forces F_i >= 0 (N, pushing down) on the candidate surface u_z dofs, the
-surface moves by u_z = -C F, where C = S^T K^-1 S is the surface compliance (m/N). It comes
-once from the one factorization: with SuperLU the candidates are eliminated last and C is the
-inverse of the trailing Schur block (:class:`.solver.TailFactorization`); otherwise (PARDISO,
-or a tail the factorization pivoted) one multi-RHS solve of unit loads. The contact
-conditions hold exactly at the nodes:
+surface moves by u_z = -C F, C the surface compliance (m/N) from the one factorization. At
+each depth the nodal complementarity problem
 
-    gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0,
+    gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0
 
-a linear complementarity problem with C symmetric positive definite (unique solution), solved
-for each depth by a primal-dual active-set iteration (semi-smooth Newton) that ends when the
-active set repeats; each iteration is one dense Cholesky solve on the active set.
-
-Post-processing per depth: the force P from the two vertex-aligned contacts around the depth
-(:func:`aligned_force`); the pressure recovered consistently from the
-nodal forces with the surface matrix M (F = M p; the axis node carries no area, so no
-"force / area"); the central pressure extrapolated to the axis from r = 1e-4 a .. 1e-2 a
-(:func:`.constraints.central_pressure`); the contact radius located between nodes from the
-gap, which opens as (r - a)^(3/2) beyond a smooth contact edge.
-"""
+is solved by a primal-dual active-set iteration (:func:`complementarity`). The force is that
+of the two vertex-aligned contacts around the depth (:func:`aligned_force`). The method and
+the post-processing: benchmarks/FEM_NOTES.md, "Moved from the docstrings",
+fem/contact/linear.py."""
 
 from __future__ import annotations
 
