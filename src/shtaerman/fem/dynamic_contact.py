@@ -217,12 +217,8 @@ class DynamicSettings:
 
 
 def estimate_dofs(settings: DynamicSettings) -> int:
-    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %).
-
-    Elements: the refined strip (its length over the size, times its width of about
-    1/growth elements) plus the logarithmic fan out to the domain radius; P2-P1 has about
-    4.5 dofs per element.
-    """
+    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %);
+    the largest int where the sizes underflow."""
     h0, g = settings.size, settings.growth
     try:
         strip = 1.0 / (h0 * g)
@@ -265,12 +261,8 @@ def _quasi_static(
 ) -> _QuasiStatic:
     """x_c from the energy balance M v0^2 / 2 = beta x_c^(q+1) / (q+1), t_y = 2 I x_c / v0;
     another profile's from its :func:`profile_sizing_impact` (``exact`` when solved already;
-    beta NaN, q its smooth tip's 3/2).
-
-    The power law's x_c is taken in this power form rather than from
-    :func:`shtaerman.theory.impact.solve_impact` (logarithms, another last bit): the refined
-    radius follows from it, and gmsh's mesh depends on the last bit of its inputs.
-    """
+    beta NaN, q its smooth tip's 3/2). The power law's x_c is taken in this power form: the
+    refined radius follows from it, and gmsh's mesh depends on its last bit."""
     if not isinstance(indenter, PowerLawIndenter):
         if exact is None:
             exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
@@ -926,11 +918,7 @@ def _reflected_fraction(
     viscoelastic: bool = False,
 ) -> float:
     """Body energy inside R_a at the end over the radiated energy, or over ``energy0`` on a
-    layer (nan if not measured).
-
-    A viscoelastic body still stores energy in its slowly creeping near field then: twice the
-    kinetic energy inside R_a stands for the waves (kinetic and strain energy equal on average).
-    """
+    layer (nan if not measured); a viscoelastic body's counts twice its kinetic energy there."""
     inner = history.energies["inner_kinetic"][-1] * 2.0 if viscoelastic else None
     inner = history.energies["inner"][-1] if inner is None else inner
     if layered:
