@@ -221,11 +221,8 @@ def _least_squares_start(compliance: np.ndarray, clearance: np.ndarray) -> np.nd
 def complementarity(
     compliance: np.ndarray, clearance: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, int]:
-    """Solve F >= 0, g = clearance + C F >= 0, F g = 0 by a primal-dual active set.
-
-    The active-set (semi-smooth Newton) iteration usually settles in 5-9 steps. It is proven
-    only for M-matrices, and C is not one: if it revisits an active set, the iteration restarts
-    from the active set of Lawson-Hanson NNLS, which is exact up to round-off.
+    """Solve F >= 0, g = clearance + C F >= 0, F g = 0 by a primal-dual active set; should it
+    revisit an active set, it restarts from the active set of Lawson-Hanson NNLS.
 
     Parameters
     ----------
@@ -293,14 +290,9 @@ def aligned_force(
 ) -> float:
     """The contact force (N) at ``depth`` between the two vertex-aligned contacts around it.
 
-    Between two changes of the active set the discrete force is affine in the depth, so the
-    discrete curve P(d) is a polygon whose chords cut the convex P ~ d^q: the nodal sum
-    oscillates with the edge position. The polygon's corners, where the edge node carries no
-    force, are discrete contacts whose edge lies on a node; on an element vertex no element
-    straddles the edge, and the force error there is smallest. The force is interpolated as a
-    power law (exact for any P = beta d^q) between the two vertex-aligned contacts around
-    ``depth``: smooth in the depth. Where the two do not bracket the depth (an irregular
-    active set), the nodal sum is returned.
+    The force is interpolated as a power law (exact for any P = beta d^q) between the two
+    contacts around ``depth`` whose edge lies on an element vertex, where the nodal sum's chord
+    error is smallest; where the two do not bracket the depth, the nodal sum is returned.
 
     Parameters
     ----------
