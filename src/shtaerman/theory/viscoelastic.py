@@ -279,7 +279,7 @@ def indentation_force(
     """Force and contact radius for a prescribed depth history: Lee-Radok, then Ting.
 
     x(t) and F = x^q are each taken linear in time between the instants given, and the kernels
-    follow exactly over each piece (see the module docstring): the error is that of the
+    follow exactly over each piece (benchmarks/FEM_NOTES.md): the error is that of the
     interpolation, second order in the spacing for a smooth history, O(h^q) as the contact
     closes (t1 in the first pieces, where F ~ t^q).
 
@@ -339,8 +339,8 @@ def indentation_force(
 
 def rate_factor(exponent: float, time: ArrayLike, prony: PronySeries) -> np.ndarray:
     """R_m(t) = g_inf + sum_i g_i M(1, m + 1, -t/tau_i): a response growing as x^m elastically,
-    pressed at a constant rate, is its glassy value times R_m(t) (module docstring; exact while
-    the contact grows, nu2 = 1/2).
+    pressed at a constant rate, is its glassy value times R_m(t) (benchmarks/FEM_NOTES.md;
+    exact while the contact grows, nu2 = 1/2).
 
     Parameters
     ----------
