@@ -184,11 +184,6 @@ def _surface_mass(x: np.ndarray) -> np.ndarray:
     return mass
 
 
-def _recover_pressure(x: np.ndarray, forces: np.ndarray) -> np.ndarray:
-    """Nodal pressure p (Pa) with M p = F (M banded: a sparse solve)."""
-    return spla.spsolve(sp.csc_matrix(_surface_mass(x)), forces)
-
-
 @dataclass(frozen=True, eq=False)
 class FiniteContactCurve:
     """Finite-strain contact over a depth ladder, and what it cost.
@@ -446,15 +441,8 @@ class NewtonStepper:
         """Whether a kept tangent ``made_for`` a system may serve the next step: the stepper is
         ``modified``, the system is its own, and the last step was fresh or the solve's first, or
         its correction shrank by :data:`CONTRACTION`."""
-        return (
-            self.modified and made_for is self.system and self.still_contracting(corrections, fresh)
-        )
-
-    def still_contracting(self, corrections: list[float], fresh: list[bool]) -> bool:
-        """Whether a kept factorization may serve the next step as far as the corrections
-        say: the last step was fresh or the solve's first, or its correction shrank by
-        :data:`CONTRACTION`."""
-        return not (len(fresh) > 1 and not fresh[-1] and not self.contracting(corrections))
+        slowed = len(fresh) > 1 and not fresh[-1] and not self.contracting(corrections)
+        return self.modified and made_for is self.system and not slowed
 
     def contracting(self, corrections: list[float]) -> bool:
         """Whether the last correction is at most :data:`CONTRACTION` times the one before."""
@@ -529,7 +517,6 @@ def check_axis_ring(lam: np.ndarray, tied: bool) -> None:
             f"the axis node pulls the indenter by {-lam[0]:.3g} N where the ring about it "
             f"pushes {lam[1]:.3g} N: the surface lifts off the indenter's tip"
         )
-    return None
 
 
 def newton_converged(corrections: list[float], tolerance: float) -> bool:
@@ -900,7 +887,7 @@ def finite_step(
     ``lam`` (N) at ``depth`` (m), beside ``exact``'s linear values."""
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
-    pressure = _recover_pressure(r, lam)
+    pressure = spla.spsolve(sp.csc_matrix(_surface_mass(r)), lam)  # M p = F, M banded
     radius, centre = edge_and_centre(r, (lam, gap, pressure), depth)
     return FiniteContactStep(
         depth=float(depth),
