@@ -287,12 +287,6 @@ def _reusable(
     return None if again is None else (kept.tangent, again)
 
 
-def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> np.ndarray:
-    """Vertical reactions lambda = -dPi/du_z (N, compression positive) of the stuck nodes
-    from the body's residual ``forces`` (N)."""
-    return np.where(np.isnan(held), 0.0, -forces[stepper.nodes.uz])
-
-
 def _held(
     last: _Load, held: np.ndarray, enter: np.ndarray, radius: np.ndarray, gap: np.ndarray
 ) -> np.ndarray:
@@ -350,7 +344,8 @@ def _load_step(
         radius, gap, _, _ = stepper.geometry(x, depth)
         state = stepper.system.state(x)
         forces = stepper.system.residual(x, state)
-        vertical = _reactions(stepper, forces, trial.held)
+        # the stuck nodes' vertical reactions -dPi/du_z (N, compression positive)
+        vertical = np.where(np.isnan(trial.held), 0.0, -forces[stepper.nodes.uz])
         now = replace(trial, x=x, radius=radius, gap=gap, lam=vertical, forces=forces)
         now.stretch = gent_stretch(stepper.system.material, state)
         now.iterations, now.corrections = total, corrections
