@@ -100,21 +100,6 @@ def _candidates(system: ElasticSystem, free: np.ndarray, radius: float) -> tuple
     return candidates, dofs, np.searchsorted(free, dofs)
 
 
-def tail_compliance(factorization: Factorization, size: int, position: np.ndarray) -> np.ndarray:
-    """(K^-1) on the dofs at ``position`` (of ``size`` free dofs), symmetrised (m/N).
-
-    The inverse of the trailing Schur block for a :class:`.solver.TailFactorization`, else one
-    multi-RHS solve of unit loads (any backend).
-    """
-    if hasattr(factorization, "tail_inverse"):  # a TailFactorization
-        inverse = factorization.tail_inverse()
-    else:
-        unit_loads = np.zeros((size, position.size))
-        unit_loads[position, np.arange(position.size)] = 1.0
-        inverse = factorization.solve(unit_loads)[position]
-    return 0.5 * (inverse + inverse.T)
-
-
 def factorize_tail(
     system: ElasticSystem, free: np.ndarray, position: np.ndarray, backend: str = "auto"
 ) -> Factorization:
@@ -166,7 +151,13 @@ def surface_compliance(
     if radial is not None:
         position = np.concatenate([position, np.searchsorted(free, radial)])
     # a downward force -F e_i moves the surface by -C F: C = (K^-1)_cc, symmetrised
-    inverse = tail_compliance(factorization, free.size, position)
+    if hasattr(factorization, "tail_inverse"):  # a TailFactorization
+        inverse = factorization.tail_inverse()
+    else:
+        unit_loads = np.zeros((free.size, position.size))
+        unit_loads[position, np.arange(position.size)] = 1.0
+        inverse = factorization.solve(unit_loads)[position]
+    inverse = 0.5 * (inverse + inverse.T)
     mass = system.surface_mass[candidates][:, candidates].toarray()
     vertex = system.dof_nodes()[dofs] < system.mesh.p.shape[1]
     compliance = inverse[: dofs.size, : dofs.size]
@@ -197,14 +188,6 @@ class ContactStep(SolvedContact):
     iterations: int
     tangential_forces: np.ndarray | None = field(default=None, repr=False)
     """Bonded contact only: nodal forces (N) along +r on the body at ``radial_dofs``."""
-
-
-def _solve_active(matrix: np.ndarray, rhs: np.ndarray, active: np.ndarray) -> np.ndarray:
-    forces = np.zeros(rhs.size)
-    if active.any():
-        sub = matrix[np.ix_(active, active)]
-        forces[active] = la.cho_solve(la.cho_factor(sub), rhs[active])
-    return forces
 
 
 def _least_squares_start(compliance: np.ndarray, clearance: np.ndarray) -> np.ndarray:
@@ -241,7 +224,10 @@ def complementarity(
     active, seen, iterations = clearance < 0, set(), 0
     while iterations < MAX_ACTIVE_SET_ITERATIONS:
         iterations += 1
-        forces = _solve_active(compliance, -clearance, active)
+        forces = np.zeros(clearance.size)
+        if active.any():
+            sub = compliance[np.ix_(active, active)]
+            forces[active] = la.cho_solve(la.cho_factor(sub), -clearance[active])
         gap = clearance + compliance @ forces
         gap[active] = 0.0
         # round-off bands: the P2 axis node carries exactly zero force in theory (its 2 pi r
