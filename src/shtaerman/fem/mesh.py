@@ -65,13 +65,10 @@ _PARAMETERS = {
 """The .geo's parameters; those of :class:`Grading` are set only for a graded mesh (else the
 .geo's defaults keep its plain size field)."""
 _GEOMETRY = "halfspace.geo"
+_SHARED = ("refined_radius", "smallest_size", "growth", "axis_size", "axis_growth")
 _LAYER_PARAMETERS = {
-    "refined_radius": "Parameters/1Refined radius (m)",
+    **{key: _PARAMETERS[key] for key in _SHARED},
     "lateral_extent": "Parameters/2Lateral extent (m)",
-    "smallest_size": "Parameters/3Smallest element size (m)",
-    "growth": "Parameters/4Growth rate (size per distance)",
-    "axis_size": "Parameters/5Element size at the axis (m)",
-    "axis_growth": "Parameters/6Growth rate from the axis (size per distance)",
     "thickness": "Parameters/7Layer thickness (m)",
     "thickness_size": "Parameters/8Element size through the thickness (m)",
     "largest_size": "Parameters/9Largest element size (m)",
@@ -435,17 +432,6 @@ _TRIANGLES_PER_SQUARE = 2.3
 """Triangles of gmsh per area h^2 (an equilateral triangle has area 0.433 h^2)."""
 
 
-def _layer_elements(settings: MeshSettings, thickness: float) -> float:
-    """Triangles of a layer mesh of ``thickness`` refined radii (:func:`layer_triangles`)."""
-    return layer_triangles(
-        thickness,
-        settings.lateral_extent(thickness),
-        settings.thickness_size(thickness),
-        settings,
-        settings.axis_growth,
-    )
-
-
 def layer_triangles(
     thickness: float, extent: float, cap: float, settings: Any, axis_growth: float
 ) -> float:
@@ -691,7 +677,9 @@ class MeshSettings:
 
     def layer_dofs(self, thickness: float) -> int:
         """Estimated unknowns of the layer mesh of ``thickness`` refined radii."""
-        return round(DOFS_PER_ELEMENT * _layer_elements(self, thickness))
+        extent, cap = self.lateral_extent(thickness), self.thickness_size(thickness)
+        triangles = layer_triangles(thickness, extent, cap, self, self.axis_growth)
+        return round(DOFS_PER_ELEMENT * triangles)
 
     def thickness_size(self, thickness: float) -> float:
         """Largest element size of a layer of ``thickness`` (any unit; same unit back)."""
