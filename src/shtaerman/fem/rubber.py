@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import astuple, dataclass
 from typing import Any
 
 import numpy as np
@@ -76,15 +76,7 @@ class RubberModel:
 
     def material(self, youngs_modulus: float, poisson_ratio: float) -> Rubber:
         """The :class:`Rubber` with small-strain constants E (Pa) and nu."""
-        return Rubber(
-            youngs_modulus,
-            poisson_ratio,
-            self.name,
-            self.mooney_ratio,
-            self.yeoh,
-            self.gent_limit,
-            self.volumetric,
-        )
+        return Rubber(youngs_modulus, poisson_ratio, *astuple(self))  # name, mooney_ratio, ...
 
     def to_dict(self) -> dict[str, Any]:
         """The model's keys for a JSON report (only those that apply)."""
