@@ -402,7 +402,8 @@ class NewtonStepper:
             state = self.system.state(x)
         except GentLimitError as error:
             return None, error
-        if element_inverted(state) or (self.backtracks and self.folded(x)):
+        inverted = not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0  # J <= 0 or nan
+        if inverted or (self.backtracks and self.folded(x)):
             return state, NewtonError("an element inverted (J <= 0)")
         return state, None
 
@@ -478,11 +479,6 @@ class NewtonStepper:
         step = eliminate_gaps(self, tangent, residual[self.free], rows, slope, gap)
         self.kept = (self.system, rows, tangent, self.factorization)
         return step
-
-
-def element_inverted(state: Any) -> bool:
-    """Whether some element of the kinematics ``state`` has J <= 0 (or not finite)."""
-    return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
 
 
 def squeeze_note(system: Any, x: np.ndarray, steps: str) -> str | None:

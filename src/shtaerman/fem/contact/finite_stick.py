@@ -302,17 +302,6 @@ def _held(
     return held
 
 
-def _touch(
-    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
-) -> np.ndarray:
-    """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
-    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in
-    :func:`_changes`)."""
-    radius, gap, _, _ = stepper.geometry(guess, depth)
-    enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
-    return _held(last, last.held, enter, radius, gap)
-
-
 def _load_step(
     stepper: NewtonStepper,
     last: _Load,
@@ -329,7 +318,10 @@ def _load_step(
     (:func:`_warm_newton`), updated."""
     depth, scale = at
     bonded, m = math.isinf(friction), last.held.size
-    held = _touch(stepper, last, guess, depth, scale)
+    # stuck at the start: last's, and the free nodes the predicted guess puts below the indenter
+    radius, gap, _, _ = stepper.geometry(guess, depth)
+    enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
+    held = _held(last, last.held, enter, radius, gap)
     start = _Load(held, guess, last.radius, last.gap, last.lam)
     if not bonded:
         start.slip = np.zeros(m) if last.slip is None else last.slip.copy()
