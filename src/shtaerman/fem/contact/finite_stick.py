@@ -406,7 +406,11 @@ def _slide_newton(
             stepper, reduced, load, rows, slope, gap, slip * friction, again=again
         )
         if reuse is None and stepper.modified:
-            _keep_slide(stepper, key, (system, tangent, reduced, stepper.factorization))
+            sets = stepper.kept_slide  # this set's the newest, the oldest beyond KEPT_SETS dropped
+            sets.pop(key, None)
+            sets[key] = (system, tangent, reduced, stepper.factorization)
+            while len(sets) > KEPT_SETS:
+                del sets[next(iter(sets))]
         return du, rows, dlam, reuse is None, True
 
     return stepper.iterate((trial.x, np.where(slip != 0, trial.lam, 0.0)), scale, increment)
@@ -422,16 +426,6 @@ def _reduced(
     reduced[moved] = 0.0
     reduced[stepper.pattern.diagonal[slaves]] = 1.0
     return reduced
-
-
-def _keep_slide(stepper: BondedStepper, key: bytes, kept: tuple) -> None:
-    """Keep the Coulomb Newton's fresh factorization ``kept`` of the contact set ``key`` as
-    the newest, dropping the oldest beyond :data:`KEPT_SETS`."""
-    sets = stepper.kept_slide
-    sets.pop(key, None)
-    sets[key] = kept
-    while len(sets) > KEPT_SETS:
-        del sets[next(iter(sets))]
 
 
 def _slide_reusable(
