@@ -824,6 +824,9 @@ def prepare_dynamic_impact(
     )
     problem = _factorized_problem(body, striker, scheme, material, validate_friction(friction))
     clock.append(time.perf_counter())
+    counts = mesh_counts(mesh, system.n_dofs, body.candidates.dofs.size, scales.refined, geometry)
+    stats = {**counts, "estimated_dofs": estimate, "domain_radius": float(scales.domain_radius)}
+    stats["smallest_size"] = settings.size * scales.refined  # sizes (counts) and geometry (m)
     return DynamicImpactSetup(
         problem=problem,
         duration=3.0 * scales.longest_t_y,
@@ -831,7 +834,7 @@ def prepare_dynamic_impact(
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0
         and (geometry.thickness is not None or scales.layer.start < 0.5 * scales.domain_radius),
-        mesh=_mesh_stats(problem, estimate, scales, settings, geometry),
+        mesh=stats,
         parameters=_parameters(indenter, half_space, rho, problem, scales),
         timings={
             name: clock[k + 1] - clock[k]
@@ -852,21 +855,6 @@ def _mesh(settings: DynamicSettings, geometry: Geometry, scales: _Scales) -> Mes
         axis_size=min(settings.axis_size, settings.size) * scales.refined,
         axis_growth=0.1,
     )
-
-
-def _mesh_stats(
-    problem: ImpactProblem,
-    estimate: int,
-    scales: _Scales,
-    settings: DynamicSettings,
-    geometry: Geometry,
-) -> dict[str, float]:
-    """Mesh sizes (counts) and geometry (m); a layer's thickness (m) and base."""
-    system, candidates = problem.system, problem.candidates.dofs.size
-    counts = mesh_counts(system.mesh, system.n_dofs, candidates, scales.refined, geometry)
-    extent = {"domain_radius": float(scales.domain_radius)}
-    extent["smallest_size"] = settings.size * scales.refined
-    return {**counts, "estimated_dofs": estimate, **extent}
 
 
 def _parameters(
