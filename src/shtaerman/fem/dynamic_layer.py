@@ -148,11 +148,6 @@ def lateral_absorber(
     return layer, max(static, end), True
 
 
-def _check_thickness(thickness: float, refined: float) -> None:
-    """InputError unless ``thickness`` (m) is MIN_THICKNESS to MAX_THICKNESS ``refined`` (m)."""
-    check_thickness_range(thickness, refined, "for this impact")
-
-
 def _thickness_size(settings: DynamicSettings, thickness: float) -> float:
     """Element size through ``thickness`` m at the contact, m."""
     return thickness / LAYER_ELEMENTS * settings.size / _SIZE
@@ -167,7 +162,7 @@ def layer_dofs(settings: DynamicSettings, thickness: float, refined: float, exte
     shtaerman.validation.InputError
         If the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS`` refined radii.
     """
-    _check_thickness(thickness, refined)
+    check_thickness_range(thickness, refined, "for this impact")
     cap = _thickness_size(settings, thickness) / refined
     elements = layer_triangles(thickness / refined, extent / refined, cap, settings, _AXIS_GROWTH)
     return round(DOFS_PER_ELEMENT * float(elements))
