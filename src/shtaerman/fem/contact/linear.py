@@ -387,8 +387,11 @@ class ContactCurve:
         Each call post-processes afresh (stress projection, about 0.05 s at 30k dofs); keep
         the result where it is needed more than once.
         """
-        step = self.steps[index]
-        return postprocess(self.system, self.solutions[index], _contact_load(self, step))
+        step, load = self.steps[index], np.zeros(self.system.n_dofs)  # the contact's forces
+        load[self.compliance.dofs] = -step.nodal_forces
+        if step.tangential_forces is not None:
+            load[self.compliance.radial_dofs] = step.tangential_forces
+        return postprocess(self.system, self.solutions[index], load)
 
 
 def timed_curve(
@@ -410,14 +413,6 @@ def timed_curve(
         timings={"factorization": seconds[0], "contact": seconds[1]},
         backend=getattr(factorization, "backend", backend),
     )
-
-
-def _contact_load(curve: ContactCurve, step: ContactStep) -> np.ndarray:
-    load = np.zeros(curve.system.n_dofs)
-    load[curve.compliance.dofs] = -step.nodal_forces
-    if step.tangential_forces is not None:
-        load[curve.compliance.radial_dofs] = step.tangential_forces
-    return load
 
 
 def field_solutions(
