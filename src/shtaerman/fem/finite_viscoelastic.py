@@ -4,7 +4,7 @@ Abaqus' convention of :mod:`.viscoelastic` (E2, nu2 the instantaneous values, g_
 sum_i g_i): only the isochoric stress relaxes, the volumetric stress stays elastic. Each
 quadrature point carries one reference-configuration stress H_i per term, updated exactly for
 an isochoric stress S0 linear in time over each step; the step's stress is c P_iso + P_vol +
-F T^n with a consistent tangent. Symmetric reference tensors are stored as (RR, RZ, ZZ, TT);
+F T^n (T^n the branches' history, fixed in the step). Symmetric tensors: (RR, RZ, ZZ, TT);
 A:B counts RZ twice. Energies in J. The recursion, the energy split and why:
 benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/finite_viscoelastic.py."""
 
