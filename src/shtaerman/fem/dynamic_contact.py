@@ -1,24 +1,13 @@
 """Dynamic impact of a rigid striker z = A r^n, a sphere or a tabulated z(r), on the elastic
 half-space (elastodynamic FEM).
 
-:func:`prepare_dynamic_impact` meshes the axisymmetric half-space of the mixed u-p formulation
-(:mod:`.elasticity`; nu up to 0.5 exactly) around the quasi-static contact radius, assembles the
-consistent mass (:func:`.elasticity.consistent_mass`) with the normal mass taken off the contact
-candidates (mass redistribution, Khenous-Laborde-Renard 2008: no chatter, a Lipschitz contact
-force) and the damping of the optional absorbing layer (:class:`.dynamic_layer.AbsorbingLayer`),
-factorizes the effective matrix once (:func:`.solver.factorize_scaled`);
-:meth:`DynamicImpactSetup.march` steps the striker (mass M, X(0) = 0, X'(0) = v0) and the body
-with unilateral contact at the surface nodes, frictionless or (``friction``) bonded or Coulomb
-(:mod:`.stepper`: generalized-alpha, rho_inf = 0.9 by default; Newmark average acceleration with
-``spectral_radius=None``). The time step is set by the accuracy wanted over the impact, t_y /
-``steps``: both schemes are implicit and unconditionally stable.
-
-Generalized-alpha damps the stiff near-contact modes (omega dt >> 1) that each contact node
-entering or leaving excites; Newmark conserves the discrete energy exactly but leaves them
-undamped, a period-2 ripple on the contact force (the striker, which sees step averages, is
-hardly affected). The energy bookkeeping reports everything: the layer's absorbed work, and
-the rest as numerical dissipation.
-"""
+:func:`prepare_dynamic_impact` meshes, assembles (the normal mass taken off the contact
+candidates, :func:`.elasticity.redistribute_normal_mass`; the optional absorbing layer,
+:class:`.dynamic_layer.AbsorbingLayer`) and factorizes the effective matrix once;
+:meth:`DynamicImpactSetup.march` steps the striker and the body with unilateral contact,
+frictionless, bonded or Coulomb (:mod:`.stepper`: generalized-alpha, or Newmark with
+``spectral_radius=None``), dt = t_y / ``steps``. The choice of scheme:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/dynamic_contact.py."""
 
 from __future__ import annotations
 
@@ -141,37 +130,27 @@ class DynamicSettings:
     size : float
         Smallest element size / refined radius.
     axis_size : float
-        Element size at the axis / refined radius (grading toward the axis for p(0, t)).
+        Element size at the axis / refined radius.
     growth : float
         Element size growth per unit distance from the refined zone, in (0, 1].
     domain : float
-        Domain radius / refined radius: the clamped far arc stiffens the static contact by
-        about 1.5 / domain (:mod:`.mesh`).
+        Domain radius / refined radius, in [1e2, 1e7].
     layer_start : float
         R_a / (c_s t_y), > 1/2: where the absorbing layer starts, and the monitor radius of
-        the reflected energy (of a viscoelastic body: c_s the glassy speed, the monitor radius
-        R_a c_s,relaxed / c_s, that of its slowest waves). For nu < 0.5 a layer should start
-        beyond c_p t_y / 2 (P waves reflected earlier reach the contact before separation).
+        the reflected energy.
     layer_ramp : float
         Ramp length of the layer damping / (c_s t_y) (used when ``layer_width`` is None).
     layer_rate : float
-        Peak damping rate zeta_max times t_y, >= 0. 0: no layer (the clamped far arc lies
-        ``domain`` refined radii away, beyond the reach of the waves during the run). At
-        nu = 0.5 any viscous layer also damps the quasi-static near field
-        (:class:`.dynamic_layer.AbsorbingLayer`).
+        Peak damping rate zeta_max times t_y, >= 0. 0: no layer.
     tail : float
-        Stepping after separation, in units of R_a / c_R: the energy left inside R_a then is
-        the reflected energy (0 disables the tail and the measurement).
+        Stepping after separation, in units of R_a / c_R, >= 0 (0: no reflection measured).
     layer_width : float or None
-        Width of a sin^2 damping bump / (c_s t_y) (zero damping again beyond it, so that the
-        quasi-static near field is damped over a finite volume only); None: a quadratic ramp
-        over ``layer_ramp`` to a plateau out to the far arc.
+        Width of a sin^2 damping bump / (c_s t_y); None: a quadratic ramp over ``layer_ramp``
+        to a plateau out to the far arc.
     spectral_radius : float or None
-        rho_inf of generalized-alpha in [0, 1] (0.9: stiff modes damped, resolved ones not);
-        None: Newmark average acceleration (exact energy identity, undamped ripple).
+        rho_inf of generalized-alpha in [0, 1]; None: Newmark average acceleration.
 
-    The body's geometry (a half-space or a layer, :class:`.mesh.Geometry`) is no numerical
-    control: the runs take it beside these settings.
+    The body's geometry (:class:`.mesh.Geometry`) is taken beside these settings.
     """
 
     steps: int = 200
@@ -238,12 +217,8 @@ class DynamicSettings:
 
 
 def estimate_dofs(settings: DynamicSettings) -> int:
-    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %).
-
-    Elements: the refined strip (its length over the size, times its width of about
-    1/growth elements) plus the logarithmic fan out to the domain radius; P2-P1 has about
-    4.5 dofs per element.
-    """
+    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %);
+    the largest int where the sizes underflow."""
     h0, g = settings.size, settings.growth
     try:
         strip = 1.0 / (h0 * g)
@@ -286,12 +261,8 @@ def _quasi_static(
 ) -> _QuasiStatic:
     """x_c from the energy balance M v0^2 / 2 = beta x_c^(q+1) / (q+1), t_y = 2 I x_c / v0;
     another profile's from its :func:`profile_sizing_impact` (``exact`` when solved already;
-    beta NaN, q its smooth tip's 3/2).
-
-    The power law's x_c is taken in this power form rather than from
-    :func:`shtaerman.theory.impact.solve_impact` (logarithms, another last bit): the refined
-    radius follows from it, and gmsh's mesh depends on the last bit of its inputs.
-    """
+    beta NaN, q its smooth tip's 3/2). The power law's x_c is taken in this power form: the
+    refined radius follows from it, and gmsh's mesh depends on its last bit."""
     if not isinstance(indenter, PowerLawIndenter):
         if exact is None:
             exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
@@ -853,6 +824,9 @@ def prepare_dynamic_impact(
     )
     problem = _factorized_problem(body, striker, scheme, material, validate_friction(friction))
     clock.append(time.perf_counter())
+    counts = mesh_counts(mesh, system.n_dofs, body.candidates.dofs.size, scales.refined, geometry)
+    stats = {**counts, "estimated_dofs": estimate, "domain_radius": float(scales.domain_radius)}
+    stats["smallest_size"] = settings.size * scales.refined  # sizes (counts) and geometry (m)
     return DynamicImpactSetup(
         problem=problem,
         duration=3.0 * scales.longest_t_y,
@@ -860,7 +834,7 @@ def prepare_dynamic_impact(
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0
         and (geometry.thickness is not None or scales.layer.start < 0.5 * scales.domain_radius),
-        mesh=_mesh_stats(problem, estimate, scales, settings, geometry),
+        mesh=stats,
         parameters=_parameters(indenter, half_space, rho, problem, scales),
         timings={
             name: clock[k + 1] - clock[k]
@@ -881,21 +855,6 @@ def _mesh(settings: DynamicSettings, geometry: Geometry, scales: _Scales) -> Mes
         axis_size=min(settings.axis_size, settings.size) * scales.refined,
         axis_growth=0.1,
     )
-
-
-def _mesh_stats(
-    problem: ImpactProblem,
-    estimate: int,
-    scales: _Scales,
-    settings: DynamicSettings,
-    geometry: Geometry,
-) -> dict[str, float]:
-    """Mesh sizes (counts) and geometry (m); a layer's thickness (m) and base."""
-    system, candidates = problem.system, problem.candidates.dofs.size
-    counts = mesh_counts(system.mesh, system.n_dofs, candidates, scales.refined, geometry)
-    extent = {"domain_radius": float(scales.domain_radius)}
-    extent["smallest_size"] = settings.size * scales.refined
-    return {**counts, "estimated_dofs": estimate, **extent}
 
 
 def _parameters(
@@ -947,11 +906,7 @@ def _reflected_fraction(
     viscoelastic: bool = False,
 ) -> float:
     """Body energy inside R_a at the end over the radiated energy, or over ``energy0`` on a
-    layer (nan if not measured).
-
-    A viscoelastic body still stores energy in its slowly creeping near field then: twice the
-    kinetic energy inside R_a stands for the waves (kinetic and strain energy equal on average).
-    """
+    layer (nan if not measured); a viscoelastic body's counts twice its kinetic energy there."""
     inner = history.energies["inner_kinetic"][-1] * 2.0 if viscoelastic else None
     inner = history.energies["inner"][-1] if inner is None else inner
     if layered:

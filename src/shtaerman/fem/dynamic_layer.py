@@ -1,45 +1,13 @@
 """The edges of the dynamic body: the absorbing layer, and a layer's mesh and lateral absorber.
 
-The absorbing layer (:class:`AbsorbingLayer`) is mass-proportional damping growing with
-distance. On the half-space it is optional (off by default, see
-``DynamicSettings.layer_rate``): the graded mesh extends 10^4 refined radii, far enough that
-nothing returns during an impact. When used, the layer follows
-Semblat, Lenti and Gandomzadeh 2011 ("a simple multi-directional absorbing layer method"):
-from the radius R_a outward the body gets a viscous damping force -rho zeta(R) v, either a
-sin^2 bump of finite width (the default shape) or
-
-    zeta(R) = zeta_max min(1, (R - R_a) / L)^2,   R = sqrt(r^2 + z^2),
-
-a quadratic ramp over one shear wavelength L = c_s t_y (smooth, so the ramp itself reflects
-little), then constant. A wave entering the plateau decays by exp(-zeta_max / (2 c)) per metre.
-
-Mass-proportional damping leaves the stiffness untouched: the static response of the
-truncated body is exactly that of the undamped one. But at nu = 0.5 the pressure is
-instantaneous (c_p infinite): the quasi-static near field has a velocity ~ dP/dt / (G R) at
-every distance, and a layer damps it too, whatever its distance; hence no layer by default.
-Lysmer-Kuhlemeyer dashpots carry a normal impedance rho c_p that is infinite at nu = 0.5 (a
-rigid normal constraint): only their tangential part absorbs.
-
-R_a is placed beyond c_s t_y / 2 (times a safety factor), so no wave reflected at the layer can
-return to the contact before the striker separates.
-
-The dynamic impact on a layer of thickness H on a rigid base: the layer 0 <= r <= L, -H <= z <= 0
-(``meshes/layer.geo``) is meshed like the dynamic half-space near the contact (the same size field
-from the refined zone and toward the axis), with at least ``LAYER_ELEMENTS`` elements through
-the thickness at the contact (scaled with the mesh size; more than the static layer's, for the waves
-through it) and at most ``LAYER_LARGEST_SIZE`` times fewer anywhere. The base reflects every
-wave: bonded, u = 0; lubricated, u_z = 0 (free to slide).
-
-Waves guided along the layer stay resolved out to its edge (the element size is capped by the
-thickness), so unlike the half-space's graded fan the mesh absorbs nothing: a layer always
-has the lateral absorber (:class:`AbsorbingLayer`, zeta_max t_y = ``layer_rate``, or
-``LATERAL_RATE`` when it is 0), a function of r alone from R_a = ``layer_start`` c_s t_y over
-the width ``layer_width`` c_s t_y. The edge r = L lies beyond it and at least
-``LAYER_EXTENT`` thicknesses out (clamped, or the exterior spring of a lubricated base,
-:mod:`.elasticity`). Where the absorber would lie more than ``MAX_LATERAL`` thicknesses out
-(a nearly massless layer: fast waves carrying nothing), the layer has no absorber and its
-edge is at ``LAYER_EXTENT`` thicknesses.
-"""
+The absorbing layer (:class:`AbsorbingLayer`, Semblat, Lenti and Gandomzadeh 2011) is
+mass-proportional damping -rho zeta(R) v growing with distance from the radius R_a; optional on
+the half-space (``DynamicSettings.layer_rate``), always present on a layer of thickness H on a
+rigid base (zeta_max t_y = ``layer_rate``, or ``LATERAL_RATE`` when it is 0), whose mesh keeps
+at least ``LAYER_ELEMENTS`` elements through the thickness at the contact and whose edge lies
+beyond the absorber and at least ``LAYER_EXTENT`` thicknesses out (no absorber beyond
+``MAX_LATERAL`` thicknesses). The shapes, the placement of R_a and why:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/dynamic_layer.py."""
 
 from __future__ import annotations
 
@@ -180,11 +148,6 @@ def lateral_absorber(
     return layer, max(static, end), True
 
 
-def _check_thickness(thickness: float, refined: float) -> None:
-    """InputError unless ``thickness`` (m) is MIN_THICKNESS to MAX_THICKNESS ``refined`` (m)."""
-    check_thickness_range(thickness, refined, "for this impact")
-
-
 def _thickness_size(settings: DynamicSettings, thickness: float) -> float:
     """Element size through ``thickness`` m at the contact, m."""
     return thickness / LAYER_ELEMENTS * settings.size / _SIZE
@@ -199,7 +162,7 @@ def layer_dofs(settings: DynamicSettings, thickness: float, refined: float, exte
     shtaerman.validation.InputError
         If the thickness lies outside ``MIN_THICKNESS`` to ``MAX_THICKNESS`` refined radii.
     """
-    _check_thickness(thickness, refined)
+    check_thickness_range(thickness, refined, "for this impact")
     cap = _thickness_size(settings, thickness) / refined
     elements = layer_triangles(thickness / refined, extent / refined, cap, settings, _AXIS_GROWTH)
     return round(DOFS_PER_ELEMENT * float(elements))

@@ -12,27 +12,10 @@ Conventions (SI: m, Pa, N)
   components u_r = ``u^1``, u_z = ``u^2``), then ``p`` the P1 mean pressure
   p = -tr(sigma)/3 = -K div u (positive in compression).
 
-Weak form, with dev e(u) : e(v) = e(u) : e(v) - div u div v / 3 and K = E / (3 (1 - 2 nu)):
-
-    int 2 mu dev e(u) : e(v) - p div v  2 pi r dA = int t . v 2 pi r ds
-    int -q div u - p q / K              2 pi r dA = 0
-
-The pressure mass term vanishes at nu = 0.5, so one symmetric indefinite formulation covers
-nu in (-1, 0.5] without locking.
-
-Inertia (:func:`consistent_mass`, :func:`weighted_mass`, :func:`redistribute_normal_mass`):
-Only the P2 displacement carries mass; the P1 pressure of the mixed u-p formulation is a
-constraint field with none, so every matrix here has zero pressure rows and columns and the
-mixed formulation works unchanged in dynamics (nu = 0.5 included).
-
-Mass redistribution (Khenous, Laborde and Renard 2008, Eur. J. Mech. A 27:918): with a
-consistent mass on the contact nodes, implicit Newmark integration of unilateral contact
-chatters (the contact dof bounces between steps) and the discrete energy jumps at each
-impact. Taking the normal mass off the contact dofs makes their motion quasi-static (their
-displacement is fixed by the contact force and the neighbours), the contact force Lipschitz in
-time and the scheme free of chatter. The removed mass is a layer of one element on the
-candidate zone (about rho pi a^2 h, negligible against the body); it is given back to the u_z
-dofs of the same elements so that the total vertical mass is unchanged.
+Only the P2 displacement carries mass (:func:`consistent_mass`); the normal mass is taken off
+the contact candidates (:func:`redistribute_normal_mass`, Khenous, Laborde and Renard 2008).
+The weak form and why: benchmarks/FEM_NOTES.md, "Moved from the docstrings",
+fem/elasticity.py.
 """
 
 from __future__ import annotations

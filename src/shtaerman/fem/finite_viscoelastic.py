@@ -1,46 +1,12 @@
 """Viscoelastic rubber at finite strain: a Prony series on the isochoric stress (Simo 1987).
 
-The model of Simo (1987) and Holzapfel (Nonlinear Solid Mechanics, 2000, sec. 6.10) in the
-Abaqus convention of :mod:`.viscoelastic` (E2, nu2 the instantaneous values, G(t) = G0 [g_inf +
-sum_i g_i exp(-t/tau_i)], g_inf = 1 - sum_i g_i): only the isochoric stress relaxes, the
-volumetric stress stays elastic. With S0(F) the instantaneous isochoric second Piola-Kirchhoff
-stress of the rubber model (:mod:`.hyperelastic`, :mod:`.rubber`; the stress at p = 0), each
-quadrature point carries one reference-configuration stress H_i per term (objective: it is
-pulled back, not rotated), updated over a step dt as
-
-    H_i^{n+1} = exp(-dt/tau_i) H_i^n + g_i r_i (S0^{n+1} - S0^n),
-    r_i = (tau_i/dt)(1 - exp(-dt/tau_i)),
-    S^{n+1} = S_vol + g_inf S0^{n+1} + sum_i H_i^{n+1}
-            = S_vol + c S0^{n+1} + T^n,   c = g_inf + sum_i g_i r_i,
-    T^n = sum_i [exp(-dt/tau_i) H_i^n - g_i r_i S0^n].
-
-This is exact for the hereditary integral S = S_vol + g_inf S0 + sum_i g_i Int exp(-(t-s)/
-tau_i) dS0(s) when S0 is linear in time over each step (the recursion of :mod:`.viscoelastic`,
-to which it reduces at small strain, S0 = 2 G0 dev eps). In the code's first Piola-Kirchhoff
-5-vector (:mod:`.hyperelastic`) P = F S: the stress is c P_iso + P_vol + F T^n and the
-consistent tangent c D_iso + D_vol + the geometric term dF T^n (T^n fixed within the step).
-Symmetric reference tensors are stored as (RR, RZ, ZZ, TT); A:B counts RZ twice.
-
-Energies (J). The stress work is the elastic energy Pi(x) of the instantaneous rubber (the
-work of S_vol + S0) plus the work W_V of the overstress V = S - S_vol - S0 = sum_i (H_i - g_i
-S0), summed over the steps by the trapezoidal rule in V : dE (E the Green strain). The stored
-energy is
-
-    Pi_stored = Pi(x) + Int sum_i [psi_i - g_i W0] 2 pi R dA,
-    psi_i = |H_i|^2 W0 / (g_i |S0|^2),
-
-W0 the isochoric energy density and psi_i branch i's energy: |H_i|^2 / (4 G0 g_i) measured
-by the rubber's own secant W0 / |S0|^2 (1/(4 G0) at small strain, where Pi_stored is the state
-function Int [U_vol + G0 (g_inf d:d + sum_i g_i h_i:h_i)] of :mod:`.viscoelastic`). So a load
-applied in a step much shorter than every tau_i stores Pi(x) (H_i = g_i S0), and after a
-relaxation at fixed F (H_i = 0) the stored energy is Int [U_vol + g_inf W0]: the relaxed
-rubber's. The dissipated energy is the work less the stored, W_V - Int sum_i [psi_i - g_i W0],
-and the account kinetic + stored + dissipated + numerical = M v0^2 / 2 closes as the elastic
-one does, to second order in dt. At finite strain between these limits this split is a
-definition (Simo's S0-driven model has no free energy of exactly this form): it is not
-guaranteed >= 0 pointwise. (|H_i|^2 / (4 G0 g_i) alone would not do: in compression |S0|^2 /
-(4 G0) exceeds W0 several times, and a sudden load would "dissipate" a negative energy.)
-"""
+Abaqus' convention of :mod:`.viscoelastic` (E2, nu2 the instantaneous values, g_inf = 1 -
+sum_i g_i): only the isochoric stress relaxes, the volumetric stress stays elastic. Each
+quadrature point carries one reference-configuration stress H_i per term, updated exactly for
+an isochoric stress S0 linear in time over each step; the step's stress is c P_iso + P_vol +
+F T^n (T^n the branches' history, fixed in the step). Symmetric tensors: (RR, RZ, ZZ, TT);
+A:B counts RZ twice. Energies in J. The recursion, the energy split and why:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/finite_viscoelastic.py."""
 
 from __future__ import annotations
 

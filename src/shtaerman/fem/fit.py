@@ -67,15 +67,9 @@ def fit_power_law(depths: ArrayLike, forces: ArrayLike, fixed_exponent: float) -
 
 
 def exponent_sensitivity(depths: ArrayLike) -> float:
-    """The most the fitted exponent q of :func:`fit_power_law` moves per relative force error.
-
-    The free fit's q is the least-squares slope of log P over log x, linear in the log P_i:
-    q = sum w_i log P_i with w_i = (log x_i - m) / sum_j (log x_j - m)^2, m the mean of the
-    log x_j (sum w_i = 0: a relative error common to every depth leaves q alone). Forces
-    P_i (1 + e_i) move q by sum w_i log(1 + e_i), so by at most S eps (1 + O(eps)) where
-    |e_i| <= eps at every depth, with S = sum |w_i|; the sign pattern of e_i that follows
-    the signs of w_i reaches it. (beta with q held fixed, exp(mean(log P_i - q log x_i)),
-    has weights 1/N: it moves by at most eps.)
+    """The most the fitted exponent q of :func:`fit_power_law` moves per relative force error:
+    S = sum |w_i|, w_i = (log x_i - m) / sum_j (log x_j - m)^2 the least-squares slope's weights
+    (m the mean of the log x_j); forces within a relative error eps move q by at most S eps.
 
     Parameters
     ----------
@@ -85,7 +79,7 @@ def exponent_sensitivity(depths: ArrayLike) -> float:
     Returns
     -------
     float
-        S = sum |w_i|: the bound on |dq| (dimensionless) per unit relative force error.
+        S: the bound on |dq| (dimensionless) per unit relative force error.
     """
     log_x = np.log(np.atleast_1d(depths).astype(float))
     centred = log_x - np.mean(log_x)

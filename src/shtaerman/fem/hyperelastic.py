@@ -2,42 +2,14 @@
 
 Conventions as in :mod:`.elasticity` (SI; mesh x = R, y = Z <= 0 in the reference
 configuration; u_z < 0 into the body; every integral carries the ring weight 2 pi R, so forces
-are in N and energies in J; the pressure unknown p is positive in compression).
+are in N and energies in J; the pressure unknown p is positive in compression). The
+deformation gradient is the 5-vector F = (F_rR, F_rZ, F_zR, F_zZ, F_tt) = (a, b, c, d, h), and
 
-Kinematics
-----------
-With u = (u_r, u_z) the deformation gradient in (r, theta, z) has five nonzero entries,
-ordered here as F = (F_rR, F_rZ, F_zR, F_zZ, F_tt) = (a, b, c, d, h):
-
-    a = 1 + du_r/dR,  b = du_r/dZ,  c = du_z/dR,  d = 1 + du_z/dZ,  h = 1 + u_r/R  (hoop),
-
-J = h (a d - b c), I1 = a^2 + b^2 + c^2 + d^2 + h^2. The variation of F along a field v is
-dF(v) = (dv_r/dR, dv_r/dZ, dv_z/dR, dv_z/dZ, v_r/R).
-
-Material (isochoric/volumetric split, mixed)
---------------------------------------------
     Psi(F, p) = mu/2 (J^(-2/3) I1 - 3) - p (J - 1) - p^2 / (2 K),
 
-mu = E / (2 (1 + nu)), K = E / (3 (1 - 2 nu)) (1/K = 0 at nu = 0.5, exactly incompressible).
-Stationarity in p gives p = -K (J - 1), and Psi = mu/2 (J^(-2/3) I1 - 3) + K/2 (J - 1)^2: the
-compressible neo-Hookean solid whose small-strain limit is linear elasticity with E, nu, and
-whose p is the linear code's pressure -K div u to first order. The discrete problem is
-stationarity of Pi(u, p) = int Psi 2 pi R dA: internal forces dPi/du, the pressure equation
-dPi/dp = -int q (J - 1 + p/K) 2 pi R dA = 0. At a solution, Pi is the stored strain energy
-(at nu = 0.5 the P1 constraint makes int p (J - 1) vanish, so Pi = int mu/2 (I1bar - 3)).
-
-Derivatives (hand-derived; checked against finite differences in the tests), with
-Jg = dJ/dF = (h d, -h c, -h b, h a, a d - b c) and H = d2J/dF2 (nonzero: H_ad = h, H_bc = -h,
-H_ah = d, H_dh = a, H_bh = -c, H_ch = -b, symmetric):
-
-    S_k   = dPsi/dF_k = mu/2 (2 J^(-2/3) F_k - 2/3 J^(-5/3) I1 Jg_k) - p Jg_k   (first PK)
-    D_kl  = d2Psi/dF_k dF_l = mu/2 (10/9 J^(-8/3) I1 Jg_k Jg_l
-            - 2/3 J^(-5/3) (I1 H_kl + 2 Jg_k F_l + 2 F_k Jg_l) + 2 J^(-2/3) delta_kl) - p H_kl
-    d2Psi/dF_k dp = -Jg_k,   d2Psi/dp2 = -1/K.
-
-The Cauchy stress is sigma = P F^T / J with P the 3x3 first Piola-Kirchhoff stress
-[[S_a, 0, S_b], [0, S_h, 0], [S_c, 0, S_d]].
-"""
+mu = E / (2 (1 + nu)), K = E / (3 (1 - 2 nu)) (1/K = 0 at nu = 0.5). The kinematics, the
+hand-derived stress and tangent (checked against finite differences in the tests) and the
+Cauchy stress: benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/hyperelastic.py."""
 
 from __future__ import annotations
 
@@ -236,12 +208,8 @@ def _tangent(
     identity: np.ndarray,
     hessian: np.ndarray,
 ) -> np.ndarray:
-    """(..., 5, 5) outer Jg Jg^T + mixed (Jg F^T + F Jg^T) + identity 1 + hessian H (Pa).
-
-    Entry by entry over the points into a components-first array (each entry a contiguous
-    run: ~3x faster than writing the strided entries of the components-last one), the upper
-    triangle computed and mirrored, and moved to components last in one copy.
-    """
+    """(..., 5, 5) outer Jg Jg^T + mixed (Jg F^T + F Jg^T) + identity 1 + hessian H (Pa),
+    built components first (the upper triangle, mirrored) and moved to components last."""
     tangent = np.empty((N_COMPONENTS, N_COMPONENTS, *F.shape[1:]))
     row = [outer * Jg[k] + mixed * F[k] for k in range(N_COMPONENTS)]
     scaled = [mixed * F[k] for k in range(N_COMPONENTS)]

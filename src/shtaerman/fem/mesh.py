@@ -1,17 +1,10 @@
 """Graded gmsh mesh of the axisymmetric elastic half-space (or layer), read into scikit-fem.
 
-The geometry is ``meshes/halfspace.geo`` (shipped in the wheel as ``shtaerman/meshes``): the
-quarter disc r >= 0, z <= 0, r^2 + z^2 <= R^2 in the r-z plane (mesh x = r, y = z, metres).
-The element size is ``smallest_size`` on the surface segment 0 <= r <= ``refined_radius`` and
-grows linearly with the distance d from it, h = smallest_size + growth * d, so the element count
-grows only with log(R / refined_radius).
-``contact --accuracy`` grades that field further (:class:`Grading`): the surface size in
-proportion to r across the band of contact radii, and three growth rates with depth.
-
-A layer of thickness H on a rigid base is ``meshes/layer.geo``: the rectangle 0 <= r <= L,
--H <= z <= 0 with the same size field, capped so that a thin layer keeps several elements
-through its thickness (:func:`layer_mesh`).
-"""
+``meshes/halfspace.geo`` (shipped in the wheel as ``shtaerman/meshes``): the quarter disc
+r >= 0, z <= 0, r^2 + z^2 <= R^2 (mesh x = r, y = z, metres), element size ``smallest_size``
+on the surface segment 0 <= r <= ``refined_radius`` growing linearly with the distance from
+it (graded further by :class:`Grading` for ``contact --accuracy``). ``meshes/layer.geo``: the
+layer 0 <= r <= L, -H <= z <= 0 with the same size field, capped (:func:`layer_mesh`)."""
 
 from __future__ import annotations
 
@@ -72,13 +65,10 @@ _PARAMETERS = {
 """The .geo's parameters; those of :class:`Grading` are set only for a graded mesh (else the
 .geo's defaults keep its plain size field)."""
 _GEOMETRY = "halfspace.geo"
+_SHARED = ("refined_radius", "smallest_size", "growth", "axis_size", "axis_growth")
 _LAYER_PARAMETERS = {
-    "refined_radius": "Parameters/1Refined radius (m)",
+    **{key: _PARAMETERS[key] for key in _SHARED},
     "lateral_extent": "Parameters/2Lateral extent (m)",
-    "smallest_size": "Parameters/3Smallest element size (m)",
-    "growth": "Parameters/4Growth rate (size per distance)",
-    "axis_size": "Parameters/5Element size at the axis (m)",
-    "axis_growth": "Parameters/6Growth rate from the axis (size per distance)",
     "thickness": "Parameters/7Layer thickness (m)",
     "thickness_size": "Parameters/8Element size through the thickness (m)",
     "largest_size": "Parameters/9Largest element size (m)",
@@ -294,16 +284,9 @@ def _gmsh_session() -> Iterator[None]:
 
 @contextlib.contextmanager
 def _petsc_leaving_signals_alone() -> Iterator[None]:
-    """Keep the PETSc built into gmsh's library off the process's signal dispositions.
-
-    The first ``gmsh.initialize`` of a process calls ``PetscInitialize``, which traps SIGTERM,
-    SIGPIPE, SIGSEGV and a dozen more with a handler that aborts, then ``PetscPopSignalHandler``,
-    which sets all of them to SIG_DFL at the C level, removing Python's SIGTERM handler (the
-    CLI's clean exit), its ignored SIGPIPE and faulthandler's handlers. Holding the signals in
-    the calling thread does not help (the kernel hands a process-wide SIGTERM to another
-    thread). With ``-no_signal_handler`` in ``PETSC_OPTIONS`` PETSc installs no handler, so it
-    removes none. The variable is restored on exit.
-    """
+    """Keep the PETSc built into gmsh's library off the process's signal dispositions
+    (``-no_signal_handler`` in ``PETSC_OPTIONS``, restored on exit): its first initialization
+    would reset SIGTERM, SIGPIPE and faulthandler's handlers to SIG_DFL."""
     previous = os.environ.get(_PETSC_OPTIONS)
     os.environ[_PETSC_OPTIONS] = f"{previous or ''} -no_signal_handler".lstrip()
     try:
@@ -323,14 +306,9 @@ _unit_meshes: dict[tuple, tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]] 
 def _unit_mesh(
     parameters: dict[str, float], names: dict[str, str] = _PARAMETERS, geometry: str = _GEOMETRY
 ) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
-    """:func:`_generate` in a gmsh session, each parameter set meshed once per process.
-
-    The meshes are made at unit refined radius, so the ladders' levels, the studies' linear
-    and finite-strain runs and the impact velocities of one settings ask the same ones again
-    (a dynamic study asked for 18, 3 distinct). gmsh's mesh of given parameters
-    is reproducible, so a kept one is the mesh gmsh would make. The arrays are read-only; the
-    dict of lines is a new one per call (the layer moves its base into ``"far"``).
-    """
+    """The .geo meshed by :func:`_generate` in a gmsh session, each parameter set (at unit
+    refined radius) once per process; the arrays are read-only, the dict of lines a new one per
+    call."""
     key = (geometry, tuple(sorted(parameters.items())))
     if key not in _unit_meshes:
         with _gmsh_session():
@@ -347,14 +325,8 @@ def _unit_mesh(
 def _generate(
     parameters: dict[str, float], names: dict[str, str] = _PARAMETERS, geometry: str = _GEOMETRY
 ) -> tuple[np.ndarray, np.ndarray, dict]:
-    """Mesh the .geo in a model of its own; return points, triangles and tagged lines.
-
-    ``gmsh.open``, not ``gmsh.merge``: only opening resets the parser's bounding box, whose
-    size sets gmsh's geometric tolerance while the file is read. Merged, a file read after a
-    wider model (a half-space of radius >= 3e3 before a layer of 8.7) gave a mesh with nodes
-    swapped and coordinates 1e-15 off, so a study's numbers depended on the studies run before
-    it in the process. Opening also clears the parser's variables (a caller's session too).
-    """
+    """Mesh the .geo in a model of its own (``gmsh.open``, which resets the parser's bounding
+    box and tolerance, never ``gmsh.merge``); return points, triangles and tagged lines."""
     import gmsh
 
     for key, name in names.items():
@@ -420,26 +392,17 @@ MAX_DOMAIN = 1e7
 MAX_MARGIN = 10.0
 """Largest refined zone / contact radius (see ``MeshSettings.margin``)."""
 MAX_DOFS = 400_000
-"""Default refusal limit of the estimated mesh size (``MeshSettings.max_dofs``): about 1.2 GB
-of SuperLU factors and a few minutes; the default mesh has 29k dofs, the finest convergence
-level 55k."""
+"""Default refusal limit of the estimated mesh size (``MeshSettings.max_dofs``); the
+default mesh has 29k dofs."""
 DOFS_PER_ELEMENT = 4.7
 """Taylor-Hood P2-P1 unknowns per triangle of these meshes (28904 / 6138 on the default)."""
 
 
 def estimate_elements(settings: MeshSettings) -> float:
     """Triangles gmsh will make for ``settings`` (any refined radius: the mesh scales), before
-    meshing, in a fraction of a millisecond.
-
-    A fit of the size field's integral, elements ~ Int dA / h^2, zone by zone (s = size,
-    g = growth, D = domain, s_a = min(axis_size, size), g_a = axis_growth):
-
-        3.19 / (g s)  +  3.14 ln(1 + g D / s) / g^2  +  3.67 ln(s / s_a) / g_a^2  +  167
-
-    (the strip along the refined surface, the graded far field, the grading toward the axis),
-    within about 30 % of gmsh's count (calibration in benchmarks/FEM_NOTES.md); with a
-    :class:`Grading` its own first two terms (:meth:`Grading.elements`).
-    """
+    meshing: a fit of the size field's integral Int dA / h^2, zone by zone, within about 30 % of
+    gmsh's count (calibration in benchmarks/FEM_NOTES.md); with a :class:`Grading` its own
+    first two terms (:meth:`Grading.elements`); inf where the sizes underflow."""
     s, g = settings.size, settings.growth
     axis, axis_growth = min(settings.axis_size, s), settings.axis_growth
     try:
@@ -457,10 +420,7 @@ LAYER_EXTENT = 10.0
 r = L; its effect on the force is measured in benchmarks/FEM_NOTES.md, "Layer")."""
 THICKNESS_ELEMENTS = 5.0
 """Elements through the thickness of a layer at the contact at the default size (scaled with
-``size``): quadratic elements, within 1e-5 of the reference force and 0.12 % of its contact
-radius at H/a = 0.05; the cap also sets the surface size, and a finer one puts more contact
-candidates on a thin layer than the half-space has, and costs more (benchmarks/FEM_NOTES.md,
-"Layer reference")."""
+``size``); the cap also sets the surface size (benchmarks/FEM_NOTES.md, "Layer reference")."""
 LARGEST_THICKNESS_SIZE = 2.5
 """Largest element size of a layer / its size through the thickness at the contact."""
 MIN_THICKNESS = 0.01
@@ -470,17 +430,6 @@ MAX_THICKNESS = 1000.0
 of the force (benchmarks/FEM_NOTES.md, "Layer"), which the mesh without a thickness is."""
 _TRIANGLES_PER_SQUARE = 2.3
 """Triangles of gmsh per area h^2 (an equilateral triangle has area 0.433 h^2)."""
-
-
-def _layer_elements(settings: MeshSettings, thickness: float) -> float:
-    """Triangles of a layer mesh of ``thickness`` refined radii (:func:`layer_triangles`)."""
-    return layer_triangles(
-        thickness,
-        settings.lateral_extent(thickness),
-        settings.thickness_size(thickness),
-        settings,
-        settings.axis_growth,
-    )
 
 
 def layer_triangles(
@@ -544,15 +493,10 @@ class Grading:
     """The graded size field of ``contact --accuracy``: h = s(r) + g(d) (d the distance from the
     refined surface segment; lengths in refined radii).
 
-    On the surface s(r) = size * max(r, band_start) / band_start: the size grows in proportion
-    to r across the band of contact radii, so every depth's contact meets about the same size
-    relative to its radius (the contact's error term, about -0.07 (h/a)^2). Below it the size
-    grows by ``near_growth`` up to ``near_depth`` (a few rows of the finest elements), by the
-    mesh's ``growth`` beyond (the far field's error term, +0.024 g^4, is made there) and by
-    ``far_growth`` beyond ``far_start`` (moving the force by about 0.01 far_growth^4 a /
-    far_start). :meth:`MeshSettings.refined` divides both growth rates with the others
-    (benchmarks/FEM_NOTES.md, "Accuracy 1e-6").
-    """
+    On the surface s(r) = size * max(r, band_start) / band_start; below it the size grows by
+    ``near_growth`` up to ``near_depth``, by the mesh's ``growth`` beyond and by ``far_growth``
+    beyond ``far_start``. :meth:`MeshSettings.refined` divides both growth rates with the
+    others (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
 
     band_start: float = 1.0
     near_growth: float = 0.25
@@ -733,7 +677,9 @@ class MeshSettings:
 
     def layer_dofs(self, thickness: float) -> int:
         """Estimated unknowns of the layer mesh of ``thickness`` refined radii."""
-        return round(DOFS_PER_ELEMENT * _layer_elements(self, thickness))
+        extent, cap = self.lateral_extent(thickness), self.thickness_size(thickness)
+        triangles = layer_triangles(thickness, extent, cap, self, self.axis_growth)
+        return round(DOFS_PER_ELEMENT * triangles)
 
     def thickness_size(self, thickness: float) -> float:
         """Largest element size of a layer of ``thickness`` (any unit; same unit back)."""

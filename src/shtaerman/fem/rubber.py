@@ -1,45 +1,25 @@
 """Rubber models beyond neo-Hookean: Mooney-Rivlin, Yeoh, Gent, and the volumetric energy.
 
-Every model is an isochoric energy W(I1bar, I2bar) of the invariants of the isochoric
-deformation Fbar = J^(-1/3) F, plus a volumetric energy U(J) = K/2 g(J)^2 written in the mixed
-form of :mod:`.hyperelastic`:
-
-    Psi(F, p) = W(I1bar, I2bar) - p g(J) - p^2 / (2 K),
-
-so that stationarity in p gives p = -K g(J) and Psi = W + K/2 g(J)^2; at nu = 0.5 (1/K = 0)
-the constraint g(J) = 0 is J = 1 for every g. The volumetric energies (``volumetric``):
-
-- ``quadratic``:   g = J - 1,  U = K/2 (J - 1)^2 (the neo-Hookean default);
-- ``logarithmic``: g = ln J,   U = K/2 (ln J)^2.
-
-The isochoric energies, all with the small-strain shear modulus mu = E / (2 (1 + nu)) (so the
-small-strain limit of every model is linear elasticity with E, nu):
+Every model is an isochoric energy W(I1bar, I2bar) plus a volumetric energy U(J) = K/2 g(J)^2
+in the mixed form of :mod:`.hyperelastic`, Psi(F, p) = W - p g(J) - p^2 / (2 K). Volumetric
+(``volumetric``): ``quadratic`` g = J - 1 (the default), ``logarithmic`` g = ln J. Isochoric,
+all with the small-strain shear modulus mu = E / (2 (1 + nu)):
 
 - ``neo-hookean``:   W = mu/2 (I1bar - 3);
 - ``mooney-rivlin``: W = C10 (I1bar - 3) + C01 (I2bar - 3), C10 + C01 = mu/2,
   r = C01 / (C10 + C01) in [0, 1) (``mooney_ratio``);
 - ``yeoh``:          W = C10 (x + c2 x^2 + c3 x^3), x = I1bar - 3, C10 = mu/2,
   (c2, c3) = (C20, C30) / C10 (``yeoh``);
-- ``gent``:          W = -mu/2 Jm ln(1 - x / Jm), Jm > 0 (``gent_limit``; neo-Hookean as
-  Jm -> inf).
+- ``gent``:          W = -mu/2 Jm ln(1 - x / Jm), Jm > 0 (``gent_limit``).
 
-Stress and tangent are shared by all models: with psi_i = dW/dIibar and psi_ij the second
-derivatives (one function per model, :func:`energy_derivatives`),
-
-    S = psi_1 dI1bar/dF + psi_2 dI2bar/dF - p g'(J) dJ/dF,
-    D = sum_i psi_i d2Iibar/dF2 + sum_ij psi_ij dIibar/dF (x) dIjbar/dF
-        - p (g'(J) d2J/dF2 + g''(J) dJ/dF (x) dJ/dF),
-
-with, in the axisymmetric 5-vector F = (a, b, c, d, h) of :mod:`.hyperelastic`, I2 = P^2 + h^2
-(a^2 + b^2 + c^2 + d^2), P = a d - b c the in-plane determinant, I1bar = J^(-2/3) I1 and
-I2bar = J^(-4/3) I2.
-"""
+Stress and tangent are shared by all models (:func:`energy_derivatives`); their formulas:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/rubber.py."""
 
 from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import astuple, dataclass
 from typing import Any
 
 import numpy as np
@@ -96,15 +76,7 @@ class RubberModel:
 
     def material(self, youngs_modulus: float, poisson_ratio: float) -> Rubber:
         """The :class:`Rubber` with small-strain constants E (Pa) and nu."""
-        return Rubber(
-            youngs_modulus,
-            poisson_ratio,
-            self.name,
-            self.mooney_ratio,
-            self.yeoh,
-            self.gent_limit,
-            self.volumetric,
-        )
+        return Rubber(youngs_modulus, poisson_ratio, *astuple(self))  # name, mooney_ratio, ...
 
     def to_dict(self) -> dict[str, Any]:
         """The model's keys for a JSON report (only those that apply)."""

@@ -2,25 +2,10 @@
 
 The body relaxes in shear by G(t) = G0 [g_inf + sum_i g_i exp(-t/tau_i)] (Abaqus' convention:
 E2 and nu2 are the instantaneous values, :class:`shtaerman.theory.viscoelastic.PronySeries`);
-its bulk response stays elastic, so nu2 = 0.5 stays exactly incompressible through the mixed
-u-p formulation of :mod:`.elasticity`. At each quadrature point the deviatoric stress is
-
-    s = 2 G0 [g_inf d + sum_i g_i h_i],   h_i(t) = Int_0^t exp(-(t - s)/tau_i) dd(s),
-
-with d the deviatoric strain (components rr, tt, zz, rz). For d linear in time over a step of
-length dt the branch strains h_i update exactly,
-
-    h_i^{n+1} = exp(-dt/tau_i) h_i^n + r_i (d^{n+1} - d^n),  r_i = (tau_i/dt)(1 - exp(-dt/tau_i)),
-
-so s^{n+1} = 2 G_eff d^{n+1} + s_hist^n with the constant G_eff = G0 [g_inf + sum_i g_i r_i]:
-the stiffness of the step is the elastic one at G_eff (factorized once for a constant dt) and the
-history s_hist^n = 2 G0 sum_i g_i (exp(-dt/tau_i) h_i^n - r_i d^n) enters as the nodal force
-B^T W s_hist^n, B the strain operator at the quadrature points and W their weights 2 pi r dA.
-
-Energies: the stored energy is the bulk part plus G0 [g_inf d:d + sum_i g_i h_i:h_i]; branch i
-dissipates 2 G0 g_i h_i:h_i / tau_i per unit volume and time, integrated exactly over each step
-for the same linear strain history (>= 0 by construction).
-"""
+its bulk response stays elastic. The branch strains update exactly for a deviatoric strain
+linear over each step, so a step's stiffness is the elastic one at the constant G_eff and the
+history enters as a nodal force; energies in J. The recursion and the energies:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/viscoelastic.py."""
 
 from __future__ import annotations
 

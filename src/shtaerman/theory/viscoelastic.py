@@ -2,42 +2,12 @@
 
 The half-space relaxes in shear by a Prony series on its instantaneous (glassy) modulus
 (Abaqus' convention), its bulk response elastic and nu = 1/2, so the contact modulus relaxes as
-E*(t) = E*_0 psi(t) with
-
-    psi(t) = G(t)/G0 = g_inf + sum_i g_i exp(-t/tau_i),  g_inf = 1 - sum_i g_i > 0.
-
-With beta0, q of the elastic law P = beta0 x^q at E*_0 and F = x^q (Lee & Radok 1960, Ting 1966;
-exact in the method of dimensionality reduction, Popov, Willert & Hess 2018). Any other
-axisymmetric profile (a sphere, a tabulated tip: Sneddon's law) is the same with beta0 = 1 and
-F(x) its elastic force at E*_0: its contact radius a(x) is the geometry's alone, as the power
-law's, which is all the two solutions use (:func:`elastic_shape`):
-
-- loading (contact radius growing, x' > 0): a(t) follows the elastic geometry of x(t), and
-  P(t) = beta0 Int_0^t psi(t - s) dF(s) = beta0 [g_inf F(t) + sum_i g_i K_i(t)],
-  K_i(t) = Int_0^t exp(-(t - s)/tau_i) dF(s);
-- unloading (radius shrinking, x' < 0): a(t) = a(t1), t1 < t the loading instant with the same
-  radius, fixed by Phi(t1, t) = Int_{t1}^t psi(t - s) x'(s) ds = 0, and
-  P(t) = beta0 Int_0^{t1} psi(t - s) dF(s) = beta0 [g_inf F(t1) + sum_i g_i e^{-(t-t1)/tau_i}
-  K_i(t1)]; the contact is lost (P = 0) when Phi(0, t) = g_inf x(t) + sum_i g_i H_i(t) reaches 0,
-  H_i(t) = Int_0^t exp(-(t - s)/tau_i) x'(s) ds.
-
-Both x and F are taken piecewise linear in time between the instants given (or the time steps);
-over such a piece the kernels update exactly, K_i(t + h) = e^{-h/tau_i} K_i(t) +
-tau_i (1 - e^{-h/tau_i}) dF/h, and Phi, P are exact closed forms of t1 inside a piece. The error
-is that of the linear interpolation, second order in the spacing.
-
-Pressed at a constant rate V (x = V t) the loading integrals close: for any response that
-grows as x^m (the force, m = q; the central pressure, m = (n - 1)/n), with s = t u and
-z = t/tau_i,
-
-    Int_0^t exp(-(t - s)/tau_i) d(V s)^m = (V t)^m Int_0^1 m u^(m-1) e^{-z (1 - u)} du
-                                        = (V t)^m M(1, m + 1, -z),
-
-Kummer's function M, equal to m z^-m e^-z Int_0^z y^(m-1) e^y dy (the lower incomplete gamma
-function at the negative argument -z), M -> 1 as z -> 0 and ~ m/z as z -> inf. So the
-viscoelastic response is the elastic one at E*_0 times the rate factor
-R_m(t) = g_inf + sum_i g_i M(1, m + 1, -t/tau_i) (:func:`rate_factor`), exactly, while x grows.
-"""
+E*(t) = E*_0 psi(t), psi(t) = g_inf + sum_i g_i exp(-t/tau_i), g_inf = 1 - sum_i g_i > 0.
+Loading follows Lee & Radok (1960), unloading Ting (1966), for a power law or any axisymmetric
+profile (:func:`elastic_shape`), with x and F piecewise linear in time (second-order error in
+the spacing); pressed at a constant rate the response is the elastic one times
+:func:`rate_factor`. The formulas: benchmarks/FEM_NOTES.md, "Moved from the docstrings",
+theory/viscoelastic.py."""
 
 from __future__ import annotations
 
@@ -309,7 +279,7 @@ def indentation_force(
     """Force and contact radius for a prescribed depth history: Lee-Radok, then Ting.
 
     x(t) and F = x^q are each taken linear in time between the instants given, and the kernels
-    follow exactly over each piece (see the module docstring): the error is that of the
+    follow exactly over each piece (benchmarks/FEM_NOTES.md): the error is that of the
     interpolation, second order in the spacing for a smooth history, O(h^q) as the contact
     closes (t1 in the first pieces, where F ~ t^q).
 
@@ -369,8 +339,8 @@ def indentation_force(
 
 def rate_factor(exponent: float, time: ArrayLike, prony: PronySeries) -> np.ndarray:
     """R_m(t) = g_inf + sum_i g_i M(1, m + 1, -t/tau_i): a response growing as x^m elastically,
-    pressed at a constant rate, is its glassy value times R_m(t) (module docstring; exact while
-    the contact grows, nu2 = 1/2).
+    pressed at a constant rate, is its glassy value times R_m(t) (benchmarks/FEM_NOTES.md;
+    exact while the contact grows, nu2 = 1/2).
 
     Parameters
     ----------

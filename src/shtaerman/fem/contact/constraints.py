@@ -3,27 +3,11 @@ loop of a history-dependent contact (bonded or Coulomb), the load ladder of the 
 contact, the halving of a failing load or time step (:func:`in_halves`), and what is read
 off a solved contact (its edge, its central pressure, whether the mesh resolves it).
 
-Once a surface point touches the rigid indenter it sticks to it; the indenter moves only
-vertically. The contact is history dependent: it is solved step by step (load steps of the
-static contact, time steps of an impact), each from the contact of the step before. A body
-supplies the solve of one contact set (the linear body: the surface compliance from its one
-factorization, :mod:`.stick`; the finite-strain body: Newton, :mod:`.finite_stick`) and
-:func:`settle` changes the set until no condition is violated:
-
-- a free node whose gap turns negative enters the contact, stuck where its gap closes
-  (interpolated linearly between the last step and the current iterate);
-- a node in contact whose normal force turns tensile is released and forgets where it stuck;
-  should it, released in this step, penetrate the indenter once free, it grips again where it
-  is now (the receding edge of a bonded contact, whose node can neither stay stuck in tension
-  nor leave);
-- with a finite Coulomb coefficient mu, a stuck node whose shear exceeds mu times its normal
-  force slides (its shear is then mu times the normal force, against its slip), and a sliding
-  node whose slip reverses sticks again where it was at the last step (where it touched, if
-  it touched in this step: its slip is measured from there).
-
-All violated conditions change at once; should a contact set repeat, one node at a time
-(:func:`worst_only`).
-"""
+A body supplies the solve of one contact set (the linear body: :mod:`.stick`; the
+finite-strain body: :mod:`.finite_stick`) and :func:`settle` changes the set until no
+condition is violated (enter, release, stick to slip, slip to stick); all violated conditions
+change at once, and should a contact set repeat, one node at a time (:func:`worst_only`).
+The rules: benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/contact/constraints.py."""
 
 from __future__ import annotations
 

@@ -1,53 +1,16 @@
 """Frictionless contact of a rigid power-law indenter with a neo-Hookean half-space, finite strain.
 
-The indenter surface z = f(r) - d, f(r) = A r^n, is placed in the *current* configuration: a
-candidate surface node (reference radius R_i on Z = 0, displacement (u_r, u_z)) sits at
-(R_i + u_r, u_z), and must stay below the surface. The gap is the *vertical* distance
+A candidate surface node (reference radius R_i, displacement (u_r, u_z)) keeps the vertical gap
 
     g_i(u) = f(R_i + u_{r,i}) - d - u_{z,i} >= 0,
 
-(the nodes slide: f is evaluated at the current radius). Why vertical and not normal: the
-indenter is a graph over r, so g_i >= 0 defines exactly the same admissible set as the normal
-distance; g is explicit (no closest-point projection), smooth wherever f is, and dg/dd = -1, so
-the multipliers lambda_i >= 0 sum to the indenter force P = sum lambda_i and the discrete
-energy identity dPi/dd = P holds exactly.
-The reaction on node i is lambda_i grad g_i = lambda_i (f'(r_i), -1): normal to the indenter
-surface, so the contact is frictionless and the problem conservative (Pi - lambda . g is a
-Lagrangian); lambda_i is the vertical component of the nodal contact force.
-
-Newton: a semi-smooth (primal-dual active-set) Newton on the KKT system
-
-    dPi/dx - G^T lambda = 0,   lambda_i - max(0, lambda_i - c g_i) = 0,
-
-with the consistent tangent d2Pi/dx2 - sum lambda_i d2g_i/du_r^2 (f'' at the current radius)
-and, on the active set A, the linearized constraints -G_A dx = g_A, solved together as one
-sparse symmetric saddle-point system [[K, -G_A^T], [-G_A, 0]]. Converged when the active set
-repeats and the displacement correction is below ``tolerance * depth`` (the axis candidate,
-to which a quadratic edge gives no area, follows its ring once it cycles: :class:`_Sets`). A
-modified Newton saves factorizations on the depth ladder (:func:`solve_finite_contact`) and in
-an impact's time steps (every evaluation of the striker's step equation): while the set stays that
-of the last factorization (also from the previous depth or step) and each correction shrinks by
-:data:`CONTRACTION`, the step reuses it (and its tangent); a step that reused it converges only
-with that contraction. On a curve, a depth's first step reuses the depth before's factorization
-also where its active set differs at up to :data:`BORDER` candidates, bordered by them
-(:func:`bordered_step`): the contact grows by a few nodes a depth, and in most depths a fresh
-tangent at the predictor was followed by another one step later (the finest level of
-fem/finite_strain.toml, nu2 = 0.5: 44 factorizations for 17 depths, 38 with the border;
-benchmarks/finite_newton_cost.py). Complementarity then holds exactly (lambda = 0 off A,
-g = 0 on A up to the Newton tolerance, lambda > 0 on A but at a tied axis candidate, which
-pulls by less than its ring pushes, g >= 0 off A). Depth stepping: from the last converged
-state to each requested depth, with a linear predictor whose first active set ends at the
-extrapolated contact edge (:func:`predict_reach`); a step that fails (no convergence, an
-inverted element J <= 0) is halved, up to ``max_cuts`` times, then a
-:class:`~shtaerman.fem.hyperelastic.NewtonError` is raised.
-
-Post-processing per depth: the force P = sum lambda; the pressure recovered from the vertical
-nodal forces with the P2 surface matrix of the *current* surface, projected on the r-axis
-(for frictionless contact on a graph, vertical force per projected area is exactly the Cauchy
-normal pressure); p(0) extrapolated to the axis as in the linear code
-(:func:`.constraints.central_pressure`); the contact radius r = R + u_r located between nodes from
-the gap (:func:`.constraints.edge_radius`); the stored energy Pi.
-"""
+f evaluated at the current radius; the multipliers lambda_i >= 0 (N) sum to the indenter force
+P. A semi-smooth (primal-dual active-set) Newton solves the KKT system with the consistent
+tangent, the active constraints eliminated (:func:`eliminate_gaps`); a modified Newton reuses
+factorizations on the depth ladder and in an impact's time steps. A depth step that fails is
+halved up to ``max_cuts`` times, then a :class:`~shtaerman.fem.hyperelastic.NewtonError` is
+raised. Derivation, convergence rules and measurements: benchmarks/FEM_NOTES.md, "Moved from
+the docstrings", fem/contact/finite.py."""
 
 from __future__ import annotations
 
@@ -87,16 +50,12 @@ from ..solver import Pattern, PatternSolver
 from .constraints import SolvedContact, check_resolved, edge_and_centre
 
 NEWTON_TOLERANCE = 1e-8
-"""Converged when the active set repeats and the last correction max |du| <= this * depth:
-at Newton's quadratic rate the error left is then ~1e-16 depth. Below ``ROUND_OFF_FLOOR`` a
-correction that no longer shrinks (ratio > 1/2) is round-off and counts as converged too (the
-stiffness spans ~1e17 from the axis elements to the far arc: the floor is ~2e-10 depth)."""
+"""Converged when the active set repeats and the last correction max |du| <= this * depth;
+below ``ROUND_OFF_FLOOR`` a correction that no longer shrinks (ratio > 1/2) counts as converged."""
 ROUND_OFF_FLOOR = 1e-6
 CONTRACTION = 0.2
-"""A modified Newton step (the last factorization reused, see :meth:`NewtonStepper.reusable`)
-must shrink the correction by this factor, else the next step takes a fresh tangent; it
-converges only with that contraction, so the error it leaves is at most
-0.2 / (1 - 0.2) = 1/4 of the last correction (<= ``NEWTON_TOLERANCE`` * depth)."""
+"""A modified Newton step (the last factorization reused) must shrink the correction by this
+factor, else the next step takes a fresh tangent."""
 BORDER = 8
 """Candidates at which the active set of a curve's first Newton step at a depth may differ
 from that of the factorization kept from the depth before, for the step to reuse it
@@ -105,17 +64,10 @@ MAX_ITERATIONS = 30
 MAX_CUTS = 8
 GENT_BACKTRACKS = 2
 """Halvings of a Newton update whose iterate passes a Gent rubber's limit, in every stepper
-(other updates only where ``backtracks`` is set): the limit bounds the rubber's states as
-J > 0 does, and from a state near it Newton overshoots where the solution lies within it. A
-converging step needed at most 2; steps needing more crawled and failed after thirty
-iterations (benchmarks/FEM_NOTES.md, "Gent locking")."""
+(other updates only where ``backtracks`` is set)."""
 SQUEEZED_J = 0.5
 """Pointwise det F below which a failed contact is put down to the elements about the tip,
-not to the mesh size (:func:`squeeze_note`). The 4 mm incompressible pad (z = 5 r^1.5, mesh
-0.2) at x/H 0.85-0.97: its smallest J falls from ~0.9 to 0.1-0.47 in the last 0.1-0.3 mm
-before each failure, in the elements beside the tip (hoop stretch 3-6, axial 0.03-0.07), on
-every axis grading (1e-3 to 1e-5) and at mesh_size 0.1 as at 0.2; the runs that converge
-keep J >= 0.86 until then."""
+not to the mesh size (:func:`squeeze_note`)."""
 _GAUSS = np.polynomial.legendre.leggauss(4)
 
 
@@ -196,16 +148,9 @@ class _Candidates:
 @dataclass
 class _Sets:
     """The active sets of one Newton solve (:meth:`NewtonStepper.solve`): the last two
-    iterations' and whether the axis candidate (index 0) is tied to its ring.
-
-    Why the tie: a quadratic surface edge on the axis gives its axis vertex no area
-    (int N_0 2 pi r dr = 0 over [0, h]), so that node's multiplier is no sample of the
-    pressure but a remainder of higher order in h, of either sign. Under the 4 mm pad's tip
-    (z = 5 r^1.5, the impact's axis grading 1e-3) it flipped on alternate iterations, in the
-    set pulling, out of it penetrating by 1.6e-9 m (7e-7 of the depth): the set never
-    repeated (benchmarks/FEM_NOTES.md, "Axis node cycling"). Once it has flipped twice while
-    the first edge's midside candidate (index 1) is in contact, it is in contact wherever
-    that one is, re-decided at every iteration: a ring that lets go frees it too."""
+    iterations' and whether the axis candidate (index 0) is tied to its ring: once it has
+    flipped twice while the first edge's midside candidate (index 1) is in contact, it is in
+    contact wherever that one is."""
 
     previous: np.ndarray | None = None
     before: np.ndarray | None = None
@@ -237,11 +182,6 @@ def _surface_mass(x: np.ndarray) -> np.ndarray:
         weight = weights * 2 * np.pi * position * jacobian
         mass[k : k + 3, k : k + 3] += (shapes * weight) @ shapes.T
     return mass
-
-
-def _recover_pressure(x: np.ndarray, forces: np.ndarray) -> np.ndarray:
-    """Nodal pressure p (Pa) with M p = F (M banded: a sparse solve)."""
-    return spla.spsolve(sp.csc_matrix(_surface_mass(x)), forces)
 
 
 @dataclass(frozen=True, eq=False)
@@ -340,10 +280,9 @@ class NewtonStepper:
         """Newton from (x, lambda) at ``depth`` (from ``base``, the last converged (x, lambda),
         where that guess is no state of the body); raises NewtonError on failure. The corrections
         are measured relative to ``scale`` (m, default ``depth``; give it where depth <= 0).
-        ``reach`` (m): the first iteration's active set leaves out the candidates the guess
-        puts in contact at reference radii beyond it (the predicted contact edge,
-        :func:`predict_reach`). A ``modified`` Newton that fails after reusing a
-        factorization is redone as a full one."""
+        ``reach`` (m): the first iteration's active set leaves out the candidates beyond it
+        (:func:`predict_reach`). A ``modified`` Newton that fails after reusing a factorization is
+        redone as a full one."""
         scale = depth if scale is None else scale
         system, nodes, sets = self.system, self.nodes, _Sets()
         reused: list[bool] = []  # per step: whether it reused a factorization
@@ -391,16 +330,14 @@ class NewtonStepper:
         base: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
         """Newton's loop from ``start`` = (x, the multipliers lambda (N) of the candidates), or
-        from ``base`` where ``start`` is no state of the body (an extrapolation past a limit).
+        from ``base`` where ``start`` is no state of the body.
 
         ``increment(x, lambda, state, corrections, fresh)`` gives (du, the candidates its
         dlambda acts on, dlambda, whether made with a fresh tangent, whether to test the
         convergence after it), or None where the iterate before it has converged. An update
-        that inverts an element (or, where the stepper back-tracks, folds the contact surface)
-        fails the solve where it reused a factorization (``redone_in_full``), else is
-        halved, up to ``backtracks`` times. Returns x, lambda, the iterations and the
-        corrections (max |du| / ``scale``, m); where it converged on the state of x (the
-        increment's None), x's Gent stretch is left in ``stretch``.
+        that inverts an element fails the solve where it reused a factorization
+        (``redone_in_full``), else is halved, up to ``backtracks`` times. Returns x, lambda, the
+        iterations and the corrections (max |du| / ``scale``).
 
         Raises
         ------
@@ -459,14 +396,14 @@ class NewtonStepper:
 
     def admit(self, x: np.ndarray) -> tuple[Any, NewtonError | None]:
         """The kinematics of the iterate x, and why it is no state of the body (None where it
-        is one): an element inverted, a Gent rubber past its limit I1bar - 3 = Jm (a
-        GentLimitError, whose overshoot is always back-tracked: :data:`GENT_BACKTRACKS`), or,
-        where the stepper back-tracks, a folded contact surface."""
+        is one): an element inverted, a Gent rubber past its limit (a GentLimitError), or, where
+        the stepper back-tracks, a folded contact surface."""
         try:
             state = self.system.state(x)
         except GentLimitError as error:
             return None, error
-        if element_inverted(state) or (self.backtracks and self.folded(x)):
+        inverted = not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0  # J <= 0 or nan
+        if inverted or (self.backtracks and self.folded(x)):
             return state, NewtonError("an element inverted (J <= 0)")
         return state, None
 
@@ -479,13 +416,8 @@ class NewtonStepper:
         scale: float,
     ) -> bool:
         """Whether the ``active`` set repeats ``previous``: equal, or differing only at
-        candidates where complementarity holds to the Newton tolerance either way, the
-        multiplier |lambda_i| <= ``tolerance`` * P (N, P = sum |lambda|) and the gap |g_i| <=
-        ``tolerance * scale`` (m). Why: the axis node's ring carries ~1e-18 of the force on the
-        axis grading; once its lambda is round-off, its sign flips the node in and out on every
-        iteration (corrections ~1e-12) and Newton never saw its set repeat: the 4 mm
-        incompressible pad failed so at x/H = 0.53 (neo-Hookean) and 0.57 (Gent 30), at
-        every step size (benchmarks/FEM_NOTES.md, "Axis node cycling")."""
+        candidates where |lambda_i| <= ``tolerance`` * P (N, P = sum |lambda|) and the gap
+        |g_i| <= ``tolerance * scale`` (m)."""
         changed = active != previous
         if not changed.any():
             return True
@@ -496,11 +428,9 @@ class NewtonStepper:
         )
 
     def reusable(self, rows: np.ndarray, corrections: list[float], fresh: list[bool]) -> bool:
-        """Whether the next step may reuse the last factorization (modified Newton, if
-        ``modified``): made for this system and active set ``rows`` (on a solve's first
-        step, for a set that differs from ``rows`` at no more than ``border`` candidates:
-        :func:`bordered_step`), and, after a step that reused it, the correction shrank by
-        at least :data:`CONTRACTION`."""
+        """Whether the next step may reuse the last factorization (:meth:`may_reuse`), made for
+        the active set ``rows`` (on a solve's first step, for one that differs from ``rows`` at
+        no more than ``border`` candidates: :func:`bordered_step`)."""
         kept = self.kept
         if kept is None or not self.may_reuse(kept[0], corrections, fresh):
             return False
@@ -510,17 +440,10 @@ class NewtonStepper:
 
     def may_reuse(self, made_for: Any, corrections: list[float], fresh: list[bool]) -> bool:
         """Whether a kept tangent ``made_for`` a system may serve the next step: the stepper is
-        ``modified``, the system is its own, and the corrections still contract
-        (:meth:`still_contracting`)."""
-        return (
-            self.modified and made_for is self.system and self.still_contracting(corrections, fresh)
-        )
-
-    def still_contracting(self, corrections: list[float], fresh: list[bool]) -> bool:
-        """Whether a kept factorization may serve the next step as far as the corrections
-        say: the last step was fresh or the solve's first, or its correction shrank by
-        :data:`CONTRACTION`."""
-        return not (len(fresh) > 1 and not fresh[-1] and not self.contracting(corrections))
+        ``modified``, the system is its own, and the last step was fresh or the solve's first, or
+        its correction shrank by :data:`CONTRACTION`."""
+        slowed = len(fresh) > 1 and not fresh[-1] and not self.contracting(corrections)
+        return self.modified and made_for is self.system and not slowed
 
     def contracting(self, corrections: list[float]) -> bool:
         """Whether the last correction is at most :data:`CONTRACTION` times the one before."""
@@ -528,8 +451,7 @@ class NewtonStepper:
 
     def converged(self, corrections: list[float], fresh: list[bool]) -> bool:
         """:func:`newton_converged` after a fresh tangent's step; after a reused one, also a
-        contraction by :data:`CONTRACTION` (the error left is then at most a quarter of the
-        last correction) and no round-off floor (a slow contraction is not round-off)."""
+        contraction by :data:`CONTRACTION` and no round-off floor."""
         if fresh[-1]:
             return newton_converged(corrections, self.tolerance)
         return corrections[-1] <= self.tolerance and self.contracting(corrections)
@@ -559,16 +481,10 @@ class NewtonStepper:
         return step
 
 
-def element_inverted(state: Any) -> bool:
-    """Whether some element of the kinematics ``state`` has J <= 0 (or not finite)."""
-    return bool(not np.all(np.isfinite(state.J)) or np.min(state.J) <= 0)
-
-
 def squeeze_note(system: Any, x: np.ndarray, steps: str) -> str | None:
     """What a failed contact's message says where its last converged state x (of ``system``)
-    squeezes some element below J = :data:`SQUEEZED_J` (None where none): where, how far,
-    and that neither a finer mesh size nor ``steps`` (the caller's own steps, in its options'
-    words: "more time_steps=...") move that limit."""
+    squeezes some element below J = :data:`SQUEEZED_J` (None where none); ``steps``: the
+    caller's own steps, in its options' words ("more time_steps=...")."""
     J = system.state(x).J
     if np.min(J) >= SQUEEZED_J:
         return None
@@ -585,22 +501,18 @@ def squeeze_note(system: Any, x: np.ndarray, steps: str) -> str | None:
 
 class SqueezedTipError(NumericalFailureError):
     """A time step of the body with inertia failed, in every cut, from a state that squeezes
-    an element beside the striker's tip below :data:`SQUEEZED_J` (:func:`squeeze_note`): a
-    limit of the contact's elements there, which neither smaller time steps nor a retry with
-    more of them move (benchmarks/FEM_NOTES.md, "The sharp striker's pad with inertia")."""
+    an element beside the striker's tip below :data:`SQUEEZED_J` (:func:`squeeze_note`)."""
 
 
 def check_axis_ring(lam: np.ndarray, tied: bool) -> None:
-    """Accept a converged solve whose axis candidate was tied to its ring (:class:`_Sets`,
-    ``tied``): its pull -lambda_0 (N, ``lam[0]`` < 0) may not exceed the push lambda_1 of the
-    first edge's midside candidate, else the ring about the axis pulls the indenter: the
-    surface would lift off the tip, which the tie cannot represent (NewtonError)."""
+    """Accept a converged solve whose axis candidate was ``tied`` to its ring (:class:`_Sets`)
+    unless its pull -lambda_0 (N) exceeds the push lambda_1 of the first edge's midside
+    candidate (NewtonError: the surface lifts off the indenter's tip)."""
     if tied and lam[0] + lam[1] < 0:
         raise NewtonError(
             f"the axis node pulls the indenter by {-lam[0]:.3g} N where the ring about it "
             f"pushes {lam[1]:.3g} N: the surface lifts off the indenter's tip"
         )
-    return None
 
 
 def newton_converged(corrections: list[float], tolerance: float) -> bool:
@@ -621,30 +533,16 @@ def eliminate_gaps(
     drag: np.ndarray | None = None,
     again: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Newton step of the saddle system [[K, -G_A^T], [-G_A, 0]] by eliminating the constraints.
+    """Newton step (du, dlambda) of the saddle system [[K, -G_A^T], [-G_A, 0]] by eliminating
+    the constraints.
 
-    The linearized constraint of active node i, -G_i du = g_i, fixes its u_z increment:
-    du_z = f'(r_i) du_r + g_i. With du = T y + c the step solves T^T K T y = -T^T (R + K c), a
-    matrix with the stiffness' pattern and scale (the saddle form fills far more in SuperLU);
-    the multiplier increment follows from the u_z row: dlam_i = -(R + K du)_{u_z,i}.
-
-    T has one entry per row (1 at the dof itself, f'(r_i) at the node's u_r for a u_z slave;
-    none for the slave on the axis, whose u_r is clamped), so T^T K T moves the entries of the
-    slave rows and columns onto their masters' (same node: same pattern). The slaves keep
-    their place as decoupled rows y_s = 0: the pattern and its ordering stay fixed.
-    ``tangent`` is K's data in ``stepper.pattern``.
-
-    ``drag`` (per candidate, slip direction x Coulomb coefficient; None: 0) makes the
-    multiplier of node i push along W_i = (f' - drag_i, -(1 + drag_i f')) instead of G_i
-    (the normal force and the friction drag_i lambda along the tangent (1, f'), linearized in
-    lambda): the rows are combined with W's ratio q_i = (f' - drag_i) / (1 + drag_i f')
-    instead of f' (Q^T K T y = -Q^T (R + K c), no longer symmetric) and
-    dlam_i = -(R + K du)_{u_z,i} / (1 + drag_i f').
-
-    ``again``: solve with this factorization of an earlier T^T K T (a modified Newton step:
-    ``tangent`` is that K) instead of factorizing; else the new factorization is left in
-    ``stepper.factorization``.
-    """
+    The active node i's linearized constraint fixes du_z = f'(r_i) du_r + g_i; with
+    du = T y + c the step solves T^T K T y = -T^T (R + K c) in K's fixed pattern, and
+    dlam_i = -(R + K du)_{u_z,i}. ``tangent`` is K's data in ``stepper.pattern``. ``drag``
+    (per candidate, slip direction x Coulomb coefficient; None: 0) turns each multiplier's
+    push from the normal to the friction cone's edge (Q^T K T, no longer symmetric).
+    ``again``: solve with this factorization of an earlier T^T K T instead of factorizing;
+    else the new factorization is left in ``stepper.factorization``."""
     pattern = stepper.pattern
     slaves, ok, target, coefficient = elimination(stepper, rows, slope)
     left, normal = coefficient, 1.0
@@ -694,19 +592,10 @@ def bordered_step(
     gap: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
     """A modified Newton step (du, dlambda) for the active ``rows`` with the kept tangent K
-    (``tangent``) and the kept factorization of its reduced matrix A for another active set
-    ``kept`` (``sets`` = (kept, rows)): the two differ at a few candidates, and the step is
-    that of :func:`eliminate_gaps` for ``rows`` with K, solved by bordering A.
-
-    In ``kept``'s coordinates y (du = T y + c, c the gaps of the candidates in both sets),
-    a candidate released (in ``kept`` only) gets its u_z back as an unknown e_i, du += e_i
-    at its u_z (columns P = T^T K E, block Z = E^T K E); one put in contact (in ``rows``
-    only) adds its linearized constraint g_j . y = gap_j with the multiplier's column g_j
-    (1 at its u_z, -f'(r_j) at its u_r): [[A, B], [B^T, H0]] [y; w] = [b; h], B = [P, G],
-    H0 = [[Z, 0], [0, 0]], solved with W = A^-1 B (one solve per changed candidate) and the
-    small Schur complement H0 - B^T W. The multipliers follow from the u_z rows as in
-    :func:`eliminate_gaps`.
-    """
+    (``tangent``) and the kept factorization of its reduced matrix for another active set
+    (``sets`` = (kept, rows)): the step of :func:`eliminate_gaps` for ``rows``, solved by
+    bordering the kept factorization with the changed candidates (one solve each) and a small
+    Schur complement."""
     kept, rows = sets
     nodes, position, size = stepper.nodes, stepper.position, stepper.pattern.size
     again = stepper.kept[3]
@@ -858,9 +747,8 @@ def _reach(
 
     A failing sub-step is halved, a converged one doubles the next; the first Newton iteration
     of each ends at :func:`predict_reach`'s edge (``law``: the small-strain contact). Returns
-    the last two
-    converged states (depth, x, lambda), the Newton iterations of the last sub-step and of
-    all, and the corrections of the last.
+    the last two converged states (depth, x, lambda), the Newton iterations of the last
+    sub-step and of all, and the corrections of the last.
 
     Raises
     ------
@@ -955,11 +843,7 @@ def predict_reach(radius: np.ndarray, history: list, depth: float, law: Any = No
     ``radius`` (m): each contact edge taken midway between its last loaded node and the next,
     extrapolated by the power law a ~ d^p through the two. With one contact known, ``law``'s
     (the small-strain contact, ``contact_radius(depth)``) growth from it; with none, ``law``'s
-    radius. None without two contacts and without ``law``.
-
-    Why: the linear predictor of x overshoots the edge (a grows like d^(1/n), concave), and
-    each node it puts in contact wrongly costs the Newton an active-set change, so a fresh
-    factorization (measured on the finest level of fem/finite_strain.toml: 3-4 per depth)."""
+    radius. None without two contacts and without ``law``."""
     contacts = [
         (d, edge)
         for d, _, lam in history[-2:]
@@ -999,7 +883,7 @@ def finite_step(
     ``lam`` (N) at ``depth`` (m), beside ``exact``'s linear values."""
     r, gap, _, _ = stepper.geometry(x, depth)
     gap = np.where(lam > 0, 0.0, np.maximum(gap, 0.0))
-    pressure = _recover_pressure(r, lam)
+    pressure = spla.spsolve(sp.csc_matrix(_surface_mass(r)), lam)  # M p = F, M banded
     radius, centre = edge_and_centre(r, (lam, gap, pressure), depth)
     return FiniteContactStep(
         depth=float(depth),
@@ -1031,10 +915,8 @@ def check_finite_depths(
     """Refuse, before any work, depths (m) the finite-strain contact cannot resolve: d/a
     (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
     ``model`` names the rubber model in the message; ``impact`` (mass in kg, velocity in m/s):
-    the depths were set by that impact's x_c, and the message names those inputs instead:
-    an x_c out of reach (on either side) is :func:`shtaerman.guards.check_reach`'s refusal of
-    that impact, the one every route says (and the curve's own remedy, its depths); only the
-    curve's first depths below the reach, its x_c within, are refused in the curve's words.
+    the depths were set by that impact's x_c, and the message names those inputs instead
+    (:func:`shtaerman.guards.check_reach` where the x_c itself is out of reach).
 
     Raises
     ------

@@ -1,33 +1,13 @@
 """Bonded (no slip) or Coulomb contact of a rigid power-law indenter with a rubber body at
 finite strain: the rules of :mod:`.constraints` on the finite-strain body.
 
-A candidate surface node (reference radius R, displacement (u_r, u_z)) is free until its
-vertical gap g = A (R + u_r)^n - d - u_z closes. From then on it sticks: its *current* radius
-x_r = R + u_r keeps the value it had when it touched, and its height follows the indenter,
-x_z = A x_r^n - d. The static contact is loaded over :func:`.constraints.depth_ladder`
-(:func:`bonded_ladder`; a load step that fails is taken in halves, :func:`_halves`); at each
-load step the stuck nodes' two displacement dofs are prescribed and Newton solves for the rest
-(the stepper, pattern and solver of :class:`.finite.NewtonStepper`, the prescribed dofs
-eliminated from its fixed pattern). The curve's Newton is a modified Newton (:func:`_newton`):
-it reuses the last factorization, also across load steps and with the nodes stuck since held by
-a capacitance correction (:meth:`_Kept.constrained`), while each correction shrinks by
-:data:`.finite.CONTRACTION`; the Coulomb Newton (:func:`_slide_newton`) likewise, while the
-stuck dofs and slip directions stay those of its factorization, in the curve's load steps and in
-an impact's time steps (:class:`HistoryStepper`).
-
-With Coulomb friction mu the tangential and normal reactions are resolved on the indenter's
-normal (f'(x_r), -1)/|.| at the node's current radius (at finite strain the slope is not
-small: the vertical/radial split of the linear solver would make mu = 0 differ from the
-frictionless contact). A sliding node keeps its gap closed as in :mod:`.finite` and carries
-the friction mu N along the indenter's tangent against its slip, N from the previous Newton
-iterate (a fixed point converged with Newton's own tolerance on the corrections).
-
-The force P is the total vertical reaction on the indenter, the sum of the contact nodes'
-vertical reactions lambda_i = -dPi/du_z,i (N; with friction it includes the friction's
-vertical component). Without slip the radial reactions do no work, so dPi/dd = P up to the
-ladder's interpolation of the touching radii. Contact radius, pressure, p(0) and the stored
-energy are reported as :func:`.finite.solve_finite_contact` does.
-"""
+A candidate node is free until its vertical gap closes; from then on it sticks (its current
+radius held, its height on the indenter) or, with Coulomb friction mu, slides with its gap
+closed under the friction mu N along the indenter's tangent. The static contact is loaded over
+:func:`.constraints.depth_ladder` with a modified Newton (:func:`_newton`,
+:func:`_slide_newton`) on the stepper of :class:`.finite.NewtonStepper`; the force P is the
+sum of the contact nodes' vertical reactions (N). Derivation and measurements:
+benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/contact/finite_stick.py."""
 
 from __future__ import annotations
 
@@ -75,9 +55,7 @@ from .finite import (
 
 START_FRACTION = 0.05
 """The load steps start where the contact radius is this fraction of the smallest depth's:
-the nodes inside it stick at their reference radii (the history before the first step is
-one step), which moves the force at the smallest depth by ~4e-7 (benchmarks/FEM_NOTES.md,
-"Bonded contact at finite strain")."""
+the nodes inside it stick at their reference radii."""
 KEPT_SETS = 4
 """The Coulomb Newton keeps the factorizations of this many contact sets."""
 MAX_ADDED = 40
@@ -87,9 +65,7 @@ MAX_LOAD_CUTS = 4
 """Halvings (in ln depth) of a load step of the curve whose Newton or stick and slip failed:
 down to 1/16 of its ln(step_ratio) (:func:`_halves`)."""
 RELEASE_BAND = 1e-6
-"""A stuck node is released when its vertical reaction is below -this x the largest one (N):
-Newton stops at corrections of ``NEWTON_TOLERANCE`` x depth, which leaves noise in the
-reactions far above round-off (the linear solver's band, 1e-10)."""
+"""A stuck node is released when its vertical reaction is below -this x the largest one (N)."""
 
 
 @dataclass
@@ -193,12 +169,8 @@ def _warm_newton(
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
     """``newton(stepper, trial, *at)`` (:func:`_newton`, :func:`_slide_newton`) started
     from the solution (x, lam) that an earlier solve of the time step found with
-    ``trial``'s contact set, if ``warm`` holds one; the solution is recorded in ``warm``.
-
-    The secant of a time step solves the same load step at nearby depths, each through the
-    same sequence of contact sets; each set's Newton converges (to within its tolerance) to
-    the same solution from either start, in one or two iterations from the warm one. Should
-    the warm start fail, Newton starts again from ``trial``."""
+    ``trial``'s contact set, if ``warm`` holds one (else, or should that fail, from
+    ``trial``); the solution is recorded in ``warm``."""
     if warm is None:
         return newton(stepper, trial, *at)
     key = trial.key()
@@ -219,15 +191,8 @@ def _newton(
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
     """Newton at ``depth`` (m) from ``trial.x`` with its stuck nodes (``held`` radii)
     prescribed; its corrections measured relative to ``scale`` (m). Returns x, ``trial.lam``,
-    the iterations and corrections.
-
-    The prescribed dofs are eliminated in the stepper's pattern: their rows and columns are
-    zeroed with a unit diagonal and their increment moved to the right-hand side. Where the
-    stepper is ``modified`` (a :class:`BondedStepper` of the quasi-static curve), a step
-    reuses the last factorization while it was made for the same stuck dofs (also at an
-    earlier load step) and, after a step that reused it, the correction shrank by
-    :data:`.finite.CONTRACTION` (:func:`_reusable`, :meth:`.finite.NewtonStepper.converged`).
-    """
+    the iterations and corrections. A ``modified`` stepper reuses the last factorization
+    (:func:`_reusable`)."""
     slaves, values, moved = _targets(stepper, trial.held, depth)
 
     def increment(x: np.ndarray, lam: np.ndarray, state: Any, *history: list) -> tuple:
@@ -260,12 +225,8 @@ class _Kept:
     def constrained(self, slaves: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
         """A solve of the kept reduced tangent with ``slaves`` (sorted) prescribed instead of
         its own, or None where one of its own is not in ``slaves`` (a node released) or more
-        than :data:`MAX_ADDED` are added.
-
-        The added dofs E are held at zero by a reaction t on their rows: y = A^-1 (b + E t)
-        with E^T y = 0, so y = z - Z C^-1 z_E with z = A^-1 b, Z = A^-1 E and C = E^T Z
-        (the capacitance matrix, a block of the flexibility; one solve per added dof, kept,
-        and C inverted once per set)."""
+        than :data:`MAX_ADDED` are added. The added dofs are held at zero through the capacitance
+        matrix (one kept solve per added dof)."""
         if slaves.size == self.slaves.size and np.array_equal(slaves, self.slaves):
             return self.again
         added = np.setdiff1d(slaves, self.slaves, assume_unique=True)
@@ -317,10 +278,8 @@ def _reusable(
     stepper: BondedStepper, slaves: np.ndarray, corrections: list[float], fresh: list[bool]
 ) -> tuple | None:
     """The stepper's kept tangent and its solve with these stuck ``slaves``
-    (:meth:`_Kept.constrained`) if the next step may reuse them: made for this system, and,
-    after a step that reused them (not the first of the solve: the first correction has none
-    to compare with), the correction shrank by :data:`.finite.CONTRACTION`; else
-    None."""
+    (:meth:`_Kept.constrained`) if the next step may reuse them
+    (:meth:`.finite.NewtonStepper.may_reuse`); else None."""
     kept = stepper.kept_stuck
     if kept is None or not stepper.may_reuse(kept.system, corrections, fresh):
         return None
@@ -328,20 +287,12 @@ def _reusable(
     return None if again is None else (kept.tangent, again)
 
 
-def _reactions(stepper: NewtonStepper, forces: np.ndarray, held: np.ndarray) -> np.ndarray:
-    """Vertical reactions lambda = -dPi/du_z (N, compression positive) of the stuck nodes
-    from the body's residual ``forces`` (N)."""
-    return np.where(np.isnan(held), 0.0, -forces[stepper.nodes.uz])
-
-
 def _held(
     last: _Load, held: np.ndarray, enter: np.ndarray, radius: np.ndarray, gap: np.ndarray
 ) -> np.ndarray:
     """``held`` with the ``enter`` nodes stuck at the radius (m) where their gap closes,
-    interpolated between ``last`` and the current ``radius`` and ``gap`` (m). A node in
-    contact at ``last`` (gap 0) that was released within this step and penetrates again grips
-    where it is now (an instantaneous slip at zero normal force): stuck again at its radius of
-    ``last`` it would be tensile again, and the contact set would cycle."""
+    interpolated between ``last`` and the current ``radius`` and ``gap`` (m); a node released
+    within this step that penetrates again grips where it is now."""
     before = last.gap[enter]
     closing = np.ones_like(before)
     opened = before > 0.0
@@ -349,17 +300,6 @@ def _held(
     held = held.copy()
     held[enter] = last.radius[enter] + closing * (radius[enter] - last.radius[enter])
     return held
-
-
-def _touch(
-    stepper: NewtonStepper, last: _Load, guess: np.ndarray, depth: float, scale: float
-) -> np.ndarray:
-    """The stuck radii (m) to start a load step with: ``last``'s, and the free nodes that
-    the predicted ``guess`` puts below the indenter at ``depth`` (``scale``: as in
-    :func:`_changes`)."""
-    radius, gap, _, _ = stepper.geometry(guess, depth)
-    enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
-    return _held(last, last.held, enter, radius, gap)
 
 
 def _load_step(
@@ -378,7 +318,10 @@ def _load_step(
     (:func:`_warm_newton`), updated."""
     depth, scale = at
     bonded, m = math.isinf(friction), last.held.size
-    held = _touch(stepper, last, guess, depth, scale)
+    # stuck at the start: last's, and the free nodes the predicted guess puts below the indenter
+    radius, gap, _, _ = stepper.geometry(guess, depth)
+    enter = np.isnan(last.held) & (gap < -stepper.tolerance * scale)
+    held = _held(last, last.held, enter, radius, gap)
     start = _Load(held, guess, last.radius, last.gap, last.lam)
     if not bonded:
         start.slip = np.zeros(m) if last.slip is None else last.slip.copy()
@@ -393,7 +336,8 @@ def _load_step(
         radius, gap, _, _ = stepper.geometry(x, depth)
         state = stepper.system.state(x)
         forces = stepper.system.residual(x, state)
-        vertical = _reactions(stepper, forces, trial.held)
+        # the stuck nodes' vertical reactions -dPi/du_z (N, compression positive)
+        vertical = np.where(np.isnan(trial.held), 0.0, -forces[stepper.nodes.uz])
         now = replace(trial, x=x, radius=radius, gap=gap, lam=vertical, forces=forces)
         now.stretch = gent_stretch(stepper.system.material, state)
         now.iterations, now.corrections = total, corrections
@@ -429,16 +373,10 @@ def _slide_newton(
     stepper: BondedStepper, trial: _Load, depth: float, scale: float, friction: float
 ) -> tuple[np.ndarray, np.ndarray, int, list[float]]:
     """Newton at ``depth`` (m) from ``trial`` (its ``lam``: the sliding nodes' starting
-    multipliers, N) with its stuck nodes prescribed and its sliding nodes on the indenter.
-
-    A sliding node keeps its gap closed (the frictionless solver's elimination, multiplier
-    lambda along the gap's gradient (f', -1)) and carries the friction force
-    -slip ``friction`` lambda (1, f') along the indenter's tangent, linearized in lambda and
-    in the node's radius (:func:`.finite.eliminate_gaps` with ``drag``: Newton's
-    quadratic rate; lagged one iteration, the friction converged linearly at ratios of
-    0.1-0.3 where nodes slide back on unloading). Returns x, the multipliers, the iterations
-    and corrections.
-    """
+    multipliers, N) with its stuck nodes prescribed and its sliding nodes on the indenter,
+    carrying the friction -slip ``friction`` lambda along the indenter's tangent, linearized
+    (:func:`.finite.eliminate_gaps` with ``drag``). Returns x, the multipliers, the iterations
+    and corrections."""
     system, pattern, nodes = stepper.system, stepper.pattern, stepper.nodes
     slip = trial.slip
     slaves, values, moved = _targets(stepper, np.where(slip != 0, np.nan, trial.held), depth)
@@ -468,7 +406,11 @@ def _slide_newton(
             stepper, reduced, load, rows, slope, gap, slip * friction, again=again
         )
         if reuse is None and stepper.modified:
-            _keep_slide(stepper, key, (system, tangent, reduced, stepper.factorization))
+            sets = stepper.kept_slide  # this set's the newest, the oldest beyond KEPT_SETS dropped
+            sets.pop(key, None)
+            sets[key] = (system, tangent, reduced, stepper.factorization)
+            while len(sets) > KEPT_SETS:
+                del sets[next(iter(sets))]
         return du, rows, dlam, reuse is None, True
 
     return stepper.iterate((trial.x, np.where(slip != 0, trial.lam, 0.0)), scale, increment)
@@ -486,24 +428,12 @@ def _reduced(
     return reduced
 
 
-def _keep_slide(stepper: BondedStepper, key: bytes, kept: tuple) -> None:
-    """Keep the Coulomb Newton's fresh factorization ``kept`` of the contact set ``key`` as
-    the newest, dropping the oldest beyond :data:`KEPT_SETS`."""
-    sets = stepper.kept_slide
-    sets.pop(key, None)
-    sets[key] = kept
-    while len(sets) > KEPT_SETS:
-        del sets[next(iter(sets))]
-
-
 def _slide_reusable(
     stepper: BondedStepper, key: bytes, corrections: list[float], fresh: list[bool]
 ) -> tuple | None:
-    """The kept tangent, its reduced form and factorization of the Coulomb Newton if the next
-    step may reuse them (a ``modified`` stepper): made for this system and contact set
-    (``key``: stuck dofs and slip directions; the last :data:`KEPT_SETS` sets are kept, as
-    a time step's secant solves the same sets again) and, after a reused step that is not the
-    solve's first, the correction shrank by :data:`.finite.CONTRACTION`."""
+    """The kept tangent, its reduced form and factorization of the Coulomb Newton for the
+    contact set ``key`` (stuck dofs and slip directions) if the next step may reuse them
+    (:meth:`.finite.NewtonStepper.may_reuse`); else None."""
     kept = stepper.kept_slide.get(key)
     if kept is None or not stepper.may_reuse(kept[0], corrections, fresh):
         return None
@@ -581,14 +511,9 @@ class BondedStepper(NewtonStepper):
 class HistoryStepper(BondedStepper):
     """The bonded (``friction`` inf: no slip) or Coulomb contact of a time-stepped impact.
 
-    Every :meth:`solve` is one load step (:func:`_load_step`) from the
-    committed contact, the end of the last accepted time step; :meth:`commit` makes the latest
-    solve the committed one and adds the work of friction over the step to ``dissipated`` (J):
-    friction x the mean normal force x the arc slid along the indenter, for each node sliding
-    at the step's end and in contact at both ends (a stuck node does not move along the
-    indenter). The multipliers passed to :meth:`solve` are not used: the contact set follows
-    from the committed one.
-    """
+    Every :meth:`solve` is one load step (:func:`_load_step`) from the committed contact;
+    :meth:`commit` makes the latest solve the committed one and adds the work of friction over
+    the step to ``dissipated`` (J). The multipliers passed to :meth:`solve` are not used."""
 
     def __init__(
         self,
@@ -728,10 +653,7 @@ def _finite_ladder(
 def _halves(done: float, depth: float) -> tuple[float, float]:
     """The halves of the load step from ``done`` to ``depth`` (m) whose Newton or stick and
     slip failed (:func:`.constraints.in_halves`): to the geometric middle sqrt(done depth),
-    as the ladder is, then to ``depth``. Each half is a load step of the ladder with
-    step_ratio sqrt(ratio), committed (the stuck nodes' held radii) before the next, so the
-    cut curve is locally the finer ladder's (an arithmetic middle would leave the first half
-    the larger ratio, (1 + r) / 2 > sqrt(r)). The first step, from depth 0, is cut at depth / 2."""
+    then to ``depth``; the first step, from depth 0, is cut at depth / 2."""
     return (math.sqrt(done * depth) if done > 0.0 else 0.5 * depth), depth
 
 

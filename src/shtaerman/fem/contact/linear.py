@@ -1,26 +1,15 @@
 """Frictionless unilateral contact of a rigid axisymmetric indenter with the FEM half-space.
 
-The indenter z = f(r) - d (f(0) = 0 at its tip, depth d > 0) presses the surface z = 0 down.
 With nodal contact forces F_i >= 0 (N, pushing down) on the candidate surface u_z dofs, the
-surface moves by u_z = -C F, where C = S^T K^-1 S is the surface compliance (m/N). It comes
-once from the one factorization: with SuperLU the candidates are eliminated last and C is the
-inverse of the trailing Schur block (:class:`.solver.TailFactorization`); otherwise (PARDISO,
-or a tail the factorization pivoted) one multi-RHS solve of unit loads. The contact
-conditions hold exactly at the nodes:
+surface moves by u_z = -C F, C the surface compliance (m/N) from the one factorization. At
+each depth the nodal complementarity problem
 
-    gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0,
+    gap g = f(r) - d + C F >= 0,   F >= 0,   F_i g_i = 0
 
-a linear complementarity problem with C symmetric positive definite (unique solution), solved
-for each depth by a primal-dual active-set iteration (semi-smooth Newton) that ends when the
-active set repeats; each iteration is one dense Cholesky solve on the active set.
-
-Post-processing per depth: the force P from the two vertex-aligned contacts around the depth
-(:func:`aligned_force`); the pressure recovered consistently from the
-nodal forces with the surface matrix M (F = M p; the axis node carries no area, so no
-"force / area"); the central pressure extrapolated to the axis from r = 1e-4 a .. 1e-2 a
-(:func:`.constraints.central_pressure`); the contact radius located between nodes from the
-gap, which opens as (r - a)^(3/2) beyond a smooth contact edge.
-"""
+is solved by a primal-dual active-set iteration (:func:`complementarity`). The force is that
+of the two vertex-aligned contacts around the depth (:func:`aligned_force`). The method and
+the post-processing: benchmarks/FEM_NOTES.md, "Moved from the docstrings",
+fem/contact/linear.py."""
 
 from __future__ import annotations
 
@@ -111,21 +100,6 @@ def _candidates(system: ElasticSystem, free: np.ndarray, radius: float) -> tuple
     return candidates, dofs, np.searchsorted(free, dofs)
 
 
-def tail_compliance(factorization: Factorization, size: int, position: np.ndarray) -> np.ndarray:
-    """(K^-1) on the dofs at ``position`` (of ``size`` free dofs), symmetrised (m/N).
-
-    The inverse of the trailing Schur block for a :class:`.solver.TailFactorization`, else one
-    multi-RHS solve of unit loads (any backend).
-    """
-    if hasattr(factorization, "tail_inverse"):  # a TailFactorization
-        inverse = factorization.tail_inverse()
-    else:
-        unit_loads = np.zeros((size, position.size))
-        unit_loads[position, np.arange(position.size)] = 1.0
-        inverse = factorization.solve(unit_loads)[position]
-    return 0.5 * (inverse + inverse.T)
-
-
 def factorize_tail(
     system: ElasticSystem, free: np.ndarray, position: np.ndarray, backend: str = "auto"
 ) -> Factorization:
@@ -177,7 +151,13 @@ def surface_compliance(
     if radial is not None:
         position = np.concatenate([position, np.searchsorted(free, radial)])
     # a downward force -F e_i moves the surface by -C F: C = (K^-1)_cc, symmetrised
-    inverse = tail_compliance(factorization, free.size, position)
+    if hasattr(factorization, "tail_inverse"):  # a TailFactorization
+        inverse = factorization.tail_inverse()
+    else:
+        unit_loads = np.zeros((free.size, position.size))
+        unit_loads[position, np.arange(position.size)] = 1.0
+        inverse = factorization.solve(unit_loads)[position]
+    inverse = 0.5 * (inverse + inverse.T)
     mass = system.surface_mass[candidates][:, candidates].toarray()
     vertex = system.dof_nodes()[dofs] < system.mesh.p.shape[1]
     compliance = inverse[: dofs.size, : dofs.size]
@@ -210,14 +190,6 @@ class ContactStep(SolvedContact):
     """Bonded contact only: nodal forces (N) along +r on the body at ``radial_dofs``."""
 
 
-def _solve_active(matrix: np.ndarray, rhs: np.ndarray, active: np.ndarray) -> np.ndarray:
-    forces = np.zeros(rhs.size)
-    if active.any():
-        sub = matrix[np.ix_(active, active)]
-        forces[active] = la.cho_solve(la.cho_factor(sub), rhs[active])
-    return forces
-
-
 def _least_squares_start(compliance: np.ndarray, clearance: np.ndarray) -> np.ndarray:
     """Active set from Lawson-Hanson NNLS, which terminates finitely on any SPD problem.
 
@@ -232,11 +204,8 @@ def _least_squares_start(compliance: np.ndarray, clearance: np.ndarray) -> np.nd
 def complementarity(
     compliance: np.ndarray, clearance: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, int]:
-    """Solve F >= 0, g = clearance + C F >= 0, F g = 0 by a primal-dual active set.
-
-    The active-set (semi-smooth Newton) iteration usually settles in 5-9 steps. It is proven
-    only for M-matrices, and C is not one: if it revisits an active set, the iteration restarts
-    from the active set of Lawson-Hanson NNLS, which is exact up to round-off.
+    """Solve F >= 0, g = clearance + C F >= 0, F g = 0 by a primal-dual active set; should it
+    revisit an active set, it restarts from the active set of Lawson-Hanson NNLS.
 
     Parameters
     ----------
@@ -255,7 +224,10 @@ def complementarity(
     active, seen, iterations = clearance < 0, set(), 0
     while iterations < MAX_ACTIVE_SET_ITERATIONS:
         iterations += 1
-        forces = _solve_active(compliance, -clearance, active)
+        forces = np.zeros(clearance.size)
+        if active.any():
+            sub = compliance[np.ix_(active, active)]
+            forces[active] = la.cho_solve(la.cho_factor(sub), -clearance[active])
         gap = clearance + compliance @ forces
         gap[active] = 0.0
         # round-off bands: the P2 axis node carries exactly zero force in theory (its 2 pi r
@@ -304,14 +276,9 @@ def aligned_force(
 ) -> float:
     """The contact force (N) at ``depth`` between the two vertex-aligned contacts around it.
 
-    Between two changes of the active set the discrete force is affine in the depth, so the
-    discrete curve P(d) is a polygon whose chords cut the convex P ~ d^q: the nodal sum
-    oscillates with the edge position. The polygon's corners, where the edge node carries no
-    force, are discrete contacts whose edge lies on a node; on an element vertex no element
-    straddles the edge, and the force error there is smallest. The force is interpolated as a
-    power law (exact for any P = beta d^q) between the two vertex-aligned contacts around
-    ``depth``: smooth in the depth. Where the two do not bracket the depth (an irregular
-    active set), the nodal sum is returned.
+    The force is interpolated as a power law (exact for any P = beta d^q) between the two
+    contacts around ``depth`` whose edge lies on an element vertex, where the nodal sum's chord
+    error is smallest; where the two do not bracket the depth, the nodal sum is returned.
 
     Parameters
     ----------
@@ -420,8 +387,11 @@ class ContactCurve:
         Each call post-processes afresh (stress projection, about 0.05 s at 30k dofs); keep
         the result where it is needed more than once.
         """
-        step = self.steps[index]
-        return postprocess(self.system, self.solutions[index], _contact_load(self, step))
+        step, load = self.steps[index], np.zeros(self.system.n_dofs)  # the contact's forces
+        load[self.compliance.dofs] = -step.nodal_forces
+        if step.tangential_forces is not None:
+            load[self.compliance.radial_dofs] = step.tangential_forces
+        return postprocess(self.system, self.solutions[index], load)
 
 
 def timed_curve(
@@ -443,14 +413,6 @@ def timed_curve(
         timings={"factorization": seconds[0], "contact": seconds[1]},
         backend=getattr(factorization, "backend", backend),
     )
-
-
-def _contact_load(curve: ContactCurve, step: ContactStep) -> np.ndarray:
-    load = np.zeros(curve.system.n_dofs)
-    load[curve.compliance.dofs] = -step.nodal_forces
-    if step.tangential_forces is not None:
-        load[curve.compliance.radial_dofs] = step.tangential_forces
-    return load
 
 
 def field_solutions(

@@ -1,23 +1,11 @@
 """Frictionless contact of a rigid indenter pressed at a constant rate into a linear body that
-relaxes in shear by a Prony series.
+relaxes in shear by a Prony series (:func:`press_at_rate`).
 
-The body (:mod:`shtaerman.fem.viscoelastic`) is pressed at a constant rate, d = V t
-(:func:`press_at_rate`), quasi-statically: at each time step t_n, with the step's
-stiffness K (the elastic one at the step's effective shear modulus) and the history force h^n
-of the Prony branches,
-
-    K x = -S F - h^n,   g = f(r) - d_n + C F + (K^-1 h^n)_c >= 0,   F >= 0,   F . g = 0:
-
-the history shifts the indenter's clearance by the surface displacement it alone would cause,
-and the complementarity problem is solved as in the elastic contact. The steps are uniform
-between consecutive requested depths (each such interval has its own dt, its own
-factorization, and the branches' history carried over, :meth:`.ViscoelasticShear.resume`), so
-every requested depth is an instant of the march. With all g_i = 0 every step is the elastic
-contact (the same matrix, the history exactly 0). At nu2 = 1/2 the discrete contact obeys Lee
-and Radok's correspondence exactly while it grows: the force is the hereditary integral of the
-elastic FEM force, with the force linear in time over each step (exact kernels), so the time
-error is second order in dt.
-"""
+Quasi-static time steps, uniform between consecutive requested depths: at each, the history
+force of the Prony branches shifts the indenter's clearance by the surface displacement it
+alone would cause, and the complementarity problem is solved as in the elastic contact. The
+equations and their accuracy: benchmarks/FEM_NOTES.md, "Moved from the docstrings",
+fem/contact/rate.py."""
 
 from __future__ import annotations
 

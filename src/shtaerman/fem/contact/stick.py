@@ -3,28 +3,11 @@ update of one step (:func:`stick_slip_step`, the rules of :mod:`.constraints`) a
 contact loaded in steps (:func:`solve_bonded_contact`; the impact's time steps:
 :mod:`shtaerman.fem.stepper`).
 
-A point in contact keeps the radial displacement it had when it touched and its vertical one
-follows the indenter. In a step the candidates' displacements are affine in the nodal contact
-forces f on the body (f_z = -F for a downward contact force F >= 0 at the m candidates' u_z,
-f_r the shear along +r at their u_r dofs): u = u_step + A f, with A (m/N) symmetric positive
-definite (:class:`CoupledCompliance`): the static surface compliance (u_step = 0), or in a
-time step the compliance of the effective stiffness with the striker's own term on the u_z
-block. :func:`stick_slip_step` takes ``reach``, the u_z response (A f)_z that puts a node on
-the indenter (static: f(r) - d; a time step: the clearance f(r) - X - u_z the step leaves
-without new contact forces), a free node's gap being reach - (A f)_z, and ``offset``, the u_r
-the step gives without new contact forces (static: 0).
-
-The static contact (u_z = f(r) - d in contact) is loaded over the geometric ladder
-:func:`.constraints.depth_ladder` (ratio ``step_ratio``) from the depth at which the indenter
-reaches candidate node :data:`.constraints.START_NODE` up to the last, the requested depths
-included; a step whose stick and slip sets cycle is cut in smaller ones
-(:func:`.constraints.cut_step`). Its A is the surface compliance of the candidates' u_z and
-u_r dofs, from the one sparse factorization with both dofs of every candidate eliminated last
-(:class:`shtaerman.fem.solver.TailFactorization`). The force reported is the sum of the nodal
-normal forces (the vertex alignment of :func:`.linear.aligned_force` needs a history-free
-contact); the tangential nodal forces (N, on the body, along +r) are kept per depth for the
-fields.
-"""
+In a step the candidates' displacements are affine in the nodal contact forces f on the body,
+u = u_step + A f, with A (m/N) symmetric positive definite (:class:`CoupledCompliance`). The
+static contact is loaded over :func:`.constraints.depth_ladder`; its force is the sum of the
+nodal normal forces. The formulation: benchmarks/FEM_NOTES.md, "Moved from the docstrings",
+fem/contact/stick.py."""
 
 from __future__ import annotations
 
