@@ -1,0 +1,71 @@
+"""Session 59's leftovers of issue 28, item 4 (the refusals that let a failing run through, or
+name a remedy that fails): the wave limit's remedies that run, ..."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import re
+
+import pytest
+
+from shtaerman.cli import main
+
+
+def _error(capsys, *argv) -> str:
+    assert main(list(map(str, argv))) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "Traceback" not in err, err
+    return err
+
+
+# --- the wave-speed limit names remedies that pass (guards.MAX_RADIATED_ESTIMATE) --------------
+
+
+def test_the_wave_limits_remedy_runs_and_passes_its_checks(capsys):
+    """`dynamic --velocity 300` named --velocity 26.1 (lambda 0.795 < 0.8), whose run was off
+    by 2.9 of M v0^2/2 (exit 1): the FE's contact chatters from lambda 0.764 on the default
+    mesh (benchmarks/FEM_NOTES.md). The velocity it names now runs on that mesh (the level its
+    estimate reports) with both checks passed."""
+    said = _error(capsys, "dynamic", "--velocity", "300")
+    velocity = re.search(r" or velocity (\S+) m/s would pass", said)[1]
+    with contextlib.redirect_stderr(io.StringIO()):  # beyond the theory's 5 m/s: it warns
+        code = main(["dynamic", "--velocity", velocity, "--no-estimate", "--json"])
+    result = json.loads(capsys.readouterr().out)["dynamic"]
+    assert code == 0, result  # exit 1: a check failed
+    # passing runs balance to 5e-4 here, failing ones are off by 2 to 4: 1e-2 is the check's
+    assert result["energy_balance_error"] < 1e-2
+    assert result["reflected_energy_fraction"] < 1e-2  # 0.0068 observed; the check's 1e-2
+
+
+@pytest.mark.parametrize(
+    ("argv", "remedy"),
+    [
+        (("--velocity", "300"), r"density2 (\S+) kg/m\^3 or"),
+        (("--density2", "1e5"), r"density2 (\S+) kg/m\^3 or"),
+        (("--mass", "1e-50"), r"raise --mass to at least about (\S+) kg"),
+    ],
+)
+def test_each_remedy_of_the_wave_limit_is_within_it(capsys, argv, remedy):
+    """Each remedy lands just below the limit, where the runs measured pass (lambda 0.69-0.70;
+    the 1.66e-06 kg that 1e-50 kg named ran at lambda 0.79 with a 13.6 % error bar on P_max,
+    the 4.82e-06 kg it names now at 0.693 with 1.3 %)."""
+    from shtaerman.guards import MAX_RADIATED_ESTIMATE
+    from shtaerman.theory.materials import RIGID, Material, effective_modulus
+    from shtaerman.theory.radiation import impact_radiation
+    from shtaerman.theory.sneddon import PowerLawIndenter, contact_law
+
+    said = _error(capsys, "dynamic", *argv)
+    value = float(re.search(remedy, said)[1])
+    mass, velocity, density = 0.7, 3.0, 1100.0
+    if "--velocity" in argv:
+        velocity = 300.0
+    if remedy.startswith("density2"):
+        density = value
+    elif "--mass" in argv:
+        mass = value
+    body = Material(7.5e6, 0.5)
+    law = contact_law(PowerLawIndenter(5.0, 1.5), effective_modulus(RIGID, body))
+    fraction = impact_radiation(mass, velocity, law, density, body).energy_fraction
+    assert 0.98 * MAX_RADIATED_ESTIMATE < fraction <= MAX_RADIATED_ESTIMATE <= 0.7, fraction
