@@ -1,5 +1,6 @@
 """Session 59's leftovers of issue 28, item 4 (the refusals that let a failing run through, or
-name a remedy that fails): the wave limit's remedies that run, ..."""
+name a remedy that fails): the wave limit's remedies that run, the same limit on the
+finite-strain impact with inertia on every route."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import re
 
 import pytest
 
+import shtaerman as sh
 from shtaerman.cli import main
 
 
@@ -69,3 +71,74 @@ def test_each_remedy_of_the_wave_limit_is_within_it(capsys, argv, remedy):
     law = contact_law(PowerLawIndenter(5.0, 1.5), effective_modulus(RIGID, body))
     fraction = impact_radiation(mass, velocity, law, density, body).energy_fraction
     assert 0.98 * MAX_RADIATED_ESTIMATE < fraction <= MAX_RADIATED_ESTIMATE <= 0.7, fraction
+
+
+# --- the finite-strain impact with inertia: the wave-speed limit, on every route ---------------
+
+WAVES = (
+    "--mass, --density2: 1e-40 kg at 3 m/s is 0.0629 of the body's shear wave speed c_s = "
+    "sqrt(G / density2) = 47.7 m/s and radiates an estimated 1.5e+04 of its energy as waves"
+)
+"""The head of the refusal of z = 5 r^1.5 on the paper's rubber, 1e-40 kg at 3 m/s (its
+remedy: mass 4.82e-06 kg at 3 m/s, or density2 2.37e-06 kg/m^3)."""
+
+
+def _started(monkeypatch):
+    """Make any finite-strain impact that starts fail the test (the refusal comes first)."""
+    import shtaerman.fem.finite_dynamic as finite_dynamic
+
+    def started(*args, **kwargs):
+        raise AssertionError("the finite-strain impact started")
+
+    monkeypatch.setattr(finite_dynamic, "prepare_finite_impact", started)
+    import shtaerman.fem.impact as impact
+
+    monkeypatch.setattr(impact, "prepare_finite_impact", started)
+
+
+def _rubber(mass: float, velocity: float = 3.0, density: float = 1100.0) -> sh.Problem:
+    """The paper's striker on its rubber (neo-Hookean at finite strain), ``mass`` kg."""
+    body = sh.Material(7.5e6, 0.5, density)
+    indenter = sh.PowerLawIndenter(5.0, 1.5)
+    return sh.Problem.impact(indenter, body, mass=mass, velocity=velocity, model="neo-hookean")
+
+
+def test_a_rubber_impact_too_fast_for_its_waves_is_refused_on_the_command_line(capsys, monkeypatch):
+    """`dynamic --model neo-hookean --mass 1e-40 --velocity 3` (lambda 1.5e4) failed
+    numerically after about 70 s; the linear body's wave limit refuses it at once, naming a
+    mass within the finite-strain reach (x/a <= 1.2) and the waves' limit."""
+    from shtaerman.api.fem_dynamic import check_dynamic
+
+    _started(monkeypatch)
+    argv = ["dynamic", "--model", "neo-hookean", "--mass", "1e-40", "--velocity", "3"]
+    said = _error(capsys, *argv)
+    assert said.startswith(f"shtaerman: error: {WAVES}"), said
+    assert "or mass 4.82e-06 kg at 3 m/s would pass" in said, said
+    check_dynamic(_rubber(4.82e-6))  # the remedy passes the reach and the waves
+    check_dynamic(_rubber(1e-40, density=2.37e-6))
+
+
+def test_a_rubber_impact_too_fast_for_its_waves_is_refused_by_the_api_a_study_and_a_sweep(
+    tmp_path, monkeypatch
+):
+    """The same refusal by sh.dynamic, a dynamic study's loader and a dynamic sweep's load
+    (check_impact_reach, the one check of every route), before any work."""
+    import re
+
+    from shtaerman.study.schema import StudyError, load_study
+    from shtaerman.sweep.spec import SweepError, parse_sweep
+
+    _started(monkeypatch)
+    with pytest.raises(sh.LimitError, match=r"^mass, density: 1e-40 kg at 3 m/s is 0\.0629 "):
+        sh.dynamic(_rubber(1e-40))
+    path = tmp_path / "d.toml"
+    assert main(["init-study", "--kind", "dynamic", str(path)]) == 0
+    text = re.sub(r"(?m)^velocity = .*$", "velocity = 3.0", path.read_text())
+    text = re.sub(r"(?m)^mass = .*$", "mass = 1e-40", text)
+    text = text.replace("# [rubber]", "[rubber]")
+    path.write_text(text.replace('# model = "linear"', 'model = "neo-hookean"'))
+    with pytest.raises(StudyError, match=r"1e-40 kg at 3 m/s is 0\.0629 of the body's shear"):
+        load_study(path)
+    sweep = 'name = "r"\nkind = "dynamic"\n[parameters]\nmodel = "neo-hookean"\nvelocity = 3.0\n'
+    with pytest.raises(SweepError, match=r"1e-40 kg at 3 m/s is 0\.0629 of the body's shear"):
+        parse_sweep(sweep + "[axes]\nmass = [1e-40]\n")

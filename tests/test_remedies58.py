@@ -79,8 +79,8 @@ def test_a_reach_remedy_the_waves_refuse_is_not_named(capsys):
         "contact radius 5.2e-07, below the 1e-06 an FE impact resolves (strains of that "
         "order): the exact quasi-static impact (shtaerman impact) is the answer there; raise "
         "--mass to at least about 4.82e-06 kg with this striker, velocity and body (a faster "
-        "striker radiates above 0.7 of its energy as waves, where the linear FE impact breaks "
-        "down)"
+        "striker radiates above 0.7 of its energy as waves, where the FE impact with inertia "
+        "breaks down)"
     ), said
     check_dynamic(_problem(4.82e-06, 3.0))  # the remedy passes both limits
     for mass, velocity in ((1e-50, 41.4), (1.9e-48, 3.0)):  # what it named before
@@ -184,8 +184,8 @@ def test_a_reach_remedy_no_wave_passes_is_named_on_the_massless_body(capsys):
     assert said.endswith(
         "raise --velocity to at least about 4.14e+126 m/s with this striker, mass and body, "
         "or --mass to at least about 1.71e-247 kg, on the massless body, --density2 0 (at "
-        "this density2 either radiates above 0.7 of its energy as waves, where the linear FE "
-        "impact breaks down)"
+        "this density2 either radiates above 0.7 of its energy as waves, where the FE impact "
+        "with inertia breaks down)"
     ), said
     check_dynamic(_problem(1e-300, 4.14e126, 0.0))
     check_dynamic(_problem(1.71e-247, 1e100, 0.0))

@@ -18,8 +18,9 @@ Refused before any work instead (:class:`~shtaerman.validation.LimitError`, an
 :class:`~shtaerman.validation.InputError` a sweep records as its case's "refused" row): an FE
 impact whose depth lies beyond the model's reach (:func:`check_reach`; a contact curve whose
 depths an impact sets, on every route: :func:`check_profile_reach`), a sphere pressed past
-its equator (:func:`check_equator`), and a linear FE impact with inertia whose striker is too
-fast for the body's waves (:func:`check_wave_speed`).
+its equator (:func:`check_equator`), and an FE impact with inertia (linear, or a rubber's:
+:func:`shtaerman.fem.impact.check_impact_reach`) whose striker is too fast for the body's waves
+(:func:`check_wave_speed`).
 
 Both the impact drivers (:func:`shtaerman.study.dynamic.case.run_case`,
 :func:`shtaerman.fem.impact.run_impact`) and the contact curve (the API, a
@@ -253,7 +254,7 @@ def check_reach(
     paper's striker would be within reach); ``note`` ends it (the route's other remedy);
     ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
     which bound the remedy too (None: the half-space); ``waves``: the first-order radiated
-    fraction of an impact (mass kg, velocity m/s) on the body of a linear FE impact with
+    fraction of an impact (mass kg, velocity m/s) on the body of an FE impact with
     inertia (None: no waves), a remedy above :data:`MAX_RADIATED_ESTIMATE` is not named (1e-50
     kg at 3 m/s named 41.4 m/s and 1.9e-48 kg, both refused by :func:`check_wave_speed`): a
     heavier mass that passes both is named instead. The one refusal of an impact's depth
@@ -366,14 +367,15 @@ def _remedies(
 
 _MASSLESS = (
     f", on the massless body, density2=0 (at this density2 either radiates above "
-    f"{MAX_RADIATED_ESTIMATE:g} of its energy as waves, where the linear FE impact breaks down)"
+    f"{MAX_RADIATED_ESTIMATE:g} of its energy as waves, where the FE impact with inertia breaks "
+    "down)"
 )
 """The end of a reach remedy that the wave-speed limit refuses whichever is taken."""
 
 
 _WAVES_TOO = (
     f" (a faster striker radiates above {MAX_RADIATED_ESTIMATE:g} of its energy as waves, "
-    "where the linear FE impact breaks down)"
+    "where the FE impact with inertia breaks down)"
 )
 """The end of a shallow impact's reach refusal whose velocity :func:`check_wave_speed`
 would refuse."""
@@ -536,7 +538,7 @@ def check_wave_speed(
     fraction_at: Callable[[float], float] | None = None,
     reaches: Callable[[float, float], bool] | None = None,
 ) -> None:
-    """Refuse, before any work, a linear FE impact with inertia (mass in kg, velocity in m/s)
+    """Refuse, before any work, an FE impact with inertia (mass in kg, velocity in m/s)
     whose first-order radiated fraction ``estimate`` (a
     :class:`~shtaerman.theory.radiation.RadiationEstimate` on the body of density ``density``
     kg/m^3) exceeds :data:`MAX_RADIATED_ESTIMATE`, naming the velocity and the density that
@@ -568,8 +570,9 @@ def check_wave_speed(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {fraction:.3g} of its energy as waves (first order), above "
-        f"{MAX_RADIATED_ESTIMATE:g}, where the linear FE impact breaks down (its energy balance "
-        f"off by about 2 of M v0^2/2): density2 {0.99 * density * share**2:.3g} kg/m^3"
+        f"{MAX_RADIATED_ESTIMATE:g}, where the FE impact with inertia breaks down (the linear "
+        "one's energy balance off by about 2 of M v0^2/2): density2 "
+        f"{0.99 * density * share**2:.3g} kg/m^3"
         f"{remedy} (density2 0: the quasi-static impact without waves)",
         named,
     )
