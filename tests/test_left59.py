@@ -1,6 +1,6 @@
 """Session 59's leftovers of issue 28, item 4 (the refusals that let a failing run through, or
 name a remedy that fails): the wave limit's remedies that run, the same limit on the
-finite-strain impact with inertia on every route."""
+finite-strain impact with inertia on every route, a resume of an empty folder refused."""
 
 from __future__ import annotations
 
@@ -142,3 +142,34 @@ def test_a_rubber_impact_too_fast_for_its_waves_is_refused_by_the_api_a_study_an
     sweep = 'name = "r"\nkind = "dynamic"\n[parameters]\nmodel = "neo-hookean"\nvelocity = 3.0\n'
     with pytest.raises(SweepError, match=r"1e-40 kg at 3 m/s is 0\.0629 of the body's shear"):
         parse_sweep(sweep + "[axes]\nmass = [1e-40]\n")
+
+
+# --- --resume on an empty folder: nothing to complete, on every route (files.check_folder_place)
+
+
+def test_a_resume_of_an_empty_folder_is_refused_by_sweep_verify_and_effects(
+    tmp_path, capsys, monkeypatch
+):
+    """The sweep ran fresh into an empty --out given with --resume (and verify and effects
+    too): an interrupted run keeps what it saved, or nothing, so an empty folder holds no run
+    to complete. One check (check_folder_place) says it for the three."""
+    import shtaerman.output.folder as folder
+    import shtaerman.sweep.engine as engine
+
+    def started(*args, **kwargs):
+        raise AssertionError("the run started")
+
+    monkeypatch.setattr(engine, "_client", started)
+    monkeypatch.setattr(folder, "run_verification", started)
+    out = tmp_path / "empty"
+    out.mkdir()
+    said = (
+        f"shtaerman: error: --resume: the folder '{out}' (--out) is empty, so there is nothing "
+        "to complete; drop --resume to start a new run\n"
+    )
+    assert _error(capsys, "sweep", "nu-grid", "--resume", "--out", out) == said
+    assert _error(capsys, "verify", "paper", "--quick", "--resume", "--out", out) == said
+    assert _error(capsys, "effects", "--resume", "--out", out) == said
+    with pytest.raises(sh.InputError, match=r"^resume: .* is empty, .* drop resume=True to"):
+        sh.sweep("nu-grid", out=out, resume=True)
+    assert list(out.iterdir()) == []  # nothing made
