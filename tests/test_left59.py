@@ -1,6 +1,7 @@
 """Session 59's leftovers of issue 28, item 4 (the refusals that let a failing run through, or
 name a remedy that fails): the wave limit's remedies that run, the same limit on the
-finite-strain impact with inertia on every route, a resume of an empty folder refused."""
+finite-strain impact with inertia on every route, a resume of an empty folder refused, a depth
+ratio printed apart from its limit."""
 
 from __future__ import annotations
 
@@ -173,3 +174,15 @@ def test_a_resume_of_an_empty_folder_is_refused_by_sweep_verify_and_effects(
     with pytest.raises(sh.InputError, match=r"^resume: .* is empty, .* drop resume=True to"):
         sh.sweep("nu-grid", out=out, resume=True)
     assert list(out.iterdir()) == []  # nothing made
+
+
+# --- a ratio just outside the reach prints apart from its limit --------------------------------
+
+
+def test_a_depth_ratio_just_outside_the_reach_prints_apart_from_its_limit(capsys):
+    """x/a 9.96e-07 printed "depth / contact radius 1e-06, below the 1e-06", and 100.005
+    "100, beyond the 100": the ratio gets the digits that tell it from the limit."""
+    said = _error(capsys, "dynamic", "--mass", "1.84e-48", "--velocity", "3", "--density2", "0")
+    assert "depth / contact radius 9.96e-07, below the 1e-06 " in said, said
+    said = _error(capsys, "dynamic", "--mass", "1.9e16", "--velocity", "3", "--density2", "0")
+    assert "depth / contact radius 100.005, beyond the 100 " in said, said

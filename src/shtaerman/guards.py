@@ -276,7 +276,8 @@ def check_reach(
         raise LimitError(
             f"shape_coefficient: the striker z = {indenter.shape_coefficient:g} "
             f"r^{indenter.exponent:g} at {mass:g} kg and {velocity:g} m/s reaches depth / "
-            f"contact radius {ratio:.3g}, outside the [{MIN_DEPTH_RATIO:g}, {high:g}] within "
+            f"contact radius {_apart(ratio, (MIN_DEPTH_RATIO, high))}, outside the "
+            f"[{MIN_DEPTH_RATIO:g}, {high:g}] within "
             f"which {reach}, where the paper's striker (shape_coefficient={paper:g}) would not: "
             "a striker of a physical size (the exact quasi-static impact, shtaerman impact, "
             f"takes any){note}",
@@ -301,17 +302,31 @@ def check_reach(
     )
     if up:
         raise LimitError(
-            f"{drive} to {depth:.3g} m only, depth / contact radius {ratio:.2g}, below the "
+            f"{drive} to {depth:.3g} m only, depth / contact radius "
+            f"{_apart(ratio, (MIN_DEPTH_RATIO,), 2)}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
             f"quasi-static impact (shtaerman impact) is the answer there; raise {remedies}"
             + (_WAVES_TOO if shown[0] and passing[1] and not passing[0] else ""),
             "mass",
         )
     raise LimitError(
-        f"{drive} to about {depth:.3g} m, depth / contact radius {ratio:.3g}, beyond the "
+        f"{drive} to about {depth:.3g} m, depth / contact radius {_apart(ratio, (high,))}, "
+        "beyond the "
         f"{high:g} up to which {reach}: lower {remedies}{note}",
         "velocity",
     )
+
+
+def _apart(value: float, bounds: tuple[float, ...], digits: int = 3) -> str:
+    """``value`` (a ratio outside a limit) to ``digits`` significant digits, or as many more
+    as keep it from printing as one of ``bounds`` or on its other side (x/a 9.96e-07 printed
+    "1e-06, below the 1e-06")."""
+    for shown in range(digits, 18):
+        text = f"{value:.{shown}g}"
+        near = float(text)
+        if all(near != bound and (near < bound) == (value < bound) for bound in bounds):
+            return text
+    return repr(value)
 
 
 def _within_waves(
