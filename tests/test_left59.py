@@ -1,7 +1,8 @@
 """Session 59's leftovers of issue 28, item 4 (the refusals that let a failing run through, or
 name a remedy that fails): the wave limit's remedies that run, the same limit on the
-finite-strain impact with inertia on every route, a resume of an empty folder refused, a depth
-ratio printed apart from its limit."""
+finite-strain impact with inertia on every route, a resume of an empty folder refused, the exact
+impact beyond the floats naming the velocity and mass that pass, a depth ratio printed apart
+from its limit."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import contextlib
 import io
 import json
 import re
+import warnings
 
 import pytest
 
@@ -174,6 +176,46 @@ def test_a_resume_of_an_empty_folder_is_refused_by_sweep_verify_and_effects(
     with pytest.raises(sh.InputError, match=r"^resume: .* is empty, .* drop resume=True to"):
         sh.sweep("nu-grid", out=out, resume=True)
     assert list(out.iterdir()) == []  # nothing made
+
+
+# --- the exact impact beyond the floats: one remedy, in the reach rule's words ----------------
+
+
+def test_the_exact_impact_beyond_the_floats_names_the_velocity_and_mass_that_pass(capsys):
+    """`impact --velocity 1e-300` (P_c = beta x_c^(5/3) underflows) named --shape-coefficient,
+    --E2, --mass, --velocity and "give these a value of a physical size"; it names the
+    velocity and the mass that bring every scale of the impact within the floats, as the FE
+    impact's reach does, each rounded inward, and each passes when tried."""
+    import re
+
+    paper, rubber = sh.PowerLawIndenter(5.0, 1.5), sh.Material(7.5e6, 0.5)
+    for argv, mass, velocity, verb in (
+        (("--velocity", "1e-300"), 0.7, 1e-300, "raise"),
+        (("--mass", "1e-300", "--velocity", "1e-300"), 1e-300, 1e-300, "raise"),
+        (("--velocity", "1e300"), 0.7, 1e300, "lower"),
+    ):
+        assert main(["impact", *argv]) == 2  # 1e300 m/s: the theory's validity warning first
+        out, err = capsys.readouterr()
+        said = err.splitlines(keepends=True)[-1]
+        assert out == "" and "Traceback" not in err, err
+        head = f"shtaerman: error: --mass, --velocity: the exact impact of {mass:g} kg at "
+        assert said.startswith(head) and " outside the floating-point range " in said, said
+        assert "--E2" not in said and "--shape-coefficient" not in said, said
+        at = "least" if verb == "raise" else "most"
+        found = re.search(
+            rf": {verb} --velocity to at {at} about (\S+) m/s with this striker, mass and body, "
+            rf"or --mass to at {at} about (\S+) kg\n$",
+            said,
+        )
+        assert found, said
+        with warnings.catch_warnings():  # beyond the quasi-static theory's 5 m/s
+            warnings.simplefilter("ignore")
+            sh.impact(paper, rubber, mass=mass, velocity=float(found[1]))  # each passes
+            sh.impact(paper, rubber, mass=float(found[2]), velocity=velocity)
+    with pytest.raises(sh.InputError) as refused:
+        sh.impact(paper, rubber, mass=0.7, velocity=1e-300)
+    assert refused.value.parameter == "velocity"
+    assert str(refused.value).startswith("mass, velocity: the exact impact of 0.7 kg at 1e-300")
 
 
 # --- a ratio just outside the reach prints apart from its limit --------------------------------
