@@ -91,8 +91,8 @@ nu2 = 0.5: the same at 0.7 kg, v0 / c_s 0.52, and 7 kg, 0.77): its energy balanc
 2 to 4 of M v0^2/2, the contact chattering) from lambda 0.764 (0.764-0.797, then from
 0.898), its reflected-energy check from 0.75 (nu2 0; 0.78 at nu2 0.3, 0.83 at 0.5), and both
 pass at or below 0.70 for n = 1.5 (n = 1.3, nu2 0.49: to 0.9). Blunter strikers fail lower
-(n = 2: 0.52; n = 2.5 and 3: between 0.2 and 0.4), which this one limit does not cover
-(benchmarks/FEM_NOTES.md, "Wave speed guard")."""
+(n = 2: 0.52; n = 2.5 and 3: between 0.2 and 0.4; a sphere's remedy at 0.696 too), which
+this one limit does not cover (benchmarks/FEM_NOTES.md, "Wave speed guard")."""
 
 
 class ValidityWarning(UserWarning):
