@@ -86,19 +86,6 @@ def test_a_resume_of_a_missing_folder_is_refused_by_verify_sweep_and_effects(
     assert list(tmp_path.iterdir()) == []  # nothing made
 
 
-def test_a_resume_of_an_empty_folder_still_runs(tmp_path, capsys):
-    """A folder that exists but holds nothing is a run killed before anything was saved: the
-    resume computes everything, as before."""
-    import sweep_probe  # noqa: F401  (registers the kind "probe")
-
-    sweep = tmp_path / "p.toml"
-    sweep.write_text('name = "p"\nkind = "probe"\n[axes]\nx = [1.0]\n')
-    out = tmp_path / "out"
-    out.mkdir()
-    assert main(["sweep", str(sweep), "--out", str(out), "--resume", "--workers", "1"]) == 0
-    assert "1 cases, 1 ok" in capsys.readouterr().out
-
-
 # --- a sweep with a refused row, interrupted and resumed, says what the whole run says ----------
 
 DYNAMIC = """name = "fast"

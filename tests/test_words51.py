@@ -32,7 +32,10 @@ def test_the_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsys, strike
     dynamic = _refusal(capsys, ["dynamic", *RUBBER, *striker])
     contact = _refusal(capsys, ["contact", *RUBBER, *striker, "--no-estimate"])
     assert dynamic.startswith(head), dynamic
-    assert contact == dynamic + ", or, instead of --mass and --velocity, give --depths"
+    # the lighter mass that reaches x/a 1.2 at 30 m/s radiates above the wave-speed limit, which
+    # the impact with inertia keeps to since session 59 and the static curve has not
+    lighter = ", or --mass to at most about 0.0816 kg" if "--velocity" in striker else ""
+    assert contact == dynamic + lighter + ", or, instead of --mass and --velocity, give --depths"
 
 
 def test_the_reach_refusal_names_keywords_in_the_api():

@@ -86,7 +86,7 @@ def _api_refusal(call):
 @pytest.mark.parametrize("given", ["keywords", "problem"])
 def test_the_wave_speed_refusal_names_the_apis_density(capsys, given):
     """sh.dynamic of the paper's striker at 30 m/s (lambda 0.882 > 0.8) said "velocity,
-    density2: ... density2 896 kg/m^3 or velocity 26.1 m/s would pass (density2 0: ...)",
+    density2: ... density2 686 kg/m^3 or velocity 21.8 m/s would pass (density2 0: ...)",
     the study key, where the Python user gave sh.Material(density=1100): the API's entry points
     word their refusals once (problem.in_python_words). The command line keeps --density2."""
     from shtaerman.cli import main
@@ -98,7 +98,7 @@ def test_the_wave_speed_refusal_names_the_apis_density(capsys, given):
         refused = _api_refusal(lambda: sh.dynamic(case))
     said = str(refused)
     assert said.startswith("velocity, density: 0.7 kg at 30 m/s"), said
-    assert "density 896 kg/m^3 or velocity 26.1 m/s would pass (density 0: " in said, said
+    assert "density 686 kg/m^3 or velocity 21.8 m/s would pass (density 0: " in said, said
     assert "density2" not in said and refused.parameter == "velocity"
     assert main(["dynamic", "--velocity", "30"]) == 2
     typed = capsys.readouterr().err

@@ -19,8 +19,10 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from typing import Any, Protocol
 
+from ..guards import check_profile_reach, check_wave_speed
 from ..theory.materials import Material
 from ..theory.profile_impact import ProfileImpactResult
 from ..theory.sneddon import Indenter
@@ -64,21 +66,68 @@ def check_impact_reach(
     curve's check (0.7 kg at 1e-300 m/s was refused for the exact impact's P_c = 0, naming
     four inputs and no value). A sphere's or a table's reach is checked by its run, and so is
     a v0^2 beyond the largest float: its refusal (a velocity of a physical size) passes where
-    the reach's might not (1e-300 kg at 1e200 m/s: 4.13e158 m/s, whose v0^2 overflows too)."""
-    from ..guards import check_profile_reach
+    the reach's might not (1e-300 kg at 1e200 m/s: 4.13e158 m/s, whose v0^2 overflows too).
+    A rubber with inertia (``density`` > 0) is then held to the linear body's wave-speed
+    limit (:func:`shtaerman.guards.check_wave_speed`; its remedies within the finite-strain
+    reach), any profile: 1e-40 kg at 3 m/s failed numerically after a minute."""
     from ..theory.materials import RIGID, effective_modulus
     from .dynamic_contact import radiated_fraction
     from .finite_dynamic import pad_reach_note
 
-    if indenter.kind != "power-law" or math.isinf(impact[1] * impact[1]):
+    if math.isinf(impact[1] * impact[1]):
         return
     pad = geometry.thickness is not None  # a pad stops the striker short of x_c
     note = pad_reach_note(pad, friction, density) if finite else (None if pad else "")
-    if note is None:
-        return
-    waves = None if finite or not density > 0 else radiated_fraction(indenter, half_space, density)
+    waves = radiated_fraction(indenter, half_space, density) if density > 0 else None
     modulus = effective_modulus(RIGID, half_space)
-    check_profile_reach(indenter, modulus, None, impact, finite=finite, note=note, waves=waves)
+    if indenter.kind == "power-law" and note is not None:
+        check_profile_reach(indenter, modulus, None, impact, finite=finite, note=note, waves=waves)
+    if finite and waves is not None:
+        _check_finite_waves(indenter, half_space, density, impact, waves)
+
+
+def _check_finite_waves(
+    indenter: Indenter,
+    half_space: Material,
+    density: float,
+    impact: tuple[float, float],
+    waves: Callable[[float, float], float],
+) -> None:
+    """The wave-speed limit of a rubber's impact (mass kg, velocity m/s) with inertia on
+    ``half_space`` of ``density`` kg/m^3 (``waves``: the radiated fraction of an impact), as
+    the linear body's (:func:`.dynamic_contact.check_dynamic_impact`): a power law's remedy
+    within the finite-strain reach, a sphere's or a table's velocity checked by ``waves``."""
+    import functools
+    import warnings
+
+    from ..theory.materials import RIGID, effective_modulus
+    from ..theory.radiation import impact_radiation
+    from ..theory.sneddon import contact_law
+    from ..validation import InputError
+    from .dynamic_contact import profile_sizing_impact
+
+    modulus = effective_modulus(RIGID, half_space)
+    with warnings.catch_warnings():  # the run warns of it beside its results
+        warnings.simplefilter("ignore")
+        exact = profile_sizing_impact(indenter, half_space, *impact)
+        estimate = impact_radiation(
+            *impact, contact_law(indenter, modulus), density, half_space, exact
+        )
+
+    def reaches(mass: float, velocity: float) -> bool:
+        try:
+            with warnings.catch_warnings():  # a slower or heavier impact, only checked
+                warnings.simplefilter("ignore")
+                check_profile_reach(indenter, modulus, None, (mass, velocity), finite=True)
+        except (InputError, ArithmeticError):
+            return False
+        return True
+
+    if exact is None:  # the power law: its force exponent q is exact
+        q = contact_law(indenter, modulus).force_exponent
+        check_wave_speed(impact, estimate, density, q, None, reaches)
+    else:
+        check_wave_speed(impact, estimate, density, None, functools.partial(waves, impact[0]))
 
 
 def run_impact(

@@ -541,7 +541,8 @@ def check_folder_place(path: Path, option: str = "out", *, resume: bool = False)
     InputError before any work: the refusals of :func:`check_folder_path`, an existing entry
     that is no folder, a parent that is missing or no folder, another live run writing it (a
     killed run's leftovers are cleaned first, which may put its folder back), with ``resume``
-    a folder that does not exist (nothing to complete), and a parent that takes no new entry.
+    a folder that does not exist or is empty (nothing to complete: an interrupted run keeps
+    what it saved, else nothing), and a parent that takes no new entry.
     The one check of the place of every result folder (:func:`check_output_folder`, a sweep's);
     what the folder may hold is each caller's."""
     target = check_folder_path(path, option)
@@ -553,10 +554,11 @@ def check_folder_place(path: Path, option: str = "out", *, resume: bool = False)
         live = _other_writers(target)  # first: cleaning may restore a folder
         if live:
             raise _busy(option, target, live)
-        if resume and not target.is_dir():
+        if resume and not (target.is_dir() and any(target.iterdir())):
+            state = "is empty" if target.is_dir() else "does not exist"
             raise InputError(
-                f"resume: the folder {str(path)!r} ({_named(option)}) does not exist, so there "
-                "is nothing to complete; drop resume=True to start a new run",
+                f"resume: the folder {str(path)!r} ({_named(option)}) {state}, so there is "
+                "nothing to complete; drop resume=True to start a new run",
                 "resume",
             )
         probe_writable(option, target.parent, _stage_path(target).name)

@@ -203,8 +203,11 @@ def check_velocity(velocity: float) -> None:
 
 
 def _exp(exponent: float) -> float:
-    """exp that overflows to inf instead of raising."""
-    return math.exp(exponent) if exponent < 709.8 else math.inf
+    """exp that overflows to inf instead of raising (from ln of the largest float, 709.78)."""
+    try:
+        return math.exp(exponent)
+    except OverflowError:
+        return math.inf
 
 
 SCALES = ("shape_coefficient", "E2", "mass", "velocity")
@@ -227,6 +230,100 @@ def representable(
             inputs[0],
         )
     return value
+
+
+def _scales(mass: float, velocity: float, law: ContactLaw) -> dict[str, float]:
+    """x_c, P_c, t_c (m, N, s), a_c (m), p_c (Pa) and the impulse (N s) of the exact impact
+    of ``mass`` kg at ``velocity`` m/s, each possibly 0, subnormal or inf (x_c in logarithms:
+    M v0^2 alone may leave the floats; a_c and p_c left out where x_c does)."""
+    beta, q = law.beta, law.force_exponent
+    log_x_c = log_approach(mass, velocity, beta, q)
+    x_c = _exp(log_x_c)
+    found = {
+        "x_c": x_c,
+        "P_c": _exp(math.log(beta) + q * log_x_c),
+        "t_c": duration_integral(q) * _exp(log_x_c - math.log(velocity)),
+    }
+    if not (math.isfinite(x_c) and x_c >= sys.float_info.min):  # no a_c, p_c of it
+        return found
+    found["a_c"] = float(law.contact_radius(x_c))
+    with np.errstate(all="ignore"):  # a_c^2 may underflow: the check says so
+        found["p_c"] = float(law.central_pressure(x_c))
+    return {**found, "impulse": 2.0 * mass * velocity}
+
+
+def _outside(scales: dict[str, float], law: ContactLaw) -> tuple[str, float] | None:
+    """The first of ``scales`` (:func:`_scales`) that is no normal float (0, subnormal, inf;
+    p_c's inf is exact for n <= 1), as (name, value); None where each is one."""
+    unbounded = math.isinf(law.central_to_mean_ratio)
+    for name, value in scales.items():
+        normal = math.isfinite(value) and abs(value) >= sys.float_info.min
+        if not normal and not (unbounded and name == "p_c"):
+            return name, value
+    return None
+
+
+def _refuse(name: str, value: float, impact: tuple[float, float], law: ContactLaw) -> None:
+    """Raise the refusal of the exact ``impact`` (mass kg, velocity m/s) whose scale ``name``
+    is ``value``, outside the floats: naming the velocity and the mass that bring every scale
+    within them, as the FE impact's reach does (:func:`shtaerman.guards.check_reach`), else,
+    or where the striker or the body is at fault (the command line's default impact on them
+    leaves the floats too: z = 1e308 r^1.3 named 8e20 m/s), the inputs that set the scales
+    (:func:`representable`)."""
+    from ..vocabulary import entry
+
+    mass, velocity = impact
+    typical = (entry("mass").default, entry("velocity").default)
+    if _outside(_scales(*typical, law), law) is not None:
+        representable(name, value, mass, velocity)
+    remedies = [
+        (*_passing(impact, law, which), parameter, unit)
+        for which, parameter, unit in ((1, "velocity", "m/s"), (0, "mass", "kg"))
+    ]
+    remedies = [remedy for remedy in remedies if remedy[2]]
+    if not remedies:
+        representable(name, value, mass, velocity)
+    (verb, bound, shown, parameter, unit), *others = remedies
+    other = "mass" if parameter == "velocity" else "velocity"
+    said = f"{verb} {parameter}=... to at {bound} about {shown} {unit} with this striker, {other}"
+    for more, bound, shown, parameter, unit in others:  # the verb once where both share it
+        said += f" and body, or {'' if more == verb else more + ' '}{parameter}=... to at "
+        said += f"{bound} about {shown} {unit}"
+    raise InputError(
+        f"mass, velocity: the exact impact of {mass:g} kg at {velocity:g} m/s would give {name} "
+        f"= {value:g}, outside the floating-point range [{sys.float_info.min:.3g}, "
+        f"{sys.float_info.max:.3g}]: {said}{'' if others else ' and body'}",
+        remedies[0][3],
+    )
+
+
+def _passing(impact: tuple[float, float], law: ContactLaw, which: int) -> tuple[str, str, str]:
+    """("raise" or "lower", "least" or "most", the value, three digits) of the velocity
+    (``which`` 1, m/s) or the mass (0, kg) nearest ``impact``'s, the other kept, at which
+    every scale of the exact impact is a normal float; ("", "", "") where none is."""
+
+    def fits(log_value: float) -> bool:
+        moved = [math.log(impact[0]), math.log(impact[1])]
+        moved[which] = log_value
+        return _outside(_scales(*map(_exp, moved), law), law) is None
+
+    start = math.log(impact[which])
+    far = next(
+        (start + sign * 10.0 * step for step in range(1, 150) for sign in (1.0, -1.0)
+         if abs(start + sign * 10.0 * step) < 700.0 and fits(start + sign * 10.0 * step)),
+        None,
+    )  # fmt: skip
+    if far is None:
+        return "", "", ""
+    low, high = start, far  # refused, passing
+    for _ in range(80):
+        middle = (low + high) / 2.0
+        low, high = (low, middle) if fits(middle) else (middle, high)
+    up = far > start
+    shown = bound_text(math.exp(high), "low" if up else "high")
+    if not fits(math.log(float(shown))):
+        return "", "", ""
+    return ("raise", "least", shown) if up else ("lower", "most", shown)
 
 
 def log_approach(mass: float, velocity: float, beta: float, q: float) -> float:
@@ -258,18 +355,11 @@ def solve_impact(mass: float, velocity: float, law: ContactLaw) -> ImpactResult:
     velocity = validate_positive("velocity", velocity, "m/s")
     check_velocity(velocity)
     beta, q = validate_positive("beta", law.beta), law.force_exponent
-    log_x_c = log_approach(mass, velocity, beta, q)
-    x_c = representable("x_c", _exp(log_x_c), mass, velocity)
-    P_c = representable("P_c", _exp(math.log(beta) + q * log_x_c), mass, velocity)
-    t_c = representable(
-        "t_c", duration_integral(q) * _exp(log_x_c - math.log(velocity)), mass, velocity
-    )
-    a_c = representable("a_c", float(law.contact_radius(x_c)), mass, velocity)
-    with np.errstate(all="ignore"):  # a_c^2 may underflow: representable() says so
-        p_c = float(law.central_pressure(x_c))
-    if not math.isinf(law.central_to_mean_ratio):  # inf: exact for n <= 1
-        p_c = representable("p_c", p_c, mass, velocity)
-    impulse = representable("impulse", 2.0 * mass * velocity, mass, velocity)
+    scales = _scales(mass, velocity, law)
+    outside = _outside(scales, law)
+    if outside is not None:
+        _refuse(*outside, (mass, velocity), law)
+    x_c, P_c, t_c, a_c, p_c, impulse = scales.values()
     half_time = ateb_sine(q, 1.0, (q + 1.0) / 4.0 * duration_integral(q))
     return ImpactResult(
         mass=mass,
