@@ -123,3 +123,22 @@ def test_pattern_solver_after_a_zero_pivot_is_superlu_in_nested_dissection_order
         # a direct solve of a 50 x 50 system: ~1e-14
         assert np.max(abs(pattern.matrix(data) @ solution - rhs)) <= 1e-10 * np.max(abs(rhs))
     assert tried == [1]
+
+
+def test_pattern_solver_solves_an_unsymmetric_matrix_without_qdldl(monkeypatch):
+    """A Coulomb slip's tangent is not symmetric: QDLDL (the upper triangle's LDL^T) would
+    solve its symmetric part, so it is not tried; SuperLU in nested-dissection order solves
+    the matrix itself."""
+    from shtaerman.fem import solver
+
+    matrix, rows, cols = _saddle_point(0)
+    pattern, where = pattern_of(rows, cols, matrix.shape[0])
+    data = np.bincount(where, matrix.data, pattern.nnz)
+    skew = np.random.default_rng(2).random(pattern.nnz) * (pattern.indices < pattern.columns)
+    data += 0.1 * skew  # the upper triangle only: an asymmetry of 0.1 of the entries
+    monkeypatch.setattr(solver.PatternSolver, "_ldl_solve", lambda *_: pytest.fail("QDLDL"))
+    monkeypatch.setattr(solver, "factorize", lambda m: pytest.fail("fell back to factorize"))
+    rhs = np.arange(1.0, pattern.size + 1.0)
+    solution = solver.PatternSolver(pattern, np.arange(pattern.size)).solve(data, rhs)
+    # a direct solve of a 50 x 50 system: ~1e-14 (the symmetric part's solution: O(0.1))
+    assert np.max(abs(pattern.matrix(data) @ solution - rhs)) <= 1e-10 * np.max(abs(rhs))

@@ -485,8 +485,10 @@ class PatternSolver:
     Each matrix is row-max scaled (:func:`row_max_scaling`) and factorized by QDLDL (LDL^T
     with diagonal pivots, of the upper triangle) in the approximate-minimum-degree order of
     the pattern's first factorization; later matrices reuse that analysis (one set of factors
-    per solve still in use). After a zero pivot in that order (QDLDL does not pivot), SuperLU
-    in the :func:`nested_dissection` order of ``groups`` takes over. A solve whose
+    per solve still in use). A matrix that is not symmetric (a Coulomb slip's tangent: its
+    entries and their mirrors differ by more than ``ACCURACY_CHECK`` after the scaling) is
+    factorized by SuperLU in the :func:`nested_dissection` order of ``groups``, and so is every
+    matrix after a zero pivot in QDLDL's order (QDLDL does not pivot). A solve whose
     componentwise backward error exceeds ``ACCURACY_CHECK`` is redone by :func:`factorize`
     (its own ordering, stricter pivoting if needed).
 
@@ -501,6 +503,7 @@ class PatternSolver:
     def __init__(self, pattern: Pattern, groups: np.ndarray) -> None:
         self.pattern, self.groups = pattern, groups
         self._upper_take = np.flatnonzero(pattern.indices <= pattern.columns)
+        self._mirror_take = pattern.transpose[self._upper_take]
         per_column = np.bincount(pattern.columns[self._upper_take], minlength=pattern.size)
         self._upper = sp.csc_matrix(
             (np.zeros(self._upper_take.size), pattern.indices[self._upper_take],
@@ -536,7 +539,9 @@ class PatternSolver:
         scale = 1.0 / np.sqrt(pattern.row_max(np.abs(data)))
         scaled = data * scale[pattern.indices]
         scaled *= np.repeat(scale, np.diff(pattern.indptr))  # the columns' scale, in order
-        inner = self._ldl_solve(scaled) if self._analysed is not None else None
+        upper = scaled[self._upper_take]
+        symmetric = np.max(abs(upper - scaled[self._mirror_take])) <= ACCURACY_CHECK
+        inner = self._ldl_solve(upper) if symmetric and self._analysed is not None else None
         inner = inner or self._ordered_solve(scaled)
         if inner is not None:
             solution = inner(scale * rhs)
@@ -547,10 +552,11 @@ class PatternSolver:
         solve = _ScaledSolve(scale, factorize(pattern.matrix(scaled)).solve)
         return solve(rhs), solve
 
-    def _ldl_solve(self, scaled: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
-        """QDLDL's solve of the scaled matrix, in factors no held solve uses; None (and QDLDL
-        no more for this pattern) on a zero pivot."""
-        self._upper.data = scaled[self._upper_take]
+    def _ldl_solve(self, upper: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
+        """QDLDL's solve of the scaled symmetric matrix of upper triangle ``upper`` (its data),
+        in factors no held solve uses; None (and QDLDL no more for this pattern) on a zero
+        pivot."""
+        self._upper.data = upper
         free = [entry for entry in self._analysed if entry[1]() is None]
         try:
             if free:
