@@ -228,3 +228,15 @@ def test_a_depth_ratio_just_outside_the_reach_prints_apart_from_its_limit(capsys
     assert "depth / contact radius 9.96e-07, below the 1e-06 " in said, said
     said = _error(capsys, "dynamic", "--mass", "1.9e16", "--velocity", "3", "--density2", "0")
     assert "depth / contact radius 100.005, beyond the 100 " in said, said
+
+
+@pytest.mark.parametrize("coefficient", ["1e-300", "1e-200"])
+def test_a_beta_beyond_the_floats_is_refused_in_one_line(capsys, coefficient):
+    """adv59: (kappa A)^(-1/n) overflows for A = 1e-300 at n = 0.25 ((1e-300)^-4): Python's
+    power raised OverflowError, a traceback (exit 1); beta is inf, which the exact theory's
+    range check refuses (exit 2, one line)."""
+    argv = ["impact", "--shape-coefficient", coefficient, "--exponent", "0.25"]
+    assert main([*argv, "--velocity", "1e-100"]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+    assert "beta" in err and "= inf" in err and "not representable" in err

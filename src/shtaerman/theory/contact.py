@@ -74,9 +74,11 @@ class PowerLawContact:
     def beta(self) -> float:
         """beta = (2n/(n+1)) E* (kappa_n A)^(-1/n), in N m^-q."""
         n, kappa = self.indenter.exponent, self.indenter.kappa
-        return (
-            2 * n / (n + 1) * self.modulus * (kappa * self.indenter.shape_coefficient) ** (-1 / n)
-        )
+        try:
+            scale = (kappa * self.indenter.shape_coefficient) ** (-1 / n)
+        except OverflowError:  # beyond the floats (A = 1e-300 at n = 0.25): the range check's
+            scale = math.inf
+        return 2 * n / (n + 1) * self.modulus * scale
 
     @property
     def central_to_mean_ratio(self) -> float:
