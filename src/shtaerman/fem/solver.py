@@ -543,9 +543,10 @@ class PatternSolver:
         symmetric = np.max(abs(upper - scaled[self._mirror_take])) <= ACCURACY_CHECK
         inner = self._ldl_solve(upper) if symmetric and self._analysed is not None else None
         inner = inner or self._ordered_solve(scaled)
+        scaled_rhs = scale * rhs
         if inner is not None:
-            solution = inner(scale * rhs)
-            error = solution_backward_error(pattern.matrix(scaled), solution, scale * rhs)
+            solution = inner(scaled_rhs)
+            error = solution_backward_error(pattern.matrix(scaled), solution, scaled_rhs)
             if error <= ACCURACY_CHECK:
                 solve = _ScaledSolve(scale, inner)
                 return scale * solution, solve
