@@ -1,6 +1,7 @@
 """Hostile numbers: one-line InputErrors naming the parameter, or correct results (issue 7)."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -199,3 +200,25 @@ def test_apostrophes_of_prose_are_not_cut_as_a_quoted_value():
     assert str(InputError(prose)) == prose
     pasted = f"SERIES: got '{'x' * 300}'"  # a pasted value is still cut
     assert str(InputError(pasted)).endswith("...' (300 characters)")
+
+
+@pytest.mark.parametrize(("mass", "velocity"), [(0.7, 1e-300), (0.7, 1e-160), (1e-300, 1e-100)])
+def test_sphere_impact_below_the_floats_names_what_passes(mass, velocity):
+    # v0^2 or M v0^2 / 2 below the smallest normal float: the profile impact refused with no
+    # value, or (v0^2 subnormal) printed t_y = nan (adv59). The named velocity and mass
+    # (4 times the smallest energy, rounded up) must give a finite impact and ODE check.
+    import shtaerman as sh
+
+    sphere, rubber = sh.SphereIndenter(1.0), sh.Material(1e7, 0.3)
+    with pytest.raises(InputError) as refused:
+        sh.impact(sphere, rubber, mass=mass, velocity=velocity)
+    named = re.findall(
+        r"(velocity|mass)=\.\.\. to at least about (\S+) (?:m/s|kg)", str(refused.value)
+    )
+    assert named and named[0][0] == "velocity"
+    for parameter, value in named:
+        moved = {"mass": mass, "velocity": velocity, parameter: float(value)}
+        result = sh.impact(sphere, rubber, check=True, **moved)
+        assert math.isfinite(result.solution.t_y) and result.solution.t_y > 0
+        # the exact profile impact's clock loses digits at 1e-307 J (measured 3e-6)
+        assert result.ode_check["t_y"] == pytest.approx(result.solution.t_y, rel=1e-4)

@@ -132,6 +132,18 @@ def test_ode_cross_check(exponent):
     np.testing.assert_allclose(v, exact.v[:-1], rtol=0, atol=1e-8 * result.velocity)
 
 
+def test_ode_cross_check_below_the_smallest_energy():
+    # v0 = 9.12e-249 m/s is impact's own remedy for 1e-300 (P_c just above the smallest normal
+    # float, 2.2e-308 N): M v0^2 / 2 underflows to 0 in SI units, which divided by zero (adv59).
+    # The scaled ODE agrees to ~3e-10 there (beta x^q passes through subnormal x^q, ~5e-10 of
+    # itself); 1e-8 as for ordinary velocities.
+    result = paper_impact(velocity=9.12e-249)
+    assert 0.5 * result.mass * result.velocity**2 == 0.0
+    numerical = integrate_impact(result.mass, result.velocity, result.law.force, result.x_c)
+    for key in ("x_c", "t_c", "t_y"):
+        assert getattr(numerical, key) == pytest.approx(getattr(result, key), rel=1e-8)
+
+
 def test_scaling_with_velocity():
     # the paper prints x_c = 0.6037365 v0^(3/4): a misprint for 0.0037365 (which gives its own
     # x_c = 0.008517 m at 3 m/s); its beta = 2.77632e6 drops Q1, hence 2e-5

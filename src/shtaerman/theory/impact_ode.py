@@ -30,6 +30,8 @@ def energy_depth(mass: float, velocity: float, force: ForceLaw, depth_guess: flo
     """Depth x_c in m where the stored energy Int_0^x P equals M v0^2 / 2, to about 1e-9.
 
     Only the scale of the integration: the maximum approach itself comes from the ODE's event.
+    Computed in units of depth_guess and P(depth_guess), so that energies below the smallest
+    float (a striker at 1e-248 m/s) stay representable.
 
     Parameters
     ----------
@@ -40,23 +42,32 @@ def energy_depth(mass: float, velocity: float, force: ForceLaw, depth_guess: flo
     depth_guess : float
         A depth in m of the right order; the bracket is widened from it.
     """
-    kinetic = 0.5 * mass * velocity**2
+    reference, scaled = _scaled_law(force, depth_guess)
+    kinetic = 0.5 * (mass * velocity / reference) * (velocity / depth_guess)
 
-    def surplus(x: float) -> float:
-        energy = quad(lambda s: float(force(np.asarray(s))), 0.0, x, epsabs=0, epsrel=1e-9)[0]
-        return energy - kinetic
+    def surplus(s: float) -> float:
+        return quad(lambda u: float(scaled(u)), 0.0, s, epsabs=0, epsrel=1e-9)[0] - kinetic
 
-    upper = depth_guess
+    upper = 1.0
     for _ in range(MAX_BRACKET_DOUBLINGS):
         if surplus(upper) >= 0:
             break
         upper *= 2.0
     else:
         raise RuntimeError(
-            f"no depth up to {upper:g} m stores the kinetic energy {kinetic:g} J (is P(x) "
-            f"increasing from P(0) = 0, and depth_guess of the right order?)"
+            f"no depth up to {upper * depth_guess:g} m stores the kinetic energy "
+            f"{0.5 * mass * velocity**2:g} J (is P(x) increasing from P(0) = 0, and depth_guess "
+            f"of the right order?)"
         )
-    return brentq(surplus, 0.0, upper, xtol=1e-12 * upper, rtol=1e-10)
+    return depth_guess * brentq(surplus, 0.0, upper, xtol=1e-12 * upper, rtol=1e-10)
+
+
+def _scaled_law(force: ForceLaw, depth: float) -> tuple[float, ForceLaw]:
+    """P(depth) in N and the force law in its units, s -> P(depth s) / P(depth)."""
+    reference = float(force(np.asarray(depth)))
+    if not 0.0 < reference < np.inf:
+        raise RuntimeError(f"no depth stores the impact's energy: P({depth:g} m) = {reference:g} N")
+    return reference, lambda s: force(depth * np.asarray(s)) / reference
 
 
 @dataclass(frozen=True)
@@ -114,10 +125,11 @@ def integrate_impact(
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
     length = energy_depth(mass, velocity, force, depth_guess)
-    stiffness = length / (mass * velocity**2)
+    reference, scaled = _scaled_law(force, length)
+    stiffness = (length / velocity) * (reference / (mass * velocity))  # L P(L) / (M v0^2)
 
     def rhs(_tau: float, y: np.ndarray) -> list[float]:
-        return [y[1], -stiffness * float(force(np.asarray(length * max(y[0], 0.0))))]
+        return [y[1], -stiffness * float(scaled(max(y[0], 0.0)))]
 
     def turning(_tau: float, y: np.ndarray) -> float:
         return y[1]

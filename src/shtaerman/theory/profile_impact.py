@@ -21,6 +21,7 @@ t(u) by bisection on that interpolant.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -30,7 +31,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 from scipy.special import roots_legendre
 
-from ..validation import LimitError, bound_text, validate_positive
+from ..validation import InputError, LimitError, bound_text, validate_positive
 from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
@@ -98,9 +99,7 @@ def _work(law: SneddonContact, a: ArrayLike, below: ArrayLike) -> np.ndarray:
 def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     """a_c in m from W(a_c) = M v0^2 / 2: a first guess on equal panels over the whole
     profile, then the exact root on the fine panels up to 1.25 times it (or the whole)."""
-    energy = representable(
-        "M v0^2 / 2", 0.5 * mass * (velocity * velocity), mass, velocity, ("mass", "velocity")
-    )
+    energy = _impact_energy(mass, velocity)
     top = law.max_contact_radius
     top = math.nextafter(top, 0.0) if law.sphere else top
     square = lambda s: law.depth(s) ** 2  # noqa: E731
@@ -133,6 +132,30 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
                 maxiter=ROOT_ITERATIONS,
             )
     _refuse_the_end(law, top, energy, float(_work(law, top, squares(top))), mass, velocity)
+
+
+def _impact_energy(mass: float, velocity: float) -> float:
+    """M v0^2 / 2 in J (mass kg, velocity m/s). Where it or v0^2 (the history's speed) is
+    below the smallest normal float, InputError naming the velocity and (where v0^2 is one)
+    the mass that give 4 times it, as the power-law impact's refusal does; beyond the largest,
+    the inputs that set it."""
+    tiny, square = sys.float_info.min, velocity * velocity
+    energy = 0.5 * mass * square
+    if square >= tiny and (energy >= tiny or not energy < 1.0):
+        return representable("M v0^2 / 2", energy, mass, velocity, ("mass", "velocity"))
+    log_energy = math.log(8.0 * tiny)  # twice 4 times the smallest
+    faster = max(math.exp(0.5 * (log_energy - math.log(mass))), 2.0 * math.sqrt(tiny))
+    said = f"raise velocity=... to at least about {bound_text(faster, 'low')} m/s"
+    heavier = log_energy - 2.0 * math.log(velocity)
+    if square >= tiny and heavier < math.log(sys.float_info.max):
+        said += " with this striker, mass and body, or mass=... to at least about "
+        said += f"{bound_text(math.exp(heavier), 'low')} kg"
+    raise InputError(
+        f"mass, velocity: the exact impact of {mass:g} kg at {velocity:g} m/s would give "
+        f"v0^2 = {square:g} m^2/s^2 and M v0^2 / 2 = {energy:g} J; the profile impact needs "
+        f"both above the smallest float {tiny:.3g}: {said}",
+        "velocity",
+    )
 
 
 def _refuse_the_end(
