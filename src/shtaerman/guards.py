@@ -30,6 +30,7 @@ they reached.
 
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
 from collections.abc import Callable, Iterator
@@ -46,6 +47,7 @@ __all__ = [
     "MAX_DEPTH_RATIO",
     "MAX_RADIATED_ESTIMATE",
     "MIN_DEPTH_RATIO",
+    "WAVE_LIMITS",
     "FailedCheckWarning",
     "LadderWarnings",
     "LockingWatch",
@@ -58,6 +60,7 @@ __all__ = [
     "outside_validity",
     "reach_velocity",
     "warn_outside_validity",
+    "wave_limit",
 ]
 
 MAX_DEPTH_RATIO = 1.2
@@ -85,14 +88,50 @@ MAX_RADIATED_ESTIMATE = 0.7
 """Largest first-order radiated energy fraction lambda of the quasi-static impact
 (:func:`shtaerman.theory.radiation.radiation_estimate`, ~ v0 / c_s: the striker's speed over
 the body's shear wave speed c_s = sqrt(G / rho), times its mass and shape) at which an FE
-impact with inertia is run. For one striker exponent n and nu2, the linear FE's restitution
-and checks follow lambda alone, whatever v0 / c_s (session 59, default mesh; n = 1.5,
-nu2 = 0.5: the same at 0.7 kg, v0 / c_s 0.52, and 7 kg, 0.77): its energy balance fails (off by
-2 to 4 of M v0^2/2, the contact chattering) from lambda 0.764 (0.764-0.797, then from
-0.898), its reflected-energy check from 0.75 (nu2 0; 0.78 at nu2 0.3, 0.83 at 0.5), and both
-pass at or below 0.70 for n = 1.5 (n = 1.3, nu2 0.49: to 0.9). Blunter strikers fail lower
-(n = 2: 0.52; n = 2.5 and 3: between 0.2 and 0.4; a sphere's remedy at 0.696 too), which
-this one limit does not cover (benchmarks/FEM_NOTES.md, "Wave speed guard")."""
+impact with inertia is run, for a striker as sharp as the paper's or sharper (force exponent q
+>= 5/3, n <= 3/2); a blunter one's is lower (:func:`wave_limit`). For one striker and nu2 the
+linear FE's restitution and checks follow lambda alone, whatever v0 / c_s (session 59, default
+mesh; n = 1.5, nu2 = 0.5: the same at 0.7 kg, v0 / c_s 0.52, and 7 kg, 0.77): its energy
+balance fails (off by 2 to 4 of M v0^2/2, the contact chattering) from lambda 0.764, its
+reflected-energy check from 0.75 (nu2 0; 0.78 at nu2 0.3, 0.83 at 0.5), and both pass at or
+below 0.70 for n = 1.5 (n = 1.3, nu2 0.49: to 0.9; benchmarks/FEM_NOTES.md, "Wave speed
+guard")."""
+WAVE_LIMITS = (
+    (1.1, 0.0045),
+    (1.2, 0.0065),
+    (1.25, 0.008),
+    (9.0 / 7.0, 0.008),
+    (4.0 / 3.0, 0.22),
+    (1.4, 0.28),
+    (1.5, 0.45),
+    (11.0 / 7.0, 0.57),
+    (5.0 / 3.0, MAX_RADIATED_ESTIMATE),
+)
+"""(q, limit): the wave-speed limit (:func:`wave_limit`) at force exponents q = (n + 1)/n of
+z = A r^n, n = 10, 5, 4, 3.5, 3, 2.5, 2, 1.75 and 1.5, each 0.9 of the lowest lambda at which
+the linear FE impact with inertia failed a check at nu2 0, 0.3 or 0.5 (default mesh;
+benchmarks/bench_wave_limit.py, FEM_NOTES.md "Wave speed guard, session 60"): its energy
+balance (nu2 0.5, the contact chattering) from lambda 0.66, 0.52, 0.32, 0.25 (n = 1.75, 2 and
+a sphere, 2.5, 3), its reflected-energy check (nu2 0) from 0.64, 0.505, 0.3 (n = 1.75, 2, 3).
+From n = 3.5 the body keeps ~1 % (0.9 to 2 %) of the radiated energy near the contact at the
+end whatever lambda, and the check fails once that is 1e-4 of M v0^2/2: from lambda ~0.009
+(n = 3.5 and 4, nu2 0), 0.0075 (n = 5), 0.005 (n = 10). n = 1.5 keeps session 59's 0.7."""
+
+
+def wave_limit(force_exponent: float) -> float:
+    """Largest first-order radiated fraction lambda at which an FE impact with inertia of a
+    striker whose force goes as x^``force_exponent`` (q; a sphere's or a table's smooth tip:
+    3/2) is run: :data:`WAVE_LIMITS` interpolated linearly in q, their first beyond n = 10 and
+    :data:`MAX_RADIATED_ESTIMATE` from q = 5/3 up (n <= 3/2). Blunter strikers break down at a
+    lower lambda; a sphere's fails where z = r^2 / (2 R) does, however deep (q at its x_c
+    1.44: benchmarks/FEM_NOTES.md)."""
+    q = round(force_exponent, 9)  # 1 + 1/n and (n + 1)/n differ in the last digit
+    for (first, low), (last, high) in itertools.pairwise(WAVE_LIMITS):
+        if q <= first:
+            return low
+        if q < last:
+            return low + (high - low) * (q - first) / (last - first)
+    return WAVE_LIMITS[-1][1]
 
 
 class ValidityWarning(UserWarning):
@@ -255,7 +294,7 @@ def check_reach(
     ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
     which bound the remedy too (None: the half-space); ``waves``: the first-order radiated
     fraction of an impact (mass kg, velocity m/s) on the body of an FE impact with
-    inertia (None: no waves), a remedy above :data:`MAX_RADIATED_ESTIMATE` is not named (1e-50
+    inertia (None: no waves), a remedy above :func:`wave_limit` is not named (1e-50
     kg at 3 m/s named 41.4 m/s and 1.9e-48 kg, both refused by :func:`check_wave_speed`): a
     heavier mass that passes both is named instead. The one refusal of an impact's depth
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
@@ -299,6 +338,7 @@ def check_reach(
         ("mass", passing[1], shown[1], "kg"),
         on,
         "least" if up else "most",
+        wave_limit(q),
     )
     if up:
         raise LimitError(
@@ -306,7 +346,7 @@ def check_reach(
             f"{_apart(ratio, (MIN_DEPTH_RATIO,), 2)}, below the "
             f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
             f"quasi-static impact (shtaerman impact) is the answer there; raise {remedies}"
-            + (_WAVES_TOO if shown[0] and passing[1] and not passing[0] else ""),
+            + (_waves_too(q) if shown[0] and passing[1] and not passing[0] else ""),
             "mass",
         )
     raise LimitError(
@@ -341,20 +381,22 @@ def _within_waves(
     """The velocity and the mass (m/s, kg, as shown) that bring ``impact`` (mass kg, velocity
     m/s; force exponent ``q``), now reaching ``depth`` m outside the reach [MIN_DEPTH_RATIO,
     ``high``], within it (``shown``: the reach's, each "" beyond the floats) and within the
-    waves' limit (``waves``, :func:`check_reach`'s; None: ``shown``): a shallow impact's mass
-    heavier where the waves ask it, a deep one's velocity lower; "" where none passes both."""
+    waves' limit (``waves``, :func:`check_reach`'s, below :func:`wave_limit` of ``q``; None:
+    ``shown``): a shallow impact's mass heavier where the waves ask it, a deep one's velocity
+    lower; "" where none passes both."""
     if waves is None:
         return shown
-    (mass, velocity), (speed, weight) = impact, shown
+    (mass, velocity), (speed, weight), limit = impact, shown, wave_limit(q)
     if depth_ratio(indenter, depth) < MIN_DEPTH_RATIO:  # faster radiates more, heavier less
-        speed = _calm(speed, waves, mass, None)
-        weight = _calm(_wave_mass(weight, velocity, q, waves), waves, None, velocity)
+        speed = _calm(speed, waves, (mass, None), limit)
+        weight = _wave_mass(weight, velocity, q, waves)
+        weight = _calm(weight, waves, (None, velocity), limit)
         moved = depth * (float(weight or mass) / mass) ** (1.0 / (q + 1.0))
         return speed, weight if depth_ratio(indenter, moved) <= high else ""
-    speed = _calm(_wave_velocity(speed, mass, q, waves), waves, mass, None)
+    speed = _calm(_wave_velocity(speed, mass, q, waves), waves, (mass, None), limit)
     moved = depth * (float(speed or velocity) / velocity) ** (2.0 / (q + 1.0))
     speed = speed if depth_ratio(indenter, moved) >= MIN_DEPTH_RATIO else ""
-    return speed, _calm(weight, waves, None, velocity)
+    return speed, _calm(weight, waves, (None, velocity), limit)
 
 
 def _remedies(
@@ -362,15 +404,20 @@ def _remedies(
     second: tuple[str, str, str, str],
     on: str,
     bound: str = "least",
+    limit: float = MAX_RADIATED_ESTIMATE,
 ) -> str:
     """The reach refusal's remedies, each (parameter, value that passes the waves' limit too,
     value that passes the reach, unit: values as shown, "" beyond the floats): ``first``, then
     ``second`` after "or", with this striker and body (``on``: a layer's words). One the
-    waves' limit refuses ("") is left out; both: the reach's, on the massless body."""
+    waves' limit (``limit``, the striker's :func:`wave_limit`) refuses ("") is left out; both:
+    the reach's, on the massless body."""
     (name, value, bare, unit), (other, other_value, other_bare, other_unit) = first, second
     if not value and not other_value and (bare or other_bare):  # each radiates too much
         first, second = (name, bare, bare, unit), (other, other_bare, other_bare, other_unit)
-        return _remedies(first, second, on, bound) + _MASSLESS
+        return _remedies(first, second, on, bound) + (
+            f", on the massless body, density2=0 (at this density2 either radiates above "
+            f"{limit:.3g} of its energy as waves, where the FE impact with inertia breaks down)"
+        )
     if not value:
         said = f"{other}=... to at {bound} about {other_value} {other_unit}"
         return f"{said} with this striker, {name} and body{on}"
@@ -380,35 +427,29 @@ def _remedies(
     return said + f", or {other}=... to at {bound} about {other_value} {other_unit}"
 
 
-_MASSLESS = (
-    f", on the massless body, density2=0 (at this density2 either radiates above "
-    f"{MAX_RADIATED_ESTIMATE:g} of its energy as waves, where the FE impact with inertia breaks "
-    "down)"
-)
-"""The end of a reach remedy that the wave-speed limit refuses whichever is taken."""
-
-
-_WAVES_TOO = (
-    f" (a faster striker radiates above {MAX_RADIATED_ESTIMATE:g} of its energy as waves, "
-    "where the FE impact with inertia breaks down)"
-)
-"""The end of a shallow impact's reach refusal whose velocity :func:`check_wave_speed`
-would refuse."""
+def _waves_too(q: float) -> str:
+    """The end of a shallow impact's reach refusal (force exponent ``q``) whose velocity
+    :func:`check_wave_speed` would refuse."""
+    return (
+        f" (a faster striker radiates above {wave_limit(q):.3g} of its energy as waves, "
+        "where the FE impact with inertia breaks down)"
+    )
 
 
 def _calm(
     shown: str,
     waves: Callable[[float, float], float] | None,
-    mass: float | None,
-    velocity: float | None,
+    impact: tuple[float | None, float | None],
+    limit: float,
 ) -> str:
-    """``shown``, a remedy's mass (kg; ``mass`` None) or velocity (m/s; ``velocity`` None) as
-    the message shows it, "" where ``waves`` puts its impact's first-order radiated fraction
-    above :data:`MAX_RADIATED_ESTIMATE` (or cannot give it)."""
+    """``shown``, a remedy's mass (kg) or velocity (m/s) as the message shows it, in place
+    of the None of ``impact`` (mass, velocity), "" where ``waves`` puts that impact's
+    first-order radiated fraction above ``limit`` (or cannot give it)."""
     if not shown or waves is None:
         return shown
+    mass, velocity = impact
     impact = (float(shown), velocity) if mass is None else (mass, float(shown))
-    return shown if _fraction(waves, *impact) <= MAX_RADIATED_ESTIMATE else ""
+    return shown if _fraction(waves, *impact) <= limit else ""
 
 
 def _fraction(waves: Callable[[float, float], float], mass: float, velocity: float) -> float:
@@ -556,26 +597,29 @@ def check_wave_speed(
     """Refuse, before any work, an FE impact with inertia (mass in kg, velocity in m/s)
     whose first-order radiated fraction ``estimate`` (a
     :class:`~shtaerman.theory.radiation.RadiationEstimate` on the body of density ``density``
-    kg/m^3) exceeds :data:`MAX_RADIATED_ESTIMATE`, naming the velocity and the density that
-    pass: lambda goes as sqrt(density) and, for a power-law force P ~ x^q (``force_exponent``
-    q), as v0^((3q - 3)/(q + 1)). A sphere's or a table's q (None) varies with depth: its
-    velocity is found from q = 3/2 and checked by ``fraction_at`` (lambda at a velocity in
-    m/s), which a few rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q =
-    3/2 named 1.82 m/s, at lambda 0.837). Where ``reaches`` (whether an impact, mass kg and
+    kg/m^3) exceeds :func:`wave_limit` of its force exponent, naming the velocity and the
+    density that pass: lambda goes as sqrt(density) and, for a power-law force P ~ x^q
+    (``force_exponent`` q), as v0^((3q - 3)/(q + 1)). A sphere's or a table's q (None) varies
+    with depth: its limit is its tip's, q = 3/2, and so is its velocity's first guess, checked
+    by ``fraction_at`` (lambda at a velocity in m/s), which a few rescalings bring below the
+    limit (a 12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82 m/s, at lambda 0.837, above
+    session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
     velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
     velocity, the refusal says so and names the density and the mass that pass instead."""
     from .validation import LimitError
 
     fraction = estimate.energy_fraction
-    if not fraction > MAX_RADIATED_ESTIMATE:
+    q = 1.5 if force_exponent is None else force_exponent  # a smooth tip's
+    limit = wave_limit(q)
+    if not fraction > limit:
         return
     mass, velocity = impact
-    c_s, share = estimate.shear_wave_speed, MAX_RADIATED_ESTIMATE / fraction
-    q = 1.5 if force_exponent is None else force_exponent
+    c_s, share = estimate.shear_wave_speed, limit / fraction
     slower = _slower(velocity, share, q)
     about = ""
     if force_exponent is None:
-        slower, about = _passing_velocity(slower, (q + 1.0) / (3.0 * q - 3.0), fraction_at)
+        power = (q + 1.0) / (3.0 * q - 3.0)
+        slower, about = _passing_velocity(slower, power, fraction_at, limit)
     remedy, named = f" or velocity {about}{slower:.3g} m/s would pass", "velocity"
     if reaches is not None and not reaches(mass, float(f"{slower:.3g}")):
         remedy = _heavier_instead(impact, slower, q, share, reaches)
@@ -585,12 +629,21 @@ def check_wave_speed(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {fraction:.3g} of its energy as waves (first order), above "
-        f"{MAX_RADIATED_ESTIMATE:g}, where the FE impact with inertia breaks down (the linear "
+        f"{_limit_text(q)}, where the FE impact with inertia breaks down (the linear "
         "one's energy balance off by about 2 of M v0^2/2): density2 "
         f"{0.99 * density * share**2:.3g} kg/m^3"
         f"{remedy} (density2 0: the quasi-static impact without waves)",
         named,
     )
+
+
+def _limit_text(q: float) -> str:
+    """:func:`wave_limit` of a striker whose force goes as x^``q``, as its refusal says it
+    (with the exponent where it is a blunt striker's, below :data:`MAX_RADIATED_ESTIMATE`)."""
+    limit = wave_limit(q)
+    if limit >= MAX_RADIATED_ESTIMATE:
+        return f"{limit:.3g}"
+    return f"{limit:.3g} (the limit of a force ~ x^{q:.3g}, lower for blunter strikers)"
 
 
 def _heavier_instead(
@@ -630,12 +683,13 @@ def _wave_mass(
     shown: str, velocity: float, q: float, waves: Callable[[float, float], float]
 ) -> str:
     """``shown`` (a mass in kg as the message shows it), or the heavier one :func:`_heavier`
-    names where ``waves`` puts its impact at ``velocity`` (m/s) above
-    :data:`MAX_RADIATED_ESTIMATE` ("" where it cannot say)."""
+    names where ``waves`` puts its impact at ``velocity`` (m/s) above :func:`wave_limit` of
+    the force exponent ``q`` ("" where it cannot say)."""
     fraction = _fraction(waves, float(shown), velocity) if shown else math.nan
-    if not fraction > MAX_RADIATED_ESTIMATE:
+    limit = wave_limit(q)
+    if not fraction > limit:
         return shown if fraction == fraction else ""
-    return _heavier(float(shown), MAX_RADIATED_ESTIMATE / fraction, q)
+    return _heavier(float(shown), limit / fraction, q)
 
 
 def _wave_velocity(
@@ -643,15 +697,16 @@ def _wave_velocity(
 ) -> str:
     """``shown`` (a velocity in m/s as the message shows it), or the lower one that brings
     the first-order radiated fraction ``waves`` gives of an impact of ``mass`` (kg) there
-    below :data:`MAX_RADIATED_ESTIMATE` (:func:`_passing_velocity`; "" unsettled)."""
+    below :func:`wave_limit` of the force exponent ``q`` (:func:`_passing_velocity`; ""
+    unsettled)."""
     if not shown or waves is None:
         return shown
-    fraction = _fraction(waves, mass, float(shown))
-    if not fraction > MAX_RADIATED_ESTIMATE:
+    fraction, limit = _fraction(waves, mass, float(shown)), wave_limit(q)
+    if not fraction > limit:
         return shown if fraction == fraction else ""
     power = (q + 1.0) / (3.0 * q - 3.0)
-    lower = _slower(float(shown), MAX_RADIATED_ESTIMATE / fraction, q)
-    lower, about = _passing_velocity(lower, power, lambda velocity: waves(mass, velocity))
+    lower = _slower(float(shown), limit / fraction, q)
+    lower, about = _passing_velocity(lower, power, lambda velocity: waves(mass, velocity), limit)
     return "" if about else f"{lower:.3g}"
 
 
@@ -663,12 +718,15 @@ def _slower(velocity: float, share: float, q: float) -> float:
 
 
 def _passing_velocity(
-    velocity: float, power: float, fraction_at: Callable[[float], float] | None
+    velocity: float,
+    power: float,
+    fraction_at: Callable[[float], float] | None,
+    limit: float,
 ) -> tuple[float, str]:
-    """``velocity`` (m/s) rescaled by (limit / lambda)^``power`` until ``fraction_at`` puts
-    it, rounded as the message shows it, below :data:`MAX_RADIATED_ESTIMATE` (at most 8
-    times, each aiming 1 % below in velocity), and "" (checked); without
-    ``fraction_at``, unsettled or out of its range, ``velocity`` and "about "."""
+    """``velocity`` (m/s) rescaled by (``limit`` / lambda)^``power`` until ``fraction_at``
+    puts it, rounded as the message shows it, at or below ``limit`` (at most 8 times, each
+    aiming 1 % below in velocity), and "" (checked); without ``fraction_at``, unsettled or
+    out of its range, ``velocity`` and "about "."""
     if fraction_at is None:
         return velocity, "about "
     for _ in range(8):
@@ -677,9 +735,9 @@ def _passing_velocity(
             fraction = fraction_at(shown)
         except (ValueError, ArithmeticError):  # a velocity beyond the quadrature's range
             break
-        if not fraction > MAX_RADIATED_ESTIMATE:
+        if not fraction > limit:
             return shown, ""
-        velocity = 0.99 * shown * (MAX_RADIATED_ESTIMATE / fraction) ** power
+        velocity = 0.99 * shown * (limit / fraction) ** power
     return velocity, "about "
 
 
