@@ -250,7 +250,7 @@ def check_reach(
     impact: tuple[float, float],
     q: float,
     finite: bool,
-    note: str = "",
+    note: str | None = "",
     layer: tuple[float, float, float] | None = None,
     waves: Callable[[float, float], float] | None = None,
 ) -> None:
@@ -261,7 +261,9 @@ def check_reach(
     message gives the velocity and the mass that reach the limit, below it likewise
     (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
-    paper's striker would be within reach); ``note`` ends it (the route's other remedy);
+    paper's striker would be within reach); ``note`` ends it (the route's other remedy;
+    None: the route runs beyond the upper reach with a warning, the finite-strain frictionless
+    pad with inertia, and only the floor is checked);
     ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
     which bound the remedy too (None: the half-space); ``waves``: the first-order radiated
     fraction of an impact (mass kg, velocity m/s) on the body of an FE impact with
@@ -279,7 +281,10 @@ def check_reach(
     if getattr(indenter, "exponent", 2.0) <= 1.0:  # a cone's x/a is the same at every depth:
         return  # no impact's remedy; every FE route refuses n <= 1 (validate_fem_inputs)
     ratio = depth_ratio(indenter, depth)
-    low, high = window = _window(finite)
+    low, high = _window(finite)
+    if note is None:  # only the floor: the route warns beyond the upper reach
+        high, note = math.inf, ""
+    window = (low, high)
     reach = "the finite-strain contact converges" if finite else "an FE impact is run"
     if not low <= ratio <= high and _striker_at_fault(indenter, depth, q, window):
         paper = entry("shape_coefficient").default
@@ -500,7 +505,7 @@ def check_profile_reach(
     impact: tuple[float, float],
     overshoot: float = 1.0,
     finite: bool = False,
-    note: str = DEPTHS_INSTEAD,
+    note: str | None = DEPTHS_INSTEAD,
     layer: tuple[float, float, float] | None = None,
     waves: Callable[[float, float], float] | None = None,
 ) -> None:
