@@ -74,7 +74,8 @@ Its static contact solves keep about 1.5e-12 / (x/a) of the depth (F = I + grad 
 strains as the small difference of O(1) numbers), and the massless striker's secant, which
 takes their stored energies' difference over a step, stalls on that noise below it (session
 60, paper's striker, 0.7 kg, default mesh, 50 steps, CPU s at load ~4: 12 at 3 m/s, 14 at x/a
-6.7e-4, 16 at 2.1e-4; 30 at 1.2e-4 with steps cut; 112, every 50 steps failing, at 6.7e-5).
+6.7e-4, 16 at 2.1e-4; 30 at 1.2e-4 with steps cut; 112, every 50 steps failing, at 6.7e-5;
+at the floor Mooney-Rivlin and Yeoh take 1.3 and 1.2 times their 3 m/s time, a step cut).
 There the finite-strain correction (~5 % x/a) is far below the FE's own error: the linear
 model is exact."""
 LOCKED = 0.999
