@@ -47,6 +47,7 @@ __all__ = [
     "MAX_DEPTH_RATIO",
     "MAX_RADIATED_ESTIMATE",
     "MIN_DEPTH_RATIO",
+    "MIN_FINITE_DEPTH_RATIO",
     "WAVE_LIMITS",
     "FailedCheckWarning",
     "LadderWarnings",
@@ -67,10 +68,19 @@ MAX_DEPTH_RATIO = 1.2
 """Largest depth / contact radius x/a at which the finite-strain contact converges and was
 checked against the linear one (beyond it Newton fails after minutes of halved load steps)."""
 MIN_DEPTH_RATIO = 1e-6
-"""Smallest x/a an FE impact is run at: the strains are of this order (a finite-strain F = I +
-grad u keeps ~1e-16 / (x/a) of them, too few for Newton), and the linear FE's scales reach
-the floating-point range below it (mass 1e-300 gave a singular matrix); the exact quasi-static
-impact is the answer there."""
+"""Smallest x/a a linear FE impact is run at (a finite-strain one: :data:`MIN_FINITE_DEPTH_RATIO`):
+the strains are of this order, and the linear FE's scales reach the floating-point range below
+it (mass 1e-300 gave a singular matrix); the exact quasi-static impact is the answer there."""
+MIN_FINITE_DEPTH_RATIO = 1e-3
+"""Smallest x/a a finite-strain FE impact (or a contact curve an impact's x_c sets) is run at.
+Its static contact solves keep about 1.5e-12 / (x/a) of the depth (F = I + grad u carries the
+strains as the small difference of O(1) numbers), and the massless striker's secant, which
+takes their stored energies' difference over a step, stalls on that noise below it (session
+60, paper's striker, 0.7 kg, default mesh, 50 steps, CPU s at load ~4: 12 at 3 m/s, 14 at x/a
+6.7e-4, 16 at 2.1e-4; 30 at 1.2e-4 with steps cut; 112, every 50 steps failing, at 6.7e-5;
+at the floor Mooney-Rivlin and Yeoh take 1.3 and 1.2 times their 3 m/s time, a step cut).
+There the finite-strain correction (~5 % x/a) is far below the FE's own error: the linear
+model is exact."""
 LOCKED = 0.999
 """(I1bar - 3) / Jm of a Gent rubber that locks: its tangent shear stiffness
 mu / (1 - (I1bar - 3) / Jm) is a thousand times mu. A run's first state there warns
@@ -280,17 +290,20 @@ def check_reach(
     impact: tuple[float, float],
     q: float,
     finite: bool,
-    note: str = "",
+    note: str | None = "",
     layer: tuple[float, float, float] | None = None,
     waves: Callable[[float, float], float] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
-    depth (m) on the half-space has x/a outside [:data:`MIN_DEPTH_RATIO`, the model's reach]
-    (:data:`MAX_DEPTH_RATIO` at finite strain, :data:`LINEAR_REACH` linear); beyond it the
+    depth (m) on the half-space has x/a outside the model's reach ([:data:`MIN_FINITE_DEPTH_RATIO`,
+    :data:`MAX_DEPTH_RATIO`] at finite strain, [:data:`MIN_DEPTH_RATIO`, :data:`LINEAR_REACH`]
+    linear; below the finite-strain floor the refusal says the linear model is exact); beyond it the
     message gives the velocity and the mass that reach the limit, below it likewise
     (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
-    paper's striker would be within reach); ``note`` ends it (the route's other remedy);
+    paper's striker would be within reach); ``note`` ends it (the route's other remedy;
+    None: the route runs beyond the upper reach with a warning, the finite-strain frictionless
+    pad with inertia, and only the floor is checked);
     ``layer``: a layer's thickness and the shallowest and deepest depths (m) its mesh resolves,
     which bound the remedy too (None: the half-space); ``waves``: the first-order radiated
     fraction of an impact (mass kg, velocity m/s) on the body of an FE impact with
@@ -308,15 +321,17 @@ def check_reach(
     if getattr(indenter, "exponent", 2.0) <= 1.0:  # a cone's x/a is the same at every depth:
         return  # no impact's remedy; every FE route refuses n <= 1 (validate_fem_inputs)
     ratio = depth_ratio(indenter, depth)
-    high = MAX_DEPTH_RATIO if finite else LINEAR_REACH
+    low, high = _window(finite)
+    if note is None:  # only the floor: the route warns beyond the upper reach
+        high, note = math.inf, ""
+    window = (low, high)
     reach = "the finite-strain contact converges" if finite else "an FE impact is run"
-    if not MIN_DEPTH_RATIO <= ratio <= high and _striker_at_fault(indenter, depth, q, high):
+    if not low <= ratio <= high and _striker_at_fault(indenter, depth, q, window):
         paper = entry("shape_coefficient").default
         raise LimitError(
             f"shape_coefficient: the striker z = {indenter.shape_coefficient:g} "
             f"r^{indenter.exponent:g} at {mass:g} kg and {velocity:g} m/s reaches depth / "
-            f"contact radius {_apart(ratio, (MIN_DEPTH_RATIO, high))}, outside the "
-            f"[{MIN_DEPTH_RATIO:g}, {high:g}] within "
+            f"contact radius {_apart(ratio, window)}, outside the [{low:g}, {high:g}] within "
             f"which {reach}, where the paper's striker (shape_coefficient={paper:g}) would not: "
             "a striker of a physical size (the exact quasi-static impact, shtaerman impact, "
             f"takes any){note}",
@@ -324,15 +339,15 @@ def check_reach(
         )
     drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     check_equator(indenter, depth, impact)
-    if MIN_DEPTH_RATIO <= ratio <= high:  # within reach
+    if low <= ratio <= high:  # within reach
         return
-    scale, on = _layer_bound(depth, _reach_scale(indenter, ratio, high), layer)
-    up = not ratio >= MIN_DEPTH_RATIO  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
+    scale, on = _layer_bound(depth, _reach_scale(indenter, ratio, window), layer)
+    up = not ratio >= low  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
     shown = (
         _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
         _shown(mass, scale * (q + 1.0), up=up),
     )
-    passing = _within_waves(indenter, depth, impact, q, shown, waves, high)
+    passing = _within_waves(indenter, depth, impact, q, shown, waves, window)
     remedies = _remedies(
         ("velocity", passing[0], shown[0], "m/s"),
         ("mass", passing[1], shown[1], "kg"),
@@ -343,9 +358,9 @@ def check_reach(
     if up:
         raise LimitError(
             f"{drive} to {depth:.3g} m only, depth / contact radius "
-            f"{_apart(ratio, (MIN_DEPTH_RATIO,), 2)}, below the "
-            f"{MIN_DEPTH_RATIO:g} an FE impact resolves (strains of that order): the exact "
-            f"quasi-static impact (shtaerman impact) is the answer there; raise {remedies}"
+            f"{_apart(ratio, (low,), 2)}, below the {low:g} "
+            + (_FINITE_FLOOR if finite else _LINEAR_FLOOR)
+            + f"; raise {remedies}"
             + (_waves_too(q) if shown[0] and passing[1] and not passing[0] else ""),
             "mass",
         )
@@ -355,6 +370,23 @@ def check_reach(
         f"{high:g} up to which {reach}: lower {remedies}{note}",
         "velocity",
     )
+
+
+def _window(finite: bool) -> tuple[float, float]:
+    """The x/a an FE impact is run at: the finite-strain model's, or the linear one's."""
+    return (MIN_FINITE_DEPTH_RATIO, MAX_DEPTH_RATIO) if finite else (MIN_DEPTH_RATIO, LINEAR_REACH)
+
+
+_LINEAR_FLOOR = (
+    "an FE impact resolves (strains of that order): the exact quasi-static impact (shtaerman "
+    "impact) is the answer there"
+)
+_FINITE_FLOOR = (
+    "the finite-strain model is run at (its contact solves keep ~1.5e-12 / (x/a) of the depth, "
+    "too few for its time steps): the linear model is exact there (drop model=...), and so is "
+    "the exact quasi-static impact (shtaerman impact)"
+)
+"""The reasons of a refusal below the floor of x/a (:func:`_window`): linear, finite strain."""
 
 
 def _apart(value: float, bounds: tuple[float, ...], digits: int = 3) -> str:
@@ -376,18 +408,19 @@ def _within_waves(
     q: float,
     shown: tuple[str, str],
     waves: Callable[[float, float], float] | None,
-    high: float,
+    window: tuple[float, float],
 ) -> tuple[str, str]:
     """The velocity and the mass (m/s, kg, as shown) that bring ``impact`` (mass kg, velocity
-    m/s; force exponent ``q``), now reaching ``depth`` m outside the reach [MIN_DEPTH_RATIO,
-    ``high``], within it (``shown``: the reach's, each "" beyond the floats) and within the
-    waves' limit (``waves``, :func:`check_reach`'s, below :func:`wave_limit` of ``q``; None:
-    ``shown``): a shallow impact's mass heavier where the waves ask it, a deep one's velocity
-    lower; "" where none passes both."""
+    m/s; force exponent ``q``), now reaching ``depth`` m outside the reach ``window`` (the
+    least and the largest x/a), within it (``shown``: the reach's, each "" beyond the floats)
+    and within the waves' limit (``waves``, :func:`check_reach`'s, below :func:`wave_limit` of
+    ``q``; None: ``shown``): a shallow impact's mass heavier where the waves ask it, a deep
+    one's velocity lower; "" where none passes both."""
     if waves is None:
         return shown
-    (mass, velocity), (speed, weight), limit = impact, shown, wave_limit(q)
-    if depth_ratio(indenter, depth) < MIN_DEPTH_RATIO:  # faster radiates more, heavier less
+    (mass, velocity), (speed, weight), (low, high) = impact, shown, window
+    limit = wave_limit(q)
+    if depth_ratio(indenter, depth) < low:  # faster radiates more, heavier less
         speed = _calm(speed, waves, (mass, None), limit)
         weight = _wave_mass(weight, velocity, q, waves)
         weight = _calm(weight, waves, (None, velocity), limit)
@@ -395,7 +428,7 @@ def _within_waves(
         return speed, weight if depth_ratio(indenter, moved) <= high else ""
     speed = _calm(_wave_velocity(speed, mass, q, waves), waves, (mass, None), limit)
     moved = depth * (float(speed or velocity) / velocity) ** (2.0 / (q + 1.0))
-    speed = speed if depth_ratio(indenter, moved) >= MIN_DEPTH_RATIO else ""
+    speed = speed if depth_ratio(indenter, moved) >= low else ""
     return speed, _calm(weight, waves, (None, velocity), limit)
 
 
@@ -461,11 +494,11 @@ def _fraction(waves: Callable[[float, float], float], mass: float, velocity: flo
         return math.nan
 
 
-def _reach_scale(indenter: Indenter, ratio: float, high: float) -> float:
-    """ln of the depth that brings x/a, now ``ratio``, to the nearer end of
-    [:data:`MIN_DEPTH_RATIO`, ``high``] over the depth now (x/a ~ x^(1 - 1/n))."""
+def _reach_scale(indenter: Indenter, ratio: float, window: tuple[float, float]) -> float:
+    """ln of the depth that brings x/a, now ``ratio``, to the nearer end of ``window`` (the
+    least and the largest x/a) over the depth now (x/a ~ x^(1 - 1/n))."""
     n = getattr(indenter, "exponent", 2.0)  # a smooth tip's n = 2
-    return math.log(min(max(ratio, MIN_DEPTH_RATIO), high) / ratio) / (1.0 - 1.0 / n)
+    return math.log(min(max(ratio, window[0]), window[1]) / ratio) / (1.0 - 1.0 / n)
 
 
 def reach_velocity(indenter: Indenter, depth: float, velocity: float, q: float) -> str:
@@ -476,7 +509,7 @@ def reach_velocity(indenter: Indenter, depth: float, velocity: float, q: float) 
     ratio = depth_ratio(indenter, depth) if depth > 0 else 0.0
     if not ratio > MAX_DEPTH_RATIO or getattr(indenter, "exponent", 2.0) <= 1.0:
         return ""  # within reach, or a cone (its x/a moves with no depth)
-    scale = _reach_scale(indenter, ratio, MAX_DEPTH_RATIO)
+    scale = _reach_scale(indenter, ratio, _window(True))
     return _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
 
 
@@ -514,7 +547,7 @@ def check_profile_reach(
     impact: tuple[float, float],
     overshoot: float = 1.0,
     finite: bool = False,
-    note: str = DEPTHS_INSTEAD,
+    note: str | None = DEPTHS_INSTEAD,
     layer: tuple[float, float, float] | None = None,
     waves: Callable[[float, float], float] | None = None,
 ) -> None:
@@ -797,10 +830,12 @@ def _within_end(
     return lower_impact(*impact, math.log(work_to(law, below)) - math.log(work_to(law, now)))
 
 
-def _striker_at_fault(indenter: Indenter, depth: float, q: float, high: float) -> bool:
+def _striker_at_fault(
+    indenter: Indenter, depth: float, q: float, window: tuple[float, float]
+) -> bool:
     """Whether the paper's shape coefficient, at the same mass, velocity and body, would bring
-    the depth ``depth`` (m) of this impact (force exponent ``q``) within x/a in
-    [:data:`MIN_DEPTH_RATIO`, ``high``]: then the striker's, not the impact's, is at fault
+    the depth ``depth`` (m) of this impact (force exponent ``q``) within the x/a ``window``
+    (least, largest): then the striker's, not the impact's, is at fault
     (x_c ~ A^(1 / (n (q + 1))) as beta ~ A^(-1/n))."""
     from .vocabulary import entry
 
@@ -809,4 +844,4 @@ def _striker_at_fault(indenter: Indenter, depth: float, q: float, high: float) -
     paper = PowerLawIndenter(entry("shape_coefficient").default, indenter.exponent)
     scale = paper.shape_coefficient / indenter.shape_coefficient
     moved = depth * scale ** (1.0 / (indenter.exponent * (q + 1.0)))
-    return MIN_DEPTH_RATIO <= depth_ratio(paper, moved) <= high
+    return window[0] <= depth_ratio(paper, moved) <= window[1]

@@ -175,7 +175,8 @@ def pad_reach_note(pad: bool, friction: float | None, density: float) -> str | N
     """The end of the reach refusal (:func:`shtaerman.guards.check_reach`) of a finite-strain
     impact on a ``pad`` (else the half-space: ""), with Coulomb ``friction`` (None, 0:
     frictionless; inf: bonded) and ``density`` (kg/m^3; 0: massless); None where it runs
-    beyond the reach with a warning: the frictionless pad with inertia. A massless body
+    beyond the upper reach with a warning (its floor, :data:`.guards.MIN_FINITE_DEPTH_RATIO`,
+    holds): the frictionless pad with inertia. A massless body
     follows the static curve, which does not converge beyond the reach (z = 8 r^1.3 on a 12 mm
     pad, 0.12 kg at 1.5 m/s: Newton failed at 2.6 mm of the 5.75 mm after 11 CPU s); a
     frictional contact fails at separation."""
@@ -420,9 +421,8 @@ def prepare_finite_impact(
     # on a pad x_c bounds the depth from above (the pad is stiffer; z = 8 r^1.3 on a 12 mm
     # pad reached x/a 2.26 against 2.27): a frictional contact does not converge beyond the
     # reach (that case failed at separation after 15 min), a frictionless one warns
-    note = pad_reach_note(not unbounded, friction, rho)
-    if note is not None:  # before the viscoelastic sizing's work
-        check_reach(indenter, x_c, (mass, velocity), q, finite=True, note=note)
+    note = pad_reach_note(not unbounded, friction, rho)  # None: the floor alone
+    check_reach(indenter, x_c, (mass, velocity), q, finite=True, note=note)  # before the sizing
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     if unbounded and x_size > x_c:
         check_reach(indenter, x_size, (mass, velocity), q, finite=True)

@@ -80,7 +80,7 @@ def check_impact_reach(
     note = pad_reach_note(pad, friction, density) if finite else (None if pad else "")
     waves = radiated_fraction(indenter, half_space, density) if density > 0 else None
     modulus = effective_modulus(RIGID, half_space)
-    if indenter.kind == "power-law" and note is not None:
+    if indenter.kind == "power-law" and (note is not None or finite):  # a rubber: its floor
         check_profile_reach(indenter, modulus, None, impact, finite=finite, note=note, waves=waves)
     if finite and waves is not None:
         _check_finite_waves(indenter, half_space, density, impact, waves)

@@ -28,6 +28,7 @@ from ...guards import (
     DEPTHS_INSTEAD,
     MAX_DEPTH_RATIO,
     MIN_DEPTH_RATIO,
+    MIN_FINITE_DEPTH_RATIO,
     LockingWatch,
     check_reach,
     depth_ratio,
@@ -916,7 +917,8 @@ def check_finite_depths(
     (a: Shtaerman's contact radius) outside [:data:`MIN_DEPTH_RATIO`, :data:`MAX_DEPTH_RATIO`].
     ``model`` names the rubber model in the message; ``impact`` (mass in kg, velocity in m/s):
     the depths were set by that impact's x_c, and the message names those inputs instead
-    (:func:`shtaerman.guards.check_reach` where the x_c itself is out of reach).
+    (:func:`shtaerman.guards.check_reach` where the deepest is out of the finite-strain impact's
+    reach, from :data:`MIN_FINITE_DEPTH_RATIO`).
 
     Raises
     ------
@@ -927,7 +929,7 @@ def check_finite_depths(
     ratios = [(float(d), depth_ratio(indenter, float(d))) for d in (depths[0], depths[-1])]
     (small, low), (deep, high) = ratios
     valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
-    if impact is not None and not MIN_DEPTH_RATIO <= high <= MAX_DEPTH_RATIO:  # its words
+    if impact is not None and not MIN_FINITE_DEPTH_RATIO <= high <= MAX_DEPTH_RATIO:  # its words
         q = contact_law(indenter, 1.0).force_exponent
         check_reach(indenter, deep, impact, q, finite=True, note=DEPTHS_INSTEAD)
     if low < MIN_DEPTH_RATIO:
