@@ -222,3 +222,28 @@ def test_sphere_impact_below_the_floats_names_what_passes(mass, velocity):
         assert math.isfinite(result.solution.t_y) and result.solution.t_y > 0
         # the exact profile impact's clock loses digits at 1e-307 J (measured 3e-6)
         assert result.ode_check["t_y"] == pytest.approx(result.solution.t_y, rel=1e-4)
+
+
+@pytest.mark.parametrize("velocity", [1e-160, 1e-100])
+def test_sphere_impact_far_below_its_tip_panels_is_the_paraboloids(velocity):
+    # R = 0.05 m (the CLI's --sphere-radius example) at 0.7 kg: 1e-160 m/s is refused naming
+    # 5.05e-154 m/s, whose impact raised brentq's ValueError (traceback, exit 1), as did every
+    # velocity from ~1e-150 to 1e-85: the first guess of a_c took the round-off's root within
+    # the smallest of 100 tip halvings (~1e-36 m for a_c 7e-43 m at 1e-100 m/s) (adv60).
+    import shtaerman as sh
+
+    sphere, rubber = sh.SphereIndenter(0.05), sh.Material(7.5e6, 0.5)
+    if velocity < 1e-154:
+        with pytest.raises(InputError) as refused:
+            sh.impact(sphere, rubber, mass=0.7, velocity=velocity)
+        velocity = float(
+            re.findall(r"velocity=\.\.\. to at least about (\S+) m/s", str(refused.value))[0]
+        )
+    result = sh.impact(sphere, rubber, mass=0.7, velocity=velocity, check=True)
+    paraboloid = sh.impact(sh.PowerLawIndenter(10.0, 2.0), rubber, mass=0.7, velocity=velocity)
+    # a_c / R < 1e-40: the sphere is the paraboloid z = r^2 / (2R) to (a/R)^2; the profile
+    # impact's quadrature is exact to ~1e-12 (measured 1e-10 at 5.05e-154 m/s, whose
+    # M v0^2 / 2 is 4 times the smallest float and loses digits: t_y by 1.4e-6 there)
+    assert result.solution.x_c == pytest.approx(paraboloid.solution.x_c, rel=1e-8)
+    assert result.solution.t_y == pytest.approx(paraboloid.solution.t_y, rel=1e-4)
+    assert result.ode_check["t_y"] == pytest.approx(result.solution.t_y, rel=1e-4)

@@ -106,20 +106,25 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     ends = _panels(law, top, law.sphere) if law.sphere else np.linspace(0.0, top, PANELS + 1)
     # halving towards the tip too: a contact far smaller than the profile (a huge sphere)
     # is then integrated on panels of its own size, not lost in a big panel's round-off;
-    # below 100 halvings' round-off (R = 1 m: W 6.5e-166 J at a = 0), down to the floats'
-    rough = _Cumulative.of(np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 100)), square)
-    if not float(_work(law, 0.0, rough(0.0))) < energy:  # 1e-200 kg at 1e-3 m/s, R = 1 m
-        rough = _Cumulative.of(np.union1d(ends, ends[1] * 0.5 ** np.arange(1, 1100)), square)
+    # below 100 halvings' round-off (R = 1 m: W 6.5e-166 J at a = 0; a root within the
+    # smallest panel, R = 0.05 m at 1e-100 m/s: ~1e-36 m, not 7e-43), down to the floats'
     guess = top
-    if float(_work(law, top, rough(top))) >= energy:
-        guess = brentq(
-            lambda a: float(_work(law, a, rough(a))) - energy,
-            0.0,
-            top,
-            xtol=1e-300,
-            rtol=1e-6,
-            maxiter=ROOT_ITERATIONS,
-        )
+    for halvings in (100, 1100):
+        tip = ends[1] * 0.5 ** np.arange(1, halvings)
+        rough = _Cumulative.of(np.union1d(ends, tip), square)
+        if not float(_work(law, 0.0, rough(0.0))) < energy:  # 1e-200 kg at 1e-3 m/s, R = 1 m
+            continue
+        if float(_work(law, top, rough(top))) >= energy:
+            guess = brentq(
+                lambda a, rough=rough: float(_work(law, a, rough(a))) - energy,
+                0.0,
+                top,
+                xtol=1e-300,
+                rtol=1e-6,
+                maxiter=ROOT_ITERATIONS,
+            )
+        if guess > tip[-1]:
+            break
     for reach in (min(top, 1.25 * guess), top):
         squares = _Cumulative.of(_panels(law, reach, law.sphere), square)
         if float(_work(law, reach, squares(reach))) >= energy:
