@@ -93,3 +93,13 @@ def test_a_striker_no_physical_velocity_passes_names_the_density(capsys):
     assert "drives the striker shallower than an FE impact resolves" in said, said
     lighter = re.search(r"density2 (\S+) kg/m\^3 or", said)[1]
     _passes(capsys, "--exponent", "5", "--shape-coefficient", "1000", "--density2", lighter)
+
+
+def test_a_fraction_just_above_the_limit_is_not_printed_as_the_limit(capsys):
+    # z = 10 r^2 (limit 0.45) at 3.55 m/s: lambda 0.4502 said "radiates an estimated 0.45 of
+    # its energy as waves (first order), above 0.45" (adv60)
+    refusal = _refusal(capsys, "--exponent", "2", "--shape-coefficient", "10", "--velocity", "3.55")
+    said = re.search(
+        r"radiates an estimated (\S+) of its energy as waves .*?, above 0\.45", refusal
+    )
+    assert said and float(said[1]) > 0.45, refusal

@@ -658,10 +658,11 @@ def check_wave_speed(
         remedy = _heavier_instead(impact, slower, q, share, reaches)
         named = "mass" if remedy.startswith(" or mass") else "density2"
     prefix = named if named == "density2" else f"{named}, density2"
+    shown = _apart(fraction, (limit, float(f"{limit:.3g}")))  # 0.4502 said "0.45, above 0.45"
     raise LimitError(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
-        f"estimated {fraction:.3g} of its energy as waves (first order), above "
+        f"estimated {shown} of its energy as waves (first order), above "
         f"{_limit_text(q)}, where the FE impact with inertia breaks down (the linear "
         "one's energy balance off by about 2 of M v0^2/2): density2 "
         f"{0.99 * density * share**2:.3g} kg/m^3"
