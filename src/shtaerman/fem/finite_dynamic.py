@@ -102,7 +102,7 @@ from .impact_run import (
     refined_steps,
     validate_steps,
 )
-from .mesh import HALF_SPACE, Geometry, MeshSettings
+from .mesh import HALF_SPACE, Geometry, MeshSettings, resolved_depths
 from .rubber import RubberModel
 from .stepper import (
     QuasiStaticBody,
@@ -422,7 +422,8 @@ def prepare_finite_impact(
     # pad reached x/a 2.26 against 2.27): a frictional contact does not converge beyond the
     # reach (that case failed at separation after 15 min), a frictionless one warns
     note = pad_reach_note(not unbounded, friction, rho)  # None: the floor alone
-    check_reach(indenter, x_c, (mass, velocity), q, finite=True, note=note)  # before the sizing
+    layer = resolved_depths(geometry, indenter, settings.margin)  # a pad's: its remedy's too
+    check_reach(indenter, x_c, (mass, velocity), q, True, note, layer)  # before the sizing
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     if unbounded and x_size > x_c:
         check_reach(indenter, x_size, (mass, velocity), q, finite=True)

@@ -41,6 +41,7 @@ __all__ = [
     "halfspace_mesh",
     "layer_mesh",
     "layer_triangles",
+    "resolved_depths",
 ]
 
 BOUNDARIES = ("axis", "surface", "far")
@@ -466,6 +467,24 @@ def check_thickness_range(thickness: float, refined: float, where: str) -> None:
             f"half-space, run without a thickness), got {thickness!r}",
             "thickness",
         )
+
+
+def resolved_depths(
+    layer: Geometry, indenter: Any, *margins: float
+) -> tuple[float, float, float] | None:
+    """The thickness of ``layer`` and the shallowest and deepest depths of a power-law
+    ``indenter`` at which a mesh of each refined radius / geometric contact radius in
+    ``margins`` resolves it (all m): its thickness within MIN_THICKNESS .. MAX_THICKNESS
+    refined radii; None on the half-space or for another profile (whose reach is not
+    refused: :func:`shtaerman.guards.check_profile_reach`)."""
+    from ..theory.indenter import PowerLawIndenter
+
+    if layer.thickness is None or not isinstance(indenter, PowerLawIndenter):
+        return None
+    radius = layer.thickness / layer.zone_factor(indenter.exponent)  # refined radius * margin
+    shallowest = indenter.profile(radius / (MAX_THICKNESS * min(margins)))
+    deepest = indenter.profile(radius / (MIN_THICKNESS * max(margins)))
+    return layer.thickness, float(shallowest), float(deepest)
 
 
 def fitting_velocity(

@@ -18,8 +18,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...fem.dynamic_contact import DynamicSettings
-from ...fem.mesh import MAX_THICKNESS, MIN_THICKNESS, Geometry, MeshSettings, check_thickness_range
-from ...theory.indenter import PowerLawIndenter
+from ...fem.mesh import (
+    Geometry,
+    MeshSettings,
+    check_thickness_range,
+    resolved_depths,
+)
 from ...theory.materials import Material
 from ...theory.sneddon import Indenter
 from ..checks import Check
@@ -137,17 +141,9 @@ def layer_depths(
     layer: Geometry, indenter: Indenter, *meshes: MeshSettings
 ) -> tuple[float, float, float] | None:
     """The thickness of ``layer`` and the shallowest and deepest depths of a power-law
-    ``indenter`` at which each of ``meshes`` resolves it (all m): its thickness within
-    MIN_THICKNESS .. MAX_THICKNESS refined radii (:func:`check_thickness`); None on the
-    half-space or for another profile (whose reach is not refused:
-    :func:`shtaerman.guards.check_profile_reach`)."""
-    if layer.thickness is None or not isinstance(indenter, PowerLawIndenter):
-        return None
-    radius = layer.thickness / layer.zone_factor(indenter.exponent)  # refined radius * margin
-    margins = [mesh.margin for mesh in meshes]
-    shallowest = indenter.profile(radius / (MAX_THICKNESS * min(margins)))
-    deepest = indenter.profile(radius / (MIN_THICKNESS * max(margins)))
-    return layer.thickness, float(shallowest), float(deepest)
+    ``indenter`` at which each of ``meshes`` resolves it (all m; :func:`check_thickness`'s
+    range: :func:`shtaerman.fem.mesh.resolved_depths` of their margins)."""
+    return resolved_depths(layer, indenter, *(mesh.margin for mesh in meshes))
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,35 @@
+"""Session 60's changes tried as an adversary (adv60): what a refusal names runs."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from shtaerman.cli import main
+from shtaerman.fem.finite_dynamic import prepare_finite_impact
+from shtaerman.fem.mesh import Geometry
+from shtaerman.theory.indenter import PowerLawIndenter
+from shtaerman.theory.materials import Material
+from shtaerman.validation import LimitError
+
+PAD = ["--model", "neo-hookean", "--velocity", "1e-16", "--thickness", "0.012"]
+"""The paper's striker, 0.7 kg, below the finite-strain floor on a 12 mm pad."""
+
+
+@pytest.mark.parametrize("density", ["0", "1100"])
+def test_the_finite_strain_floor_on_a_pad_names_a_velocity_its_layer_takes(capsys, density):
+    # it named 4.95e-12 m/s, the half-space's, which the pad then refused: "thickness: must
+    # lie in [3.46e-10, 3.45e-05] m at these depths" (exit 2 again, naming no velocity)
+    assert main(["dynamic", *PAD, "--density2", density, "--no-estimate"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err, err
+    assert "below the 0.001 the finite-strain model is run at" in err
+    named = float(re.search(r"raise --velocity to at least about (\S+) m/s", err)[1])
+    striker, rubber, pad = PowerLawIndenter(5.0, 1.5), Material(7.5e6, 0.5), Geometry(0.012)
+    # sized, meshed and assembled at the named velocity: every check before the time steps
+    prepare_finite_impact(striker, rubber, float(density), 0.7, named, geometry=pad)
+    # 1 % slower is refused by the pad's thickness range: the named velocity is its edge,
+    # not one far inside it (the floor's own, 4.95e-12 m/s, is 1e5 times slower)
+    with pytest.raises(LimitError, match="thickness: must lie in"):
+        prepare_finite_impact(striker, rubber, float(density), 0.7, 0.99 * named, geometry=pad)
