@@ -115,28 +115,29 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
         if not float(_work(law, 0.0, rough(0.0))) < energy:  # 1e-200 kg at 1e-3 m/s, R = 1 m
             continue
         if float(_work(law, top, rough(top))) >= energy:
-            guess = brentq(
-                lambda a, rough=rough: float(_work(law, a, rough(a))) - energy,
-                0.0,
-                top,
-                xtol=1e-300,
-                rtol=1e-6,
-                maxiter=ROOT_ITERATIONS,
-            )
+            guess = _root(law, rough, top, energy, 1e-6)
         if guess > tip[-1]:
             break
     for reach in (min(top, 1.25 * guess), top):
         squares = _Cumulative.of(_panels(law, reach, law.sphere), square)
         if float(_work(law, reach, squares(reach))) >= energy:
-            return brentq(
-                lambda a, squares=squares: float(_work(law, a, squares(a))) - energy,
-                0.0,
-                reach,
-                xtol=1e-300,
-                rtol=1e-15,
-                maxiter=ROOT_ITERATIONS,
-            )
+            return _root(law, squares, reach, energy, 1e-15)
     _refuse_the_end(law, top, energy, float(_work(law, top, squares(top))), mass, velocity)
+
+
+def _root(
+    law: SneddonContact, squares: _Cumulative, reach: float, energy: float, rtol: float
+) -> float:
+    """The contact radius a (m) in [0, ``reach``] where W(a) (``squares``: Int_0^a delta^2)
+    is ``energy`` J, to ``rtol``."""
+    return brentq(
+        lambda a: float(_work(law, a, squares(a))) - energy,
+        0.0,
+        reach,
+        xtol=1e-300,
+        rtol=rtol,
+        maxiter=ROOT_ITERATIONS,
+    )
 
 
 def _impact_energy(mass: float, velocity: float) -> float:
