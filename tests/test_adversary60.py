@@ -33,3 +33,17 @@ def test_the_finite_strain_floor_on_a_pad_names_a_velocity_its_layer_takes(capsy
     # not one far inside it (the floor's own, 4.95e-12 m/s, is 1e5 times slower)
     with pytest.raises(LimitError, match="thickness: must lie in"):
         prepare_finite_impact(striker, rubber, float(density), 0.7, 0.99 * named, geometry=pad)
+
+
+def test_a_depth_just_beyond_the_reach_is_not_printed_as_the_reach():
+    # dynamic --model neo-hookean --mass 8.16, the mass the reach's refusal of 1e308 kg names,
+    # runs and warned "0.0214499 m is 1.2 contact radii (x/a ...), unverified: the
+    # finite-strain contact was validated up to x/a 1.2"
+    from shtaerman.guards import MAX_DEPTH_RATIO, depth_ratio, outside_validity
+
+    striker = PowerLawIndenter(5.0, 1.5)
+    depth = 0.0214499
+    assert MAX_DEPTH_RATIO < depth_ratio(striker, depth) < 1.205  # printed as 1.2 by .3g
+    (said,) = outside_validity(striker, depth, None, finite=True)
+    shown = float(re.search(r"m is (\S+) contact radii", said)[1])
+    assert shown > MAX_DEPTH_RATIO, said

@@ -263,8 +263,9 @@ def outside_validity(
             "the finite-strain models are validated up to"
         )
         whose = "Shtaerman's" if isinstance(indenter, PowerLawIndenter) else "Sneddon's"
+        shown = _apart(ratio, (MAX_DEPTH_RATIO,))  # 1.2004 said "1.2 ..., validated up to 1.2"
         found.append(
-            f"depth: {what} {deepest:.6g} m is {ratio:.3g} contact radii (x/a, with {whose} "
+            f"depth: {what} {deepest:.6g} m is {shown} contact radii (x/a, with {whose} "
             f"a), {words} x/a {MAX_DEPTH_RATIO:g}"
         )
     return found
