@@ -47,3 +47,20 @@ def test_a_depth_just_beyond_the_reach_is_not_printed_as_the_reach():
     (said,) = outside_validity(striker, depth, None, finite=True)
     shown = float(re.search(r"m is (\S+) contact radii", said)[1])
     assert shown > MAX_DEPTH_RATIO, said
+
+
+def test_the_reach_floors_velocity_remedy_has_a_float_square(capsys):
+    # 1e300 kg at 1e-300 m/s on z = 50 r^3 named "raise --velocity to at least about
+    # 3.18e-159 m/s", whose v0^2 = 1e-317 the run refused in turn ("give it a value of a
+    # physical size"): the floor's remedy is now at least the velocity whose square is 4 times
+    # the smallest normal float, 2.99e-154 m/s, which runs (any faster one is as deep or more)
+    import sys
+
+    blunt = ["--mass", "1e300", "--exponent", "3", "--shape-coefficient", "50"]
+    assert main(["dynamic", *blunt, "--velocity", "1e-300"]) == 2
+    err = capsys.readouterr().err
+    named = float(re.search(r"raise --velocity to at least about (\S+) m/s", err)[1])
+    assert named**2 >= sys.float_info.min, err
+    coarse = ["--mesh-size", "0.2", "--time-steps", "50", "--no-estimate"]
+    assert main(["dynamic", *blunt, "--velocity", repr(named), *coarse]) == 0
+    capsys.readouterr()

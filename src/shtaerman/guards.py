@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import sys
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -348,6 +349,8 @@ def check_reach(
         _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
         _shown(mass, scale * (q + 1.0), up=up),
     )
+    if up and shown[0] and float(shown[0]) ** 2 < sys.float_info.min:  # v0^2 a float too
+        shown = (_shown(math.sqrt(4.0 * sys.float_info.min), 0.0, up=True), shown[1])
     passing = _within_waves(indenter, depth, impact, q, shown, waves, window)
     remedies = _remedies(
         ("velocity", passing[0], shown[0], "m/s"),
