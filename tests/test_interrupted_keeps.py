@@ -68,7 +68,18 @@ def _resume_argv(err: str) -> list[str]:
     return [*COARSE, *tail]
 
 
-def test_an_interrupted_effects_table_is_resumed_from_its_kept_run(monkeypatch, tmp_path, capsys):
+@pytest.fixture(scope="module")
+def whole_table(tmp_path_factory) -> Path:
+    """The uninterrupted COARSE table's folder, written once for the two tests below (each ran
+    it: 2 FE runs, its figures and files); a test that changes it works on a copy."""
+    whole = tmp_path_factory.mktemp("effects") / "whole"
+    assert cli.main([*COARSE, "--out", str(whole)]) == 0
+    return whole
+
+
+def test_an_interrupted_effects_table_is_resumed_from_its_kept_run(
+    monkeypatch, tmp_path, capsys, whole_table
+):
     """Interrupted at its second FE run, the table keeps the first in --out (exit 130, a line
     naming the folder and --resume); the resume runs only the missing one and writes the
     same numbers as an uninterrupted table. Old code: exit 130, no folder, nothing kept."""
@@ -88,23 +99,19 @@ def test_an_interrupted_effects_table_is_resumed_from_its_kept_run(monkeypatch, 
     assert cli.main(_resume_argv(err)) == 0
     assert calls == ["waves alone"]  # the kept run is not run again
     assert not (out / "incomplete.json").exists()
-    whole = tmp_path / "whole"
-    assert cli.main([*COARSE, "--out", str(whole)]) == 0
-    capsys.readouterr()
     # the same deterministic FE runs: the resumed table's numbers are the uninterrupted ones
     # to the last bit
-    assert _values(out) == _values(whole)
+    assert _values(out) == _values(whole_table)
 
 
 def test_an_interrupted_forced_effects_run_leaves_the_old_table_whole(
-    monkeypatch, tmp_path, capsys
+    monkeypatch, tmp_path, capsys, whole_table
 ):
     """effects --out o --force interrupted after one run: o is byte for byte the old table;
     the finished run is in o.incomplete-PID, named in the line, and the resume completes it
     there. Old code: the old table kept (nothing of the new run); with the sweep's and
     verify's old rule, the old folder was lost."""
-    out = tmp_path / "o"
-    assert cli.main([*COARSE, "--out", str(out)]) == 0
+    out = shutil.copytree(whole_table, tmp_path / "o")  # the old table (mtimes kept)
     before = snapshot(out)
     capsys.readouterr()
     calls: list = []

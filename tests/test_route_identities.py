@@ -87,11 +87,13 @@ def test_a_vanishing_relaxation_is_the_elastic_linear_impact(density):
 
 
 def test_a_vanishing_relaxation_is_the_elastic_finite_strain_impact():
-    """Neo-Hookean with inertia, on a pad (its small mesh keeps Newton to seconds)."""
+    """Neo-Hookean with inertia, on a pad (its small mesh keeps Newton to seconds), at 0.1 m/s:
+    the identity holds at any speed, and there the two runs took 4.2 and 4.7 CPU s, against
+    10.1 and 10.8 at 0.3 m/s (Newton at the larger strains)."""
     physics = dict(model="neo-hookean", thickness=PAD)
-    elastic = impact(1100.0, 0.3, **physics)
-    relaxing = impact(1100.0, 0.3, **physics, prony="1e-9:1e-3")
-    # the same marcher and Newton with a shear stress relaxed by 1e-9: measured 1e-10 (0.1 m/s)
+    elastic = impact(1100.0, 0.1, **physics)
+    relaxing = impact(1100.0, 0.1, **physics, prony="1e-9:1e-3")
+    # the same marcher and Newton with a shear stress relaxed by 1e-9: measured 4.5e-10
     assert largest_difference(relaxing, elastic) < 1e-7
 
 

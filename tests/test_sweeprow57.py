@@ -13,9 +13,12 @@ mesh_size 0.05: 1-3 s).
 
 from __future__ import annotations
 
+import contextlib
 import csv
+import io
 import json
 import math
+import shutil
 from dataclasses import replace
 
 import pytest
@@ -61,13 +64,24 @@ def test_a_limit_is_an_input_error_with_the_cli_words_and_exit_code(capsys):
     assert not isinstance(bad.value, LimitError)
 
 
-def test_the_refused_case_is_a_row_and_the_others_run(tmp_path, capsys):
-    path, out = _file(tmp_path), tmp_path / "out"
+@pytest.fixture(scope="module")
+def swept(tmp_path_factory):
+    """``sweep fast.toml --out DIR --workers 1`` of FAST (one case ok, one refused), run once
+    for the two tests below: (the file, DIR, what it printed). Its figures took most of the
+    5 CPU s of a run."""
+    folder = tmp_path_factory.mktemp("swept")
+    path, out, printed = _file(folder), folder / "out", io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        assert main(["sweep", str(path), "--out", str(out), "--workers", "1"]) == 0
+    return path, out, printed.getvalue()
+
+
+def test_the_refused_case_is_a_row_and_the_others_run(swept):
+    path, out, printed = swept
     spec = load_sweep(path)
     assert list(spec.refused) == [1] and spec.refused[1].startswith("velocity, density2: ")
     assert PASSES in spec.refused[1]  # the file's keys, as the load refused the sweep
-    assert main(["sweep", str(path), "--out", str(out), "--workers", "1"]) == 0
-    line = capsys.readouterr().out.splitlines()[0]
+    line = printed.splitlines()[0]
     assert "2 cases, 1 ok, 0 failed, 1 refused (outside the model's validity) (1 computed" in line
     rows = list(csv.DictReader((out / "cases.csv").open()))
     assert [row["status"] for row in rows] == ["ok", "refused"]
@@ -82,9 +96,9 @@ def test_the_refused_case_is_a_row_and_the_others_run(tmp_path, capsys):
     assert (out / "figures" / "restitution.png").is_file()
 
 
-def test_resume_keeps_the_refused_rows_and_runs_nothing_again(tmp_path, capsys):
-    path, out = _file(tmp_path), tmp_path / "out"
-    assert main(["sweep", str(path), "--out", str(out), "--workers", "1"]) == 0
+def test_resume_keeps_the_refused_rows_and_runs_nothing_again(swept, tmp_path, capsys):
+    # a copy of the swept folder (its records name no absolute path) and of its file
+    path, out = _file(tmp_path), shutil.copytree(swept[1], tmp_path / "out")
     saved = {p.name: p.read_bytes() for p in (out / "cases").glob("*.json")}
     capsys.readouterr()
     assert main(["sweep", str(path), "--out", str(out), "--resume"]) == 0

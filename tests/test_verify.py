@@ -203,6 +203,31 @@ def _interrupting(quick_outcomes, stop_at, served):
     return run_study
 
 
+@pytest.fixture(scope="module")
+def interrupted(quick_outcomes, tmp_path_factory):
+    """The folder of ``verify --quick`` of STUDIES stopped by Ctrl-C in its second study (exit
+    130), written once: the tests that resume from it copy it (incomplete.json and the folder
+    marker name no absolute path, so a copy is the folder such a run leaves). Its writing
+    (the first study's figures and fields) took 3 CPU s per test."""
+    out = tmp_path_factory.mktemp("interrupted") / "run"
+    with pytest.MonkeyPatch.context() as patch:
+        patched = _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], [])
+        patch.setattr(shtaerman.output.folder, "run_study", patched)
+        assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        [FOLDER_MARKER, "incomplete.json", FIRST]
+    )
+    return out
+
+
+def _interrupted_copy(interrupted, out):
+    """A copy at ``out`` of the interrupted run's folder."""
+    import shutil
+
+    shutil.copytree(interrupted, out)
+    return out
+
+
 @pytest.mark.parametrize(("signal_like", "code"), [(KeyboardInterrupt(), 130), ("terminated", 143)])
 def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
     quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys, signal_like, code
@@ -248,15 +273,13 @@ def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
 
 
 def test_resume_refuses_other_studies_than_the_interrupted_runs(
-    quick_outcomes, tmp_path, monkeypatch, capsys
+    quick_outcomes, interrupted, tmp_path, monkeypatch, capsys
 ):
     """The adversary's item: 'verify paper hertz' stopped after paper, resumed as 'verify paper
     dynamic --resume', ran dynamic and dropped hertz for good (exit 0)."""
     patched = _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], [])
     monkeypatch.setattr(shtaerman.output.folder, "run_study", patched)
-    out = tmp_path / "run"
-    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
-    capsys.readouterr()
+    out = _interrupted_copy(interrupted, tmp_path / "run")
     before = sorted(p.name for p in out.iterdir())
     other = [study for study in STUDIES if Path(study).stem == FIRST]
     argv = ["verify", "--quick", "--workers", "1", "--out", str(out), *other, "--resume"]
@@ -328,16 +351,10 @@ def test_resume_refuses_a_folder_no_interrupted_run_left(quick_verify, tmp_path,
 
 
 def test_resume_recomputes_a_study_whose_inputs_changed(
-    quick_outcomes, tmp_path, monkeypatch, capsys
+    quick_outcomes, interrupted, tmp_path, monkeypatch, capsys
 ):
     served = []
-    monkeypatch.setattr(
-        shtaerman.output.folder,
-        "run_study",
-        _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], served),
-    )
-    out = tmp_path / "run"
-    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
+    out = _interrupted_copy(interrupted, tmp_path / "run")
     # the kept study was run for other inputs (edited file): it is computed again
     progress = json.loads((out / "incomplete.json").read_text())
     progress["studies"][FIRST]["fingerprint"] = "0" * 16
@@ -351,13 +368,12 @@ def test_resume_recomputes_a_study_whose_inputs_changed(
     assert served == [FIRST, SECOND]
     # and a quick folder is not completed by a full run
     capsys.readouterr()
-    out2 = tmp_path / "run2"
+    out2 = _interrupted_copy(interrupted, tmp_path / "run2")
     monkeypatch.setattr(
         shtaerman.output.folder,
         "run_study",
         _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], served),
     )
-    assert main(["verify", "--quick", "--workers", "1", "--out", str(out2), *STUDIES]) == 130
     argv = ["verify", "--workers", "1", "--out", str(out2), "--resume", *STUDIES]
     assert main(argv) == 2
     assert "the interrupted run was with --quick" in capsys.readouterr().err
@@ -374,17 +390,14 @@ def test_resume_recomputes_a_study_whose_inputs_changed(
 
 
 def test_resume_on_dask_computes_only_the_missing_study(
-    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys
+    quick_outcomes, quick_verify, interrupted, tmp_path, monkeypatch, capsys
 ):
-    served = []
-    monkeypatch.setattr(
+    monkeypatch.setattr(  # in this process only: the resume's study runs on a dask worker
         shtaerman.output.folder,
         "run_study",
-        _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], served),
+        _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], []),
     )
-    out = tmp_path / "run"
-    assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
-    capsys.readouterr()
+    out = _interrupted_copy(interrupted, tmp_path / "run")
     argv = ["verify", "--quick", "--workers", "2", "--out", str(out), "--resume", *STUDIES]
     assert main(argv) == 0
     assert "1 studies on 1 workers" in capsys.readouterr().err
