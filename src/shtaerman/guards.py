@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import sys
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -314,7 +313,7 @@ def check_reach(
     heavier mass that passes both is named instead. The one refusal of an impact's depth
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
     (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
-    from .validation import LimitError
+    from .validation import SQUARABLE_VELOCITY, LimitError
     from .vocabulary import entry
 
     mass, velocity = impact
@@ -349,8 +348,8 @@ def check_reach(
         _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
         _shown(mass, scale * (q + 1.0), up=up),
     )
-    if up and shown[0] and float(shown[0]) ** 2 < sys.float_info.min:  # v0^2 a float too
-        shown = (_shown(math.sqrt(4.0 * sys.float_info.min), 0.0, up=True), shown[1])
+    if up and shown[0] and float(shown[0]) < SQUARABLE_VELOCITY:  # v0^2 a float too
+        shown = (_shown(SQUARABLE_VELOCITY, 0.0, up=True), shown[1])
     passing = _within_waves(indenter, depth, impact, q, shown, waves, window)
     remedies = _remedies(
         ("velocity", passing[0], shown[0], "m/s"),
@@ -440,8 +439,8 @@ def _remedies(
     first: tuple[str, str, str, str],
     second: tuple[str, str, str, str],
     on: str,
-    bound: str = "least",
-    limit: float = MAX_RADIATED_ESTIMATE,
+    bound: str,
+    limit: float,
 ) -> str:
     """The reach refusal's remedies, each (parameter, value that passes the waves' limit too,
     value that passes the reach, unit: values as shown, "" beyond the floats): ``first``, then
@@ -451,7 +450,7 @@ def _remedies(
     (name, value, bare, unit), (other, other_value, other_bare, other_unit) = first, second
     if not value and not other_value and (bare or other_bare):  # each radiates too much
         first, second = (name, bare, bare, unit), (other, other_bare, other_bare, other_unit)
-        return _remedies(first, second, on, bound) + (
+        return _remedies(first, second, on, bound, limit) + (
             f", on the massless body, density2=0 (at this density2 either radiates above "
             f"{limit:.3g} of its energy as waves, where the FE impact with inertia breaks down)"
         )

@@ -59,6 +59,11 @@ _LONG_QUOTED = re.compile(rf"(?<!\w)'[^'\n]{{{SHOWN_CHARACTERS + 1},}}'(?!\w)")
 apostrophes of prose ("the body's ... the fit's") are no quoted text."""
 
 
+SQUARABLE_VELOCITY = 2.0 * math.sqrt(sys.float_info.min)
+"""Smallest velocity in m/s a refusal names where v0^2 must be a normal float: its square is 4
+times the smallest (2.98e-154 m/s; the FE impact and the profile impact's clock take v0^2)."""
+
+
 def shown(value: object) -> str:
     """``repr(value)`` for a message, short: a list, tuple or array of more than
     :data:`SHOWN_ITEMS` + 1 values shows its first ones and its length (``[1, 2, 3, 4, ...

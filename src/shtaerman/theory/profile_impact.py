@@ -31,7 +31,13 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 from scipy.special import roots_legendre
 
-from ..validation import InputError, LimitError, bound_text, validate_positive
+from ..validation import (
+    SQUARABLE_VELOCITY,
+    InputError,
+    LimitError,
+    bound_text,
+    validate_positive,
+)
 from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
@@ -150,7 +156,7 @@ def _impact_energy(mass: float, velocity: float) -> float:
     if square >= tiny and (energy >= tiny or not energy < 1.0):
         return representable("M v0^2 / 2", energy, mass, velocity, ("mass", "velocity"))
     log_energy = math.log(8.0 * tiny)  # twice 4 times the smallest
-    faster = max(math.exp(0.5 * (log_energy - math.log(mass))), 2.0 * math.sqrt(tiny))
+    faster = max(math.exp(0.5 * (log_energy - math.log(mass))), SQUARABLE_VELOCITY)
     said = f"raise velocity=... to at least about {bound_text(faster, 'low')} m/s"
     heavier = log_energy - 2.0 * math.log(velocity)
     if square >= tiny and heavier < math.log(sys.float_info.max):
