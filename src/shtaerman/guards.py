@@ -386,8 +386,8 @@ _LINEAR_FLOOR = (
 )
 _FINITE_FLOOR = (
     "the finite-strain model is run at (its contact solves keep ~1.5e-12 / (x/a) of the depth, "
-    "too few for its time steps): the linear model is exact there (drop model=...), and so is "
-    "the exact quasi-static impact (shtaerman impact)"
+    "too few for its time steps): the linear model is exact there (shtaerman contact or dynamic "
+    "without model=...), and so is the exact quasi-static impact (shtaerman impact)"
 )
 """The reasons of a refusal below the floor of x/a (:func:`_window`): linear, finite strain."""
 
