@@ -553,3 +553,28 @@ def test_depths_that_do_not_increase_are_an_input_error():
     depths = [0.5 * depth, depth, 0.75 * depth]
     with pytest.raises(InputError, match=r"depths must be strictly increasing"):
         run_finite_indentation(indenter, Material(E2, 0.5), depths, COARSE)
+
+
+@pytest.mark.parametrize("mooney_ratio", [None, 0.3])
+def test_stress_keeps_its_accuracy_at_small_strain(mooney_ratio):
+    """Residual(t x) / t -> K(0) x as t -> 0, the tangent being the residual's derivative. At
+    t = 1e-9 the remainder is second order, O(t |grad u|) ~ 1e-12 of K x; the stress written as
+    O(1) terms that cancel (2 J^(-2/3) F - (2/3) J^(-5/3) I1 dJ/dF) lost eps/t there, 1.2e-4
+    (neo-Hookean) and 1.5e-4 (Mooney-Rivlin, which also has the I2 term) on this mesh, whose
+    far-field elements (domain 1e4 contact radii) scale each stress error by their size."""
+    from shtaerman.fem.rubber import RubberModel
+
+    material = (
+        NeoHookean(E2, 0.5)
+        if mooney_ratio is None
+        else RubberModel("mooney-rivlin", mooney_ratio=mooney_ratio).material(E2, 0.49)
+    )
+    system = assemble_hyperelastic(COARSE.build(5e-3), material)
+    x = np.zeros(system.n_dofs)
+    x[: system.n_displacement] = 1e-3 * np.random.default_rng(3).standard_normal(
+        system.n_displacement
+    )  # m: gradients up to ~1 on the smallest elements
+    expected = system.tangent(np.zeros(system.n_dofs)) @ x
+    t = 1e-9
+    error = np.linalg.norm(system.residual(t * x) / t - expected) / np.linalg.norm(expected)
+    assert error < 1e-8

@@ -165,7 +165,9 @@ def kinematics(
         j23 = np.abs(J) ** (-2.0 / 3.0)
         j23_m1 = np.expm1(-(2.0 / 3.0) * np.log1p(J_m1))
     j53, j83 = j23 / J, j23 / J**2
-    stress = 0.5 * mu * (2.0 * j23 * F - (2.0 / 3.0) * j53 * I1 * Jg) - p * Jg
+    # mu J^(-2/3) (F - I1/(3J) Jg), its O(1) parts cancelled by hand (see deviatoric_direction)
+    stress = mu * j23 * deviatoric_direction(grad, eta, planar_m1, I1_m3 - 3.0 * J_m1, J, Jg)
+    stress -= p * Jg
     # D = mu/2 (10/9 J^(-8/3) I1 Jg Jg^T - 2/3 J^(-5/3) (I1 H + 2 (Jg F^T + F Jg^T))
     #     + 2 J^(-2/3) 1) - p H, collected by term
     terms = {
@@ -185,6 +187,38 @@ def kinematics(
         constraint=J_m1 + inverse_bulk * p,
         energy_density=energy,
     )
+
+
+def deviatoric_direction(
+    grad: np.ndarray,
+    eta: np.ndarray,
+    planar_m1: np.ndarray,
+    invariant_excess: np.ndarray,
+    J: np.ndarray,
+    Jg: np.ndarray,
+) -> np.ndarray:
+    """F - I/(3J) Jg (5-vector; = dIbar/dF / (2 J^(-2/3)) for I = I1) from the displacement
+    gradient, without cancellation.
+
+    F and Jg are the identity's (1, 0, 0, 1, 1) plus O(strain) and I/J is 3 plus O(strain):
+    written as F - Jg - (s/3) Jg with s = (I - 3J)/J (``invariant_excess`` I - 3J), every term
+    is of the strain's order, so the stress keeps its relative accuracy at any strain (the
+    plain form loses eps/strain, which the huge far-field elements amplify into the contact
+    force). ``eta`` is u_r/R, ``planar_m1`` the in-plane determinant minus 1, J and Jg as in
+    :func:`kinematics`.
+    """
+    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
+    h = 1.0 + eta
+    excess = np.stack(
+        [
+            alpha - eta - delta - eta * delta,  # a - h d
+            b + h * c,
+            c + h * b,
+            delta - eta - alpha - eta * alpha,  # d - h a
+            eta - planar_m1,  # h - (a d - b c)
+        ]
+    )
+    return excess - (invariant_excess / (3.0 * J)) * Jg
 
 
 HESSIAN_TERMS = (

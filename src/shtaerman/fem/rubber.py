@@ -26,7 +26,14 @@ import numpy as np
 
 from ..guards import LOCKED
 from ..validation import InputError, plain_float
-from .hyperelastic import HESSIAN_TERMS, N_COMPONENTS, Kinematics, NeoHookean, NewtonError
+from .hyperelastic import (
+    HESSIAN_TERMS,
+    N_COMPONENTS,
+    Kinematics,
+    NeoHookean,
+    NewtonError,
+    deviatoric_direction,
+)
 
 __all__ = [
     "MODELS",
@@ -381,8 +388,11 @@ def invariant_kinematics(
     x2 = j43_m1 * I2 + 2.0 * planar_m1 + planar_m1**2 + q4_m2 + hoop * (2.0 + q4_m2)
     j23, j43 = 1.0 + j23_m1, 1.0 + j43_m1
     bar1, bar2 = x1 + 3.0, x2 + 3.0
-    d_bar1 = 2.0 * j23 * F - (2.0 / 3.0) * (bar1 / J) * Jg
-    d_bar2 = j43 * dI2 - (4.0 / 3.0) * (bar2 / J) * Jg
+    # dIbar/dF, their O(1) parts cancelled by hand (hyperelastic.deviatoric_direction)
+    J_excess = 3.0 * J_m1
+    d_bar1 = 2.0 * j23 * deviatoric_direction(grad, eta, planar_m1, q4_m2 + hoop - J_excess, J, Jg)
+    I2_m3 = 2.0 * planar_m1 + planar_m1**2 + q4_m2 + hoop * (2.0 + q4_m2)
+    d_bar2 = j43 * (_i2_excess(grad, eta, planar_m1) - (4.0 / 3.0) * (I2_m3 - J_excess) / J * Jg)
     energy, psi1, psi2, psi11, psi12, psi22 = energy_derivatives(material, x1, x2)
     with np.errstate(divide="ignore", invalid="ignore"):
         g, dg, ddg = _volumetric(material.volumetric, J_m1, J)
@@ -407,6 +417,25 @@ def invariant_kinematics(
         volume_gradient=dg * Jg,
         constraint=g + material.inverse_bulk * p,
         energy_density=energy - p * g - 0.5 * material.inverse_bulk * p**2,
+    )
+
+
+def _i2_excess(grad: np.ndarray, eta: np.ndarray, planar_m1: np.ndarray) -> np.ndarray:
+    """dI2/dF - 4 dJ/dF (5-vector, O(strain)) from the displacement gradient, without the
+    cancellation of the identity's 4 (1, 0, 0, 1, 1) in each (arguments as in
+    :func:`.hyperelastic.deviatoric_direction`)."""
+    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
+    hoop = eta * (2.0 + eta)  # h^2 - 1
+    h2 = 1.0 + hoop
+    q4_m2 = 2.0 * (alpha + delta) + alpha**2 + b**2 + c**2 + delta**2
+    return 2.0 * np.stack(
+        [
+            (1.0 + delta) * planar_m1 + alpha - delta + eta**2 - 2.0 * eta * delta + hoop * alpha,
+            -c * planar_m1 + c + 2.0 * eta * c + h2 * b,
+            -b * planar_m1 + b + 2.0 * eta * b + h2 * c,
+            (1.0 + alpha) * planar_m1 + delta - alpha + eta**2 - 2.0 * eta * alpha + hoop * delta,
+            2.0 * eta + eta * q4_m2 + (alpha - delta) ** 2 + (b + c) ** 2,
+        ]
     )
 
 
