@@ -74,9 +74,7 @@ it (mass 1e-300 gave a singular matrix); the exact quasi-static impact is the an
 MIN_FINITE_DEPTH_RATIO = 1e-3
 """Smallest x/a a finite-strain FE impact (or a contact curve an impact's x_c sets) is run at.
 There the finite-strain correction (~5 % x/a) is below the FE's own error (~1e-4): the linear
-model, exact there, is the answer (session 61: with the stress free of cancellation a massless
-neo-Hookean impact at x/a 6.7e-5 runs, its x_max within 6e-5 of the exact x_c; session 60's
-stress stalled it)."""
+model, exact there, is the answer (benchmarks/FEM_NOTES.md, "Stress without cancellation")."""
 LOCKED = 0.999
 """(I1bar - 3) / Jm of a Gent rubber that locks: its tangent shear stiffness
 mu / (1 - (I1bar - 3) / Jm) is a thousand times mu. A run's first state there warns
