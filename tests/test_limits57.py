@@ -160,8 +160,8 @@ def test_a_cone_gets_no_reach_remedy_and_no_crash():
 
     cone = sh.PowerLawIndenter(5.0, 1.0)  # x/a = 7.85 at every depth, beyond 1.2
     for finite in (True, False):
-        assert check_reach(cone, 0.0215, (0.7, 3.0), 2.0, finite) is None
-    assert reach_velocity(cone, 0.0215, 3.0, 2.0) == ""
+        assert check_reach(cone, 0.0215, (0.7, 3.0), finite) is None
+    assert reach_velocity(cone, 0.0215, 3.0) == ""
 
 
 def test_a_sphere_whose_equator_takes_no_representable_work_is_refused_in_one_line():

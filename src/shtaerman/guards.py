@@ -60,6 +60,7 @@ __all__ = [
     "depth_ratio",
     "outside_validity",
     "reach_velocity",
+    "tip_exponents",
     "warn_outside_validity",
     "wave_limit",
 ]
@@ -224,6 +225,21 @@ class LadderWarnings:
                     warnings.warn(said.message, stacklevel=stacklevel)
 
 
+def tip_exponents(indenter: Indenter, depth: float) -> tuple[float, float]:
+    """The striker's tip z ~ r^n at ``depth`` (m) as the reach and the waves' limit scale it:
+    (n, q), q = (n + 1)/n its force exponent (P ~ x^q). A power law's own n; a sphere's 2; a
+    table's n as its first rows give it
+    (:attr:`~shtaerman.theory.profiles.TabulatedIndenter.tip_exponent`) once the contact
+    passes its first row, else, or where they are sharper, 2: its interpolation in r^2 is a
+    smooth tip (q at most 3/2). z = 50 r^3 tabulated took a sphere's wave limit 0.45 and
+    failed its checks at lambda 0.45 (balance off by 4.6 of M v0^2/2)."""
+    n = getattr(indenter, "exponent", 2.0)  # a power law's; a sphere's, a smooth tip's
+    if indenter.kind == "tabulated" and depth > 0:
+        beyond = contact_law(indenter, 1.0).contact_radius(depth) > indenter.radii[1]
+        n = max(indenter.tip_exponent, 2.0) if beyond else 2.0
+    return n, (n + 1.0) / n
+
+
 def depth_ratio(indenter: Indenter, depth: float) -> float:
     """x/a: ``depth`` (m) over the exact contact radius there (Shtaerman's, or Sneddon's for
     another profile; independent of the modulus)."""
@@ -283,7 +299,6 @@ def check_reach(
     indenter: Indenter,
     depth: float,
     impact: tuple[float, float],
-    q: float,
     finite: bool,
     note: str | None = "",
     layer: tuple[float, float, float] | None = None,
@@ -294,7 +309,8 @@ def check_reach(
     :data:`MAX_DEPTH_RATIO`] at finite strain, [:data:`MIN_DEPTH_RATIO`, :data:`LINEAR_REACH`]
     linear; below the finite-strain floor the refusal says the linear model is exact); beyond it the
     message gives the velocity and the mass that reach the limit, below it likewise
-    (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n)), each rounded to pass when tried.
+    (depth ~ (M v^2)^(1/(q+1)), x/a ~ x^(1-1/n), n and q the tip's, :func:`tip_exponents`),
+    each rounded to pass when tried.
     Both inputs set the depth: the message names both (or the shape coefficient, where the
     paper's striker would be within reach); ``note`` ends it (the route's other remedy;
     None: the route runs beyond the upper reach with a warning, the finite-strain frictionless
@@ -310,10 +326,10 @@ def check_reach(
     from .validation import SQUARABLE_VELOCITY, LimitError
     from .vocabulary import entry
 
-    mass, velocity = impact
+    (mass, velocity), (n, q) = impact, tip_exponents(indenter, depth)
     if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
         return
-    if getattr(indenter, "exponent", 2.0) <= 1.0:  # a cone's x/a is the same at every depth:
+    if n <= 1.0:  # a cone's x/a is the same at every depth:
         return  # no impact's remedy; every FE route refuses n <= 1 (validate_fem_inputs)
     ratio = depth_ratio(indenter, depth)
     low, high = _window(finite)
@@ -336,7 +352,7 @@ def check_reach(
     check_equator(indenter, depth, impact)
     if low <= ratio <= high:  # within reach
         return
-    scale, on = _layer_bound(depth, _reach_scale(indenter, ratio, window), layer)
+    scale, on = _layer_bound(depth, _reach_scale(n, ratio, window), layer)
     up = not ratio >= low  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
     shown = (
         _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
@@ -491,22 +507,22 @@ def _fraction(waves: Callable[[float, float], float], mass: float, velocity: flo
         return math.nan
 
 
-def _reach_scale(indenter: Indenter, ratio: float, window: tuple[float, float]) -> float:
+def _reach_scale(n: float, ratio: float, window: tuple[float, float]) -> float:
     """ln of the depth that brings x/a, now ``ratio``, to the nearer end of ``window`` (the
-    least and the largest x/a) over the depth now (x/a ~ x^(1 - 1/n))."""
-    n = getattr(indenter, "exponent", 2.0)  # a smooth tip's n = 2
+    least and the largest x/a) over the depth now (x/a ~ x^(1 - 1/n), the tip's ``n``)."""
     return math.log(min(max(ratio, window[0]), window[1]) / ratio) / (1.0 - 1.0 / n)
 
 
-def reach_velocity(indenter: Indenter, depth: float, velocity: float, q: float) -> str:
+def reach_velocity(indenter: Indenter, depth: float, velocity: float) -> str:
     """The velocity (m/s, three digits, rounded down) at which an impact now at ``velocity``
-    reaching ``depth`` (m, its quasi-static x_c on the half-space; force exponent ``q``)
+    reaching ``depth`` (m, its quasi-static x_c on the half-space)
     reaches :data:`MAX_DEPTH_RATIO`, the finite-strain reach: :func:`check_reach`'s remedy,
     for a run that failed beyond it ("" within it, or beyond the floats)."""
     ratio = depth_ratio(indenter, depth) if depth > 0 else 0.0
-    if not ratio > MAX_DEPTH_RATIO or getattr(indenter, "exponent", 2.0) <= 1.0:
+    n, q = tip_exponents(indenter, depth)
+    if not ratio > MAX_DEPTH_RATIO or n <= 1.0:
         return ""  # within reach, or a cone (its x/a moves with no depth)
-    scale = _reach_scale(indenter, ratio, _window(True))
+    scale = _reach_scale(n, ratio, _window(True))
     return _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
 
 
@@ -571,8 +587,7 @@ def check_profile_reach(
     if indenter.kind == "power-law":
         if depths is None:  # x_c = 3e110 m at 1e300 kg ran, overflowing (x/a 2.9e37)
             deepest = overshoot * _approach(indenter, modulus, impact)
-            q = 1.0 + 1.0 / indenter.exponent
-            check_reach(indenter, deepest, impact, q, finite, note, layer, waves)
+            check_reach(indenter, deepest, impact, finite, note, layer, waves)
         return
     law = contact_law(indenter, modulus)
     if depths is not None:
@@ -620,26 +635,25 @@ def check_wave_speed(
     impact: tuple[float, float],
     estimate: object,
     density: float,
-    force_exponent: float | None,
+    force_exponent: float,
     fraction_at: Callable[[float], float] | None = None,
     reaches: Callable[[float, float], bool] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact with inertia (mass in kg, velocity in m/s)
     whose first-order radiated fraction ``estimate`` (a
     :class:`~shtaerman.theory.radiation.RadiationEstimate` on the body of density ``density``
-    kg/m^3) exceeds :func:`wave_limit` of its force exponent, naming the velocity and the
-    density that pass: lambda goes as sqrt(density) and, for a power-law force P ~ x^q
-    (``force_exponent`` q), as v0^((3q - 3)/(q + 1)). A sphere's or a table's q (None) varies
-    with depth: its limit is its tip's, q = 3/2, and so is its velocity's first guess, checked
-    by ``fraction_at`` (lambda at a velocity in m/s), which a few rescalings bring below the
-    limit (a 12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82 m/s, at lambda 0.837, above
-    session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
+    kg/m^3) exceeds :func:`wave_limit` of its force exponent (``force_exponent`` q, the
+    tip's: :func:`tip_exponents`), naming the velocity and the density that pass: lambda goes
+    as sqrt(density) and, for a power-law force P ~ x^q, as v0^((3q - 3)/(q + 1)). A sphere's
+    or a table's force varies with depth: that velocity is a first guess, checked by
+    ``fraction_at`` (lambda at a velocity in m/s; None: a power law's, exact), which a few
+    rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82
+    m/s, at lambda 0.837, above session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
     velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
     velocity, the refusal says so and names the density and the mass that pass instead."""
     from .validation import LimitError
 
-    fraction = estimate.energy_fraction
-    q = 1.5 if force_exponent is None else force_exponent  # a smooth tip's
+    fraction, q = estimate.energy_fraction, force_exponent
     limit = wave_limit(q)
     if not fraction > limit:
         return
@@ -647,7 +661,7 @@ def check_wave_speed(
     c_s, share = estimate.shear_wave_speed, limit / fraction
     slower = _slower(velocity, share, q)
     about = ""
-    if force_exponent is None:
+    if fraction_at is not None:
         power = (q + 1.0) / (3.0 * q - 3.0)
         slower, about = _passing_velocity(slower, power, fraction_at, limit)
     remedy, named = f" or velocity {about}{slower:.3g} m/s would pass", "velocity"
@@ -660,8 +674,8 @@ def check_wave_speed(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {shown} of its energy as waves (first order), above "
-        f"{_limit_text(q)}, where the FE impact with inertia breaks down (the linear "
-        "one's energy balance off by about 2 of M v0^2/2): density2 "
+        f"{_limit_text(q)}, where the FE impact with inertia breaks down (measured: beyond "
+        "it the linear one fails its energy balance or its reflected-energy check): density2 "
         f"{0.99 * density * share**2:.3g} kg/m^3"
         f"{remedy} (density2 0: the quasi-static impact without waves)",
         named,

@@ -398,7 +398,7 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     validate_density("density2", body.density)
     pad = geometry.thickness is not None  # it stops the striker short of x_c
     note = pad_reach_note(pad, friction, inputs[2])  # None: the floor alone
-    check_reach(striker.indenter, x_c, inputs[3:5], law.force_exponent, True, note)
+    check_reach(striker.indenter, x_c, inputs[3:5], True, note)
 
 
 def _problem(

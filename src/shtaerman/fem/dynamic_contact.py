@@ -24,7 +24,7 @@ import scipy.sparse as sp
 from skfem import MeshTri
 from threadpoolctl import threadpool_limits
 
-from ..guards import check_reach, check_wave_speed
+from ..guards import check_reach, check_wave_speed, tip_exponents
 from ..theory.contact import PowerLawContact
 from ..theory.impact import duration_integral
 from ..theory.indenter import PowerLawIndenter
@@ -604,7 +604,7 @@ def _reaches(indenter: Indenter, half_space: Material) -> Callable[[float, float
             with warnings.catch_warnings():  # a slower or heavier impact, only checked
                 warnings.simplefilter("ignore")
                 qs = _quasi_static(indenter, half_space, Striker(mass, velocity))
-                check_reach(indenter, qs.x_c, (mass, velocity), qs.force_exponent, False)
+                check_reach(indenter, qs.x_c, (mass, velocity), False)
         except InputError:  # the reach's LimitError, or a depth beyond the floats
             return False
         return True
@@ -652,17 +652,15 @@ def check_dynamic_impact(
     thickness, impact = geometry.thickness, (striker.mass, striker.velocity)
     fraction = radiated_fraction(indenter, half_space, rho) if rho > 0 else None
     if thickness is None:  # a pad stops the striker short of x_c
-        check_reach(indenter, qs.x_c, impact, qs.force_exponent, False, waves=fraction)
+        check_reach(indenter, qs.x_c, impact, False, waves=fraction)
         # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
     if rho > 0:
         waves = _waves(indenter, half_space, rho, striker, exact)
-        exponent = None if math.isnan(qs.beta) else qs.force_exponent
-        at = None if exponent is not None else functools.partial(fraction, striker.mass)
-        reach = (
-            None if thickness is not None or exponent is None else _reaches(indenter, half_space)
-        )
-        check_wave_speed(impact, waves, rho, exponent, at, reach)
+        profile = math.isnan(qs.beta)  # a sphere's or a table's: no power law
+        at = functools.partial(fraction, striker.mass) if profile else None
+        reach = None if thickness is not None or profile else _reaches(indenter, half_space)
+        check_wave_speed(impact, waves, rho, tip_exponents(indenter, qs.x_c)[1], at, reach)
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     if thickness is None:
         return rho, striker, scales, estimate_dofs(settings)

@@ -423,10 +423,10 @@ def prepare_finite_impact(
     # reach (that case failed at separation after 15 min), a frictionless one warns
     note = pad_reach_note(not unbounded, friction, rho)  # None: the floor alone
     layer = resolved_depths(geometry, indenter, settings.margin)  # a pad's: its remedy's too
-    check_reach(indenter, x_c, (mass, velocity), q, True, note, layer)  # before the sizing
+    check_reach(indenter, x_c, (mass, velocity), True, note, layer)  # before the sizing
     x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
     if unbounded and x_size > x_c:
-        check_reach(indenter, x_size, (mass, velocity), q, finite=True)
+        check_reach(indenter, x_size, (mass, velocity), finite=True)
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
     clock = [time.perf_counter()]

@@ -22,7 +22,7 @@ import time
 from collections.abc import Callable
 from typing import Any, Protocol
 
-from ..guards import check_profile_reach, check_wave_speed
+from ..guards import check_profile_reach, check_wave_speed, tip_exponents
 from ..theory.materials import Material
 from ..theory.profile_impact import ProfileImpactResult
 from ..theory.sneddon import Indenter
@@ -128,11 +128,11 @@ def _check_finite_waves(
             return False
         return True
 
+    q = tip_exponents(indenter, math.nan if exact is None else exact.x_c)[1]
     if exact is None:  # the power law: its force exponent q is exact
-        q = contact_law(indenter, modulus).force_exponent
         check_wave_speed(impact, estimate, density, q, None, reaches)
     else:
-        check_wave_speed(impact, estimate, density, None, functools.partial(waves, impact[0]))
+        check_wave_speed(impact, estimate, density, q, functools.partial(waves, impact[0]))
 
 
 def run_impact(

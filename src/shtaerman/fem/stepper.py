@@ -1347,7 +1347,7 @@ def _step_failure(
     squeezed = None if x is None else squeeze_note(stepper.system, x, "more time_steps=...")
     if squeezed is not None:  # the elastic z = 8 r^1.3 pad: J 0.03 at the axis, x/a 1.45
         deep = ratio > MAX_DEPTH_RATIO  # else a thin pad's squeeze (x/H 0.9)
-        slower = "" if impact is None else reach_velocity(stepper.indenter, *impact)
+        slower = "" if impact is None else reach_velocity(stepper.indenter, *impact[:2])
         return SqueezedTipError(
             f"{where}{squeezed}; it had reached x/a = {ratio:.3g} (depth {at[2]:.4g} m)"
             + (f", beyond the {MAX_DEPTH_RATIO:g} up to which it is validated" if deep else "")

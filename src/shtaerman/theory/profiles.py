@@ -162,6 +162,10 @@ def _header_name(cell: str, path: Path) -> str:
     return name.strip()
 
 
+TIP_ROWS = 3
+"""The rows beyond the tip over which a table's tip exponent is measured
+(:attr:`TabulatedIndenter.tip_exponent`; all of a 3-row table's 2)."""
+
 _SMALLEST_R, _LARGEST_R = math.sqrt(sys.float_info.min), math.sqrt(sys.float_info.max)
 """The radii whose squares (the interpolation's variable) are normal floats, in m."""
 
@@ -255,6 +259,14 @@ class TabulatedIndenter:
         """The JSON's ``profile.parameters``: the file, the number of points and the last
         radius (m)."""
         return {"file": self.source, "points": int(self.radii.size), "r_max": self.r_max}
+
+    @property
+    def tip_exponent(self) -> float:
+        """n of z ~ r^n at the tip as the table gives it: the least-squares slope of ln z
+        against ln r over its first :data:`TIP_ROWS` rows beyond the tip (3 for the rows of
+        z = 50 r^3; 2 for a sphere's rows well inside its radius)."""
+        rows = slice(1, TIP_ROWS + 1)
+        return float(np.polyfit(np.log(self.radii[rows]), np.log(self.heights[rows]), 1)[0])
 
     @property
     def r_max(self) -> float:

@@ -930,8 +930,7 @@ def check_finite_depths(
     (small, low), (deep, high) = ratios
     valid = f"[{MIN_DEPTH_RATIO:g}, {MAX_DEPTH_RATIO:g}]"
     if impact is not None and not MIN_FINITE_DEPTH_RATIO <= high <= MAX_DEPTH_RATIO:  # its words
-        q = contact_law(indenter, 1.0).force_exponent
-        check_reach(indenter, deep, impact, q, finite=True, note=DEPTHS_INSTEAD)
+        check_reach(indenter, deep, impact, finite=True, note=DEPTHS_INSTEAD)
     if low < MIN_DEPTH_RATIO:
         reason = (
             f"{small:g} m gives depth / contact radius {low:.2g}, below the {model} model's "
