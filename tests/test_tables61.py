@@ -1,11 +1,14 @@
 """Session 61: a blunt table's wave-speed limit is its own (z = 50 r^3 tabulated took a
 sphere's 0.45 and named 0.32 m/s, whose run was off by 4.6 of M v0^2/2), the wave refusal says
-only what was measured."""
+only what was measured, and a velocity beyond the floats is told one whose M v0^2 / 2 is a
+float (1e308 m/s named 4.84e244 m/s, whose v0^2 was refused next with no value)."""
 
 from __future__ import annotations
 
 import json
+import math
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -98,3 +101,32 @@ def test_the_wave_refusal_says_which_checks_fail_beyond_the_limit(capsys):
     said = _refusal(capsys, "dynamic", "--velocity", "300")
     assert "fails its energy balance or its reflected-energy check" in said, said
     assert "off by about" not in said, said
+
+
+@pytest.mark.filterwarnings("ignore::UserWarning")
+@pytest.mark.parametrize(
+    ("argv", "named"),
+    [
+        (("dynamic", "--velocity", "1e308"), 1.34e154),  # sqrt(1.797e308), v0^2 a float
+        (  # sqrt(2 max / M); a sphere: the power law's reach is checked first
+            ("dynamic", "--sphere-radius", "0.05", "--velocity", "1e100", "--mass", "1e150"),
+            1.89e79,
+        ),
+        (("impact", "--sphere-radius", "0.05", "--velocity", "1e308"), 1.34e154),
+    ],
+)
+def test_a_velocity_beyond_the_floats_is_told_one_whose_energy_is_a_float(capsys, argv, named):
+    """`dynamic --velocity 1e308` named 4.84e244 m/s (the power law's P_c a float), whose v0^2
+    overflows and was refused next "give it a value of a physical size"; a sphere's impact
+    named no value. The velocity named keeps v0^2 and M v0^2 / 2 floats (three digits,
+    rounded down), and the next refusal, if any, is no longer the floats'."""
+    said = _refusal(capsys, *argv)
+    velocity = float(re.search(r"lower --velocity to at most about (\S+) m/s", said)[1])
+    assert velocity == named, said
+    mass = float(argv[argv.index("--mass") + 1]) if "--mass" in argv else 0.7
+    assert math.isfinite(0.5 * mass * velocity * velocity) and velocity**2 < sys.float_info.max
+    moved = list(argv)
+    moved[moved.index("--velocity") + 1] = repr(velocity)
+    if main(moved) == 2:  # the reach or the equator, naming their own remedy
+        err = capsys.readouterr().err
+        assert "floating-point range" not in err, err

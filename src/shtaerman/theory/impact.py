@@ -36,6 +36,7 @@ __all__ = [
     "ImpactHistory",
     "ImpactResult",
     "QuasiStaticValidityWarning",
+    "check_impact_energy",
     "duration_integral",
     "history_times",
     "log_approach",
@@ -230,6 +231,31 @@ def representable(
             inputs[0],
         )
     return value
+
+
+def check_impact_energy(mass: float, velocity: float) -> None:
+    """Refuse an impact (mass kg, velocity m/s) whose v0^2 or M v0^2 / 2 exceeds the largest
+    float (the FE impact's energies and the profile impact's clock take them), naming the
+    velocity at which both are floats and, where v0^2 is one, the mass (three digits, rounded
+    down). ``dynamic --velocity 1e308`` named 4.84e244 m/s, the power law's P_c alone, whose
+    v0^2 was refused next with no value."""
+    square = velocity * velocity
+    energy = 0.5 * mass * square
+    if math.isfinite(energy):
+        return
+    log_top = math.log(sys.float_info.max)
+    fastest = math.exp(0.5 * min(log_top, log_top + math.log(2.0 / mass)))
+    said = f"lower velocity=... to at most about {bound_text(fastest, 'high')} m/s"
+    if math.isfinite(square):
+        lightest = math.exp(log_top + math.log(2.0) - math.log(square))
+        said += " with this striker, mass and body, or mass=... to at most about "
+        said += f"{bound_text(lightest, 'high')} kg"
+    raise InputError(
+        f"{'mass, ' if math.isfinite(square) else ''}velocity: the impact of {mass:g} kg at "
+        f"{velocity:g} m/s would give v0^2 = {square:g} and M v0^2 / 2 = {energy:g}, outside "
+        f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]: {said}",
+        "velocity",
+    )
 
 
 def _scales(mass: float, velocity: float, law: ContactLaw) -> dict[str, float]:

@@ -38,7 +38,14 @@ from ..validation import (
     bound_text,
     validate_positive,
 )
-from .impact import ImpactHistory, ImpactResult, check_velocity, history_times, representable
+from .impact import (
+    ImpactHistory,
+    ImpactResult,
+    check_impact_energy,
+    check_velocity,
+    history_times,
+    representable,
+)
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
 __all__ = ["ProfileImpactResult", "lower_impact", "solve_profile_impact", "work_to"]
@@ -151,6 +158,7 @@ def _impact_energy(mass: float, velocity: float) -> float:
     below the smallest normal float, InputError naming the velocity and (where v0^2 is one)
     the mass that give 4 times it, as the power-law impact's refusal does; beyond the largest,
     the inputs that set it."""
+    check_impact_energy(mass, velocity)
     tiny, square = sys.float_info.min, velocity * velocity
     energy = 0.5 * mass * square
     if square >= tiny and (energy >= tiny or not energy < 1.0):

@@ -343,7 +343,7 @@ def _check_velocities(
     import warnings
 
     from ...fem.impact import check_impact_reach
-    from ...theory.impact import representable
+    from ...theory.impact import check_impact_energy, representable
 
     solved = {}
     settings = study.quick_settings if quick else study.settings
@@ -358,6 +358,7 @@ def _check_velocities(
             except InputError as error:
                 raise refused(path, error, {**KEYS, "velocity": key}) from None
             try:
+                check_impact_energy(study.mass, velocity)
                 representable("v0^2", velocity * velocity, study.mass, velocity, ("velocity",))
                 solved[velocity] = exact(velocity)
             except InputError as error:
