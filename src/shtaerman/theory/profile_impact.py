@@ -44,7 +44,6 @@ from .impact import (
     check_impact_energy,
     check_velocity,
     history_times,
-    representable,
 )
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
@@ -157,12 +156,12 @@ def _impact_energy(mass: float, velocity: float) -> float:
     """M v0^2 / 2 in J (mass kg, velocity m/s). Where it or v0^2 (the history's speed) is
     below the smallest normal float, InputError naming the velocity and (where v0^2 is one)
     the mass that give 4 times it, as the power-law impact's refusal does; beyond the largest,
-    the inputs that set it."""
+    the velocity and mass that keep it a float (:func:`.impact.check_impact_energy`)."""
     check_impact_energy(mass, velocity)
     tiny, square = sys.float_info.min, velocity * velocity
     energy = 0.5 * mass * square
-    if square >= tiny and (energy >= tiny or not energy < 1.0):
-        return representable("M v0^2 / 2", energy, mass, velocity, ("mass", "velocity"))
+    if square >= tiny and energy >= tiny:
+        return energy
     log_energy = math.log(8.0 * tiny)  # twice 4 times the smallest
     faster = max(math.exp(0.5 * (log_energy - math.log(mass))), SQUARABLE_VELOCITY)
     said = f"raise velocity=... to at least about {bound_text(faster, 'low')} m/s"
