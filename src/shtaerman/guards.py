@@ -125,11 +125,11 @@ end whatever lambda, and the check fails once that is 1e-4 of M v0^2/2: from lam
 
 def wave_limit(force_exponent: float) -> float:
     """Largest first-order radiated fraction lambda at which an FE impact with inertia of a
-    striker whose force goes as x^``force_exponent`` (q; a sphere's or a table's smooth tip:
-    3/2) is run: :data:`WAVE_LIMITS` interpolated linearly in q, their first beyond n = 10 and
-    :data:`MAX_RADIATED_ESTIMATE` from q = 5/3 up (n <= 3/2). Blunter strikers break down at a
-    lower lambda; a sphere's fails where z = r^2 / (2 R) does, however deep (q at its x_c
-    1.44: benchmarks/FEM_NOTES.md)."""
+    striker whose force goes as x^``force_exponent`` (q; a sphere's 3/2, a table's its tip's:
+    :func:`tip_exponents`) is run: :data:`WAVE_LIMITS` interpolated linearly in q, their
+    first beyond n = 10 and :data:`MAX_RADIATED_ESTIMATE` from q = 5/3 up (n <= 3/2). Blunter
+    strikers break down at a lower lambda; a sphere's fails where z = r^2 / (2 R) does,
+    however deep (q at its x_c 1.44: benchmarks/FEM_NOTES.md)."""
     q = round(force_exponent, 9)  # 1 + 1/n and (n + 1)/n differ in the last digit
     for (first, low), (last, high) in itertools.pairwise(WAVE_LIMITS):
         if q <= first:
