@@ -28,14 +28,15 @@ the normal mass of the contact candidates (:func:`.elasticity.redistribute_norma
 u_z follow the indenter quasi-statically, without chatter), the inertial force and its tangent
 added to the contact Newton's residual and tangent. The striker's own Bossak equation M ((1 -
 a_m) A_{n+1} + a_m A_n) + P(X_{n+1}) = 0 is solved by a secant in X_{n+1}, each evaluation a
-contact solve of the body's step. Each step starts from x and X extrapolated linearly in time,
-each Newton with its loaded candidates kept on the indenter in the first iterate, and halves an
-update that inverts an element (damped Newton). A step whose Newton or secant still fails (near
-separation the extrapolated start lifts the surface with the leaving striker) is cut in two
-halves of dt / 2, recursively up to :data:`.stepper.MAX_STEP_CUTS` times, each half a Bossak
-step recorded as a step of its own (the energy account is that of the smaller steps); a step
-that converges is unchanged. A step that fails in every cut from a state squeezing an element
-beside the striker's tip (J < :data:`.contact.finite.SQUEEZED_J`) raises
+contact solve of the body's step. Each step starts from x and X extrapolated linearly in time
+(from the last state where that start passes a Gent rubber's limit: near its lock every cut of
+the step failed so), each Newton with its loaded candidates kept on the indenter in the first
+iterate, and halves an update that inverts an element (damped Newton). A step whose Newton or
+secant still fails (near separation the extrapolated start lifts the surface with the leaving
+striker) is cut in two halves of dt / 2, recursively up to :data:`.stepper.MAX_STEP_CUTS`
+times, each half a Bossak step recorded as a step of its own (the energy account is that of the
+smaller steps); a step that converges is unchanged. A step that fails in every cut from a state
+squeezing an element beside the striker's tip (J < :data:`.contact.finite.SQUEEZED_J`) raises
 :class:`.contact.finite.SqueezedTipError`, which names the element and no time steps (the
 elastic z = 8 r^1.3 pad failed so at x/a 1.4-1.6 at every step and mesh tried). No absorbing
 layer: the far arc lies ``mesh.domain`` refined radii away, beyond the waves' reach during the

@@ -67,7 +67,7 @@ import numpy as np
 import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
-from ..guards import MAX_DEPTH_RATIO, depth_ratio, reach_velocity
+from ..guards import LOCKED, MAX_DEPTH_RATIO, depth_ratio, reach_velocity
 from ..validation import InputError, NumericalFailureError
 from .contact.constraints import (
     EDGE_MARGIN,
@@ -84,7 +84,7 @@ from .elasticity import ElasticSystem, consistent_mass, redistribute_normal_mass
 from .finite_viscoelastic import ViscoelasticBody
 from .hyperelastic import NewtonError
 from .impact_run import march_steps
-from .rubber import GentLockError, gent_locks
+from .rubber import GentLimitError, GentLockError, gent_locks
 from .solver import Factorization
 
 if TYPE_CHECKING:
@@ -1164,7 +1164,8 @@ def _dynamic_step(
     """One step of body and striker, and its Newton iterations.
 
     The striker's Bossak equation M ((1 - a_m) A_{n+1} + a_m A_n) + P(X_{n+1}) = 0 is solved
-    for X_{n+1} by a secant, each evaluation a body step. ``scales``: the contact stiffness
+    for X_{n+1} by a secant, each evaluation a body step, the first from x extrapolated in time
+    (from the last state where that passes a Gent rubber's limit). ``scales``: the contact stiffness
     guess of the first slope (N/m), the depth (m) and the force (N) scales of the tolerances.
     """
     alpha_m, beta, dt = inertial.alpha_m, inertial.beta, inertial.dt
@@ -1175,6 +1176,8 @@ def _dynamic_step(
     k, depth_scale, force_scale = scales
     load = mass * alpha_m * state.accel
     iterations, latest = 0, state.predicted(dt)
+    if isinstance(stepper.admit(latest[0])[1], GentLimitError):  # extrapolated past the limit
+        latest = (state.x, state.lam, state.depth)
 
     def residual(depth: float) -> tuple[float, tuple[np.ndarray, np.ndarray]]:
         nonlocal iterations, latest
@@ -1330,7 +1333,7 @@ def _step_failure(
     flank and folds the surface: the A = 8 pad, x/a 2.29); where ``x`` squeezes an element
     beside the tip (:func:`.contact.finite.squeeze_note`) a
     :class:`.contact.finite.SqueezedTipError` that names it and no time steps; else what may
-    help: the massless impact (density2=0) only within that x/a, which it cannot pass."""
+    help (:func:`_other_remedy`)."""
     where = (
         f"the step from t = {at[0]:.4g} s (striker depth {at[1]:.4g} m): {error}, also in "
         f"steps cut {MAX_STEP_CUTS} times; "
@@ -1360,16 +1363,30 @@ def _step_failure(
             + " or a smaller shape_coefficient=..."
             + ("" if deep else " (on a pad: a thicker thickness=...)")
         )
-    massless = (  # the massless impact stops at x/a 1.2 (guards.check_reach): not beyond it
-        "density2=0 gives the massless finite-strain impact"
-        if ratio <= MAX_DEPTH_RATIO
-        else f"it had reached x/a = {ratio:.3g}, beyond the {MAX_DEPTH_RATIO:g} of the massless "
-        "impact (density2=0): a slower velocity=... or a smaller shape_coefficient=..."
-    )
     return NumericalFailureError(
         where + "the body with inertia cannot follow this impact at these settings (other "
         "time_steps=... may help; a striker faster than the shear waves never converges): "
-        + massless
+        + _other_remedy(stepper, ratio)
+    )
+
+
+def _other_remedy(stepper: NewtonStepper, ratio: float) -> str:
+    """What a failed step with inertia names beside other time steps, the run having reached
+    x/a ``ratio``: a larger gent_limit=... where the rubber passed :data:`.guards.LOCKED` of
+    its limit (the massless impact may refuse it as locking: z = 5 r^1.3 at 0.2 m/s, Jm 0.1);
+    else the massless impact (density2=0) within x/a :data:`.guards.MAX_DEPTH_RATIO` (it
+    stops there: :func:`.guards.check_reach`), beyond it a slower or blunter striker."""
+    if stepper.watch.crossed is not None:
+        return (
+            f"the Gent rubber passed {LOCKED:g} of its limit from depth "
+            f"{stepper.watch.crossed:.4g} m on, where its stiffness runs away: a larger "
+            "gent_limit=..."
+        )
+    if ratio <= MAX_DEPTH_RATIO:
+        return "density2=0 gives the massless finite-strain impact"
+    return (
+        f"it had reached x/a = {ratio:.3g}, beyond the {MAX_DEPTH_RATIO:g} of the massless "
+        "impact (density2=0): a slower velocity=... or a smaller shape_coefficient=..."
     )
 
 
