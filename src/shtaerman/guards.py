@@ -651,6 +651,7 @@ def check_wave_speed(
     m/s, at lambda 0.837, above session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
     velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
     velocity, the refusal says so and names the density and the mass that pass instead."""
+    from .theory.materials import DENSITY_RANGE
     from .validation import LimitError
 
     fraction, q = estimate.energy_fraction, force_exponent
@@ -670,14 +671,18 @@ def check_wave_speed(
         named = "mass" if remedy.startswith(" or mass") else "density2"
     prefix = named if named == "density2" else f"{named}, density2"
     shown = _apart(fraction, (limit, float(f"{limit:.3g}")))  # 0.4502 said "0.45, above 0.45"
+    lighter, massless = float(f"{0.99 * density * share**2:.3g}"), "the quasi-static impact"
+    lighter_text = f"density2 {lighter:g} kg/m^3"
+    if lighter < DENSITY_RANGE[0]:  # 1e-300 kg at 1.34e154 m/s named 7.94e-302 kg/m^3
+        lighter_text, massless = f"density2 0 ({massless} without waves)", ""
     raise LimitError(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {shown} of its energy as waves (first order), above "
         f"{_limit_text(q)}, where the FE impact with inertia breaks down (measured: beyond "
-        "it the linear one fails its energy balance or its reflected-energy check): density2 "
-        f"{0.99 * density * share**2:.3g} kg/m^3"
-        f"{remedy} (density2 0: the quasi-static impact without waves)",
+        f"it the linear one fails its energy balance or its reflected-energy check): "
+        f"{lighter_text}{remedy}"
+        + (f" (density2 0: {massless} without waves)" if massless else ""),
         named,
     )
 

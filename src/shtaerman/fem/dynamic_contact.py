@@ -604,6 +604,8 @@ def _reaches(indenter: Indenter, half_space: Material) -> Callable[[float, float
             with warnings.catch_warnings():  # a slower or heavier impact, only checked
                 warnings.simplefilter("ignore")
                 qs = _quasi_static(indenter, half_space, Striker(mass, velocity))
+                if not qs.x_c > 0:  # underflows: check_reach leaves it to the exact impact
+                    return False  # (1e-300 kg at 2.32e-49 m/s was named, then refused)
                 check_reach(indenter, qs.x_c, (mass, velocity), False)
         except InputError:  # the reach's LimitError, or a depth beyond the floats
             return False

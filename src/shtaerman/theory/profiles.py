@@ -210,6 +210,27 @@ def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -
             )
 
 
+def _interpolant(r: np.ndarray, z: np.ndarray) -> PchipInterpolator:
+    """The PCHIP of z in r^2 of a checked table (:func:`_check_table`), refused where its
+    weights (r^2 steps squared over z steps) leave the floats: a node's slope dz/d(r^2) came
+    out infinite (a sphere of R = 5e-152 m tabulated from r = 1e-153 m: a traceback) or 0
+    (R = 5e148 m: a staircase, refused as reaching beyond its last row)."""
+    with np.errstate(all="ignore"):
+        try:
+            interpolant = PchipInterpolator(r**2, z, extrapolate=True)
+            slopes = interpolant(r**2, 1)
+        except ValueError:  # scipy's "dydx must contain only finite values"
+            slopes = np.array([math.nan])
+    if not (np.all(np.isfinite(slopes)) and np.all(slopes[1:-1] > 0.0)):
+        raise InputError(
+            f"profile: rows r {r[1]:g} to {r[-1]:g} m, z {z[1]:g} to {z[-1]:g} m are beyond "
+            "what the floats interpolate in r^2 (its slopes dz/d(r^2) overflow or vanish); "
+            "give a tip of a physical size (a sphere's rows: R from 1e-6 to 1e6 m)",
+            "profile",
+        )
+    return interpolant
+
+
 @dataclass(frozen=True, eq=False)
 class TabulatedIndenter:
     """A measured tip z(r): points (r_i, z_i) in m from the tip r = 0, z = 0, both increasing.
@@ -242,7 +263,7 @@ class TabulatedIndenter:
         _check_table(r, z)
         object.__setattr__(self, "radii", r)
         object.__setattr__(self, "heights", z)
-        object.__setattr__(self, "interpolant", PchipInterpolator(r**2, z, extrapolate=True))
+        object.__setattr__(self, "interpolant", _interpolant(r, z))
 
     @classmethod
     def from_csv(cls, path: str | Path) -> TabulatedIndenter:
