@@ -1259,17 +1259,23 @@ def _write_results(
     drawn: list | None = None,
 ) -> list[Path]:
     """cases.csv, results.json and (``figures``: False or the figure format) the figures:
-    the files ``drawn`` on the cluster, else drawn here; returns the figures written."""
+    the files ``drawn`` on the cluster, else those drawn from the same results by an earlier
+    run (:func:`~shtaerman.sweep.figures.kept_figures`), else drawn here; returns the figures
+    written or kept."""
     _atomic_write(out / "cases.csv", cases_csv(spec, cases, records))
-    results = _results(spec, cases, records, outcome)
-    _atomic_write(out / "results.json", json.dumps(json_safe(results), indent=2))
+    text = json.dumps(json_safe(_results(spec, cases, records, outcome)), indent=2)
+    previous = None
+    if figures and drawn is None:  # nothing computed: the figures may be there already
+        previous = _read_regular(out / "results.json", 2 * len(text) + MAX_RECORD_BYTES)
+    _atomic_write(out / "results.json", text)
     if not figures:
         return []
-    from .figures import sweep_figures
+    from .figures import kept_figures, sweep_figures
 
     def write() -> list[Path]:
         _unlink_links(out / "figures")
-        return sweep_figures(out / "results.json", out / "figures", figures, drawn)
+        kept = kept_figures(previous, text, out / "figures", figures)
+        return kept or sweep_figures(out / "results.json", out / "figures", figures, drawn)
 
     return _or_warn(write)
 

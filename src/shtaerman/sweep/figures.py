@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import tempfile
 from collections.abc import Callable, Iterable
 from pathlib import Path
@@ -36,7 +37,7 @@ from ..plots.labels import scale as shown_scale
 from ..plots.style import points, save, si_prefix, unresolved
 from ..study.limits import RESOLUTION, resolved
 
-__all__ = ["draw_figures", "figure_files", "sweep_figures"]
+__all__ = ["draw_figures", "figure_files", "kept_figures", "sweep_figures"]
 
 
 def _numeric(values: list[Any]) -> bool:
@@ -297,8 +298,42 @@ def sweep_figures(
         folder.mkdir(parents=True, exist_ok=True)
     for _, files in drawn:
         for name, data in files.items():
-            (folder / name).write_bytes(data)
+            _write_whole(folder / name, data)
     return [folder / f"{name}.png" for name, _ in drawn]
+
+
+def _write_whole(path: Path, data: bytes) -> None:
+    """``data`` into ``path`` through a temporary file beside it: an interrupted write leaves
+    no part of a figure, which :func:`kept_figures` would take for the whole."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        temporary.write_bytes(data)
+        os.replace(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+
+
+def kept_figures(
+    previous: str | None, results: str, folder: Path, figure_format: str = "png"
+) -> list[Path] | None:
+    """The figures already in ``folder`` if they were drawn from the same results: the text of
+    the ``previous`` results.json equals the new ``results`` but for their ``timings``, and
+    every file of every figure (:func:`draw_figures`; ``figure_format`` beside each PNG) is a
+    regular file there. None otherwise: draw them. A ``--resume`` that computed nothing keeps
+    its figures instead of drawing them again (0.1-0.3 s of CPU each)."""
+    try:
+        old, new = json.loads(previous or "null"), json.loads(results)
+    except ValueError:
+        return None
+    if not isinstance(old, dict) or {**old, "timings": None} != {**new, "timings": None}:
+        return None
+    names = _figure_names(new)
+    suffixes = {"png", figure_format}
+    files = [folder / f"{name}.{suffix}" for name in names for suffix in sorted(suffixes)]
+    if not all(path.is_file() and not path.is_symlink() for path in files):
+        return None
+    return [folder / f"{name}.png" for name in names]
 
 
 def draw_figures(
@@ -308,13 +343,18 @@ def draw_figures(
     read); none over 3 or more axes. ``mapper`` draws them, called as ``map(figure_files,
     ...)`` is: the sweep engine passes one that runs each figure as a task on its cluster (a
     2-axis contact sweep's 10 heat maps cost 1.4 s of CPU)."""
-    if len(results["spec"]["axes"]) not in (1, 2):
-        return []
-    names = [name for name in results["kind"]["outputs"] if _drawable(results["cases"], name)]
+    names = _figure_names(results)
     units = [results["kind"]["outputs"][name] for name in names]
     count = len(names)
     drawn = mapper(figure_files, [results] * count, names, units, [figure_format] * count)
     return list(zip(names, drawn, strict=True))
+
+
+def _figure_names(results: dict) -> list[str]:
+    """The outputs of a sweep's ``results`` that have a figure (none over 3 or more axes)."""
+    if len(results["spec"]["axes"]) not in (1, 2):
+        return []
+    return [name for name in results["kind"]["outputs"] if _drawable(results["cases"], name)]
 
 
 def _drawable(cases: list[dict], name: str) -> bool:
