@@ -5,6 +5,7 @@ Drawn in the sweep's own process after the last case, a 2-axis contact sweep's 1
 writes the files the workers return.
 """
 
+import json
 import os
 import sys
 
@@ -56,23 +57,26 @@ def test_a_figure_that_fails_on_a_worker_is_one_warning_and_the_results_are_writ
     assert (out / "results.json").is_file() and not list(out.glob("figures/*"))
 
 
-def test_a_resume_that_computes_nothing_keeps_the_figures_drawn_from_the_same_results(tmp_path):
-    """A --resume with every case saved drew each figure again (~12 figures, 0.1-0.3 s of CPU
-    each, for nothing): the figures drawn from the same results are kept, untouched; if one
-    is missing, or asked in another format, they are drawn again, as the first run drew them."""
-    spec, out = parse_sweep(CURVES, "drawn.toml"), tmp_path / "out"
-    first = run_sweep(spec, out, workers=1, progress=False)
-    files = sorted((out / "figures").iterdir())
-    assert first.exit_code == 0 and len(files) > 1
-    saved = {path.name: path.read_bytes() for path in files}
-    for path in files:  # a time no drawing now can give: a file written again shows
-        os.utime(path, ns=(10**18, 10**18))
-    again = run_sweep(spec, out, resume=True, progress=False)
-    assert (again.computed, again.figures) == (0, first.figures)
-    assert [path.stat().st_mtime_ns for path in files] == [10**18] * len(files)
-    files[0].unlink()
-    assert run_sweep(spec, out, resume=True, progress=False).figures == first.figures
-    assert {path.name: path.read_bytes() for path in files} == saved  # deterministic Agg
-    assert files[1].stat().st_mtime_ns != 10**18  # all drawn again
-    vector = run_sweep(spec, out, resume=True, progress=False, figure_format="svg")
-    assert vector.figures == first.figures and len(list(out.glob("figures/*.svg"))) == len(files)
+def test_figures_are_kept_only_when_drawn_from_the_same_results_and_all_there(tmp_path):
+    """What a --resume that computed nothing keeps (figures.kept_figures; the resume itself:
+    tests/test_sweeprow57.py): the figures in the folder when the previous results.json is the
+    new one but for its timings and the sweep file's path, which no figure shows, and every
+    file of every figure is there, else None (drawn again)."""
+    cases = [{"status": "ok", "outputs": {"e": 0.9, "t": 1.0}, "seconds": 1.0}]
+    spec = {"file": "a.toml", "name": "s", "kind": "impact", "axes": {"velocity": [1.0]}}
+    old = {"spec": spec, "kind": {"outputs": {"e": "", "t": "s"}}, "cases": cases,
+           "timings": {"wall": 9.0}}  # fmt: skip
+    moved = {**old, "spec": {**spec, "file": "b/a.toml"}, "timings": {"wall": 0.01}}
+    changed = {**old, "cases": [{**cases[0], "outputs": {"e": 0.8, "t": 1.0}}]}
+    for name in ("e.png", "t.png", "e.svg"):
+        (tmp_path / name).write_bytes(b"drawn")
+    kept = [tmp_path / "e.png", tmp_path / "t.png"]
+    text = json.dumps(old)
+    assert figures.kept_figures(text, json.dumps(moved), tmp_path) == kept
+    assert figures.kept_figures(text, json.dumps(moved), tmp_path, "svg") is None  # no t.svg
+    assert figures.kept_figures(text, json.dumps(changed), tmp_path) is None
+    assert figures.kept_figures(None, text, tmp_path) is None  # no results.json before
+    assert figures.kept_figures("{not json", text, tmp_path) is None
+    (tmp_path / "t.png").unlink()
+    (tmp_path / "t.png").symlink_to(tmp_path / "e.png")
+    assert figures.kept_figures(text, text, tmp_path) is None

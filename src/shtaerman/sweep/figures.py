@@ -318,15 +318,15 @@ def kept_figures(
     previous: str | None, results: str, folder: Path, figure_format: str = "png"
 ) -> list[Path] | None:
     """The figures already in ``folder`` if they were drawn from the same results: the text of
-    the ``previous`` results.json equals the new ``results`` but for their ``timings``, and
-    every file of every figure (:func:`draw_figures`; ``figure_format`` beside each PNG) is a
-    regular file there. None otherwise: draw them. A ``--resume`` that computed nothing keeps
-    its figures instead of drawing them again (0.1-0.3 s of CPU each)."""
+    the ``previous`` results.json equals the new ``results`` but for what no figure shows
+    (:func:`_drawn`), and every file of every figure (:func:`draw_figures`; ``figure_format``
+    beside each PNG) is a regular file there. None otherwise: draw them. A ``--resume`` that
+    computed nothing keeps its figures instead of drawing them again (0.1-0.3 s of CPU each)."""
     try:
         old, new = json.loads(previous or "null"), json.loads(results)
     except ValueError:
         return None
-    if not isinstance(old, dict) or {**old, "timings": None} != {**new, "timings": None}:
+    if not isinstance(old, dict) or _drawn(old) != _drawn(new):
         return None
     names = _figure_names(new)
     suffixes = {"png", figure_format}
@@ -348,6 +348,14 @@ def draw_figures(
     count = len(names)
     drawn = mapper(figure_files, [results] * count, names, units, [figure_format] * count)
     return list(zip(names, drawn, strict=True))
+
+
+def _drawn(results: dict) -> dict:
+    """``results`` but for their ``timings`` and the sweep file's path, which no figure shows
+    (the file may move: a resume names its new place)."""
+    spec = results.get("spec")
+    spec = {**spec, "file": None} if isinstance(spec, dict) else spec
+    return {**results, "spec": spec, "timings": None}
 
 
 def _figure_names(results: dict) -> list[str]:
