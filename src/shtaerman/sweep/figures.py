@@ -304,8 +304,9 @@ def sweep_figures(
 
 def _write_whole(path: Path, data: bytes) -> None:
     """``data`` into ``path`` through a temporary file beside it: an interrupted write leaves
-    no part of a figure, which :func:`kept_figures` would take for the whole."""
-    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    no part of a figure, which :func:`kept_figures` would take for the whole (a killed one a
+    hidden file with the figure's suffix, which a sweep folder may hold)."""
+    temporary = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
     try:
         temporary.write_bytes(data)
         os.replace(temporary, path)
@@ -321,7 +322,7 @@ def kept_figures(
     the ``previous`` results.json equals the new ``results`` but for what no figure shows
     (:func:`_drawn`), and every file of every figure (:func:`draw_figures`; ``figure_format``
     beside each PNG) is a regular file there. None otherwise: draw them. A ``--resume`` that
-    computed nothing keeps its figures instead of drawing them again (0.1-0.3 s of CPU each)."""
+    computed nothing keeps its figures instead of drawing them again."""
     try:
         old, new = json.loads(previous or "null"), json.loads(results)
     except ValueError:
