@@ -578,3 +578,26 @@ def test_stress_keeps_its_accuracy_at_small_strain(mooney_ratio):
     t = 1e-9
     error = np.linalg.norm(system.residual(t * x) / t - expected) / np.linalg.norm(expected)
     assert error < 1e-8
+
+
+@pytest.mark.parametrize("mooney_ratio", [None, 0.4])
+def test_energy_keeps_its_accuracy_beside_a_dilation(mooney_ratio):
+    """A shear gamma on a dilation s (a = d = h = 1 + s, F_rZ = gamma) has J = (1 + s)^3 and
+    I1bar - 3 = I2bar - 3 = gamma^2 / (1 + s)^2 exactly, so W = mu/2 gamma^2 / (1 + s)^2 for
+    either model (Mooney-Rivlin: C10 + C01 = mu/2). At s = 1e-9, gamma = 3e-10 the sum
+    (J^(-2/3) - 1) I1 + (I1 - 3) cancelled the dilation's first-order terms into one of 1e-19:
+    it kept eps s / gamma^2 of W (2.1e-5, Mooney-Rivlin 3.1e-5); written from its second-order
+    terms 7.5e-15 and 2.2e-14 (terms of s^2 and gamma^2 cancel, so 1e-12 allows for s^2 up to
+    ~100 gamma^2 of round-off)."""
+    from shtaerman.fem.rubber import RubberModel
+
+    material = (
+        NeoHookean(E2, 0.5)
+        if mooney_ratio is None
+        else RubberModel("mooney-rivlin", mooney_ratio=mooney_ratio).material(E2, 0.5)
+    )
+    s, gamma = 1e-9, 3e-10
+    grad = np.array([[s, gamma], [0.0, s]])[..., None]
+    state = kinematics(material, grad, np.array([s]), np.ones(1), np.zeros(1))
+    exact = 0.5 * material.shear_modulus * gamma**2 / (1.0 + s) ** 2
+    assert abs(state.energy_density[0] / exact - 1.0) < 1e-12

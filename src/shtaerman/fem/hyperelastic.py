@@ -163,7 +163,6 @@ def kinematics(
     I1_m3 = 2.0 * (alpha + delta + eta) + alpha**2 + b**2 + c**2 + delta**2 + eta**2
     with np.errstate(divide="ignore", invalid="ignore"):  # J <= 0 is caught by the caller
         j23 = np.abs(J) ** (-2.0 / 3.0)
-        j23_m1 = np.expm1(-(2.0 / 3.0) * np.log1p(J_m1))
     j53, j83 = j23 / J, j23 / J**2
     # mu J^(-2/3) (F - I1/(3J) Jg), its O(1) parts cancelled by hand (see deviatoric_direction)
     stress = mu * j23 * deviatoric_direction(grad, eta, planar_m1, I1_m3 - 3.0 * J_m1, J, Jg)
@@ -176,7 +175,7 @@ def kinematics(
         "identity": mu * j23,
         "hessian": -(1.0 / 3.0) * mu * j53 * I1 - p,
     }
-    isochoric = j23_m1 * I1 + I1_m3  # J^(-2/3) I1 - 3
+    isochoric = j23 * invariant_excess(grad, eta, J_m1)  # J^(-2/3) I1 - 3
     energy = 0.5 * mu * isochoric - p * J_m1 - 0.5 * inverse_bulk * p**2
     return Kinematics(
         F=F,
@@ -187,6 +186,35 @@ def kinematics(
         constraint=J_m1 + inverse_bulk * p,
         energy_density=energy,
     )
+
+
+SERIES_BOUND = 0.01
+"""Below this |y| :func:`power_excess` sums its series (10 terms: 1e-20 of the last kept)."""
+
+
+def power_excess(y: np.ndarray, k: float) -> np.ndarray:
+    """(1 + y)^k - 1 - k y, O(y^2), without cancellation: its binomial series for |y| <
+    :data:`SERIES_BOUND`, else expm1(k log1p(y)) - k y (nan for y <= -1)."""
+    coefficients = [k * (k - 1.0) / 2.0]
+    for m in range(2, 11):
+        coefficients.append(coefficients[-1] * (k - m) / (m + 1.0))
+    series = np.zeros_like(y)
+    for coefficient in reversed(coefficients):
+        series = (series + coefficient) * y
+    with np.errstate(divide="ignore", invalid="ignore"):
+        direct = np.expm1(k * np.log1p(y)) - k * y
+    return np.where(np.abs(y) < SERIES_BOUND, series * y, direct)
+
+
+def invariant_excess(grad: np.ndarray, eta: np.ndarray, J_m1: np.ndarray) -> np.ndarray:
+    """I1 - 3 J^(2/3) (= J^(2/3) (I1bar - 3), second order in the strain) from the displacement
+    gradient, without the first-order cancellation of I1 - 3 against 3 (J^(2/3) - 1): the
+    second-order terms of I1 - 2 J written out, less 3 :func:`power_excess` (J - 1, 2/3)."""
+    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
+    planar_2 = alpha * delta - b * c
+    squares = alpha**2 + b**2 + c**2 + delta**2 + eta**2
+    poly = squares - 2.0 * planar_2 - 2.0 * eta * (alpha + delta + planar_2)
+    return poly - 3.0 * power_excess(J_m1, 2.0 / 3.0)
 
 
 def deviatoric_direction(

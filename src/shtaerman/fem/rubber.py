@@ -33,6 +33,8 @@ from .hyperelastic import (
     NeoHookean,
     NewtonError,
     deviatoric_direction,
+    invariant_excess,
+    power_excess,
 )
 
 __all__ = [
@@ -374,7 +376,6 @@ def invariant_kinematics(
     dP = np.stack([d, -c, -b, a])
     Jg = np.concatenate([h * dP, planar[None]])
     q4 = a**2 + b**2 + c**2 + d**2
-    I1, I2 = q4 + h**2, planar**2 + h**2 * q4
     dI2 = np.concatenate([2.0 * planar * dP + 2.0 * h**2 * F[:4], (2.0 * h * q4)[None]])
     # I1bar - 3 and I2bar - 3 without cancellation (see hyperelastic.kinematics)
     planar_m1 = alpha + delta + alpha * delta - b * c
@@ -384,9 +385,9 @@ def invariant_kinematics(
     with np.errstate(divide="ignore", invalid="ignore"):  # J <= 0 is caught by the caller
         log_J = np.log1p(J_m1)
         j23_m1, j43_m1 = np.expm1(-(2.0 / 3.0) * log_J), np.expm1(-(4.0 / 3.0) * log_J)
-    x1 = j23_m1 * I1 + q4_m2 + hoop
-    x2 = j43_m1 * I2 + 2.0 * planar_m1 + planar_m1**2 + q4_m2 + hoop * (2.0 + q4_m2)
     j23, j43 = 1.0 + j23_m1, 1.0 + j43_m1
+    x1 = j23 * invariant_excess(grad, eta, J_m1)  # I1bar - 3, I2bar - 3 (second order)
+    x2 = j43 * _i2_invariant_excess(grad, eta, planar_m1, J_m1)
     bar1, bar2 = x1 + 3.0, x2 + 3.0
     # dIbar/dF, their O(1) parts cancelled by hand (hyperelastic.deviatoric_direction)
     J_excess = 3.0 * J_m1
@@ -418,6 +419,26 @@ def invariant_kinematics(
         constraint=g + material.inverse_bulk * p,
         energy_density=energy - p * g - 0.5 * material.inverse_bulk * p**2,
     )
+
+
+def _i2_invariant_excess(
+    grad: np.ndarray, eta: np.ndarray, planar_m1: np.ndarray, J_m1: np.ndarray
+) -> np.ndarray:
+    """I2 - 3 J^(4/3) (second order in the strain) without cancellation, as
+    :func:`.hyperelastic.invariant_excess` does I1's."""
+    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
+    planar_2 = alpha * delta - b * c
+    squares = alpha**2 + b**2 + c**2 + delta**2
+    hoop = eta * (2.0 + eta)
+    poly = (
+        -2.0 * planar_2
+        + planar_m1**2
+        + squares
+        + 2.0 * eta**2
+        + hoop * (2.0 * (alpha + delta) + squares)
+        - 4.0 * eta * planar_m1
+    )
+    return poly - 3.0 * power_excess(J_m1, 4.0 / 3.0)
 
 
 def _i2_excess(grad: np.ndarray, eta: np.ndarray, planar_m1: np.ndarray) -> np.ndarray:
