@@ -18,7 +18,9 @@ def test_an_inertial_step_failure_offers_the_massless_impact_only_within_its_rea
     t = 1.7 ms, x = 2.518 mm (x/a 1.88) with 'other time steps may help ... density2=0 gives
     the massless finite-strain impact': no option named, and the massless impact refuses
     this striker beyond x/a 1.2 (guards.check_reach), so the remedy sent to a refusal."""
-    stepper = types.SimpleNamespace(indenter=PAD_STRIKER)  # an inertial frictionless stepper
+    # an inertial frictionless stepper on a rubber that never locked (no Gent crossing)
+    watch = types.SimpleNamespace(crossed=None)
+    stepper = types.SimpleNamespace(indenter=PAD_STRIKER, watch=watch)
     said = str(_step_failure(stepper, (1.7e-3, reached, reached), RuntimeError("Newton")))
     assert "time_steps=..." in said, said
     beyond = depth_ratio(PAD_STRIKER, reached) > MAX_DEPTH_RATIO  # x/a 1.88 and 0.89
