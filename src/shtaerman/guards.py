@@ -235,7 +235,7 @@ def tip_exponents(indenter: Indenter, depth: float) -> tuple[float, float]:
     failed its checks at lambda 0.45 (balance off by 4.6 of M v0^2/2)."""
     n = getattr(indenter, "exponent", 2.0)  # a power law's; a sphere's, a smooth tip's
     if indenter.kind == "tabulated" and depth > 0:
-        beyond = contact_law(indenter, 1.0).contact_radius(depth) > indenter.radii[1]
+        beyond = depth > contact_law(indenter, 1.0).depth(indenter.radii[1])  # no root find
         n = max(indenter.tip_exponent, 2.0) if beyond else 2.0
     return n, (n + 1.0) / n
 

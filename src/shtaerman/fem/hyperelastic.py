@@ -193,17 +193,21 @@ SERIES_BOUND = 0.01
 
 
 def power_excess(y: np.ndarray, k: float) -> np.ndarray:
-    """(1 + y)^k - 1 - k y, O(y^2), without cancellation: its binomial series for |y| <
-    :data:`SERIES_BOUND`, else expm1(k log1p(y)) - k y (nan for y <= -1)."""
-    coefficients = [k * (k - 1.0) / 2.0]
+    """(1 + y)^k - 1 - k y, O(y^2), without cancellation: its binomial series (Horner, in
+    place) for |y| < :data:`SERIES_BOUND`, else expm1(k log1p(y)) - k y (nan for y <= -1)."""
+    coefficients = [k * (k - 1.0) / 2.0]  # of y^2, y^3, ..., y^11
     for m in range(2, 11):
         coefficients.append(coefficients[-1] * (k - m) / (m + 1.0))
-    series = np.zeros_like(y)
-    for coefficient in reversed(coefficients):
-        series = (series + coefficient) * y
-    with np.errstate(divide="ignore", invalid="ignore"):
-        direct = np.expm1(k * np.log1p(y)) - k * y
-    return np.where(np.abs(y) < SERIES_BOUND, series * y, direct)
+    excess = np.full_like(y, coefficients[-1])
+    for coefficient in reversed(coefficients[:-1]):
+        excess *= y
+        excess += coefficient
+    excess *= y * y
+    large = np.abs(y) >= SERIES_BOUND  # few points: the contact's
+    if large.any():
+        with np.errstate(divide="ignore", invalid="ignore"):
+            excess[large] = np.expm1(k * np.log1p(y[large])) - k * y[large]
+    return excess
 
 
 def invariant_excess(grad: np.ndarray, eta: np.ndarray, J_m1: np.ndarray) -> np.ndarray:

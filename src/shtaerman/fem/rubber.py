@@ -386,14 +386,19 @@ def invariant_kinematics(
         log_J = np.log1p(J_m1)
         j23_m1, j43_m1 = np.expm1(-(2.0 / 3.0) * log_J), np.expm1(-(4.0 / 3.0) * log_J)
     j23, j43 = 1.0 + j23_m1, 1.0 + j43_m1
-    x1 = j23 * invariant_excess(grad, eta, J_m1)  # I1bar - 3, I2bar - 3 (second order)
-    x2 = j43 * _i2_invariant_excess(grad, eta, planar_m1, J_m1)
-    bar1, bar2 = x1 + 3.0, x2 + 3.0
+    x1 = j23 * invariant_excess(grad, eta, J_m1)  # I1bar - 3 (second order)
+    bar1 = x1 + 3.0
     # dIbar/dF, their O(1) parts cancelled by hand (hyperelastic.deviatoric_direction)
     J_excess = 3.0 * J_m1
     d_bar1 = 2.0 * j23 * deviatoric_direction(grad, eta, planar_m1, q4_m2 + hoop - J_excess, J, Jg)
-    I2_m3 = 2.0 * planar_m1 + planar_m1**2 + q4_m2 + hoop * (2.0 + q4_m2)
-    d_bar2 = j43 * (_i2_excess(grad, eta, planar_m1) - (4.0 / 3.0) * (I2_m3 - J_excess) / J * Jg)
+    x2, d_bar2 = 0.0, 0.0  # I2bar - 3 and its gradient: only Mooney-Rivlin's W has them
+    if material.model == "mooney-rivlin":
+        x2 = j43 * _i2_invariant_excess(grad, eta, planar_m1, J_m1)
+        I2_m3 = 2.0 * planar_m1 + planar_m1**2 + q4_m2 + hoop * (2.0 + q4_m2)
+        d_bar2 = j43 * (
+            _i2_excess(grad, eta, planar_m1) - (4.0 / 3.0) * (I2_m3 - J_excess) / J * Jg
+        )
+    bar2 = x2 + 3.0
     energy, psi1, psi2, psi11, psi12, psi22 = energy_derivatives(material, x1, x2)
     with np.errstate(divide="ignore", invalid="ignore"):
         g, dg, ddg = _volumetric(material.volumetric, J_m1, J)
