@@ -106,7 +106,7 @@ class Kinematics:
     constraint : numpy.ndarray
         J - 1 + p/K (zero where the pressure equation holds pointwise).
     energy_density : numpy.ndarray
-        Psi in J/m^3.
+        Psi in J/m^3, made by ``make_energy`` when first asked (only converged states need it).
     """
 
     F: np.ndarray
@@ -115,12 +115,17 @@ class Kinematics:
     make_tangent: Callable[[], np.ndarray] = field(repr=False)
     volume_gradient: np.ndarray
     constraint: np.ndarray
-    energy_density: np.ndarray
+    make_energy: Callable[[], np.ndarray] = field(repr=False)
 
     @cached_property
     def tangent(self) -> np.ndarray:
         """D (Pa, (..., 5, 5)), made once."""
         return self.make_tangent()
+
+    @cached_property
+    def energy_density(self) -> np.ndarray:
+        """Psi (J/m^3), made once."""
+        return self.make_energy()
 
 
 def kinematics(
@@ -175,8 +180,11 @@ def kinematics(
         "identity": mu * j23,
         "hessian": -(1.0 / 3.0) * mu * j53 * I1 - p,
     }
-    isochoric = j23 * invariant_excess(grad, eta, J_m1)  # J^(-2/3) I1 - 3
-    energy = 0.5 * mu * isochoric - p * J_m1 - 0.5 * inverse_bulk * p**2
+
+    def energy() -> np.ndarray:
+        isochoric = j23 * invariant_excess(grad, eta, J_m1)  # J^(-2/3) I1 - 3
+        return 0.5 * mu * isochoric - p * J_m1 - 0.5 * inverse_bulk * p**2
+
     return Kinematics(
         F=F,
         J=J,
@@ -184,7 +192,7 @@ def kinematics(
         make_tangent=partial(_tangent, F, Jg, **terms),
         volume_gradient=Jg,
         constraint=J_m1 + inverse_bulk * p,
-        energy_density=energy,
+        make_energy=energy,
     )
 
 

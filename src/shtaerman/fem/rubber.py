@@ -422,7 +422,7 @@ def invariant_kinematics(
         make_tangent=tangent,
         volume_gradient=dg * Jg,
         constraint=g + material.inverse_bulk * p,
-        energy_density=energy - p * g - 0.5 * material.inverse_bulk * p**2,
+        make_energy=lambda: energy - p * g - 0.5 * material.inverse_bulk * p**2,
     )
 
 
