@@ -41,6 +41,7 @@ __all__ = [
     "NeoHookean",
     "NewtonError",
     "assemble_hyperelastic",
+    "deformation",
     "kinematics",
     "variation",
 ]
@@ -152,19 +153,9 @@ def kinematics(
     if getattr(material, "uses_invariants", False):  # a rubber model beyond neo-Hookean
         return material.kinematics(grad, u_r, radius, p)
     mu, inverse_bulk = material.shear_modulus, material.inverse_bulk
-    a, b = 1.0 + grad[0, 0], grad[0, 1]
-    c, d = grad[1, 0], 1.0 + grad[1, 1]
-    h = 1.0 + u_r / radius
-    F = np.stack([a, b, c, d, h])
-    planar = a * d - b * c
-    J = h * planar
-    Jg = np.stack([h * d, -h * c, -h * b, h * a, planar])
+    F, J, Jg, eta, planar_m1, J_m1 = deformation(grad, u_r, radius)
     I1 = np.sum(F**2, axis=0)
-    # J - 1 and I1 - 3 from the displacement gradient, without cancellation: the energy of
-    # the huge far-field elements would otherwise carry round-off of order eps mu R^3
-    alpha, delta, eta = grad[0, 0], grad[1, 1], u_r / radius
-    planar_m1 = alpha + delta + alpha * delta - b * c
-    J_m1 = eta + planar_m1 + eta * planar_m1
+    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
     I1_m3 = 2.0 * (alpha + delta + eta) + alpha**2 + b**2 + c**2 + delta**2 + eta**2
     with np.errstate(divide="ignore", invalid="ignore"):  # J <= 0 is caught by the caller
         j23 = np.abs(J) ** (-2.0 / 3.0)
@@ -194,6 +185,20 @@ def kinematics(
         constraint=J_m1 + inverse_bulk * p,
         make_energy=energy,
     )
+
+
+def deformation(grad: np.ndarray, u_r: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, ...]:
+    """F (5-vector), J, Jg = dJ/dF, eta = u_r/R, the in-plane determinant minus 1 and J - 1
+    (the last two without cancellation) from the displacement gradient (dimensionless), u_r
+    and R (m), as :func:`kinematics` takes them."""
+    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
+    eta = u_r / radius
+    a, d, h = 1.0 + alpha, 1.0 + delta, 1.0 + eta
+    planar = a * d - b * c
+    Jg = np.stack([h * d, -h * c, -h * b, h * a, planar])
+    planar_m1 = alpha + delta + alpha * delta - b * c
+    J_m1 = eta + planar_m1 + eta * planar_m1
+    return np.stack([a, b, c, d, h]), h * planar, Jg, eta, planar_m1, J_m1
 
 
 SERIES_BOUND = 0.01

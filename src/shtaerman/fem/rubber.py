@@ -32,6 +32,7 @@ from .hyperelastic import (
     Kinematics,
     NeoHookean,
     NewtonError,
+    deformation,
     deviatoric_direction,
     invariant_excess,
     power_excess,
@@ -367,19 +368,13 @@ def invariant_kinematics(
     radius in m, p in Pa; stress and tangent in Pa); ``volume_gradient`` is g'(J) dJ/dF and
     ``constraint`` g(J) + p/K.
     """
-    alpha, b, c, delta = grad[0, 0], grad[0, 1], grad[1, 0], grad[1, 1]
-    eta = u_r / radius
-    a, d, h = 1.0 + alpha, 1.0 + delta, 1.0 + eta
-    F = np.stack([a, b, c, d, h])
-    planar = a * d - b * c
-    J = h * planar
-    dP = np.stack([d, -c, -b, a])
-    Jg = np.concatenate([h * dP, planar[None]])
+    F, J, Jg, eta, planar_m1, J_m1 = deformation(grad, u_r, radius)
+    a, b, c, d, h = F
+    alpha, delta = grad[0, 0], grad[1, 1]
+    planar, dP = Jg[4], np.stack([d, -c, -b, a])
     q4 = a**2 + b**2 + c**2 + d**2
     dI2 = np.concatenate([2.0 * planar * dP + 2.0 * h**2 * F[:4], (2.0 * h * q4)[None]])
     # I1bar - 3 and I2bar - 3 without cancellation (see hyperelastic.kinematics)
-    planar_m1 = alpha + delta + alpha * delta - b * c
-    J_m1 = eta + planar_m1 + eta * planar_m1
     q4_m2 = 2.0 * (alpha + delta) + alpha**2 + b**2 + c**2 + delta**2
     hoop = 2.0 * eta + eta**2
     with np.errstate(divide="ignore", invalid="ignore"):  # J <= 0 is caught by the caller
