@@ -37,7 +37,7 @@ def test_labels_name_quantities_with_units_and_percent():
     minus = labels.MINUS
     assert labels.axis_label("velocity") == "Approach velocity v0 (m/s)"
     assert labels.axis_label("energy_radiated_fraction") == (
-        f"Energy left in the half-space 1 {minus} e² (%)"
+        f"Energy left in the body 1 {minus} e² (%)"  # a pad or a half-space alike
     )
     assert labels.scale("difference_worst") == 100.0 and labels.scale("restitution") == 1.0
     # errors are fractions, shown in per cent, named after their quantity

@@ -2,7 +2,7 @@
 
 Every axis, colour bar and title of the figures (:mod:`shtaerman.plots` and the sweep's) takes
 its words from the inputs' labels of :mod:`shtaerman.vocabulary` and the outputs' of
-:data:`LABELS`, so a reader sees "Energy left in the half-space 1 − e² (%)" and
+:data:`LABELS`, so a reader sees "Energy left in the body 1 − e² (%)" and
 not ``energy_radiated_fraction``. A quantity marked ``percent`` is stored as a fraction and
 shown multiplied by 100 (:func:`scale`). Errors ``error_<key>`` (against the exact solution, or
 estimated) are fractions, relative or absolute for a difference that is itself a fraction: they
@@ -63,7 +63,7 @@ LABELS: dict[str, Label] = {
     "t_y": Label("Quasi-static contact time t_y", "s"),
     # the dynamic impact
     "restitution": Label("Restitution e"),
-    "energy_radiated_fraction": Label(f"Energy left in the half-space 1 {MINUS} e²", percent=True),
+    "energy_radiated_fraction": Label(f"Energy left in the body 1 {MINUS} e²", percent=True),
     "energy_dissipated_fraction": Label("Energy dissipated in the rubber", percent=True),
     "energy_wave_fraction": Label(f"Part of 1 {MINUS} e² lost to waves", percent=True),
     "energy_hysteresis_fraction": Label(f"Part of 1 {MINUS} e² lost to hysteresis", percent=True),
