@@ -166,3 +166,10 @@ def test_study_reads_a_csv_beside_it(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     *_, both_ = load_study(folder / "mine.toml")
     assert both_.prony == PronySeries((0.5,), (2e-3,)) and both_.prony_text == "rubber.csv"
+
+
+@pytest.mark.parametrize("text", [",".join(["0.06:1e-3"] * 21), "1e6;" + ",".join(["1e5:1"] * 21)])
+def test_a_series_of_too_many_terms_is_refused_by_its_count_first(text):
+    # 21 terms of g 0.06 also break sum g < 1 (1.26): the count is named, before any parsing
+    with pytest.raises(InputError, match=r"^prony: 21 terms is too many \("):
+        prony_input(text)

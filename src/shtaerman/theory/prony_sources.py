@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sized
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -243,6 +244,7 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
         if isinstance(value, PronySeries):
             series = value
         elif isinstance(value, str):
+            _check_term_count(value, name)  # before parsing a million terms
             series = prony_from_text(value)
         else:
             raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
@@ -252,6 +254,16 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
     except InputError as error:
         reason = str(error).removeprefix("prony: ").removeprefix("prony ")
         raise InputError(f"{name}: {reason} ({PRONY_FORM})", name) from None
-    if len(series.weights) > MAX_PRONY_TERMS:
-        raise InputError(f"{name}: {len(series.weights)} terms is too many ({PRONY_FORM})", name)
+    _check_term_count(series.weights, name)
     return series
+
+
+def _check_term_count(terms: str | Sized, name: str) -> None:
+    """Refuse more than :data:`MAX_PRONY_TERMS` terms: of a series' weights, or of its text
+    (the terms of g1:tau1,... and Einf;E1:tau1,... are its commas plus one; a file's name is
+    not counted)."""
+    if isinstance(terms, str) and terms.strip().lower().endswith(".csv"):
+        return
+    count = terms.count(",") + 1 if isinstance(terms, str) else len(terms)
+    if count > MAX_PRONY_TERMS:
+        raise InputError(f"{name}: {count} terms is too many ({PRONY_FORM})", name)
