@@ -481,11 +481,10 @@ def _factorized_problem(
     radial = None if friction is None else radial_dofs(body.system, body.candidates.radius)
     columns = position.size + (0 if radial is None else radial[0].size)
     stiffness = body.system.matrix if material is None else material.stiffness
-    effective = (
-        (1.0 - alpha_f) * stiffness
-        + ((1.0 - alpha_f) * gamma / (beta * dt)) * body.damping
-        + ((1.0 - alpha_m) / (beta * dt**2)) * body.body_mass
-    ).tocsr()
+    effective = (1.0 - alpha_f) * stiffness + ((1.0 - alpha_f) * gamma / (beta * dt)) * body.damping
+    if body.body_mass.nnz:  # massless: none (1/dt^2 overflows where dt^2 underflows)
+        effective = effective + ((1.0 - alpha_m) / (beta * dt**2)) * body.body_mass
+    effective = effective.tocsr()
     reduced = effective[free][:, free].tocsc()
     if free.size * columns * 8 > MAX_DENSE_CORRECTION:
         raise InputError(

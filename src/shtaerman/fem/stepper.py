@@ -365,7 +365,9 @@ def _predictor(problem: ImpactProblem, state: ImpactState) -> tuple[np.ndarray, 
     beta, gamma, dt = problem.scheme.beta, problem.scheme.gamma, problem.scheme.dt
     x, v, a = state.x, state.v, state.a
     x_hat = x + dt * v + dt**2 * (0.5 - beta) * a
-    rhs = problem.body_mass @ ((1.0 - alpha_m) / (beta * dt**2) * x_hat - alpha_m * a)
+    rhs = np.zeros(x.size)
+    if problem.body_mass.nnz:  # massless: none (1/dt^2 overflows where dt^2 underflows)
+        rhs = problem.body_mass @ ((1.0 - alpha_m) / (beta * dt**2) * x_hat - alpha_m * a)
     if problem.damped:
         damping = problem.damping
         rhs += (1.0 - alpha_f) * (
@@ -499,9 +501,10 @@ def advance(problem: ImpactProblem, state: ImpactState) -> ImpactState:
     )
     big_new = big_hat + beta * dt**2 * big_a_new
     big_v_new = big_v + dt * ((1.0 - gamma) * big_a + gamma * big_a_new)
-    a_new = (x_new - x_hat) / (beta * dt**2)
+    a_new, massive = np.zeros(x_new.size), problem.massive  # the others have none
+    a_new[massive] = (x_new[massive] - x_hat[massive]) / (beta * dt**2)
     v_new = state.v + dt * ((1.0 - gamma) * state.a + gamma * a_new)
-    a_new[problem.massless], v_new[problem.massless] = 0.0, 0.0
+    v_new[problem.massless] = 0.0
     absorbed = state.absorbed
     if problem.damped:  # midpoint velocity: exact for Newmark (dt/4 |v_n + v_n+1|_D^2)
         v_sum = state.v + v_new
