@@ -372,12 +372,13 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     range, the exact impact and the depth it reaches; the linear body's layer thickness
     against it, mesh size and viscoelastic duration (``settings``; None: a rubber)."""
     import warnings
+    from functools import partial
 
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..fem.finite_dynamic import pad_reach_note
     from ..fem.impact import check_impact_reach
     from ..guards import check_reach
-    from ..theory.impact import check_impact_energy, representable
+    from ..theory.impact import impact_in_floats
     from ..theory.materials import effective_modulus, validate_density
     from ..theory.sneddon import contact_law
     from ..theory.viscoelastic import elastic_impact
@@ -389,11 +390,8 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         check_impact_reach(*inputs[:3], inputs[3:5], settings is None, friction, geometry)
-        # the floating-point range first, as the run meets it: M v0^2 / 2 (the exact impact's
-        # remedy keeps only its P_c a float), the exact impact's, and v0^2 (below the least)
-        check_impact_energy(striker.mass, striker.velocity)
-        x_c = elastic_impact(striker.mass, striker.velocity, law).x_c
-        representable("v0^2", striker.velocity * striker.velocity, *inputs[3:5], ("velocity",))
+        exact = partial(elastic_impact, *inputs[3:5], law)
+        x_c = impact_in_floats(*inputs[3:5], exact).x_c  # the floating-point range first
         if settings is not None:
             check_dynamic_impact(*inputs, settings, problem.body.prony, friction, geometry=geometry)
             return

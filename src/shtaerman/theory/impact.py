@@ -20,8 +20,9 @@ from __future__ import annotations
 import math
 import sys
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import Protocol, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,6 +40,7 @@ __all__ = [
     "check_impact_energy",
     "duration_integral",
     "history_times",
+    "impact_in_floats",
     "log_approach",
     "representable",
     "solve_impact",
@@ -256,6 +258,48 @@ def check_impact_energy(mass: float, velocity: float) -> None:
         f"the floating-point range [{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]: {said}",
         "velocity",
     )
+
+
+DECELERATION_LIMIT = sys.float_info.max / 2.0
+"""m/s^2; the striker's largest deceleration P_c / M an FE impact takes: half the largest
+float (the FE's peak force exceeds P_c by 1e-4 massless, is below it with waves)."""
+
+
+class _Impact(Protocol):
+    """What :func:`impact_in_floats` reads of an exact impact (SI units)."""
+
+    P_c: float
+    force_exponent: float
+
+
+Exact = TypeVar("Exact", bound=_Impact)
+
+
+def impact_in_floats(mass: float, velocity: float, exact: Callable[[], Exact]) -> Exact:
+    """The exact impact ``exact()`` of ``mass`` kg at ``velocity`` m/s once the FE impact's
+    floating-point range holds, checked in the order the run meets it: M v0^2 / 2 a float
+    (:func:`check_impact_energy`; the exact impact's remedy keeps only its P_c one), the exact
+    impact's own scales, v0^2 a normal float and the striker's deceleration P_c / M at most
+    :data:`DECELERATION_LIMIT` (InputError naming velocity and the velocity that passes; a
+    striker of 1e-300 kg at 1.34e154 m/s on z = 1e-10 r^3 overflowed it: a traceback)."""
+    check_impact_energy(mass, velocity)
+    quasi = exact()
+    representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))
+    log_deceleration = math.log(quasi.P_c) - math.log(mass)  # P_c / M may overflow
+    log_excess = log_deceleration - math.log(DECELERATION_LIMIT)
+    if log_excess > 0.0:  # P_c / M ~ v0^(2q/(q+1)) (q >= 1 where no power law: a profile)
+        q = quasi.force_exponent if isinstance(quasi, ImpactResult) else 1.0
+        slower = bound_text(velocity * math.exp(-log_excess * (q + 1.0) / (2.0 * q)), "high")
+        decade = log_deceleration / math.log(10.0)
+        shown = f"{10.0 ** (decade - math.floor(decade)):.3f}e+{math.floor(decade):d}"
+        raise InputError(
+            f"velocity: the impact of {mass:g} kg at {velocity:g} m/s would decelerate the "
+            f"striker by P_c / M = {shown} m/s^2, beyond the "
+            f"{DECELERATION_LIMIT:.3g} an FE impact takes (half the largest float): lower "
+            f"velocity=... to at most about {slower} m/s with this striker, mass and body",
+            "velocity",
+        )
+    return quasi
 
 
 def _scales(mass: float, velocity: float, law: ContactLaw) -> dict[str, float]:

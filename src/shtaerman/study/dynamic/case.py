@@ -23,7 +23,7 @@ from ...fem.impact import check_impact_reach, run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.mesh import HALF_SPACE, Geometry
 from ...guards import warn_outside_validity
-from ...theory.impact import ImpactResult, check_impact_energy, representable
+from ...theory.impact import ImpactResult, impact_in_floats
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.radiation import RadiationEstimate, impact_radiation
@@ -236,9 +236,9 @@ def run_case(
         impact, finite = (mass, velocity), isinstance(settings, FiniteImpactSettings)
         check_impact_reach(indenter, half_space, density, impact, finite, friction, geometry)
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
-        check_impact_energy(mass, velocity)  # first: the exact impact's remedy keeps P_c a float
-        quasi = elastic_impact(mass, velocity, law) if quasi is None else quasi
-        representable("v0^2", velocity * velocity, mass, velocity, ("velocity",))  # first
+        solved = quasi  # the study's loader solved it, checked as here
+        exact = partial(elastic_impact, mass, velocity, law) if solved is None else lambda: solved
+        quasi = impact_in_floats(mass, velocity, exact)  # the floating-point range first
         estimate = impact_radiation(mass, velocity, law, density, half_space, quasi)
         sizing = profile_sizing_impact(indenter, half_space, mass, velocity)  # once, not per run
     times = tuple(snapshots(quasi)) if snapshots is not None else ()

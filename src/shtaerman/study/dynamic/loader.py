@@ -341,9 +341,10 @@ def _check_velocities(
     the waves', the layer's thickness: :func:`~shtaerman.fem.dynamic_contact.
     check_dynamic_impact`); a refusal names ``key`` or the keys at fault."""
     import warnings
+    from functools import partial
 
     from ...fem.impact import check_impact_reach
-    from ...theory.impact import check_impact_energy, representable
+    from ...theory.impact import impact_in_floats
 
     solved = {}
     settings = study.quick_settings if quick else study.settings
@@ -358,9 +359,7 @@ def _check_velocities(
             except InputError as error:
                 raise refused(path, error, {**KEYS, "velocity": key}) from None
             try:
-                check_impact_energy(study.mass, velocity)
-                representable("v0^2", velocity * velocity, study.mass, velocity, ("velocity",))
-                solved[velocity] = exact(velocity)
+                solved[velocity] = impact_in_floats(study.mass, velocity, partial(exact, velocity))
             except InputError as error:
                 raise StudyError(f"{path}: key '{key}': {error}") from None
             if study.finite:  # its reach: checked as the finite-strain impact starts
