@@ -200,21 +200,6 @@ def _refuse_the_end(
     )
 
 
-def _check_single_contact(falling: np.ndarray) -> None:
-    """Refuse a profile whose Sneddon depth delta(a) falls with the contact radius at the
-    radii ``falling`` (m; or whose striker stops before its a_c there): a tip sharper than a
-    cone, where one contact region does not hold. z = 0.2 sqrt(r) tabulated every mm gave
-    t_c NaN at 1.1 m/s (the dynamic run: a traceback, a singular matrix)."""
-    if falling.size:
-        raise LimitError(
-            f"profile: Sneddon's depth delta(a) falls with the contact radius near a = "
-            f"{float(np.min(falling)):.3g} m: the table (or its interpolation in r^2 below its "
-            "second row) is sharper than a cone there, where one contact region does not "
-            "hold; give a tip whose r dz/dr rises with r (a cone z = r or blunter)",
-            "profile",
-        )
-
-
 def lower_impact(mass: float, velocity: float, log_share: float) -> str:
     """ "lower velocity=... to at most V m/s or mass=... to at most M kg": the impact of
     ``mass`` kg at ``velocity`` m/s whose energy, scaled by e^``log_share`` (< 1), passes a
@@ -274,7 +259,6 @@ class ProfileImpactResult:
         def rate(u: np.ndarray) -> np.ndarray:  # dt/du = 2 a_c u delta'(a) / v(a), finite at 0
             a = a_c * (1.0 - u**2)
             slope, speed = law.depth_slope(a), self._speed(a, whole - squares(u))
-            _check_single_contact(a[(slope < 0.0) | ~(speed > 0.0)])
             return 2.0 * a_c * u * slope / speed
 
         return _Cumulative.of(self._u_ends, rate), squares
@@ -364,8 +348,7 @@ def solve_profile_impact(mass: float, velocity: float, law: SneddonContact) -> P
     ------
     shtaerman.validation.InputError
         If an input lies outside its range; a LimitError if the contact would outgrow a
-        table or reach a sphere's equator, or where Sneddon's depth falls with the contact
-        radius (a tip sharper than a cone).
+        table or reach a sphere's equator.
     """
     mass = validate_positive("mass", mass, "kg")
     velocity = validate_positive("velocity", velocity, "m/s")
@@ -380,5 +363,4 @@ def solve_profile_impact(mass: float, velocity: float, law: SneddonContact) -> P
         p_c=float(law.central_pressure_at_radius(a_c)),
         law=law,
     )
-    result.t_c  # noqa: B018 (the clock, here: it refuses a profile sharper than a cone)
     return result
