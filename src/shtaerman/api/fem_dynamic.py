@@ -375,9 +375,8 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     from functools import partial
 
     from ..fem.dynamic_contact import check_dynamic_impact
-    from ..fem.finite_dynamic import pad_reach_note
+    from ..fem.finite_dynamic import check_finite_reach, pad_reach_note
     from ..fem.impact import check_impact_reach
-    from ..guards import check_reach
     from ..theory.impact import impact_in_floats
     from ..theory.materials import effective_modulus, validate_density
     from ..theory.sneddon import contact_law
@@ -391,14 +390,15 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
         warnings.simplefilter("ignore")
         check_impact_reach(*inputs[:3], inputs[3:5], settings is None, friction, geometry)
         exact = partial(elastic_impact, *inputs[3:5], law)
-        x_c = impact_in_floats(*inputs[3:5], exact).x_c  # the floating-point range first
+        quasi = impact_in_floats(*inputs[3:5], exact)  # the floating-point range first
         if settings is not None:
             check_dynamic_impact(*inputs, settings, problem.body.prony, friction, geometry=geometry)
             return
     validate_density("density2", body.density)
     pad = geometry.thickness is not None  # it stops the striker short of x_c
     note = pad_reach_note(pad, friction, inputs[2])  # None: the floor alone
-    check_reach(striker.indenter, x_c, inputs[3:5], True, note)
+    reach = (striker.indenter, law, inputs[3:5], problem.body.prony)
+    check_finite_reach(reach, note, None, (quasi.x_c, quasi.t_y))
 
 
 def _problem(

@@ -148,16 +148,18 @@ IMPACT_MARGIN = 1.3
 is wider by a few per cent)."""
 
 
+PAD_DEPTH = (
+    "; on a pad the depth is the half-space's quasi-static one, with a Prony series its "
+    "relaxed one (an upper bound: the pad stops the striker a little sooner), which "
+)
 PAD_FRICTION_REACH = (
-    "; on a pad the depth is that of the half-space (an upper bound: the pad stops the "
-    "striker a little sooner), which a bonded or Coulomb indenter cannot pass; "
+    PAD_DEPTH + "a bonded or Coulomb indenter cannot pass; "
     "interface='frictionless' runs beyond it with a warning"
 )
 """The end of the refusal of a frictional finite-strain impact on a pad beyond the reach."""
 PAD_MASSLESS_REACH = (
-    "; on a pad the depth is that of the half-space (an upper bound: the pad stops the "
-    "striker a little sooner), which a massless body (density2=0) cannot pass: it follows the "
-    "static curve, refused there too; with inertia (density2=...) interface='frictionless' "
+    PAD_DEPTH + "a massless body (density2=0) cannot pass: it follows the static curve, "
+    "refused there too; with inertia (density2=...) interface='frictionless' "
     "runs beyond it with a warning"
 )
 """The end of the refusal of a massless finite-strain impact on a pad beyond the reach."""
@@ -424,10 +426,8 @@ def prepare_finite_impact(
     # reach (that case failed at separation after 15 min), a frictionless one warns
     note = pad_reach_note(not unbounded, friction, rho)  # None: the floor alone
     layer = resolved_depths(geometry, indenter, settings.margin)  # a pad's: its remedy's too
-    check_reach(indenter, x_c, (mass, velocity), True, note, layer)  # before the sizing
-    x_size, duration = _relaxed_extent(law, mass, velocity, prony, (x_c, t_y))
-    if unbounded and x_size > x_c:
-        check_reach(indenter, x_size, (mass, velocity), finite=True)
+    reach = (indenter, law, (mass, velocity), prony)
+    x_size, duration = check_finite_reach(reach, note, layer, (x_c, t_y))
     refined = settings.margin * geometric_radius(indenter, x_size)
     refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
     clock = [time.perf_counter()]
@@ -444,6 +444,23 @@ def prepare_finite_impact(
         mesh=mesh_counts(mesh, *counts, refined, geometry),
         timings={"mesh": clock[1] - clock[0], "assembly": clock[2] - clock[1]},
     )
+
+
+def check_finite_reach(
+    reach: tuple, note: str | None, layer: tuple | None, scales: tuple[float, float]
+) -> tuple[float, float]:
+    """:func:`shtaerman.guards.check_reach` of a finite-strain impact, ``reach`` = (indenter,
+    its exact law, (mass kg, velocity m/s), Prony series or None), at the elastic x_c (m) of
+    ``scales`` = (x_c, t_y s) and then at the relaxed body's deeper quasi-static x_max, which
+    bounds a relaxing pad's depth too (``note``, ``layer``: as check_reach takes them; the
+    remedy is then for the relaxed depth). Returns :func:`_relaxed_extent`'s depth (m) and
+    longest run (s)."""
+    indenter, law, impact, prony = reach
+    check_reach(indenter, scales[0], impact, True, note, layer)  # before the sizing
+    x_size, duration = _relaxed_extent(law, *impact, prony, scales)
+    if x_size > scales[0]:
+        check_reach(indenter, x_size, impact, True, note, layer)
+    return x_size, duration
 
 
 def _relaxed_extent(

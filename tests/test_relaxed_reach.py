@@ -1,0 +1,44 @@
+"""A relaxing pad's reach (user62's trial): the finite-strain reach is checked at the relaxed
+body's quasi-static depth, which bounds a relaxing pad's depth from above, on the pad as on the
+half-space. The researcher's pad (z = 8 r^1.3, 12 mm, Prony 0.3:1e-3, Coulomb 0.5) at the
+0.0323 m/s the elastic x_c's refusal named ran to x/a 1.23, past the 1.2 it was named for."""
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.guards import MAX_DEPTH_RATIO, depth_ratio
+from shtaerman.theory.materials import effective_modulus
+from shtaerman.theory.sneddon import contact_law
+from shtaerman.theory.viscoelastic import PronySeries, viscoelastic_impact
+
+STRIKER = sh.PowerLawIndenter(shape_coefficient=8.0, exponent=1.3)
+RUBBER = sh.Material(3e6, 0.49, 1000.0)
+
+
+def pad_problem(velocity: float) -> sh.Problem:
+    return sh.Problem.impact(
+        STRIKER,
+        RUBBER,
+        mass=0.12,
+        velocity=velocity,
+        thickness=0.012,
+        model="neo-hookean",
+        prony="0.3:1e-3",
+        interface="bonded",
+        friction=0.5,
+    )
+
+
+def relaxed_ratio(velocity: float) -> float:
+    """x/a of the quasi-static viscoelastic impact on the half-space (fine: 2,000 steps)."""
+    law = contact_law(STRIKER, effective_modulus(sh.RIGID, RUBBER))
+    series = PronySeries.parse("0.3:1e-3")
+    impact = viscoelastic_impact(0.12, velocity, law, series, steps=2000)
+    return depth_ratio(STRIKER, impact.x_max)
+
+
+def test_the_relaxed_depth_beyond_the_reach_is_refused_on_the_pad_before_any_work():
+    # its relaxed half-space depth is beyond the reach, its elastic x_c within
+    assert relaxed_ratio(0.0323) > MAX_DEPTH_RATIO
+    with pytest.raises(sh.LimitError, match="with a Prony series its relaxed one"):
+        sh.dynamic(pad_problem(0.0323), mesh_size=0.2, time_steps=50, estimate=False)
