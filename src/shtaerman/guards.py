@@ -48,6 +48,7 @@ __all__ = [
     "MAX_RADIATED_ESTIMATE",
     "MIN_DEPTH_RATIO",
     "MIN_FINITE_DEPTH_RATIO",
+    "REMEDY_SPAN",
     "WAVE_LIMITS",
     "FailedCheckWarning",
     "LadderWarnings",
@@ -56,9 +57,11 @@ __all__ = [
     "check_equator",
     "check_profile_reach",
     "check_reach",
+    "check_table_window",
     "check_wave_speed",
     "depth_ratio",
     "outside_validity",
+    "reach_shape",
     "reach_velocity",
     "tip_exponents",
     "warn_outside_validity",
@@ -324,7 +327,6 @@ def check_reach(
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
     (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
     from .validation import SQUARABLE_VELOCITY, LimitError
-    from .vocabulary import entry
 
     (mass, velocity), (n, q) = impact, tip_exponents(indenter, depth)
     if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
@@ -336,38 +338,40 @@ def check_reach(
     if note is None:  # only the floor: the route warns beyond the upper reach
         high, note = math.inf, ""
     window = (low, high)
-    reach = "the finite-strain contact converges" if finite else "an FE impact is run"
-    if not low <= ratio <= high and _striker_at_fault(indenter, depth, q, window):
-        paper = entry("shape_coefficient").default
-        raise LimitError(
-            f"shape_coefficient: the striker z = {indenter.shape_coefficient:g} "
-            f"r^{indenter.exponent:g} at {mass:g} kg and {velocity:g} m/s reaches depth / "
-            f"contact radius {_apart(ratio, window)}, outside the [{low:g}, {high:g}] within "
-            f"which {reach}, where the paper's striker (shape_coefficient={paper:g}) would not: "
-            "a striker of a physical size (the exact quasi-static impact, shtaerman impact, "
-            f"takes any){note}",
-            "shape_coefficient",
-        )
-    drive = f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker"
     check_equator(indenter, depth, impact)
     if low <= ratio <= high:  # within reach
         return
-    scale, on = _layer_bound(depth, _reach_scale(n, ratio, window), layer)
+    check_table_window(indenter, finite)  # below the floor, as deep as the table reaches
     up = not ratio >= low  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
+    blunt = _shape_remedy(indenter, depth, impact, (ratio, low if up else high), layer, waves)
+    if _striker_at_fault(indenter, depth, q, window):
+        raise _striker_refusal(indenter, impact, (ratio, window), finite, blunt, note)
+    scale, on = _layer_bound(depth, _reach_scale(n, ratio, window), layer)
     shown = (
         _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
         _shown(mass, scale * (q + 1.0), up=up),
     )
     if up and shown[0] and float(shown[0]) < SQUARABLE_VELOCITY:  # v0^2 a float too
         shown = (_shown(SQUARABLE_VELOCITY, 0.0, up=True), shown[1])
+    shape = getattr(indenter, "shape_coefficient", 1.0)
+    shown, blunt = _spanned(shown, impact, blunt, shape, scale)
+    if blunt and "depths=" in (note or ""):
+        note = ""  # depths as far off as x_c's remedy
     passing = _within_waves(indenter, depth, impact, q, shown, waves, window)
+    bound = "least" if up else "most"
     remedies = _remedies(
         ("velocity", passing[0], shown[0], "m/s"),
         ("mass", passing[1], shown[1], "kg"),
         on,
-        "least" if up else "most",
+        bound,
         wave_limit(q),
     )
+    remedies = _shape_named(remedies, blunt, bound, on)
+    named, striker = ("mass, velocity", "")
+    if blunt:
+        named, striker = "shape_coefficient", f" {_striker_text(indenter)}"
+    drive = f"{named}: {mass:g} kg at {velocity:g} m/s drive the striker{striker}"
+    parameter = "shape_coefficient" if striker else ("mass" if up else "velocity")
     if up:
         raise LimitError(
             f"{drive} to {depth:.3g} m only, depth / contact radius "
@@ -375,13 +379,181 @@ def check_reach(
             + (_FINITE_FLOOR if finite else _LINEAR_FLOOR)
             + f"; raise {remedies}"
             + (_waves_too(q) if shown[0] and passing[1] and not passing[0] else ""),
-            "mass",
+            parameter,
         )
     raise LimitError(
         f"{drive} to about {depth:.3g} m, depth / contact radius {_apart(ratio, (high,))}, "
-        "beyond the "
-        f"{high:g} up to which {reach}: lower {remedies}{note}",
-        "velocity",
+        f"beyond the {high:g} up to which {_reach_words(finite)}: lower {remedies}{note}",
+        parameter,
+    )
+
+
+def _spanned(
+    shown: tuple[str, str], impact: tuple[float, float], blunt: str, shape: float, scale: float
+) -> tuple[tuple[str, str], str]:
+    """The velocity and mass remedies ``shown`` (m/s, kg, as shown) of ``impact`` (mass kg,
+    velocity m/s) and the shape coefficient ``blunt`` (:func:`_shape_remedy`, now ``shape``)
+    a reach refusal names: ``blunt`` only where it lies within :data:`REMEDY_SPAN` of
+    ``shape``, the depth must move beyond it (``scale``: ln of its factor; x/a ~
+    x^(1 - 1/n), a near-cone's) and each remedy of the impact is left out (:func:`_near`; or
+    beyond the floats), which is then named alone (1e30 kg keeps its mass)."""
+    mass, velocity = impact
+    near = (_near(shown[0], velocity), _near(shown[1], mass))
+    if not blunt or not _near(blunt.split()[0], shape) or abs(scale) <= math.log(REMEDY_SPAN):
+        return shown, ""  # the impact's remedies are nearer (1e-300 m/s named A 8.52e92)
+    return (near, "") if any(near) else (near, blunt)
+
+
+def _shape_named(remedies: str, blunt: str, bound: str, on: str) -> str:
+    """``remedies`` (the impact's), or the shape coefficient ``blunt`` in their place ("":
+    not named); ``bound``: "least" or "most", ``on``: a layer's words."""
+    if not blunt:
+        return remedies
+    return (
+        f"shape_coefficient=... to at {bound} about {blunt} with this mass, velocity and body{on}"
+    )
+
+
+def _reach_words(finite: bool) -> str:
+    """What the upper end of :func:`_window` is: where the model converges, or is run."""
+    return "the finite-strain contact converges" if finite else "an FE impact is run"
+
+
+def _striker_text(indenter: PowerLawIndenter) -> str:
+    """``z = A r^n`` of a power law, as a refusal names it."""
+    return f"z = {indenter.shape_coefficient:g} r^{indenter.exponent:g}"
+
+
+def _striker_refusal(
+    indenter: PowerLawIndenter,
+    impact: tuple[float, float],
+    reach: tuple[float, tuple[float, float]],
+    finite: bool,
+    blunt: str,
+    note: str,
+) -> Exception:
+    """The reach refusal of an impact (mass kg, velocity m/s) whose striker is at fault
+    (:func:`_striker_at_fault`): its x/a and window ``reach``, the shape coefficient that
+    brings it within (``blunt``, :func:`_shape_remedy`; "" none) and ``note``."""
+    from .validation import LimitError
+    from .vocabulary import entry
+
+    (mass, velocity), (ratio, (low, high)) = impact, reach
+    paper = entry("shape_coefficient").default
+    verb, bound = ("raise", "least") if ratio < low else ("lower", "most")
+    remedy = f"; {verb} shape_coefficient=... to at {bound} about {blunt}" if blunt else ""
+    return LimitError(
+        f"shape_coefficient: the striker {_striker_text(indenter)} at {mass:g} kg and "
+        f"{velocity:g} m/s reaches depth / contact radius {_apart(ratio, (low, high))}, "
+        f"outside the [{low:g}, {high:g}] within which {_reach_words(finite)}, where the "
+        f"paper's striker (shape_coefficient={paper:g}) would not: a striker of a physical "
+        f"size (the exact quasi-static impact, shtaerman impact, takes any){remedy}{note}",
+        "shape_coefficient",
+    )
+
+
+REMEDY_SPAN = 1e6
+"""Largest factor between a reach refusal's velocity or mass remedy (or a depth) and the value
+given, beyond which it is not named where a shape coefficient is: a 1 m/s impact slowed a
+million times moves at 1 um/s, slower than an indentation machine's crosshead (~1e-5 m/s), and
+0.7 kg becomes 0.7 mg; near a cone (z = A r^1.01) x/a ~ x^(1 - 1/n) moves a hundredth as fast
+as the depth, and 0.12 kg at 1.5 m/s (x/a 7.37) named 1.46e-119 m/s and 1.14e-239 kg."""
+
+
+def _near(shown: str, given: float) -> str:
+    """``shown`` (a remedy as a message shows it), "" where it is more than
+    :data:`REMEDY_SPAN` times ``given`` or less than its 1 / :data:`REMEDY_SPAN` and farther
+    from 1 (SI) than ``given``: a remedy that brings 1e30 kg or 1e-21 m/s towards a physical
+    size is kept, one that takes 1.5 m/s to 1.46e-119 is not."""
+    if not shown:
+        return ""
+    value = float(shown)
+    if abs(math.log(value / given)) <= math.log(REMEDY_SPAN):
+        return shown
+    return shown if abs(math.log(value)) <= abs(math.log(given)) else ""  # nearer SI's 1
+
+
+def reach_shape(indenter: PowerLawIndenter, ratio: float, bound: float, impact: bool) -> float:
+    """ln of the shape coefficient A (m^(1-n)) of z = A r^n that brings x/a, now ``ratio``,
+    to ``bound``: at the same mass, velocity and body (``impact``; x/a = (kappa_n A)^(1/n)
+    x^(1 - 1/n) and x_c ~ A^(1/(2n + 1)) give x/a ~ A^(3/(2n + 1))), else at the same depth
+    (x/a ~ A^(1/n)). Exact for a power law: z = 5 r^1.01 at 0.12 kg and 1.5 m/s, x/a 7.37,
+    reaches x/a 1.2 at A = 0.81 (a near-cone's x/a hardly moves with the depth)."""
+    n = indenter.exponent
+    power = 3.0 / (2.0 * n + 1.0) if impact else 1.0 / n
+    return math.log(indenter.shape_coefficient) + math.log(bound / ratio) / power
+
+
+def _shape_remedy(
+    indenter: Indenter,
+    depth: float,
+    impact: tuple[float, float],
+    target: tuple[float, float],
+    layer: tuple[float, float, float] | None,
+    waves: Callable[[float, float], float] | None,
+) -> str:
+    """The shape coefficient (m^(1-n), as shown, rounded inward) that brings a power law's
+    ``impact`` (mass kg, velocity m/s) reaching ``depth`` m at x/a ``target[0]`` to x/a
+    ``target[1]`` (:func:`reach_shape`), "" for another profile or where it leaves the FEM's
+    range of A, the depths ``layer``'s mesh resolves (radii fixed: depths ~ A) or the waves'
+    limit (``waves``: lambda ~ A^(-3/(2n + 1)), exact for a power law)."""
+    from .vocabulary import entry
+
+    if not isinstance(indenter, PowerLawIndenter):
+        return ""
+    (ratio, bound), given = target, indenter.shape_coefficient
+    up = bound > ratio
+    log_shape = reach_shape(indenter, ratio, bound, impact=True)
+    shown = _shown(1.0, log_shape, up=up)
+    if not shown or not entry("shape_coefficient").range_for("dynamic").contains(float(shown)):
+        return ""
+    factor, n = float(shown) / given, indenter.exponent
+    moved = depth * factor ** (1.0 / (2.0 * n + 1.0))
+    if layer is not None and not layer[1] * factor <= moved <= layer[2] * factor:
+        return ""
+    if waves is not None and not _fraction(waves, *impact) * factor ** (
+        -3.0 / (2.0 * n + 1.0)
+    ) <= wave_limit((n + 1.0) / n):
+        return ""
+    return f"{shown} m^(1-n)"
+
+
+def check_table_window(indenter: Indenter, finite: bool) -> None:
+    """Refuse, before any work, an FE impact (``finite``: a rubber's) of a table whose
+    contact at its last radius reaches x/a below the model's floor (:func:`_window`): no mass
+    or velocity runs (the depth goes as M v0^2 alone, and one deep enough for the floor drives
+    the contact beyond the table), naming the radius a table of its last rows' z ~ r^n would
+    reach for x/a ten times the floor at its end (x/a ~ a^(n - 1)), a decade of depths. z = 5
+    r^10 to 4 cm (x/a 5.3e-12 at its end) refused each velocity for the other's remedy."""
+    from .validation import LimitError, bound_text
+
+    if indenter.kind != "tabulated":
+        return
+    low, law = _window(finite)[0], contact_law(indenter, 1.0)
+    top = law.max_contact_radius
+    end = float(law.depth(top))
+    ratio = end / top
+    if ratio >= low:
+        return
+    (r_before, r_last), (z_before, z_last) = indenter.radii[-2:], indenter.heights[-2:]
+    n = math.log(z_last / z_before) / math.log(r_last / r_before)  # its last rows'
+    further = ""
+    if n > 1.0:
+        radius = bound_text(top * (10.0 * low / ratio) ** (1.0 / (n - 1.0)), "low")
+        further = (
+            f"; a table reaching r = {radius} m (its last rows' z ~ r^{n:.3g} continued) "
+            f"puts x/a {10.0 * low:g} at its end"
+        )
+    linear = finite and ratio >= MIN_DEPTH_RATIO
+    raise LimitError(
+        f"profile: the table's last radius {top:.6g} m is in contact from depth {end:.3g} m, "
+        f"depth / contact radius {_apart(ratio, (low,), 2)}, below the {low:g} "
+        + ("the finite-strain model is run at" if finite else "an FE impact resolves")
+        + ": no mass or velocity runs (one that reaches the floor drives the contact beyond "
+        f"the table){further}"
+        + ("; the linear model (without model=...) runs it" if linear else "")
+        + "; the exact quasi-static impact (shtaerman impact) takes any",
+        "profile",
     )
 
 
@@ -517,13 +689,13 @@ def reach_velocity(indenter: Indenter, depth: float, velocity: float) -> str:
     """The velocity (m/s, three digits, rounded down) at which an impact now at ``velocity``
     reaching ``depth`` (m, its quasi-static x_c on the half-space)
     reaches :data:`MAX_DEPTH_RATIO`, the finite-strain reach: :func:`check_reach`'s remedy,
-    for a run that failed beyond it ("" within it, or beyond the floats)."""
+    for a run that failed beyond it ("" within it, beyond the floats or :data:`REMEDY_SPAN`)."""
     ratio = depth_ratio(indenter, depth) if depth > 0 else 0.0
     n, q = tip_exponents(indenter, depth)
     if not ratio > MAX_DEPTH_RATIO or n <= 1.0:
         return ""  # within reach, or a cone (its x/a moves with no depth)
-    scale = _reach_scale(n, ratio, _window(True))
-    return _shown(velocity, scale * (q + 1.0) / 2.0, up=False)
+    scale = _reach_scale(n, ratio, _window(True))  # a near-cone's: a millionth of it or less
+    return _near(_shown(velocity, scale * (q + 1.0) / 2.0, up=False), velocity)
 
 
 def _layer_bound(
