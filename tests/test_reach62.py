@@ -136,3 +136,24 @@ def test_a_table_with_no_window_says_so_and_names_the_table_that_runs(finite, ra
     assert 10.0 * floor <= end < 10.5 * floor  # the radius rounded up to 3 digits: 1.02 of it
     body = sh.Material(7.5e6, 0.5, density=0.0)
     check_dynamic(Problem.impact(longer, body, mass=0.7, velocity=velocity, **model))
+
+
+@pytest.mark.parametrize(("exponent", "deep"), [(1.5, 0.5), (1.01, 1e-3)])
+def test_a_contact_curve_beyond_the_reach_names_a_remedy_that_reaches_it(exponent, deep):
+    # depths given (no impact): a depth where x/a ~ x^(1 - 1/n) lets it move within a million
+    # times (n = 1.5: 3.43 -> 0.0213 m), else near a cone the shape coefficient at these depths
+    from shtaerman.fem.contact.finite import check_finite_depths
+
+    striker = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=exponent)
+    with pytest.raises(sh.LimitError) as refused:
+        check_finite_depths(striker, [deep / 2, deep])
+    named = re.search(r"to at most about ([0-9.e+-]+) (m\^\(1-n\)|m)", str(refused.value))
+    value = float(named.group(1))
+    if named.group(2) == "m":
+        assert exponent == 1.5 and deep / REMEDY_SPAN < value < deep
+        ratio = depth_ratio(striker, value)
+    else:
+        assert exponent == 1.01
+        ratio = depth_ratio(sh.PowerLawIndenter(shape_coefficient=value, exponent=exponent), deep)
+    # rounded inward to three digits: within, by less than the rounding's 1e-2 of x/a
+    assert MAX_DEPTH_RATIO * (1 - 1e-2) < ratio <= MAX_DEPTH_RATIO

@@ -59,6 +59,7 @@ __all__ = [
     "check_reach",
     "check_table_window",
     "check_wave_speed",
+    "deepest_depth_remedy",
     "depth_ratio",
     "outside_validity",
     "reach_shape",
@@ -458,6 +459,22 @@ given, beyond which it is not named where a shape coefficient is: a 1 m/s impact
 million times moves at 1 um/s, slower than an indentation machine's crosshead (~1e-5 m/s), and
 0.7 kg becomes 0.7 mg; near a cone (z = A r^1.01) x/a ~ x^(1 - 1/n) moves a hundredth as fast
 as the depth, and 0.12 kg at 1.5 m/s (x/a 7.37) named 1.46e-119 m/s and 1.14e-239 kg."""
+
+
+def deepest_depth_remedy(indenter: PowerLawIndenter, deep: float, ratio: float) -> str:
+    """What brings a contact curve's deepest depth ``deep`` (m), at x/a ``ratio`` beyond
+    :data:`MAX_DEPTH_RATIO`, within it: that depth lowered (x/a ~ x^(1 - 1/n)), or where it
+    would move by more than :data:`REMEDY_SPAN` (near a cone), the shape coefficient at the
+    same depth (:func:`reach_shape`), both rounded to pass."""
+    if not isinstance(indenter, PowerLawIndenter):
+        return "lower the deepest depth"
+    n, log_factor = indenter.exponent, math.log(MAX_DEPTH_RATIO / ratio)
+    depth = _shown(deep, log_factor * n / (n - 1.0), up=False) if n > 1.0 else ""
+    if depth and float(depth) >= deep / REMEDY_SPAN:
+        return f"lower the deepest depth to at most about {depth} m"
+    log_shape = reach_shape(indenter, ratio, MAX_DEPTH_RATIO, impact=False)
+    shape = _shown(1.0, log_shape, up=False)
+    return f"lower shape_coefficient=... to at most about {shape} m^(1-n) at these depths"
 
 
 def _near(shown: str, given: float) -> str:

@@ -31,6 +31,7 @@ from ...guards import (
     MIN_FINITE_DEPTH_RATIO,
     LockingWatch,
     check_reach,
+    deepest_depth_remedy,
     depth_ratio,
 )
 from ...theory.contact import PowerLawContact
@@ -942,7 +943,7 @@ def check_finite_depths(
             f"{deep:g} m gives depth / contact radius {high:.3g}, beyond the {model} model's "
             f"{valid}: the finite-strain contact does not converge there"
         )
-        _refuse_depths(reason, "lower the deepest depth", impact)
+        _refuse_depths(reason, deepest_depth_remedy(indenter, deep, high), impact)
 
 
 def _refuse_depths(reason: str, remedy: str, impact: tuple[float, float] | None) -> None:
