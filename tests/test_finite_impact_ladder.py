@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import warnings
+from contextlib import contextmanager
 
 import numpy as np
 import pytest
@@ -46,9 +47,40 @@ def coarse_mesh():
 
 
 @pytest.fixture(scope="module")
-def ladder(coarse_mesh):
+def runs():
+    """The FE runs of this module's massless impact by their inputs: each level computed
+    once (about 2 to 4 CPU s), read by the tests that only count which levels pass."""
+    return {}
+
+
+@contextmanager
+def _served(runs: dict):
+    """case.run_impact giving the run of equal inputs from ``runs`` (run once, kept). Only
+    where no test patches the time stepping: a cut step must be run, not served."""
+    run = case.run_impact
+
+    def once(*inputs, **keywords):
+        key = repr((inputs, sorted(keywords.items())))
+        if key not in runs:
+            runs[key] = run(*inputs, **keywords)
+        return runs[key]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(case, "run_impact", once)
+        yield
+
+
+@pytest.fixture
+def served(runs, coarse_mesh):
+    with _served(runs):
+        yield
+
+
+@pytest.fixture(scope="module")
+def ladder(runs, coarse_mesh):
     """The massless neo-Hookean impact with its ladder (the default estimate)."""
-    return sh.dynamic(INDENTER, MASSLESS, **CASE)
+    with _served(runs):
+        return sh.dynamic(INDENTER, MASSLESS, **CASE)
 
 
 def test_the_massless_finite_impact_carries_the_linear_impacts_error_bar(ladder):
@@ -101,7 +133,7 @@ def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
     monkeypatch.setattr(case, "run_impact", maybe_fail)
 
 
-def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(coarse_mesh, monkeypatch):
+def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(served, monkeypatch):
     _failing(monkeypatch, {35, 70})  # the middle level and its retry
     with pytest.warns(EstimateMissingWarning, match="refine 0.707: 35 steps failed"):
         result = sh.dynamic(INDENTER, MASSLESS, **CASE)
@@ -115,7 +147,7 @@ def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(coarse_m
     assert "no error estimate (ladder" in finite_dynamic_text(document)
 
 
-def test_the_finest_level_failing_reports_the_finest_that_passed(coarse_mesh, monkeypatch):
+def test_the_finest_level_failing_reports_the_finest_that_passed(served, monkeypatch):
     _failing(monkeypatch, {50, 100})
     with pytest.warns(EstimateMissingWarning, match="refine 1: 50 steps failed"):
         result = sh.dynamic(INDENTER, MASSLESS, **CASE)
@@ -126,7 +158,7 @@ def test_the_finest_level_failing_reports_the_finest_that_passed(coarse_mesh, mo
     assert result.error_estimate is None
 
 
-def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch):
+def test_a_retry_that_passes_keeps_the_estimate(ladder, served, monkeypatch):
     _failing(monkeypatch, {35}, warn=True)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -139,7 +171,7 @@ def test_a_retry_that_passes_keeps_the_estimate(ladder, coarse_mesh, monkeypatch
     assert [level["steps"] for level in result.mesh_ladder] == [25, 70, 50]
     assert "passed with 70 steps" in result.mesh_ladder[1]["failure"]
     assert result.estimate_missing is None and set(result.error_estimate) >= set(HEADLINE)
-    assert result.dynamic == ladder.dynamic  # the finest run is the same
+    assert result.dynamic == ladder.dynamic  # the finest run is the same (of equal inputs)
 
 
 def test_a_single_run_that_passed_on_its_retry_says_so(coarse_mesh, monkeypatch):
@@ -192,9 +224,10 @@ def test_the_ladder_runs_on_a_viscoelastic_pad_massless_and_with_inertia(density
 
 
 @pytest.fixture(scope="module")
-def plain(coarse_mesh):
-    """The massless impact, no step failing."""
-    return sh.dynamic(INDENTER, MASSLESS, **SINGLE)
+def plain(runs, coarse_mesh):
+    """The massless impact, no step failing (the ladder's finest level)."""
+    with _served(runs):
+        return sh.dynamic(INDENTER, MASSLESS, **SINGLE)
 
 
 def _fail_once(monkeypatch, after: int) -> None:
