@@ -70,6 +70,15 @@ GENT_BACKTRACKS = 2
 SQUEEZED_J = 0.5
 """Pointwise det F below which a failed contact is put down to the elements about the tip,
 not to the mesh size (:func:`squeeze_note`)."""
+TIP_SLOPE = 0.1
+"""A power law's slope f'(h) at the finest axis element h above which the curve's mesh is
+graded at the axis no finer than :data:`NEAR_CONE_AXIS` (:func:`tip_mesh`)."""
+NEAR_CONE_AXIS = 0.06
+"""The axis element / the smallest element size of a near-cone's mesh (1e-3 of the refined
+radius on :data:`.mesh.FINITE_MESH`): the first Newton step from the undeformed body is
+linear, its strain beside the tip about f'(h) ln(a / h), and on the 1e-6 grading it inverted
+the tip elements for z = 0.5 r^1.05 (f'(h) = 0.19) and z = 0.8 r^1.1 (0.13) at every halving
+of the step, while 0.5 r^1.1 (0.07) runs (benchmarks/FEM_NOTES.md, "Near a cone")."""
 _GAUSS = np.polynomial.legendre.leggauss(4)
 
 
@@ -787,15 +796,7 @@ def _reach(
             if locked is not None:
                 raise locked from None
             if cuts > max_cuts:
-                steps = "smaller load steps"  # halved max_cuts times already
-                note = squeeze_note(stepper.system, history[-1][1], steps) or (
-                    "a finer mesh_size=... or refine=... helps only where the mesh is the cause"
-                )
-                raise NewtonError(
-                    f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} "
-                    f"m, halved {max_cuts} times): {error}; lower the deepest of depths=... "
-                    f"({note})"
-                ) from None
+                raise _failed_step(stepper, history[-1][1], step, max_cuts, error) from None
             increment *= 0.5
             continue
         total += iterations
@@ -806,6 +807,30 @@ def _reach(
         increment *= 2.0
         check_resolved(stepper.nodes.radius, lam, trial, fewest=1)
     return history, iterations, total, corrections
+
+
+def _failed_step(
+    stepper: NewtonStepper, x: np.ndarray, step: tuple[float, float], cuts: int, error: Exception
+) -> NewtonError:
+    """The failure of the load ``step`` (from, to: m) from the converged x, halved ``cuts``
+    times. From the undeformed body of a power law it names the shape coefficient: the first
+    Newton step is linear, its strain beside the tip about f'(h) ln(a / h) (h the axis
+    element), which no smaller step lowers near a cone (:data:`NEAR_CONE_AXIS`)."""
+    done, trial = step
+    at = f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} m"
+    if done == 0.0 and stepper.indenter.kind == "power-law":
+        return NewtonError(
+            f"{at}, the first, halved {cuts} times): {error}; its first Newton step is linear, "
+            "its strain beside the indenter's tip grows with the tip's slope and hardly shrinks "
+            "with the step: lower shape_coefficient=... (a blunter tip)"
+        )
+    steps = "smaller load steps"  # halved max_cuts times already
+    note = squeeze_note(stepper.system, x, steps) or (
+        "a finer mesh_size=... or refine=... helps only where the mesh is the cause"
+    )
+    return NewtonError(
+        f"{at}, halved {cuts} times): {error}; lower the deepest of depths=... ({note})"
+    )
 
 
 def check_smallest_depth(
@@ -975,6 +1000,17 @@ def tip_exponent(indenter: Indenter) -> float:
     return indenter.exponent if indenter.kind == "power-law" else 2.0
 
 
+def tip_mesh(mesh: MeshSettings, indenter: Indenter, refined: float) -> MeshSettings:
+    """``mesh`` for a refined zone of ``refined`` m, its axis grading coarsened to
+    :data:`NEAR_CONE_AXIS` times its smallest size where ``indenter`` is a power law whose
+    slope at the finest axis element exceeds :data:`TIP_SLOPE` (a near-cone, whose pressure
+    cusp r^(n-1) no grading resolves); else ``mesh`` itself."""
+    finest = min(mesh.axis_size, mesh.size)
+    if indenter.kind != "power-law" or indenter.slope(finest * refined) <= TIP_SLOPE:
+        return mesh
+    return replace(mesh, axis_size=max(finest, NEAR_CONE_AXIS * mesh.size))
+
+
 def run_finite_indentation(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -999,7 +1035,8 @@ def run_finite_indentation(
         Depths in m, positive, increasing (the entry points check them).
     mesh : MeshSettings, optional
         Default :data:`FINITE_MESH`; the refined zone is ``margin`` times the geometric
-        contact radius (d_max / A)^(1/n) (times :meth:`Geometry.zone_factor` on a layer).
+        contact radius (d_max / A)^(1/n) (times :meth:`Geometry.zone_factor` on a layer);
+        near a cone graded coarser at the axis (:func:`tip_mesh`).
     rubber : RubberModel, optional
         The rubber model (default neo-Hookean, :mod:`shtaerman.fem.rubber`).
     solve : callable, optional
@@ -1022,6 +1059,7 @@ def run_finite_indentation(
         raise InputError(FINITE_BASE, "base")
     refined = mesh.margin * geometric_radius(indenter, depths[-1])
     refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
+    mesh = tip_mesh(mesh, indenter, refined)
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined, geometry)
     meshed = time.perf_counter()
