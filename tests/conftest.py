@@ -8,13 +8,16 @@ and mode, checked, so the result folder is what a plain run writes).
 
 Under pytest-xdist (``-n auto`` in pyproject.toml, at most two workers unless
 ``PYTEST_XDIST_AUTO_NUM_WORKERS`` or ``-n N`` says otherwise; ``-n 0`` runs in one process), each
-worker computes the session and module fixtures its tests need, on one BLAS thread unless
+worker computes the session and module fixtures its tests need (``quick_outcomes`` once for
+all), on one BLAS thread unless
 ``OPENBLAS_NUM_THREADS`` (``OMP_``, ``MKL_``) asks for more. ``SHTAERMAN_TEST_ORDER=reversed``
 runs the tests in the reverse of their collection order. CI's second pass does both (Makefile).
 """
 
+import fcntl
 import json
 import os
+import pickle
 import signal
 from pathlib import Path
 
@@ -109,8 +112,25 @@ def quick_study_files() -> list[str]:
 
 
 @pytest.fixture(scope="session")
-def quick_outcomes() -> dict[str, StudyOutcome]:
-    """The paper and Hertz studies run with ``quick=True``, by study name (once per session)."""
+def quick_outcomes(tmp_path_factory, worker_id) -> dict[str, StudyOutcome]:
+    """The paper and Hertz studies run with ``quick=True``, by study name: once per session,
+    shared by the xdist workers through a pickle in their common temporary folder (the first
+    computes it under a lock, the others read it: ~60 CPU s each)."""
+    if worker_id == "master":  # not under xdist
+        return _quick_outcomes()
+    shared = tmp_path_factory.getbasetemp().parent / "quick_outcomes.pickle"
+    with open(shared.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if shared.is_file():
+            return pickle.loads(shared.read_bytes())
+        outcomes = _quick_outcomes()
+        temporary = shared.with_suffix(".partial")
+        temporary.write_bytes(pickle.dumps(outcomes))
+        temporary.replace(shared)
+        return outcomes
+
+
+def _quick_outcomes() -> dict[str, StudyOutcome]:
     studies = [study for path in quick_study_files() for study in load_study(path)]
     return {study.name: run_study(study, quick=True) for study in studies}
 
