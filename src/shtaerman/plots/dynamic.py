@@ -138,7 +138,7 @@ def _restitution(ax_e: Axes, ax_loss: Axes, outcome: DynamicStudyOutcome) -> Non
     ax_e.set_ylabel(axis_label("restitution"))
     ax_e.legend(loc="lower left")
     loss_label = axis_label("energy_radiated_fraction")
-    ax_loss.set_ylabel(loss_label.replace("half-space", "pad") if pad else loss_label)
+    ax_loss.set_ylabel(loss_label.replace("the body", "the pad") if pad else loss_label)
     if pad:  # three series over decades: two decades of headroom hold the legend
         top = max(loss) if max(loss) > 0 else 1.0
         ax_loss.set_ylim(top=top * 10**2.5)

@@ -240,11 +240,12 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
 
     if value is None:
         return None
+    if isinstance(value, str):
+        _check_term_count(value, name)  # before parsing a million terms
     try:
         if isinstance(value, PronySeries):
             series = value
         elif isinstance(value, str):
-            _check_term_count(value, name)  # before parsing a million terms
             series = prony_from_text(value)
         else:
             raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
