@@ -468,9 +468,10 @@ def deepest_depth_remedy(indenter: PowerLawIndenter, deep: float, ratio: float) 
     same depth (:func:`reach_shape`), both rounded to pass."""
     if not isinstance(indenter, PowerLawIndenter):
         return "lower the deepest depth"
-    n, log_factor = indenter.exponent, math.log(MAX_DEPTH_RATIO / ratio)
-    depth = _shown(deep, log_factor * n / (n - 1.0), up=False) if n > 1.0 else ""
-    if depth and float(depth) >= deep / REMEDY_SPAN:
+    n = indenter.exponent
+    scale = _reach_scale(n, ratio, (0.0, MAX_DEPTH_RATIO)) if n > 1.0 else math.inf
+    depth = _near(_shown(deep, scale, up=False), deep)  # "" beyond the floats or the span
+    if depth:
         return f"lower the deepest depth to at most about {depth} m"
     log_shape = reach_shape(indenter, ratio, MAX_DEPTH_RATIO, impact=False)
     shape = _shown(1.0, log_shape, up=False)

@@ -266,10 +266,10 @@ float (the FE's peak force exceeds P_c by 1e-4 massless, is below it with waves)
 
 
 class _Impact(Protocol):
-    """What :func:`impact_in_floats` reads of an exact impact (SI units)."""
+    """What :func:`impact_in_floats` reads of an exact impact (SI units; a power law's
+    :class:`ImpactResult` its force exponent too)."""
 
     P_c: float
-    force_exponent: float
 
 
 Exact = TypeVar("Exact", bound=_Impact)

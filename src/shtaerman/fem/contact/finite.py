@@ -813,13 +813,13 @@ def _failed_step(
     stepper: NewtonStepper, x: np.ndarray, step: tuple[float, float], cuts: int, error: Exception
 ) -> NewtonError:
     """The failure of the load ``step`` (from, to: m) from the converged x, halved ``cuts``
-    times. From the undeformed body of a power law whose slope at the contact radius exceeds
-    :data:`TIP_SLOPE` it names the shape coefficient: the first Newton step is linear, its
-    strain beside the tip about f'(h) ln(a / h) (h the axis element), which no smaller step
-    lowers near a cone (:data:`NEAR_CONE_AXIS`)."""
+    times. From the undeformed body of a near-cone (:func:`_steep_tip` at its first
+    surface node) it names the shape coefficient: the first Newton step is linear, its strain
+    beside the tip about f'(h) ln(a / h), which no smaller step lowers."""
     done, trial = step
     at = f"depth {trial:.6g} m (a load step of {trial - done:.3g} m from {done:.6g} m"
-    if done == 0.0 and _steep_tip(stepper.indenter, trial):
+    radius = stepper.nodes.radius
+    if done == 0.0 and _steep_tip(stepper.indenter, float(np.min(radius[radius > 0.0]))):
         return NewtonError(
             f"{at}, the first, halved {cuts} times): {error}; its first Newton step is linear, "
             "its strain beside the indenter's tip grows with the tip's slope and hardly shrinks "
@@ -834,12 +834,11 @@ def _failed_step(
     )
 
 
-def _steep_tip(indenter: Indenter, depth: float) -> bool:
-    """Whether a power law's slope at its contact radius at ``depth`` (m) exceeds
-    :data:`TIP_SLOPE`: a near-cone's tip (z = 5 r^1.5 at 6.4e-6 m: 0.08; 0.5 r^1.05: 0.29)."""
-    if indenter.kind != "power-law":
-        return False
-    return float(indenter.slope(geometric_radius(indenter, depth))) > TIP_SLOPE
+def _steep_tip(indenter: Indenter, axis: float) -> bool:
+    """Whether ``indenter`` is a power law whose slope f'(h) at the axis element h = ``axis``
+    (m) exceeds :data:`TIP_SLOPE`: a near-cone, whose first load step strains the tip's
+    elements by about f'(h) ln(a / h) at any depth (:data:`NEAR_CONE_AXIS`)."""
+    return indenter.kind == "power-law" and float(indenter.slope(axis)) > TIP_SLOPE
 
 
 def check_smallest_depth(
@@ -1015,7 +1014,7 @@ def tip_mesh(mesh: MeshSettings, indenter: Indenter, refined: float) -> MeshSett
     slope at the finest axis element exceeds :data:`TIP_SLOPE` (a near-cone, whose pressure
     cusp r^(n-1) no grading resolves); else ``mesh`` itself."""
     finest = min(mesh.axis_size, mesh.size)
-    if indenter.kind != "power-law" or indenter.slope(finest * refined) <= TIP_SLOPE:
+    if not _steep_tip(indenter, finest * refined):
         return mesh
     return replace(mesh, axis_size=max(finest, NEAR_CONE_AXIS * mesh.size))
 
