@@ -367,9 +367,8 @@ def check_dynamic(
 
 
 def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
-    """The impact's own checks as the run makes them first (its warnings are the run's): a
-    table's window of velocities (:func:`shtaerman.guards.check_table_window`), a power
-    law's reach (:func:`shtaerman.fem.impact.check_impact_reach`), the floating-point range,
+    """The impact's own checks as the run makes them first (its warnings are the run's): its
+    reach (:func:`shtaerman.fem.impact.check_impact_reach`), the floating-point range,
     the exact impact and the depth it reaches; the linear body's layer thickness against it,
     mesh size and viscoelastic duration (``settings``; None: a rubber)."""
     import warnings
@@ -378,7 +377,6 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..fem.finite_dynamic import check_finite_reach, pad_reach_note
     from ..fem.impact import check_impact_reach
-    from ..guards import check_table_window
     from ..theory.impact import impact_in_floats
     from ..theory.materials import effective_modulus, validate_density
     from ..theory.sneddon import contact_law
@@ -390,7 +388,6 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     friction, geometry = problem.interface.coefficient, problem.geometry
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        check_table_window(striker.indenter, settings is None)  # before the exact impact's end
         check_impact_reach(*inputs[:3], inputs[3:5], settings is None, friction, geometry)
         exact = partial(elastic_impact, *inputs[3:5], law)
         quasi = impact_in_floats(*inputs[3:5], exact)  # the floating-point range first

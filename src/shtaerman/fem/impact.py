@@ -64,16 +64,20 @@ def check_impact_reach(
     its remedies within the waves' limit; a rubber where :func:`.finite_dynamic.pad_reach_note`
     has a note): x_c in logarithms, :func:`shtaerman.guards.check_profile_reach`, the contact
     curve's check (0.7 kg at 1e-300 m/s was refused for the exact impact's P_c = 0, naming
-    four inputs and no value). A sphere's or a table's reach is checked by its run, and so is
+    four inputs and no value). A table whose end lies below the floor is refused first
+    (:func:`shtaerman.guards.check_table_window`); a sphere's or a table's reach is checked by
+    its run, and so is
     a v0^2 beyond the largest float: its refusal (a velocity of a physical size) passes where
     the reach's might not (1e-300 kg at 1e200 m/s: 4.13e158 m/s, whose v0^2 overflows too).
     A rubber with inertia (``density`` > 0) is then held to the linear body's wave-speed
     limit (:func:`shtaerman.guards.check_wave_speed`; its remedies within the finite-strain
     reach), any profile: 1e-40 kg at 3 m/s failed numerically after a minute."""
+    from ..guards import check_table_window
     from ..theory.materials import RIGID, effective_modulus
     from .dynamic_contact import radiated_fraction
     from .finite_dynamic import pad_reach_note
 
+    check_table_window(indenter, finite)  # a table with no window: before its exact impact
     if math.isinf(impact[1] * impact[1]):
         return
     pad = geometry.thickness is not None  # a pad stops the striker short of x_c

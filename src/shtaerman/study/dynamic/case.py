@@ -22,7 +22,7 @@ from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact import check_impact_reach, run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.mesh import HALF_SPACE, Geometry
-from ...guards import check_table_window, warn_outside_validity
+from ...guards import warn_outside_validity
 from ...theory.impact import ImpactResult, impact_in_floats
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
@@ -234,7 +234,6 @@ def run_case(
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
         impact, finite = (mass, velocity), isinstance(settings, FiniteImpactSettings)
-        check_table_window(indenter, finite)  # before the exact impact meets the table's end
         check_impact_reach(indenter, half_space, density, impact, finite, friction, geometry)
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         solved = quasi  # the study's loader solved it, checked as here

@@ -344,7 +344,6 @@ def _check_velocities(
     from functools import partial
 
     from ...fem.impact import check_impact_reach
-    from ...guards import check_table_window
     from ...theory.impact import impact_in_floats
 
     solved = {}
@@ -356,7 +355,6 @@ def _check_velocities(
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run's warnings are the run's
             try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
-                check_table_window(study.indenter, study.finite)  # before the exact impact's end
                 check_impact_reach(*inputs[:3], impact, study.finite, friction, study.geometry)
             except InputError as error:
                 raise refused(path, error, {**KEYS, "velocity": key}) from None
