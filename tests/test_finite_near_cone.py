@@ -57,3 +57,19 @@ def test_a_failing_first_step_names_the_shape_coefficient(monkeypatch):
     assert "from 0 m, the first, halved 8 times" in said, said
     assert said.endswith("lower shape_coefficient=... (a blunter tip)"), said
     assert "deepest" not in said
+
+
+def test_a_near_cone_finite_strain_study_plans_its_ladder_on_the_graded_mesh(tmp_path, capsys):
+    """The study's depth ladder starts where its first contact covers surface nodes of the
+    mesh the run builds: it planned on the 1e-6 axis grading while the run used the near-cone
+    grading, and z = 0.833 r^1.02 (the A its own reach refusal named) failed 'covers no surface
+    node besides the axis' (user62b)."""
+    from study_texts import FINITE_STUDY
+
+    from shtaerman.cli import main
+
+    text = FINITE_STUDY.replace("shape_coefficient = 5.0", "shape_coefficient = 0.833")
+    (tmp_path / "cone.toml").write_text(text.replace("exponent = 1.5", "exponent = 1.02"))
+    argv = ["verify", str(tmp_path / "cone.toml"), "--quick", "--out", str(tmp_path / "out")]
+    code = main(argv)
+    assert code == 0, capsys.readouterr().err

@@ -1019,6 +1019,17 @@ def tip_mesh(mesh: MeshSettings, indenter: Indenter, refined: float) -> MeshSett
     return replace(mesh, axis_size=max(finest, NEAR_CONE_AXIS * mesh.size))
 
 
+def indentation_mesh(
+    indenter: Indenter, deepest: float, mesh: MeshSettings, geometry: Geometry
+) -> tuple[MeshSettings, float]:
+    """The mesh settings and the refined radius (m) of a curve to ``deepest`` (m): ``margin``
+    times the geometric contact radius (times a layer's :meth:`Geometry.zone_factor`), graded
+    at the axis by :func:`tip_mesh` (the study's ladder plans on it too)."""
+    refined = mesh.margin * geometric_radius(indenter, deepest)
+    refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
+    return tip_mesh(mesh, indenter, refined), refined
+
+
 def run_finite_indentation(
     indenter: PowerLawIndenter,
     half_space: Material,
@@ -1065,9 +1076,7 @@ def run_finite_indentation(
     thickness = geometry.thickness
     if thickness is not None and geometry.base != "bonded":
         raise InputError(FINITE_BASE, "base")
-    refined = mesh.margin * geometric_radius(indenter, depths[-1])
-    refined *= geometry.zone_factor(tip_exponent(indenter))  # 1 on the half-space
-    mesh = tip_mesh(mesh, indenter, refined)
+    mesh, refined = indentation_mesh(indenter, depths[-1], mesh, geometry)
     start = time.perf_counter()
     skfem_mesh = mesh.build(refined, geometry)
     meshed = time.perf_counter()

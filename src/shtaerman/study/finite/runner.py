@@ -24,7 +24,7 @@ from scipy.integrate import IntegrationWarning, simpson
 from scipy.optimize import brentq
 
 from ...fem.contact.constraints import MIN_CONTACT_NODES
-from ...fem.contact.finite import check_finite_depths, geometric_radius, tip_exponent
+from ...fem.contact.finite import check_finite_depths, indentation_mesh
 from ...fem.mesh import HALF_SPACE, Geometry, MeshSettings
 from ...fem.rubber import GentLockError
 from ...guards import LadderWarnings
@@ -160,8 +160,7 @@ def surface_radii(
     """Radii in m of the surface nodes besides the axis (vertices and mid-sides), increasing,
     of ``mesh`` on ``geometry`` meshed for the deepest depth ``top`` (m) as
     :func:`shtaerman.fem.contact.finite.run_finite_indentation` meshes it."""
-    zone = geometry.zone_factor(tip_exponent(indenter))
-    refined = mesh.margin * geometric_radius(indenter, top) * zone
+    mesh, refined = indentation_mesh(indenter, top, mesh, geometry)
     built = mesh.build(refined, geometry)
     ends = built.p[0, built.facets[:, built.boundaries["surface"]]]
     radii = np.unique(np.concatenate([ends.ravel(), 0.5 * (ends[0] + ends[1])]))
