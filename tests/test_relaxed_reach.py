@@ -42,3 +42,27 @@ def test_the_relaxed_depth_beyond_the_reach_is_refused_on_the_pad_before_any_wor
     assert relaxed_ratio(0.0323) > MAX_DEPTH_RATIO
     with pytest.raises(sh.LimitError, match="with a Prony series its relaxed one"):
         sh.dynamic(pad_problem(0.0323), mesh_size=0.2, time_steps=50, estimate=False)
+
+
+def test_the_remedies_of_a_relaxing_pad_s_refusal_keep_its_relaxed_depth_within_reach():
+    # 10 kg at 1.5 m/s on the paper's striker, a 5 cm pad: elastic x/a 1.162, relaxed 1.207.
+    # Remedies scaled from the relaxed depth at 1.5 m/s were refused in turn (a slower impact
+    # relaxes more: user62b); the fully relaxed body's x_c (1.22) bounds it at every velocity
+    import re
+
+    from shtaerman.api.fem_dynamic import check_dynamic
+
+    striker = sh.PowerLawIndenter(shape_coefficient=5.0, exponent=1.5)
+    body = sh.Material(3e6, 0.49, 0.0)
+    keywords = {"thickness": 0.05, "model": "neo-hookean", "prony": "0.3:1e-3"}
+    problem = sh.Problem.impact(striker, body, mass=10.0, velocity=1.5, **keywords)
+    with pytest.raises(sh.LimitError) as refused:
+        check_dynamic(problem)
+    said = str(refused.value)
+    velocity = float(re.search(r"velocity=\.\.\. to at most about (\S+) m/s", said)[1])
+    mass = float(re.search(r"mass=\.\.\. to at most about (\S+) kg", said)[1])
+    law = contact_law(striker, effective_modulus(sh.RIGID, body))
+    for m, v in ((10.0, velocity), (mass, 1.5)):  # each, taken, within the reach
+        impact = viscoelastic_impact(m, v, law, PronySeries.parse("0.3:1e-3"), steps=2000)
+        assert depth_ratio(striker, impact.x_max) <= MAX_DEPTH_RATIO
+        check_dynamic(sh.Problem.impact(striker, body, mass=m, velocity=v, **keywords))

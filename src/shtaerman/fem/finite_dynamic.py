@@ -72,14 +72,14 @@ from typing import Any
 
 import numpy as np
 
-from ..guards import check_reach, warn_outside_validity
+from ..guards import MAX_DEPTH_RATIO, check_reach, depth_ratio, warn_outside_validity
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
-from ..theory.viscoelastic import PronySeries
-from ..validation import InputError, validate_poisson, validate_positive
+from ..theory.viscoelastic import PronySeries, elastic_impact
+from ..validation import InputError, LimitError, validate_poisson, validate_positive
 from .contact.finite import (
     FINITE_BASE,
     FINITE_MESH,
@@ -452,14 +452,24 @@ def check_finite_reach(
     """:func:`shtaerman.guards.check_reach` of a finite-strain impact, ``reach`` = (indenter,
     its exact law, (mass kg, velocity m/s), Prony series or None), at the elastic x_c (m) of
     ``scales`` = (x_c, t_y s) and then at the relaxed body's deeper quasi-static x_max, which
-    bounds a relaxing pad's depth too (``note``, ``layer``: as check_reach takes them; the
-    remedy is then for the relaxed depth). Returns :func:`_relaxed_extent`'s depth (m) and
-    longest run (s)."""
+    bounds a relaxing pad's depth too (``note``, ``layer``: as check_reach takes them). Its
+    refusal is that of the fully relaxed body's x_c (modulus g_inf E*), a power law in
+    M v0^2 that bounds the relaxing body's depth at every velocity: the remedies scaled from
+    the viscoelastic depth were refused in turn (a slower impact relaxes more). Returns
+    :func:`_relaxed_extent`'s depth (m) and longest run (s)."""
     indenter, law, impact, prony = reach
-    check_reach(indenter, scales[0], impact, True, note, layer)  # before the sizing
-    x_size, duration = _relaxed_extent(law, *impact, prony, scales)
-    if x_size > scales[0]:
-        check_reach(indenter, x_size, impact, True, note, layer)
+    try:
+        check_reach(indenter, scales[0], impact, True, note, layer)  # before the sizing
+        x_size, duration = _relaxed_extent(law, *impact, prony, scales)
+        if x_size > scales[0]:
+            check_reach(indenter, x_size, impact, True, note, layer)
+    except LimitError:
+        if prony is not None and prony.g_inf < 1.0:  # beyond the reach: refused in the fully
+            relaxed = replace(law, modulus=law.modulus * prony.g_inf)  # relaxed body's words
+            x_relaxed = elastic_impact(*impact, relaxed).x_c  # (the floor: the elastic x_c's)
+            if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO:
+                check_reach(indenter, x_relaxed, impact, True, note, layer)
+        raise
     return x_size, duration
 
 
