@@ -66,3 +66,29 @@ def test_the_remedies_of_a_relaxing_pad_s_refusal_keep_its_relaxed_depth_within_
         impact = viscoelastic_impact(m, v, law, PronySeries.parse("0.3:1e-3"), steps=2000)
         assert depth_ratio(striker, impact.x_max) <= MAX_DEPTH_RATIO
         check_dynamic(sh.Problem.impact(striker, body, mass=m, velocity=v, **keywords))
+
+
+@pytest.mark.parametrize("route", ["api", "cli"])
+def test_the_first_refusal_of_a_relaxing_pad_names_the_remedy_its_run_takes(route, capsys):
+    # user62b: the API's and the CLI's first check (the elastic x_c's) named 0.0323 m/s and
+    # 5.56e-5 kg, which the run's relaxed check refused in turn (naming a shape coefficient).
+    # Both now refuse as the run does, in the fully relaxed body's words: x/a 2.34, and
+    # 0.027 m/s or 3.89e-5 kg, each of which runs (38-41 CPU s each, 100 steps per t_y)
+    import re
+
+    from shtaerman.cli import main
+
+    if route == "api":
+        with pytest.raises(sh.LimitError) as refused:
+            sh.dynamic(pad_problem(1.5), mesh_size=0.2, time_steps=50, estimate=False)
+        said = str(refused.value)
+    else:
+        command = "dynamic --exponent 1.3 --shape-coefficient 8 --E2 3e6 --nu2 0.49 --mass 0.12"
+        command += " --velocity 1.5 --model neo-hookean --density2 1000 --thickness 0.012"
+        command += " --prony 0.3:1e-3 --interface bonded --friction 0.5 --no-estimate"
+        assert main(command.split()) == 2
+        said = capsys.readouterr().err
+    assert "depth / contact radius 2.34" in said
+    velocity = float(re.search(r"at most about (\S+) m/s", said)[1])
+    assert velocity == pytest.approx(0.027, rel=5e-3)  # the 3 digits said
+    assert relaxed_ratio(velocity) <= MAX_DEPTH_RATIO  # below the fully relaxed bound

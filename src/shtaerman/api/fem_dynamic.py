@@ -388,7 +388,9 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     friction, geometry = problem.interface.coefficient, problem.geometry
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        check_impact_reach(*inputs[:3], inputs[3:5], settings is None, friction, geometry)
+        check_impact_reach(
+            *inputs[:3], inputs[3:5], settings is None, friction, geometry, problem.body.prony
+        )
         exact = partial(elastic_impact, *inputs[3:5], law)
         quasi = impact_in_floats(*inputs[3:5], exact)  # the floating-point range first
         if settings is not None:

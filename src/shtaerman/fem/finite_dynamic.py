@@ -453,9 +453,7 @@ def check_finite_reach(
     its exact law, (mass kg, velocity m/s), Prony series or None), at the elastic x_c (m) of
     ``scales`` = (x_c, t_y s) and then at the relaxed body's deeper quasi-static x_max, which
     bounds a relaxing pad's depth too (``note``, ``layer``: as check_reach takes them). Its
-    refusal is that of the fully relaxed body's x_c (modulus g_inf E*), a power law in
-    M v0^2 that bounds the relaxing body's depth at every velocity: the remedies scaled from
-    the viscoelastic depth were refused in turn (a slower impact relaxes more). Returns
+    refusal is that of :func:`fully_relaxed_beyond`'s x_c where there is one. Returns
     :func:`_relaxed_extent`'s depth (m) and longest run (s)."""
     indenter, law, impact, prony = reach
     try:
@@ -463,14 +461,28 @@ def check_finite_reach(
         x_size, duration = _relaxed_extent(law, *impact, prony, scales)
         if x_size > scales[0]:
             check_reach(indenter, x_size, impact, True, note, layer)
-    except LimitError:
-        if prony is not None and prony.g_inf < 1.0:  # beyond the reach: refused in the fully
-            relaxed = replace(law, modulus=law.modulus * prony.g_inf)  # relaxed body's words
-            x_relaxed = elastic_impact(*impact, relaxed).x_c  # (the floor: the elastic x_c's)
-            if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO:
-                check_reach(indenter, x_relaxed, impact, True, note, layer)
+    except LimitError:  # beyond the reach: refused in the fully relaxed body's words
+        relaxed = fully_relaxed_beyond(indenter, law, impact, prony)
+        if relaxed is not None:
+            check_reach(indenter, relaxed[1], impact, True, note, layer)
         raise
     return x_size, duration
+
+
+def fully_relaxed_beyond(
+    indenter: Indenter, law: PowerLawContact, impact: tuple[float, float], prony: PronySeries | None
+) -> tuple[PowerLawContact, float] | None:
+    """The fully relaxed body's law (modulus g_inf E*) and its quasi-static x_c (m) for
+    ``impact`` (mass kg, velocity m/s), where that x_c lies beyond the finite-strain reach;
+    None without relaxation or within it (the floor is the elastic x_c's). Its x_c, a power
+    law in M v0^2, bounds a relaxing body's depth at every velocity, so the remedies scaled
+    from it hold (those scaled from the viscoelastic depth were refused in turn: a slower
+    impact relaxes more)."""
+    if prony is None or prony.g_inf >= 1.0:
+        return None
+    relaxed = replace(law, modulus=law.modulus * prony.g_inf)
+    x_relaxed = elastic_impact(*impact, relaxed).x_c
+    return (relaxed, x_relaxed) if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO else None
 
 
 def _relaxed_extent(

@@ -57,6 +57,7 @@ def check_impact_reach(
     finite: bool,
     friction: float | None = None,
     geometry: Geometry = HALF_SPACE,
+    prony: PronySeries | None = None,
 ) -> None:
     """Refuse, before its exact impact is solved, a power law's FE impact (mass kg, velocity
     m/s) on ``half_space`` (density kg/m^3; ``finite``: a rubber at finite strain) whose depth
@@ -71,11 +72,15 @@ def check_impact_reach(
     the reach's might not (1e-300 kg at 1e200 m/s: 4.13e158 m/s, whose v0^2 overflows too).
     A rubber with inertia (``density`` > 0) is then held to the linear body's wave-speed
     limit (:func:`shtaerman.guards.check_wave_speed`; its remedies within the finite-strain
-    reach), any profile: 1e-40 kg at 3 m/s failed numerically after a minute."""
+    reach), any profile: 1e-40 kg at 3 m/s failed numerically after a minute. A rubber with a
+    ``prony`` series beyond the reach is refused as its run refuses it
+    (:func:`.finite_dynamic.fully_relaxed_beyond`)."""
     from ..guards import check_table_window
     from ..theory.materials import RIGID, effective_modulus
+    from ..theory.sneddon import contact_law
+    from ..validation import LimitError
     from .dynamic_contact import radiated_fraction
-    from .finite_dynamic import pad_reach_note
+    from .finite_dynamic import fully_relaxed_beyond, pad_reach_note
 
     check_table_window(indenter, finite)  # a table with no window: before its exact impact
     if math.isinf(impact[1] * impact[1]):
@@ -88,9 +93,15 @@ def check_impact_reach(
         # a pad's remedy within the depths its mesh resolves (adv60: 4.95e-12 m/s was named
         # for 1e-16 on a 12 mm pad, whose thickness that impact then refused)
         layer = resolved_depths(geometry, indenter, IMPACT_MARGIN) if finite else None
-        check_profile_reach(
-            indenter, modulus, None, impact, finite=finite, note=note, layer=layer, waves=waves
-        )
+        options = {"finite": finite, "note": note, "layer": layer, "waves": waves}
+        try:
+            check_profile_reach(indenter, modulus, None, impact, **options)
+        except LimitError:  # a relaxing rubber: in the fully relaxed body's words
+            law = contact_law(indenter, modulus)
+            relaxed = fully_relaxed_beyond(indenter, law, impact, prony) if finite else None
+            if relaxed is not None:
+                check_profile_reach(indenter, relaxed[0].modulus, None, impact, **options)
+            raise
     if finite and waves is not None:
         _check_finite_waves(indenter, half_space, density, impact, waves)
 

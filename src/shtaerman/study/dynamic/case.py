@@ -234,7 +234,7 @@ def run_case(
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
         impact, finite = (mass, velocity), isinstance(settings, FiniteImpactSettings)
-        check_impact_reach(indenter, half_space, density, impact, finite, friction, geometry)
+        check_impact_reach(indenter, half_space, density, impact, finite, friction, geometry, prony)
         law = contact_law(indenter, effective_modulus(RIGID, half_space))
         solved = quasi  # the study's loader solved it, checked as here
         exact = partial(elastic_impact, mass, velocity, law) if solved is None else lambda: solved

@@ -355,7 +355,9 @@ def _check_velocities(
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run's warnings are the run's
             try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
-                check_impact_reach(*inputs[:3], impact, study.finite, friction, study.geometry)
+                check_impact_reach(
+                    *inputs[:3], impact, study.finite, friction, study.geometry, study.prony
+                )
             except InputError as error:
                 raise refused(path, error, {**KEYS, "velocity": key}) from None
             try:
