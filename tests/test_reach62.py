@@ -157,3 +157,29 @@ def test_a_contact_curve_beyond_the_reach_names_a_remedy_that_reaches_it(exponen
         ratio = depth_ratio(sh.PowerLawIndenter(shape_coefficient=value, exponent=exponent), deep)
     # rounded inward to three digits: within, by less than the rounding's 1e-2 of x/a
     assert MAX_DEPTH_RATIO * (1 - 1e-2) < ratio <= MAX_DEPTH_RATIO
+
+
+def test_a_wave_refusal_names_no_velocity_beyond_the_remedy_span():
+    # user62b: a first-order radiated fraction of 22.5 at 0.0029 m/s (force ~ x^1.1, limit
+    # 0.0045) scaled the velocity by (0.0045 / 22.5)^((q + 1) / (3q - 3)) = 1.3e-26 and named
+    # 3.7e-29 m/s, which the floor refused; the density (and 0) are named alone
+    from types import SimpleNamespace
+
+    from shtaerman.guards import check_wave_speed, wave_limit
+
+    estimate = SimpleNamespace(energy_fraction=22.5, shear_wave_speed=30.3)
+    assert wave_limit(1.1) == pytest.approx(0.0045, rel=1e-2)
+    with pytest.raises(sh.LimitError) as refused:
+        check_wave_speed((0.7, 0.0029), estimate, 1100.0, 1.1)
+    said = str(refused.value)
+    assert said.startswith("density2: ") and "velocity 3.7e-29" not in said
+    assert re.search(r"density2 (\S+) kg/m\^3 would pass", said)
+    slower = 0.0029 * (wave_limit(1.1) / 22.5) ** 7  # the velocity it would have named
+    assert slower < 0.0029 / REMEDY_SPAN
+    with pytest.raises(sh.LimitError, match=r"or velocity \S+ m/s would pass"):  # within it
+        check_wave_speed(
+            (0.7, 0.0029),
+            SimpleNamespace(energy_fraction=0.005, shear_wave_speed=30.3),
+            1100.0,
+            1.1,
+        )

@@ -840,7 +840,8 @@ def check_wave_speed(
     rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82
     m/s, at lambda 0.837, above session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
     velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
-    velocity, the refusal says so and names the density and the mass that pass instead."""
+    velocity, the refusal says so and names the density and the mass that pass instead;
+    unchecked, a velocity beyond :data:`REMEDY_SPAN` is not named (the density is)."""
     from .theory.materials import DENSITY_RANGE
     from .validation import LimitError
 
@@ -859,6 +860,8 @@ def check_wave_speed(
     if reaches is not None and not reaches(mass, float(f"{slower:.3g}")):
         remedy = _heavier_instead(impact, slower, q, share, reaches)
         named = "mass" if remedy.startswith(" or mass") else "density2"
+    elif not _near(f"{slower:.3g}", velocity):  # a table's 0.0029 m/s named 3.7e-29
+        remedy, named = " would pass", "density2"
     prefix = named if named == "density2" else f"{named}, density2"
     shown = _apart(fraction, (limit, float(f"{limit:.3g}")))  # 0.4502 said "0.45, above 0.45"
     lighter, massless = float(f"{0.99 * density * share**2:.3g}"), "the quasi-static impact"
