@@ -173,3 +173,22 @@ def test_a_series_of_too_many_terms_is_refused_by_its_count_first(text):
     # 21 terms of g 0.06 also break sum g < 1 (1.26): the count is named, before any parsing
     with pytest.raises(InputError, match=r"^prony: 21 terms is too many \("):
         prony_input(text)
+
+
+def test_a_csv_of_too_many_rows_is_refused_before_the_rest_is_parsed(tmp_path, monkeypatch):
+    # user62b: a million-row file was parsed whole (10.5 CPU s) before its count was refused;
+    # now only the first MAX_PRONY_TERMS + 3 rows are read. The 22 rows of an E column with
+    # 20 terms and its tau = inf row pass
+    import shtaerman.theory.prony_sources as sources
+
+    many = tmp_path / "many.csv"
+    many.write_text("tau,g\n" + "".join(f"{1e-3 * (1 + k)},1e-8\n" for k in range(10_000)))
+    parsed = []
+    number = sources._number
+    monkeypatch.setattr(sources, "_number", lambda *a: parsed.append(a) or number(*a))
+    with pytest.raises(InputError, match=r"^prony: many\.csv: more than 20 terms \("):
+        prony_input(str(many))
+    assert len(parsed) <= 2 * 22  # two cells of at most 22 rows parsed, not 20,000
+    twenty = tmp_path / "twenty.csv"
+    twenty.write_text("tau,E\ninf,1e6\n" + "".join(f"{1e-3 * (1 + k)},1e4\n" for k in range(20)))
+    assert len(prony_input(str(twenty)).weights) == 20

@@ -145,10 +145,14 @@ def _header(cells: list[str], where: str) -> str:
 
 def _rows(text: str, where: str) -> tuple[str, list[tuple[int, float, float]]]:
     """The value column's name ('e' or 'g') and the rows (line number, tau, value); a row of
-    other than the header's 2 cells is refused (:func:`~shtaerman.input_file.csv_rows`)."""
-    body, lines = csv_rows(text, f"prony: {where}", "prony")
+    other than the header's 2 cells is refused (:func:`~shtaerman.input_file.csv_rows`), and
+    so are more than :data:`MAX_PRONY_TERMS` terms, before the rest is parsed."""
+    most = MAX_PRONY_TERMS + 2  # the header, the terms and an E column's tau = inf row
+    body, lines = csv_rows(text, f"prony: {where}", "prony", limit=most + 1)
     if not body:
         raise InputError(f"prony: {where} holds no header and no rows", "prony")
+    if len(body) > most:  # the rest not parsed (a million rows took 10 CPU s)
+        raise InputError(f"prony: {where}: more than {MAX_PRONY_TERMS} terms", "prony")
     column, rows = _header(body[0], where), []
     for k, cells in zip(lines[1:], body[1:], strict=True):
         tau = _number(cells[0], f"{where} row {k} column tau")
