@@ -464,9 +464,24 @@ def check_finite_reach(
     except LimitError:  # beyond the reach: refused in the fully relaxed body's words
         relaxed = fully_relaxed_beyond(indenter, law, impact, prony)
         if relaxed is not None:
-            check_reach(indenter, relaxed[1], impact, True, note, layer)
+            check_reach(indenter, relaxed[1], impact, True, fully_relaxed_note(note), layer)
         raise
     return x_size, duration
+
+
+FULLY_RELAXED = (
+    "; with a Prony series the depth and the remedies are the fully relaxed body's (modulus "
+    "g_inf E*), which bound the relaxing body's at every velocity (cautious where it relaxes "
+    "slowly against the impact)"
+)
+"""The words a refusal at :func:`fully_relaxed_beyond`'s depth ends with, before its note."""
+
+
+def fully_relaxed_note(note: str | None) -> str | None:
+    """``note`` (:func:`pad_reach_note`'s) of a refusal at the fully relaxed body's depth."""
+    if note is None:
+        return None
+    return FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
 
 
 def fully_relaxed_beyond(

@@ -80,7 +80,7 @@ def check_impact_reach(
     from ..theory.sneddon import contact_law
     from ..validation import LimitError
     from .dynamic_contact import radiated_fraction
-    from .finite_dynamic import fully_relaxed_beyond, pad_reach_note
+    from .finite_dynamic import fully_relaxed_beyond, fully_relaxed_note, pad_reach_note
 
     check_table_window(indenter, finite)  # a table with no window: before its exact impact
     if math.isinf(impact[1] * impact[1]):
@@ -100,6 +100,7 @@ def check_impact_reach(
             law = contact_law(indenter, modulus)
             relaxed = fully_relaxed_beyond(indenter, law, impact, prony) if finite else None
             if relaxed is not None:
+                options["note"] = fully_relaxed_note(note)
                 check_profile_reach(indenter, relaxed[0].modulus, None, impact, **options)
             raise
     if finite and waves is not None:
