@@ -269,3 +269,29 @@ def test_a_step_at_the_turning_point_converges_at_the_solves_noise_floor():
         start.depth + 1.642e-4 * (0.10693 - 1.642e-4 * 963.56 / 1.4), rel=1e-6
     )
     assert abs(2 * (new.depth - start.depth) / 1.642e-4 - 0.10693 - v) < 1e-12
+
+
+@pytest.mark.parametrize("density", [0.0, 1100.0])
+def test_the_march_steps_on_one_blas_thread(monkeypatch, density):
+    """Both finite-strain marches step on one BLAS thread, as the linear one (stepper.march),
+    whatever the caller's: on two the other thread spun between the small factorizations (the
+    relaxing 12 mm pad with Coulomb friction took 35.6 CPU s against 24.5, the same histories
+    bit for bit; benchmarks/finite_impact_cost.py)."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from shtaerman.fem import stepper
+    from shtaerman.fem.finite_dynamic import prepare_finite_impact
+
+    seen = []
+
+    def record(step, first, exponent):  # the march's loop, stepping nothing
+        seen.append(
+            {info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas"}
+        )
+        return np.zeros((1, len(first))), np.nan
+
+    monkeypatch.setattr(stepper, "march_steps", record)
+    setup = prepare_finite_impact(INDENTER, RUBBER, density, MASS, 3.0, SETTINGS)
+    with threadpool_limits(limits=2, user_api="blas"):
+        setup.march()
+    assert seen == [{1}]
