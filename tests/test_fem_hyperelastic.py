@@ -398,6 +398,26 @@ def test_newton_step_solves_the_saddle_system():
     assert np.max(abs(gaps)) <= 1e-14 * np.max(abs(gap[rows]))  # observed 0: du_z is set
 
 
+def test_the_restricted_products_are_the_sparse_products_bit_for_bit():
+    """column_product (v zero but at some columns) and row_product (some rows of A x) add the
+    entries of the CSC product ``pattern.matrix(data) @ v`` in its order, the zero columns
+    left out: the same floats, so the Newton steps built on them are those of the sparse
+    products bit for bit (the zero columns add +-0, which rounds nothing)."""
+    from shtaerman.fem.contact.finite import column_product, row_product
+
+    stepper, tangent, _, _, _ = _contact_step_inputs()
+    pattern, rng = stepper.pattern, np.random.default_rng(0)
+    data = tangent * (1.0 + rng.random(tangent.size))  # unsymmetric values, as with friction
+    matrix = pattern.matrix(data)
+    columns = rng.permutation(pattern.size)[:40]  # unsorted, as a step's slaves come
+    values = rng.standard_normal(columns.size)
+    v = np.zeros(pattern.size)
+    v[columns] = values
+    assert np.array_equal(column_product(pattern, data, columns, values), matrix @ v)
+    x = rng.standard_normal(pattern.size)
+    assert np.array_equal(row_product(pattern, data, columns, x), (matrix @ x)[columns])
+
+
 def test_bordered_step_is_the_step_of_its_own_active_set():
     """bordered_step with a factorization kept for another active set (candidates released
     and added, the axis one among them) gives eliminate_gaps's step for its own set with the

@@ -561,10 +561,9 @@ def eliminate_gaps(
         normal = 1.0 + drag[rows] * slope[rows]
         left = coefficient.copy()
         left[slaves[ok]] = ((slope[rows] - drag[rows]) / normal)[ok]
-    matrix = pattern.matrix(tangent)
     shift = np.zeros(pattern.size)
     shift[slaves] = gap[rows]
-    load = residual + matrix @ shift
+    load = residual + column_product(pattern, tangent, slaves, gap[rows])  # K shift
     rhs = -np.bincount(target, weights=left * load, minlength=pattern.size)  # -Q^T load
     if again is None:
         reduced = reduce_tangent(pattern, tangent, slaves, target, left, coefficient)
@@ -572,7 +571,7 @@ def eliminate_gaps(
     else:
         solution = again(rhs)
     du = coefficient * solution[target] + shift
-    dlam = -(residual + matrix @ du)[slaves] / normal
+    dlam = -(residual[slaves] + row_product(pattern, tangent, slaves, du)) / normal
     return du, dlam
 
 
@@ -665,10 +664,36 @@ def reduce_tangent(
 
 def pattern_entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
     """Indices in ``data`` of the entries in the rows or columns ``columns`` (sorted, unique)."""
+    in_columns, _ = _column_entries(pattern, columns)
+    return np.union1d(in_columns, pattern.transpose[in_columns])
+
+
+def _column_entries(pattern: Pattern, columns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Indices in ``data`` of the entries of ``columns``, column by column, and their counts."""
     starts, counts = pattern.indptr[columns], np.diff(pattern.indptr)[columns]
     offsets = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
-    in_columns = np.repeat(starts, counts) + offsets
-    return np.union1d(in_columns, pattern.transpose[in_columns])
+    return np.repeat(starts, counts) + offsets, counts
+
+
+def column_product(
+    pattern: Pattern, data: np.ndarray, columns: np.ndarray, values: np.ndarray
+) -> np.ndarray:
+    """A v for A of ``data`` in ``pattern`` and v zero but ``values`` at ``columns``
+    (unique): the sums of ``pattern.matrix(data) @ v`` (column by column, in increasing
+    order) without its zero columns, so bitwise the same at a fraction of its cost."""
+    order = np.argsort(columns)
+    entries, counts = _column_entries(pattern, columns[order])
+    weights = data[entries] * np.repeat(values[order], counts)
+    return np.bincount(pattern.indices[entries], weights=weights, minlength=pattern.size)
+
+
+def row_product(pattern: Pattern, data: np.ndarray, rows: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """(A x)[rows] for A of ``data`` in the symmetric ``pattern``: row i's entries (those of
+    column i, mirrored) summed in increasing column order, as ``pattern.matrix(data) @ x``
+    sums them, so bitwise its entries ``rows``."""
+    entries, counts = _column_entries(pattern, rows)
+    weights = data[pattern.transpose[entries]] * x[pattern.indices[entries]]
+    return np.bincount(np.repeat(np.arange(rows.size), counts), weights, minlength=rows.size)
 
 
 def solve_finite_contact(

@@ -45,6 +45,7 @@ from .finite import (
     FiniteContactCurve,
     FiniteContactStep,
     NewtonStepper,
+    column_product,
     eliminate_gaps,
     finite_step,
     pattern_entries,
@@ -153,11 +154,12 @@ def _shift(
 def _shifted_load(
     stepper: NewtonStepper, residual: np.ndarray, tangent: np.ndarray, shift: np.ndarray
 ) -> np.ndarray:
-    """The free dofs' ``residual`` (N) plus the ``tangent``'s response to ``shift`` (m); no
-    sparse matrix is built for a zero shift (every Newton iteration after the first)."""
-    if not np.any(shift):
+    """The free dofs' ``residual`` (N) plus the ``tangent``'s response to ``shift`` (m); a
+    zero shift's (every Newton iteration after the first) is none."""
+    moved = np.flatnonzero(shift)
+    if not moved.size:
         return residual
-    return residual + stepper.pattern.matrix(tangent) @ shift
+    return residual + column_product(stepper.pattern, tangent, moved, shift[moved])
 
 
 def _warm_newton(
