@@ -665,14 +665,18 @@ def reduce_tangent(
 def pattern_entries(pattern: Pattern, columns: np.ndarray) -> np.ndarray:
     """Indices in ``data`` of the entries in the rows or columns ``columns`` (sorted, unique)."""
     in_columns, _ = _column_entries(pattern, columns)
-    return np.union1d(in_columns, pattern.transpose[in_columns])
+    both = np.sort(np.concatenate([in_columns, pattern.transpose[in_columns]]))
+    first = np.ones(both.size, dtype=bool)  # np.union1d's, for 1/10 of its CPU (numpy 2.4)
+    first[1:] = both[1:] != both[:-1]
+    return both[first]
 
 
 def _column_entries(pattern: Pattern, columns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Indices in ``data`` of the entries of ``columns``, column by column, and their counts."""
-    starts, counts = pattern.indptr[columns], np.diff(pattern.indptr)[columns]
-    offsets = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
-    return np.repeat(starts, counts) + offsets, counts
+    starts = pattern.indptr[columns]
+    counts = pattern.indptr[columns + 1] - starts
+    shifts = np.repeat(starts - np.cumsum(counts) + counts, counts)  # start - entries before
+    return shifts + np.arange(shifts.size), counts
 
 
 def column_product(
