@@ -418,6 +418,19 @@ def test_the_restricted_products_are_the_sparse_products_bit_for_bit():
     assert np.array_equal(row_product(pattern, data, columns, x), (matrix @ x)[columns])
 
 
+def test_pattern_entries_are_those_in_the_rows_or_columns():
+    """pattern_entries (sorted, unique) against their definition in the symmetric pattern:
+    every stored entry whose row or column is one of the given dofs (none for none)."""
+    from shtaerman.fem.contact.finite import pattern_entries
+
+    stepper, _, _, _, _ = _contact_step_inputs()
+    pattern, rng = stepper.pattern, np.random.default_rng(1)
+    for count in (0, 1, 7, 60):
+        dofs = np.sort(rng.permutation(pattern.size)[:count])
+        inside = np.isin(pattern.indices, dofs) | np.isin(pattern.columns, dofs)
+        assert np.array_equal(pattern_entries(pattern, dofs), np.flatnonzero(inside))
+
+
 def test_bordered_step_is_the_step_of_its_own_active_set():
     """bordered_step with a factorization kept for another active set (candidates released
     and added, the axis one among them) gives eliminate_gaps's step for its own set with the
