@@ -7,6 +7,7 @@ from pathlib import Path
 import matplotlib.image as mpimg
 import numpy as np
 import pytest
+from served_verify import serve_writing
 
 import shtaerman
 import shtaerman.output.folder
@@ -203,14 +204,22 @@ def _interrupting(quick_outcomes, stop_at, served):
     return run_study
 
 
+def _serve_writing(patch, quick_outcomes, quick_verify):
+    """Serve the files of the session's quick outcomes from quick_verify's folder
+    (tests/served_verify.py)."""
+    _, done, results = quick_verify
+    serve_writing(patch.setattr, quick_outcomes, done, results)
+
+
 @pytest.fixture(scope="module")
-def interrupted(quick_outcomes, tmp_path_factory):
+def interrupted(quick_outcomes, quick_verify, tmp_path_factory):
     """The folder of ``verify --quick`` of STUDIES stopped by Ctrl-C in its second study (exit
     130), written once: the tests that resume from it copy it (incomplete.json and the folder
     marker name no absolute path, so a copy is the folder such a run leaves). Its writing
     (the first study's figures and fields) took 3 CPU s per test."""
     out = tmp_path_factory.mktemp("interrupted") / "run"
     with pytest.MonkeyPatch.context() as patch:
+        _serve_writing(patch, quick_outcomes, quick_verify)
         patched = _interrupting(quick_outcomes, [SECOND, KeyboardInterrupt()], [])
         patch.setattr(shtaerman.output.folder, "run_study", patched)
         assert main(["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]) == 130
@@ -235,6 +244,7 @@ def test_an_interrupted_verify_keeps_finished_studies_and_resumes(
     from shtaerman.cli import Terminated
 
     stop = Terminated() if signal_like == "terminated" else signal_like
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served = []
     patched = _interrupting(quick_outcomes, [SECOND, stop], served)
     monkeypatch.setattr(shtaerman.output.folder, "run_study", patched)
@@ -315,6 +325,7 @@ def test_a_verify_stopped_after_every_study_says_the_summary_is_missing_and_resu
     """Ctrl-C once every study has finished, while results.json and the reports are written:
     it said "2 of 2 studies finished and kept ...; complete them with", as if studies were
     missing. It says that the summary is, and the command writes it without computing any."""
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served = []
     monkeypatch.setattr(
         shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
@@ -351,8 +362,9 @@ def test_resume_refuses_a_folder_no_interrupted_run_left(quick_verify, tmp_path,
 
 
 def test_resume_recomputes_a_study_whose_inputs_changed(
-    quick_outcomes, interrupted, tmp_path, monkeypatch, capsys
+    quick_outcomes, quick_verify, interrupted, tmp_path, monkeypatch, capsys
 ):
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served = []
     out = _interrupted_copy(interrupted, tmp_path / "run")
     # the kept study was run for other inputs (edited file): it is computed again
@@ -475,6 +487,7 @@ def test_an_error_keeps_the_finished_studies_and_says_how_to_resume(
 
     from shtaerman.validation import NumericalFailureError
 
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served = []
     if failure == "numerical":
         error = NumericalFailureError("Newton did not converge; refine the mesh")
@@ -509,6 +522,7 @@ def test_an_error_keeps_the_finished_studies_and_says_how_to_resume(
     )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
     monkeypatch.undo()
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served.clear()
     monkeypatch.setattr(
         shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
@@ -520,12 +534,14 @@ def test_an_error_keeps_the_finished_studies_and_says_how_to_resume(
 
 
 def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
-    quick_outcomes, tmp_path, monkeypatch, capsys
+    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys
 ):
     """SIGKILL of the verify process after its first study finished: the next
     ``verify --resume --out SAME`` finds that study (it is kept, not computed again) and says
-    where it is; SIGTERM and Ctrl-C kept it, SIGKILL lost it."""
+    where it is; SIGTERM and Ctrl-C kept it, SIGKILL lost it. The killed process is
+    ``shtaerman verify`` served the session's first study (tests/served_verify.py)."""
     import os
+    import pickle
     import signal
     import subprocess
     import sys
@@ -534,8 +550,11 @@ def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
     out = tmp_path / "run"
     argv = ["verify", "--quick", "--workers", "1", "--out", str(out), *STUDIES]
     env = {**os.environ, "PYTHONPATH": str(Path(shtaerman.__file__).parents[1])}
+    served = tmp_path / "served.pickle"
+    first = {FIRST: quick_outcomes[FIRST]}  # it computes the second until killed
+    served.write_bytes(pickle.dumps((first, quick_verify[1], quick_verify[2])))
     process = subprocess.Popen(
-        [sys.executable, "-m", "shtaerman", *argv],
+        [sys.executable, str(Path(__file__).with_name("served_verify.py")), str(served), *argv],
         env=env,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
@@ -548,6 +567,7 @@ def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
     process.send_signal(signal.SIGKILL)
     process.wait()
     kept = {p.name: p.stat().st_mtime_ns for p in (progress.parent / FIRST).iterdir()}
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served = []
     monkeypatch.setattr(
         shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
@@ -559,11 +579,11 @@ def test_a_sigkill_of_verify_keeps_the_finished_studies_for_resume(
     assert {p.name: p.stat().st_mtime_ns for p in (out / FIRST).iterdir()} == kept
     results = json.loads((out / "results.json").read_text())
     assert list(results["studies"]) == [FIRST, SECOND] and results["passed"]
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run", "served.pickle"]
 
 
 def test_a_killed_verify_in_a_default_folder_is_found_by_the_next_run(
-    quick_outcomes, tmp_path, monkeypatch, capsys
+    quick_outcomes, quick_verify, tmp_path, monkeypatch, capsys
 ):
     """A SIGKILLed verify without --out left its finished part in a hidden staging folder that
     a later run (another time stamp, another name) never looked at: the next verify without
@@ -582,6 +602,7 @@ def test_a_killed_verify_in_a_default_folder_is_found_by_the_next_run(
     (content.parent / "keep").write_text(PROGRESS_FILE)
     (tmp_path / name).mkdir()  # its reservation
     monkeypatch.chdir(tmp_path)
+    _serve_writing(monkeypatch, quick_outcomes, quick_verify)
     served = []
     monkeypatch.setattr(
         shtaerman.output.folder, "run_study", _interrupting(quick_outcomes, [None], served)
