@@ -18,6 +18,7 @@ error (nodal sums on both sides).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -25,6 +26,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
+from shtaerman.fem.contact.constraints import STEP_RATIO
 from shtaerman.fem.contact.linear import solve_contact
 from shtaerman.fem.contact.stick import solve_bonded_contact
 from shtaerman.fem.elasticity import assemble
@@ -44,15 +46,18 @@ def mossakovskii(nu: float) -> float:
     return 1.0 if nu == 0.5 else (1.0 - nu) * np.log(3.0 - 4.0 * nu) / (1.0 - 2.0 * nu)
 
 
-def _pair(nu: float, exponent: float, **bonded):
-    """Frictionless (nodal sums) and bonded curves of z = 5 r^n on one coarse mesh."""
+@functools.cache
+def _pair(nu: float, exponent: float, step_ratio: float = STEP_RATIO):
+    """Frictionless (nodal sums) and bonded curves of z = 5 r^n on one coarse mesh: computed
+    once for the module (read, not changed, by its tests; the default step ratio's run of
+    nu = 0, n = 2 serves two of them)."""
     indenter = PowerLawIndenter(5.0, exponent)
     depth = 5.0 * RADIUS**exponent
     refined = COARSE.margin * RADIUS
     system = assemble(COARSE.build(refined), E2, nu)
     depths = np.array([depth / 2.0**exponent, depth])
     free = solve_contact(system, indenter.profile, depths, refined, aligned=False)
-    stuck = solve_bonded_contact(system, indenter.profile, depths, refined, **bonded)
+    stuck = solve_bonded_contact(system, indenter.profile, depths, refined, step_ratio=step_ratio)
     return free, stuck
 
 
@@ -161,8 +166,9 @@ def test_bad_interface_in_python():
         sh.contact(indenter, Material(E2, 0.3), interface="sticky")
     with pytest.raises(InputError, match="interface"):
         sh.Interface("Bonded")
+    system = _pair(0.3, 1.5)[1].system  # the module's (its run refused before it starts)
     with pytest.raises(InputError, match="step_ratio"):
-        _pair(0.3, 1.5, step_ratio=1.0)
+        solve_bonded_contact(system, indenter.profile, [1e-5], RADIUS, step_ratio=1.0)
 
 
 def test_bonded_indenter_on_a_layer():
