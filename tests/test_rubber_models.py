@@ -572,13 +572,15 @@ def test_a_gent_rubber_locking_at_once_with_inertia_is_refused_as_on_the_other_r
 
 
 def test_a_gent_lock_in_the_first_step_with_inertia_names_a_depth_reached(capsys):
-    """It said 'locks at depth 0 m': the depth before the step, not the one it went for."""
+    """It said 'locks at depth 0 m': the depth before the step, not the one it went for.
+    Any limit the first step passes says it (GentLockError.locking, stretch 0): Jm 1e-6, as
+    the test above, gives up in 16 CPU s where 0.01 took 57 s (the same line and depth)."""
     import re
 
     from shtaerman.cli import main
 
-    argv = ["dynamic", "--model", "gent", "--gent-limit", "0.01", "--mesh-size", "0.2"]
-    assert main([*argv, "--time-steps", "50"]) == 2
+    argv = ["dynamic", "--model", "gent", "--gent-limit", "1e-6", "--mesh-size", "0.2"]
+    assert main([*argv, "--time-steps", "50", "--no-estimate"]) == 2
     err = capsys.readouterr().err
     depth = float(re.search(r"locks before depth (\S+) m", err)[1])
     assert 0.0 < depth < 1e-3 and err.count("\n") == 1, err  # within the first steps of 8.5 mm
