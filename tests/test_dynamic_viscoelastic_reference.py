@@ -15,6 +15,7 @@ order, 500 to 16000 steps per t_c).
 import json
 
 import pytest
+from served_runs import served_impacts
 
 import shtaerman as sh
 from shtaerman.cli import main
@@ -38,19 +39,11 @@ def _problem(**body):
 
 @pytest.fixture(scope="module", autouse=True)
 def served():
-    """The module's FE runs by their inputs (case.run_impact): each computed once, so that the
-    command line's runs of a problem the API ran here are the same run (its numbers, printed)."""
-    runs, run = {}, case_module.run_impact
-
-    def once(*inputs, **keywords):
-        key = repr((inputs, sorted(keywords.items())))
-        if key not in runs:
-            runs[key] = run(*inputs, **keywords)
-        return runs[key]
-
+    """The module's FE runs by their inputs (tests/served_runs.py): the command line's runs of
+    a problem the API ran here are that run (its numbers, printed)."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(case_module, "run_impact", once)
-        yield runs
+        served_impacts(patch)
+        yield
 
 
 @pytest.fixture(scope="module")

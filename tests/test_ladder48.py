@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 import study_texts
 from ladder_helpers import failing_level
+from served_runs import served_impacts
 from study_texts import PAPER_CASE
 
 from shtaerman.cli import main
@@ -267,8 +268,8 @@ def test_a_dynamic_study_whose_finest_level_fails_twice_reports_the_one_below(
     path = tmp_path / "coarse.toml"
     path.write_text(study_texts.DYNAMIC_STUDY + "[numerics]\ntime_steps = 100\nmesh_size = 0.05\n")
     [study] = load_study(path)  # levels: size 0.1, 0.0707, 0.05; 50, 71, 100 steps
+    real = served_impacts(monkeypatch)  # the cut run's passing levels are the full run's
     full = run_study(study)
-    real = dynamic_case.run_impact
 
     def failing(*args, **kwargs):  # the finest level at 3 m/s, and its retry (200 steps)
         if args[4] == 3.0 and args[5].size == 0.05:
@@ -316,8 +317,8 @@ def test_a_dynamic_case_whose_ladder_loses_a_level_is_an_ok_row_without_estimate
 
     spec = parse_sweep(DYNAMIC_SWEEP)
     [case] = spec.cases()
+    real = served_impacts(monkeypatch)  # the cut run's passing levels are the full run's
     full = execute_case(spec.kind_spec.case, 0, case.params)
-    real = dynamic_case.run_impact
 
     def failing(*args, **kwargs):  # the coarsest level (size 0.1), and its retry
         if args[5].size > 0.09:  # 0.05 / (1 / sqrt 2)^2, to round-off
@@ -362,9 +363,9 @@ def test_an_effects_case_whose_pad_runs_lose_a_level_says_which_and_why(monkeypa
 
     spec = parse_sweep(EFFECTS_SWEEP)
     [case] = spec.cases()
+    real = served_impacts(monkeypatch)  # the cut run's passing levels are the full run's
     full = execute_case(spec.kind_spec.case, 0, case.params)
     assert full["status"] == "ok" and full["estimate_missing"] is None, full["error"]
-    real = dynamic_case.run_impact
 
     def failing(*args, **kwargs):  # the pad's coarsest level (size 0.2), and its retry
         if args[5].size > 0.19 and kwargs["geometry"].thickness is not None:
