@@ -6,6 +6,7 @@ at mesh 0.2, 50 steps, no estimate)."""
 import math
 
 import pytest
+from served_runs import served_impacts
 
 import shtaerman as sh
 from shtaerman.problem import Problem
@@ -33,10 +34,20 @@ def _spec(tmp_path, text=SWEEP):
     return load_sweep(path)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def served():
+    """The module's FE runs by their inputs (tests/served_runs.py): the sweep case and the
+    study run the table's four runs with its inputs, and are served them."""
+    with pytest.MonkeyPatch.context() as patch:
+        served_impacts(patch)
+        yield
+
+
 @pytest.fixture(scope="module")
 def table() -> dict:
     """``sh.effects`` of the sweep's case and the study's problem (one table for both tests:
-    its four runs are deterministic, so the case and the study must give it bit for bit)."""
+    the case and the study run its four runs with the same inputs, so they give it bit for
+    bit; served, a run of other inputs would be computed and differ)."""
     return sh.effects(_problem(), mesh_size=0.2, time_steps=50, estimate=False).to_dict()
 
 
