@@ -14,6 +14,7 @@ import math
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
+from served_runs import served_impacts
 
 import shtaerman as sh
 from shtaerman.api.effect_table.table import QUANTITIES, Cell, dominance
@@ -27,6 +28,15 @@ COARSE = dict(mesh_size=0.2, time_steps=50, estimate=False)
 ARGV = ("--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6", "--nu2", "0.49")
 ARGV += ("--mass", "0.12", "--velocity", "1.5", "--density2", "1000")
 ARGV += ("--mesh-size", "0.2", "--time-steps", "50", "--no-estimate")
+
+
+@pytest.fixture(scope="module", autouse=True)
+def served():
+    """The module's FE runs by their inputs (tests/served_runs.py): the tables of the command
+    line and of the API here share most of their runs (the same variants of one case)."""
+    with pytest.MonkeyPatch.context() as patch:
+        served_impacts(patch)
+        yield
 
 
 @pytest.fixture(scope="module")
