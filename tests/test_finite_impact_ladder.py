@@ -18,6 +18,7 @@ from contextlib import contextmanager
 
 import numpy as np
 import pytest
+from served_runs import served_impacts
 
 import shtaerman as sh
 import shtaerman.fem.finite_dynamic as finite_dynamic
@@ -57,16 +58,8 @@ def runs():
 def _served(runs: dict):
     """case.run_impact giving the run of equal inputs from ``runs`` (run once, kept). Only
     where no test patches the time stepping: a cut step must be run, not served."""
-    run = case.run_impact
-
-    def once(*inputs, **keywords):
-        key = repr((inputs, sorted(keywords.items())))
-        if key not in runs:
-            runs[key] = run(*inputs, **keywords)
-        return runs[key]
-
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(case, "run_impact", once)
+        served_impacts(patch, runs)
         yield
 
 
