@@ -67,6 +67,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -453,7 +454,7 @@ def check_finite_reach(
     its exact law, (mass kg, velocity m/s), Prony series or None), at the elastic x_c (m) of
     ``scales`` = (x_c, t_y s) and then at the relaxed body's deeper quasi-static x_max, which
     bounds a relaxing pad's depth too (``note``, ``layer``: as check_reach takes them). Its
-    refusal is that of :func:`fully_relaxed_beyond`'s x_c where there is one. Returns
+    refusal is that of :func:`check_fully_relaxed` where it refuses. Returns
     :func:`_relaxed_extent`'s depth (m) and longest run (s)."""
     indenter, law, impact, prony = reach
     try:
@@ -462,9 +463,7 @@ def check_finite_reach(
         if x_size > scales[0]:
             check_reach(indenter, x_size, impact, True, note, layer)
     except LimitError:  # beyond the reach: refused in the fully relaxed body's words
-        relaxed = fully_relaxed_beyond(indenter, law, impact, prony)
-        if relaxed is not None:
-            check_reach(indenter, relaxed[1], impact, True, fully_relaxed_note(note), layer)
+        check_fully_relaxed(reach, note, layer)
         raise
     return x_size, duration
 
@@ -474,30 +473,28 @@ FULLY_RELAXED = (
     "g_inf E*), which bound the relaxing body's at every velocity (cautious where it relaxes "
     "slowly against the impact)"
 )
-"""The words a refusal at :func:`fully_relaxed_beyond`'s depth ends with, before its note."""
+"""The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note."""
 
 
-def fully_relaxed_note(note: str | None) -> str | None:
-    """``note`` (:func:`pad_reach_note`'s) of a refusal at the fully relaxed body's depth."""
-    if note is None:
-        return None
-    return FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
-
-
-def fully_relaxed_beyond(
-    indenter: Indenter, law: PowerLawContact, impact: tuple[float, float], prony: PronySeries | None
-) -> tuple[PowerLawContact, float] | None:
-    """The fully relaxed body's law (modulus g_inf E*) and its quasi-static x_c (m) for
-    ``impact`` (mass kg, velocity m/s), where that x_c lies beyond the finite-strain reach;
-    None without relaxation or within it (the floor is the elastic x_c's). Its x_c, a power
-    law in M v0^2, bounds a relaxing body's depth at every velocity, so the remedies scaled
-    from it hold (those scaled from the viscoelastic depth were refused in turn: a slower
-    impact relaxes more)."""
-    if prony is None or prony.g_inf >= 1.0:
-        return None
+def check_fully_relaxed(
+    reach: tuple, note: str | None, layer: tuple | None, waves: Callable | None = None
+) -> None:
+    """:func:`shtaerman.guards.check_reach` at the fully relaxed body's quasi-static x_c
+    (modulus g_inf E*) of ``reach`` = (indenter, its exact law, (mass kg, velocity m/s), Prony
+    series or None), where it lies beyond the finite-strain reach; nothing without relaxation
+    or within it (the floor is the elastic x_c's). That x_c, a power law in M v0^2, bounds a
+    relaxing body's depth at every velocity, so the remedies scaled from it hold (those scaled
+    from the viscoelastic depth were refused in turn: a slower impact relaxes more).
+    ``note``, ``layer``, ``waves``: as check_reach takes them; :data:`FULLY_RELAXED` ends
+    the refusal before ``note``."""
+    indenter, law, impact, prony = reach
+    if prony is None or prony.g_inf >= 1.0 or note is None:  # None: no upper reach
+        return
     relaxed = replace(law, modulus=law.modulus * prony.g_inf)
     x_relaxed = elastic_impact(*impact, relaxed).x_c
-    return (relaxed, x_relaxed) if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO else None
+    if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO:
+        note = FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
+        check_reach(indenter, x_relaxed, impact, True, note, layer, waves)
 
 
 def _relaxed_extent(

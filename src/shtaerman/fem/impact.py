@@ -74,13 +74,13 @@ def check_impact_reach(
     limit (:func:`shtaerman.guards.check_wave_speed`; its remedies within the finite-strain
     reach), any profile: 1e-40 kg at 3 m/s failed numerically after a minute. A rubber with a
     ``prony`` series beyond the reach is refused as its run refuses it
-    (:func:`.finite_dynamic.fully_relaxed_beyond`)."""
+    (:func:`.finite_dynamic.check_fully_relaxed`)."""
     from ..guards import check_table_window
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
     from ..validation import LimitError
     from .dynamic_contact import radiated_fraction
-    from .finite_dynamic import fully_relaxed_beyond, fully_relaxed_note, pad_reach_note
+    from .finite_dynamic import check_fully_relaxed, pad_reach_note
 
     check_table_window(indenter, finite)  # a table with no window: before its exact impact
     if math.isinf(impact[1] * impact[1]):
@@ -93,15 +93,14 @@ def check_impact_reach(
         # a pad's remedy within the depths its mesh resolves (adv60: 4.95e-12 m/s was named
         # for 1e-16 on a 12 mm pad, whose thickness that impact then refused)
         layer = resolved_depths(geometry, indenter, IMPACT_MARGIN) if finite else None
-        options = {"finite": finite, "note": note, "layer": layer, "waves": waves}
         try:
-            check_profile_reach(indenter, modulus, None, impact, **options)
+            check_profile_reach(
+                indenter, modulus, None, impact, finite=finite, note=note, layer=layer, waves=waves
+            )
         except LimitError:  # a relaxing rubber: in the fully relaxed body's words
-            law = contact_law(indenter, modulus)
-            relaxed = fully_relaxed_beyond(indenter, law, impact, prony) if finite else None
-            if relaxed is not None:
-                options["note"] = fully_relaxed_note(note)
-                check_profile_reach(indenter, relaxed[0].modulus, None, impact, **options)
+            if finite:
+                reach = (indenter, contact_law(indenter, modulus), impact, prony)
+                check_fully_relaxed(reach, note, layer, waves)
             raise
     if finite and waves is not None:
         _check_finite_waves(indenter, half_space, density, impact, waves)
