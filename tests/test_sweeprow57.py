@@ -144,7 +144,7 @@ def test_a_finite_strain_case_beyond_the_reach_is_a_refused_row():
     text = f'name = "r"\nkind = "finite-strain"\n[parameters]\n{striker}\n[axes]\n'
     spec = parse_sweep(text + "velocity = [0.01, 0.1]\n")
     assert list(spec.refused) == [1]
-    said = "shape_coefficient: the striker z = 8 r^1.3 at 0.12 kg and 0.1 m/s reaches depth"
+    said = "shape_coefficient, mass, velocity: the striker z = 8 r^1.3 at 0.12 kg and 0.1 m/s"
     assert spec.refused[1].startswith(said)
 
 

@@ -20,7 +20,10 @@ def _refusal(capsys, argv):
     "striker, head",
     [
         # z = 50 r^1.5 at the paper's 0.7 kg, 3 m/s: x/a 4.96; the paper's A = 5 reaches 0.88
-        (["--shape-coefficient", "50"], "--shape-coefficient: the striker z = 50 r^1.5"),
+        (
+            ["--shape-coefficient", "50"],
+            "--shape-coefficient, --mass, --velocity: the striker z = 50 r^1.5",
+        ),
         # the paper's striker at 30 m/s: x/a 1.57, as its A = 5 would too: the impact's fault
         (["--velocity", "30"], "--mass, --velocity: 0.7 kg at 30 m/s drive the striker"),
     ],
@@ -40,7 +43,9 @@ def test_the_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsys, strike
 
 def test_the_reach_refusal_names_keywords_in_the_api():
     """The API's words: the parameter at fault heads the line, the others as name=..."""
-    with pytest.raises(sh.InputError, match=r"^shape_coefficient: the striker z = 50") as caught:
+    with pytest.raises(
+        sh.InputError, match=r"^shape_coefficient, mass, velocity: the striker z = 50"
+    ) as caught:
         sh.contact(sh.PowerLawIndenter(50.0, 1.5), sh.Material(7.5e6, 0.5), model="neo-hookean")
     assert caught.value.parameter == "shape_coefficient"
     assert "(shape_coefficient=5)" in str(caught.value) and "give depths=..." in str(caught.value)

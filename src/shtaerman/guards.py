@@ -327,7 +327,7 @@ def check_reach(
     heavier mass that passes both is named instead. The one refusal of an impact's depth
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
     (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
-    from .validation import SQUARABLE_VELOCITY, LimitError
+    from .validation import LimitError
 
     (mass, velocity), (n, q) = impact, tip_exponents(indenter, depth)
     if not depth > 0:  # x_c underflows to 0: the exact impact refuses it in its own words
@@ -345,29 +345,14 @@ def check_reach(
     check_table_window(indenter, finite)  # below the floor, as deep as the table reaches
     up = not ratio >= low  # x_c ~ (M v0^2)^(1/(q + 1)): the least of each
     blunt = _shape_remedy(indenter, depth, impact, (ratio, low if up else high), layer, waves)
-    if _striker_at_fault(indenter, depth, q, window):
-        raise _striker_refusal(indenter, impact, (ratio, window), finite, blunt, note)
-    scale, on = _layer_bound(depth, _reach_scale(n, ratio, window), layer)
-    shown = (
-        _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
-        _shown(mass, scale * (q + 1.0), up=up),
+    at_fault = _striker_at_fault(indenter, depth, q, window)
+    remedies, blunt, (shown, passing) = _reach_remedies(
+        indenter, (depth, impact), (ratio, window), (layer, waves), blunt, at_fault
     )
-    if up and shown[0] and float(shown[0]) < SQUARABLE_VELOCITY:  # v0^2 a float too
-        shown = (_shown(SQUARABLE_VELOCITY, 0.0, up=True), shown[1])
-    shape = getattr(indenter, "shape_coefficient", 1.0)
-    shown, blunt = _spanned(shown, impact, blunt, shape, scale)
+    if at_fault:
+        raise _striker_refusal(indenter, impact, (ratio, window), finite, remedies, note)
     if blunt and "depths=" in (note or ""):
         note = ""  # depths as far off as x_c's remedy
-    passing = _within_waves(indenter, depth, impact, q, shown, waves, window)
-    bound = "least" if up else "most"
-    remedies = _remedies(
-        ("velocity", passing[0], shown[0], "m/s"),
-        ("mass", passing[1], shown[1], "kg"),
-        on,
-        bound,
-        wave_limit(q),
-    )
-    remedies = _shape_named(remedies, blunt, bound, on)
     named, striker = ("mass, velocity", "")
     if blunt:
         named, striker = "shape_coefficient", f" {_striker_text(indenter)}"
@@ -387,6 +372,55 @@ def check_reach(
         f"beyond the {high:g} up to which {_reach_words(finite)}: lower {remedies}{note}",
         parameter,
     )
+
+
+def _reach_remedies(
+    indenter: Indenter,
+    reached: tuple[float, tuple[float, float]],
+    reach: tuple[float, tuple[float, float]],
+    bounds: tuple,
+    blunt: str,
+    at_fault: bool,
+) -> tuple[str, str, tuple[tuple[str, str], tuple[str, str]]]:
+    """The remedies of :func:`check_reach`'s refusal of an impact (``reached`` = (its depth m,
+    (mass kg, velocity m/s))) at x/a ``reach[0]`` outside the window ``reach[1]``, ``bounds``
+    = its (layer, waves): the impact's velocity and mass, or the shape coefficient ``blunt``
+    in their place (:func:`_spanned`); a striker ``at_fault`` (:func:`_striker_at_fault`) has
+    ``blunt`` first and the impact's within :data:`REMEDY_SPAN` after it. Returns the words,
+    ``blunt`` where named alone, and the velocity and mass (as shown) of the reach and of the
+    waves' limit too."""
+    from .validation import SQUARABLE_VELOCITY
+
+    (depth, impact), (ratio, window), (layer, waves) = reached, reach, bounds
+    (mass, velocity), (n, q) = impact, tip_exponents(indenter, depth)
+    up = ratio < window[0]
+    scale, on = _layer_bound(depth, _reach_scale(n, ratio, window), layer)
+    shown = (
+        _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
+        _shown(mass, scale * (q + 1.0), up=up),
+    )
+    if up and shown[0] and float(shown[0]) < SQUARABLE_VELOCITY:  # v0^2 a float too
+        shown = (_shown(SQUARABLE_VELOCITY, 0.0, up=True), shown[1])
+    shape = getattr(indenter, "shape_coefficient", 1.0)
+    if at_fault:  # the shape coefficient first, the impact's beside it where physical
+        shown = (_near(shown[0], velocity), _near(shown[1], mass))
+    else:
+        shown, blunt = _spanned(shown, impact, blunt, shape, scale)
+    passing = _within_waves(indenter, depth, impact, q, shown, waves, window)
+    bound = "least" if up else "most"
+    remedies = ""
+    if any(shown):
+        first, second = (
+            ("velocity", passing[0], shown[0], "m/s"),
+            ("mass", passing[1], shown[1], "kg"),
+        )
+        remedies = _remedies(first, second, on, bound, wave_limit(q))
+    if not at_fault:
+        return _shape_named(remedies, blunt, bound, on), blunt, (shown, passing)
+    shaped = f"shape_coefficient=... to at {bound} about {blunt}" if blunt else ""
+    if shaped and remedies:  # which inputs each keeps
+        shaped = _shape_named("", blunt, bound, on) + ", or " + remedies
+    return shaped or remedies, "", (shown, passing)
 
 
 def _spanned(
@@ -430,25 +464,27 @@ def _striker_refusal(
     impact: tuple[float, float],
     reach: tuple[float, tuple[float, float]],
     finite: bool,
-    blunt: str,
+    remedies: str,
     note: str,
 ) -> Exception:
     """The reach refusal of an impact (mass kg, velocity m/s) whose striker is at fault
-    (:func:`_striker_at_fault`): its x/a and window ``reach``, the shape coefficient that
-    brings it within (``blunt``, :func:`_shape_remedy`; "" none) and ``note``."""
+    (:func:`_striker_at_fault`): its x/a and window ``reach``, the ``remedies``
+    (:func:`_reach_remedies`: the shape coefficient, then the impact's; "" none) and ``note``."""
     from .validation import LimitError
     from .vocabulary import entry
 
     (mass, velocity), (ratio, (low, high)) = impact, reach
     paper = entry("shape_coefficient").default
-    verb, bound = ("raise", "least") if ratio < low else ("lower", "most")
-    remedy = f"; {verb} shape_coefficient=... to at {bound} about {blunt}" if blunt else ""
+    verb = "raise" if ratio < low else "lower"
+    named = "shape_coefficient, mass, velocity" if "velocity=" in remedies else "shape_coefficient"
     return LimitError(
-        f"shape_coefficient: the striker {_striker_text(indenter)} at {mass:g} kg and "
+        f"{named}: the striker {_striker_text(indenter)} at {mass:g} kg and "
         f"{velocity:g} m/s reaches depth / contact radius {_apart(ratio, (low, high))}, "
         f"outside the [{low:g}, {high:g}] within which {_reach_words(finite)}, where the "
-        f"paper's striker (shape_coefficient={paper:g}) would not: a striker of a physical "
-        f"size (the exact quasi-static impact, shtaerman impact, takes any){remedy}{note}",
+        f"paper's striker (shape_coefficient={paper:g}) would not (the exact quasi-static "
+        f"impact, shtaerman impact, takes any striker)"
+        + (f"; {verb} {remedies}" if remedies else "")
+        + note,
         "shape_coefficient",
     )
 
