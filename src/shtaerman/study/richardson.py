@@ -9,8 +9,8 @@ envelopes: benchmarks/FEM_NOTES.md, "Study error estimates".
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -298,3 +298,21 @@ def envelope(
     return Estimate(
         own.value, own.value, widest.error, widest.order, "envelope", "", widest.observed_order
     )
+
+
+def at_most_order(
+    estimate: Callable[..., Estimate],
+    values: Sequence,
+    ratio: float,
+    order: float | None,
+    **options,
+) -> Estimate:
+    """``estimate`` (:func:`richardson` or :func:`curve_richardson`, with ``options``) of
+    ``values`` at the known ``order``; where the ladder's observed order is lower, the error is
+    the correction at the observed order (the larger), the extrapolated value stays at
+    ``order``: a known order the ladder has not reached yet would understate the error."""
+    known = estimate(values, ratio, order=order, **options)
+    if known.method == "richardson" and known.observed_order < known.order:
+        observed = estimate(values, ratio, **options)
+        return replace(known, error=observed.error)
+    return known

@@ -39,7 +39,7 @@ from ...theory.viscoelastic import PronySeries
 from ...validation import InputError, bound_text, caller_stacklevel, validate_positive
 from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
-from ..richardson import Estimate, curve_richardson, richardson, worst_point
+from ..richardson import Estimate, at_most_order, curve_richardson, richardson, worst_point
 from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
 
 __all__ = [
@@ -263,13 +263,17 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     estimates, ladders = {}, {}
     for key in STEP_QUANTITIES:
         ladders[key] = [[getattr(step, key) for step in result.steps] for result in results]
-        estimates[key] = _at_most(curve_richardson, ladders[key], ORDERS[key])
+        estimates[key] = at_most_order(
+            curve_richardson, ladders[key], LADDER_RATIO, ORDERS[key], sane=SANE_ORDERS
+        )
     for key in CURVE_QUANTITIES:
         fits = [result.fit for result in results]
         values = [f.beta_fixed_exponent if key == "beta" else f.exponent for f in fits]
         if all(math.isfinite(v) for v in values):
             ladders[key] = values
-            estimates[key] = _at_most(richardson, values, ORDERS.get(key))
+            estimates[key] = at_most_order(
+                richardson, values, LADDER_RATIO, ORDERS.get(key), sane=SANE_ORDERS
+            )
     for key in FORCE_LIKE:
         error = max(estimates[key].error, _edge_floor(ladders[key], estimates[key]))
         error = FORCE_SAFETY * error + _truncation(results[-1], key)
@@ -312,18 +316,6 @@ def _confirmed(levels: list[np.ndarray], estimate: Estimate) -> bool:
     monotone = np.all((levels[1] - levels[0]) * (levels[2] - levels[1]) > 0.0)
     fast = estimate.method == "richardson" and estimate.observed_order >= estimate.order
     return bool(monotone and fast)
-
-
-def _at_most(estimate: Callable[..., Estimate], values: list, order: float | None) -> Estimate:
-    """``estimate`` (:func:`richardson` or :func:`curve_richardson`) of
-    ``values`` at ``order``; where the observed order is lower, its error is the correction at
-    the observed order (the larger), its extrapolated value stays at ``order``
-    (benchmarks/FEM_NOTES.md, "Accuracy 1e-6")."""
-    known = estimate(values, LADDER_RATIO, order=order, sane=SANE_ORDERS)
-    if known.method == "richardson" and known.observed_order < known.order:
-        observed = estimate(values, LADDER_RATIO, sane=SANE_ORDERS)
-        return replace(known, error=observed.error)
-    return known
 
 
 def _level(solve: Solve, base: MeshSettings, refine: float, progress: Progress) -> LadderLevel:

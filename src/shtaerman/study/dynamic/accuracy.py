@@ -32,7 +32,7 @@ from ...validation import (
 )
 from ..ladder import LADDER_RATIO, WITHOUT_ESTIMATE
 from ..ladder import check_ladder as check_mesh_ladder
-from ..richardson import Estimate, richardson
+from ..richardson import Estimate, at_most_order, richardson
 
 __all__ = [
     "DYNAMIC_ESTIMATED",
@@ -202,8 +202,8 @@ def over_levels(results: Sequence[Any], quantity: Callable[[Any], float]) -> Est
     estimate of nan error (method ``missing``)."""
     values = [quantity(result) for result in results]
     if all(math.isfinite(value) for value in values):
-        return richardson(
-            values, LADDER_RATIO, order=DYNAMIC_ORDER, sane=DYNAMIC_SANE, fallback="largest"
+        return at_most_order(
+            richardson, values, LADDER_RATIO, DYNAMIC_ORDER, sane=DYNAMIC_SANE, fallback="largest"
         )
     fine = values[-1]
     return Estimate(fine, fine, math.nan, math.nan, "missing", "a level gave no value")
