@@ -70,9 +70,10 @@ def read_input_text(path: str | Path, option: str, what: str) -> str:
 
 def _not_utf8(data: bytes, start: int) -> str:
     """Where the byte ``data[start]``, not UTF-8, stands (line, column) and what to do."""
-    line_start = data.rfind(b"\n", 0, start) + 1
+    line_start = max(data.rfind(b"\n", 0, start), data.rfind(b"\r", 0, start)) + 1
     column = len(data[line_start:start].decode("utf-8-sig", "replace")) + 1
-    line = data.count(b"\n", 0, start) + 1
+    ends = sum(data.count(end, 0, line_start) for end in (b"\n", b"\r"))  # LF, CR (old Mac)
+    line = ends - data.count(b"\r\n", 0, line_start) + 1  # a CRLF ends one line
     return (
         f"line {line}, column {column}: byte 0x{data[start]:02x} "
         "is not UTF-8 (a Latin-1 or Windows file?); save the file as UTF-8 text"
@@ -94,7 +95,7 @@ def read_input_csv(path: str | Path, option: str, what: str) -> str:
         ``#`` comment) separates its columns by ';' or a tab instead of ','.
     """
     text = read_input_text(path, option, what)
-    lines = (line for line in io.StringIO(text) if line.strip())  # lazily: a huge file
+    lines = (line for line in io.StringIO(text, newline="") if line.strip())  # lazily: huge
     header = next((line for line in lines if not line.lstrip().startswith("#")), "")
     for separator in _SEPARATORS:
         if separator in header and "," not in header:
@@ -120,7 +121,7 @@ def csv_rows(
         quote runs to the end of the file, or binary data without line ends); or if it holds
         more or fewer cells than the header (a stray or missing comma: which column is which?).
     """
-    reader = csv.reader(io.StringIO(text))
+    reader = csv.reader(io.StringIO(text, newline=""))  # a line ends in LF, CRLF or CR (old Mac)
     rows, lines, start = [], [], 1
     try:
         for row in reader:

@@ -129,36 +129,40 @@ def _moduli_text(text: str) -> tuple[PronySeries, float]:
     return prony_from_moduli(_number(relaxed, "E_inf"), moduli, times)
 
 
-def _header(cells: list[str], where: str) -> str:
+def _header(cells: list[str], where: str, line: int) -> str:
     names = []
     for cell in cells:
         match = _COLUMN.match(cell)
         names.append(match[1] if match else cell.strip())
     if names not in (["tau", "E"], ["tau", "g"]):  # case kept: G would be a shear modulus
         raise InputError(
-            f"prony: {where}: the header must be 'tau [s],E [Pa]' or 'tau [s],g [1]', got "
-            f"{','.join(cells).strip()!r}",
+            f"prony: {where}: line {line}: the header must be 'tau [s],E [Pa]' or "
+            f"'tau [s],g [1]', got {','.join(cells).strip()!r}",
             "prony",
         )
     return names[1].lower()
 
 
 def _rows(text: str, where: str) -> tuple[str, list[tuple[int, float, float]]]:
-    """The value column's name ('e' or 'g') and the rows (line number, tau, value); a row of
-    other than the header's 2 cells is refused (:func:`~shtaerman.input_file.csv_rows`), and
-    so are more than :data:`MAX_PRONY_TERMS` terms, before the rest is parsed."""
-    most = MAX_PRONY_TERMS + 2  # the header, the terms and an E column's tau = inf row
-    body, lines = csv_rows(text, f"prony: {where}", "prony", limit=most + 1)
-    if not body:
+    """The value column's name ('e' or 'g') and the rows (line number, tau, value): the header
+    checked first (then a row of other than its 2 cells is refused by
+    :func:`~shtaerman.input_file.csv_rows`), then at most :data:`MAX_PRONY_TERMS` + 2 rows
+    parsed (the terms, an E column's tau = inf row and one to tell too many; a million rows
+    took 10 CPU s)."""
+    header, lines = csv_rows(text, f"prony: {where}", "prony", limit=1)
+    if not header:
         raise InputError(f"prony: {where} holds no header and no rows", "prony")
-    if len(body) > most:  # the rest not parsed (a million rows took 10 CPU s)
-        raise InputError(f"prony: {where}: more than {MAX_PRONY_TERMS} terms", "prony")
-    column, rows = _header(body[0], where), []
-    for k, cells in zip(lines[1:], body[1:], strict=True):
-        tau = _number(cells[0], f"{where} row {k} column tau")
-        value = _number(cells[1], f"{where} row {k} column {'E' if column == 'e' else 'g'}")
-        rows.append((k, tau, value))
-    return column, rows
+    column = _header(header[0], where, lines[0])
+    name = "E" if column == "e" else "g"
+    body, lines = csv_rows(text, f"prony: {where}", "prony", limit=MAX_PRONY_TERMS + 3)
+    return column, [
+        (
+            k,
+            _number(tau, f"{where} row {k} column tau"),
+            _number(value, f"{where} row {k} column {name}"),
+        )
+        for k, (tau, value) in zip(lines[1:], body[1:], strict=True)
+    ]
 
 
 def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: str) -> tuple:
@@ -171,6 +175,8 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
             raise InputError(
                 f"prony: {where} row {k} column tau: must be > 0 s, got {tau}", "prony"
             )
+    if len(terms) > MAX_PRONY_TERMS:  # after each row read is checked: a row's fault named first
+        raise InputError(f"prony: {where}: more than {MAX_PRONY_TERMS} terms", "prony")
     times = tuple(tau for _, tau, _ in terms)
     values = tuple(value for _, _, value in terms)
     if column == "g":
@@ -234,6 +240,7 @@ PRONY_FORM = (
     f"{', '.join(SHIPPED)}"
 )
 """The valid Prony input, in words."""
+_FORM = PRONY_FORM.removeprefix("write ")
 
 
 def prony_input(value: object, name: str = "prony") -> PronySeries | None:
@@ -245,7 +252,7 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
     if value is None:
         return None
     if isinstance(value, str):
-        _check_term_count(value, name)  # before parsing a million terms
+        _check_terms(value, name)  # before parsing a million terms
     try:
         if isinstance(value, PronySeries):
             series = value
@@ -254,21 +261,30 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
         else:
             raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
     except PronyFormError as error:  # the forms said once, whole
-        form = PRONY_FORM.removeprefix("write ")
-        raise InputError(f"{name}: must be written {form}; got {error.got!r}", name) from None
+        raise InputError(f"{name}: must be written {_FORM}; got {error.got!r}", name) from None
     except InputError as error:
         reason = str(error).removeprefix("prony: ").removeprefix("prony ")
         raise InputError(f"{name}: {reason} ({PRONY_FORM})", name) from None
-    _check_term_count(series.weights, name)
+    _check_terms(series.weights, name)
     return series
 
 
-def _check_term_count(terms: str | Sized, name: str) -> None:
-    """Refuse more than :data:`MAX_PRONY_TERMS` terms: of a series' weights, or of its text
-    (the terms of g1:tau1,... and Einf;E1:tau1,... are its commas plus one; a file's name is
-    not counted)."""
-    if isinstance(terms, str) and terms.strip().lower().endswith(".csv"):
-        return
-    count = terms.count(",") + 1 if isinstance(terms, str) else len(terms)
-    if count > MAX_PRONY_TERMS:
-        raise InputError(f"{name}: {count} terms is too many ({PRONY_FORM})", name)
+def _check_terms(terms: str | Sized, name: str) -> None:
+    """Refuse an empty term of a series' text (the first named) and more than
+    :data:`MAX_PRONY_TERMS` terms, of its text or of a series' weights, before any parsing
+    (the terms of g1:tau1,... and of Einf;E1:tau1,... after the ';' are split at its commas; a
+    file's name is not counted)."""
+    if isinstance(terms, str):
+        if terms.strip().lower().endswith(".csv"):
+            return
+        terms = terms.partition(";")[2] if ";" in terms else terms
+        terms = terms.split(",")
+        empty = next((i for i, term in enumerate(terms, 1) if not term.strip()), None)
+        if empty is not None and len(terms) > 1:  # one empty text: the form's own refusal
+            raise InputError(
+                f"{name}: must be written {_FORM}; term {empty} is empty (a doubled, leading or "
+                "trailing comma)",
+                name,
+            )
+    if len(terms) > MAX_PRONY_TERMS:
+        raise InputError(f"{name}: {len(terms)} terms is too many ({PRONY_FORM})", name)
