@@ -437,7 +437,7 @@ def _allowed_keys(path: list[str], root: type) -> list[str]:
 def _homes(name: str, root: type) -> list[str]:
     """The tables of the schema ``root`` that take the key ``name`` (a study kind's own: the
     friction of a contact study is [contact]'s, of a dynamic one [impact]'s), before any
-    look-alike name (adv53: a [friction] table was asked 'did you mean description?')."""
+    look-alike name."""
     found = []
     for table in root.__struct_fields__:
         if table in ("sweep", "quick"):  # a swept list, the quick run's numerics: not a home

@@ -26,7 +26,7 @@ class _LogLog:
     """Piecewise power-law interpolation through (nodes, values), end slopes extrapolated.
 
     The logarithms and slopes are taken once: the impact ODE and its energy quadrature
-    evaluate the law ~2e4 times an impact, one depth a call (266k calls in `verify`).
+    evaluate the law one depth a call, many times an impact.
     """
 
     log_nodes: np.ndarray

@@ -277,8 +277,8 @@ def curve_document(
 def check_force_range(indenter: Indenter, body: Material, depths: ArrayLike) -> None:
     """Refuse given ``depths`` (m, increasing) whose exact force (Shtaerman's or Sneddon's, on
     the rigid striker pressed into ``body``) leaves the normal floating-point range: the FE
-    system's numbers underflow or overflow there (depth 1e-200 m left the active set unsettled,
-    1e-300 m and 1e300 m a singular matrix); the command line's and the study file's check."""
+    system's numbers underflow or overflow there; the command line's and the study file's
+    check."""
     law = contact_law(indenter, effective_modulus(RIGID, body))
     depths = np.atleast_1d(np.asarray(depths, dtype=float))
     for depth in (depths[0], depths[-1]):

@@ -231,7 +231,7 @@ def _level(
         return settings, run(settings), ""
     except GentLockError:  # the rubber's limit, not the numerics: no retry cures it
         raise
-    except SqueezedTipError as error:  # nor the tip's (failed alike at 50, 100, 200 steps)
+    except SqueezedTipError as error:  # nor the tip's: more steps fail alike
         return settings, error, f"{settings.steps} steps failed ({error}); not retried"
     except FAILURES as error:
         first, failed = f"{settings.steps} steps failed ({error})", error

@@ -354,7 +354,7 @@ def _check_velocities(
         impact, friction = (study.mass, velocity), problem.interface.coefficient
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run's warnings are the run's
-            try:  # the reach first, in logs, as the run checks it (1e-300 m/s: its P_c = 0)
+            try:  # the reach first, in logs, as the run checks it
                 check_impact_reach(
                     *inputs[:3], impact, study.finite, friction, study.geometry, study.prony
                 )

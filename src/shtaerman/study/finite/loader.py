@@ -275,7 +275,7 @@ def _curve(path: Path, raw: _FiniteFile, rubber: RubberModel) -> tuple[Interface
 
 def _body_keywords(rubber: RubberModel) -> dict[str, Any]:
     """The :class:`~shtaerman.problem.Body` keywords of ``rubber``: its model, its own shape
-    option and its volumetric energy (a Gent rubber without its gent_limit was refused)."""
+    option and its volumetric energy."""
     shapes = {k: getattr(rubber, k) for k, owner in RUBBER_SHAPES.items() if owner == rubber.name}
     return {"model": rubber.name, "volumetric": rubber.volumetric, **shapes}
 
