@@ -17,9 +17,8 @@ from ..allocator import keep_freed_memory
 
 WORKER_LOGGERS = ("distributed", "tornado", "asyncio")
 """Loggers a worker keeps to CRITICAL: a task's exception reaches the sweep with its future,
-and a worker still busy when the cluster shuts down would print a "heartbeat" traceback.
-(``DASK_LOGGING__DISTRIBUTED`` reaches only a spawned worker, which imports dask afresh: a
-forked one had "distributed" at INFO, its stream handler at ERROR, and printed one in CI.)"""
+and a worker still busy when the cluster shuts down would print a "heartbeat" traceback
+(``DASK_LOGGING__DISTRIBUTED`` reaches only a spawned worker, which imports dask afresh)."""
 
 SET_UP: list[str] = []
 """What :func:`dask_setup` did in this process, for a diagnosis."""
@@ -30,9 +29,7 @@ def dask_setup(worker: object) -> None:
 
     Python's own check decides whether this is the main thread (``signal.signal`` raises
     ValueError elsewhere), not the threading module's: in a worker forked from the nanny's
-    watch thread, ``threading.main_thread()`` was once still the parent's main thread (CI,
-    two BLAS threads, reversed test order), though the forked thread is the process's only
-    one and the interpreter's main thread, so the sweep's handlers stayed.
+    watch thread, ``threading.main_thread()`` can still be the parent's main thread.
     """
     try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)

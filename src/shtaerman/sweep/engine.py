@@ -1074,8 +1074,7 @@ def _compute(
     what ``draw`` returned (None without it).
 
     With ``draw``, the figures' module is imported before a local cluster forks its workers:
-    they inherit matplotlib (imported as a worker draws, it added 0.28 s of CPU and of wall
-    after the last case, beside this process's own import)."""
+    they inherit matplotlib rather than each importing it after the last case."""
     case_function = spec.kind_spec.case
     token = uuid.uuid4().hex[:8]
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]

@@ -342,8 +342,7 @@ def draw_figures(
 ) -> list[tuple[str, dict[str, bytes]]]:
     """(output, files of its figure) per output of a sweep's ``results`` (its results.json,
     read); none over 3 or more axes. ``mapper`` draws them, called as ``map(figure_files,
-    ...)`` is: the sweep engine passes one that runs each figure as a task on its cluster (a
-    2-axis contact sweep's 10 heat maps cost 1.4 s of CPU)."""
+    ...)`` is: the sweep engine passes one that runs each figure as a task on its cluster."""
     names = _figure_names(results)
     units = [results["kind"]["outputs"][name] for name in names]
     count = len(names)

@@ -3,10 +3,8 @@
 On Linux the local cluster forks its workers (:mod:`shtaerman.sweep.engine`), which never
 run the main script again: no guard is needed there. Elsewhere dask starts each worker with
 multiprocessing's spawn (or forkserver), which runs the main script again in the new process
-before it becomes a worker. Unguarded, that
-run called the sweep again: each worker died in a traceback of its own ("another shtaerman run
-is writing"), and the sweep itself in dask's "Nanny failed to start". Now the copy in the
-worker stops at once, silently, and leaves a mark in the cluster's scratch folder
+before it becomes a worker, and an unguarded script would call the sweep again. The copy in
+the worker stops at once, silently, and leaves a mark in the cluster's scratch folder
 (:data:`SCRATCH_ENV` names it); the sweep that started the cluster finds the mark when the
 cluster fails and raises one :class:`InputError` that names the guard.
 """

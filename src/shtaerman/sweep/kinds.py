@@ -724,7 +724,7 @@ FORCE_RATIO_AT = (0.1, 0.25, 0.5, 0.75)
 
 def check_rubber_options(parameters: Mapping[str, Any], axes: Mapping[str, list[Any]]) -> None:
     """Refuse, in one line naming it, a rubber option that no case of the sweep uses: a shape
-    option whose model no case has (``mooney_ratio`` with neo-Hookean alone was ignored), or
+    option whose model no case has, or
     ``volumetric`` where every case is linear. With ``model`` an axis each option applies to
     the cases of its model, as a study file's swept model takes them."""
     from ..problem import RUBBER_OPTIONS

@@ -380,7 +380,7 @@ def _value(where: str, key: str, kind: Kind, name: str, value: Any) -> Any:
 
 RANGES_OF = {"effects": "dynamic"}
 """A kind whose parameters are another's (:mod:`.kinds`) -> that kind, whose vocabulary ranges
-they take (an effects case's E2 0 was refused as the Material's youngs_modulus)."""
+they take."""
 
 
 def _convert(parameter: Parameter, value: Any) -> Any:
