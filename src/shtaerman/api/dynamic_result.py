@@ -246,8 +246,7 @@ def _finite(value: Any) -> bool:
 def check_separated(dynamic: dict[str, float], run_time: float) -> None:
     """Raise NumericalFailureError when the striker had not left the body by the end of the
     run (``run_time``, s): its contact duration, rebound and losses do not exist, and the
-    reflection measure is meaningless (the JSON's nulls, a 'reflected energy nan' used to
-    follow)."""
+    reflection measure is meaningless."""
     from ..validation import NumericalFailureError
 
     if not math.isfinite(dynamic.get("t_contact", math.nan)):

@@ -274,10 +274,10 @@ def _check_finite_depths(problem: Problem, depths: np.ndarray) -> None:
 
 
 def _check_reach(problem: Problem, mesh: MeshSettings) -> None:
-    """Refuse, before any work (the default depths too: 1e-300 m/s was refused for its
-    impact's P_c = 0, naming four inputs), depths beyond the FE model's reach (the finite-strain
-    contact's in its words), a sphere's equator or a table's last radius (naming mass and
-    velocity where the impact sets them; on a layer, a remedy that ``mesh`` resolves)."""
+    """Refuse, before any work (the default depths too), depths beyond the FE model's reach
+    (the finite-strain contact's in its words), a sphere's equator or a table's last radius
+    (naming mass and velocity where the impact sets them; on a layer, a remedy that ``mesh``
+    resolves)."""
     from ..guards import check_profile_reach
     from ..study.contact.layer import layer_depths
     from ..theory.materials import effective_modulus
