@@ -104,7 +104,7 @@ USED_BY = {
     "time_offset": ("force-history",),
     "baseline": ("force-history",),
 }
-"""The kinds of data an option of the impact applies to (it was ignored for the others)."""
+"""The kinds of data an option of the impact applies to (refused for the others)."""
 PASSED = ("unknowns", "noise", "time_offset", "baseline", "resample", "out", "force")
 """Options :func:`shtaerman.fit` takes as they are parsed."""
 

@@ -194,8 +194,8 @@ def _one_line(error: Exception) -> str:
 
 
 def _size(value: float | None, undefined: float = math.inf) -> float:
-    """|value| of a check in results.json, ``undefined`` where it holds null: a NaN (a
-    reflected energy of 0 radiated at 4.95e-24 m/s was a TypeError traceback), the worst."""
+    """|value| of a check in results.json, ``undefined`` where it holds null (a NaN, the
+    worst)."""
     return undefined if value is None else abs(value)
 
 
