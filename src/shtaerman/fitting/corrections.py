@@ -212,8 +212,7 @@ def _fe_impact(case: Problem, at: Mapping[str, float], refine: float) -> Dynamic
     """The FE impact of ``case`` at the fitted point ``at`` (with its error-estimate ladder at
     ``refine``). Its refusal (InputError) says the point: the E2 it was checked at is the
     fit's, not the starting value given, and the values it names hold at that E2, which the
-    next rounds of the fit move (user56: a refusal named c_s = 8.44 m/s, from E2 = 2.1e5 Pa against
-    E2 3e6 given, and its passing density2 was refused in the round after)."""
+    next rounds of the fit move."""
     from ..api.fem_dynamic import dynamic
     from ..study.ladder import WITHOUT_ESTIMATE
 
