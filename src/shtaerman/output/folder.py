@@ -317,7 +317,7 @@ def shared_figures(stage: str, exponents: Iterable[float], figure_format: str) -
     tabulated profile has none), drawn into ``stage``: a task of its own, which a worker done
     with its studies draws while another finishes (:func:`run_verification`)."""
     # not from plots.gallery: this process (on dask, the one that runs no study) draws no
-    # field, and gallery's pyvista and VTK cost it ~0.25 s CPU (benchmarks/verify_cost.py)
+    # field, and gallery would import pyvista and VTK (benchmarks/verify_cost.py)
     from ..plots.ateb import paper_figures
 
     made = paper_figures(stage, exponents, figure_format)

@@ -86,8 +86,8 @@ def smooth_edges(plotter: pv.Plotter) -> None:
 def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
     """An off-screen plotter on white, edges smoothed (:func:`smooth_edges`), VTK warnings
     silenced, closed whatever happens. It can draw several pictures one after another
-    (``plotter.clear()`` between; :func:`save` renders each), cheaper than a plotter each
-    (~0.06 s CPU), if its ``suppress_rendering`` is set while a picture is built: a shown
+    (``plotter.clear()`` between; :func:`save` renders each), cheaper than a plotter each,
+    if its ``suppress_rendering`` is set while a picture is built: a shown
     pyvista plotter renders again on every ``add_mesh`` (benchmarks/FEM_NOTES.md, "Figures").
 
     SIGINT and SIGTERM are held until the picture is done (:func:`~shtaerman.signals.
