@@ -23,7 +23,7 @@ def run_suite(quick: bool = False, progress: Callable[[str], None] | None = None
     ----------
     quick : bool
         Coarse meshes (``refine`` 0.5, 0.6 at finite strain) and the lubricated first-order
-        coefficient only: about 20 s instead of about 1 min; the tolerances hold at both.
+        coefficient only; the tolerances hold at both.
     progress : callable, optional
         Called with the name of each case as it starts.
     """
