@@ -3,8 +3,8 @@
 Every function writes PNGs into a folder (created if missing) and returns ``{caption: path}``;
 the report shows the captions under the pictures, so a caption says everything a reader needs
 to read its figure. ``figure_format="svg"`` or ``"pdf"`` also writes each chart in that format
-beside its PNG (same stem). The field pictures (pyvista renders) are PNG only: VTK's vector
-export embeds the rendered bitmap anyway and re-sets the text in another font.
+beside its PNG (same stem); the field pictures (pyvista renders) are PNG only
+(:mod:`.formats`).
 """
 
 from __future__ import annotations

@@ -91,8 +91,8 @@ def picture(shape: tuple[int, int] = (1, 1)) -> Iterator[pv.Plotter]:
     pyvista plotter renders again on every ``add_mesh`` (benchmarks/FEM_NOTES.md, "Figures").
 
     SIGINT and SIGTERM are held until the picture is done (:func:`~shtaerman.signals.
-    deferred`): the first plotter makes VTK import its OpenGL modules, and an interrupt raised
-    in there became an ImportError, a segfault, or an exception a weakref callback dropped.
+    deferred`): the first plotter makes VTK import its OpenGL modules, which an interrupt
+    must not break off.
     """
     with deferred(), quiet_vtk():
         plotter = pv.Plotter(off_screen=True, window_size=WINDOW_SIZE, shape=shape, border=False)

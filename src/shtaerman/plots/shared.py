@@ -1,10 +1,8 @@
 """A context shared by the threads that draw at once: global state (matplotlib's rcParams,
 VTK's warning switch) is set when the first enters and restored when the last leaves.
 
-One context per figure restores, on leaving, what it found on entering: two threads drawing
-at once (a user's thread pool, a threaded dask scheduler) undid each other's state, so the
-first to finish drew the rest of the other's figure without it and the last left it set for
-good (tests/test_figure_threads.py).
+Why not one context per figure: two threads drawing at once (a user's thread pool, a threaded
+dask scheduler) would each restore on leaving the state the other still draws with.
 """
 
 from __future__ import annotations
