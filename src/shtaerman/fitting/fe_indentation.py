@@ -335,8 +335,7 @@ def _best_fit(curves: FECurves, measured: Measurement, noise: float | None,
               start: float) -> tuple[Model, Solution]:  # fmt: skip
     """The least-squares fit from ``start`` and from every FE curve's value of the shape
     constant, the one of the smallest residual: the interpolated model can have a local
-    minimum at a node (a bonded pad's nu2 fitted from a start of 0 stopped at 0, E2 twice
-    the truth, its residual 2600 times the global one's)."""
+    minimum at a node."""
     fits = []
     for value in dict.fromkeys((start, *curves.table)):
         model = _model(curves, measured, value)
