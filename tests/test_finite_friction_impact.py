@@ -149,8 +149,9 @@ def test_a_frictional_impact_on_a_pad_beyond_the_reach_is_refused_before_any_wor
     inertia) failed at separation after 15 minutes (x/a 2.26, beyond the 1.2 that a frictional
     finite-strain contact converges to). The fully relaxed half-space's quasi-static depth
     bounds the relaxing pad's (x/a 2.34 here; the elastic x_c's 2.27), so the run is refused at
-    once, naming velocity (0.027 m/s, which runs massless: x_max 0.355 mm) and the frictionless
-    alternative; the same striker without friction still runs on the pad (with a warning)."""
+    once, naming velocity (relax64: 0.0278 m/s, where the relaxing body's depth reaches the
+    reach; it runs with inertia) and the frictionless alternative; the same striker without
+    friction still runs on the pad (with a warning)."""
     from shtaerman.validation import InputError
 
     settings = FiniteImpactSettings(mesh=MeshSettings())

@@ -307,6 +307,7 @@ def check_reach(
     note: str | None = "",
     layer: tuple[float, float, float] | None = None,
     waves: Callable[[float, float], float] | None = None,
+    tight: tuple[float, float] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
     depth (m) on the half-space has x/a outside the model's reach ([:data:`MIN_FINITE_DEPTH_RATIO`,
@@ -326,7 +327,9 @@ def check_reach(
     kg at 3 m/s named 41.4 m/s and 1.9e-48 kg, both refused by :func:`check_wave_speed`): a
     heavier mass that passes both is named instead. The one refusal of an impact's depth
     beyond the reach, on every route: the contact curve whose depths an impact's x_c sets
-    (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too."""
+    (:func:`shtaerman.fem.contact.finite.check_finite_depths`) says it in these words too.
+    ``tight``: the mass (kg) and the velocity (m/s) named beyond the upper reach instead of
+    those scaled from ``depth`` (a relaxing body's, whose depth is no power law in M v0^2)."""
     from .validation import LimitError
 
     (mass, velocity), (n, q) = impact, tip_exponents(indenter, depth)
@@ -347,7 +350,7 @@ def check_reach(
     blunt = _shape_remedy(indenter, depth, impact, (ratio, low if up else high), layer, waves)
     at_fault = _striker_at_fault(indenter, depth, q, window)
     remedies, blunt, (shown, passing) = _reach_remedies(
-        indenter, (depth, impact), (ratio, window), (layer, waves), blunt, at_fault
+        indenter, (depth, impact), (ratio, window), (layer, waves), blunt, at_fault, tight
     )
     if at_fault:
         raise _striker_refusal(indenter, impact, (ratio, window), finite, remedies, note)
@@ -381,12 +384,14 @@ def _reach_remedies(
     bounds: tuple,
     blunt: str,
     at_fault: bool,
+    tight: tuple[float, float] | None = None,
 ) -> tuple[str, str, tuple[tuple[str, str], tuple[str, str]]]:
     """The remedies of :func:`check_reach`'s refusal of an impact (``reached`` = (its depth m,
     (mass kg, velocity m/s))) at x/a ``reach[0]`` outside the window ``reach[1]``, ``bounds``
     = its (layer, waves): the impact's velocity and mass, or the shape coefficient ``blunt``
     in their place (:func:`_spanned`); a striker ``at_fault`` (:func:`_striker_at_fault`) has
-    ``blunt`` first and the impact's within :data:`REMEDY_SPAN` after it. Returns the words,
+    ``blunt`` first and the impact's within :data:`REMEDY_SPAN` after it; ``tight``: as
+    :func:`check_reach` takes it. Returns the words,
     ``blunt`` where named alone, and the velocity and mass (as shown) of the reach and of the
     waves' limit too."""
     from .validation import SQUARABLE_VELOCITY
@@ -395,10 +400,8 @@ def _reach_remedies(
     (mass, velocity), (n, q) = impact, tip_exponents(indenter, depth)
     up = ratio < window[0]
     scale, on = _layer_bound(depth, _reach_scale(n, ratio, window), layer)
-    shown = (
-        _shown(velocity, scale * (q + 1.0) / 2.0, up=up),
-        _shown(mass, scale * (q + 1.0), up=up),
-    )
+    (heavy, fast), log = (tight, 0.0) if tight else (impact, scale * (q + 1.0))  # x_c: M v0^2
+    shown = (_shown(fast, log / 2.0, up=up), _shown(heavy, log, up=up))
     if up and shown[0] and float(shown[0]) < SQUARABLE_VELOCITY:  # v0^2 a float too
         shown = (_shown(SQUARABLE_VELOCITY, 0.0, up=True), shown[1])
     shape = getattr(indenter, "shape_coefficient", 1.0)

@@ -73,14 +73,26 @@ from typing import Any
 
 import numpy as np
 
-from ..guards import MAX_DEPTH_RATIO, check_reach, depth_ratio, warn_outside_validity
+from ..guards import (
+    MAX_DEPTH_RATIO,
+    check_reach,
+    depth_ratio,
+    reach_velocity,
+    warn_outside_validity,
+)
 from ..theory.contact import PowerLawContact
 from ..theory.impact import QuasiStaticValidityWarning, solve_impact
 from ..theory.materials import Material, validate_density
 from ..theory.profile_impact import ProfileImpactResult, solve_profile_impact
 from ..theory.sneddon import Indenter, SneddonContact, contact_law
 from ..theory.viscoelastic import PronySeries, elastic_impact
-from ..validation import InputError, LimitError, validate_poisson, validate_positive
+from ..validation import (
+    InputError,
+    LimitError,
+    bound_text,
+    validate_poisson,
+    validate_positive,
+)
 from .contact.finite import (
     FINITE_BASE,
     FINITE_MESH,
@@ -471,9 +483,19 @@ def check_finite_reach(
 FULLY_RELAXED = (
     "; with a Prony series the depth and the remedies are the fully relaxed body's (modulus "
     "g_inf E*), which bound the relaxing body's at every velocity (cautious where it relaxes "
-    "slowly against the impact)"
+    "slowly against the impact: the relaxing body's own limit was not found between the fully "
+    "relaxed body's remedy and this impact)"
 )
-"""The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note."""
+"""The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note,
+where :func:`_tight_remedies` finds no root."""
+TIGHT = (
+    "; with a Prony series the depth is the fully relaxed body's (modulus g_inf E*), which "
+    "bounds the relaxing body's at every velocity, and a velocity or mass named the one at "
+    "which the relaxing body's quasi-static depth, which the run checks, reaches x/a "
+    f"{MAX_DEPTH_RATIO:g}"
+)
+"""The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note,
+naming :func:`_tight_remedies`."""
 
 
 def check_fully_relaxed(
@@ -483,18 +505,74 @@ def check_fully_relaxed(
     (modulus g_inf E*) of ``reach`` = (indenter, its exact law, (mass kg, velocity m/s), Prony
     series or None), where it lies beyond the finite-strain reach; nothing without relaxation
     or within it (the floor is the elastic x_c's). That x_c, a power law in M v0^2, bounds a
-    relaxing body's depth at every velocity, so the remedies scaled from it hold (those scaled
-    from the viscoelastic depth were refused in turn: a slower impact relaxes more).
-    ``note``, ``layer``, ``waves``: as check_reach takes them; :data:`FULLY_RELAXED` ends
-    the refusal before ``note``."""
+    relaxing body's depth at every velocity; the velocity and the mass named are those at
+    which the depth the run checks (:func:`relaxed_depth`) reaches the reach
+    (:func:`_reach_root`, from the fully relaxed body's remedies; those scaled from the
+    viscoelastic depth were refused in turn: a slower impact relaxes more), or the fully
+    relaxed body's where that root is not found. ``note``, ``layer``, ``waves``: as
+    check_reach takes them; :data:`TIGHT` or :data:`FULLY_RELAXED` ends the refusal before
+    ``note``."""
     indenter, law, impact, prony = reach
     if prony is None or prony.g_inf >= 1.0 or note is None:  # None: no upper reach
         return
     relaxed = replace(law, modulus=law.modulus * prony.g_inf)
     x_relaxed = elastic_impact(*impact, relaxed).x_c
     if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO:
-        note = FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
-        check_reach(indenter, x_relaxed, impact, True, note, layer, waves)
+        tight = _tight_remedies(reach, x_relaxed)
+        words = FULLY_RELAXED if tight is None else TIGHT
+        note = words + note.replace("its relaxed one", "its fully relaxed one")
+        check_reach(indenter, x_relaxed, impact, True, note, layer, waves, tight)
+
+
+def relaxed_depth(law: PowerLawContact, mass: float, velocity: float, prony: PronySeries) -> float:
+    """The depth (m) a finite-strain impact's run checks against the reach
+    (:func:`check_finite_reach`): :func:`_relaxed_extent`'s at the elastic impact's scales."""
+    with warnings.catch_warnings():  # of a fast impact: its run's caller warns
+        warnings.simplefilter("ignore", QuasiStaticValidityWarning)
+        quasi = elastic_impact(mass, velocity, law)
+    return _relaxed_extent(law, mass, velocity, prony, (quasi.x_c, quasi.t_y))[0]
+
+
+def _tight_remedies(reach: tuple, x_relaxed: float) -> tuple[float, float] | None:
+    """The mass (kg) and the velocity (m/s) of ``reach`` (:func:`check_fully_relaxed`'s) at
+    which :func:`relaxed_depth` reaches the reach, each with the other input kept
+    (:func:`_reach_root` from the fully relaxed body's remedies, whose depth ``x_relaxed`` m
+    bounds it); None for a profile's law (its impact a quadrature, seconds each) or where a
+    root is not found."""
+    indenter, law, (mass, velocity), prony = reach
+    slow = reach_velocity(indenter, x_relaxed, velocity)  # the fully relaxed body's
+    if not isinstance(law, PowerLawContact) or not slow:
+        return None
+    try:
+        fast = _reach_root(
+            lambda v: relaxed_depth(law, mass, v, prony), indenter, float(slow), velocity
+        )
+        light = mass * (float(slow) / velocity) ** 2  # x_c: M v0^2
+        heavy = _reach_root(lambda m: relaxed_depth(law, m, velocity, prony), indenter, light, mass)
+    except InputError:  # the series relaxes too far within a slower impact
+        return None
+    return None if fast is None or heavy is None else (heavy, fast)
+
+
+def _reach_root(
+    depth: Callable[[float], float], indenter: Indenter, low: float, high: float
+) -> float | None:
+    """The largest input (m/s or kg) between ``low`` and ``high`` whose ``depth`` (m) lies
+    within :data:`shtaerman.guards.MAX_DEPTH_RATIO` of ``indenter``: bisection in its log
+    until both ends show the same three digits rounded down (as a refusal shows them), the
+    end that passes; None where ``low`` does not pass or ``high`` does (no root between)."""
+
+    def passes(value: float) -> bool:
+        return depth_ratio(indenter, depth(value)) <= MAX_DEPTH_RATIO
+
+    if not passes(low) or passes(high):
+        return None
+    for _ in range(64):  # a root on a three-digit value: the ends never show the same
+        if bound_text(low, "high") == bound_text(high, "high"):
+            break
+        middle = math.sqrt(low * high)
+        low, high = (middle, high) if passes(middle) else (low, middle)
+    return low
 
 
 def _relaxed_extent(
