@@ -490,7 +490,7 @@ FULLY_RELAXED = (
 where :func:`_tight_remedies` finds no root."""
 TIGHT = (
     "; with a Prony series the depth is the fully relaxed body's (modulus g_inf E*), which "
-    "bounds the relaxing body's at every velocity, and a velocity or mass named the one at "
+    "bounds the relaxing body's at every velocity; a velocity or mass named is the one at "
     "which the relaxing body's quasi-static depth, which the run checks, reaches x/a "
     f"{MAX_DEPTH_RATIO:g}"
 )
