@@ -25,7 +25,7 @@ def test_a_ladder_slower_than_the_known_order_is_told_its_own_error():
     assert estimate.method == "richardson" and estimate.observed_order == pytest.approx(1.5)
     assert estimate.error == pytest.approx(true, rel=1e-9)  # was 0.68 of it (order 2)
     # the extrapolated value stays at the known order 2: Q3 - d2 / (s^2 - 1), s^2 - 1 = 1
-    coarse, middle, fine = _ladder(1.5)
+    _, middle, fine = _ladder(1.5)
     assert estimate.extrapolated == pytest.approx(fine - (middle - fine), rel=1e-12)
 
 

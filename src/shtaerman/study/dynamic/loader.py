@@ -349,8 +349,9 @@ def _check_velocities(
     solved = {}
     settings = study.quick_settings if quick else study.settings
     inputs = (study.indenter, study.half_space, study.density)
-    for velocity in study.quick_velocities if quick else study.velocities:
-        problem = study.problem(velocity)
+    velocities = study.quick_velocities if quick else study.velocities
+    for velocity in sorted(velocities, reverse=True):  # the most radiating first (force ~ x^q,
+        problem = study.problem(velocity)  # q > 1): the density it names passes every velocity
         impact, friction = (study.mass, velocity), problem.interface.coefficient
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run's warnings are the run's
@@ -371,7 +372,7 @@ def _check_velocities(
                 check_dynamic_impact(*inputs, *impact, settings, *physics, geometry=study.geometry)
             except InputError as error:
                 raise refused(path, error, {**KEYS, "velocity": key}) from None
-    return solved
+    return {velocity: solved[velocity] for velocity in velocities}
 
 
 def _split_losses(path: Path, study: DynamicStudy, sweep: _DynSweep | None) -> list[DynamicStudy]:
