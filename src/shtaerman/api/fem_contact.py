@@ -62,13 +62,15 @@ class ContactResult:
     The per-depth values are in ``steps`` (one dict per depth) and, as arrays, in
     :attr:`depth`, :attr:`force`, :attr:`contact_radius`, :attr:`central_pressure`. The
     keys of the error-estimate ladder (``error_estimate``, ``extrapolated``, ...) are None
-    when it did not run (``estimate=False``); ``errors`` is the linear model's true error
-    against Shtaerman's solution, ``departures_from_linear`` the neo-Hookean model's
-    departure from it. A sphere's or a tabulated profile's curve has ``shape_coefficient`` and
-    ``exponent`` None, its inputs in ``extra["profile"]`` (the JSON's ``profile``), and is
-    compared with Sneddon's exact curve, whose ``beta_analytic`` and ``exponent_analytic`` are
-    the exact forces at the same depths fitted as the FEM's. ``solution`` is the finest FEM
-    run (fields on demand), ``ladder`` the mesh ladder; neither is part of :meth:`to_dict`.
+    when it did not run (``estimate=False``); ``error_estimate`` is the curve's (its worst
+    depth's), ``step_error_estimate`` each depth's (relative); ``errors`` is the linear
+    model's true error against Shtaerman's solution, ``departures_from_linear`` the
+    neo-Hookean model's departure from it. A sphere's or a tabulated profile's curve has
+    ``shape_coefficient`` and ``exponent`` None, its inputs in ``extra["profile"]`` (the
+    JSON's ``profile``), and is compared with Sneddon's exact curve, whose ``beta_analytic``
+    and ``exponent_analytic`` are the exact forces at the same depths fitted as the FEM's.
+    ``solution`` is the finest FEM run (fields on demand), ``ladder`` the mesh ladder; neither
+    is part of :meth:`to_dict`.
     ``mass`` (kg) and ``velocity`` (m/s) are those of the impact whose x_c the default depths
     reach (None, and not in the JSON, when the depths were given).
     """
@@ -94,6 +96,7 @@ class ContactResult:
     error_estimate: dict[str, float] | None = None
     extrapolated: dict[str, float] | None = None
     estimate_details: dict[str, dict[str, Any]] | None = None
+    step_error_estimate: tuple[dict[str, float], ...] | None = None
     true_error: dict[str, float] | None = None
     effectivity: dict[str, float] | None = None
     mesh_ladder: tuple[dict[str, Any], ...] | None = None
@@ -115,6 +118,8 @@ class ContactResult:
         values["steps"] = tuple(dict(step) for step in report["steps"])
         if "mesh_ladder" in report:
             values["mesh_ladder"] = tuple(dict(level) for level in report["mesh_ladder"])
+        if report.get("step_error_estimate") is not None:
+            values["step_error_estimate"] = tuple(map(dict, report["step_error_estimate"]))
         extra = {key: value for key, value in report.items() if key not in names}
         return cls(**values, extra=extra, solution=solution, ladder=ladder, key_order=tuple(report))
 
@@ -136,7 +141,7 @@ class ContactResult:
         document: dict[str, Any] = {}
         for key in self.key_order:
             value = self.extra[key] if key in self.extra else getattr(self, key)
-            if key in ("steps", "mesh_ladder"):
+            if key in ("steps", "mesh_ladder", "step_error_estimate") and value is not None:
                 value = [dict(row) for row in value]
             document[key] = value
         return json_safe(document)
@@ -198,7 +203,7 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
     """The finest FEM run and the ladder (None without the estimate)."""
     from ..study.contact.accuracy import run_ladder, run_mesh_ladder, run_to_accuracy
     from ..study.contact.indentation import run_indentation
-    from ..study.finite.indentation import run_finite_study
+    from ..study.finite.indentation import CURVE_ORDERS, run_finite_study
 
     inputs = (plan.indenter, plan.body, plan.depths)
     steps = {"progress": plan.progress, "refine": plan.refine, "partial": True}
@@ -212,7 +217,8 @@ def _solve(plan: _Plan) -> tuple[Any, Any]:
         return run_indentation(*inputs, finest, **linear, **plan.relaxing), None
     if plan.finite:  # exact=False: no exact finite-strain solution to take errors against
         solve = lambda level: run_finite_study(*inputs, level, *rubber)  # noqa: E731
-        ladder = run_mesh_ladder(solve, plan.mesh, exact=False, geometry=shape, **steps)
+        steps.update(exact=False, geometry=shape, orders=CURVE_ORDERS)
+        ladder = run_mesh_ladder(solve, plan.mesh, **steps)
     elif plan.tolerance is None:
         ladder = run_ladder(*inputs, plan.mesh, **steps, **linear, **plan.relaxing)
     else:

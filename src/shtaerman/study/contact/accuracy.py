@@ -15,7 +15,7 @@ import functools
 import math
 import time
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any, Protocol
 
@@ -40,7 +40,7 @@ from ...validation import InputError, bound_text, caller_stacklevel, validate_po
 from ..dynamic.accuracy import FAILURES, EstimateMissingWarning
 from ..ladder import LADDER_RATIO, check_ladder, ladder_factors
 from ..richardson import Estimate, at_most_order, curve_richardson, richardson, worst_point
-from .indentation import IndentationResult, default_depths, refined_radius, run_indentation
+from .indentation import default_depths, refined_radius, run_indentation
 
 __all__ = [
     "AccuracyNotReachedWarning",
@@ -142,6 +142,9 @@ class AccuracyResult:
         Why ``tolerance`` was not reached ("" when it was, or none was set): a level of
         :func:`run_to_accuracy` beyond the first three failed, ``estimates`` are those of the
         last three levels that passed.
+    steps : tuple of dict of str to Estimate
+        Per depth, the estimates of :data:`STEP_QUANTITIES` (:func:`step_estimates`); empty
+        where ``estimates`` is.
     """
 
     levels: tuple[LadderLevel, ...]
@@ -150,6 +153,7 @@ class AccuracyResult:
     exact: bool = True
     failures: tuple[tuple[float, str], ...] = ()
     unreached: str = ""
+    steps: tuple[dict[str, Estimate], ...] = ()
 
     @property
     def missing(self) -> str:
@@ -187,9 +191,10 @@ class AccuracyResult:
 
     def to_dict(self) -> dict[str, object]:
         """The JSON keys ``error_estimate``, ``extrapolated``, ``extrapolated_depth`` (the depth
-        of each per-depth quantity's estimate, m: :meth:`worst_depths`), ``mesh_ladder`` and
-        details (``true_error`` and ``effectivity`` only where the exact solution is known;
-        ``accuracy_unreached`` only where :attr:`unreached` says why)."""
+        of each per-depth quantity's estimate, m: :meth:`worst_depths`), ``step_error_estimate``
+        (each depth's, :attr:`steps`), ``mesh_ladder`` and details (``true_error`` and
+        ``effectivity`` only where the exact solution is known; ``accuracy_unreached`` only
+        where :attr:`unreached` says why)."""
         if self.failures:
             return self._without_estimate()
         truth = {}
@@ -203,6 +208,7 @@ class AccuracyResult:
             "extrapolated": {k: e.extrapolated for k, e in self.estimates.items()},
             "extrapolated_depth": self.worst_depths(),
             "estimate_details": {k: e.to_dict() for k, e in self.estimates.items()},
+            "step_error_estimate": [{k: e.error for k, e in step.items()} for step in self.steps],
             **truth,
             "mesh_ladder": [
                 {"refine": level.refine, "dofs": level.dofs, "seconds": level.seconds}
@@ -226,13 +232,14 @@ class AccuracyResult:
         return {
             **dict.fromkeys(("error_estimate", "extrapolated", "extrapolated_depth")),
             "estimate_details": None,
+            "step_error_estimate": None,
             "estimate_missing": self.missing,
             "mesh_ladder": sorted(rows, key=lambda row: row["refine"]),
             "accuracy_target": self.tolerance,
         }
 
 
-def _truncation(result: IndentationResult, key: str) -> float:
+def _truncation(result: LadderCurve, key: str) -> float:
     """The far-boundary stiffening of ``key`` (relative) on this mesh."""
     if key not in TRUNCATION:
         return 0.0
@@ -242,15 +249,17 @@ def _truncation(result: IndentationResult, key: str) -> float:
     return TRUNCATION.get(key, 0.0) * largest / result.mesh_stats["domain_radius"]
 
 
-def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
+def estimate_errors(
+    levels: tuple[LadderLevel, ...], orders: Mapping[str, float] = ORDERS
+) -> dict[str, Estimate]:
     """Estimates of the finest level from the last three levels (two at least).
 
     Richardson over the depths (:func:`~shtaerman.study.richardson.curve_richardson`) for the
     force, contact radius and central pressure, over the levels for beta and the exponent, with
-    the orders :data:`ORDERS` (the error at the observed order where that is lower), where
-    the observed order lies in :data:`SANE_ORDERS` (else the two-level difference); for force
-    and beta at least :func:`_edge_floor`, times :data:`FORCE_SAFETY`, plus the known
-    far-field truncation (:data:`TRUNCATION`).
+    the ``orders`` (default :data:`ORDERS`; the error at the observed order where that is
+    lower), where the observed order lies in :data:`SANE_ORDERS` (else the two-level
+    difference); for force and beta at least :func:`_edge_floor`, times :data:`FORCE_SAFETY`,
+    plus the known far-field truncation (:data:`TRUNCATION`).
 
     The fits take at least the bound the force's estimate eps implies (every depth's force
     within eps, relative): beta's relative error at least eps (its log is the mean of the
@@ -260,24 +269,16 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
     benchmarks/FEM_NOTES.md, "Accuracy 1e-6").
     """
     results = [level.result for level in levels]
-    estimates, ladders = {}, {}
-    for key in STEP_QUANTITIES:
-        ladders[key] = [[getattr(step, key) for step in result.steps] for result in results]
-        estimates[key] = at_most_order(
-            curve_richardson, ladders[key], LADDER_RATIO, ORDERS[key], sane=SANE_ORDERS
-        )
+    estimates = _curve_estimates(results, orders, slice(None))
     for key in CURVE_QUANTITIES:
         fits = [result.fit for result in results]
         values = [f.beta_fixed_exponent if key == "beta" else f.exponent for f in fits]
         if all(math.isfinite(v) for v in values):
-            ladders[key] = values
             estimates[key] = at_most_order(
-                richardson, values, LADDER_RATIO, ORDERS.get(key), sane=SANE_ORDERS
+                richardson, values, LADDER_RATIO, orders.get(key), sane=SANE_ORDERS
             )
-    for key in FORCE_LIKE:
-        error = max(estimates[key].error, _edge_floor(ladders[key], estimates[key]))
-        error = FORCE_SAFETY * error + _truncation(results[-1], key)
-        estimates[key] = replace(estimates[key], error=error)
+            if key in FORCE_LIKE:
+                estimates[key] = _force_like(estimates[key], values, results[-1], key)
     bounds = {"beta": 1.0}  # per unit force error; beta's log weighs every depth by 1/N
     if "exponent" in estimates:
         depths = [step.depth for step in results[-1].steps]
@@ -287,6 +288,42 @@ def estimate_errors(levels: tuple[LadderLevel, ...]) -> dict[str, Estimate]:
             error = bound * estimates["force"].error  # the bound sets it: said so
             estimates[key] = replace(estimates[key], error=error, method="propagated", reason="")
     return estimates
+
+
+def step_estimates(
+    levels: tuple[LadderLevel, ...], orders: Mapping[str, float] = ORDERS
+) -> tuple[dict[str, Estimate], ...]:
+    """Each depth's estimates of :data:`STEP_QUANTITIES`: the rules of :func:`estimate_errors`
+    over the depth and its two neighbours (the curve's estimate takes every depth; a shallow
+    depth has fewer elements across its contact than the deepest, on a mesh sized by it)."""
+    results = [level.result for level in levels]
+    count = len(results[-1].steps)
+    return tuple(
+        _curve_estimates(results, orders, slice(max(0, k - 1), k + 2)) for k in range(count)
+    )
+
+
+def _curve_estimates(
+    results: list[LadderCurve], orders: Mapping[str, float], depths: slice
+) -> dict[str, Estimate]:
+    """The estimates of :data:`STEP_QUANTITIES` over the ``depths`` of the curves
+    (:func:`estimate_errors`' rules)."""
+    estimates = {}
+    for key in STEP_QUANTITIES:
+        ladder = [[getattr(step, key) for step in result.steps][depths] for result in results]
+        estimates[key] = at_most_order(
+            curve_richardson, ladder, LADDER_RATIO, orders[key], sane=SANE_ORDERS
+        )
+        if key in FORCE_LIKE:
+            estimates[key] = _force_like(estimates[key], ladder, results[-1], key)
+    return estimates
+
+
+def _force_like(estimate: Estimate, values: list, result: LadderCurve, key: str) -> Estimate:
+    """``estimate`` of a force-like quantity: at least :func:`_edge_floor`, times
+    :data:`FORCE_SAFETY`, plus the far-field truncation of ``result`` (:func:`_truncation`)."""
+    error = max(estimate.error, _edge_floor(values, estimate))
+    return replace(estimate, error=FORCE_SAFETY * error + _truncation(result, key))
 
 
 def _edge_floor(values: list, estimate: Estimate) -> float:
@@ -318,6 +355,16 @@ def _confirmed(levels: list[np.ndarray], estimate: Estimate) -> bool:
     return bool(monotone and fast)
 
 
+def estimated(
+    levels: tuple[LadderLevel, ...], orders: Mapping[str, float], **fields: Any
+) -> AccuracyResult:
+    """The :class:`AccuracyResult` of ``levels`` with the estimates of the last three
+    (:func:`estimate_errors`, :func:`step_estimates` at ``orders``) and the other ``fields``."""
+    last = levels[-3:]
+    steps = step_estimates(last, orders)
+    return AccuracyResult(levels, estimate_errors(last, orders), steps=steps, **fields)
+
+
 def _level(solve: Solve, base: MeshSettings, refine: float, progress: Progress) -> LadderLevel:
     level = LadderLevel(refine, solve(base.refined(refine)))
     progress(f"mesh x{refine:.3g}: {level.dofs} dofs, {level.seconds:.1f} s")
@@ -334,6 +381,7 @@ def run_mesh_ladder(
     refined: float | None = None,
     partial: bool = False,
     geometry: Geometry = HALF_SPACE,
+    orders: Mapping[str, float] = ORDERS,
 ) -> AccuracyResult:
     """Any contact curve on three meshes, ``mesh`` refined by refine / 2, refine / sqrt(2)
     and refine, with the estimates of :func:`estimate_errors` for the finest.
@@ -358,6 +406,8 @@ def run_mesh_ladder(
         Keep the levels that passed when another fails numerically (:data:`FAILURES`): the
         finest that passed answers, without estimate (an :class:`EstimateMissingWarning`);
         else the first failure is raised.
+    orders : mapping of str to float
+        The orders of :func:`estimate_errors` (default :data:`ORDERS`, the linear contact's).
 
     Raises
     ------
@@ -379,7 +429,7 @@ def run_mesh_ladder(
                 failures.append((factor, str(error)))
                 report(f"mesh x{factor:.3g}: failed ({error})")
     if not failures:
-        return AccuracyResult(tuple(levels), estimate_errors(tuple(levels)), exact=exact)
+        return estimated(tuple(levels), orders, exact=exact)
     result = AccuracyResult(tuple(levels), {}, exact=exact, failures=tuple(failures))
     warnings.warn(
         f"no error estimate: {result.missing}; the finest level that passed (refine "
@@ -601,7 +651,7 @@ def run_to_accuracy(
             report(f"mesh x{refine:.3g}: failed ({error})")
             return _unreached(result, refine, str(error))
         levels = (*result.levels, level)
-        result = AccuracyResult(levels, estimate_errors(levels[-3:]), tolerance, exact)
+        result = estimated(levels, ORDERS, tolerance=tolerance, exact=exact)
     return result
 
 

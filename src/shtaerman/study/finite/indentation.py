@@ -31,6 +31,7 @@ from ...theory.indenter import PowerLawIndenter
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.sneddon import Indenter, SneddonContact, contact_law
 from ...validation import caller_stacklevel
+from ..contact.accuracy import ORDERS
 from ..contact.indentation import (
     CurveResult,
     curve_document,
@@ -39,8 +40,14 @@ from ..contact.indentation import (
     worst_against_analytic,
 )
 from ..dynamic.accuracy import RetriedWarning
+from .accuracy import EDGE_ORDER
 
-__all__ = ["FiniteIndentationResult", "run_finite_study"]
+__all__ = ["CURVE_ORDERS", "FiniteIndentationResult", "run_finite_study"]
+
+CURVE_ORDERS = {**ORDERS, "contact_radius": EDGE_ORDER}
+"""The orders of the curve's error estimates (:func:`.contact.accuracy.estimate_errors`):
+the linear contact's, but the contact radius at the edge's first order, as the finite-strain
+study's (benchmarks/FEM_NOTES.md, "Finite-strain curve per depth")."""
 
 
 @dataclass(frozen=True)
