@@ -226,13 +226,21 @@ def representable(
     if not (math.isfinite(value) and abs(value) >= sys.float_info.min):
         raise InputError(
             f"{', '.join(inputs)}: the exact impact of {mass:g} kg at {velocity:g} m/s would "
-            f"give {name} = {value:g}, outside the floating-point range "
+            f"give {_said(name, value)}, outside the floating-point range "
             f"[{sys.float_info.min:.3g}, {sys.float_info.max:.3g}]; give "
             f"{'these' if len(inputs) > 1 else 'it'} a value of a physical size (or rescale "
             "the units)",
             inputs[0],
         )
     return value
+
+
+def _said(name: str, value: float) -> str:
+    """``name = value`` as a refusal shows a scale outside the floats; a NaN is a ratio of
+    two scales that both left them (p_c = P_c / a_c^2 at 0 / 0)."""
+    if math.isnan(value):
+        return f"{name} = nan (a ratio of scales that both leave the floats)"
+    return f"{name} = {value:g}"
 
 
 def check_impact_energy(mass: float, velocity: float) -> None:
@@ -360,8 +368,8 @@ def _refuse(name: str, value: float, impact: tuple[float, float], law: ContactLa
         said += f" and body, or {'' if more == verb else more + ' '}{parameter}=... to at "
         said += f"{bound} about {shown} {unit}"
     raise InputError(
-        f"mass, velocity: the exact impact of {mass:g} kg at {velocity:g} m/s would give {name} "
-        f"= {value:g}, outside the floating-point range [{sys.float_info.min:.3g}, "
+        f"mass, velocity: the exact impact of {mass:g} kg at {velocity:g} m/s would give "
+        f"{_said(name, value)}, outside the floating-point range [{sys.float_info.min:.3g}, "
         f"{sys.float_info.max:.3g}]: {said}{'' if others else ' and body'}",
         remedies[0][3],
     )
