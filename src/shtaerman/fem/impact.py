@@ -89,6 +89,8 @@ def check_impact_reach(
     note = pad_reach_note(pad, friction, density) if finite else (None if pad else "")
     waves = radiated_fraction(indenter, half_space, density) if density > 0 else None
     modulus = effective_modulus(RIGID, half_space)
+    if indenter.kind != "power-law" and density > 0:  # its end, with the waves' remedy
+        _check_profile_end(indenter, half_space, density, impact)
     if indenter.kind == "power-law" and (note is not None or finite):  # a rubber: its floor
         # a pad's remedy within the depths its mesh resolves (adv60: 4.95e-12 m/s was named
         # for 1e-16 on a 12 mm pad, whose thickness that impact then refused)
@@ -104,6 +106,42 @@ def check_impact_reach(
             raise
     if finite and waves is not None:
         _check_finite_waves(indenter, half_space, density, impact, waves)
+
+
+def _check_profile_end(
+    indenter: Indenter, half_space: Material, density: float, impact: tuple[float, float]
+) -> None:
+    """The refusal of a sphere's or a table's impact (mass kg, velocity m/s) beyond the
+    profile's end (:func:`shtaerman.theory.profile_impact.check_profile_end`), which with
+    inertia also names, where its remedies (the slower or the lighter impact that stays within
+    the profile) radiate above :func:`shtaerman.guards.wave_limit`, the density (kg/m^3,
+    0.99 of the limit's: lambda ~ sqrt(density)) at which both pass."""
+    from ..guards import wave_limit
+    from ..theory.materials import RIGID, effective_modulus
+    from ..theory.profile_impact import check_profile_end, work_to
+    from ..theory.sneddon import SneddonContact
+    from ..validation import LimitError
+    from .dynamic_contact import radiated_fraction
+
+    law = SneddonContact(indenter, effective_modulus(RIGID, half_space))
+    try:
+        check_profile_end(law, *impact)
+    except LimitError as error:
+        (mass, velocity), top = impact, law.max_contact_radius
+        share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity)
+        fraction = radiated_fraction(indenter, half_space, density)
+        worst = max(fraction(mass, velocity * math.sqrt(share)), fraction(mass * share, velocity))
+        limit = wave_limit(tip_exponents(indenter, float(law.depth(top)))[1])
+        if not worst > limit:
+            raise
+        lighter = float(f"{0.99 * density * (limit / worst) ** 2:.3g}")
+        raise LimitError(
+            f"{error}; with inertia either radiates above {limit:.3g} of its energy as waves "
+            "on this density2, where the FE impact with inertia breaks down: density2 at most "
+            f"about {lighter:g} kg/m^3 passes both (density2 0: the quasi-static impact "
+            "without waves)",
+            error.parameter,
+        ) from None
 
 
 def _check_finite_waves(

@@ -137,6 +137,18 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     _refuse_the_end(law, top, energy, float(_work(law, top, squares(top))), mass, velocity)
 
 
+def check_profile_end(law: SneddonContact, mass: float, velocity: float) -> None:
+    """Refuse, before the impact is solved, the impact (mass kg, velocity m/s) whose energy
+    exceeds the work to the profile's end (:func:`work_to`): the refusal, words and test
+    that :func:`solve_profile_impact` makes."""
+    energy = _impact_energy(mass, velocity)
+    top = law.max_contact_radius
+    top = math.nextafter(top, 0.0) if law.sphere else top
+    most = work_to(law, top)
+    if most < energy:
+        _refuse_the_end(law, top, energy, most, mass, velocity)
+
+
 def _root(
     law: SneddonContact, squares: _Cumulative, reach: float, energy: float, rtol: float
 ) -> float:
