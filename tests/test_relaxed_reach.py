@@ -54,8 +54,9 @@ def named_remedies(problem: sh.Problem) -> tuple[float, float]:
 def test_the_relaxed_depth_beyond_the_reach_is_refused_on_the_pad_before_any_work():
     # its relaxed half-space depth is beyond the reach, its elastic x_c within
     assert relaxed_ratio(0.0323) > MAX_DEPTH_RATIO
-    # refused at the fully relaxed body's depth, which bounds the relaxing one
-    with pytest.raises(sh.LimitError, match="with a Prony series its fully relaxed one"):
+    # refused at the relaxing body's depth, which its run checks (x/a 1.23)
+    match = "with a Prony series the depth is the relaxing body's quasi-static one"
+    with pytest.raises(sh.LimitError, match=match):
         sh.dynamic(pad_problem(0.0323), mesh_size=0.2, time_steps=50, estimate=False)
 
 
@@ -81,9 +82,10 @@ def test_the_remedies_of_a_relaxing_pad_s_refusal_keep_its_relaxed_depth_within_
 def test_the_first_refusal_of_a_relaxing_pad_names_the_remedy_its_run_takes(route, capsys):
     # user62b: the API's and the CLI's first check (the elastic x_c's) named 0.0323 m/s and
     # 5.56e-5 kg, which the run's relaxed check refused in turn (naming a shape coefficient).
-    # Both now refuse as the run does: x/a 2.34 of the fully relaxed body, and the velocity at
-    # which the relaxing body's depth reaches the reach (relax64: 0.0278 m/s, or 5.44e-5 kg;
-    # the fully relaxed body's 0.027 m/s and 3.89e-5 kg before), each of which runs
+    # Both now refuse as the run does: x/a 2.32 of the relaxing body (session 64; the fully
+    # relaxed body's 2.34 before), and the velocity at which that depth reaches the reach
+    # (relax64: 0.0278 m/s, or 5.44e-5 kg; the fully relaxed body's 0.027 m/s and 3.89e-5 kg
+    # before), each of which runs
     import re
 
     from shtaerman.cli import main
@@ -98,8 +100,8 @@ def test_the_first_refusal_of_a_relaxing_pad_names_the_remedy_its_run_takes(rout
         command += " --prony 0.3:1e-3 --interface bonded --friction 0.5 --no-estimate"
         assert main(command.split()) == 2
         said = capsys.readouterr().err
-    assert "depth / contact radius 2.34" in said
-    assert "the relaxing body's quasi-static depth, which the run checks, reaches" in said
+    assert "depth / contact radius 2.32" in said
+    assert "the depth is the relaxing body's quasi-static one, which the run checks" in said
     velocity = float(re.search(r"at most about (\S+) m/s", said)[1])
     assert velocity == pytest.approx(0.0278, rel=5e-3)  # the 3 digits said
     assert relaxed_ratio(velocity) <= MAX_DEPTH_RATIO  # its run's check, finer

@@ -48,3 +48,30 @@ def test_the_impacts_remedy_is_left_out_beyond_the_remedy_span():
         )
     said = str(caught.value)
     assert _named(said, "velocity") == 1.02e-05 and "mass=..." not in said, said
+
+
+def test_a_slowly_relaxing_rubber_is_told_the_shape_coefficient_its_run_takes():
+    """z = 8 r^1.3 at 0.1 m/s on the researcher's pad with Prony 0.9:10 (tau 10 s against a
+    ~10 ms impact): the refusal scaled its shape coefficient from the fully relaxed body (E* / 10:
+    A 5.06, where session 64's user ran A = 6) and gave x/a 1.76 in its headline. It now takes
+    the relaxing body's depth, which the run checks: x/a 1.45 and A 6.38 (the elastic body's,
+    as the series hardly relaxes within the impact), within the reach by that same check."""
+    from shtaerman.fem.finite_dynamic import relaxed_depth
+    from shtaerman.fem.mesh import Geometry
+    from shtaerman.guards import MAX_DEPTH_RATIO, depth_ratio
+    from shtaerman.theory.materials import RIGID, effective_modulus
+    from shtaerman.theory.sneddon import contact_law
+    from shtaerman.theory.viscoelastic import PronySeries
+
+    prony, pad = PronySeries.parse("0.9:10"), Geometry(0.012)
+    with pytest.raises(sh.InputError) as caught:
+        check_impact_reach(
+            PowerLawIndenter(8.0, 1.3), RUBBER, 1000.0, (0.12, 0.1), True, 0.5, pad, prony
+        )
+    said = str(caught.value)
+    assert "depth / contact radius 1.45," in said, said
+    shape = _named(said, "shape_coefficient")
+    assert shape == 6.38
+    striker = PowerLawIndenter(shape, 1.3)
+    law = contact_law(striker, effective_modulus(RIGID, RUBBER))
+    assert depth_ratio(striker, relaxed_depth(law, 0.12, 0.1, prony)) <= MAX_DEPTH_RATIO

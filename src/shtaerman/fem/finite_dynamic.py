@@ -489,10 +489,9 @@ FULLY_RELAXED = (
 """The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note,
 where :func:`_tight_remedies` finds no root."""
 TIGHT = (
-    "; with a Prony series the depth is the fully relaxed body's (modulus g_inf E*), which "
-    "bounds the relaxing body's at every velocity; a velocity or mass named is the one at "
-    "which the relaxing body's quasi-static depth, which the run checks, reaches x/a "
-    f"{MAX_DEPTH_RATIO:g}"
+    "; with a Prony series the depth is the relaxing body's quasi-static one, which the run "
+    "checks, and a velocity or mass named is the one at which it reaches x/a "
+    f"{MAX_DEPTH_RATIO:g} (by bisection: a slower impact relaxes more)"
 )
 """The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note,
 naming :func:`_tight_remedies`."""
@@ -505,13 +504,13 @@ def check_fully_relaxed(
     (modulus g_inf E*) of ``reach`` = (indenter, its exact law, (mass kg, velocity m/s), Prony
     series or None), where it lies beyond the finite-strain reach; nothing without relaxation
     or within it (the floor is the elastic x_c's). That x_c, a power law in M v0^2, bounds a
-    relaxing body's depth at every velocity; the velocity and the mass named are those at
-    which the depth the run checks (:func:`relaxed_depth`) reaches the reach
-    (:func:`_reach_root`, from the fully relaxed body's remedies; those scaled from the
-    viscoelastic depth were refused in turn: a slower impact relaxes more), or the fully
-    relaxed body's where that root is not found. ``note``, ``layer``, ``waves``: as
-    check_reach takes them; :data:`TIGHT` or :data:`FULLY_RELAXED` ends the refusal before
-    ``note``."""
+    relaxing body's depth at every velocity. The refusal gives the depth the run checks
+    (:func:`relaxed_depth`) and the velocity and the mass at which it reaches the reach
+    (:func:`_reach_root`, bracketed by the fully relaxed body's remedies; those scaled from
+    the viscoelastic depth were refused in turn: a slower impact relaxes more); where that
+    root is not found, the fully relaxed body's depth and remedies. ``note``, ``layer``,
+    ``waves``: as check_reach takes them; :data:`TIGHT` or :data:`FULLY_RELAXED` ends the
+    refusal before ``note``."""
     indenter, law, impact, prony = reach
     if prony is None or prony.g_inf >= 1.0 or note is None:  # None: no upper reach
         return
@@ -519,9 +518,11 @@ def check_fully_relaxed(
     x_relaxed = elastic_impact(*impact, relaxed).x_c
     if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO:
         tight = _tight_remedies(reach, x_relaxed)
-        words = FULLY_RELAXED if tight is None else TIGHT
-        note = words + note.replace("its relaxed one", "its fully relaxed one")
-        check_reach(indenter, x_relaxed, impact, True, note, layer, waves, tight)
+        if tight is None:
+            note = FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
+            check_reach(indenter, x_relaxed, impact, True, note, layer, waves)
+        depth = relaxed_depth(law, *impact, prony)  # the run's: its headline and shape
+        check_reach(indenter, depth, impact, True, TIGHT + note, layer, waves, tight)
 
 
 def relaxed_depth(law: PowerLawContact, mass: float, velocity: float, prony: PronySeries) -> float:
