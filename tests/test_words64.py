@@ -11,3 +11,13 @@ def test_a_nan_scale_is_said_to_be_a_ratio_of_scales_outside_the_floats(capsys):
     assert "would give p_c = nan (a ratio of scales that both leave the floats)," in said, said
     # the remedy it names is the velocity at which every scale is a float (theory.impact._passing)
     assert said.count("\n") == 1 and "raise --velocity to at least about 1.12e-08 m/s" in said
+
+
+def test_a_bad_weight_in_a_prony_file_is_named_by_its_row(tmp_path, capsys):
+    """A g column's NaN read 'prony weight g2 must lie in [0, 1), got nan', naming neither the
+    file nor its row, where a bad tau names both (session 64's user)."""
+    path = tmp_path / "gnan.csv"
+    path.write_text("tau,g\n1e-3,0.3\n1e-2,nan\n")
+    assert main(["dynamic", "--prony", str(path), "--no-estimate"]) == 2
+    said = capsys.readouterr().err
+    assert "gnan.csv row 3 column g: must lie in [0, 1), got nan" in said, said

@@ -182,6 +182,11 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
     if column == "g":
         if relaxed:
             raise InputError(f"prony: {where}: a g column takes no tau = inf row", "prony")
+        for k, _, g in terms:  # named by its row, as a tau is
+            if not 0.0 <= g < 1.0:
+                raise InputError(
+                    f"prony: {where} row {k} column g: must lie in [0, 1), got {g}", "prony"
+                )
         return PronySeries(values, times), None
     if len(relaxed) != 1:
         raise InputError(
