@@ -62,6 +62,7 @@ __all__ = [
     "deepest_depth_remedy",
     "depth_ratio",
     "outside_validity",
+    "passing_density",
     "reach_shape",
     "reach_velocity",
     "tip_exponents",
@@ -352,8 +353,9 @@ def check_reach(
     remedies, blunt, (shown, passing) = _reach_remedies(
         indenter, (depth, impact), (ratio, window), (layer, waves), blunt, at_fault, tight
     )
-    if at_fault:
-        raise _striker_refusal(indenter, impact, (ratio, window), finite, remedies, note)
+    if at_fault:  # the impact's inputs head it too where their remedies are named
+        words = (remedies, note, any(shown))
+        raise _striker_refusal(indenter, impact, (ratio, window), finite, words)
     if blunt and "depths=" in (note or ""):
         note = ""  # depths as far off as x_c's remedy
     named, striker = ("mass, velocity", "")
@@ -467,19 +469,19 @@ def _striker_refusal(
     impact: tuple[float, float],
     reach: tuple[float, tuple[float, float]],
     finite: bool,
-    remedies: str,
-    note: str,
+    words: tuple[str, str, bool],
 ) -> Exception:
     """The reach refusal of an impact (mass kg, velocity m/s) whose striker is at fault
-    (:func:`_striker_at_fault`): its x/a and window ``reach``, the ``remedies``
-    (:func:`_reach_remedies`: the shape coefficient, then the impact's; "" none) and ``note``."""
+    (:func:`_striker_at_fault`): its x/a and window ``reach``; ``words`` = the remedies
+    (:func:`_reach_remedies`: the shape coefficient, then the impact's; "" none), the note
+    and whether the impact's own remedies are among them."""
     from .validation import LimitError
     from .vocabulary import entry
 
-    (mass, velocity), (ratio, (low, high)) = impact, reach
+    (mass, velocity), (ratio, (low, high)), (remedies, note, moved) = impact, reach, words
     paper = entry("shape_coefficient").default
     verb = "raise" if ratio < low else "lower"
-    named = "shape_coefficient, mass, velocity" if "velocity=" in remedies else "shape_coefficient"
+    named = "shape_coefficient, mass, velocity" if moved else "shape_coefficient"
     return LimitError(
         f"{named}: the striker {_striker_text(indenter)} at {mass:g} kg and "
         f"{velocity:g} m/s reaches depth / contact radius {_apart(ratio, (low, high))}, "
@@ -881,7 +883,6 @@ def check_wave_speed(
     velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
     velocity, the refusal says so and names the density and the mass that pass instead;
     unchecked, a velocity beyond :data:`REMEDY_SPAN` is not named (the density is)."""
-    from .theory.materials import DENSITY_RANGE
     from .validation import LimitError
 
     fraction, q = estimate.energy_fraction, force_exponent
@@ -903,9 +904,9 @@ def check_wave_speed(
         remedy, named = " would pass", "density2"
     prefix = named if named == "density2" else f"{named}, density2"
     shown = _apart(fraction, (limit, float(f"{limit:.3g}")))  # 0.4502 said "0.45, above 0.45"
-    lighter, massless = float(f"{0.99 * density * share**2:.3g}"), "the quasi-static impact"
+    lighter, massless = passing_density(density, share), "the quasi-static impact"
     lighter_text = f"density2 {lighter:g} kg/m^3"
-    if lighter < DENSITY_RANGE[0]:  # 1e-300 kg at 1.34e154 m/s named 7.94e-302 kg/m^3
+    if not lighter:  # below the density's range (1e-300 kg at 1.34e154 m/s)
         lighter_text, massless = f"density2 0 ({massless} without waves)", ""
     raise LimitError(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
@@ -917,6 +918,16 @@ def check_wave_speed(
         + (f" (density2 0: {massless} without waves)" if massless else ""),
         named,
     )
+
+
+def passing_density(density: float, share: float) -> float:
+    """The density (kg/m^3, three digits) at which an impact radiating ``1 / share`` of the
+    waves' limit on ``density`` passes it, with 1 % to spare (the first-order fraction goes as
+    sqrt(density)); 0 where that lies below the density's range (only the massless body)."""
+    from .theory.materials import DENSITY_RANGE
+
+    lighter = float(f"{0.99 * density * share**2:.3g}")
+    return lighter if lighter >= DENSITY_RANGE[0] else 0.0
 
 
 def _limit_text(q: float) -> str:

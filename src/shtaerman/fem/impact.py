@@ -116,7 +116,7 @@ def _check_profile_end(
     inertia also names, where its remedies (the slower or the lighter impact that stays within
     the profile) radiate above :func:`shtaerman.guards.wave_limit`, the density (kg/m^3,
     0.99 of the limit's: lambda ~ sqrt(density)) at which both pass."""
-    from ..guards import wave_limit
+    from ..guards import passing_density, wave_limit
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.profile_impact import check_profile_end, work_to
     from ..theory.sneddon import SneddonContact
@@ -134,12 +134,16 @@ def _check_profile_end(
         limit = wave_limit(tip_exponents(indenter, float(law.depth(top)))[1])
         if not worst > limit:
             raise
-        lighter = float(f"{0.99 * density * (limit / worst) ** 2:.3g}")
+        lighter = passing_density(density, limit / worst)
+        passing = (
+            f"density2 at most about {lighter:g} kg/m^3 passes both (density2 0: "
+            if lighter
+            else "only density2 0 passes ("
+        )
         raise LimitError(
             f"{error}; with inertia either radiates above {limit:.3g} of its energy as waves "
-            "on this density2, where the FE impact with inertia breaks down: density2 at most "
-            f"about {lighter:g} kg/m^3 passes both (density2 0: the quasi-static impact "
-            "without waves)",
+            f"on this density2, where the FE impact with inertia breaks down: {passing}the "
+            "quasi-static impact without waves)",
             error.parameter,
         ) from None
 
