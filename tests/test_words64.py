@@ -21,3 +21,27 @@ def test_a_bad_weight_in_a_prony_file_is_named_by_its_row(tmp_path, capsys):
     assert main(["dynamic", "--prony", str(path), "--no-estimate"]) == 2
     said = capsys.readouterr().err
     assert "gnan.csv row 3 column g: must lie in [0, 1), got nan" in said, said
+
+
+def test_a_study_run_that_radiates_nothing_reflects_nothing(monkeypatch):
+    """A dynamic study at 0.001 m/s FAILed 'reflected energy v0 = 0.001 m/s: nan' (session 64's
+    user): its reflected share is 0/0 of a radiated energy of round-off, which the API and the
+    CLI count as none (loader.NEGLIGIBLE_REFLECTION); the study's checks now do too."""
+    import math
+    from types import SimpleNamespace
+
+    from shtaerman.study.dynamic import runner
+    from shtaerman.study.dynamic.loader import DynamicTolerances
+
+    monkeypatch.setattr(runner, "first_order_applies", lambda study: False)
+    study = SimpleNamespace(tolerances=DynamicTolerances(), finite=False, density=1100.0)
+    quiet = SimpleNamespace(
+        energy_balance_error=1e-4, reflected_energy_fraction=math.nan, energy_radiated_fraction=1e-9
+    )
+    loud = SimpleNamespace(
+        energy_balance_error=1e-4, reflected_energy_fraction=0.5, energy_radiated_fraction=0.2
+    )
+    cases = [SimpleNamespace(velocity=v, result=r) for v, r in ((0.001, quiet), (3.0, loud))]
+    checks = {check.name: check.passed for check in runner._checks(study, cases)}
+    assert checks["reflected energy v0 = 0.001 m/s"]  # nothing radiated: nothing to reflect
+    assert not checks["reflected energy v0 = 3 m/s"]  # a real reflection still fails

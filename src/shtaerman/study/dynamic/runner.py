@@ -154,8 +154,9 @@ def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
     for case in cases:
         v, r = f"v0 = {case.velocity:g} m/s", case.result
         balance, reflected = r.energy_balance_error, r.reflected_energy_fraction
+        radiated = r.energy_radiated_fraction  # nothing radiated: no reflection (0/0)
         checks += energy_checks(
-            balance, reflected, where=f" {v}", tolerances=tol, reflects=reflects
+            balance, reflected, where=f" {v}", tolerances=tol, reflects=reflects, radiated=radiated
         )
         if estimated and 0 < case.estimate.energy_fraction < tol.estimate_below:
             checks.append(
