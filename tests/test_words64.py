@@ -1,6 +1,8 @@
 """A scale of the exact impact that is NaN (p_c = P_c / a_c^2 where both left the floats)
 was shown as 'p_c = nan', as if the number were a result (session 62's user)."""
 
+import pytest
+
 from shtaerman.cli import main
 
 
@@ -45,3 +47,16 @@ def test_a_study_run_that_radiates_nothing_reflects_nothing(monkeypatch):
     checks = {check.name: check.passed for check in runner._checks(study, cases)}
     assert checks["reflected energy v0 = 0.001 m/s"]  # nothing radiated: nothing to reflect
     assert not checks["reflected energy v0 = 3 m/s"]  # a real reflection still fails
+
+
+@pytest.mark.parametrize("text", ["tau,g\n", "tau,E\ninf,1e6\n"])
+def test_a_prony_file_without_terms_is_refused(tmp_path, capsys, text):
+    """A header-only file crashed `prony-plot` (min() of an empty sequence) and ran `dynamic`
+    as the elastic body, saying nothing (session 64's user); an E file holding only E_inf too."""
+    path = tmp_path / "empty.csv"
+    path.write_text(text)
+    plot = ["prony-plot", str(path), "--out", str(tmp_path / "p.png")]
+    for command in (plot, ["dynamic", "--prony", str(path), "--no-estimate"]):
+        assert main(command) == 2
+        said = capsys.readouterr().err
+        assert "empty.csv: holds no term" in said and said.count("\n") == 1, said

@@ -175,25 +175,27 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
             raise InputError(
                 f"prony: {where} row {k} column tau: must be > 0 s, got {tau}", "prony"
             )
+    if column == "g" and relaxed:
+        raise InputError(f"prony: {where}: a g column takes no tau = inf row", "prony")
+    if column == "e" and len(relaxed) != 1:
+        raise InputError(
+            f"prony: {where}: an E column needs exactly one row with tau = inf (E_inf), got "
+            f"{len(relaxed)}",
+            "prony",
+        )
+    if not terms:  # an empty series would run the elastic body unsaid
+        raise InputError(f"prony: {where}: holds no term (a row tau,value with tau < inf)", "prony")
     if len(terms) > MAX_PRONY_TERMS:  # after each row read is checked: a row's fault named first
         raise InputError(f"prony: {where}: more than {MAX_PRONY_TERMS} terms", "prony")
     times = tuple(tau for _, tau, _ in terms)
     values = tuple(value for _, _, value in terms)
     if column == "g":
-        if relaxed:
-            raise InputError(f"prony: {where}: a g column takes no tau = inf row", "prony")
         for k, _, g in terms:  # named by its row, as a tau is
             if not 0.0 <= g < 1.0:
                 raise InputError(
                     f"prony: {where} row {k} column g: must lie in [0, 1), got {g}", "prony"
                 )
         return PronySeries(values, times), None
-    if len(relaxed) != 1:
-        raise InputError(
-            f"prony: {where}: an E column needs exactly one row with tau = inf (E_inf), got "
-            f"{len(relaxed)}",
-            "prony",
-        )
     return prony_from_moduli(relaxed[0], values, times)
 
 
