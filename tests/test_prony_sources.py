@@ -83,7 +83,7 @@ def test_moduli_text_and_csv_give_the_shipped_series(tmp_path):
         ("tau,g\n1e-3,0.5,1\n", "f.csv: line 2: 3 cells where the header has 2"),
         ("tau,g\n1e-3\n", "f.csv: line 2: 1 cell where the header has 2"),
         ("tau,g\n-1e-3,0.5\n", "f.csv row 2 column tau: must be > 0 s, got -0.001"),
-        ("tau,E\ninf,1e6\n1e-3,-5\n", "E1 must be a finite number >= 0 Pa"),
+        ("tau,E\ninf,1e6\n1e-3,-5\n", "f.csv row 3 column E: must be a finite number >= 0 Pa"),
     ],
 )
 def test_csv_errors_name_row_and_column(tmp_path, text, message):

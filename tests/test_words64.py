@@ -15,14 +15,22 @@ def test_a_nan_scale_is_said_to_be_a_ratio_of_scales_outside_the_floats(capsys):
     assert said.count("\n") == 1 and "raise --velocity to at least about 1.12e-08 m/s" in said
 
 
-def test_a_bad_weight_in_a_prony_file_is_named_by_its_row(tmp_path, capsys):
-    """A g column's NaN read 'prony weight g2 must lie in [0, 1), got nan', naming neither the
-    file nor its row, where a bad tau names both (session 64's user)."""
+@pytest.mark.parametrize(
+    "text, named",
+    [
+        ("tau,g\n1e-3,0.3\n1e-2,nan\n", "row 3 column g: must lie in [0, 1), got nan"),
+        ("tau,E\ninf,1e6\n1e-3,-2e6\n", "row 3 column E: must be a finite number >= 0 Pa, got"),
+    ],
+)
+def test_a_bad_value_in_a_prony_file_is_named_by_its_row(tmp_path, capsys, text, named):
+    """A g column's NaN read 'prony weight g2 must lie in [0, 1), got nan', an E column's
+    negative modulus 'E1 must be a finite number >= 0 Pa', naming neither the file nor its
+    row, where a bad tau names both (session 64's users)."""
     path = tmp_path / "gnan.csv"
-    path.write_text("tau,g\n1e-3,0.3\n1e-2,nan\n")
+    path.write_text(text)
     assert main(["dynamic", "--prony", str(path), "--no-estimate"]) == 2
     said = capsys.readouterr().err
-    assert "gnan.csv row 3 column g: must lie in [0, 1), got nan" in said, said
+    assert f"gnan.csv {named}" in said, said
 
 
 def test_a_study_run_that_radiates_nothing_reflects_nothing(monkeypatch):

@@ -189,12 +189,17 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
         raise InputError(f"prony: {where}: more than {MAX_PRONY_TERMS} terms", "prony")
     times = tuple(tau for _, tau, _ in terms)
     values = tuple(value for _, _, value in terms)
+    name, unit, valid = (
+        ("g", "lie in [0, 1)", lambda g: 0.0 <= g < 1.0)
+        if column == "g"
+        else ("E", "be a finite number >= 0 Pa", lambda e: 0.0 <= e < math.inf)
+    )
+    for k, _, value in terms:  # named by its row, as a tau is
+        if not valid(value):
+            raise InputError(
+                f"prony: {where} row {k} column {name}: must {unit}, got {value}", "prony"
+            )
     if column == "g":
-        for k, _, g in terms:  # named by its row, as a tau is
-            if not 0.0 <= g < 1.0:
-                raise InputError(
-                    f"prony: {where} row {k} column g: must lie in [0, 1), got {g}", "prony"
-                )
         return PronySeries(values, times), None
     return prony_from_moduli(relaxed[0], values, times)
 
