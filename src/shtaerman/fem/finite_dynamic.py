@@ -469,13 +469,14 @@ def check_finite_reach(
     refusal is that of :func:`check_fully_relaxed` where it refuses. Returns
     :func:`_relaxed_extent`'s depth (m) and longest run (s)."""
     indenter, law, impact, prony = reach
+    x_size = None  # the relaxed depth, once sized
     try:
         check_reach(indenter, scales[0], impact, True, note, layer)  # before the sizing
         x_size, duration = _relaxed_extent(law, *impact, prony, scales)
         if x_size > scales[0]:
             check_reach(indenter, x_size, impact, True, note, layer)
     except LimitError:  # beyond the reach: refused in the fully relaxed body's words
-        check_fully_relaxed(reach, note, layer)
+        check_fully_relaxed(reach, note, layer, depth=x_size)
         raise
     return x_size, duration
 
@@ -498,7 +499,11 @@ naming :func:`_tight_remedies`."""
 
 
 def check_fully_relaxed(
-    reach: tuple, note: str | None, layer: tuple | None, waves: Callable | None = None
+    reach: tuple,
+    note: str | None,
+    layer: tuple | None,
+    waves: Callable | None = None,
+    depth: float | None = None,
 ) -> None:
     """:func:`shtaerman.guards.check_reach` at the fully relaxed body's quasi-static x_c
     (modulus g_inf E*) of ``reach`` = (indenter, its exact law, (mass kg, velocity m/s), Prony
@@ -510,7 +515,7 @@ def check_fully_relaxed(
     the viscoelastic depth were refused in turn: a slower impact relaxes more); where that
     root is not found, the fully relaxed body's depth and remedies. ``note``, ``layer``,
     ``waves``: as check_reach takes them; :data:`TIGHT` or :data:`FULLY_RELAXED` ends the
-    refusal before ``note``."""
+    refusal before ``note``; ``depth``: the run's depth (m) where sized already (None: here)."""
     indenter, law, impact, prony = reach
     if prony is None or prony.g_inf >= 1.0 or note is None:  # None: no upper reach
         return
@@ -521,7 +526,8 @@ def check_fully_relaxed(
         if tight is None:
             note = FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
             check_reach(indenter, x_relaxed, impact, True, note, layer, waves)
-        depth = relaxed_depth(law, *impact, prony)  # the run's: its headline and shape
+        if depth is None:  # the run's: its headline and shape
+            depth = relaxed_depth(law, *impact, prony)
         check_reach(indenter, depth, impact, True, TIGHT + note, layer, waves, tight)
 
 
