@@ -372,34 +372,35 @@ def _check_impact(problem: Problem, settings: DynamicSettings | None) -> None:
     the exact impact and the depth it reaches; the linear body's layer thickness against it,
     mesh size and viscoelastic duration (``settings``; None: a rubber)."""
     import warnings
-    from functools import partial
 
     from ..fem.dynamic_contact import check_dynamic_impact
     from ..fem.finite_dynamic import check_finite_reach, pad_reach_note
     from ..fem.impact import check_impact_reach
     from ..theory.impact import impact_in_floats
     from ..theory.materials import effective_modulus, validate_density
+    from ..theory.profile_impact import ProfileImpactResult
     from ..theory.sneddon import contact_law
-    from ..theory.viscoelastic import elastic_impact
+    from ..theory.viscoelastic import rigid_impact
 
     striker, body = problem.striker, problem.body.material
     inputs = (striker.indenter, body, _density(body), striker.mass, striker.velocity)
     law = contact_law(striker.indenter, effective_modulus(striker.material, body))
-    friction, geometry = problem.interface.coefficient, problem.geometry
+    friction, geometry, prony = problem.interface.coefficient, problem.geometry, problem.body.prony
+    exact = rigid_impact(*inputs[:2], *inputs[3:5])  # the striker is rigid: one solve for all
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         check_impact_reach(
-            *inputs[:3], inputs[3:5], settings is None, friction, geometry, problem.body.prony
+            *inputs[:3], inputs[3:5], settings is None, friction, geometry, prony, exact
         )
-        exact = partial(elastic_impact, *inputs[3:5], law)
         quasi = impact_in_floats(*inputs[3:5], exact)  # the floating-point range first
         if settings is not None:
-            check_dynamic_impact(*inputs, settings, problem.body.prony, friction, geometry=geometry)
+            sizing = quasi if isinstance(quasi, ProfileImpactResult) else None
+            check_dynamic_impact(*inputs, settings, prony, friction, sizing, geometry)
             return
     validate_density("density2", body.density)
     pad = geometry.thickness is not None  # it stops the striker short of x_c
     note = pad_reach_note(pad, friction, inputs[2])  # None: the floor alone
-    reach = (striker.indenter, law, inputs[3:5], problem.body.prony)
+    reach = (striker.indenter, law, inputs[3:5], prony)
     check_finite_reach(reach, note, None, (quasi.x_c, quasi.t_y))
 
 

@@ -244,12 +244,13 @@ def profile_sizing_impact(
     indenter: Indenter, half_space: Material, mass: float, velocity: float
 ) -> ProfileImpactResult | None:
     """The quasi-static impact that sizes the FE runs of a sphere or a table (mass in kg,
-    velocity in m/s): Sneddon's law at E2/(1 - nu2^2), by quadrature (seconds on a long table:
-    a case solves it once and passes it to every run of its ladder as ``exact``); None for
-    the power law, whose closed form costs nothing."""
+    velocity in m/s): Sneddon's law at the rigid striker's E* (:func:`effective_modulus`, the
+    case's exact impact's), by quadrature (seconds on a long table: a case solves it once and
+    passes it to every run of its ladder as ``exact``); None for the power law, whose closed
+    form costs nothing."""
     if isinstance(indenter, PowerLawIndenter):
         return None
-    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
+    modulus = effective_modulus(RIGID, half_space)
     return solve_profile_impact(mass, velocity, SneddonContact(indenter, modulus))
 
 

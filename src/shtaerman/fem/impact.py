@@ -58,6 +58,7 @@ def check_impact_reach(
     friction: float | None = None,
     geometry: Geometry = HALF_SPACE,
     prony: PronySeries | None = None,
+    exact: Callable[[], Any] | None = None,
 ) -> None:
     """Refuse, before its exact impact is solved, a power law's FE impact (mass kg, velocity
     m/s) on ``half_space`` (density kg/m^3; ``finite``: a rubber at finite strain) whose depth
@@ -74,10 +75,14 @@ def check_impact_reach(
     limit (:func:`shtaerman.guards.check_wave_speed`; its remedies within the finite-strain
     reach), any profile: 1e-40 kg at 3 m/s failed numerically after a minute. A rubber with a
     ``prony`` series beyond the reach is refused as its run refuses it
-    (:func:`.finite_dynamic.check_fully_relaxed`)."""
+    (:func:`.finite_dynamic.check_fully_relaxed`). A sphere's or a table's exact impact is
+    ``exact()`` (:func:`shtaerman.theory.viscoelastic.rigid_impact`: the caller's, solved
+    once for its checks and its run; None: solved here), its refusal beyond the profile's
+    end the first."""
     from ..guards import check_table_window
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.sneddon import contact_law
+    from ..theory.viscoelastic import rigid_impact
     from ..validation import LimitError
     from .dynamic_contact import radiated_fraction
     from .finite_dynamic import check_fully_relaxed, pad_reach_note
@@ -89,8 +94,9 @@ def check_impact_reach(
     note = pad_reach_note(pad, friction, density) if finite else (None if pad else "")
     waves = radiated_fraction(indenter, half_space, density) if density > 0 else None
     modulus = effective_modulus(RIGID, half_space)
+    exact = rigid_impact(indenter, half_space, *impact) if exact is None else exact
     if indenter.kind != "power-law" and density > 0:  # its end, with the waves' remedy
-        _check_profile_end(indenter, half_space, density, impact)
+        _check_profile_end(indenter, half_space, density, impact, exact)
     if indenter.kind == "power-law" and (note is not None or finite):  # a rubber: its floor
         # a pad's remedy within the depths its mesh resolves (adv60: 4.95e-12 m/s was named
         # for 1e-16 on a 12 mm pad, whose thickness that impact then refused)
@@ -105,28 +111,32 @@ def check_impact_reach(
                 check_fully_relaxed(reach, note, layer, waves)
             raise
     if finite and waves is not None:
-        _check_finite_waves(indenter, half_space, density, impact, waves)
+        _check_finite_waves(indenter, half_space, density, impact, waves, exact)
 
 
 def _check_profile_end(
-    indenter: Indenter, half_space: Material, density: float, impact: tuple[float, float]
+    indenter: Indenter,
+    half_space: Material,
+    density: float,
+    impact: tuple[float, float],
+    exact: Callable[[], ProfileImpactResult],
 ) -> None:
     """The refusal of a sphere's or a table's impact (mass kg, velocity m/s) beyond the
-    profile's end (:func:`shtaerman.theory.profile_impact.check_profile_end`), which with
-    inertia also names, where its remedies (the slower or the lighter impact that stays within
-    the profile) radiate above :func:`shtaerman.guards.wave_limit`, the density (kg/m^3,
-    0.99 of the limit's: lambda ~ sqrt(density)) at which both pass."""
+    profile's end, that of its exact impact ``exact()``, which with inertia also names, where
+    its remedies (the slower or the lighter impact that stays within the profile) radiate
+    above :func:`shtaerman.guards.wave_limit`, the density (kg/m^3, 0.99 of the limit's:
+    lambda ~ sqrt(density)) at which both pass."""
     from ..guards import passing_density, wave_limit
     from ..theory.materials import RIGID, effective_modulus
-    from ..theory.profile_impact import check_profile_end, work_to
+    from ..theory.profile_impact import work_to
     from ..theory.sneddon import SneddonContact
     from ..validation import LimitError
     from .dynamic_contact import radiated_fraction
 
-    law = SneddonContact(indenter, effective_modulus(RIGID, half_space))
     try:
-        check_profile_end(law, *impact)
+        exact()
     except LimitError as error:
+        law = SneddonContact(indenter, effective_modulus(RIGID, half_space))
         (mass, velocity), top = impact, law.max_contact_radius
         share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity)
         fraction = radiated_fraction(indenter, half_space, density)
@@ -154,11 +164,13 @@ def _check_finite_waves(
     density: float,
     impact: tuple[float, float],
     waves: Callable[[float, float], float],
+    exact: Callable[[], Any],
 ) -> None:
     """The wave-speed limit of a rubber's impact (mass kg, velocity m/s) with inertia on
     ``half_space`` of ``density`` kg/m^3 (``waves``: the radiated fraction of an impact), as
     the linear body's (:func:`.dynamic_contact.check_dynamic_impact`): a power law's remedy
-    within the finite-strain reach, a sphere's or a table's velocity checked by ``waves``."""
+    within the finite-strain reach, a sphere's or a table's velocity checked by ``waves``
+    (its exact impact ``exact()``)."""
     import functools
     import warnings
 
@@ -166,12 +178,11 @@ def _check_finite_waves(
     from ..theory.radiation import impact_radiation
     from ..theory.sneddon import contact_law
     from ..validation import InputError
-    from .dynamic_contact import profile_sizing_impact
 
     modulus = effective_modulus(RIGID, half_space)
     with warnings.catch_warnings():  # the run warns of it beside its results
         warnings.simplefilter("ignore")
-        exact = profile_sizing_impact(indenter, half_space, *impact)
+        exact = None if indenter.kind == "power-law" else exact()
         estimate = impact_radiation(
             *impact, contact_law(indenter, modulus), density, half_space, exact
         )

@@ -387,13 +387,11 @@ def exact_impacts(mass: float, indenter: Indenter, body: Any) -> Callable[[float
     the half-space of ``body`` (:func:`..theory.viscoelastic.elastic_impact`), solved once per
     velocity however often it is asked (the loader's checks, a layer's H / a_c and the run
     share it)."""
-    from ..theory.materials import RIGID, effective_modulus
-    from ..theory.sneddon import contact_law
-    from ..theory.viscoelastic import elastic_impact
+    from ..theory.viscoelastic import rigid_impact
 
     @functools.cache
     def solved(velocity: float) -> Any:
-        return elastic_impact(mass, velocity, contact_law(indenter, effective_modulus(RIGID, body)))
+        return rigid_impact(indenter, body, mass, velocity)()
 
     return solved
 

@@ -137,28 +137,6 @@ def _maximum_radius(law: SneddonContact, mass: float, velocity: float) -> float:
     _refuse_the_end(law, top, energy, float(_work(law, top, squares(top))), mass, velocity)
 
 
-ROUGH_MARGIN = 1.1
-"""Factor by which the work to a table's end on equal panels must exceed the impact's energy
-for :func:`check_profile_end` to pass without the fine panels (their difference is far below
-it: the equal panels serve :func:`solve_profile_impact`'s first guess to 1e-6)."""
-
-
-def check_profile_end(law: SneddonContact, mass: float, velocity: float) -> None:
-    """Refuse, before the impact is solved, the impact (mass kg, velocity m/s) whose energy
-    exceeds the work to the profile's end (:func:`work_to`): the refusal, words and test
-    that :func:`solve_profile_impact` makes."""
-    energy = _impact_energy(mass, velocity)
-    top = law.max_contact_radius
-    top = math.nextafter(top, 0.0) if law.sphere else top
-    if not law.sphere:  # a long table's fine panels take seconds: equal ones tell most cases
-        rough = _Cumulative.of(np.linspace(0.0, top, PANELS + 1), lambda s: law.depth(s) ** 2)
-        if float(_work(law, top, rough(top))) > ROUGH_MARGIN * energy:
-            return
-    most = work_to(law, top)
-    if most < energy:
-        _refuse_the_end(law, top, energy, most, mass, velocity)
-
-
 def _root(
     law: SneddonContact, squares: _Cumulative, reach: float, energy: float, rtol: float
 ) -> float:
@@ -312,7 +290,7 @@ class ProfileImpactResult:
         """2 M v0 in N s."""
         return 2.0 * self.mass * self.velocity
 
-    @property
+    @cached_property
     def force_rate_squared_integral(self) -> float:
         """Int (dP/dt)^2 dt over [0, t_y] in N^2/s, the first-order radiation's integral
         (:mod:`shtaerman.theory.radiation`).

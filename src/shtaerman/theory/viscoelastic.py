@@ -11,6 +11,7 @@ theory/viscoelastic.py."""
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import sys
@@ -26,6 +27,7 @@ from scipy.special import hyp1f1
 from ..validation import InputError, NumericalFailureError, plain_float, validate_positive
 from .contact import PowerLawContact
 from .impact import ImpactResult, solve_impact
+from .materials import RIGID, Material, effective_modulus
 from .profile_impact import ProfileImpactResult, solve_profile_impact
 from .sneddon import Indenter, SneddonContact, contact_law
 
@@ -45,6 +47,7 @@ __all__ = [
     "indentation_force",
     "limit_impacts",
     "rate_factor",
+    "rigid_impact",
     "viscoelastic_impact",
 ]
 
@@ -182,6 +185,21 @@ def elastic_impact(mass: float, velocity: float, law: Law) -> ImpactResult | Pro
     if isinstance(law, PowerLawContact):
         return solve_impact(mass, velocity, law)
     return solve_profile_impact(mass, velocity, law)
+
+
+def rigid_impact(
+    indenter: Indenter, half_space: Material, mass: float, velocity: float
+) -> Callable[[], ImpactResult | ProfileImpactResult]:
+    """:func:`elastic_impact` of the rigid ``indenter`` (``mass`` kg at ``velocity`` m/s) on
+    ``half_space`` (E* = E2 / (1 - nu2^2)), solved at the first call and kept: one solve
+    for a case's checks, its radiation estimate and its run."""
+
+    @functools.cache
+    def solved() -> ImpactResult | ProfileImpactResult:
+        law = contact_law(indenter, effective_modulus(RIGID, half_space))
+        return elastic_impact(mass, velocity, law)
+
+    return solved
 
 
 class _Memory:

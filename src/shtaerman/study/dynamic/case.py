@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 from functools import partial
 from typing import TYPE_CHECKING, Any
 
-from ...fem.dynamic_contact import DynamicSettings, profile_sizing_impact
+from ...fem.dynamic_contact import DynamicSettings
 from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact import check_impact_reach, run_impact
 from ...fem.impact_run import ImpactRun
@@ -28,7 +28,7 @@ from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.radiation import RadiationEstimate, impact_radiation
 from ...theory.sneddon import Indenter, contact_law
-from ...theory.viscoelastic import PronySeries, elastic_impact, viscoelastic_impact
+from ...theory.viscoelastic import PronySeries, rigid_impact, viscoelastic_impact
 from ...validation import NumericalFailureError
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_ladder, run_ladder
@@ -234,13 +234,14 @@ def run_case(
     with warnings.catch_warnings(record=True) as said:  # said once the FE run took the inputs:
         warnings.simplefilter("always")  # a refusal is the one line
         impact, finite = (mass, velocity), isinstance(settings, FiniteImpactSettings)
-        check_impact_reach(indenter, half_space, density, impact, finite, friction, geometry, prony)
-        law = contact_law(indenter, effective_modulus(RIGID, half_space))
         solved = quasi  # the study's loader solved it, checked as here
-        exact = partial(elastic_impact, mass, velocity, law) if solved is None else lambda: solved
+        exact = rigid_impact(indenter, half_space, *impact) if solved is None else lambda: solved
+        physics = (geometry, prony, exact)
+        check_impact_reach(indenter, half_space, density, impact, finite, friction, *physics)
+        law = contact_law(indenter, effective_modulus(RIGID, half_space))
         quasi = impact_in_floats(mass, velocity, exact)  # the floating-point range first
         estimate = impact_radiation(mass, velocity, law, density, half_space, quasi)
-        sizing = profile_sizing_impact(indenter, half_space, mass, velocity)  # once, not per run
+        sizing = quasi if isinstance(quasi, ProfileImpactResult) else None  # for every run
     times = tuple(snapshots(quasi)) if snapshots is not None else ()
     settings = DynamicSettings() if settings is None else settings
     inputs = (indenter, half_space, density, mass, velocity)

@@ -355,14 +355,15 @@ def _check_velocities(
         impact, friction = (study.mass, velocity), problem.interface.coefficient
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run's warnings are the run's
+            solve = partial(exact, velocity)  # once: a profile's end is checked by its solve
             try:  # the reach first, in logs, as the run checks it
                 check_impact_reach(
-                    *inputs[:3], impact, study.finite, friction, study.geometry, study.prony
+                    *inputs[:3], impact, study.finite, friction, study.geometry, study.prony, solve
                 )
             except InputError as error:
                 raise refused(path, error, {**KEYS, "velocity": key}) from None
             try:
-                solved[velocity] = impact_in_floats(study.mass, velocity, partial(exact, velocity))
+                solved[velocity] = impact_in_floats(study.mass, velocity, solve)
             except InputError as error:
                 raise StudyError(f"{path}: key '{key}': {error}") from None
             if study.finite:  # its reach: checked as the finite-strain impact starts
