@@ -226,6 +226,9 @@ def test_the_exponent_estimate_bounds_what_the_forces_errors_do_to_the_fit():
     assert estimates["exponent"].absolute_error == pytest.approx(bound, rel=1e-12)
     assert estimates["exponent"].error >= true
     assert estimates["exponent"].method == "propagated"  # the report says what set it
+    # and why, with the 6.2e-7 of its own ladder; no correction's order gave the error
+    own = "the bound from the force's error exceeds the ladder's own 6.2e-07"
+    assert estimates["exponent"].reason == own and math.isnan(estimates["exponent"].order)
 
 
 def test_the_exponent_estimate_does_not_understate_on_a_coarse_hertz_ladder():

@@ -54,18 +54,20 @@ class Estimate:
     error : float
         Estimated relative error of ``value``, dimensionless (>= 0).
     order : float
-        The order of the correction: the observed p, or the known order when one was given
-        (nan for the fallback).
+        The order of the correction that gives ``error``: the observed p, or the known order
+        when one was given (:func:`at_most_order`: the lower of the two); nan where no
+        correction gives the error (a fallback, ``"propagated"``).
     method : str
         ``"richardson"``, ``"propagated"`` (a bound from separately estimated factors,
         :func:`propagated`), ``"envelope"`` (a neighbourhood's largest error,
         :func:`envelope`), or the fallback (see ``reason``): ``"two-level"`` (the last
         difference) or ``"scatter"`` (the largest of the two differences).
     reason : str
-        Why the fallback was used ("" for Richardson).
+        Why the fallback was used, or why the observed order did or did not correct where a
+        known order was given ("" where the observed order corrects without one).
     observed_order : float
-        The ladder's own order p (nan if it could not be measured); ``order`` differs from it
-        when a known order was given.
+        The ladder's own order p = ln(d1 / d2) / ln(s) wherever d1 and d2 have one sign, in
+        range or not (nan otherwise).
     """
 
     value: float
@@ -88,9 +90,9 @@ class Estimate:
         return {key: getattr(self, key) for key in (*keys, "observed_order")}
 
 
-def _two_level(coarse: float, fine: float, reason: str) -> Estimate:
+def _two_level(coarse: float, fine: float, reason: str, observed: float = math.nan) -> Estimate:
     error = abs(coarse - fine) / abs(fine) if fine != 0 else math.inf
-    return Estimate(fine, fine, error, math.nan, "two-level", reason)
+    return Estimate(fine, fine, error, math.nan, "two-level", reason, observed)
 
 
 def _checked(values: Sequence, ratio: float) -> list:
@@ -103,14 +105,26 @@ def _checked(values: Sequence, ratio: float) -> list:
     return values
 
 
-def _observed_order(d1: float, d2: float, ratio: float, sane: tuple[float, float]) -> str | float:
-    """The order of two shrinking differences, or why there is none."""
-    if d1 * d2 <= 0 or abs(d2) >= abs(d1):
-        return "the differences do not shrink monotonically"
+def _observed_order(
+    d1: float, d2: float, ratio: float, sane: tuple[float, float]
+) -> tuple[float, str]:
+    """The order of two differences (nan unless they have one sign) and why it may not
+    correct ("" where it may)."""
+    if d1 * d2 <= 0:
+        return math.nan, "the differences do not shrink monotonically"
     observed = math.log(d1 / d2) / math.log(ratio)
+    if abs(d2) >= abs(d1):
+        return observed, "the differences do not shrink monotonically"
     if not sane[0] <= observed <= sane[1]:
-        return f"observed order {observed:.2f} outside {sane}"
-    return observed
+        return observed, f"observed order {observed:.2f} outside {sane}"
+    return observed, ""
+
+
+def _known(order: float, observed: float) -> str:
+    """Why the known ``order`` corrects rather than the ``observed`` one."""
+    asked = "" if observed >= order else ", as asked"
+    below = "is not below it" if observed >= order else "is below it"
+    return f"the known order {order:g} corrects{asked}; the observed {observed:.2f} {below}"
 
 
 def richardson(
@@ -153,19 +167,23 @@ def richardson(
         return _two_level(*values, "two levels only")
     coarse, middle, fine = values
     d1, d2 = coarse - middle, middle - fine
-    observed = _observed_order(d1, d2, ratio, sane) if d2 != 0.0 else "the last two levels agree"
-    if isinstance(observed, str) and fallback == "largest":
+    observed, why = (
+        _observed_order(d1, d2, ratio, sane)
+        if d2 != 0.0
+        else (math.nan, "the last two levels agree")
+    )
+    if why and fallback == "largest":
         error = max(abs(d1), abs(d2)) / abs(fine) if fine != 0 else math.inf
-        return Estimate(fine, fine, error, math.nan, "scatter", observed)
+        return Estimate(fine, fine, error, math.nan, "scatter", why, observed)
     if d2 == 0.0:
         return Estimate(fine, fine, 0.0, math.nan, "two-level", "the last two levels agree")
-    if isinstance(observed, str):
-        return _two_level(middle, fine, observed)
-    used = observed if order is None else order
+    if why:
+        return _two_level(middle, fine, why, observed)
+    used, reason = (observed, "") if order is None else (order, _known(order, observed))
     correction = d2 / (ratio**used - 1.0)
     extrapolated = fine - correction
     error = abs(correction / extrapolated)
-    return Estimate(fine, extrapolated, error, used, "richardson", "", observed)
+    return Estimate(fine, extrapolated, error, used, "richardson", reason, observed)
 
 
 def worst_point(curves: Sequence[ArrayLike]) -> int:
@@ -211,21 +229,14 @@ def curve_richardson(
     if d2 == 0.0:
         value = float(fine[worst])
         return Estimate(value, value, 0.0, math.nan, "two-level", "the last two levels agree")
-    observed = _observed_order(d1, d2, ratio, sane)
-    if isinstance(observed, str):
-        return _two_level(float(curves[-2][worst]), float(fine[worst]), observed)
-    used = observed if order is None else order
+    observed, why = _observed_order(d1, d2, ratio, sane)
+    if why:
+        return _two_level(float(curves[-2][worst]), float(fine[worst]), why, observed)
+    used, reason = (observed, "") if order is None else (order, _known(order, observed))
     error = d2 / (ratio**used - 1.0)
     correction = (fine[worst] - curves[-2][worst]) / (ratio**used - 1.0)
-    return Estimate(
-        float(fine[worst]),
-        float(fine[worst] + correction),
-        error,
-        used,
-        "richardson",
-        "",
-        observed,
-    )
+    value = float(fine[worst])
+    return Estimate(value, float(value + correction), error, used, "richardson", reason, observed)
 
 
 def propagated(value: float, factors: Sequence[tuple[Estimate, float]]) -> Estimate:
@@ -296,7 +307,13 @@ def envelope(
     if own.method in ESTIMATED and own.error >= widest.error:
         return own
     return Estimate(
-        own.value, own.value, widest.error, widest.order, "envelope", "", widest.observed_order
+        own.value,
+        own.value,
+        widest.error,
+        widest.order,
+        "envelope",
+        widest.reason,
+        widest.observed_order,
     )
 
 
@@ -309,10 +326,14 @@ def at_most_order(
 ) -> Estimate:
     """``estimate`` (:func:`richardson` or :func:`curve_richardson`, with ``options``) of
     ``values`` at the known ``order``; where the ladder's observed order is lower, the error is
-    the correction at the observed order (the larger), the extrapolated value stays at
-    ``order``: a known order the ladder has not reached yet would understate the error."""
+    the correction at the observed order (the larger; ``order`` says it), the extrapolated value
+    stays at the known order: one the ladder has not reached yet would understate the error."""
     known = estimate(values, ratio, order=order, **options)
     if known.method == "richardson" and known.observed_order < known.order:
         observed = estimate(values, ratio, **options)
-        return replace(known, error=observed.error)
+        reason = (
+            f"the observed order {observed.order:.2f} corrects the error, below the known "
+            f"{known.order:g} that the extrapolation keeps"
+        )
+        return replace(known, error=observed.error, order=observed.order, reason=reason)
     return known

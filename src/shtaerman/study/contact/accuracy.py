@@ -278,15 +278,18 @@ def estimate_errors(
                 richardson, values, LADDER_RATIO, orders.get(key), sane=SANE_ORDERS
             )
             if key in FORCE_LIKE:
-                estimates[key] = _force_like(estimates[key], values, results[-1], key)
+                estimates[key] = _force_like(estimates[key], values, results[-1], key, orders)
     bounds = {"beta": 1.0}  # per unit force error; beta's log weighs every depth by 1/N
     if "exponent" in estimates:
         depths = [step.depth for step in results[-1].steps]
         bounds["exponent"] = exponent_sensitivity(depths) / abs(estimates["exponent"].extrapolated)
     for key, bound in bounds.items():
         if key in estimates and bound * estimates["force"].error > estimates[key].error:
-            error = bound * estimates["force"].error  # the bound sets it: said so
-            estimates[key] = replace(estimates[key], error=error, method="propagated", reason="")
+            own, error = estimates[key], bound * estimates["force"].error
+            reason = f"the bound from the force's error exceeds the ladder's own {own.error:.1e}"
+            estimates[key] = replace(
+                own, error=error, order=math.nan, method="propagated", reason=reason
+            )
     return estimates
 
 
@@ -315,18 +318,21 @@ def _curve_estimates(
             curve_richardson, ladder, LADDER_RATIO, orders[key], sane=SANE_ORDERS
         )
         if key in FORCE_LIKE:
-            estimates[key] = _force_like(estimates[key], ladder, results[-1], key)
+            estimates[key] = _force_like(estimates[key], ladder, results[-1], key, orders)
     return estimates
 
 
-def _force_like(estimate: Estimate, values: list, result: LadderCurve, key: str) -> Estimate:
-    """``estimate`` of a force-like quantity: at least :func:`_edge_floor`, times
-    :data:`FORCE_SAFETY`, plus the far-field truncation of ``result`` (:func:`_truncation`)."""
-    error = max(estimate.error, _edge_floor(values, estimate))
+def _force_like(
+    estimate: Estimate, values: list, result: LadderCurve, key: str, orders: Mapping[str, float]
+) -> Estimate:
+    """``estimate`` of a force-like quantity (at the known ``orders[key]``): at least
+    :func:`_edge_floor`, times :data:`FORCE_SAFETY`, plus the far-field truncation of
+    ``result`` (:func:`_truncation`)."""
+    error = max(estimate.error, _edge_floor(values, estimate, orders.get(key)))
     return replace(estimate, error=FORCE_SAFETY * error + _truncation(result, key))
 
 
-def _edge_floor(values: list, estimate: Estimate) -> float:
+def _edge_floor(values: list, estimate: Estimate, known: float | None) -> float:
     """The least error a force-like quantity's ladder allows (relative): its first difference
     D1 (the largest over the depths) shrunk by one level at the edge's order
     :data:`EDGE_ORDER`, then corrected as ``estimate`` is (at the lower of its order and the
@@ -334,24 +340,25 @@ def _edge_floor(values: list, estimate: Estimate) -> float:
     D1 / s^2 where the far field's faster term, of the other sign, still shrinks in it; where
     the edge term dominates D2 = D1 / s^2 and the floor changes nothing.
 
-    No floor where the ladder shows no order-2 term: Richardson's observed order at least
-    ``estimate``'s order and every depth's two differences of one sign (two terms of opposite
-    sign make a depth's differences change sign). Measurements: benchmarks/FEM_NOTES.md,
+    No floor where the ladder shows no order-2 term: Richardson's observed order at least the
+    ``known`` one (if given) and every depth's two differences of one sign (two terms of
+    opposite sign make a depth's differences change sign). Measurements: benchmarks/FEM_NOTES.md,
     "Accuracy 1e-6"."""
     levels = [np.atleast_1d(np.asarray(v, dtype=float)) for v in values[-3:]]
-    if len(levels) < 3 or _confirmed(levels, estimate):
+    if len(levels) < 3 or _confirmed(levels, estimate, known):
         return 0.0
     first = float(np.max(np.abs(levels[0] - levels[1]) / np.abs(levels[-1])))
-    orders = [p for p in (estimate.order, estimate.observed_order) if math.isfinite(p)]
-    order = min(orders, default=EDGE_ORDER)
+    order = estimate.order if math.isfinite(estimate.order) else EDGE_ORDER
     return first / LADDER_RATIO**EDGE_ORDER / (LADDER_RATIO**order - 1.0)
 
 
-def _confirmed(levels: list[np.ndarray], estimate: Estimate) -> bool:
-    """Whether the ladder ``levels`` (three, coarse to fine) converges at ``estimate``'s
-    order or faster, monotonically at every depth (:func:`_edge_floor`)."""
+def _confirmed(levels: list[np.ndarray], estimate: Estimate, known: float | None) -> bool:
+    """Whether the ladder ``levels`` (three, coarse to fine) converges at the ``known`` order
+    (``estimate``'s own without one) or faster, monotonically at every depth
+    (:func:`_edge_floor`)."""
     monotone = np.all((levels[1] - levels[0]) * (levels[2] - levels[1]) > 0.0)
-    fast = estimate.method == "richardson" and estimate.observed_order >= estimate.order
+    order = estimate.order if known is None else known
+    fast = estimate.method == "richardson" and estimate.observed_order >= order
     return bool(monotone and fast)
 
 
@@ -559,9 +566,8 @@ def _check_reachable(
     error = _force_error(result)
     if error <= tolerance:
         return
-    estimates = [result.estimates[k] for k in FORCE_LIKE if k in result.estimates]
-    orders = [p for e in estimates for p in (e.order, e.observed_order) if math.isfinite(p)]
-    order = max(min(orders, default=ORDERS["force"]), SANE_ORDERS[0])
+    orders = [result.estimates[k].order for k in FORCE_LIKE if k in result.estimates]
+    order = max(min(filter(math.isfinite, orders), default=ORDERS["force"]), SANE_ORDERS[0])
     steps = math.ceil(math.log(error / tolerance) / (order * math.log(LADDER_RATIO)))
     dofs = result.levels[-1].dofs * 2**steps
     seconds = sum(result.levels[-1].seconds * TIME_GROWTH**k for k in range(1, steps + 1))
