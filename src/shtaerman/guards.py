@@ -343,7 +343,7 @@ def check_reach(
     if note is None:  # only the floor: the route warns beyond the upper reach
         high, note = math.inf, ""
     window = (low, high)
-    check_equator(indenter, depth, impact)
+    check_equator(indenter, depth, impact, waves=waves)
     if low <= ratio <= high:  # within reach
         return
     check_table_window(indenter, finite)  # below the floor, as deep as the table reaches
@@ -691,10 +691,7 @@ def _remedies(
     (name, value, bare, unit), (other, other_value, other_bare, other_unit) = first, second
     if not value and not other_value and (bare or other_bare):  # each radiates too much
         first, second = (name, bare, bare, unit), (other, other_bare, other_bare, other_unit)
-        return _remedies(first, second, on, bound, limit) + (
-            f", on the massless body, density2=0 (at this density2 either radiates above "
-            f"{limit:.3g} of its energy as waves, where the FE impact with inertia breaks down)"
-        )
+        return _remedies(first, second, on, bound, limit) + _massless(limit)
     if not value:
         said = f"{other}=... to at {bound} about {other_value} {other_unit}"
         return f"{said} with this striker, {name} and body{on}"
@@ -832,7 +829,7 @@ def check_profile_reach(
             f"({overshoot:g} x_c, the deepest depth)"
         )
     note = f" ({overshoot:g} x_c, the deepest depth)"
-    check_equator(indenter, deepest, None if depths is not None else impact, note, overshoot)
+    check_equator(indenter, deepest, None if depths is not None else impact, note, overshoot, waves)
     try:
         law.contact_radius(deepest)  # a table's contact within its last row
     except InputError as error:
@@ -1040,6 +1037,7 @@ def check_equator(
     impact: tuple[float, float] | None = None,
     note: str = "",
     overshoot: float = 1.0,
+    waves: Callable[[float, float], float] | None = None,
 ) -> None:
     """Refuse, before any work, a sphere pressed to ``deepest`` >= its radius R (m): its
     equator at the surface, beyond which the FE's sphere is a flat rim (z = R for r > R)
@@ -1047,28 +1045,103 @@ def check_equator(
     x_c = 2 R: the contact ran onto the rim and failed at its edge). The one check of every
     route: the refusal names ``depths`` when they were given, else ``sphere_radius`` and the
     ``impact`` (mass kg, velocity m/s) that set the depth (``overshoot`` times its x_c) and
-    the velocity and mass that pass; ``note`` follows the depth."""
+    the velocity and mass that pass (``waves``: as :func:`check_reach` takes it, within the
+    waves' limit too: :func:`_equator_remedy`); ``note`` follows the depth."""
     from .validation import LimitError
 
     radius = getattr(indenter, "radius", None)
     if getattr(indenter, "kind", "") != "sphere" or deepest < radius:
         return
     if impact is None:
-        parameter, drive, remedy = "depths", f"depth {deepest:.6g} m", "give smaller depths"
+        parameter, drive = "depths", f"depth {deepest:.6g} m"
+        remedy = "give smaller depths or a larger sphere (sphere_radius=...)"
     else:
-        below = math.nextafter(radius, 0.0)
         parameter, remedy = (
             "sphere_radius",
-            _within_end(indenter, below, deepest, impact, overshoot),
+            _equator_remedy(indenter, deepest, impact, overshoot, waves),
         )
         drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
         drive += f"{deepest:.3g} m{note}"
     raise LimitError(
         f"{parameter}: {drive}, beyond the sphere's radius {radius:.6g} m (its equator, past "
         f"which the FE profile is no sphere): the deepest depth must be below the radius; "
-        f"{remedy} or a larger sphere (sphere_radius=...)",
+        f"{remedy}",
         parameter,
     )
+
+
+def _equator_remedy(
+    indenter: Indenter,
+    deepest: float,
+    impact: tuple[float, float],
+    overshoot: float,
+    waves: Callable[[float, float], float] | None,
+) -> str:
+    """The lower velocity and mass (m/s, kg) that bring ``overshoot`` times x_c of
+    ``impact`` (mass kg, velocity m/s), now ``deepest`` m, below the sphere's radius, or a
+    larger sphere. With ``waves`` (:func:`check_reach`'s) each is held to
+    :func:`wave_limit` too: the velocity lowered further where the waves ask it
+    (:func:`_wave_velocity`), the mass left out where it radiates above the limit (a lighter
+    striker radiates more), and so the larger sphere where the impact of M times the energy's
+    share does (a sphere of radius R' radiates as M (R / R')^3 on R, the quasi-static impact
+    and lambda being self-similar in R; each R' past the equator's least, R share^(-1/3),
+    radiates more): 0.039 kg at 10 m/s on 1000 kg/m^3 rubber, a 10 mm sphere's mass remedy,
+    radiated 0.602, above 0.45."""
+    from .theory.profile_impact import lower_inputs
+
+    (mass, velocity), q = impact, tip_exponents(indenter, deepest)[1]
+    log_share = _end_share(indenter, math.nextafter(indenter.radius, 0.0), deepest, overshoot)
+    slower, lighter = lower_inputs(mass, velocity, log_share)
+    larger, left = "a larger sphere (sphere_radius=...)", []
+    if waves is not None:
+        limit = wave_limit(q)
+        calm = (
+            _wave_velocity(slower, mass, q, waves),
+            _calm(lighter, waves, (None, velocity), limit),
+            _fraction(waves, mass * math.exp(log_share), velocity) <= limit,
+        )
+        if not any(calm):  # the velocity's unsettled, the others radiate too much
+            return _equator_words(slower, lighter, larger) + _massless(limit, "each")
+        left = ["a lighter striker"] if lighter and not calm[1] else []
+        left += [] if calm[2] else ["a larger sphere"]
+        slower, lighter, larger = calm[0], calm[1], larger if calm[2] else ""
+    if not left:
+        return _equator_words(slower, lighter, larger)
+    return _equator_words(slower, lighter, larger) + (
+        f" ({' or '.join(left)} radiates above {limit:.3g} of its energy as waves on this "
+        "density2, where the FE impact with inertia breaks down)"
+    )
+
+
+def _equator_words(slower: str, lighter: str, larger: str) -> str:
+    """ "lower velocity=... to at most ``slower`` m/s or mass=... to at most ``lighter`` kg
+    or ``larger``", each left out where ""."""
+    named = [f"velocity=... to at most {slower} m/s"] if slower else []
+    named += [f"mass=... to at most {lighter} kg"] if lighter else []
+    lowered = [f"lower {' or '.join(named)}"] if named else []
+    return " or ".join(lowered + ([larger] if larger else []))
+
+
+def _massless(limit: float, each: str = "either") -> str:
+    """The end of a remedy ``each`` of whose impacts radiates above ``limit``
+    (:func:`wave_limit`): the massless body."""
+    return (
+        f", on the massless body, density2=0 (at this density2 {each} radiates above "
+        f"{limit:.3g} of its energy as waves, where the FE impact with inertia breaks down)"
+    )
+
+
+def _end_share(indenter: Indenter, end: float, deepest: float, overshoot: float) -> float:
+    """ln of the share of an impact's energy that brings ``overshoot`` times its x_c, now
+    ``deepest`` m, to the depth ``end`` (m) of the profile: just below a sphere's radius, a
+    table's last row. The quasi-static work to a contact radius is E* times the profile's,
+    so their ratio needs no modulus."""
+    from .theory.profile_impact import work_to
+
+    law = contact_law(indenter, 1.0)
+    below = law.contact_radius(end / overshoot)
+    now = law.contact_radius(deepest / overshoot)
+    return math.log(work_to(law, below)) - math.log(work_to(law, now))
 
 
 def _within_end(
@@ -1079,15 +1152,10 @@ def _within_end(
     overshoot: float,
 ) -> str:
     """The lower velocity and mass (kg, m/s) that bring ``overshoot`` times x_c, now
-    ``deepest`` m, to the depth ``end`` (m) of the profile: just below a sphere's radius, a
-    table's last row. The quasi-static work to a contact radius is E* times the profile's,
-    so their ratio needs no modulus."""
-    from .theory.profile_impact import lower_impact, work_to
+    ``deepest`` m, to the depth ``end`` (m) of the profile (:func:`_end_share`)."""
+    from .theory.profile_impact import lower_impact
 
-    law = contact_law(indenter, 1.0)
-    below = law.contact_radius(end / overshoot)
-    now = law.contact_radius(deepest / overshoot)
-    return lower_impact(*impact, math.log(work_to(law, below)) - math.log(work_to(law, now)))
+    return lower_impact(*impact, _end_share(indenter, end, deepest, overshoot))
 
 
 def _striker_at_fault(

@@ -22,7 +22,7 @@ import time
 from collections.abc import Callable
 from typing import Any, Protocol
 
-from ..guards import check_profile_reach, check_wave_speed, tip_exponents
+from ..guards import check_equator, check_profile_reach, check_wave_speed, tip_exponents
 from ..theory.materials import Material
 from ..theory.profile_impact import ProfileImpactResult
 from ..theory.sneddon import Indenter
@@ -170,7 +170,9 @@ def _check_finite_waves(
     ``half_space`` of ``density`` kg/m^3 (``waves``: the radiated fraction of an impact), as
     the linear body's (:func:`.dynamic_contact.check_dynamic_impact`): a power law's remedy
     within the finite-strain reach, a sphere's or a table's velocity checked by ``waves``
-    (its exact impact ``exact()``)."""
+    (its exact impact ``exact()``); first a sphere's equator
+    (:func:`shtaerman.guards.check_equator`), its remedies within the waves' limit, as the
+    linear body's reach check names them."""
     import functools
     import warnings
 
@@ -196,6 +198,8 @@ def _check_finite_waves(
             return False
         return True
 
+    if exact is not None:  # a sphere's equator first, its remedies within the waves' limit
+        check_equator(indenter, exact.x_c, impact, waves=waves)
     q = tip_exponents(indenter, math.nan if exact is None else exact.x_c)[1]
     if exact is None:  # the power law: its force exponent q is exact
         check_wave_speed(impact, estimate, density, q, None, reaches)

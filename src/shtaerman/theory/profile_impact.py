@@ -47,7 +47,7 @@ from .impact import (
 )
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
-__all__ = ["ProfileImpactResult", "lower_impact", "solve_profile_impact", "work_to"]
+__all__ = ["ProfileImpactResult", "lower_impact", "lower_inputs", "solve_profile_impact", "work_to"]
 
 NODES = roots_legendre(16)[0]
 PANELS = 16
@@ -205,10 +205,15 @@ def lower_impact(mass: float, velocity: float, log_share: float) -> str:
     ``mass`` kg at ``velocity`` m/s whose energy, scaled by e^``log_share`` (< 1), passes a
     limit, either input alone (three digits, rounded down; the mass left out where it
     underflows)."""
-    slower, lighter = _down(velocity * math.exp(log_share / 2.0)), _down(mass * math.exp(log_share))
+    slower, lighter = lower_inputs(mass, velocity, log_share)
     return f"lower velocity=... to at most {slower} m/s" + (
         f" or mass=... to at most {lighter} kg" if lighter else ""
     )
+
+
+def lower_inputs(mass: float, velocity: float, log_share: float) -> tuple[str, str]:
+    """The velocity (m/s) and the mass (kg) :func:`lower_impact` names, as it shows them."""
+    return _down(velocity * math.exp(log_share / 2.0)), _down(mass * math.exp(log_share))
 
 
 def work_to(law: SneddonContact, radius: float) -> float:
