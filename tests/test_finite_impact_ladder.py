@@ -127,12 +127,13 @@ def _failing(monkeypatch, steps: set[int], warn: bool = False) -> None:
 
 
 def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(served, monkeypatch):
-    _failing(monkeypatch, {35, 70})  # the middle level and its retry
+    _failing(monkeypatch, {35, 70, 140})  # the middle level and its two retries
     with pytest.warns(EstimateMissingWarning, match="refine 0.707: 35 steps failed"):
         result = sh.dynamic(INDENTER, MASSLESS, **CASE)
     assert result.parameters["time_steps"] == 50  # the finest level passed: reported
     assert result.error_estimate is None and result.differences_error is None
     assert "retry with 70 steps failed too" in result.estimate_missing
+    assert "retry with 140 steps failed too" in result.estimate_missing
     middle = result.mesh_ladder[1]
     assert middle["dofs"] is None and "forced failure" in middle["failure"]
     document = json.loads(json.dumps(result.to_dict()))
@@ -141,7 +142,7 @@ def test_a_level_failing_twice_leaves_the_estimate_missing_not_an_abort(served, 
 
 
 def test_the_finest_level_failing_reports_the_finest_that_passed(served, monkeypatch):
-    _failing(monkeypatch, {50, 100})
+    _failing(monkeypatch, {50, 100, 200})
     with pytest.warns(EstimateMissingWarning, match="refine 1: 50 steps failed"):
         result = sh.dynamic(INDENTER, MASSLESS, **CASE)
     assert result.parameters["time_steps"] == 35  # refine 1/sqrt 2
@@ -176,9 +177,20 @@ def test_a_single_run_that_passed_on_its_retry_says_so(coarse_mesh, monkeypatch)
     assert result.parameters["time_steps"] == 100
 
 
+def test_a_level_failing_its_first_retry_passes_on_the_second(coarse_mesh, monkeypatch):
+    """z = 0.804 r^1.01 with inertia (0.12 kg, 1.5 m/s, the reach's shape coefficient) failed
+    "an element inverted" at first contact at 100 and at 200 steps, and passed at 400: a
+    level is retried twice, each with RETRY_STEPS = 2 times the last's steps (50 -> 200)."""
+    _failing(monkeypatch, {50, 100})
+    said = "50 steps failed .* the retry with 100 steps failed too .*; passed with 200 steps"
+    with pytest.warns(RetriedWarning, match=said):
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE, estimate=False)
+    assert result.parameters["time_steps"] == 200
+
+
 def test_no_level_passing_is_the_finest_levels_failure(coarse_mesh, monkeypatch):
-    _failing(monkeypatch, {25, 50, 35, 70, 100})
-    with pytest.raises(NumericalFailureError, match="forced failure at 100 steps"):
+    _failing(monkeypatch, {25, 50, 35, 70, 100, 140, 200})
+    with pytest.raises(NumericalFailureError, match="forced failure at 200 steps"):
         sh.dynamic(INDENTER, MASSLESS, **CASE)
 
 

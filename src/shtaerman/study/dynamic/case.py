@@ -133,7 +133,7 @@ class DynamicCase:
     @property
     def estimated(self) -> bool:
         """Whether the case carries error estimates: it ran its ladder, and no level of it
-        failed twice."""
+        failed on its retries too."""
         return self.ladder is not None and not self.ladder.missing
 
     def estimates(self) -> dict[str, Estimate]:
