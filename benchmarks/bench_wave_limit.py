@@ -54,24 +54,39 @@ def _blunt(n: float, shape: float, nu: str) -> list[str]:
             "--nu2", nu]  # fmt: skip
 
 
+STRIKER_28 = ["--E2", "3e6", "--nu2", "0.49", "--mass", "0.12", "--density2", "1000"]
+"""Issue 28's body and mass (its striker z = 8 r^1.3 at 1.5 m/s; its pad 12 mm)."""
+
+
+def _pad(n: float, thickness_mm: float, *more: str) -> list[str]:
+    """z = 8 r^``n``, issue 28's body and mass, on a bonded pad ``thickness_mm`` thick."""
+    return ["--exponent", f"{n:g}", "--shape-coefficient", "8", *STRIKER_28[:6],
+            "--thickness", f"{thickness_mm / 1e3:g}", *more]  # fmt: skip
+
+
 STRIKERS = {
-    "n1.3": ["--exponent", "1.3", "--shape-coefficient", "8", "--E2", "3e6", "--nu2", "0.49",
-             "--density2", "1000", "--mass", "0.12"],  # issue 28's striker
+    "n1.3": ["--exponent", "1.3", "--shape-coefficient", "8", *STRIKER_28],  # issue 28's
     "n1.5": ["--exponent", "1.5", "--shape-coefficient", "5"],  # the paper's, 0.7 kg, 7.5 MPa
     "n1.5-soft": _power(1.5),
     **{f"n{n:g}": _power(n) for n in (1.75, 2.0, 2.5, 3.0, 3.25, 3.5, 4.0)},
     **{f"n{n:g}-nu0": _power(n, "--nu2", "0") for n in (1.75, 2.0, 2.5, 3.0, 3.25, 3.5)},
     **{f"n{n:g}-nu0.3": _power(n, "--nu2", "0.3") for n in (1.75, 2.0, 2.5, 3.0, 3.25, 3.5)},
+    **{f"n{n:g}-nu{nu}": _power(n, "--nu2", nu)
+       for n in (1.75, 2.0, 2.5, 3.0, 3.5) for nu in ("0.45", "0.49", "0.499")},
     "n2-heavy": [*_power(2.0), "--mass", "1"],
     **{f"n4-density{nu}": [*_power(4.0, "--velocity", "0.1"), "--nu2", nu]
-       for nu in ("0", "0.3", "0.5")},
+       for nu in ("0", "0.3", "0.49", "0.5")},
     "n5": ["--exponent", "5", "--shape-coefficient", "1000"],  # 0.7 kg, 7.5 MPa
-    **{f"n5-density{nu}": _blunt(5.0, 1e3, nu) for nu in ("0", "0.5")},
-    **{f"n10-density{nu}": _blunt(10.0, 1e6, nu) for nu in ("0", "0.5")},
+    **{f"n5-density{nu}": _blunt(5.0, 1e3, nu) for nu in ("0", "0.49", "0.5")},
+    **{f"n10-density{nu}": _blunt(10.0, 1e6, nu) for nu in ("0", "0.49", "0.5")},
     "ball": BALL,
     "ball-nu0.3": [*BALL, "--nu2", "0.3"],
     "ball-nu0": [*BALL, "--nu2", "0"],
     "ball-deep": ["--sphere-radius", "0.005", *SOFT[:2], "--density2", "3.3e4", *SOFT[4:]],
+    **{f"pad-n{n:g}-H{h:g}": _pad(n, h, "--velocity", "1.5")
+       for n in (1.3, 1.5, 2.0, 3.0) for h in (3, 12, 48)},
+    **{f"pad-n{n:g}-H12-v": _pad(n, 12, "--density2", "1000") for n in (1.3, 2.0)},
+    **{f"half-n{n:g}": [*_pad(n, 0)[:-2], "--velocity", "1.5"] for n in (1.5, 2.0, 3.0)},
 }  # fmt: skip
 """Each striker's options; one that gives --velocity is scanned by density2 (lambda ~
 sqrt(density2) at a fixed x/a: z = A r^n, n >= 5, reaches lambda 0.01 below 1e-6 m/s)."""
@@ -152,7 +167,8 @@ def scan(name: str, lambdas: list[float], extra: list[str]) -> tuple[float, floa
         p, dy, qs = d["parameters"], d["dynamic"], d["quasi_static"]
         modulus = p["E2"] / (1.0 - p["nu2"] ** 2)  # the rigid striker's E*
         q = 2.0 * modulus * qs["a_c"] * qs["x_c"] / qs["P_c"]  # d ln P / d ln x at x_c
-        est = d["radiation_estimate"]["energy_fraction"]
+        estimate = d["radiation_estimate"]  # None on a pad: the half-space's, as the guard
+        est = estimate["energy_fraction"] if estimate else target
         print(
             f"{name:11} {q:5.3f} {p['nu2']:4.2f} {' '.join(knob):>20} "
             f"{p['velocity'] / p['shear_wave_speed']:8.3g} {qs['x_c'] / qs['a_c']:8.3g} "
