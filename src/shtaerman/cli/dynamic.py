@@ -282,8 +282,9 @@ def finite_dynamic_text(report: dict) -> str:
 
 def ladder_rows(report: dict) -> list[str]:
     """The error-estimate ladder's levels and estimated relative errors, or why the estimate
-    is missing ([] without the estimate); first what was retried, if anything."""
-    retried = [f"  retried: {report['retried']}"] if report.get("retried") else []
+    is missing ([] without the estimate); first what was retried, if anything. Both are
+    the API's words, spelled here as options (``time_steps=...`` is ``--time-steps``)."""
+    retried = [f"  retried: {worded(report['retried'], 'cli')}"] if report.get("retried") else []
     if report.get("mesh_ladder") is None:
         return retried
     levels = ", ".join(
@@ -291,7 +292,8 @@ def ladder_rows(report: dict) -> list[str]:
         for lv in report["mesh_ladder"]
     )
     if report.get("estimate_missing"):
-        return [*retried, f"  no error estimate (ladder {levels}): {report['estimate_missing']}"]
+        missing = worded(report["estimate_missing"], "cli")
+        return [*retried, f"  no error estimate (ladder {levels}): {missing}"]
     errors = report["error_estimate"].items()
     return [
         *retried,
