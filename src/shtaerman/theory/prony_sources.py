@@ -200,6 +200,12 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
                 f"prony: {where} row {k} column {name}: must {unit}, got {value}", "prony"
             )
     if column == "g":
+        if not math.fsum(values) < 1.0:  # the series' own refusal names no file
+            raise InputError(
+                f"prony: {where}: column g must sum to less than 1 (relaxed modulus > 0), got "
+                f"sum g_i = {math.fsum(values)!r} over lines {terms[0][0]} to {terms[-1][0]}",
+                "prony",
+            )
         return PronySeries(values, times), None
     return prony_from_moduli(relaxed[0], values, times)
 
