@@ -360,9 +360,9 @@ def test_cli_json_from_a_csv_in_millimetres_and_the_folder(tmp_path, capsys, mon
     ("header", "rows", "message"),
     [
         ("depth [m],F [N]", [(1e-3, 1.0)], "no column 'force'"),
-        ("depth [m],force [N]", [(1e-3, 1.0), (2e-3, "x")], "row 3: column 'force' holds 'x'"),
+        ("depth [m],force [N]", [(1e-3, 1.0), (2e-3, "x")], "line 3: column 'force' holds 'x'"),
         ("depth [m],force [lbf]", [(1e-3, 1.0)], "column 'force': unit 'lbf' is not a force"),
-        ("depth [m],force [N]", [(1e-3, 1.0), (-2e-3, 2.0)], "row 3: column 'depth' must be > 0"),
+        ("depth [m],force [N]", [(1e-3, 1.0), (-2e-3, 2.0)], "line 3: column 'depth' must be > 0"),
         ("depth [m],force [N]", [], "no data rows"),
     ],
 )

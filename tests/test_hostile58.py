@@ -28,7 +28,7 @@ def test_a_flipped_force_history_is_refused_by_its_sign(capsys, tmp_path):
     path = tmp_path / "negative.csv"
     path.write_text(pulse(sign=-1.0))
     line = error_line(capsys, "fit", "force-history", path, "--E1", "inf", "--E2", "5e6")
-    assert line.startswith(f"{path}: row "), line
+    assert line.startswith(f"{path}: line "), line
     assert "column 'force' swings to -" in line and " N but rises only to " in line, line
     assert line.endswith("a push is positive; flip the record's sign"), line
     problem = sh.Problem.impact(
@@ -58,7 +58,7 @@ def test_a_flipped_indentation_names_the_sign_not_the_float_range(capsys, tmp_pa
     path.write_text("depth [mm],force [N]\n0.5,-3.1\n1,-10\n1.5,-19.7\n2,-31.8\n")
     line = error_line(capsys, "fit", "indentation", path, "--sphere-radius", "0.01")
     assert line == (
-        f"{path}: row 5: column 'force' swings to -31.8 N but rises only to -3.1 N: a push "
+        f"{path}: line 5: column 'force' swings to -31.8 N but rises only to -3.1 N: a push "
         "is positive; flip the record's sign"
     )
 

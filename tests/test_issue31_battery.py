@@ -163,7 +163,7 @@ def test_an_indentation_without_a_usable_start_is_one_line(capsys, tmp_path, sca
     data.write_text("depth [m],force [N]\n" + rows)
     line = error_line(capsys, "fit", "indentation", data)
     if sign < 0:  # said of the sign, not of the floating-point range (session 58)
-        assert "i.csv: row 5: column 'force' swings to -0.72 N" in line, line
+        assert "i.csv: line 5: column 'force' swings to -0.72 N" in line, line
         assert line.endswith("a push is positive; flip the record's sign"), line
     else:
         assert "i.csv: the data give no usable starting modulus" in line, line
@@ -443,8 +443,8 @@ COMMENTED = "# drop test, 2026-11-28\ndepth [m],force [N]\n\n# loading\n1e-4,1.0
 @pytest.mark.parametrize(
     ("second", "said"),
     [
-        ("x", "row 6: column 'force' holds 'x', not a number"),  # _column
-        ("inf", "row 6: column 'force' holds 'inf', not a finite number"),
+        ("x", "line 6: column 'force' holds 'x', not a number"),  # _column
+        ("inf", "line 6: column 'force' holds 'inf', not a finite number"),
     ],
 )
 def test_fit_takes_comment_lines_and_names_the_file_line(capsys, tmp_path, second, said):
@@ -458,8 +458,8 @@ def test_fit_takes_comment_lines_and_names_the_file_line(capsys, tmp_path, secon
 @pytest.mark.parametrize(
     ("kind", "text", "said"),
     [
-        ("rebound", "velocity [m/s],restitution [1]\n# v2\n1,0.8\n\n2,1.5\n", "row 5:"),
-        ("force-history", "# t\ntime [s],force [N]\n0,0\n#\n1e-3,5\n1e-3,0\n", "row 6:"),
+        ("rebound", "velocity [m/s],restitution [1]\n# v2\n1,0.8\n\n2,1.5\n", "line 5:"),
+        ("force-history", "# t\ntime [s],force [N]\n0,0\n#\n1e-3,5\n1e-3,0\n", "line 6:"),
     ],
 )
 def test_a_refused_value_names_its_file_line(tmp_path, kind, text, said):
@@ -534,7 +534,7 @@ def test_a_profile_csv_takes_comments_and_names_the_file_line(tmp_path):
 
     path = tmp_path / "tip.csv"
     path.write_text("# a measured tip\nr [m],z [m]\n0,0\n\n1e-3,1e-5\n2e-3,x\n")
-    with pytest.raises(InputError, match="row 6, column z"):
+    with pytest.raises(InputError, match="line 6, column z"):
         TabulatedIndenter.from_csv(path)
     path.write_text("# a measured tip\nr [m],z [m]\n0,0\n# mid\n1e-3,1e-5\n2e-3,4e-5\n")
     tip = TabulatedIndenter.from_csv(path)
@@ -547,8 +547,8 @@ def test_a_profile_table_error_names_the_file_line(tmp_path):
 
     path = tmp_path / "tip.csv"
     path.write_text("# a measured tip\nr [m],z [m]\n0,0\n1e-3,1e-5\n\n5e-4,2e-5\n")
-    with pytest.raises(InputError, match=r"row 6 has r = 0\.0005 after 0\.001"):  # said row 4
+    with pytest.raises(InputError, match=r"line 6 has r = 0\.0005 after 0\.001"):  # said row 4
         TabulatedIndenter.from_csv(path)
     path.write_text("# a measured tip\nr [m],z [m]\n1e-4,0\n1e-3,1e-5\n2e-3,4e-5\n")
-    with pytest.raises(InputError, match=r"row 3 \(the first\) must be the tip"):  # said row 2
+    with pytest.raises(InputError, match=r"line 3 \(the first\) must be the tip"):  # said row 2
         TabulatedIndenter.from_csv(path)

@@ -75,7 +75,7 @@ def test_a_bad_profile_file_names_its_row_on_the_command_line(capsys, tmp_path):
     path = tmp_path / "tip.csv"
     path.write_text("r,z\n0,0\n1e-3,5e-5\n2e-3,nan\n")
     line = error_line(capsys, "impact", "--profile", str(path))
-    assert line == f"--profile: '{path}' row 4, column z: expected a finite number in m, got 'nan'"
+    assert line == f"--profile: '{path}' line 4, column z: expected a finite number in m, got 'nan'"
 
 
 def test_a_table_too_long_is_refused_without_parsing_the_rest(capsys, tmp_path):

@@ -42,7 +42,7 @@ def test_a_garbage_row_past_the_term_limit_is_named_as_an_earlier_one(tmp_path, 
     rows = tmp_path / "rows.csv"
     good = "".join(f"{1e-3 * (1 + k)},0.01\n" for k in range(21))
     rows.write_text(f"tau,g\n{good}garbage,xx\n")
-    said = f"rows.csv row 23 column tau must be a number, got 'garbage' ({PRONY_FORM})"
+    said = f"rows.csv: line 23, column tau must be a number, got 'garbage' ({PRONY_FORM})"
     assert _reasons(tmp_path, str(rows), capsys) == [said] * 3
     rows.write_text(f"tau,g\n{good}")  # the same 21 good terms alone: too many
     assert (

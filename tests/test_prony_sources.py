@@ -76,14 +76,14 @@ def test_moduli_text_and_csv_give_the_shipped_series(tmp_path):
     ("text", "message"),
     [
         ("tau,G\n1e-3,0.5\n", "header must be 'tau [s],E [Pa]' or 'tau [s],g [1]'"),
-        ("tau,g\n1e-3,half\n", "f.csv row 2 column g must be a number, got 'half'"),
-        ("tau,E\ninf,1e6\nsoon,1e6\n", "f.csv row 3 column tau must be a number"),
+        ("tau,g\n1e-3,half\n", "f.csv: line 2, column g must be a number, got 'half'"),
+        ("tau,E\ninf,1e6\nsoon,1e6\n", "f.csv: line 3, column tau must be a number"),
         ("tau,E\n1e-3,1e6\n", "an E column needs exactly one row with tau = inf (E_inf), got 0"),
         ("tau,g\ninf,0.5\n", "a g column takes no tau = inf row"),
         ("tau,g\n1e-3,0.5,1\n", "f.csv: line 2: 3 cells where the header has 2"),
         ("tau,g\n1e-3\n", "f.csv: line 2: 1 cell where the header has 2"),
-        ("tau,g\n-1e-3,0.5\n", "f.csv row 2 column tau: must be > 0 s, got -0.001"),
-        ("tau,E\ninf,1e6\n1e-3,-5\n", "f.csv row 3 column E: must be a finite number >= 0 Pa"),
+        ("tau,g\n-1e-3,0.5\n", "f.csv: line 2, column tau: must be > 0 s, got -0.001"),
+        ("tau,E\ninf,1e6\n1e-3,-5\n", "f.csv: line 3, column E: must be a finite number >= 0 Pa"),
     ],
 )
 def test_csv_errors_name_row_and_column(tmp_path, text, message):

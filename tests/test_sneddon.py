@@ -127,7 +127,7 @@ def test_the_impact_on_a_sphere_agrees_with_the_ode_and_tends_to_hertz():
     [
         ("r,z\n0,0\n1e-3,1e-4\n", "needs at least 3 rows"),
         ("r,h\n0,0\n", "column z is missing"),
-        ("r,z\n0,0\n1e-3,abc\n2e-3,1e-3\n", "row 3, column z: expected a finite number"),
+        ("r,z\n0,0\n1e-3,abc\n2e-3,1e-3\n", "line 3, column z: expected a finite number"),
         ("r,z\n0,0\n2e-3,1e-4\n1e-3,2e-4\n", "column r must increase strictly"),
         ("r,z\n1e-4,0\n2e-3,1e-4\n3e-3,2e-4\n", "must be the tip r = 0, z = 0"),
     ],

@@ -18,8 +18,8 @@ def test_a_nan_scale_is_said_to_be_a_ratio_of_scales_outside_the_floats(capsys):
 @pytest.mark.parametrize(
     "text, named",
     [
-        ("tau,g\n1e-3,0.3\n1e-2,nan\n", "row 3 column g: must lie in [0, 1), got nan"),
-        ("tau,E\ninf,1e6\n1e-3,-2e6\n", "row 3 column E: must be a finite number >= 0 Pa, got"),
+        ("tau,g\n1e-3,0.3\n1e-2,nan\n", "line 3, column g: must lie in [0, 1), got nan"),
+        ("tau,E\ninf,1e6\n1e-3,-2e6\n", "line 3, column E: must be a finite number >= 0 Pa, got"),
     ],
 )
 def test_a_bad_value_in_a_prony_file_is_named_by_its_row(tmp_path, capsys, text, named):
@@ -30,7 +30,7 @@ def test_a_bad_value_in_a_prony_file_is_named_by_its_row(tmp_path, capsys, text,
     path.write_text(text)
     assert main(["dynamic", "--prony", str(path), "--no-estimate"]) == 2
     said = capsys.readouterr().err
-    assert f"gnan.csv {named}" in said, said
+    assert f"gnan.csv: {named}" in said, said
 
 
 def test_a_study_run_that_radiates_nothing_reflects_nothing(monkeypatch):

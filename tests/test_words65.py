@@ -4,6 +4,8 @@ the words of the route it is read on, names what it is about, and says it once."
 import pytest
 
 from shtaerman.cli.dynamic import ladder_rows
+from shtaerman.fitting.data import measurement
+from shtaerman.theory.profiles import TabulatedIndenter
 from shtaerman.theory.prony_sources import prony_from_csv
 from shtaerman.validation import InputError
 
@@ -36,3 +38,28 @@ def test_a_prony_files_sum_of_g_names_the_file_and_its_lines(tmp_path):
         "sum g_i = 1.1 over lines 3 to 4"
     )
     assert raised.value.parameter == "prony"
+
+
+def _message(call, *args) -> str:
+    with pytest.raises(InputError) as raised:
+        call(*args)
+    return str(raised.value)
+
+
+def test_every_csv_reader_names_a_bad_value_by_its_file_line(tmp_path):
+    """Prony and profile files said 'row N', the fit data 'row N' and the CSV layer 'line N'
+    for the same thing; each is the file's line, 1-based, comments counted (here line 4, the
+    second data row under a comment)."""
+    prony, profile, data = (tmp_path / name for name in ("p.csv", "z.csv", "d.csv"))
+    prony.write_text("tau,g\n# terms\n1e-3,0.3\n1e-2,x\n")
+    profile.write_text("r,z\n# the tip\n0,0\n1e-3,x\n2e-3,2e-3\n")
+    data.write_text("depth [m],force [N]\n# run 1\n1e-3,1\n2e-3,x\n")
+    assert "p.csv: line 4, column g must be a number" in _message(prony_from_csv, prony)
+    assert f"'{profile}' line 4, column z:" in _message(TabulatedIndenter.from_csv, profile)
+    assert f"{data}: line 4: column 'force'" in _message(measurement, "indentation", data)
+
+
+def test_the_apis_profile_arrays_are_named_by_index():
+    """Without a file the first point of an API table was called 'row 2'."""
+    said = _message(TabulatedIndenter, [1e-3, 2e-3, 3e-3], [0.0, 1e-3, 2e-3])
+    assert said.startswith("profile: index 0 (the first) must be the tip r = 0, z = 0")

@@ -92,9 +92,9 @@ class Measurement:
         return len(next(iter(self.columns.values())))
 
     def row(self, index: int) -> str:
-        """How an error names data row ``index`` (0-based): ``row 7``, its file line, or
+        """How an error names data row ``index`` (0-based): ``line 7``, its file line, or
         ``index 0`` for values given in Python."""
-        return f"row {self.lines[index]}" if self.lines is not None else f"index {index}"
+        return f"line {self.lines[index]}" if self.lines is not None else f"index {index}"
 
 
 def parse_units(text: str | None) -> dict[str, str]:
@@ -172,7 +172,7 @@ def _column(
             values[number], what = math.nan, "a number"
         if not math.isfinite(values[number]):
             raise InputError(
-                f"{where}: row {lines[number]}: column {name!r} holds {text!r}, not {what}", "data"
+                f"{where}: line {lines[number]}: column {name!r} holds {text!r}, not {what}", "data"
             )
     return values
 

@@ -101,7 +101,7 @@ def _float(text: str, row: int, column: str, path: Path) -> float:
         value = math.nan
     if not math.isfinite(value):
         raise InputError(
-            f"profile: {str(path)!r} row {row}, column {column}: expected a finite number in m, "
+            f"profile: {str(path)!r} line {row}, column {column}: expected a finite number in m, "
             f"got {text!r}",
             "profile",
         )
@@ -143,7 +143,7 @@ def _read_rows(path: Path) -> tuple[np.ndarray, np.ndarray, list[int]]:
         for name, index in columns.items():
             if index >= len(row):
                 raise InputError(
-                    f"profile: {str(path)!r} row {number}, column {name}: missing", "profile"
+                    f"profile: {str(path)!r} line {number}, column {name}: missing", "profile"
                 )
         values.append([_float(row[columns[n]].strip(), number, n, path) for n in ("r", "z")])
     table = np.array(values, dtype=float).reshape(-1, 2) + 0.0  # -0.0 is the tip 0
@@ -172,8 +172,8 @@ _SMALLEST_R, _LARGEST_R = math.sqrt(sys.float_info.min), math.sqrt(sys.float_inf
 
 def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -> None:
     """A profile table starts at the tip (0, 0) and rises: r and z strictly increasing. Row
-    k is named by ``lines[k]``, its file line (None: k + 2, the rows under a header)."""
-    line = (lambda k: lines[k]) if lines is not None else (lambda k: k + 2)
+    k is named by ``lines[k]``, its file line (None: the API's arrays, by index k)."""
+    line = (lambda k: f"line {lines[k]}") if lines is not None else (lambda k: f"index {k}")
     if r.size < 3:
         raise InputError(f"profile: needs at least 3 rows (r, z), got {r.size}", "profile")
     if r.size > MAX_PROFILE_ROWS:
@@ -186,7 +186,7 @@ def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -
         )
     if r[0] != 0.0 or z[0] != 0.0:
         raise InputError(
-            f"profile: row {line(0)} (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
+            f"profile: {line(0)} (the first) must be the tip r = 0, z = 0, got r = {r[0]:g}, "
             f"z = {z[0]:g}",
             "profile",
         )
@@ -204,7 +204,7 @@ def _check_table(r: np.ndarray, z: np.ndarray, lines: list[int] | None = None) -
         if step.size:
             row = line(int(step[0]) + 1)
             raise InputError(
-                f"profile: column {name} must increase strictly from row to row; row {row} "
+                f"profile: column {name} must increase strictly from row to row; {row} "
                 f"has {name} = {values[step[0] + 1]:g} after {values[step[0]]:g}",
                 "profile",
             )

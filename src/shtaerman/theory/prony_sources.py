@@ -158,8 +158,8 @@ def _rows(text: str, where: str) -> tuple[str, list[tuple[int, float, float]]]:
     return column, [
         (
             k,
-            _number(tau, f"{where} row {k} column tau"),
-            _number(value, f"{where} row {k} column {name}"),
+            _number(tau, f"{where}: line {k}, column tau"),
+            _number(value, f"{where}: line {k}, column {name}"),
         )
         for k, (tau, value) in zip(lines[1:], body[1:], strict=True)
     ]
@@ -173,7 +173,7 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
     for k, tau, _ in terms:
         if not (tau > 0.0 and math.isfinite(tau)):
             raise InputError(
-                f"prony: {where} row {k} column tau: must be > 0 s, got {tau}", "prony"
+                f"prony: {where}: line {k}, column tau: must be > 0 s, got {tau}", "prony"
             )
     if column == "g" and relaxed:
         raise InputError(f"prony: {where}: a g column takes no tau = inf row", "prony")
@@ -194,10 +194,10 @@ def _series_from_rows(column: str, rows: list[tuple[int, float, float]], where: 
         if column == "g"
         else ("E", "be a finite number >= 0 Pa", lambda e: 0.0 <= e < math.inf)
     )
-    for k, _, value in terms:  # named by its row, as a tau is
+    for k, _, value in terms:  # named by its line, as a tau is
         if not valid(value):
             raise InputError(
-                f"prony: {where} row {k} column {name}: must {unit}, got {value}", "prony"
+                f"prony: {where}: line {k}, column {name}: must {unit}, got {value}", "prony"
             )
     if column == "g":
         if not math.fsum(values) < 1.0:  # the series' own refusal names no file
