@@ -63,3 +63,25 @@ def test_the_apis_profile_arrays_are_named_by_index():
     """Without a file the first point of an API table was called 'row 2'."""
     said = _message(TabulatedIndenter, [1e-3, 2e-3, 3e-3], [0.0, 1e-3, 2e-3])
     assert said.startswith("profile: index 0 (the first) must be the tip r = 0, z = 0")
+
+
+def test_the_massless_relaxing_pads_refusal_is_short_and_keeps_its_remedies(capsys):
+    """The longest pad refusal found (massless, Prony) ran to 846 characters: the bisection
+    that finds its remedies and the pad's bound were explained at length. Now the fault, the
+    limit and every remedy (velocity, mass, inertia with a frictionless interface) remain;
+    the values are those of tests/test_relaxed_reach.py (relax64: 0.0278 m/s, 5.44e-5 kg)."""
+    from shtaerman.cli import main
+
+    argv = "dynamic --exponent 1.3 --shape-coefficient 8 --E2 3e6 --nu2 0.49 --mass 0.12"
+    argv += " --velocity 1.5 --thickness 0.012 --density2 0 --prony 0.3:1e-3 --model neo-hookean"
+    assert main(argv.split()) == 2
+    assert capsys.readouterr().err == (
+        "shtaerman: error: --mass, --velocity: 0.12 kg at 1.5 m/s drive the striker to about "
+        "0.00621 m, depth / contact radius 2.32, beyond the 1.2 up to which the finite-strain "
+        "contact converges: lower --velocity to at most about 0.0278 m/s with this striker, "
+        "mass and body, or --mass to at most about 5.44e-05 kg; with a Prony series the depth "
+        "is the relaxing body's quasi-static one, which the run checks; on a pad, which stops "
+        "the striker a little sooner than this depth, a massless body (--density2 0) cannot "
+        "pass it; with inertia (--density2) --interface frictionless runs beyond it with a "
+        "warning\n"
+    )

@@ -161,19 +161,17 @@ IMPACT_MARGIN = 1.3
 is wider by a few per cent)."""
 
 
-PAD_DEPTH = (
-    "; on a pad the depth is the half-space's quasi-static one, with a Prony series its "
-    "relaxed one (an upper bound: the pad stops the striker a little sooner), which "
-)
+PAD_DEPTH = "; on a pad, which stops the striker a little sooner than this depth, "
+"""The words a pad's reach refusal shares: the depth it names is the half-space's, an upper
+bound (with a Prony series the relaxing or the fully relaxed half-space's)."""
 PAD_FRICTION_REACH = (
-    PAD_DEPTH + "a bonded or Coulomb indenter cannot pass; "
+    PAD_DEPTH + "a bonded or Coulomb indenter cannot pass it; "
     "interface='frictionless' runs beyond it with a warning"
 )
 """The end of the refusal of a frictional finite-strain impact on a pad beyond the reach."""
 PAD_MASSLESS_REACH = (
-    PAD_DEPTH + "a massless body (density2=0) cannot pass: it follows the static curve, "
-    "refused there too; with inertia (density2=...) interface='frictionless' "
-    "runs beyond it with a warning"
+    PAD_DEPTH + "a massless body (density2=0) cannot pass it; "
+    "with inertia (density2=...) interface='frictionless' runs beyond it with a warning"
 )
 """The end of the refusal of a massless finite-strain impact on a pad beyond the reach."""
 
@@ -483,16 +481,12 @@ def check_finite_reach(
 
 FULLY_RELAXED = (
     "; with a Prony series the depth and the remedies are the fully relaxed body's (modulus "
-    "g_inf E*), which bound the relaxing body's at every velocity (cautious where it relaxes "
-    "slowly against the impact: the relaxing body's own limit was not found between the fully "
-    "relaxed body's remedy and this impact)"
+    "g_inf E*), an upper bound (the relaxing body's own limit was not found)"
 )
 """The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note,
 where :func:`_tight_remedies` finds no root."""
 TIGHT = (
-    "; with a Prony series the depth is the relaxing body's quasi-static one, which the run "
-    "checks, and a velocity or mass named is the one at which it reaches x/a "
-    f"{MAX_DEPTH_RATIO:g} (by bisection: a slower impact relaxes more)"
+    "; with a Prony series the depth is the relaxing body's quasi-static one, which the run checks"
 )
 """The words a refusal at :func:`check_fully_relaxed`'s depth ends with, before its note,
 naming :func:`_tight_remedies`."""
@@ -524,7 +518,7 @@ def check_fully_relaxed(
     if depth_ratio(indenter, x_relaxed) > MAX_DEPTH_RATIO:
         tight = _tight_remedies(reach, x_relaxed)
         if tight is None:
-            note = FULLY_RELAXED + note.replace("its relaxed one", "its fully relaxed one")
+            note = FULLY_RELAXED + note
             check_reach(indenter, x_relaxed, impact, True, note, layer, waves)
         if depth is None:  # the run's: its headline and shape
             depth = relaxed_depth(law, *impact, prony)
