@@ -85,3 +85,22 @@ def test_the_massless_relaxing_pads_refusal_is_short_and_keeps_its_remedies(caps
         "pass it; with inertia (--density2) --interface frictionless runs beyond it with a "
         "warning\n"
     )
+
+
+def test_a_sweep_key_of_another_kind_names_that_kind_not_a_lookalike(tmp_path):
+    """'estimate' in a finite-strain sweep suggested 'gent_limit' (difflib's ratio 0.56 above
+    its cutoff 0.5); it is the dynamic kind's key. A misspelling keeps its suggestion."""
+    from shtaerman.sweep.spec import SweepError, load_sweep
+
+    path = tmp_path / "s.toml"
+    text = 'name = "s"\nkind = "finite-strain"\n[parameters]\n{}\n[axes]\nmass = [0.5, 0.7]\n'
+    path.write_text(text.format("estimate = false"))
+    with pytest.raises(SweepError) as raised:
+        load_sweep(path)
+    assert "unknown parameter 'estimate' for kind 'finite-strain' (a parameter of kinds " in str(
+        raised.value
+    )
+    assert "'dynamic', 'effects'). Pick one of ['E2'," in str(raised.value)
+    path.write_text(text.format("mas = 0.5"))
+    with pytest.raises(SweepError, match=r"'mas' for kind 'finite-strain' \(did you mean 'mass'"):
+        load_sweep(path)

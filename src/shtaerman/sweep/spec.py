@@ -330,9 +330,15 @@ def _parameter(where: str, key: str, kind: Kind, name: str) -> Parameter:
     if unsupported is not None:
         raise SweepError(f"{where}: {key}: {worded(unsupported, 'file')}")
     if name not in kind.parameters:
+        others = [other.name for other in KINDS.values() if name in other.parameters]
+        hint = (  # a key of another kind is no misspelling: 'estimate' read 'gent_limit'
+            f" (a parameter of kind{'s' * (len(others) > 1)} {', '.join(map(repr, others))})"
+            if others
+            else suggestion(name, kind.parameters)
+        )
         raise SweepError(
-            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}"
-            f"{suggestion(name, kind.parameters)}. Pick one of {sorted(kind.parameters)}"
+            f"{where}: {key}: unknown parameter {name!r} for kind {kind.name!r}{hint}. "
+            f"Pick one of {sorted(kind.parameters)}"
         )
     return kind.parameters[name]
 
