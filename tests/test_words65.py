@@ -5,6 +5,7 @@ import pytest
 
 from shtaerman.cli.dynamic import ladder_rows
 from shtaerman.fitting.data import measurement
+from shtaerman.problem import worded
 from shtaerman.theory.profiles import TabulatedIndenter
 from shtaerman.theory.prony_sources import prony_from_csv
 from shtaerman.validation import InputError
@@ -104,3 +105,35 @@ def test_a_sweep_key_of_another_kind_names_that_kind_not_a_lookalike(tmp_path):
     path.write_text(text.format("mas = 0.5"))
     with pytest.raises(SweepError, match=r"'mas' for kind 'finite-strain' \(did you mean 'mass'"):
         load_sweep(path)
+
+
+def test_the_api_names_the_strikers_field_and_its_own_functions():
+    """sh.dynamic said 'lower shape_coefficient=...' (no keyword of sh.dynamic: a field of
+    PowerLawIndenter) and 'shtaerman impact' (a command) to a Python caller."""
+    import shtaerman as sh
+
+    body = sh.Material(3e6, 0.49, density=0.0)
+    case = dict(model="neo-hookean", estimate=False)
+    with pytest.raises(sh.InputError) as blunt:
+        sh.dynamic(sh.PowerLawIndenter(100.0, 1.1), body, mass=0.7, velocity=3.0, **case)
+    assert str(blunt.value).endswith(
+        "lower PowerLawIndenter(shape_coefficient=...) to at most about 1.15 m^(1-n) with this "
+        "mass, velocity and body"
+    )
+    with pytest.raises(sh.InputError) as shallow:
+        sh.dynamic(sh.PowerLawIndenter(5.0, 1.5), body, mass=1e-50, velocity=3.0, **case)
+    assert (
+        "the linear model is exact there (sh.contact or sh.dynamic without model=...), and so "
+        "is the exact quasi-static impact (sh.impact); raise mass=..." in str(shallow.value)
+    )
+
+
+def test_the_command_line_keeps_its_commands_and_options():
+    said = "(shtaerman impact) takes any; lower shape_coefficient=... or sphere_radius=0.01"
+    assert worded(said, "cli") == (
+        "(shtaerman impact) takes any; lower --shape-coefficient or --sphere-radius 0.01"
+    )
+    assert worded(said, "python") == (
+        "(sh.impact) takes any; lower PowerLawIndenter(shape_coefficient=...) or "
+        "SphereIndenter(radius=0.01)"
+    )

@@ -627,7 +627,7 @@ _LINEAR_FLOOR = (
 )
 _FINITE_FLOOR = (
     "the finite-strain model is run at (its correction, ~5 % of x/a, is below the FE's own "
-    "error there): the linear model is exact there (shtaerman contact or dynamic "
+    "error there): the linear model is exact there (shtaerman contact or shtaerman dynamic "
     "without model=...), and so is the exact quasi-static impact (shtaerman impact)"
 )
 """The reasons of a refusal below the floor of x/a (:func:`_window`): linear, finite strain."""

@@ -665,6 +665,14 @@ _KEYWORDS = {item.name: item.keyword for item in VOCABULARY if item.keyword}
 _NAMED = re.compile(rf"(?<![\w-])({'|'.join(_KEYWORDS)})(?!\w)")
 _REFERENCE = re.compile(r"(?<![^\s(])([A-Za-z]\w*)=('[^']*'|\.\.\.|[\w+-]+(?:\.\w+)*)")
 _LEADING = re.compile(r"(\w+(?:, \w+)*)(?=: )")
+_FIELDS = {
+    "shape_coefficient": "PowerLawIndenter(shape_coefficient={})",
+    "exponent": "PowerLawIndenter(exponent={})",
+    "sphere_radius": "SphereIndenter(radius={})",
+}
+"""Input -> the API's striker field that holds it (no keyword of sh.dynamic and the like)."""
+_COMMAND = re.compile(r"\bshtaerman (impact|contact|dynamic)\b")
+"""A command a message names, which the API calls sh.impact, sh.contact, sh.dynamic."""
 
 
 def worded(
@@ -676,12 +684,18 @@ def worded(
     ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
     ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
     maps an input to its ``table.key``), ``"python"`` keeps it but for the inputs the API
-    names otherwise (``density2`` is the body's ``density``). On the command line the
+    names otherwise (``density2`` is the body's ``density``, ``shape_coefficient=...``
+    ``PowerLawIndenter(shape_coefficient=...)``) and the commands (``shtaerman impact`` is
+    ``sh.impact``). On the command line the
     message's head becomes options only when it names the refusal's declared ``parameter``, a
     keyword of the vocabulary (``friction: ...``, ``mass, velocity: ...``, ``solver 'pardiso'
     ...``): a head that names none (a numerical failure's step, ``fit: ...``, ``level 2: ...``)
     is left as written."""
     if route == "python":
+        message = _REFERENCE.sub(
+            lambda match: _FIELDS[match[1]].format(match[2]) if match[1] in _FIELDS else match[0],
+            _COMMAND.sub(r"sh.\1", message),
+        )
         return _NAMED.sub(lambda match: _KEYWORDS[match[1]], message)
 
     def spoken(match: re.Match) -> str:
