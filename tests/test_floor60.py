@@ -48,7 +48,7 @@ def test_a_finite_impact_below_the_floor_is_refused_before_work(capsys, monkeypa
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and "Traceback" not in err, err
     assert f"below the {MIN_FINITE_DEPTH_RATIO:g} the finite-strain model is run at" in err, err
-    assert "exact there (shtaerman contact or dynamic without --model)" in err, err
+    assert "exact there (shtaerman contact or shtaerman dynamic without --model)" in err, err
     velocity = float(re.search(r"raise --velocity to at least about (\S+) m/s", err)[1])
     assert velocity == 4.95e-12  # x/a 1e-3 at 0.7 kg on the paper's striker and rubber
     density = 0.0 if "0" in argv else entry("density2").default
@@ -130,6 +130,6 @@ def test_a_finite_strain_sweep_case_below_the_floor_names_the_velocity_that_pass
     said = str(refused.value)
     assert "below the 0.001 the finite-strain model is run at" in said, said
     # "drop model" left a finite-strain sweep its default neo-Hookean, refused again (adv60)
-    assert "exact there (shtaerman contact or dynamic without model)" in said, said
+    assert "exact there (shtaerman contact or shtaerman dynamic without model)" in said, said
     velocity = re.search(r"raise velocity to at least about (\S+) m/s", said)[1]
     parse_sweep(head + velocity + "\n[axes]\nmass = [0.7]\n")  # passes

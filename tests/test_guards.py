@@ -195,7 +195,7 @@ def test_a_sphere_past_its_equator_is_one_check_with_one_message(tmp_path):
     )
     with pytest.raises(InputError) as api:
         sh.contact(sphere, rubber, depths=[5e-4, 2e-3], estimate=False)
-    assert str(api.value) == f"depths: {said.format('sphere_radius=...')}"
+    assert str(api.value) == f"depths: {said.format('SphereIndenter(radius=...)')}"
     study = tmp_path / "sphere.toml"
     study.write_text(
         "[indenter]\nsphere_radius = 1e-3\n[half_space]\nE2 = 7.5e6\nnu2 = 0.5\n"
