@@ -4,7 +4,6 @@ word, and a sweep case on a 4 mm pad beyond its thickness reported no warning)."
 
 import contextlib
 import json
-import math
 import re
 
 import numpy as np
@@ -73,14 +72,16 @@ def test_the_command_line_prints_the_warning(capsys):
     assert "far outside small strain" in capsys.readouterr().err
 
 
-def test_a_sweep_case_records_the_warnings_of_its_run():
-    """Beyond the pad's thickness: the same words as the API's, in the case's warnings."""
+def test_a_sweep_case_through_its_pad_is_a_refused_row_in_the_files_words():
+    """Beyond the pad's thickness: the API's refusal in the sweep file's keys (was a warning
+    beside the numbers)."""
     params = get_kind("dynamic").defaults()
     params.update(mass=0.7, velocity=3.0, thickness=1.3e-4, density2=1100.0)
     params.update(mesh_size=0.2, time_steps=50, estimate=False)
     record = execute_case(dynamic_case, 0, params)
-    assert any("reaches the layer's thickness 0.00013 m" in w for w in record["warnings"])
-    assert math.isfinite(record["outputs"]["x_max"])
+    assert record["status"] == "refused" and record["outputs"] == {}, record
+    assert "through the layer's thickness 0.00013 m" in record["error"], record
+    assert "lower velocity to at most " in record["error"], record
 
 
 def test_a_striker_that_never_separates_is_a_one_line_failure(capsys):

@@ -4,7 +4,10 @@ A run that ends outside a limit keeps its numbers and warns (:class:`ValidityWar
 line): the command line prints it, the API issues it, a sweep records it in the case's
 ``warnings``. The limits concern the deepest approach x (m) the run reached:
 
-- on a layer of thickness H: x >= H, a strain beyond 100 %, for every model;
+- on a layer of thickness H: a contact curve's depth x >= H, a strain beyond 100 %, the linear
+  model's own answer (its thin-layer foundation limit is verified so); an impact's approach
+  x >= H is refused instead (:func:`check_within_layer`): the striker would pass through the
+  pad;
 - the depth ratio x/a (a: the exact contact radius at x, Shtaerman's or Sneddon's,
   :func:`depth_ratio`, which measures the strain under the indenter) beyond
   :data:`MAX_DEPTH_RATIO`, where the finite-strain contact has been validated: the linear
@@ -59,6 +62,7 @@ __all__ = [
     "check_reach",
     "check_table_window",
     "check_wave_speed",
+    "check_within_layer",
     "deepest_depth_remedy",
     "depth_ratio",
     "outside_validity",
@@ -298,6 +302,44 @@ def warn_outside_validity(
 
     for sentence in outside_validity(indenter, deepest, thickness, finite, what):
         warnings.warn(sentence, ValidityWarning, stacklevel=caller_stacklevel())
+
+
+def check_within_layer(
+    indenter: Indenter,
+    reached: tuple[float, float | None],
+    impact: tuple[float, float],
+    x_c: float,
+    g_inf: float = 1.0,
+) -> None:
+    """Refuse an impact's approach that reached a layer's thickness, ``reached`` = (depth,
+    thickness; None on the half-space; m): the striker would pass through the pad, which no
+    model describes. The refusal names the velocity and the mass at which the impact's
+    (mass kg, velocity m/s) quasi-static depth on the half-space ``x_c`` (m), with a Prony
+    series the fully relaxed body's, x_c g_inf^(-1/(q+1)), is below the thickness: it bounds
+    the pad's depth from above (the pad is the stiffer body; at the deepest point the
+    impact's energy is at least the static strain energy there); depth ~ (M v0^2)^(1/(q+1)),
+    rounded down ("about", scaled from the depth reached, where a run went deeper than that
+    bound). A contact curve's depths there are the linear model's own answer (the thin
+    layer's foundation limit is checked so) and warn: :func:`outside_validity`."""
+    from .validation import LimitError, bound_text
+
+    deepest, thickness = reached
+    if thickness is None or deepest < thickness:
+        return
+    (mass, velocity), q = impact, tip_exponents(indenter, x_c)[1]
+    bound = x_c * g_inf ** (-1.0 / (q + 1.0))
+    about = "about " if bound < deepest else ""
+    share = (1.0 - 1e-12) * thickness / max(bound, deepest)  # below it, even if no digit is cut
+    slower = bound_text(velocity * share ** ((q + 1.0) / 2.0), "high")
+    lighter = bound_text(mass * share ** (q + 1.0), "high")
+    raise LimitError(
+        f"mass, velocity: {mass:g} kg at {velocity:g} m/s drive the striker to {deepest:.6g} "
+        f"m, through the layer's thickness {thickness:.6g} m: the striker would pass through "
+        f"the pad, which no model describes; lower velocity=... to at most {about}{slower} m/s "
+        f"or mass=... to at most {about}{lighter} kg (there the half-space's quasi-static "
+        "depth, which bounds the pad's, is within it)",
+        "velocity",
+    )
 
 
 def check_reach(

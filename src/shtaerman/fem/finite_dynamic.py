@@ -76,6 +76,7 @@ import numpy as np
 from ..guards import (
     MAX_DEPTH_RATIO,
     check_reach,
+    check_within_layer,
     depth_ratio,
     reach_velocity,
     warn_outside_validity,
@@ -354,7 +355,11 @@ class FiniteImpactSetup:
         if cuts:
             context["retried"] = cut_note(cuts, settings.steps)
         result = _result(columns, mass, context, separation)
-        warn_outside_validity(indenter, result.x_max, self.mesh.get("thickness"), finite=True)
+        relaxed = getattr(self.stepper.system, "prony", None)
+        layer = (result.x_max, self.mesh.get("thickness"))
+        g_inf = 1.0 if relaxed is None else relaxed.g_inf
+        check_within_layer(indenter, layer, (mass, velocity), x_c, g_inf)
+        warn_outside_validity(indenter, result.x_max, None, finite=True)
         return result
 
 

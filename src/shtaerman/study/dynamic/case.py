@@ -22,7 +22,7 @@ from ...fem.finite_dynamic import FiniteImpactSettings
 from ...fem.impact import check_impact_reach, run_impact
 from ...fem.impact_run import ImpactRun
 from ...fem.mesh import HALF_SPACE, Geometry
-from ...guards import warn_outside_validity
+from ...guards import check_within_layer, warn_outside_validity
 from ...theory.impact import ImpactResult, impact_in_floats
 from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
@@ -262,8 +262,11 @@ def run_case(
         say()
         raise
     say()
-    if isinstance(settings, DynamicSettings):  # the rubber's run warns itself
-        warn_outside_validity(indenter, levels.finest.x_max, geometry.thickness, finite=False)
+    if isinstance(settings, DynamicSettings):  # the rubber's run checks itself
+        g_inf = 1.0 if prony is None else prony.g_inf
+        layer = (levels.finest.x_max, geometry.thickness)
+        check_within_layer(indenter, layer, impact, quasi.x_c, g_inf)
+        warn_outside_validity(indenter, levels.finest.x_max, None, finite=False)
     return DynamicCase(velocity, quasi, estimate, levels.finest, levels if ladder else None)
 
 
