@@ -62,9 +62,9 @@ def test_the_velocity_is_lowered_where_the_waves_ask_it_and_light_bodies_keep_al
     assert said.endswith("lower velocity=... to at most 3.22 m/s" + LEFT.format("density")), said
     check_dynamic_impact(BALL, RUBBER, 3000.0, 0.12, 3.22, DynamicSettings())
     everything = "lower velocity=... to at most 5.7 m/s or mass=... to at most 0.039 kg or a "
-    assert _refusal(100.0).endswith(everything + "larger sphere (sphere_radius=...)")
+    assert _refusal(100.0).endswith(everything + "larger sphere (SphereIndenter(radius=...))")
     assert _refusal(0.0, model="neo-hookean").endswith(
-        everything + "larger sphere (sphere_radius=...)"
+        everything + "larger sphere (SphereIndenter(radius=...))"
     )
 
 
