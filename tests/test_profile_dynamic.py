@@ -90,7 +90,14 @@ def test_a_light_sphere_impact_is_the_quasi_static_sphere_impact(density):
     # and it is the sphere: at the same energy Sneddon's P_c is 1.97 % below Hertz's (exact
     # impacts), 65 times the bound above; the FE's (measured -1.956 %) within the same 3e-4
     assert case.result.P_max / paraboloid.P_c - 1 == pytest.approx(-0.0197, abs=3e-4)
-    assert case.result.restitution == pytest.approx(1.0, abs=1e-5)  # measured 1 - e < 2e-7
+    if density == 0:  # no waves
+        assert case.result.restitution == pytest.approx(1.0, abs=1e-5)  # measured 1 - e < 2e-7
+        return
+    # the light body radiates lambda ~ 7e-5: the first-order estimate, exact to O(lambda), within
+    # the coarse mesh's 1.4 % (FEM_NOTES, 0.001 m/s); measured -0.4 %. Its 1e4 refined radii
+    # (71.5 m, below c_s t_y = 501 m) sent the waves back into the ball before: 1 - e < 2e-7
+    estimate = case.estimate.energy_fraction
+    assert case.result.energy_radiated_fraction == pytest.approx(estimate, rel=0.02)
 
 
 @pytest.fixture(scope="module")

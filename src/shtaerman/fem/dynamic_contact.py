@@ -98,6 +98,11 @@ __all__ = [
 
 MAX_DENSE_CORRECTION = 400e6
 """Largest dense W = K_eff^-1 S in bytes; a larger one is refused (InputError)."""
+MAX_DOMAIN = 1e7
+"""Largest domain radius in refined radii (the meshes' tested range)."""
+RUN_DURATIONS = 3.0
+"""The longest dynamic run in quasi-static impact durations t_y (a viscoelastic body's contact
+time)."""
 DYNAMIC_ACCURACY_CHECK = 1e-6
 """Largest accepted componentwise backward error of the scaled effective matrix before the
 stricter fallbacks of :func:`.solver.factorize_scaled`."""
@@ -134,7 +139,8 @@ class DynamicSettings:
     growth : float
         Element size growth per unit distance from the refined zone, in (0, 1].
     domain : float
-        Domain radius / refined radius, in [1e2, 1e7].
+        Domain radius / refined radius, in [1e2, 1e7]; the domain reaches at least as far as
+        the fastest wave travels in the run (:func:`wave_reach`, up to ``MAX_DOMAIN``).
     layer_start : float
         R_a / (c_s t_y), > 1/2: where the absorbing layer starts, and the monitor radius of
         the reflected energy.
@@ -178,7 +184,7 @@ class DynamicSettings:
             raise InputError(f"size must lie in (0, {MAX_SIZE:g}] refined radii, got {self.size!r}")
         if self.growth > 1.0:
             raise InputError(f"growth must lie in (0, 1], got {self.growth!r}")
-        if not 1e2 <= self.domain <= 1e7:
+        if not 1e2 <= self.domain <= MAX_DOMAIN:
             raise InputError(f"domain must lie in [1e2, 1e7] refined radii, got {self.domain!r}")
         if self.layer_start <= 0.5:
             raise InputError(
@@ -216,13 +222,15 @@ class DynamicSettings:
         )
 
 
-def estimate_dofs(settings: DynamicSettings) -> int:
-    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %);
-    the largest int where the sizes underflow."""
+def estimate_dofs(settings: DynamicSettings, domain: float | None = None) -> int:
+    """Dofs of the graded mesh predicted before meshing (fitted to gmsh's output, within ~30 %),
+    ``domain`` its radius in refined radii (None: ``settings.domain``); the largest int where
+    the sizes underflow."""
     h0, g = settings.size, settings.growth
+    domain = settings.domain if domain is None else domain
     try:
         strip = 1.0 / (h0 * g)
-        fan = (math.pi / (g * g)) * math.log(max(settings.domain * g / h0, 2.0))
+        fan = (math.pi / (g * g)) * math.log(max(domain * g / h0, 2.0))
     except ZeroDivisionError:  # a size or growth whose product underflows: no mesh
         return int(sys.float_info.max)
     axis = math.log(max(h0 / settings.axis_size, 1.0)) / 0.1 * 4.0
@@ -301,7 +309,7 @@ def _viscoelastic_extent(
     """
     law = contact_law(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
     slow = sizing_impact(striker.mass, striker.velocity, law, prony, glassy)
-    steps = 3.0 * slow.t_contact / glassy * settings.steps
+    steps = RUN_DURATIONS * slow.t_contact / glassy * settings.steps
     if steps > MAX_STEPS:
         raise InputError(
             f"prony: the viscoelastic impact lasts {slow.t_contact / glassy:.3g} glassy impact "
@@ -367,7 +375,8 @@ def _scales(
     if prony is not None:
         t_y, widest = _viscoelastic_extent(indenter, half_space, striker, prony, settings, t_y)
     refined = settings.margin * widest
-    domain_radius = settings.domain * refined
+    reach = min(wave_reach(c_s, nu, t_y), MAX_DOMAIN * refined)  # capped: radiates ~nothing
+    domain_radius = max(settings.domain * refined, reach)
     layer = AbsorbingLayer(
         start=settings.layer_start * c_s * t_y,
         ramp=settings.layer_ramp * c_s * t_y,
@@ -391,6 +400,19 @@ def _scales(
         has_layer=has_layer,
         longest_t_y=t_y,
     )
+
+
+def wave_reach(shear_wave_speed: float, poisson_ratio: float, t_y: float) -> float:
+    """How far in m the fastest wave travels in the longest run (``RUN_DURATIONS`` t_y, t_y in
+    s): c_p, or c_s (m/s) at nu = 0.5 (the pressure then is instantaneous, no wave); 0
+    without waves (c_s inf: a massless body). No wave reaches a far arc this far out during
+    the run: none comes back to the contact or inside R_a."""
+    if not math.isfinite(shear_wave_speed):
+        return 0.0
+    ratio = 1.0
+    if poisson_ratio < 0.5:
+        ratio = math.sqrt(2.0 * (1.0 - poisson_ratio) / (1.0 - 2.0 * poisson_ratio))
+    return RUN_DURATIONS * ratio * shear_wave_speed * t_y
 
 
 def _relaxed_rayleigh_speed(half_space: Material, rho: float, prony: PronySeries | None) -> float:
@@ -665,7 +687,8 @@ def check_dynamic_impact(
         check_wave_speed(impact, waves, rho, tip_exponents(indenter, qs.x_c)[1], at, reach)
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     if thickness is None:
-        return rho, striker, scales, estimate_dofs(settings)
+        domain = scales.domain_radius / scales.refined  # at least the waves' reach
+        return rho, striker, scales, _checked_estimate(estimate_dofs(settings, domain), settings)
     try:
         estimate = layer_dofs(settings, thickness, scales.refined, scales.domain_radius)
     except LimitError as error:  # the thickness range: the velocity that fits it too
@@ -829,7 +852,7 @@ def prepare_dynamic_impact(
     stats["smallest_size"] = settings.size * scales.refined  # sizes (counts) and geometry (m)
     return DynamicImpactSetup(
         problem=problem,
-        duration=3.0 * scales.longest_t_y,
+        duration=RUN_DURATIONS * scales.longest_t_y,
         tail_time=settings.tail * scales.inner_radius / scales.slowest_rayleigh_speed,
         force_exponent=scales.quasi_static.force_exponent,
         reflection_measured=settings.tail > 0
