@@ -159,6 +159,11 @@ class DynamicResult:
             for key in DYNAMIC_KEYS
             if not _finite(self.dynamic.get(key))
         }
+        radiated = self.dynamic.get("energy_radiated_fraction")
+        if "dynamic.reflected_energy_fraction" in out and _finite(radiated):
+            from ..study.dynamic.loader import unmeasured_reflection
+
+            out["dynamic.reflected_energy_fraction"] = unmeasured_reflection(radiated)
         for key in (key for key in SECTIONS if getattr(self, key) is None):
             out[key] = self._section_reason(key, elastic, massless)
         for part, keys in PARTS.items():

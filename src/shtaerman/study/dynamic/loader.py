@@ -65,6 +65,7 @@ __all__ = [
     "dynamic_check_failures",
     "energy_checks",
     "load_dynamic",
+    "unmeasured_reflection",
 ]
 
 
@@ -423,11 +424,12 @@ def energy_checks(
     its energy balance error (of M v0^2/2) and, where the body ``reflects`` (it has waves),
     the energy reflected back by the far boundary (of the radiated energy; ``of`` names the
     reference, M v0^2/2 on a layer). With ``radiated`` (1 - e^2, of M v0^2/2) a reflection of
-    the radiated energy below :data:`NEGLIGIBLE_REFLECTION` of M v0^2/2 counts as none."""
+    the radiated energy below :data:`NEGLIGIBLE_REFLECTION` of M v0^2/2 counts as none, and so
+    does any (nan: 0/0) where less was radiated; one not measured (nan) of more fails."""
     limits = DynamicTolerances() if tolerances is None else tolerances
     if radiated is not None and of == "the radiated":  # nothing radiated: noise or 0/0
-        counted = radiated > NEGLIGIBLE_REFLECTION and reflected * radiated > NEGLIGIBLE_REFLECTION
-        reflected = reflected if counted else 0.0
+        if not radiated > NEGLIGIBLE_REFLECTION or reflected * radiated <= NEGLIGIBLE_REFLECTION:
+            reflected = 0.0
     checks = [Check(f"energy balance{where}", balance, limits.energy_balance)]
     if reflects:
         checks.append(Check(f"reflected energy{where}", reflected, limits.reflected))
@@ -441,9 +443,23 @@ FAILED = {
     "reflected energy": "reflected energy {value:.1e} of {of} exceeds {tolerance:g}: the far "
     "boundary sends the waves back to the contact: absorb them further out (domain_factor=..."
     " or layer_rate=...)",
+    "reflected energy nan": "reflected energy not measured, of a striker that radiated: no "
+    "tail was stepped after separation (tail 0) or R_a = layer_start c_s t_y lay beyond half "
+    "the domain: set tail > 0 or raise domain_factor=...",
 }
 """The reason of each failed :func:`energy_checks` check, on the routes that state them, with the
 inputs that cure it in Python's words (:func:`shtaerman.problem.worded` spells them per route)."""
+
+
+def unmeasured_reflection(radiated: float) -> str:
+    """Why the reflected energy (of the radiated) of an impact that radiated ``radiated`` of
+    M v0^2/2 (1 - e^2) is nan."""
+    if radiated > NEGLIGIBLE_REFLECTION:
+        return FAILED["reflected energy nan"].replace("=...", "")
+    return (
+        f"nothing radiated (1 - e^2 below {NEGLIGIBLE_REFLECTION:g}): its reflected share is "
+        "noise or 0/0, counted as none"
+    )
 
 
 def dynamic_check_failures(
@@ -452,8 +468,11 @@ def dynamic_check_failures(
     """What a dynamic run fails of the studies' own checks (:func:`energy_checks` with the
     default tolerances), one reason each; [] when both hold (NaN fails)."""
     checks = energy_checks(balance, reflected, of=of, radiated=radiated)
+    unmeasured = {"reflected energy": "reflected energy nan"} if reflected != reflected else {}
     return [
-        FAILED[check.name].format(value=check.value, tolerance=check.tolerance, of=of)
+        FAILED[unmeasured.get(check.name, check.name)].format(
+            value=check.value, tolerance=check.tolerance, of=of
+        )
         for check in checks
         if not check.passed
     ]
