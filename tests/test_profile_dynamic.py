@@ -202,6 +202,35 @@ def test_sh_dynamic_solves_the_profiles_quasi_static_impact_once():
     assert calls == {"solve_profile_impact": 1, "force_rate_squared_integral": 1}
 
 
+def test_a_viscoelastic_sphere_case_solves_its_elastic_impact_once(monkeypatch):
+    """With a Prony series the quasi-static viscoelastic impact took its step from the elastic
+    t_c, which it solved again: in the run's sizing (once per ladder level) and in the twice-run
+    reference, 4 solves of the sphere's quadrature here (measured on the old code). The sizing
+    takes t_c = t_y / 2 of the case's impact, the reference the case's own t_c: 1 solve. Every
+    solve finds its a_c once (``_maximum_radius``: counted there, wherever the solve is bound).
+    The reference's steps are cut to 40 per t_c (its 2000 cost 4 s): the count is the same."""
+    from unittest import mock
+
+    from shtaerman.study.dynamic import case
+    from shtaerman.theory import profile_impact, viscoelastic
+
+    monkeypatch.setattr(case, "REFERENCE_STEPS", 40)
+    body = sh.Material(3e6, 0.49, 1000.0)
+    inputs = dict(mass=0.12, velocity=1.5, prony="0.3:1e-3", estimate=False)
+    solve = mock.patch.object(
+        profile_impact, "_maximum_radius", wraps=profile_impact._maximum_radius
+    )
+    run = mock.patch.object(viscoelastic, "_integrate", wraps=viscoelastic._integrate)
+    with solve as solves, run as runs:
+        result = sh.dynamic(BALL, body, mesh_size=0.2, time_steps=50, **inputs)
+    assert solves.call_count == 1
+    # the sizing (100 steps per t_c) and the reference (40, 20) step by the case's own t_c,
+    # to the bit (t_y / 2 = t_c exactly; the old sizing's, solved at E2 / (1 - nu2^2), was
+    # 2.2e-13 off, its E* an ulp from the case's 1 / ((1 - nu2^2) / E2))
+    t_c = result.quasi_static["t_c"]
+    assert sorted(call.args[4] for call in runs.call_args_list) == [t_c / 100, t_c / 40, t_c / 20]
+
+
 def test_a_fast_sphere_impact_warns_of_the_quasi_static_validity_once():
     """Its two solves each warned that 6 m/s exceeds the theory's 5 m/s: the same warning
     twice on the command line and in ``sh.dynamic``; once, with one solve. Light body

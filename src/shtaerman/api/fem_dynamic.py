@@ -86,7 +86,7 @@ def _viscoelastic(
     Prony series, no estimate)."""
     from ..study.dynamic.case import viscoelastic_compare, viscoelastic_reference
 
-    reference = viscoelastic_reference(problem)
+    reference = viscoelastic_reference(problem, case.quasi.t_c)
     if reference is None:
         return None, None, None
     differences = viscoelastic_compare(reference, case.result)

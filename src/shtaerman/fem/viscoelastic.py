@@ -345,8 +345,8 @@ def sizing_impact(
     """The coarse quasi-static viscoelastic impact (100 steps per t_c) that sizes a run.
 
     ``law`` is the elastic contact at the glassy modulus and ``glassy`` its impact duration t_y
-    in s; SI units. The integration stops at :data:`MAX_GLASSY_DURATIONS` t_y, so its cost is
-    bounded whatever the series.
+    in s (its t_c = t_y / 2 is not solved again); SI units. The integration stops at
+    :data:`MAX_GLASSY_DURATIONS` t_y, so its cost is bounded whatever the series.
 
     Raises
     ------
@@ -357,7 +357,9 @@ def sizing_impact(
     try:
         with warnings.catch_warnings():  # of a fast impact: its run's caller warns, once
             warnings.simplefilter("ignore", QuasiStaticValidityWarning)
-            return viscoelastic_impact(mass, velocity, law, prony, steps=100, longest=longest)
+            return viscoelastic_impact(
+                mass, velocity, law, prony, steps=100, longest=longest, t_c=0.5 * glassy
+            )
     except NumericalFailureError:
         pass
     smallest = MAX_GLASSY_DURATIONS ** -(law.force_exponent + 1.0)  # the relaxed impact's g_inf

@@ -792,6 +792,7 @@ def viscoelastic_impact(
     *,
     steps: int = 2000,
     longest: float | None = None,
+    t_c: float | None = None,
 ) -> ViscoelasticImpact:
     """The quasi-static impact M x'' = -P(t), x(0) = 0, x'(0) = v0, on the viscoelastic
     half-space: Lee-Radok while x grows, Ting while it falls, until P = 0.
@@ -813,6 +814,9 @@ def viscoelastic_impact(
     longest : float, optional
         Contact time in s after which the integration gives up (NumericalFailureError); by
         default :data:`MAX_DURATION` relaxed impact durations.
+    t_c : float, optional
+        The glassy t_c in s (:func:`elastic_impact` on ``law``) when already solved; solved
+        here otherwise.
 
     Returns
     -------
@@ -822,8 +826,9 @@ def viscoelastic_impact(
     velocity = validate_positive("velocity", velocity, "m/s")
     if isinstance(steps, bool) or not isinstance(steps, int | np.integer) or steps < 20:
         raise InputError(f"steps must be an integer >= 20 per t_c, got {steps!r}", "steps")
-    t_c = elastic_impact(mass, velocity, law).t_c
-    h = t_c / int(steps)
+    if t_c is None:
+        t_c = elastic_impact(mass, velocity, law).t_c
+    h = validate_positive("t_c", t_c, "s") / int(steps)
     # in t_c; a profile's at its tip's q (the relaxed impact is shallower: nearer the tip)
     relaxed_duration = 2.0 * prony.g_inf ** (-1.0 / (law.force_exponent + 1.0))
     limit = math.ceil(MAX_DURATION * relaxed_duration * steps)

@@ -28,7 +28,12 @@ from ...theory.materials import RIGID, Material, effective_modulus
 from ...theory.profile_impact import ProfileImpactResult
 from ...theory.radiation import RadiationEstimate, impact_radiation
 from ...theory.sneddon import Indenter, contact_law
-from ...theory.viscoelastic import PronySeries, rigid_impact, viscoelastic_impact
+from ...theory.viscoelastic import (
+    PronySeries,
+    elastic_impact,
+    rigid_impact,
+    viscoelastic_impact,
+)
 from ...validation import NumericalFailureError
 from ..richardson import Estimate
 from .accuracy import ImpactLadder, check_ladder, run_ladder
@@ -71,7 +76,7 @@ VISCOELASTIC_COMPARED = ("x_max", "P_max", "t_contact", "restitution")
 """The viscoelastic reference's quantities compared with the dynamic FE impact's."""
 
 
-def viscoelastic_reference(problem: Problem) -> dict[str, Any] | None:
+def viscoelastic_reference(problem: Problem, t_c: float | None = None) -> dict[str, Any] | None:
     """The quasi-static impact of ``problem``'s striker on its viscoelastic half-space
     (Lee-Radok while loading, Ting while unloading:
     :func:`shtaerman.theory.viscoelastic.viscoelastic_impact`), what its massless FE impact
@@ -84,14 +89,17 @@ def viscoelastic_reference(problem: Problem) -> dict[str, Any] | None:
     nu2 < 0.5 with an elastic bulk, or a rubber at finite strain, have it as the small-strain
     incompressible reference); ``small_strain`` True for a rubber at finite strain. The
     interface (bonded, Coulomb) and a layer's base are not in it: it is the frictionless
-    half-space's, as ``quasi_static``."""
+    half-space's, as ``quasi_static``. ``t_c`` (s) is the case's elastic impact's, when solved
+    (the glassy one: the two runs share it, not solve it)."""
     prony = problem.body.prony
     if prony is None:
         return None
     striker, material = problem.striker, problem.body.material
     assert striker.mass is not None
     law = contact_law(striker.indenter, effective_modulus(RIGID, material))
-    run = partial(viscoelastic_impact, striker.mass, striker.velocity, law, prony)
+    if t_c is None:
+        t_c = elastic_impact(striker.mass, striker.velocity, law).t_c
+    run = partial(viscoelastic_impact, striker.mass, striker.velocity, law, prony, t_c=t_c)
     fine, coarse = run(steps=REFERENCE_STEPS), run(steps=REFERENCE_STEPS // 2)
     change = max(abs(getattr(coarse, k) / getattr(fine, k) - 1) for k in VISCOELASTIC_COMPARED)
     keys = ("x_max", "P_max", "t_x_max", "t_contact", "v_out", "restitution")
