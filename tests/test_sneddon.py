@@ -109,6 +109,34 @@ def test_the_impact_on_a_tabulated_paraboloid_is_the_ateb_solution():
     np.testing.assert_allclose(ours.P, theirs.P, rtol=0, atol=1e-10 * ateb.P_c)
 
 
+def test_the_radiation_integral_reuses_the_clocks_sneddon_integrals():
+    """Int (dP/dt)^2 dt (the radiation estimate's) ran Sneddon's integrals (delta, P, and
+    delta' of G' and G'') again at the very nodes of the clock (t_c's quadrature): 4 more
+    passes over the table's pieces, each O(nodes x rows) (2.1 of the 2000-row z = 5 r^1.5
+    table's 4.7 CPU s at a_c = 0.0139 m; 9 passes in all on the old code). It now takes the
+    clock's values: 4 passes for both. On a tabulated paraboloid (G linear in r^2: the law
+    exact) it is the power law's closed form (:func:`.radiation.radiation_estimate`) to
+    round-off: 0 measured before and 2.2e-16 after (one ulp), held to 1e-13."""
+    from unittest import mock
+
+    from shtaerman.theory import sneddon
+    from shtaerman.theory.radiation import radiation_estimate
+
+    hertz = sh.PowerLawIndenter.sphere(RADIUS)
+    r = np.linspace(0.0, 0.05, 101)
+    quadrature = solve_profile_impact(
+        0.7, 3.0, SneddonContact(TabulatedIndenter(r, hertz.profile(r)), MODULUS)
+    )
+    spy = mock.patch.object(sneddon, "_piece_integral", wraps=sneddon._piece_integral)
+    with spy as passes:
+        assert quadrature.t_c > 0.0
+        rate = quadrature.force_rate_squared_integral
+    assert passes.call_count == 4
+    law = PowerLawContact(hertz, MODULUS)
+    closed = radiation_estimate(0.7, 3.0, law.beta, law.force_exponent, 1100.0, 2.5e6, 0.5)
+    assert rate == pytest.approx(closed.force_rate_squared_integral, rel=1e-13)
+
+
 def test_the_impact_on_a_sphere_agrees_with_the_ode_and_tends_to_hertz():
     law = SneddonContact(SphereIndenter(RADIUS), MODULUS)
     result = solve_profile_impact(0.7, 3.0, law)

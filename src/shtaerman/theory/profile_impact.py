@@ -72,9 +72,19 @@ class _Cumulative:
 
     @classmethod
     def of(cls, ends: np.ndarray, integrand) -> _Cumulative:
+        return cls.fit(ends, integrand(cls.nodes(ends)))
+
+    @staticmethod
+    def nodes(ends: np.ndarray) -> np.ndarray:
+        """The Gauss nodes of the panels between ``ends``, (panels, nodes)."""
         half = 0.5 * np.diff(ends)
-        x = 0.5 * (ends[:-1] + ends[1:])[:, None] + half[:, None] * NODES  # (panels, nodes)
-        fit = legendre.legfit(NODES, integrand(x).T, NODES.size - 1)  # on [-1, 1] per panel
+        return 0.5 * (ends[:-1] + ends[1:])[:, None] + half[:, None] * NODES
+
+    @classmethod
+    def fit(cls, ends: np.ndarray, values: np.ndarray) -> _Cumulative:
+        """From f at :meth:`nodes` (``values``, (panels, nodes))."""
+        half = 0.5 * np.diff(ends)
+        fit = legendre.legfit(NODES, values.T, NODES.size - 1)  # on [-1, 1] per panel
         anti = legendre.legint(fit, lbnd=-1.0) * half  # Int_-1^y, scaled to x
         totals = np.concatenate([[0.0], np.cumsum(legendre.legval(1.0, anti))])
         return cls(ends, anti, totals)
@@ -100,11 +110,14 @@ def _panels(law: SneddonContact, top: float, to_the_equator: bool = False) -> np
     return ends
 
 
-def _work(law: SneddonContact, a: ArrayLike, below: ArrayLike) -> np.ndarray:
+def _work(
+    law: SneddonContact, a: ArrayLike, below: ArrayLike, delta: np.ndarray | None = None
+) -> np.ndarray:
     """W(a) = P delta - E* (a delta^2 - Int_0^a delta^2) in J at contact radii a (m), with
-    ``below`` = Int_0^a delta^2 (m^3)."""
+    ``below`` = Int_0^a delta^2 (m^3) (and ``delta`` = delta(a) in m, when known)."""
     a = np.asarray(a, dtype=float)
-    delta, force = law.depth(a), law.force_at_radius(a)
+    delta = law.depth(a) if delta is None else delta
+    force = law.force_at_radius(a)
     return force * delta - law.modulus * (a * delta**2 - below)
 
 
@@ -252,32 +265,34 @@ class ProfileImpactResult:
         return np.union1d(np.linspace(0.0, 1.0, PANELS + 1), ends)
 
     @cached_property
-    def _clock(self) -> tuple[_Cumulative, _Cumulative]:
+    def _clock(self) -> tuple[_Cumulative, _Cumulative, np.ndarray]:
         """t_c - t(u) (s, the time still to reach a_c) and Int_u^1 delta^2 da (m^3), both on
-        the u panels; the second gives W at the first's nodes."""
-        law, a_c = self.law, self.a_c
-        squares = _Cumulative.of(
-            self._u_ends, lambda u: 2.0 * a_c * u * law.depth(a_c * (1.0 - u**2)) ** 2
-        )
-        whole = float(squares(1.0))
-
-        def rate(u: np.ndarray) -> np.ndarray:  # dt/du = 2 a_c u delta'(a) / v(a), finite at 0
-            a = a_c * (1.0 - u**2)
-            slope, speed = law.depth_slope(a), self._speed(a, whole - squares(u))
-            return 2.0 * a_c * u * slope / speed
-
-        return _Cumulative.of(self._u_ends, rate), squares
+        the u panels (the second gives W at the first's nodes), and a^2 v da/du delta'(a)
+        (m^4/s) at their nodes, the radiation's integrand: Sneddon's integrals (delta, P,
+        delta') run once at the nodes for all three, each over the table's pieces."""
+        law, a_c, ends = self.law, self.a_c, self._u_ends
+        u = _Cumulative.nodes(ends)
+        a = a_c * (1.0 - u**2)
+        delta = law.depth(a)
+        squares = _Cumulative.fit(ends, 2.0 * a_c * u * delta**2)
+        speed = self._speed(a, float(squares(1.0)) - squares(u), delta)
+        slope = 2.0 * a_c * u * law.depth_slope(a)  # da/du delta'(a) = dx/du
+        # dt/du = dx/du / v(a), finite at u = 0 (v ~ u there)
+        return _Cumulative.fit(ends, slope / speed), squares, a**2 * speed * slope
 
     def speed(self, a: ArrayLike) -> np.ndarray:
         """|dx/dt| in m/s at contact radii a in [0, a_c] m."""
         a = np.asarray(a, dtype=float)
-        _, squares = self._clock
+        _, squares, _ = self._clock
         below = float(squares(1.0)) - squares(np.sqrt(np.clip(1.0 - a / self.a_c, 0.0, 1.0)))
         return self._speed(a, below)
 
-    def _speed(self, a: np.ndarray, below: ArrayLike) -> np.ndarray:
-        """|dx/dt| in m/s at contact radii a (m) where Int_0^a delta^2 = ``below`` (m^3)."""
-        work = _work(self.law, a, below)
+    def _speed(
+        self, a: np.ndarray, below: ArrayLike, delta: np.ndarray | None = None
+    ) -> np.ndarray:
+        """|dx/dt| in m/s at contact radii a (m) where Int_0^a delta^2 = ``below`` (m^3)
+        (and the depth is ``delta`` m, when known)."""
+        work = _work(self.law, a, below, delta)
         return np.sqrt(np.clip(self.velocity**2 - 2.0 * work / self.mass, 0.0, None))
 
     @property
@@ -302,16 +317,11 @@ class ProfileImpactResult:
 
         dP/dt = 2 E* a v (dP/da = 2 E* a delta'(a), da/dt = v / delta'(a)) and dt = delta' da / v,
         so compression and restitution each give 4 E*^2 Int_0^a_c a^2 v delta'(a) da, here on
-        the u panels (a = a_c (1 - u^2): v ~ u at a_c, a smooth integrand).
+        the u panels (a = a_c (1 - u^2): v ~ u at a_c, a smooth integrand), from the values the
+        clock's quadrature found at their nodes.
         """
-        a_c, law = self.a_c, self.law
-
-        def integrand(u: np.ndarray) -> np.ndarray:
-            a = a_c * (1.0 - u**2)
-            return a**2 * self.speed(a) * law.depth_slope(a) * 2.0 * a_c * u
-
-        whole = _Cumulative.of(self._u_ends, integrand)
-        return 8.0 * law.modulus**2 * float(whole(1.0))
+        whole = _Cumulative.fit(self._u_ends, self._clock[2])
+        return 8.0 * self.law.modulus**2 * float(whole(1.0))
 
     @property
     def impulse_simpson(self) -> float:
@@ -322,7 +332,7 @@ class ProfileImpactResult:
     def _u_at(self, left: np.ndarray) -> np.ndarray:
         """u at which the time still to reach a_c is ``left`` (s): bisection on the monotone
         interpolant t_c - t(u) (60 halvings: to round-off)."""
-        clock, _ = self._clock
+        clock, _, _ = self._clock
         low, high = np.zeros_like(left), np.ones_like(left)
         for _ in range(60):
             middle = 0.5 * (low + high)
