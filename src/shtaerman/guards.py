@@ -851,6 +851,7 @@ def check_profile_reach(
         Naming ``depths`` where they were given, else ``sphere_radius`` or ``profile``; for a
         power law the mass and velocity, or the shape coefficient.
     """
+    from .theory.profile_impact import lower_impact
     from .theory.viscoelastic import elastic_impact
     from .validation import InputError, LimitError
 
@@ -880,7 +881,8 @@ def check_profile_reach(
         refusal = f"{parameter}: {'' if said else drive + ': '}{text}"
         if depths is None:  # overshoot x_c past the table's end, x_c within it
             end = float(law.depth(law.max_contact_radius))
-            refusal += " or " + _within_end(indenter, end, deepest, impact, overshoot)
+            share = _end_share(indenter, end, deepest, overshoot)
+            refusal += " or " + lower_impact(*impact, share)
         raise LimitError(refusal, parameter) from None  # beyond the table: its case's limit
 
 
@@ -1184,20 +1186,6 @@ def _end_share(indenter: Indenter, end: float, deepest: float, overshoot: float)
     below = law.contact_radius(end / overshoot)
     now = law.contact_radius(deepest / overshoot)
     return math.log(work_to(law, below)) - math.log(work_to(law, now))
-
-
-def _within_end(
-    indenter: Indenter,
-    end: float,
-    deepest: float,
-    impact: tuple[float, float],
-    overshoot: float,
-) -> str:
-    """The lower velocity and mass (kg, m/s) that bring ``overshoot`` times x_c, now
-    ``deepest`` m, to the depth ``end`` (m) of the profile (:func:`_end_share`)."""
-    from .theory.profile_impact import lower_impact
-
-    return lower_impact(*impact, _end_share(indenter, end, deepest, overshoot))
 
 
 def _striker_at_fault(
