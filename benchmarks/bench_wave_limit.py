@@ -5,10 +5,10 @@ run past it).
 Run ``python benchmarks/bench_wave_limit.py [STRIKER ...] [--lambdas 0.2,0.3,...]
 [--at-limit] [--estimate] [--quick]`` (default: every striker at lambda 0.05 to 0.9 by 0.05,
 the default mesh, ``--no-estimate``; ~2 CPU s a run, ~500 runs; ``--at-limit``: each at 0.99
-of guards.wave_limit of its tip's force exponent, where the guard's remedies land;
+of guards.wave_limit of its tip's force exponent and nu2, where the guard's remedies land;
 ``--estimate``: the estimate ladder's three meshes; ``--quick``: mesh_size 0.1 and 60 steps
 per t_y). For each striker the velocity (or, where the striker's options give one, the
-density2) that puts lambda (:func:`shtaerman.fem.dynamic_contact.radiated_fraction`) at each
+density2) that puts lambda (:class:`shtaerman.fem.dynamic_contact.RadiatedFraction`) at each
 target is run with ``shtaerman dynamic --json``: per run the force exponent q at x_c (2 E* a_c
 x_c / P_c), nu2, the option set, v0 / c_s, x/a, lambda, the FE's restitution, energy balance
 error and reflected fraction, the exit code (1: a check failed, the balance or the reflected
@@ -29,7 +29,7 @@ import warnings
 
 import shtaerman.guards
 from shtaerman.cli import main as cli
-from shtaerman.fem.dynamic_contact import radiated_fraction
+from shtaerman.fem.dynamic_contact import RadiatedFraction
 from shtaerman.theory.indenter import PowerLawIndenter
 from shtaerman.theory.materials import Material
 from shtaerman.theory.profiles import SphereIndenter
@@ -38,7 +38,17 @@ LIMIT = shtaerman.guards.wave_limit
 """The guard's limit, kept before :func:`main` lifts it."""
 SOFT = ["--E2", "1e7", "--density2", "1000", "--mass", "0.1"]
 """The body and mass of session 59's blunt strikers (z = 10 r^2 failed from lambda 0.52)."""
-SHAPES = {1.5: 5.0, 1.75: 7.0, 2.0: 10.0, 2.5: 20.0, 3.0: 50.0, 3.25: 70.0, 3.5: 100.0, 4.0: 200.0}
+SHAPES = {
+    1.5: 5.0,
+    1.75: 7.0,
+    2.0: 10.0,
+    2.5: 20.0,
+    3.0: 50.0,
+    3.25: 70.0,
+    3.5: 100.0,
+    4.0: 200.0,
+    4.5: 400.0,
+}
 """A of z = A r^n on :data:`SOFT` (x/a 1e-6 to 1 over the scans)."""
 BALL = ["--sphere-radius", "0.05", "--mass", "0.012", "--E2", "3e6", "--density2", "1000"]
 """user56's 12 g ball R = 50 mm on 3 MPa (refused at 60 m/s; its remedies failed)."""
@@ -73,15 +83,20 @@ STRIKERS = {
     **{f"n{n:g}-nu0.3": _power(n, "--nu2", "0.3") for n in (1.75, 2.0, 2.5, 3.0, 3.25, 3.5)},
     **{f"n{n:g}-nu{nu}": _power(n, "--nu2", nu)
        for n in (1.75, 2.0, 2.5, 3.0, 3.5) for nu in ("0.45", "0.49", "0.499")},
+    **{f"n{n:g}-nu0.4999": _power(n, "--nu2", "0.4999") for n in (1.75, 2.0, 2.5, 3.0, 3.5)},
     "n2-heavy": [*_power(2.0), "--mass", "1"],
     **{f"n4-density{nu}": [*_power(4.0, "--velocity", "0.1"), "--nu2", nu]
-       for nu in ("0", "0.3", "0.49", "0.5")},
+       for nu in ("0", "0.3", "0.45", "0.49", "0.499", "0.5")},
+    **{f"n4.5-density{nu}": [*_power(4.5, "--velocity", "0.1"), "--nu2", nu]
+       for nu in ("0.45", "0.49", "0.499")},
     "n5": ["--exponent", "5", "--shape-coefficient", "1000"],  # 0.7 kg, 7.5 MPa
-    **{f"n5-density{nu}": _blunt(5.0, 1e3, nu) for nu in ("0", "0.49", "0.5")},
-    **{f"n10-density{nu}": _blunt(10.0, 1e6, nu) for nu in ("0", "0.49", "0.5")},
+    **{f"n5-density{nu}": _blunt(5.0, 1e3, nu) for nu in ("0", "0.45", "0.49", "0.499", "0.5")},
+    **{f"n10-density{nu}": _blunt(10.0, 1e6, nu) for nu in ("0", "0.45", "0.49", "0.499", "0.5")},
     "ball": BALL,
     "ball-nu0.3": [*BALL, "--nu2", "0.3"],
     "ball-nu0": [*BALL, "--nu2", "0"],
+    **{f"ball-nu{nu}": [*BALL, "--nu2", nu] for nu in ("0.45", "0.49", "0.499")},
+    "ball-equator": ["--sphere-radius", "0.01", *STRIKER_28, "--velocity", "5.5"],  # user64b
     "ball-deep": ["--sphere-radius", "0.005", *SOFT[:2], "--density2", "3.3e4", *SOFT[4:]],
     **{f"pad-n{n:g}-H{h:g}": _pad(n, h, "--velocity", "1.5")
        for n in (1.3, 1.5, 2.0, 3.0) for h in (3, 12, 48)},
@@ -115,7 +130,7 @@ def fraction_of(argv: list[str]):
         Material(option(argv, "E2", 7.5e6), option(argv, "nu2", 0.5)),
         option(argv, "mass", 0.7),
     )
-    return lambda velocity, density: radiated_fraction(indenter, body, density)(mass, velocity)
+    return lambda velocity, density: RadiatedFraction(indenter, body, density)(mass, velocity)
 
 
 def setting(argv: list[str], target: float) -> list[str]:
@@ -184,7 +199,7 @@ def scan(name: str, lambdas: list[float], extra: list[str]) -> tuple[float, floa
 
 
 def main() -> None:
-    shtaerman.guards.wave_limit = lambda q: math.inf  # run past the guard
+    shtaerman.guards.wave_limit = lambda *_: math.inf  # run past the guard
     args = sys.argv[1:]
     lambdas = LAMBDAS
     if "--lambdas" in args:
@@ -198,7 +213,10 @@ def main() -> None:
     summary = []
     for name in names:
         if "--at-limit" in args:  # where the guard's remedies land
-            lambdas = [round(0.99 * LIMIT(tip_exponent(STRIKERS[name])), 5)]
+            argv = STRIKERS[name]
+            power_law = "--sphere-radius" not in argv  # the bench's tables: none
+            limit = LIMIT(tip_exponent(argv), option(argv, "nu2", 0.5), power_law)
+            lambdas = [round(0.99 * limit, 5)]
         summary.append((name, *scan(name, lambdas, extra)))
     print(f"\n{'striker':11} {'passes to':>9} {'fails at':>8}")
     for name, passed, failed in summary:

@@ -40,7 +40,7 @@ def run(argv: list[str]) -> tuple[int, dict]:
 
 
 def main() -> None:
-    shtaerman.guards.wave_limit = lambda q: math.inf  # run past the guard
+    shtaerman.guards.wave_limit = lambda *_: math.inf  # run past the guard
     coarse = ["--mesh-size", "0.1", "--time-steps", "60"] if "--quick" in sys.argv else []
     print(f"{'case':28} {'v0/c_s':>7} {'x/a':>5} {'lambda':>7} {'e_est':>6} {'e':>6} "
           f"{'radiated':>8} {'balance':>8} {'reflected':>9} exit")  # fmt: skip

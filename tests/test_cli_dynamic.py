@@ -95,7 +95,7 @@ def test_a_run_that_fails_its_energy_balance_says_so_and_exits_1(capsys, monkeyp
     # a striker far lighter than the rubber it touches: the mesh and steps sized from the
     # quasi-static impact cannot resolve it (e > 1, balance error ~5); not a silent success.
     # The wave speed guard refuses it before any mesh (exit 2): lifted to reach the run's check
-    monkeypatch.setattr("shtaerman.guards.wave_limit", lambda q: math.inf)
+    monkeypatch.setattr("shtaerman.guards.wave_limit", lambda *_: math.inf)
     code, out, err = run(capsys, "dynamic", "--mass", "1e-30", "--no-estimate", *COARSE)
     assert code == 1 and "restitution e" in out
     assert "warning: energy balance error" in err and err.count("\n") == 1

@@ -13,7 +13,7 @@ import pytest
 
 import shtaerman as sh
 from shtaerman.cli import main
-from shtaerman.fem.dynamic_contact import DynamicSettings, check_dynamic_impact, radiated_fraction
+from shtaerman.fem.dynamic_contact import DynamicSettings, RadiatedFraction, check_dynamic_impact
 from shtaerman.study.schema import StudyError, load_study
 from shtaerman.sweep.spec import SweepError, parse_sweep
 from shtaerman.validation import InputError
@@ -48,8 +48,8 @@ def test_the_equator_names_no_mass_nor_larger_sphere_the_waves_refuse():
     assert float(WAVES.search(str(waves.value))[1]) == 0.602  # user64b's figure
     # a larger sphere R' radiates as M (R / R')^3 on R: exact, the estimate is self-similar
     big, fraction = (
-        radiated_fraction(sh.SphereIndenter(0.02), RUBBER, 1000.0),
-        (radiated_fraction(BALL, RUBBER, 1000.0)),
+        RadiatedFraction(sh.SphereIndenter(0.02), RUBBER, 1000.0),
+        (RadiatedFraction(BALL, RUBBER, 1000.0)),
     )
     assert math.isclose(big(0.12, 10.0), fraction(0.12 / 8.0, 10.0), rel_tol=1e-12)
 

@@ -168,18 +168,18 @@ def test_a_wave_refusal_names_no_velocity_beyond_the_remedy_span():
     from shtaerman.guards import check_wave_speed, wave_limit
 
     estimate = SimpleNamespace(energy_fraction=22.5, shear_wave_speed=30.3)
-    assert wave_limit(1.1) == pytest.approx(0.0045, rel=1e-2)
+    assert wave_limit(1.1, 0.5) == pytest.approx(0.0045, rel=1e-2)
     with pytest.raises(sh.LimitError) as refused:
-        check_wave_speed((0.7, 0.0029), estimate, 1100.0, 1.1)
+        check_wave_speed((0.7, 0.0029), estimate, (1100.0, 0.5), 1.1)
     said = str(refused.value)
     assert said.startswith("density2: ") and "velocity 3.7e-29" not in said
     assert re.search(r"density2 (\S+) kg/m\^3 would pass", said)
-    slower = 0.0029 * (wave_limit(1.1) / 22.5) ** 7  # the velocity it would have named
+    slower = 0.0029 * (wave_limit(1.1, 0.5) / 22.5) ** 7  # the velocity it would have named
     assert slower < 0.0029 / REMEDY_SPAN
     with pytest.raises(sh.LimitError, match=r"or velocity \S+ m/s would pass"):  # within it
         check_wave_speed(
             (0.7, 0.0029),
             SimpleNamespace(energy_fraction=0.005, shear_wave_speed=30.3),
-            1100.0,
+            (1100.0, 0.5),
             1.1,
         )

@@ -551,7 +551,7 @@ def test_a_dynamic_case_whose_checks_fail_is_recorded_failed_with_its_reason(mon
     from shtaerman.sweep.engine import execute_case
     from shtaerman.sweep.kinds import get_kind
 
-    monkeypatch.setattr("shtaerman.guards.wave_limit", lambda q: math.inf)
+    monkeypatch.setattr("shtaerman.guards.wave_limit", lambda *_: math.inf)
 
     kind = get_kind("dynamic")
     params = {**kind.defaults(), "density2": 1e6, "steps": 100, "mesh_size": 0.05}

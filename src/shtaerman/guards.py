@@ -38,6 +38,7 @@ import math
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import Protocol
 
 from .theory.indenter import PowerLawIndenter
 from .theory.sneddon import Indenter, contact_law
@@ -52,11 +53,14 @@ __all__ = [
     "MIN_DEPTH_RATIO",
     "MIN_FINITE_DEPTH_RATIO",
     "REMEDY_SPAN",
+    "RUBBER_POISSON",
+    "RUBBER_WAVE_LIMITS",
     "WAVE_LIMITS",
     "FailedCheckWarning",
     "LadderWarnings",
     "LockingWatch",
     "ValidityWarning",
+    "Waves",
     "check_equator",
     "check_profile_reach",
     "check_reach",
@@ -123,29 +127,73 @@ WAVE_LIMITS = (
 )
 """(q, limit): the wave-speed limit (:func:`wave_limit`) at force exponents q = (n + 1)/n of
 z = A r^n, n = 10, 5, 4, 3.5, 3, 2.5, 2, 1.75 and 1.5, each 0.9 of the lowest lambda at which
-the linear FE impact with inertia failed a check at nu2 0, 0.3 or 0.5 (default mesh;
+the linear FE impact with inertia failed a check at nu2 0, 0.3 or 0.5, for every nu2 but a
+rubber's (:data:`RUBBER_POISSON`; default mesh;
 benchmarks/bench_wave_limit.py, FEM_NOTES.md "Wave speed guard, session 60"): its energy
 balance (nu2 0.5, the contact chattering) from lambda 0.66, 0.52, 0.32, 0.25 (n = 1.75, 2 and
 a sphere, 2.5, 3), its reflected-energy check (nu2 0) from 0.64, 0.505, 0.3 (n = 1.75, 2, 3).
 From n = 3.5 the body keeps ~1 % (0.9 to 2 %) of the radiated energy near the contact at the
 end whatever lambda, and the check fails once that is 1e-4 of M v0^2/2: from lambda ~0.009
 (n = 3.5 and 4, nu2 0), 0.0075 (n = 5), 0.005 (n = 10). n = 1.5 keeps session 59's 0.7."""
+RUBBER_POISSON = (0.45, 0.499)
+"""The Poisson's ratios nu2 of a rubber, whose FE impact with inertia is held to
+:data:`RUBBER_WAVE_LIMITS` (measured at 0.45, 0.49 and 0.499). Below, the reflected-energy
+check fails earlier (nu2 0, 0.3); above, the chatter does, falling to nu2 0.5's as nu2 -> 0.5
+(z = 10 r^2's balance from lambda 0.65 at nu2 0.499, 0.55 at 0.4999, 0.52 at 0.5): both keep
+:data:`WAVE_LIMITS`, within 0.9 of each failure at nu2 0.4999 too (n = 1.75 to 3.5)."""
+RUBBER_WAVE_LIMITS = (
+    (1.1, 0.0045),
+    (1.2, 0.0081),
+    (11.0 / 9.0, 0.009),
+    (1.25, 0.018),
+    (9.0 / 7.0, 0.1845),
+    (4.0 / 3.0, 0.225),
+    (1.4, 0.315),
+    (1.5, 0.585),
+    (11.0 / 7.0, 0.675),
+    (5.0 / 3.0, MAX_RADIATED_ESTIMATE),
+)
+"""(q, limit): :data:`WAVE_LIMITS` of a rubber (nu2 in :data:`RUBBER_POISSON`) at n = 10, 5,
+4.5, 4, 3.5, 3, 2.5, 2, 1.75 and 1.5, each 0.9 of the lowest lambda at which the linear FE
+impact with inertia failed a check at nu2 0.45, 0.49 or 0.499 (default mesh, steps of 0.05,
+0.005 below 0.05 and 0.001 below 0.02, and the runs at 0.99 of each limit;
+benchmarks/FEM_NOTES.md, "Wave-speed limit on rubber"): its energy balance (nu2 0.499, the
+chatter) from 0.75, 0.65, 0.35, 0.25, 0.205 (n = 1.75, 2, 2.5, 3, 3.5); from n = 4 its
+reflected-energy check, the energy left near the contact (~1 % of the radiated, 2 % for n =
+10) counted from 1e-4 of M v0^2/2: from lambda 0.02, 0.01, 0.009 (n = 4, 4.5, 5). n = 10
+keeps WAVE_LIMITS' 0.0045: its 2 % counts from lambda ~0.005 (failed at 0.0055)."""
 
 
-def wave_limit(force_exponent: float) -> float:
+def wave_limit(force_exponent: float, poisson: float, power_law: bool = False) -> float:
     """Largest first-order radiated fraction lambda at which an FE impact with inertia of a
     striker whose force goes as x^``force_exponent`` (q; a sphere's 3/2, a table's its tip's:
-    :func:`tip_exponents`) is run: :data:`WAVE_LIMITS` interpolated linearly in q, their
-    first beyond n = 10 and :data:`MAX_RADIATED_ESTIMATE` from q = 5/3 up (n <= 3/2). Blunter
-    strikers break down at a lower lambda; a sphere's fails where z = r^2 / (2 R) does,
-    however deep (q at its x_c 1.44: benchmarks/FEM_NOTES.md)."""
+    :func:`tip_exponents`) on a body of Poisson's ratio ``poisson`` (nu2) is run:
+    :data:`RUBBER_WAVE_LIMITS` for a ``power_law`` z = A r^n on a rubber (nu2 in
+    :data:`RUBBER_POISSON`), else :data:`WAVE_LIMITS`, interpolated linearly in q, their first
+    beyond n = 10 and :data:`MAX_RADIATED_ESTIMATE` from q = 5/3 up (n <= 3/2). Blunter
+    strikers break down at a lower lambda; a sphere's fails where z = r^2 / (2 R) does on
+    WAVE_LIMITS' bodies, however deep (q at its x_c 1.44), but earlier on a rubber pressed
+    deep (R = 10 mm at x/a 1.17, q at x_c 1.39, nu2 0.49: its reflected check from lambda
+    0.58, below z = 10 r^2's 0.70; benchmarks/FEM_NOTES.md)."""
     q = round(force_exponent, 9)  # 1 + 1/n and (n + 1)/n differ in the last digit
-    for (first, low), (last, high) in itertools.pairwise(WAVE_LIMITS):
+    rubber = power_law and RUBBER_POISSON[0] <= poisson <= RUBBER_POISSON[1]
+    table = RUBBER_WAVE_LIMITS if rubber else WAVE_LIMITS
+    for (first, low), (last, high) in itertools.pairwise(table):
         if q <= first:
             return low
         if q < last:
             return low + (high - low) * (q - first) / (last - first)
-    return WAVE_LIMITS[-1][1]
+    return table[-1][1]
+
+
+class Waves(Protocol):
+    """The first-order radiated fraction lambda of an impact (mass kg, velocity m/s) on a
+    body with mass (:class:`shtaerman.fem.dynamic_contact.RadiatedFraction`), and the body's
+    :func:`wave_limit` of a force exponent q (``limit``)."""
+
+    def __call__(self, mass: float, velocity: float) -> float: ...
+
+    def limit(self, force_exponent: float) -> float: ...
 
 
 class ValidityWarning(UserWarning):
@@ -349,7 +397,7 @@ def check_reach(
     finite: bool,
     note: str | None = "",
     layer: tuple[float, float, float] | None = None,
-    waves: Callable[[float, float], float] | None = None,
+    waves: Waves | None = None,
     tight: tuple[float, float] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact (mass in kg, velocity in m/s) whose quasi-static
@@ -411,7 +459,7 @@ def check_reach(
             f"{_apart(ratio, (low,), 2)}, below the {low:g} "
             + (_FINITE_FLOOR if finite else _LINEAR_FLOOR)
             + f"; raise {remedies}"
-            + (_waves_too(q) if shown[0] and passing[1] and not passing[0] else ""),
+            + (_waves_too(waves, q) if shown[0] and passing[1] and not passing[0] else ""),
             parameter,
         )
     raise LimitError(
@@ -461,7 +509,7 @@ def _reach_remedies(
             ("velocity", passing[0], shown[0], "m/s"),
             ("mass", passing[1], shown[1], "kg"),
         )
-        remedies = _remedies(first, second, on, bound, wave_limit(q))
+        remedies = _remedies(first, second, on, bound, waves.limit(q) if waves else math.inf)
     if not at_fault:
         return _shape_named(remedies, blunt, bound, on), blunt, (shown, passing)
     shaped = f"shape_coefficient=... to at {bound} about {blunt}" if blunt else ""
@@ -591,7 +639,7 @@ def _shape_remedy(
     impact: tuple[float, float],
     target: tuple[float, float],
     layer: tuple[float, float, float] | None,
-    waves: Callable[[float, float], float] | None,
+    waves: Waves | None,
 ) -> str:
     """The shape coefficient (m^(1-n), as shown, rounded inward) that brings a power law's
     ``impact`` (mass kg, velocity m/s) reaching ``depth`` m at x/a ``target[0]`` to x/a
@@ -614,7 +662,7 @@ def _shape_remedy(
         return ""
     if waves is not None and not _fraction(waves, *impact) * factor ** (
         -3.0 / (2.0 * n + 1.0)
-    ) <= wave_limit((n + 1.0) / n):
+    ) <= waves.limit((n + 1.0) / n):
         return ""
     return f"{shown} m^(1-n)"
 
@@ -693,7 +741,7 @@ def _within_waves(
     impact: tuple[float, float],
     q: float,
     shown: tuple[str, str],
-    waves: Callable[[float, float], float] | None,
+    waves: Waves | None,
     window: tuple[float, float],
 ) -> tuple[str, str]:
     """The velocity and the mass (m/s, kg, as shown) that bring ``impact`` (mass kg, velocity
@@ -705,7 +753,7 @@ def _within_waves(
     if waves is None:
         return shown
     (mass, velocity), (speed, weight), (low, high) = impact, shown, window
-    limit = wave_limit(q)
+    limit = waves.limit(q)
     if depth_ratio(indenter, depth) < low:  # faster radiates more, heavier less
         speed = _calm(speed, waves, (mass, None), limit)
         weight = _wave_mass(weight, velocity, q, waves)
@@ -743,18 +791,18 @@ def _remedies(
     return said + f", or {other}=... to at {bound} about {other_value} {other_unit}"
 
 
-def _waves_too(q: float) -> str:
+def _waves_too(waves: Waves, q: float) -> str:
     """The end of a shallow impact's reach refusal (force exponent ``q``) whose velocity
-    :func:`check_wave_speed` would refuse."""
+    :func:`check_wave_speed` would refuse (``waves``' limit)."""
     return (
-        f" (a faster striker radiates above {wave_limit(q):.3g} of its energy as waves, "
+        f" (a faster striker radiates above {waves.limit(q):.3g} of its energy as waves, "
         "where the FE impact with inertia breaks down)"
     )
 
 
 def _calm(
     shown: str,
-    waves: Callable[[float, float], float] | None,
+    waves: Waves | None,
     impact: tuple[float | None, float | None],
     limit: float,
 ) -> str:
@@ -768,7 +816,7 @@ def _calm(
     return shown if _fraction(waves, *impact) <= limit else ""
 
 
-def _fraction(waves: Callable[[float, float], float], mass: float, velocity: float) -> float:
+def _fraction(waves: Waves, mass: float, velocity: float) -> float:
     """``waves``' first-order radiated fraction of an impact (mass kg, velocity m/s), NaN
     where it cannot give one (a refused input: the validation's InputError is a ValueError)."""
     try:
@@ -832,7 +880,7 @@ def check_profile_reach(
     finite: bool = False,
     note: str | None = DEPTHS_INSTEAD,
     layer: tuple[float, float, float] | None = None,
-    waves: Callable[[float, float], float] | None = None,
+    waves: Waves | None = None,
 ) -> None:
     """Refuse, before any work, a sphere's or a table's deepest depth (the last of ``depths``
     m, or ``overshoot`` x_c of the ``impact``, mass kg at velocity m/s, on E* = ``modulus``
@@ -906,19 +954,21 @@ def _approach(indenter: PowerLawIndenter, modulus: float, impact: tuple[float, f
 def check_wave_speed(
     impact: tuple[float, float],
     estimate: object,
-    density: float,
+    body: tuple[float, float],
     force_exponent: float,
     fraction_at: Callable[[float], float] | None = None,
     reaches: Callable[[float, float], bool] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact with inertia (mass in kg, velocity in m/s)
     whose first-order radiated fraction ``estimate`` (a
-    :class:`~shtaerman.theory.radiation.RadiationEstimate` on the body of density ``density``
-    kg/m^3) exceeds :func:`wave_limit` of its force exponent (``force_exponent`` q, the
-    tip's: :func:`tip_exponents`), naming the velocity and the density that pass: lambda goes
-    as sqrt(density) and, for a power-law force P ~ x^q, as v0^((3q - 3)/(q + 1)). A sphere's
-    or a table's force varies with depth: that velocity is a first guess, checked by
-    ``fraction_at`` (lambda at a velocity in m/s; None: a power law's, exact), which a few
+    :class:`~shtaerman.theory.radiation.RadiationEstimate` on the ``body`` of density kg/m^3
+    and Poisson's ratio nu2) exceeds :func:`wave_limit` of its force exponent
+    (``force_exponent`` q, the tip's: :func:`tip_exponents`) and nu2, naming the velocity
+    and the density that pass: lambda goes as sqrt(density) and, for a power-law force P ~
+    x^q, as v0^((3q - 3)/(q + 1)). A sphere's or a table's force varies with depth: that
+    velocity is a first guess, checked by
+    ``fraction_at`` (lambda at a velocity in m/s; None: a power law's, exact, held to a
+    rubber's limit where nu2 is one's: :func:`wave_limit`), which a few
     rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82
     m/s, at lambda 0.837, above session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
     velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
@@ -926,8 +976,9 @@ def check_wave_speed(
     unchecked, a velocity beyond :data:`REMEDY_SPAN` is not named (the density is)."""
     from .validation import LimitError
 
-    fraction, q = estimate.energy_fraction, force_exponent
-    limit = wave_limit(q)
+    (fraction, q), (density, poisson) = (estimate.energy_fraction, force_exponent), body
+    power_law = fraction_at is None
+    limit = wave_limit(q, poisson, power_law)
     if not fraction > limit:
         return
     mass, velocity = impact
@@ -953,8 +1004,9 @@ def check_wave_speed(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {shown} of its energy as waves (first order), above "
-        f"{_limit_text(q)}, where the FE impact with inertia breaks down (measured: beyond "
-        f"it the linear one fails its energy balance or its reflected-energy check): "
+        f"{_limit_text(q, poisson, power_law)}, where the FE impact with inertia breaks down "
+        f"(measured: beyond it the linear one fails its energy balance or its reflected-energy "
+        f"check): "
         f"{lighter_text}{remedy}"
         + (f" (density2 0: {massless} without waves)" if massless else ""),
         named,
@@ -971,13 +1023,17 @@ def passing_density(density: float, share: float) -> float:
     return lighter if lighter >= DENSITY_RANGE[0] else 0.0
 
 
-def _limit_text(q: float) -> str:
-    """:func:`wave_limit` of a striker whose force goes as x^``q``, as its refusal says it
-    (with the exponent where it is a blunt striker's, below :data:`MAX_RADIATED_ESTIMATE`)."""
-    limit = wave_limit(q)
+def _limit_text(q: float, poisson: float, power_law: bool) -> str:
+    """:func:`wave_limit` of a striker (a ``power_law``'s or not) whose force goes as x^``q``
+    on a body of Poisson's ratio ``poisson``, as its refusal says it (with the exponent where
+    it is a blunt striker's, below :data:`MAX_RADIATED_ESTIMATE`; a rubber's nu2 too)."""
+    limit, (low, high) = wave_limit(q, poisson, power_law), RUBBER_POISSON
     if limit >= MAX_RADIATED_ESTIMATE:
         return f"{limit:.3g}"
-    return f"{limit:.3g} (the limit of a force ~ x^{q:.3g}, lower for blunter strikers)"
+    rubber = (
+        f" on a rubber, nu2 {low:g} to {high:g}" if power_law and low <= poisson <= high else ""
+    )
+    return f"{limit:.3g} (the limit of a force ~ x^{q:.3g}{rubber}, lower for blunter strikers)"
 
 
 def _heavier_instead(
@@ -1013,29 +1069,25 @@ def _heavier(mass: float, share: float, q: float) -> str:
     return _shown(mass, math.log(0.99 * share) * (q + 1.0) / (q - 2.0), up=True)
 
 
-def _wave_mass(
-    shown: str, velocity: float, q: float, waves: Callable[[float, float], float]
-) -> str:
+def _wave_mass(shown: str, velocity: float, q: float, waves: Waves) -> str:
     """``shown`` (a mass in kg as the message shows it), or the heavier one :func:`_heavier`
     names where ``waves`` puts its impact at ``velocity`` (m/s) above :func:`wave_limit` of
     the force exponent ``q`` ("" where it cannot say)."""
     fraction = _fraction(waves, float(shown), velocity) if shown else math.nan
-    limit = wave_limit(q)
+    limit = waves.limit(q)
     if not fraction > limit:
         return shown if fraction == fraction else ""
     return _heavier(float(shown), limit / fraction, q)
 
 
-def _wave_velocity(
-    shown: str, mass: float, q: float, waves: Callable[[float, float], float] | None
-) -> str:
+def _wave_velocity(shown: str, mass: float, q: float, waves: Waves | None) -> str:
     """``shown`` (a velocity in m/s as the message shows it), or the lower one that brings
     the first-order radiated fraction ``waves`` gives of an impact of ``mass`` (kg) there
     below :func:`wave_limit` of the force exponent ``q`` (:func:`_passing_velocity`; ""
     unsettled)."""
     if not shown or waves is None:
         return shown
-    fraction, limit = _fraction(waves, mass, float(shown)), wave_limit(q)
+    fraction, limit = _fraction(waves, mass, float(shown)), waves.limit(q)
     if not fraction > limit:
         return shown if fraction == fraction else ""
     power = (q + 1.0) / (3.0 * q - 3.0)
@@ -1081,7 +1133,7 @@ def check_equator(
     impact: tuple[float, float] | None = None,
     note: str = "",
     overshoot: float = 1.0,
-    waves: Callable[[float, float], float] | None = None,
+    waves: Waves | None = None,
 ) -> None:
     """Refuse, before any work, a sphere pressed to ``deepest`` >= its radius R (m): its
     equator at the surface, beyond which the FE's sphere is a flat rim (z = R for r > R)
@@ -1119,7 +1171,7 @@ def _equator_remedy(
     deepest: float,
     impact: tuple[float, float],
     overshoot: float,
-    waves: Callable[[float, float], float] | None,
+    waves: Waves | None,
 ) -> str:
     """The lower velocity and mass (m/s, kg) that bring ``overshoot`` times x_c of
     ``impact`` (mass kg, velocity m/s), now ``deepest`` m, below the sphere's radius, or a
@@ -1138,7 +1190,7 @@ def _equator_remedy(
     slower, lighter = lower_inputs(mass, velocity, log_share)
     larger, left = "a larger sphere (sphere_radius=...)", []
     if waves is not None:
-        limit = wave_limit(q)
+        limit = waves.limit(q)
         calm = (
             _wave_velocity(slower, mass, q, waves),
             _calm(lighter, waves, (None, velocity), limit),

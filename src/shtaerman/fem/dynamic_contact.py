@@ -90,10 +90,10 @@ __all__ = [
     "MAX_DOFS",
     "DynamicImpactSetup",
     "DynamicSettings",
+    "RadiatedFraction",
     "check_dynamic_impact",
     "estimate_dofs",
     "prepare_dynamic_impact",
-    "radiated_fraction",
 ]
 
 MAX_DENSE_CORRECTION = 400e6
@@ -600,21 +600,32 @@ def _waves(
     return impact_radiation(striker.mass, striker.velocity, law, rho, half_space, exact)
 
 
-def radiated_fraction(
-    indenter: Indenter, half_space: Material, rho: float
-) -> Callable[[float, float], float]:
+@dataclass(frozen=True)
+class RadiatedFraction:
     """The first-order radiated fraction of the quasi-static impact of a mass (kg) at a
     velocity (m/s) on ``half_space`` of density ``rho`` kg/m^3 (a sphere's or a table's: ms
     each): what :func:`shtaerman.guards.check_wave_speed` bounds, for the remedies of the
-    limits it follows and precedes."""
+    limits it follows and precedes, held to the body's wave-speed limit (:meth:`limit`)."""
 
-    def fraction(mass: float, velocity: float) -> float:
+    indenter: Indenter
+    half_space: Material
+    rho: float
+
+    def __call__(self, mass: float, velocity: float) -> float:
+        """lambda of ``mass`` (kg) at ``velocity`` (m/s)."""
         with warnings.catch_warnings():  # another impact than the input's, only sized
             warnings.simplefilter("ignore")
+            indenter, half_space = self.indenter, self.half_space
             exact = profile_sizing_impact(indenter, half_space, mass, velocity)
-            return _waves(indenter, half_space, rho, Striker(mass, velocity), exact).energy_fraction
+            striker = Striker(mass, velocity)
+            return _waves(indenter, half_space, self.rho, striker, exact).energy_fraction
 
-    return fraction
+    def limit(self, force_exponent: float) -> float:
+        """:func:`shtaerman.guards.wave_limit` of a force ~ x^``force_exponent`` on this body."""
+        from ..guards import wave_limit  # looked up here: a benchmark lifts it
+
+        power_law = self.indenter.kind == "power-law"
+        return wave_limit(force_exponent, self.half_space.poisson_ratio, power_law)
 
 
 def _reaches(indenter: Indenter, half_space: Material) -> Callable[[float, float], bool]:
@@ -674,7 +685,7 @@ def check_dynamic_impact(
         exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
     qs = _quasi_static(indenter, half_space, striker, exact)
     thickness, impact = geometry.thickness, (striker.mass, striker.velocity)
-    fraction = radiated_fraction(indenter, half_space, rho) if rho > 0 else None
+    fraction = RadiatedFraction(indenter, half_space, rho) if rho > 0 else None
     if thickness is None:  # a pad stops the striker short of x_c
         check_reach(indenter, qs.x_c, impact, False, waves=fraction)
         # before the viscoelastic sizing, which takes 0.06 s
@@ -684,7 +695,8 @@ def check_dynamic_impact(
         profile = math.isnan(qs.beta)  # a sphere's or a table's: no power law
         at = functools.partial(fraction, striker.mass) if profile else None
         reach = None if thickness is not None or profile else _reaches(indenter, half_space)
-        check_wave_speed(impact, waves, rho, tip_exponents(indenter, qs.x_c)[1], at, reach)
+        body, q = (rho, half_space.poisson_ratio), tip_exponents(indenter, qs.x_c)[1]
+        check_wave_speed(impact, waves, body, q, at, reach)
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     if thickness is None:
         domain = scales.domain_radius / scales.refined  # at least the waves' reach

@@ -22,7 +22,13 @@ import time
 from collections.abc import Callable
 from typing import Any, Protocol
 
-from ..guards import check_equator, check_profile_reach, check_wave_speed, tip_exponents
+from ..guards import (
+    Waves,
+    check_equator,
+    check_profile_reach,
+    check_wave_speed,
+    tip_exponents,
+)
 from ..theory.materials import Material
 from ..theory.profile_impact import ProfileImpactResult
 from ..theory.sneddon import Indenter
@@ -84,7 +90,7 @@ def check_impact_reach(
     from ..theory.sneddon import contact_law
     from ..theory.viscoelastic import rigid_impact
     from ..validation import LimitError
-    from .dynamic_contact import radiated_fraction
+    from .dynamic_contact import RadiatedFraction
     from .finite_dynamic import check_fully_relaxed, pad_reach_note
 
     check_table_window(indenter, finite)  # a table with no window: before its exact impact
@@ -92,7 +98,7 @@ def check_impact_reach(
         return
     pad = geometry.thickness is not None  # a pad stops the striker short of x_c
     note = pad_reach_note(pad, friction, density) if finite else (None if pad else "")
-    waves = radiated_fraction(indenter, half_space, density) if density > 0 else None
+    waves = RadiatedFraction(indenter, half_space, density) if density > 0 else None
     modulus = effective_modulus(RIGID, half_space)
     exact = rigid_impact(indenter, half_space, *impact) if exact is None else exact
     if indenter.kind != "power-law" and density > 0:  # its end, with the waves' remedy
@@ -124,14 +130,14 @@ def _check_profile_end(
     """The refusal of a sphere's or a table's impact (mass kg, velocity m/s) beyond the
     profile's end, that of its exact impact ``exact()``, which with inertia also names, where
     its remedies (the slower or the lighter impact that stays within the profile) radiate
-    above :func:`shtaerman.guards.wave_limit`, the density (kg/m^3, 0.99 of the limit's:
-    lambda ~ sqrt(density)) at which both pass."""
-    from ..guards import passing_density, wave_limit
+    above the body's :func:`shtaerman.guards.wave_limit`, the density (kg/m^3, 0.99 of the
+    limit's: lambda ~ sqrt(density)) at which both pass."""
+    from ..guards import passing_density
     from ..theory.materials import RIGID, effective_modulus
     from ..theory.profile_impact import work_to
     from ..theory.sneddon import SneddonContact
     from ..validation import LimitError
-    from .dynamic_contact import radiated_fraction
+    from .dynamic_contact import RadiatedFraction
 
     try:
         exact()
@@ -139,9 +145,9 @@ def _check_profile_end(
         law = SneddonContact(indenter, effective_modulus(RIGID, half_space))
         (mass, velocity), top = impact, law.max_contact_radius
         share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity)
-        fraction = radiated_fraction(indenter, half_space, density)
+        fraction = RadiatedFraction(indenter, half_space, density)
         worst = max(fraction(mass, velocity * math.sqrt(share)), fraction(mass * share, velocity))
-        limit = wave_limit(tip_exponents(indenter, float(law.depth(top)))[1])
+        limit = fraction.limit(tip_exponents(indenter, float(law.depth(top)))[1])
         if not worst > limit:
             raise
         lighter = passing_density(density, limit / worst)
@@ -163,7 +169,7 @@ def _check_finite_waves(
     half_space: Material,
     density: float,
     impact: tuple[float, float],
-    waves: Callable[[float, float], float],
+    waves: Waves,
     exact: Callable[[], Any],
 ) -> None:
     """The wave-speed limit of a rubber's impact (mass kg, velocity m/s) with inertia on
@@ -201,10 +207,11 @@ def _check_finite_waves(
     if exact is not None:  # a sphere's equator first, its remedies within the waves' limit
         check_equator(indenter, exact.x_c, impact, waves=waves)
     q = tip_exponents(indenter, math.nan if exact is None else exact.x_c)[1]
+    body = (density, half_space.poisson_ratio)
     if exact is None:  # the power law: its force exponent q is exact
-        check_wave_speed(impact, estimate, density, q, None, reaches)
+        check_wave_speed(impact, estimate, body, q, None, reaches)
     else:
-        check_wave_speed(impact, estimate, density, q, functools.partial(waves, impact[0]))
+        check_wave_speed(impact, estimate, body, q, functools.partial(waves, impact[0]))
 
 
 def run_impact(
