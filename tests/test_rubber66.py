@@ -34,9 +34,10 @@ def _passes(capsys, *argv: str) -> dict:
 def test_the_rubber_column_is_0_9_of_the_first_failure_measured():
     """FEM_NOTES' table (default mesh, steps of 0.05 in lambda): z = 10 r^2 first failed at
     lambda 0.70, 0.70, 0.65 (nu2 0.45, 0.49, 0.499), z = 20 r^2.5 at 0.55, 0.50, 0.35, z = 50
-    r^3 at 0.40, 0.35, 0.25, z = 100 r^3.5 at 0.205 (nu2 0.499, by 0.005 from 0.20); outside nu2 0.45 to 0.499, and for a sphere or a table, the
-    other column (z = 10 r^2 failed from 0.55 at nu2 0.4999, 0.52 at 0.5, 0.505 at nu2 0;
-    a 10 mm ball pressed to x/a 1.17 on nu2 0.49 from 0.58)."""
+    r^3 at 0.40, 0.35, 0.25, z = 100 r^3.5 at 0.205 (nu2 0.499, by 0.005 from 0.20). Outside
+    nu2 0.45 to 0.499, and for a sphere or a table, the other column (z = 10 r^2 failed from
+    0.55 at nu2 0.4999, 0.52 at 0.5, 0.505 at nu2 0; a 10 mm ball pressed to x/a 1.17 on nu2
+    0.49 from 0.58)."""
     for nu in (0.45, 0.49, 0.499):
         assert wave_limit(1.5, nu, True) == pytest.approx(0.9 * 0.65, rel=1e-12)
         assert wave_limit(1.4, nu, True) == pytest.approx(0.9 * 0.35, rel=1e-12)
