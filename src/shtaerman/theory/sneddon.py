@@ -205,6 +205,11 @@ class SneddonContact:
         last radius for a tabulated profile."""
         return self.indenter.radius if self.sphere else self.indenter.r_max
 
+    @cached_property
+    def _deepest(self) -> float:
+        """The depth in m at which a table's last radius comes into contact."""
+        return float(self.depth(self.max_contact_radius))
+
     def contact_radius(self, depth: ArrayLike) -> np.ndarray:
         """Contact radius a in m at a depth x in m (the inverse of :meth:`depth`).
 
@@ -230,8 +235,7 @@ class SneddonContact:
                 rtol=1e-15,
                 maxiter=ROOT_ITERATIONS,
             )
-        top = self.max_contact_radius
-        deepest = float(self.depth(top))
+        top, deepest = self.max_contact_radius, self._deepest
         if depth > deepest:
             raise LimitError(
                 f"profile: depth {depth:.6g} m reaches beyond the table (its last radius "

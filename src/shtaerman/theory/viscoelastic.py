@@ -664,36 +664,63 @@ class _State:
     H: np.ndarray
     K: np.ndarray
     a: float = 0.0
+    F: float = 0.0
+    p: float = 0.0
 
 
-def _loading_step(s: _State, h: float, mass: float, law: Law, memory: _Memory) -> _State | None:
+@dataclass(frozen=True)
+class _Curve:
+    """The elastic curve along the loading step's unknown p: the power law's p is the depth x,
+    another profile's the contact radius a, where Sneddon's depth and force are explicit (at
+    a given x each needs a root solve for a: 5x the cost of the whole step)."""
+
+    law: Law
+
+    def locate(self, depth: float) -> float:
+        """p at a depth in m."""
+        power = isinstance(self.law, PowerLawContact)
+        return depth if power else float(self.law.contact_radius(depth))
+
+    def along(self, p: float) -> tuple[float, float]:
+        """The depth x in m and the force shape F (P = beta0 F, :func:`elastic_shape`) at p."""
+        if isinstance(self.law, PowerLawContact):
+            return p, float(np.asarray(p, dtype=float) ** self.law.force_exponent)
+        return float(self.law.depth(p)), float(self.law.force_at_radius(p))
+
+    def radius(self, p: float) -> float:
+        """The contact radius in m at p."""
+        power = isinstance(self.law, PowerLawContact)
+        return float(self.law.contact_radius(p)) if power else p
+
+
+def _loading_step(s: _State, h: float, mass: float, curve: _Curve, memory: _Memory
+                  ) -> _State | None:  # fmt: skip
     """The next state while the contact grows (Lee-Radok), or None if x would decrease."""
-    g, tau = memory.g, memory.tau
-    beta, shape = elastic_shape(law)
+    g, tau, beta = memory.g, memory.tau, memory.beta
     decay, ramp = np.exp(-h / tau), -np.expm1(-h / tau) * tau / h
-    F_n = float(shape(s.x))
-    rest = float(g @ (decay * s.K - ramp * F_n))
+    rest = float(g @ (decay * s.K - ramp * s.F))
     stiff = memory.g_inf + float(g @ ramp)
 
-    def force(x: float) -> float:
-        return beta * (stiff * float(shape(x)) + rest)
+    def residual(p: float) -> float:
+        x, F = curve.along(p)
+        return x - s.x - h * s.v + h * h / (4.0 * mass) * (s.P + beta * (stiff * F + rest))
 
-    def residual(x: float) -> float:
-        return x - s.x - h * s.v + h * h / (4.0 * mass) * (s.P + force(x))
-
-    if residual(s.x) > 0.0:
+    if residual(s.p) > 0.0:
         return None
-    upper = s.x + h * s.v
-    x = upper if residual(upper) <= 0.0 else brentq(residual, s.x, upper, xtol=1e-15 * upper)
-    P = force(x)
+    upper = curve.locate(s.x + h * s.v)
+    p = upper if residual(upper) <= 0.0 else brentq(residual, s.p, upper, xtol=1e-15 * upper)
+    x, F = curve.along(p)
+    P = beta * (stiff * F + rest)
     return _State(
         t=s.t + h,
         x=x,
         v=s.v - h / (2.0 * mass) * (s.P + P),
         P=P,
         H=decay * s.H + ramp * (x - s.x),
-        K=decay * s.K + ramp * (float(shape(x)) - F_n),
-        a=float(law.contact_radius(x)),
+        K=decay * s.K + ramp * (F - s.F),
+        a=curve.radius(p),
+        F=F,
+        p=p,
     )
 
 
@@ -733,8 +760,7 @@ g_inf E*_0, the longest of the two limits) without separation."""
 def _integrate(mass: float, velocity: float, law: Law, prony: PronySeries, h: float,
                limit: int) -> tuple[list[_State], float]:  # fmt: skip
     """All states from first touch to the step that loses contact, and the separation time."""
-    beta, shape = elastic_shape(law)
-    memory = _Memory(prony, beta)
+    memory, curve = _Memory(prony, elastic_shape(law)[0]), _Curve(law)
     zero = np.zeros(len(prony.weights))
     states = [_State(0.0, 0.0, velocity, 0.0, zero, zero)]
     memory.append(0.0, 0.0, 0.0, zero, zero)
@@ -742,10 +768,10 @@ def _integrate(mass: float, velocity: float, law: Law, prony: PronySeries, h: fl
     while len(states) <= limit:
         s = states[-1]
         if loading:
-            nxt = _loading_step(s, h, mass, law, memory)
+            nxt = _loading_step(s, h, mass, curve, memory)
             if nxt is not None:
                 states.append(nxt)
-                memory.append(nxt.t, nxt.x, float(shape(nxt.x)), nxt.H, nxt.K)
+                memory.append(nxt.t, nxt.x, nxt.F, nxt.H, nxt.K)
                 continue
             loading, piece = False, len(states) - 2
             memory.freeze()
