@@ -101,7 +101,7 @@ def check_impact_reach(
     waves = RadiatedFraction(indenter, half_space, density) if density > 0 else None
     modulus = effective_modulus(RIGID, half_space)
     exact = rigid_impact(indenter, half_space, *impact) if exact is None else exact
-    if indenter.kind != "power-law" and density > 0:  # its end, with the waves' remedy
+    if indenter.kind != "power-law":  # its end, with inertia with the waves' remedy
         _check_profile_end(indenter, half_space, density, impact, exact)
     if indenter.kind == "power-law" and (note is not None or finite):  # a rubber: its floor
         # a pad's remedy within the depths its mesh resolves (adv60: 4.95e-12 m/s was named
@@ -141,15 +141,23 @@ def _check_profile_end(
 
     try:
         exact()
-    except LimitError as error:
+    except LimitError as refusal:
         law = SneddonContact(indenter, effective_modulus(RIGID, half_space))
         (mass, velocity), top = impact, law.max_contact_radius
         share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity)
         fraction = RadiatedFraction(indenter, half_space, density)
+        if law.sphere:  # the FE's sphere ends where the depth reaches R, at a < R
+            top = float(law.contact_radius(math.nextafter(top, 0.0)))
+        # 0 where the work or the radius (its root, R = 1e-300 m) underflows
+        share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity) if top else 0.0
+        error = _equator_refusal(indenter.radius, impact, share) if law.sphere else refusal
+        if not (share > 0.0 and density > 0.0):
+            raise error from None
+        fraction = radiated_fraction(indenter, half_space, density)
         worst = max(fraction(mass, velocity * math.sqrt(share)), fraction(mass * share, velocity))
         limit = fraction.limit(tip_exponents(indenter, float(law.depth(top)))[1])
         if not worst > limit:
-            raise
+            raise error from None
         lighter = passing_density(density, limit / worst)
         passing = (
             f"density2 at most about {lighter:g} kg/m^3 passes both (density2 0: "
@@ -162,6 +170,26 @@ def _check_profile_end(
             "quasi-static impact without waves)",
             error.parameter,
         ) from None
+
+
+def _equator_refusal(radius: float, impact: tuple[float, float], share: float) -> Exception:
+    """The refusal of a sphere of ``radius`` m that the impact (mass kg, velocity m/s) drives
+    to its equator, where the FE's sphere ends (:func:`shtaerman.guards.check_equator`),
+    naming the velocity and the mass whose energy, ``share`` of the impact's, stops the
+    striker at a depth below the radius (the exact impact's own refusal keeps the contact
+    radius below R, deeper than the FE's sphere reaches)."""
+    from ..theory.profile_impact import lower_impact
+    from ..validation import LimitError
+
+    mass, velocity = impact
+    remedy = lower_impact(mass, velocity, math.log(share)) + " or " if share > 0.0 else ""
+    return LimitError(
+        f"sphere_radius: {mass:g} kg at {velocity:g} m/s drive the striker beyond the "
+        f"sphere's radius {radius:.6g} m (its equator, past which the FE profile is no "
+        f"sphere): the deepest depth must be below the radius; {remedy}take a larger sphere "
+        "(sphere_radius=...)",
+        "sphere_radius",
+    )
 
 
 def _check_finite_waves(

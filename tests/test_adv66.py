@@ -1,0 +1,35 @@
+"""Session 66's adversary (adv66): what a trial of the command line and the API found.
+
+A sphere whose exact impact reaches its equator (contact radius a -> R) was refused with inertia
+as "velocity must be a finite number > 0 m/s, got nan" (the work to a = R, where Sneddon's
+depth is infinite, is nan) and without inertia with the exact impact's remedy, a contact radius
+below R, whose depth (5.51 mm on a 0.3 mm sphere at 0.496 m/s) the FE's sphere, ending at
+depth R, then refused again."""
+
+import re
+
+import pytest
+
+import shtaerman as sh
+from shtaerman.validation import InputError
+
+SMALL = sh.SphereIndenter(radius=3e-4)  # 0.7 kg at 3 m/s drive its contact to a = R
+REMEDY = re.compile(r"velocity=\.\.\. to at most (\S+) m/s or mass=\.\.\. to at most (\S+) kg")
+
+
+@pytest.mark.parametrize("density", [1100.0, 0.0])
+def test_a_sphere_driven_to_its_equator_names_an_impact_the_fe_runs(density):
+    body = sh.Material(7.5e6, 0.5, density)
+    with pytest.raises(InputError) as caught:
+        sh.dynamic(SMALL, body, mass=0.7, velocity=3.0, estimate=False)
+    message = str(caught.value)
+    assert caught.value.parameter == "sphere_radius" and "nan" not in message
+    slower, lighter = map(float, REMEDY.search(message).groups())
+    # each remedy's exact x_c lies below R, where the FE's sphere ends (the refusal's own
+    # condition, guards.check_equator: deepest < R), and close to it: measured 0.9982 R and
+    # 0.9985 R (0.999 of the work to depth R, rounded down to three digits); the exact
+    # impact's own remedy, 0.496 m/s, reached 18.4 R
+    for mass, velocity in ((0.7, slower), (lighter, 3.0)):
+        x_c = sh.impact(SMALL, body, mass=mass, velocity=velocity).x_c
+        assert 0.99 * SMALL.radius < x_c < SMALL.radius
+
