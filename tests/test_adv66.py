@@ -6,6 +6,7 @@ depth is infinite, is nan) and without inertia with the exact impact's remedy, a
 below R, whose depth (5.51 mm on a 0.3 mm sphere at 0.496 m/s) the FE's sphere, ending at
 depth R, then refused again."""
 
+import csv
 import re
 
 import pytest
@@ -33,3 +34,31 @@ def test_a_sphere_driven_to_its_equator_names_an_impact_the_fe_runs(density):
         x_c = sh.impact(SMALL, body, mass=mass, velocity=velocity).x_c
         assert 0.99 * SMALL.radius < x_c < SMALL.radius
 
+
+def test_a_client_close_that_times_out_keeps_the_sweep_s_outcome(tmp_path, monkeypatch):
+    """dask's Client.close raises TimeoutError ("timed out after 60 s.") when it cannot
+    release its futures in time (measured: SIGTERM of a 1e5-case sweep on a loaded machine);
+    that error replaced the sweep's outcome, and the command line called it a failed write."""
+    import distributed
+
+    own, closed = distributed.Client.close, []
+
+    def late(self, *args, **kwargs):
+        own(self, *args, **kwargs)
+        if not closed:  # the run's close, not the garbage collector's
+            closed.append(self)
+            raise TimeoutError("timed out after 60 s.")
+
+    monkeypatch.setattr(distributed.Client, "close", late)
+    grid = tmp_path / "one.toml"
+    grid.write_text('name = "one"\nkind = "impact"\n[axes]\nvelocity = [3.0]\n')
+    result = sh.sweep(str(grid), workers=1, out=str(tmp_path / "run"))
+    # the paper's impact (0.7 kg, 3 m/s, z = 5 r^1.5, 7.5 MPa, the sweep's default steel
+    # striker E1 = 2e11 Pa, nu1 = 0.25): x_c as sh.impact gives it
+    indenter, body = sh.PowerLawIndenter(5.0, 1.5), sh.Material(7.5e6, 0.5)
+    steel = sh.Material(2e11, 0.25)
+    paper = sh.impact(indenter, body, mass=0.7, velocity=3.0, striker=steel)
+    assert (result.total, result.succeeded, result.computed) == (1, 1, 1)
+    with open(result.out / "cases.csv", newline="") as table:
+        (row,) = csv.DictReader(table)
+    assert float(row["x_c [m]"]) == pytest.approx(paper.x_c, rel=1e-12)  # the same solve
