@@ -482,9 +482,10 @@ VOCABULARY: tuple[Entry, ...] = (
         "",
         "shear relaxation of the half-space, the Prony series g1:tau1,g2:tau2,... (tau_i in s):"
         " G(t) = G0 [1 - sum g_i (1 - exp(-t/tau_i))], E2 and nu2 the instantaneous values; "
-        "or the moduli Einf;E1:tau1,... (Pa, g_i = E_i/E0), a .csv file (tau,E or tau,g) or "
-        "a shipped rubber (zhermack-elite-double-32: then E2 2.912e6, nu2 0.45, density2 "
-        "1134); check it with shtaerman prony-plot; "
+        "or the moduli Einf;E1:tau1,... (Pa, g_i = E_i/E0; give E2 = E0 = Einf + sum E_i), a "
+        ".csv file (tau,E or tau,g) or a shipped rubber (zhermack-elite-double-32; give its "
+        "E2 2.912e6, nu2 0.45, density2 1134 too: no form of the series sets them); check it "
+        "with shtaerman prony-plot; "
         f"the bulk elastic; each g_i >= 0, sum g_i < 1, tau_i > 0, at most {MAX_PRONY_TERMS} "
         f"terms, and the quasi-static impact at most {MAX_GLASSY_DURATIONS:g} glassy impact "
         "durations long; with --model the isochoric stress relaxes (Simo's finite-strain "
