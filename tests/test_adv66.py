@@ -6,12 +6,15 @@ depth is infinite, is nan) and without inertia with the exact impact's remedy, a
 below R, whose depth (5.51 mm on a 0.3 mm sphere at 0.496 m/s) the FE's sphere, ending at
 depth R, then refused again."""
 
+import contextlib
 import csv
+import io
 import re
 
 import pytest
 
 import shtaerman as sh
+from shtaerman.cli import main
 from shtaerman.validation import InputError
 
 SMALL = sh.SphereIndenter(radius=3e-4)  # 0.7 kg at 3 m/s drive its contact to a = R
@@ -62,3 +65,28 @@ def test_a_client_close_that_times_out_keeps_the_sweep_s_outcome(tmp_path, monke
     with open(result.out / "cases.csv", newline="") as table:
         (row,) = csv.DictReader(table)
     assert float(row["x_c [m]"]) == pytest.approx(paper.x_c, rel=1e-12)  # the same solve
+
+
+MODULI = "1e6;2e6:1e-3"  # E_inf 1 MPa, E_1 2 MPa: E0 = 3 MPa, g_1 = 2/3
+
+
+def test_a_series_of_moduli_on_another_e2_is_refused_on_every_route(tmp_path):
+    """The moduli's E0 (and a shipped rubber's) was dropped: only g_i = E_i / E0 was kept,
+    relaxing the E2 given (the default 7.5 MPa, 2.5 times the moduli's 3 MPa) without a word;
+    docs/guide.md says E2 must be that E0."""
+    indenter, stiff = sh.PowerLawIndenter(5.0, 1.5), sh.Material(7.5e6, 0.5, 1100.0)
+    with pytest.raises(InputError, match=r"^prony: .* is 3e\+06 Pa, but E2 is 7\.5e\+06") as api:
+        sh.dynamic(indenter, stiff, mass=0.7, velocity=3.0, prony=MODULI, estimate=False)
+    assert api.value.parameter == "prony"
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        code = main(["dynamic", "--prony", "zhermack-elite-double-32"])  # E0 2.912e6 Pa
+    (line,) = err.getvalue().strip().splitlines()
+    assert code == 2 and "give --E2 2.912e+06 Pa" in line
+    # the remedy: E2 = E0 within E0_TOLERANCE (1e-3: E2 to four figures) builds the body
+    for e2 in (3e6, 3e6 * (1 + 0.9e-3)):
+        assert sh.Body(sh.Material(e2, 0.5, 1100.0), prony=MODULI).prony.weights == (
+            pytest.approx(2 / 3, rel=1e-15),
+        )
+    with pytest.raises(InputError, match=r"but E2 is 3\.0033e"):
+        sh.Body(sh.Material(3e6 * 1.0011, 0.5, 1100.0), prony=MODULI)

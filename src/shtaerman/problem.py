@@ -151,7 +151,8 @@ class Body:
             raise InputError(
                 f"model: unknown model {self.model!r}. Pick one of {list(MODELS)}", "model"
             )
-        object.__setattr__(self, "prony", prony_input(self.prony))
+        modulus = getattr(self.material, "youngs_modulus", None)  # a non-Material: Problem's
+        object.__setattr__(self, "prony", prony_input(self.prony, youngs_modulus=modulus))
         if not self.finite:
             for name in RUBBER_OPTIONS:
                 if getattr(self, name) is not None:

@@ -367,18 +367,20 @@ def layer_spec(path: Path, layer: Any, swept: str | None) -> Any:
     return LayerSpec(layer.thickness, layer.thickness_ratio, layer.base, dynamic)
 
 
-def prony_of(path: Path, prony: str | None) -> Any:
+def prony_of(path: Path, prony: str | None, youngs_modulus: float | None = None) -> Any:
     """The Prony series of ``[half_space] prony`` (None: unset), a relative .csv path taken
-    from the study file's folder; :class:`StudyError` naming the key."""
+    from the study file's folder, of a body of ``youngs_modulus`` E2 in Pa
+    (:func:`~shtaerman.theory.prony_sources.prony_input`); :class:`StudyError` naming the key."""
     from ..theory.prony_sources import prony_input
 
     if prony is not None and prony.strip().lower().endswith(".csv"):
         csv = Path(prony.strip())
         prony = prony if csv.is_absolute() else str(path.parent / csv)
     try:
-        return prony_input(prony)
+        return prony_input(prony, youngs_modulus=youngs_modulus)
     except InputError as error:
         reason = str(error).removeprefix("prony: ")  # the key names it once
+        reason = worded(reason, "file", {"E2": "half_space.E2"})
         raise StudyError(f"{path}: key 'half_space.prony': {reason}") from None
 
 

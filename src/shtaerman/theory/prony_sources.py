@@ -261,21 +261,26 @@ PRONY_FORM = (
 _FORM = PRONY_FORM.removeprefix("write ")
 
 
-def prony_input(value: object, name: str = "prony") -> PronySeries | None:
+def prony_input(
+    value: object, name: str = "prony", youngs_modulus: float | None = None
+) -> PronySeries | None:
     """``value`` as a Prony series: None (elastic), a :class:`PronySeries` or its text
     (:func:`shtaerman.theory.prony_sources.prony_from_text`: ``g1:tau1,...``, ``Einf;E1:tau1,...``,
-    a CSV file or a shipped rubber's name); InputError naming ``name`` and the valid form."""
+    a CSV file or a shipped rubber's name); InputError naming ``name`` and the valid form.
+    With the body's ``youngs_modulus`` E2 (Pa), a text that carries E0 (moduli, a CSV of E, a
+    shipped rubber) is refused unless E2 is E0 to :data:`E0_TOLERANCE`."""
     from .viscoelastic import PronyFormError, PronySeries
 
     if value is None:
         return None
     if isinstance(value, str):
         _check_terms(value, name)  # before parsing a million terms
+    carried = None
     try:
         if isinstance(value, PronySeries):
             series = value
         elif isinstance(value, str):
-            series = prony_from_text(value)
+            series, carried = prony_with_modulus(value)
         else:
             raise InputError(f"prony must be a PronySeries or its text, got {value!r}")
     except PronyFormError as error:  # the forms said once, whole
@@ -284,7 +289,29 @@ def prony_input(value: object, name: str = "prony") -> PronySeries | None:
         reason = str(error).removeprefix("prony: ").removeprefix("prony ")
         raise InputError(f"{name}: {reason} ({PRONY_FORM})", name) from None
     _check_terms(series.weights, name)
+    _check_carried(carried, youngs_modulus, name)
     return series
+
+
+E0_TOLERANCE = 1e-3
+"""Relative difference of E2 from a series' E0 accepted: E2 written to four figures (the
+shipped rubber's 2.912e6 is its E0 exactly)."""
+
+
+def _check_carried(carried: float | None, youngs_modulus: float | None, name: str) -> None:
+    """Refuse a series' instantaneous modulus ``carried`` (Pa) that the body's E2
+    ``youngs_modulus`` (Pa) is not: the weights g_i = E_i / E0 would relax an E2 the moduli
+    never gave (``Einf;E1:tau1`` 1e6;2e6:1e-3 on the default 7.5e6 Pa ran 2.5 times stiffer)."""
+    if carried is None or youngs_modulus is None:
+        return
+    if abs(youngs_modulus - carried) <= E0_TOLERANCE * carried:
+        return
+    raise InputError(
+        f"{name}: its instantaneous modulus E0 = E_inf + sum E_i is {carried:.6g} Pa, but E2 "
+        f"is {youngs_modulus:.6g} Pa: give E2=... {carried:.6g} Pa with it, or the series as "
+        "weights g1:tau1,... (which relax the E2 given)",
+        name,
+    )
 
 
 def _check_terms(terms: str | Sized, name: str) -> None:

@@ -219,7 +219,7 @@ def _surface(path: Path, raw: _StudyFile) -> Interface:
     refusals in the file's words); a viscoelastic body refused (:data:`VISCOELASTIC`)."""
     contact, half_space = raw.contact, raw.half_space
     parts = {"interface": contact.interface, "friction": contact.friction}
-    parts |= {"prony": prony_of(path, half_space.prony), "rate": contact.rate}
+    parts |= {"prony": prony_of(path, half_space.prony, half_space.E2), "rate": contact.rate}
     try:
         parts["striker"] = _striker(raw)
         body = Material(half_space.E2, half_space.nu2)

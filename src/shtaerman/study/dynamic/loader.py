@@ -225,7 +225,7 @@ def load_dynamic(path: Path, data: dict[str, Any]) -> list[DynamicStudy]:
     header = named(path, raw)
     indenter = indenter_of(path, raw.indenter)
     half_space = Material(raw.half_space.E2, raw.half_space.nu2)
-    prony = prony_of(path, raw.half_space.prony)
+    prony = prony_of(path, raw.half_space.prony, half_space.youngs_modulus)
     example = raw.impact.figure_velocity
     velocities = _velocities(path, "impact.velocity", raw.impact.velocity, example)
     if example is None:  # the middle velocity (of two, the upper)
