@@ -144,8 +144,6 @@ def _check_profile_end(
     except LimitError as refusal:
         law = SneddonContact(indenter, effective_modulus(RIGID, half_space))
         (mass, velocity), top = impact, law.max_contact_radius
-        share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity)
-        fraction = RadiatedFraction(indenter, half_space, density)
         if law.sphere:  # the FE's sphere ends where the depth reaches R, at a < R
             top = float(law.contact_radius(math.nextafter(top, 0.0)))
         # 0 where the work or the radius (its root, R = 1e-300 m) underflows
@@ -153,7 +151,7 @@ def _check_profile_end(
         error = _equator_refusal(indenter.radius, impact, share) if law.sphere else refusal
         if not (share > 0.0 and density > 0.0):
             raise error from None
-        fraction = radiated_fraction(indenter, half_space, density)
+        fraction = RadiatedFraction(indenter, half_space, density)
         worst = max(fraction(mass, velocity * math.sqrt(share)), fraction(mass * share, velocity))
         limit = fraction.limit(tip_exponents(indenter, float(law.depth(top)))[1])
         if not worst > limit:
