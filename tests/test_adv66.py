@@ -19,6 +19,7 @@ from shtaerman.validation import InputError
 
 SMALL = sh.SphereIndenter(radius=3e-4)  # 0.7 kg at 3 m/s drive its contact to a = R
 REMEDY = re.compile(r"velocity=\.\.\. to at most (\S+) m/s or mass=\.\.\. to at most (\S+) kg")
+LARGER = re.compile(r"raise SphereIndenter\(radius=\.\.\.\) to at least (\S+) m$")
 
 
 @pytest.mark.parametrize("density", [1100.0, 0.0])
@@ -36,6 +37,11 @@ def test_a_sphere_driven_to_its_equator_names_an_impact_the_fe_runs(density):
     for mass, velocity in ((0.7, slower), (lighter, 3.0)):
         x_c = sh.impact(SMALL, body, mass=mass, velocity=velocity).x_c
         assert 0.99 * SMALL.radius < x_c < SMALL.radius
+    # the larger sphere R' = R (0.7 / lighter)^(1/3) (self-similar: the same x_c / R' as the
+    # lighter striker on R), rounded up: 8.61 mm, its x_c 0.9985 of it
+    larger = sh.SphereIndenter(float(LARGER.search(message)[1]))
+    x_c = sh.impact(larger, body, mass=0.7, velocity=3.0).x_c
+    assert 0.99 * larger.radius < x_c < larger.radius
 
 
 def test_a_client_close_that_times_out_keeps_the_sweep_s_outcome(tmp_path, monkeypatch):

@@ -29,6 +29,8 @@ def test_the_exact_impact_past_a_sphere_s_equator_names_a_velocity_and_mass_that
     velocity, mass = found.groups()
     assert main([*SPHERE, "--velocity", velocity]) == 0
     assert main(["impact", "--sphere-radius", "0.01", "--mass", mass, "--velocity", "300"]) == 0
+    larger = re.search(r"raise --sphere-radius to at least (\S+) m", said)[1]
+    assert main(["impact", "--sphere-radius", larger, "--velocity", "300"]) == 0
     capsys.readouterr()
     # the bound is tight to its three digits: 0.1 % above it is refused
     assert _said(capsys, *SPHERE, "--velocity", f"{float(velocity) * 1.001:.4g}")[0] == 2

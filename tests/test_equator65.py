@@ -61,11 +61,15 @@ def test_the_velocity_is_lowered_where_the_waves_ask_it_and_light_bodies_keep_al
     said = _refusal(3000.0)
     assert said.endswith("lower velocity=... to at most 3.22 m/s" + LEFT.format("density")), said
     check_dynamic_impact(BALL, RUBBER, 3000.0, 0.12, 3.22, DynamicSettings())
-    everything = "lower velocity=... to at most 5.7 m/s or mass=... to at most 0.039 kg or a "
-    assert _refusal(100.0).endswith(everything + "larger sphere (SphereIndenter(radius=...))")
-    assert _refusal(0.0, model="neo-hookean").endswith(
-        everything + "larger sphere (SphereIndenter(radius=...))"
+    # R' = R (0.12 / 0.039...)^(1/3) = 14.54 mm, rounded up (theory.profile_impact.larger_sphere)
+    everything = (
+        "lower velocity=... to at most 5.7 m/s or mass=... to at most 0.039 kg or raise "
+        "SphereIndenter(radius=...) to at least 0.0146 m"
     )
+    assert _refusal(100.0).endswith(everything)
+    assert _refusal(0.0, model="neo-hookean").endswith(everything)
+    check_dynamic_impact(sh.SphereIndenter(0.0146), sh.Material(3e6, 0.49), 100.0, 0.12, 10.0,
+                         DynamicSettings())  # fmt: skip
 
 
 def test_the_study_file_sweep_row_and_command_line_say_it_too(tmp_path, capsys):

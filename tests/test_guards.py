@@ -192,7 +192,7 @@ def test_a_sphere_past_its_equator_is_one_check_with_one_message(tmp_path):
     said = (
         "depth 0.002 m, beyond the sphere's radius 0.001 m (its equator, past which the FE "
         "profile is no sphere): the deepest depth must be below the radius; give smaller "
-        "depths or a larger sphere ({})"
+        "depths or a {} above 0.002 m"
     )
     with pytest.raises(InputError) as api:
         sh.contact(sphere, rubber, depths=[5e-4, 2e-3], estimate=False)

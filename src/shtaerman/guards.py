@@ -1150,7 +1150,7 @@ def check_equator(
         return
     if impact is None:
         parameter, drive = "depths", f"depth {deepest:.6g} m"
-        remedy = "give smaller depths or a larger sphere (sphere_radius=...)"
+        remedy = f"give smaller depths or a sphere_radius=... above {deepest:.6g} m"
     else:
         parameter, remedy = (
             "sphere_radius",
@@ -1183,12 +1183,12 @@ def _equator_remedy(
     and lambda being self-similar in R; each R' past the equator's least, R share^(-1/3),
     radiates more): 0.039 kg at 10 m/s on 1000 kg/m^3 rubber, a 10 mm sphere's mass remedy,
     radiated 0.602, above 0.45."""
-    from .theory.profile_impact import lower_inputs
+    from .theory.profile_impact import larger_sphere, lower_inputs
 
     (mass, velocity), q = impact, tip_exponents(indenter, deepest)[1]
     log_share = _end_share(indenter, math.nextafter(indenter.radius, 0.0), deepest, overshoot)
     slower, lighter = lower_inputs(mass, velocity, log_share)
-    larger, left = "a larger sphere (sphere_radius=...)", []
+    larger, left = larger_sphere(indenter.radius, log_share), []
     if waves is not None:
         limit = waves.limit(q)
         calm = (

@@ -176,16 +176,18 @@ def _equator_refusal(radius: float, impact: tuple[float, float], share: float) -
     naming the velocity and the mass whose energy, ``share`` of the impact's, stops the
     striker at a depth below the radius (the exact impact's own refusal keeps the contact
     radius below R, deeper than the FE's sphere reaches)."""
-    from ..theory.profile_impact import lower_impact
+    from ..theory.profile_impact import larger_sphere, lower_impact
     from ..validation import LimitError
 
     mass, velocity = impact
-    remedy = lower_impact(mass, velocity, math.log(share)) + " or " if share > 0.0 else ""
+    remedy = "take a larger sphere (sphere_radius=...)"
+    if share > 0.0:
+        log_share = math.log(share)
+        remedy = f"{lower_impact(mass, velocity, log_share)} or {larger_sphere(radius, log_share)}"
     return LimitError(
         f"sphere_radius: {mass:g} kg at {velocity:g} m/s drive the striker beyond the "
         f"sphere's radius {radius:.6g} m (its equator, past which the FE profile is no "
-        f"sphere): the deepest depth must be below the radius; {remedy}take a larger sphere "
-        "(sphere_radius=...)",
+        f"sphere): the deepest depth must be below the radius; {remedy}",
         "sphere_radius",
     )
 

@@ -47,7 +47,14 @@ from .impact import (
 )
 from .sneddon import ROOT_ITERATIONS, SneddonContact
 
-__all__ = ["ProfileImpactResult", "lower_impact", "lower_inputs", "solve_profile_impact", "work_to"]
+__all__ = [
+    "ProfileImpactResult",
+    "larger_sphere",
+    "lower_impact",
+    "lower_inputs",
+    "solve_profile_impact",
+    "work_to",
+]
 
 NODES = roots_legendre(16)[0]
 PANELS = 16
@@ -198,12 +205,14 @@ def _refuse_the_end(
     table's last radius, a limit of the model (a sweep case's refused row), naming the
     velocity and the mass that pass (three digits, rounded down)."""
     remedy = "lower mass=... or velocity=..."  # the work to the end underflows (R = 1e-300 m)
+    larger = "take a larger sphere"
     if most > 0.0:
         remedy = lower_impact(mass, velocity, math.log(most) - math.log(energy))
+        larger = larger_sphere(top, math.log(most) - math.log(energy))
     if law.sphere:
         raise LimitError(
             f"sphere_radius: the striker's energy {energy:.6g} J drives the contact to the "
-            f"sphere's equator (radius {top:.6g} m); take a larger sphere or {remedy}",
+            f"sphere's equator (radius {top:.6g} m); {larger} or {remedy}",
             "sphere_radius",
         )
     raise LimitError(
@@ -222,6 +231,17 @@ def lower_impact(mass: float, velocity: float, log_share: float) -> str:
     return f"lower velocity=... to at most {slower} m/s" + (
         f" or mass=... to at most {lighter} kg" if lighter else ""
     )
+
+
+def larger_sphere(radius: float, log_share: float) -> str:
+    """ "raise sphere_radius=... to at least R' m": the sphere (R = ``radius`` m) that an
+    impact whose energy scaled by e^``log_share`` (< 1) would pass, keeps within the same
+    limit (three digits, rounded up). Exact: the quasi-static impact is self-similar in R, the
+    work to a depth R' x / R on R' being (R' / R)^3 that to x on R; R' = R e^(-log_share / 3)."""
+    least = radius * math.exp(-log_share / 3.0)
+    if not math.isfinite(least):
+        return "take a larger sphere (sphere_radius=...)"
+    return f"raise sphere_radius=... to at least {bound_text(least, 'low')} m"
 
 
 def lower_inputs(mass: float, velocity: float, log_share: float) -> tuple[str, str]:
