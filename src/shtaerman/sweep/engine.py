@@ -108,6 +108,10 @@ NANNY_POLL = 0.005
 cluster starts (:func:`_nanny_poll`; against dask's 0.05 s: benchmarks/FEM_NOTES.md, "Sweep
 cluster")."""
 SIGNAL_LATENCY = 0.1
+PENDING_PER_WORKER = 4
+"""Tasks submitted to the cluster ahead of their results, per worker thread: the grid goes to
+dask in batches, so its first case is saved within seconds however large the grid (a map of
+1e5 tasks at once saved none in 200 s: benchmarks/FEM_NOTES.md, "left66")."""
 """Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 CONNECT_TIMEOUT = "10s"
 """How long to try reaching an existing scheduler (``scheduler=``)."""
@@ -1085,7 +1089,6 @@ def _compute(
     case_function = spec.kind_spec.case
     token = uuid.uuid4().hex[:8]
     keys = [f"sweep-{spec.name}-case-{c.index}-{token}" for c in pending]
-    by_key = dict(zip(keys, pending, strict=True))
     with bar, _quiet_dask():
         if scheduler is None:  # no more processes than cases, nor than the memory holds
             memory = WORKER_MEMORY.get(spec.kind, max(WORKER_MEMORY.values()))
@@ -1096,17 +1099,10 @@ def _compute(
             stop.check()
             ready()
             nthreads = sum(client.nthreads().values())
-            futures = client.map(
-                execute_case,
-                [case_function] * len(pending),
-                [c.index for c in pending],
-                [c.params for c in pending],
-                key=keys,
-                retries=retries,
-                pure=False,
-            )
-            for future in _as_finished(futures, stop):
-                _collect(out, future, by_key[future.key], records, lost)
+            calls = [(case_function, c.index, c.params) for c in pending]
+            window = PENDING_PER_WORKER * max(nthreads, 1)
+            for i, future in _as_finished(client, execute_case, calls, stop, window, keys, retries):
+                _collect(out, future, pending[i], records, lost)
                 bar.update(1)
             return nthreads, None if draw is None else draw(client, nthreads)
 
@@ -1116,27 +1112,48 @@ def _mapper(client: Any, stop: _StopFlag) -> Callable[..., list[Any]]:
     SIGINT/SIGTERM (``stop``) seen within :data:`SIGNAL_LATENCY`."""
 
     def mapped(function: Callable[..., Any], *arguments: list[Any]) -> list[Any]:
-        futures = client.map(function, *arguments, pure=False)
-        for _ in _as_finished(futures, stop):
-            pass
-        return [future.result() for future in futures]
+        calls = list(zip(*arguments, strict=True))
+        results: list[Any] = [None] * len(calls)
+        for i, future in _as_finished(client, function, calls, stop, max(len(calls), 1)):
+            results[i] = future.result()
+        return results
 
     return mapped
 
 
-def _as_finished(futures: list[Any], stop: _StopFlag) -> Iterator[Any]:
-    """``futures``, each as it finishes (the last one ends the run), with SIGINT/SIGTERM
-    (``stop``) seen within :data:`SIGNAL_LATENCY`."""
+def _as_finished(
+    client: Any,
+    function: Callable[..., Any],
+    calls: list[tuple],
+    stop: _StopFlag,
+    window: int,
+    keys: list[str] | None = None,
+    retries: int = 0,
+) -> Iterator[tuple[int, Any]]:
+    """(i, future of ``function(*calls[i])``), each as it finishes, with SIGINT/SIGTERM
+    (``stop``) seen within :data:`SIGNAL_LATENCY`. At most ``window`` tasks are pending:
+    more are submitted, in one batch, when half of them have finished."""
     finished: queue.SimpleQueue = queue.SimpleQueue()
-    for future in futures:
-        future.add_done_callback(finished.put)
-    for _ in futures:
-        future = None
-        while future is None:
+    live: dict[int, Any] = {}  # the pending futures (dask cancels a task whose future is freed)
+    submitted = 0
+    while submitted < len(calls) or live:
+        if len(live) <= window // 2 and submitted < len(calls):
+            batch = range(submitted, min(submitted + window - len(live), len(calls)))
+            futures = client.map(
+                function, *zip(*(calls[i] for i in batch), strict=True),
+                key=None if keys is None else [keys[i] for i in batch],
+                retries=retries, pure=False,
+            )  # fmt: skip
+            for i, future in zip(batch, futures, strict=True):
+                live[i] = future
+                future.add_done_callback(lambda _, i=i: finished.put(i))
+            submitted = batch.stop
+        done = None
+        while done is None:
             stop.check()
             with contextlib.suppress(queue.Empty):
-                future = finished.get(timeout=SIGNAL_LATENCY)
-        yield future
+                done = finished.get(timeout=SIGNAL_LATENCY)
+        yield done, live.pop(done)
 
 
 def _lost_reason(error: Exception) -> str:
