@@ -81,7 +81,8 @@ def write_template(path: Path, *, force: bool = False, kind: str = "contact") ->
         with staged_file(path, force=force, option="FILE") as stage:
             stage.write_text(text, encoding="utf-8")
     except OSError as error:
-        raise InputError(f"cannot write '{shown}': {error.strerror or error}") from None
+        reason = os.strerror(error.errno) if error.errno else error  # the file is named here
+        raise InputError(f"cannot write '{shown}': {reason}") from None
     return path
 
 

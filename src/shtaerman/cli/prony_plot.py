@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..output.files import check_output_file
+from ..output.files import check_output_file, naming_output
 from ..theory.prony_sources import PRONY_FORM, prony_input, prony_with_modulus
 from ..validation import InputError
 from ..vocabulary import Entry
@@ -60,7 +60,8 @@ def run(args: argparse.Namespace) -> int:
     series = prony_input(args.series, "SERIES")
     carried = prony_with_modulus(args.series)[1]  # read again: prony_input has checked it
     modulus = carried if args.E0 is None else args.E0
-    path = prony_figure(series, args.out, modulus, args.series)
+    with naming_output("--out", Path(args.out)):
+        path = prony_figure(series, args.out, modulus, args.series)
     data = prony_curves(series, modulus)
     peak = int(np.argmax(data["tan_delta"]))
     scale, unit = (1.0, "E0") if modulus is None else (1e-6, "MPa")

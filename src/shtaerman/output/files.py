@@ -60,6 +60,7 @@ __all__ = [
     "folder_lock",
     "json_safe",
     "missing_folder",
+    "naming_output",
     "output_folder",
     "probe_removable",
     "resumable",
@@ -433,6 +434,22 @@ def _named(option: str) -> str:
     return f"{option}=..." if option.isidentifier() else option
 
 
+@contextlib.contextmanager
+def naming_output(option: str, target: Path) -> Iterator[None]:
+    """An OS error that names no file (a full disk: ``[Errno 28]``) raised again naming the
+    output being written, e.g. "(writing --history 'h.csv')"; ``option`` a keyword (``out``,
+    spelled ``--out``) or as written (``FILE``, ``--out``)."""
+    try:
+        yield
+    except OSError as error:
+        if error.filename is not None or error.errno is None:
+            raise
+        keyword = option.isidentifier() and option.islower()
+        flag = f"--{option.replace('_', '-')}" if keyword else option
+        where = f"{error.strerror} (writing {flag} {str(target)!r})"
+        raise OSError(error.errno, where) from error
+
+
 def _refuse_link(path: Path, option: str, kind: str) -> None:
     """Raise InputError when ``path`` itself is a symbolic link (also a broken one): a write
     there would land in whatever it points to, not in the ``kind`` ("folder", "file") named."""
@@ -663,7 +680,8 @@ def staged_folder(
         if keep_marker is not None:
             (stage / KEEP_FILE).write_text(keep_marker, encoding="utf-8")
         try:
-            yield content
+            with naming_output(option, target):
+                yield content
         except KeepStaged as keep:
             _mark(content, sealed=True)
             if os.path.lexists(retired) and not resumed:  # --force: the old folder stays whole
@@ -674,11 +692,6 @@ def staged_folder(
             reserved = False
             _discard(retired)
             raise keep.reason from None
-        except OSError as error:  # a full disk names no file: say which output it was
-            if error.filename is not None or error.errno is None:
-                raise
-            where = f"{error.strerror} (writing --{option.replace('_', '-')} {str(target)!r})"
-            raise OSError(error.errno, where) from error
         _mark(content, sealed=True)
         _publish(content, target, option)
         reserved = False
@@ -792,14 +805,16 @@ def staged_file(path: Path, *, force: bool = False, option: str = "history") -> 
     """
     path = check_output_file(path, force=force, option=option)
     if path.exists() and not path.is_file():  # a special file: written directly
-        yield path
+        with naming_output(option, path):
+            yield path
         return
     real = Path(os.path.realpath(path))
     stage = _stage_path(real)
     if os.path.lexists(stage):
         raise _busy(option, real, [os.getpid()])
     try:
-        yield stage
+        with naming_output(option, path):
+            yield stage
         os.chmod(stage, file_mode())
         if force:
             os.replace(stage, real)

@@ -326,8 +326,10 @@ def _atomic_write(path: Path, text: str) -> None:
         with os.fdopen(handle, "w", newline="") as stream:
             stream.write(text)
         os.replace(temporary, path)
-    except BaseException:
+    except BaseException as error:
         Path(temporary).unlink(missing_ok=True)
+        if isinstance(error, OSError) and error.filename is None and error.errno is not None:
+            raise OSError(error.errno, error.strerror, str(path)) from error  # a full disk
         raise
 
 
