@@ -355,7 +355,7 @@ def test_a_signal_after_the_last_case_stops_the_sweep_and_resume_completes_it(
     assert stderr == (
         f"shtaerman: sweep 'probe' interrupted ({name}): all 2 cases saved in {out}, its summary "
         f"and figures not all written; write them with: shtaerman sweep {path} --out {out} "
-        "--resume\n"
+        "--resume --workers 1\n"
     )
     assert case_files(out) == [0, 1]
     assert not list(out.glob("figures/*.png"))  # stopped before the first figure
@@ -597,7 +597,9 @@ def test_a_case_dask_gives_up_on_is_one_line_of_ours_and_no_dask_log(tmp_path, c
     assert f"3 cases, {3 - lost} ok, 0 failed ({3 - lost} computed on 2 workers)" in stdout
     [line] = stderr.strip().splitlines()
     assert line.startswith(f"shtaerman: {lost} cases could not run (KilledWorker: ")
-    assert line.endswith(f"complete them with: shtaerman sweep {path} --out {out} --resume")
+    assert line.endswith(
+        f"complete them with: shtaerman sweep {path} --out {out} --resume --workers 2"
+    )
     assert "distributed" not in stderr
 
 

@@ -111,9 +111,14 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _resume_command(args: argparse.Namespace, out: Path) -> str:
-    """The command that completes the sweep in ``out`` as ``args`` asked it (its figure
-    format too: without it the completed sweep's figures would be PNG only)."""
+    """The command that completes the sweep in ``out`` as ``args`` asked it: on the same
+    workers or cluster, with the same figure format (without it the completed sweep's figures
+    would be PNG only)."""
     command = ["shtaerman", "sweep", str(args.sweep), "--out", str(out), "--resume"]
+    if args.workers is not None:
+        command += ["--workers", str(args.workers)]
+    if args.scheduler:
+        command += ["--scheduler", args.scheduler]
     if args.figure_format != "png":
         command += ["--figure-format", args.figure_format]
     return shlex.join(command)
