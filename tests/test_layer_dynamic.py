@@ -263,7 +263,7 @@ def test_a_layer_study_runs_and_its_findings_name_the_layer(tmp_path: Path):
         (
             'base = "lubricated"',
             "half_space.base': expected one of ['E2', 'density2', 'nu2', "
-            "'prony'] (unknown key (it belongs in [layer]))",
+            "'prony'] (unknown key: it belongs in [layer])",
         ),
         ('[layer]\nbase = "lubricated"', "layer': expected thickness"),
         ('[layer]\nthickness = 0.02\nbase = "glued"', "layer.base'"),

@@ -106,7 +106,7 @@ def test_a_profile_csv_is_read_beside_the_sweep_file(tmp_path, monkeypatch):
             "mass = [0.7]",
             "parameters.sphere_radius: one striker profile per case",
         ),
-        ('profile = "no.csv"', "mass = [0.7]", "parameters.profile: profile: cannot read"),
+        ('profile = "no.csv"', "mass = [0.7]", "parameters.profile: cannot read"),
         ("", 'profile = ["tip.csv"]', "axes.profile: a tabulated profile is fixed"),
         ("", "sphere_radius = [0.01, -1.0]", "axes.sphere_radius[1] must lie in (0, 1e6] m"),
         ("sphere_radius = 2e6", "mass = [0.7]", "parameters.sphere_radius must lie in"),

@@ -501,7 +501,9 @@ def _located(
     if unknown:
         allowed = _allowed_keys(keys, root)
         homes = [table for table in _homes(unknown[1], root) if table not in keys]
-        hint = f" (it belongs in [{homes[0]}])" if homes else suggestion(unknown[1], allowed)
+        hint = suggestion(unknown[1], allowed).replace(" (", ": ", 1).removesuffix(")")
+        if homes:
+            hint = f": it belongs in [{homes[0]}]"
         if not keys and unknown[1] in KIND_OF_TABLE:
             hint = f": [{unknown[1]}] belongs in a study of kind = {KIND_OF_TABLE[unknown[1]]!r}"
         return [*keys, unknown[1]], f"expected one of {allowed} (unknown key{hint})"

@@ -240,6 +240,7 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
             )
         axes[key] = _axis(where, kind, key, values)
     _striker(where, path, parameters, axes)
+    _prony_files(where, parameters, axes)
     count = math.prod(len(values) for values in axes.values())
     if count > MAX_CASES:
         raise SweepError(f"{where}: [axes] makes {count} cases; at most {MAX_CASES} are allowed")
@@ -278,8 +279,28 @@ def _striker(where: str, path: Path, parameters: dict[str, Any], axes: dict[str,
         try:
             TabulatedIndenter.from_csv(table)
         except InputError as error:
-            raise SweepError(f"{where}: parameters.profile: {error}") from None
+            raise SweepError(f"{where}: parameters.profile: {_unnamed(error)}") from None
         parameters["profile"] = str(table)
+
+
+def _unnamed(error: InputError) -> str:
+    """The reason of ``error`` without its leading parameter name (the key says it)."""
+    return str(error).removeprefix(f"{error.parameter}: ")
+
+
+def _prony_files(where: str, parameters: dict[str, Any], axes: dict[str, Any]) -> None:
+    """Read now each Prony series a sweep gives as a CSV file (``prony``, fixed or an axis),
+    so a bad file is refused at load naming its key, as ``profile`` is, not by its first case."""
+    from ..theory.prony_sources import prony_input
+
+    given = [("parameters.prony", parameters.get("prony"))]
+    given += [(f"axes.prony[{i}]", value) for i, value in enumerate(axes.get("prony", ()))]
+    for key, value in given:
+        if isinstance(value, str) and value.strip().lower().endswith(".csv"):
+            try:
+                prony_input(value, "prony")
+            except InputError as error:
+                raise SweepError(f"{where}: {key}: {_unnamed(error)}") from None
 
 
 def _name(where: str, data: Mapping[str, Any]) -> str:

@@ -272,8 +272,9 @@ class TabulatedIndenter:
         try:
             _check_table(r, z, lines)  # its rows named by their file lines
             return cls(r, z, str(path))
-        except InputError as error:
-            raise InputError(f"{error} (in {str(path)!r})", "profile") from None
+        except InputError as error:  # the file first, as the rows' own messages name it
+            reason = str(error).removeprefix("profile: ")
+            raise InputError(f"profile: {str(path)!r}: {reason}", "profile") from None
 
     @property
     def parameters(self) -> dict[str, object]:
