@@ -49,3 +49,25 @@ def test_a_sweep_file_on_a_full_disk_is_named(tmp_path, monkeypatch):
         str(tmp_path / "results.json"),
     )
     assert list(tmp_path.iterdir()) == []  # the temporary file removed
+
+
+def test_a_sweep_folder_whose_marker_found_the_disk_full_is_removed(tmp_path, monkeypatch):
+    """Its sweep.toml and cases/ were left without the marker: "nothing was saved", and the
+    same command then refused the folder as "not a sweep folder" (left66). Now none is left."""
+    from shtaerman.sweep import engine, parse_sweep
+
+    spec = parse_sweep('name = "g"\nkind = "impact"\n[axes]\nvelocity = [1.0]\n')
+    real = engine._atomic_write
+
+    def full(path, text):
+        if path.name == engine.MARKER_FILE:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+        real(path, text)
+
+    monkeypatch.setattr(engine, "_atomic_write", full)
+    create = engine._check_folder(
+        spec, tmp_path / "out", tmp_path / "old", resume=False, force=False
+    )
+    with pytest.raises(OSError, match="No space left on device"):
+        create()
+    assert list(tmp_path.iterdir()) == []

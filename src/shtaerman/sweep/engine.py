@@ -560,11 +560,20 @@ def _check_folder(
     def create() -> None:
         if full:  # kept until the new sweep completes (see _replaced)
             os.replace(out, backup)
+        made = not out.is_dir()
         out.mkdir(exist_ok=True)
-        (out / CASES_DIR).mkdir()
-        _atomic_write(out / SPEC_FILE, spec.text)
-        marker = {"format": MARKER_FORMAT, "name": spec.name, "kind": spec.kind}
-        _atomic_write(out / MARKER_FILE, json.dumps(marker))
+        try:
+            (out / CASES_DIR).mkdir()
+            _atomic_write(out / SPEC_FILE, spec.text)
+            marker = {"format": MARKER_FORMAT, "name": spec.name, "kind": spec.kind}
+            _atomic_write(out / MARKER_FILE, json.dumps(marker))
+        except BaseException:  # a full disk: no half-made folder that refuses the same run
+            with deferred():
+                shutil.rmtree(out / CASES_DIR, ignore_errors=True)
+                (out / SPEC_FILE).unlink(missing_ok=True)
+                if made:
+                    out.rmdir()
+            raise
 
     return create
 
