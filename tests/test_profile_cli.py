@@ -86,7 +86,8 @@ def test_a_table_too_long_is_refused_without_parsing_the_rest(capsys, tmp_path):
     rows = "".join(f"{k * 1e-5!r},{(k * 1e-5) ** 2!r}\n" for k in range(2001))
     path.write_text("r,z\n" + rows + "0.1,x\n")
     line = error_line(capsys, "impact", "--profile", str(path))
-    assert line.startswith("--profile: takes at most 2000 rows (r, z), got more than 2000"), line
+    said = f"--profile: {str(path)!r}: takes at most 2000 rows (r, z), got more than 2000"
+    assert line.startswith(said), line
 
 
 @pytest.mark.parametrize("model", ["linear", "neo-hookean"])

@@ -186,7 +186,7 @@ BAD_STRIKERS = [
     ),
     ("sphere_radius = -0.01", r"'indenter.sphere_radius': sphere_radius must lie in \(0, 1e6\]"),
     ('profile = "none.csv"', r"'indenter.profile': profile: cannot read"),
-    ('profile = "unsorted.csv"', r"'indenter.profile': profile: column r must increase"),
+    ('profile = "unsorted.csv"', r"'indenter.profile': profile: '.*unsorted.csv': column r must"),
     # 0.7 kg at 1 m/s drive a 3 mm sphere to 4.5 mm, past its equator
     ("sphere_radius = 0.003", r"'indenter.sphere_radius': .* beyond the sphere's radius 0.003 m"),
 ]
