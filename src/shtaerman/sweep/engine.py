@@ -108,11 +108,11 @@ NANNY_POLL = 0.005
 cluster starts (:func:`_nanny_poll`; against dask's 0.05 s: benchmarks/FEM_NOTES.md, "Sweep
 cluster")."""
 SIGNAL_LATENCY = 0.1
+"""Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 PENDING_PER_WORKER = 4
 """Tasks submitted to the cluster ahead of their results, per worker thread: the grid goes to
 dask in batches, so its first case is saved within seconds however large the grid (a map of
 1e5 tasks at once saved none in 200 s: benchmarks/FEM_NOTES.md, "left66")."""
-"""Longest wait, s, between SIGINT/SIGTERM and the sweep stopping to save and shut down."""
 CONNECT_TIMEOUT = "10s"
 """How long to try reaching an existing scheduler (``scheduler=``)."""
 
