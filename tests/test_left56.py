@@ -37,8 +37,8 @@ def test_contact_names_refine_in_its_advice(capsys):
         (["contact", "--prony", "0.3:1e-3", "--rate", "0.01", "--accuracy", "1e-3"],
          "on a viscoelastic body use --refine, whose"),
         (["dynamic", "--sphere-radius", "0.001"],
-         "lower --velocity to at most 0.118 m/s or --mass to at most 0.00108 kg or a larger "
-         "sphere (--sphere-radius)"),
+         "lower --velocity to at most 0.118 m/s or --mass to at most 0.00108 kg or raise "
+         "--sphere-radius to at least 0.00865 m"),
     ],
 )  # fmt: skip
 def test_other_advice_names_the_options(capsys, argv, said):
