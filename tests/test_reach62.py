@@ -165,12 +165,15 @@ def test_a_wave_refusal_names_no_velocity_beyond_the_remedy_span():
     # 3.7e-29 m/s, which the floor refused; the density (and 0) are named alone
     from types import SimpleNamespace
 
+    from shtaerman.fem.dynamic_contact import RadiatedFraction
     from shtaerman.guards import check_wave_speed, wave_limit
 
+    # the paper's rubber and a z = A r^10 striker: its lambda is the estimate's (a power law)
+    waves = RadiatedFraction(sh.PowerLawIndenter(1e3, 10.0), sh.Material(7.5e6, 0.5), 1100.0)
     estimate = SimpleNamespace(energy_fraction=22.5, shear_wave_speed=30.3)
     assert wave_limit(1.1, 0.5) == pytest.approx(0.0045, rel=1e-2)
     with pytest.raises(sh.LimitError) as refused:
-        check_wave_speed((0.7, 0.0029), estimate, (1100.0, 0.5), 1.1)
+        check_wave_speed((0.7, 0.0029), estimate, waves, 1.1)
     said = str(refused.value)
     assert said.startswith("density2: ") and "velocity 3.7e-29" not in said
     assert re.search(r"density2 (\S+) kg/m\^3 would pass", said)
@@ -180,6 +183,6 @@ def test_a_wave_refusal_names_no_velocity_beyond_the_remedy_span():
         check_wave_speed(
             (0.7, 0.0029),
             SimpleNamespace(energy_fraction=0.005, shear_wave_speed=30.3),
-            (1100.0, 0.5),
+            waves,
             1.1,
         )

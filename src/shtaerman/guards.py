@@ -33,6 +33,7 @@ they reached.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import warnings
@@ -69,6 +70,7 @@ __all__ = [
     "check_within_layer",
     "deepest_depth_remedy",
     "depth_ratio",
+    "on_rubber",
     "outside_validity",
     "passing_density",
     "reach_shape",
@@ -176,8 +178,7 @@ def wave_limit(force_exponent: float, poisson: float, power_law: bool = False) -
     deep (R = 10 mm at x/a 1.17, q at x_c 1.39, nu2 0.49: its reflected check from lambda
     0.58, below z = 10 r^2's 0.70; benchmarks/FEM_NOTES.md)."""
     q = round(force_exponent, 9)  # 1 + 1/n and (n + 1)/n differ in the last digit
-    rubber = power_law and RUBBER_POISSON[0] <= poisson <= RUBBER_POISSON[1]
-    table = RUBBER_WAVE_LIMITS if rubber else WAVE_LIMITS
+    table = RUBBER_WAVE_LIMITS if on_rubber(poisson, power_law) else WAVE_LIMITS
     for (first, low), (last, high) in itertools.pairwise(table):
         if q <= first:
             return low
@@ -186,10 +187,26 @@ def wave_limit(force_exponent: float, poisson: float, power_law: bool = False) -
     return table[-1][1]
 
 
+def on_rubber(poisson: float, power_law: bool) -> bool:
+    """Whether a striker (a ``power_law``'s or not) on a body of Poisson's ratio ``poisson``
+    is held to :data:`RUBBER_WAVE_LIMITS`."""
+    return power_law and RUBBER_POISSON[0] <= poisson <= RUBBER_POISSON[1]
+
+
 class Waves(Protocol):
     """The first-order radiated fraction lambda of an impact (mass kg, velocity m/s) on a
-    body with mass (:class:`shtaerman.fem.dynamic_contact.RadiatedFraction`), and the body's
-    :func:`wave_limit` of a force exponent q (``limit``)."""
+    body with mass (:class:`shtaerman.fem.dynamic_contact.RadiatedFraction`): its density
+    ``rho`` (kg/m^3), whether the striker is a ``power_law`` (its lambda exact in the
+    velocity), whether the body is held to a rubber's limits (``rubber``: :func:`on_rubber`)
+    and the body's :func:`wave_limit` of a force exponent q (``limit``)."""
+
+    rho: float
+
+    @property
+    def power_law(self) -> bool: ...
+
+    @property
+    def rubber(self) -> bool: ...
 
     def __call__(self, mass: float, velocity: float) -> float: ...
 
@@ -954,40 +971,37 @@ def _approach(indenter: PowerLawIndenter, modulus: float, impact: tuple[float, f
 def check_wave_speed(
     impact: tuple[float, float],
     estimate: object,
-    body: tuple[float, float],
+    waves: Waves,
     force_exponent: float,
-    fraction_at: Callable[[float], float] | None = None,
     reaches: Callable[[float, float], bool] | None = None,
 ) -> None:
     """Refuse, before any work, an FE impact with inertia (mass in kg, velocity in m/s)
     whose first-order radiated fraction ``estimate`` (a
-    :class:`~shtaerman.theory.radiation.RadiationEstimate` on the ``body`` of density kg/m^3
-    and Poisson's ratio nu2) exceeds :func:`wave_limit` of its force exponent
-    (``force_exponent`` q, the tip's: :func:`tip_exponents`) and nu2, naming the velocity
-    and the density that pass: lambda goes as sqrt(density) and, for a power-law force P ~
-    x^q, as v0^((3q - 3)/(q + 1)). A sphere's or a table's force varies with depth: that
-    velocity is a first guess, checked by
-    ``fraction_at`` (lambda at a velocity in m/s; None: a power law's, exact, held to a
-    rubber's limit where nu2 is one's: :func:`wave_limit`), which a few
-    rescalings bring below the limit (a 12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82
-    m/s, at lambda 0.837, above session 59's 0.7). Where ``reaches`` (whether an impact, mass kg and
-    velocity m/s, lies within :func:`check_reach`'s window; None: not checked) refuses that
-    velocity, the refusal says so and names the density and the mass that pass instead;
-    unchecked, a velocity beyond :data:`REMEDY_SPAN` is not named (the density is)."""
+    :class:`~shtaerman.theory.radiation.RadiationEstimate` on the body of ``waves``) exceeds
+    the body's limit of its force exponent (``force_exponent`` q, the tip's:
+    :func:`tip_exponents`; ``waves.limit``), naming the velocity and the density that pass:
+    lambda goes as sqrt(density) and, for a power-law force P ~ x^q, as v0^((3q - 3)/(q + 1)).
+    A sphere's or a table's force varies with depth: that velocity is a first guess, checked
+    by ``waves`` (a power law's is exact), which a few rescalings bring below the limit (a
+    12 g ball R = 50 mm at 60 m/s: q = 3/2 named 1.82 m/s, at lambda 0.837, above session
+    59's 0.7). Where ``reaches`` (whether an impact, mass kg and velocity m/s, lies within
+    :func:`check_reach`'s window; None: not checked) refuses that velocity, the refusal says
+    so and names the density and the mass that pass instead; unchecked, a velocity beyond
+    :data:`REMEDY_SPAN` is not named (the density is)."""
     from .validation import LimitError
 
-    (fraction, q), (density, poisson) = (estimate.energy_fraction, force_exponent), body
-    power_law = fraction_at is None
-    limit = wave_limit(q, poisson, power_law)
+    fraction, q, density = estimate.energy_fraction, force_exponent, waves.rho
+    limit = waves.limit(q)
     if not fraction > limit:
         return
     mass, velocity = impact
     c_s, share = estimate.shear_wave_speed, limit / fraction
     slower = _slower(velocity, share, q)
     about = ""
-    if fraction_at is not None:
+    if not waves.power_law:
         power = (q + 1.0) / (3.0 * q - 3.0)
-        slower, about = _passing_velocity(slower, power, fraction_at, limit)
+        at = functools.partial(waves, mass)
+        slower, about = _passing_velocity(slower, power, at, limit)
     remedy, named = f" or velocity {about}{slower:.3g} m/s would pass", "velocity"
     if reaches is not None and not reaches(mass, float(f"{slower:.3g}")):
         remedy = _heavier_instead(impact, slower, q, share, reaches)
@@ -1004,7 +1018,7 @@ def check_wave_speed(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
         f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and radiates an "
         f"estimated {shown} of its energy as waves (first order), above "
-        f"{_limit_text(q, poisson, power_law)}, where the FE impact with inertia breaks down "
+        f"{_limit_text(q, limit, waves.rubber)}, where the FE impact with inertia breaks down "
         f"(measured: beyond it the linear one fails its energy balance or its reflected-energy "
         f"check): "
         f"{lighter_text}{remedy}"
@@ -1023,17 +1037,14 @@ def passing_density(density: float, share: float) -> float:
     return lighter if lighter >= DENSITY_RANGE[0] else 0.0
 
 
-def _limit_text(q: float, poisson: float, power_law: bool) -> str:
-    """:func:`wave_limit` of a striker (a ``power_law``'s or not) whose force goes as x^``q``
-    on a body of Poisson's ratio ``poisson``, as its refusal says it (with the exponent where
-    it is a blunt striker's, below :data:`MAX_RADIATED_ESTIMATE`; a rubber's nu2 too)."""
-    limit, (low, high) = wave_limit(q, poisson, power_law), RUBBER_POISSON
+def _limit_text(q: float, limit: float, rubber: bool) -> str:
+    """The wave-speed ``limit`` of a striker whose force goes as x^``q`` as its refusal says
+    it (with the exponent where it is a blunt striker's, below :data:`MAX_RADIATED_ESTIMATE`;
+    the nu2 range where it is a ``rubber``'s: :func:`on_rubber`)."""
     if limit >= MAX_RADIATED_ESTIMATE:
         return f"{limit:.3g}"
-    rubber = (
-        f" on a rubber, nu2 {low:g} to {high:g}" if power_law and low <= poisson <= high else ""
-    )
-    return f"{limit:.3g} (the limit of a force ~ x^{q:.3g}{rubber}, lower for blunter strikers)"
+    on = " on a rubber, nu2 {:g} to {:g}".format(*RUBBER_POISSON) if rubber else ""
+    return f"{limit:.3g} (the limit of a force ~ x^{q:.3g}{on}, lower for blunter strikers)"
 
 
 def _heavier_instead(

@@ -11,7 +11,6 @@ benchmarks/FEM_NOTES.md, "Moved from the docstrings", fem/dynamic_contact.py."""
 
 from __future__ import annotations
 
-import functools
 import math
 import sys
 import time
@@ -620,12 +619,23 @@ class RadiatedFraction:
             striker = Striker(mass, velocity)
             return _waves(indenter, half_space, self.rho, striker, exact).energy_fraction
 
+    @property
+    def power_law(self) -> bool:
+        """Whether the striker is z = A r^n (its lambda exact in the velocity)."""
+        return self.indenter.kind == "power-law"
+
+    @property
+    def rubber(self) -> bool:
+        """Whether the body is held to a rubber's limits (:func:`shtaerman.guards.on_rubber`)."""
+        from ..guards import on_rubber
+
+        return on_rubber(self.half_space.poisson_ratio, self.power_law)
+
     def limit(self, force_exponent: float) -> float:
         """:func:`shtaerman.guards.wave_limit` of a force ~ x^``force_exponent`` on this body."""
         from ..guards import wave_limit  # looked up here: a benchmark lifts it
 
-        power_law = self.indenter.kind == "power-law"
-        return wave_limit(force_exponent, self.half_space.poisson_ratio, power_law)
+        return wave_limit(force_exponent, self.half_space.poisson_ratio, self.power_law)
 
 
 def _reaches(indenter: Indenter, half_space: Material) -> Callable[[float, float], bool]:
@@ -690,13 +700,11 @@ def check_dynamic_impact(
         check_reach(indenter, qs.x_c, impact, False, waves=fraction)
         # before the viscoelastic sizing, which takes 0.06 s
         _checked_estimate(estimate_dofs(settings), settings)
-    if rho > 0:
+    if fraction is not None:
         waves = _waves(indenter, half_space, rho, striker, exact)
-        profile = math.isnan(qs.beta)  # a sphere's or a table's: no power law
-        at = functools.partial(fraction, striker.mass) if profile else None
-        reach = None if thickness is not None or profile else _reaches(indenter, half_space)
-        body, q = (rho, half_space.poisson_ratio), tip_exponents(indenter, qs.x_c)[1]
-        check_wave_speed(impact, waves, body, q, at, reach)
+        power_law = fraction.power_law  # a sphere's or a table's lambda is checked by calls
+        reach = _reaches(indenter, half_space) if thickness is None and power_law else None
+        check_wave_speed(impact, waves, fraction, tip_exponents(indenter, qs.x_c)[1], reach)
     scales = _scales(indenter, half_space, rho, striker, settings, geometry, prony, qs)
     if thickness is None:
         domain = scales.domain_radius / scales.refined  # at least the waves' reach

@@ -207,7 +207,6 @@ def _check_finite_waves(
     (its exact impact ``exact()``); first a sphere's equator
     (:func:`shtaerman.guards.check_equator`), its remedies within the waves' limit, as the
     linear body's reach check names them."""
-    import functools
     import warnings
 
     from ..theory.materials import RIGID, effective_modulus
@@ -235,11 +234,7 @@ def _check_finite_waves(
     if exact is not None:  # a sphere's equator first, its remedies within the waves' limit
         check_equator(indenter, exact.x_c, impact, waves=waves)
     q = tip_exponents(indenter, math.nan if exact is None else exact.x_c)[1]
-    body = (density, half_space.poisson_ratio)
-    if exact is None:  # the power law: its force exponent q is exact
-        check_wave_speed(impact, estimate, body, q, None, reaches)
-    else:
-        check_wave_speed(impact, estimate, body, q, functools.partial(waves, impact[0]))
+    check_wave_speed(impact, estimate, waves, q, reaches if exact is None else None)
 
 
 def run_impact(
