@@ -70,6 +70,7 @@ __all__ = [
     "check_within_layer",
     "deepest_depth_remedy",
     "depth_ratio",
+    "equator_energy_refusal",
     "on_rubber",
     "outside_validity",
     "passing_density",
@@ -1154,23 +1155,40 @@ def check_equator(
     ``impact`` (mass kg, velocity m/s) that set the depth (``overshoot`` times its x_c) and
     the velocity and mass that pass (``waves``: as :func:`check_reach` takes it, within the
     waves' limit too: :func:`_equator_remedy`); ``note`` follows the depth."""
-    from .validation import LimitError
 
     radius = getattr(indenter, "radius", None)
     if getattr(indenter, "kind", "") != "sphere" or deepest < radius:
         return
     if impact is None:
-        parameter, drive = "depths", f"depth {deepest:.6g} m"
         remedy = f"give smaller depths or a sphere_radius=... above {deepest:.6g} m"
-    else:
-        parameter, remedy = (
-            "sphere_radius",
-            _equator_remedy(indenter, deepest, impact, overshoot, waves),
-        )
-        drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
-        drive += f"{deepest:.3g} m{note}"
-    raise LimitError(
-        f"{parameter}: {drive}, beyond the sphere's radius {radius:.6g} m (its equator, past "
+        raise _equator_refusal("depths", f"depth {deepest:.6g} m,", radius, remedy)
+    drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker to about "
+    remedy = _equator_remedy(indenter, deepest, impact, overshoot, waves)
+    raise _equator_refusal("sphere_radius", f"{drive}{deepest:.3g} m{note},", radius, remedy)
+
+
+def equator_energy_refusal(radius: float, impact: tuple[float, float], share: float) -> Exception:
+    """The refusal of a sphere of ``radius`` m that the impact (mass kg, velocity m/s) drives
+    to its equator, where the FE's sphere ends (:func:`check_equator`), when its depth is not
+    known (the exact impact refused the contact past R): the velocity, the mass and the
+    sphere whose energy is ``share`` of the impact's (<= 0: underflowed) stop short of it."""
+    from .theory.profile_impact import larger_sphere, lower_inputs
+
+    remedy = "take a larger sphere (sphere_radius=...)"
+    if share > 0.0:
+        log_share = math.log(share)
+        remedy = _equator_words(*lower_inputs(*impact, log_share), larger_sphere(radius, log_share))
+    drive = f"{impact[0]:g} kg at {impact[1]:g} m/s drive the striker"
+    return _equator_refusal("sphere_radius", drive, radius, remedy)
+
+
+def _equator_refusal(parameter: str, drive: str, radius: float, remedy: str) -> Exception:
+    """The equator refusal's words: ``drive`` (what takes the striker there), the sphere's
+    ``radius`` m and the ``remedy``, naming ``parameter``."""
+    from .validation import LimitError
+
+    return LimitError(
+        f"{parameter}: {drive} beyond the sphere's radius {radius:.6g} m (its equator, past "
         f"which the FE profile is no sphere): the deepest depth must be below the radius; "
         f"{remedy}",
         parameter,

@@ -27,6 +27,7 @@ from ..guards import (
     check_equator,
     check_profile_reach,
     check_wave_speed,
+    equator_energy_refusal,
     tip_exponents,
 )
 from ..theory.materials import Material
@@ -148,7 +149,7 @@ def _check_profile_end(
             top = float(law.contact_radius(math.nextafter(top, 0.0)))
         # 0 where the work or the radius (its root, R = 1e-300 m) underflows
         share = 0.999 * work_to(law, top) / (0.5 * mass * velocity * velocity) if top else 0.0
-        error = _equator_refusal(indenter.radius, impact, share) if law.sphere else refusal
+        error = equator_energy_refusal(indenter.radius, impact, share) if law.sphere else refusal
         if not (share > 0.0 and density > 0.0):
             raise error from None
         fraction = RadiatedFraction(indenter, half_space, density)
@@ -168,28 +169,6 @@ def _check_profile_end(
             "quasi-static impact without waves)",
             error.parameter,
         ) from None
-
-
-def _equator_refusal(radius: float, impact: tuple[float, float], share: float) -> Exception:
-    """The refusal of a sphere of ``radius`` m that the impact (mass kg, velocity m/s) drives
-    to its equator, where the FE's sphere ends (:func:`shtaerman.guards.check_equator`),
-    naming the velocity and the mass whose energy, ``share`` of the impact's, stops the
-    striker at a depth below the radius (the exact impact's own refusal keeps the contact
-    radius below R, deeper than the FE's sphere reaches)."""
-    from ..theory.profile_impact import larger_sphere, lower_impact
-    from ..validation import LimitError
-
-    mass, velocity = impact
-    remedy = "take a larger sphere (sphere_radius=...)"
-    if share > 0.0:
-        log_share = math.log(share)
-        remedy = f"{lower_impact(mass, velocity, log_share)} or {larger_sphere(radius, log_share)}"
-    return LimitError(
-        f"sphere_radius: {mass:g} kg at {velocity:g} m/s drive the striker beyond the "
-        f"sphere's radius {radius:.6g} m (its equator, past which the FE profile is no "
-        f"sphere): the deepest depth must be below the radius; {remedy}",
-        "sphere_radius",
-    )
 
 
 def _check_finite_waves(
