@@ -25,9 +25,7 @@ def test_a_grid_larger_than_the_window_keeps_the_window_and_the_rows(tmp_path, m
         return futures[-len(args[1]) :]
 
     monkeypatch.setattr(Client, "map", spied)
-    monkeypatch.setattr(
-        engine, "PENDING_PER_WORKER", 2, raising=False
-    )  # 1 worker: a window of 2 of 7 cases
+    monkeypatch.setattr(engine, "PENDING_PER_WORKER", 2)  # 1 worker: a window of 2 of 7 cases
     windowed = run_sweep(spec, tmp_path / "windowed", workers=1, figures=False)
     assert windowed.succeeded == 7 and max(peaks) <= 2 and len(peaks) >= 4  # 7 cases, 2 a time
     futures.clear()
