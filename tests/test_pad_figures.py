@@ -66,13 +66,13 @@ def test_over_velocity_draws_the_pads_reflection_not_the_half_space_estimate(
     assert not any("estimate" in label for label in _legend(ax_e))
     labels = _legend(ax_loss)
     assert not any("lambda" in label for label in labels)
-    assert "reflected back near the contact, % of $E_0$" in labels
+    assert "come back after separation, % of $E_0$" in labels
     assert "energy balance error, % of $E_0$" in labels
     assert "pad" in ax_loss.get_ylabel() and "half-space" not in ax_loss.get_ylabel()
     # the series are the pad run's own measurements, in per cent of M v0^2/2
     results = [case.result for case in pad_outcome.cases]
     lines = {line.get_label(): line for line in ax_loss.get_lines()}
-    reflected = lines["reflected back near the contact, % of $E_0$"].get_ydata()
+    reflected = lines["come back after separation, % of $E_0$"].get_ydata()
     np.testing.assert_array_equal(reflected, [100 * r.reflected_energy_fraction for r in results])
     balance = lines["energy balance error, % of $E_0$"].get_ydata()
     np.testing.assert_array_equal(balance, [100 * r.energy_balance_error for r in results])
@@ -102,7 +102,7 @@ def test_case_figures_name_the_pad(monkeypatch, pad_case):
     assert "absorbed at the pad's lateral edge (waves)" in labels
     assert not any("half-space" in label for label in labels)
     reflected = f"{pad_case.result.reflected_energy_fraction:.1e} E0"
-    assert "the base's reflections" in account.axes[0].get_title()
+    assert "come back near the contact after separation" in account.axes[0].get_title()
     assert reflected in account.axes[0].get_title()
 
     loop = capture(

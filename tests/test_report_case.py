@@ -125,7 +125,7 @@ def test_a_pad_quotes_its_reflection_not_the_half_space_estimate(tmp_path):
     (loss,) = [line for line in context["findings"] if "rebounds" in line]
     assert "first-order estimate" not in loss.replace("estimate does not apply", "")
     assert "stays in the 20 mm pad on a bonded rigid base as waves along the pad" in loss
-    assert "its base's reflections leave" in loss and "of M v0^2/2" in loss
+    assert "of M v0^2/2 came back near the contact after separation" in loss
     (table, _) = context["studies"][0]["tables"]
     column = table["header"].index("estimate")
     assert {row[column] for row in table["rows"]} == {"-"}  # the half-space's, not a pad's

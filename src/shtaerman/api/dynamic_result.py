@@ -103,7 +103,10 @@ class DynamicResult:
         "energy_balance_error", "Energy account error, of M v0^2 / 2."
     )
     reflected_energy_fraction = _dynamic_key(
-        "reflected_energy_fraction", "Energy reflected by the far boundary, of the radiated."
+        "reflected_energy_fraction",
+        "Energy reflected back: left inside R_a at the end, of the radiated; on a pad what "
+        "came back inside R_a after separation, of M v0^2 / 2; a rubber's, the kinetic "
+        "energy beyond half the domain at separation, of M v0^2 / 2.",
     )
     energy_dissipated_fraction = _dynamic_key(
         "energy_dissipated_fraction", "Energy dissipated (of M v0^2 / 2; nan if elastic)."

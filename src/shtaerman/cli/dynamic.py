@@ -57,7 +57,8 @@ def register(commands: argparse._SubParsersAction) -> None:
             "(with a warning) when the energy balance is off by more than 1e-2 of M v0^2/2, or "
             "the far boundary reflects more than 1e-2 of the radiated energy. --thickness H: "
             "a layer on a rigid base (bonded or lubricated) whose base reflects the waves, with "
-            "a lateral absorber; its reflected energy is counted of M v0^2/2."
+            "a lateral absorber; its reflected energy is what comes back near the contact "
+            "after separation, of M v0^2/2."
         ),
     )
     inputs = (*common.CASE, *common.PROFILES, "E2", "nu2", "density2", "prony", "thickness", "base")

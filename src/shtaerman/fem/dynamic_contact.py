@@ -754,7 +754,7 @@ class DynamicImpactSetup:
     force_exponent : float
         q of the quasi-static law P ~ x^q (separation time between steps).
     reflection_measured : bool
-        Whether the energy left inside R_a at the end measures the reflections.
+        Whether the energy inside R_a measures the reflections (a tail is stepped).
     mesh, parameters : dict
         As in :class:`.impact_run.ImpactRun`.
     timings : dict of str to float
@@ -774,7 +774,8 @@ class DynamicImpactSetup:
         self, snapshot_times: tuple[float, ...] = (), energy_series: bool = True
     ) -> ImpactHistory:
         """Step the run (:func:`.stepper.march`), keeping the fields at ``snapshot_times`` (s);
-        ``energy_series``: the energies inside R_a at every step, else at the last one."""
+        ``energy_series``: the energies inside R_a at every step, else at the last one (on a
+        layer from the contact's end on: its reflected energy)."""
         return march(
             self.problem,
             duration=self.duration,
@@ -782,6 +783,7 @@ class DynamicImpactSetup:
             force_exponent=self.force_exponent,
             snapshot_times=snapshot_times,
             energy_series=energy_series,
+            after_contact="thickness" in self.mesh,
         )
 
     def result(self, history: ImpactHistory, timings: dict[str, float]) -> ImpactRun:
@@ -948,13 +950,24 @@ def _reflected_fraction(
     layered: bool = False,
     viscoelastic: bool = False,
 ) -> float:
-    """Body energy inside R_a at the end over the radiated energy, or over ``energy0`` on a
-    layer (nan if not measured); a viscoelastic body's counts twice its kinetic energy there."""
-    inner = history.energies["inner_kinetic"][-1] * 2.0 if viscoelastic else None
-    inner = history.energies["inner"][-1] if inner is None else inner
+    """The body energy inside R_a at the end over the radiated energy; on a layer, what comes
+    back: its largest rise above its running minimum after separation (:func:`_returned`) over
+    ``energy0`` (J). nan if not measured; a viscoelastic body's counts twice its kinetic
+    energy there."""
+    scale = 2.0 if viscoelastic else 1.0
+    inner = history.energies["inner_kinetic" if viscoelastic else "inner"] * scale
     if layered:
-        return float(inner / energy0) if measured else math.nan
+        return _returned(inner[history.t > history.t_contact]) / energy0 if measured else math.nan
     radiated_energy = energy0 - history.energies["striker_kinetic"][-1]
     if measured and radiated_energy > 0:
-        return float(inner / radiated_energy)
+        return float(inner[-1] / radiated_energy)
     return math.nan
+
+
+def _returned(energies: np.ndarray) -> float:
+    """The largest rise of ``energies`` (a series, nan before the monitoring began) above
+    their running minimum: what came back, in their unit (0 for energy only leaving)."""
+    series = energies[~np.isnan(energies)]
+    if series.size == 0:
+        return math.nan
+    return float(np.max(series - np.minimum.accumulate(series)))

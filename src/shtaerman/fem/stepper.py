@@ -617,6 +617,7 @@ def march(
     force_exponent: float,
     snapshot_times: tuple[float, ...] = (),
     energy_series: bool = True,
+    after_contact: bool = False,
 ) -> ImpactHistory:
     """Step from first touch until ``tail_time`` s after separation, or ``duration`` s.
 
@@ -635,6 +636,9 @@ def march(
         Whether the energies inside R_a (``inner``, ``inner_kinetic``) are computed at every
         step (a history's energies.csv) or at the last one only (nan before it: what the
         reflected energy and the loss split use).
+    after_contact : bool
+        Without the series, whether those energies are computed from the contact's end on
+        too (what a layer's reflected energy uses).
 
     Raises
     ------
@@ -645,13 +649,14 @@ def march(
     """
     dt, energy0 = problem.scheme.dt, problem.striker.kinetic_energy
     state, touched, numerical = ImpactState.first_touch(problem), False, 0.0
+    left = False
     snapshots: dict[float, tuple[float, np.ndarray, np.ndarray]] = {}
     memories: dict[float, ShearMemory | None] = {}
     wanted = sorted(float(s) for s in snapshot_times)
     max_steps = math.ceil(duration / dt)
 
     def step() -> list[tuple[tuple, bool]]:
-        nonlocal state, touched, numerical
+        nonlocal state, touched, numerical, left
         if state.step >= max_steps:
             return []
         try:
@@ -660,7 +665,8 @@ def march(
             _blame_the_stepping(numerical / energy0, state, problem, edge)
             raise
         t = state.time(problem.scheme)
-        row, energies = _observe(problem, state, energy_series)
+        left = left or (after_contact and touched and not np.any(state.forces > 0))
+        row, energies = _observe(problem, state, energy_series or left)
         numerical = energies[4]
         if not abs(numerical) <= RUNAWAY_BALANCE * energy0:  # NaN included
             raise NumericalFailureError(_runaway(numerical / energy0, state, problem))

@@ -106,9 +106,10 @@ def _over_velocity_caption(outcome: DynamicStudyOutcome) -> str:
     else:
         loss = (
             f"energy left in the {1e3 * layer.thickness:.3g} mm pad on its {layer.base} "
-            "base (%) over v0, with what the pad run measured: the energy its base reflects "
-            "back near the contact and the energy balance error, % of M v0^2 / 2 on a log "
-            "scale (the half-space's first-order radiation estimate does not apply to a pad)"
+            "base (%) over v0, with what the pad run measured: the energy that came back "
+            "near the contact after separation and the energy balance error, % of M v0^2 / 2 "
+            "on a log scale (the half-space's first-order radiation estimate does not apply "
+            "to a pad)"
         )
     return (
         f"Restitution and {loss}; quasi-static / dynamic - 1 of x, P and contact time (%), "

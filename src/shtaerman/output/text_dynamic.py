@@ -210,13 +210,10 @@ def _grip_words(outcome: DynamicStudyOutcome) -> str:
 
 
 def _reflection_words(outcome: DynamicStudyOutcome) -> str:
-    """A pad's measured reflection at the example: the energy back near the contact after the
-    tail, of M v0^2/2 (the most its base's reflections can change e^2 by)."""
+    """A pad's measured reflection at the example: the energy that came back near the contact
+    after separation (from its lateral absorber and edge), of M v0^2/2."""
     reflected = outcome.example.result.reflected_energy_fraction
-    return (
-        f"its base's reflections leave {reflected:.1e} of M v0^2/2 near the contact after "
-        "the tail, the most they change e^2 by"
-    )
+    return f"{reflected:.1e} of M v0^2/2 came back near the contact after separation"
 
 
 def _loss_words(outcome: DynamicStudyOutcome) -> str:
@@ -419,7 +416,7 @@ def study_tables(outcome: DynamicStudyOutcome) -> list[dict[str, object]]:
     reflected = "reflected: of the radiated energy"
     if outcome.study.geometry.thickness is not None:
         estimate = "the half-space's first-order radiated fraction, not given on a pad"
-        reflected = "reflected: energy back near the contact after the tail, of M v0^2/2"
+        reflected = "reflected: energy come back near the contact after separation, of M v0^2/2"
     return [
         {
             "title": "Dynamic FE impact against the quasi-static model (differences: "

@@ -3,8 +3,9 @@
 - :func:`plot_dynamic_histories`: x(t) and P(t) of the dynamic FE impact against the
   quasi-static (Ateb) impact at one velocity, and the quasi-static minus dynamic difference;
 - :func:`plot_dynamic_over_velocity`: restitution e and the energy left in the body 1 - e^2
-  (on the half-space the first-order estimate as a line; on a pad the energy its base
-  reflects and the energy balance error, which the pad run measured), and the quasi-static
+  (on the half-space the first-order estimate as a line; on a pad the energy that came back
+  near the contact after separation and the energy balance error, which the pad run
+  measured), and the quasi-static
   over dynamic ratios of x, P and the contact time, over the approach velocity;
 - :func:`plot_wave_field`: the von Mises stress on the r-z section at one kept time, over a
   window reaching past the shear wave front (off-screen pyvista, :mod:`.render`).
@@ -148,11 +149,11 @@ def _restitution(ax_e: Axes, ax_loss: Axes, outcome: DynamicStudyOutcome) -> Non
 
 
 def _pad_account(ax: Axes, v: np.ndarray, results: list[ImpactRun]) -> None:
-    """What a pad run measured, % of M v0^2/2 on a log scale: the energy its base reflects
-    back near the contact after the tail and the energy balance error (the half-space's
+    """What a pad run measured, % of M v0^2/2 on a log scale: the energy that came back near
+    the contact after separation and the energy balance error (the half-space's
     first-order radiation estimate does not apply to a pad: not drawn, said in a note)."""
     for key, colour, marker, label in (
-        ("reflected_energy_fraction", SECOND_COLOUR, "s", "reflected back near the contact"),
+        ("reflected_energy_fraction", SECOND_COLOUR, "s", "come back after separation"),
         ("energy_balance_error", "0.45", "^", "energy balance error"),
     ):
         label = f"{label}, % of $E_0$"

@@ -196,9 +196,9 @@ def plot_energy_history(case: DynamicCase, path: Path | str, *, figure_format: s
     ax.set_xlim(0.0, float(result.t[-1]) * t_scale)
     ax.legend(loc="upper right")
     reflected = ""
-    if on_pad(result):  # what a pad's base sends back, measured after the tail
+    if on_pad(result):  # what came back into R_a after separation: the edge's reflections
         reflected = (
-            f"\nback near the contact after the tail (the base's reflections) "
+            f"\ncome back near the contact after separation "
             f"{result.reflected_energy_fraction:.1e} E0"
         )
     ax.set_title(
