@@ -41,15 +41,18 @@ def test_an_interrupted_sweep_on_one_worker_resumes_on_one_worker(tmp_path, caps
     [('prony = "no.csv"', "nu2 = [0.3]", "parameters.prony"), ("", AXIS, "axes.prony[1]")],
 )
 def test_a_bad_prony_file_is_refused_at_load_naming_its_key_as_a_profile_is(
-    tmp_path, parameters, axes, key
+    tmp_path, monkeypatch, parameters, axes, key
 ):
     """It was refused by the check of its first case, "case 0 (nu2 = 0.3): prony: cannot
     read ..." (adv66); now by its key, in the words of a profile's ("parameters.profile:
-    cannot read '...': No such file or directory")."""
+    cannot read '...': No such file or directory"), the path it looked at (adv67: a sweep
+    text without a file is read from the working directory)."""
+    monkeypatch.chdir(tmp_path)
     text = f'name = "p"\nkind = "contact"\n[parameters]\n{parameters}\n[axes]\n{axes}\n'
     with pytest.raises(SweepError) as error:
         parse_sweep(text)
-    said = f"<sweep>: {key}: cannot read 'no.csv': No such file or directory ("
+    looked = str(tmp_path.resolve() / "no.csv")
+    said = f"<sweep>: {key}: cannot read {looked!r}: No such file or directory ("
     assert str(error.value).startswith(said)
 
 

@@ -240,7 +240,7 @@ def parse_sweep(text: str, path: str | Path = "<sweep>") -> SweepSpec:
             )
         axes[key] = _axis(where, kind, key, values)
     _striker(where, path, parameters, axes)
-    _prony_files(where, parameters, axes)
+    _prony_files(where, path, parameters, axes)
     count = math.prod(len(values) for values in axes.values())
     if count > MAX_CASES:
         raise SweepError(f"{where}: [axes] makes {count} cases; at most {MAX_CASES} are allowed")
@@ -274,8 +274,7 @@ def _striker(where: str, path: Path, parameters: dict[str, Any], axes: dict[str,
             f"got {given}"
         )
     if "profile" in parameters:
-        table = Path(parameters["profile"]).expanduser()
-        table = (table if table.is_absolute() else path.parent / table).resolve()
+        table = _beside(path, parameters["profile"])
         try:
             TabulatedIndenter.from_csv(table)
         except InputError as error:
@@ -283,24 +282,34 @@ def _striker(where: str, path: Path, parameters: dict[str, Any], axes: dict[str,
         parameters["profile"] = str(table)
 
 
+def _beside(path: Path, given: str) -> Path:
+    """The file ``given`` in a sweep file ``path``, absolute (a relative one from its folder)."""
+    file = Path(given).expanduser()
+    return (file if file.is_absolute() else path.parent / file).resolve()
+
+
 def _unnamed(error: InputError) -> str:
     """The reason of ``error`` without its leading parameter name (the key says it)."""
     return str(error).removeprefix(f"{error.parameter}: ")
 
 
-def _prony_files(where: str, parameters: dict[str, Any], axes: dict[str, Any]) -> None:
+def _prony_files(where: str, path: Path, parameters: dict[str, Any], axes: dict[str, Any]) -> None:
     """Read now each Prony series a sweep gives as a CSV file (``prony``, fixed or an axis),
-    so a bad file is refused at load naming its key, as ``profile`` is, not by its first case."""
+    its path made absolute (given relative to the sweep file, as ``profile``), so a bad file
+    is refused at load naming its key, and the cases find it from any folder."""
     from ..theory.prony_sources import prony_input
 
-    given = [("parameters.prony", parameters.get("prony"))]
-    given += [(f"axes.prony[{i}]", value) for i, value in enumerate(axes.get("prony", ()))]
-    for key, value in given:
+    given = [("parameters.prony", parameters, "prony")] if "prony" in parameters else []
+    given += [(f"axes.prony[{i}]", axes["prony"], i) for i in range(len(axes.get("prony", ())))]
+    for key, holder, index in given:
+        value = holder[index]
         if isinstance(value, str) and value.strip().lower().endswith(".csv"):
+            csv = _beside(path, value.strip())
             try:
-                prony_input(value, "prony")
+                prony_input(str(csv), "prony")
             except InputError as error:
                 raise SweepError(f"{where}: {key}: {_unnamed(error)}") from None
+            holder[index] = str(csv)
 
 
 def _name(where: str, data: Mapping[str, Any]) -> str:
