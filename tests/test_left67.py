@@ -30,3 +30,32 @@ def test_a_sweep_s_prony_file_is_read_beside_the_sweep_file(
     spec = load_sweep("../study/p.toml")
     assert read(spec) == str(folder.resolve() / "series.csv")
     assert spec.refused == {}  # every case's check read the series
+
+
+def _named_radius(radius: float) -> float:
+    """The radius sh.impact's equator refusal names for 0.7 kg at 3 m/s on ``radius`` m."""
+    import re
+
+    import shtaerman as sh
+
+    rubber = sh.Material(youngs_modulus=7.5e6, poisson_ratio=0.5)
+    with pytest.raises(sh.LimitError) as refused:
+        sh.impact(sh.SphereIndenter(radius=radius), rubber, mass=0.7, velocity=3.0)
+    return float(re.search(r"radius=\.\.\.\) to at least ([0-9.e-]+) m", str(refused.value))[1])
+
+
+def test_the_exact_impact_s_larger_sphere_holds_the_impact():
+    """0.7 kg at 3 m/s on a 0.1 mm sphere (E* 1e7 Pa) named "raise SphereIndenter(radius=...)
+    to at least 0.000983 m", which was refused again, naming 0.000996 (adv67): the work to
+    the equator (a = R less one ulp) is R^3 times 332 E* at 1e-4 m, 320 E* at 1e-3 m, not
+    self-similar to the last digit. The radius named is the least of three digits that runs:
+    one step of its third digit below is refused. The impact it holds is 18.4 radii deep
+    (x/a, a = R): the linear model's answer, said qualitative."""
+    import shtaerman as sh
+    from shtaerman.guards import ValidityWarning
+
+    rubber = sh.Material(youngs_modulus=7.5e6, poisson_ratio=0.5)
+    named = _named_radius(1e-4)
+    with pytest.warns(ValidityWarning, match="is 18.4 contact radii"):
+        sh.impact(sh.SphereIndenter(radius=named), rubber, mass=0.7, velocity=3.0)
+    assert _named_radius(named - 1e-6) == named  # 0.000995 is refused, naming 0.000996
