@@ -65,6 +65,8 @@ def test_effective_modulus_steel_on_rubber():
     assert effective_modulus(STEEL, RUBBER) == pytest.approx(E_STAR, rel=1e-15)
     # a rigid striker leaves the half-space alone: E* = E2 / (1 - nu2^2) = 4 E2 / 3
     assert effective_modulus(RIGID, RUBBER) == pytest.approx(1e7, rel=1e-15)
+    # ... which is the half-space's plane-strain modulus (RUBBER: 7.5 MPa, nu 0.5), to rounding
+    assert RUBBER.plane_strain_modulus == pytest.approx(1e7, rel=1e-15)
 
 
 def test_beta_matches_mpmath_and_paper_constant():

@@ -275,8 +275,7 @@ def _quasi_static(
         if exact is None:
             exact = profile_sizing_impact(indenter, half_space, striker.mass, striker.velocity)
         return _QuasiStatic(math.nan, exact.force_exponent, exact.x_c, exact.t_y, exact.a_c)
-    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
-    law = PowerLawContact(indenter, modulus)
+    law = PowerLawContact(indenter, half_space.plane_strain_modulus)
     q, mass, velocity = law.force_exponent, striker.mass, striker.velocity
     x_c = ((q + 1.0) * mass * velocity**2 / (2.0 * law.beta)) ** (1.0 / (q + 1.0))
     return _QuasiStatic(
@@ -306,7 +305,7 @@ def _viscoelastic_extent(
         If the run would need more than ``MAX_STEPS`` time steps, or the contact lasts more
         than :data:`.viscoelastic.MAX_GLASSY_DURATIONS` glassy ones.
     """
-    law = contact_law(indenter, half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2))
+    law = contact_law(indenter, half_space.plane_strain_modulus)
     slow = sizing_impact(striker.mass, striker.velocity, law, prony, glassy)
     steps = RUN_DURATIONS * slow.t_contact / glassy * settings.steps
     if steps > MAX_STEPS:

@@ -615,8 +615,7 @@ def _checked(
     validate_poisson("nu2", half_space.poisson_ratio, low=0.0)
     if indenter.kind == "power-law" and indenter.exponent <= 1.0:
         raise InputError(f"exponent must be > 1 with a rubber model, got {indenter.exponent!r}")
-    modulus = half_space.youngs_modulus / (1.0 - half_space.poisson_ratio**2)
-    return rho, mass, velocity, contact_law(indenter, modulus)
+    return rho, mass, velocity, contact_law(indenter, half_space.plane_strain_modulus)
 
 
 def _assembled(

@@ -56,6 +56,11 @@ class Material:
         return (1.0 - self.poisson_ratio**2) / self.youngs_modulus
 
     @property
+    def plane_strain_modulus(self) -> float:
+        """Plane-strain modulus E / (1 - nu^2) in Pa: a rigid indenter's E* on this body."""
+        return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
+
+    @property
     def shear_modulus(self) -> float:
         """Shear modulus mu = E / (2 (1 + nu)) in Pa."""
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
