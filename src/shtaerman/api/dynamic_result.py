@@ -272,10 +272,12 @@ UNTRUSTED = ", so this run's numbers are not to be trusted"
 def check_failures(result: DynamicResult, problem: Problem) -> list[str]:
     """The studies' own checks (:func:`shtaerman.study.dynamic.loader.dynamic_check_failures`)
     that the run of ``problem`` fails, one reason each: its energy balance, and the energy
-    reflected back (of the radiated energy; of M v0^2/2 on a layer; none without waves)."""
-    from ..study.dynamic.loader import dynamic_check_failures
+    reflected back (of :func:`~shtaerman.study.dynamic.loader.reflection_reference`; none
+    without waves)."""
+    from ..study.dynamic.loader import dynamic_check_failures, reflection_reference
 
-    of = "the radiated" if problem.geometry.thickness is None else "M v0^2/2"
+    layered, finite = problem.geometry.thickness is not None, problem.cell.model != "linear"
+    of = reflection_reference(layered, finite)
     massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
     reflected = 0.0 if massless else result.reflected_energy_fraction
     radiated = result.energy_radiated_fraction

@@ -202,13 +202,14 @@ def _estimate(estimate: dict, mesh: dict, key: str) -> str:
 def dynamic_text(report: dict) -> str:
     """A readable summary (SI units); a quantity the run could not give (JSON null) is nan."""
     from ..output.text_dynamic import differences_text, viscoelastic_rows
+    from ..study.dynamic.loader import reflection_reference
 
     qs, dyn, est = (
         {key: math.nan if value is None else value for key, value in (report[part] or {}).items()}
         for part in ("quasi_static", "dynamic", "radiation_estimate")
     )
     mesh, timings = report["mesh"], report["timings"]
-    of = "the radiated" if "thickness" not in mesh else "M v0^2/2"
+    of = reflection_reference("thickness" in mesh, report.get("rubber") is not None)
     massless = report["parameters"]["density2"] == 0
     rows = [
         "Dynamic FE impact against the quasi-static theory (rigid striker, SI units)",

@@ -409,6 +409,13 @@ than 5e-5. An impact that radiates almost nothing (v0 = 1e-3 m/s: 1 - e^2 below 
 balance's own error) has a reflected share of its radiation that is noise, or 0/0."""
 
 
+def reflection_reference(layered: bool, finite: bool) -> str:
+    """What a run's reflected energy is a fraction of: the radiated energy for the linear body
+    on the half-space (the energy inside R_a at the end), else M v0^2/2 (a pad's rise after
+    separation; the rubber's kinetic energy beyond half its domain)."""
+    return "M v0^2/2" if layered or finite else "the radiated"
+
+
 def energy_checks(
     balance: float,
     reflected: float,

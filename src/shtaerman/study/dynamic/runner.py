@@ -26,7 +26,7 @@ from ..checks import Check, Outcome
 from ..contact.interface import shtaerman_applies
 from ..limits import LEVELS, thresholds
 from .case import COMPARED, DynamicCase, finite_settings, problem_case
-from .loader import DynamicStudy, energy_checks
+from .loader import DynamicStudy, energy_checks, reflection_reference
 
 __all__ = ["SEPARATION_SNAPSHOT", "DynamicStudyOutcome", "run_dynamic_study"]
 
@@ -151,12 +151,19 @@ def first_order_applies(study: DynamicStudy) -> bool:
 def _checks(study: DynamicStudy, cases: Sequence[DynamicCase]) -> list[Check]:
     tol, checks, estimated = study.tolerances, [], first_order_applies(study)
     reflects = not (study.finite and study.density == 0)  # a massless rubber has no waves
+    of = reflection_reference(study.geometry.thickness is not None, study.finite)
     for case in cases:
         v, r = f"v0 = {case.velocity:g} m/s", case.result
         balance, reflected = r.energy_balance_error, r.reflected_energy_fraction
         radiated = r.energy_radiated_fraction  # nothing radiated: no reflection (0/0)
         checks += energy_checks(
-            balance, reflected, where=f" {v}", tolerances=tol, reflects=reflects, radiated=radiated
+            balance,
+            reflected,
+            where=f" {v}",
+            tolerances=tol,
+            reflects=reflects,
+            of=of,
+            radiated=radiated,
         )
         if estimated and 0 < case.estimate.energy_fraction < tol.estimate_below:
             checks.append(
