@@ -135,21 +135,26 @@ def _interrupted_text(args: argparse.Namespace, name: str, out: Path, stop: Any)
             return f"shtaerman: sweep {name!r} interrupted ({stop}); {kept}"
         return (
             f"shtaerman: sweep {name!r} interrupted ({stop}); {kept}; {stop.saved} of "
-            f"{stop.total} cases of this run saved in {stop.kept_in}{refused}; resume with: "
+            f"{_cases(stop.total)} of this run saved in {stop.kept_in}{refused}; resume with: "
             f"{_resume_command(args, stop.kept_in)}"
         )
     if not stop.saved and not is_sweep_folder(out):
         return f"shtaerman: sweep {name!r} interrupted ({stop}) before any case was saved"
     if stop.total and stop.saved == stop.total:  # stopped while writing the summary
         return (
-            f"shtaerman: sweep {name!r} interrupted ({stop}): all {stop.total} cases saved in "
+            f"shtaerman: sweep {name!r} interrupted ({stop}): all {_cases(stop.total)} saved in "
             f"{out}{refused}, its summary and figures not all written; write them with: "
             f"{_resume_command(args, out)}"
         )
     return (
-        f"shtaerman: sweep {name!r} interrupted ({stop}): {stop.saved} of {stop.total} cases "
+        f"shtaerman: sweep {name!r} interrupted ({stop}): {stop.saved} of {_cases(stop.total)} "
         f"saved in {out}{refused}; resume with: {_resume_command(args, out)}"
     )
+
+
+def _cases(count: int) -> str:
+    """``count`` cases in words: "1 case", "2 cases"."""
+    return f"{count} case{'s' * (count != 1)}"
 
 
 def _failed_text(args: argparse.Namespace, out: Path, error: OSError) -> str:
@@ -184,7 +189,7 @@ def _report(args: argparse.Namespace, spec: Any, out: Path, outcome: Any) -> Non
         done += f", {outcome.reused} from an earlier run"
     refused = f", {outcome.refused} refused (outside the model's validity)" * bool(outcome.refused)
     print(
-        f"sweep {spec.name} ({spec.kind}): {outcome.total} cases, {outcome.succeeded} ok, "
+        f"sweep {spec.name} ({spec.kind}): {_cases(outcome.total)}, {outcome.succeeded} ok, "
         f"{outcome.failed} failed{refused} ({done}) in {outcome.seconds:.1f} s"
     )
     if outcome.warned:
@@ -195,7 +200,7 @@ def _report(args: argparse.Namespace, spec: Any, out: Path, outcome: Any) -> Non
         )
     if outcome.lost:
         print(
-            f"shtaerman: {outcome.lost} cases could not run ({outcome.lost_reason}); complete "
+            f"shtaerman: {_cases(outcome.lost)} could not run ({outcome.lost_reason}); complete "
             f"them with: {_resume_command(args, out)}",
             file=sys.stderr,
         )
