@@ -207,7 +207,8 @@ def test_a_sphere_past_its_equator_is_one_check_with_one_message(tmp_path):
     said = said.format("[indenter] sphere_radius")  # the study file's key
     assert str(loaded.value) == f"{study}: key 'contact.depths': {said}"
     # the FE impact: 0.7 kg at 3 m/s drive a 5 mm sphere to Sneddon's x_c = 9.88 mm
-    with pytest.raises(InputError, match=r"^sphere_radius: .* about 0\.00988 m, beyond the "):
+    head = r"^SphereIndenter\(radius=\.\.\.\): "  # the API's field
+    with pytest.raises(InputError, match=head + r".* about 0\.00988 m, beyond the "):
         massless = sh.Material(7.5e6, 0.5, 0.0)
         sh.dynamic(sh.SphereIndenter(5e-3), massless, mass=0.7, velocity=3.0, estimate=False)
 

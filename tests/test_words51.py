@@ -42,9 +42,11 @@ def test_the_reach_refusal_is_one_sentence_on_contact_and_dynamic(capsys, strike
 
 
 def test_the_reach_refusal_names_keywords_in_the_api():
-    """The API's words: the parameter at fault heads the line, the others as name=..."""
+    """The API's words: the parameter at fault heads the line (a striker's field as the API
+    spells it), the others as name=..."""
     with pytest.raises(
-        sh.InputError, match=r"^shape_coefficient, mass, velocity: the striker z = 50"
+        sh.InputError,
+        match=r"^PowerLawIndenter\(shape_coefficient=\.\.\.\), mass, velocity: the striker z = 50",
     ) as caught:
         sh.contact(sh.PowerLawIndenter(50.0, 1.5), sh.Material(7.5e6, 0.5), model="neo-hookean")
     assert caught.value.parameter == "shape_coefficient"

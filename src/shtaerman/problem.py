@@ -676,6 +676,17 @@ _COMMAND = re.compile(r"\bshtaerman (impact|contact|dynamic)\b")
 """A command a message names, which the API calls sh.impact, sh.contact, sh.dynamic."""
 
 
+def _fields_at_head(message: str) -> str:
+    """``message`` whose head names a striker's field in the API's words:
+    ``sphere_radius, mass: ...`` is ``SphereIndenter(radius=...), mass: ...``."""
+    leading = _LEADING.match(message)
+    if leading is None:
+        return message
+    names = leading[1].split(", ")
+    spelled = [_FIELDS[name].format("...") if name in _FIELDS else name for name in names]
+    return ", ".join(spelled) + message[leading.end() :]
+
+
 def worded(
     message: str, route: str, keys: Mapping[str, str] | None = None, parameter: str | None = None
 ) -> str:
@@ -685,19 +696,19 @@ def worded(
     ``"cli"`` spells options (``--friction: ... --interface bonded``, ``--no-estimate``),
     ``"file"`` the keys of a study or sweep file (``[impact] interface = "bonded"``; ``keys``
     maps an input to its ``table.key``), ``"python"`` keeps it but for the inputs the API
-    names otherwise (``density2`` is the body's ``density``, ``shape_coefficient=...``
-    ``PowerLawIndenter(shape_coefficient=...)``) and the commands (``shtaerman impact`` is
-    ``sh.impact``). On the command line the
-    message's head becomes options only when it names the refusal's declared ``parameter``, a
-    keyword of the vocabulary (``friction: ...``, ``mass, velocity: ...``, ``solver 'pardiso'
-    ...``): a head that names none (a numerical failure's step, ``fit: ...``, ``level 2: ...``)
-    is left as written."""
+    names otherwise (``density2`` is the body's ``density``, ``shape_coefficient=...`` and a
+    head ``shape_coefficient:`` ``PowerLawIndenter(shape_coefficient=...)``) and the commands
+    (``shtaerman impact`` is ``sh.impact``). On the command line the message's head becomes
+    options only when it names the refusal's declared ``parameter``, a keyword of the
+    vocabulary (``friction: ...``, ``mass, velocity: ...``, ``solver 'pardiso' ...``): a head
+    that names none (a numerical failure's step, ``fit: ...``, ``level 2: ...``) is left as
+    written."""
     if route == "python":
         message = _REFERENCE.sub(
             lambda match: _FIELDS[match[1]].format(match[2]) if match[1] in _FIELDS else match[0],
             _COMMAND.sub(r"sh.\1", message),
         )
-        return _NAMED.sub(lambda match: _KEYWORDS[match[1]], message)
+        return _NAMED.sub(lambda match: _KEYWORDS[match[1]], _fields_at_head(message))
 
     def spoken(match: re.Match) -> str:
         name, value = match[1], match[2]
