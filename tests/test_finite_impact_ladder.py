@@ -170,22 +170,24 @@ def test_a_retry_that_passes_keeps_the_estimate(ladder, served, monkeypatch):
 
 def test_a_single_run_that_passed_on_its_retry_says_so(coarse_mesh, monkeypatch):
     """Without the estimate the one level is retried too; it said nothing, so the user who asked
-    for 50 steps got 100 in silence (seen on the researcher's massless pad)."""
-    _failing(monkeypatch, {50})
-    with pytest.warns(RetriedWarning, match="50 steps failed .* passed with 100 steps"):
-        result = sh.dynamic(INDENTER, MASSLESS, **CASE, estimate=False)
-    assert result.parameters["time_steps"] == 100
+    for 50 steps got 100 in silence (seen on the researcher's massless pad). Run at refine 0.5
+    (the ladder's coarsest level: 25 steps, retried with 50), a quarter of refine 1's CPU."""
+    _failing(monkeypatch, {25})
+    with pytest.warns(RetriedWarning, match="25 steps failed .* passed with 50 steps"):
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=0.5, estimate=False)
+    assert result.parameters["time_steps"] == 50
 
 
 def test_a_level_failing_its_first_retry_passes_on_the_second(coarse_mesh, monkeypatch):
     """z = 0.804 r^1.01 with inertia (0.12 kg, 1.5 m/s, the reach's shape coefficient) failed
     "an element inverted" at first contact at 100 and at 200 steps, and passed at 400: a
-    level is retried twice, each with RETRY_STEPS = 2 times the last's steps (50 -> 200)."""
-    _failing(monkeypatch, {50, 100})
-    said = "50 steps failed .* the retry with 100 steps failed too .*; passed with 200 steps"
+    level is retried twice, each with RETRY_STEPS = 2 times the last's steps (at refine 0.5,
+    as above: 25 -> 100)."""
+    _failing(monkeypatch, {25, 50})
+    said = "25 steps failed .* the retry with 50 steps failed too .*; passed with 100 steps"
     with pytest.warns(RetriedWarning, match=said):
-        result = sh.dynamic(INDENTER, MASSLESS, **CASE, estimate=False)
-    assert result.parameters["time_steps"] == 200
+        result = sh.dynamic(INDENTER, MASSLESS, **CASE, refine=0.5, estimate=False)
+    assert result.parameters["time_steps"] == 100
 
 
 def test_no_level_passing_is_the_finest_levels_failure(coarse_mesh, monkeypatch):
