@@ -31,12 +31,14 @@ verify: $(BIN)/shtaerman
 # rounding of the BLAS, or a test that leans on another having run first, fails one pass.
 # Two workers of two threads on two cores: measured up to 1.7x the first pass's wall time.
 SECOND_PASS := OMP_NUM_THREADS=2 OPENBLAS_NUM_THREADS=2 MKL_NUM_THREADS=2 SHTAERMAN_TEST_ORDER=reversed
+# Each pass ends with its 30 slowest test phases, so a CI log shows where the suite's time goes.
+PYTEST := $(BIN)/python -m pytest --durations=30
 
 test: $(VENV)/.extras-test
 	$(BIN)/ruff check src tests benchmarks docs
-	$(BIN)/python -m pytest
+	$(PYTEST)
 ifeq ($(CI),true)
-	$(SECOND_PASS) $(BIN)/python -m pytest
+	$(SECOND_PASS) $(PYTEST)
 endif
 
 bench: $(VENV)/.extras-bench
