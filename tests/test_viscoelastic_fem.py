@@ -286,11 +286,16 @@ def test_the_relaxed_limit_reflects_what_the_relaxed_elastic_body_reflects():
     prony = PronySeries((0.5,), (1e-9,))
     limit = run_impact(INDENTER, RUBBER, density, MASS, VELOCITY, settings, prony=prony)
     assert limit.restitution == pytest.approx(elastic.restitution, rel=1e-4)  # the same impact
-    # the same measure, within the two runs' differences (dt follows the glassy t_y: 0.76 of
-    # the elastic run's; the monitored energy is twice the kinetic one, not kinetic + stored):
-    # 1.7e-3 against 1.9e-3; a factor 1.5 still tells the 17 of the glassy-sized monitor
-    ratio = limit.reflected_energy_fraction / elastic.reflected_energy_fraction
-    assert 1 / 1.5 < ratio < 1.5
+    # nothing comes back after separation in either: 1.0e-4 of the radiated observed, 100x
+    # below the check's 1e-2; the same measure (twice the kinetic energy inside R_a, whose
+    # rise holds the near field's kinetic-strain exchange) on the elastic body 1.4e-4: within
+    # a factor 2, the two runs' differences (dt follows the glassy t_y: 0.76 of the elastic's)
+    assert limit.reflected_energy_fraction < 1e-3
+    after = elastic.t > elastic.t_contact
+    kinetic = 2.0 * elastic.energies["inner_kinetic"][after]
+    back = np.max(kinetic - np.minimum.accumulate(kinetic))
+    radiated = elastic.energies["striker_kinetic"][0] - elastic.energies["striker_kinetic"][-1]
+    assert 0.5 < limit.reflected_energy_fraction / (back / radiated) < 2.0
     # the single-run split: nothing dissipates (2e-6 of M v0^2/2), so nearly all of 1 - e^2 is
     # waves: hysteresis 3.4e-3 of it (the numerical dissipation and the near field), against
     # 3.0e-2 when the slow waves still inside the glassy-sized monitor counted as hysteresis

@@ -104,9 +104,9 @@ class DynamicResult:
     )
     reflected_energy_fraction = _dynamic_key(
         "reflected_energy_fraction",
-        "Energy reflected back: left inside R_a at the end, of the radiated; on a pad what "
-        "came back inside R_a after separation, of M v0^2 / 2; a rubber's, the kinetic "
-        "energy beyond half the domain at separation, of M v0^2 / 2.",
+        "Energy reflected back: what came back inside R_a after separation, of the "
+        "radiated (on a pad of M v0^2 / 2); a rubber's, the kinetic energy beyond half the "
+        "domain at separation, of M v0^2 / 2.",
     )
     energy_dissipated_fraction = _dynamic_key(
         "energy_dissipated_fraction", "Energy dissipated (of M v0^2 / 2; nan if elastic)."

@@ -773,8 +773,8 @@ class DynamicImpactSetup:
         self, snapshot_times: tuple[float, ...] = (), energy_series: bool = True
     ) -> ImpactHistory:
         """Step the run (:func:`.stepper.march`), keeping the fields at ``snapshot_times`` (s);
-        ``energy_series``: the energies inside R_a at every step, else at the last one (on a
-        layer from the contact's end on: its reflected energy)."""
+        ``energy_series``: the energies inside R_a at every step, else from the contact's end on
+        where the reflected energy is measured."""
         return march(
             self.problem,
             duration=self.duration,
@@ -782,7 +782,7 @@ class DynamicImpactSetup:
             force_exponent=self.force_exponent,
             snapshot_times=snapshot_times,
             energy_series=energy_series,
-            after_contact="thickness" in self.mesh,
+            after_contact=self.reflection_measured,
         )
 
     def result(self, history: ImpactHistory, timings: dict[str, float]) -> ImpactRun:
@@ -949,17 +949,18 @@ def _reflected_fraction(
     layered: bool = False,
     viscoelastic: bool = False,
 ) -> float:
-    """The body energy inside R_a at the end over the radiated energy; on a layer, what comes
-    back: its largest rise above its running minimum after separation (:func:`_returned`) over
-    ``energy0`` (J). nan if not measured; a viscoelastic body's counts twice its kinetic
-    energy there."""
+    """What came back inside R_a: the largest rise of the body energy there above its running
+    minimum after separation (:func:`_returned`, J), over the radiated energy, or over
+    ``energy0`` (J) on a layer. nan if not measured; a viscoelastic body's counts twice its
+    kinetic energy there."""
     scale = 2.0 if viscoelastic else 1.0
     inner = history.energies["inner_kinetic" if viscoelastic else "inner"] * scale
+    returned = _returned(inner[history.t > history.t_contact]) if measured else math.nan
     if layered:
-        return _returned(inner[history.t > history.t_contact]) / energy0 if measured else math.nan
+        return returned / energy0
     radiated_energy = energy0 - history.energies["striker_kinetic"][-1]
-    if measured and radiated_energy > 0:
-        return float(inner[-1] / radiated_energy)
+    if radiated_energy > 0:
+        return returned / radiated_energy
     return math.nan
 
 
