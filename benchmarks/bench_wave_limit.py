@@ -64,6 +64,8 @@ def _blunt(n: float, shape: float, nu: str) -> list[str]:
             "--nu2", nu]  # fmt: skip
 
 
+BLUNT_NU = ("0", "0.3", "0.45", "0.49", "0.499", "0.5")
+"""The nu2 of the scans of n = 5 and 10: WAVE_LIMITS' and a rubber's."""
 STRIKER_28 = ["--E2", "3e6", "--nu2", "0.49", "--mass", "0.12", "--density2", "1000"]
 """Issue 28's body and mass (its striker z = 8 r^1.3 at 1.5 m/s; its pad 12 mm)."""
 
@@ -90,8 +92,8 @@ STRIKERS = {
     **{f"n4.5-density{nu}": [*_power(4.5, "--velocity", "0.1"), "--nu2", nu]
        for nu in ("0.45", "0.49", "0.499")},
     "n5": ["--exponent", "5", "--shape-coefficient", "1000"],  # 0.7 kg, 7.5 MPa
-    **{f"n5-density{nu}": _blunt(5.0, 1e3, nu) for nu in ("0", "0.45", "0.49", "0.499", "0.5")},
-    **{f"n10-density{nu}": _blunt(10.0, 1e6, nu) for nu in ("0", "0.45", "0.49", "0.499", "0.5")},
+    **{f"n5-density{nu}": _blunt(5.0, 1e3, nu) for nu in BLUNT_NU},
+    **{f"n10-density{nu}": _blunt(10.0, 1e6, nu) for nu in BLUNT_NU},
     "ball": BALL,
     "ball-nu0.3": [*BALL, "--nu2", "0.3"],
     "ball-nu0": [*BALL, "--nu2", "0"],
@@ -184,6 +186,7 @@ def scan(name: str, lambdas: list[float], extra: list[str]) -> tuple[float, floa
         q = 2.0 * modulus * qs["a_c"] * qs["x_c"] / qs["P_c"]  # d ln P / d ln x at x_c
         estimate = d["radiation_estimate"]  # None on a pad: the half-space's, as the guard
         est = estimate["energy_fraction"] if estimate else target
+        dy = {key: math.nan if value is None else value for key, value in dy.items()}
         print(
             f"{name:11} {q:5.3f} {p['nu2']:4.2f} {' '.join(knob):>20} "
             f"{p['velocity'] / p['shear_wave_speed']:8.3g} {qs['x_c'] / qs['a_c']:8.3g} "
