@@ -171,7 +171,7 @@ def test_a_wave_refusal_names_no_velocity_beyond_the_remedy_span():
     # the paper's rubber and a z = A r^10 striker: its lambda is the estimate's (a power law)
     waves = RadiatedFraction(sh.PowerLawIndenter(1e3, 10.0), sh.Material(7.5e6, 0.5), 1100.0)
     estimate = SimpleNamespace(energy_fraction=22.5, shear_wave_speed=30.3)
-    assert wave_limit(1.1, 0.5) == pytest.approx(0.0045, rel=1e-2)
+    assert wave_limit(1.1, 0.5) == pytest.approx(0.099, rel=1e-2)  # 0.0045 before session 67
     with pytest.raises(sh.LimitError) as refused:
         check_wave_speed((0.7, 0.0029), estimate, waves, 1.1)
     said = str(refused.value)
@@ -182,7 +182,7 @@ def test_a_wave_refusal_names_no_velocity_beyond_the_remedy_span():
     with pytest.raises(sh.LimitError, match=r"or velocity \S+ m/s would pass"):  # within it
         check_wave_speed(
             (0.7, 0.0029),
-            SimpleNamespace(energy_fraction=0.005, shear_wave_speed=30.3),
+            SimpleNamespace(energy_fraction=0.11, shear_wave_speed=30.3),
             waves,
             1.1,
         )

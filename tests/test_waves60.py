@@ -56,8 +56,9 @@ def test_the_limit_falls_with_bluntness_and_keeps_the_papers():
             == MAX_RADIATED_ESTIMATE
         )
     assert MAX_RADIATED_ESTIMATE == 0.7  # session 59's remedies and verify's numbers
-    # the lowest lambda that failed (default mesh, nu2 0 to 0.5): each limit within 0.9 of it
-    failed = {1.5: 0.505, 4.0 / 3.0: 0.25, 1.25: 0.0093, 1.2: 0.0075, 1.1: 0.005}
+    # the lowest lambda that failed (default mesh, nu2 0 to 0.5; n = 10 at 0.499): each limit
+    # within 0.9 of it (benchmarks/FEM_NOTES.md, "The blunt strikers' limits (session 67)")
+    failed = {1.5: 0.505, 4.0 / 3.0: 0.25, 9.0 / 7.0: 0.218, 1.25: 0.18, 1.2: 0.15, 1.1: 0.11}
     for q, first in failed.items():
         assert wave_limit(q, 0.5) <= 0.9 * first, (q, wave_limit(q, 0.5))
     assert [q for q, _ in WAVE_LIMITS] == sorted(q for q, _ in WAVE_LIMITS)
@@ -87,16 +88,17 @@ def test_a_blunt_strikers_remedies_run_and_pass(capsys, striker, velocity, old):
 
 
 def test_a_striker_no_physical_velocity_passes_names_the_density(capsys):
-    """z = 1000 r^5 (0.7 kg at 3 m/s on the paper's rubber): lambda goes as v0^0.27 and the
-    velocity that passes (6e-10 m/s) is below the FE's reach; the one-line refusal names the
-    density2 that passes (it runs, both checks passed: the body keeps 1.2 % of the radiated
-    energy, 5e-5 of M v0^2/2) and the quasi-static impact."""
-    said = _refusal(capsys, "--exponent", "5", "--shape-coefficient", "1000")
+    """z = 1000 r^10 (0.7 kg at 3 m/s on the paper's rubber; z = 1000 r^5 until session 67's
+    limits): lambda goes as v0^0.14 and the velocity that passes (2.6e-17 m/s) is below the
+    FE's reach; the one-line refusal names the density2 that passes (it runs, both checks
+    passed) and the quasi-static impact."""
+    striker = ("--exponent", "10", "--shape-coefficient", "1000")
+    said = _refusal(capsys, *striker)
     assert said.startswith("--mass, --density2: 0.7 kg at 3 m/s "), said
     assert said.endswith("(density2 0: the quasi-static impact without waves)"), said
     assert "drives the striker shallower than an FE impact resolves" in said, said
     lighter = re.search(r"density2 (\S+) kg/m\^3 or", said)[1]
-    _passes(capsys, "--exponent", "5", "--shape-coefficient", "1000", "--density2", lighter)
+    _passes(capsys, *striker, "--density2", lighter)
 
 
 def test_a_fraction_just_above_the_limit_is_not_printed_as_the_limit(capsys):
