@@ -21,3 +21,19 @@ def test_the_api_names_a_striker_field_at_the_head_of_a_refusal():
     assert said.startswith("SphereIndenter(radius=...): the striker's energy"), said
     assert "raise SphereIndenter(radius=...) to at least" in said
     assert refused.value.parameter == "sphere_radius"
+
+
+def test_a_first_order_fraction_above_one_is_not_called_a_share_of_the_energy():
+    # adv67: "radiates an estimated 10.7 of its energy as waves": z = 8 r^4, 0.12 kg at 1.5 m/s
+    # on 3 MPa rubber (nu2 0.49, 1000 kg/m^3) has lambda 10.7, beyond what first order holds
+    import pytest
+
+    import shtaerman as sh
+
+    striker = sh.PowerLawIndenter(shape_coefficient=8.0, exponent=4.0)
+    rubber = sh.Material(youngs_modulus=3e6, poisson_ratio=0.49, density=1000.0)
+    with pytest.raises(sh.LimitError) as refused:
+        sh.dynamic(striker, rubber, mass=0.12, velocity=1.5, estimate=False)
+    said = str(refused.value)
+    assert "would radiate 10.7 times its energy as waves to first order" in said, said
+    assert "radiates an estimated" not in said

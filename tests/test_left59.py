@@ -80,7 +80,7 @@ def test_each_remedy_of_the_wave_limit_is_within_it(capsys, argv, remedy):
 
 WAVES = (
     "--mass, --density2: 1e-20 kg at 3 m/s is 0.0629 of the body's shear wave speed c_s = "
-    "sqrt(G / density2) = 47.7 m/s and radiates an estimated 47.4 of its energy as waves"
+    "sqrt(G / density2) = 47.7 m/s and would radiate 47.4 times its energy as waves to first order"
 )
 """The head of the refusal of z = 5 r^1.5 on the paper's rubber, 1e-20 kg at 3 m/s (its
 remedy: mass 4.82e-06 kg at 3 m/s, or density2 0.237 kg/m^3)."""
