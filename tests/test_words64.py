@@ -44,7 +44,10 @@ def test_a_study_run_that_radiates_nothing_reflects_nothing(monkeypatch):
     from shtaerman.study.dynamic.loader import DynamicTolerances
 
     monkeypatch.setattr(runner, "first_order_applies", lambda study: False)
-    study = SimpleNamespace(tolerances=DynamicTolerances(), finite=False, density=1100.0)
+    half_space = SimpleNamespace(thickness=None)  # the half-space: reflected of the radiated
+    study = SimpleNamespace(
+        tolerances=DynamicTolerances(), finite=False, density=1100.0, geometry=half_space
+    )
     quiet = SimpleNamespace(
         energy_balance_error=1e-4, reflected_energy_fraction=math.nan, energy_radiated_fraction=1e-9
     )
