@@ -276,8 +276,7 @@ def check_failures(result: DynamicResult, problem: Problem) -> list[str]:
     without waves)."""
     from ..study.dynamic.loader import dynamic_check_failures, reflection_reference
 
-    layered, finite = problem.geometry.thickness is not None, problem.cell.model != "linear"
-    of = reflection_reference(layered, finite)
+    of = reflection_reference("thickness" in result.mesh, result.rubber is not None)
     massless = problem.cell.loading == "massless"  # no waves: nothing to reflect
     reflected = 0.0 if massless else result.reflected_energy_fraction
     radiated = result.energy_radiated_fraction
