@@ -1015,7 +1015,8 @@ def check_wave_speed(
         lighter_text, massless = f"density2 0 ({massless} without waves)", ""
     raise LimitError(
         f"{prefix}: {mass:g} kg at {velocity:g} m/s is {velocity / c_s:.3g} of the body's "
-        f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and {_radiates(shown)}, above "
+        f"shear wave speed c_s = sqrt(G / density2) = {c_s:.3g} m/s and "
+        f"{_radiates(fraction, shown)}, above "
         f"{_limit_text(q, limit, waves.rubber)}, where the FE impact with inertia breaks down "
         f"(measured: beyond it the linear one fails its energy balance or its reflected-energy "
         f"check): "
@@ -1025,10 +1026,11 @@ def check_wave_speed(
     )
 
 
-def _radiates(shown: str) -> str:
-    """The first-order radiated fraction ``shown`` in words: a share of the striker's energy,
-    or, from 1 up, a multiple of it that the first order (valid well below 1) cannot hold."""
-    if float(shown) < 1.0:
+def _radiates(fraction: float, shown: str) -> str:
+    """The first-order radiated ``fraction`` (printed as ``shown``) in words: a share of the
+    striker's energy, or, from 1 up, a multiple of it that the first order (valid well below 1)
+    cannot hold."""
+    if fraction < 1.0:
         return f"radiates an estimated {shown} of its energy as waves (first order)"
     return f"would radiate {shown} times its energy as waves to first order (valid well below 1)"
 
